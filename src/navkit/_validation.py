@@ -1,0 +1,123 @@
+"""Private input validation shared by every navkit layer.
+
+Each helper converts its input to the type the numerical code needs and raises a
+``ValueError`` or ``TypeError`` that names the offending argument. Arrays are
+returned as new float64/int64 arrays whenever a conversion happens; callers that
+write into the result must copy explicitly (``np.array(..., copy=True)``) so the
+caller's data is never modified.
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+FloatArray = NDArray[np.float64]
+IntArray = NDArray[np.int64]
+
+
+def finite_float(value: Any, name: str) -> float:
+    """Return ``value`` as a finite Python float or raise naming ``name``."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        if isinstance(value, np.ndarray) and value.ndim == 0 and value.dtype.kind in "fiu":
+            value = value.item()
+        else:
+            raise TypeError(f"{name} must be a real number, got {type(value).__name__}")
+    out = float(value)
+    if not math.isfinite(out):
+        raise ValueError(f"{name} must be finite, got {out}")
+    return out
+
+
+def positive_float(value: Any, name: str, *, allow_zero: bool = False) -> float:
+    """Return ``value`` as a finite float that is > 0 (or >= 0 with ``allow_zero``)."""
+    out = finite_float(value, name)
+    if out < 0.0 or (out == 0.0 and not allow_zero):
+        bound = ">= 0" if allow_zero else "> 0"
+        raise ValueError(f"{name} must be {bound}, got {out}")
+    return out
+
+
+def as_float_array(
+    value: ArrayLike,
+    name: str,
+    *,
+    ndim: int | None = None,
+    shape: Sequence[int | None] | None = None,
+    finite: bool = True,
+) -> FloatArray:
+    """Convert ``value`` to a float64 array and check its shape and finiteness.
+
+    Parameters
+    ----------
+    value : array_like
+        Input data.
+    name : str
+        Argument name used in error messages.
+    ndim : int, optional
+        Required number of dimensions.
+    shape : sequence of int or None, optional
+        Required shape; ``None`` entries match any length. Implies ``ndim``.
+    finite : bool, default True
+        Reject NaN and infinities.
+    """
+    try:
+        arr = np.asarray(value, dtype=np.float64)
+    except (TypeError, ValueError) as exc:
+        raise TypeError(f"{name} must be numeric array-like: {exc}") from None
+    if shape is not None:
+        ndim = len(shape)
+    if ndim is not None and arr.ndim != ndim:
+        raise ValueError(f"{name} must be {ndim}-D, got shape {arr.shape}")
+    if shape is not None:
+        for axis, (got, want) in enumerate(zip(arr.shape, shape)):
+            if want is not None and got != want:
+                raise ValueError(
+                    f"{name} must have length {want} along axis {axis}, got shape {arr.shape}"
+                )
+    if finite and not np.all(np.isfinite(arr)):
+        raise ValueError(f"{name} must contain only finite values")
+    return arr
+
+
+def as_points(value: ArrayLike, name: str, *, finite: bool = True) -> FloatArray:
+    """Convert ``value`` to an ``(N, 2)`` float64 array of points.
+
+    A single point of shape ``(2,)`` becomes ``(1, 2)``; an empty input becomes
+    ``(0, 2)``.
+    """
+    arr = as_float_array(value, name, finite=finite)
+    if arr.size == 0:
+        return np.empty((0, 2), dtype=np.float64)
+    if arr.ndim == 1 and arr.shape[0] == 2:
+        return arr.reshape(1, 2)
+    if arr.ndim != 2 or arr.shape[1] != 2:
+        raise ValueError(f"{name} must have shape (N, 2) or (2,), got {arr.shape}")
+    return arr
+
+
+def as_cell(value: Any, name: str, shape: tuple[int, ...]) -> tuple[int, int]:
+    """Convert ``value`` to an integer ``(row, col)`` inside an array of ``shape``."""
+    try:
+        seq = tuple(value)
+    except TypeError:
+        raise TypeError(f"{name} must be a (row, col) pair, got {value!r}") from None
+    if len(seq) != 2:
+        raise ValueError(f"{name} must be a (row, col) pair, got {value!r}")
+    cell: list[int] = []
+    for item in seq:
+        if isinstance(item, bool) or not isinstance(item, numbers.Integral):
+            if isinstance(item, numbers.Real) and float(item).is_integer():
+                item = int(item)
+            else:
+                raise TypeError(f"{name} must hold integers, got {value!r}")
+        cell.append(int(item))
+    row, col = cell
+    if not (0 <= row < shape[0] and 0 <= col < shape[1]):
+        raise ValueError(f"{name} {(row, col)} is outside the grid of shape {shape[:2]}")
+    return row, col

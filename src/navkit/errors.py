@@ -1,0 +1,36 @@
+"""Exceptions raised by navkit.
+
+Every navkit-specific exception derives from :class:`NavkitError`, so callers can
+catch all of them at once. Invalid arguments raise the built-in ``ValueError`` or
+``TypeError`` (with the argument named in the message) rather than a navkit class.
+"""
+
+from __future__ import annotations
+
+__all__ = ["NavkitError", "NoPathError"]
+
+
+class NavkitError(Exception):
+    """Base class of navkit's own exceptions."""
+
+
+class NoPathError(NavkitError):
+    """No path exists between the requested start and goal.
+
+    Parameters
+    ----------
+    message : str
+        Human-readable explanation.
+    explored : int, optional
+        Number of nodes (cells or corners) the search expanded before it gave up.
+
+    Examples
+    --------
+    >>> err = NoPathError("goal unreachable", explored=42)
+    >>> err.explored
+    42
+    """
+
+    def __init__(self, message: str, explored: int = 0) -> None:
+        super().__init__(message)
+        self.explored = int(explored)

@@ -1,0 +1,11 @@
+"""SE(2) geometry: angles, poses, twists and their exact integration.
+
+Conventions used across navkit: units are SI (m, rad, s); angles are wrapped to
+(-π, π]; world points are ``(x, y)``; twists are expressed in the robot frame.
+"""
+
+from navkit.geometry._angles import angle_diff, wrap_angle
+from navkit.geometry._integrate import integrate, rollout
+from navkit.geometry._pose import Pose2D, Twist2D
+
+__all__ = ["Pose2D", "Twist2D", "angle_diff", "integrate", "rollout", "wrap_angle"]

@@ -1,0 +1,140 @@
+"""Planar poses (SE(2)) and body twists."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from navkit._validation import as_float_array, as_points, finite_float
+from navkit.geometry._kernels import compose_scalar, wrap_scalar
+
+__all__ = ["Pose2D", "Twist2D"]
+
+
+@dataclass(frozen=True, slots=True)
+class Pose2D:
+    """A planar pose: position (m) and heading (rad) of a frame in the world.
+
+    The heading is wrapped to (-π, π] on construction. A pose maps points from its
+    own (robot) frame to the world frame: ``p_world = R(theta) @ p_robot + (x, y)``.
+
+    Parameters
+    ----------
+    x, y : float
+        Position in metres.
+    theta : float, default 0.0
+        Heading in radians, counter-clockwise from the world x axis.
+
+    Examples
+    --------
+    >>> import math
+    >>> robot = Pose2D(1.0, 2.0, math.pi / 2)
+    >>> robot.transform_points([1.0, 0.0]).round(12)
+    array([[1., 3.]])
+    >>> robot.compose(robot.inverse()) == Pose2D(0.0, 0.0, 0.0)
+    True
+    """
+
+    x: float
+    y: float
+    theta: float = 0.0
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "x", finite_float(self.x, "x"))
+        object.__setattr__(self, "y", finite_float(self.y, "y"))
+        object.__setattr__(self, "theta", wrap_scalar(finite_float(self.theta, "theta")))
+
+    def compose(self, other: Pose2D) -> Pose2D:
+        """Return ``self ⊕ other``: ``other`` (given in this pose's frame) in the world frame."""
+        return Pose2D(*compose_scalar(self.x, self.y, self.theta, other.x, other.y, other.theta))
+
+    def __matmul__(self, other: Pose2D) -> Pose2D:
+        """``a @ b`` is ``a.compose(b)``."""
+        return self.compose(other)
+
+    def inverse(self) -> Pose2D:
+        """Return the inverse transform, so that ``p.compose(p.inverse())`` is the identity."""
+        c = math.cos(self.theta)
+        s = math.sin(self.theta)
+        return Pose2D(-c * self.x - s * self.y, s * self.x - c * self.y, -self.theta)
+
+    def relative_to(self, frame: Pose2D) -> Pose2D:
+        """Express this pose in the frame of ``frame``: ``frame.inverse() ⊕ self``.
+
+        Examples
+        --------
+        >>> Pose2D(2.0, 1.0, 0.0).relative_to(Pose2D(1.0, 1.0, 0.0))
+        Pose2D(x=1.0, y=0.0, theta=0.0)
+        """
+        return frame.inverse().compose(self)
+
+    def transform_points(self, points: ArrayLike) -> NDArray[np.float64]:
+        """Map points from this pose's frame to the world frame.
+
+        Parameters
+        ----------
+        points : array_like, shape (N, 2) or (2,)
+            ``(x, y)`` points in metres in the pose's frame.
+
+        Returns
+        -------
+        ndarray, shape (N, 2)
+            New array of world points.
+        """
+        pts = as_points(points, "points")
+        c = math.cos(self.theta)
+        s = math.sin(self.theta)
+        rot = np.array([[c, s], [-s, c]])
+        return pts @ rot + np.array([self.x, self.y])
+
+    def as_array(self) -> NDArray[np.float64]:
+        """Return ``[x, y, theta]`` as a new float64 array of shape (3,)."""
+        return np.array([self.x, self.y, self.theta], dtype=np.float64)
+
+    @classmethod
+    def from_array(cls, values: ArrayLike) -> Pose2D:
+        """Build a pose from ``[x, y, theta]`` (shape (3,))."""
+        arr = as_float_array(values, "values", shape=(3,))
+        return cls(float(arr[0]), float(arr[1]), float(arr[2]))
+
+
+@dataclass(frozen=True, slots=True)
+class Twist2D:
+    """A planar velocity in the robot (body) frame.
+
+    Parameters
+    ----------
+    vx : float
+        Forward velocity, m/s.
+    vy : float, default 0.0
+        Lateral velocity (to the robot's left), m/s.
+    omega : float, default 0.0
+        Yaw rate, rad/s, counter-clockwise positive.
+
+    Examples
+    --------
+    >>> Twist2D(0.5, 0.0, 0.1).as_array()
+    array([0.5, 0. , 0.1])
+    """
+
+    vx: float
+    vy: float = 0.0
+    omega: float = 0.0
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "vx", finite_float(self.vx, "vx"))
+        object.__setattr__(self, "vy", finite_float(self.vy, "vy"))
+        object.__setattr__(self, "omega", finite_float(self.omega, "omega"))
+
+    def as_array(self) -> NDArray[np.float64]:
+        """Return ``[vx, vy, omega]`` as a new float64 array of shape (3,)."""
+        return np.array([self.vx, self.vy, self.omega], dtype=np.float64)
+
+    @classmethod
+    def from_array(cls, values: ArrayLike) -> Twist2D:
+        """Build a twist from ``[vx, vy, omega]`` (shape (3,))."""
+        arr = as_float_array(values, "values", shape=(3,))
+        return cls(float(arr[0]), float(arr[1]), float(arr[2]))
