@@ -75,7 +75,7 @@ def as_float_array(
     if ndim is not None and arr.ndim != ndim:
         raise ValueError(f"{name} must be {ndim}-D, got shape {arr.shape}")
     if shape is not None:
-        for axis, (got, want) in enumerate(zip(arr.shape, shape)):
+        for axis, (got, want) in enumerate(zip(arr.shape, shape, strict=True)):
             if want is not None and got != want:
                 raise ValueError(
                     f"{name} must have length {want} along axis {axis}, got shape {arr.shape}"
@@ -113,7 +113,7 @@ def as_cell(value: Any, name: str, shape: tuple[int, ...]) -> tuple[int, int]:
     for item in seq:
         if isinstance(item, bool) or not isinstance(item, numbers.Integral):
             if isinstance(item, numbers.Real) and float(item).is_integer():
-                item = int(item)
+                item = int(float(item))
             else:
                 raise TypeError(f"{name} must hold integers, got {value!r}")
         cell.append(int(item))

@@ -83,6 +83,4 @@ def angle_diff(a: ArrayLike, b: ArrayLike) -> float | NDArray[np.float64]:
     >>> round(angle_diff(math.radians(10), math.radians(350)), 12) == round(math.radians(20), 12)
     True
     """
-    return wrap_angle(
-        np.subtract(as_float_array(a, "a"), as_float_array(b, "b"))
-    )
+    return wrap_angle(np.subtract(as_float_array(a, "a"), as_float_array(b, "b")))

@@ -47,9 +47,7 @@ def integrate(pose: Pose2D, twist: Twist2D, dt: float) -> Pose2D:
     step = finite_float(dt, "dt")
     if step < 0.0:
         raise ValueError(f"dt must be >= 0, got {step}")
-    x, y, th = integrate_kernel(
-        pose.x, pose.y, pose.theta, twist.vx, twist.vy, twist.omega, step
-    )
+    x, y, th = integrate_kernel(pose.x, pose.y, pose.theta, twist.vx, twist.vy, twist.omega, step)
     return Pose2D(x, y, th)
 
 

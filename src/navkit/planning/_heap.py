@@ -41,7 +41,7 @@ def _less(keys: np.ndarray, i: int, j: int) -> bool:
         return True
     if keys[i, 0] > keys[j, 0]:
         return False
-    return keys[i, 1] < keys[j, 1]
+    return bool(keys[i, 1] < keys[j, 1])
 
 
 @njit(cache=True, inline="always")
@@ -129,7 +129,7 @@ def heap_pop(nodes: np.ndarray, keys: np.ndarray, pos: np.ndarray, size: np.ndar
         _swap(nodes, keys, pos, 0, last)
         _sift_down(nodes, keys, pos, 0, last)
     pos[top] = -1
-    return top
+    return int(top)
 
 
 @njit(cache=True)

@@ -1,0 +1,121 @@
+"""Wheel encoder helpers: tick counts to distances, counter wrap-around."""
+
+from __future__ import annotations
+
+import math
+import operator
+from typing import overload
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from navkit._validation import as_float_array, positive_float
+
+__all__ = ["tick_delta", "ticks_to_distance"]
+
+
+@overload
+def ticks_to_distance(delta_ticks: float, ticks_per_rev: float, wheel_radius: float) -> float: ...
+@overload
+def ticks_to_distance(
+    delta_ticks: ArrayLike, ticks_per_rev: float, wheel_radius: float
+) -> float | NDArray[np.float64]: ...
+
+
+def ticks_to_distance(
+    delta_ticks: ArrayLike, ticks_per_rev: float, wheel_radius: float
+) -> float | NDArray[np.float64]:
+    """Distance rolled by a wheel: ``d = 2πR · Δticks / ticks_per_rev``.
+
+    Parameters
+    ----------
+    delta_ticks : float or array_like
+        Change of the encoder count (see :func:`tick_delta` for wrap-around).
+    ticks_per_rev : float
+        Encoder counts per wheel revolution (after any gearing), > 0.
+    wheel_radius : float
+        Wheel radius, m, > 0.
+
+    Returns
+    -------
+    float or ndarray
+        Distance in metres, with the sign of ``delta_ticks``.
+
+    Examples
+    --------
+    >>> round(ticks_to_distance(1024, 2048, 0.1), 12)
+    0.314159265359
+    """
+    res = positive_float(ticks_per_rev, "ticks_per_rev")
+    radius = positive_float(wheel_radius, "wheel_radius")
+    ticks = as_float_array(delta_ticks, "delta_ticks")
+    dist = (2.0 * math.pi * radius / res) * ticks
+    if dist.ndim == 0:
+        return float(dist)
+    return dist
+
+
+@overload
+def tick_delta(previous: int, current: int, bits: int) -> int: ...
+@overload
+def tick_delta(previous: ArrayLike, current: ArrayLike, bits: int) -> int | NDArray[np.int64]: ...
+
+
+def tick_delta(previous: ArrayLike, current: ArrayLike, bits: int) -> int | NDArray[np.int64]:
+    """Signed change between two readings of a wrapping ``bits``-bit encoder counter.
+
+    The difference is taken modulo ``2**bits`` and mapped to
+    ``[-2**(bits-1), 2**(bits-1))``, so a counter that wraps (65535 → 2 on a
+    16-bit encoder) gives the small true step (+3). Readings may be unsigned
+    (``0 .. 2**bits - 1``) or signed (``-2**(bits-1) .. 2**(bits-1) - 1``). A
+    real change of half the counter range or more between two readings cannot be
+    told apart from one in the other direction: read the counter often enough.
+
+    Parameters
+    ----------
+    previous, current : int or array_like of int
+        Consecutive counter readings (broadcast together).
+    bits : int
+        Counter width, 2 to 64 (typically 16 or 32).
+
+    Returns
+    -------
+    int or ndarray of int64
+        ``current - previous`` corrected for wrap-around.
+
+    Examples
+    --------
+    >>> tick_delta(65535, 2, bits=16)
+    3
+    >>> tick_delta(5, 65534, bits=16)
+    -7
+    """
+    try:
+        nbits = operator.index(bits)
+    except TypeError:
+        raise TypeError(f"bits must be an integer, got {bits!r}") from None
+    if isinstance(bits, bool) or not 2 <= nbits <= 64:
+        raise ValueError(f"bits must be an integer from 2 to 64, got {bits!r}")
+    prev = _as_counter(previous, "previous", nbits)
+    cur = _as_counter(current, "current", nbits)
+    shift = np.uint64(64 - nbits)
+    # uint64 subtraction wraps modulo 2**64; shifting the low `bits` bits to the top and
+    # back with an arithmetic shift sign-extends them: the modular difference, signed.
+    with np.errstate(over="ignore"):
+        diff = (cur.astype(np.uint64) - prev.astype(np.uint64)) << shift
+    out: NDArray[np.int64] = diff.view(np.int64) >> np.int64(shift)
+    if out.ndim == 0:
+        return int(out)
+    return out
+
+
+def _as_counter(value: ArrayLike, name: str, bits: int) -> NDArray[np.int64]:
+    arr = np.asarray(value)
+    if arr.dtype.kind not in "iu" or arr.dtype == np.bool_:
+        raise TypeError(f"{name} must hold integer counter readings, got dtype {arr.dtype}")
+    low, high = -(2 ** (bits - 1)), 2**bits - 1
+    if arr.size and (int(arr.min()) < low or int(arr.max()) > high):
+        raise ValueError(f"{name} holds readings outside the range of a {bits}-bit counter")
+    if arr.dtype == np.uint64:
+        return arr.view(np.int64)
+    return arr.astype(np.int64)

@@ -1,0 +1,204 @@
+"""Omnidirectional (omni-wheel) drive kinematics."""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from navkit._validation import as_float_array, positive_float
+from navkit.geometry import Twist2D
+
+__all__ = ["OmniDrive"]
+
+# Condition number above which a wheel layout cannot resolve all three body velocities.
+_MAX_CONDITION = 1e10
+
+
+def _read_only(arr: NDArray[np.float64]) -> NDArray[np.float64]:
+    arr.flags.writeable = False
+    return arr
+
+
+class OmniDrive:
+    r"""Kinematics of a robot with N >= 3 omni wheels on a circle.
+
+    Wheel ``i`` sits at angle :math:`\theta_i` (rad, counter-clockwise from the
+    robot's x axis) at distance :math:`L` (``base_radius``) from the centre, and
+    drives tangentially, along :math:`\theta_i + \pi/2`. Its angular speed for the
+    body twist :math:`(v_x, v_y, \omega)` is
+
+    .. math::  \dot\varphi_i = \frac{1}{r}\left(-\sin\theta_i\,v_x + \cos\theta_i\,v_y
+               + L\,\omega\right),
+
+    i.e. ``wheel_speeds = jacobian @ [vx, vy, omega]``. :meth:`forward` applies the
+    exact inverse of this map (the Moore–Penrose pseudo-inverse, a least-squares
+    fit, when N > 3), so ``forward(inverse(t)) == t`` for every layout.
+
+    Notes
+    -----
+    The omnidirectional LiDAR robot paper that motivates :meth:`three_wheel`
+    states a forward matrix with rows ``r * [cos(θi + π/2), sin(θi + π/2), 1/(3L)]``
+    (one column per wheel). That matrix is not the inverse of its own inverse
+    kinematics: for three wheels 120° apart the true inverse has
+    ``(2r/3)·[cos(θi + π/2), sin(θi + π/2)]`` in the velocity rows, so the paper's
+    matrix returns 1.5× the true ``vx`` and ``vy``; and its inverse matrix puts
+    ``1/(3L)`` in the rotation column where the lever arm ``L`` belongs. navkit
+    implements the geometry above instead; a test shows forward∘inverse is the
+    identity.
+
+    Parameters
+    ----------
+    wheel_angles : array_like, shape (N,)
+        Mounting angle of each wheel in radians, N >= 3.
+    wheel_radius : float
+        Wheel radius in metres, > 0.
+    base_radius : float
+        Distance from the robot centre to each wheel contact point, metres, > 0.
+
+    Raises
+    ------
+    ValueError
+        Fewer than three wheels, non-finite angles, non-positive radii, or a
+        layout whose Jacobian is singular (e.g. all wheels parallel).
+
+    Examples
+    --------
+    >>> drive = OmniDrive.three_wheel(wheel_radius=0.05, base_radius=0.2)
+    >>> drive.inverse(Twist2D(1.0, 0.0, 0.0)).round(6)
+    array([-10., -10.,  20.])
+    >>> drive.forward(drive.inverse(Twist2D(0.3, -0.2, 0.5)))
+    Twist2D(vx=0.3..., vy=-0.2..., omega=0.5...)
+    """
+
+    __slots__ = ("_base_radius", "_forward", "_jacobian", "_wheel_angles", "_wheel_radius")
+
+    def __init__(self, wheel_angles: ArrayLike, wheel_radius: float, base_radius: float) -> None:
+        angles = as_float_array(wheel_angles, "wheel_angles", ndim=1)
+        if angles.shape[0] < 3:
+            raise ValueError(f"wheel_angles needs at least 3 wheels, got {angles.shape[0]}")
+        self._wheel_radius = positive_float(wheel_radius, "wheel_radius")
+        self._base_radius = positive_float(base_radius, "base_radius")
+        self._wheel_angles = _read_only(angles.copy())
+        jac = (
+            np.column_stack(
+                (-np.sin(angles), np.cos(angles), np.full(angles.shape[0], self._base_radius))
+            )
+            / self._wheel_radius
+        )
+        if np.linalg.cond(jac) > _MAX_CONDITION:
+            raise ValueError(
+                "wheel_angles give a singular layout: the wheels cannot resolve vx, vy and "
+                "omega independently (e.g. all wheels parallel)"
+            )
+        self._jacobian = _read_only(jac)
+        self._forward = _read_only(np.asarray(np.linalg.pinv(jac), dtype=np.float64))
+
+    @classmethod
+    def three_wheel(cls, wheel_radius: float, base_radius: float) -> OmniDrive:
+        """The Y layout with wheels at 30°, 150° and 270° (120° apart).
+
+        Parameters
+        ----------
+        wheel_radius, base_radius : float
+            Wheel radius and centre-to-wheel distance in metres.
+        """
+        return cls(np.radians([30.0, 150.0, 270.0]), wheel_radius, base_radius)
+
+    @property
+    def wheel_angles(self) -> NDArray[np.float64]:
+        """Wheel mounting angles, rad, shape (N,) (read-only)."""
+        return self._wheel_angles
+
+    @property
+    def wheel_radius(self) -> float:
+        """Wheel radius, m."""
+        return self._wheel_radius
+
+    @property
+    def base_radius(self) -> float:
+        """Centre-to-wheel distance (lever arm) L, m."""
+        return self._base_radius
+
+    @property
+    def n_wheels(self) -> int:
+        """Number of wheels N."""
+        return int(self._wheel_angles.shape[0])
+
+    @property
+    def jacobian(self) -> NDArray[np.float64]:
+        """(N, 3) map from body twist ``[vx, vy, omega]`` to wheel speeds, rad/s (read-only)."""
+        return self._jacobian
+
+    @property
+    def forward_matrix(self) -> NDArray[np.float64]:
+        """(3, N) exact (pseudo-)inverse of :attr:`jacobian` (read-only)."""
+        return self._forward
+
+    def inverse(self, twist: Twist2D) -> NDArray[np.float64]:
+        """Wheel angular speeds (N,) in rad/s that produce ``twist``."""
+        if not isinstance(twist, Twist2D):
+            raise TypeError(f"twist must be a Twist2D, got {type(twist).__name__}")
+        speeds: NDArray[np.float64] = self._jacobian @ twist.as_array()
+        return speeds
+
+    def forward(self, wheel_speeds: ArrayLike) -> Twist2D:
+        """Body twist from wheel angular speeds (N,) in rad/s (least squares when N > 3)."""
+        w = as_float_array(wheel_speeds, "wheel_speeds", shape=(self.n_wheels,))
+        vx, vy, omega = self._forward @ w
+        return Twist2D(float(vx), float(vy), float(omega))
+
+    def inverse_batch(self, twists: ArrayLike) -> NDArray[np.float64]:
+        """Wheel speeds (T, N), rad/s, for body twists (T, 3) ``[vx, vy, omega]``."""
+        tw = as_float_array(twists, "twists", shape=(None, 3))
+        speeds: NDArray[np.float64] = tw @ self._jacobian.T
+        return speeds
+
+    def forward_batch(self, wheel_speeds: ArrayLike) -> NDArray[np.float64]:
+        """Body twists (T, 3) ``[vx, vy, omega]`` from wheel speeds (T, N), rad/s."""
+        w = as_float_array(wheel_speeds, "wheel_speeds", shape=(None, self.n_wheels))
+        twists: NDArray[np.float64] = w @ self._forward.T
+        return twists
+
+    def saturate(self, wheel_speeds: ArrayLike, max_speed: float) -> NDArray[np.float64]:
+        """Scale wheel speeds so that none exceeds ``max_speed`` in magnitude.
+
+        All wheels of a command are scaled by the same factor, so the direction of
+        motion (the ratios vx : vy : omega) is kept; commands already within the
+        limit are returned unchanged.
+
+        Parameters
+        ----------
+        wheel_speeds : array_like, shape (N,) or (T, N)
+            Wheel angular speeds, rad/s.
+        max_speed : float
+            Largest allowed wheel speed magnitude, rad/s, > 0.
+
+        Returns
+        -------
+        ndarray
+            New array of the input's shape.
+
+        Examples
+        --------
+        >>> drive = OmniDrive.three_wheel(0.05, 0.2)
+        >>> drive.saturate([10.0, -20.0, 5.0], 10.0)
+        array([ 5. , -10. ,   2.5])
+        """
+        limit = positive_float(max_speed, "max_speed")
+        w = as_float_array(wheel_speeds, "wheel_speeds")
+        if w.ndim not in (1, 2) or w.shape[-1] != self.n_wheels:
+            raise ValueError(
+                f"wheel_speeds must have shape ({self.n_wheels},) or (T, {self.n_wheels}), "
+                f"got {w.shape}"
+            )
+        peak = np.max(np.abs(w), axis=-1, keepdims=True)
+        over = peak > limit
+        scale = np.divide(limit, peak, out=np.ones_like(peak), where=over)
+        return np.asarray(w * scale, dtype=np.float64)
+
+    def __repr__(self) -> str:
+        degrees = ", ".join(f"{a:.6g}" for a in np.degrees(self._wheel_angles))
+        return (
+            f"OmniDrive(wheel_angles=radians([{degrees}]), wheel_radius={self._wheel_radius}, "
+            f"base_radius={self._base_radius})"
+        )

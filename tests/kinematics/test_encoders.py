@@ -1,0 +1,67 @@
+"""Encoder helpers."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from navkit.kinematics import tick_delta, ticks_to_distance
+
+
+def test_ticks_to_distance() -> None:
+    assert ticks_to_distance(2048, 2048, 0.1) == pytest.approx(2 * math.pi * 0.1)
+    assert ticks_to_distance(-512, 2048, 0.1) == pytest.approx(-math.pi * 0.05)
+    np.testing.assert_allclose(
+        ticks_to_distance(np.array([0, 1024]), 2048, 0.1), [0.0, math.pi * 0.1]
+    )
+    with pytest.raises(ValueError, match="ticks_per_rev"):
+        ticks_to_distance(1, 0, 0.1)
+    with pytest.raises(ValueError, match="wheel_radius"):
+        ticks_to_distance(1, 100, -0.1)
+
+
+@pytest.mark.parametrize(
+    ("prev", "cur", "bits", "expected"),
+    [
+        (65535, 2, 16, 3),
+        (5, 65534, 16, -7),
+        (100, 250, 16, 150),
+        (32767, -32768, 16, 1),
+        (2**32 - 10, 10, 32, 20),
+        (10, 2**32 - 10, 32, -20),
+        (0, 2**31, 32, -(2**31)),
+    ],
+)
+def test_tick_delta_known(prev: int, cur: int, bits: int, expected: int) -> None:
+    assert tick_delta(prev, cur, bits) == expected
+
+
+@given(
+    st.integers(8, 64).flatmap(
+        lambda b: st.tuples(
+            st.just(b), st.integers(0, 2**b - 1), st.integers(-(2 ** (b - 1)), 2 ** (b - 1) - 1)
+        )
+    )
+)
+def test_tick_delta_recovers_true_step(case: tuple[int, int, int]) -> None:
+    bits, start, step = case
+    cur = (start + step) % 2**bits
+    assert tick_delta(start, cur, bits) == step
+
+
+def test_tick_delta_arrays_and_errors() -> None:
+    prev = np.array([65530, 0, 100], dtype=np.int64)
+    cur = np.array([4, 65535, 90], dtype=np.int64)
+    np.testing.assert_array_equal(tick_delta(prev, cur, 16), [10, -1, -10])
+    unsigned = np.array([2**64 - 1], dtype=np.uint64)
+    assert tick_delta(unsigned, np.array([1], dtype=np.uint64), 64)[0] == 2
+    with pytest.raises(ValueError, match="bits"):
+        tick_delta(0, 1, 1)
+    with pytest.raises(TypeError, match="previous"):
+        tick_delta(0.5, 1, 16)
+    with pytest.raises(ValueError, match="current"):
+        tick_delta(0, 70000, 16)

@@ -1,0 +1,113 @@
+"""OmniDrive kinematics."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import assume, given
+from hypothesis import strategies as st
+
+from navkit.geometry import Twist2D
+from navkit.kinematics import OmniDrive
+
+speeds = st.floats(-3, 3, allow_nan=False)
+twists = st.builds(Twist2D, speeds, speeds, speeds)
+
+
+@st.composite
+def layouts(draw: st.DrawFn) -> OmniDrive:
+    n = draw(st.integers(3, 6))
+    angles = draw(st.lists(st.floats(0, 2 * math.pi), min_size=n, max_size=n))
+    r = draw(st.floats(0.01, 0.2))
+    big_l = draw(st.floats(0.05, 1.0))
+    jac = np.column_stack((-np.sin(angles), np.cos(angles), np.full(n, big_l))) / r
+    assume(np.linalg.cond(jac) < 1e6)
+    return OmniDrive(angles, r, big_l)
+
+
+@given(layouts(), twists)
+def test_forward_inverse_identity(drive: OmniDrive, t: Twist2D) -> None:
+    back = drive.forward(drive.inverse(t))
+    np.testing.assert_allclose(back.as_array(), t.as_array(), atol=1e-7)
+
+
+@given(layouts(), st.lists(st.tuples(speeds, speeds, speeds), min_size=1, max_size=6))
+def test_batch_matches_single(drive: OmniDrive, rows: list[tuple[float, float, float]]) -> None:
+    tw = np.array(rows)
+    wheels = drive.inverse_batch(tw)
+    assert wheels.shape == (len(rows), drive.n_wheels)
+    for row, w in zip(rows, wheels, strict=True):
+        np.testing.assert_allclose(w, drive.inverse(Twist2D(*row)), atol=1e-12)
+    np.testing.assert_allclose(drive.forward_batch(wheels), tw, atol=1e-7)
+
+
+def test_three_wheel_known_values() -> None:
+    r, big_l = 0.05, 0.2
+    drive = OmniDrive.three_wheel(r, big_l)
+    np.testing.assert_allclose(drive.wheel_angles, np.radians([30, 150, 270]))
+    s3 = math.sqrt(3) / 2
+    np.testing.assert_allclose(drive.inverse(Twist2D(1.0, 0, 0)), [-0.5 / r, -0.5 / r, 1 / r])
+    np.testing.assert_allclose(
+        drive.inverse(Twist2D(0, 1.0, 0)), [s3 / r, -s3 / r, 0.0], atol=1e-12
+    )
+    np.testing.assert_allclose(drive.inverse(Twist2D(0, 0, 1.0)), [big_l / r] * 3)
+
+
+def test_papers_forward_matrix_is_not_the_inverse() -> None:
+    """The paper's forward rows r*[cos(θi+π/2), sin(θi+π/2), 1/(3L)] give 1.5× vx, vy."""
+    r, big_l = 0.05, 0.2
+    drive = OmniDrive.three_wheel(r, big_l)
+    th = drive.wheel_angles
+    paper = r * np.vstack(
+        (np.cos(th + math.pi / 2), np.sin(th + math.pi / 2), np.full(3, 1 / (3 * big_l)))
+    )
+    t = Twist2D(0.4, -0.3, 0.0)
+    np.testing.assert_allclose(paper @ drive.inverse(t), [0.6, -0.45, 0.0], atol=1e-12)
+    np.testing.assert_allclose(drive.forward(drive.inverse(t)).as_array(), t.as_array(), atol=1e-12)
+
+
+def test_saturate_keeps_direction() -> None:
+    drive = OmniDrive.three_wheel(0.05, 0.2)
+    w = drive.inverse(Twist2D(2.0, 1.0, 3.0))
+    out = drive.saturate(w, 10.0)
+    assert np.max(np.abs(out)) == pytest.approx(10.0)
+    t_in, t_out = drive.forward(w).as_array(), drive.forward(out).as_array()
+    np.testing.assert_allclose(t_out / np.linalg.norm(t_out), t_in / np.linalg.norm(t_in))
+    small = np.array([1.0, -2.0, 0.5])
+    np.testing.assert_array_equal(drive.saturate(small, 10.0), small)
+    batch = drive.saturate(np.array([w, small]), 10.0)
+    np.testing.assert_allclose(batch[1], small)
+    assert np.max(np.abs(batch[0])) == pytest.approx(10.0)
+    np.testing.assert_array_equal(drive.saturate(np.zeros(3), 1.0), np.zeros(3))
+
+
+def test_bad_input() -> None:
+    with pytest.raises(ValueError, match="wheel_angles"):
+        OmniDrive([0.0, 1.0], 0.05, 0.2)
+    with pytest.raises(ValueError, match="wheel_angles"):
+        OmniDrive([0.0, 0.0, 0.0], 0.05, 0.2)
+    with pytest.raises(ValueError, match="wheel_angles"):
+        OmniDrive([0.0, math.pi, 2 * math.pi], 0.05, 0.2)
+    with pytest.raises(ValueError, match="wheel_angles"):
+        OmniDrive([0.0, 1.0, math.nan], 0.05, 0.2)
+    with pytest.raises(ValueError, match="wheel_radius"):
+        OmniDrive.three_wheel(0.0, 0.2)
+    with pytest.raises(ValueError, match="base_radius"):
+        OmniDrive.three_wheel(0.05, -1.0)
+    drive = OmniDrive.three_wheel(0.05, 0.2)
+    with pytest.raises(ValueError, match="wheel_speeds"):
+        drive.forward([1.0, 2.0])
+    with pytest.raises(ValueError, match="wheel_speeds"):
+        drive.forward([1.0, 2.0, math.nan])
+    with pytest.raises(ValueError, match="max_speed"):
+        drive.saturate([1.0, 2.0, 3.0], 0.0)
+    with pytest.raises(ValueError, match="twists"):
+        drive.inverse_batch(np.zeros((2, 2)))
+
+
+def test_arrays_read_only() -> None:
+    drive = OmniDrive.three_wheel(0.05, 0.2)
+    with pytest.raises(ValueError):
+        drive.jacobian[0, 0] = 1.0
