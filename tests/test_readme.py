@@ -1,0 +1,29 @@
+"""The README's quick start runs as written."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import pytest
+
+README = Path(__file__).resolve().parents[1] / "README.md"
+
+
+def test_quick_start_runs(capsys: pytest.CaptureFixture[str]) -> None:
+    text = README.read_text(encoding="utf-8")
+    section = text.split("## Quick start", 1)[1]
+    block = re.search(r"```python\n(.*?)```", section, re.DOTALL)
+    assert block is not None, "README has no python quick start block"
+    exec(compile(block.group(1), str(README), "exec"), {})
+    assert "after 5 s" in capsys.readouterr().out
+
+
+def test_development_command_is_what_ci_runs() -> None:
+    text = README.read_text(encoding="utf-8")
+    section = text.split("## Development", 1)[1]
+    commands = re.search(r"```bash\n(.*?)```", section, re.DOTALL)
+    assert commands is not None
+    test_command = commands.group(1).strip().splitlines()[-1]
+    ci = (README.parent / ".ci" / "run").read_text(encoding="utf-8")
+    assert test_command in ci.splitlines()
