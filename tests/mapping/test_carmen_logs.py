@@ -1,0 +1,152 @@
+"""CARMEN log reader and maps built from the real Radish logs in ../shared/data."""
+
+from __future__ import annotations
+
+import gzip
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from navkit.geometry import Pose2D
+from navkit.mapping import OccupancyGrid
+from navkit.mapping.io import CarmenLog, read_carmen
+
+LOGS = "carmen-logs"
+
+
+@pytest.fixture(scope="module")
+def intel(shared_data: Path) -> CarmenLog:
+    return read_carmen(shared_data / LOGS / "intel-corrected.log.gz")
+
+
+@pytest.mark.parametrize(
+    ("name", "scans", "beams", "odom", "first", "last", "range_max"),
+    [
+        ("intel", 910, 180, 14541, 32.9, 2683.8, 81.83),
+        ("aces", 440, 180, 7814, 21.0, 1339.1, 50.0),
+        ("csail", 406, 361, 2394, None, None, 81.91),
+    ],
+)
+def test_logs_match_their_readme(
+    shared_data: Path,
+    name: str,
+    scans: int,
+    beams: int,
+    odom: int,
+    first: float | None,
+    last: float | None,
+    range_max: float,
+) -> None:
+    log = read_carmen(shared_data / LOGS / f"{name}-corrected.log.gz")
+    assert len(log) == scans == len(log.laser_poses) == len(log.robot_poses)
+    assert {len(s) for s in log.scans} == {beams}
+    assert log.odometry.shape == (odom, 4)
+    if first is not None and last is not None:
+        assert log.timestamps.min() == pytest.approx(first, abs=0.05)
+        assert log.timestamps.max() == pytest.approx(last, abs=0.05)
+    scan = log.scans[0]
+    # CARMEN's guessed geometry: first beam at -90°, 1° (180 beams) or 0.5° (361).
+    assert scan.angle_min == pytest.approx(-math.pi / 2)
+    assert scan.angle_increment == pytest.approx(math.pi / (180 if beams == 180 else 360))
+    assert scan.range_max == range_max
+    # Readings equal to the maximum are "no return", never points.
+    for s in log.scans[::20]:
+        assert np.array_equal(s.valid_mask(), s.ranges < range_max)
+
+
+def test_odometry_agrees_with_corrected_poses(shared_data: Path) -> None:
+    # README: the ODOM poses of intel and aces agree with the corrected FLASER
+    # poses to a few cm. ODOM lines with timestamp 0 are copies written after
+    # each FLASER line, so only timed records are compared.
+    for name in ("intel", "aces"):
+        log = read_carmen(shared_data / LOGS / f"{name}-corrected.log.gz")
+        odom = log.odometry[log.odometry[:, 3] > 0]
+        nearest = np.abs(odom[None, :, 3] - log.timestamps[:, None]).argmin(axis=1)
+        laser = np.array([[p.x, p.y] for p in log.laser_poses])
+        gap = np.hypot(*(odom[nearest, :2] - laser).T)
+        assert np.median(gap) < 0.1
+
+
+def test_intel_builds_a_recognisable_map(shared_data: Path, intel: CarmenLog) -> None:
+    points = [s.to_points(p) for s, p in zip(intel.scans, intel.laser_poses, strict=True)]
+    hits = np.vstack(points)
+    lo = hits.min(axis=0) - 1.0
+    hi = hits.max(axis=0) + 1.0
+    grid = OccupancyGrid.empty(*(hi - lo), 0.1, Pose2D(lo[0], lo[1], 0.0))
+    for scan, pose in zip(intel.scans, intel.laser_poses, strict=True):
+        grid.integrate_scan(scan, pose)
+    rows, cols = grid.shape
+
+    # Most returns fall on cells that many scans hit: the SLAM-corrected poses
+    # put the same walls in the same cells.
+    cells = grid.world_to_cell(hits)
+    flat = cells[:, 0] * cols + cells[:, 1]
+    counts = np.bincount(flat, minlength=rows * cols)
+    assert np.mean(counts[flat] >= 3) > 0.95
+    # The log-odds map agrees: most returns land on occupied cells, and every
+    # robot pose is in free space.
+    assert np.mean(grid.occupied().ravel()[flat]) > 0.8
+    robot = grid.world_to_cell([[p.x, p.y] for p in intel.laser_poses])
+    assert grid.free()[robot[:, 0], robot[:, 1]].all()
+
+    # Extent of the walls: the Intel lab is a square building (about 29 m on a
+    # side); its map preview in the dataset is 200 x 199 px, the same shape.
+    occ = grid.cell_to_world(np.argwhere(grid.occupied()))
+    extent = np.ptp(np.percentile(occ, [1, 99], axis=0), axis=0)
+    assert np.all((extent > 27.0) & (extent < 31.0))
+    image = pytest.importorskip("PIL.Image")
+    with image.open(shared_data / LOGS / "intel-corrected.png") as preview:
+        width_px, height_px = preview.size
+    assert extent[0] / extent[1] == pytest.approx(width_px / height_px, rel=0.05)
+
+
+def test_robotlaser1_lines(tmp_path: Path) -> None:
+    ranges = " ".join(["1.5"] * 5)
+    line = (
+        f"ROBOTLASER1 0 -0.5 1.0 0.25 8.0 0.01 0 5 {ranges} 5 1 2 3 4 5 "
+        "1.0 2.0 0.1 0.9 2.0 0.1 0 0 0 0 0 123.5 host 123.6\n"
+    )
+    path = tmp_path / "log.gz"
+    with gzip.open(path, "wt") as fh:
+        fh.write("# comment\nPARAM a b\n" + line + "ODOM 1 2 0.5 0 0 0 99.0 host 99.1\n")
+    log = read_carmen(path)
+    scan = log.scans[0]
+    assert (scan.angle_min, scan.angle_increment, scan.range_max) == (-0.5, 0.25, 8.0)
+    assert scan.intensities is not None and scan.intensities.tolist() == [1, 2, 3, 4, 5]
+    assert log.laser_poses[0] == Pose2D(1.0, 2.0, 0.1)
+    assert log.robot_poses[0] == Pose2D(0.9, 2.0, 0.1)
+    assert log.timestamps.tolist() == [123.5]
+    assert log.odometry.tolist() == [[1.0, 2.0, 0.5, 99.0]]
+
+
+def test_flaser_range_max_override(tmp_path: Path) -> None:
+    path = tmp_path / "log.txt"
+    path.write_text("FLASER 3 1.0 2.0 5.0 0 0 0 0 0 0 1.0 host 1.0\n")
+    assert read_carmen(path).scans[0].valid_mask().tolist() == [True, True, False]
+    scan = read_carmen(path, range_max=10.0).scans[0]
+    assert scan.valid_mask().tolist() == [True, True, True]
+    # CARMEN's fallback geometry for unusual beam counts: 180° over n - 1 gaps.
+    assert scan.angle_increment == pytest.approx(math.pi / 2)
+
+
+@pytest.mark.parametrize(
+    ("text", "error", "match"),
+    [
+        ("FLASER 3 1.0 2.0 0 0 0 0 0 0 1.0 host 1.0\n", ValueError, "log.txt:1: malformed FLASER"),
+        ("ODOM 1 2\n", ValueError, ":1: malformed ODOM"),
+        ("ODOM 1 2 3 0 0 0 1.0 h 1.0\n", ValueError, "no FLASER or ROBOTLASER1 lines"),
+        ("FLASER x 1.0\n", ValueError, "malformed FLASER"),
+    ],
+)
+def test_bad_logs(tmp_path: Path, text: str, error: type[Exception], match: str) -> None:
+    path = tmp_path / "log.txt"
+    path.write_text(text)
+    with pytest.raises(error, match=match):
+        read_carmen(path)
+
+
+def test_missing_log() -> None:
+    with pytest.raises(FileNotFoundError, match="does not exist"):
+        read_carmen("/nonexistent/log.gz")

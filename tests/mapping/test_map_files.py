@@ -1,0 +1,218 @@
+"""ROS map_server files: the real maps in ../shared/data, round trips and bad files."""
+
+from __future__ import annotations
+
+import math
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+from scipy import ndimage
+
+from navkit.geometry import Pose2D
+from navkit.mapping import OccupancyGrid
+from navkit.mapping._mapfile import read_pgm
+
+MAPS = "ros-map-server-maps"
+
+
+def maps(shared_data: Path) -> Path:
+    return shared_data / MAPS
+
+
+@pytest.mark.parametrize(
+    ("yaml", "shape", "resolution", "origin"),
+    [
+        ("turtlebot3_world/map.yaml", (384, 384), 0.05, (-10.0, -10.0)),
+        ("willow_garage_2010/willow-2010-02-18-0.10.yaml", (608, 566), 0.10, (0.0, 0.0)),
+        ("lse_arena/lse_arena.yaml", (60, 80), 0.05, (0.0, 0.0)),
+    ],
+)
+def test_real_maps_load(
+    shared_data: Path,
+    yaml: str,
+    shape: tuple[int, int],
+    resolution: float,
+    origin: tuple[float, float],
+) -> None:
+    path = maps(shared_data) / yaml
+    grid = OccupancyGrid.load(path)
+    assert grid.shape == shape
+    assert grid.resolution == resolution
+    assert (grid.origin.x, grid.origin.y, grid.origin.theta) == (*origin, 0.0)
+    assert (grid.occupied_thresh, grid.free_thresh) == (0.65, 0.196)
+    # map_server's trinary reading of the raw pixels, with the image's top row last.
+    pixels = read_pgm(path.with_suffix(".pgm"))
+    p = (255.0 - pixels) / 255.0
+    assert np.array_equal(grid.occupied(), (p > 0.65)[::-1])
+    assert np.array_equal(grid.free(), (p < 0.196)[::-1])
+    assert np.array_equal(grid.unknown(), ((p >= 0.196) & (p <= 0.65))[::-1])
+
+
+def test_lse_arena_landmark_orientation(shared_data: Path) -> None:
+    # In the image (top row = largest y) a vertical wall at x = 2 m rises from the
+    # horizontal wall on the right towards the top; a short stub leaves the left
+    # wall just below it. Flipped rows would put the vertical wall below y = 1.5 m.
+    grid = OccupancyGrid.load(maps(shared_data) / "lse_arena" / "lse_arena.yaml")
+    pixels = read_pgm(maps(shared_data) / "lse_arena" / "lse_arena.pgm")
+    assert pixels[13:29, 40].max() == 0 and pixels[35:55, 40].min() == 255  # image rows
+    occ_at = grid.occupied()[tuple(grid.world_to_cell([[2.025, 2.0], [2.025, 1.0]]).T)]
+    assert occ_at.tolist() == [True, False]
+    wall = np.argwhere(grid.occupied()[:, 40]).ravel()
+    interior_wall = wall[(wall > 0) & (wall < 59)]
+    assert interior_wall.tolist() == list(range(31, 47))
+    y = grid.cell_to_world([[31, 40], [46, 40]])[:, 1]
+    assert y == pytest.approx([1.575, 2.325])
+    # The left stub at y ≈ 1.48 m spans x = 0 .. 0.8 m.
+    assert grid.occupied()[29, :16].all() and not grid.occupied()[29, 16:79].any()
+
+
+def test_turtlebot3_world_pillars(shared_data: Path) -> None:
+    # The TurtleBot3 Gazebo world: nine pillars 1.1 m apart around the world origin,
+    # inside a hexagonal wall. Their blobs must sit where the world puts them.
+    grid = OccupancyGrid.load(maps(shared_data) / "turtlebot3_world" / "map.yaml")
+    labels, n = ndimage.label(grid.occupied(), structure=np.ones((3, 3)))
+    sizes = ndimage.sum(grid.occupied(), labels, range(1, n + 1))
+    pillars = [i + 1 for i, s in enumerate(sizes) if s < 100]
+    assert len(pillars) == 9
+    centres = ndimage.center_of_mass(grid.occupied(), labels, pillars)
+    # Continuous cell coordinates to world: x = ox + (col + 0.5) res, y = oy + (row + 0.5) res.
+    world = np.array([[-10 + (c + 0.5) * 0.05, -10 + (r + 0.5) * 0.05] for r, c in centres])
+    expected = np.array([[i * 1.1, j * 1.1] for i in (-1, 0, 1) for j in (-1, 0, 1)])
+    for target in expected:
+        assert np.min(np.hypot(*(world - target).T)) < 0.1
+
+
+@pytest.mark.parametrize("mode", ["trinary", "scale"])
+@pytest.mark.parametrize(
+    "yaml", ["turtlebot3_world/map.yaml", "willow_garage_2010/willow-2010-02-18-0.10.yaml"]
+)
+def test_save_load_round_trip(shared_data: Path, tmp_path: Path, yaml: str, mode: str) -> None:
+    grid = OccupancyGrid.load(maps(shared_data) / yaml)
+    image = grid.save(tmp_path / "copy.yaml", mode=mode)
+    assert image == tmp_path / "copy.pgm"
+    assert "image: copy.pgm" in (tmp_path / "copy.yaml").read_text()
+    again = OccupancyGrid.load(tmp_path / "copy.yaml")
+    assert again.shape == grid.shape and again.resolution == grid.resolution
+    assert again.origin == grid.origin
+    assert np.array_equal(again.occupied(), grid.occupied())
+    assert np.array_equal(again.free(), grid.free())
+    assert np.array_equal(again.unknown(), grid.unknown())
+
+
+def test_round_trip_with_yaw_and_custom_thresholds(tmp_path: Path) -> None:
+    rng = np.random.default_rng(3)
+    p = rng.random((7, 9))
+    grid = OccupancyGrid(
+        np.log(p / (1 - p)), 0.2, Pose2D(1.0, -2.0, 0.3), occupied_thresh=0.8, free_thresh=0.3
+    )
+    for mode in ("trinary", "scale"):
+        grid.save(tmp_path / f"{mode}.yaml", mode=mode)
+        again = OccupancyGrid.load(tmp_path / f"{mode}.yaml")
+        assert again.origin.theta == pytest.approx(0.3)
+        assert (again.occupied_thresh, again.free_thresh) == (0.8, 0.3)
+        assert np.array_equal(again.occupied(), grid.occupied())
+        assert np.array_equal(again.free(), grid.free())
+    with pytest.raises(ValueError, match="mode must be"):
+        grid.save(tmp_path / "x.yaml", mode="raw")
+
+
+def write_map(tmp: Path, yaml: str, pgm: bytes, name: str = "m.pgm") -> Path:
+    (tmp / name).write_bytes(pgm)
+    (tmp / "m.yaml").write_text(yaml)
+    return tmp / "m.yaml"
+
+
+GOOD_YAML = (
+    "image: m.pgm  # comment\nresolution: 0.5\norigin: [1.0, 2.0, 0.0]\nnegate: 0\n"
+    "occupied_thresh: 0.65\nfree_thresh: 0.196\n"
+)
+
+
+def test_ascii_p2_with_comments_and_16_bit(tmp_path: Path) -> None:
+    pgm = b"P2\n# two rows\n3 2\n# max\n1000\n0 1000 900\n1000 1000 0\n"
+    grid = OccupancyGrid.load(write_map(tmp_path, GOOD_YAML, pgm))
+    # Image top row (0, 1000, 800) is the last grid row; 1000 = white = free.
+    assert grid.occupied().tolist() == [[False, False, True], [True, False, False]]
+    assert grid.free().tolist() == [[True, True, False], [False, True, True]]
+    p5 = b"P5 3 1 1000\n" + np.array([0, 1000, 600], dtype=">u2").tobytes()
+    grid16 = OccupancyGrid.load(write_map(tmp_path, GOOD_YAML, p5))
+    assert grid16.occupied().tolist() == [[True, False, False]]
+    assert grid16.unknown().tolist() == [[False, False, True]]
+
+
+def test_negate_and_scale_modes(tmp_path: Path) -> None:
+    pgm = b"P5\n4 1\n255\n" + bytes([0, 100, 200, 255])
+    negated = OccupancyGrid.load(write_map(tmp_path, GOOD_YAML.replace("negate: 0", "negate: 1"),
+                                           pgm))
+    assert negated.occupied().tolist() == [[False, False, True, True]]
+    assert negated.free().tolist() == [[True, False, False, False]]
+    scale = OccupancyGrid.load(write_map(tmp_path, GOOD_YAML + "mode: scale\n", pgm))
+    # p = (255 - v) / 255: 0.608 for v = 100 is kept as a probability.
+    assert scale.probability()[0, 1] == pytest.approx(155 / 255, abs=1e-6)
+    assert scale.unknown().tolist() == [[False, True, True, False]]
+    raw = OccupancyGrid.load(write_map(tmp_path, GOOD_YAML + "mode: raw\n", pgm))
+    assert raw.probability()[0, 0] == pytest.approx(1e-3)
+    assert raw.occupied().tolist() == [[False, True, False, False]]
+    assert raw.unknown().tolist() == [[False, False, True, True]]
+
+
+def test_png_maps_need_pillow(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    from PIL import Image
+
+    rgba = np.zeros((2, 3, 4), dtype=np.uint8)
+    rgba[..., :3] = [[[0, 0, 0], [254, 254, 254], [205, 205, 205]],
+                     [[254, 254, 254], [254, 254, 254], [0, 0, 0]]]
+    rgba[..., 3] = 255
+    Image.fromarray(rgba, "RGBA").save(tmp_path / "m.png")
+    (tmp_path / "m.yaml").write_text(GOOD_YAML.replace("m.pgm", "m.png"))
+    grid = OccupancyGrid.load(tmp_path / "m.yaml")
+    assert grid.occupied().tolist() == [[False, False, True], [True, False, False]]
+    assert grid.unknown().tolist() == [[False, False, False], [False, False, True]]
+    monkeypatch.setitem(sys.modules, "PIL", None)
+    with pytest.raises(ImportError, match="pip install pillow"):
+        OccupancyGrid.load(tmp_path / "m.yaml")
+
+
+@pytest.mark.parametrize(
+    ("yaml", "pgm", "error", "match"),
+    [
+        (GOOD_YAML.replace("resolution: 0.5\n", ""), None, ValueError, "missing .*resolution"),
+        (GOOD_YAML.replace("negate: 0\n", "").replace("free_thresh: 0.196\n", ""), None,
+         ValueError, "missing required key.*negate, free_thresh"),
+        (GOOD_YAML.replace("m.pgm", "absent.pgm"), None, FileNotFoundError, "absent.pgm"),
+        (GOOD_YAML.replace("0.5", "-0.5"), None, ValueError, "resolution must be > 0"),
+        (GOOD_YAML.replace("[1.0, 2.0, 0.0]", "[1.0, 2.0]"), None, ValueError, "origin must be"),
+        (GOOD_YAML.replace("0.196", "0.9"), None, ValueError, "free_thresh < occupied_thresh"),
+        (GOOD_YAML + "mode: fancy\n", None, ValueError, "mode must be one of"),
+        (GOOD_YAML + "this line is bad\n", None, ValueError, r"m.yaml:7: expected 'key: value'"),
+        (GOOD_YAML, b"P6\n1 1\n255\n\x00", ValueError, "not a PGM image"),
+        (GOOD_YAML, b"P5\n2 x\n255\n\x00\x00", ValueError, "bad PGM header field b'x'"),
+        (GOOD_YAML, b"P5\n2 2\n255\n\x00", ValueError, "PGM raster truncated"),
+        (GOOD_YAML, b"P5\n2 2\n", ValueError, "header ends before"),
+        (GOOD_YAML, b"P5\n0 2\n255\n", ValueError, "PGM size must be positive"),
+        (GOOD_YAML, b"P2\n2 1\n100\n5 200\n", ValueError, "exceed maxval 100"),
+    ],
+)
+def test_bad_map_files(
+    tmp_path: Path, yaml: str, pgm: bytes | None, error: type[Exception], match: str
+) -> None:
+    path = write_map(tmp_path, yaml, pgm if pgm is not None else b"P5\n1 1\n255\n\xff")
+    with pytest.raises(error, match=match):
+        OccupancyGrid.load(path)
+
+
+def test_missing_yaml() -> None:
+    with pytest.raises(FileNotFoundError, match="does not exist"):
+        OccupancyGrid.load("/nonexistent/map.yaml")
+
+
+def test_loaded_map_plans_conservatively(shared_data: Path) -> None:
+    # Unknown space is impassable by default; a 0.105 m robot fits the turtlebot3 arena.
+    grid = OccupancyGrid.load(maps(shared_data) / "turtlebot3_world" / "map.yaml")
+    costs = grid.traversal_costs(0.105, 0.5, 3.0)
+    assert np.all(np.isinf(costs[grid.unknown()]))
+    assert np.all(np.isinf(costs[grid.inflate(0.105)]))
+    centre = grid.world_to_cell([[0.55, 0.55]])[0]
+    assert math.isfinite(costs[tuple(centre)])
