@@ -1,0 +1,253 @@
+"""A* speed on 1024 x 1024 grids against pyastar2d, tcod and a pure-Python heapq A*.
+
+Run with ``python -m pytest benchmarks/test_bench_astar.py --benchmark-only``.
+
+Maps (all 1024 x 1024, corner to corner, start and goal forced free):
+
+* ``random20`` / ``random35``: uniform random obstacles, 20 % / 35 % blocked. The
+  seeds are the first (counting from 0) whose corners are connected without
+  corner cutting.
+* ``rooms``: 16 x 16 rooms of 64 cells with 2-cell walls; every 4th wall line is
+  an 8-cell corridor instead; 8-cell doors along a random spanning tree of the
+  rooms plus 25 % extra doors (seeded), see :func:`rooms_map`.
+
+Peers: ``pyastar2d`` counts a diagonal step as 1 (Chebyshev metric) and cuts
+corners, ``tcod.path.AStar(cost, diagonal=sqrt(2))`` is octile and cuts corners
+(its costs equal navkit's ``corner_cutting=True``), so navkit runs both with
+corner cutting (the peers' graph) and without (the MovingAI convention, a harder
+search with more expansions). Expansions per second are reported in
+``extra_info``.
+"""
+
+from __future__ import annotations
+
+import heapq
+import json
+import math
+import subprocess
+import sys
+from functools import cache
+from typing import Any
+
+import numpy as np
+import pyastar2d
+import pytest
+import tcod.path
+
+from navkit.planning import astar
+
+SIZE = 1024
+START = (0, 0)
+GOAL = (SIZE - 1, SIZE - 1)
+RANDOM_SEEDS = {"random20": (0.20, 1), "random35": (0.35, 8)}
+MAPS = ["random20", "random35", "rooms"]
+SQRT2 = math.sqrt(2.0)
+
+
+def random_map(fraction: float, seed: int) -> np.ndarray:
+    rng = np.random.default_rng(seed)
+    costs = np.where(rng.random((SIZE, SIZE)) < fraction, np.inf, 1.0)
+    costs[START] = costs[GOAL] = 1.0
+    return costs
+
+
+def rooms_map(
+    seed: int = 5, room: int = 64, wall: int = 2, door: int = 8, corridor: int = 8
+) -> np.ndarray:
+    """Rooms of ``room`` cells with ``wall``-thick walls; every 4th wall line is a corridor.
+
+    A corridor is a free band ``corridor`` cells wide bounded by walls; rooms open
+    onto it (and onto each other) through ``door``-wide doors placed along a random
+    spanning tree of the rooms plus 25 % extra doors, so every room is reachable.
+    """
+    rng = np.random.default_rng(seed)
+    n = SIZE // room
+    half = wall // 2
+    costs = np.ones((SIZE, SIZE))
+    reach = {}  # half-width of the blocked band of each wall line
+    for k in range(1, n):
+        line = slice(k * room - half, k * room + half)
+        costs[line, :] = np.inf
+        costs[:, line] = np.inf
+        reach[k] = half
+    for k in range(4, n, 4):
+        outer = corridor // 2 + wall
+        band = slice(k * room - outer, k * room + outer)
+        costs[band, :] = np.inf
+        costs[:, band] = np.inf
+        reach[k] = outer
+    for k in range(4, n, 4):
+        lane = slice(k * room - corridor // 2, k * room + corridor // 2)
+        costs[lane, :] = 1.0
+        costs[:, lane] = 1.0
+    # Random spanning tree of rooms (randomised DFS), then extra doors for loops.
+    doors: set[tuple[int, int, int, int]] = set()
+    seen = {(0, 0)}
+    stack = [(0, 0)]
+    while stack:
+        i, j = stack[-1]
+        nbrs = [
+            (i + di, j + dj)
+            for di, dj in ((1, 0), (-1, 0), (0, 1), (0, -1))
+            if 0 <= i + di < n and 0 <= j + dj < n and (i + di, j + dj) not in seen
+        ]
+        if not nbrs:
+            stack.pop()
+            continue
+        ni, nj = nbrs[rng.integers(len(nbrs))]
+        doors.add((i, j, ni, nj))
+        seen.add((ni, nj))
+        stack.append((ni, nj))
+    for i in range(n):
+        for j in range(n):
+            for ni, nj in ((i + 1, j), (i, j + 1)):
+                if ni < n and nj < n and rng.random() < 0.25:
+                    doors.add((i, j, ni, nj))
+    margin = corridor // 2 + wall + 2
+    for i, j, ni, nj in doors:
+        offset = int(rng.integers(margin, room - margin - door))
+        if ni != i:  # horizontal wall line between vertically adjacent rooms
+            k = max(i, ni)
+            c = min(j, nj) * room + offset
+            costs[k * room - reach[k] : k * room + reach[k], c : c + door] = 1.0
+        else:
+            k = max(j, nj)
+            r = min(i, ni) * room + offset
+            costs[r : r + door, k * room - reach[k] : k * room + reach[k]] = 1.0
+    return costs
+
+
+@cache
+def benchmark_map(name: str) -> np.ndarray:
+    costs = rooms_map() if name == "rooms" else random_map(*RANDOM_SEEDS[name])
+    costs.flags.writeable = False
+    return costs
+
+
+def python_astar(costs: np.ndarray, start: tuple[int, int], goal: tuple[int, int],
+                 corner_cutting: bool) -> float:
+    """A straightforward heapq A* (octile heuristic, lazy deletion); returns the cost."""
+    rows, cols = costs.shape
+    grid = costs.tolist()
+    h_min = float(costs.min())
+
+    def h(r: int, c: int) -> float:
+        dr, dc = abs(r - goal[0]), abs(c - goal[1])
+        return h_min * (max(dr, dc) + (SQRT2 - 1.0) * min(dr, dc))
+
+    g = {start: 0.0}
+    closed: set[tuple[int, int]] = set()
+    queue = [(h(*start), 0.0, start)]
+    moves = [(-1, 0, 1.0), (1, 0, 1.0), (0, -1, 1.0), (0, 1, 1.0),
+             (-1, -1, SQRT2), (-1, 1, SQRT2), (1, -1, SQRT2), (1, 1, SQRT2)]
+    while queue:
+        _, gu, u = heapq.heappop(queue)
+        if u in closed:
+            continue
+        if u == goal:
+            return gu
+        closed.add(u)
+        r, c = u
+        cu = grid[r][c]
+        for dr, dc, step in moves:
+            r2, c2 = r + dr, c + dc
+            if not (0 <= r2 < rows and 0 <= c2 < cols) or grid[r2][c2] == math.inf:
+                continue
+            if dr and dc and not corner_cutting and (
+                grid[r + dr][c] == math.inf or grid[r][c + dc] == math.inf
+            ):
+                continue
+            ng = gu + step * 0.5 * (cu + grid[r2][c2])
+            if ng < g.get((r2, c2), math.inf):
+                g[(r2, c2)] = ng
+                heapq.heappush(queue, (ng + h(r2, c2), -ng, (r2, c2)))
+    raise RuntimeError("no path")
+
+
+def octile_length(cells: np.ndarray) -> float:
+    steps = np.abs(np.diff(cells, axis=0)).sum(axis=1)
+    return float((steps == 1).sum() + SQRT2 * (steps == 2).sum())
+
+
+@pytest.mark.parametrize("corner_cutting", [True, False], ids=["cut", "nocut"])
+@pytest.mark.parametrize("name", MAPS)
+def test_navkit(benchmark: Any, name: str, corner_cutting: bool) -> None:
+    costs = benchmark_map(name)
+    benchmark.group = name
+    path = benchmark(astar, costs, START, GOAL, corner_cutting=corner_cutting)
+    median = benchmark.stats.stats.median
+    benchmark.extra_info.update(
+        cost=path.cost, expanded=path.expanded, expansions_per_s=path.expanded / median
+    )
+
+
+@pytest.mark.parametrize("name", MAPS)
+def test_pyastar2d(benchmark: Any, name: str) -> None:
+    weights = np.where(np.isfinite(benchmark_map(name)), 1.0, np.inf).astype(np.float32)
+    benchmark.group = name
+    path = benchmark(pyastar2d.astar_path, weights, START, GOAL, allow_diagonal=True)
+    assert path is not None
+    benchmark.extra_info["octile_length"] = octile_length(path)
+
+
+@pytest.mark.parametrize("name", MAPS)
+def test_tcod(benchmark: Any, name: str) -> None:
+    passable = np.isfinite(benchmark_map(name)).astype(np.int8)
+    benchmark.group = name
+
+    def run() -> list[tuple[int, int]]:
+        # Construct inside the timed call: building the graph is part of a query.
+        return tcod.path.AStar(passable, diagonal=SQRT2).get_path(*START, *GOAL)
+
+    steps = benchmark(run)
+    length = octile_length(np.array([START, *steps]))
+    benchmark.extra_info["octile_length"] = length
+    reference = astar(benchmark_map(name), START, GOAL, corner_cutting=True)
+    assert length == pytest.approx(reference.cost, rel=1e-9)
+
+
+@pytest.mark.parametrize("name", MAPS)
+def test_pure_python_heapq(benchmark: Any, name: str) -> None:
+    costs = benchmark_map(name)
+    benchmark.group = name
+    cost = benchmark.pedantic(
+        python_astar, args=(costs, START, GOAL, True), rounds=3, iterations=1
+    )
+    assert cost == pytest.approx(astar(costs, START, GOAL, corner_cutting=True).cost, rel=1e-9)
+
+
+FRESH_PROCESS = """
+import json, time
+import numpy as np
+t0 = time.perf_counter()
+from navkit.planning import astar
+from navkit.planning import _kernels
+t1 = time.perf_counter()
+costs = np.ones((64, 64))
+costs[10:50, 30] = np.inf
+astar(costs, (0, 0), (63, 63))
+t2 = time.perf_counter()
+astar(costs, (0, 0), (63, 63))
+t3 = time.perf_counter()
+misses = {name: sum(getattr(_kernels, name).stats.cache_misses.values())
+          for name in ("grid_search", "trace_path")}
+print(json.dumps({"import_s": t1 - t0, "first_call_s": t2 - t1, "second_call_s": t3 - t2,
+                  "cache_misses": misses}))
+"""
+
+
+def test_first_call_in_fresh_process(benchmark: Any) -> None:
+    astar(np.ones((4, 4)), (0, 0), (3, 3))  # make sure the cache is written
+
+    def run() -> dict[str, Any]:
+        out = subprocess.run(
+            [sys.executable, "-c", FRESH_PROCESS], check=True, capture_output=True, text=True
+        )
+        result: dict[str, Any] = json.loads(out.stdout)
+        return result
+
+    benchmark.group = "fresh process"
+    result = benchmark.pedantic(run, rounds=3, iterations=1)
+    benchmark.extra_info.update(result)
+    assert result["cache_misses"] == {"grid_search": 0, "trace_path": 0}
+

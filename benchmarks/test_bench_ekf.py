@@ -1,0 +1,169 @@
+"""EKF step speed against filterpy, and the batch fusion kernel on 100,000 measurements.
+
+Run with ``python -m pytest benchmarks/test_bench_ekf.py --benchmark-only``.
+
+The model is PlanarFusion's: state [x, y, θ, v, ω, a], constant-acceleration
+unicycle with mid-step heading, process noise per second, and a wheel-odometry
+(v, ω) measurement. One "step" is predict-to-the-measurement-time plus update.
+Each round runs ``STEPS`` = 1000 steps (so milliseconds per round read as
+microseconds per step); the table's ratio column within the ``ekf-step-x1000``
+group is the speed-up the issue's ≥ 10× target refers to, and
+``extra_info["us_per_step"]`` (``--benchmark-json``) records the mean per step.
+
+* ``filterpy``: ``filterpy.kalman.ExtendedKalmanFilter`` with ``predict_x``
+  overridden by the nonlinear motion model and ``F``/``Q`` set every step (its
+  ``update`` is also Joseph form).
+* ``navkit_planar``: :meth:`PlanarFusion.update_odometry` (validation, one
+  compiled predict+update kernel call, an ``UpdateResult``).
+* ``navkit_general``: the general numpy :class:`ExtendedKalmanFilter` with the
+  same Python model functions as filterpy (for reference; it is not the fast path).
+* ``batch_100k``: :meth:`PlanarFusion.run` over a 100,000-row log (odometry at
+  50 Hz, IMU yaw at 50 Hz, gyro at 100 Hz).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+import pytest
+from filterpy.kalman import ExtendedKalmanFilter as FilterpyEKF
+
+from navkit.estimation import ExtendedKalmanFilter, MeasurementLog, PlanarFusion
+
+STEPS = 1000
+DT = 0.02
+Q_PER_S = np.diag([0.05, 0.05, 0.06, 0.025, 0.02, 0.01])
+R_ODOM = np.diag([1e-3, 1e-3])
+H_ODOM = np.zeros((2, 6))
+H_ODOM[0, 3] = H_ODOM[1, 4] = 1.0
+X0 = np.zeros(6)
+P0 = np.diag([1e-9, 1e-9, 1e-9, 1.0, 1.0, 1.0])
+
+
+def motion(
+    dt: float,
+) -> tuple[Callable[[np.ndarray], np.ndarray], Callable[[np.ndarray], np.ndarray]]:
+    def f(x: np.ndarray) -> np.ndarray:
+        s = x[3] * dt + 0.5 * x[5] * dt * dt
+        mid = x[2] + 0.5 * x[4] * dt
+        return np.array(
+            [x[0] + s * math.cos(mid), x[1] + s * math.sin(mid), x[2] + x[4] * dt,
+             x[3] + x[5] * dt, x[4], x[5]]
+        )  # fmt: skip
+
+    def jac(x: np.ndarray) -> np.ndarray:
+        s = x[3] * dt + 0.5 * x[5] * dt * dt
+        mid = x[2] + 0.5 * x[4] * dt
+        c, sn = math.cos(mid), math.sin(mid)
+        out = np.eye(6)
+        out[0, 2:6] = [-s * sn, dt * c, -0.5 * dt * s * sn, 0.5 * dt * dt * c]
+        out[1, 2:6] = [s * c, dt * sn, 0.5 * dt * s * c, 0.5 * dt * dt * sn]
+        out[2, 4] = dt
+        out[3, 5] = dt
+        return out
+
+    return f, jac
+
+
+MEASUREMENTS = np.column_stack(
+    (0.8 + 0.05 * np.sin(np.arange(STEPS) * 0.01), 0.3 + 0.02 * np.cos(np.arange(STEPS) * 0.03))
+)
+
+
+def per_step(benchmark: Any) -> None:
+    benchmark.extra_info["us_per_step"] = round(benchmark.stats.stats.mean / STEPS * 1e6, 3)
+
+
+@pytest.mark.benchmark(group="ekf-step-x1000")
+def test_step_filterpy(benchmark: Any) -> None:
+    f, jac = motion(DT)
+    q = Q_PER_S * DT
+
+    class Model(FilterpyEKF):  # type: ignore[misc]
+        def predict_x(self, u: object = 0) -> None:
+            self.x = f(self.x)
+
+    def hjac(x: np.ndarray) -> np.ndarray:
+        return H_ODOM
+
+    def hx(x: np.ndarray) -> np.ndarray:
+        return H_ODOM @ x
+
+    def run() -> None:
+        ekf = Model(dim_x=6, dim_z=2)
+        ekf.x = X0.copy()
+        ekf.P = P0.copy()
+        ekf.Q = q
+        for z in MEASUREMENTS:
+            ekf.F = jac(ekf.x)
+            ekf.predict()
+            ekf.update(z, hjac, hx, R=R_ODOM)
+
+    benchmark(run)
+    per_step(benchmark)
+
+
+@pytest.mark.benchmark(group="ekf-step-x1000")
+def test_step_navkit_planar(benchmark: Any) -> None:
+    times = DT * np.arange(1, STEPS + 1)
+    rows = [(float(t), float(z[0]), float(z[1])) for t, z in zip(times, MEASUREMENTS, strict=True)]
+    PlanarFusion(X0, P0, process_noise=Q_PER_S, t0=0.0).update_odometry(DT, 0.0, 0.0, 1.0, 1.0)
+
+    def run() -> None:
+        fusion = PlanarFusion(X0, P0, process_noise=Q_PER_S, t0=0.0)
+        for t, v, w in rows:
+            fusion.update_odometry(t, v, w, 1e-3, 1e-3)
+
+    benchmark(run)
+    per_step(benchmark)
+
+
+@pytest.mark.benchmark(group="ekf-step-x1000")
+def test_step_navkit_general_ekf(benchmark: Any) -> None:
+    f, jac = motion(DT)
+    q = Q_PER_S * DT
+
+    def h(x: np.ndarray) -> np.ndarray:
+        return H_ODOM @ x
+
+    def run() -> None:
+        ekf = ExtendedKalmanFilter(X0, P0, angle_states=(2,))
+        for z in MEASUREMENTS:
+            ekf.predict(f, jac, q)
+            ekf.update(z, h, H_ODOM, R_ODOM)
+
+    benchmark(run)
+    per_step(benchmark)
+
+
+@pytest.fixture(scope="module")
+def log_100k() -> MeasurementLog:
+    rng = np.random.default_rng(0)
+    n_odom = 25_000  # 50 Hz odometry + 50 Hz yaw + 100 Hz gyro = 100,000 rows over 500 s
+    t_odom = np.arange(n_odom) / 50.0
+    t_gyro = np.arange(2 * n_odom) / 100.0
+    log = MeasurementLog.from_streams(
+        odometry=(
+            t_odom,
+            0.8 + 0.05 * rng.normal(size=n_odom),
+            0.3 + 0.02 * rng.normal(size=n_odom),
+        ),
+        odometry_variance=(0.05**2, 0.02**2),
+        yaw=(t_odom + 0.005, np.mod(0.3 * t_odom + math.pi, 2 * math.pi) - math.pi),
+        yaw_variance=0.03**2,
+        yaw_rate=(t_gyro, 0.3 + 0.01 * rng.normal(size=2 * n_odom)),
+        yaw_rate_variance=0.01**2,
+    )
+    assert len(log) == 100_000
+    return log
+
+
+@pytest.mark.benchmark(group="batch-100k")
+def test_batch_100k(benchmark: Any, log_100k: MeasurementLog) -> None:
+    PlanarFusion(t0=0.0).run(log_100k)  # compile outside the timing
+    result = benchmark(lambda: PlanarFusion(t0=0.0).run(log_100k))
+    assert result.states.shape == (100_000, 6)
+    benchmark.extra_info["us_per_measurement"] = round(benchmark.stats.stats.mean / 1e5 * 1e6, 3)

@@ -1,0 +1,374 @@
+"""The soccer robot's artificial-potential-field motion controller."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Literal
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from navkit._validation import as_float_array, as_points, positive_float
+from navkit.geometry import Pose2D, Twist2D, angle_diff
+from navkit.mapping import LaserScan
+from navkit.planning import (
+    AttractiveField,
+    BlendedAttraction,
+    KhatibRepulsion,
+    repulsive_force_from_scan,
+)
+
+__all__ = ["PotentialFieldController", "limit_velocity_change"]
+
+FloatArray = NDArray[np.float64]
+
+
+def limit_velocity_change(
+    previous: ArrayLike, desired: ArrayLike, max_accel: float, max_decel: float, dt: float
+) -> FloatArray:
+    """Move a velocity toward ``desired`` within acceleration and deceleration limits.
+
+    The result lies on the segment from ``previous`` to ``desired``, as far along
+    it as the limits allow: a change that leaves the speed ``‖v‖`` at most its
+    previous value is a deceleration and may be up to ``max_decel·dt`` long; a
+    change that raises the speed is an acceleration, at most ``max_accel·dt``.
+    Works for any dimension (2-D velocity vectors, or 1-D forward speeds).
+
+    Parameters
+    ----------
+    previous, desired : array_like, shape (k,)
+        Previous and requested velocity (m/s).
+    max_accel, max_decel : float
+        Limits in m/s², > 0.
+    dt : float
+        Time step in seconds, > 0.
+
+    Returns
+    -------
+    ndarray, shape (k,)
+        The limited velocity (a new array).
+
+    Raises
+    ------
+    ValueError
+        Non-finite velocities, shapes that differ, or limits or ``dt`` not > 0.
+
+    Examples
+    --------
+    >>> limit_velocity_change([0.0, 0.0], [1.0, 0.0], 0.5, 2.0, 0.1)  # speeding up
+    array([0.05, 0.  ])
+    >>> limit_velocity_change([1.0, 0.0], [0.0, 0.0], 0.5, 2.0, 0.1)  # braking
+    array([0.8, 0. ])
+    """
+    prev = as_float_array(previous, "previous", ndim=1)
+    want = as_float_array(desired, "desired", shape=prev.shape)
+    return _limit_change(
+        prev,
+        want,
+        positive_float(max_accel, "max_accel"),
+        positive_float(max_decel, "max_decel"),
+        positive_float(dt, "dt"),
+    )
+
+
+def _limit_change(
+    prev: FloatArray, want: FloatArray, max_accel: float, max_decel: float, dt: float
+) -> FloatArray:
+    delta = want - prev
+    n = float(np.linalg.norm(delta))
+    if n == 0.0:
+        same: FloatArray = prev.copy()
+        return same
+    u = delta / n
+    # Along prev + t·u the speed is below its start value exactly for 0 < t < t_slow.
+    t_slow = max(0.0, -2.0 * float(np.dot(prev, u)))
+    step_a = max_accel * dt
+    step_d = max_decel * dt
+    if n <= t_slow:
+        t = min(n, step_d)
+    elif step_a > t_slow:
+        t = min(n, step_a)
+    else:
+        t = min(t_slow, step_d)
+    out: FloatArray = prev + t * u
+    return out
+
+
+@dataclass
+class _Pid:
+    kp: float
+    ki: float
+    kd: float
+    integral_limit: float
+    integral: float = 0.0
+    last_error: float | None = None
+
+    def update(self, error: float, dt: float) -> float:
+        self.integral = min(max(self.integral + error * dt, -self.integral_limit),
+                            self.integral_limit)
+        deriv = 0.0 if self.last_error is None else angle_diff(error, self.last_error) / dt
+        self.last_error = error
+        return self.kp * error + self.ki * self.integral + self.kd * deriv
+
+    def reset(self) -> None:
+        self.integral = 0.0
+        self.last_error = None
+
+
+class PotentialFieldController:
+    """Artificial-potential-field motion controller (the soccer robot's algorithm).
+
+    Each :meth:`step`:
+
+    1. evaluates the attraction toward ``target_pose``'s position at the robot and
+       scales it to the translational speed: a force longer than ``max_speed``
+       is normalised to ``max_speed``, a shorter one is kept (so the paraboloid
+       part of a :class:`~navkit.planning.BlendedAttraction` slows the robot as it
+       arrives);
+    2. adds the Khatib repulsion of every valid obstacle (rows with NaN or inf
+       are invalid and skipped) or of every valid beam of a laser scan (should
+       it overflow, the robot being numerically on an obstacle, the velocity is
+       ``max_speed`` along the infinite components);
+    3. takes the sum as the desired world-frame velocity, clipped to ``max_speed``,
+       and limits its change from the previous velocity with
+       :func:`limit_velocity_change` (``max_accel`` / ``max_decel``);
+    4. drives the heading with a PID: to ``target_pose.theta`` for an
+       omnidirectional robot, to the direction of motion for a differential drive.
+
+    The controller is stateful (previous velocity, PID integrator and last error,
+    stall timer); call :meth:`reset` between runs.
+
+    Local minima: the robot is reported :attr:`stalled` when it has stayed within
+    ``stall_radius`` of one spot for ``stall_timeout`` seconds while farther than
+    ``goal_tolerance`` from the goal (this catches both a standstill and a small
+    oscillation where attraction and repulsion cancel).
+
+    Parameters
+    ----------
+    attraction : AttractiveField, optional
+        Attractive field whose parameters are used; its goal is replaced by the
+        target's position every step. Default: ``BlendedAttraction`` with its
+        default parameters (no spurious minimum; it settles 3.75 mm from the goal).
+    k_rep : float, default 0.05
+        Khatib repulsion gain, > 0.
+    d0 : float, default 0.6
+        Repulsion influence distance (m), > 0.
+    max_speed : float, default 0.5
+        Maximum translational speed (m/s), > 0.
+    max_accel, max_decel : float, default 1.0 and 2.0
+        Translational acceleration and deceleration limits (m/s²), > 0.
+    max_omega : float, default 2.0
+        Maximum turn rate (rad/s), > 0.
+    kp, ki, kd : float, default 3.0, 0.0, 0.1
+        Heading PID gains (>= 0); the output is a turn rate in rad/s.
+    integral_limit : float, default 1.0
+        Anti-windup bound on the heading integral (rad·s), > 0.
+    mode : {"omni", "diff"}, default "omni"
+        ``"omni"``: output ``(vx, vy, ω)`` in the robot frame. ``"diff"``: a
+        differential drive, ``vy = 0`` and ``vx >= 0`` the desired velocity's
+        component along the heading.
+    goal_tolerance : float, default 0.05
+        Distance (m) at which the goal counts as reached for stall detection, > 0.
+    stall_radius : float, default 0.05
+        Radius (m) the robot must leave to count as moving, > 0.
+    stall_timeout : float, default 2.0
+        Time (s) without leaving ``stall_radius`` before :attr:`stalled` is set, > 0.
+
+    Examples
+    --------
+    >>> from navkit.geometry import integrate
+    >>> ctl = PotentialFieldController(max_speed=0.5)
+    >>> pose = Pose2D(0.0, 0.0, 0.0)
+    >>> target = Pose2D(2.0, 0.0, 0.0)
+    >>> for _ in range(200):
+    ...     cmd = ctl.step(pose, None, target, None, 0.05)
+    ...     pose = integrate(pose, cmd, 0.05)
+    >>> round(pose.x, 2), ctl.stalled
+    (2.0, False)
+    """
+
+    def __init__(
+        self,
+        attraction: AttractiveField | None = None,
+        *,
+        k_rep: float = 0.05,
+        d0: float = 0.6,
+        max_speed: float = 0.5,
+        max_accel: float = 1.0,
+        max_decel: float = 2.0,
+        max_omega: float = 2.0,
+        kp: float = 3.0,
+        ki: float = 0.0,
+        kd: float = 0.1,
+        integral_limit: float = 1.0,
+        mode: Literal["omni", "diff"] = "omni",
+        goal_tolerance: float = 0.05,
+        stall_radius: float = 0.05,
+        stall_timeout: float = 2.0,
+    ) -> None:
+        if attraction is None:
+            attraction = BlendedAttraction((0.0, 0.0))
+        if not isinstance(attraction, AttractiveField):
+            raise TypeError(
+                f"attraction must be an AttractiveField, got {type(attraction).__name__}"
+            )
+        if mode not in ("omni", "diff"):
+            raise ValueError(f"mode must be 'omni' or 'diff', got {mode!r}")
+        self.attraction = attraction
+        self.k_rep = positive_float(k_rep, "k_rep")
+        self.d0 = positive_float(d0, "d0")
+        self.max_speed = positive_float(max_speed, "max_speed")
+        self.max_accel = positive_float(max_accel, "max_accel")
+        self.max_decel = positive_float(max_decel, "max_decel")
+        self.max_omega = positive_float(max_omega, "max_omega")
+        self.mode = mode
+        self.goal_tolerance = positive_float(goal_tolerance, "goal_tolerance")
+        self.stall_radius = positive_float(stall_radius, "stall_radius")
+        self.stall_timeout = positive_float(stall_timeout, "stall_timeout")
+        self._pid = _Pid(
+            positive_float(kp, "kp", allow_zero=True),
+            positive_float(ki, "ki", allow_zero=True),
+            positive_float(kd, "kd", allow_zero=True),
+            positive_float(integral_limit, "integral_limit"),
+        )
+        self.reset()
+
+    def reset(self) -> None:
+        """Forget the previous velocity, the PID state and the stall timer."""
+        self._velocity: FloatArray = np.zeros(2)
+        self._pid.reset()
+        self._anchor: FloatArray | None = None
+        self._still_for = 0.0
+
+    @property
+    def stalled(self) -> bool:
+        """True when the robot is stuck away from the goal (a local minimum)."""
+        return self._still_for >= self.stall_timeout
+
+    @property
+    def stall_time(self) -> float:
+        """Seconds the robot has spent within ``stall_radius`` of one spot, away from the goal."""
+        return self._still_for
+
+    @property
+    def previous_velocity(self) -> FloatArray:
+        """Last commanded translational velocity in the world frame (m/s), shape (2,)."""
+        out: FloatArray = self._velocity.copy()
+        return out
+
+    def desired_velocity(
+        self, pose: Pose2D, goal: ArrayLike, obstacles: ArrayLike | LaserScan | None
+    ) -> FloatArray:
+        """Unlimited field velocity (world frame, clipped to ``max_speed``) at ``pose``.
+
+        Steps 1–3 of the algorithm without the acceleration limits.
+        """
+        here = np.array([[pose.x, pose.y]])
+        f_att = self.attraction.with_goal(goal).force(here)[0]
+        norm = float(np.hypot(f_att[0], f_att[1]))
+        if norm > self.max_speed:
+            f_att = f_att * (self.max_speed / norm)
+        v: FloatArray = f_att + self._repulsion(pose, here, obstacles)
+        if not np.all(np.isfinite(v)):
+            # Numerically on an obstacle the repulsion is infinite: flee at full speed
+            # along its infinite components, or stay put if opposite ones cancel (NaN).
+            v = np.where(np.isinf(v), np.sign(v), 0.0)
+        speed = float(np.hypot(v[0], v[1]))
+        if speed > self.max_speed:
+            v = v * (self.max_speed / speed)
+        return v
+
+    def _repulsion(
+        self, pose: Pose2D, here: FloatArray, obstacles: ArrayLike | LaserScan | None
+    ) -> FloatArray:
+        if obstacles is None:
+            return np.zeros(2)
+        if isinstance(obstacles, LaserScan):
+            fx, fy = repulsive_force_from_scan(obstacles, self.k_rep, self.d0)
+            c, s = math.cos(pose.theta), math.sin(pose.theta)
+            return np.array([c * fx - s * fy, s * fx + c * fy])
+        pts = as_points(obstacles, "obstacles", finite=False)
+        valid = pts[np.all(np.isfinite(pts), axis=1)]
+        field = KhatibRepulsion(valid, k_rep=self.k_rep, d0=self.d0)
+        out: FloatArray = field.force(here)[0]
+        return out
+
+    def step(
+        self,
+        pose: Pose2D,
+        velocity: Twist2D | None,
+        target_pose: Pose2D,
+        obstacles: ArrayLike | LaserScan | None,
+        dt: float,
+    ) -> Twist2D:
+        """One control cycle: the velocity command for the next ``dt`` seconds.
+
+        Parameters
+        ----------
+        pose : Pose2D
+            Robot pose in the world frame.
+        velocity : Twist2D or None
+            Current robot-frame velocity (e.g. from odometry), the base of the
+            acceleration limits; ``None`` uses the previous command.
+        target_pose : Pose2D
+            Goal position (attraction) and, in ``"omni"`` mode, target heading.
+        obstacles : array_like (M, 2), LaserScan or None
+            Obstacle points in the world frame (rows with NaN/inf are skipped),
+            or a scan taken in the robot frame, or nothing.
+        dt : float
+            Control period in seconds, > 0.
+
+        Returns
+        -------
+        Twist2D
+            Command in the robot frame: ``(vx, vy, ω)``; ``vy = 0`` in ``"diff"`` mode.
+        """
+        if not isinstance(pose, Pose2D):
+            raise TypeError(f"pose must be a Pose2D, got {type(pose).__name__}")
+        if not isinstance(target_pose, Pose2D):
+            raise TypeError(f"target_pose must be a Pose2D, got {type(target_pose).__name__}")
+        if velocity is not None and not isinstance(velocity, Twist2D):
+            raise TypeError(f"velocity must be a Twist2D or None, got {type(velocity).__name__}")
+        step = positive_float(dt, "dt")
+        c, s = math.cos(pose.theta), math.sin(pose.theta)
+        if velocity is None:
+            prev = self._velocity
+        else:
+            prev = np.array([c * velocity.vx - s * velocity.vy, s * velocity.vx + c * velocity.vy])
+        goal = np.array([target_pose.x, target_pose.y])
+        want = self.desired_velocity(pose, goal, obstacles)
+
+        if self.mode == "omni":
+            v = _limit_change(prev, want, self.max_accel, self.max_decel, step)
+            heading = target_pose.theta
+            vx, vy = c * v[0] + s * v[1], -s * v[0] + c * v[1]
+        else:
+            fwd_prev = max(0.0, c * prev[0] + s * prev[1])
+            fwd_want = max(0.0, c * want[0] + s * want[1])
+            fwd = float(
+                _limit_change(np.array([fwd_prev]), np.array([fwd_want]), self.max_accel,
+                              self.max_decel, step)[0]
+            )
+            # Below a thousandth of max_speed the field's direction is noise near the goal.
+            moving = math.hypot(want[0], want[1]) > 1e-3 * self.max_speed
+            heading = math.atan2(want[1], want[0]) if moving else target_pose.theta
+            v = np.array([c * fwd, s * fwd])
+            vx, vy = fwd, 0.0
+        omega = self._pid.update(angle_diff(heading, pose.theta), step)
+        omega = min(max(omega, -self.max_omega), self.max_omega)
+        self._velocity = v
+        self._update_stall(pose, goal, step)
+        return Twist2D(float(vx), float(vy), float(omega))
+
+    def _update_stall(self, pose: Pose2D, goal: FloatArray, dt: float) -> None:
+        here = np.array([pose.x, pose.y])
+        if float(np.hypot(*(goal - here))) <= self.goal_tolerance:
+            self._anchor = None
+            self._still_for = 0.0
+        elif self._anchor is None or float(np.hypot(*(here - self._anchor))) > self.stall_radius:
+            self._anchor = here
+            self._still_for = 0.0
+        else:
+            self._still_for += dt
+

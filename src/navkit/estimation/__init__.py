@@ -1,0 +1,27 @@
+"""State estimation: compass heading, wheel odometry and Kalman filtering.
+
+Fuses wheel odometry with an IMU or compass as real robots do
+(robot_localization's approach) in 2-D. Units are SI (m, rad, s); angles are
+wrapped to (-π, π]; poses are ``navkit.geometry.Pose2D`` in the world (odometry)
+frame.
+"""
+
+from navkit.estimation._compass import CompassCalibration, compass_to_yaw
+from navkit.estimation._ekf import ExtendedKalmanFilter
+from navkit.estimation._fusion import FusionResult, FusionStatus, MeasurementLog, PlanarFusion
+from navkit.estimation._odometry import DiffOdometry, OmniOdometry
+from navkit.estimation._result import FilterError, UpdateResult
+
+__all__ = [
+    "CompassCalibration",
+    "DiffOdometry",
+    "ExtendedKalmanFilter",
+    "FilterError",
+    "FusionResult",
+    "FusionStatus",
+    "MeasurementLog",
+    "OmniOdometry",
+    "PlanarFusion",
+    "UpdateResult",
+    "compass_to_yaw",
+]

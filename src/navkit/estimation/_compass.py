@@ -1,0 +1,149 @@
+"""Compass readings (degrees clockwise from north) to robot yaw (radians, counter-clockwise)."""
+
+from __future__ import annotations
+
+from typing import overload
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from navkit._validation import as_float_array, finite_float
+from navkit.geometry import wrap_angle
+
+__all__ = ["CompassCalibration", "compass_to_yaw"]
+
+
+@overload
+def compass_to_yaw(raw_deg: float, initial_deg: float = ..., *, unwrap: bool = ...) -> float: ...
+@overload
+def compass_to_yaw(
+    raw_deg: ArrayLike, initial_deg: float = ..., *, unwrap: bool = ...
+) -> float | NDArray[np.float64]: ...
+
+
+def compass_to_yaw(
+    raw_deg: ArrayLike, initial_deg: float = 0.0, *, unwrap: bool = False
+) -> float | NDArray[np.float64]:
+    r"""Convert compass headings to a yaw relative to the initial heading.
+
+    A compass reads 0–360° clockwise from magnetic north; robot yaw is
+    counter-clockwise positive. Following the omnidirectional-robot paper: the
+    relative heading :math:`\theta_r = (\theta - \theta_0 + 360) \bmod 360`, then
+    the signed yaw is :math:`-\theta_r` for :math:`\theta_r < 180` and
+    :math:`360 - \theta_r` otherwise, returned in radians in (-π, π] (180° maps
+    to +π).
+
+    Parameters
+    ----------
+    raw_deg : float or array_like
+        Compass heading(s), degrees clockwise from north (any finite value; it is
+        taken modulo 360).
+    initial_deg : float, default 0.0
+        Heading θ0 (degrees) that defines yaw 0, usually the first reading.
+    unwrap : bool, default False
+        For a 1-D log: return a continuous yaw (no 2π jumps, as
+        :func:`numpy.unwrap`), starting from the wrapped first value.
+
+    Returns
+    -------
+    float or ndarray
+        Yaw in radians: a float for scalar input, otherwise a new array of the
+        input's shape.
+
+    Examples
+    --------
+    >>> compass_to_yaw(90.0)  # a quarter turn clockwise
+    -1.5707963267948966
+    >>> compass_to_yaw([10.0, 350.0], initial_deg=20.0).round(4)
+    array([0.1745, 0.5236])
+    >>> compass_to_yaw([170.0, 190.0, 210.0], unwrap=True).round(4)
+    array([-2.9671, -3.3161, -3.6652])
+    """
+    raw = as_float_array(raw_deg, "raw_deg")
+    theta0 = finite_float(initial_deg, "initial_deg")
+    rel = np.mod(raw - theta0 + 360.0, 360.0)
+    # np.mod can round a tiny negative difference up to exactly 360.
+    rel = np.where(rel >= 360.0, 0.0, rel)
+    yaw = np.radians(np.where(rel < 180.0, -rel, 360.0 - rel))
+    if unwrap:
+        if yaw.ndim != 1:
+            raise ValueError(f"unwrap needs a 1-D array of readings, got shape {yaw.shape}")
+        yaw = np.unwrap(yaw)
+    if yaw.ndim == 0:
+        return float(yaw)
+    return yaw
+
+
+class CompassCalibration:
+    """Stateful compass-to-yaw conversion that latches the first reading as θ0.
+
+    The first reading given to :meth:`__call__` (the first element of an array)
+    becomes the initial heading; every reading is then converted with
+    :func:`compass_to_yaw`. With ``unwrap=True`` the yaw is continuous across
+    calls (successive readings never jump by 2π), as needed for logs that are
+    streamed in pieces.
+
+    Parameters
+    ----------
+    unwrap : bool, default False
+        Return a continuous yaw instead of one wrapped to (-π, π].
+
+    Examples
+    --------
+    >>> cal = CompassCalibration()
+    >>> cal(45.0), cal.initial_deg
+    (0.0, 45.0)
+    >>> round(cal(135.0), 6)  # 90° clockwise of the start
+    -1.570796
+    >>> cal = CompassCalibration(unwrap=True)
+    >>> [round(cal(d), 4) for d in (0.0, 170.0, 190.0)]
+    [0.0, -2.9671, -3.3161]
+    """
+
+    __slots__ = ("_initial", "_last", "_unwrap")
+
+    def __init__(self, unwrap: bool = False) -> None:
+        self._unwrap = bool(unwrap)
+        self._initial: float | None = None
+        self._last: float | None = None
+
+    @property
+    def initial_deg(self) -> float | None:
+        """Latched initial heading θ0 in degrees, or None before the first reading."""
+        return self._initial
+
+    def reset(self) -> None:
+        """Forget θ0 (and the unwrapping history); the next reading is latched again."""
+        self._initial = None
+        self._last = None
+
+    @overload
+    def __call__(self, raw_deg: float) -> float: ...
+    @overload
+    def __call__(self, raw_deg: ArrayLike) -> float | NDArray[np.float64]: ...
+
+    def __call__(self, raw_deg: ArrayLike) -> float | NDArray[np.float64]:
+        """Yaw (rad) of compass reading(s) ``raw_deg`` (degrees clockwise from north).
+
+        Returns a float for a scalar, otherwise a new array (1-D for
+        ``unwrap=True``).
+        """
+        raw = as_float_array(raw_deg, "raw_deg")
+        if raw.size == 0:
+            return np.empty(raw.shape)
+        if self._initial is None:
+            self._initial = float(raw.flat[0])
+        yaw = np.asarray(compass_to_yaw(raw, self._initial))
+        if self._unwrap:
+            flat = yaw.reshape(-1)
+            start = flat[0] if self._last is None else self._last
+            steps = wrap_angle(np.diff(flat, prepend=start))
+            flat = start + np.cumsum(steps)
+            self._last = float(flat[-1])
+            yaw = flat.reshape(yaw.shape)
+        if yaw.ndim == 0:
+            return float(yaw)
+        return yaw
+
+    def __repr__(self) -> str:
+        return f"CompassCalibration(unwrap={self._unwrap}, initial_deg={self._initial})"

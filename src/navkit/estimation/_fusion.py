@@ -1,0 +1,530 @@
+"""Planar fusion of wheel odometry with an IMU: the robot_localization-style 2-D EKF."""
+
+from __future__ import annotations
+
+import enum
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from navkit._validation import as_float_array, finite_float, positive_float
+from navkit.estimation import _kernels as k
+from navkit.estimation._checks import covariance
+from navkit.estimation._kernels import GATED, NOT_POSITIVE_DEFINITE, planar_step
+from navkit.estimation._result import FilterError, UpdateResult, new_result
+from navkit.geometry import Pose2D, wrap_angle
+
+__all__ = ["FusionResult", "FusionStatus", "MeasurementLog", "PlanarFusion"]
+
+FloatArray = NDArray[np.float64]
+
+#: Default process noise per second for [x, y, θ, v, ω, a]: robot_localization's
+#: default ``process_noise_covariance`` entries for the same variables.
+DEFAULT_PROCESS_NOISE = (0.05, 0.05, 0.06, 0.025, 0.02, 0.01)
+#: Default initial variances: pose known (it defines the frame), rates unknown.
+DEFAULT_INITIAL_VARIANCE = (1e-9, 1e-9, 1e-9, 1.0, 1.0, 1.0)
+
+# (first, count) of the consecutive components of [θ, v, ω, a] each online kind observes.
+_KIND_COMPONENTS = {
+    "odometry": (1, 2),
+    "speed": (1, 1),
+    "yaw": (0, 1),
+    "yaw_rate": (2, 1),
+    "acceleration": (3, 1),
+}
+
+
+def _finite(value: Any, name: str) -> float:
+    """:func:`finite_float` with a fast path for plain floats (the online hot loop)."""
+    if type(value) is float and value - value == 0.0:  # false for NaN and ±inf
+        return value
+    return finite_float(value, name)
+
+
+def _positive(value: Any, name: str) -> float:
+    """:func:`positive_float` with a fast path for plain floats."""
+    if type(value) is float and 0.0 < value < math.inf:
+        return value
+    return positive_float(value, name)
+
+
+class FusionStatus(enum.IntEnum):
+    """Outcome of one measurement in :meth:`PlanarFusion.run` (``FusionResult.status``)."""
+
+    ACCEPTED = k.ACCEPTED
+    GATED = k.GATED
+    NOT_POSITIVE_DEFINITE = k.NOT_POSITIVE_DEFINITE
+    OUT_OF_ORDER = k.OUT_OF_ORDER
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class MeasurementLog:
+    """Timestamped measurements for :meth:`PlanarFusion.run`.
+
+    Each row is one measurement at ``times[i]`` of a subset of the observation
+    vector ``[θ, v, ω, a]`` (absolute yaw, forward speed, yaw rate, forward
+    acceleration) with independent noise. Rows are applied in the given order;
+    a row older than the filter's time is rejected (``OUT_OF_ORDER``), exactly as
+    in the online API. :meth:`from_streams` builds a time-sorted log from
+    separate sensor streams.
+
+    Parameters
+    ----------
+    times : array_like, shape (T,)
+        Measurement times, s.
+    values : array_like, shape (T, 4)
+        ``[yaw (rad), v (m/s), omega (rad/s), a (m/s²)]``; entries not observed
+        are ignored (they may be NaN).
+    variances : array_like, shape (T, 4)
+        Noise variances of the observed entries (> 0, SI units squared); others
+        are ignored.
+    observed : array_like of bool, shape (T, 4)
+        Which components each row measures (at least one per row).
+
+    Examples
+    --------
+    >>> log = MeasurementLog.from_streams(
+    ...     odometry=([0.0, 0.1], [1.0, 1.0], [0.0, 0.0]), yaw=([0.05], [0.0]))
+    >>> log.times, log.observed.astype(int).tolist()
+    (array([0.  , 0.05, 0.1 ]), [[0, 1, 1, 0], [1, 0, 0, 0], [0, 1, 1, 0]])
+    """
+
+    times: FloatArray
+    values: FloatArray
+    variances: FloatArray
+    observed: NDArray[np.bool_]
+
+    def __post_init__(self) -> None:
+        times = as_float_array(self.times, "times", ndim=1)
+        n = times.shape[0]
+        obs = np.asarray(self.observed)
+        if obs.dtype != np.bool_:
+            raise TypeError(f"observed must be a boolean array, got dtype {obs.dtype}")
+        if obs.shape != (n, 4):
+            raise ValueError(f"observed must have shape ({n}, 4), got {obs.shape}")
+        if n and not np.all(obs.any(axis=1)):
+            raise ValueError("every row of observed must mark at least one component")
+        values = as_float_array(self.values, "values", shape=(n, 4), finite=False)
+        var = as_float_array(self.variances, "variances", shape=(n, 4), finite=False)
+        if not np.all(np.isfinite(values[obs])):
+            raise ValueError("values must be finite where observed")
+        if not np.all(np.isfinite(var[obs])) or not np.all(var[obs] > 0.0):
+            raise ValueError("variances must be finite and > 0 where observed")
+        # Unobserved entries are never read by the kernel; zero them so the arrays are clean.
+        values = np.where(obs, values, 0.0)
+        var = np.where(obs, var, 1.0)
+        for name, arr in (("times", times), ("values", values), ("variances", var)):
+            arr = np.array(arr, dtype=np.float64, copy=True)
+            arr.flags.writeable = False
+            object.__setattr__(self, name, arr)
+        obs = np.array(obs, copy=True)
+        obs.flags.writeable = False
+        object.__setattr__(self, "observed", obs)
+
+    def __len__(self) -> int:
+        return int(self.times.shape[0])
+
+    @classmethod
+    def from_streams(
+        cls,
+        *,
+        odometry: tuple[ArrayLike, ...] | None = None,
+        odometry_variance: tuple[ArrayLike, ArrayLike] = (1e-3, 1e-3),
+        yaw: tuple[ArrayLike, ArrayLike] | None = None,
+        yaw_variance: ArrayLike = 1e-3,
+        yaw_rate: tuple[ArrayLike, ArrayLike] | None = None,
+        yaw_rate_variance: ArrayLike = 1e-4,
+        acceleration: tuple[ArrayLike, ArrayLike] | None = None,
+        acceleration_variance: ArrayLike = 1e-2,
+    ) -> MeasurementLog:
+        """Merge sensor streams into one time-sorted log.
+
+        Parameters
+        ----------
+        odometry : (t, v, omega) or (t, v), optional
+            Wheel odometry: times (s), forward speeds (m/s) and, unless omitted
+            (e.g. a skid-steer robot whose wheel yaw rate is unreliable), yaw
+            rates (rad/s); each shape (T_o,).
+        odometry_variance : (var_v, var_omega)
+            Variances, scalars or shape (T_o,) arrays ((m/s)², (rad/s)²).
+        yaw : (t, yaw), optional
+            Absolute yaw (rad), e.g. from a compass or the IMU orientation.
+        yaw_variance : float or array_like
+            rad².
+        yaw_rate : (t, omega), optional
+            Gyro yaw rate (rad/s).
+        yaw_rate_variance : float or array_like
+            (rad/s)².
+        acceleration : (t, a), optional
+            Forward acceleration (m/s², gravity removed).
+        acceleration_variance : float or array_like
+            (m/s²)².
+
+        Returns
+        -------
+        MeasurementLog
+            Rows sorted by time (stable: at equal times odometry comes first,
+            then yaw, yaw rate and acceleration).
+        """
+        blocks: list[tuple[FloatArray, FloatArray, FloatArray, NDArray[np.bool_]]] = []
+        if odometry is not None:
+            parts = _stream(odometry, "odometry", (2, 3))
+            t = parts[0]
+            comps = {}
+            for comp, val in enumerate(parts[1:], start=1):
+                name = f"odometry_variance[{comp - 1}]"
+                comps[comp] = (val, _stream_variance(odometry_variance[comp - 1], name, t.shape[0]))
+            blocks.append(_block(t, comps))
+        singles = (
+            (yaw, yaw_variance, "yaw", 0),
+            (yaw_rate, yaw_rate_variance, "yaw_rate", 2),
+            (acceleration, acceleration_variance, "acceleration", 3),
+        )
+        for stream, variance, name, comp in singles:
+            if stream is not None:
+                t, val = _stream(stream, name, (2,))
+                var = _stream_variance(variance, f"{name}_variance", t.shape[0])
+                blocks.append(_block(t, {comp: (val, var)}))
+        if not blocks:
+            raise ValueError("give at least one measurement stream")
+        times = np.concatenate([b[0] for b in blocks])
+        order = np.argsort(times, kind="stable")
+        return cls(
+            times[order],
+            np.concatenate([b[1] for b in blocks])[order],
+            np.concatenate([b[2] for b in blocks])[order],
+            np.concatenate([b[3] for b in blocks])[order],
+        )
+
+
+def _stream(stream: Any, name: str, widths: tuple[int, ...]) -> tuple[FloatArray, ...]:
+    want = " or ".join(str(w) for w in widths)
+    try:
+        parts = tuple(stream)
+    except TypeError:
+        raise TypeError(f"{name} must be a tuple of {want} arrays") from None
+    if len(parts) not in widths:
+        raise ValueError(f"{name} must be a tuple of {want} arrays, got {len(parts)}")
+    t = as_float_array(parts[0], f"{name}[0] (times)", ndim=1)
+    rest = tuple(
+        as_float_array(p, f"{name}[{i + 1}]", shape=(t.shape[0],)) for i, p in enumerate(parts[1:])
+    )
+    return (t, *rest)
+
+
+def _stream_variance(value: ArrayLike, name: str, n: int) -> FloatArray:
+    var = as_float_array(value, name)
+    if var.ndim == 0:
+        var = np.full(n, float(var))
+    elif var.shape != (n,):
+        raise ValueError(f"{name} must be a scalar or have shape ({n},), got {var.shape}")
+    if not np.all(var > 0.0):
+        raise ValueError(f"{name} must be > 0")
+    return var
+
+
+def _block(
+    t: FloatArray, comps: dict[int, tuple[FloatArray, FloatArray]]
+) -> tuple[FloatArray, FloatArray, FloatArray, NDArray[np.bool_]]:
+    n = t.shape[0]
+    values = np.zeros((n, 4))
+    var = np.ones((n, 4))
+    obs = np.zeros((n, 4), dtype=np.bool_)
+    for comp, (val, v) in comps.items():
+        values[:, comp] = val
+        var[:, comp] = v
+        obs[:, comp] = True
+    return t, values, var, obs
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class FusionResult:
+    """Filter output over a :class:`MeasurementLog`, one row per measurement.
+
+    Attributes
+    ----------
+    times : ndarray, shape (T,)
+        Measurement times, s (the log's).
+    states : ndarray, shape (T, 6)
+        ``[x, y, θ, v, ω, a]`` after each row (m, m, rad, m/s, rad/s, m/s²).
+    covariances : ndarray, shape (T, 6, 6)
+        State covariance after each row.
+    status : ndarray of int8, shape (T,)
+        :class:`FusionStatus` code of each row.
+    nis : ndarray, shape (T,)
+        Normalised innovation squared of each row (NaN when out of order).
+    """
+
+    times: FloatArray
+    states: FloatArray
+    covariances: FloatArray
+    status: NDArray[np.int8]
+    nis: FloatArray
+
+    @property
+    def accepted(self) -> NDArray[np.bool_]:
+        """Boolean mask (T,) of rows that updated the state."""
+        return np.asarray(self.status == FusionStatus.ACCEPTED)
+
+    @property
+    def final_pose(self) -> Pose2D:
+        """Pose after the last row."""
+        if self.states.shape[0] == 0:
+            raise ValueError("the result is empty")
+        return Pose2D(*(float(v) for v in self.states[-1, :3]))
+
+
+class PlanarFusion:
+    r"""2-D EKF fusing wheel odometry with an IMU (robot_localization in two_d_mode).
+
+    State ``[x, y, θ, v, ω, a]``: world position (m), heading (rad, (-π, π]),
+    forward speed (m/s), yaw rate (rad/s), forward acceleration (m/s²). Motion
+    model: constant-acceleration unicycle — over ``dt`` the robot travels
+    :math:`s = v\,dt + a\,dt^2/2` along the mid-step heading
+    :math:`\theta + \omega\,dt/2` (second order in ``dt``), then
+    :math:`\theta \mathrel{+}= \omega\,dt`, :math:`v \mathrel{+}= a\,dt`; the
+    process noise is given per second and scaled by ``dt`` (as robot_localization
+    does). Measurements are linear in the state: absolute yaw θ (compass or IMU
+    orientation; residual wrapped), wheel odometry (v, ω), gyro yaw rate ω and
+    forward acceleration a — the observation vector [θ, ẋ, θ̇, ẍ]. Updates use the
+    Joseph form and keep ``P`` symmetric positive definite.
+
+    Measurements arrive asynchronously: each update first predicts the state to
+    the measurement's time. A measurement older than the filter's time is not
+    applied and the filter is untouched; its :class:`UpdateResult` says so
+    (``accepted=False`` with a reason). A measurement rejected by the gate still
+    advances the filter to its time (the prediction is kept, the update skipped).
+    The first measurement (when ``t0`` is not given) sets the clock without a
+    prediction. A numerical failure raises :class:`FilterError` and leaves the
+    filter untouched.
+    Predict and update run in one compiled kernel per call; :meth:`run` fuses a
+    whole log in one kernel call. Several readings with one timestamp (e.g. the
+    yaw, yaw rate and acceleration of one IMU message) can be given by successive
+    calls: with independent noise and linear measurements this equals one joint
+    update.
+
+    Parameters
+    ----------
+    x0 : array_like, shape (6,), optional
+        Initial state; default zeros.
+    P0 : array_like, shape (6, 6) or (6,), optional
+        Initial covariance (or its diagonal); default
+        ``diag(1e-9, 1e-9, 1e-9, 1, 1, 1)``: pose known, rates unknown.
+    process_noise : array_like, shape (6, 6) or (6,), optional
+        Process noise covariance per second (or its diagonal), positive
+        semi-definite; default robot_localization's defaults
+        ``(0.05, 0.05, 0.06, 0.025, 0.02, 0.01)``.
+    t0 : float, optional
+        Time of ``x0``, s.
+    gate_probability : float, optional
+        If given, in (0, 1): reject measurements whose NIS exceeds the chi-square
+        quantile of this probability for their dimension (Mahalanobis gate).
+
+    Examples
+    --------
+    >>> fusion = PlanarFusion()
+    >>> for i in range(101):
+    ...     res = fusion.update_odometry(0.01 * i, v=1.0, omega=0.0, var_v=1e-4, var_omega=1e-4)
+    >>> round(fusion.pose.x, 3), round(float(fusion.x[3]), 3)
+    (1.0, 1.0)
+    >>> fusion.update_yaw(0.5, yaw=0.0, var=1e-3).reason
+    'out of order: t=0.5 s is older than the filter time 1.0 s'
+    """
+
+    def __init__(
+        self,
+        x0: ArrayLike | None = None,
+        P0: ArrayLike | None = None,
+        *,
+        process_noise: ArrayLike | None = None,
+        t0: float | None = None,
+        gate_probability: float | None = None,
+    ) -> None:
+        x = np.zeros(6) if x0 is None else as_float_array(x0, "x0", shape=(6,))
+        # x, P, Q, the current measurement and scratch space live in one array: the
+        # compiled online step takes just that array (see _kernels.BUF_*).
+        self._buf = np.zeros((k.BUF_ROWS, 6))
+        self._x: FloatArray = self._buf[k.BUF_X]
+        self._p: FloatArray = self._buf[k.BUF_P : k.BUF_P + 6]
+        self._q: FloatArray = self._buf[k.BUF_Q : k.BUF_Q + 6]
+        # The kernel leaves the residuals in the last row of the measurement block.
+        self._residuals: FloatArray = self._buf[k.BUF_MEAS + 2]
+        self._work: FloatArray = self._buf[k.BUF_WORK :]
+        self._x[:] = x
+        self._x[2] = wrap_angle(float(self._x[2]))
+        self._p[:, :] = _matrix(
+            DEFAULT_INITIAL_VARIANCE if P0 is None else P0, "P0", semidefinite=False
+        )
+        self._q[:, :] = _matrix(
+            DEFAULT_PROCESS_NOISE if process_noise is None else process_noise,
+            "process_noise",
+            semidefinite=True,
+        )
+        self._t: float | None = None if t0 is None else finite_float(t0, "t0")
+        self._gates = np.full(5, np.inf)
+        if gate_probability is not None:
+            prob = finite_float(gate_probability, "gate_probability")
+            if not 0.0 < prob < 1.0:
+                raise ValueError(f"gate_probability must be in (0, 1), got {prob}")
+            from scipy.stats import chi2
+
+            self._gates[1:] = chi2.ppf(prob, np.arange(1, 5))
+        # (first component, count, gate) of each online measurement kind.
+        self._kinds: dict[str, tuple[int, int, float]] = {
+            kind: (first, count, float(self._gates[count]))
+            for kind, (first, count) in _KIND_COMPONENTS.items()
+        }
+
+    @property
+    def x(self) -> FloatArray:
+        """State ``[x, y, θ, v, ω, a]`` (6,), a copy."""
+        return np.array(self._x, dtype=np.float64, copy=True)
+
+    @property
+    def P(self) -> FloatArray:
+        """Covariance (6, 6), a copy."""
+        return np.array(self._p, dtype=np.float64, copy=True)
+
+    @property
+    def t(self) -> float | None:
+        """Filter time, s; None before the first measurement when no ``t0`` was given."""
+        return self._t
+
+    @property
+    def pose(self) -> Pose2D:
+        """Current pose estimate."""
+        return Pose2D(float(self._x[0]), float(self._x[1]), float(self._x[2]))
+
+    def predict(self, t: float) -> None:
+        """Propagate the state to time ``t`` (s) without a measurement.
+
+        Raises
+        ------
+        ValueError
+            If ``t`` is not finite or is older than the filter time.
+        """
+        time = finite_float(t, "t")
+        if self._t is not None:
+            if time < self._t:
+                raise ValueError(f"t={time} s is older than the filter time {self._t} s")
+            x = self._x.copy()
+            p = self._p.copy()
+            k.planar_predict(x, p, self._q, time - self._t, self._work)
+            if not np.all(np.isfinite(p)):
+                raise FilterError("predicted covariance is not finite")
+            self._x[:] = x
+            self._p[:, :] = p
+        self._t = time
+
+    def update_odometry(
+        self, t: float, v: float, omega: float, var_v: float, var_omega: float
+    ) -> UpdateResult:
+        """Fuse a wheel-odometry twist: forward speed ``v`` (m/s), yaw rate ``omega`` (rad/s).
+
+        ``var_v``, ``var_omega`` are the variances ((m/s)², (rad/s)²), > 0. Returns
+        the :class:`UpdateResult` (residual order ``[v, omega]``).
+        """
+        return self._apply(
+            t,
+            "odometry",
+            _finite(v, "v"),
+            _finite(omega, "omega"),
+            _positive(var_v, "var_v"),
+            _positive(var_omega, "var_omega"),
+        )
+
+    def update_speed(self, t: float, v: float, var: float) -> UpdateResult:
+        """Fuse a forward speed ``v`` (m/s) alone, variance (m/s)².
+
+        For odometry whose yaw rate is unreliable (skid-steer robots).
+        """
+        return self._apply(t, "speed", _finite(v, "v"), 0.0, _positive(var, "var"), 0.0)
+
+    def update_yaw(self, t: float, yaw: float, var: float) -> UpdateResult:
+        """Fuse an absolute yaw ``yaw`` (rad, any range; compass or IMU), variance rad²."""
+        return self._apply(t, "yaw", _finite(yaw, "yaw"), 0.0, _positive(var, "var"), 0.0)
+
+    def update_yaw_rate(self, t: float, omega: float, var: float) -> UpdateResult:
+        """Fuse a gyro yaw rate ``omega`` (rad/s), variance (rad/s)²."""
+        return self._apply(t, "yaw_rate", _finite(omega, "omega"), 0.0, _positive(var, "var"), 0.0)
+
+    def update_acceleration(self, t: float, a: float, var: float) -> UpdateResult:
+        """Fuse a forward acceleration ``a`` (m/s², gravity removed), variance (m/s²)²."""
+        return self._apply(t, "acceleration", _finite(a, "a"), 0.0, _positive(var, "var"), 0.0)
+
+    def _apply(
+        self, t: float, kind: str, z0: float, z1: float, var0: float, var1: float
+    ) -> UpdateResult:
+        time = _finite(t, "t")
+        last = self._t
+        if last is not None and time < last:
+            return UpdateResult(
+                False,
+                math.nan,
+                np.empty(0),
+                f"out of order: t={time} s is older than the filter time {last} s",
+            )
+        first, count, gate = self._kinds[kind]
+        dt = 0.0 if last is None else time - last
+        status, nis = planar_step(self._buf, dt, first, count, z0, z1, var0, var1, gate)
+        if status == NOT_POSITIVE_DEFINITE:
+            raise FilterError(f"{kind} update: covariance is not positive definite")
+        residual = self._residuals[first : first + count].copy()
+        self._t = time
+        # A gated measurement still advances the clock: the kernel kept the prediction.
+        if status == GATED:
+            return new_result(False, nis, residual, f"rejected by the gate: NIS {nis:.6g}")
+        return new_result(True, nis, residual, None)
+
+    def run(self, log: MeasurementLog) -> FusionResult:
+        """Fuse a whole :class:`MeasurementLog` in one compiled kernel call.
+
+        Equivalent to calling the online updates row by row (same numbers), but
+        without per-call overhead. The filter keeps the final state and time.
+        Instead of raising, a row is marked in ``FusionResult.status``: rows older
+        than the filter time are skipped (``OUT_OF_ORDER``), gated rows keep the
+        prediction (``GATED``), and a row whose update would lose positive
+        definiteness keeps the prediction (``NOT_POSITIVE_DEFINITE``).
+
+        Returns
+        -------
+        FusionResult
+            State, covariance, status and NIS after every row.
+        """
+        if not isinstance(log, MeasurementLog):
+            raise TypeError(f"log must be a MeasurementLog, got {type(log).__name__}")
+        n = len(log)
+        out_x = np.empty((n, 6))
+        out_p = np.empty((n, 6, 6))
+        status = np.empty(n, dtype=np.int8)
+        nis = np.empty(n)
+        if n == 0:
+            return FusionResult(log.times, out_x, out_p, status, nis)
+        t0 = float(log.times[0]) if self._t is None else self._t
+        x = self._x.copy()
+        p = self._p.copy()
+        variances = np.where(log.observed, log.variances, 0.0)
+        t_end = k.planar_run(
+            x, p, t0, log.times, log.values, variances, self._q, self._gates,
+            out_x, out_p, status, nis,
+        )  # fmt: skip
+        self._x[:] = x
+        self._p[:, :] = p
+        self._t = float(t_end)
+        return FusionResult(log.times, out_x, out_p, status, nis)
+
+    def __repr__(self) -> str:
+        return f"PlanarFusion(t={self._t}, x={np.array2string(self._x, precision=4)})"
+
+
+def _matrix(value: ArrayLike, name: str, *, semidefinite: bool) -> FloatArray:
+    arr = as_float_array(value, name)
+    if arr.shape == (6,):
+        if not np.all(arr >= 0.0) or (not semidefinite and not np.all(arr > 0.0)):
+            bound = ">= 0" if semidefinite else "> 0"
+            raise ValueError(f"{name} diagonal entries must be {bound}")
+        return np.diag(arr)
+    return covariance(arr, name, 6, semidefinite=semidefinite)

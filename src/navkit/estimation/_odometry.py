@@ -1,0 +1,289 @@
+"""Dead reckoning: compass-fused omni-wheel odometry and differential-drive encoder odometry."""
+
+from __future__ import annotations
+
+import numbers
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from navkit._validation import as_float_array, positive_float
+from navkit.geometry import Pose2D, wrap_angle
+from navkit.kinematics import DiffDrive, OdometryMethod, OmniDrive, tick_delta, ticks_to_distance
+
+__all__ = ["DiffOdometry", "OmniOdometry"]
+
+FloatArray = NDArray[np.float64]
+_METHODS = ("arc", "midpoint", "first_order")
+
+
+def _chain(pose: Pose2D, dx: FloatArray, dy: FloatArray, heading_before: FloatArray) -> FloatArray:
+    """World positions after robot-frame steps (dx, dy) taken at the given headings.
+
+    Returns (T, 2) cumulative positions starting from ``pose``; the rotation of
+    every step is known up front, so the sequential composition is a cumulative
+    sum.
+    """
+    c = np.cos(heading_before)
+    s = np.sin(heading_before)
+    out = np.empty((dx.shape[0], 2))
+    out[:, 0] = pose.x + np.cumsum(c * dx - s * dy)
+    out[:, 1] = pose.y + np.cumsum(s * dx + c * dy)
+    return out
+
+
+def _is_bit_width(value: object) -> bool:
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+        return False
+    return 2 <= int(value) <= 64
+
+
+class OmniOdometry:
+    r"""Omni-wheel odometry whose heading comes from a compass, not from the wheels.
+
+    Implements the omnidirectional-robot paper's equations 5–8: each step's body
+    displacement :math:`(\Delta x_b, \Delta y_b)` comes from the wheel rotation
+    increments through the drive's forward kinematics, and is rotated into the
+    world frame by the compass heading instead of an integrated wheel heading
+    (wheel-derived rotation slips; the compass does not drift).
+
+    Two deliberate differences from the paper:
+
+    * the forward kinematics is the exact inverse of the wheel Jacobian
+      (:attr:`navkit.kinematics.OmniDrive.forward_matrix`); the paper's forward
+      matrix overstates ``vx`` and ``vy`` by 1.5× for three wheels;
+    * the displacement is rotated by the mid-step heading
+      :math:`\theta_{k-1} + \mathrm{wrap}(\theta_k - \theta_{k-1})/2` (second
+      order) rather than by the heading at one end of the step.
+
+    Parameters
+    ----------
+    drive : OmniDrive
+        Wheel layout.
+    pose : Pose2D, default Pose2D(0, 0, 0)
+        Start pose; its heading should be the compass yaw at the start (e.g. 0
+        with :class:`CompassCalibration`).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navkit.geometry import Twist2D
+    >>> drive = OmniDrive.three_wheel(wheel_radius=0.05, base_radius=0.2)
+    >>> odo = OmniOdometry(drive)
+    >>> step = drive.inverse(Twist2D(1.0, 0.0, 0.0)) * 0.1  # 0.1 s of driving forward
+    >>> odo.update(step, yaw=np.pi / 2)  # the compass says the robot faces +y
+    Pose2D(x=0.07071..., y=0.07071..., theta=1.5707963267948966)
+    """
+
+    __slots__ = ("_drive", "_pose")
+
+    def __init__(self, drive: OmniDrive, pose: Pose2D | None = None) -> None:
+        if not isinstance(drive, OmniDrive):
+            raise TypeError(f"drive must be an OmniDrive, got {type(drive).__name__}")
+        if pose is not None and not isinstance(pose, Pose2D):
+            raise TypeError(f"pose must be a Pose2D, got {type(pose).__name__}")
+        self._drive = drive
+        self._pose = Pose2D(0.0, 0.0, 0.0) if pose is None else pose
+
+    @property
+    def pose(self) -> Pose2D:
+        """Current pose estimate."""
+        return self._pose
+
+    @property
+    def drive(self) -> OmniDrive:
+        """The wheel layout."""
+        return self._drive
+
+    def update(self, wheel_increments: ArrayLike, yaw: float) -> Pose2D:
+        """Advance by one step of wheel rotation and return the new pose.
+
+        Parameters
+        ----------
+        wheel_increments : array_like, shape (N,)
+            Rotation of each wheel since the last update, rad.
+        yaw : float
+            Compass yaw at the end of the step, rad (counter-clockwise, e.g. from
+            :func:`compass_to_yaw`).
+        """
+        inc = as_float_array(wheel_increments, "wheel_increments", shape=(self._drive.n_wheels,))
+        return Pose2D.from_array(self.run(inc[None, :], [yaw])[-1])
+
+    def run(self, wheel_increments: ArrayLike, yaws: ArrayLike) -> FloatArray:
+        """Advance through a log of steps (vectorised) and return every pose.
+
+        Parameters
+        ----------
+        wheel_increments : array_like, shape (T, N)
+            Wheel rotation increments per step, rad.
+        yaws : array_like, shape (T,)
+            Compass yaw at the end of each step, rad.
+
+        Returns
+        -------
+        ndarray, shape (T + 1, 3)
+            ``[x, y, theta]`` rows; row 0 is the pose before the log. The
+            odometry keeps the last pose.
+        """
+        n = self._drive.n_wheels
+        inc = as_float_array(wheel_increments, "wheel_increments", shape=(None, n))
+        t = inc.shape[0]
+        heading = np.asarray(wrap_angle(as_float_array(yaws, "yaws", shape=(t,))))
+        body = self._drive.forward_batch(inc)
+        previous = np.concatenate(([self._pose.theta], heading[:-1]))
+        turn = np.asarray(wrap_angle(heading - previous))
+        out = np.empty((t + 1, 3))
+        out[0] = self._pose.as_array()
+        out[1:, :2] = _chain(self._pose, body[:, 0], body[:, 1], previous + 0.5 * turn)
+        out[1:, 2] = heading
+        if t:
+            self._pose = Pose2D.from_array(out[-1])
+        return out
+
+    def __repr__(self) -> str:
+        return f"OmniOdometry({self._drive!r}, pose={self._pose!r})"
+
+
+class DiffOdometry:
+    """Differential-drive pose from successive wheel encoder counts.
+
+    Counter wrap-around is handled with :func:`navkit.kinematics.tick_delta` when
+    ``encoder_bits`` is given. Each step converts the tick changes to wheel
+    distances (each wheel with its own radius) and moves the pose with
+    :meth:`navkit.kinematics.DiffDrive.odometry_step`: ``"arc"`` (exact for
+    constant wheel speeds over the step), ``"midpoint"`` or ``"first_order"``
+    (the classic Euler form).
+
+    Parameters
+    ----------
+    drive : DiffDrive
+        Track width and wheel radii.
+    ticks_per_rev : float
+        Encoder counts per wheel revolution, > 0.
+    encoder_bits : int, optional
+        Width of the hardware counters (e.g. 16) for wrap-around; None for
+        counters that never wrap.
+    pose : Pose2D, default Pose2D(0, 0, 0)
+        Pose at the first reading.
+    method : {"arc", "midpoint", "first_order"}, default "arc"
+        Integration scheme per step.
+
+    Examples
+    --------
+    >>> drive = DiffDrive(track=0.5, wheel_radius=0.1)
+    >>> odo = DiffOdometry(drive, ticks_per_rev=1000, encoder_bits=16)
+    >>> odo.update(65000, 65000)  # the first reading only latches the counters
+    Pose2D(x=0.0, y=0.0, theta=0.0)
+    >>> odo.update(464, 464)  # both counters wrapped: +1000 ticks, one wheel turn
+    Pose2D(x=0.6283185307179586, y=0.0, theta=0.0)
+    """
+
+    __slots__ = ("_bits", "_drive", "_last", "_method", "_pose", "_ticks_per_rev")
+
+    def __init__(
+        self,
+        drive: DiffDrive,
+        ticks_per_rev: float,
+        encoder_bits: int | None = None,
+        *,
+        pose: Pose2D | None = None,
+        method: OdometryMethod = "arc",
+    ) -> None:
+        if not isinstance(drive, DiffDrive):
+            raise TypeError(f"drive must be a DiffDrive, got {type(drive).__name__}")
+        if pose is not None and not isinstance(pose, Pose2D):
+            raise TypeError(f"pose must be a Pose2D, got {type(pose).__name__}")
+        if method not in _METHODS:
+            raise ValueError(f"method must be one of {_METHODS}, got {method!r}")
+        if encoder_bits is not None and not _is_bit_width(encoder_bits):
+            raise ValueError(f"encoder_bits must be an integer from 2 to 64, got {encoder_bits!r}")
+        self._drive = drive
+        self._ticks_per_rev = positive_float(ticks_per_rev, "ticks_per_rev")
+        self._bits = None if encoder_bits is None else int(encoder_bits)
+        self._pose = Pose2D(0.0, 0.0, 0.0) if pose is None else pose
+        self._method: OdometryMethod = method
+        self._last: tuple[int, int] | None = None
+
+    @property
+    def pose(self) -> Pose2D:
+        """Current pose estimate."""
+        return self._pose
+
+    def reset(self, pose: Pose2D | None = None) -> None:
+        """Forget the latched counters; optionally set a new pose."""
+        if pose is not None and not isinstance(pose, Pose2D):
+            raise TypeError(f"pose must be a Pose2D, got {type(pose).__name__}")
+        self._last = None
+        if pose is not None:
+            self._pose = pose
+
+    def update(self, left_ticks: int, right_ticks: int) -> Pose2D:
+        """Read both encoder counters and return the new pose.
+
+        The first reading (after construction or :meth:`reset`) only latches the
+        counters and returns the current pose.
+        """
+        return Pose2D.from_array(self.run([left_ticks], [right_ticks])[-1])
+
+    def run(self, left_ticks: ArrayLike, right_ticks: ArrayLike) -> FloatArray:
+        """Process a log of counter readings (vectorised) and return every pose.
+
+        Parameters
+        ----------
+        left_ticks, right_ticks : array_like of int, shape (T,)
+            Successive raw counter readings.
+
+        Returns
+        -------
+        ndarray, shape (T, 3)
+            ``[x, y, theta]`` after each reading. The odometry keeps the last
+            pose and counters.
+        """
+        left = np.asarray(left_ticks)
+        right = np.asarray(right_ticks)
+        if left.ndim != 1 or right.shape != left.shape:
+            raise ValueError(
+                f"left_ticks and right_ticks must be 1-D of equal length, got shapes "
+                f"{left.shape} and {right.shape}"
+            )
+        for name, arr in (("left_ticks", left), ("right_ticks", right)):
+            if arr.dtype.kind not in "iu":
+                raise TypeError(f"{name} must hold integer counter readings, got {arr.dtype}")
+        t = left.shape[0]
+        if t == 0:
+            return np.empty((0, 3))
+        # Counters that never wrap are differenced as 64-bit integers.
+        bits = 64 if self._bits is None else self._bits
+        if self._last is None:
+            prev_l = np.concatenate((left[:1], left[:-1]))
+            prev_r = np.concatenate((right[:1], right[:-1]))
+        else:
+            prev_l = np.concatenate(([self._last[0]], left[:-1]))
+            prev_r = np.concatenate(([self._last[1]], right[:-1]))
+        d_left = np.asarray(
+            ticks_to_distance(
+                tick_delta(prev_l, left, bits), self._ticks_per_rev, self._drive.left_radius
+            )
+        )
+        d_right = np.asarray(
+            ticks_to_distance(
+                tick_delta(prev_r, right, bits),
+                self._ticks_per_rev,
+                self._drive.right_radius,
+            )
+        )
+        dx, dy, dth = self._drive.odometry_step(d_left, d_right, self._method)
+        theta = self._pose.theta + np.cumsum(dth)
+        before = np.concatenate(([self._pose.theta], theta[:-1]))
+        out = np.empty((t, 3))
+        out[:, :2] = _chain(self._pose, dx, dy, before)
+        out[:, 2] = wrap_angle(theta)
+        self._pose = Pose2D.from_array(out[-1])
+        self._last = (int(left[-1]), int(right[-1]))
+        return out
+
+    def __repr__(self) -> str:
+        return (
+            f"DiffOdometry({self._drive!r}, ticks_per_rev={self._ticks_per_rev}, "
+            f"encoder_bits={self._bits}, method={self._method!r}, pose={self._pose!r})"
+        )

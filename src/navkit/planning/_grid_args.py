@@ -1,0 +1,35 @@
+"""Argument checks shared by the grid searches (private)."""
+
+from __future__ import annotations
+
+import numbers
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from navkit._validation import as_cell
+
+
+def check_connectivity(value: Any) -> bool:
+    """Return True for 8-connectivity, False for 4; reject anything else."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+        raise TypeError(f"connectivity must be the integer 4 or 8, got {value!r}")
+    if int(value) not in (4, 8):
+        raise ValueError(f"connectivity must be 4 or 8, got {value!r}")
+    return int(value) == 8
+
+
+def check_flag(value: Any, name: str) -> bool:
+    """Return ``value`` as a Python bool; only bool and numpy.bool_ are accepted."""
+    if not isinstance(value, (bool, np.bool_)):
+        raise TypeError(f"{name} must be a bool, got {type(value).__name__}")
+    return bool(value)
+
+
+def traversable_cell(costs: NDArray[np.float64], value: Any, name: str) -> tuple[int, int]:
+    """Convert ``value`` to a ``(row, col)`` inside ``costs`` whose cost is finite."""
+    row, col = as_cell(value, name, costs.shape)
+    if not np.isfinite(costs[row, col]):
+        raise ValueError(f"{name} {(row, col)} is on an impassable cell (cost inf)")
+    return row, col

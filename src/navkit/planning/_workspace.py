@@ -1,0 +1,75 @@
+"""Per-thread scratch arrays reused by the grid searches (private).
+
+A search on an n-cell grid needs about 45 bytes per cell of scratch memory
+(costs-to-come, parents, node marks and the indexed heap). Allocating it on every
+call costs more than a short search itself (fresh pages are zero-filled by the
+kernel on first touch), so each thread keeps one workspace sized for the largest
+grid it has searched and reuses it. Nothing needs clearing between searches:
+
+* ``mark`` holds a stamp per cell; a search with stamp ``s`` treats ``mark < s``
+  as never reached, ``s`` as open and ``s + 1`` as closed, so advancing the stamp
+  by 2 forgets the previous search in O(1);
+* ``g`` and ``parent`` are only read where ``mark`` says this search wrote them;
+* the heap's ``pos`` is -1 for every cell between searches (the kernel un-queues
+  what is left in the heap before returning).
+"""
+
+from __future__ import annotations
+
+import threading
+from typing import NamedTuple
+
+import numpy as np
+from numpy.typing import NDArray
+
+from navkit.planning._heap import heap_new
+
+# Stamps live in uint32; restart (with a full clear) well before overflow.
+_STAMP_LIMIT = 2**32 - 4
+
+
+class Workspace(NamedTuple):
+    """Scratch arrays of one search; each has at least ``n`` cells."""
+
+    g: NDArray[np.float64]
+    parent: NDArray[np.int8]
+    mark: NDArray[np.uint32]
+    nodes: NDArray[np.int64]
+    keys: NDArray[np.float64]
+    pos: NDArray[np.int64]
+    size: NDArray[np.int64]
+    stamp: int
+
+
+class _ThreadWorkspace(threading.local):
+    def __init__(self) -> None:
+        self.capacity = 0
+        self.stamp = 0
+        self.arrays: tuple[np.ndarray, ...] = ()
+
+
+_local = _ThreadWorkspace()
+
+
+def workspace(n: int) -> Workspace:
+    """Scratch arrays for a search over ``n`` cells with a fresh stamp."""
+    ws = _local
+    if n > ws.capacity:
+        nodes, keys, pos, size = heap_new(n)
+        ws.arrays = (
+            np.empty(n, dtype=np.float64),
+            np.empty(n, dtype=np.int8),
+            np.zeros(n, dtype=np.uint32),
+            nodes,
+            keys,
+            pos,
+            size,
+        )
+        ws.capacity = n
+        ws.stamp = 0
+    ws.stamp += 2
+    if ws.stamp >= _STAMP_LIMIT:
+        ws.arrays[2][:] = 0
+        ws.stamp = 2
+    g, parent, mark, nodes, keys, pos, size = ws.arrays
+    return Workspace(g, parent, mark, nodes, keys, pos, size, ws.stamp)

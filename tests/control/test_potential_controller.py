@@ -1,0 +1,277 @@
+"""The APF motion controller: limits (hypothesis) and closed loops with ``integrate``."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from navkit.control import PotentialFieldController, limit_velocity_change
+from navkit.geometry import Pose2D, Twist2D, integrate
+from navkit.mapping import LaserScan
+from navkit.planning import ConicAttraction, KhatibRepulsion
+
+vec = st.tuples(st.floats(-3.0, 3.0), st.floats(-3.0, 3.0))
+rate = st.floats(0.1, 5.0)
+period = st.floats(0.005, 0.5)
+TOL = 1e-9
+
+
+def check_change(prev: np.ndarray, new: np.ndarray, accel: float, decel: float, dt: float) -> None:
+    """The rule: a change that raises the speed is limited by accel, any other by decel.
+
+    A speed unchanged to within rounding may be classed either way.
+    """
+    step = float(np.linalg.norm(new - prev))
+    gain = float(np.linalg.norm(new) - np.linalg.norm(prev))
+    if abs(gain) <= TOL:
+        limit = max(accel, decel) * dt
+    elif gain > 0.0:
+        limit = accel * dt
+    else:
+        limit = decel * dt
+    assert step <= limit * (1 + 1e-9) + TOL, (prev, new, step, limit)
+
+
+@settings(max_examples=300)
+@given(vec, vec, rate, rate, period)
+def test_limit_velocity_change_respects_both_limits(
+    prev: tuple[float, float], want: tuple[float, float], accel: float, decel: float, dt: float
+) -> None:
+    p, w = np.array(prev), np.array(want)
+    new = limit_velocity_change(p, w, accel, decel, dt)
+    check_change(p, new, accel, decel, dt)
+    # On the segment from prev to want, and as far as the limits allow.
+    d = w - p
+    if np.linalg.norm(d) > 0:
+        t = float(np.dot(new - p, d) / np.dot(d, d))
+        assert -TOL <= t <= 1 + TOL
+        np.testing.assert_allclose(new, p + t * d, atol=1e-9)
+    if np.linalg.norm(w - p) <= min(accel, decel) * dt:
+        np.testing.assert_allclose(new, w, atol=1e-12)
+    else:
+        assert np.linalg.norm(new - p) >= min(accel, decel) * dt * (1 - 1e-9)
+    assert np.linalg.norm(new) <= max(np.linalg.norm(p), np.linalg.norm(w)) + TOL
+
+
+def test_limit_velocity_change_examples() -> None:
+    # Reversing at speed 1 with decel 2: braking to zero and beyond is a deceleration
+    # until the speed would exceed 1 again.
+    out = limit_velocity_change([1.0, 0.0], [-1.0, 0.0], 0.5, 2.0, 0.1)
+    np.testing.assert_allclose(out, [0.8, 0.0])
+    out = limit_velocity_change([0.1, 0.0], [-1.0, 0.0], 0.5, 2.0, 0.1)
+    # Braking 0.1 -> -0.1 (t = 0.2 <= decel·dt) keeps |v| <= 0.1; further would speed up.
+    np.testing.assert_allclose(out, [-0.1, 0.0], atol=1e-15)
+    # Turning at constant speed: the change that keeps |v| is a deceleration (decel limit).
+    out = limit_velocity_change([1.0, 0.0], [0.0, 1.0], 0.1, 1.0, 0.1)
+    assert np.linalg.norm(out - [1.0, 0.0]) == pytest.approx(0.1)
+    np.testing.assert_allclose(limit_velocity_change([0.5], [0.5], 1.0, 1.0, 0.1), [0.5])
+
+
+obstacle_lists = st.lists(st.tuples(st.floats(-4.0, 4.0), st.floats(-4.0, 4.0)), max_size=5)
+poses = st.builds(Pose2D, st.floats(-3.0, 3.0), st.floats(-3.0, 3.0),
+                  st.floats(-math.pi, math.pi))
+
+
+def world_velocity(pose: Pose2D, cmd: Twist2D) -> np.ndarray:
+    c, s = math.cos(pose.theta), math.sin(pose.theta)
+    return np.array([c * cmd.vx - s * cmd.vy, s * cmd.vx + c * cmd.vy])
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.lists(st.tuples(poses, poses, obstacle_lists, period), min_size=2, max_size=25),
+       st.floats(0.2, 2.0), rate, rate, st.floats(0.5, 4.0))
+def test_omni_commands_never_exceed_limits(
+    steps: list[tuple[Pose2D, Pose2D, list[tuple[float, float]], float]],
+    max_speed: float, accel: float, decel: float, max_omega: float,
+) -> None:
+    ctl = PotentialFieldController(max_speed=max_speed, max_accel=accel, max_decel=decel,
+                                   max_omega=max_omega, k_rep=0.5, d0=1.0)
+    prev = np.zeros(2)
+    for pose, target, obstacles, dt in steps:
+        cmd = ctl.step(pose, None, target, np.array(obstacles).reshape(-1, 2), dt)
+        v = world_velocity(pose, cmd)
+        np.testing.assert_allclose(v, ctl.previous_velocity, atol=1e-12)
+        assert np.linalg.norm(v) <= max_speed * (1 + 1e-12)
+        assert abs(cmd.omega) <= max_omega
+        check_change(prev, v, accel, decel, dt)
+        prev = v
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.lists(st.tuples(poses, poses, obstacle_lists, period), min_size=2, max_size=25),
+       st.floats(0.2, 2.0), rate, rate)
+def test_diff_drive_commands_never_exceed_limits(
+    steps: list[tuple[Pose2D, Pose2D, list[tuple[float, float]], float]],
+    max_speed: float, accel: float, decel: float,
+) -> None:
+    ctl = PotentialFieldController(max_speed=max_speed, max_accel=accel, max_decel=decel,
+                                   mode="diff", k_rep=0.5, d0=1.0)
+    prev = 0.0
+    for pose, target, obstacles, dt in steps:
+        cmd = ctl.step(pose, Twist2D(prev), target, np.array(obstacles).reshape(-1, 2), dt)
+        assert cmd.vy == 0.0
+        assert 0.0 <= cmd.vx <= max_speed * (1 + 1e-12)
+        limit = accel if cmd.vx > prev else decel
+        assert abs(cmd.vx - prev) <= limit * dt * (1 + 1e-9) + TOL
+        prev = cmd.vx
+
+
+def run(
+    ctl: PotentialFieldController,
+    start: Pose2D,
+    target: Pose2D,
+    obstacles: object = None,
+    scan_of: object = None,
+    dt: float = 0.05,
+    steps: int = 600,
+) -> tuple[Pose2D, np.ndarray]:
+    """Closed loop: command, integrate the exact SE(2) motion, repeat."""
+    pose = start
+    path = [(pose.x, pose.y)]
+    for _ in range(steps):
+        sensed = scan_of(pose) if callable(scan_of) else obstacles
+        cmd = ctl.step(pose, None, target, sensed, dt)  # type: ignore[arg-type]
+        pose = integrate(pose, cmd, dt)
+        path.append((pose.x, pose.y))
+        if math.hypot(target.x - pose.x, target.y - pose.y) < 0.02 and ctl.stall_time == 0.0:
+            break
+    return pose, np.array(path)
+
+
+@pytest.mark.parametrize("mode", ["omni", "diff"])
+def test_reaches_goal_in_free_space(mode: str) -> None:
+    ctl = PotentialFieldController(mode=mode, max_speed=0.6)  # type: ignore[arg-type]
+    target = Pose2D(2.5, -1.5, 1.0)
+    pose, path = run(ctl, Pose2D(0.0, 0.0, 2.0), target, steps=800)
+    assert math.hypot(pose.x - target.x, pose.y - target.y) < 0.05
+    assert not ctl.stalled
+    if mode == "omni":
+        assert abs(pose.theta - target.theta) < 0.05
+    # Speed limit held along the way.
+    assert np.max(np.linalg.norm(np.diff(path, axis=0), axis=1)) <= 0.6 * 0.05 * (1 + 1e-9)
+
+
+def disc_points(cx: float, cy: float, radius: float, n: int = 24) -> np.ndarray:
+    a = np.linspace(0.0, 2.0 * math.pi, n, endpoint=False)
+    return np.stack((cx + radius * np.cos(a), cy + radius * np.sin(a)), axis=1)
+
+
+def disc_scan(pose: Pose2D, cx: float, cy: float, radius: float, n: int = 360) -> LaserScan:
+    """Exact ranges from a sensor at ``pose`` to a disc (nothing else in range: +inf)."""
+    th = -math.pi + 2.0 * math.pi * np.arange(n) / n
+    phi = th + pose.theta
+    dx, dy = cx - pose.x, cy - pose.y
+    b = np.cos(phi) * dx + np.sin(phi) * dy
+    disc = b * b - (dx * dx + dy * dy - radius * radius)
+    hit = (disc >= 0.0) & (b > 0.0)
+    r = np.where(hit, b - np.sqrt(np.where(hit, disc, 0.0)), math.inf)
+    return LaserScan(r, -math.pi, 2.0 * math.pi / n, 0.05, 8.0)
+
+
+@pytest.mark.parametrize("sensing", ["points", "scan"])
+def test_goes_around_a_single_obstacle(sensing: str) -> None:
+    centre = (2.0, 0.08)
+    radius = 0.25
+    ctl = PotentialFieldController(k_rep=0.05, d0=0.6, max_speed=0.5)
+    target = Pose2D(4.0, 0.0, 0.0)
+    if sensing == "points":
+        pose, path = run(ctl, Pose2D(0.0, 0.0, 0.0), target, obstacles=disc_points(*centre, radius))
+    else:
+        pose, path = run(ctl, Pose2D(0.0, 0.0, 0.0), target,
+                         scan_of=lambda p: disc_scan(p, *centre, radius))
+    assert math.hypot(pose.x - target.x, pose.y - target.y) < 0.05
+    clearance = np.min(np.hypot(path[:, 0] - centre[0], path[:, 1] - centre[1])) - radius
+    assert clearance > 0.05
+    # It went around (below, the side away from the offset centre), not through.
+    assert np.min(path[:, 1]) < -0.3
+    assert not ctl.stalled
+
+
+def test_reports_a_local_minimum() -> None:
+    # A wall across the straight line, symmetric about it: attraction and repulsion
+    # cancel on the axis and the robot stops in front of the wall.
+    wall = np.stack((np.full(21, 2.0), np.linspace(-1.0, 1.0, 21)), axis=1)
+    ctl = PotentialFieldController(k_rep=0.05, d0=0.6, stall_timeout=1.5)
+    pose, _ = run(ctl, Pose2D(0.0, 0.0, 0.0), Pose2D(4.0, 0.0, 0.0), obstacles=wall, steps=300)
+    assert ctl.stalled
+    assert ctl.stall_time >= 1.5
+    assert 1.0 < pose.x < 2.0 and abs(pose.y) < 1e-9
+    ctl.reset()
+    assert not ctl.stalled and ctl.stall_time == 0.0
+    np.testing.assert_array_equal(ctl.previous_velocity, [0.0, 0.0])
+
+
+def test_invalid_obstacles_are_skipped_and_measured_velocity_is_the_base() -> None:
+    a = PotentialFieldController(k_rep=0.5)
+    b = PotentialFieldController(k_rep=0.5)
+    pose, target = Pose2D(0.0, 0.0, 0.3), Pose2D(3.0, 1.0, 0.0)
+    obstacles = np.array([[0.5, 0.2], [math.nan, 1.0], [math.inf, math.inf]])
+    np.testing.assert_allclose(
+        a.step(pose, None, target, obstacles, 0.1).as_array(),
+        b.step(pose, None, target, obstacles[:1], 0.1).as_array(),
+    )
+    # Measured 1 m/s backwards: the command may only brake by max_decel·dt.
+    c = PotentialFieldController(max_speed=2.0, max_decel=2.0)
+    cmd = c.step(Pose2D(0.0, 0.0, 0.0), Twist2D(-1.0), Pose2D(5.0, 0.0, 0.0), None, 0.1)
+    assert cmd.vx == pytest.approx(-0.8)
+
+
+def test_desired_velocity_is_attraction_plus_repulsion() -> None:
+    attraction = ConicAttraction((0.0, 0.0), m=0.25)
+    ctl = PotentialFieldController(attraction, k_rep=0.1, d0=1.0, max_speed=1.0)
+    pose = Pose2D(0.0, 0.0, 0.0)
+    obstacles = np.array([[0.5, 0.5]])
+    want = (ConicAttraction((2.0, 0.0), m=0.25).force([0.0, 0.0])[0]
+            + KhatibRepulsion(obstacles, k_rep=0.1, d0=1.0).force([0.0, 0.0])[0])
+    np.testing.assert_allclose(ctl.desired_velocity(pose, (2.0, 0.0), obstacles), want)
+
+
+def test_bad_arguments() -> None:
+    ctl = PotentialFieldController()
+    pose = Pose2D(0.0, 0.0)
+    with pytest.raises(ValueError, match="dt"):
+        ctl.step(pose, None, pose, None, 0.0)
+    with pytest.raises(TypeError, match="pose"):
+        ctl.step((0.0, 0.0, 0.0), None, pose, None, 0.1)  # type: ignore[arg-type]
+    with pytest.raises(TypeError, match="target_pose"):
+        ctl.step(pose, None, (1.0, 0.0), None, 0.1)  # type: ignore[arg-type]
+    with pytest.raises(TypeError, match="velocity"):
+        ctl.step(pose, (0.0, 0.0, 0.0), pose, None, 0.1)  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match="obstacles"):
+        ctl.step(pose, None, pose, np.zeros((2, 3)), 0.1)
+    with pytest.raises(ValueError, match="mode"):
+        PotentialFieldController(mode="tank")  # type: ignore[arg-type]
+    with pytest.raises(TypeError, match="attraction"):
+        PotentialFieldController(KhatibRepulsion([[0.0, 0.0]]))  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match="max_accel"):
+        PotentialFieldController(max_accel=0.0)
+    with pytest.raises(ValueError, match="kp"):
+        PotentialFieldController(kp=-1.0)
+    # An empty obstacle array is valid: no repulsion.
+    free = ctl.step(pose, None, Pose2D(1.0, 0.0), np.empty((0, 2)), 0.1)
+    assert free.vx > 0.0
+
+
+def test_numerically_on_an_obstacle_flees_at_full_speed() -> None:
+    ctl = PotentialFieldController(max_speed=0.4, max_accel=100.0)
+    cmd = ctl.step(Pose2D(0.0, 1e-200, 0.0), None, Pose2D(0.0, 0.0, 0.0), [[0.0, 0.0]], 0.1)
+    np.testing.assert_allclose([cmd.vx, cmd.vy], [0.0, 0.4])
+
+
+def test_limit_velocity_change_checks_its_arguments() -> None:
+    with pytest.raises(ValueError, match="desired"):
+        limit_velocity_change([0.0, 0.0], [1.0], 1.0, 1.0, 0.1)
+    with pytest.raises(ValueError, match="previous"):
+        limit_velocity_change([math.nan, 0.0], [1.0, 0.0], 1.0, 1.0, 0.1)
+    with pytest.raises(ValueError, match="max_decel"):
+        limit_velocity_change([0.0, 0.0], [1.0, 0.0], 1.0, 0.0, 0.1)
+    with pytest.raises(ValueError, match="dt"):
+        limit_velocity_change([0.0, 0.0], [1.0, 0.0], 1.0, 1.0, -0.1)
+    prev = np.array([0.3, 0.4])
+    out = limit_velocity_change(prev, prev, 1.0, 1.0, 0.1)
+    out[0] = 9.0
+    np.testing.assert_array_equal(prev, [0.3, 0.4])

@@ -1,0 +1,123 @@
+"""Compass heading to yaw: the paper's table, properties, calibration and unwrapping."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from navkit.estimation import CompassCalibration, compass_to_yaw
+from navkit.geometry import angle_diff
+
+# (raw reading, initial heading, expected yaw in degrees) from the paper's rule:
+# θr = (θ − θ0 + 360) mod 360; yaw = −θr if θr < 180 else 360 − θr.
+TABLE = [
+    (0.0, 0.0, 0.0),
+    (90.0, 0.0, -90.0),
+    (180.0, 0.0, 180.0),
+    (270.0, 0.0, 90.0),
+    (359.0, 0.0, 1.0),
+    (0.0, 90.0, 90.0),
+    (90.0, 90.0, 0.0),
+    (180.0, 90.0, -90.0),
+    (270.0, 90.0, 180.0),
+    (359.0, 90.0, 91.0),
+    (0.0, 300.0, -60.0),
+    (90.0, 300.0, -150.0),
+    (180.0, 300.0, 120.0),
+    (270.0, 300.0, 30.0),
+    (359.0, 300.0, -59.0),
+    (10.0, 200.0, -170.0),
+    (20.0, 200.0, 180.0),
+]
+
+
+@pytest.mark.parametrize(("raw", "initial", "expected_deg"), TABLE)
+def test_table(raw: float, initial: float, expected_deg: float) -> None:
+    yaw = compass_to_yaw(raw, initial)
+    assert isinstance(yaw, float)
+    assert yaw == pytest.approx(math.radians(expected_deg), abs=1e-12)
+
+
+def test_array_matches_scalars() -> None:
+    raws = np.array([row[0] for row in TABLE])
+    initials = {row[1] for row in TABLE}
+    for initial in initials:
+        out = compass_to_yaw(raws, initial)
+        assert isinstance(out, np.ndarray)
+        assert out.shape == raws.shape
+        np.testing.assert_array_equal(out, [compass_to_yaw(float(r), initial) for r in raws])
+
+
+def test_input_not_modified_and_2d_shape_kept() -> None:
+    raws = np.array([[0.0, 90.0], [180.0, 270.0]])
+    before = raws.copy()
+    out = compass_to_yaw(raws)
+    np.testing.assert_array_equal(raws, before)
+    assert isinstance(out, np.ndarray) and out.shape == (2, 2)
+
+
+@settings(max_examples=300, deadline=None)
+@given(
+    raw=st.floats(-720.0, 720.0, allow_nan=False),
+    initial=st.floats(0.0, 360.0, allow_nan=False),
+    turn=st.floats(0.01, 179.0),
+)
+def test_range_and_clockwise_is_negative(raw: float, initial: float, turn: float) -> None:
+    yaw = compass_to_yaw(raw, initial)
+    assert -math.pi < yaw <= math.pi
+    # Turning clockwise increases the compass reading and must decrease the yaw.
+    after = compass_to_yaw(raw + turn, initial)
+    change = angle_diff(after, yaw)
+    assert change < 0.0
+    assert change == pytest.approx(-math.radians(turn), abs=1e-9)
+
+
+def test_unwrap_is_continuous() -> None:
+    # A robot spinning clockwise through two full turns in 10° steps.
+    raws = np.mod(np.arange(0.0, 720.0, 10.0), 360.0)
+    yaw = compass_to_yaw(raws, unwrap=True)
+    assert isinstance(yaw, np.ndarray)
+    np.testing.assert_allclose(yaw, -np.radians(np.arange(0.0, 720.0, 10.0)), atol=1e-12)
+    with pytest.raises(ValueError, match="1-D"):
+        compass_to_yaw(np.zeros((2, 2)), unwrap=True)
+
+
+def test_calibration_latches_first_reading() -> None:
+    cal = CompassCalibration()
+    assert cal.initial_deg is None
+    assert cal(250.0) == 0.0
+    assert cal.initial_deg == 250.0
+    assert cal(340.0) == pytest.approx(-math.pi / 2)
+    out = cal(np.array([160.0, 250.0]))
+    np.testing.assert_allclose(out, [math.pi / 2, 0.0])
+    cal.reset()
+    assert cal.initial_deg is None
+    assert cal(np.array([10.0, 20.0]))[0] == 0.0
+    assert cal.initial_deg == 10.0
+
+
+def test_calibration_unwrap_across_calls() -> None:
+    cal = CompassCalibration(unwrap=True)
+    pieces = [np.arange(0.0, 200.0, 20.0), np.arange(200.0, 360.0, 20.0), np.array([0.0, 20.0])]
+    yaw = np.concatenate([np.atleast_1d(cal(p)) for p in pieces])
+    np.testing.assert_allclose(yaw, -np.radians(np.arange(0.0, 400.0, 20.0)), atol=1e-12)
+    assert cal(40.0) == pytest.approx(-math.radians(400.0))
+
+
+@pytest.mark.parametrize("bad", [math.nan, math.inf, [0.0, math.nan]])
+def test_non_finite_readings_raise(bad: object) -> None:
+    with pytest.raises(ValueError, match="raw_deg"):
+        compass_to_yaw(bad)  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match="raw_deg"):
+        CompassCalibration()(bad)  # type: ignore[arg-type]
+
+
+def test_bad_initial_and_types_raise() -> None:
+    with pytest.raises(ValueError, match="initial_deg"):
+        compass_to_yaw(10.0, math.nan)
+    with pytest.raises(TypeError, match="raw_deg"):
+        compass_to_yaw("north")  # type: ignore[arg-type]

@@ -1,0 +1,302 @@
+"""General EKF: equivalence with filterpy, Joseph form, angles, gating and bad input."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+
+import numpy as np
+import pytest
+from numpy.typing import NDArray
+
+from navkit.estimation import ExtendedKalmanFilter, FilterError, PlanarFusion
+from navkit.geometry import wrap_angle
+
+FloatArray = NDArray[np.float64]
+
+Q_PER_S = np.diag([0.05, 0.05, 0.06, 0.025, 0.02, 0.01])
+H_ODOM = np.zeros((2, 6))
+H_ODOM[0, 3] = H_ODOM[1, 4] = 1.0
+H_YAW = np.zeros((1, 6))
+H_YAW[0, 2] = 1.0
+
+
+def planar_model(
+    dt: float,
+) -> tuple[Callable[[FloatArray], FloatArray], Callable[[FloatArray], FloatArray]]:
+    """Constant-acceleration unicycle with mid-step heading, written independently in numpy."""
+
+    def f(x: FloatArray) -> FloatArray:
+        s = x[3] * dt + 0.5 * x[5] * dt * dt
+        mid = x[2] + 0.5 * x[4] * dt
+        return np.array(
+            [
+                x[0] + s * math.cos(mid),
+                x[1] + s * math.sin(mid),
+                x[2] + x[4] * dt,
+                x[3] + x[5] * dt,
+                x[4],
+                x[5],
+            ]
+        )
+
+    def jac(x: FloatArray) -> FloatArray:
+        s = x[3] * dt + 0.5 * x[5] * dt * dt
+        mid = x[2] + 0.5 * x[4] * dt
+        c, sn = math.cos(mid), math.sin(mid)
+        out = np.eye(6)
+        out[0, 2:6] = [-s * sn, dt * c, -0.5 * dt * s * sn, 0.5 * dt * dt * c]
+        out[1, 2:6] = [s * c, dt * sn, 0.5 * dt * s * c, 0.5 * dt * dt * sn]
+        out[2, 4] = dt
+        out[3, 5] = dt
+        return out
+
+    return f, jac
+
+
+def measurement_sequence(n: int, seed: int) -> list[tuple[float, str, FloatArray]]:
+    """(dt, kind, z) triples of a robot turning through ±π several times."""
+    rng = np.random.default_rng(seed)
+    seq = []
+    yaw, v, w = 3.0, 0.5, 0.8
+    for i in range(n):
+        dt = float(rng.uniform(0.01, 0.05))
+        w = float(np.clip(w + rng.normal(0, 0.05), -1.5, 1.5))
+        v = float(np.clip(v + rng.normal(0, 0.05), -1.0, 1.5))
+        yaw = float(wrap_angle(yaw + w * dt))
+        if i % 3 == 2:
+            seq.append((dt, "yaw", np.array([wrap_angle(yaw + rng.normal(0, 0.05))])))
+        else:
+            seq.append((dt, "odom", np.array([v + rng.normal(0, 0.02), w + rng.normal(0, 0.02)])))
+    return seq
+
+
+R_ODOM_FULL = np.array([[4e-4, 1e-4], [1e-4, 9e-4]])
+R_ODOM_DIAG = np.diag([4e-4, 9e-4])
+R_YAW = np.array([[2.5e-3]])
+X0 = np.array([0.0, 0.0, 3.0, 0.0, 0.0, 0.0])
+P0 = np.diag([1e-6, 1e-6, 1e-4, 1.0, 1.0, 1.0])
+
+
+def test_matches_filterpy_1000_steps() -> None:
+    """Same model and measurements as filterpy's ExtendedKalmanFilter: equal to 1e-9."""
+    from filterpy.kalman import ExtendedKalmanFilter as FilterpyEKF
+
+    class Reference(FilterpyEKF):  # type: ignore[misc]
+        model: Callable[[FloatArray], FloatArray]
+
+        def predict_x(self, u: object = 0) -> None:
+            self.x = self.model(self.x)
+
+    ref = Reference(dim_x=6, dim_z=2)
+    ref.x = X0.copy()
+    ref.P = P0.copy()
+    ekf = ExtendedKalmanFilter(X0, P0, angle_states=(2,))
+
+    def yaw_residual(a: FloatArray, b: FloatArray) -> FloatArray:
+        return np.array([wrap_angle(float(a[0] - b[0]))])
+
+    worst_x = worst_p = 0.0
+    for dt, kind, z in measurement_sequence(1000, seed=1):
+        f, jac = planar_model(dt)
+        q = Q_PER_S * dt
+        ref.model = f
+        ref.F = jac(ref.x)
+        ref.Q = q
+        ref.predict()
+        ref.x[2] = wrap_angle(float(ref.x[2]))
+        ekf.predict(f, jac, q)
+        if kind == "odom":
+            ref.update(z, lambda x: H_ODOM, lambda x: H_ODOM @ x, R=R_ODOM_FULL)
+            ekf.update(z, lambda x: H_ODOM @ x, H_ODOM, R_ODOM_FULL)
+        else:
+            ref.update(z, lambda x: H_YAW, lambda x: H_YAW @ x, R=R_YAW, residual=yaw_residual)
+            ekf.update(z, lambda x: H_YAW @ x, lambda x: H_YAW, R_YAW, angle_measurements=(0,))
+        ref.x[2] = wrap_angle(float(ref.x[2]))
+        dx = ekf.x - ref.x
+        dx[2] = wrap_angle(float(dx[2]))
+        worst_x = max(worst_x, float(np.max(np.abs(dx))))
+        worst_p = max(worst_p, float(np.max(np.abs(ekf.P - ref.P))))
+    assert worst_x < 1e-9
+    assert worst_p < 1e-9
+    # The run really exercised the filter: the state moved far from x0.
+    assert np.hypot(*ekf.x[:2]) > 1.0
+
+
+def test_planar_fusion_kernel_matches_general_ekf() -> None:
+    """PlanarFusion's compiled step equals the general EKF on the same model to 1e-9."""
+    fusion = PlanarFusion(X0, P0, process_noise=Q_PER_S, t0=0.0)
+    ekf = ExtendedKalmanFilter(X0, P0, angle_states=(2,))
+    t = 0.0
+    for dt, kind, z in measurement_sequence(1000, seed=2):
+        t += dt
+        f, jac = planar_model(dt)
+        ekf.predict(f, jac, Q_PER_S * dt)
+        if kind == "odom":
+            res = fusion.update_odometry(t, z[0], z[1], R_ODOM_DIAG[0, 0], R_ODOM_DIAG[1, 1])
+            ref = ekf.update(z, lambda x: H_ODOM @ x, H_ODOM, R_ODOM_DIAG)
+        else:
+            res = fusion.update_yaw(t, z[0], R_YAW[0, 0])
+            ref = ekf.update(z, lambda x: H_YAW @ x, H_YAW, R_YAW, angle_measurements=(0,))
+        assert res.accepted and ref.accepted
+        assert res.nis == pytest.approx(ref.nis, rel=1e-7, abs=1e-9)
+        np.testing.assert_allclose(res.residual, ref.residual, atol=1e-9)
+    dx = fusion.x - ekf.x
+    dx[2] = wrap_angle(float(dx[2]))
+    assert np.max(np.abs(dx)) < 1e-9
+    assert np.max(np.abs(fusion.P - ekf.P)) < 1e-9
+
+
+def test_joseph_form_equals_textbook_update_and_is_symmetric() -> None:
+    rng = np.random.default_rng(3)
+    a = rng.normal(size=(4, 4))
+    p0 = a @ a.T + 0.1 * np.eye(4)
+    h = rng.normal(size=(2, 4))
+    r = np.diag([0.2, 0.3])
+    ekf = ExtendedKalmanFilter(np.zeros(4), p0)
+    z = np.array([0.4, -0.1])
+    result = ekf.update(z, lambda x: h @ x, h, r)
+    s = h @ p0 @ h.T + r
+    k = p0 @ h.T @ np.linalg.inv(s)
+    np.testing.assert_allclose(ekf.x, k @ z, atol=1e-12)
+    np.testing.assert_allclose(ekf.P, (np.eye(4) - k @ h) @ p0, atol=1e-12)
+    np.testing.assert_array_equal(ekf.P, ekf.P.T)
+    assert result.nis == pytest.approx(float(z @ np.linalg.solve(s, z)))
+
+
+def test_angle_residual_and_state_wrapping() -> None:
+    ekf = ExtendedKalmanFilter([math.pi - 0.05], [[0.03]], angle_states=(0,))
+    # A yaw of -π + 0.05 is 0.1 rad counter-clockwise of the state, not 2π - 0.1 clockwise.
+    result = ekf.update(
+        [-math.pi + 0.05], lambda x: x, np.eye(1), [[0.01]], angle_measurements=(0,)
+    )
+    assert result.residual[0] == pytest.approx(0.1)
+    # K = 0.75: the state moves 0.075 rad across ±π and is wrapped to the negative side.
+    assert ekf.x[0] == pytest.approx(-math.pi + 0.025)
+    assert -math.pi < ekf.x[0] <= math.pi
+    ekf.predict(lambda x: x + 7.0, np.eye(1), [[0.0]])
+    assert -math.pi < ekf.x[0] <= math.pi
+
+
+def test_gate_rejects_outlier_and_keeps_state() -> None:
+    ekf = ExtendedKalmanFilter([0.0, 0.0], np.eye(2) * 0.01)
+    before_x, before_p = ekf.x, ekf.P
+    h = np.array([[1.0, 0.0]])
+    rejected = ekf.update([5.0], lambda x: h @ x, h, [[0.01]], gate=9.0)
+    assert not rejected.accepted and not rejected
+    assert rejected.nis == pytest.approx(25.0 / 0.02)
+    assert rejected.reason is not None and "gate" in rejected.reason
+    np.testing.assert_array_equal(ekf.x, before_x)
+    np.testing.assert_array_equal(ekf.P, before_p)
+    accepted = ekf.update([0.1], lambda x: h @ x, h, [[0.01]], gate=9.0)
+    assert accepted.accepted and accepted.reason is None
+    assert accepted.nis == pytest.approx(0.01 / 0.02)
+
+
+def _fresh() -> ExtendedKalmanFilter:
+    return ExtendedKalmanFilter([1.0, 2.0], [[1.0, 0.1], [0.1, 2.0]], angle_states=(1,))
+
+
+H2 = np.array([[1.0, 0.0]])
+
+
+@pytest.mark.parametrize(
+    ("call", "error", "match"),
+    [
+        (lambda e: e.predict(lambda x: x, np.eye(3), np.eye(2)), ValueError, "F"),
+        (
+            lambda e: e.predict(lambda x: x, np.eye(2), -np.eye(2)),
+            ValueError,
+            "Q must be positive semi",
+        ),
+        (
+            lambda e: e.predict(lambda x: x, np.eye(2), [[1.0, 0.5], [0.0, 1.0]]),
+            ValueError,
+            "Q must be symmetric",
+        ),
+        (lambda e: e.predict(lambda x: x[:1], np.eye(2), np.eye(2)), ValueError, "f\\(x\\)"),
+        (lambda e: e.predict(lambda x: x * np.nan, np.eye(2), np.eye(2)), ValueError, "f\\(x\\)"),
+        (lambda e: e.predict(lambda x: x, np.full((2, 2), np.nan), np.eye(2)), ValueError, "F"),
+        (lambda e: e.predict("f", np.eye(2), np.eye(2)), TypeError, "f must be callable"),
+        (
+            lambda e: e.predict(lambda x: x, np.zeros((2, 2)), np.zeros((2, 2))),
+            FilterError,
+            "positive definite",
+        ),
+        (lambda e: e.update([np.nan], lambda x: x[:1], H2, [[1.0]]), ValueError, "z"),
+        (lambda e: e.update([1.0], lambda x: x[:1], np.eye(2), [[1.0]]), ValueError, "H"),
+        (
+            lambda e: e.update([1.0], lambda x: x[:1], H2, [[0.0]]),
+            ValueError,
+            "R must be positive definite",
+        ),
+        (
+            lambda e: e.update([1.0], lambda x: x[:1], H2, [[-1.0]]),
+            ValueError,
+            "R must be positive definite",
+        ),
+        (lambda e: e.update([1.0], lambda x: x, H2, [[1.0]]), ValueError, "h\\(x\\)"),
+        (
+            lambda e: e.update([1.0], lambda x: x[:1], H2, [[1.0]], angle_measurements=(1,)),
+            ValueError,
+            "angle_measurements",
+        ),
+        (lambda e: e.update([1.0], lambda x: x[:1], H2, [[1.0]], gate=-1.0), ValueError, "gate"),
+        (lambda e: e.update([[1.0]], lambda x: x[:1], H2, [[1.0]]), ValueError, "z must be 1-D"),
+    ],
+)
+def test_bad_input_raises_and_leaves_state(
+    call: Callable[[ExtendedKalmanFilter], object], error: type[Exception], match: str
+) -> None:
+    ekf = _fresh()
+    before_x, before_p = ekf.x, ekf.P
+    with pytest.raises(error, match=match):
+        call(ekf)
+    np.testing.assert_array_equal(ekf.x, before_x)
+    np.testing.assert_array_equal(ekf.P, before_p)
+
+
+@pytest.mark.parametrize(
+    ("x0", "p0", "angles", "match"),
+    [
+        ([0.0, 0.0], np.eye(3), (), "P0"),
+        ([0.0, np.nan], np.eye(2), (), "x0"),
+        ([0.0, 0.0], [[1.0, 2.0], [2.0, 1.0]], (), "P0 must be positive definite"),
+        ([0.0, 0.0], np.eye(2), (2,), "angle_states"),
+        ([0.0, 0.0], np.eye(2), (0, 0), "duplicate"),
+        ([], np.zeros((0, 0)), (), "x0"),
+    ],
+)
+def test_bad_construction(x0: object, p0: object, angles: tuple[int, ...], match: str) -> None:
+    with pytest.raises(ValueError, match=match):
+        ExtendedKalmanFilter(x0, p0, angle_states=angles)  # type: ignore[arg-type]
+
+
+def test_inputs_not_modified_and_state_is_a_copy() -> None:
+    x0 = np.array([1.0, 2.0])
+    p0 = np.eye(2)
+    ekf = ExtendedKalmanFilter(x0, p0)
+    ekf.update([3.0], lambda x: x[:1], H2, [[1.0]])
+    np.testing.assert_array_equal(x0, [1.0, 2.0])
+    np.testing.assert_array_equal(p0, np.eye(2))
+    ekf.x[0] = 100.0
+    assert ekf.x[0] != 100.0
+
+
+def test_noise_matrix_changed_in_place_is_revalidated() -> None:
+    ekf = ExtendedKalmanFilter([0.0, 0.0], np.eye(2))
+    q = np.eye(2) * 0.1
+    ekf.predict(lambda x: x, np.eye(2), q)
+    ekf.predict(lambda x: x, np.eye(2), q)  # same values: the cached check is reused
+    q[0, 0] = -1.0  # the caller's matrix changes between steps
+    before = ekf.P
+    with pytest.raises(ValueError, match="Q must be positive semi"):
+        ekf.predict(lambda x: x, np.eye(2), q)
+    np.testing.assert_array_equal(ekf.P, before)
+    r = np.array([[0.5]])
+    assert ekf.update([1.0], lambda x: x[:1], H2, r).accepted
+    r[0, 0] = 0.0
+    with pytest.raises(ValueError, match="R must be positive definite"):
+        ekf.update([1.0], lambda x: x[:1], H2, r)
+    with pytest.raises(TypeError, match="R"):
+        ekf.update([1.0], lambda x: x[:1], H2, [["a"]])

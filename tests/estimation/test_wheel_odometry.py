@@ -1,0 +1,179 @@
+"""OmniOdometry (compass heading) and DiffOdometry (encoder ticks) against exact motion."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from navkit.estimation import DiffOdometry, OmniOdometry, compass_to_yaw
+from navkit.geometry import Pose2D, Twist2D, angle_diff, integrate, rollout
+from navkit.kinematics import DiffDrive, OmniDrive
+
+OMNI = OmniDrive.three_wheel(wheel_radius=0.05, base_radius=0.2)
+
+
+def omni_log(twist: Twist2D, dt: float, steps: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Wheel increments, true yaws and the exact trajectory of a constant twist."""
+    inc = np.tile(OMNI.inverse(twist) * dt, (steps, 1))
+    truth = rollout(Pose2D(0.0, 0.0, 0.0), np.tile(twist.as_array(), (steps, 1)), dt)
+    return inc, truth[1:, 2].copy(), truth
+
+
+def test_omni_translation_is_exact_in_compass_frame() -> None:
+    odo = OmniOdometry(OMNI, Pose2D(1.0, 2.0, math.pi / 2))
+    pose = odo.update(OMNI.inverse(Twist2D(0.3, -0.4, 0.0)) * 2.0, yaw=math.pi / 2)
+    # 0.6 m forward (+y in the world) and 0.8 m to the right (+x in the world).
+    assert pose.x == pytest.approx(1.8)
+    assert pose.y == pytest.approx(2.6)
+    assert pose.theta == pytest.approx(math.pi / 2)
+
+
+def test_omni_circle_matches_exact_motion_with_mid_step_heading() -> None:
+    twist = Twist2D(0.5, 0.2, 0.8)
+    inc, yaws, truth = omni_log(twist, dt=0.02, steps=400)  # 6.4 s, almost a full turn
+    traj = OmniOdometry(OMNI).run(inc, yaws)
+    err = np.hypot(*(traj[:, :2] - truth[:, :2]).T)
+    # Mid-step heading: the per-step error is the sinc(ω dt / 2) factor, ~1e-5 m over 400 steps.
+    assert err.max() < 2e-5
+    # The end-of-step heading (first order) would be off by millimetres: the mid-step rule matters.
+    c, s = np.cos(yaws), np.sin(yaws)
+    body = OMNI.forward_batch(inc)
+    first_order = np.cumsum(
+        np.column_stack((c * body[:, 0] - s * body[:, 1], s * body[:, 0] + c * body[:, 1])), axis=0
+    )
+    first_err = np.hypot(*(first_order - truth[1:, :2]).T)
+    assert first_err.max() > 100 * err.max()
+
+
+def test_omni_heading_comes_from_compass_not_wheels() -> None:
+    # The wheels report a spin (e.g. slipping), the compass says the robot did not turn.
+    inc = OMNI.inverse(Twist2D(1.0, 0.0, 2.0)) * 0.1
+    pose = OmniOdometry(OMNI).update(inc, yaw=compass_to_yaw(0.0))
+    assert pose.theta == 0.0
+    assert pose.x == pytest.approx(0.1)
+    assert pose.y == pytest.approx(0.0, abs=1e-15)
+
+
+def test_omni_update_equals_run() -> None:
+    inc, yaws, _ = omni_log(Twist2D(0.4, 0.1, -0.6), dt=0.05, steps=50)
+    a = OmniOdometry(OMNI)
+    stepwise = np.array([a.update(row, yaw).as_array() for row, yaw in zip(inc, yaws, strict=True)])
+    b = OmniOdometry(OMNI)
+    np.testing.assert_allclose(b.run(inc, yaws)[1:], stepwise, atol=1e-12)
+    assert b.pose.x == pytest.approx(a.pose.x)
+
+
+def test_omni_bad_input() -> None:
+    odo = OmniOdometry(OMNI)
+    with pytest.raises(ValueError, match="wheel_increments"):
+        odo.update([0.1, 0.2], 0.0)
+    with pytest.raises(ValueError, match="yaws"):
+        odo.update([0.1, 0.2, 0.3], math.nan)
+    with pytest.raises(ValueError, match="yaws"):
+        odo.run(np.zeros((3, 3)), np.zeros(2))
+    with pytest.raises(TypeError, match="OmniDrive"):
+        OmniOdometry(DiffDrive(0.3, 0.05))  # type: ignore[arg-type]
+    assert odo.pose == Pose2D(0.0, 0.0, 0.0)
+
+
+DIFF = DiffDrive(track=0.4, wheel_radius=0.05)
+TPR = 2048
+
+
+def ticks_for(
+    distance_left: float, distance_right: float, drive: DiffDrive = DIFF
+) -> tuple[int, int]:
+    return (
+        round(distance_left / (2 * math.pi * drive.left_radius) * TPR),
+        round(distance_right / (2 * math.pi * drive.right_radius) * TPR),
+    )
+
+
+def test_diff_wraparound_16_bit() -> None:
+    odo = DiffOdometry(DIFF, TPR, encoder_bits=16)
+    odo.update(65000, 64000)
+    pose = odo.update(65000 + TPR - 65536, 64000 + TPR - 65536)  # both counters wrapped
+    assert pose.x == pytest.approx(2 * math.pi * 0.05)
+    assert pose.y == 0.0 and pose.theta == 0.0
+    no_bits = DiffOdometry(DIFF, TPR)
+    no_bits.update(65000, 64000)
+    assert no_bits.update(65000 + TPR - 65536, 64000 + TPR - 65536).x < -1.0
+
+
+@pytest.mark.parametrize("method", ["arc", "midpoint", "first_order"])
+def test_diff_circle(method: str) -> None:
+    """Constant wheel speeds: the arc mode is exact, the others converge with the step."""
+    steps = 200
+    dl_step, dr_step = 0.004, 0.006  # per step; ω·D = dr - dl
+    left = np.cumsum(np.full(steps, ticks_for(dl_step, dr_step)[0]))
+    right = np.cumsum(np.full(steps, ticks_for(dl_step, dr_step)[1]))
+    left = np.concatenate(([0], left))
+    right = np.concatenate(([0], right))
+    odo = DiffOdometry(DIFF, TPR, method=method)  # type: ignore[arg-type]
+    traj = odo.run(left, right)
+    # Ground truth: the same per-step wheel distances (after tick rounding) as an exact twist.
+    d_l = left[1] * 2 * math.pi * 0.05 / TPR
+    d_r = right[1] * 2 * math.pi * 0.05 / TPR
+    twist = Twist2D(0.5 * (d_l + d_r), 0.0, (d_r - d_l) / DIFF.track)
+    truth = rollout(Pose2D(0.0, 0.0, 0.0), np.tile(twist.as_array(), (steps, 1)), 1.0)
+    err = np.hypot(*(traj[:, :2] - truth[:, :2]).T).max()
+    limits = {"arc": 1e-12, "midpoint": 1e-6, "first_order": 5e-2}
+    assert err < limits[method]
+    if method == "first_order":
+        assert err > 1e-3  # Euler really is worse
+    np.testing.assert_allclose(angle_diff(traj[:, 2], truth[:, 2]), 0.0, atol=1e-12)
+
+
+def test_diff_unequal_radii_go_straight() -> None:
+    drive = DiffDrive(0.4, left_radius=0.05, right_radius=0.06)
+    odo = DiffOdometry(drive, TPR)
+    odo.update(0, 0)
+    # The smaller left wheel turns 6/5 as often for the same distance: straight line.
+    pose = odo.update(1200 * 10, 1000 * 10)
+    assert pose.theta == pytest.approx(0.0, abs=1e-12)
+    assert pose.x == pytest.approx(10 * 2 * math.pi * 0.06 * 1000 / TPR)
+
+
+@settings(max_examples=40, deadline=None)
+@given(st.lists(st.tuples(st.integers(-300, 300), st.integers(-300, 300)), min_size=1, max_size=30))
+def test_diff_update_equals_run_and_matches_composition(steps: list[tuple[int, int]]) -> None:
+    counts = np.cumsum(np.array([(0, 0), *steps]), axis=0)
+    counts = np.mod(counts + 40000, 65536)  # a 16-bit counter that starts near the middle
+    a = DiffOdometry(DIFF, TPR, encoder_bits=16)
+    stepwise = np.array([a.update(int(left), int(right)).as_array() for left, right in counts])
+    b = DiffOdometry(DIFF, TPR, encoder_bits=16)
+    traj = b.run(counts[:, 0], counts[:, 1])
+    np.testing.assert_allclose(traj[:, :2], stepwise[:, :2], atol=1e-9)
+    np.testing.assert_allclose(angle_diff(traj[:, 2], stepwise[:, 2]), 0.0, atol=1e-9)
+    # Reference: compose each step's exact-arc motion with Pose2D.
+    pose = Pose2D(0.0, 0.0, 0.0)
+    for dl_ticks, dr_ticks in steps:
+        d_l = dl_ticks * 2 * math.pi * 0.05 / TPR
+        d_r = dr_ticks * 2 * math.pi * 0.05 / TPR
+        pose = integrate(pose, Twist2D(0.5 * (d_l + d_r), 0.0, (d_r - d_l) / DIFF.track), 1.0)
+    assert traj[-1, 0] == pytest.approx(pose.x, abs=1e-9)
+    assert traj[-1, 1] == pytest.approx(pose.y, abs=1e-9)
+
+
+def test_diff_bad_input() -> None:
+    odo = DiffOdometry(DIFF, TPR, encoder_bits=16)
+    with pytest.raises(TypeError, match="left_ticks"):
+        odo.run([0.5], [1])
+    with pytest.raises(ValueError, match="equal length"):
+        odo.run([1, 2], [1])
+    with pytest.raises(ValueError, match="16-bit"):
+        odo.run([70000], [1])
+    with pytest.raises(ValueError, match="encoder_bits"):
+        DiffOdometry(DIFF, TPR, encoder_bits=1)
+    with pytest.raises(ValueError, match="ticks_per_rev"):
+        DiffOdometry(DIFF, 0)
+    with pytest.raises(ValueError, match="method"):
+        DiffOdometry(DIFF, TPR, method="euler")  # type: ignore[arg-type]
+    assert odo.pose == Pose2D(0.0, 0.0, 0.0)
+    odo.update(5, 5)
+    odo.reset(Pose2D(1.0, 1.0, 1.0))
+    assert odo.update(100, 100) == Pose2D(1.0, 1.0, 1.0)

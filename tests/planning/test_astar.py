@@ -1,0 +1,231 @@
+"""A* on cost grids: exactness against scipy, path validity, heuristics, errors."""
+
+from __future__ import annotations
+
+import json
+import math
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+from grid_oracle import assert_valid_path, scipy_costs_from, weighted_grids
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from skimage.graph import MCP_Geometric
+
+from navkit import NavkitError, NoPathError
+from navkit.planning import GridPath, astar, distance_field
+
+SQRT2 = math.sqrt(2.0)
+
+
+@settings(max_examples=150, deadline=None)
+@given(
+    case=weighted_grids(),
+    connectivity=st.sampled_from([4, 8]),
+    corner_cutting=st.booleans(),
+)
+def test_astar_equals_distance_field_and_scipy(
+    case: tuple[np.ndarray, tuple[int, int], tuple[int, int]],
+    connectivity: int,
+    corner_cutting: bool,
+) -> None:
+    costs, start, goal = case
+    reference = scipy_costs_from(costs, start, connectivity, corner_cutting)[goal]
+    field = distance_field(costs, goal, connectivity=connectivity, corner_cutting=corner_cutting)
+    if not math.isfinite(reference):
+        assert field[start] == np.inf
+        with pytest.raises(NoPathError) as info:
+            astar(costs, start, goal, connectivity=connectivity, corner_cutting=corner_cutting)
+        assert info.value.explored >= 1
+        return
+    path = astar(costs, start, goal, connectivity=connectivity, corner_cutting=corner_cutting)
+    assert path.cost == pytest.approx(reference, rel=1e-12)
+    assert field[start] == pytest.approx(reference, rel=1e-12)
+    cost, length = assert_valid_path(
+        costs, path.cells, start, goal, connectivity=connectivity, corner_cutting=corner_cutting
+    )
+    assert path.cost == pytest.approx(cost, rel=1e-12)
+    assert path.length == pytest.approx(length, rel=1e-12)
+    # Dijkstra (weight 0) finds a path of the same optimal cost.
+    dijkstra = astar(
+        costs, start, goal, connectivity=connectivity, corner_cutting=corner_cutting,
+        heuristic_weight=0.0,
+    )
+    assert dijkstra.cost == pytest.approx(reference, rel=1e-12)
+    assert dijkstra.expanded >= path.expanded
+
+
+@settings(max_examples=100, deadline=None)
+@given(case=weighted_grids(max_side=10), weight=st.floats(1.0, 5.0), corner_cutting=st.booleans())
+def test_weighted_astar_respects_its_suboptimality_bound(
+    case: tuple[np.ndarray, tuple[int, int], tuple[int, int]], weight: float, corner_cutting: bool
+) -> None:
+    costs, start, goal = case
+    reference = scipy_costs_from(costs, start, 8, corner_cutting)[goal]
+    if not math.isfinite(reference):
+        return
+    path = astar(costs, start, goal, corner_cutting=corner_cutting, heuristic_weight=weight)
+    cost, _ = assert_valid_path(costs, path.cells, start, goal, corner_cutting=corner_cutting)
+    assert path.cost == pytest.approx(cost, rel=1e-12)
+    assert reference * (1 - 1e-12) <= path.cost <= weight * reference * (1 + 1e-12)
+
+
+def test_corner_cutting_matches_scikit_image_mcp_geometric() -> None:
+    # MCP_Geometric charges step * (c_u + c_v) / 2 on a fully connected grid,
+    # the corner-cutting model, and is an independent implementation.
+    rng = np.random.default_rng(7)
+    costs = 1.0 + 9.0 * rng.random((60, 80))
+    costs[rng.random(costs.shape) < 0.2] = np.inf
+    costs[0, 0] = costs[59, 79] = 1.0
+    mcp = MCP_Geometric(costs, fully_connected=True)
+    cumulative, _ = mcp.find_costs([(0, 0)])
+    field = distance_field(costs, (0, 0), corner_cutting=True)
+    reachable = np.isfinite(field)
+    assert reachable.sum() > 0.5 * costs.size
+    np.testing.assert_allclose(field[reachable], cumulative[reachable], rtol=1e-9)
+    path = astar(costs, (0, 0), (59, 79), corner_cutting=True)
+    assert path.cost == pytest.approx(cumulative[59, 79], rel=1e-9)
+
+
+def test_open_grid_octile_and_tie_breaking() -> None:
+    costs = np.full((40, 70), 2.5)
+    path = astar(costs, (3, 5), (30, 66))
+    dr, dc = 27, 61
+    octile = max(dr, dc) + (SQRT2 - 1) * min(dr, dc)
+    assert path.length == pytest.approx(octile, rel=1e-12)
+    assert path.cost == pytest.approx(2.5 * octile, rel=1e-12)
+    # The heuristic is exact on an obstacle-free uniform grid and ties in f go to
+    # the smaller h, so A* expands exactly the cells of its path.
+    assert path.expanded == path.cells.shape[0]
+    assert astar(costs, (3, 5), (30, 66), heuristic_weight=0.0).expanded > 20 * path.expanded
+
+
+def test_four_connectivity_uses_manhattan_moves() -> None:
+    costs = np.ones((10, 10))
+    path = astar(costs, (0, 0), (9, 9), connectivity=4)
+    assert path.cost == 18.0
+    assert path.length == 18.0
+    assert np.all(np.abs(np.diff(path.cells, axis=0)).sum(axis=1) == 1)
+    assert path.expanded == path.cells.shape[0]
+
+
+def test_corner_cutting_through_a_diagonal_gap() -> None:
+    costs = np.ones((2, 2))
+    costs[0, 1] = costs[1, 0] = np.inf
+    assert astar(costs, (0, 0), (1, 1), corner_cutting=True).cost == pytest.approx(SQRT2)
+    with pytest.raises(NoPathError):
+        astar(costs, (0, 0), (1, 1))
+    with pytest.raises(NoPathError):
+        astar(costs, (0, 0), (1, 1), connectivity=4, corner_cutting=True)
+
+
+def test_start_equals_goal() -> None:
+    path = astar(np.ones((3, 3)), (1, 2), (1, 2))
+    assert path.cells.tolist() == [[1, 2]]
+    assert path.cost == 0.0
+    assert path.length == 0.0
+    assert path.expanded == 1
+
+
+def test_result_is_a_frozen_dataclass_with_read_only_cells() -> None:
+    path = astar(np.ones((4, 4)), (0, 0), (3, 3))
+    assert isinstance(path, GridPath)
+    assert path.cells.dtype == np.int64
+    with pytest.raises(ValueError):
+        path.cells[0, 0] = 5
+    with pytest.raises(AttributeError):
+        path.cost = 1.0  # type: ignore[misc]
+
+
+def test_inputs_are_not_modified_and_int_costs_accepted() -> None:
+    costs = np.ones((5, 6), dtype=np.int32) * 3
+    before = costs.copy()
+    path = astar(costs, (0, 0), (4, 5))
+    assert path.cost == pytest.approx(3 * (1 + 4 * SQRT2))
+    np.testing.assert_array_equal(costs, before)
+    fortran = np.asfortranarray(np.ones((5, 6)))
+    assert astar(fortran, (0, 0), (4, 5)).cost == pytest.approx(1 + 4 * SQRT2)
+
+
+def test_no_path_error_reports_explored_cells() -> None:
+    costs = np.ones((6, 6))
+    costs[:, 3] = np.inf
+    with pytest.raises(NoPathError) as info:
+        astar(costs, (0, 0), (5, 5))
+    assert isinstance(info.value, NavkitError)
+    # Everything left of the wall is explored, nothing more.
+    assert info.value.explored == 18
+    assert "explored 18" in str(info.value)
+
+
+@pytest.mark.parametrize(
+    ("costs", "message"),
+    [
+        (np.ones(5), "2-D"),
+        (np.ones((2, 2, 2)), "2-D"),
+        (np.ones((0, 3)), "empty"),
+        (np.ones((3, 3), dtype=bool), "dtype"),
+        (np.array([["a", "b"], ["c", "d"]]), "dtype"),
+        (np.array([[1.0, np.nan], [1.0, 1.0]]), "NaN"),
+        (np.array([[1.0, 0.5], [1.0, 1.0]]), ">= 1"),
+        (np.array([[1.0, -np.inf], [1.0, 1.0]]), ">= 1"),
+    ],
+)
+def test_bad_costs(costs: np.ndarray, message: str) -> None:
+    with pytest.raises(ValueError, match=message):
+        astar(costs, (0, 0), (0, 1))
+
+
+def test_bad_endpoints_and_options() -> None:
+    costs = np.ones((4, 5))
+    costs[2, 2] = np.inf
+    with pytest.raises(ValueError, match=r"start .* outside"):
+        astar(costs, (4, 0), (0, 0))
+    with pytest.raises(ValueError, match=r"goal .* outside"):
+        astar(costs, (0, 0), (0, -1))
+    with pytest.raises(ValueError, match=r"start \(2, 2\) is on an impassable"):
+        astar(costs, (2, 2), (0, 0))
+    with pytest.raises(ValueError, match=r"goal \(2, 2\) is on an impassable"):
+        astar(costs, (0, 0), (2, 2))
+    with pytest.raises(TypeError, match="start"):
+        astar(costs, (0.5, 1), (0, 0))
+    with pytest.raises(ValueError, match="start"):
+        astar(costs, (0, 1, 2), (0, 0))
+    with pytest.raises(ValueError, match="connectivity"):
+        astar(costs, (0, 0), (1, 1), connectivity=6)
+    with pytest.raises(TypeError, match="connectivity"):
+        astar(costs, (0, 0), (1, 1), connectivity=8.0)  # type: ignore[arg-type]
+    with pytest.raises(TypeError, match="corner_cutting"):
+        astar(costs, (0, 0), (1, 1), corner_cutting=1)  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match="heuristic_weight"):
+        astar(costs, (0, 0), (1, 1), heuristic_weight=-1.0)
+    with pytest.raises(ValueError, match="heuristic_weight"):
+        astar(costs, (0, 0), (1, 1), heuristic_weight=math.nan)
+
+
+FRESH_PROCESS = """
+import json
+import numpy as np
+from navkit.planning import astar, distance_field
+from navkit.planning import _kernels
+costs = np.ones((8, 8))
+costs[2:6, 4] = np.inf
+astar(costs, (0, 0), (7, 7))
+distance_field(costs, (0, 0))
+print(json.dumps({name: [sum(getattr(_kernels, name).stats.cache_hits.values()),
+                         sum(getattr(_kernels, name).stats.cache_misses.values())]
+                  for name in ("grid_search", "trace_path")}))
+"""
+
+
+def test_fresh_process_loads_compiled_kernels_from_cache() -> None:
+    # This process compiles (or loads) the kernels and numba writes its cache;
+    # a new interpreter must then load them instead of compiling again.
+    astar(np.ones((3, 3)), (0, 0), (2, 2))
+    out = subprocess.run(
+        [sys.executable, "-c", FRESH_PROCESS], check=True, capture_output=True, text=True
+    )
+    stats = json.loads(out.stdout)
+    assert stats == {"grid_search": [1, 0], "trace_path": [1, 0]}

@@ -1,0 +1,104 @@
+"""Cost-to-go fields: closed forms, Bellman optimality, scipy, errors."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from grid_oracle import DIAG, ORTHO, move_allowed, move_cost, scipy_costs_from, weighted_grids
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from navkit.planning import astar, distance_field
+
+SQRT2 = math.sqrt(2.0)
+
+
+@settings(max_examples=100, deadline=None)
+@given(
+    case=weighted_grids(max_side=9),
+    connectivity=st.sampled_from([4, 8]),
+    corner_cutting=st.booleans(),
+)
+def test_field_equals_scipy_and_satisfies_bellman(
+    case: tuple[np.ndarray, tuple[int, int], tuple[int, int]],
+    connectivity: int,
+    corner_cutting: bool,
+) -> None:
+    costs, _, goal = case
+    field = distance_field(costs, goal, connectivity=connectivity, corner_cutting=corner_cutting)
+    reference = scipy_costs_from(costs, goal, connectivity, corner_cutting)
+    np.testing.assert_array_equal(np.isinf(field), np.isinf(reference))
+    finite = np.isfinite(reference)
+    np.testing.assert_allclose(field[finite], reference[finite], rtol=1e-12)
+    # Bellman: every reachable cell but the goal is one optimal move from a
+    # cell nearer the goal.
+    moves = ORTHO + DIAG if connectivity == 8 else ORTHO
+    for r, c in np.argwhere(finite).tolist():
+        if (r, c) == goal:
+            assert field[r, c] == 0.0
+            continue
+        best = min(
+            field[r + dr, c + dc] + move_cost(costs, r, c, dr, dc)
+            for dr, dc in moves
+            if move_allowed(costs, r, c, dr, dc, corner_cutting)
+        )
+        assert field[r, c] == pytest.approx(best, rel=1e-12)
+
+
+def test_empty_grid_gives_closed_form_distances() -> None:
+    rows, cols = np.mgrid[0:30, 0:45]
+    dr = np.abs(rows - 12)
+    dc = np.abs(cols - 40)
+    octile = np.maximum(dr, dc) + (SQRT2 - 1) * np.minimum(dr, dc)
+    np.testing.assert_allclose(distance_field(np.ones((30, 45)), (12, 40)), octile, rtol=1e-12)
+    np.testing.assert_allclose(
+        distance_field(np.full((30, 45), 3.0), (12, 40), connectivity=4), 3.0 * (dr + dc),
+        rtol=1e-12,
+    )
+
+
+def test_walls_make_cells_unreachable() -> None:
+    costs = np.ones((5, 7))
+    costs[:, 4] = np.inf
+    field = distance_field(costs, (2, 1))
+    assert np.all(np.isinf(field[:, 4:]))
+    assert np.all(np.isfinite(field[:, :4]))
+    # A one-cell gap lets the field through.
+    costs[4, 4] = 1.0
+    opened = distance_field(costs, (2, 1))
+    assert np.all(np.isfinite(opened[:, 5:]))
+    assert opened[0, 6] == pytest.approx(astar(costs, (0, 6), (2, 1)).cost, rel=1e-12)
+
+
+def test_field_descent_reproduces_the_optimal_cost() -> None:
+    rng = np.random.default_rng(3)
+    costs = 1.0 + 3.0 * rng.random((40, 40))
+    costs[rng.random(costs.shape) < 0.25] = np.inf
+    costs[0, 0] = costs[39, 39] = 1.0
+    field = distance_field(costs, (39, 39))
+    path = astar(costs, (0, 0), (39, 39))
+    assert field[0, 0] == pytest.approx(path.cost, rel=1e-12)
+    # Along A*'s path the field drops by exactly each move's cost.
+    for (r, c), (r2, c2) in zip(path.cells[:-1].tolist(), path.cells[1:].tolist(), strict=True):
+        step = move_cost(costs, r, c, r2 - r, c2 - c)
+        assert field[r, c] - field[r2, c2] == pytest.approx(step, rel=1e-9, abs=1e-9)
+
+
+def test_input_not_modified_and_errors() -> None:
+    costs = np.ones((4, 4))
+    costs[1, 1] = np.inf
+    before = costs.copy()
+    distance_field(costs, (0, 0))
+    np.testing.assert_array_equal(costs, before)
+    with pytest.raises(ValueError, match=r"goal \(1, 1\) is on an impassable"):
+        distance_field(costs, (1, 1))
+    with pytest.raises(ValueError, match=r"goal .* outside"):
+        distance_field(costs, (9, 0))
+    with pytest.raises(ValueError, match=">= 1"):
+        distance_field(np.zeros((3, 3)), (0, 0))
+    with pytest.raises(ValueError, match="connectivity"):
+        distance_field(costs, (0, 0), connectivity=3)
+    with pytest.raises(TypeError, match="corner_cutting"):
+        distance_field(costs, (0, 0), corner_cutting="yes")  # type: ignore[arg-type]
