@@ -37,18 +37,7 @@ _KIND_COMPONENTS = {
 }
 
 
-def _finite(value: Any, name: str) -> float:
-    """:func:`finite_float` with a fast path for plain floats (the online hot loop)."""
-    if type(value) is float and value - value == 0.0:  # false for NaN and ±inf
-        return value
-    return finite_float(value, name)
-
-
-def _positive(value: Any, name: str) -> float:
-    """:func:`positive_float` with a fast path for plain floats."""
-    if type(value) is float and 0.0 < value < math.inf:
-        return value
-    return positive_float(value, name)
+_ODOMETRY_NAMES = ("v", "omega", "var_v", "var_omega")
 
 
 class FusionStatus(enum.IntEnum):
@@ -372,9 +361,9 @@ class PlanarFusion:
             from scipy.stats import chi2
 
             self._gates[1:] = chi2.ppf(prob, np.arange(1, 5))
-        # (first component, count, gate) of each online measurement kind.
-        self._kinds: dict[str, tuple[int, int, float]] = {
-            kind: (first, count, float(self._gates[count]))
+        # (first component, count, gate, residual slice) of each online measurement kind.
+        self._kinds: dict[str, tuple[int, int, float, slice]] = {
+            kind: (first, count, float(self._gates[count]), slice(first, first + count))
             for kind, (first, count) in _KIND_COMPONENTS.items()
         }
 
@@ -427,53 +416,67 @@ class PlanarFusion:
         ``var_v``, ``var_omega`` are the variances ((m/s)², (rad/s)²), > 0. Returns
         the :class:`UpdateResult` (residual order ``[v, omega]``).
         """
-        return self._apply(
-            t,
-            "odometry",
-            _finite(v, "v"),
-            _finite(omega, "omega"),
-            _positive(var_v, "var_v"),
-            _positive(var_omega, "var_omega"),
-        )
+        return self._apply(t, "odometry", v, omega, var_v, var_omega, _ODOMETRY_NAMES)
 
     def update_speed(self, t: float, v: float, var: float) -> UpdateResult:
         """Fuse a forward speed ``v`` (m/s) alone, variance (m/s)².
 
         For odometry whose yaw rate is unreliable (skid-steer robots).
         """
-        return self._apply(t, "speed", _finite(v, "v"), 0.0, _positive(var, "var"), 0.0)
+        return self._apply(t, "speed", v, 0.0, var, 1.0, ("v", "", "var", ""))
 
     def update_yaw(self, t: float, yaw: float, var: float) -> UpdateResult:
         """Fuse an absolute yaw ``yaw`` (rad, any range; compass or IMU), variance rad²."""
-        return self._apply(t, "yaw", _finite(yaw, "yaw"), 0.0, _positive(var, "var"), 0.0)
+        return self._apply(t, "yaw", yaw, 0.0, var, 1.0, ("yaw", "", "var", ""))
 
     def update_yaw_rate(self, t: float, omega: float, var: float) -> UpdateResult:
         """Fuse a gyro yaw rate ``omega`` (rad/s), variance (rad/s)²."""
-        return self._apply(t, "yaw_rate", _finite(omega, "omega"), 0.0, _positive(var, "var"), 0.0)
+        return self._apply(t, "yaw_rate", omega, 0.0, var, 1.0, ("omega", "", "var", ""))
 
     def update_acceleration(self, t: float, a: float, var: float) -> UpdateResult:
         """Fuse a forward acceleration ``a`` (m/s², gravity removed), variance (m/s²)²."""
-        return self._apply(t, "acceleration", _finite(a, "a"), 0.0, _positive(var, "var"), 0.0)
+        return self._apply(t, "acceleration", a, 0.0, var, 1.0, ("a", "", "var", ""))
 
     def _apply(
-        self, t: float, kind: str, z0: float, z1: float, var0: float, var1: float
+        self,
+        t: Any,
+        kind: str,
+        z0: Any,
+        z1: Any,
+        var0: Any,
+        var1: Any,
+        names: tuple[str, str, str, str],
     ) -> UpdateResult:
-        time = _finite(t, "t")
+        # Fast path for plain finite floats and positive variances (the sum of finite
+        # floats may overflow: then the per-argument checks below decide).
+        total = t + z0 + z1 if type(t) is type(z0) is type(z1) is float else math.nan
+        if not (
+            total - total == 0.0
+            and type(var0) is type(var1) is float
+            and 0.0 < var0 < math.inf
+            and 0.0 < var1 < math.inf
+        ):
+            t = finite_float(t, "t")
+            z0 = finite_float(z0, names[0])
+            var0 = positive_float(var0, names[2])
+            if names[1]:
+                z1 = finite_float(z1, names[1])
+                var1 = positive_float(var1, names[3])
         last = self._t
-        if last is not None and time < last:
+        if last is not None and t < last:
             return UpdateResult(
                 False,
                 math.nan,
                 np.empty(0),
-                f"out of order: t={time} s is older than the filter time {last} s",
+                f"out of order: t={t} s is older than the filter time {last} s",
             )
-        first, count, gate = self._kinds[kind]
-        dt = 0.0 if last is None else time - last
+        first, count, gate, comps = self._kinds[kind]
+        dt = 0.0 if last is None else t - last
         status, nis = planar_step(self._buf, dt, first, count, z0, z1, var0, var1, gate)
         if status == NOT_POSITIVE_DEFINITE:
             raise FilterError(f"{kind} update: covariance is not positive definite")
-        residual = self._residuals[first : first + count].copy()
-        self._t = time
+        residual = self._residuals[comps].copy()
+        self._t = float(t)
         # A gated measurement still advances the clock: the kernel kept the prediction.
         if status == GATED:
             return new_result(False, nis, residual, f"rejected by the gate: NIS {nis:.6g}")

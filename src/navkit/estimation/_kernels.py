@@ -54,7 +54,7 @@ BUF_WORK = 16  # WORK_ROWS rows: scratch
 BUF_ROWS = BUF_WORK + WORK_ROWS
 
 
-@njit(cache=True, inline="always", error_model="numpy")
+@njit(cache=True, inline="always")
 def _cholesky_inplace(a: np.ndarray, n: int, inv_diag: np.ndarray) -> bool:
     """Lower Cholesky factor L of the leading n×n block of ``a``, in place.
 
@@ -80,7 +80,7 @@ def _cholesky_inplace(a: np.ndarray, n: int, inv_diag: np.ndarray) -> bool:
     return True
 
 
-@njit(cache=True, inline="always", error_model="numpy")
+@njit(cache=True, inline="always")
 def _cho_solve_vec(lower: np.ndarray, inv_diag: np.ndarray, n: int, b: np.ndarray) -> None:
     """Solve (L Lᵀ) u = b for the first n entries of ``b``, in place."""
     for i in range(n):
@@ -95,7 +95,7 @@ def _cho_solve_vec(lower: np.ndarray, inv_diag: np.ndarray, n: int, b: np.ndarra
         b[i] = t * inv_diag[i]
 
 
-@njit(cache=True, inline="always", error_model="numpy")
+@njit(cache=True, inline="always")
 def _symmetrize(p: np.ndarray) -> None:
     for i in range(p.shape[0]):
         for j in range(i + 1, p.shape[0]):
@@ -104,7 +104,7 @@ def _symmetrize(p: np.ndarray) -> None:
             p[j, i] = m
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, inline="always")
 def planar_predict(
     x: np.ndarray, p: np.ndarray, q: np.ndarray, dt: float, work: np.ndarray
 ) -> None:
@@ -161,7 +161,7 @@ def planar_predict(
     _symmetrize(p)
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True, inline="always")
 def planar_update(
     x: np.ndarray, p: np.ndarray, meas: np.ndarray, gate: float, work: np.ndarray
 ) -> tuple[int, float]:
@@ -256,7 +256,7 @@ def planar_update(
     return ACCEPTED, nis
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True)
 def planar_step(
     buf: np.ndarray,
     dt: float,
@@ -300,7 +300,7 @@ def planar_step(
     return status, nis
 
 
-@njit(cache=True, error_model="numpy")
+@njit(cache=True)
 def planar_run(
     x: np.ndarray,
     p: np.ndarray,
