@@ -6,6 +6,7 @@ import json
 import math
 import subprocess
 import sys
+from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 import pytest
@@ -15,7 +16,7 @@ from hypothesis import strategies as st
 from skimage.graph import MCP_Geometric
 
 from navkit import NavkitError, NoPathError
-from navkit.planning import GridPath, astar, distance_field
+from navkit.planning import GridPath, _workspace, astar, distance_field
 
 SQRT2 = math.sqrt(2.0)
 
@@ -229,3 +230,35 @@ def test_fresh_process_loads_compiled_kernels_from_cache() -> None:
     )
     stats = json.loads(out.stdout)
     assert stats == {"grid_search": [1, 0], "trace_path": [1, 0]}
+
+
+def test_reused_workspace_survives_stamp_restart_and_threads() -> None:
+    rng = np.random.default_rng(11)
+    grids = []
+    for shape in [(40, 30), (25, 60), (40, 30)]:
+        costs = 1.0 + 3.0 * rng.random(shape)
+        costs[rng.random(shape) < 0.1] = np.inf
+        costs[0, 0] = costs[-1, -1] = 1.0
+        grids.append(costs)
+    expected = [scipy_costs_from(c, (0, 0), 8, False)[-1, -1] for c in grids]
+    assert np.all(np.isfinite(expected))
+    # Bring the uint32 stamp next to its limit so that it restarts between these
+    # searches. (Not monkeypatched back: an older stamp would misread the marks
+    # written here; leaving the stamp high is a valid state.)
+    astar(grids[0], (0, 0), (39, 29))
+    _workspace._local.stamp = _workspace._STAMP_LIMIT - 4
+    for costs, cost in zip(grids * 2, expected * 2, strict=True):
+        assert astar(costs, (0, 0), (-1 + costs.shape[0], -1 + costs.shape[1])).cost == (
+            pytest.approx(cost, rel=1e-12)
+        )
+        field = distance_field(costs, (0, 0))
+        assert field[-1, -1] == pytest.approx(cost, rel=1e-12)
+    assert _workspace._local.stamp < 100
+    # Each thread has its own workspace.
+    with ThreadPoolExecutor(max_workers=3) as pool:
+        jobs = [
+            pool.submit(lambda c: astar(c, (0, 0), (c.shape[0] - 1, c.shape[1] - 1)).cost, c)
+            for c in grids * 4
+        ]
+        got = [job.result() for job in jobs]
+    np.testing.assert_allclose(got, expected * 4, rtol=1e-12)

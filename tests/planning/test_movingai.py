@@ -34,7 +34,7 @@ MAPS = [
 ]
 # Scenarios per map in the default (CI) run; chosen so the whole module stays
 # well under a minute from a cold numba cache on 2 cores.
-SAMPLE = 150
+SAMPLE = 300
 PASSABLE = frozenset(".GS")
 
 

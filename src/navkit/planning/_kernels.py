@@ -29,6 +29,7 @@ _OCTILE_EXTRA = SQRT2 - 1.0
 DR = np.array([-1, 1, 0, 0, -1, -1, 1, 1], dtype=np.int64)
 DC = np.array([0, 0, -1, 1, -1, 1, -1, 1], dtype=np.int64)
 
+
 @njit(cache=True, inline="always")
 def _heuristic(r: int, c: int, gr: int, gc: int, octile: bool, scale: float) -> float:
     """Weighted lower bound on the cost from (r, c) to (gr, gc).
