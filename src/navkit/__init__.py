@@ -1,7 +1,7 @@
 """navkit: typed, numba-accelerated mobile-robot navigation algorithms."""
 
-from navkit.errors import NavkitError, NoPathError
+from navkit.errors import FilterError, NavkitError, NoPathError
 
 __version__ = "0.1.0"
 
-__all__ = ["NavkitError", "NoPathError", "__version__"]
+__all__ = ["FilterError", "NavkitError", "NoPathError", "__version__"]

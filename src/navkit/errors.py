@@ -7,7 +7,7 @@ catch all of them at once. Invalid arguments raise the built-in ``ValueError`` o
 
 from __future__ import annotations
 
-__all__ = ["NavkitError", "NoPathError"]
+__all__ = ["FilterError", "NavkitError", "NoPathError"]
 
 
 class NavkitError(Exception):
@@ -34,3 +34,11 @@ class NoPathError(NavkitError):
     def __init__(self, message: str, explored: int = 0) -> None:
         super().__init__(message)
         self.explored = int(explored)
+
+
+class FilterError(NavkitError):
+    """A filter step failed numerically (e.g. a covariance lost positive definiteness).
+
+    Raised by the filters of :mod:`navkit.estimation`; the filter state is left
+    exactly as it was before the failed step.
+    """

@@ -1,4 +1,4 @@
-"""Outcome of a filter measurement update, and the filter's own exception."""
+"""Outcome of a filter measurement update."""
 
 from __future__ import annotations
 
@@ -7,16 +7,9 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
-from navkit.errors import NavkitError
+from navkit.errors import FilterError
 
 __all__ = ["FilterError", "UpdateResult"]
-
-
-class FilterError(NavkitError):
-    """A filter step failed numerically (e.g. a covariance lost positive definiteness).
-
-    The filter state is left exactly as it was before the failed step.
-    """
 
 
 @dataclass(frozen=True, slots=True)
