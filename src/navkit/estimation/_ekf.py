@@ -9,6 +9,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from navkit._validation import as_float_array, positive_float
 from navkit.estimation._checks import covariance, index_tuple
+from navkit.estimation._gaussian import GaussianEstimate
 from navkit.estimation._result import FilterError, UpdateResult
 from navkit.geometry._kernels import wrap_scalar
 
@@ -19,7 +20,7 @@ StateFunction = Callable[[FloatArray], ArrayLike]
 Jacobian = Callable[[FloatArray], ArrayLike] | ArrayLike
 
 
-class ExtendedKalmanFilter:
+class ExtendedKalmanFilter(GaussianEstimate):
     r"""Extended Kalman Filter with angle-aware residuals and Mahalanobis gating.
 
     Prediction :math:`x \leftarrow f(x)`, :math:`P \leftarrow F P F^T + Q` with
@@ -68,16 +69,6 @@ class ExtendedKalmanFilter:
         # The last validated Q and R: filters usually pass the same matrices every step,
         # and re-checking symmetry and definiteness would cost more than the step.
         self._validated: dict[str, FloatArray] = {}
-
-    @property
-    def x(self) -> FloatArray:
-        """Current state (n,), a copy."""
-        return np.array(self._x, dtype=np.float64, copy=True)
-
-    @property
-    def P(self) -> FloatArray:
-        """Current covariance (n, n), a copy."""
-        return np.array(self._p, dtype=np.float64, copy=True)
 
     @property
     def dim(self) -> int:

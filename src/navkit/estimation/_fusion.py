@@ -13,6 +13,7 @@ from numpy.typing import ArrayLike, NDArray
 from navkit._validation import as_float_array, finite_float, positive_float
 from navkit.estimation import _kernels as k
 from navkit.estimation._checks import covariance
+from navkit.estimation._gaussian import GaussianEstimate
 from navkit.estimation._kernels import GATED, NOT_POSITIVE_DEFINITE, planar_step
 from navkit.estimation._result import FilterError, UpdateResult, new_result
 from navkit.geometry import Pose2D, wrap_angle
@@ -266,7 +267,7 @@ class FusionResult:
         return Pose2D(*(float(v) for v in self.states[-1, :3]))
 
 
-class PlanarFusion:
+class PlanarFusion(GaussianEstimate):
     r"""2-D EKF fusing wheel odometry with an IMU (robot_localization in two_d_mode).
 
     State ``[x, y, θ, v, ω, a]``: world position (m), heading (rad, (-π, π]),
@@ -366,16 +367,6 @@ class PlanarFusion:
             kind: (first, count, float(self._gates[count]), slice(first, first + count))
             for kind, (first, count) in _KIND_COMPONENTS.items()
         }
-
-    @property
-    def x(self) -> FloatArray:
-        """State ``[x, y, θ, v, ω, a]`` (6,), a copy."""
-        return np.array(self._x, dtype=np.float64, copy=True)
-
-    @property
-    def P(self) -> FloatArray:
-        """Covariance (6, 6), a copy."""
-        return np.array(self._p, dtype=np.float64, copy=True)
 
     @property
     def t(self) -> float | None:
