@@ -10,8 +10,13 @@ from numpy.typing import ArrayLike, NDArray
 
 from navkit._validation import positive_float
 from navkit.errors import NoPathError
-from navkit.planning._costs import validate_costs
-from navkit.planning._grid_args import check_connectivity, check_flag, traversable_cell
+from navkit.planning._costs import validate_costs_lowest
+from navkit.planning._grid_args import (
+    check_connectivity,
+    check_flag,
+    check_search_size,
+    traversable_cell,
+)
 from navkit.planning._kernels import grid_search, trace_path
 from navkit.planning._workspace import workspace
 
@@ -64,7 +69,7 @@ def astar(
     The heuristic is the octile distance (Manhattan for ``connectivity=4``) times
     the smallest cell cost in the grid, which is admissible and consistent: each
     move changes it by at most ``step * min(costs)`` while costing at least that.
-    Queue ties in f = g + h are broken towards smaller h.
+    Queue ties in f = g + h are broken towards smaller h (nearer the goal).
 
     Parameters
     ----------
@@ -94,10 +99,12 @@ def astar(
 
     Notes
     -----
-    The search runs in a numba kernel over flat arrays with the indexed binary
-    heap of :mod:`navkit.planning._heap`; memory is O(cells). Its scratch arrays
-    (about 45 bytes per cell) are kept per thread and reused by later calls on
+    The search runs in a numba kernel over flat arrays with an indexed 4-ary
+    heap (:mod:`navkit.planning._search_heap`); memory is O(cells). Its scratch
+    arrays (33 bytes per cell) are kept per thread and reused by later calls on
     grids of the same or smaller size, so repeated queries pay no allocation.
+    Grids may have at most 2**31 - 1 cells. Ties among equal f are broken by the
+    heuristic (to 1/16 cell), then by cell index, so results are deterministic.
 
     Raises
     ------
@@ -124,20 +131,21 @@ def astar(
     >>> round(astar(costs, (2, 0), (0, 3), corner_cutting=True).cost, 6)
     4.414214
     """
-    grid = validate_costs(costs)
+    grid, lowest = validate_costs_lowest(costs)
+    check_search_size(grid)
     eight = check_connectivity(connectivity)
     cutting = check_flag(corner_cutting, "corner_cutting")
     weight = positive_float(heuristic_weight, "heuristic_weight", allow_zero=True)
     s = traversable_cell(grid, start, "start")
     t = traversable_cell(grid, goal, "goal")
     rows, cols = grid.shape
-    # The smallest finite cost; np.min is enough because start is finite.
-    scale = weight * float(grid.min())
+    # The smallest cost is finite because start is traversable.
+    scale = weight * lowest
     goal_index = t[0] * cols + t[1]
     ws = workspace(rows * cols)
     expanded, found = grid_search(
         grid.ravel(), rows, cols, s[0] * cols + s[1], goal_index, eight, cutting, scale,
-        ws.g, ws.parent, ws.mark, ws.nodes, ws.keys, ws.pos, ws.size, ws.stamp,
+        ws.g, ws.parent, ws.mark, ws.heap, ws.pos, ws.size, ws.stamp,
     )
     if not found:
         raise NoPathError(

@@ -20,6 +20,18 @@ def validate_costs(costs: ArrayLike, name: str = "costs") -> NDArray[np.float64]
         Wrong dimension, empty grid, non-numeric or boolean dtype, NaN, ``-inf``
         or finite values below 1.
     """
+    return validate_costs_lowest(costs, name)[0]
+
+
+def validate_costs_lowest(
+    costs: ArrayLike, name: str = "costs"
+) -> tuple[NDArray[np.float64], float]:
+    """As :func:`validate_costs`, also returning the smallest cost (inf if none is finite).
+
+    One pass over the grid gives both: the minimum is NaN when any cell is NaN
+    and below 1 when any cell is, so the check costs nothing extra for callers
+    that need the minimum anyway (the A* heuristic).
+    """
     arr = np.asarray(costs)
     if arr.dtype == np.bool_ or arr.dtype.kind not in "fiu":
         raise ValueError(f"{name} must be a real-valued numeric array, got dtype {arr.dtype}")
@@ -28,9 +40,18 @@ def validate_costs(costs: ArrayLike, name: str = "costs") -> NDArray[np.float64]
     if arr.shape[0] == 0 or arr.shape[1] == 0:
         raise ValueError(f"{name} must not be empty, got shape {arr.shape}")
     out = np.ascontiguousarray(arr, dtype=np.float64)
-    if np.isnan(out).any():
-        raise ValueError(f"{name} must not contain NaN")
+    lowest = float(out.min())
+    if np.isnan(lowest):
+        raise ValueError(f"{name} must not contain NaN (found at {_first(np.isnan(out))})")
     # -inf is < 1 as well, so this also rejects it.
-    if (out < 1.0).any():
-        raise ValueError(f"{name} must be >= 1 where traversable (np.inf marks impassable cells)")
-    return out
+    if lowest < 1.0:
+        raise ValueError(
+            f"{name} must be >= 1 where traversable (np.inf marks impassable cells); "
+            f"found {lowest} at {_first(out == lowest)}"
+        )
+    return out, lowest
+
+
+def _first(mask: NDArray[np.bool_]) -> tuple[int, ...]:
+    """``(row, col)`` of the first True cell of ``mask``."""
+    return tuple(int(i) for i in np.unravel_index(int(np.argmax(mask)), mask.shape))

@@ -8,7 +8,12 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from navkit.planning._costs import validate_costs
-from navkit.planning._grid_args import check_connectivity, check_flag, traversable_cell
+from navkit.planning._grid_args import (
+    check_connectivity,
+    check_flag,
+    check_search_size,
+    traversable_cell,
+)
 from navkit.planning._kernels import grid_search
 from navkit.planning._workspace import workspace
 
@@ -70,6 +75,7 @@ def distance_field(
            [1.    , 1.4142, 2.4142]])
     """
     grid = validate_costs(costs)
+    check_search_size(grid)
     eight = check_connectivity(connectivity)
     cutting = check_flag(corner_cutting, "corner_cutting")
     t = traversable_cell(grid, goal, "goal")
@@ -78,7 +84,7 @@ def distance_field(
     ws = workspace(n)
     grid_search(
         grid.ravel(), rows, cols, t[0] * cols + t[1], -1, eight, cutting, 0.0,
-        ws.g, ws.parent, ws.mark, ws.nodes, ws.keys, ws.pos, ws.size, ws.stamp,
+        ws.g, ws.parent, ws.mark, ws.heap, ws.pos, ws.size, ws.stamp,
     )
     # Exhaustion closes every reachable cell; g is stale everywhere else.
     closed = ws.mark[:n] == ws.stamp + 1

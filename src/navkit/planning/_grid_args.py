@@ -9,6 +9,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from navkit._validation import as_cell
+from navkit.planning._search_heap import MAX_NODES
 
 
 def check_connectivity(value: Any) -> bool:
@@ -33,3 +34,11 @@ def traversable_cell(costs: NDArray[np.float64], value: Any, name: str) -> tuple
     if not np.isfinite(costs[row, col]):
         raise ValueError(f"{name} {(row, col)} is on an impassable cell (cost inf)")
     return row, col
+
+
+def check_search_size(costs: NDArray[np.float64], name: str = "costs") -> None:
+    """Reject grids with more cells than the search heap can index (2**31 - 1)."""
+    if costs.size > MAX_NODES:
+        raise ValueError(
+            f"{name} has {costs.size} cells; the grid searches support at most {MAX_NODES}"
+        )

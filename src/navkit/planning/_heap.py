@@ -21,19 +21,10 @@ at most once.
 
 from __future__ import annotations
 
-from collections.abc import Callable
-from typing import Any, TypeVar, cast
-
 import numpy as np
 from numba import njit
 
-# The operations below allocate nothing, so they are compiled without numba's
-# reference counting (the private jit option ``_nrt=False``). With it, every call
-# increments and decrements the four arrays' reference counts atomically, which
-# perf showed to take about a third of an A* search's time.
-_F = TypeVar("_F", bound=Callable[..., Any])
-_NO_REFCOUNT: dict[str, Any] = {"cache": True, "_nrt": False}
-_njit_no_refcount = cast(Callable[[_F], _F], njit(**_NO_REFCOUNT))
+from navkit.planning._jit import njit_no_refcount as _njit_no_refcount
 
 
 @njit(cache=True)

@@ -19,7 +19,8 @@ import math
 import numpy as np
 from numba import njit
 
-from navkit.planning._heap import heap_pop, heap_push
+from navkit.planning._jit import njit_inline_no_refcount, njit_no_refcount
+from navkit.planning._search_heap import clear, pop, precedes_top, push, tie_key
 
 SQRT2 = math.sqrt(2.0)
 _OCTILE_EXTRA = SQRT2 - 1.0
@@ -31,22 +32,75 @@ DC = np.array([0, 0, -1, 1, -1, 1, -1, 1], dtype=np.int64)
 
 
 @njit(cache=True, inline="always")
-def _heuristic(r: int, c: int, gr: int, gc: int, octile: bool, scale: float) -> float:
-    """Weighted lower bound on the cost from (r, c) to (gr, gc).
-
-    Octile distance (8-connected) or Manhattan distance (4-connected) times
-    ``scale`` = heuristic weight × minimum cell cost.
-    """
+def _cells_to_goal(r: int, c: int, gr: int, gc: int, octile: bool) -> float:
+    """Octile (8-connected) or Manhattan (4-connected) distance in cells."""
     dr = abs(r - gr)
     dc = abs(c - gc)
     if octile:
-        if dr < dc:
-            return scale * (dc + _OCTILE_EXTRA * dr)
-        return scale * (dr + _OCTILE_EXTRA * dc)
-    return scale * (dr + dc)
+        # min/max rather than a branch: the comparison is unpredictable.
+        return max(dr, dc) + _OCTILE_EXTRA * min(dr, dc)
+    return float(dr + dc)
 
 
-@njit(cache=True)
+@njit_inline_no_refcount
+def _relax(
+    flat: np.ndarray,
+    g: np.ndarray,
+    parent: np.ndarray,
+    mark: np.ndarray,
+    heap: np.ndarray,
+    pos: np.ndarray,
+    size: np.ndarray,
+    open_mark: int,
+    closed_mark: int,
+    v: int,
+    d: int,
+    step: float,
+    gu: float,
+    cu: float,
+    r: int,
+    c: int,
+    gr: int,
+    gc: int,
+    octile: bool,
+    scale: float,
+    next_f: float,
+    next_key: float,
+    next_v: int,
+) -> tuple[float, float, int]:
+    """Try the move ``d`` to cell ``v`` = (r, c); return the updated next-node candidate.
+
+    The candidate (next_f, next_key, next_v) is the best improved neighbour that
+    is not queued; it is kept out of the heap because it is often the very node
+    the next pop would return (next_v = -1: none yet).
+    """
+    cv = flat[v]
+    if cv == np.inf:
+        return next_f, next_key, next_v
+    m = mark[v]
+    if m == closed_mark:
+        return next_f, next_key, next_v
+    new_g = gu + step * 0.5 * (cu + cv)
+    # g of a cell this search has not reached is stale: test the mark first.
+    if m == open_mark and new_g >= g[v]:
+        return next_f, next_key, next_v
+    g[v] = new_g
+    parent[v] = d
+    mark[v] = open_mark
+    h = _cells_to_goal(r, c, gr, gc, octile)
+    f = new_g + scale * h
+    # Ties in f go to the cell nearer the goal, which keeps A* from expanding
+    # whole plateaus of equal f.
+    key = tie_key(h, v)
+    if pos[v] < 0 and (f < next_f or (f == next_f and key < next_key)):
+        if next_v >= 0:
+            push(heap, pos, size, next_f, next_key)
+        return f, key, v
+    push(heap, pos, size, f, key)
+    return next_f, next_key, next_v
+
+
+@njit_no_refcount
 def grid_search(
     flat: np.ndarray,
     rows: int,
@@ -59,8 +113,7 @@ def grid_search(
     g: np.ndarray,
     parent: np.ndarray,
     mark: np.ndarray,
-    nodes: np.ndarray,
-    keys: np.ndarray,
+    heap: np.ndarray,
     pos: np.ndarray,
     size: np.ndarray,
     stamp: int,
@@ -73,7 +126,7 @@ def grid_search(
         Cell costs in row-major order, finite >= 1 or +inf (impassable). Both
         end cells must be traversable (checked by the caller).
     rows, cols : int
-        Grid shape.
+        Grid shape; ``rows * cols`` at most ``_search_heap.MAX_NODES``.
     start : int
         Flat index of the source cell.
     goal : int
@@ -85,9 +138,9 @@ def grid_search(
         Allow diagonal moves beside impassable cells.
     scale : float
         Heuristic weight × minimum cell cost; 0 gives Dijkstra.
-    g, parent, mark, nodes, keys, pos, size, stamp
+    g, parent, mark, heap, pos, size, stamp
         Scratch from :func:`navkit.planning._workspace.workspace` (at least
-        ``rows * cols`` long). On return ``mark[v] == stamp + 1`` for every
+        ``rows * cols`` cells). On return ``mark[v] == stamp + 1`` for every
         closed cell (exhaustion closes every reachable one), ``g`` holds their
         cost from ``start`` (exact when the heuristic weight is <= 1) and
         ``parent`` the direction index (into ``DR``/``DC``) of the move that
@@ -99,23 +152,27 @@ def grid_search(
         Number of cells closed.
     found : bool
         Whether ``goal`` was closed.
+
+    Notes
+    -----
+    The queue orders cells by (f, tie key) with f = g + scale × distance in
+    cells; the order is total, so the search is deterministic. After expanding
+    a cell, its best improved neighbour that is not queued is expanded next
+    directly when it precedes the heap's top, which is exactly the cell a push
+    and pop would return, without the two heap walks. The eight moves are
+    written out one by one so each has constant offsets and bounds tests.
     """
     open_mark = stamp
     closed_mark = stamp + 1
     gr = goal // cols if goal >= 0 else 0
     gc = goal - gr * cols if goal >= 0 else 0
-    n_dirs = 8 if eight else 4
-
     g[start] = 0.0
     parent[start] = -1
     mark[start] = open_mark
-    sr = start // cols
-    h0 = _heuristic(sr, start - sr * cols, gr, gc, eight, scale)
-    heap_push(nodes, keys, pos, size, start, h0, h0)
     expanded = 0
     found = False
-    while size[0] > 0:
-        u = heap_pop(nodes, keys, pos, size)
+    u = start
+    while True:
         mark[u] = closed_mark
         expanded += 1
         if u == goal:
@@ -125,53 +182,70 @@ def grid_search(
         c = u - r * cols
         gu = g[u]
         cu = flat[u]
-        # Orthogonal neighbours inside the grid and traversable; they also
-        # gate the diagonals when corners may not be cut.
         n_in = r > 0
         s_in = r + 1 < rows
         w_in = c > 0
         e_in = c + 1 < cols
-        n_ok = n_in and flat[u - cols] < np.inf
-        s_ok = s_in and flat[u + cols] < np.inf
-        w_ok = w_in and flat[u - 1] < np.inf
-        e_ok = e_in and flat[u + 1] < np.inf
-        # One loop body for all directions: numba passes arrays to helper
-        # functions with reference counting, which costs more than the work.
-        for d in range(n_dirs):
-            dr = DR[d]
-            dc = DC[d]
-            if d < 4:
-                if not (n_ok if d == 0 else s_ok if d == 1 else w_ok if d == 2 else e_ok):
-                    continue
-                step = 1.0
+        nf = np.inf
+        nk = np.inf
+        nv = -1
+        if n_in:
+            nf, nk, nv = _relax(flat, g, parent, mark, heap, pos, size, open_mark, closed_mark,
+                                u - cols, 0, 1.0, gu, cu, r - 1, c, gr, gc, eight, scale,
+                                nf, nk, nv)
+        if s_in:
+            nf, nk, nv = _relax(flat, g, parent, mark, heap, pos, size, open_mark, closed_mark,
+                                u + cols, 1, 1.0, gu, cu, r + 1, c, gr, gc, eight, scale,
+                                nf, nk, nv)
+        if w_in:
+            nf, nk, nv = _relax(flat, g, parent, mark, heap, pos, size, open_mark, closed_mark,
+                                u - 1, 2, 1.0, gu, cu, r, c - 1, gr, gc, eight, scale,
+                                nf, nk, nv)
+        if e_in:
+            nf, nk, nv = _relax(flat, g, parent, mark, heap, pos, size, open_mark, closed_mark,
+                                u + 1, 3, 1.0, gu, cu, r, c + 1, gr, gc, eight, scale,
+                                nf, nk, nv)
+        if eight:
+            if corner_cutting:
+                nw = n_in and w_in
+                ne = n_in and e_in
+                sw = s_in and w_in
+                se = s_in and e_in
             else:
-                if corner_cutting:
-                    if not ((n_in if dr < 0 else s_in) and (w_in if dc < 0 else e_in)):
-                        continue
-                elif not ((n_ok if dr < 0 else s_ok) and (w_ok if dc < 0 else e_ok)):
-                    continue
-                step = SQRT2
-            v = u + dr * cols + dc
-            cv = flat[v]
-            if cv == np.inf:
+                # A diagonal needs both cells it passes beside (MovingAI rule).
+                n_ok = n_in and flat[u - cols] < np.inf
+                s_ok = s_in and flat[u + cols] < np.inf
+                w_ok = w_in and flat[u - 1] < np.inf
+                e_ok = e_in and flat[u + 1] < np.inf
+                nw = n_ok and w_ok
+                ne = n_ok and e_ok
+                sw = s_ok and w_ok
+                se = s_ok and e_ok
+            if nw:
+                nf, nk, nv = _relax(flat, g, parent, mark, heap, pos, size, open_mark,
+                                    closed_mark, u - cols - 1, 4, SQRT2, gu, cu, r - 1, c - 1,
+                                    gr, gc, eight, scale, nf, nk, nv)
+            if ne:
+                nf, nk, nv = _relax(flat, g, parent, mark, heap, pos, size, open_mark,
+                                    closed_mark, u - cols + 1, 5, SQRT2, gu, cu, r - 1, c + 1,
+                                    gr, gc, eight, scale, nf, nk, nv)
+            if sw:
+                nf, nk, nv = _relax(flat, g, parent, mark, heap, pos, size, open_mark,
+                                    closed_mark, u + cols - 1, 6, SQRT2, gu, cu, r + 1, c - 1,
+                                    gr, gc, eight, scale, nf, nk, nv)
+            if se:
+                nf, nk, nv = _relax(flat, g, parent, mark, heap, pos, size, open_mark,
+                                    closed_mark, u + cols + 1, 7, SQRT2, gu, cu, r + 1, c + 1,
+                                    gr, gc, eight, scale, nf, nk, nv)
+        if nv >= 0:
+            if precedes_top(heap, size, nf, nk):
+                u = nv
                 continue
-            m = mark[v]
-            if m == closed_mark:
-                continue
-            new_g = gu + step * 0.5 * (cu + cv)
-            # g of a cell this search has not reached is stale: test mark first.
-            if m != open_mark or new_g < g[v]:
-                g[v] = new_g
-                parent[v] = d
-                mark[v] = open_mark
-                h = _heuristic(r + dr, c + dc, gr, gc, eight, scale)
-                # Key (f, h): among equal f prefer the node nearer the goal,
-                # which keeps A* from expanding whole plateaus of equal f.
-                heap_push(nodes, keys, pos, size, v, new_g + h, h)
-    # Leave the heap empty (pos == -1 everywhere) for the next search.
-    for i in range(size[0]):
-        pos[nodes[i]] = -1
-    size[0] = 0
+            push(heap, pos, size, nf, nk)
+        if size[0] == 0:
+            break
+        u = pop(heap, pos, size)
+    clear(heap, pos, size)
     return expanded, found
 
 

@@ -1,6 +1,6 @@
 """Per-thread scratch arrays reused by the grid searches (private).
 
-A search on an n-cell grid needs about 45 bytes per cell of scratch memory
+A search on an n-cell grid needs 33 bytes per cell of scratch memory
 (costs-to-come, parents, node marks and the indexed heap). Allocating it on every
 call costs more than a short search itself (fresh pages are zero-filled by the
 kernel on first touch), so each thread keeps one workspace sized for the largest
@@ -22,7 +22,7 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import NDArray
 
-from navkit.planning._heap import heap_new
+from navkit.planning._search_heap import search_heap_new
 
 # Stamps live in uint32; restart (with a full clear) well before overflow.
 _STAMP_LIMIT = 2**32 - 4
@@ -34,9 +34,8 @@ class Workspace(NamedTuple):
     g: NDArray[np.float64]
     parent: NDArray[np.int8]
     mark: NDArray[np.uint32]
-    nodes: NDArray[np.int64]
-    keys: NDArray[np.float64]
-    pos: NDArray[np.int64]
+    heap: NDArray[np.float64]
+    pos: NDArray[np.int32]
     size: NDArray[np.int64]
     stamp: int
 
@@ -55,13 +54,12 @@ def workspace(n: int) -> Workspace:
     """Scratch arrays for a search over ``n`` cells with a fresh stamp."""
     ws = _local
     if n > ws.capacity:
-        nodes, keys, pos, size = heap_new(n)
+        heap, pos, size = search_heap_new(n)
         ws.arrays = (
             np.empty(n, dtype=np.float64),
             np.empty(n, dtype=np.int8),
             np.zeros(n, dtype=np.uint32),
-            nodes,
-            keys,
+            heap,
             pos,
             size,
         )
@@ -71,5 +69,5 @@ def workspace(n: int) -> Workspace:
     if ws.stamp >= _STAMP_LIMIT:
         ws.arrays[2][:] = 0
         ws.stamp = 2
-    g, parent, mark, nodes, keys, pos, size = ws.arrays
-    return Workspace(g, parent, mark, nodes, keys, pos, size, ws.stamp)
+    g, parent, mark, heap, pos, size = ws.arrays
+    return Workspace(g, parent, mark, heap, pos, size, ws.stamp)
