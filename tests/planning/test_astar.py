@@ -17,6 +17,7 @@ from skimage.graph import MCP_Geometric
 
 from navkit import NavkitError, NoPathError
 from navkit.planning import GridPath, _workspace, astar, distance_field
+from navkit.planning._grid_args import check_search_size
 
 SQRT2 = math.sqrt(2.0)
 
@@ -169,14 +170,22 @@ def test_no_path_error_reports_explored_cells() -> None:
         (np.ones((0, 3)), "empty"),
         (np.ones((3, 3), dtype=bool), "dtype"),
         (np.array([["a", "b"], ["c", "d"]]), "dtype"),
-        (np.array([[1.0, np.nan], [1.0, 1.0]]), "NaN"),
-        (np.array([[1.0, 0.5], [1.0, 1.0]]), ">= 1"),
-        (np.array([[1.0, -np.inf], [1.0, 1.0]]), ">= 1"),
+        (np.array([[1.0, np.nan], [1.0, 1.0]]), r"NaN \(found at \(0, 1\)\)"),
+        (np.array([[1.0, 1.0], [0.5, 1.0]]), r">= 1 .* found 0.5 at \(1, 0\)"),
+        (np.array([[1.0, -np.inf], [1.0, 1.0]]), r">= 1 .* found -inf at \(0, 1\)"),
     ],
 )
 def test_bad_costs(costs: np.ndarray, message: str) -> None:
     with pytest.raises(ValueError, match=message):
         astar(costs, (0, 0), (0, 1))
+
+
+def test_grids_beyond_the_heap_index_range_are_rejected() -> None:
+    # A read-only broadcast view stands in for a 2**31-cell grid without the memory.
+    huge = np.broadcast_to(np.float64(1.0), (2**16, 2**15))
+    with pytest.raises(ValueError, match=r"costs has 2147483648 cells; .* at most 2147483647"):
+        check_search_size(huge)
+    check_search_size(huge[:, :-1])
 
 
 def test_bad_endpoints_and_options() -> None:

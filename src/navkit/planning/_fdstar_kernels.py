@@ -31,7 +31,7 @@ exact. (Costs are >= 1, so this holds after any cost update.)
 
 Calling convention. The search kernels take the planner's arrays as one tuple
 ``st = (pad, g, rhs, nodes, keys, pos, size)`` (``nodes, keys, pos, size`` being
-the shared heap of :mod:`navkit.planning._heap`) and its scalars as
+the indexed heap of :mod:`navkit.planning._heap`) and its scalars as
 ``prm = (width, nrows, ncols, start_row, start_col, goal, km, interp, hscale)``;
 both are built by :func:`state` and :func:`params`.
 """

@@ -1,14 +1,15 @@
-"""Indexed binary min-heap for numba search kernels (private).
+"""Indexed binary min-heap with arbitrary key changes, for D* Lite (private).
 
-One heap serves every grid search in navkit (A*, Dijkstra, Field D*). It lives in
-four preallocated arrays so kernels never allocate Python objects in their loops:
+Field D* (D* Lite keys) raises, lowers and removes queued keys, so it needs this
+general heap; the monotone searches (A*, Dijkstra) use the leaner 4-ary heap of
+:mod:`navkit.planning._search_heap`. It lives in four preallocated arrays so
+kernels never allocate Python objects in their loops:
 
 ``nodes`` (capacity,) int64
     Node id stored at each heap slot.
 ``keys`` (capacity, 2) float64
-    Priority of each slot, compared lexicographically (k1, then k2). A* uses
-    (f, h) so ties in f prefer nodes closer to the goal; D* Lite uses its
-    two-part key (min(g, rhs) + h, min(g, rhs)).
+    Priority of each slot, compared lexicographically (k1, then k2); D* Lite
+    uses its two-part key (min(g, rhs) + h, min(g, rhs)).
 ``pos`` (n_nodes,) int64
     Heap slot of every node, or -1 when the node is not queued. This index makes
     decrease-key, increase-key and removal O(log n), as D* Lite needs.
