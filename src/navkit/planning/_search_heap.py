@@ -76,6 +76,14 @@ def _precedes(f1: float, k1: float, f2: float, k2: float) -> bool:
     return bool((f1 < f2) | ((f1 == f2) & (k1 < k2)))
 
 
+@njit(cache=True, inline="always")
+def _place(heap: np.ndarray, pos: np.ndarray, i: int, f: float, key: float) -> None:
+    """Store the entry (f, key) in slot i and record the slot of its node."""
+    heap[2 * i] = f
+    heap[2 * i + 1] = key
+    pos[node_of(key)] = i
+
+
 @njit_no_refcount
 def _sift_up(heap: np.ndarray, pos: np.ndarray, i: int, f: float, key: float) -> None:
     # Move the hole at slot i up past larger parents, then drop (f, key) in.
@@ -84,15 +92,11 @@ def _sift_up(heap: np.ndarray, pos: np.ndarray, i: int, f: float, key: float) ->
         pf = heap[2 * parent]
         pk = heap[2 * parent + 1]
         if f < pf or (f == pf and key < pk):
-            heap[2 * i] = pf
-            heap[2 * i + 1] = pk
-            pos[node_of(pk)] = i
+            _place(heap, pos, i, pf, pk)
             i = parent
         else:
             break
-    heap[2 * i] = f
-    heap[2 * i + 1] = key
-    pos[node_of(key)] = i
+    _place(heap, pos, i, f, key)
 
 
 @njit_no_refcount
@@ -152,9 +156,7 @@ def pop(heap: np.ndarray, pos: np.ndarray, size: np.ndarray) -> int:
                     bestk = jk
         else:
             break
-        heap[2 * i] = bestf
-        heap[2 * i + 1] = bestk
-        pos[node_of(bestk)] = i
+        _place(heap, pos, i, bestf, bestk)
         i = best
     _sift_up(heap, pos, i, f, key)
     return top
