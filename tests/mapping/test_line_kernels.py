@@ -6,7 +6,7 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from navkit.mapping._kernels import line_cells, line_is_free
+from navkit._shared.lines import line_cells, line_is_free
 
 coords = st.integers(-30, 30)
 

@@ -12,9 +12,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from shapely.geometry import Point, Polygon, box
 
+from navkit._shared.costs import validate_costs
 from navkit.geometry import Pose2D
 from navkit.mapping import LaserScan, OccupancyGrid
-from navkit.planning._costs import validate_costs
 
 
 def test_empty_grid_shape_and_extent() -> None:

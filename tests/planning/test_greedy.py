@@ -9,9 +9,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from navkit._shared.lines import line_cells
 from navkit.errors import NoPathError
 from navkit.mapping import LaserScan, LocalGrid
-from navkit.mapping._kernels import line_cells
 from navkit.planning import greedy_step
 
 

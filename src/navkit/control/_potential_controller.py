@@ -9,7 +9,7 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from navkit._validation import as_float_array, as_points, positive_float
+from navkit._shared.validation import as_float_array, as_points, positive_float
 from navkit.geometry import Pose2D, Twist2D, angle_diff
 from navkit.mapping import LaserScan
 from navkit.planning import (

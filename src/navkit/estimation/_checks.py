@@ -9,7 +9,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from navkit._validation import as_float_array
+from navkit._shared.validation import as_float_array
 
 __all__ = ["covariance", "index_tuple"]
 

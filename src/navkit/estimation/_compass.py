@@ -7,7 +7,7 @@ from typing import overload
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from navkit._validation import as_float_array, finite_float
+from navkit._shared.validation import as_float_array, finite_float
 from navkit.geometry import wrap_angle
 
 __all__ = ["CompassCalibration", "compass_to_yaw"]

@@ -7,11 +7,11 @@ from collections.abc import Callable, Iterable
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from navkit._validation import as_float_array, positive_float
+from navkit._shared.se2 import wrap_scalar
+from navkit._shared.validation import as_float_array, positive_float
 from navkit.estimation._checks import covariance, index_tuple
 from navkit.estimation._gaussian import GaussianEstimate
 from navkit.estimation._result import FilterError, UpdateResult
-from navkit.geometry._kernels import wrap_scalar
 
 __all__ = ["ExtendedKalmanFilter"]
 

@@ -10,7 +10,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from navkit._validation import as_float_array, finite_float, positive_float
+from navkit._shared.validation import as_float_array, finite_float, positive_float
 from navkit.estimation import _kernels as k
 from navkit.estimation._checks import covariance
 from navkit.estimation._gaussian import GaussianEstimate

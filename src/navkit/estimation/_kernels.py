@@ -20,7 +20,7 @@ import math
 import numpy as np
 from numba import njit
 
-from navkit.geometry._kernels import compose_scalar, wrap_scalar
+from navkit._shared.se2 import compose_scalar, wrap_scalar
 
 N_STATE = 6
 N_COMP = 4

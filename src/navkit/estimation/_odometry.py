@@ -7,7 +7,7 @@ import numbers
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from navkit._validation import as_float_array, positive_float
+from navkit._shared.validation import as_float_array, positive_float
 from navkit.geometry import Pose2D, wrap_angle
 from navkit.kinematics import DiffDrive, OdometryMethod, OmniDrive, tick_delta, ticks_to_distance
 

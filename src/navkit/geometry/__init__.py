@@ -6,6 +6,15 @@ Conventions used across navkit: units are SI (m, rad, s); angles are wrapped to
 
 from navkit.geometry._angles import angle_diff, wrap_angle
 from navkit.geometry._integrate import integrate, rollout
-from navkit.geometry._pose import Pose2D, Twist2D
+from navkit.geometry._pose import Pose2D, Twist2D, as_pose, as_twist
 
-__all__ = ["Pose2D", "Twist2D", "angle_diff", "integrate", "rollout", "wrap_angle"]
+__all__ = [
+    "Pose2D",
+    "Twist2D",
+    "angle_diff",
+    "as_pose",
+    "as_twist",
+    "integrate",
+    "rollout",
+    "wrap_angle",
+]

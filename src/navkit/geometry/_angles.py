@@ -8,7 +8,7 @@ from typing import overload
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from navkit._validation import as_float_array
+from navkit._shared.validation import as_float_array
 
 __all__ = ["angle_diff", "wrap_angle"]
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from navkit._validation import as_float_array, finite_float
+from navkit._shared.validation import as_float_array, finite_float
 from navkit.geometry._kernels import integrate_kernel, rollout_kernel
 from navkit.geometry._pose import Pose2D, Twist2D
 

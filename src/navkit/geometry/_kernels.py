@@ -1,74 +1,16 @@
-"""numba kernels for SE(2) geometry (private).
+"""numba kernels behind :func:`navkit.geometry.integrate` and ``rollout`` (private).
 
-Plain functions on scalars and float64 arrays, compiled with ``cache=True``. The
-public layer in :mod:`navkit.geometry` validates input before calling them. Other
-navkit kernels (odometry, filters, planners) import these scalar helpers so that
-wrapping and the SE(2) exponential exist once.
+Plain functions on scalars and float64 arrays, compiled with ``cache=True``; the
+public layer validates input before calling them. The SE(2) scalar helpers
+themselves live in :mod:`navkit._shared.se2`.
 """
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 from numba import njit
 
-_TWO_PI = 2.0 * math.pi
-
-
-@njit(cache=True, inline="always")
-def wrap_scalar(a: float) -> float:
-    """Wrap one finite angle to (-pi, pi]; angles already in range are returned unchanged."""
-    if -math.pi < a <= math.pi:
-        return a
-    r = math.pi - ((math.pi - a) % _TWO_PI)
-    if r <= -math.pi:
-        r += _TWO_PI
-    return r
-
-
-@njit(cache=True, inline="always")
-def sinc(x: float) -> float:
-    """sin(x)/x, accurate near 0 (Taylor series below 1e-4)."""
-    if abs(x) < 1e-4:
-        x2 = x * x
-        return 1.0 - x2 / 6.0 + x2 * x2 / 120.0
-    return math.sin(x) / x
-
-
-@njit(cache=True, inline="always")
-def exp_body(vx: float, vy: float, omega: float, dt: float) -> tuple[float, float, float]:
-    """Body-frame displacement (dx, dy, dtheta) of a constant twist held for ``dt``.
-
-    This is the SE(2) exponential: with h = omega*dt/2,
-    A = sin(2h)/(2h), B = (1 - cos 2h)/(2h) = sin(h)*sinc(h) and
-    dx = dt*(A*vx - B*vy), dy = dt*(B*vx + A*vy). Written with ``sinc`` so that
-    it is exact for straight lines and numerically stable as omega -> 0.
-    """
-    dth = omega * dt
-    h = 0.5 * dth
-    a = sinc(dth)
-    b = math.sin(h) * sinc(h)
-    return dt * (a * vx - b * vy), dt * (b * vx + a * vy), dth
-
-
-@njit(cache=True, inline="always")
-def compose_scalar(
-    x: float, y: float, th: float, dx: float, dy: float, dth: float
-) -> tuple[float, float, float]:
-    """Pose (x, y, th) composed with a relative motion (dx, dy, dth) in its own frame."""
-    c = math.cos(th)
-    s = math.sin(th)
-    return x + c * dx - s * dy, y + s * dx + c * dy, wrap_scalar(th + dth)
-
-
-@njit(cache=True, inline="always")
-def integrate_scalar(
-    x: float, y: float, th: float, vx: float, vy: float, omega: float, dt: float
-) -> tuple[float, float, float]:
-    """Pose after holding the body twist (vx, vy, omega) for ``dt`` seconds."""
-    dx, dy, dth = exp_body(vx, vy, omega, dt)
-    return compose_scalar(x, y, th, dx, dy, dth)
+from navkit._shared.se2 import integrate_scalar
 
 
 @njit(cache=True)
@@ -92,15 +34,3 @@ def rollout_kernel(
         out[i + 1, 0] = x
         out[i + 1, 1] = y
         out[i + 1, 2] = th
-
-
-@njit(cache=True)
-def exp_body_array(
-    vx: np.ndarray, vy: np.ndarray, omega: np.ndarray, dt: np.ndarray, out: np.ndarray
-) -> None:
-    """Vectorised :func:`exp_body` over 1-D arrays of equal length into ``out`` (N, 3)."""
-    for i in range(vx.shape[0]):
-        dx, dy, dth = exp_body(vx[i], vy[i], omega[i], dt[i])
-        out[i, 0] = dx
-        out[i, 1] = dy
-        out[i, 2] = dth

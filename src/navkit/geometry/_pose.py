@@ -3,15 +3,17 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from navkit._validation import as_float_array, as_points, finite_float
-from navkit.geometry._kernels import compose_scalar, wrap_scalar
+from navkit._shared.se2 import compose_scalar, wrap_scalar
+from navkit._shared.validation import as_float_array, as_points, finite_float
 
-__all__ = ["Pose2D", "Twist2D"]
+__all__ = ["Pose2D", "Twist2D", "as_pose", "as_twist"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -139,3 +141,82 @@ class Twist2D:
         """Build a twist from ``[vx, vy, omega]`` (shape (3,))."""
         arr = as_float_array(values, "values", shape=(3,))
         return cls(float(arr[0]), float(arr[1]), float(arr[2]))
+
+
+def _three(value: Any, name: str, what: str, fields: str) -> tuple[float, float, float]:
+    if isinstance(value, (str, bytes)) or not isinstance(value, (Sequence, np.ndarray)):
+        kind = type(value).__name__
+        raise TypeError(f"{name} must be a {what} or a sequence {fields}, got {kind}")
+    arr = as_float_array(value, name, shape=(3,))
+    return float(arr[0]), float(arr[1]), float(arr[2])
+
+
+def as_pose(value: Pose2D | ArrayLike, name: str = "pose") -> Pose2D:
+    """Return ``value`` as a :class:`Pose2D`; a sequence ``[x, y, theta]`` is accepted.
+
+    Every navkit function that takes a pose accepts either form through this
+    function (as NumPy functions accept array-likes through ``np.asarray``).
+
+    Parameters
+    ----------
+    value : Pose2D or array_like, shape (3,)
+        A pose, or ``[x, y, theta]`` in m, m, rad.
+    name : str, default "pose"
+        Argument name used in error messages.
+
+    Returns
+    -------
+    Pose2D
+        ``value`` itself when it already is one.
+
+    Raises
+    ------
+    TypeError
+        Neither a Pose2D nor a numeric sequence.
+    ValueError
+        Not three finite numbers.
+
+    Examples
+    --------
+    >>> as_pose([1.0, 2.0, 0.5])
+    Pose2D(x=1.0, y=2.0, theta=0.5)
+    >>> as_pose("1 2 3")
+    Traceback (most recent call last):
+    ...
+    TypeError: pose must be a Pose2D or a sequence [x, y, theta], got str
+    """
+    if isinstance(value, Pose2D):
+        return value
+    return Pose2D(*_three(value, name, "Pose2D", "[x, y, theta]"))
+
+
+def as_twist(value: Twist2D | ArrayLike, name: str = "twist") -> Twist2D:
+    """Return ``value`` as a :class:`Twist2D`; a sequence ``[vx, vy, omega]`` is accepted.
+
+    Parameters
+    ----------
+    value : Twist2D or array_like, shape (3,)
+        A body twist, or ``[vx, vy, omega]`` in m/s, m/s, rad/s.
+    name : str, default "twist"
+        Argument name used in error messages.
+
+    Returns
+    -------
+    Twist2D
+        ``value`` itself when it already is one.
+
+    Raises
+    ------
+    TypeError
+        Neither a Twist2D nor a numeric sequence.
+    ValueError
+        Not three finite numbers.
+
+    Examples
+    --------
+    >>> as_twist((0.5, 0.0, 0.1))
+    Twist2D(vx=0.5, vy=0.0, omega=0.1)
+    """
+    if isinstance(value, Twist2D):
+        return value
+    return Twist2D(*_three(value, name, "Twist2D", "[vx, vy, omega]"))

@@ -7,9 +7,9 @@ from typing import Literal, overload
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from navkit._validation import as_float_array, finite_float, positive_float
+from navkit._shared.se2 import exp_body, exp_body_array
+from navkit._shared.validation import as_float_array, finite_float, positive_float
 from navkit.geometry import Twist2D
-from navkit.geometry._kernels import exp_body, exp_body_array
 
 __all__ = ["DiffDrive", "OdometryMethod"]
 

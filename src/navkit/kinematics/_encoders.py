@@ -9,7 +9,7 @@ from typing import overload
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from navkit._validation import as_float_array, positive_float
+from navkit._shared.validation import as_float_array, positive_float
 
 __all__ = ["tick_delta", "ticks_to_distance"]
 

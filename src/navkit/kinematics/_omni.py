@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from navkit._validation import as_float_array, positive_float
+from navkit._shared.validation import as_float_array, positive_float
 from navkit.geometry import Twist2D
 
 __all__ = ["OmniDrive"]

@@ -11,7 +11,7 @@ from pathlib import Path
 import numpy as np
 from numpy.typing import NDArray
 
-from navkit._validation import positive_float
+from navkit._shared.validation import positive_float
 from navkit.geometry import Pose2D
 from navkit.mapping._scan import LaserScan
 

@@ -12,8 +12,8 @@ import numpy as np
 import shapely
 from numpy.typing import ArrayLike, NDArray
 
-from navkit._validation import as_float_array, as_points, finite_float, positive_float
-from navkit.geometry import Pose2D
+from navkit._shared.validation import as_float_array, as_points, finite_float, positive_float
+from navkit.geometry import Pose2D, as_pose
 from navkit.mapping import _mapfile
 from navkit.mapping._inflation import (
     INSCRIBED_INFLATED_OBSTACLE,
@@ -22,7 +22,7 @@ from navkit.mapping._inflation import (
     obstacle_distance,
 )
 from navkit.mapping._kernels import integrate_beams, world_to_cell_kernel
-from navkit.mapping._scan import LaserScan, as_pose
+from navkit.mapping._scan import LaserScan
 
 __all__ = ["OccupancyGrid", "OccupancyGridFields"]
 

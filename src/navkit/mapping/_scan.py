@@ -9,21 +9,10 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from navkit._validation import as_float_array, as_points, finite_float, positive_float
-from navkit.geometry import Pose2D, wrap_angle
+from navkit._shared.validation import as_float_array, as_points, finite_float, positive_float
+from navkit.geometry import Pose2D, as_pose, wrap_angle
 
-__all__ = ["LaserScan", "LocalGrid", "as_pose"]
-
-
-def as_pose(value: Any, name: str) -> Pose2D:
-    """Return ``value`` as a :class:`Pose2D`; array-likes ``[x, y, theta]`` are accepted."""
-    if isinstance(value, Pose2D):
-        return value
-    try:
-        arr = as_float_array(value, name, shape=(3,))
-    except (TypeError, ValueError) as exc:
-        raise type(exc)(f"{name} must be a Pose2D or [x, y, theta]: {exc}") from None
-    return Pose2D(float(arr[0]), float(arr[1]), float(arr[2]))
+__all__ = ["LaserScan", "LocalGrid"]
 
 
 def _readonly(arr: NDArray[Any]) -> NDArray[Any]:

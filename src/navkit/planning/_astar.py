@@ -8,12 +8,11 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from navkit._validation import positive_float
+from navkit._shared.costs import validate_costs_lowest
+from navkit._shared.validation import as_bool, positive_float
 from navkit.errors import NoPathError
-from navkit.planning._costs import validate_costs_lowest
 from navkit.planning._grid_args import (
     check_connectivity,
-    check_flag,
     check_search_size,
     traversable_cell,
 )
@@ -134,7 +133,7 @@ def astar(
     grid, lowest = validate_costs_lowest(costs)
     check_search_size(grid)
     eight = check_connectivity(connectivity)
-    cutting = check_flag(corner_cutting, "corner_cutting")
+    cutting = as_bool(corner_cutting, "corner_cutting")
     weight = positive_float(heuristic_weight, "heuristic_weight", allow_zero=True)
     s = traversable_cell(grid, start, "start")
     t = traversable_cell(grid, goal, "goal")

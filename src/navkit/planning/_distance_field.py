@@ -7,10 +7,10 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from navkit.planning._costs import validate_costs
+from navkit._shared.costs import validate_costs
+from navkit._shared.validation import as_bool
 from navkit.planning._grid_args import (
     check_connectivity,
-    check_flag,
     check_search_size,
     traversable_cell,
 )
@@ -77,7 +77,7 @@ def distance_field(
     grid = validate_costs(costs)
     check_search_size(grid)
     eight = check_connectivity(connectivity)
-    cutting = check_flag(corner_cutting, "corner_cutting")
+    cutting = as_bool(corner_cutting, "corner_cutting")
     t = traversable_cell(grid, goal, "goal")
     rows, cols = grid.shape
     n = rows * cols

@@ -8,10 +8,10 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from navkit._validation import as_cell
+from navkit._shared.costs import validate_costs
+from navkit._shared.validation import as_cell
 from navkit.errors import NoPathError
 from navkit.planning import _fdstar_kernels as _k
-from navkit.planning._costs import validate_costs
 from navkit.planning._heap import heap_new, heap_push
 
 __all__ = ["FieldDStar", "FieldPath", "field_dstar", "field_dstar_cells"]

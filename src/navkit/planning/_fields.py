@@ -19,7 +19,7 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.spatial import cKDTree
 from scipy.special import expit
 
-from navkit._validation import as_float_array, as_points, positive_float
+from navkit._shared.validation import as_float_array, as_points, positive_float
 
 __all__ = [
     "AttractiveField",

@@ -8,7 +8,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from navkit._validation import as_float_array
+from navkit._shared.validation import as_float_array
 from navkit.errors import NoPathError
 from navkit.mapping import LocalGrid
 from navkit.planning._greedy_kernels import greedy_select

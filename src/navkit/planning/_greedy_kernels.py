@@ -3,7 +3,7 @@
 Cells are ``(row, col)`` of a robot-centred square grid whose cell ``(i, j)`` has
 its centre at ``x = j·res - half_width``, ``y = i·res - half_width`` in the robot
 frame (x forward, y left); the robot is at the origin, in cell ``(r0, c0)``.
-Line of sight is :func:`navkit.mapping._kernels.line_is_free`, the Bresenham
+Line of sight is :func:`navkit._shared.lines.line_is_free`, the Bresenham
 line shared with the mapping layer.
 """
 
@@ -14,7 +14,7 @@ import math
 import numpy as np
 from numba import njit
 
-from navkit.mapping._kernels import line_is_free
+from navkit._shared.lines import line_is_free
 
 
 @njit(cache=True, inline="always")

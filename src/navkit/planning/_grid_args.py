@@ -8,7 +8,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from navkit._validation import as_cell
+from navkit._shared.validation import as_cell
 from navkit.planning._search_heap import MAX_NODES
 
 
@@ -19,13 +19,6 @@ def check_connectivity(value: Any) -> bool:
     if int(value) not in (4, 8):
         raise ValueError(f"connectivity must be 4 or 8, got {value!r}")
     return int(value) == 8
-
-
-def check_flag(value: Any, name: str) -> bool:
-    """Return ``value`` as a Python bool; only bool and numpy.bool_ are accepted."""
-    if not isinstance(value, (bool, np.bool_)):
-        raise TypeError(f"{name} must be a bool, got {type(value).__name__}")
-    return bool(value)
 
 
 def traversable_cell(costs: NDArray[np.float64], value: Any, name: str) -> tuple[int, int]:

@@ -25,7 +25,7 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
-from navkit.planning._jit import njit_no_refcount as _njit_no_refcount
+from navkit._shared.jit import njit_no_refcount as _njit_no_refcount
 
 
 @njit(cache=True)

@@ -19,7 +19,7 @@ import math
 import numpy as np
 from numba import njit
 
-from navkit.planning._jit import njit_inline_no_refcount, njit_no_refcount
+from navkit._shared.jit import njit_inline_no_refcount, njit_no_refcount
 from navkit.planning._search_heap import clear, pop, precedes_top, push, tie_key
 
 SQRT2 = math.sqrt(2.0)

@@ -10,7 +10,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from navkit._validation import as_float_array, positive_float
+from navkit._shared.validation import as_float_array, positive_float
 from navkit.mapping import OccupancyGrid
 from navkit.planning._astar import astar
 from navkit.planning._field_dstar import field_dstar_cells

@@ -9,7 +9,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from navkit._validation import positive_float
+from navkit._shared.validation import positive_float
 from navkit.mapping import LaserScan
 from navkit.planning._field_kernels import khatib_beam_force, piecewise_beam_force
 

@@ -36,7 +36,7 @@ import math
 import numpy as np
 from numba import njit
 
-from navkit.planning._jit import njit_no_refcount
+from navkit._shared.jit import njit_no_refcount
 
 MAX_NODES = 2**31 - 1
 """Largest number of nodes (grid cells) the heap can index."""

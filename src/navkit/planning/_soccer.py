@@ -16,7 +16,7 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from navkit._validation import as_float_array, as_points, positive_float
+from navkit._shared.validation import as_float_array, as_points, positive_float
 
 __all__ = ["BehaviourTarget", "GameState", "attack", "defend", "support"]
 

@@ -15,10 +15,9 @@ from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 
-FloatArray = NDArray[np.float64]
-IntArray = NDArray[np.int64]
+from navkit._shared.types import FloatArray
 
 
 def finite_float(value: Any, name: str) -> float:
@@ -41,6 +40,13 @@ def positive_float(value: Any, name: str, *, allow_zero: bool = False) -> float:
         bound = ">= 0" if allow_zero else "> 0"
         raise ValueError(f"{name} must be {bound}, got {out}")
     return out
+
+
+def as_bool(value: Any, name: str) -> bool:
+    """Return ``value`` as a Python bool; only ``bool`` and ``numpy.bool_`` are accepted."""
+    if not isinstance(value, (bool, np.bool_)):
+        raise TypeError(f"{name} must be a bool, got {type(value).__name__}")
+    return bool(value)
 
 
 def as_float_array(
