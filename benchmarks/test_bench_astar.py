@@ -226,7 +226,7 @@ import json, time
 import numpy as np
 t0 = time.perf_counter()
 from navkit.planning import astar
-from navkit.planning import _kernels
+from navkit.planning.grid import _astar_kernels as _kernels
 t1 = time.perf_counter()
 costs = np.ones((64, 64))
 costs[10:50, 30] = np.inf

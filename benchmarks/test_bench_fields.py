@@ -33,8 +33,8 @@ from navkit.planning import (
     greedy_step,
     repulsive_force_from_scan,
 )
-from navkit.planning._field_kernels import khatib_beam_force
-from navkit.planning._scan_forces import _beam_table
+from navkit.planning.reactive._scan_repulsion import _beam_table
+from navkit.planning.reactive._scan_repulsion_kernels import khatib_beam_force
 
 K_REP = 0.5
 D0 = 1.0

@@ -76,7 +76,7 @@ def _imports(path: Path) -> list[tuple[int, str]]:
             found.extend(
                 (node.lineno, f"{module}.{alias.name}")
                 for alias in node.names
-                if alias.name.startswith("_")
+                if alias.name.startswith("_") and not alias.name.startswith("__")
             )
     return [(line, name) for line, name in found if name.split(".")[0] in ("navkit", "")]
 

@@ -16,8 +16,9 @@ from hypothesis import strategies as st
 from skimage.graph import MCP_Geometric
 
 from navkit import NavkitError, NoPathError
-from navkit.planning import GridPath, _workspace, astar, distance_field
-from navkit.planning._grid_args import check_search_size
+from navkit.planning import GridPath, astar, distance_field
+from navkit.planning.grid import _workspace
+from navkit.planning.grid._arguments import check_search_size
 
 SQRT2 = math.sqrt(2.0)
 
@@ -219,7 +220,7 @@ FRESH_PROCESS = """
 import json
 import numpy as np
 from navkit.planning import astar, distance_field
-from navkit.planning import _kernels
+from navkit.planning.grid import _astar_kernels as _kernels
 costs = np.ones((8, 8))
 costs[2:6, 4] = np.inf
 astar(costs, (0, 0), (7, 7))

@@ -11,8 +11,8 @@ from numpy.typing import ArrayLike, NDArray
 from navkit._shared.costs import validate_costs
 from navkit._shared.validation import as_cell
 from navkit.errors import NoPathError
-from navkit.planning import _fdstar_kernels as _k
-from navkit.planning._heap import heap_new, heap_push
+from navkit.planning.grid import _field_dstar_kernels as _k
+from navkit.planning.grid._dstar_heap import heap_new, heap_push
 
 __all__ = ["FieldDStar", "FieldPath", "field_dstar", "field_dstar_cells"]
 

@@ -20,7 +20,7 @@ import numpy as np
 from numba import njit
 
 from navkit._shared.jit import njit_inline_no_refcount, njit_no_refcount
-from navkit.planning._search_heap import clear, pop, precedes_top, push, tie_key
+from navkit.planning.grid._search_heap import clear, pop, precedes_top, push, tie_key
 
 SQRT2 = math.sqrt(2.0)
 _OCTILE_EXTRA = SQRT2 - 1.0
@@ -139,7 +139,7 @@ def grid_search(
     scale : float
         Heuristic weight × minimum cell cost; 0 gives Dijkstra.
     g, parent, mark, heap, pos, size, stamp
-        Scratch from :func:`navkit.planning._workspace.workspace` (at least
+        Scratch from :func:`navkit.planning.grid._workspace.workspace` (at least
         ``rows * cols`` cells). On return ``mark[v] == stamp + 1`` for every
         closed cell (exhaustion closes every reachable one), ``g`` holds their
         cost from ``start`` (exact when the heuristic weight is <= 1) and

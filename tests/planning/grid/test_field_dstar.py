@@ -24,7 +24,7 @@ from scipy.sparse.csgraph import dijkstra
 
 from navkit import NoPathError
 from navkit.planning import FieldDStar, FieldPath, field_dstar
-from navkit.planning._fdstar_kernels import corner_cost
+from navkit.planning.grid._field_dstar_kernels import corner_cost
 
 FloatArray = NDArray[np.float64]
 SQRT2 = math.sqrt(2.0)

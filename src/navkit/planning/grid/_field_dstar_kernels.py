@@ -31,7 +31,7 @@ exact. (Costs are >= 1, so this holds after any cost update.)
 
 Calling convention. The search kernels take the planner's arrays as one tuple
 ``st = (pad, g, rhs, nodes, keys, pos, size)`` (``nodes, keys, pos, size`` being
-the indexed heap of :mod:`navkit.planning._heap`) and its scalars as
+the indexed heap of :mod:`navkit.planning.grid._dstar_heap`) and its scalars as
 ``prm = (width, nrows, ncols, start_row, start_col, goal, km, interp, hscale)``;
 both are built by :func:`state` and :func:`params`.
 """
@@ -44,7 +44,7 @@ from typing import Any
 import numpy as np
 from numba import njit
 
-from navkit.planning._heap import heap_push, heap_remove
+from navkit.planning.grid._dstar_heap import heap_push, heap_remove
 
 SQRT2 = math.sqrt(2.0)
 FIELD_HSCALE = 1.0 / SQRT2

@@ -11,7 +11,7 @@ from numpy.typing import ArrayLike, NDArray
 from navkit._shared.validation import as_float_array
 from navkit.errors import NoPathError
 from navkit.mapping import LocalGrid
-from navkit.planning._greedy_kernels import greedy_select
+from navkit.planning.reactive._greedy_kernels import greedy_select
 
 __all__ = ["GreedyStep", "greedy_step"]
 

@@ -11,13 +11,13 @@ from numpy.typing import ArrayLike, NDArray
 from navkit._shared.costs import validate_costs_lowest
 from navkit._shared.validation import as_bool, positive_float
 from navkit.errors import NoPathError
-from navkit.planning._grid_args import (
+from navkit.planning.grid._arguments import (
     check_connectivity,
     check_search_size,
     traversable_cell,
 )
-from navkit.planning._kernels import grid_search, trace_path
-from navkit.planning._workspace import workspace
+from navkit.planning.grid._astar_kernels import grid_search, trace_path
+from navkit.planning.grid._workspace import workspace
 
 __all__ = ["GridPath", "astar"]
 
@@ -99,7 +99,7 @@ def astar(
     Notes
     -----
     The search runs in a numba kernel over flat arrays with an indexed 4-ary
-    heap (:mod:`navkit.planning._search_heap`); memory is O(cells). Its scratch
+    heap (:mod:`navkit.planning.grid._search_heap`); memory is O(cells). Its scratch
     arrays (33 bytes per cell) are kept per thread and reused by later calls on
     grids of the same or smaller size, so repeated queries pay no allocation.
     Grids may have at most 2**31 - 1 cells. Ties among equal f are broken by the

@@ -9,9 +9,9 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from navkit.behaviours import GameState, attack, defend, support
 from navkit.control import PotentialFieldController
 from navkit.geometry import Pose2D, integrate
-from navkit.planning import GameState, attack, defend, support
 
 OWN = (-4.5, 0.0)
 THEIRS = (4.5, 0.0)

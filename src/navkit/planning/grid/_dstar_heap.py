@@ -2,7 +2,7 @@
 
 Field D* (D* Lite keys) raises, lowers and removes queued keys, so it needs this
 general heap; the monotone searches (A*, Dijkstra) use the leaner 4-ary heap of
-:mod:`navkit.planning._search_heap`. It lives in four preallocated arrays so
+:mod:`navkit.planning.grid._search_heap`. It lives in four preallocated arrays so
 kernels never allocate Python objects in their loops:
 
 ``nodes`` (capacity,) int64

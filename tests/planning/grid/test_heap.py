@@ -5,7 +5,7 @@ from __future__ import annotations
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from navkit.planning._heap import heap_new, heap_pop, heap_push, heap_remove
+from navkit.planning.grid._dstar_heap import heap_new, heap_pop, heap_push, heap_remove
 
 ops = st.lists(
     st.tuples(

@@ -15,7 +15,7 @@ from navkit import NoPathError
 from navkit.geometry import Pose2D
 from navkit.mapping import OccupancyGrid
 from navkit.planning import WorldPath, astar, distance_field, plan_path
-from navkit.planning import _plan_path as plan_module
+from navkit.planning.grid import _map_planner as plan_module
 
 
 def doorway_grid(door_cells: int, origin: Pose2D | None = None) -> OccupancyGrid:

@@ -11,7 +11,7 @@ from numpy.typing import NDArray
 
 from navkit._shared.validation import positive_float
 from navkit.mapping import LaserScan
-from navkit.planning._field_kernels import khatib_beam_force, piecewise_beam_force
+from navkit.planning.reactive._scan_repulsion_kernels import khatib_beam_force, piecewise_beam_force
 
 __all__ = ["piecewise_repulsive_force_from_scan", "repulsive_force_from_scan"]
 

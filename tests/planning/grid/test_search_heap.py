@@ -6,7 +6,7 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from navkit.planning._search_heap import (
+from navkit.planning.grid._search_heap import (
     clear,
     node_of,
     pop,

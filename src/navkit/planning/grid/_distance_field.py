@@ -9,13 +9,13 @@ from numpy.typing import ArrayLike, NDArray
 
 from navkit._shared.costs import validate_costs
 from navkit._shared.validation import as_bool
-from navkit.planning._grid_args import (
+from navkit.planning.grid._arguments import (
     check_connectivity,
     check_search_size,
     traversable_cell,
 )
-from navkit.planning._kernels import grid_search
-from navkit.planning._workspace import workspace
+from navkit.planning.grid._astar_kernels import grid_search
+from navkit.planning.grid._workspace import workspace
 
 __all__ = ["distance_field"]
 

@@ -1,7 +1,7 @@
 """Indexed 4-ary min-heap for the monotone grid searches, A* and Dijkstra (private).
 
 A* and Dijkstra only ever lower a queued node's key (decrease-key), so their
-queue can be leaner than the general indexed heap of :mod:`navkit.planning._heap`
+queue can be leaner than the general indexed heap of :mod:`navkit.planning.grid._dstar_heap`
 that D* Lite needs. Each entry is two float64 values stored side by side in one
 array, so a heap level is read from a single cache line:
 

@@ -22,7 +22,7 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import NDArray
 
-from navkit.planning._search_heap import search_heap_new
+from navkit.planning.grid._search_heap import search_heap_new
 
 # Stamps live in uint32; restart (with a full clear) well before overflow.
 _STAMP_LIMIT = 2**32 - 4

@@ -12,8 +12,8 @@ from numpy.typing import ArrayLike, NDArray
 
 from navkit._shared.validation import as_float_array, positive_float
 from navkit.mapping import OccupancyGrid
-from navkit.planning._astar import astar
-from navkit.planning._field_dstar import field_dstar_cells
+from navkit.planning.grid._astar import astar
+from navkit.planning.grid._field_dstar import field_dstar_cells
 
 __all__ = ["WorldPath", "plan_path"]
 
@@ -115,7 +115,7 @@ def plan_path(
     unknown_cost : float, default inf
         Cost of unknown cells: ``inf`` (impassable) or a value >= 1.
     planner : str, default "astar"
-        Name of the cell planner, a key of ``navkit.planning._plan_path.PLANNERS``:
+        Name of the cell planner, a key of ``navkit.planning.grid._map_planner.PLANNERS``:
         ``"astar"`` or ``"field_dstar"`` (any-angle, see :func:`field_dstar`).
     options : mapping, optional
         Keyword arguments for the planner, e.g. ``{"heuristic_weight": 1.5}``

@@ -9,7 +9,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from navkit._shared.validation import as_cell
-from navkit.planning._search_heap import MAX_NODES
+from navkit.planning.grid._search_heap import MAX_NODES
 
 
 def check_connectivity(value: Any) -> bool:

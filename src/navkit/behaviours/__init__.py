@@ -1,0 +1,12 @@
+"""Behaviours: application logic that chooses what the controllers pursue.
+
+The wheeled soccer robot's roles (attack, support, defend) map a
+:class:`GameState` to a :class:`BehaviourTarget` — a goal point and the points
+that repel — for any planner or controller (e.g.
+:class:`navkit.control.PotentialFieldController`). World points are ``(x, y)`` in
+metres.
+"""
+
+from navkit.behaviours._soccer import BehaviourTarget, GameState, attack, defend, support
+
+__all__ = ["BehaviourTarget", "GameState", "attack", "defend", "support"]
