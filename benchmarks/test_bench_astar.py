@@ -36,7 +36,7 @@ import pytest
 import tcod.path
 
 from navkit.mapping import OccupancyGrid
-from navkit.planning import astar, distance_field, plan_path
+from navkit.planning import MapPlanner, astar, distance_field, plan_path
 
 SIZE = 1024
 START = (0, 0)
@@ -264,19 +264,22 @@ WILLOW = (
 )
 
 
-@pytest.mark.parametrize("what", ["astar", "plan_path"])
+@pytest.mark.parametrize("what", ["astar", "plan_path", "map_planner"])
 def test_office_map(benchmark: Any, what: str) -> None:
     """Real robot-built office map (566 x 608 at 0.1 m), robot radius 0.3 m.
 
     The route runs from a central corridor to the farthest reachable cell, for
     comparison with the issue's ROS planner figures (21.6 ms for a 7.9 m route,
     423 ms for a 32 m one). ``astar`` times the search on precomputed costs;
-    ``plan_path`` also inflates the map and converts to world coordinates.
+    ``plan_path`` (one-shot) also inflates the map into traversal costs and
+    converts to world coordinates on every query; ``map_planner`` times
+    :meth:`MapPlanner.plan` on a planner built once, which keeps the costmap
+    (and its prepared A*) between queries: a repeated world query.
     """
     if not WILLOW.is_file():
         pytest.skip("shared ROS map data not available")
     grid = OccupancyGrid.load(WILLOW)
-    costs = grid.traversal_costs(0.3)
+    costs = grid.traversal_costs(robot_radius=0.3)
     start = (290, 221)
     field = distance_field(costs, start)
     goal = tuple(int(v) for v in np.unravel_index(
@@ -286,9 +289,16 @@ def test_office_map(benchmark: Any, what: str) -> None:
         path = benchmark(astar, costs, start, goal)
         length_m = path.length * grid.resolution
         expanded = path.expanded
-    else:
+    elif what == "plan_path":
         start_xy, goal_xy = grid.cell_to_world([start, goal])
         world = benchmark(plan_path, grid, start_xy, goal_xy, robot_radius=0.3)
+        length_m = world.length
+        expanded = world.expanded
+    else:
+        start_xy, goal_xy = grid.cell_to_world([start, goal])
+        planner = MapPlanner(grid, robot_radius=0.3)
+        world = benchmark(planner.plan, start_xy, goal_xy)
+        assert world.cost == plan_path(grid, start_xy, goal_xy, robot_radius=0.3).cost
         length_m = world.length
         expanded = world.expanded
     benchmark.extra_info.update(route_m=length_m, expanded=expanded)

@@ -17,7 +17,7 @@ group is the speed-up the issue's ≥ 10× target refers to, and
   compiled predict+update kernel call, an ``UpdateResult``).
 * ``navkit_general``: the general numpy :class:`ExtendedKalmanFilter` with the
   same Python model functions as filterpy (for reference; it is not the fast path).
-* ``batch_100k``: :meth:`PlanarFusion.run` over a 100,000-row log (odometry at
+* ``batch_100k``: :meth:`PlanarFusion.update_batch` over a 100,000-row log (odometry at
   50 Hz, IMU yaw at 50 Hz, gyro at 100 Hz).
 """
 
@@ -110,12 +110,14 @@ def test_step_filterpy(benchmark: Any) -> None:
 def test_step_navkit_planar(benchmark: Any) -> None:
     times = DT * np.arange(1, STEPS + 1)
     rows = [(float(t), float(z[0]), float(z[1])) for t, z in zip(times, MEASUREMENTS, strict=True)]
-    PlanarFusion(X0, P0, process_noise=Q_PER_S, t0=0.0).update_odometry(DT, 0.0, 0.0, 1.0, 1.0)
+    PlanarFusion(X0, P0, process_noise=Q_PER_S, t0=0.0).update_odometry(
+        DT, 0.0, 0.0, v_variance=1.0, omega_variance=1.0
+    )
 
     def run() -> None:
         fusion = PlanarFusion(X0, P0, process_noise=Q_PER_S, t0=0.0)
         for t, v, w in rows:
-            fusion.update_odometry(t, v, w, 1e-3, 1e-3)
+            fusion.update_odometry(t, v, w, v_variance=1e-3, omega_variance=1e-3)
 
     benchmark(run)
     per_step(benchmark)
@@ -163,7 +165,7 @@ def log_100k() -> MeasurementLog:
 
 @pytest.mark.benchmark(group="batch-100k")
 def test_batch_100k(benchmark: Any, log_100k: MeasurementLog) -> None:
-    PlanarFusion(t0=0.0).run(log_100k)  # compile outside the timing
-    result = benchmark(lambda: PlanarFusion(t0=0.0).run(log_100k))
+    PlanarFusion(t0=0.0).update_batch(log_100k)  # compile outside the timing
+    result = benchmark(lambda: PlanarFusion(t0=0.0).update_batch(log_100k))
     assert result.states.shape == (100_000, 6)
     benchmark.extra_info["us_per_measurement"] = round(benchmark.stats.stats.mean / 1e5 * 1e6, 3)

@@ -59,8 +59,9 @@ def test_navkit_astar_same_map(benchmark: Any, name: str) -> None:
     benchmark.extra_info.update(expanded=path.expanded, cost=path.cost)
 
 
-def _blocking_cells(points: np.ndarray, distance: float) -> list[tuple[int, int]]:
-    ahead = shapely.LineString(points).interpolate(distance)
+def _blocking_cells(nodes: np.ndarray, distance: float) -> list[tuple[int, int]]:
+    """The 2 x 2 cells around the point ``distance`` along a path in node coordinates."""
+    ahead = shapely.LineString(nodes).interpolate(distance)
     r = min(max(math.floor(ahead.x), 1), SIZE - 1)
     c = min(max(math.floor(ahead.y), 1), SIZE - 1)
     return [(r - 1, c - 1), (r - 1, c), (r, c - 1), (r, c)]
@@ -71,12 +72,13 @@ def _blocking_cells(points: np.ndarray, distance: float) -> list[tuple[int, int]
 def test_field_dstar_local_replan(benchmark: Any, name: str, moved: bool) -> None:
     costs = benchmark_map(name)
     base = FieldDStar(costs).plan(NODE_START, NODE_GOAL)
+    nodes = base.points + 0.5  # node coordinates (the path's points are node - 0.5)
     if moved:
-        step = shapely.LineString(base.points).interpolate(2.0)
+        step = shapely.LineString(nodes).interpolate(2.0)
         new_start: tuple[int, int] | None = (round(step.x), round(step.y))
     else:
         new_start = None
-    cells = _blocking_cells(base.points, 5.0 + (2.0 if moved else 0.0))
+    cells = _blocking_cells(nodes, 5.0 + (2.0 if moved else 0.0))
     keep = [cell for cell in cells if cell not in {(0, 0), (SIZE - 1, SIZE - 1)}]
 
     def setup() -> tuple[tuple[FieldDStar], dict[str, Any]]:

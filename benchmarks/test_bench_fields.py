@@ -8,7 +8,7 @@ Compares, for a 360-beam and a 3,600-beam scan:
   NumPy-vectorised version, target: at least 3x faster;
 
 and, for reference, the same on real 681-beam Hokuyo scans (when ``../shared/data``
-is present), ``field_grid`` on 300 x 300 and 1200 x 1200 maps, one ``greedy_step`` on the
+is present), ``sample_field`` on 300 x 300 and 1200 x 1200 maps, one ``greedy_step`` on the
 TurtleBot3 paper's 21 x 21 grid and one ``PotentialFieldController.step``.
 
 Run with ``python -m pytest benchmarks/test_bench_fields.py --benchmark-only``.
@@ -29,9 +29,9 @@ from navkit.mapping import LaserScan
 from navkit.planning import (
     BlendedAttraction,
     KhatibRepulsion,
-    field_grid,
     greedy_step,
     repulsive_force_from_scan,
+    sample_field,
 )
 from navkit.planning.reactive._scan_repulsion import _beam_table
 from navkit.planning.reactive._scan_repulsion_kernels import khatib_beam_force
@@ -49,7 +49,7 @@ def empty_kernel(
     range_min: float,
     range_max: float,
     k_rep: float,
-    d0: float,
+    influence_radius: float,
 ) -> tuple[float, float]:
     return 0.0, 0.0
 
@@ -75,7 +75,8 @@ def make_scan(n: int, seed: int = 0) -> LaserScan:
     t = b - np.sqrt(np.where(hit, disc, 0.0))
     r = np.where(hit & (t > 0.0) & (t < r), t, r) + rng.normal(0.0, 0.01, n)
     r[rng.random(n) < 0.02] = math.nan
-    return LaserScan(r, -math.pi, 2.0 * math.pi / n, 0.12, 3.5)
+    return LaserScan(r, angle_min=-math.pi, angle_increment=2.0 * math.pi / n, range_min=0.12,
+                     range_max=3.5)
 
 
 def numpy_repulsion(scan: LaserScan, k_rep: float, d0: float) -> np.ndarray:
@@ -103,8 +104,9 @@ def numpy_repulsion_tables(
 @pytest.fixture(params=[360, 3600], ids=lambda n: f"{n}beams")
 def scan(request: pytest.FixtureRequest) -> LaserScan:
     s = make_scan(request.param)
-    want = KhatibRepulsion(s.to_points(), k_rep=K_REP, d0=D0).force([0.0, 0.0])[0]
-    np.testing.assert_allclose(repulsive_force_from_scan(s, K_REP, D0), want, rtol=1e-12)
+    want = KhatibRepulsion(s.to_points(), k_rep=K_REP, influence_radius=D0).force([0.0, 0.0])[0]
+    got = repulsive_force_from_scan(s, k_rep=K_REP, influence_radius=D0)
+    np.testing.assert_allclose(got, want, rtol=1e-12)
     np.testing.assert_allclose(numpy_repulsion(s, K_REP, D0), want, rtol=1e-9)
     return s
 
@@ -124,7 +126,7 @@ def test_kernel(benchmark, scan: LaserScan) -> None:  # type: ignore[no-untyped-
 
 
 def test_public_call(benchmark, scan: LaserScan) -> None:  # type: ignore[no-untyped-def]
-    benchmark(repulsive_force_from_scan, scan, K_REP, D0)
+    benchmark(repulsive_force_from_scan, scan, k_rep=K_REP, influence_radius=D0)
 
 
 def test_numpy_vectorised(benchmark, scan: LaserScan) -> None:  # type: ignore[no-untyped-def]
@@ -139,26 +141,32 @@ def test_numpy_vectorised_with_tables(benchmark, scan: LaserScan) -> None:  # ty
 def test_point_field_on_scan_points(benchmark, scan: LaserScan) -> None:  # type: ignore[no-untyped-def]
     # The generic field path: convert the scan to points, then evaluate KhatibRepulsion.
     def via_points() -> np.ndarray:
-        return KhatibRepulsion(scan.to_points(), k_rep=K_REP, d0=D0).force((0.0, 0.0))[0]
+        points = scan.to_points()
+        return KhatibRepulsion(points, k_rep=K_REP, influence_radius=D0).force((0.0, 0.0))[0]
 
     benchmark(via_points)
 
 
-def test_field_grid_300x300(benchmark) -> None:  # type: ignore[no-untyped-def]
+def test_sample_field_300x300(benchmark) -> None:  # type: ignore[no-untyped-def]
     obstacles = np.random.default_rng(1).uniform(0.0, 12.0, (50, 2))
-    field = BlendedAttraction((10.0, 10.0), rad_thr=2.0, width=0.5) + KhatibRepulsion(
-        obstacles, k_rep=0.2, d0=0.8
+    field = BlendedAttraction((10.0, 10.0), threshold_radius=2.0, width=0.5) + KhatibRepulsion(
+        obstacles, k_rep=0.2, influence_radius=0.8
     )
-    benchmark(field_grid, field, (0.0, 12.0), (0.0, 12.0), 0.04)
+    benchmark(sample_field, field, xlim=(0.0, 12.0), ylim=(0.0, 12.0), resolution=0.04)
 
 
-def test_field_grid_1200x1200(benchmark) -> None:  # type: ignore[no-untyped-def]
+def test_sample_field_1200x1200(benchmark) -> None:  # type: ignore[no-untyped-def]
     # The paper's map size, with a scan's worth of obstacle points.
     obstacles = np.random.default_rng(2).uniform(0.0, 12.0, (360, 2))
-    field = BlendedAttraction((10.0, 10.0), rad_thr=2.0, width=0.5) + KhatibRepulsion(
-        obstacles, k_rep=0.2, d0=0.8
+    field = BlendedAttraction((10.0, 10.0), threshold_radius=2.0, width=0.5) + KhatibRepulsion(
+        obstacles, k_rep=0.2, influence_radius=0.8
     )
-    benchmark.pedantic(field_grid, (field, (0.0, 12.0), (0.0, 12.0), 0.01), rounds=3)
+    benchmark.pedantic(
+        sample_field,
+        (field,),
+        {"xlim": (0.0, 12.0), "ylim": (0.0, 12.0), "resolution": 0.01},
+        rounds=3,
+    )
 
 
 def test_greedy_step_21x21(benchmark) -> None:  # type: ignore[no-untyped-def]
@@ -170,7 +178,7 @@ def test_greedy_step_21x21(benchmark) -> None:  # type: ignore[no-untyped-def]
 def test_controller_step_with_scan(benchmark) -> None:  # type: ignore[no-untyped-def]
     ctl = PotentialFieldController()
     s = make_scan(360)
-    benchmark(ctl.step, Pose2D(1.2, 0.7, 0.3), None, Pose2D(5.0, 3.0, 0.0), s, 0.05)
+    benchmark(ctl.step, Pose2D(1.2, 0.7, 0.3), Pose2D(5.0, 3.0, 0.0), dt=0.05, obstacles=s)
 
 
 @pytest.fixture(scope="module")
@@ -179,11 +187,19 @@ def hokuyo_scans() -> list[LaserScan]:
     if not (HOKUYO / "demo_scans.csv").is_file():
         pytest.skip("shared Hokuyo data not available")
     rows = np.loadtxt(HOKUYO / "demo_scans.csv", delimiter=",", skiprows=1, max_rows=50)
-    return [LaserScan(row[3:], -2.0862, 0.0061359, 0.02, 5.6) for row in rows]
+    return [
+        LaserScan(row[3:], angle_min=-2.0862, angle_increment=0.0061359, range_min=0.02,
+                  range_max=5.6)
+        for row in rows
+    ]
 
 
 def test_public_call_real_hokuyo(benchmark, hokuyo_scans: list[LaserScan]) -> None:  # type: ignore[no-untyped-def]
-    benchmark(lambda: [repulsive_force_from_scan(s, K_REP, D0) for s in hokuyo_scans])
+    benchmark(
+        lambda: [
+            repulsive_force_from_scan(s, k_rep=K_REP, influence_radius=D0) for s in hokuyo_scans
+        ]
+    )
 
 
 def test_numpy_real_hokuyo(benchmark, hokuyo_scans: list[LaserScan]) -> None:  # type: ignore[no-untyped-def]

@@ -21,19 +21,19 @@ class NoPathError(NavkitError):
     ----------
     message : str
         Human-readable explanation.
-    explored : int, optional
+    expanded : int, optional
         Number of nodes (cells or corners) the search expanded before it gave up.
 
     Examples
     --------
-    >>> err = NoPathError("goal unreachable", explored=42)
-    >>> err.explored
+    >>> err = NoPathError("goal unreachable", expanded=42)
+    >>> err.expanded
     42
     """
 
-    def __init__(self, message: str, explored: int = 0) -> None:
+    def __init__(self, message: str, expanded: int = 0) -> None:
         super().__init__(message)
-        self.explored = int(explored)
+        self.expanded = int(expanded)
 
 
 class FilterError(NavkitError):

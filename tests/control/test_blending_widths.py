@@ -3,9 +3,9 @@
 A robot 3 m from the goal, ``max_speed`` 0.5 m/s, accel 1 / decel 2 m/s², 20 Hz.
 Measured here (time to come within 1 cm, overshoot past the goal, final error):
 paraboloid 7.3 s, none, 0; cone 6.8 s, 6.2 cm, chattering; blended ω = 0.05 and 0.1
-(``rad_thr = 0.5``) stall about 0.55 m short in the ring of minima outside
-``rad_thr``; ω = 0.15 (the default) 8.25 s, none, 3.75 mm; ω = 0.3 and 0.5 settle
-4.6 cm short, where σ(0) > 0 moves the minimum off the goal.
+(``threshold_radius = 0.5``) stall about 0.55 m short in the ring of minima
+outside ``threshold_radius``; ω = 0.15 (the default) 8.25 s, none, 3.75 mm;
+ω = 0.3 and 0.5 settle 4.6 cm short, where σ(0) > 0 moves the minimum off the goal.
 """
 
 from __future__ import annotations
@@ -37,7 +37,7 @@ def approach(
     arrival = math.inf
     xs = []
     for k in range(int(seconds / dt)):
-        pose = integrate(pose, ctl.step(pose, None, target, None, dt), dt)
+        pose = integrate(pose, ctl.step(pose, target, dt=dt), dt)
         xs.append(pose.x)
         if arrival == math.inf and abs(GOAL - pose.x) < 0.01:
             arrival = (k + 1) * dt
@@ -71,17 +71,17 @@ def test_cone_arrives_first_but_overshoots() -> None:
 
 @pytest.mark.parametrize("width", [0.05, 0.1])
 def test_narrow_blend_stalls_in_the_ring_of_minima(width: float) -> None:
-    field = BlendedAttraction((0.0, 0.0), rad_thr=0.5, width=width)
+    field = BlendedAttraction((0.0, 0.0), threshold_radius=0.5, width=width)
     out = approach(field)
     assert out["stalled"] == 1.0 and out["arrival"] == math.inf
-    # It stops on the field's own equilibrium just outside rad_thr.
+    # It stops on the field's own equilibrium just outside threshold_radius.
     ring = equilibrium(field, 0.5, 1.0)
     assert out["error"] == pytest.approx(ring, abs=2e-3)
 
 
 @pytest.mark.parametrize("width", [0.15, 0.3, 0.5])
 def test_wider_blends_settle_on_the_displaced_minimum(width: float) -> None:
-    field = BlendedAttraction((0.0, 0.0), rad_thr=0.5, width=width)
+    field = BlendedAttraction((0.0, 0.0), threshold_radius=0.5, width=width)
     out = approach(field)
     assert not out["stalled"]
     assert out["overshoot"] == 0.0

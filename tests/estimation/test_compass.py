@@ -37,7 +37,7 @@ TABLE = [
 
 @pytest.mark.parametrize(("raw", "initial", "expected_deg"), TABLE)
 def test_table(raw: float, initial: float, expected_deg: float) -> None:
-    yaw = compass_to_yaw(raw, initial)
+    yaw = compass_to_yaw(raw, initial_deg=initial)
     assert isinstance(yaw, float)
     assert yaw == pytest.approx(math.radians(expected_deg), abs=1e-12)
 
@@ -46,10 +46,12 @@ def test_array_matches_scalars() -> None:
     raws = np.array([row[0] for row in TABLE])
     initials = {row[1] for row in TABLE}
     for initial in initials:
-        out = compass_to_yaw(raws, initial)
+        out = compass_to_yaw(raws, initial_deg=initial)
         assert isinstance(out, np.ndarray)
         assert out.shape == raws.shape
-        np.testing.assert_array_equal(out, [compass_to_yaw(float(r), initial) for r in raws])
+        np.testing.assert_array_equal(
+            out, [compass_to_yaw(float(r), initial_deg=initial) for r in raws]
+        )
 
 
 def test_input_not_modified_and_2d_shape_kept() -> None:
@@ -67,10 +69,10 @@ def test_input_not_modified_and_2d_shape_kept() -> None:
     turn=st.floats(0.01, 179.0),
 )
 def test_range_and_clockwise_is_negative(raw: float, initial: float, turn: float) -> None:
-    yaw = compass_to_yaw(raw, initial)
+    yaw = compass_to_yaw(raw, initial_deg=initial)
     assert -math.pi < yaw <= math.pi
     # Turning clockwise increases the compass reading and must decrease the yaw.
-    after = compass_to_yaw(raw + turn, initial)
+    after = compass_to_yaw(raw + turn, initial_deg=initial)
     change = angle_diff(after, yaw)
     assert change < 0.0
     assert change == pytest.approx(-math.radians(turn), abs=1e-9)
@@ -111,13 +113,21 @@ def test_calibration_unwrap_across_calls() -> None:
 @pytest.mark.parametrize("bad", [math.nan, math.inf, [0.0, math.nan]])
 def test_non_finite_readings_raise(bad: object) -> None:
     with pytest.raises(ValueError, match="raw_deg"):
-        compass_to_yaw(bad)  # type: ignore[arg-type]
+        compass_to_yaw(bad)  # type: ignore[call-overload]
     with pytest.raises(ValueError, match="raw_deg"):
-        CompassCalibration()(bad)  # type: ignore[arg-type]
+        CompassCalibration()(bad)  # type: ignore[call-overload]
 
 
 def test_bad_initial_and_types_raise() -> None:
     with pytest.raises(ValueError, match="initial_deg"):
-        compass_to_yaw(10.0, math.nan)
+        compass_to_yaw(10.0, initial_deg=math.nan)
     with pytest.raises(TypeError, match="raw_deg"):
-        compass_to_yaw("north")  # type: ignore[arg-type]
+        compass_to_yaw("north")
+
+
+def test_options_are_keyword_only() -> None:
+    with pytest.raises(TypeError, match="positional"):
+        compass_to_yaw(10.0, 20.0)  # type: ignore[call-overload]
+    with pytest.raises(TypeError, match="positional"):
+        CompassCalibration(True)  # type: ignore[call-arg]
+    assert compass_to_yaw(10.0, initial_deg=20.0) == pytest.approx(math.radians(10.0))

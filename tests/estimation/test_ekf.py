@@ -133,10 +133,12 @@ def test_planar_fusion_kernel_matches_general_ekf() -> None:
         f, jac = planar_model(dt)
         ekf.predict(f, jac, Q_PER_S * dt)
         if kind == "odom":
-            res = fusion.update_odometry(t, z[0], z[1], R_ODOM_DIAG[0, 0], R_ODOM_DIAG[1, 1])
+            res = fusion.update_odometry(
+                t, z[0], z[1], v_variance=R_ODOM_DIAG[0, 0], omega_variance=R_ODOM_DIAG[1, 1]
+            )
             ref = ekf.update(z, lambda x: H_ODOM @ x, H_ODOM, R_ODOM_DIAG)
         else:
-            res = fusion.update_yaw(t, z[0], R_YAW[0, 0])
+            res = fusion.update_yaw(t, z[0], variance=R_YAW[0, 0])
             ref = ekf.update(z, lambda x: H_YAW @ x, H_YAW, R_YAW, angle_measurements=(0,))
         assert res.accepted and ref.accepted
         assert res.nis == pytest.approx(ref.nis, rel=1e-7, abs=1e-9)
@@ -270,6 +272,45 @@ def test_bad_input_raises_and_leaves_state(
 def test_bad_construction(x0: object, p0: object, angles: tuple[int, ...], match: str) -> None:
     with pytest.raises(ValueError, match=match):
         ExtendedKalmanFilter(x0, p0, angle_states=angles)  # type: ignore[arg-type]
+
+
+def test_options_are_keyword_only() -> None:
+    with pytest.raises(TypeError, match="positional"):
+        ExtendedKalmanFilter([0.0, 0.0], np.eye(2), (1,))  # type: ignore[call-arg]
+    ekf = ExtendedKalmanFilter([0.0, 0.0], np.eye(2), angle_states=(1,))
+    assert ekf.angle_states == (1,)
+    with pytest.raises(TypeError, match="positional"):
+        ekf.update([1.0], lambda x: x[:1], H2, [[1.0]], (0,))  # type: ignore[call-arg]
+    np.testing.assert_array_equal(ekf.x, [0.0, 0.0])
+
+
+def test_update_result_is_an_immutable_container() -> None:
+    from navkit.estimation import UpdateResult
+
+    residual = np.array([0.5, -0.25])
+    result = UpdateResult(True, 1.5, residual)
+    residual[0] = 9.0  # the result holds its own copy
+    np.testing.assert_array_equal(result.residual, [0.5, -0.25])
+    with pytest.raises(ValueError, match="read-only"):
+        result.residual[0] = 1.0
+    with pytest.raises(AttributeError):
+        result.nis = 2.0  # type: ignore[misc]
+    assert result.reason is None and bool(result)
+    assert result != UpdateResult(True, 1.5, np.array([0.5, -0.25]))  # compared by identity
+    with pytest.raises(ValueError, match="residual"):
+        UpdateResult(True, 1.0, np.zeros((2, 2)))
+    with pytest.raises(TypeError, match="accepted"):
+        UpdateResult(1, 1.0, np.zeros(1))  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match="nis"):
+        UpdateResult(True, -1.0, np.zeros(1))
+    with pytest.raises(TypeError, match="reason"):
+        UpdateResult(False, 1.0, np.zeros(1), 3)  # type: ignore[arg-type]
+    # The filters' results have the same fields and types.
+    ekf = ExtendedKalmanFilter([0.0, 0.0], np.eye(2))
+    out = ekf.update([1.0], lambda x: x[:1], H2, [[1.0]])
+    assert type(out) is UpdateResult
+    assert isinstance(out.accepted, bool) and isinstance(out.nis, float)
+    assert out.residual.shape == (1,) and out.reason is None
 
 
 def test_inputs_not_modified_and_state_is_a_copy() -> None:

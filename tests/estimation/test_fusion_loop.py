@@ -80,14 +80,14 @@ def simulate(seed: int) -> dict[str, np.ndarray]:
 
 
 def wheel_only(sim: dict[str, np.ndarray]) -> np.ndarray:
-    odo = DiffOdometry(MODEL_DRIVE, TPR, encoder_bits=32)
-    return odo.run(sim["ticks"][:, 0], sim["ticks"][:, 1])
+    odo = DiffOdometry(MODEL_DRIVE, ticks_per_rev=TPR, encoder_bits=32)
+    return odo.update_batch(sim["ticks"][:, 0], sim["ticks"][:, 1])
 
 
 def fused(sim: dict[str, np.ndarray]) -> np.ndarray:
     # Odometry twist from the tick differences, with the (wrong) model radius.
     dphi = np.diff(sim["ticks"], axis=0) * (2.0 * math.pi / TPR)
-    twist = MODEL_DRIVE.forward_batch(dphi[:, 0] / DT, dphi[:, 1] / DT)
+    twist = MODEL_DRIVE.forward_batch(dphi / DT)
     t = sim["times"]
     log = MeasurementLog.from_streams(
         odometry=(t[1:], twist[:, 0], twist[:, 2]),
@@ -96,7 +96,7 @@ def fused(sim: dict[str, np.ndarray]) -> np.ndarray:
         yaw_variance=YAW_SIGMA**2,
     )
     fusion = PlanarFusion(t0=0.0)
-    result = fusion.run(log)
+    result = fusion.update_batch(log)
     # One state per time step: the last row written at each timestamp.
     last = np.searchsorted(result.times, t, side="right") - 1
     states = result.states[np.maximum(last, 0)]

@@ -102,7 +102,7 @@ def fuse(
         streams["yaw_variance"] = imu["ori_cov_zz"]
     log = MeasurementLog.from_streams(**streams)  # type: ignore[arg-type]
     t0 = min(odom["stamp"][0], imu["stamp"][0])
-    result = PlanarFusion([0.0, 0.0, yaw[0], 0.0, 0.0, 0.0], t0=t0).run(log)
+    result = PlanarFusion([0.0, 0.0, yaw[0], 0.0, 0.0, 0.0], t0=t0).update_batch(log)
     assert np.all(result.status == FusionStatus.ACCEPTED)
     return result
 

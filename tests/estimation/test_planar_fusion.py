@@ -9,8 +9,10 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+import navkit.errors
 from navkit.estimation import (
     FilterError,
+    FusionResult,
     FusionStatus,
     MeasurementLog,
     PlanarFusion,
@@ -51,15 +53,15 @@ def online(fusion: PlanarFusion, log: MeasurementLog) -> np.ndarray:
     for t, z, var, obs in zip(log.times, log.values, log.variances, log.observed, strict=True):
         key = tuple(bool(b) for b in obs)
         if key == (False, True, True, False):
-            fusion.update_odometry(t, z[1], z[2], var[1], var[2])
+            fusion.update_odometry(t, z[1], z[2], v_variance=var[1], omega_variance=var[2])
         elif key == (False, True, False, False):
-            fusion.update_speed(t, z[1], var[1])
+            fusion.update_speed(t, z[1], variance=var[1])
         elif key == (True, False, False, False):
-            fusion.update_yaw(t, z[0], var[0])
+            fusion.update_yaw(t, z[0], variance=var[0])
         elif key == (False, False, True, False):
-            fusion.update_yaw_rate(t, z[2], var[2])
+            fusion.update_yaw_rate(t, z[2], variance=var[2])
         else:
-            fusion.update_acceleration(t, z[3], var[3])
+            fusion.update_acceleration(t, z[3], variance=var[3])
         states.append(fusion.x)
     return np.array(states)
 
@@ -79,7 +81,7 @@ def test_log_merges_streams_in_time_order() -> None:
 def test_batch_equals_online_updates() -> None:
     log = mixed_log(500, seed=1)
     batch = PlanarFusion(t0=0.0)
-    result = batch.run(log)
+    result = batch.update_batch(log)
     ref = online(PlanarFusion(t0=0.0), log)
     assert np.all(result.status == FusionStatus.ACCEPTED)
     np.testing.assert_allclose(result.states, ref, rtol=0, atol=1e-12)
@@ -92,16 +94,48 @@ def test_batch_equals_online_updates() -> None:
     p = result.covariances
     np.testing.assert_array_equal(p, np.swapaxes(p, 1, 2))
     assert np.all(np.linalg.eigvalsh(p) > 0.0)
+    # The result is an immutable container of read-only arrays.
+    for arr in (result.times, result.states, result.covariances, result.status, result.nis):
+        assert not arr.flags.writeable
+    with pytest.raises(AttributeError):
+        result.states = result.states  # type: ignore[misc]
+
+
+def test_fusion_result_constructor_validates_and_copies() -> None:
+    states = np.zeros((2, 6))
+    result = FusionResult(
+        np.array([0.0, 1.0]),
+        states,
+        np.stack([np.eye(6)] * 2),
+        np.array([FusionStatus.ACCEPTED, FusionStatus.GATED], dtype=np.int8),
+        np.array([0.5, math.nan]),
+    )
+    states[0, 0] = 5.0  # the result holds its own copy
+    assert result.states[0, 0] == 0.0
+    assert not result.states.flags.writeable
+    assert result.accepted.tolist() == [True, False]
+    assert result.final_pose == Pose2D(0.0, 0.0, 0.0)
+    good = (np.zeros(1), np.zeros((1, 6)), np.eye(6)[None], np.zeros(1, np.int8), np.zeros(1))
+    with pytest.raises(ValueError, match="states"):
+        FusionResult(good[0], np.zeros((1, 5)), *good[2:])
+    with pytest.raises(ValueError, match="covariances"):
+        FusionResult(good[0], good[1], np.eye(6), *good[3:])
+    with pytest.raises(ValueError, match="status"):
+        FusionResult(*good[:3], np.full(1, 7, np.int8), good[4])
+    with pytest.raises(TypeError, match="status"):
+        FusionResult(*good[:3], np.zeros(1), good[4])
+    with pytest.raises(ValueError, match="nis"):
+        FusionResult(*good[:4], np.zeros(2))
 
 
 def test_out_of_order_measurement_is_rejected_with_reason() -> None:
     fusion = PlanarFusion()
     assert fusion.t is None
-    assert fusion.update_odometry(10.0, 1.0, 0.0, 1e-3, 1e-3).accepted
+    assert fusion.update_odometry(10.0, 1.0, 0.0, v_variance=1e-3, omega_variance=1e-3).accepted
     assert fusion.t == 10.0
-    fusion.update_odometry(10.5, 1.0, 0.0, 1e-3, 1e-3)
+    fusion.update_odometry(10.5, 1.0, 0.0, v_variance=1e-3, omega_variance=1e-3)
     x, p = fusion.x, fusion.P
-    late = fusion.update_yaw(10.2, 0.5, 1e-3)
+    late = fusion.update_yaw(10.2, 0.5, variance=1e-3)
     assert not late.accepted
     assert late.reason is not None and "out of order" in late.reason
     assert math.isnan(late.nis)
@@ -111,7 +145,7 @@ def test_out_of_order_measurement_is_rejected_with_reason() -> None:
     with pytest.raises(ValueError, match="older"):
         fusion.predict(10.0)
     # Same time is fine (several sensors stamped together).
-    assert fusion.update_yaw(10.5, 0.01, 1e-3).accepted
+    assert fusion.update_yaw(10.5, 0.01, variance=1e-3).accepted
 
 
 def test_batch_marks_rows_older_than_the_filter() -> None:
@@ -122,7 +156,7 @@ def test_batch_marks_rows_older_than_the_filter() -> None:
         [[1.0, 1e-3, 1.0, 1.0]] * 4,
         np.array([[False, True, False, False]] * 4),
     )
-    result = fusion.run(log)
+    result = fusion.update_batch(log)
     assert result.status.tolist() == [
         FusionStatus.OUT_OF_ORDER,
         FusionStatus.ACCEPTED,
@@ -136,12 +170,12 @@ def test_batch_marks_rows_older_than_the_filter() -> None:
 
 def test_yaw_residual_wraps_and_prediction_follows_heading() -> None:
     fusion = PlanarFusion([0.0, 0.0, math.pi - 0.05, 0.0, 0.0, 0.0], t0=0.0)
-    res = fusion.update_yaw(0.0, -math.pi + 0.05, 1e-9)
+    res = fusion.update_yaw(0.0, -math.pi + 0.05, variance=1e-9)
     assert res.residual[0] == pytest.approx(0.1)
     assert -math.pi < fusion.x[2] <= math.pi
     assert abs(fusion.x[2]) == pytest.approx(math.pi, abs=0.06)
     # Driving at 1 m/s for 2 s with heading ~π moves the robot along -x.
-    fusion.update_speed(0.0, 1.0, 1e-6)
+    fusion.update_speed(0.0, 1.0, variance=1e-6)
     fusion.predict(2.0)
     assert fusion.pose.x == pytest.approx(-2.0, abs=0.02)
     assert isinstance(fusion.pose, Pose2D)
@@ -150,9 +184,9 @@ def test_yaw_residual_wraps_and_prediction_follows_heading() -> None:
 def test_gate_rejects_outlier_but_keeps_prediction() -> None:
     fusion = PlanarFusion(t0=0.0, gate_probability=0.99)
     for i in range(1, 50):
-        assert fusion.update_yaw(0.02 * i, 0.0, 1e-4).accepted
+        assert fusion.update_yaw(0.02 * i, 0.0, variance=1e-4).accepted
     x_before = fusion.x
-    res = fusion.update_yaw(1.0, 1.5, 1e-4)
+    res = fusion.update_yaw(1.0, 1.5, variance=1e-4)
     assert not res.accepted
     assert res.nis > 6.63  # chi-square 99% quantile, 1 degree of freedom
     assert res.reason is not None and "gate" in res.reason
@@ -160,7 +194,7 @@ def test_gate_rejects_outlier_but_keeps_prediction() -> None:
     assert fusion.x[2] == pytest.approx(x_before[2], abs=1e-9)
     # The same outlier is applied without a gate.
     ungated = PlanarFusion(t0=0.0)
-    assert ungated.update_yaw(1.0, 1.5, 1e-4).accepted
+    assert ungated.update_yaw(1.0, 1.5, variance=1e-4).accepted
 
 
 def test_numerical_failure_raises_and_leaves_state() -> None:
@@ -168,7 +202,8 @@ def test_numerical_failure_raises_and_leaves_state() -> None:
     fusion = PlanarFusion(P0=np.full(6, 1e300), t0=0.0)
     x, p = fusion.x, fusion.P
     with pytest.raises(FilterError, match="positive definite"):
-        fusion.update_yaw(1e3, 0.5, 1.0)
+        fusion.update_yaw(1e3, 0.5, variance=1.0)
+    assert FilterError is navkit.errors.FilterError
     np.testing.assert_array_equal(fusion.x, x)
     np.testing.assert_array_equal(fusion.P, p)
     assert fusion.t == 0.0
@@ -178,25 +213,44 @@ def test_numerical_failure_raises_and_leaves_state() -> None:
     ("call", "error", "match"),
     [
         (
-            lambda f: f.update_odometry(1.0, math.nan, 0.0, 1e-3, 1e-3),
+            lambda f: f.update_odometry(1.0, math.nan, 0.0, v_variance=1e-3, omega_variance=1e-3),
             ValueError,
             "v must be finite",
         ),
-        (lambda f: f.update_odometry(1.0, 1.0, 0.0, -1e-3, 1e-3), ValueError, "var_v"),
-        (lambda f: f.update_odometry(1.0, 1.0, 0.0, 1e-3, 0.0), ValueError, "var_omega"),
-        (lambda f: f.update_yaw(math.inf, 0.0, 1e-3), ValueError, "t must be finite"),
-        (lambda f: f.update_yaw(1.0, "north", 1e-3), TypeError, "yaw"),
-        (lambda f: f.update_yaw_rate(1.0, math.nan, 1e-3), ValueError, "omega"),
-        (lambda f: f.update_acceleration(1.0, 0.0, math.nan), ValueError, "var"),
+        (
+            lambda f: f.update_odometry(1.0, 1.0, 0.0, v_variance=-1e-3, omega_variance=1e-3),
+            ValueError,
+            "v_variance",
+        ),
+        (
+            lambda f: f.update_odometry(1.0, 1.0, 0.0, v_variance=1e-3, omega_variance=0.0),
+            ValueError,
+            "omega_variance",
+        ),
+        (lambda f: f.update_yaw(math.inf, 0.0, variance=1e-3), ValueError, "t must be finite"),
+        (lambda f: f.update_yaw(1.0, "north", variance=1e-3), TypeError, "yaw"),
+        (lambda f: f.update_yaw_rate(1.0, math.nan, variance=1e-3), ValueError, "omega"),
+        (
+            lambda f: f.update_acceleration(1.0, 0.0, variance=math.nan),
+            ValueError,
+            "variance must be finite",
+        ),
+        (lambda f: f.update_speed(1.0, 1.0, variance=0.0), ValueError, "variance must be > 0"),
         (lambda f: f.predict(math.nan), ValueError, "t must be finite"),
-        (lambda f: f.run("log"), TypeError, "MeasurementLog"),
+        (lambda f: f.update_batch("log"), TypeError, "MeasurementLog"),
+        # Every variance is keyword-only.
+        (lambda f: f.update_odometry(1.0, 1.0, 0.0, 1e-3, 1e-3), TypeError, "positional"),
+        (lambda f: f.update_speed(1.0, 1.0, 1e-3), TypeError, "positional"),
+        (lambda f: f.update_yaw(1.0, 0.0, 1e-3), TypeError, "positional"),
+        (lambda f: f.update_yaw_rate(1.0, 0.0, 1e-3), TypeError, "positional"),
+        (lambda f: f.update_acceleration(1.0, 0.0, 1e-3), TypeError, "positional"),
     ],
 )
 def test_bad_measurements_raise_and_leave_state(
     call: object, error: type[Exception], match: str
 ) -> None:
     fusion = PlanarFusion(t0=0.0)
-    fusion.update_odometry(0.5, 1.0, 0.1, 1e-3, 1e-3)
+    fusion.update_odometry(0.5, 1.0, 0.1, v_variance=1e-3, omega_variance=1e-3)
     x, p, t = fusion.x, fusion.P, fusion.t
     with pytest.raises(error, match=match):
         call(fusion)  # type: ignore[operator]
@@ -226,6 +280,12 @@ def test_bad_measurements_raise_and_leave_state(
 def test_bad_construction(kwargs: dict[str, object], error: type[Exception], match: str) -> None:
     with pytest.raises(error, match=match):
         PlanarFusion(**kwargs)  # type: ignore[arg-type]
+
+
+def test_constructor_options_are_keyword_only() -> None:
+    with pytest.raises(TypeError, match="positional"):
+        PlanarFusion(np.zeros(6), np.ones(6), np.ones(6))  # type: ignore[call-arg]
+    assert PlanarFusion(np.zeros(6), np.ones(6), process_noise=np.ones(6), t0=2.0).t == 2.0
 
 
 def test_bad_logs() -> None:
@@ -258,7 +318,7 @@ def test_bad_logs() -> None:
 
 def test_empty_log() -> None:
     fusion = PlanarFusion(t0=1.0)
-    result = fusion.run(
+    result = fusion.update_batch(
         MeasurementLog(np.empty(0), np.empty((0, 4)), np.empty((0, 4)), np.empty((0, 4), bool))
     )
     assert result.states.shape == (0, 6)
@@ -285,9 +345,9 @@ def test_covariance_stays_symmetric_positive_definite(
     for dt, kind, value, var in sequence:
         t += dt
         if kind == "odometry":
-            res = fusion.update_odometry(t, value, 0.1 * value, var, var)
+            res = fusion.update_odometry(t, value, 0.1 * value, v_variance=var, omega_variance=var)
         else:
-            res = getattr(fusion, f"update_{kind}")(t, value, var)
+            res = getattr(fusion, f"update_{kind}")(t, value, variance=var)
         assert res.accepted
         p = fusion.P
         np.testing.assert_array_equal(p, p.T)

@@ -24,8 +24,8 @@ def omni_log(twist: Twist2D, dt: float, steps: int) -> tuple[np.ndarray, np.ndar
 
 
 def test_omni_translation_is_exact_in_compass_frame() -> None:
-    odo = OmniOdometry(OMNI, Pose2D(1.0, 2.0, math.pi / 2))
-    pose = odo.update(OMNI.inverse(Twist2D(0.3, -0.4, 0.0)) * 2.0, yaw=math.pi / 2)
+    odo = OmniOdometry(OMNI, pose=Pose2D(1.0, 2.0, math.pi / 2))
+    pose = odo.update(OMNI.inverse(Twist2D(0.3, -0.4, 0.0)) * 2.0, math.pi / 2)
     # 0.6 m forward (+y in the world) and 0.8 m to the right (+x in the world).
     assert pose.x == pytest.approx(1.8)
     assert pose.y == pytest.approx(2.6)
@@ -35,7 +35,7 @@ def test_omni_translation_is_exact_in_compass_frame() -> None:
 def test_omni_circle_matches_exact_motion_with_mid_step_heading() -> None:
     twist = Twist2D(0.5, 0.2, 0.8)
     inc, yaws, truth = omni_log(twist, dt=0.02, steps=400)  # 6.4 s, almost a full turn
-    traj = OmniOdometry(OMNI).run(inc, yaws)
+    traj = OmniOdometry(OMNI).update_batch(inc, yaws)
     err = np.hypot(*(traj[:, :2] - truth[:, :2]).T)
     # Mid-step heading: the per-step error is the sinc(ω dt / 2) factor, ~1e-5 m over 400 steps.
     assert err.max() < 2e-5
@@ -58,25 +58,36 @@ def test_omni_heading_comes_from_compass_not_wheels() -> None:
     assert pose.y == pytest.approx(0.0, abs=1e-15)
 
 
-def test_omni_update_equals_run() -> None:
+def test_omni_update_equals_update_batch() -> None:
     inc, yaws, _ = omni_log(Twist2D(0.4, 0.1, -0.6), dt=0.05, steps=50)
     a = OmniOdometry(OMNI)
     stepwise = np.array([a.update(row, yaw).as_array() for row, yaw in zip(inc, yaws, strict=True)])
     b = OmniOdometry(OMNI)
-    np.testing.assert_allclose(b.run(inc, yaws)[1:], stepwise, atol=1e-12)
+    np.testing.assert_allclose(b.update_batch(inc, yaws)[1:], stepwise, atol=1e-12)
     assert b.pose.x == pytest.approx(a.pose.x)
+
+
+def test_omni_pose_accepts_a_sequence_and_is_keyword_only() -> None:
+    inc = OMNI.inverse(Twist2D(0.3, -0.4, 0.0)) * 2.0
+    a = OmniOdometry(OMNI, pose=[1.0, 2.0, math.pi / 2]).update(inc, math.pi / 2)
+    b = OmniOdometry(OMNI, pose=Pose2D(1.0, 2.0, math.pi / 2)).update(inc, math.pi / 2)
+    assert a == b
+    with pytest.raises(TypeError, match="positional"):
+        OmniOdometry(OMNI, Pose2D(1.0, 2.0, 0.0))  # type: ignore[call-arg]
+    with pytest.raises(TypeError, match="pose must be a Pose2D"):
+        OmniOdometry(OMNI, pose=3.0)
 
 
 def test_omni_bad_input() -> None:
     odo = OmniOdometry(OMNI)
     with pytest.raises(ValueError, match="wheel_increments"):
         odo.update([0.1, 0.2], 0.0)
-    with pytest.raises(ValueError, match="yaws"):
+    with pytest.raises(ValueError, match="yaw"):
         odo.update([0.1, 0.2, 0.3], math.nan)
     with pytest.raises(ValueError, match="yaws"):
-        odo.run(np.zeros((3, 3)), np.zeros(2))
+        odo.update_batch(np.zeros((3, 3)), np.zeros(2))
     with pytest.raises(TypeError, match="OmniDrive"):
-        OmniOdometry(DiffDrive(0.3, 0.05))  # type: ignore[arg-type]
+        OmniOdometry(DiffDrive(track=0.3, wheel_radius=0.05))  # type: ignore[arg-type]
     assert odo.pose == Pose2D(0.0, 0.0, 0.0)
 
 
@@ -94,12 +105,12 @@ def ticks_for(
 
 
 def test_diff_wraparound_16_bit() -> None:
-    odo = DiffOdometry(DIFF, TPR, encoder_bits=16)
+    odo = DiffOdometry(DIFF, ticks_per_rev=TPR, encoder_bits=16)
     odo.update(65000, 64000)
     pose = odo.update(65000 + TPR - 65536, 64000 + TPR - 65536)  # both counters wrapped
     assert pose.x == pytest.approx(2 * math.pi * 0.05)
     assert pose.y == 0.0 and pose.theta == 0.0
-    no_bits = DiffOdometry(DIFF, TPR)
+    no_bits = DiffOdometry(DIFF, ticks_per_rev=TPR)
     no_bits.update(65000, 64000)
     assert no_bits.update(65000 + TPR - 65536, 64000 + TPR - 65536).x < -1.0
 
@@ -113,8 +124,8 @@ def test_diff_circle(method: str) -> None:
     right = np.cumsum(np.full(steps, ticks_for(dl_step, dr_step)[1]))
     left = np.concatenate(([0], left))
     right = np.concatenate(([0], right))
-    odo = DiffOdometry(DIFF, TPR, method=method)  # type: ignore[arg-type]
-    traj = odo.run(left, right)
+    odo = DiffOdometry(DIFF, ticks_per_rev=TPR, method=method)  # type: ignore[arg-type]
+    traj = odo.update_batch(left, right)
     # Ground truth: the same per-step wheel distances (after tick rounding) as an exact twist.
     d_l = left[1] * 2 * math.pi * 0.05 / TPR
     d_r = right[1] * 2 * math.pi * 0.05 / TPR
@@ -129,8 +140,8 @@ def test_diff_circle(method: str) -> None:
 
 
 def test_diff_unequal_radii_go_straight() -> None:
-    drive = DiffDrive(0.4, left_radius=0.05, right_radius=0.06)
-    odo = DiffOdometry(drive, TPR)
+    drive = DiffDrive(track=0.4, left_radius=0.05, right_radius=0.06)
+    odo = DiffOdometry(drive, ticks_per_rev=TPR)
     odo.update(0, 0)
     # The smaller left wheel turns 6/5 as often for the same distance: straight line.
     pose = odo.update(1200 * 10, 1000 * 10)
@@ -140,13 +151,15 @@ def test_diff_unequal_radii_go_straight() -> None:
 
 @settings(max_examples=40, deadline=None)
 @given(st.lists(st.tuples(st.integers(-300, 300), st.integers(-300, 300)), min_size=1, max_size=30))
-def test_diff_update_equals_run_and_matches_composition(steps: list[tuple[int, int]]) -> None:
+def test_diff_update_equals_update_batch_and_matches_composition(
+    steps: list[tuple[int, int]],
+) -> None:
     counts = np.cumsum(np.array([(0, 0), *steps]), axis=0)
     counts = np.mod(counts + 40000, 65536)  # a 16-bit counter that starts near the middle
-    a = DiffOdometry(DIFF, TPR, encoder_bits=16)
+    a = DiffOdometry(DIFF, ticks_per_rev=TPR, encoder_bits=16)
     stepwise = np.array([a.update(int(left), int(right)).as_array() for left, right in counts])
-    b = DiffOdometry(DIFF, TPR, encoder_bits=16)
-    traj = b.run(counts[:, 0], counts[:, 1])
+    b = DiffOdometry(DIFF, ticks_per_rev=TPR, encoder_bits=16)
+    traj = b.update_batch(counts[:, 0], counts[:, 1])
     np.testing.assert_allclose(traj[:, :2], stepwise[:, :2], atol=1e-9)
     np.testing.assert_allclose(angle_diff(traj[:, 2], stepwise[:, 2]), 0.0, atol=1e-9)
     # Reference: compose each step's exact-arc motion with Pose2D.
@@ -157,23 +170,52 @@ def test_diff_update_equals_run_and_matches_composition(steps: list[tuple[int, i
         pose = integrate(pose, Twist2D(0.5 * (d_l + d_r), 0.0, (d_r - d_l) / DIFF.track), 1.0)
     assert traj[-1, 0] == pytest.approx(pose.x, abs=1e-9)
     assert traj[-1, 1] == pytest.approx(pose.y, abs=1e-9)
+    # The same with DiffDrive.odometry_step: relative motions composed onto the pose.
+    stepped = Pose2D(0.0, 0.0, 0.0)
+    for dl_ticks, dr_ticks in steps:
+        d_l = dl_ticks * 2 * math.pi * 0.05 / TPR
+        d_r = dr_ticks * 2 * math.pi * 0.05 / TPR
+        stepped = stepped.compose(DIFF.odometry_step(d_l, d_r))
+    assert traj[-1, 0] == pytest.approx(stepped.x, abs=1e-9)
+    assert traj[-1, 1] == pytest.approx(stepped.y, abs=1e-9)
+    assert angle_diff(traj[-1, 2], stepped.theta) == pytest.approx(0.0, abs=1e-9)
 
 
 def test_diff_bad_input() -> None:
-    odo = DiffOdometry(DIFF, TPR, encoder_bits=16)
+    odo = DiffOdometry(DIFF, ticks_per_rev=TPR, encoder_bits=16)
     with pytest.raises(TypeError, match="left_ticks"):
-        odo.run([0.5], [1])
+        odo.update_batch([0.5], [1])
     with pytest.raises(ValueError, match="equal length"):
-        odo.run([1, 2], [1])
+        odo.update_batch([1, 2], [1])
     with pytest.raises(ValueError, match="16-bit"):
-        odo.run([70000], [1])
+        odo.update_batch([70000], [1])
     with pytest.raises(ValueError, match="encoder_bits"):
-        DiffOdometry(DIFF, TPR, encoder_bits=1)
+        DiffOdometry(DIFF, ticks_per_rev=TPR, encoder_bits=1)
     with pytest.raises(ValueError, match="ticks_per_rev"):
-        DiffOdometry(DIFF, 0)
+        DiffOdometry(DIFF, ticks_per_rev=0)
     with pytest.raises(ValueError, match="method"):
-        DiffOdometry(DIFF, TPR, method="euler")  # type: ignore[arg-type]
+        DiffOdometry(DIFF, ticks_per_rev=TPR, method="euler")  # type: ignore[arg-type]
+    with pytest.raises(TypeError, match="positional"):
+        DiffOdometry(DIFF, TPR)  # type: ignore[call-arg]
+    with pytest.raises(TypeError, match="pose must be a Pose2D"):
+        DiffOdometry(DIFF, ticks_per_rev=TPR, pose="origin")
     assert odo.pose == Pose2D(0.0, 0.0, 0.0)
     odo.update(5, 5)
     odo.reset(Pose2D(1.0, 1.0, 1.0))
     assert odo.update(100, 100) == Pose2D(1.0, 1.0, 1.0)
+    odo.reset([2.0, 3.0, 0.5])
+    assert odo.pose == Pose2D(2.0, 3.0, 0.5)
+    assert odo.update(7, 9) == Pose2D(2.0, 3.0, 0.5)  # the first reading after reset latches
+    with pytest.raises(TypeError, match="pose must be a Pose2D"):
+        odo.reset(1.0)
+    with pytest.raises(ValueError, match="pose"):
+        odo.reset([1.0, 2.0])
+    assert odo.pose == Pose2D(2.0, 3.0, 0.5)  # a bad reset changes nothing
+
+
+def test_diff_pose_accepts_a_sequence() -> None:
+    odo = DiffOdometry(DIFF, ticks_per_rev=TPR, pose=[1.0, -1.0, math.pi / 2])
+    odo.update(0, 0)
+    pose = odo.update(TPR, TPR)  # one wheel turn forward, facing +y
+    assert pose.x == pytest.approx(1.0, abs=1e-12)
+    assert pose.y == pytest.approx(-1.0 + 2 * math.pi * 0.05)

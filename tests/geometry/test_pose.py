@@ -74,6 +74,46 @@ def test_bad_input() -> None:
         Pose2D(0, 0).transform_points(np.zeros((3, 3)))
 
 
+@given(poses, poses)
+def test_compose_accepts_a_three_sequence(a: Pose2D, b: Pose2D) -> None:
+    as_list = [b.x, b.y, b.theta]
+    assert a.compose(as_list) == a.compose(b)
+    assert a.compose(tuple(as_list)) == a.compose(b)
+    assert a.compose(np.array(as_list)) == a.compose(b)
+    assert a @ as_list == a @ b
+    assert b.relative_to(as_list) == b.relative_to(b)
+    assert a.relative_to([b.x, b.y, b.theta]) == a.relative_to(b)
+
+
+@pytest.mark.parametrize("bad", [3, 3.0, None, "1 2 3", {"x": 1.0}])
+def test_compose_rejects_non_poses_naming_the_argument(bad: object) -> None:
+    p = Pose2D(1.0, 2.0, 0.5)
+    with pytest.raises(TypeError, match="other must be a Pose2D"):
+        p.compose(bad)  # type: ignore[arg-type]
+    with pytest.raises(TypeError, match="other must be a Pose2D"):
+        p @ bad  # type: ignore[operator]
+    with pytest.raises(TypeError, match="frame must be a Pose2D"):
+        p.relative_to(bad)  # type: ignore[arg-type]
+
+
+def test_compose_rejects_wrong_length_naming_the_argument() -> None:
+    with pytest.raises(ValueError, match="other"):
+        Pose2D(0.0, 0.0).compose([1.0, 2.0])
+    with pytest.raises(ValueError, match="frame"):
+        Pose2D(0.0, 0.0).relative_to([1.0, 2.0, 3.0, 4.0])
+    with pytest.raises(ValueError, match="other"):
+        Pose2D(0.0, 0.0) @ [1.0, math.nan, 0.0]
+
+
+def test_equality_is_by_value() -> None:
+    assert Pose2D(1.0, 2.0, 0.5) == Pose2D(1.0, 2.0, 0.5)
+    assert Pose2D(1.0, 2.0, 0.5) != Pose2D(1.0, 2.0, 0.6)
+    assert Pose2D(0.0, 0.0, 3 * math.pi) == Pose2D(0.0, 0.0, math.pi)
+    assert Twist2D(1.0, 0.0, 0.5) == Twist2D(1.0, 0.0, 0.5)
+    assert Twist2D(1.0) != Twist2D(1.0, 0.1)
+    assert hash(Pose2D(1.0, 2.0)) == hash(Pose2D(1.0, 2.0))
+
+
 def test_frozen() -> None:
     p = Pose2D(0.0, 0.0)
     with pytest.raises(AttributeError):

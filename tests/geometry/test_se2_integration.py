@@ -95,5 +95,35 @@ def test_rollout_scalar_dt_and_errors() -> None:
         rollout(Pose2D(0, 0), [[0.0, math.nan, 0.0]], 0.1)
     with pytest.raises(ValueError, match="dt"):
         integrate(Pose2D(0, 0), Twist2D(1.0), -1.0)
-    with pytest.raises(TypeError, match="twist"):
-        integrate(Pose2D(0, 0), (1.0, 0.0, 0.0), 1.0)  # type: ignore[arg-type]
+    with pytest.raises(TypeError, match="twist must be a Twist2D"):
+        integrate(Pose2D(0, 0), 1.0, 1.0)
+    with pytest.raises(TypeError, match="pose must be a Pose2D"):
+        integrate(3, Twist2D(1.0), 1.0)
+    with pytest.raises(ValueError, match="twist"):
+        integrate(Pose2D(0, 0), (1.0, 0.0), 1.0)
+    with pytest.raises(TypeError, match="pose must be a Pose2D"):
+        rollout("0 0 0", np.zeros((1, 3)), 0.1)
+
+
+def test_integrate_accepts_sequences() -> None:
+    ref = integrate(Pose2D(1.0, 2.0, 0.3), Twist2D(0.5, 0.1, 0.7), 0.4)
+    assert integrate([1.0, 2.0, 0.3], (0.5, 0.1, 0.7), 0.4) == ref
+    assert integrate(np.array([1.0, 2.0, 0.3]), np.array([0.5, 0.1, 0.7]), 0.4) == ref
+
+
+def test_rollout_accepts_twist_objects_and_a_pose_sequence() -> None:
+    twists = [Twist2D(1.0, 0.0, 0.5), Twist2D(0.5, 0.2, -0.3), Twist2D(0.0, 0.0, 1.0)]
+    ref = rollout(Pose2D(1.0, -1.0, 0.2), np.array([t.as_array() for t in twists]), 0.3)
+    np.testing.assert_array_equal(rollout(Pose2D(1.0, -1.0, 0.2), twists, 0.3), ref)
+    np.testing.assert_array_equal(rollout([1.0, -1.0, 0.2], tuple(twists), 0.3), ref)
+    # Twist2D items and [vx, vy, omega] rows may be mixed.
+    mixed = [twists[0], [0.5, 0.2, -0.3], twists[2]]
+    np.testing.assert_array_equal(rollout(Pose2D(1.0, -1.0, 0.2), mixed, 0.3), ref)
+    empty = rollout(Pose2D(1.0, -1.0, 0.2), [], 0.3)
+    np.testing.assert_array_equal(empty, [[1.0, -1.0, 0.2]])
+    with pytest.raises(TypeError, match=r"twists\[1\]"):
+        rollout(Pose2D(0, 0), [Twist2D(1.0), "fast"], 0.1)
+    with pytest.raises(ValueError, match=r"twists\[1\]"):
+        rollout(Pose2D(0, 0), [Twist2D(1.0), [1.0, 0.0]], 0.1)
+    with pytest.raises(ValueError, match="dt"):
+        rollout(Pose2D(0, 0), twists, [0.1, 0.2])

@@ -13,15 +13,22 @@ from navkit.kinematics import tick_delta, ticks_to_distance
 
 
 def test_ticks_to_distance() -> None:
-    assert ticks_to_distance(2048, 2048, 0.1) == pytest.approx(2 * math.pi * 0.1)
-    assert ticks_to_distance(-512, 2048, 0.1) == pytest.approx(-math.pi * 0.05)
+    assert ticks_to_distance(2048, ticks_per_rev=2048, wheel_radius=0.1) == pytest.approx(
+        2 * math.pi * 0.1
+    )
+    assert ticks_to_distance(-512, ticks_per_rev=2048, wheel_radius=0.1) == pytest.approx(
+        -math.pi * 0.05
+    )
     np.testing.assert_allclose(
-        ticks_to_distance(np.array([0, 1024]), 2048, 0.1), [0.0, math.pi * 0.1]
+        ticks_to_distance(np.array([0, 1024]), ticks_per_rev=2048, wheel_radius=0.1),
+        [0.0, math.pi * 0.1],
     )
     with pytest.raises(ValueError, match="ticks_per_rev"):
-        ticks_to_distance(1, 0, 0.1)
+        ticks_to_distance(1, ticks_per_rev=0, wheel_radius=0.1)
     with pytest.raises(ValueError, match="wheel_radius"):
-        ticks_to_distance(1, 100, -0.1)
+        ticks_to_distance(1, ticks_per_rev=100, wheel_radius=-0.1)
+    with pytest.raises(TypeError, match="positional"):
+        ticks_to_distance(1, 2048, 0.1)  # type: ignore[call-overload]
 
 
 @pytest.mark.parametrize(
@@ -37,7 +44,7 @@ def test_ticks_to_distance() -> None:
     ],
 )
 def test_tick_delta_known(prev: int, cur: int, bits: int, expected: int) -> None:
-    assert tick_delta(prev, cur, bits) == expected
+    assert tick_delta(prev, cur, bits=bits) == expected
 
 
 @given(
@@ -50,18 +57,20 @@ def test_tick_delta_known(prev: int, cur: int, bits: int, expected: int) -> None
 def test_tick_delta_recovers_true_step(case: tuple[int, int, int]) -> None:
     bits, start, step = case
     cur = (start + step) % 2**bits
-    assert tick_delta(start, cur, bits) == step
+    assert tick_delta(start, cur, bits=bits) == step
 
 
 def test_tick_delta_arrays_and_errors() -> None:
     prev = np.array([65530, 0, 100], dtype=np.int64)
     cur = np.array([4, 65535, 90], dtype=np.int64)
-    np.testing.assert_array_equal(tick_delta(prev, cur, 16), [10, -1, -10])
+    np.testing.assert_array_equal(tick_delta(prev, cur, bits=16), [10, -1, -10])
     unsigned = np.array([2**64 - 1], dtype=np.uint64)
-    assert tick_delta(unsigned, np.array([1], dtype=np.uint64), 64)[0] == 2
+    assert tick_delta(unsigned, np.array([1], dtype=np.uint64), bits=64)[0] == 2
     with pytest.raises(ValueError, match="bits"):
-        tick_delta(0, 1, 1)
+        tick_delta(0, 1, bits=1)
     with pytest.raises(TypeError, match="previous"):
-        tick_delta(0.5, 1, 16)
+        tick_delta(0.5, 1, bits=16)
     with pytest.raises(ValueError, match="current"):
-        tick_delta(0, 70000, 16)
+        tick_delta(0, 70000, bits=16)
+    with pytest.raises(TypeError, match="positional"):
+        tick_delta(0, 1, 16)  # type: ignore[call-overload]

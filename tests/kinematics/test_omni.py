@@ -24,7 +24,7 @@ def layouts(draw: st.DrawFn) -> OmniDrive:
     big_l = draw(st.floats(0.05, 1.0))
     jac = np.column_stack((-np.sin(angles), np.cos(angles), np.full(n, big_l))) / r
     assume(np.linalg.cond(jac) < 1e6)
-    return OmniDrive(angles, r, big_l)
+    return OmniDrive(angles, wheel_radius=r, base_radius=big_l)
 
 
 @given(layouts(), twists)
@@ -45,7 +45,7 @@ def test_batch_matches_single(drive: OmniDrive, rows: list[tuple[float, float, f
 
 def test_three_wheel_known_values() -> None:
     r, big_l = 0.05, 0.2
-    drive = OmniDrive.three_wheel(r, big_l)
+    drive = OmniDrive.three_wheel(wheel_radius=r, base_radius=big_l)
     np.testing.assert_allclose(drive.wheel_angles, np.radians([30, 150, 270]))
     s3 = math.sqrt(3) / 2
     np.testing.assert_allclose(drive.inverse(Twist2D(1.0, 0, 0)), [-0.5 / r, -0.5 / r, 1 / r])
@@ -58,7 +58,7 @@ def test_three_wheel_known_values() -> None:
 def test_papers_forward_matrix_is_not_the_inverse() -> None:
     """The paper's forward rows r*[cos(θi+π/2), sin(θi+π/2), 1/(3L)] give 1.5× vx, vy."""
     r, big_l = 0.05, 0.2
-    drive = OmniDrive.three_wheel(r, big_l)
+    drive = OmniDrive.three_wheel(wheel_radius=r, base_radius=big_l)
     th = drive.wheel_angles
     paper = r * np.vstack(
         (np.cos(th + math.pi / 2), np.sin(th + math.pi / 2), np.full(3, 1 / (3 * big_l)))
@@ -69,45 +69,69 @@ def test_papers_forward_matrix_is_not_the_inverse() -> None:
 
 
 def test_saturate_keeps_direction() -> None:
-    drive = OmniDrive.three_wheel(0.05, 0.2)
+    drive = OmniDrive.three_wheel(wheel_radius=0.05, base_radius=0.2)
     w = drive.inverse(Twist2D(2.0, 1.0, 3.0))
-    out = drive.saturate(w, 10.0)
+    out = drive.saturate(w, max_speed=10.0)
     assert np.max(np.abs(out)) == pytest.approx(10.0)
     t_in, t_out = drive.forward(w).as_array(), drive.forward(out).as_array()
     np.testing.assert_allclose(t_out / np.linalg.norm(t_out), t_in / np.linalg.norm(t_in))
     small = np.array([1.0, -2.0, 0.5])
-    np.testing.assert_array_equal(drive.saturate(small, 10.0), small)
-    batch = drive.saturate(np.array([w, small]), 10.0)
+    np.testing.assert_array_equal(drive.saturate(small, max_speed=10.0), small)
+    batch = drive.saturate(np.array([w, small]), max_speed=10.0)
     np.testing.assert_allclose(batch[1], small)
     assert np.max(np.abs(batch[0])) == pytest.approx(10.0)
-    np.testing.assert_array_equal(drive.saturate(np.zeros(3), 1.0), np.zeros(3))
+    np.testing.assert_array_equal(drive.saturate(np.zeros(3), max_speed=1.0), np.zeros(3))
 
 
 def test_bad_input() -> None:
     with pytest.raises(ValueError, match="wheel_angles"):
-        OmniDrive([0.0, 1.0], 0.05, 0.2)
+        OmniDrive([0.0, 1.0], wheel_radius=0.05, base_radius=0.2)
     with pytest.raises(ValueError, match="wheel_angles"):
-        OmniDrive([0.0, 0.0, 0.0], 0.05, 0.2)
+        OmniDrive([0.0, 0.0, 0.0], wheel_radius=0.05, base_radius=0.2)
     with pytest.raises(ValueError, match="wheel_angles"):
-        OmniDrive([0.0, math.pi, 2 * math.pi], 0.05, 0.2)
+        OmniDrive([0.0, math.pi, 2 * math.pi], wheel_radius=0.05, base_radius=0.2)
     with pytest.raises(ValueError, match="wheel_angles"):
-        OmniDrive([0.0, 1.0, math.nan], 0.05, 0.2)
+        OmniDrive([0.0, 1.0, math.nan], wheel_radius=0.05, base_radius=0.2)
     with pytest.raises(ValueError, match="wheel_radius"):
-        OmniDrive.three_wheel(0.0, 0.2)
+        OmniDrive.three_wheel(wheel_radius=0.0, base_radius=0.2)
     with pytest.raises(ValueError, match="base_radius"):
-        OmniDrive.three_wheel(0.05, -1.0)
-    drive = OmniDrive.three_wheel(0.05, 0.2)
+        OmniDrive.three_wheel(wheel_radius=0.05, base_radius=-1.0)
+    drive = OmniDrive.three_wheel(wheel_radius=0.05, base_radius=0.2)
     with pytest.raises(ValueError, match="wheel_speeds"):
         drive.forward([1.0, 2.0])
     with pytest.raises(ValueError, match="wheel_speeds"):
         drive.forward([1.0, 2.0, math.nan])
     with pytest.raises(ValueError, match="max_speed"):
-        drive.saturate([1.0, 2.0, 3.0], 0.0)
+        drive.saturate([1.0, 2.0, 3.0], max_speed=0.0)
     with pytest.raises(ValueError, match="twists"):
         drive.inverse_batch(np.zeros((2, 2)))
+    with pytest.raises(TypeError, match="twist must be a Twist2D"):
+        drive.inverse(1.0)
+    with pytest.raises(ValueError, match="twist"):
+        drive.inverse([1.0, 0.0])
+
+
+def test_inverse_accepts_sequences() -> None:
+    drive = OmniDrive.three_wheel(wheel_radius=0.05, base_radius=0.2)
+    ref = drive.inverse(Twist2D(0.3, -0.2, 0.5))
+    assert ref.shape == (3,)
+    np.testing.assert_array_equal(drive.inverse([0.3, -0.2, 0.5]), ref)
+    np.testing.assert_array_equal(drive.inverse((0.3, -0.2, 0.5)), ref)
+    np.testing.assert_array_equal(drive.inverse(np.array([0.3, -0.2, 0.5])), ref)
+
+
+def test_options_are_keyword_only() -> None:
+    with pytest.raises(TypeError, match="positional"):
+        OmniDrive([0.0, 2.0, 4.0], 0.05, 0.2)  # type: ignore[call-arg]
+    with pytest.raises(TypeError, match="positional"):
+        OmniDrive.three_wheel(0.05, 0.2)  # type: ignore[call-arg]
+    drive = OmniDrive.three_wheel(wheel_radius=0.05, base_radius=0.2)
+    with pytest.raises(TypeError, match="positional"):
+        drive.saturate([1.0, 2.0, 3.0], 10.0)  # type: ignore[call-arg]
+    assert drive.wheel_radius == 0.05 and drive.base_radius == 0.2
 
 
 def test_arrays_read_only() -> None:
-    drive = OmniDrive.three_wheel(0.05, 0.2)
+    drive = OmniDrive.three_wheel(wheel_radius=0.05, base_radius=0.2)
     with pytest.raises(ValueError):
         drive.jacobian[0, 0] = 1.0

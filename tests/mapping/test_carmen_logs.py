@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import gzip
 import math
 from pathlib import Path
@@ -9,8 +10,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+import navkit.mapping
 from navkit.geometry import Pose2D
-from navkit.mapping import OccupancyGrid
+from navkit.mapping import OccupancyGrid, integrate_scan
 from navkit.mapping.io import CarmenLog, read_carmen
 
 LOGS = "carmen-logs"
@@ -74,9 +76,12 @@ def test_intel_builds_a_recognisable_map(shared_data: Path, intel: CarmenLog) ->
     hits = np.vstack(points)
     lo = hits.min(axis=0) - 1.0
     hi = hits.max(axis=0) + 1.0
-    grid = OccupancyGrid.empty(*(hi - lo), 0.1, Pose2D(lo[0], lo[1], 0.0))
+    width, height = hi - lo
+    grid = OccupancyGrid.empty(
+        width=width, height=height, resolution=0.1, origin=Pose2D(lo[0], lo[1], 0.0)
+    )
     for scan, pose in zip(intel.scans, intel.laser_poses, strict=True):
-        grid.integrate_scan(scan, pose)
+        integrate_scan(grid, scan, pose)
     rows, cols = grid.shape
 
     # Most returns fall on cells that many scans hit: the SLAM-corrected poses
@@ -150,3 +155,30 @@ def test_bad_logs(tmp_path: Path, text: str, error: type[Exception], match: str)
 def test_missing_log() -> None:
     with pytest.raises(FileNotFoundError, match="does not exist"):
         read_carmen("/nonexistent/log.gz")
+
+
+def test_one_public_path() -> None:
+    # The reader lives in navkit.mapping.io only.
+    assert not hasattr(navkit.mapping, "read_carmen")
+    assert not hasattr(navkit.mapping, "CarmenLog")
+    assert "read_carmen" not in navkit.mapping.__all__
+
+
+def test_carmen_log_is_a_frozen_record(tmp_path: Path) -> None:
+    path = tmp_path / "log.txt"
+    path.write_text("FLASER 2 1.0 2.0 0.5 0 0 0 0 0 3.0 host 3.1\nODOM 1 2 0.5 0 0 0 9.0 h 9.1\n")
+    log = read_carmen(path)
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        log.scans = ()  # type: ignore[misc]
+    with pytest.raises(ValueError, match="read-only"):
+        log.timestamps[0] = 0.0
+    with pytest.raises(ValueError, match="read-only"):
+        log.odometry[0, 0] = 0.0
+    stamps = np.array([1.0])
+    copy = CarmenLog(log.scans, log.laser_poses, log.robot_poses, stamps, np.zeros((0, 4)))
+    stamps[0] = 5.0
+    assert copy.timestamps.tolist() == [1.0]
+    with pytest.raises(ValueError, match="same length"):
+        CarmenLog(log.scans, (), log.robot_poses, log.timestamps, log.odometry)
+    with pytest.raises(ValueError, match="odometry must have length 4"):
+        CarmenLog(log.scans, log.laser_poses, log.robot_poses, log.timestamps, np.zeros((1, 3)))

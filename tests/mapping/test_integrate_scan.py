@@ -1,4 +1,4 @@
-"""Ray casting of scans into the log-odds grid (OccupancyGrid.integrate_scan)."""
+"""Ray casting of scans into the log-odds grid (integrate_scan and the grid's method)."""
 
 from __future__ import annotations
 
@@ -11,7 +11,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from navkit.geometry import Pose2D
-from navkit.mapping import LaserScan, OccupancyGrid
+from navkit.mapping import LaserScan, OccupancyGrid, integrate_scan
 
 ROOM = (0.0, 0.0, 6.0, 4.0)  # xmin, ymin, xmax, ymax of the room's inner walls
 HIT = math.log(0.7 / 0.3)
@@ -28,7 +28,13 @@ def room_scan(pose: Pose2D, n_beams: int, range_max: float = 10.0) -> LaserScan:
         tx = np.where(c > 0, (xmax - pose.x) / c, (xmin - pose.x) / c)
         ty = np.where(s > 0, (ymax - pose.y) / s, (ymin - pose.y) / s)
     ranges = np.minimum(np.abs(tx), np.abs(ty))
-    return LaserScan(ranges, -math.pi, 2 * math.pi / n_beams, 0.05, range_max)
+    return LaserScan(
+        ranges,
+        angle_min=-math.pi,
+        angle_increment=2 * math.pi / n_beams,
+        range_min=0.05,
+        range_max=range_max,
+    )
 
 
 def wall_distance(points: np.ndarray) -> np.ndarray:
@@ -48,7 +54,7 @@ def test_room_scan_maps_walls_and_interior(grid_yaw: float, exact: bool) -> None
     # The rotated grid's origin is placed so that it still covers the whole room.
     # Walls do not lie on cell boundaries, where rounding could pick either cell.
     origin = Pose2D(1.0, -3.2, grid_yaw) if grid_yaw else Pose2D(-1.013, -0.987, 0.0)
-    grid = OccupancyGrid.empty(10.0, 10.0, res, origin)
+    grid = OccupancyGrid.empty(width=10.0, height=10.0, resolution=res, origin=origin)
     pose = Pose2D(2.2, 1.3, 0.4)
     scan = room_scan(pose, 720)
     assert grid.contains(scan.to_points(pose)).all()
@@ -60,8 +66,10 @@ def test_room_scan_maps_walls_and_interior(grid_yaw: float, exact: bool) -> None
     dist = wall_distance(centres).reshape(grid.shape)
     xmin, ymin, xmax, ymax = ROOM
     inside = (
-        (centres[:, 0] > xmin) & (centres[:, 0] < xmax)
-        & (centres[:, 1] > ymin) & (centres[:, 1] < ymax)
+        (centres[:, 0] > xmin)
+        & (centres[:, 0] < xmax)
+        & (centres[:, 1] > ymin)
+        & (centres[:, 1] < ymax)
     ).reshape(grid.shape)
     occupied = grid.occupied()
     # Occupied cells lie on the walls, within one cell.
@@ -163,13 +171,13 @@ def test_kernel_matches_reference(
     # A 10 m grid centred on the world origin: every beam (<= 3 m from a sensor
     # within 1 m of the centre) stays inside, so no clipping is involved.
     origin = Pose2D(0.0, 0.0, yaw).compose(Pose2D(-5.0, -5.0, 0.0))
-    grid = OccupancyGrid(np.zeros((100, 100)), 0.1, origin)
-    scan = LaserScan(ranges, -2.0, 0.1, 0.05, 3.0)
+    grid = OccupancyGrid(np.zeros((100, 100)), resolution=0.1, origin=origin)
+    scan = LaserScan(ranges, angle_min=-2.0, angle_increment=0.1, range_min=0.05, range_max=3.0)
     pose = Pose2D(x, y, theta)
     clamp = (-2.0, 3.5)
     expected = grid.logodds.copy()
     for _ in range(repeats + 1):
-        grid.integrate_scan(scan, pose, hit=HIT, miss=MISS, clamp=clamp)
+        integrate_scan(grid, scan, pose, hit=HIT, miss=MISS, clamp=clamp)
         expected = reference_integrate(expected, origin, 0.1, scan, pose, clamp)
     assert np.allclose(grid.logodds, expected, atol=1e-5)
 
@@ -194,28 +202,46 @@ def test_clipped_beams_match_a_larger_grid(
     """
     yaw = 0.3
     big_origin = Pose2D(0.0, 0.0, yaw).compose(Pose2D(-10.0137, -10.0291, 0.0))
-    big = OccupancyGrid(np.zeros((200, 200)), 0.1, big_origin)
+    big = OccupancyGrid(np.zeros((200, 200)), resolution=0.1, origin=big_origin)
     sub_origin = big_origin.compose(Pose2D(c0 * 0.1, r0 * 0.1, 0.0))
-    sub = OccupancyGrid(np.zeros((50, 70)), 0.1, sub_origin)
-    scan = LaserScan(ranges, -1.0, 0.21, 0.05, 8.0)
+    sub = OccupancyGrid(np.zeros((50, 70)), resolution=0.1, origin=sub_origin)
+    scan = LaserScan(ranges, angle_min=-1.0, angle_increment=0.21, range_min=0.05, range_max=8.0)
     pose = Pose2D(x, y, theta)
-    big.integrate_scan(scan, pose, exact=True)
-    sub.integrate_scan(scan, pose, exact=True)
+    integrate_scan(big, scan, pose, exact=True)
+    integrate_scan(sub, scan, pose, exact=True)
     window = big.logodds[r0 : r0 + 50, c0 : c0 + 70]
     assert np.array_equal(window != 0, sub.logodds != 0)
     assert np.array_equal(window > 0, sub.logodds > 0)
 
 
 def test_no_double_counting_within_a_scan() -> None:
-    one = OccupancyGrid.empty(5.0, 5.0, 0.1)
-    many = OccupancyGrid.empty(5.0, 5.0, 0.1)
+    one = OccupancyGrid.empty(width=5.0, height=5.0, resolution=0.1)
+    many = OccupancyGrid.empty(width=5.0, height=5.0, resolution=0.1)
     pose = Pose2D(2.5, 2.5, 0.0)
-    one.integrate_scan(LaserScan([1.5], 0.3, 0.01, 0.1, 4.0), pose)
+    integrate_scan(
+        one,
+        LaserScan([1.5], angle_min=0.3, angle_increment=0.01, range_min=0.1, range_max=4.0),
+        pose,
+    )
     # Ten identical beams and a fan of nearly parallel ones crossing the same cells.
-    many.integrate_scan(LaserScan([1.5] * 10, 0.3, 1e-9, 0.1, 4.0), pose)
+    integrate_scan(
+        many,
+        LaserScan([1.5] * 10, angle_min=0.3, angle_increment=1e-9, range_min=0.1, range_max=4.0),
+        pose,
+    )
     assert np.array_equal(one.logodds, many.logodds)
-    fan = OccupancyGrid.empty(5.0, 5.0, 0.1)
-    fan.integrate_scan(LaserScan(np.full(90, 2.0), 0.0, 2 * math.pi / 90, 0.1, 4.0), pose)
+    fan = OccupancyGrid.empty(width=5.0, height=5.0, resolution=0.1)
+    integrate_scan(
+        fan,
+        LaserScan(
+            np.full(90, 2.0),
+            angle_min=0.0,
+            angle_increment=2 * math.pi / 90,
+            range_min=0.1,
+            range_max=4.0,
+        ),
+        pose,
+    )
     # Near the sensor all 90 beams share cells; each still changed once.
     values = fan.logodds.astype(np.float64)
     allowed = np.array([0.0, MISS, HIT])
@@ -224,53 +250,83 @@ def test_no_double_counting_within_a_scan() -> None:
 
 
 def test_max_range_and_inf_clear_without_marking() -> None:
-    grid = OccupancyGrid.empty(10.0, 1.0, 0.1)
+    grid = OccupancyGrid.empty(width=10.0, height=1.0, resolution=0.1)
     pose = Pose2D(0.05, 0.55, 0.0)
-    n = grid.integrate_scan(LaserScan([math.inf], 0.0, 0.1, 0.1, 4.0), pose)
+    n = integrate_scan(
+        grid,
+        LaserScan([math.inf], angle_min=0.0, angle_increment=0.1, range_min=0.1, range_max=4.0),
+        pose,
+    )
     row = grid.logodds[5]
     assert n == 41  # cells 0..40 (x in [0, 4.1)), the last one reached at range_max
     assert np.all(row[:41] < 0) and np.all(row[41:] == 0)
     assert not grid.occupied().any()
-    again = OccupancyGrid.empty(10.0, 1.0, 0.1)
-    again.integrate_scan(LaserScan([4.0, 7.0], 0.0, 1e-12, 0.1, 4.0), pose)
+    again = OccupancyGrid.empty(width=10.0, height=1.0, resolution=0.1)
+    integrate_scan(
+        again,
+        LaserScan([4.0, 7.0], angle_min=0.0, angle_increment=1e-12, range_min=0.1, range_max=4.0),
+        pose,
+    )
     assert np.array_equal(again.logodds, grid.logodds)
-    capped = OccupancyGrid.empty(10.0, 1.0, 0.1)
-    capped.integrate_scan(LaserScan([7.0], 0.0, 0.1, 0.1, 8.0), pose, max_range=4.0)
+    capped = OccupancyGrid.empty(width=10.0, height=1.0, resolution=0.1)
+    integrate_scan(
+        capped,
+        LaserScan([7.0], angle_min=0.0, angle_increment=0.1, range_min=0.1, range_max=8.0),
+        pose,
+        max_range=4.0,
+    )
     assert np.array_equal(capped.logodds, grid.logodds)
 
 
 def test_invalid_readings_change_nothing() -> None:
-    grid = OccupancyGrid.empty(4.0, 4.0, 0.1)
-    scan = LaserScan([math.nan, -math.inf, 0.01], 0.0, 0.5, 0.05, 3.0)
-    assert grid.integrate_scan(scan, Pose2D(2.0, 2.0, 0.0)) == 0
+    grid = OccupancyGrid.empty(width=4.0, height=4.0, resolution=0.1)
+    scan = LaserScan(
+        [math.nan, -math.inf, 0.01],
+        angle_min=0.0,
+        angle_increment=0.5,
+        range_min=0.05,
+        range_max=3.0,
+    )
+    assert integrate_scan(grid, scan, Pose2D(2.0, 2.0, 0.0)) == 0
     assert np.all(grid.logodds == 0)
 
 
 def test_beams_leaving_the_map_are_clipped() -> None:
-    grid = OccupancyGrid.empty(2.0, 2.0, 0.1)
+    grid = OccupancyGrid.empty(width=2.0, height=2.0, resolution=0.1)
     # Sensor outside the map, beams crossing it and ending beyond it.
-    n = grid.integrate_scan(LaserScan([6.0, 6.0], -0.05, 0.1, 0.1, 8.0), Pose2D(-2.0, 1.0, 0.0))
+    n = integrate_scan(
+        grid,
+        LaserScan([6.0, 6.0], angle_min=-0.05, angle_increment=0.1, range_min=0.1, range_max=8.0),
+        Pose2D(-2.0, 1.0, 0.0),
+    )
     assert n > 0
     assert not grid.occupied().any()
     # Each of the two diverging beams crosses every column once (Bresenham, x-major).
     assert n == 2 * grid.shape[1]
     assert np.all((grid.logodds < 0).sum(axis=0) == 2)
     # A sensor far away whose beams never reach the map changes nothing.
-    assert grid.integrate_scan(LaserScan([1.0], 0.0, 0.1, 0.1, 2.0), Pose2D(50, 50, 0)) == 0
+    assert (
+        integrate_scan(
+            grid,
+            LaserScan([1.0], angle_min=0.0, angle_increment=0.1, range_min=0.1, range_max=2.0),
+            Pose2D(50, 50, 0),
+        )
+        == 0
+    )
 
 
 def test_clamping() -> None:
-    grid = OccupancyGrid.empty(3.0, 1.0, 0.1)
-    scan = LaserScan([2.0], 0.0, 0.1, 0.1, 2.5)
+    grid = OccupancyGrid.empty(width=3.0, height=1.0, resolution=0.1)
+    scan = LaserScan([2.0], angle_min=0.0, angle_increment=0.1, range_min=0.1, range_max=2.5)
     for _ in range(20):
-        grid.integrate_scan(scan, Pose2D(0.05, 0.55, 0.0), clamp=(-1.0, 2.0))
+        integrate_scan(grid, scan, Pose2D(0.05, 0.55, 0.0), clamp=(-1.0, 2.0))
     assert grid.logodds.max() == pytest.approx(2.0)
     assert grid.logodds.min() == pytest.approx(-1.0)
 
 
 def test_integrate_rejects_bad_input() -> None:
-    grid = OccupancyGrid.empty(3.0, 3.0, 0.1)
-    scan = LaserScan([1.0], 0.0, 0.1, 0.1, 2.0)
+    grid = OccupancyGrid.empty(width=3.0, height=3.0, resolution=0.1)
+    scan = LaserScan([1.0], angle_min=0.0, angle_increment=0.1, range_min=0.1, range_max=2.0)
     before = grid.logodds.copy()
     with pytest.raises(TypeError, match="scan must be a LaserScan"):
         grid.integrate_scan([1.0], Pose2D(0, 0, 0))  # type: ignore[arg-type]
@@ -284,7 +340,17 @@ def test_integrate_rejects_bad_input() -> None:
         grid.integrate_scan(scan, Pose2D(1, 1, 0), clamp=(2.0, -2.0))
     with pytest.raises(ValueError, match="max_range must be > 0"):
         grid.integrate_scan(scan, Pose2D(1, 1, 0), max_range=-1.0)
+    with pytest.raises(TypeError, match="grid must be an OccupancyGrid"):
+        integrate_scan(grid.logodds, scan, Pose2D(1, 1, 0))  # type: ignore[arg-type]
+    with pytest.raises(TypeError, match="scan must be a LaserScan"):
+        integrate_scan(grid, scan.ranges, Pose2D(1, 1, 0))  # type: ignore[arg-type]
+    with pytest.raises(TypeError, match="positional"):
+        integrate_scan(grid, scan, Pose2D(1, 1, 0), 0.5)  # type: ignore[call-arg]
     assert np.array_equal(grid.logodds, before)
+    # Function and method are one: a 3-sequence pose works for both.
+    a, b = grid.copy(), grid.copy()
+    assert integrate_scan(a, scan, (1.0, 1.0, 0.3)) == b.integrate_scan(scan, [1.0, 1.0, 0.3]) > 0
+    assert np.array_equal(a.logodds, b.logodds)
 
 
 @settings(max_examples=40, deadline=None)
@@ -300,9 +366,13 @@ def test_exact_traversal_visits_the_cells_the_segment_crosses(
     # Origin off the round numbers hypothesis likes, so no end point sits on a
     # cell boundary (where either neighbour is a correct answer).
     ox, oy = -0.0137, -0.0291
-    grid = OccupancyGrid.empty(5.0, 4.0, 0.1, Pose2D(ox, oy, 0.0))
+    grid = OccupancyGrid.empty(width=5.0, height=4.0, resolution=0.1, origin=Pose2D(ox, oy, 0.0))
     pose = Pose2D(x, y, heading)
-    grid.integrate_scan(LaserScan([rng], 0.0, 0.1, 0.05, 5.0), pose, exact=True)
+    grid.integrate_scan(
+        LaserScan([rng], angle_min=0.0, angle_increment=0.1, range_min=0.05, range_max=5.0),
+        pose,
+        exact=True,
+    )
     visited = {(int(r), int(c)) for r, c in np.argwhere(grid.logodds != 0)}
     end = (x + rng * math.cos(heading), y + rng * math.sin(heading))
     segment = shapely.LineString([(x, y), end])
@@ -321,9 +391,18 @@ def test_exact_traversal_visits_the_cells_the_segment_crosses(
 
 def test_long_beams_from_far_away_are_clipped_to_the_map() -> None:
     # A sensor 500 km away with a 1000 km range: only the part inside is walked.
-    grid = OccupancyGrid.empty(2.0, 1.0, 0.1)
+    grid = OccupancyGrid.empty(width=2.0, height=1.0, resolution=0.1)
     far = Pose2D(-5e5, 0.55, 0.0)
-    n = grid.integrate_scan(LaserScan([math.inf, 5e5 + 1.05], 0.0, 1e-12, 0.1, 1e6), far)
+    n = grid.integrate_scan(
+        LaserScan(
+            [math.inf, 5e5 + 1.05],
+            angle_min=0.0,
+            angle_increment=1e-12,
+            range_min=0.1,
+            range_max=1e6,
+        ),
+        far,
+    )
     assert n == grid.shape[1]
     row = grid.logodds[5]
     assert np.all(row[:10] < 0) and row[10] > 0 and np.all(row[11:] < 0)

@@ -1,18 +1,26 @@
-"""ROS map_server files: the real maps in ../shared/data, round trips and bad files."""
+"""ROS map_server files (navkit.mapping.io): real maps in ../shared/data, round trips,
+bad files, and saving that never loses a map."""
 
 from __future__ import annotations
 
+import errno
 import math
+import os
+import stat
 import sys
+from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pytest
+import yaml as pyyaml
 from scipy import ndimage
 
 from navkit.geometry import Pose2D
 from navkit.mapping import OccupancyGrid
-from navkit.mapping._mapfile import read_pgm
+from navkit.mapping.io import read_map, write_map
+from navkit.mapping.io._map_files import read_pgm
 
 MAPS = "ros-map-server-maps"
 
@@ -89,11 +97,11 @@ def test_turtlebot3_world_pillars(shared_data: Path) -> None:
     "yaml", ["turtlebot3_world/map.yaml", "willow_garage_2010/willow-2010-02-18-0.10.yaml"]
 )
 def test_save_load_round_trip(shared_data: Path, tmp_path: Path, yaml: str, mode: str) -> None:
-    grid = OccupancyGrid.load(maps(shared_data) / yaml)
-    image = grid.save(tmp_path / "copy.yaml", mode=mode)
+    grid = read_map(maps(shared_data) / yaml)
+    image = write_map(grid, tmp_path / "copy.yaml", mode=mode)
     assert image == tmp_path / "copy.pgm"
     assert "image: copy.pgm" in (tmp_path / "copy.yaml").read_text()
-    again = OccupancyGrid.load(tmp_path / "copy.yaml")
+    again = read_map(tmp_path / "copy.yaml")
     assert again.shape == grid.shape and again.resolution == grid.resolution
     assert again.origin == grid.origin
     assert np.array_equal(again.occupied(), grid.occupied())
@@ -105,7 +113,11 @@ def test_round_trip_with_yaw_and_custom_thresholds(tmp_path: Path) -> None:
     rng = np.random.default_rng(3)
     p = rng.random((7, 9))
     grid = OccupancyGrid(
-        np.log(p / (1 - p)), 0.2, Pose2D(1.0, -2.0, 0.3), occupied_thresh=0.8, free_thresh=0.3
+        np.log(p / (1 - p)),
+        resolution=0.2,
+        origin=Pose2D(1.0, -2.0, 0.3),
+        occupied_thresh=0.8,
+        free_thresh=0.3,
     )
     for mode in ("trinary", "scale"):
         grid.save(tmp_path / f"{mode}.yaml", mode=mode)
@@ -118,7 +130,7 @@ def test_round_trip_with_yaw_and_custom_thresholds(tmp_path: Path) -> None:
         grid.save(tmp_path / "x.yaml", mode="raw")
 
 
-def write_map(tmp: Path, yaml: str, pgm: bytes, name: str = "m.pgm") -> Path:
+def make_map_files(tmp: Path, yaml: str, pgm: bytes, name: str = "m.pgm") -> Path:
     (tmp / name).write_bytes(pgm)
     (tmp / "m.yaml").write_text(yaml)
     return tmp / "m.yaml"
@@ -132,27 +144,28 @@ GOOD_YAML = (
 
 def test_ascii_p2_with_comments_and_16_bit(tmp_path: Path) -> None:
     pgm = b"P2\n# two rows\n3 2\n# max\n1000\n0 1000 900\n1000 1000 0\n"
-    grid = OccupancyGrid.load(write_map(tmp_path, GOOD_YAML, pgm))
+    grid = OccupancyGrid.load(make_map_files(tmp_path, GOOD_YAML, pgm))
     # Image top row (0, 1000, 800) is the last grid row; 1000 = white = free.
     assert grid.occupied().tolist() == [[False, False, True], [True, False, False]]
     assert grid.free().tolist() == [[True, True, False], [False, True, True]]
     p5 = b"P5 3 1 1000\n" + np.array([0, 1000, 600], dtype=">u2").tobytes()
-    grid16 = OccupancyGrid.load(write_map(tmp_path, GOOD_YAML, p5))
+    grid16 = OccupancyGrid.load(make_map_files(tmp_path, GOOD_YAML, p5))
     assert grid16.occupied().tolist() == [[True, False, False]]
     assert grid16.unknown().tolist() == [[False, False, True]]
 
 
 def test_negate_and_scale_modes(tmp_path: Path) -> None:
     pgm = b"P5\n4 1\n255\n" + bytes([0, 100, 200, 255])
-    negated = OccupancyGrid.load(write_map(tmp_path, GOOD_YAML.replace("negate: 0", "negate: 1"),
-                                           pgm))
+    negated = OccupancyGrid.load(
+        make_map_files(tmp_path, GOOD_YAML.replace("negate: 0", "negate: 1"), pgm)
+    )
     assert negated.occupied().tolist() == [[False, False, True, True]]
     assert negated.free().tolist() == [[True, False, False, False]]
-    scale = OccupancyGrid.load(write_map(tmp_path, GOOD_YAML + "mode: scale\n", pgm))
+    scale = OccupancyGrid.load(make_map_files(tmp_path, GOOD_YAML + "mode: scale\n", pgm))
     # p = (255 - v) / 255: 0.608 for v = 100 is kept as a probability.
     assert scale.probability()[0, 1] == pytest.approx(155 / 255, abs=1e-6)
     assert scale.unknown().tolist() == [[False, True, True, False]]
-    raw = OccupancyGrid.load(write_map(tmp_path, GOOD_YAML + "mode: raw\n", pgm))
+    raw = OccupancyGrid.load(make_map_files(tmp_path, GOOD_YAML + "mode: raw\n", pgm))
     assert raw.probability()[0, 0] == pytest.approx(1e-3)
     assert raw.occupied().tolist() == [[False, True, False, False]]
     assert raw.unknown().tolist() == [[False, False, True, True]]
@@ -162,8 +175,10 @@ def test_png_maps_need_pillow(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -
     from PIL import Image
 
     rgba = np.zeros((2, 3, 4), dtype=np.uint8)
-    rgba[..., :3] = [[[0, 0, 0], [254, 254, 254], [205, 205, 205]],
-                     [[254, 254, 254], [254, 254, 254], [0, 0, 0]]]
+    rgba[..., :3] = [
+        [[0, 0, 0], [254, 254, 254], [205, 205, 205]],
+        [[254, 254, 254], [254, 254, 254], [0, 0, 0]],
+    ]
     rgba[..., 3] = 255
     Image.fromarray(rgba, "RGBA").save(tmp_path / "m.png")
     (tmp_path / "m.yaml").write_text(GOOD_YAML.replace("m.pgm", "m.png"))
@@ -179,8 +194,12 @@ def test_png_maps_need_pillow(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -
     ("yaml", "pgm", "error", "match"),
     [
         (GOOD_YAML.replace("resolution: 0.5\n", ""), None, ValueError, "missing .*resolution"),
-        (GOOD_YAML.replace("negate: 0\n", "").replace("free_thresh: 0.196\n", ""), None,
-         ValueError, "missing required key.*negate, free_thresh"),
+        (
+            GOOD_YAML.replace("negate: 0\n", "").replace("free_thresh: 0.196\n", ""),
+            None,
+            ValueError,
+            "missing required key.*negate, free_thresh",
+        ),
         (GOOD_YAML.replace("m.pgm", "absent.pgm"), None, FileNotFoundError, "absent.pgm"),
         (GOOD_YAML.replace("0.5", "-0.5"), None, ValueError, "resolution must be > 0"),
         (GOOD_YAML.replace("[1.0, 2.0, 0.0]", "[1.0, 2.0]"), None, ValueError, "origin must be"),
@@ -198,7 +217,7 @@ def test_png_maps_need_pillow(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -
 def test_bad_map_files(
     tmp_path: Path, yaml: str, pgm: bytes | None, error: type[Exception], match: str
 ) -> None:
-    path = write_map(tmp_path, yaml, pgm if pgm is not None else b"P5\n1 1\n255\n\xff")
+    path = make_map_files(tmp_path, yaml, pgm if pgm is not None else b"P5\n1 1\n255\n\xff")
     with pytest.raises(error, match=match):
         OccupancyGrid.load(path)
 
@@ -211,8 +230,204 @@ def test_missing_yaml() -> None:
 def test_loaded_map_plans_conservatively(shared_data: Path) -> None:
     # Unknown space is impassable by default; a 0.105 m robot fits the turtlebot3 arena.
     grid = OccupancyGrid.load(maps(shared_data) / "turtlebot3_world" / "map.yaml")
-    costs = grid.traversal_costs(0.105, 0.5, 3.0)
+    costs = grid.traversal_costs(robot_radius=0.105, inflation_radius=0.5, cost_scaling_factor=3.0)
     assert np.all(np.isinf(costs[grid.unknown()]))
     assert np.all(np.isinf(costs[grid.inflate(0.105)]))
     centre = grid.world_to_cell([[0.55, 0.55]])[0]
     assert math.isfinite(costs[tuple(centre)])
+
+
+# ------------------------------------------------------------- YAML dialects
+@pytest.mark.parametrize(
+    "text",
+    [
+        # map_saver's own output, yaml-cpp style: ints, exponents without a dot.
+        "image: m.pgm\nmode: trinary\nresolution: 5e-1\norigin: [1, 2, 0]\nnegate: 0\n"
+        "occupied_thresh: 0.65\nfree_thresh: 0.196\n\n",
+        # Quoted strings, a document marker, a block list and true/false negate.
+        "---\nimage: 'm.pgm'\nresolution: 0.5\norigin:\n  - 1.0\n  - 2.0\n  - 0.0\n"
+        'negate: false\noccupied_thresh: "0.65"\nfree_thresh: 0.196\nmode: Trinary\n',
+    ],
+)
+def test_yaml_dialects(tmp_path: Path, text: str) -> None:
+    grid = read_map(make_map_files(tmp_path, text, b"P5\n2 1\n255\n\x00\xfe"))
+    assert grid.resolution == 0.5 and grid.origin == Pose2D(1.0, 2.0, 0.0)
+    assert grid.occupied().tolist() == [[True, False]]
+    assert grid.free().tolist() == [[False, True]]
+
+
+@pytest.mark.parametrize(
+    ("text", "match"),
+    [
+        ("- image\n- m.pgm\n", "expected 'key: value' lines, got list"),
+        ("", "expected 'key: value' lines, got NoneType"),
+        (GOOD_YAML + "origin: [1, 2\n", "m.yaml:7: expected 'key: value'"),
+        (GOOD_YAML.replace("image: m.pgm", "image: [m.pgm]"), "image must be a file name"),
+        (GOOD_YAML.replace("resolution: 0.5", "resolution: true"), "resolution must be a number"),
+        (GOOD_YAML.replace("resolution: 0.5", "resolution: .nan"), "resolution must be finite"),
+        (GOOD_YAML.replace("negate: 0", "negate: 2"), "negate must be 0 or 1"),
+    ],
+)
+def test_bad_yaml(tmp_path: Path, text: str, match: str) -> None:
+    with pytest.raises(ValueError, match=match):
+        read_map(make_map_files(tmp_path, text, b"P5\n1 1\n255\n\xff"))
+
+
+# ------------------------------------------------- saving never loses a map
+def small_grid(value: bool = True) -> OccupancyGrid:
+    occupied = np.array([[value, False, False], [False, False, not value]])
+    return OccupancyGrid.from_occupancy(occupied, resolution=0.25, origin=(1.0, 2.0, 0.0))
+
+
+def snapshot(folder: Path) -> dict[str, bytes]:
+    return {p.name: p.read_bytes() for p in sorted(folder.iterdir())}
+
+
+@pytest.mark.parametrize("name", ["map.pgm", "map.PGM", "Map.Pgm"])
+def test_save_never_writes_over_its_own_image(tmp_path: Path, name: str) -> None:
+    # save("map.pgm") used to write the image to map.pgm and then the YAML over it.
+    small_grid().save(tmp_path / "map.yaml")
+    before = snapshot(tmp_path)
+    with pytest.raises(ValueError, match=r"ends in \.pgm"):
+        small_grid(False).save(tmp_path / name)
+    with pytest.raises(ValueError, match=r"ends in \.pgm"):
+        write_map(small_grid(False), str(tmp_path / name))
+    assert snapshot(tmp_path) == before
+    assert read_map(tmp_path / "map.yaml").occupied()[0, 0]
+
+
+def test_save_refuses_directories_before_writing(tmp_path: Path) -> None:
+    (tmp_path / "map.pgm").mkdir()
+    with pytest.raises(IsADirectoryError, match=r"map\.pgm"):
+        write_map(small_grid(), tmp_path / "map.yaml")
+    (tmp_path / "other.yaml").mkdir()
+    with pytest.raises(IsADirectoryError, match=r"other\.yaml"):
+        write_map(small_grid(), tmp_path / "other.yaml")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["map.pgm", "other.yaml"]
+    with pytest.raises(ValueError, match="must name a YAML file"):
+        write_map(small_grid(), Path(""))
+
+
+def test_save_refuses_a_yaml_linked_to_its_image(tmp_path: Path) -> None:
+    small_grid().save(tmp_path / "map.yaml")
+    os.link(tmp_path / "map.pgm", tmp_path / "alias")
+    (tmp_path / "alias.pgm").symlink_to(tmp_path / "alias")
+    before = snapshot(tmp_path)
+    with pytest.raises(ValueError, match="are the same file"):
+        write_map(small_grid(False), tmp_path / "alias")
+    assert snapshot(tmp_path) == before
+
+
+def fail_on_call(
+    monkeypatch: pytest.MonkeyPatch, name: str, call: int, exc: BaseException
+) -> list[int]:
+    """Make ``os.<name>`` raise ``exc`` on its ``call``-th call (1-based)."""
+    real: Callable[..., Any] = getattr(os, name)
+    calls = [0]
+
+    def wrapper(*args: Any, **kwargs: Any) -> Any:
+        calls[0] += 1
+        if calls[0] == call:
+            raise exc
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(os, name, wrapper)
+    return calls
+
+
+@pytest.mark.parametrize(
+    ("name", "call"),
+    [
+        ("fsync", 1),  # disk full while writing the image
+        ("fsync", 2),  # ... while writing the YAML, the image already written
+        ("replace", 1),  # renaming fails before anything is replaced
+    ],
+)
+def test_failed_save_leaves_the_old_map_intact(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, name: str, call: int
+) -> None:
+    small_grid(True).save(tmp_path / "map.yaml")
+    before = snapshot(tmp_path)
+    fail_on_call(monkeypatch, name, call, OSError(errno.ENOSPC, "No space left on device"))
+    with pytest.raises(OSError, match="No space left"):
+        small_grid(False).save(tmp_path / "map.yaml", mode="scale")
+    monkeypatch.undo()
+    # Old files untouched, no temporary file left behind.
+    assert snapshot(tmp_path) == before
+    again = read_map(tmp_path / "map.yaml")
+    assert np.array_equal(again.occupied(), small_grid(True).occupied())
+
+
+def test_interrupted_save_leaves_no_trace(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    fail_on_call(monkeypatch, "fsync", 2, KeyboardInterrupt())
+    with pytest.raises(KeyboardInterrupt):
+        small_grid().save(tmp_path / "map.yaml")
+    monkeypatch.undo()
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_save_replaces_an_existing_map(tmp_path: Path) -> None:
+    small_grid(True).save(tmp_path / "map.yaml")
+    (tmp_path / "map.pgm").chmod(0o640)
+    small_grid(False).save(tmp_path / "map.yaml")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["map.pgm", "map.yaml"]
+    assert np.array_equal(read_map(tmp_path / "map.yaml").occupied(), small_grid(False).occupied())
+    # An existing file keeps its permissions; a new one gets the umask's.
+    assert stat.S_IMODE((tmp_path / "map.pgm").stat().st_mode) == 0o640
+    umask = os.umask(0o022)
+    try:
+        small_grid().save(tmp_path / "fresh.yaml")
+    finally:
+        os.umask(umask)
+    assert stat.S_IMODE((tmp_path / "fresh.yaml").stat().st_mode) == 0o644
+    assert stat.S_IMODE((tmp_path / "fresh.pgm").stat().st_mode) == 0o644
+
+
+@pytest.mark.parametrize(
+    "stem",
+    [
+        "my map",
+        "a #b",
+        "[x]",
+        "{y}",
+        "key: value",
+        "'quoted'",
+        '"double"',
+        "it's",
+        " lead",
+        "-dash",
+        "&anchor",
+        "*alias",
+        "!tag",
+        "%percent",
+        "@at",
+        "`tick",
+        "back\\slash",
+        "tab\tname",
+        "line\nbreak",
+        "ünïcødé 地图 😀",
+    ],
+)
+def test_image_names_round_trip(tmp_path: Path, stem: str) -> None:
+    yaml_path = tmp_path / f"{stem}.yaml"
+    image = write_map(small_grid(), yaml_path)
+    assert image == tmp_path / f"{stem}.pgm" and image.is_file()
+    # Quoted where plain YAML would misread it; any YAML reader gets the name back.
+    assert pyyaml.safe_load(yaml_path.read_text(encoding="utf-8"))["image"] == f"{stem}.pgm"
+    again = read_map(yaml_path)
+    assert np.array_equal(again.occupied(), small_grid().occupied())
+
+
+@pytest.mark.parametrize("stem", ["next\x85line", "bad\udcffbytes"])
+def test_unreadable_image_names_are_refused_up_front(tmp_path: Path, stem: str) -> None:
+    with pytest.raises(ValueError, match="image name"):
+        write_map(small_grid(), tmp_path / f"{stem}.yaml")
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_save_checks_its_arguments(tmp_path: Path) -> None:
+    with pytest.raises(TypeError, match="grid must be an OccupancyGrid"):
+        write_map(np.zeros((2, 2)), tmp_path / "m.yaml")  # type: ignore[arg-type]
+    with pytest.raises(TypeError, match="positional"):
+        write_map(small_grid(), tmp_path / "m.yaml", "scale")  # type: ignore[call-arg]
+    assert list(tmp_path.iterdir()) == []

@@ -1,33 +1,39 @@
-"""OccupancyGrid: constructors, coordinates, views, messages, rasterising and inflation."""
+"""OccupancyGrid: constructors, coordinates (continuous cells), views, inflation, conveniences."""
 
 from __future__ import annotations
 
+import inspect
 import math
-from types import SimpleNamespace
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pytest
-import shapely
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from shapely.geometry import Point, Polygon, box
+from shapely.geometry import box
 
-from navkit._shared.costs import validate_costs
+import navkit.mapping as mapping
 from navkit.geometry import Pose2D
-from navkit.mapping import LaserScan, OccupancyGrid
+from navkit.mapping import LaserScan, OccupancyGrid, io
 
 
 def test_empty_grid_shape_and_extent() -> None:
-    grid = OccupancyGrid.empty(3.0, 2.0, 0.1, Pose2D(-1.0, -2.0, 0.0))
+    grid = OccupancyGrid.empty(
+        width=3.0, height=2.0, resolution=0.1, origin=Pose2D(-1.0, -2.0, 0.0)
+    )
     assert grid.shape == (20, 30)
     assert grid.width == pytest.approx(3.0) and grid.height == pytest.approx(2.0)
     assert grid.unknown().all() and not grid.occupied().any() and not grid.free().any()
     # Rounded up to whole cells.
-    assert OccupancyGrid.empty(1.01, 0.2, 0.5).shape == (1, 3)
+    assert OccupancyGrid.empty(width=1.01, height=0.2, resolution=0.5).shape == (1, 3)
 
 
 def test_row_zero_is_lowest_y() -> None:
-    grid = OccupancyGrid.empty(2.0, 3.0, 0.5, Pose2D(10.0, 20.0, 0.0))
+    grid = OccupancyGrid.empty(
+        width=2.0, height=3.0, resolution=0.5, origin=Pose2D(10.0, 20.0, 0.0)
+    )
     cells = grid.world_to_cell([[10.1, 20.1], [10.1, 22.9], [11.9, 20.1]])
     assert cells.tolist() == [[0, 0], [5, 0], [0, 3]]
 
@@ -41,7 +47,7 @@ def test_row_zero_is_lowest_y() -> None:
     st.integers(0, 2**32 - 1),
 )
 def test_world_cell_round_trip(ox: float, oy: float, yaw: float, res: float, seed: int) -> None:
-    grid = OccupancyGrid(np.zeros((30, 40)), res, Pose2D(ox, oy, yaw))
+    grid = OccupancyGrid(np.zeros((30, 40)), resolution=res, origin=Pose2D(ox, oy, yaw))
     rng = np.random.default_rng(seed)
     cells = np.column_stack((rng.integers(-5, 35, 50), rng.integers(-5, 45, 50)))
     centres = grid.cell_to_world(cells)
@@ -61,35 +67,142 @@ def test_world_cell_round_trip(ox: float, oy: float, yaw: float, res: float, see
     assert np.array_equal(grid.contains(pts)[ok], inside[ok])
 
 
+@settings(max_examples=80, deadline=None)
+@given(
+    st.floats(-20, 20),
+    st.floats(-20, 20),
+    st.floats(-math.pi, math.pi),
+    st.sampled_from([0.05, 0.1, 0.3]),
+    st.integers(0, 2**32 - 1),
+)
+def test_continuous_cells_round_trip(
+    ox: float, oy: float, yaw: float, res: float, seed: int
+) -> None:
+    grid = OccupancyGrid(np.zeros((30, 40)), resolution=res, origin=Pose2D(ox, oy, yaw))
+    rng = np.random.default_rng(seed)
+    continuous = rng.uniform([-5.0, -5.0], [35.0, 45.0], size=(200, 2))
+    world = grid.cell_to_world(continuous)
+    back = grid.world_to_cell(world, continuous=True)
+    assert back.dtype == np.float64
+    assert np.allclose(back, continuous, rtol=0.0, atol=1e-9)
+    # The cell containing a point is its continuous coordinates rounded half up
+    # (away from the boundaries, where either neighbour is right).
+    cells = grid.world_to_cell(world)
+    ok = np.all(np.abs(continuous - np.floor(continuous) - 0.5) > 1e-6, axis=1)
+    assert np.array_equal(cells[ok], np.floor(continuous[ok] + 0.5).astype(np.int64))
+    # Integers are cell centres: the old integer-only rule (col + 0.5, row + 0.5) * res.
+    ints = np.column_stack((rng.integers(-5, 35, 20), rng.integers(-5, 45, 20)))
+    local = (ints[:, ::-1] + 0.5) * res
+    assert np.allclose(grid.cell_to_world(ints), grid.origin.transform_points(local))
+    # Corners: continuous (i - 0.5, j - 0.5) is the corner (j, i) * res of the grid
+    # frame, e.g. a Field D* node; (-0.5, -0.5) is the origin itself.
+    assert np.allclose(grid.cell_to_world([-0.5, -0.5]), [ox, oy])
+    corner = grid.origin.transform_points([[4 * res, 3 * res]])[0]
+    assert np.allclose(grid.cell_to_world([3 - 0.5, 4 - 0.5]), corner)
+    assert np.allclose(grid.world_to_cell(corner, continuous=True), [2.5, 3.5])
+
+
+def test_single_point_shapes() -> None:
+    grid = OccupancyGrid.empty(width=2.0, height=1.0, resolution=0.5, origin=(1.0, 0.0, 0.0))
+    # One point of shape (2,): one answer of shape (2,) (was (1, 2)).
+    for point in ([1.6, 0.7], (1.6, 0.7), np.array([1.6, 0.7])):
+        cell = grid.world_to_cell(point)
+        assert cell.shape == (2,) and cell.dtype == np.int64
+        assert cell.tolist() == [1, 1]
+        cont = grid.world_to_cell(point, continuous=True)
+        assert cont.shape == (2,) and cont.dtype == np.float64
+        assert cont == pytest.approx([0.9, 0.7])
+        assert grid.contains(point).shape == ()
+        assert bool(grid.contains(point))
+    assert grid.cell_to_world([1, 1]).shape == (2,)
+    assert grid.cell_to_world([1, 1]).tolist() == [1.75, 0.75]
+    assert grid.cell_to_world((1.0, 1.0)).tolist() == [1.75, 0.75]
+    assert not bool(grid.contains([0.9, 0.7]))
+    # (N, 2) input keeps its shape, N = 1 included.
+    assert grid.world_to_cell([[1.6, 0.7]]).shape == (1, 2)
+    assert grid.world_to_cell([[1.6, 0.7]], continuous=True).shape == (1, 2)
+    assert grid.cell_to_world([[1, 1]]).shape == (1, 2)
+    assert grid.contains([[1.6, 0.7]]).shape == (1,)
+    assert grid.world_to_cell(np.empty((0, 2))).shape == (0, 2)
+    assert grid.world_to_cell(np.empty((0, 2)), continuous=True).shape == (0, 2)
+    assert grid.cell_to_world(np.empty((0, 2))).shape == (0, 2)
+    assert grid.contains(np.empty((0, 2))).shape == (0,)
+
+
 def test_coordinate_input_validation() -> None:
-    grid = OccupancyGrid.empty(1.0, 1.0, 0.1)
-    with pytest.raises(ValueError, match="points must have shape"):
+    grid = OccupancyGrid.empty(width=1.0, height=1.0, resolution=0.1)
+    with pytest.raises(ValueError, match="points_xy must have shape"):
         grid.world_to_cell(np.zeros((3, 3)))
+    with pytest.raises(ValueError, match="points_xy must have shape"):
+        grid.world_to_cell([1.0, 2.0, 3.0])
     with pytest.raises(ValueError, match="finite"):
         grid.world_to_cell([[math.nan, 0.0]])
-    with pytest.raises(ValueError, match="integer"):
-        grid.cell_to_world([[0.5, 1.0]])
-    assert grid.world_to_cell(np.empty((0, 2))).shape == (0, 2)
+    with pytest.raises(ValueError, match="finite"):
+        grid.world_to_cell([math.inf, 0.0], continuous=True)
+    with pytest.raises(ValueError, match="points_xy must have shape"):
+        grid.contains(np.zeros((2, 3)))
+    with pytest.raises(ValueError, match="cells must have shape"):
+        grid.cell_to_world(np.zeros((2, 3)))
+    with pytest.raises(ValueError, match="cells must contain only finite"):
+        grid.cell_to_world([[math.nan, 1.0]])
+    # Continuous cells are accepted (they were refused): (0.5, 1.0) is between
+    # the centres of cells (0, 1) and (1, 1).
+    assert grid.cell_to_world([[0.5, 1.0]]) == pytest.approx(np.array([[0.15, 0.1]]))
+    with pytest.raises(TypeError, match="positional"):
+        grid.world_to_cell([0.0, 0.0], True)  # type: ignore[call-arg]
 
 
 @pytest.mark.parametrize(
     ("call", "error", "match"),
     [
-        (lambda: OccupancyGrid.empty(1.0, 1.0, -0.1), ValueError, "resolution must be > 0"),
-        (lambda: OccupancyGrid.empty(0.0, 1.0, 0.1), ValueError, "width must be > 0"),
-        (lambda: OccupancyGrid.empty(1.0, 1.0, 0.1, [0, math.nan, 0]), ValueError, "origin"),
-        (lambda: OccupancyGrid(np.zeros(5), 0.1), ValueError, "logodds must be 2-D"),
-        (lambda: OccupancyGrid(np.zeros((0, 3)), 0.1), ValueError, "must not be empty"),
         (
-            lambda: OccupancyGrid(np.zeros((2, 2)), 0.1, free_thresh=0.7),
+            lambda: OccupancyGrid.empty(width=1.0, height=1.0, resolution=-0.1),
+            ValueError,
+            "resolution must be > 0",
+        ),
+        (
+            lambda: OccupancyGrid.empty(width=0.0, height=1.0, resolution=0.1),
+            ValueError,
+            "width must be > 0",
+        ),
+        (
+            lambda: OccupancyGrid.empty(
+                width=1.0, height=1.0, resolution=0.1, origin=[0, math.nan, 0]
+            ),
+            ValueError,
+            "origin",
+        ),
+        (lambda: OccupancyGrid(np.zeros(5), resolution=0.1), ValueError, "logodds must be 2-D"),
+        (lambda: OccupancyGrid(np.zeros((0, 3)), resolution=0.1), ValueError, "must not be empty"),
+        (
+            lambda: OccupancyGrid(np.zeros((2, 2)), resolution=0.1, free_thresh=0.7),
             ValueError,
             "free_thresh .* must be smaller",
         ),
-        (lambda: OccupancyGrid.from_occupancy(np.zeros((2, 2)), 0.1), TypeError, "boolean"),
         (
-            lambda: OccupancyGrid.from_probabilities([[0.2, 1.5]], 0.1),
+            lambda: OccupancyGrid.from_occupancy(np.zeros((2, 2)), resolution=0.1),
+            TypeError,
+            "boolean",
+        ),
+        (
+            lambda: OccupancyGrid.from_probabilities([[0.2, 1.5]], resolution=0.1),
             ValueError,
             r"probabilities must lie in \[0, 1\]",
+        ),
+        # Swappable floats are keyword-only: the old `empty(0.05, 10, 10)` built a
+        # 1 x 1 grid of 10 m cells.
+        (lambda: OccupancyGrid.empty(0.05, 10, 10), TypeError, "positional"),
+        (lambda: OccupancyGrid(np.zeros((2, 2)), 0.1), TypeError, "positional"),
+        (
+            lambda: OccupancyGrid.from_occupancy(np.zeros((2, 2), dtype=bool), 0.1),
+            TypeError,
+            "positional",
+        ),
+        (lambda: OccupancyGrid.from_probabilities([[0.5]], 0.1), TypeError, "positional"),
+        (
+            lambda: OccupancyGrid.from_probabilities([[0.5]], resolution=0.1, free_thresh=0.9),
+            ValueError,
+            "free_thresh .* must be smaller",
         ),
     ],
 )
@@ -100,27 +213,50 @@ def test_bad_constructor_arguments(call: object, error: type[Exception], match: 
 
 def test_views_and_thresholds() -> None:
     p = np.array([[0.0, 0.1, 0.19, 0.2, 0.5, 0.64, 0.66, 0.9, 1.0]])
-    grid = OccupancyGrid.from_probabilities(p, 0.1)
+    grid = OccupancyGrid.from_probabilities(p, resolution=0.1)
     assert grid.occupied().tolist() == [[False] * 6 + [True] * 3]
     assert grid.free().tolist() == [[True] * 3 + [False] * 6]
     assert grid.unknown().tolist() == [[False] * 3 + [True] * 3 + [False] * 3]
     assert grid.occupied(threshold=0.95).sum() == 1
     assert grid.free(threshold=0.5).sum() == 4
     assert np.allclose(grid.probability(), np.clip(p, 1e-3, 1 - 1e-3), atol=1e-6)
+    assert grid.unknown(occupied_thresh=0.95, free_thresh=0.5).tolist() == [
+        [False] * 4 + [True] * 4 + [False]
+    ]
     with pytest.raises(ValueError, match="threshold must lie in"):
         grid.occupied(threshold=1.5)
+    with pytest.raises(ValueError, match="free_thresh must lie in"):
+        grid.unknown(free_thresh=-0.1)
+    with pytest.raises(TypeError, match="positional"):
+        grid.unknown(0.95, 0.5)  # type: ignore[call-arg]
+
+
+def test_from_probabilities_keeps_thresholds() -> None:
+    p = np.array([[0.25, 0.5, 0.75]])
+    grid = OccupancyGrid.from_probabilities(
+        p, resolution=0.1, origin=(1.0, 2.0, 0.5), occupied_thresh=0.7, free_thresh=0.3
+    )
+    assert (grid.occupied_thresh, grid.free_thresh) == (0.7, 0.3)
+    assert grid.origin == Pose2D(1.0, 2.0, 0.5)
+    assert grid.occupied().tolist() == [[False, False, True]]
+    assert grid.free().tolist() == [[True, False, False]]
+    # Probability 0.5 is log-odds exactly 0 (unknown, never observed).
+    assert grid.logodds[0, 1] == 0.0
 
 
 def test_arrays_are_copied_and_read_only() -> None:
     occ = np.zeros((3, 3), dtype=bool)
-    grid = OccupancyGrid.from_occupancy(occ, 0.1)
+    grid = OccupancyGrid.from_occupancy(occ, resolution=0.1)
     occ[1, 1] = True
     assert not grid.occupied().any()
     with pytest.raises(ValueError):
         grid.logodds[0, 0] = 1.0
     other = grid.copy()
     before = grid.logodds.copy()
-    other.integrate_scan(LaserScan([0.15], 0.0, 0.1, 0.01, 1.0), Pose2D(0.05, 0.05, 0.0))
+    other.integrate_scan(
+        LaserScan([0.15], angle_min=0.0, angle_increment=0.1, range_min=0.01, range_max=1.0),
+        Pose2D(0.05, 0.05, 0.0),
+    )
     assert np.array_equal(grid.logodds, before)
     assert not np.array_equal(other.logodds, before)
 
@@ -128,104 +264,12 @@ def test_arrays_are_copied_and_read_only() -> None:
 def test_from_occupancy_unknown() -> None:
     occ = np.array([[True, False, False]])
     unknown = np.array([[False, False, True]])
-    grid = OccupancyGrid.from_occupancy(occ, 1.0, unknown=unknown)
+    grid = OccupancyGrid.from_occupancy(occ, resolution=1.0, unknown=unknown)
     assert grid.occupied().tolist() == [[True, False, False]]
     assert grid.free().tolist() == [[False, True, False]]
     assert grid.unknown().tolist() == [[False, False, True]]
     with pytest.raises(ValueError, match="must not overlap"):
-        OccupancyGrid.from_occupancy(occ, 1.0, unknown=occ)
-
-
-# --------------------------------------------------------------------- messages
-def fake_msg(data: list[int], width: int, height: int, yaw: float) -> SimpleNamespace:
-    return SimpleNamespace(
-        info=SimpleNamespace(
-            width=width,
-            height=height,
-            resolution=0.05,
-            origin=SimpleNamespace(
-                position=SimpleNamespace(x=1.5, y=-2.0, z=0.0),
-                orientation=SimpleNamespace(
-                    x=0.0, y=0.0, z=math.sin(yaw / 2), w=math.cos(yaw / 2)
-                ),
-            ),
-        ),
-        data=data,
-    )
-
-
-def test_msg_round_trip() -> None:
-    data = [-1, 0, 100, 50, 20, 80]
-    grid = OccupancyGrid.from_msg(fake_msg(data, 3, 2, 0.7))
-    assert grid.shape == (2, 3)
-    assert grid.origin.theta == pytest.approx(0.7)
-    assert (grid.origin.x, grid.origin.y) == (1.5, -2.0)
-    # data row 0 is the row at the origin (lowest y in the grid frame).
-    assert grid.occupied().tolist() == [[False, False, True], [False, False, True]]
-    fields = grid.to_msg_fields()
-    assert fields["data"].dtype == np.int8
-    assert fields["data"].tolist() == [-1, 0, 100, -1, 20, 80]  # 50 % is log-odds 0
-    assert fields["origin_orientation"][2:] == pytest.approx((math.sin(0.35), math.cos(0.35)))
-    trinary = grid.to_msg_fields(trinary=True)["data"].tolist()
-    assert trinary == [-1, 0, 100, -1, -1, 100]
-    again = OccupancyGrid.from_msg(fake_msg(list(fields["data"]), 3, 2, 0.7))
-    assert np.array_equal(again.occupied(), grid.occupied())
-    assert np.array_equal(again.free(), grid.free())
-
-
-def test_bad_msgs() -> None:
-    with pytest.raises(ValueError, match="expected width\\*height = 6"):
-        OccupancyGrid.from_msg(fake_msg([0] * 5, 3, 2, 0.0))
-    with pytest.raises(ValueError, match=r"-1 \(unknown\) or 0\.\.100"):
-        OccupancyGrid.from_msg(fake_msg([0, 0, 0, 0, 0, 101], 3, 2, 0.0))
-    with pytest.raises(TypeError, match="nav_msgs/OccupancyGrid"):
-        OccupancyGrid.from_msg(SimpleNamespace(data=[0]))
-
-
-# ------------------------------------------------------------------- polygons
-def brute_force_raster(geoms: list[shapely.Geometry], x0: float, y0: float, shape: tuple[int, int],
-                       res: float) -> np.ndarray:
-    out = np.zeros(shape, dtype=bool)
-    for r in range(shape[0]):
-        for c in range(shape[1]):
-            cell = box(x0 + c * res, y0 + r * res, x0 + (c + 1) * res, y0 + (r + 1) * res)
-            out[r, c] = any(g.intersects(cell) for g in geoms)
-    return out
-
-
-@settings(max_examples=25, deadline=None)
-@given(st.integers(0, 2**32 - 1))
-def test_from_polygons_matches_brute_force(seed: int) -> None:
-    rng = np.random.default_rng(seed)
-    geoms: list[shapely.Geometry] = []
-    for _ in range(3):
-        cx, cy = rng.uniform(-1, 4, 2)
-        pts = rng.uniform(-0.8, 0.8, size=(5, 2)) + np.array([cx, cy])
-        geoms.append(Polygon(pts).convex_hull)
-    geoms.append(Point(rng.uniform(0, 3, 2)).buffer(0.2))
-    grid = OccupancyGrid.from_polygons(geoms, (-0.5, -0.3, 3.5, 2.7), 0.25)
-    assert grid.shape == (12, 16)
-    expected = brute_force_raster(geoms, -0.5, -0.3, grid.shape, 0.25)
-    assert np.array_equal(grid.occupied(), expected)
-    assert np.array_equal(grid.free(), ~expected)
-
-
-def test_from_polygons_is_conservative() -> None:
-    # A wall exactly on a cell boundary marks the cells on both sides.
-    grid = OccupancyGrid.from_polygons(box(1.0, 0.0, 1.0, 1.0).buffer(1e-9), (0, 0, 2, 1), 0.5)
-    assert grid.occupied().tolist() == [[False, True, True, False]] * 2
-    # A sliver thinner than a cell still blocks it.
-    thin = OccupancyGrid.from_polygons([box(0.6, 0.1, 0.61, 0.2)], (0, 0, 2, 1), 0.5)
-    assert thin.occupied().sum() == 1 and thin.occupied()[0, 1]
-
-
-def test_from_polygons_validation() -> None:
-    with pytest.raises(TypeError, match=r"geometries\[1\] must be a shapely geometry"):
-        OccupancyGrid.from_polygons([box(0, 0, 1, 1), "box"], (0, 0, 1, 1), 0.1)
-    with pytest.raises(ValueError, match="max > min"):
-        OccupancyGrid.from_polygons([], (0, 0, 0, 1), 0.1)
-    with pytest.raises(ValueError, match="bounds must have length 4"):
-        OccupancyGrid.from_polygons([], (0, 0, 1), 0.1)
+        OccupancyGrid.from_occupancy(occ, resolution=1.0, unknown=occ)
 
 
 # ------------------------------------------------------------------ inflation
@@ -234,7 +278,7 @@ def test_from_polygons_validation() -> None:
 def test_inflate_matches_brute_force(seed: int, radius: float) -> None:
     rng = np.random.default_rng(seed)
     occ = rng.random((15, 18)) < 0.05
-    grid = OccupancyGrid.from_occupancy(occ, 0.1)
+    grid = OccupancyGrid.from_occupancy(occ, resolution=0.1)
     mask = grid.inflate(radius)
     obstacles = np.argwhere(occ)
     cells = np.argwhere(np.ones_like(occ))
@@ -249,52 +293,71 @@ def test_inflate_matches_brute_force(seed: int, radius: float) -> None:
 def test_inflate_exact_multiple_of_resolution() -> None:
     occ = np.zeros((9, 9), dtype=bool)
     occ[4, 4] = True
-    mask = OccupancyGrid.from_occupancy(occ, 0.1).inflate(0.3)
+    mask = OccupancyGrid.from_occupancy(occ, resolution=0.1).inflate(0.3)
     assert mask[4, 1] and mask[4, 7] and not mask[4, 0]
     assert mask.sum() == 29  # lattice points with dx² + dy² <= 9
-    with pytest.raises(ValueError, match="radius_m must be >= 0"):
-        OccupancyGrid.from_occupancy(occ, 0.1).inflate(-0.1)
+    with pytest.raises(ValueError, match="robot_radius must be >= 0"):
+        OccupancyGrid.from_occupancy(occ, resolution=0.1).inflate(-0.1)
 
 
-def test_costmap_follows_nav2_inflation_layer() -> None:
-    occ = np.zeros((1, 12), dtype=bool)
-    occ[0, 0] = True
+# ---------------------------------------------------------- thin conveniences
+def _parameters(function: Callable[..., Any], drop: str) -> list[inspect.Parameter]:
+    params = list(inspect.signature(function).parameters.values())
+    assert params[0].name == drop
+    return params[1:]
+
+
+@pytest.mark.parametrize(
+    ("method", "function"),
+    [
+        (OccupancyGrid.costmap, mapping.costmap),
+        (OccupancyGrid.traversal_costs, mapping.traversal_costs),
+        (OccupancyGrid.integrate_scan, mapping.integrate_scan),
+        (OccupancyGrid.save, io.write_map),
+    ],
+)
+def test_methods_have_the_signature_of_their_function(
+    method: Callable[..., Any], function: Callable[..., Any]
+) -> None:
+    # Same names, kinds and defaults: the method is the function with the grid bound.
+    assert _parameters(method, "self") == _parameters(function, "grid")
+
+
+def test_classmethods_have_the_signature_of_their_function() -> None:
+    assert inspect.signature(OccupancyGrid.from_polygons).parameters == (
+        inspect.signature(mapping.rasterize_polygons).parameters
+    )
+    assert list(inspect.signature(OccupancyGrid.load).parameters) == list(
+        inspect.signature(io.read_map).parameters
+    )
+
+
+def test_conveniences_give_the_function_results(tmp_path: Path) -> None:
+    occ = np.zeros((6, 8), dtype=bool)
+    occ[2, 3] = True
     unknown = np.zeros_like(occ)
-    unknown[0, 1] = unknown[0, 4] = True
-    grid = OccupancyGrid.from_occupancy(occ, 0.05, unknown=unknown)
-    cost = grid.costmap(inscribed_radius=0.1, inflation_radius=0.3, cost_scaling_factor=5.0)
-    expected = [254, 253, 253]  # obstacle, unknown inside inscribed radius, inscribed
-    # Beyond the inscribed radius: int(252 * exp(-5 (d - 0.1))) up to ceil(0.3/0.05) cells.
-    expected += [int(252 * math.exp(-5.0 * (k * 0.05 - 0.1))) for k in range(3, 7)]
-    expected += [0] * 5
-    expected[4] = 255  # unknown keeps 255 when its inflated cost is < 253
-    assert cost[0].tolist() == expected
-    assert expected[3] == 196 and expected[6] == 92
-    with_unknown = grid.costmap(0.1, 0.3, 5.0, inflate_unknown=True)
-    assert with_unknown[0, 4] == int(252 * math.exp(-5.0 * 0.1))
-    with pytest.raises(ValueError, match=r"inflation_radius \(0\.1\) must be >= inscribed_radius"):
-        grid.costmap(0.3, 0.1)
-
-
-def test_traversal_costs_for_planners() -> None:
-    occ = np.zeros((1, 12), dtype=bool)
-    occ[0, 0] = True
-    unknown = np.zeros_like(occ)
-    unknown[0, 11] = True
-    grid = OccupancyGrid.from_occupancy(occ, 0.05, unknown=unknown)
-    costs = grid.traversal_costs(0.1, 0.3, 5.0)
-    nav2 = grid.costmap(0.1, 0.3, 5.0)
-    assert np.all(np.isinf(costs[0, :3]))
-    assert costs[0, 3] == pytest.approx(1 + 4 * 196 / 252)
-    assert costs[0, 8] == 1.0 and np.isinf(costs[0, 11])
-    assert np.all(np.diff(costs[0, 3:8]) <= 0)
-    band = nav2 < 253
-    assert np.allclose(costs[band], 1 + 4 * nav2[band].astype(float) / 252)
-    crossing = grid.traversal_costs(0.1, 0.3, 5.0, unknown_cost=3.0)
-    assert crossing[0, 11] == 3.0
-    validate_costs(costs)
-    validate_costs(crossing)
-    point_robot = grid.traversal_costs()
-    assert np.isinf(point_robot[0, 0]) and point_robot[0, 1] == 1.0
-    with pytest.raises(ValueError, match="unknown_cost must be >= 1"):
-        grid.traversal_costs(unknown_cost=0.5)
+    unknown[5, 7] = True
+    grid = OccupancyGrid.from_occupancy(occ, resolution=0.1, unknown=unknown)
+    assert np.array_equal(
+        grid.costmap(robot_radius=0.1, inflation_radius=0.3, inflate_unknown=True),
+        mapping.costmap(grid, robot_radius=0.1, inflation_radius=0.3, inflate_unknown=True),
+    )
+    assert np.array_equal(
+        grid.traversal_costs(robot_radius=0.1, unknown_cost=2.0),
+        mapping.traversal_costs(grid, robot_radius=0.1, unknown_cost=2.0),
+    )
+    bounds = (0.0, 0.0, 2.0, 1.0)
+    a = OccupancyGrid.from_polygons(box(0.2, 0.2, 0.6, 0.4), bounds=bounds, resolution=0.25)
+    b = mapping.rasterize_polygons(box(0.2, 0.2, 0.6, 0.4), bounds=bounds, resolution=0.25)
+    assert np.array_equal(a.logodds, b.logodds) and a.origin == b.origin
+    scan = LaserScan([0.35, 0.5], angle_min=0.0, angle_increment=1.0, range_min=0.1, range_max=1.0)
+    by_method, by_function = grid.copy(), grid.copy()
+    n_method = by_method.integrate_scan(scan, (0.05, 0.05, 0.0), exact=True)
+    n_function = mapping.integrate_scan(by_function, scan, (0.05, 0.05, 0.0), exact=True)
+    assert n_method == n_function > 0
+    assert np.array_equal(by_method.logodds, by_function.logodds)
+    image = grid.save(tmp_path / "m.yaml", mode="scale")
+    assert image == tmp_path / "m.pgm"
+    loaded = OccupancyGrid.load(tmp_path / "m.yaml")
+    assert np.array_equal(loaded.logodds, io.read_map(tmp_path / "m.yaml").logodds)
+    assert np.array_equal(loaded.occupied(), grid.occupied())

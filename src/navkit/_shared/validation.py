@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import math
 import numbers
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
@@ -49,6 +49,40 @@ def as_bool(value: Any, name: str) -> bool:
     return bool(value)
 
 
+def _real_array(value: Any, name: str) -> FloatArray:
+    """``value`` as float64, refusing what only converts by accident.
+
+    Complex numbers (NumPy would drop the imaginary part with a warning),
+    strings (``"1.0"`` converts silently) and booleans are rejected, consistently
+    with :func:`finite_float`.
+    """
+    if isinstance(value, np.ndarray):
+        kind = value.dtype.kind
+        if kind in "iuf":
+            return np.asarray(value, dtype=np.float64)
+        if kind != "O":
+            raise TypeError(f"{name} must hold real numbers, got dtype {value.dtype}")
+    elif isinstance(value, (str, bytes, complex, bool, np.bool_, np.complexfloating)):
+        raise TypeError(f"{name} must be numeric array-like, got {type(value).__name__}")
+    try:
+        raw = np.asarray(value)
+    except (TypeError, ValueError) as exc:
+        raise TypeError(f"{name} must be numeric array-like: {exc}") from None
+    kind = raw.dtype.kind
+    if kind == "O":
+        for item in raw.ravel():
+            if isinstance(item, (bool, np.bool_)) or not isinstance(item, numbers.Real):
+                raise TypeError(
+                    f"{name} must hold real numbers, got an element of type {type(item).__name__}"
+                )
+    elif kind not in "iuf":
+        raise TypeError(f"{name} must hold real numbers, got dtype {raw.dtype}")
+    try:
+        return np.asarray(raw, dtype=np.float64)
+    except (TypeError, ValueError, OverflowError) as exc:
+        raise TypeError(f"{name} must be numeric array-like: {exc}") from None
+
+
 def as_float_array(
     value: ArrayLike,
     name: str,
@@ -72,10 +106,7 @@ def as_float_array(
     finite : bool, default True
         Reject NaN and infinities.
     """
-    try:
-        arr = np.asarray(value, dtype=np.float64)
-    except (TypeError, ValueError) as exc:
-        raise TypeError(f"{name} must be numeric array-like: {exc}") from None
+    arr = _real_array(value, name)
     if shape is not None:
         ndim = len(shape)
     if ndim is not None and arr.ndim != ndim:
@@ -109,6 +140,8 @@ def as_points(value: ArrayLike, name: str, *, finite: bool = True) -> FloatArray
 
 def as_cell(value: Any, name: str, shape: tuple[int, ...]) -> tuple[int, int]:
     """Convert ``value`` to an integer ``(row, col)`` inside an array of ``shape``."""
+    if isinstance(value, (str, bytes, Mapping, set, frozenset)):
+        raise TypeError(f"{name} must be a (row, col) pair, got {type(value).__name__}")
     try:
         seq = tuple(value)
     except TypeError:
@@ -117,8 +150,11 @@ def as_cell(value: Any, name: str, shape: tuple[int, ...]) -> tuple[int, int]:
         raise ValueError(f"{name} must be a (row, col) pair, got {value!r}")
     cell: list[int] = []
     for item in seq:
-        if isinstance(item, bool) or not isinstance(item, numbers.Integral):
-            if isinstance(item, numbers.Real) and float(item).is_integer():
+        if isinstance(item, (bool, np.bool_)):
+            raise TypeError(f"{name} must hold integers, got {value!r}")
+        if not isinstance(item, numbers.Integral):
+            # Integral floats (2.0, from arithmetic on coordinates) are accepted.
+            if isinstance(item, numbers.Real) and math.isfinite(item) and float(item).is_integer():
                 item = int(float(item))
             else:
                 raise TypeError(f"{name} must hold integers, got {value!r}")

@@ -7,6 +7,8 @@ that repel — for any planner or controller (e.g.
 metres.
 """
 
+from __future__ import annotations
+
 from navkit.behaviours._soccer import BehaviourTarget, GameState, attack, defend, support
 
 __all__ = ["BehaviourTarget", "GameState", "attack", "defend", "support"]

@@ -2,41 +2,22 @@
 
 The wheeled soccer robot's three behaviours do not change the potential-field
 controller, only its inputs. Each function maps a :class:`GameState` to a
-:class:`BehaviourTarget` ``(goal, obstacles)`` that any planner or controller can
-consume (e.g. :class:`navkit.control.PotentialFieldController`). They live in the
-planning layer because choosing the goal and the obstacle set is planning, and
-nothing here depends on how the robot is then driven.
+:class:`BehaviourTarget` ``(goal_xy, obstacles_xy)`` that any planner or
+controller can consume (e.g. :class:`navkit.control.PotentialFieldController`).
+Nothing here depends on how the robot is then driven.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-from typing import NamedTuple
+from dataclasses import dataclass, field
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 
-from navkit._shared.validation import as_float_array, as_points, positive_float
+from navkit._shared.types import FloatArray
+from navkit._shared.validation import as_bool, as_float_array, as_points, positive_float
 
 __all__ = ["BehaviourTarget", "GameState", "attack", "defend", "support"]
-
-FloatArray = NDArray[np.float64]
-
-
-class BehaviourTarget(NamedTuple):
-    """What a behaviour asks for: a goal and the points that repel.
-
-    Attributes
-    ----------
-    goal : ndarray, shape (2,)
-        Point ``(x, y)`` (m) to be attracted to.
-    obstacles : ndarray, shape (M, 2)
-        Points ``(x, y)`` (m) that repel; rows of NaN are players that are not
-        currently seen (the controller skips them).
-    """
-
-    goal: FloatArray
-    obstacles: FloatArray
 
 
 def _point(value: ArrayLike, name: str) -> FloatArray:
@@ -53,93 +34,120 @@ def _players(value: ArrayLike, name: str) -> FloatArray:
     return out
 
 
-@dataclass(frozen=True, eq=False, init=False)
-class GameState:
-    """Positions in one frame (usually the field frame), in metres.
+def _no_players() -> FloatArray:
+    return np.empty((0, 2), dtype=np.float64)
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class BehaviourTarget:
+    """What a behaviour asks for: a goal and the points that repel.
 
     Parameters
     ----------
-    robot : array_like, shape (2,)
+    goal_xy : array_like, shape (2,)
+        Point ``(x, y)`` (m) to be attracted to.
+    obstacles_xy : array_like, shape (M, 2)
+        Points ``(x, y)`` (m) that repel; rows of NaN are players that are not
+        currently seen (the controller skips them). ``M = 0`` is valid.
+
+    Both arrays are stored as read-only copies.
+
+    Examples
+    --------
+    >>> target = BehaviourTarget((1.0, 0.0), [[2.0, 1.0], [np.nan, np.nan]])
+    >>> target.goal_xy, target.obstacles_xy.shape
+    (array([1., 0.]), (2, 2))
+    """
+
+    goal_xy: FloatArray
+    obstacles_xy: FloatArray
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "goal_xy", _point(self.goal_xy, "goal_xy"))
+        object.__setattr__(self, "obstacles_xy", _players(self.obstacles_xy, "obstacles_xy"))
+
+
+@dataclass(frozen=True, slots=True, eq=False, kw_only=True)
+class GameState:
+    """Positions in one frame (usually the field frame), in metres.
+
+    Every argument is keyword-only (nine positions are too easy to swap). The
+    arrays are stored as read-only copies; ``has_ball`` and
+    ``opponent_with_ball``, when omitted, are inferred on construction, so
+    after it ``has_ball`` is always a bool.
+
+    Parameters
+    ----------
+    robot_xy : array_like, shape (2,)
         This robot's position.
-    ball : array_like, shape (2,)
+    ball_xy : array_like, shape (2,)
         Ball position.
-    teammates : array_like, shape (K, 2)
-        The other robots of this team (may be empty; NaN rows: not seen).
-    opponents : array_like, shape (L, 2)
-        The opposing robots (may be empty; NaN rows: not seen).
-    own_goal, opponent_goal : array_like, shape (2,)
+    teammates_xy : array_like, shape (K, 2), default no teammates
+        The other robots of this team (NaN rows: not seen).
+    opponents_xy : array_like, shape (L, 2), default no opponents
+        The opposing robots (NaN rows: not seen).
+    own_goal_xy, opponent_goal_xy : array_like, shape (2,)
         Centres of the goal this team defends and of the one it attacks.
     has_ball : bool, optional
         Whether this robot holds the ball; inferred when omitted as
-        ``‖robot - ball‖ <= possession_radius``.
+        ``‖robot_xy - ball_xy‖ <= possession_radius``.
     opponent_with_ball : int, optional
-        Index into ``opponents`` of the opponent holding the ball; inferred when
-        omitted as the nearest seen opponent within ``possession_radius`` (none
-        if there is none or this robot holds the ball).
+        Index into ``opponents_xy`` of the opponent holding the ball; inferred
+        when omitted as the nearest seen opponent within ``possession_radius``
+        (none if there is none or this robot holds the ball).
     possession_radius : float, default 0.25
         Distance (m) within which a player holds the ball, > 0.
 
     Examples
     --------
-    >>> state = GameState(robot=(0.0, 0.0), ball=(1.0, 0.0), teammates=[[-2.0, 1.0]],
-    ...                   opponents=[[1.1, 0.0], [3.0, -1.0]], own_goal=(-4.5, 0.0),
-    ...                   opponent_goal=(4.5, 0.0))
+    >>> state = GameState(robot_xy=(0.0, 0.0), ball_xy=(1.0, 0.0), teammates_xy=[[-2.0, 1.0]],
+    ...                   opponents_xy=[[1.1, 0.0], [3.0, -1.0]], own_goal_xy=(-4.5, 0.0),
+    ...                   opponent_goal_xy=(4.5, 0.0))
     >>> state.has_ball, state.opponent_with_ball
     (False, 0)
     """
 
-    robot: FloatArray
-    ball: FloatArray
-    teammates: FloatArray
-    opponents: FloatArray
-    own_goal: FloatArray
-    opponent_goal: FloatArray
-    has_ball: bool
-    opponent_with_ball: int | None
-    possession_radius: float
+    robot_xy: FloatArray
+    ball_xy: FloatArray
+    teammates_xy: FloatArray = field(default_factory=_no_players)
+    opponents_xy: FloatArray = field(default_factory=_no_players)
+    own_goal_xy: FloatArray
+    opponent_goal_xy: FloatArray
+    has_ball: bool | None = None
+    opponent_with_ball: int | None = None
+    possession_radius: float = 0.25
 
-    def __init__(
-        self,
-        robot: ArrayLike,
-        ball: ArrayLike,
-        teammates: ArrayLike,
-        opponents: ArrayLike,
-        own_goal: ArrayLike,
-        opponent_goal: ArrayLike,
-        has_ball: bool | None = None,
-        opponent_with_ball: int | None = None,
-        possession_radius: float = 0.25,
-    ) -> None:
+    def __post_init__(self) -> None:
         setter = object.__setattr__
-        setter(self, "robot", _point(robot, "robot"))
-        setter(self, "ball", _point(ball, "ball"))
-        setter(self, "own_goal", _point(own_goal, "own_goal"))
-        setter(self, "opponent_goal", _point(opponent_goal, "opponent_goal"))
-        setter(self, "teammates", _players(teammates, "teammates"))
-        setter(self, "opponents", _players(opponents, "opponents"))
-        radius = positive_float(possession_radius, "possession_radius")
+        setter(self, "robot_xy", _point(self.robot_xy, "robot_xy"))
+        setter(self, "ball_xy", _point(self.ball_xy, "ball_xy"))
+        setter(self, "own_goal_xy", _point(self.own_goal_xy, "own_goal_xy"))
+        setter(self, "opponent_goal_xy", _point(self.opponent_goal_xy, "opponent_goal_xy"))
+        setter(self, "teammates_xy", _players(self.teammates_xy, "teammates_xy"))
+        setter(self, "opponents_xy", _players(self.opponents_xy, "opponents_xy"))
+        radius = positive_float(self.possession_radius, "possession_radius")
         setter(self, "possession_radius", radius)
-        if has_ball is None:
-            has_ball = float(np.hypot(*(self.robot - self.ball))) <= radius
-        elif not isinstance(has_ball, (bool, np.bool_)):
-            raise TypeError(f"has_ball must be a bool or None, got {type(has_ball).__name__}")
-        setter(self, "has_ball", bool(has_ball))
-        holder = opponent_with_ball
+        if self.has_ball is None:
+            has_ball = float(np.hypot(*(self.robot_xy - self.ball_xy))) <= radius
+        else:
+            has_ball = as_bool(self.has_ball, "has_ball")
+        setter(self, "has_ball", has_ball)
+        holder = self.opponent_with_ball
+        n_opponents = self.opponents_xy.shape[0]
         if holder is None:
             holder = self._nearest_holder(radius)
-        elif isinstance(holder, bool) or not isinstance(holder, (int, np.integer)):
+        elif isinstance(holder, (bool, np.bool_)) or not isinstance(holder, (int, np.integer)):
             raise TypeError(f"opponent_with_ball must be an int or None, got {holder!r}")
-        elif not 0 <= int(holder) < self.opponents.shape[0]:
+        elif not 0 <= int(holder) < n_opponents:
             raise ValueError(
-                f"opponent_with_ball {holder} is not an index into {self.opponents.shape[0]} "
-                "opponents"
+                f"opponent_with_ball {holder} is not an index into {n_opponents} opponents"
             )
         setter(self, "opponent_with_ball", None if holder is None else int(holder))
 
     def _nearest_holder(self, radius: float) -> int | None:
-        if self.has_ball or self.opponents.shape[0] == 0:
+        if self.has_ball or self.opponents_xy.shape[0] == 0:
             return None
-        dist = np.hypot(*(self.opponents - self.ball).T)
+        dist = np.hypot(*(self.opponents_xy - self.ball_xy).T)
         dist = np.where(np.isnan(dist), np.inf, dist)
         k = int(np.argmin(dist))
         return k if dist[k] <= radius else None
@@ -156,15 +164,16 @@ def attack(state: GameState) -> BehaviourTarget:
 
     Examples
     --------
-    >>> state = GameState((0.0, 0.0), (1.0, 0.0), [], [[2.0, 1.0]], (-4.5, 0.0), (4.5, 0.0))
-    >>> attack(state).goal
+    >>> state = GameState(robot_xy=(0.0, 0.0), ball_xy=(1.0, 0.0), opponents_xy=[[2.0, 1.0]],
+    ...                   own_goal_xy=(-4.5, 0.0), opponent_goal_xy=(4.5, 0.0))
+    >>> attack(state).goal_xy
     array([1., 0.])
-    >>> attack(state).obstacles
+    >>> attack(state).obstacles_xy
     array([[2., 1.]])
     """
     s = _check(state)
-    goal = s.opponent_goal if s.has_ball else s.ball
-    return BehaviourTarget(goal.copy(), s.opponents.copy())
+    goal = s.opponent_goal_xy if s.has_ball else s.ball_xy
+    return BehaviourTarget(goal, s.opponents_xy)
 
 
 def support(state: GameState) -> BehaviourTarget:
@@ -172,19 +181,20 @@ def support(state: GameState) -> BehaviourTarget:
 
     Examples
     --------
-    >>> state = GameState((0.0, 0.0), (1.0, 0.0), [[-1.0, 2.0]], [[2.0, 1.0]],
-    ...                   (-4.5, 0.0), (4.5, 0.0))
+    >>> state = GameState(robot_xy=(0.0, 0.0), ball_xy=(1.0, 0.0), teammates_xy=[[-1.0, 2.0]],
+    ...                   opponents_xy=[[2.0, 1.0]], own_goal_xy=(-4.5, 0.0),
+    ...                   opponent_goal_xy=(4.5, 0.0))
     >>> target = support(state)
-    >>> target.goal
+    >>> target.goal_xy
     array([-1.75,  0.  ])
-    >>> target.obstacles
+    >>> target.obstacles_xy
     array([[-1. ,  2. ],
            [ 2. ,  1. ],
            [-4.5,  0. ]])
     """
     s = _check(state)
-    goal = 0.5 * (s.ball + s.own_goal)
-    obstacles = np.concatenate((s.teammates, s.opponents, s.own_goal[None, :]), axis=0)
+    goal = 0.5 * (s.ball_xy + s.own_goal_xy)
+    obstacles = np.concatenate((s.teammates_xy, s.opponents_xy, s.own_goal_xy[None, :]), axis=0)
     return BehaviourTarget(goal, obstacles)
 
 
@@ -196,13 +206,14 @@ def defend(state: GameState) -> BehaviourTarget:
 
     Examples
     --------
-    >>> state = GameState((0.0, 0.0), (1.0, 0.0), [], [[1.1, 0.0], [2.0, 1.0]],
-    ...                   (-4.5, 0.0), (4.5, 0.0))
-    >>> defend(state).obstacles
+    >>> state = GameState(robot_xy=(0.0, 0.0), ball_xy=(1.0, 0.0),
+    ...                   opponents_xy=[[1.1, 0.0], [2.0, 1.0]], own_goal_xy=(-4.5, 0.0),
+    ...                   opponent_goal_xy=(4.5, 0.0))
+    >>> defend(state).obstacles_xy
     array([[2., 1.]])
     """
     s = _check(state)
-    keep = np.ones(s.opponents.shape[0], dtype=bool)
+    keep = np.ones(s.opponents_xy.shape[0], dtype=bool)
     if s.opponent_with_ball is not None:
         keep[s.opponent_with_ball] = False
-    return BehaviourTarget(s.ball.copy(), s.opponents[keep])
+    return BehaviourTarget(s.ball_xy, s.opponents_xy[keep])

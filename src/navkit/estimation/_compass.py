@@ -5,8 +5,9 @@ from __future__ import annotations
 from typing import overload
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 
+from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, finite_float
 from navkit.geometry import wrap_angle
 
@@ -14,16 +15,16 @@ __all__ = ["CompassCalibration", "compass_to_yaw"]
 
 
 @overload
-def compass_to_yaw(raw_deg: float, initial_deg: float = ..., *, unwrap: bool = ...) -> float: ...
+def compass_to_yaw(raw_deg: float, *, initial_deg: float = ..., unwrap: bool = ...) -> float: ...
 @overload
 def compass_to_yaw(
-    raw_deg: ArrayLike, initial_deg: float = ..., *, unwrap: bool = ...
-) -> float | NDArray[np.float64]: ...
+    raw_deg: ArrayLike, *, initial_deg: float = ..., unwrap: bool = ...
+) -> float | FloatArray: ...
 
 
 def compass_to_yaw(
-    raw_deg: ArrayLike, initial_deg: float = 0.0, *, unwrap: bool = False
-) -> float | NDArray[np.float64]:
+    raw_deg: ArrayLike, *, initial_deg: float = 0.0, unwrap: bool = False
+) -> float | FloatArray:
     r"""Convert compass headings to a yaw relative to the initial heading.
 
     A compass reads 0–360° clockwise from magnetic north; robot yaw is
@@ -39,10 +40,12 @@ def compass_to_yaw(
         Compass heading(s), degrees clockwise from north (any finite value; it is
         taken modulo 360).
     initial_deg : float, default 0.0
-        Heading θ0 (degrees) that defines yaw 0, usually the first reading.
+        Heading θ0 (degrees) that defines yaw 0, usually the first reading
+        (keyword-only).
     unwrap : bool, default False
         For a 1-D log: return a continuous yaw (no 2π jumps, as
-        :func:`numpy.unwrap`), starting from the wrapped first value.
+        :func:`numpy.unwrap`), starting from the wrapped first value
+        (keyword-only).
 
     Returns
     -------
@@ -83,10 +86,13 @@ class CompassCalibration:
     calls (successive readings never jump by 2π), as needed for logs that are
     streamed in pieces.
 
+    An ordinary class with ``__slots__`` rather than a frozen dataclass: it
+    latches its first reading (and the last yaw when unwrapping).
+
     Parameters
     ----------
     unwrap : bool, default False
-        Return a continuous yaw instead of one wrapped to (-π, π].
+        Return a continuous yaw instead of one wrapped to (-π, π] (keyword-only).
 
     Examples
     --------
@@ -102,7 +108,7 @@ class CompassCalibration:
 
     __slots__ = ("_initial", "_last", "_unwrap")
 
-    def __init__(self, unwrap: bool = False) -> None:
+    def __init__(self, *, unwrap: bool = False) -> None:
         self._unwrap = bool(unwrap)
         self._initial: float | None = None
         self._last: float | None = None
@@ -120,9 +126,9 @@ class CompassCalibration:
     @overload
     def __call__(self, raw_deg: float) -> float: ...
     @overload
-    def __call__(self, raw_deg: ArrayLike) -> float | NDArray[np.float64]: ...
+    def __call__(self, raw_deg: ArrayLike) -> float | FloatArray: ...
 
-    def __call__(self, raw_deg: ArrayLike) -> float | NDArray[np.float64]:
+    def __call__(self, raw_deg: ArrayLike) -> float | FloatArray:
         """Yaw (rad) of compass reading(s) ``raw_deg`` (degrees clockwise from north).
 
         Returns a float for a scalar, otherwise a new array (1-D for
@@ -133,7 +139,7 @@ class CompassCalibration:
             return np.empty(raw.shape)
         if self._initial is None:
             self._initial = float(raw.flat[0])
-        yaw = np.asarray(compass_to_yaw(raw, self._initial))
+        yaw = np.asarray(compass_to_yaw(raw, initial_deg=self._initial))
         if self._unwrap:
             flat = yaw.reshape(-1)
             start = flat[0] if self._last is None else self._last

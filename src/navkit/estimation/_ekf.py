@@ -5,17 +5,18 @@ from __future__ import annotations
 from collections.abc import Callable, Iterable
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 
 from navkit._shared.se2 import wrap_scalar
+from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, positive_float
-from navkit.estimation._checks import covariance, index_tuple
+from navkit.errors import FilterError
+from navkit.estimation._covariance import covariance, index_tuple
 from navkit.estimation._gaussian import GaussianEstimate
-from navkit.estimation._result import FilterError, UpdateResult
+from navkit.estimation._result import UpdateResult, new_result
 
 __all__ = ["ExtendedKalmanFilter"]
 
-FloatArray = NDArray[np.float64]
 StateFunction = Callable[[FloatArray], ArrayLike]
 Jacobian = Callable[[FloatArray], ArrayLike] | ArrayLike
 
@@ -31,8 +32,11 @@ class ExtendedKalmanFilter(GaussianEstimate):
     :math:`P \leftarrow (I - KH) P (I - KH)^T + K R K^T`, which stays symmetric
     positive definite under rounding (the short form :math:`(I - KH)P` does not).
     After every step ``P`` is symmetrised and checked to be positive definite; a
-    step that would break this raises :class:`FilterError` and leaves the filter
-    unchanged.
+    step that would break this raises :class:`~navkit.errors.FilterError` and
+    leaves the filter unchanged.
+
+    An ordinary class with ``__slots__`` rather than a frozen dataclass: every
+    step changes its estimate in place.
 
     Parameters
     ----------
@@ -42,7 +46,7 @@ class ExtendedKalmanFilter(GaussianEstimate):
         Initial covariance, symmetric positive definite.
     angle_states : sequence of int, optional
         Indices of state components that are angles (rad); they are wrapped to
-        (-π, π] after every step.
+        (-π, π] after every step (keyword-only).
 
     Examples
     --------
@@ -57,7 +61,9 @@ class ExtendedKalmanFilter(GaussianEstimate):
     (True, array([0.1198, 1.0019]))
     """
 
-    def __init__(self, x0: ArrayLike, P0: ArrayLike, angle_states: Iterable[int] = ()) -> None:
+    __slots__ = ("_angles", "_n", "_validated")
+
+    def __init__(self, x0: ArrayLike, P0: ArrayLike, *, angle_states: Iterable[int] = ()) -> None:
         x = np.array(as_float_array(x0, "x0", ndim=1), dtype=np.float64, copy=True)
         n = x.shape[0]
         if n == 0:
@@ -118,6 +124,7 @@ class ExtendedKalmanFilter(GaussianEstimate):
         h: StateFunction,
         H: Jacobian,
         R: ArrayLike,
+        *,
         angle_measurements: Iterable[int] = (),
         gate: float | None = None,
     ) -> UpdateResult:
@@ -135,11 +142,11 @@ class ExtendedKalmanFilter(GaussianEstimate):
             Measurement noise covariance, symmetric positive definite.
         angle_measurements : sequence of int, optional
             Indices of the components of ``z`` that are angles; their residuals
-            are wrapped to (-π, π].
+            are wrapped to (-π, π] (keyword-only).
         gate : float, optional
             Chi-square threshold on the normalised innovation squared (NIS)
             yᵀ S⁻¹ y; a measurement with NIS above it is rejected (e.g.
-            ``scipy.stats.chi2.ppf(0.997, m)``).
+            ``scipy.stats.chi2.ppf(0.997, m)``); keyword-only.
 
         Returns
         -------
@@ -182,14 +189,14 @@ class ExtendedKalmanFilter(GaussianEstimate):
         s_inv = np.linalg.inv(s)
         nis = float(y @ s_inv @ y)
         if threshold is not None and nis > threshold:
-            return UpdateResult(False, nis, y, f"rejected by the gate: NIS {nis:.6g} > {threshold}")
+            return new_result(False, nis, y, f"rejected by the gate: NIS {nis:.6g} > {threshold}")
         gain = ph @ s_inv
         x_new = self._wrap_states(self._x + gain @ y)
         ikh = np.eye(n) - gain @ jac
         p_new = self._checked(ikh @ self._p @ ikh.T + gain @ r @ gain.T, "updated covariance")
         self._x = x_new
         self._p = p_new
-        return UpdateResult(True, nis, y, None)
+        return new_result(True, nis, y, None)
 
     def _noise(self, value: ArrayLike, name: str, n: int, *, semidefinite: bool) -> FloatArray:
         """Validated noise covariance, reusing the last one when the values are identical."""

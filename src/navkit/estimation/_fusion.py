@@ -10,17 +10,17 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from navkit._shared.types import BoolArray, FloatArray
 from navkit._shared.validation import as_float_array, finite_float, positive_float
-from navkit.estimation import _kernels as k
-from navkit.estimation._checks import covariance
+from navkit.errors import FilterError
+from navkit.estimation import _fusion_kernels as k
+from navkit.estimation._covariance import covariance
+from navkit.estimation._fusion_kernels import GATED, NOT_POSITIVE_DEFINITE, planar_step
 from navkit.estimation._gaussian import GaussianEstimate
-from navkit.estimation._kernels import GATED, NOT_POSITIVE_DEFINITE, planar_step
-from navkit.estimation._result import FilterError, UpdateResult, new_result
+from navkit.estimation._result import UpdateResult, new_result
 from navkit.geometry import Pose2D, wrap_angle
 
 __all__ = ["FusionResult", "FusionStatus", "MeasurementLog", "PlanarFusion"]
-
-FloatArray = NDArray[np.float64]
 
 #: Default process noise per second for [x, y, θ, v, ω, a]: robot_localization's
 #: default ``process_noise_covariance`` entries for the same variables.
@@ -38,11 +38,18 @@ _KIND_COMPONENTS = {
 }
 
 
-_ODOMETRY_NAMES = ("v", "omega", "var_v", "var_omega")
+# Argument names for error messages: (value 0, value 1, variance 0, variance 1).
+_ODOMETRY_NAMES = ("v", "omega", "v_variance", "omega_variance")
 
 
 class FusionStatus(enum.IntEnum):
-    """Outcome of one measurement in :meth:`PlanarFusion.run` (``FusionResult.status``)."""
+    """Outcome of one measurement in :meth:`PlanarFusion.update_batch` (``FusionResult.status``).
+
+    Examples
+    --------
+    >>> FusionStatus(1).name, int(FusionStatus.OUT_OF_ORDER)
+    ('GATED', 3)
+    """
 
     ACCEPTED = k.ACCEPTED
     GATED = k.GATED
@@ -52,7 +59,7 @@ class FusionStatus(enum.IntEnum):
 
 @dataclass(frozen=True, slots=True, eq=False)
 class MeasurementLog:
-    """Timestamped measurements for :meth:`PlanarFusion.run`.
+    """Timestamped measurements for :meth:`PlanarFusion.update_batch`.
 
     Each row is one measurement at ``times[i]`` of a subset of the observation
     vector ``[θ, v, ω, a]`` (absolute yaw, forward speed, yaw rate, forward
@@ -85,7 +92,7 @@ class MeasurementLog:
     times: FloatArray
     values: FloatArray
     variances: FloatArray
-    observed: NDArray[np.bool_]
+    observed: BoolArray
 
     def __post_init__(self) -> None:
         times = as_float_array(self.times, "times", ndim=1)
@@ -138,7 +145,7 @@ class MeasurementLog:
             Wheel odometry: times (s), forward speeds (m/s) and, unless omitted
             (e.g. a skid-steer robot whose wheel yaw rate is unreliable), yaw
             rates (rad/s); each shape (T_o,).
-        odometry_variance : (var_v, var_omega)
+        odometry_variance : (v_variance, omega_variance)
             Variances, scalars or shape (T_o,) arrays ((m/s)², (rad/s)²).
         yaw : (t, yaw), optional
             Absolute yaw (rad), e.g. from a compass or the IMU orientation.
@@ -159,7 +166,7 @@ class MeasurementLog:
             Rows sorted by time (stable: at equal times odometry comes first,
             then yaw, yaw rate and acceleration).
         """
-        blocks: list[tuple[FloatArray, FloatArray, FloatArray, NDArray[np.bool_]]] = []
+        blocks: list[tuple[FloatArray, FloatArray, FloatArray, BoolArray]] = []
         if odometry is not None:
             parts = _stream(odometry, "odometry", (2, 3))
             t = parts[0]
@@ -218,7 +225,7 @@ def _stream_variance(value: ArrayLike, name: str, n: int) -> FloatArray:
 
 def _block(
     t: FloatArray, comps: dict[int, tuple[FloatArray, FloatArray]]
-) -> tuple[FloatArray, FloatArray, FloatArray, NDArray[np.bool_]]:
+) -> tuple[FloatArray, FloatArray, FloatArray, BoolArray]:
     n = t.shape[0]
     values = np.zeros((n, 4))
     var = np.ones((n, 4))
@@ -246,6 +253,15 @@ class FusionResult:
         :class:`FusionStatus` code of each row.
     nis : ndarray, shape (T,)
         Normalised innovation squared of each row (NaN when out of order).
+
+    Every array is a read-only copy.
+
+    Examples
+    --------
+    >>> result = PlanarFusion(t0=0.0).update_batch(
+    ...     MeasurementLog.from_streams(odometry=([0.1, 0.2], [1.0, 1.0], [0.0, 0.0])))
+    >>> result.states.shape, result.accepted.tolist()
+    ((2, 6), [True, True])
     """
 
     times: FloatArray
@@ -254,8 +270,34 @@ class FusionResult:
     status: NDArray[np.int8]
     nis: FloatArray
 
+    def __post_init__(self) -> None:
+        times = as_float_array(self.times, "times", ndim=1)
+        n = times.shape[0]
+        states = as_float_array(self.states, "states", shape=(n, 6), finite=False)
+        cov = as_float_array(self.covariances, "covariances", shape=(n, 6, 6), finite=False)
+        nis = as_float_array(self.nis, "nis", shape=(n,), finite=False)
+        raw_status = np.asarray(self.status)
+        if raw_status.dtype.kind not in "iu":
+            raise TypeError(f"status must hold integer codes, got dtype {raw_status.dtype}")
+        if raw_status.shape != (n,):
+            raise ValueError(f"status must have shape ({n},), got {raw_status.shape}")
+        if not np.all(np.isin(raw_status, [int(code) for code in FusionStatus])):
+            raise ValueError("status must hold FusionStatus codes")
+        status = raw_status.astype(np.int8)
+        fields = (
+            ("times", times),
+            ("states", states),
+            ("covariances", cov),
+            ("status", status),
+            ("nis", nis),
+        )
+        for name, arr in fields:
+            owned = np.array(arr, copy=True)
+            owned.flags.writeable = False
+            object.__setattr__(self, name, owned)
+
     @property
-    def accepted(self) -> NDArray[np.bool_]:
+    def accepted(self) -> BoolArray:
         """Boolean mask (T,) of rows that updated the state."""
         return np.asarray(self.status == FusionStatus.ACCEPTED)
 
@@ -265,6 +307,35 @@ class FusionResult:
         if self.states.shape[0] == 0:
             raise ValueError("the result is empty")
         return Pose2D(*(float(v) for v in self.states[-1, :3]))
+
+
+_FUSION_RESULT_SETTERS = tuple(
+    FusionResult.__dict__[name].__set__
+    for name in ("times", "states", "covariances", "status", "nis")
+)
+
+
+def _fusion_result(
+    times: FloatArray,
+    states: FloatArray,
+    covariances: FloatArray,
+    status: NDArray[np.int8],
+    nis: FloatArray,
+) -> FusionResult:
+    """Build a :class:`FusionResult` from arrays the caller owns, without copying them.
+
+    The validating constructor copies every array; the covariances alone are
+    288 bytes a row (29 MB for 100,000 rows), and copying them would add a few
+    milliseconds (5-10 %) to :meth:`PlanarFusion.update_batch`. The filter's
+    output arrays are fresh and referenced by nothing else, so they are only
+    made read-only; ``times`` is the log's, already a read-only copy.
+    """
+    result: FusionResult = object.__new__(FusionResult)
+    arrays: tuple[NDArray[Any], ...] = (times, states, covariances, status, nis)
+    for setter, arr in zip(_FUSION_RESULT_SETTERS, arrays, strict=True):
+        arr.flags.writeable = False
+        setter(result, arr)
+    return result
 
 
 class PlanarFusion(GaussianEstimate):
@@ -288,13 +359,17 @@ class PlanarFusion(GaussianEstimate):
     (``accepted=False`` with a reason). A measurement rejected by the gate still
     advances the filter to its time (the prediction is kept, the update skipped).
     The first measurement (when ``t0`` is not given) sets the clock without a
-    prediction. A numerical failure raises :class:`FilterError` and leaves the
-    filter untouched.
-    Predict and update run in one compiled kernel per call; :meth:`run` fuses a
-    whole log in one kernel call. Several readings with one timestamp (e.g. the
-    yaw, yaw rate and acceleration of one IMU message) can be given by successive
-    calls: with independent noise and linear measurements this equals one joint
-    update.
+    prediction. A numerical failure raises :class:`~navkit.errors.FilterError`
+    and leaves the filter untouched.
+    Predict and update run in one compiled kernel per call; :meth:`update_batch`
+    fuses a whole log in one kernel call. Several readings with one timestamp
+    (e.g. the yaw, yaw rate and acceleration of one IMU message) can be given by
+    successive calls: with independent noise and linear measurements this equals
+    one joint update. In every ``update_*`` method the time and the measured
+    value(s) are positional and every variance is keyword-only.
+
+    An ordinary class with ``__slots__`` rather than a frozen dataclass: every
+    measurement changes its estimate in place.
 
     Parameters
     ----------
@@ -317,12 +392,14 @@ class PlanarFusion(GaussianEstimate):
     --------
     >>> fusion = PlanarFusion()
     >>> for i in range(101):
-    ...     res = fusion.update_odometry(0.01 * i, v=1.0, omega=0.0, var_v=1e-4, var_omega=1e-4)
+    ...     res = fusion.update_odometry(0.01 * i, 1.0, 0.0, v_variance=1e-4, omega_variance=1e-4)
     >>> round(fusion.pose.x, 3), round(float(fusion.x[3]), 3)
     (1.0, 1.0)
-    >>> fusion.update_yaw(0.5, yaw=0.0, var=1e-3).reason
+    >>> fusion.update_yaw(0.5, 0.0, variance=1e-3).reason
     'out of order: t=0.5 s is older than the filter time 1.0 s'
     """
+
+    __slots__ = ("_buf", "_gates", "_kinds", "_q", "_residuals", "_t", "_work")
 
     def __init__(
         self,
@@ -335,7 +412,7 @@ class PlanarFusion(GaussianEstimate):
     ) -> None:
         x = np.zeros(6) if x0 is None else as_float_array(x0, "x0", shape=(6,))
         # x, P, Q, the current measurement and scratch space live in one array: the
-        # compiled online step takes just that array (see _kernels.BUF_*).
+        # compiled online step takes just that array (see _fusion_kernels.BUF_*).
         self._buf = np.zeros((k.BUF_ROWS, 6))
         self._x: FloatArray = self._buf[k.BUF_X]
         self._p: FloatArray = self._buf[k.BUF_P : k.BUF_P + 6]
@@ -400,33 +477,34 @@ class PlanarFusion(GaussianEstimate):
         self._t = time
 
     def update_odometry(
-        self, t: float, v: float, omega: float, var_v: float, var_omega: float
+        self, t: float, v: float, omega: float, *, v_variance: float, omega_variance: float
     ) -> UpdateResult:
         """Fuse a wheel-odometry twist: forward speed ``v`` (m/s), yaw rate ``omega`` (rad/s).
 
-        ``var_v``, ``var_omega`` are the variances ((m/s)², (rad/s)²), > 0. Returns
-        the :class:`UpdateResult` (residual order ``[v, omega]``).
+        ``v_variance``, ``omega_variance`` (keyword-only) are the variances
+        ((m/s)², (rad/s)²), > 0. Returns the :class:`UpdateResult` (residual
+        order ``[v, omega]``).
         """
-        return self._apply(t, "odometry", v, omega, var_v, var_omega, _ODOMETRY_NAMES)
+        return self._apply(t, "odometry", v, omega, v_variance, omega_variance, _ODOMETRY_NAMES)
 
-    def update_speed(self, t: float, v: float, var: float) -> UpdateResult:
-        """Fuse a forward speed ``v`` (m/s) alone, variance (m/s)².
+    def update_speed(self, t: float, v: float, *, variance: float) -> UpdateResult:
+        """Fuse a forward speed ``v`` (m/s) alone; ``variance`` in (m/s)², keyword-only.
 
         For odometry whose yaw rate is unreliable (skid-steer robots).
         """
-        return self._apply(t, "speed", v, 0.0, var, 1.0, ("v", "", "var", ""))
+        return self._apply(t, "speed", v, 0.0, variance, 1.0, ("v", "", "variance", ""))
 
-    def update_yaw(self, t: float, yaw: float, var: float) -> UpdateResult:
-        """Fuse an absolute yaw ``yaw`` (rad, any range; compass or IMU), variance rad²."""
-        return self._apply(t, "yaw", yaw, 0.0, var, 1.0, ("yaw", "", "var", ""))
+    def update_yaw(self, t: float, yaw: float, *, variance: float) -> UpdateResult:
+        """Fuse an absolute yaw ``yaw`` (rad, any range; compass or IMU); ``variance`` in rad²."""
+        return self._apply(t, "yaw", yaw, 0.0, variance, 1.0, ("yaw", "", "variance", ""))
 
-    def update_yaw_rate(self, t: float, omega: float, var: float) -> UpdateResult:
-        """Fuse a gyro yaw rate ``omega`` (rad/s), variance (rad/s)²."""
-        return self._apply(t, "yaw_rate", omega, 0.0, var, 1.0, ("omega", "", "var", ""))
+    def update_yaw_rate(self, t: float, omega: float, *, variance: float) -> UpdateResult:
+        """Fuse a gyro yaw rate ``omega`` (rad/s); ``variance`` in (rad/s)², keyword-only."""
+        return self._apply(t, "yaw_rate", omega, 0.0, variance, 1.0, ("omega", "", "variance", ""))
 
-    def update_acceleration(self, t: float, a: float, var: float) -> UpdateResult:
-        """Fuse a forward acceleration ``a`` (m/s², gravity removed), variance (m/s²)²."""
-        return self._apply(t, "acceleration", a, 0.0, var, 1.0, ("a", "", "var", ""))
+    def update_acceleration(self, t: float, a: float, *, variance: float) -> UpdateResult:
+        """Fuse a forward acceleration ``a`` (m/s², gravity removed); ``variance`` in (m/s²)²."""
+        return self._apply(t, "acceleration", a, 0.0, variance, 1.0, ("a", "", "variance", ""))
 
     def _apply(
         self,
@@ -455,7 +533,7 @@ class PlanarFusion(GaussianEstimate):
                 var1 = positive_float(var1, names[3])
         last = self._t
         if last is not None and t < last:
-            return UpdateResult(
+            return new_result(
                 False,
                 math.nan,
                 np.empty(0),
@@ -473,7 +551,7 @@ class PlanarFusion(GaussianEstimate):
             return new_result(False, nis, residual, f"rejected by the gate: NIS {nis:.6g}")
         return new_result(True, nis, residual, None)
 
-    def run(self, log: MeasurementLog) -> FusionResult:
+    def update_batch(self, log: MeasurementLog) -> FusionResult:
         """Fuse a whole :class:`MeasurementLog` in one compiled kernel call.
 
         Equivalent to calling the online updates row by row (same numbers), but
@@ -496,7 +574,7 @@ class PlanarFusion(GaussianEstimate):
         status = np.empty(n, dtype=np.int8)
         nis = np.empty(n)
         if n == 0:
-            return FusionResult(log.times, out_x, out_p, status, nis)
+            return _fusion_result(log.times, out_x, out_p, status, nis)
         t0 = float(log.times[0]) if self._t is None else self._t
         x = self._x.copy()
         p = self._p.copy()
@@ -508,7 +586,7 @@ class PlanarFusion(GaussianEstimate):
         self._x[:] = x
         self._p[:, :] = p
         self._t = float(t_end)
-        return FusionResult(log.times, out_x, out_p, status, nis)
+        return _fusion_result(log.times, out_x, out_p, status, nis)
 
     def __repr__(self) -> str:
         return f"PlanarFusion(t={self._t}, x={np.array2string(self._x, precision=4)})"

@@ -3,9 +3,10 @@
 from __future__ import annotations
 
 import numpy as np
-from numpy.typing import NDArray
 
-FloatArray = NDArray[np.float64]
+from navkit._shared.types import FloatArray
+
+__all__ = ["GaussianEstimate"]
 
 
 class GaussianEstimate:
@@ -14,6 +15,8 @@ class GaussianEstimate:
     Subclasses own and update the two arrays; callers only ever see copies, so
     they cannot corrupt the filter by writing into what they read.
     """
+
+    __slots__ = ("_p", "_x")
 
     _x: FloatArray
     _p: FloatArray

@@ -5,15 +5,15 @@ from __future__ import annotations
 import numbers
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 
-from navkit._shared.validation import as_float_array, positive_float
-from navkit.geometry import Pose2D, wrap_angle
+from navkit._shared.types import FloatArray
+from navkit._shared.validation import as_float_array, finite_float, positive_float
+from navkit.geometry import Pose2D, as_pose, wrap_angle
 from navkit.kinematics import DiffDrive, OdometryMethod, OmniDrive, tick_delta, ticks_to_distance
 
 __all__ = ["DiffOdometry", "OmniOdometry"]
 
-FloatArray = NDArray[np.float64]
 _METHODS = ("arc", "midpoint", "first_order")
 
 
@@ -56,13 +56,16 @@ class OmniOdometry:
       :math:`\theta_{k-1} + \mathrm{wrap}(\theta_k - \theta_{k-1})/2` (second
       order) rather than by the heading at one end of the step.
 
+    An ordinary class with ``__slots__`` rather than a frozen dataclass: every
+    update moves its pose.
+
     Parameters
     ----------
     drive : OmniDrive
         Wheel layout.
-    pose : Pose2D, default Pose2D(0, 0, 0)
-        Start pose; its heading should be the compass yaw at the start (e.g. 0
-        with :class:`CompassCalibration`).
+    pose : Pose2D or array_like, shape (3,), default Pose2D(0, 0, 0)
+        Start pose (keyword-only); its heading should be the compass yaw at the
+        start (e.g. 0 with :class:`CompassCalibration`).
 
     Examples
     --------
@@ -71,19 +74,17 @@ class OmniOdometry:
     >>> drive = OmniDrive.three_wheel(wheel_radius=0.05, base_radius=0.2)
     >>> odo = OmniOdometry(drive)
     >>> step = drive.inverse(Twist2D(1.0, 0.0, 0.0)) * 0.1  # 0.1 s of driving forward
-    >>> odo.update(step, yaw=np.pi / 2)  # the compass says the robot faces +y
+    >>> odo.update(step, np.pi / 2)  # the compass says the robot faces +y
     Pose2D(x=0.07071..., y=0.07071..., theta=1.5707963267948966)
     """
 
     __slots__ = ("_drive", "_pose")
 
-    def __init__(self, drive: OmniDrive, pose: Pose2D | None = None) -> None:
+    def __init__(self, drive: OmniDrive, *, pose: Pose2D | ArrayLike | None = None) -> None:
         if not isinstance(drive, OmniDrive):
             raise TypeError(f"drive must be an OmniDrive, got {type(drive).__name__}")
-        if pose is not None and not isinstance(pose, Pose2D):
-            raise TypeError(f"pose must be a Pose2D, got {type(pose).__name__}")
         self._drive = drive
-        self._pose = Pose2D(0.0, 0.0, 0.0) if pose is None else pose
+        self._pose = Pose2D(0.0, 0.0, 0.0) if pose is None else as_pose(pose, "pose")
 
     @property
     def pose(self) -> Pose2D:
@@ -105,11 +106,17 @@ class OmniOdometry:
         yaw : float
             Compass yaw at the end of the step, rad (counter-clockwise, e.g. from
             :func:`compass_to_yaw`).
+
+        Returns
+        -------
+        Pose2D
+            The new pose (also kept as :attr:`pose`).
         """
         inc = as_float_array(wheel_increments, "wheel_increments", shape=(self._drive.n_wheels,))
-        return Pose2D.from_array(self.run(inc[None, :], [yaw])[-1])
+        heading = finite_float(yaw, "yaw")
+        return Pose2D.from_array(self.update_batch(inc[None, :], [heading])[-1])
 
-    def run(self, wheel_increments: ArrayLike, yaws: ArrayLike) -> FloatArray:
+    def update_batch(self, wheel_increments: ArrayLike, yaws: ArrayLike) -> FloatArray:
         """Advance through a log of steps (vectorised) and return every pose.
 
         Parameters
@@ -150,9 +157,12 @@ class DiffOdometry:
     Counter wrap-around is handled with :func:`navkit.kinematics.tick_delta` when
     ``encoder_bits`` is given. Each step converts the tick changes to wheel
     distances (each wheel with its own radius) and moves the pose with
-    :meth:`navkit.kinematics.DiffDrive.odometry_step`: ``"arc"`` (exact for
+    :meth:`navkit.kinematics.DiffDrive.odometry_step_batch`: ``"arc"`` (exact for
     constant wheel speeds over the step), ``"midpoint"`` or ``"first_order"``
     (the classic Euler form).
+
+    An ordinary class with ``__slots__`` rather than a frozen dataclass: every
+    reading moves its pose and latches the counters.
 
     Parameters
     ----------
@@ -163,10 +173,12 @@ class DiffOdometry:
     encoder_bits : int, optional
         Width of the hardware counters (e.g. 16) for wrap-around; None for
         counters that never wrap.
-    pose : Pose2D, default Pose2D(0, 0, 0)
+    pose : Pose2D or array_like, shape (3,), default Pose2D(0, 0, 0)
         Pose at the first reading.
     method : {"arc", "midpoint", "first_order"}, default "arc"
         Integration scheme per step.
+
+    Every parameter after ``drive`` is keyword-only.
 
     Examples
     --------
@@ -183,16 +195,15 @@ class DiffOdometry:
     def __init__(
         self,
         drive: DiffDrive,
+        *,
         ticks_per_rev: float,
         encoder_bits: int | None = None,
-        *,
-        pose: Pose2D | None = None,
+        pose: Pose2D | ArrayLike | None = None,
         method: OdometryMethod = "arc",
     ) -> None:
         if not isinstance(drive, DiffDrive):
             raise TypeError(f"drive must be a DiffDrive, got {type(drive).__name__}")
-        if pose is not None and not isinstance(pose, Pose2D):
-            raise TypeError(f"pose must be a Pose2D, got {type(pose).__name__}")
+        start = Pose2D(0.0, 0.0, 0.0) if pose is None else as_pose(pose, "pose")
         if method not in _METHODS:
             raise ValueError(f"method must be one of {_METHODS}, got {method!r}")
         if encoder_bits is not None and not _is_bit_width(encoder_bits):
@@ -200,7 +211,7 @@ class DiffOdometry:
         self._drive = drive
         self._ticks_per_rev = positive_float(ticks_per_rev, "ticks_per_rev")
         self._bits = None if encoder_bits is None else int(encoder_bits)
-        self._pose = Pose2D(0.0, 0.0, 0.0) if pose is None else pose
+        self._pose = start
         self._method: OdometryMethod = method
         self._last: tuple[int, int] | None = None
 
@@ -209,13 +220,12 @@ class DiffOdometry:
         """Current pose estimate."""
         return self._pose
 
-    def reset(self, pose: Pose2D | None = None) -> None:
-        """Forget the latched counters; optionally set a new pose."""
-        if pose is not None and not isinstance(pose, Pose2D):
-            raise TypeError(f"pose must be a Pose2D, got {type(pose).__name__}")
+    def reset(self, pose: Pose2D | ArrayLike | None = None) -> None:
+        """Forget the latched counters; optionally set a new pose (Pose2D or ``[x, y, theta]``)."""
+        new_pose = None if pose is None else as_pose(pose, "pose")
         self._last = None
-        if pose is not None:
-            self._pose = pose
+        if new_pose is not None:
+            self._pose = new_pose
 
     def update(self, left_ticks: int, right_ticks: int) -> Pose2D:
         """Read both encoder counters and return the new pose.
@@ -223,9 +233,9 @@ class DiffOdometry:
         The first reading (after construction or :meth:`reset`) only latches the
         counters and returns the current pose.
         """
-        return Pose2D.from_array(self.run([left_ticks], [right_ticks])[-1])
+        return Pose2D.from_array(self.update_batch([left_ticks], [right_ticks])[-1])
 
-    def run(self, left_ticks: ArrayLike, right_ticks: ArrayLike) -> FloatArray:
+    def update_batch(self, left_ticks: ArrayLike, right_ticks: ArrayLike) -> FloatArray:
         """Process a log of counter readings (vectorised) and return every pose.
 
         Parameters
@@ -262,21 +272,23 @@ class DiffOdometry:
             prev_r = np.concatenate(([self._last[1]], right[:-1]))
         d_left = np.asarray(
             ticks_to_distance(
-                tick_delta(prev_l, left, bits), self._ticks_per_rev, self._drive.left_radius
+                tick_delta(prev_l, left, bits=bits),
+                ticks_per_rev=self._ticks_per_rev,
+                wheel_radius=self._drive.left_radius,
             )
         )
         d_right = np.asarray(
             ticks_to_distance(
-                tick_delta(prev_r, right, bits),
-                self._ticks_per_rev,
-                self._drive.right_radius,
+                tick_delta(prev_r, right, bits=bits),
+                ticks_per_rev=self._ticks_per_rev,
+                wheel_radius=self._drive.right_radius,
             )
         )
-        dx, dy, dth = self._drive.odometry_step(d_left, d_right, self._method)
-        theta = self._pose.theta + np.cumsum(dth)
+        steps = self._drive.odometry_step_batch(d_left, d_right, method=self._method)
+        theta = self._pose.theta + np.cumsum(steps[:, 2])
         before = np.concatenate(([self._pose.theta], theta[:-1]))
         out = np.empty((t, 3))
-        out[:, :2] = _chain(self._pose, dx, dy, before)
+        out[:, :2] = _chain(self._pose, steps[:, 0], steps[:, 1], before)
         out[:, 2] = wrap_angle(theta)
         self._pose = Pose2D.from_array(out[-1])
         self._last = (int(left[-1]), int(right[-1]))

@@ -2,6 +2,8 @@
 
 Conventions used across navkit: units are SI (m, rad, s); angles are wrapped to
 (-π, π]; world points are ``(x, y)``; twists are expressed in the robot frame.
+Wherever navkit takes a pose or a twist, a ``Pose2D``/``Twist2D`` or a sequence of
+three numbers works (:func:`as_pose`, :func:`as_twist`).
 """
 
 from navkit.geometry._angles import angle_diff, wrap_angle

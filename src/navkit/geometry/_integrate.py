@@ -2,17 +2,21 @@
 
 from __future__ import annotations
 
-import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from collections.abc import Sequence
+from typing import Any
 
+import numpy as np
+from numpy.typing import ArrayLike
+
+from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, finite_float
-from navkit.geometry._kernels import integrate_kernel, rollout_kernel
-from navkit.geometry._pose import Pose2D, Twist2D
+from navkit.geometry._integrate_kernels import integrate_kernel, rollout_kernel
+from navkit.geometry._pose import Pose2D, Twist2D, as_pose, as_twist
 
 __all__ = ["integrate", "rollout"]
 
 
-def integrate(pose: Pose2D, twist: Twist2D, dt: float) -> Pose2D:
+def integrate(pose: Pose2D | ArrayLike, twist: Twist2D | ArrayLike, dt: float) -> Pose2D:
     """Move ``pose`` by the body twist ``twist`` held constant for ``dt`` seconds.
 
     Uses the exact SE(2) exponential: a straight line when ``omega == 0`` and a
@@ -21,10 +25,10 @@ def integrate(pose: Pose2D, twist: Twist2D, dt: float) -> Pose2D:
 
     Parameters
     ----------
-    pose : Pose2D
-        Start pose in the world frame.
-    twist : Twist2D
-        Body-frame velocity (m/s, m/s, rad/s).
+    pose : Pose2D or array_like, shape (3,)
+        Start pose in the world frame, or ``[x, y, theta]``.
+    twist : Twist2D or array_like, shape (3,)
+        Body-frame velocity, or ``[vx, vy, omega]`` (m/s, m/s, rad/s).
     dt : float
         Duration in seconds, >= 0.
 
@@ -33,33 +37,44 @@ def integrate(pose: Pose2D, twist: Twist2D, dt: float) -> Pose2D:
     Pose2D
         The pose after ``dt``.
 
+    Raises
+    ------
+    TypeError
+        If ``pose`` or ``twist`` is neither a navkit object nor a sequence of
+        three numbers.
+    ValueError
+        Non-finite values or a negative ``dt``.
+
     Examples
     --------
     >>> import math
     >>> p = integrate(Pose2D(0.0, 0.0, 0.0), Twist2D(1.0, 0.0, math.pi), 1.0)
     >>> round(p.x, 12), round(p.y, 12), round(p.theta, 12)
     (0.0, 0.636619772368, 3.14159265359)
+    >>> integrate([0.0, 0.0, 0.0], [1.0, 0.0, 0.0], 2.0)
+    Pose2D(x=2.0, y=0.0, theta=0.0)
     """
-    if not isinstance(pose, Pose2D):
-        raise TypeError(f"pose must be a Pose2D, got {type(pose).__name__}")
-    if not isinstance(twist, Twist2D):
-        raise TypeError(f"twist must be a Twist2D, got {type(twist).__name__}")
+    start = as_pose(pose, "pose")
+    tw = as_twist(twist, "twist")
     step = finite_float(dt, "dt")
     if step < 0.0:
         raise ValueError(f"dt must be >= 0, got {step}")
-    x, y, th = integrate_kernel(pose.x, pose.y, pose.theta, twist.vx, twist.vy, twist.omega, step)
+    x, y, th = integrate_kernel(start.x, start.y, start.theta, tw.vx, tw.vy, tw.omega, step)
     return Pose2D(x, y, th)
 
 
-def rollout(pose: Pose2D, twists: ArrayLike, dt: ArrayLike) -> NDArray[np.float64]:
+def rollout(
+    pose: Pose2D | ArrayLike, twists: ArrayLike | Sequence[Twist2D], dt: ArrayLike
+) -> FloatArray:
     """Integrate a sequence of body twists, each held for its time step.
 
     Parameters
     ----------
-    pose : Pose2D
-        Start pose.
-    twists : array_like, shape (N, 3)
-        Rows ``[vx, vy, omega]`` in the body frame (m/s, m/s, rad/s).
+    pose : Pose2D or array_like, shape (3,)
+        Start pose, or ``[x, y, theta]``.
+    twists : array_like, shape (N, 3), or sequence of Twist2D
+        Rows ``[vx, vy, omega]`` in the body frame (m/s, m/s, rad/s), or a list
+        (tuple) of :class:`Twist2D` (its items may also be 3-sequences).
     dt : float or array_like, shape (N,)
         Time step(s) in seconds, >= 0.
 
@@ -74,10 +89,11 @@ def rollout(pose: Pose2D, twists: ArrayLike, dt: ArrayLike) -> NDArray[np.float6
     >>> traj = rollout(Pose2D(0.0, 0.0), [[1.0, 0.0, 0.0]] * 3, 0.5)
     >>> traj[:, 0]
     array([0. , 0.5, 1. , 1.5])
+    >>> rollout([0.0, 0.0, 0.0], [Twist2D(1.0), Twist2D(2.0)], 1.0)[:, 0]
+    array([0., 1., 3.])
     """
-    if not isinstance(pose, Pose2D):
-        raise TypeError(f"pose must be a Pose2D, got {type(pose).__name__}")
-    tw = as_float_array(twists, "twists", shape=(None, 3))
+    start = as_pose(pose, "pose")
+    tw = _twist_rows(twists)
     n = tw.shape[0]
     steps = as_float_array(dt, "dt")
     if steps.ndim == 0:
@@ -88,6 +104,23 @@ def rollout(pose: Pose2D, twists: ArrayLike, dt: ArrayLike) -> NDArray[np.float6
         raise ValueError("dt must be >= 0")
     out = np.empty((n + 1, 3), dtype=np.float64)
     rollout_kernel(
-        pose.x, pose.y, pose.theta, np.ascontiguousarray(tw), np.ascontiguousarray(steps), out
+        start.x,
+        start.y,
+        start.theta,
+        np.ascontiguousarray(tw),
+        np.ascontiguousarray(steps),
+        out,
     )
     return out
+
+
+def _twist_rows(twists: ArrayLike | Sequence[Twist2D]) -> FloatArray:
+    """``twists`` as an (N, 3) float64 array; a list or tuple may hold Twist2D items."""
+    if isinstance(twists, (list, tuple)):
+        if not twists:
+            return np.empty((0, 3), dtype=np.float64)
+        if any(isinstance(item, Twist2D) for item in twists):
+            rows = [as_twist(item, f"twists[{i}]").as_array() for i, item in enumerate(twists)]
+            return np.array(rows, dtype=np.float64)
+    values: Any = twists
+    return as_float_array(values, "twists", shape=(None, 3))

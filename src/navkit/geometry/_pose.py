@@ -8,9 +8,10 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 
 from navkit._shared.se2 import compose_scalar, wrap_scalar
+from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, as_points, finite_float
 
 __all__ = ["Pose2D", "Twist2D", "as_pose", "as_twist"]
@@ -49,12 +50,35 @@ class Pose2D:
         object.__setattr__(self, "y", finite_float(self.y, "y"))
         object.__setattr__(self, "theta", wrap_scalar(finite_float(self.theta, "theta")))
 
-    def compose(self, other: Pose2D) -> Pose2D:
-        """Return ``self ⊕ other``: ``other`` (given in this pose's frame) in the world frame."""
-        return Pose2D(*compose_scalar(self.x, self.y, self.theta, other.x, other.y, other.theta))
+    def compose(self, other: Pose2D | ArrayLike) -> Pose2D:
+        """Return ``self ⊕ other``: ``other`` (given in this pose's frame) in the world frame.
 
-    def __matmul__(self, other: Pose2D) -> Pose2D:
-        """``a @ b`` is ``a.compose(b)``."""
+        Parameters
+        ----------
+        other : Pose2D or array_like, shape (3,)
+            A pose, or ``[x, y, theta]``, expressed in this pose's frame.
+
+        Returns
+        -------
+        Pose2D
+            ``other`` in the world frame.
+
+        Raises
+        ------
+        TypeError
+            If ``other`` is neither a Pose2D nor a sequence of three numbers.
+
+        Examples
+        --------
+        >>> import math
+        >>> Pose2D(1.0, 0.0, math.pi / 2).compose([1.0, 0.0, 0.0]).y
+        1.0
+        """
+        o = other if type(other) is Pose2D else as_pose(other, "other")
+        return Pose2D(*compose_scalar(self.x, self.y, self.theta, o.x, o.y, o.theta))
+
+    def __matmul__(self, other: Pose2D | ArrayLike) -> Pose2D:
+        """``a @ b`` is ``a.compose(b)``; ``b`` may be a sequence ``[x, y, theta]``."""
         return self.compose(other)
 
     def inverse(self) -> Pose2D:
@@ -63,22 +87,34 @@ class Pose2D:
         s = math.sin(self.theta)
         return Pose2D(-c * self.x - s * self.y, s * self.x - c * self.y, -self.theta)
 
-    def relative_to(self, frame: Pose2D) -> Pose2D:
+    def relative_to(self, frame: Pose2D | ArrayLike) -> Pose2D:
         """Express this pose in the frame of ``frame``: ``frame.inverse() ⊕ self``.
+
+        Parameters
+        ----------
+        frame : Pose2D or array_like, shape (3,)
+            The reference pose (world frame), or ``[x, y, theta]``.
+
+        Raises
+        ------
+        TypeError
+            If ``frame`` is neither a Pose2D nor a sequence of three numbers.
 
         Examples
         --------
         >>> Pose2D(2.0, 1.0, 0.0).relative_to(Pose2D(1.0, 1.0, 0.0))
         Pose2D(x=1.0, y=0.0, theta=0.0)
+        >>> Pose2D(2.0, 1.0, 0.0).relative_to((1.0, 1.0, 0.0))
+        Pose2D(x=1.0, y=0.0, theta=0.0)
         """
-        return frame.inverse().compose(self)
+        return as_pose(frame, "frame").inverse().compose(self)
 
-    def transform_points(self, points: ArrayLike) -> NDArray[np.float64]:
+    def transform_points(self, points_xy: ArrayLike) -> FloatArray:
         """Map points from this pose's frame to the world frame.
 
         Parameters
         ----------
-        points : array_like, shape (N, 2) or (2,)
+        points_xy : array_like, shape (N, 2) or (2,)
             ``(x, y)`` points in metres in the pose's frame.
 
         Returns
@@ -86,14 +122,14 @@ class Pose2D:
         ndarray, shape (N, 2)
             New array of world points.
         """
-        pts = as_points(points, "points")
+        pts = as_points(points_xy, "points_xy")
         c = math.cos(self.theta)
         s = math.sin(self.theta)
         rot = np.array([[c, s], [-s, c]])
-        out: NDArray[np.float64] = pts @ rot + np.array([self.x, self.y])
+        out: FloatArray = pts @ rot + np.array([self.x, self.y])
         return out
 
-    def as_array(self) -> NDArray[np.float64]:
+    def as_array(self) -> FloatArray:
         """Return ``[x, y, theta]`` as a new float64 array of shape (3,)."""
         return np.array([self.x, self.y, self.theta], dtype=np.float64)
 
@@ -132,7 +168,7 @@ class Twist2D:
         object.__setattr__(self, "vy", finite_float(self.vy, "vy"))
         object.__setattr__(self, "omega", finite_float(self.omega, "omega"))
 
-    def as_array(self) -> NDArray[np.float64]:
+    def as_array(self) -> FloatArray:
         """Return ``[vx, vy, omega]`` as a new float64 array of shape (3,)."""
         return np.array([self.vx, self.vy, self.omega], dtype=np.float64)
 

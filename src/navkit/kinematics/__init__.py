@@ -1,7 +1,11 @@
 """Wheel kinematics: omnidirectional and differential drives, encoders.
 
 Twists are body-frame ``navkit.geometry.Twist2D`` (m/s, m/s, rad/s); wheel
-speeds are angular, rad/s; distances are metres.
+speeds are angular, rad/s; distances are metres. Every drive follows one
+convention: ``inverse(twist)`` returns the wheel speeds as an array of shape
+(N,) (``[left, right]`` for :class:`DiffDrive`), ``forward(wheel_speeds)``
+returns a ``Twist2D``, and the ``_batch`` forms map (T, 3) twists to (T, N)
+wheel speeds and back.
 """
 
 from navkit.kinematics._diff import DiffDrive, OdometryMethod

@@ -2,19 +2,25 @@
 
 from __future__ import annotations
 
-from typing import Literal, overload
+from typing import Literal
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 
 from navkit._shared.se2 import exp_body, exp_body_array
+from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, finite_float, positive_float
-from navkit.geometry import Twist2D
+from navkit.geometry import Pose2D, Twist2D, as_twist, wrap_angle
 
 __all__ = ["DiffDrive", "OdometryMethod"]
 
 OdometryMethod = Literal["arc", "midpoint", "first_order"]
 _METHODS = ("arc", "midpoint", "first_order")
+
+
+def _check_method(method: object) -> None:
+    if method not in _METHODS:
+        raise ValueError(f"method must be one of {_METHODS}, got {method!r}")
 
 
 class DiffDrive:
@@ -28,7 +34,12 @@ class DiffDrive:
                \omega = \frac{\omega_r R_r - \omega_l R_l}{D}
 
     and inversely :math:`\omega_r = (v + \omega D/2)/R_r`,
-    :math:`\omega_l = (v - \omega D/2)/R_l`.
+    :math:`\omega_l = (v - \omega D/2)/R_l`. Wheel speeds are always ordered
+    ``[left, right]``, as for every drive's :meth:`inverse` and :meth:`forward`.
+
+    An ordinary class with ``__slots__`` rather than a frozen dataclass: its
+    constructor takes one common radius or two individual ones and keeps the two
+    resolved radii, which a generated ``__init__`` cannot express.
 
     Parameters
     ----------
@@ -40,22 +51,24 @@ class DiffDrive:
     left_radius, right_radius : float, optional
         Individual wheel radii, m, > 0.
 
+    All parameters are keyword-only (three floats are too easy to swap).
+
     Examples
     --------
     >>> drive = DiffDrive(track=0.3, wheel_radius=0.05)
-    >>> drive.forward(omega_left=10.0, omega_right=12.0)
+    >>> drive.forward([10.0, 12.0])
     Twist2D(vx=0.55, vy=0.0, omega=0.333...)
-    >>> drive.inverse(Twist2D(0.55, 0.0, 1.0 / 3.0))
-    (10.0..., 12.0...)
+    >>> drive.inverse([0.55, 0.0, 1.0 / 3.0])
+    array([10., 12.])
     """
 
     __slots__ = ("_left", "_right", "_track")
 
     def __init__(
         self,
+        *,
         track: float,
         wheel_radius: float | None = None,
-        *,
         left_radius: float | None = None,
         right_radius: float | None = None,
     ) -> None:
@@ -85,14 +98,43 @@ class DiffDrive:
         """Right wheel radius, m."""
         return self._right
 
-    def forward(self, omega_left: float, omega_right: float) -> Twist2D:
-        """Body twist (vx, 0, omega) from wheel angular speeds in rad/s."""
-        wl = finite_float(omega_left, "omega_left") * self._left
-        wr = finite_float(omega_right, "omega_right") * self._right
+    @property
+    def n_wheels(self) -> int:
+        """Number of driven wheels: 2 (``[left, right]``)."""
+        return 2
+
+    def forward(self, wheel_speeds: ArrayLike) -> Twist2D:
+        """Body twist ``(vx, 0, omega)`` from the wheel angular speeds ``[left, right]``, rad/s.
+
+        Parameters
+        ----------
+        wheel_speeds : array_like, shape (2,)
+            ``[omega_left, omega_right]`` in rad/s.
+
+        Returns
+        -------
+        Twist2D
+            The body twist; ``vy`` is always 0.
+        """
+        w = as_float_array(wheel_speeds, "wheel_speeds", shape=(2,))
+        wl = float(w[0]) * self._left
+        wr = float(w[1]) * self._right
         return Twist2D(0.5 * (wr + wl), 0.0, (wr - wl) / self._track)
 
-    def inverse(self, twist: Twist2D, *, ignore_lateral: bool = False) -> tuple[float, float]:
-        """Wheel angular speeds ``(omega_left, omega_right)``, rad/s, for ``twist``.
+    def inverse(self, twist: Twist2D | ArrayLike, *, ignore_lateral: bool = False) -> FloatArray:
+        """Wheel angular speeds ``[omega_left, omega_right]``, rad/s, for ``twist``.
+
+        Parameters
+        ----------
+        twist : Twist2D or array_like, shape (3,)
+            Body twist, or ``[vx, vy, omega]`` (m/s, m/s, rad/s).
+        ignore_lateral : bool, default False
+            Drop a lateral velocity ``vy`` instead of raising.
+
+        Returns
+        -------
+        ndarray, shape (2,)
+            New array ``[omega_left, omega_right]``.
 
         Raises
         ------
@@ -100,25 +142,23 @@ class DiffDrive:
             If ``twist.vy != 0`` (a differential drive cannot move sideways) unless
             ``ignore_lateral`` is true, in which case ``vy`` is dropped.
         """
-        if not isinstance(twist, Twist2D):
-            raise TypeError(f"twist must be a Twist2D, got {type(twist).__name__}")
-        if twist.vy != 0.0 and not ignore_lateral:
+        tw = as_twist(twist, "twist")
+        if tw.vy != 0.0 and not ignore_lateral:
             raise ValueError(
-                f"twist has lateral velocity vy={twist.vy}, which a differential drive cannot "
+                f"twist has lateral velocity vy={tw.vy}, which a differential drive cannot "
                 "follow; pass ignore_lateral=True to drop it"
             )
-        half = 0.5 * twist.omega * self._track
-        return (twist.vx - half) / self._left, (twist.vx + half) / self._right
+        half = 0.5 * tw.omega * self._track
+        return np.array([(tw.vx - half) / self._left, (tw.vx + half) / self._right])
 
-    def forward_batch(self, omega_left: ArrayLike, omega_right: ArrayLike) -> NDArray[np.float64]:
-        """Body twists (T, 3) ``[vx, 0, omega]`` from wheel speed arrays (T,), rad/s."""
-        wl = as_float_array(omega_left, "omega_left", ndim=1) * self._left
-        wr = as_float_array(omega_right, "omega_right", shape=(wl.shape[0],)) * self._right
+    def forward_batch(self, wheel_speeds: ArrayLike) -> FloatArray:
+        """Body twists (T, 3) ``[vx, 0, omega]`` from wheel speeds (T, 2) ``[left, right]``."""
+        w = as_float_array(wheel_speeds, "wheel_speeds", shape=(None, 2))
+        wl = w[:, 0] * self._left
+        wr = w[:, 1] * self._right
         return np.column_stack((0.5 * (wr + wl), np.zeros_like(wl), (wr - wl) / self._track))
 
-    def inverse_batch(
-        self, twists: ArrayLike, *, ignore_lateral: bool = False
-    ) -> NDArray[np.float64]:
+    def inverse_batch(self, twists: ArrayLike, *, ignore_lateral: bool = False) -> FloatArray:
         """Wheel speeds (T, 2) ``[omega_left, omega_right]``, rad/s, for twists (T, 3)."""
         tw = as_float_array(twists, "twists", shape=(None, 3))
         if not ignore_lateral and np.any(tw[:, 1] != 0.0):
@@ -129,21 +169,9 @@ class DiffDrive:
         half = 0.5 * tw[:, 2] * self._track
         return np.column_stack(((tw[:, 0] - half) / self._left, (tw[:, 0] + half) / self._right))
 
-    @overload
     def odometry_step(
-        self, d_left: float, d_right: float, method: OdometryMethod = ...
-    ) -> tuple[float, float, float]: ...
-    @overload
-    def odometry_step(
-        self, d_left: ArrayLike, d_right: ArrayLike, method: OdometryMethod = ...
-    ) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]: ...
-
-    def odometry_step(
-        self, d_left: ArrayLike, d_right: ArrayLike, method: OdometryMethod = "arc"
-    ) -> (
-        tuple[float, float, float]
-        | tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]
-    ):
+        self, d_left: float, d_right: float, *, method: OdometryMethod = "arc"
+    ) -> Pose2D:
         r"""Robot-frame motion from the distances rolled by each wheel.
 
         With :math:`d_c = (d_r + d_l)/2` and :math:`\Delta\theta = (d_r - d_l)/D`:
@@ -162,52 +190,88 @@ class DiffDrive:
 
         Parameters
         ----------
-        d_left, d_right : float or array_like, shape (T,)
+        d_left, d_right : float
             Distance rolled by each wheel, m (e.g. from
             :func:`~navkit.kinematics.ticks_to_distance`); negative when rolling back.
         method : {"arc", "midpoint", "first_order"}
-            Integration scheme.
+            Integration scheme (keyword-only).
 
         Returns
         -------
-        dx, dy, dtheta : float or ndarray
-            Motion in the robot frame at the start of the step (m, m, rad); floats
-            for scalar input, arrays of shape (T,) otherwise. Compose with the
-            previous pose (e.g. ``Pose2D.compose``) to get the new pose.
+        Pose2D
+            The motion ``(dx, dy, dtheta)`` in the robot frame at the start of the
+            step (m, m, rad; ``dtheta`` wrapped to (-π, π]). Compose it with the
+            previous pose (``pose.compose(step)``) to get the new pose.
+            :meth:`odometry_step_batch` is the array form.
 
         Examples
         --------
         >>> drive = DiffDrive(track=0.5, wheel_radius=0.1)
-        >>> dx, dy, dth = drive.odometry_step(0.1, 0.1)
-        >>> (dx, dy, dth)
-        (0.1, 0.0, 0.0)
+        >>> drive.odometry_step(0.1, 0.1)
+        Pose2D(x=0.1, y=0.0, theta=0.0)
+        >>> import math  # the right wheel rolls a quarter circle of radius track:
+        >>> drive.odometry_step(0.0, 0.5 * math.pi / 2)
+        Pose2D(x=0.25, y=0.25, theta=1.5707963267948966)
         """
-        if method not in _METHODS:
-            raise ValueError(f"method must be one of {_METHODS}, got {method!r}")
-        dl = as_float_array(d_left, "d_left")
-        dr = as_float_array(d_right, "d_right")
-        if dl.shape != dr.shape or dl.ndim > 1:
-            raise ValueError(
-                f"d_left and d_right must be scalars or 1-D arrays of equal shape, got "
-                f"{dl.shape} and {dr.shape}"
-            )
+        _check_method(method)
+        dl = finite_float(d_left, "d_left")
+        dr = finite_float(d_right, "d_right")
         dc = 0.5 * (dr + dl)
         dth = (dr - dl) / self._track
         if method == "first_order":
-            dx, dy = dc, np.zeros_like(dc)
+            dx, dy = dc, 0.0
         elif method == "midpoint":
-            dx, dy = dc * np.cos(0.5 * dth), dc * np.sin(0.5 * dth)
-        elif dl.ndim == 0:
-            sx, sy, _ = exp_body(float(dc), 0.0, float(dth), 1.0)
-            dx, dy = np.float64(sx), np.float64(sy)
+            dx, dy = dc * float(np.cos(0.5 * dth)), dc * float(np.sin(0.5 * dth))
         else:
-            out = np.empty((dl.shape[0], 3), dtype=np.float64)
-            ones = np.ones_like(dc)
-            exp_body_array(dc, np.zeros_like(dc), dth, ones, out)
-            dx, dy = out[:, 0], out[:, 1]
-        if dl.ndim == 0:
-            return float(dx), float(dy), float(dth)
-        return np.asarray(dx), np.asarray(dy), np.asarray(dth)
+            dx, dy, _ = exp_body(dc, 0.0, dth, 1.0)
+        return Pose2D(dx, dy, dth)
+
+    def odometry_step_batch(
+        self, d_left: ArrayLike, d_right: ArrayLike, *, method: OdometryMethod = "arc"
+    ) -> FloatArray:
+        """Robot-frame motions of many steps: the array form of :meth:`odometry_step`.
+
+        Parameters
+        ----------
+        d_left, d_right : array_like, shape (T,)
+            Distances rolled by each wheel in each step, m.
+        method : {"arc", "midpoint", "first_order"}
+            Integration scheme (keyword-only).
+
+        Returns
+        -------
+        ndarray, shape (T, 3)
+            Rows ``[dx, dy, dtheta]``, each the motion of one step in the robot
+            frame at its start; row ``i`` equals
+            ``odometry_step(d_left[i], d_right[i], method=method).as_array()``.
+
+        Examples
+        --------
+        >>> drive = DiffDrive(track=0.5, wheel_radius=0.1)
+        >>> drive.odometry_step_batch([0.1, 0.2], [0.1, 0.2])
+        array([[0.1, 0. , 0. ],
+               [0.2, 0. , 0. ]])
+        """
+        _check_method(method)
+        dl = as_float_array(d_left, "d_left", ndim=1)
+        dr = as_float_array(d_right, "d_right", ndim=1)
+        if dl.shape != dr.shape:
+            raise ValueError(
+                f"d_left and d_right must have equal shape, got {dl.shape} and {dr.shape}"
+            )
+        dc = 0.5 * (dr + dl)
+        dth = (dr - dl) / self._track
+        out = np.empty((dl.shape[0], 3), dtype=np.float64)
+        if method == "first_order":
+            out[:, 0] = dc
+            out[:, 1] = 0.0
+        elif method == "midpoint":
+            out[:, 0] = dc * np.cos(0.5 * dth)
+            out[:, 1] = dc * np.sin(0.5 * dth)
+        else:
+            exp_body_array(dc, np.zeros_like(dc), dth, np.ones_like(dc), out)
+        out[:, 2] = wrap_angle(dth)
+        return out
 
     def __repr__(self) -> str:
         return (

@@ -7,24 +7,27 @@ import operator
 from typing import overload
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 
+from navkit._shared.types import FloatArray, IntArray
 from navkit._shared.validation import as_float_array, positive_float
 
 __all__ = ["tick_delta", "ticks_to_distance"]
 
 
 @overload
-def ticks_to_distance(delta_ticks: float, ticks_per_rev: float, wheel_radius: float) -> float: ...
+def ticks_to_distance(
+    delta_ticks: float, *, ticks_per_rev: float, wheel_radius: float
+) -> float: ...
 @overload
 def ticks_to_distance(
-    delta_ticks: ArrayLike, ticks_per_rev: float, wheel_radius: float
-) -> float | NDArray[np.float64]: ...
+    delta_ticks: ArrayLike, *, ticks_per_rev: float, wheel_radius: float
+) -> float | FloatArray: ...
 
 
 def ticks_to_distance(
-    delta_ticks: ArrayLike, ticks_per_rev: float, wheel_radius: float
-) -> float | NDArray[np.float64]:
+    delta_ticks: ArrayLike, *, ticks_per_rev: float, wheel_radius: float
+) -> float | FloatArray:
     """Distance rolled by a wheel: ``d = 2πR · Δticks / ticks_per_rev``.
 
     Parameters
@@ -32,9 +35,10 @@ def ticks_to_distance(
     delta_ticks : float or array_like
         Change of the encoder count (see :func:`tick_delta` for wrap-around).
     ticks_per_rev : float
-        Encoder counts per wheel revolution (after any gearing), > 0.
+        Encoder counts per wheel revolution (after any gearing), > 0
+        (keyword-only).
     wheel_radius : float
-        Wheel radius, m, > 0.
+        Wheel radius, m, > 0 (keyword-only).
 
     Returns
     -------
@@ -43,7 +47,7 @@ def ticks_to_distance(
 
     Examples
     --------
-    >>> round(ticks_to_distance(1024, 2048, 0.1), 12)
+    >>> round(ticks_to_distance(1024, ticks_per_rev=2048, wheel_radius=0.1), 12)
     0.314159265359
     """
     res = positive_float(ticks_per_rev, "ticks_per_rev")
@@ -56,12 +60,12 @@ def ticks_to_distance(
 
 
 @overload
-def tick_delta(previous: int, current: int, bits: int) -> int: ...
+def tick_delta(previous: int, current: int, *, bits: int) -> int: ...
 @overload
-def tick_delta(previous: ArrayLike, current: ArrayLike, bits: int) -> int | NDArray[np.int64]: ...
+def tick_delta(previous: ArrayLike, current: ArrayLike, *, bits: int) -> int | IntArray: ...
 
 
-def tick_delta(previous: ArrayLike, current: ArrayLike, bits: int) -> int | NDArray[np.int64]:
+def tick_delta(previous: ArrayLike, current: ArrayLike, *, bits: int) -> int | IntArray:
     """Signed change between two readings of a wrapping ``bits``-bit encoder counter.
 
     The difference is taken modulo ``2**bits`` and mapped to
@@ -76,7 +80,7 @@ def tick_delta(previous: ArrayLike, current: ArrayLike, bits: int) -> int | NDAr
     previous, current : int or array_like of int
         Consecutive counter readings (broadcast together).
     bits : int
-        Counter width, 2 to 64 (typically 16 or 32).
+        Counter width, 2 to 64 (typically 16 or 32); keyword-only.
 
     Returns
     -------
@@ -103,13 +107,13 @@ def tick_delta(previous: ArrayLike, current: ArrayLike, bits: int) -> int | NDAr
     # back with an arithmetic shift sign-extends them: the modular difference, signed.
     with np.errstate(over="ignore"):
         diff = (cur.astype(np.uint64) - prev.astype(np.uint64)) << shift
-    out: NDArray[np.int64] = diff.view(np.int64) >> np.int64(shift)
+    out: IntArray = diff.view(np.int64) >> np.int64(shift)
     if out.ndim == 0:
         return int(out)
     return out
 
 
-def _as_counter(value: ArrayLike, name: str, bits: int) -> NDArray[np.int64]:
+def _as_counter(value: ArrayLike, name: str, bits: int) -> IntArray:
     arr = np.asarray(value)
     if arr.dtype.kind not in "iu" or arr.dtype == np.bool_:
         raise TypeError(f"{name} must hold integer counter readings, got dtype {arr.dtype}")

@@ -3,10 +3,11 @@
 from __future__ import annotations
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 
+from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, positive_float
-from navkit.geometry import Twist2D
+from navkit.geometry import Twist2D, as_twist
 
 __all__ = ["OmniDrive"]
 
@@ -14,7 +15,7 @@ __all__ = ["OmniDrive"]
 _MAX_CONDITION = 1e10
 
 
-def _read_only(arr: NDArray[np.float64]) -> NDArray[np.float64]:
+def _read_only(arr: FloatArray) -> FloatArray:
     arr.flags.writeable = False
     return arr
 
@@ -46,14 +47,18 @@ class OmniDrive:
     implements the geometry above instead; a test shows forward∘inverse is the
     identity.
 
+    An ordinary class with ``__slots__`` rather than a frozen dataclass: it
+    computes and keeps its Jacobian and pseudo-inverse once, at construction.
+
     Parameters
     ----------
     wheel_angles : array_like, shape (N,)
         Mounting angle of each wheel in radians, N >= 3.
     wheel_radius : float
-        Wheel radius in metres, > 0.
+        Wheel radius in metres, > 0 (keyword-only).
     base_radius : float
-        Distance from the robot centre to each wheel contact point, metres, > 0.
+        Distance from the robot centre to each wheel contact point, metres, > 0
+        (keyword-only).
 
     Raises
     ------
@@ -66,13 +71,15 @@ class OmniDrive:
     >>> drive = OmniDrive.three_wheel(wheel_radius=0.05, base_radius=0.2)
     >>> drive.inverse(Twist2D(1.0, 0.0, 0.0)).round(6)
     array([-10., -10.,  20.])
-    >>> drive.forward(drive.inverse(Twist2D(0.3, -0.2, 0.5)))
+    >>> drive.forward(drive.inverse([0.3, -0.2, 0.5]))
     Twist2D(vx=0.3..., vy=-0.2..., omega=0.5...)
+    >>> OmniDrive(np.radians([45.0, 135.0, 225.0, 315.0]), wheel_radius=0.05, base_radius=0.2)
+    OmniDrive(wheel_angles=radians([45, 135, 225, 315]), wheel_radius=0.05, base_radius=0.2)
     """
 
     __slots__ = ("_base_radius", "_forward", "_jacobian", "_wheel_angles", "_wheel_radius")
 
-    def __init__(self, wheel_angles: ArrayLike, wheel_radius: float, base_radius: float) -> None:
+    def __init__(self, wheel_angles: ArrayLike, *, wheel_radius: float, base_radius: float) -> None:
         angles = as_float_array(wheel_angles, "wheel_angles", ndim=1)
         if angles.shape[0] < 3:
             raise ValueError(f"wheel_angles needs at least 3 wheels, got {angles.shape[0]}")
@@ -94,18 +101,25 @@ class OmniDrive:
         self._forward = _read_only(np.asarray(np.linalg.pinv(jac), dtype=np.float64))
 
     @classmethod
-    def three_wheel(cls, wheel_radius: float, base_radius: float) -> OmniDrive:
+    def three_wheel(cls, *, wheel_radius: float, base_radius: float) -> OmniDrive:
         """The Y layout with wheels at 30°, 150° and 270° (120° apart).
 
         Parameters
         ----------
         wheel_radius, base_radius : float
-            Wheel radius and centre-to-wheel distance in metres.
+            Wheel radius and centre-to-wheel distance in metres (keyword-only).
+
+        Examples
+        --------
+        >>> OmniDrive.three_wheel(wheel_radius=0.05, base_radius=0.2).n_wheels
+        3
         """
-        return cls(np.radians([30.0, 150.0, 270.0]), wheel_radius, base_radius)
+        return cls(
+            np.radians([30.0, 150.0, 270.0]), wheel_radius=wheel_radius, base_radius=base_radius
+        )
 
     @property
-    def wheel_angles(self) -> NDArray[np.float64]:
+    def wheel_angles(self) -> FloatArray:
         """Wheel mounting angles, rad, shape (N,) (read-only)."""
         return self._wheel_angles
 
@@ -125,20 +139,30 @@ class OmniDrive:
         return int(self._wheel_angles.shape[0])
 
     @property
-    def jacobian(self) -> NDArray[np.float64]:
+    def jacobian(self) -> FloatArray:
         """(N, 3) map from body twist ``[vx, vy, omega]`` to wheel speeds, rad/s (read-only)."""
         return self._jacobian
 
     @property
-    def forward_matrix(self) -> NDArray[np.float64]:
+    def forward_matrix(self) -> FloatArray:
         """(3, N) exact (pseudo-)inverse of :attr:`jacobian` (read-only)."""
         return self._forward
 
-    def inverse(self, twist: Twist2D) -> NDArray[np.float64]:
-        """Wheel angular speeds (N,) in rad/s that produce ``twist``."""
-        if not isinstance(twist, Twist2D):
-            raise TypeError(f"twist must be a Twist2D, got {type(twist).__name__}")
-        speeds: NDArray[np.float64] = self._jacobian @ twist.as_array()
+    def inverse(self, twist: Twist2D | ArrayLike) -> FloatArray:
+        """Wheel angular speeds (N,) in rad/s that produce ``twist``.
+
+        Parameters
+        ----------
+        twist : Twist2D or array_like, shape (3,)
+            Body twist, or ``[vx, vy, omega]`` (m/s, m/s, rad/s).
+
+        Returns
+        -------
+        ndarray, shape (N,)
+            New array of wheel speeds, rad/s, in the order of :attr:`wheel_angles`.
+        """
+        tw = as_twist(twist, "twist")
+        speeds: FloatArray = self._jacobian @ tw.as_array()
         return speeds
 
     def forward(self, wheel_speeds: ArrayLike) -> Twist2D:
@@ -147,19 +171,19 @@ class OmniDrive:
         vx, vy, omega = self._forward @ w
         return Twist2D(float(vx), float(vy), float(omega))
 
-    def inverse_batch(self, twists: ArrayLike) -> NDArray[np.float64]:
+    def inverse_batch(self, twists: ArrayLike) -> FloatArray:
         """Wheel speeds (T, N), rad/s, for body twists (T, 3) ``[vx, vy, omega]``."""
         tw = as_float_array(twists, "twists", shape=(None, 3))
-        speeds: NDArray[np.float64] = tw @ self._jacobian.T
+        speeds: FloatArray = tw @ self._jacobian.T
         return speeds
 
-    def forward_batch(self, wheel_speeds: ArrayLike) -> NDArray[np.float64]:
+    def forward_batch(self, wheel_speeds: ArrayLike) -> FloatArray:
         """Body twists (T, 3) ``[vx, vy, omega]`` from wheel speeds (T, N), rad/s."""
         w = as_float_array(wheel_speeds, "wheel_speeds", shape=(None, self.n_wheels))
-        twists: NDArray[np.float64] = w @ self._forward.T
+        twists: FloatArray = w @ self._forward.T
         return twists
 
-    def saturate(self, wheel_speeds: ArrayLike, max_speed: float) -> NDArray[np.float64]:
+    def saturate(self, wheel_speeds: ArrayLike, *, max_speed: float) -> FloatArray:
         """Scale wheel speeds so that none exceeds ``max_speed`` in magnitude.
 
         All wheels of a command are scaled by the same factor, so the direction of
@@ -171,7 +195,7 @@ class OmniDrive:
         wheel_speeds : array_like, shape (N,) or (T, N)
             Wheel angular speeds, rad/s.
         max_speed : float
-            Largest allowed wheel speed magnitude, rad/s, > 0.
+            Largest allowed wheel speed magnitude, rad/s, > 0 (keyword-only).
 
         Returns
         -------
@@ -180,8 +204,8 @@ class OmniDrive:
 
         Examples
         --------
-        >>> drive = OmniDrive.three_wheel(0.05, 0.2)
-        >>> drive.saturate([10.0, -20.0, 5.0], 10.0)
+        >>> drive = OmniDrive.three_wheel(wheel_radius=0.05, base_radius=0.2)
+        >>> drive.saturate([10.0, -20.0, 5.0], max_speed=10.0)
         array([ 5. , -10. ,   2.5])
         """
         limit = positive_float(max_speed, "max_speed")

@@ -1,20 +1,46 @@
-"""Occupancy grids, ROS map files, laser scans and laser-to-grid ray casting.
+"""Occupancy grids, laser scans, ray casting, costmaps and rasterised obstacles.
 
-Conventions: units are SI (m, rad); world points are ``(x, y)``; grid cells are
-``(row, col)`` indexing ``array[row, col]`` with row 0 at the lowest y, as in ROS
-``nav_msgs/OccupancyGrid``. Readers for real log files live in
-:mod:`navkit.mapping.io`.
+Conventions: units are SI (m, rad); world points are ``(x, y)`` (``points_xy``);
+grid cells are ``(row, col)`` indexing ``array[row, col]`` with row 0 at the
+lowest y, as in ROS ``nav_msgs/OccupancyGrid``; continuous grid coordinates are
+float ``(row, col)`` with integers at cell centres.
+
+* :class:`OccupancyGrid`: log-odds storage, grid ⇄ world coordinates, views and
+  inflation; its methods ``from_polygons``, ``costmap``, ``traversal_costs``,
+  ``integrate_scan``, ``load`` and ``save`` are conveniences calling
+  :func:`rasterize_polygons`, :func:`costmap`, :func:`traversal_costs`,
+  :func:`integrate_scan` and :mod:`navkit.mapping.io`.
+* :class:`LaserScan` and the robot-centred :class:`LocalGrid`.
+* :func:`validate_costs`: the grid planners' traversal-cost convention.
+* :mod:`navkit.mapping.io`: map files, ROS messages and CARMEN logs.
+
+Examples
+--------
+>>> grid = OccupancyGrid.empty(width=2.0, height=1.0, resolution=0.5)
+>>> scan = LaserScan([1.2], angle_min=0.0, angle_increment=0.1, range_min=0.1, range_max=3.0)
+>>> integrate_scan(grid, scan, (0.25, 0.25, 0.0))
+3
+>>> grid.occupied().astype(int)
+array([[0, 0, 1, 0],
+       [0, 0, 0, 0]])
+>>> traversal_costs(grid, unknown_cost=1.0).tolist()
+[[1.0, 1.0, inf, 1.0], [1.0, 1.0, 1.0, 1.0]]
 """
 
-from navkit.mapping._carmen import CarmenLog, read_carmen
-from navkit.mapping._grid import OccupancyGrid, OccupancyGridFields
-from navkit.mapping._scan import LaserScan, LocalGrid
+from navkit.mapping._costs import costmap, traversal_costs, validate_costs
+from navkit.mapping._grid import OccupancyGrid
+from navkit.mapping._local_grid import LocalGrid
+from navkit.mapping._rasterize import rasterize_polygons
+from navkit.mapping._raycast import integrate_scan
+from navkit.mapping._scan import LaserScan
 
 __all__ = [
-    "CarmenLog",
     "LaserScan",
     "LocalGrid",
     "OccupancyGrid",
-    "OccupancyGridFields",
-    "read_carmen",
+    "costmap",
+    "integrate_scan",
+    "rasterize_polygons",
+    "traversal_costs",
+    "validate_costs",
 ]

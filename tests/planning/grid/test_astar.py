@@ -16,7 +16,7 @@ from hypothesis import strategies as st
 from skimage.graph import MCP_Geometric
 
 from navkit import NavkitError, NoPathError
-from navkit.planning import GridPath, astar, distance_field
+from navkit.planning import Path2D, astar, distance_field
 from navkit.planning.grid import _workspace
 from navkit.planning.grid._arguments import check_search_size
 
@@ -41,7 +41,7 @@ def test_astar_equals_distance_field_and_scipy(
         assert field[start] == np.inf
         with pytest.raises(NoPathError) as info:
             astar(costs, start, goal, connectivity=connectivity, corner_cutting=corner_cutting)
-        assert info.value.explored >= 1
+        assert info.value.expanded >= 1
         return
     path = astar(costs, start, goal, connectivity=connectivity, corner_cutting=corner_cutting)
     assert path.cost == pytest.approx(reference, rel=1e-12)
@@ -132,12 +132,19 @@ def test_start_equals_goal() -> None:
     assert path.expanded == 1
 
 
-def test_result_is_a_frozen_dataclass_with_read_only_cells() -> None:
+def test_result_is_a_frozen_grid_path2d_through_cell_centres() -> None:
     path = astar(np.ones((4, 4)), (0, 0), (3, 3))
-    assert isinstance(path, GridPath)
+    assert isinstance(path, Path2D)
+    assert path.frame == "grid"
+    assert path.points.dtype == np.float64
+    # A* paths run through cell centres: integer continuous coordinates.
+    np.testing.assert_array_equal(path.points, path.cells)
     assert path.cells.dtype == np.int64
+    assert path.cells.tolist() == [[0, 0], [1, 1], [2, 2], [3, 3]]
     with pytest.raises(ValueError):
         path.cells[0, 0] = 5
+    with pytest.raises(ValueError):
+        path.points[0, 0] = 5.0
     with pytest.raises(AttributeError):
         path.cost = 1.0  # type: ignore[misc]
 
@@ -152,15 +159,15 @@ def test_inputs_are_not_modified_and_int_costs_accepted() -> None:
     assert astar(fortran, (0, 0), (4, 5)).cost == pytest.approx(1 + 4 * SQRT2)
 
 
-def test_no_path_error_reports_explored_cells() -> None:
+def test_no_path_error_reports_expanded_cells() -> None:
     costs = np.ones((6, 6))
     costs[:, 3] = np.inf
     with pytest.raises(NoPathError) as info:
         astar(costs, (0, 0), (5, 5))
     assert isinstance(info.value, NavkitError)
-    # Everything left of the wall is explored, nothing more.
-    assert info.value.explored == 18
-    assert "explored 18" in str(info.value)
+    # Everything left of the wall is expanded, nothing more.
+    assert info.value.expanded == 18
+    assert "expanded 18" in str(info.value)
 
 
 @pytest.mark.parametrize(
@@ -192,17 +199,17 @@ def test_grids_beyond_the_heap_index_range_are_rejected() -> None:
 def test_bad_endpoints_and_options() -> None:
     costs = np.ones((4, 5))
     costs[2, 2] = np.inf
-    with pytest.raises(ValueError, match=r"start .* outside"):
+    with pytest.raises(ValueError, match=r"start_cell .* outside"):
         astar(costs, (4, 0), (0, 0))
-    with pytest.raises(ValueError, match=r"goal .* outside"):
+    with pytest.raises(ValueError, match=r"goal_cell .* outside"):
         astar(costs, (0, 0), (0, -1))
-    with pytest.raises(ValueError, match=r"start \(2, 2\) is on an impassable"):
+    with pytest.raises(ValueError, match=r"start_cell \(2, 2\) is on an impassable"):
         astar(costs, (2, 2), (0, 0))
-    with pytest.raises(ValueError, match=r"goal \(2, 2\) is on an impassable"):
+    with pytest.raises(ValueError, match=r"goal_cell \(2, 2\) is on an impassable"):
         astar(costs, (0, 0), (2, 2))
-    with pytest.raises(TypeError, match="start"):
+    with pytest.raises(TypeError, match="start_cell"):
         astar(costs, (0.5, 1), (0, 0))
-    with pytest.raises(ValueError, match="start"):
+    with pytest.raises(ValueError, match="start_cell"):
         astar(costs, (0, 1, 2), (0, 0))
     with pytest.raises(ValueError, match="connectivity"):
         astar(costs, (0, 0), (1, 1), connectivity=6)

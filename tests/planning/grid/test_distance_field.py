@@ -92,9 +92,9 @@ def test_input_not_modified_and_errors() -> None:
     before = costs.copy()
     distance_field(costs, (0, 0))
     np.testing.assert_array_equal(costs, before)
-    with pytest.raises(ValueError, match=r"goal \(1, 1\) is on an impassable"):
+    with pytest.raises(ValueError, match=r"goal_cell \(1, 1\) is on an impassable"):
         distance_field(costs, (1, 1))
-    with pytest.raises(ValueError, match=r"goal .* outside"):
+    with pytest.raises(ValueError, match=r"goal_cell .* outside"):
         distance_field(costs, (9, 0))
     with pytest.raises(ValueError, match=">= 1"):
         distance_field(np.zeros((3, 3)), (0, 0))

@@ -1,5 +1,9 @@
 """Field D*: geometry, optimality against exact any-angle paths, incremental repair, errors.
 
+Paths come back in continuous cell coordinates (node (i, j) at (i - 0.5, j - 0.5));
+the oracles work in node coordinates, where cell (r, c) covers [r, r+1] × [c, c+1],
+so the tests add 0.5 to the points (:func:`nodes_of`).
+
 The oracles here share no code with the planner: the path cost is integrated by
 a plain-Python splitter, blocked-interior crossings are measured with shapely,
 and exact any-angle shortest paths come from a visibility graph over the
@@ -23,14 +27,21 @@ from numpy.typing import NDArray
 from scipy.sparse.csgraph import dijkstra
 
 from navkit import NoPathError
-from navkit.planning import FieldDStar, FieldPath, field_dstar
-from navkit.planning.grid._field_dstar_kernels import corner_cost
+from navkit.geometry import Pose2D
+from navkit.planning import FieldDStar, Path2D, field_dstar
+from navkit.planning.grid._dstar_lite_kernels import corner_cost
 
 FloatArray = NDArray[np.float64]
 SQRT2 = math.sqrt(2.0)
 
 
 # ----------------------------------------------------------------------------- oracles
+
+
+def nodes_of(path: Path2D) -> FloatArray:
+    """A grid path's points in node coordinates (cell (r, c) covers [r, r+1] × [c, c+1])."""
+    assert path.frame == "grid"
+    return path.points + 0.5
 
 
 def true_cost(costs: FloatArray, points: FloatArray) -> float:
@@ -289,8 +300,8 @@ def test_uniform_map_gives_the_straight_segment(
     dist = math.hypot(goal[0] - start[0], goal[1] - start[1])
     assert path.cost == pytest.approx(cost * dist, rel=1e-9, abs=1e-9)
     assert path.length == pytest.approx(dist, rel=1e-9, abs=1e-9)
-    assert path.points[0].tolist() == list(map(float, start))
-    assert path.points[-1].tolist() == list(map(float, goal))
+    assert path.points[0].tolist() == [start[0] - 0.5, start[1] - 0.5]
+    assert path.points[-1].tolist() == [goal[0] - 0.5, goal[1] - 0.5]
     assert path.points.shape == ((2, 2) if start != goal else (1, 2))
 
 
@@ -307,7 +318,7 @@ def test_heading_of_20_degrees_in_an_empty_map() -> None:
     lengths = np.hypot(steps[:, 0], steps[:, 1])
     assert lengths[np.abs(headings - 20.0) < 2.0].sum() > 0.9 * lengths.sum()
     smooth = field_dstar(costs, (0, 0), goal)
-    assert smooth.points.tolist() == [[0.0, 0.0], [55.0, 20.0]]
+    assert nodes_of(smooth).tolist() == [[0.0, 0.0], [55.0, 20.0]]
     assert path.cost < 1.001 * math.hypot(*goal)
     octile = field_dstar(costs, (0, 0), goal, interpolate=False)
     moves = np.diff(octile.points, axis=0)
@@ -321,7 +332,7 @@ def test_heading_of_20_degrees_in_an_empty_map() -> None:
 
 def _octile_or_none(
     costs: FloatArray, start: tuple[int, int], goal: tuple[int, int]
-) -> FieldPath | None:
+) -> Path2D | None:
     """The 8-connected D* Lite path, or None if there is none (Field D* must agree)."""
     try:
         return field_dstar(costs, start, goal, interpolate=False)
@@ -331,12 +342,13 @@ def _octile_or_none(
         return None
 
 
-def _check_path(costs: FloatArray, path: FieldPath, start: tuple[int, int],
+def _check_path(costs: FloatArray, path: Path2D, start: tuple[int, int],
                 goal: tuple[int, int]) -> float:
-    assert path.points[0].tolist() == list(map(float, start))
-    assert path.points[-1].tolist() == list(map(float, goal))
-    assert blocked_crossing_length(costs, path.points) < 1e-9
-    cost = true_cost(costs, path.points)
+    nodes = nodes_of(path)
+    assert nodes[0].tolist() == list(map(float, start))
+    assert nodes[-1].tolist() == list(map(float, goal))
+    assert blocked_crossing_length(costs, nodes) < 1e-9
+    cost = true_cost(costs, nodes)
     assert path.cost == pytest.approx(cost, rel=1e-9)
     return cost
 
@@ -455,7 +467,7 @@ def test_replan_after_local_change_equals_fresh_plan_with_far_fewer_expansions()
         except NoPathError:
             continue
     # Block a few cells just ahead of the robot on its path.
-    ahead = shapely.LineString(first.points).interpolate(4.0)
+    ahead = shapely.LineString(nodes_of(first)).interpolate(4.0)
     r, c = math.floor(ahead.x), math.floor(ahead.y)
     cells = [(r + dr, c + dc) for dr in (-1, 0) for dc in (-1, 0)
              if 0 <= r + dr < 256 and 0 <= c + dc < 256]
@@ -470,7 +482,7 @@ def test_replan_after_local_change_equals_fresh_plan_with_far_fewer_expansions()
     assert repaired.expanded * 5 <= fresh.expanded
     assert repaired.cost > first.cost
     # The robot moves on and the cells open again.
-    step = shapely.LineString(first.points).interpolate(2.0)
+    step = shapely.LineString(nodes_of(first)).interpolate(2.0)
     moved = free_node(rng, costs, (round(step.x), round(step.y)))
     planner.update_costs(cells, 1.0)
     again = planner.replan(moved)
@@ -534,7 +546,7 @@ def test_errors() -> None:
     cut[:, 2] = np.inf
     with pytest.raises(NoPathError) as info:
         field_dstar(cut, (0, 0), (5, 5))
-    assert info.value.explored > 0
+    assert info.value.expanded > 0
     planner = FieldDStar(costs)
     with pytest.raises(RuntimeError, match="plan"):
         planner.replan()
@@ -598,19 +610,239 @@ def test_plan_path_with_field_dstar_is_any_angle_and_legal() -> None:
 
     occupied = np.zeros((20, 30), dtype=bool)
     occupied[:15, 14:16] = True
-    grid = OccupancyGrid.from_occupancy(occupied, 0.1)
+    grid = OccupancyGrid.from_occupancy(occupied, resolution=0.1)
     start, goal = (0.55, 0.55), (2.55, 0.55)
     path = plan_path(grid, start, goal, robot_radius=0.2, planner="field_dstar")
+    assert path.frame == "world"
     grid_path = plan_path(grid, start, goal, robot_radius=0.2)
     np.testing.assert_allclose(path.points[0], start)
     np.testing.assert_allclose(path.points[-1], goal)
     assert path.length < grid_path.length
     assert path.cost == pytest.approx(path.length)
     # Clear of the inflated wall: back in (row, col) = (y, x) / resolution.
-    costs = grid.traversal_costs(0.2, None)
+    costs = grid.traversal_costs(robot_radius=0.2)
     assert blocked_crossing_length(costs, path.points[:, ::-1] / 0.1) < 1e-9
     assert path.points[:, 1].max() > 1.5  # round the end of the wall (y < 1.5)
     with pytest.raises(NoPathError):
         blocked = occupied.copy()
         blocked[:, 14:16] = True
-        plan_path(OccupancyGrid.from_occupancy(blocked, 0.1), start, goal, planner="field_dstar")
+        plan_path(
+            OccupancyGrid.from_occupancy(blocked, resolution=0.1), start, goal,
+            planner="field_dstar",
+        )
+
+
+# ----------------------------------------------------------------------- cells
+
+
+def test_plan_cells_runs_centre_to_centre_legally() -> None:
+    costs = np.ones((10, 10))
+    costs[2:8, 4] = np.inf
+    planner = FieldDStar(costs)
+    path = planner.plan_cells((5, 0), (5, 9))
+    assert path.frame == "grid"
+    assert path.points[0].tolist() == [5.0, 0.0]
+    assert path.points[-1].tolist() == [5.0, 9.0]
+    assert path.cells[[0, -1]].tolist() == [[5, 0], [5, 9]]
+    nodes = nodes_of(path)
+    assert blocked_crossing_length(costs, nodes) < 1e-9
+    assert path.cost == pytest.approx(true_cost(costs, nodes), rel=1e-9)
+    assert path.length == pytest.approx(
+        float(np.hypot(*np.diff(path.points, axis=0).T).sum()), rel=1e-12
+    )
+    # The link corners (5, 1) and (5, 9) (nearest the other centre, ties to the
+    # lowest) are level with the wall's middle, and the node path between them
+    # goes over its upper end; smoothed, the path is taut over the corners
+    # (2, 4) and (2, 5) from centre to centre.
+    taut = math.hypot(5.5 - 2, 4 - 0.5) + 1 + math.hypot(5.5 - 2, 9.5 - 5)
+    assert path.cost == pytest.approx(taut, rel=1e-9)
+    same = planner.plan_cells((3, 3), (3, 3))
+    assert same.points.tolist() == [[3.0, 3.0]]
+    assert (same.cost, same.length, same.expanded) == (0.0, 0.0, 0)
+
+
+@settings(max_examples=30, deadline=None)
+@given(seed=st.integers(0, 2**32 - 1), n=st.integers(3, 20), smooth=st.booleans())
+def test_plan_cells_is_legal_on_random_maps(seed: int, n: int, smooth: bool) -> None:
+    rng = np.random.default_rng(seed)
+    costs = np.where(rng.random((n, n)) < 0.25, np.inf, rng.uniform(1.0, 3.0, (n, n)))
+    free = np.argwhere(np.isfinite(costs))
+    if len(free) < 2:
+        return
+    s, g = (tuple(int(v) for v in free[i]) for i in rng.choice(len(free), 2, replace=False))
+    planner = FieldDStar(costs, smooth=smooth)
+    try:
+        path = planner.plan_cells(s, g)
+    except NoPathError:
+        with pytest.raises(NoPathError):
+            field_dstar(costs, tuple(np.add(s, 1)), tuple(np.add(g, 1)))
+        return
+    assert path.points[0].tolist() == list(map(float, s))
+    assert path.points[-1].tolist() == list(map(float, g))
+    nodes = nodes_of(path)
+    assert blocked_crossing_length(costs, nodes) < 1e-9
+    assert path.cost == pytest.approx(true_cost(costs, nodes), rel=1e-9)
+
+
+# ----------------------------------------------------------------------- world
+
+
+def test_world_node_conversions_follow_the_occupancy_grid_convention() -> None:
+    from navkit.mapping import OccupancyGrid
+
+    origin = Pose2D(3.0, -2.0, 0.6)
+    planner = FieldDStar(np.ones((12, 15)), resolution=0.25, origin=origin)
+    grid = OccupancyGrid.from_occupancy(np.zeros((12, 15), dtype=bool), resolution=0.25,
+                                        origin=origin)
+    rng = np.random.default_rng(4)
+    nodes = rng.uniform(0.0, 12.0, (50, 2))
+    world = planner.node_to_world(nodes)
+    assert world.shape == (50, 2)
+    # Node (i, j) is the continuous cell coordinate (i - 0.5, j - 0.5).
+    np.testing.assert_allclose(world, grid.cell_to_world(nodes - 0.5), atol=1e-12)
+    np.testing.assert_allclose(planner.world_to_node(world, continuous=True), nodes, atol=1e-9)
+    # Node (0, 0) is the origin: the outer corner of cell (0, 0).
+    np.testing.assert_allclose(planner.node_to_world((0, 0)), [3.0, -2.0], atol=1e-12)
+    # The nearest node, one point in, one point out.
+    one = planner.world_to_node(world[0])
+    assert one.shape == (2,) and one.dtype == np.int64
+    np.testing.assert_array_equal(one, np.floor(nodes[0] + 0.5))
+    np.testing.assert_array_equal(planner.world_to_node(world), np.floor(nodes + 0.5))
+    with pytest.raises(ValueError, match="points_xy"):
+        planner.world_to_node(np.zeros((3, 3)))
+    with pytest.raises(ValueError, match="nodes"):
+        planner.node_to_world([1.0, 2.0, 3.0])
+
+
+def test_plan_world_runs_point_to_point_and_matches_the_grid_path() -> None:
+    costs = np.ones((10, 10))
+    costs[2:8, 4] = np.inf
+    origin = Pose2D(1.0, -1.0, 0.3)
+    planner = FieldDStar(costs, resolution=0.5, origin=origin)
+    start_xy = planner.node_to_world((5.3, 0.6))
+    goal_xy = planner.node_to_world((5.2, 9.7))
+    path = planner.plan_world(start_xy, goal_xy)
+    assert path.frame == "world"
+    np.testing.assert_allclose(path.points[0], start_xy, atol=1e-12)
+    np.testing.assert_allclose(path.points[-1], goal_xy, atol=1e-12)
+    nodes = planner.world_to_node(path.points, continuous=True)
+    assert blocked_crossing_length(costs, nodes) < 1e-9
+    assert path.cost == pytest.approx(0.5 * true_cost(costs, nodes), rel=1e-9)
+    assert path.length == pytest.approx(
+        float(np.hypot(*np.diff(path.points, axis=0).T).sum()), rel=1e-9
+    )
+    # The nearest nodes (5, 1) and (5, 10) are level with the wall's middle and
+    # the node path goes over its upper end: taut over the corners (2, 4), (2, 5).
+    taut = math.hypot(5.3 - 2, 4 - 0.6) + 1 + math.hypot(5.2 - 2, 9.7 - 5)
+    assert path.cost == pytest.approx(0.5 * taut, rel=1e-9)
+    # Uniform map: the straight segment.
+    open_map = FieldDStar(np.full((8, 8), 2.0), resolution=0.1)
+    straight = open_map.plan_world((0.05, 0.12), (0.71, 0.33))
+    np.testing.assert_allclose(straight.points, [[0.05, 0.12], [0.71, 0.33]], atol=1e-12)
+    assert straight.cost == pytest.approx(2.0 * math.hypot(0.66, 0.21), rel=1e-9)
+
+
+def test_replan_world_equals_a_fresh_world_plan() -> None:
+    rng = np.random.default_rng(21)
+    origin = Pose2D(-4.0, 2.0, -1.1)
+    resolution = 0.05
+    for _ in range(10):  # draw until the goal is reachable
+        costs = random_binary_map(rng, 128, 0.2)
+        costs[:3, :3] = costs[-3:, -3:] = 1.0
+        planner = FieldDStar(costs, resolution=resolution, origin=origin)
+        start_xy = planner.node_to_world((1.3, 1.6))
+        goal_xy = planner.node_to_world((126.6, 127.2))
+        try:
+            first = planner.plan_world(start_xy, goal_xy)
+            break
+        except NoPathError:
+            continue
+    nodes = planner.world_to_node(first.points, continuous=True)
+    ahead = shapely.LineString(nodes).interpolate(6.0)
+    r, c = math.floor(ahead.x), math.floor(ahead.y)
+    cells = [(r + dr, c + dc) for dr in (-1, 0) for dc in (-1, 0)]
+    planner.update_costs(cells, np.inf)
+    changed = costs.copy()
+    for cell in cells:
+        changed[cell] = np.inf
+    # The robot moved a little along its path (to a point inside a free cell).
+    line = shapely.LineString(nodes)
+    for distance in np.arange(2.5, 4.0, 0.1):
+        step = line.interpolate(distance)
+        here = (step.x, step.y)
+        if np.isfinite(changed[math.floor(step.x), math.floor(step.y)]) and all(
+            abs(v - round(v)) > 1e-6 for v in here
+        ):
+            break
+    moved_xy = planner.node_to_world(here)
+    fresh = FieldDStar(changed, resolution=resolution, origin=origin).plan_world(
+        moved_xy, goal_xy
+    )
+    repaired = planner.replan_world(moved_xy)
+    np.testing.assert_array_equal(repaired.points, fresh.points)
+    assert repaired.cost == pytest.approx(fresh.cost, rel=1e-12)
+    assert repaired.expanded * 5 <= fresh.expanded
+    np.testing.assert_allclose(repaired.points[0], moved_xy, atol=1e-12)
+    np.testing.assert_allclose(repaired.points[-1], goal_xy, atol=1e-12)
+    # Without a new start the previous start point is kept.
+    planner.update_costs(cells, 1.0)
+    again = planner.replan_world()
+    fresh_again = FieldDStar(costs, resolution=resolution, origin=origin).plan_world(
+        moved_xy, goal_xy
+    )
+    np.testing.assert_array_equal(again.points, fresh_again.points)
+    # The node form of the same repair is the grid path between the nodes.
+    node_path = planner.replan()
+    assert node_path.frame == "grid"
+    np.testing.assert_array_equal(
+        nodes_of(node_path)[[0, -1]],
+        [planner.world_to_node(moved_xy), planner.world_to_node(goal_xy)],
+    )
+
+
+def test_replan_world_after_node_and_cell_plans_keeps_their_end_points() -> None:
+    planner = FieldDStar(np.ones((6, 6)), resolution=2.0)
+    planner.plan((0, 0), (6, 6))
+    np.testing.assert_allclose(planner.replan_world().points, [[0.0, 0.0], [12.0, 12.0]])
+    planner.plan_cells((0, 0), (5, 5))
+    np.testing.assert_allclose(planner.replan_world().points, [[1.0, 1.0], [11.0, 11.0]])
+    moved = planner.replan_world((3.0, 1.0))
+    np.testing.assert_allclose(moved.points, [[3.0, 1.0], [11.0, 11.0]])
+
+
+def test_world_errors_and_options() -> None:
+    costs = np.ones((5, 5))
+    costs[2, 2] = np.inf
+    planner = FieldDStar(costs, resolution=0.5)
+    with pytest.raises(RuntimeError, match="plan"):
+        planner.replan_world()
+    with pytest.raises(ValueError, match=r"start_xy .* outside"):
+        planner.plan_world((-0.1, 1.0), (2.0, 2.0))
+    with pytest.raises(ValueError, match=r"goal_xy .* outside"):
+        planner.plan_world((0.1, 0.1), (2.5, 1.0))  # x = 2.5 m is the far edge
+    with pytest.raises(ValueError, match=r"goal_xy .* impassable cell \(2, 2\)"):
+        planner.plan_world((0.1, 0.1), (1.2, 1.3))
+    with pytest.raises(ValueError, match="start_xy"):
+        planner.plan_world((0.1, 0.1, 0.0), (2.0, 2.0))
+    with pytest.raises(ValueError, match=r"start_cell \(2, 2\) is on an impassable"):
+        planner.plan_cells((2, 2), (0, 0))
+    with pytest.raises(ValueError, match="goal_cell"):
+        planner.plan_cells((0, 0), (5, 0))
+    with pytest.raises(ValueError, match="start_node"):
+        planner.plan((6, 0), (0, 0))
+    for flag in ("interpolate", "lookahead", "smooth"):
+        with pytest.raises(TypeError, match=flag):
+            FieldDStar(costs, **{flag: 1})  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match="resolution"):
+        FieldDStar(costs, resolution=0.0)
+    with pytest.raises(TypeError, match="origin"):
+        FieldDStar(costs, origin="here")  # type: ignore[arg-type]
+    with pytest.raises(TypeError):
+        FieldDStar(costs, False)  # type: ignore[misc]
+    other = FieldDStar(costs, interpolate=False, lookahead=False, smooth=False,
+                       resolution=0.25, origin=(1.0, 2.0, 0.5))
+    assert (other.interpolate, other.lookahead, other.smooth) == (False, False, False)
+    assert other.resolution == 0.25
+    assert other.origin == Pose2D(1.0, 2.0, 0.5)
+    assert other.shape == (5, 5)
+    assert "FieldDStar(<5x5 costs>" in repr(other)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -18,7 +19,6 @@ from navkit.planning import (
     PiecewiseAttraction,
     PiecewiseRepulsion,
     PotentialField,
-    field_grid,
 )
 
 coord = st.floats(-5.0, 5.0, allow_nan=False)
@@ -58,12 +58,12 @@ def far_from(p: np.ndarray, centre: np.ndarray, radii: list[float], margin: floa
        gain, gain)
 def test_blended_force_is_minus_gradient(
     p: tuple[float, float], goal: tuple[float, float], k: float, c: float, a: float, b: float,
-    rad_thr: float, width: float, m: float, u: float,
+    threshold_radius: float, width: float, m: float, u: float,
 ) -> None:
-    field = BlendedAttraction(goal, k_att=k, c=c, a=a, b=b, rad_thr=rad_thr, width=width, m=m,
-                              u_trans=u)
+    field = BlendedAttraction(goal, k_att=k, c=c, a=a, b=b, threshold_radius=threshold_radius,
+                              width=width, m=m, u_trans=u)
     q = np.array(p)
-    assume(far_from(q, field.goal, [0.0], 1e-2))
+    assume(far_from(q, field.goal_xy, [0.0], 1e-2))
     assert_force_is_gradient(field, q)
 
 
@@ -78,11 +78,12 @@ def test_paraboloid_force_is_minus_gradient(
 @settings(max_examples=100)
 @given(point, point, gain, gain, st.floats(0.0, 2.0))
 def test_conic_force_is_minus_gradient(
-    p: tuple[float, float], goal: tuple[float, float], m: float, u: float, rad_thr: float
+    p: tuple[float, float], goal: tuple[float, float], m: float, u: float,
+    threshold_radius: float,
 ) -> None:
-    field = ConicAttraction(goal, m=m, u_trans=u, rad_thr=rad_thr)
+    field = ConicAttraction(goal, m=m, u_trans=u, threshold_radius=threshold_radius)
     q = np.array(p)
-    assume(far_from(q, field.goal, [0.0], 1e-2))
+    assume(far_from(q, field.goal_xy, [0.0], 1e-2))
     assert_force_is_gradient(field, q)
     assert np.linalg.norm(field.force(q)[0]) == pytest.approx(m * u, rel=1e-12)
 
@@ -92,9 +93,9 @@ def test_conic_force_is_minus_gradient(
 def test_piecewise_attraction_force_is_minus_gradient(
     p: tuple[float, float], goal: tuple[float, float], alpha: float, r: float, s: float
 ) -> None:
-    field = PiecewiseAttraction(goal, alpha=alpha, r=r, s=s)
+    field = PiecewiseAttraction(goal, alpha=alpha, goal_radius=r, spread=s)
     q = np.array(p)
-    assume(far_from(q, field.goal, [0.0, r, r + s], 1e-3))
+    assume(far_from(q, field.goal_xy, [0.0, r, r + s], 1e-3))
     assert_force_is_gradient(field, q)
 
 
@@ -106,7 +107,7 @@ obstacle_sets = st.lists(point, min_size=1, max_size=6)
 def test_khatib_force_is_minus_gradient(
     p: tuple[float, float], obstacles: list[tuple[float, float]], k: float, d0: float
 ) -> None:
-    field = KhatibRepulsion(obstacles, k_rep=k, d0=d0)
+    field = KhatibRepulsion(obstacles, k_rep=k, influence_radius=d0)
     q = np.array(p)
     # Singular at the obstacles; at d0 the force is continuous but U'' jumps.
     assume(all(far_from(q, np.array(o), [0.0], 0.05 * d0) for o in obstacles))
@@ -120,7 +121,7 @@ def test_piecewise_repulsion_force_is_minus_gradient(
     p: tuple[float, float], obstacles: list[tuple[float, float]], delta: float, beta: float,
     r: float, s: float,
 ) -> None:
-    field = PiecewiseRepulsion(obstacles, delta=delta, beta=beta, r=r, s=s)
+    field = PiecewiseRepulsion(obstacles, delta=delta, beta=beta, obstacle_radius=r, spread=s)
     q = np.array(p)
     assume(all(far_from(q, np.array(o), [0.0, r, r + s], 1e-3) for o in obstacles))
     assert_force_is_gradient(field, q)
@@ -132,9 +133,9 @@ def test_composite_force_is_minus_gradient_and_sum(
     p: tuple[float, float], goal: tuple[float, float], obstacles: list[tuple[float, float]]
 ) -> None:
     parts: list[PotentialField] = [
-        BlendedAttraction(goal, rad_thr=1.0, width=0.3),
-        KhatibRepulsion(obstacles, k_rep=0.5, d0=1.5),
-        PiecewiseRepulsion(obstacles, delta=2.0, beta=1.0, r=0.0, s=1.0),
+        BlendedAttraction(goal, threshold_radius=1.0, width=0.3),
+        KhatibRepulsion(obstacles, k_rep=0.5, influence_radius=1.5),
+        PiecewiseRepulsion(obstacles, delta=2.0, beta=1.0, obstacle_radius=0.0, spread=1.0),
     ]
     total = parts[0] + parts[1] + parts[2]
     q = np.array(p)
@@ -155,7 +156,7 @@ def test_composite_force_is_minus_gradient_and_sum(
 blend_params = st.fixed_dictionaries(
     {
         "k_att": gain, "c": gain, "a": length, "b": length, "m": gain, "u_trans": gain,
-        "rad_thr": st.floats(1.0, 4.0), "width": st.floats(0.01, 0.1),
+        "threshold_radius": st.floats(1.0, 4.0), "width": st.floats(0.01, 0.1),
     }
 )
 
@@ -166,8 +167,8 @@ def test_blended_tends_to_paraboloid_near_goal(
     params: dict[str, float], goal: tuple[float, float], frac: float, angle: float
 ) -> None:
     field = BlendedAttraction(goal, **params)
-    # Inside rad_thr - 20ω, σ <= e^-40: the blend must equal the paraboloid.
-    d = frac * (params["rad_thr"] - 20.0 * params["width"])
+    # Inside threshold_radius - 20ω, σ <= e^-40: the blend must equal the paraboloid.
+    d = frac * (params["threshold_radius"] - 20.0 * params["width"])
     assume(d > 0.0)
     q = np.array(goal) + d * np.array([math.cos(angle), math.sin(angle)])
     par = ParaboloidAttraction(goal, k_att=params["k_att"], c=params["c"], a=params["a"],
@@ -183,7 +184,7 @@ def test_blended_tends_to_constant_magnitude_cone_far_away(
     params: dict[str, float], goal: tuple[float, float], extra: float, angle: float
 ) -> None:
     field = BlendedAttraction(goal, **params)
-    d = params["rad_thr"] + 20.0 * params["width"] + extra
+    d = params["threshold_radius"] + 20.0 * params["width"] + extra
     direction = np.array([math.cos(angle), math.sin(angle)])
     force = field.force(np.array(goal) + d * direction)[0]
     cone = -params["m"] * params["u_trans"] * direction
@@ -191,17 +192,17 @@ def test_blended_tends_to_constant_magnitude_cone_far_away(
 
 
 def test_blending_width_moves_between_the_limits() -> None:
-    # At rad_thr the blend is half way; a wide blend mixes in the paraboloid further out.
+    # At threshold_radius the blend is half way; a wide blend mixes in the paraboloid further out.
     goal = (0.0, 0.0)
     q = np.array([[1.5, 0.0]])
     par = ParaboloidAttraction(goal).force(q)[0, 0]
     cone = ConicAttraction(goal).force(q)[0, 0]
-    sharp = BlendedAttraction(goal, rad_thr=1.0, width=0.01).force(q)[0, 0]
-    wide = BlendedAttraction(goal, rad_thr=1.0, width=1.0).force(q)[0, 0]
+    sharp = BlendedAttraction(goal, threshold_radius=1.0, width=0.01).force(q)[0, 0]
+    wide = BlendedAttraction(goal, threshold_radius=1.0, width=1.0).force(q)[0, 0]
     assert sharp == pytest.approx(cone, rel=1e-12)
     assert abs(wide - cone) > 0.1
     assert par < cone < 0.0
-    assert BlendedAttraction(goal, rad_thr=1.0).sigma([1.0])[0] == 0.5
+    assert BlendedAttraction(goal, threshold_radius=1.0).sigma([1.0])[0] == 0.5
 
 
 # --- repulsion ----------------------------------------------------------------------
@@ -209,13 +210,13 @@ def test_blending_width_moves_between_the_limits() -> None:
 
 @settings(max_examples=100)
 @given(point, obstacle_sets, gain, length)
-def test_khatib_is_exactly_zero_beyond_d0(
+def test_khatib_is_exactly_zero_beyond_the_influence_radius(
     p: tuple[float, float], obstacles: list[tuple[float, float]], k: float, d0: float
 ) -> None:
     q = np.array(p)
     dists = np.hypot(*(np.array(obstacles) - q).T)
     assume(bool(np.all(dists > d0)))
-    field = KhatibRepulsion(obstacles, k_rep=k, d0=d0)
+    field = KhatibRepulsion(obstacles, k_rep=k, influence_radius=d0)
     assert field.potential(q)[0] == 0.0
     assert np.all(field.force(q) == 0.0)
 
@@ -229,7 +230,7 @@ def test_piecewise_repulsion_is_exactly_zero_beyond_reach(
     q = np.array(p)
     dists = np.hypot(*(np.array(obstacles) - q).T)
     assume(bool(np.all(dists > r + s)))
-    field = PiecewiseRepulsion(obstacles, delta=delta, beta=beta, r=r, s=s)
+    field = PiecewiseRepulsion(obstacles, delta=delta, beta=beta, obstacle_radius=r, spread=s)
     assert field.potential(q)[0] == 0.0
     assert np.all(field.force(q) == 0.0)
 
@@ -239,7 +240,7 @@ def test_piecewise_repulsion_is_exactly_zero_beyond_reach(
 def test_khatib_grows_without_bound_toward_obstacle(
     obstacle: tuple[float, float], k: float, d0: float, angle: float
 ) -> None:
-    field = KhatibRepulsion([obstacle], k_rep=k, d0=d0)
+    field = KhatibRepulsion([obstacle], k_rep=k, influence_radius=d0)
     direction = np.array([math.cos(angle), math.sin(angle)])
     dists = d0 * np.logspace(-0.01, -6, 40)
     pts = np.array(obstacle) + dists[:, None] * direction
@@ -254,14 +255,14 @@ def test_khatib_grows_without_bound_toward_obstacle(
 
 
 def test_khatib_on_the_obstacle_is_infinite_potential_and_zero_force() -> None:
-    field = KhatibRepulsion([[1.0, 1.0], [3.0, 1.0]], k_rep=1.0, d0=5.0)
+    field = KhatibRepulsion([[1.0, 1.0], [3.0, 1.0]], k_rep=1.0, influence_radius=5.0)
     assert field.potential([1.0, 1.0])[0] == math.inf
     # Only the other obstacle pushes: (1/2 - 1/5)/4 toward -x.
     np.testing.assert_allclose(field.force([1.0, 1.0]), [[-0.075, 0.0]], rtol=1e-12)
 
 
 def test_piecewise_repulsion_pieces() -> None:
-    field = PiecewiseRepulsion([[0.0, 0.0]], delta=3.0, beta=2.0, r=1.0, s=0.5)
+    field = PiecewiseRepulsion([[0.0, 0.0]], delta=3.0, beta=2.0, obstacle_radius=1.0, spread=0.5)
     pts = np.array([[0.0, 0.5], [0.0, 1.25], [0.0, 1.5], [0.0, 2.0]])
     np.testing.assert_allclose(field.force(pts)[:, 1], [3.0, 0.5, 0.0, 0.0])
     np.testing.assert_allclose(field.potential(pts), [0.25 + 1.5, 0.0625, 0.0, 0.0])
@@ -269,7 +270,7 @@ def test_piecewise_repulsion_pieces() -> None:
 
 def test_piecewise_attraction_is_continuous_at_the_outer_radius() -> None:
     # The paper's "α beyond s + r" would jump from α·s to α here; α·s is continuous.
-    field = PiecewiseAttraction((0.0, 0.0), alpha=2.0, r=0.5, s=3.0)
+    field = PiecewiseAttraction((0.0, 0.0), alpha=2.0, goal_radius=0.5, spread=3.0)
     inner, outer = field.force([[3.5 - 1e-9, 0.0], [3.5 + 1e-9, 0.0]])[:, 0]
     assert inner == pytest.approx(-6.0) and outer == pytest.approx(-6.0)
 
@@ -277,19 +278,84 @@ def test_piecewise_attraction_is_continuous_at_the_outer_radius() -> None:
 # --- composition, immutability, bad input --------------------------------------------
 
 
+ALL_FIELDS = [
+    lambda: ParaboloidAttraction((1.0, 2.0), k_att=2.0),
+    lambda: ConicAttraction((1.0, 2.0), threshold_radius=0.5),
+    lambda: BlendedAttraction((1.0, 2.0), width=0.3),
+    lambda: PiecewiseAttraction((1.0, 2.0), goal_radius=0.2, spread=2.0),
+    lambda: KhatibRepulsion([[1.0, 0.0], [0.0, 1.0]], influence_radius=2.0),
+    lambda: PiecewiseRepulsion([[1.0, 0.0]], obstacle_radius=0.1, spread=2.0),
+    lambda: ConicAttraction((3.0, 0.0)) + KhatibRepulsion([[1.0, 0.0]]),
+]
+
+
+@pytest.mark.parametrize("build", ALL_FIELDS)
+def test_fields_are_frozen(build: object) -> None:
+    field = build()  # type: ignore[operator]
+    for f in dataclasses.fields(field):
+        with pytest.raises(dataclasses.FrozenInstanceError):
+            setattr(field, f.name, getattr(field, f.name))
+    assert not hasattr(field, "__dict__")  # slotted
+
+
 def test_fields_are_immutable_and_copy_their_input() -> None:
     obstacles = np.array([[1.0, 0.0]])
-    field = KhatibRepulsion(obstacles, d0=2.0)
+    field = KhatibRepulsion(obstacles, influence_radius=2.0)
     before = field.force([0.0, 0.0]).copy()
     obstacles[0, 0] = 100.0
     np.testing.assert_array_equal(field.force([0.0, 0.0]), before)
-    with pytest.raises(AttributeError, match="immutable"):
-        field.d0 = 3.0  # type: ignore[misc]
+    assert obstacles.flags.writeable  # the caller's array is not frozen
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        field.influence_radius = 3.0  # type: ignore[misc]
     with pytest.raises(ValueError, match="read-only"):
-        field.obstacles[0, 0] = 5.0
+        field.obstacles_xy[0, 0] = 5.0
+    goal = np.array([1.0, 2.0])
+    attraction = ConicAttraction(goal)
+    goal[0] = 7.0
+    np.testing.assert_array_equal(attraction.goal_xy, [1.0, 2.0])
+    assert goal.flags.writeable
+    with pytest.raises(ValueError, match="read-only"):
+        attraction.goal_xy[0] = 5.0
     points = np.array([[0.5, 0.5]])
     field.force(points)
+    attraction.potential(points)
+    attraction.with_goal(points[0])
     np.testing.assert_array_equal(points, [[0.5, 0.5]])
+    assert points.flags.writeable
+
+
+def test_kdtree_cache_is_not_an_argument_nor_in_the_repr() -> None:
+    field = KhatibRepulsion(np.zeros((800, 2)), influence_radius=0.5)
+    names = {f.name: f for f in dataclasses.fields(field)}
+    assert not names["_kdtree"].init and not names["_kdtree"].repr
+    with pytest.raises(TypeError):
+        KhatibRepulsion([[0.0, 0.0]], _kdtree=None)  # type: ignore[call-arg]
+    field.force(np.ones((400, 2)))  # 320,000 pairs: the k-d tree path builds the cache
+    assert field._kdtree is not None
+    assert repr(field) == (
+        "KhatibRepulsion(obstacles_xy=<array shape=(800, 2)>, k_rep=1.0, influence_radius=0.5)"
+    )
+
+
+@pytest.mark.parametrize(
+    "build",
+    [
+        lambda: ParaboloidAttraction((0.0, 0.0), 2.0),
+        lambda: ConicAttraction((0.0, 0.0), 1.0, 1.0),
+        lambda: BlendedAttraction((0.0, 0.0), 1.0),
+        lambda: PiecewiseAttraction((0.0, 0.0), 1.0, 0.0, 1.0),
+        lambda: KhatibRepulsion([[0.0, 0.0]], 1.0, 1.0),
+        lambda: PiecewiseRepulsion([[0.0, 0.0]], 1.0, 1.0, 0.0, 1.0),
+    ],
+)
+def test_parameters_are_keyword_only(build: object) -> None:
+    with pytest.raises(TypeError, match="positional"):
+        build()  # type: ignore[operator]
+
+
+def test_fields_take_goal_and_obstacles_by_keyword_too() -> None:
+    assert ConicAttraction(goal_xy=(1.0, 2.0)).goal_xy.tolist() == [1.0, 2.0]
+    assert KhatibRepulsion(obstacles_xy=[[1.0, 2.0]]).obstacles_xy.shape == (1, 2)
 
 
 def test_with_goal_keeps_parameters() -> None:
@@ -297,43 +363,64 @@ def test_with_goal_keeps_parameters() -> None:
     moved = field.with_goal((1.0, 2.0))
     assert isinstance(moved, BlendedAttraction)
     assert (moved.k_att, moved.width, moved.m) == (2.0, 0.5, 3.0)
-    np.testing.assert_array_equal(moved.goal, [1.0, 2.0])
-    np.testing.assert_array_equal(field.goal, [0.0, 0.0])
+    np.testing.assert_array_equal(moved.goal_xy, [1.0, 2.0])
+    np.testing.assert_array_equal(field.goal_xy, [0.0, 0.0])
     np.testing.assert_allclose(moved.force([[2.0, 3.0]]), field.force([[1.0, 1.0]]))
-    assert "BlendedAttraction(goal=(1.0, 2.0)" in repr(moved)
+    assert "BlendedAttraction(goal_xy=(1.0, 2.0), k_att=2.0" in repr(moved)
+    assert not moved.goal_xy.flags.writeable
+    with pytest.raises(ValueError, match="goal_xy"):
+        field.with_goal((math.nan, 0.0))
+
+
+def test_sum_and_composition() -> None:
+    a = ConicAttraction((1.0, 0.0))
+    b = KhatibRepulsion([[0.5, 0.5]], influence_radius=1.0)
+    c = PiecewiseRepulsion([[0.0, -0.5]])
+    nested = (a + b) + (c + a)
+    assert isinstance(nested, CompositeField)
+    assert nested.fields == (a, b, c, a)  # flattened
+    assert sum([a]) is a
+    total = sum([a, b, c])
+    assert isinstance(total, CompositeField) and total.fields == (a, b, c)
+    assert CompositeField(f for f in (a, b)).fields == (a, b)  # any iterable
+    q = np.array([[0.2, 0.1], [-1.0, 2.0]])
+    np.testing.assert_allclose(
+        total.force(q), a.force(q) + b.force(q) + c.force(q), rtol=1e-12, atol=1e-12
+    )
+    np.testing.assert_array_equal(CompositeField(()).force(q), np.zeros((2, 2)))
 
 
 @pytest.mark.parametrize("cls", [KhatibRepulsion, PiecewiseRepulsion])
 def test_empty_obstacles_give_zero_field(cls: type[PotentialField]) -> None:
-    field = cls(np.empty((0, 2)))
+    field = cls(np.empty((0, 2)))  # type: ignore[call-arg]
     pts = np.array([[0.0, 0.0], [1.0, 2.0]])
     np.testing.assert_array_equal(field.force(pts), np.zeros((2, 2)))
     np.testing.assert_array_equal(field.potential(pts), np.zeros(2))
-    assert cls([]).obstacles.shape == (0, 2)
+    assert cls([]).obstacles_xy.shape == (0, 2)  # type: ignore[call-arg, attr-defined]
 
 
 @pytest.mark.parametrize(
     ("build", "match"),
     [
-        (lambda: BlendedAttraction((math.nan, 0.0)), "goal"),
-        (lambda: ConicAttraction((0.0, math.inf)), "goal"),
-        (lambda: ParaboloidAttraction((0.0, 0.0, 0.0)), "goal"),
+        (lambda: BlendedAttraction((math.nan, 0.0)), "goal_xy"),
+        (lambda: ConicAttraction((0.0, math.inf)), "goal_xy"),
+        (lambda: ParaboloidAttraction((0.0, 0.0, 0.0)), "goal_xy"),
         (lambda: BlendedAttraction((0.0, 0.0), width=0.0), "width"),
         (lambda: BlendedAttraction((0.0, 0.0), width=-1.0), "width"),
-        (lambda: BlendedAttraction((0.0, 0.0), rad_thr=-1.0), "rad_thr"),
+        (lambda: BlendedAttraction((0.0, 0.0), threshold_radius=-1.0), "threshold_radius"),
+        (lambda: ConicAttraction((0.0, 0.0), threshold_radius=-1.0), "threshold_radius"),
         (lambda: BlendedAttraction((0.0, 0.0), a=0.0), "a must"),
-        (lambda: KhatibRepulsion([[0.0, 0.0]], d0=0.0), "d0"),
-        (lambda: KhatibRepulsion([[0.0, 0.0]], d0=-2.0), "d0"),
+        (lambda: KhatibRepulsion([[0.0, 0.0]], influence_radius=0.0), "influence_radius"),
+        (lambda: KhatibRepulsion([[0.0, 0.0]], influence_radius=-2.0), "influence_radius"),
         (lambda: KhatibRepulsion([[0.0, 0.0]], k_rep=math.nan), "k_rep"),
-        (lambda: KhatibRepulsion([[0.0, 0.0, 0.0]]), "obstacles"),
-        (lambda: KhatibRepulsion([[0.0, math.nan]]), "obstacles"),
-        (lambda: PiecewiseRepulsion([[0.0, 0.0]], s=0.0), "s must"),
-        (lambda: PiecewiseAttraction((0.0, 0.0), r=-0.1), "r must"),
-        (lambda: ConicAttraction((0.0, 0.0)).force([[math.nan, 0.0]]), "points"),
-        (lambda: ConicAttraction((0.0, 0.0)).potential(np.zeros((3, 3))), "points"),
-        (lambda: field_grid(ConicAttraction((0.0, 0.0)), (1.0, 0.0), (0.0, 1.0), 0.1), "xlim"),
-        (lambda: field_grid(ConicAttraction((0.0, 0.0)), (0.0, 1.0), (0.0, 1.0), 0.0),
-         "resolution"),
+        (lambda: KhatibRepulsion([[0.0, 0.0, 0.0]]), "obstacles_xy"),
+        (lambda: KhatibRepulsion([[0.0, math.nan]]), "obstacles_xy"),
+        (lambda: PiecewiseRepulsion([[0.0, 0.0]], spread=0.0), "spread"),
+        (lambda: PiecewiseRepulsion([[0.0, 0.0]], obstacle_radius=-0.1), "obstacle_radius"),
+        (lambda: PiecewiseAttraction((0.0, 0.0), goal_radius=-0.1), "goal_radius"),
+        (lambda: PiecewiseAttraction((0.0, 0.0), spread=0.0), "spread"),
+        (lambda: ConicAttraction((0.0, 0.0)).force([[math.nan, 0.0]]), "points_xy"),
+        (lambda: ConicAttraction((0.0, 0.0)).potential(np.zeros((3, 3))), "points_xy"),
     ],
 )
 def test_bad_input_raises_naming_the_argument(build: object, match: str) -> None:
@@ -346,40 +433,16 @@ def test_type_errors() -> None:
         BlendedAttraction((0.0, 0.0), k_att="1")  # type: ignore[arg-type]
     with pytest.raises(TypeError):
         ConicAttraction((0.0, 0.0)) + 1.0  # type: ignore[operator]
-    with pytest.raises(TypeError, match="field"):
-        field_grid("not a field", (0.0, 1.0), (0.0, 1.0), 0.1)  # type: ignore[arg-type]
     with pytest.raises(TypeError, match=r"fields\[1\]"):
-        CompositeField(ConicAttraction((0.0, 0.0)), "x")  # type: ignore[arg-type]
-
-
-# --- field_grid ---------------------------------------------------------------------
-
-
-def test_field_grid_paper_sized_map() -> None:
-    grid = field_grid(ParaboloidAttraction((6.0, 6.0)), (0.0, 12.0), (0.0, 12.0), 0.01)
-    assert grid.potential.shape == (1200, 1200)
-    assert grid.force.shape == (1200, 1200, 2)
-    assert grid.x[0] == pytest.approx(0.005) and grid.x[-1] == pytest.approx(11.995)
-    row, col = 123, 987
-    expected = ParaboloidAttraction((6.0, 6.0)).potential([grid.x[col], grid.y[row]])[0]
-    assert grid.potential[row, col] == pytest.approx(expected, rel=1e-12)
-
-
-def test_field_grid_matches_pointwise_evaluation_in_blocks() -> None:
-    rng = np.random.default_rng(7)
-    obstacles = rng.uniform(-3.0, 3.0, size=(3000, 2))
-    field = BlendedAttraction((2.0, -1.0)) + KhatibRepulsion(obstacles, d0=0.4)
-    grid = field_grid(field, (-3.0, 3.0), (-2.0, 2.5), 0.05)  # 90 x 120 = 10800 points
-    assert grid.potential.shape == (90, 120)
-    rows = rng.integers(0, 90, 30)
-    cols = rng.integers(0, 120, 30)
-    pts = np.stack((grid.x[cols], grid.y[rows]), axis=1)
-    np.testing.assert_allclose(grid.potential[rows, cols], field.potential(pts), rtol=1e-12)
-    np.testing.assert_allclose(grid.force[rows, cols], field.force(pts), rtol=1e-12, atol=1e-12)
+        CompositeField([ConicAttraction((0.0, 0.0)), "x"])  # type: ignore[list-item]
+    with pytest.raises(TypeError, match="fields must be an iterable"):
+        CompositeField(ConicAttraction((0.0, 0.0)))  # type: ignore[arg-type]
+    with pytest.raises(TypeError, match="abstract"):
+        PotentialField()  # type: ignore[abstract]
 
 
 def test_khatib_overflow_is_infinite_not_nan() -> None:
-    field = KhatibRepulsion([[0.0, 0.0]], d0=1.0)
+    field = KhatibRepulsion([[0.0, 0.0]], influence_radius=1.0)
     force = field.force([[0.0, 1e-200], [-1e-200, 0.0]])
     np.testing.assert_array_equal(force, [[0.0, math.inf], [-math.inf, 0.0]])
     assert field.potential([[0.0, 1e-200]])[0] == math.inf
@@ -390,7 +453,7 @@ def test_default_blend_pulls_toward_the_goal_beyond_its_displaced_minimum() -> N
     d = np.concatenate((np.linspace(0.004, 2.0, 5000), np.linspace(2.0, 50.0, 500)))
     for angle in np.linspace(-math.pi, math.pi, 9):
         u = np.array([math.cos(angle), math.sin(angle)])
-        radial = field.force(field.goal + d[:, None] * u) @ u
+        radial = field.force(field.goal_xy + d[:, None] * u) @ u
         assert np.all(radial < 0.0)
     # ... and slightly outward inside it: the minimum is 3.75 mm from the goal.
     assert field.force([[1.003, -2.0]])[0, 0] > 0.0

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -12,7 +13,7 @@ from hypothesis import strategies as st
 from navkit._shared.lines import line_cells
 from navkit.errors import NoPathError
 from navkit.mapping import LaserScan, LocalGrid
-from navkit.planning import greedy_step
+from navkit.planning import GreedyStep, greedy_step
 
 
 def flat_face_scan(distance: float, half_width: float, n: int = 360) -> LaserScan:
@@ -21,7 +22,8 @@ def flat_face_scan(distance: float, half_width: float, n: int = 360) -> LaserSca
     with np.errstate(divide="ignore"):
         r = distance / np.cos(th)
     hit = (np.cos(th) > 0) & (np.abs(r * np.sin(th)) <= half_width)
-    return LaserScan(np.where(hit, r, math.inf), -math.pi, 2.0 * math.pi / n, 0.05, 3.5)
+    return LaserScan(np.where(hit, r, math.inf), angle_min=-math.pi,
+                     angle_increment=2.0 * math.pi / n, range_min=0.05, range_max=3.5)
 
 
 def test_obstacle_straight_ahead_chooses_a_side_cell() -> None:
@@ -34,10 +36,10 @@ def test_obstacle_straight_ahead_chooses_a_side_cell() -> None:
     assert row != 10  # a side cell
     assert not grid.occupied[row, col]
     assert all(not grid.occupied[r, c] for r, c in line_cells(10, 10, row, col))
-    assert step.waypoint[0] >= 0.0  # sideways, not back
+    assert step.waypoint_xy[0] >= 0.0  # sideways, not back
     best, winners = brute_force(grid.occupied, 0.1, 1.0, np.array([3.0, 0.0]), False)
     assert step.cell in winners and step.cost == pytest.approx(best)
-    np.testing.assert_allclose(step.waypoint, [0.1 * col - 1.0, 0.1 * row - 1.0])
+    np.testing.assert_allclose(step.waypoint_xy, [0.1 * col - 1.0, 0.1 * row - 1.0])
     assert step.g + step.h == pytest.approx(step.cost)
     assert step.cost > 3.0  # the detour costs more than the straight line
 
@@ -47,7 +49,7 @@ def test_repeated_steps_go_up_to_the_obstacle_then_sideways() -> None:
     # line (g + h = 3 exactly) and the tie goes to the one nearest the goal.
     first = greedy_step(flat_face_scan(0.5, 0.15).to_local_grid(), (3.0, 0.0))
     assert first.cell == (10, 14)
-    np.testing.assert_allclose(first.waypoint, [0.4, 0.0], atol=1e-12)
+    np.testing.assert_allclose(first.waypoint_xy, [0.4, 0.0], atol=1e-12)
     # Having moved there the face is 0.1 m ahead and the next step turns aside.
     second = greedy_step(flat_face_scan(0.1, 0.15).to_local_grid(), (2.6, 0.0))
     assert second.cell[0] != 10
@@ -57,11 +59,11 @@ def test_free_grid_heads_straight_for_the_goal_on_any_grid_size() -> None:
     grid = LocalGrid.from_points(np.empty((0, 2)), half_width=2.0, resolution=0.05)
     assert grid.occupied.shape == (81, 81)
     step = greedy_step(grid, (10.0, 0.0))
-    np.testing.assert_allclose(step.waypoint, [2.0, 0.0])
+    np.testing.assert_allclose(step.waypoint_xy, [2.0, 0.0])
     assert step.candidates == 81 * 81 - 1
     # A goal inside the grid is chosen itself.
     inside = greedy_step(grid, (0.55, -0.3))
-    np.testing.assert_allclose(inside.waypoint, [0.55, -0.3], atol=1e-12)
+    np.testing.assert_allclose(inside.waypoint_xy, [0.55, -0.3], atol=1e-12)
     assert inside.h == pytest.approx(0.0, abs=1e-12)
 
 
@@ -110,7 +112,7 @@ def test_matches_brute_force(
 ) -> None:
     n = 2 * half_cells + 1
     occupied = np.random.default_rng(seed).random((n, n)) < density
-    grid = LocalGrid(occupied, res, half_cells * res)
+    grid = LocalGrid(occupied, resolution=res, half_width=half_cells * res)
     best, winners = brute_force(occupied, res, half_cells * res, np.array(goal), progress)
     if not winners:
         with pytest.raises(NoPathError):
@@ -129,14 +131,14 @@ def boxed(cells: list[tuple[int, int]]) -> LocalGrid:
     occ = np.zeros((21, 21), dtype=bool)
     for r, c in cells:
         occ[r, c] = True
-    return LocalGrid(occ, 0.1, 1.0)
+    return LocalGrid(occ, resolution=0.1, half_width=1.0)
 
 
 def test_walled_in_robot_raises_no_path() -> None:
     ring = [(10 + dr, 10 + dc) for dr in (-1, 0, 1) for dc in (-1, 0, 1) if (dr, dc) != (0, 0)]
     with pytest.raises(NoPathError, match="line of sight") as info:
         greedy_step(boxed(ring), (3.0, 0.0))
-    assert info.value.explored == 21 * 21 - 9
+    assert info.value.expanded == 21 * 21 - 9
 
 
 def test_goal_behind_a_wall_with_progress_required_raises() -> None:
@@ -154,17 +156,49 @@ def test_goal_behind_a_wall_with_progress_required_raises() -> None:
 def test_return_in_the_robot_cell_does_not_block() -> None:
     grid = LocalGrid.from_points([[0.0, 0.0]])
     assert grid.occupied[10, 10]
-    np.testing.assert_allclose(greedy_step(grid, (0.0, 5.0)).waypoint, [0.0, 1.0], atol=1e-12)
+    np.testing.assert_allclose(greedy_step(grid, (0.0, 5.0)).waypoint_xy, [0.0, 1.0], atol=1e-12)
 
 
 def test_bad_input() -> None:
     grid = LocalGrid.from_points([])
-    with pytest.raises(ValueError, match="goal"):
+    with pytest.raises(ValueError, match="goal_xy"):
         greedy_step(grid, (math.nan, 0.0))
-    with pytest.raises(ValueError, match="goal"):
+    with pytest.raises(ValueError, match="goal_xy"):
         greedy_step(grid, (1.0, 0.0, 0.0))
     with pytest.raises(TypeError, match="local_grid"):
         greedy_step(np.zeros((21, 21), dtype=bool), (1.0, 0.0))  # type: ignore[arg-type]
+    with pytest.raises(TypeError, match="require_progress"):
+        greedy_step(grid, (1.0, 0.0), require_progress=1)  # type: ignore[arg-type]
+    with pytest.raises(TypeError, match="require_progress"):
+        greedy_step(grid, (1.0, 0.0), require_progress="no")  # type: ignore[arg-type]
+    with pytest.raises(TypeError, match="positional"):
+        greedy_step(grid, (1.0, 0.0), True)  # type: ignore[misc]
+    assert greedy_step(grid, (1.0, 0.0), require_progress=np.bool_(True)).cell == (10, 20)
+
+
+def test_inputs_are_not_modified() -> None:
+    # The robot's own cell is cleared on a copy, never on the grid or the goal.
+    grid = LocalGrid.from_points([[0.0, 0.0], [0.3, 0.0]])
     before = grid.occupied.copy()
-    greedy_step(LocalGrid.from_points([[0.0, 0.0]]), (1.0, 0.0))
+    goal = np.array([1.0, 0.5])
+    greedy_step(grid, goal)
     np.testing.assert_array_equal(grid.occupied, before)
+    np.testing.assert_array_equal(goal, [1.0, 0.5])
+    assert goal.flags.writeable
+
+
+def test_greedy_step_is_a_frozen_result() -> None:
+    step = greedy_step(LocalGrid.from_points([]), (2.0, 0.0))
+    assert (step.cell, step.candidates) == ((10, 20), 21 * 21 - 1)
+    assert isinstance(step.cell[0], int) and isinstance(step.g, float)
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        step.g = 0.0  # type: ignore[misc]
+    with pytest.raises(ValueError, match="read-only"):
+        step.waypoint_xy[0] = 5.0
+    assert not hasattr(step, "__dict__")
+    waypoint = np.array([0.2, 0.0])
+    built = GreedyStep((10, 12), waypoint, 0.2, 1.8, 440)
+    waypoint[0] = 9.0
+    assert built.waypoint_xy[0] == 0.2 and built.cost == pytest.approx(2.0)
+    with pytest.raises(ValueError, match="waypoint_xy"):
+        GreedyStep((10, 12), (0.2, 0.0, 0.0), 0.2, 1.8, 440)

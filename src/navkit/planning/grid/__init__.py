@@ -2,20 +2,31 @@
 
 Planners work on per-cell traversal-cost grids indexed ``[row, col]`` (finite
 values >= 1, ``np.inf`` impassable; :func:`navkit.mapping.traversal_costs` builds
-them from an occupancy grid). Units are SI; grid cells are ``(row, col)``, world
-points ``(x, y)``.
+them from an occupancy grid). Units are SI. Every planner returns a
+:class:`Path2D` whose ``frame`` says what its points are: ``"grid"`` —
+continuous ``(row, col)`` with integers at cell centres — or ``"world"`` —
+``(x, y)`` in metres. Cells are ``*_cell`` ``(row, col)``, Field D* corner nodes
+``*_node`` ``(i, j)`` (at continuous ``(i - 0.5, j - 0.5)``), world points
+``*_xy``.
+
+One-shot functions (:func:`astar`, :func:`distance_field`, :func:`field_dstar`,
+:func:`plan_path`) validate their input on every call; the prepared planners
+(:class:`AStarPlanner`, :class:`FieldDStar`, :class:`MapPlanner`) do it once and
+answer many queries.
 """
 
-from navkit.planning.grid._astar import GridPath, astar
+from navkit.planning.grid._astar import AStarPlanner, astar
 from navkit.planning.grid._distance_field import distance_field
-from navkit.planning.grid._field_dstar import FieldDStar, FieldPath, field_dstar
-from navkit.planning.grid._map_planner import WorldPath, plan_path
+from navkit.planning.grid._field_dstar import FieldDStar, field_dstar
+from navkit.planning.grid._map_planner import CellPlanner, MapPlanner, plan_path
+from navkit.planning.grid._path import Path2D
 
 __all__ = [
+    "AStarPlanner",
+    "CellPlanner",
     "FieldDStar",
-    "FieldPath",
-    "GridPath",
-    "WorldPath",
+    "MapPlanner",
+    "Path2D",
     "astar",
     "distance_field",
     "field_dstar",

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import numbers
 from typing import Any
 
@@ -23,8 +24,21 @@ def check_connectivity(value: Any) -> bool:
 
 def traversable_cell(costs: NDArray[np.float64], value: Any, name: str) -> tuple[int, int]:
     """Convert ``value`` to a ``(row, col)`` inside ``costs`` whose cost is finite."""
-    row, col = as_cell(value, name, costs.shape)
-    if not np.isfinite(costs[row, col]):
+    rows, cols = costs.shape
+    # Fast path for the common (int, int) tuple: a prepared planner's query
+    # costs microseconds, and the general conversion would dominate it.
+    if (
+        type(value) is tuple
+        and len(value) == 2
+        and type(value[0]) is int
+        and type(value[1]) is int
+        and 0 <= value[0] < rows
+        and 0 <= value[1] < cols
+    ):
+        row, col = value
+    else:
+        row, col = as_cell(value, name, costs.shape)
+    if not math.isfinite(costs[row, col]):
         raise ValueError(f"{name} {(row, col)} is on an impassable cell (cost inf)")
     return row, col
 

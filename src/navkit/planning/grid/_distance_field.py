@@ -1,38 +1,32 @@
-"""Exact cost-to-go fields on cost grids (Dijkstra to exhaustion)."""
+"""Exact cost-to-go fields on cost grids (Dijkstra to exhaustion), one-shot."""
 
 from __future__ import annotations
 
 from typing import Any
 
-import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 
-from navkit._shared.costs import validate_costs
-from navkit._shared.validation import as_bool
-from navkit.planning.grid._arguments import (
-    check_connectivity,
-    check_search_size,
-    traversable_cell,
-)
-from navkit.planning.grid._astar_kernels import grid_search
-from navkit.planning.grid._workspace import workspace
+from navkit._shared.costs import validate_costs_lowest
+from navkit._shared.types import FloatArray
+from navkit.planning.grid._astar import AStarPlanner
 
 __all__ = ["distance_field"]
 
 
 def distance_field(
     costs: ArrayLike,
-    goal: Any,
+    goal_cell: Any,
     *,
     connectivity: int = 8,
     corner_cutting: bool = False,
-) -> NDArray[np.float64]:
-    """Least cost from every cell to ``goal`` (a navigation function).
+) -> FloatArray:
+    """Least cost from every cell to ``goal_cell`` (a navigation function), one-shot.
 
-    Runs the search kernel of :func:`astar` with a zero heuristic from ``goal``
-    until every reachable cell is expanded. Move costs are symmetric
-    (``step * (c_u + c_v) / 2``), so the cost from the goal to a cell is that
-    cell's cost-to-go.
+    Runs the search kernel of :func:`astar` with a zero heuristic from
+    ``goal_cell`` until every reachable cell is expanded. Move costs are
+    symmetric (``step * (c_u + c_v) / 2``), so the cost from the goal to a cell
+    is that cell's cost-to-go. :meth:`AStarPlanner.distance_field` is the
+    prepared form.
 
     Parameters
     ----------
@@ -40,7 +34,7 @@ def distance_field(
         Per-cell traversal cost: finite values >= 1 traversable, ``np.inf``
         impassable. Integer or float dtype; NaN, values below 1, booleans,
         empty arrays or other dimensions raise ``ValueError``. Not modified.
-    goal : (int, int)
+    goal_cell : (int, int)
         Goal cell ``(row, col)``; inside the grid and traversable.
     connectivity : {8, 4}, default 8
         As in :func:`astar`.
@@ -57,10 +51,10 @@ def distance_field(
     Raises
     ------
     ValueError
-        Invalid ``costs``, ``goal`` outside the grid or impassable, bad
+        Invalid ``costs``, ``goal_cell`` outside the grid or impassable, bad
         ``connectivity``.
     TypeError
-        Non-integer ``goal`` or connectivity, non-bool ``corner_cutting``.
+        Non-integer ``goal_cell`` or connectivity, non-bool ``corner_cutting``.
 
     Examples
     --------
@@ -74,18 +68,6 @@ def distance_field(
     array([[0.    ,    inf, 2.8284],
            [1.    , 1.4142, 2.4142]])
     """
-    grid = validate_costs(costs)
-    check_search_size(grid)
-    eight = check_connectivity(connectivity)
-    cutting = as_bool(corner_cutting, "corner_cutting")
-    t = traversable_cell(grid, goal, "goal")
-    rows, cols = grid.shape
-    n = rows * cols
-    ws = workspace(n)
-    grid_search(
-        grid.ravel(), rows, cols, t[0] * cols + t[1], -1, eight, cutting, 0.0,
-        ws.g, ws.parent, ws.mark, ws.heap, ws.pos, ws.size, ws.stamp,
-    )
-    # Exhaustion closes every reachable cell; g is stale everywhere else.
-    closed = ws.mark[:n] == ws.stamp + 1
-    return np.where(closed, ws.g[:n], np.inf).reshape(rows, cols)
+    grid, lowest = validate_costs_lowest(costs)
+    planner = AStarPlanner._borrowing(grid, lowest, connectivity, corner_cutting, 1.0)
+    return planner.distance_field(goal_cell)

@@ -2,66 +2,63 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+import math
 from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from navkit._shared.costs import validate_costs
-from navkit._shared.validation import as_cell
+from navkit._shared.types import FloatArray, IntArray
+from navkit._shared.validation import as_bool, as_cell, as_float_array, positive_float
 from navkit.errors import NoPathError
-from navkit.planning.grid import _field_dstar_kernels as _k
+from navkit.geometry import Pose2D, as_pose
 from navkit.planning.grid._dstar_heap import heap_new, heap_push
+from navkit.planning.grid._dstar_lite_kernels import (
+    FIELD_HSCALE,
+    heuristic,
+    params,
+    state,
+    update_cells,
+)
+from navkit.planning.grid._field_path_kernels import NO_PATH, OK, extract_path
+from navkit.planning.grid._path import Path2D
+from navkit.planning.grid._polyline_kernels import polyline_cost, shortcut
 
-__all__ = ["FieldDStar", "FieldPath", "field_dstar", "field_dstar_cells"]
-
-FloatArray = NDArray[np.float64]
+__all__ = ["FieldDStar", "field_dstar"]
 
 # Consecutive refusals after which the shortcut pass stops extending a segment.
 _SHORTCUT_PATIENCE = 8
-
-
-@dataclass(frozen=True, eq=False)
-class FieldPath:
-    """A path through continuous grid coordinates.
-
-    Attributes
-    ----------
-    points : (K, 2) float64 ndarray
-        Vertices ``(row, col)`` in continuous grid coordinates (cell ``(r, c)``
-        covers ``[r, r+1] × [c, c+1]``), from the start node to the goal node.
-    cost : float
-        Cost of the polyline itself: the integral of the cell cost along it
-        (a stretch along a grid line pays the cheaper cell beside it). This is
-        the true cost of ``points``, not the search's interpolated estimate.
-    length : float
-        Geometric length of the polyline, in cells.
-    expanded : int
-        Node expansions the call that produced the path performed.
-    """
-
-    points: FloatArray
-    cost: float
-    length: float
-    expanded: int
+_IDENTITY = Pose2D(0.0, 0.0, 0.0)
+# The four corners of a cell, as node offsets from its (row, col).
+_CORNERS = np.array([(0, 0), (0, 1), (1, 0), (1, 1)], dtype=np.int64)
 
 
 class FieldDStar:
     """Field D* planner (Ferguson & Stentz) with incremental D* Lite repair.
 
     Nodes are the cell corners: a grid of ``rows × cols`` cells has a
-    ``(rows + 1) × (cols + 1)`` node grid and node ``(i, j)`` sits at the
-    continuous point ``(row, col) = (i, j)``. A path may cross a cell edge at any
-    point; the cost-to-goal there is interpolated linearly between the edge's
-    two nodes, so headings are not restricted to multiples of 45°. Crossing a
-    cell costs its value per unit length; running along an edge costs the
-    cheaper of the two cells beside it.
+    ``(rows + 1) × (cols + 1)`` node grid, and node ``(i, j)`` is the corner
+    between cells ``(i-1, j-1)`` and ``(i, j)``, at continuous grid coordinates
+    ``(row, col) = (i - 0.5, j - 0.5)`` (integers are cell centres). A path may
+    cross a cell edge at any point; the cost-to-goal there is interpolated
+    linearly between the edge's two nodes, so headings are not restricted to
+    multiples of 45°. Crossing a cell costs its value per unit length; running
+    along an edge costs the cheaper of the two cells beside it.
 
     The search is D* Lite (Koenig & Likhachev) backwards from the goal, so after
     :meth:`update_costs` the next :meth:`replan` repairs only the part of the
     cost field the change affects, also when the robot has moved (new start,
-    same goal).
+    same goal). A class with ``__slots__``: it keeps and updates the search
+    state between calls.
+
+    Three ways to give the ends, each returning a :class:`Path2D`:
+
+    * nodes: :meth:`plan` / :meth:`replan` (``"grid"`` path from node to node);
+    * cells: :meth:`plan_cells` (``"grid"`` path from cell centre to cell centre);
+    * world points: :meth:`plan_world` / :meth:`replan_world` (``"world"`` path
+      from point to point), with the grid placed in the world by ``resolution``
+      and ``origin`` as an :class:`~navkit.mapping.OccupancyGrid` is.
 
     Parameters
     ----------
@@ -81,13 +78,27 @@ class FieldDStar:
     smooth : bool, default True
         After extraction, replace runs of the polyline by straight segments
         whenever the segment's exact cost is not higher. It never raises the
-        path cost and makes paths in uniform regions exactly straight. Only
-        used with ``interpolate=True``.
+        path cost and makes paths in uniform regions exactly straight. Used with
+        ``interpolate=True`` by :meth:`plan` / :meth:`replan`, and always on the
+        linked paths of :meth:`plan_cells` and the world methods.
+    resolution : float, default 1.0
+        Cell side in m (> 0), for the world methods.
+    origin : Pose2D or (x, y, theta), default Pose2D(0, 0, 0)
+        World pose of node ``(0, 0)``, the outer corner of cell ``(0, 0)``
+        (rows along the origin's y axis, columns along its x axis), for the
+        world methods: the convention of :class:`~navkit.mapping.OccupancyGrid`.
+
+    Raises
+    ------
+    ValueError
+        Invalid ``costs`` or ``resolution``.
+    TypeError
+        Non-bool flags, a bad ``origin``.
 
     Notes
     -----
     The interpolated node cost is the minimum over every option of the paper's
-    formula (see ``corner_cost`` in ``_fdstar_kernels``) rather than the one
+    formula (see ``corner_cost`` in ``_dstar_lite_kernels``) rather than the one
     option the paper's tests select; the value is never higher and identical
     whenever the paper's choice is the cheapest. The heuristic is the octile
     distance divided by ``sqrt(2)`` (the plain octile distance without
@@ -113,13 +124,47 @@ class FieldDStar:
     >>> from navkit.planning import FieldDStar
     >>> planner = FieldDStar(np.ones((20, 20)))
     >>> path = planner.plan((0, 0), (20, 10))
+    >>> path.frame, path.points.tolist()
+    ('grid', [[-0.5, -0.5], [19.5, 9.5]])
     >>> round(path.cost, 9) == round(float(np.hypot(20, 10)), 9)
     True
     >>> planner.update_costs([(3, 1), (3, 2)], np.inf)
     >>> again = planner.replan()
     >>> again.cost > path.cost
     True
+
+    In world coordinates (0.1 m cells, the grid's corner at (1, 2)):
+
+    >>> world = FieldDStar(np.ones((20, 20)), resolution=0.1, origin=(1.0, 2.0, 0.0))
+    >>> path = world.plan_world((1.05, 2.05), (2.55, 3.05))
+    >>> path.frame, path.points.round(6).tolist()
+    ('world', [[1.05, 2.05], [2.55, 3.05]])
+    >>> world.replan_world((1.25, 2.05)).points.round(6).tolist()
+    [[1.25, 2.05], [2.55, 3.05]]
     """
+
+    __slots__ = (
+        "_cols",
+        "_g",
+        "_goal",
+        "_goal_point",
+        "_heap",
+        "_hscale",
+        "_interp",
+        "_km",
+        "_lookahead",
+        "_ncols",
+        "_nrows",
+        "_origin",
+        "_pad",
+        "_resolution",
+        "_rhs",
+        "_rows",
+        "_smooth",
+        "_start",
+        "_start_point",
+        "_width",
+    )
 
     def __init__(
         self,
@@ -128,17 +173,21 @@ class FieldDStar:
         interpolate: bool = True,
         lookahead: bool = True,
         smooth: bool = True,
+        resolution: float = 1.0,
+        origin: Pose2D | ArrayLike = _IDENTITY,
     ) -> None:
         arr = validate_costs(costs)
-        self._rows, self._cols = arr.shape
+        self._interp = as_bool(interpolate, "interpolate")
+        self._lookahead = as_bool(lookahead, "lookahead")
+        self._smooth = as_bool(smooth, "smooth")
+        self._resolution = positive_float(resolution, "resolution")
+        self._origin = as_pose(origin, "origin")
+        self._rows, self._cols = (int(v) for v in arr.shape)
         self._width = self._cols + 2
         pad = np.full((self._rows + 2, self._cols + 2), np.inf)
         pad[1:-1, 1:-1] = arr
         self._pad = pad.ravel()
-        self._interp = bool(interpolate)
-        self._lookahead = bool(lookahead)
-        self._smooth = bool(smooth)
-        self._hscale = _k.FIELD_HSCALE if self._interp else 1.0
+        self._hscale = FIELD_HSCALE if self._interp else 1.0
         self._nrows = self._rows + 1
         self._ncols = self._cols + 1
         n = self._nrows * self._ncols
@@ -148,7 +197,12 @@ class FieldDStar:
         self._km = 0.0
         self._start: tuple[int, int] | None = None
         self._goal: tuple[int, int] | None = None
+        # The path's end points in node coordinates (the nodes themselves, cell
+        # centres after plan_cells, world points after the world methods).
+        self._start_point: tuple[float, float] | None = None
+        self._goal_point: tuple[float, float] | None = None
 
+    # ------------------------------------------------------------ properties
     @property
     def shape(self) -> tuple[int, int]:
         """Cell grid shape ``(rows, cols)``; the node grid is one larger in each axis."""
@@ -165,74 +219,307 @@ class FieldDStar:
         """Whether the planner is Field D* (True) or 8-connected D* Lite (False)."""
         return self._interp
 
-    def _node(self, value: Any, name: str) -> tuple[int, int]:
-        node = as_cell(value, name, (self._nrows, self._ncols))
-        i, j = node
-        around = self._pad.reshape(self._rows + 2, self._cols + 2)[i : i + 2, j : j + 2]
-        if not np.isfinite(around).any():
-            raise ValueError(
-                f"{name} {node} is a corner of impassable cells only (node grid is "
-                f"(rows + 1, cols + 1) = {(self._nrows, self._ncols)})"
-            )
-        return node
+    @property
+    def lookahead(self) -> bool:
+        """Whether the path extraction looks one step ahead."""
+        return self._lookahead
 
-    def plan(self, start: ArrayLike, goal: ArrayLike) -> FieldPath:
-        """Search from scratch and return the path from ``start`` to ``goal``.
+    @property
+    def smooth(self) -> bool:
+        """Whether paths get the cost-never-increasing shortcut pass."""
+        return self._smooth
+
+    @property
+    def resolution(self) -> float:
+        """Cell side, m."""
+        return self._resolution
+
+    @property
+    def origin(self) -> Pose2D:
+        """World pose of node ``(0, 0)``."""
+        return self._origin
+
+    def __repr__(self) -> str:
+        return (
+            f"FieldDStar(<{self._rows}x{self._cols} costs>, interpolate={self._interp}, "
+            f"lookahead={self._lookahead}, smooth={self._smooth}, "
+            f"resolution={self._resolution}, origin={self._origin!r})"
+        )
+
+    # ------------------------------------------------------------ conversions
+    def world_to_node(self, points_xy: ArrayLike, *, continuous: bool = False) -> NDArray[Any]:
+        """Nodes nearest to world points ``(x, y)``, or their node coordinates.
 
         Parameters
         ----------
-        start, goal : (2,) int
-            Nodes ``(row, col)`` with ``0 <= row <= rows`` and ``0 <= col <= cols``,
-            each a corner of at least one passable cell.
+        points_xy : array_like, shape (2,) or (N, 2)
+            World points in m.
+        continuous : bool, default False
+            Return float node coordinates ``(i, j)`` (node ``(i, j)`` at integer
+            values) instead of the nearest node.
+
+        Returns
+        -------
+        ndarray, shape (2,) or (N, 2)
+            int64 nodes (each coordinate rounded half up) or float64 node
+            coordinates; same leading shape as ``points_xy``. Not clipped to the
+            node grid.
+
+        Examples
+        --------
+        >>> planner = FieldDStar(np.ones((4, 4)), resolution=0.5, origin=(1.0, 0.0, 0.0))
+        >>> planner.world_to_node((1.6, 1.2)).tolist()
+        [2, 1]
+        >>> planner.world_to_node([[1.6, 1.2]], continuous=True).tolist()
+        [[2.4, 1.2]]
+        """
+        pts, single = _points(points_xy, "points_xy")
+        o = self._origin
+        c = math.cos(o.theta)
+        s = math.sin(o.theta)
+        dx = pts[:, 0] - o.x
+        dy = pts[:, 1] - o.y
+        # Local frame of the grid: x along columns, y along rows.
+        nodes = np.empty_like(pts)
+        nodes[:, 0] = (-s * dx + c * dy) / self._resolution
+        nodes[:, 1] = (c * dx + s * dy) / self._resolution
+        out: FloatArray | IntArray = (
+            nodes if as_bool(continuous, "continuous") else np.floor(nodes + 0.5).astype(np.int64)
+        )
+        return out[0] if single else out
+
+    def node_to_world(self, nodes: ArrayLike) -> FloatArray:
+        """World points ``(x, y)`` of nodes ``(i, j)`` (float node coordinates accepted).
+
+        Parameters
+        ----------
+        nodes : array_like, shape (2,) or (N, 2)
+            Nodes or node coordinates (not checked against the node grid).
+
+        Returns
+        -------
+        ndarray of float64, shape (2,) or (N, 2)
+            World points in m; same leading shape as ``nodes``.
+
+        Examples
+        --------
+        >>> planner = FieldDStar(np.ones((4, 4)), resolution=0.5, origin=(1.0, 0.0, 0.0))
+        >>> planner.node_to_world((2, 1)).tolist()
+        [1.5, 1.0]
+        """
+        pts, single = _points(nodes, "nodes")
+        out = self._origin.transform_points(pts[:, ::-1] * self._resolution)
+        return out[0] if single else out
+
+    # ------------------------------------------------------------ planning
+    def plan(self, start_node: ArrayLike, goal_node: ArrayLike) -> Path2D:
+        """Search from scratch and return the path from ``start_node`` to ``goal_node``.
+
+        Parameters
+        ----------
+        start_node, goal_node : (2,) int
+            Nodes ``(i, j)`` with ``0 <= i <= rows`` and ``0 <= j <= cols``, each a
+            corner of at least one passable cell.
+
+        Returns
+        -------
+        Path2D
+            ``"grid"`` path: its points are node − 0.5 (continuous cell
+            coordinates), from ``start_node`` to ``goal_node``; its cost is that
+            of the polyline itself (the integral of the cell cost along it, a
+            stretch along a grid line paying the cheaper cell beside it), not the
+            search's interpolated estimate; ``expanded`` counts node expansions.
 
         Raises
         ------
         ValueError
-            ``start`` or ``goal`` off the node grid or surrounded by impassable cells.
-        NoPathError
+            A node off the node grid or surrounded by impassable cells.
+        navkit.NoPathError
             The goal cannot be reached from the start.
         """
-        s = self._node(start, "start")
-        gl = self._node(goal, "goal")
-        self._g.fill(np.inf)
-        self._rhs.fill(np.inf)
-        self._heap = heap_new(self._g.shape[0])
-        self._km = 0.0
-        self._start = s
-        self._goal = gl
-        goal_id = gl[0] * self._ncols + gl[1]
-        self._rhs[goal_id] = 0.0
-        nodes, keys, pos, size = self._heap
-        h = _k._h(s[0], s[1], gl[0], gl[1], self._hscale)
-        heap_push(nodes, keys, pos, size, goal_id, h, 0.0)
-        return self._search()
+        s = self._node(start_node, "start_node")
+        gl = self._node(goal_node, "goal_node")
+        self._reset(s, gl, s, gl)
+        points, cost, length, expanded = self._search()
+        return Path2D(points - 0.5, "grid", cost=cost, length=length, expanded=expanded)
 
-    def replan(self, start: ArrayLike | None = None) -> FieldPath:
+    def replan(self, start_node: ArrayLike | None = None) -> Path2D:
         """Repair the previous search after cost updates and return the new path.
 
         Parameters
         ----------
-        start : (2,) int, optional
+        start_node : (2,) int, optional
             New start node (the robot moved); the goal stays. Defaults to the
-            previous start.
+            previous start node.
+
+        Returns
+        -------
+        Path2D
+            As :meth:`plan`: the same path a fresh :meth:`plan` on the current
+            costs returns, found with far fewer expansions after a local change.
 
         Raises
         ------
         RuntimeError
-            :meth:`plan` was never called.
+            No plan was made yet.
         ValueError
-            Bad ``start``.
-        NoPathError
+            Bad ``start_node``.
+        navkit.NoPathError
             The goal cannot be reached any more.
         """
-        if self._start is None or self._goal is None:
-            raise RuntimeError("replan() repairs a previous search: call plan() first")
-        if start is not None:
-            s = self._node(start, "start")
-            # D* Lite: keys already queued stay lower bounds if km grows by h(old, new).
-            self._km += _k._h(self._start[0], self._start[1], s[0], s[1], self._hscale)
-            self._start = s
-        return self._search()
+        self._require_plan("replan")
+        if start_node is not None:
+            s = self._node(start_node, "start_node")
+            self._move_start(s)
+            self._start_point = (float(s[0]), float(s[1]))
+        points, cost, length, expanded = self._search()
+        return Path2D(points - 0.5, "grid", cost=cost, length=length, expanded=expanded)
+
+    def plan_cells(self, start_cell: Any, goal_cell: Any) -> Path2D:
+        """Path from the centre of ``start_cell`` to the centre of ``goal_cell``.
+
+        Field D* plans between cell corners; here the path runs from the centre
+        of the start cell to its corner nearest the goal cell's centre, through
+        the Field D* path to the corner of the goal cell nearest the start
+        cell's centre, and on to the goal cell's centre (ties: the lowest
+        corner). The two end segments lie inside passable cells; the whole
+        polyline then gets the cost-never-increasing shortcut pass (when
+        ``smooth``), so the link corners are not forced into the path. A
+        search from scratch, like :meth:`plan`; a later :meth:`replan_world`
+        keeps the two centres as end points.
+
+        Parameters
+        ----------
+        start_cell, goal_cell : (int, int)
+            Passable cells ``(row, col)``.
+
+        Returns
+        -------
+        Path2D
+            ``"grid"`` path from centre to centre (integers at cell centres) with
+            the exact cost of the polyline (cost units × cells), its length in
+            cells and the node expansions. Equal cells give the one-point path of
+            cost 0 (no search).
+
+        Raises
+        ------
+        ValueError
+            A cell outside the grid or impassable.
+        TypeError
+            Non-integer cells.
+        navkit.NoPathError
+            The goal cell cannot be reached.
+
+        Examples
+        --------
+        >>> costs = np.ones((10, 10))
+        >>> costs[2:8, 4] = np.inf
+        >>> path = FieldDStar(costs).plan_cells((5, 0), (5, 9))
+        >>> path.points[[0, -1]].tolist()
+        [[5.0, 0.0], [5.0, 9.0]]
+        >>> path.cells[[0, -1]].tolist()
+        [[5, 0], [5, 9]]
+        """
+        s = self._passable_cell(start_cell, "start_cell")
+        gl = self._passable_cell(goal_cell, "goal_cell")
+        if s == gl:
+            return Path2D(np.array([s], dtype=np.float64), "grid", cost=0.0, length=0.0,
+                          expanded=0)
+        cell_s = np.array(s, dtype=np.int64)
+        cell_g = np.array(gl, dtype=np.int64)
+        centre_s = cell_s + 0.5
+        centre_g = cell_g + 0.5
+        # The corner of each end cell nearest the other end's centre (ties: lowest).
+        node_s = cell_s + _CORNERS[np.argmin(np.hypot(*(cell_s + _CORNERS - centre_g).T))]
+        node_g = cell_g + _CORNERS[np.argmin(np.hypot(*(cell_g + _CORNERS - centre_s).T))]
+        self._reset(
+            (int(node_s[0]), int(node_s[1])),
+            (int(node_g[0]), int(node_g[1])),
+            (float(centre_s[0]), float(centre_s[1])),
+            (float(centre_g[0]), float(centre_g[1])),
+        )
+        points, _, _, expanded = self._search()
+        points, cost, length = self._linked(points)
+        return Path2D(points - 0.5, "grid", cost=cost, length=length, expanded=expanded)
+
+    def plan_world(self, start_xy: ArrayLike, goal_xy: ArrayLike) -> Path2D:
+        """Path between two world points, from scratch.
+
+        Each point is linked to its nearest node (:meth:`world_to_node`), a
+        corner of the cell that contains it, by a straight segment inside that
+        cell; Field D* plans between the two nodes; the linked polyline gets the
+        shortcut pass when ``smooth``. A later :meth:`replan_world` repairs this
+        search.
+
+        Parameters
+        ----------
+        start_xy, goal_xy : array_like, shape (2,)
+            World points ``(x, y)`` in m, each inside a passable cell.
+
+        Returns
+        -------
+        Path2D
+            ``"world"`` path from ``start_xy`` to ``goal_xy``; cost in cost units ×
+            metres (its exact polyline cost times the resolution), length in m.
+
+        Raises
+        ------
+        ValueError
+            A point outside the grid or in an impassable cell.
+        navkit.NoPathError
+            The goal cannot be reached.
+        """
+        p_s, s = self._world_end(start_xy, "start_xy")
+        p_g, gl = self._world_end(goal_xy, "goal_xy")
+        self._reset(s, gl, p_s, p_g)
+        points, _, _, expanded = self._search()
+        return self._world_path(points, expanded)
+
+    def replan_world(self, start_xy: ArrayLike | None = None) -> Path2D:
+        """Repair the previous search after cost updates; world-point form of :meth:`replan`.
+
+        Parameters
+        ----------
+        start_xy : array_like, shape (2,), optional
+            The robot's new position ``(x, y)`` in m (linked to its nearest node
+            as in :meth:`plan_world`); the goal stays. Defaults to the previous
+            start point.
+
+        Returns
+        -------
+        Path2D
+            ``"world"`` path from the start point to the goal point of the last
+            plan (the goal node itself after :meth:`plan`, the goal cell's
+            centre after :meth:`plan_cells`). Equal to what a fresh
+            :meth:`plan_world` on the current costs returns.
+
+        Raises
+        ------
+        RuntimeError
+            No plan was made yet.
+        ValueError
+            ``start_xy`` outside the grid or in an impassable cell.
+        navkit.NoPathError
+            The goal cannot be reached any more.
+
+        Examples
+        --------
+        >>> planner = FieldDStar(np.ones((10, 10)), resolution=0.5)
+        >>> first = planner.plan_world((0.25, 0.25), (4.75, 0.25))
+        >>> planner.update_costs([(0, 5), (1, 5)], np.inf)
+        >>> first.length
+        4.5
+        >>> detour = planner.replan_world((0.75, 0.25))  # the robot moved 0.5 m
+        >>> detour.points[0].tolist(), round(detour.length, 3)  # straight: 4.0 m
+        ([0.75, 0.25], 4.308)
+        """
+        self._require_plan("replan_world")
+        if start_xy is not None:
+            p_s, s = self._world_end(start_xy, "start_xy")
+            self._move_start(s)
+            self._start_point = p_s
+        points, _, _, expanded = self._search()
+        return self._world_path(points, expanded)
 
     def update_costs(self, cells: ArrayLike, new_costs: ArrayLike) -> None:
         """Change the cost of some cells; the next :meth:`replan` repairs the plan.
@@ -284,7 +571,7 @@ class FieldDStar:
             raise ValueError("new_costs must be >= 1 or np.inf (no NaN, no -inf)")
         if idx.shape[0] == 0:
             return
-        _k.update_cells(
+        update_cells(
             self._state(),
             self._params(),
             np.ascontiguousarray(idx[:, 0]),
@@ -292,48 +579,156 @@ class FieldDStar:
             np.ascontiguousarray(vals),
         )
 
-    def _state(self) -> tuple[NDArray[Any], ...]:
-        return _k.state(self._pad, self._g, self._rhs, self._heap)
+    # ------------------------------------------------------------ internals
+    def _node(self, value: Any, name: str) -> tuple[int, int]:
+        node = as_cell(value, name, (self._nrows, self._ncols))
+        i, j = node
+        around = self._pad.reshape(self._rows + 2, self._cols + 2)[i : i + 2, j : j + 2]
+        if not np.isfinite(around).any():
+            raise ValueError(
+                f"{name} {node} is a corner of impassable cells only (node grid is "
+                f"(rows + 1, cols + 1) = {(self._nrows, self._ncols)})"
+            )
+        return node
+
+    def _cell_cost(self, row: int, col: int) -> float:
+        return float(self._pad[(row + 1) * self._width + col + 1])
+
+    def _passable_cell(self, value: Any, name: str) -> tuple[int, int]:
+        row, col = as_cell(value, name, (self._rows, self._cols))
+        if not math.isfinite(self._cell_cost(row, col)):
+            raise ValueError(f"{name} {(row, col)} is on an impassable cell (cost inf)")
+        return row, col
+
+    def _world_end(
+        self, value: ArrayLike, name: str
+    ) -> tuple[tuple[float, float], tuple[int, int]]:
+        """Node coordinates of a world point and its nearest node, checked."""
+        point = as_float_array(value, name, shape=(2,))
+        p = self.world_to_node(point, continuous=True)
+        row, col = math.floor(p[0]), math.floor(p[1])
+        where = tuple(point.tolist())
+        if not (0 <= row < self._rows and 0 <= col < self._cols):
+            raise ValueError(f"{name} {where} is outside the grid")
+        if not math.isfinite(self._cell_cost(row, col)):
+            raise ValueError(f"{name} {where} is in an impassable cell {(row, col)} (cost inf)")
+        node = (math.floor(p[0] + 0.5), math.floor(p[1] + 0.5))
+        return (float(p[0]), float(p[1])), node
+
+    def _require_plan(self, method: str) -> None:
+        if self._start is None or self._goal is None:
+            raise RuntimeError(
+                f"{method}() repairs a previous search: call plan(), plan_cells() or "
+                "plan_world() first"
+            )
+
+    def _move_start(self, s: tuple[int, int]) -> None:
+        assert self._start is not None
+        # D* Lite: keys already queued stay lower bounds if km grows by h(old, new).
+        self._km += heuristic(self._start[0], self._start[1], s[0], s[1], self._hscale)
+        self._start = s
+
+    def _reset(
+        self,
+        s: tuple[int, int],
+        gl: tuple[int, int],
+        start_point: tuple[float, float],
+        goal_point: tuple[float, float],
+    ) -> None:
+        """Start a new search from node ``s`` to node ``gl`` (the path's end points given)."""
+        self._g.fill(np.inf)
+        self._rhs.fill(np.inf)
+        self._heap = heap_new(self._g.shape[0])
+        self._km = 0.0
+        self._start = s
+        self._goal = gl
+        self._start_point = (float(start_point[0]), float(start_point[1]))
+        self._goal_point = (float(goal_point[0]), float(goal_point[1]))
+        goal_id = gl[0] * self._ncols + gl[1]
+        self._rhs[goal_id] = 0.0
+        nodes, keys, pos, size = self._heap
+        h = heuristic(s[0], s[1], gl[0], gl[1], self._hscale)
+        heap_push(nodes, keys, pos, size, goal_id, h, 0.0)
+
+    def _state(self) -> tuple[np.ndarray, ...]:
+        return state(self._pad, self._g, self._rhs, self._heap)
 
     def _params(self) -> tuple[Any, ...]:
         start = self._start if self._start is not None else (0, 0)
         goal_id = -1 if self._goal is None else self._goal[0] * self._ncols + self._goal[1]
-        return _k.params(self._width, self._nrows, self._ncols, start, goal_id, self._km,
-                         self._interp, self._hscale)
+        return params(self._width, self._nrows, self._ncols, start, goal_id, self._km,
+                      self._interp, self._hscale)
 
-    def _search(self) -> FieldPath:
+    def _search(self) -> tuple[FloatArray, float, float, int]:
+        """Node path (node coordinates), its exact cost and length, expansions."""
         assert self._start is not None and self._goal is not None
-        pts, k, expanded, status = _k.extract_path(self._state(), self._params(),
-                                                   self._lookahead)
-        if status == _k.NO_PATH:
+        pts, k, expanded, status = extract_path(self._state(), self._params(), self._lookahead)
+        if status == NO_PATH:
             raise NoPathError(
-                f"goal {self._goal} is unreachable from start {self._start}", explored=expanded
+                f"goal_node {self._goal} is unreachable from start_node {self._start}",
+                expanded=expanded,
             )
-        if status != _k.OK:  # pragma: no cover - guarded by the strictly decreasing walk
+        if status != OK:  # pragma: no cover - guarded by the strictly decreasing walk
             raise RuntimeError("Field D* path extraction failed to reach the goal")
         if self._interp and self._smooth and k > 2:
-            points = _k.shortcut(self._pad, self._width, pts, k, _SHORTCUT_PATIENCE)
+            points = shortcut(self._pad, self._width, pts, k, _SHORTCUT_PATIENCE)
         else:
             points = pts[:k].copy()
-        cost, length = _k.polyline_cost(self._pad, self._width, points, points.shape[0])
-        points.flags.writeable = False
-        return FieldPath(points=points, cost=float(cost), length=float(length),
-                         expanded=int(expanded))
+        cost, length = polyline_cost(self._pad, self._width, points, points.shape[0])
+        return points, float(cost), float(length), int(expanded)
+
+    def _linked(self, points: FloatArray) -> tuple[FloatArray, float, float]:
+        """The node path with the stored end points attached, smoothed, and its cost/length."""
+        assert self._start_point is not None and self._goal_point is not None
+        linked = np.vstack([self._start_point, points, self._goal_point])
+        # An end point on its node adds a zero-length step: drop repeated vertices.
+        keep = np.ones(linked.shape[0], dtype=bool)
+        keep[1:] = np.any(linked[1:] != linked[:-1], axis=1)
+        linked = np.ascontiguousarray(linked[keep])
+        if self._smooth:
+            linked = shortcut(self._pad, self._width, linked, linked.shape[0],
+                              _SHORTCUT_PATIENCE)
+        cost, length = polyline_cost(self._pad, self._width, linked, linked.shape[0])
+        return linked, float(cost), float(length)
+
+    def _world_path(self, points: FloatArray, expanded: int) -> Path2D:
+        linked, cost, length = self._linked(points)
+        res = self._resolution
+        return Path2D(
+            self.node_to_world(linked), "world", cost=cost * res, length=length * res,
+            expanded=expanded,
+        )
+
+
+def _points(value: ArrayLike, name: str) -> tuple[FloatArray, bool]:
+    """``value`` as (N, 2) float64 and whether it was one point of shape (2,)."""
+    arr = as_float_array(value, name)
+    if arr.shape == (2,):
+        return arr.reshape(1, 2), True
+    if arr.ndim != 2 or arr.shape[1] != 2:
+        raise ValueError(f"{name} must have shape (2,) or (N, 2), got {arr.shape}")
+    return arr, False
 
 
 def field_dstar(
     costs: ArrayLike,
-    start: ArrayLike,
-    goal: ArrayLike,
+    start_node: ArrayLike,
+    goal_node: ArrayLike,
     *,
     interpolate: bool = True,
     lookahead: bool = True,
     smooth: bool = True,
-) -> FieldPath:
+) -> Path2D:
     """One-shot Field D* path between two nodes of a cost grid.
 
-    Equivalent to ``FieldDStar(costs, ...).plan(start, goal)``; see
-    :class:`FieldDStar` for the conventions.
+    Equivalent to ``FieldDStar(costs, ...).plan(start_node, goal_node)``; see
+    :class:`FieldDStar` for the conventions (node ``(i, j)`` is a cell corner, at
+    continuous grid coordinates ``(i - 0.5, j - 0.5)``).
+
+    Returns
+    -------
+    Path2D
+        ``"grid"`` path whose points are node − 0.5.
 
     Examples
     --------
@@ -343,62 +738,9 @@ def field_dstar(
     >>> costs[2:8, 4] = np.inf
     >>> path = field_dstar(costs, (5, 0), (5, 10))
     >>> path.points[0].tolist(), path.points[-1].tolist()
-    ([5.0, 0.0], [5.0, 10.0])
+    ([4.5, -0.5], [4.5, 9.5])
     >>> bool(path.cost > 10.0)
     True
     """
     planner = FieldDStar(costs, interpolate=interpolate, lookahead=lookahead, smooth=smooth)
-    return planner.plan(start, goal)
-
-
-
-def field_dstar_cells(
-    costs: NDArray[np.float64],
-    start: tuple[int, int],
-    goal: tuple[int, int],
-    **options: Any,
-) -> tuple[FloatArray, float, int]:
-    """Field D* between two passable cells, for :func:`navkit.planning.plan_path`.
-
-    Field D* plans between cell corners; here the path runs from the centre of
-    the ``start`` cell to its corner nearest the goal cell, through the Field D*
-    path to the corner of the ``goal`` cell nearest the start cell, and on to
-    the goal cell's centre. The two end segments lie inside passable cells; the
-    whole polyline then gets the cost-never-increasing shortcut pass (when
-    ``smooth``), so the link corners are not forced into the path.
-
-    Parameters
-    ----------
-    costs : (rows, cols) float64 ndarray
-        Validated cell costs (>= 1, inf impassable).
-    start, goal : (int, int)
-        Passable cells ``(row, col)``.
-    **options
-        ``interpolate``, ``lookahead``, ``smooth`` of :class:`FieldDStar`.
-
-    Returns
-    -------
-    points : (K, 2) float64 ndarray
-        Continuous ``(row, col)`` with integers at cell centres (the
-        ``plan_path`` planner convention), from the start to the goal cell centre.
-    cost : float
-        Exact cost of the polyline (cost units × cells).
-    expanded : int
-        Node expansions.
-    """
-    planner = FieldDStar(costs, **options)
-    if tuple(start) == tuple(goal):
-        return np.array([start], dtype=np.float64), 0.0, 0
-    centre_s = np.array(start, dtype=np.float64) + 0.5
-    centre_g = np.array(goal, dtype=np.float64) + 0.5
-    # The corner of each end cell nearest the other end's centre (ties: lowest).
-    corners = np.array([(0, 0), (0, 1), (1, 0), (1, 1)], dtype=np.int64)
-    node_s = np.asarray(start) + corners[np.argmin(np.hypot(*(start + corners - centre_g).T))]
-    node_g = np.asarray(goal) + corners[np.argmin(np.hypot(*(goal + corners - centre_s).T))]
-    path = planner.plan(node_s, node_g)
-    points = np.vstack([centre_s, path.points, centre_g])
-    if planner._smooth:
-        points = _k.shortcut(planner._pad, planner._width, points, points.shape[0],
-                             _SHORTCUT_PATIENCE)
-    cost, _ = _k.polyline_cost(planner._pad, planner._width, points, points.shape[0])
-    return points - 0.5, float(cost), path.expanded
+    return planner.plan(start_node, goal_node)

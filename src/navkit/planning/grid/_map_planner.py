@@ -3,138 +3,105 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Mapping
-from dataclasses import dataclass
-from typing import Any
+from typing import Literal, Protocol
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 
+from navkit._shared.costs import validate_costs_lowest
+from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, positive_float
+from navkit.geometry import Pose2D, as_pose
 from navkit.mapping import OccupancyGrid
-from navkit.planning.grid._astar import astar
-from navkit.planning.grid._field_dstar import field_dstar_cells
+from navkit.planning.grid._astar import AStarPlanner
+from navkit.planning.grid._field_dstar import FieldDStar
+from navkit.planning.grid._path import Path2D
 
-__all__ = ["WorldPath", "plan_path"]
-
-# A cell planner maps (costs, start cell, goal cell, **options) to
-# (points (K, 2) as continuous (row, col) with integers at cell centres,
-#  cost in cost units x cells, number of expansions).
-CellPlanner = Callable[..., tuple[NDArray[np.float64], float, int]]
+__all__ = ["CellPlanner", "MapPlanner", "plan_path"]
 
 
-def _astar_cells(
-    costs: NDArray[np.float64], start: tuple[int, int], goal: tuple[int, int], **options: Any
-) -> tuple[NDArray[np.float64], float, int]:
-    path = astar(costs, start, goal, **options)
-    return path.cells.astype(np.float64), path.cost, path.expanded
+class CellPlanner(Protocol):
+    """A planner on a cost grid, as :class:`MapPlanner` and :func:`plan_path` call it.
 
+    ``planner(costs, start_cell, goal_cell) -> Path2D``, arguments positional:
 
-# Planners available to plan_path by name; another planner joins with one entry.
-PLANNERS: dict[str, CellPlanner] = {"astar": _astar_cells, "field_dstar": field_dstar_cells}
+    * ``costs``: the traversal costs, an already validated read-only C-contiguous
+      float64 array (finite values >= 1, ``np.inf`` impassable). One
+      :class:`MapPlanner` passes the same array object on every query, so a
+      planner may prepare its own data once per array;
+    * ``start_cell``, ``goal_cell``: ``(row, col)`` tuples of ints, inside the
+      grid and on finite-cost cells;
+    * returns a ``"grid"`` :class:`Path2D` from the centre of ``start_cell`` to
+      the centre of ``goal_cell`` (continuous ``(row, col)``, integers at cell
+      centres) with its cost in cost units × cells, or raises
+      :class:`navkit.NoPathError`.
 
+    :func:`navkit.planning.astar` follows it; give options with
+    :func:`functools.partial`, e.g. ``partial(astar, corner_cutting=True)``.
 
-@dataclass(frozen=True, eq=False)
-class WorldPath:
-    """A path in world coordinates, as returned by :func:`plan_path`.
-
-    Attributes
-    ----------
-    points : ndarray of float64, shape (K, 2)
-        World points ``(x, y)`` in m from start to goal (read-only). For
-        ``planner="astar"`` these are the centres of the path's cells, from the
-        cell containing the start to the cell containing the goal.
-    cost : float
-        Path cost in cost-weighted metres: the planner's cost (traversal cost ×
-        cells) times the resolution, so it equals ``length`` in free space.
-    length : float
-        Euclidean length of the polyline through ``points``, m.
-    expanded : int
-        Number of search expansions.
+    Examples
+    --------
+    >>> from functools import partial
+    >>> from navkit.planning import astar
+    >>> planner: CellPlanner = partial(astar, heuristic_weight=1.5)
     """
 
-    points: NDArray[np.float64]
-    cost: float
-    length: float
-    expanded: int
-
-    def __post_init__(self) -> None:
-        self.points.flags.writeable = False
+    def __call__(
+        self, costs: FloatArray, start_cell: tuple[int, int], goal_cell: tuple[int, int], /
+    ) -> Path2D:
+        """Path from the centre of ``start_cell`` to the centre of ``goal_cell``."""
+        ...
 
 
-def _endpoint_cell(
-    grid: OccupancyGrid, costs: NDArray[np.float64], value: ArrayLike, name: str
-) -> tuple[int, int]:
-    point = as_float_array(value, name, shape=(2,))
-    row, col = (int(v) for v in grid.world_to_cell(point)[0])
-    rows, cols = costs.shape
-    if not (0 <= row < rows and 0 <= col < cols):
-        raise ValueError(f"{name} {tuple(point.tolist())} is outside the map")
-    if not math.isfinite(costs[row, col]):
-        raise ValueError(
-            f"{name} {tuple(point.tolist())} (cell {(row, col)}) is in an obstacle, within "
-            "robot_radius of one, or in unknown space with unknown_cost=inf"
-        )
-    return row, col
+_BUILT_IN = ("astar", "field_dstar")
 
 
-def plan_path(
-    grid: OccupancyGrid,
-    start_xy: ArrayLike,
-    goal_xy: ArrayLike,
-    *,
-    robot_radius: float = 0.0,
-    inflation_radius: float | None = None,
-    unknown_cost: float = math.inf,
-    planner: str = "astar",
-    options: Mapping[str, Any] | None = None,
-) -> WorldPath:
-    """Plan a collision-free path between two world points on an occupancy grid.
+class MapPlanner:
+    """Plans paths between world points on one occupancy grid, many times.
 
-    The grid is turned into traversal costs with
-    :meth:`OccupancyGrid.traversal_costs`: occupied cells and every cell whose
+    The constructor turns the map into traversal costs once
+    (:meth:`OccupancyGrid.traversal_costs`): occupied cells and every cell whose
     centre lies within ``robot_radius`` of an occupied cell are impassable (the
     robot's centre may not go there), free cells cost 1, and with
     ``inflation_radius > robot_radius`` cells near obstacles cost more (Nav2's
-    exponential inflation decay). The chosen cell planner then runs on those
-    costs and its path is mapped back to world coordinates.
+    exponential inflation decay). For the built-in planners it also prepares
+    the planner on those costs (validation and conversion done once), so each
+    :meth:`plan` only converts its two points and searches. A class with
+    ``__slots__``: it owns the costs and the prepared planner.
 
-    For many queries on the same map, compute ``grid.traversal_costs(...)`` once
-    and call :func:`astar` directly; this function recomputes it every call.
+    The costs are a snapshot: later changes to ``grid`` (e.g. ray casting) do
+    not reach them; build a new planner for a changed map.
 
     Parameters
     ----------
     grid : OccupancyGrid
         The map (cells ``(row, col)``, row 0 at the lowest y).
-    start_xy, goal_xy : array_like, shape (2,)
-        World points ``(x, y)`` in m.
     robot_radius : float, default 0.0
-        Inflation radius in m (>= 0): the robot's inscribed radius.
+        The robot's inscribed radius in m (>= 0): the obstacles' inflation.
     inflation_radius : float, optional
         Distance in m up to which costs decay; default ``robot_radius``.
     unknown_cost : float, default inf
         Cost of unknown cells: ``inf`` (impassable) or a value >= 1.
-    planner : str, default "astar"
-        Name of the cell planner, a key of ``navkit.planning.grid._map_planner.PLANNERS``:
-        ``"astar"`` or ``"field_dstar"`` (any-angle, see :func:`field_dstar`).
-    options : mapping, optional
-        Keyword arguments for the planner, e.g. ``{"heuristic_weight": 1.5}``
-        or ``{"corner_cutting": True}`` for ``"astar"``.
-
-    Returns
-    -------
-    WorldPath
-        World points, cost, length (m) and expansions.
+    planner : {"astar", "field_dstar"} or CellPlanner, default "astar"
+        ``"astar"``: :class:`AStarPlanner` (8-connected, no corner cutting),
+        a path through cell centres. ``"field_dstar"``: any-angle paths,
+        :meth:`FieldDStar.plan_cells`. Or any callable following
+        :class:`CellPlanner`, called on every query with the costs; use
+        :func:`functools.partial` for options, e.g.
+        ``partial(astar, corner_cutting=True)`` (a callable prepares nothing:
+        ``astar`` validates the costs on each call).
 
     Raises
     ------
-    ValueError
-        Unknown ``planner``; ``start_xy`` or ``goal_xy`` outside the map or on an
-        impassable cell; invalid radii or ``unknown_cost``.
     TypeError
-        ``grid`` is not an OccupancyGrid.
-    navkit.NoPathError
-        No collision-free path exists.
+        ``grid`` is not an OccupancyGrid; ``planner`` is neither a name nor callable.
+    ValueError
+        Unknown planner name; invalid radii or ``unknown_cost``.
+
+    Notes
+    -----
+    With ``"astar"`` or a thread-safe callable, :meth:`plan` may be called from
+    several threads at once; ``"field_dstar"`` keeps search state and may not.
 
     Examples
     --------
@@ -142,26 +109,227 @@ def plan_path(
     >>> from navkit.mapping import OccupancyGrid
     >>> occupied = np.zeros((20, 30), dtype=bool)
     >>> occupied[:15, 14:16] = True
-    >>> grid = OccupancyGrid.from_occupancy(occupied, 0.1)
+    >>> grid = OccupancyGrid.from_occupancy(occupied, resolution=0.1)
+    >>> planner = MapPlanner(grid, robot_radius=0.2)
+    >>> path = planner.plan((0.55, 0.55), (2.55, 0.55))
+    >>> path.frame, path.points[0].tolist(), path.points[-1].tolist()
+    ('world', [0.55, 0.55], [2.55, 0.55])
+    >>> bool(path.points[:, 1].max() > 1.7)
+    True
+    >>> back = planner.plan((2.55, 0.55, 3.14), (0.55, 0.55))  # a pose works too
+    >>> round(back.cost, 9) == round(path.cost, 9)
+    True
+    """
+
+    __slots__ = ("_costs", "_grid", "_planner", "_prepared", "_robot_radius", "_unknown_cost")
+
+    def __init__(
+        self,
+        grid: OccupancyGrid,
+        *,
+        robot_radius: float = 0.0,
+        inflation_radius: float | None = None,
+        unknown_cost: float = math.inf,
+        planner: Literal["astar", "field_dstar"] | CellPlanner = "astar",
+    ) -> None:
+        if not isinstance(grid, OccupancyGrid):
+            raise TypeError(f"grid must be an OccupancyGrid, got {type(grid).__name__}")
+        if isinstance(planner, str):
+            if planner not in _BUILT_IN:
+                raise ValueError(
+                    f"planner must be one of {list(_BUILT_IN)} or a CellPlanner callable, "
+                    f"got {planner!r}"
+                )
+        elif not callable(planner):
+            raise TypeError(
+                f"planner must be a name or a CellPlanner callable, got {type(planner).__name__}"
+            )
+        radius = positive_float(robot_radius, "robot_radius", allow_zero=True)
+        costs = grid.traversal_costs(
+            robot_radius=radius, inflation_radius=inflation_radius, unknown_cost=unknown_cost
+        )
+        costs, lowest = validate_costs_lowest(costs)
+        costs.flags.writeable = False
+        prepared: AStarPlanner | FieldDStar | None = None
+        if isinstance(planner, str):
+            if planner == "astar":
+                # The costs are this planner's own array: no copy needed.
+                prepared = AStarPlanner._borrowing(costs, lowest, 8, False, 1.0)
+            else:
+                prepared = FieldDStar(costs)
+        self._grid = grid
+        self._costs = costs
+        self._robot_radius = radius
+        self._unknown_cost = float(unknown_cost)
+        self._planner = planner
+        self._prepared = prepared
+
+    @property
+    def grid(self) -> OccupancyGrid:
+        """The map the planner was built on."""
+        return self._grid
+
+    @property
+    def costs(self) -> FloatArray:
+        """The traversal costs, float64 (rows, cols), read-only; the same array every time."""
+        return self._costs
+
+    @property
+    def robot_radius(self) -> float:
+        """The robot's inscribed radius, m."""
+        return self._robot_radius
+
+    @property
+    def planner(self) -> str | CellPlanner:
+        """The planner name or callable given to the constructor."""
+        return self._planner
+
+    def __repr__(self) -> str:
+        rows, cols = self._costs.shape
+        return (
+            f"MapPlanner(<{rows}x{cols} map>, robot_radius={self._robot_radius}, "
+            f"planner={self._planner!r})"
+        )
+
+    def plan(self, start: Pose2D | ArrayLike, goal: Pose2D | ArrayLike) -> Path2D:
+        """Collision-free path between two world points.
+
+        Parameters
+        ----------
+        start, goal : Pose2D or array_like, shape (2,) or (3,)
+            World points ``(x, y)`` in m; a :class:`~navkit.geometry.Pose2D` or
+            ``(x, y, theta)`` gives its position (the heading is ignored).
+
+        Returns
+        -------
+        Path2D
+            ``"world"`` path ``(x, y)`` from the centre of the cell containing
+            ``start`` to the centre of the cell containing ``goal`` (for
+            ``"astar"`` through cell centres); cost in cost-weighted metres (the
+            planner's cost × the resolution, equal to the length in free
+            space), length in m, expansions.
+
+        Raises
+        ------
+        ValueError
+            ``start`` or ``goal`` outside the map, or on an impassable cell: the
+            message says whether it is in an obstacle, within ``robot_radius``
+            of one, or in unknown space (with ``unknown_cost=inf``).
+        TypeError
+            ``start`` or ``goal`` is not a point or pose.
+        navkit.NoPathError
+            No collision-free path exists.
+        """
+        start_cell = self._endpoint_cell(start, "start")
+        goal_cell = self._endpoint_cell(goal, "goal")
+        prepared = self._prepared
+        if isinstance(prepared, AStarPlanner):
+            path = prepared.plan(start_cell, goal_cell)
+        elif isinstance(prepared, FieldDStar):
+            path = prepared.plan_cells(start_cell, goal_cell)
+        else:
+            assert callable(self._planner)
+            path = self._planner(self._costs, start_cell, goal_cell)
+        if not isinstance(path, Path2D) or path.frame != "grid":
+            raise TypeError(
+                f"the cell planner must return a 'grid' Path2D, got {path!r:.80}"
+            )
+        grid = self._grid
+        points = np.asarray(grid.cell_to_world(path.points), dtype=np.float64).reshape(-1, 2)
+        length = float(np.hypot(*np.diff(points, axis=0).T).sum())
+        return Path2D(
+            points, "world", cost=path.cost * grid.resolution, length=length,
+            expanded=path.expanded,
+        )
+
+    def _endpoint_cell(self, value: Pose2D | ArrayLike, name: str) -> tuple[int, int]:
+        point = _point_xy(value, name)
+        row, col = (int(v) for v in np.asarray(self._grid.world_to_cell(point)).reshape(2))
+        rows, cols = self._costs.shape
+        where = f"{name} {tuple(point.tolist())}"
+        if not (0 <= row < rows and 0 <= col < cols):
+            raise ValueError(f"{where} is outside the map")
+        if not math.isfinite(self._costs[row, col]):
+            raise ValueError(f"{where} (cell {(row, col)}) {self._blocked_reason(row, col)}")
+        return row, col
+
+    def _blocked_reason(self, row: int, col: int) -> str:
+        """Why cell (row, col) is impassable (only on the error path: reads the map's views)."""
+        grid = self._grid
+        if grid.occupied()[row, col]:
+            return "is in an obstacle"
+        if grid.unknown()[row, col] and math.isinf(self._unknown_cost):
+            return "is in unknown space (unknown_cost is inf)"
+        return f"is within robot_radius ({self._robot_radius} m) of an obstacle"
+
+
+def _point_xy(value: Pose2D | ArrayLike, name: str) -> FloatArray:
+    """``(x, y)`` of a point, a Pose2D or an ``(x, y, theta)`` sequence."""
+    if isinstance(value, Pose2D):
+        return np.array([value.x, value.y])
+    if not isinstance(value, (str, bytes)) and np.shape(value) == (3,):
+        pose = as_pose(value, name)
+        return np.array([pose.x, pose.y])
+    return as_float_array(value, name, shape=(2,))
+
+
+def plan_path(
+    grid: OccupancyGrid,
+    start: Pose2D | ArrayLike,
+    goal: Pose2D | ArrayLike,
+    *,
+    robot_radius: float = 0.0,
+    inflation_radius: float | None = None,
+    unknown_cost: float = math.inf,
+    planner: Literal["astar", "field_dstar"] | CellPlanner = "astar",
+) -> Path2D:
+    """Plan a collision-free path between two world points on an occupancy grid, one-shot.
+
+    ``MapPlanner(grid, ...).plan(start, goal)``: builds the traversal costs for
+    this one query. For many queries on the same map keep a :class:`MapPlanner`,
+    which builds them once.
+
+    Parameters
+    ----------
+    grid : OccupancyGrid
+        The map.
+    start, goal : Pose2D or array_like, shape (2,) or (3,)
+        World points ``(x, y)`` in m, or poses (their position).
+    robot_radius, inflation_radius, unknown_cost, planner
+        As in :class:`MapPlanner`: ``planner`` is ``"astar"``, ``"field_dstar"``
+        or a :class:`CellPlanner` callable (options by :func:`functools.partial`).
+
+    Returns
+    -------
+    Path2D
+        ``"world"`` path, see :meth:`MapPlanner.plan`.
+
+    Raises
+    ------
+    ValueError, TypeError, navkit.NoPathError
+        As :class:`MapPlanner` and :meth:`MapPlanner.plan`.
+
+    Examples
+    --------
+    >>> from functools import partial
+    >>> import numpy as np
+    >>> from navkit.mapping import OccupancyGrid
+    >>> from navkit.planning import astar
+    >>> occupied = np.zeros((20, 30), dtype=bool)
+    >>> occupied[:15, 14:16] = True
+    >>> grid = OccupancyGrid.from_occupancy(occupied, resolution=0.1)
     >>> path = plan_path(grid, (0.55, 0.55), (2.55, 0.55), robot_radius=0.2)
     >>> path.points[0].tolist(), path.points[-1].tolist()
     ([0.55, 0.55], [2.55, 0.55])
-    >>> bool(path.points[:, 1].max() > 1.7)
+    >>> cut = plan_path(grid, (0.55, 0.55), (2.55, 0.55), robot_radius=0.2,
+    ...                 planner=partial(astar, corner_cutting=True))
+    >>> bool(cut.cost <= path.cost)
     True
     """
-    if not isinstance(grid, OccupancyGrid):
-        raise TypeError(f"grid must be an OccupancyGrid, got {type(grid).__name__}")
-    if planner not in PLANNERS:
-        raise ValueError(f"planner must be one of {sorted(PLANNERS)}, got {planner!r}")
-    radius = positive_float(robot_radius, "robot_radius", allow_zero=True)
-    costs = grid.traversal_costs(radius, inflation_radius, unknown_cost=unknown_cost)
-    start = _endpoint_cell(grid, costs, start_xy, "start_xy")
-    goal = _endpoint_cell(grid, costs, goal_xy, "goal_xy")
-    cells, cost, expanded = PLANNERS[planner](costs, start, goal, **dict(options or {}))
-    # Continuous (row, col) -> local (x, y) of the point in the grid frame.
-    local = (cells[:, ::-1] + 0.5) * grid.resolution
-    points = grid.origin.transform_points(local)
-    length = float(np.hypot(*np.diff(points, axis=0).T).sum())
-    return WorldPath(
-        points=points, cost=cost * grid.resolution, length=length, expanded=int(expanded)
-    )
+    return MapPlanner(
+        grid,
+        robot_radius=robot_radius,
+        inflation_radius=inflation_radius,
+        unknown_cost=unknown_cost,
+        planner=planner,
+    ).plan(start, goal)

@@ -17,30 +17,34 @@ grid it has searched and reuses it. Nothing needs clearing between searches:
 from __future__ import annotations
 
 import threading
-from typing import NamedTuple
 
 import numpy as np
 from numpy.typing import NDArray
 
+from navkit._shared.types import FloatArray
 from navkit.planning.grid._search_heap import search_heap_new
 
 # Stamps live in uint32; restart (with a full clear) well before overflow.
 _STAMP_LIMIT = 2**32 - 4
 
 
-class Workspace(NamedTuple):
-    """Scratch arrays of one search; each has at least ``n`` cells."""
-
-    g: NDArray[np.float64]
-    parent: NDArray[np.int8]
-    mark: NDArray[np.uint32]
-    heap: NDArray[np.float64]
-    pos: NDArray[np.int32]
-    size: NDArray[np.int64]
-    stamp: int
+Workspace = tuple[
+    FloatArray,  # g: cost from the source
+    NDArray[np.int8],  # parent: direction index of the move that reached a cell
+    NDArray[np.uint32],  # mark: stamp of the search that last reached a cell
+    FloatArray,  # heap: (f, tie key) pairs of the 4-ary heap
+    NDArray[np.int32],  # pos: heap slot of every cell, -1 when not queued
+    NDArray[np.int64],  # size: number of queued cells, shape (1,)
+    int,  # stamp: this search's open mark (closed is stamp + 1)
+]
+"""Scratch arrays of one search, a plain tuple (built once per query, so kept
+as cheap as possible): ``(g, parent, mark, heap, pos, size, stamp)``, each array
+with at least ``n`` cells."""
 
 
 class _ThreadWorkspace(threading.local):
+    """One thread's scratch arrays, grown to the largest grid it searched."""
+
     def __init__(self) -> None:
         self.capacity = 0
         self.stamp = 0
@@ -70,4 +74,4 @@ def workspace(n: int) -> Workspace:
         ws.arrays[2][:] = 0
         ws.stamp = 2
     g, parent, mark, heap, pos, size = ws.arrays
-    return Workspace(g, parent, mark, heap, pos, size, ws.stamp)
+    return g, parent, mark, heap, pos, size, ws.stamp

@@ -16,6 +16,8 @@ from numba import njit
 
 from navkit._shared.lines import line_is_free
 
+__all__ = ["greedy_select"]
+
 
 @njit(cache=True, inline="always")
 def _candidate(

@@ -1,4 +1,9 @@
-"""Repulsive forces straight from a laser scan: every valid beam is an obstacle point."""
+"""Repulsive forces straight from a laser scan: every valid beam is an obstacle point.
+
+The per-beam sums equal :class:`KhatibRepulsion` and :class:`PiecewiseRepulsion`
+evaluated at the robot on ``scan.to_points()``, without building the points: a
+numba kernel sums over the ranges with cached tables of the beam directions.
+"""
 
 from __future__ import annotations
 
@@ -7,15 +12,13 @@ import threading
 from typing import Any
 
 import numpy as np
-from numpy.typing import NDArray
 
+from navkit._shared.types import FloatArray
 from navkit._shared.validation import positive_float
 from navkit.mapping import LaserScan
 from navkit.planning.reactive._scan_repulsion_kernels import khatib_beam_force, piecewise_beam_force
 
 __all__ = ["piecewise_repulsive_force_from_scan", "repulsive_force_from_scan"]
-
-FloatArray = NDArray[np.float64]
 
 # Beam direction tables keyed by (beam count, angle_min, angle_increment). A robot's
 # scanner repeats the same geometry every scan, so the cosines and sines are computed
@@ -55,17 +58,21 @@ def _check_scan(scan: Any) -> LaserScan:
     return scan
 
 
-def repulsive_force_from_scan(scan: LaserScan, k_rep: float = 1.0, d0: float = 1.0) -> FloatArray:
+def repulsive_force_from_scan(
+    scan: LaserScan, *, k_rep: float = 1.0, influence_radius: float = 1.0
+) -> FloatArray:
     """Khatib repulsion summed over the beams of a scan, in the robot (sensor) frame.
 
     Each valid beam (``range_min <= r < range_max``) is an obstacle point; the
-    result is the force on a robot at the scan origin::
+    result is the force on a robot at the scan origin, in Khatib's symbols
+    (``d0`` is ``influence_radius``)::
 
         F = Σ_k k_rep·(1/r_k - 1/d0)·(1/r_k²)·(-cos θ_k, -sin θ_k)   over r_k <= d0
 
-    which equals ``KhatibRepulsion(scan.to_points(), k_rep=k_rep, d0=d0).force((0, 0))``.
-    Invalid beams and beams beyond ``d0`` contribute nothing. The scan's arrays
-    were validated when it was built, so the call only checks the two gains.
+    which equals ``KhatibRepulsion(scan.to_points(), k_rep=k_rep,
+    influence_radius=influence_radius).force((0, 0))``. Invalid beams and beams
+    beyond ``d0`` contribute nothing. The scan's arrays were validated when it
+    was built, so the call only checks the two gains.
 
     Parameters
     ----------
@@ -73,51 +80,60 @@ def repulsive_force_from_scan(scan: LaserScan, k_rep: float = 1.0, d0: float = 1
         The scan, taken in the robot frame (x forward, y left).
     k_rep : float, default 1.0
         Repulsion gain, > 0.
-    d0 : float, default 1.0
-        Influence distance (m), > 0.
+    influence_radius : float, default 1.0
+        Khatib's ``d0`` (m), > 0: beams farther than this do not push.
 
     Returns
     -------
     ndarray, shape (2,)
-        Force ``(Fx, Fy)`` in the robot frame; zero when no beam is within ``d0``.
+        Force ``(Fx, Fy)`` in the robot frame; zero when no beam is within
+        ``influence_radius``.
 
     Examples
     --------
     >>> import math
-    >>> scan = LaserScan([0.5, math.inf, 4.0], 0.0, math.pi / 2, 0.1, 10.0)
-    >>> repulsive_force_from_scan(scan, k_rep=1.0, d0=1.0)  # only the beam at 0.5 m ahead
+    >>> scan = LaserScan([0.5, math.inf, 4.0], angle_min=0.0, angle_increment=math.pi / 2,
+    ...                  range_min=0.1, range_max=10.0)
+    >>> repulsive_force_from_scan(scan, k_rep=1.0, influence_radius=1.0)  # the beam 0.5 m ahead
     array([-4.,  0.])
     """
     scan = _check_scan(scan)
     k = _positive(k_rep, "k_rep")
-    d = _positive(d0, "d0")
+    d0 = _positive(influence_radius, "influence_radius")
     cos_t, sin_t = _beam_table(scan)
-    fx, fy = khatib_beam_force(scan.ranges, cos_t, sin_t, scan.range_min, scan.range_max, k, d)
+    fx, fy = khatib_beam_force(scan.ranges, cos_t, sin_t, scan.range_min, scan.range_max, k, d0)
     return np.array((fx, fy))
 
 
 def piecewise_repulsive_force_from_scan(
-    scan: LaserScan, delta: float = 1.0, beta: float = 1.0, r: float = 0.0, s: float = 1.0
+    scan: LaserScan,
+    *,
+    delta: float = 1.0,
+    beta: float = 1.0,
+    obstacle_radius: float = 0.0,
+    spread: float = 1.0,
 ) -> FloatArray:
     """Piecewise repulsion summed over the beams of a scan, in the robot (sensor) frame.
 
     The omnidirectional LiDAR robot's field with every valid beam as an obstacle:
-    a beam at range ``ρ`` pushes the robot away with magnitude ``δ`` for
-    ``ρ < r``, ``β(s + r - ρ)`` for ``r <= ρ <= s + r`` and 0 beyond. Equals
-    ``PiecewiseRepulsion(scan.to_points(), ...).force((0, 0))``.
+    in the paper's symbols (``r`` is ``obstacle_radius``, ``s`` is ``spread``) a
+    beam at range ``ρ`` pushes the robot away with magnitude ``δ`` for ``ρ < r``,
+    ``β(s + r - ρ)`` for ``r <= ρ <= s + r`` and 0 beyond. Equals
+    ``PiecewiseRepulsion(scan.to_points(), ...).force((0, 0))`` with the same
+    parameters.
 
     Parameters
     ----------
     scan : navkit.mapping.LaserScan
         The scan, taken in the robot frame (x forward, y left).
     delta : float, default 1.0
-        Force magnitude inside ``r``, > 0.
+        Force magnitude ``δ`` inside ``obstacle_radius``, > 0.
     beta : float, default 1.0
-        Gain of the linear zone, > 0.
-    r : float, default 0.0
-        Obstacle (safety) radius in metres, >= 0.
-    s : float, default 1.0
-        Width of the linear zone in metres, > 0.
+        Gain ``β`` of the linear zone, > 0.
+    obstacle_radius : float, default 0.0
+        Obstacle (safety) radius ``r`` in metres, >= 0.
+    spread : float, default 1.0
+        Width ``s`` of the linear zone in metres, > 0.
 
     Returns
     -------
@@ -127,15 +143,16 @@ def piecewise_repulsive_force_from_scan(
     Examples
     --------
     >>> import math
-    >>> scan = LaserScan([0.5, math.nan], 0.0, math.pi / 2, 0.1, 10.0)
-    >>> piecewise_repulsive_force_from_scan(scan, beta=2.0, s=1.0)  # 2·(1 - 0.5) backwards
+    >>> scan = LaserScan([0.5, math.nan], angle_min=0.0, angle_increment=math.pi / 2,
+    ...                  range_min=0.1, range_max=10.0)
+    >>> piecewise_repulsive_force_from_scan(scan, beta=2.0, spread=1.0)  # 2·(1 - 0.5) back
     array([-1.,  0.])
     """
     scan = _check_scan(scan)
     dl = _positive(delta, "delta")
     bt = _positive(beta, "beta")
-    rr = _positive(r, "r", allow_zero=True)
-    ss = _positive(s, "s")
+    rr = _positive(obstacle_radius, "obstacle_radius", allow_zero=True)
+    ss = _positive(spread, "spread")
     cos_t, sin_t = _beam_table(scan)
     fx, fy = piecewise_beam_force(
         scan.ranges, cos_t, sin_t, scan.range_min, scan.range_max, dl, bt, rr, ss

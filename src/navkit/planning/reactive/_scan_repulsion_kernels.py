@@ -23,6 +23,8 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+__all__ = ["khatib_beam_force", "piecewise_beam_force"]
+
 _FASTMATH = {"reassoc", "contract"}
 
 
@@ -34,9 +36,13 @@ def khatib_beam_force(
     range_min: float,
     range_max: float,
     k_rep: float,
-    d0: float,
+    influence_radius: float,
 ) -> tuple[float, float]:
-    """Sum of Khatib forces ``k_rep(1/r - 1/d0)/r²·(-cos, -sin)`` over beams with ``r <= d0``."""
+    """Sum of Khatib forces ``k_rep(1/r - 1/d0)/r²·(-cos, -sin)`` over beams with ``r <= d0``.
+
+    ``d0`` is Khatib's symbol for ``influence_radius``.
+    """
+    d0 = influence_radius
     inv_d0 = 1.0 / d0
     fx = 0.0
     fy = 0.0
@@ -61,15 +67,16 @@ def piecewise_beam_force(
     range_max: float,
     delta: float,
     beta: float,
-    r_obs: float,
-    s: float,
+    obstacle_radius: float,
+    spread: float,
 ) -> tuple[float, float]:
     """Sum of piecewise repulsions over the beams.
 
-    A beam at range ``r`` pushes with ``δ`` inside ``r_obs`` and with
-    ``β(s + r_obs - r)`` out to ``s + r_obs``.
+    A beam at range ``r`` pushes with ``δ`` inside ``obstacle_radius`` and with
+    ``β(spread + obstacle_radius - r)`` out to ``spread + obstacle_radius``.
     """
-    reach = s + r_obs
+    r_obs = obstacle_radius
+    reach = spread + r_obs
     fx = 0.0
     fy = 0.0
     for k in range(ranges.shape[0]):

@@ -1,4 +1,4 @@
-"""Validation helpers specific to estimation: covariance matrices and index lists."""
+"""Validation helpers specific to estimation: covariance matrices and index lists (private)."""
 
 from __future__ import annotations
 
@@ -7,8 +7,9 @@ from collections.abc import Iterable
 from typing import Any
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 
+from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array
 
 __all__ = ["covariance", "index_tuple"]
@@ -17,9 +18,7 @@ __all__ = ["covariance", "index_tuple"]
 _REL_TOL = 1e-9
 
 
-def covariance(
-    value: ArrayLike, name: str, n: int, *, semidefinite: bool = False
-) -> NDArray[np.float64]:
+def covariance(value: ArrayLike, name: str, n: int, *, semidefinite: bool = False) -> FloatArray:
     """Return ``value`` as a symmetric (n, n) float64 covariance or raise naming ``name``.
 
     Positive definiteness is required unless ``semidefinite`` (process noise may

@@ -1,13 +1,22 @@
-"""numba kernels for laser ray casting and world-to-cell conversion (private).
+"""numba kernel for laser ray casting into a log-odds grid (private).
 
-Plain functions on arrays and scalars compiled with ``cache=True``; the public
-layer in :mod:`navkit.mapping` validates input before calling them. Grid cells
-are ``(row, col)`` and index ``array[row, col]``. The Bresenham line walk itself
-lives in :mod:`navkit._shared.lines`.
+Plain functions on arrays and scalars compiled with ``cache=True``;
+:func:`navkit.mapping.integrate_scan` validates input before calling them. Grid
+cells are ``(row, col)`` and index ``array[row, col]``. The Bresenham line walk
+itself lives in :mod:`navkit._shared.lines`.
 
-Used by :class:`navkit.mapping.OccupancyGrid`: ``integrate_beams`` (ray casting
-of one scan, Bresenham or exact traversal, one update per cell per scan) and
-``world_to_cell_kernel``.
+``integrate_beams`` ray-casts one scan (Bresenham or exact traversal, one update
+per cell per scan).
+
+Examples
+--------
+>>> import numpy as np
+>>> logodds = np.zeros((1, 4), dtype=np.float32)
+>>> integrate_beams(logodds, 0.0, 0.0, 0.0, 1.0, 0.5, 0.5, 0.0, np.array([2.0]),
+...                 0.0, 0.1, 0.1, 5.0, 1.0, -0.5, -2.0, 3.5, False)
+3
+>>> logodds
+array([[-0.5, -0.5,  1. ,  0. ]], dtype=float32)
 """
 
 from __future__ import annotations
@@ -18,6 +27,8 @@ import numpy as np
 from numba import njit
 
 from navkit._shared.lines import bresenham_step
+
+__all__ = ["integrate_beams"]
 
 # Marks of a cell in the per-scan scratch window.
 _MISS = 1
@@ -261,27 +272,3 @@ def integrate_beams(
                     )
                 r, c, err = bresenham_step(r, c, err, ddr, ddc, sr, sc)
     return n_updated
-
-
-@njit(cache=True)
-def world_to_cell_kernel(
-    points: np.ndarray,
-    origin_x: float,
-    origin_y: float,
-    origin_yaw: float,
-    resolution: float,
-    out: np.ndarray,
-) -> None:
-    """Fill ``out`` (N, 2) int64 with the ``(row, col)`` cell of each ``(x, y)`` point.
-
-    The cell is ``floor`` of the point's coordinates in the grid frame divided by
-    the resolution, so indices outside the grid are returned as they are.
-    """
-    inv_res = 1.0 / resolution
-    c = math.cos(origin_yaw)
-    s = math.sin(origin_yaw)
-    for i in range(points.shape[0]):
-        dx = points[i, 0] - origin_x
-        dy = points[i, 1] - origin_y
-        out[i, 0] = math.floor((-s * dx + c * dy) * inv_res)
-        out[i, 1] = math.floor((c * dx + s * dy) * inv_res)

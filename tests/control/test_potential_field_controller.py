@@ -1,4 +1,4 @@
-"""The APF motion controller: limits (hypothesis) and closed loops with ``integrate``."""
+"""The APF motion controller: limits (hypothesis), closed loops with ``integrate``, inputs."""
 
 from __future__ import annotations
 
@@ -9,12 +9,11 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from navkit.control import PotentialFieldController, limit_velocity_change
+from navkit.control import PotentialFieldController
 from navkit.geometry import Pose2D, Twist2D, integrate
 from navkit.mapping import LaserScan
 from navkit.planning import ConicAttraction, KhatibRepulsion
 
-vec = st.tuples(st.floats(-3.0, 3.0), st.floats(-3.0, 3.0))
 rate = st.floats(0.1, 5.0)
 period = st.floats(0.005, 0.5)
 TOL = 1e-9
@@ -36,41 +35,6 @@ def check_change(prev: np.ndarray, new: np.ndarray, accel: float, decel: float, 
     assert step <= limit * (1 + 1e-9) + TOL, (prev, new, step, limit)
 
 
-@settings(max_examples=300)
-@given(vec, vec, rate, rate, period)
-def test_limit_velocity_change_respects_both_limits(
-    prev: tuple[float, float], want: tuple[float, float], accel: float, decel: float, dt: float
-) -> None:
-    p, w = np.array(prev), np.array(want)
-    new = limit_velocity_change(p, w, accel, decel, dt)
-    check_change(p, new, accel, decel, dt)
-    # On the segment from prev to want, and as far as the limits allow.
-    d = w - p
-    if np.linalg.norm(d) > 0:
-        t = float(np.dot(new - p, d) / np.dot(d, d))
-        assert -TOL <= t <= 1 + TOL
-        np.testing.assert_allclose(new, p + t * d, atol=1e-9)
-    if np.linalg.norm(w - p) <= min(accel, decel) * dt:
-        np.testing.assert_allclose(new, w, atol=1e-12)
-    else:
-        assert np.linalg.norm(new - p) >= min(accel, decel) * dt * (1 - 1e-9)
-    assert np.linalg.norm(new) <= max(np.linalg.norm(p), np.linalg.norm(w)) + TOL
-
-
-def test_limit_velocity_change_examples() -> None:
-    # Reversing at speed 1 with decel 2: braking to zero and beyond is a deceleration
-    # until the speed would exceed 1 again.
-    out = limit_velocity_change([1.0, 0.0], [-1.0, 0.0], 0.5, 2.0, 0.1)
-    np.testing.assert_allclose(out, [0.8, 0.0])
-    out = limit_velocity_change([0.1, 0.0], [-1.0, 0.0], 0.5, 2.0, 0.1)
-    # Braking 0.1 -> -0.1 (t = 0.2 <= decel·dt) keeps |v| <= 0.1; further would speed up.
-    np.testing.assert_allclose(out, [-0.1, 0.0], atol=1e-15)
-    # Turning at constant speed: the change that keeps |v| is a deceleration (decel limit).
-    out = limit_velocity_change([1.0, 0.0], [0.0, 1.0], 0.1, 1.0, 0.1)
-    assert np.linalg.norm(out - [1.0, 0.0]) == pytest.approx(0.1)
-    np.testing.assert_allclose(limit_velocity_change([0.5], [0.5], 1.0, 1.0, 0.1), [0.5])
-
-
 obstacle_lists = st.lists(st.tuples(st.floats(-4.0, 4.0), st.floats(-4.0, 4.0)), max_size=5)
 poses = st.builds(Pose2D, st.floats(-3.0, 3.0), st.floats(-3.0, 3.0),
                   st.floats(-math.pi, math.pi))
@@ -89,10 +53,10 @@ def test_omni_commands_never_exceed_limits(
     max_speed: float, accel: float, decel: float, max_omega: float,
 ) -> None:
     ctl = PotentialFieldController(max_speed=max_speed, max_accel=accel, max_decel=decel,
-                                   max_omega=max_omega, k_rep=0.5, d0=1.0)
+                                   max_omega=max_omega, k_rep=0.5, influence_radius=1.0)
     prev = np.zeros(2)
     for pose, target, obstacles, dt in steps:
-        cmd = ctl.step(pose, None, target, np.array(obstacles).reshape(-1, 2), dt)
+        cmd = ctl.step(pose, target, dt=dt, obstacles=np.array(obstacles).reshape(-1, 2))
         v = world_velocity(pose, cmd)
         np.testing.assert_allclose(v, ctl.previous_velocity, atol=1e-12)
         assert np.linalg.norm(v) <= max_speed * (1 + 1e-12)
@@ -109,10 +73,11 @@ def test_diff_drive_commands_never_exceed_limits(
     max_speed: float, accel: float, decel: float,
 ) -> None:
     ctl = PotentialFieldController(max_speed=max_speed, max_accel=accel, max_decel=decel,
-                                   mode="diff", k_rep=0.5, d0=1.0)
+                                   mode="diff", k_rep=0.5, influence_radius=1.0)
     prev = 0.0
     for pose, target, obstacles, dt in steps:
-        cmd = ctl.step(pose, Twist2D(prev), target, np.array(obstacles).reshape(-1, 2), dt)
+        cmd = ctl.step(pose, target, dt=dt, obstacles=np.array(obstacles).reshape(-1, 2),
+                       velocity=Twist2D(prev))
         assert cmd.vy == 0.0
         assert 0.0 <= cmd.vx <= max_speed * (1 + 1e-12)
         limit = accel if cmd.vx > prev else decel
@@ -134,7 +99,7 @@ def run(
     path = [(pose.x, pose.y)]
     for _ in range(steps):
         sensed = scan_of(pose) if callable(scan_of) else obstacles
-        cmd = ctl.step(pose, None, target, sensed, dt)  # type: ignore[arg-type]
+        cmd = ctl.step(pose, target, dt=dt, obstacles=sensed)  # type: ignore[arg-type]
         pose = integrate(pose, cmd, dt)
         path.append((pose.x, pose.y))
         if math.hypot(target.x - pose.x, target.y - pose.y) < 0.02 and ctl.stall_time == 0.0:
@@ -169,14 +134,15 @@ def disc_scan(pose: Pose2D, cx: float, cy: float, radius: float, n: int = 360) -
     disc = b * b - (dx * dx + dy * dy - radius * radius)
     hit = (disc >= 0.0) & (b > 0.0)
     r = np.where(hit, b - np.sqrt(np.where(hit, disc, 0.0)), math.inf)
-    return LaserScan(r, -math.pi, 2.0 * math.pi / n, 0.05, 8.0)
+    return LaserScan(r, angle_min=-math.pi, angle_increment=2.0 * math.pi / n, range_min=0.05,
+                     range_max=8.0)
 
 
 @pytest.mark.parametrize("sensing", ["points", "scan"])
 def test_goes_around_a_single_obstacle(sensing: str) -> None:
     centre = (2.0, 0.08)
     radius = 0.25
-    ctl = PotentialFieldController(k_rep=0.05, d0=0.6, max_speed=0.5)
+    ctl = PotentialFieldController(k_rep=0.05, influence_radius=0.6, max_speed=0.5)
     target = Pose2D(4.0, 0.0, 0.0)
     if sensing == "points":
         pose, path = run(ctl, Pose2D(0.0, 0.0, 0.0), target, obstacles=disc_points(*centre, radius))
@@ -195,7 +161,7 @@ def test_reports_a_local_minimum() -> None:
     # A wall across the straight line, symmetric about it: attraction and repulsion
     # cancel on the axis and the robot stops in front of the wall.
     wall = np.stack((np.full(21, 2.0), np.linspace(-1.0, 1.0, 21)), axis=1)
-    ctl = PotentialFieldController(k_rep=0.05, d0=0.6, stall_timeout=1.5)
+    ctl = PotentialFieldController(k_rep=0.05, influence_radius=0.6, stall_timeout=1.5)
     pose, _ = run(ctl, Pose2D(0.0, 0.0, 0.0), Pose2D(4.0, 0.0, 0.0), obstacles=wall, steps=300)
     assert ctl.stalled
     assert ctl.stall_time >= 1.5
@@ -211,38 +177,56 @@ def test_invalid_obstacles_are_skipped_and_measured_velocity_is_the_base() -> No
     pose, target = Pose2D(0.0, 0.0, 0.3), Pose2D(3.0, 1.0, 0.0)
     obstacles = np.array([[0.5, 0.2], [math.nan, 1.0], [math.inf, math.inf]])
     np.testing.assert_allclose(
-        a.step(pose, None, target, obstacles, 0.1).as_array(),
-        b.step(pose, None, target, obstacles[:1], 0.1).as_array(),
+        a.step(pose, target, dt=0.1, obstacles=obstacles).as_array(),
+        b.step(pose, target, dt=0.1, obstacles=obstacles[:1]).as_array(),
     )
     # Measured 1 m/s backwards: the command may only brake by max_decel·dt.
     c = PotentialFieldController(max_speed=2.0, max_decel=2.0)
-    cmd = c.step(Pose2D(0.0, 0.0, 0.0), Twist2D(-1.0), Pose2D(5.0, 0.0, 0.0), None, 0.1)
+    cmd = c.step(Pose2D(0.0, 0.0, 0.0), Pose2D(5.0, 0.0, 0.0), dt=0.1, velocity=Twist2D(-1.0))
     assert cmd.vx == pytest.approx(-0.8)
+    # ... and a 3-sequence works as the measured velocity, as for the poses.
+    d = PotentialFieldController(max_speed=2.0, max_decel=2.0)
+    seq = d.step([0.0, 0.0, 0.0], (5.0, 0.0, 0.0), dt=0.1, velocity=[-1.0, 0.0, 0.0])
+    assert seq == cmd
 
 
 def test_desired_velocity_is_attraction_plus_repulsion() -> None:
     attraction = ConicAttraction((0.0, 0.0), m=0.25)
-    ctl = PotentialFieldController(attraction, k_rep=0.1, d0=1.0, max_speed=1.0)
+    ctl = PotentialFieldController(attraction, k_rep=0.1, influence_radius=1.0, max_speed=1.0)
     pose = Pose2D(0.0, 0.0, 0.0)
     obstacles = np.array([[0.5, 0.5]])
     want = (ConicAttraction((2.0, 0.0), m=0.25).force([0.0, 0.0])[0]
-            + KhatibRepulsion(obstacles, k_rep=0.1, d0=1.0).force([0.0, 0.0])[0])
-    np.testing.assert_allclose(ctl.desired_velocity(pose, (2.0, 0.0), obstacles), want)
+            + KhatibRepulsion(obstacles, k_rep=0.1, influence_radius=1.0).force([0.0, 0.0])[0])
+    np.testing.assert_allclose(
+        ctl.desired_velocity(pose, (2.0, 0.0), obstacles=obstacles), want
+    )
+    np.testing.assert_allclose(
+        ctl.desired_velocity([0.0, 0.0, 0.0], np.array([2.0, 0.0]), obstacles=obstacles), want
+    )
+    # Without obstacles: the attraction alone; the controller's state is untouched.
+    np.testing.assert_allclose(ctl.desired_velocity(pose, (2.0, 0.0)), [0.25, 0.0])
+    np.testing.assert_array_equal(ctl.previous_velocity, [0.0, 0.0])
 
 
 def test_bad_arguments() -> None:
     ctl = PotentialFieldController()
     pose = Pose2D(0.0, 0.0)
     with pytest.raises(ValueError, match="dt"):
-        ctl.step(pose, None, pose, None, 0.0)
+        ctl.step(pose, pose, dt=0.0)
     with pytest.raises(TypeError, match="pose"):
-        ctl.step((0.0, 0.0, 0.0), None, pose, None, 0.1)  # type: ignore[arg-type]
+        ctl.step("pose", pose, dt=0.1)  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match="pose"):
+        ctl.step((0.0, math.nan, 0.0), pose, dt=0.1)
+    with pytest.raises(ValueError, match="target_pose"):
+        ctl.step(pose, (1.0, 0.0), dt=0.1)
     with pytest.raises(TypeError, match="target_pose"):
-        ctl.step(pose, None, (1.0, 0.0), None, 0.1)  # type: ignore[arg-type]
+        ctl.step(pose, None, dt=0.1)  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match="velocity"):
+        ctl.step(pose, pose, dt=0.1, velocity=(0.0, 0.0))
     with pytest.raises(TypeError, match="velocity"):
-        ctl.step(pose, (0.0, 0.0, 0.0), pose, None, 0.1)  # type: ignore[arg-type]
+        ctl.step(pose, pose, dt=0.1, velocity="fast")  # type: ignore[arg-type]
     with pytest.raises(ValueError, match="obstacles"):
-        ctl.step(pose, None, pose, np.zeros((2, 3)), 0.1)
+        ctl.step(pose, pose, dt=0.1, obstacles=np.zeros((2, 3)))
     with pytest.raises(ValueError, match="mode"):
         PotentialFieldController(mode="tank")  # type: ignore[arg-type]
     with pytest.raises(TypeError, match="attraction"):
@@ -251,27 +235,86 @@ def test_bad_arguments() -> None:
         PotentialFieldController(max_accel=0.0)
     with pytest.raises(ValueError, match="kp"):
         PotentialFieldController(kp=-1.0)
+    with pytest.raises(ValueError, match="influence_radius"):
+        PotentialFieldController(influence_radius=0.0)
+    # A failed step leaves the state as it was.
+    np.testing.assert_array_equal(ctl.previous_velocity, [0.0, 0.0])
+    assert ctl.stall_time == 0.0
     # An empty obstacle array is valid: no repulsion.
-    free = ctl.step(pose, None, Pose2D(1.0, 0.0), np.empty((0, 2)), 0.1)
+    free = ctl.step(pose, Pose2D(1.0, 0.0), dt=0.1, obstacles=np.empty((0, 2)))
     assert free.vx > 0.0
+
+
+def test_options_are_keyword_only() -> None:
+    # step(pose, None, target, None, 0.05) was easy to misorder: dt and the rest are named.
+    ctl = PotentialFieldController()
+    pose = Pose2D(0.0, 0.0)
+    with pytest.raises(TypeError, match="positional"):
+        ctl.step(pose, pose, 0.05)  # type: ignore[misc]
+    with pytest.raises(TypeError, match="dt"):
+        ctl.step(pose, pose)  # type: ignore[call-arg]
+    with pytest.raises(TypeError, match="positional"):
+        ctl.desired_velocity(pose, (1.0, 0.0), None)  # type: ignore[misc]
+    with pytest.raises(TypeError, match="positional"):
+        PotentialFieldController(None, 0.05)  # type: ignore[misc]
+    with pytest.raises(TypeError, match="d0"):
+        PotentialFieldController(d0=0.6)  # type: ignore[call-arg]
+
+
+def test_poses_as_sequences_give_the_same_commands() -> None:
+    a = PotentialFieldController()
+    b = PotentialFieldController()
+    obstacles = [[1.0, 0.2]]
+    for k in range(5):
+        pose = Pose2D(0.1 * k, 0.0, 0.1)
+        got = b.step([pose.x, pose.y, pose.theta], np.array([3.0, 1.0, 0.5]), dt=0.05,
+                     obstacles=obstacles)
+        assert got == a.step(pose, Pose2D(3.0, 1.0, 0.5), dt=0.05, obstacles=obstacles)
+
+
+def test_desired_velocity_validates_its_inputs() -> None:
+    ctl = PotentialFieldController()
+    pose = Pose2D(0.0, 0.0)
+    with pytest.raises(TypeError, match="pose"):
+        ctl.desired_velocity(None, (1.0, 0.0))  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match="pose"):
+        ctl.desired_velocity((0.0, 0.0), (1.0, 0.0))
+    with pytest.raises(ValueError, match="goal_xy"):
+        ctl.desired_velocity(pose, (1.0, 0.0, 0.0))
+    with pytest.raises(ValueError, match="goal_xy"):
+        ctl.desired_velocity(pose, (math.nan, 0.0))
+    with pytest.raises(TypeError, match="goal_xy"):
+        ctl.desired_velocity(pose, None)  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match="obstacles"):
+        ctl.desired_velocity(pose, (1.0, 0.0), obstacles=[[1.0, 2.0, 3.0]])
+
+
+def test_inputs_are_not_modified() -> None:
+    ctl = PotentialFieldController(k_rep=0.5)
+    obstacles = np.array([[0.5, 0.2], [math.nan, 1.0]])
+    goal = np.array([2.0, 0.0])
+    pose = [0.0, 0.0, 0.3]
+    ctl.desired_velocity(pose, goal, obstacles=obstacles)
+    ctl.step(pose, [2.0, 0.0, 0.0], dt=0.1, obstacles=obstacles, velocity=[0.1, 0.0, 0.0])
+    np.testing.assert_array_equal(obstacles, [[0.5, 0.2], [math.nan, 1.0]])
+    np.testing.assert_array_equal(goal, [2.0, 0.0])
+    assert pose == [0.0, 0.0, 0.3]
+    assert obstacles.flags.writeable and goal.flags.writeable
+    # previous_velocity is a copy.
+    ctl.previous_velocity[0] = 99.0
+    assert ctl.previous_velocity[0] != 99.0
+
+
+def test_controller_is_slotted() -> None:
+    ctl = PotentialFieldController()
+    assert not hasattr(ctl, "__dict__")
+    with pytest.raises(AttributeError):
+        ctl.d0 = 0.6  # type: ignore[attr-defined]
+    assert ctl.influence_radius == 0.6
 
 
 def test_numerically_on_an_obstacle_flees_at_full_speed() -> None:
     ctl = PotentialFieldController(max_speed=0.4, max_accel=100.0)
-    cmd = ctl.step(Pose2D(0.0, 1e-200, 0.0), None, Pose2D(0.0, 0.0, 0.0), [[0.0, 0.0]], 0.1)
+    cmd = ctl.step(Pose2D(0.0, 1e-200, 0.0), Pose2D(0.0, 0.0, 0.0), dt=0.1,
+                   obstacles=[[0.0, 0.0]])
     np.testing.assert_allclose([cmd.vx, cmd.vy], [0.0, 0.4])
-
-
-def test_limit_velocity_change_checks_its_arguments() -> None:
-    with pytest.raises(ValueError, match="desired"):
-        limit_velocity_change([0.0, 0.0], [1.0], 1.0, 1.0, 0.1)
-    with pytest.raises(ValueError, match="previous"):
-        limit_velocity_change([math.nan, 0.0], [1.0, 0.0], 1.0, 1.0, 0.1)
-    with pytest.raises(ValueError, match="max_decel"):
-        limit_velocity_change([0.0, 0.0], [1.0, 0.0], 1.0, 0.0, 0.1)
-    with pytest.raises(ValueError, match="dt"):
-        limit_velocity_change([0.0, 0.0], [1.0, 0.0], 1.0, 1.0, -0.1)
-    prev = np.array([0.3, 0.4])
-    out = limit_velocity_change(prev, prev, 1.0, 1.0, 0.1)
-    out[0] = 9.0
-    np.testing.assert_array_equal(prev, [0.3, 0.4])

@@ -1,4 +1,4 @@
-"""numba kernels for the planar odometry + IMU filter (private).
+"""numba kernels of the planar odometry + IMU filter, navkit.estimation.PlanarFusion (private).
 
 State layout (6,): ``[x, y, theta, v, omega, a]`` — world position (m), heading
 (rad, wrapped to (-pi, pi]), forward speed (m/s), yaw rate (rad/s) and forward

@@ -3,14 +3,15 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from typing import Literal
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 
+from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, as_points, positive_float
-from navkit.geometry import Pose2D, Twist2D, angle_diff
+from navkit.control._velocity_limits import _limit_change
+from navkit.geometry import Pose2D, Twist2D, angle_diff, as_pose, as_twist
 from navkit.mapping import LaserScan
 from navkit.planning import (
     AttractiveField,
@@ -19,90 +20,21 @@ from navkit.planning import (
     repulsive_force_from_scan,
 )
 
-__all__ = ["PotentialFieldController", "limit_velocity_change"]
-
-FloatArray = NDArray[np.float64]
+__all__ = ["PotentialFieldController"]
 
 
-def limit_velocity_change(
-    previous: ArrayLike, desired: ArrayLike, max_accel: float, max_decel: float, dt: float
-) -> FloatArray:
-    """Move a velocity toward ``desired`` within acceleration and deceleration limits.
-
-    The result lies on the segment from ``previous`` to ``desired``, as far along
-    it as the limits allow: a change that leaves the speed ``‖v‖`` at most its
-    previous value is a deceleration and may be up to ``max_decel·dt`` long; a
-    change that raises the speed is an acceleration, at most ``max_accel·dt``.
-    Works for any dimension (2-D velocity vectors, or 1-D forward speeds).
-
-    Parameters
-    ----------
-    previous, desired : array_like, shape (k,)
-        Previous and requested velocity (m/s).
-    max_accel, max_decel : float
-        Limits in m/s², > 0.
-    dt : float
-        Time step in seconds, > 0.
-
-    Returns
-    -------
-    ndarray, shape (k,)
-        The limited velocity (a new array).
-
-    Raises
-    ------
-    ValueError
-        Non-finite velocities, shapes that differ, or limits or ``dt`` not > 0.
-
-    Examples
-    --------
-    >>> limit_velocity_change([0.0, 0.0], [1.0, 0.0], 0.5, 2.0, 0.1)  # speeding up
-    array([0.05, 0.  ])
-    >>> limit_velocity_change([1.0, 0.0], [0.0, 0.0], 0.5, 2.0, 0.1)  # braking
-    array([0.8, 0. ])
-    """
-    prev = as_float_array(previous, "previous", ndim=1)
-    want = as_float_array(desired, "desired", shape=prev.shape)
-    return _limit_change(
-        prev,
-        want,
-        positive_float(max_accel, "max_accel"),
-        positive_float(max_decel, "max_decel"),
-        positive_float(dt, "dt"),
-    )
-
-
-def _limit_change(
-    prev: FloatArray, want: FloatArray, max_accel: float, max_decel: float, dt: float
-) -> FloatArray:
-    delta = want - prev
-    n = float(np.linalg.norm(delta))
-    if n == 0.0:
-        same: FloatArray = prev.copy()
-        return same
-    u = delta / n
-    # Along prev + t·u the speed is below its start value exactly for 0 < t < t_slow.
-    t_slow = max(0.0, -2.0 * float(np.dot(prev, u)))
-    step_a = max_accel * dt
-    step_d = max_decel * dt
-    if n <= t_slow:
-        t = min(n, step_d)
-    elif step_a > t_slow:
-        t = min(n, step_a)
-    else:
-        t = min(t_slow, step_d)
-    out: FloatArray = prev + t * u
-    return out
-
-
-@dataclass
 class _Pid:
-    kp: float
-    ki: float
-    kd: float
-    integral_limit: float
-    integral: float = 0.0
-    last_error: float | None = None
+    """Heading PID; a plain slotted class because its integrator and last error change."""
+
+    __slots__ = ("integral", "integral_limit", "kd", "ki", "kp", "last_error")
+
+    def __init__(self, kp: float, ki: float, kd: float, integral_limit: float) -> None:
+        self.kp = kp
+        self.ki = ki
+        self.kd = kd
+        self.integral_limit = integral_limit
+        self.integral = 0.0
+        self.last_error: float | None = None
 
     def update(self, error: float, dt: float) -> float:
         self.integral = min(max(self.integral + error * dt, -self.integral_limit),
@@ -137,7 +69,8 @@ class PotentialFieldController:
        omnidirectional robot, to the direction of motion for a differential drive.
 
     The controller is stateful (previous velocity, PID integrator and last error,
-    stall timer); call :meth:`reset` between runs.
+    stall timer); call :meth:`reset` between runs. It is an ordinary class with
+    ``__slots__`` rather than a frozen dataclass because every step changes that state.
 
     Local minima: the robot is reported :attr:`stalled` when it has stayed within
     ``stall_radius`` of one spot for ``stall_timeout`` seconds while farther than
@@ -152,8 +85,8 @@ class PotentialFieldController:
         default parameters (no spurious minimum; it settles 3.75 mm from the goal).
     k_rep : float, default 0.05
         Khatib repulsion gain, > 0.
-    d0 : float, default 0.6
-        Repulsion influence distance (m), > 0.
+    influence_radius : float, default 0.6
+        Khatib's ``d0`` (m), > 0: obstacles farther than this do not repel.
     max_speed : float, default 0.5
         Maximum translational speed (m/s), > 0.
     max_accel, max_decel : float, default 1.0 and 2.0
@@ -182,18 +115,36 @@ class PotentialFieldController:
     >>> pose = Pose2D(0.0, 0.0, 0.0)
     >>> target = Pose2D(2.0, 0.0, 0.0)
     >>> for _ in range(200):
-    ...     cmd = ctl.step(pose, None, target, None, 0.05)
+    ...     cmd = ctl.step(pose, target, dt=0.05)
     ...     pose = integrate(pose, cmd, 0.05)
     >>> round(pose.x, 2), ctl.stalled
     (2.0, False)
     """
+
+    __slots__ = (
+        "_anchor",
+        "_pid",
+        "_still_for",
+        "_velocity",
+        "attraction",
+        "goal_tolerance",
+        "influence_radius",
+        "k_rep",
+        "max_accel",
+        "max_decel",
+        "max_omega",
+        "max_speed",
+        "mode",
+        "stall_radius",
+        "stall_timeout",
+    )
 
     def __init__(
         self,
         attraction: AttractiveField | None = None,
         *,
         k_rep: float = 0.05,
-        d0: float = 0.6,
+        influence_radius: float = 0.6,
         max_speed: float = 0.5,
         max_accel: float = 1.0,
         max_decel: float = 2.0,
@@ -208,7 +159,7 @@ class PotentialFieldController:
         stall_timeout: float = 2.0,
     ) -> None:
         if attraction is None:
-            attraction = BlendedAttraction((0.0, 0.0))
+            attraction = BlendedAttraction(np.zeros(2))
         if not isinstance(attraction, AttractiveField):
             raise TypeError(
                 f"attraction must be an AttractiveField, got {type(attraction).__name__}"
@@ -217,7 +168,7 @@ class PotentialFieldController:
             raise ValueError(f"mode must be 'omni' or 'diff', got {mode!r}")
         self.attraction = attraction
         self.k_rep = positive_float(k_rep, "k_rep")
-        self.d0 = positive_float(d0, "d0")
+        self.influence_radius = positive_float(influence_radius, "influence_radius")
         self.max_speed = positive_float(max_speed, "max_speed")
         self.max_accel = positive_float(max_accel, "max_accel")
         self.max_decel = positive_float(max_decel, "max_decel")
@@ -258,12 +209,50 @@ class PotentialFieldController:
         return out
 
     def desired_velocity(
-        self, pose: Pose2D, goal: ArrayLike, obstacles: ArrayLike | LaserScan | None
+        self,
+        pose: Pose2D | ArrayLike,
+        goal_xy: ArrayLike,
+        *,
+        obstacles: ArrayLike | LaserScan | None = None,
     ) -> FloatArray:
         """Unlimited field velocity (world frame, clipped to ``max_speed``) at ``pose``.
 
-        Steps 1–3 of the algorithm without the acceleration limits.
+        Steps 1–3 of the algorithm without the acceleration limits; the
+        controller's state is neither read nor changed.
+
+        Parameters
+        ----------
+        pose : Pose2D or array_like [x, y, theta]
+            Robot pose in the world frame.
+        goal_xy : array_like, shape (2,)
+            Goal ``(x, y)`` in metres, world frame.
+        obstacles : array_like (M, 2), LaserScan or None, optional
+            As in :meth:`step`.
+
+        Returns
+        -------
+        ndarray, shape (2,)
+            Velocity ``(vx, vy)`` in the world frame (m/s).
+
+        Raises
+        ------
+        TypeError, ValueError
+            An argument that is not what is documented, naming it.
+
+        Examples
+        --------
+        >>> ctl = PotentialFieldController(max_speed=0.5)
+        >>> ctl.desired_velocity([0.0, 0.0, 0.0], (2.0, 0.0))
+        array([0.5, 0. ])
         """
+        p = as_pose(pose, "pose")
+        goal = as_float_array(goal_xy, "goal_xy", shape=(2,))
+        return self._desired(p, goal, obstacles)
+
+    def _desired(
+        self, pose: Pose2D, goal: FloatArray, obstacles: ArrayLike | LaserScan | None
+    ) -> FloatArray:
+        """:meth:`desired_velocity` on a validated pose and goal."""
         here = np.array([[pose.x, pose.y]])
         f_att = self.attraction.with_goal(goal).force(here)[0]
         norm = float(np.hypot(f_att[0], f_att[1]))
@@ -285,59 +274,65 @@ class PotentialFieldController:
         if obstacles is None:
             return np.zeros(2)
         if isinstance(obstacles, LaserScan):
-            fx, fy = repulsive_force_from_scan(obstacles, self.k_rep, self.d0)
+            fx, fy = repulsive_force_from_scan(
+                obstacles, k_rep=self.k_rep, influence_radius=self.influence_radius
+            )
             c, s = math.cos(pose.theta), math.sin(pose.theta)
             return np.array([c * fx - s * fy, s * fx + c * fy])
         pts = as_points(obstacles, "obstacles", finite=False)
         valid = pts[np.all(np.isfinite(pts), axis=1)]
-        field = KhatibRepulsion(valid, k_rep=self.k_rep, d0=self.d0)
+        field = KhatibRepulsion(valid, k_rep=self.k_rep, influence_radius=self.influence_radius)
         out: FloatArray = field.force(here)[0]
         return out
 
     def step(
         self,
-        pose: Pose2D,
-        velocity: Twist2D | None,
-        target_pose: Pose2D,
-        obstacles: ArrayLike | LaserScan | None,
+        pose: Pose2D | ArrayLike,
+        target_pose: Pose2D | ArrayLike,
+        *,
         dt: float,
+        obstacles: ArrayLike | LaserScan | None = None,
+        velocity: Twist2D | ArrayLike | None = None,
     ) -> Twist2D:
         """One control cycle: the velocity command for the next ``dt`` seconds.
 
         Parameters
         ----------
-        pose : Pose2D
+        pose : Pose2D or array_like [x, y, theta]
             Robot pose in the world frame.
-        velocity : Twist2D or None
-            Current robot-frame velocity (e.g. from odometry), the base of the
-            acceleration limits; ``None`` uses the previous command.
-        target_pose : Pose2D
+        target_pose : Pose2D or array_like [x, y, theta]
             Goal position (attraction) and, in ``"omni"`` mode, target heading.
-        obstacles : array_like (M, 2), LaserScan or None
-            Obstacle points in the world frame (rows with NaN/inf are skipped),
-            or a scan taken in the robot frame, or nothing.
         dt : float
             Control period in seconds, > 0.
+        obstacles : array_like (M, 2), LaserScan or None, optional
+            Obstacle points in the world frame (rows with NaN/inf are skipped),
+            or a scan taken in the robot frame, or nothing.
+        velocity : Twist2D or array_like [vx, vy, omega], optional
+            Current robot-frame velocity (e.g. from odometry), the base of the
+            acceleration limits; ``None`` uses the previous command.
 
         Returns
         -------
         Twist2D
             Command in the robot frame: ``(vx, vy, ω)``; ``vy = 0`` in ``"diff"`` mode.
+
+        Raises
+        ------
+        TypeError, ValueError
+            An argument that is not what is documented, naming it; the
+            controller's state is unchanged then.
         """
-        if not isinstance(pose, Pose2D):
-            raise TypeError(f"pose must be a Pose2D, got {type(pose).__name__}")
-        if not isinstance(target_pose, Pose2D):
-            raise TypeError(f"target_pose must be a Pose2D, got {type(target_pose).__name__}")
-        if velocity is not None and not isinstance(velocity, Twist2D):
-            raise TypeError(f"velocity must be a Twist2D or None, got {type(velocity).__name__}")
+        pose = as_pose(pose, "pose")
+        target_pose = as_pose(target_pose, "target_pose")
+        measured = None if velocity is None else as_twist(velocity, "velocity")
         step = positive_float(dt, "dt")
         c, s = math.cos(pose.theta), math.sin(pose.theta)
-        if velocity is None:
+        if measured is None:
             prev = self._velocity
         else:
-            prev = np.array([c * velocity.vx - s * velocity.vy, s * velocity.vx + c * velocity.vy])
+            prev = np.array([c * measured.vx - s * measured.vy, s * measured.vx + c * measured.vy])
         goal = np.array([target_pose.x, target_pose.y])
-        want = self.desired_velocity(pose, goal, obstacles)
+        want = self._desired(pose, goal, obstacles)
 
         if self.mode == "omni":
             v = _limit_change(prev, want, self.max_accel, self.max_decel, step)

@@ -1,4 +1,4 @@
-"""Reader for CARMEN laser log files (private; public in :mod:`navkit.mapping.io`)."""
+"""Reader for CARMEN laser log files (FLASER, ROBOTLASER1 and ODOM lines)."""
 
 from __future__ import annotations
 
@@ -9,11 +9,11 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
-from numpy.typing import NDArray
 
-from navkit._shared.validation import positive_float
+from navkit._shared.types import FloatArray
+from navkit._shared.validation import as_float_array, positive_float
 from navkit.geometry import Pose2D
-from navkit.mapping._scan import LaserScan
+from navkit.mapping import LaserScan
 
 __all__ = ["CarmenLog", "read_carmen"]
 
@@ -58,13 +58,47 @@ class CarmenLog:
         Scan timestamps, s (the message's own ``timestamp`` field).
     odometry : ndarray, shape (M, 4)
         ODOM records ``(x, y, theta, timestamp)``.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = Path(folder) / "log.txt"
+    ...     _ = path.write_text("FLASER 3 1.0 2.0 5.0 0.5 0 0 0.5 0 0 12.5 host 12.6\\n")
+    ...     log = read_carmen(path)
+    >>> len(log), log.laser_poses[0], log.timestamps
+    (1, Pose2D(x=0.5, y=0.0, theta=0.0), array([12.5]))
     """
 
     scans: tuple[LaserScan, ...]
     laser_poses: tuple[Pose2D, ...]
     robot_poses: tuple[Pose2D, ...]
-    timestamps: NDArray[np.float64]
-    odometry: NDArray[np.float64]
+    timestamps: FloatArray
+    odometry: FloatArray
+
+    def __post_init__(self) -> None:
+        scans = tuple(self.scans)
+        laser = tuple(self.laser_poses)
+        robot = tuple(self.robot_poses)
+        stamps = np.array(
+            as_float_array(self.timestamps, "timestamps", ndim=1, finite=False), copy=True
+        )
+        odometry = np.array(
+            as_float_array(self.odometry, "odometry", shape=(None, 4), finite=False), copy=True
+        )
+        if not len(scans) == len(laser) == len(robot) == stamps.shape[0]:
+            raise ValueError(
+                "scans, laser_poses, robot_poses and timestamps must have the same length, got "
+                f"{len(scans)}, {len(laser)}, {len(robot)} and {stamps.shape[0]}"
+            )
+        stamps.flags.writeable = False
+        odometry.flags.writeable = False
+        object.__setattr__(self, "scans", scans)
+        object.__setattr__(self, "laser_poses", laser)
+        object.__setattr__(self, "robot_poses", robot)
+        object.__setattr__(self, "timestamps", stamps)
+        object.__setattr__(self, "odometry", odometry)
 
     def __len__(self) -> int:
         return len(self.scans)
@@ -112,6 +146,17 @@ def read_carmen(
     ValueError
         A malformed laser line (the message names the line number) or a log
         without laser lines.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = Path(folder) / "log.txt"
+    ...     _ = path.write_text("FLASER 3 1.0 2.0 5.0 0 0 0 0 0 0 1.0 host 1.0\\n")
+    ...     scan = read_carmen(path).scans[0]
+    >>> scan.range_max, scan.valid_mask()
+    (5.0, array([ True,  True, False]))
     """
     log_path = Path(path)
     if not log_path.is_file():
@@ -123,11 +168,11 @@ def read_carmen(
     # laser pose, robot pose, timestamp).
     records: list[
         tuple[
-            NDArray[np.float64],
+            FloatArray,
             float,
             float,
             float | None,
-            NDArray[np.float64] | None,
+            FloatArray | None,
             tuple[float, float, float],
             tuple[float, float, float],
             float,
@@ -199,7 +244,16 @@ def read_carmen(
         rm_opt = own_max if own_max is not None else flaser_max
         if rm_opt is None or rm_opt <= rmin:
             raise ValueError(f"{log_path}: cannot determine a maximum range above range_min")
-        scans.append(LaserScan(scan_ranges, start, inc, rmin, rm_opt, inten))
+        scans.append(
+            LaserScan(
+                scan_ranges,
+                angle_min=start,
+                angle_increment=inc,
+                range_min=rmin,
+                range_max=rm_opt,
+                intensities=inten,
+            )
+        )
     return CarmenLog(
         scans=tuple(scans),
         laser_poses=tuple(Pose2D(*r[5]) for r in records),

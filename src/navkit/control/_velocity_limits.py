@@ -1,0 +1,90 @@
+"""Acceleration and deceleration limits on a velocity change."""
+
+from __future__ import annotations
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from navkit._shared.types import FloatArray
+from navkit._shared.validation import as_float_array, positive_float
+
+__all__ = ["limit_velocity_change"]
+
+
+def limit_velocity_change(
+    previous: ArrayLike,
+    desired: ArrayLike,
+    *,
+    max_accel: float,
+    max_decel: float,
+    dt: float,
+) -> FloatArray:
+    """Move a velocity toward ``desired`` within acceleration and deceleration limits.
+
+    The result lies on the segment from ``previous`` to ``desired``, as far along
+    it as the limits allow: a change that leaves the speed ``‖v‖`` at most its
+    previous value is a deceleration and may be up to ``max_decel·dt`` long; a
+    change that raises the speed is an acceleration, at most ``max_accel·dt``.
+    Works for any dimension (2-D velocity vectors, or 1-D forward speeds).
+
+    Parameters
+    ----------
+    previous, desired : array_like, shape (k,)
+        Previous and requested velocity (m/s).
+    max_accel, max_decel : float
+        Limits in m/s², > 0.
+    dt : float
+        Time step in seconds, > 0.
+
+    Returns
+    -------
+    ndarray, shape (k,)
+        The limited velocity (a new array; the inputs are not modified).
+
+    Raises
+    ------
+    ValueError
+        Non-finite velocities, shapes that differ, or limits or ``dt`` not > 0.
+
+    Examples
+    --------
+    >>> limit_velocity_change([0.0, 0.0], [1.0, 0.0], max_accel=0.5, max_decel=2.0,
+    ...                       dt=0.1)  # speeding up
+    array([0.05, 0.  ])
+    >>> limit_velocity_change([1.0, 0.0], [0.0, 0.0], max_accel=0.5, max_decel=2.0,
+    ...                       dt=0.1)  # braking
+    array([0.8, 0. ])
+    """
+    prev = as_float_array(previous, "previous", ndim=1)
+    want = as_float_array(desired, "desired", shape=prev.shape)
+    return _limit_change(
+        prev,
+        want,
+        positive_float(max_accel, "max_accel"),
+        positive_float(max_decel, "max_decel"),
+        positive_float(dt, "dt"),
+    )
+
+
+def _limit_change(
+    prev: FloatArray, want: FloatArray, max_accel: float, max_decel: float, dt: float
+) -> FloatArray:
+    """:func:`limit_velocity_change` on validated arrays and limits."""
+    delta = want - prev
+    n = float(np.linalg.norm(delta))
+    if n == 0.0:
+        same: FloatArray = prev.copy()
+        return same
+    u = delta / n
+    # Along prev + t·u the speed is below its start value exactly for 0 < t < t_slow.
+    t_slow = max(0.0, -2.0 * float(np.dot(prev, u)))
+    step_a = max_accel * dt
+    step_d = max_decel * dt
+    if n <= t_slow:
+        t = min(n, step_d)
+    elif step_a > t_slow:
+        t = min(n, step_a)
+    else:
+        t = min(t_slow, step_d)
+    out: FloatArray = prev + t * u
+    return out

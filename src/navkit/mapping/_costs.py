@@ -1,0 +1,232 @@
+"""Costs from occupancy grids: ROS 2 Nav2 costmaps and the planners' traversal costs.
+
+The traversal-cost convention of navkit's grid planners (a 2-D float array,
+finite values >= 1 per unit length, ``inf`` impassable) is checked by
+:func:`validate_costs`; :func:`traversal_costs` builds such grids from an
+:class:`~navkit.mapping.OccupancyGrid` through its Nav2 :func:`costmap`.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from navkit._shared.costs import validate_costs as _validate_costs
+from navkit._shared.types import BoolArray, FloatArray
+from navkit._shared.validation import positive_float
+from navkit.mapping._grid import OccupancyGrid
+from navkit.mapping._obstacle_distance import CELL_EPS, obstacle_distance
+
+__all__ = [
+    "FREE_SPACE",
+    "INSCRIBED_INFLATED_OBSTACLE",
+    "LETHAL_OBSTACLE",
+    "NO_INFORMATION",
+    "costmap",
+    "inflation_costs",
+    "traversal_costs",
+    "validate_costs",
+]
+
+# Cost values of ROS 2 Nav2 (nav2_costmap_2d/cost_values.hpp).
+NO_INFORMATION = 255
+LETHAL_OBSTACLE = 254
+INSCRIBED_INFLATED_OBSTACLE = 253
+FREE_SPACE = 0
+
+
+def validate_costs(costs: ArrayLike) -> FloatArray:
+    """Check a traversal-cost grid and return it as a C-contiguous float64 array.
+
+    The grid planners' convention: a 2-D array indexed ``[row, col]`` whose
+    finite values are >= 1 (cost per unit length of crossing the cell) and whose
+    ``+inf`` entries are impassable. The input is never modified; it is copied
+    only when a dtype or layout conversion is needed.
+
+    Raises
+    ------
+    ValueError
+        Wrong dimension, empty grid, non-numeric or boolean dtype, NaN, ``-inf``
+        or finite values below 1 (the message gives the first offending cell).
+
+    Examples
+    --------
+    >>> validate_costs([[1, 2], [np.inf, 1.5]])
+    array([[1. , 2. ],
+           [inf, 1.5]])
+    >>> validate_costs([[0.5]])
+    Traceback (most recent call last):
+    ...
+    ValueError: costs must be >= 1 where traversable (np.inf marks impassable cells); ...
+    """
+    return _validate_costs(costs, "costs")
+
+
+def inflation_costs(
+    occupied: BoolArray,
+    unknown: BoolArray,
+    resolution: float,
+    robot_radius: float,
+    inflation_radius: float,
+    cost_scaling_factor: float,
+    inflate_unknown: bool,
+) -> NDArray[np.uint8]:
+    """Nav2 inflation-layer costs for a static layer of occupied/unknown cells.
+
+    Reproduces ``nav2_costmap_2d::InflationLayer``: occupied cells get 254; cells
+    whose centre lies within ``robot_radius`` (Nav2's inscribed radius) of an
+    occupied centre get 253; farther cells up to
+    ``ceil(inflation_radius / resolution)`` cells away get
+    ``int(252 * exp(-cost_scaling_factor * (d - robot_radius)))``; the rest 0.
+    Unknown cells keep 255 unless the inflated cost is >= 253 (or > 0 with
+    ``inflate_unknown``). Distances use an exact Euclidean distance transform
+    where Nav2 propagates distances by a breadth-first wave, which can only
+    overestimate them. Arguments are not validated (see :func:`costmap`).
+
+    Examples
+    --------
+    >>> occ = np.array([[True, False, False, False]])
+    >>> inflation_costs(occ, ~occ & False, 1.0, 1.0, 2.0, 1.0, False)
+    array([[254, 253,  92,   0]], dtype=uint8)
+    """
+    dist_cells = obstacle_distance(occupied)
+    max_cells = math.ceil(inflation_radius / resolution)
+    dist_m = dist_cells * resolution
+    cost = np.zeros(occupied.shape, dtype=np.uint8)
+    band = (dist_cells > 0) & (dist_cells <= max_cells)
+    cost[band & (dist_m <= robot_radius)] = INSCRIBED_INFLATED_OBSTACLE
+    decaying = band & (dist_m > robot_radius)
+    factor = np.exp(-cost_scaling_factor * (dist_m[decaying] - robot_radius))
+    # Nav2 truncates: (unsigned char)((INSCRIBED_INFLATED_OBSTACLE - 1) * factor).
+    cost[decaying] = ((INSCRIBED_INFLATED_OBSTACLE - 1) * factor).astype(np.uint8)
+    cost[occupied] = LETHAL_OBSTACLE
+    keep_unknown = unknown & ~occupied
+    if inflate_unknown:
+        keep_unknown &= cost == FREE_SPACE
+    else:
+        keep_unknown &= cost < INSCRIBED_INFLATED_OBSTACLE
+    cost[keep_unknown] = NO_INFORMATION
+    return cost
+
+
+def _check_grid(grid: object) -> OccupancyGrid:
+    if not isinstance(grid, OccupancyGrid):
+        raise TypeError(f"grid must be an OccupancyGrid, got {type(grid).__name__}")
+    return grid
+
+
+def costmap(
+    grid: OccupancyGrid,
+    *,
+    robot_radius: float,
+    inflation_radius: float,
+    cost_scaling_factor: float = 10.0,
+    inflate_unknown: bool = False,
+) -> NDArray[np.uint8]:
+    """ROS 2 Nav2 static + inflation layer costs of a grid, uint8 array (rows, cols).
+
+    254 lethal (occupied), 253 inscribed (centre within ``robot_radius`` of an
+    obstacle), ``int(252 * exp(-cost_scaling_factor * (d - robot_radius)))``
+    out to ``ceil(inflation_radius / resolution)`` cells, 0 free, 255 unknown
+    (unknown cells take an inflated cost only when it is >= 253, or > 0 with
+    ``inflate_unknown``), as Nav2's ``InflationLayer``.
+
+    Parameters
+    ----------
+    grid : OccupancyGrid
+        Its occupied and unknown views are the static layer.
+    robot_radius : float
+        Radius of the robot's inscribed circle, m (>= 0); Nav2's inscribed radius.
+    inflation_radius : float
+        Distance up to which costs decay, m (>= ``robot_radius``).
+    cost_scaling_factor : float, default 10.0
+        Exponential decay rate, 1/m (> 0); Nav2's default.
+    inflate_unknown : bool, default False
+        Nav2's ``inflate_unknown`` parameter.
+
+    Examples
+    --------
+    >>> from navkit.mapping import OccupancyGrid
+    >>> grid = OccupancyGrid.from_occupancy(np.array([[True] + [False] * 5]), resolution=0.1)
+    >>> costmap(grid, robot_radius=0.1, inflation_radius=0.4)
+    array([[254, 253,  92,  34,  12,   0]], dtype=uint8)
+    """
+    g = _check_grid(grid)
+    insc = positive_float(robot_radius, "robot_radius", allow_zero=True)
+    infl = positive_float(inflation_radius, "inflation_radius", allow_zero=True)
+    if infl < insc:
+        raise ValueError(f"inflation_radius ({infl}) must be >= robot_radius ({insc})")
+    scale = positive_float(cost_scaling_factor, "cost_scaling_factor")
+    return inflation_costs(
+        g.occupied(),
+        g.unknown(),
+        g.resolution,
+        insc + CELL_EPS * g.resolution,
+        infl,
+        scale,
+        bool(inflate_unknown),
+    )
+
+
+def traversal_costs(
+    grid: OccupancyGrid,
+    *,
+    robot_radius: float = 0.0,
+    inflation_radius: float | None = None,
+    cost_scaling_factor: float = 10.0,
+    cost_weight: float = 4.0,
+    unknown_cost: float = math.inf,
+) -> FloatArray:
+    """Per-cell traversal costs of a grid for the grid planners, float64 (rows, cols).
+
+    Built from :func:`costmap`: lethal (254) and inscribed (253) cells are
+    ``inf`` (the robot's centre cannot go there), unknown cells (255) cost
+    ``unknown_cost``, and a Nav2 cost ``c`` in 0..252 becomes
+    ``1 + cost_weight * c / 252``, so free space costs exactly 1. The result
+    passes :func:`validate_costs`.
+
+    Parameters
+    ----------
+    grid : OccupancyGrid
+        The map.
+    robot_radius : float, default 0.0
+        Robot's inscribed radius, m. 0 treats the robot as a point.
+    inflation_radius : float, optional
+        Decay distance, m; defaults to ``robot_radius`` (no cost band
+        beyond the rounding to whole cells).
+    cost_scaling_factor : float, default 10.0
+        Decay rate of the inflation cost, 1/m.
+    cost_weight : float, default 4.0
+        Extra cost of a cell next to the inscribed zone; 4 makes the scale
+        match NavFn's ``50 + 0.8 c`` divided by its neutral cost 50.
+    unknown_cost : float, default inf
+        Cost of unknown cells: ``inf`` (impassable, the default) or any
+        value >= 1 to let planners cross unexplored space.
+
+    Examples
+    --------
+    >>> from navkit.mapping import OccupancyGrid
+    >>> occupied = np.array([[True, False, False, False]])
+    >>> unknown = np.array([[False, False, False, True]])
+    >>> grid = OccupancyGrid.from_occupancy(occupied, resolution=0.1, unknown=unknown)
+    >>> traversal_costs(grid, robot_radius=0.1, inflation_radius=0.2).round(3)
+    array([[ inf,  inf, 2.46,  inf]])
+    >>> traversal_costs(grid, unknown_cost=5.0)
+    array([[inf,  1.,  1.,  5.]])
+    """
+    g = _check_grid(grid)
+    insc = positive_float(robot_radius, "robot_radius", allow_zero=True)
+    infl = insc if inflation_radius is None else inflation_radius
+    weight = positive_float(cost_weight, "cost_weight", allow_zero=True)
+    unknown = float(unknown_cost)
+    if math.isnan(unknown) or unknown < 1.0:
+        raise ValueError(f"unknown_cost must be >= 1 or inf, got {unknown_cost}")
+    cost = costmap(
+        g, robot_radius=insc, inflation_radius=infl, cost_scaling_factor=cost_scaling_factor
+    )
+    out = 1.0 + weight * cost.astype(np.float64) / (INSCRIBED_INFLATED_OBSTACLE - 1)
+    out[cost >= INSCRIBED_INFLATED_OBSTACLE] = math.inf
+    out[cost == NO_INFORMATION] = unknown
+    return out

@@ -1,0 +1,225 @@
+"""The robot-centred local occupancy grid of the TurtleBot3 obstacle-avoidance paper."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import KW_ONLY, dataclass
+from typing import Literal, overload
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from navkit._shared.types import BoolArray, FloatArray, IntArray
+from navkit._shared.validation import as_points, positive_float
+
+__all__ = ["LocalGrid"]
+
+
+def _round_half_up(values: FloatArray) -> IntArray:
+    # np.rint rounds half to even; cell boundaries must not depend on parity.
+    return np.floor(values + 0.5).astype(np.int64)
+
+
+def _points(value: ArrayLike, name: str) -> tuple[FloatArray, bool]:
+    """``value`` as (N, 2) float64 points, and whether it was one point of shape (2,)."""
+    pts = as_points(value, name)
+    # Only a one-point result can come from a (2,) input; np.ndim converts no big input.
+    return pts, pts.shape[0] == 1 and np.ndim(value) == 1
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class LocalGrid:
+    """Square occupancy grid centred on the robot, in the robot frame.
+
+    The grid of the TurtleBot3 obstacle-avoidance paper generalised to any size:
+    cell ``(i, j)`` (``occupied[i, j]``) holds the robot-frame points
+    (x forward, y left, metres) with ``i = round((y + half_width) / resolution)``
+    and ``j = round((x + half_width) / resolution)``; with the defaults this is the
+    paper's ``i = 10 y + 10``, ``j = 10 x + 10`` on a 21 × 21 grid. Cell centres
+    lie on multiples of ``resolution`` and the robot is in the centre cell
+    ``(n // 2, n // 2)``. Rounding is half-up.
+
+    The conversions have the names of :class:`~navkit.mapping.OccupancyGrid`'s;
+    here the "world" of :meth:`world_to_cell` and :meth:`cell_to_world` is the
+    robot frame. Continuous coordinates put integers at cell centres, as there.
+
+    Parameters
+    ----------
+    occupied : ndarray of bool, shape (n, n)
+        True where at least one obstacle point falls in the cell; ``n`` is odd.
+        Stored as a read-only copy.
+    resolution : float
+        Cell size in metres.
+    half_width : float
+        Distance in metres from the robot to the centre of the outermost cells;
+        must equal ``(n - 1) / 2 * resolution``.
+
+    Examples
+    --------
+    >>> grid = LocalGrid.from_points([[0.5, -0.2]], half_width=1.0, resolution=0.1)
+    >>> grid.occupied.shape
+    (21, 21)
+    >>> grid.world_to_cell([0.5, -0.2])
+    array([ 8, 15])
+    >>> bool(grid.occupied[8, 15])
+    True
+    >>> grid.cell_to_world([10, 10])
+    array([0., 0.])
+    """
+
+    occupied: BoolArray
+    _: KW_ONLY
+    resolution: float
+    half_width: float
+
+    def __post_init__(self) -> None:
+        occ = np.array(self.occupied, copy=True)
+        if occ.dtype != np.bool_:
+            raise TypeError(f"occupied must be a boolean array, got dtype {occ.dtype}")
+        if occ.ndim != 2 or occ.shape[0] != occ.shape[1] or occ.shape[0] % 2 == 0:
+            raise ValueError(f"occupied must be a square (n, n) array with n odd, got {occ.shape}")
+        res = positive_float(self.resolution, "resolution")
+        half = positive_float(self.half_width, "half_width", allow_zero=True)
+        half_cells = (occ.shape[0] - 1) // 2
+        if not math.isclose(half, half_cells * res, rel_tol=1e-9, abs_tol=1e-12):
+            raise ValueError(
+                f"half_width must be (n - 1) / 2 * resolution = {half_cells * res} for an "
+                f"{occ.shape[0]} x {occ.shape[0]} grid, got {half}"
+            )
+        occ.flags.writeable = False
+        object.__setattr__(self, "occupied", occ)
+        object.__setattr__(self, "resolution", res)
+        object.__setattr__(self, "half_width", half)
+
+    @property
+    def size(self) -> int:
+        """Number of cells ``n`` along each side.
+
+        Examples
+        --------
+        >>> LocalGrid.from_points([], half_width=0.2, resolution=0.1).size
+        5
+        """
+        return int(self.occupied.shape[0])
+
+    @classmethod
+    def from_points(
+        cls, points_xy: ArrayLike, *, half_width: float = 1.0, resolution: float = 0.1
+    ) -> LocalGrid:
+        """Grid with the cells of the given robot-frame points set.
+
+        Parameters
+        ----------
+        points_xy : array_like, shape (N, 2) or (2,)
+            Obstacle points ``(x, y)`` in metres in the robot frame; points outside
+            the grid are ignored.
+        half_width : float, default 1.0
+            Half the side of the grid in metres. It is snapped to the nearest
+            multiple of ``resolution`` so that the robot sits on a cell centre.
+        resolution : float, default 0.1
+            Cell size in metres.
+
+        Examples
+        --------
+        >>> grid = LocalGrid.from_points([[0.1, 0.0], [5.0, 0.0]], half_width=0.2)
+        >>> grid.occupied.astype(int)
+        array([[0, 0, 0, 0, 0],
+               [0, 0, 0, 0, 0],
+               [0, 0, 0, 1, 0],
+               [0, 0, 0, 0, 0],
+               [0, 0, 0, 0, 0]])
+        """
+        res = positive_float(resolution, "resolution")
+        half = positive_float(half_width, "half_width", allow_zero=True)
+        half_cells = round(half / res)
+        n = 2 * half_cells + 1
+        occ = np.zeros((n, n), dtype=np.bool_)
+        pts = as_points(points_xy, "points_xy")
+        snapped = half_cells * res
+        cells = _round_half_up((pts[:, ::-1] + snapped) / res)
+        inside = np.all((cells >= 0) & (cells < n), axis=1)
+        occ[cells[inside, 0], cells[inside, 1]] = True
+        return cls(occ, resolution=res, half_width=snapped)
+
+    @overload
+    def world_to_cell(
+        self, points_xy: ArrayLike, *, continuous: Literal[False] = False
+    ) -> IntArray: ...
+
+    @overload
+    def world_to_cell(self, points_xy: ArrayLike, *, continuous: Literal[True]) -> FloatArray: ...
+
+    @overload
+    def world_to_cell(self, points_xy: ArrayLike, *, continuous: bool) -> IntArray | FloatArray: ...
+
+    def world_to_cell(
+        self, points_xy: ArrayLike, *, continuous: bool = False
+    ) -> IntArray | FloatArray:
+        """Grid coordinates ``(row i, col j)`` of robot-frame points ``(x, y)``.
+
+        Parameters
+        ----------
+        points_xy : array_like, shape (N, 2) or (2,)
+            Points in metres in the robot frame (this grid's "world").
+        continuous : bool, default False
+            False: the int64 cell of each point (round half up). True: float
+            continuous coordinates, integers at cell centres.
+
+        Returns
+        -------
+        ndarray, shape (N, 2), or (2,) for one point given as shape (2,)
+            Not clipped: points outside the grid fall outside ``[0, n)``; use
+            :meth:`contains` to test.
+
+        Examples
+        --------
+        >>> grid = LocalGrid.from_points([])
+        >>> grid.world_to_cell([[0.0, 0.0], [0.26, -0.5]])
+        array([[10, 10],
+               [ 5, 13]])
+        >>> grid.world_to_cell([0.26, -0.5], continuous=True).round(12)
+        array([ 5. , 12.6])
+        """
+        pts, single = _points(points_xy, "points_xy")
+        scaled = (pts[:, ::-1] + self.half_width) / self.resolution
+        out = scaled if continuous else _round_half_up(scaled)
+        return out[0] if single else out
+
+    def cell_to_world(self, cells: ArrayLike) -> FloatArray:
+        """Robot-frame points ``(x, y)`` in metres of grid coordinates ``(row, col)``.
+
+        Integer cells give their centres; continuous coordinates (integers at
+        cell centres) are accepted. Returns shape (N, 2), or (2,) for one cell
+        given as shape (2,).
+
+        Examples
+        --------
+        >>> grid = LocalGrid.from_points([])
+        >>> grid.cell_to_world([[10, 15], [3, 10]])
+        array([[ 0.5,  0. ],
+               [ 0. , -0.7]])
+        >>> grid.cell_to_world([10.5, 10.0])
+        array([0.  , 0.05])
+        """
+        arr, single = _points(cells, "cells")
+        out = arr[:, ::-1] * self.resolution - self.half_width
+        return out[0] if single else out
+
+    def contains(self, points_xy: ArrayLike) -> BoolArray:
+        """Whether each robot-frame point ``(x, y)`` falls in a cell of the grid.
+
+        Returns shape (N,) for points of shape (N, 2), and a 0-d array for one
+        point of shape (2,).
+
+        Examples
+        --------
+        >>> grid = LocalGrid.from_points([])
+        >>> grid.contains([[0.0, 1.04], [0.0, 1.06]])
+        array([ True, False])
+        >>> bool(grid.contains([0.0, 0.0]))
+        True
+        """
+        pts, single = _points(points_xy, "points_xy")
+        cells = self.world_to_cell(pts)
+        inside: BoolArray = np.all((cells >= 0) & (cells < self.size), axis=1)
+        return inside.reshape(()) if single else inside

@@ -1,0 +1,46 @@
+"""Files and messages: ROS map_server maps, ROS messages and CARMEN laser logs.
+
+* :func:`read_map` / :func:`write_map`: ROS map_server maps (YAML + PGM or, with
+  Pillow, other images), as :class:`~navkit.mapping.OccupancyGrid`;
+  ``OccupancyGrid.load`` and ``OccupancyGrid.save`` call them.
+* :func:`grid_from_msg` / :func:`grid_to_msg_fields`: ``nav_msgs/OccupancyGrid``
+  messages (or look-alikes); :func:`scan_from_msg`: ``sensor_msgs/LaserScan``.
+  ROS is never imported.
+* :func:`read_carmen`: a CARMEN log (FLASER / ROBOTLASER1 lines, gzip'd or not)
+  as :class:`~navkit.mapping.LaserScan` objects with their laser and robot poses
+  and timestamps (:class:`CarmenLog`).
+
+Examples
+--------
+>>> import tempfile
+>>> from pathlib import Path
+>>> import numpy as np
+>>> from navkit.mapping import OccupancyGrid
+>>> grid = OccupancyGrid.from_occupancy(np.eye(2, dtype=bool), resolution=0.1)
+>>> with tempfile.TemporaryDirectory() as folder:
+...     image = write_map(grid, Path(folder) / "map.yaml")
+...     read_map(Path(folder) / "map.yaml").occupied().tolist()
+[[True, False], [False, True]]
+>>> grid_to_msg_fields(grid, trinary=True).data
+array([100,   0,   0, 100], dtype=int8)
+"""
+
+from navkit.mapping.io._carmen import CarmenLog, read_carmen
+from navkit.mapping.io._map_files import read_map, write_map
+from navkit.mapping.io._ros_msgs import (
+    OccupancyGridMsgFields,
+    grid_from_msg,
+    grid_to_msg_fields,
+    scan_from_msg,
+)
+
+__all__ = [
+    "CarmenLog",
+    "OccupancyGridMsgFields",
+    "grid_from_msg",
+    "grid_to_msg_fields",
+    "read_carmen",
+    "read_map",
+    "scan_from_msg",
+    "write_map",
+]

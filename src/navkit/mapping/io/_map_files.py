@@ -1,0 +1,605 @@
+"""ROS map_server map files: the map YAML, PGM images and (with Pillow) other images.
+
+The YAML is read with PyYAML's safe loader (every key map_server knows is
+understood; other keys are ignored). Images: PGM (P5, P2) is read and written
+with numpy; other formats are read with Pillow.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import math
+import os
+import secrets
+import stat
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import yaml
+from numpy.typing import NDArray
+
+from navkit.geometry import Pose2D
+from navkit.mapping import OccupancyGrid
+
+__all__ = [
+    "MapMetadata",
+    "map_yaml_text",
+    "pgm_bytes",
+    "pixel_occupancy",
+    "read_image",
+    "read_map",
+    "read_map_yaml",
+    "read_pgm",
+    "write_map",
+]
+
+_MODES = ("trinary", "scale", "raw")
+_WRITE_MODES = ("trinary", "scale")
+_REQUIRED = ("image", "resolution", "origin", "negate", "occupied_thresh", "free_thresh")
+# The C loader when PyYAML was built with libyaml (same results, faster).
+_Loader: Any = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
+
+
+@dataclass(frozen=True, slots=True)
+class MapMetadata:
+    """Content of a map_server YAML file (``image`` resolved against the YAML's folder).
+
+    Examples
+    --------
+    >>> MapMetadata(Path("map.pgm"), 0.05, (0.0, 0.0, 0.0), False, 0.65, 0.196, "trinary").mode
+    'trinary'
+    """
+
+    image: Path
+    resolution: float
+    origin: tuple[float, float, float]
+    negate: bool
+    occupied_thresh: float
+    free_thresh: float
+    mode: str
+
+
+def _as_float(value: Any, key: str, path: Path) -> float:
+    # YAML 1.1 reads "1e-3" (no dot) as a string: numbers in text are accepted too.
+    if isinstance(value, bool) or not isinstance(value, (int, float, str)):
+        raise ValueError(f"{path}: {key} must be a number, got {value!r}")
+    try:
+        out = float(value)
+    except ValueError:
+        raise ValueError(f"{path}: {key} must be a number, got {value!r}") from None
+    if not math.isfinite(out):
+        raise ValueError(f"{path}: {key} must be finite, got {value!r}")
+    return out
+
+
+def _as_negate(value: Any, path: Path) -> bool:
+    if isinstance(value, bool):
+        return value
+    if isinstance(value, int) and value in (0, 1):
+        return bool(value)
+    if isinstance(value, str) and value.lower() in ("0", "1", "true", "false"):
+        return value.lower() in ("1", "true")
+    raise ValueError(f"{path}: negate must be 0 or 1, got {value!r}")
+
+
+def _load_yaml(text: str, path: Path) -> dict[str, Any]:
+    try:
+        doc = yaml.load(text, Loader=_Loader)  # _Loader is a safe loader
+    except yaml.YAMLError as exc:
+        mark = getattr(exc, "context_mark", None) or getattr(exc, "problem_mark", None)
+        where = f"{path}:{mark.line + 1}" if mark is not None else str(path)
+        problem = getattr(exc, "problem", None) or str(exc)
+        raise ValueError(f"{where}: expected 'key: value' lines ({problem})") from None
+    if not isinstance(doc, dict):
+        raise ValueError(f"{path}: expected 'key: value' lines, got {type(doc).__name__}")
+    return {str(key): value for key, value in doc.items()}
+
+
+def read_map_yaml(path: str | os.PathLike[str]) -> MapMetadata:
+    """Parse a map_server YAML file and check every required key.
+
+    Raises
+    ------
+    FileNotFoundError
+        The YAML or the image it names does not exist.
+    ValueError
+        Not a YAML mapping, a required key is missing, or a value is out of
+        range (resolution <= 0, thresholds outside [0, 1] or
+        ``free_thresh >= occupied_thresh``, unknown ``mode``).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     _ = (Path(folder) / "m.pgm").write_bytes(b"P5 1 1 255 \\xff")
+    ...     _ = (Path(folder) / "m.yaml").write_text(
+    ...         "image: m.pgm\\nresolution: 0.5\\norigin: [1, 2, 0]\\nnegate: 0\\n"
+    ...         "occupied_thresh: 0.65\\nfree_thresh: 0.196\\n")
+    ...     meta = read_map_yaml(Path(folder) / "m.yaml")
+    >>> meta.image.name, meta.origin, meta.mode
+    ('m.pgm', (1.0, 2.0, 0.0), 'trinary')
+    """
+    yaml_path = Path(path)
+    if not yaml_path.is_file():
+        raise FileNotFoundError(f"map YAML file {yaml_path} does not exist")
+    entries = _load_yaml(yaml_path.read_text(encoding="utf-8"), yaml_path)
+    missing = [key for key in _REQUIRED if key not in entries]
+    if missing:
+        raise ValueError(f"{yaml_path}: missing required key(s) {', '.join(missing)}")
+
+    image = entries["image"]
+    if not isinstance(image, str) or not image:
+        raise ValueError(f"{yaml_path}: image must be a file name, got {image!r}")
+    image_path = Path(image)
+    if not image_path.is_absolute():
+        image_path = yaml_path.parent / image_path
+    if not image_path.is_file():
+        raise FileNotFoundError(f"{yaml_path}: map image {image_path} does not exist")
+
+    resolution = _as_float(entries["resolution"], "resolution", yaml_path)
+    if resolution <= 0.0:
+        raise ValueError(f"{yaml_path}: resolution must be > 0, got {resolution}")
+    origin_raw = entries["origin"]
+    if not isinstance(origin_raw, list) or len(origin_raw) != 3:
+        raise ValueError(f"{yaml_path}: origin must be a list [x, y, yaw], got {origin_raw!r}")
+    ox, oy, oyaw = (_as_float(v, "origin", yaml_path) for v in origin_raw)
+    negate = _as_negate(entries["negate"], yaml_path)
+    occ = _as_float(entries["occupied_thresh"], "occupied_thresh", yaml_path)
+    free = _as_float(entries["free_thresh"], "free_thresh", yaml_path)
+    if not (0.0 <= free < occ <= 1.0):
+        raise ValueError(
+            f"{yaml_path}: need 0 <= free_thresh < occupied_thresh <= 1, got "
+            f"free_thresh={free}, occupied_thresh={occ}"
+        )
+    mode = entries.get("mode", "trinary")
+    if not isinstance(mode, str) or mode.lower() not in _MODES:
+        raise ValueError(f"{yaml_path}: mode must be one of {', '.join(_MODES)}, got {mode!r}")
+    return MapMetadata(image_path, resolution, (ox, oy, oyaw), negate, occ, free, mode.lower())
+
+
+def map_yaml_text(meta: MapMetadata, image_name: str) -> str:
+    """map_server YAML text for ``meta`` naming the image ``image_name``.
+
+    PyYAML quotes the name when plain YAML would misread it (``#``, ``: ``,
+    leading ``[`` or spaces, ...).
+
+    Raises
+    ------
+    ValueError
+        ``image_name`` cannot be stored so that reading the YAML gives it back
+        (it is not valid Unicode, or holds a character YAML treats as a line break).
+
+    Examples
+    --------
+    >>> meta = MapMetadata(Path("x"), 0.05, (1.0, -2.0, 0.0), False, 0.65, 0.196, "trinary")
+    >>> print(map_yaml_text(meta, "my map #2.pgm"), end="")
+    image: 'my map #2.pgm'
+    mode: trinary
+    resolution: 0.05
+    origin: [1.0, -2.0, 0.0]
+    negate: 0
+    occupied_thresh: 0.65
+    free_thresh: 0.196
+    """
+    try:
+        image_name.encode("utf-8")
+    except UnicodeEncodeError:
+        raise ValueError(
+            f"the image name {image_name!r} is not valid Unicode and cannot be stored in "
+            "a map YAML; choose another file name"
+        ) from None
+    ox, oy, oyaw = meta.origin
+    doc = {
+        "image": image_name,
+        "mode": meta.mode,
+        "resolution": float(meta.resolution),
+        "origin": [float(ox), float(oy), float(oyaw)],
+        "negate": int(meta.negate),
+        "occupied_thresh": float(meta.occupied_thresh),
+        "free_thresh": float(meta.free_thresh),
+    }
+    text = yaml.safe_dump(
+        doc, sort_keys=False, default_flow_style=None, allow_unicode=True, width=1 << 30
+    )
+    try:
+        back = yaml.load(text, Loader=_Loader)  # _Loader is a safe loader
+    except yaml.YAMLError:
+        back = None
+    if not isinstance(back, dict) or back.get("image") != image_name:
+        raise ValueError(
+            f"the image name {image_name!r} would not read back from a map YAML; "
+            "choose another file name"
+        )
+    return text
+
+
+def _pgm_header(data: bytes, path: Path) -> tuple[str, int, int, int, int]:
+    """Parse magic, width, height, maxval; return them and the raster offset."""
+    if data[:2] not in (b"P5", b"P2"):
+        raise ValueError(f"{path}: not a PGM image (magic {data[:2]!r}, expected P5 or P2)")
+    fields: list[int] = []
+    pos = 2
+    n = len(data)
+    while len(fields) < 3:
+        while pos < n and data[pos : pos + 1].isspace():
+            pos += 1
+        if pos < n and data[pos : pos + 1] == b"#":
+            while pos < n and data[pos : pos + 1] not in (b"\n", b"\r"):
+                pos += 1
+            continue
+        start = pos
+        while pos < n and not data[pos : pos + 1].isspace() and data[pos : pos + 1] != b"#":
+            pos += 1
+        token = data[start:pos]
+        if not token:
+            raise ValueError(f"{path}: PGM header ends before width, height and maxval")
+        if not token.isdigit():
+            raise ValueError(f"{path}: bad PGM header field {token!r} (expected an integer)")
+        fields.append(int(token))
+    width, height, maxval = fields
+    if width <= 0 or height <= 0:
+        raise ValueError(f"{path}: PGM size must be positive, got {width} x {height}")
+    if not 0 < maxval < 65536:
+        raise ValueError(f"{path}: PGM maxval must be in 1..65535, got {maxval}")
+    if pos >= n or not data[pos : pos + 1].isspace():
+        raise ValueError(f"{path}: PGM header must end with one whitespace byte after maxval")
+    return data[:2].decode(), width, height, maxval, pos + 1
+
+
+def read_pgm(path: str | os.PathLike[str]) -> NDArray[np.float64]:
+    """Read a binary (P5) or ASCII (P2) PGM image as grey levels scaled to 0..255.
+
+    Returns a float64 array of shape (height, width) in file order (row 0 is the
+    top of the image).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     _ = (Path(folder) / "a.pgm").write_bytes(b"P2\\n2 1\\n100\\n0 100\\n")
+    ...     read_pgm(Path(folder) / "a.pgm")
+    array([[  0., 255.]])
+    """
+    pgm = Path(path)
+    data = pgm.read_bytes()
+    magic, width, height, maxval, offset = _pgm_header(data, pgm)
+    count = width * height
+    if magic == "P5":
+        dtype = np.dtype(np.uint8) if maxval < 256 else np.dtype(">u2")
+        need = count * dtype.itemsize
+        if len(data) - offset < need:
+            raise ValueError(
+                f"{pgm}: PGM raster truncated: {len(data) - offset} bytes for "
+                f"{width} x {height} pixels ({need} bytes needed)"
+            )
+        pixels = np.frombuffer(data, dtype=dtype, count=count, offset=offset).astype(np.int64)
+    else:
+        tokens = data[offset:].split()
+        if len(tokens) < count:
+            raise ValueError(f"{pgm}: PGM raster truncated: {len(tokens)} of {count} values")
+        try:
+            pixels = np.array([int(t) for t in tokens[:count]], dtype=np.int64)
+        except ValueError:
+            raise ValueError(f"{pgm}: P2 raster holds a non-integer value") from None
+    if pixels.size and (pixels.min() < 0 or pixels.max() > maxval):
+        raise ValueError(f"{pgm}: PGM pixel values exceed maxval {maxval}")
+    return pixels.reshape(height, width).astype(np.float64) * (255.0 / maxval)
+
+
+def pgm_bytes(pixels: NDArray[np.uint8]) -> bytes:
+    """Content of an 8-bit binary (P5) PGM; ``pixels`` row 0 is the top of the image.
+
+    Examples
+    --------
+    >>> pgm_bytes(np.array([[0, 255]], dtype=np.uint8))
+    b'P5\\n# CREATOR: navkit\\n2 1\\n255\\n\\x00\\xff'
+    """
+    height, width = pixels.shape
+    header = f"P5\n# CREATOR: navkit\n{width} {height}\n255\n".encode("ascii")
+    return header + np.ascontiguousarray(pixels, dtype=np.uint8).tobytes()
+
+
+def _read_with_pillow(path: Path) -> tuple[NDArray[np.float64], NDArray[np.float64] | None]:
+    try:
+        from PIL import Image
+    except ImportError:
+        raise ImportError(
+            f"reading the map image {path.name} needs Pillow (only PGM is read without "
+            "it); install it with `pip install pillow`"
+        ) from None
+    with Image.open(path) as img:
+        if img.mode not in ("L", "LA", "RGB", "RGBA", "I", "I;16", "P", "1"):
+            img = img.convert("RGBA")
+        if img.mode in ("P", "1"):
+            img = img.convert("RGBA" if "transparency" in img.info else "L")
+        arr = np.asarray(img)
+        mode = img.mode
+    if mode in ("I", "I;16"):
+        peak = 65535.0 if arr.max(initial=0) > 255 else 255.0
+        return arr.astype(np.float64) * (255.0 / peak), None
+    if arr.ndim == 2:
+        return arr.astype(np.float64), None
+    has_alpha = mode in ("LA", "RGBA")
+    colour = arr[..., :-1] if has_alpha else arr
+    grey = colour.astype(np.float64).mean(axis=2)
+    alpha = arr[..., -1].astype(np.float64) if has_alpha else None
+    return grey, alpha
+
+
+def read_image(path: Path) -> tuple[NDArray[np.float64], NDArray[np.float64] | None]:
+    """Grey levels 0..255 (averaged over colour channels) and alpha (or None) of an image.
+
+    PGM files are read with numpy; anything else needs Pillow.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     _ = (Path(folder) / "a.pgm").write_bytes(pgm_bytes(np.array([[0, 205]], np.uint8)))
+    ...     read_image(Path(folder) / "a.pgm")
+    (array([[  0., 205.]]), None)
+    """
+    with path.open("rb") as fh:
+        magic = fh.read(2)
+    if magic in (b"P5", b"P2"):
+        return read_pgm(path), None
+    if path.suffix.lower() == ".pgm":
+        raise ValueError(f"{path}: not a PGM image (magic {magic!r}, expected P5 or P2)")
+    return _read_with_pillow(path)
+
+
+def pixel_occupancy(
+    grey: NDArray[np.float64],
+    alpha: NDArray[np.float64] | None,
+    meta: MapMetadata,
+) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
+    """map_server's reading of pixels: occupancy probability and unknown mask.
+
+    With ``negate`` 0, ``p = (255 - v) / 255``. In ``trinary`` mode a pixel is
+    occupied (p = 1) above ``occupied_thresh``, free (p = 0) below ``free_thresh``
+    and unknown otherwise. ``scale`` keeps ``p`` itself for the in-between pixels
+    and makes non-opaque ones unknown; ``raw`` reads the grey value directly as a
+    percentage (values above 100 are unknown). Rows are in image order.
+
+    Examples
+    --------
+    >>> meta = MapMetadata(Path("m.pgm"), 0.05, (0.0, 0.0, 0.0), False, 0.65, 0.196, "trinary")
+    >>> prob, unknown = pixel_occupancy(np.array([[0.0, 205.0, 254.0]]), None, meta)
+    >>> prob, unknown
+    (array([[1. , 0.5, 0. ]]), array([[False,  True, False]]))
+    """
+    if meta.mode == "raw":
+        value = np.rint(grey)
+        unknown = value > 100
+        return np.where(unknown, 0.5, value / 100.0), unknown
+    p = grey / 255.0 if meta.negate else (255.0 - grey) / 255.0
+    occupied = p > meta.occupied_thresh
+    free = p < meta.free_thresh
+    between = ~occupied & ~free
+    if meta.mode == "trinary":
+        prob = np.where(occupied, 1.0, np.where(free, 0.0, 0.5))
+        return prob, between
+    unknown = between & (alpha < 255.0) if alpha is not None else np.zeros_like(between)
+    prob = np.where(occupied, 1.0, np.where(free, 0.0, p))
+    return prob, unknown
+
+
+def read_map(path: str | os.PathLike[str]) -> OccupancyGrid:
+    """Load a ROS map_server map (YAML + image) as an :class:`~navkit.mapping.OccupancyGrid`.
+
+    Understands the keys ``image``, ``resolution``, ``origin`` [x, y, yaw],
+    ``negate``, ``occupied_thresh``, ``free_thresh`` (all required, as in
+    Nav2's map_server) and ``mode`` (``trinary`` by default, ``scale`` or
+    ``raw``). PGM images (P5, P2) are read with numpy; other formats such as
+    PNG need Pillow. The image's top row becomes the last grid row. The
+    YAML's thresholds become the grid's thresholds, so the views reproduce
+    map_server's trinary classification.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The map's YAML file; a relative ``image`` is found beside it.
+
+    Raises
+    ------
+    FileNotFoundError
+        Missing YAML or image file.
+    ValueError
+        Missing or invalid YAML keys, malformed PGM.
+    ImportError
+        A non-PGM image and Pillow is not installed.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     _ = (Path(folder) / "m.pgm").write_bytes(b"P5 2 1 255 \\x00\\xfe")
+    ...     _ = (Path(folder) / "m.yaml").write_text(
+    ...         "image: m.pgm\\nresolution: 0.5\\norigin: [1, 2, 0]\\nnegate: 0\\n"
+    ...         "occupied_thresh: 0.65\\nfree_thresh: 0.196\\n")
+    ...     grid = read_map(Path(folder) / "m.yaml")
+    >>> grid.occupied().tolist(), grid.free().tolist(), grid.origin
+    ([[True, False]], [[False, True]], Pose2D(x=1.0, y=2.0, theta=0.0))
+    """
+    meta = read_map_yaml(path)
+    grey, alpha = read_image(meta.image)
+    prob, unknown = pixel_occupancy(grey, alpha, meta)
+    return OccupancyGrid.from_probabilities(
+        np.where(unknown, 0.5, prob)[::-1],
+        resolution=meta.resolution,
+        origin=Pose2D(*meta.origin),
+        occupied_thresh=meta.occupied_thresh,
+        free_thresh=meta.free_thresh,
+    )
+
+
+def _map_pixels(grid: OccupancyGrid, mode: str) -> NDArray[np.uint8]:
+    """Image pixels of ``grid`` in grid row order (row 0 = lowest y)."""
+    occ_t, free_t = grid.occupied_thresh, grid.free_thresh
+    occupied, free = grid.occupied(), grid.free()
+    if mode == "trinary":
+        unknown_px = 205
+        p_unknown = (255 - unknown_px) / 255.0
+        if not free_t <= p_unknown <= occ_t:
+            unknown_px = round(255.0 * (1.0 - 0.5 * (occ_t + free_t)))
+        pixels = np.full(grid.shape, unknown_px, dtype=np.uint8)
+        pixels[free] = 254
+        pixels[occupied] = 0
+        return pixels
+    pixels = np.rint(255.0 * (1.0 - grid.probability())).astype(np.uint8)
+    # Rounding may push a class-boundary probability across a threshold.
+    p_px = (255.0 - pixels) / 255.0
+    pixels[occupied & ~(p_px > occ_t)] = 0
+    pixels[free & ~(p_px < free_t)] = 255
+    between = ~occupied & ~free & ((p_px > occ_t) | (p_px < free_t))
+    pixels[between] = round(255.0 * (1.0 - 0.5 * (occ_t + free_t)))
+    return pixels
+
+
+def _write_temporary(target: Path, data: bytes) -> Path:
+    """Write ``data`` to a new hidden file beside ``target`` and flush it to disk.
+
+    The file is created exclusively with mode 0o666 less the umask (what a
+    plain write would give a new file), or with ``target``'s mode when it exists.
+    """
+    for _ in range(100):
+        temporary = target.with_name(f".{target.name}.{secrets.token_hex(4)}.tmp")
+        try:
+            fd = os.open(
+                temporary, os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_BINARY", 0), 0o666
+            )
+        except FileExistsError:
+            continue
+        break
+    else:  # pragma: no cover - 100 random names taken
+        raise FileExistsError(f"cannot create a temporary file beside {target}")
+    try:
+        with os.fdopen(fd, "wb") as fh:
+            fh.write(data)
+            fh.flush()
+            os.fsync(fh.fileno())
+        with contextlib.suppress(FileNotFoundError):
+            os.chmod(temporary, stat.S_IMODE(os.stat(target).st_mode))
+    except BaseException:
+        temporary.unlink(missing_ok=True)
+        raise
+    return temporary
+
+
+def _replace_all(files: list[tuple[Path, bytes]]) -> None:
+    """Write every ``(target, data)`` to a temporary file first, then rename them all.
+
+    A failure while writing (disk full, permissions, an interrupt) leaves every
+    target as it was and removes the temporary files.
+    """
+    temporaries: list[tuple[Path, Path]] = []
+    try:
+        for target, data in files:
+            temporaries.append((_write_temporary(target, data), target))
+        for temporary, target in temporaries:
+            os.replace(temporary, target)
+    finally:
+        for temporary, _ in temporaries:
+            temporary.unlink(missing_ok=True)
+    with contextlib.suppress(OSError):  # make the renames durable where possible (POSIX)
+        fd = os.open(files[0][0].parent, os.O_RDONLY)
+        try:
+            os.fsync(fd)
+        finally:
+            os.close(fd)
+
+
+def _image_path(yaml_path: Path) -> Path:
+    """The image written beside ``yaml_path``; refuses paths it would overwrite."""
+    if not yaml_path.name:
+        raise ValueError(f"path must name a YAML file, got {str(yaml_path)!r}")
+    if yaml_path.suffix.lower() == ".pgm":
+        raise ValueError(
+            f"path {str(yaml_path)!r} ends in .pgm, the image's own name: the image would "
+            "overwrite the YAML; give the YAML file another suffix such as .yaml"
+        )
+    image = yaml_path.with_suffix(".pgm")
+    for target in (yaml_path, image):
+        if target.is_dir():
+            raise IsADirectoryError(f"cannot write the map file {target}: it is a directory")
+    if image.exists() and yaml_path.exists() and os.path.samefile(image, yaml_path):
+        raise ValueError(f"{yaml_path} and {image} are the same file")
+    return image
+
+
+def write_map(grid: OccupancyGrid, path: str | os.PathLike[str], *, mode: str = "trinary") -> Path:
+    """Save a grid as a ROS map_server map: ``path`` (YAML) and a P5 PGM beside it.
+
+    Both files are written to temporary files in the same folder first and then
+    renamed over the targets (``os.replace``), so a failure while writing (a
+    full disk, an interrupt) leaves an existing map as it was. The image is
+    renamed first; only a crash between the two renames (microseconds) could
+    pair the new image with the old YAML.
+
+    Parameters
+    ----------
+    grid : OccupancyGrid
+        The map to save.
+    path : str or path-like
+        YAML file to write; the image is the same name with suffix ``.pgm``
+        (``map.yaml`` → ``map.pgm``), stored relative to the YAML.
+    mode : {"trinary", "scale"}
+        ``trinary`` writes map_saver's pixels (0 occupied, 254 free, 205
+        unknown, or a mid grey when 205 would not be unknown under the grid's
+        thresholds); ``scale`` writes ``round(255 * (1 - p))``. Either way
+        loading the files gives back the same occupied/free/unknown classes.
+
+    Returns
+    -------
+    Path
+        The image file written.
+
+    Raises
+    ------
+    ValueError
+        Unknown ``mode``; a ``path`` ending in ``.pgm`` (in any case: the image
+        would overwrite the YAML); an image name that the YAML could not give
+        back when read. Nothing is written then.
+    IsADirectoryError
+        The YAML or the image path is a directory.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> grid = OccupancyGrid.from_occupancy(np.array([[True, False]]), resolution=0.5)
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     image = write_map(grid, Path(folder) / "room.yaml")
+    ...     again = read_map(Path(folder) / "room.yaml")
+    ...     print(image.name, again.occupied().tolist())
+    ...     print((Path(folder) / "room.yaml").read_text(), end="")
+    room.pgm [[True, False]]
+    image: room.pgm
+    mode: trinary
+    resolution: 0.5
+    origin: [0.0, 0.0, 0.0]
+    negate: 0
+    occupied_thresh: 0.65
+    free_thresh: 0.196
+    """
+    if not isinstance(grid, OccupancyGrid):
+        raise TypeError(f"grid must be an OccupancyGrid, got {type(grid).__name__}")
+    if mode not in _WRITE_MODES:
+        raise ValueError(f"mode must be 'trinary' or 'scale', got {mode!r}")
+    yaml_path = Path(path)
+    image = _image_path(yaml_path)
+    o = grid.origin
+    meta = MapMetadata(
+        image,
+        grid.resolution,
+        (o.x, o.y, o.theta),
+        False,
+        grid.occupied_thresh,
+        grid.free_thresh,
+        mode,
+    )
+    text = map_yaml_text(meta, image.name)
+    pixels = _map_pixels(grid, mode)
+    _replace_all([(image, pgm_bytes(pixels[::-1])), (yaml_path, text.encode("utf-8"))])
+    return image

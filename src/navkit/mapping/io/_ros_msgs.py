@@ -1,0 +1,229 @@
+"""Conversion from and to ROS messages (``nav_msgs/OccupancyGrid``, ``sensor_msgs/LaserScan``).
+
+ROS is never imported: a real message or any look-alike with the same field
+names works, and the fields of an outgoing message are returned as plain values.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from navkit._shared.validation import finite_float, positive_float
+from navkit.geometry import Pose2D
+from navkit.mapping import LaserScan, OccupancyGrid
+
+__all__ = ["OccupancyGridMsgFields", "grid_from_msg", "grid_to_msg_fields", "scan_from_msg"]
+
+
+def _positive_int(value: Any, name: str) -> int:
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value <= 0:
+        raise ValueError(f"{name} must be a positive integer, got {value!r}")
+    return int(value)
+
+
+def _tuple_of_floats(value: Any, n: int, name: str) -> tuple[float, ...]:
+    items = tuple(value)
+    if len(items) != n:
+        raise ValueError(f"{name} must hold {n} numbers, got {value!r}")
+    return tuple(finite_float(v, f"{name}[{i}]") for i, v in enumerate(items))
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class OccupancyGridMsgFields:
+    """Values for the fields of a ``nav_msgs/OccupancyGrid`` message.
+
+    Parameters
+    ----------
+    width, height : int
+        ``info.width`` (columns) and ``info.height`` (rows).
+    resolution : float
+        ``info.resolution``, m per cell.
+    origin_position : (float, float, float)
+        ``info.origin.position`` ``(x, y, z)``.
+    origin_orientation : (float, float, float, float)
+        ``info.origin.orientation`` quaternion ``(x, y, z, w)``.
+    data : array_like of int, shape (width * height,)
+        Row-major occupancy in percent (0..100) or -1 for unknown; stored as a
+        read-only int8 copy.
+
+    Examples
+    --------
+    >>> fields = OccupancyGridMsgFields(2, 1, 0.1, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0),
+    ...                                 [100, -1])
+    >>> fields.data
+    array([100,  -1], dtype=int8)
+    """
+
+    width: int
+    height: int
+    resolution: float
+    origin_position: tuple[float, float, float]
+    origin_orientation: tuple[float, float, float, float]
+    data: NDArray[np.int8]
+
+    def __post_init__(self) -> None:
+        width = _positive_int(self.width, "width")
+        height = _positive_int(self.height, "height")
+        object.__setattr__(self, "width", width)
+        object.__setattr__(self, "height", height)
+        object.__setattr__(self, "resolution", positive_float(self.resolution, "resolution"))
+        object.__setattr__(
+            self, "origin_position", _tuple_of_floats(self.origin_position, 3, "origin_position")
+        )
+        object.__setattr__(
+            self,
+            "origin_orientation",
+            _tuple_of_floats(self.origin_orientation, 4, "origin_orientation"),
+        )
+        raw = np.asarray(self.data)
+        if raw.dtype == np.bool_ or raw.dtype.kind not in "iu":
+            raise TypeError(f"data must hold integers, got dtype {raw.dtype}")
+        if raw.ndim != 1 or raw.shape[0] != width * height:
+            raise ValueError(
+                f"data must have shape ({width * height},) (width * height), got {raw.shape}"
+            )
+        if raw.size and (raw.min() < -1 or raw.max() > 100):
+            raise ValueError("data values must be -1 (unknown) or 0..100")
+        data = np.array(raw, dtype=np.int8, copy=True)
+        data.flags.writeable = False
+        object.__setattr__(self, "data", data)
+
+
+def grid_from_msg(msg: Any) -> OccupancyGrid:
+    """Grid from a ``nav_msgs/OccupancyGrid`` (or any look-alike with its field names).
+
+    ``data`` is row-major int8 with row 0 at the origin: -1 is unknown and
+    0..100 the occupancy probability in percent. The origin's quaternion is
+    reduced to its yaw.
+
+    Raises
+    ------
+    TypeError
+        ``msg`` lacks a field of the message.
+    ValueError
+        Non-positive size, ``data`` of the wrong length or with values outside
+        -1..100.
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace as NS
+    >>> msg = NS(info=NS(width=2, height=1, resolution=0.1,
+    ...                  origin=NS(position=NS(x=1.0, y=0.0, z=0.0),
+    ...                            orientation=NS(x=0.0, y=0.0, z=0.0, w=1.0))),
+    ...          data=[100, -1])
+    >>> grid = grid_from_msg(msg)
+    >>> grid.occupied().tolist(), grid.unknown().tolist(), grid.origin.x
+    ([[True, False]], [[False, True]], 1.0)
+    """
+    try:
+        info = msg.info
+        width = int(info.width)
+        height = int(info.height)
+        resolution = info.resolution
+        pos = info.origin.position
+        q = info.origin.orientation
+        ox, oy = float(pos.x), float(pos.y)
+        qx, qy, qz, qw = float(q.x), float(q.y), float(q.z), float(q.w)
+        raw = msg.data
+    except AttributeError as exc:
+        raise TypeError(f"msg is not a nav_msgs/OccupancyGrid: {exc}") from None
+    data = np.asarray(raw, dtype=np.int64).ravel()
+    if width <= 0 or height <= 0:
+        raise ValueError(f"msg.info width and height must be positive, got {width}x{height}")
+    if data.size != width * height:
+        raise ValueError(
+            f"msg.data has {data.size} values, expected width*height = {width * height}"
+        )
+    if ((data < -1) | (data > 100)).any():
+        raise ValueError("msg.data values must be -1 (unknown) or 0..100")
+    yaw = math.atan2(2.0 * (qw * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz))
+    prob = np.where(data < 0, 0.5, data / 100.0).reshape(height, width)
+    return OccupancyGrid.from_probabilities(prob, resolution=resolution, origin=Pose2D(ox, oy, yaw))
+
+
+def grid_to_msg_fields(grid: OccupancyGrid, *, trinary: bool = False) -> OccupancyGridMsgFields:
+    """Field values of the ``nav_msgs/OccupancyGrid`` equivalent to ``grid``.
+
+    Parameters
+    ----------
+    grid : OccupancyGrid
+        The map.
+    trinary : bool, default False
+        False: ``data`` is the rounded probability in percent, with -1 for
+        cells whose log-odds are exactly 0 (never observed). True: 100 for
+        occupied, 0 for free, -1 for unknown cells according to the grid's
+        thresholds (what map_server publishes).
+
+    Returns
+    -------
+    OccupancyGridMsgFields
+        ``origin_position`` is ``(x, y, 0)``, ``origin_orientation`` the yaw's
+        quaternion and ``data`` the row-major cells (row 0 at the origin).
+
+    Examples
+    --------
+    >>> grid = OccupancyGrid.from_occupancy(np.array([[True, False]]), resolution=0.1)
+    >>> fields = grid_to_msg_fields(grid)
+    >>> fields.data, fields.width, fields.height
+    (array([100,   0], dtype=int8), 2, 1)
+    """
+    if not isinstance(grid, OccupancyGrid):
+        raise TypeError(f"grid must be an OccupancyGrid, got {type(grid).__name__}")
+    if trinary:
+        data = np.full(grid.shape, -1, dtype=np.int8)
+        data[grid.occupied()] = 100
+        data[grid.free()] = 0
+    else:
+        data = np.rint(grid.probability() * 100.0).astype(np.int8)
+        data[grid.logodds == 0.0] = -1
+    o = grid.origin
+    half = 0.5 * o.theta
+    return OccupancyGridMsgFields(
+        width=grid.shape[1],
+        height=grid.shape[0],
+        resolution=grid.resolution,
+        origin_position=(o.x, o.y, 0.0),
+        origin_orientation=(0.0, 0.0, math.sin(half), math.cos(half)),
+        data=data.ravel(),
+    )
+
+
+def scan_from_msg(msg: Any) -> LaserScan:
+    """Scan from any object with the ``sensor_msgs/LaserScan`` field names.
+
+    Reads ``ranges``, ``angle_min``, ``angle_increment``, ``range_min``,
+    ``range_max`` and (when present and non-empty) ``intensities``.
+
+    Raises
+    ------
+    TypeError
+        ``msg`` lacks one of the fields.
+
+    Examples
+    --------
+    >>> from types import SimpleNamespace
+    >>> msg = SimpleNamespace(ranges=[1.0, 2.0], angle_min=0.0, angle_increment=0.1,
+    ...                       range_min=0.1, range_max=5.0, intensities=[])
+    >>> scan = scan_from_msg(msg)
+    >>> len(scan), scan.intensities is None
+    (2, True)
+    """
+    fields = {}
+    for name in ("ranges", "angle_min", "angle_increment", "range_min", "range_max"):
+        if not hasattr(msg, name):
+            raise TypeError(f"msg has no field {name!r}; expected a sensor_msgs/LaserScan")
+        fields[name] = getattr(msg, name)
+    intensities = getattr(msg, "intensities", None)
+    return LaserScan(
+        np.asarray(fields["ranges"], dtype=np.float64),
+        angle_min=fields["angle_min"],
+        angle_increment=fields["angle_increment"],
+        range_min=fields["range_min"],
+        range_max=fields["range_max"],
+        intensities=None if intensities is None else np.asarray(intensities, dtype=np.float64),
+    )

@@ -1,0 +1,133 @@
+"""numba kernels for exact costs of straight segments and polylines on a cost grid (private).
+
+Points are in node coordinates (cell ``(r, c)`` covers ``[r, r+1] × [c, c+1]``;
+see :mod:`navkit.planning.grid._dstar_lite_kernels`) and cell costs come from the
+same ``+inf``-padded flat array ``pad`` of row width ``width = cols + 2``. A
+segment pays, per unit length, the cost of the cell it crosses, or the cheaper
+of the two cells beside a grid line it runs along. Used by Field D* for the
+true cost of its paths and by its shortcut (smoothing) pass.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+
+@njit(cache=True, inline="always")
+def cell_cost(pad: np.ndarray, width: int, r: int, c: int) -> float:
+    """Cost of cell (r, c), ``-1 <= r <= rows``, ``-1 <= c <= cols`` (+inf off the grid)."""
+    return float(pad[(r + 1) * width + c + 1])
+
+
+@njit(cache=True)
+def segment_cost(pad: np.ndarray, width: int, r0: float, c0: float, r1: float, c1: float) -> float:
+    """Exact cost of the straight segment p0 -> p1: sum of length × cell cost.
+
+    The segment is split where it crosses grid lines; each piece pays the cell
+    containing its midpoint, or the cheaper of the two cells beside a grid line
+    it runs along. Pieces shorter than 1e-12 (passing through a corner) are free.
+    """
+    dr = r1 - r0
+    dc = c1 - c0
+    length = math.hypot(dr, dc)
+    if length == 0.0:
+        return 0.0
+    total = 0.0
+    t = 0.0
+    # Index of the next integer line in each axis, stepped by counters to avoid drift.
+    if dr > 0:
+        nr_line = math.floor(r0) + 1.0
+    elif dr < 0:
+        nr_line = math.ceil(r0) - 1.0
+    else:
+        nr_line = 0.0
+    if dc > 0:
+        nc_line = math.floor(c0) + 1.0
+    elif dc < 0:
+        nc_line = math.ceil(c0) - 1.0
+    else:
+        nc_line = 0.0
+    step_r = 1.0 if dr > 0 else -1.0
+    step_c = 1.0 if dc > 0 else -1.0
+    while t < 1.0:
+        tr = (nr_line - r0) / dr if dr != 0.0 else np.inf
+        tc = (nc_line - c0) / dc if dc != 0.0 else np.inf
+        t1 = min(tr, tc, 1.0)
+        if tr <= t1:
+            nr_line += step_r
+        if tc <= t1:
+            nc_line += step_c
+        piece = (t1 - t) * length
+        if piece > 1e-12:
+            tm = 0.5 * (t + t1)
+            mr = r0 + tm * dr
+            mc = c0 + tm * dc
+            rr = round(mr)
+            rc = round(mc)
+            if abs(mr - rr) < 1e-9 and abs(dr) * (t1 - t) < 1e-9:
+                col = math.floor(mc)
+                cost = min(cell_cost(pad, width, int(rr) - 1, col),
+                           cell_cost(pad, width, int(rr), col))
+            elif abs(mc - rc) < 1e-9 and abs(dc) * (t1 - t) < 1e-9:
+                row = math.floor(mr)
+                cost = min(cell_cost(pad, width, row, int(rc) - 1),
+                           cell_cost(pad, width, row, int(rc)))
+            else:
+                cost = cell_cost(pad, width, math.floor(mr), math.floor(mc))
+            if cost == np.inf:
+                return np.inf
+            total += cost * piece
+        t = t1
+    return total
+
+
+@njit(cache=True)
+def polyline_cost(pad: np.ndarray, width: int, pts: np.ndarray, k: int) -> tuple[float, float]:
+    """(cost, length) of the polyline through the first ``k`` points."""
+    cost = 0.0
+    length = 0.0
+    for a in range(k - 1):
+        cost += segment_cost(pad, width, pts[a, 0], pts[a, 1], pts[a + 1, 0], pts[a + 1, 1])
+        length += math.hypot(pts[a + 1, 0] - pts[a, 0], pts[a + 1, 1] - pts[a, 1])
+    return cost, length
+
+
+@njit(cache=True)
+def shortcut(pad: np.ndarray, width: int, pts: np.ndarray, k: int, patience: int) -> np.ndarray:
+    """Replace runs of the polyline by straight segments that cost no more.
+
+    From each kept point, the farthest later point whose straight segment costs
+    at most the polyline between them is kept next; the scan gives up after
+    ``patience`` consecutive refusals. The result's cost never exceeds the
+    input's, and a segment through an impassable cell interior costs inf, so it
+    is never taken.
+    """
+    out = np.empty((k, 2), dtype=np.float64)
+    out[0] = pts[0]
+    m = 1
+    i = 0
+    while i < k - 1:
+        best = i + 1
+        acc = 0.0
+        misses = 0
+        j = i + 1
+        while j < k:
+            acc += segment_cost(pad, width, pts[j - 1, 0], pts[j - 1, 1], pts[j, 0], pts[j, 1])
+            if j > i + 1:
+                direct = segment_cost(pad, width, pts[i, 0], pts[i, 1], pts[j, 0], pts[j, 1])
+                if direct <= acc * (1.0 + 1e-12):
+                    best = j
+                    misses = 0
+                else:
+                    misses += 1
+                    if misses > patience:
+                        break
+            j += 1
+        out[m] = pts[best]
+        m += 1
+        i = best
+    res: np.ndarray = out[:m].copy()
+    return res

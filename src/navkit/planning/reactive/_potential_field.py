@@ -1,0 +1,198 @@
+"""The potential-field base class, sums of fields, and helpers shared by the fields.
+
+Every field maps world points ``(x, y)`` (m) to a scalar potential and to the
+force ``-∇U``, both vectorised over ``(N, 2)`` point arrays with analytic
+gradients. Fields add: ``field_a + field_b`` is a :class:`CompositeField` whose
+potential and force are the sums of its parts (``sum(fields)`` works too).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from abc import ABC, abstractmethod
+from collections.abc import Iterable
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from navkit._shared.types import FloatArray
+from navkit._shared.validation import as_float_array, as_points
+
+__all__ = ["CompositeField", "PotentialField"]
+
+
+class PotentialField(ABC):
+    """Base class of navkit's potential fields.
+
+    The concrete fields are frozen slotted dataclasses: their arrays are read-only
+    copies of the caller's input, so changing an array after building a field
+    does not change the field, and assigning an attribute raises
+    :class:`dataclasses.FrozenInstanceError`. Subclasses implement ``_potential``
+    and ``_force`` on a validated ``(N, 2)`` float64 array; the public
+    :meth:`potential` and :meth:`force` validate once.
+
+    Examples
+    --------
+    >>> from navkit.planning import ConicAttraction, KhatibRepulsion
+    >>> fields = [ConicAttraction((1.0, 0.0)),
+    ...           KhatibRepulsion([[0.5, 0.5]], influence_radius=0.5)]
+    >>> total = sum(fields)          # the obstacle is 0.71 m away, beyond its influence
+    >>> total.force([0.0, 0.0]), total.potential([0.0, 0.0])
+    (array([[1., 0.]]), array([1.]))
+    """
+
+    __slots__ = ()
+
+    def potential(self, points_xy: ArrayLike) -> FloatArray:
+        """Potential energy at world points.
+
+        Parameters
+        ----------
+        points_xy : array_like, shape (N, 2) or (2,)
+            ``(x, y)`` positions in metres; a single point gives ``N = 1``.
+
+        Returns
+        -------
+        ndarray, shape (N,)
+            The potential ``U`` at each point (``+inf`` on a Khatib obstacle).
+        """
+        return self._potential(as_points(points_xy, "points_xy"))
+
+    def force(self, points_xy: ArrayLike) -> FloatArray:
+        """Force ``-∇U`` at world points.
+
+        Parameters
+        ----------
+        points_xy : array_like, shape (N, 2) or (2,)
+            ``(x, y)`` positions in metres; a single point gives ``N = 1``.
+
+        Returns
+        -------
+        ndarray, shape (N, 2)
+            The force ``(Fx, Fy)`` at each point, in the world frame.
+        """
+        return self._force(as_points(points_xy, "points_xy"))
+
+    @abstractmethod
+    def _potential(self, pts: FloatArray) -> FloatArray: ...
+
+    @abstractmethod
+    def _force(self, pts: FloatArray) -> FloatArray: ...
+
+    def _parts(self) -> tuple[PotentialField, ...]:
+        return (self,)
+
+    def __add__(self, other: PotentialField) -> CompositeField:
+        if not isinstance(other, PotentialField):
+            return NotImplemented
+        return CompositeField((*self._parts(), *other._parts()))
+
+    def __radd__(self, other: object) -> PotentialField:
+        # Lets ``sum(fields)`` start from its integer 0.
+        if isinstance(other, int) and other == 0:
+            return self
+        return NotImplemented
+
+    def __repr__(self) -> str:
+        # The dataclass fields shown by repr, arrays shortened (a point as a tuple).
+        obj: object = self
+        if not dataclasses.is_dataclass(obj):
+            return object.__repr__(self)
+        args = ", ".join(
+            f"{f.name}={_short(getattr(self, f.name))}" for f in dataclasses.fields(obj) if f.repr
+        )
+        return f"{type(self).__name__}({args})"
+
+
+def _short(value: Any) -> str:
+    """Repr of a field value: a point as a tuple, a larger array by its shape."""
+    if isinstance(value, np.ndarray):
+        if value.ndim == 1:
+            return "(" + ", ".join(repr(float(v)) for v in value) + ")"
+        return f"<array shape={value.shape}>"
+    return repr(value)
+
+
+def _frozen(arr: FloatArray) -> FloatArray:
+    """A read-only float64 copy (the caller's array is never frozen)."""
+    out = np.array(arr, dtype=np.float64, copy=True)
+    out.setflags(write=False)
+    return out
+
+
+def _goal(goal_xy: ArrayLike) -> FloatArray:
+    """A goal ``(x, y)`` as a read-only float64 copy, validated."""
+    return _frozen(as_float_array(goal_xy, "goal_xy", shape=(2,)))
+
+
+def _obstacles(obstacles_xy: ArrayLike) -> FloatArray:
+    """Obstacle points as a read-only ``(M, 2)`` float64 copy, validated."""
+    return _frozen(as_points(obstacles_xy, "obstacles_xy"))
+
+
+def _offsets(pts: FloatArray, centre: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """Offsets ``pts - centre`` and their norms."""
+    diff = pts - centre
+    return diff, np.hypot(diff[:, 0], diff[:, 1])
+
+
+def _unit(diff: FloatArray, d: FloatArray) -> FloatArray:
+    """``diff / d`` row-wise, with the zero vector where ``d == 0``."""
+    safe = np.where(d > 0.0, d, 1.0)
+    return np.where((d > 0.0)[:, None], diff / safe[:, None], 0.0)
+
+
+@dataclass(frozen=True, slots=True, eq=False, repr=False)
+class CompositeField(PotentialField):
+    """Sum of fields: potential and force add up.
+
+    Usually built with ``+`` or ``sum(fields)``; nested sums are flattened.
+
+    Parameters
+    ----------
+    fields : iterable of PotentialField
+        The parts, stored as a tuple; an empty one is the zero field.
+
+    Examples
+    --------
+    >>> from navkit.planning import ConicAttraction, KhatibRepulsion
+    >>> total = ConicAttraction((5.0, 0.0)) + KhatibRepulsion([[1.0, 0.0]], influence_radius=2.0)
+    >>> len(total.fields)
+    2
+    >>> total.force([[0.0, 0.0]])        # pulled +x by 1, pushed -x by (1 - 1/2)/1 = 0.5
+    array([[0.5, 0. ]])
+    >>> CompositeField([]).potential([0.0, 0.0])
+    array([0.])
+    """
+
+    fields: tuple[PotentialField, ...]
+
+    def __post_init__(self) -> None:
+        given: object = self.fields
+        if isinstance(given, PotentialField) or not isinstance(given, Iterable):
+            raise TypeError(
+                f"fields must be an iterable of PotentialField, got {type(given).__name__}"
+            )
+        parts: list[PotentialField] = []
+        for i, field in enumerate(given):
+            if not isinstance(field, PotentialField):
+                raise TypeError(f"fields[{i}] must be a PotentialField, got {type(field).__name__}")
+            parts.extend(field._parts())
+        object.__setattr__(self, "fields", tuple(parts))
+
+    def _parts(self) -> tuple[PotentialField, ...]:
+        return self.fields
+
+    def _potential(self, pts: FloatArray) -> FloatArray:
+        out = np.zeros(pts.shape[0], dtype=np.float64)
+        for field in self.fields:
+            out += field._potential(pts)
+        return out
+
+    def _force(self, pts: FloatArray) -> FloatArray:
+        out = np.zeros((pts.shape[0], 2), dtype=np.float64)
+        for field in self.fields:
+            out += field._force(pts)
+        return out

@@ -1,0 +1,249 @@
+"""Repulsive potential fields: radial pushes away from obstacle points ``obstacles_xy``.
+
+Khatib's FIRAS repulsion and the omnidirectional LiDAR robot's piecewise-linear
+repulsion, each summed over a set of obstacle points. Parameter names follow
+navkit's vocabulary; each class states the paper's symbol of every parameter
+(Khatib's ``d0`` is ``influence_radius``; the piecewise ``r`` is
+``obstacle_radius`` and ``s`` is ``spread``).
+"""
+
+from __future__ import annotations
+
+from abc import abstractmethod
+from collections.abc import Iterator
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy.spatial import cKDTree
+
+from navkit._shared.types import FloatArray
+from navkit._shared.validation import positive_float
+from navkit.planning.reactive._potential_field import PotentialField, _obstacles
+
+__all__ = ["KhatibRepulsion", "PiecewiseRepulsion"]
+
+# Up to this many (point, obstacle) pairs are formed directly; beyond it the
+# pairs within reach are found with k-d trees (a 1200 x 1200 grid against a scan).
+_PAIR_BLOCK = 1 << 18
+# Points per k-d tree query block when there are more pairs than that.
+_TREE_BLOCK = 1 << 22
+
+
+@dataclass(frozen=True, slots=True, eq=False, repr=False)
+class _PointRepulsion(PotentialField):
+    """Sum over obstacle points of a radial repulsion with a finite reach.
+
+    Only (point, obstacle) pairs within the reach contribute, so they are gathered
+    first and the radial law is evaluated on them alone; pairs are formed in
+    blocks of bounded size so that large grids against many obstacles fit in memory.
+    The k-d tree of the obstacles is built on first need and cached in
+    ``_kdtree`` (not an init argument, not in the repr).
+    """
+
+    obstacles_xy: FloatArray
+    _kdtree: Any = field(default=None, init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "obstacles_xy", _obstacles(self.obstacles_xy))
+
+    @abstractmethod
+    def _reach(self) -> float:
+        """Distance beyond which an obstacle contributes exactly nothing."""
+
+    @abstractmethod
+    def _radial(self, d: FloatArray) -> tuple[FloatArray, FloatArray]:
+        """Potential and outward force magnitude for distances ``0 <= d <= reach``."""
+
+    def _near_pairs(
+        self, pts: FloatArray
+    ) -> Iterator[tuple[slice, NDArray[np.intp], FloatArray, FloatArray, FloatArray]]:
+        """Per block: point indices (within the block), dx, dy and d of pairs in reach.
+
+        Small problems form every pair; large ones (grids for plots) find the pairs
+        within reach with k-d trees, so the cost follows the pairs that matter.
+        """
+        obstacles = self.obstacles_xy
+        m = obstacles.shape[0]
+        n = pts.shape[0]
+        reach = self._reach()
+        dense = n * m <= _PAIR_BLOCK
+        step = n if dense else max(1, _TREE_BLOCK // m)
+        for start in range(0, n, step):
+            block = slice(start, min(n, start + step))
+            if dense:
+                dx = pts[block, 0, None] - obstacles[None, :, 0]
+                dy = pts[block, 1, None] - obstacles[None, :, 1]
+                rows, cols = np.nonzero(np.hypot(dx, dy) <= reach)
+                dx = dx[rows, cols]
+                dy = dy[rows, cols]
+            else:
+                found = cKDTree(pts[block]).sparse_distance_matrix(
+                    self._tree(), reach, output_type="ndarray"
+                )
+                rows, cols = found["i"], found["j"]
+                dx = pts[block][rows, 0] - obstacles[cols, 0]
+                dy = pts[block][rows, 1] - obstacles[cols, 1]
+            # Distances are recomputed the same way on both paths, so the pair set
+            # and the values agree to the last bit at every point except exactly at
+            # the reach, where every radial law here is zero anyway.
+            d = np.hypot(dx, dy)
+            keep = d <= reach
+            yield block, rows[keep].astype(np.intp), dx[keep], dy[keep], d[keep]
+
+    def _tree(self) -> Any:
+        tree = self._kdtree
+        if tree is None:
+            tree = cKDTree(self.obstacles_xy)
+            object.__setattr__(self, "_kdtree", tree)
+        return tree
+
+    def _potential(self, pts: FloatArray) -> FloatArray:
+        out = np.zeros(pts.shape[0], dtype=np.float64)
+        if self.obstacles_xy.shape[0] == 0:
+            return out
+        for block, idx, _, _, d in self._near_pairs(pts):
+            u, _ = self._radial(d)
+            out[block] = np.bincount(idx, weights=u, minlength=block.stop - block.start)
+        return out
+
+    def _force(self, pts: FloatArray) -> FloatArray:
+        out = np.zeros((pts.shape[0], 2), dtype=np.float64)
+        if self.obstacles_xy.shape[0] == 0:
+            return out
+        for block, idx, dx, dy, d in self._near_pairs(pts):
+            _, mag = self._radial(d)
+            # Direction (q - q_c)/d; a point on an obstacle has none and gets 0.
+            with np.errstate(over="ignore"):
+                coef = np.where(d > 0.0, mag / np.where(d > 0.0, d, 1.0), 0.0)
+            # A magnitude that overflowed to inf (d below ~1e-103) must not turn the
+            # zero component of its direction into NaN.
+            with np.errstate(invalid="ignore"):
+                fx = np.where(dx != 0.0, coef * dx, 0.0)
+                fy = np.where(dy != 0.0, coef * dy, 0.0)
+            n = block.stop - block.start
+            out[block, 0] = np.bincount(idx, weights=fx, minlength=n)
+            out[block, 1] = np.bincount(idx, weights=fy, minlength=n)
+        return out
+
+
+@dataclass(frozen=True, slots=True, eq=False, repr=False, kw_only=True)
+class KhatibRepulsion(_PointRepulsion):
+    """Khatib's FIRAS repulsion summed over obstacle points.
+
+    In Khatib's symbols, for each obstacle ``q_c`` at distance ``d = ‖q - q_c‖``::
+
+        U = ½·k_rep·(1/d - 1/d0)²                       for d <= d0, else 0
+        F = k_rep·(1/d - 1/d0)·(1/d²)·(q - q_c)/d       for d <= d0, else 0
+
+    Exactly zero beyond ``d0``, continuous at ``d0`` and unbounded as ``d → 0``.
+    At a point coinciding with an obstacle the potential is ``+inf`` and that
+    obstacle's force, whose direction is undefined, is zero. Khatib's ``d0``
+    (the limit distance of the potential field influence) is ``influence_radius``.
+
+    Parameters
+    ----------
+    obstacles_xy : array_like, shape (M, 2)
+        Obstacle points ``q_c = (x, y)`` in metres; ``M = 0`` is valid (zero field).
+        Stored as a read-only copy.
+    k_rep : float, default 1.0
+        Repulsion gain, > 0.
+    influence_radius : float, default 1.0
+        Khatib's ``d0`` (m), > 0: obstacles farther than this do not push.
+
+    Examples
+    --------
+    >>> field = KhatibRepulsion([[0.0, 0.0]], k_rep=1.0, influence_radius=1.0)
+    >>> field.force([[0.5, 0.0], [2.0, 0.0]])      # (1/0.5 - 1)/0.5² = 4
+    array([[4., 0.],
+           [0., 0.]])
+    >>> field.potential([[0.5, 0.0]])
+    array([0.5])
+    """
+
+    k_rep: float = 1.0
+    influence_radius: float = 1.0
+
+    def __post_init__(self) -> None:
+        _PointRepulsion.__post_init__(self)
+        object.__setattr__(self, "k_rep", positive_float(self.k_rep, "k_rep"))
+        object.__setattr__(
+            self, "influence_radius", positive_float(self.influence_radius, "influence_radius")
+        )
+
+    def _reach(self) -> float:
+        return self.influence_radius
+
+    def _radial(self, d: FloatArray) -> tuple[FloatArray, FloatArray]:
+        # Unbounded near an obstacle: overflow to +inf is the right answer there.
+        with np.errstate(divide="ignore", over="ignore"):
+            excess = 1.0 / d - 1.0 / self.influence_radius
+            mag = self.k_rep * excess / (d * d)
+            return 0.5 * self.k_rep * excess * excess, mag
+
+
+@dataclass(frozen=True, slots=True, eq=False, repr=False, kw_only=True)
+class PiecewiseRepulsion(_PointRepulsion):
+    """Piecewise-linear repulsion of the omnidirectional LiDAR robot, per obstacle point.
+
+    In the paper's symbols, with ``d`` the distance to an obstacle and ``û`` the
+    unit vector toward it, the force is ``-δ·û`` for ``d < r``,
+    ``-β(s + r - d)·û`` for ``r <= d <= s + r`` and zero beyond. The potential is
+    its integral, ``½β·s² + δ(r - d)``, ``½β(s + r - d)²`` and ``0``. The force
+    jumps at ``d = r`` unless ``δ = β·s``; on the obstacle itself it is zero.
+
+    Names: ``delta`` is ``δ``, ``beta`` is ``β``, ``obstacle_radius`` is ``r`` and
+    ``spread`` is ``s`` (Goodrich's name for the width of the linear zone).
+
+    Parameters
+    ----------
+    obstacles_xy : array_like, shape (M, 2)
+        Obstacle points ``(x, y)`` in metres; ``M = 0`` is valid (zero field).
+        Stored as a read-only copy.
+    delta : float, default 1.0
+        Force magnitude ``δ`` inside ``obstacle_radius``, > 0.
+    beta : float, default 1.0
+        Gain ``β`` of the linear zone, > 0.
+    obstacle_radius : float, default 0.0
+        Obstacle (or safety) radius ``r`` (m), >= 0.
+    spread : float, default 1.0
+        Width ``s`` of the linear zone (m), > 0.
+
+    Examples
+    --------
+    >>> field = PiecewiseRepulsion([[0.0, 0.0]], delta=5.0, beta=2.0, obstacle_radius=0.5,
+    ...                            spread=1.0)
+    >>> field.force([[0.2, 0.0], [1.0, 0.0], [2.0, 0.0]])
+    array([[5., 0.],
+           [1., 0.],
+           [0., 0.]])
+    """
+
+    delta: float = 1.0
+    beta: float = 1.0
+    obstacle_radius: float = 0.0
+    spread: float = 1.0
+
+    def __post_init__(self) -> None:
+        _PointRepulsion.__post_init__(self)
+        object.__setattr__(self, "delta", positive_float(self.delta, "delta"))
+        object.__setattr__(self, "beta", positive_float(self.beta, "beta"))
+        object.__setattr__(
+            self,
+            "obstacle_radius",
+            positive_float(self.obstacle_radius, "obstacle_radius", allow_zero=True),
+        )
+        object.__setattr__(self, "spread", positive_float(self.spread, "spread"))
+
+    def _reach(self) -> float:
+        return self.spread + self.obstacle_radius
+
+    def _radial(self, d: FloatArray) -> tuple[FloatArray, FloatArray]:
+        r, s = self.obstacle_radius, self.spread
+        reach = s + r
+        lin = np.clip(reach - d, 0.0, s)
+        core = np.maximum(r - d, 0.0)
+        u = 0.5 * self.beta * lin * lin + self.delta * core
+        mag = np.where(d < r, self.delta, self.beta * lin)
+        return u, mag

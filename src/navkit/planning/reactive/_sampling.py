@@ -1,0 +1,277 @@
+"""A potential field sampled on a regular grid of cell centres (e.g. for plots)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import KW_ONLY, dataclass
+from typing import Literal, overload
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from navkit._shared.types import BoolArray, FloatArray, IntArray
+from navkit._shared.validation import as_float_array, positive_float
+from navkit.planning.reactive._potential_field import PotentialField, _frozen
+
+__all__ = ["SampledField", "sample_field"]
+
+
+def _pairs(value: ArrayLike, name: str) -> tuple[FloatArray, bool]:
+    """``value`` as an ``(N, 2)`` float array, and whether it was one pair of shape (2,)."""
+    arr = as_float_array(value, name)
+    if arr.ndim == 1 and arr.shape[0] == 2:
+        return arr.reshape(1, 2), True
+    if arr.size == 0:
+        return np.empty((0, 2), dtype=np.float64), False
+    if arr.ndim != 2 or arr.shape[1] != 2:
+        raise ValueError(f"{name} must have shape (N, 2) or (2,), got {arr.shape}")
+    return arr, False
+
+
+def _axis(value: ArrayLike, name: str, resolution: float) -> FloatArray:
+    """A strictly increasing, evenly spaced 1-D axis of cell centres (read-only copy)."""
+    arr = as_float_array(value, name, ndim=1)
+    if arr.shape[0] == 0:
+        raise ValueError(f"{name} must hold at least one cell centre")
+    # Centres computed as lo + (k + ½)·resolution are spaced by it up to rounding.
+    tol = 1e-9 * (resolution + float(np.max(np.abs(arr))))
+    if np.any(np.abs(np.diff(arr) - resolution) > tol):
+        raise ValueError(f"{name} must be evenly spaced by resolution = {resolution}")
+    return _frozen(arr)
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class SampledField:
+    """A field sampled on a regular grid of cell centres.
+
+    ``potential[row, col]`` and ``force[row, col]`` are the values at the world
+    point ``(x[col], y[row])``; rows run along y, columns along x. The grid
+    coordinates follow :class:`navkit.mapping.OccupancyGrid`'s: cell ``(row,
+    col)`` covers ``[row - ½, row + ½) × [col - ½, col + ½)`` in continuous
+    ``(row, col)`` coordinates, whose integers sit at the cell centres.
+    Usually built by :func:`sample_field`; all arrays are stored as read-only copies.
+
+    Parameters
+    ----------
+    x : array_like, shape (W,)
+        Cell-centre x coordinates (m), increasing by ``resolution``.
+    y : array_like, shape (H,)
+        Cell-centre y coordinates (m), increasing by ``resolution``.
+    potential : array_like, shape (H, W)
+        Potential at each cell centre (``+inf`` allowed: a Khatib obstacle).
+    force : array_like, shape (H, W, 2)
+        Force ``(Fx, Fy)`` at each cell centre.
+    resolution : float
+        Cell side in metres, > 0.
+
+    Examples
+    --------
+    >>> sampled = SampledField([0.5, 1.5], [0.5], [[1.0, 2.0]], np.zeros((1, 2, 2)),
+    ...                        resolution=1.0)
+    >>> sampled.world_to_cell([1.9, 0.2])
+    array([0, 1])
+    >>> sampled.cell_to_world([0, 1])
+    array([1.5, 0.5])
+    """
+
+    x: FloatArray
+    y: FloatArray
+    potential: FloatArray
+    force: FloatArray
+    _: KW_ONLY
+    resolution: float
+
+    def __post_init__(self) -> None:
+        res = positive_float(self.resolution, "resolution")
+        xs = _axis(self.x, "x", res)
+        ys = _axis(self.y, "y", res)
+        shape = (ys.shape[0], xs.shape[0])
+        potential = as_float_array(self.potential, "potential", shape=shape, finite=False)
+        force = as_float_array(self.force, "force", shape=(*shape, 2), finite=False)
+        object.__setattr__(self, "resolution", res)
+        object.__setattr__(self, "x", xs)
+        object.__setattr__(self, "y", ys)
+        object.__setattr__(self, "potential", _frozen(potential))
+        object.__setattr__(self, "force", _frozen(force))
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        """``(H, W)``: rows along y, columns along x."""
+        return int(self.y.shape[0]), int(self.x.shape[0])
+
+    @overload
+    def world_to_cell(
+        self, points_xy: ArrayLike, *, continuous: Literal[False] = False
+    ) -> IntArray: ...
+
+    @overload
+    def world_to_cell(self, points_xy: ArrayLike, *, continuous: Literal[True]) -> FloatArray: ...
+
+    @overload
+    def world_to_cell(
+        self, points_xy: ArrayLike, *, continuous: bool
+    ) -> IntArray | FloatArray: ...
+
+    def world_to_cell(
+        self, points_xy: ArrayLike, *, continuous: bool = False
+    ) -> IntArray | FloatArray:
+        """Cells ``(row, col)`` of world points ``(x, y)``.
+
+        Parameters
+        ----------
+        points_xy : array_like, shape (N, 2) or (2,)
+            World points in metres.
+        continuous : bool, default False
+            Return float continuous coordinates (integers at cell centres)
+            instead of the int64 cell containing each point.
+
+        Returns
+        -------
+        ndarray, shape (N, 2) or (2,)
+            ``(row, col)`` per point, the shape of the input. Cells are not
+            clipped: points outside the window give indices outside
+            ``[0, H) × [0, W)``.
+
+        Examples
+        --------
+        >>> from navkit.planning import ConicAttraction
+        >>> sampled = sample_field(ConicAttraction((0.0, 0.0)), xlim=(-1.0, 1.0),
+        ...                        ylim=(0.0, 1.0), resolution=0.5)
+        >>> sampled.world_to_cell([[0.3, 0.9], [-1.0, 0.0]])
+        array([[1, 2],
+               [0, 0]])
+        >>> sampled.world_to_cell([0.3, 0.9], continuous=True)
+        array([1.3, 2.1])
+        """
+        pts, single = _pairs(points_xy, "points_xy")
+        cont = np.empty_like(pts)
+        cont[:, 0] = (pts[:, 1] - self.y[0]) / self.resolution
+        cont[:, 1] = (pts[:, 0] - self.x[0]) / self.resolution
+        # Round half up (np.rint would round half to even): as OccupancyGrid and LocalGrid.
+        out: IntArray | FloatArray = cont if continuous else np.floor(cont + 0.5).astype(np.int64)
+        return out[0] if single else out
+
+    def cell_to_world(self, cells: ArrayLike) -> FloatArray:
+        """World points ``(x, y)`` of cells ``(row, col)``; continuous cells are accepted.
+
+        Parameters
+        ----------
+        cells : array_like, shape (N, 2) or (2,)
+            Integer cells (their centres are returned) or float continuous
+            coordinates (integers at cell centres).
+
+        Returns
+        -------
+        ndarray, shape (N, 2) or (2,)
+            ``(x, y)`` in metres, the shape of the input.
+
+        Examples
+        --------
+        >>> from navkit.planning import ConicAttraction
+        >>> sampled = sample_field(ConicAttraction((0.0, 0.0)), xlim=(-1.0, 1.0),
+        ...                        ylim=(0.0, 1.0), resolution=0.5)
+        >>> sampled.cell_to_world([1, 2])
+        array([0.25, 0.75])
+        >>> sampled.cell_to_world([[0.0, -0.5]])     # a cell corner: the window's corner
+        array([[-1.  ,  0.25]])
+        """
+        arr, single = _pairs(cells, "cells")
+        out = np.empty_like(arr)
+        out[:, 0] = self.x[0] + arr[:, 1] * self.resolution
+        out[:, 1] = self.y[0] + arr[:, 0] * self.resolution
+        return out[0] if single else out
+
+    def contains(self, points_xy: ArrayLike) -> BoolArray:
+        """Whether each world point ``(x, y)`` falls in a cell of the window.
+
+        Returns shape (N,) for points of shape (N, 2), and a 0-d array for one
+        point of shape (2,).
+
+        Examples
+        --------
+        >>> from navkit.planning import ConicAttraction
+        >>> sampled = sample_field(ConicAttraction((0.0, 0.0)), xlim=(-1.0, 1.0),
+        ...                        ylim=(0.0, 1.0), resolution=0.5)
+        >>> sampled.contains([[0.3, 0.9], [0.3, 1.1]])
+        array([ True, False])
+        >>> bool(sampled.contains([-1.0, 0.0]))
+        True
+        """
+        pts, single = _pairs(points_xy, "points_xy")
+        cells = self.world_to_cell(pts)
+        rows, cols = self.shape
+        inside: BoolArray = (
+            (cells[:, 0] >= 0) & (cells[:, 0] < rows) & (cells[:, 1] >= 0) & (cells[:, 1] < cols)
+        )
+        return inside.reshape(()) if single else inside
+
+
+def _limits(value: ArrayLike, name: str) -> tuple[float, float]:
+    arr = as_float_array(value, name, shape=(2,))
+    lo, hi = float(arr[0]), float(arr[1])
+    if not hi > lo:
+        raise ValueError(f"{name} must be (min, max) with max > min, got {(lo, hi)}")
+    return lo, hi
+
+
+def _centres(lo: float, hi: float, resolution: float) -> FloatArray:
+    # The tolerance keeps an exact multiple (12 m at 0.01 m) from gaining a cell to rounding.
+    n = max(1, math.ceil((hi - lo) / resolution - 1e-9))
+    out: FloatArray = lo + (np.arange(n, dtype=np.float64) + 0.5) * resolution
+    return out
+
+
+def sample_field(
+    field: PotentialField,
+    *,
+    xlim: ArrayLike,
+    ylim: ArrayLike,
+    resolution: float,
+) -> SampledField:
+    """Evaluate a field's potential and force on a grid (e.g. for plots).
+
+    The window ``[xlim[0], xlim[1]] × [ylim[0], ylim[1]]`` is divided into square
+    cells of side ``resolution``; values are taken at cell centres, so
+    ``xlim=(0, 12), resolution=0.01`` gives 1200 columns.
+
+    Parameters
+    ----------
+    field : PotentialField
+        Any navkit field, including composites.
+    xlim, ylim : array_like, shape (2,)
+        ``(min, max)`` extents in metres, ``max > min``.
+    resolution : float
+        Cell side in metres, > 0.
+
+    Returns
+    -------
+    SampledField
+        Coordinates, ``potential`` (H, W) and ``force`` (H, W, 2) indexed ``[row, col]``.
+
+    Examples
+    --------
+    >>> from navkit.planning import ConicAttraction
+    >>> sampled = sample_field(ConicAttraction((0.0, 0.0)), xlim=(-1.0, 1.0),
+    ...                        ylim=(0.0, 1.0), resolution=0.5)
+    >>> sampled.potential.shape, sampled.force.shape
+    ((2, 4), (2, 4, 2))
+    >>> sampled.x
+    array([-0.75, -0.25,  0.25,  0.75])
+    """
+    if not isinstance(field, PotentialField):
+        raise TypeError(f"field must be a PotentialField, got {type(field).__name__}")
+    res = positive_float(resolution, "resolution")
+    x0, x1 = _limits(xlim, "xlim")
+    y0, y1 = _limits(ylim, "ylim")
+    xs = _centres(x0, x1, res)
+    ys = _centres(y0, y1, res)
+    gx, gy = np.meshgrid(xs, ys)
+    pts = np.stack((gx.ravel(), gy.ravel()), axis=1)
+    shape = (ys.size, xs.size)
+    return SampledField(
+        xs,
+        ys,
+        field._potential(pts).reshape(shape),
+        field._force(pts).reshape((*shape, 2)),
+        resolution=res,
+    )

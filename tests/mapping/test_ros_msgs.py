@@ -1,0 +1,143 @@
+"""ROS message conversion in navkit.mapping.io: nav_msgs/OccupancyGrid and sensor_msgs/LaserScan."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+
+from navkit.mapping import LaserScan, OccupancyGrid
+from navkit.mapping.io import (
+    OccupancyGridMsgFields,
+    grid_from_msg,
+    grid_to_msg_fields,
+    scan_from_msg,
+)
+
+
+def fake_msg(data: list[int], width: int, height: int, yaw: float) -> SimpleNamespace:
+    return SimpleNamespace(
+        info=SimpleNamespace(
+            width=width,
+            height=height,
+            resolution=0.05,
+            origin=SimpleNamespace(
+                position=SimpleNamespace(x=1.5, y=-2.0, z=0.0),
+                orientation=SimpleNamespace(x=0.0, y=0.0, z=math.sin(yaw / 2), w=math.cos(yaw / 2)),
+            ),
+        ),
+        data=data,
+    )
+
+
+def test_msg_round_trip() -> None:
+    data = [-1, 0, 100, 50, 20, 80]
+    grid = grid_from_msg(fake_msg(data, 3, 2, 0.7))
+    assert grid.shape == (2, 3)
+    assert grid.origin.theta == pytest.approx(0.7)
+    assert (grid.origin.x, grid.origin.y) == (1.5, -2.0)
+    # data row 0 is the row at the origin (lowest y in the grid frame).
+    assert grid.occupied().tolist() == [[False, False, True], [False, False, True]]
+    fields = grid_to_msg_fields(grid)
+    assert fields.data.dtype == np.int8
+    assert fields.data.tolist() == [-1, 0, 100, -1, 20, 80]  # 50 % is log-odds 0
+    assert fields.origin_orientation[2:] == pytest.approx((math.sin(0.35), math.cos(0.35)))
+    trinary = grid_to_msg_fields(grid, trinary=True).data.tolist()
+    assert trinary == [-1, 0, 100, -1, -1, 100]
+    assert (fields.width, fields.height, fields.resolution) == (3, 2, 0.05)
+    assert fields.origin_position == (1.5, -2.0, 0.0)
+    again = grid_from_msg(fake_msg(list(fields.data), 3, 2, 0.7))
+    assert np.array_equal(again.occupied(), grid.occupied())
+    assert np.array_equal(again.free(), grid.free())
+
+
+def test_bad_msgs() -> None:
+    with pytest.raises(ValueError, match="expected width\\*height = 6"):
+        grid_from_msg(fake_msg([0] * 5, 3, 2, 0.0))
+    with pytest.raises(ValueError, match=r"-1 \(unknown\) or 0\.\.100"):
+        grid_from_msg(fake_msg([0, 0, 0, 0, 0, 101], 3, 2, 0.0))
+    with pytest.raises(TypeError, match="nav_msgs/OccupancyGrid"):
+        grid_from_msg(SimpleNamespace(data=[0]))
+    with pytest.raises(ValueError, match="width and height must be positive"):
+        grid_from_msg(fake_msg([], 0, 2, 0.0))
+    with pytest.raises(TypeError, match="grid must be an OccupancyGrid"):
+        grid_to_msg_fields(np.zeros((2, 2)))  # type: ignore[arg-type]
+
+
+def test_msg_fields_are_a_frozen_record() -> None:
+    grid = OccupancyGrid.from_occupancy(np.array([[True, False]]), resolution=0.1)
+    fields = grid_to_msg_fields(grid)
+    assert isinstance(fields, OccupancyGridMsgFields)
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        fields.width = 3  # type: ignore[misc]
+    with pytest.raises(ValueError, match="read-only"):
+        fields.data[0] = 0
+    # Built from a caller's array: a read-only int8 copy, the caller's array untouched.
+    data = np.array([100, -1, 0, 42])
+    record = OccupancyGridMsgFields(2, 2, 0.5, (0, 0, 0), (0, 0, 0, 1), data)
+    data[0] = 7
+    assert record.data.dtype == np.int8 and record.data.tolist() == [100, -1, 0, 42]
+    assert data.flags.writeable
+    assert record.origin_orientation == (0.0, 0.0, 0.0, 1.0)
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "error", "match"),
+    [
+        ({"width": 0}, ValueError, "width must be a positive integer"),
+        ({"height": 1.5}, ValueError, "height must be a positive integer"),
+        ({"resolution": -1.0}, ValueError, "resolution must be > 0"),
+        ({"origin_position": (0.0, 0.0)}, ValueError, "origin_position must hold 3"),
+        ({"origin_orientation": (0, 0, math.nan, 1)}, ValueError, "origin_orientation"),
+        ({"data": [0, 0, 0]}, ValueError, r"data must have shape \(4,\)"),
+        ({"data": [0, 0, 0, 101]}, ValueError, r"-1 \(unknown\) or 0\.\.100"),
+        ({"data": [0.0, 0.0, 0.0, 0.0]}, TypeError, "data must hold integers"),
+    ],
+)
+def test_bad_msg_fields(kwargs: dict[str, object], error: type[Exception], match: str) -> None:
+    args: dict[str, object] = {
+        "width": 2,
+        "height": 2,
+        "resolution": 0.5,
+        "origin_position": (0.0, 0.0, 0.0),
+        "origin_orientation": (0.0, 0.0, 0.0, 1.0),
+        "data": [0, 0, 0, 0],
+    }
+    args.update(kwargs)
+    with pytest.raises(error, match=match):
+        OccupancyGridMsgFields(**args)  # type: ignore[arg-type]
+
+
+def test_scan_from_msg() -> None:
+    msg = SimpleNamespace(
+        ranges=[1.0, math.inf, 0.01],
+        angle_min=-0.5,
+        angle_increment=0.25,
+        range_min=0.05,
+        range_max=4.0,
+        intensities=[3.0, 2.0, 1.0],
+    )
+    scan = scan_from_msg(msg)
+    assert isinstance(scan, LaserScan)
+    assert (scan.angle_min, scan.angle_increment, scan.range_min, scan.range_max) == (
+        -0.5,
+        0.25,
+        0.05,
+        4.0,
+    )
+    assert scan.valid_mask().tolist() == [True, False, False]
+    assert scan.intensities is not None and scan.intensities.tolist() == [3.0, 2.0, 1.0]
+    msg.intensities = []
+    assert scan_from_msg(msg).intensities is None
+    del msg.intensities
+    assert scan_from_msg(msg).intensities is None
+
+
+def test_scan_from_msg_requires_the_ros_fields() -> None:
+    with pytest.raises(TypeError, match="'range_max'"):
+        scan_from_msg(
+            SimpleNamespace(ranges=[1.0], angle_min=0.0, angle_increment=0.1, range_min=0.1)
+        )
