@@ -18,8 +18,9 @@ from typing import TYPE_CHECKING, Any, Literal, overload
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from navkit._shared.grid_coords import as_pairs, inside, one_or_many
 from navkit._shared.types import BoolArray, FloatArray, IntArray
-from navkit._shared.validation import as_float_array, as_points, finite_float, positive_float
+from navkit._shared.validation import as_float_array, finite_float, positive_float
 from navkit.geometry import Pose2D, as_pose
 from navkit.mapping._grid_kernels import world_to_cell_kernel, world_to_continuous_kernel
 from navkit.mapping._logodds import (
@@ -58,13 +59,6 @@ def _bool_grid(value: ArrayLike, name: str) -> BoolArray:
     if arr.ndim != 2 or arr.shape[0] == 0 or arr.shape[1] == 0:
         raise ValueError(f"{name} must be a non-empty 2-D (rows, cols) array, got {arr.shape}")
     return arr
-
-
-def _points(value: ArrayLike, name: str) -> tuple[FloatArray, bool]:
-    """``value`` as (N, 2) float64 points, and whether it was one point of shape (2,)."""
-    pts = as_points(value, name)
-    # Only a one-point result can come from a (2,) input; np.ndim converts no big input.
-    return pts, pts.shape[0] == 1 and np.ndim(value) == 1
 
 
 class OccupancyGrid:
@@ -416,7 +410,7 @@ class OccupancyGrid:
         >>> grid.world_to_cell([0.6, 0.1], continuous=True)
         array([-0.3,  0.7])
         """
-        pts, single = _points(points_xy, "points_xy")
+        pts, single = as_pairs(points_xy, "points_xy")
         out: IntArray | FloatArray
         if continuous:
             pts = np.ascontiguousarray(pts)
@@ -425,7 +419,7 @@ class OccupancyGrid:
             world_to_continuous_kernel(pts, o.x, o.y, o.theta, self._resolution, out)
         else:
             out = self._cells(pts)
-        return out[0] if single else out
+        return one_or_many(out, single)
 
     def _cells(self, pts: FloatArray) -> IntArray:
         """Cells of validated (N, 2) points (the numba fast path)."""
@@ -457,10 +451,10 @@ class OccupancyGrid:
         >>> grid.cell_to_world([0.5, 0.0])
         array([0.25, 0.5 ])
         """
-        arr, single = _points(cells, "cells")
+        arr, single = as_pairs(cells, "cells")
         local = (arr[:, ::-1] + 0.5) * self._resolution
         out = self._origin.transform_points(local)
-        return out[0] if single else out
+        return one_or_many(out, single)
 
     def contains(self, points_xy: ArrayLike) -> BoolArray:
         """Whether each world point ``(x, y)`` lies inside the map.
@@ -476,13 +470,8 @@ class OccupancyGrid:
         >>> bool(grid.contains([0.5, 0.5]))
         True
         """
-        pts, single = _points(points_xy, "points_xy")
-        cells = self._cells(pts)
-        rows, cols = self.shape
-        inside: BoolArray = (
-            (cells[:, 0] >= 0) & (cells[:, 0] < rows) & (cells[:, 1] >= 0) & (cells[:, 1] < cols)
-        )
-        return inside.reshape(()) if single else inside
+        pts, single = as_pairs(points_xy, "points_xy")
+        return one_or_many(inside(self._cells(pts), self.shape), single)
 
     # ------------------------------------------------------------------ views
     def probability(self) -> FloatArray:

@@ -9,22 +9,11 @@ from typing import Literal, overload
 import numpy as np
 from numpy.typing import ArrayLike
 
+from navkit._shared.grid_coords import as_pairs, inside, one_or_many, round_half_up
 from navkit._shared.types import BoolArray, FloatArray, IntArray
 from navkit._shared.validation import as_points, positive_float
 
 __all__ = ["LocalGrid"]
-
-
-def _round_half_up(values: FloatArray) -> IntArray:
-    # np.rint rounds half to even; cell boundaries must not depend on parity.
-    return np.floor(values + 0.5).astype(np.int64)
-
-
-def _points(value: ArrayLike, name: str) -> tuple[FloatArray, bool]:
-    """``value`` as (N, 2) float64 points, and whether it was one point of shape (2,)."""
-    pts = as_points(value, name)
-    # Only a one-point result can come from a (2,) input; np.ndim converts no big input.
-    return pts, pts.shape[0] == 1 and np.ndim(value) == 1
 
 
 @dataclass(frozen=True, slots=True, eq=False)
@@ -136,9 +125,9 @@ class LocalGrid:
         occ = np.zeros((n, n), dtype=np.bool_)
         pts = as_points(points_xy, "points_xy")
         snapped = half_cells * res
-        cells = _round_half_up((pts[:, ::-1] + snapped) / res)
-        inside = np.all((cells >= 0) & (cells < n), axis=1)
-        occ[cells[inside, 0], cells[inside, 1]] = True
+        cells = round_half_up((pts[:, ::-1] + snapped) / res)
+        keep = inside(cells, (n, n))
+        occ[cells[keep, 0], cells[keep, 1]] = True
         return cls(occ, resolution=res, half_width=snapped)
 
     @overload
@@ -180,10 +169,10 @@ class LocalGrid:
         >>> grid.world_to_cell([0.26, -0.5], continuous=True).round(12)
         array([ 5. , 12.6])
         """
-        pts, single = _points(points_xy, "points_xy")
+        pts, single = as_pairs(points_xy, "points_xy")
         scaled = (pts[:, ::-1] + self.half_width) / self.resolution
-        out = scaled if continuous else _round_half_up(scaled)
-        return out[0] if single else out
+        out = scaled if continuous else round_half_up(scaled)
+        return one_or_many(out, single)
 
     def cell_to_world(self, cells: ArrayLike) -> FloatArray:
         """Robot-frame points ``(x, y)`` in metres of grid coordinates ``(row, col)``.
@@ -201,9 +190,9 @@ class LocalGrid:
         >>> grid.cell_to_world([10.5, 10.0])
         array([0.  , 0.05])
         """
-        arr, single = _points(cells, "cells")
+        arr, single = as_pairs(cells, "cells")
         out = arr[:, ::-1] * self.resolution - self.half_width
-        return out[0] if single else out
+        return one_or_many(out, single)
 
     def contains(self, points_xy: ArrayLike) -> BoolArray:
         """Whether each robot-frame point ``(x, y)`` falls in a cell of the grid.
@@ -219,7 +208,6 @@ class LocalGrid:
         >>> bool(grid.contains([0.0, 0.0]))
         True
         """
-        pts, single = _points(points_xy, "points_xy")
+        pts, single = as_pairs(points_xy, "points_xy")
         cells = self.world_to_cell(pts)
-        inside: BoolArray = np.all((cells >= 0) & (cells < self.size), axis=1)
-        return inside.reshape(()) if single else inside
+        return one_or_many(inside(cells, (self.size, self.size)), single)

@@ -9,6 +9,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from navkit._shared.costs import validate_costs
+from navkit._shared.grid_coords import as_pairs, one_or_many, round_half_up
 from navkit._shared.types import FloatArray, IntArray
 from navkit._shared.validation import as_bool, as_cell, as_float_array, positive_float
 from navkit.errors import NoPathError
@@ -273,7 +274,7 @@ class FieldDStar:
         >>> planner.world_to_node([[1.6, 1.2]], continuous=True).tolist()
         [[2.4, 1.2]]
         """
-        pts, single = _points(points_xy, "points_xy")
+        pts, single = as_pairs(points_xy, "points_xy")
         o = self._origin
         c = math.cos(o.theta)
         s = math.sin(o.theta)
@@ -284,9 +285,9 @@ class FieldDStar:
         nodes[:, 0] = (-s * dx + c * dy) / self._resolution
         nodes[:, 1] = (c * dx + s * dy) / self._resolution
         out: FloatArray | IntArray = (
-            nodes if as_bool(continuous, "continuous") else np.floor(nodes + 0.5).astype(np.int64)
+            nodes if as_bool(continuous, "continuous") else round_half_up(nodes)
         )
-        return out[0] if single else out
+        return one_or_many(out, single)
 
     def node_to_world(self, nodes: ArrayLike) -> FloatArray:
         """World points ``(x, y)`` of nodes ``(i, j)`` (float node coordinates accepted).
@@ -307,9 +308,9 @@ class FieldDStar:
         >>> planner.node_to_world((2, 1)).tolist()
         [1.5, 1.0]
         """
-        pts, single = _points(nodes, "nodes")
+        pts, single = as_pairs(nodes, "nodes")
         out = self._origin.transform_points(pts[:, ::-1] * self._resolution)
-        return out[0] if single else out
+        return one_or_many(out, single)
 
     # ------------------------------------------------------------ planning
     def plan(self, start_node: ArrayLike, goal_node: ArrayLike) -> Path2D:
@@ -698,16 +699,6 @@ class FieldDStar:
             self.node_to_world(linked), "world", cost=cost * res, length=length * res,
             expanded=expanded,
         )
-
-
-def _points(value: ArrayLike, name: str) -> tuple[FloatArray, bool]:
-    """``value`` as (N, 2) float64 and whether it was one point of shape (2,)."""
-    arr = as_float_array(value, name)
-    if arr.shape == (2,):
-        return arr.reshape(1, 2), True
-    if arr.ndim != 2 or arr.shape[1] != 2:
-        raise ValueError(f"{name} must have shape (2,) or (N, 2), got {arr.shape}")
-    return arr, False
 
 
 def field_dstar(

@@ -9,6 +9,7 @@ from typing import Any, Literal
 
 import numpy as np
 
+from navkit._shared.grid_coords import round_half_up
 from navkit._shared.types import FloatArray, IntArray
 from navkit._shared.validation import as_float_array
 
@@ -132,6 +133,6 @@ class Path2D:
                 "cells is defined for 'grid' paths only; this path is in the 'world' frame "
                 "(use OccupancyGrid.world_to_cell(path.points))"
             )
-        out: IntArray = np.floor(self.points + 0.5).astype(np.int64)
+        out: IntArray = round_half_up(self.points)
         out.flags.writeable = False
         return out

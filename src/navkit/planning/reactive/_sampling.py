@@ -9,23 +9,12 @@ from typing import Literal, overload
 import numpy as np
 from numpy.typing import ArrayLike
 
+from navkit._shared.grid_coords import as_pairs, inside, one_or_many, round_half_up
 from navkit._shared.types import BoolArray, FloatArray, IntArray
 from navkit._shared.validation import as_float_array, positive_float
 from navkit.planning.reactive._potential_field import PotentialField, _frozen
 
 __all__ = ["SampledField", "sample_field"]
-
-
-def _pairs(value: ArrayLike, name: str) -> tuple[FloatArray, bool]:
-    """``value`` as an ``(N, 2)`` float array, and whether it was one pair of shape (2,)."""
-    arr = as_float_array(value, name)
-    if arr.ndim == 1 and arr.shape[0] == 2:
-        return arr.reshape(1, 2), True
-    if arr.size == 0:
-        return np.empty((0, 2), dtype=np.float64), False
-    if arr.ndim != 2 or arr.shape[1] != 2:
-        raise ValueError(f"{name} must have shape (N, 2) or (2,), got {arr.shape}")
-    return arr, False
 
 
 def _axis(value: ArrayLike, name: str, resolution: float) -> FloatArray:
@@ -143,13 +132,13 @@ class SampledField:
         >>> sampled.world_to_cell([0.3, 0.9], continuous=True)
         array([1.3, 2.1])
         """
-        pts, single = _pairs(points_xy, "points_xy")
+        pts, single = as_pairs(points_xy, "points_xy")
         cont = np.empty_like(pts)
         cont[:, 0] = (pts[:, 1] - self.y[0]) / self.resolution
         cont[:, 1] = (pts[:, 0] - self.x[0]) / self.resolution
         # Round half up (np.rint would round half to even): as OccupancyGrid and LocalGrid.
-        out: IntArray | FloatArray = cont if continuous else np.floor(cont + 0.5).astype(np.int64)
-        return out[0] if single else out
+        out: IntArray | FloatArray = cont if continuous else round_half_up(cont)
+        return one_or_many(out, single)
 
     def cell_to_world(self, cells: ArrayLike) -> FloatArray:
         """World points ``(x, y)`` of cells ``(row, col)``; continuous cells are accepted.
@@ -175,11 +164,11 @@ class SampledField:
         >>> sampled.cell_to_world([[0.0, -0.5]])     # a cell corner: the window's corner
         array([[-1.  ,  0.25]])
         """
-        arr, single = _pairs(cells, "cells")
+        arr, single = as_pairs(cells, "cells")
         out = np.empty_like(arr)
         out[:, 0] = self.x[0] + arr[:, 1] * self.resolution
         out[:, 1] = self.y[0] + arr[:, 0] * self.resolution
-        return out[0] if single else out
+        return one_or_many(out, single)
 
     def contains(self, points_xy: ArrayLike) -> BoolArray:
         """Whether each world point ``(x, y)`` falls in a cell of the window.
@@ -197,13 +186,8 @@ class SampledField:
         >>> bool(sampled.contains([-1.0, 0.0]))
         True
         """
-        pts, single = _pairs(points_xy, "points_xy")
-        cells = self.world_to_cell(pts)
-        rows, cols = self.shape
-        inside: BoolArray = (
-            (cells[:, 0] >= 0) & (cells[:, 0] < rows) & (cells[:, 1] >= 0) & (cells[:, 1] < cols)
-        )
-        return inside.reshape(()) if single else inside
+        pts, single = as_pairs(points_xy, "points_xy")
+        return one_or_many(inside(self.world_to_cell(pts), self.shape), single)
 
 
 def _limits(value: ArrayLike, name: str) -> tuple[float, float]:
