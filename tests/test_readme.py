@@ -19,6 +19,17 @@ def test_quick_start_runs(capsys: pytest.CaptureFixture[str]) -> None:
     assert "after 5 s" in capsys.readouterr().out
 
 
+def test_every_python_example_runs(capsys: pytest.CaptureFixture[str]) -> None:
+    blocks = re.findall(r"```python\n(.*?)```", README.read_text(encoding="utf-8"), re.DOTALL)
+    assert len(blocks) >= 2
+    for block in blocks:
+        exec(compile(block, str(README), "exec"), {})
+    out = capsys.readouterr().out
+    assert "world path of" in out
+    metres = float(out.split("points, ")[1].split(" m")[0])
+    assert 5.0 < metres < 9.0  # around the wall's top: longer than the 4 m straight line
+
+
 def test_development_command_is_what_ci_runs() -> None:
     text = README.read_text(encoding="utf-8")
     section = text.split("## Development", 1)[1]

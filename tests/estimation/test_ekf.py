@@ -9,7 +9,8 @@ import numpy as np
 import pytest
 from numpy.typing import NDArray
 
-from navkit.estimation import ExtendedKalmanFilter, FilterError, PlanarFusion
+from navkit.errors import FilterError
+from navkit.estimation import ExtendedKalmanFilter, PlanarFusion
 from navkit.geometry import wrap_angle
 
 FloatArray = NDArray[np.float64]

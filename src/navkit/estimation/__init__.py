@@ -3,8 +3,7 @@
 Fuses wheel odometry with an IMU or compass as real robots do
 (robot_localization's approach) in 2-D. Units are SI (m, rad, s); angles are
 wrapped to (-π, π]; poses are ``navkit.geometry.Pose2D`` in the world (odometry)
-frame. :class:`~navkit.errors.FilterError` is defined in :mod:`navkit.errors` and
-re-exported here.
+frame. Numerical failures raise :class:`navkit.errors.FilterError`.
 
 Filters and odometry are stateful: the one-measurement methods (``update``,
 ``update_odometry``, ...) return navkit objects (``Pose2D``, ``UpdateResult``) and
@@ -12,7 +11,6 @@ their ``update_batch`` forms take arrays (or a :class:`MeasurementLog`) with a
 leading time axis and return arrays (or a :class:`FusionResult`).
 """
 
-from navkit.errors import FilterError
 from navkit.estimation._compass import CompassCalibration, compass_to_yaw
 from navkit.estimation._ekf import ExtendedKalmanFilter
 from navkit.estimation._fusion import FusionResult, FusionStatus, MeasurementLog, PlanarFusion
@@ -23,7 +21,6 @@ __all__ = [
     "CompassCalibration",
     "DiffOdometry",
     "ExtendedKalmanFilter",
-    "FilterError",
     "FusionResult",
     "FusionStatus",
     "MeasurementLog",
