@@ -280,7 +280,10 @@ def test_office_map(benchmark: Any, what: str) -> None:
         pytest.skip("shared ROS map data not available")
     grid = OccupancyGrid.load(WILLOW)
     costs = grid.traversal_costs(robot_radius=0.3)
-    start = (290, 221)
+    # The main corridor network: unknown space keeps the robot 0.3 m away too
+    # (inflate_unknown, issue 12), which seals the former start (290, 221) in a
+    # small room.
+    start = (281, 236)
     field = distance_field(costs, start)
     goal = tuple(int(v) for v in np.unravel_index(
         np.argmax(np.where(np.isfinite(field), field, -1.0)), field.shape))

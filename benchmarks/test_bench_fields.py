@@ -33,6 +33,7 @@ from navkit.planning import (
     repulsive_force_from_scan,
     sample_field,
 )
+from navkit.planning.reactive._limits import MIN_DISTANCE
 from navkit.planning.reactive._scan_repulsion import _beam_table
 from navkit.planning.reactive._scan_repulsion_kernels import khatib_beam_force
 
@@ -50,6 +51,7 @@ def empty_kernel(
     range_max: float,
     k_rep: float,
     influence_radius: float,
+    min_distance: float,
 ) -> tuple[float, float]:
     return 0.0, 0.0
 
@@ -113,14 +115,14 @@ def scan(request: pytest.FixtureRequest) -> LaserScan:
 
 def test_empty_numba_call(benchmark, scan: LaserScan) -> None:  # type: ignore[no-untyped-def]
     cos_t, sin_t = _beam_table(scan)
-    args = (scan.ranges, cos_t, sin_t, scan.range_min, scan.range_max, K_REP, D0)
+    args = (scan.ranges, cos_t, sin_t, scan.range_min, scan.range_max, K_REP, D0, MIN_DISTANCE)
     empty_kernel(*args)
     benchmark(empty_kernel, *args)
 
 
 def test_kernel(benchmark, scan: LaserScan) -> None:  # type: ignore[no-untyped-def]
     cos_t, sin_t = _beam_table(scan)
-    args = (scan.ranges, cos_t, sin_t, scan.range_min, scan.range_max, K_REP, D0)
+    args = (scan.ranges, cos_t, sin_t, scan.range_min, scan.range_max, K_REP, D0, MIN_DISTANCE)
     khatib_beam_force(*args)
     benchmark(khatib_beam_force, *args)
 

@@ -7,7 +7,22 @@ catch all of them at once. Invalid arguments raise the built-in ``ValueError`` o
 
 from __future__ import annotations
 
+import math
+import numbers
+
 __all__ = ["FilterError", "NavkitError", "NoPathError"]
+
+
+_MAX_EXPANDED = 2**63 - 1
+
+
+def _short(value: numbers.Integral) -> str:
+    """An integer for a message; a huge one as its order of magnitude."""
+    n = int(value)
+    if abs(n) < 10**30:
+        return str(n)
+    # str() of a huge int may itself refuse (sys.int_info.default_max_str_digits).
+    return f"an integer of about 10**{int(abs(n).bit_length() * math.log10(2))}"
 
 
 class NavkitError(Exception):
@@ -22,7 +37,9 @@ class NoPathError(NavkitError):
     message : str
         Human-readable explanation.
     expanded : int, optional
-        Number of nodes (cells or corners) the search expanded before it gave up.
+        Number of nodes (cells or corners) the search expanded before it gave
+        up: an integer in [0, 2**63 - 1] (a ``TypeError`` for anything else,
+        ``bool`` included; a ``ValueError`` outside the range).
 
     Examples
     --------
@@ -32,13 +49,35 @@ class NoPathError(NavkitError):
     """
 
     def __init__(self, message: str, expanded: int = 0) -> None:
-        super().__init__(message)
-        self.expanded = int(expanded)
+        text: object = message
+        count: object = expanded
+        if not isinstance(text, str):
+            raise TypeError(f"message must be a str, got {type(text).__name__}")
+        if isinstance(count, bool) or not isinstance(count, numbers.Integral):
+            raise TypeError(f"expanded must be an integer, got {type(count).__name__}")
+        if not 0 <= int(count) <= _MAX_EXPANDED:
+            raise ValueError(f"expanded must be in [0, 2**63 - 1], got {_short(count)}")
+        super().__init__(text)
+        self.expanded = int(count)
 
 
 class FilterError(NavkitError):
     """A filter step failed numerically (e.g. a covariance lost positive definiteness).
 
     Raised by the filters of :mod:`navkit.estimation`; the filter state is left
-    exactly as it was before the failed step.
+    exactly as it was before the failed step, so the filter stays usable.
+
+    Examples
+    --------
+    A corrupt timestamp: predicting over a gap of 1e300 s would overflow.
+
+    >>> from navkit.estimation import PlanarFusion
+    >>> fusion = PlanarFusion(t0=0.0)
+    >>> try:
+    ...     fusion.update_yaw(1e300, 0.1, variance=1e-3)
+    ... except FilterError as exc:
+    ...     print(type(exc).__name__, isinstance(exc, NavkitError))
+    FilterError True
+    >>> fusion.t, fusion.update_yaw(0.1, 0.1, variance=1e-3).accepted
+    (0.0, True)
     """

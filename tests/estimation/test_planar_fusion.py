@@ -10,8 +10,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import navkit.errors
+from navkit.errors import FilterError
 from navkit.estimation import (
-    FilterError,
     FusionResult,
     FusionStatus,
     MeasurementLog,
@@ -198,15 +198,18 @@ def test_gate_rejects_outlier_but_keeps_prediction() -> None:
 
 
 def test_numerical_failure_raises_and_leaves_state() -> None:
-    # Variances near the float limit overflow in the prediction; the update must not apply.
-    fusion = PlanarFusion(P0=np.full(6, 1e300), t0=0.0)
+    # Variances at the top of their range overflow in a long prediction; the update must
+    # not apply (before issue 12 this was P0 = 1e300, now refused on construction).
+    fusion = PlanarFusion(P0=np.full(6, 1e100), t0=0.0)
     x, p = fusion.x, fusion.P
-    with pytest.raises(FilterError, match="positive definite"):
-        fusion.update_yaw(1e3, 0.5, variance=1.0)
+    with pytest.raises(FilterError, match="overflows float64"):
+        fusion.update_yaw(1e60, 0.5, variance=1.0)
     assert FilterError is navkit.errors.FilterError
     np.testing.assert_array_equal(fusion.x, x)
     np.testing.assert_array_equal(fusion.P, p)
     assert fusion.t == 0.0
+    with pytest.raises(ValueError, match="P0 entries must have magnitude <= 1e\\+100"):
+        PlanarFusion(P0=np.full(6, 1e300))
 
 
 @pytest.mark.parametrize(
@@ -235,7 +238,7 @@ def test_numerical_failure_raises_and_leaves_state() -> None:
             ValueError,
             "variance must be finite",
         ),
-        (lambda f: f.update_speed(1.0, 1.0, variance=0.0), ValueError, "variance must be > 0"),
+        (lambda f: f.update_speed(1.0, 1.0, variance=0.0), ValueError, "variance must be in"),
         (lambda f: f.predict(math.nan), ValueError, "t must be finite"),
         (lambda f: f.update_batch("log"), TypeError, "MeasurementLog"),
         # Every variance is keyword-only.

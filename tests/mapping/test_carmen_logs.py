@@ -182,3 +182,129 @@ def test_carmen_log_is_a_frozen_record(tmp_path: Path) -> None:
         CarmenLog(log.scans, (), log.robot_poses, log.timestamps, log.odometry)
     with pytest.raises(ValueError, match="odometry must have length 4"):
         CarmenLog(log.scans, log.laser_poses, log.robot_poses, log.timestamps, np.zeros((1, 3)))
+
+
+# ------------------------------------------------------------ issue 12: bad input
+GOOD_RL1 = (
+    "ROBOTLASER1 0 -0.5 1.0 0.25 8.0 0.01 0 5 1.5 1.5 1.5 1.5 1.5 0 "
+    "1.0 2.0 0.1 0.9 2.0 0.1 0 0 0 0 0 123.5 host 123.6\n"
+)
+
+
+@pytest.mark.parametrize(
+    ("text", "match"),
+    [
+        (
+            "FLASER 3 1.0 2.0 5.0 0 0 0 0 0 0 nan host 1.0\n",
+            r":1: malformed FLASER .*finite, got 'nan'",
+        ),
+        (
+            "FLASER 3 1.0 inf 5.0 0 0 0 0 0 0 1.0 host 1.0\n",
+            r":1: malformed FLASER .*finite, got 'inf'",
+        ),
+        ("FLASER 3 1.0 2.0 5.0 nan 0 0 0 0 0 1.0 host 1.0\n", r"finite, got 'nan'"),
+        ("FLASER 3 1.0 2.0 5.0 1e999 0 0 0 0 0 1.0 host 1.0\n", r"finite, got '1e999'"),
+        (
+            "FLASER -2 1.0 2.0 0 0 0 0 0 0 1.0 host 1.0\n",
+            r"beam count must be a non-negative integer, got '-2'",
+        ),
+        (
+            "FLASER 1.5 1.0 2.0 0 0 0 0 0 0 1.0 host 1.0\n",
+            r"beam count must be a non-negative integer",
+        ),
+        ("FLASER 0 0 0 0 0 0 0 1.0 host 1.0\n", r"beam count must be at least 1"),
+        (
+            "FLASER " + "1" * 27 + " 1.0 0 0 0 0 0 0 1.0 h 1.0\n",
+            r"beam count 1{20}\.\.\. is out of range",
+        ),
+        ("FLASER 1000000000 1.0 0 0 0 0 0 0 1.0 h 1.0\n", r"fields where the counts give"),
+        # A count one too small: the pose would be read from the ranges.
+        ("FLASER 2 1.0 2.0 5.0 0 0 0 0 0 0 1.0 host 1.0\n", r"fields where the counts give 10"),
+        ("ODOM 1 2 nan 0 0 0 1.0 h 1.0\n", r":1: malformed ODOM .*finite"),
+        # The issue's n_rem = -2, which shifted fields into the pose.
+        (
+            GOOD_RL1.replace(" 1.5 0 1.0", " 1.5 -2 1.0"),
+            r"remission count must be a non-negative integer, got '-2'",
+        ),
+        (GOOD_RL1.replace(" 1.5 0 1.0", " 1.5 2 1.0"), r"are the beam and remission counts right"),
+        # Degrees given as radians: start -90, field of view 180, increment 1.
+        (
+            GOOD_RL1.replace("-0.5 1.0 0.25", "-90 180 1"),
+            r"field of view 180 rad exceeds a full turn .*degrees",
+        ),
+        (
+            GOOD_RL1.replace("-0.5 1.0 0.25", "-90 3.0 0.25"),
+            r"log.txt:1: angle_min \(-90 rad\) .*degrees",
+        ),
+        (GOOD_RL1.replace("123.5 host", "inf host"), r"finite, got 'inf'"),
+        (
+            GOOD_RL1.replace("0.25 8.0", "0.25 2e9"),
+            r"log.txt:1: range_max must be > 0 and <= 1e9 m",
+        ),
+    ],
+)
+def test_malformed_lines_name_the_file_and_line(tmp_path: Path, text: str, match: str) -> None:
+    path = tmp_path / "log.txt"
+    path.write_text(text)
+    with pytest.raises(ValueError, match=match) as info:
+        read_carmen(path)
+    assert str(path) in str(info.value)
+
+
+def test_corrupt_gzip_is_a_value_error(tmp_path: Path) -> None:
+    good = gzip.compress(("FLASER 3 1.0 2.0 5.0 0 0 0 0 0 0 1.0 host 1.0\n" * 200).encode())
+    for name, data in [
+        ("garbage.gz", b"\x1f\x8b\x08\x00garbage"),  # EOFError / BadGzipFile in the issue
+        ("truncated.gz", good[: len(good) // 2]),
+        ("bad-crc.gz", good[:-8] + b"\x00" * 8),
+    ]:
+        path = tmp_path / name
+        path.write_bytes(data)
+        with pytest.raises(ValueError, match=r"corrupt or truncated gzip file") as info:
+            read_carmen(path)
+        assert str(path) in str(info.value)
+
+
+def test_reader_arguments(tmp_path: Path) -> None:
+    path = tmp_path / "log.txt"
+    path.write_text("FLASER 3 1.0 2.0 5.0 0 0 0 0 0 0 1.0 host 1.0\n")
+    with pytest.raises(TypeError, match=r"path must be a str or an os\.PathLike"):
+        read_carmen(3)  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match="is not a regular file"):
+        read_carmen(tmp_path)
+    with pytest.raises(ValueError, match=r"range_max must be > 0 and <= 1e9 m"):
+        read_carmen(path, range_max=1e12)
+    with pytest.raises(TypeError, match="range_max must be a real number"):
+        read_carmen(path, range_max="5")  # type: ignore[arg-type]
+    # Host name and logger timestamp are optional; a valid ROBOTLASER1 line reads.
+    path.write_text("FLASER 3 1.0 2.0 5.0 0 0 0 0 0 0 1.0\n" + GOOD_RL1)
+    log = read_carmen(path)
+    assert len(log) == 2 and log.laser_poses[1] == Pose2D(1.0, 2.0, 0.1)
+
+
+def test_carmen_log_from_lists_copies_and_checks() -> None:
+    scan = read_scan()
+    stamps = [1.0]
+    odometry: list[list[float]] = []
+    log = CarmenLog([scan], [(0.0, 1.0, 0.5)], [[0.0, 1.0, 0.5]], stamps, odometry)  # type: ignore[arg-type]
+    assert log.laser_poses == (Pose2D(0.0, 1.0, 0.5),) and log.odometry.shape == (0, 4)
+    mine = np.array([2.0])
+    odo = np.zeros((1, 4))
+    log = CarmenLog((scan,), (Pose2D(0, 0, 0),), (Pose2D(0, 0, 0),), mine, odo)
+    assert mine.flags.writeable and odo.flags.writeable
+    mine[0] = 5.0
+    assert log.timestamps.tolist() == [2.0]
+    with pytest.raises(TypeError, match=r"scans\[0\] must be a LaserScan"):
+        CarmenLog(([1.0],), (Pose2D(0, 0, 0),), (Pose2D(0, 0, 0),), [1.0], odo)  # type: ignore[arg-type]
+    with pytest.raises(TypeError, match=r"laser_poses\[0\]"):
+        CarmenLog((scan,), ("pose",), (Pose2D(0, 0, 0),), [1.0], odo)  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match="timestamps must contain only finite values"):
+        CarmenLog((scan,), (Pose2D(0, 0, 0),), (Pose2D(0, 0, 0),), [math.nan], odo)
+    with pytest.raises(ValueError, match="odometry must contain only finite values"):
+        CarmenLog((scan,), (Pose2D(0, 0, 0),), (Pose2D(0, 0, 0),), [1.0], [[0, 0, math.inf, 1]])
+
+
+def read_scan() -> navkit.mapping.LaserScan:
+    return navkit.mapping.LaserScan(
+        [1.0], angle_min=0.0, angle_increment=0.1, range_min=0.1, range_max=5.0
+    )

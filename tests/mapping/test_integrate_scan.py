@@ -407,3 +407,81 @@ def test_long_beams_from_far_away_are_clipped_to_the_map() -> None:
     row = grid.logodds[5]
     assert np.all(row[:10] < 0) and row[10] > 0 and np.all(row[11:] < 0)
     assert np.count_nonzero(grid.logodds) == grid.shape[1]
+
+
+# ------------------------------------------------------------ issue 12: bad input
+def test_integrate_flags_and_ranges() -> None:
+    grid = OccupancyGrid.empty(width=3.0, height=3.0, resolution=0.1)
+    scan = LaserScan([1.0], angle_min=0.0, angle_increment=0.1, range_min=0.1, range_max=2.0)
+    before = grid.logodds.copy()
+    for flag in ("no", 1, None, np.array([False])):
+        with pytest.raises(TypeError, match="exact must be a bool"):
+            integrate_scan(grid, scan, (1, 1, 0), exact=flag)  # type: ignore[arg-type]
+    for kwargs, match in [
+        ({"hit": 1e308}, r"hit must be >= 0 and <= 1e6"),
+        ({"miss": -1e308}, r"miss must be >= -1e6 and <= 0"),
+        ({"clamp": (-1e308, 1.0)}, r"clamp\[0\] must be >= -1e6 and <= 1e6"),
+        ({"clamp": (0.0, 1e7)}, r"clamp\[1\] must be >= -1e6 and <= 1e6"),
+        ({"clamp": 3.0}, r"clamp must be a \(low, high\) pair"),
+        ({"hit": True}, "hit must be a real number"),
+        ({"max_range": "2"}, "max_range must be a real number"),
+    ]:
+        with pytest.raises((TypeError, ValueError), match=match):
+            integrate_scan(grid, scan, (1, 1, 0), **kwargs)  # type: ignore[arg-type]
+    assert np.array_equal(grid.logodds, before)
+    assert integrate_scan(grid, scan, (1, 1, 0), exact=np.True_) > 0
+
+
+def test_extreme_log_odds_stay_finite_and_the_grid_usable() -> None:
+    grid = OccupancyGrid.empty(width=2.0, height=0.5, resolution=0.5)
+    scan = LaserScan([1.4], angle_min=0.0, angle_increment=0.1, range_min=0.1, range_max=3.0)
+    for _ in range(3):
+        grid.integrate_scan(scan, (0.25, 0.25, 0.0), hit=1e6, miss=-1e6, clamp=(-1e6, 1e6))
+    assert np.all(np.isfinite(grid.logodds)) and grid.logodds.max() == 1e6
+    assert np.all(np.isfinite(grid.probability()))
+    assert grid.copy().occupied().sum() == 1  # a copy re-validates the log-odds
+
+
+@pytest.mark.parametrize(
+    "pose",
+    [
+        (1e300, 1e300, 0.0),
+        (-1.7e308, 1.7e308, 0.0),
+        (1.7e308, -1.7e308, math.pi / 2),
+        (1e18, 0.5, math.pi),  # far away, pointing at the map
+    ],
+)
+def test_sensor_far_away_updates_nothing(pose: tuple[float, float, float]) -> None:
+    grid = OccupancyGrid.empty(width=2.0, height=1.0, resolution=0.1, origin=(1e9, -1e9, 0.3))
+    scan = LaserScan(
+        [1e8, math.inf, 5.0], angle_min=-1.0, angle_increment=1.0, range_min=0.1, range_max=1e9
+    )
+    for exact in (False, True):
+        assert integrate_scan(grid, scan, pose, exact=exact) == 0
+    assert not grid.logodds.any()
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    st.floats(allow_nan=False, allow_infinity=False),
+    st.floats(allow_nan=False, allow_infinity=False),
+    st.floats(-10.0, 10.0),
+    st.floats(1e-6, 1e6),
+    st.floats(1e-3, 1e9),
+)
+def test_any_finite_pose_and_range_keeps_the_grid_finite(
+    x: float, y: float, theta: float, res: float, range_max: float
+) -> None:
+    grid = OccupancyGrid.empty(
+        width=30 * res, height=20 * res, resolution=res, origin=(-3e3, 2e3, 0.2)
+    )
+    scan = LaserScan(
+        np.array([0.5, 0.999, 2.0, math.inf]) * range_max,
+        angle_min=-math.pi,
+        angle_increment=math.pi / 2,
+        range_min=0.0,
+        range_max=range_max,
+    )
+    n = integrate_scan(grid, scan, (x, y, theta), exact=bool(int(res * 1e6) % 2))
+    assert 0 <= n <= grid.shape[0] * grid.shape[1]
+    assert np.all(np.isfinite(grid.logodds))

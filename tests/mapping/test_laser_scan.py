@@ -166,3 +166,114 @@ def test_real_hokuyo_scans(shared_data: Path) -> None:
         # The scanner sees ±119.5° (README header values, rounded): no point behind it.
         bearing = np.arctan2(pts[:, 1], pts[:, 0])
         assert np.all(np.abs(bearing) <= 2.0862 + 1e-4)
+
+
+# ------------------------------------------------------------ issue 12: bad input
+def scan_args(**kwargs: object) -> dict[str, object]:
+    args: dict[str, object] = {
+        "ranges": [1.0, 2.0],
+        "angle_min": 0.0,
+        "angle_increment": 0.1,
+        "range_min": 0.1,
+        "range_max": 5.0,
+    }
+    args.update(kwargs)
+    return args
+
+
+def test_degrees_given_as_radians_are_refused() -> None:
+    # The issue's scan: 361 beams from -180 with 1.0 apart span 360 rad.
+    with pytest.raises(ValueError, match=r"span 360 rad .*look like degrees"):
+        LaserScan(np.ones(361), angle_min=-180.0, angle_increment=1.0, range_min=0.1, range_max=5)
+    with pytest.raises(ValueError, match=r"angle_min \(-90 rad\) lies beyond ±2π.*degrees"):
+        LaserScan(np.ones(3), angle_min=-90.0, angle_increment=0.01, range_min=0.1, range_max=5)
+    with pytest.raises(ValueError, match=r"angle_max .* lies beyond ±2π"):
+        LaserScan(np.ones(3), angle_min=6.0, angle_increment=0.5, range_min=0.1, range_max=5)
+    with pytest.raises(ValueError, match=r"angle_increment \(10\.0 rad\) exceeds a full turn"):
+        LaserScan([1.0], angle_min=0.0, angle_increment=10.0, range_min=0.1, range_max=5)
+
+
+@pytest.mark.parametrize(
+    ("n", "angle_min", "increment"),
+    [
+        (360, -math.pi, 2 * math.pi / 360),  # a full turn, last beam one step short of π
+        (361, -math.pi, 2 * math.pi / 360),  # first and last beam both at ±π
+        (1081, -2.356194, 0.004363323),  # a Hokuyo UTM-30LX, 270°
+        (1440, float(np.float32(-math.pi)), float(np.float32(2 * math.pi / 1440))),  # float32
+        (720, 2 * math.pi, -2 * math.pi / 720),  # clockwise from 2π
+    ],
+)
+def test_real_scanner_geometries_are_accepted(n: int, angle_min: float, increment: float) -> None:
+    scan = LaserScan(
+        np.ones(n), angle_min=angle_min, angle_increment=increment, range_min=0.1, range_max=5
+    )
+    assert len(scan) == n and np.all(np.abs(scan.angles()) <= math.pi)
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "error", "match"),
+    [
+        ({"ranges": [1 + 1j, 2.0]}, TypeError, "ranges must hold real numbers"),
+        ({"ranges": np.array([1.0, 2.0]) * (1 + 0j)}, TypeError, "ranges must hold real"),
+        ({"ranges": ["1.0", "2.0"]}, TypeError, "ranges must hold real numbers"),
+        ({"ranges": [True, False]}, TypeError, "ranges must hold real numbers"),
+        ({"intensities": [1j, 2.0]}, TypeError, "intensities must hold real numbers"),
+        ({"angle_min": "0.0"}, TypeError, "angle_min must be a real number"),
+        ({"range_max": True}, TypeError, "range_max must be a real number"),
+        ({"range_max": 2e9}, ValueError, r"range_max must be > 0 and <= 1e9 m"),
+        ({"range_max": math.inf}, ValueError, "range_max must be finite"),
+        ({"range_min": 5.0}, ValueError, "range_max .* must be greater than range_min"),
+    ],
+)
+def test_scan_types_and_ranges(
+    kwargs: dict[str, object], error: type[Exception], match: str
+) -> None:
+    with pytest.raises(error, match=match):
+        LaserScan(**scan_args(**kwargs))  # type: ignore[arg-type]
+
+
+def test_scan_built_from_lists_copies_and_never_freezes_the_callers_array() -> None:
+    ranges = [1.0, 2.0]
+    scan = LaserScan(ranges, angle_min=0.0, angle_increment=0.1, range_min=0.1, range_max=5.0)
+    ranges[0] = 9.0
+    assert scan.ranges.tolist() == [1.0, 2.0] and not scan.ranges.flags.writeable
+    mine = np.array([1.0, 2.0])
+    intensities = np.array([3.0, 4.0])
+    scan = LaserScan(
+        mine,
+        angle_min=0.0,
+        angle_increment=0.1,
+        range_min=0.1,
+        range_max=5.0,
+        intensities=intensities,
+    )
+    assert mine.flags.writeable and intensities.flags.writeable
+    mine[0] = intensities[0] = 7.0
+    assert scan.ranges[0] == 1.0 and scan.intensities is not None and scan.intensities[0] == 3.0
+
+
+def test_to_local_grid_refuses_huge_grids_before_allocating() -> None:
+    scan = LaserScan([1.0], angle_min=0.0, angle_increment=0.1, range_min=0.1, range_max=5.0)
+    # MemoryError (364 TiB) in the issue.
+    with pytest.raises(ValueError, match=r"would need 4e\+14 cells \(364 TiB of bool\)"):
+        scan.to_local_grid(half_width=1e4, resolution=1e-3)
+    with pytest.raises(ValueError, match=r"resolution must be >= 1e-6"):
+        scan.to_local_grid(half_width=1e308, resolution=1e-308)
+
+
+def test_scan_from_msg_checks_like_laser_scan() -> None:
+    from navkit.mapping.io import scan_from_msg
+
+    fields = {
+        "ranges": [1.0, 2.0],
+        "angle_min": 0.0,
+        "angle_increment": 0.1,
+        "range_min": 0.1,
+        "range_max": 5.0,
+    }
+    with pytest.raises(TypeError, match="ranges must hold real numbers"):
+        scan_from_msg(SimpleNamespace(**{**fields, "ranges": [1 + 1j, 2.0]}))
+    with pytest.raises(TypeError, match="intensities must hold real numbers"):
+        scan_from_msg(SimpleNamespace(**fields, intensities=["a", "b"]))
+    with pytest.raises(ValueError, match="degrees"):
+        scan_from_msg(SimpleNamespace(**{**fields, "angle_min": -135.0}))

@@ -67,7 +67,7 @@ def test_local_grid_validation() -> None:
         LocalGrid(np.zeros((21, 21), dtype=bool), resolution=0.1, half_width=1.5)
     with pytest.raises(TypeError, match="boolean"):
         LocalGrid(np.zeros((3, 3)), resolution=0.1, half_width=0.1)  # type: ignore[arg-type]
-    with pytest.raises(ValueError, match="resolution must be > 0"):
+    with pytest.raises(ValueError, match=r"resolution must be >= 1e-6 and <= 1e6 m"):
         LocalGrid.from_points([[0.0, 0.0]], half_width=1.0, resolution=-0.1)
     with pytest.raises(ValueError, match="points_xy must have shape"):
         LocalGrid.from_points([[0.0, 0.0, 0.0]])
@@ -142,3 +142,57 @@ def test_local_grid_continuous_round_trip(
     centre = grid.size // 2
     edge = grid.world_to_cell([resolution / 2, -resolution / 2], continuous=True)
     assert edge == pytest.approx([centre - 0.5, centre + 0.5])
+
+
+# ------------------------------------------------------------ issue 12: bad input
+def test_local_grid_from_lists_copies_and_never_freezes_the_callers_array() -> None:
+    rows = [[False, False, False], [False, True, False], [False, False, False]]
+    grid = LocalGrid(rows, resolution=0.5, half_width=0.5)  # type: ignore[arg-type]
+    rows[1][1] = False
+    assert grid.occupied[1, 1] and not grid.occupied.flags.writeable
+    mine = np.zeros((3, 3), dtype=bool)
+    LocalGrid(mine, resolution=0.5, half_width=0.5)
+    assert mine.flags.writeable
+
+
+def test_local_grid_size_is_checked_before_allocating() -> None:
+    with pytest.raises(ValueError, match=r"would need 4e\+14 cells .*maximum is 2\*\*28"):
+        LocalGrid.from_points([], half_width=1e4, resolution=1e-3)
+    with pytest.raises(ValueError, match=r"half_width must be >= 0 and <= 1e6 m"):
+        LocalGrid.from_points([], half_width=1e308, resolution=1.0)
+    with pytest.raises(ValueError, match=r"resolution must be >= 1e-6"):
+        LocalGrid.from_points([], half_width=1.0, resolution=5e-324)
+    with pytest.raises(ValueError, match=r"resolution must be >= 1e-6"):
+        LocalGrid(np.zeros((3, 3), dtype=bool), resolution=1e-308, half_width=1e-308)
+    # The largest allowed grid is 16383 cells a side; one more cell a side is refused.
+    with pytest.raises(ValueError, match="would need"):
+        LocalGrid.from_points([], half_width=8192.0, resolution=1.0)
+
+
+def test_local_grid_far_points_and_cells() -> None:
+    grid = LocalGrid.from_points([[1e308, -1e308], [0.0, 0.0]], half_width=0.2, resolution=0.1)
+    assert grid.occupied.sum() == 1 and grid.occupied[2, 2]
+    far = grid.world_to_cell([[1e308, -1e308], [-1e308, 1e308]])
+    assert far.tolist() == [[-(2**62), 2**62], [2**62, -(2**62)]]
+    cont = grid.world_to_cell([1e308, -1e308], continuous=True)
+    assert np.all(np.isfinite(cont)) and cont.tolist() == [-(2.0**62), 2.0**62]
+    assert not grid.contains([[1e308, 0.0]]).any()
+    assert np.all(np.isfinite(grid.cell_to_world([[2.0**62, -(2.0**62)]])))
+    with pytest.raises(ValueError, match=r"cells must lie within ±2\*\*62"):
+        grid.cell_to_world([1e300, 0.0])
+    with pytest.raises(TypeError, match="continuous must be a bool"):
+        grid.world_to_cell([0.0, 0.0], continuous="yes")  # type: ignore[call-overload]
+    with pytest.raises(TypeError, match="points_xy must hold real numbers"):
+        grid.world_to_cell([1 + 1j, 0.0])
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(st.floats(allow_nan=False, allow_infinity=False), min_size=2, max_size=8))
+def test_local_grid_any_finite_points(values: list[float]) -> None:
+    pts = np.array(values[: len(values) // 2 * 2]).reshape(-1, 2)
+    grid = LocalGrid.from_points(pts, half_width=0.5, resolution=0.1)
+    cells = grid.world_to_cell(pts)
+    assert np.all(np.abs(cells) <= 2**62)
+    assert np.all(np.isfinite(grid.world_to_cell(pts, continuous=True)))
+    inside = grid.contains(pts)
+    assert grid.occupied.sum() == len({tuple(c) for c in cells[inside].tolist()})

@@ -201,7 +201,7 @@ def test_png_maps_need_pillow(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -
             "missing required key.*negate, free_thresh",
         ),
         (GOOD_YAML.replace("m.pgm", "absent.pgm"), None, FileNotFoundError, "absent.pgm"),
-        (GOOD_YAML.replace("0.5", "-0.5"), None, ValueError, "resolution must be > 0"),
+        (GOOD_YAML.replace("0.5", "-0.5"), None, ValueError, r"m.yaml: resolution must be >= 1e-6"),
         (GOOD_YAML.replace("[1.0, 2.0, 0.0]", "[1.0, 2.0]"), None, ValueError, "origin must be"),
         (GOOD_YAML.replace("0.196", "0.9"), None, ValueError, "free_thresh < occupied_thresh"),
         (GOOD_YAML + "mode: fancy\n", None, ValueError, "mode must be one of"),
@@ -298,10 +298,10 @@ def test_save_never_writes_over_its_own_image(tmp_path: Path, name: str) -> None
 
 def test_save_refuses_directories_before_writing(tmp_path: Path) -> None:
     (tmp_path / "map.pgm").mkdir()
-    with pytest.raises(IsADirectoryError, match=r"map\.pgm"):
+    with pytest.raises(ValueError, match=r"map\.pgm: it is a directory"):
         write_map(small_grid(), tmp_path / "map.yaml")
     (tmp_path / "other.yaml").mkdir()
-    with pytest.raises(IsADirectoryError, match=r"other\.yaml"):
+    with pytest.raises(ValueError, match=r"other\.yaml: it is a directory"):
         write_map(small_grid(), tmp_path / "other.yaml")
     assert sorted(p.name for p in tmp_path.iterdir()) == ["map.pgm", "other.yaml"]
     with pytest.raises(ValueError, match="must name a YAML file"):
@@ -431,3 +431,273 @@ def test_save_checks_its_arguments(tmp_path: Path) -> None:
     with pytest.raises(TypeError, match="positional"):
         write_map(small_grid(), tmp_path / "m.yaml", "scale")  # type: ignore[call-arg]
     assert list(tmp_path.iterdir()) == []
+
+
+# ---------------------------------------- issue 12: every reproduction, by name
+def test_load_then_save_never_overwrites_the_maps_own_image(tmp_path: Path) -> None:
+    # The issue: g = OccupancyGrid.load("map.yaml"); g.save("m.pgm") overwrote the
+    # user's own image m.pgm with YAML text.
+    yaml_path = make_map_files(tmp_path, GOOD_YAML, b"P5\n2 1\n255\n\x00\xfe")
+    g = OccupancyGrid.load(yaml_path)
+    before = snapshot(tmp_path)
+    with pytest.raises(ValueError, match=r"ends in \.pgm"):
+        g.save(tmp_path / "m.pgm")
+    # The same for a PNG map: the YAML would overwrite the image.
+    from PIL import Image
+
+    Image.fromarray(np.array([[0, 254]], dtype=np.uint8)).save(tmp_path / "p.png")
+    (tmp_path / "p.yaml").write_text(GOOD_YAML.replace("m.pgm", "p.png"))
+    before = snapshot(tmp_path)
+    png_map = OccupancyGrid.load(tmp_path / "p.yaml")
+    for name in ("p.png", "P.PNG", "x.jpg", "x.tif"):
+        with pytest.raises(ValueError, match="an image suffix: the map YAML would overwrite"):
+            png_map.save(tmp_path / name)
+    assert snapshot(tmp_path) == before
+    # Saving over the map itself is what the user asked for.
+    png_map.save(tmp_path / "m.yaml")
+    assert np.array_equal(OccupancyGrid.load(tmp_path / "m.yaml").occupied(), g.occupied())
+
+
+@pytest.mark.parametrize("name", ["my map #2.yaml", "[map].yaml", "#.yaml", "a # b: c.yaml"])
+def test_issue_names_round_trip(tmp_path: Path, name: str) -> None:
+    image = small_grid().save(tmp_path / name)
+    assert image == tmp_path / (name[: -len(".yaml")] + ".pgm")
+    again = OccupancyGrid.load(tmp_path / name)
+    assert np.array_equal(again.occupied(), small_grid().occupied())
+    assert again.origin == small_grid().origin
+
+
+@pytest.mark.parametrize(
+    ("line", "name"),
+    [
+        ("image: a#b.pgm", "a#b.pgm"),  # '#' inside a plain scalar is not a comment
+        ("image: 'my map #2.pgm'", "my map #2.pgm"),
+        ('image: "[map].pgm"', "[map].pgm"),
+        ("image: m.pgm # the image", "m.pgm"),
+    ],
+)
+def test_hash_and_brackets_in_image_names_are_read_as_yaml_does(
+    tmp_path: Path, line: str, name: str
+) -> None:
+    text = GOOD_YAML.replace("image: m.pgm  # comment", line)
+    grid = read_map(make_map_files(tmp_path, text, b"P5\n2 1\n255\n\x00\xfe", name=name))
+    assert grid.occupied().tolist() == [[True, False]]
+
+
+def test_block_list_origin(tmp_path: Path) -> None:
+    text = GOOD_YAML.replace("origin: [1.0, 2.0, 0.0]", "origin:\n- 1.0\n- 2.0\n- 0.5")
+    grid = read_map(make_map_files(tmp_path, text, b"P5\n2 1\n255\n\x00\xfe"))
+    assert grid.origin == Pose2D(1.0, 2.0, 0.5)
+
+
+def _png(width: int, height: int, body: bytes = b"") -> bytes:
+    """A PNG signature and IHDR claiming ``width`` x ``height`` grey pixels."""
+    import struct
+    import zlib
+
+    def chunk(kind: bytes, data: bytes) -> bytes:
+        return (
+            struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+        )
+
+    ihdr = struct.pack(">IIBBBBB", width, height, 8, 0, 0, 0, 0)
+    return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", ihdr) + body + chunk(b"IEND", b"")
+
+
+def _good_png() -> bytes:
+    import io as bytes_io
+
+    from PIL import Image
+
+    out = bytes_io.BytesIO()
+    noise = np.random.default_rng(0).integers(0, 256, (40, 40), dtype=np.uint8)
+    Image.fromarray(noise).save(out, format="PNG")  # noise: the pixels need ~1.6 kB
+    return out.getvalue()
+
+
+BAD_IMAGES: list[tuple[str, bytes, str]] = [
+    ("garbage.png", b"\x89PNG\r\n\x1a\n" + bytes(40), "not an image file Pillow can identify"),
+    ("noise.png", b"not an image at all\n", "not an image file Pillow can identify"),
+    ("truncated.png", _good_png()[:400], r"cannot read the image \(OSError: image file is trunc"),
+    ("empty.png", b"", "the image file is empty"),
+    # Sizes from the header, refused before anything is decoded.
+    ("bomb.png", _png(100_000, 100_000), r"Pillow's decompression-bomb limit"),
+    ("big.png", _png(17_000, 17_000), r"Pillow's decompression-bomb limit"),
+    ("big.pgm", b"P5\n100000 100000\n255\n\x00", r"100000 x 100000 = 10000000000 pixels"),
+    ("big2.pgm", b"P2\n20000 20000\n255\n0\n", r"20000 x 20000 = 400000000 pixels"),
+    ("wide.pgm", b"P5\n99999999999999999999999 2 255\n\x00", r"header field .* out of range"),
+    # The issue's OverflowError: a P2 value of 10**26.
+    ("huge.pgm", b"P2\n2 1\n255\n0 100000000000000000000000000\n", r"exceeds maxval 255"),
+    ("neg.pgm", b"P2\n2 1\n255\n0 -5\n", r"not a non-negative integer"),
+    ("maxval0.pgm", b"P5\n1 1\n0\n\x00", r"maxval must be in 1\.\.65535, got 0"),
+    ("maxval.pgm", b"P5\n1 1\n70000\n\x00\x00", r"maxval must be in 1\.\.65535, got 70000"),
+    ("text.pgm", b"hello\n", r"not a PGM image"),
+]
+
+
+@pytest.mark.parametrize(("name", "body", "match"), BAD_IMAGES, ids=[b[0] for b in BAD_IMAGES])
+def test_malformed_images_raise_value_error_naming_the_files(
+    tmp_path: Path, name: str, body: bytes, match: str
+) -> None:
+    (tmp_path / name).write_bytes(body)
+    yaml_path = tmp_path / "m.yaml"
+    yaml_path.write_text(GOOD_YAML.replace("m.pgm", name))
+    with pytest.raises(ValueError, match=match) as info:
+        read_map(yaml_path)
+    assert str(yaml_path) in str(info.value) and name in str(info.value)
+
+
+def test_image_size_is_checked_from_the_header_before_decoding(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from PIL import Image
+
+    # Without Pillow's own limit, navkit's (2**28 pixels) still applies, before decoding.
+    monkeypatch.setattr(Image, "MAX_IMAGE_PIXELS", None)
+    (tmp_path / "big.png").write_bytes(_png(17_000, 17_000))
+    (tmp_path / "m.yaml").write_text(GOOD_YAML.replace("m.pgm", "big.png"))
+    with pytest.raises(ValueError, match=r"17000 x 17000 = 289000000 pixels is larger than"):
+        read_map(tmp_path / "m.yaml")
+    # A PGM claiming 2**28 + 1 pixels with one byte of raster: refused by size, not truncation.
+    (tmp_path / "big.pgm").write_bytes(b"P5\n268435457 1\n255\n\x00")
+    (tmp_path / "m.yaml").write_text(GOOD_YAML.replace("m.pgm", "big.pgm"))
+    with pytest.raises(ValueError, match=r"268435457 pixels is larger than .*MAX_CELLS"):
+        read_map(tmp_path / "m.yaml")
+
+
+def test_yaml_pointing_at_itself_or_a_text_file(tmp_path: Path) -> None:
+    (tmp_path / "self.yaml").write_text(GOOD_YAML.replace("m.pgm", "self.yaml"))
+    with pytest.raises(ValueError, match=r"self\.yaml: the image key names the YAML file itself"):
+        read_map(tmp_path / "self.yaml")
+    hostname = Path("/etc/hostname")
+    if hostname.is_file() and hostname.stat().st_size > 0:
+        (tmp_path / "host.yaml").write_text(GOOD_YAML.replace("m.pgm", str(hostname)))
+        with pytest.raises(ValueError, match=r"host\.yaml: map image /etc/hostname: not an image"):
+            read_map(tmp_path / "host.yaml")
+    (tmp_path / "folder").mkdir()
+    (tmp_path / "dir.yaml").write_text(GOOD_YAML.replace("m.pgm", "folder"))
+    with pytest.raises(ValueError, match=r"dir\.yaml: map image .*folder is a directory"):
+        read_map(tmp_path / "dir.yaml")
+    with pytest.raises(ValueError, match=r"map YAML file .* is a directory"):
+        read_map(tmp_path / "folder")
+
+
+@pytest.mark.parametrize(
+    ("content", "match"),
+    [
+        (b"P5\n2 1\n255\n\x00\xfe", r"this is a PGM image, not a map YAML"),  # the .pgm
+        (_png(2, 2), r"this is a PNG image, not a map YAML"),
+        (b"image: m.pgm\nresolution: 0.1\xff\xfe\n", r"not UTF-8 text \(byte 0xff at offset 28\)"),
+        (b"\x00\x01\x02binary", r"expected 'key: value' lines"),
+        (b"a: " + b"[" * 100_000, r"(nested too deeply|expected 'key: value')"),
+        (b"resolution: 1" + b"0" * 5000 + b"\n", r"(unreadable YAML value|must be)"),
+        (b"image: m.pgm\n" + b"#" * (1 << 20), r"too large for a map YAML"),
+    ],
+)
+def test_malformed_yaml_raises_value_error_naming_the_file(
+    tmp_path: Path, content: bytes, match: str
+) -> None:
+    (tmp_path / "m.pgm").write_bytes(b"P5\n1 1\n255\n\xff")
+    path = tmp_path / "given.yaml"
+    path.write_bytes(content)
+    with pytest.raises(ValueError, match=match) as info:
+        read_map(path)
+    assert str(path) in str(info.value)
+
+
+@pytest.mark.parametrize(
+    ("old", "new", "match"),
+    [
+        ("resolution: 0.5", "resolution: 1e-9", r"resolution must be >= 1e-6"),
+        ("resolution: 0.5", "resolution: 1" + "0" * 400, r"resolution must be a finite number"),
+        ("[1.0, 2.0, 0.0]", "[1e12, 2.0, 0.0]", r"origin x and y must lie within ±1e9 m"),
+        ("[1.0, 2.0, 0.0]", "[.inf, 2.0, 0.0]", r"origin must be finite"),
+        ("image: m.pgm  # comment", 'image: "m\\0.pgm"', r"image must be a file name"),
+        ("negate: 0", "negate: [0]", r"negate must be 0 or 1"),
+    ],
+)
+def test_yaml_values_out_of_range(tmp_path: Path, old: str, new: str, match: str) -> None:
+    path = make_map_files(tmp_path, GOOD_YAML.replace(old, new), b"P5\n1 1\n255\n\xff")
+    with pytest.raises(ValueError, match=match) as info:
+        read_map(path)
+    assert str(path) in str(info.value)
+
+
+def test_pillow_errors_become_value_errors(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    from PIL import Image
+
+    (tmp_path / "m.png").write_bytes(_good_png())
+    yaml_path = tmp_path / "m.yaml"
+    yaml_path.write_text(GOOD_YAML.replace("m.pgm", "m.png"))
+    assert read_map(yaml_path).shape == (40, 40)
+    for exc in (
+        Image.DecompressionBombError("Image size (400000000 pixels) exceeds limit"),
+        Image.UnidentifiedImageError("cannot identify"),
+        OSError("image file is truncated"),
+        SyntaxError("broken PNG file"),
+        EOFError(),
+        ValueError("tile cannot extend outside image"),
+    ):
+
+        def broken(*args: Any, error: BaseException = exc, **kwargs: Any) -> Any:
+            raise error
+
+        monkeypatch.setattr(Image, "open", broken)
+        with pytest.raises(ValueError, match=r"m\.yaml: map image .*m\.png: ") as info:
+            read_map(yaml_path)
+        assert type(info.value) is ValueError
+    monkeypatch.undo()
+
+    def refused(*args: Any, **kwargs: Any) -> Any:
+        raise PermissionError(13, "Permission denied")
+
+    monkeypatch.setattr(Image, "open", refused)
+    with pytest.raises(PermissionError):
+        read_map(yaml_path)
+
+
+def test_32_bit_images_are_clipped_to_grey_levels(tmp_path: Path) -> None:
+    from PIL import Image
+
+    Image.fromarray(np.array([[-5, 0, 70000, 65535]], dtype=np.int32), mode="I").save(
+        tmp_path / "m.tif"
+    )
+    (tmp_path / "m.yaml").write_text(GOOD_YAML.replace("m.pgm", "m.tif"))
+    grid = read_map(tmp_path / "m.yaml")
+    assert grid.occupied().tolist() == [[True, True, False, False]]
+    assert grid.free().tolist() == [[False, False, True, True]]
+
+
+def test_paths_must_be_paths(tmp_path: Path) -> None:
+    for bad in (3, None, b"map.yaml", ["map.yaml"]):
+        with pytest.raises(TypeError, match=r"path must be a str or an os\.PathLike"):
+            read_map(bad)  # type: ignore[arg-type]
+        with pytest.raises(TypeError, match=r"path must be a str or an os\.PathLike"):
+            write_map(small_grid(), bad)  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match="NUL"):
+        read_map("map\x00.yaml")
+    with pytest.raises(TypeError, match="mode must be a str"):
+        write_map(small_grid(), tmp_path / "m.yaml", mode=None)  # type: ignore[arg-type]
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_save_never_writes_over_another_maps_image(tmp_path: Path) -> None:
+    # map.yaml names floor.pgm; saving the edited map as floor.yaml would write
+    # floor.pgm, the original map's image, so map.yaml would show the edit.
+    small_grid(True).save(tmp_path / "floor.yaml")
+    (tmp_path / "floor.yaml").rename(tmp_path / "map.yaml")
+    g = OccupancyGrid.load(tmp_path / "map.yaml")
+    before = snapshot(tmp_path)
+    with pytest.raises(ValueError, match=r"floor\.pgm already exists and is not the image of"):
+        small_grid(False).save(tmp_path / "floor.yaml")
+    # A YAML at the path that names another image does not own floor.pgm either.
+    (tmp_path / "floor.yaml").write_text(GOOD_YAML)
+    with pytest.raises(ValueError, match="already exists and is not the image"):
+        small_grid(False).save(tmp_path / "floor.yaml")
+    (tmp_path / "floor.yaml").unlink()
+    assert snapshot(tmp_path) == before
+    assert np.array_equal(OccupancyGrid.load(tmp_path / "map.yaml").occupied(), g.occupied())
+    # Replacing a map (its YAML names the image) is what save is for.
+    small_grid(False).save(tmp_path / "map2.yaml")
+    small_grid(True).save(tmp_path / "map2.yaml")
+    assert np.array_equal(read_map(tmp_path / "map2.yaml").occupied(), small_grid(True).occupied())

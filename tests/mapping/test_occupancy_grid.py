@@ -158,7 +158,7 @@ def test_coordinate_input_validation() -> None:
         (
             lambda: OccupancyGrid.empty(width=1.0, height=1.0, resolution=-0.1),
             ValueError,
-            "resolution must be > 0",
+            r"resolution must be >= 1e-6 and <= 1e6 m",
         ),
         (
             lambda: OccupancyGrid.empty(width=0.0, height=1.0, resolution=0.1),
@@ -361,3 +361,139 @@ def test_conveniences_give_the_function_results(tmp_path: Path) -> None:
     loaded = OccupancyGrid.load(tmp_path / "m.yaml")
     assert np.array_equal(loaded.logodds, io.read_map(tmp_path / "m.yaml").logodds)
     assert np.array_equal(loaded.occupied(), grid.occupied())
+
+
+# ------------------------------------------------------------ issue 12: bad input
+def test_complex_and_string_data_are_refused() -> None:
+    with pytest.raises(TypeError, match="logodds must hold real numbers"):
+        OccupancyGrid(np.ones((2, 2)) * (1 + 1j), resolution=0.1)
+    with pytest.raises(TypeError, match="logodds must hold real numbers"):
+        OccupancyGrid([["1", "2"]], resolution=0.1)
+    with pytest.raises(TypeError, match="probabilities must hold real numbers"):
+        OccupancyGrid.from_probabilities([[0.5 + 0j]], resolution=0.1)
+    with pytest.raises(TypeError, match="resolution must be a real number"):
+        OccupancyGrid(np.zeros((2, 2)), resolution="0.1")  # type: ignore[arg-type]
+    with pytest.raises(TypeError, match="occupied_thresh must be a real number"):
+        OccupancyGrid(np.zeros((2, 2)), resolution=0.1, occupied_thresh=None)  # type: ignore[arg-type]
+
+
+@pytest.mark.parametrize(
+    ("call", "match"),
+    [
+        # OverflowError in the issue.
+        (
+            lambda: OccupancyGrid.empty(width=1e308, height=1e308, resolution=1e-308),
+            r"resolution must be >= 1e-6 and <= 1e6 m, got 1e-308",
+        ),
+        (
+            lambda: OccupancyGrid.empty(width=1e308, height=1e308, resolution=1.0),
+            r"would need more than 1e308 cells .*the maximum is 2\*\*28 = 268435456 cells",
+        ),
+        # MemoryError (3.47 EiB) in the issue.
+        (
+            lambda: OccupancyGrid.empty(width=1e6, height=1e6, resolution=1e-3),
+            r"would need 1e\+18 cells \(3\.47 EiB of float32\); the maximum is 2\*\*28",
+        ),
+        (
+            lambda: OccupancyGrid.empty(width=16384.0, height=16384.01, resolution=1.0),
+            r"would need 2\.68e\+08 cells",
+        ),
+        (
+            lambda: OccupancyGrid.empty(width=1.0, height=1.0, resolution=0.1, origin=(2e9, 0, 0)),
+            r"origin x and y must lie within ±1e9 m",
+        ),
+        (
+            lambda: OccupancyGrid(np.full((2, 2), 1e308), resolution=0.1),
+            r"logodds must lie within ±1e6",
+        ),
+        (
+            lambda: OccupancyGrid(np.zeros((2, 2)), resolution=1e7),
+            r"resolution must be >= 1e-6 and <= 1e6 m",
+        ),
+        (
+            lambda: OccupancyGrid(np.zeros((2, 2)), resolution=0.1, occupied_thresh=1.5),
+            r"occupied_thresh must be >= 0 and <= 1",
+        ),
+        (
+            lambda: OccupancyGrid.empty(width=-1.0, height=1.0, resolution=0.1),
+            r"width must be > 0 m",
+        ),
+    ],
+)
+def test_sizes_and_ranges_are_checked_before_allocating(
+    call: Callable[[], object], match: str
+) -> None:
+    with pytest.raises(ValueError, match=match):
+        call()
+
+
+def test_largest_grid_is_accepted_as_a_shape() -> None:
+    # 16384 x 16384 = 2**28 cells is the maximum itself (checked without allocating).
+    assert OccupancyGrid.MAX_CELLS == 2**28
+    from navkit.mapping._limits import grid_shape
+
+    assert grid_shape(width=16384.0, height=16384.0, resolution=1.0, what="x") == (16384, 16384)
+
+
+def test_unknown_with_reversed_thresholds_is_an_error() -> None:
+    grid = OccupancyGrid.from_probabilities([[0.1, 0.5, 0.9]], resolution=1.0)
+    # All False in the issue.
+    with pytest.raises(ValueError, match=r"free_thresh \(0\.9\) must be smaller .*swapped"):
+        grid.unknown(occupied_thresh=0.1, free_thresh=0.9)
+    with pytest.raises(ValueError, match=r"free_thresh .* must be smaller"):
+        grid.unknown(free_thresh=0.65)  # equal to the grid's occupied_thresh
+    with pytest.raises(TypeError, match="free_thresh must be a real number"):
+        grid.unknown(free_thresh="0.1")  # type: ignore[arg-type]
+    with pytest.raises(TypeError, match="threshold must be a real number"):
+        grid.occupied(True)  # type: ignore[arg-type]
+    assert grid.unknown(occupied_thresh=0.95, free_thresh=0.05).tolist() == [[True, True, True]]
+
+
+def test_flags_must_be_bools() -> None:
+    grid = OccupancyGrid.empty(width=1.0, height=1.0, resolution=0.5)
+    for value in ("no", 1, None, np.array([True])):
+        with pytest.raises(TypeError, match="continuous must be a bool"):
+            grid.world_to_cell([0.1, 0.1], continuous=value)  # type: ignore[call-overload]
+    assert grid.world_to_cell([0.1, 0.1], continuous=np.True_).tolist() == [-0.3, -0.3]
+
+
+def test_far_points_and_cells_never_overflow() -> None:
+    grid = OccupancyGrid.empty(width=2.0, height=1.0, resolution=0.1, origin=(1e9, -1e9, 0.7))
+    far = np.array([[1e308, -1e308], [-1.7e308, 1.7e308], [1e20, 1e20]])
+    cells = grid.world_to_cell(far)
+    # Far points stay on their side, clamped to ±2**62: no int64 wrap-around.
+    c, s = math.cos(0.7), math.sin(0.7)
+    dx, dy = far[:, 0] - 1e9, far[:, 1] + 1e9
+    with np.errstate(over="ignore"):
+        local = np.column_stack((-s * dx + c * dy, c * dx + s * dy)) / 0.1
+    assert np.array_equal(cells, np.clip(np.floor(local), -(2.0**62), 2.0**62).astype(np.int64))
+    cont = grid.world_to_cell(far, continuous=True)
+    assert np.all(np.isfinite(cont)) and np.all(np.abs(cont) <= 2.0**62)
+    assert not grid.contains(far).any()
+    assert np.all(np.isfinite(grid.cell_to_world([[2.0**62, -(2.0**62)]])))
+    with pytest.raises(ValueError, match=r"cells must lie within ±2\*\*62"):
+        grid.cell_to_world([[1e300, 0.0]])
+
+
+@settings(max_examples=100, deadline=None)
+@given(
+    st.floats(-1e9, 1e9),
+    st.floats(-1e9, 1e9),
+    st.floats(-10.0, 10.0),
+    st.floats(1e-6, 1e6),
+    st.lists(st.floats(allow_nan=False, allow_infinity=False), min_size=2, max_size=10),
+)
+def test_coordinates_are_finite_for_any_finite_input(
+    ox: float, oy: float, yaw: float, res: float, values: list[float]
+) -> None:
+    grid = OccupancyGrid.empty(width=res, height=res, resolution=res, origin=(ox, oy, yaw))
+    pts = np.array(values[: len(values) // 2 * 2]).reshape(-1, 2)
+    cells = grid.world_to_cell(pts)
+    assert cells.dtype == np.int64 and np.all(np.abs(cells) <= 2**62)
+    cont = grid.world_to_cell(pts, continuous=True)
+    assert np.all(np.isfinite(cont))
+    # The cell is the round-half-up of the continuous coordinates (both clamped;
+    # up to rounding at a cell boundary).
+    assert np.all(np.abs(cells - np.clip(np.floor(cont + 0.5), -(2.0**62), 2.0**62)) <= 1)
+    assert np.all(np.isfinite(grid.cell_to_world(np.clip(pts, -(2.0**62), 2.0**62))))
+    assert pts.tolist() == np.array(values[: len(values) // 2 * 2]).reshape(-1, 2).tolist()

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
 import shapely
@@ -71,10 +73,81 @@ def test_rasterize_validation() -> None:
         rasterize_polygons([], bounds=(0, 0, 0, 1), resolution=0.1)
     with pytest.raises(ValueError, match="bounds must have length 4"):
         rasterize_polygons([], bounds=(0, 0, 1), resolution=0.1)
-    with pytest.raises(ValueError, match="resolution must be > 0"):
+    with pytest.raises(ValueError, match=r"resolution must be >= 1e-6 and <= 1e6 m"):
         rasterize_polygons([], bounds=(0, 0, 1, 1), resolution=0.0)
     with pytest.raises(TypeError, match="positional"):
         rasterize_polygons([], (0, 0, 1, 1), 0.1)  # type: ignore[call-arg]
     # The convenience method validates the same way (it is the same function).
     with pytest.raises(ValueError, match="bounds must have length 4"):
         OccupancyGrid.from_polygons([], bounds=(0, 0, 1), resolution=0.1)
+
+
+# ------------------------------------------------------------ issue 12: bad input
+def test_rasterize_checks_the_size_before_allocating() -> None:
+    with pytest.raises(ValueError, match=r"bounds must lie within ±1e9 m"):
+        rasterize_polygons([], bounds=(-1e308, -1e308, 1e308, 1e308), resolution=1e-3)
+    with pytest.raises(ValueError, match=r"would need 1e\+18 cells \(3\.47 EiB of float32\)"):
+        rasterize_polygons([], bounds=(0, 0, 1e6, 1e6), resolution=1e-3)
+    with pytest.raises(ValueError, match=r"resolution must be >= 1e-6"):
+        rasterize_polygons([], bounds=(0, 0, 1, 1), resolution=5e-324)
+
+
+def test_rasterize_refuses_what_is_not_geometries() -> None:
+    for value in ({}, {"a": box(0, 0, 1, 1)}, "box", 3, None):
+        with pytest.raises(TypeError, match="geometries must be a shapely geometry or an iterable"):
+            rasterize_polygons(value, bounds=(0, 0, 1, 1), resolution=0.1)
+    with pytest.raises(ValueError, match=r"geometries\[0\] has non-finite coordinates"):
+        rasterize_polygons([Point(math.nan, 0.5)], bounds=(0, 0, 1, 1), resolution=0.1)
+    with pytest.raises(ValueError, match=r"geometries\[1\] has non-finite coordinates"):
+        rasterize_polygons(
+            [box(0, 0, 1, 1), box(0, 0, math.inf, 1)], bounds=(0, 0, 1, 1), resolution=0.1
+        )
+
+
+def test_huge_obstacles_are_quick_and_exact() -> None:
+    # An obstacle far larger than the area: every cell, without an overflow.
+    grid = rasterize_polygons(
+        box(-1e300, -1e300, 1e300, 1e300), bounds=(0, 0, 50, 40), resolution=0.05
+    )
+    assert grid.shape == (800, 1000) and grid.occupied().all()
+    # A disc covering most of a 1000 x 1000 grid: blocks inside and outside it are
+    # decided whole; the rim cell by cell.
+    disc = Point(25.0, 25.0).buffer(20.0, quad_segs=64)
+    big = rasterize_polygons(disc, bounds=(0, 0, 50, 50), resolution=0.05)
+    rows, cols = np.indices(big.shape)
+    centre_d = np.hypot(0.05 * cols + 0.025 - 25.0, 0.05 * rows + 0.025 - 25.0)
+    occ = big.occupied()
+    assert occ[centre_d < 19.9].all() and not occ[centre_d > 20.1].any()
+
+
+def test_rasterize_leaves_the_geometries_as_they_were() -> None:
+    shape = box(0.2, 0.2, 0.6, 0.6)
+    assert not shapely.is_prepared(shape)
+    rasterize_polygons([shape], bounds=(0, 0, 1, 1), resolution=0.1)
+    assert not shapely.is_prepared(shape)
+    shapely.prepare(shape)
+    rasterize_polygons([shape], bounds=(0, 0, 1, 1), resolution=0.1)
+    assert shapely.is_prepared(shape)
+
+
+@settings(max_examples=25, deadline=None)
+@given(st.integers(0, 2**32 - 1))
+def test_block_subdivision_matches_brute_force(seed: int) -> None:
+    # Tiny leaf blocks: the block tests (missed, covered, split) decide most cells.
+    import navkit.mapping._rasterize as raster
+
+    rng = np.random.default_rng(seed)
+    geoms: list[shapely.Geometry] = [
+        Point(rng.uniform(0, 3, 2)).buffer(rng.uniform(0.1, 1.0)),
+        Polygon(rng.uniform(-0.5, 3.5, size=(6, 2))).convex_hull,
+        shapely.LineString(rng.uniform(-0.5, 3.5, size=(3, 2))),
+        box(0.5, 0.5, 1.5, 1.0),  # edges on cell boundaries
+    ]
+    leaf = raster._LEAF_CELLS
+    raster._LEAF_CELLS = 2
+    try:
+        grid = rasterize_polygons(geoms, bounds=(-0.5, -0.25, 3.5, 2.75), resolution=0.125)
+    finally:
+        raster._LEAF_CELLS = leaf
+    expected = brute_force_raster(geoms, -0.5, -0.25, grid.shape, 0.125)
+    assert np.array_equal(grid.occupied(), expected)

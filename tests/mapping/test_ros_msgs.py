@@ -61,7 +61,7 @@ def test_bad_msgs() -> None:
         grid_from_msg(fake_msg([0, 0, 0, 0, 0, 101], 3, 2, 0.0))
     with pytest.raises(TypeError, match="nav_msgs/OccupancyGrid"):
         grid_from_msg(SimpleNamespace(data=[0]))
-    with pytest.raises(ValueError, match="width and height must be positive"):
+    with pytest.raises(ValueError, match=r"msg\.info\.width must be a positive integer"):
         grid_from_msg(fake_msg([], 0, 2, 0.0))
     with pytest.raises(TypeError, match="grid must be an OccupancyGrid"):
         grid_to_msg_fields(np.zeros((2, 2)))  # type: ignore[arg-type]
@@ -88,8 +88,8 @@ def test_msg_fields_are_a_frozen_record() -> None:
     ("kwargs", "error", "match"),
     [
         ({"width": 0}, ValueError, "width must be a positive integer"),
-        ({"height": 1.5}, ValueError, "height must be a positive integer"),
-        ({"resolution": -1.0}, ValueError, "resolution must be > 0"),
+        ({"height": 1.5}, TypeError, "height must be an integer, got float"),
+        ({"resolution": -1.0}, ValueError, r"resolution must be >= 1e-6 and <= 1e6 m"),
         ({"origin_position": (0.0, 0.0)}, ValueError, "origin_position must hold 3"),
         ({"origin_orientation": (0, 0, math.nan, 1)}, ValueError, "origin_orientation"),
         ({"data": [0, 0, 0]}, ValueError, r"data must have shape \(4,\)"),
@@ -141,3 +141,71 @@ def test_scan_from_msg_requires_the_ros_fields() -> None:
         scan_from_msg(
             SimpleNamespace(ranges=[1.0], angle_min=0.0, angle_increment=0.1, range_min=0.1)
         )
+
+
+# ------------------------------------------------------------ issue 12: bad input
+def msg_with(**info: object) -> SimpleNamespace:
+    msg = fake_msg([0, 100], 2, 1, 0.0)
+    data = info.pop("data", None)
+    if data is not None:
+        msg.data = data
+    for key, value in info.items():
+        if key in ("x", "y"):
+            setattr(msg.info.origin.position, key, value)
+        elif key.startswith("q"):
+            setattr(msg.info.origin.orientation, key[1:], value)
+        else:
+            setattr(msg.info, key, value)
+    return msg
+
+
+@pytest.mark.parametrize(
+    ("info", "error", "match"),
+    [
+        ({"data": [0, 10**26]}, ValueError, r"msg\.data values must be -1 \(unknown\) or 0\.\.100"),
+        ({"data": [0.0, 100.0]}, TypeError, r"msg\.data must hold integers"),
+        ({"data": [True, False]}, TypeError, r"msg\.data must hold integers"),
+        ({"data": ["0", "100"]}, TypeError, r"msg\.data must hold integers"),
+        ({"width": 2.0}, TypeError, r"msg\.info\.width must be an integer, got float"),
+        ({"height": True}, TypeError, r"msg\.info\.height must be an integer, got bool"),
+        ({"width": 10**10, "height": 10**10}, ValueError, r"exceeds OccupancyGrid\.MAX_CELLS"),
+        ({"resolution": 0.0}, ValueError, r"msg\.info\.resolution must be >= 1e-6"),
+        ({"resolution": "0.1"}, TypeError, r"msg\.info\.resolution must be a real number"),
+        ({"x": math.nan}, ValueError, r"msg\.info\.origin\.position\.x must be finite"),
+        ({"y": 1 + 1j}, TypeError, r"msg\.info\.origin\.position\.y must be a real number"),
+        ({"x": 1e12}, ValueError, r"msg\.info: origin x and y must lie within ±1e9 m"),
+        ({"qw": math.inf}, ValueError, r"msg\.info\.origin\.orientation\.w must be finite"),
+    ],
+)
+def test_bad_grid_messages(info: dict[str, object], error: type[Exception], match: str) -> None:
+    with pytest.raises(error, match=match):
+        grid_from_msg(msg_with(**info))
+
+
+def test_quaternions_are_normalised() -> None:
+    # A zero quaternion (ROS 1's default) is no rotation; a scaled one the same as its unit.
+    assert grid_from_msg(msg_with(qx=0.0, qy=0.0, qz=0.0, qw=0.0)).origin.theta == 0.0
+    half = 0.35
+    big = msg_with(qz=1e200 * math.sin(half), qw=1e200 * math.cos(half))
+    assert grid_from_msg(big).origin.theta == pytest.approx(0.7)
+
+
+def test_grid_to_msg_fields_trinary_must_be_a_bool() -> None:
+    grid = OccupancyGrid.from_occupancy(np.array([[True, False]]), resolution=0.1)
+    for value in ("no", 1, None):
+        with pytest.raises(TypeError, match="trinary must be a bool"):
+            grid_to_msg_fields(grid, trinary=value)  # type: ignore[arg-type]
+    assert grid_to_msg_fields(grid, trinary=np.True_).data.tolist() == [100, 0]
+
+
+def test_msg_fields_from_lists_copy() -> None:
+    data = [100, -1]
+    position = [0.0, 0.0, 0.0]
+    fields = OccupancyGridMsgFields(2, 1, 0.1, position, (0.0, 0.0, 0.0, 1.0), data)  # type: ignore[arg-type]
+    data[0] = 0
+    position[0] = 5.0
+    assert fields.data.tolist() == [100, -1] and fields.origin_position == (0.0, 0.0, 0.0)
+    with pytest.raises(TypeError, match="origin_position must be a sequence of 3 numbers"):
+        OccupancyGridMsgFields(2, 1, 0.1, 3.0, (0, 0, 0, 1), [0, 0])  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match=r"data values must be -1 \(unknown\) or 0\.\.100"):
+        OccupancyGridMsgFields(2, 1, 0.1, (0, 0, 0), (0, 0, 0, 1), [0, 10**30])

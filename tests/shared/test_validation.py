@@ -109,3 +109,121 @@ def test_scalars_and_flags() -> None:
     for bad in ("no", None, 2, 1.0):
         with pytest.raises(TypeError, match="f must be a bool"):
             as_bool(bad, "f")
+
+
+# Gaps the public-API fuzz test exposed (issue 12): every helper raises only
+# ValueError or TypeError naming the argument, whatever it is given.
+
+
+@pytest.mark.parametrize("value", [10**400, -(10**400), 2**1024])
+def test_integers_too_large_for_a_float_are_value_errors(value: int) -> None:
+    with pytest.raises(ValueError, match=r"^a must be finite, got an integer of about 10\*\*\d+"):
+        finite_float(value, "a")
+    with pytest.raises(ValueError, match=r"^a must be finite"):
+        positive_float(value, "a")
+
+
+def test_huge_integers_inside_arrays_are_value_errors() -> None:
+    with pytest.raises(ValueError, match=r"^x must hold finite numbers"):
+        as_float_array([1.0, 10**400], "x")
+    with pytest.raises(ValueError, match=r"^x must hold finite numbers"):
+        as_float_array(np.array([10**400], dtype=object), "x")
+
+
+@pytest.mark.parametrize(
+    "value",
+    [np.complex128(1 + 0j), 1 + 0j, np.array(1 + 0j), "1.0", np.str_("1.0"), b"1", None, np.True_],
+)
+def test_scalars_refuse_complex_strings_and_flags(value: object) -> None:
+    with pytest.raises(TypeError, match=r"^a must be a real number"):
+        finite_float(value, "a")
+
+
+def test_numpy_real_scalars_and_0d_arrays_are_real_numbers() -> None:
+    assert finite_float(np.int8(-3), "a") == -3.0
+    assert finite_float(np.uint64(2**63), "a") == 2.0**63
+    assert finite_float(np.array(0.25), "a") == 0.25
+    with pytest.raises(ValueError, match="a must be finite"):
+        finite_float(np.float32("nan"), "a")
+
+
+@pytest.mark.parametrize("value", [5e-324, 1e-310, np.nextafter(0.0, 1.0)])
+def test_positive_means_a_normal_float_so_its_reciprocal_is_finite(value: float) -> None:
+    with pytest.raises(ValueError, match=r"^r must be at least 2\.225e-308 \(a normal float\)"):
+        positive_float(value, "r")
+    with pytest.raises(ValueError, match=r"^r must be 0 or at least"):
+        positive_float(value, "r", allow_zero=True)
+    smallest = positive_float(2.2250738585072014e-308, "r")
+    assert math.isfinite(1.0 / smallest)
+
+
+@pytest.mark.parametrize(
+    "value",
+    [
+        np.array([1.0, 2.0], dtype=object),
+        [np.float32(1.0), np.int64(2)],
+        (1, 2.5),
+    ],
+)
+def test_object_arrays_and_sequences_of_real_numbers_convert(value: object) -> None:
+    out = as_float_array(value, "x")  # type: ignore[arg-type]
+    assert out.dtype == np.float64 and out.shape == (2,)
+
+
+@pytest.mark.parametrize(
+    "value",
+    [
+        np.array([1.0, "2"], dtype=object),
+        np.array([1.0, None], dtype=object),
+        np.array([1.0, 1j], dtype=object),
+        np.array([1.0, True], dtype=object),
+        np.array(["1.0"]),
+        np.zeros(2, dtype="datetime64[s]"),
+        {"x": 1.0},
+        {1.0, 2.0},
+    ],
+)
+def test_object_arrays_and_odd_dtypes_are_refused(value: object) -> None:
+    with pytest.raises(TypeError, match=r"^x must"):
+        as_float_array(value, "x")  # type: ignore[arg-type]
+
+
+@pytest.mark.parametrize("shape", [(3, 0), (0, 3), (0, 0), (1, 0), (0, 2, 1)])
+def test_points_refuse_empty_arrays_of_the_wrong_shape(shape: tuple[int, ...]) -> None:
+    with pytest.raises(ValueError, match=r"^p must have shape \(N, 2\) or \(2,\)"):
+        as_points(np.empty(shape), "p")
+
+
+def test_points_accept_no_points() -> None:
+    assert as_points(np.empty((0, 2)), "p").shape == (0, 2)
+    assert as_points((), "p").shape == (0, 2)
+
+
+def test_points_are_never_the_callers_array_when_converted_and_never_modified() -> None:
+    pts = np.array([[1, 2]], dtype=np.int32)
+    out = as_points(pts, "p")
+    out[0, 0] = 9.0
+    assert pts[0, 0] == 1
+    frozen = np.array([[1.0, 2.0]])
+    frozen.flags.writeable = False
+    assert as_points(frozen, "p").tolist() == [[1.0, 2.0]]
+    assert not frozen.flags.writeable
+
+
+@given(st.one_of(st.floats(), st.integers(), st.complex_numbers(), st.text(max_size=3), st.none()))
+def test_finite_float_raises_only_value_or_type_errors(value: object) -> None:
+    try:
+        out = finite_float(value, "a")
+    except (ValueError, TypeError) as exc:
+        assert str(exc).startswith("a ")
+    else:
+        assert math.isfinite(out) and type(out) is float
+
+
+@given(st.one_of(st.floats(), st.integers()))
+def test_positive_float_results_have_finite_reciprocals(value: float) -> None:
+    try:
+        out = positive_float(value, "a")
+    except ValueError:
+        return
+    assert out > 0.0 and math.isfinite(1.0 / out)

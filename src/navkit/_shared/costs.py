@@ -32,7 +32,10 @@ def validate_costs_lowest(
     and below 1 when any cell is, so the check costs nothing extra for callers
     that need the minimum anyway (the A* heuristic).
     """
-    arr = np.asarray(costs)
+    try:
+        arr = np.asarray(costs)
+    except (TypeError, ValueError, OverflowError) as exc:  # ragged lists, unconvertible objects
+        raise ValueError(f"{name} must be a 2-D numeric array: {exc}") from None
     if arr.dtype == np.bool_ or arr.dtype.kind not in "fiu":
         raise ValueError(f"{name} must be a real-valued numeric array, got dtype {arr.dtype}")
     if arr.ndim != 2:

@@ -11,8 +11,10 @@ boolean), ``(N, 2)`` input gives ``(N, 2)`` (or ``(N,)``).
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
-from numpy.typing import ArrayLike
+from numpy.typing import ArrayLike, NDArray
 
 from navkit._shared.types import BoolArray, FloatArray, IntArray
 from navkit._shared.validation import as_points
@@ -33,17 +35,26 @@ def as_pairs(value: ArrayLike, name: str) -> tuple[FloatArray, bool]:
     return pts, pts.shape[0] == 1 and np.ndim(value) == 1
 
 
+#: Cells of coordinates beyond ±2**62 are clamped there: far outside any grid, and
+#: an int64 (casting a larger float to int64 is undefined and gives INT64_MIN).
+CELL_LIMIT = float(2**62)
+
+
 def round_half_up(values: FloatArray) -> IntArray:
     """Cells of continuous coordinates: ``floor(v + 0.5)`` as int64.
 
     ``np.rint`` rounds half to even; cell boundaries must not depend on parity.
+    Values beyond ±2**62 (:data:`CELL_LIMIT`) give ±2**62, a cell outside every
+    grid, instead of an undefined cast.
 
     Examples
     --------
     >>> round_half_up(np.array([0.5, 1.5, -0.5, 2.49]))
     array([1, 2, 0, 2])
+    >>> round_half_up(np.array([1e300, -1e300])).tolist() == [2**62, -(2**62)]
+    True
     """
-    out: IntArray = np.floor(values + 0.5).astype(np.int64)
+    out: IntArray = np.clip(np.floor(values + 0.5), -CELL_LIMIT, CELL_LIMIT).astype(np.int64)
     return out
 
 
@@ -62,7 +73,7 @@ def inside(cells: IntArray, shape: tuple[int, int]) -> BoolArray:
     return out
 
 
-def one_or_many(values: FloatArray | IntArray | BoolArray, single: bool) -> np.ndarray:
+def one_or_many(values: FloatArray | IntArray | BoolArray, single: bool) -> NDArray[Any]:
     """``values`` for one input pair (row 0, or a 0-d array for (N,) results) or all of them.
 
     Examples

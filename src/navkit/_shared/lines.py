@@ -17,10 +17,12 @@ cells that touch only at a corner. Grid cells are ``(row, col)``.
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
+
+from navkit._shared.jit import njit_cached, njit_inline
+from navkit._shared.types import BoolArray, IntArray
 
 
-@njit(cache=True, inline="always")
+@njit_inline
 def _ordered(r0: int, c0: int, r1: int, c1: int) -> tuple[int, int, int, int]:
     """Endpoints swapped so the trace starts at the lexicographically smaller cell."""
     if r1 < r0 or (r1 == r0 and c1 < c0):
@@ -28,7 +30,7 @@ def _ordered(r0: int, c0: int, r1: int, c1: int) -> tuple[int, int, int, int]:
     return r0, c0, r1, c1
 
 
-@njit(cache=True, inline="always")
+@njit_inline
 def bresenham_step(
     r: int, c: int, err: int, dr: int, dc: int, sr: int, sc: int
 ) -> tuple[int, int, int]:
@@ -46,8 +48,8 @@ def bresenham_step(
     return r, c, err
 
 
-@njit(cache=True)
-def line_is_free(occupied: np.ndarray, r0: int, c0: int, r1: int, c1: int) -> bool:
+@njit_cached
+def line_is_free(occupied: BoolArray, r0: int, c0: int, r1: int, c1: int) -> bool:
     """Whether the Bresenham line between two cells crosses only free cells.
 
     Parameters
@@ -80,8 +82,8 @@ def line_is_free(occupied: np.ndarray, r0: int, c0: int, r1: int, c1: int) -> bo
         r, c, err = bresenham_step(r, c, err, dr, dc, sr, sc)
 
 
-@njit(cache=True)
-def line_cells(r0: int, c0: int, r1: int, c1: int) -> np.ndarray:
+@njit_cached
+def line_cells(r0: int, c0: int, r1: int, c1: int) -> IntArray:
     """Cells ``(row, col)`` of the Bresenham line from ``(r0, c0)`` to ``(r1, c1)``.
 
     Returns a new int64 array of shape ``(max(|dr|, |dc|) + 1, 2)`` ordered from

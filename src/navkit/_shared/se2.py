@@ -10,13 +10,13 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
-from numba import njit
+from navkit._shared.jit import njit_cached, njit_inline
+from navkit._shared.types import FloatArray
 
 _TWO_PI = 2.0 * math.pi
 
 
-@njit(cache=True, inline="always")
+@njit_inline
 def wrap_scalar(a: float) -> float:
     """Wrap one finite angle to (-pi, pi]; angles already in range are returned unchanged."""
     if -math.pi < a <= math.pi:
@@ -27,7 +27,7 @@ def wrap_scalar(a: float) -> float:
     return r
 
 
-@njit(cache=True, inline="always")
+@njit_inline
 def sinc(x: float) -> float:
     """sin(x)/x, accurate near 0 (Taylor series below 1e-4)."""
     if abs(x) < 1e-4:
@@ -36,7 +36,7 @@ def sinc(x: float) -> float:
     return math.sin(x) / x
 
 
-@njit(cache=True, inline="always")
+@njit_inline
 def exp_body(vx: float, vy: float, omega: float, dt: float) -> tuple[float, float, float]:
     """Body-frame displacement (dx, dy, dtheta) of a constant twist held for ``dt``.
 
@@ -52,7 +52,7 @@ def exp_body(vx: float, vy: float, omega: float, dt: float) -> tuple[float, floa
     return dt * (a * vx - b * vy), dt * (b * vx + a * vy), dth
 
 
-@njit(cache=True, inline="always")
+@njit_inline
 def compose_scalar(
     x: float, y: float, th: float, dx: float, dy: float, dth: float
 ) -> tuple[float, float, float]:
@@ -62,7 +62,7 @@ def compose_scalar(
     return x + c * dx - s * dy, y + s * dx + c * dy, wrap_scalar(th + dth)
 
 
-@njit(cache=True, inline="always")
+@njit_inline
 def integrate_scalar(
     x: float, y: float, th: float, vx: float, vy: float, omega: float, dt: float
 ) -> tuple[float, float, float]:
@@ -71,9 +71,9 @@ def integrate_scalar(
     return compose_scalar(x, y, th, dx, dy, dth)
 
 
-@njit(cache=True)
+@njit_cached
 def exp_body_array(
-    vx: np.ndarray, vy: np.ndarray, omega: np.ndarray, dt: np.ndarray, out: np.ndarray
+    vx: FloatArray, vy: FloatArray, omega: FloatArray, dt: FloatArray, out: FloatArray
 ) -> None:
     """Vectorised :func:`exp_body` over 1-D arrays of equal length into ``out`` (N, 3)."""
     for i in range(vx.shape[0]):

@@ -1,16 +1,22 @@
 """Private input validation shared by every navkit layer.
 
 Each helper converts its input to the type the numerical code needs and raises a
-``ValueError`` or ``TypeError`` that names the offending argument. Arrays are
-returned as new float64/int64 arrays whenever a conversion happens; callers that
-write into the result must copy explicitly (``np.array(..., copy=True)``) so the
-caller's data is never modified.
+``ValueError`` or ``TypeError`` that names the offending argument — never another
+exception type (an integer too large for a float is a ``ValueError``, not an
+``OverflowError``). Arrays are returned as new float64/int64 arrays whenever a
+conversion happens; callers that write into the result must copy explicitly
+(``np.array(..., copy=True)``) so the caller's data is never modified.
+
+What counts as a real number, everywhere: Python and NumPy integers and floats
+(and 0-d arrays of them); not ``bool``, not complex numbers (even with a zero
+imaginary part), not strings (even numeric ones such as ``"1.0"``), not ``None``.
 """
 
 from __future__ import annotations
 
 import math
 import numbers
+import sys
 from collections.abc import Mapping, Sequence
 from typing import Any
 
@@ -19,26 +25,63 @@ from numpy.typing import ArrayLike
 
 from navkit._shared.types import FloatArray
 
+SMALLEST_POSITIVE = sys.float_info.min
+"""The smallest positive value :func:`positive_float` accepts: the smallest normal
+float64 (about 2.2e-308), so that ``1 / value`` is finite. Subnormal numbers such
+as 5e-324 are > 0 but dividing by them overflows."""
+
 
 def finite_float(value: Any, name: str) -> float:
-    """Return ``value`` as a finite Python float or raise naming ``name``."""
-    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+    """Return ``value`` as a finite Python float or raise naming ``name``.
+
+    ``bool``, complex numbers, strings and other non-real objects raise
+    ``TypeError``; NaN, infinities and integers too large for a float raise
+    ``ValueError``.
+    """
+    if type(value) is float:  # the common case, first
+        if math.isfinite(value):
+            return value
+        raise ValueError(f"{name} must be finite, got {value}")
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
         if isinstance(value, np.ndarray) and value.ndim == 0 and value.dtype.kind in "fiu":
             value = value.item()
         else:
             raise TypeError(f"{name} must be a real number, got {type(value).__name__}")
-    out = float(value)
+    try:
+        out = float(value)
+    except OverflowError:
+        raise ValueError(
+            f"{name} must be finite, got {_magnitude(value)}, too large for a float"
+        ) from None
     if not math.isfinite(out):
         raise ValueError(f"{name} must be finite, got {out}")
     return out
 
 
+def _magnitude(value: Any) -> str:
+    """A short text for a huge number (its repr may have hundreds of digits)."""
+    if isinstance(value, numbers.Integral):
+        # str() of a huge int may itself refuse (sys.int_info.default_max_str_digits).
+        return f"an integer of about 10**{int(int(value).bit_length() * math.log10(2))}"
+    return type(value).__name__
+
+
 def positive_float(value: Any, name: str, *, allow_zero: bool = False) -> float:
-    """Return ``value`` as a finite float that is > 0 (or >= 0 with ``allow_zero``)."""
+    """Return ``value`` as a finite float that is > 0 (or >= 0 with ``allow_zero``).
+
+    "Positive" means at least :data:`SMALLEST_POSITIVE` (about 2.2e-308): a
+    subnormal value such as 5e-324 is refused, since dividing by it overflows to
+    infinity. With ``allow_zero``, 0 is accepted but subnormals still are not.
+    """
     out = finite_float(value, name)
     if out < 0.0 or (out == 0.0 and not allow_zero):
         bound = ">= 0" if allow_zero else "> 0"
         raise ValueError(f"{name} must be {bound}, got {out}")
+    if 0.0 < out < SMALLEST_POSITIVE:
+        zero = "0 or " if allow_zero else ""
+        raise ValueError(
+            f"{name} must be {zero}at least {SMALLEST_POSITIVE:.4g} (a normal float), got {out!r}"
+        )
     return out
 
 
@@ -79,7 +122,11 @@ def _real_array(value: Any, name: str) -> FloatArray:
         raise TypeError(f"{name} must hold real numbers, got dtype {raw.dtype}")
     try:
         return np.asarray(raw, dtype=np.float64)
-    except (TypeError, ValueError, OverflowError) as exc:
+    except OverflowError:
+        raise ValueError(
+            f"{name} must hold finite numbers, got an integer too large for a float"
+        ) from None
+    except (TypeError, ValueError) as exc:
         raise TypeError(f"{name} must be numeric array-like: {exc}") from None
 
 
@@ -125,17 +172,18 @@ def as_float_array(
 def as_points(value: ArrayLike, name: str, *, finite: bool = True) -> FloatArray:
     """Convert ``value`` to an ``(N, 2)`` float64 array of points.
 
-    A single point of shape ``(2,)`` becomes ``(1, 2)``; an empty input becomes
-    ``(0, 2)``.
+    A single point of shape ``(2,)`` becomes ``(1, 2)``; no points — an empty
+    sequence (shape ``(0,)``) or shape ``(0, 2)`` — become ``(0, 2)``. Other
+    empty shapes (``(3, 0)``, ``(0, 3)``, ``(0, 0)``) are mistakes and raise.
     """
     arr = as_float_array(value, name, finite=finite)
-    if arr.size == 0:
-        return np.empty((0, 2), dtype=np.float64)
-    if arr.ndim == 1 and arr.shape[0] == 2:
+    if arr.ndim == 2 and arr.shape[1] == 2:
+        return arr
+    if arr.shape == (2,):
         return arr.reshape(1, 2)
-    if arr.ndim != 2 or arr.shape[1] != 2:
-        raise ValueError(f"{name} must have shape (N, 2) or (2,), got {arr.shape}")
-    return arr
+    if arr.shape == (0,):
+        return np.empty((0, 2), dtype=np.float64)
+    raise ValueError(f"{name} must have shape (N, 2) or (2,), got {arr.shape}")
 
 
 def as_cell(value: Any, name: str, shape: tuple[int, ...]) -> tuple[int, int]:

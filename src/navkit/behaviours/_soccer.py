@@ -9,15 +9,20 @@ Nothing here depends on how the robot is then driven.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import as_bool, as_float_array, as_points, positive_float
+from navkit._shared.validation import as_bool, as_float_array, as_points, finite_float
 
 __all__ = ["BehaviourTarget", "GameState", "attack", "defend", "support"]
+
+#: Documented range of ``possession_radius``, m.
+_MIN_RADIUS = 1e-6
+_MAX_RADIUS = 1e6
 
 
 def _point(value: ArrayLike, name: str) -> FloatArray:
@@ -45,12 +50,19 @@ class BehaviourTarget:
     Parameters
     ----------
     goal_xy : array_like, shape (2,)
-        Point ``(x, y)`` (m) to be attracted to.
+        Point ``(x, y)`` (m) to be attracted to; finite.
     obstacles_xy : array_like, shape (M, 2)
         Points ``(x, y)`` (m) that repel; rows of NaN are players that are not
         currently seen (the controller skips them). ``M = 0`` is valid.
+        Infinities are refused.
 
-    Both arrays are stored as read-only copies.
+    Both arrays are stored as read-only copies (the caller's arrays are never
+    made read-only or modified).
+
+    Raises
+    ------
+    TypeError, ValueError
+        An argument of the wrong type, shape or values, naming it.
 
     Examples
     --------
@@ -72,9 +84,10 @@ class GameState:
     """Positions in one frame (usually the field frame), in metres.
 
     Every argument is keyword-only (nine positions are too easy to swap). The
-    arrays are stored as read-only copies; ``has_ball`` and
-    ``opponent_with_ball``, when omitted, are inferred on construction, so
-    after it ``has_ball`` is always a bool.
+    arrays are stored as read-only copies (the caller's arrays are never made
+    read-only or modified); ``has_ball`` and ``opponent_with_ball``, when
+    omitted, are inferred on construction, so after it ``has_ball`` is always a
+    bool. Positions are any finite numbers (NaN rows only for unseen players).
 
     Parameters
     ----------
@@ -89,14 +102,19 @@ class GameState:
     own_goal_xy, opponent_goal_xy : array_like, shape (2,)
         Centres of the goal this team defends and of the one it attacks.
     has_ball : bool, optional
-        Whether this robot holds the ball; inferred when omitted as
+        Whether this robot holds the ball (a ``bool``); inferred when omitted as
         ``‖robot_xy - ball_xy‖ <= possession_radius``.
     opponent_with_ball : int, optional
         Index into ``opponents_xy`` of the opponent holding the ball; inferred
         when omitted as the nearest seen opponent within ``possession_radius``
         (none if there is none or this robot holds the ball).
     possession_radius : float, default 0.25
-        Distance (m) within which a player holds the ball, > 0.
+        Distance (m) within which a player holds the ball, in [1e-6, 1e6].
+
+    Raises
+    ------
+    TypeError, ValueError
+        An argument of the wrong type, shape or range, naming it.
 
     Examples
     --------
@@ -125,10 +143,17 @@ class GameState:
         setter(self, "opponent_goal_xy", _point(self.opponent_goal_xy, "opponent_goal_xy"))
         setter(self, "teammates_xy", _players(self.teammates_xy, "teammates_xy"))
         setter(self, "opponents_xy", _players(self.opponents_xy, "opponents_xy"))
-        radius = positive_float(self.possession_radius, "possession_radius")
+        radius = finite_float(self.possession_radius, "possession_radius")
+        if not _MIN_RADIUS <= radius <= _MAX_RADIUS:
+            raise ValueError(
+                f"possession_radius must be in [{_MIN_RADIUS:g}, {_MAX_RADIUS:g}] m, got {radius:g}"
+            )
         setter(self, "possession_radius", radius)
         if self.has_ball is None:
-            has_ball = float(np.hypot(*(self.robot_xy - self.ball_xy))) <= radius
+            # Python floats: a distance beyond the float range is inf, without a warning.
+            rx, ry = self.robot_xy.tolist()
+            bx, by = self.ball_xy.tolist()
+            has_ball = math.hypot(rx - bx, ry - by) <= radius
         else:
             has_ball = as_bool(self.has_ball, "has_ball")
         setter(self, "has_ball", has_ball)
@@ -147,7 +172,8 @@ class GameState:
     def _nearest_holder(self, radius: float) -> int | None:
         if self.has_ball or self.opponents_xy.shape[0] == 0:
             return None
-        dist = np.hypot(*(self.opponents_xy - self.ball_xy).T)
+        with np.errstate(over="ignore", invalid="ignore"):
+            dist = np.hypot(*(self.opponents_xy - self.ball_xy).T)
         dist = np.where(np.isnan(dist), np.inf, dist)
         k = int(np.argmin(dist))
         return k if dist[k] <= radius else None
@@ -193,7 +219,8 @@ def support(state: GameState) -> BehaviourTarget:
            [-4.5,  0. ]])
     """
     s = _check(state)
-    goal = 0.5 * (s.ball_xy + s.own_goal_xy)
+    # 0.5*a + 0.5*b is 0.5*(a + b) bit for bit and cannot overflow.
+    goal = 0.5 * s.ball_xy + 0.5 * s.own_goal_xy
     obstacles = np.concatenate((s.teammates_xy, s.opponents_xy, s.own_goal_xy[None, :]), axis=0)
     return BehaviourTarget(goal, obstacles)
 

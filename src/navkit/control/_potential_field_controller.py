@@ -9,7 +9,8 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import as_float_array, as_points, positive_float
+from navkit._shared.validation import as_float_array, as_points
+from navkit.control._ranges import MAX_COORDINATE, MAX_GAIN, MIN_GAIN, in_range, position, quantity
 from navkit.control._velocity_limits import _limit_change
 from navkit.geometry import Pose2D, Twist2D, angle_diff, as_pose, as_twist
 from navkit.mapping import LaserScan
@@ -84,29 +85,41 @@ class PotentialFieldController:
         target's position every step. Default: ``BlendedAttraction`` with its
         default parameters (no spurious minimum; it settles 3.75 mm from the goal).
     k_rep : float, default 0.05
-        Khatib repulsion gain, > 0.
+        Khatib repulsion gain, in [1e-12, 1e12].
     influence_radius : float, default 0.6
-        Khatib's ``d0`` (m), > 0: obstacles farther than this do not repel.
+        Khatib's ``d0`` (m), in [1e-6, 1e6]: obstacles farther than this do not
+        repel.
     max_speed : float, default 0.5
-        Maximum translational speed (m/s), > 0.
+        Maximum translational speed (m/s), in [1e-6, 1e6].
     max_accel, max_decel : float, default 1.0 and 2.0
-        Translational acceleration and deceleration limits (m/s²), > 0.
+        Translational acceleration and deceleration limits (m/s²), in [1e-6, 1e6].
     max_omega : float, default 2.0
-        Maximum turn rate (rad/s), > 0.
+        Maximum turn rate (rad/s), in [1e-6, 1e6].
     kp, ki, kd : float, default 3.0, 0.0, 0.1
-        Heading PID gains (>= 0); the output is a turn rate in rad/s.
+        Heading PID gains, in [0, 1e12]; the output is a turn rate in rad/s.
     integral_limit : float, default 1.0
-        Anti-windup bound on the heading integral (rad·s), > 0.
+        Anti-windup bound on the heading integral (rad·s), in [1e-6, 1e6].
     mode : {"omni", "diff"}, default "omni"
         ``"omni"``: output ``(vx, vy, ω)`` in the robot frame. ``"diff"``: a
         differential drive, ``vy = 0`` and ``vx >= 0`` the desired velocity's
         component along the heading.
     goal_tolerance : float, default 0.05
-        Distance (m) at which the goal counts as reached for stall detection, > 0.
+        Distance (m) at which the goal counts as reached for stall detection, in
+        [1e-6, 1e6].
     stall_radius : float, default 0.05
-        Radius (m) the robot must leave to count as moving, > 0.
+        Radius (m) the robot must leave to count as moving, in [1e-6, 1e6].
     stall_timeout : float, default 2.0
-        Time (s) without leaving ``stall_radius`` before :attr:`stalled` is set, > 0.
+        Time (s) without leaving ``stall_radius`` before :attr:`stalled` is set,
+        in [1e-6, 1e6].
+
+    Positions (poses, goals, obstacles) have ``|x|, |y| <= 1e9`` m (the range of
+    navkit.planning's fields); the control period ``dt`` of :meth:`step` is in
+    [1e-6, 1e6] s. Within these ranges every command is finite.
+
+    Raises
+    ------
+    TypeError, ValueError
+        A parameter of the wrong type or outside its range, naming it.
 
     Examples
     --------
@@ -164,24 +177,30 @@ class PotentialFieldController:
             raise TypeError(
                 f"attraction must be an AttractiveField, got {type(attraction).__name__}"
             )
+        if not isinstance(mode, str):
+            raise TypeError(f"mode must be 'omni' or 'diff', got {type(mode).__name__}")
         if mode not in ("omni", "diff"):
             raise ValueError(f"mode must be 'omni' or 'diff', got {mode!r}")
         self.attraction = attraction
-        self.k_rep = positive_float(k_rep, "k_rep")
-        self.influence_radius = positive_float(influence_radius, "influence_radius")
-        self.max_speed = positive_float(max_speed, "max_speed")
-        self.max_accel = positive_float(max_accel, "max_accel")
-        self.max_decel = positive_float(max_decel, "max_decel")
-        self.max_omega = positive_float(max_omega, "max_omega")
+        self.k_rep = in_range(k_rep, "k_rep", MIN_GAIN, MAX_GAIN)
+        self.influence_radius = quantity(influence_radius, "influence_radius", "m")
+        # The repulsion is built every step: let it check the two parameters once here.
+        KhatibRepulsion(
+            np.empty((0, 2)), k_rep=self.k_rep, influence_radius=self.influence_radius
+        )
+        self.max_speed = quantity(max_speed, "max_speed", "m/s")
+        self.max_accel = quantity(max_accel, "max_accel", "m/s²")
+        self.max_decel = quantity(max_decel, "max_decel", "m/s²")
+        self.max_omega = quantity(max_omega, "max_omega", "rad/s")
         self.mode = mode
-        self.goal_tolerance = positive_float(goal_tolerance, "goal_tolerance")
-        self.stall_radius = positive_float(stall_radius, "stall_radius")
-        self.stall_timeout = positive_float(stall_timeout, "stall_timeout")
+        self.goal_tolerance = quantity(goal_tolerance, "goal_tolerance", "m")
+        self.stall_radius = quantity(stall_radius, "stall_radius", "m")
+        self.stall_timeout = quantity(stall_timeout, "stall_timeout", "s")
         self._pid = _Pid(
-            positive_float(kp, "kp", allow_zero=True),
-            positive_float(ki, "ki", allow_zero=True),
-            positive_float(kd, "kd", allow_zero=True),
-            positive_float(integral_limit, "integral_limit"),
+            in_range(kp, "kp", 0.0, MAX_GAIN),
+            in_range(ki, "ki", 0.0, MAX_GAIN),
+            in_range(kd, "kd", 0.0, MAX_GAIN),
+            quantity(integral_limit, "integral_limit", "rad·s"),
         )
         self.reset()
 
@@ -246,7 +265,9 @@ class PotentialFieldController:
         array([0.5, 0. ])
         """
         p = as_pose(pose, "pose")
+        position(p.x, p.y, "pose")
         goal = as_float_array(goal_xy, "goal_xy", shape=(2,))
+        position(float(goal[0]), float(goal[1]), "goal_xy")
         return self._desired(p, goal, obstacles)
 
     def _desired(
@@ -281,6 +302,11 @@ class PotentialFieldController:
             return np.array([c * fx - s * fy, s * fx + c * fy])
         pts = as_points(obstacles, "obstacles", finite=False)
         valid = pts[np.all(np.isfinite(pts), axis=1)]
+        if valid.size and float(np.max(np.abs(valid))) > MAX_COORDINATE:
+            raise ValueError(
+                f"obstacles: positions must have |x|, |y| <= {MAX_COORDINATE:g} m "
+                "(rows with NaN or inf are skipped)"
+            )
         field = KhatibRepulsion(valid, k_rep=self.k_rep, influence_radius=self.influence_radius)
         out: FloatArray = field.force(here)[0]
         return out
@@ -303,13 +329,13 @@ class PotentialFieldController:
         target_pose : Pose2D or array_like [x, y, theta]
             Goal position (attraction) and, in ``"omni"`` mode, target heading.
         dt : float
-            Control period in seconds, > 0.
+            Control period in seconds, in [1e-6, 1e6].
         obstacles : array_like (M, 2), LaserScan or None, optional
             Obstacle points in the world frame (rows with NaN/inf are skipped),
             or a scan taken in the robot frame, or nothing.
         velocity : Twist2D or array_like [vx, vy, omega], optional
-            Current robot-frame velocity (e.g. from odometry), the base of the
-            acceleration limits; ``None`` uses the previous command.
+            Current robot-frame velocity (e.g. from odometry, finite), the base
+            of the acceleration limits; ``None`` uses the previous command.
 
         Returns
         -------
@@ -323,19 +349,26 @@ class PotentialFieldController:
             controller's state is unchanged then.
         """
         pose = as_pose(pose, "pose")
+        position(pose.x, pose.y, "pose")
         target_pose = as_pose(target_pose, "target_pose")
+        position(target_pose.x, target_pose.y, "target_pose")
         measured = None if velocity is None else as_twist(velocity, "velocity")
-        step = positive_float(dt, "dt")
+        step = quantity(dt, "dt", "s")
         c, s = math.cos(pose.theta), math.sin(pose.theta)
         if measured is None:
             prev = self._velocity
         else:
-            prev = np.array([c * measured.vx - s * measured.vy, s * measured.vx + c * measured.vy])
+            vx_w = c * measured.vx - s * measured.vy
+            vy_w = s * measured.vx + c * measured.vy
+            # Beyond ±1e308 m/s the world-frame velocity (or its forward part) overflows.
+            if not abs(vx_w) + abs(vy_w) < math.inf:
+                raise ValueError("velocity: the velocity overflows float64 (values far too large)")
+            prev = np.array([vx_w, vy_w])
         goal = np.array([target_pose.x, target_pose.y])
         want = self._desired(pose, goal, obstacles)
 
         if self.mode == "omni":
-            v = _limit_change(prev, want, self.max_accel, self.max_decel, step)
+            v = _limit_change(prev, want, self.max_accel, self.max_decel, step, "velocity")
             heading = target_pose.theta
             vx, vy = c * v[0] + s * v[1], -s * v[0] + c * v[1]
         else:
@@ -343,7 +376,7 @@ class PotentialFieldController:
             fwd_want = max(0.0, c * want[0] + s * want[1])
             fwd = float(
                 _limit_change(np.array([fwd_prev]), np.array([fwd_want]), self.max_accel,
-                              self.max_decel, step)[0]
+                              self.max_decel, step, "velocity")[0]
             )
             # Below a thousandth of max_speed the field's direction is noise near the goal.
             moving = math.hypot(want[0], want[1]) > 1e-3 * self.max_speed

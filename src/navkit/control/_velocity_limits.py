@@ -2,11 +2,14 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 from numpy.typing import ArrayLike
 
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import as_float_array, positive_float
+from navkit._shared.validation import as_float_array
+from navkit.control._ranges import quantity
 
 __all__ = ["limit_velocity_change"]
 
@@ -30,11 +33,11 @@ def limit_velocity_change(
     Parameters
     ----------
     previous, desired : array_like, shape (k,)
-        Previous and requested velocity (m/s).
+        Previous and requested velocity (m/s), finite.
     max_accel, max_decel : float
-        Limits in m/s², > 0.
+        Limits in m/s², in [1e-6, 1e6].
     dt : float
-        Time step in seconds, > 0.
+        Time step in seconds, in [1e-6, 1e6].
 
     Returns
     -------
@@ -43,8 +46,13 @@ def limit_velocity_change(
 
     Raises
     ------
+    TypeError
+        Arguments that are not real numbers (complex numbers, strings and
+        booleans are refused), naming them.
     ValueError
-        Non-finite velocities, shapes that differ, or limits or ``dt`` not > 0.
+        Non-finite velocities, shapes that differ, limits or ``dt`` outside
+        their ranges, or velocities so far apart that their difference
+        overflows float64.
 
     Examples
     --------
@@ -57,21 +65,41 @@ def limit_velocity_change(
     """
     prev = as_float_array(previous, "previous", ndim=1)
     want = as_float_array(desired, "desired", shape=prev.shape)
-    return _limit_change(
-        prev,
-        want,
-        positive_float(max_accel, "max_accel"),
-        positive_float(max_decel, "max_decel"),
-        positive_float(dt, "dt"),
+    limits = (
+        quantity(max_accel, "max_accel", "m/s²"),
+        quantity(max_decel, "max_decel", "m/s²"),
+        quantity(dt, "dt", "s"),
     )
+    # Velocities near the float limit are reported as a ValueError, without a warning.
+    with np.errstate(over="ignore", invalid="ignore"):
+        return _limit_change(prev, want, *limits)
 
 
 def _limit_change(
-    prev: FloatArray, want: FloatArray, max_accel: float, max_decel: float, dt: float
+    prev: FloatArray,
+    want: FloatArray,
+    max_accel: float,
+    max_decel: float,
+    dt: float,
+    names: str = "previous, desired",
 ) -> FloatArray:
-    """:func:`limit_velocity_change` on validated arrays and limits."""
+    """:func:`limit_velocity_change` on validated arrays and limits.
+
+    ``names`` names the arguments in the error raised when ``want - prev``
+    overflows float64.
+    """
+    # No np.errstate here (it would cost the controller's step more than the rest of
+    # this function): an overflow, only possible for speeds near ±1e308, may warn
+    # before it is reported.
     delta = want - prev
     n = float(np.linalg.norm(delta))
+    if not n < math.inf:
+        # The squared norm overflowed (|delta| > 1e154), or delta itself did.
+        n = math.hypot(*delta.tolist())
+        if not n < math.inf:
+            raise ValueError(
+                f"{names}: the velocity change overflows float64 (values far too large)"
+            )
     if n == 0.0:
         same: FloatArray = prev.copy()
         return same

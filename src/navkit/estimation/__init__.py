@@ -3,7 +3,15 @@
 Fuses wheel odometry with an IMU or compass as real robots do
 (robot_localization's approach) in 2-D. Units are SI (m, rad, s); angles are
 wrapped to (-π, π]; poses are ``navkit.geometry.Pose2D`` in the world (odometry)
-frame. Numerical failures raise :class:`navkit.errors.FilterError`.
+frame. Numerical failures raise :class:`navkit.errors.FilterError` and leave the
+filter unchanged.
+
+Ranges: covariance entries (``P0``, process noise, ``Q``, ``R``) of magnitude at
+most 1e100; scalar measurement variances in [1e-100, 1e100]; times, states and
+measured values any finite numbers. A time gap whose prediction would overflow
+raises ``FilterError`` online and is skipped in a batch (``FusionStatus.TIME_GAP``);
+a measurement whose update would overflow is not applied (``accepted=False``,
+``FusionStatus.OVERFLOW``). State and covariance never become NaN or infinite.
 
 Filters and odometry are stateful: the one-measurement methods (``update``,
 ``update_odometry``, ...) return navkit objects (``Pose2D``, ``UpdateResult``) and

@@ -8,7 +8,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import as_float_array, finite_float
+from navkit._shared.validation import as_bool, as_float_array, finite_float
 from navkit.geometry import wrap_angle
 
 __all__ = ["CompassCalibration", "compass_to_yaw"]
@@ -45,13 +45,20 @@ def compass_to_yaw(
     unwrap : bool, default False
         For a 1-D log: return a continuous yaw (no 2π jumps, as
         :func:`numpy.unwrap`), starting from the wrapped first value
-        (keyword-only).
+        (keyword-only; a ``bool``).
 
     Returns
     -------
     float or ndarray
         Yaw in radians: a float for scalar input, otherwise a new array of the
         input's shape.
+
+    Raises
+    ------
+    TypeError
+        ``raw_deg`` or ``initial_deg`` not real numbers, ``unwrap`` not a bool.
+    ValueError
+        Non-finite readings, or ``unwrap`` with readings that are not 1-D.
 
     Examples
     --------
@@ -64,17 +71,24 @@ def compass_to_yaw(
     """
     raw = as_float_array(raw_deg, "raw_deg")
     theta0 = finite_float(initial_deg, "initial_deg")
-    rel = np.mod(raw - theta0 + 360.0, 360.0)
+    flag = as_bool(unwrap, "unwrap")
+    with np.errstate(over="ignore", invalid="ignore"):
+        diff = raw - theta0 + 360.0
+    if not np.all(np.isfinite(diff)):
+        # Readings near the float limit: reduce each angle first (same value mod 360).
+        diff = np.mod(raw, 360.0) - (theta0 % 360.0) + 360.0
+    rel = np.mod(diff, 360.0)
     # np.mod can round a tiny negative difference up to exactly 360.
     rel = np.where(rel >= 360.0, 0.0, rel)
     yaw = np.radians(np.where(rel < 180.0, -rel, 360.0 - rel))
-    if unwrap:
+    if flag:
         if yaw.ndim != 1:
             raise ValueError(f"unwrap needs a 1-D array of readings, got shape {yaw.shape}")
         yaw = np.unwrap(yaw)
     if yaw.ndim == 0:
         return float(yaw)
-    return yaw
+    out: FloatArray = np.asarray(yaw, dtype=np.float64)
+    return out
 
 
 class CompassCalibration:
@@ -92,7 +106,8 @@ class CompassCalibration:
     Parameters
     ----------
     unwrap : bool, default False
-        Return a continuous yaw instead of one wrapped to (-π, π] (keyword-only).
+        Return a continuous yaw instead of one wrapped to (-π, π] (keyword-only;
+        a ``bool``).
 
     Examples
     --------
@@ -109,7 +124,7 @@ class CompassCalibration:
     __slots__ = ("_initial", "_last", "_unwrap")
 
     def __init__(self, *, unwrap: bool = False) -> None:
-        self._unwrap = bool(unwrap)
+        self._unwrap = as_bool(unwrap, "unwrap")
         self._initial: float | None = None
         self._last: float | None = None
 

@@ -1,4 +1,9 @@
-"""Validation helpers specific to estimation: covariance matrices and index lists (private)."""
+"""Validation helpers specific to estimation: covariance matrices, variances, index lists (private).
+
+Documented ranges of :mod:`navkit.estimation`: every covariance entry and every
+variance has a magnitude of at most :data:`MAX_COVARIANCE`; a measurement
+variance given as a scalar is at least :data:`MIN_VARIANCE`.
+"""
 
 from __future__ import annotations
 
@@ -10,12 +15,43 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import as_float_array
+from navkit._shared.validation import as_float_array, finite_float
 
-__all__ = ["covariance", "index_tuple"]
+__all__ = [
+    "MAX_COVARIANCE",
+    "MIN_VARIANCE",
+    "check_magnitude",
+    "covariance",
+    "index_tuple",
+    "variance",
+]
 
 # Relative tolerance for symmetry and semi-definiteness checks of user matrices.
 _REL_TOL = 1e-9
+
+#: Largest magnitude of a covariance entry or a variance (units squared): a standard
+#: deviation of 1e50 leaves 200 orders of magnitude of headroom for the products
+#: of a filter step, far beyond any physical uncertainty.
+MAX_COVARIANCE = 1e100
+#: Smallest scalar measurement variance: keeps 1/variance far from overflow.
+MIN_VARIANCE = 1e-100
+
+
+def variance(value: Any, name: str) -> float:
+    """Return ``value`` as a float in [MIN_VARIANCE, MAX_COVARIANCE] or raise naming ``name``."""
+    out = finite_float(value, name)
+    if not MIN_VARIANCE <= out <= MAX_COVARIANCE:
+        raise ValueError(f"{name} must be in [{MIN_VARIANCE:g}, {MAX_COVARIANCE:g}], got {out}")
+    return out
+
+
+def check_magnitude(arr: FloatArray, name: str) -> None:
+    """Raise naming ``name`` if an entry of ``arr`` exceeds :data:`MAX_COVARIANCE` in magnitude."""
+    if arr.size and float(np.max(np.abs(arr))) > MAX_COVARIANCE:
+        raise ValueError(
+            f"{name} entries must have magnitude <= {MAX_COVARIANCE:g}, "
+            f"got {float(np.max(np.abs(arr))):g}"
+        )
 
 
 def covariance(value: ArrayLike, name: str, n: int, *, semidefinite: bool = False) -> FloatArray:
@@ -23,12 +59,15 @@ def covariance(value: ArrayLike, name: str, n: int, *, semidefinite: bool = Fals
 
     Positive definiteness is required unless ``semidefinite`` (process noise may
     be zero on some states). Tiny asymmetry from rounding is averaged out.
+    Entries must have magnitude <= :data:`MAX_COVARIANCE`.
     """
     arr = as_float_array(value, name, shape=(n, n))
+    check_magnitude(arr, name)
     scale = max(float(np.max(np.abs(arr))), 1e-300)
     if np.max(np.abs(arr - arr.T)) > _REL_TOL * scale:
         raise ValueError(f"{name} must be symmetric")
-    arr = np.asarray(0.5 * (arr + arr.T), dtype=np.float64)
+    # 0.5*a + 0.5*b equals 0.5*(a + b) bit for bit and never overflows.
+    arr = np.asarray(0.5 * arr + 0.5 * arr.T, dtype=np.float64)
     if semidefinite:
         if n and float(np.linalg.eigvalsh(arr)[0]) < -_REL_TOL * scale:
             raise ValueError(f"{name} must be positive semi-definite")

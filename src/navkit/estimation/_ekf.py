@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Iterable
 
 import numpy as np
@@ -17,6 +18,8 @@ from navkit.estimation._result import UpdateResult, new_result
 
 __all__ = ["ExtendedKalmanFilter"]
 
+_OVERFLOW = "overflow: not applied, float64 cannot hold "
+
 StateFunction = Callable[[FloatArray], ArrayLike]
 Jacobian = Callable[[FloatArray], ArrayLike] | ArrayLike
 
@@ -31,22 +34,35 @@ class ExtendedKalmanFilter(GaussianEstimate):
     and the Joseph-form covariance
     :math:`P \leftarrow (I - KH) P (I - KH)^T + K R K^T`, which stays symmetric
     positive definite under rounding (the short form :math:`(I - KH)P` does not).
-    After every step ``P`` is symmetrised and checked to be positive definite; a
-    step that would break this raises :class:`~navkit.errors.FilterError` and
-    leaves the filter unchanged.
+    After every step ``P`` is symmetrised and checked to be finite and positive
+    definite; a step that would break this raises
+    :class:`~navkit.errors.FilterError` and leaves the filter unchanged. A
+    measurement whose residual, NIS or updated state would overflow float64 is
+    not applied (``accepted=False`` with the reason). The state and covariance
+    never become NaN or infinite. A covariance whose condition number nears
+    1/machine-epsilon (about 1e16; e.g. after a Jacobian entry of 1e16 or
+    variances 1e16 apart that the model couples) cannot be propagated reliably in
+    float64: a later step may then raise ``FilterError``, again leaving the filter
+    unchanged.
 
     An ordinary class with ``__slots__`` rather than a frozen dataclass: every
     step changes its estimate in place.
 
     Parameters
     ----------
-    x0 : array_like, shape (n,)
-        Initial state.
+    x0 : array_like, shape (n,), n >= 1
+        Initial state (finite).
     P0 : array_like, shape (n, n)
-        Initial covariance, symmetric positive definite.
+        Initial covariance, symmetric positive definite, entries of magnitude at
+        most 1e100 (as every covariance the filter takes: ``Q``, ``R``).
     angle_states : sequence of int, optional
         Indices of state components that are angles (rad); they are wrapped to
         (-π, π] after every step (keyword-only).
+
+    Raises
+    ------
+    TypeError, ValueError
+        An argument outside the ranges above, naming it.
 
     Examples
     --------
@@ -98,7 +114,11 @@ class ExtendedKalmanFilter(GaussianEstimate):
             ``F(x)`` returning it.
         Q : array_like, shape (n, n)
             Process noise covariance for this step, symmetric positive
-            semi-definite.
+            semi-definite, entries of magnitude at most 1e100.
+
+        The values ``f`` and ``F`` return are checked like arguments: real,
+        finite, of the right shape (``TypeError``/``ValueError`` naming
+        ``f(x)`` or ``F``).
 
         Raises
         ------
@@ -106,7 +126,8 @@ class ExtendedKalmanFilter(GaussianEstimate):
             On non-callable ``f``, wrong shapes, non-finite values or an invalid
             ``Q``; the state is unchanged.
         FilterError
-            If the predicted covariance is not positive definite.
+            If the predicted covariance is not finite or not positive definite;
+            the state is unchanged.
         """
         if not callable(f):
             raise TypeError(f"f must be callable, got {type(f).__name__}")
@@ -139,7 +160,8 @@ class ExtendedKalmanFilter(GaussianEstimate):
         H : callable or array_like, shape (m, n)
             Jacobian of ``h`` at the current state, or a function returning it.
         R : array_like, shape (m, m)
-            Measurement noise covariance, symmetric positive definite.
+            Measurement noise covariance, symmetric positive definite, entries
+            of magnitude at most 1e100.
         angle_measurements : sequence of int, optional
             Indices of the components of ``z`` that are angles; their residuals
             are wrapped to (-π, π] (keyword-only).
@@ -151,15 +173,20 @@ class ExtendedKalmanFilter(GaussianEstimate):
         Returns
         -------
         UpdateResult
-            Whether the measurement was applied, its NIS and residual.
+            Whether the measurement was applied, its NIS and residual. Not
+            applied (``accepted=False``, state unchanged) when gated, or when the
+            residual, the NIS or the updated state would overflow float64 (the
+            reason says ``"overflow"``; ``nis`` is inf and ``residual`` empty when
+            they overflowed).
 
         Raises
         ------
         TypeError, ValueError
-            On wrong shapes, non-finite values or an invalid ``R`` or ``gate``;
-            the state is unchanged.
+            On wrong shapes, non-finite values or an invalid ``R`` or ``gate``
+            (also in what ``h`` and ``H`` return); the state is unchanged.
         FilterError
-            If the innovation or updated covariance is not positive definite.
+            If the innovation or updated covariance is not finite or not
+            positive definite; the state is unchanged.
         """
         if not callable(h):
             raise TypeError(f"h must be callable, got {type(h).__name__}")
@@ -178,20 +205,24 @@ class ExtendedKalmanFilter(GaussianEstimate):
         for i in angles:
             y[i] = wrap_scalar(float(y[i]))
         ph = self._p @ jac.T
-        s = jac @ ph + r
-        s = 0.5 * (s + s.T)
-        try:
-            np.linalg.cholesky(s)
-        except np.linalg.LinAlgError:
-            raise FilterError("innovation covariance S is not positive definite") from None
+        s = self._checked(jac @ ph + r, "innovation covariance S")
         # S is small, symmetric and positive definite here: one explicit inverse serves both
         # the NIS and the gain K = P Hᵀ S⁻¹.
         s_inv = np.linalg.inv(s)
         nis = float(y @ s_inv @ y)
+        # Also catches an infinite residual (NaN or inf NIS). Overflows are rare enough
+        # that NumPy's RuntimeWarning is left alone (np.errstate would cost every step).
+        if not nis < math.inf:
+            finite = bool(np.all(np.isfinite(y)))
+            reason = _OVERFLOW + ("the NIS" if finite else "the residual z - h(x)")
+            return new_result(False, math.inf, y if finite else np.empty(0), reason)
         if threshold is not None and nis > threshold:
             return new_result(False, nis, y, f"rejected by the gate: NIS {nis:.6g} > {threshold}")
         gain = ph @ s_inv
-        x_new = self._wrap_states(self._x + gain @ y)
+        x_new = self._x + gain @ y
+        if not np.isfinite(x_new).all():
+            return new_result(False, nis, y, _OVERFLOW + "the updated state")
+        x_new = self._wrap_states(x_new)
         ikh = np.eye(n) - gain @ jac
         p_new = self._checked(ikh @ self._p @ ikh.T + gain @ r @ gain.T, "updated covariance")
         self._x = x_new
@@ -202,10 +233,13 @@ class ExtendedKalmanFilter(GaussianEstimate):
         """Validated noise covariance, reusing the last one when the values are identical."""
         last = self._validated.get(name)
         if last is not None and last.shape == (n, n):
-            try:
-                arr = np.asarray(value, dtype=np.float64)
-            except (TypeError, ValueError):
-                arr = last[:0]  # never equal: let covariance() report the problem
+            # Only a float64 array is compared directly; anything else (lists, other
+            # dtypes, complex or string data) is converted by the checking helper first.
+            arr = (
+                value
+                if type(value) is np.ndarray and value.dtype == np.float64
+                else as_float_array(value, name, shape=(n, n))
+            )
             # Equal values (NaN never compares equal) passed the same checks before.
             if arr.shape == last.shape and np.array_equal(arr, last):
                 return last
@@ -221,7 +255,8 @@ class ExtendedKalmanFilter(GaussianEstimate):
 
     @staticmethod
     def _checked(p: FloatArray, what: str) -> FloatArray:
-        p = 0.5 * (p + p.T)
+        # 0.5*a + 0.5*b is 0.5*(a + b) bit for bit, and cannot overflow.
+        p = 0.5 * p + 0.5 * p.T
         if not np.all(np.isfinite(p)):
             raise FilterError(f"{what} is not finite")
         try:

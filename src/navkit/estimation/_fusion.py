@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import enum
 import math
+import numbers
 from dataclasses import dataclass
 from typing import Any
 
@@ -11,11 +12,23 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from navkit._shared.types import BoolArray, FloatArray
-from navkit._shared.validation import as_float_array, finite_float, positive_float
+from navkit._shared.validation import as_float_array, finite_float
 from navkit.errors import FilterError
 from navkit.estimation import _fusion_kernels as k
-from navkit.estimation._covariance import covariance
-from navkit.estimation._fusion_kernels import GATED, NOT_POSITIVE_DEFINITE, planar_step
+from navkit.estimation._covariance import (
+    MAX_COVARIANCE,
+    MIN_VARIANCE,
+    check_magnitude,
+    covariance,
+    variance,
+)
+from navkit.estimation._fusion_kernels import (
+    GATED,
+    NOT_POSITIVE_DEFINITE,
+    OVERFLOW,
+    TIME_GAP,
+    planar_step,
+)
 from navkit.estimation._gaussian import GaussianEstimate
 from navkit.estimation._result import UpdateResult, new_result
 from navkit.geometry import Pose2D, wrap_angle
@@ -42,8 +55,41 @@ _KIND_COMPONENTS = {
 _ODOMETRY_NAMES = ("v", "omega", "v_variance", "omega_variance")
 
 
-class FusionStatus(enum.IntEnum):
+class _IntCodes(enum.EnumMeta):
+    """Enum metaclass whose lookup ``Enum(value)`` takes integer codes only.
+
+    ``IntEnum`` finds its members by equality, so ``True`` and ``1+0j`` would
+    pass for 1; they are refused (``TypeError``), like everywhere in navkit.
+    """
+
+    def __call__(cls, value: Any, *args: Any, **kwargs: Any) -> Any:
+        if not args and not kwargs and (
+            isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Integral)
+        ):
+            raise TypeError(f"{cls.__name__} takes an integer code, got {type(value).__name__}")
+        return super().__call__(value, *args, **kwargs)
+
+
+class FusionStatus(enum.IntEnum, metaclass=_IntCodes):
     """Outcome of one measurement in :meth:`PlanarFusion.update_batch` (``FusionResult.status``).
+
+    ``ACCEPTED``
+        The row updated the state.
+    ``GATED``
+        Rejected by the Mahalanobis gate; the state keeps the prediction to the
+        row's time.
+    ``NOT_POSITIVE_DEFINITE``
+        The update would lose positive definiteness; the state keeps the
+        prediction.
+    ``OUT_OF_ORDER``
+        Older than the filter time; skipped, state and time unchanged.
+    ``TIME_GAP``
+        Predicting over the time since the previous row would overflow float64
+        (a corrupt timestamp such as 1e300 s); skipped, state and time unchanged,
+        so later rows continue from the last good state.
+    ``OVERFLOW``
+        The update would overflow float64 (a value absurdly far from the state
+        for its variance); the state keeps the prediction.
 
     Examples
     --------
@@ -55,6 +101,8 @@ class FusionStatus(enum.IntEnum):
     GATED = k.GATED
     NOT_POSITIVE_DEFINITE = k.NOT_POSITIVE_DEFINITE
     OUT_OF_ORDER = k.OUT_OF_ORDER
+    TIME_GAP = k.TIME_GAP
+    OVERFLOW = k.OVERFLOW
 
 
 @dataclass(frozen=True, slots=True, eq=False)
@@ -71,13 +119,13 @@ class MeasurementLog:
     Parameters
     ----------
     times : array_like, shape (T,)
-        Measurement times, s.
+        Measurement times, s (any finite values).
     values : array_like, shape (T, 4)
-        ``[yaw (rad), v (m/s), omega (rad/s), a (m/s²)]``; entries not observed
-        are ignored (they may be NaN).
+        ``[yaw (rad), v (m/s), omega (rad/s), a (m/s²)]``, finite where
+        observed; entries not observed are ignored (they may be NaN).
     variances : array_like, shape (T, 4)
-        Noise variances of the observed entries (> 0, SI units squared); others
-        are ignored.
+        Noise variances of the observed entries, in [1e-100, 1e100] (SI units
+        squared); others are ignored.
     observed : array_like of bool, shape (T, 4)
         Which components each row measures (at least one per row).
 
@@ -108,8 +156,11 @@ class MeasurementLog:
         var = as_float_array(self.variances, "variances", shape=(n, 4), finite=False)
         if not np.all(np.isfinite(values[obs])):
             raise ValueError("values must be finite where observed")
-        if not np.all(np.isfinite(var[obs])) or not np.all(var[obs] > 0.0):
-            raise ValueError("variances must be finite and > 0 where observed")
+        seen = var[obs]
+        if not np.all((seen >= MIN_VARIANCE) & (seen <= MAX_COVARIANCE)):
+            raise ValueError(
+                f"variances must be in [{MIN_VARIANCE:g}, {MAX_COVARIANCE:g}] where observed"
+            )
         # Unobserved entries are never read by the kernel; zero them so the arrays are clean.
         values = np.where(obs, values, 0.0)
         var = np.where(obs, var, 1.0)
@@ -146,7 +197,8 @@ class MeasurementLog:
             (e.g. a skid-steer robot whose wheel yaw rate is unreliable), yaw
             rates (rad/s); each shape (T_o,).
         odometry_variance : (v_variance, omega_variance)
-            Variances, scalars or shape (T_o,) arrays ((m/s)², (rad/s)²).
+            Variances, scalars or shape (T_o,) arrays ((m/s)², (rad/s)²); every
+            variance in [1e-100, 1e100].
         yaw : (t, yaw), optional
             Absolute yaw (rad), e.g. from a compass or the IMU orientation.
         yaw_variance : float or array_like
@@ -169,21 +221,22 @@ class MeasurementLog:
         blocks: list[tuple[FloatArray, FloatArray, FloatArray, BoolArray]] = []
         if odometry is not None:
             parts = _stream(odometry, "odometry", (2, 3))
+            odo_var = _pair(odometry_variance, "odometry_variance")
             t = parts[0]
             comps = {}
             for comp, val in enumerate(parts[1:], start=1):
                 name = f"odometry_variance[{comp - 1}]"
-                comps[comp] = (val, _stream_variance(odometry_variance[comp - 1], name, t.shape[0]))
+                comps[comp] = (val, _stream_variance(odo_var[comp - 1], name, t.shape[0]))
             blocks.append(_block(t, comps))
         singles = (
             (yaw, yaw_variance, "yaw", 0),
             (yaw_rate, yaw_rate_variance, "yaw_rate", 2),
             (acceleration, acceleration_variance, "acceleration", 3),
         )
-        for stream, variance, name, comp in singles:
+        for stream, stream_variance, name, comp in singles:
             if stream is not None:
                 t, val = _stream(stream, name, (2,))
-                var = _stream_variance(variance, f"{name}_variance", t.shape[0])
+                var = _stream_variance(stream_variance, f"{name}_variance", t.shape[0])
                 blocks.append(_block(t, {comp: (val, var)}))
         if not blocks:
             raise ValueError("give at least one measurement stream")
@@ -212,14 +265,22 @@ def _stream(stream: Any, name: str, widths: tuple[int, ...]) -> tuple[FloatArray
     return (t, *rest)
 
 
+def _pair(value: Any, name: str) -> tuple[Any, Any]:
+    if isinstance(value, (str, bytes)) or not isinstance(value, (tuple, list, np.ndarray)):
+        raise TypeError(f"{name} must be a pair (v_variance, omega_variance)")
+    if len(value) != 2:
+        raise ValueError(f"{name} must be a pair (v_variance, omega_variance), got {len(value)}")
+    return value[0], value[1]
+
+
 def _stream_variance(value: ArrayLike, name: str, n: int) -> FloatArray:
     var = as_float_array(value, name)
     if var.ndim == 0:
         var = np.full(n, float(var))
     elif var.shape != (n,):
         raise ValueError(f"{name} must be a scalar or have shape ({n},), got {var.shape}")
-    if not np.all(var > 0.0):
-        raise ValueError(f"{name} must be > 0")
+    if not np.all((var >= MIN_VARIANCE) & (var <= MAX_COVARIANCE)):
+        raise ValueError(f"{name} must be in [{MIN_VARIANCE:g}, {MAX_COVARIANCE:g}]")
     return var
 
 
@@ -252,9 +313,13 @@ class FusionResult:
     status : ndarray of int8, shape (T,)
         :class:`FusionStatus` code of each row.
     nis : ndarray, shape (T,)
-        Normalised innovation squared of each row (NaN when out of order).
+        Normalised innovation squared of each row, >= 0: NaN when it was never
+        computed (``OUT_OF_ORDER``, ``TIME_GAP``), inf when it overflowed
+        (``OVERFLOW``).
 
-    Every array is a read-only copy.
+    Every array is a read-only copy (the caller's arrays are never made
+    read-only or modified). ``times``, ``states`` and ``covariances`` must be
+    finite.
 
     Examples
     --------
@@ -273,9 +338,11 @@ class FusionResult:
     def __post_init__(self) -> None:
         times = as_float_array(self.times, "times", ndim=1)
         n = times.shape[0]
-        states = as_float_array(self.states, "states", shape=(n, 6), finite=False)
-        cov = as_float_array(self.covariances, "covariances", shape=(n, 6, 6), finite=False)
+        states = as_float_array(self.states, "states", shape=(n, 6))
+        cov = as_float_array(self.covariances, "covariances", shape=(n, 6, 6))
         nis = as_float_array(self.nis, "nis", shape=(n,), finite=False)
+        if np.any(nis < 0.0):
+            raise ValueError("nis must be >= 0 (inf when it overflowed) or NaN (not computed)")
         raw_status = np.asarray(self.status)
         if raw_status.dtype.kind not in "iu":
             raise TypeError(f"status must hold integer codes, got dtype {raw_status.dtype}")
@@ -360,7 +427,12 @@ class PlanarFusion(GaussianEstimate):
     advances the filter to its time (the prediction is kept, the update skipped).
     The first measurement (when ``t0`` is not given) sets the clock without a
     prediction. A numerical failure raises :class:`~navkit.errors.FilterError`
-    and leaves the filter untouched.
+    and leaves the filter untouched — among them a time gap so large that the
+    prediction would overflow float64 (e.g. a corrupt timestamp of 1e300 s). A
+    measurement whose update would overflow (a value absurdly far from the state
+    for its variance, such as a speed of 1e308 m/s) is not applied:
+    ``accepted=False`` with the reason, the prediction is kept. The state never
+    becomes NaN or infinite.
     Predict and update run in one compiled kernel per call; :meth:`update_batch`
     fuses a whole log in one kernel call. Several readings with one timestamp
     (e.g. the yaw, yaw rate and acceleration of one IMU message) can be given by
@@ -374,19 +446,28 @@ class PlanarFusion(GaussianEstimate):
     Parameters
     ----------
     x0 : array_like, shape (6,), optional
-        Initial state; default zeros.
+        Initial state (finite); default zeros.
     P0 : array_like, shape (6, 6) or (6,), optional
-        Initial covariance (or its diagonal); default
-        ``diag(1e-9, 1e-9, 1e-9, 1, 1, 1)``: pose known, rates unknown.
+        Initial covariance (or its diagonal), positive definite, entries of
+        magnitude at most 1e100; default ``diag(1e-9, 1e-9, 1e-9, 1, 1, 1)``:
+        pose known, rates unknown.
     process_noise : array_like, shape (6, 6) or (6,), optional
         Process noise covariance per second (or its diagonal), positive
-        semi-definite; default robot_localization's defaults
-        ``(0.05, 0.05, 0.06, 0.025, 0.02, 0.01)``.
+        semi-definite, entries of magnitude at most 1e100; default
+        robot_localization's defaults ``(0.05, 0.05, 0.06, 0.025, 0.02, 0.01)``.
     t0 : float, optional
-        Time of ``x0``, s.
+        Time of ``x0``, s (any finite value; so are measurement times).
     gate_probability : float, optional
         If given, in (0, 1): reject measurements whose NIS exceeds the chi-square
         quantile of this probability for their dimension (Mahalanobis gate).
+
+    Measured values are any finite numbers; measurement variances (keyword-only
+    in every ``update_*`` method) are in [1e-100, 1e100], SI units squared.
+
+    Raises
+    ------
+    TypeError, ValueError
+        An argument outside the ranges above, naming it.
 
     Examples
     --------
@@ -462,6 +543,9 @@ class PlanarFusion(GaussianEstimate):
         ------
         ValueError
             If ``t`` is not finite or is older than the filter time.
+        FilterError
+            If the prediction would overflow float64 (a huge time gap); the
+            filter is unchanged.
         """
         time = finite_float(t, "t")
         if self._t is not None:
@@ -470,8 +554,11 @@ class PlanarFusion(GaussianEstimate):
             x = self._x.copy()
             p = self._p.copy()
             k.planar_predict(x, p, self._q, time - self._t, self._work)
-            if not np.all(np.isfinite(p)):
-                raise FilterError("predicted covariance is not finite")
+            if not (np.all(np.isfinite(p)) and np.all(np.isfinite(x))):
+                raise FilterError(
+                    f"predicting over the time gap of {time - self._t} s overflows float64; "
+                    "the filter is unchanged"
+                )
             self._x[:] = x
             self._p[:, :] = p
         self._t = time
@@ -482,8 +569,17 @@ class PlanarFusion(GaussianEstimate):
         """Fuse a wheel-odometry twist: forward speed ``v`` (m/s), yaw rate ``omega`` (rad/s).
 
         ``v_variance``, ``omega_variance`` (keyword-only) are the variances
-        ((m/s)², (rad/s)²), > 0. Returns the :class:`UpdateResult` (residual
-        order ``[v, omega]``).
+        ((m/s)², (rad/s)²), in [1e-100, 1e100]. Returns the
+        :class:`UpdateResult` (residual order ``[v, omega]``).
+
+        Raises
+        ------
+        TypeError, ValueError
+            A time or value that is not a finite real number, or a variance
+            outside [1e-100, 1e100], naming it; the filter is unchanged.
+        FilterError
+            The prediction to ``t`` would overflow float64 (a huge time gap) or
+            the update would lose positive definiteness; the filter is unchanged.
         """
         return self._apply(t, "odometry", v, omega, v_variance, omega_variance, _ODOMETRY_NAMES)
 
@@ -516,21 +612,22 @@ class PlanarFusion(GaussianEstimate):
         var1: Any,
         names: tuple[str, str, str, str],
     ) -> UpdateResult:
-        # Fast path for plain finite floats and positive variances (the sum of finite
+        # Fast path for plain finite floats and variances in range (the sum of finite
         # floats may overflow: then the per-argument checks below decide).
+        # The literals are MIN_VARIANCE and MAX_COVARIANCE (constants are faster).
         total = t + z0 + z1 if type(t) is type(z0) is type(z1) is float else math.nan
         if not (
             total - total == 0.0
             and type(var0) is type(var1) is float
-            and 0.0 < var0 < math.inf
-            and 0.0 < var1 < math.inf
+            and 1e-100 <= var0 <= 1e100
+            and 1e-100 <= var1 <= 1e100
         ):
             t = finite_float(t, "t")
             z0 = finite_float(z0, names[0])
-            var0 = positive_float(var0, names[2])
+            var0 = variance(var0, names[2])
             if names[1]:
                 z1 = finite_float(z1, names[1])
-                var1 = positive_float(var1, names[3])
+                var1 = variance(var1, names[3])
         last = self._t
         if last is not None and t < last:
             return new_result(
@@ -542,24 +639,53 @@ class PlanarFusion(GaussianEstimate):
         first, count, gate, comps = self._kinds[kind]
         dt = 0.0 if last is None else t - last
         status, nis = planar_step(self._buf, dt, first, count, z0, z1, var0, var1, gate)
-        if status == NOT_POSITIVE_DEFINITE:
-            raise FilterError(f"{kind} update: covariance is not positive definite")
+        if status:
+            return self._not_applied(status, kind, t, dt, nis, comps)
         residual = self._residuals[comps].copy()
         self._t = float(t)
-        # A gated measurement still advances the clock: the kernel kept the prediction.
+        return new_result(True, nis, residual, None)
+
+    def _not_applied(
+        self, status: int, kind: str, t: float, dt: float, nis: float, comps: slice
+    ) -> UpdateResult:
+        """Raise or report a measurement the kernel did not apply (off the hot path)."""
+        if status == NOT_POSITIVE_DEFINITE:
+            raise FilterError(f"{kind} update: covariance is not positive definite")
+        if status == TIME_GAP:
+            raise FilterError(
+                f"{kind} update: predicting over the time gap of {dt} s to t={t} s overflows "
+                "float64; the filter is unchanged"
+            )
+        residual = self._residuals[comps].copy()
+        if not np.all(np.isfinite(residual)):
+            residual = np.empty(0)
+        # Gated and overflowing measurements still advance the clock: the kernel kept
+        # the prediction.
+        self._t = float(t)
         if status == GATED:
             return new_result(False, nis, residual, f"rejected by the gate: NIS {nis:.6g}")
-        return new_result(True, nis, residual, None)
+        assert status == OVERFLOW
+        return new_result(
+            False,
+            nis,
+            residual,
+            "overflow: the update would overflow float64 (the measurement is absurdly far "
+            "from the state for its variance); the prediction is kept",
+        )
 
     def update_batch(self, log: MeasurementLog) -> FusionResult:
         """Fuse a whole :class:`MeasurementLog` in one compiled kernel call.
 
         Equivalent to calling the online updates row by row (same numbers), but
         without per-call overhead. The filter keeps the final state and time.
-        Instead of raising, a row is marked in ``FusionResult.status``: rows older
-        than the filter time are skipped (``OUT_OF_ORDER``), gated rows keep the
-        prediction (``GATED``), and a row whose update would lose positive
-        definiteness keeps the prediction (``NOT_POSITIVE_DEFINITE``).
+        Instead of raising, a row is marked in ``FusionResult.status``
+        (:class:`FusionStatus`): rows older than the filter time are skipped
+        (``OUT_OF_ORDER``), and so are rows whose prediction would overflow
+        float64 (``TIME_GAP``, e.g. a corrupt timestamp; the state and time stay
+        as they were, and later rows continue from them); gated rows keep the
+        prediction (``GATED``), and so does a row whose update would lose
+        positive definiteness (``NOT_POSITIVE_DEFINITE``) or overflow
+        (``OVERFLOW``). Every state and covariance in the result is finite.
 
         Returns
         -------
@@ -578,6 +704,9 @@ class PlanarFusion(GaussianEstimate):
         t0 = float(log.times[0]) if self._t is None else self._t
         x = self._x.copy()
         p = self._p.copy()
+        # The kernel undoes a TIME_GAP in row 0 from the last output row (see planar_run).
+        out_x[-1] = x
+        out_p[-1] = p
         variances = np.where(log.observed, log.variances, 0.0)
         t_end = k.planar_run(
             x, p, t0, log.times, log.values, variances, self._q, self._gates,
@@ -595,6 +724,7 @@ class PlanarFusion(GaussianEstimate):
 def _matrix(value: ArrayLike, name: str, *, semidefinite: bool) -> FloatArray:
     arr = as_float_array(value, name)
     if arr.shape == (6,):
+        check_magnitude(arr, name)
         if not np.all(arr >= 0.0) or (not semidefinite and not np.all(arr > 0.0)):
             bound = ">= 0" if semidefinite else "> 0"
             raise ValueError(f"{name} diagonal entries must be {bound}")

@@ -10,7 +10,10 @@ The kernels never allocate: scratch space is a caller-owned ``work`` array of
 shape ``(WORK_ROWS, 6)``, because at this size heap
 allocations would cost more than the arithmetic. The public layer
 (:mod:`navkit.estimation._fusion`) validates input; these kernels assume finite,
-well-shaped arrays and never raise.
+well-shaped arrays and never raise. They never return a non-finite state either:
+a prediction that would overflow float64 (a huge time gap) is undone
+(``TIME_GAP``), and an update that would overflow (a measurement absurdly far
+from the state for its variance) is not applied (``OVERFLOW``).
 """
 
 from __future__ import annotations
@@ -18,8 +21,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
+from navkit._shared.jit import njit_cached, njit_inline
 from navkit._shared.se2 import compose_scalar, wrap_scalar
 
 N_STATE = 6
@@ -31,6 +34,8 @@ ACCEPTED = 0
 GATED = 1
 NOT_POSITIVE_DEFINITE = 2
 OUT_OF_ORDER = 3
+TIME_GAP = 4
+OVERFLOW = 5
 
 # Rows of the scratch array (each row has 6 entries).
 _E = 0  # 4 rows: F - I (rows 0-3 of F), predict
@@ -54,19 +59,19 @@ BUF_WORK = 16  # WORK_ROWS rows: scratch
 BUF_ROWS = BUF_WORK + WORK_ROWS
 
 
-@njit(cache=True, inline="always")
+@njit_inline
 def _cholesky_inplace(a: np.ndarray, n: int, inv_diag: np.ndarray) -> bool:
     """Lower Cholesky factor L of the leading n×n block of ``a``, in place.
 
     Also stores 1 / L[j, j] in ``inv_diag[j]`` so that the solves multiply
     instead of divide. Returns False (and stops) if the block is not positive
-    definite.
+    definite or not finite (an inf or NaN entry makes some pivot inf or NaN).
     """
     for j in range(n):
         s = a[j, j]
         for k in range(j):
             s -= a[j, k] * a[j, k]
-        if not s > 0.0:
+        if not 0.0 < s < math.inf:
             return False
         d = math.sqrt(s)
         a[j, j] = d
@@ -80,7 +85,7 @@ def _cholesky_inplace(a: np.ndarray, n: int, inv_diag: np.ndarray) -> bool:
     return True
 
 
-@njit(cache=True, inline="always")
+@njit_inline
 def _cho_solve_vec(lower: np.ndarray, inv_diag: np.ndarray, n: int, b: np.ndarray) -> None:
     """Solve (L Lᵀ) u = b for the first n entries of ``b``, in place."""
     for i in range(n):
@@ -95,7 +100,25 @@ def _cho_solve_vec(lower: np.ndarray, inv_diag: np.ndarray, n: int, b: np.ndarra
         b[i] = t * inv_diag[i]
 
 
-@njit(cache=True, inline="always")
+@njit_inline
+def _finite(x: np.ndarray, p: np.ndarray) -> bool:
+    """Whether the predicted state ``x`` (6,) and covariance ``p`` (6, 6) are finite.
+
+    The prediction changes only x, y, θ, v and the covariance; the diagonal
+    suffices for the covariance: every entry of a positive semi-definite matrix
+    is bounded by its diagonal (|P_ij| <= sqrt(P_ii P_jj)), so an overflow
+    anywhere shows on the diagonal (as inf or NaN). ``v * 0.0`` is 0 for a
+    finite ``v`` and NaN otherwise, so the check never overflows itself; the sum
+    is a tree, not a chain, to keep its latency short.
+    """
+    z = 0.0
+    a = (x[0] * z + x[1] * z) + (x[2] * z + x[3] * z)
+    b = (p[0, 0] * z + p[1, 1] * z) + (p[2, 2] * z + p[3, 3] * z)
+    ok: bool = (a + b) + (p[4, 4] * z + p[5, 5] * z) == 0.0
+    return ok
+
+
+@njit_inline
 def _symmetrize(p: np.ndarray) -> None:
     for i in range(p.shape[0]):
         for j in range(i + 1, p.shape[0]):
@@ -104,7 +127,7 @@ def _symmetrize(p: np.ndarray) -> None:
             p[j, i] = m
 
 
-@njit(cache=True, inline="always")
+@njit_inline
 def planar_predict(
     x: np.ndarray, p: np.ndarray, q: np.ndarray, dt: float, work: np.ndarray
 ) -> None:
@@ -161,9 +184,9 @@ def planar_predict(
     _symmetrize(p)
 
 
-@njit(cache=True, inline="always")
+@njit_inline
 def planar_update(
-    x: np.ndarray, p: np.ndarray, meas: np.ndarray, gate: float, work: np.ndarray
+    x: np.ndarray, p: np.ndarray, meas: np.ndarray, gate: float, work: np.ndarray, comp: np.ndarray
 ) -> tuple[int, float]:
     """Kalman update with one measurement, in place.
 
@@ -174,13 +197,15 @@ def planar_update(
     is wrapped. The covariance uses the Joseph form
     P = (I - KH) P (I - KH)ᵀ + K R Kᵀ, then is symmetrised and checked positive
     definite. Returns ``(status, nis)``; ``x`` and ``p`` change only when the
-    status is ``ACCEPTED``.
+    status is ``ACCEPTED``. ``comp`` (4,) int64 is scratch space for the indices
+    of the observed components (allocated once by the batch loop). ``OVERFLOW``
+    (with ``nis`` inf when the NIS itself overflowed) means the residual, the NIS
+    or the updated state is not finite.
     """
     y = work[_VEC]
     u = work[_VEC + 1]
     row = work[_VEC + 2]
     inv_diag = work[_VEC + 3]
-    comp = np.empty(N_COMP, dtype=np.int64)  # observed components
     m = 0
     for k in range(N_COMP):
         if meas[1, k] > 0.0:
@@ -207,6 +232,8 @@ def planar_update(
     nis = 0.0
     for a in range(m):
         nis += y[a] * u[a]
+    if not nis < math.inf:  # also NaN: an infinite residual
+        return OVERFLOW, math.inf
     if nis > gate:
         return GATED, nis
     # K = P Hᵀ S⁻¹; S is symmetric, so each row of K solves S kᵢ = (P Hᵀ)ᵢ.
@@ -247,6 +274,11 @@ def planar_update(
             t = 0.5 * (t1 + t2)
             pn[i, j] = t
             pn[j, i] = t
+    # The state may overflow (then it is inf or NaN); the covariance is checked finite
+    # by the Cholesky factorisation below.
+    z = 0.0
+    if ((xn[0] * z + xn[1] * z) + (xn[2] * z + xn[3] * z)) + (xn[4] * z + xn[5] * z) != 0.0:
+        return OVERFLOW, nis
     check = work[_CHECK : _CHECK + N_STATE]
     check[:, :] = pn
     if not _cholesky_inplace(check, N_STATE, work[_VEC + 4]):
@@ -256,7 +288,7 @@ def planar_update(
     return ACCEPTED, nis
 
 
-@njit(cache=True)
+@njit_cached
 def planar_step(
     buf: np.ndarray,
     dt: float,
@@ -276,8 +308,10 @@ def planar_step(
     variances ``var0``, ``var1`` (the second ones unused when ``count`` is 1);
     passing scalars is cheaper than writing them into ``buf`` from Python. x and
     P are overwritten with the result unless the status is
-    ``NOT_POSITIVE_DEFINITE`` (then they are restored); a gated measurement
-    keeps the prediction. The residuals are left in the measurement block.
+    ``NOT_POSITIVE_DEFINITE`` or ``TIME_GAP`` (the prediction over ``dt``
+    overflowed; no update was tried): then they are restored. A gated or
+    overflowing measurement keeps the prediction. The residuals are left in the
+    measurement block.
     """
     meas = buf[BUF_MEAS : BUF_MEAS + 3]
     for k in range(N_COMP):
@@ -294,13 +328,16 @@ def planar_step(
     x = buf[BUF_X]
     p = buf[BUF_P : BUF_P + N_STATE]
     planar_predict(x, p, buf[BUF_Q : BUF_Q + N_STATE], dt, work)
-    status, nis = planar_update(x, p, meas, gate, work)
+    if not _finite(x, p):
+        state[:, :] = saved
+        return TIME_GAP, math.nan
+    status, nis = planar_update(x, p, meas, gate, work, np.empty(N_COMP, dtype=np.int64))
     if status == NOT_POSITIVE_DEFINITE:
         state[:, :] = saved
     return status, nis
 
 
-@njit(cache=True)
+@njit_cached
 def planar_run(
     x: np.ndarray,
     p: np.ndarray,
@@ -323,12 +360,19 @@ def planar_run(
     measurement (``inf`` disables gating). ``x`` (6,) and ``p`` (6, 6) are
     updated in place; the state after each row goes to ``out_x[i]``,
     ``out_p[i]``. Rows older than the filter time are not applied
-    (``OUT_OF_ORDER``); a row whose update fails numerically keeps the
-    prediction and is marked ``NOT_POSITIVE_DEFINITE``.
+    (``OUT_OF_ORDER``); nor are rows whose prediction would overflow
+    (``TIME_GAP``: the state and time stay as they were). A row whose update
+    fails numerically keeps the prediction and is marked
+    ``NOT_POSITIVE_DEFINITE`` or ``OVERFLOW``.
+
+    The caller stores the initial ``x`` and ``p`` in ``out_x[-1]`` and
+    ``out_p[-1]`` too: a ``TIME_GAP`` in row 0 restores them from there (a copy
+    made here would slow the loop down measurably).
     """
     t = t0
     meas = np.zeros((3, N_COMP))
     work = np.zeros((WORK_ROWS, N_STATE))
+    comp = np.empty(N_COMP, dtype=np.int64)
     for i in range(times.shape[0]):
         ti = times[i]
         if ti < t:
@@ -336,6 +380,16 @@ def planar_run(
             out_nis[i] = math.nan
         else:
             planar_predict(x, p, q, ti - t, work)
+            if not _finite(x, p):
+                # Undo the prediction: back to the state after the previous row (for
+                # row 0, index -1: the caller's copy of the initial state).
+                x[:] = out_x[i - 1]
+                p[:, :] = out_p[i - 1]
+                out_status[i] = TIME_GAP
+                out_nis[i] = math.nan
+                out_x[i, :] = x
+                out_p[i, :, :] = p
+                continue
             t = ti
             m = 0
             for k in range(N_COMP):
@@ -343,7 +397,7 @@ def planar_run(
                 meas[1, k] = variances[i, k]
                 if variances[i, k] > 0.0:
                     m += 1
-            status, nis = planar_update(x, p, meas, gates[m], work)
+            status, nis = planar_update(x, p, meas, gates[m], work, comp)
             out_status[i] = status
             out_nis[i] = nis
         out_x[i, :] = x

@@ -3,9 +3,10 @@
 from __future__ import annotations
 
 import numbers
+from typing import Any
 
 import numpy as np
-from numpy.typing import ArrayLike
+from numpy.typing import ArrayLike, NDArray
 
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, finite_float, positive_float
@@ -30,6 +31,28 @@ def _chain(pose: Pose2D, dx: FloatArray, dy: FloatArray, heading_before: FloatAr
     out[:, 0] = pose.x + np.cumsum(c * dx - s * dy)
     out[:, 1] = pose.y + np.cumsum(s * dx + c * dy)
     return out
+
+
+def _finite_poses(out: FloatArray, name: str) -> None:
+    """Raise naming ``name`` if the poses overflowed float64 (inf or NaN)."""
+    if not np.all(np.isfinite(out)):
+        raise ValueError(
+            f"{name}: the odometry overflows float64 (the poses would be infinite); "
+            "the odometry is unchanged"
+        )
+
+
+def _integer_readings(value: object, name: str) -> NDArray[Any]:
+    """``value`` as an integer array (unconverted), or a TypeError naming ``name``."""
+    if isinstance(value, (str, bytes)):
+        raise TypeError(f"{name} must hold integer counter readings, got {type(value).__name__}")
+    try:
+        arr = np.asarray(value)
+    except (TypeError, ValueError, OverflowError) as exc:
+        raise TypeError(f"{name} must hold integer counter readings: {exc}") from None
+    if arr.dtype.kind not in "iu":
+        raise TypeError(f"{name} must hold integer counter readings, got {arr.dtype}")
+    return arr
 
 
 def _is_bit_width(value: object) -> bool:
@@ -111,6 +134,13 @@ class OmniOdometry:
         -------
         Pose2D
             The new pose (also kept as :attr:`pose`).
+
+        Raises
+        ------
+        TypeError, ValueError
+            Increments or yaw that are not finite real numbers, or increments
+            so large that the pose would overflow float64; the odometry is then
+            unchanged.
         """
         inc = as_float_array(wheel_increments, "wheel_increments", shape=(self._drive.n_wheels,))
         heading = finite_float(yaw, "yaw")
@@ -131,18 +161,26 @@ class OmniOdometry:
         ndarray, shape (T + 1, 3)
             ``[x, y, theta]`` rows; row 0 is the pose before the log. The
             odometry keeps the last pose.
+
+        Raises
+        ------
+        TypeError, ValueError
+            As :meth:`update`.
         """
         n = self._drive.n_wheels
         inc = as_float_array(wheel_increments, "wheel_increments", shape=(None, n))
         t = inc.shape[0]
         heading = np.asarray(wrap_angle(as_float_array(yaws, "yaws", shape=(t,))))
-        body = self._drive.forward_batch(inc)
+        with np.errstate(over="ignore", invalid="ignore"):
+            body = inc @ self._drive.forward_matrix.T  # forward_batch, overflow checked below
         previous = np.concatenate(([self._pose.theta], heading[:-1]))
         turn = np.asarray(wrap_angle(heading - previous))
         out = np.empty((t + 1, 3))
         out[0] = self._pose.as_array()
-        out[1:, :2] = _chain(self._pose, body[:, 0], body[:, 1], previous + 0.5 * turn)
+        with np.errstate(over="ignore", invalid="ignore"):
+            out[1:, :2] = _chain(self._pose, body[:, 0], body[:, 1], previous + 0.5 * turn)
         out[1:, 2] = heading
+        _finite_poses(out, "wheel_increments")
         if t:
             self._pose = Pose2D.from_array(out[-1])
         return out
@@ -169,7 +207,8 @@ class DiffOdometry:
     drive : DiffDrive
         Track width and wheel radii.
     ticks_per_rev : float
-        Encoder counts per wheel revolution, > 0.
+        Encoder counts per wheel revolution, in [1, 1e12] (as
+        :func:`navkit.kinematics.ticks_to_distance`).
     encoder_bits : int, optional
         Width of the hardware counters (e.g. 16) for wrap-around; None for
         counters that never wrap.
@@ -179,6 +218,11 @@ class DiffOdometry:
         Integration scheme per step.
 
     Every parameter after ``drive`` is keyword-only.
+
+    Raises
+    ------
+    TypeError, ValueError
+        An argument of the wrong type or outside its range, naming it.
 
     Examples
     --------
@@ -209,6 +253,8 @@ class DiffOdometry:
         if encoder_bits is not None and not _is_bit_width(encoder_bits):
             raise ValueError(f"encoder_bits must be an integer from 2 to 64, got {encoder_bits!r}")
         self._drive = drive
+        # ticks_to_distance owns the documented range of ticks_per_rev; checked here once.
+        ticks_to_distance(0, ticks_per_rev=ticks_per_rev, wheel_radius=drive.left_radius)
         self._ticks_per_rev = positive_float(ticks_per_rev, "ticks_per_rev")
         self._bits = None if encoder_bits is None else int(encoder_bits)
         self._pose = start
@@ -248,17 +294,22 @@ class DiffOdometry:
         ndarray, shape (T, 3)
             ``[x, y, theta]`` after each reading. The odometry keeps the last
             pose and counters.
+
+        Raises
+        ------
+        TypeError
+            Readings that are not integers.
+        ValueError
+            Shapes that differ, readings outside the counter's range, or a
+            pose that would overflow float64; the odometry is then unchanged.
         """
-        left = np.asarray(left_ticks)
-        right = np.asarray(right_ticks)
+        left = _integer_readings(left_ticks, "left_ticks")
+        right = _integer_readings(right_ticks, "right_ticks")
         if left.ndim != 1 or right.shape != left.shape:
             raise ValueError(
                 f"left_ticks and right_ticks must be 1-D of equal length, got shapes "
                 f"{left.shape} and {right.shape}"
             )
-        for name, arr in (("left_ticks", left), ("right_ticks", right)):
-            if arr.dtype.kind not in "iu":
-                raise TypeError(f"{name} must hold integer counter readings, got {arr.dtype}")
         t = left.shape[0]
         if t == 0:
             return np.empty((0, 3))
@@ -288,7 +339,9 @@ class DiffOdometry:
         theta = self._pose.theta + np.cumsum(steps[:, 2])
         before = np.concatenate(([self._pose.theta], theta[:-1]))
         out = np.empty((t, 3))
-        out[:, :2] = _chain(self._pose, steps[:, 0], steps[:, 1], before)
+        with np.errstate(over="ignore", invalid="ignore"):
+            out[:, :2] = _chain(self._pose, steps[:, 0], steps[:, 1], before)
+        _finite_poses(out[:, :2], "left_ticks, right_ticks")
         out[:, 2] = wrap_angle(theta)
         self._pose = Pose2D.from_array(out[-1])
         self._last = (int(left[-1]), int(right[-1]))

@@ -4,6 +4,11 @@ Conventions used across navkit: units are SI (m, rad, s); angles are wrapped to
 (-π, π]; world points are ``(x, y)``; twists are expressed in the robot frame.
 Wherever navkit takes a pose or a twist, a ``Pose2D``/``Twist2D`` or a sequence of
 three numbers works (:func:`as_pose`, :func:`as_twist`).
+
+Ranges: coordinates, angles, velocities are any finite real numbers (complex
+numbers, strings and booleans raise ``TypeError``), time steps are finite and
+>= 0. A result that would overflow float64 raises ``ValueError`` naming the
+argument; no function returns NaN.
 """
 
 from navkit.geometry._angles import angle_diff, wrap_angle

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import math
-from typing import overload
+from typing import Any, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -11,6 +11,20 @@ from numpy.typing import ArrayLike, NDArray
 from navkit._shared.validation import as_float_array
 
 __all__ = ["angle_diff", "wrap_angle"]
+
+_TWO_PI = 2.0 * math.pi
+
+
+def _wrap_float(a: float) -> float:
+    """:func:`wrap_angle` of one finite Python float, with the same operations (bit for bit).
+
+    Python's float ``%`` and ``np.mod`` both take ``fmod`` and add the divisor when
+    the signs differ, so the results are identical.
+    """
+    if -math.pi < a <= math.pi:
+        return a
+    r = math.pi - ((math.pi - a) % _TWO_PI)
+    return r + _TWO_PI if r <= -math.pi else r
 
 
 @overload
@@ -25,7 +39,7 @@ def wrap_angle(angle: ArrayLike) -> float | NDArray[np.float64]:
     Parameters
     ----------
     angle : float or array_like
-        Angle(s) in radians; must be finite.
+        Angle(s) in radians: any finite real numbers.
 
     Returns
     -------
@@ -36,6 +50,9 @@ def wrap_angle(angle: ArrayLike) -> float | NDArray[np.float64]:
 
     Raises
     ------
+    TypeError
+        If ``angle`` is not real numbers (complex, strings and booleans are
+        refused).
     ValueError
         If any angle is NaN or infinite.
 
@@ -47,6 +64,9 @@ def wrap_angle(angle: ArrayLike) -> float | NDArray[np.float64]:
     >>> wrap_angle(-math.pi) == math.pi
     True
     """
+    value: Any = angle
+    if type(value) is float and value - value == 0.0:  # a finite float: the fast path
+        return _wrap_float(value)
     arr = as_float_array(angle, "angle")
     inside = (arr > -math.pi) & (arr <= math.pi)
     wrapped = math.pi - np.mod(math.pi - arr, 2.0 * math.pi)
@@ -70,12 +90,19 @@ def angle_diff(a: ArrayLike, b: ArrayLike) -> float | NDArray[np.float64]:
     Parameters
     ----------
     a, b : float or array_like
-        Angles in radians (broadcast together).
+        Angles in radians (broadcast together): any finite real numbers.
 
     Returns
     -------
     float or ndarray
         ``wrap_angle(a - b)``: positive when ``a`` lies counter-clockwise of ``b``.
+        When ``a - b`` would overflow (angles near ±1.8e308) both angles are
+        wrapped first, which gives the same angle.
+
+    Raises
+    ------
+    TypeError, ValueError
+        As :func:`wrap_angle`, naming ``a`` or ``b``.
 
     Examples
     --------
@@ -83,4 +110,24 @@ def angle_diff(a: ArrayLike, b: ArrayLike) -> float | NDArray[np.float64]:
     >>> round(angle_diff(math.radians(10), math.radians(350)), 12) == round(math.radians(20), 12)
     True
     """
-    return wrap_angle(np.subtract(as_float_array(a, "a"), as_float_array(b, "b")))
+    first_value: Any = a
+    second_value: Any = b
+    if type(first_value) is float and type(second_value) is float:
+        d = first_value - second_value
+        if d - d == 0.0:
+            return _wrap_float(d)
+    first = as_float_array(a, "a")
+    second = as_float_array(b, "b")
+    # a - b overflows only when |a| or |b| exceeds half the float range.
+    if max(_peak(first), _peak(second)) < 8e307:
+        return wrap_angle(np.subtract(first, second))
+    with np.errstate(over="ignore", invalid="ignore"):
+        diff = np.subtract(first, second)
+    # Where a - b overflowed, wrap both angles first: the same angle, always finite.
+    rescue = np.subtract(wrap_angle(first), wrap_angle(second))
+    return wrap_angle(np.where(np.isfinite(diff), diff, rescue))
+
+
+def _peak(arr: NDArray[np.float64]) -> float:
+    """Largest magnitude in ``arr`` (0 when empty)."""
+    return float(np.max(np.abs(arr))) if arr.size else 0.0

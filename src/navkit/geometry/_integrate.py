@@ -30,7 +30,7 @@ def integrate(pose: Pose2D | ArrayLike, twist: Twist2D | ArrayLike, dt: float) -
     twist : Twist2D or array_like, shape (3,)
         Body-frame velocity, or ``[vx, vy, omega]`` (m/s, m/s, rad/s).
     dt : float
-        Duration in seconds, >= 0.
+        Duration in seconds, finite and >= 0.
 
     Returns
     -------
@@ -41,9 +41,10 @@ def integrate(pose: Pose2D | ArrayLike, twist: Twist2D | ArrayLike, dt: float) -
     ------
     TypeError
         If ``pose`` or ``twist`` is neither a navkit object nor a sequence of
-        three numbers.
+        three numbers, or ``dt`` is not a real number.
     ValueError
-        Non-finite values or a negative ``dt``.
+        Non-finite values, a negative ``dt``, or a motion so large that the
+        pose would overflow float64 (never a NaN pose).
 
     Examples
     --------
@@ -60,6 +61,8 @@ def integrate(pose: Pose2D | ArrayLike, twist: Twist2D | ArrayLike, dt: float) -
     if step < 0.0:
         raise ValueError(f"dt must be >= 0, got {step}")
     x, y, th = integrate_kernel(start.x, start.y, start.theta, tw.vx, tw.vy, tw.omega, step)
+    if not (x - x == 0.0 and y - y == 0.0 and th - th == 0.0):
+        raise _overflow()
     return Pose2D(x, y, th)
 
 
@@ -76,13 +79,22 @@ def rollout(
         Rows ``[vx, vy, omega]`` in the body frame (m/s, m/s, rad/s), or a list
         (tuple) of :class:`Twist2D` (its items may also be 3-sequences).
     dt : float or array_like, shape (N,)
-        Time step(s) in seconds, >= 0.
+        Time step(s) in seconds, finite and >= 0.
 
     Returns
     -------
     ndarray, shape (N + 1, 3)
         Poses ``[x, y, theta]``; row 0 is ``pose``, row i the pose after twist i-1.
         Identical to repeated :func:`integrate` calls.
+
+    Raises
+    ------
+    TypeError
+        Arguments that are not what is documented (complex numbers, strings and
+        booleans are refused), naming them.
+    ValueError
+        Non-finite values, wrong shapes, a negative ``dt``, or motions so large
+        that a pose would overflow float64 (never a NaN pose).
 
     Examples
     --------
@@ -111,7 +123,17 @@ def rollout(
         np.ascontiguousarray(steps),
         out,
     )
+    # Once a pose overflows (inf) the later ones are inf or NaN, so the last row tells.
+    if not np.isfinite(out[-1]).all():
+        raise _overflow()
     return out
+
+
+def _overflow() -> ValueError:
+    return ValueError(
+        "twists, dt: the motion overflows float64 (a pose beyond ±1.8e308 m); "
+        "give smaller twists or time steps"
+    )
 
 
 def _twist_rows(twists: ArrayLike | Sequence[Twist2D]) -> FloatArray:

@@ -8,12 +8,12 @@ themselves live in :mod:`navkit._shared.se2`.
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
 
+from navkit._shared.jit import njit_cached
 from navkit._shared.se2 import integrate_scalar
 
 
-@njit(cache=True)
+@njit_cached
 def integrate_kernel(
     x: float, y: float, th: float, vx: float, vy: float, omega: float, dt: float
 ) -> tuple[float, float, float]:
@@ -21,7 +21,7 @@ def integrate_kernel(
     return integrate_scalar(x, y, th, vx, vy, omega, dt)
 
 
-@njit(cache=True)
+@njit_cached
 def rollout_kernel(
     x: float, y: float, th: float, twists: np.ndarray, dts: np.ndarray, out: np.ndarray
 ) -> None:

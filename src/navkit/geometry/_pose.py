@@ -27,9 +27,20 @@ class Pose2D:
     Parameters
     ----------
     x, y : float
-        Position in metres.
+        Position in metres: any finite real numbers.
     theta : float, default 0.0
-        Heading in radians, counter-clockwise from the world x axis.
+        Heading in radians, counter-clockwise from the world x axis: any finite
+        real number.
+
+    Raises
+    ------
+    TypeError
+        A field that is not a real number (complex, strings and booleans are
+        refused).
+    ValueError
+        A field that is NaN or infinite. The operations below raise a
+        ``ValueError`` naming their argument when a result would overflow
+        float64 (coordinates near ±1.8e308), never return one that is not finite.
 
     Examples
     --------
@@ -67,6 +78,8 @@ class Pose2D:
         ------
         TypeError
             If ``other`` is neither a Pose2D nor a sequence of three numbers.
+        ValueError
+            If ``other`` has non-finite values, or the result would overflow.
 
         Examples
         --------
@@ -75,17 +88,27 @@ class Pose2D:
         1.0
         """
         o = other if type(other) is Pose2D else as_pose(other, "other")
-        return Pose2D(*compose_scalar(self.x, self.y, self.theta, o.x, o.y, o.theta))
+        x, y, theta = compose_scalar(self.x, self.y, self.theta, o.x, o.y, o.theta)
+        if not (x - x == 0.0 and y - y == 0.0):
+            raise _overflow("other", "composing the poses")
+        return Pose2D(x, y, theta)
 
     def __matmul__(self, other: Pose2D | ArrayLike) -> Pose2D:
         """``a @ b`` is ``a.compose(b)``; ``b`` may be a sequence ``[x, y, theta]``."""
         return self.compose(other)
 
     def inverse(self) -> Pose2D:
-        """Return the inverse transform, so that ``p.compose(p.inverse())`` is the identity."""
+        """Return the inverse transform, so that ``p.compose(p.inverse())`` is the identity.
+
+        Raises ``ValueError`` if the result would overflow (coordinates near ±1.8e308).
+        """
         c = math.cos(self.theta)
         s = math.sin(self.theta)
-        return Pose2D(-c * self.x - s * self.y, s * self.x - c * self.y, -self.theta)
+        x = -c * self.x - s * self.y
+        y = s * self.x - c * self.y
+        if not (x - x == 0.0 and y - y == 0.0):
+            raise _overflow("pose", "inverting the pose")
+        return Pose2D(x, y, -self.theta)
 
     def relative_to(self, frame: Pose2D | ArrayLike) -> Pose2D:
         """Express this pose in the frame of ``frame``: ``frame.inverse() ⊕ self``.
@@ -99,6 +122,8 @@ class Pose2D:
         ------
         TypeError
             If ``frame`` is neither a Pose2D nor a sequence of three numbers.
+        ValueError
+            If ``frame`` has non-finite values, or the result would overflow.
 
         Examples
         --------
@@ -107,7 +132,17 @@ class Pose2D:
         >>> Pose2D(2.0, 1.0, 0.0).relative_to((1.0, 1.0, 0.0))
         Pose2D(x=1.0, y=0.0, theta=0.0)
         """
-        return as_pose(frame, "frame").inverse().compose(self)
+        ref = as_pose(frame, "frame")
+        c = math.cos(ref.theta)
+        s = math.sin(ref.theta)
+        inv_x = -c * ref.x - s * ref.y
+        inv_y = s * ref.x - c * ref.y
+        # The inverse's heading, wrapped as Pose2D wraps it (-π becomes π).
+        inv_theta = math.pi if ref.theta == math.pi else -ref.theta
+        x, y, theta = compose_scalar(inv_x, inv_y, inv_theta, self.x, self.y, self.theta)
+        if not (x - x == 0.0 and y - y == 0.0):
+            raise _overflow("frame", "expressing the pose in frame")
+        return Pose2D(x, y, theta)
 
     def transform_points(self, points_xy: ArrayLike) -> FloatArray:
         """Map points from this pose's frame to the world frame.
@@ -121,12 +156,21 @@ class Pose2D:
         -------
         ndarray, shape (N, 2)
             New array of world points.
+
+        Raises
+        ------
+        TypeError, ValueError
+            ``points_xy`` not finite real points, or world points that would
+            overflow float64.
         """
         pts = as_points(points_xy, "points_xy")
         c = math.cos(self.theta)
         s = math.sin(self.theta)
         rot = np.array([[c, s], [-s, c]])
-        out: FloatArray = pts @ rot + np.array([self.x, self.y])
+        with np.errstate(over="ignore", invalid="ignore"):
+            out: FloatArray = pts @ rot + np.array([self.x, self.y])
+        if not np.isfinite(out).all():
+            raise _overflow("points_xy", "transforming the points")
         return out
 
     def as_array(self) -> FloatArray:
@@ -177,6 +221,10 @@ class Twist2D:
         """Build a twist from ``[vx, vy, omega]`` (shape (3,))."""
         arr = as_float_array(values, "values", shape=(3,))
         return cls(float(arr[0]), float(arr[1]), float(arr[2]))
+
+
+def _overflow(name: str, what: str) -> ValueError:
+    return ValueError(f"{name}: {what} overflows float64 (coordinates beyond ±1.8e308)")
 
 
 def _three(value: Any, name: str, what: str, fields: str) -> tuple[float, float, float]:

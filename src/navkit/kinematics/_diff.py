@@ -9,8 +9,9 @@ from numpy.typing import ArrayLike
 
 from navkit._shared.se2 import exp_body, exp_body_array
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import as_float_array, finite_float, positive_float
+from navkit._shared.validation import as_bool, as_float_array, finite_float
 from navkit.geometry import Pose2D, Twist2D, as_twist, wrap_angle
+from navkit.kinematics._ranges import MAX_LENGTH, MIN_LENGTH, in_range
 
 __all__ = ["DiffDrive", "OdometryMethod"]
 
@@ -19,8 +20,18 @@ _METHODS = ("arc", "midpoint", "first_order")
 
 
 def _check_method(method: object) -> None:
+    if not isinstance(method, str):
+        raise TypeError(f"method must be one of {_METHODS}, got {type(method).__name__}")
     if method not in _METHODS:
         raise ValueError(f"method must be one of {_METHODS}, got {method!r}")
+
+
+def _length(value: object, name: str) -> float:
+    return in_range(value, name, MIN_LENGTH, MAX_LENGTH, "m")
+
+
+def _overflow(name: str, what: str) -> ValueError:
+    return ValueError(f"{name}: {what} would overflow float64 (values far too large)")
 
 
 class DiffDrive:
@@ -44,14 +55,23 @@ class DiffDrive:
     Parameters
     ----------
     track : float
-        Distance between the two wheels' contact points, m, > 0.
+        Distance between the two wheels' contact points, m, in [1e-6, 1e6].
     wheel_radius : float, optional
-        Common wheel radius, m. Give either this or both ``left_radius`` and
-        ``right_radius`` (unequal wheels, e.g. from calibration).
+        Common wheel radius, m, in [1e-6, 1e6]. Give either this or both
+        ``left_radius`` and ``right_radius`` (unequal wheels, e.g. from
+        calibration).
     left_radius, right_radius : float, optional
-        Individual wheel radii, m, > 0.
+        Individual wheel radii, m, in [1e-6, 1e6].
 
     All parameters are keyword-only (three floats are too easy to swap).
+
+    Raises
+    ------
+    TypeError, ValueError
+        A parameter that is not a real number or is outside its range, naming
+        it. The methods raise ``ValueError`` naming their argument when a
+        result would overflow float64 (speeds or distances near ±1.8e308);
+        they never return NaN.
 
     Examples
     --------
@@ -72,16 +92,16 @@ class DiffDrive:
         left_radius: float | None = None,
         right_radius: float | None = None,
     ) -> None:
-        self._track = positive_float(track, "track")
+        self._track = _length(track, "track")
         if wheel_radius is not None:
             if left_radius is not None or right_radius is not None:
                 raise ValueError("give either wheel_radius or left_radius/right_radius, not both")
-            self._left = self._right = positive_float(wheel_radius, "wheel_radius")
+            self._left = self._right = _length(wheel_radius, "wheel_radius")
         else:
             if left_radius is None or right_radius is None:
                 raise ValueError("give wheel_radius, or both left_radius and right_radius")
-            self._left = positive_float(left_radius, "left_radius")
-            self._right = positive_float(right_radius, "right_radius")
+            self._left = _length(left_radius, "left_radius")
+            self._right = _length(right_radius, "right_radius")
 
     @property
     def track(self) -> float:
@@ -115,11 +135,22 @@ class DiffDrive:
         -------
         Twist2D
             The body twist; ``vy`` is always 0.
+
+        Raises
+        ------
+        TypeError, ValueError
+            ``wheel_speeds`` not two finite real numbers, or so large that the
+            twist would overflow float64.
         """
         w = as_float_array(wheel_speeds, "wheel_speeds", shape=(2,))
         wl = float(w[0]) * self._left
         wr = float(w[1]) * self._right
-        return Twist2D(0.5 * (wr + wl), 0.0, (wr - wl) / self._track)
+        # 0.5*a + 0.5*b is 0.5*(a + b) bit for bit and cannot overflow.
+        vx = 0.5 * wr + 0.5 * wl
+        omega = (wr - wl) / self._track
+        if not (vx - vx == 0.0 and omega - omega == 0.0):
+            raise _overflow("wheel_speeds", "the twist")
+        return Twist2D(vx, 0.0, omega)
 
     def inverse(self, twist: Twist2D | ArrayLike, *, ignore_lateral: bool = False) -> FloatArray:
         """Wheel angular speeds ``[omega_left, omega_right]``, rad/s, for ``twist``.
@@ -129,7 +160,8 @@ class DiffDrive:
         twist : Twist2D or array_like, shape (3,)
             Body twist, or ``[vx, vy, omega]`` (m/s, m/s, rad/s).
         ignore_lateral : bool, default False
-            Drop a lateral velocity ``vy`` instead of raising.
+            Drop a lateral velocity ``vy`` instead of raising (keyword-only; a
+            ``bool``).
 
         Returns
         -------
@@ -138,36 +170,60 @@ class DiffDrive:
 
         Raises
         ------
+        TypeError
+            ``twist`` not a twist, ``ignore_lateral`` not a bool.
         ValueError
             If ``twist.vy != 0`` (a differential drive cannot move sideways) unless
-            ``ignore_lateral`` is true, in which case ``vy`` is dropped.
+            ``ignore_lateral`` is true, in which case ``vy`` is dropped; or if the
+            wheel speeds would overflow float64.
         """
         tw = as_twist(twist, "twist")
-        if tw.vy != 0.0 and not ignore_lateral:
+        drop = as_bool(ignore_lateral, "ignore_lateral")
+        if tw.vy != 0.0 and not drop:
             raise ValueError(
                 f"twist has lateral velocity vy={tw.vy}, which a differential drive cannot "
                 "follow; pass ignore_lateral=True to drop it"
             )
         half = 0.5 * tw.omega * self._track
-        return np.array([(tw.vx - half) / self._left, (tw.vx + half) / self._right])
+        left = (tw.vx - half) / self._left
+        right = (tw.vx + half) / self._right
+        if not (left - left == 0.0 and right - right == 0.0):
+            raise _overflow("twist", "the wheel speeds")
+        return np.array([left, right])
 
     def forward_batch(self, wheel_speeds: ArrayLike) -> FloatArray:
-        """Body twists (T, 3) ``[vx, 0, omega]`` from wheel speeds (T, 2) ``[left, right]``."""
+        """Body twists (T, 3) ``[vx, 0, omega]`` from wheel speeds (T, 2) ``[left, right]``.
+
+        Raises ``TypeError``/``ValueError`` as :meth:`forward`.
+        """
         w = as_float_array(wheel_speeds, "wheel_speeds", shape=(None, 2))
-        wl = w[:, 0] * self._left
-        wr = w[:, 1] * self._right
-        return np.column_stack((0.5 * (wr + wl), np.zeros_like(wl), (wr - wl) / self._track))
+        with np.errstate(over="ignore", invalid="ignore"):
+            wl = w[:, 0] * self._left
+            wr = w[:, 1] * self._right
+            out = np.column_stack((0.5 * wr + 0.5 * wl, np.zeros_like(wl), (wr - wl) / self._track))
+        if not np.isfinite(out).all():
+            raise _overflow("wheel_speeds", "the twists")
+        return out
 
     def inverse_batch(self, twists: ArrayLike, *, ignore_lateral: bool = False) -> FloatArray:
-        """Wheel speeds (T, 2) ``[omega_left, omega_right]``, rad/s, for twists (T, 3)."""
+        """Wheel speeds (T, 2) ``[omega_left, omega_right]``, rad/s, for twists (T, 3).
+
+        Raises ``TypeError``/``ValueError`` as :meth:`inverse`.
+        """
         tw = as_float_array(twists, "twists", shape=(None, 3))
-        if not ignore_lateral and np.any(tw[:, 1] != 0.0):
+        if not as_bool(ignore_lateral, "ignore_lateral") and np.any(tw[:, 1] != 0.0):
             raise ValueError(
                 "twists have non-zero lateral velocity vy, which a differential drive cannot "
                 "follow; pass ignore_lateral=True to drop it"
             )
-        half = 0.5 * tw[:, 2] * self._track
-        return np.column_stack(((tw[:, 0] - half) / self._left, (tw[:, 0] + half) / self._right))
+        with np.errstate(over="ignore", invalid="ignore"):
+            half = 0.5 * tw[:, 2] * self._track
+            out = np.column_stack(
+                ((tw[:, 0] - half) / self._left, (tw[:, 0] + half) / self._right)
+            )
+        if not np.isfinite(out).all():
+            raise _overflow("twists", "the wheel speeds")
+        return out
 
     def odometry_step(
         self, d_left: float, d_right: float, *, method: OdometryMethod = "arc"
@@ -192,7 +248,8 @@ class DiffDrive:
         ----------
         d_left, d_right : float
             Distance rolled by each wheel, m (e.g. from
-            :func:`~navkit.kinematics.ticks_to_distance`); negative when rolling back.
+            :func:`~navkit.kinematics.ticks_to_distance`); negative when rolling
+            back. Any finite values.
         method : {"arc", "midpoint", "first_order"}
             Integration scheme (keyword-only).
 
@@ -203,6 +260,13 @@ class DiffDrive:
             step (m, m, rad; ``dtheta`` wrapped to (-π, π]). Compose it with the
             previous pose (``pose.compose(step)``) to get the new pose.
             :meth:`odometry_step_batch` is the array form.
+
+        Raises
+        ------
+        TypeError, ValueError
+            Distances that are not finite real numbers, an unknown ``method``,
+            or distances so large that the heading change
+            ``(d_right - d_left) / track`` overflows float64 (never a NaN pose).
 
         Examples
         --------
@@ -216,8 +280,11 @@ class DiffDrive:
         _check_method(method)
         dl = finite_float(d_left, "d_left")
         dr = finite_float(d_right, "d_right")
-        dc = 0.5 * (dr + dl)
+        # 0.5*a + 0.5*b is 0.5*(a + b) bit for bit and cannot overflow.
+        dc = 0.5 * dr + 0.5 * dl
         dth = (dr - dl) / self._track
+        if not dth - dth == 0.0:
+            raise _overflow("d_left, d_right", "the heading change (d_right - d_left) / track")
         if method == "first_order":
             dx, dy = dc, 0.0
         elif method == "midpoint":
@@ -245,6 +312,11 @@ class DiffDrive:
             frame at its start; row ``i`` equals
             ``odometry_step(d_left[i], d_right[i], method=method).as_array()``.
 
+        Raises
+        ------
+        TypeError, ValueError
+            As :meth:`odometry_step`, or shapes that differ.
+
         Examples
         --------
         >>> drive = DiffDrive(track=0.5, wheel_radius=0.1)
@@ -259,8 +331,11 @@ class DiffDrive:
             raise ValueError(
                 f"d_left and d_right must have equal shape, got {dl.shape} and {dr.shape}"
             )
-        dc = 0.5 * (dr + dl)
-        dth = (dr - dl) / self._track
+        dc = 0.5 * dr + 0.5 * dl
+        with np.errstate(over="ignore", invalid="ignore"):
+            dth = (dr - dl) / self._track
+        if not np.isfinite(dth).all():
+            raise _overflow("d_left, d_right", "the heading change (d_right - d_left) / track")
         out = np.empty((dl.shape[0], 3), dtype=np.float64)
         if method == "first_order":
             out[:, 0] = dc

@@ -4,13 +4,20 @@ from __future__ import annotations
 
 import math
 import operator
-from typing import overload
+from typing import Any, overload
 
 import numpy as np
-from numpy.typing import ArrayLike
+from numpy.typing import ArrayLike, NDArray
 
 from navkit._shared.types import FloatArray, IntArray
-from navkit._shared.validation import as_float_array, positive_float
+from navkit._shared.validation import as_float_array
+from navkit.kinematics._ranges import (
+    MAX_LENGTH,
+    MAX_TICKS_PER_REV,
+    MIN_LENGTH,
+    MIN_TICKS_PER_REV,
+    in_range,
+)
 
 __all__ = ["tick_delta", "ticks_to_distance"]
 
@@ -33,27 +40,42 @@ def ticks_to_distance(
     Parameters
     ----------
     delta_ticks : float or array_like
-        Change of the encoder count (see :func:`tick_delta` for wrap-around).
+        Change of the encoder count (see :func:`tick_delta` for wrap-around);
+        finite.
     ticks_per_rev : float
-        Encoder counts per wheel revolution (after any gearing), > 0
+        Encoder counts per wheel revolution (after any gearing), in [1, 1e12]
         (keyword-only).
     wheel_radius : float
-        Wheel radius, m, > 0 (keyword-only).
+        Wheel radius, m, in [1e-6, 1e6] (keyword-only).
 
     Returns
     -------
     float or ndarray
         Distance in metres, with the sign of ``delta_ticks``.
 
+    Raises
+    ------
+    TypeError
+        Arguments that are not real numbers (complex numbers, strings and
+        booleans are refused), naming them.
+    ValueError
+        Non-finite values, parameters outside their ranges, or tick counts so
+        large that the distance would overflow float64.
+
     Examples
     --------
     >>> round(ticks_to_distance(1024, ticks_per_rev=2048, wheel_radius=0.1), 12)
     0.314159265359
     """
-    res = positive_float(ticks_per_rev, "ticks_per_rev")
-    radius = positive_float(wheel_radius, "wheel_radius")
+    res = in_range(
+        ticks_per_rev, "ticks_per_rev", MIN_TICKS_PER_REV, MAX_TICKS_PER_REV, "counts per rev"
+    )
+    radius = in_range(wheel_radius, "wheel_radius", MIN_LENGTH, MAX_LENGTH, "m")
     ticks = as_float_array(delta_ticks, "delta_ticks")
-    dist = (2.0 * math.pi * radius / res) * ticks
+    with np.errstate(over="ignore"):
+        dist = (2.0 * math.pi * radius / res) * ticks
+    if not np.isfinite(dist).all():
+        raise ValueError("delta_ticks: the distance would overflow float64 (values far too large)")
     if dist.ndim == 0:
         return float(dist)
     return dist
@@ -78,7 +100,8 @@ def tick_delta(previous: ArrayLike, current: ArrayLike, *, bits: int) -> int | I
     Parameters
     ----------
     previous, current : int or array_like of int
-        Consecutive counter readings (broadcast together).
+        Consecutive counter readings (broadcast together), each within the
+        range of a ``bits``-bit counter, signed or unsigned.
     bits : int
         Counter width, 2 to 64 (typically 16 or 32); keyword-only.
 
@@ -86,6 +109,15 @@ def tick_delta(previous: ArrayLike, current: ArrayLike, *, bits: int) -> int | I
     -------
     int or ndarray of int64
         ``current - previous`` corrected for wrap-around.
+
+    Raises
+    ------
+    TypeError
+        Readings that are not integers (floats and booleans are refused), or
+        ``bits`` not an integer.
+    ValueError
+        Readings outside the counter's range, ``bits`` outside 2..64, or shapes
+        that do not broadcast.
 
     Examples
     --------
@@ -102,6 +134,13 @@ def tick_delta(previous: ArrayLike, current: ArrayLike, *, bits: int) -> int | I
         raise ValueError(f"bits must be an integer from 2 to 64, got {bits!r}")
     prev = _as_counter(previous, "previous", nbits)
     cur = _as_counter(current, "current", nbits)
+    try:
+        np.broadcast_shapes(prev.shape, cur.shape)
+    except ValueError:
+        raise ValueError(
+            f"previous and current must broadcast together, got shapes {prev.shape} and "
+            f"{cur.shape}"
+        ) from None
     shift = np.uint64(64 - nbits)
     # uint64 subtraction wraps modulo 2**64; shifting the low `bits` bits to the top and
     # back with an arithmetic shift sign-extends them: the modular difference, signed.
@@ -114,12 +153,23 @@ def tick_delta(previous: ArrayLike, current: ArrayLike, *, bits: int) -> int | I
 
 
 def _as_counter(value: ArrayLike, name: str, bits: int) -> IntArray:
-    arr = np.asarray(value)
-    if arr.dtype.kind not in "iu" or arr.dtype == np.bool_:
-        raise TypeError(f"{name} must hold integer counter readings, got dtype {arr.dtype}")
+    arr = _integer_readings(value, name)
     low, high = -(2 ** (bits - 1)), 2**bits - 1
     if arr.size and (int(arr.min()) < low or int(arr.max()) > high):
         raise ValueError(f"{name} holds readings outside the range of a {bits}-bit counter")
     if arr.dtype == np.uint64:
         return arr.view(np.int64)
     return arr.astype(np.int64)
+
+
+def _integer_readings(value: object, name: str) -> NDArray[Any]:
+    """``value`` as an integer array (unconverted), or a TypeError naming ``name``."""
+    if isinstance(value, (str, bytes)):
+        raise TypeError(f"{name} must hold integer counter readings, got {type(value).__name__}")
+    try:
+        arr = np.asarray(value)
+    except (TypeError, ValueError, OverflowError) as exc:
+        raise TypeError(f"{name} must hold integer counter readings: {exc}") from None
+    if arr.dtype.kind not in "iu":
+        raise TypeError(f"{name} must hold integer counter readings, got dtype {arr.dtype}")
+    return arr

@@ -8,6 +8,7 @@ from numpy.typing import ArrayLike
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, positive_float
 from navkit.geometry import Twist2D, as_twist
+from navkit.kinematics._ranges import MAX_LENGTH, MIN_LENGTH, in_range
 
 __all__ = ["OmniDrive"]
 
@@ -17,6 +18,12 @@ _MAX_CONDITION = 1e10
 
 def _read_only(arr: FloatArray) -> FloatArray:
     arr.flags.writeable = False
+    return arr
+
+
+def _finite(arr: FloatArray, name: str, what: str) -> FloatArray:
+    if not np.isfinite(arr).all():
+        raise ValueError(f"{name}: {what} would overflow float64 (values far too large)")
     return arr
 
 
@@ -53,18 +60,22 @@ class OmniDrive:
     Parameters
     ----------
     wheel_angles : array_like, shape (N,)
-        Mounting angle of each wheel in radians, N >= 3.
+        Mounting angle of each wheel in radians (finite), N >= 3.
     wheel_radius : float
-        Wheel radius in metres, > 0 (keyword-only).
+        Wheel radius in metres, in [1e-6, 1e6] (keyword-only).
     base_radius : float
-        Distance from the robot centre to each wheel contact point, metres, > 0
-        (keyword-only).
+        Distance from the robot centre to each wheel contact point, metres, in
+        [1e-6, 1e6] (keyword-only).
 
     Raises
     ------
+    TypeError
+        Arguments that are not real numbers, naming them.
     ValueError
-        Fewer than three wheels, non-finite angles, non-positive radii, or a
-        layout whose Jacobian is singular (e.g. all wheels parallel).
+        Fewer than three wheels, non-finite angles, radii outside their range,
+        or a layout whose Jacobian is singular (e.g. all wheels parallel). The
+        methods raise ``ValueError`` naming their argument when a result would
+        overflow float64 (speeds near ±1.8e308); they never return NaN.
 
     Examples
     --------
@@ -83,8 +94,8 @@ class OmniDrive:
         angles = as_float_array(wheel_angles, "wheel_angles", ndim=1)
         if angles.shape[0] < 3:
             raise ValueError(f"wheel_angles needs at least 3 wheels, got {angles.shape[0]}")
-        self._wheel_radius = positive_float(wheel_radius, "wheel_radius")
-        self._base_radius = positive_float(base_radius, "base_radius")
+        self._wheel_radius = in_range(wheel_radius, "wheel_radius", MIN_LENGTH, MAX_LENGTH, "m")
+        self._base_radius = in_range(base_radius, "base_radius", MIN_LENGTH, MAX_LENGTH, "m")
         self._wheel_angles = _read_only(angles.copy())
         jac = (
             np.column_stack(
@@ -107,7 +118,8 @@ class OmniDrive:
         Parameters
         ----------
         wheel_radius, base_radius : float
-            Wheel radius and centre-to-wheel distance in metres (keyword-only).
+            Wheel radius and centre-to-wheel distance in metres, each in
+            [1e-6, 1e6] (keyword-only).
 
         Examples
         --------
@@ -160,28 +172,48 @@ class OmniDrive:
         -------
         ndarray, shape (N,)
             New array of wheel speeds, rad/s, in the order of :attr:`wheel_angles`.
+
+        Raises
+        ------
+        TypeError, ValueError
+            ``twist`` not a twist of finite numbers, or one so large that the
+            wheel speeds would overflow float64.
         """
         tw = as_twist(twist, "twist")
-        speeds: FloatArray = self._jacobian @ tw.as_array()
-        return speeds
+        with np.errstate(over="ignore", invalid="ignore"):
+            speeds: FloatArray = self._jacobian @ tw.as_array()
+        return _finite(speeds, "twist", "the wheel speeds")
 
     def forward(self, wheel_speeds: ArrayLike) -> Twist2D:
-        """Body twist from wheel angular speeds (N,) in rad/s (least squares when N > 3)."""
+        """Body twist from wheel angular speeds (N,) in rad/s (least squares when N > 3).
+
+        Raises ``TypeError``/``ValueError`` for speeds that are not N finite
+        real numbers or so large that the twist would overflow float64.
+        """
         w = as_float_array(wheel_speeds, "wheel_speeds", shape=(self.n_wheels,))
-        vx, vy, omega = self._forward @ w
+        with np.errstate(over="ignore", invalid="ignore"):
+            vx, vy, omega = _finite(self._forward @ w, "wheel_speeds", "the twist")
         return Twist2D(float(vx), float(vy), float(omega))
 
     def inverse_batch(self, twists: ArrayLike) -> FloatArray:
-        """Wheel speeds (T, N), rad/s, for body twists (T, 3) ``[vx, vy, omega]``."""
+        """Wheel speeds (T, N), rad/s, for body twists (T, 3) ``[vx, vy, omega]``.
+
+        Raises ``TypeError``/``ValueError`` as :meth:`inverse`.
+        """
         tw = as_float_array(twists, "twists", shape=(None, 3))
-        speeds: FloatArray = tw @ self._jacobian.T
-        return speeds
+        with np.errstate(over="ignore", invalid="ignore"):
+            speeds: FloatArray = tw @ self._jacobian.T
+        return _finite(speeds, "twists", "the wheel speeds")
 
     def forward_batch(self, wheel_speeds: ArrayLike) -> FloatArray:
-        """Body twists (T, 3) ``[vx, vy, omega]`` from wheel speeds (T, N), rad/s."""
+        """Body twists (T, 3) ``[vx, vy, omega]`` from wheel speeds (T, N), rad/s.
+
+        Raises ``TypeError``/``ValueError`` as :meth:`forward`.
+        """
         w = as_float_array(wheel_speeds, "wheel_speeds", shape=(None, self.n_wheels))
-        twists: FloatArray = w @ self._forward.T
-        return twists
+        with np.errstate(over="ignore", invalid="ignore"):
+            twists: FloatArray = w @ self._forward.T
+        return _finite(twists, "wheel_speeds", "the twists")
 
     def saturate(self, wheel_speeds: ArrayLike, *, max_speed: float) -> FloatArray:
         """Scale wheel speeds so that none exceeds ``max_speed`` in magnitude.
@@ -195,7 +227,8 @@ class OmniDrive:
         wheel_speeds : array_like, shape (N,) or (T, N)
             Wheel angular speeds, rad/s.
         max_speed : float
-            Largest allowed wheel speed magnitude, rad/s, > 0 (keyword-only).
+            Largest allowed wheel speed magnitude, rad/s, finite and > 0
+            (keyword-only).
 
         Returns
         -------

@@ -14,6 +14,27 @@ float ``(row, col)`` with integers at cell centres.
 * :func:`validate_costs`: the grid planners' traversal-cost convention.
 * :mod:`navkit.mapping.io`: map files, ROS messages and CARMEN logs.
 
+Ranges, checked where objects are built (``ValueError`` naming the argument
+and the range; ``TypeError`` for a wrong type: complex numbers, strings and
+booleans are not numbers, flags must be ``bool``):
+
+* grids hold at most ``OccupancyGrid.MAX_CELLS`` = 2**28 cells; sizes are
+  checked before anything is allocated and the message says how many cells
+  (and bytes) a request would need;
+* ``resolution`` in [1e-6, 1e6] m; grid origin x, y within ±1e9 m; log-odds
+  (stored, ``hit``, ``miss``, ``clamp``) within ±1e6;
+* ``robot_radius``, ``inflation_radius``, ``half_width`` in [0, 1e6] m;
+  ``cost_scaling_factor`` in (0, 1e12] 1/m; ``cost_weight`` in [0, 1e9];
+  ``unknown_cost`` in [1, 1e9] or ``inf``; thresholds in [0, 1] with
+  ``free_thresh < occupied_thresh``;
+* laser ``range_max`` at most 1e9 m; beam angles within ±2π, spanning at
+  most a full turn (more means degrees given as radians: the message says so);
+* world points and grid coordinates may be any finite numbers: cells of far
+  points are clamped to ±2**62, and coordinates beyond ±2**62 cells are refused.
+
+Inside these ranges finite input never gives NaN; ``inf`` appears only where
+documented (impassable traversal costs).
+
 Examples
 --------
 >>> grid = OccupancyGrid.empty(width=2.0, height=1.0, resolution=0.5)

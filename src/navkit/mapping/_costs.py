@@ -15,8 +15,15 @@ from numpy.typing import ArrayLike, NDArray
 
 from navkit._shared.costs import validate_costs as _validate_costs
 from navkit._shared.types import BoolArray, FloatArray
-from navkit._shared.validation import positive_float
+from navkit._shared.validation import as_bool
 from navkit.mapping._grid import OccupancyGrid
+from navkit.mapping._limits import (
+    COST_LIMIT,
+    RADIUS_LIMIT,
+    SCALING_LIMIT,
+    bounded_float,
+    cost_or_inf,
+)
 from navkit.mapping._obstacle_distance import CELL_EPS, obstacle_distance
 
 __all__ = [
@@ -72,6 +79,7 @@ def inflation_costs(
     inflation_radius: float,
     cost_scaling_factor: float,
     inflate_unknown: bool,
+    inflate_around_unknown: bool = False,
 ) -> NDArray[np.uint8]:
     """Nav2 inflation-layer costs for a static layer of occupied/unknown cells.
 
@@ -81,9 +89,11 @@ def inflation_costs(
     ``ceil(inflation_radius / resolution)`` cells away get
     ``int(252 * exp(-cost_scaling_factor * (d - robot_radius)))``; the rest 0.
     Unknown cells keep 255 unless the inflated cost is >= 253 (or > 0 with
-    ``inflate_unknown``). Distances use an exact Euclidean distance transform
-    where Nav2 propagates distances by a breadth-first wave, which can only
-    overestimate them. Arguments are not validated (see :func:`costmap`).
+    ``inflate_unknown``). With ``inflate_around_unknown`` unknown cells are
+    inflation sources too (and so become 254, as in Nav2). Distances use an
+    exact Euclidean distance transform where Nav2 propagates distances by a
+    breadth-first wave, which can only overestimate them. Arguments are not
+    validated (see :func:`costmap`).
 
     Examples
     --------
@@ -91,6 +101,8 @@ def inflation_costs(
     >>> inflation_costs(occ, ~occ & False, 1.0, 1.0, 2.0, 1.0, False)
     array([[254, 253,  92,   0]], dtype=uint8)
     """
+    if inflate_around_unknown:
+        occupied = occupied | unknown
     dist_cells = obstacle_distance(occupied)
     max_cells = math.ceil(inflation_radius / resolution)
     dist_m = dist_cells * resolution
@@ -124,6 +136,7 @@ def costmap(
     inflation_radius: float,
     cost_scaling_factor: float = 10.0,
     inflate_unknown: bool = False,
+    inflate_around_unknown: bool = False,
 ) -> NDArray[np.uint8]:
     """ROS 2 Nav2 static + inflation layer costs of a grid, uint8 array (rows, cols).
 
@@ -138,13 +151,28 @@ def costmap(
     grid : OccupancyGrid
         Its occupied and unknown views are the static layer.
     robot_radius : float
-        Radius of the robot's inscribed circle, m (>= 0); Nav2's inscribed radius.
+        Radius of the robot's inscribed circle, m, in [0, 1e6]; Nav2's
+        inscribed radius.
     inflation_radius : float
-        Distance up to which costs decay, m (>= ``robot_radius``).
+        Distance up to which costs decay, m, in [``robot_radius``, 1e6].
     cost_scaling_factor : float, default 10.0
-        Exponential decay rate, 1/m (> 0); Nav2's default.
+        Exponential decay rate, 1/m, in (0, 1e12]; Nav2's default.
     inflate_unknown : bool, default False
-        Nav2's ``inflate_unknown`` parameter.
+        Nav2's ``inflate_unknown`` parameter: whether an *unknown cell* takes
+        any inflated cost > 0 from a nearby obstacle (otherwise it stays 255
+        unless that cost is >= 253). Unknown cells are not obstacles here.
+    inflate_around_unknown : bool, default False
+        Nav2's ``inflate_around_unknown`` parameter: unknown cells are
+        inflation sources, like occupied ones (and become 254 themselves).
+        This is what :func:`traversal_costs`'s ``inflate_unknown`` turns on.
+
+    Raises
+    ------
+    TypeError
+        ``grid`` is not an OccupancyGrid, a flag is not a bool, a number is
+        not a real number.
+    ValueError
+        A number outside its range.
 
     Examples
     --------
@@ -154,11 +182,13 @@ def costmap(
     array([[254, 253,  92,  34,  12,   0]], dtype=uint8)
     """
     g = _check_grid(grid)
-    insc = positive_float(robot_radius, "robot_radius", allow_zero=True)
-    infl = positive_float(inflation_radius, "inflation_radius", allow_zero=True)
+    insc = bounded_float(robot_radius, "robot_radius", 0.0, RADIUS_LIMIT, "m")
+    infl = bounded_float(inflation_radius, "inflation_radius", 0.0, RADIUS_LIMIT, "m")
     if infl < insc:
         raise ValueError(f"inflation_radius ({infl}) must be >= robot_radius ({insc})")
-    scale = positive_float(cost_scaling_factor, "cost_scaling_factor")
+    scale = bounded_float(
+        cost_scaling_factor, "cost_scaling_factor", 0.0, SCALING_LIMIT, "1/m", low_open=True
+    )
     return inflation_costs(
         g.occupied(),
         g.unknown(),
@@ -166,7 +196,8 @@ def costmap(
         insc + CELL_EPS * g.resolution,
         infl,
         scale,
-        bool(inflate_unknown),
+        as_bool(inflate_unknown, "inflate_unknown"),
+        as_bool(inflate_around_unknown, "inflate_around_unknown"),
     )
 
 
@@ -178,6 +209,7 @@ def traversal_costs(
     cost_scaling_factor: float = 10.0,
     cost_weight: float = 4.0,
     unknown_cost: float = math.inf,
+    inflate_unknown: bool | None = None,
 ) -> FloatArray:
     """Per-cell traversal costs of a grid for the grid planners, float64 (rows, cols).
 
@@ -185,46 +217,84 @@ def traversal_costs(
     ``inf`` (the robot's centre cannot go there), unknown cells (255) cost
     ``unknown_cost``, and a Nav2 cost ``c`` in 0..252 becomes
     ``1 + cost_weight * c / 252``, so free space costs exactly 1. The result
-    passes :func:`validate_costs`.
+    passes :func:`validate_costs`; its finite values are at most
+    ``max(1 + cost_weight, unknown_cost)`` <= 1 + 1e9.
 
     Parameters
     ----------
     grid : OccupancyGrid
         The map.
     robot_radius : float, default 0.0
-        Robot's inscribed radius, m. 0 treats the robot as a point.
+        Robot's inscribed radius, m, in [0, 1e6]. 0 treats the robot as a point.
     inflation_radius : float, optional
-        Decay distance, m; defaults to ``robot_radius`` (no cost band
-        beyond the rounding to whole cells).
+        Decay distance, m, in [``robot_radius``, 1e6]; defaults to
+        ``robot_radius`` (no cost band beyond the rounding to whole cells).
     cost_scaling_factor : float, default 10.0
-        Decay rate of the inflation cost, 1/m.
+        Decay rate of the inflation cost, 1/m, in (0, 1e12].
     cost_weight : float, default 4.0
-        Extra cost of a cell next to the inscribed zone; 4 makes the scale
-        match NavFn's ``50 + 0.8 c`` divided by its neutral cost 50.
+        Extra cost of a cell next to the inscribed zone, in [0, 1e9]; 4 makes
+        the scale match NavFn's ``50 + 0.8 c`` divided by its neutral cost 50.
     unknown_cost : float, default inf
-        Cost of unknown cells: ``inf`` (impassable, the default) or any
-        value >= 1 to let planners cross unexplored space.
+        Cost of unknown cells: ``inf`` (impassable, the default) or a value
+        in [1, 1e9] to let planners cross unexplored space.
+    inflate_unknown : bool or None, default None
+        Whether unknown cells count as obstacles when inflating: True makes
+        every cell whose centre lies within ``robot_radius`` of unknown space
+        impassable and lets the inflation cost decay from unknown cells as
+        from occupied ones, so the robot's *body* keeps clear of space it
+        knows nothing about (not only its centre); it needs
+        ``unknown_cost=inf``. False inflates occupied cells only (unknown
+        cells are then just cells of cost ``unknown_cost``; Nav2's default).
+        None (the default) means True when ``unknown_cost`` is inf and False
+        otherwise: a robot that may not enter unknown space should not brush
+        it either, and one allowed to explore is not kept away from it. This
+        is Nav2's ``inflate_around_unknown``, not the ``inflate_unknown``
+        parameter of :func:`costmap` (which decides what cost an unknown cell
+        takes, not whether it inflates).
+
+    Raises
+    ------
+    TypeError
+        ``grid`` is not an OccupancyGrid, ``inflate_unknown`` is not a bool or
+        None, a number is not a real number (``unknown_cost=True`` included).
+    ValueError
+        A number outside its range; ``inflate_unknown=True`` with a finite
+        ``unknown_cost``.
 
     Examples
     --------
     >>> from navkit.mapping import OccupancyGrid
-    >>> occupied = np.array([[True, False, False, False]])
-    >>> unknown = np.array([[False, False, False, True]])
+    >>> occupied = np.array([[True, False, False, False, False]])
+    >>> unknown = np.array([[False, False, False, False, True]])
     >>> grid = OccupancyGrid.from_occupancy(occupied, resolution=0.1, unknown=unknown)
     >>> traversal_costs(grid, robot_radius=0.1, inflation_radius=0.2).round(3)
-    array([[ inf,  inf, 2.46,  inf]])
+    array([[ inf,  inf, 2.46,  inf,  inf]])
+    >>> traversal_costs(grid, robot_radius=0.1, inflation_radius=0.2,
+    ...                 inflate_unknown=False).round(3)
+    array([[ inf,  inf, 2.46, 1.  ,  inf]])
     >>> traversal_costs(grid, unknown_cost=5.0)
-    array([[inf,  1.,  1.,  5.]])
+    array([[inf,  1.,  1.,  1.,  5.]])
     """
     g = _check_grid(grid)
-    insc = positive_float(robot_radius, "robot_radius", allow_zero=True)
+    insc = bounded_float(robot_radius, "robot_radius", 0.0, RADIUS_LIMIT, "m")
     infl = insc if inflation_radius is None else inflation_radius
-    weight = positive_float(cost_weight, "cost_weight", allow_zero=True)
-    unknown = float(unknown_cost)
-    if math.isnan(unknown) or unknown < 1.0:
-        raise ValueError(f"unknown_cost must be >= 1 or inf, got {unknown_cost}")
+    weight = bounded_float(cost_weight, "cost_weight", 0.0, COST_LIMIT)
+    unknown = cost_or_inf(unknown_cost, "unknown_cost")
+    if inflate_unknown is None:
+        around = unknown == math.inf
+    else:
+        around = as_bool(inflate_unknown, "inflate_unknown")
+        if around and unknown != math.inf:
+            raise ValueError(
+                "inflate_unknown=True treats unknown cells as obstacles, so unknown_cost "
+                f"must be inf, got {unknown}"
+            )
     cost = costmap(
-        g, robot_radius=insc, inflation_radius=infl, cost_scaling_factor=cost_scaling_factor
+        g,
+        robot_radius=insc,
+        inflation_radius=infl,
+        cost_scaling_factor=cost_scaling_factor,
+        inflate_around_unknown=around,
     )
     out = 1.0 + weight * cost.astype(np.float64) / (INSCRIBED_INFLATED_OBSTACLE - 1)
     out[cost >= INSCRIBED_INFLATED_OBSTACLE] = math.inf

@@ -13,16 +13,27 @@ from __future__ import annotations
 import math
 import os
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Literal, overload
+from typing import TYPE_CHECKING, Any, ClassVar, Literal, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from navkit._shared.grid_coords import as_pairs, inside, one_or_many
 from navkit._shared.types import BoolArray, FloatArray, IntArray
-from navkit._shared.validation import as_float_array, finite_float, positive_float
+from navkit._shared.validation import as_bool, as_float_array, finite_float
 from navkit.geometry import Pose2D, as_pose
 from navkit.mapping._grid_kernels import world_to_cell_kernel, world_to_continuous_kernel
+from navkit.mapping._limits import (
+    COORDINATE_LIMIT,
+    LOGODDS_LIMIT,
+    MAX_CELLS,
+    RADIUS_LIMIT,
+    bounded_float,
+    check_cell_count,
+    check_cell_range,
+    grid_shape,
+    resolution_float,
+)
 from navkit.mapping._logodds import (
     DEFAULT_CLAMP,
     DEFAULT_FREE_THRESH,
@@ -50,6 +61,22 @@ def _threshold(value: float | None, default: float, name: str) -> float:
     if not 0.0 <= out <= 1.0:
         raise ValueError(f"{name} must lie in [0, 1], got {out}")
     return out
+
+
+def _thresholds(occupied: float, free: float) -> None:
+    if not free < occupied:
+        raise ValueError(
+            f"free_thresh ({free}) must be smaller than occupied_thresh ({occupied}); "
+            "are the two swapped?"
+        )
+
+
+def grid_origin(value: Pose2D | ArrayLike, name: str = "origin") -> Pose2D:
+    """``value`` as a Pose2D whose x and y lie within ±1e9 m."""
+    origin = as_pose(value, name)
+    if not (abs(origin.x) <= COORDINATE_LIMIT and abs(origin.y) <= COORDINATE_LIMIT):
+        raise ValueError(f"{name} x and y must lie within ±1e9 m, got ({origin.x}, {origin.y})")
+    return origin
 
 
 def _bool_grid(value: ArrayLike, name: str) -> BoolArray:
@@ -86,14 +113,24 @@ class OccupancyGrid:
     Parameters
     ----------
     logodds : array_like, shape (rows, cols)
-        Log-odds of occupancy; copied to a new float32 array.
+        Log-odds of occupancy, finite and within ±1e6; copied to a new float32
+        array. At most :attr:`MAX_CELLS` (``2**28``) cells.
     resolution : float
-        Cell size, m.
+        Cell size, m, in [1e-6, 1e6].
     origin : Pose2D or array_like [x, y, yaw], default Pose2D(0, 0, 0)
-        World pose of the corner of cell (0, 0) (its lower-left corner); the yaw
-        rotates the whole grid.
+        World pose of the corner of cell (0, 0) (its lower-left corner), x and y
+        within ±1e9 m; the yaw rotates the whole grid.
     occupied_thresh, free_thresh : float
         Default thresholds of the views, ``0 <= free_thresh < occupied_thresh <= 1``.
+
+    Raises
+    ------
+    TypeError
+        ``logodds`` is not real-valued (complex, strings, booleans), a number is
+        not a real number.
+    ValueError
+        Wrong shape, NaN or ±inf, a value outside its range, more than
+        :attr:`MAX_CELLS` cells.
 
     Examples
     --------
@@ -115,6 +152,11 @@ class OccupancyGrid:
 
     __slots__ = ("_free_thresh", "_logodds", "_occupied_thresh", "_origin", "_resolution")
 
+    #: Largest number of cells of a grid (``2**28`` = 268,435,456: 1 GiB of
+    #: float32 log-odds, e.g. 16384 × 16384 cells, 819 m × 819 m at 5 cm). Every
+    #: constructor, file reader and message converter checks it before allocating.
+    MAX_CELLS: ClassVar[int] = MAX_CELLS
+
     def __init__(
         self,
         logodds: ArrayLike,
@@ -127,14 +169,16 @@ class OccupancyGrid:
         arr = as_float_array(logodds, "logodds", ndim=2)
         if arr.shape[0] == 0 or arr.shape[1] == 0:
             raise ValueError(f"logodds must not be empty, got shape {arr.shape}")
+        check_cell_count(float(arr.size), "logodds")
+        if not float(np.abs(arr).max()) <= LOGODDS_LIMIT:
+            raise ValueError(f"logodds must lie within ±1e6, got {float(np.abs(arr).max())}")
+        self._resolution = resolution_float(resolution)
+        self._origin = grid_origin(origin)
+        occ = bounded_float(occupied_thresh, "occupied_thresh", 0.0, 1.0)
+        free = bounded_float(free_thresh, "free_thresh", 0.0, 1.0)
+        _thresholds(occ, free)
         # The one mutable array: ray casting (navkit.mapping._raycast) writes into it.
         self._logodds: NDArray[np.float32] = np.array(arr, dtype=np.float32, order="C", copy=True)
-        self._resolution = positive_float(resolution, "resolution")
-        self._origin = as_pose(origin, "origin")
-        occ = _threshold(occupied_thresh, DEFAULT_OCCUPIED_THRESH, "occupied_thresh")
-        free = _threshold(free_thresh, DEFAULT_FREE_THRESH, "free_thresh")
-        if free >= occ:
-            raise ValueError(f"free_thresh ({free}) must be smaller than occupied_thresh ({occ})")
         self._occupied_thresh = occ
         self._free_thresh = free
 
@@ -222,21 +266,32 @@ class OccupancyGrid:
         width, height : float
             Extent along the origin's x and y axes, m (> 0).
         resolution : float
-            Cell size, m (> 0).
+            Cell size, m, in [1e-6, 1e6].
         origin : Pose2D or array_like [x, y, yaw], optional
-            World pose of the lower-left corner.
+            World pose of the lower-left corner, x and y within ±1e9 m.
+
+        Raises
+        ------
+        ValueError
+            A value outside its range, or a grid of more than :attr:`MAX_CELLS`
+            cells (the message says how many it would need); nothing is allocated.
 
         Examples
         --------
         >>> OccupancyGrid.empty(width=1.01, height=0.2, resolution=0.5).shape
         (1, 3)
         """
-        w = positive_float(width, "width")
-        h = positive_float(height, "height")
-        res = positive_float(resolution, "resolution")
-        cols = max(1, math.ceil(w / res - 1e-9))
-        rows = max(1, math.ceil(h / res - 1e-9))
-        return cls(np.zeros((rows, cols), dtype=np.float32), resolution=res, origin=origin)
+        w = bounded_float(width, "width", 0.0, math.inf, "m", low_open=True)
+        h = bounded_float(height, "height", 0.0, math.inf, "m", low_open=True)
+        res = resolution_float(resolution)
+        pose = grid_origin(origin)
+        rows, cols = grid_shape(
+            width=w,
+            height=h,
+            resolution=res,
+            what=f"a grid of {w:g} m x {h:g} m at resolution {res:g} m",
+        )
+        return cls(np.zeros((rows, cols), dtype=np.float32), resolution=res, origin=pose)
 
     @classmethod
     def from_probabilities(
@@ -260,6 +315,7 @@ class OccupancyGrid:
         ([[False, False, True]], [[False, True, False]])
         """
         p = as_float_array(probabilities, "probabilities", ndim=2)
+        check_cell_count(float(p.size), "probabilities")
         if p.size and (p.min() < 0.0 or p.max() > 1.0):
             raise ValueError("probabilities must lie in [0, 1]")
         p = np.clip(p, P_MIN, P_MAX)
@@ -302,6 +358,7 @@ class OccupancyGrid:
                [ 1.,  1., inf]])
         """
         occ = _bool_grid(occupied, "occupied")
+        check_cell_count(float(occ.size), "occupied")
         prob = np.where(occ, 1.0, 0.0)
         if unknown is not None:
             unk = _bool_grid(unknown, "unknown")
@@ -398,9 +455,11 @@ class OccupancyGrid:
         Returns
         -------
         ndarray, shape (N, 2), or (2,) for one point given as shape (2,)
-            Not clipped: points outside the map give indices outside
-            ``[0, rows) × [0, cols)``; use :meth:`contains` to test. Vectorised
-            in a numba kernel (10^6 points take milliseconds).
+            Not clipped to the map: points outside it give indices outside
+            ``[0, rows) × [0, cols)``; use :meth:`contains` to test. Points
+            more than 2**62 cells away get ±2**62 (so that no int64
+            overflows). Vectorised in a numba kernel (10^6 points take
+            milliseconds).
 
         Examples
         --------
@@ -412,7 +471,7 @@ class OccupancyGrid:
         """
         pts, single = as_pairs(points_xy, "points_xy")
         out: IntArray | FloatArray
-        if continuous:
+        if as_bool(continuous, "continuous"):
             pts = np.ascontiguousarray(pts)
             out = np.empty((pts.shape[0], 2), dtype=np.float64)
             o = self._origin
@@ -436,7 +495,7 @@ class OccupancyGrid:
         ----------
         cells : array_like, shape (N, 2) or (2,)
             Integer cells or continuous coordinates (integers at cell centres, so
-            an integer cell gives its centre).
+            an integer cell gives its centre), within ±2**62.
 
         Returns
         -------
@@ -452,6 +511,7 @@ class OccupancyGrid:
         array([0.25, 0.5 ])
         """
         arr, single = as_pairs(cells, "cells")
+        check_cell_range(arr)
         local = (arr[:, ::-1] + 0.5) * self._resolution
         out = self._origin.transform_points(local)
         return one_or_many(out, single)
@@ -482,7 +542,8 @@ class OccupancyGrid:
         >>> OccupancyGrid.empty(width=1.0, height=0.5, resolution=0.5).probability()
         array([[0.5, 0.5]])
         """
-        return np.asarray(1.0 / (1.0 + np.exp(-self._logodds.astype(np.float64))))
+        with np.errstate(over="ignore"):  # exp(1e6) = inf gives p = 0, as it should
+            return np.asarray(1.0 / (1.0 + np.exp(-self._logodds.astype(np.float64))))
 
     def occupied(self, threshold: float | None = None) -> BoolArray:
         """Cells with ``p > threshold`` (default: the grid's ``occupied_thresh``).
@@ -513,6 +574,9 @@ class OccupancyGrid:
     ) -> BoolArray:
         """Cells neither occupied nor free under the given (or the grid's) thresholds.
 
+        Raises ``ValueError`` unless ``0 <= free_thresh < occupied_thresh <= 1``
+        (after filling in the grid's own value for a threshold not given).
+
         Examples
         --------
         >>> grid = OccupancyGrid.from_probabilities([[0.1, 0.3, 0.5]], resolution=1.0)
@@ -521,6 +585,7 @@ class OccupancyGrid:
         """
         occ = _threshold(occupied_thresh, self._occupied_thresh, "occupied_thresh")
         free = _threshold(free_thresh, self._free_thresh, "free_thresh")
+        _thresholds(occ, free)
         return ~(self._logodds > logit_bound(occ)) & ~(self._logodds < logit_bound(free))
 
     # --------------------------------------------------------------- inflation
@@ -530,7 +595,8 @@ class OccupancyGrid:
         A cell is in the mask when its centre lies within ``robot_radius`` (m) of
         the centre of an occupied cell (exact Euclidean distance transform): the
         cells where a robot of that inscribed radius centred there would touch an
-        obstacle. Unknown cells are not obstacles here.
+        obstacle. Unknown cells are not obstacles here. ``robot_radius`` in
+        [0, 1e6] m.
 
         Examples
         --------
@@ -543,7 +609,7 @@ class OccupancyGrid:
                [0, 0, 1, 0, 0],
                [0, 0, 0, 0, 0]])
         """
-        radius = positive_float(robot_radius, "robot_radius", allow_zero=True)
+        radius = bounded_float(robot_radius, "robot_radius", 0.0, RADIUS_LIMIT, "m")
         dist = obstacle_distance(self.occupied())
         return np.asarray(dist <= radius / self._resolution + CELL_EPS)
 
@@ -554,6 +620,7 @@ class OccupancyGrid:
         inflation_radius: float,
         cost_scaling_factor: float = 10.0,
         inflate_unknown: bool = False,
+        inflate_around_unknown: bool = False,
     ) -> NDArray[np.uint8]:
         """ROS 2 Nav2 costs of this grid; see :func:`navkit.mapping.costmap`.
 
@@ -571,6 +638,7 @@ class OccupancyGrid:
             inflation_radius=inflation_radius,
             cost_scaling_factor=cost_scaling_factor,
             inflate_unknown=inflate_unknown,
+            inflate_around_unknown=inflate_around_unknown,
         )
 
     def traversal_costs(
@@ -581,8 +649,13 @@ class OccupancyGrid:
         cost_scaling_factor: float = 10.0,
         cost_weight: float = 4.0,
         unknown_cost: float = math.inf,
+        inflate_unknown: bool | None = None,
     ) -> FloatArray:
         """Per-cell costs for the grid planners; see :func:`navkit.mapping.traversal_costs`.
+
+        With the default ``inflate_unknown=None`` unknown space is inflated like
+        obstacles whenever it is impassable (``unknown_cost=inf``), so the
+        robot's body keeps ``robot_radius`` clear of it.
 
         Examples
         --------
@@ -599,6 +672,7 @@ class OccupancyGrid:
             cost_scaling_factor=cost_scaling_factor,
             cost_weight=cost_weight,
             unknown_cost=unknown_cost,
+            inflate_unknown=inflate_unknown,
         )
 
     # --------------------------------------------------------------- mapping

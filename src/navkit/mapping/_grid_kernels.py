@@ -1,6 +1,6 @@
 """numba kernels for world-to-cell conversion of many points (private).
 
-Plain functions on arrays and scalars compiled with ``cache=True``;
+Plain functions on C-contiguous arrays and scalars compiled with ``cache=True``;
 :class:`navkit.mapping.OccupancyGrid` validates input before calling them. Grid
 cells are ``(row, col)``; continuous grid coordinates put integers at cell
 centres (cell ``(r, c)`` covers ``[r - ½, r + ½) × [c - ½, c + ½)``).
@@ -23,12 +23,17 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+
+from navkit._shared.jit import njit_cached
 
 __all__ = ["world_to_cell_kernel", "world_to_continuous_kernel"]
 
+#: Grid coordinates are clamped to ±2**62: far outside any grid, and no int64
+#: conversion can overflow (a point at 1e300 m would otherwise wrap around).
+_LIMIT = float(2**62)
 
-@njit(cache=True)
+
+@njit_cached
 def world_to_cell_kernel(
     points: np.ndarray,
     origin_x: float,
@@ -40,19 +45,24 @@ def world_to_cell_kernel(
     """Fill ``out`` (N, 2) int64 with the ``(row, col)`` cell of each ``(x, y)`` point.
 
     The cell is ``floor`` of the point's coordinates in the grid frame divided by
-    the resolution, so indices outside the grid are returned as they are.
+    the resolution, so indices outside the grid are returned as they are, up to
+    ±2**62. The origin must lie within ±1e9 m (then nothing here is NaN).
     """
     inv_res = 1.0 / resolution
     c = math.cos(origin_yaw)
     s = math.sin(origin_yaw)
+    # Flat views of the C-contiguous arrays: LLVM vectorises this form (about
+    # twice as fast as indexing [i, 0], clamps included).
+    xy = points.reshape(-1)
+    flat = out.reshape(-1)
     for i in range(points.shape[0]):
-        dx = points[i, 0] - origin_x
-        dy = points[i, 1] - origin_y
-        out[i, 0] = math.floor((-s * dx + c * dy) * inv_res)
-        out[i, 1] = math.floor((c * dx + s * dy) * inv_res)
+        dx = xy[2 * i] - origin_x
+        dy = xy[2 * i + 1] - origin_y
+        flat[2 * i] = math.floor(min(max((-s * dx + c * dy) * inv_res, -_LIMIT), _LIMIT))
+        flat[2 * i + 1] = math.floor(min(max((c * dx + s * dy) * inv_res, -_LIMIT), _LIMIT))
 
 
-@njit(cache=True)
+@njit_cached
 def world_to_continuous_kernel(
     points: np.ndarray,
     origin_x: float,
@@ -64,13 +74,15 @@ def world_to_continuous_kernel(
     """Fill ``out`` (N, 2) float64 with continuous ``(row, col)`` coordinates of points.
 
     Integers are cell centres: a point at the lower-left corner of cell (0, 0) is
-    at ``(-0.5, -0.5)``.
+    at ``(-0.5, -0.5)``. Clamped to ±2**62, as :func:`world_to_cell_kernel`.
     """
     inv_res = 1.0 / resolution
     c = math.cos(origin_yaw)
     s = math.sin(origin_yaw)
+    xy = points.reshape(-1)
+    flat = out.reshape(-1)
     for i in range(points.shape[0]):
-        dx = points[i, 0] - origin_x
-        dy = points[i, 1] - origin_y
-        out[i, 0] = (-s * dx + c * dy) * inv_res - 0.5
-        out[i, 1] = (c * dx + s * dy) * inv_res - 0.5
+        dx = xy[2 * i] - origin_x
+        dy = xy[2 * i + 1] - origin_y
+        flat[2 * i] = min(max((-s * dx + c * dy) * inv_res - 0.5, -_LIMIT), _LIMIT)
+        flat[2 * i + 1] = min(max((c * dx + s * dy) * inv_res - 0.5, -_LIMIT), _LIMIT)

@@ -11,7 +11,15 @@ from numpy.typing import ArrayLike
 
 from navkit._shared.grid_coords import as_pairs, inside, one_or_many, round_half_up
 from navkit._shared.types import BoolArray, FloatArray, IntArray
-from navkit._shared.validation import as_points, positive_float
+from navkit._shared.validation import as_bool, as_points
+from navkit.mapping._limits import (
+    CELL_INDEX_LIMIT,
+    RADIUS_LIMIT,
+    bounded_float,
+    check_cell_count,
+    check_cell_range,
+    resolution_float,
+)
 
 __all__ = ["LocalGrid"]
 
@@ -34,14 +42,23 @@ class LocalGrid:
 
     Parameters
     ----------
-    occupied : ndarray of bool, shape (n, n)
+    occupied : array_like of bool, shape (n, n)
         True where at least one obstacle point falls in the cell; ``n`` is odd.
-        Stored as a read-only copy.
+        Stored as a read-only copy (the caller's array is neither kept nor
+        frozen).
     resolution : float
-        Cell size in metres.
+        Cell size in metres, in [1e-6, 1e6].
     half_width : float
         Distance in metres from the robot to the centre of the outermost cells;
         must equal ``(n - 1) / 2 * resolution``.
+
+    Raises
+    ------
+    TypeError
+        ``occupied`` is not boolean; a number is not a real number.
+    ValueError
+        ``occupied`` not square with an odd side, a number outside its range
+        or inconsistent with the shape.
 
     Examples
     --------
@@ -67,8 +84,8 @@ class LocalGrid:
             raise TypeError(f"occupied must be a boolean array, got dtype {occ.dtype}")
         if occ.ndim != 2 or occ.shape[0] != occ.shape[1] or occ.shape[0] % 2 == 0:
             raise ValueError(f"occupied must be a square (n, n) array with n odd, got {occ.shape}")
-        res = positive_float(self.resolution, "resolution")
-        half = positive_float(self.half_width, "half_width", allow_zero=True)
+        res = resolution_float(self.resolution)
+        half = bounded_float(self.half_width, "half_width", 0.0, RADIUS_LIMIT, "m")
         half_cells = (occ.shape[0] - 1) // 2
         if not math.isclose(half, half_cells * res, rel_tol=1e-9, abs_tol=1e-12):
             raise ValueError(
@@ -103,10 +120,18 @@ class LocalGrid:
             Obstacle points ``(x, y)`` in metres in the robot frame; points outside
             the grid are ignored.
         half_width : float, default 1.0
-            Half the side of the grid in metres. It is snapped to the nearest
-            multiple of ``resolution`` so that the robot sits on a cell centre.
+            Half the side of the grid in metres, in [0, 1e6]. It is snapped to
+            the nearest multiple of ``resolution`` so that the robot sits on a
+            cell centre.
         resolution : float, default 0.1
-            Cell size in metres.
+            Cell size in metres, in [1e-6, 1e6].
+
+        Raises
+        ------
+        ValueError
+            A number outside its range, or a grid of more than ``2**28`` cells
+            (``2 * round(half_width / resolution) + 1`` per side; the message
+            says how many it would need). Nothing is allocated then.
 
         Examples
         --------
@@ -118,16 +143,26 @@ class LocalGrid:
                [0, 0, 0, 0, 0],
                [0, 0, 0, 0, 0]])
         """
-        res = positive_float(resolution, "resolution")
-        half = positive_float(half_width, "half_width", allow_zero=True)
+        res = resolution_float(resolution)
+        half = bounded_float(half_width, "half_width", 0.0, RADIUS_LIMIT, "m")
+        side = 2.0 * round(half / res) + 1.0  # a float: compared before any allocation
+        check_cell_count(
+            side * side,
+            f"a local grid of half_width {half:g} m at resolution {res:g} m",
+            bytes_per_cell=1,
+            dtype="bool",
+        )
+        pts = as_points(points_xy, "points_xy")
         half_cells = round(half / res)
         n = 2 * half_cells + 1
         occ = np.zeros((n, n), dtype=np.bool_)
-        pts = as_points(points_xy, "points_xy")
         snapped = half_cells * res
-        cells = round_half_up((pts[:, ::-1] + snapped) / res)
-        keep = inside(cells, (n, n))
-        occ[cells[keep, 0], cells[keep, 1]] = True
+        with np.errstate(over="ignore"):  # far points become ±inf and are dropped next
+            scaled = (pts[:, ::-1] + snapped) / res
+        # Cells are kept by comparing floats, so far points never reach an int cast.
+        keep = np.all((scaled >= -0.5) & (scaled < n - 0.5), axis=1)
+        cells = round_half_up(scaled[keep])
+        occ[cells[:, 0], cells[:, 1]] = True
         return cls(occ, resolution=res, half_width=snapped)
 
     @overload
@@ -157,8 +192,9 @@ class LocalGrid:
         Returns
         -------
         ndarray, shape (N, 2), or (2,) for one point given as shape (2,)
-            Not clipped: points outside the grid fall outside ``[0, n)``; use
-            :meth:`contains` to test.
+            Not clipped to the grid: points outside it fall outside ``[0, n)``
+            (use :meth:`contains` to test); points more than 2**62 cells away
+            get ±2**62.
 
         Examples
         --------
@@ -170,16 +206,18 @@ class LocalGrid:
         array([ 5. , 12.6])
         """
         pts, single = as_pairs(points_xy, "points_xy")
-        scaled = (pts[:, ::-1] + self.half_width) / self.resolution
-        out = scaled if continuous else round_half_up(scaled)
+        with np.errstate(over="ignore"):  # overflow to ±inf is clamped next
+            scaled = (pts[:, ::-1] + self.half_width) / self.resolution
+        np.clip(scaled, -CELL_INDEX_LIMIT, CELL_INDEX_LIMIT, out=scaled)
+        out = scaled if as_bool(continuous, "continuous") else round_half_up(scaled)
         return one_or_many(out, single)
 
     def cell_to_world(self, cells: ArrayLike) -> FloatArray:
         """Robot-frame points ``(x, y)`` in metres of grid coordinates ``(row, col)``.
 
         Integer cells give their centres; continuous coordinates (integers at
-        cell centres) are accepted. Returns shape (N, 2), or (2,) for one cell
-        given as shape (2,).
+        cell centres, within ±2**62) are accepted. Returns shape (N, 2), or (2,)
+        for one cell given as shape (2,).
 
         Examples
         --------
@@ -191,6 +229,7 @@ class LocalGrid:
         array([0.  , 0.05])
         """
         arr, single = as_pairs(cells, "cells")
+        check_cell_range(arr)
         out = arr[:, ::-1] * self.resolution - self.half_width
         return one_or_many(out, single)
 

@@ -2,13 +2,15 @@
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterable
 
 from numpy.typing import ArrayLike
 
-from navkit._shared.validation import finite_float, positive_float
+from navkit._shared.validation import as_bool, finite_float
 from navkit.geometry import Pose2D, as_pose
 from navkit.mapping._grid import OccupancyGrid
+from navkit.mapping._limits import LOGODDS_LIMIT, bounded_float
 from navkit.mapping._logodds import DEFAULT_CLAMP, DEFAULT_HIT, DEFAULT_MISS
 from navkit.mapping._raycast_kernels import integrate_beams
 from navkit.mapping._scan import LaserScan
@@ -21,8 +23,8 @@ def _clamp_pair(clamp: Iterable[float]) -> tuple[float, float]:
         lo_raw, hi_raw = clamp
     except (TypeError, ValueError):
         raise ValueError(f"clamp must be a (low, high) pair, got {clamp!r}") from None
-    lo = finite_float(lo_raw, "clamp[0]")
-    hi = finite_float(hi_raw, "clamp[1]")
+    lo = bounded_float(lo_raw, "clamp[0]", -LOGODDS_LIMIT, LOGODDS_LIMIT)
+    hi = bounded_float(hi_raw, "clamp[1]", -LOGODDS_LIMIT, LOGODDS_LIMIT)
     if not lo < hi:
         raise ValueError(f"clamp must satisfy low < high, got {clamp!r}")
     return lo, hi
@@ -68,15 +70,24 @@ def integrate_scan(
         World pose of the sensor; beam ``n`` ends at
         ``(x + d cos(θ_n + θ), y + d sin(θ_n + θ))``.
     hit, miss : float
-        Log-odds increments (``hit >= 0 >= miss``); defaults are OctoMap's
-        ``logit(0.7)`` and ``logit(0.4)``.
+        Log-odds increments, ``hit`` in [0, 1e6] and ``miss`` in [-1e6, 0];
+        defaults are OctoMap's ``logit(0.7)`` and ``logit(0.4)``.
     clamp : (float, float)
-        Log-odds bounds, default ``(logit(0.12), logit(0.97))``.
+        Log-odds bounds ``low < high``, both within ±1e6; default
+        ``(logit(0.12), logit(0.97))``.
     max_range : float, optional
-        Use ``min(scan.range_max, max_range)`` as the maximum range: longer
-        readings clear up to it and mark no hit.
+        Use ``min(scan.range_max, max_range)`` as the maximum range (m, > 0):
+        longer readings clear up to it and mark no hit.
     exact : bool, default False
         Exact grid traversal instead of Bresenham lines.
+
+    Raises
+    ------
+    TypeError
+        ``grid`` or ``scan`` of the wrong type, ``exact`` not a bool, a number
+        that is not a real number.
+    ValueError
+        A number outside its range.
 
     Returns
     -------
@@ -101,14 +112,16 @@ def integrate_scan(
     if not isinstance(scan, LaserScan):
         raise TypeError(f"scan must be a LaserScan, got {type(scan).__name__}")
     p = as_pose(pose, "pose")
-    h = positive_float(hit, "hit", allow_zero=True)
+    h = bounded_float(hit, "hit", 0.0, LOGODDS_LIMIT)
     m = finite_float(miss, "miss")
     if m > 0.0:
         raise ValueError(f"miss must be <= 0 (a log-odds decrement), got {m}")
+    m = bounded_float(m, "miss", -LOGODDS_LIMIT, 0.0)
     lo, hi = _clamp_pair(clamp)
+    walk_exact = as_bool(exact, "exact")
     rmax = scan.range_max
     if max_range is not None:
-        rmax = min(rmax, positive_float(max_range, "max_range"))
+        rmax = min(rmax, bounded_float(max_range, "max_range", 0.0, math.inf, "m", low_open=True))
     o = grid.origin
     return int(
         integrate_beams(
@@ -131,6 +144,6 @@ def integrate_scan(
             m,
             lo,
             hi,
-            bool(exact),
+            walk_exact,
         )
     )

@@ -24,8 +24,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
+from navkit._shared.jit import njit_cached, njit_inline
 from navkit._shared.lines import bresenham_step
 
 __all__ = ["integrate_beams"]
@@ -35,7 +35,7 @@ _MISS = 1
 _HIT = 2
 
 
-@njit(cache=True, inline="always")
+@njit_inline
 def _apply(
     logodds: np.ndarray, r: int, c: int, upd: float, clamp_low: float, clamp_high: float
 ) -> None:
@@ -44,7 +44,7 @@ def _apply(
     logodds[r, c] = np.minimum(np.maximum(logodds[r, c] + upd, clamp_low), clamp_high)
 
 
-@njit(cache=True, inline="always")
+@njit_inline
 def _miss_cell(
     logodds: np.ndarray,
     mark: np.ndarray,
@@ -68,7 +68,7 @@ def _miss_cell(
     return 1
 
 
-@njit(cache=True, inline="always")
+@njit_inline
 def _first_crossing(a: float, cell: int, d: float, t_delta: float) -> float:
     """Beam parameter t at which coordinate ``a + t d`` first leaves ``cell``."""
     if d > 0.0:
@@ -78,7 +78,7 @@ def _first_crossing(a: float, cell: int, d: float, t_delta: float) -> float:
     return math.inf
 
 
-@njit(cache=True, inline="always")
+@njit_inline
 def _clamp_index(i: int, lo: int, hi: int) -> int:
     """``i`` clamped to ``[lo, hi - 1]``."""
     if i < lo:
@@ -88,7 +88,7 @@ def _clamp_index(i: int, lo: int, hi: int) -> int:
     return i
 
 
-@njit(cache=True, inline="always")
+@njit_inline
 def _clip_segment(
     su: float, sv: float, du: float, dv: float, u0: float, v0: float, u1: float, v1: float
 ) -> tuple[float, float]:
@@ -115,7 +115,7 @@ def _clip_segment(
     return t0, t1
 
 
-@njit(cache=True)
+@njit_cached
 def integrate_beams(
     logodds: np.ndarray,
     origin_x: float,
@@ -179,6 +179,12 @@ def integrate_beams(
         if rng >= range_min and rng > longest:
             longest = rng
     reach = longest * inv_res + 2.0
+    # A sensor farther from the grid than any beam reaches updates nothing. The
+    # test also keeps huge coordinates (a pose at 1e300 m) away from the integer
+    # conversions below; with navkit's ranges (range_max <= 1e9 m, resolution
+    # >= 1e-6 m, origin within 1e9 m) su, sv and reach are never NaN.
+    if not (-reach <= su <= cols + reach and -reach <= sv <= rows + reach):
+        return 0
     # Scratch window: the cells any beam can reach, clipped to the grid. The
     # bounds are clipped as floats first so that huge coordinates never reach an
     # integer conversion.

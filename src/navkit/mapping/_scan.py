@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from dataclasses import KW_ONLY, dataclass
 from typing import Any
 
@@ -9,11 +10,33 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from navkit._shared.types import BoolArray, FloatArray
-from navkit._shared.validation import as_float_array, finite_float, positive_float
+from navkit._shared.validation import as_float_array, finite_float
 from navkit.geometry import Pose2D, as_pose, wrap_angle
+from navkit.mapping._limits import RANGE_LIMIT, bounded_float
 from navkit.mapping._local_grid import LocalGrid
 
 __all__ = ["LaserScan"]
+
+_TURN = 2.0 * math.pi
+# Slack for angles rounded to float32 in ROS messages.
+_ANGLE_TOL = 1e-5
+
+
+def _check_angles(angle_min: float, increment: float, n: int) -> None:
+    """Refuse beam angles that no scanner gives in radians (degrees, most likely)."""
+    angle_max = angle_min + (n - 1) * increment
+    span = (n - 1) * abs(increment)
+    hint = "the angles look like degrees; give them in radians (e.g. np.radians)"
+    if abs(increment) > _TURN + _ANGLE_TOL:
+        raise ValueError(f"angle_increment ({increment} rad) exceeds a full turn (2π): {hint}")
+    if span > _TURN + abs(increment) + _ANGLE_TOL:
+        raise ValueError(
+            f"the {n} beams span {span:g} rad (angle_increment {increment} rad), more than "
+            f"a full turn (2π = 6.283): {hint}"
+        )
+    for name, value in (("angle_min", angle_min), ("angle_max", angle_max)):
+        if abs(value) > _TURN + _ANGLE_TOL:
+            raise ValueError(f"{name} ({value:g} rad) lies beyond ±2π: {hint}")
 
 
 def _readonly(arr: NDArray[Any]) -> NDArray[Any]:
@@ -36,17 +59,28 @@ class LaserScan:
     Parameters
     ----------
     ranges : array_like, shape (N,)
-        Ranges in metres (NaN and ±inf allowed). Stored as a read-only float64 copy.
+        Ranges in metres (NaN and ±inf allowed), N >= 1. Stored as a read-only
+        float64 copy (the caller's array is neither kept nor frozen).
     angle_min : float
-        Angle of the first beam, rad.
+        Angle of the first beam, rad, within ±2π.
     angle_increment : float
         Angle between consecutive beams, rad (non-zero; negative for scanners
-        that sweep clockwise).
+        that sweep clockwise). The last beam ``angle_max`` must lie within
+        ±2π too, and the beams may span at most a full turn plus one increment.
     range_min, range_max : float
-        Valid range interval in metres, ``0 <= range_min < range_max``.
+        Valid range interval in metres, ``0 <= range_min < range_max <= 1e9``.
     intensities : array_like, shape (N,), optional
         Intensity of each beam; ``None`` or empty when the sensor gives none.
         Stored as a read-only float64 copy.
+
+    Raises
+    ------
+    TypeError
+        Complex, string or boolean data; a number that is not a real number.
+    ValueError
+        Empty ``ranges``, mismatched ``intensities``, a number outside its
+        range, or beam angles that span more than a full turn or lie beyond
+        ±2π (degrees given as radians: the message says so).
 
     Examples
     --------
@@ -76,13 +110,15 @@ class LaserScan:
         if ranges.shape[0] == 0:
             raise ValueError("ranges must hold at least one beam")
         object.__setattr__(self, "ranges", _readonly(ranges))
-        object.__setattr__(self, "angle_min", finite_float(self.angle_min, "angle_min"))
+        start = finite_float(self.angle_min, "angle_min")
         inc = finite_float(self.angle_increment, "angle_increment")
         if inc == 0.0:
             raise ValueError("angle_increment must be non-zero")
+        _check_angles(start, inc, ranges.shape[0])
+        object.__setattr__(self, "angle_min", start)
         object.__setattr__(self, "angle_increment", inc)
-        rmin = positive_float(self.range_min, "range_min", allow_zero=True)
-        rmax = positive_float(self.range_max, "range_max")
+        rmax = bounded_float(self.range_max, "range_max", 0.0, RANGE_LIMIT, "m", low_open=True)
+        rmin = bounded_float(self.range_min, "range_min", 0.0, RANGE_LIMIT, "m")
         if rmax <= rmin:
             raise ValueError(f"range_max ({rmax}) must be greater than range_min ({rmin})")
         object.__setattr__(self, "range_min", rmin)
@@ -173,7 +209,8 @@ class LaserScan:
         The scan is assumed to be taken in the robot frame (x forward, y left).
         With the defaults the result is the paper's 21 × 21 grid of 0.1 m cells
         covering ±1 m, with ``i = 10 y + 10`` and ``j = 10 x + 10``; see
-        :class:`~navkit.mapping.LocalGrid`.
+        :meth:`LocalGrid.from_points <navkit.mapping.LocalGrid.from_points>`
+        for the ranges of ``half_width`` and ``resolution`` (m).
 
         Examples
         --------

@@ -67,6 +67,17 @@ def test_every_grid_planner_returns_a_grid_path2d() -> None:
         ({"expanded": -1}, ValueError, "expanded"),
         ({"expanded": 1.5}, TypeError, "expanded"),
         ({"expanded": True}, TypeError, "expanded"),
+        ({"points": [[1 + 1j, 0.0]]}, TypeError, "points"),
+        ({"points": [[True, False]]}, TypeError, "points"),
+        ({"frame": ["grid"]}, TypeError, "frame"),
+        ({"frame": np.array(["grid", "world"])}, TypeError, "frame"),
+        ({"cost": "1.5"}, TypeError, "cost"),
+        ({"cost": True}, TypeError, "cost"),
+        ({"cost": 1 + 0j}, TypeError, "cost"),
+        ({"cost": -1.0}, ValueError, "cost"),
+        ({"cost": -math.inf}, ValueError, "cost"),
+        ({"length": "2"}, TypeError, "length"),
+        ({"length": math.nan}, ValueError, "length"),
     ],
 )
 def test_invalid_fields(kwargs: dict[str, object], error: type[Exception], message: str) -> None:
@@ -78,8 +89,15 @@ def test_invalid_fields(kwargs: dict[str, object], error: type[Exception], messa
         Path2D(**fields)  # type: ignore[arg-type]
 
 
-def test_infinite_cost_is_allowed() -> None:
-    assert Path2D([[0, 0]], "grid", cost=math.inf, length=0.0, expanded=0).cost == math.inf
+def test_infinite_or_huge_numbers_are_refused() -> None:
+    # Issue 12: a record never holds a non-finite number (no planner returns an
+    # infinite cost: no path is NoPathError), nor overflows on a huge integer.
+    for fields in ({"cost": math.inf}, {"length": math.inf}, {"cost": 10**400},
+                   {"length": 10**400}, {"expanded": 10**400}, {"expanded": 2**63}):
+        kwargs: dict[str, object] = {"cost": 0.0, "length": 0.0, "expanded": 0, **fields}
+        with pytest.raises(ValueError, match=next(iter(fields))):
+            Path2D([[0, 0]], "grid", **kwargs)  # type: ignore[arg-type]
+    assert Path2D([[0, 0]], "grid", cost=1e308, length=0.0, expanded=2**63 - 1).cost == 1e308
 
 
 def test_no_path_error_expanded() -> None:
@@ -96,3 +114,25 @@ def test_no_path_error_expanded() -> None:
     with pytest.raises(NoPathError) as info:
         field_dstar(costs, (0, 0), (3, 3))
     assert info.value.expanded > 0
+
+
+def test_records_built_from_lists_copy_and_never_freeze() -> None:
+    # Issue 12: records built from lists crashed, and froze the caller's array.
+    listed = [[0, 0], [1, 1]]
+    path = Path2D(listed, "grid", cost=1, length=np.float32(1.5), expanded=np.int64(2))
+    listed[0][0] = 7
+    assert path.points.tolist() == [[0.0, 0.0], [1.0, 1.0]]
+    assert (path.cost, path.length, path.expanded) == (1.0, 1.5, 2)
+    assert type(path.cost) is float and type(path.length) is float
+    assert type(path.expanded) is int
+    raw = np.array([[0.0, 0.0], [2.0, 2.0]])
+    view = raw[::-1]
+    p = Path2D(view, "world", cost=np.float64(3.0), length=np.array(2.0), expanded=0)
+    assert raw.flags.writeable and view.flags.writeable
+    assert not np.shares_memory(p.points, raw)
+    with pytest.raises(ValueError):
+        p.points[0, 0] = 1.0
+    # Planner results are read-only too, and distinct from each other.
+    a = astar(np.ones((3, 3)), (0, 0), (2, 2))
+    assert not a.points.flags.writeable
+    assert not a.cells.flags.writeable

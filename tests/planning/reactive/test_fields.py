@@ -441,11 +441,30 @@ def test_type_errors() -> None:
         PotentialField()  # type: ignore[abstract]
 
 
-def test_khatib_overflow_is_infinite_not_nan() -> None:
+def test_khatib_saturates_below_a_nanometre_instead_of_overflowing() -> None:
+    # Issue 12: the push used to overflow to inf below ~1e-103 m, and two obstacles
+    # at ±1e-200 gave inf - inf = NaN. Below 1e-9 m it now takes its value at 1e-9 m.
     field = KhatibRepulsion([[0.0, 0.0]], influence_radius=1.0)
-    force = field.force([[0.0, 1e-200], [-1e-200, 0.0]])
-    np.testing.assert_array_equal(force, [[0.0, math.inf], [-math.inf, 0.0]])
-    assert field.potential([[0.0, 1e-200]])[0] == math.inf
+    force = field.force([[0.0, 1e-200], [-1e-200, 0.0], [0.0, 1e-9], [5e-324, 0.0]])
+    top = (1.0 / 1e-9 - 1.0) / (1e-9 * 1e-9)  # Khatib's law at 1e-9 m, k_rep = d0 = 1
+    np.testing.assert_array_equal(force, [[0.0, top], [-top, 0.0], [0.0, top], [top, 0.0]])
+    u = field.potential([[0.0, 1e-200], [0.0, 1e-9], [0.0, 0.0]])
+    assert u[0] == u[1] == 0.5 * (1.0 / 1e-9 - 1.0) ** 2
+    assert u[2] == math.inf  # on the obstacle itself, as documented
+    # Monotone up to the saturation: nearer never pushes less.
+    d = np.logspace(-12, 0, 200)
+    mag = np.abs(field.force(np.column_stack((d, np.zeros_like(d))))[:, 0])
+    assert np.all(np.diff(mag) <= 0.0) and np.all(np.isfinite(mag))
+
+
+@pytest.mark.parametrize(
+    "obstacles", [[[1e-200, 0.0], [-1e-200, 0.0]], [[0.0, 5e-324], [0.0, -5e-324]]]
+)
+def test_opposite_obstacles_next_to_the_point_cancel(obstacles: list[list[float]]) -> None:
+    # Issue 12 reproduction: KhatibRepulsion([[1e-200, 0], [-1e-200, 0]]).force([[0, 0]]) was NaN.
+    field = KhatibRepulsion(obstacles)
+    np.testing.assert_array_equal(field.force([[0.0, 0.0]]), [[0.0, 0.0]])
+    assert math.isfinite(field.potential([[0.0, 0.0]])[0])
 
 
 def test_default_blend_pulls_toward_the_goal_beyond_its_displaced_minimum() -> None:

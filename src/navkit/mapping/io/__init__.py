@@ -10,6 +10,15 @@
   as :class:`~navkit.mapping.LaserScan` objects with their laser and robot poses
   and timestamps (:class:`CarmenLog`).
 
+Every malformed file raises ``ValueError`` naming the file (and line, for
+logs) and the problem — never a decoder's own exception (``UnicodeDecodeError``,
+Pillow's errors, ``gzip.BadGzipFile``, ``EOFError``, ``OverflowError``). A
+missing file raises ``FileNotFoundError``; a file the operating system refuses
+to read its ``OSError`` (e.g. ``PermissionError``); a non-PGM image without
+Pillow ``ImportError``. Image sizes are checked from the header before
+decoding. Saving is atomic and never writes over the map's image or another
+image file.
+
 Examples
 --------
 >>> import tempfile

@@ -5,17 +5,23 @@ from __future__ import annotations
 import gzip
 import math
 import os
+import zlib
+from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, positive_float
-from navkit.geometry import Pose2D
+from navkit.geometry import Pose2D, as_pose
 from navkit.mapping import LaserScan
+from navkit.mapping.io._paths import as_path
 
 __all__ = ["CarmenLog", "read_carmen"]
+
+_TURN = 2.0 * math.pi
 
 
 def _guess_fov(n: int) -> float:
@@ -51,13 +57,24 @@ class CarmenLog:
     scans : tuple of LaserScan
         One scan per FLASER / ROBOTLASER1 line, in file order.
     laser_poses : tuple of Pose2D
-        World pose of the laser for each scan (the pose to ray-cast from).
+        World pose of the laser for each scan (the pose to ray-cast from);
+        ``[x, y, theta]`` sequences are converted.
     robot_poses : tuple of Pose2D
         Robot (odometry) pose logged with each scan.
     timestamps : ndarray, shape (N,)
-        Scan timestamps, s (the message's own ``timestamp`` field).
+        Scan timestamps, s (the message's own ``timestamp`` field), finite.
+        Stored as a read-only copy (the caller's array is neither kept nor frozen).
     odometry : ndarray, shape (M, 4)
-        ODOM records ``(x, y, theta, timestamp)``.
+        ODOM records ``(x, y, theta, timestamp)``, finite; an empty sequence
+        gives shape (0, 4). Stored as a read-only copy.
+
+    Raises
+    ------
+    TypeError
+        A scan that is not a LaserScan, a pose that is not a pose, arrays that
+        are not real-valued.
+    ValueError
+        Non-finite timestamps or odometry, wrong shapes, different lengths.
 
     Examples
     --------
@@ -79,14 +96,16 @@ class CarmenLog:
 
     def __post_init__(self) -> None:
         scans = tuple(self.scans)
-        laser = tuple(self.laser_poses)
-        robot = tuple(self.robot_poses)
-        stamps = np.array(
-            as_float_array(self.timestamps, "timestamps", ndim=1, finite=False), copy=True
-        )
-        odometry = np.array(
-            as_float_array(self.odometry, "odometry", shape=(None, 4), finite=False), copy=True
-        )
+        for i, scan in enumerate(scans):
+            if not isinstance(scan, LaserScan):
+                raise TypeError(f"scans[{i}] must be a LaserScan, got {type(scan).__name__}")
+        laser = tuple(as_pose(p, f"laser_poses[{i}]") for i, p in enumerate(self.laser_poses))
+        robot = tuple(as_pose(p, f"robot_poses[{i}]") for i, p in enumerate(self.robot_poses))
+        stamps = np.array(as_float_array(self.timestamps, "timestamps", ndim=1), copy=True)
+        odometry_in = as_float_array(self.odometry, "odometry")
+        if odometry_in.size == 0:
+            odometry_in = odometry_in.reshape(0, 4)
+        odometry = np.array(as_float_array(odometry_in, "odometry", shape=(None, 4)), copy=True)
         if not len(scans) == len(laser) == len(robot) == stamps.shape[0]:
             raise ValueError(
                 "scans, laser_poses, robot_poses and timestamps must have the same length, got "
@@ -104,13 +123,178 @@ class CarmenLog:
         return len(self.scans)
 
 
-def _open_text(path: Path) -> list[str]:
+# ---------------------------------------------------------------- parsing
+class _LineError(ValueError):
+    """A problem with one log line (the reader adds the file and line number)."""
+
+
+class _Record(NamedTuple):
+    """One laser line, parsed and checked."""
+
+    line: int
+    ranges: FloatArray
+    angle_min: float
+    angle_increment: float
+    range_max: float | None  # None: a FLASER line (no geometry)
+    intensities: FloatArray | None
+    laser_pose: tuple[float, float, float]
+    robot_pose: tuple[float, float, float]
+    timestamp: float
+
+
+def _lines(path: Path) -> Iterator[str]:
+    """Lines of a plain or gzip'd log, read lazily (bytes that are not ASCII are replaced)."""
     with path.open("rb") as fh:
         magic = fh.read(2)
     if magic == b"\x1f\x8b":
         with gzip.open(path, "rt", encoding="ascii", errors="replace") as fh:
-            return fh.read().splitlines()
-    return path.read_text(encoding="ascii", errors="replace").splitlines()
+            yield from fh
+    else:
+        with path.open("r", encoding="ascii", errors="replace") as fh:
+            yield from fh
+
+
+def _count(token: str, what: str) -> int:
+    """A count field: a non-negative integer written as one."""
+    if not (token.isascii() and token.isdigit()):
+        raise _LineError(f"{what} must be a non-negative integer, got {token[:20]!r}")
+    if len(token) > 12:
+        raise _LineError(f"{what} {token[:20]}... is out of range")
+    return int(token)
+
+
+def _values(tokens: list[str], what: str, hint: str = "") -> FloatArray:
+    """``tokens`` as finite float64 numbers."""
+    try:
+        out = np.array(tokens, dtype=np.float64)
+    except ValueError:
+        raise _LineError(f"{what} must be numbers{hint}") from None
+    finite = np.isfinite(out)
+    if not finite.all():
+        raise _LineError(f"{what} must be finite, got {tokens[int(np.argmin(finite))]!r}")
+    return out
+
+
+def _fields(tokens: list[str], need: int, what: str) -> None:
+    """``tokens`` must hold ``need`` fields, then at most a host name and a logger timestamp."""
+    if not need <= len(tokens) <= need + 2:
+        raise _LineError(
+            f"{len(tokens)} fields where the counts give {need} (+ host and logger "
+            f"timestamp); {what}"
+        )
+
+
+def _triple(values: FloatArray, start: int) -> tuple[float, float, float]:
+    return float(values[start]), float(values[start + 1]), float(values[start + 2])
+
+
+def _flaser(number: int, tokens: list[str]) -> _Record:
+    """``FLASER n r_1 .. r_n x y theta odom_x odom_y odom_theta timestamp [host logger_ts]``."""
+    if not tokens:
+        raise _LineError("no beam count")
+    n = _count(tokens[0], "the beam count")
+    if n == 0:
+        raise _LineError("the beam count must be at least 1")
+    _fields(tokens, n + 8, "is the beam count right?")
+    vals = _values(tokens[1 : n + 8], "ranges, poses and timestamp", " (is the beam count right?)")
+    return _Record(
+        number,
+        vals[:n],
+        -math.pi / 2.0,
+        _guess_increment(n),
+        None,
+        None,
+        _triple(vals, n),
+        _triple(vals, n + 3),
+        float(vals[n + 6]),
+    )
+
+
+def _robotlaser1(number: int, tokens: list[str]) -> _Record:
+    """``ROBOTLASER1 type start fov increment max_range accuracy remission_mode n r_1..r_n
+    n_rem rem_1..rem_n_rem laser_x laser_y laser_theta robot_x robot_y robot_theta tv rv
+    forward_safety side_safety turn_axis timestamp [host logger_ts]``."""
+    if len(tokens) < 9:
+        raise _LineError(f"only {len(tokens)} fields")
+    head = _values(tokens[0:7], "laser type, angles, range and accuracy")
+    start, fov, inc, maxr = (float(v) for v in head[1:5])
+    if abs(fov) > _TURN + 1e-5:
+        raise _LineError(
+            f"field of view {fov:g} rad exceeds a full turn (2π): the angles look like "
+            "degrees; CARMEN logs give radians"
+        )
+    n = _count(tokens[7], "the beam count")
+    if n == 0:
+        raise _LineError("the beam count must be at least 1")
+    if len(tokens) < 9 + n:
+        raise _LineError(f"{len(tokens) - 8} fields after the beam count {n}")
+    n_rem = _count(tokens[8 + n], "the remission count")
+    _fields(tokens, 9 + n + n_rem + 12, "are the beam and remission counts right?")
+    hint = " (are the beam and remission counts right?)"
+    ranges = _values(tokens[8 : 8 + n], "ranges", hint)
+    remissions = _values(tokens[9 + n : 9 + n + n_rem], "remissions", hint)
+    tail = _values(tokens[9 + n + n_rem : 21 + n + n_rem], "poses, speeds and timestamp", hint)
+    return _Record(
+        number,
+        ranges,
+        start,
+        inc,
+        maxr,
+        remissions if n_rem == n else None,
+        _triple(tail, 0),
+        _triple(tail, 3),
+        float(tail[11]),
+    )
+
+
+def _odom(tokens: list[str]) -> tuple[float, float, float, float]:
+    """``ODOM x y theta tv rv accel timestamp [host logger_ts]``."""
+    _fields(tokens, 7, "expected x y theta tv rv accel timestamp")
+    vals = _values(tokens[0:7], "pose, speeds and timestamp")
+    return float(vals[0]), float(vals[1]), float(vals[2]), float(vals[6])
+
+
+def _parse(log_path: Path) -> tuple[list[_Record], list[tuple[float, float, float, float]]]:
+    """Every laser and ODOM line of the log; errors name the file and line."""
+    records: list[_Record] = []
+    odometry: list[tuple[float, float, float, float]] = []
+    number = 0
+    kind = ""
+    try:
+        for number, line in enumerate(_lines(log_path), start=1):
+            kind, _, rest = line.partition(" ")
+            kind = kind.strip()
+            if kind == "ODOM":
+                odometry.append(_odom(rest.split()))
+            elif kind == "FLASER":
+                records.append(_flaser(number, rest.split()))
+            elif kind == "ROBOTLASER1":
+                records.append(_robotlaser1(number, rest.split()))
+    except _LineError as exc:
+        raise ValueError(f"{log_path}:{number}: malformed {kind} line: {exc}") from None
+    except (EOFError, zlib.error, gzip.BadGzipFile) as exc:
+        raise ValueError(
+            f"{log_path}: corrupt or truncated gzip file (after {number} lines: "
+            f"{type(exc).__name__}: {exc})"
+        ) from None
+    return records, odometry
+
+
+def _scan(log_path: Path, record: _Record, range_min: float, range_max: float | None) -> LaserScan:
+    rmax = record.range_max if record.range_max is not None else range_max
+    if rmax is None or rmax <= range_min:
+        raise ValueError(f"{log_path}: cannot determine a maximum range above range_min")
+    try:
+        return LaserScan(
+            record.ranges,
+            angle_min=record.angle_min,
+            angle_increment=record.angle_increment,
+            range_min=range_min,
+            range_max=rmax,
+            intensities=record.intensities,
+        )
+    except ValueError as exc:
+        raise ValueError(f"{log_path}:{record.line}: {exc}") from None
 
 
 def read_carmen(
@@ -127,25 +311,33 @@ def read_carmen(
     0.5° for 360/361, 0.25° for 400/401, otherwise 180° spread over ``n - 1``
     gaps. ``ROBOTLASER1`` lines carry their start angle, increment, maximum
     range and remissions (as intensities). ``ODOM`` lines give ``odometry``.
+    Every count must match the fields that follow it (the host name and
+    logger timestamp at the end of a line are optional).
 
     Parameters
     ----------
     path : str or path-like
         Log file, gzip'd or not.
     range_max : float, optional
-        Maximum range of FLASER scans, m. Readings equal to or beyond it are "no
-        return". By default the largest FLASER reading in the file is used, since
-        CARMEN logs store "no return" as the scanner's maximum value.
+        Maximum range of FLASER scans, m, in (``range_min``, 1e9]. Readings
+        equal to or beyond it are "no return". By default the largest FLASER
+        reading in the file is used, since CARMEN logs store "no return" as
+        the scanner's maximum value.
     range_min : float, default 0.0
-        Minimum valid range, m.
+        Minimum valid range, m (>= 0).
 
     Raises
     ------
     FileNotFoundError
         Missing file.
     ValueError
-        A malformed laser line (the message names the line number) or a log
-        without laser lines.
+        A corrupt or truncated gzip file; a malformed FLASER, ROBOTLASER1 or
+        ODOM line (the message names the file and line number): fields that
+        are not numbers, NaN or infinite values, negative counts, counts that
+        do not match the number of fields, angles in degrees (a field of view
+        or beams spanning more than 2π, a start angle beyond ±2π), a maximum
+        range beyond 1e9 m; a log without laser lines; a bad ``range_min`` or
+        ``range_max``.
 
     Examples
     --------
@@ -158,106 +350,30 @@ def read_carmen(
     >>> scan.range_max, scan.valid_mask()
     (5.0, array([ True,  True, False]))
     """
-    log_path = Path(path)
-    if not log_path.is_file():
+    log_path = as_path(path, "path")
+    if not log_path.exists():
         raise FileNotFoundError(f"CARMEN log {log_path} does not exist")
+    if not log_path.is_file():
+        raise ValueError(f"CARMEN log {log_path} is not a regular file")
     rmin = positive_float(range_min, "range_min", allow_zero=True)
     rmax_user = None if range_max is None else positive_float(range_max, "range_max")
-
-    # Parsed records: (ranges, angle_min, increment, range_max or None, intensities,
-    # laser pose, robot pose, timestamp).
-    records: list[
-        tuple[
-            FloatArray,
-            float,
-            float,
-            float | None,
-            FloatArray | None,
-            tuple[float, float, float],
-            tuple[float, float, float],
-            float,
-        ]
-    ] = []
-    odometry: list[tuple[float, float, float, float]] = []
-    for number, line in enumerate(_open_text(log_path), start=1):
-        kind, _, rest = line.partition(" ")
-        if kind not in ("FLASER", "ROBOTLASER1", "ODOM"):
-            continue
-        tokens = rest.split()
-        try:
-            if kind == "ODOM":
-                x, y, th = (float(t) for t in tokens[0:3])
-                odometry.append((x, y, th, float(tokens[6])))
-                continue
-            if kind == "FLASER":
-                n = int(tokens[0])
-                vals = np.array(tokens[1 : n + 8], dtype=np.float64)
-                if n <= 0 or vals.shape[0] != n + 7:
-                    raise IndexError
-                records.append(
-                    (
-                        vals[:n],
-                        -math.pi / 2.0,
-                        _guess_increment(n),
-                        None,
-                        None,
-                        (vals[n], vals[n + 1], vals[n + 2]),
-                        (vals[n + 3], vals[n + 4], vals[n + 5]),
-                        float(vals[n + 6]),
-                    )
-                )
-            else:
-                start, _fov, inc, maxr = (float(t) for t in tokens[1:5])
-                n = int(tokens[7])
-                ranges = np.array(tokens[8 : 8 + n], dtype=np.float64)
-                k = 8 + n
-                n_rem = int(tokens[k])
-                remissions = np.array(tokens[k + 1 : k + 1 + n_rem], dtype=np.float64)
-                k += 1 + n_rem
-                tail = np.array(tokens[k : k + 12], dtype=np.float64)
-                if n <= 0 or ranges.shape[0] != n or tail.shape[0] != 12:
-                    raise IndexError
-                records.append(
-                    (
-                        ranges,
-                        start,
-                        inc,
-                        maxr,
-                        remissions if n_rem == n else None,
-                        (tail[0], tail[1], tail[2]),
-                        (tail[3], tail[4], tail[5]),
-                        float(tail[11]),
-                    )
-                )
-        except (IndexError, ValueError):
-            raise ValueError(f"{log_path}:{number}: malformed {kind} line") from None
+    if rmax_user is not None:  # LaserScan's own range checks, before reading the file
+        LaserScan(
+            np.ones(1), angle_min=0.0, angle_increment=1.0, range_min=rmin, range_max=rmax_user
+        )
+    records, odometry = _parse(log_path)
     if not records:
         raise ValueError(f"{log_path}: no FLASER or ROBOTLASER1 lines")
 
     flaser_max = rmax_user
     if flaser_max is None:
-        flaser = [r[0] for r in records if r[3] is None]
+        flaser = [r.ranges for r in records if r.range_max is None]
         if flaser:
-            flaser_max = float(max(float(np.nanmax(r)) for r in flaser))
-    scans = []
-    for scan_ranges, start, inc, own_max, inten, _, _, _ in records:
-        rm_opt = own_max if own_max is not None else flaser_max
-        if rm_opt is None or rm_opt <= rmin:
-            raise ValueError(f"{log_path}: cannot determine a maximum range above range_min")
-        scans.append(
-            LaserScan(
-                scan_ranges,
-                angle_min=start,
-                angle_increment=inc,
-                range_min=rmin,
-                range_max=rm_opt,
-                intensities=inten,
-            )
-        )
+            flaser_max = max(float(r.max()) for r in flaser)
     return CarmenLog(
-        scans=tuple(scans),
-        laser_poses=tuple(Pose2D(*r[5]) for r in records),
-        robot_poses=tuple(Pose2D(*r[6]) for r in records),
-        timestamps=np.array([r[7] for r in records], dtype=np.float64),
+        scans=tuple(_scan(log_path, r, rmin, flaser_max) for r in records),
+        laser_poses=tuple(Pose2D(*r.laser_pose) for r in records),
+        robot_poses=tuple(Pose2D(*r.robot_pose) for r in records),
+        timestamps=np.array([r.timestamp for r in records], dtype=np.float64),
         odometry=np.array(odometry, dtype=np.float64).reshape(-1, 4),
     )

@@ -2,7 +2,12 @@
 
 The YAML is read with PyYAML's safe loader (every key map_server knows is
 understood; other keys are ignored). Images: PGM (P5, P2) is read and written
-with numpy; other formats are read with Pillow.
+with numpy; other formats are read with Pillow. Every malformed file raises a
+``ValueError`` that names the file and the problem; an image's size is checked
+from its header, before anything is decoded, against
+``OccupancyGrid.MAX_CELLS`` (``2**28`` pixels) and, for images read with
+Pillow, against Pillow's own decompression-bomb limit too
+(``2 * PIL.Image.MAX_IMAGE_PIXELS``, 178,956,970 pixels in Pillow 13).
 """
 
 from __future__ import annotations
@@ -12,6 +17,10 @@ import math
 import os
 import secrets
 import stat
+import struct
+import warnings
+import zlib
+from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -22,6 +31,7 @@ from numpy.typing import NDArray
 
 from navkit.geometry import Pose2D
 from navkit.mapping import OccupancyGrid
+from navkit.mapping.io._paths import as_path
 
 __all__ = [
     "MapMetadata",
@@ -38,8 +48,31 @@ __all__ = [
 _MODES = ("trinary", "scale", "raw")
 _WRITE_MODES = ("trinary", "scale")
 _REQUIRED = ("image", "resolution", "origin", "negate", "occupied_thresh", "free_thresh")
-# The C loader when PyYAML was built with libyaml (same results, faster).
-_Loader: Any = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
+#: A map YAML is a few hundred bytes; anything over 1 MiB is the wrong file.
+YAML_MAX_BYTES = 1 << 20
+#: A PGM header (magic, comments, width, height, maxval) must fit in 64 KiB.
+_PGM_HEADER_MAX = 1 << 16
+# File signatures of images, to say so when one is passed as the YAML.
+_IMAGE_MAGIC = {
+    b"P5": "a PGM image",
+    b"P2": "a PGM image",
+    b"\x89PNG": "a PNG image",
+    b"\xff\xd8\xff": "a JPEG image",
+    b"GIF8": "a GIF image",
+    b"BM": "a BMP image",
+    b"II*\x00": "a TIFF image",
+    b"MM\x00*": "a TIFF image",
+}
+#: Suffixes of image files: a YAML path ending in one would write over an image.
+_IMAGE_SUFFIXES = frozenset(
+    {".pgm", ".pbm", ".ppm", ".pnm", ".png", ".jpg", ".jpeg", ".bmp", ".gif", ".tif", ".tiff"}
+    | {".webp"}
+)
+# PyYAML's pure-Python safe loader, not the libyaml one (CSafeLoader): the C
+# loader's composer recurses on the C stack and crashes the interpreter
+# (segmentation fault) on deeply nested input such as 100000 "[", where the
+# Python one raises RecursionError. Map YAMLs are a few hundred bytes.
+_Loader: Any = yaml.SafeLoader
 
 
 @dataclass(frozen=True, slots=True)
@@ -61,14 +94,19 @@ class MapMetadata:
     mode: str
 
 
+def _short(value: Any) -> str:
+    text = repr(value)
+    return text if len(text) <= 80 else text[:77] + "..."
+
+
 def _as_float(value: Any, key: str, path: Path) -> float:
     # YAML 1.1 reads "1e-3" (no dot) as a string: numbers in text are accepted too.
     if isinstance(value, bool) or not isinstance(value, (int, float, str)):
-        raise ValueError(f"{path}: {key} must be a number, got {value!r}")
+        raise ValueError(f"{path}: {key} must be a number, got {_short(value)}")
     try:
         out = float(value)
-    except ValueError:
-        raise ValueError(f"{path}: {key} must be a number, got {value!r}") from None
+    except (ValueError, OverflowError):
+        raise ValueError(f"{path}: {key} must be a finite number, got {_short(value)}") from None
     if not math.isfinite(out):
         raise ValueError(f"{path}: {key} must be finite, got {value!r}")
     return out
@@ -81,7 +119,40 @@ def _as_negate(value: Any, path: Path) -> bool:
         return bool(value)
     if isinstance(value, str) and value.lower() in ("0", "1", "true", "false"):
         return value.lower() in ("1", "true")
-    raise ValueError(f"{path}: negate must be 0 or 1, got {value!r}")
+    raise ValueError(f"{path}: negate must be 0 or 1, got {_short(value)}")
+
+
+def _regular_file(path: Path, what: str) -> None:
+    """Raise FileNotFoundError for a missing ``path``, ValueError for a directory or device."""
+    if not path.exists():
+        raise FileNotFoundError(f"{what} {path} does not exist")
+    if not path.is_file():
+        kind = "a directory" if path.is_dir() else "not a regular file"
+        raise ValueError(f"{what} {path} is {kind}")
+
+
+def _yaml_text(path: Path) -> str:
+    """The YAML file's text, refusing images, binary files and huge files."""
+    size = path.stat().st_size
+    if size > YAML_MAX_BYTES:
+        raise ValueError(
+            f"{path}: {size} bytes is too large for a map YAML (at most {YAML_MAX_BYTES} "
+            "bytes); is it the image? Pass the map's YAML file"
+        )
+    data = path.read_bytes()
+    for magic, kind in _IMAGE_MAGIC.items():
+        if data.startswith(magic):
+            raise ValueError(
+                f"{path}: this is {kind}, not a map YAML; pass the map's YAML file "
+                "(the one that names the image)"
+            )
+    try:
+        return data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise ValueError(
+            f"{path}: not a map YAML: not UTF-8 text (byte 0x{data[exc.start]:02x} at "
+            f"offset {exc.start})"
+        ) from None
 
 
 def _load_yaml(text: str, path: Path) -> dict[str, Any]:
@@ -92,6 +163,10 @@ def _load_yaml(text: str, path: Path) -> dict[str, Any]:
         where = f"{path}:{mark.line + 1}" if mark is not None else str(path)
         problem = getattr(exc, "problem", None) or str(exc)
         raise ValueError(f"{where}: expected 'key: value' lines ({problem})") from None
+    except RecursionError:
+        raise ValueError(f"{path}: YAML nested too deeply for a map YAML") from None
+    except (ValueError, OverflowError, TypeError) as exc:  # e.g. an integer of 10**5 digits
+        raise ValueError(f"{path}: unreadable YAML value ({exc})") from None
     if not isinstance(doc, dict):
         raise ValueError(f"{path}: expected 'key: value' lines, got {type(doc).__name__}")
     return {str(key): value for key, value in doc.items()}
@@ -105,9 +180,12 @@ def read_map_yaml(path: str | os.PathLike[str]) -> MapMetadata:
     FileNotFoundError
         The YAML or the image it names does not exist.
     ValueError
-        Not a YAML mapping, a required key is missing, or a value is out of
-        range (resolution <= 0, thresholds outside [0, 1] or
-        ``free_thresh >= occupied_thresh``, unknown ``mode``).
+        The YAML is not a small UTF-8 YAML mapping (an image or a binary file
+        passed by mistake, more than 1 MiB), a required key is missing, a
+        value is out of range (``resolution`` outside [1e-6, 1e6] m, origin x
+        or y beyond ±1e9 m, thresholds outside [0, 1] or
+        ``free_thresh >= occupied_thresh``, unknown ``mode``), or the image
+        is a directory, a device or the YAML itself. The message names the file.
 
     Examples
     --------
@@ -121,29 +199,33 @@ def read_map_yaml(path: str | os.PathLike[str]) -> MapMetadata:
     >>> meta.image.name, meta.origin, meta.mode
     ('m.pgm', (1.0, 2.0, 0.0), 'trinary')
     """
-    yaml_path = Path(path)
-    if not yaml_path.is_file():
-        raise FileNotFoundError(f"map YAML file {yaml_path} does not exist")
-    entries = _load_yaml(yaml_path.read_text(encoding="utf-8"), yaml_path)
+    yaml_path = as_path(path, "path")
+    _regular_file(yaml_path, "map YAML file")
+    entries = _load_yaml(_yaml_text(yaml_path), yaml_path)
     missing = [key for key in _REQUIRED if key not in entries]
     if missing:
         raise ValueError(f"{yaml_path}: missing required key(s) {', '.join(missing)}")
 
     image = entries["image"]
-    if not isinstance(image, str) or not image:
-        raise ValueError(f"{yaml_path}: image must be a file name, got {image!r}")
+    if not isinstance(image, str) or not image or "\x00" in image:
+        raise ValueError(f"{yaml_path}: image must be a file name, got {_short(image)}")
     image_path = Path(image)
     if not image_path.is_absolute():
         image_path = yaml_path.parent / image_path
-    if not image_path.is_file():
+    if not image_path.exists():
         raise FileNotFoundError(f"{yaml_path}: map image {image_path} does not exist")
+    if not image_path.is_file():
+        kind = "a directory" if image_path.is_dir() else "not a regular file"
+        raise ValueError(f"{yaml_path}: map image {image_path} is {kind}")
+    if os.path.samefile(image_path, yaml_path):
+        raise ValueError(f"{yaml_path}: the image key names the YAML file itself ({image!r})")
 
     resolution = _as_float(entries["resolution"], "resolution", yaml_path)
-    if resolution <= 0.0:
-        raise ValueError(f"{yaml_path}: resolution must be > 0, got {resolution}")
     origin_raw = entries["origin"]
     if not isinstance(origin_raw, list) or len(origin_raw) != 3:
-        raise ValueError(f"{yaml_path}: origin must be a list [x, y, yaw], got {origin_raw!r}")
+        raise ValueError(
+            f"{yaml_path}: origin must be a list [x, y, yaw], got {_short(origin_raw)}"
+        )
     ox, oy, oyaw = (_as_float(v, "origin", yaml_path) for v in origin_raw)
     negate = _as_negate(entries["negate"], yaml_path)
     occ = _as_float(entries["occupied_thresh"], "occupied_thresh", yaml_path)
@@ -155,7 +237,19 @@ def read_map_yaml(path: str | os.PathLike[str]) -> MapMetadata:
         )
     mode = entries.get("mode", "trinary")
     if not isinstance(mode, str) or mode.lower() not in _MODES:
-        raise ValueError(f"{yaml_path}: mode must be one of {', '.join(_MODES)}, got {mode!r}")
+        raise ValueError(
+            f"{yaml_path}: mode must be one of {', '.join(_MODES)}, got {_short(mode)}"
+        )
+    try:  # the grid's own checks of resolution and origin, on a one-cell grid
+        OccupancyGrid(
+            np.zeros((1, 1)),
+            resolution=resolution,
+            origin=Pose2D(ox, oy, oyaw),
+            occupied_thresh=occ,
+            free_thresh=free,
+        )
+    except ValueError as exc:
+        raise ValueError(f"{yaml_path}: {exc}") from None
     return MapMetadata(image_path, resolution, (ox, oy, oyaw), negate, occ, free, mode.lower())
 
 
@@ -215,8 +309,22 @@ def map_yaml_text(meta: MapMetadata, image_name: str) -> str:
     return text
 
 
+def _check_image_size(width: int, height: int, path: Path) -> None:
+    """Refuse images with more pixels than a grid may have, before decoding them."""
+    if width * height > OccupancyGrid.MAX_CELLS:
+        raise ValueError(
+            f"{path}: image of {width} x {height} = {width * height} pixels is larger than "
+            f"the largest map navkit reads (OccupancyGrid.MAX_CELLS = 2**28 = "
+            f"{OccupancyGrid.MAX_CELLS} pixels)"
+        )
+
+
 def _pgm_header(data: bytes, path: Path) -> tuple[str, int, int, int, int]:
-    """Parse magic, width, height, maxval; return them and the raster offset."""
+    """Parse magic, width, height, maxval; return them and the raster offset.
+
+    ``data`` holds at least the header (the file's first 64 KiB). The size is
+    checked against ``OccupancyGrid.MAX_CELLS`` here, before any pixel is read.
+    """
     if data[:2] not in (b"P5", b"P2"):
         raise ValueError(f"{path}: not a PGM image (magic {data[:2]!r}, expected P5 or P2)")
     fields: list[int] = []
@@ -236,13 +344,16 @@ def _pgm_header(data: bytes, path: Path) -> tuple[str, int, int, int, int]:
         if not token:
             raise ValueError(f"{path}: PGM header ends before width, height and maxval")
         if not token.isdigit():
-            raise ValueError(f"{path}: bad PGM header field {token!r} (expected an integer)")
+            raise ValueError(f"{path}: bad PGM header field {token[:20]!r} (expected an integer)")
+        if len(token) > 12:
+            raise ValueError(f"{path}: PGM header field {token[:20]!r}... is out of range")
         fields.append(int(token))
     width, height, maxval = fields
     if width <= 0 or height <= 0:
         raise ValueError(f"{path}: PGM size must be positive, got {width} x {height}")
     if not 0 < maxval < 65536:
         raise ValueError(f"{path}: PGM maxval must be in 1..65535, got {maxval}")
+    _check_image_size(width, height, path)
     if pos >= n or not data[pos : pos + 1].isspace():
         raise ValueError(f"{path}: PGM header must end with one whitespace byte after maxval")
     return data[:2].decode(), width, height, maxval, pos + 1
@@ -262,27 +373,39 @@ def read_pgm(path: str | os.PathLike[str]) -> NDArray[np.float64]:
     ...     read_pgm(Path(folder) / "a.pgm")
     array([[  0., 255.]])
     """
-    pgm = Path(path)
-    data = pgm.read_bytes()
-    magic, width, height, maxval, offset = _pgm_header(data, pgm)
-    count = width * height
+    pgm = as_path(path, "path")
+    with pgm.open("rb") as fh:
+        head = fh.read(_PGM_HEADER_MAX)
+        magic, width, height, maxval, offset = _pgm_header(head, pgm)
+        count = width * height
+        fh.seek(offset)
+        if magic == "P5":
+            dtype = np.dtype(np.uint8) if maxval < 256 else np.dtype(">u2")
+            need = count * dtype.itemsize
+            raster = fh.read(need)
+        else:
+            # At most 5 digits and some whitespace per value; anything longer is
+            # not a P2 raster of this size.
+            raster = fh.read(count * 32 + _PGM_HEADER_MAX)
     if magic == "P5":
-        dtype = np.dtype(np.uint8) if maxval < 256 else np.dtype(">u2")
-        need = count * dtype.itemsize
-        if len(data) - offset < need:
+        if len(raster) < need:
             raise ValueError(
-                f"{pgm}: PGM raster truncated: {len(data) - offset} bytes for "
+                f"{pgm}: PGM raster truncated: {len(raster)} bytes for "
                 f"{width} x {height} pixels ({need} bytes needed)"
             )
-        pixels = np.frombuffer(data, dtype=dtype, count=count, offset=offset).astype(np.int64)
+        pixels = np.frombuffer(raster, dtype=dtype, count=count).astype(np.int64)
     else:
-        tokens = data[offset:].split()
+        tokens = raster.split(maxsplit=count)[:count]
         if len(tokens) < count:
             raise ValueError(f"{pgm}: PGM raster truncated: {len(tokens)} of {count} values")
-        try:
-            pixels = np.array([int(t) for t in tokens[:count]], dtype=np.int64)
-        except ValueError:
-            raise ValueError(f"{pgm}: P2 raster holds a non-integer value") from None
+        for token in tokens:
+            if not token.isdigit():
+                raise ValueError(
+                    f"{pgm}: P2 raster holds {token[:20]!r}, not a non-negative integer"
+                )
+            if len(token) > 5:  # more than 65535, read without converting a huge number
+                raise ValueError(f"{pgm}: PGM pixel value {token[:20]!r} exceeds maxval {maxval}")
+        pixels = np.array([int(t) for t in tokens], dtype=np.int64)
     if pixels.size and (pixels.min() < 0 or pixels.max() > maxval):
         raise ValueError(f"{pgm}: PGM pixel values exceed maxval {maxval}")
     return pixels.reshape(height, width).astype(np.float64) * (255.0 / maxval)
@@ -301,6 +424,30 @@ def pgm_bytes(pixels: NDArray[np.uint8]) -> bytes:
     return header + np.ascontiguousarray(pixels, dtype=np.uint8).tobytes()
 
 
+@contextlib.contextmanager
+def _pillow_errors(path: Path, image_module: Any) -> Iterator[None]:
+    """Turn whatever Pillow raises on a bad file into a ValueError naming it."""
+    try:
+        with warnings.catch_warnings():
+            # Our own size limit applies (checked before decoding), not Pillow's warning.
+            warnings.simplefilter("ignore", image_module.DecompressionBombWarning)
+            yield
+    except (FileNotFoundError, PermissionError):
+        raise
+    except image_module.UnidentifiedImageError:
+        raise ValueError(f"{path}: not an image file Pillow can identify") from None
+    except image_module.DecompressionBombError as exc:
+        raise ValueError(
+            f"{path}: {exc} This is Pillow's decompression-bomb limit "
+            "(PIL.Image.MAX_IMAGE_PIXELS); navkit reads up to OccupancyGrid.MAX_CELLS = "
+            "2**28 pixels: raise Pillow's limit or save the map as PGM to read it"
+        ) from None
+    except (OSError, SyntaxError, EOFError, ValueError, TypeError, IndexError, KeyError) as exc:
+        raise ValueError(f"{path}: cannot read the image ({type(exc).__name__}: {exc})") from None
+    except (struct.error, zlib.error) as exc:
+        raise ValueError(f"{path}: cannot read the image ({type(exc).__name__}: {exc})") from None
+
+
 def _read_with_pillow(path: Path) -> tuple[NDArray[np.float64], NDArray[np.float64] | None]:
     try:
         from PIL import Image
@@ -309,16 +456,24 @@ def _read_with_pillow(path: Path) -> tuple[NDArray[np.float64], NDArray[np.float
             f"reading the map image {path.name} needs Pillow (only PGM is read without "
             "it); install it with `pip install pillow`"
         ) from None
-    with Image.open(path) as img:
-        if img.mode not in ("L", "LA", "RGB", "RGBA", "I", "I;16", "P", "1"):
-            img = img.convert("RGBA")
-        if img.mode in ("P", "1"):
-            img = img.convert("RGBA" if "transparency" in img.info else "L")
-        arr = np.asarray(img)
-        mode = img.mode
-    if mode in ("I", "I;16"):
+    with _pillow_errors(path, Image):
+        img = Image.open(path)  # reads the header only
+    with img:
+        width, height = img.size
+        _check_image_size(width, height, path)
+        with _pillow_errors(path, Image):
+            picture: Any = img
+            native = picture.mode in ("L", "LA", "RGB", "RGBA", "P", "1")
+            if not native and not picture.mode.startswith("I"):
+                picture = picture.convert("RGBA")
+            if picture.mode in ("P", "1"):
+                picture = picture.convert("RGBA" if "transparency" in picture.info else "L")
+            arr = np.asarray(picture)
+            mode = picture.mode
+    if mode.startswith("I"):
         peak = 65535.0 if arr.max(initial=0) > 255 else 255.0
-        return arr.astype(np.float64) * (255.0 / peak), None
+        grey = np.clip(arr.astype(np.float64) * (255.0 / peak), 0.0, 255.0)
+        return grey, None
     if arr.ndim == 2:
         return arr.astype(np.float64), None
     has_alpha = mode in ("LA", "RGBA")
@@ -347,6 +502,8 @@ def read_image(path: Path) -> tuple[NDArray[np.float64], NDArray[np.float64] | N
         return read_pgm(path), None
     if path.suffix.lower() == ".pgm":
         raise ValueError(f"{path}: not a PGM image (magic {magic!r}, expected P5 or P2)")
+    if not magic:
+        raise ValueError(f"{path}: the image file is empty")
     return _read_with_pillow(path)
 
 
@@ -407,9 +564,17 @@ def read_map(path: str | os.PathLike[str]) -> OccupancyGrid:
     FileNotFoundError
         Missing YAML or image file.
     ValueError
-        Missing or invalid YAML keys, malformed PGM.
+        Anything malformed, with the file and the problem named: a YAML that
+        is not a small UTF-8 map YAML (an image passed instead, binary data),
+        missing or invalid keys (see :func:`read_map_yaml` for the ranges),
+        an image that is garbage, truncated, not an image (the YAML itself, a
+        text file), a directory, or larger than ``OccupancyGrid.MAX_CELLS``
+        (``2**28``) pixels (checked from its header before decoding; images
+        read with Pillow also against Pillow's decompression-bomb limit).
     ImportError
         A non-PGM image and Pillow is not installed.
+    OSError
+        The operating system refuses to read a file (e.g. ``PermissionError``).
 
     Examples
     --------
@@ -424,7 +589,10 @@ def read_map(path: str | os.PathLike[str]) -> OccupancyGrid:
     ([[True, False]], [[False, True]], Pose2D(x=1.0, y=2.0, theta=0.0))
     """
     meta = read_map_yaml(path)
-    grey, alpha = read_image(meta.image)
+    try:
+        grey, alpha = read_image(meta.image)
+    except ValueError as exc:
+        raise ValueError(f"{path}: map image {exc}") from None
     prob, unknown = pixel_occupancy(grey, alpha, meta)
     return OccupancyGrid.from_probabilities(
         np.where(unknown, 0.5, prob)[::-1],
@@ -515,26 +683,54 @@ def _image_path(yaml_path: Path) -> Path:
     """The image written beside ``yaml_path``; refuses paths it would overwrite."""
     if not yaml_path.name:
         raise ValueError(f"path must name a YAML file, got {str(yaml_path)!r}")
-    if yaml_path.suffix.lower() == ".pgm":
+    suffix = yaml_path.suffix.lower()
+    if suffix == ".pgm":
         raise ValueError(
             f"path {str(yaml_path)!r} ends in .pgm, the image's own name: the image would "
             "overwrite the YAML; give the YAML file another suffix such as .yaml"
         )
+    if suffix in _IMAGE_SUFFIXES:
+        raise ValueError(
+            f"path {str(yaml_path)!r} ends in {yaml_path.suffix}, an image suffix: the map "
+            "YAML would overwrite an image file; give the YAML file the suffix .yaml"
+        )
     image = yaml_path.with_suffix(".pgm")
     for target in (yaml_path, image):
         if target.is_dir():
-            raise IsADirectoryError(f"cannot write the map file {target}: it is a directory")
+            raise ValueError(f"cannot write the map file {target}: it is a directory")
     if image.exists() and yaml_path.exists() and os.path.samefile(image, yaml_path):
         raise ValueError(f"{yaml_path} and {image} are the same file")
+    if image.exists() and not _names_image(yaml_path, image):
+        raise ValueError(
+            f"{image} already exists and is not the image of the map {yaml_path}: saving "
+            "would overwrite it (another map's image?); remove it or save under another name"
+        )
     return image
+
+
+def _names_image(yaml_path: Path, image: Path) -> bool:
+    """Whether ``yaml_path`` is a map YAML whose ``image`` key is the file ``image``."""
+    try:
+        if not yaml_path.is_file():
+            return False
+        name = _load_yaml(_yaml_text(yaml_path), yaml_path).get("image")
+        if not isinstance(name, str) or not name or "\x00" in name:
+            return False
+        named = Path(name) if Path(name).is_absolute() else yaml_path.parent / name
+        return named.exists() and os.path.samefile(named, image)
+    except (OSError, ValueError):
+        return False
 
 
 def write_map(grid: OccupancyGrid, path: str | os.PathLike[str], *, mode: str = "trinary") -> Path:
     """Save a grid as a ROS map_server map: ``path`` (YAML) and a P5 PGM beside it.
 
-    Both files are written to temporary files in the same folder first and then
-    renamed over the targets (``os.replace``), so a failure while writing (a
-    full disk, an interrupt) leaves an existing map as it was. The image is
+    An existing image is only replaced when it is the image of the map being
+    replaced (the existing YAML at ``path`` names it): a save never writes over
+    another map's image. Both files are written to temporary files in the same
+    folder first and then renamed over the targets (``os.replace``), so a
+    failure while writing (a full disk, an interrupt) leaves an existing map as
+    it was. The image is
     renamed first; only a crash between the two renames (microseconds) could
     pair the new image with the old YAML.
 
@@ -558,12 +754,19 @@ def write_map(grid: OccupancyGrid, path: str | os.PathLike[str], *, mode: str = 
 
     Raises
     ------
+    TypeError
+        ``grid`` is not an OccupancyGrid, ``mode`` not a str, ``path`` not a
+        str or path-like.
     ValueError
         Unknown ``mode``; a ``path`` ending in ``.pgm`` (in any case: the image
-        would overwrite the YAML); an image name that the YAML could not give
-        back when read. Nothing is written then.
-    IsADirectoryError
-        The YAML or the image path is a directory.
+        would overwrite the YAML) or in another image suffix (``.png``,
+        ``.jpg``, ...: the YAML would overwrite an image); an image name that
+        the YAML could not give back when read; the YAML or the image path is
+        a directory; the image path holds a file that the existing YAML at
+        ``path`` does not name (another map's image). Nothing is written then.
+    OSError
+        Writing fails (disk full, permissions, ...): the temporary files are
+        removed and an existing map is left as it was.
 
     Examples
     --------
@@ -585,9 +788,11 @@ def write_map(grid: OccupancyGrid, path: str | os.PathLike[str], *, mode: str = 
     """
     if not isinstance(grid, OccupancyGrid):
         raise TypeError(f"grid must be an OccupancyGrid, got {type(grid).__name__}")
+    if not isinstance(mode, str):
+        raise TypeError(f"mode must be a str, got {type(mode).__name__}")
     if mode not in _WRITE_MODES:
         raise ValueError(f"mode must be 'trinary' or 'scale', got {mode!r}")
-    yaml_path = Path(path)
+    yaml_path = as_path(path, "path")
     image = _image_path(yaml_path)
     o = grid.origin
     meta = MapMetadata(

@@ -7,13 +7,14 @@ names works, and the fields of an outgoing message are returned as plain values.
 from __future__ import annotations
 
 import math
+import numbers
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
-from navkit._shared.validation import finite_float, positive_float
+from navkit._shared.validation import as_bool, finite_float
 from navkit.geometry import Pose2D
 from navkit.mapping import LaserScan, OccupancyGrid
 
@@ -21,16 +22,50 @@ __all__ = ["OccupancyGridMsgFields", "grid_from_msg", "grid_to_msg_fields", "sca
 
 
 def _positive_int(value: Any, name: str) -> int:
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value <= 0:
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)):
+        raise TypeError(f"{name} must be an integer, got {type(value).__name__}")
+    if value <= 0:
         raise ValueError(f"{name} must be a positive integer, got {value!r}")
     return int(value)
 
 
+def _resolution(value: Any, name: str) -> float:
+    """A cell size in the range every OccupancyGrid accepts ([1e-6, 1e6] m)."""
+    out = finite_float(value, name)
+    try:
+        OccupancyGrid(np.zeros((1, 1)), resolution=out)
+    except ValueError as exc:
+        raise ValueError(str(exc).replace("resolution", name, 1)) from None
+    return out
+
+
 def _tuple_of_floats(value: Any, n: int, name: str) -> tuple[float, ...]:
-    items = tuple(value)
+    if isinstance(value, (str, bytes)):
+        raise TypeError(f"{name} must be a sequence of {n} numbers, got {type(value).__name__}")
+    try:
+        items = tuple(value)
+    except TypeError:
+        raise TypeError(
+            f"{name} must be a sequence of {n} numbers, got {type(value).__name__}"
+        ) from None
     if len(items) != n:
-        raise ValueError(f"{name} must hold {n} numbers, got {value!r}")
+        raise ValueError(f"{name} must hold {n} numbers, got {len(items)}")
     return tuple(finite_float(v, f"{name}[{i}]") for i, v in enumerate(items))
+
+
+def _occupancy_values(raw: Any, name: str) -> NDArray[np.int64]:
+    """Occupancy values -1..100 as int64; floats, booleans and strings are refused."""
+    arr = np.asarray(raw)
+    if arr.dtype.kind == "O":
+        items = arr.ravel().tolist()
+        if all(isinstance(v, numbers.Integral) and not isinstance(v, bool) for v in items):
+            # Integers too large for int64 (NumPy kept them as objects).
+            raise ValueError(f"{name} values must be -1 (unknown) or 0..100")
+    if arr.dtype == np.bool_ or arr.dtype.kind not in "iu":
+        raise TypeError(f"{name} must hold integers, got dtype {arr.dtype}")
+    if arr.size and (arr.min() < -1 or arr.max() > 100):
+        raise ValueError(f"{name} values must be -1 (unknown) or 0..100")
+    return arr.astype(np.int64)
 
 
 @dataclass(frozen=True, slots=True, eq=False)
@@ -40,16 +75,24 @@ class OccupancyGridMsgFields:
     Parameters
     ----------
     width, height : int
-        ``info.width`` (columns) and ``info.height`` (rows).
+        ``info.width`` (columns) and ``info.height`` (rows), >= 1.
     resolution : float
-        ``info.resolution``, m per cell.
+        ``info.resolution``, m per cell, in [1e-6, 1e6].
     origin_position : (float, float, float)
-        ``info.origin.position`` ``(x, y, z)``.
+        ``info.origin.position`` ``(x, y, z)``, finite.
     origin_orientation : (float, float, float, float)
-        ``info.origin.orientation`` quaternion ``(x, y, z, w)``.
+        ``info.origin.orientation`` quaternion ``(x, y, z, w)``, finite.
     data : array_like of int, shape (width * height,)
         Row-major occupancy in percent (0..100) or -1 for unknown; stored as a
-        read-only int8 copy.
+        read-only int8 copy (the caller's array is neither kept nor frozen).
+
+    Raises
+    ------
+    TypeError
+        A size that is not an integer, ``data`` that is not integers, a number
+        that is not a real number.
+    ValueError
+        A value outside its range, ``data`` of the wrong length.
 
     Examples
     --------
@@ -71,7 +114,7 @@ class OccupancyGridMsgFields:
         height = _positive_int(self.height, "height")
         object.__setattr__(self, "width", width)
         object.__setattr__(self, "height", height)
-        object.__setattr__(self, "resolution", positive_float(self.resolution, "resolution"))
+        object.__setattr__(self, "resolution", _resolution(self.resolution, "resolution"))
         object.__setattr__(
             self, "origin_position", _tuple_of_floats(self.origin_position, 3, "origin_position")
         )
@@ -80,15 +123,11 @@ class OccupancyGridMsgFields:
             "origin_orientation",
             _tuple_of_floats(self.origin_orientation, 4, "origin_orientation"),
         )
-        raw = np.asarray(self.data)
-        if raw.dtype == np.bool_ or raw.dtype.kind not in "iu":
-            raise TypeError(f"data must hold integers, got dtype {raw.dtype}")
+        raw = _occupancy_values(self.data, "data")
         if raw.ndim != 1 or raw.shape[0] != width * height:
             raise ValueError(
                 f"data must have shape ({width * height},) (width * height), got {raw.shape}"
             )
-        if raw.size and (raw.min() < -1 or raw.max() > 100):
-            raise ValueError("data values must be -1 (unknown) or 0..100")
         data = np.array(raw, dtype=np.int8, copy=True)
         data.flags.writeable = False
         object.__setattr__(self, "data", data)
@@ -99,15 +138,19 @@ def grid_from_msg(msg: Any) -> OccupancyGrid:
 
     ``data`` is row-major int8 with row 0 at the origin: -1 is unknown and
     0..100 the occupancy probability in percent. The origin's quaternion is
-    reduced to its yaw.
+    normalised and reduced to its yaw (a zero quaternion, ROS 1's default,
+    gives yaw 0).
 
     Raises
     ------
     TypeError
-        ``msg`` lacks a field of the message.
+        ``msg`` lacks a field of the message, or a field has the wrong type
+        (a size that is not an integer, ``data`` that is not integers).
     ValueError
-        Non-positive size, ``data`` of the wrong length or with values outside
-        -1..100.
+        Non-positive size, more than ``OccupancyGrid.MAX_CELLS`` cells,
+        ``data`` of the wrong length or with values outside -1..100, a
+        resolution or origin outside the ranges of
+        :class:`~navkit.mapping.OccupancyGrid`.
 
     Examples
     --------
@@ -122,28 +165,45 @@ def grid_from_msg(msg: Any) -> OccupancyGrid:
     """
     try:
         info = msg.info
-        width = int(info.width)
-        height = int(info.height)
-        resolution = info.resolution
+        width_raw, height_raw, resolution_raw = info.width, info.height, info.resolution
         pos = info.origin.position
         q = info.origin.orientation
-        ox, oy = float(pos.x), float(pos.y)
-        qx, qy, qz, qw = float(q.x), float(q.y), float(q.z), float(q.w)
+        xyz = (pos.x, pos.y)
+        quat = (q.x, q.y, q.z, q.w)
         raw = msg.data
     except AttributeError as exc:
         raise TypeError(f"msg is not a nav_msgs/OccupancyGrid: {exc}") from None
-    data = np.asarray(raw, dtype=np.int64).ravel()
-    if width <= 0 or height <= 0:
-        raise ValueError(f"msg.info width and height must be positive, got {width}x{height}")
+    width = _positive_int(width_raw, "msg.info.width")
+    height = _positive_int(height_raw, "msg.info.height")
+    if width * height > OccupancyGrid.MAX_CELLS:
+        raise ValueError(
+            f"msg.info width x height = {width} x {height} = {width * height} cells exceeds "
+            f"OccupancyGrid.MAX_CELLS (2**28 = {OccupancyGrid.MAX_CELLS})"
+        )
+    resolution = _resolution(resolution_raw, "msg.info.resolution")
+    ox, oy = (
+        finite_float(v, f"msg.info.origin.position.{k}") for v, k in zip(xyz, "xy", strict=True)
+    )
+    qx, qy, qz, qw = (
+        finite_float(v, f"msg.info.origin.orientation.{k}")
+        for v, k in zip(quat, "xyzw", strict=True)
+    )
+    norm = math.hypot(qx, qy, qz, qw)
+    if norm > 0.0:  # a zero quaternion (ROS 1's default) means no rotation
+        qx, qy, qz, qw = qx / norm, qy / norm, qz / norm, qw / norm
+    data = _occupancy_values(raw, "msg.data").ravel()
     if data.size != width * height:
         raise ValueError(
             f"msg.data has {data.size} values, expected width*height = {width * height}"
         )
-    if ((data < -1) | (data > 100)).any():
-        raise ValueError("msg.data values must be -1 (unknown) or 0..100")
     yaw = math.atan2(2.0 * (qw * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz))
     prob = np.where(data < 0, 0.5, data / 100.0).reshape(height, width)
-    return OccupancyGrid.from_probabilities(prob, resolution=resolution, origin=Pose2D(ox, oy, yaw))
+    try:
+        return OccupancyGrid.from_probabilities(
+            prob, resolution=resolution, origin=Pose2D(ox, oy, yaw)
+        )
+    except ValueError as exc:
+        raise ValueError(f"msg.info: {exc}") from None
 
 
 def grid_to_msg_fields(grid: OccupancyGrid, *, trinary: bool = False) -> OccupancyGridMsgFields:
@@ -154,7 +214,7 @@ def grid_to_msg_fields(grid: OccupancyGrid, *, trinary: bool = False) -> Occupan
     grid : OccupancyGrid
         The map.
     trinary : bool, default False
-        False: ``data`` is the rounded probability in percent, with -1 for
+        (A bool.) False: ``data`` is the rounded probability in percent, with -1 for
         cells whose log-odds are exactly 0 (never observed). True: 100 for
         occupied, 0 for free, -1 for unknown cells according to the grid's
         thresholds (what map_server publishes).
@@ -174,7 +234,7 @@ def grid_to_msg_fields(grid: OccupancyGrid, *, trinary: bool = False) -> Occupan
     """
     if not isinstance(grid, OccupancyGrid):
         raise TypeError(f"grid must be an OccupancyGrid, got {type(grid).__name__}")
-    if trinary:
+    if as_bool(trinary, "trinary"):
         data = np.full(grid.shape, -1, dtype=np.int8)
         data[grid.occupied()] = 100
         data[grid.free()] = 0
@@ -197,12 +257,17 @@ def scan_from_msg(msg: Any) -> LaserScan:
     """Scan from any object with the ``sensor_msgs/LaserScan`` field names.
 
     Reads ``ranges``, ``angle_min``, ``angle_increment``, ``range_min``,
-    ``range_max`` and (when present and non-empty) ``intensities``.
+    ``range_max`` and (when present and non-empty) ``intensities``, checked
+    as :class:`~navkit.mapping.LaserScan` checks them.
 
     Raises
     ------
     TypeError
-        ``msg`` lacks one of the fields.
+        ``msg`` lacks one of the fields, or a field is not real-valued
+        (complex numbers, strings, booleans).
+    ValueError
+        A value outside the ranges of :class:`~navkit.mapping.LaserScan`
+        (angles in degrees included).
 
     Examples
     --------
@@ -220,10 +285,10 @@ def scan_from_msg(msg: Any) -> LaserScan:
         fields[name] = getattr(msg, name)
     intensities = getattr(msg, "intensities", None)
     return LaserScan(
-        np.asarray(fields["ranges"], dtype=np.float64),
+        fields["ranges"],
         angle_min=fields["angle_min"],
         angle_increment=fields["angle_increment"],
         range_min=fields["range_min"],
         range_max=fields["range_max"],
-        intensities=None if intensities is None else np.asarray(intensities, dtype=np.float64),
+        intensities=intensities,
     )

@@ -1,7 +1,7 @@
 """Global planning on traversal-cost grids: A*, distance fields, Field D*, map planning.
 
 Planners work on per-cell traversal-cost grids indexed ``[row, col]`` (finite
-values >= 1, ``np.inf`` impassable; :func:`navkit.mapping.traversal_costs` builds
+values in ``[1, 1e12]``, ``np.inf`` impassable; :func:`navkit.mapping.traversal_costs` builds
 them from an occupancy grid). Units are SI. Every planner returns a
 :class:`Path2D` whose ``frame`` says what its points are: ``"grid"`` —
 continuous ``(row, col)`` with integers at cell centres — or ``"world"`` —
@@ -13,6 +13,15 @@ One-shot functions (:func:`astar`, :func:`distance_field`, :func:`field_dstar`,
 :func:`plan_path`) validate their input on every call; the prepared planners
 (:class:`AStarPlanner`, :class:`FieldDStar`, :class:`MapPlanner`) do it once and
 answer many queries.
+
+Ranges, the same for every planner: finite costs in ``[1, 1e12]`` (or ``inf``)
+on at most ``2**31 - 1`` cells (Field D*: corner nodes), ``heuristic_weight`` in
+``[0, 1e6]``; Field D* path costs below ``2**52`` cost units × cells (float64
+resolution, see :class:`FieldDStar`), its ``resolution`` in ``[1e-6, 1e6]`` m
+and world points within ``±1e9`` m; ``robot_radius`` in ``[0, 1e6]`` m. Flags
+are ``True`` or ``False`` only and cells pairs of integers. Bad input raises
+``ValueError`` or ``TypeError`` naming the argument; an unreachable goal
+:class:`navkit.NoPathError`.
 """
 
 from navkit.planning.grid._astar import AStarPlanner, astar

@@ -7,9 +7,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from navkit._shared.costs import validate_costs_lowest
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import as_bool, positive_float
+from navkit._shared.validation import as_bool
 from navkit.errors import NoPathError
 from navkit.planning.grid._arguments import (
     check_connectivity,
@@ -17,6 +16,7 @@ from navkit.planning.grid._arguments import (
     traversable_cell,
 )
 from navkit.planning.grid._astar_kernels import grid_search, trace_path
+from navkit.planning.grid._limits import MAX_HEURISTIC_WEIGHT, bounded_float, checked_costs
 from navkit.planning.grid._path import Path2D
 from navkit.planning.grid._workspace import workspace
 
@@ -43,9 +43,10 @@ class AStarPlanner:
     Parameters
     ----------
     costs : array_like, shape (rows, cols)
-        Per-cell traversal cost (per cell length): finite values >= 1 are
-        traversable, ``np.inf`` is impassable. Copied: later changes to the
-        caller's array do not reach the planner.
+        Per-cell traversal cost (per cell length): finite values in
+        ``[1, 1e12]`` are traversable, ``np.inf`` is impassable; at most
+        ``2**31 - 1`` cells. Copied: later changes to the caller's array do not
+        reach the planner.
     connectivity : {8, 4}, default 8
         8 allows diagonal moves, 4 only orthogonal ones.
     corner_cutting : bool, default False
@@ -54,19 +55,21 @@ class AStarPlanner:
         With True only its two end cells matter (scikit-image ``MCP_Geometric``).
         Ignored when ``connectivity=4``.
     heuristic_weight : float, default 1.0
-        Multiplies the heuristic. 1 (or anything in [0, 1]) gives optimal paths;
-        0 is Dijkstra's algorithm. A weight w > 1 is weighted A*: it usually
-        expands far fewer cells and returns a path costing at most w times the
-        optimum (the heuristic is consistent and no cell is expanded twice;
-        Likhachev, Gordon & Thrun, "ARA*", NIPS 2003, Theorem 1).
+        Multiplies the heuristic, in ``[0, 1e6]``. 1 (or anything in [0, 1])
+        gives optimal paths; 0 is Dijkstra's algorithm. A weight w > 1 is
+        weighted A*: it usually expands far fewer cells and returns a path
+        costing at most w times the optimum (the heuristic is consistent and no
+        cell is expanded twice; Likhachev, Gordon & Thrun, "ARA*", NIPS 2003,
+        Theorem 1).
 
     Raises
     ------
     ValueError
         Invalid ``costs`` (see :func:`navkit.planning.distance_field`), bad
-        ``connectivity`` or a negative ``heuristic_weight``.
+        ``connectivity`` or ``heuristic_weight`` outside ``[0, 1e6]``.
     TypeError
-        Non-integer connectivity or non-bool ``corner_cutting``.
+        Non-integer connectivity, non-bool ``corner_cutting``, non-real
+        ``heuristic_weight``.
 
     Notes
     -----
@@ -105,7 +108,7 @@ class AStarPlanner:
         corner_cutting: bool = False,
         heuristic_weight: float = 1.0,
     ) -> None:
-        grid, lowest = validate_costs_lowest(costs)
+        grid, lowest = checked_costs(costs)
         # Validation converts only when needed: copy whenever the result may
         # still be (a view of) the caller's array.
         if grid is costs or grid.base is not None:
@@ -141,7 +144,9 @@ class AStarPlanner:
         check_search_size(grid)
         self._eight = check_connectivity(connectivity)
         self._cutting = as_bool(corner_cutting, "corner_cutting")
-        self._weight = positive_float(heuristic_weight, "heuristic_weight", allow_zero=True)
+        self._weight = bounded_float(
+            heuristic_weight, "heuristic_weight", 0.0, MAX_HEURISTIC_WEIGHT
+        )
         # The smallest cost is finite whenever a query can run (its start is
         # traversable), so the scale is finite then.
         self._scale = self._weight * lowest
@@ -288,8 +293,9 @@ def astar(
     Parameters
     ----------
     costs : array_like, shape (rows, cols)
-        Per-cell traversal cost (per cell length): finite values >= 1 are
-        traversable, ``np.inf`` is impassable. Not modified.
+        Per-cell traversal cost (per cell length): finite values in
+        ``[1, 1e12]`` are traversable, ``np.inf`` is impassable; at most
+        ``2**31 - 1`` cells. Not modified.
     start_cell, goal_cell : (int, int)
         Cells ``(row, col)``; both must be inside the grid and traversable.
     connectivity : {8, 4}, default 8
@@ -297,8 +303,8 @@ def astar(
     corner_cutting : bool, default False
         As in :class:`AStarPlanner`.
     heuristic_weight : float, default 1.0
-        As in :class:`AStarPlanner`: 1 is A*, 0 Dijkstra, w > 1 weighted A*
-        (path cost at most w times the optimum).
+        As in :class:`AStarPlanner`, in ``[0, 1e6]``: 1 is A*, 0 Dijkstra,
+        w > 1 weighted A* (path cost at most w times the optimum).
 
     Returns
     -------
@@ -321,9 +327,10 @@ def astar(
     ValueError
         Invalid ``costs`` (see :func:`navkit.planning.distance_field`), ``start_cell`` or
         ``goal_cell`` outside the grid or on an impassable cell, bad
-        ``connectivity`` or a negative ``heuristic_weight``.
+        ``connectivity`` or ``heuristic_weight`` outside ``[0, 1e6]``.
     TypeError
-        Non-integer cells, connectivity or non-bool ``corner_cutting``.
+        Cells that are not pairs of integers (booleans, mappings and strings
+        included); non-integer connectivity; non-bool ``corner_cutting``.
     navkit.NoPathError
         ``goal_cell`` is unreachable from ``start_cell``; ``expanded`` holds the
         number of cells expanded.
@@ -341,7 +348,7 @@ def astar(
     >>> round(astar(costs, (2, 0), (0, 3), corner_cutting=True).cost, 6)
     4.414214
     """
-    grid, lowest = validate_costs_lowest(costs)
+    grid, lowest = checked_costs(costs)
     planner = AStarPlanner._borrowing(
         grid, lowest, connectivity, corner_cutting, heuristic_weight
     )

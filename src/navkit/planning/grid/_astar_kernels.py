@@ -17,9 +17,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
-from navkit._shared.jit import njit_inline_no_refcount, njit_no_refcount
+from navkit._shared.jit import njit_cached, njit_inline, njit_inline_no_refcount, njit_no_refcount
 from navkit.planning.grid._search_heap import clear, pop, precedes_top, push, tie_key
 
 SQRT2 = math.sqrt(2.0)
@@ -31,7 +30,7 @@ DR = np.array([-1, 1, 0, 0, -1, -1, 1, 1], dtype=np.int64)
 DC = np.array([0, 0, -1, 1, -1, 1, -1, 1], dtype=np.int64)
 
 
-@njit(cache=True, inline="always")
+@njit_inline
 def _cells_to_goal(r: int, c: int, gr: int, gc: int, octile: bool) -> float:
     """Octile (8-connected) or Manhattan (4-connected) distance in cells."""
     dr = abs(r - gr)
@@ -249,7 +248,7 @@ def grid_search(
     return expanded, found
 
 
-@njit(cache=True)
+@njit_cached
 def trace_path(parent: np.ndarray, cols: int, goal: int) -> tuple[np.ndarray, float]:
     """Cells (K, 2) ``(row, col)`` from the search source to ``goal`` and their length.
 

@@ -6,9 +6,9 @@ from typing import Any
 
 from numpy.typing import ArrayLike
 
-from navkit._shared.costs import validate_costs_lowest
 from navkit._shared.types import FloatArray
 from navkit.planning.grid._astar import AStarPlanner
+from navkit.planning.grid._limits import checked_costs
 
 __all__ = ["distance_field"]
 
@@ -31,9 +31,14 @@ def distance_field(
     Parameters
     ----------
     costs : array_like, shape (rows, cols)
-        Per-cell traversal cost: finite values >= 1 traversable, ``np.inf``
-        impassable. Integer or float dtype; NaN, values below 1, booleans,
-        empty arrays or other dimensions raise ``ValueError``. Not modified.
+        Per-cell traversal cost: finite values in ``[1, 1e12]`` traversable,
+        ``np.inf`` impassable; at most ``2**31 - 1`` cells. Integer or float
+        dtype; booleans, complex numbers, strings, NaN, values below 1 or
+        finite values above 1e12, empty arrays or other dimensions raise
+        ``ValueError``. Not modified. (1e12 is every grid planner's
+        maximum: sums of such costs over any grid stay far from overflow, and
+        it leaves Field D*, whose path costs must stay below ``2**52``, see
+        :class:`FieldDStar`, paths of 4,500 cells at that cost.)
     goal_cell : (int, int)
         Goal cell ``(row, col)``; inside the grid and traversable.
     connectivity : {8, 4}, default 8
@@ -54,7 +59,8 @@ def distance_field(
         Invalid ``costs``, ``goal_cell`` outside the grid or impassable, bad
         ``connectivity``.
     TypeError
-        Non-integer ``goal_cell`` or connectivity, non-bool ``corner_cutting``.
+        ``goal_cell`` not a pair of integers, non-integer connectivity,
+        non-bool ``corner_cutting``.
 
     Examples
     --------
@@ -68,6 +74,6 @@ def distance_field(
     array([[0.    ,    inf, 2.8284],
            [1.    , 1.4142, 2.4142]])
     """
-    grid, lowest = validate_costs_lowest(costs)
+    grid, lowest = checked_costs(costs)
     planner = AStarPlanner._borrowing(grid, lowest, connectivity, corner_cutting, 1.0)
     return planner.distance_field(goal_cell)

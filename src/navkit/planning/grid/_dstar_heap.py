@@ -23,12 +23,12 @@ at most once.
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
 
+from navkit._shared.jit import njit_cached, njit_inline
 from navkit._shared.jit import njit_no_refcount as _njit_no_refcount
 
 
-@njit(cache=True)
+@njit_cached
 def heap_new(n_nodes: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Allocate an empty heap able to hold every one of ``n_nodes`` node ids."""
     nodes = np.empty(n_nodes, dtype=np.int64)
@@ -38,7 +38,7 @@ def heap_new(n_nodes: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarr
     return nodes, keys, pos, size
 
 
-@njit(cache=True, inline="always")
+@njit_inline
 def _less(keys: np.ndarray, i: int, j: int) -> bool:
     if keys[i, 0] < keys[j, 0]:
         return True
@@ -47,7 +47,7 @@ def _less(keys: np.ndarray, i: int, j: int) -> bool:
     return bool(keys[i, 1] < keys[j, 1])
 
 
-@njit(cache=True, inline="always")
+@njit_inline
 def _swap(nodes: np.ndarray, keys: np.ndarray, pos: np.ndarray, i: int, j: int) -> None:
     ni = nodes[i]
     nj = nodes[j]

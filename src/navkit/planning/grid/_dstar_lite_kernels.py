@@ -48,8 +48,8 @@ import math
 from typing import Any
 
 import numpy as np
-from numba import njit
 
+from navkit._shared.jit import njit_cached, njit_inline
 from navkit.planning.grid._dstar_heap import heap_push, heap_remove
 
 SQRT2 = math.sqrt(2.0)
@@ -120,7 +120,7 @@ def params(
 
 
 
-@njit(cache=True, inline="always")
+@njit_inline
 def corner_cost(g1: float, g2: float, c: float, b: float, interp: bool) -> float:
     """Cost-to-goal of a node through the edge between neighbours s1 and s2.
 
@@ -172,7 +172,7 @@ def corner_cost(g1: float, g2: float, c: float, b: float, interp: bool) -> float
 
 
 
-@njit(cache=True, inline="always")
+@njit_inline
 def heuristic(sr: int, sc: int, i: int, j: int, hscale: float) -> float:
     """Heuristic ``hscale * octile`` distance between nodes (sr, sc) and (i, j)."""
     dr = abs(i - sr)
@@ -183,7 +183,7 @@ def heuristic(sr: int, sc: int, i: int, j: int, hscale: float) -> float:
 
 
 
-@njit(cache=True, inline="always")
+@njit_inline
 def _pair_value(
     pad: np.ndarray, width: int, g: np.ndarray, ncols: int, i: int, j: int, k: int, interp: bool
 ) -> float:
@@ -199,7 +199,7 @@ def _pair_value(
     return corner_cost(g1, g[(i + PAIR_DR[k]) * ncols + j + PAIR_DC[k]], c, b, interp)
 
 
-@njit(cache=True)
+@njit_cached
 def node_rhs(
     pad: np.ndarray, width: int, g: np.ndarray, ncols: int, i: int, j: int, interp: bool
 ) -> float:
@@ -212,7 +212,7 @@ def node_rhs(
     return best
 
 
-@njit(cache=True, inline="always")
+@njit_inline
 def _update_vertex(
     s: int,
     g: np.ndarray,
@@ -236,7 +236,7 @@ def _update_vertex(
         heap_remove(nodes, keys, pos, size, s)
 
 
-@njit(cache=True)
+@njit_cached
 def settle(
     st: tuple[np.ndarray, ...],
     prm: tuple[Any, ...],
@@ -317,7 +317,7 @@ def settle(
     return expanded
 
 
-@njit(cache=True)
+@njit_cached
 def update_cells(
     st: tuple[np.ndarray, ...],
     prm: tuple[Any, ...],

@@ -3,15 +3,15 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from navkit._shared.costs import validate_costs
 from navkit._shared.grid_coords import as_pairs, one_or_many, round_half_up
 from navkit._shared.types import FloatArray, IntArray
-from navkit._shared.validation import as_bool, as_cell, as_float_array, positive_float
+from navkit._shared.validation import as_bool, as_cell, as_float_array
 from navkit.errors import NoPathError
 from navkit.geometry import Pose2D, as_pose
 from navkit.planning.grid._dstar_heap import heap_new, heap_push
@@ -23,6 +23,15 @@ from navkit.planning.grid._dstar_lite_kernels import (
     update_cells,
 )
 from navkit.planning.grid._field_path_kernels import NO_PATH, OK, extract_path
+from navkit.planning.grid._limits import (
+    COORDINATE_LIMIT,
+    MAX_COST,
+    PATH_COST_LIMIT,
+    RESOLUTION_MAX,
+    RESOLUTION_MIN,
+    bounded_float,
+    checked_costs,
+)
 from navkit.planning.grid._path import Path2D
 from navkit.planning.grid._polyline_kernels import polyline_cost, shortcut
 
@@ -33,6 +42,9 @@ _SHORTCUT_PATIENCE = 8
 _IDENTITY = Pose2D(0.0, 0.0, 0.0)
 # The four corners of a cell, as node offsets from its (row, col).
 _CORNERS = np.array([(0, 0), (0, 1), (1, 0), (1, 1)], dtype=np.int64)
+# Node coordinates beyond this are refused: integers stay exact and their world
+# points finite.
+_NODE_LIMIT = float(2**53)
 
 
 class FieldDStar:
@@ -64,9 +76,11 @@ class FieldDStar:
     Parameters
     ----------
     costs : (rows, cols) array_like
-        Per-cell traversal cost per unit length: finite values >= 1, ``np.inf``
-        impassable (the A* convention). Copied; the caller's array is never
-        modified.
+        Per-cell traversal cost per unit length: finite values in ``[1, 1e12]``,
+        ``np.inf`` impassable (the A* convention), at most ``2**31 - 1`` nodes
+        ``(rows + 1) × (cols + 1)``. Copied; the caller's array is never
+        modified. The least cost from a start to the goal must moreover be below
+        ``2**52`` (about 4.5e15 cost units × cells), see Notes.
     interpolate : bool, default True
         ``False`` gives classic 8-connected D* Lite on the same nodes (an axis
         move pays the cheaper cell beside the edge, a diagonal ``sqrt(2)`` times
@@ -83,18 +97,21 @@ class FieldDStar:
         ``interpolate=True`` by :meth:`plan` / :meth:`replan`, and always on the
         linked paths of :meth:`plan_cells` and the world methods.
     resolution : float, default 1.0
-        Cell side in m (> 0), for the world methods.
+        Cell side in m, in ``[1e-6, 1e6]``, for the world methods.
     origin : Pose2D or (x, y, theta), default Pose2D(0, 0, 0)
         World pose of node ``(0, 0)``, the outer corner of cell ``(0, 0)``
         (rows along the origin's y axis, columns along its x axis), for the
         world methods: the convention of :class:`~navkit.mapping.OccupancyGrid`.
+        ``|x|, |y| <= 1e9`` m.
 
     Raises
     ------
     ValueError
-        Invalid ``costs`` or ``resolution``.
+        Invalid ``costs`` (see :func:`navkit.planning.distance_field`), too
+        many nodes, ``resolution`` or ``origin`` out of range.
     TypeError
-        Non-bool flags, a bad ``origin``.
+        Non-bool flags (``interpolate``, ``lookahead``, ``smooth``: only
+        ``True``/``False``), a bad ``origin``.
 
     Notes
     -----
@@ -108,13 +125,28 @@ class FieldDStar:
     per search. It assumes a minimum cell cost of 1, so it stays admissible
     after any cost update.
 
+    Limits of float64. Path extraction (below) walks downhill on the
+    cost-to-goal, so it needs every node to be strictly dearer than the
+    neighbour its value comes from. In exact arithmetic the difference is at
+    least ``1/sqrt(2)`` (costs are >= 1); in float64 it survives rounding while
+    the values are below ``2**52`` (about 4.5e15), where one unit in the last
+    place is at most 0.5, but not far beyond: at 1e20, ``1e20 + 1.41 == 1e20``
+    and the walk would find no lower neighbour. Every search therefore
+    requires the start's cost-to-goal (the path cost in cost units × cells)
+    to be below ``2**52`` and raises ``ValueError`` otherwise; with cells up to
+    the maximum 1e12 that allows paths of 4,500 cells at the maximum cost.
+
     Path extraction walks from the start: at each point (a node or a point on
     a grid line) it takes the cheapest of the optimal crossing points of the far
     edges of the cells touching it, the ends of the grid lines through it and,
     from a node, the point where the paper's "along the edge, then cut" option
     leaves the edge. A step must lower the estimated cost-to-goal; if none does,
-    a straight step to a corner of lower exact cost-to-goal is taken instead,
-    so the walk always ends exactly at the goal. Every node value the walk reads
+    a straight step to a corner of lower exact cost-to-goal is taken instead.
+    A crossing point a hair from an edge's end can have its interpolated value
+    rounded to exactly that end's value (costs of very different magnitude);
+    from such a point the walk may step to a corner cheaper than the last
+    node it passed. Node values met along the walk strictly decrease, so it
+    always ends exactly at the goal. Every node value the walk reads
     is settled first (the D* Lite loop runs until that node's key is reached),
     so a repaired plan reads exactly the values a fresh plan reads and both
     return the same path.
@@ -177,12 +209,18 @@ class FieldDStar:
         resolution: float = 1.0,
         origin: Pose2D | ArrayLike = _IDENTITY,
     ) -> None:
-        arr = validate_costs(costs)
+        arr, _ = checked_costs(costs, corner_nodes=True)
         self._interp = as_bool(interpolate, "interpolate")
         self._lookahead = as_bool(lookahead, "lookahead")
         self._smooth = as_bool(smooth, "smooth")
-        self._resolution = positive_float(resolution, "resolution")
+        self._resolution = bounded_float(
+            resolution, "resolution", RESOLUTION_MIN, RESOLUTION_MAX, "m"
+        )
         self._origin = as_pose(origin, "origin")
+        if not max(abs(self._origin.x), abs(self._origin.y)) <= COORDINATE_LIMIT:
+            raise ValueError(
+                f"origin must lie within ±{COORDINATE_LIMIT:g} m in x and y, got {self._origin!r}"
+            )
         self._rows, self._cols = (int(v) for v in arr.shape)
         self._width = self._cols + 2
         pad = np.full((self._rows + 2, self._cols + 2), np.inf)
@@ -254,7 +292,7 @@ class FieldDStar:
         Parameters
         ----------
         points_xy : array_like, shape (2,) or (N, 2)
-            World points in m.
+            World points in m, finite, ``|x|, |y| <= 1e9``.
         continuous : bool, default False
             Return float node coordinates ``(i, j)`` (node ``(i, j)`` at integer
             values) instead of the nearest node.
@@ -266,6 +304,13 @@ class FieldDStar:
             coordinates; same leading shape as ``points_xy``. Not clipped to the
             node grid.
 
+        Raises
+        ------
+        ValueError
+            Bad shape, non-finite points or points beyond ±1e9 m.
+        TypeError
+            Non-numeric points or a non-bool ``continuous``.
+
         Examples
         --------
         >>> planner = FieldDStar(np.ones((4, 4)), resolution=0.5, origin=(1.0, 0.0, 0.0))
@@ -275,6 +320,7 @@ class FieldDStar:
         [[2.4, 1.2]]
         """
         pts, single = as_pairs(points_xy, "points_xy")
+        _check_range(pts, COORDINATE_LIMIT, "points_xy", "m")
         o = self._origin
         c = math.cos(o.theta)
         s = math.sin(o.theta)
@@ -295,7 +341,8 @@ class FieldDStar:
         Parameters
         ----------
         nodes : array_like, shape (2,) or (N, 2)
-            Nodes or node coordinates (not checked against the node grid).
+            Nodes or node coordinates (not checked against the node grid),
+            finite and within ``±2**53``.
 
         Returns
         -------
@@ -309,6 +356,7 @@ class FieldDStar:
         [1.5, 1.0]
         """
         pts, single = as_pairs(nodes, "nodes")
+        _check_range(pts, _NODE_LIMIT, "nodes", "(2**53)")
         out = self._origin.transform_points(pts[:, ::-1] * self._resolution)
         return one_or_many(out, single)
 
@@ -334,7 +382,10 @@ class FieldDStar:
         Raises
         ------
         ValueError
-            A node off the node grid or surrounded by impassable cells.
+            A node off the node grid or surrounded by impassable cells; a path
+            cost of ``2**52`` or more (see the class Notes).
+        TypeError
+            Nodes that are not pairs of integers.
         navkit.NoPathError
             The goal cannot be reached from the start.
         """
@@ -364,7 +415,7 @@ class FieldDStar:
         RuntimeError
             No plan was made yet.
         ValueError
-            Bad ``start_node``.
+            Bad ``start_node``; a path cost of ``2**52`` or more.
         navkit.NoPathError
             The goal cannot be reached any more.
         """
@@ -405,7 +456,8 @@ class FieldDStar:
         Raises
         ------
         ValueError
-            A cell outside the grid or impassable.
+            A cell outside the grid or impassable; a path cost of ``2**52`` or
+            more.
         TypeError
             Non-integer cells.
         navkit.NoPathError
@@ -466,7 +518,10 @@ class FieldDStar:
         Raises
         ------
         ValueError
-            A point outside the grid or in an impassable cell.
+            A point outside the grid or in an impassable cell, not finite or
+            beyond ±1e9 m; a path cost of ``2**52`` or more.
+        TypeError
+            Non-numeric points.
         navkit.NoPathError
             The goal cannot be reached.
         """
@@ -499,7 +554,8 @@ class FieldDStar:
         RuntimeError
             No plan was made yet.
         ValueError
-            ``start_xy`` outside the grid or in an impassable cell.
+            ``start_xy`` outside the grid or in an impassable cell; a path cost
+            of ``2**52`` or more.
         navkit.NoPathError
             The goal cannot be reached any more.
 
@@ -528,48 +584,34 @@ class FieldDStar:
         Parameters
         ----------
         cells : (M, 2) or (2,) int array_like
-            Cells ``(row, col)`` to change. With repeats, the last value wins.
+            Cells ``(row, col)`` to change (integers; integral floats such as
+            ``2.0`` are accepted). With repeats, the last value wins.
         new_costs : float or (M,) array_like
-            New costs, >= 1 or ``np.inf`` (impassable).
+            New costs, in ``[1, 1e12]`` or ``np.inf`` (impassable).
 
         Raises
         ------
         ValueError
-            Cells outside the grid or not integers, mismatched lengths, or costs
-            that are NaN, ``-inf`` or below 1.
+            Cells outside the grid or not integral, mismatched lengths, or costs
+            that are NaN, ``-inf``, below 1 or finite above 1e12.
+        TypeError
+            Cells or costs that are not real numbers (booleans, strings,
+            complex numbers, mappings).
         """
-        idx = np.asarray(cells)
-        if idx.ndim == 1 and idx.shape[0] == 2:
-            idx = idx.reshape(1, 2)
-        if idx.size == 0:
-            idx = idx.reshape(0, 2)
-        if idx.ndim != 2 or idx.shape[1] != 2:
-            raise ValueError(f"cells must have shape (M, 2) or (2,), got {idx.shape}")
-        if idx.dtype.kind == "f":
-            if not np.all(np.isfinite(idx)) or not np.all(idx == np.round(idx)):
-                raise ValueError("cells must hold integer (row, col) indices")
-        elif idx.dtype.kind not in "iu" or idx.dtype == np.bool_:
-            raise ValueError(f"cells must hold integer (row, col) indices, got dtype {idx.dtype}")
-        idx = idx.astype(np.int64)
-        bad = (idx[:, 0] < 0) | (idx[:, 0] >= self._rows) | (idx[:, 1] < 0) | (
-            idx[:, 1] >= self._cols
-        )
-        if bad.any():
-            raise ValueError(
-                f"cells {idx[bad][0].tolist()} is outside the grid of shape {self.shape}"
-            )
-        try:
-            vals = np.asarray(new_costs, dtype=np.float64)
-        except (TypeError, ValueError):
-            raise ValueError("new_costs must be numeric") from None
+        idx = self._update_cells(cells)
+        vals = as_float_array(new_costs, "new_costs", finite=False)
         if vals.ndim == 0:
             vals = np.full(idx.shape[0], float(vals))
         if vals.shape != (idx.shape[0],):
             raise ValueError(
                 f"new_costs must be a scalar or have shape ({idx.shape[0]},), got {vals.shape}"
             )
-        if np.isnan(vals).any() or (vals < 1.0).any():
-            raise ValueError("new_costs must be >= 1 or np.inf (no NaN, no -inf)")
+        bad = ~((vals >= 1.0) & ((vals <= MAX_COST) | (vals == np.inf)))
+        if bad.any():
+            raise ValueError(
+                f"new_costs must be >= 1 and <= {MAX_COST:g}, or np.inf (no NaN, no -inf); "
+                f"got {float(vals[bad][0])}"
+            )
         if idx.shape[0] == 0:
             return
         update_cells(
@@ -581,6 +623,36 @@ class FieldDStar:
         )
 
     # ------------------------------------------------------------ internals
+    def _update_cells(self, cells: Any) -> IntArray:
+        """``cells`` of :meth:`update_costs` as an (M, 2) int64 array inside the grid."""
+        if isinstance(cells, (str, bytes, Mapping, set, frozenset)):
+            raise TypeError(f"cells must be (row, col) pairs, got {type(cells).__name__}")
+        raw = as_float_array(cells, "cells", finite=False)
+        if isinstance(cells, np.ndarray) and cells.dtype.kind in "iu":
+            exact = np.asarray(cells, dtype=np.int64)  # no round trip through float64
+        else:
+            exact = None
+        if raw.ndim == 1 and raw.shape[0] == 2:
+            raw = raw.reshape(1, 2)
+        if raw.size == 0:
+            raw = raw.reshape(0, 2)
+        if raw.ndim != 2 or raw.shape[1] != 2:
+            raise ValueError(f"cells must have shape (M, 2) or (2,), got {raw.shape}")
+        if not np.all(np.isfinite(raw)) or not np.all(raw == np.floor(raw)):
+            raise ValueError("cells must hold integer (row, col) indices")
+        inside = (
+            (raw[:, 0] >= 0) & (raw[:, 0] < self._rows) & (raw[:, 1] >= 0)
+            & (raw[:, 1] < self._cols)
+        )
+        if not inside.all():
+            bad = raw[~inside][0]
+            raise ValueError(
+                f"cells {[int(v) for v in bad]} is outside the grid of shape {self.shape}"
+            )
+        if exact is not None:
+            return exact.reshape(raw.shape)
+        return raw.astype(np.int64)
+
     def _node(self, value: Any, name: str) -> tuple[int, int]:
         node = as_cell(value, name, (self._nrows, self._ncols))
         i, j = node
@@ -606,6 +678,7 @@ class FieldDStar:
     ) -> tuple[tuple[float, float], tuple[int, int]]:
         """Node coordinates of a world point and its nearest node, checked."""
         point = as_float_array(value, name, shape=(2,))
+        _check_range(point, COORDINATE_LIMIT, name, "m")
         p = self.world_to_node(point, continuous=True)
         row, col = math.floor(p[0]), math.floor(p[1])
         where = tuple(point.tolist())
@@ -669,6 +742,14 @@ class FieldDStar:
                 f"goal_node {self._goal} is unreachable from start_node {self._start}",
                 expanded=expanded,
             )
+        to_goal = float(self._g[self._start[0] * self._ncols + self._start[1]])
+        if not to_goal < PATH_COST_LIMIT:
+            raise ValueError(
+                f"costs: the least cost from start_node {self._start} to goal_node "
+                f"{self._goal} is {to_goal:.3g} (cost units × cells); Field D* needs it "
+                "below 2**52 ≈ 4.5e15, beyond which float64 cannot tell its node values "
+                "apart (lower the largest costs)"
+            )
         if status != OK:  # pragma: no cover - guarded by the strictly decreasing walk
             raise RuntimeError("Field D* path extraction failed to reach the goal")
         if self._interp and self._smooth and k > 2:
@@ -701,6 +782,14 @@ class FieldDStar:
         )
 
 
+def _check_range(values: FloatArray, limit: float, name: str, unit: str) -> None:
+    """Refuse coordinates beyond ``±limit`` (``values`` are already finite)."""
+    if values.size and not float(np.abs(values).max()) <= limit:
+        raise ValueError(
+            f"{name} must lie within ±{limit:g} {unit}, got {float(np.abs(values).max()):g}"
+        )
+
+
 def field_dstar(
     costs: ArrayLike,
     start_node: ArrayLike,
@@ -720,6 +809,12 @@ def field_dstar(
     -------
     Path2D
         ``"grid"`` path whose points are node − 0.5.
+
+    Raises
+    ------
+    ValueError, TypeError, navkit.NoPathError
+        As :class:`FieldDStar` (costs in ``[1, 1e12]`` or ``inf``; the flags
+        only ``True`` or ``False``) and :meth:`FieldDStar.plan`.
 
     Examples
     --------

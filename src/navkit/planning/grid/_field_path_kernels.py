@@ -14,8 +14,8 @@ import math
 from typing import Any
 
 import numpy as np
-from numba import njit
 
+from navkit._shared.jit import njit_cached, njit_inline
 from navkit.planning.grid._dstar_lite_kernels import (
     PAIR_AC,
     PAIR_AR,
@@ -35,7 +35,7 @@ NO_PATH = 1
 STUCK = 2
 
 
-@njit(cache=True)
+@njit_cached
 def _edge_min(
     pr: float,
     pc: float,
@@ -95,7 +95,7 @@ def _edge_min(
     return n + 1
 
 
-@njit(cache=True)
+@njit_cached
 def _node_value(
     st: tuple[np.ndarray, ...],
     prm: tuple[Any, ...],
@@ -110,7 +110,7 @@ def _node_value(
     return float(g[i * ncols + j])
 
 
-@njit(cache=True, inline="always")
+@njit_inline
 def _line_cost(pad: np.ndarray, width: int, pr: float, pc: float, i: int, j: int) -> float:
     """Cost per unit length along the grid line from p to node (i, j) (one cell long)."""
     if pr == i:
@@ -120,7 +120,7 @@ def _line_cost(pad: np.ndarray, width: int, pr: float, pc: float, i: int, j: int
     return min(cell_cost(pad, width, row, j - 1), cell_cost(pad, width, row, j))
 
 
-@njit(cache=True)
+@njit_cached
 def _line_candidate(
     st: tuple[np.ndarray, ...],
     prm: tuple[Any, ...],
@@ -150,7 +150,7 @@ def _line_candidate(
     return n + 1
 
 
-@njit(cache=True)
+@njit_cached
 def _candidates(
     st: tuple[np.ndarray, ...],
     prm: tuple[Any, ...],
@@ -225,7 +225,7 @@ def _candidates(
     return n
 
 
-@njit(cache=True)
+@njit_cached
 def _push_point(pts: np.ndarray, k: int, r: float, c: float) -> np.ndarray:
     if k == pts.shape[0]:
         grown = np.empty((2 * k, 2), dtype=np.float64)
@@ -236,7 +236,7 @@ def _push_point(pts: np.ndarray, k: int, r: float, c: float) -> np.ndarray:
     return pts
 
 
-@njit(cache=True)
+@njit_cached
 def _descend(
     st: tuple[np.ndarray, ...],
     prm: tuple[Any, ...],
@@ -292,7 +292,7 @@ def _descend(
     return best, best_g, qr, qc
 
 
-@njit(cache=True)
+@njit_cached
 def extract_path(
     st: tuple[np.ndarray, ...],
     prm: tuple[Any, ...],
@@ -305,9 +305,17 @@ def extract_path(
     cost-to-goal of a q inside an edge is not its linear interpolation but the
     best one-step continuation from q. The estimate must decrease at every step;
     when no candidate lowers it, :func:`_descend` takes a straight step to a
-    corner of lower exact cost-to-goal (one always exists), so the node values
-    met along the walk strictly decrease and it ends at the goal. 8-connected
-    mode takes only :func:`_descend` steps: an optimal D* Lite path.
+    corner of lower exact cost-to-goal (from a node one always exists while the
+    values are below 2**52: a node's value exceeds that of the neighbour it
+    comes from by at least 1/sqrt(2)). From a point inside an edge there may be
+    none: a crossing point a hair from an edge's end can carry exactly that
+    end's value after rounding (the difference of the end values times the
+    distance to the end falls below half an ulp). There the walk steps to the
+    cheapest corner whose value is below that of the last node it passed,
+    which exists because the point's value is not below the least of its
+    cells' corners. So the values at the nodes met strictly decrease, the walk
+    has no cycle and it ends at the goal. 8-connected mode takes only
+    :func:`_descend` steps: an optimal D* Lite path.
 
     Returns (points (K', 2) with the first K valid, K, expansions, status).
     """
@@ -326,6 +334,8 @@ def extract_path(
     pr = float(sr)
     pc = float(sc)
     cur = g[start]
+    # Value at the last node the walk passed (the start, at first).
+    node_v = cur
     cand = np.empty((32, 4), dtype=np.float64)
     cand2 = np.empty((32, 4), dtype=np.float64)
     max_steps = 4 * nrows * ncols + 16
@@ -358,6 +368,9 @@ def extract_path(
                     qc = cc
         if best == np.inf:
             best, best_v, qr, qc = _descend(st, prm, pr, pc, cur, counter)
+            if best == np.inf and (pr != math.floor(pr) or pc != math.floor(pc)):
+                # A point inside an edge whose value rounded to a corner's.
+                best, best_v, qr, qc = _descend(st, prm, pr, pc, node_v, counter)
             if best == np.inf:
                 return pts, k, counter[0], STUCK
         pts = _push_point(pts, k, qr, qc)
@@ -365,5 +378,7 @@ def extract_path(
         pr = qr
         pc = qc
         cur = best_v
+        if qr == math.floor(qr) and qc == math.floor(qc):
+            node_v = best_v
     return pts, k, counter[0], STUCK
 

@@ -8,13 +8,13 @@ from typing import Literal, Protocol
 import numpy as np
 from numpy.typing import ArrayLike
 
-from navkit._shared.costs import validate_costs_lowest
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import as_float_array, positive_float
+from navkit._shared.validation import as_bool, as_float_array
 from navkit.geometry import Pose2D, as_pose
 from navkit.mapping import OccupancyGrid
 from navkit.planning.grid._astar import AStarPlanner
 from navkit.planning.grid._field_dstar import FieldDStar
+from navkit.planning.grid._limits import RADIUS_LIMIT, bounded_float, checked_costs
 from navkit.planning.grid._path import Path2D
 
 __all__ = ["CellPlanner", "MapPlanner", "plan_path"]
@@ -26,7 +26,7 @@ class CellPlanner(Protocol):
     ``planner(costs, start_cell, goal_cell) -> Path2D``, arguments positional:
 
     * ``costs``: the traversal costs, an already validated read-only C-contiguous
-      float64 array (finite values >= 1, ``np.inf`` impassable). One
+      float64 array (finite values in ``[1, 1e12]``, ``np.inf`` impassable). One
       :class:`MapPlanner` passes the same array object on every query, so a
       planner may prepare its own data once per array;
     * ``start_cell``, ``goal_cell``: ``(row, col)`` tuples of ints, inside the
@@ -60,11 +60,14 @@ class MapPlanner:
     """Plans paths between world points on one occupancy grid, many times.
 
     The constructor turns the map into traversal costs once
-    (:meth:`OccupancyGrid.traversal_costs`): occupied cells and every cell whose
+    (:func:`navkit.mapping.traversal_costs`): occupied cells and every cell whose
     centre lies within ``robot_radius`` of an occupied cell are impassable (the
     robot's centre may not go there), free cells cost 1, and with
     ``inflation_radius > robot_radius`` cells near obstacles cost more (Nav2's
-    exponential inflation decay). For the built-in planners it also prepares
+    exponential inflation decay). Unknown space is impassable by default and,
+    like an obstacle, keeps the robot ``robot_radius`` away (``inflate_unknown``):
+    on a robot-built map whose walls are partly unknown cells the paths keep
+    the same clearance from them. For the built-in planners it also prepares
     the planner on those costs (validation and conversion done once), so each
     :meth:`plan` only converts its two points and searches. A class with
     ``__slots__``: it owns the costs and the prepared planner.
@@ -77,15 +80,30 @@ class MapPlanner:
     grid : OccupancyGrid
         The map (cells ``(row, col)``, row 0 at the lowest y).
     robot_radius : float, default 0.0
-        The robot's inscribed radius in m (>= 0): the obstacles' inflation.
+        The robot's inscribed radius in m, in ``[0, 1e6]``: the obstacles'
+        inflation.
     inflation_radius : float, optional
-        Distance in m up to which costs decay; default ``robot_radius``.
+        Distance in m up to which costs decay, in ``[robot_radius, 1e6]``;
+        default ``robot_radius``.
     unknown_cost : float, default inf
-        Cost of unknown cells: ``inf`` (impassable) or a value >= 1.
+        Cost of unknown cells: ``inf`` (impassable) or a value in ``[1, 1e9]``
+        (as :func:`navkit.mapping.traversal_costs`).
+    inflate_unknown : bool or None, default None
+        Whether unknown cells are inflated like obstacles: cells whose centre
+        lies within ``robot_radius`` of an unknown cell's are impassable too
+        (and the inflation cost decays from unknown cells as from occupied
+        ones), so the robot's body, not only its centre, keeps clear of space
+        it knows nothing about. ``True`` needs ``unknown_cost=inf``.
+        ``None`` (the default) means ``True`` when ``unknown_cost`` is ``inf``
+        and ``False`` otherwise (unknown space crossable at its cost). As
+        :func:`navkit.mapping.traversal_costs` (Nav2's
+        ``inflate_around_unknown``).
     planner : {"astar", "field_dstar"} or CellPlanner, default "astar"
         ``"astar"``: :class:`AStarPlanner` (8-connected, no corner cutting),
         a path through cell centres. ``"field_dstar"``: any-angle paths,
-        :meth:`FieldDStar.plan_cells`. Or any callable following
+        :meth:`FieldDStar.plan_cells` (whose path costs, in cost units ×
+        cells, must stay below ``2**52``: only a huge ``unknown_cost`` on a
+        long route through unknown space comes near). Or any callable following
         :class:`CellPlanner`, called on every query with the costs; use
         :func:`functools.partial` for options, e.g.
         ``partial(astar, corner_cutting=True)`` (a callable prepares nothing:
@@ -94,9 +112,12 @@ class MapPlanner:
     Raises
     ------
     TypeError
-        ``grid`` is not an OccupancyGrid; ``planner`` is neither a name nor callable.
+        ``grid`` is not an OccupancyGrid; ``planner`` is neither a name nor
+        callable; a radius or ``unknown_cost`` that is not a real number (or a
+        bool); ``inflate_unknown`` neither a bool nor None.
     ValueError
-        Unknown planner name; invalid radii or ``unknown_cost``.
+        Unknown planner name; radii or ``unknown_cost`` out of range;
+        ``inflate_unknown=True`` with a finite ``unknown_cost``.
 
     Notes
     -----
@@ -121,7 +142,16 @@ class MapPlanner:
     True
     """
 
-    __slots__ = ("_costs", "_grid", "_planner", "_prepared", "_robot_radius", "_unknown_cost")
+    __slots__ = (
+        "_costs",
+        "_grid",
+        "_inflate_unknown",
+        "_inflation_radius",
+        "_planner",
+        "_prepared",
+        "_robot_radius",
+        "_unknown_cost",
+    )
 
     def __init__(
         self,
@@ -130,6 +160,7 @@ class MapPlanner:
         robot_radius: float = 0.0,
         inflation_radius: float | None = None,
         unknown_cost: float = math.inf,
+        inflate_unknown: bool | None = None,
         planner: Literal["astar", "field_dstar"] | CellPlanner = "astar",
     ) -> None:
         if not isinstance(grid, OccupancyGrid):
@@ -144,11 +175,17 @@ class MapPlanner:
             raise TypeError(
                 f"planner must be a name or a CellPlanner callable, got {type(planner).__name__}"
             )
-        radius = positive_float(robot_radius, "robot_radius", allow_zero=True)
+        radius = bounded_float(robot_radius, "robot_radius", 0.0, RADIUS_LIMIT, "m")
+        inflate = None if inflate_unknown is None else as_bool(inflate_unknown, "inflate_unknown")
         costs = grid.traversal_costs(
-            robot_radius=radius, inflation_radius=inflation_radius, unknown_cost=unknown_cost
+            robot_radius=radius,
+            inflation_radius=inflation_radius,
+            unknown_cost=unknown_cost,
+            inflate_unknown=inflate,
         )
-        costs, lowest = validate_costs_lowest(costs)
+        # Finite costs are at most 1 + cost_weight (5) or unknown_cost (<= 1e9):
+        # inside the planners' range, so this check never fails.
+        costs, lowest = checked_costs(costs)
         costs.flags.writeable = False
         prepared: AStarPlanner | FieldDStar | None = None
         if isinstance(planner, str):
@@ -160,7 +197,9 @@ class MapPlanner:
         self._grid = grid
         self._costs = costs
         self._robot_radius = radius
+        self._inflation_radius = inflation_radius
         self._unknown_cost = float(unknown_cost)
+        self._inflate_unknown = math.isinf(self._unknown_cost) if inflate is None else inflate
         self._planner = planner
         self._prepared = prepared
 
@@ -178,6 +217,11 @@ class MapPlanner:
     def robot_radius(self) -> float:
         """The robot's inscribed radius, m."""
         return self._robot_radius
+
+    @property
+    def inflate_unknown(self) -> bool:
+        """Whether unknown cells were inflated like obstacles (``None`` resolved)."""
+        return self._inflate_unknown
 
     @property
     def planner(self) -> str | CellPlanner:
@@ -214,7 +258,8 @@ class MapPlanner:
         ValueError
             ``start`` or ``goal`` outside the map, or on an impassable cell: the
             message says whether it is in an obstacle, within ``robot_radius``
-            of one, or in unknown space (with ``unknown_cost=inf``).
+            of one, in unknown space (with ``unknown_cost=inf``) or within
+            ``robot_radius`` of unknown space (with ``inflate_unknown``).
         TypeError
             ``start`` or ``goal`` is not a point or pose.
         navkit.NoPathError
@@ -260,6 +305,19 @@ class MapPlanner:
             return "is in an obstacle"
         if grid.unknown()[row, col] and math.isinf(self._unknown_cost):
             return "is in unknown space (unknown_cost is inf)"
+        if self._inflate_unknown:
+            # Blocked only by the inflation of unknown space if it is free without it.
+            plain = grid.traversal_costs(
+                robot_radius=self._robot_radius,
+                inflation_radius=self._inflation_radius,
+                unknown_cost=self._unknown_cost,
+                inflate_unknown=False,
+            )
+            if math.isfinite(plain[row, col]):
+                return (
+                    f"is within robot_radius ({self._robot_radius} m) of unknown space "
+                    "(inflate_unknown is True)"
+                )
         return f"is within robot_radius ({self._robot_radius} m) of an obstacle"
 
 
@@ -281,6 +339,7 @@ def plan_path(
     robot_radius: float = 0.0,
     inflation_radius: float | None = None,
     unknown_cost: float = math.inf,
+    inflate_unknown: bool | None = None,
     planner: Literal["astar", "field_dstar"] | CellPlanner = "astar",
 ) -> Path2D:
     """Plan a collision-free path between two world points on an occupancy grid, one-shot.
@@ -295,9 +354,12 @@ def plan_path(
         The map.
     start, goal : Pose2D or array_like, shape (2,) or (3,)
         World points ``(x, y)`` in m, or poses (their position).
-    robot_radius, inflation_radius, unknown_cost, planner
-        As in :class:`MapPlanner`: ``planner`` is ``"astar"``, ``"field_dstar"``
-        or a :class:`CellPlanner` callable (options by :func:`functools.partial`).
+    robot_radius, inflation_radius, unknown_cost, inflate_unknown, planner
+        As in :class:`MapPlanner`: ``robot_radius`` in ``[0, 1e6]`` m;
+        ``inflate_unknown=None`` keeps the robot ``robot_radius`` clear of
+        unknown space whenever ``unknown_cost`` is ``inf``; ``planner`` is
+        ``"astar"``, ``"field_dstar"`` or a :class:`CellPlanner` callable
+        (options by :func:`functools.partial`).
 
     Returns
     -------
@@ -331,5 +393,6 @@ def plan_path(
         robot_radius=robot_radius,
         inflation_radius=inflation_radius,
         unknown_cost=unknown_cost,
+        inflate_unknown=inflate_unknown,
         planner=planner,
     ).plan(start, goal)

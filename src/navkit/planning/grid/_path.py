@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import math
 import numbers
 from dataclasses import dataclass
 from typing import Any, Literal
@@ -11,11 +10,18 @@ import numpy as np
 
 from navkit._shared.grid_coords import round_half_up
 from navkit._shared.types import FloatArray, IntArray
-from navkit._shared.validation import as_float_array
+from navkit._shared.validation import as_float_array, finite_float
 
 __all__ = ["Path2D"]
 
 _FRAMES = ("grid", "world")
+_INT64_MAX = 2**63 - 1
+
+
+def _short_int(value: Any) -> str:
+    """``value`` for a message; a huge integer by its size (its repr may be enormous)."""
+    n = int(value)
+    return str(n) if abs(n) < 10**30 else f"an integer of {n.bit_length()} bits"
 
 
 @dataclass(frozen=True, slots=True, eq=False)
@@ -33,25 +39,30 @@ class Path2D:
     Parameters
     ----------
     points : array_like, shape (K, 2)
-        Vertices from start to goal (K >= 1). Stored as a read-only float64 copy.
+        Vertices from start to goal (K >= 1), finite. Stored as a read-only
+        float64 copy: the caller's array is neither kept nor frozen.
     frame : {"grid", "world"}
         Frame of ``points``.
     cost : float
-        Path cost: traversal cost × cells for a ``"grid"`` path, × metres for a
-        ``"world"`` one (so it equals :attr:`length` in free space). NaN is
-        rejected; ``inf`` is allowed.
+        Path cost, finite, >= 0: traversal cost × cells for a ``"grid"``
+        path, × metres for a ``"world"`` one (so it equals :attr:`length` in
+        free space). Planners never return an infinite cost (no path is
+        :class:`navkit.NoPathError`).
     length : float
-        Length of the polyline: cells (``"grid"``) or metres (``"world"``), >= 0.
+        Length of the polyline: cells (``"grid"``) or metres (``"world"``),
+        finite, >= 0.
     expanded : int
-        Number of search expansions the planner performed (>= 0).
+        Number of search expansions the planner performed, in ``[0, 2**63 - 1]``.
 
     Raises
     ------
     ValueError
-        Bad shape, non-finite points, unknown frame, NaN cost, negative
-        length or expansions.
+        Bad shape, non-finite points, unknown frame, a cost or length that is
+        negative or not finite, expansions out of range.
     TypeError
-        Non-numeric points, non-integer ``expanded``.
+        Non-numeric points (strings, complex numbers, booleans), a frame that
+        is not a string, a cost or length that is not a real number (or is a
+        bool), non-integer ``expanded``.
 
     Examples
     --------
@@ -73,19 +84,18 @@ class Path2D:
         if pts.shape[0] == 0:
             raise ValueError("points must hold at least one vertex, got shape (0, 2)")
         pts.flags.writeable = False
-        if self.frame not in _FRAMES:
-            raise ValueError(f"frame must be 'grid' or 'world', got {self.frame!r}")
-        cost = float(self.cost)
-        if math.isnan(cost):
-            raise ValueError("cost must not be NaN")
-        length = float(self.length)
-        if not length >= 0.0:
-            raise ValueError(f"length must be >= 0, got {length}")
+        frame: Any = self.frame
+        if not isinstance(frame, str):
+            raise TypeError(f"frame must be 'grid' or 'world', got {type(frame).__name__}")
+        if frame not in _FRAMES:
+            raise ValueError(f"frame must be 'grid' or 'world', got {frame!r}")
+        cost = _non_negative(self.cost, "cost")
+        length = _non_negative(self.length, "length")
         expanded: Any = self.expanded
         if isinstance(expanded, bool) or not isinstance(expanded, numbers.Integral):
             raise TypeError(f"expanded must be an integer, got {type(expanded).__name__}")
-        if int(expanded) < 0:
-            raise ValueError(f"expanded must be >= 0, got {expanded}")
+        if not 0 <= int(expanded) <= _INT64_MAX:
+            raise ValueError(f"expanded must be in [0, 2**63 - 1], got {_short_int(expanded)}")
         object.__setattr__(self, "points", pts)
         object.__setattr__(self, "cost", cost)
         object.__setattr__(self, "length", length)
@@ -136,3 +146,11 @@ class Path2D:
         out: IntArray = round_half_up(self.points)
         out.flags.writeable = False
         return out
+
+
+def _non_negative(value: Any, name: str) -> float:
+    """A finite real number >= 0 as a float; bools, strings, NaN and infinities refused."""
+    out = finite_float(value, name)
+    if out < 0.0:
+        raise ValueError(f"{name} must be >= 0, got {out}")
+    return out

@@ -13,16 +13,17 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+
+from navkit._shared.jit import njit_cached, njit_inline
 
 
-@njit(cache=True, inline="always")
+@njit_inline
 def cell_cost(pad: np.ndarray, width: int, r: int, c: int) -> float:
     """Cost of cell (r, c), ``-1 <= r <= rows``, ``-1 <= c <= cols`` (+inf off the grid)."""
     return float(pad[(r + 1) * width + c + 1])
 
 
-@njit(cache=True)
+@njit_cached
 def segment_cost(pad: np.ndarray, width: int, r0: float, c0: float, r1: float, c1: float) -> float:
     """Exact cost of the straight segment p0 -> p1: sum of length × cell cost.
 
@@ -84,7 +85,7 @@ def segment_cost(pad: np.ndarray, width: int, r0: float, c0: float, r1: float, c
     return total
 
 
-@njit(cache=True)
+@njit_cached
 def polyline_cost(pad: np.ndarray, width: int, pts: np.ndarray, k: int) -> tuple[float, float]:
     """(cost, length) of the polyline through the first ``k`` points."""
     cost = 0.0
@@ -95,7 +96,7 @@ def polyline_cost(pad: np.ndarray, width: int, pts: np.ndarray, k: int) -> tuple
     return cost, length
 
 
-@njit(cache=True)
+@njit_cached
 def shortcut(pad: np.ndarray, width: int, pts: np.ndarray, k: int, patience: int) -> np.ndarray:
     """Replace runs of the polyline by straight segments that cost no more.
 

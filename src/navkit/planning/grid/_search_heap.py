@@ -34,9 +34,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
-from navkit._shared.jit import njit_no_refcount
+from navkit._shared.jit import njit_cached, njit_inline, njit_no_refcount
 
 MAX_NODES = 2**31 - 1
 """Largest number of nodes (grid cells) the heap can index."""
@@ -49,7 +48,7 @@ _TIE_RESOLUTION = 16.0
 _TIE_MAX = float(2**20 - 1)
 
 
-@njit(cache=True)
+@njit_cached
 def search_heap_new(n_nodes: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Allocate an empty heap for node ids ``0 .. n_nodes - 1``: (heap, pos, size)."""
     heap = np.empty(2 * n_nodes, dtype=np.float64)
@@ -58,25 +57,25 @@ def search_heap_new(n_nodes: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return heap, pos, size
 
 
-@njit(cache=True, inline="always")
+@njit_inline
 def tie_key(tie: float, node: int) -> float:
     """Tie key of ``node``: ``tie`` (>= 0, resolution 1/16, saturating) then node id."""
     return math.floor(min(tie * _TIE_RESOLUTION, _TIE_MAX)) * _TWO32 + node
 
 
-@njit(cache=True, inline="always")
+@njit_inline
 def node_of(key: float) -> int:
     """Node id packed into a tie key."""
     return int(key) & _LOW32
 
 
-@njit(cache=True, inline="always")
+@njit_inline
 def _precedes(f1: float, k1: float, f2: float, k2: float) -> bool:
     """Whether priority (f1, k1) comes before (f2, k2), evaluated without branches."""
     return bool((f1 < f2) | ((f1 == f2) & (k1 < k2)))
 
 
-@njit(cache=True, inline="always")
+@njit_inline
 def _place(heap: np.ndarray, pos: np.ndarray, i: int, f: float, key: float) -> None:
     """Store the entry (f, key) in slot i and record the slot of its node."""
     heap[2 * i] = f
@@ -162,7 +161,7 @@ def pop(heap: np.ndarray, pos: np.ndarray, size: np.ndarray) -> int:
     return top
 
 
-@njit(cache=True, inline="always")
+@njit_inline
 def precedes_top(heap: np.ndarray, size: np.ndarray, f: float, key: float) -> bool:
     """Whether (f, key) would be popped before every queued node (true if empty)."""
     if size[0] == 0:

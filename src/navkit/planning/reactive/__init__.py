@@ -5,6 +5,16 @@ together (``field_a + field_b``, ``sum(fields)``); :func:`sample_field` samples
 one on a grid; :func:`repulsive_force_from_scan` sums repulsion straight from a
 laser scan; :func:`greedy_step` picks the next cell on a robot-centred laser grid.
 Units are SI.
+
+Ranges: world points (goals, obstacles, query points, sampling windows) within
+``±1e9`` m; gains in ``[1e-12, 1e12]``; lengths (semi-axes, widths, spreads,
+``influence_radius``) in ``[1e-6, 1e6]`` m, offset radii (``threshold_radius``,
+``goal_radius``, ``obstacle_radius``) in ``[0, 1e6]`` m; :func:`sample_field` at
+most ``2**26`` cells. Inside them forces are always finite and potentials too,
+except ``+inf`` exactly on a :class:`KhatibRepulsion` obstacle (whose push
+saturates below 1e-9 m). Bad input raises ``ValueError`` or ``TypeError``
+naming the argument; :func:`greedy_step` with no feasible cell
+:class:`navkit.NoPathError`.
 """
 
 from __future__ import annotations

@@ -18,7 +18,8 @@ from numpy.typing import ArrayLike
 from scipy.special import expit
 
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import as_float_array, positive_float
+from navkit._shared.validation import as_float_array
+from navkit.planning.reactive._limits import gain, length
 from navkit.planning.reactive._potential_field import PotentialField, _goal, _offsets, _unit
 
 __all__ = [
@@ -32,11 +33,22 @@ __all__ = [
 _A = TypeVar("_A", bound="AttractiveField")
 
 
-def _check_positive(field: object, *names: str, allow_zero: tuple[str, ...] = ()) -> None:
-    """Validate float parameters in place: each > 0 (or >= 0 when in ``allow_zero``)."""
-    for name in names:
-        value = positive_float(getattr(field, name), name, allow_zero=name in allow_zero)
-        object.__setattr__(field, name, value)
+def _check(
+    field: object,
+    gains: tuple[str, ...],
+    lengths: tuple[str, ...] = (),
+    zero_lengths: tuple[str, ...] = (),
+) -> None:
+    """Validate float parameters in place: gains in [1e-12, 1e12], lengths in [1e-6, 1e6] m.
+
+    ``zero_lengths`` are lengths that may also be 0.
+    """
+    for name in gains:
+        object.__setattr__(field, name, gain(getattr(field, name), name))
+    for name in lengths:
+        object.__setattr__(field, name, length(getattr(field, name), name))
+    for name in zero_lengths:
+        object.__setattr__(field, name, length(getattr(field, name), name, allow_zero=True))
 
 
 @dataclass(frozen=True, slots=True, eq=False, repr=False)
@@ -49,7 +61,8 @@ class AttractiveField(PotentialField):
     Parameters
     ----------
     goal_xy : array_like, shape (2,)
-        Goal ``(x, y)`` in metres (world frame); stored as a read-only copy.
+        Goal ``(x, y)`` in metres (world frame), ``|x|, |y| <= 1e9``; stored
+        as a read-only copy.
 
     Examples
     --------
@@ -95,11 +108,18 @@ class ParaboloidAttraction(AttractiveField):
     goal_xy : array_like, shape (2,)
         Goal ``q_d = (xd, yd)`` in metres.
     k_att : float, default 1.0
-        Attraction gain ``K_att``, > 0.
+        Attraction gain ``K_att``, in ``[1e-12, 1e12]``.
     c : float, default 1.0
-        Curvature, > 0.
+        Curvature, in ``[1e-12, 1e12]``.
     a, b : float, default 1.0
-        Ellipse semi-axes along x and y (m), > 0.
+        Ellipse semi-axes along x and y (m), in ``[1e-6, 1e6]``.
+
+    Raises
+    ------
+    ValueError
+        A parameter out of its range, a goal beyond ±1e9 m or not finite.
+    TypeError
+        A parameter that is not a real number (or is a bool).
 
     Examples
     --------
@@ -117,7 +137,7 @@ class ParaboloidAttraction(AttractiveField):
 
     def __post_init__(self) -> None:
         AttractiveField.__post_init__(self)
-        _check_positive(self, "k_att", "c", "a", "b")
+        _check(self, ("k_att", "c"), ("a", "b"))
 
     def _scales(self) -> tuple[float, float]:
         kc = self.k_att * self.c
@@ -149,11 +169,12 @@ class ConicAttraction(AttractiveField):
     goal_xy : array_like, shape (2,)
         Goal ``q_d = (xd, yd)`` in metres.
     m : float, default 1.0
-        Gradient (speed), > 0.
+        Gradient (speed), in ``[1e-12, 1e12]``.
     u_trans : float, default 1.0
-        Translation constant ``U_trans``, > 0.
+        Translation constant ``U_trans``, in ``[1e-12, 1e12]``.
     threshold_radius : float, default 0.0
-        Offset ``rad_thr`` of the cone (m), >= 0; shifts the potential only.
+        Offset ``rad_thr`` of the cone (m), in ``[0, 1e6]``; shifts the
+        potential only.
 
     Examples
     --------
@@ -167,8 +188,7 @@ class ConicAttraction(AttractiveField):
 
     def __post_init__(self) -> None:
         AttractiveField.__post_init__(self)
-        _check_positive(self, "m", "u_trans", "threshold_radius",
-                        allow_zero=("threshold_radius",))
+        _check(self, ("m", "u_trans"), zero_lengths=("threshold_radius",))
 
     def _potential(self, pts: FloatArray) -> FloatArray:
         _, d = _offsets(pts, self.goal_xy)
@@ -211,18 +231,18 @@ class BlendedAttraction(AttractiveField):
     goal_xy : array_like, shape (2,)
         Goal ``(xd, yd)`` in metres.
     k_att, c : float, default 1.0
-        Paraboloid gain and curvature, > 0.
+        Paraboloid gain and curvature, in ``[1e-12, 1e12]``.
     a, b : float, default 1.0
-        Ellipse semi-axes (m), > 0.
+        Ellipse semi-axes (m), in ``[1e-6, 1e6]``.
     threshold_radius : float, default 0.5
-        Distance ``rad_thr`` (m) at which σ = ½, >= 0.
+        Distance ``rad_thr`` (m) at which σ = ½, in ``[0, 1e6]``.
     width : float, default 0.15
-        Blending width ω (m), > 0: σ goes from 0.12 to 0.88 over
+        Blending width ω (m), in ``[1e-6, 1e6]``: σ goes from 0.12 to 0.88 over
         ``threshold_radius ± ω``.
     m : float, default 1.0
-        Cone gradient (speed), > 0.
+        Cone gradient (speed), in ``[1e-12, 1e12]``.
     u_trans : float, default 1.0
-        Translation constant, > 0.
+        Translation constant, in ``[1e-12, 1e12]``.
 
     Notes
     -----
@@ -263,8 +283,7 @@ class BlendedAttraction(AttractiveField):
 
     def __post_init__(self) -> None:
         AttractiveField.__post_init__(self)
-        _check_positive(self, "k_att", "c", "a", "b", "threshold_radius", "width", "m",
-                        "u_trans", allow_zero=("threshold_radius",))
+        _check(self, ("k_att", "c", "m", "u_trans"), ("a", "b", "width"), ("threshold_radius",))
 
     def sigma(self, d: ArrayLike) -> FloatArray:
         """Blending function σ(d) = ½[tanh((d - rad_thr)/ω) + 1] for distances ``d`` (m).
@@ -275,7 +294,9 @@ class BlendedAttraction(AttractiveField):
         array([0.5])
         """
         dist = as_float_array(d, "d")
-        out: FloatArray = expit(2.0 * (dist - self.threshold_radius) / self.width)
+        # Far beyond the blend the argument may overflow to ±inf: σ is then 1 or 0.
+        with np.errstate(over="ignore"):
+            out: FloatArray = expit(2.0 * (dist - self.threshold_radius) / self.width)
         return out
 
     def _terms(
@@ -326,11 +347,11 @@ class PiecewiseAttraction(AttractiveField):
     goal_xy : array_like, shape (2,)
         Goal ``(xd, yd)`` in metres.
     alpha : float, default 1.0
-        Gain ``α`` (1/s for a velocity field), > 0.
+        Gain ``α`` (1/s for a velocity field), in ``[1e-12, 1e12]``.
     goal_radius : float, default 0.0
-        Goal radius ``r`` (m) inside which there is no force, >= 0.
+        Goal radius ``r`` (m) inside which there is no force, in ``[0, 1e6]``.
     spread : float, default 1.0
-        Width ``s`` of the linear zone (m), > 0.
+        Width ``s`` of the linear zone (m), in ``[1e-6, 1e6]``.
 
     Examples
     --------
@@ -347,7 +368,7 @@ class PiecewiseAttraction(AttractiveField):
 
     def __post_init__(self) -> None:
         AttractiveField.__post_init__(self)
-        _check_positive(self, "alpha", "goal_radius", "spread", allow_zero=("goal_radius",))
+        _check(self, ("alpha",), ("spread",), ("goal_radius",))
 
     def _potential(self, pts: FloatArray) -> FloatArray:
         _, d = _offsets(pts, self.goal_xy)

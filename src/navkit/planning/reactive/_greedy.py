@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import numbers
+from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
@@ -9,12 +11,15 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import as_bool, as_float_array
+from navkit._shared.validation import as_bool, as_float_array, finite_float
 from navkit.errors import NoPathError
 from navkit.mapping import LocalGrid
 from navkit.planning.reactive._greedy_kernels import greedy_select
+from navkit.planning.reactive._limits import point
 
 __all__ = ["GreedyStep", "greedy_step"]
+
+_INT64_MAX = 2**63 - 1
 
 
 @dataclass(frozen=True, slots=True, eq=False)
@@ -24,16 +29,26 @@ class GreedyStep:
     Parameters
     ----------
     cell : tuple of int
-        ``(row, col)`` of the chosen cell in ``local_grid.occupied``.
+        ``(row, col)`` of the chosen cell in ``local_grid.occupied``, integers
+        >= 0 (not booleans).
     waypoint_xy : array_like, shape (2,)
         Its centre ``(x, y)`` in metres in the robot frame: where to move next.
-        Stored as a read-only copy.
+        Finite; stored as a read-only copy (the caller's array is neither kept
+        nor frozen).
     g : float
-        Distance from the robot to the waypoint (m).
+        Distance from the robot to the waypoint (m), finite, >= 0.
     h : float
-        Distance from the waypoint to the goal (m).
+        Distance from the waypoint to the goal (m), finite, >= 0.
     candidates : int
-        Number of free cells that were candidates.
+        Number of free cells that were candidates, >= 0.
+
+    Raises
+    ------
+    ValueError
+        Negative or non-finite values, a waypoint of the wrong shape.
+    TypeError
+        Values of the wrong type (strings, complex numbers, booleans, a cell
+        that is not a pair of integers).
 
     Examples
     --------
@@ -49,17 +64,38 @@ class GreedyStep:
     candidates: int
 
     def __post_init__(self) -> None:
-        # A result type: conversions only, kept cheap (greedy_step runs every scan).
-        row, col = self.cell
-        waypoint = np.array(self.waypoint_xy, dtype=np.float64)
-        if waypoint.shape != (2,):
-            raise ValueError(f"waypoint_xy must have shape (2,), got {waypoint.shape}")
+        cell: Any = self.cell
+        if (
+            isinstance(cell, (str, bytes, Mapping, set, frozenset))
+            or not hasattr(cell, "__len__")
+            or len(cell) != 2
+        ):
+            raise TypeError(f"cell must be a (row, col) pair of integers, got {cell!r}")
+        row, col = (_count(v, "cell") for v in cell)
+        waypoint = np.array(as_float_array(self.waypoint_xy, "waypoint_xy", shape=(2,)))
         waypoint.setflags(write=False)
-        object.__setattr__(self, "cell", (int(row), int(col)))
+        object.__setattr__(self, "cell", (row, col))
         object.__setattr__(self, "waypoint_xy", waypoint)
-        object.__setattr__(self, "g", float(self.g))
-        object.__setattr__(self, "h", float(self.h))
-        object.__setattr__(self, "candidates", int(self.candidates))
+        for name in ("g", "h"):
+            value = finite_float(getattr(self, name), name)
+            if value < 0.0:
+                raise ValueError(f"{name} must be >= 0, got {value}")
+            object.__setattr__(self, name, value)
+        object.__setattr__(self, "candidates", _count(self.candidates, "candidates"))
+
+    @classmethod
+    def _owned(
+        cls, cell: tuple[int, int], waypoint_xy: FloatArray, g: float, h: float, candidates: int
+    ) -> GreedyStep:
+        """A step from :func:`greedy_step`'s own valid values; skips the checks."""
+        step = object.__new__(cls)
+        waypoint_xy.setflags(write=False)
+        object.__setattr__(step, "cell", cell)
+        object.__setattr__(step, "waypoint_xy", waypoint_xy)
+        object.__setattr__(step, "g", g)
+        object.__setattr__(step, "h", h)
+        object.__setattr__(step, "candidates", candidates)
+        return step
 
     @property
     def cost(self) -> float:
@@ -90,8 +126,8 @@ def greedy_step(
     local_grid : navkit.mapping.LocalGrid
         Occupancy around the robot; rows along y, columns along x (robot frame).
     goal_xy : array_like, shape (2,)
-        Goal ``(x, y)`` in metres in the robot frame (x forward, y left); it may
-        lie outside the grid.
+        Goal ``(x, y)`` in metres in the robot frame (x forward, y left),
+        ``|x|, |y| <= 1e9``; it may lie outside the grid.
     require_progress : bool, default False
         Only consider cells strictly nearer the goal than the robot. The paper's
         rule (False) may choose a cell behind the robot in front of a wide wall;
@@ -107,7 +143,7 @@ def greedy_step(
     TypeError
         ``local_grid`` is not a LocalGrid, or ``require_progress`` not a bool.
     ValueError
-        ``goal_xy`` is not two finite numbers.
+        ``goal_xy`` is not two finite numbers within ±1e9 m.
     NoPathError
         No candidate is feasible (e.g. the robot is walled in, or with
         ``require_progress`` every cell nearer the goal is hidden behind walls).
@@ -122,7 +158,7 @@ def greedy_step(
     array([1., 0.])
     """
     grid = _check_grid(local_grid)
-    target = as_float_array(goal_xy, "goal_xy", shape=(2,))
+    target = point(goal_xy, "goal_xy")
     progress = as_bool(require_progress, "require_progress")
     gx, gy = float(target[0]), float(target[1])
     occupied = grid.occupied
@@ -141,8 +177,25 @@ def greedy_step(
             f"no free cell {reason}is in line of sight of the robot ({n_free} candidates)",
             expanded=n_free,
         )
-    waypoint_xy = grid.cell_to_world(np.array([[row, col]]))[0]
-    return GreedyStep((int(row), int(col)), waypoint_xy, float(g), float(h), int(n_free))
+    waypoint_xy = np.array(grid.cell_to_world(np.array([[row, col]]))[0], dtype=np.float64)
+    return GreedyStep._owned((int(row), int(col)), waypoint_xy, float(g), float(h), int(n_free))
+
+
+def _count(value: Any, name: str) -> int:
+    """An integer in [0, 2**63 - 1] (integral floats accepted, booleans refused)."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
+        raise TypeError(f"{name} must hold integers, got {type(value).__name__}")
+    if isinstance(value, numbers.Integral):
+        out = int(value)
+    else:
+        number = finite_float(value, name)
+        if not number.is_integer():
+            raise TypeError(f"{name} must hold integers, got {value!r}")
+        out = int(number)
+    if not 0 <= out <= _INT64_MAX:
+        size = str(out) if abs(out) < 10**30 else f"an integer of {out.bit_length()} bits"
+        raise ValueError(f"{name} must be in [0, 2**63 - 1], got {size}")
+    return out
 
 
 def _check_grid(value: Any) -> LocalGrid:

@@ -12,14 +12,14 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
+from navkit._shared.jit import njit_cached, njit_inline
 from navkit._shared.lines import line_is_free
 
 __all__ = ["greedy_select"]
 
 
-@njit(cache=True, inline="always")
+@njit_inline
 def _candidate(
     occupied: np.ndarray,
     i: int,
@@ -41,7 +41,7 @@ def _candidate(
     return h < h_limit, math.hypot(x, y), h
 
 
-@njit(cache=True)
+@njit_cached
 def greedy_select(
     occupied: np.ndarray,
     r0: int,

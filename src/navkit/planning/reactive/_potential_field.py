@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import dataclasses
 from abc import ABC, abstractmethod
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from typing import Any
 
@@ -18,7 +18,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import as_float_array, as_points
+from navkit.planning.reactive._limits import point, points
 
 __all__ = ["CompositeField", "PotentialField"]
 
@@ -32,6 +32,12 @@ class PotentialField(ABC):
     :class:`dataclasses.FrozenInstanceError`. Subclasses implement ``_potential``
     and ``_force`` on a validated ``(N, 2)`` float64 array; the public
     :meth:`potential` and :meth:`force` validate once.
+
+    Ranges (checked where a field is built and on every query): points within
+    ``±1e9`` m in x and y, gains in ``[1e-12, 1e12]``, lengths (semi-axes,
+    widths, radii, spreads) in ``[1e-6, 1e6]`` m (offset radii in ``[0, 1e6]``). Inside
+    them potentials and forces are finite, except the documented ``+inf``
+    potential of :class:`KhatibRepulsion` on an obstacle point.
 
     Examples
     --------
@@ -51,14 +57,22 @@ class PotentialField(ABC):
         Parameters
         ----------
         points_xy : array_like, shape (N, 2) or (2,)
-            ``(x, y)`` positions in metres; a single point gives ``N = 1``.
+            ``(x, y)`` positions in metres, ``|x|, |y| <= 1e9``; a single point
+            gives ``N = 1``, an empty input ``N = 0``.
 
         Returns
         -------
         ndarray, shape (N,)
             The potential ``U`` at each point (``+inf`` on a Khatib obstacle).
+
+        Raises
+        ------
+        ValueError
+            Bad shape, NaN, infinities or coordinates beyond ±1e9 m.
+        TypeError
+            Non-numeric points (strings, complex numbers, booleans).
         """
-        return self._potential(as_points(points_xy, "points_xy"))
+        return self._potential(points(points_xy, "points_xy"))
 
     def force(self, points_xy: ArrayLike) -> FloatArray:
         """Force ``-∇U`` at world points.
@@ -66,14 +80,23 @@ class PotentialField(ABC):
         Parameters
         ----------
         points_xy : array_like, shape (N, 2) or (2,)
-            ``(x, y)`` positions in metres; a single point gives ``N = 1``.
+            ``(x, y)`` positions in metres, ``|x|, |y| <= 1e9``; a single point
+            gives ``N = 1``, an empty input ``N = 0``.
 
         Returns
         -------
         ndarray, shape (N, 2)
-            The force ``(Fx, Fy)`` at each point, in the world frame.
+            The force ``(Fx, Fy)`` at each point, in the world frame; always
+            finite.
+
+        Raises
+        ------
+        ValueError
+            Bad shape, NaN, infinities or coordinates beyond ±1e9 m.
+        TypeError
+            Non-numeric points (strings, complex numbers, booleans).
         """
-        return self._force(as_points(points_xy, "points_xy"))
+        return self._force(points(points_xy, "points_xy"))
 
     @abstractmethod
     def _potential(self, pts: FloatArray) -> FloatArray: ...
@@ -124,12 +147,12 @@ def _frozen(arr: FloatArray) -> FloatArray:
 
 def _goal(goal_xy: ArrayLike) -> FloatArray:
     """A goal ``(x, y)`` as a read-only float64 copy, validated."""
-    return _frozen(as_float_array(goal_xy, "goal_xy", shape=(2,)))
+    return _frozen(point(goal_xy, "goal_xy"))
 
 
 def _obstacles(obstacles_xy: ArrayLike) -> FloatArray:
     """Obstacle points as a read-only ``(M, 2)`` float64 copy, validated."""
-    return _frozen(as_points(obstacles_xy, "obstacles_xy"))
+    return _frozen(points(obstacles_xy, "obstacles_xy"))
 
 
 def _offsets(pts: FloatArray, centre: FloatArray) -> tuple[FloatArray, FloatArray]:
@@ -153,7 +176,8 @@ class CompositeField(PotentialField):
     Parameters
     ----------
     fields : iterable of PotentialField
-        The parts, stored as a tuple; an empty one is the zero field.
+        The parts (a list, tuple or other ordered iterable; not a mapping, set
+        or string), stored as a tuple; an empty one is the zero field.
 
     Examples
     --------
@@ -171,7 +195,9 @@ class CompositeField(PotentialField):
 
     def __post_init__(self) -> None:
         given: object = self.fields
-        if isinstance(given, PotentialField) or not isinstance(given, Iterable):
+        if isinstance(given, (PotentialField, Mapping, str, bytes, set, frozenset)) or not (
+            isinstance(given, Iterable)
+        ):
             raise TypeError(
                 f"fields must be an iterable of PotentialField, got {type(given).__name__}"
             )

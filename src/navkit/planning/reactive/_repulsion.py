@@ -19,7 +19,7 @@ from numpy.typing import NDArray
 from scipy.spatial import cKDTree
 
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import positive_float
+from navkit.planning.reactive._limits import MIN_DISTANCE, gain, length
 from navkit.planning.reactive._potential_field import PotentialField, _obstacles
 
 __all__ = ["KhatibRepulsion", "PiecewiseRepulsion"]
@@ -101,7 +101,7 @@ class _PointRepulsion(PotentialField):
 
     def _potential(self, pts: FloatArray) -> FloatArray:
         out = np.zeros(pts.shape[0], dtype=np.float64)
-        if self.obstacles_xy.shape[0] == 0:
+        if self.obstacles_xy.shape[0] == 0 or pts.shape[0] == 0:
             return out
         for block, idx, _, _, d in self._near_pairs(pts):
             u, _ = self._radial(d)
@@ -110,18 +110,17 @@ class _PointRepulsion(PotentialField):
 
     def _force(self, pts: FloatArray) -> FloatArray:
         out = np.zeros((pts.shape[0], 2), dtype=np.float64)
-        if self.obstacles_xy.shape[0] == 0:
+        if self.obstacles_xy.shape[0] == 0 or pts.shape[0] == 0:
             return out
         for block, idx, dx, dy, d in self._near_pairs(pts):
             _, mag = self._radial(d)
-            # Direction (q - q_c)/d; a point on an obstacle has none and gets 0.
-            with np.errstate(over="ignore"):
-                coef = np.where(d > 0.0, mag / np.where(d > 0.0, d, 1.0), 0.0)
-            # A magnitude that overflowed to inf (d below ~1e-103) must not turn the
-            # zero component of its direction into NaN.
-            with np.errstate(invalid="ignore"):
-                fx = np.where(dx != 0.0, coef * dx, 0.0)
-                fy = np.where(dy != 0.0, coef * dy, 0.0)
+            # Direction (q - q_c)/d, each component in [-1, 1] (hypot >= |dx|, |dy|);
+            # a point on an obstacle has none and gets 0. The radial laws are
+            # finite (Khatib saturates below MIN_DISTANCE), so the sum has no NaN.
+            on = d == 0.0
+            safe = np.where(on, 1.0, d)
+            fx = np.where(on, 0.0, mag * (dx / safe))
+            fy = np.where(on, 0.0, mag * (dy / safe))
             n = block.stop - block.start
             out[block, 0] = np.bincount(idx, weights=fx, minlength=n)
             out[block, 1] = np.bincount(idx, weights=fy, minlength=n)
@@ -137,20 +136,35 @@ class KhatibRepulsion(_PointRepulsion):
         U = ½·k_rep·(1/d - 1/d0)²                       for d <= d0, else 0
         F = k_rep·(1/d - 1/d0)·(1/d²)·(q - q_c)/d       for d <= d0, else 0
 
-    Exactly zero beyond ``d0``, continuous at ``d0`` and unbounded as ``d → 0``.
-    At a point coinciding with an obstacle the potential is ``+inf`` and that
-    obstacle's force, whose direction is undefined, is zero. Khatib's ``d0``
-    (the limit distance of the potential field influence) is ``influence_radius``.
+    Exactly zero beyond ``d0``, continuous at ``d0`` and growing without bound
+    as ``d → 0`` — down to ``d = 1e-9`` m: an obstacle nearer than that (a
+    nanometre, far below any sensor's resolution) acts as if it were 1e-9 m
+    away, so its push saturates at a finite ``k_rep·(1e9 - 1/d0)·1e18`` and
+    opposite pushes cancel instead of giving ``inf - inf = NaN``. At a point
+    coinciding with an obstacle (``d = 0``) the potential is ``+inf`` and that
+    obstacle's force, whose direction is undefined, is zero. The force is
+    always finite. Khatib's ``d0`` (the limit distance of the potential field
+    influence) is ``influence_radius``.
 
     Parameters
     ----------
     obstacles_xy : array_like, shape (M, 2)
-        Obstacle points ``q_c = (x, y)`` in metres; ``M = 0`` is valid (zero field).
-        Stored as a read-only copy.
+        Obstacle points ``q_c = (x, y)`` in metres, ``|x|, |y| <= 1e9``;
+        ``M = 0`` is valid (zero field). Stored as a read-only copy.
     k_rep : float, default 1.0
-        Repulsion gain, > 0.
+        Repulsion gain, in ``[1e-12, 1e12]``.
     influence_radius : float, default 1.0
-        Khatib's ``d0`` (m), > 0: obstacles farther than this do not push.
+        Khatib's ``d0`` (m), in ``[1e-6, 1e6]``: obstacles farther than this do
+        not push.
+
+    Raises
+    ------
+    ValueError
+        A parameter out of its range; obstacles of a bad shape, not finite or
+        beyond ±1e9 m.
+    TypeError
+        A parameter that is not a real number (or is a bool); non-numeric
+        obstacles.
 
     Examples
     --------
@@ -167,20 +181,21 @@ class KhatibRepulsion(_PointRepulsion):
 
     def __post_init__(self) -> None:
         _PointRepulsion.__post_init__(self)
-        object.__setattr__(self, "k_rep", positive_float(self.k_rep, "k_rep"))
+        object.__setattr__(self, "k_rep", gain(self.k_rep, "k_rep"))
         object.__setattr__(
-            self, "influence_radius", positive_float(self.influence_radius, "influence_radius")
+            self, "influence_radius", length(self.influence_radius, "influence_radius")
         )
 
     def _reach(self) -> float:
         return self.influence_radius
 
     def _radial(self, d: FloatArray) -> tuple[FloatArray, FloatArray]:
-        # Unbounded near an obstacle: overflow to +inf is the right answer there.
-        with np.errstate(divide="ignore", over="ignore"):
-            excess = 1.0 / d - 1.0 / self.influence_radius
-            mag = self.k_rep * excess / (d * d)
-            return 0.5 * self.k_rep * excess * excess, mag
+        # Saturated below MIN_DISTANCE; the potential is +inf on the obstacle only.
+        near = np.maximum(d, MIN_DISTANCE)
+        excess = 1.0 / near - 1.0 / self.influence_radius
+        mag = self.k_rep * excess / (near * near)
+        u = np.where(d == 0.0, np.inf, 0.5 * self.k_rep * excess * excess)
+        return u, mag
 
 
 @dataclass(frozen=True, slots=True, eq=False, repr=False, kw_only=True)
@@ -199,16 +214,21 @@ class PiecewiseRepulsion(_PointRepulsion):
     Parameters
     ----------
     obstacles_xy : array_like, shape (M, 2)
-        Obstacle points ``(x, y)`` in metres; ``M = 0`` is valid (zero field).
-        Stored as a read-only copy.
+        Obstacle points ``(x, y)`` in metres, ``|x|, |y| <= 1e9``; ``M = 0`` is
+        valid (zero field). Stored as a read-only copy.
     delta : float, default 1.0
-        Force magnitude ``δ`` inside ``obstacle_radius``, > 0.
+        Force magnitude ``δ`` inside ``obstacle_radius``, in ``[1e-12, 1e12]``.
     beta : float, default 1.0
-        Gain ``β`` of the linear zone, > 0.
+        Gain ``β`` of the linear zone, in ``[1e-12, 1e12]``.
     obstacle_radius : float, default 0.0
-        Obstacle (or safety) radius ``r`` (m), >= 0.
+        Obstacle (or safety) radius ``r`` (m), in ``[0, 1e6]``.
     spread : float, default 1.0
-        Width ``s`` of the linear zone (m), > 0.
+        Width ``s`` of the linear zone (m), in ``[1e-6, 1e6]``.
+
+    Raises
+    ------
+    ValueError, TypeError
+        As :class:`KhatibRepulsion`.
 
     Examples
     --------
@@ -227,14 +247,14 @@ class PiecewiseRepulsion(_PointRepulsion):
 
     def __post_init__(self) -> None:
         _PointRepulsion.__post_init__(self)
-        object.__setattr__(self, "delta", positive_float(self.delta, "delta"))
-        object.__setattr__(self, "beta", positive_float(self.beta, "beta"))
+        object.__setattr__(self, "delta", gain(self.delta, "delta"))
+        object.__setattr__(self, "beta", gain(self.beta, "beta"))
         object.__setattr__(
             self,
             "obstacle_radius",
-            positive_float(self.obstacle_radius, "obstacle_radius", allow_zero=True),
+            length(self.obstacle_radius, "obstacle_radius", allow_zero=True),
         )
-        object.__setattr__(self, "spread", positive_float(self.spread, "spread"))
+        object.__setattr__(self, "spread", length(self.spread, "spread"))
 
     def _reach(self) -> float:
         return self.spread + self.obstacle_radius

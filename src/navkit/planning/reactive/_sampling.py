@@ -2,8 +2,8 @@
 
 from __future__ import annotations
 
-import math
 from dataclasses import KW_ONLY, dataclass
+from decimal import ROUND_CEILING, Decimal
 from typing import Literal, overload
 
 import numpy as np
@@ -11,17 +11,40 @@ from numpy.typing import ArrayLike
 
 from navkit._shared.grid_coords import as_pairs, inside, one_or_many, round_half_up
 from navkit._shared.types import BoolArray, FloatArray, IntArray
-from navkit._shared.validation import as_float_array, positive_float
+from navkit._shared.validation import as_bool, as_float_array, positive_float
+from navkit.planning.reactive._limits import (
+    COORDINATE_LIMIT,
+    MAX_SAMPLES,
+    RESOLUTION_MAX,
+    RESOLUTION_MIN,
+    check_coordinates,
+)
 from navkit.planning.reactive._potential_field import PotentialField, _frozen
 
 __all__ = ["SampledField", "sample_field"]
 
+# Continuous cell coordinates beyond this are refused (their world points and
+# int64 cells stay exact and finite).
+_CELL_LIMIT = float(2**53)
+# Bytes sample_field holds per cell: the points, potential, force and temporaries.
+_BYTES_PER_SAMPLE = 128
+
+
+def _resolution(value: object) -> float:
+    res = positive_float(value, "resolution")
+    if not RESOLUTION_MIN <= res <= RESOLUTION_MAX:
+        raise ValueError(
+            f"resolution must lie in [{RESOLUTION_MIN:g}, {RESOLUTION_MAX:g}] m, got {res}"
+        )
+    return res
+
 
 def _axis(value: ArrayLike, name: str, resolution: float) -> FloatArray:
     """A strictly increasing, evenly spaced 1-D axis of cell centres (read-only copy)."""
-    arr = as_float_array(value, name, ndim=1)
+    arr = as_float_array(value, name, ndim=1, finite=False)
     if arr.shape[0] == 0:
         raise ValueError(f"{name} must hold at least one cell centre")
+    check_coordinates(arr, name)
     # Centres computed as lo + (k + ½)·resolution are spaced by it up to rounding.
     tol = 1e-9 * (resolution + float(np.max(np.abs(arr))))
     if np.any(np.abs(np.diff(arr) - resolution) > tol):
@@ -43,15 +66,26 @@ class SampledField:
     Parameters
     ----------
     x : array_like, shape (W,)
-        Cell-centre x coordinates (m), increasing by ``resolution``.
+        Cell-centre x coordinates (m), increasing by ``resolution``, within
+        ``±1e9``.
     y : array_like, shape (H,)
-        Cell-centre y coordinates (m), increasing by ``resolution``.
+        Cell-centre y coordinates (m), increasing by ``resolution``, within
+        ``±1e9``.
     potential : array_like, shape (H, W)
-        Potential at each cell centre (``+inf`` allowed: a Khatib obstacle).
+        Potential at each cell centre: finite or ``+inf`` (a Khatib
+        obstacle); no NaN, no ``-inf``.
     force : array_like, shape (H, W, 2)
-        Force ``(Fx, Fy)`` at each cell centre.
+        Force ``(Fx, Fy)`` at each cell centre, finite.
     resolution : float
-        Cell side in metres, > 0.
+        Cell side in metres, in ``[1e-6, 1e6]``.
+
+    Raises
+    ------
+    ValueError
+        Shapes that do not match, axes not evenly spaced or beyond ±1e9 m,
+        NaN, infinite forces, ``resolution`` out of range.
+    TypeError
+        Non-numeric arrays or ``resolution``.
 
     Examples
     --------
@@ -71,12 +105,14 @@ class SampledField:
     resolution: float
 
     def __post_init__(self) -> None:
-        res = positive_float(self.resolution, "resolution")
+        res = _resolution(self.resolution)
         xs = _axis(self.x, "x", res)
         ys = _axis(self.y, "y", res)
         shape = (ys.shape[0], xs.shape[0])
         potential = as_float_array(self.potential, "potential", shape=shape, finite=False)
-        force = as_float_array(self.force, "force", shape=(*shape, 2), finite=False)
+        if np.isnan(potential).any() or (potential == -np.inf).any():
+            raise ValueError("potential must not contain NaN or -inf (+inf is allowed)")
+        force = as_float_array(self.force, "force", shape=(*shape, 2))
         object.__setattr__(self, "resolution", res)
         object.__setattr__(self, "x", xs)
         object.__setattr__(self, "y", ys)
@@ -109,7 +145,7 @@ class SampledField:
         Parameters
         ----------
         points_xy : array_like, shape (N, 2) or (2,)
-            World points in metres.
+            World points in metres, ``|x|, |y| <= 1e9``.
         continuous : bool, default False
             Return float continuous coordinates (integers at cell centres)
             instead of the int64 cell containing each point.
@@ -133,11 +169,14 @@ class SampledField:
         array([1.3, 2.1])
         """
         pts, single = as_pairs(points_xy, "points_xy")
+        check_coordinates(pts, "points_xy")
         cont = np.empty_like(pts)
         cont[:, 0] = (pts[:, 1] - self.y[0]) / self.resolution
         cont[:, 1] = (pts[:, 0] - self.x[0]) / self.resolution
         # Round half up (np.rint would round half to even): as OccupancyGrid and LocalGrid.
-        out: IntArray | FloatArray = cont if continuous else round_half_up(cont)
+        out: IntArray | FloatArray = (
+            cont if as_bool(continuous, "continuous") else round_half_up(cont)
+        )
         return one_or_many(out, single)
 
     def cell_to_world(self, cells: ArrayLike) -> FloatArray:
@@ -147,7 +186,7 @@ class SampledField:
         ----------
         cells : array_like, shape (N, 2) or (2,)
             Integer cells (their centres are returned) or float continuous
-            coordinates (integers at cell centres).
+            coordinates (integers at cell centres), within ``±2**53``.
 
         Returns
         -------
@@ -165,6 +204,8 @@ class SampledField:
         array([[-1.  ,  0.25]])
         """
         arr, single = as_pairs(cells, "cells")
+        if arr.size and not float(np.abs(arr).max()) <= _CELL_LIMIT:
+            raise ValueError(f"cells must lie within ±2**53, got {float(np.abs(arr).max()):g}")
         out = np.empty_like(arr)
         out[:, 0] = self.x[0] + arr[:, 1] * self.resolution
         out[:, 1] = self.y[0] + arr[:, 0] * self.resolution
@@ -198,10 +239,20 @@ def _limits(value: ArrayLike, name: str) -> tuple[float, float]:
     return lo, hi
 
 
-def _centres(lo: float, hi: float, resolution: float) -> FloatArray:
+def _count(lo: float, hi: float, resolution: float) -> Decimal:
+    """Cells covering ``[lo, hi]``, exactly (no overflow before the size check)."""
+    n = (Decimal(hi) - Decimal(lo)) / Decimal(resolution)
     # The tolerance keeps an exact multiple (12 m at 0.01 m) from gaining a cell to rounding.
-    n = max(1, math.ceil((hi - lo) / resolution - 1e-9))
+    return max(Decimal(1), (n - Decimal("1e-9")).to_integral_value(rounding=ROUND_CEILING))
+
+
+def _centres(lo: float, n: int, resolution: float, name: str) -> FloatArray:
     out: FloatArray = lo + (np.arange(n, dtype=np.float64) + 0.5) * resolution
+    if not abs(float(out[-1])) <= COORDINATE_LIMIT:
+        raise ValueError(
+            f"{name}: the last cell centre, {float(out[-1]):g} m, lies beyond "
+            f"±{COORDINATE_LIMIT:g} m (a smaller resolution or window fits)"
+        )
     return out
 
 
@@ -223,14 +274,24 @@ def sample_field(
     field : PotentialField
         Any navkit field, including composites.
     xlim, ylim : array_like, shape (2,)
-        ``(min, max)`` extents in metres, ``max > min``.
+        ``(min, max)`` extents in metres, ``max > min``, within ``±1e9``.
     resolution : float
-        Cell side in metres, > 0.
+        Cell side in metres, in ``[1e-6, 1e6]``. The window may hold at most
+        ``2**26`` (8192 × 8192) cells.
 
     Returns
     -------
     SampledField
         Coordinates, ``potential`` (H, W) and ``force`` (H, W, 2) indexed ``[row, col]``.
+
+    Raises
+    ------
+    ValueError
+        Limits out of range or not increasing; more than ``2**26`` cells (the
+        message says how many the window would need and their memory);
+        ``resolution`` out of range.
+    TypeError
+        ``field`` is not a PotentialField; non-numeric limits or resolution.
 
     Examples
     --------
@@ -247,8 +308,19 @@ def sample_field(
     res = positive_float(resolution, "resolution")
     x0, x1 = _limits(xlim, "xlim")
     y0, y1 = _limits(ylim, "ylim")
-    xs = _centres(x0, x1, res)
-    ys = _centres(y0, y1, res)
+    nx = _count(x0, x1, res)
+    ny = _count(y0, y1, res)
+    if not nx * ny <= MAX_SAMPLES:
+        raise ValueError(
+            f"sample_field would need {_num(ny)} × {_num(nx)} = {_num(nx * ny)} cells "
+            f"({_bytes_text(nx * ny * _BYTES_PER_SAMPLE)}) at resolution {res:g} m; the "
+            f"maximum is 2**26 = {MAX_SAMPLES} cells (8192 × 8192)"
+        )
+    check_coordinates(np.array([x0, x1]), "xlim")
+    check_coordinates(np.array([y0, y1]), "ylim")
+    res = _resolution(res)
+    xs = _centres(x0, int(nx), res, "xlim")
+    ys = _centres(y0, int(ny), res, "ylim")
     gx, gy = np.meshgrid(xs, ys)
     pts = np.stack((gx.ravel(), gy.ravel()), axis=1)
     shape = (ys.size, xs.size)
@@ -259,3 +331,17 @@ def sample_field(
         field._force(pts).reshape((*shape, 2)),
         resolution=res,
     )
+
+
+def _bytes_text(n: Decimal) -> str:
+    units = ("B", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB", "ZiB", "YiB")
+    k = 0
+    while n >= 1024 and k < len(units) - 1:
+        n /= 1024
+        k += 1
+    return f"{_num(n)} {units[k]}"
+
+
+def _num(n: Decimal) -> str:
+    """``n`` to 3 significant digits, as a float prints it when it fits one."""
+    return f"{float(n):.3g}" if n < Decimal("1e300") else f"{n:.2e}"

@@ -7,15 +7,22 @@ numba kernel sums over the ranges with cached tables of the beam directions.
 
 from __future__ import annotations
 
-import math
 import threading
 from typing import Any
 
 import numpy as np
 
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import positive_float
 from navkit.mapping import LaserScan
+from navkit.planning.reactive._limits import (
+    GAIN_MAX,
+    GAIN_MIN,
+    LENGTH_MAX,
+    LENGTH_MIN,
+    MIN_DISTANCE,
+    gain,
+    length,
+)
 from navkit.planning.reactive._scan_repulsion_kernels import khatib_beam_force, piecewise_beam_force
 
 __all__ = ["piecewise_repulsive_force_from_scan", "repulsive_force_from_scan"]
@@ -45,13 +52,6 @@ def _beam_table(scan: LaserScan) -> tuple[FloatArray, FloatArray]:
     return table
 
 
-def _positive(value: Any, name: str, *, allow_zero: bool = False) -> float:
-    # Fast path for the common plain-float argument; anything else gets the full checks.
-    if type(value) is float and (value > 0.0 or (allow_zero and value == 0.0)) and value < math.inf:
-        return value
-    return positive_float(value, name, allow_zero=allow_zero)
-
-
 def _check_scan(scan: Any) -> LaserScan:
     if not isinstance(scan, LaserScan):
         raise TypeError(f"scan must be a navkit.mapping.LaserScan, got {type(scan).__name__}")
@@ -71,23 +71,34 @@ def repulsive_force_from_scan(
 
     which equals ``KhatibRepulsion(scan.to_points(), k_rep=k_rep,
     influence_radius=influence_radius).force((0, 0))``. Invalid beams and beams
-    beyond ``d0`` contribute nothing. The scan's arrays were validated when it
-    was built, so the call only checks the two gains.
+    beyond ``d0`` contribute nothing; as there, a beam shorter than 1e-9 m
+    pushes as one of 1e-9 m (a finite force) and a zero range, which has no
+    direction, not at all. The scan's arrays were validated when it was built,
+    so the call only checks the two parameters.
 
     Parameters
     ----------
     scan : navkit.mapping.LaserScan
         The scan, taken in the robot frame (x forward, y left).
     k_rep : float, default 1.0
-        Repulsion gain, > 0.
+        Repulsion gain, in ``[1e-12, 1e12]``.
     influence_radius : float, default 1.0
-        Khatib's ``d0`` (m), > 0: beams farther than this do not push.
+        Khatib's ``d0`` (m), in ``[1e-6, 1e6]``: beams farther than this do
+        not push.
 
     Returns
     -------
     ndarray, shape (2,)
-        Force ``(Fx, Fy)`` in the robot frame; zero when no beam is within
-        ``influence_radius``.
+        Force ``(Fx, Fy)`` in the robot frame, finite; zero when no beam is
+        within ``influence_radius``.
+
+    Raises
+    ------
+    TypeError
+        ``scan`` is not a LaserScan; a parameter is not a real number (or is a
+        bool).
+    ValueError
+        A parameter out of its range.
 
     Examples
     --------
@@ -98,10 +109,15 @@ def repulsive_force_from_scan(
     array([-4.,  0.])
     """
     scan = _check_scan(scan)
-    k = _positive(k_rep, "k_rep")
-    d0 = _positive(influence_radius, "influence_radius")
+    # Plain floats in range are taken as they are: this runs at every scan.
+    k = k_rep if type(k_rep) is float and GAIN_MIN <= k_rep <= GAIN_MAX else gain(k_rep, "k_rep")
+    d0 = influence_radius
+    if not (type(d0) is float and LENGTH_MIN <= d0 <= LENGTH_MAX):
+        d0 = length(influence_radius, "influence_radius")
     cos_t, sin_t = _beam_table(scan)
-    fx, fy = khatib_beam_force(scan.ranges, cos_t, sin_t, scan.range_min, scan.range_max, k, d0)
+    fx, fy = khatib_beam_force(
+        scan.ranges, cos_t, sin_t, scan.range_min, scan.range_max, k, d0, MIN_DISTANCE
+    )
     return np.array((fx, fy))
 
 
@@ -127,18 +143,23 @@ def piecewise_repulsive_force_from_scan(
     scan : navkit.mapping.LaserScan
         The scan, taken in the robot frame (x forward, y left).
     delta : float, default 1.0
-        Force magnitude ``δ`` inside ``obstacle_radius``, > 0.
+        Force magnitude ``δ`` inside ``obstacle_radius``, in ``[1e-12, 1e12]``.
     beta : float, default 1.0
-        Gain ``β`` of the linear zone, > 0.
+        Gain ``β`` of the linear zone, in ``[1e-12, 1e12]``.
     obstacle_radius : float, default 0.0
-        Obstacle (safety) radius ``r`` in metres, >= 0.
+        Obstacle (safety) radius ``r`` in metres, in ``[0, 1e6]``.
     spread : float, default 1.0
-        Width ``s`` of the linear zone in metres, > 0.
+        Width ``s`` of the linear zone in metres, in ``[1e-6, 1e6]``.
 
     Returns
     -------
     ndarray, shape (2,)
-        Force ``(Fx, Fy)`` in the robot frame.
+        Force ``(Fx, Fy)`` in the robot frame, finite.
+
+    Raises
+    ------
+    TypeError, ValueError
+        As :func:`repulsive_force_from_scan`.
 
     Examples
     --------
@@ -149,10 +170,10 @@ def piecewise_repulsive_force_from_scan(
     array([-1.,  0.])
     """
     scan = _check_scan(scan)
-    dl = _positive(delta, "delta")
-    bt = _positive(beta, "beta")
-    rr = _positive(obstacle_radius, "obstacle_radius", allow_zero=True)
-    ss = _positive(spread, "spread")
+    dl = gain(delta, "delta")
+    bt = gain(beta, "beta")
+    rr = length(obstacle_radius, "obstacle_radius", allow_zero=True)
+    ss = length(spread, "spread")
     cos_t, sin_t = _beam_table(scan)
     fx, fy = piecewise_beam_force(
         scan.ranges, cos_t, sin_t, scan.range_min, scan.range_max, dl, bt, rr, ss

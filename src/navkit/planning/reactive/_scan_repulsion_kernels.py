@@ -21,14 +21,15 @@ comparing false.
 from __future__ import annotations
 
 import numpy as np
-from numba import njit
+
+from navkit._shared.jit import typed_njit
 
 __all__ = ["khatib_beam_force", "piecewise_beam_force"]
 
 _FASTMATH = {"reassoc", "contract"}
 
 
-@njit(cache=True, fastmath=_FASTMATH)
+@typed_njit(cache=True, fastmath=_FASTMATH)
 def khatib_beam_force(
     ranges: np.ndarray,
     cos_t: np.ndarray,
@@ -37,13 +38,16 @@ def khatib_beam_force(
     range_max: float,
     k_rep: float,
     influence_radius: float,
+    min_distance: float,
 ) -> tuple[float, float]:
     """Sum of Khatib forces ``k_rep(1/r - 1/d0)/r²·(-cos, -sin)`` over beams with ``r <= d0``.
 
-    ``d0`` is Khatib's symbol for ``influence_radius``.
+    ``d0`` is Khatib's symbol for ``influence_radius``. Ranges below
+    ``min_distance`` (< d0) count as ``min_distance``, so every term is finite.
     """
     d0 = influence_radius
     inv_d0 = 1.0 / d0
+    inv_min = 1.0 / min_distance
     fx = 0.0
     fy = 0.0
     for k in range(ranges.shape[0]):
@@ -52,13 +56,16 @@ def khatib_beam_force(
         use = (r >= range_min) & (r < range_max) & (r <= d0) & (r > 0.0)
         # A beam that does not count is moved to d0, where its force is exactly 0.
         inv = 1.0 / (r if use else d0)
+        # 1/max(r, min_distance), written as a select on the inverse (which
+        # vectorises, where max with its NaN rule does not).
+        inv = inv if inv < inv_min else inv_min
         w = k_rep * (inv - inv_d0) * inv * inv
         fx -= w * cos_t[k]
         fy -= w * sin_t[k]
     return fx, fy
 
 
-@njit(cache=True, fastmath=_FASTMATH)
+@typed_njit(cache=True, fastmath=_FASTMATH)
 def piecewise_beam_force(
     ranges: np.ndarray,
     cos_t: np.ndarray,

@@ -1,0 +1,424 @@
+"""Polyline geometry and the state every path tracker shares (private).
+
+* :func:`as_world_path` — the one way a tracker takes a path: world points
+  ``(N, 2)`` or a ``"world"`` :class:`~navkit.planning.Path2D`.
+* :class:`Polyline` — a path parametrised by arc length: the point at a given
+  arc length, the closest point within a window (progress along the path only
+  moves forward, so loops and crossings are followed in order), pure pursuit's
+  lookahead point (first crossing of a circle around the robot).
+* :func:`pursuit_curvature` — the curvature of the arc that leaves the robot
+  along its heading and passes through a point.
+* :class:`PathTracker` — the stateful skeleton of :class:`FollowTheCarrot`,
+  :class:`OnOffTracker` and :class:`RegulatedPurePursuit`: ``set_path``, ``step``
+  (validation, the latched ``done``), ``phase``, the common options.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from typing import Any, Literal
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from navkit._shared.types import FloatArray
+from navkit._shared.validation import as_float_array, finite_float, positive_float
+from navkit.control._path_following_kernels import circle_exit, point_at, project
+from navkit.geometry import Pose2D, Twist2D, as_pose
+from navkit.planning import Path2D
+
+__all__ = [
+    "MAX_COORDINATE",
+    "SEARCH_AHEAD",
+    "ZERO_TWIST",
+    "PathTracker",
+    "Phase",
+    "Polyline",
+    "as_world_path",
+    "body_velocity",
+    "bounded",
+    "pursuit_curvature",
+    "wrap",
+]
+
+MAX_COORDINATE = 1e9
+"""Largest absolute world coordinate (m) a path point or a pose may have."""
+
+SEARCH_AHEAD = 2.0
+"""Arc length (m) of path searched ahead of the previous closest point at each step."""
+
+Phase = Literal["idle", "rotate", "track", "final", "done"]
+
+_TWO_PI = 2.0 * math.pi
+ZERO_TWIST = Twist2D(0.0, 0.0, 0.0)
+
+
+def wrap(a: float) -> float:
+    """Wrap one finite angle to (-π, π] (scalar, pure Python)."""
+    if -math.pi < a <= math.pi:
+        return a
+    r = math.pi - ((math.pi - a) % _TWO_PI)
+    if r <= -math.pi:
+        r += _TWO_PI
+    return r
+
+
+def bounded(
+    value: Any, name: str, lo: float, hi: float, *, include_lo: bool = False
+) -> float:
+    """``value`` as a float in ``(lo, hi]`` (``[lo, hi]`` with ``include_lo``), else raise."""
+    out = finite_float(value, name)
+    if out > hi or out < lo or (out == lo and not include_lo):
+        left = "[" if include_lo else "("
+        raise ValueError(f"{name} must be in {left}{lo:g}, {hi:g}], got {out}")
+    return out
+
+
+def as_world_path(path: Any, name: str = "path") -> FloatArray:
+    """World points ``(N, 2)`` of ``path`` as a new float64 array.
+
+    Parameters
+    ----------
+    path : array_like, shape (N, 2), or Path2D
+        World points in metres, or a planner's path in the ``"world"`` frame.
+    name : str, default "path"
+        Argument name used in error messages.
+
+    Raises
+    ------
+    TypeError
+        Not numeric, or not array-like.
+    ValueError
+        A ``"grid"`` :class:`~navkit.planning.Path2D`, no point, a shape other
+        than ``(N, 2)``, non-finite values or coordinates beyond ±1e9 m.
+
+    Examples
+    --------
+    >>> as_world_path([[0.0, 0.0], [1.0, 0.0]])
+    array([[0., 0.],
+           [1., 0.]])
+    """
+    if isinstance(path, Path2D):
+        if path.frame != "world":
+            raise ValueError(
+                f"{name} must be in the world frame, got a {path.frame!r} Path2D "
+                "(convert its points with OccupancyGrid.cell_to_world, or plan with MapPlanner)"
+            )
+        raw: Any = path.points
+    elif isinstance(path, (str, bytes, Mapping, set, frozenset)):
+        raise TypeError(f"{name} must be an (N, 2) array of world points or a Path2D, "
+                        f"got {type(path).__name__}")
+    else:
+        raw = path
+    pts = np.array(as_float_array(raw, name, shape=(None, 2)), dtype=np.float64, copy=True)
+    if pts.shape[0] == 0:
+        raise ValueError(f"{name} must hold at least one point, got shape (0, 2)")
+    if float(np.max(np.abs(pts))) > MAX_COORDINATE:
+        raise ValueError(f"{name} coordinates must be within ±{MAX_COORDINATE:g} m")
+    return pts
+
+
+def pursuit_curvature(x: float, y: float) -> float:
+    """Curvature (1/m) of the arc leaving the origin along +x through ``(x, y)``.
+
+    ``2 y / (x² + y²)``, pure pursuit's steering law; 0 when the point is closer
+    than about 3 cm (``x² + y² <= 0.001``, as in Nav2).
+
+    Examples
+    --------
+    >>> pursuit_curvature(1.0, 1.0)
+    1.0
+    """
+    d2 = x * x + y * y
+    if d2 <= 1e-3:
+        return 0.0
+    return 2.0 * y / d2
+
+
+class Polyline:
+    """A path parametrised by arc length ``s`` in ``[0, length]``.
+
+    Consecutive duplicate points are dropped (a path of identical points keeps
+    one). All queries are numba kernels; ``s`` outside ``[0, length]`` is clamped.
+
+    Parameters
+    ----------
+    points_xy : ndarray, shape (N, 2)
+        Validated world points, N >= 1 (see :func:`as_world_path`).
+
+    Examples
+    --------
+    >>> line = Polyline(np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 0.0], [1.0, 2.0]]))
+    >>> line.length, line.points_xy.shape
+    (3.0, (3, 2))
+    >>> line.point_at(2.0)
+    (1.0, 1.0)
+    >>> line.project(2.0, 1.5, 0.0, 3.0)
+    (2.5, 1.0)
+    """
+
+    __slots__ = ("cum", "length", "points_xy")
+
+    def __init__(self, points_xy: FloatArray) -> None:
+        pts = np.asarray(points_xy, dtype=np.float64)
+        if pts.shape[0] > 1:
+            step = np.hypot(*np.diff(pts, axis=0).T)
+            pts = pts[np.concatenate(([True], step > 0.0))]
+        pts = np.ascontiguousarray(pts)
+        cum = np.zeros(pts.shape[0])
+        if pts.shape[0] > 1:
+            cum[1:] = np.cumsum(np.hypot(*np.diff(pts, axis=0).T))
+        pts.flags.writeable = False
+        cum.flags.writeable = False
+        self.points_xy: FloatArray = pts
+        self.cum: FloatArray = cum
+        self.length = float(cum[-1])
+
+    def point_at(self, s: float) -> tuple[float, float]:
+        """The point ``(x, y)`` at arc length ``s``."""
+        x, y = point_at(self.points_xy, self.cum, float(s))
+        return float(x), float(y)
+
+    def project(self, x: float, y: float, s_from: float, s_to: float) -> tuple[float, float]:
+        """Closest point to ``(x, y)`` among ``s`` in ``[s_from, s_to]``: ``(s, distance)``."""
+        lo = min(max(float(s_from), 0.0), self.length)
+        hi = min(max(float(s_to), lo), self.length)
+        s, d = project(float(x), float(y), self.points_xy, self.cum, lo, hi)
+        return float(s), float(d)
+
+    def circle_exit(self, x: float, y: float, s_from: float, radius: float) -> float | None:
+        """First ``s >= s_from`` whose point is at least ``radius`` from ``(x, y)``.
+
+        None when no such point exists (the circle holds the rest of the path).
+        """
+        lo = min(max(float(s_from), 0.0), self.length)
+        s = float(circle_exit(float(x), float(y), self.points_xy, self.cum, lo, float(radius)))
+        return None if s < 0.0 else s
+
+
+class PathTracker:
+    """Skeleton of a stateful path tracker; subclasses implement :meth:`_command`.
+
+    Holds the path (:meth:`set_path`), the progress along it, the phase, and
+    turns :meth:`step` into validated calls of :meth:`_command`. Once the goal
+    is reached :attr:`done` stays set and :meth:`step` returns a zero twist
+    until the next :meth:`set_path`.
+    """
+
+    __slots__ = (
+        "_drive",
+        "_goal_heading",
+        "_goal_tolerance",
+        "_line",
+        "_phase",
+        "_progress",
+        "_target",
+        "_yaw_tolerance",
+    )
+
+    def __init__(self, *, drive: Any, goal_tolerance: Any, yaw_tolerance: Any) -> None:
+        if not isinstance(drive, str) or drive not in ("diff", "omni"):
+            raise ValueError(f"drive must be 'diff' or 'omni', got {drive!r}")
+        self._drive: Literal["diff", "omni"] = "diff" if drive == "diff" else "omni"
+        self._goal_tolerance = bounded(goal_tolerance, "goal_tolerance", 0.0, 1e4)
+        self._yaw_tolerance = bounded(yaw_tolerance, "yaw_tolerance", 0.0, math.pi)
+        self._line: Polyline | None = None
+        self._goal_heading: float | None = None
+        self._phase: Phase = "idle"
+        self._progress = 0.0
+        self._target: tuple[float, float] | None = None
+
+    # ----------------------------------------------------------------- state
+    @property
+    def drive(self) -> Literal["diff", "omni"]:
+        """``"diff"`` (commands ``vy = 0``) or ``"omni"`` (holonomic)."""
+        return self._drive
+
+    @property
+    def goal_tolerance(self) -> float:
+        """Distance (m) from the path's last point at which the goal position is reached."""
+        return self._goal_tolerance
+
+    @property
+    def yaw_tolerance(self) -> float:
+        """Heading error (rad) at which the goal heading is reached."""
+        return self._yaw_tolerance
+
+    @property
+    def done(self) -> bool:
+        """True once the goal (position, and heading if one was given) is reached."""
+        return self._phase == "done"
+
+    @property
+    def phase(self) -> Phase:
+        """What the tracker is doing.
+
+        ``"idle"`` (no path yet), ``"rotate"`` (turning in place toward the
+        path), ``"track"`` (moving along it), ``"final"`` (at the goal, turning
+        in place to the goal heading) or ``"done"``.
+        """
+        return self._phase
+
+    @property
+    def path_xy(self) -> FloatArray | None:
+        """The path's points ``(K, 2)`` (read-only, consecutive duplicates dropped), or None."""
+        return None if self._line is None else self._line.points_xy
+
+    @property
+    def goal_heading(self) -> float | None:
+        """The heading (rad) to turn to at the goal, or None (no final rotation)."""
+        return self._goal_heading
+
+    @property
+    def target_xy(self) -> tuple[float, float] | None:
+        """The point the last :meth:`step` steered toward (carrot, lookahead point or
+        waypoint), or None before the first step of a path."""
+        return self._target
+
+    @property
+    def progress(self) -> float:
+        """How far along the path (arc length, m) the tracker has got; it never decreases.
+
+        The arc length of the robot's closest point on the path, searched each
+        step within 2 m of path ahead of the previous one, or up to the point
+        the tracker last steered for (so loops and crossings are followed in
+        order); for :class:`OnOffTracker`, that of the last waypoint reached.
+        """
+        return self._progress
+
+    # -------------------------------------------------------------- the path
+    def set_path(self, path: Path2D | ArrayLike, *, goal_heading: float | None = None) -> None:
+        """Take a new path and start following it from its beginning.
+
+        Clears :attr:`done` and the tracker's state (phase, progress, memory of
+        previous commands); the options are kept.
+
+        Parameters
+        ----------
+        path : array_like, shape (N, 2), or Path2D
+            World points ``(x, y)`` in metres from start to goal (N >= 1), or a
+            planner's :class:`~navkit.planning.Path2D` in the ``"world"`` frame.
+            Copied; consecutive duplicate points are dropped.
+        goal_heading : float, optional
+            Heading (rad) to turn to in place once the goal position is reached.
+            None (default): no final rotation, the tracker is done at the goal
+            position.
+
+        Raises
+        ------
+        ValueError
+            A ``"grid"`` Path2D (convert it with
+            :meth:`~navkit.mapping.OccupancyGrid.cell_to_world` or plan with
+            :class:`~navkit.planning.MapPlanner`), no point, bad shape, NaN or
+            inf, coordinates beyond ±1e9 m, a non-finite ``goal_heading``.
+        TypeError
+            Non-numeric ``path`` or ``goal_heading``.
+
+        Examples
+        --------
+        >>> from navkit.control import OnOffTracker
+        >>> tracker = OnOffTracker()
+        >>> tracker.set_path([[0.0, 0.0], [1.0, 0.0]], goal_heading=1.0)
+        >>> tracker.phase, tracker.goal_heading
+        ('track', 1.0)
+        """
+        pts = as_world_path(path, "path")
+        heading = None if goal_heading is None else wrap(finite_float(goal_heading, "goal_heading"))
+        self._line = Polyline(pts)
+        self._goal_heading = heading
+        self._phase = "track"
+        self._progress = 0.0
+        self._target = None
+        self._reset()
+
+    def _reset(self) -> None:
+        """Forget per-path state (subclasses extend it)."""
+
+    # ------------------------------------------------------------------ step
+    def step(self, pose: Pose2D | ArrayLike, dt: float) -> Twist2D:
+        """One control cycle: the command to hold for the next ``dt`` seconds.
+
+        Parameters
+        ----------
+        pose : Pose2D or array_like [x, y, theta]
+            Robot pose in the world frame (coordinates within ±1e9 m).
+        dt : float
+            Control period in seconds, > 0.
+
+        Returns
+        -------
+        Twist2D
+            Robot-frame command; ``vy = 0`` for ``drive="diff"``; all zero once
+            :attr:`done`.
+
+        Raises
+        ------
+        RuntimeError
+            No path yet (call :meth:`set_path` first).
+        TypeError, ValueError
+            A bad ``pose`` or ``dt`` (not > 0), naming it; the tracker's state
+            is unchanged then.
+
+        Examples
+        --------
+        >>> from navkit.control import FollowTheCarrot
+        >>> tracker = FollowTheCarrot()
+        >>> tracker.set_path([[0.0, 0.0], [1.0, 0.0]])
+        >>> tracker.step(Pose2D(0.0, 0.0, 0.0), 0.05)
+        Twist2D(vx=0.18, vy=0.0, omega=0.0)
+        >>> tracker.step([0.0, 0.0, 1.0], dt=0.05)  # facing away: turn in place
+        Twist2D(vx=0.0, vy=0.0, omega=-1.5)
+        """
+        return self._run(pose, dt, None)
+
+    def _run(self, pose: Pose2D | ArrayLike, dt: float, measured: Twist2D | None) -> Twist2D:
+        """:meth:`step` with the measured velocity already validated."""
+        p = as_pose(pose, "pose")
+        if abs(p.x) > MAX_COORDINATE or abs(p.y) > MAX_COORDINATE:
+            raise ValueError(f"pose coordinates must be within ±{MAX_COORDINATE:g} m")
+        step = positive_float(dt, "dt")
+        if self._line is None:
+            raise RuntimeError(f"{type(self).__name__} has no path: call set_path(path) first")
+        if self._phase == "done":
+            return ZERO_TWIST
+        return self._command(self._line, p, step, measured)
+
+    def _command(
+        self, line: Polyline, pose: Pose2D, dt: float, measured: Twist2D | None
+    ) -> Twist2D:
+        raise NotImplementedError
+
+    # --------------------------------------------------------------- helpers
+    def _advance(self, line: Polyline, pose: Pose2D, reach: float = 0.0) -> float:
+        """Move :attr:`progress` to the closest point within the search window.
+
+        The window runs :data:`SEARCH_AHEAD` metres of path ahead of the previous
+        closest point, or to arc length ``reach`` (where the tracker last
+        steered) if that is farther.
+        """
+        hi = max(self._progress + SEARCH_AHEAD, reach)
+        s, _ = line.project(pose.x, pose.y, self._progress, hi)
+        self._progress = s
+        return s
+
+    def _finish(self, pose: Pose2D, dt: float, turn: Any) -> Twist2D:
+        """The final phase: turn in place to the goal heading with ``turn(error, dt)``."""
+        self._phase = "final"
+        if self._goal_heading is None:
+            self._phase = "done"
+            return ZERO_TWIST
+        err = wrap(self._goal_heading - pose.theta)
+        if abs(err) <= self._yaw_tolerance:
+            self._phase = "done"
+            return ZERO_TWIST
+        omega: float = turn(err, dt)
+        return Twist2D(0.0, 0.0, omega)
+
+
+def body_velocity(wx: float, wy: float, theta: float) -> tuple[float, float]:
+    """A world-frame velocity ``(wx, wy)`` in the frame of a robot heading ``theta``."""
+    c = math.cos(theta)
+    s = math.sin(theta)
+    return c * wx + s * wy, -s * wx + c * wy
+

@@ -1,0 +1,147 @@
+"""numba kernels behind the path trackers' polyline geometry (private).
+
+Plain functions on scalars and float64 arrays, compiled with ``cache=True`` and
+allocating nothing; :mod:`navkit.control._path_following` validates input and
+calls them. A path is given by its vertices ``pts`` (K, 2), without consecutive
+duplicates, and their arc lengths ``cum`` (K,), ``cum[0] = 0``; segment ``i``
+runs from ``pts[i]`` to ``pts[i + 1]``.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from navkit._shared.jit import njit_no_refcount
+
+
+@njit_no_refcount
+def segment_of(cum: np.ndarray, s: float) -> int:
+    """Index of the segment holding arc length ``s``: the last ``i`` with ``cum[i] <= s``.
+
+    Clamped to ``[0, K - 2]`` (0 for a one-point path), so ``s`` at the end of the
+    path belongs to the last segment.
+    """
+    k: int = cum.shape[0]
+    if k < 2:
+        return 0
+    lo = 0
+    hi = k - 2
+    if s >= cum[hi]:
+        return hi
+    # Invariant: cum[lo] <= s < cum[hi] (or s < cum[0], then lo stays 0).
+    while hi - lo > 1:
+        mid = (lo + hi) // 2
+        if cum[mid] <= s:
+            lo = mid
+        else:
+            hi = mid
+    return lo
+
+
+@njit_no_refcount
+def point_at(pts: np.ndarray, cum: np.ndarray, s: float) -> tuple[float, float]:
+    """The point at arc length ``s``, clamped to ``[0, length]``."""
+    k = pts.shape[0]
+    if k < 2 or s <= 0.0:
+        return pts[0, 0], pts[0, 1]
+    if s >= cum[k - 1]:
+        return pts[k - 1, 0], pts[k - 1, 1]
+    i = segment_of(cum, s)
+    t = (s - cum[i]) / (cum[i + 1] - cum[i])
+    return (
+        pts[i, 0] + t * (pts[i + 1, 0] - pts[i, 0]),
+        pts[i, 1] + t * (pts[i + 1, 1] - pts[i, 1]),
+    )
+
+
+@njit_no_refcount
+def project(
+    px: float, py: float, pts: np.ndarray, cum: np.ndarray, s_from: float, s_to: float
+) -> tuple[float, float]:
+    """Closest point to ``(px, py)`` on the part ``[s_from, s_to]`` of the path.
+
+    Returns ``(s, distance)``; on ties the smallest ``s`` wins. ``s_from <= s_to``
+    and both inside ``[0, length]``.
+    """
+    k = pts.shape[0]
+    if k < 2:
+        return 0.0, math.hypot(px - pts[0, 0], py - pts[0, 1])
+    i0 = segment_of(cum, s_from)
+    i1 = segment_of(cum, s_to)
+    best_s = s_from
+    best_d2 = math.inf
+    for i in range(i0, i1 + 1):
+        ax = pts[i, 0]
+        ay = pts[i, 1]
+        ex = pts[i + 1, 0] - ax
+        ey = pts[i + 1, 1] - ay
+        # The segment's length from its ends: arc lengths of a long path can
+        # round a tiny segment to zero length.
+        seg = math.hypot(ex, ey)
+        lo = max(0.0, s_from - cum[i])
+        hi = max(lo, min(seg, s_to - cum[i]))
+        if seg > 0.0:
+            # Distance along the segment of the foot of the perpendicular, clamped.
+            u = ((px - ax) * ex + (py - ay) * ey) / seg
+            u = min(max(u, lo), hi)
+            f = min(u / seg, 1.0)
+        else:
+            u = lo
+            f = 0.0
+        qx = ax + ex * f - px
+        qy = ay + ey * f - py
+        d2 = qx * qx + qy * qy
+        if d2 < best_d2:
+            best_d2 = d2
+            best_s = min(max(cum[i] + u, s_from), s_to)
+    return best_s, math.sqrt(best_d2)
+
+
+@njit_no_refcount
+def circle_exit(
+    px: float, py: float, pts: np.ndarray, cum: np.ndarray, s_from: float, radius: float
+) -> float:
+    """First arc length ``s >= s_from`` whose point is at least ``radius`` from ``(px, py)``.
+
+    This is pure pursuit's lookahead point with interpolation (Nav2's
+    ``getLookAheadPoint``): walking the path from ``s_from``, the first vertex
+    at least ``radius`` away is found and the circle's crossing is interpolated
+    on the segment leading to it. Returns ``s_from`` when that point already is
+    ``radius`` away, and -1 when no point is.
+    """
+    k = pts.shape[0]
+    if k < 2:
+        return 0.0 if (pts[0, 0] - px) ** 2 + (pts[0, 1] - py) ** 2 >= radius * radius else -1.0
+    r2 = radius * radius
+    ax, ay = point_at(pts, cum, s_from)
+    s_a: float = s_from
+    if (ax - px) ** 2 + (ay - py) ** 2 >= r2:
+        return s_from
+    for j in range(segment_of(cum, s_from) + 1, k):
+        if cum[j] <= s_a:
+            continue
+        bx: float = pts[j, 0]
+        by: float = pts[j, 1]
+        if (bx - px) ** 2 + (by - py) ** 2 >= r2:
+            # |a + t (b - a) - p| = radius with |a - p| < radius <= |b - p|: the
+            # larger root of the quadratic lies in (0, 1].
+            dx = bx - ax
+            dy = by - ay
+            fx = ax - px
+            fy = ay - py
+            qa = dx * dx + dy * dy
+            if qa == 0.0:
+                return float(cum[j])
+            qb = 2.0 * (fx * dx + fy * dy)
+            qc = fx * fx + fy * fy - r2
+            disc = max(qb * qb - 4.0 * qa * qc, 0.0)
+            t = (-qb + math.sqrt(disc)) / (2.0 * qa)
+            t = min(max(t, 0.0), 1.0)
+            end: float = cum[j]
+            return s_a + t * (end - s_a)
+        ax = bx
+        ay = by
+        s_a = cum[j]
+    return -1.0

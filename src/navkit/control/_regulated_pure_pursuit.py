@@ -1,0 +1,469 @@
+"""Regulated Pure Pursuit (Nav2's ``nav2_regulated_pure_pursuit_controller`` semantics)."""
+
+from __future__ import annotations
+
+import math
+import numbers
+from collections.abc import Callable
+from typing import Any, Literal
+
+import numpy as np
+from numpy.typing import ArrayLike
+from scipy import ndimage
+
+from navkit._shared.types import FloatArray
+from navkit._shared.validation import as_bool
+from navkit.control._path_following import (
+    PathTracker,
+    Polyline,
+    body_velocity,
+    bounded,
+    pursuit_curvature,
+    wrap,
+)
+from navkit.geometry import Pose2D, Twist2D, as_twist
+from navkit.mapping import OccupancyGrid
+
+__all__ = ["RegulatedPurePursuit"]
+
+Clearance = Callable[[float, float], float]
+
+
+class _GridClearance:
+    """Distance (m) from a world point to the nearest occupied cell centre of a grid.
+
+    The exact Euclidean distance transform is computed once; a point outside
+    the map, or a map with no occupied cell, is infinitely far from obstacles
+    (Nav2 does not regulate on unknown space either).
+    """
+
+    __slots__ = ("_distance", "_grid")
+
+    def __init__(self, grid: OccupancyGrid) -> None:
+        occupied = grid.occupied()
+        if occupied.any():
+            dist = ndimage.distance_transform_edt(~occupied) * grid.resolution
+        else:
+            dist = np.full(occupied.shape, np.inf)
+        self._distance: FloatArray = np.asarray(dist, dtype=np.float64)
+        self._grid = grid
+
+    def __call__(self, x: float, y: float) -> float:
+        r, c = self._grid.world_to_cell(np.array([x, y]))
+        rows, cols = self._distance.shape
+        if 0 <= r < rows and 0 <= c < cols:
+            return float(self._distance[r, c])
+        return math.inf
+
+
+class RegulatedPurePursuit(PathTracker):
+    """Regulated Pure Pursuit, with Nav2's semantics and default parameters.
+
+    Each :meth:`step` (Macenski et al., 2023; Nav2's
+    ``RegulatedPurePursuitController::computeVelocityCommands``):
+
+    1. **Lookahead.** ``L = |v| × lookahead_time`` clamped to
+       ``[min_lookahead, max_lookahead]``, ``v`` the measured forward speed (or
+       the previous command's). The lookahead point is the first point along
+       the path, from the robot's closest point on, at distance ``L`` from the
+       robot (interpolated on its segment); when the whole rest of the path is
+       nearer, the point ``L`` further along the path (the goal near the end).
+       It never moves back along the path by more than ``L`` shrank since the
+       previous step.
+    2. **Rotate to heading.** When the lookahead point lies more than
+       ``rotate_to_heading_angle`` off the robot's heading (the path points
+       sideways or behind), a differential robot turns in place toward it at
+       ``rotate_omega``, within ``max_angular_accel`` of its current turn rate
+       and slow enough to stop on it (``|ω| <= sqrt(2 a |angle|)``) — phase
+       **rotate**.
+    3. **Track.** Otherwise it drives on the arc through the lookahead point,
+       curvature ``κ = 2 y / d²`` (``y`` the point's lateral offset, ``d`` its
+       distance, usually ``L``), at
+       ``max_speed`` regulated down:
+
+       * by curvature: on an arc of radius ``r < slowdown_radius`` the speed
+         is scaled by ``r / slowdown_radius``;
+       * by proximity to obstacles, when a ``clearance`` is given: with the
+         robot ``c < clearance_distance`` metres from the nearest obstacle, by
+         ``clearance_gain × c / clearance_distance``;
+       * the lower of the two, but at least ``min_regulated_speed``;
+       * approaching the goal: when less than ``approach_distance`` of path is
+         left, by (distance to the goal) / ``approach_distance``, but not below
+         ``min_approach_speed``;
+
+       then ``ω = v κ``. With ``max_omega`` set, a faster turn is scaled down
+       with the speed, keeping the arc.
+    4. **Final.** Within ``goal_tolerance`` of the goal (with the lookahead
+       point on it) the robot turns in place to the goal heading, as in step 2,
+       until within ``yaw_tolerance`` — if :meth:`set_path` was given one; then
+       :attr:`done` (Nav2's goal checker).
+
+    An omnidirectional robot (``drive="omni"``) runs the same law for its
+    *direction of travel*, a heading the tracker keeps itself (it starts toward
+    the first lookahead point, snaps to the lookahead point instead of rotating
+    in step 2, and turns by ``v κ dt`` each step): the robot translates along
+    the pure-pursuit arcs with ``omega = 0``, without turning first, and turns
+    to the goal heading in step 4.
+
+    Give the path with :meth:`set_path`, then call :meth:`step` once per
+    control period.
+
+    Parameters
+    ----------
+    max_speed : float, default 0.5
+        Nav2 ``desired_linear_vel`` (m/s), in (0, 100].
+    lookahead_time : float, default 1.5
+        Nav2 ``lookahead_time`` (s), in (0, 1e4].
+    min_lookahead, max_lookahead : float, default 0.3 and 0.9
+        Nav2 ``min_lookahead_dist`` / ``max_lookahead_dist`` (m), in (0, 1e4],
+        ``min_lookahead <= max_lookahead``; set them equal for a fixed
+        lookahead (Nav2's ``lookahead_dist`` is 0.6).
+    rotate_to_heading : bool, default True
+        Nav2 ``use_rotate_to_heading``: whether a differential robot turns in
+        place toward a path that points away (step 2).
+    rotate_to_heading_angle : float, default 0.785
+        Nav2 ``rotate_to_heading_min_angle`` (rad), in (0, π].
+    rotate_omega : float, default 1.8
+        Nav2 ``rotate_to_heading_angular_vel`` (rad/s), in (0, 100].
+    max_angular_accel : float, default 3.2
+        Nav2 ``max_angular_accel`` (rad/s²) of in-place turns, in (0, 1e4].
+    curvature_regulation : bool, default True
+        Nav2 ``use_regulated_linear_velocity_scaling``.
+    slowdown_radius : float, default 0.9
+        Nav2 ``regulated_linear_scaling_min_radius`` (m), in (0, 1e4].
+    min_regulated_speed : float, default 0.25
+        Nav2 ``regulated_linear_scaling_min_speed`` (m/s), in [0, 100].
+    clearance : OccupancyGrid or callable, optional
+        Obstacle proximity for the cost regulation (Nav2
+        ``use_cost_regulated_linear_velocity_scaling``, which reads the cost at
+        the robot): a map, whose occupied cells are the obstacles (distances to
+        cell centres, computed once), or a function ``clearance(x, y)`` giving
+        the distance (m) from a world point to the nearest obstacle (NaN is
+        rejected, negative counts as 0, ``inf`` as far). None (default): no
+        cost regulation.
+    clearance_distance : float, default 0.6
+        Nav2 ``cost_scaling_dist`` (m), in (0, 1e4].
+    clearance_gain : float, default 1.0
+        Nav2 ``cost_scaling_gain``, in (0, 1e6].
+    approach_distance : float, default 0.6
+        Nav2 ``approach_velocity_scaling_dist`` (m), in (0, 1e4].
+    min_approach_speed : float, default 0.05
+        Nav2 ``min_approach_linear_velocity`` (m/s), in (0, 100].
+    goal_tolerance : float, default 0.25
+        Nav2 goal checker ``xy_goal_tolerance`` (m), in (0, 1e4].
+    yaw_tolerance : float, default 0.25
+        Nav2 goal checker ``yaw_goal_tolerance`` (rad), in (0, π].
+    max_omega : float, optional
+        Largest turn rate (rad/s) of any command, in (0, 100]; None (Nav2's
+        behaviour) limits only in-place turns (to ``rotate_omega``).
+    drive : {"diff", "omni"}, default "diff"
+        Differential (``vy = 0``) or omnidirectional robot.
+
+    Notes
+    -----
+    Defaults are Nav2's (``nav2_regulated_pure_pursuit_controller/src/
+    parameter_handler.cpp`` and the Nav2 configuration guide, "Regulated Pure
+    Pursuit"; goal tolerances from ``nav2_controller::SimpleGoalChecker``).
+    Differences: the lookahead is always scaled with speed (Nav2's
+    ``use_velocity_scaled_lookahead_dist`` defaults to false and uses
+    ``lookahead_dist``); on a path that folds back inside the lookahead circle
+    Nav2 steers for the goal and its lookahead point can alternate between two
+    stretches of the path for ever, which the two lookahead rules of step 1
+    prevent; proximity is a distance rather than a costmap cost
+    (Nav2 converts its inflation cost back into this distance); the final
+    rotation happens whenever a goal heading is given; no collision check,
+    reversing or cancel deceleration; no command passes its target within one
+    step (``v <= distance / dt`` to the lookahead point, ``|ω| <= |angle| / dt``
+    in place), which only binds at low control rates.
+
+    Raises
+    ------
+    ValueError
+        An option outside its range, naming it.
+    TypeError
+        A non-numeric option, or a ``clearance`` that is neither an
+        OccupancyGrid nor callable.
+
+    Examples
+    --------
+    >>> from navkit.geometry import integrate
+    >>> tracker = RegulatedPurePursuit(goal_tolerance=0.05)
+    >>> tracker.set_path([[0.0, 0.0], [2.0, 0.0], [2.0, 2.0]], goal_heading=math.pi / 2)
+    >>> pose, top_speed = Pose2D(0.0, 0.1, 0.0), 0.0
+    >>> while not tracker.done:
+    ...     cmd = tracker.step(pose, 0.05)
+    ...     top_speed = max(top_speed, cmd.vx)
+    ...     pose = integrate(pose, cmd, 0.05)
+    >>> math.hypot(pose.x - 2.0, pose.y - 2.0) <= 0.05, top_speed
+    (True, 0.5)
+    """
+
+    __slots__ = (
+        "_approach_distance",
+        "_carrot",
+        "_clearance",
+        "_clearance_distance",
+        "_clearance_gain",
+        "_curvature_regulation",
+        "_last",
+        "_lookahead_time",
+        "_max_angular_accel",
+        "_max_lookahead",
+        "_max_omega",
+        "_max_speed",
+        "_min_approach_speed",
+        "_min_lookahead",
+        "_min_regulated_speed",
+        "_motion_heading",
+        "_rotate_omega",
+        "_rotate_to_heading",
+        "_rotate_to_heading_angle",
+        "_slowdown_radius",
+    )
+
+    def __init__(
+        self,
+        *,
+        max_speed: float = 0.5,
+        lookahead_time: float = 1.5,
+        min_lookahead: float = 0.3,
+        max_lookahead: float = 0.9,
+        rotate_to_heading: bool = True,
+        rotate_to_heading_angle: float = 0.785,
+        rotate_omega: float = 1.8,
+        max_angular_accel: float = 3.2,
+        curvature_regulation: bool = True,
+        slowdown_radius: float = 0.9,
+        min_regulated_speed: float = 0.25,
+        clearance: OccupancyGrid | Clearance | None = None,
+        clearance_distance: float = 0.6,
+        clearance_gain: float = 1.0,
+        approach_distance: float = 0.6,
+        min_approach_speed: float = 0.05,
+        goal_tolerance: float = 0.25,
+        yaw_tolerance: float = 0.25,
+        max_omega: float | None = None,
+        drive: Literal["diff", "omni"] = "diff",
+    ) -> None:
+        super().__init__(drive=drive, goal_tolerance=goal_tolerance, yaw_tolerance=yaw_tolerance)
+        self._max_speed = bounded(max_speed, "max_speed", 0.0, 100.0)
+        self._lookahead_time = bounded(lookahead_time, "lookahead_time", 0.0, 1e4)
+        self._min_lookahead = bounded(min_lookahead, "min_lookahead", 0.0, 1e4)
+        self._max_lookahead = bounded(max_lookahead, "max_lookahead", 0.0, 1e4)
+        if self._max_lookahead < self._min_lookahead:
+            raise ValueError(
+                f"max_lookahead must be >= min_lookahead ({self._min_lookahead}), "
+                f"got {self._max_lookahead}"
+            )
+        self._rotate_to_heading = as_bool(rotate_to_heading, "rotate_to_heading")
+        self._rotate_to_heading_angle = bounded(
+            rotate_to_heading_angle, "rotate_to_heading_angle", 0.0, math.pi
+        )
+        self._rotate_omega = bounded(rotate_omega, "rotate_omega", 0.0, 100.0)
+        self._max_angular_accel = bounded(max_angular_accel, "max_angular_accel", 0.0, 1e4)
+        self._curvature_regulation = as_bool(curvature_regulation, "curvature_regulation")
+        self._slowdown_radius = bounded(slowdown_radius, "slowdown_radius", 0.0, 1e4)
+        self._min_regulated_speed = bounded(
+            min_regulated_speed, "min_regulated_speed", 0.0, 100.0, include_lo=True
+        )
+        self._clearance = _as_clearance(clearance)
+        self._clearance_distance = bounded(clearance_distance, "clearance_distance", 0.0, 1e4)
+        self._clearance_gain = bounded(clearance_gain, "clearance_gain", 0.0, 1e6)
+        self._approach_distance = bounded(approach_distance, "approach_distance", 0.0, 1e4)
+        self._min_approach_speed = bounded(min_approach_speed, "min_approach_speed", 0.0, 100.0)
+        self._max_omega = (
+            None if max_omega is None else bounded(max_omega, "max_omega", 0.0, 100.0)
+        )
+        self._last = (0.0, 0.0, 0.0)
+        self._motion_heading: float | None = None
+        self._carrot: tuple[float, float] | None = None
+
+    @property
+    def max_speed(self) -> float:
+        """Nav2 ``desired_linear_vel`` (m/s)."""
+        return self._max_speed
+
+    @property
+    def max_omega(self) -> float | None:
+        """Largest turn rate (rad/s) of any command, or None (in-place turns only)."""
+        return self._max_omega
+
+    @property
+    def rotate_omega(self) -> float:
+        """Turn rate (rad/s) of in-place turns."""
+        return self._rotate_omega
+
+    def _reset(self) -> None:
+        self._last = (0.0, 0.0, 0.0)
+        self._motion_heading = None
+        self._carrot = None
+
+    def step(
+        self,
+        pose: Pose2D | ArrayLike,
+        dt: float,
+        *,
+        velocity: Twist2D | ArrayLike | None = None,
+    ) -> Twist2D:
+        """One control cycle: the command to hold for the next ``dt`` seconds.
+
+        Parameters
+        ----------
+        pose : Pose2D or array_like [x, y, theta]
+            Robot pose in the world frame (coordinates within ±1e9 m).
+        dt : float
+            Control period in seconds, > 0.
+        velocity : Twist2D or array_like [vx, vy, omega], optional
+            Measured robot-frame velocity (Nav2's ``speed``: it sets the
+            lookahead distance and the base of the angular acceleration limit);
+            None uses the previous command.
+
+        Returns
+        -------
+        Twist2D
+            Robot-frame command; ``vy = 0`` for ``drive="diff"``; all zero once
+            :attr:`done`.
+
+        Raises
+        ------
+        RuntimeError
+            No path yet (call :meth:`set_path` first).
+        TypeError, ValueError
+            A bad ``pose``, ``dt`` (not > 0) or ``velocity``, naming it, or a
+            ``clearance`` function returning NaN; the tracker's state is
+            unchanged then.
+        """
+        measured = None if velocity is None else as_twist(velocity, "velocity")
+        return self._run(pose, dt, measured)
+
+    # ------------------------------------------------------------ internals
+    def _rotate(self, angle: float, dt: float, omega_now: float) -> float:
+        """Nav2's ``rotateToHeading``: turn rate toward ``angle`` (rad) from ``omega_now``."""
+        sign = 1.0 if angle > 0.0 else -1.0
+        w = sign * self._rotate_omega
+        if self._max_omega is not None:
+            w = sign * min(self._rotate_omega, self._max_omega)
+        dw = self._max_angular_accel * dt
+        w = min(max(w, omega_now - dw), omega_now + dw)
+        stop = min(math.sqrt(2.0 * self._max_angular_accel * abs(angle)), abs(angle) / dt)
+        if abs(w) > stop:
+            w = sign * stop
+        return w
+
+    def _command(
+        self, line: Polyline, pose: Pose2D, dt: float, measured: Twist2D | None
+    ) -> Twist2D:
+        # Validate what can fail before any state changes.
+        clearance = None if self._clearance is None else self._clearance_at(pose)
+        vx_now, vy_now, w_now = (
+            self._last if measured is None else (measured.vx, measured.vy, measured.omega)
+        )
+        speed_now = abs(vx_now) if self._drive == "diff" else math.hypot(vx_now, vy_now)
+        s = self._advance(line, pose, 0.0 if self._carrot is None else self._carrot[0])
+        lookahead = min(max(speed_now * self._lookahead_time, self._min_lookahead),
+                        self._max_lookahead)
+        s_carrot = line.circle_exit(pose.x, pose.y, s, lookahead)
+        if s_carrot is None:
+            # The rest of the path lies inside the circle: the point the lookahead
+            # distance further along it (the goal near the end; Nav2 takes the
+            # goal anywhere, which makes a path folding back near its start a trap).
+            s_carrot = min(s + lookahead, line.length)
+        if self._carrot is not None:
+            # The lookahead point moves back along the path only as far as the
+            # lookahead distance shrank: on a path looping inside the circle it
+            # could otherwise alternate between two stretches of it for ever.
+            back = max(0.0, self._carrot[1] - lookahead)
+            s_carrot = max(s_carrot, min(self._carrot[0] - back, line.length))
+        self._carrot = (s_carrot, lookahead)
+        cx, cy = line.point_at(s_carrot)
+        self._target = (cx, cy)
+        gx, gy = line.point_at(line.length)
+        to_goal = math.hypot(gx - pose.x, gy - pose.y)
+        if self._phase == "final" or (
+            s_carrot >= line.length and to_goal < self._goal_tolerance
+        ):
+            cmd = self._finish(pose, dt, lambda err, h: self._rotate(err, h, w_now))
+            self._last = (cmd.vx, cmd.vy, cmd.omega)
+            return cmd
+
+        # The heading the pure-pursuit law steers: the robot's, or (omni) its
+        # direction of travel.
+        bearing = math.atan2(cy - pose.y, cx - pose.x)
+        if self._drive == "diff":
+            heading = pose.theta
+        else:
+            heading = bearing if self._motion_heading is None else self._motion_heading
+        angle = wrap(bearing - heading)
+        if self._rotate_to_heading and abs(angle) > self._rotate_to_heading_angle:
+            if self._drive == "diff":
+                self._phase = "rotate"
+                w = self._rotate(angle, dt, w_now)
+                self._last = (0.0, 0.0, w)
+                return Twist2D(0.0, 0.0, w)
+            heading = bearing
+            angle = 0.0
+        self._phase = "track"
+        dist = math.hypot(cx - pose.x, cy - pose.y)
+        kappa = pursuit_curvature(dist * math.cos(angle), dist * math.sin(angle))
+
+        v = self._max_speed
+        v_curv = v
+        if self._curvature_regulation and kappa != 0.0:
+            radius = 1.0 / abs(kappa)
+            if radius < self._slowdown_radius:
+                v_curv = v * radius / self._slowdown_radius
+        v_cost = v
+        if clearance is not None and clearance < self._clearance_distance:
+            v_cost = v * self._clearance_gain * clearance / self._clearance_distance
+        v = max(min(v_curv, v_cost), self._min_regulated_speed)
+        if line.length - s < self._approach_distance:
+            approach = max(v * to_goal / self._approach_distance, self._min_approach_speed)
+            v = min(v, approach)
+        # Never pass the lookahead point (the goal, at the end) within one step.
+        v = min(max(v, 0.0), self._max_speed, dist / dt)
+        w = v * kappa
+        if self._max_omega is not None and abs(w) > self._max_omega:
+            scale = self._max_omega / abs(w)
+            v *= scale
+            w = math.copysign(self._max_omega, w)
+
+        if self._drive == "diff":
+            self._last = (v, 0.0, w)
+            return Twist2D(v, 0.0, w)
+        # Omni: translate along the chord of the arc, keep the body heading.
+        turn = w * dt
+        mid = heading + 0.5 * turn
+        bx, by = body_velocity(v * math.cos(mid), v * math.sin(mid), pose.theta)
+        self._motion_heading = wrap(heading + turn)
+        self._last = (bx, by, 0.0)
+        return Twist2D(bx, by, 0.0)
+
+    def _clearance_at(self, pose: Pose2D) -> float:
+        assert self._clearance is not None
+        raw: Any = self._clearance(pose.x, pose.y)
+        if isinstance(raw, np.ndarray) and raw.ndim == 0 and raw.dtype.kind in "fiu":
+            raw = raw.item()
+        if isinstance(raw, (bool, np.bool_)) or not isinstance(raw, numbers.Real):
+            raise TypeError(
+                f"clearance(x, y) must return a real number, got {type(raw).__name__}"
+            )
+        value = float(raw)
+        if math.isnan(value):
+            raise ValueError(f"clearance(x, y) returned NaN at ({pose.x}, {pose.y})")
+        return max(value, 0.0)
+
+
+def _as_clearance(value: Any) -> Clearance | None:
+    """``clearance`` as a function of ``(x, y)``, or None."""
+    if value is None:
+        return None
+    if isinstance(value, OccupancyGrid):
+        return _GridClearance(value)
+    if callable(value):
+        fn: Clearance = value
+        return fn
+    raise TypeError(
+        f"clearance must be an OccupancyGrid or a callable clearance(x, y), "
+        f"got {type(value).__name__}"
+    )
+

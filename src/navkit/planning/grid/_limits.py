@@ -1,0 +1,167 @@
+"""Documented ranges of navkit.planning.grid and the checks that enforce them (private).
+
+* costs: finite values in ``[1, MAX_COST]`` (``1e12``) or ``inf``, on at most
+  :data:`MAX_NODES` (``2**31 - 1``) cells (Field D*: nodes, ``(rows + 1) ×
+  (cols + 1)``);
+* ``heuristic_weight``: ``[0, MAX_HEURISTIC_WEIGHT]`` (``1e6``);
+* Field D*: the least cost from the start to the goal below
+  :data:`PATH_COST_LIMIT` (``2**52``, about 4.5e15 cost units × cells);
+  ``resolution`` in ``[1e-6, 1e6]`` m, origin and world points within
+  ``±1e9`` m;
+* :class:`~navkit.planning.MapPlanner`: ``robot_radius`` in ``[0, 1e6]`` m.
+
+Why these bounds. A* and Dijkstra add move costs ``step * (c_u + c_v) / 2``:
+with costs up to 1e12 no sum over a grid of ``2**31`` cells comes near
+overflow (3e21), and ``heuristic_weight × min(costs) × distance`` stays below
+1e28. Field D* has a tighter limit, float64 resolution: its path extraction
+walks downhill on the cost-to-goal and needs every node to be strictly
+dearer than the neighbour its value comes from. In exact arithmetic the
+difference is at least ``1/sqrt(2)`` (costs are >= 1); in float64 it survives
+rounding while the values are below 2**52 (one unit in the last place is then
+at most 0.5), while far above it a step vanishes (1e20 + 1.41 == 1e20), no
+neighbour is strictly lower and the walk cannot proceed (issue 12's
+RuntimeError). The limit is on the start's cost-to-goal, i.e. on the path
+cost, not on any single cell; with cells up to 1e12 it leaves paths of 4,500
+cells at the maximum cost. Checking it costs O(1) after each search.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from navkit._shared.costs import validate_costs_lowest
+from navkit._shared.jit import njit_cached
+from navkit._shared.types import FloatArray
+from navkit._shared.validation import finite_float
+from navkit.planning.grid._search_heap import MAX_NODES
+
+__all__ = [
+    "COORDINATE_LIMIT",
+    "MAX_COST",
+    "MAX_HEURISTIC_WEIGHT",
+    "MAX_NODES",
+    "PATH_COST_LIMIT",
+    "RADIUS_LIMIT",
+    "RESOLUTION_MAX",
+    "RESOLUTION_MIN",
+    "bounded_float",
+    "check_node_count",
+    "checked_costs",
+]
+
+MAX_COST = 1e12
+"""Largest finite traversal cost the grid planners accept."""
+MAX_HEURISTIC_WEIGHT = 1e6
+PATH_COST_LIMIT = float(2**52)
+"""Field D*: the start's cost-to-goal must be below this (float64 resolution)."""
+RESOLUTION_MIN = 1e-6
+RESOLUTION_MAX = 1e6
+COORDINATE_LIMIT = 1e9
+"""Largest |x|, |y| of a world point or grid origin, m."""
+RADIUS_LIMIT = 1e6
+"""Largest robot_radius, m."""
+
+# Search state: A* scratch per cell (g, parent, mark, heap entry, slot); Field D*
+# per node (padded cost, g, rhs, heap node, two keys, slot).
+_SEARCH_BYTES_PER_CELL = 33
+_FIELD_BYTES_PER_NODE = 56
+
+# Bit patterns of non-negative float64 values order like the values themselves
+# (and every negative value, -0.0 included, is a negative int64), so one integer
+# pass finds the minimum and the finite values above MAX_COST; NaN is above inf.
+_ONE_BITS = int(np.array(1.0).view(np.int64))
+_MAX_BITS = int(np.array(MAX_COST).view(np.int64))
+_INF_BITS = int(np.array(np.inf).view(np.int64))
+
+
+@njit_cached
+def _cost_scan(bits: np.ndarray, max_bits: int, inf_bits: int) -> tuple[int, int]:
+    """(smallest bit pattern, number of entries above ``max_bits`` other than inf).
+
+    Integer comparisons vectorise, so this costs what ``ndarray.min`` costs.
+    """
+    lo = bits[0]
+    over = 0
+    for i in range(bits.shape[0]):
+        v = bits[i]
+        lo = min(lo, v)
+        over += (v > max_bits) & (v != inf_bits)
+    return lo, over
+
+
+def checked_costs(
+    costs: ArrayLike, name: str = "costs", *, corner_nodes: bool = False
+) -> tuple[FloatArray, float]:
+    """A cost grid as C-contiguous float64 and its smallest value (inf if none is finite).
+
+    The checks of :func:`navkit.mapping.validate_costs` (2-D, not empty, real
+    numbers, no NaN, finite values >= 1) plus the planners' limits: at most
+    :data:`MAX_NODES` cells (``corner_nodes``: Field D*'s ``(rows + 1) ×
+    (cols + 1)`` nodes), checked before anything is converted or allocated,
+    and finite values <= :data:`MAX_COST`. One pass over the grid. The input
+    is never modified; it is copied only when a dtype or layout conversion is
+    needed.
+
+    Raises
+    ------
+    ValueError
+        Not real numbers (complex, strings, booleans, ragged input), wrong
+        dimension, empty, NaN, values below 1 or finite values above 1e12
+        (the same exception as :func:`navkit.mapping.validate_costs`).
+    """
+    try:
+        arr = np.asarray(costs)
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"{name} must be a 2-D array of real numbers: {exc}") from None
+    if arr.dtype.kind not in "fiu" or arr.ndim != 2 or arr.size == 0:
+        validate_costs_lowest(arr, name)  # raises, with the shared message
+    rows, cols = arr.shape
+    if corner_nodes:
+        check_node_count((rows + 1) * (cols + 1), f"Field D* on {name} of shape {arr.shape}",
+                         _FIELD_BYTES_PER_NODE)
+    else:
+        check_node_count(rows * cols, f"A search on {name} of shape {arr.shape}",
+                         _SEARCH_BYTES_PER_CELL, "cells")
+    out = np.ascontiguousarray(arr, dtype=np.float64)
+    lo_bits, over = _cost_scan(out.reshape(-1).view(np.int64), _MAX_BITS, _INF_BITS)
+    if lo_bits < _ONE_BITS or over:
+        validate_costs_lowest(out, name)  # NaN or below 1: the shared message
+        bad = np.isfinite(out) & (out > MAX_COST)
+        where = tuple(int(i) for i in np.unravel_index(int(np.argmax(bad)), out.shape))
+        raise ValueError(
+            f"{name} must be <= {MAX_COST:g} where finite (np.inf marks impassable cells); "
+            f"found {float(out[where])} at {where}"
+        )
+    lowest = float(np.array(lo_bits, dtype=np.int64).view(np.float64))
+    return out, lowest
+
+
+def bounded_float(value: Any, name: str, low: float, high: float, unit: str = "") -> float:
+    """``value`` as a finite float in ``[low, high]``; ValueError naming the range."""
+    if type(value) is float and low <= value <= high:
+        return value
+    out = finite_float(value, name)
+    if not low <= out <= high:
+        suffix = f" {unit}" if unit else ""
+        raise ValueError(f"{name} must lie in [{low:g}, {high:g}]{suffix}, got {out}")
+    return out
+
+
+def check_node_count(count: int, what: str, bytes_per_node: int, unit: str = "nodes") -> None:
+    """Refuse searches over more than :data:`MAX_NODES` nodes before allocating them."""
+    if count > MAX_NODES:
+        size = count * bytes_per_node
+        raise ValueError(
+            f"{what} would need {count:.3g} {unit} ({_bytes_text(size)} of search state); "
+            f"the maximum is 2**31 - 1 = {MAX_NODES} {unit}"
+        )
+
+
+def _bytes_text(n: float) -> str:
+    units = ("B", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB")
+    k = min(len(units) - 1, max(0, int(math.log(max(n, 1.0), 1024))))
+    return f"{n / 1024.0**k:.3g} {units[k]}"

@@ -1,0 +1,437 @@
+"""numba kernels for the distance between a robot footprint and the world (private).
+
+The footprint is a disc (``radius > 0`` and no vertices) or a polygon
+(vertices in the robot frame, shape (V, 2), implicitly closed, placed at the
+robot's pose). Obstacles are the
+boundaries of the world's primitives: segments, circles, occupied cells of an
+occupancy grid (squares) and moving obstacles. The distance is 0 when the
+footprint touches or overlaps a boundary, or when a segment or circle lies
+inside a polygon footprint. It is exact up to ``limit``: the search visits the
+cells of the uniform grid (and of the occupancy grid) in rings around the
+footprint and stops once the rings are farther than the best distance found
+or than ``limit``, returning ``min(distance, limit)``.
+
+Examples
+--------
+>>> import numpy as np
+>>> segs = np.array([[2.0, -1.0, 2.0, 1.0]])
+>>> start = np.array([0, 1], dtype=np.int64)
+>>> items = np.array([0], dtype=np.int64)
+>>> occ = np.zeros((0, 0), np.uint8)
+>>> none3, none4 = np.empty((0, 3)), np.empty((0, 4))
+>>> none2 = np.empty((0, 2))
+>>> footprint_clearance(0.0, 0.0, 0.0, 0.5, none2, none2, none2, segs, none3, 1.0, -2.0, 2.0,
+...                     1, 1, start, items, occ, 0.0, 0.0, 1.0, 0.0, 1.0, none4, none3,
+...                     np.inf)
+1.5
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from navkit._shared.jit import njit_no_refcount
+
+__all__ = ["footprint_clearance"]
+
+_INF = math.inf
+
+
+@njit_no_refcount
+def _point_segment(px: float, py: float, ax: float, ay: float, bx: float, by: float) -> float:
+    ex = bx - ax
+    ey = by - ay
+    wx = px - ax
+    wy = py - ay
+    ee = ex * ex + ey * ey
+    t = 0.0
+    if ee > 0.0:
+        t = min(max((wx * ex + wy * ey) / ee, 0.0), 1.0)
+    qx = wx - t * ex
+    qy = wy - t * ey
+    return math.sqrt(qx * qx + qy * qy)
+
+
+@njit_no_refcount
+def _orient(ax: float, ay: float, bx: float, by: float, cx: float, cy: float) -> float:
+    return (bx - ax) * (cy - ay) - (by - ay) * (cx - ax)
+
+
+@njit_no_refcount
+def _segments_cross(
+    ax: float, ay: float, bx: float, by: float, cx: float, cy: float, dx: float, dy: float
+) -> bool:
+    """Whether segments ab and cd share a point (touching included)."""
+    d1 = _orient(cx, cy, dx, dy, ax, ay)
+    d2 = _orient(cx, cy, dx, dy, bx, by)
+    d3 = _orient(ax, ay, bx, by, cx, cy)
+    d4 = _orient(ax, ay, bx, by, dx, dy)
+    if ((d1 > 0.0 and d2 < 0.0) or (d1 < 0.0 and d2 > 0.0)) and (
+        (d3 > 0.0 and d4 < 0.0) or (d3 < 0.0 and d4 > 0.0)
+    ):
+        return True
+    # Collinear or touching cases: an endpoint lies on the other segment.
+    if d1 == 0.0 and _point_segment(ax, ay, cx, cy, dx, dy) == 0.0:
+        return True
+    if d2 == 0.0 and _point_segment(bx, by, cx, cy, dx, dy) == 0.0:
+        return True
+    if d3 == 0.0 and _point_segment(cx, cy, ax, ay, bx, by) == 0.0:
+        return True
+    return d4 == 0.0 and _point_segment(dx, dy, ax, ay, bx, by) == 0.0
+
+
+@njit_no_refcount
+def _segment_segment(
+    ax: float, ay: float, bx: float, by: float, cx: float, cy: float, dx: float, dy: float
+) -> float:
+    if _segments_cross(ax, ay, bx, by, cx, cy, dx, dy):
+        return 0.0
+    return min(
+        min(_point_segment(ax, ay, cx, cy, dx, dy), _point_segment(bx, by, cx, cy, dx, dy)),
+        min(_point_segment(cx, cy, ax, ay, bx, by), _point_segment(dx, dy, ax, ay, bx, by)),
+    )
+
+
+@njit_no_refcount
+def _inside_polygon(px: float, py: float, verts: np.ndarray, n: int) -> bool:
+    """Even-odd rule point-in-polygon test against the first ``n`` rows of ``verts``."""
+    inside = False
+    j = n - 1
+    for i in range(n):
+        xi = verts[i, 0]
+        yi = verts[i, 1]
+        xj = verts[j, 0]
+        yj = verts[j, 1]
+        if (yi > py) != (yj > py):
+            x_cross = xi + (py - yi) * (xj - xi) / (yj - yi)
+            if px < x_cross:
+                inside = not inside
+        j = i
+    return inside
+
+
+@njit_no_refcount
+def _to_segment(
+    cx: float,
+    cy: float,
+    radius: float,
+    verts: np.ndarray,
+    n: int,
+    ax: float,
+    ay: float,
+    bx: float,
+    by: float,
+) -> float:
+    """Footprint-to-segment distance (0 on contact or containment)."""
+    if n == 0:
+        return max(_point_segment(cx, cy, ax, ay, bx, by) - radius, 0.0)
+    if _inside_polygon(ax, ay, verts, n):
+        return 0.0
+    best = _INF
+    j = n - 1
+    for i in range(n):
+        d = _segment_segment(verts[j, 0], verts[j, 1], verts[i, 0], verts[i, 1], ax, ay, bx, by)
+        if d < best:
+            best = d
+            if best == 0.0:
+                return 0.0
+        j = i
+    return best
+
+
+@njit_no_refcount
+def _to_circle(
+    cx: float, cy: float, radius: float, verts: np.ndarray, n: int, ox: float, oy: float, r: float
+) -> float:
+    """Footprint-to-circle-boundary distance (0 when the boundary meets the footprint)."""
+    if n == 0:
+        d = math.sqrt((cx - ox) ** 2 + (cy - oy) ** 2)
+        if d + radius < r:
+            return r - (d + radius)
+        return max(d - radius - r, 0.0)
+    near = _INF
+    if _inside_polygon(ox, oy, verts, n):
+        near = 0.0
+    far = 0.0
+    j = n - 1
+    for i in range(n):
+        near = min(near, _point_segment(ox, oy, verts[j, 0], verts[j, 1], verts[i, 0], verts[i, 1]))
+        far = max(far, math.sqrt((verts[i, 0] - ox) ** 2 + (verts[i, 1] - oy) ** 2))
+        j = i
+    if far < r:
+        return r - far
+    if near > r:
+        return near - r
+    return 0.0
+
+
+@njit_no_refcount
+def _to_square(
+    cx: float,
+    cy: float,
+    radius: float,
+    lverts: np.ndarray,
+    n: int,
+    xa: float,
+    ya: float,
+    s: float,
+) -> float:
+    """Footprint-to-square distance; footprint in the square's frame (``lverts[:n]``)."""
+    xb = xa + s
+    yb = ya + s
+    if n == 0:
+        qx = cx - min(max(cx, xa), xb)
+        qy = cy - min(max(cy, ya), yb)
+        return max(math.sqrt(qx * qx + qy * qy) - radius, 0.0)
+    # A vertex of the footprint inside the square, or a square corner inside the footprint.
+    for i in range(n):
+        if xa <= lverts[i, 0] <= xb and ya <= lverts[i, 1] <= yb:
+            return 0.0
+    if _inside_polygon(xa, ya, lverts, n):
+        return 0.0
+    best = _to_segment(0.0, 0.0, 0.0, lverts, n, xa, ya, xb, ya)
+    best = min(best, _to_segment(0.0, 0.0, 0.0, lverts, n, xb, ya, xb, yb))
+    best = min(best, _to_segment(0.0, 0.0, 0.0, lverts, n, xb, yb, xa, yb))
+    return min(best, _to_segment(0.0, 0.0, 0.0, lverts, n, xa, yb, xa, ya))
+
+
+@njit_no_refcount
+def _edge_grid_distance(
+    cx: float,
+    cy: float,
+    radius: float,
+    verts: np.ndarray,
+    n: int,
+    bx0: float,
+    by0: float,
+    bx1: float,
+    by1: float,
+    segs: np.ndarray,
+    circles: np.ndarray,
+    gx0: float,
+    gy0: float,
+    h: float,
+    nx: int,
+    ny: int,
+    cell_start: np.ndarray,
+    cell_items: np.ndarray,
+    best: float,
+) -> float:
+    """Smallest distance below ``best`` to the indexed static primitives."""
+    inv_h = 1.0 / h
+    # Cells of the footprint's bounding box (may lie outside the grid).
+    i0 = math.floor((bx0 - gx0) * inv_h)
+    i1 = math.floor((bx1 - gx0) * inv_h)
+    j0 = math.floor((by0 - gy0) * inv_h)
+    j1 = math.floor((by1 - gy0) * inv_h)
+    # Rings farther than this lie wholly outside the grid.
+    far = max(max(-i1, i0 - (nx - 1)), max(-j1, j0 - (ny - 1)))
+    far = max(far, 0)
+    reach = max(max(i1, nx - 1 - i0), max(j1, ny - 1 - j0))
+    n_seg = segs.shape[0]
+    ring = far
+    while ring <= reach:
+        # Any cell of this ring is at least (ring - 1) * h away from the box.
+        if (ring - 1) * h >= best:
+            break
+        lo_i = i0 - ring
+        hi_i = i1 + ring
+        lo_j = j0 - ring
+        hi_j = j1 + ring
+        for j in range(max(lo_j, 0), min(hi_j, ny - 1) + 1):
+            on_edge_row = ring == 0 or (j - lo_j) * (hi_j - j) == 0
+            if on_edge_row:
+                i_first = max(lo_i, 0)
+                i_step = 1
+            else:
+                i_first = lo_i
+                i_step = hi_i - lo_i if hi_i > lo_i else 1
+            i = i_first
+            while i <= min(hi_i, nx - 1):
+                if i >= 0:
+                    k = j * nx + i
+                    for m in range(cell_start[k], cell_start[k + 1]):
+                        item = cell_items[m]
+                        if item < n_seg:
+                            d = _to_segment(
+                                cx, cy, radius, verts, n,
+                                segs[item, 0], segs[item, 1], segs[item, 2], segs[item, 3],
+                            )  # fmt: skip
+                        else:
+                            c = item - n_seg
+                            d = _to_circle(
+                                cx, cy, radius, verts, n,
+                                circles[c, 0], circles[c, 1], circles[c, 2],
+                            )  # fmt: skip
+                        if d < best:
+                            best = d
+                i += i_step
+        if best == 0.0:
+            return 0.0
+        ring += 1
+    return best
+
+
+@njit_no_refcount
+def _occupancy_distance(
+    cx: float,
+    cy: float,
+    radius: float,
+    verts: np.ndarray,
+    n: int,
+    lverts: np.ndarray,
+    occ: np.ndarray,
+    gox: float,
+    goy: float,
+    gcos: float,
+    gsin: float,
+    res: float,
+    best: float,
+) -> float:
+    """Smallest distance below ``best`` to an occupied cell, searching rings of cells.
+
+    ``lverts`` is scratch space of at least ``n`` rows for the footprint in the
+    grid frame.
+    """
+    rows = occ.shape[0]
+    cols = occ.shape[1]
+    # Footprint in the grid frame (metres, origin at the grid's corner).
+    rx = cx - gox
+    ry = cy - goy
+    lcx = gcos * rx + gsin * ry
+    lcy = -gsin * rx + gcos * ry
+    if n == 0:
+        bx0 = lcx - radius
+        bx1 = lcx + radius
+        by0 = lcy - radius
+        by1 = lcy + radius
+    else:
+        bx0 = by0 = _INF
+        bx1 = by1 = -_INF
+        for v in range(n):
+            wx = verts[v, 0] - gox
+            wy = verts[v, 1] - goy
+            lx = gcos * wx + gsin * wy
+            ly = -gsin * wx + gcos * wy
+            lverts[v, 0] = lx
+            lverts[v, 1] = ly
+            bx0 = min(bx0, lx)
+            bx1 = max(bx1, lx)
+            by0 = min(by0, ly)
+            by1 = max(by1, ly)
+    inv = 1.0 / res
+    i0 = math.floor(bx0 * inv)
+    i1 = math.floor(bx1 * inv)
+    j0 = math.floor(by0 * inv)
+    j1 = math.floor(by1 * inv)
+    far = max(max(-i1, i0 - (cols - 1)), max(-j1, j0 - (rows - 1)))
+    far = max(far, 0)
+    reach = max(max(i1, cols - 1 - i0), max(j1, rows - 1 - j0))
+    ring = far
+    while ring <= reach:
+        if (ring - 1) * res >= best:
+            break
+        lo_i = i0 - ring
+        hi_i = i1 + ring
+        lo_j = j0 - ring
+        hi_j = j1 + ring
+        for j in range(max(lo_j, 0), min(hi_j, rows - 1) + 1):
+            on_edge_row = ring == 0 or (j - lo_j) * (hi_j - j) == 0
+            if on_edge_row:
+                i_first = max(lo_i, 0)
+                i_step = 1
+            else:
+                i_first = lo_i
+                i_step = hi_i - lo_i if hi_i > lo_i else 1
+            i = i_first
+            while i <= min(hi_i, cols - 1):
+                if i >= 0 and occ[j, i] != 0:
+                    d = _to_square(lcx, lcy, radius, lverts, n, i * res, j * res, res)
+                    if d < best:
+                        best = d
+                i += i_step
+        if best == 0.0:
+            return 0.0
+        ring += 1
+    return best
+
+
+@njit_no_refcount
+def footprint_clearance(
+    px: float,
+    py: float,
+    ptheta: float,
+    radius: float,
+    body_verts: np.ndarray,
+    verts: np.ndarray,
+    scratch: np.ndarray,
+    segs: np.ndarray,
+    circles: np.ndarray,
+    gx0: float,
+    gy0: float,
+    h: float,
+    nx: int,
+    ny: int,
+    cell_start: np.ndarray,
+    cell_items: np.ndarray,
+    occ: np.ndarray,
+    gox: float,
+    goy: float,
+    gcos: float,
+    gsin: float,
+    res: float,
+    dyn_segs: np.ndarray,
+    dyn_circles: np.ndarray,
+    limit: float,
+) -> float:
+    """``min(limit, distance)`` from the footprint at a pose to the nearest obstacle boundary.
+
+    The footprint is the disc of ``radius`` about ``(px, py)`` when
+    ``body_verts`` is empty, otherwise the polygon ``body_verts`` (robot
+    frame) placed at the pose ``(px, py, ptheta)``. 0 means contact.
+    ``verts`` and ``scratch`` are float64 work arrays of the shape of
+    ``body_verts`` (the footprint in the world and in the grid frame).
+    """
+    n = body_verts.shape[0]
+    c = math.cos(ptheta)
+    s = math.sin(ptheta)
+    if n == 0:
+        bx0 = px - radius
+        bx1 = px + radius
+        by0 = py - radius
+        by1 = py + radius
+    else:
+        bx0 = by0 = _INF
+        bx1 = by1 = -_INF
+        for v in range(n):
+            x = px + c * body_verts[v, 0] - s * body_verts[v, 1]
+            y = py + s * body_verts[v, 0] + c * body_verts[v, 1]
+            verts[v, 0] = x
+            verts[v, 1] = y
+            bx0 = min(bx0, x)
+            bx1 = max(bx1, x)
+            by0 = min(by0, y)
+            by1 = max(by1, y)
+    best = limit
+    for m in range(dyn_segs.shape[0]):
+        d = _to_segment(
+            px, py, radius, verts, n, dyn_segs[m, 0], dyn_segs[m, 1], dyn_segs[m, 2], dyn_segs[m, 3]
+        )
+        best = min(best, d)
+    for m in range(dyn_circles.shape[0]):
+        d = _to_circle(
+            px, py, radius, verts, n, dyn_circles[m, 0], dyn_circles[m, 1], dyn_circles[m, 2]
+        )
+        best = min(best, d)
+    if best > 0.0 and cell_items.shape[0] > 0:
+        best = _edge_grid_distance(
+            px, py, radius, verts, n, bx0, by0, bx1, by1,
+            segs, circles, gx0, gy0, h, nx, ny, cell_start, cell_items, best,
+        )  # fmt: skip
+    if best > 0.0 and occ.shape[0] > 0:
+        best = _occupancy_distance(
+            px, py, radius, verts, n, scratch, occ, gox, goy, gcos, gsin, res, best
+        )
+    return best

@@ -1,0 +1,223 @@
+"""Feeding a simulation's sensor readings to a pose estimator."""
+
+from __future__ import annotations
+
+import math
+from typing import Any, Protocol, runtime_checkable
+
+import numpy as np
+
+from navkit._shared.types import FloatArray
+from navkit.estimation import DiffOdometry, OmniOdometry, PlanarFusion
+from navkit.geometry import Pose2D
+from navkit.kinematics import DiffDrive, OmniDrive
+from navkit.sim._robot import Robot
+from navkit.sim._sensors import CompassReading, EncoderReading, ImuReading, Reading
+
+__all__ = ["Estimator", "as_estimator"]
+
+_TWO_PI = 2.0 * math.pi
+
+
+def _wrap(angle: float) -> float:
+    """One angle wrapped to (-π, π] (scalar math; ``wrap_angle`` is the array form)."""
+    out = math.pi - (math.pi - angle) % _TWO_PI
+    return out if out > -math.pi else out + _TWO_PI
+
+
+@runtime_checkable
+class Estimator(Protocol):
+    """What :class:`Simulation` needs of a pose estimator.
+
+    ``observe(t, reading)`` is called with every reading when it is delivered
+    (``t``, s; the reading's own ``stamp`` is when it was taken), in delivery
+    order; ``pose`` is the current estimate (None before there is one).
+    ``navkit.estimation.PlanarFusion``, ``OmniOdometry`` and ``DiffOdometry``
+    instances are wrapped into estimators automatically.
+    """
+
+    def observe(self, t: float, reading: Reading) -> None:
+        """Take one delivered reading."""
+
+    @property
+    def pose(self) -> Pose2D | None:
+        """The current pose estimate."""
+
+
+def _signed_delta(previous: list[int], current: list[int], bits: int | None) -> list[int]:
+    """Tick changes corrected for counter wrap-around (Python integers: exact, and
+    quicker than NumPy for a few wheels)."""
+    if bits is None:
+        return [c - p for p, c in zip(previous, current, strict=True)]
+    span = 1 << bits
+    half = span >> 1
+    return [((c - p + half) % span) - half for p, c in zip(previous, current, strict=True)]
+
+
+class _Wheels:
+    """Wheel speeds and rotation increments from successive encoder readings."""
+
+    __slots__ = ("_bits", "_last", "_last_stamp", "_rad_per_tick")
+
+    def __init__(self, robot: Robot) -> None:
+        if robot.encoders is None:
+            raise ValueError("this estimator needs wheel encoders: give the Robot encoders=")
+        bits = robot.encoders.bits
+        self._bits = None if bits is None or bits >= 64 else bits
+        self._rad_per_tick = _TWO_PI / robot.encoders.ticks_per_rev
+        self._last: list[int] | None = None
+        self._last_stamp = 0.0
+
+    def increments(self, reading: EncoderReading) -> tuple[FloatArray, float] | None:
+        """Wheel rotations (rad) since the previous reading and the time between them."""
+        last = self._last
+        ticks = reading.ticks.tolist()
+        self._last = ticks
+        dt = reading.stamp - self._last_stamp
+        self._last_stamp = reading.stamp
+        if last is None or dt <= 0.0:
+            return None
+        delta = _signed_delta(last, ticks, self._bits)
+        return np.array(delta, dtype=np.float64) * self._rad_per_tick, dt
+
+
+class _FusionEstimator:
+    """PlanarFusion fed with wheel odometry, compass yaw and IMU yaw rate/acceleration."""
+
+    __slots__ = (
+        "_accel_var",
+        "_compass_var",
+        "_forward",
+        "_fusion",
+        "_gyro_var",
+        "_north",
+        "_omega_var",
+        "_quantum",
+        "_v_var",
+        "_wheels",
+    )
+
+    def __init__(self, fusion: PlanarFusion, robot: Robot) -> None:
+        self._fusion = fusion
+        self._wheels = _Wheels(robot)
+        drive = robot.drive
+        n = robot.n_wheels
+        self._forward = np.asarray(drive.forward_batch(np.eye(n)).T)  # (3, n)
+        assert robot.encoders is not None
+        quantum = _TWO_PI / robot.encoders.ticks_per_rev
+        # Variance of a twist from wheel speeds quantised to one tick per reading
+        # interval at each end (uniform errors), per second squared of interval.
+        self._quantum = quantum
+        self._v_var = float(np.sum(self._forward[0] ** 2)) * quantum**2 / 6.0
+        self._omega_var = float(np.sum(self._forward[2] ** 2)) * quantum**2 / 6.0
+        compass = robot.compass
+        self._north = compass.north if compass is not None else 0.0
+        self._compass_var = max(compass.noise**2, 1e-6) if compass is not None else 1e-6
+        imu = robot.imu
+        self._gyro_var = max(imu.gyro_noise**2, 1e-6) if imu is not None else 1e-6
+        self._accel_var = max(imu.accel_noise**2, 1e-4) if imu is not None else 1e-4
+
+    def observe(self, t: float, reading: Reading) -> None:
+        fusion = self._fusion
+        kind = type(reading)
+        if kind is ImuReading:
+            assert isinstance(reading, ImuReading)
+            fusion.update_yaw_rate(t, reading.yaw_rate, variance=self._gyro_var)
+            fusion.update_acceleration(t, reading.acceleration_x, variance=self._accel_var)
+        elif kind is EncoderReading:
+            assert isinstance(reading, EncoderReading)
+            step = self._wheels.increments(reading)
+            if step is None:
+                return
+            inc, dt = step
+            twist = self._forward @ (inc / dt)
+            scale = 1.0 / (dt * dt)
+            fusion.update_odometry(
+                t, float(twist[0]), float(twist[2]),
+                v_variance=max(self._v_var * scale, 1e-6),
+                omega_variance=max(self._omega_var * scale, 1e-6),
+            )  # fmt: skip
+        elif kind is CompassReading:
+            assert isinstance(reading, CompassReading)
+            yaw = _wrap(self._north - math.radians(reading.heading_deg))
+            fusion.update_yaw(t, yaw, variance=self._compass_var)
+
+    @property
+    def pose(self) -> Pose2D | None:
+        return self._fusion.pose if self._fusion.t is not None else None
+
+    def xyt(self) -> tuple[float, float, float] | None:
+        """The pose as three floats (cheaper than :attr:`pose`)."""
+        if self._fusion.t is None:
+            return None
+        x = self._fusion.x
+        return float(x[0]), float(x[1]), float(x[2])
+
+
+class _OmniOdometryEstimator:
+    """OmniOdometry: wheel increments rotated by the latest compass yaw."""
+
+    __slots__ = ("_north", "_odometry", "_wheels", "_yaw")
+
+    def __init__(self, odometry: OmniOdometry, robot: Robot) -> None:
+        if robot.compass is None:
+            raise ValueError("OmniOdometry takes its heading from a compass: give the Robot one")
+        if not isinstance(robot.drive, OmniDrive):
+            raise ValueError("OmniOdometry needs an omnidirectional robot")
+        self._odometry = odometry
+        self._wheels = _Wheels(robot)
+        self._north = robot.compass.north
+        self._yaw: float | None = None
+
+    def observe(self, t: float, reading: Reading) -> None:
+        if isinstance(reading, CompassReading):
+            self._yaw = _wrap(self._north - math.radians(reading.heading_deg))
+        elif isinstance(reading, EncoderReading):
+            step = self._wheels.increments(reading)
+            if step is None:
+                return
+            yaw = self._odometry.pose.theta if self._yaw is None else self._yaw
+            self._odometry.update(step[0], yaw)
+
+    @property
+    def pose(self) -> Pose2D | None:
+        return self._odometry.pose
+
+
+class _DiffOdometryEstimator:
+    """DiffOdometry fed with the raw encoder counters."""
+
+    __slots__ = ("_odometry",)
+
+    def __init__(self, odometry: DiffOdometry, robot: Robot) -> None:
+        if robot.encoders is None:
+            raise ValueError("DiffOdometry needs wheel encoders: give the Robot encoders=")
+        if not isinstance(robot.drive, DiffDrive):
+            raise ValueError("DiffOdometry needs a differential-drive robot")
+        self._odometry = odometry
+
+    def observe(self, t: float, reading: Reading) -> None:
+        if isinstance(reading, EncoderReading):
+            self._odometry.update(int(reading.ticks[0]), int(reading.ticks[1]))
+
+    @property
+    def pose(self) -> Pose2D | None:
+        return self._odometry.pose
+
+
+def as_estimator(value: Any, robot: Robot) -> Estimator | None:
+    """Wrap a navkit estimator for a simulation, or check a user's :class:`Estimator`."""
+    if value is None:
+        return None
+    if isinstance(value, PlanarFusion):
+        return _FusionEstimator(value, robot)
+    if isinstance(value, OmniOdometry):
+        return _OmniOdometryEstimator(value, robot)
+    if isinstance(value, DiffOdometry):
+        return _DiffOdometryEstimator(value, robot)
+    if isinstance(value, Estimator):
+        return value
+    raise TypeError(
+        "estimator must be a PlanarFusion, OmniOdometry, DiffOdometry or an object with "
+        f"observe(t, reading) and pose, got {type(value).__name__}"
+    )

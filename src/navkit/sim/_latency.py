@@ -1,0 +1,67 @@
+"""Late delivery of sensor streams: a first-in, first-out delay line per stream."""
+
+from __future__ import annotations
+
+from collections import deque
+from typing import Generic, TypeVar
+
+__all__ = ["DelayLine"]
+
+_T = TypeVar("_T")
+
+
+class DelayLine(Generic[_T]):
+    """Holds the items of one stream until their delivery time.
+
+    Every item of a stream has the same delay, so items leave in the order
+    they came in. Times are compared with a tolerance of 1e-9 s, so that an
+    item due at ``t`` is delivered at a step computed as ``k * dt ≈ t``.
+
+    An ordinary class with ``__slots__``: it changes as items pass.
+
+    Parameters
+    ----------
+    delay : float
+        Delivery delay, s, >= 0 (validated by the caller).
+
+    Examples
+    --------
+    >>> line = DelayLine(0.5)
+    >>> line.push(0.0, "a"); line.push(0.1, "b")
+    >>> line.pop_due(0.5), line.pop_due(0.55), line.pop_due(0.6)
+    ([(0.5, 'a')], [], [(0.6, 'b')])
+    """
+
+    __slots__ = ("_delay", "_items")
+
+    _EPS = 1e-9
+
+    def __init__(self, delay: float) -> None:
+        self._delay = float(delay)
+        self._items: deque[tuple[float, _T]] = deque()
+
+    @property
+    def delay(self) -> float:
+        """The delivery delay, s."""
+        return self._delay
+
+    def push(self, stamp: float, item: _T) -> None:
+        """Queue ``item`` sampled at ``stamp``; it is due at ``stamp + delay``."""
+        self._items.append((stamp + self._delay, item))
+
+    def push_at(self, due: float, item: _T) -> None:
+        """Queue ``item`` due at ``due`` (not before any item already queued)."""
+        self._items.append((due, item))
+
+    def pop_due(self, now: float) -> list[tuple[float, _T]]:
+        """Remove and return ``(due time, item)`` of every item due by ``now``, in order."""
+        items = self._items
+        if not items or items[0][0] > now + self._EPS:
+            return []
+        out = []
+        while items and items[0][0] <= now + self._EPS:
+            out.append(items.popleft())
+        return out
+
+    def __len__(self) -> int:
+        return len(self._items)

@@ -1,0 +1,308 @@
+"""A simulated planar LiDAR returning :class:`navkit.mapping.LaserScan` readings."""
+
+from __future__ import annotations
+
+import math
+import numbers
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from navkit._shared.types import FloatArray
+from navkit._shared.validation import finite_float, positive_float
+from navkit.geometry import Pose2D, as_pose
+from navkit.mapping import LaserScan
+from navkit.sim._lidar_kernels import apply_range_noise
+from navkit.sim._noise import RangeNoise
+from navkit.sim._world import MAX_COORD, World, as_world
+
+__all__ = ["Lidar", "Scanner", "as_generator", "check_latency", "check_rate"]
+
+#: Most beams of one scan.
+MAX_BEAMS = 100_000
+#: Fastest sensor or loop rate, Hz.
+MAX_RATE = 10_000.0
+#: Longest latency, s.
+MAX_LATENCY = 1e4
+_TWO_PI = 2.0 * math.pi
+_PAPER_NOISE = RangeNoise()
+_IDENTITY = Pose2D(0.0, 0.0, 0.0)
+
+
+def check_rate(value: object, name: str = "rate") -> float:
+    """A rate in Hz in (0, 10^4]."""
+    rate = positive_float(value, name)
+    if rate > MAX_RATE:
+        raise ValueError(f"{name} must be at most {MAX_RATE:g} Hz, got {rate}")
+    return rate
+
+
+def check_latency(value: object, name: str = "latency") -> float:
+    """A delivery delay in s in [0, 10^4]."""
+    latency = positive_float(value, name, allow_zero=True)
+    if latency > MAX_LATENCY:
+        raise ValueError(f"{name} must be at most {MAX_LATENCY:g} s, got {latency}")
+    return latency
+
+
+def as_generator(value: object, name: str = "rng") -> np.random.Generator:
+    """A NumPy Generator from a Generator, an int seed or None (fresh entropy)."""
+    if isinstance(value, np.random.Generator):
+        return value
+    if value is None:
+        return np.random.default_rng()
+    if isinstance(value, bool):
+        raise TypeError(f"{name} must be a numpy Generator, an int seed or None, got bool")
+    if isinstance(value, numbers.Integral):
+        if int(value) < 0:
+            raise ValueError(f"{name} seed must be >= 0, got {value}")
+        if int(value) >= 1 << 128:
+            raise ValueError(f"{name} seed must be below 2**128")
+        return np.random.default_rng(int(value))
+    raise TypeError(f"{name} must be a numpy Generator, an int seed or None, got {type(value)}")
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class Lidar:
+    """A planar scanning LiDAR: geometry, noise, rate and latency.
+
+    Beams are evenly spaced over the field of view. A full circle
+    (``fov = 2π``) has ``n_beams`` beams from -π at ``2π / n_beams`` apart (no
+    beam repeated at +π); a narrower field has its first and last beams on its
+    edges, ``fov / (n_beams - 1)`` apart, centred on the sensor's x axis. Each
+    beam measures the exact distance to the first obstacle (see
+    :meth:`World.raycast`), then, in this order: a dropout (probability
+    ``dropout``) reads NaN; range noise by band (:class:`RangeNoise`) is
+    applied; a reading below ``range_min`` reads ``-inf`` and one at or beyond
+    ``range_max`` (or no obstacle in range) reads ``+inf``, as ROS REP 117
+    asks. With ``angle_jitter`` each beam is cast off its nominal angle by a
+    zero-mean Gaussian error but reported at the nominal angle, as a real
+    scanner does.
+
+    Every parameter is keyword-only; defaults describe an RPLIDAR A1 (0.15 to
+    12 m, 360 beams, 10 Hz) with the omnidirectional robot paper's range
+    noise.
+
+    Parameters
+    ----------
+    n_beams : int, default 360
+        Beams per scan, 1 to 100,000.
+    fov : float, default 2π
+        Field of view, rad, in (0, 2π].
+    range_min : float, default 0.15
+        Shortest valid reading, m, >= 0.
+    range_max : float, default 12.0
+        Readings at or beyond it are "no return", m, in (range_min, 1e6].
+    noise : RangeNoise or None, default RangeNoise()
+        Range noise by band; None for exact ranges.
+    angle_jitter : float, default 0.0
+        Standard deviation of each beam's direction error, rad, in [0, π].
+    dropout : float, default 0.0
+        Probability that a beam returns nothing (NaN), in [0, 1].
+    rate : float, default 10.0
+        Scans per second in a :class:`Simulation`, Hz, in (0, 10^4].
+    latency : float, default 0.0
+        Delay between taking a scan and delivering it, s, in [0, 10^4] (the
+        omnidirectional paper measured 0.50 s for its LiDAR topic).
+    mount : Pose2D or array_like [x, y, theta], default (0, 0, 0)
+        Pose of the sensor in the robot frame.
+
+    Examples
+    --------
+    >>> from shapely.geometry import box
+    >>> world = World(box(0.0, 0.0, 4.0, 3.0).exterior)
+    >>> lidar = Lidar(n_beams=4, noise=None)
+    >>> lidar.angles().round(4).tolist()
+    [-3.1416, -1.5708, 0.0, 1.5708]
+    >>> scan = lidar.scan(world, (1.0, 1.0, 0.0))
+    >>> scan.ranges.round(12).tolist()
+    [1.0, 1.0, 3.0, 2.0]
+    >>> Lidar(n_beams=3, fov=math.pi, range_min=0.5, noise=None).scan(
+    ...     world, (0.2, 1.5, 0.0)).ranges.round(12).tolist()
+    [1.5, 3.8, 1.5]
+    """
+
+    n_beams: int = 360
+    fov: float = _TWO_PI
+    range_min: float = 0.15
+    range_max: float = 12.0
+    noise: RangeNoise | None = _PAPER_NOISE
+    angle_jitter: float = 0.0
+    dropout: float = 0.0
+    rate: float = 10.0
+    latency: float = 0.0
+    mount: Pose2D = _IDENTITY
+
+    def __post_init__(self) -> None:
+        n: object = self.n_beams
+        if isinstance(n, bool) or not isinstance(n, numbers.Integral):
+            raise TypeError(f"n_beams must be an integer, got {type(n).__name__}")
+        if not 1 <= int(n) <= MAX_BEAMS:
+            raise ValueError(f"n_beams must be from 1 to {MAX_BEAMS}, got {n}")
+        object.__setattr__(self, "n_beams", int(n))
+        fov = positive_float(self.fov, "fov")
+        if fov > _TWO_PI + 1e-12:
+            raise ValueError(f"fov must lie in (0, 2π] rad, got {fov}")
+        object.__setattr__(self, "fov", min(fov, _TWO_PI))
+        rmin = positive_float(self.range_min, "range_min", allow_zero=True)
+        rmax = positive_float(self.range_max, "range_max")
+        if rmax > MAX_COORD:
+            raise ValueError(f"range_max must be at most {MAX_COORD:g} m, got {rmax}")
+        if rmin >= rmax:
+            raise ValueError(f"range_min ({rmin}) must be smaller than range_max ({rmax})")
+        object.__setattr__(self, "range_min", rmin)
+        object.__setattr__(self, "range_max", rmax)
+        if self.noise is not None and not isinstance(self.noise, RangeNoise):
+            raise TypeError(f"noise must be a RangeNoise or None, got {type(self.noise).__name__}")
+        jitter = positive_float(self.angle_jitter, "angle_jitter", allow_zero=True)
+        if jitter > math.pi:
+            raise ValueError(f"angle_jitter must lie in [0, π] rad, got {jitter}")
+        object.__setattr__(self, "angle_jitter", jitter)
+        drop = finite_float(self.dropout, "dropout")
+        if not 0.0 <= drop <= 1.0:
+            raise ValueError(f"dropout must lie in [0, 1], got {drop}")
+        object.__setattr__(self, "dropout", drop)
+        object.__setattr__(self, "rate", check_rate(self.rate))
+        object.__setattr__(self, "latency", check_latency(self.latency))
+        object.__setattr__(self, "mount", as_pose(self.mount, "mount"))
+
+    @property
+    def full_circle(self) -> bool:
+        """Whether the field of view is a whole turn."""
+        return self.fov >= _TWO_PI
+
+    @property
+    def angle_min(self) -> float:
+        """Angle of the first beam in the sensor frame, rad."""
+        if self.full_circle:
+            return -math.pi
+        return 0.0 if self.n_beams == 1 else -0.5 * self.fov
+
+    @property
+    def angle_increment(self) -> float:
+        """Angle between consecutive beams, rad (``fov`` for a single beam)."""
+        if self.full_circle:
+            return _TWO_PI / self.n_beams
+        return self.fov if self.n_beams == 1 else self.fov / (self.n_beams - 1)
+
+    def angles(self) -> FloatArray:
+        """Nominal beam angles in the sensor frame, rad, shape (n_beams,)."""
+        return self.angle_min + self.angle_increment * np.arange(self.n_beams, dtype=np.float64)
+
+    def scan(
+        self,
+        world: World,
+        pose: Pose2D | ArrayLike,
+        *,
+        t: float = 0.0,
+        rng: np.random.Generator | int | None = None,
+    ) -> LaserScan:
+        """One scan of ``world`` from a robot at ``pose``.
+
+        Parameters
+        ----------
+        world : World
+            What the beams hit.
+        pose : Pose2D or array_like [x, y, theta]
+            Pose of the robot; the sensor sits at ``pose ⊕ mount``.
+        t : float, default 0.0
+            Time of the scan (places the moving obstacles), s.
+        rng : numpy Generator, int seed or None
+            Randomness for noise, jitter and dropouts (fresh entropy if None;
+            unused without them).
+
+        Returns
+        -------
+        LaserScan
+            Ranges per REP 117, angles in the sensor frame.
+        """
+        w = as_world(world)
+        scanner = w._scanners.get(self)
+        if scanner is None:
+            if len(w._scanners) >= 16:
+                w._scanners.clear()
+            scanner = w._scanners[self] = Scanner(self, w)
+        p = as_pose(pose, "pose")
+        time = finite_float(t, "t")
+        generator = as_generator(rng) if scanner.random or rng is not None else None
+        return scanner.scan(p, time, generator)
+
+
+class Scanner:
+    """A LiDAR bound to a world, with its work arrays: the simulation's fast path.
+
+    An ordinary class with ``__slots__``: it keeps reusable buffers.
+    """
+
+    __slots__ = (
+        "_angles",
+        "_bias",
+        "_cast_angles",
+        "_lidar",
+        "_limits",
+        "_noisy",
+        "_normals",
+        "_ranges",
+        "_sigma",
+        "_uniforms",
+        "_world",
+        "random",
+    )
+
+    def __init__(self, lidar: Lidar, world: World) -> None:
+        self._lidar = lidar
+        self._world = world
+        n = lidar.n_beams
+        self._angles = np.ascontiguousarray(lidar.angles())
+        self._cast_angles = np.empty(n)
+        self._ranges = np.empty(n)
+        self._normals = np.zeros(n)
+        self._uniforms = np.ones(n)
+        noise = lidar.noise
+        self._noisy = noise is not None and any(
+            s > 0.0 or b != 0.0 for s, b in zip(noise.sigma, noise.bias, strict=True)
+        )
+        if noise is None:
+            noise = RangeNoise((math.inf,), (0.0,))
+        self._limits, self._bias, self._sigma = noise.arrays()
+        self.random = self._noisy or lidar.angle_jitter > 0.0 or lidar.dropout > 0.0
+        """Whether a scan draws random numbers."""
+
+    def scan(self, pose: Pose2D, t: float, rng: np.random.Generator | None) -> LaserScan:
+        """One scan from the robot at ``pose`` (validated) at time ``t``.
+
+        ``rng`` may be None only when :attr:`random` is false.
+        """
+        lidar = self._lidar
+        m = lidar.mount
+        if m.x == 0.0 and m.y == 0.0 and m.theta == 0.0:
+            x, y, heading = pose.x, pose.y, pose.theta
+        else:
+            sensor = pose.compose(m)
+            x, y, heading = sensor.x, sensor.y, sensor.theta
+        angles = self._angles
+        if lidar.angle_jitter > 0.0:
+            assert rng is not None
+            angles = self._cast_angles
+            np.multiply(rng.standard_normal(lidar.n_beams), lidar.angle_jitter, out=angles)
+            angles += self._angles
+        ranges = self._ranges
+        self._world._cast(ranges, x, y, heading, angles, lidar.range_max, t)
+        if self.random:
+            assert rng is not None
+            if self._noisy:
+                self._normals[:] = rng.standard_normal(lidar.n_beams)
+            if lidar.dropout > 0.0:
+                self._uniforms[:] = rng.random(lidar.n_beams)
+        apply_range_noise(
+            ranges, self._normals, self._uniforms, self._limits, self._bias, self._sigma,
+            lidar.dropout, lidar.range_min, lidar.range_max,
+        )  # fmt: skip
+        return LaserScan(
+            ranges,
+            angle_min=lidar.angle_min,
+            angle_increment=lidar.angle_increment,
+            range_min=lidar.range_min,
+            range_max=lidar.range_max,
+        )

@@ -1,0 +1,222 @@
+"""A simulated wheeled robot: drive, wheel imperfections, footprint and sensors."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from navkit._shared.types import FloatArray
+from navkit._shared.validation import as_float_array, finite_float
+from navkit.geometry import Twist2D
+from navkit.kinematics import DiffDrive, OmniDrive
+from navkit.sim._lidar import Lidar
+from navkit.sim._sensors import Compass, Imu, WheelEncoders
+from navkit.sim._world import as_footprint
+
+__all__ = ["Body", "Robot"]
+
+#: Largest wheel speed limit accepted (other than inf), rad/s.
+MAX_WHEEL_SPEED = 1e5
+#: Largest wheel acceleration limit accepted (other than inf), rad/s².
+MAX_WHEEL_ACCELERATION = 1e7
+_DEFAULT_ENCODERS = WheelEncoders()
+
+
+def _limit(value: Any, name: str, high: float, unit: str) -> float:
+    """A limit in (0, high] or inf (no limit)."""
+    if isinstance(value, float) and value == math.inf:
+        return math.inf
+    out = finite_float(value, name)
+    if not 0.0 < out <= high:
+        raise ValueError(f"{name} must lie in (0, {high:g}] {unit} or be inf, got {out}")
+    return out
+
+
+@dataclass(frozen=True, slots=True, kw_only=True, eq=False)
+class Robot:
+    """A wheeled robot for :class:`Simulation`: drive, imperfections, footprint, sensors.
+
+    Commands (body twists) become wheel speeds through the drive's inverse
+    kinematics, are scaled down together so that no wheel exceeds
+    ``max_wheel_speed`` (the direction of motion is kept), and each wheel
+    ramps toward its command within ``max_wheel_acceleration``. The ground
+    then moves by each wheel's rotation times its true radius
+    (``wheel_radius * (1 + wheel_radius_error)``) less a random slip, through
+    the drive's forward kinematics: so odometry computed with the nominal
+    drive drifts as on a real robot. Encoders count the wheels' own rotation.
+
+    Every parameter is keyword-only.
+
+    Parameters
+    ----------
+    drive : OmniDrive or DiffDrive
+        Wheel layout (nominal radii).
+    footprint : float, shapely Polygon or array_like (V, 2)
+        A radius (m) for a round robot, or a polygon in the robot frame (m,
+        3 to 1000 vertices); what collides with the world.
+    max_wheel_speed : float, default inf
+        Largest wheel speed, rad/s, in (0, 1e5] or inf.
+    max_wheel_acceleration : float, default inf
+        Largest change of wheel speed, rad/s², in (0, 1e7] or inf.
+    wheel_slip : float, default 0.0
+        Scale of random slip, in [0, 1]: each physics step each wheel's ground
+        speed is its rim speed times ``1 - min(|s|, 1)`` with
+        ``s ~ N(0, wheel_slip²)``.
+    wheel_radius_error : float or array_like (n_wheels,), default 0.0
+        True radius relative to the nominal one, minus 1, in [-0.5, 0.5].
+    encoders : WheelEncoders or None, default WheelEncoders()
+        Wheel encoders.
+    lidar : Lidar, optional
+    compass : Compass, optional
+    imu : Imu, optional
+
+    Examples
+    --------
+    >>> robot = Robot(drive=DiffDrive(track=0.3, wheel_radius=0.05), footprint=0.2,
+    ...               max_wheel_speed=10.0, lidar=Lidar(noise=None))
+    >>> robot.n_wheels, robot.lidar.n_beams
+    (2, 360)
+    """
+
+    drive: OmniDrive | DiffDrive
+    footprint: Any
+    max_wheel_speed: float = math.inf
+    max_wheel_acceleration: float = math.inf
+    wheel_slip: float = 0.0
+    wheel_radius_error: float | FloatArray = 0.0
+    encoders: WheelEncoders | None = _DEFAULT_ENCODERS
+    lidar: Lidar | None = None
+    compass: Compass | None = None
+    imu: Imu | None = None
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.drive, (OmniDrive, DiffDrive)):
+            raise TypeError(
+                f"drive must be an OmniDrive or a DiffDrive, got {type(self.drive).__name__}"
+            )
+        radius, verts = as_footprint(self.footprint, "footprint")
+        verts.flags.writeable = False
+        object.__setattr__(self, "footprint", radius if radius else verts)
+        object.__setattr__(
+            self,
+            "max_wheel_speed",
+            _limit(self.max_wheel_speed, "max_wheel_speed", MAX_WHEEL_SPEED, "rad/s"),
+        )
+        object.__setattr__(
+            self,
+            "max_wheel_acceleration",
+            _limit(
+                self.max_wheel_acceleration, "max_wheel_acceleration", MAX_WHEEL_ACCELERATION,
+                "rad/s²",
+            ),
+        )  # fmt: skip
+        slip = finite_float(self.wheel_slip, "wheel_slip")
+        if not 0.0 <= slip <= 1.0:
+            raise ValueError(f"wheel_slip must lie in [0, 1], got {slip}")
+        object.__setattr__(self, "wheel_slip", slip)
+        err = as_float_array(self.wheel_radius_error, "wheel_radius_error")
+        if err.ndim == 0:
+            err = np.full(self.drive.n_wheels, float(err))
+        if err.shape != (self.drive.n_wheels,):
+            raise ValueError(
+                f"wheel_radius_error must be a scalar or have shape ({self.drive.n_wheels},), "
+                f"got {err.shape}"
+            )
+        if np.any(np.abs(err) > 0.5):
+            raise ValueError("wheel_radius_error must lie in [-0.5, 0.5]")
+        err = np.array(err, copy=True)
+        err.flags.writeable = False
+        object.__setattr__(self, "wheel_radius_error", err)
+        for name, kind in (
+            ("encoders", WheelEncoders),
+            ("lidar", Lidar),
+            ("compass", Compass),
+            ("imu", Imu),
+        ):
+            value = getattr(self, name)
+            if value is not None and not isinstance(value, kind):
+                raise TypeError(f"{name} must be a {kind.__name__} or None, got {type(value)}")
+
+    @property
+    def n_wheels(self) -> int:
+        """Number of driven wheels."""
+        return int(self.drive.n_wheels)
+
+    @property
+    def holonomic(self) -> bool:
+        """Whether the robot can move sideways (an omnidirectional drive)."""
+        return isinstance(self.drive, OmniDrive)
+
+
+class Body:
+    """A robot's physical state during a run: pose, twist, wheel speeds and rotations.
+
+    ``state`` is ``[x, y, theta, vx, vy, omega, ax, ay]`` (the layout of
+    :mod:`navkit.sim._wheel_kernels`). An ordinary class with ``__slots__``:
+    it changes at every physics step.
+    """
+
+    __slots__ = (
+        "_holonomic",
+        "_inverse",
+        "_max_speed",
+        "angles",
+        "command",
+        "forward",
+        "radius",
+        "radius_factor",
+        "scratch",
+        "state",
+        "verts",
+        "wheels",
+        "work",
+    )
+
+    def __init__(self, robot: Robot, x: float, y: float, theta: float) -> None:
+        drive = robot.drive
+        n = robot.n_wheels
+        eye = np.eye(3)
+        if isinstance(drive, DiffDrive):
+            inv = drive.inverse_batch(eye, ignore_lateral=True)  # (3, n): twist basis -> wheels
+        else:
+            inv = drive.inverse_batch(eye)
+        self._inverse = np.ascontiguousarray(inv.T)  # (n, 3)
+        self.forward = np.ascontiguousarray(drive.forward_batch(np.eye(n)).T)  # (3, n)
+        self._holonomic = robot.holonomic
+        self._max_speed = robot.max_wheel_speed
+        assert isinstance(robot.wheel_radius_error, np.ndarray)
+        self.radius_factor = np.ascontiguousarray(1.0 + robot.wheel_radius_error)
+        self.state = np.zeros(8)
+        self.state[:3] = (x, y, theta)
+        self.wheels = np.zeros(n)
+        self.angles = np.zeros(n)
+        self.command = np.zeros(n)
+        fp = robot.footprint
+        if isinstance(fp, np.ndarray):
+            self.radius = 0.0
+            self.verts = np.ascontiguousarray(fp, dtype=np.float64)
+        else:
+            self.radius = float(fp)
+            self.verts = np.empty((0, 2))
+        self.work = np.empty_like(self.verts)
+        self.scratch = np.empty_like(self.verts)
+
+    def set_command(self, twist: Twist2D) -> None:
+        """Turn a body twist into wheel-speed commands, scaled together to the speed limit."""
+        if not self._holonomic and twist.vy != 0.0:
+            raise ValueError(
+                f"the controller asked a differential drive for a lateral velocity "
+                f"vy={twist.vy}; a differential drive cannot move sideways"
+            )
+        inv = self._inverse
+        cmd = self.command
+        peak = 0.0
+        for i in range(cmd.shape[0]):
+            w = inv[i, 0] * twist.vx + inv[i, 1] * twist.vy + inv[i, 2] * twist.omega
+            cmd[i] = w
+            peak = max(peak, abs(w))
+        if peak > self._max_speed:
+            cmd *= self._max_speed / peak

@@ -1,0 +1,265 @@
+"""numba kernel advancing a simulation between two of its Python steps (private).
+
+``run_segment`` runs the physics steps from step ``i0`` to step ``i_end``
+(where the simulation's Python side next has work: a control step or a LiDAR
+scan): at every step it samples the wheel encoders, compass and IMU when they
+are due (exact values; Python adds noise), records the trace row
+(time, pose, command) and, between steps, moves the robot
+(:func:`navkit.sim._wheel_kernels.wheel_step`), places the moving obstacles,
+measures the footprint's clearance (collision when 0) and checks the goal.
+
+A sensor ``s`` with ``rates[s] > 0`` takes its ``k``-th sample (k = 0, 1, ...)
+at the first step ``i`` with ``i * dt + 1e-9 >= k / rates[s]``; ``counts[s]``
+holds the next ``k``.
+
+Status codes returned with the step reached: ``REACHED`` (``i_end``),
+``COLLIDED`` (a collision ended the run at that step) and ``GOAL`` (the goal
+was reached and ends the run).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from navkit._shared.jit import njit_no_refcount
+from navkit.sim._clearance_kernels import footprint_clearance
+from navkit.sim._moving_kernels import place_moving
+from navkit.sim._wheel_kernels import wheel_step
+
+__all__ = ["COLLIDED", "GOAL", "REACHED", "STAT_COLLISIONS", "STAT_IN_CONTACT",
+           "STAT_MIN_CLEARANCE", "STAT_TIME_TO_GOAL", "due_step", "run_segment"]  # fmt: skip
+
+REACHED = 0
+COLLIDED = 1
+GOAL = 2
+
+#: Indices of the run statistics array.
+STAT_MIN_CLEARANCE = 0
+STAT_TIME_TO_GOAL = 1
+STAT_COLLISIONS = 2
+STAT_IN_CONTACT = 3
+
+_EPS = 1e-9
+# Sensor slots of ``rates`` / ``counts`` / ``n_out``.
+_ENCODERS = 0
+_COMPASS = 1
+_IMU = 2
+
+
+@njit_no_refcount
+def due_step(k: int, rate: float, dt: float) -> int:
+    """First step ``i`` with ``i * dt + 1e-9 >= k / rate``."""
+    when = k / rate
+    i = max(math.ceil((when - _EPS) / dt) - 1, 0)
+    while i * dt + _EPS < when:
+        i += 1
+    return i
+
+
+@njit_no_refcount
+def _at_goal(state: np.ndarray, goal: np.ndarray) -> bool:
+    """``goal`` = [x, y, radius, yaw, yaw tolerance]; NaN x for no goal, NaN yaw for none."""
+    if math.isnan(goal[0]):
+        return False
+    if math.hypot(state[0] - goal[0], state[1] - goal[1]) > goal[2]:
+        return False
+    if math.isnan(goal[3]):
+        return True
+    err = abs((state[2] - goal[3] + math.pi) % (2.0 * math.pi) - math.pi)
+    close: bool = err <= goal[4]
+    return close
+
+
+@njit_no_refcount
+def _sample(
+    i: int,
+    t: float,
+    dt: float,
+    state: np.ndarray,
+    angles: np.ndarray,
+    rates: np.ndarray,
+    counts: np.ndarray,
+    n_out: np.ndarray,
+    enc_scale: float,
+    enc_span: float,
+    enc_out: np.ndarray,
+    compass_out: np.ndarray,
+    imu_out: np.ndarray,
+) -> None:
+    for s in range(3):
+        if rates[s] <= 0.0 or i * dt + _EPS < counts[s] / rates[s]:
+            continue
+        counts[s] += 1
+        row = n_out[s]
+        n_out[s] = row + 1
+        if s == _ENCODERS:
+            enc_out[row, 0] = t
+            for w in range(angles.shape[0]):
+                ticks = math.floor(angles[w] * enc_scale)
+                if enc_span > 0.0:
+                    ticks = ticks % enc_span
+                enc_out[row, 1 + w] = ticks
+        elif s == _COMPASS:
+            compass_out[row, 0] = t
+            compass_out[row, 1] = state[2]
+        else:
+            imu_out[row, 0] = t
+            imu_out[row, 1] = state[5]
+            imu_out[row, 2] = state[6]
+            imu_out[row, 3] = state[7]
+
+
+@njit_no_refcount
+def _record(buf: np.ndarray, i: int, t: float, state: np.ndarray, cmd: np.ndarray) -> None:
+    buf[i, 0] = t
+    buf[i, 1] = state[0]
+    buf[i, 2] = state[1]
+    buf[i, 3] = state[2]
+    buf[i, 7] = cmd[0]
+    buf[i, 8] = cmd[1]
+    buf[i, 9] = cmd[2]
+
+
+@njit_no_refcount
+def run_segment(
+    i0: int,
+    i_end: int,
+    dt: float,
+    sample_first: bool,
+    state: np.ndarray,
+    wheels: np.ndarray,
+    angles: np.ndarray,
+    command: np.ndarray,
+    max_accel: float,
+    radius_factor: np.ndarray,
+    slip: float,
+    slip_z: np.ndarray,
+    fwd: np.ndarray,
+    radius: float,
+    body_verts: np.ndarray,
+    verts: np.ndarray,
+    scratch: np.ndarray,
+    segs: np.ndarray,
+    circles: np.ndarray,
+    gx0: float,
+    gy0: float,
+    h: float,
+    nx: int,
+    ny: int,
+    cell_start: np.ndarray,
+    cell_items: np.ndarray,
+    occ: np.ndarray,
+    gox: float,
+    goy: float,
+    gcos: float,
+    gsin: float,
+    res: float,
+    mv_path: np.ndarray,
+    mv_times: np.ndarray,
+    mv_first: np.ndarray,
+    mv_count: np.ndarray,
+    mv_after: np.ndarray,
+    dyn_base_segs: np.ndarray,
+    dyn_seg_owner: np.ndarray,
+    dyn_segs: np.ndarray,
+    dyn_base_circles: np.ndarray,
+    dyn_circle_owner: np.ndarray,
+    dyn_circles: np.ndarray,
+    goal: np.ndarray,
+    stop_at_goal: bool,
+    end_on_collision: bool,
+    rates: np.ndarray,
+    counts: np.ndarray,
+    n_out: np.ndarray,
+    enc_scale: float,
+    enc_span: float,
+    enc_out: np.ndarray,
+    compass_out: np.ndarray,
+    imu_out: np.ndarray,
+    buf: np.ndarray,
+    cmd: np.ndarray,
+    stats: np.ndarray,
+    contacts: np.ndarray,
+    prev: np.ndarray,
+) -> tuple[int, int]:
+    """Advance from step ``i0`` to step ``i_end``; returns ``(status, step reached)``.
+
+    ``slip_z`` holds the slip draws, row ``k`` for the physics step leaving
+    step ``i0 + k``. ``n_out`` (3,) counts the rows written to ``enc_out``
+    (t, then each wheel's counter ``floor(angle * enc_scale)``, modulo
+    ``enc_span`` when it is > 0), ``compass_out`` (t, yaw) and ``imu_out``
+    (t, yaw rate, ax, ay). ``stats`` holds the minimum clearance, the time the goal was
+    first reached (NaN before), the number of collisions and whether the robot
+    is in contact; the times of the collisions are appended to ``contacts``
+    (as far as it has room; ``stats[STAT_COLLISIONS]`` counts them all).
+    ``prev`` (3,) is scratch for the pose before a step.
+    """
+    has_moving = mv_first.shape[0] > 0
+    i = i0
+    if sample_first:
+        _sample(
+            i, i * dt, dt, state, angles, rates, counts, n_out, enc_scale, enc_span,
+            enc_out, compass_out, imu_out,
+        )  # fmt: skip
+        _record(buf, i, i * dt, state, cmd)
+    while i < i_end:
+        prev[0] = state[0]
+        prev[1] = state[1]
+        prev[2] = state[2]
+        wheel_step(
+            state, wheels, angles, command, max_accel, dt, radius_factor, slip_z[i - i0],
+            slip, fwd,
+        )  # fmt: skip
+        i += 1
+        t = i * dt
+        if has_moving:
+            place_moving(
+                t, mv_path, mv_times, mv_first, mv_count, mv_after,
+                dyn_base_segs, dyn_seg_owner, dyn_segs,
+                dyn_base_circles, dyn_circle_owner, dyn_circles,
+            )  # fmt: skip
+        clearance = footprint_clearance(
+            state[0], state[1], state[2], radius, body_verts, verts, scratch,
+            segs, circles, gx0, gy0, h, nx, ny, cell_start, cell_items,
+            occ, gox, goy, gcos, gsin, res, dyn_segs, dyn_circles,
+            stats[STAT_MIN_CLEARANCE],
+        )  # fmt: skip
+        if clearance < stats[STAT_MIN_CLEARANCE]:
+            stats[STAT_MIN_CLEARANCE] = clearance
+        if clearance <= 0.0:
+            if stats[STAT_IN_CONTACT] == 0.0:
+                n = int(stats[STAT_COLLISIONS])
+                if n < contacts.shape[0]:
+                    contacts[n] = t
+                stats[STAT_COLLISIONS] = n + 1
+                stats[STAT_IN_CONTACT] = 1.0
+            # Every wheel stops at once.
+            for w in range(wheels.shape[0]):
+                wheels[w] = 0.0
+                command[w] = 0.0
+            for k in range(3, 8):
+                state[k] = 0.0
+            cmd[0] = 0.0
+            cmd[1] = 0.0
+            cmd[2] = 0.0
+            if end_on_collision:
+                _record(buf, i, t, state, cmd)
+                return COLLIDED, i
+            state[0] = prev[0]
+            state[1] = prev[1]
+            state[2] = prev[2]
+        else:
+            stats[STAT_IN_CONTACT] = 0.0
+        if math.isnan(stats[STAT_TIME_TO_GOAL]) and _at_goal(state, goal):
+            stats[STAT_TIME_TO_GOAL] = t
+            if stop_at_goal:
+                _record(buf, i, t, state, cmd)
+                return GOAL, i
+        _sample(
+            i, t, dt, state, angles, rates, counts, n_out, enc_scale, enc_span,
+            enc_out, compass_out, imu_out,
+        )  # fmt: skip
+        _record(buf, i, t, state, cmd)
+    return REACHED, i

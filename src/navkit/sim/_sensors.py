@@ -1,0 +1,325 @@
+"""Simulated proprioceptive sensors and the time-stamped readings of every sensor."""
+
+from __future__ import annotations
+
+import math
+import numbers
+from dataclasses import dataclass
+
+import numpy as np
+
+from navkit._shared.types import IntArray
+from navkit._shared.validation import as_float_array, finite_float, positive_float
+from navkit.mapping import LaserScan
+from navkit.sim._lidar import check_latency, check_rate
+
+__all__ = [
+    "Compass",
+    "CompassReading",
+    "EncoderReading",
+    "Imu",
+    "ImuReading",
+    "Reading",
+    "ScanReading",
+    "WheelEncoders",
+]
+
+_MAX_ANGLE_NOISE = math.pi
+_MAX_RATE_NOISE = 100.0  # rad/s
+_MAX_ACCEL_NOISE = 1000.0  # m/s²
+
+
+def _bounded(value: object, name: str, low: float, high: float, unit: str) -> float:
+    out = finite_float(value, name)
+    if not low <= out <= high:
+        raise ValueError(f"{name} must lie in [{low:g}, {high:g}] {unit}, got {out}")
+    return out
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class Compass:
+    """A magnetic compass: heading in degrees clockwise from north, 0 to 360.
+
+    The reading is ``(degrees(north - yaw) + bias + noise) mod 360``: 0° when
+    the robot faces north, 90° facing east. North is the world direction
+    ``north`` (default π/2: +y is north and +x east). Convert readings to yaw
+    with :func:`navkit.estimation.compass_to_yaw`.
+
+    Parameters
+    ----------
+    noise : float, default 0.0
+        Standard deviation of the reading, rad, in [0, π].
+    bias : float, default 0.0
+        Constant offset of the reading, rad, in [-π, π] (clockwise positive,
+        like the reading).
+    north : float, default π/2
+        World angle of magnetic north, rad.
+    rate : float, default 20.0
+        Readings per second, Hz, in (0, 10^4].
+    latency : float, default 0.0
+        Delivery delay, s, in [0, 10^4].
+
+    Examples
+    --------
+    >>> Compass(noise=0.01).rate
+    20.0
+    """
+
+    noise: float = 0.0
+    bias: float = 0.0
+    north: float = math.pi / 2
+    rate: float = 20.0
+    latency: float = 0.0
+
+    def __post_init__(self) -> None:
+        object.__setattr__(
+            self, "noise", _bounded(self.noise, "noise", 0.0, _MAX_ANGLE_NOISE, "rad")
+        )
+        object.__setattr__(self, "bias", _bounded(self.bias, "bias", -math.pi, math.pi, "rad"))
+        object.__setattr__(
+            self, "north", _bounded(self.north, "north", -2.0 * math.pi, 2.0 * math.pi, "rad")
+        )
+        object.__setattr__(self, "rate", check_rate(self.rate))
+        object.__setattr__(self, "latency", check_latency(self.latency))
+
+    def heading_deg(self, yaw: float, z: float = 0.0) -> float:
+        """The reading for a true ``yaw`` (rad) and a standard-normal draw ``z``.
+
+        Examples
+        --------
+        >>> Compass().heading_deg(0.0)  # facing +x, east
+        90.0
+        >>> round(Compass(bias=math.radians(2.0)).heading_deg(math.pi / 2), 9)
+        2.0
+        """
+        yaw = finite_float(yaw, "yaw")
+        z = finite_float(z, "z")
+        if abs(yaw) > 1e6 or abs(z) > 1e6:
+            raise ValueError("yaw and z must lie within ±1e6")
+        deg = math.degrees(self.north - yaw + self.bias + self.noise * z) % 360.0
+        return 0.0 if deg >= 360.0 else deg
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class Imu:
+    """A planar IMU: gyro yaw rate and body-frame acceleration, with noise and bias.
+
+    The gyro reads the true yaw rate plus ``gyro_bias`` plus Gaussian noise of
+    ``gyro_noise``; the accelerometer reads the true acceleration of the
+    robot's reference point in the robot frame (gravity removed),
+    ``(v̇x - ω vy, v̇y + ω vx)``, plus ``accel_bias`` plus Gaussian noise of
+    ``accel_noise`` on each axis.
+
+    Parameters
+    ----------
+    gyro_noise : float, default 0.0
+        rad/s, in [0, 100].
+    gyro_bias : float, default 0.0
+        rad/s, in [-100, 100].
+    accel_noise : float, default 0.0
+        m/s², in [0, 1000].
+    accel_bias : float, default 0.0
+        m/s², in [-1000, 1000], the same on both axes.
+    rate : float, default 100.0
+        Hz, in (0, 10^4].
+    latency : float, default 0.0
+        s, in [0, 10^4].
+
+    Examples
+    --------
+    >>> Imu(gyro_noise=0.01, accel_noise=0.05).rate
+    100.0
+    """
+
+    gyro_noise: float = 0.0
+    gyro_bias: float = 0.0
+    accel_noise: float = 0.0
+    accel_bias: float = 0.0
+    rate: float = 100.0
+    latency: float = 0.0
+
+    def __post_init__(self) -> None:
+        fields = (
+            ("gyro_noise", 0.0, _MAX_RATE_NOISE, "rad/s"),
+            ("gyro_bias", -_MAX_RATE_NOISE, _MAX_RATE_NOISE, "rad/s"),
+            ("accel_noise", 0.0, _MAX_ACCEL_NOISE, "m/s²"),
+            ("accel_bias", -_MAX_ACCEL_NOISE, _MAX_ACCEL_NOISE, "m/s²"),
+        )
+        for name, low, high, unit in fields:
+            object.__setattr__(self, name, _bounded(getattr(self, name), name, low, high, unit))
+        object.__setattr__(self, "rate", check_rate(self.rate))
+        object.__setattr__(self, "latency", check_latency(self.latency))
+
+
+@dataclass(frozen=True, slots=True, kw_only=True)
+class WheelEncoders:
+    """Incremental wheel encoders: quantised, wrapping tick counters.
+
+    Each wheel's counter is ``floor(angle / 2π * ticks_per_rev)`` of the
+    wheel's rotation (the motor's, before any slip on the ground), reported
+    modulo ``2**bits`` as an unsigned reading when ``bits`` is given (decode
+    with :func:`navkit.kinematics.tick_delta`).
+
+    Parameters
+    ----------
+    ticks_per_rev : float, default 1024.0
+        Counts per wheel revolution, in [1, 1e9].
+    bits : int or None, default 16
+        Counter width, 2 to 64; None for counters that never wrap.
+    rate : float, default 50.0
+        Hz, in (0, 10^4].
+    latency : float, default 0.0
+        s, in [0, 10^4] (the omnidirectional paper measured 0.08 s for
+        odometry).
+
+    Examples
+    --------
+    >>> WheelEncoders(ticks_per_rev=2048, bits=16).counts(np.array([2 * np.pi, -0.001]))
+    array([ 2048, 65535])
+    """
+
+    ticks_per_rev: float = 1024.0
+    bits: int | None = 16
+    rate: float = 50.0
+    latency: float = 0.0
+
+    def __post_init__(self) -> None:
+        tpr = positive_float(self.ticks_per_rev, "ticks_per_rev")
+        if not 1.0 <= tpr <= 1e9:
+            raise ValueError(f"ticks_per_rev must lie in [1, 1e9], got {tpr}")
+        object.__setattr__(self, "ticks_per_rev", tpr)
+        bits: object = self.bits
+        if bits is not None:
+            if isinstance(bits, bool) or not isinstance(bits, numbers.Integral):
+                raise TypeError(f"bits must be an integer or None, got {type(bits).__name__}")
+            if not 2 <= int(bits) <= 64:
+                raise ValueError(f"bits must be from 2 to 64, got {bits}")
+            object.__setattr__(self, "bits", int(bits))
+        object.__setattr__(self, "rate", check_rate(self.rate))
+        object.__setattr__(self, "latency", check_latency(self.latency))
+
+    def counts(self, wheel_angles: np.ndarray) -> IntArray:
+        """Counter readings (int64) for total wheel rotations ``wheel_angles`` (rad)."""
+        wheel_angles = as_float_array(wheel_angles, "wheel_angles", ndim=1)
+        if wheel_angles.size and float(np.max(np.abs(wheel_angles))) > 1e9:
+            raise ValueError("wheel_angles must lie within ±1e9 rad")
+        ticks = np.floor(wheel_angles * (self.ticks_per_rev / (2.0 * math.pi))).astype(np.int64)
+        if self.bits is None:
+            return ticks
+        if self.bits == 64:
+            return ticks
+        out: IntArray = np.mod(ticks, np.int64(1) << np.int64(self.bits))
+        return out
+
+
+def real_float(
+    value: object, name: str, *, allow_nan: bool = False, allow_inf: bool = False
+) -> float:
+    """``value`` as a Python float; NaN / infinities only where allowed (TypeError, ValueError)."""
+    if isinstance(value, float) and (
+        (allow_nan and math.isnan(value)) or (allow_inf and math.isinf(value))
+    ):
+        return float(value)
+    if isinstance(value, np.floating) and (
+        (allow_nan and bool(np.isnan(value))) or (allow_inf and bool(np.isinf(value)))
+    ):
+        return float(value)
+    return finite_float(value, name)
+
+
+def _readonly_ints(value: object) -> IntArray:
+    if isinstance(value, (str, bytes)):
+        raise TypeError(f"ticks must be an integer array, got {type(value).__name__}")
+    try:
+        raw = np.asarray(value)
+    except (ValueError, TypeError) as exc:
+        raise TypeError(f"ticks must be an integer array: {exc}") from None
+    if raw.dtype.kind not in "iu":
+        raise TypeError(f"ticks must be an integer array, got dtype {raw.dtype}")
+    if raw.ndim != 1:
+        raise ValueError(f"ticks must be one-dimensional, got shape {raw.shape}")
+    arr = np.array(raw, dtype=np.int64, copy=True)
+    arr.flags.writeable = False
+    return arr
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class ScanReading:
+    """A LiDAR scan taken at ``stamp`` (s).
+
+    Examples
+    --------
+    >>> ScanReading(0.1, LaserScan([1.0], angle_min=0.0, angle_increment=0.1,
+    ...                            range_min=0.1, range_max=5.0)).stamp
+    0.1
+    """
+
+    stamp: float
+    scan: LaserScan
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "stamp", finite_float(self.stamp, "stamp"))
+        if not isinstance(self.scan, LaserScan):
+            raise TypeError(f"scan must be a LaserScan, got {type(self.scan).__name__}")
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class EncoderReading:
+    """Raw wheel-encoder counters at ``stamp`` (s), one per wheel (``[left, right]`` for
+    a differential drive), as a read-only int64 array.
+
+    Examples
+    --------
+    >>> EncoderReading(0.02, np.array([10, 12])).ticks.tolist()
+    [10, 12]
+    """
+
+    stamp: float
+    ticks: IntArray
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "stamp", finite_float(self.stamp, "stamp"))
+        object.__setattr__(self, "ticks", _readonly_ints(self.ticks))
+
+
+@dataclass(frozen=True, slots=True)
+class CompassReading:
+    """A compass heading at ``stamp`` (s): degrees clockwise from north, in [0, 360).
+
+    Examples
+    --------
+    >>> CompassReading(0.05, 90.0).heading_deg
+    90.0
+    """
+
+    stamp: float
+    heading_deg: float
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "stamp", finite_float(self.stamp, "stamp"))
+        object.__setattr__(self, "heading_deg", finite_float(self.heading_deg, "heading_deg"))
+
+
+@dataclass(frozen=True, slots=True)
+class ImuReading:
+    """An IMU sample at ``stamp`` (s): gyro yaw rate (rad/s) and body-frame
+    acceleration ``(acceleration_x, acceleration_y)`` (m/s², gravity removed).
+
+    Examples
+    --------
+    >>> ImuReading(0.01, 0.2, 0.5, 0.0).yaw_rate
+    0.2
+    """
+
+    stamp: float
+    yaw_rate: float
+    acceleration_x: float
+    acceleration_y: float
+
+    def __post_init__(self) -> None:
+        for name in ("stamp", "yaw_rate", "acceleration_x", "acceleration_y"):
+            object.__setattr__(self, name, finite_float(getattr(self, name), name))
+
+
+Reading = ScanReading | EncoderReading | CompassReading | ImuReading
+"""Any time-stamped sensor reading."""

@@ -1,0 +1,779 @@
+"""The closed loop: world, robot, sensors with latency, estimator and controller."""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from navkit._shared.types import FloatArray
+from navkit._shared.validation import as_bool, as_float_array, finite_float, positive_float
+from navkit.geometry import Pose2D, Twist2D, as_pose, as_twist
+from navkit.planning import Path2D
+from navkit.sim._estimators import Estimator, as_estimator
+from navkit.sim._latency import DelayLine
+from navkit.sim._lidar import Scanner, as_generator, check_rate
+from navkit.sim._robot import Body, Robot
+from navkit.sim._segment_kernels import (
+    COLLIDED,
+    GOAL,
+    STAT_COLLISIONS,
+    STAT_MIN_CLEARANCE,
+    STAT_TIME_TO_GOAL,
+    due_step,
+    run_segment,
+)
+from navkit.sim._sensors import (
+    CompassReading,
+    EncoderReading,
+    ImuReading,
+    Reading,
+    ScanReading,
+)
+from navkit.sim._trace import Event, Metrics, Trace, cross_track, nan_if_empty
+from navkit.sim._world import World, as_world
+
+__all__ = ["Controller", "Observation", "Simulation"]
+
+#: Most physics steps of one run (duration × rate).
+MAX_STEPS = 10_000_000
+#: Longest simulated duration, s.
+MAX_DURATION = 1e7
+_EPS = 1e-9
+#: Columns of the trace buffer: t, x, y, theta, est x, y, theta, cmd vx, vy, omega.
+_COLUMNS = 10
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class Observation:
+    """What a controller is given at a control step.
+
+    Attributes
+    ----------
+    t : float
+        Simulated time of the control step, s.
+    scan, encoders, compass, imu : reading or None
+        The latest delivered reading of each sensor (None before the first or
+        without that sensor). With latency they are stale: compare their
+        ``stamp`` with ``t``.
+    new : tuple of Reading
+        Every reading delivered since the previous control step, in delivery
+        order.
+    estimate : Pose2D or None
+        The estimator's current pose (None without an estimator).
+    true_pose : Pose2D
+        The robot's true pose: ground truth, for oracle controllers and tests.
+
+    Examples
+    --------
+    >>> obs = Observation(0.0, None, None, None, None, (), None, Pose2D(0.0, 0.0, 0.0))
+    >>> obs.true_pose.x
+    0.0
+    """
+
+    t: float
+    scan: ScanReading | None
+    encoders: EncoderReading | None
+    compass: CompassReading | None
+    imu: ImuReading | None
+    new: tuple[Reading, ...]
+    estimate: Pose2D | None
+    true_pose: Pose2D
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "t", finite_float(self.t, "t"))
+        for name, cls in (
+            ("scan", ScanReading), ("encoders", EncoderReading), ("compass", CompassReading),
+            ("imu", ImuReading), ("estimate", Pose2D),
+        ):  # fmt: skip
+            value = getattr(self, name)
+            if value is not None and not isinstance(value, cls):
+                kind = type(value).__name__
+                raise TypeError(f"{name} must be a {cls.__name__} or None, got {kind}")
+        if not isinstance(self.true_pose, Pose2D):
+            raise TypeError(f"true_pose must be a Pose2D, got {type(self.true_pose).__name__}")
+        if not isinstance(self.new, (tuple, list)):
+            raise TypeError(f"new must be a tuple of readings, got {type(self.new).__name__}")
+        readings = (ScanReading, EncoderReading, CompassReading, ImuReading)
+        for item in self.new:
+            if not isinstance(item, readings):
+                raise TypeError(f"new must hold readings, got a {type(item).__name__}")
+        object.__setattr__(self, "new", tuple(self.new))
+
+
+Controller = Callable[[Observation], Twist2D | ArrayLike]
+"""A controller: ``Observation -> Twist2D`` (or ``[vx, vy, omega]``), robot frame.
+
+If the controller object has a ``done`` attribute that becomes true, the run
+ends (reason ``"controller done"``).
+"""
+
+
+def _goal(value: Any) -> tuple[float, float, float | None] | None:
+    if value is None:
+        return None
+    if isinstance(value, Pose2D):
+        return value.x, value.y, value.theta
+    arr = as_float_array(value, "goal")
+    if arr.shape == (2,):
+        return float(arr[0]), float(arr[1]), None
+    if arr.shape == (3,):
+        p = as_pose(arr, "goal")
+        return p.x, p.y, p.theta
+    raise ValueError(f"goal must be (x, y), (x, y, theta) or a Pose2D, got shape {arr.shape}")
+
+
+def _reference(value: Any) -> FloatArray | None:
+    if value is None:
+        return None
+    if isinstance(value, Path2D):
+        if value.frame != "world":
+            raise ValueError(
+                "reference_path must be in world coordinates; convert a grid path first"
+            )
+        return np.ascontiguousarray(value.points)
+    pts = as_float_array(value, "reference_path", shape=(None, 2))
+    if pts.shape[0] == 0:
+        raise ValueError("reference_path must hold at least one point")
+    return np.ascontiguousarray(pts)
+
+
+class Simulation:
+    """A closed-loop run of one robot in a world, at a fixed physics rate.
+
+    Every ``1 / rate`` seconds the robot's wheels and pose advance (see
+    :class:`Robot`) and its footprint is checked against the world (a
+    collision is found at the first physics step whose footprint touches an
+    obstacle; a robot moving more than its own size in one step could pass
+    through a thin wall). Each sensor of the robot samples at its own rate (at
+    the first physics step at or after each of its sample times); each reading
+    is delivered ``latency`` seconds later (at the first step at or after that),
+    to the estimator, which is given it with that delivery time, and to the
+    controller. The controller runs at ``control_rate``: it receives an
+    :class:`Observation` (the latest readings, those new since its last call,
+    the estimator's pose and the true pose) and returns a body twist, which the
+    wheels follow until the next control step. The physics between two control
+    steps or scans runs in one compiled kernel, so a run goes hundreds of times
+    faster than real time.
+
+    The run ends when the goal is reached (with ``stop_at_goal``), on a
+    collision (with ``end_on_collision``; otherwise the robot is put back
+    where it was, stopped, and the run goes on), when the controller's
+    ``done`` attribute turns true, when ``duration`` is reached or when
+    ``wall_timeout`` seconds of real time have passed; the reason is in
+    ``Trace.metrics.reason``. Every random draw (sensor noise, slip) comes from
+    one seeded NumPy Generator, so a run with the same seed, controller and
+    estimator state is reproduced exactly. A ``Simulation`` runs once.
+
+    An ordinary class with ``__slots__``: it holds the run's state.
+
+    Parameters
+    ----------
+    world : World
+    robot : Robot
+    controller : callable
+        ``controller(observation) -> Twist2D`` or ``[vx, vy, omega]``.
+    start : Pose2D or array_like [x, y, theta]
+        Start pose; the footprint must be free there (keyword-only, as is
+        everything below).
+    goal : Pose2D or array_like (x, y) or (x, y, theta), optional
+        Goal for the metrics (and the end of the run with ``stop_at_goal``).
+    goal_radius : float, default 0.1
+        The goal is reached within this distance, m, in (0, 1e6].
+    goal_yaw_tolerance : float, optional
+        With a goal heading: also require the heading within this, rad, in
+        (0, π].
+    reference_path : Path2D (world frame) or array_like (K, 2), optional
+        Path for the cross-track error.
+    estimator : PlanarFusion, OmniOdometry, DiffOdometry or Estimator, optional
+        Fed every delivered reading (at its delivery time). Initialise it at
+        the start pose (e.g. ``PlanarFusion(x0=[x, y, θ, 0, 0, 0], t0=0.0)``).
+    rate : float, default 100.0
+        Physics rate, Hz, in (0, 10^4]; no sensor or controller may be faster.
+    control_rate : float, default 20.0
+        Controller rate, Hz.
+    duration : float, default 300.0
+        Longest simulated time, s, in (0, 10^7]; ``duration * rate`` may be at
+        most 10^7 steps.
+    seed : int, numpy Generator or None, default 0
+        Randomness of the run (None: fresh entropy, not reproducible).
+    record_scans : bool, default False
+        Keep every scan in the trace.
+    stop_at_goal : bool, default True
+    end_on_collision : bool, default True
+    wall_timeout : float, optional
+        Real-time limit of :meth:`run`, s, in (0, 1e6].
+
+    Raises
+    ------
+    ValueError
+        A bad rate, duration or tolerance, a sensor faster than the physics,
+        or a robot starting in collision.
+    TypeError
+        Arguments of the wrong type.
+
+    Examples
+    --------
+    >>> from shapely.geometry import box
+    >>> from navkit.kinematics import DiffDrive
+    >>> world = World(box(-1.0, -1.0, 4.0, 2.0).exterior)
+    >>> robot = Robot(drive=DiffDrive(track=0.3, wheel_radius=0.05), footprint=0.2)
+    >>> def go(obs):  # drive straight ahead at 0.5 m/s
+    ...     return Twist2D(0.5, 0.0, 0.0)
+    >>> trace = Simulation(world, robot, go, start=(0.0, 0.0, 0.0), goal=(2.0, 0.0)).run()
+    >>> trace.metrics.reached, trace.metrics.reason, round(trace.metrics.time_to_goal, 2)
+    (True, 'goal reached', 3.8)
+    >>> trace = Simulation(world, robot, go, start=(0.0, 0.0, 0.0)).run()
+    >>> trace.metrics.reason, trace.metrics.collisions
+    ('collision', 1)
+    """
+
+    __slots__ = (
+        "_control_rate",
+        "_controller",
+        "_duration",
+        "_end_on_collision",
+        "_estimator",
+        "_goal",
+        "_goal_radius",
+        "_goal_yaw_tolerance",
+        "_ran",
+        "_rate",
+        "_record_scans",
+        "_reference",
+        "_rng",
+        "_robot",
+        "_start",
+        "_stop_at_goal",
+        "_wall_timeout",
+        "_world",
+    )
+
+    def __init__(
+        self,
+        world: World,
+        robot: Robot,
+        controller: Controller,
+        *,
+        start: Pose2D | ArrayLike,
+        goal: Pose2D | ArrayLike | None = None,
+        goal_radius: float = 0.1,
+        goal_yaw_tolerance: float | None = None,
+        reference_path: Path2D | ArrayLike | None = None,
+        estimator: Any = None,
+        rate: float = 100.0,
+        control_rate: float = 20.0,
+        duration: float = 300.0,
+        seed: int | np.random.Generator | None = 0,
+        record_scans: bool = False,
+        stop_at_goal: bool = True,
+        end_on_collision: bool = True,
+        wall_timeout: float | None = None,
+    ) -> None:
+        self._world = as_world(world)
+        if not isinstance(robot, Robot):
+            raise TypeError(f"robot must be a Robot, got {type(robot).__name__}")
+        self._robot = robot
+        if not callable(controller) or isinstance(controller, type):
+            raise TypeError(f"controller must be callable, got {type(controller).__name__}")
+        self._controller = controller
+        self._rate = check_rate(rate, "rate")
+        self._control_rate = check_rate(control_rate, "control_rate")
+        self._check_not_faster("control_rate", self._control_rate)
+        for name in ("lidar", "compass", "imu", "encoders"):
+            sensor = getattr(robot, name)
+            if sensor is not None:
+                self._check_not_faster(f"robot.{name}.rate", sensor.rate)
+        self._duration = positive_float(duration, "duration")
+        if self._duration > MAX_DURATION:
+            raise ValueError(f"duration must be at most {MAX_DURATION:g} s, got {self._duration}")
+        steps = math.ceil(self._duration * self._rate - _EPS)
+        if steps > MAX_STEPS:
+            raise ValueError(
+                f"duration × rate is {steps} physics steps; the maximum is {MAX_STEPS} "
+                "(shorten the run or lower the rate)"
+            )
+        self._start = as_pose(start, "start")
+        self._goal = _goal(goal)
+        self._goal_radius = positive_float(goal_radius, "goal_radius")
+        if self._goal_radius > 1e6:
+            raise ValueError(f"goal_radius must be at most 1e6 m, got {self._goal_radius}")
+        self._goal_yaw_tolerance: float | None = None
+        if goal_yaw_tolerance is not None:
+            tol = positive_float(goal_yaw_tolerance, "goal_yaw_tolerance")
+            if tol > math.pi:
+                raise ValueError(f"goal_yaw_tolerance must lie in (0, π] rad, got {tol}")
+            if self._goal is None or self._goal[2] is None:
+                raise ValueError("goal_yaw_tolerance needs a goal with a heading (x, y, theta)")
+            self._goal_yaw_tolerance = tol
+        self._reference = _reference(reference_path)
+        self._estimator: Estimator | None = as_estimator(estimator, robot)
+        self._rng = as_generator(seed, "seed")
+        self._record_scans = as_bool(record_scans, "record_scans")
+        self._stop_at_goal = as_bool(stop_at_goal, "stop_at_goal")
+        self._end_on_collision = as_bool(end_on_collision, "end_on_collision")
+        self._wall_timeout: float | None = None
+        if wall_timeout is not None:
+            wt = positive_float(wall_timeout, "wall_timeout")
+            if wt > 1e6:
+                raise ValueError(f"wall_timeout must be at most 1e6 s, got {wt}")
+            self._wall_timeout = wt
+        if self._world.collides(robot.footprint, self._start, t=0.0):
+            s = self._start
+            raise ValueError(
+                f"start: the robot starts inside an obstacle at ({s.x:g}, {s.y:g}, {s.theta:g}): "
+                "its footprint touches or overlaps the world's obstacles"
+            )
+        self._ran = False
+
+    def _check_not_faster(self, name: str, rate: float) -> None:
+        if rate > self._rate * (1.0 + 1e-12):
+            raise ValueError(
+                f"{name} ({rate:g} Hz) must not exceed the simulation rate ({self._rate:g} Hz)"
+            )
+
+    # ------------------------------------------------------------------ run
+    def run(self) -> Trace:
+        """Run the loop to its end and return the :class:`Trace`.
+
+        Raises
+        ------
+        RuntimeError
+            When called a second time (build a new Simulation).
+        ValueError
+            When the controller asks a differential robot to move sideways.
+        """
+        if self._ran:
+            raise RuntimeError("a Simulation runs once; build a new one for another run")
+        self._ran = True
+        return _Run(self).execute()
+
+
+class _Stream:
+    """One sensor's readings on their way to delivery."""
+
+    __slots__ = ("line", "rank")
+
+    def __init__(self, latency: float, rank: int) -> None:
+        self.line: DelayLine[Reading] = DelayLine(latency)
+        self.rank = rank
+
+
+class _Run:
+    """The state of one run (kept apart from the configuration)."""
+
+    __slots__ = (
+        "body",
+        "buf",
+        "cmd",
+        "compass",
+        "contacts",
+        "counts",
+        "dt",
+        "enc_scale",
+        "enc_span",
+        "encoders",
+        "est_t",
+        "est_xyt",
+        "events",
+        "filled",
+        "goal",
+        "imu",
+        "imu_bias",
+        "imu_noise",
+        "latest",
+        "lidar",
+        "n_out",
+        "out_compass",
+        "out_encoders",
+        "out_imu",
+        "pending",
+        "prev",
+        "rates",
+        "scanner",
+        "scans",
+        "sim",
+        "slip_z",
+        "stats",
+    )
+
+    def __init__(self, sim: Simulation) -> None:
+        self.sim = sim
+        s = sim._start
+        robot = sim._robot
+        self.body = Body(robot, s.x, s.y, s.theta)
+        self.dt = 1.0 / sim._rate
+        self.scanner = Scanner(robot.lidar, sim._world) if robot.lidar is not None else None
+        self.lidar = _Stream(robot.lidar.latency, 0) if robot.lidar is not None else None
+        self.encoders = _Stream(robot.encoders.latency, 1) if robot.encoders is not None else None
+        self.compass = _Stream(robot.compass.latency, 2) if robot.compass is not None else None
+        self.imu = _Stream(robot.imu.latency, 3) if robot.imu is not None else None
+        self.rates = np.array(
+            [0.0 if x is None else x.rate for x in (robot.encoders, robot.compass, robot.imu)]
+        )
+        self.counts = np.zeros(3, dtype=np.int64)
+        enc = robot.encoders
+        self.enc_scale = 1.0 if enc is None else enc.ticks_per_rev / (2.0 * math.pi)
+        # Counters wider than a float's mantissa never wrap in practice.
+        self.enc_span = 0.0 if enc is None or enc.bits is None or enc.bits > 52 else 2.0**enc.bits
+        imu = robot.imu
+        self.imu_bias = np.zeros(3) if imu is None else np.array(
+            [imu.gyro_bias, imu.accel_bias, imu.accel_bias]
+        )
+        self.imu_noise: FloatArray | None = None
+        if imu is not None and (imu.gyro_noise > 0.0 or imu.accel_noise > 0.0):
+            self.imu_noise = np.array([imu.gyro_noise, imu.accel_noise, imu.accel_noise])
+        self.n_out = np.zeros(3, dtype=np.int64)
+        # The longest segment: from one control step or scan to the next.
+        slowest = min(sim._control_rate, robot.lidar.rate if robot.lidar is not None else math.inf)
+        span = math.ceil(sim._rate / slowest) + 2
+        n_wheels = robot.n_wheels
+        self.out_encoders = np.zeros((span, 1 + n_wheels))
+        self.out_compass = np.zeros((span, 2))
+        self.out_imu = np.zeros((span, 4))
+        self.slip_z = np.zeros((span, n_wheels))
+        steps = math.ceil(sim._duration * sim._rate - _EPS)
+        self.buf = np.full((min(steps + 2, 1 << 14), _COLUMNS), np.nan)
+        self.cmd = np.zeros(3)
+        self.stats = np.array([math.inf, math.nan, 0.0, 0.0])
+        self.contacts = np.zeros(1024)
+        self.prev = np.zeros(3)
+        goal = sim._goal
+        self.goal = np.full(5, np.nan)
+        if goal is not None:
+            self.goal[0], self.goal[1], self.goal[2] = goal[0], goal[1], sim._goal_radius
+            if goal[2] is not None and sim._goal_yaw_tolerance is not None:
+                self.goal[3], self.goal[4] = goal[2], sim._goal_yaw_tolerance
+        self.latest: dict[type, Reading] = {}
+        self.pending: list[Reading] = []
+        self.scans: list[ScanReading] = []
+        self.events: list[Event] = []
+        # Estimates: the times they changed and the poses, to fill the trace.
+        self.est_t: list[float] = []
+        self.est_xyt: list[tuple[float, float, float]] = []
+        self.filled = 0
+
+    # ------------------------------------------------------------ sensing
+    def _segment(self, i0: int, i_end: int, sample_first: bool) -> tuple[int, int]:
+        """Run the physics kernel from step ``i0`` to ``i_end`` and queue its readings."""
+        sim = self.sim
+        world = sim._world
+        body = self.body
+        robot = sim._robot
+        need = i_end + 2
+        if need > self.buf.shape[0]:
+            grown = np.full((max(need, 2 * self.buf.shape[0]), _COLUMNS), np.nan)
+            grown[: self.buf.shape[0]] = self.buf
+            self.buf = grown
+        n = i_end - i0
+        if robot.wheel_slip > 0.0 and n > 0:
+            self.slip_z[:n] = sim._rng.standard_normal((n, robot.n_wheels))
+        self.n_out[:] = 0
+        gx0, gy0, h, nx, ny = world._index
+        gox, goy, gcos, gsin, res = world._occ_frame
+        status, i = run_segment(
+            i0, i_end, self.dt, sample_first,
+            body.state, body.wheels, body.angles, body.command, robot.max_wheel_acceleration,
+            body.radius_factor, robot.wheel_slip, self.slip_z, body.forward,
+            body.radius, body.verts, body.work, body.scratch,
+            world._segs, world._circles, gx0, gy0, h, nx, ny, world._cell_start,
+            world._cell_items, world._occ, gox, goy, gcos, gsin, res,
+            world._mv_path, world._mv_times, world._mv_first, world._mv_count, world._mv_after,
+            world._dyn_base_segs, world._dyn_seg_owner, world._dyn_segs,
+            world._dyn_base_circles, world._dyn_circle_owner, world._dyn_circles,
+            self.goal, sim._stop_at_goal, sim._end_on_collision,
+            self.rates, self.counts, self.n_out, self.enc_scale, self.enc_span,
+            self.out_encoders, self.out_compass, self.out_imu,
+            self.buf, self.cmd, self.stats, self.contacts, self.prev,
+        )  # fmt: skip
+        # The kernel moved the obstacles; the world's cache of their time is stale.
+        world._moving_t = math.nan
+        self._queue_proprioceptive()
+        return int(status), int(i)
+
+    def _queue_proprioceptive(self) -> None:
+        """Noise and delivery times for the readings the kernel took."""
+        n_enc, n_cmp, n_imu = self.n_out.tolist()
+        if n_enc:
+            stream = self.encoders
+            assert stream is not None
+            rows = self.out_encoders[:n_enc]
+            stamps = rows[:, 0].tolist()
+            ticks = rows[:, 1:].astype(np.int64)
+            for k in range(n_enc):
+                self._push(stream, stamps[k], EncoderReading(stamps[k], ticks[k]))
+        if n_cmp:
+            c = self.sim._robot.compass
+            stream = self.compass
+            assert c is not None and stream is not None
+            rows = self.out_compass[:n_cmp]
+            yaw = rows[:, 1]
+            if c.noise > 0.0:
+                yaw = yaw - c.noise * self.sim._rng.standard_normal(n_cmp)
+            deg = np.degrees(c.north - yaw + c.bias) % 360.0
+            deg[deg >= 360.0] = 0.0
+            stamps = rows[:, 0].tolist()
+            for k, value in enumerate(deg.tolist()):
+                self._push(stream, stamps[k], CompassReading(stamps[k], value))
+        if n_imu:
+            imu = self.sim._robot.imu
+            stream = self.imu
+            assert imu is not None and stream is not None
+            rows = self.out_imu[:n_imu]
+            values = rows[:, 1:] + self.imu_bias
+            if self.imu_noise is not None:
+                values += self.sim._rng.standard_normal((n_imu, 3)) * self.imu_noise
+            stamps = rows[:, 0].tolist()
+            for k, (w, ax, ay) in enumerate(values.tolist()):
+                self._push(stream, stamps[k], ImuReading(stamps[k], w, ax, ay))
+
+    def _push(self, stream: _Stream, stamp: float, reading: Reading) -> None:
+        """Queue a reading for the first step at or after ``stamp + latency``."""
+        delay = stream.line.delay
+        if delay == 0.0:
+            stream.line.push_at(stamp, reading)
+        else:
+            dt = self.dt
+            step = max(math.ceil((stamp + delay - _EPS) / dt) - 1, 0)
+            while step * dt + _EPS < stamp + delay:
+                step += 1
+            stream.line.push_at(step * dt, reading)
+
+    def _scan(self, i: int, t: float) -> None:
+        assert self.scanner is not None and self.lidar is not None
+        state = self.body.state
+        scan = self.scanner.scan(
+            Pose2D(float(state[0]), float(state[1]), float(state[2])), t, self.sim._rng
+        )
+        reading = ScanReading(t, scan)
+        if self.sim._record_scans:
+            self.scans.append(reading)
+        self._push(self.lidar, t, reading)
+
+    def _deliver(self, t: float) -> None:
+        """Hand every reading due by ``t`` to the estimator and the controller's queue."""
+        due: list[tuple[float, int, Reading]] = []
+        for stream in (self.lidar, self.encoders, self.compass, self.imu):
+            if stream is not None:
+                for when, reading in stream.line.pop_due(t):
+                    due.append((when, stream.rank, reading))
+        if not due:
+            return
+        due.sort(key=lambda item: (item[0], item[1]))
+        est = self.sim._estimator
+        latest = self.latest
+        pending = self.pending
+        if est is None:
+            for _, _, reading in due:
+                latest[type(reading)] = reading
+                pending.append(reading)
+            return
+        fast = getattr(est, "xyt", None)
+        last_t = math.nan
+        for when, _, reading in due:
+            latest[type(reading)] = reading
+            pending.append(reading)
+            est.observe(when, reading)
+            if when != last_t and not math.isnan(last_t):
+                self._note_estimate(last_t, fast)
+            last_t = when
+        self._note_estimate(last_t, fast)
+
+    def _note_estimate(self, t: float, fast: Any) -> None:
+        est = self.sim._estimator
+        assert est is not None
+        if fast is not None:
+            xyt = fast()
+        else:
+            pose = est.pose
+            xyt = None if pose is None else (pose.x, pose.y, pose.theta)
+        if xyt is None:
+            return
+        if self.est_t and self.est_t[-1] == t:
+            self.est_xyt[-1] = xyt
+        else:
+            self.est_t.append(t)
+            self.est_xyt.append(xyt)
+
+    def _fill_estimates(self, last: int) -> None:
+        """Write the estimates into trace rows ``filled .. last``."""
+        est_t = self.est_t
+        if est_t and last >= self.filled:
+            buf = self.buf
+            dt = self.dt
+            k = 0
+            n = len(est_t)
+            for i in range(self.filled, last + 1):
+                t = i * dt + _EPS
+                while k + 1 < n and est_t[k + 1] <= t:
+                    k += 1
+                if est_t[k] <= t:
+                    buf[i, 4:7] = self.est_xyt[k]
+            # Keep only the last estimate: later rows never look further back.
+            del est_t[:-1]
+            del self.est_xyt[:-1]
+        self.filled = max(self.filled, last + 1)
+
+    # ------------------------------------------------------------ control
+    def _control(self, i: int, t: float) -> bool:
+        """Run the controller; True when it says it is done."""
+        sim = self.sim
+        state = self.body.state
+        latest = self.latest
+        estimate: Pose2D | None = None
+        if self.est_xyt:
+            ex, ey, eth = self.est_xyt[-1]
+            estimate = Pose2D(ex, ey, eth)
+        obs = Observation(
+            t,
+            latest.get(ScanReading),  # type: ignore[arg-type]
+            latest.get(EncoderReading),  # type: ignore[arg-type]
+            latest.get(CompassReading),  # type: ignore[arg-type]
+            latest.get(ImuReading),  # type: ignore[arg-type]
+            tuple(self.pending),
+            estimate,
+            Pose2D(float(state[0]), float(state[1]), float(state[2])),
+        )
+        self.pending.clear()
+        out = sim._controller(obs)
+        if out is None:
+            raise TypeError("the controller returned None; it must return a Twist2D")
+        twist = as_twist(out, "controller output")
+        self.body.set_command(twist)
+        self.cmd[0] = twist.vx
+        self.cmd[1] = twist.vy
+        self.cmd[2] = twist.omega
+        self.buf[i, 7:10] = self.cmd
+        return bool(getattr(sim._controller, "done", False))
+
+    # ------------------------------------------------------------------ loop
+    def execute(self) -> Trace:
+        sim = self.sim
+        robot = sim._robot
+        dt = self.dt
+        n_steps = math.ceil(sim._duration * sim._rate - _EPS)
+        control_k = 0
+        next_control = 0
+        lidar_k = 0
+        next_lidar = 0 if robot.lidar is not None else n_steps + 1
+        wall_start = time.perf_counter()
+        reason = ""
+        # Step 0: sample the start.
+        self._segment(0, 0, True)
+        i = 0
+        while True:
+            t = i * dt
+            if i == 0 and self._at_start_goal():
+                reason = "goal reached"
+            if not reason:
+                if i == next_lidar:
+                    self._scan(i, t)
+                    lidar_k += 1
+                    assert robot.lidar is not None
+                    next_lidar = due_step(lidar_k, robot.lidar.rate, dt)
+                self._deliver(t)
+                if i == next_control:
+                    control_k += 1
+                    next_control = due_step(control_k, sim._control_rate, dt)
+                    if self._control(i, t):
+                        reason = "controller done"
+                        self.events.append(Event(t, reason, "the controller reported done"))
+            if not reason and i >= n_steps:
+                reason = "timeout"
+                self.events.append(
+                    Event(t, reason, f"the run reached its duration of {sim._duration:g} s")
+                )
+            if (
+                not reason
+                and sim._wall_timeout is not None
+                and time.perf_counter() - wall_start > sim._wall_timeout
+            ):
+                reason = "wall-clock timeout"
+                self.events.append(
+                    Event(t, reason, f"the run took more than {sim._wall_timeout:g} s of real time")
+                )
+            self._fill_estimates(i)
+            if reason:
+                break
+            target = min(next_control, next_lidar, n_steps)
+            status, i = self._segment(i, target, False)
+            if status == COLLIDED:
+                reason = "collision"
+            elif status == GOAL:
+                reason = "goal reached"
+            if reason:
+                # Readings due before the last step still reach the estimator.
+                self._deliver(i * dt - dt)
+                self._fill_estimates(i)
+                break
+        return self._trace(i, reason)
+
+    def _at_start_goal(self) -> bool:
+        state = self.body.state
+        g = self.goal
+        if math.isnan(g[0]) or math.hypot(state[0] - g[0], state[1] - g[1]) > g[2]:
+            return False
+        if not math.isnan(g[3]):
+            err = abs((float(state[2]) - g[3] + math.pi) % (2.0 * math.pi) - math.pi)
+            if err > g[4]:
+                return False
+        self.stats[STAT_TIME_TO_GOAL] = 0.0
+        return self.sim._stop_at_goal
+
+    def _trace(self, last: int, reason: str) -> Trace:
+        sim = self.sim
+        stats = self.stats
+        n_contacts = int(stats[STAT_COLLISIONS])
+        for k in range(min(n_contacts, self.contacts.shape[0])):
+            tc = float(self.contacts[k])
+            self.events.append(Event(tc, "collision", "the footprint touched an obstacle"))
+        time_to_goal = float(stats[STAT_TIME_TO_GOAL])
+        if not math.isnan(time_to_goal):
+            self.events.append(Event(time_to_goal, "goal reached", "the robot reached the goal"))
+        self.events.sort(key=lambda e: e.t)
+        rows = self.buf[: last + 1]
+        times = rows[:, 0]
+        poses = rows[:, 1:4]
+        estimates = rows[:, 4:7]
+        goal = sim._goal
+        final = poses[-1]
+        final_est = estimates[-1]
+        if goal is not None:
+            final_error = math.hypot(final[0] - goal[0], final[1] - goal[1])
+            final_error_est = math.hypot(final_est[0] - goal[0], final_est[1] - goal[1])
+        else:
+            final_error = final_error_est = math.nan
+        if sim._reference is not None:
+            xte = cross_track(poses[:, :2], sim._reference)
+            xte_mean, xte_max = nan_if_empty(xte, "mean"), nan_if_empty(xte, "max")
+        else:
+            xte_mean = xte_max = math.nan
+        steps = np.diff(poses[:, :2], axis=0)
+        metrics = Metrics(
+            reached=not math.isnan(time_to_goal),
+            reason=reason,
+            duration=float(times[-1]),
+            time_to_goal=time_to_goal,
+            final_error=final_error,
+            final_error_estimated=final_error_est,
+            estimate_error=math.hypot(final_est[0] - final[0], final_est[1] - final[1]),
+            cross_track_mean=xte_mean,
+            cross_track_max=xte_max,
+            min_clearance=max(float(stats[STAT_MIN_CLEARANCE]), 0.0),
+            collisions=n_contacts,
+            distance=float(np.sum(np.hypot(steps[:, 0], steps[:, 1]))),
+        )
+        return Trace(
+            times,
+            poses,
+            estimates,
+            rows[:, 7:10],
+            tuple(self.scans),
+            tuple(self.events),
+            metrics,
+        )

@@ -1,0 +1,221 @@
+"""The record of a simulation run and its metrics."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any, Literal
+
+import numpy as np
+
+from navkit._shared.types import FloatArray
+from navkit._shared.validation import as_bool, as_float_array, finite_float
+from navkit.sim._polyline_distance_kernels import point_polyline_distances
+from navkit.sim._sensors import ScanReading, real_float
+
+__all__ = ["EndReason", "Event", "Metrics", "Trace", "cross_track"]
+
+EndReason = Literal["goal reached", "collision", "timeout", "controller done", "wall-clock timeout"]
+"""Why a run ended."""
+_END_REASONS = ("goal reached", "collision", "timeout", "controller done", "wall-clock timeout")
+
+
+@dataclass(frozen=True, slots=True)
+class Event:
+    """Something that happened during a run.
+
+    Attributes
+    ----------
+    t : float
+        Simulated time, s.
+    kind : str
+        ``"collision"``, ``"goal reached"``, ``"timeout"``, ``"controller done"``
+        or ``"wall-clock timeout"``.
+    message : str
+        What happened, for people.
+
+    Examples
+    --------
+    >>> Event(1.5, "collision", "the footprint touched an obstacle").kind
+    'collision'
+    """
+
+    t: float
+    kind: str
+    message: str
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "t", finite_float(self.t, "t"))
+        if self.kind not in _END_REASONS:
+            raise ValueError(f"kind must be one of {_END_REASONS}, got {self.kind!r}")
+
+
+@dataclass(frozen=True, slots=True)
+class Metrics:
+    """Summary of a run (NaN where a figure does not apply).
+
+    Attributes
+    ----------
+    reached : bool
+        Whether the robot's true pose met the goal condition at some step.
+    reason : str
+        Why the run ended (an :data:`EndReason`); with ``"timeout"`` the run hit
+        its ``duration``, with ``"wall-clock timeout"`` its ``wall_timeout``.
+    duration : float
+        Simulated time of the run, s.
+    time_to_goal : float
+        First time the goal condition held, s (NaN if never).
+    final_error : float
+        Distance from the final true position to the goal, m (NaN without goal).
+    final_error_estimated : float
+        Distance from the final estimated position to the goal, m (NaN without
+        an estimator or a goal).
+    estimate_error : float
+        Distance between the final estimated and true positions, m.
+    cross_track_mean, cross_track_max : float
+        Mean and largest distance of the recorded true positions to the
+        reference path, m (NaN without one).
+    min_clearance : float
+        Smallest distance between the footprint and any obstacle over the run,
+        m (0 after a collision; ``inf`` in an empty world).
+    collisions : int
+        Number of collisions.
+    distance : float
+        Length of the path the robot travelled, m.
+
+    Examples
+    --------
+    >>> Metrics(True, "goal reached", 10.0, 9.5, 0.04, 0.06, 0.02, 0.01, 0.05,
+    ...         0.3, 0, 4.2).reached
+    True
+    """
+
+    reached: bool
+    reason: str
+    duration: float
+    time_to_goal: float
+    final_error: float
+    final_error_estimated: float
+    estimate_error: float
+    cross_track_mean: float
+    cross_track_max: float
+    min_clearance: float
+    collisions: int
+    distance: float
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "reached", as_bool(self.reached, "reached"))
+        if self.reason not in _END_REASONS:
+            raise ValueError(f"reason must be one of {_END_REASONS}, got {self.reason!r}")
+        for name in ("duration", "distance"):
+            object.__setattr__(self, name, finite_float(getattr(self, name), name))
+        for name in (
+            "time_to_goal", "final_error", "final_error_estimated", "estimate_error",
+            "cross_track_mean", "cross_track_max",
+        ):  # fmt: skip
+            object.__setattr__(self, name, real_float(getattr(self, name), name, allow_nan=True))
+        clearance = real_float(self.min_clearance, "min_clearance", allow_inf=True)
+        if clearance < 0.0:
+            raise ValueError(f"min_clearance must be >= 0 (or inf), got {clearance}")
+        object.__setattr__(self, "min_clearance", clearance)
+        c = self.collisions
+        if isinstance(c, (bool, np.bool_)) or not isinstance(c, (int, np.integer)):
+            raise TypeError(f"collisions must be an int, got {type(c).__name__}")
+        if not 0 <= c <= 1 << 62:
+            raise ValueError("collisions must lie in [0, 2**62]")
+        object.__setattr__(self, "collisions", int(c))
+
+
+def _tuple_of(value: object, name: str, cls: type) -> tuple[Any, ...]:
+    if not isinstance(value, (tuple, list)):
+        raise TypeError(f"{name} must be a tuple of {cls.__name__}, got {type(value).__name__}")
+    for item in value:
+        if not isinstance(item, cls):
+            raise TypeError(f"{name} must hold {cls.__name__}s, got a {type(item).__name__}")
+    return tuple(value)
+
+
+def _readonly(arr: np.ndarray) -> np.ndarray:
+    out = np.array(arr, dtype=np.float64, copy=True)
+    out.flags.writeable = False
+    return out
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class Trace:
+    """Everything recorded during a :class:`Simulation` run, one row per physics step.
+
+    Attributes
+    ----------
+    times : ndarray, shape (T,)
+        Simulated times, s (row 0 is the start).
+    poses : ndarray, shape (T, 3)
+        True poses ``[x, y, theta]``.
+    estimates : ndarray, shape (T, 3)
+        The estimator's latest pose at each step (NaN rows before the first
+        estimate or without an estimator).
+    commands : ndarray, shape (T, 3)
+        The twist ``[vx, vy, omega]`` commanded at each step (the controller's
+        latest output, before the drive's limits).
+    scans : tuple of ScanReading
+        Every scan taken, when the run recorded them (``record_scans=True``).
+    events : tuple of Event
+        Collisions, reaching the goal and the end of the run, in order.
+    metrics : Metrics
+        The run's summary.
+
+    Every array is a read-only copy.
+    """
+
+    times: FloatArray
+    poses: FloatArray
+    estimates: FloatArray
+    commands: FloatArray
+    scans: tuple[ScanReading, ...]
+    events: tuple[Event, ...]
+    metrics: Metrics
+
+    def __post_init__(self) -> None:
+        times = as_float_array(self.times, "times", ndim=1)
+        n = times.shape[0]
+        object.__setattr__(self, "times", _readonly(times))
+        for name in ("poses", "estimates", "commands"):
+            value = getattr(self, name)
+            if isinstance(value, np.ndarray):
+                value = value.copy()  # never touch the caller's array, even on failure
+            finite = name != "estimates"
+            arr = as_float_array(value, name, shape=(n, 3), finite=finite)
+            if not finite and np.isinf(arr).any():
+                raise ValueError(f"{name} must be finite or NaN, got an infinity")
+            object.__setattr__(self, name, _readonly(arr))
+        object.__setattr__(self, "scans", _tuple_of(self.scans, "scans", ScanReading))
+        object.__setattr__(self, "events", _tuple_of(self.events, "events", Event))
+        if not isinstance(self.metrics, Metrics):
+            raise TypeError(f"metrics must be a Metrics, got {type(self.metrics).__name__}")
+
+    def __len__(self) -> int:
+        return int(self.times.shape[0])
+
+
+def cross_track(points_xy: FloatArray, path_xy: FloatArray) -> FloatArray:
+    """Distance from each point (N, 2) to the polyline ``path_xy`` (K, 2), shape (N,).
+
+    Examples
+    --------
+    >>> cross_track(np.array([[1.0, 0.5]]), np.array([[0.0, 0.0], [2.0, 0.0]]))
+    array([0.5])
+    """
+    out = np.empty(points_xy.shape[0])
+    point_polyline_distances(
+        np.ascontiguousarray(points_xy, dtype=np.float64),
+        np.ascontiguousarray(path_xy, dtype=np.float64),
+        out,
+    )
+    return out
+
+
+def nan_if_empty(values: FloatArray, fn: str) -> float:
+    """``values.mean()`` or ``values.max()`` (``fn``), NaN for no values."""
+    if values.size == 0:
+        return math.nan
+    return float(values.mean() if fn == "mean" else values.max())

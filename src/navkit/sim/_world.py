@@ -1,0 +1,826 @@
+"""The simulated world: static geometry, an occupancy grid and moving obstacles."""
+
+from __future__ import annotations
+
+import math
+import numbers
+from collections.abc import Iterable, Mapping
+from dataclasses import KW_ONLY, dataclass
+from typing import Any, Literal
+
+import numpy as np
+import shapely
+from numpy.typing import ArrayLike
+from shapely.geometry import Polygon
+from shapely.geometry.base import BaseGeometry
+
+from navkit._shared.types import FloatArray, IntArray
+from navkit._shared.validation import as_bool, as_float_array, finite_float, positive_float
+from navkit.geometry import Pose2D, as_pose
+from navkit.mapping import OccupancyGrid
+from navkit.sim._clearance_kernels import footprint_clearance
+from navkit.sim._edge_grid_kernels import build_cell_lists, chebyshev_distance
+from navkit.sim._lidar_kernels import cast_rays
+from navkit.sim._moving_kernels import EXTEND, LOOP, STOP, place_moving
+
+__all__ = ["Circle", "MovingObstacle", "World"]
+
+#: Largest coordinate magnitude accepted anywhere in a world, m.
+MAX_COORD = 1e6
+#: Most segments (edges) a world may hold.
+MAX_SEGMENTS = 10_000_000
+#: Most (cell, primitive) entries of the edge index.
+MAX_INDEX_ENTRIES = 100_000_000
+#: Most vertices of a footprint polygon.
+MAX_FOOTPRINT_VERTICES = 1000
+#: Cells of the edge index per primitive (the index's density).
+_CELLS_PER_PRIMITIVE = 2.0
+#: Largest number of index cells along one axis.
+_MAX_CELLS_PER_AXIS = 2048
+
+_EMPTY2 = np.empty((0, 2))
+_EMPTY3 = np.empty((0, 3))
+_EMPTY4 = np.empty((0, 4))
+
+
+def _read_only(arr: np.ndarray) -> np.ndarray:
+    arr.flags.writeable = False
+    return arr
+
+
+def _coords(value: ArrayLike, name: str, shape: tuple[int | None, ...]) -> FloatArray:
+    arr = as_float_array(value, name, shape=shape)
+    if arr.size and float(np.max(np.abs(arr))) > MAX_COORD:
+        raise ValueError(f"{name} must lie within ±{MAX_COORD:g} m")
+    return arr
+
+
+MAX_POSE_COORD = 1e12
+
+
+def _as_query_pose(value: Any) -> Pose2D:
+    """A query pose, its position within ±1e12 m (distances must not overflow)."""
+    p = as_pose(value, "pose")
+    if abs(p.x) > MAX_POSE_COORD or abs(p.y) > MAX_POSE_COORD:
+        raise ValueError(f"pose must lie within ±{MAX_POSE_COORD:g} m, got ({p.x:g}, {p.y:g})")
+    return p
+
+
+def as_footprint(value: Any, name: str = "footprint") -> tuple[float, FloatArray]:
+    """``(radius, vertices (V, 2))`` of a footprint: a radius or a polygon (robot frame).
+
+    A disc gives ``(radius, empty (0, 2))``; a polygon (shapely ``Polygon`` or
+    ``(V, 2)`` vertices, V >= 3) gives ``(0.0, vertices)`` without the closing
+    vertex.
+    """
+    if isinstance(value, bool):
+        raise TypeError(f"{name} must be a radius (m) or a polygon, got bool")
+    if isinstance(value, np.ndarray) and value.ndim == 0 and value.dtype.kind in "fiu":
+        value = value.item()
+    if isinstance(value, numbers.Real):
+        radius = positive_float(value, name)
+        if radius > MAX_COORD:
+            raise ValueError(f"{name} radius must be at most {MAX_COORD:g} m, got {radius}")
+        return radius, np.empty((0, 2))
+    if isinstance(value, Polygon):
+        if value.is_empty:
+            raise ValueError(f"{name} polygon is empty")
+        if len(value.interiors):
+            raise ValueError(f"{name} polygon must not have holes")
+        verts = np.asarray(value.exterior.coords, dtype=np.float64)[:-1]
+    elif isinstance(value, BaseGeometry):
+        raise TypeError(
+            f"{name} must be a radius (m) or a Polygon, got a {value.geom_type}"
+        )
+    else:
+        if isinstance(value, (str, bytes)):
+            raise TypeError(f"{name} must be a radius (m) or a polygon, got {type(value).__name__}")
+        verts = _coords(value, name, (None, 2))
+    if verts.shape[0] < 3:
+        raise ValueError(f"{name} polygon needs at least 3 vertices, got {verts.shape[0]}")
+    if verts.shape[0] > MAX_FOOTPRINT_VERTICES:
+        raise ValueError(
+            f"{name} polygon may have at most {MAX_FOOTPRINT_VERTICES} vertices, "
+            f"got {verts.shape[0]}"
+        )
+    if float(np.max(np.abs(verts))) > MAX_COORD:
+        raise ValueError(f"{name} must lie within ±{MAX_COORD:g} m")
+    poly = Polygon(verts)
+    if not poly.is_valid or poly.area <= 0.0:
+        raise ValueError(f"{name} polygon must be simple (no self-intersection) with area > 0")
+    return 0.0, np.ascontiguousarray(verts)
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class Circle:
+    """A circular obstacle, intersected analytically by rays and footprints.
+
+    Parameters
+    ----------
+    center_xy : array_like, shape (2,)
+        Centre, m (world frame). Stored as a read-only float64 copy.
+    radius : float
+        Radius, m, in (0, 1e6].
+    solid : bool, default True
+        True for a solid disc (a pillar, a ball); False for a circular wall,
+        e.g. the boundary of a circular room, inside which a robot may stand.
+        Keyword-only.
+
+    Examples
+    --------
+    >>> room = Circle((0.0, 0.0), 5.0, solid=False)
+    >>> room.radius, room.solid
+    (5.0, False)
+    """
+
+    center_xy: FloatArray
+    radius: float
+    _: KW_ONLY
+    solid: bool = True
+
+    def __post_init__(self) -> None:
+        center = np.array(_coords(self.center_xy, "center_xy", (2,)), copy=True)
+        object.__setattr__(self, "center_xy", _read_only(center))
+        radius = positive_float(self.radius, "radius")
+        if radius > MAX_COORD:
+            raise ValueError(f"radius must be at most {MAX_COORD:g} m, got {radius}")
+        object.__setattr__(self, "radius", radius)
+        object.__setattr__(self, "solid", as_bool(self.solid, "solid"))
+
+
+_AFTER_CODES = {"stop": STOP, "loop": LOOP, "extend": EXTEND}
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class MovingObstacle:
+    """An obstacle that translates along a timed polyline (it never rotates).
+
+    Build one with :meth:`constant_velocity` or :meth:`scripted`. Its position
+    at time ``t`` is interpolated linearly between the waypoints; before the
+    first time it waits at the first waypoint, after the last it stops
+    (``after="stop"``), starts over from the first (``"loop"``, which jumps
+    back unless the path is closed) or carries on with the last leg's velocity
+    (``"extend"``).
+
+    Parameters
+    ----------
+    shape : float or shapely Polygon
+        A radius (m) for a disc, or a polygon given relative to the obstacle's
+        reference point (its position).
+    path_xy : array_like, shape (K, 2)
+        Waypoints of the reference point, m.
+    times : array_like, shape (K,)
+        Time of each waypoint, s, strictly increasing, within ±1e9 s.
+    after : {"stop", "loop", "extend"}, default "stop"
+        Motion after the last waypoint (keyword-only).
+
+    Examples
+    --------
+    >>> ball = MovingObstacle.constant_velocity(0.1, start_xy=(0.0, 0.0), velocity_xy=(1.0, 0.5))
+    >>> ball.position_at(2.0)
+    array([2., 1.])
+    >>> opponent = MovingObstacle.scripted(0.2, [(0.0, 0.0), (2.0, 0.0)], speed=0.5, loop=True)
+    >>> opponent.position_at(1.0), opponent.position_at(5.0)
+    (array([0.5, 0. ]), array([0.5, 0. ]))
+    """
+
+    shape: float | Polygon
+    path_xy: FloatArray
+    times: FloatArray
+    _: KW_ONLY
+    after: Literal["stop", "loop", "extend"] = "stop"
+
+    def __post_init__(self) -> None:
+        radius, _verts = as_footprint(self.shape, "shape")
+        if radius:
+            object.__setattr__(self, "shape", radius)
+        path = np.array(_coords(self.path_xy, "path_xy", (None, 2)), copy=True)
+        if path.shape[0] == 0:
+            raise ValueError("path_xy must hold at least one waypoint")
+        times = np.array(as_float_array(self.times, "times", shape=(path.shape[0],)), copy=True)
+        if times.size and float(np.max(np.abs(times))) > 1e9:
+            raise ValueError("times must lie within ±1e9 s")
+        if np.any(np.diff(times) <= 0.0):
+            raise ValueError("times must be strictly increasing")
+        if self.after not in _AFTER_CODES:
+            raise ValueError(f"after must be 'stop', 'loop' or 'extend', got {self.after!r}")
+        if self.after == "extend" and path.shape[0] < 2:
+            raise ValueError("after='extend' needs at least two waypoints")
+        object.__setattr__(self, "path_xy", _read_only(path))
+        object.__setattr__(self, "times", _read_only(times))
+
+    @classmethod
+    def constant_velocity(
+        cls, shape: float | Polygon, *, start_xy: ArrayLike, velocity_xy: ArrayLike
+    ) -> MovingObstacle:
+        """An obstacle at ``start_xy`` at t = 0 moving at ``velocity_xy`` (m/s) forever.
+
+        Examples
+        --------
+        >>> ob = MovingObstacle.constant_velocity(0.2, start_xy=(1, 1), velocity_xy=(0, -1))
+        >>> ob.position_at(0.5)
+        array([1. , 0.5])
+        """
+        start = _coords(start_xy, "start_xy", (2,))
+        vel = as_float_array(velocity_xy, "velocity_xy", shape=(2,))
+        if float(np.max(np.abs(vel))) > 1e3:
+            raise ValueError("velocity_xy must lie within ±1e3 m/s")
+        return cls(shape, np.stack((start, start + vel)), np.array([0.0, 1.0]), after="extend")
+
+    @classmethod
+    def scripted(
+        cls,
+        shape: float | Polygon,
+        waypoints_xy: ArrayLike,
+        *,
+        times: ArrayLike | None = None,
+        speed: float | None = None,
+        loop: bool = False,
+    ) -> MovingObstacle:
+        """An obstacle visiting ``waypoints_xy`` (K, 2) at ``times`` or at constant ``speed``.
+
+        Give exactly one of ``times`` (s, strictly increasing) and ``speed``
+        (m/s, > 0; the first waypoint is left at t = 0). With ``loop`` it starts
+        over after the last waypoint, otherwise it stops there.
+
+        Examples
+        --------
+        >>> ob = MovingObstacle.scripted(0.2, [(0, 0), (1, 0), (1, 1)], times=[0, 1, 3])
+        >>> ob.position_at(2.0)
+        array([1. , 0.5])
+        """
+        pts = _coords(waypoints_xy, "waypoints_xy", (None, 2))
+        if (times is None) == (speed is None):
+            raise ValueError("give exactly one of times and speed")
+        if speed is not None:
+            v = positive_float(speed, "speed")
+            if v > 1e3:
+                raise ValueError(f"speed must be at most 1e3 m/s, got {v}")
+            legs = np.hypot(*np.diff(pts, axis=0).T)
+            if np.any(legs == 0.0):
+                raise ValueError("waypoints_xy must not repeat a point consecutively with speed")
+            stamps = np.concatenate(([0.0], np.cumsum(legs) / v))
+        else:
+            assert times is not None
+            stamps = as_float_array(times, "times", shape=(pts.shape[0],))
+        return cls(shape, pts, stamps, after="loop" if as_bool(loop, "loop") else "stop")
+
+    def position_at(self, t: float) -> FloatArray:
+        """Position ``(x, y)`` of the reference point at time ``t`` (s), shape (2,)."""
+        time = finite_float(t, "t")
+        first = np.zeros(1, dtype=np.int64)
+        count = np.array([self.path_xy.shape[0]], dtype=np.int64)
+        after = np.array([_AFTER_CODES[self.after]], dtype=np.int64)
+        out = np.empty((1, 3))
+        place_moving(
+            time, np.ascontiguousarray(self.path_xy), np.ascontiguousarray(self.times),
+            first, count, after, _EMPTY4, np.empty(0, dtype=np.int64), np.empty((0, 4)),
+            np.zeros((1, 3)), np.zeros(1, dtype=np.int64), out,
+        )  # fmt: skip
+        position: FloatArray = out[0, :2].copy()
+        return position
+
+    def geometry_at(self, t: float) -> BaseGeometry:
+        """The obstacle at time ``t`` as a shapely geometry (a disc as a fine polygon).
+
+        Examples
+        --------
+        >>> ob = MovingObstacle.constant_velocity(1.0, start_xy=(0, 0), velocity_xy=(1, 0))
+        >>> round(ob.geometry_at(3.0).centroid.x, 9)
+        3.0
+        """
+        x, y = self.position_at(t)
+        if isinstance(self.shape, Polygon):
+            return shapely.affinity.translate(self.shape, float(x), float(y))
+        return shapely.Point(float(x), float(y)).buffer(float(self.shape), quad_segs=64)
+
+
+def _segments_of(geom: BaseGeometry, segs: list[FloatArray], solids: list[BaseGeometry]) -> None:
+    """Append the edges of ``geom`` to ``segs`` and its polygons to ``solids``."""
+    if geom.is_empty:
+        return
+    kind = geom.geom_type
+    if kind in ("MultiPolygon", "MultiLineString", "GeometryCollection"):
+        for part in shapely.get_parts(geom):
+            _segments_of(part, segs, solids)
+        return
+    if kind == "Polygon":
+        rings = [geom.exterior, *geom.interiors]
+        solids.append(geom)
+    elif kind in ("LineString", "LinearRing"):
+        rings = [geom]
+    else:
+        raise ValueError(
+            f"obstacles must be polygons, lines or Circles; a {kind} has no extent "
+            "(use Circle for a round obstacle)"
+        )
+    for ring in rings:
+        pts = np.asarray(ring.coords, dtype=np.float64)[:, :2]
+        if pts.shape[0] >= 2:
+            segs.append(np.hstack((pts[:-1], pts[1:])))
+
+
+class World:
+    """Obstacles for the simulator: shapely geometry, circles, a map and moving obstacles.
+
+    Static obstacles are polygons (solid: a robot may not stand inside them;
+    holes are free space), lines (walls: ``LineString``, ``LinearRing``, e.g.
+    ``box(0, 0, 10, 8).exterior`` for a room), :class:`Circle` s (exact) and
+    the cells of an :class:`~navkit.mapping.OccupancyGrid` that are not free
+    (``p >= free_thresh``: occupied and, by default, unknown cells, as navkit's
+    planners treat unknown space; outside the map is free). Their edges
+    and circles are indexed once, in a uniform grid of about two cells per
+    primitive, so rays and clearance queries only visit what is near them.
+    Moving obstacles (:class:`MovingObstacle`) are placed at the time of each
+    query. All inputs are copied; the world never changes them.
+
+    An ordinary class with ``__slots__`` rather than a frozen dataclass: it
+    builds and keeps its index and the moving obstacles' work arrays.
+
+    Parameters
+    ----------
+    obstacles : shapely geometry, Circle, or iterable of them, optional
+        Static obstacles, coordinates in metres within ±1e6 m; at most 10^7
+        edges in all.
+    grid : OccupancyGrid, optional
+        A map whose occupied cells are obstacles (any map_server map through
+        ``OccupancyGrid.load``); copied.
+    unknown_blocks : bool, default True
+        Unknown cells of ``grid`` block beams and robots too. Many saved maps
+        draw walls in grey levels between ``free_thresh`` and
+        ``occupied_thresh`` (the Willow Garage map's are), so their walls are
+        "unknown"; with False only cells with ``p > occupied_thresh`` block.
+    moving : iterable of MovingObstacle, optional
+        Obstacles that move (solid).
+
+    Examples
+    --------
+    >>> import math
+    >>> from shapely.geometry import box
+    >>> world = World([box(0, 0, 10, 8).exterior, Circle((7.0, 4.0), 0.5)])
+    >>> world.raycast((2.0, 4.0, 0.0), [0.0, math.pi / 2, math.pi], range_max=20.0).tolist()
+    [4.5, 4.0, 2.0]
+    >>> world.clearance(0.3, (2.0, 4.0, 0.0))
+    1.7
+    >>> world.collides(0.3, (6.5, 4.0, 0.0))
+    True
+    """
+
+    __slots__ = (
+        "_cell_items",
+        "_cell_start",
+        "_cheb",
+        "_circles",
+        "_dyn_base_circles",
+        "_dyn_base_segs",
+        "_dyn_circle_owner",
+        "_dyn_circles",
+        "_dyn_seg_owner",
+        "_dyn_segs",
+        "_grid",
+        "_index",
+        "_moving",
+        "_moving_t",
+        "_mv_after",
+        "_mv_count",
+        "_mv_first",
+        "_mv_path",
+        "_mv_times",
+        "_occ",
+        "_occ_frame",
+        "_scanners",
+        "_segs",
+        "_solid_circles",
+        "_solids",
+    )
+
+    def __init__(
+        self,
+        obstacles: BaseGeometry | Circle | Iterable[BaseGeometry | Circle] = (),
+        *,
+        grid: OccupancyGrid | None = None,
+        unknown_blocks: bool = True,
+        moving: Iterable[MovingObstacle] = (),
+    ) -> None:
+        items: list[Any]
+        unknown_blocks = as_bool(unknown_blocks, "unknown_blocks")
+        if isinstance(obstacles, (BaseGeometry, Circle)):
+            items = [obstacles]
+        elif isinstance(obstacles, (str, bytes, Mapping)) or not isinstance(obstacles, Iterable):
+            raise TypeError(
+                "obstacles must be a shapely geometry, a Circle or an iterable of them, "
+                f"got {type(obstacles).__name__}"
+            )
+        else:
+            items = list(obstacles)
+        seg_parts: list[FloatArray] = []
+        solids: list[BaseGeometry] = []
+        circles: list[tuple[float, float, float]] = []
+        solid_circles: list[tuple[float, float, float]] = []
+        for k, item in enumerate(items):
+            if isinstance(item, Circle):
+                row = (float(item.center_xy[0]), float(item.center_xy[1]), item.radius)
+                circles.append(row)
+                if item.solid:
+                    solid_circles.append(row)
+            elif isinstance(item, BaseGeometry):
+                _segments_of(item, seg_parts, solids)
+            else:
+                raise TypeError(
+                    f"obstacles[{k}] must be a shapely geometry or a Circle, "
+                    f"got {type(item).__name__}"
+                )
+        segs = np.concatenate(seg_parts) if seg_parts else np.empty((0, 4))
+        if segs.shape[0] > MAX_SEGMENTS:
+            raise ValueError(
+                f"obstacles hold {segs.shape[0]} edges; the maximum is {MAX_SEGMENTS}"
+            )
+        if segs.size and not np.all(np.isfinite(segs)):
+            raise ValueError("obstacles must have finite coordinates")
+        if segs.size and float(np.max(np.abs(segs))) > MAX_COORD:
+            raise ValueError(f"obstacles must lie within ±{MAX_COORD:g} m")
+        # Zero-length edges (repeated vertices) carry nothing.
+        keep = (segs[:, 0] != segs[:, 2]) | (segs[:, 1] != segs[:, 3])
+        self._segs: FloatArray = _read_only(np.ascontiguousarray(segs[keep]))
+        self._circles: FloatArray = _read_only(
+            np.array(circles, dtype=np.float64).reshape(-1, 3)
+        )
+        self._solid_circles: FloatArray = np.array(solid_circles, dtype=np.float64).reshape(-1, 3)
+        self._solids: BaseGeometry | None = None
+        if solids:
+            union = shapely.union_all(solids)
+            shapely.prepare(union)
+            self._solids = union
+        self._index = self._build_index()
+        start, cell_items = (
+            build_cell_lists(self._segs, self._circles, *self._index, MAX_INDEX_ENTRIES)
+            if self._segs.shape[0] + self._circles.shape[0]
+            else (np.zeros(2, dtype=np.int64), np.empty(0, dtype=np.int64))
+        )
+        if int(start[-1]) > cell_items.shape[0]:
+            raise ValueError(
+                f"the obstacles' edge index would need {int(start[-1])} entries; the maximum "
+                f"is {MAX_INDEX_ENTRIES} (too many long edges)"
+            )
+        self._cell_start: IntArray = _read_only(start)
+        self._cell_items: IntArray = _read_only(cell_items)
+        # Occupancy grid.
+        self._grid: OccupancyGrid | None = None
+        self._occ = np.zeros((0, 0), dtype=np.uint8)
+        self._cheb = np.zeros((0, 0), dtype=np.uint8)
+        self._occ_frame = (0.0, 0.0, 1.0, 0.0, 1.0)
+        if grid is not None:
+            if not isinstance(grid, OccupancyGrid):
+                raise TypeError(f"grid must be an OccupancyGrid, got {type(grid).__name__}")
+            self._grid = grid.copy()
+            blocked = (
+                ~self._grid.free() if as_bool(unknown_blocks, "unknown_blocks")
+                else self._grid.occupied()
+            )
+            occ = np.ascontiguousarray(blocked, dtype=np.uint8)
+            self._occ = _read_only(occ)
+            # Capped at 255 cells: a uint8 map keeps the walk's loads in cache.
+            cheb = np.minimum(chebyshev_distance(occ), 255).astype(np.uint8)
+            self._cheb = _read_only(cheb)
+            o = self._grid.origin
+            if max(abs(o.x), abs(o.y)) > MAX_COORD:
+                raise ValueError(f"grid origin must lie within ±{MAX_COORD:g} m")
+            self._occ_frame = (
+                o.x, o.y, math.cos(o.theta), math.sin(o.theta), self._grid.resolution
+            )
+        self._init_moving(moving)
+        self._scanners: dict[Any, Any] = {}
+
+    # ------------------------------------------------------------ construction
+    def _build_index(self) -> tuple[float, float, float, int, int]:
+        """``(x0, y0, cell, nx, ny)`` of the uniform grid over edges and circles."""
+        n = self._segs.shape[0] + self._circles.shape[0]
+        if n == 0:
+            return 0.0, 0.0, 1.0, 1, 1
+        xs = [self._segs[:, 0], self._segs[:, 2], self._circles[:, 0] - self._circles[:, 2],
+              self._circles[:, 0] + self._circles[:, 2]]  # fmt: skip
+        ys = [self._segs[:, 1], self._segs[:, 3], self._circles[:, 1] - self._circles[:, 2],
+              self._circles[:, 1] + self._circles[:, 2]]  # fmt: skip
+        xmin = min(float(a.min()) for a in xs if a.size)
+        xmax = max(float(a.max()) for a in xs if a.size)
+        ymin = min(float(a.min()) for a in ys if a.size)
+        ymax = max(float(a.max()) for a in ys if a.size)
+        pad = 1e-6 * max(xmax - xmin, ymax - ymin, 1.0)
+        xmin -= pad
+        ymin -= pad
+        width = xmax - xmin + pad
+        height = ymax - ymin + pad
+        side = max(width, height)
+        cell = math.sqrt(width * height / (_CELLS_PER_PRIMITIVE * n))
+        cell = max(cell, side / _MAX_CELLS_PER_AXIS)
+        nx = max(1, math.ceil(width / cell))
+        ny = max(1, math.ceil(height / cell))
+        return xmin, ymin, cell, nx, ny
+
+    def _init_moving(self, moving: Iterable[MovingObstacle]) -> None:
+        if isinstance(moving, MovingObstacle):
+            moving = [moving]
+        if isinstance(moving, (str, bytes, Mapping)) or not isinstance(moving, Iterable):
+            raise TypeError(f"moving must be an iterable of MovingObstacle, got {type(moving)}")
+        obs = tuple(moving)
+        for k, ob in enumerate(obs):
+            if not isinstance(ob, MovingObstacle):
+                raise TypeError(f"moving[{k}] must be a MovingObstacle, got {type(ob).__name__}")
+        self._moving = obs
+        paths, times, first, count, after = [], [], [], [], []
+        segs: list[FloatArray] = []
+        seg_owner: list[IntArray] = []
+        circles: list[tuple[float, float, float]] = []
+        circle_owner: list[int] = []
+        offset = 0
+        for m, ob in enumerate(obs):
+            paths.append(ob.path_xy)
+            times.append(ob.times)
+            first.append(offset)
+            count.append(ob.path_xy.shape[0])
+            after.append(_AFTER_CODES[ob.after])
+            offset += ob.path_xy.shape[0]
+            if isinstance(ob.shape, Polygon):
+                pts = np.asarray(ob.shape.exterior.coords, dtype=np.float64)
+                segs.append(np.hstack((pts[:-1], pts[1:])))
+                seg_owner.append(np.full(pts.shape[0] - 1, m, dtype=np.int64))
+            else:
+                circles.append((0.0, 0.0, float(ob.shape)))
+                circle_owner.append(m)
+        self._mv_path = np.ascontiguousarray(np.concatenate(paths)) if obs else np.empty((0, 2))
+        self._mv_times = np.concatenate(times) if obs else np.empty(0)
+        self._mv_first = np.array(first, dtype=np.int64)
+        self._mv_count = np.array(count, dtype=np.int64)
+        self._mv_after = np.array(after, dtype=np.int64)
+        self._dyn_base_segs = np.concatenate(segs) if segs else np.empty((0, 4))
+        self._dyn_seg_owner = (
+            np.concatenate(seg_owner) if seg_owner else np.empty(0, dtype=np.int64)
+        )
+        self._dyn_base_circles = np.array(circles, dtype=np.float64).reshape(-1, 3)
+        self._dyn_circle_owner = np.array(circle_owner, dtype=np.int64)
+        self._dyn_segs = np.empty_like(self._dyn_base_segs)
+        self._dyn_circles = np.empty_like(self._dyn_base_circles)
+        self._moving_t = math.nan
+        self._place(0.0)
+
+    def _place(self, t: float) -> None:
+        """Move the moving obstacles' work arrays to time ``t``."""
+        if t == self._moving_t or not self._moving:
+            return
+        place_moving(
+            t, self._mv_path, self._mv_times, self._mv_first, self._mv_count, self._mv_after,
+            self._dyn_base_segs, self._dyn_seg_owner, self._dyn_segs,
+            self._dyn_base_circles, self._dyn_circle_owner, self._dyn_circles,
+        )  # fmt: skip
+        self._moving_t = t
+
+    # -------------------------------------------------------------- properties
+    @property
+    def grid(self) -> OccupancyGrid | None:
+        """The world's occupancy grid (a copy of the one given), or None."""
+        return self._grid
+
+    @property
+    def moving(self) -> tuple[MovingObstacle, ...]:
+        """The moving obstacles."""
+        return self._moving
+
+    @property
+    def segments(self) -> FloatArray:
+        """Static edges, rows ``[x0, y0, x1, y1]`` (m), shape (S, 4), read-only."""
+        return self._segs
+
+    @property
+    def circles(self) -> FloatArray:
+        """Static circles, rows ``[cx, cy, r]`` (m), shape (C, 3), read-only."""
+        return self._circles
+
+    @property
+    def bounds(self) -> tuple[float, float, float, float] | None:
+        """``(xmin, ymin, xmax, ymax)`` of the static obstacles and the map, or None.
+
+        Examples
+        --------
+        >>> from shapely.geometry import box
+        >>> World(box(0, 0, 4, 3).exterior).bounds
+        (0.0, 0.0, 4.0, 3.0)
+        """
+        boxes: list[tuple[float, float, float, float]] = []
+        if self._segs.shape[0]:
+            s = self._segs
+            boxes.append((
+                float(min(s[:, 0].min(), s[:, 2].min())), float(min(s[:, 1].min(), s[:, 3].min())),
+                float(max(s[:, 0].max(), s[:, 2].max())), float(max(s[:, 1].max(), s[:, 3].max())),
+            ))  # fmt: skip
+        if self._circles.shape[0]:
+            c = self._circles
+            boxes.append((
+                float((c[:, 0] - c[:, 2]).min()), float((c[:, 1] - c[:, 2]).min()),
+                float((c[:, 0] + c[:, 2]).max()), float((c[:, 1] + c[:, 2]).max()),
+            ))  # fmt: skip
+        if self._grid is not None:
+            g = self._grid
+            corners = g.origin.transform_points(
+                [[0.0, 0.0], [g.width, 0.0], [0.0, g.height], [g.width, g.height]]
+            )
+            lo = corners.min(axis=0)
+            hi = corners.max(axis=0)
+            boxes.append((float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1])))
+        if not boxes:
+            return None
+        arr = np.array(boxes)
+        return (
+            float(arr[:, 0].min()), float(arr[:, 1].min()),
+            float(arr[:, 2].max()), float(arr[:, 3].max()),
+        )  # fmt: skip
+
+    def __repr__(self) -> str:
+        grid = None if self._grid is None else self._grid.shape
+        return (
+            f"World(edges={self._segs.shape[0]}, circles={self._circles.shape[0]}, "
+            f"grid={grid}, moving={len(self._moving)})"
+        )
+
+    # ----------------------------------------------------------------- queries
+    def _cast(
+        self, out: FloatArray, x: float, y: float, heading: float, angles: FloatArray,
+        range_max: float, t: float,
+    ) -> None:  # fmt: skip
+        """Exact ranges into ``out`` (validated inputs; the LiDAR's fast path)."""
+        self._place(t)
+        gx0, gy0, h, nx, ny = self._index
+        gox, goy, gcos, gsin, res = self._occ_frame
+        cast_rays(
+            out, x, y, heading, angles, range_max,
+            self._segs, self._circles, gx0, gy0, h, nx, ny, self._cell_start, self._cell_items,
+            self._occ, self._cheb, gox, goy, gcos, gsin, res,
+            self._dyn_segs, self._dyn_circles,
+        )  # fmt: skip
+
+    def _clearance(
+        self,
+        x: float,
+        y: float,
+        theta: float,
+        radius: float,
+        verts: FloatArray,
+        work: FloatArray,
+        scratch: FloatArray,
+        t: float,
+        limit: float,
+    ) -> float:
+        """Footprint clearance for validated inputs (the simulation's fast path)."""
+        self._place(t)
+        gx0, gy0, h, nx, ny = self._index
+        gox, goy, gcos, gsin, res = self._occ_frame
+        distance: float = footprint_clearance(
+            x, y, theta, radius, verts, work, scratch,
+            self._segs, self._circles, gx0, gy0, h, nx, ny, self._cell_start,
+            self._cell_items, self._occ, gox, goy, gcos, gsin, res,
+            self._dyn_segs, self._dyn_circles, limit,
+        )  # fmt: skip
+        return distance
+
+    def raycast(
+        self,
+        pose: Pose2D | ArrayLike,
+        angles: ArrayLike,
+        *,
+        range_max: float,
+        t: float = 0.0,
+    ) -> FloatArray:
+        """Exact distance to the first obstacle along each ray (no noise, no minimum range).
+
+        Parameters
+        ----------
+        pose : Pose2D or array_like [x, y, theta]
+            Origin and heading of the rays (world frame).
+        angles : array_like, shape (N,)
+            Ray angles relative to the heading, rad.
+        range_max : float
+            Longest distance looked at, m, in (0, 1e6].
+        t : float, default 0.0
+            Time at which the moving obstacles are placed, s.
+
+        Returns
+        -------
+        ndarray, shape (N,)
+            Distances in metres; ``inf`` where nothing lies closer than
+            ``range_max``; 0 when the origin is on or inside an occupied cell or
+            on an edge.
+
+        Examples
+        --------
+        >>> from shapely.geometry import box
+        >>> World(box(-1, -1, 1, 1).exterior).raycast([0, 0, 0], [0.0, 3.0], range_max=0.5)
+        array([inf, inf])
+        """
+        p = _as_query_pose(pose)
+        ang = np.ascontiguousarray(as_float_array(angles, "angles", ndim=1))
+        rmax = positive_float(range_max, "range_max")
+        if rmax > MAX_COORD:
+            raise ValueError(f"range_max must be at most {MAX_COORD:g} m, got {rmax}")
+        out = np.empty(ang.shape[0])
+        self._cast(out, p.x, p.y, p.theta, ang, rmax, finite_float(t, "t"))
+        return out
+
+    def clearance(
+        self,
+        footprint: float | Polygon | ArrayLike,
+        pose: Pose2D | ArrayLike,
+        *,
+        t: float = 0.0,
+    ) -> float:
+        """Distance from a footprint at ``pose`` to the nearest obstacle boundary, m.
+
+        0 when the footprint touches or overlaps an obstacle's boundary (an edge,
+        a circle, an occupied cell, a moving obstacle). A footprint wholly inside
+        a solid obstacle has a positive clearance to its boundary: use
+        :meth:`collides` to test a placement.
+
+        Parameters
+        ----------
+        footprint : float, shapely Polygon or array_like (V, 2)
+            A radius (m) for a round robot or a polygon in the robot frame.
+        pose : Pose2D or array_like [x, y, theta]
+            Where the robot is.
+        t : float, default 0.0
+            Time at which the moving obstacles are placed, s.
+
+        Examples
+        --------
+        >>> from shapely.geometry import box
+        >>> World(box(0, 0, 4, 3).exterior).clearance([[-0.2, -0.1], [0.2, -0.1], [0.2, 0.1],
+        ...                                           [-0.2, 0.1]], (1.0, 1.0, 0.0))
+        0.8
+        """
+        radius, verts = as_footprint(footprint)
+        p = _as_query_pose(pose)
+        work = np.empty_like(verts)
+        scratch = np.empty_like(verts)
+        return self._clearance(
+            p.x, p.y, p.theta, radius, verts, work, scratch, finite_float(t, "t"), math.inf
+        )
+
+    def collides(
+        self,
+        footprint: float | Polygon | ArrayLike,
+        pose: Pose2D | ArrayLike,
+        *,
+        t: float = 0.0,
+    ) -> bool:
+        """Whether a footprint at ``pose`` touches an obstacle or lies inside a solid one.
+
+        Examples
+        --------
+        >>> from shapely.geometry import box
+        >>> world = World([box(2, 2, 3, 3)])
+        >>> world.collides(0.1, (2.5, 2.5, 0.0)), world.collides(0.1, (1.0, 1.0, 0.0))
+        (True, False)
+        """
+        radius, verts = as_footprint(footprint)
+        p = _as_query_pose(pose)
+        time = finite_float(t, "t")
+        work = np.empty_like(verts)
+        scratch = np.empty_like(verts)
+        # A small positive limit: the search stops at once unless something touches.
+        if self._clearance(p.x, p.y, p.theta, radius, verts, work, scratch, time, 1e-9) <= 0.0:
+            return True
+        return self._point_in_solid(p, radius, verts, time)
+
+    def _point_in_solid(self, pose: Pose2D, radius: float, verts: FloatArray, t: float) -> bool:
+        """Whether one point of a footprint that touches no boundary is inside a solid.
+
+        Such a footprint is wholly inside or wholly outside every obstacle, so
+        one of its points decides.
+        """
+        x, y = (pose.x, pose.y) if verts.shape[0] == 0 else pose.transform_points(verts[0])[0]
+        if self._solids is not None and shapely.contains_xy(self._solids, x, y):
+            return True
+        for cx, cy, r in self._solid_circles:
+            if math.hypot(x - cx, y - cy) < r:
+                return True
+        if self._occ.shape[0]:
+            cell = self._grid.world_to_cell([x, y]) if self._grid is not None else None
+            if cell is not None:
+                row, col = int(cell[0]), int(cell[1])
+                rows, cols = self._occ.shape
+                if 0 <= row < rows and 0 <= col < cols and self._occ[row, col]:
+                    return True
+        self._place(t)
+        for cx, cy, r in self._dyn_circles:
+            if math.hypot(x - cx, y - cy) < r:
+                return True
+        for ob in self._moving:
+            if isinstance(ob.shape, Polygon):
+                cx, cy = ob.position_at(t)
+                if shapely.contains_xy(ob.shape, x - cx, y - cy):
+                    return True
+        return False
+
+
+def as_world(value: Any, name: str = "world") -> World:
+    """``value`` if it is a :class:`World`, else a TypeError naming ``name``."""
+    if not isinstance(value, World):
+        raise TypeError(f"{name} must be a World, got {type(value).__name__}")
+    return value
