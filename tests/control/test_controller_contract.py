@@ -59,8 +59,8 @@ def test_bool_complex_and_string_parameters_are_type_errors(name: str) -> None:
 
 
 def test_mode_must_be_a_string_and_range_edges_are_accepted() -> None:
-    with pytest.raises(TypeError, match="mode"):
-        PotentialFieldController(mode=1)  # type: ignore[arg-type]
+    with pytest.raises(TypeError, match="drive"):
+        PotentialFieldController(drive=1)  # type: ignore[arg-type]
     ctl = PotentialFieldController(k_rep=1e12, influence_radius=1e6, max_speed=1e-6, kp=0.0,
                                    ki=1e12, kd=1e12, integral_limit=1e6, stall_timeout=1e6)
     cmd = ctl.step((0, 0, 0), (1, 0, 0.5), dt=1e-6, obstacles=[[0.1, 0.0]])
@@ -78,7 +78,7 @@ def test_control_period_outside_its_range_is_refused_and_leaves_the_state() -> N
 
 
 def test_a_measured_velocity_that_overflows_is_a_value_error() -> None:
-    ctl = PotentialFieldController(mode="diff")
+    ctl = PotentialFieldController(drive="diff")
     with pytest.raises(ValueError, match="velocity"):
         ctl.step((0, 0, math.pi / 4), (1, 0, 0), dt=0.1, velocity=[1.7e308, 1.7e308, 0.0])
     assert ctl.previous_velocity.tolist() == [0.0, 0.0]
@@ -117,7 +117,7 @@ def test_in_range_steps_are_finite(
     mode: str,
     dt: float,
 ) -> None:
-    ctl = PotentialFieldController(mode=mode)  # type: ignore[arg-type]
+    ctl = PotentialFieldController(drive=mode)  # type: ignore[arg-type]
     for _ in range(2):
         cmd = ctl.step(Pose2D(*xy, theta), Pose2D(*goal, 0.0), dt=dt,
                        obstacles=np.array(obstacles).reshape(-1, 2))

@@ -73,7 +73,7 @@ def test_diff_drive_commands_never_exceed_limits(
     max_speed: float, accel: float, decel: float,
 ) -> None:
     ctl = PotentialFieldController(max_speed=max_speed, max_accel=accel, max_decel=decel,
-                                   mode="diff", k_rep=0.5, influence_radius=1.0)
+                                   drive="diff", k_rep=0.5, influence_radius=1.0)
     prev = 0.0
     for pose, target, obstacles, dt in steps:
         cmd = ctl.step(pose, target, dt=dt, obstacles=np.array(obstacles).reshape(-1, 2),
@@ -109,7 +109,7 @@ def run(
 
 @pytest.mark.parametrize("mode", ["omni", "diff"])
 def test_reaches_goal_in_free_space(mode: str) -> None:
-    ctl = PotentialFieldController(mode=mode, max_speed=0.6)  # type: ignore[arg-type]
+    ctl = PotentialFieldController(drive=mode, max_speed=0.6)  # type: ignore[arg-type]
     target = Pose2D(2.5, -1.5, 1.0)
     pose, path = run(ctl, Pose2D(0.0, 0.0, 2.0), target, steps=800)
     assert math.hypot(pose.x - target.x, pose.y - target.y) < 0.05
@@ -227,8 +227,8 @@ def test_bad_arguments() -> None:
         ctl.step(pose, pose, dt=0.1, velocity="fast")  # type: ignore[arg-type]
     with pytest.raises(ValueError, match="obstacles"):
         ctl.step(pose, pose, dt=0.1, obstacles=np.zeros((2, 3)))
-    with pytest.raises(ValueError, match="mode"):
-        PotentialFieldController(mode="tank")  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match="drive"):
+        PotentialFieldController(drive="tank")  # type: ignore[arg-type]
     with pytest.raises(TypeError, match="attraction"):
         PotentialFieldController(KhatibRepulsion([[0.0, 0.0]]))  # type: ignore[arg-type]
     with pytest.raises(ValueError, match="max_accel"):

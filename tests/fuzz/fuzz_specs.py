@@ -1402,7 +1402,7 @@ spec(
 
 def _controller() -> Call:
     return call(
-        PotentialFieldController, call(ConicAttraction, A([0.0, 0.0])), max_speed=0.5, mode="omni"
+        PotentialFieldController, call(ConicAttraction, A([0.0, 0.0])), max_speed=0.5, drive="omni"
     )
 
 
@@ -1416,9 +1416,9 @@ spec(
         call(ConicAttraction, A([0.0, 0.0])),
         k_rep=0.05,
         max_speed=0.5,
-        mode="diff",
+        drive="diff",
     ),
-    kinds={"mode": CONTROLLER_MODE, "attraction": Obj(AttractiveField, optional=True)},
+    kinds={"drive": CONTROLLER_MODE, "attraction": Obj(AttractiveField, optional=True)},
 )
 spec(
     "navkit.control.PotentialFieldController.desired_velocity",

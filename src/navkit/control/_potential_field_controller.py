@@ -99,7 +99,7 @@ class PotentialFieldController:
         Heading PID gains, in [0, 1e12]; the output is a turn rate in rad/s.
     integral_limit : float, default 1.0
         Anti-windup bound on the heading integral (rad·s), in [1e-6, 1e6].
-    mode : {"omni", "diff"}, default "omni"
+    drive : {"omni", "diff"}, default "omni"
         ``"omni"``: output ``(vx, vy, ω)`` in the robot frame. ``"diff"``: a
         differential drive, ``vy = 0`` and ``vx >= 0`` the desired velocity's
         component along the heading.
@@ -140,6 +140,7 @@ class PotentialFieldController:
         "_still_for",
         "_velocity",
         "attraction",
+        "drive",
         "goal_tolerance",
         "influence_radius",
         "k_rep",
@@ -147,7 +148,6 @@ class PotentialFieldController:
         "max_decel",
         "max_omega",
         "max_speed",
-        "mode",
         "stall_radius",
         "stall_timeout",
     )
@@ -166,7 +166,7 @@ class PotentialFieldController:
         ki: float = 0.0,
         kd: float = 0.1,
         integral_limit: float = 1.0,
-        mode: Literal["omni", "diff"] = "omni",
+        drive: Literal["omni", "diff"] = "omni",
         goal_tolerance: float = 0.05,
         stall_radius: float = 0.05,
         stall_timeout: float = 2.0,
@@ -177,10 +177,10 @@ class PotentialFieldController:
             raise TypeError(
                 f"attraction must be an AttractiveField, got {type(attraction).__name__}"
             )
-        if not isinstance(mode, str):
-            raise TypeError(f"mode must be 'omni' or 'diff', got {type(mode).__name__}")
-        if mode not in ("omni", "diff"):
-            raise ValueError(f"mode must be 'omni' or 'diff', got {mode!r}")
+        if not isinstance(drive, str):
+            raise TypeError(f"drive must be 'omni' or 'diff', got {type(drive).__name__}")
+        if drive not in ("omni", "diff"):
+            raise ValueError(f"drive must be 'omni' or 'diff', got {drive!r}")
         self.attraction = attraction
         self.k_rep = in_range(k_rep, "k_rep", MIN_GAIN, MAX_GAIN)
         self.influence_radius = quantity(influence_radius, "influence_radius", "m")
@@ -192,7 +192,7 @@ class PotentialFieldController:
         self.max_accel = quantity(max_accel, "max_accel", "m/s²")
         self.max_decel = quantity(max_decel, "max_decel", "m/s²")
         self.max_omega = quantity(max_omega, "max_omega", "rad/s")
-        self.mode = mode
+        self.drive = drive
         self.goal_tolerance = quantity(goal_tolerance, "goal_tolerance", "m")
         self.stall_radius = quantity(stall_radius, "stall_radius", "m")
         self.stall_timeout = quantity(stall_timeout, "stall_timeout", "s")
@@ -327,7 +327,7 @@ class PotentialFieldController:
         pose : Pose2D or array_like [x, y, theta]
             Robot pose in the world frame.
         target_pose : Pose2D or array_like [x, y, theta]
-            Goal position (attraction) and, in ``"omni"`` mode, target heading.
+            Goal position (attraction) and, for an ``"omni"`` drive, the target heading.
         dt : float
             Control period in seconds, in [1e-6, 1e6].
         obstacles : array_like (M, 2), LaserScan or None, optional
@@ -340,7 +340,7 @@ class PotentialFieldController:
         Returns
         -------
         Twist2D
-            Command in the robot frame: ``(vx, vy, ω)``; ``vy = 0`` in ``"diff"`` mode.
+            Command in the robot frame: ``(vx, vy, ω)``; ``vy = 0`` for a ``"diff"`` drive.
 
         Raises
         ------
@@ -367,7 +367,7 @@ class PotentialFieldController:
         goal = np.array([target_pose.x, target_pose.y])
         want = self._desired(pose, goal, obstacles)
 
-        if self.mode == "omni":
+        if self.drive == "omni":
             v = _limit_change(prev, want, self.max_accel, self.max_decel, step, "velocity")
             heading = target_pose.theta
             vx, vy = c * v[0] + s * v[1], -s * v[0] + c * v[1]
