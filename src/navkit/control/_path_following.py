@@ -16,6 +16,7 @@
 from __future__ import annotations
 
 import math
+from abc import ABC, abstractmethod
 from collections.abc import Mapping
 from typing import Any, Literal
 
@@ -197,7 +198,7 @@ class Polyline:
         return None if s < 0.0 else s
 
 
-class PathTracker:
+class PathTracker(ABC):
     """Skeleton of a stateful path tracker; subclasses implement :meth:`_command`.
 
     Holds the path (:meth:`set_path`), the progress along it, the phase, and
@@ -332,7 +333,7 @@ class PathTracker:
         self._target = None
         self._reset()
 
-    def _reset(self) -> None:
+    def _reset(self) -> None:  # noqa: B027 - an optional hook; most trackers keep no extra state
         """Forget per-path state (subclasses extend it)."""
 
     # ------------------------------------------------------------------ step
@@ -384,10 +385,11 @@ class PathTracker:
             return ZERO_TWIST
         return self._command(self._line, p, step, measured)
 
+    @abstractmethod
     def _command(
         self, line: Polyline, pose: Pose2D, dt: float, measured: Twist2D | None
     ) -> Twist2D:
-        raise NotImplementedError
+        """The tracker's own control law: the command for ``pose`` on ``line`` (validated)."""
 
     # --------------------------------------------------------------- helpers
     def _advance(self, line: Polyline, pose: Pose2D, reach: float = 0.0) -> float:
