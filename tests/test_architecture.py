@@ -4,7 +4,7 @@ The rule, checked on every module of the package (private ones included):
 
 * layers, bottom to top: ``navkit._shared`` and ``navkit.errors`` ← ``geometry`` ←
   ``kinematics``, ``mapping`` ← ``estimation``, ``planning`` ← ``control`` ←
-  ``behaviours`` ← ``sim`` ← the command line (``cli``, ``__main__``);
+  ``behaviours`` ← ``sim`` ← ``plot`` ← the command line (``cli``) ← ``__main__``;
 * a module may import ``navkit._shared``, ``navkit.errors``, private modules of
   its own subpackage, and the public faces (no ``_``-prefixed part) of
   subpackages in lower layers — nothing else: not a package on its own layer,
@@ -36,8 +36,9 @@ RANK: dict[str, int] = {
     "control": 4,
     "behaviours": 5,
     "sim": 6,
-    "cli": 7,
-    "__main__": 7,
+    "plot": 7,
+    "cli": 8,
+    "__main__": 9,
 }
 
 

@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 import numbers
 
-__all__ = ["FilterError", "NavkitError", "NoPathError"]
+__all__ = ["DataNotFoundError", "FilterError", "NavkitError", "NoPathError"]
 
 
 _MAX_EXPANDED = 2**63 - 1
@@ -80,4 +80,19 @@ class FilterError(NavkitError):
     FilterError True
     >>> fusion.t, fusion.update_yaw(0.1, 0.1, variance=1e-3).accepted
     (0.0, True)
+    """
+
+
+class DataNotFoundError(NavkitError, FileNotFoundError):
+    """A data set navkit was asked to use (a map, a log) is not where it looked.
+
+    Raised by the experiments that run on real data (``../shared/data`` beside
+    a checkout, or the folder named by ``NAVKIT_DATA`` or ``data_dir=``). It is
+    also a ``FileNotFoundError``.
+
+    Examples
+    --------
+    >>> err = DataNotFoundError("turtlebot3_world.yaml not found in /tmp")
+    >>> isinstance(err, FileNotFoundError), isinstance(err, NavkitError)
+    (True, True)
     """

@@ -215,6 +215,27 @@ class MovingObstacle:
     ) -> MovingObstacle:
         """An obstacle at ``start_xy`` at t = 0 moving at ``velocity_xy`` (m/s) forever.
 
+        Parameters
+        ----------
+        shape : float or shapely Polygon
+            A radius (m) for a disc, or a polygon given relative to the
+            obstacle's reference point (its position).
+        start_xy : array_like, shape (2,)
+            Position of the reference point at t = 0, m (keyword-only).
+        velocity_xy : array_like, shape (2,)
+            Constant velocity, m/s, each component within ±1e3 (keyword-only).
+
+        Returns
+        -------
+        MovingObstacle
+            A two-waypoint obstacle (t = 0 and t = 1 s) with ``after="extend"``;
+            before t = 0 it waits at ``start_xy``.
+
+        Raises
+        ------
+        TypeError, ValueError
+            An argument of the wrong type, shape or range, naming it.
+
         Examples
         --------
         >>> ob = MovingObstacle.constant_velocity(0.2, start_xy=(1, 1), velocity_xy=(0, -1))
@@ -243,6 +264,32 @@ class MovingObstacle:
         (m/s, > 0; the first waypoint is left at t = 0). With ``loop`` it starts
         over after the last waypoint, otherwise it stops there.
 
+        Parameters
+        ----------
+        shape : float or shapely Polygon
+            A radius (m) for a disc, or a polygon given relative to the
+            obstacle's reference point (its position).
+        waypoints_xy : array_like, shape (K, 2)
+            Waypoints of the reference point, m.
+        times : array_like, shape (K,), optional
+            Time of each waypoint, s, strictly increasing (keyword-only).
+        speed : float, optional
+            Constant speed along the legs, m/s, in (0, 1e3]; consecutive
+            waypoints must differ (keyword-only).
+        loop : bool, default False
+            Start over from the first waypoint after the last (keyword-only).
+
+        Returns
+        -------
+        MovingObstacle
+            The obstacle, ``after="loop"`` or ``"stop"``.
+
+        Raises
+        ------
+        TypeError, ValueError
+            Both or neither of ``times`` and ``speed``, or an argument of the
+            wrong type, shape or range, naming it.
+
         Examples
         --------
         >>> ob = MovingObstacle.scripted(0.2, [(0, 0), (1, 0), (1, 1)], times=[0, 1, 3])
@@ -266,7 +313,23 @@ class MovingObstacle:
         return cls(shape, pts, stamps, after="loop" if as_bool(loop, "loop") else "stop")
 
     def position_at(self, t: float) -> FloatArray:
-        """Position ``(x, y)`` of the reference point at time ``t`` (s), shape (2,)."""
+        """Position ``(x, y)`` of the reference point at time ``t`` (s), shape (2,).
+
+        Parameters
+        ----------
+        t : float
+            Time, s (finite).
+
+        Returns
+        -------
+        ndarray, shape (2,)
+            New array ``(x, y)``, m, interpolated between the waypoints.
+
+        Raises
+        ------
+        TypeError, ValueError
+            ``t`` not a finite real number.
+        """
         time = finite_float(t, "t")
         first = np.zeros(1, dtype=np.int64)
         count = np.array([self.path_xy.shape[0]], dtype=np.int64)
@@ -282,6 +345,17 @@ class MovingObstacle:
 
     def geometry_at(self, t: float) -> BaseGeometry:
         """The obstacle at time ``t`` as a shapely geometry (a disc as a fine polygon).
+
+        Parameters
+        ----------
+        t : float
+            Time, s (finite).
+
+        Returns
+        -------
+        shapely geometry
+            The shape translated to :meth:`position_at` ``(t)``, world frame (m);
+            a disc as a polygon of 256 vertices.
 
         Examples
         --------
@@ -445,7 +519,9 @@ class World:
         self._circles: FloatArray = _read_only(
             np.array(circles, dtype=np.float64).reshape(-1, 3)
         )
-        self._solid_circles: FloatArray = np.array(solid_circles, dtype=np.float64).reshape(-1, 3)
+        self._solid_circles: FloatArray = _read_only(
+            np.array(solid_circles, dtype=np.float64).reshape(-1, 3)
+        )
         self._solids: BaseGeometry | None = None
         if solids:
             union = shapely.union_all(solids)
@@ -594,6 +670,23 @@ class World:
     def circles(self) -> FloatArray:
         """Static circles, rows ``[cx, cy, r]`` (m), shape (C, 3), read-only."""
         return self._circles
+
+    @property
+    def solid_circles(self) -> FloatArray:
+        """The solid ones among :attr:`circles` (``Circle(..., solid=True)``), shape (K, 3).
+
+        Rows ``[cx, cy, r]`` (m), read-only; a non-solid circle is only its rim.
+        """
+        return self._solid_circles
+
+    @property
+    def solids(self) -> BaseGeometry | None:
+        """Union of the solid polygons (their inside is an obstacle), or None.
+
+        Lines and polygon rings given as walls are not in it; a grid's occupied
+        cells are edges only (:attr:`segments`).
+        """
+        return self._solids
 
     @property
     def bounds(self) -> tuple[float, float, float, float] | None:
@@ -747,6 +840,11 @@ class World:
         t : float, default 0.0
             Time at which the moving obstacles are placed, s.
 
+        Returns
+        -------
+        float
+            Distance, m, >= 0 (``inf`` in a world with nothing in it).
+
         Examples
         --------
         >>> from shapely.geometry import box
@@ -770,6 +868,21 @@ class World:
         t: float = 0.0,
     ) -> bool:
         """Whether a footprint at ``pose`` touches an obstacle or lies inside a solid one.
+
+        Parameters
+        ----------
+        footprint : float, shapely Polygon or array_like (V, 2)
+            A radius (m) for a round robot or a polygon in the robot frame.
+        pose : Pose2D or array_like [x, y, theta]
+            Where the robot is.
+        t : float, default 0.0
+            Time at which the moving obstacles are placed, s (keyword-only).
+
+        Returns
+        -------
+        bool
+            True when the footprint touches an obstacle's boundary or lies
+            inside a solid obstacle.
 
         Examples
         --------

@@ -1,0 +1,77 @@
+"""Where the real data sets are: ``data_dir=``, ``$NAVKIT_DATA``, or ``shared/data`` nearby."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+from navkit.errors import DataNotFoundError
+
+__all__ = ["find_data"]
+
+#: Environment variable naming the data folder (the one holding ``ros-map-server-maps``, ...).
+ENV_VAR = "NAVKIT_DATA"
+
+
+def _candidates(data_dir: str | os.PathLike[str] | None) -> list[Path]:
+    if data_dir is not None:
+        return [Path(data_dir)]
+    found: list[Path] = []
+    env = os.environ.get(ENV_VAR)
+    if env:
+        found.append(Path(env))
+    here = Path.cwd().resolve()
+    bases = [here, *list(here.parents)[:3]]
+    # A checkout (src layout) keeps the data beside its root: <root>/../shared/data.
+    source = Path(__file__).resolve().parents
+    if len(source) > 5:
+        bases.append(source[5])
+    found.extend(base / "shared" / "data" for base in bases)
+    return found
+
+
+def find_data(relative: str, *, data_dir: str | os.PathLike[str] | None = None) -> Path:
+    """The path of a file or folder of the real data sets.
+
+    Parameters
+    ----------
+    relative : str
+        Path inside the data folder, e.g.
+        ``"ros-map-server-maps/turtlebot3_world/turtlebot3_world.yaml"``.
+    data_dir : str or path-like, optional
+        The data folder. Default: ``$NAVKIT_DATA``, else the first
+        ``shared/data`` found in the working directory, its parents (up to
+        three levels) or beside the navkit checkout.
+
+    Returns
+    -------
+    Path
+        An existing path.
+
+    Raises
+    ------
+    DataNotFoundError
+        When no candidate folder holds ``relative``.
+
+    Examples
+    --------
+    >>> try:
+    ...     find_data("no-such-set/x.yaml", data_dir="/nonexistent")
+    ... except DataNotFoundError as exc:
+    ...     print("not found")
+    not found
+    """
+    if not isinstance(relative, str) or not relative:
+        raise TypeError(f"relative must be a non-empty str, got {relative!r}")
+    if data_dir is not None and not isinstance(data_dir, (str, os.PathLike)):
+        raise TypeError(f"data_dir must be a path, got {type(data_dir).__name__}")
+    looked = _candidates(data_dir)
+    for base in looked:
+        path = base / relative
+        if path.exists():
+            return path
+    where = ", ".join(str(p) for p in dict.fromkeys(looked))
+    raise DataNotFoundError(
+        f"{relative} not found in {where}; set {ENV_VAR} or pass data_dir= "
+        "(the folder holding ros-map-server-maps, carmen-logs, ...)"
+    )
