@@ -37,88 +37,96 @@ test1 (Husky, 395 s parking-lot loop, IMU mounted rotated, GPS)
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
 
 from navkit.estimation import FusionResult, FusionStatus, MeasurementLog, PlanarFusion
+from navkit.geometry import quaternion_to_matrix, quaternion_to_yaw, rpy_to_quaternion
+from navkit.mapping.io import BagImu, BagOdometry, read_bag_imu, read_bag_odometry
 
-Bag = dict[str, dict[str, np.ndarray]]
-FloatArray = np.ndarray
+pytest.importorskip("rosbags")
 
-
-def quaternion_to_matrix(q: FloatArray) -> FloatArray:
-    """Rotation matrices (T, 3, 3) of unit quaternions (T, 4) ordered (x, y, z, w)."""
-    x, y, z, w = (q[:, i] for i in range(4))
-    return np.stack(
-        [
-            np.stack([1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)], -1),
-            np.stack([2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)], -1),
-            np.stack([2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)], -1),
-        ],
-        axis=1,
-    )
+FOLDER = "robot-localization-odom-imu-bags"
 
 
-def rpy_matrix(roll: float, pitch: float, yaw: float) -> FloatArray:
-    """R = Rz(yaw) Ry(pitch) Rx(roll), the ROS static-transform convention."""
-    cr, sr = np.cos(roll), np.sin(roll)
-    cp, sp = np.cos(pitch), np.sin(pitch)
-    cy, sy = np.cos(yaw), np.sin(yaw)
-    rx = np.array([[1, 0, 0], [0, cr, -sr], [0, sr, cr]])
-    ry = np.array([[cp, 0, sp], [0, 1, 0], [-sp, 0, cp]])
-    rz = np.array([[cy, -sy, 0], [sy, cy, 0], [0, 0, 1]])
-    return np.asarray(rz @ ry @ rx, dtype=np.float64)
+class Bag:
+    """Wheel odometry, IMU (and test1's GPS fixes, from the CSV dump) of one bag."""
+
+    def __init__(self, shared_data: Path, name: str) -> None:
+        path = shared_data / FOLDER / f"{name}.bag"
+        self.odom: BagOdometry = read_bag_odometry(path)
+        self.imu: BagImu = read_bag_imu(path, topic="/imu/data")
+        gps = shared_data / FOLDER / "csv_extract" / f"{name}_gps_fix.csv"
+        if gps.exists():  # sensor_msgs/NavSatFix has no navkit reader
+            with gps.open() as fh:
+                header = fh.readline().strip().split(",")
+            cols = [header.index(c) for c in ("stamp", "latitude", "longitude")]
+            table = np.loadtxt(gps, delimiter=",", skiprows=1, usecols=cols, ndmin=2)
+            self.gps = dict(zip(("stamp", "latitude", "longitude"), table.T, strict=True))
 
 
-def imu_in_base(imu: dict[str, np.ndarray], mount: np.ndarray) -> tuple[np.ndarray, ...]:
+@pytest.fixture(scope="module")
+def bag_test1(shared_data: Path) -> Bag:
+    """Husky parking-lot run: wheel odometry, rotated IMU and GPS."""
+    return Bag(shared_data, "test1")
+
+
+@pytest.fixture(scope="module")
+def bag_test2(shared_data: Path) -> Bag:
+    """Jackal run: wheel odometry and IMU."""
+    return Bag(shared_data, "test2")
+
+
+def imu_in_base(imu: BagImu, mount: np.ndarray) -> tuple[np.ndarray, ...]:
     """Yaw, pitch-projection factor and yaw rate of base_link from an IMU mounted as ``mount``."""
-    quat = np.column_stack((imu["qx"], imu["qy"], imu["qz"], imu["qw"]))
-    r_world_base = quaternion_to_matrix(quat) @ mount.T
-    yaw = np.arctan2(r_world_base[:, 1, 0], r_world_base[:, 0, 0])
+    base = imu.to_base(mount)
+    yaw = np.asarray(quaternion_to_yaw(base.orientations))
+    r_world_base = quaternion_to_matrix(base.orientations)
     horizontal = np.hypot(r_world_base[:, 0, 0], r_world_base[:, 1, 0])  # cos(pitch)
-    gyro = np.column_stack((imu["wx"], imu["wy"], imu["wz"])) @ mount.T
-    return yaw, horizontal, gyro[:, 2]
+    return yaw, horizontal, base.angular_velocities[:, 2]
 
 
 def fuse(
     bag: Bag, mount: np.ndarray, *, use_yaw: bool, use_wheel_rate: bool, project: bool
 ) -> FusionResult:
-    odom, imu = bag["odom"], bag["imu"]
+    odom, imu = bag.odom, bag.imu
     yaw, horizontal, rate = imu_in_base(imu, mount)
-    speed = odom["vx"] * (np.interp(odom["stamp"], imu["stamp"], horizontal) if project else 1.0)
+    speed = odom.twists[:, 0] * (np.interp(odom.times, imu.times, horizontal) if project else 1.0)
     if use_wheel_rate:
-        odometry: tuple[np.ndarray, ...] = (odom["stamp"], speed, odom["wz"])
+        odometry: tuple[np.ndarray, ...] = (odom.times, speed, odom.twists[:, 2])
     else:
-        odometry = (odom["stamp"], speed)
+        odometry = (odom.times, speed)
     streams: dict[str, object] = {
         "odometry": odometry,
-        "odometry_variance": (odom["twist_cov_vxvx"], 0.03),
-        "yaw_rate": (imu["stamp"], rate),
-        "yaw_rate_variance": imu["gyr_cov_zz"],
+        "odometry_variance": (odom.twist_covariances[:, 0, 0], 0.03),
+        "yaw_rate": (imu.times, rate),
+        "yaw_rate_variance": imu.angular_velocity_covariances[:, 2, 2],
     }
     if use_yaw:
-        streams["yaw"] = (imu["stamp"], yaw)
-        streams["yaw_variance"] = imu["ori_cov_zz"]
+        streams["yaw"] = (imu.times, yaw)
+        streams["yaw_variance"] = imu.orientation_covariances[:, 2, 2]
     log = MeasurementLog.from_streams(**streams)  # type: ignore[arg-type]
-    t0 = min(odom["stamp"][0], imu["stamp"][0])
+    t0 = min(odom.times[0], imu.times[0])
     result = PlanarFusion([0.0, 0.0, yaw[0], 0.0, 0.0, 0.0], t0=t0).update_batch(log)
     assert np.all(result.status == FusionStatus.ACCEPTED)
     return result
 
 
 def test_jackal_end_position_within_robot_localization_tolerance(bag_test2: Bag) -> None:
-    result = fuse(bag_test2, np.eye(3), use_yaw=True, use_wheel_rate=False, project=True)
+    level = np.array([0.0, 0.0, 0.0, 1.0])
+    result = fuse(bag_test2, level, use_yaw=True, use_wheel_rate=False, project=True)
     end = result.final_pose
     miss = math.hypot(end.x - 1.0206, end.y - 3.4292)
     assert miss < 0.1383
     assert end.x == pytest.approx(1.0109, abs=1e-3)
     assert end.y == pytest.approx(3.4306, abs=1e-3)
-    flat = fuse(bag_test2, np.eye(3), use_yaw=True, use_wheel_rate=False, project=False)
+    flat = fuse(bag_test2, level, use_yaw=True, use_wheel_rate=False, project=False)
     assert math.hypot(flat.final_pose.x - 1.0206, flat.final_pose.y - 3.4292) > 0.1383
 
 
-HUSKY_MOUNT = rpy_matrix(math.pi / 2, 0.0, -math.pi / 2)  # base_link -> imu_link
+HUSKY_MOUNT = rpy_to_quaternion(math.pi / 2, 0.0, -math.pi / 2)  # base_link -> imu_link
 
 
 def gps_local(gps: dict[str, np.ndarray]) -> np.ndarray:
@@ -146,8 +154,8 @@ def drift_vs_gps(
 
 
 def test_husky_fusion_against_gps(bag_test1: Bag) -> None:
-    odom, gps = bag_test1["odom"], bag_test1["gps"]
-    wheel_rms, wheel_end = drift_vs_gps(odom["stamp"], np.column_stack((odom["x"], odom["y"])), gps)
+    odom, gps = bag_test1.odom, bag_test1.gps
+    wheel_rms, wheel_end = drift_vs_gps(odom.times, odom.poses[:, :2], gps)
     gyro = fuse(bag_test1, HUSKY_MOUNT, use_yaw=False, use_wheel_rate=True, project=False)
     gyro_rms, gyro_end = drift_vs_gps(gyro.times, gyro.states[:, :2], gps)
     full = fuse(bag_test1, HUSKY_MOUNT, use_yaw=True, use_wheel_rate=True, project=False)

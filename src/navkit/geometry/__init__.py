@@ -14,14 +14,28 @@ argument; no function returns NaN.
 from navkit.geometry._angles import angle_diff, wrap_angle
 from navkit.geometry._integrate import integrate, rollout
 from navkit.geometry._pose import Pose2D, Twist2D, as_pose, as_twist
+from navkit.geometry._quaternion import (
+    ImuInBase,
+    imu_to_base,
+    quaternion_to_matrix,
+    quaternion_to_yaw,
+    rpy_to_quaternion,
+    yaw_to_quaternion,
+)
 
 __all__ = [
+    "ImuInBase",
     "Pose2D",
     "Twist2D",
     "angle_diff",
     "as_pose",
     "as_twist",
+    "imu_to_base",
     "integrate",
+    "quaternion_to_matrix",
+    "quaternion_to_yaw",
     "rollout",
+    "rpy_to_quaternion",
     "wrap_angle",
+    "yaw_to_quaternion",
 ]

@@ -34,6 +34,15 @@ Examples
 array([100,   0,   0, 100], dtype=int8)
 """
 
+from navkit.mapping.io._bags import (
+    BagImu,
+    BagOdometry,
+    BagScans,
+    bag_topics,
+    read_bag_imu,
+    read_bag_odometry,
+    read_bag_scans,
+)
 from navkit.mapping.io._carmen import CarmenLog, read_carmen
 from navkit.mapping.io._map_files import read_map, write_map
 from navkit.mapping.io._ros_msgs import (
@@ -44,10 +53,17 @@ from navkit.mapping.io._ros_msgs import (
 )
 
 __all__ = [
+    "BagImu",
+    "BagOdometry",
+    "BagScans",
     "CarmenLog",
     "OccupancyGridMsgFields",
+    "bag_topics",
     "grid_from_msg",
     "grid_to_msg_fields",
+    "read_bag_imu",
+    "read_bag_odometry",
+    "read_bag_scans",
     "read_carmen",
     "read_map",
     "scan_from_msg",

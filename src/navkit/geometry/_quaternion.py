@@ -1,0 +1,346 @@
+"""Unit quaternions as ROS writes them, ``(x, y, z, w)``: yaw, matrices and IMU mountings.
+
+Every function is vectorised over leading axes. Quaternions need not be unit
+length (they are normalised; float32 rounding in messages is harmless), and a
+zero quaternion — ROS 1's default value of an unset orientation — means no
+rotation, as in :func:`navkit.mapping.io.grid_from_msg`.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from navkit._shared.types import FloatArray
+from navkit._shared.validation import as_float_array
+
+__all__ = [
+    "ImuInBase",
+    "imu_to_base",
+    "quaternion_to_matrix",
+    "quaternion_to_yaw",
+    "rpy_to_quaternion",
+    "yaw_to_quaternion",
+]
+
+
+def _quaternions(value: ArrayLike, name: str) -> FloatArray:
+    """``value`` (..., 4) as unit quaternions; zero rows become the identity ``(0, 0, 0, 1)``."""
+    q = as_float_array(value, name)
+    if q.ndim == 0 or q.shape[-1] != 4:
+        raise ValueError(f"{name} must have shape (..., 4) ordered (x, y, z, w), got {q.shape}")
+    # Scale by the largest component first so huge values cannot overflow when squared.
+    big = np.max(np.abs(q), axis=-1, keepdims=True)
+    zero = big == 0.0
+    scaled = q / np.where(zero, 1.0, big)
+    norm = np.sqrt(np.sum(scaled * scaled, axis=-1, keepdims=True))
+    unit = scaled / np.where(zero, 1.0, norm)
+    identity = np.array([0.0, 0.0, 0.0, 1.0])
+    return np.asarray(np.where(zero, identity, unit), dtype=np.float64)
+
+
+def _vectors(value: ArrayLike, name: str) -> FloatArray:
+    v = as_float_array(value, name)
+    if v.ndim == 0 or v.shape[-1] != 3:
+        raise ValueError(f"{name} must have shape (..., 3), got {v.shape}")
+    return v
+
+
+def _readonly(arr: FloatArray) -> FloatArray:
+    out = np.array(arr, dtype=np.float64, copy=True)
+    out.flags.writeable = False
+    return out
+
+
+def _multiply(a: FloatArray, b: FloatArray) -> FloatArray:
+    """Hamilton products ``a ⊗ b`` of ``(x, y, z, w)`` quaternions (broadcast)."""
+    ax, ay, az, aw = (a[..., i] for i in range(4))
+    bx, by, bz, bw = (b[..., i] for i in range(4))
+    return np.stack(
+        (
+            aw * bx + ax * bw + ay * bz - az * by,
+            aw * by - ax * bz + ay * bw + az * bx,
+            aw * bz + ax * by - ay * bx + az * bw,
+            aw * bw - ax * bx - ay * by - az * bz,
+        ),
+        axis=-1,
+    )
+
+
+def _matrices(q: FloatArray) -> FloatArray:
+    """Rotation matrices (..., 3, 3) of unit quaternions (..., 4)."""
+    x, y, z, w = (q[..., i] for i in range(4))
+    rows = (
+        (1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)),
+        (2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)),
+        (2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)),
+    )
+    return np.stack([np.stack(row, axis=-1) for row in rows], axis=-2)
+
+
+def quaternion_to_yaw(quaternion: ArrayLike) -> float | FloatArray:
+    """Yaw (heading about z) of quaternions ``(x, y, z, w)``, wrapped to (-π, π].
+
+    The yaw of the ROS roll-pitch-yaw convention ``R = Rz(yaw) Ry(pitch) Rx(roll)``:
+    the heading of the rotated x axis projected on the ground plane, what a
+    planar filter needs from a 3-D orientation (``nav_msgs/Odometry``,
+    ``sensor_msgs/Imu``). Where that axis points straight up or down (pitch
+    ±90°) the yaw is undefined and 0 is returned.
+
+    Parameters
+    ----------
+    quaternion : array_like, shape (..., 4)
+        Quaternions ordered ``(x, y, z, w)``, finite; normalised here (a zero
+        quaternion means no rotation).
+
+    Returns
+    -------
+    float or ndarray, shape (...)
+        A float for one quaternion, otherwise an array of the leading shape.
+
+    Raises
+    ------
+    TypeError
+        Values that are not real numbers.
+    ValueError
+        Non-finite values or a last axis that is not 4 long.
+
+    Examples
+    --------
+    >>> import math
+    >>> quaternion_to_yaw([0.0, 0.0, math.sin(0.25), math.cos(0.25)])
+    0.5
+    >>> quaternion_to_yaw([[0.0, 0.0, 1.0, 0.0], [0.0, 0.0, 0.0, 0.0]]).round(6)
+    array([3.141593, 0.      ])
+    """
+    q = _quaternions(quaternion, "quaternion")
+    x, y, z, w = (q[..., i] for i in range(4))
+    yaw = np.arctan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
+    # Pitch ±90°: both arguments are rounding noise; call the yaw 0 rather than noise.
+    horizontal = np.hypot(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
+    yaw = np.where(horizontal < 1e-12, 0.0, yaw)
+    yaw = np.where(yaw <= -math.pi, math.pi, yaw)
+    if yaw.ndim == 0:
+        return float(yaw)
+    return np.asarray(yaw, dtype=np.float64)
+
+
+def yaw_to_quaternion(yaw: ArrayLike) -> FloatArray:
+    """Quaternions ``(x, y, z, w)`` of rotations by ``yaw`` about z.
+
+    Parameters
+    ----------
+    yaw : float or array_like, shape (...)
+        Yaw angles, rad, finite.
+
+    Returns
+    -------
+    ndarray, shape (..., 4)
+        ``(0, 0, sin(yaw / 2), cos(yaw / 2))``.
+
+    Examples
+    --------
+    >>> yaw_to_quaternion(0.0)
+    array([0., 0., 0., 1.])
+    >>> float(quaternion_to_yaw(yaw_to_quaternion(2.5)))
+    2.5
+    """
+    half = 0.5 * as_float_array(yaw, "yaw")
+    zero = np.zeros_like(half)
+    return np.stack((zero, zero, np.sin(half), np.cos(half)), axis=-1)
+
+
+def rpy_to_quaternion(roll: ArrayLike, pitch: ArrayLike, yaw: ArrayLike) -> FloatArray:
+    """Quaternions ``(x, y, z, w)`` of ``R = Rz(yaw) Ry(pitch) Rx(roll)`` (ROS's convention).
+
+    What ``tf``'s static transforms and URDF joints write as ``rpy``: roll about
+    x first, then pitch about y, then yaw about z, all about the fixed axes.
+
+    Parameters
+    ----------
+    roll, pitch, yaw : float or array_like
+        Angles, rad, finite; broadcast against each other.
+
+    Returns
+    -------
+    ndarray, shape (broadcast shape..., 4)
+
+    Raises
+    ------
+    TypeError
+        Values that are not real numbers.
+    ValueError
+        Non-finite values or shapes that do not broadcast.
+
+    Examples
+    --------
+    >>> import math
+    >>> rpy_to_quaternion(0.0, 0.0, math.pi / 2).round(6)
+    array([0.      , 0.      , 0.707107, 0.707107])
+    """
+    arrays = [as_float_array(v, n) for v, n in ((roll, "roll"), (pitch, "pitch"), (yaw, "yaw"))]
+    try:
+        r, p, y = np.broadcast_arrays(*arrays)
+    except ValueError:
+        shapes = ", ".join(str(a.shape) for a in arrays)
+        raise ValueError(f"roll, pitch and yaw must broadcast together, got {shapes}") from None
+    cr, sr = np.cos(0.5 * r), np.sin(0.5 * r)
+    cp, sp = np.cos(0.5 * p), np.sin(0.5 * p)
+    cy, sy = np.cos(0.5 * y), np.sin(0.5 * y)
+    return np.stack(
+        (
+            sr * cp * cy - cr * sp * sy,
+            cr * sp * cy + sr * cp * sy,
+            cr * cp * sy - sr * sp * cy,
+            cr * cp * cy + sr * sp * sy,
+        ),
+        axis=-1,
+    )
+
+
+def quaternion_to_matrix(quaternion: ArrayLike) -> FloatArray:
+    """Rotation matrices of quaternions ``(x, y, z, w)``.
+
+    Parameters
+    ----------
+    quaternion : array_like, shape (..., 4)
+        Finite; normalised here (a zero quaternion means no rotation).
+
+    Returns
+    -------
+    ndarray, shape (..., 3, 3)
+        ``R`` with ``v_parent = R @ v_child`` for the frame the quaternion
+        orients.
+
+    Examples
+    --------
+    >>> import math
+    >>> quaternion_to_matrix([0.0, 0.0, math.sin(math.pi / 4), math.cos(math.pi / 4)]).round(6)
+    array([[ 0., -1.,  0.],
+           [ 1.,  0.,  0.],
+           [ 0.,  0.,  1.]])
+    """
+    return np.asarray(_matrices(_quaternions(quaternion, "quaternion")), dtype=np.float64)
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class ImuInBase:
+    """IMU readings expressed in the robot's base frame (:func:`imu_to_base`).
+
+    Attributes
+    ----------
+    orientations : ndarray, shape (..., 4)
+        Orientation of the base frame in the IMU's world frame, unit quaternions
+        ``(x, y, z, w)``.
+    angular_velocities : ndarray, shape (..., 3)
+        Angular velocity of the base, rad/s, in the base frame.
+    linear_accelerations : ndarray, shape (..., 3)
+        Linear acceleration, m/s², in the base frame (gravity as the IMU
+        measured it; the lever arm of the mounting offset is not removed).
+
+    Every array is a read-only float64 copy. Shapes are checked (the same
+    leading shape for all three), values must be finite.
+
+    Examples
+    --------
+    >>> readings = ImuInBase([0.0, 0.0, 0.0, 1.0], [0.0, 0.0, 0.1], [0.0, 0.0, 9.8])
+    >>> readings.angular_velocities
+    array([0. , 0. , 0.1])
+    """
+
+    orientations: FloatArray
+    angular_velocities: FloatArray
+    linear_accelerations: FloatArray
+
+    def __post_init__(self) -> None:
+        q = as_float_array(self.orientations, "orientations")
+        if q.ndim == 0 or q.shape[-1] != 4:
+            raise ValueError(f"orientations must have shape (..., 4), got {q.shape}")
+        lead = q.shape[:-1]
+        w = _vectors(self.angular_velocities, "angular_velocities")
+        a = _vectors(self.linear_accelerations, "linear_accelerations")
+        for name, arr in (("angular_velocities", w), ("linear_accelerations", a)):
+            if arr.shape[:-1] != lead:
+                raise ValueError(
+                    f"{name} must have shape {(*lead, 3)} to match orientations, got {arr.shape}"
+                )
+        object.__setattr__(self, "orientations", _readonly(q))
+        object.__setattr__(self, "angular_velocities", _readonly(w))
+        object.__setattr__(self, "linear_accelerations", _readonly(a))
+
+
+def imu_to_base(
+    orientations: ArrayLike,
+    angular_velocities: ArrayLike,
+    linear_accelerations: ArrayLike,
+    *,
+    mounting: ArrayLike,
+) -> ImuInBase:
+    """Rotate IMU readings from the IMU's frame into the robot's base frame.
+
+    With ``R_m`` the mounting rotation (the rotation of the ``base_link ->
+    imu_link`` transform: ``v_base = R_m v_imu``), vectors become
+    ``R_m ω`` and ``R_m a``, and the orientation ``q`` (the IMU frame in the
+    world) becomes ``q ⊗ m⁻¹``, the base frame in the world — what
+    robot_localization does with an IMU that is not mounted level and facing
+    forward. Only the rotation is applied: the lever arm of the mounting
+    offset (centripetal and tangential terms) is ignored, as
+    robot_localization does.
+
+    Parameters
+    ----------
+    orientations : array_like, shape (..., 4)
+        IMU orientations ``(x, y, z, w)``, finite; normalised (a zero quaternion,
+        ROS's unset orientation, is taken as no rotation).
+    angular_velocities : array_like, shape (..., 3)
+        Angular velocities in the IMU frame, rad/s, same leading shape.
+    linear_accelerations : array_like, shape (..., 3)
+        Linear accelerations in the IMU frame, m/s², same leading shape.
+    mounting : array_like, shape (4,)
+        Rotation of the IMU frame relative to the base frame, quaternion
+        ``(x, y, z, w)`` (non-zero; e.g. ``rpy_to_quaternion(roll, pitch, yaw)``
+        of a static transform).
+
+    Returns
+    -------
+    ImuInBase
+        Orientations, angular velocities and accelerations of the base.
+
+    Raises
+    ------
+    TypeError
+        Values that are not real numbers.
+    ValueError
+        Non-finite values, wrong or mismatched shapes, a zero ``mounting``.
+
+    Examples
+    --------
+    An IMU mounted yawed by +90° sees the robot's forward acceleration on its
+    -y axis and reports a heading 90° larger than the robot's:
+
+    >>> import math
+    >>> mounting = rpy_to_quaternion(0.0, 0.0, math.pi / 2)
+    >>> imu = imu_to_base(yaw_to_quaternion(math.pi / 2), [0.0, 0.0, 0.2], [0.0, -1.0, 9.8],
+    ...                   mounting=mounting)
+    >>> imu.linear_accelerations.round(6) + 0.0, round(quaternion_to_yaw(imu.orientations), 6)
+    (array([1. , 0. , 9.8]), 0.0)
+    """
+    q = _quaternions(orientations, "orientations")
+    w = _vectors(angular_velocities, "angular_velocities")
+    a = _vectors(linear_accelerations, "linear_accelerations")
+    lead = q.shape[:-1]
+    for name, arr in (("angular_velocities", w), ("linear_accelerations", a)):
+        if arr.shape[:-1] != lead:
+            raise ValueError(
+                f"{name} must have shape {(*lead, 3)} to match orientations, got {arr.shape}"
+            )
+    raw_m = as_float_array(mounting, "mounting", shape=(4,))
+    if not np.any(raw_m):
+        raise ValueError("mounting must be a non-zero quaternion (x, y, z, w)")
+    m = _quaternions(raw_m, "mounting")
+    rot = _matrices(m)
+    inverse = m * np.array([-1.0, -1.0, -1.0, 1.0])
+    return ImuInBase(_multiply(q, inverse), w @ rot.T, a @ rot.T)

@@ -1,0 +1,839 @@
+"""ROS 1 ``.bag`` files and ROS 2 bag folders, read without ROS (the ``rosbags`` package).
+
+One reader per message type, each returning a frozen result of time-stamped
+arrays: :func:`read_bag_scans` (``sensor_msgs/LaserScan``),
+:func:`read_bag_odometry` (``nav_msgs/Odometry``) and :func:`read_bag_imu`
+(``sensor_msgs/Imu``); :func:`bag_topics` lists what a bag holds.
+"""
+
+from __future__ import annotations
+
+import bz2
+import importlib
+import os
+import struct
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, NamedTuple, TypeVar
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from navkit._shared.types import FloatArray
+from navkit._shared.validation import as_float_array
+from navkit.geometry import imu_to_base, quaternion_to_matrix, quaternion_to_yaw
+from navkit.mapping import LaserScan
+from navkit.mapping.io._paths import as_path
+from navkit.mapping.io._ros_msgs import scan_from_msg
+
+__all__ = [
+    "BagImu",
+    "BagOdometry",
+    "BagScans",
+    "bag_topics",
+    "read_bag_imu",
+    "read_bag_odometry",
+    "read_bag_scans",
+]
+
+SCAN_TYPE = "sensor_msgs/msg/LaserScan"
+ODOMETRY_TYPE = "nav_msgs/msg/Odometry"
+IMU_TYPE = "sensor_msgs/msg/Imu"
+
+_ROS1_MAGIC = b"#ROSBAG V2.0\n"
+
+
+# ---------------------------------------------------------------- result classes
+def _frozen(value: ArrayLike, name: str, shape: tuple[int | None, ...]) -> FloatArray:
+    arr = np.array(as_float_array(value, name, shape=shape), dtype=np.float64, copy=True)
+    arr.flags.writeable = False
+    return arr
+
+
+def _text(value: Any, name: str) -> str:
+    if not isinstance(value, str):
+        raise TypeError(f"{name} must be a str, got {type(value).__name__}")
+    return value
+
+
+def _check_fields(obj: Any, texts: tuple[str, ...], arrays: dict[str, tuple[int, ...]]) -> int:
+    """Check the text fields, ``times`` and ``record_times`` and the ``arrays`` (trailing
+    shapes after the time axis) of a result, freezing copies; return the number of messages."""
+    for name in texts:
+        _text(getattr(obj, name), name)
+    times = _frozen(obj.times, "times", (None,))
+    n = int(times.shape[0])
+    object.__setattr__(obj, "times", times)
+    object.__setattr__(obj, "record_times", _frozen(obj.record_times, "record_times", (n,)))
+    for name, tail in arrays.items():
+        object.__setattr__(obj, name, _frozen(getattr(obj, name), name, (n, *tail)))
+    return n
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class BagScans:
+    """``sensor_msgs/LaserScan`` messages of one bag topic (:func:`read_bag_scans`).
+
+    Attributes
+    ----------
+    topic : str
+        The topic read.
+    frame_id : str
+        ``header.frame_id`` of the first message (empty for no messages).
+    times : ndarray, shape (N,)
+        Header stamps, s (``sec + nanosec · 1e-9``), finite.
+    record_times : ndarray, shape (N,)
+        Times the bag recorded the messages, s, finite.
+    scans : tuple of LaserScan
+        The scans, in bag (record-time) order.
+
+    Arrays are read-only float64 copies; lengths must agree.
+
+    Examples
+    --------
+    >>> scan = LaserScan([1.0, 2.0], angle_min=0.0, angle_increment=0.1,
+    ...                  range_min=0.1, range_max=5.0)
+    >>> scans = BagScans("/scan", "laser", [1.5], [1.6], (scan,))
+    >>> len(scans), scans.times
+    (1, array([1.5]))
+    """
+
+    topic: str
+    frame_id: str
+    times: FloatArray
+    record_times: FloatArray
+    scans: tuple[LaserScan, ...]
+
+    def __post_init__(self) -> None:
+        n = _check_fields(self, ("topic", "frame_id"), {})
+        scans = tuple(self.scans)
+        for i, scan in enumerate(scans):
+            if not isinstance(scan, LaserScan):
+                raise TypeError(f"scans[{i}] must be a LaserScan, got {type(scan).__name__}")
+        if len(scans) != n:
+            raise ValueError(f"scans must hold {n} scans (one per time), got {len(scans)}")
+        object.__setattr__(self, "scans", scans)
+
+    def __len__(self) -> int:
+        return int(self.times.shape[0])
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class BagOdometry:
+    """``nav_msgs/Odometry`` messages of one bag topic (:func:`read_bag_odometry`).
+
+    Ready for :meth:`navkit.estimation.MeasurementLog.from_streams`, e.g.
+    ``odometry=(odom.times, odom.twists[:, 0], odom.twists[:, 2])`` with
+    ``odometry_variance=(odom.twist_covariances[:, 0, 0], odom.twist_covariances[:, 5, 5])``.
+
+    Attributes
+    ----------
+    topic, frame_id, child_frame_id : str
+        The topic, and ``header.frame_id`` (the odometry frame) and
+        ``child_frame_id`` (the robot's frame, that of the twists) of the first
+        message.
+    times : ndarray, shape (N,)
+        Header stamps, s.
+    record_times : ndarray, shape (N,)
+        Times the bag recorded the messages, s.
+    poses : ndarray, shape (N, 3)
+        ``[x, y, yaw]`` (m, m, rad; yaw of the orientation by
+        :func:`navkit.geometry.quaternion_to_yaw`, wrapped to (-π, π]).
+    orientations : ndarray, shape (N, 4)
+        The full 3-D orientation, quaternions ``(x, y, z, w)`` as in the bag.
+    twists : ndarray, shape (N, 3)
+        ``[vx, vy, omega]`` in the child (robot) frame, m/s and rad/s.
+    pose_covariances, twist_covariances : ndarray, shape (N, 6, 6)
+        The messages' covariances, ROS order ``(x, y, z, roll, pitch, yaw)``
+        (so the yaw variance is ``[:, 5, 5]``).
+
+    Arrays are read-only float64 copies, finite, with matching lengths.
+
+    Examples
+    --------
+    >>> odom = BagOdometry("/odom", "odom", "base_link", [0.0], [0.0], [[1.0, 2.0, 0.5]],
+    ...                    [[0.0, 0.0, 0.247404, 0.968912]], [[0.3, 0.0, 0.1]],
+    ...                    np.zeros((1, 6, 6)), np.eye(6)[None])
+    >>> odom.twists[:, 0], odom.twist_covariances[:, 5, 5]
+    (array([0.3]), array([1.]))
+    """
+
+    topic: str
+    frame_id: str
+    child_frame_id: str
+    times: FloatArray
+    record_times: FloatArray
+    poses: FloatArray
+    orientations: FloatArray
+    twists: FloatArray
+    pose_covariances: FloatArray
+    twist_covariances: FloatArray
+
+    def __post_init__(self) -> None:
+        arrays = {
+            "poses": (3,),
+            "orientations": (4,),
+            "twists": (3,),
+            "pose_covariances": (6, 6),
+            "twist_covariances": (6, 6),
+        }
+        _check_fields(self, ("topic", "frame_id", "child_frame_id"), arrays)
+
+    def __len__(self) -> int:
+        return int(self.times.shape[0])
+
+
+@dataclass(frozen=True, slots=True, eq=False)
+class BagImu:
+    """``sensor_msgs/Imu`` messages of one bag topic (:func:`read_bag_imu`).
+
+    Attributes
+    ----------
+    topic, frame_id : str
+        The topic and ``header.frame_id`` of the first message (the IMU's frame).
+    times : ndarray, shape (N,)
+        Header stamps, s.
+    record_times : ndarray, shape (N,)
+        Times the bag recorded the messages, s.
+    orientations : ndarray, shape (N, 4)
+        Quaternions ``(x, y, z, w)``, as in the bag (all zero when the IMU gives
+        none; its covariance then starts with -1).
+    angular_velocities : ndarray, shape (N, 3)
+        rad/s, IMU frame.
+    linear_accelerations : ndarray, shape (N, 3)
+        m/s², IMU frame, gravity included (REP 145).
+    orientation_covariances, angular_velocity_covariances, linear_acceleration_covariances : \
+ndarray, shape (N, 3, 3)
+        As in the bag: a -1 in ``[i, 0, 0]`` means "not given" (REP 145).
+
+    Arrays are read-only float64 copies, finite, with matching lengths.
+
+    Examples
+    --------
+    >>> imu = BagImu("/imu", "imu_link", [0.0], [0.0], [[0.0, 0.0, 0.0, 1.0]],
+    ...              [[0.0, 0.0, 0.2]], [[0.0, 0.0, 9.8]], *[np.eye(3)[None]] * 3)
+    >>> imu.angular_velocities[:, 2]
+    array([0.2])
+    """
+
+    topic: str
+    frame_id: str
+    times: FloatArray
+    record_times: FloatArray
+    orientations: FloatArray
+    angular_velocities: FloatArray
+    linear_accelerations: FloatArray
+    orientation_covariances: FloatArray
+    angular_velocity_covariances: FloatArray
+    linear_acceleration_covariances: FloatArray
+
+    def __post_init__(self) -> None:
+        arrays = {
+            "orientations": (4,),
+            "angular_velocities": (3,),
+            "linear_accelerations": (3,),
+            "orientation_covariances": (3, 3),
+            "angular_velocity_covariances": (3, 3),
+            "linear_acceleration_covariances": (3, 3),
+        }
+        _check_fields(self, ("topic", "frame_id"), arrays)
+
+    def __len__(self) -> int:
+        return int(self.times.shape[0])
+
+    def to_base(self, mounting: ArrayLike, *, frame_id: str = "base_link") -> BagImu:
+        """The same readings rotated into the robot's base frame.
+
+        Orientations, angular velocities and accelerations as
+        :func:`navkit.geometry.imu_to_base` rotates them; each covariance ``C``
+        becomes ``R C Rᵀ`` (``R`` the mounting rotation), except those marked
+        "not given" (-1 first), which are kept.
+
+        Parameters
+        ----------
+        mounting : array_like, shape (4,)
+            Rotation of the IMU frame relative to the base frame, quaternion
+            ``(x, y, z, w)`` (the ``base_link -> imu_link`` transform's rotation;
+            :func:`navkit.geometry.rpy_to_quaternion` makes it from roll, pitch
+            and yaw), non-zero.
+        frame_id : str, default "base_link"
+            ``frame_id`` of the result.
+
+        Returns
+        -------
+        BagImu
+
+        Examples
+        --------
+        >>> import math
+        >>> from navkit.geometry import rpy_to_quaternion
+        >>> imu = BagImu("/imu", "imu_link", [0.0], [0.0], [[0.0, 0.0, 0.0, 1.0]],
+        ...              [[0.0, 0.0, 0.2]], [[0.0, 0.0, 9.8]], *[np.eye(3)[None]] * 3)
+        >>> upside_down = imu.to_base(rpy_to_quaternion(math.pi, 0.0, 0.0))
+        >>> upside_down.angular_velocities.round(6) + 0.0, upside_down.frame_id
+        (array([[ 0. ,  0. , -0.2]]), 'base_link')
+        """
+        frame = _text(frame_id, "frame_id")
+        rotated = imu_to_base(
+            self.orientations,
+            self.angular_velocities,
+            self.linear_accelerations,
+            mounting=mounting,
+        )
+        rot = quaternion_to_matrix(mounting)
+
+        def turn(cov: FloatArray) -> FloatArray:
+            keep = cov[:, 0, 0] == -1.0
+            out = rot @ cov @ rot.T
+            return np.asarray(np.where(keep[:, None, None], cov, out), dtype=np.float64)
+
+        return BagImu(
+            self.topic,
+            frame,
+            self.times,
+            self.record_times,
+            rotated.orientations,
+            rotated.angular_velocities,
+            rotated.linear_accelerations,
+            turn(self.orientation_covariances),
+            turn(self.angular_velocity_covariances),
+            turn(self.linear_acceleration_covariances),
+        )
+
+
+# ---------------------------------------------------------------- reading
+def _rosbags() -> Any:
+    """The ``rosbags`` modules the readers need (imported lazily)."""
+    try:
+        import rosbags.rosbag1 as rosbag1
+        import rosbags.rosbag2 as rosbag2
+        from rosbags.typesys import Stores, get_typestore
+    except ImportError:
+        raise ImportError(
+            "reading ROS bags needs the rosbags package: install navkit[ros] "
+            "(python -m pip install 'navkit[ros]')"
+        ) from None
+    return rosbag1, rosbag2, Stores, get_typestore
+
+
+def _normalize(msgtype: str) -> str:
+    """``pkg/Type`` (ROS 1) as ``pkg/msg/Type`` (rosbags' and ROS 2's spelling)."""
+    parts = msgtype.split("/")
+    return f"{parts[0]}/msg/{parts[1]}" if len(parts) == 2 else msgtype
+
+
+class _Topic(NamedTuple):
+    msgtype: str
+    n_messages: int
+
+
+class _Bag(NamedTuple):
+    """An opened bag: topics, and a function yielding (record ns, raw message) of one topic."""
+
+    ros2: bool
+    topics: dict[str, _Topic]
+    messages: Callable[[str], Iterator[tuple[int, bytes]]]
+
+
+_T = TypeVar("_T")
+
+
+def _check_path(path: Any) -> Path:
+    bag_path = as_path(path, "path")
+    if not bag_path.exists():
+        raise FileNotFoundError(f"ROS bag {bag_path} does not exist")
+    return bag_path
+
+
+def _with_bag(bag_path: Path, use: Callable[[_Bag], _T]) -> _T:
+    """Open ``bag_path`` (ROS 1 file or ROS 2 folder) and call ``use`` on it."""
+    rosbag1, rosbag2, _, _ = _rosbags()
+    if bag_path.is_dir():
+        if not (bag_path / "metadata.yaml").is_file():
+            raise ValueError(f"{bag_path} is a folder without metadata.yaml, not a ROS 2 bag")
+        try:
+            with rosbag2.Reader(bag_path) as reader:
+                topics = {
+                    c.topic: _Topic(_normalize(c.msgtype), c.msgcount) for c in reader.connections
+                }
+
+                def messages2(topic: str) -> Iterator[tuple[int, bytes]]:
+                    conns = [c for c in reader.connections if c.topic == topic]
+                    for _, stamp, raw in reader.messages(connections=conns):
+                        yield stamp, bytes(raw)
+
+                return use(_Bag(True, topics, messages2))
+        except (rosbag2.ReaderError, KeyError, OSError, AssertionError) as exc:
+            if isinstance(exc, FileNotFoundError):
+                raise
+            raise ValueError(f"{bag_path}: cannot read the ROS 2 bag: {exc}") from None
+    if not bag_path.is_file():
+        raise ValueError(f"{bag_path} is neither a ROS 1 bag file nor a ROS 2 bag folder")
+    with bag_path.open("rb") as fh:
+        magic = fh.read(len(_ROS1_MAGIC))
+    if magic != _ROS1_MAGIC:
+        raise ValueError(
+            f"{bag_path} is not a ROS 1 bag (no '#ROSBAG V2.0' header); a ROS 2 bag is read "
+            "from its folder"
+        )
+    try:
+        with rosbag1.Reader(bag_path) as reader:
+            topics = {}
+            for c in reader.connections:
+                old = topics.get(c.topic)
+                topics[c.topic] = _Topic(
+                    _normalize(c.msgtype), c.msgcount + (old.n_messages if old else 0)
+                )
+
+            def messages1(topic: str) -> Iterator[tuple[int, bytes]]:
+                conns = [c for c in reader.connections if c.topic == topic]
+                for _, stamp, raw in reader.messages(connections=conns):
+                    yield stamp, bytes(raw)
+
+            return use(_Bag(False, topics, messages1))
+    except (rosbag1.ReaderError, AssertionError, struct.error) as exc:
+        # rosbags refuses bags whose index records are damaged (e.g. an index
+        # data record longer than its entries): read the chunks directly.
+        try:
+            bag = _walk_ros1(bag_path)
+        except _Corrupt as walk_exc:
+            raise ValueError(
+                f"{bag_path}: cannot read the ROS 1 bag: {exc or type(exc).__name__}; {walk_exc}"
+            ) from None
+        return use(bag)
+
+
+class _Corrupt(Exception):
+    """The chunk walker met something it cannot read."""
+
+
+def _fields(block: bytes) -> dict[str, bytes]:
+    """The ``name=value`` fields of a ROS 1 record header."""
+    out = {}
+    i = 0
+    while i < len(block):
+        if i + 4 > len(block):
+            raise _Corrupt("truncated record header")
+        (n,) = struct.unpack_from("<I", block, i)
+        field = block[i + 4 : i + 4 + n]
+        if len(field) != n or b"=" not in field:
+            raise _Corrupt("malformed record header field")
+        name, _, value = field.partition(b"=")
+        out[name.decode("ascii", "replace")] = value
+        i += 4 + n
+    return out
+
+
+def _record(data: bytes, pos: int) -> tuple[dict[str, bytes], bytes, int]:
+    """Header fields, data and next position of the ROS 1 record at ``pos``."""
+    if pos < 0 or pos + 4 > len(data):
+        raise _Corrupt(f"record at byte {pos} lies beyond the file")
+    (header_len,) = struct.unpack_from("<I", data, pos)
+    header = data[pos + 4 : pos + 4 + header_len]
+    pos += 4 + header_len
+    if len(header) != header_len or pos + 4 > len(data):
+        raise _Corrupt("truncated record")
+    (data_len,) = struct.unpack_from("<I", data, pos)
+    body = data[pos + 4 : pos + 4 + data_len]
+    return _fields(header), body, pos + 4 + data_len
+
+
+def _int(fields: dict[str, bytes], name: str, fmt: str) -> int:
+    try:
+        (value,) = struct.unpack(fmt, fields[name])
+    except (KeyError, struct.error):
+        raise _Corrupt(f"record without a valid {name!r} field") from None
+    return int(value)
+
+
+def _op(fields: dict[str, bytes]) -> int:
+    return _int(fields, "op", "<B")
+
+
+def _walk_ros1(bag_path: Path) -> _Bag:
+    """Read a ROS 1 bag through its connection and chunk-info records (the chunks' own indexes
+    are not used)."""
+    data = bag_path.read_bytes()
+    header, _, _ = _record(data, len(_ROS1_MAGIC))
+    if _op(header) != 3:
+        raise _Corrupt("no bag header record")
+    pos = _int(header, "index_pos", "<Q")
+    if pos == 0:
+        raise _Corrupt("the bag is not indexed (run `rosbag reindex`)")
+    conns: dict[int, tuple[str, str]] = {}
+    for _ in range(_int(header, "conn_count", "<I")):
+        fields, body, pos = _record(data, pos)
+        if _op(fields) != 7:
+            raise _Corrupt("expected a connection record in the index")
+        conn = _fields(body)
+        topic = fields.get("topic", b"").decode("utf-8", "replace")
+        msgtype = conn.get("type", b"").decode("utf-8", "replace")
+        conns[_int(fields, "conn", "<I")] = (topic, _normalize(msgtype))
+    chunks = []
+    for _ in range(_int(header, "chunk_count", "<I")):
+        fields, _, pos = _record(data, pos)
+        if _op(fields) != 6:
+            raise _Corrupt("expected a chunk info record in the index")
+        chunks.append(_int(fields, "chunk_pos", "<Q"))
+    messages: list[tuple[int, int, bytes]] = []
+    for chunk_pos in chunks:
+        fields, body, _ = _record(data, chunk_pos)
+        if _op(fields) != 5:
+            raise _Corrupt(f"no chunk record at byte {chunk_pos}")
+        compression = fields.get("compression", b"none")
+        try:
+            if compression == b"bz2":
+                body = bz2.decompress(body)
+            elif compression == b"lz4":
+                lz4_frame = importlib.import_module("lz4.frame")  # a dependency of rosbags
+                body = lz4_frame.decompress(body)
+            elif compression != b"none":
+                raise _Corrupt(f"unknown chunk compression {compression!r}")
+        except (OSError, ValueError, RuntimeError) as exc:
+            raise _Corrupt(f"corrupt compressed chunk: {exc}") from None
+        inner = 0
+        while inner < len(body):
+            rec, payload, inner = _record(body, inner)
+            if _op(rec) == 2:
+                stamp = _int(rec, "time", "<Q")
+                ns = (stamp & 0xFFFFFFFF) * 1_000_000_000 + (stamp >> 32)
+                messages.append((ns, _int(rec, "conn", "<I"), payload))
+    messages.sort(key=lambda m: m[0])
+    topics: dict[str, _Topic] = {}
+    for topic, msgtype in conns.values():
+        count = sum(1 for m in messages if conns.get(m[1], ("", ""))[0] == topic)
+        topics[topic] = _Topic(msgtype, count)
+
+    def walked(topic: str) -> Iterator[tuple[int, bytes]]:
+        for ns, conn, raw in messages:
+            if conns.get(conn, ("", ""))[0] == topic:
+                yield ns, raw
+
+    return _Bag(False, topics, walked)
+
+
+def _describe(topics: dict[str, _Topic]) -> str:
+    if not topics:
+        return "the bag has no topics"
+    return "topics: " + ", ".join(f"{t} ({v.msgtype})" for t, v in sorted(topics.items()))
+
+
+def _select(bag_path: Path, bag: _Bag, msgtype: str, topic: str | None) -> str:
+    """The topic to read: ``topic``, checked, or the only one of ``msgtype``."""
+    if topic is None:
+        candidates = sorted(t for t, v in bag.topics.items() if v.msgtype == msgtype)
+        if not candidates:
+            raise ValueError(f"{bag_path}: no {msgtype} topic; {_describe(bag.topics)}")
+        if len(candidates) > 1:
+            raise ValueError(
+                f"{bag_path}: several {msgtype} topics ({', '.join(candidates)}); choose one "
+                "with topic="
+            )
+        return candidates[0]
+    if topic not in bag.topics:
+        raise ValueError(f"topic {topic!r} is not in {bag_path}; {_describe(bag.topics)}")
+    have = bag.topics[topic].msgtype
+    if have != msgtype:
+        raise ValueError(f"topic {topic!r} of {bag_path} holds {have} messages, not {msgtype}")
+    return topic
+
+
+def _read(
+    path: Any, topic: Any, msgtype: str, convert: Callable[[str, list[tuple[int, Any]]], _T]
+) -> _T:
+    """Deserialize every message of the selected topic and hand them to ``convert``."""
+    if topic is not None and not isinstance(topic, str):
+        raise TypeError(f"topic must be a str or None, got {type(topic).__name__}")
+    bag_path = _check_path(path)
+    _, _, stores, get_typestore = _rosbags()
+
+    def use(bag: _Bag) -> _T:
+        name = _select(bag_path, bag, msgtype, topic)
+        store = get_typestore(stores.ROS2_HUMBLE if bag.ros2 else stores.ROS1_NOETIC)
+        deserialize = store.deserialize_cdr if bag.ros2 else store.deserialize_ros1
+        out = []
+        for i, (ns, raw) in enumerate(bag.messages(name)):
+            try:
+                out.append((ns, deserialize(raw, msgtype)))
+            except Exception as exc:  # rosbags raises many kinds on corrupt bytes
+                raise ValueError(
+                    f"{bag_path}: message {i} of {name} cannot be decoded as {msgtype}: {exc}"
+                ) from None
+        return convert(name, out)
+
+    return _with_bag(bag_path, use)
+
+
+def _stamp(msg: Any) -> float:
+    stamp = msg.header.stamp
+    return float(stamp.sec) + float(stamp.nanosec) * 1e-9
+
+
+def _record_times(messages: list[tuple[int, Any]]) -> FloatArray:
+    return np.array([ns * 1e-9 for ns, _ in messages], dtype=np.float64)
+
+
+def _frame(messages: list[tuple[int, Any]], field: Callable[[Any], str]) -> str:
+    return str(field(messages[0][1])) if messages else ""
+
+
+def _xyz(v: Any) -> tuple[float, float, float]:
+    return float(v.x), float(v.y), float(v.z)
+
+
+def _xyzw(q: Any) -> tuple[float, float, float, float]:
+    return float(q.x), float(q.y), float(q.z), float(q.w)
+
+
+def _finite(arr: FloatArray, what: str, bag_path: Any, topic: str) -> FloatArray:
+    bad = ~np.isfinite(arr.reshape(arr.shape[0], -1)).all(axis=1)
+    if bad.any():
+        raise ValueError(
+            f"{bag_path}: message {int(np.argmax(bad))} of {topic} has a non-finite {what}"
+        )
+    return arr
+
+
+def read_bag_scans(path: str | os.PathLike[str], *, topic: str | None = None) -> BagScans:
+    """Read the ``sensor_msgs/LaserScan`` messages of a ROS 1 or ROS 2 bag.
+
+    Parameters
+    ----------
+    path : str or path-like
+        A ROS 1 ``.bag`` file or a ROS 2 bag folder (with ``metadata.yaml``,
+        SQLite or MCAP storage).
+    topic : str, optional
+        Topic to read; by default the bag's only LaserScan topic.
+
+    Returns
+    -------
+    BagScans
+        :class:`~navkit.mapping.LaserScan` objects (ranges and intensities as
+        float64 copies of the message's float32 values) with their header
+        stamps and record times, in record order.
+
+    Raises
+    ------
+    ImportError
+        The ``rosbags`` package is missing (install ``navkit[ros]``).
+    FileNotFoundError
+        ``path`` does not exist.
+    TypeError
+        ``path`` or ``topic`` of the wrong type.
+    ValueError
+        Not a bag, a corrupt bag; ``topic`` missing from the bag or of
+        another message type; no LaserScan topic, or several and no
+        ``topic``; a message that is not a valid LaserScan (the message says
+        which). Bags whose chunk index records are damaged (which ``rosbags``
+        refuses) are read through their chunk records.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     read_bag_scans(Path(folder) / "missing.bag")
+    Traceback (most recent call last):
+    ...
+    FileNotFoundError: ROS bag .../missing.bag does not exist
+    """
+
+    def convert(name: str, messages: list[tuple[int, Any]]) -> BagScans:
+        scans = []
+        for i, (_, msg) in enumerate(messages):
+            try:
+                scans.append(scan_from_msg(msg))
+            except (TypeError, ValueError) as exc:
+                raise ValueError(f"{path}: message {i} of {name}: {exc}") from None
+        times = _finite(np.array([_stamp(m) for _, m in messages]), "stamp", path, name)
+        return BagScans(
+            name,
+            _frame(messages, lambda m: m.header.frame_id),
+            times.reshape(-1),
+            _record_times(messages),
+            tuple(scans),
+        )
+
+    return _read(path, topic, SCAN_TYPE, convert)
+
+
+def read_bag_odometry(path: str | os.PathLike[str], *, topic: str | None = None) -> BagOdometry:
+    """Read the ``nav_msgs/Odometry`` messages of a ROS 1 or ROS 2 bag.
+
+    Parameters
+    ----------
+    path : str or path-like
+        A ROS 1 ``.bag`` file or a ROS 2 bag folder.
+    topic : str, optional
+        Topic to read; by default the bag's only Odometry topic.
+
+    Returns
+    -------
+    BagOdometry
+        Stamps, planar poses ``[x, y, yaw]``, orientations, twists
+        ``[vx, vy, omega]`` and both 6×6 covariances, in record order.
+
+    Raises
+    ------
+    ImportError
+        The ``rosbags`` package is missing (install ``navkit[ros]``).
+    FileNotFoundError
+        ``path`` does not exist.
+    TypeError
+        ``path`` or ``topic`` of the wrong type.
+    ValueError
+        As :func:`read_bag_scans`, and a message with a non-finite value.
+
+    Examples
+    --------
+    >>> read_bag_odometry("missing.bag", topic=3)
+    Traceback (most recent call last):
+    ...
+    TypeError: topic must be a str or None, got int
+    """
+
+    def convert(name: str, messages: list[tuple[int, Any]]) -> BagOdometry:
+        msgs = [m for _, m in messages]
+        n = len(msgs)
+        times = np.array([_stamp(m) for m in msgs], dtype=np.float64)
+        position = np.array([_xyz(m.pose.pose.position) for m in msgs]).reshape(n, 3)
+        quat = np.array([_xyzw(m.pose.pose.orientation) for m in msgs]).reshape(n, 4)
+        twist = np.array(
+            [(*_xyz(m.twist.twist.linear)[:2], float(m.twist.twist.angular.z)) for m in msgs]
+        ).reshape(n, 3)
+        pose_cov = np.array([np.asarray(m.pose.covariance, float) for m in msgs]).reshape(n, 6, 6)
+        twist_cov = np.array([np.asarray(m.twist.covariance, float) for m in msgs])
+        twist_cov = twist_cov.reshape(n, 6, 6)
+        for what, arr in (
+            ("stamp", times),
+            ("position", position),
+            ("orientation", quat),
+            ("twist", twist),
+            ("pose covariance", pose_cov),
+            ("twist covariance", twist_cov),
+        ):
+            _finite(arr.reshape(n, -1), what, path, name)
+        yaw = np.asarray(quaternion_to_yaw(quat), dtype=np.float64).reshape(n)
+        return BagOdometry(
+            name,
+            _frame(messages, lambda m: m.header.frame_id),
+            _frame(messages, lambda m: m.child_frame_id),
+            times,
+            _record_times(messages),
+            np.column_stack((position[:, :2], yaw)),
+            quat,
+            twist,
+            pose_cov,
+            twist_cov,
+        )
+
+    return _read(path, topic, ODOMETRY_TYPE, convert)
+
+
+def read_bag_imu(path: str | os.PathLike[str], *, topic: str | None = None) -> BagImu:
+    """Read the ``sensor_msgs/Imu`` messages of a ROS 1 or ROS 2 bag.
+
+    Readings stay in the IMU's frame; :meth:`BagImu.to_base` rotates them into
+    the robot's base frame, :func:`navkit.geometry.quaternion_to_yaw` gives the
+    yaw of the orientations.
+
+    Parameters
+    ----------
+    path : str or path-like
+        A ROS 1 ``.bag`` file or a ROS 2 bag folder.
+    topic : str, optional
+        Topic to read; by default the bag's only Imu topic.
+
+    Returns
+    -------
+    BagImu
+        Stamps, orientations, angular velocities, linear accelerations and
+        their 3×3 covariances, in record order.
+
+    Raises
+    ------
+    ImportError
+        The ``rosbags`` package is missing (install ``navkit[ros]``).
+    FileNotFoundError
+        ``path`` does not exist.
+    TypeError
+        ``path`` or ``topic`` of the wrong type.
+    ValueError
+        As :func:`read_bag_scans`, and a message with a non-finite value.
+
+    Examples
+    --------
+    >>> read_bag_imu(b"imu.bag")
+    Traceback (most recent call last):
+    ...
+    TypeError: path must be a str or an os.PathLike, got bytes
+    """
+
+    def convert(name: str, messages: list[tuple[int, Any]]) -> BagImu:
+        msgs = [m for _, m in messages]
+        n = len(msgs)
+
+        def cov(field: str) -> FloatArray:
+            return np.array([np.asarray(getattr(m, field), float) for m in msgs]).reshape(n, 3, 3)
+
+        arrays = {
+            "stamp": np.array([_stamp(m) for m in msgs], dtype=np.float64),
+            "orientation": np.array([_xyzw(m.orientation) for m in msgs]).reshape(n, 4),
+            "angular velocity": np.array([_xyz(m.angular_velocity) for m in msgs]).reshape(n, 3),
+            "linear acceleration": np.array([_xyz(m.linear_acceleration) for m in msgs]).reshape(
+                n, 3
+            ),
+            "orientation covariance": cov("orientation_covariance"),
+            "angular velocity covariance": cov("angular_velocity_covariance"),
+            "linear acceleration covariance": cov("linear_acceleration_covariance"),
+        }
+        for what, arr in arrays.items():
+            _finite(arr.reshape(n, -1), what, path, name)
+        values = list(arrays.values())
+        return BagImu(
+            name,
+            _frame(messages, lambda m: m.header.frame_id),
+            values[0],
+            _record_times(messages),
+            *values[1:],
+        )
+
+    return _read(path, topic, IMU_TYPE, convert)
+
+
+def bag_topics(path: str | os.PathLike[str]) -> dict[str, tuple[str, int]]:
+    """Topics of a ROS 1 or ROS 2 bag with their message types and message counts.
+
+    Parameters
+    ----------
+    path : str or path-like
+        A ROS 1 ``.bag`` file or a ROS 2 bag folder.
+
+    Returns
+    -------
+    dict
+        ``{topic: (message type, count)}``, types spelled ``pkg/msg/Type``.
+
+    Raises
+    ------
+    ImportError
+        The ``rosbags`` package is missing (install ``navkit[ros]``).
+    FileNotFoundError
+        ``path`` does not exist.
+    TypeError
+        ``path`` of the wrong type.
+    ValueError
+        Not a bag or a corrupt bag.
+
+    Examples
+    --------
+    >>> bag_topics("no-such.bag")
+    Traceback (most recent call last):
+    ...
+    FileNotFoundError: ROS bag no-such.bag does not exist
+    """
+    bag_path = _check_path(path)
+    return _with_bag(
+        bag_path, lambda bag: {t: (v.msgtype, v.n_messages) for t, v in sorted(bag.topics.items())}
+    )
