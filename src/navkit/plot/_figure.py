@@ -1,0 +1,159 @@
+"""matplotlib on demand: the import, new Agg axes, and checks of plotting options."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any, Literal
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from navkit._shared.types import FloatArray
+from navkit._shared.validation import as_float_array, finite_float
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
+__all__ = [
+    "COORD_LIMIT",
+    "as_color",
+    "as_coords",
+    "as_label",
+    "axes_for",
+    "bounded_float",
+    "bounded_int",
+    "figure_of",
+    "require_matplotlib",
+]
+
+#: Largest coordinate magnitude drawn, m (as navkit's planners and maps accept).
+COORD_LIMIT = 1e9
+#: Size of the figures navkit.plot creates, inches (matplotlib's default).
+FIGSIZE = (6.4, 4.8)
+
+_MISSING = (
+    "navkit.plot needs matplotlib, which is not installed; install the plot extra: "
+    "pip install navkit[plot]"
+)
+
+
+def require_matplotlib() -> None:
+    """Import matplotlib or raise an ImportError naming the ``plot`` extra.
+
+    The top-level package is imported first: ``from matplotlib.figure import
+    Figure`` alone would find an already imported submodule even when
+    ``matplotlib`` itself is hidden (``sys.modules["matplotlib"] = None``).
+    """
+    try:
+        import matplotlib
+        import matplotlib.figure  # noqa: F401
+    except ImportError:
+        raise ImportError(_MISSING) from None
+
+
+def new_figure(*, layout: Literal["constrained"] | None = "constrained") -> Figure:
+    """A Figure on the Agg canvas: no pyplot state, no window, safe in threads."""
+    require_matplotlib()
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=FIGSIZE, layout=layout)
+    FigureCanvasAgg(fig)
+    return fig
+
+
+def axes_for(ax: Any, *, three_d: bool = False) -> Axes:
+    """``ax`` checked, or new axes on a new Agg figure when it is None."""
+    require_matplotlib()
+    from matplotlib.axes import Axes
+
+    if ax is None:
+        fig = new_figure()
+        return fig.add_subplot(projection="3d") if three_d else fig.add_subplot()
+    if not isinstance(ax, Axes):
+        raise TypeError(f"ax must be a matplotlib Axes or None, got {type(ax).__name__}")
+    return ax
+
+
+def figure_of(value: Any, name: str) -> Figure:
+    """The Figure of a Figure or an Axes."""
+    require_matplotlib()
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
+    if isinstance(value, Figure):
+        return value
+    if isinstance(value, Axes):
+        # A SubFigure's ``figure`` is the root Figure; a Figure's is itself.
+        root = getattr(value.figure, "figure", None)
+        if not isinstance(root, Figure):
+            raise ValueError(f"{name}: the Axes does not belong to a Figure")
+        return root
+    raise TypeError(f"{name} must be a matplotlib Figure or Axes, got {type(value).__name__}")
+
+
+def as_label(value: Any, name: str) -> str | None:
+    """A legend label: a str or None."""
+    if value is None or isinstance(value, str):
+        return value
+    raise TypeError(f"{name} must be a str or None, got {type(value).__name__}")
+
+
+def as_color(value: Any, name: str) -> Any:
+    """A matplotlib colour (``"red"``, ``"#1f77b4"``, ``"C0"``, an RGB(A) tuple) or None."""
+    if value is None:
+        return None
+    require_matplotlib()
+    from matplotlib.colors import to_rgba
+
+    if isinstance(value, str):
+        pass
+    elif isinstance(value, (tuple, list)):
+        value = tuple(as_float_array(value, name, ndim=1))
+    else:
+        raise TypeError(
+            f"{name} must be a matplotlib colour (a str or RGB(A) tuple) or None, "
+            f"got {type(value).__name__}"
+        )
+    try:
+        to_rgba(value)
+    except (ValueError, TypeError):
+        raise ValueError(f"{name}: {value!r} is not a matplotlib colour") from None
+    return value
+
+
+def as_coords(value: ArrayLike, name: str, *, ncols: int = 2, nan_ok: bool = False) -> FloatArray:
+    """An ``(n, ncols)`` float array of world coordinates within ±1e9 m."""
+    arr = as_float_array(value, name, shape=(None, ncols), finite=not nan_ok)
+    if nan_ok and np.isinf(arr).any():
+        raise ValueError(f"{name} must be finite (or NaN), got an infinity")
+    with np.errstate(invalid="ignore"):
+        big = np.abs(arr[..., :2]) > COORD_LIMIT
+    if big.any():
+        raise ValueError(f"{name} must lie within ±{COORD_LIMIT:g} m to be drawn")
+    return arr
+
+
+def bounded_float(value: Any, name: str, lo: float, hi: float) -> float:
+    """A finite float in ``[lo, hi]``."""
+    out = finite_float(value, name)
+    if not lo <= out <= hi:
+        raise ValueError(f"{name} must lie in [{lo:g}, {hi:g}], got {out:g}")
+    return out
+
+
+def bounded_int(value: Any, name: str, lo: int, hi: int) -> int:
+    """An integer (not a bool) in ``[lo, hi]``."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)):
+        raise TypeError(f"{name} must be an integer, got {type(value).__name__}")
+    if not lo <= int(value) <= hi:
+        text = str(int(value)) if abs(int(value)) < 10**30 else "a huge integer"
+        raise ValueError(f"{name} must lie in [{lo}, {hi}], got {text}")
+    return int(value)
+
+
+def finish_axes(ax: Axes) -> None:
+    """Equal scales in metres with labelled axes (2-D world plots)."""
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("y (m)")

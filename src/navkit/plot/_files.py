@@ -1,0 +1,137 @@
+"""Writing pictures atomically: a temporary file beside the target, then ``os.replace``."""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import secrets
+import stat
+from collections.abc import Callable, Iterator
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from navkit.plot._figure import bounded_float, figure_of
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
+__all__ = ["MAX_PIXELS", "output_path", "save_figure", "written_atomically"]
+
+#: Largest picture written, pixels (8192 × 8192).
+MAX_PIXELS = 1 << 26
+
+
+def output_path(value: Any, name: str, suffix: str) -> Path:
+    """A path to write a ``suffix`` file to, in an existing folder (nothing is created)."""
+    if isinstance(value, bytes) or not isinstance(value, (str, os.PathLike)):
+        raise TypeError(f"{name} must be a str or path-like, got {type(value).__name__}")
+    text = os.fspath(value)
+    if not isinstance(text, str):
+        raise TypeError(f"{name} must be a str or path-like, got bytes")
+    if not text or "\x00" in text:
+        raise ValueError(f"{name} must be a non-empty file name without NUL characters")
+    path = Path(text)
+    if path.suffix.lower() != suffix:
+        raise ValueError(f"{name} must end in {suffix}, got {text!r}")
+    if path.is_dir():
+        raise ValueError(f"{name} {text!r} is a folder")
+    folder = path.parent
+    if not folder.is_dir():
+        raise FileNotFoundError(f"{name}: the folder {str(folder)!r} does not exist")
+    return path
+
+
+@contextlib.contextmanager
+def written_atomically(target: Path) -> Iterator[Path]:
+    """Yield a new temporary path beside ``target``; rename it over ``target`` on success.
+
+    The temporary file (hidden, same suffix, mode 0o666 less the umask or the
+    mode of an existing ``target``) is removed if anything fails.
+    """
+    for _ in range(100):
+        temporary = target.with_name(f".{target.stem}.{secrets.token_hex(4)}.tmp{target.suffix}")
+        try:
+            fd = os.open(temporary, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)
+        except FileExistsError:
+            continue
+        os.close(fd)
+        break
+    else:  # pragma: no cover - 100 random names taken
+        raise FileExistsError(f"cannot create a temporary file beside {target}")
+    try:
+        with contextlib.suppress(FileNotFoundError):
+            os.chmod(temporary, stat.S_IMODE(os.stat(target).st_mode))
+        yield temporary
+        os.replace(temporary, target)
+    finally:
+        temporary.unlink(missing_ok=True)
+
+
+def check_size(fig: Figure, dpi: float) -> None:
+    width, height = fig.get_size_inches()
+    pixels = float(width) * dpi * float(height) * dpi
+    if not pixels <= MAX_PIXELS:
+        raise ValueError(
+            f"the figure ({width:g} × {height:g} in) at dpi {dpi:g} would be {pixels:.3g} "
+            f"pixels; the most is {MAX_PIXELS} (8192 × 8192): use a smaller dpi"
+        )
+
+
+def save_figure(fig_or_ax: Figure | Axes, path: str | os.PathLike[str], *,
+                dpi: float = 100.0) -> Path:  # fmt: skip
+    """Write a figure to a PNG file atomically.
+
+    The picture is rendered with the Agg renderer into a temporary file in the
+    same folder, which then replaces ``path`` (``os.replace``): a failure
+    leaves an existing file as it was, and nothing else is created (no
+    folders).
+
+    Parameters
+    ----------
+    fig_or_ax : matplotlib Figure or Axes
+        The figure, or any of its axes (what the ``plot_*`` functions return).
+    path : str or path-like
+        The ``.png`` file to write, in an existing folder; replaced if it exists.
+    dpi : float, default 100
+        Resolution, dots per inch, in [10, 600]; the picture may have at most
+        2**26 pixels.
+
+    Returns
+    -------
+    Path
+        The file written.
+
+    Raises
+    ------
+    TypeError
+        Not a Figure or Axes, a path that is not a str or path-like.
+    ValueError
+        A path not ending in ``.png`` or naming a folder, ``dpi`` out of range.
+    FileNotFoundError
+        The folder of ``path`` does not exist.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> import numpy as np
+    >>> from navkit.mapping import OccupancyGrid
+    >>> from navkit.plot import plot_grid
+    >>> ax = plot_grid(OccupancyGrid.from_occupancy(np.eye(8, dtype=bool), resolution=0.1))
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     png = save_figure(ax, Path(folder) / "map.png", dpi=50)
+    ...     print(png.name, png.read_bytes()[:4], sorted(p.name for p in Path(folder).iterdir()))
+    map.png b'\\x89PNG' ['map.png']
+    """
+    fig = figure_of(fig_or_ax, "fig_or_ax")
+    resolution = bounded_float(dpi, "dpi", 10.0, 600.0)
+    target = output_path(path, "path", ".png")
+    check_size(fig, resolution)
+    _write(target, lambda tmp: fig.savefig(tmp, format="png", dpi=resolution))
+    return target
+
+
+def _write(target: Path, render: Callable[[Path], Any]) -> None:
+    with written_atomically(target) as temporary:
+        render(temporary)

@@ -1,0 +1,125 @@
+"""Occupancy grids drawn in ROS map orientation on world axes."""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from navkit._shared.types import FloatArray
+from navkit.mapping import OccupancyGrid
+from navkit.plot._figure import COORD_LIMIT, axes_for, bounded_float, finish_axes
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+
+__all__ = ["FREE_GREY", "OCCUPIED_GREY", "UNKNOWN_GREY", "draw_grid", "plot_grid"]
+
+#: Grey levels (0 black, 1 white) of free, unknown and occupied cells.
+FREE_GREY = 1.0
+UNKNOWN_GREY = 0.75
+OCCUPIED_GREY = 0.0
+#: Grids larger than this along an axis are shrunk (darkest cell of each block
+#: kept, so one-cell walls survive) before matplotlib resamples them.
+MAX_IMAGE_CELLS = 2048
+
+
+def plot_grid(grid: OccupancyGrid, *, ax: Axes | None = None, alpha: float = 1.0) -> Axes:
+    """Draw an occupancy grid on world axes, in ROS map orientation.
+
+    Row 0 of the grid (the lowest y) is drawn at the bottom; the image covers
+    the map's world extent (``origin`` to ``origin + (width, height)``, rotated
+    by the origin's yaw). Free cells are white, unknown cells grey, occupied
+    cells black (the grid's own thresholds); axes are in metres with equal
+    scales.
+
+    Parameters
+    ----------
+    grid : OccupancyGrid
+        The map.
+    ax : matplotlib Axes, optional
+        Where to draw; a new figure (Agg canvas, no window) when omitted.
+    alpha : float, default 1.0
+        Opacity of the image, in [0, 1].
+
+    Returns
+    -------
+    matplotlib Axes
+        The axes drawn on.
+
+    Raises
+    ------
+    TypeError
+        ``grid`` is not an OccupancyGrid, ``ax`` not an Axes.
+    ValueError
+        ``alpha`` outside [0, 1]; the map lies beyond ±1e9 m.
+    ImportError
+        matplotlib is not installed (``pip install navkit[plot]``).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navkit.mapping import OccupancyGrid
+    >>> occupied = np.zeros((4, 6), dtype=bool)
+    >>> occupied[3, :] = True                         # the top row: highest y
+    >>> grid = OccupancyGrid.from_occupancy(occupied, resolution=0.5, origin=(1.0, 2.0, 0.0))
+    >>> ax = plot_grid(grid)
+    >>> [float(v) for v in ax.images[0].get_extent()]   # x from 1 m, y from 2 m
+    [1.0, 4.0, 2.0, 4.0]
+    """
+    if not isinstance(grid, OccupancyGrid):
+        raise TypeError(f"grid must be an OccupancyGrid, got {type(grid).__name__}")
+    opacity = bounded_float(alpha, "alpha", 0.0, 1.0)
+    axes = axes_for(ax)
+    draw_grid(axes, grid, alpha=opacity)
+    finish_axes(axes)
+    return axes
+
+
+def grid_shades(grid: OccupancyGrid) -> FloatArray:
+    """Grey level of every cell (free white, unknown grey, occupied black), shrunk if huge."""
+    shades = np.full(grid.shape, UNKNOWN_GREY)
+    shades[grid.free()] = FREE_GREY
+    shades[grid.occupied()] = OCCUPIED_GREY
+    k = math.ceil(max(shades.shape) / MAX_IMAGE_CELLS)
+    if k > 1:
+        rows = -(-shades.shape[0] // k) * k
+        cols = -(-shades.shape[1] // k) * k
+        padded = np.full((rows, cols), FREE_GREY)
+        padded[: shades.shape[0], : shades.shape[1]] = shades
+        shades = padded.reshape(rows // k, k, cols // k, k).min(axis=(1, 3))
+        # The padding keeps the cell size; the image covers the padded extent.
+    return shades
+
+
+def draw_grid(ax: Axes, grid: OccupancyGrid, *, alpha: float = 1.0, zorder: float = 0.0) -> None:
+    """Draw ``grid`` on ``ax`` (checked arguments) and extend the data limits to it."""
+    from matplotlib.transforms import Affine2D
+
+    o = grid.origin
+    corners = o.transform_points([[0.0, 0.0], [grid.width, 0.0], [0.0, grid.height],
+                                  [grid.width, grid.height]])  # fmt: skip
+    if not np.all(np.abs(corners) <= COORD_LIMIT):
+        raise ValueError(f"grid must lie within ±{COORD_LIMIT:g} m to be drawn")
+    shades = grid_shades(grid)
+    k = math.ceil(max(grid.shape) / MAX_IMAGE_CELLS)
+    width = shades.shape[1] * grid.resolution * max(k, 1)
+    height = shades.shape[0] * grid.resolution * max(k, 1)
+    image_kw: dict[str, Any] = {
+        "cmap": "gray", "vmin": 0.0, "vmax": 1.0, "origin": "lower", "alpha": alpha,
+        "interpolation": "antialiased", "zorder": zorder,
+    }  # fmt: skip
+    if o.theta == 0.0:
+        ax.imshow(shades, extent=(o.x, o.x + width, o.y, o.y + height), **image_kw)
+    else:
+        # imshow extends the data limits by its extent (the unrotated map frame):
+        # undo that, the rotated corners below are the real limits.
+        limits = ax.dataLim.frozen()
+        ignore = ax.ignore_existing_data_limits
+        image = ax.imshow(shades, extent=(0.0, width, 0.0, height), **image_kw)
+        image.set_transform(Affine2D().rotate(o.theta).translate(o.x, o.y) + ax.transData)
+        ax.dataLim.set(limits)
+        ax.ignore_existing_data_limits = ignore
+    ax.update_datalim(corners)
+    ax.autoscale_view()

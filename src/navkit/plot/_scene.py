@@ -1,0 +1,272 @@
+"""A scenario's scene: map, world, plans, driven traces and markers in one picture."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from navkit._shared.types import FloatArray
+from navkit._shared.validation import as_bool, as_points
+from navkit.mapping import OccupancyGrid
+from navkit.plot._figure import as_coords, axes_for, finish_axes
+from navkit.plot._grid import draw_grid
+from navkit.plot._lines import draw_trace, path_points, trace_xy
+from navkit.sim import Scene, Trace, World
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+
+__all__ = ["CheckedScene", "check_scene", "draw_scene", "draw_world", "plot_scene"]
+
+#: Markers of the labelled point sets, in turn.
+_MARKERS = ("*", "D", "^", "v", "P", "X", "h")
+_WALL_COLOUR = "0.15"
+_MOVING_COLOUR = "tab:red"
+
+
+@dataclass(frozen=True, slots=True)
+class CheckedScene:
+    """A Scene's contents, checked and converted to world arrays."""
+
+    title: str
+    grid: OccupancyGrid | None
+    world: World | None
+    paths: tuple[tuple[str, FloatArray], ...]
+    traces: tuple[tuple[str, Trace, FloatArray, FloatArray], ...]
+    points: tuple[tuple[str, FloatArray], ...]
+
+
+def _labelled(value: Any, name: str) -> tuple[tuple[str, Any], ...]:
+    if not isinstance(value, (tuple, list)):
+        raise TypeError(f"{name} must be a tuple of (label, value) pairs, got "
+                        f"{type(value).__name__}")  # fmt: skip
+    out = []
+    for k, item in enumerate(value):
+        if not isinstance(item, (tuple, list)) or len(item) != 2:
+            raise TypeError(f"{name}[{k}] must be a (label, value) pair")
+        label, data = item
+        if not isinstance(label, str):
+            raise TypeError(f"{name}[{k}] label must be a str, got {type(label).__name__}")
+        out.append((label, data))
+    return tuple(out)
+
+
+def check_scene(scene: Any, name: str = "scene") -> CheckedScene:
+    """Check every part of a Scene (a plain dataclass that checks nothing itself)."""
+    if not isinstance(scene, Scene):
+        raise TypeError(f"{name} must be a navkit.sim.Scene, got {type(scene).__name__}")
+    if not isinstance(scene.title, str):
+        raise TypeError(f"{name}.title must be a str, got {type(scene.title).__name__}")
+    if scene.grid is not None and not isinstance(scene.grid, OccupancyGrid):
+        raise TypeError(f"{name}.grid must be an OccupancyGrid or None, got "
+                        f"{type(scene.grid).__name__}")  # fmt: skip
+    if scene.world is not None and not isinstance(scene.world, World):
+        raise TypeError(f"{name}.world must be a World or None, got "
+                        f"{type(scene.world).__name__}")  # fmt: skip
+    paths = tuple(
+        (label, path_points(path, scene.grid, f"{name}.paths[{k}]"))
+        for k, (label, path) in enumerate(_labelled(scene.paths, f"{name}.paths"))
+    )
+    traces = tuple(
+        (label, trace, *trace_xy(trace, f"{name}.traces[{k}]"))
+        for k, (label, trace) in enumerate(_labelled(scene.traces, f"{name}.traces"))
+    )
+    points = tuple(
+        (label, _points(pts, f"{name}.points[{k}]"))
+        for k, (label, pts) in enumerate(_labelled(scene.points, f"{name}.points"))
+    )
+    return CheckedScene(scene.title, scene.grid, scene.world, paths, traces, points)
+
+
+def _points(value: Any, name: str) -> FloatArray:
+    if isinstance(value, (str, bytes)) or not isinstance(value, (np.ndarray, list, tuple)):
+        raise TypeError(f"{name} must be an (n, 2) array, got {type(value).__name__}")
+    return as_coords(as_points(value, name), name)
+
+
+def plot_scene(scene: Scene, *, ax: Axes | None = None, legend: bool = True) -> Axes:
+    """Draw a scenario's scene: map, world, planned paths, driven traces, markers.
+
+    Layers from the bottom: the grid (``scene.grid``, else the world's own
+    map) in ROS map orientation; the world's walls and edges (lines), circles
+    (outlines) and moving obstacles (where they start, dashed, with their
+    routes dotted); the planned paths; the traces (true poses solid,
+    estimates dashed, start circle, end square, collisions as red crosses);
+    the labelled points; the title and a legend.
+
+    Parameters
+    ----------
+    scene : navkit.sim.Scene
+        What to draw (``ScenarioResult.scene``).
+    ax : matplotlib Axes, optional
+        Where to draw; a new figure (Agg canvas, no window) when omitted.
+    legend : bool, default True
+        Add a legend of the labelled items.
+
+    Returns
+    -------
+    matplotlib Axes
+        The axes drawn on.
+
+    Raises
+    ------
+    TypeError
+        ``scene`` is not a Scene, or holds something of the wrong type.
+    ValueError
+        Coordinates that are not finite or lie beyond ±1e9 m, a ``"grid"``
+        frame Path2D without ``scene.grid``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from shapely.geometry import box
+    >>> from navkit.sim import Circle, Scene, World
+    >>> scene = Scene("a room", world=World([box(0, 0, 4, 3).exterior, Circle((2, 1.5), 0.3)]),
+    ...               paths=(("plan", np.array([[0.5, 0.5], [3.5, 2.5]])),),
+    ...               points=(("goal", np.array([[3.5, 2.5]])),))
+    >>> ax = plot_scene(scene)
+    >>> ax.get_title(), [t.get_text() for t in ax.get_legend().get_texts()]
+    ('a room', ['plan', 'goal'])
+    """
+    checked = check_scene(scene)
+    show_legend = as_bool(legend, "legend")
+    axes = axes_for(ax)
+    draw_scene(axes, checked, traces=True)
+    if show_legend and axes.get_legend_handles_labels()[1]:
+        axes.legend(loc="best", fontsize="small")
+    return axes
+
+
+def draw_scene(ax: Axes, scene: CheckedScene, *, traces: bool) -> list[Any]:
+    """Draw a checked scene (its traces too when ``traces``); returns the moving obstacles."""
+    grid = scene.grid
+    if grid is None and scene.world is not None:
+        grid = scene.world.grid
+    if grid is not None:
+        draw_grid(ax, grid)
+    moving = draw_world(ax, scene.world) if scene.world is not None else []
+    for label, points in scene.paths:
+        ax.plot(points[:, 0], points[:, 1], "-", label=label or None, linewidth=1.5, zorder=3,
+                marker="." if len(points) == 1 else None)  # fmt: skip
+    if traces:
+        for label, trace, true_xy, est_xy in scene.traces:
+            draw_trace(ax, trace, true_xy, est_xy, label=label or None, color=None,
+                       estimate=True)  # fmt: skip
+    for k, (label, points) in enumerate(scene.points):
+        ax.plot(points[:, 0], points[:, 1], linestyle="none", marker=_MARKERS[k % len(_MARKERS)],
+                markersize=10, markeredgecolor="black", label=label or None, zorder=7)  # fmt: skip
+    if scene.title:
+        ax.set_title(scene.title)
+    finish_axes(ax)
+    limits = scene_limits(scene, grid)
+    if limits is not None:
+        # Fixed limits: the axes box takes the map's proportions.
+        ax.set_aspect("equal", adjustable="box")
+        ax.set_xlim(limits[0], limits[2])
+        ax.set_ylim(limits[1], limits[3])
+    return moving
+
+
+def _known_corners(grid: OccupancyGrid) -> FloatArray:
+    """World corners of the smallest block of cells holding every known cell (else all)."""
+    known = ~grid.unknown()
+    rows = np.flatnonzero(known.any(axis=1))
+    cols = np.flatnonzero(known.any(axis=0))
+    if rows.size:
+        r0, r1, c0, c1 = rows[0], rows[-1], cols[0], cols[-1]
+    else:
+        r0, r1, c0, c1 = 0, grid.shape[0] - 1, 0, grid.shape[1] - 1
+    cells = [[r0 - 0.5, c0 - 0.5], [r0 - 0.5, c1 + 0.5], [r1 + 0.5, c0 - 0.5], [r1 + 0.5, c1 + 0.5]]
+    return grid.cell_to_world(np.array(cells, dtype=np.float64))
+
+
+def scene_limits(
+    scene: CheckedScene, grid: OccupancyGrid | None
+) -> tuple[float, float, float, float] | None:
+    """``(xmin, ymin, xmax, ymax)`` of what a scene shows, with a margin.
+
+    The map counts by its known part only (a map_server map is mostly unknown
+    space around the building); walls, circles, moving obstacles' routes,
+    paths, traces and points count whole.
+    """
+    parts: list[FloatArray] = []
+    if grid is not None:
+        parts.append(_known_corners(grid))
+    world = scene.world
+    if world is not None:
+        parts.append(np.asarray(world.segments).reshape(-1, 2))
+        c = np.asarray(world.circles)
+        parts += [c[:, :2] - c[:, 2:], c[:, :2] + c[:, 2:]]
+        parts += [np.asarray(ob.path_xy) for ob in world.moving]
+    parts += [points for _, points in scene.paths]
+    parts += [points for _, points in scene.points]
+    for _, _, true_xy, est_xy in scene.traces:
+        parts += [true_xy, est_xy[np.isfinite(est_xy).all(axis=1)]]
+    if not parts:
+        return None
+    xy = np.concatenate([np.reshape(part, (-1, 2)) for part in parts])
+    if not xy.size:
+        return None
+    lo = xy.min(axis=0)
+    hi = xy.max(axis=0)
+    margin = max(0.05 * float(np.max(hi - lo)), 0.25)
+    return (float(lo[0]) - margin, float(lo[1]) - margin,
+            float(hi[0]) + margin, float(hi[1]) + margin)  # fmt: skip
+
+
+def draw_world(ax: Axes, world: World, *, t: float = 0.0) -> list[Any]:
+    """Draw a world's static edges and circles; returns the moving obstacles' patches.
+
+    Solid polygons and solid circles are filled; walls (lines, rings, a circular
+    room) are outlines only.
+
+    Moving obstacles are drawn where they are at ``t`` (dashed outlines), their
+    routes dotted; the returned patches are what an animation moves.
+    """
+    from matplotlib.collections import LineCollection
+    from matplotlib.patches import Circle as CirclePatch
+    from matplotlib.patches import Polygon as PolygonPatch
+
+    segs = as_coords(world.segments, "world.segments", ncols=4)
+    if len(segs):
+        ax.add_collection(LineCollection(list(segs.reshape(-1, 2, 2)), colors=_WALL_COLOUR,
+                                         linewidths=1.5, zorder=2))  # fmt: skip
+        ax.update_datalim(segs.reshape(-1, 2))
+    solids = world.solids
+    if solids is not None:
+        for poly in getattr(solids, "geoms", [solids]):
+            if poly.geom_type == "Polygon" and not poly.is_empty:
+                ax.add_patch(PolygonPatch(np.asarray(poly.exterior.coords), closed=True, fill=True,
+                                          facecolor=_WALL_COLOUR, alpha=0.25, linewidth=0,
+                                          zorder=1))  # fmt: skip
+    solid_rows = {tuple(row) for row in np.asarray(world.solid_circles).tolist()}
+    circles = as_coords(world.circles, "world.circles", ncols=3)
+    for cx, cy, r in circles:
+        filled = (float(cx), float(cy), float(r)) in solid_rows
+        ax.add_patch(CirclePatch((cx, cy), r, fill=filled, facecolor=_WALL_COLOUR,
+                                 edgecolor=_WALL_COLOUR, linewidth=1.5,
+                                 alpha=0.6 if filled else 1.0, zorder=2))  # fmt: skip
+        ax.update_datalim([[cx - r, cy - r], [cx + r, cy + r]])
+    patches: list[Any] = []
+    for k, ob in enumerate(world.moving):
+        route = as_coords(ob.path_xy, f"world.moving[{k}].path_xy")
+        if len(route) > 1:
+            ax.plot(route[:, 0], route[:, 1], ":", color=_MOVING_COLOUR, linewidth=1.0, zorder=2)
+        outline = np.asarray(ob.geometry_at(t).exterior.coords, dtype=np.float64)
+        patch = PolygonPatch(
+            outline,
+            closed=True,
+            fill=True,
+            facecolor=_MOVING_COLOUR,
+            alpha=0.35,
+            edgecolor=_MOVING_COLOUR,
+            linestyle="--",
+            zorder=3,
+        )
+        ax.add_patch(patch)
+        ax.update_datalim(outline)
+        patches.append(patch)
+    ax.autoscale_view()
+    return patches
