@@ -84,19 +84,24 @@ def test_an_empty_scene_draws_an_empty_titled_picture() -> None:
     assert ax.get_title() == "nothing" and ax.get_legend() is None
 
 
+def test_a_non_scene_is_refused() -> None:
+    with pytest.raises(TypeError, match="Scene"):
+        plot_scene(np.zeros(3))  # type: ignore[arg-type]
+
+
 @pytest.mark.parametrize(
-    ("scene", "error", "match"),
+    ("parts", "error", "match"),
     [
-        (np.zeros(3), TypeError, "Scene"),
-        (Scene("x", paths=(("p", np.array([[0.0, math.nan]])),)), ValueError, r"paths\[0\]"),
-        (Scene("x", paths=((1, np.zeros((2, 2))),)), TypeError, "label"),
-        (Scene("x", traces=(("t", np.zeros((2, 3))),)), TypeError, r"traces\[0\]"),
-        (Scene("x", points=(("p", np.zeros((2, 3))),)), ValueError, r"points\[0\]"),
-        (Scene("x", points=[("p",)]), TypeError, r"points\[0\]"),  # type: ignore[arg-type]
-        (Scene("x", grid=np.zeros((2, 2))), TypeError, "grid"),  # type: ignore[arg-type]
-        (Scene("x", world="room"), TypeError, "world"),  # type: ignore[arg-type]
+        ({"paths": (("p", np.array([[0.0, math.nan]])),)}, ValueError, r"paths\[0\]"),
+        ({"paths": ((1, np.zeros((2, 2))),)}, TypeError, r"paths\[0\]\[0\]"),
+        ({"traces": (("t", np.zeros((2, 3))),)}, TypeError, r"traces\[0\]"),
+        ({"points": (("p", np.zeros((2, 3))),)}, ValueError, r"points\[0\]"),
+        ({"points": [("p",)]}, ValueError, r"points\[0\]"),
+        ({"grid": np.zeros((2, 2))}, TypeError, "grid"),
+        ({"world": "room"}, TypeError, "world"),
     ],
 )
-def test_bad_scenes_are_refused(scene: object, error: type, match: str) -> None:
+def test_bad_scenes_are_refused(parts: dict[str, object], error: type, match: str) -> None:
+    # A Scene checks its parts when it is made, so a bad one never reaches the plot.
     with pytest.raises(error, match=match):
-        plot_scene(scene)  # type: ignore[arg-type]
+        plot_scene(Scene("x", **parts))  # type: ignore[arg-type]

@@ -43,6 +43,15 @@ from navkit.sim._estimators import Estimator
 from navkit.sim._lidar import Lidar
 from navkit.sim._noise import RangeNoise
 from navkit.sim._robot import Robot
+from navkit.sim._scenario import (
+    Scenario,
+    ScenarioResult,
+    Scene,
+    Table,
+    Trial,
+    TrialResult,
+    trial_seed,
+)
 from navkit.sim._sensors import (
     Compass,
     CompassReading,
@@ -54,6 +63,7 @@ from navkit.sim._sensors import (
     WheelEncoders,
 )
 from navkit.sim._simulation import Controller, Observation, Simulation
+from navkit.sim._sweep import sweep
 from navkit.sim._trace import EndReason, Event, Metrics, Trace
 from navkit.sim._world import Circle, MovingObstacle, World
 
@@ -76,8 +86,16 @@ __all__ = [
     "Reading",
     "Robot",
     "ScanReading",
+    "Scenario",
+    "ScenarioResult",
+    "Scene",
     "Simulation",
+    "Table",
     "Trace",
+    "Trial",
+    "TrialResult",
     "WheelEncoders",
     "World",
+    "sweep",
+    "trial_seed",
 ]

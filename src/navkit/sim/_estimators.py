@@ -37,7 +37,18 @@ class Estimator(Protocol):
     """
 
     def observe(self, t: float, reading: Reading) -> None:
-        """Take one delivered reading."""
+        """Take one delivered reading.
+
+        Parameters
+        ----------
+        t : float
+            Simulated time of delivery, s (at or after ``reading.stamp``, later
+            with sensor latency).
+        reading : Reading
+            A :class:`ScanReading`, :class:`EncoderReading`,
+            :class:`CompassReading` or :class:`ImuReading`; its ``stamp`` is
+            when it was taken.
+        """
 
     @property
     def pose(self) -> Pose2D | None:

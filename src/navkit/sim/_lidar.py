@@ -187,7 +187,14 @@ class Lidar:
         return self.fov if self.n_beams == 1 else self.fov / (self.n_beams - 1)
 
     def angles(self) -> FloatArray:
-        """Nominal beam angles in the sensor frame, rad, shape (n_beams,)."""
+        """Nominal beam angles in the sensor frame, rad, shape (n_beams,).
+
+        Returns
+        -------
+        ndarray, shape (n_beams,)
+            New array ``angle_min + k * angle_increment`` (not wrapped), the
+            angles of the scans' beams.
+        """
         return self.angle_min + self.angle_increment * np.arange(self.n_beams, dtype=np.float64)
 
     def scan(

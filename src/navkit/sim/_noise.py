@@ -104,7 +104,14 @@ class RangeNoise:
         object.__setattr__(self, "bias", bias)
 
     def arrays(self) -> tuple[FloatArray, FloatArray, FloatArray]:
-        """``(limits, bias, sigma)`` as new float64 arrays, for the noise kernel."""
+        """``(limits, bias, sigma)`` as new float64 arrays, for the noise kernel.
+
+        Returns
+        -------
+        limits, bias, sigma : ndarray, shape (B,)
+            One entry per band: upper edges (m, the last ``inf``), relative
+            mean errors and relative standard deviations.
+        """
         return (
             np.array(self.limits, dtype=np.float64),
             np.array(self.bias, dtype=np.float64),

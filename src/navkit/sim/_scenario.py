@@ -13,13 +13,14 @@ from __future__ import annotations
 import json
 import math
 from abc import ABC, abstractmethod
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any, ClassVar
 
 import numpy as np
 
 from navkit._shared.types import FloatArray
+from navkit._shared.validation import as_float_array, finite_float
 from navkit.mapping import OccupancyGrid
 from navkit.sim._trace import Trace
 from navkit.sim._world import World
@@ -63,13 +64,86 @@ def trial_seed(base: int, case_index: int, trial_index: int) -> int:
     >>> trial_seed(0, 0, 1) == trial_seed(0, 0, 1) != trial_seed(0, 0, 2)
     True
     """
-    for name, value in (("base", base), ("case_index", case_index), ("trial_index", trial_index)):
-        if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
-            raise TypeError(f"{name} must be an integer, got {type(value).__name__}")
-        if not 0 <= value < 2**64:
-            raise ValueError(f"{name} must be in [0, 2**64), got {value}")
-    state = np.random.SeedSequence([int(base), int(case_index), int(trial_index)])
+    words = [
+        _int_in(base, "base", 2**64),
+        _int_in(case_index, "case_index", 2**63),
+        _int_in(trial_index, "trial_index", 2**63),
+    ]
+    state = np.random.SeedSequence(words)
     return int(state.generate_state(2, dtype=np.uint64)[0] >> np.uint64(1))
+
+
+def _int_in(value: object, name: str, upper: int) -> int:
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
+        raise TypeError(f"{name} must be an integer, got {type(value).__name__}")
+    if not 0 <= value < upper:
+        raise ValueError(f"{name} must be in [0, {upper:.3g}), got {_short_int(int(value))}")
+    return int(value)
+
+
+def _short_int(value: int) -> str:
+    return str(value) if abs(value) < 10**30 else "a larger integer"
+
+
+def _text(value: object, name: str) -> str:
+    if not isinstance(value, str):
+        raise TypeError(f"{name} must be a str, got {type(value).__name__}")
+    return value
+
+
+def _figures(value: object, name: str) -> dict[str, float]:
+    """Named real figures as a new dict of floats (NaN allowed: a figure that does not apply)."""
+    if not isinstance(value, Mapping):
+        raise TypeError(f"{name} must be a mapping of str to float, got {type(value).__name__}")
+    out: dict[str, float] = {}
+    for key, figure in value.items():
+        if not isinstance(key, str):
+            raise TypeError(f"{name} keys must be str, got {type(key).__name__}")
+        if not isinstance(figure, (int, float, np.integer, np.floating)):
+            raise TypeError(f"{name}[{key!r}] must be a real number, got {type(figure).__name__}")
+        number = float(figure)
+        if math.isinf(number):
+            raise ValueError(f"{name}[{key!r}] must be finite or NaN, got {number}")
+        out[key] = number
+    return out
+
+
+def _tuple(value: object, name: str) -> tuple[Any, ...]:
+    if isinstance(value, (str, bytes, Mapping)) or not isinstance(value, Iterable):
+        raise TypeError(f"{name} must be a sequence, got {type(value).__name__}")
+    return tuple(value)
+
+
+def _labelled(value: object, name: str, check: Callable[[Any, str], Any]) -> tuple[Any, ...]:
+    out = []
+    for k, item in enumerate(_tuple(value, name)):
+        pair = _tuple(item, f"{name}[{k}]")
+        if len(pair) != 2:
+            raise ValueError(f"{name}[{k}] must be a (label, value) pair, got {len(pair)} items")
+        out.append((_text(pair[0], f"{name}[{k}][0]"), check(pair[1], f"{name}[{k}][1]")))
+    return tuple(out)
+
+
+def _points(value: Any, name: str) -> FloatArray:
+    """Points ``(n, 2)`` (one point ``(2,)`` becomes ``(1, 2)``) as a read-only copy."""
+    arr: FloatArray = as_float_array(value, name).copy()
+    if arr.shape == (2,):
+        arr = arr.reshape(1, 2)
+    if arr.ndim != 2 or arr.shape[1] != 2:
+        raise ValueError(f"{name} must have shape (n, 2) or (2,), got {arr.shape}")
+    arr.flags.writeable = False
+    return arr
+
+
+def _instance(cls: type, optional: bool) -> Callable[[Any, str], Any]:
+    def check(value: Any, name: str) -> Any:
+        if value is None and optional:
+            return None
+        if not isinstance(value, cls):
+            raise TypeError(f"{name} must be a {cls.__name__}, got {type(value).__name__}")
+        return value
+
+    return check
 
 
 @dataclass(frozen=True, slots=True)
@@ -99,6 +173,12 @@ class Trial:
     index: int
     seed: int
 
+    def __post_init__(self) -> None:
+        _text(self.case, "case")
+        object.__setattr__(self, "case_index", _int_in(self.case_index, "case_index", 2**63))
+        object.__setattr__(self, "index", _int_in(self.index, "index", 2**63))
+        object.__setattr__(self, "seed", _int_in(self.seed, "seed", 2**64))
+
 
 @dataclass(frozen=True, slots=True, eq=False)
 class TrialResult:
@@ -127,6 +207,15 @@ class TrialResult:
     values: Mapping[str, float]
     trace: Trace | None = None
     wall_time: float = 0.0
+
+    def __post_init__(self) -> None:
+        _instance(Trial, False)(self.trial, "trial")
+        object.__setattr__(self, "values", _figures(self.values, "values"))
+        _instance(Trace, True)(self.trace, "trace")
+        wall = finite_float(self.wall_time, "wall_time")
+        if wall < 0.0:
+            raise ValueError(f"wall_time must be >= 0 s, got {wall}")
+        object.__setattr__(self, "wall_time", wall)
 
 
 @dataclass(frozen=True, slots=True)
@@ -161,11 +250,27 @@ class Table:
     notes: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
-        for row in self.rows:
-            if len(row) != len(self.columns):
-                raise ValueError(
-                    f"rows: a row has {len(row)} cells for {len(self.columns)} columns"
-                )
+        _text(self.title, "title")
+        columns = tuple(
+            _text(c, f"columns[{i}]") for i, c in enumerate(_tuple(self.columns, "columns"))
+        )
+        rows = []
+        for i, row in enumerate(_tuple(self.rows, "rows")):
+            cells = _tuple(row, f"rows[{i}]")
+            if len(cells) != len(columns):
+                raise ValueError(f"rows[{i}] has {len(cells)} cells for {len(columns)} columns")
+            for j, cell in enumerate(cells):
+                if cell is not None and not isinstance(
+                    cell, (str, int, float, np.integer, np.floating)
+                ):
+                    raise TypeError(
+                        f"rows[{i}][{j}] must be text, a number or None, got {type(cell).__name__}"
+                    )
+            rows.append(cells)
+        notes = tuple(_text(n, f"notes[{i}]") for i, n in enumerate(_tuple(self.notes, "notes")))
+        object.__setattr__(self, "columns", columns)
+        object.__setattr__(self, "rows", tuple(rows))
+        object.__setattr__(self, "notes", notes)
 
     def render(self, *, digits: int = 3) -> str:
         """The table as aligned plain text.
@@ -173,7 +278,7 @@ class Table:
         Parameters
         ----------
         digits : int, optional
-            Significant digits of floats.
+            Significant digits of floats, in [1, 17].
 
         Returns
         -------
@@ -185,6 +290,9 @@ class Table:
         >>> Table("t", ("a",), ((1.23456,),)).render(digits=2).splitlines()[-1]
         '1.2'
         """
+        digits = _int_in(digits, "digits", 18)
+        if digits < 1:
+            raise ValueError("digits must be in [1, 17], got 0")
         cells = [list(self.columns)] + [[_cell_text(c, digits) for c in row] for row in self.rows]
         widths = [max(len(r[i]) for r in cells) for i in range(len(self.columns))]
 
@@ -262,11 +370,17 @@ class Scene:
     world : World or None
         Shapes and circles of the simulated world (drawn over ``grid``).
     paths : tuple of (str, ndarray (n, 2))
-        Labelled planned paths, world ``(x, y)`` in m.
+        Labelled planned paths, world ``(x, y)`` in m (finite).
     traces : tuple of (str, Trace)
         Labelled runs: true poses solid, estimates dashed.
     points : tuple of (str, ndarray (n, 2))
-        Labelled markers (starts, goals, targets), world ``(x, y)`` in m.
+        Labelled markers (starts, goals, targets), world ``(x, y)`` in m
+        (finite; a single ``(2,)`` point is stored as ``(1, 2)``).
+
+    Notes
+    -----
+    Every part is checked on construction (``TypeError``/``ValueError`` naming
+    it, e.g. ``paths[0][1]``); arrays are stored as read-only copies.
 
     Examples
     --------
@@ -280,6 +394,15 @@ class Scene:
     paths: tuple[tuple[str, FloatArray], ...] = ()
     traces: tuple[tuple[str, Trace], ...] = ()
     points: tuple[tuple[str, FloatArray], ...] = ()
+
+    def __post_init__(self) -> None:
+        _text(self.title, "title")
+        _instance(OccupancyGrid, True)(self.grid, "grid")
+        _instance(World, True)(self.world, "world")
+        object.__setattr__(self, "paths", _labelled(self.paths, "paths", _points))
+        traces = _labelled(self.traces, "traces", _instance(Trace, False))
+        object.__setattr__(self, "traces", traces)
+        object.__setattr__(self, "points", _labelled(self.points, "points", _points))
 
 
 @dataclass(frozen=True, slots=True, eq=False)
@@ -316,6 +439,20 @@ class ScenarioResult:
     summary: Mapping[str, float] = field(default_factory=dict)
     scene: Scene | None = None
 
+    def __post_init__(self) -> None:
+        _text(self.scenario, "scenario")
+        object.__setattr__(self, "seed", _int_in(self.seed, "seed", 2**64))
+        trials = _tuple(self.trials, "trials")
+        for k, r in enumerate(trials):
+            _instance(TrialResult, False)(r, f"trials[{k}]")
+        tables = _tuple(self.tables, "tables")
+        for k, t in enumerate(tables):
+            _instance(Table, False)(t, f"tables[{k}]")
+        object.__setattr__(self, "trials", trials)
+        object.__setattr__(self, "tables", tables)
+        object.__setattr__(self, "summary", _figures(self.summary, "summary"))
+        _instance(Scene, True)(self.scene, "scene")
+
     @property
     def traces(self) -> tuple[Trace, ...]:
         """Every trial's trace, in trial order (trials without one are skipped).
@@ -338,7 +475,7 @@ class ScenarioResult:
         Parameters
         ----------
         digits : int, optional
-            Significant digits of floats.
+            Significant digits of floats, in [1, 17].
 
         Returns
         -------
@@ -353,6 +490,7 @@ class ScenarioResult:
         -
         1
         """
+        digits = _int_in(digits, "digits", 18)
         return "\n\n".join(t.render(digits=digits) for t in self.tables)
 
     def to_dict(self) -> dict[str, Any]:

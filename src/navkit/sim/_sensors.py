@@ -85,6 +85,26 @@ class Compass:
     def heading_deg(self, yaw: float, z: float = 0.0) -> float:
         """The reading for a true ``yaw`` (rad) and a standard-normal draw ``z``.
 
+        Parameters
+        ----------
+        yaw : float
+            True heading, rad, counter-clockwise from the world x axis, within
+            ±1e6.
+        z : float, default 0.0
+            Standard-normal draw scaling :attr:`noise`, within ±1e6; 0 gives the
+            noise-free reading (bias included).
+
+        Returns
+        -------
+        float
+            ``(degrees(north - yaw + bias + noise * z)) mod 360``: degrees
+            clockwise from north, in [0, 360).
+
+        Raises
+        ------
+        TypeError, ValueError
+            ``yaw`` or ``z`` not finite real numbers within ±1e6.
+
         Examples
         --------
         >>> Compass().heading_deg(0.0)  # facing +x, east
@@ -199,7 +219,25 @@ class WheelEncoders:
         object.__setattr__(self, "latency", check_latency(self.latency))
 
     def counts(self, wheel_angles: np.ndarray) -> IntArray:
-        """Counter readings (int64) for total wheel rotations ``wheel_angles`` (rad)."""
+        """Counter readings (int64) for total wheel rotations ``wheel_angles`` (rad).
+
+        Parameters
+        ----------
+        wheel_angles : ndarray, shape (N,)
+            Total rotation of each wheel since the start, rad, within ±1e9.
+
+        Returns
+        -------
+        ndarray of int64, shape (N,)
+            ``floor(wheel_angles / 2π * ticks_per_rev)``, modulo ``2**bits``
+            (in ``[0, 2**bits)``) when ``bits`` is below 64, as is otherwise.
+
+        Raises
+        ------
+        TypeError, ValueError
+            ``wheel_angles`` not a 1-D array of finite real numbers within
+            ±1e9 rad.
+        """
         wheel_angles = as_float_array(wheel_angles, "wheel_angles", ndim=1)
         if wheel_angles.size and float(np.max(np.abs(wheel_angles))) > 1e9:
             raise ValueError("wheel_angles must lie within ±1e9 rad")
@@ -247,6 +285,13 @@ def _readonly_ints(value: object) -> IntArray:
 class ScanReading:
     """A LiDAR scan taken at ``stamp`` (s).
 
+    Attributes
+    ----------
+    stamp : float
+        Time the scan was taken, s (finite).
+    scan : LaserScan
+        The scan, in the sensor frame.
+
     Examples
     --------
     >>> ScanReading(0.1, LaserScan([1.0], angle_min=0.0, angle_increment=0.1,
@@ -265,8 +310,15 @@ class ScanReading:
 
 @dataclass(frozen=True, slots=True, eq=False)
 class EncoderReading:
-    """Raw wheel-encoder counters at ``stamp`` (s), one per wheel (``[left, right]`` for
-    a differential drive), as a read-only int64 array.
+    """Raw wheel-encoder counters at ``stamp`` (s), one per wheel.
+
+    Attributes
+    ----------
+    stamp : float
+        Time of the reading, s (finite).
+    ticks : ndarray of int64, shape (N,)
+        Counter of each wheel (``[left, right]`` for a differential drive), as
+        :meth:`WheelEncoders.counts` gives them; stored as a read-only copy.
 
     Examples
     --------
@@ -286,6 +338,14 @@ class EncoderReading:
 class CompassReading:
     """A compass heading at ``stamp`` (s): degrees clockwise from north, in [0, 360).
 
+    Attributes
+    ----------
+    stamp : float
+        Time of the reading, s (finite).
+    heading_deg : float
+        Heading, degrees clockwise from north (finite; the sensor gives
+        [0, 360)). Convert with :func:`navkit.estimation.compass_to_yaw`.
+
     Examples
     --------
     >>> CompassReading(0.05, 90.0).heading_deg
@@ -302,8 +362,17 @@ class CompassReading:
 
 @dataclass(frozen=True, slots=True)
 class ImuReading:
-    """An IMU sample at ``stamp`` (s): gyro yaw rate (rad/s) and body-frame
-    acceleration ``(acceleration_x, acceleration_y)`` (m/s², gravity removed).
+    """An IMU sample at ``stamp`` (s): gyro yaw rate and body-frame acceleration.
+
+    Attributes
+    ----------
+    stamp : float
+        Time of the sample, s (finite).
+    yaw_rate : float
+        Gyro yaw rate, rad/s, counter-clockwise positive (finite).
+    acceleration_x, acceleration_y : float
+        Acceleration in the robot frame (x forward, y left), m/s², gravity
+        removed (finite).
 
     Examples
     --------

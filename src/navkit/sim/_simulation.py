@@ -341,6 +341,12 @@ class Simulation:
     def run(self) -> Trace:
         """Run the loop to its end and return the :class:`Trace`.
 
+        Returns
+        -------
+        Trace
+            One row per physics step (true and estimated poses, commands), the
+            scans when recorded, the events and the run's :class:`Metrics`.
+
         Raises
         ------
         RuntimeError

@@ -164,6 +164,8 @@ class Trace:
     metrics : Metrics
         The run's summary.
 
+    Notes
+    -----
     Every array is a read-only copy.
     """
 

@@ -1,0 +1,29 @@
+"""The ``navkit`` command line (``navkit ...`` or ``python -m navkit ...``).
+
+* ``navkit demo`` — a robot plans, tracks and localises on a real office map
+  and prints a results table (seconds once navkit's kernels are compiled).
+* ``navkit list`` — the experiments.
+* ``navkit run SCENARIO [--trials N] [--seed S] [--plot FILE.png]
+  [--animate FILE.gif] [--json FILE] [--workers N] [--scheduler ADDRESS]
+  [--data DIR] [--quiet]`` — one paper's experiment, navkit's figures beside
+  the paper's; trials in parallel on local processes or a Dask cluster.
+* ``navkit plan MAP.yaml --start X,Y --goal X,Y [--planner astar|field_dstar]
+  [--radius R] [--plot FILE.png]`` — a path on any ROS map_server map.
+* ``navkit --version``.
+
+Bad arguments print the usage and exit with code 2; a missing or malformed
+file, map or data set prints one line ``navkit: error: ...`` and exits with
+code 1. Progress (trials done, ETA) is drawn on standard error when it is a
+terminal and a run lasts more than about 2 s; the first run, which compiles
+navkit's kernels, says so.
+
+Examples
+--------
+>>> main(["--version"])  # doctest: +ELLIPSIS
+navkit ...
+0
+"""
+
+from navkit.cli._app import main
+
+__all__ = ["main"]

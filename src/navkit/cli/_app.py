@@ -1,0 +1,88 @@
+"""The ``navkit`` command: parse, dispatch, and turn expected failures into one line."""
+
+from __future__ import annotations
+
+import sys
+from collections.abc import Sequence
+from typing import TextIO
+
+from navkit.cli._parser import build_parser, join_negative_points
+from navkit.cli._plan import plan_command
+from navkit.cli._scenarios import list_scenarios, run_scenario
+from navkit.errors import NavkitError
+from navkit.sim.scenarios import SCENARIOS
+
+__all__ = ["main"]
+
+#: Failures of the user's input or environment (files, data, maps, missing
+#: extras, unreachable plans): reported in one line with exit code 1.
+EXPECTED = (NavkitError, OSError, ValueError, ImportError)
+
+
+def one_line(exc: BaseException) -> str:
+    """An exception's message (and notes) on one line.
+
+    Examples
+    --------
+    >>> one_line(ValueError("bad\\n  map"))
+    'bad map'
+    """
+    text = " ".join(str(exc).split()) or type(exc).__name__
+    notes = [" ".join(str(n).split()) for n in getattr(exc, "__notes__", ())]
+    return "; ".join([text, *notes])
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the ``navkit`` command.
+
+    Parameters
+    ----------
+    argv : sequence of str, optional
+        The arguments after the program name (default ``sys.argv[1:]``).
+
+    Returns
+    -------
+    int
+        The exit code: 0 on success, 1 when a file, map or data set is missing
+        or malformed (or no path exists), 2 on bad arguments (with a usage
+        message), 130 when interrupted.
+
+    Raises
+    ------
+    TypeError
+        ``argv`` is not a sequence of str.
+
+    Examples
+    --------
+    >>> main(["list"])  # doctest: +ELLIPSIS
+    navkit's experiments (navkit run SCENARIO)
+    ...
+    0
+    """
+    if argv is not None and (
+        isinstance(argv, (str, bytes)) or not isinstance(argv, Sequence)
+        or not all(isinstance(a, str) for a in argv)
+    ):  # fmt: skip
+        raise TypeError(f"argv must be a sequence of str or None, got {argv!r:.60}")
+    out: TextIO = sys.stdout
+    err: TextIO = sys.stderr
+    parser = build_parser(sorted(SCENARIOS))
+    try:
+        given = sys.argv[1:] if argv is None else list(argv)
+        args = parser.parse_args(join_negative_points(given))
+    except SystemExit as exc:  # --help, --version (0) and bad arguments (2)
+        return exc.code if isinstance(exc.code, int) else (0 if exc.code is None else 2)
+    try:
+        if args.command == "list":
+            return list_scenarios(out)
+        if args.command == "plan":
+            return plan_command(args, out, err)
+        if args.command == "demo":
+            return run_scenario(args, out, err, name="demo", workers=1)
+        return run_scenario(args, out, err, name=args.scenario, workers=args.workers)
+    except EXPECTED as exc:
+        err.write(f"navkit: error: {one_line(exc)}\n")
+        return 1
+    except KeyboardInterrupt:
+        err.write("navkit: interrupted\n")
+        return 130

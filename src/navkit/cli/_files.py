@@ -1,0 +1,75 @@
+"""Writing the command's output files atomically."""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import os
+import tempfile
+from pathlib import Path
+from typing import Any
+
+__all__ = ["write_json"]
+
+
+def write_json(data: Any, path: str | os.PathLike[str]) -> Path:
+    """Write ``data`` as JSON to ``path`` atomically.
+
+    The text goes to a temporary file in the same folder, which then replaces
+    ``path`` (``os.replace``): readers see the old file or the whole new one,
+    and a failure leaves no partial file behind.
+
+    Parameters
+    ----------
+    data : JSON-ready object
+        What to write (``ScenarioResult.to_dict()``).
+    path : str or path-like
+        The file; its folder must exist.
+
+    Returns
+    -------
+    Path
+        The file written.
+
+    Raises
+    ------
+    OSError
+        The folder does not exist or cannot be written; ``path`` is a folder.
+    TypeError, ValueError
+        ``data`` is not JSON-serialisable (nothing is written).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     target = write_json({"a": 1.5}, Path(folder) / "out.json")
+    ...     target.read_text()
+    '{\\n  "a": 1.5\\n}\\n'
+    """
+    target = Path(path)
+    text = json.dumps(data, indent=2, allow_nan=False) + "\n"
+    if target.is_dir():
+        raise IsADirectoryError(f"{target} is a folder, not a file")
+    folder = target.parent
+    if not folder.is_dir():
+        raise FileNotFoundError(f"folder {folder} does not exist")
+    fd, temporary = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=folder)
+    try:
+        with os.fdopen(fd, "w", encoding="utf-8") as fh:
+            fh.write(text)
+            fh.flush()
+            os.fsync(fh.fileno())
+        os.chmod(temporary, 0o644 & ~_umask())
+        os.replace(temporary, target)
+    except BaseException:
+        with contextlib.suppress(FileNotFoundError):
+            os.unlink(temporary)
+        raise
+    return target
+
+
+def _umask() -> int:
+    """The process's umask (read by setting and restoring it)."""
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask

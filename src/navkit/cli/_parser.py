@@ -1,0 +1,167 @@
+"""The command line's grammar: ``navkit {demo,list,run,plan}`` and their options."""
+
+from __future__ import annotations
+
+import argparse
+import math
+import re
+from importlib import metadata
+
+__all__ = ["build_parser", "join_negative_points", "version"]
+
+
+def version() -> str:
+    """navkit's installed version (``"unknown"`` when run from an uninstalled tree)."""
+    try:
+        return metadata.version("navkit")
+    except metadata.PackageNotFoundError:  # pragma: no cover - always installed in tests
+        return "unknown"
+
+
+def join_negative_points(argv: list[str]) -> list[str]:
+    """``--start -1.5,2`` as ``--start=-1.5,2``: argparse would take ``-1.5,2`` for an option.
+
+    Examples
+    --------
+    >>> join_negative_points(["plan", "m.yaml", "--start", "-1.5,-0.5", "--goal", "1,1"])
+    ['plan', 'm.yaml', '--start=-1.5,-0.5', '--goal', '1,1']
+    """
+    out: list[str] = []
+    i = 0
+    while i < len(argv):
+        arg = argv[i]
+        following = argv[i + 1] if i + 1 < len(argv) else ""
+        if arg in ("--start", "--goal") and re.match(r"-[\d.]", following):
+            out.append(f"{arg}={following}")
+            i += 2
+        else:
+            out.append(arg)
+            i += 1
+    return out
+
+
+def _point(text: str) -> tuple[float, float]:
+    """``"X,Y"`` (m) as two finite floats."""
+    parts = text.split(",")
+    try:
+        if len(parts) != 2:
+            raise ValueError
+        x, y = float(parts[0]), float(parts[1])
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected X,Y in metres, got {text!r}") from None
+    if not (math.isfinite(x) and math.isfinite(y)):
+        raise argparse.ArgumentTypeError(f"X,Y must be finite, got {text!r}")
+    return x, y
+
+
+def _count(low: int, high: int) -> type[int]:
+    """An integer argument in ``[low, high]``."""
+
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"expected an integer, got {text!r}") from None
+        if not low <= value <= high:
+            raise argparse.ArgumentTypeError(f"must be in [{low}, {high}], got {value}")
+        return value
+
+    parse.__name__ = "integer"
+    return parse  # type: ignore[return-value]
+
+
+def _radius(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a radius in metres, got {text!r}") from None
+    if not (math.isfinite(value) and 0.0 <= value <= 100.0):
+        raise argparse.ArgumentTypeError(f"must be in [0, 100] m, got {text!r}")
+    return value
+
+
+def _outputs(parser: argparse.ArgumentParser) -> None:
+    """Options shared by ``demo`` and ``run``."""
+    parser.add_argument("--trials", type=_count(1, 100_000), metavar="N",
+                        help="trials per case (default: the scenario's)")  # fmt: skip
+    parser.add_argument("--seed", type=_count(0, 2**63 - 1), default=0, metavar="S",
+                        help="base seed (default 0): the same seed, the same figures")  # fmt: skip
+    parser.add_argument("--plot", metavar="FILE.png", help="write a picture of the scene")
+    parser.add_argument("--animate", metavar="FILE.gif", help="write an animation of the run")
+    parser.add_argument("--json", metavar="FILE", help="write the result as JSON")
+    parser.add_argument("--data", metavar="DIR",
+                        help="data folder holding ros-map-server-maps, ... "
+                             "(default: $NAVKIT_DATA or shared/data nearby)")  # fmt: skip
+    parser.add_argument("--quiet", action="store_true",
+                        help="no progress bar and no compilation notice on stderr")  # fmt: skip
+
+
+def build_parser(scenarios: list[str]) -> argparse.ArgumentParser:
+    """The ``navkit`` argument parser.
+
+    Parameters
+    ----------
+    scenarios : list of str
+        The registered scenario names (``navkit run``'s choices).
+
+    Returns
+    -------
+    argparse.ArgumentParser
+        Exits with code 2 and a usage message on bad arguments.
+
+    Examples
+    --------
+    >>> build_parser(["demo"]).parse_args(["run", "demo", "--trials", "2"]).trials
+    2
+    """
+    parser = argparse.ArgumentParser(
+        prog="navkit",
+        description="navkit's experiments, demo and planner on the command line.",
+    )
+    parser.add_argument("--version", action="version", version=f"navkit {version()}")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
+
+    demo = sub.add_parser(
+        "demo", help="plan, track and localise on a real map (a few seconds)",
+        description="A robot plans (A*), tracks (regulated pure pursuit) and localises "
+                    "(wheel encoders + IMU fusion) on a three-leg tour of the Willow Garage "
+                    "office map (a synthetic office when the data is absent), then prints "
+                    "a results table.",
+    )  # fmt: skip
+    _outputs(demo)
+    demo.add_argument("--map", choices=("auto", "willow", "office"), default="auto",
+                      help="the map (default auto: Willow Garage if found)")  # fmt: skip
+
+    sub.add_parser("list", help="list the experiments", description="List the experiments.")
+
+    run = sub.add_parser(
+        "run", help="run an experiment and print its tables beside the paper's",
+        description="Run one of the papers' experiments and print navkit's figures beside "
+                    "the paper's.",
+    )  # fmt: skip
+    run.add_argument("scenario", choices=scenarios, metavar="SCENARIO",
+                     help=f"one of: {', '.join(scenarios)}")  # fmt: skip
+    _outputs(run)
+    run.add_argument("--workers", type=_count(1, 1024), metavar="N",
+                     help="local processes (default: every core; 1: this one)")  # fmt: skip
+    run.add_argument("--scheduler", metavar="ADDRESS",
+                     help="run the trials on a Dask cluster (tcp://host:8786); needs the "
+                          "'distributed' extra")  # fmt: skip
+
+    plan = sub.add_parser(
+        "plan", help="plan a path on a ROS map_server map",
+        description="Plan a path on a ROS map_server map (YAML + image) and print its "
+                    "length and the planning time.",
+    )  # fmt: skip
+    plan.add_argument("map", metavar="MAP.yaml", help="the map's YAML file")
+    plan.add_argument("--start", type=_point, required=True, metavar="X,Y",
+                      help="start, world metres")  # fmt: skip
+    plan.add_argument("--goal", type=_point, required=True, metavar="X,Y",
+                      help="goal, world metres")  # fmt: skip
+    plan.add_argument("--planner", choices=("astar", "field_dstar"), default="astar",
+                      help="astar (8-connected, default) or field_dstar (any angle)")  # fmt: skip
+    plan.add_argument("--radius", type=_radius, default=0.0, metavar="R",
+                      help="robot radius: obstacles inflated by R metres (default 0)")  # fmt: skip
+    plan.add_argument("--plot", metavar="FILE.png", help="write a picture of the map and path")
+    plan.add_argument("--quiet", action="store_true", help="no compilation notice on stderr")
+    return parser

@@ -1,0 +1,71 @@
+"""``navkit plan MAP.yaml --start X,Y --goal X,Y``: plan on a map_server map."""
+
+from __future__ import annotations
+
+import argparse
+import time
+from pathlib import Path
+from typing import Literal, TextIO
+
+import numpy as np
+
+from navkit.cli._kernels import announce_compilation
+from navkit.cli._outputs import check_output, save_picture
+from navkit.mapping import OccupancyGrid
+from navkit.mapping.io import read_map
+from navkit.planning import MapPlanner
+from navkit.sim import Scene, Table
+
+__all__ = ["plan_command"]
+
+PlannerName = Literal["astar", "field_dstar"]
+
+
+def _warm_up(resolution: float, radius: float, planner: PlannerName) -> None:
+    """Plan once on a small empty grid: compiles the kernels (or loads them from the
+    cache), so that the times printed are the costmap's and the search's alone."""
+    grid = OccupancyGrid.from_occupancy(np.zeros((4, 40), dtype=bool), resolution=resolution)
+    inflate = min(radius, resolution)
+    MapPlanner(grid, robot_radius=inflate, planner=planner).plan(
+        (1.5 * resolution, 2 * resolution), (38.5 * resolution, 2 * resolution)
+    )
+
+
+def plan_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
+    """Load the map, plan, print length and time as a table, draw it if asked."""
+    check_output(args.plot, ".png", "--plot")
+    grid = read_map(args.map)
+    if not args.quiet:
+        announce_compilation(args.planner, err)
+    _warm_up(grid.resolution, args.radius, args.planner)
+    began = time.perf_counter()
+    planner = MapPlanner(grid, robot_radius=args.radius, planner=args.planner)
+    prepared = time.perf_counter()
+    path = planner.plan(args.start, args.goal)
+    searched = time.perf_counter()
+    name = Path(args.map).name
+    rows: tuple[tuple[str, str | float | int], ...] = (
+        ("map", f"{name} ({grid.shape[1]} x {grid.shape[0]} cells of {grid.resolution:g} m)"),
+        ("planner", args.planner),
+        ("robot radius (m)", args.radius),
+        ("start (m)", f"({args.start[0]:g}, {args.start[1]:g})"),
+        ("goal (m)", f"({args.goal[0]:g}, {args.goal[1]:g})"),
+        ("length (m)", float(path.length)),
+        ("plan time (ms)", 1e3 * (searched - prepared)),
+        ("costmap time (ms)", 1e3 * (prepared - began)),
+        ("cells expanded", int(path.expanded)),
+        ("path points", len(path.points)),
+    )
+    print(Table(f"navkit plan on {name}", ("", "value"), rows).render(digits=4), file=out)
+    if args.plot is not None:
+        scene = Scene(
+            f"{args.planner} on {name}: {path.length:.2f} m",
+            grid=grid,
+            paths=((args.planner, path.points),),
+            points=(
+                ("start", np.array([args.start], dtype=np.float64)),
+                ("goal", np.array([args.goal], dtype=np.float64)),
+            ),
+        )
+        print(f"wrote {save_picture(scene, args.plot)}", file=out)
+    return 0

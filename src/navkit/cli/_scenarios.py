@@ -1,0 +1,113 @@
+"""``navkit list``, ``navkit run SCENARIO`` and ``navkit demo``."""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import inspect
+import os
+import time
+from collections.abc import Iterator
+from typing import Any, TextIO
+
+from navkit.cli._kernels import announce_compilation
+from navkit.cli._outputs import (
+    check_output,
+    save_animation,
+    save_json,
+    save_picture,
+)
+from navkit.cli._progress import ProgressBar
+from navkit.sim import Scenario, ScenarioResult, Table, sweep
+from navkit.sim.scenarios import SCENARIOS, get_scenario
+
+__all__ = ["list_scenarios", "run_scenario"]
+
+
+def list_scenarios(out: TextIO) -> int:
+    """Print every experiment: name, default trials per case, what it runs."""
+    rows = tuple((name, cls.default_trials, cls.title) for name, cls in sorted(SCENARIOS.items()))
+    table = Table(
+        "navkit's experiments (navkit run SCENARIO)", ("scenario", "trials", "what it runs"), rows
+    )
+    print(table.render(), file=out)
+    return 0
+
+
+def _construct(name: str, args: argparse.Namespace) -> Scenario:
+    """The scenario with the command line's options (those its constructor takes)."""
+    cls = get_scenario(name)
+    accepted = inspect.signature(cls).parameters
+    options: dict[str, Any] = {}
+    if getattr(args, "data", None) is not None and "data_dir" in accepted:
+        options["data_dir"] = args.data
+    if getattr(args, "map", None) is not None and "map" in accepted:
+        options["map"] = args.map
+    return cls(**options)
+
+
+@contextlib.contextmanager
+def _dask_client(address: str | None) -> Iterator[Any]:
+    """A ``dask.distributed.Client`` connected to ``address`` (None: no client)."""
+    if address is None:
+        yield None
+        return
+    try:
+        from dask.distributed import Client
+    except ImportError as exc:
+        raise ImportError(
+            "--scheduler needs Dask's distributed scheduler: pip install 'navkit[distributed]'"
+        ) from exc
+    connect: Any = Client  # untyped
+    client = connect(address, timeout="10s")
+    try:
+        yield client
+    finally:
+        client.close()
+
+
+def run_scenario(
+    args: argparse.Namespace, out: TextIO, err: TextIO, *, name: str, workers: int | None
+) -> int:
+    """Run a scenario as the options say; print its tables; write the files asked for."""
+    check_output(args.plot, ".png", "--plot")
+    check_output(args.animate, ".gif", "--animate")
+    check_output(args.json, "", "--json")
+    scenario = _construct(name, args)
+    total = len(scenario.trials(args.trials, seed=args.seed))
+    address = getattr(args, "scheduler", None)
+    if not args.quiet and address is None:
+        announce_compilation("simulation", err)
+    began = time.perf_counter()
+    with (
+        _dask_client(address) as client,
+        ProgressBar(err, enabled=not args.quiet, description=scenario.name) as bar,
+    ):
+        bar.start(total)
+        result: ScenarioResult = sweep(
+            scenario, trials=args.trials, seeds=args.seed, workers=workers, executor=client,
+            progress=bar,
+        )  # fmt: skip
+        where = _where(address, workers, total)
+    elapsed = time.perf_counter() - began
+    print(result.table(), file=out)
+    print(f"\n{total} trials in {elapsed:.1f} s ({where}), seed {args.seed}", file=out)
+    if args.json is not None:
+        print(f"wrote {save_json(result, args.json)}", file=out)
+    if args.plot is not None or args.animate is not None:
+        if result.scene is None:
+            raise ValueError(f"{scenario.name} has no scene to draw")
+        if args.plot is not None:
+            print(f"wrote {save_picture(result.scene, args.plot)}", file=out)
+        if args.animate is not None:
+            print(f"wrote {save_animation(result.scene, args.animate)}", file=out)
+    return 0
+
+
+def _where(address: str | None, workers: int | None, total: int) -> str:
+    if address is not None:
+        return f"Dask scheduler {address}"
+    # sweep's rule: min(workers or the usable cores, trials) processes; 1 is this process.
+    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
+    n = min(workers if workers is not None else (cores or 1), total)
+    return "this process" if n <= 1 else f"{n} local processes"

@@ -1,0 +1,300 @@
+"""Running a scenario's trials anywhere: this process, a process pool or a Dask cluster."""
+
+from __future__ import annotations
+
+import concurrent.futures
+import dataclasses
+import numbers
+import os
+import queue
+import time
+from collections.abc import Callable, Sequence
+from typing import Any
+
+import numpy as np
+
+from navkit.sim._scenario import Scenario, ScenarioResult, Trial, TrialResult, trial_seed
+
+__all__ = ["sweep"]
+
+#: Most worker processes a local pool may be asked for.
+MAX_WORKERS = 1024
+
+Progress = Callable[[int, int], None]
+
+
+def _cpu_count() -> int:
+    """Cores this process may run on."""
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:  # pragma: no cover - not on Linux
+        return os.cpu_count() or 1
+
+
+def _as_scenario(scenario: object) -> Scenario:
+    if isinstance(scenario, Scenario):
+        return scenario
+    if isinstance(scenario, str):
+        # Imported here: navkit.sim.scenarios imports navkit.sim, which imports this module.
+        from navkit.sim.scenarios import get_scenario
+
+        return get_scenario(scenario)()
+    kind = type(scenario).__name__
+    raise TypeError(f"scenario must be a Scenario or a scenario name, got {kind}")
+
+
+def _seed_int(value: object, name: str) -> int:
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Integral):
+        raise TypeError(f"{name} must be an integer, got {type(value).__name__}")
+    if int(value) < 0:
+        raise ValueError(f"{name} must be >= 0, got {int(value)}")
+    return int(value)
+
+
+def _plan(
+    scenario: Scenario, trials: int | None, seeds: int | Sequence[int]
+) -> tuple[tuple[Trial, ...], int]:
+    """Every trial with its seed, and the base seed to record."""
+    if isinstance(seeds, (numbers.Integral, bool, np.bool_)):
+        base = _seed_int(seeds, "seeds")
+        return scenario.trials(trials, seed=base), base
+    if isinstance(seeds, (str, bytes)) or not isinstance(seeds, (Sequence, np.ndarray)):
+        raise TypeError(f"seeds must be an integer or a sequence of integers, got {seeds!r}")
+    bases = [_seed_int(s, f"seeds[{i}]") for i, s in enumerate(seeds)]
+    if not bases:
+        raise ValueError("seeds must hold at least one seed")
+    if trials is not None and trials != len(bases):
+        raise ValueError(
+            f"seeds holds {len(bases)} seeds for trials={trials}: give one per trial index"
+        )
+    out = []
+    for t in scenario.trials(len(bases) if trials is None else trials, seed=0):
+        if t.index >= len(bases):
+            raise ValueError(
+                f"seeds: case {t.case!r} runs {t.index + 1} or more trials, "
+                f"seeds holds {len(bases)}"
+            )
+        out.append(dataclasses.replace(t, seed=trial_seed(bases[t.index], t.case_index, t.index)))
+    return tuple(out), bases[0]
+
+
+def run_one(scenario: Scenario, trial: Trial) -> TrialResult:
+    """Run one trial and time it (what every executor runs; module-level, so it pickles)."""
+    began = time.perf_counter()
+    result = scenario.run_trial(trial)
+    elapsed = time.perf_counter() - began
+    if not isinstance(result, TrialResult):
+        raise TypeError(
+            f"{type(scenario).__name__}.run_trial returned a {type(result).__name__}, "
+            "not a TrialResult"
+        )
+    if result.trial != trial:
+        raise ValueError(f"{type(scenario).__name__}.run_trial returned another trial's result")
+    if result.wall_time == 0.0:
+        result = dataclasses.replace(result, wall_time=elapsed)
+    return result
+
+
+def _name_trial(exc: BaseException, scenario: Scenario, trial: Trial, total: int) -> None:
+    """Add a note naming the failed trial to ``exc`` (shown under its traceback)."""
+    note = (
+        f"in scenario {scenario.name!r}, case {trial.case!r}, trial {trial.index} "
+        f"(seed {trial.seed}; {total} trials in the sweep)"
+    )
+    add_note = getattr(exc, "add_note", None)
+    if add_note is not None:
+        add_note(note)
+    else:  # pragma: no cover - Python 3.10: keep the note where 3.11 would
+        exc.__notes__ = [*getattr(exc, "__notes__", []), note]  # type: ignore[attr-defined]
+
+
+def _is_dask_client(executor: object) -> bool:
+    """A ``dask.distributed.Client`` (duck-typed: dask is not imported)."""
+    return callable(getattr(executor, "submit", None)) and callable(
+        getattr(executor, "gather", None)
+    )
+
+
+def _serial(
+    scenario: Scenario, trials: Sequence[Trial], progress: Progress | None
+) -> list[TrialResult]:
+    results = []
+    for trial in trials:
+        try:
+            results.append(run_one(scenario, trial))
+        except Exception as exc:
+            _name_trial(exc, scenario, trial, len(trials))
+            raise
+        if progress is not None:
+            progress(len(results), len(trials))
+    return results
+
+
+def _submitted(
+    submit: Callable[[Trial], Any],
+    cancel: Callable[[list[Any]], None],
+    scenario: Scenario,
+    trials: Sequence[Trial],
+    progress: Progress | None,
+) -> list[TrialResult]:
+    """Submit every trial, collect results as they finish, in the trials' order.
+
+    Works with ``concurrent.futures`` and Dask futures alike: both call
+    ``add_done_callback`` hooks when a future finishes (Dask from another
+    thread), which queue the trial's position for this thread to collect.
+    """
+    done: queue.SimpleQueue[int] = queue.SimpleQueue()
+    futures: list[Any] = []
+    try:
+        for i, trial in enumerate(trials):
+            future = submit(trial)
+            futures.append(future)
+            future.add_done_callback(lambda _f, i=i: done.put(i))
+        results: list[TrialResult | None] = [None] * len(trials)
+        for count in range(1, len(trials) + 1):
+            i = done.get()
+            try:
+                results[i] = futures[i].result()
+            except Exception as exc:
+                _name_trial(exc, scenario, trials[i], len(trials))
+                raise
+            if progress is not None:
+                progress(count, len(trials))
+    except BaseException:
+        cancel(futures)
+        raise
+    return [r for r in results if r is not None]
+
+
+def _cancel_all(futures: list[Any]) -> None:
+    for f in futures:
+        f.cancel()
+
+
+def sweep(
+    scenario: Scenario | str,
+    *,
+    trials: int | None = None,
+    seeds: int | Sequence[int] = 0,
+    workers: int | None = None,
+    executor: Any = None,
+    progress: Progress | None = None,
+) -> ScenarioResult:
+    """Run every trial of a scenario in parallel and summarize them.
+
+    The trials run in this process, in a local process pool (the default), on
+    a ``concurrent.futures`` executor or on a Dask cluster. Each trial's seed
+    depends only on the seeds given and the trial's place (see
+    :func:`trial_seed`), and the results are put back into the scenario's
+    order whatever order they finish in, so the same seeds give the same
+    result on every executor: equal ``to_dict()`` up to wall-clock
+    measurements (each trial's ``wall_time``, values and summary entries
+    named ``*_wall_time`` and table columns marked ``wall``).
+
+    Parameters
+    ----------
+    scenario : Scenario or str
+        The scenario, or a registered name (``"omni-apf"``), constructed with
+        its default options.
+    trials : int, optional
+        Trials per case (default the scenario's ``default_trials``, or the
+        length of ``seeds`` when that is a sequence).
+    seeds : int or sequence of int, default 0
+        An int is the base seed: trial ``k`` of case ``c`` gets
+        ``trial_seed(seeds, c, k)`` (as :meth:`Scenario.trials`). A sequence
+        gives one base seed per trial index: trial ``k`` of every case gets
+        ``trial_seed(seeds[k], c, k)``, so ``[s] * n`` is the same as ``s``
+        with ``trials=n``, and extending the sequence adds trials without
+        changing the earlier ones. It must hold one seed per trial index (as
+        many as ``trials`` when both are given). Seeds are integers >= 0; the
+        result records ``seeds[0]`` as its seed.
+    workers : int or None, default None
+        Without an ``executor``: 1 runs the trials in this process; otherwise
+        a ``concurrent.futures.ProcessPoolExecutor`` of
+        ``min(workers, number of trials)`` processes (None: every core this
+        process may use), or this process when that is 1. Ignored with an
+        ``executor``.
+    executor : concurrent.futures.Executor or dask.distributed.Client, optional
+        Where to run the trials: an executor's ``submit``, or a Dask client's
+        ``submit(..., pure=False)`` (any object with ``submit`` and
+        ``gather`` is taken for a Dask client; dask itself is not imported).
+        The scenario object is sent with each trial, so it must pickle.
+    progress : callable, optional
+        Called as ``progress(done, total)`` in this process after each trial
+        finishes.
+
+    Returns
+    -------
+    ScenarioResult
+        ``scenario.summarize`` of every trial, in the scenario's order.
+
+    Raises
+    ------
+    TypeError, ValueError
+        Bad arguments (named in the message).
+    Exception
+        The first exception a trial raises, re-raised here with a note naming
+        the scenario, case, trial and seed; the trials not yet started are
+        cancelled.
+
+    Examples
+    --------
+    >>> from navkit.sim.scenarios import Demo
+    >>> demo = Demo(map="office", duration=0.2)
+    >>> a = sweep(demo, trials=1, seeds=7, workers=1)
+    >>> b = sweep(demo, seeds=[7], workers=1)
+    >>> [r.trial.seed for r in a.trials] == [r.trial.seed for r in b.trials]
+    True
+    >>> a.summary["collisions"]
+    0.0
+    """
+    scenario = _as_scenario(scenario)
+    options: tuple[tuple[str, object], ...] = (("trials", trials), ("workers", workers))
+    for name, value in options:
+        if value is None:
+            continue
+        if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+            raise TypeError(f"{name} must be an integer or None, got {type(value).__name__}")
+    if workers is not None and not 1 <= workers <= MAX_WORKERS:
+        raise ValueError(f"workers must be in [1, {MAX_WORKERS}], got {workers}")
+    if progress is not None and not callable(progress):
+        raise TypeError(f"progress must be callable or None, got {type(progress).__name__}")
+    is_executor = isinstance(executor, concurrent.futures.Executor)
+    if executor is not None and not is_executor and not _is_dask_client(executor):
+        raise TypeError(
+            "executor must be a concurrent.futures.Executor or a dask.distributed.Client, "
+            f"got {type(executor).__name__}"
+        )
+    plan, base = _plan(scenario, trials, seeds)
+
+    if is_executor:
+        results = _submitted(
+            lambda t: executor.submit(run_one, scenario, t), _cancel_all, scenario, plan, progress
+        )
+    elif executor is not None:
+        client = executor
+        results = _submitted(
+            lambda t: client.submit(run_one, scenario, t, pure=False),
+            client.cancel,
+            scenario,
+            plan,
+            progress,
+        )
+    else:
+        n = min(int(workers) if workers is not None else _cpu_count(), len(plan))
+        if n <= 1:
+            results = _serial(scenario, plan, progress)
+        else:
+            with concurrent.futures.ProcessPoolExecutor(max_workers=n) as pool:
+                try:
+                    results = _submitted(
+                        lambda t: pool.submit(run_one, scenario, t),
+                        _cancel_all,
+                        scenario,
+                        plan,
+                        progress,
+                    )
+                except BaseException:
+                    pool.shutdown(wait=False, cancel_futures=True)
+                    raise
+    return scenario.summarize(results, seed=base)

@@ -1,0 +1,196 @@
+"""The diff-astar scenario (issue 14): A* + FollowTheCarrot stays within 0.1 m of its route."""
+
+from __future__ import annotations
+
+import json
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from navkit.errors import DataNotFoundError
+from navkit.geometry import Pose2D
+from navkit.sim import EncoderReading, Lidar, ScanReading, ScenarioResult, Scene
+from navkit.sim.scenarios import DiffAStar, get_scenario
+from navkit.sim.scenarios._diff_astar import DRIVE, PAPER
+from navkit.sim.scenarios._diff_astar_localizer import ScanLocalizer
+from navkit.sim.scenarios._diff_astar_sites import site
+
+#: The issue's "Done when" for diff-astar: cross-track max under 0.1 m.
+XTE_BOUND = 0.1
+
+
+@pytest.fixture(scope="module")
+def house() -> ScenarioResult:
+    return DiffAStar(parts=("house",)).run(2, seed=3)
+
+
+@pytest.fixture(scope="module")
+def corridor() -> ScenarioResult:
+    return DiffAStar(parts=("building",), building="corridor").run(1, seed=1)
+
+
+def assert_done_when(result: ScenarioResult) -> None:
+    for r in result.trials:
+        v = r.values
+        assert v["xte_max"] < XTE_BOUND, (r.trial.case, v["xte_max"])
+        assert v["reached"] == 1.0 and v["collisions"] == 0.0, r.trial.case
+        assert v["min_clearance"] > 0.0
+        assert r.trace is not None and r.trace.metrics.reason == "controller done"
+
+
+def test_registered_under_its_name() -> None:
+    assert get_scenario("diff-astar") is DiffAStar
+
+
+def test_house_tracks_both_legs_within_a_decimetre(house: ScenarioResult) -> None:
+    assert len(house.trials) == 2
+    assert_done_when(house)
+    for r in house.trials:
+        v = r.values
+        for leg in ("leg1_", "leg2_"):
+            assert v[leg + "xte_max"] < XTE_BOUND
+            assert v[leg + "final_error"] <= 0.1
+        # At most 0.18 m/s: the run takes at least the distance driven / speed.
+        assert r.trace is not None
+        driven = r.trace.metrics.distance
+        assert v["leg1_travel_time"] + v["leg2_travel_time"] >= driven / 0.18 - 0.1
+        assert driven > 0.9 * (v["leg1_path_length"] + v["leg2_path_length"])
+        # The localiser keeps the estimate within a few centimetres of the truth.
+        assert v["loc_error_max"] < 0.1
+    assert house.summary["house_xte_max"] < XTE_BOUND
+    assert house.summary["house_reached_rate"] == 1.0
+    assert house.summary["house_collisions"] == 0.0
+
+
+def test_house_routes_are_as_long_as_the_papers(house: ScenarioResult) -> None:
+    # The floor plan was sized so that A* finds the paper's route lengths.
+    for k, paper in ((1, 7.925), (2, 5.663)):
+        length = house.summary[f"house_leg{k}_path_length"]
+        assert length == pytest.approx(paper, rel=0.02)
+    # The straight lines are 5 m and 2 m: the walls force the detours.
+    assert house.summary["house_leg2_path_length"] > 2.0 + 3.0
+
+
+def test_noisy_trials_differ_but_each_seed_repeats(house: ScenarioResult) -> None:
+    a, b = house.trials
+    assert a.values["xte_mean"] != b.values["xte_mean"]
+    again = DiffAStar(parts=("house",)).run(2, seed=3)
+    assert dict(again.summary) == dict(house.summary)
+    assert [r.values for r in again.trials] == [r.values for r in house.trials]
+
+
+def test_corridor_building_route(corridor: ScenarioResult) -> None:
+    assert "corridor building" in corridor.trials[0].trial.case
+    assert_done_when(corridor)
+    assert corridor.summary["building_xte_max"] < XTE_BOUND
+    # (0, 0) -> (32, 6) m along the corridors: longer than the 32.6 m straight line.
+    assert corridor.summary["building_path_length"] > math.hypot(32.0, 6.0)
+    trace = corridor.trials[0].trace
+    assert trace is not None
+    assert corridor.summary["building_travel_time"] >= trace.metrics.distance / 0.25 - 0.1
+
+
+def test_willow_building_route(shared_data: Path) -> None:
+    result = DiffAStar(parts=("building",), building="willow", data_dir=str(shared_data)).run(
+        1, seed=2
+    )
+    assert "Willow Garage" in result.trials[0].trial.case
+    assert_done_when(result)
+    place = site("willow", str(shared_data))
+    start, goal = place.waypoints
+    assert goal - start == pytest.approx([32.0, 6.0])
+    assert "Willow Garage" in result.table()
+
+
+def test_table_puts_the_papers_figures_beside(house: ScenarioResult) -> None:
+    text = house.table()
+    for figure in ("21.6", "22.2", "7.925", "5.663", "59.98", "40.08", "2.9", "8.3"):
+        assert figure in text
+    assert "bedroom" in text and "noise" in text.lower()
+    data = house.to_dict()
+    json.dumps(data)
+    assert data["scenario"] == "diff-astar" and len(data["trials"]) == 2
+    building = PAPER["building"]
+    assert building == ("423", None, "170.2", "1.7", "7.3")
+
+
+def test_building_table_names_the_papers_figures(corridor: ScenarioResult) -> None:
+    text = corridor.table()
+    for figure in ("423", "170.2", "1.7", "7.3"):
+        assert figure in text
+    json.dumps(corridor.to_dict())
+
+
+def test_scene_shows_map_routes_and_run(house: ScenarioResult) -> None:
+    scene = house.scene
+    assert isinstance(scene, Scene)
+    assert scene.grid is not None and scene.world is not None
+    assert len(scene.paths) == 2 and len(scene.traces) == 1
+    labels = [label for label, _ in scene.points]
+    assert labels == ["start", "waypoints"]
+    assert scene.points[1][1].tolist() == [[-4.0, 0.0], [-4.0, -2.0]]
+
+
+def test_noise_free_cases_run_once() -> None:
+    scenario = DiffAStar(noise=False, building="corridor")
+    assert [n for _, n in scenario.cases(7)] == [1, 1]
+    assert DiffAStar().cases(4)[0][1] == 4
+
+
+def test_auto_building_without_data_is_the_corridor(tmp_path: Path) -> None:
+    auto = DiffAStar(parts=("building",), data_dir=str(tmp_path))
+    assert "corridor building" in auto.cases(1)[0][0]
+    willow = DiffAStar(parts=("building",), building="willow", data_dir=str(tmp_path))
+    with pytest.raises(DataNotFoundError):
+        willow.run_trial(willow.trials(1)[0])
+
+
+@pytest.mark.parametrize(
+    ("options", "error"),
+    [
+        ({"parts": ()}, ValueError),
+        ({"parts": ("house", "house")}, ValueError),
+        ({"parts": ("garden",)}, ValueError),
+        ({"parts": "house"}, TypeError),
+        ({"building": "castle"}, ValueError),
+        ({"noise": "yes"}, TypeError),
+        ({"data_dir": 3}, TypeError),
+    ],
+)
+def test_bad_options(options: dict[str, object], error: type[Exception]) -> None:
+    with pytest.raises(error):
+        DiffAStar(**options)  # type: ignore[arg-type]
+
+
+def test_localizer_pulls_a_wrong_start_back() -> None:
+    """Scans at a standing robot correct a 10 cm, 3 degree error of the initial pose."""
+    place = site("house")
+    truth = Pose2D(-1.0, -4.0, 0.4)
+    lidar = Lidar(noise=None)
+    wrong = Pose2D(truth.x + 0.07, truth.y - 0.07, truth.theta + math.radians(3.0))
+    loc = ScanLocalizer(place.field, DRIVE, lidar, ticks_per_rev=4096, encoder_bits=16,
+                        start=wrong)  # fmt: skip
+    ticks = np.array([100, 200])
+    for k in range(20):
+        t = 0.1 * k
+        loc.observe(t, ScanReading(t, lidar.scan(place.world, truth)))
+        loc.observe(t, EncoderReading(t, ticks))
+    est = loc.pose
+    assert loc.matches == 20
+    assert math.hypot(est.x - truth.x, est.y - truth.y) < 0.005
+    assert abs(est.theta - truth.theta) < math.radians(0.2)
+
+
+def test_a_trial_cut_short_reports_unfinished_legs() -> None:
+    scenario = DiffAStar(parts=("house",), duration=5.0)
+    result = scenario.run_trial(scenario.trials(1, seed=0)[0])
+    v = result.values
+    assert v["sim_time"] <= 5.0 + 1e-9
+    assert math.isnan(v["leg1_travel_time"]) and v["leg1_reached"] == 0.0
+    assert v["reached"] == 0.0 and v["collisions"] == 0.0
+    with pytest.raises(ValueError, match="duration"):
+        DiffAStar(duration=0.0)
+    with pytest.raises(ValueError, match="trial"):
+        scenario.run_trial(scenario.trials(1)[0].__class__("x", 3, 0, 1))

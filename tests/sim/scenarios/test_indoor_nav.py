@@ -1,0 +1,214 @@
+"""The indoor-nav scenario (issue 14): fusion beats wheel odometry on every axis, Field D*
+has headings off the 45° grid and shorter paths than A*, ON-OFF tracking is reported."""
+
+from __future__ import annotations
+
+import json
+import math
+from collections.abc import Mapping
+
+import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+from shapely.geometry import LineString, Point, box
+from shapely.ops import unary_union
+
+from navkit.sim import Scenario, ScenarioResult, Scene, Trial, TrialResult
+from navkit.sim.scenarios import IndoorNav, get_scenario
+from navkit.sim.scenarios._indoor_nav_lab import (
+    BODY_RADIUS,
+    PLAN_ROUTES,
+    SIDE_ROOM,
+    TARGETS,
+    TOUR_START,
+    TRACK_PATHS,
+    heading_share,
+    lab_grid,
+    lab_obstacles,
+    tour_legs,
+)
+
+
+def run(scenario: Scenario, trials: int | None = None, *, seed: int = 0) -> ScenarioResult:
+    """What ``Scenario.run(workers=1)`` does: every trial in order, then summarize."""
+    results = [scenario.run_trial(t) for t in scenario.trials(trials, seed=seed)]
+    return scenario.summarize(results, seed=seed)
+
+
+def deterministic(values: Mapping[str, float]) -> dict[str, float]:
+    """Everything but the wall-clock measurements (``*_wall_time``)."""
+    return {k: v for k, v in values.items() if not k.endswith("_wall_time")}
+
+
+@pytest.fixture(scope="module")
+def full() -> ScenarioResult:
+    # The paper's size, one run each (about 4 s): the 10-target tour, 8 planning
+    # routes, 4 tracking paths.
+    return run(IndoorNav())
+
+
+@pytest.fixture(scope="module")
+def small() -> IndoorNav:
+    return IndoorNav(targets=2, paths=1, resolution=0.1)
+
+
+def test_registered_under_its_name() -> None:
+    assert get_scenario("indoor-nav") is IndoorNav
+    assert IndoorNav.name == "indoor-nav" and IndoorNav.default_trials >= 1
+
+
+def test_floor_plan_is_the_papers_lab() -> None:
+    obstacles = unary_union(list(lab_obstacles(True)))
+    minx, miny, maxx, maxy = obstacles.bounds
+    assert (maxx - minx, maxy - miny) == pytest.approx((14.4, 12.0))
+    x0, y0, x1, y1 = SIDE_ROOM
+    assert (x1 - x0, y1 - y0) == pytest.approx((4.8, 4.4))
+    # The side room is closed but for its door: its inside is reachable only through it.
+    walls = unary_union(list(lab_obstacles(False)))
+    inside = box(x0 + 0.2, y0 + 0.2, x1 - 0.2, y1 - 0.2)
+    assert not walls.intersects(inside)
+    grid = lab_grid(0.05, True)
+    assert grid.shape == (240, 288)
+    assert grid.occupied()[0, :].all() and grid.occupied()[:, 0].all()
+    # Every start, goal and target leaves room for the robot's body and some margin.
+    points = [TOUR_START[:2], *TARGETS, *(p[:2] for sg in TRACK_PATHS for p in sg)]
+    points += [p for route in PLAN_ROUTES for p in route]
+    for p in points:
+        assert Point(p).distance(obstacles) > BODY_RADIUS + 0.2, p
+    # The tour's legs are collision-free for the body.
+    for leg in tour_legs(0.05, True, len(TARGETS)):
+        assert LineString(leg.points).distance(obstacles) > BODY_RADIUS
+
+
+def test_fusion_beats_wheel_odometry_on_every_axis(full: ScenarioResult) -> None:
+    s = full.summary
+    (loc,) = [r for r in full.trials if r.trial.case_index == 0]
+    assert loc.values["targets_reached"] == len(TARGETS) and loc.values["collisions"] == 0.0
+    for axis in ("x", "y", "heading"):
+        assert s[f"fused_{axis}"] < s[f"wheel_{axis}"], axis
+    # Wheel odometry really drifts (degrees of heading, centimetres of position) ...
+    assert s["wheel_heading"] > math.radians(1.0) and s["wheel_x"] + s["wheel_y"] > 0.05
+    # ... and the fused estimate stays within a few centimetres and degrees.
+    assert s["fused_x"] < 0.1 and s["fused_y"] < 0.1 and s["fused_heading"] < math.radians(3.0)
+    assert loc.trace is not None and np.isfinite(loc.trace.estimates[1:]).all()
+
+
+def test_field_dstar_has_free_headings_and_shorter_paths(full: ScenarioResult) -> None:
+    planning = [r for r in full.trials if r.trial.case_index == 1]
+    assert len(planning) == len(PLAN_ROUTES)
+    for r in planning:
+        v = r.values
+        assert v["astar_off45"] == 0.0  # 8-connected: every heading a multiple of 45°
+        assert v["fdstar_off45"] > 0.0
+        assert v["fdstar_length"] < v["astar_length"]
+        assert v["fdstar_length"] >= math.dist(*PLAN_ROUTES[r.trial.index]) - 1e-9
+        assert v["astar_wall_time"] > 0.0 and v["fdstar_wall_time"] > 0.0
+    s = full.summary
+    assert s["fdstar_length"] < s["astar_length"] and s["fdstar_shorter"] == 1.0
+    assert s["fdstar_off45"] > 0.3 and s["astar_off45"] == 0.0
+
+
+def test_tracking_results_are_reported(full: ScenarioResult) -> None:
+    tracking = [r for r in full.trials if r.trial.case_index >= 2]
+    assert len(tracking) == len(TRACK_PATHS)
+    for r in tracking:
+        v = r.values
+        assert v["tracked"] in (0.0, 1.0) and v["length"] > 5.0
+        assert v["done"] == 1.0 and v["collisions"] == 0.0
+        assert all(math.isfinite(v[k]) for k in ("x", "y", "heading"))
+        if v["tracked"]:
+            assert math.hypot(v["x"], v["y"]) <= 0.2
+    s = full.summary
+    assert s["tracking_success_rate"] == np.mean([r.values["tracked"] for r in tracking])
+    assert s["tracking_success_rate"] >= 0.5
+    assert s["tracking_x"] < 0.2 and s["tracking_y"] < 0.2
+    assert s["tracking_heading"] < math.radians(10.0)
+
+
+def test_tables_put_the_papers_figures_beside(full: ScenarioResult) -> None:
+    text = full.table()
+    for figure in ("0.053", "0.043", "3.83", "0.05", "0.028", "1.51", "0.046", "0.072", "5.16"):
+        assert figure in text, figure
+    assert "3 of 4" in text and "scan matching" in text
+    assert len(full.tables) == 3
+    data = full.to_dict()
+    assert json.loads(json.dumps(data)) == data
+    assert data["scenario"] == "indoor-nav" and len(data["trials"]) == len(full.trials)
+
+
+def test_scene_shows_the_lab(full: ScenarioResult) -> None:
+    scene = full.scene
+    assert isinstance(scene, Scene)
+    assert scene.grid is not None and scene.world is not None
+    assert len(scene.paths) >= 3 and len(scene.traces) == 1 + len(TRACK_PATHS)
+    names = [name for name, _ in scene.points]
+    assert "targets" in names
+    for _, pts in scene.paths:
+        assert pts.ndim == 2 and pts.shape[1] == 2
+
+
+def test_same_seed_same_numbers(small: IndoorNav) -> None:
+    a, b = run(small, seed=5), run(small, seed=5)
+    assert deterministic(a.summary) == deterministic(b.summary)
+    for ra, rb in zip(a.trials, b.trials, strict=True):
+        assert deterministic(ra.values) == deterministic(rb.values)
+    c = run(small, seed=6)
+    assert c.summary["wheel_heading"] != a.summary["wheel_heading"]
+
+
+def test_sweep_gives_the_same_numbers(small: IndoorNav) -> None:
+    pytest.importorskip("navkit.sim._sweep")
+    swept = small.run(1, seed=2, workers=1).summary
+    assert deterministic(swept) == deterministic(run(small, 1, seed=2).summary)
+
+
+def test_cases_follow_the_options() -> None:
+    cases = IndoorNav(targets=4, paths=2).cases(3)
+    assert [n for _, n in cases] == [3, len(PLAN_ROUTES), 3, 3]
+    assert "4 targets" in cases[0][0]
+
+
+@pytest.mark.parametrize(
+    ("options", "error"),
+    [
+        ({"targets": 0}, ValueError),
+        ({"targets": 11}, ValueError),
+        ({"targets": 2.0}, TypeError),
+        ({"paths": 5}, ValueError),
+        ({"resolution": 0.5}, ValueError),
+        ({"resolution": math.nan}, ValueError),
+        ({"furniture": 1}, TypeError),
+    ],
+)
+def test_bad_options_are_refused(options: dict[str, object], error: type[Exception]) -> None:
+    with pytest.raises(error, match=next(iter(options))):
+        IndoorNav(**options)  # type: ignore[arg-type]
+
+
+def test_bad_trials_and_results_are_refused(small: IndoorNav) -> None:
+    with pytest.raises(TypeError, match="trial"):
+        small.run_trial("planning")  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match="case_index"):
+        small.run_trial(Trial("x", 3, 0, 1))  # paths=1: cases 0, 1, 2
+    with pytest.raises(ValueError, match="index"):
+        small.run_trial(Trial("planning", 1, len(PLAN_ROUTES), 1))
+    with pytest.raises(ValueError, match="seed"):
+        small.run_trial(Trial("planning", 1, 0, -1))
+    with pytest.raises(ValueError, match="values"):
+        small.summarize([TrialResult(Trial("x", 0, 0, 1), {"wheel_x": 0.1})], seed=0)
+    with pytest.raises(TypeError, match="results"):
+        small.summarize([None], seed=0)  # type: ignore[list-item]
+
+
+@given(st.lists(st.tuples(st.integers(-3, 3), st.integers(-3, 3)), min_size=2, max_size=12))
+def test_heading_share_of_grid_moves_is_zero(steps: list[tuple[int, int]]) -> None:
+    # Moves along the 8 grid directions (any length) never leave the 45° grid.
+    moves = np.array(
+        [(d * a, d * b) for d, (a, b) in enumerate(steps, 1) if abs(a) in (0, abs(b)) or b == 0]
+    )
+    points = np.vstack(([0.0, 0.0], np.cumsum(moves, axis=0))) if moves.size else np.zeros((1, 2))
+    assert heading_share(points) == 0.0
+    tilted = points @ np.array([[math.cos(0.3), math.sin(0.3)], [-math.sin(0.3), math.cos(0.3)]])
+    share = heading_share(tilted)
+    assert share == (1.0 if np.any(np.hypot(*np.diff(points, axis=0).T) > 0) else 0.0)

@@ -1,0 +1,127 @@
+"""The experiment framework: trial seeds, records, tables, the registry and data lookup."""
+
+from __future__ import annotations
+
+import json
+import math
+from collections.abc import Sequence
+from pathlib import Path
+
+import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+
+from navkit.errors import DataNotFoundError
+from navkit.sim import (
+    Scenario,
+    ScenarioResult,
+    Scene,
+    Table,
+    Trial,
+    TrialResult,
+    trial_seed,
+)
+from navkit.sim.scenarios import SCENARIOS, find_data, get_scenario
+
+
+class Coin(Scenario):
+    """A two-case scenario whose trials draw one number from their seed."""
+
+    name = "coin"
+    title = "draws"
+    paper = "none"
+    default_trials = 3
+
+    def cases(self, trials: int) -> tuple[tuple[str, int], ...]:
+        return (("heads", trials), ("once", 1))
+
+    def run_trial(self, trial: Trial) -> TrialResult:
+        return TrialResult(trial, {"draw": float(np.random.default_rng(trial.seed).random())})
+
+    def summarize(self, results: Sequence[TrialResult], *, seed: int) -> ScenarioResult:
+        draws = [r.values["draw"] for r in results]
+        table = Table("draws", ("case", "draw"), tuple((r.trial.case, r.values["draw"])
+                                                       for r in results))  # fmt: skip
+        return ScenarioResult(self.name, seed, tuple(results), (table,), {"mean": np.mean(draws)})
+
+
+@given(st.integers(0, 2**64 - 1), st.integers(0, 50), st.integers(0, 50))
+def test_trial_seeds_depend_only_on_their_place(base: int, case: int, index: int) -> None:
+    seed = trial_seed(base, case, index)
+    assert seed == trial_seed(base, case, index)
+    assert 0 <= seed < 2**63
+    assert seed != trial_seed(base, case, index + 1)
+    assert seed != trial_seed(base, case + 1, index)
+
+
+def test_trials_cover_every_case_in_order_with_their_own_seeds() -> None:
+    trials = Coin().trials(2, seed=5)
+    assert [(t.case, t.index) for t in trials] == [("heads", 0), ("heads", 1), ("once", 0)]
+    assert [t.seed for t in trials] == [trial_seed(5, 0, 0), trial_seed(5, 0, 1),
+                                        trial_seed(5, 1, 0)]  # fmt: skip
+    assert len(Coin().trials()) == Coin.default_trials + 1
+
+
+@pytest.mark.parametrize(("trials", "error"), [(0, ValueError), (2.0, TypeError),
+                                                (True, TypeError), (10**6, ValueError)])
+def test_bad_trial_counts_are_refused(trials: object, error: type) -> None:
+    with pytest.raises(error, match="trials"):
+        Coin().trials(trials)  # type: ignore[arg-type]
+
+
+def test_run_is_deterministic_and_json_ready() -> None:
+    first, second = Coin().run(4, seed=1), Coin().run(4, seed=1)
+    assert first.to_dict()["summary"] == second.to_dict()["summary"]
+    assert Coin().run(4, seed=2).summary["mean"] != first.summary["mean"]
+    data = json.loads(json.dumps(first.to_dict()))
+    assert [t["case"] for t in data["trials"]] == ["heads"] * 4 + ["once"]
+    assert data["tables"][0]["columns"] == ["case", "draw"]
+
+
+def test_tables_render_aligned_with_nan_as_dash() -> None:
+    table = Table("t", ("name", "value"), (("a", 1.23456), ("bb", math.nan), ("c", None)),
+                  notes=("n",))  # fmt: skip
+    lines = table.render(digits=2).splitlines()
+    assert lines[0] == "t" and lines[-1] == "n"
+    assert lines[3].endswith("1.2") and lines[4].endswith("-")
+    assert len({len(line) for line in lines[1:3]}) == 1  # header and rule line up
+    assert table.to_dict()["rows"][1] == ["bb", None]
+
+
+def test_records_are_checked_and_copied() -> None:
+    values = {"a": 1.0}
+    result = TrialResult(Trial("c", 0, 0, 1), values)
+    values["a"] = 2.0
+    assert result.values["a"] == 1.0
+    with pytest.raises(ValueError, match="values"):
+        TrialResult(Trial("c", 0, 0, 1), {"a": math.inf})
+    with pytest.raises(TypeError, match="trial"):
+        TrialResult("c", {})  # type: ignore[arg-type]
+    with pytest.raises(ValueError, match=r"rows\[0\]"):
+        Table("t", ("a", "b"), (("x",),))
+    with pytest.raises(ValueError, match="seed"):
+        Trial("c", 0, 0, -1)
+    scene = Scene("s", points=(("goal", [1.0, 2.0]),))
+    assert scene.points[0][1].shape == (1, 2) and not scene.points[0][1].flags.writeable
+
+
+def test_registry_names_every_scenario() -> None:
+    assert sorted(SCENARIOS) == ["demo", "diff-astar", "greedy", "indoor-nav", "omni-apf",
+                                 "soccer"]  # fmt: skip
+    for name, cls in SCENARIOS.items():
+        assert get_scenario(name) is cls and cls.name == name and cls.title and cls.paper
+    with pytest.raises(ValueError, match="omni-apf"):
+        get_scenario("nosuch")
+
+
+def test_find_data_looks_in_data_dir_then_the_environment(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    (tmp_path / "set").mkdir()
+    (tmp_path / "set" / "x.yaml").write_text("x")
+    assert find_data("set/x.yaml", data_dir=tmp_path) == tmp_path / "set" / "x.yaml"
+    monkeypatch.setenv("NAVKIT_DATA", str(tmp_path))
+    assert find_data("set/x.yaml") == tmp_path / "set" / "x.yaml"
+    with pytest.raises(DataNotFoundError, match="NAVKIT_DATA"):
+        find_data("set/missing.yaml", data_dir=tmp_path)
