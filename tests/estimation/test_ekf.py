@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 import pytest
@@ -79,8 +80,8 @@ X0 = np.array([0.0, 0.0, 3.0, 0.0, 0.0, 0.0])
 P0 = np.diag([1e-6, 1e-6, 1e-4, 1.0, 1.0, 1.0])
 
 
-def test_matches_filterpy_1000_steps() -> None:
-    """Same model and measurements as filterpy's ExtendedKalmanFilter: equal to 1e-9."""
+def _filterpy_reference(x0: FloatArray, p0: FloatArray) -> Any:
+    """filterpy's ExtendedKalmanFilter (Joseph-form update) with a nonlinear predict."""
     from filterpy.kalman import ExtendedKalmanFilter as FilterpyEKF
 
     class Reference(FilterpyEKF):  # type: ignore[misc]
@@ -89,9 +90,28 @@ def test_matches_filterpy_1000_steps() -> None:
         def predict_x(self, u: object = 0) -> None:
             self.x = self.model(self.x)
 
-    ref = Reference(dim_x=6, dim_z=2)
-    ref.x = X0.copy()
-    ref.P = P0.copy()
+    ref = Reference(dim_x=x0.shape[0], dim_z=1)
+    ref.x = x0.copy()
+    ref.P = p0.copy()
+    return ref
+
+
+def _relative_gaps(
+    ekf: ExtendedKalmanFilter, ref_x: FloatArray, ref_p: FloatArray, angles: tuple[int, ...]
+) -> tuple[float, float]:
+    """State gap relative to max(|x|, 1); covariance gap relative to sqrt(P_ii P_jj)."""
+    dx = ekf.x - ref_x
+    for i in angles:
+        dx[i] = wrap_angle(float(dx[i]))
+    gap_x = float(np.max(np.abs(dx) / np.maximum(np.abs(ref_x), 1.0)))
+    scale = np.sqrt(np.diag(ref_p))
+    gap_p = float(np.max(np.abs(ekf.P - ref_p) / np.outer(scale, scale)))
+    return gap_x, gap_p
+
+
+def test_matches_filterpy_1000_steps() -> None:
+    """Same model and measurements as filterpy's ExtendedKalmanFilter: equal to 1e-12 relative."""
+    ref = _filterpy_reference(X0, P0)
     ekf = ExtendedKalmanFilter(X0, P0, angle_states=(2,))
 
     def yaw_residual(a: FloatArray, b: FloatArray) -> FloatArray:
@@ -114,14 +134,64 @@ def test_matches_filterpy_1000_steps() -> None:
             ref.update(z, lambda x: H_YAW, lambda x: H_YAW @ x, R=R_YAW, residual=yaw_residual)
             ekf.update(z, lambda x: H_YAW @ x, lambda x: H_YAW, R_YAW, angle_measurements=(0,))
         ref.x[2] = wrap_angle(float(ref.x[2]))
-        dx = ekf.x - ref.x
-        dx[2] = wrap_angle(float(dx[2]))
-        worst_x = max(worst_x, float(np.max(np.abs(dx))))
-        worst_p = max(worst_p, float(np.max(np.abs(ekf.P - ref.P))))
-    assert worst_x < 1e-9
-    assert worst_p < 1e-9
+        gap_x, gap_p = _relative_gaps(ekf, ref.x, ref.P, (2,))
+        worst_x = max(worst_x, gap_x)
+        worst_p = max(worst_p, gap_p)
+    assert worst_x < 1e-12
+    assert worst_p < 1e-12
     # The run really exercised the filter: the state moved far from x0.
     assert np.hypot(*ekf.x[:2]) > 1.0
+
+
+def test_matches_filterpy_dense_model() -> None:
+    """A dense nonlinear 5-state model with 3-D measurements: equal to filterpy to 1e-12.
+
+    Measurements come from a simulated true trajectory: with measurements unrelated
+    to the model, an EKF's rounding differences grow chaotically (filterpy against
+    itself with another operation order then differs by 0.1).
+    """
+    rng = np.random.default_rng(11)
+    n, m = 5, 3
+    a = 0.3 * rng.normal(size=(n, n))
+    b = rng.normal(size=(m, n))
+    root = rng.normal(size=(n, n))
+    q = 0.01 * (root @ root.T) + 1e-3 * np.eye(n)
+    root = rng.normal(size=(m, m))
+    r = 0.05 * (root @ root.T) + 0.01 * np.eye(m)
+
+    def f(x: FloatArray) -> FloatArray:
+        return np.asarray(0.9 * x + 0.3 * np.tanh(a @ x), dtype=np.float64)
+
+    def jac(x: FloatArray) -> FloatArray:
+        return 0.9 * np.eye(n) + 0.3 * (1.0 - np.tanh(a @ x) ** 2)[:, None] * a
+
+    def h(x: FloatArray) -> FloatArray:
+        return np.asarray(b @ x + 0.1 * np.sin(b @ x), dtype=np.float64)
+
+    def hjac(x: FloatArray) -> FloatArray:
+        return (1.0 + 0.1 * np.cos(b @ x))[:, None] * b
+
+    x0 = rng.normal(size=n)
+    truth = x0 + 0.5 * rng.normal(size=n)
+    ref = _filterpy_reference(x0, np.eye(n))
+    ref.model = f
+    ref.Q = q
+    ekf = ExtendedKalmanFilter(x0, np.eye(n))
+    worst_x = worst_p = 0.0
+    for _ in range(300):
+        truth = f(truth) + 0.1 * rng.normal(size=n)
+        z = h(truth) + 0.1 * rng.normal(size=m)
+        ref.F = jac(ref.x)
+        ref.predict()
+        ref.update(z, hjac, h, R=r)
+        ekf.predict(f, jac, q)
+        assert ekf.update(z, h, hjac, r).accepted
+        gap_x, gap_p = _relative_gaps(ekf, ref.x, ref.P, ())
+        worst_x = max(worst_x, gap_x)
+        worst_p = max(worst_p, gap_p)
+    assert worst_x < 1e-12
+    assert worst_p < 1e-12
+    assert np.max(np.abs(ekf.x - truth)) < 1.0  # it tracked the truth
 
 
 def test_planar_fusion_kernel_matches_general_ekf() -> None:
@@ -342,3 +412,160 @@ def test_noise_matrix_changed_in_place_is_revalidated() -> None:
         ekf.update([1.0], lambda x: x[:1], H2, r)
     with pytest.raises(TypeError, match="R"):
         ekf.update([1.0], lambda x: x[:1], H2, [["a"]])
+
+
+def _run_steps(
+    spell: Callable[[FloatArray], object], steps: int = 20
+) -> tuple[FloatArray, FloatArray, list[float]]:
+    """A few steps of the planar model with every array argument passed through ``spell``."""
+    ekf = ExtendedKalmanFilter(spell(X0), spell(P0), angle_states=(2,))  # type: ignore[arg-type]
+    nis = []
+    for dt, kind, z in measurement_sequence(steps, seed=4):
+        f, jac = planar_model(dt)
+        ekf.predict(
+            lambda x, f=f: spell(f(x)),  # type: ignore[misc]
+            spell(jac(ekf.x)),  # type: ignore[arg-type]
+            spell(Q_PER_S * dt),  # type: ignore[arg-type]
+        )
+        if kind == "odom":
+            h_mat, r, angles = H_ODOM, R_ODOM_FULL, ()
+        else:
+            h_mat, r, angles = H_YAW, R_YAW, (0,)
+        result = ekf.update(
+            spell(z),  # type: ignore[arg-type]
+            lambda x, h_mat=h_mat: spell(h_mat @ x),  # type: ignore[misc]
+            lambda x, h_mat=h_mat: spell(h_mat),  # type: ignore[misc]
+            spell(r),  # type: ignore[arg-type]
+            angle_measurements=list(angles),
+        )
+        nis.append(result.nis)
+    return ekf.x, ekf.P, nis
+
+
+def _read_only(a: FloatArray) -> FloatArray:
+    out = np.array(a, copy=True)
+    out.flags.writeable = False
+    return out
+
+
+def _strided(a: FloatArray) -> FloatArray:
+    wide = np.zeros((*a.shape[:-1], 2 * a.shape[-1]))
+    wide[..., ::2] = a
+    return wide[..., ::2]
+
+
+@pytest.mark.parametrize(
+    "spell",
+    [
+        lambda a: np.asarray(a).tolist(),
+        _read_only,
+        _strided,
+        lambda a: np.asfortranarray(a),
+        lambda a: np.asarray(a, dtype=np.dtype(">f8")),  # big-endian
+        lambda a: np.asarray(a, dtype=object),
+    ],
+    ids=["list", "read-only", "strided", "fortran", "big-endian", "object"],
+)
+def test_other_spellings_give_identical_results(spell: Callable[[FloatArray], object]) -> None:
+    """Lists and non-standard arrays take the converting path: bit-for-bit the same results."""
+    x_ref, p_ref, nis_ref = _run_steps(lambda a: a)
+    x, p, nis = _run_steps(spell)
+    np.testing.assert_array_equal(x, x_ref)
+    np.testing.assert_array_equal(p, p_ref)
+    assert nis == nis_ref
+
+
+def test_overflow_is_not_applied() -> None:
+    ekf = ExtendedKalmanFilter([0.0, 0.0], np.eye(2))
+    before_x, before_p = ekf.x, ekf.P
+    # z - h(x) overflows: no residual, NIS inf.
+    out = ekf.update([1e308], lambda x: x[:1] - 1e308, H2, [[1.0]])
+    assert not out.accepted and out.nis == math.inf and out.residual.shape == (0,)
+    assert out.reason is not None and "overflow" in out.reason and "residual" in out.reason
+    # A finite residual whose NIS overflows: the residual is reported.
+    out = ekf.update([1e300], lambda x: x[:1], H2, [[1e-100]])
+    assert not out.accepted and out.nis == math.inf
+    assert out.reason is not None and "NIS" in out.reason
+    np.testing.assert_array_equal(out.residual, [1e300])
+    # H so large that S overflows: FilterError.
+    with pytest.raises(FilterError, match="innovation covariance S is not finite"):
+        ekf.update([1.0], lambda x: x[:1], np.array([[1e200, 0.0]]), [[1.0]])
+    np.testing.assert_array_equal(ekf.x, before_x)
+    np.testing.assert_array_equal(ekf.P, before_p)
+    assert ekf.update([0.5], lambda x: x[:1], H2, [[1.0]]).accepted
+
+
+@pytest.mark.parametrize(
+    ("call", "match"),
+    [
+        (lambda e: e.update([1.0], lambda x: x[:1], np.array([[np.inf, 0.0]]), [[1.0]]), "H"),
+        (lambda e: e.update([1.0], lambda x: x[:1] * np.nan, H2, [[1.0]]), "h\\(x\\)"),
+        (lambda e: e.update([1.0], lambda x: x[:1], H2, [[np.nan]]), "R"),
+        (lambda e: e.predict(lambda x: x, np.eye(2), np.full((2, 2), np.nan)), "Q"),
+        (lambda e: e.predict(lambda x: x, lambda x: np.full((2, 2), np.inf), np.eye(2)), "F"),
+    ],
+)
+def test_non_finite_values_are_named(
+    call: Callable[[ExtendedKalmanFilter], object], match: str
+) -> None:
+    """Values checked inside the kernels are reported as ValueErrors naming them."""
+    ekf = _fresh()
+    ekf.predict(lambda x: x, np.eye(2), np.eye(2))  # the validated Q is cached from now on
+    before_x, before_p = ekf.x, ekf.P
+    with pytest.raises(ValueError, match=f"^{match} must contain only finite values"):
+        call(ekf)
+    np.testing.assert_array_equal(ekf.x, before_x)
+    np.testing.assert_array_equal(ekf.P, before_p)
+
+
+def test_angle_indices_are_checked_against_each_measurement_size() -> None:
+    ekf = ExtendedKalmanFilter([0.0, 0.0], np.eye(2))
+    angles = (1,)
+    h2 = np.eye(2)
+    assert ekf.update([0.1, 0.2], lambda x: x, h2, np.eye(2), angle_measurements=angles)
+    # The same tuple, now out of range for a 1-D measurement: checked again.
+    with pytest.raises(ValueError, match="angle_measurements"):
+        ekf.update([0.1], lambda x: x[:1], H2, [[1.0]], angle_measurements=angles)
+    raw = np.array([3.0, 3.0]) - (ekf.x - 0.5)
+    assert raw[1] > math.pi  # the angle component needs wrapping
+    out = ekf.update([3.0, 3.0], lambda x: x - 0.5, h2, np.eye(2), angle_measurements=angles)
+    assert out.residual[0] == raw[0]  # not an angle: not wrapped
+    assert out.residual[1] == pytest.approx(raw[1] - 2 * math.pi)
+
+
+def test_slightly_asymmetric_noise_is_symmetrised() -> None:
+    """Q within the symmetry tolerance is accepted and used symmetrised, P stays symmetric."""
+    q = np.array([[0.1, 0.02], [0.02 * (1 + 1e-12), 0.2]])
+    ekf = ExtendedKalmanFilter([0.0, 0.0], np.eye(2))
+    for _ in range(3):
+        ekf.predict(lambda x: x, np.array([[1.0, 0.1], [0.0, 1.0]]), q)
+    np.testing.assert_array_equal(ekf.P, ekf.P.T)
+    ref = np.eye(2)
+    f = np.array([[1.0, 0.1], [0.0, 1.0]])
+    for _ in range(3):
+        ref = f @ ref @ f.T + 0.5 * (q + q.T)
+    np.testing.assert_allclose(ekf.P, ref, rtol=1e-14)
+
+
+def test_compile_kernels_ahead() -> None:
+    from navkit.estimation._ekf_kernels import compile_kernels
+
+    compile_kernels()  # compiled (or loaded from the cache) for the filter's types only
+    ekf = ExtendedKalmanFilter([0.0], [[1.0]])
+    assert ekf.update([1.0], lambda x: x, np.eye(1), [[1.0]]).nis == pytest.approx(0.5)
+
+
+def test_copies_and_pickles_are_independent() -> None:
+    import copy
+    import pickle
+
+    ekf = ExtendedKalmanFilter([0.0, 1.0], np.eye(2), angle_states=(1,))
+    ekf.predict(lambda x: x, np.eye(2), 0.1 * np.eye(2))
+    for twin in (copy.copy(ekf), copy.deepcopy(ekf), pickle.loads(pickle.dumps(ekf))):
+        assert type(twin) is ExtendedKalmanFilter and twin.angle_states == (1,)
+        np.testing.assert_array_equal(twin.x, ekf.x)
+        np.testing.assert_array_equal(twin.P, ekf.P)
+        twin.update([3.0], lambda x: x[:1], H2, [[0.1]])  # moves the twin only
+        assert twin.x[0] > 2.0 and ekf.x[0] == 0.0
+        twin.predict(lambda x: x + 4.0, np.eye(2), 0.1 * np.eye(2))
+        assert -math.pi < twin.x[1] <= math.pi  # still wraps its angle state
