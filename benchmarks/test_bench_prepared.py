@@ -20,6 +20,13 @@ so the search itself expands a handful of cells. Timed per query:
 
 The constructor time of each prepared form is in ``extra_info``
 (``prepare_s``), as are the expansions of navkit's search.
+
+``test_distance_field_vs_scipy`` (issue 17) times :func:`distance_field` (one-shot,
+validation included) against ``scipy.sparse.csgraph.dijkstra`` from the same goal on
+the same graph (8-connected, no corner cutting, move cost
+``step * (c_u + c_v) / 2``), its CSR matrix built outside the timer, on the
+1024 x 1024 maps of ``test_bench_astar.py`` (random 20 %, random 35 %, rooms) and
+a random-cost map (costs 1-10, 10 % blocked); the fields are checked equal.
 """
 
 from __future__ import annotations
@@ -31,7 +38,9 @@ from typing import Any
 
 import numpy as np
 import pytest
+import scipy.sparse
 import tcod.path
+from scipy.sparse.csgraph import dijkstra
 
 from navkit.planning import AStarPlanner, astar, distance_field
 
@@ -127,3 +136,61 @@ def test_navkit_distance_field_1024(benchmark: Any, what: str) -> None:
     else:
         field = benchmark(distance_field, costs, goal)
     benchmark.extra_info["reachable"] = int(np.isfinite(field).sum())
+
+
+def _csr_graph(costs: np.ndarray) -> scipy.sparse.csr_matrix:
+    """navkit's 8-connected graph without corner cutting as a symmetric CSR matrix."""
+    rows, cols = costs.shape
+    free = np.isfinite(costs)
+    index = np.arange(rows * cols).reshape(rows, cols)
+    src, dst, weight = [], [], []
+    for dr, dc in ((0, 1), (1, 0), (1, 1), (1, -1)):
+        r0, r1 = 0, rows - dr
+        c0, c1 = max(0, -dc), cols - max(0, dc)
+        a = (slice(r0, r1), slice(c0, c1))
+        b = (slice(r0 + dr, r1 + dr), slice(c0 + dc, c1 + dc))
+        ok = free[a] & free[b]
+        if dr and dc:
+            ok &= free[r0 + dr : r1 + dr, c0:c1] & free[r0:r1, c0 + dc : c1 + dc]
+        step_half = SQRT2 * 0.5 if dr and dc else 0.5
+        w = step_half * (costs[a] + costs[b])
+        src.append(index[a][ok])
+        dst.append(index[b][ok])
+        weight.append(w[ok])
+    s, d, w = np.concatenate(src), np.concatenate(dst), np.concatenate(weight)
+    n = rows * cols
+    return scipy.sparse.csr_matrix(
+        (np.concatenate((w, w)), (np.concatenate((s, d)), np.concatenate((d, s)))), shape=(n, n)
+    )
+
+
+@cache
+def _field_map(name: str) -> np.ndarray:
+    if name == "weighted":
+        rng = np.random.default_rng(17)
+        costs = rng.integers(1, 11, size=(1024, 1024)).astype(np.float64)
+        costs[rng.random((1024, 1024)) < 0.10] = np.inf
+    else:
+        from test_bench_astar import benchmark_map
+
+        costs = np.array(benchmark_map(name))
+    costs[512, 512] = 1.0
+    costs.flags.writeable = False
+    return costs
+
+
+@pytest.mark.parametrize("name", ["random20", "random35", "rooms", "weighted"])
+@pytest.mark.parametrize("contestant", ["navkit", "scipy"])
+def test_distance_field_vs_scipy(benchmark: Any, name: str, contestant: str) -> None:
+    costs = _field_map(name)
+    goal = (512, 512)
+    benchmark.group = f"1024^2 distance field, {name}"
+    if contestant == "navkit":
+        field = benchmark.pedantic(distance_field, (costs, goal), rounds=5, warmup_rounds=1)
+        benchmark.extra_info["reachable"] = int(np.isfinite(field).sum())
+    else:
+        graph = _csr_graph(costs)
+        dist = benchmark.pedantic(
+            dijkstra, (graph,), {"directed": True, "indices": goal[0] * 1024 + goal[1]}, rounds=5
+        )
+        np.testing.assert_allclose(dist, distance_field(costs, goal).ravel(), rtol=1e-12)

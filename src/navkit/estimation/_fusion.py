@@ -317,6 +317,8 @@ class FusionResult:
         computed (``OUT_OF_ORDER``, ``TIME_GAP``), inf when it overflowed
         (``OVERFLOW``).
 
+    Notes
+    -----
     Every array is a read-only copy (the caller's arrays are never made
     read-only or modified). ``times``, ``states`` and ``covariances`` must be
     finite.
@@ -461,6 +463,8 @@ class PlanarFusion(GaussianEstimate):
         If given, in (0, 1): reject measurements whose NIS exceeds the chi-square
         quantile of this probability for their dimension (Mahalanobis gate).
 
+    Notes
+    -----
     Measured values are any finite numbers; measurement variances (keyword-only
     in every ``update_*`` method) are in [1e-100, 1e100], SI units squared.
 
@@ -480,7 +484,17 @@ class PlanarFusion(GaussianEstimate):
     'out of order: t=0.5 s is older than the filter time 1.0 s'
     """
 
-    __slots__ = ("_buf", "_gates", "_kinds", "_q", "_residuals", "_t", "_work")
+    __slots__ = (
+        "_buf",
+        "_gates",
+        "_kinds",
+        "_odometry_gate",
+        "_odometry_residual",
+        "_q",
+        "_residuals",
+        "_t",
+        "_work",
+    )
 
     def __init__(
         self,
@@ -525,6 +539,9 @@ class PlanarFusion(GaussianEstimate):
             kind: (first, count, float(self._gates[count]), slice(first, first + count))
             for kind, (first, count) in _KIND_COMPONENTS.items()
         }
+        # The odometry fast path's gate and residual view, looked up once.
+        self._odometry_gate = self._kinds["odometry"][2]
+        self._odometry_residual: FloatArray = self._residuals[self._kinds["odometry"][3]]
 
     @property
     def t(self) -> float | None:
@@ -538,6 +555,12 @@ class PlanarFusion(GaussianEstimate):
 
     def predict(self, t: float) -> None:
         """Propagate the state to time ``t`` (s) without a measurement.
+
+        Parameters
+        ----------
+        t : float
+            Time to predict to, s: finite and not older than the filter time
+            (before the first measurement without ``t0`` it only sets the clock).
 
         Raises
         ------
@@ -568,9 +591,24 @@ class PlanarFusion(GaussianEstimate):
     ) -> UpdateResult:
         """Fuse a wheel-odometry twist: forward speed ``v`` (m/s), yaw rate ``omega`` (rad/s).
 
-        ``v_variance``, ``omega_variance`` (keyword-only) are the variances
-        ((m/s)², (rad/s)²), in [1e-100, 1e100]. Returns the
-        :class:`UpdateResult` (residual order ``[v, omega]``).
+        Parameters
+        ----------
+        t : float
+            Time of the measurement, s.
+        v : float
+            Measured forward speed, m/s.
+        omega : float
+            Measured yaw rate, rad/s.
+        v_variance, omega_variance : float
+            Their variances, (m/s)² and (rad/s)², in [1e-100, 1e100]
+            (keyword-only).
+
+        Returns
+        -------
+        UpdateResult
+            Whether the measurement was applied (``accepted``; an out-of-order,
+            gated or overflowing one is not, with the ``reason``), its NIS and
+            its residual ``[v - v̂, ω - ω̂]``.
 
         Raises
         ------
@@ -581,25 +619,150 @@ class PlanarFusion(GaussianEstimate):
             The prediction to ``t`` would overflow float64 (a huge time gap) or
             the update would lose positive definiteness; the filter is unchanged.
         """
+        # Fast path (the call runs at the odometry rate): plain finite floats, variances
+        # in range, a running filter and an in-order time; everything else, and
+        # every measurement the kernel does not apply, goes the general way.
+        # The literals are MIN_VARIANCE and MAX_COVARIANCE (constants are faster).
+        last = self._t
+        if (
+            type(t) is type(v) is type(omega) is type(v_variance) is type(omega_variance) is float
+            and last is not None
+            and last <= t
+            and 1e-100 <= v_variance <= 1e100
+            and 1e-100 <= omega_variance <= 1e100
+            and (t + v + omega) - (t + v + omega) == 0.0
+        ):
+            dt = t - last
+            status, nis = planar_step(
+                self._buf, dt, 1, 2, v, omega, v_variance, omega_variance, self._odometry_gate
+            )
+            if status:
+                return self._not_applied(status, "odometry", t, dt, nis, slice(1, 3))
+            self._t = t
+            return new_result(True, nis, self._odometry_residual.copy(), None)
         return self._apply(t, "odometry", v, omega, v_variance, omega_variance, _ODOMETRY_NAMES)
 
     def update_speed(self, t: float, v: float, *, variance: float) -> UpdateResult:
         """Fuse a forward speed ``v`` (m/s) alone; ``variance`` in (m/s)², keyword-only.
 
         For odometry whose yaw rate is unreliable (skid-steer robots).
+
+        Parameters
+        ----------
+        t : float
+            Time of the measurement, s.
+        v : float
+            Measured forward speed, m/s.
+        variance : float
+            Its variance, (m/s)², in [1e-100, 1e100] (keyword-only).
+
+        Returns
+        -------
+        UpdateResult
+            Whether the measurement was applied (``accepted``; an out-of-order,
+            gated or overflowing one is not, with the ``reason``), its NIS and
+            its residual ``[v - v̂]``.
+
+        Raises
+        ------
+        TypeError, ValueError
+            A time or value that is not a finite real number, or a variance
+            outside [1e-100, 1e100], naming it; the filter is unchanged.
+        FilterError
+            The prediction to ``t`` would overflow float64 (a huge time gap) or
+            the update would lose positive definiteness; the filter is unchanged.
         """
         return self._apply(t, "speed", v, 0.0, variance, 1.0, ("v", "", "variance", ""))
 
     def update_yaw(self, t: float, yaw: float, *, variance: float) -> UpdateResult:
-        """Fuse an absolute yaw ``yaw`` (rad, any range; compass or IMU); ``variance`` in rad²."""
+        """Fuse an absolute yaw ``yaw`` (rad, any range; compass or IMU); ``variance`` in rad².
+
+        Parameters
+        ----------
+        t : float
+            Time of the measurement, s.
+        yaw : float
+            Measured heading, rad, counter-clockwise from the world x axis; any
+            finite value (the residual is wrapped to (-π, π]).
+        variance : float
+            Its variance, rad², in [1e-100, 1e100] (keyword-only).
+
+        Returns
+        -------
+        UpdateResult
+            Whether the measurement was applied (``accepted``; an out-of-order,
+            gated or overflowing one is not, with the ``reason``), its NIS and
+            its residual ``[wrap(yaw - θ̂)]``.
+
+        Raises
+        ------
+        TypeError, ValueError
+            A time or value that is not a finite real number, or a variance
+            outside [1e-100, 1e100], naming it; the filter is unchanged.
+        FilterError
+            The prediction to ``t`` would overflow float64 (a huge time gap) or
+            the update would lose positive definiteness; the filter is unchanged.
+        """
         return self._apply(t, "yaw", yaw, 0.0, variance, 1.0, ("yaw", "", "variance", ""))
 
     def update_yaw_rate(self, t: float, omega: float, *, variance: float) -> UpdateResult:
-        """Fuse a gyro yaw rate ``omega`` (rad/s); ``variance`` in (rad/s)², keyword-only."""
+        """Fuse a gyro yaw rate ``omega`` (rad/s); ``variance`` in (rad/s)², keyword-only.
+
+        Parameters
+        ----------
+        t : float
+            Time of the measurement, s.
+        omega : float
+            Measured yaw rate, rad/s, counter-clockwise positive.
+        variance : float
+            Its variance, (rad/s)², in [1e-100, 1e100] (keyword-only).
+
+        Returns
+        -------
+        UpdateResult
+            Whether the measurement was applied (``accepted``; an out-of-order,
+            gated or overflowing one is not, with the ``reason``), its NIS and
+            its residual ``[ω - ω̂]``.
+
+        Raises
+        ------
+        TypeError, ValueError
+            A time or value that is not a finite real number, or a variance
+            outside [1e-100, 1e100], naming it; the filter is unchanged.
+        FilterError
+            The prediction to ``t`` would overflow float64 (a huge time gap) or
+            the update would lose positive definiteness; the filter is unchanged.
+        """
         return self._apply(t, "yaw_rate", omega, 0.0, variance, 1.0, ("omega", "", "variance", ""))
 
     def update_acceleration(self, t: float, a: float, *, variance: float) -> UpdateResult:
-        """Fuse a forward acceleration ``a`` (m/s², gravity removed); ``variance`` in (m/s²)²."""
+        """Fuse a forward acceleration ``a`` (m/s², gravity removed); ``variance`` in (m/s²)².
+
+        Parameters
+        ----------
+        t : float
+            Time of the measurement, s.
+        a : float
+            Measured forward acceleration, m/s², gravity removed.
+        variance : float
+            Its variance, (m/s²)², in [1e-100, 1e100] (keyword-only).
+
+        Returns
+        -------
+        UpdateResult
+            Whether the measurement was applied (``accepted``; an out-of-order,
+            gated or overflowing one is not, with the ``reason``), its NIS and
+            its residual ``[a - â]``.
+
+        Raises
+        ------
+        TypeError, ValueError
+            A time or value that is not a finite real number, or a variance
+            outside [1e-100, 1e100], naming it; the filter is unchanged.
+        FilterError
+            The prediction to ``t`` would overflow float64 (a huge time gap) or
+            the update would lose positive definiteness; the filter is unchanged.
+        """
         return self._apply(t, "acceleration", a, 0.0, variance, 1.0, ("a", "", "variance", ""))
 
     def _apply(
@@ -687,10 +850,21 @@ class PlanarFusion(GaussianEstimate):
         positive definiteness (``NOT_POSITIVE_DEFINITE``) or overflow
         (``OVERFLOW``). Every state and covariance in the result is finite.
 
+        Parameters
+        ----------
+        log : MeasurementLog
+            Measurements, applied row by row in the log's order (see
+            :meth:`MeasurementLog.from_streams` for a time-sorted log).
+
         Returns
         -------
         FusionResult
             State, covariance, status and NIS after every row.
+
+        Raises
+        ------
+        TypeError
+            If ``log`` is not a :class:`MeasurementLog`.
         """
         if not isinstance(log, MeasurementLog):
             raise TypeError(f"log must be a MeasurementLog, got {type(log).__name__}")

@@ -2,12 +2,14 @@
 
 from __future__ import annotations
 
+import math
 import numbers
 from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from navkit._shared.se2 import exp_body
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, finite_float, positive_float
 from navkit.geometry import Pose2D, as_pose, wrap_angle
@@ -16,6 +18,33 @@ from navkit.kinematics import DiffDrive, OdometryMethod, OmniDrive, tick_delta, 
 __all__ = ["DiffOdometry", "OmniOdometry"]
 
 _METHODS = ("arc", "midpoint", "first_order")
+_INT64_MIN = -(2**63)
+_INT64_END = 2**63
+
+# A new Pose2D from values known to be finite with theta in (-pi, pi], without
+# the validating constructor (one per odometry reading; see _pose).
+_object_new = object.__new__
+_set_x = Pose2D.__dict__["x"].__set__
+_set_y = Pose2D.__dict__["y"].__set__
+_set_theta = Pose2D.__dict__["theta"].__set__
+
+
+_NUMPY_INTS = frozenset(
+    (np.int8, np.int16, np.int32, np.int64, np.uint8, np.uint16, np.uint32, np.uint64)
+)
+
+
+def _plain_int(value: object) -> int | None:
+    """A NumPy integer scalar as a Python int; None for anything else."""
+    return int(value) if type(value) in _NUMPY_INTS else None  # type: ignore[call-overload]
+
+
+def _pose(x: float, y: float, theta: float) -> Pose2D:
+    pose: Pose2D = _object_new(Pose2D)
+    _set_x(pose, x)
+    _set_y(pose, y)
+    _set_theta(pose, theta)
+    return pose
 
 
 def _chain(pose: Pose2D, dx: FloatArray, dy: FloatArray, heading_before: FloatArray) -> FloatArray:
@@ -217,6 +246,8 @@ class DiffOdometry:
     method : {"arc", "midpoint", "first_order"}, default "arc"
         Integration scheme per step.
 
+    Notes
+    -----
     Every parameter after ``drive`` is keyword-only.
 
     Raises
@@ -234,7 +265,19 @@ class DiffOdometry:
     Pose2D(x=0.6283185307179586, y=0.0, theta=0.0)
     """
 
-    __slots__ = ("_bits", "_drive", "_last", "_method", "_pose", "_ticks_per_rev")
+    __slots__ = (
+        "_bits",
+        "_drive",
+        "_high",
+        "_last",
+        "_low",
+        "_method",
+        "_modulus",
+        "_pose",
+        "_scale_left",
+        "_scale_right",
+        "_ticks_per_rev",
+    )
 
     def __init__(
         self,
@@ -260,6 +303,14 @@ class DiffOdometry:
         self._pose = start
         self._method: OdometryMethod = method
         self._last: tuple[int, int] | None = None
+        # For the scalar fast path of update(): the counter range, and metres per
+        # tick computed exactly as ticks_to_distance computes them.
+        bits = 64 if self._bits is None else self._bits
+        self._modulus = 1 << bits
+        self._low = max(-(1 << (bits - 1)), _INT64_MIN)
+        self._high = min((1 << bits) - 1, _INT64_END - 1)
+        self._scale_left = 2.0 * math.pi * float(drive.left_radius) / self._ticks_per_rev
+        self._scale_right = 2.0 * math.pi * float(drive.right_radius) / self._ticks_per_rev
 
     @property
     def pose(self) -> Pose2D:
@@ -267,7 +318,20 @@ class DiffOdometry:
         return self._pose
 
     def reset(self, pose: Pose2D | ArrayLike | None = None) -> None:
-        """Forget the latched counters; optionally set a new pose (Pose2D or ``[x, y, theta]``)."""
+        """Forget the latched counters; optionally set a new pose.
+
+        The next :meth:`update` only latches the counters again.
+
+        Parameters
+        ----------
+        pose : Pose2D or array_like, shape (3,), optional
+            New pose (``[x, y, theta]``, m and rad); None keeps the current one.
+
+        Raises
+        ------
+        TypeError, ValueError
+            A ``pose`` that is not three finite real numbers.
+        """
         new_pose = None if pose is None else as_pose(pose, "pose")
         self._last = None
         if new_pose is not None:
@@ -278,8 +342,80 @@ class DiffOdometry:
 
         The first reading (after construction or :meth:`reset`) only latches the
         counters and returns the current pose.
+
+        Parameters
+        ----------
+        left_ticks, right_ticks : int
+            Raw counter readings of the left and right encoders (wrapping at
+            ``2**encoder_bits`` when ``encoder_bits`` is set).
+
+        Returns
+        -------
+        Pose2D
+            The new pose (also kept as :attr:`pose`).
+
+        Raises
+        ------
+        TypeError
+            Readings that are not integers.
+        ValueError
+            Readings outside the counter's range, or a pose that would overflow
+            float64; the odometry is then unchanged.
         """
+        # Fast path: plain ints within the counter's (and int64's) range take the
+        # arithmetic of update_batch on one reading with Python floats (the same
+        # IEEE operations, so the same bits); anything else goes the batch way.
+        left = left_ticks if type(left_ticks) is int else _plain_int(left_ticks)
+        right = right_ticks if type(right_ticks) is int else _plain_int(right_ticks)
+        if (
+            left is not None
+            and right is not None
+            and self._low <= left <= self._high
+            and self._low <= right <= self._high
+        ):
+            pose = self._step(left, right)
+            if pose is not None:
+                self._pose = pose
+                self._last = (left, right)
+                return pose
         return Pose2D.from_array(self.update_batch([left_ticks], [right_ticks])[-1])
+
+    def _step(self, left: int, right: int) -> Pose2D | None:
+        """The pose after one reading of validated counters, or None if it overflows."""
+        # The first reading only latches the counters (a zero step, as in update_batch).
+        last = (left, right) if self._last is None else self._last
+        pose = self._pose
+        modulus = self._modulus
+        half = modulus >> 1
+        # tick_delta: the difference modulo 2**bits, signed.
+        dl = (left - last[0]) % modulus
+        dr = (right - last[1]) % modulus
+        if dl >= half:
+            dl -= modulus
+        if dr >= half:
+            dr -= modulus
+        # ticks_to_distance, then DiffDrive.odometry_step_batch.
+        d_left = self._scale_left * float(dl)
+        d_right = self._scale_right * float(dr)
+        dc = 0.5 * d_right + 0.5 * d_left
+        dth = (d_right - d_left) / self._drive.track
+        if dth - dth != 0.0:  # inf or NaN: update_batch raises
+            return None
+        if self._method == "first_order":
+            dx, dy = dc, 0.0
+        elif self._method == "midpoint":
+            dx, dy = dc * math.cos(0.5 * dth), dc * math.sin(0.5 * dth)
+        else:
+            dx, dy, _ = exp_body(dc, 0.0, dth, 1.0)
+        # _chain for one step, then the heading.
+        before = pose.theta
+        c = math.cos(before)
+        s = math.sin(before)
+        x = pose.x + (c * dx - s * dy)
+        y = pose.y + (s * dx + c * dy)
+        if not (x - x == 0.0 and y - y == 0.0):
+            return None
+        return _pose(x, y, wrap_angle(before + wrap_angle(dth)))
 
     def update_batch(self, left_ticks: ArrayLike, right_ticks: ArrayLike) -> FloatArray:
         """Process a log of counter readings (vectorised) and return every pose.

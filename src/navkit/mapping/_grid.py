@@ -51,6 +51,8 @@ if TYPE_CHECKING:
 
 __all__ = ["OccupancyGrid"]
 
+_FLOAT64 = np.dtype(np.float64)
+
 _IDENTITY = Pose2D(0.0, 0.0, 0.0)
 
 
@@ -235,6 +237,12 @@ class OccupancyGrid:
     def copy(self) -> OccupancyGrid:
         """Independent copy (log-odds array included).
 
+        Returns
+        -------
+        OccupancyGrid
+            A new grid with a copy of the log-odds, the same resolution, origin
+            and thresholds.
+
         Examples
         --------
         >>> grid = OccupancyGrid.empty(width=1.0, height=1.0, resolution=0.5)
@@ -269,6 +277,13 @@ class OccupancyGrid:
             Cell size, m, in [1e-6, 1e6].
         origin : Pose2D or array_like [x, y, yaw], optional
             World pose of the lower-left corner, x and y within ±1e9 m.
+
+        Returns
+        -------
+        OccupancyGrid
+            ``height / resolution`` rows by ``width / resolution`` columns,
+            each rounded up to a whole cell (at least one; a ratio within 1e-9
+            of an integer is not rounded up), every log-odds 0 (unknown).
 
         Raises
         ------
@@ -307,6 +322,30 @@ class OccupancyGrid:
 
         Probabilities are clipped to [0.001, 0.999] so that certain cells have
         finite log-odds (about ±6.9); 0.5 gives log-odds exactly 0.
+
+        Parameters
+        ----------
+        probabilities : array_like, shape (rows, cols)
+            Occupancy probability of each cell, ``[row, col]`` with row 0 at the
+            lowest y, in [0, 1]; at most :attr:`MAX_CELLS` cells.
+        resolution : float
+            Cell size, m, in [1e-6, 1e6].
+        origin : Pose2D or array_like [x, y, yaw], optional
+            World pose of the lower-left corner, x and y within ±1e9 m.
+        occupied_thresh, free_thresh : float
+            Default thresholds of the views,
+            ``0 <= free_thresh < occupied_thresh <= 1``.
+
+        Returns
+        -------
+        OccupancyGrid
+            Log-odds ``log(p / (1 - p))`` of the clipped probabilities.
+
+        Raises
+        ------
+        TypeError, ValueError
+            Non-numeric or non-finite probabilities, values outside [0, 1], or
+            another argument outside its range.
 
         Examples
         --------
@@ -349,6 +388,20 @@ class OccupancyGrid:
         unknown : array_like of bool, shape (rows, cols), optional
             Cells to mark unknown instead (must not overlap ``occupied``).
 
+        Returns
+        -------
+        OccupancyGrid
+            Occupied cells at probability 0.999, free ones at 0.001, unknown
+            ones at 0.5 (log-odds 0), with the default thresholds.
+
+        Raises
+        ------
+        TypeError
+            A mask that is not boolean.
+        ValueError
+            Masks of different or empty shapes, overlapping masks, or another
+            argument outside its range.
+
         Examples
         --------
         >>> grid = OccupancyGrid.from_occupancy(np.eye(3, dtype=bool), resolution=1.0)
@@ -377,6 +430,29 @@ class OccupancyGrid:
     ) -> OccupancyGrid:
         """Rasterise shapely obstacles; see :func:`navkit.mapping.rasterize_polygons`.
 
+        A cell is occupied when its closed square touches an obstacle.
+
+        Parameters
+        ----------
+        geometries : shapely geometry or iterable of them
+            Obstacles in world coordinates (m), finite.
+        bounds : array_like (xmin, ymin, xmax, ymax)
+            Area to cover, m, within ±1e9 m; the grid's origin is
+            ``(xmin, ymin)``.
+        resolution : float
+            Cell size, m, in [1e-6, 1e6].
+
+        Returns
+        -------
+        OccupancyGrid
+            The axis-aligned grid, rounded up to whole cells; every cell
+            occupied or free.
+
+        Raises
+        ------
+        TypeError, ValueError
+            As :func:`navkit.mapping.rasterize_polygons`.
+
         Examples
         --------
         >>> from shapely.geometry import box
@@ -396,6 +472,22 @@ class OccupancyGrid:
     def load(cls, path: str | os.PathLike[str]) -> OccupancyGrid:
         """Load a ROS map_server map; see :func:`navkit.mapping.io.read_map`.
 
+        Parameters
+        ----------
+        path : str or path-like
+            The map's YAML file; a relative ``image`` is found beside it.
+
+        Returns
+        -------
+        OccupancyGrid
+            The map, the image's top row as the last grid row, with the YAML's
+            thresholds.
+
+        Raises
+        ------
+        FileNotFoundError, ValueError, ImportError, OSError
+            As :func:`navkit.mapping.io.read_map`.
+
         Examples
         --------
         >>> import tempfile
@@ -412,7 +504,20 @@ class OccupancyGrid:
     def save(self, path: str | os.PathLike[str], *, mode: str = "trinary") -> Path:
         """Save as a ROS map_server map; see :func:`navkit.mapping.io.write_map`.
 
-        Returns the path of the image written beside the YAML ``path``.
+        Both files are written atomically (temporary file, then ``os.replace``).
+
+        Parameters
+        ----------
+        path : str or path-like
+            YAML file to write; the image is the same name with suffix ``.pgm``.
+        mode : {"trinary", "scale"}, default "trinary"
+            Pixel encoding of the image (keyword-only; see
+            :func:`navkit.mapping.io.write_map`).
+
+        Returns
+        -------
+        Path
+            The path of the image written beside the YAML ``path``.
 
         Examples
         --------
@@ -469,6 +574,21 @@ class OccupancyGrid:
         >>> grid.world_to_cell([0.6, 0.1], continuous=True)
         array([-0.3,  0.7])
         """
+        if (
+            continuous is False
+            and type(points_xy) is np.ndarray
+            and points_xy.dtype is _FLOAT64
+            and points_xy.ndim == 2
+            and points_xy.shape[1] == 2
+            and points_xy.flags.c_contiguous
+        ):
+            # Fast path: C-contiguous (N, 2) float64 points go straight to the
+            # kernel, which also reports whether they were all finite (if not,
+            # the general path below raises).
+            cells = np.empty((points_xy.shape[0], 2), dtype=np.int64)
+            o = self._origin
+            if world_to_cell_kernel(points_xy, o.x, o.y, o.theta, self._resolution, cells):
+                return cells
         pts, single = as_pairs(points_xy, "points_xy")
         out: IntArray | FloatArray
         if as_bool(continuous, "continuous"):
@@ -500,6 +620,7 @@ class OccupancyGrid:
         Returns
         -------
         ndarray, shape (N, 2), or (2,) for one cell given as shape (2,)
+            New array of world points ``(x, y)``, m.
 
         Examples
         --------
@@ -519,8 +640,21 @@ class OccupancyGrid:
     def contains(self, points_xy: ArrayLike) -> BoolArray:
         """Whether each world point ``(x, y)`` lies inside the map.
 
-        Returns shape (N,) for points of shape (N, 2), and a 0-d array for one
-        point of shape (2,).
+        Parameters
+        ----------
+        points_xy : array_like, shape (N, 2) or (2,)
+            World points, m.
+
+        Returns
+        -------
+        ndarray of bool, shape (N,), or 0-d for one point given as shape (2,)
+            True where the point's cell (:meth:`world_to_cell`) is inside
+            ``[0, rows) × [0, cols)``.
+
+        Raises
+        ------
+        TypeError, ValueError
+            ``points_xy`` not finite real pairs.
 
         Examples
         --------
@@ -537,6 +671,11 @@ class OccupancyGrid:
     def probability(self) -> FloatArray:
         """Occupancy probability ``1 - 1 / (1 + exp(l))`` of every cell, shape (rows, cols).
 
+        Returns
+        -------
+        ndarray, shape (rows, cols)
+            New float64 array of probabilities in [0, 1] (0.5 unknown).
+
         Examples
         --------
         >>> OccupancyGrid.empty(width=1.0, height=0.5, resolution=0.5).probability()
@@ -547,6 +686,22 @@ class OccupancyGrid:
 
     def occupied(self, threshold: float | None = None) -> BoolArray:
         """Cells with ``p > threshold`` (default: the grid's ``occupied_thresh``).
+
+        Parameters
+        ----------
+        threshold : float, optional
+            Probability in [0, 1]; None uses :attr:`occupied_thresh`.
+
+        Returns
+        -------
+        ndarray of bool, shape (rows, cols)
+            New mask, True where the cell's occupancy probability exceeds
+            ``threshold``.
+
+        Raises
+        ------
+        TypeError, ValueError
+            ``threshold`` not a real number in [0, 1].
 
         Examples
         --------
@@ -559,6 +714,22 @@ class OccupancyGrid:
 
     def free(self, threshold: float | None = None) -> BoolArray:
         """Cells with ``p < threshold`` (default: the grid's ``free_thresh``).
+
+        Parameters
+        ----------
+        threshold : float, optional
+            Probability in [0, 1]; None uses :attr:`free_thresh`.
+
+        Returns
+        -------
+        ndarray of bool, shape (rows, cols)
+            New mask, True where the cell's occupancy probability is below
+            ``threshold``.
+
+        Raises
+        ------
+        TypeError, ValueError
+            ``threshold`` not a real number in [0, 1].
 
         Examples
         --------
@@ -574,8 +745,24 @@ class OccupancyGrid:
     ) -> BoolArray:
         """Cells neither occupied nor free under the given (or the grid's) thresholds.
 
-        Raises ``ValueError`` unless ``0 <= free_thresh < occupied_thresh <= 1``
-        (after filling in the grid's own value for a threshold not given).
+        Parameters
+        ----------
+        occupied_thresh, free_thresh : float, optional
+            Probabilities in [0, 1] (keyword-only); None uses the grid's
+            :attr:`occupied_thresh` / :attr:`free_thresh`.
+
+        Returns
+        -------
+        ndarray of bool, shape (rows, cols)
+            New mask, True where ``free_thresh <= p <= occupied_thresh``.
+
+        Raises
+        ------
+        TypeError
+            A threshold that is not a real number.
+        ValueError
+            Unless ``0 <= free_thresh < occupied_thresh <= 1`` (after filling
+            in the grid's own value for a threshold not given).
 
         Examples
         --------
@@ -595,8 +782,23 @@ class OccupancyGrid:
         A cell is in the mask when its centre lies within ``robot_radius`` (m) of
         the centre of an occupied cell (exact Euclidean distance transform): the
         cells where a robot of that inscribed radius centred there would touch an
-        obstacle. Unknown cells are not obstacles here. ``robot_radius`` in
-        [0, 1e6] m.
+        obstacle. Unknown cells are not obstacles here.
+
+        Parameters
+        ----------
+        robot_radius : float
+            Inflation radius, m, in [0, 1e6].
+
+        Returns
+        -------
+        ndarray of bool, shape (rows, cols)
+            New mask of the occupied cells and every cell whose centre lies
+            within ``robot_radius`` of an occupied cell's centre.
+
+        Raises
+        ------
+        TypeError, ValueError
+            ``robot_radius`` not a real number in [0, 1e6].
 
         Examples
         --------
@@ -623,6 +825,32 @@ class OccupancyGrid:
         inflate_around_unknown: bool = False,
     ) -> NDArray[np.uint8]:
         """ROS 2 Nav2 costs of this grid; see :func:`navkit.mapping.costmap`.
+
+        Parameters
+        ----------
+        robot_radius : float
+            Radius of the robot's inscribed circle, m, in [0, 1e6].
+        inflation_radius : float
+            Distance up to which costs decay, m, in [``robot_radius``, 1e6].
+        cost_scaling_factor : float, default 10.0
+            Exponential decay rate, 1/m, in (0, 1e12].
+        inflate_unknown : bool, default False
+            Whether an unknown cell takes any inflated cost > 0 (Nav2's
+            ``inflate_unknown``).
+        inflate_around_unknown : bool, default False
+            Whether unknown cells are inflation sources (Nav2's
+            ``inflate_around_unknown``).
+
+        Returns
+        -------
+        ndarray of uint8, shape (rows, cols)
+            254 lethal, 253 inscribed, 0..252 decaying inflation cost, 255
+            unknown.
+
+        Raises
+        ------
+        TypeError, ValueError
+            As :func:`navkit.mapping.costmap`.
 
         Examples
         --------
@@ -657,6 +885,35 @@ class OccupancyGrid:
         obstacles whenever it is impassable (``unknown_cost=inf``), so the
         robot's body keeps ``robot_radius`` clear of it.
 
+        Parameters
+        ----------
+        robot_radius : float, default 0.0
+            Robot's inscribed radius, m, in [0, 1e6]; 0 treats it as a point.
+        inflation_radius : float, optional
+            Decay distance, m, in [``robot_radius``, 1e6]; defaults to
+            ``robot_radius``.
+        cost_scaling_factor : float, default 10.0
+            Decay rate of the inflation cost, 1/m, in (0, 1e12].
+        cost_weight : float, default 4.0
+            Extra cost of a cell next to the inscribed zone, in [0, 1e9].
+        unknown_cost : float, default inf
+            Cost of unknown cells: ``inf`` (impassable) or a value in [1, 1e9].
+        inflate_unknown : bool or None, default None
+            Whether unknown cells count as obstacles when inflating; None means
+            ``unknown_cost == inf``.
+
+        Returns
+        -------
+        ndarray, shape (rows, cols)
+            New float64 costs per unit length: 1 in free space, up to
+            ``1 + cost_weight`` near obstacles, ``inf`` impassable (passes
+            :func:`navkit.mapping.validate_costs`).
+
+        Raises
+        ------
+        TypeError, ValueError
+            As :func:`navkit.mapping.traversal_costs`.
+
         Examples
         --------
         >>> grid = OccupancyGrid.from_occupancy(np.array([[True, False, False]]), resolution=0.1)
@@ -688,6 +945,32 @@ class OccupancyGrid:
         exact: bool = False,
     ) -> int:
         """Ray-cast one scan into this grid in place; see :func:`navkit.mapping.integrate_scan`.
+
+        Parameters
+        ----------
+        scan : LaserScan
+            The scan, beam angles in the sensor frame.
+        pose : Pose2D or array_like [x, y, theta]
+            World pose of the sensor (m, m, rad).
+        hit, miss : float
+            Log-odds increments, ``hit`` in [0, 1e6] and ``miss`` in [-1e6, 0]
+            (defaults OctoMap's ``logit(0.7)`` and ``logit(0.4)``).
+        clamp : (float, float)
+            Log-odds bounds ``low < high``, both within ±1e6.
+        max_range : float, optional
+            Cap on ``scan.range_max``, m (> 0).
+        exact : bool, default False
+            Exact grid traversal (Amanatides–Woo) instead of Bresenham lines.
+
+        Returns
+        -------
+        int
+            Number of cells updated.
+
+        Raises
+        ------
+        TypeError, ValueError
+            As :func:`navkit.mapping.integrate_scan`.
 
         Examples
         --------

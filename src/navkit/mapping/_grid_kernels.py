@@ -10,6 +10,7 @@ Examples
 >>> import numpy as np
 >>> out = np.empty((1, 2), dtype=np.int64)
 >>> world_to_cell_kernel(np.array([[0.7, 0.2]]), 0.0, 0.0, 0.0, 0.5, out)
+True
 >>> out
 array([[0, 1]])
 >>> cont = np.empty((1, 2))
@@ -41,12 +42,14 @@ def world_to_cell_kernel(
     origin_yaw: float,
     resolution: float,
     out: np.ndarray,
-) -> None:
+) -> bool:
     """Fill ``out`` (N, 2) int64 with the ``(row, col)`` cell of each ``(x, y)`` point.
 
     The cell is ``floor`` of the point's coordinates in the grid frame divided by
     the resolution, so indices outside the grid are returned as they are, up to
     ±2**62. The origin must lie within ±1e9 m (then nothing here is NaN).
+    Returns whether every point was finite (if not, ``out`` is meaningless), so
+    that callers need no separate finiteness pass.
     """
     inv_res = 1.0 / resolution
     c = math.cos(origin_yaw)
@@ -55,11 +58,17 @@ def world_to_cell_kernel(
     # twice as fast as indexing [i, 0], clamps included).
     xy = points.reshape(-1)
     flat = out.reshape(-1)
+    finite = True
     for i in range(points.shape[0]):
-        dx = xy[2 * i] - origin_x
-        dy = xy[2 * i + 1] - origin_y
+        x = xy[2 * i]
+        y = xy[2 * i + 1]
+        # x - x is 0 for a finite x and NaN otherwise; & keeps the loop branch-free.
+        finite &= (x - x == 0.0) & (y - y == 0.0)
+        dx = x - origin_x
+        dy = y - origin_y
         flat[2 * i] = math.floor(min(max((-s * dx + c * dy) * inv_res, -_LIMIT), _LIMIT))
         flat[2 * i + 1] = math.floor(min(max((c * dx + s * dy) * inv_res, -_LIMIT), _LIMIT))
+    return finite
 
 
 @njit_cached

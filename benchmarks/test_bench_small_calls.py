@@ -1,0 +1,133 @@
+"""Small public calls against the numba kernels they wrap (issue 17).
+
+Run with ``python -m pytest benchmarks/test_bench_small_calls.py --benchmark-only``.
+
+Each group times a public call and, in the same run, a bare call of the kernel it
+ends in with the same arguments (validation, result objects and copies left out);
+the issue's goal is the public call within 1.5x of the kernel.
+
+* ``update_odometry``: :meth:`PlanarFusion.update_odometry` at 100 Hz against
+  ``planar_step`` on the filter's buffer;
+* ``world_to_cell``: :meth:`OccupancyGrid.world_to_cell` on 10 points against
+  ``world_to_cell_kernel`` into a preallocated array;
+* ``repulsion``: :func:`repulsive_force_from_scan` on a 360-beam scan against
+  ``khatib_beam_force`` with the cached beam tables;
+* ``DiffOdometry.update``: one encoder reading (was a one-row batch, ~0.2 ms),
+  against a Python function doing the same arithmetic with no checks.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+import pytest
+
+from navkit.estimation import DiffOdometry, PlanarFusion
+from navkit.estimation._fusion_kernels import planar_step
+from navkit.geometry import Pose2D
+from navkit.kinematics import DiffDrive
+from navkit.mapping import LaserScan, OccupancyGrid
+from navkit.mapping._grid_kernels import world_to_cell_kernel
+from navkit.planning import repulsive_force_from_scan
+from navkit.planning.reactive._limits import MIN_DISTANCE
+from navkit.planning.reactive._scan_repulsion import _beam_table
+from navkit.planning.reactive._scan_repulsion_kernels import khatib_beam_force
+
+
+class _Clock:
+    """Increasing measurement times, 100 Hz."""
+
+    def __init__(self) -> None:
+        self.t = 0.0
+
+    def __call__(self) -> float:
+        self.t += 0.01
+        return self.t
+
+
+@pytest.mark.benchmark(group="update_odometry")
+@pytest.mark.parametrize("contestant", ["public", "kernel"])
+def test_update_odometry(benchmark: Any, contestant: str) -> None:
+    fusion = PlanarFusion(t0=0.0)
+    clock = _Clock()
+    if contestant == "public":
+
+        def call() -> Any:
+            return fusion.update_odometry(clock(), 1.0, 0.1, v_variance=1e-4, omega_variance=1e-4)
+
+        call()
+        assert benchmark(call).accepted
+    else:
+        buf = fusion._buf
+        planar_step(buf, 0.01, 1, 2, 1.0, 0.1, 1e-4, 1e-4, math.inf)
+        benchmark(planar_step, buf, 0.01, 1, 2, 1.0, 0.1, 1e-4, 1e-4, math.inf)
+
+
+@pytest.mark.benchmark(group="world_to_cell 10 points")
+@pytest.mark.parametrize("contestant", ["public", "kernel"])
+def test_world_to_cell_10(benchmark: Any, contestant: str) -> None:
+    grid = OccupancyGrid.empty(
+        width=50.0, height=40.0, resolution=0.05, origin=Pose2D(-20.0, -15.0, 0.4)
+    )
+    pts = np.random.default_rng(0).uniform(-30, 30, size=(10, 2))
+    out = np.empty((10, 2), dtype=np.int64)
+    o = grid.origin
+    world_to_cell_kernel(pts, o.x, o.y, o.theta, grid.resolution, out)
+    if contestant == "public":
+        assert np.array_equal(benchmark(grid.world_to_cell, pts), out)
+    else:
+        benchmark(world_to_cell_kernel, pts, o.x, o.y, o.theta, grid.resolution, out)
+
+
+def _scan() -> LaserScan:
+    n = 360
+    th = -math.pi + 2.0 * math.pi * np.arange(n) / n
+    ranges = 0.6 + 0.4 * np.abs(np.sin(3 * th))
+    return LaserScan(ranges, angle_min=-math.pi, angle_increment=2.0 * math.pi / n,
+                     range_min=0.12, range_max=3.5)
+
+
+@pytest.mark.benchmark(group="repulsion 360 beams")
+@pytest.mark.parametrize("contestant", ["public", "kernel"])
+def test_repulsion_360(benchmark: Any, contestant: str) -> None:
+    scan = _scan()
+    if contestant == "public":
+        repulsive_force_from_scan(scan, k_rep=0.5, influence_radius=1.0)
+        benchmark(repulsive_force_from_scan, scan, k_rep=0.5, influence_radius=1.0)
+    else:
+        cos_t, sin_t = _beam_table(scan)
+        args = (scan.ranges, cos_t, sin_t, scan.range_min, scan.range_max, 0.5, 1.0, MIN_DISTANCE)
+        khatib_beam_force(*args)
+        benchmark(khatib_beam_force, *args)
+
+
+def _bare_diff_step(pose: tuple[float, float, float], dl: int, dr: int) -> tuple[float, ...]:
+    """The first-order step with no checks: the floor for a Python-level reading."""
+    d_left = 2.0 * math.pi * 0.1 / 1000.0 * dl
+    d_right = 2.0 * math.pi * 0.1 / 1000.0 * dr
+    dc = 0.5 * d_right + 0.5 * d_left
+    dth = (d_right - d_left) / 0.5
+    c, s = math.cos(pose[2]), math.sin(pose[2])
+    return pose[0] + c * dc, pose[1] + s * dc, pose[2] + dth
+
+
+@pytest.mark.benchmark(group="DiffOdometry.update")
+@pytest.mark.parametrize("contestant", ["public", "batch_of_one", "bare_python"])
+def test_diff_odometry_update(benchmark: Any, contestant: str) -> None:
+    odo = DiffOdometry(DiffDrive(track=0.5, wheel_radius=0.1), ticks_per_rev=1000,
+                       encoder_bits=16, method="first_order")
+    ticks = [0]
+
+    def reading() -> tuple[int, int]:
+        ticks[0] += 3
+        return ticks[0] % 65536, (2 * ticks[0]) % 65536
+
+    if contestant == "public":
+        benchmark(lambda: odo.update(*reading()))
+    elif contestant == "batch_of_one":
+        # The pre-issue-17 implementation of update(): a one-row update_batch.
+        benchmark(lambda: odo.update_batch(*([v] for v in reading())))
+    else:
+        benchmark(lambda: _bare_diff_step((0.0, 0.0, 0.0), *reading()))
