@@ -54,11 +54,16 @@ from navkit.mapping._local_grid import LocalGrid
 from navkit.mapping._rasterize import rasterize_polygons
 from navkit.mapping._raycast import integrate_scan
 from navkit.mapping._scan import LaserScan
+from navkit.mapping._scan_mapper import ScanMapper
+from navkit.mapping._scan_matcher import ScanMatcher, ScanMatchResult
 
 __all__ = [
     "LaserScan",
     "LocalGrid",
     "OccupancyGrid",
+    "ScanMapper",
+    "ScanMatchResult",
+    "ScanMatcher",
     "costmap",
     "integrate_scan",
     "rasterize_polygons",

@@ -1,0 +1,358 @@
+"""A real-time 2-D mapper: scan-to-map matching and log-odds updates on a map pyramid."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from navkit._shared.types import FloatArray
+from navkit.geometry import Pose2D, as_pose
+from navkit.mapping._grid import OccupancyGrid
+from navkit.mapping._limits import MAX_CELLS, RESOLUTION_MAX, bounded_float, resolution_float
+from navkit.mapping._logodds import logit
+from navkit.mapping._raycast import _clamp_pair
+from navkit.mapping._raycast_kernels import integrate_beams
+from navkit.mapping._scan import LaserScan
+from navkit.mapping._scan_matcher import ScanMatcher, ScanMatchResult, scan_points
+
+__all__ = ["ScanMapper"]
+
+_IDENTITY = Pose2D(0.0, 0.0, 0.0)
+# Growth margin around what a scan reaches, m, and the initial half-size.
+_MARGIN = 10.0
+
+
+class ScanMapper:
+    """Build a map from laser scans in order: match each to the map, then write it in.
+
+    Hector mapping's loop (Kohlbrecher et al., SSRR 2011) on a pyramid of
+    log-odds :class:`OccupancyGrid` levels (the finest at ``resolution``,
+    each next one at twice the cell size, as many as the matcher's
+    ``levels``). For every scan, :meth:`update`:
+
+    1. guesses the sensor pose: the previous pose moved by the odometry
+       increment since the previous scan when ``odometry`` is given, otherwise
+       by the previous scan-to-scan motion (constant velocity; no motion for the
+       second scan);
+    2. matches the scan to the map from that guess (:meth:`ScanMatcher.match`;
+       when the match cannot be made, e.g. a featureless corridor, the guess is
+       kept);
+    3. writes the scan into **every** level (ray casting as
+       :func:`navkit.mapping.integrate_scan`, log-odds ``logit(occupied)`` for
+       end cells and ``logit(free)`` for crossed cells, each cell updated once
+       per scan, clamped to ``clamp``) when the pose has moved more than
+       ``min_distance`` or turned more than ``min_rotation`` since the last
+       write (the first scan is always written). Returns with no echo
+       (``>= range_max``) and beyond ``max_range`` are not written, as in Hector.
+
+    The map grows (by whole coarse cells, keeping every level aligned) when a
+    scan would reach beyond it, up to :attr:`OccupancyGrid.MAX_CELLS` cells.
+
+    The name says what it does — mapping from scans by scan matching — rather
+    than naming one implementation; the defaults are Hector's.
+
+    Parameters
+    ----------
+    resolution : float, default 0.05
+        Cell size of the finest level, m, in [1e-3, 1e6].
+    occupied, free : float, default 0.9, 0.4
+        Probabilities of the log-odds updates of end cells and crossed cells
+        (Hector's ``update_factor_occupied`` / ``update_factor_free``),
+        ``0.5 < occupied < 1`` and ``0 < free < 0.5``.
+    clamp : (float, float), default (-50.0, 50.0)
+        Bounds of the stored log-odds (Hector stops raising a cell at 50).
+    min_distance : float, default 0.4
+        Translation, m, since the last write that triggers a write (>= 0).
+    min_rotation : float, default 0.9
+        Rotation, rad, since the last write that triggers a write, in [0, π].
+    max_range : float, optional
+        Returns at least this long (m) are neither matched nor written; default
+        the matcher's ``max_range`` (all valid returns).
+    start : Pose2D or array_like [x, y, theta], default (0, 0, 0)
+        World pose given to the first scan.
+    matcher : ScanMatcher, optional
+        The matcher and its options. Default ``ScanMatcher(translation_weight=1.0,
+        rotation_weight=1.0, search_distance=0.1, search_angle=0.1)``: three
+        levels; a pull towards the guess (the odometry or constant-velocity
+        prediction) that keeps weakly constrained directions — a corridor's
+        axis, a scan mostly into unexplored space — near the prediction (on
+        the CARMEN logs it lowers the pair error by a fifth against Hector's
+        pure objective, weights 0); and a correlative pre-search of ±1 coarse
+        cell and ±0.1 rad around the guess, which puts Gauss–Newton in the
+        right basin when the guess is a few degrees off (odometry noise of
+        about 5 cm and 2° per step; give a wider window for worse odometry).
+
+    Examples
+    --------
+    >>> import math
+    >>> mapper = ScanMapper(resolution=0.1)
+    >>> ranges = [2.0 / max(abs(math.cos(a)), abs(math.sin(a)))
+    ...           for a in np.linspace(-math.pi, math.pi, 90, endpoint=False)]
+    >>> scan = LaserScan(ranges, angle_min=-math.pi, angle_increment=2 * math.pi / 90,
+    ...                  range_min=0.1, range_max=10.0)
+    >>> mapper.update(scan).reason         # the first scan has nothing to match
+    'degenerate'
+    >>> result = mapper.update(scan, odometry=(0.05, -0.04, 0.03))
+    >>> result.converged, bool(np.abs(mapper.trajectory[-1]).max() < 0.05)  # half a cell
+    (True, True)
+    >>> mapper.map.resolution, len(mapper)
+    (0.1, 2)
+    """
+
+    __slots__ = (
+        "_clamp",
+        "_free",
+        "_last_odometry",
+        "_last_write",
+        "_levels",
+        "_matcher",
+        "_max_range",
+        "_min_distance",
+        "_min_rotation",
+        "_occupied",
+        "_poses",
+        "_resolution",
+        "_start",
+    )
+
+    def __init__(
+        self,
+        *,
+        resolution: float = 0.05,
+        occupied: float = 0.9,
+        free: float = 0.4,
+        clamp: tuple[float, float] = (-50.0, 50.0),
+        min_distance: float = 0.4,
+        min_rotation: float = 0.9,
+        max_range: float | None = None,
+        start: Pose2D | ArrayLike = _IDENTITY,
+        matcher: ScanMatcher | None = None,
+    ) -> None:
+        self._resolution = resolution_float(resolution)
+        if self._resolution < 1e-3:
+            raise ValueError(f"resolution must be >= 1e-3 m, got {self._resolution}")
+        occ = bounded_float(occupied, "occupied", 0.5, 1.0, low_open=True)
+        if occ >= 1.0:
+            raise ValueError(f"occupied must be < 1, got {occ}")
+        fr = bounded_float(free, "free", 0.0, 0.5, low_open=True)
+        if fr >= 0.5:
+            raise ValueError(f"free must be < 0.5, got {fr}")
+        self._occupied = logit(occ)
+        self._free = logit(fr)
+        self._clamp = _clamp_pair(clamp)
+        self._min_distance = bounded_float(min_distance, "min_distance", 0.0, math.inf, "m")
+        self._min_rotation = bounded_float(min_rotation, "min_rotation", 0.0, math.pi, "rad")
+        if matcher is None:
+            matcher = ScanMatcher(
+                translation_weight=1.0, rotation_weight=1.0, search_distance=0.1, search_angle=0.1
+            )
+        elif not isinstance(matcher, ScanMatcher):
+            raise TypeError(f"matcher must be a ScanMatcher, got {type(matcher).__name__}")
+        self._matcher = matcher
+        self._max_range = (
+            matcher.max_range
+            if max_range is None
+            else bounded_float(max_range, "max_range", 0.0, 1e9, "m", low_open=True)
+        )
+        if self._resolution * 2 ** (matcher.levels - 1) > RESOLUTION_MAX:
+            raise ValueError("resolution * 2**(levels - 1) must be <= 1e6 m")
+        self._start = as_pose(start, "start")
+        self._levels: list[OccupancyGrid] = []
+        self._poses: list[Pose2D] = []
+        self._last_odometry: Pose2D | None = None
+        self._last_write: Pose2D | None = None
+
+    def __len__(self) -> int:
+        """Number of scans processed."""
+        return len(self._poses)
+
+    def __repr__(self) -> str:
+        return f"ScanMapper(resolution={self._resolution}, scans={len(self)})"
+
+    # ------------------------------------------------------------------ views
+    @property
+    def trajectory(self) -> FloatArray:
+        """World poses ``[x, y, theta]`` of the sensor at every scan, (n, 3), a read-only copy."""
+        out = np.array([[p.x, p.y, p.theta] for p in self._poses], dtype=np.float64)
+        out = out.reshape(len(self._poses), 3)
+        out.flags.writeable = False
+        return out
+
+    @property
+    def map(self) -> OccupancyGrid:
+        """A copy of the finest map level (before any scan: an empty 1 m square at ``start``).
+
+        Save it with ``mapper.map.save(path)`` (:func:`navkit.mapping.io.write_map`).
+        """
+        if not self._levels:
+            half = 0.5
+            return OccupancyGrid.empty(
+                width=2 * half,
+                height=2 * half,
+                resolution=min(self._resolution, half),
+                origin=(self._start.x - half, self._start.y - half, 0.0),
+            )
+        return self._levels[0].copy()
+
+    # ----------------------------------------------------------------- update
+    def update(
+        self, scan: LaserScan, odometry: Pose2D | ArrayLike | None = None
+    ) -> ScanMatchResult:
+        """Match ``scan`` to the map, record its pose and write it in when moved far enough.
+
+        Parameters
+        ----------
+        scan : LaserScan
+            The next scan, in time order.
+        odometry : Pose2D or array_like [x, y, theta], optional
+            Odometry pose of the **sensor** at this scan, in any fixed frame
+            (compose a mounting offset yourself: ``robot_odometry @ mount``).
+            Only increments between consecutive scans are used. Without it the
+            previous scan-to-scan motion is repeated.
+
+        Returns
+        -------
+        ScanMatchResult
+            The match (for the first scan: the ``start`` pose, reason
+            ``"degenerate"`` as an empty map constrains nothing).
+
+        Examples
+        --------
+        >>> mapper = ScanMapper()
+        >>> scan = LaserScan([1.0, 1.0, 1.0], angle_min=-1.0, angle_increment=1.0,
+        ...                  range_min=0.1, range_max=5.0)
+        >>> mapper.update(scan).pose
+        Pose2D(x=0.0, y=0.0, theta=0.0)
+        """
+        if not isinstance(scan, LaserScan):
+            raise TypeError(f"scan must be a LaserScan, got {type(scan).__name__}")
+        odom = None if odometry is None else as_pose(odometry, "odometry")
+        points = scan_points(scan, self._max_range)
+        guess = self._guess(odom)
+        if not self._levels:
+            self._create_levels(guess)
+        self._ensure_covers(guess, points)
+        result = self._matcher._match(tuple(self._levels), points, guess)
+        pose = result.pose
+        self._poses.append(pose)
+        if odom is not None:
+            self._last_odometry = odom
+        if self._should_write(pose):
+            self._write(scan, pose)
+            self._last_write = pose
+        return result
+
+    def _guess(self, odom: Pose2D | None) -> Pose2D:
+        if not self._poses:
+            return self._start
+        last = self._poses[-1]
+        if odom is not None and self._last_odometry is not None:
+            return last.compose(odom.relative_to(self._last_odometry))
+        if len(self._poses) >= 2:
+            return last.compose(last.relative_to(self._poses[-2]))
+        return last
+
+    def _should_write(self, pose: Pose2D) -> bool:
+        last = self._last_write
+        if last is None:
+            return True
+        moved = math.hypot(pose.x - last.x, pose.y - last.y)
+        turned = abs(math.remainder(pose.theta - last.theta, 2 * math.pi))
+        return moved > self._min_distance or turned > self._min_rotation
+
+    def _write(self, scan: LaserScan, pose: Pose2D) -> None:
+        ranges = np.array(scan.ranges, dtype=np.float64, copy=True)
+        with np.errstate(invalid="ignore"):
+            drop = ~scan.valid_mask()
+            if self._max_range is not None:
+                drop |= ranges >= self._max_range
+        ranges[drop] = np.nan  # no echo: neither a hit nor free space (Hector)
+        lo, hi = self._clamp
+        for grid in self._levels:
+            o = grid.origin
+            integrate_beams(
+                grid._logodds,
+                o.x,
+                o.y,
+                o.theta,
+                grid.resolution,
+                pose.x,
+                pose.y,
+                pose.theta,
+                ranges,
+                scan.angle_min,
+                scan.angle_increment,
+                scan.range_min,
+                scan.range_max,
+                self._occupied,
+                self._free,
+                lo,
+                hi,
+                False,
+            )
+
+    # ----------------------------------------------------------------- growth
+    def _coarsest(self) -> float:
+        return self._resolution * float(2 ** (self._matcher.levels - 1))
+
+    def _create_levels(self, centre: Pose2D) -> None:
+        step = self._coarsest()
+        n = max(1, math.ceil(_MARGIN / step))
+        x0 = centre.x - n * step
+        y0 = centre.y - n * step
+        self._levels = [
+            OccupancyGrid(
+                np.zeros((2 * n * 2**k, 2 * n * 2**k), dtype=np.float32),
+                resolution=step / 2**k,
+                origin=(x0, y0, 0.0),
+            )
+            for k in range(self._matcher.levels - 1, -1, -1)
+        ]
+
+    def _ensure_covers(self, pose: Pose2D, points: FloatArray) -> None:
+        """Grow every level so that the sensor and its returns (with a margin) are inside."""
+        if points.shape[0]:
+            world = pose.transform_points(points)
+            lo = np.minimum(world.min(axis=0), (pose.x, pose.y))
+            hi = np.maximum(world.max(axis=0), (pose.x, pose.y))
+        else:
+            lo = hi = np.array([pose.x, pose.y])
+        finest = self._levels[0]
+        o = finest.origin
+        width = finest.shape[1] * finest.resolution
+        height = finest.shape[0] * finest.resolution
+        margin = 1.0
+        if (
+            lo[0] - margin >= o.x
+            and lo[1] - margin >= o.y
+            and hi[0] + margin <= o.x + width
+            and hi[1] + margin <= o.y + height
+        ):
+            return
+        step = self._coarsest()
+        # Coarse cells added on each side (the need plus the margin), as floats
+        # first: a pose far away must not reach an integer conversion.
+        left_f = (o.x - (lo[0] - _MARGIN)) / step if lo[0] - margin < o.x else 0.0
+        down_f = (o.y - (lo[1] - _MARGIN)) / step if lo[1] - margin < o.y else 0.0
+        right_need = hi[0] + margin - (o.x + width)
+        up_need = hi[1] + margin - (o.y + height)
+        right_f = (right_need + _MARGIN) / step if right_need > 0 else 0.0
+        up_f = (up_need + _MARGIN) / step if up_need > 0 else 0.0
+        rows, cols = finest.shape
+        scale = 2 ** (self._matcher.levels - 1)
+        need = (rows + (down_f + up_f + 2) * scale) * (cols + (left_f + right_f + 2) * scale)
+        if not need <= MAX_CELLS:
+            return  # keep the map; returns beyond it are clipped by the ray casting
+        left, down, right, up = (math.ceil(v) for v in (left_f, down_f, right_f, up_f))
+        x0 = o.x - left * step
+        y0 = o.y - down * step
+        grown = []
+        for k, grid in enumerate(self._levels):
+            f = scale // 2**k
+            r, c = grid.shape
+            arr = np.zeros((r + (down + up) * f, c + (left + right) * f), dtype=np.float32)
+            arr[down * f : down * f + r, left * f : left * f + c] = grid._logodds
+            grown.append(OccupancyGrid(arr, resolution=grid.resolution, origin=(x0, y0, 0.0)))
+        self._levels = grown
