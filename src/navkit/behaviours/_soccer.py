@@ -56,6 +56,8 @@ class BehaviourTarget:
         currently seen (the controller skips them). ``M = 0`` is valid.
         Infinities are refused.
 
+    Notes
+    -----
     Both arrays are stored as read-only copies (the caller's arrays are never
     made read-only or modified).
 
@@ -188,6 +190,22 @@ def _check(state: GameState) -> GameState:
 def attack(state: GameState) -> BehaviourTarget:
     """Attack: go for the ball, or for the opponents' goal when holding it; opponents repel.
 
+    Parameters
+    ----------
+    state : GameState
+        Positions of the robot, the ball, the players and the goals (m).
+
+    Returns
+    -------
+    BehaviourTarget
+        ``goal_xy`` the ball (the opponents' goal when ``state.has_ball``);
+        ``obstacles_xy`` every opponent (NaN rows kept: unseen players).
+
+    Raises
+    ------
+    TypeError
+        If ``state`` is not a :class:`GameState`.
+
     Examples
     --------
     >>> state = GameState(robot_xy=(0.0, 0.0), ball_xy=(1.0, 0.0), opponents_xy=[[2.0, 1.0]],
@@ -204,6 +222,23 @@ def attack(state: GameState) -> BehaviourTarget:
 
 def support(state: GameState) -> BehaviourTarget:
     """Support: go half way from the ball to the own goal; all players and the own goal repel.
+
+    Parameters
+    ----------
+    state : GameState
+        Positions of the robot, the ball, the players and the goals (m).
+
+    Returns
+    -------
+    BehaviourTarget
+        ``goal_xy`` the midpoint of the ball and the own goal;
+        ``obstacles_xy`` the teammates, then the opponents, then the own goal
+        (shape ``(K + L + 1, 2)``).
+
+    Raises
+    ------
+    TypeError
+        If ``state`` is not a :class:`GameState`.
 
     Examples
     --------
@@ -230,6 +265,22 @@ def defend(state: GameState) -> BehaviourTarget:
 
     The opponent holding the ball does not repel, so the robot can close in to
     take it.
+
+    Parameters
+    ----------
+    state : GameState
+        Positions of the robot, the ball, the players and the goals (m).
+
+    Returns
+    -------
+    BehaviourTarget
+        ``goal_xy`` the ball; ``obstacles_xy`` the opponents except
+        ``state.opponent_with_ball``.
+
+    Raises
+    ------
+    TypeError
+        If ``state`` is not a :class:`GameState`.
 
     Examples
     --------

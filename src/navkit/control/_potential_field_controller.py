@@ -112,6 +112,8 @@ class PotentialFieldController:
         Time (s) without leaving ``stall_radius`` before :attr:`stalled` is set,
         in [1e-6, 1e6].
 
+    Notes
+    -----
     Positions (poses, goals, obstacles) have ``|x|, |y| <= 1e9`` m (the range of
     navkit.planning's fields); the control period ``dt`` of :meth:`step` is in
     [1e-6, 1e6] s. Within these ranges every command is finite.

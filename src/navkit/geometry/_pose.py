@@ -100,7 +100,21 @@ class Pose2D:
     def inverse(self) -> Pose2D:
         """Return the inverse transform, so that ``p.compose(p.inverse())`` is the identity.
 
-        Raises ``ValueError`` if the result would overflow (coordinates near ±1.8e308).
+        Returns
+        -------
+        Pose2D
+            The world frame expressed in this pose's frame: heading ``-theta``
+            (wrapped), position ``-R(theta)ᵀ (x, y)`` in metres.
+
+        Raises
+        ------
+        ValueError
+            If the result would overflow (coordinates near ±1.8e308).
+
+        Examples
+        --------
+        >>> Pose2D(1.0, 0.0, 0.0).inverse()
+        Pose2D(x=-1.0, y=-0.0, theta=-0.0)
         """
         c = math.cos(self.theta)
         s = math.sin(self.theta)
@@ -117,6 +131,11 @@ class Pose2D:
         ----------
         frame : Pose2D or array_like, shape (3,)
             The reference pose (world frame), or ``[x, y, theta]``.
+
+        Returns
+        -------
+        Pose2D
+            This pose in ``frame``'s frame (m, m, rad).
 
         Raises
         ------
@@ -174,12 +193,35 @@ class Pose2D:
         return out
 
     def as_array(self) -> FloatArray:
-        """Return ``[x, y, theta]`` as a new float64 array of shape (3,)."""
+        """Return ``[x, y, theta]`` as a new float64 array.
+
+        Returns
+        -------
+        ndarray, shape (3,)
+            ``[x, y, theta]`` in m, m, rad.
+        """
         return np.array([self.x, self.y, self.theta], dtype=np.float64)
 
     @classmethod
     def from_array(cls, values: ArrayLike) -> Pose2D:
-        """Build a pose from ``[x, y, theta]`` (shape (3,))."""
+        """Build a pose from ``[x, y, theta]``.
+
+        Parameters
+        ----------
+        values : array_like, shape (3,)
+            ``[x, y, theta]`` in m, m, rad: finite real numbers (theta is wrapped
+            to (-π, π]).
+
+        Returns
+        -------
+        Pose2D
+            The pose.
+
+        Raises
+        ------
+        TypeError, ValueError
+            ``values`` not three finite real numbers.
+        """
         arr = as_float_array(values, "values", shape=(3,))
         return cls(float(arr[0]), float(arr[1]), float(arr[2]))
 
@@ -213,12 +255,34 @@ class Twist2D:
         object.__setattr__(self, "omega", finite_float(self.omega, "omega"))
 
     def as_array(self) -> FloatArray:
-        """Return ``[vx, vy, omega]`` as a new float64 array of shape (3,)."""
+        """Return ``[vx, vy, omega]`` as a new float64 array.
+
+        Returns
+        -------
+        ndarray, shape (3,)
+            ``[vx, vy, omega]`` in m/s, m/s, rad/s.
+        """
         return np.array([self.vx, self.vy, self.omega], dtype=np.float64)
 
     @classmethod
     def from_array(cls, values: ArrayLike) -> Twist2D:
-        """Build a twist from ``[vx, vy, omega]`` (shape (3,))."""
+        """Build a twist from ``[vx, vy, omega]``.
+
+        Parameters
+        ----------
+        values : array_like, shape (3,)
+            ``[vx, vy, omega]`` in m/s, m/s, rad/s: finite real numbers.
+
+        Returns
+        -------
+        Twist2D
+            The twist.
+
+        Raises
+        ------
+        TypeError, ValueError
+            ``values`` not three finite real numbers.
+        """
         arr = as_float_array(values, "values", shape=(3,))
         return cls(float(arr[0]), float(arr[1]), float(arr[2]))
 

@@ -241,6 +241,8 @@ class ImuInBase:
         Linear acceleration, m/s², in the base frame (gravity as the IMU
         measured it; the lever arm of the mounting offset is not removed).
 
+    Notes
+    -----
     Every array is a read-only float64 copy. Shapes are checked (the same
     leading shape for all three), values must be finite.
 

@@ -16,6 +16,11 @@ from navkit.kinematics._ranges import MAX_LENGTH, MIN_LENGTH, in_range
 __all__ = ["DiffDrive", "OdometryMethod"]
 
 OdometryMethod = Literal["arc", "midpoint", "first_order"]
+"""Integration scheme of one odometry step (see :meth:`DiffDrive.odometry_step`).
+
+``"arc"`` is exact for constant wheel speeds over the step, ``"midpoint"``
+moves along the mid-step heading, ``"first_order"`` is the classic Euler form.
+"""
 _METHODS = ("arc", "midpoint", "first_order")
 
 
@@ -63,6 +68,8 @@ class DiffDrive:
     left_radius, right_radius : float, optional
         Individual wheel radii, m, in [1e-6, 1e6].
 
+    Notes
+    -----
     All parameters are keyword-only (three floats are too easy to swap).
 
     Raises
@@ -194,7 +201,22 @@ class DiffDrive:
     def forward_batch(self, wheel_speeds: ArrayLike) -> FloatArray:
         """Body twists (T, 3) ``[vx, 0, omega]`` from wheel speeds (T, 2) ``[left, right]``.
 
-        Raises ``TypeError``/``ValueError`` as :meth:`forward`.
+        Parameters
+        ----------
+        wheel_speeds : array_like, shape (T, 2)
+            Rows ``[omega_left, omega_right]`` in rad/s.
+
+        Returns
+        -------
+        ndarray, shape (T, 3)
+            New array of body twists ``[vx, vy, omega]`` (m/s, m/s, rad/s);
+            ``vy`` is always 0.
+
+        Raises
+        ------
+        TypeError, ValueError
+            As :meth:`forward`: speeds not finite real numbers of shape (T, 2),
+            or so large that a twist would overflow float64.
         """
         w = as_float_array(wheel_speeds, "wheel_speeds", shape=(None, 2))
         with np.errstate(over="ignore", invalid="ignore"):
@@ -208,7 +230,25 @@ class DiffDrive:
     def inverse_batch(self, twists: ArrayLike, *, ignore_lateral: bool = False) -> FloatArray:
         """Wheel speeds (T, 2) ``[omega_left, omega_right]``, rad/s, for twists (T, 3).
 
-        Raises ``TypeError``/``ValueError`` as :meth:`inverse`.
+        Parameters
+        ----------
+        twists : array_like, shape (T, 3)
+            Rows ``[vx, vy, omega]`` (m/s, m/s, rad/s), robot frame.
+        ignore_lateral : bool, default False
+            Drop lateral velocities ``vy`` instead of raising (keyword-only; a
+            ``bool``).
+
+        Returns
+        -------
+        ndarray, shape (T, 2)
+            New array of rows ``[omega_left, omega_right]``, rad/s.
+
+        Raises
+        ------
+        TypeError, ValueError
+            As :meth:`inverse`: twists not finite real numbers of shape (T, 3),
+            a non-zero ``vy`` without ``ignore_lateral``, or wheel speeds that
+            would overflow float64.
         """
         tw = as_float_array(twists, "twists", shape=(None, 3))
         if not as_bool(ignore_lateral, "ignore_lateral") and np.any(tw[:, 1] != 0.0):

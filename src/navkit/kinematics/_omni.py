@@ -121,6 +121,11 @@ class OmniDrive:
             Wheel radius and centre-to-wheel distance in metres, each in
             [1e-6, 1e6] (keyword-only).
 
+        Returns
+        -------
+        OmniDrive
+            A drive with ``wheel_angles = radians([30, 150, 270])``.
+
         Examples
         --------
         >>> OmniDrive.three_wheel(wheel_radius=0.05, base_radius=0.2).n_wheels
@@ -187,8 +192,22 @@ class OmniDrive:
     def forward(self, wheel_speeds: ArrayLike) -> Twist2D:
         """Body twist from wheel angular speeds (N,) in rad/s (least squares when N > 3).
 
-        Raises ``TypeError``/``ValueError`` for speeds that are not N finite
-        real numbers or so large that the twist would overflow float64.
+        Parameters
+        ----------
+        wheel_speeds : array_like, shape (N,)
+            Wheel angular speeds, rad/s, in the order of :attr:`wheel_angles`.
+
+        Returns
+        -------
+        Twist2D
+            ``forward_matrix @ wheel_speeds``: the body twist (m/s, m/s, rad/s),
+            the least-squares fit when N > 3.
+
+        Raises
+        ------
+        TypeError, ValueError
+            Speeds that are not N finite real numbers, or so large that the
+            twist would overflow float64.
         """
         w = as_float_array(wheel_speeds, "wheel_speeds", shape=(self.n_wheels,))
         with np.errstate(over="ignore", invalid="ignore"):
@@ -198,7 +217,21 @@ class OmniDrive:
     def inverse_batch(self, twists: ArrayLike) -> FloatArray:
         """Wheel speeds (T, N), rad/s, for body twists (T, 3) ``[vx, vy, omega]``.
 
-        Raises ``TypeError``/``ValueError`` as :meth:`inverse`.
+        Parameters
+        ----------
+        twists : array_like, shape (T, 3)
+            Rows ``[vx, vy, omega]`` (m/s, m/s, rad/s), robot frame.
+
+        Returns
+        -------
+        ndarray, shape (T, N)
+            New array of wheel speeds, rad/s, one row per twist.
+
+        Raises
+        ------
+        TypeError, ValueError
+            As :meth:`inverse`: twists not finite real numbers of shape (T, 3),
+            or wheel speeds that would overflow float64.
         """
         tw = as_float_array(twists, "twists", shape=(None, 3))
         with np.errstate(over="ignore", invalid="ignore"):
@@ -208,7 +241,21 @@ class OmniDrive:
     def forward_batch(self, wheel_speeds: ArrayLike) -> FloatArray:
         """Body twists (T, 3) ``[vx, vy, omega]`` from wheel speeds (T, N), rad/s.
 
-        Raises ``TypeError``/``ValueError`` as :meth:`forward`.
+        Parameters
+        ----------
+        wheel_speeds : array_like, shape (T, N)
+            Wheel angular speeds, rad/s, one row per command.
+
+        Returns
+        -------
+        ndarray, shape (T, 3)
+            New array of body twists ``[vx, vy, omega]`` (m/s, m/s, rad/s).
+
+        Raises
+        ------
+        TypeError, ValueError
+            As :meth:`forward`: speeds not finite real numbers of shape (T, N),
+            or twists that would overflow float64.
         """
         w = as_float_array(wheel_speeds, "wheel_speeds", shape=(None, self.n_wheels))
         with np.errstate(over="ignore", invalid="ignore"):

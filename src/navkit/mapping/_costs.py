@@ -52,6 +52,16 @@ def validate_costs(costs: ArrayLike) -> FloatArray:
     ``+inf`` entries are impassable. The input is never modified; it is copied
     only when a dtype or layout conversion is needed.
 
+    Parameters
+    ----------
+    costs : array_like, shape (rows, cols)
+        Candidate cost grid, indexed ``[row, col]``.
+
+    Returns
+    -------
+    ndarray, shape (rows, cols)
+        ``costs`` as C-contiguous float64 (the input itself when it already is).
+
     Raises
     ------
     ValueError
@@ -166,6 +176,12 @@ def costmap(
         inflation sources, like occupied ones (and become 254 themselves).
         This is what :func:`traversal_costs`'s ``inflate_unknown`` turns on.
 
+    Returns
+    -------
+    ndarray of uint8, shape (rows, cols)
+        New array of Nav2 costs: 254 lethal, 253 inscribed, 0..252 decaying
+        inflation cost, 255 unknown.
+
     Raises
     ------
     TypeError
@@ -251,6 +267,13 @@ def traversal_costs(
         is Nav2's ``inflate_around_unknown``, not the ``inflate_unknown``
         parameter of :func:`costmap` (which decides what cost an unknown cell
         takes, not whether it inflates).
+
+    Returns
+    -------
+    ndarray, shape (rows, cols)
+        New float64 costs per unit length: exactly 1 in free space,
+        ``1 + cost_weight * c / 252`` for a Nav2 cost ``c`` in 0..252,
+        ``unknown_cost`` on unknown cells, ``inf`` on lethal and inscribed ones.
 
     Raises
     ------

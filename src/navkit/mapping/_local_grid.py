@@ -126,6 +126,12 @@ class LocalGrid:
         resolution : float, default 0.1
             Cell size in metres, in [1e-6, 1e6].
 
+        Returns
+        -------
+        LocalGrid
+            A grid of ``n = 2 * round(half_width / resolution) + 1`` cells per
+            side, with ``half_width`` snapped.
+
         Raises
         ------
         ValueError
@@ -215,9 +221,23 @@ class LocalGrid:
     def cell_to_world(self, cells: ArrayLike) -> FloatArray:
         """Robot-frame points ``(x, y)`` in metres of grid coordinates ``(row, col)``.
 
-        Integer cells give their centres; continuous coordinates (integers at
-        cell centres, within ±2**62) are accepted. Returns shape (N, 2), or (2,)
-        for one cell given as shape (2,).
+        Parameters
+        ----------
+        cells : array_like, shape (N, 2) or (2,)
+            Grid coordinates ``(row, col)``: integer cells give their centres;
+            continuous coordinates (integers at cell centres, within ±2**62) are
+            accepted.
+
+        Returns
+        -------
+        ndarray, shape (N, 2), or (2,) for one cell given as shape (2,)
+            New array of robot-frame points ``(x, y)``, metres. Cells outside
+            the grid are converted too.
+
+        Raises
+        ------
+        TypeError, ValueError
+            ``cells`` not finite real pairs, or beyond ±2**62.
 
         Examples
         --------
@@ -236,8 +256,21 @@ class LocalGrid:
     def contains(self, points_xy: ArrayLike) -> BoolArray:
         """Whether each robot-frame point ``(x, y)`` falls in a cell of the grid.
 
-        Returns shape (N,) for points of shape (N, 2), and a 0-d array for one
-        point of shape (2,).
+        Parameters
+        ----------
+        points_xy : array_like, shape (N, 2) or (2,)
+            Points ``(x, y)`` in metres in the robot frame.
+
+        Returns
+        -------
+        ndarray of bool, shape (N,), or 0-d for one point given as shape (2,)
+            True where the point's cell (:meth:`world_to_cell`) is inside the
+            ``n × n`` grid.
+
+        Raises
+        ------
+        TypeError, ValueError
+            ``points_xy`` not finite real pairs.
 
         Examples
         --------

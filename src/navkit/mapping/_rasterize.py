@@ -4,10 +4,9 @@ from __future__ import annotations
 
 import math
 from collections.abc import Iterable, Mapping
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-import shapely
 from numpy.typing import ArrayLike
 
 from navkit._shared.types import BoolArray
@@ -15,6 +14,9 @@ from navkit._shared.validation import as_float_array
 from navkit.geometry import Pose2D
 from navkit.mapping._grid import OccupancyGrid
 from navkit.mapping._limits import COORDINATE_LIMIT, grid_shape, resolution_float
+
+if TYPE_CHECKING:
+    import shapely
 
 __all__ = ["rasterize_polygons"]
 
@@ -28,6 +30,8 @@ def _block_box(
 ) -> shapely.Geometry:
     """The union of the closed squares of cells [r0, r1) × [c0, c1), computed with
     the very same float operations as each cell's square (so it encloses them)."""
+    import shapely
+
     return shapely.box(
         xmin + c0 * res,
         ymin + r0 * res,
@@ -53,6 +57,8 @@ def _fill(
     only such cells: each is decided with one test, so the work grows with the
     obstacle's outline, not its area, and memory stays bounded by the leaf size.
     """
+    import shapely
+
     block = _block_box(xmin, ymin, res, r0, r1, c0, c1)
     if not shapely.intersects(geom, block):
         return
@@ -87,6 +93,8 @@ def _window(low: float, high: float, origin: float, res: float, size: int) -> tu
 
 
 def _geometry_list(geometries: Any) -> list[Any]:
+    import shapely
+
     if isinstance(geometries, shapely.Geometry):
         return [geometries]
     if isinstance(geometries, (str, bytes, Mapping)) or not isinstance(geometries, Iterable):
@@ -116,6 +124,12 @@ def rasterize_polygons(geometries: Any, *, bounds: ArrayLike, resolution: float)
         ``OccupancyGrid.MAX_CELLS`` (``2**28``) of them.
     resolution : float
         Cell size, m, in [1e-6, 1e6].
+
+    Returns
+    -------
+    OccupancyGrid
+        Axis-aligned grid with origin ``(xmin, ymin, 0)``, every cell occupied
+        (touching an obstacle) or free.
 
     Raises
     ------

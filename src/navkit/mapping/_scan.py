@@ -155,6 +155,11 @@ class LaserScan:
     def angles(self) -> FloatArray:
         """Sensor-frame angle of every beam, wrapped to (-π, π]; shape (N,).
 
+        Returns
+        -------
+        ndarray, shape (N,)
+            New array: ``angle_min + k * angle_increment`` in rad, wrapped.
+
         Examples
         --------
         >>> LaserScan([1.0, 1.0], angle_min=3.0, angle_increment=0.5,
@@ -166,6 +171,11 @@ class LaserScan:
 
     def valid_mask(self) -> BoolArray:
         """True for real returns: finite and ``range_min <= r < range_max``; shape (N,).
+
+        Returns
+        -------
+        ndarray of bool, shape (N,)
+            New array, one entry per beam.
 
         Examples
         --------
@@ -186,6 +196,17 @@ class LaserScan:
             World pose of the sensor. Without it the points are in the sensor frame.
             With it they follow the omnidirectional-robot paper's
             ``X_o = X + d cos(θ_n + θ)``, ``Y_o = Y + d sin(θ_n + θ)``.
+
+        Returns
+        -------
+        ndarray, shape (M, 2)
+            New array of ``(x, y)`` points in metres, one per valid beam (see
+            :meth:`valid_mask`), in beam order.
+
+        Raises
+        ------
+        TypeError, ValueError
+            A ``pose`` that is not three finite real numbers.
 
         Examples
         --------
@@ -208,9 +229,27 @@ class LaserScan:
 
         The scan is assumed to be taken in the robot frame (x forward, y left).
         With the defaults the result is the paper's 21 × 21 grid of 0.1 m cells
-        covering ±1 m, with ``i = 10 y + 10`` and ``j = 10 x + 10``; see
-        :meth:`LocalGrid.from_points <navkit.mapping.LocalGrid.from_points>`
-        for the ranges of ``half_width`` and ``resolution`` (m).
+        covering ±1 m, with ``i = 10 y + 10`` and ``j = 10 x + 10``.
+
+        Parameters
+        ----------
+        half_width : float, default 1.0
+            Half the side of the grid in metres, in [0, 1e6], snapped to a
+            multiple of ``resolution`` (keyword-only; as
+            :meth:`LocalGrid.from_points <navkit.mapping.LocalGrid.from_points>`).
+        resolution : float, default 0.1
+            Cell size in metres, in [1e-6, 1e6] (keyword-only).
+
+        Returns
+        -------
+        LocalGrid
+            The grid with the cells of the valid returns set; returns beyond
+            the grid are dropped.
+
+        Raises
+        ------
+        ValueError
+            A number outside its range, or a grid of more than ``2**28`` cells.
 
         Examples
         --------

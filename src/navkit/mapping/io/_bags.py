@@ -88,6 +88,8 @@ class BagScans:
     scans : tuple of LaserScan
         The scans, in bag (record-time) order.
 
+    Notes
+    -----
     Arrays are read-only float64 copies; lengths must agree.
 
     Examples
@@ -148,6 +150,8 @@ class BagOdometry:
         The messages' covariances, ROS order ``(x, y, z, roll, pitch, yaw)``
         (so the yaw variance is ``[:, 5, 5]``).
 
+    Notes
+    -----
     Arrays are read-only float64 copies, finite, with matching lengths.
 
     Examples
@@ -207,6 +211,8 @@ class BagImu:
 ndarray, shape (N, 3, 3)
         As in the bag: a -1 in ``[i, 0, 0]`` means "not given" (REP 145).
 
+    Notes
+    -----
     Arrays are read-only float64 copies, finite, with matching lengths.
 
     Examples

@@ -326,6 +326,12 @@ def read_carmen(
     range_min : float, default 0.0
         Minimum valid range, m (>= 0).
 
+    Returns
+    -------
+    CarmenLog
+        The scans in file order with their laser and robot poses and
+        timestamps, and the ODOM records.
+
     Raises
     ------
     FileNotFoundError

@@ -141,6 +141,19 @@ def grid_from_msg(msg: Any) -> OccupancyGrid:
     normalised and reduced to its yaw (a zero quaternion, ROS 1's default,
     gives yaw 0).
 
+    Parameters
+    ----------
+    msg : nav_msgs/OccupancyGrid or look-alike
+        Any object with ``info.width``, ``info.height``, ``info.resolution``
+        (m), ``info.origin.position.{x, y}`` (m),
+        ``info.origin.orientation.{x, y, z, w}`` and ``data``.
+
+    Returns
+    -------
+    OccupancyGrid
+        ``info.height`` rows by ``info.width`` columns: occupancy ``data / 100``
+        (-1 as 0.5, unknown), origin ``(x, y, yaw)``, the default thresholds.
+
     Raises
     ------
     TypeError
@@ -259,6 +272,16 @@ def scan_from_msg(msg: Any) -> LaserScan:
     Reads ``ranges``, ``angle_min``, ``angle_increment``, ``range_min``,
     ``range_max`` and (when present and non-empty) ``intensities``, checked
     as :class:`~navkit.mapping.LaserScan` checks them.
+
+    Parameters
+    ----------
+    msg : sensor_msgs/LaserScan or look-alike
+        Any object with those fields (ranges in m, angles in rad).
+
+    Returns
+    -------
+    LaserScan
+        The scan, with ``intensities`` None when the message has none.
 
     Raises
     ------

@@ -15,7 +15,6 @@ from typing import TypeVar
 
 import numpy as np
 from numpy.typing import ArrayLike
-from scipy.special import expit
 
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array
@@ -83,6 +82,21 @@ class AttractiveField(PotentialField):
 
         Only the goal is validated: the parameters were checked when ``self``
         was built.
+
+        Parameters
+        ----------
+        goal_xy : array_like, shape (2,)
+            New goal ``(x, y)`` in metres (world frame), ``|x|, |y| <= 1e9``.
+
+        Returns
+        -------
+        AttractiveField
+            A new field of the same class as ``self``, with the same parameters.
+
+        Raises
+        ------
+        TypeError, ValueError
+            ``goal_xy`` not two finite real numbers within ±1e9 m.
 
         Examples
         --------
@@ -288,11 +302,24 @@ class BlendedAttraction(AttractiveField):
     def sigma(self, d: ArrayLike) -> FloatArray:
         """Blending function σ(d) = ½[tanh((d - rad_thr)/ω) + 1] for distances ``d`` (m).
 
+        Parameters
+        ----------
+        d : array_like
+            Distances from the goal, m, finite; any shape.
+
+        Returns
+        -------
+        ndarray
+            New array of σ values in [0, 1], the shape of ``d``: 0 near the goal
+            (the paraboloid), 1 far from it (the cone), ½ at ``threshold_radius``.
+
         Examples
         --------
         >>> BlendedAttraction((0.0, 0.0), threshold_radius=1.0).sigma([1.0])
         array([0.5])
         """
+        from scipy.special import expit
+
         dist = as_float_array(d, "d")
         # Far beyond the blend the argument may overflow to ±inf: σ is then 1 or 0.
         with np.errstate(over="ignore"):
@@ -302,6 +329,8 @@ class BlendedAttraction(AttractiveField):
     def _terms(
         self, pts: FloatArray
     ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, FloatArray, FloatArray]:
+        from scipy.special import expit
+
         diff, d = _offsets(pts, self.goal_xy)
         z = 2.0 * (d - self.threshold_radius) / self.width
         sig = expit(z)

@@ -214,8 +214,21 @@ class SampledField:
     def contains(self, points_xy: ArrayLike) -> BoolArray:
         """Whether each world point ``(x, y)`` falls in a cell of the window.
 
-        Returns shape (N,) for points of shape (N, 2), and a 0-d array for one
-        point of shape (2,).
+        Parameters
+        ----------
+        points_xy : array_like, shape (N, 2) or (2,)
+            World points, m.
+
+        Returns
+        -------
+        ndarray of bool, shape (N,), or 0-d for one point given as shape (2,)
+            True where the point's cell (:meth:`world_to_cell`) is inside the
+            sampled window.
+
+        Raises
+        ------
+        TypeError, ValueError
+            ``points_xy`` not finite real pairs.
 
         Examples
         --------
