@@ -38,3 +38,14 @@ def test_development_command_is_what_ci_runs() -> None:
     test_command = commands.group(1).strip().splitlines()[-1]
     ci = (README.parent / ".ci" / "run").read_text(encoding="utf-8")
     assert test_command in ci.splitlines()
+
+
+def test_first_command_installs_and_runs_the_demo() -> None:
+    text = README.read_text(encoding="utf-8")
+    section = text.split("## Install and run", 1)[1]
+    block = re.search(r"```bash\n(.*?)```", section, re.DOTALL)
+    assert block is not None
+    first = block.group(1).strip().splitlines()[0]
+    assert first.startswith("python -m pip install -e ") and first.endswith("&& navkit demo")
+    pyproject = (README.parent / "pyproject.toml").read_text(encoding="utf-8")
+    assert 'navkit = "navkit.cli:main"' in pyproject  # the console script the demo runs through
