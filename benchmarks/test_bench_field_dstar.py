@@ -1,21 +1,35 @@
-"""Field D* speed on 1024 x 1024 maps: full plans against navkit's A*, local replans.
+"""Field D* speed: full plans against navkit's A*, replans against a fresh plan.
 
 Run with ``python -m pytest benchmarks/test_bench_field_dstar.py --benchmark-only``.
 
-The maps are those of ``test_bench_astar.py`` (random 20 % / 35 % blocked and
-rooms-and-corridors, corner to corner). Field D* plans between the corner nodes
-``(0, 0)`` and ``(1024, 1024)``; navkit's A* between the corner cells on the same
-costs (``corner_cutting=False``), in the same group for a direct comparison.
+The 1024 x 1024 maps are those of ``test_bench_astar.py`` (random 20 % / 35 %
+blocked and rooms-and-corridors, corner to corner). Field D* plans between the
+corner nodes ``(0, 0)`` and ``(1024, 1024)``; navkit's A* between the corner
+cells on the same costs (``corner_cutting=False``), in the same group for a
+direct comparison. ``maze512-32-9`` is the MovingAI maze (``../shared/data``,
+skipped when absent), planned for its longest scenario.
 
-The replan benchmark blocks a 2 x 2 block of cells straddling the current path
-5 cells ahead of the robot and times :meth:`FieldDStar.replan`, alternately with
-the robot at the start and moved 2 cells along its path. Each round starts from
-a freshly planned (untimed) planner. Expansions are in ``extra_info``.
+Replans (each round starts from a freshly planned, untimed planner; every
+replan group holds the fresh plan on the changed costs, constructor included,
+as its peer, and the benchmark checks that both return the same path):
+
+* ``replan-<map>``: a 2 x 2 block of cells straddling the path 5 cells ahead of
+  the robot, alternately with the robot at the start and moved 2 cells along;
+* ``replan-goal-<map>``: a 2 x 2 block 5 cells before the goal: nearly every
+  node value changes, the case where a repair loses to a fresh plan;
+* ``replan-mid-maze512-32-9``: a 2 x 2 block at the middle of the path;
+* ``replan-unchanged-<map>``: no cost changed since the last plan (same start),
+  and ``moved-2``: no cost changed, the robot moved 2 cells along its path.
+
+Expansions are in ``extra_info``.
 """
 
 from __future__ import annotations
 
 import math
+import os
+from functools import cache
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -27,6 +41,31 @@ from test_bench_astar import GOAL, MAPS, SIZE, START, benchmark_map
 
 NODE_START = (0, 0)
 NODE_GOAL = (SIZE, SIZE)
+MAZE = "maze512-32-9"
+DATA = Path(os.environ.get("NAVKIT_DATA", Path(__file__).resolve().parents[2] / "shared" / "data"))
+MAZE_FILE = DATA / "movingai-grid-benchmarks" / "maze" / f"{MAZE}.map"
+
+
+@cache
+def maze() -> tuple[np.ndarray, tuple[int, int], tuple[int, int]]:
+    """The maze's costs and the nodes of its longest scenario (start, goal)."""
+    if not MAZE_FILE.is_file():
+        pytest.skip(f"MovingAI map {MAZE_FILE} is not available")
+    lines = MAZE_FILE.read_text(encoding="ascii").splitlines()
+    body = lines[lines.index("map") + 1 :]
+    costs = np.array([[1.0 if ch in ".GS" else np.inf for ch in row] for row in body if row])
+    costs.flags.writeable = False
+    scen = Path(f"{MAZE_FILE}.scen").read_text(encoding="ascii").splitlines()[1:]
+    fields = max((line.split("\t") for line in scen if line.strip()), key=lambda f: float(f[8]))
+    sx, sy, gx, gy = (int(v) for v in fields[4:8])
+    # Node (r, c) is the top-left corner of the passable cell (r, c).
+    return costs, (sy, sx), (gy, gx)
+
+
+def problem(name: str) -> tuple[np.ndarray, tuple[int, int], tuple[int, int]]:
+    if name == MAZE:
+        return maze()
+    return benchmark_map(name), NODE_START, NODE_GOAL
 
 
 @pytest.mark.parametrize("name", MAPS)
@@ -59,37 +98,117 @@ def test_navkit_astar_same_map(benchmark: Any, name: str) -> None:
     benchmark.extra_info.update(expanded=path.expanded, cost=path.cost)
 
 
-def _blocking_cells(nodes: np.ndarray, distance: float) -> list[tuple[int, int]]:
-    """The 2 x 2 cells around the point ``distance`` along a path in node coordinates."""
-    ahead = shapely.LineString(nodes).interpolate(distance)
-    r = min(max(math.floor(ahead.x), 1), SIZE - 1)
-    c = min(max(math.floor(ahead.y), 1), SIZE - 1)
-    return [(r - 1, c - 1), (r - 1, c), (r, c - 1), (r, c)]
+def _point_along(nodes: np.ndarray, distance: float) -> tuple[float, float]:
+    """The point ``distance`` along a path in node coordinates (negative: from the end)."""
+    line = shapely.LineString(nodes)
+    at = line.interpolate(distance if distance >= 0 else line.length + distance)
+    return at.x, at.y
 
 
-@pytest.mark.parametrize("moved", [False, True], ids=["same-start", "moved-2"])
-@pytest.mark.parametrize("name", MAPS)
-def test_field_dstar_local_replan(benchmark: Any, name: str, moved: bool) -> None:
-    costs = benchmark_map(name)
-    base = FieldDStar(costs).plan(NODE_START, NODE_GOAL)
+def _blocking_cells(costs: np.ndarray, nodes: np.ndarray, distance: float) -> list[tuple[int, int]]:
+    """The 2 x 2 cells around the point ``distance`` along the path, ends kept free."""
+    rows, cols = costs.shape
+    x, y = _point_along(nodes, distance)
+    r = min(max(math.floor(x), 1), rows - 1)
+    c = min(max(math.floor(y), 1), cols - 1)
+    ends = {tuple(int(v) for v in nodes[0]), tuple(int(v) for v in nodes[-1])}
+    cells = [(r - 1, c - 1), (r - 1, c), (r, c - 1), (r, c)]
+    # Keep every cell touching an end node passable, so the ends stay valid.
+    return [
+        cell for cell in cells
+        if not any(0 <= e[0] - cell[0] <= 1 and 0 <= e[1] - cell[1] <= 1 for e in ends)
+    ]
+
+
+def _replan_case(
+    benchmark: Any, name: str, group: str, distance: float | None, moved: bool
+) -> None:
+    """Time ``replan`` after blocking cells ``distance`` along the path."""
+    costs, start, goal = problem(name)
+    base = FieldDStar(costs).plan(start, goal)
     nodes = base.points + 0.5  # node coordinates (the path's points are node - 0.5)
+    new_start = None
     if moved:
-        step = shapely.LineString(nodes).interpolate(2.0)
-        new_start: tuple[int, int] | None = (round(step.x), round(step.y))
-    else:
-        new_start = None
-    cells = _blocking_cells(nodes, 5.0 + (2.0 if moved else 0.0))
-    keep = [cell for cell in cells if cell not in {(0, 0), (SIZE - 1, SIZE - 1)}]
+        x, y = _point_along(nodes, 2.0)
+        new_start = (round(x), round(y))
+    cells = _blocking_cells(costs, nodes, distance) if distance is not None else []
+    changed = costs.copy()
+    for cell in cells:
+        changed[cell] = np.inf
 
     def setup() -> tuple[tuple[FieldDStar], dict[str, Any]]:
         planner = FieldDStar(costs)
-        planner.plan(NODE_START, NODE_GOAL)
-        planner.update_costs(keep, np.inf)
+        planner.plan(start, goal)
+        if cells:
+            planner.update_costs(cells, np.inf)
         return (planner,), {}
 
     def run(planner: FieldDStar) -> Any:
         return planner.replan(new_start)
 
-    benchmark.group = f"replan-{name}"
+    benchmark.group = group
     path = benchmark.pedantic(run, setup=setup, rounds=5)
+    fresh = FieldDStar(changed).plan(new_start or start, goal)
+    np.testing.assert_array_equal(path.points, fresh.points)
     benchmark.extra_info.update(expanded=path.expanded, cost=path.cost)
+
+
+def _fresh_case(benchmark: Any, name: str, group: str, distance: float | None, moved: bool) -> None:
+    """Time a fresh plan on the costs of :func:`_replan_case` (the replan's peer)."""
+    costs, start, goal = problem(name)
+    nodes = FieldDStar(costs).plan(start, goal).points + 0.5
+    if moved:
+        x, y = _point_along(nodes, 2.0)
+        start = (round(x), round(y))
+    changed = costs.copy()
+    if distance is not None:
+        for cell in _blocking_cells(costs, nodes, distance):
+            changed[cell] = np.inf
+    benchmark.group = group
+    path = benchmark.pedantic(
+        lambda: FieldDStar(changed).plan(start, goal), rounds=5, warmup_rounds=1
+    )
+    benchmark.extra_info.update(expanded=path.expanded, cost=path.cost)
+
+
+MOVES = pytest.mark.parametrize("moved", [False, True], ids=["same-start", "moved-2"])
+
+
+@MOVES
+@pytest.mark.parametrize("name", MAPS)
+def test_field_dstar_local_replan(benchmark: Any, name: str, moved: bool) -> None:
+    _replan_case(benchmark, name, f"replan-{name}", 5.0 + (2.0 if moved else 0.0), moved)
+
+
+@MOVES
+@pytest.mark.parametrize("name", MAPS)
+def test_field_dstar_local_fresh(benchmark: Any, name: str, moved: bool) -> None:
+    _fresh_case(benchmark, name, f"replan-{name}", 5.0 + (2.0 if moved else 0.0), moved)
+
+
+@pytest.mark.parametrize("name", MAPS)
+def test_field_dstar_replan_near_goal(benchmark: Any, name: str) -> None:
+    _replan_case(benchmark, name, f"replan-goal-{name}", -5.0, False)
+
+
+@pytest.mark.parametrize("name", MAPS)
+def test_field_dstar_fresh_near_goal(benchmark: Any, name: str) -> None:
+    _fresh_case(benchmark, name, f"replan-goal-{name}", -5.0, False)
+
+
+@MOVES
+def test_field_dstar_replan_mid_maze(benchmark: Any, moved: bool) -> None:
+    length = shapely.LineString(FieldDStar(maze()[0]).plan(*maze()[1:]).points).length
+    _replan_case(benchmark, MAZE, f"replan-mid-{MAZE}", length / 2, moved)
+
+
+@MOVES
+def test_field_dstar_fresh_mid_maze(benchmark: Any, moved: bool) -> None:
+    length = shapely.LineString(FieldDStar(maze()[0]).plan(*maze()[1:]).points).length
+    _fresh_case(benchmark, MAZE, f"replan-mid-{MAZE}", length / 2, moved)
+
+
+@MOVES
+@pytest.mark.parametrize("name", MAPS)
+def test_field_dstar_replan_unchanged(benchmark: Any, name: str, moved: bool) -> None:
+    _replan_case(benchmark, name, f"replan-unchanged-{name}", None, moved)

@@ -22,7 +22,7 @@ from navkit.planning.grid._dstar_lite_kernels import (
     state,
     update_cells,
 )
-from navkit.planning.grid._field_path_kernels import NO_PATH, OK, extract_path
+from navkit.planning.grid._field_path_kernels import ABORTED, NO_PATH, OK, extract_path
 from navkit.planning.grid._limits import (
     COORDINATE_LIMIT,
     MAX_COST,
@@ -45,6 +45,15 @@ _CORNERS = np.array([(0, 0), (0, 1), (1, 0), (1, 1)], dtype=np.int64)
 # Node coordinates beyond this are refused: integers stay exact and their world
 # points finite.
 _NODE_LIMIT = float(2**53)
+# Repair bound: a replan whose repair needs more work (expansions, a rising node
+# counting RAISE_WORK) than this fraction of the last fresh search's, and more
+# than _REPAIR_MIN_WORK, is cut short and replaced by a fresh search, so a
+# replan costs at most about (1 + fraction) fresh searches. Local changes near
+# the robot need well under 1 % of a fresh search on large maps; a change near
+# the goal makes nearly every node value rise, a repair of 2-5 fresh searches.
+_REPAIR_FRACTION = 0.05
+_REPAIR_MIN_WORK = 4096
+_NO_LIMIT = np.iinfo(np.int64).max // 2
 
 
 class FieldDStar:
@@ -177,7 +186,11 @@ class FieldDStar:
     """
 
     __slots__ = (
+        "_cached",
+        "_clean",
         "_cols",
+        "_fresh",
+        "_fresh_work",
         "_g",
         "_goal",
         "_goal_point",
@@ -197,6 +210,7 @@ class FieldDStar:
         "_start",
         "_start_point",
         "_width",
+        "_work",
     )
 
     def __init__(
@@ -233,7 +247,18 @@ class FieldDStar:
         self._g = np.full(n, np.inf)
         self._rhs = np.full(n, np.inf)
         self._heap = heap_new(n)
+        # g, rhs and the heap as allocated: the first search need not clear them.
+        self._clean = True
         self._km = 0.0
+        # (work done, work limit) of the current search, see settle().
+        self._work = np.zeros(2, dtype=np.int64)
+        # Whether the next search starts from scratch, and the work of the last one that did.
+        self._fresh = True
+        self._fresh_work = 0
+        # The last node path found and the start node it runs from: valid while
+        # no cell cost changes and the goal stays, so a replan from the same
+        # start returns it without walking the cost field again.
+        self._cached: tuple[tuple[int, int], FloatArray, float, float] | None = None
         self._start: tuple[int, int] | None = None
         self._goal: tuple[int, int] | None = None
         # The path's end points in node coordinates (the nodes themselves, cell
@@ -614,6 +639,13 @@ class FieldDStar:
             )
         if idx.shape[0] == 0:
             return
+        # With repeats the last value wins: compare each cell's final value.
+        flat = (idx[:, 0] + 1) * self._width + idx[:, 1] + 1
+        cells_u, last = np.unique(flat[::-1], return_index=True)
+        if np.array_equal(self._pad[cells_u], vals[::-1][last]):
+            return  # nothing changes: the search state and the cached path stay valid
+        self._cached = None
+        self._clean = False
         update_cells(
             self._state(),
             self._params(),
@@ -710,10 +742,14 @@ class FieldDStar:
         goal_point: tuple[float, float],
     ) -> None:
         """Start a new search from node ``s`` to node ``gl`` (the path's end points given)."""
-        self._g.fill(np.inf)
-        self._rhs.fill(np.inf)
-        self._heap = heap_new(self._g.shape[0])
+        if not self._clean:
+            self._g.fill(np.inf)
+            self._rhs.fill(np.inf)
+            self._heap = heap_new(self._g.shape[0])
+        self._clean = False
         self._km = 0.0
+        self._fresh = True
+        self._cached = None
         self._start = s
         self._goal = gl
         self._start_point = (float(start_point[0]), float(start_point[1]))
@@ -725,7 +761,7 @@ class FieldDStar:
         heap_push(nodes, keys, pos, size, goal_id, h, 0.0)
 
     def _state(self) -> tuple[np.ndarray, ...]:
-        return state(self._pad, self._g, self._rhs, self._heap)
+        return state(self._pad, self._g, self._rhs, self._heap, self._work)
 
     def _params(self) -> tuple[Any, ...]:
         start = self._start if self._start is not None else (0, 0)
@@ -734,9 +770,37 @@ class FieldDStar:
                       self._interp, self._hscale)
 
     def _search(self) -> tuple[FloatArray, float, float, int]:
-        """Node path (node coordinates), its exact cost and length, expansions."""
+        """Node path (node coordinates), its exact cost and length, expansions.
+
+        A repair is bounded (``_REPAIR_FRACTION``): cut short, it is replaced
+        by a fresh search from the current start, which returns the same path
+        (the repair's expansions are counted too). With no cost changed since
+        the last search from the same start, that search's path is returned.
+        """
         assert self._start is not None and self._goal is not None
+        cached = self._cached
+        if cached is not None and cached[0] == self._start:
+            return cached[1].copy(), cached[2], cached[3], 0
+        fresh = self._fresh
+        self._work[0] = 0
+        self._work[1] = (
+            _NO_LIMIT if fresh
+            else max(int(_REPAIR_FRACTION * self._fresh_work), _REPAIR_MIN_WORK)
+        )
         pts, k, expanded, status = extract_path(self._state(), self._params(), self._lookahead)
+        if status == ABORTED:
+            assert self._start_point is not None and self._goal_point is not None
+            self._reset(self._start, self._goal, self._start_point, self._goal_point)
+            self._work[0] = 0
+            self._work[1] = _NO_LIMIT
+            pts, k, more, status = extract_path(
+                self._state(), self._params(), self._lookahead
+            )
+            expanded += more
+            fresh = True
+        if fresh:
+            self._fresh_work = int(self._work[0])
+        self._fresh = False
         if status == NO_PATH:
             raise NoPathError(
                 f"goal_node {self._goal} is unreachable from start_node {self._start}",
@@ -757,6 +821,7 @@ class FieldDStar:
         else:
             points = pts[:k].copy()
         cost, length = polyline_cost(self._pad, self._width, points, points.shape[0])
+        self._cached = (self._start, points.copy(), float(cost), float(length))
         return points, float(cost), float(length), int(expanded)
 
     def _linked(self, points: FloatArray) -> tuple[FloatArray, float, float]:
@@ -804,6 +869,21 @@ def field_dstar(
     Equivalent to ``FieldDStar(costs, ...).plan(start_node, goal_node)``; see
     :class:`FieldDStar` for the conventions (node ``(i, j)`` is a cell corner, at
     continuous grid coordinates ``(i - 0.5, j - 0.5)``).
+
+    Parameters
+    ----------
+    costs : array_like, shape (rows, cols)
+        Per-cell traversal cost per unit length: finite values in ``[1, 1e12]``,
+        ``np.inf`` impassable. Never modified.
+    start_node, goal_node : array_like of int, shape (2,)
+        Nodes ``(i, j)`` with ``0 <= i <= rows`` and ``0 <= j <= cols``, each a
+        corner of at least one passable cell.
+    interpolate : bool, default True
+        Field D*'s interpolated edge costs; False gives 8-connected D* Lite.
+    lookahead : bool, default True
+        One-step lookahead in the path extraction.
+    smooth : bool, default True
+        Straighten runs of the path where that does not raise its cost.
 
     Returns
     -------

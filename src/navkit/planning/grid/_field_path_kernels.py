@@ -25,6 +25,8 @@ from navkit.planning.grid._dstar_lite_kernels import (
     PAIR_CR,
     PAIR_DC,
     PAIR_DR,
+    heuristic,
+    key_reached,
     settle,
 )
 from navkit.planning.grid._polyline_kernels import cell_cost
@@ -33,6 +35,8 @@ from navkit.planning.grid._polyline_kernels import cell_cost
 OK = 0
 NO_PATH = 1
 STUCK = 2
+# The work limit of the state (``work[1]``) was reached: the repair was cut short.
+ABORTED = 3
 
 
 @njit_cached
@@ -95,7 +99,7 @@ def _edge_min(
     return n + 1
 
 
-@njit_cached
+@njit_inline
 def _node_value(
     st: tuple[np.ndarray, ...],
     prm: tuple[Any, ...],
@@ -103,11 +107,26 @@ def _node_value(
     j: int,
     counter: np.ndarray,
 ) -> float:
-    """Exact cost-to-goal of node (i, j), settling it first (expansions -> counter)."""
+    """Exact cost-to-goal of node (i, j), settling it first (expansions -> counter).
+
+    A node already settled (consistent, its key not above the queue's top, the
+    stopping rule of :func:`settle`) is read without calling :func:`settle`.
+    """
     g = st[1]
+    rhs = st[2]
+    keys = st[4]
+    size = st[6]
     ncols = prm[2]
-    counter[0] += settle(st, prm, i * ncols + j)
-    return float(g[i * ncols + j])
+    s = i * ncols + j
+    gs = g[s]
+    if gs == rhs[s] and (
+        size[0] == 0
+        or key_reached(keys[0, 0], keys[0, 1], gs, heuristic(prm[3], prm[4], i, j, prm[8]),
+                       prm[6])
+    ):
+        return float(gs)
+    counter[0] += settle(st, prm, s)
+    return float(g[s])
 
 
 @njit_inline
@@ -317,14 +336,20 @@ def extract_path(
     has no cycle and it ends at the goal. 8-connected mode takes only
     :func:`_descend` steps: an optimal D* Lite path.
 
+    The walk stops with status ``ABORTED`` as soon as the state's work limit
+    is reached (:func:`settle`).
+
     Returns (points (K', 2) with the first K valid, K, expansions, status).
     """
     g = st[1]
+    work = st[7]
     nrows, ncols, sr, sc, goal, interp = prm[1], prm[2], prm[3], prm[4], prm[5], prm[7]
     start = sr * ncols + sc
     counter = np.zeros(1, dtype=np.int64)
     counter[0] = settle(st, prm, start)
     pts = np.empty((4 * (nrows + ncols), 2), dtype=np.float64)
+    if work[0] > work[1]:
+        return pts, 0, counter[0], ABORTED
     if g[start] == np.inf:
         return pts, 0, counter[0], NO_PATH
     gi = goal // ncols
@@ -366,11 +391,15 @@ def extract_path(
                     best_v = v
                     qr = cr
                     qc = cc
+        if work[0] > work[1]:
+            return pts, k, counter[0], ABORTED
         if best == np.inf:
             best, best_v, qr, qc = _descend(st, prm, pr, pc, cur, counter)
             if best == np.inf and (pr != math.floor(pr) or pc != math.floor(pc)):
                 # A point inside an edge whose value rounded to a corner's.
                 best, best_v, qr, qc = _descend(st, prm, pr, pc, node_v, counter)
+            if work[0] > work[1]:
+                return pts, k, counter[0], ABORTED
             if best == np.inf:
                 return pts, k, counter[0], STUCK
         pts = _push_point(pts, k, qr, qc)
@@ -380,5 +409,5 @@ def extract_path(
         cur = best_v
         if qr == math.floor(qr) and qc == math.floor(qc):
             node_v = best_v
-    return pts, k, counter[0], STUCK
+    return pts, k, counter[0], ABORTED if work[0] > work[1] else STUCK
 
