@@ -26,6 +26,7 @@ import json
 import math
 import subprocess
 import sys
+import time
 from functools import cache
 from pathlib import Path
 from typing import Any
@@ -193,6 +194,33 @@ def test_pyastar2d(benchmark: Any, name: str) -> None:
     path = benchmark(pyastar2d.astar_path, weights, START, GOAL, allow_diagonal=True)
     assert path is not None
     benchmark.extra_info["octile_length"] = octile_length(path)
+
+
+@pytest.mark.parametrize("name", MAPS)
+def test_cut_ratio_to_pyastar2d(benchmark: Any, name: str) -> None:
+    """navkit's corner-cutting A* and pyastar2d alternately: median per-round time ratio.
+
+    The issue's row "A* on the peers' graph": ``navkit_over_pyastar2d`` in
+    ``extra_info`` (below 1 means navkit is faster), measured in one loop so
+    machine load affects both alike.
+    """
+    costs = benchmark_map(name)
+    weights = np.where(np.isfinite(costs), 1.0, np.inf).astype(np.float32)
+    astar(costs, START, GOAL, corner_cutting=True)
+
+    def rounds() -> dict[str, float]:
+        ratios = []
+        for _ in range(9):
+            t0 = time.perf_counter()
+            pyastar2d.astar_path(weights, START, GOAL, allow_diagonal=True)
+            t1 = time.perf_counter()
+            astar(costs, START, GOAL, corner_cutting=True)
+            t2 = time.perf_counter()
+            ratios.append((t2 - t1) / (t1 - t0))
+        return {"navkit_over_pyastar2d": float(np.median(ratios))}
+
+    benchmark.group = f"{name} ratio"
+    benchmark.extra_info.update(benchmark.pedantic(rounds, rounds=1, iterations=1))
 
 
 @pytest.mark.parametrize("name", MAPS)

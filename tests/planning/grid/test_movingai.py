@@ -4,7 +4,8 @@ Data: ``../shared/data/movingai-grid-benchmarks`` (N. Sturtevant, "Benchmarks fo
 Grid-Based Pathfinding", IEEE TCIAIG 4(2), 2012). Optimal lengths are 8-connected
 octile lengths (diagonals sqrt(2)) without corner cutting, printed with 8
 decimals, so costs must agree to 1e-6 relative. CI checks a fixed random sample
-of every scenario file; the slow-marked test checks every scenario.
+of every scenario file with A* and with jump point search (``method="jps"``);
+the slow-marked tests check every scenario.
 """
 
 from __future__ import annotations
@@ -16,7 +17,7 @@ import numpy as np
 import pytest
 from grid_oracle import assert_valid_path
 
-from navkit.planning import astar, distance_field
+from navkit.planning import AStarPlanner, distance_field
 
 FOLDER = "movingai-grid-benchmarks"
 MAPS = [
@@ -83,25 +84,46 @@ def load(shared_data: Path, name: str) -> tuple[np.ndarray, list[Scenario]]:
     )
 
 
-def check(costs: np.ndarray, scenarios: list[Scenario], validate: bool) -> None:
-    for sc in scenarios:
-        path = astar(costs, sc.start, sc.goal)
+def check(
+    costs: np.ndarray,
+    scenarios: list[Scenario],
+    validate: bool,
+    method: str = "astar",
+    validate_every: int = 1,
+) -> None:
+    planner = AStarPlanner(costs, method=method)
+    assert planner.method == method
+    for i, sc in enumerate(scenarios):
+        path = planner.plan(sc.start, sc.goal)
         assert path.cost == pytest.approx(sc.optimal, rel=1e-6, abs=1e-6), sc
-        if validate:
+        if validate and i % validate_every == 0:
             cost, _ = assert_valid_path(costs, path.cells, sc.start, sc.goal)
             assert cost == pytest.approx(path.cost, rel=1e-9)
             assert path.length == pytest.approx(path.cost, rel=1e-12)
 
 
-@pytest.mark.parametrize("name", MAPS)
-def test_random_sample_matches_published_optimum(shared_data: Path, name: str) -> None:
-    costs, scenarios = load(shared_data, name)
+def sample(scenarios: list[Scenario], size: int) -> list[Scenario]:
+    """A fixed random sample of ``size`` problems that includes the longest one."""
     rng = np.random.default_rng(20121)
     # Always include the longest problem, the hardest one for the search.
     longest = max(range(len(scenarios)), key=lambda i: scenarios[i].optimal)
-    size = min(SAMPLE - 1, len(scenarios))
+    size = min(size - 1, len(scenarios))
     picks = {longest, *rng.choice(len(scenarios), size=size, replace=False).tolist()}
-    check(costs, [scenarios[i] for i in sorted(picks)], validate=True)
+    return [scenarios[i] for i in sorted(picks)]
+
+
+@pytest.mark.parametrize("name", MAPS)
+def test_random_sample_matches_published_optimum(shared_data: Path, name: str) -> None:
+    costs, scenarios = load(shared_data, name)
+    check(costs, sample(scenarios, SAMPLE), validate=True)
+
+
+@pytest.mark.parametrize("name", MAPS)
+def test_jump_point_search_matches_published_optimum(shared_data: Path, name: str) -> None:
+    # JPS paths are filled in between jump points: check every 4th cell by cell
+    # (the check, in Python, costs more than the search).
+    costs, scenarios = load(shared_data, name)
+    check(costs, sample(scenarios, SAMPLE), validate=True, method="jps", validate_every=4)
 
 
 def test_distance_field_matches_published_optimum(shared_data: Path) -> None:
@@ -118,7 +140,10 @@ def test_distance_field_matches_published_optimum(shared_data: Path) -> None:
 
 
 @pytest.mark.slow
+@pytest.mark.parametrize("method", ["astar", "jps"])
 @pytest.mark.parametrize("name", MAPS)
-def test_every_scenario_matches_published_optimum(shared_data: Path, name: str) -> None:
+def test_every_scenario_matches_published_optimum(
+    shared_data: Path, name: str, method: str
+) -> None:
     costs, scenarios = load(shared_data, name)
-    check(costs, scenarios, validate=False)
+    check(costs, scenarios, validate=False, method=method)

@@ -2,10 +2,11 @@
 
 from __future__ import annotations
 
+import threading
 from typing import Any
 
 import numpy as np
-from numpy.typing import ArrayLike
+from numpy.typing import ArrayLike, NDArray
 
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_bool
@@ -16,11 +17,56 @@ from navkit.planning.grid._arguments import (
     traversable_cell,
 )
 from navkit.planning.grid._astar_kernels import grid_search, trace_path
+from navkit.planning.grid._jps_kernels import jps_search, jps_tables, jps_trace
 from navkit.planning.grid._limits import MAX_HEURISTIC_WEIGHT, bounded_float, checked_costs
 from navkit.planning.grid._path import Path2D
 from navkit.planning.grid._workspace import workspace
 
 __all__ = ["AStarPlanner", "astar"]
+
+_METHODS = ("astar", "jps", "auto")
+
+
+def _check_method(value: Any) -> str:
+    """Return a valid search ``method`` name; reject anything else."""
+    if not isinstance(value, str):
+        raise TypeError(f"method must be 'astar', 'jps' or 'auto', got {type(value).__name__}")
+    if value not in _METHODS:
+        raise ValueError(f"method must be 'astar', 'jps' or 'auto', got {value!r}")
+    return value
+
+
+class _JpsScratch(threading.local):
+    """One thread's scratch for jump point search, grown to the largest grid searched.
+
+    ``records`` holds 16 bytes per cell (cost from the start and parent, see
+    :func:`navkit.planning.grid._jps_kernels.jps_search`), ``meta`` is its
+    int32 view, ``blocks`` the reached / closed bits with a stamp per 64
+    cells; each search takes the next stamp, so nothing is cleared between
+    searches.
+    """
+
+    def __init__(self) -> None:
+        self.records = np.zeros(0, dtype=np.float64)
+        self.meta = self.records.view(np.int32)
+        self.blocks = np.zeros(0, dtype=np.int64)
+        self.heap = np.empty(2048, dtype=np.float64)
+        self.stamp = 0
+
+
+_jps_scratch = _JpsScratch()
+
+
+def _jps_workspace(n: int) -> tuple[FloatArray, NDArray[np.int32], NDArray[np.int64], int]:
+    """This thread's JPS scratch for ``n`` cells and a fresh stamp."""
+    scratch = _jps_scratch
+    if scratch.records.size < 2 * n:
+        scratch.records = np.empty(2 * n, dtype=np.float64)
+        scratch.meta = scratch.records.view(np.int32)
+        scratch.blocks = np.zeros(3 * ((n + 63) // 64), dtype=np.int64)
+        scratch.stamp = 0
+    scratch.stamp += 1
+    return scratch.records, scratch.meta, scratch.blocks, scratch.stamp
 
 
 class AStarPlanner:
@@ -61,21 +107,35 @@ class AStarPlanner:
         costing at most w times the optimum (the heuristic is consistent and no
         cell is expanded twice; Likhachev, Gordon & Thrun, "ARA*", NIPS 2003,
         Theorem 1).
+    method : {"astar", "jps", "auto"}, default "astar"
+        ``"astar"`` expands cells one by one. ``"jps"`` is jump point search
+        (Harabor & Grastien, AAAI 2011; no-corner-cutting rules and 64-cell
+        block scans as in their ICAPS 2014 paper): it expands only the cells
+        where an optimal path may turn, often 10-100 times fewer, and returns
+        a path of the same optimal cost through every cell (consecutive cells
+        are 8-neighbours), possibly another of the equally short paths. It
+        needs every traversable cell to cost the same, ``connectivity=8``,
+        ``corner_cutting=False`` and ``heuristic_weight=1``. ``"auto"`` uses
+        JPS when those hold and A* otherwise. With ``"jps"`` and ``"auto"``
+        the constructor also builds bit tables of the grid (a quarter of a
+        byte per cell). ``expanded`` of a JPS path counts jump points.
 
     Raises
     ------
     ValueError
         Invalid ``costs`` (see :func:`navkit.planning.distance_field`), bad
-        ``connectivity`` or ``heuristic_weight`` outside ``[0, 1e6]``.
+        ``connectivity``, ``heuristic_weight`` outside ``[0, 1e6]``, an
+        unknown ``method`` or ``method="jps"`` on a grid or options JPS does
+        not support.
     TypeError
         Non-integer connectivity, non-bool ``corner_cutting``, non-real
-        ``heuristic_weight``.
+        ``heuristic_weight``, non-string ``method``.
 
     Notes
     -----
     Queries are thread-safe: the planner is not modified by them and the
-    search's scratch arrays (33 bytes per cell, see :func:`astar`) are kept per
-    thread.
+    search's scratch arrays (33 bytes per cell, see :func:`astar`; JPS: 16.4
+    bytes per cell and its queue) are kept per thread.
 
     Examples
     --------
@@ -89,9 +149,13 @@ class AStarPlanner:
     5.0
     >>> planner.distance_field((0, 0))[2].tolist()
     [2.0, 3.0, 4.0, 5.0]
+    >>> jps = AStarPlanner(costs, method="jps")
+    >>> path = jps.plan((2, 0), (0, 3))
+    >>> path.cells.tolist(), path.cost
+    ([[2, 0], [2, 1], [2, 2], [2, 3], [1, 3], [0, 3]], 5.0)
     """
 
-    __slots__ = ("_costs", "_cutting", "_eight", "_flat", "_scale", "_weight")
+    __slots__ = ("_costs", "_cutting", "_eight", "_flat", "_jps", "_scale", "_weight")
 
     _costs: FloatArray
     _flat: FloatArray
@@ -99,6 +163,9 @@ class AStarPlanner:
     _cutting: bool
     _weight: float
     _scale: float
+    # JPS tables (row bits, column bits) and the uniform cell cost,
+    # or None when this planner runs A*.
+    _jps: tuple[NDArray[np.uint64], NDArray[np.uint64], float] | None
 
     def __init__(
         self,
@@ -107,13 +174,14 @@ class AStarPlanner:
         connectivity: int = 8,
         corner_cutting: bool = False,
         heuristic_weight: float = 1.0,
+        method: str = "astar",
     ) -> None:
         grid, lowest = checked_costs(costs)
         # Validation converts only when needed: copy whenever the result may
         # still be (a view of) the caller's array.
         if grid is costs or grid.base is not None:
             grid = grid.copy()
-        self._setup(grid, lowest, connectivity, corner_cutting, heuristic_weight)
+        self._setup(grid, lowest, connectivity, corner_cutting, heuristic_weight, method)
 
     @classmethod
     def _borrowing(
@@ -123,6 +191,7 @@ class AStarPlanner:
         connectivity: Any,
         corner_cutting: Any,
         heuristic_weight: Any,
+        method: Any = "astar",
     ) -> AStarPlanner:
         """A planner on an already validated grid, without copying it.
 
@@ -130,7 +199,7 @@ class AStarPlanner:
         caller's array cannot change, and for owners of a private grid.
         """
         planner = cls.__new__(cls)
-        planner._setup(grid, lowest, connectivity, corner_cutting, heuristic_weight)
+        planner._setup(grid, lowest, connectivity, corner_cutting, heuristic_weight, method)
         return planner
 
     def _setup(
@@ -140,6 +209,7 @@ class AStarPlanner:
         connectivity: Any,
         corner_cutting: Any,
         heuristic_weight: Any,
+        method: Any,
     ) -> None:
         check_search_size(grid)
         self._eight = check_connectivity(connectivity)
@@ -152,6 +222,29 @@ class AStarPlanner:
         self._scale = self._weight * lowest
         self._costs = grid
         self._flat = grid.ravel()
+        self._jps = None
+        how = _check_method(method)
+        if how == "astar":
+            return
+        options_fit = self._eight and not self._cutting and self._weight == 1.0
+        if how == "jps" and not options_fit:
+            raise ValueError(
+                "method='jps' needs connectivity=8, corner_cutting=False and "
+                f"heuristic_weight=1.0, got connectivity={self.connectivity}, "
+                f"corner_cutting={self._cutting}, heuristic_weight={self._weight}"
+            )
+        if not options_fit:
+            return
+        rows, cols = grid.shape
+        row_bits, col_bits, uniform = jps_tables(self._flat, rows, cols)
+        if uniform < 0.0:
+            if how == "jps":
+                raise ValueError(
+                    "method='jps' needs every traversable cell of costs to cost the same; "
+                    "use method='astar' (or 'auto') on grids of varying cost"
+                )
+            return
+        self._jps = (row_bits, col_bits, uniform)
 
     @property
     def costs(self) -> FloatArray:
@@ -181,11 +274,17 @@ class AStarPlanner:
         """Weight of the heuristic (1 is A*, 0 Dijkstra, > 1 weighted A*)."""
         return self._weight
 
+    @property
+    def method(self) -> str:
+        """The search :meth:`plan` runs: ``"jps"`` or ``"astar"`` (``"auto"`` resolved)."""
+        return "astar" if self._jps is None else "jps"
+
     def __repr__(self) -> str:
         rows, cols = self.shape
+        jps = "" if self._jps is None else ", method='jps'"
         return (
             f"AStarPlanner(<{rows}x{cols} costs>, connectivity={self.connectivity}, "
-            f"corner_cutting={self._cutting}, heuristic_weight={self._weight})"
+            f"corner_cutting={self._cutting}, heuristic_weight={self._weight}{jps})"
         )
 
     def plan(self, start_cell: Any, goal_cell: Any) -> Path2D:
@@ -202,7 +301,8 @@ class AStarPlanner:
             ``"grid"`` path through the cell centres from ``start_cell`` to
             ``goal_cell`` (:attr:`Path2D.cells` gives them as integers), its
             cost (sum of the move costs), length in cells (orthogonal steps 1,
-            diagonal sqrt(2)) and the number of cells expanded.
+            diagonal sqrt(2)) and the number of cells expanded (jump points
+            with JPS).
 
         Raises
         ------
@@ -217,6 +317,8 @@ class AStarPlanner:
         grid = self._costs
         s = traversable_cell(grid, start_cell, "start_cell")
         t = traversable_cell(grid, goal_cell, "goal_cell")
+        if self._jps is not None:
+            return self._plan_jps(s, t)
         rows, cols = grid.shape
         goal_index = t[0] * cols + t[1]
         g, parent, mark, heap, pos, size, stamp = workspace(rows * cols)
@@ -235,10 +337,36 @@ class AStarPlanner:
             cells.astype(np.float64), "grid", float(g[goal_index]), length, expanded
         )
 
+    def _plan_jps(self, s: tuple[int, int], t: tuple[int, int]) -> Path2D:
+        """:meth:`plan` by jump point search (tables built, cells checked)."""
+        assert self._jps is not None
+        row_bits, col_bits, uniform = self._jps
+        rows, cols = self._costs.shape
+        goal_index = t[0] * cols + t[1]
+        while True:
+            records, meta, blocks, stamp = _jps_workspace(rows * cols)
+            expanded, found = jps_search(
+                row_bits, col_bits, rows, cols, s[0] * cols + s[1], goal_index,
+                records, meta, blocks, _jps_scratch.heap, stamp,
+            )
+            if found >= 0:
+                break
+            # The queue filled up (rare: it holds the open jump points): grow it
+            # and search again.
+            _jps_scratch.heap = np.empty(2 * _jps_scratch.heap.size, dtype=np.float64)
+        if not found:
+            raise NoPathError(
+                f"no path from start_cell {s} to goal_cell {t} (expanded {expanded} jump points)",
+                expanded=expanded,
+            )
+        cells, length = jps_trace(meta, cols, goal_index)
+        return Path2D._owned(cells.astype(np.float64), "grid", uniform * length, length, expanded)
+
     def distance_field(self, goal_cell: Any) -> FloatArray:
         """Least cost from every cell to ``goal_cell`` (Dijkstra to exhaustion).
 
-        Ignores ``heuristic_weight``; see :func:`navkit.planning.distance_field`.
+        Ignores ``heuristic_weight`` and ``method`` (always Dijkstra); see
+        :func:`navkit.planning.distance_field`.
 
         Parameters
         ----------
@@ -274,6 +402,7 @@ def astar(
     connectivity: int = 8,
     corner_cutting: bool = False,
     heuristic_weight: float = 1.0,
+    method: str = "astar",
 ) -> Path2D:
     """Least-cost path between two cells of a cost grid (A*), one-shot.
 
@@ -305,6 +434,11 @@ def astar(
     heuristic_weight : float, default 1.0
         As in :class:`AStarPlanner`, in ``[0, 1e6]``: 1 is A*, 0 Dijkstra,
         w > 1 weighted A* (path cost at most w times the optimum).
+    method : {"astar", "jps", "auto"}, default "astar"
+        As in :class:`AStarPlanner`: ``"jps"`` runs jump point search (grids
+        whose traversable cells all cost the same, 8-connected, no corner
+        cutting, weight 1; the same optimal cost, often far fewer
+        expansions), ``"auto"`` uses it whenever it applies.
 
     Returns
     -------
@@ -327,10 +461,12 @@ def astar(
     ValueError
         Invalid ``costs`` (see :func:`navkit.planning.distance_field`), ``start_cell`` or
         ``goal_cell`` outside the grid or on an impassable cell, bad
-        ``connectivity`` or ``heuristic_weight`` outside ``[0, 1e6]``.
+        ``connectivity``, ``heuristic_weight`` outside ``[0, 1e6]``, an unknown
+        ``method`` or ``method="jps"`` where it does not apply.
     TypeError
         Cells that are not pairs of integers (booleans, mappings and strings
-        included); non-integer connectivity; non-bool ``corner_cutting``.
+        included); non-integer connectivity; non-bool ``corner_cutting``;
+        non-string ``method``.
     navkit.NoPathError
         ``goal_cell`` is unreachable from ``start_cell``; ``expanded`` holds the
         number of cells expanded.
@@ -347,10 +483,12 @@ def astar(
     ('grid', 5.0, 5.0)
     >>> round(astar(costs, (2, 0), (0, 3), corner_cutting=True).cost, 6)
     4.414214
+    >>> astar(costs, (2, 0), (0, 3), method="jps").cost
+    5.0
     """
     grid, lowest = checked_costs(costs)
     planner = AStarPlanner._borrowing(
-        grid, lowest, connectivity, corner_cutting, heuristic_weight
+        grid, lowest, connectivity, corner_cutting, heuristic_weight, method
     )
     return planner.plan(start_cell, goal_cell)
 

@@ -1,0 +1,172 @@
+"""Jump point search on MovingAI maps against pyastar2d, in the same run.
+
+Run with ``python -m pytest benchmarks/test_bench_jps.py --benchmark-only``.
+
+Maps: ``../shared/data/movingai-grid-benchmarks`` (N. Sturtevant, "Benchmarks
+for Grid-Based Pathfinding", IEEE TCIAIG 4(2), 2012): game maps (dao), mazes
+of corridor width 1 and 32, rooms and city streets. Skipped when the data is
+absent. Each round answers the same 20 problems of the map's scenario file,
+spread evenly over its lengths (every 1/20th of the problems sorted by their
+published optimum, the longest included).
+
+Contestants:
+
+* navkit JPS through a prepared :class:`AStarPlanner` (``method="jps"``, its
+  bit tables built once per map), and one-shot ``astar(..., method="jps")``,
+  which validates the grid and builds the tables on every call;
+* navkit A* (prepared, no corner cutting), the MovingAI graph;
+* ``pyastar2d`` (C++ A*, 8-connected, diagonal steps cost 1 and cut corners,
+  so it searches an easier graph than the MovingAI one).
+
+Every navkit answer is checked against the published optimum. ``test_ratio``
+times JPS (prepared and one-shot) and pyastar2d alternately in one loop and
+reports the median of the per-round ratios (``speedup_*`` in ``extra_info``),
+which holds on a loaded machine where absolute times do not.
+"""
+
+from __future__ import annotations
+
+import time
+from functools import cache
+from pathlib import Path
+from typing import Any, NamedTuple
+
+import numpy as np
+import pyastar2d
+import pytest
+
+from navkit.planning import AStarPlanner, astar
+
+DATA = (
+    Path(__file__).resolve().parents[2] / "shared" / "data" / "movingai-grid-benchmarks"
+)
+MAPS = [
+    "dao/arena2",
+    "dao/den011d",
+    "maze/maze512-1-0",
+    "maze/maze512-32-9",
+    "room/8room_000",
+    "street/Berlin_0_512",
+    "street/Berlin_0_1024",
+]
+QUERIES = 20
+ROUNDS = 7
+
+
+class Problem(NamedTuple):
+    start: tuple[int, int]
+    goal: tuple[int, int]
+    optimal: float
+
+
+@cache
+def load(name: str) -> tuple[np.ndarray, tuple[Problem, ...]]:
+    """Cost grid (1 passable, inf blocked) and the benchmark's query set of map ``name``."""
+    base = DATA / name
+    if not base.with_name(base.name + ".map").is_file():
+        pytest.skip(f"MovingAI data {base}.map is not available")
+    lines = base.with_name(base.name + ".map").read_text(encoding="ascii").splitlines()
+    body = lines[lines.index("map") + 1 :]
+    grid = np.array([list(row) for row in body if row])
+    costs = np.where(np.isin(grid, [".", "G", "S"]), 1.0, np.inf)
+    costs.flags.writeable = False
+    problems = []
+    scenarios = base.with_name(base.name + ".map.scen").read_text(encoding="ascii")
+    for line in scenarios.splitlines()[1:]:
+        fields = line.split("\t")
+        if len(fields) < 9:
+            continue
+        sx, sy, gx, gy = (int(v) for v in fields[4:8])
+        problems.append(Problem((sy, sx), (gy, gx), float(fields[8])))
+    problems.sort(key=lambda p: -p.optimal)
+    step = max(1, len(problems) // QUERIES)
+    return costs, tuple(problems[::step][:QUERIES])
+
+
+def run_planner(planner: AStarPlanner, problems: tuple[Problem, ...]) -> list[float]:
+    return [planner.plan(p.start, p.goal).length for p in problems]
+
+
+def run_one_shot(costs: np.ndarray, problems: tuple[Problem, ...]) -> list[float]:
+    return [astar(costs, p.start, p.goal, method="jps").length for p in problems]
+
+
+def run_pyastar2d(weights: np.ndarray, problems: tuple[Problem, ...]) -> list[Any]:
+    return [pyastar2d.astar_path(weights, p.start, p.goal, allow_diagonal=True) for p in problems]
+
+
+def check_optimal(lengths: list[float], problems: tuple[Problem, ...]) -> None:
+    for length, p in zip(lengths, problems, strict=True):
+        assert length == pytest.approx(p.optimal, rel=1e-6, abs=1e-6), p
+
+
+@pytest.mark.parametrize("name", MAPS)
+def test_jps_prepared(benchmark: Any, name: str) -> None:
+    costs, problems = load(name)
+    planner = AStarPlanner(costs, method="jps")
+    benchmark.group = name
+    check_optimal(benchmark(run_planner, planner, problems), problems)
+    benchmark.extra_info["expanded"] = sum(
+        planner.plan(p.start, p.goal).expanded for p in problems
+    )
+
+
+@pytest.mark.parametrize("name", MAPS)
+def test_jps_one_shot(benchmark: Any, name: str) -> None:
+    costs, problems = load(name)
+    benchmark.group = name
+    check_optimal(benchmark(run_one_shot, costs, problems), problems)
+
+
+@pytest.mark.parametrize("name", MAPS)
+def test_astar_prepared(benchmark: Any, name: str) -> None:
+    costs, problems = load(name)
+    planner = AStarPlanner(costs)
+    benchmark.group = name
+    lengths = benchmark.pedantic(run_planner, args=(planner, problems), rounds=3, iterations=1)
+    check_optimal(lengths, problems)
+    benchmark.extra_info["expanded"] = sum(
+        planner.plan(p.start, p.goal).expanded for p in problems
+    )
+
+
+@pytest.mark.parametrize("name", MAPS)
+def test_pyastar2d(benchmark: Any, name: str) -> None:
+    costs, problems = load(name)
+    weights = np.where(np.isfinite(costs), 1.0, np.inf).astype(np.float32)
+    benchmark.group = name
+    paths = benchmark.pedantic(run_pyastar2d, args=(weights, problems), rounds=3, iterations=1)
+    assert all(path is not None for path in paths)
+
+
+@pytest.mark.parametrize("name", MAPS)
+def test_ratio(benchmark: Any, name: str) -> None:
+    """JPS and pyastar2d alternately, ``ROUNDS`` times: median per-round speed-ups."""
+    costs, problems = load(name)
+    weights = np.where(np.isfinite(costs), 1.0, np.inf).astype(np.float32)
+    planner = AStarPlanner(costs, method="jps")
+    check_optimal(run_planner(planner, problems), problems)
+    run_one_shot(costs, problems)
+    run_pyastar2d(weights, problems)
+
+    def rounds() -> dict[str, float]:
+        times: dict[str, list[float]] = {"prepared": [], "one_shot": [], "pyastar2d": []}
+        for _ in range(ROUNDS):
+            for key, run in (
+                ("pyastar2d", lambda: run_pyastar2d(weights, problems)),
+                ("prepared", lambda: run_planner(planner, problems)),
+                ("one_shot", lambda: run_one_shot(costs, problems)),
+            ):
+                t0 = time.perf_counter()
+                run()
+                times[key].append(time.perf_counter() - t0)
+        peer = np.array(times["pyastar2d"])
+        return {
+            "speedup_prepared": float(np.median(peer / np.array(times["prepared"]))),
+            "speedup_one_shot": float(np.median(peer / np.array(times["one_shot"]))),
+            "pyastar2d_ms_per_query": float(np.median(peer)) * 1e3 / len(problems),
+        }
+
+    benchmark.group = f"{name} ratio"
+    result = benchmark.pedantic(rounds, rounds=1, iterations=1)
+    benchmark.extra_info.update(result)

@@ -1,0 +1,526 @@
+"""numba kernels for jump point search (JPS) on uniform-cost grids (private).
+
+Jump point search (D. Harabor and A. Grastien, "Online Graph Pruning for
+Pathfinding on Grid Maps", AAAI 2011) is A* on an 8-connected grid of equal
+cell costs that expands only "jump points": from each expanded node it scans
+straight and diagonal lines and stops only where an optimal path may have to
+turn. The rules here are those of the variant without corner cutting (a
+diagonal move needs both cells it passes beside to be free, the MovingAI
+convention; Harabor and Grastien, "Improving Jump Point Search", ICAPS 2014):
+
+* a straight scan stops at a cell with a *forced* side neighbour: the side
+  cell is free while the side cell one step back is blocked (the side cell
+  could not be reached diagonally from the cell behind, so an optimal path
+  may turn there);
+* a diagonal scan stops at a cell from which either straight scan along its
+  two components reaches a jump point; diagonal moves have no forced
+  neighbours of their own;
+* a node reached by a straight move continues straight and, on each side
+  with a forced neighbour, turns onto that side both straight and
+  diagonally; a node reached diagonally continues along the diagonal and its
+  two straight components; the start scans all eight directions.
+
+The straight scans read 64 cells at a time from bit rows (the block-based
+scanning of Harabor and Grastien 2014): one bit board for the rows and a
+transposed one for the columns, each line padded by a blocked border so no
+bounds test is needed, each bit row padded by one empty word at both ends so
+a shifted word can always borrow its neighbour's edge bit.
+
+Coordinates inside the scans are *padded*: cell ``(r, c)`` of the grid is
+``(r + 1, c + 1)``. Search nodes (``g``, marks, heap and parents) are the
+unpadded flat indices ``r * cols + c`` of the caller's grid.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any, cast
+
+import numpy as np
+from numba.cpython.unsafe.numbers import leading_zeros, trailing_zeros
+
+from navkit._shared.jit import njit_cached, njit_no_refcount
+from navkit.planning.grid._search_heap import node_of, tie_key
+
+SQRT2 = math.sqrt(2.0)
+_OCTILE_EXTRA = SQRT2 - 1.0
+
+# numba intrinsics (LLVM cttz / ctlz), typed for mypy as plain callables.
+_ctz = cast(Any, trailing_zeros)
+_clz = cast(Any, leading_zeros)
+
+_ONE = np.uint64(1)
+_ALL = np.uint64(0xFFFFFFFFFFFFFFFF)
+_B63 = np.uint64(63)
+
+# Move directions as in _astar_kernels: 0-3 orthogonal (N, S, W, E), 4-7 diagonal
+# (NW, NE, SW, SE).
+_DR = np.array([-1, 1, 0, 0, -1, -1, 1, 1], dtype=np.int64)
+_DC = np.array([0, 0, -1, 1, -1, 1, -1, 1], dtype=np.int64)
+
+
+@njit_cached
+def jps_tables(flat: np.ndarray, rows: int, cols: int) -> tuple[np.ndarray, np.ndarray, float]:
+    """Bit tables of a cost grid for :func:`jps_search`.
+
+    Returns
+    -------
+    row_bits : ((rows + 2) * W,) uint64
+        Bit rows of ``W = ((cols + 2 + 63) >> 6) + 2`` words: bit ``p`` of
+        padded row ``q`` (word ``q * W + (p >> 6) + 1``, bit ``p & 63``) is
+        set when padded cell ``(q, p)`` is traversable.
+    col_bits : ((cols + 2) * V,) uint64
+        The same for the columns (the transposed grid), ``V`` words each.
+    uniform : float
+        The common cost of the traversable cells, or -1 when they differ
+        (JPS needs equal costs); +inf when no cell is traversable.
+    """
+    hw = ((cols + 2 + 63) >> 6) + 2
+    vw = ((rows + 2 + 63) >> 6) + 2
+    row_bits = np.zeros((rows + 2) * hw, dtype=np.uint64)
+    col_bits = np.zeros((cols + 2) * vw, dtype=np.uint64)
+    lowest = np.inf
+    highest = -np.inf
+    for r in range(rows):
+        q = r + 1
+        row = r * cols
+        col_word = (q >> 6) + 1
+        col_bit = _ONE << np.uint64(q & 63)
+        for c in range(cols):
+            v = flat[row + c]
+            if v < np.inf:
+                lowest = min(lowest, v)
+                highest = max(highest, v)
+                p = c + 1
+                row_bits[q * hw + (p >> 6) + 1] |= _ONE << np.uint64(p & 63)
+                col_bits[p * vw + col_word] |= col_bit
+    if lowest == np.inf:
+        return row_bits, col_bits, np.inf
+    return row_bits, col_bits, lowest if lowest == highest else -1.0
+
+
+@njit_no_refcount
+def _free(bits: np.ndarray, nw: int, q: int, p: int) -> bool:
+    """Whether padded cell (q, p) is traversable, from the bit rows ``bits`` of ``nw`` words."""
+    return bool((bits[q * nw + (p >> 6) + 1] >> np.uint64(p & 63)) & _ONE)
+
+
+@njit_no_refcount
+def _scan_forward(bits: np.ndarray, nw: int, line: int, p: int, target: int) -> int:
+    """Jump from position ``p`` of ``line`` towards larger positions.
+
+    Returns the position of the first jump point after ``p`` (a cell with a
+    forced side neighbour, or ``target`` when it comes first; ``target`` is -1
+    when the goal is not on this line), or -1 when a blocked cell comes first.
+    """
+    base = line * nw
+    above = base - nw
+    below = base + nw
+    x0 = p + 1
+    w = (x0 >> 6) + 1
+    mask = _ALL << np.uint64(x0 & 63)
+    while True:
+        b = bits[base + w]
+        a = bits[above + w]
+        d = bits[below + w]
+        a_back = (a << _ONE) | (bits[above + w - 1] >> _B63)
+        d_back = (d << _ONE) | (bits[below + w - 1] >> _B63)
+        stops = (~b | (a & ~a_back) | (d & ~d_back)) & mask
+        if stops != 0:
+            break
+        mask = _ALL
+        w += 1
+    bit = int(_ctz(stops))
+    x = ((w - 1) << 6) + bit
+    if p < target <= x:
+        return target
+    if (b >> np.uint64(bit)) & _ONE:
+        return x
+    return -1
+
+
+@njit_no_refcount
+def _scan_backward(bits: np.ndarray, nw: int, line: int, p: int, target: int) -> int:
+    """As :func:`_scan_forward`, towards smaller positions."""
+    base = line * nw
+    above = base - nw
+    below = base + nw
+    x0 = p - 1
+    w = (x0 >> 6) + 1
+    mask = _ALL >> np.uint64(63 - (x0 & 63))
+    while True:
+        b = bits[base + w]
+        a = bits[above + w]
+        d = bits[below + w]
+        a_back = (a >> _ONE) | (bits[above + w + 1] << _B63)
+        d_back = (d >> _ONE) | (bits[below + w + 1] << _B63)
+        stops = (~b | (a & ~a_back) | (d & ~d_back)) & mask
+        if stops != 0:
+            break
+        mask = _ALL
+        w -= 1
+    bit = 63 - int(_clz(stops))
+    x = ((w - 1) << 6) + bit
+    if x <= target < p:
+        return target
+    if (b >> np.uint64(bit)) & _ONE:
+        return x
+    return -1
+
+
+@njit_no_refcount
+def _jump_diagonal(
+    row_bits: np.ndarray,
+    hw: int,
+    col_bits: np.ndarray,
+    vw: int,
+    q: int,
+    p: int,
+    dr: int,
+    dc: int,
+    gq: int,
+    gp: int,
+) -> int:
+    """Number of diagonal steps (dr, dc) from padded (q, p) to the next jump point, or -1."""
+    k = 0
+    while True:
+        nq = q + dr
+        np_ = p + dc
+        if not (
+            _free(row_bits, hw, nq, np_)
+            and _free(row_bits, hw, nq, p)
+            and _free(row_bits, hw, q, np_)
+        ):
+            return -1
+        q = nq
+        p = np_
+        k += 1
+        if q == gq and p == gp:
+            return k
+        # Either straight component reaching a jump point makes this one.
+        on_row = gp if q == gq else -1
+        if dc > 0:
+            if _scan_forward(row_bits, hw, q, p, on_row) >= 0:
+                return k
+        elif _scan_backward(row_bits, hw, q, p, on_row) >= 0:
+            return k
+        on_col = gq if p == gp else -1
+        if dr > 0:
+            if _scan_forward(col_bits, vw, p, q, on_col) >= 0:
+                return k
+        elif _scan_backward(col_bits, vw, p, q, on_col) >= 0:
+            return k
+
+
+@njit_no_refcount
+def _successor_directions(row_bits: np.ndarray, hw: int, q: int, p: int, d: int) -> int:
+    """Bit set of the directions (0-7) to scan from padded (q, p) reached by move ``d``.
+
+    ``d`` is -1 at the start (every direction).
+    """
+    if d < 0:
+        return 0xFF
+    if d >= 4:
+        # Diagonal arrival: its two straight components and itself.
+        vertical = 0 if d < 6 else 1
+        horizontal = 2 if d == 4 or d == 6 else 3
+        return (1 << vertical) | (1 << horizontal) | (1 << d)
+    out = 1 << d
+    if d >= 2:
+        # Horizontal arrival: a side is forced when the side cell is free and
+        # the side cell behind it is blocked.
+        back = p + 1 if d == 2 else p - 1
+        if _free(row_bits, hw, q - 1, p) and not _free(row_bits, hw, q - 1, back):
+            out |= (1 << 0) | (1 << (4 if d == 2 else 5))
+        if _free(row_bits, hw, q + 1, p) and not _free(row_bits, hw, q + 1, back):
+            out |= (1 << 1) | (1 << (6 if d == 2 else 7))
+    else:
+        back = q + 1 if d == 0 else q - 1
+        if _free(row_bits, hw, q, p - 1) and not _free(row_bits, hw, back, p - 1):
+            out |= (1 << 2) | (1 << (4 if d == 0 else 6))
+        if _free(row_bits, hw, q, p + 1) and not _free(row_bits, hw, back, p + 1):
+            out |= (1 << 3) | (1 << (5 if d == 0 else 7))
+    return out
+
+
+@njit_no_refcount
+def _heap_push(heap: np.ndarray, n: int, f: float, key: float) -> None:
+    """Add (f, key) to the 4-ary min-heap of ``n`` entries in ``heap`` (room for one more)."""
+    i = n
+    while i > 0:
+        up = (i - 1) >> 2
+        uf = heap[2 * up]
+        uk = heap[2 * up + 1]
+        if f < uf or (f == uf and key < uk):
+            heap[2 * i] = uf
+            heap[2 * i + 1] = uk
+            i = up
+        else:
+            break
+    heap[2 * i] = f
+    heap[2 * i + 1] = key
+
+
+@njit_no_refcount
+def _heap_pop(heap: np.ndarray, n: int) -> int:
+    """Remove the smallest of ``n`` >= 1 entries; return its node (the size becomes n - 1)."""
+    top = node_of(heap[1])
+    last = n - 1
+    f = heap[2 * last]
+    key = heap[2 * last + 1]
+    i = 0
+    while True:
+        first = 4 * i + 1
+        if first >= last:
+            break
+        best = first
+        bf = heap[2 * first]
+        bk = heap[2 * first + 1]
+        for j in range(first + 1, min(first + 4, last)):
+            jf = heap[2 * j]
+            jk = heap[2 * j + 1]
+            if jf < bf or (jf == bf and jk < bk):
+                best = j
+                bf = jf
+                bk = jk
+        if f < bf or (f == bf and key < bk):
+            break
+        heap[2 * i] = bf
+        heap[2 * i + 1] = bk
+        i = best
+    heap[2 * i] = f
+    heap[2 * i + 1] = key
+    return top
+
+
+@njit_no_refcount
+def jps_search(
+    row_bits: np.ndarray,
+    col_bits: np.ndarray,
+    rows: int,
+    cols: int,
+    start: int,
+    goal: int,
+    g: np.ndarray,
+    meta: np.ndarray,
+    blocks: np.ndarray,
+    heap: np.ndarray,
+    stamp: int,
+) -> tuple[int, int]:
+    """A* over jump points from ``start`` to ``goal``, in cell lengths.
+
+    Parameters
+    ----------
+    row_bits, col_bits
+        Tables from :func:`jps_tables` of a grid whose traversable cells all
+        cost the same. ``start`` and ``goal`` must be traversable.
+    rows, cols : int
+        Grid shape.
+    start, goal : int
+        Flat indices ``r * cols + c``.
+    g : (2 * rows * cols,) float64
+        Node records, 16 bytes each so one cache line holds a node's state:
+        ``g[2 * v]`` is the cost from ``start``; ``meta``, an int32 view of
+        the same memory, holds the parent node at ``4 * v + 2`` and the
+        direction of the move from it (0-7, -1 at ``start``) at ``4 * v + 3``.
+        Only read where ``blocks`` says this search wrote them.
+    meta : (4 * rows * cols,) int32
+        The int32 view of ``g``.
+    blocks : (3 * ceil(rows * cols / 64),) int64
+        Which nodes this search reached, kept apart from the records so the
+        test reads a small, cache-resident array: for the 64 nodes
+        ``64 b .. 64 b + 63``, ``blocks[3 b]`` is the stamp of the search that
+        last wrote the block and ``blocks[3 b + 1]`` / ``blocks[3 b + 2]`` the
+        bits of its open / closed nodes (stale unless the stamp is this one).
+    heap : (2 * capacity,) float64
+        Scratch for the queue: (f, tie key) pairs, lazy deletion (a node is
+        queued again when its cost improves; stale entries are skipped).
+    stamp : int
+        This search's stamp, larger than every stamp in ``blocks``.
+
+    Returns
+    -------
+    expanded : int
+        Number of jump points expanded (closed).
+    found : int
+        1 when ``goal`` was reached: then ``g[2 * goal]`` is its path length
+        in cells and the parents link it back to ``start`` (-1) through jump
+        points joined by straight or diagonal lines (see :func:`jps_trace`).
+        0 when it is unreachable, -1 when ``heap`` filled up (search again
+        with a larger one and a fresh stamp).
+    """
+    hw = ((cols + 2 + 63) >> 6) + 2
+    vw = ((rows + 2 + 63) >> 6) + 2
+    gr = goal // cols
+    gc = goal - gr * cols
+    gq = gr + 1
+    gp = gc + 1
+    g[2 * start] = 0.0
+    meta[4 * start + 2] = -1
+    meta[4 * start + 3] = -1
+    n = 0
+    expanded = 0
+    found = 0
+    u = start
+    while True:
+        # Close u: set its bit in its block's closed word (resetting a block
+        # last written by another search).
+        b = 3 * (u >> 6)
+        if blocks[b] != stamp:
+            blocks[b] = stamp
+            blocks[b + 1] = 0
+            blocks[b + 2] = 0
+        blocks[b + 2] |= np.int64(1) << np.int64(u & 63)
+        expanded += 1
+        if u == goal:
+            found = 1
+            break
+        r = u // cols
+        c = u - r * cols
+        q = r + 1
+        p = c + 1
+        gu = g[2 * u]
+        d = meta[4 * u + 3]
+        dirs = _successor_directions(row_bits, hw, q, p, d)
+        # The best successor is kept out of the heap and expanded next when it
+        # precedes the heap's top (often, in corridors): a push and a pop saved.
+        next_f = np.inf
+        next_key = np.inf
+        next_v = -1
+        for k in range(8):
+            if not (dirs >> k) & 1:
+                continue
+            dr = _DR[k]
+            dc = _DC[k]
+            if k < 4:
+                # Straight scans: along the bit row (W, E) or column (N, S).
+                if k == 3:
+                    x = _scan_forward(row_bits, hw, q, p, gp if q == gq else -1)
+                elif k == 2:
+                    x = _scan_backward(row_bits, hw, q, p, gp if q == gq else -1)
+                elif k == 1:
+                    x = _scan_forward(col_bits, vw, p, q, gq if p == gp else -1)
+                else:
+                    x = _scan_backward(col_bits, vw, p, q, gq if p == gp else -1)
+                if x < 0:
+                    continue
+                if dr == 0:
+                    steps = abs(x - p)
+                    vr = r
+                    vc = x - 1
+                else:
+                    steps = abs(x - q)
+                    vr = x - 1
+                    vc = c
+                new_g = gu + steps
+            else:
+                # The first diagonal step is tested here: in narrow corridors it
+                # is usually blocked, and the call would cost more than the test.
+                if not (
+                    _free(row_bits, hw, q + dr, p + dc)
+                    and _free(row_bits, hw, q + dr, p)
+                    and _free(row_bits, hw, q, p + dc)
+                ):
+                    continue
+                steps = _jump_diagonal(row_bits, hw, col_bits, vw, q, p, dr, dc, gq, gp)
+                if steps < 0:
+                    continue
+                vr = r + steps * dr
+                vc = c + steps * dc
+                new_g = gu + SQRT2 * steps
+            v = vr * cols + vc
+            b = 3 * (v >> 6)
+            bit = np.int64(1) << np.int64(v & 63)
+            if blocks[b] != stamp:
+                blocks[b] = stamp
+                blocks[b + 1] = bit
+                blocks[b + 2] = 0
+            elif blocks[b + 2] & bit:
+                continue  # closed
+            elif blocks[b + 1] & bit:
+                if new_g >= g[2 * v]:
+                    continue  # open at no higher cost
+            else:
+                blocks[b + 1] |= bit
+            g[2 * v] = new_g
+            meta[4 * v + 2] = u
+            meta[4 * v + 3] = k
+            adr = abs(vr - gr)
+            adc = abs(vc - gc)
+            h = max(adr, adc) + _OCTILE_EXTRA * min(adr, adc)
+            f = new_g + h
+            key = tie_key(h, v)
+            if f < next_f or (f == next_f and key < next_key):
+                f, next_f = next_f, f
+                key, next_key = next_key, key
+                v, next_v = next_v, v
+                if v < 0:
+                    continue
+            if 2 * n == heap.size:
+                return expanded, -1
+            _heap_push(heap, n, f, key)
+            n += 1
+        if next_v >= 0:
+            if n == 0 or next_f < heap[0] or (next_f == heap[0] and next_key < heap[1]):
+                u = next_v
+                continue
+            if 2 * n == heap.size:
+                return expanded, -1
+            _heap_push(heap, n, next_f, next_key)
+            n += 1
+        # Skip queue entries of nodes closed since they were queued.
+        u = -1
+        while n > 0:
+            u = _heap_pop(heap, n)
+            n -= 1
+            if not blocks[3 * (u >> 6) + 2] & (np.int64(1) << np.int64(u & 63)):
+                break
+            u = -1
+        if u < 0:
+            break
+    return expanded, found
+
+
+@njit_cached
+def jps_trace(meta: np.ndarray, cols: int, goal: int) -> tuple[np.ndarray, float]:
+    """Every cell ``(row, col)`` of the path from the search source to ``goal``, and its length.
+
+    Follows the parent jump points written by :func:`jps_search` (in ``meta``)
+    and fills in the cells of the straight or diagonal line between each pair,
+    so consecutive cells are 8-neighbours. The length counts orthogonal steps
+    1 and diagonal ones sqrt(2), as
+    :func:`navkit.planning.grid._astar_kernels.trace_path`.
+    """
+    k = 1
+    v = goal
+    while meta[4 * v + 2] >= 0:
+        u = meta[4 * v + 2]
+        ur = u // cols
+        vr = v // cols
+        k += max(abs(vr - ur), abs((v - vr * cols) - (u - ur * cols)))
+        v = u
+    cells = np.empty((k, 2), dtype=np.int64)
+    n_diag = 0
+    i = k - 1
+    v = goal
+    r = v // cols
+    c = v - r * cols
+    cells[i, 0] = r
+    cells[i, 1] = c
+    while meta[4 * v + 2] >= 0:
+        u = meta[4 * v + 2]
+        ur = u // cols
+        uc = u - ur * cols
+        sr = (ur > r) - (ur < r)
+        sc = (uc > c) - (uc < c)
+        diagonal = sr != 0 and sc != 0
+        while r != ur or c != uc:
+            r += sr
+            c += sc
+            i -= 1
+            cells[i, 0] = r
+            cells[i, 1] = c
+            if diagonal:
+                n_diag += 1
+        v = u
+    return cells, (k - 1 - n_diag) + SQRT2 * n_diag
