@@ -10,7 +10,9 @@ from grid_oracle import DIAG, ORTHO, move_allowed, move_cost, scipy_costs_from, 
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from navkit.planning import astar, distance_field
+from navkit.planning import AStarPlanner, astar, distance_field
+from navkit.planning.grid._distance_field import _bucket_field
+from navkit.planning.grid._limits import checked_costs
 
 SQRT2 = math.sqrt(2.0)
 
@@ -102,3 +104,56 @@ def test_input_not_modified_and_errors() -> None:
         distance_field(costs, (0, 0), connectivity=3)
     with pytest.raises(TypeError, match="corner_cutting"):
         distance_field(costs, (0, 0), corner_cutting="yes")  # type: ignore[arg-type]
+
+
+@st.composite
+def _cost_grids(draw: st.DrawFn) -> tuple[np.ndarray, tuple[int, int]]:
+    """Grids of the bucket queue's three regimes: uniform, narrow-range and wide-range costs."""
+    rows = draw(st.integers(1, 24))
+    cols = draw(st.integers(1, 24))
+    seed = draw(st.integers(0, 2**32 - 1))
+    kind = draw(st.sampled_from(["uniform", "integer", "wide"]))
+    rng = np.random.default_rng(seed)
+    if kind == "uniform":
+        costs = np.full((rows, cols), draw(st.sampled_from([1.0, 3.0, 0.1 + 2.0**30])))
+    elif kind == "integer":
+        costs = rng.integers(1, 41, (rows, cols)).astype(np.float64)
+    else:
+        costs = np.exp(rng.random((rows, cols)) * 27.0)
+    costs[rng.random((rows, cols)) < draw(st.floats(0.0, 0.6))] = np.inf
+    goal = (int(rng.integers(rows)), int(rng.integers(cols)))
+    costs[goal] = 1.5
+    return costs, goal
+
+
+@settings(max_examples=150, deadline=None)
+@given(case=_cost_grids(), connectivity=st.sampled_from([4, 8]), corner_cutting=st.booleans())
+def test_field_is_bit_identical_to_the_heap_dijkstra(
+    case: tuple[np.ndarray, tuple[int, int]], connectivity: int, corner_cutting: bool
+) -> None:
+    # The bucket queue and the A* kernel's heap reach the same least
+    # fixed point of the Bellman equations with the same float operations.
+    costs, goal = case
+    options = {"connectivity": connectivity, "corner_cutting": corner_cutting}
+    expected = AStarPlanner(costs, **options).distance_field(goal)
+    np.testing.assert_array_equal(distance_field(costs, goal, **options), expected)
+
+
+def test_bucket_segments_grow_and_wide_cost_ranges_fall_back() -> None:
+    rng = np.random.default_rng(11)
+    costs = rng.integers(1, 5, (70, 90)).astype(np.float64)
+    costs[rng.random(costs.shape) < 0.2] = np.inf
+    costs[35, 45] = 1.0
+    grid, lowest = checked_costs(costs)
+    for eight in (False, True):
+        default = _bucket_field(grid, lowest, (35, 45), eight, False)
+        tiny = _bucket_field(grid, lowest, (35, 45), eight, False, cap=8)
+        assert default is not None and tiny is not None
+        np.testing.assert_array_equal(tiny, default)
+    # Costs spanning 1..1e6 would need a million buckets: the heap answers.
+    costs[0, 0] = 1e6
+    grid, lowest = checked_costs(costs)
+    assert _bucket_field(grid, lowest, (35, 45), True, False) is None
+    np.testing.assert_array_equal(
+        distance_field(costs, (35, 45)), AStarPlanner(costs).distance_field((35, 45))
+    )

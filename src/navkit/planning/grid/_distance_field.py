@@ -4,10 +4,24 @@ from __future__ import annotations
 
 from typing import Any
 
+import numpy as np
 from numpy.typing import ArrayLike
 
 from navkit._shared.types import FloatArray
+from navkit._shared.validation import as_bool
+from navkit.planning.grid._arguments import check_connectivity, traversable_cell
 from navkit.planning.grid._astar import AStarPlanner
+from navkit.planning.grid._distance_field_kernels import (
+    GROW,
+    MAX_SLOTS,
+    SQRT2,
+    WIDTH_MARGIN,
+    bucket_field,
+    crop,
+    fill_inf,
+    highest_finite,
+    pad_grid,
+)
 from navkit.planning.grid._limits import checked_costs
 
 __all__ = ["distance_field"]
@@ -22,11 +36,14 @@ def distance_field(
 ) -> FloatArray:
     """Least cost from every cell to ``goal_cell`` (a navigation function), one-shot.
 
-    Runs the search kernel of :func:`astar` with a zero heuristic from
-    ``goal_cell`` until every reachable cell is expanded. Move costs are
-    symmetric (``step * (c_u + c_v) / 2``), so the cost from the goal to a cell
-    is that cell's cost-to-go. :meth:`AStarPlanner.distance_field` is the
-    prepared form.
+    Dijkstra's algorithm from ``goal_cell`` until every reachable cell is
+    expanded. Move costs are symmetric (``step * (c_u + c_v) / 2``), so the
+    cost from the goal to a cell is that cell's cost-to-go. When the dearest
+    move costs at most about 60 times the cheapest (every grid whose finite
+    costs span a factor of up to about 40), the queue is a ring of buckets one
+    cheapest move wide (Dial's algorithm, O(1) per queue operation); otherwise
+    it is the indexed heap of :func:`astar`. Both give the same field, bit for
+    bit: that of :meth:`AStarPlanner.distance_field`, the prepared form.
 
     Parameters
     ----------
@@ -75,5 +92,62 @@ def distance_field(
            [1.    , 1.4142, 2.4142]])
     """
     grid, lowest = checked_costs(costs)
-    planner = AStarPlanner._borrowing(grid, lowest, connectivity, corner_cutting, 1.0)
-    return planner.distance_field(goal_cell)
+    eight = check_connectivity(connectivity)
+    cutting = as_bool(corner_cutting, "corner_cutting")
+    goal = traversable_cell(grid, goal_cell, "goal_cell")
+    field = _bucket_field(grid, lowest, goal, eight, cutting)
+    if field is not None:
+        return field
+    planner = AStarPlanner._borrowing(grid, lowest, connectivity, cutting, 1.0)
+    return planner.distance_field(goal)
+
+
+def _bucket_field(
+    grid: FloatArray,
+    lowest: float,
+    goal: tuple[int, int],
+    eight: bool,
+    cutting: bool,
+    cap: int = 0,
+) -> FloatArray | None:
+    """The field by the bucket-queue kernel, or None when the cost range needs too many buckets.
+
+    ``cap``: initial bucket segment length (0: about one wavefront, ``4 * (rows + cols)``).
+    """
+    rows, cols = grid.shape
+    flat = grid.reshape(-1)
+    highest = highest_finite(flat)
+    width = lowest * WIDTH_MARGIN
+    w_max = SQRT2 * highest if eight else highest
+    span = int(w_max / width) + 3
+    if span > MAX_SLOTS:
+        return None
+    n_slots = 1 << (span - 1).bit_length()
+    uniform = highest == lowest
+    n_padded = (rows + 2) * (cols + 2)
+    free = np.empty(n_padded, dtype=np.uint8)
+    padded = np.empty(0 if uniform else n_padded, dtype=np.float64)
+    pad_grid(flat, rows, cols, free, padded, uniform)
+    cap = max(8, cap) if cap else max(64, 4 * (rows + cols))
+    buckets = np.empty(n_slots * cap, dtype=np.int32)
+    counts = np.zeros(n_slots, dtype=np.int64)
+    state = np.array([0, 0, 1], dtype=np.int64)
+    dist = np.empty(n_padded, dtype=np.float64)
+    fill_inf(dist)
+    source = (goal[0] + 1) * (cols + 2) + goal[1] + 1
+    dist[source] = 0.0
+    buckets[0] = source
+    counts[0] = 1
+    inv = 1.0 / width
+    mask = n_slots - 1
+    uniform_cost = lowest if uniform else 0.0
+    while bucket_field(free, padded, uniform_cost, cols, eight, cutting, inv, mask, dist,
+                       buckets, cap, counts, state) == GROW:
+        grown = np.empty(n_slots * 2 * cap, dtype=np.int32)
+        for s in range(n_slots):
+            grown[2 * s * cap : 2 * s * cap + counts[s]] = buckets[s * cap : s * cap + counts[s]]
+        buckets = grown
+        cap *= 2
+    out = np.empty(rows * cols, dtype=np.float64)
+    crop(dist, rows, cols, out)
+    return out.reshape(rows, cols)

@@ -1,0 +1,88 @@
+"""Whole-grid distance fields: :func:`navkit.planning.distance_field` against SciPy's Dijkstra.
+
+Run with ``python -m pytest benchmarks/test_bench_distance_field.py --benchmark-only
+--benchmark-timer=time.thread_time`` (CPU time: the ratios stay meaningful on a
+loaded machine; each group holds both contestants of one map, timed in the same
+run).
+
+Issue 17's row: ``distance_field`` at least 2× faster than
+``scipy.sparse.csgraph.dijkstra`` on every map. Contestants, from the same goal
+on the same graph (8-connected, move cost ``step * (c_u + c_v) / 2``):
+
+* ``navkit``: :func:`distance_field` one-shot, validation and output included;
+* ``navkit-heap``: the same field by the heap Dijkstra of the A* kernel
+  (:meth:`AStarPlanner.distance_field` on a planner built per call, grid copy
+  included), which the one-shot function ran before issue 17;
+* ``csgraph``: ``scipy.sparse.csgraph.dijkstra(graph, indices=goal)``, its CSR
+  matrix built once outside the timer (``test_bench_prepared._csr_graph``
+  without corner cutting, ``test_bench_movingai.grid_graph`` with it).
+
+Maps: the 1024² maps of ``test_bench_astar.py`` (random 20 %, random 35 %,
+rooms) and the random-cost map of ``test_bench_prepared.py`` (costs 1-10, 10 %
+blocked), goal at the centre; the MovingAI maps of ``test_bench_movingai.py``
+(``../shared/data``, skipped when absent), goal that of the map's longest
+scenario. Each map without corner cutting (navkit's default, the MovingAI
+rules) and with it (the peers' graph). Before timing, the fields are checked
+equal: same reachable cells, costs to 1e-12 relative.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from functools import cache
+from typing import Any
+
+import numpy as np
+import pytest
+import scipy.sparse
+from scipy.sparse.csgraph import dijkstra
+
+from navkit.planning import AStarPlanner, distance_field
+from test_bench_movingai import MAPS, grid_graph, movingai
+from test_bench_prepared import _csr_graph, _field_map
+
+GRIDS = ["random20", "random35", "rooms", "weighted", *MAPS]
+ROUNDS = 7
+
+
+@cache
+def field_case(name: str) -> tuple[np.ndarray, tuple[int, int]]:
+    """Costs (read-only) and goal cell of a map."""
+    if name in MAPS:
+        costs, scenarios = movingai(name)
+        return costs, scenarios[-1].goal
+    return _field_map(name), (512, 512)
+
+
+@cache
+def scipy_graph(name: str, corner_cutting: bool) -> scipy.sparse.csr_matrix:
+    costs = field_case(name)[0]
+    return grid_graph(costs) if corner_cutting else _csr_graph(costs)
+
+
+def contestant_run(name: str, contestant: str, corner_cutting: bool) -> Callable[[], Any]:
+    costs, goal = field_case(name)
+    if contestant == "navkit":
+        return lambda: distance_field(costs, goal, corner_cutting=corner_cutting)
+    if contestant == "navkit-heap":
+        return lambda: AStarPlanner(costs, corner_cutting=corner_cutting).distance_field(goal)
+    graph = scipy_graph(name, corner_cutting)
+    source = goal[0] * costs.shape[1] + goal[1]
+    return lambda: dijkstra(graph, directed=True, indices=source)
+
+
+@pytest.mark.parametrize("corner_cutting", [False, True], ids=["no-cut", "cut"])
+@pytest.mark.parametrize("name", GRIDS)
+@pytest.mark.parametrize("contestant", ["navkit", "navkit-heap", "csgraph"])
+def test_distance_field(benchmark: Any, name: str, contestant: str, corner_cutting: bool) -> None:
+    run = contestant_run(name, contestant, corner_cutting)
+    benchmark.group = f"distance field {name} {'cut' if corner_cutting else 'no-cut'}"
+    result = benchmark.pedantic(run, rounds=ROUNDS, warmup_rounds=1)
+    if contestant != "csgraph":
+        benchmark.extra_info["reachable"] = int(np.isfinite(result).sum())
+    else:
+        # Checked after timing so the check's own navkit call cannot warm anything.
+        ours = contestant_run(name, "navkit", corner_cutting)()
+        reach = np.isfinite(ours).ravel()
+        np.testing.assert_array_equal(np.isfinite(result), reach)
+        np.testing.assert_allclose(result[reach], ours.ravel()[reach], rtol=1e-12)
