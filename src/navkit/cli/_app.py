@@ -9,6 +9,7 @@ from typing import TextIO
 from navkit.cli._parser import build_parser, join_negative_points
 from navkit.cli._plan import plan_command
 from navkit.cli._scenarios import list_scenarios, run_scenario
+from navkit.cli._warmup import warmup_command
 from navkit.errors import NavkitError
 from navkit.sim.scenarios import SCENARIOS
 
@@ -77,6 +78,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             return list_scenarios(out)
         if args.command == "plan":
             return plan_command(args, out, err)
+        if args.command == "warmup":
+            return warmup_command(args, out, err)
         if args.command == "demo":
             return run_scenario(args, out, err, name="demo", workers=1)
         return run_scenario(args, out, err, name=args.scenario, workers=args.workers)

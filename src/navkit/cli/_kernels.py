@@ -136,7 +136,8 @@ def announce_compilation(kind: str, stream: TextIO) -> bool:
         return False
     seconds = KERNELS[kind][1]
     stream.write(
-        f"navkit: compiling navkit's kernels once (about {seconds:.0f} s), cached afterwards\n"
+        f"navkit: compiling navkit's kernels once (about {seconds:.0f} s), cached afterwards"
+        " (`navkit warmup` compiles them all ahead)\n"
     )
     stream.flush()
     return True

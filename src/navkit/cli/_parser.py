@@ -1,4 +1,4 @@
-"""The command line's grammar: ``navkit {demo,list,run,plan}`` and their options."""
+"""The command line's grammar: ``navkit {demo,list,run,plan,warmup}`` and their options."""
 
 from __future__ import annotations
 
@@ -6,6 +6,8 @@ import argparse
 import math
 import re
 from importlib import metadata
+
+from navkit.sim import WARMUP_STEPS
 
 __all__ = ["build_parser", "join_negative_points", "version"]
 
@@ -164,4 +166,16 @@ def build_parser(scenarios: list[str]) -> argparse.ArgumentParser:
                       help="robot radius: obstacles inflated by R metres (default 0)")  # fmt: skip
     plan.add_argument("--plot", metavar="FILE.png", help="write a picture of the map and path")
     plan.add_argument("--quiet", action="store_true", help="no compilation notice on stderr")
+
+    warm = sub.add_parser(
+        "warmup", help="compile navkit's kernels now, once per install (a minute)",
+        description="Compile every numba kernel navkit uses (numba caches them on disk), "
+                    "so that no later run waits for compilation; print what was compiled "
+                    "and how long it took. Run it at install or image-build time.",
+    )  # fmt: skip
+    warm.add_argument("--workers", type=_count(1, 1024), metavar="N",
+                      help="processes (default: every core; 1: this one)")  # fmt: skip
+    warm.add_argument("--only", action="append", choices=WARMUP_STEPS, metavar="STEP",
+                      help=f"only this step (repeatable): {', '.join(WARMUP_STEPS)}")  # fmt: skip
+    warm.add_argument("--quiet", action="store_true", help="no progress on stderr")
     return parser

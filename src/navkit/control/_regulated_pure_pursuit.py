@@ -9,7 +9,6 @@ from typing import Any, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike
-from scipy import ndimage
 
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_bool
@@ -42,6 +41,8 @@ class _GridClearance:
     def __init__(self, grid: OccupancyGrid) -> None:
         occupied = grid.occupied()
         if occupied.any():
+            from scipy import ndimage
+
             dist = ndimage.distance_transform_edt(~occupied) * grid.resolution
         else:
             dist = np.full(occupied.shape, np.inf)

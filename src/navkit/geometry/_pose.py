@@ -10,9 +10,10 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from navkit._shared.se2 import compose_scalar, wrap_scalar
+from navkit._shared.se2 import compose_scalar
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, as_points, finite_float
+from navkit.geometry._angles import _wrap_float
 
 __all__ = ["Pose2D", "Twist2D", "as_pose", "as_twist"]
 
@@ -59,7 +60,9 @@ class Pose2D:
     def __post_init__(self) -> None:
         object.__setattr__(self, "x", finite_float(self.x, "x"))
         object.__setattr__(self, "y", finite_float(self.y, "y"))
-        object.__setattr__(self, "theta", wrap_scalar(finite_float(self.theta, "theta")))
+        # Plain Python (bit for bit the kernel's wrap): constructing a pose, as module
+        # constants and defaults do at import, must not start numba.
+        object.__setattr__(self, "theta", _wrap_float(finite_float(self.theta, "theta")))
 
     def compose(self, other: Pose2D | ArrayLike) -> Pose2D:
         """Return ``self ⊕ other``: ``other`` (given in this pose's frame) in the world frame.

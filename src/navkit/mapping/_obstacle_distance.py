@@ -10,7 +10,6 @@ array([[0., 1., 2.]])
 from __future__ import annotations
 
 import numpy as np
-from scipy import ndimage
 
 from navkit._shared.types import BoolArray, FloatArray
 
@@ -33,4 +32,6 @@ def obstacle_distance(occupied: BoolArray) -> FloatArray:
     """
     if not occupied.any():
         return np.full(occupied.shape, np.inf)
+    from scipy import ndimage
+
     return np.asarray(ndimage.distance_transform_edt(~occupied), dtype=np.float64)

@@ -149,6 +149,8 @@ def rasterize_polygons(geometries: Any, *, bounds: ArrayLike, resolution: float)
     array([[0, 0, 1, 1, 0, 0],
            [0, 0, 1, 1, 0, 0]])
     """
+    import shapely
+
     b = as_float_array(bounds, "bounds", shape=(4,))
     xmin, ymin, xmax, ymax = (float(v) for v in b)
     if not float(np.abs(b).max()) <= COORDINATE_LIMIT:

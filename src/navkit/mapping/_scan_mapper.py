@@ -269,6 +269,7 @@ class ScanMapper:
             if self._max_range is not None:
                 drop |= ranges >= self._max_range
         ranges[drop] = np.nan  # no echo: neither a hit nor free space (Hector)
+        ranges.flags.writeable = False  # as integrate_scan's: one kernel specialisation
         lo, hi = self._clamp
         for grid in self._levels:
             o = grid.origin

@@ -201,6 +201,7 @@ class Body:
         else:
             self.radius = float(fp)
             self.verts = np.empty((0, 2))
+            self.verts.flags.writeable = False  # as a polygon's: one kernel specialisation
         self.work = np.empty_like(self.verts)
         self.scratch = np.empty_like(self.verts)
 

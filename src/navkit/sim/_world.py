@@ -81,7 +81,7 @@ def as_footprint(value: Any, name: str = "footprint") -> tuple[float, FloatArray
         radius = positive_float(value, name)
         if radius > MAX_COORD:
             raise ValueError(f"{name} radius must be at most {MAX_COORD:g} m, got {radius}")
-        return radius, np.empty((0, 2))
+        return radius, _read_only(np.empty((0, 2)))
     if isinstance(value, Polygon):
         if value.is_empty:
             raise ValueError(f"{name} polygon is empty")
@@ -108,7 +108,8 @@ def as_footprint(value: Any, name: str = "footprint") -> tuple[float, FloatArray
     poly = Polygon(verts)
     if not poly.is_valid or poly.area <= 0.0:
         raise ValueError(f"{name} polygon must be simple (no self-intersection) with area > 0")
-    return 0.0, np.ascontiguousarray(verts)
+    # Read-only like every array handed to the kernels: one compiled specialisation.
+    return 0.0, _read_only(np.array(verts, dtype=np.float64, order="C"))
 
 
 @dataclass(frozen=True, slots=True, eq=False)
@@ -542,8 +543,8 @@ class World:
         self._cell_items: IntArray = _read_only(cell_items)
         # Occupancy grid.
         self._grid: OccupancyGrid | None = None
-        self._occ = np.zeros((0, 0), dtype=np.uint8)
-        self._cheb = np.zeros((0, 0), dtype=np.uint8)
+        self._occ = _read_only(np.zeros((0, 0), dtype=np.uint8))
+        self._cheb = _read_only(np.zeros((0, 0), dtype=np.uint8))
         self._occ_frame = (0.0, 0.0, 1.0, 0.0, 1.0)
         if grid is not None:
             if not isinstance(grid, OccupancyGrid):

@@ -16,7 +16,6 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.spatial import cKDTree
 
 from navkit._shared.types import FloatArray
 from navkit.planning.reactive._limits import MIN_DISTANCE, gain, length
@@ -79,6 +78,8 @@ class _PointRepulsion(PotentialField):
                 dx = dx[rows, cols]
                 dy = dy[rows, cols]
             else:
+                from scipy.spatial import cKDTree
+
                 found = cKDTree(pts[block]).sparse_distance_matrix(
                     self._tree(), reach, output_type="ndarray"
                 )
@@ -95,6 +96,8 @@ class _PointRepulsion(PotentialField):
     def _tree(self) -> Any:
         tree = self._kdtree
         if tree is None:
+            from scipy.spatial import cKDTree
+
             tree = cKDTree(self.obstacles_xy)
             object.__setattr__(self, "_kdtree", tree)
         return tree
