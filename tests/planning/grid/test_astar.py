@@ -19,6 +19,15 @@ from navkit import NavkitError, NoPathError
 from navkit.planning import Path2D, astar, distance_field
 from navkit.planning.grid import _workspace
 from navkit.planning.grid._arguments import check_search_size
+from navkit.planning.grid._search_heap import (
+    REC_BASE,
+    aligned_heap,
+    node_of,
+    rec_pop,
+    rec_replace_top,
+    rec_sift_up,
+    tie_key,
+)
 
 SQRT2 = math.sqrt(2.0)
 
@@ -259,7 +268,7 @@ def test_reused_workspace_survives_stamp_restart_and_threads() -> None:
         grids.append(costs)
     expected = [scipy_costs_from(c, (0, 0), 8, False)[-1, -1] for c in grids]
     assert np.all(np.isfinite(expected))
-    # Bring the uint32 stamp next to its limit so that it restarts between these
+    # Bring the int32 stamp next to its limit so that it restarts between these
     # searches. (Not monkeypatched back: an older stamp would misread the marks
     # written here; leaving the stamp high is a valid state.)
     astar(grids[0], (0, 0), (39, 29))
@@ -279,3 +288,74 @@ def test_reused_workspace_survives_stamp_restart_and_threads() -> None:
         ]
         got = [job.result() for job in jobs]
     np.testing.assert_allclose(got, expected * 4, rtol=1e-12)
+
+
+def test_search_restarts_with_a_larger_queue_when_it_fills_up() -> None:
+    rng = np.random.default_rng(5)
+    costs = 1.0 + 4.0 * rng.random((70, 90))
+    costs[rng.random(costs.shape) < 0.25] = np.inf
+    costs[0, 0] = costs[-1, -1] = 1.0
+    reference = scipy_costs_from(costs, (0, 0), 8, True)[-1, -1]
+    assert math.isfinite(reference)
+    expected = astar(costs, (0, 0), (69, 89), corner_cutting=True)
+    _workspace._local.heap = aligned_heap(1)
+    path = astar(costs, (0, 0), (69, 89), corner_cutting=True)
+    assert _workspace._local.heap.size > 2 * (16 + REC_BASE)
+    assert path.cost == expected.cost == pytest.approx(reference, rel=1e-12)
+    np.testing.assert_array_equal(path.cells, expected.cells)
+    assert path.expanded == expected.expanded
+
+
+def test_aligned_heap_puts_sibling_slots_in_one_cache_line() -> None:
+    heap = aligned_heap(100)
+    assert heap.ctypes.data % 64 == 0
+    assert heap.size >= 2 * (100 + REC_BASE)
+    # Slots 4i + 1 .. 4i + 4 sit at entries 4(i + 1) .. 4(i + 1) + 3: 64 bytes.
+    for i in range(5):
+        assert (2 * (4 * i + 1 + REC_BASE) * 8) % 64 == 0
+
+
+rec_ops = st.lists(
+    st.tuples(
+        st.sampled_from(["push", "push", "pop", "replace"]),
+        st.integers(0, 199),
+        st.integers(0, 10).map(float),
+        st.floats(0, 5000, allow_nan=False),
+    ),
+    max_size=400,
+)
+
+
+@settings(max_examples=100, deadline=None)
+@given(rec_ops)
+def test_record_heap_pops_in_priority_order(sequence: list[tuple[str, int, float, float]]) -> None:
+    # The packed kernel's heap keeps slots in the cell records (meta[4 v + 3]).
+    heap = aligned_heap(200)
+    meta = np.zeros(4 * 200, dtype=np.int32)
+    ref: dict[int, tuple[float, float]] = {}
+    for op, node, f, tie in sequence:
+        new = (f, tie_key(tie, node))
+        if op == "push":
+            if node in ref:
+                if new >= ref[node]:
+                    continue  # decrease-key only
+                rec_sift_up(heap, meta, int(meta[4 * node + 3]), *new)
+            else:
+                rec_sift_up(heap, meta, len(ref), *new)
+            ref[node] = new
+        elif op == "replace" and ref and node not in ref:
+            best = min(ref, key=ref.__getitem__)
+            assert rec_replace_top(heap, meta, len(ref), *new) == best
+            del ref[best]
+            ref[node] = new
+        elif op == "pop" and ref:
+            best = min(ref, key=ref.__getitem__)
+            assert rec_pop(heap, meta, len(ref)) == best
+            del ref[best]
+        for v in ref:  # every queued node knows its slot
+            slot = int(meta[4 * v + 3])
+            assert node_of(heap[2 * (slot + REC_BASE) + 1]) == v
+    while ref:
+        best = min(ref, key=ref.__getitem__)
+        assert rec_pop(heap, meta, len(ref)) == best
+        del ref[best]

@@ -14,6 +14,7 @@ from hypothesis import strategies as st
 from navkit import NoPathError
 from navkit.planning import AStarPlanner, Path2D, astar, distance_field
 from navkit.planning.grid import _astar as astar_module
+from navkit.planning.grid import _distance_field
 
 
 def _same_path(a: Path2D, b: Path2D) -> None:
@@ -173,3 +174,21 @@ def test_errors() -> None:
     with pytest.raises(NoPathError) as info:
         AStarPlanner(walled).plan((0, 0), (0, 2))
     assert info.value.expanded == 3
+
+
+@pytest.mark.parametrize("connectivity", [4, 8])
+@pytest.mark.parametrize("corner_cutting", [False, True])
+def test_distance_field_heap_fallback_equals_the_bucket_queue(
+    monkeypatch: pytest.MonkeyPatch, connectivity: int, corner_cutting: bool
+) -> None:
+    rng = np.random.default_rng(connectivity + corner_cutting)
+    costs = 1.0 + 9.0 * rng.random((45, 37))
+    costs[rng.random(costs.shape) < 0.2] = np.inf
+    costs[3, 4] = 1.0
+    planner = AStarPlanner(costs, connectivity=connectivity, corner_cutting=corner_cutting)
+    bucket = planner.distance_field((3, 4))
+    monkeypatch.setattr(_distance_field, "_bucket_field", lambda *args, **kwargs: None)
+    heap = planner.distance_field((3, 4))
+    np.testing.assert_array_equal(heap, bucket)
+    reference = scipy_costs_from(costs, (3, 4), connectivity, corner_cutting)
+    np.testing.assert_allclose(heap, reference, rtol=1e-12)

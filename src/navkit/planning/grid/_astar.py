@@ -20,7 +20,7 @@ from navkit.planning.grid._astar_kernels import grid_search, trace_path
 from navkit.planning.grid._jps_kernels import jps_search, jps_tables, jps_trace
 from navkit.planning.grid._limits import MAX_HEURISTIC_WEIGHT, bounded_float, checked_costs
 from navkit.planning.grid._path import Path2D
-from navkit.planning.grid._workspace import workspace
+from navkit.planning.grid._workspace import grow_heap, workspace
 
 __all__ = ["AStarPlanner", "astar"]
 
@@ -134,8 +134,11 @@ class AStarPlanner:
     Notes
     -----
     Queries are thread-safe: the planner is not modified by them and the
-    search's scratch arrays (33 bytes per cell, see :func:`astar`; JPS: 16.4
-    bytes per cell and its queue) are kept per thread.
+    search's scratch arrays (16 bytes per cell and the queue, see :func:`astar`;
+    JPS: 16.4 bytes per cell and its queue) are kept per thread.
+    :meth:`distance_field` runs Dijkstra on a bucket queue (as
+    :func:`navkit.planning.distance_field`), on the heap when the cost range is
+    too wide for buckets.
 
     Examples
     --------
@@ -155,7 +158,9 @@ class AStarPlanner:
     ([[2, 0], [2, 1], [2, 2], [2, 3], [1, 3], [0, 3]], 5.0)
     """
 
-    __slots__ = ("_costs", "_cutting", "_eight", "_flat", "_jps", "_scale", "_weight")
+    __slots__ = (
+        "_costs", "_cutting", "_eight", "_flat", "_jps", "_lowest", "_scale", "_weight",
+    )
 
     _costs: FloatArray
     _flat: FloatArray
@@ -163,6 +168,7 @@ class AStarPlanner:
     _cutting: bool
     _weight: float
     _scale: float
+    _lowest: float
     # JPS tables (row bits, column bits) and the uniform cell cost,
     # or None when this planner runs A*.
     _jps: tuple[NDArray[np.uint64], NDArray[np.uint64], float] | None
@@ -220,6 +226,7 @@ class AStarPlanner:
         # The smallest cost is finite whenever a query can run (its start is
         # traversable), so the scale is finite then.
         self._scale = self._weight * lowest
+        self._lowest = lowest
         self._costs = grid
         self._flat = grid.ravel()
         self._jps = None
@@ -321,20 +328,24 @@ class AStarPlanner:
             return self._plan_jps(s, t)
         rows, cols = grid.shape
         goal_index = t[0] * cols + t[1]
-        g, parent, mark, heap, pos, size, stamp = workspace(rows * cols)
-        expanded, found = grid_search(
-            self._flat, rows, cols, s[0] * cols + s[1], goal_index, self._eight, self._cutting,
-            self._scale, g, parent, mark, heap, pos, size, stamp,
-        )
+        while True:
+            rec, meta, heap, stamp = workspace(rows * cols)
+            expanded, found = grid_search(
+                self._flat, rows, cols, s[0] * cols + s[1], goal_index, self._eight,
+                self._cutting, self._scale, rec, meta, heap, stamp,
+            )
+            if found >= 0:
+                break
+            grow_heap()  # rare: the queue filled up; search again with a larger one
         if not found:
             raise NoPathError(
                 f"no path from start_cell {s} to goal_cell {t} (expanded {expanded} cells)",
                 expanded=expanded,
             )
-        cells, length = trace_path(parent, cols, goal_index)
+        cells, length = trace_path(meta, cols, goal_index)
         # trace_path's array is new and only ours: hand it over without a copy.
         return Path2D._owned(
-            cells.astype(np.float64), "grid", float(g[goal_index]), length, expanded
+            cells.astype(np.float64), "grid", float(rec[2 * goal_index]), length, expanded
         )
 
     def _plan_jps(self, s: tuple[int, int], t: tuple[int, int]) -> Path2D:
@@ -379,18 +390,29 @@ class AStarPlanner:
             Cost-to-go of each cell; 0 at the goal and ``np.inf`` where the goal
             is unreachable (including impassable cells).
         """
+        # Imported here: the distance-field module builds on this one.
+        from navkit.planning.grid._distance_field import _bucket_field
+
         grid = self._costs
         t = traversable_cell(grid, goal_cell, "goal_cell")
+        field = _bucket_field(grid, self._lowest, t, self._eight, self._cutting)
+        if field is not None:
+            return field
+        # Cost ranges too wide for the bucket queue: Dijkstra on the heap.
         rows, cols = grid.shape
         n = rows * cols
-        g, parent, mark, heap, pos, size, stamp = workspace(n)
-        grid_search(
-            self._flat, rows, cols, t[0] * cols + t[1], -1, self._eight, self._cutting, 0.0,
-            g, parent, mark, heap, pos, size, stamp,
-        )
-        # Exhaustion closes every reachable cell; g is stale everywhere else.
-        closed = mark[:n] == stamp + 1
-        out: FloatArray = np.where(closed, g[:n], np.inf).reshape(rows, cols)
+        while True:
+            rec, meta, heap, stamp = workspace(n)
+            _, status = grid_search(
+                self._flat, rows, cols, t[0] * cols + t[1], -1, self._eight, self._cutting,
+                0.0, rec, meta, heap, stamp,
+            )
+            if status >= 0:
+                break
+            grow_heap()
+        # Exhaustion closes every reachable cell; costs are stale everywhere else.
+        closed = (meta[2 : 4 * n : 4] >> 4) == stamp + 1
+        out: FloatArray = np.where(closed, rec[0 : 2 * n : 2], np.inf).reshape(rows, cols)
         return out
 
 
@@ -450,9 +472,11 @@ def astar(
     Notes
     -----
     The search runs in a numba kernel over flat arrays with an indexed 4-ary
-    heap (:mod:`navkit.planning.grid._search_heap`); memory is O(cells). Its scratch
-    arrays (33 bytes per cell) are kept per thread and reused by later calls on
-    grids of the same or smaller size, so repeated queries pay no allocation.
+    heap (:mod:`navkit.planning.grid._search_heap`); memory is O(cells). Its
+    scratch (a packed 16-byte record per cell: cost, mark, parent and heap
+    slot, so a cell's search state is one cache line away, and the queue) is
+    kept per thread and reused by later calls on grids of the same or smaller
+    size, so repeated queries pay no allocation.
     Grids may have at most 2**31 - 1 cells. Ties among equal f are broken by the
     heuristic (to 1/16 cell), then by cell index, so results are deterministic.
 

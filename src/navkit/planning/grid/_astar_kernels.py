@@ -19,7 +19,13 @@ import math
 import numpy as np
 
 from navkit._shared.jit import njit_cached, njit_inline, njit_inline_no_refcount, njit_no_refcount
-from navkit.planning.grid._search_heap import clear, pop, precedes_top, push, tie_key
+from navkit.planning.grid._search_heap import (
+    REC_BASE,
+    rec_pop,
+    rec_replace_top,
+    rec_sift_up,
+    tie_key,
+)
 
 SQRT2 = math.sqrt(2.0)
 _OCTILE_EXTRA = SQRT2 - 1.0
@@ -44,12 +50,10 @@ def _cells_to_goal(r: int, c: int, gr: int, gc: int, octile: bool) -> float:
 @njit_inline_no_refcount
 def _relax(
     flat: np.ndarray,
-    g: np.ndarray,
-    parent: np.ndarray,
-    mark: np.ndarray,
+    rec: np.ndarray,
+    meta: np.ndarray,
     heap: np.ndarray,
-    pos: np.ndarray,
-    size: np.ndarray,
+    n: int,
     open_mark: int,
     closed_mark: int,
     v: int,
@@ -66,37 +70,43 @@ def _relax(
     next_f: float,
     next_key: float,
     next_v: int,
-) -> tuple[float, float, int]:
-    """Try the move ``d`` to cell ``v`` = (r, c); return the updated next-node candidate.
+) -> tuple[float, float, int, int]:
+    """Try the move ``d`` to cell ``v`` = (r, c); return the next-node candidate and queue size.
 
-    The candidate (next_f, next_key, next_v) is the best improved neighbour that
-    is not queued; it is kept out of the heap because it is often the very node
+    The candidate (next_f, next_key, next_v) is the best newly reached
+    neighbour; it is kept out of the heap because it is often the very node
     the next pop would return (next_v = -1: none yet).
     """
     cv = flat[v]
     if cv == np.inf:
-        return next_f, next_key, next_v
-    m = mark[v]
-    if m == closed_mark:
-        return next_f, next_key, next_v
+        return next_f, next_key, next_v, n
+    mark = meta[4 * v + 2] >> 4
+    if mark == closed_mark:
+        return next_f, next_key, next_v, n
     new_g = gu + step * 0.5 * (cu + cv)
-    # g of a cell this search has not reached is stale: test the mark first.
-    if m == open_mark and new_g >= g[v]:
-        return next_f, next_key, next_v
-    g[v] = new_g
-    parent[v] = d
-    mark[v] = open_mark
+    # The record of a cell this search has not reached is stale: test the mark first.
+    queued = mark == open_mark
+    if queued and new_g >= rec[2 * v]:
+        return next_f, next_key, next_v, n
+    rec[2 * v] = new_g
+    meta[4 * v + 2] = (open_mark << 4) | (d + 1)
     h = _cells_to_goal(r, c, gr, gc, octile)
     f = new_g + scale * h
     # Ties in f go to the cell nearer the goal, which keeps A* from expanding
     # whole plateaus of equal f.
     key = tie_key(h, v)
-    if pos[v] < 0 and (f < next_f or (f == next_f and key < next_key)):
+    if queued:
+        # Every open cell is queued (the candidate is queued or expanded
+        # before the next expansion): lower its priority in place.
+        rec_sift_up(heap, meta, meta[4 * v + 3], f, key)
+        return next_f, next_key, next_v, n
+    if f < next_f or (f == next_f and key < next_key):
         if next_v >= 0:
-            push(heap, pos, size, next_f, next_key)
-        return f, key, v
-    push(heap, pos, size, f, key)
-    return next_f, next_key, next_v
+            rec_sift_up(heap, meta, n, next_f, next_key)
+            n += 1
+        return f, key, v, n
+    rec_sift_up(heap, meta, n, f, key)
+    return next_f, next_key, next_v, n + 1
 
 
 @njit_no_refcount
@@ -109,14 +119,11 @@ def grid_search(
     eight: bool,
     corner_cutting: bool,
     scale: float,
-    g: np.ndarray,
-    parent: np.ndarray,
-    mark: np.ndarray,
+    rec: np.ndarray,
+    meta: np.ndarray,
     heap: np.ndarray,
-    pos: np.ndarray,
-    size: np.ndarray,
     stamp: int,
-) -> tuple[int, bool]:
+) -> tuple[int, int]:
     """Best-first search from ``start``: A*, weighted A* or Dijkstra.
 
     Parameters
@@ -137,49 +144,68 @@ def grid_search(
         Allow diagonal moves beside impassable cells.
     scale : float
         Heuristic weight × minimum cell cost; 0 gives Dijkstra.
-    g, parent, mark, heap, pos, size, stamp
-        Scratch from :func:`navkit.planning.grid._workspace.workspace` (at least
-        ``rows * cols`` cells). On return ``mark[v] == stamp + 1`` for every
-        closed cell (exhaustion closes every reachable one), ``g`` holds their
-        cost from ``start`` (exact when the heuristic weight is <= 1) and
-        ``parent`` the direction index (into ``DR``/``DC``) of the move that
-        reached them, -1 at ``start``. The heap is left empty.
+    rec : (2 * rows * cols,) float64
+        Cell records, 16 bytes each so one cache line holds a cell's whole
+        search state: ``rec[2 * v]`` is its cost from ``start``; ``meta``, an
+        int32 view of the same memory, holds ``mark << 4 | (d + 1)`` at
+        ``4 * v + 2``, with ``d`` the direction index (into ``DR``/``DC``) of
+        the move that reached it (-1 at ``start``), and its heap slot while
+        queued at ``4 * v + 3``. A mark below ``stamp`` means never reached by
+        this search (the rest of the record is then stale).
+    meta : (4 * rows * cols,) int32
+        The int32 view of ``rec``.
+    heap : (2 * capacity,) float64
+        Scratch for the queue, (f, tie key) pairs of the indexed 4-ary heap of
+        :func:`navkit.planning.grid._search_heap.rec_pop` (slot i at entry
+        ``i + REC_BASE``; 64-byte aligned, from ``aligned_heap``).
+    stamp : int
+        This search's open mark (closed is ``stamp + 1``), above every mark
+        left in ``meta`` by earlier searches and below ``2**27 - 1``.
 
     Returns
     -------
     expanded : int
         Number of cells closed.
-    found : bool
-        Whether ``goal`` was closed.
+    found : int
+        1 when ``goal`` was closed, 0 when not (unreachable, or ``goal`` -1),
+        -1 when ``heap`` filled up: search again with a larger one and a
+        fresh stamp.
 
     Notes
     -----
-    The queue orders cells by (f, tie key) with f = g + scale × distance in
-    cells; the order is total, so the search is deterministic. After expanding
-    a cell, its best improved neighbour that is not queued is expanded next
-    directly when it precedes the heap's top, which is exactly the cell a push
-    and pop would return, without the two heap walks. The eight moves are
-    written out one by one so each has constant offsets and bounds tests.
+    On return the mark is ``stamp + 1`` for every closed cell (exhaustion
+    closes every reachable one) and its cost is exact when the heuristic
+    weight is <= 1. The queue orders cells by (f, tie key) with f = g + scale
+    × distance in cells; the order is total, so the search is deterministic.
+    A queued cell's heap slot is kept in its record, in the cache line the
+    search reads for the cell anyway. After expanding a cell, its best newly
+    reached neighbour is expanded next directly when it precedes the
+    heap's top, which is exactly the cell a push and pop would return, without
+    the two heap walks. The eight moves are written out one by one so each has
+    constant offsets and bounds tests.
     """
     open_mark = stamp
     closed_mark = stamp + 1
     gr = goal // cols if goal >= 0 else 0
     gc = goal - gr * cols if goal >= 0 else 0
-    g[start] = 0.0
-    parent[start] = -1
-    mark[start] = open_mark
+    rec[2 * start] = 0.0
+    meta[4 * start + 2] = open_mark << 4
     expanded = 0
-    found = False
+    found = 0
+    n = 0
     u = start
     while True:
-        mark[u] = closed_mark
+        meta[4 * u + 2] = (closed_mark << 4) | (meta[4 * u + 2] & 15)
         expanded += 1
         if u == goal:
-            found = True
+            found = 1
             break
+        # One expansion queues at most 8 cells.
+        if 2 * (n + 8 + REC_BASE) > heap.size:
+            return expanded, -1
         r = u // cols
         c = u - r * cols
-        gu = g[u]
+        gu = rec[2 * u]
         cu = flat[u]
         n_in = r > 0
         s_in = r + 1 < rows
@@ -189,21 +215,21 @@ def grid_search(
         nk = np.inf
         nv = -1
         if n_in:
-            nf, nk, nv = _relax(flat, g, parent, mark, heap, pos, size, open_mark, closed_mark,
-                                u - cols, 0, 1.0, gu, cu, r - 1, c, gr, gc, eight, scale,
-                                nf, nk, nv)
+            nf, nk, nv, n = _relax(flat, rec, meta, heap, n, open_mark, closed_mark,
+                                   u - cols, 0, 1.0, gu, cu, r - 1, c, gr, gc, eight, scale,
+                                   nf, nk, nv)
         if s_in:
-            nf, nk, nv = _relax(flat, g, parent, mark, heap, pos, size, open_mark, closed_mark,
-                                u + cols, 1, 1.0, gu, cu, r + 1, c, gr, gc, eight, scale,
-                                nf, nk, nv)
+            nf, nk, nv, n = _relax(flat, rec, meta, heap, n, open_mark, closed_mark,
+                                   u + cols, 1, 1.0, gu, cu, r + 1, c, gr, gc, eight, scale,
+                                   nf, nk, nv)
         if w_in:
-            nf, nk, nv = _relax(flat, g, parent, mark, heap, pos, size, open_mark, closed_mark,
-                                u - 1, 2, 1.0, gu, cu, r, c - 1, gr, gc, eight, scale,
-                                nf, nk, nv)
+            nf, nk, nv, n = _relax(flat, rec, meta, heap, n, open_mark, closed_mark,
+                                   u - 1, 2, 1.0, gu, cu, r, c - 1, gr, gc, eight, scale,
+                                   nf, nk, nv)
         if e_in:
-            nf, nk, nv = _relax(flat, g, parent, mark, heap, pos, size, open_mark, closed_mark,
-                                u + 1, 3, 1.0, gu, cu, r, c + 1, gr, gc, eight, scale,
-                                nf, nk, nv)
+            nf, nk, nv, n = _relax(flat, rec, meta, heap, n, open_mark, closed_mark,
+                                   u + 1, 3, 1.0, gu, cu, r, c + 1, gr, gc, eight, scale,
+                                   nf, nk, nv)
         if eight:
             if corner_cutting:
                 nw = n_in and w_in
@@ -221,45 +247,49 @@ def grid_search(
                 sw = s_ok and w_ok
                 se = s_ok and e_ok
             if nw:
-                nf, nk, nv = _relax(flat, g, parent, mark, heap, pos, size, open_mark,
-                                    closed_mark, u - cols - 1, 4, SQRT2, gu, cu, r - 1, c - 1,
-                                    gr, gc, eight, scale, nf, nk, nv)
+                nf, nk, nv, n = _relax(flat, rec, meta, heap, n, open_mark, closed_mark,
+                                       u - cols - 1, 4, SQRT2, gu, cu, r - 1, c - 1,
+                                       gr, gc, eight, scale, nf, nk, nv)
             if ne:
-                nf, nk, nv = _relax(flat, g, parent, mark, heap, pos, size, open_mark,
-                                    closed_mark, u - cols + 1, 5, SQRT2, gu, cu, r - 1, c + 1,
-                                    gr, gc, eight, scale, nf, nk, nv)
+                nf, nk, nv, n = _relax(flat, rec, meta, heap, n, open_mark, closed_mark,
+                                       u - cols + 1, 5, SQRT2, gu, cu, r - 1, c + 1,
+                                       gr, gc, eight, scale, nf, nk, nv)
             if sw:
-                nf, nk, nv = _relax(flat, g, parent, mark, heap, pos, size, open_mark,
-                                    closed_mark, u + cols - 1, 6, SQRT2, gu, cu, r + 1, c - 1,
-                                    gr, gc, eight, scale, nf, nk, nv)
+                nf, nk, nv, n = _relax(flat, rec, meta, heap, n, open_mark, closed_mark,
+                                       u + cols - 1, 6, SQRT2, gu, cu, r + 1, c - 1,
+                                       gr, gc, eight, scale, nf, nk, nv)
             if se:
-                nf, nk, nv = _relax(flat, g, parent, mark, heap, pos, size, open_mark,
-                                    closed_mark, u + cols + 1, 7, SQRT2, gu, cu, r + 1, c + 1,
-                                    gr, gc, eight, scale, nf, nk, nv)
+                nf, nk, nv, n = _relax(flat, rec, meta, heap, n, open_mark, closed_mark,
+                                       u + cols + 1, 7, SQRT2, gu, cu, r + 1, c + 1,
+                                       gr, gc, eight, scale, nf, nk, nv)
         if nv >= 0:
-            if precedes_top(heap, size, nf, nk):
+            top_f = heap[2 * REC_BASE]
+            if n == 0 or nf < top_f or (nf == top_f and nk < heap[2 * REC_BASE + 1]):
                 u = nv
                 continue
-            push(heap, pos, size, nf, nk)
-        if size[0] == 0:
+            # Queue it and take the top in one walk down from the root.
+            u = rec_replace_top(heap, meta, n, nf, nk)
+            continue
+        if n == 0:
             break
-        u = pop(heap, pos, size)
-    clear(heap, pos, size)
+        u = rec_pop(heap, meta, n)
+        n -= 1
     return expanded, found
 
 
 @njit_cached
-def trace_path(parent: np.ndarray, cols: int, goal: int) -> tuple[np.ndarray, float]:
+def trace_path(meta: np.ndarray, cols: int, goal: int) -> tuple[np.ndarray, float]:
     """Cells (K, 2) ``(row, col)`` from the search source to ``goal`` and their length.
 
-    Follows the direction indices written by :func:`grid_search` back from
-    ``goal`` until the source (direction -1). The length is geometric, in cells:
+    Follows the direction indices written by :func:`grid_search` (low 4 bits
+    of ``meta[4 * v + 2]``, direction + 1) back from ``goal`` until the source
+    (0 there). The length is geometric, in cells:
     orthogonal steps count 1 and diagonal steps sqrt(2).
     """
     k = 1
     v = goal
-    while parent[v] >= 0:
-        d = parent[v]
+    while meta[4 * v + 2] & 15:
+        d = (meta[4 * v + 2] & 15) - 1
         v -= DR[d] * cols + DC[d]
         k += 1
     cells = np.empty((k, 2), dtype=np.int64)
@@ -270,7 +300,7 @@ def trace_path(parent: np.ndarray, cols: int, goal: int) -> tuple[np.ndarray, fl
         cells[i, 0] = r
         cells[i, 1] = v - r * cols
         if i > 0:
-            d = parent[v]
+            d = (meta[4 * v + 2] & 15) - 1
             if d >= 4:
                 n_diag += 1
             v -= DR[d] * cols + DC[d]

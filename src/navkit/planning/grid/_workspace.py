@@ -1,17 +1,16 @@
 """Per-thread scratch arrays reused by the grid searches (private).
 
-A search on an n-cell grid needs 33 bytes per cell of scratch memory
-(costs-to-come, parents, node marks and the indexed heap). Allocating it on every
-call costs more than a short search itself (fresh pages are zero-filled by the
-kernel on first touch), so each thread keeps one workspace sized for the largest
-grid it has searched and reuses it. Nothing needs clearing between searches:
-
-* ``mark`` holds a stamp per cell; a search with stamp ``s`` treats ``mark < s``
-  as never reached, ``s`` as open and ``s + 1`` as closed, so advancing the stamp
-  by 2 forgets the previous search in O(1);
-* ``g`` and ``parent`` are only read where ``mark`` says this search wrote them;
-* the heap's ``pos`` is -1 for every cell between searches (the kernel un-queues
-  what is left in the heap before returning).
+A search on an n-cell grid needs 16 bytes per cell of scratch memory (one packed
+record per cell: cost-to-come, mark and parent, see
+:func:`navkit.planning.grid._astar_kernels.grid_search`) plus its queue.
+Allocating it on every call costs more than a short search itself (fresh pages
+are zero-filled by the kernel on first touch), so each thread keeps one
+workspace sized for the largest grid it has searched and reuses it. Nothing
+needs clearing between searches: each record holds the stamp of the search that
+last reached its cell; a search with stamp ``s`` treats a mark below ``s`` as
+never reached, ``s`` as open and ``s + 1`` as closed, so advancing the stamp by
+2 forgets the previous search in O(1), and the rest of a record is only read
+where its mark says this search wrote it.
 """
 
 from __future__ import annotations
@@ -22,24 +21,23 @@ import numpy as np
 from numpy.typing import NDArray
 
 from navkit._shared.types import FloatArray
-from navkit.planning.grid._search_heap import search_heap_new
+from navkit.planning.grid._search_heap import aligned_heap
 
-# Stamps live in uint32; restart (with a full clear) well before overflow.
-_STAMP_LIMIT = 2**32 - 4
+# Marks are int32 shifted left by 4 (parent in the low bits); restart (with a
+# full clear) well before overflow.
+_STAMP_LIMIT = 2**27 - 4
+# Initial queue capacity, entries (doubled whenever a search fills it).
+_HEAP_ENTRIES = 4096
 
 
 Workspace = tuple[
-    FloatArray,  # g: cost from the source
-    NDArray[np.int8],  # parent: direction index of the move that reached a cell
-    NDArray[np.uint32],  # mark: stamp of the search that last reached a cell
-    FloatArray,  # heap: (f, tie key) pairs of the 4-ary heap
-    NDArray[np.int32],  # pos: heap slot of every cell, -1 when not queued
-    NDArray[np.int64],  # size: number of queued cells, shape (1,)
+    FloatArray,  # rec: packed cell records, cost-to-come at 2 * v
+    NDArray[np.int32],  # meta: int32 view of rec, mark and parent at 4 * v + 2, slot at 4 * v + 3
+    FloatArray,  # heap: (f, tie key) pairs of the 4-ary queue
     int,  # stamp: this search's open mark (closed is stamp + 1)
 ]
-"""Scratch arrays of one search, a plain tuple (built once per query, so kept
-as cheap as possible): ``(g, parent, mark, heap, pos, size, stamp)``, each array
-with at least ``n`` cells."""
+"""Scratch of one search, a plain tuple (built once per query, so kept as cheap
+as possible): ``(rec, meta, heap, stamp)``, records for at least ``n`` cells."""
 
 
 class _ThreadWorkspace(threading.local):
@@ -48,7 +46,9 @@ class _ThreadWorkspace(threading.local):
     def __init__(self) -> None:
         self.capacity = 0
         self.stamp = 0
-        self.arrays: tuple[np.ndarray, ...] = ()
+        self.rec = np.zeros(0, dtype=np.float64)
+        self.meta = self.rec.view(np.int32)
+        self.heap = aligned_heap(_HEAP_ENTRIES)
 
 
 _local = _ThreadWorkspace()
@@ -58,20 +58,17 @@ def workspace(n: int) -> Workspace:
     """Scratch arrays for a search over ``n`` cells with a fresh stamp."""
     ws = _local
     if n > ws.capacity:
-        heap, pos, size = search_heap_new(n)
-        ws.arrays = (
-            np.empty(n, dtype=np.float64),
-            np.empty(n, dtype=np.int8),
-            np.zeros(n, dtype=np.uint32),
-            heap,
-            pos,
-            size,
-        )
+        ws.rec = np.zeros(2 * n, dtype=np.float64)
+        ws.meta = ws.rec.view(np.int32)
         ws.capacity = n
         ws.stamp = 0
     ws.stamp += 2
     if ws.stamp >= _STAMP_LIMIT:
-        ws.arrays[2][:] = 0
+        ws.meta[:] = 0
         ws.stamp = 2
-    g, parent, mark, heap, pos, size = ws.arrays
-    return g, parent, mark, heap, pos, size, ws.stamp
+    return ws.rec, ws.meta, ws.heap, ws.stamp
+
+
+def grow_heap() -> None:
+    """Double this thread's queue capacity (a search filled it; it is searched again)."""
+    _local.heap = aligned_heap(_local.heap.size)
