@@ -1491,5 +1491,17 @@ for _role in (attack, support, defend):
 
 # Unused helpers kept importable for new specs.
 _ = (partial, math)
+import fuzz_specs_bags  # noqa: E402, F401 - registers the ROS bag readers and quaternion specs
+import fuzz_specs_cli  # noqa: E402, F401
 import fuzz_specs_control  # noqa: E402, F401 - registers navkit.control's tracker specs
+import fuzz_specs_framework  # noqa: E402, F401 - registers the experiment framework's specs
+import fuzz_specs_jps  # noqa: E402, F401
+import fuzz_specs_plot  # noqa: E402, F401
+import fuzz_specs_scan_matching  # noqa: E402, F401
+import fuzz_specs_scn_diff_astar  # noqa: E402, F401
+import fuzz_specs_scn_indoor  # noqa: E402, F401
+import fuzz_specs_scn_omni_greedy  # noqa: E402, F401
+import fuzz_specs_scn_soccer  # noqa: E402, F401
 import fuzz_specs_sim  # noqa: E402, F401 - registers navkit.sim specs
+import fuzz_specs_sim_adapters  # noqa: E402, F401
+import fuzz_specs_warmup  # noqa: E402, F401

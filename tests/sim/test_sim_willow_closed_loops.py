@@ -15,11 +15,10 @@ import numpy as np
 import pytest
 
 from navkit.control import FollowTheCarrot, OnOffTracker, RegulatedPurePursuit
-from navkit.geometry import Twist2D
 from navkit.kinematics import DiffDrive
 from navkit.mapping import OccupancyGrid
 from navkit.planning import MapPlanner
-from navkit.sim import Observation, Robot, Simulation, Trace, World
+from navkit.sim import Robot, Simulation, Trace, TrackerController, World
 
 WILLOW = Path("ros-map-server-maps") / "willow_garage_2010" / "willow-2010-02-18-0.10.yaml"
 
@@ -53,21 +52,6 @@ def world(willow: OccupancyGrid) -> World:
     return World(grid=willow)
 
 
-class Tracker:
-    """Simulation controller: a navkit tracker stepped on the true pose."""
-
-    def __init__(self, tracker: Any) -> None:
-        self.tracker = tracker
-
-    @property
-    def done(self) -> bool:
-        return bool(self.tracker.done)
-
-    def __call__(self, obs: Observation) -> Twist2D:
-        twist: Twist2D = self.tracker.step(obs.true_pose, 1.0 / CONTROL_RATE)
-        return twist
-
-
 def run(
     grid: OccupancyGrid, world: World, planner: PlannerName, tracker: Any
 ) -> tuple[Trace, float]:
@@ -79,7 +63,8 @@ def run(
     # No sensors: the trackers run on the true pose (the oracle of Observation).
     robot = Robot(drive=DIFF, footprint=BODY_RADIUS, max_wheel_speed=20.0,
                   max_wheel_acceleration=40.0, encoders=None)  # fmt: skip
-    sim = Simulation(world, robot, Tracker(tracker), start=(*start_xy, heading), goal=goal_xy,
+    follow = TrackerController(tracker, control_rate=CONTROL_RATE, use_estimate=False)
+    sim = Simulation(world, robot, follow, start=(*start_xy, heading), goal=goal_xy,
                      goal_radius=0.3, reference_path=route, rate=PHYSICS_RATE,
                      control_rate=CONTROL_RATE, duration=200.0, wall_timeout=60.0)  # fmt: skip
     return sim.run(), route.length

@@ -2,14 +2,11 @@
 
 from __future__ import annotations
 
-import contextlib
 import os
-import secrets
-import stat
-from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
+from navkit._shared.files import atomic_path as written_atomically
 from navkit.plot._figure import bounded_float, figure_of
 
 if TYPE_CHECKING:
@@ -40,32 +37,6 @@ def output_path(value: Any, name: str, suffix: str) -> Path:
     if not folder.is_dir():
         raise FileNotFoundError(f"{name}: the folder {str(folder)!r} does not exist")
     return path
-
-
-@contextlib.contextmanager
-def written_atomically(target: Path) -> Iterator[Path]:
-    """Yield a new temporary path beside ``target``; rename it over ``target`` on success.
-
-    The temporary file (hidden, same suffix, mode 0o666 less the umask or the
-    mode of an existing ``target``) is removed if anything fails.
-    """
-    for _ in range(100):
-        temporary = target.with_name(f".{target.stem}.{secrets.token_hex(4)}.tmp{target.suffix}")
-        try:
-            fd = os.open(temporary, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)
-        except FileExistsError:
-            continue
-        os.close(fd)
-        break
-    else:  # pragma: no cover - 100 random names taken
-        raise FileExistsError(f"cannot create a temporary file beside {target}")
-    try:
-        with contextlib.suppress(FileNotFoundError):
-            os.chmod(temporary, stat.S_IMODE(os.stat(target).st_mode))
-        yield temporary
-        os.replace(temporary, target)
-    finally:
-        temporary.unlink(missing_ok=True)
 
 
 def check_size(fig: Figure, dpi: float) -> None:
@@ -128,10 +99,6 @@ def save_figure(fig_or_ax: Figure | Axes, path: str | os.PathLike[str], *,
     resolution = bounded_float(dpi, "dpi", 10.0, 600.0)
     target = output_path(path, "path", ".png")
     check_size(fig, resolution)
-    _write(target, lambda tmp: fig.savefig(tmp, format="png", dpi=resolution))
-    return target
-
-
-def _write(target: Path, render: Callable[[Path], Any]) -> None:
     with written_atomically(target) as temporary:
-        render(temporary)
+        fig.savefig(temporary, format="png", dpi=resolution)
+    return target

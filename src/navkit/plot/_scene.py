@@ -8,11 +8,11 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import as_bool, as_points
+from navkit._shared.validation import as_bool
 from navkit.mapping import OccupancyGrid
 from navkit.plot._figure import as_coords, axes_for, finish_axes
 from navkit.plot._grid import draw_grid
-from navkit.plot._lines import draw_trace, path_points, trace_xy
+from navkit.plot._lines import draw_trace, trace_xy
 from navkit.sim import Scene, Trace, World
 
 if TYPE_CHECKING:
@@ -38,52 +38,27 @@ class CheckedScene:
     points: tuple[tuple[str, FloatArray], ...]
 
 
-def _labelled(value: Any, name: str) -> tuple[tuple[str, Any], ...]:
-    if not isinstance(value, (tuple, list)):
-        raise TypeError(f"{name} must be a tuple of (label, value) pairs, got "
-                        f"{type(value).__name__}")  # fmt: skip
-    out = []
-    for k, item in enumerate(value):
-        if not isinstance(item, (tuple, list)) or len(item) != 2:
-            raise TypeError(f"{name}[{k}] must be a (label, value) pair")
-        label, data = item
-        if not isinstance(label, str):
-            raise TypeError(f"{name}[{k}] label must be a str, got {type(label).__name__}")
-        out.append((label, data))
-    return tuple(out)
-
-
 def check_scene(scene: Any, name: str = "scene") -> CheckedScene:
-    """Check every part of a Scene (a plain dataclass that checks nothing itself)."""
+    """A Scene's contents as world arrays that can be drawn (within ±1e9 m).
+
+    A :class:`~navkit.sim.Scene` checks its parts when it is made; only the
+    drawing range (and the traces' poses) is checked here.
+    """
     if not isinstance(scene, Scene):
         raise TypeError(f"{name} must be a navkit.sim.Scene, got {type(scene).__name__}")
-    if not isinstance(scene.title, str):
-        raise TypeError(f"{name}.title must be a str, got {type(scene.title).__name__}")
-    if scene.grid is not None and not isinstance(scene.grid, OccupancyGrid):
-        raise TypeError(f"{name}.grid must be an OccupancyGrid or None, got "
-                        f"{type(scene.grid).__name__}")  # fmt: skip
-    if scene.world is not None and not isinstance(scene.world, World):
-        raise TypeError(f"{name}.world must be a World or None, got "
-                        f"{type(scene.world).__name__}")  # fmt: skip
     paths = tuple(
-        (label, path_points(path, scene.grid, f"{name}.paths[{k}]"))
-        for k, (label, path) in enumerate(_labelled(scene.paths, f"{name}.paths"))
+        (label, as_coords(path, f"{name}.paths[{k}]"))
+        for k, (label, path) in enumerate(scene.paths)
     )
     traces = tuple(
         (label, trace, *trace_xy(trace, f"{name}.traces[{k}]"))
-        for k, (label, trace) in enumerate(_labelled(scene.traces, f"{name}.traces"))
+        for k, (label, trace) in enumerate(scene.traces)
     )
     points = tuple(
-        (label, _points(pts, f"{name}.points[{k}]"))
-        for k, (label, pts) in enumerate(_labelled(scene.points, f"{name}.points"))
+        (label, as_coords(pts, f"{name}.points[{k}]"))
+        for k, (label, pts) in enumerate(scene.points)
     )
     return CheckedScene(scene.title, scene.grid, scene.world, paths, traces, points)
-
-
-def _points(value: Any, name: str) -> FloatArray:
-    if isinstance(value, (str, bytes)) or not isinstance(value, (np.ndarray, list, tuple)):
-        raise TypeError(f"{name} must be an (n, 2) array, got {type(value).__name__}")
-    return as_coords(as_points(value, name), name)
 
 
 def plot_scene(scene: Scene, *, ax: Axes | None = None, legend: bool = True) -> Axes:
@@ -134,7 +109,19 @@ def plot_scene(scene: Scene, *, ax: Axes | None = None, legend: bool = True) -> 
     show_legend = as_bool(legend, "legend")
     axes = axes_for(ax)
     draw_scene(axes, checked, traces=True)
-    if show_legend and axes.get_legend_handles_labels()[1]:
+    labels = axes.get_legend_handles_labels()[1] if show_legend else []
+    if len(labels) > 6:
+        # A long legend would hide the scene: put it beside the axes, and let the
+        # layout make room for it.
+        axes.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize="x-small")
+        from matplotlib.figure import Figure
+
+        figure = axes.get_figure()
+        if isinstance(figure, Figure) and ax is None:  # only a figure made here is resized
+            width, height = figure.get_size_inches()
+            figure.set_size_inches(width * 1.6, height)
+            figure.set_layout_engine("constrained")
+    elif labels:
         axes.legend(loc="best", fontsize="small")
     return axes
 

@@ -39,6 +39,7 @@ Examples
 (True, 0)
 """
 
+from navkit.sim._adapters import TrackerController
 from navkit.sim._estimators import Estimator
 from navkit.sim._lidar import Lidar
 from navkit.sim._noise import RangeNoise
@@ -65,9 +66,11 @@ from navkit.sim._sensors import (
 from navkit.sim._simulation import Controller, Observation, Simulation
 from navkit.sim._sweep import sweep
 from navkit.sim._trace import EndReason, Event, Metrics, Trace
+from navkit.sim._warmup import WARMUP_STEPS, WarmupReport, WarmupStep, warmup
 from navkit.sim._world import Circle, MovingObstacle, World
 
 __all__ = [
+    "WARMUP_STEPS",
     "Circle",
     "Compass",
     "CompassReading",
@@ -92,10 +95,14 @@ __all__ = [
     "Simulation",
     "Table",
     "Trace",
+    "TrackerController",
     "Trial",
     "TrialResult",
+    "WarmupReport",
+    "WarmupStep",
     "WheelEncoders",
     "World",
     "sweep",
     "trial_seed",
+    "warmup",
 ]

@@ -34,7 +34,12 @@ import numpy as np
 
 from navkit._shared.jit import njit_no_refcount
 
-__all__ = ["footprint_clearance"]
+__all__ = ["TOUCH", "footprint_clearance"]
+
+TOUCH = 1e-12
+"""Clearance (m) at or below which a footprint touches an obstacle: the distance
+kernels round, so a footprint edge through an obstacle's vertex may come out a
+few 1e-17 m apart instead of 0."""
 
 _INF = math.inf
 

@@ -35,6 +35,9 @@ __all__ = [
     "trial_seed",
 ]
 
+#: Most trials per case a run may ask for.
+_MAX_TRIALS = 100_000
+
 Cell = str | int | float | np.integer | np.floating | None
 """One table cell: text, a number (NaN shown as ``-``) or nothing."""
 
@@ -619,13 +622,9 @@ class Scenario(ABC):
         tuple of Trial
             Case by case, trial by trial.
         """
-        n = self.default_trials if trials is None else trials
-        if isinstance(n, bool) or not isinstance(n, (int, np.integer)):
-            raise TypeError(f"trials must be an integer, got {type(n).__name__}")
-        if not 1 <= n <= 100_000:
-            raise ValueError(f"trials must be in [1, 100000], got {n}")
+        n = self._check_trials(self.default_trials if trials is None else trials)
         out: list[Trial] = []
-        for ci, (case, count) in enumerate(self.cases(int(n))):
+        for ci, (case, count) in enumerate(self.cases(n)):
             out.extend(Trial(case, ci, k, trial_seed(seed, ci, k)) for k in range(count))
         return tuple(out)
 
@@ -664,3 +663,85 @@ class Scenario(ABC):
         return sweep(
             self, trials=trials, seeds=seed, workers=workers, executor=executor, progress=progress
         )
+
+    # Argument checks every scenario shares (protected: for subclasses).
+
+    @staticmethod
+    def _check_trials(trials: object) -> int:
+        """``trials`` per case (the argument of :meth:`cases`) as an int in [1, 100000].
+
+        Raises TypeError for a non-integer (bools included), ValueError out of range.
+        """
+        if isinstance(trials, (bool, np.bool_)) or not isinstance(trials, (int, np.integer)):
+            raise TypeError(f"trials must be an integer, got {type(trials).__name__}")
+        if not 1 <= trials <= _MAX_TRIALS:
+            raise ValueError(f"trials must be in [1, {_MAX_TRIALS}], got {_short_int(int(trials))}")
+        return int(trials)
+
+    def _case_count(self) -> int:
+        """How many cases the scenario has (``len(self.cases(1))``)."""
+        return len(self.cases(1))
+
+    def _case_of(self, trial: object) -> int:
+        """The case index of ``trial`` (the argument of :meth:`run_trial`), checked.
+
+        Raises TypeError when ``trial`` is not a :class:`Trial`, ValueError when
+        its ``case_index`` is not one of :meth:`cases`.
+        """
+        if not isinstance(trial, Trial):
+            raise TypeError(f"trial must be a Trial, got {type(trial).__name__}")
+        count = self._case_count()
+        if trial.case_index >= count:
+            raise ValueError(f"trial.case_index must be in [0, {count}), got {trial.case_index}")
+        return trial.case_index
+
+    def _results_by_case(
+        self,
+        results: object,
+        seed: object,
+        *,
+        keys: Callable[[int], Iterable[str]] | None = None,
+    ) -> tuple[tuple[TrialResult, ...], dict[int, list[TrialResult]], int]:
+        """The checked arguments of :meth:`summarize`, and the results by case index.
+
+        Parameters
+        ----------
+        results : iterable of TrialResult
+            Any ordered iterable (not a str, bytes, mapping or set) of
+            TrialResults whose ``trial.case_index`` is one of :meth:`cases`.
+        seed : int
+            The base seed, in [0, 2**64).
+        keys : callable, optional
+            ``keys(case_index)``: the value names every result of that case must
+            hold (ValueError naming the missing ones otherwise).
+
+        Returns
+        -------
+        tuple
+            ``(results as a tuple in the given order, {case_index: [results in
+            order]} (keys in order of first appearance), seed as an int)``.
+        """
+        if isinstance(results, (Mapping, str, bytes, set, frozenset)) or not isinstance(
+            results, Iterable
+        ):
+            raise TypeError(
+                f"results must be a sequence of TrialResult, got {type(results).__name__}"
+            )
+        out = tuple(results)
+        base = _int_in(seed, "seed", 2**64)
+        count = self._case_count()
+        by_case: dict[int, list[TrialResult]] = {}
+        for k, r in enumerate(out):
+            if not isinstance(r, TrialResult):
+                raise TypeError(f"results[{k}] must be a TrialResult, got {type(r).__name__}")
+            index = r.trial.case_index
+            if index >= count:
+                raise ValueError(
+                    f"results[{k}].trial.case_index must be in [0, {count}), got {index}"
+                )
+            if keys is not None:
+                missing = [key for key in keys(index) if key not in r.values]
+                if missing:
+                    raise ValueError(f"results[{k}].values lack {', '.join(missing)}")
+            by_case.setdefault(index, []).append(r)
+        return out, by_case, base

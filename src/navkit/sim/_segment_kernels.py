@@ -24,7 +24,7 @@ import math
 import numpy as np
 
 from navkit._shared.jit import njit_no_refcount
-from navkit.sim._clearance_kernels import footprint_clearance
+from navkit.sim._clearance_kernels import TOUCH, footprint_clearance
 from navkit.sim._moving_kernels import place_moving
 from navkit.sim._wheel_kernels import wheel_step
 
@@ -226,6 +226,8 @@ def run_segment(
             occ, gox, goy, gcos, gsin, res, dyn_segs, dyn_circles,
             stats[STAT_MIN_CLEARANCE],
         )  # fmt: skip
+        if clearance <= TOUCH:
+            clearance = 0.0  # touching: the few 1e-17 m left are rounding
         if clearance < stats[STAT_MIN_CLEARANCE]:
             stats[STAT_MIN_CLEARANCE] = clearance
         if clearance <= 0.0:

@@ -271,8 +271,8 @@ _STEPS: dict[str, tuple[Callable[[], None], float]] = {
     "geometry": (_geometry, 0.5),
 }
 
-#: The names of the warm-up steps (the ``only=`` choices of :func:`warmup`).
 WARMUP_STEPS: tuple[str, ...] = tuple(_STEPS)
+"""Names of the warm-up steps in starting order (``only=`` of :func:`warmup` takes a subset)."""
 
 
 @dataclass(frozen=True, slots=True)

@@ -18,7 +18,7 @@ from navkit._shared.types import FloatArray, IntArray
 from navkit._shared.validation import as_bool, as_float_array, finite_float, positive_float
 from navkit.geometry import Pose2D, as_pose
 from navkit.mapping import OccupancyGrid
-from navkit.sim._clearance_kernels import footprint_clearance
+from navkit.sim._clearance_kernels import TOUCH, footprint_clearance
 from navkit.sim._edge_grid_kernels import build_cell_lists, chebyshev_distance
 from navkit.sim._lidar_kernels import cast_rays
 from navkit.sim._moving_kernels import EXTEND, LOOP, STOP, place_moving
@@ -882,7 +882,8 @@ class World:
         Returns
         -------
         bool
-            True when the footprint touches an obstacle's boundary or lies
+            True when the footprint touches an obstacle's boundary (comes
+            within 1e-12 m of it, the distance computation's rounding) or lies
             inside a solid obstacle.
 
         Examples
@@ -898,7 +899,7 @@ class World:
         work = np.empty_like(verts)
         scratch = np.empty_like(verts)
         # A small positive limit: the search stops at once unless something touches.
-        if self._clearance(p.x, p.y, p.theta, radius, verts, work, scratch, time, 1e-9) <= 0.0:
+        if self._clearance(p.x, p.y, p.theta, radius, verts, work, scratch, time, 1e-9) <= TOUCH:
             return True
         return self._point_in_solid(p, radius, verts, time)
 

@@ -1,5 +1,6 @@
-"""The indoor-nav scenario (issue 14): fusion beats wheel odometry on every axis, Field D*
-has headings off the 45° grid and shorter paths than A*, ON-OFF tracking is reported."""
+"""The indoor-nav scenario (issue 14): the map built from simulated scans (Hector-style scan
+matching) matches the floor plan; fusion beats wheel odometry on every axis, Field D* has
+headings off the 45° grid and shorter paths than A*, ON-OFF tracking is reported."""
 
 from __future__ import annotations
 
@@ -14,11 +15,14 @@ from hypothesis import strategies as st
 from shapely.geometry import LineString, Point, box
 from shapely.ops import unary_union
 
+from navkit.mapping import OccupancyGrid
 from navkit.sim import Scenario, ScenarioResult, Scene, Trial, TrialResult
 from navkit.sim.scenarios import IndoorNav, get_scenario
 from navkit.sim.scenarios._indoor_nav_lab import (
     BODY_RADIUS,
+    MAP_TOUR,
     PLAN_ROUTES,
+    ROOM_SPANS,
     SIDE_ROOM,
     TARGETS,
     TOUR_START,
@@ -26,6 +30,15 @@ from navkit.sim.scenarios._indoor_nav_lab import (
     heading_share,
     lab_grid,
     lab_obstacles,
+)
+from navkit.sim.scenarios._indoor_nav_mapping import (
+    MAP_SEED,
+    lab_map,
+    map_agreement,
+    mapping_tour,
+    mapping_values,
+    room_spans,
+    run_mapping,
     tour_legs,
 )
 
@@ -43,14 +56,20 @@ def deterministic(values: Mapping[str, float]) -> dict[str, float]:
 
 @pytest.fixture(scope="module")
 def full() -> ScenarioResult:
-    # The paper's size, one run each (about 4 s): the 10-target tour, 8 planning
-    # routes, 4 tracking paths.
+    # The paper's size, one run each (about 12 s warm): the map built from the scans
+    # of the 0.2 m/s mapping tour (and a 0.5 m/s one beside it), the 10-target tour,
+    # 8 planning routes, 4 tracking paths.
     return run(IndoorNav())
 
 
 @pytest.fixture(scope="module")
 def small() -> IndoorNav:
-    return IndoorNav(targets=2, paths=1, resolution=0.1)
+    # A map built from scans at 0.1 m cells (once per process), no comparison tour.
+    return IndoorNav(targets=2, paths=1, resolution=0.1, compare_speed=None)
+
+
+def by_case(result: ScenarioResult, prefix: str) -> list[TrialResult]:
+    return [r for r in result.trials if r.trial.case.startswith(prefix)]
 
 
 def test_registered_under_its_name() -> None:
@@ -76,14 +95,83 @@ def test_floor_plan_is_the_papers_lab() -> None:
     points += [p for route in PLAN_ROUTES for p in route]
     for p in points:
         assert Point(p).distance(obstacles) > BODY_RADIUS + 0.2, p
-    # The tour's legs are collision-free for the body.
-    for leg in tour_legs(0.05, True, len(TARGETS)):
+    # The tour's legs (planned on the plan) and the mapping tour are collision-free for
+    # the body; the mapping tour passes every waypoint, the side room's inside included.
+    for leg in tour_legs(0.05, True, len(TARGETS), "plan"):
         assert LineString(leg.points).distance(obstacles) > BODY_RADIUS
+    tour = mapping_tour(0.05, True)
+    assert LineString(tour.points).distance(obstacles) > BODY_RADIUS
+    for p in MAP_TOUR:
+        assert np.hypot(*(tour.points - p).T).min() < 1e-9, p
+    assert any(x0 < x < x1 and y0 < y < y1 for x, y in MAP_TOUR)
+
+
+def test_room_spans_and_agreement_on_the_floor_plan() -> None:
+    # On the rasterised plan every span is within a cell of the truth (a cell touching a
+    # wall is occupied: the faces move in by up to half a cell each).
+    for res in (0.05, 0.1):
+        spans = room_spans(lab_grid(res, True))
+        for name, (true, *_) in ROOM_SPANS.items():
+            assert true - res - 1e-9 <= spans[name] <= true + 1e-9, (res, name)
+    plan = lab_grid(0.1, True)
+    assert map_agreement(plan, plan) == (1.0, 1.0)
+    unknown = OccupancyGrid.empty(width=3.0, height=3.0, resolution=0.1)
+    agreement, coverage = map_agreement(unknown, plan)
+    assert math.isnan(agreement) and coverage == 0.0
+    assert all(math.isnan(v) for v in room_spans(unknown).values())
+
+
+def test_map_built_from_scans_matches_the_floor_plan(full: ScenarioResult) -> None:
+    (built,) = by_case(full, "mapping: ScanMapper on the mapping tour at 0.2")
+    (fast,) = by_case(full, "mapping: ScanMapper on the mapping tour at 0.5")
+    assert full.trials[-2:] == (built, fast)  # last: the other cases keep their seeds
+    for r in (built, fast):
+        v = r.values
+        assert v["collisions"] == 0.0 and v["scans"] > 1000 and v["unmatched"] <= 2
+        # Room dimensions as the paper measures them: at least as good as its 0.174 m.
+        assert v["room_error"] < 0.174
+        for name, (true, *_) in ROOM_SPANS.items():
+            assert abs(v[name.replace(" ", "_")] - true) < 0.3, name
+        assert v["agreement"] > 0.9 and v["coverage"] > 0.9
+        # Scan matching keeps the trajectory far better than its wheel-odometry guess.
+        assert v["trajectory_mean"] < 0.25 and v["trajectory_max"] < 0.35
+        assert v["trajectory_mean"] < v["odometry_mean"]
+        assert v["trajectory_heading"] < 0.5 * v["odometry_heading"]
+        assert 0.0 < v["match_wall_time"] < 0.05
+    assert built.values["speed"] == 0.2 and fast.values["speed"] == 0.5
+    assert built.values["scans"] > 2 * fast.values["scans"]
+    s = full.summary
+    assert s["map_room_error"] == built.values["room_error"]
+    assert s["compare_agreement"] == fast.values["agreement"]
+    # Every experiment plans on this map; the world stays the floor plan.
+    assert full.scene.grid is not None and full.scene.grid.shape != lab_grid(0.05, True).shape
+    assert np.array_equal(full.scene.grid.logodds, lab_map(0.05, True, "scans").logodds)
+
+
+def test_mapping_is_deterministic(full: ScenarioResult) -> None:
+    # The 0.5 m/s tour again, from scratch: the same map, trajectory and figures.
+    run_again = run_mapping(MAP_SEED, resolution=0.05, furniture=True, speed=0.5)
+    (fast,) = by_case(full, "mapping: ScanMapper on the mapping tour at 0.5")
+    again = mapping_values(run_again, resolution=0.05, furniture=True)
+    assert deterministic(again) == deterministic(fast.values)
+    assert fast.trace is not None and np.array_equal(run_again.trace.poses, fast.trace.poses)
+    n = len(run_again.trace.scans)
+    assert run_again.trajectory.shape == run_again.truth.shape == run_again.odometry.shape == (n, 3)
+
+
+def test_map_source_plan_plans_on_the_floor_plan() -> None:
+    scenario = IndoorNav(targets=1, paths=1, resolution=0.1, map_source="plan")
+    assert not any(case.startswith("mapping") for case, _ in scenario.cases(1))
+    trials = [t for t in scenario.trials(1) if t.case_index == 1]
+    result = scenario.summarize([scenario.run_trial(t) for t in trials], seed=0)
+    assert len(result.tables) == 3 and "rasterised" in result.table()
+    assert result.scene.grid is not None
+    assert np.array_equal(result.scene.grid.logodds, lab_grid(0.1, True).logodds)
 
 
 def test_fusion_beats_wheel_odometry_on_every_axis(full: ScenarioResult) -> None:
     s = full.summary
-    (loc,) = [r for r in full.trials if r.trial.case_index == 0]
+    (loc,) = by_case(full, "localisation")
     assert loc.values["targets_reached"] == len(TARGETS) and loc.values["collisions"] == 0.0
     for axis in ("x", "y", "heading"):
         assert s[f"fused_{axis}"] < s[f"wheel_{axis}"], axis
@@ -95,7 +183,7 @@ def test_fusion_beats_wheel_odometry_on_every_axis(full: ScenarioResult) -> None
 
 
 def test_field_dstar_has_free_headings_and_shorter_paths(full: ScenarioResult) -> None:
-    planning = [r for r in full.trials if r.trial.case_index == 1]
+    planning = by_case(full, "planning")
     assert len(planning) == len(PLAN_ROUTES)
     for r in planning:
         v = r.values
@@ -110,7 +198,7 @@ def test_field_dstar_has_free_headings_and_shorter_paths(full: ScenarioResult) -
 
 
 def test_tracking_results_are_reported(full: ScenarioResult) -> None:
-    tracking = [r for r in full.trials if r.trial.case_index >= 2]
+    tracking = by_case(full, "ON-OFF tracking")
     assert len(tracking) == len(TRACK_PATHS)
     for r in tracking:
         v = r.values
@@ -130,8 +218,9 @@ def test_tables_put_the_papers_figures_beside(full: ScenarioResult) -> None:
     text = full.table()
     for figure in ("0.053", "0.043", "3.83", "0.05", "0.028", "1.51", "0.046", "0.072", "5.16"):
         assert figure in text, figure
-    assert "3 of 4" in text and "scan matching" in text
-    assert len(full.tables) == 3
+    assert "3 of 4" in text and "scan matching" in text and "0.174" in text
+    assert "not done yet" not in text and "pending" not in text
+    assert len(full.tables) == 4 and full.tables[0].title.startswith("(a) Mapping")
     data = full.to_dict()
     assert json.loads(json.dumps(data)) == data
     assert data["scenario"] == "indoor-nav" and len(data["trials"]) == len(full.trials)
@@ -141,7 +230,8 @@ def test_scene_shows_the_lab(full: ScenarioResult) -> None:
     scene = full.scene
     assert isinstance(scene, Scene)
     assert scene.grid is not None and scene.world is not None
-    assert len(scene.paths) >= 3 and len(scene.traces) == 1 + len(TRACK_PATHS)
+    assert len(scene.paths) >= 3 and len(scene.traces) == 2 + len(TRACK_PATHS)
+    assert scene.traces[0][0].startswith("mapping tour") and "built from simulated" in scene.title
     names = [name for name, _ in scene.points]
     assert "targets" in names
     for _, pts in scene.paths:
@@ -165,8 +255,9 @@ def test_sweep_gives_the_same_numbers(small: IndoorNav) -> None:
 
 def test_cases_follow_the_options() -> None:
     cases = IndoorNav(targets=4, paths=2).cases(3)
-    assert [n for _, n in cases] == [3, len(PLAN_ROUTES), 3, 3]
-    assert "4 targets" in cases[0][0]
+    assert [n for _, n in cases] == [3, len(PLAN_ROUTES), 3, 3, 1, 1]
+    assert "4 targets" in cases[0][0] and "0.5 m/s" in cases[-1][0]
+    assert len(IndoorNav(compare_speed=None).cases(2)) == 2 + len(TRACK_PATHS) + 1
 
 
 @pytest.mark.parametrize(
@@ -179,6 +270,11 @@ def test_cases_follow_the_options() -> None:
         ({"resolution": 0.5}, ValueError),
         ({"resolution": math.nan}, ValueError),
         ({"furniture": 1}, TypeError),
+        ({"map_source": "hector"}, ValueError),
+        ({"map_source": 1}, TypeError),
+        ({"compare_speed": 2.0}, ValueError),
+        ({"compare_speed": math.nan}, ValueError),
+        ({"compare_speed": "fast"}, TypeError),
     ],
 )
 def test_bad_options_are_refused(options: dict[str, object], error: type[Exception]) -> None:
@@ -190,11 +286,15 @@ def test_bad_trials_and_results_are_refused(small: IndoorNav) -> None:
     with pytest.raises(TypeError, match="trial"):
         small.run_trial("planning")  # type: ignore[arg-type]
     with pytest.raises(ValueError, match="case_index"):
-        small.run_trial(Trial("x", 3, 0, 1))  # paths=1: cases 0, 1, 2
+        small.run_trial(Trial("x", 4, 0, 1))  # paths=1: cases 0 to 3 (3: mapping)
     with pytest.raises(ValueError, match="index"):
         small.run_trial(Trial("planning", 1, len(PLAN_ROUTES), 1))
     with pytest.raises(ValueError, match="seed"):
         small.run_trial(Trial("planning", 1, 0, -1))
+    with pytest.raises(ValueError, match="index"):
+        values = dict.fromkeys(("astar_length", "fdstar_length", "astar_off45", "fdstar_off45",
+                                "astar_wall_time", "fdstar_wall_time"), 1.0)  # fmt: skip
+        small.summarize([TrialResult(Trial("planning", 1, len(PLAN_ROUTES), 1), values)], seed=0)
     with pytest.raises(ValueError, match="values"):
         small.summarize([TrialResult(Trial("x", 0, 0, 1), {"wheel_x": 0.1})], seed=0)
     with pytest.raises(TypeError, match="results"):

@@ -15,8 +15,6 @@ from __future__ import annotations
 import contextlib
 import math
 import os
-import secrets
-import stat
 import struct
 import warnings
 import zlib
@@ -29,6 +27,7 @@ import numpy as np
 import yaml
 from numpy.typing import NDArray
 
+from navkit._shared.files import atomic_paths
 from navkit.geometry import Pose2D
 from navkit.mapping import OccupancyGrid
 from navkit.mapping.io._paths import as_path
@@ -559,6 +558,12 @@ def read_map(path: str | os.PathLike[str]) -> OccupancyGrid:
     path : str or path-like
         The map's YAML file; a relative ``image`` is found beside it.
 
+    Returns
+    -------
+    OccupancyGrid
+        The map: log-odds of the pixels' occupancy probabilities (unknown
+        pixels 0), the YAML's resolution, origin and thresholds.
+
     Raises
     ------
     FileNotFoundError
@@ -626,57 +631,15 @@ def _map_pixels(grid: OccupancyGrid, mode: str) -> NDArray[np.uint8]:
     return pixels
 
 
-def _write_temporary(target: Path, data: bytes) -> Path:
-    """Write ``data`` to a new hidden file beside ``target`` and flush it to disk.
-
-    The file is created exclusively with mode 0o666 less the umask (what a
-    plain write would give a new file), or with ``target``'s mode when it exists.
-    """
-    for _ in range(100):
-        temporary = target.with_name(f".{target.name}.{secrets.token_hex(4)}.tmp")
-        try:
-            fd = os.open(
-                temporary, os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_BINARY", 0), 0o666
-            )
-        except FileExistsError:
-            continue
-        break
-    else:  # pragma: no cover - 100 random names taken
-        raise FileExistsError(f"cannot create a temporary file beside {target}")
-    try:
-        with os.fdopen(fd, "wb") as fh:
-            fh.write(data)
-            fh.flush()
-            os.fsync(fh.fileno())
-        with contextlib.suppress(FileNotFoundError):
-            os.chmod(temporary, stat.S_IMODE(os.stat(target).st_mode))
-    except BaseException:
-        temporary.unlink(missing_ok=True)
-        raise
-    return temporary
-
-
 def _replace_all(files: list[tuple[Path, bytes]]) -> None:
     """Write every ``(target, data)`` to a temporary file first, then rename them all.
 
     A failure while writing (disk full, permissions, an interrupt) leaves every
     target as it was and removes the temporary files.
     """
-    temporaries: list[tuple[Path, Path]] = []
-    try:
-        for target, data in files:
-            temporaries.append((_write_temporary(target, data), target))
-        for temporary, target in temporaries:
-            os.replace(temporary, target)
-    finally:
-        for temporary, _ in temporaries:
-            temporary.unlink(missing_ok=True)
-    with contextlib.suppress(OSError):  # make the renames durable where possible (POSIX)
-        fd = os.open(files[0][0].parent, os.O_RDONLY)
-        try:
-            os.fsync(fd)
-        finally:
-            os.close(fd)
+    with atomic_paths([target for target, _ in files]) as temporaries:
+        for temporary, (_, data) in zip(temporaries, files, strict=True):
+            temporary.write_bytes(data)
 
 
 def _image_path(yaml_path: Path) -> Path:

@@ -50,7 +50,7 @@ from typing import Any
 
 import numpy as np
 
-from navkit._shared.jit import njit_cached, njit_inline
+from navkit._shared.jit import njit_inline, njit_no_refcount
 from navkit.planning.grid._dstar_heap import heap_pop, heap_push, heap_remove
 
 SQRT2 = math.sqrt(2.0)
@@ -232,7 +232,7 @@ def _pair_value(
     return corner_cost(g1, g[(i + PAIR_DR[k]) * ncols + j + PAIR_DC[k]], c, b, interp)
 
 
-@njit_cached
+@njit_no_refcount
 def node_rhs(
     pad: np.ndarray, width: int, g: np.ndarray, ncols: int, i: int, j: int, interp: bool
 ) -> float:
@@ -248,28 +248,28 @@ def node_rhs(
 @njit_inline
 def _update_vertex(
     s: int,
+    i: int,
+    j: int,
     g: np.ndarray,
     rhs: np.ndarray,
     nodes: np.ndarray,
     keys: np.ndarray,
     pos: np.ndarray,
     size: np.ndarray,
-    ncols: int,
     sr: int,
     sc: int,
     km: float,
     hscale: float,
 ) -> None:
+    # Node s is (i, j): passed in, as an integer division per call is costly.
     if g[s] != rhs[s]:
         m = min(g[s], rhs[s])
-        i = s // ncols
-        heap_push(nodes, keys, pos, size, s,
-                  m + heuristic(sr, sc, i, s - i * ncols, hscale) + km, m)
+        heap_push(nodes, keys, pos, size, s, m + heuristic(sr, sc, i, j, hscale) + km, m)
     elif pos[s] >= 0:
         heap_remove(nodes, keys, pos, size, s)
 
 
-@njit_cached
+@njit_no_refcount
 def settle(
     st: tuple[np.ndarray, ...],
     prm: tuple[Any, ...],
@@ -338,7 +338,7 @@ def settle(
                     v = v2
                 if v < rhs[s]:
                     rhs[s] = v
-                    _update_vertex(s, g, rhs, nodes, keys, pos, size, ncols, sr, sc, km, hscale)
+                    _update_vertex(s, si, sj, g, rhs, nodes, keys, pos, size, sr, sc, km, hscale)
         else:
             spent += RAISE_WORK
             g_old = g[u]
@@ -356,15 +356,15 @@ def settle(
                 if s == goal or rhs[s] < g_old + gain - 1e-9 * (1.0 + g_old):
                     continue
                 rhs[s] = node_rhs(pad, width, g, ncols, si, sj, interp)
-                _update_vertex(s, g, rhs, nodes, keys, pos, size, ncols, sr, sc, km, hscale)
+                _update_vertex(s, si, sj, g, rhs, nodes, keys, pos, size, sr, sc, km, hscale)
             # rhs(u) depends on its neighbours only: unchanged, but u now
             # needs requeueing (or leaves the queue if g = rhs = inf).
-            _update_vertex(u, g, rhs, nodes, keys, pos, size, ncols, sr, sc, km, hscale)
+            _update_vertex(u, ui, uj, g, rhs, nodes, keys, pos, size, sr, sc, km, hscale)
     work[0] = spent
     return expanded
 
 
-@njit_cached
+@njit_no_refcount
 def update_cells(
     st: tuple[np.ndarray, ...],
     prm: tuple[Any, ...],
@@ -390,5 +390,5 @@ def update_cells(
                 if s == goal:
                     continue
                 rhs[s] = node_rhs(pad, width, g, ncols, i, j, interp)
-                _update_vertex(s, g, rhs, nodes, keys, pos, size, ncols, sr, sc, km, hscale)
+                _update_vertex(s, i, j, g, rhs, nodes, keys, pos, size, sr, sc, km, hscale)
 

@@ -9,8 +9,8 @@ beside the paper's.
 ========================  ==========================================================
 ``OmniApf`` (omni-apf)    3-wheel omni robot, compass-fused odometry, piecewise
                           potential field on LiDAR beams
-``IndoorNav``             EKF wheel odometry + IMU, Field D* against A*, ON-OFF
-(indoor-nav)              tracking in a 14.4 × 12 m lab
+``IndoorNav``             map from simulated scans, EKF wheel odometry + IMU, Field D*
+(indoor-nav)              against A*, ON-OFF tracking in a 14.4 × 12 m lab
 ``Soccer`` (soccer)       blended-sigmoid attraction, Khatib repulsion, attack /
                           support / defence against moving opponents
 ``DiffAStar``             differential delivery robot: A* + follow-the-carrot in a

@@ -4,9 +4,8 @@ from __future__ import annotations
 
 import itertools
 import math
-import numbers
 import os
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Sequence
 from typing import Literal
 
 import numpy as np
@@ -32,17 +31,6 @@ MapChoice = Literal["auto", "willow", "office"]
 _MAPS = ("auto", "willow", "office")
 #: Shortest and longest simulated time per leg the option accepts, s.
 _MIN_DURATION, _MAX_DURATION = 0.1, 3600.0
-#: Most trials per leg.
-_MAX_TRIALS = 100_000
-
-
-def _integer(value: object, name: str, low: int, high: int) -> int:
-    """An integer option in ``[low, high]`` (bools refused)."""
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Integral):
-        raise TypeError(f"{name} must be an integer, got {type(value).__name__}")
-    if not low <= int(value) <= high:
-        raise ValueError(f"{name} must be in [{low}, {high}], got {int(value)}")
-    return int(value)
 
 
 class Demo(Scenario):
@@ -159,7 +147,7 @@ class Demo(Scenario):
         >>> Demo(map="office").cases(2)[0]
         ('leg 1: (2.05, 3.05) -> (19.05, 11.55) m', 2)
         """
-        trials = _integer(trials, "trials", 1, _MAX_TRIALS)
+        trials = self._check_trials(trials)
         tour = OFFICE_TOUR if self.map_path is None else WILLOW_TOUR
         return tuple(
             (f"leg {i + 1}: ({a[0]:g}, {a[1]:g}) -> ({b[0]:g}, {b[1]:g}) m", trials)
@@ -186,12 +174,8 @@ class Demo(Scenario):
         >>> r.values["plan_length"] > 20.0, r.values["collisions"]
         (True, 0.0)
         """
-        if not isinstance(trial, Trial):
-            raise TypeError(f"trial must be a Trial, got {type(trial).__name__}")
-        scene = setup(self.map_path)
-        if not 0 <= trial.case_index < len(scene.tour) - 1:
-            raise ValueError(f"trial: case_index {trial.case_index} is not a leg of the tour")
-        leg = run_leg(scene, trial.case_index, seed=trial.seed, duration=self.duration)
+        case = self._case_of(trial)
+        leg = run_leg(setup(self.map_path), case, seed=trial.seed, duration=self.duration)
         m, trace = leg.trace.metrics, leg.trace
         error = np.hypot(*(trace.estimates[:, :2] - trace.poses[:, :2]).T)
         seen = error[np.isfinite(error)]
@@ -238,26 +222,15 @@ class Demo(Scenario):
         >>> print(result.table().splitlines()[0])
         navkit demo: plan, track and estimate on the synthetic office (24 x 14 m, built in code)
         """
-        seed = _integer(seed, "seed", 0, 2**63 - 1)
-        if isinstance(results, (str, bytes, Mapping)) or not isinstance(results, Iterable):
-            raise TypeError(f"results must be a sequence of TrialResult, got {results!r:.40}")
-        results = list(results)
-        for r in results:
-            if not isinstance(r, TrialResult):
-                raise TypeError(f"results must hold TrialResults, got a {type(r).__name__}")
-            if not 0 <= r.trial.case_index < len(setup(self.map_path).tour) - 1:
-                raise ValueError(f"results: case_index {r.trial.case_index} is not a leg")
+        results, legs, seed = self._results_by_case(results, seed)
         if not results:
             raise ValueError("results: the demo needs at least one trial")
         scene = setup(self.map_path)
-        legs: dict[int, list[TrialResult]] = {}
-        for r in results:
-            legs.setdefault(r.trial.case_index, []).append(r)
 
-        def mean(rs: list[TrialResult], key: str) -> float:
+        def mean(rs: Sequence[TrialResult], key: str) -> float:
             return float(np.mean([r.values[key] for r in rs]))
 
-        def worst(rs: list[TrialResult], key: str) -> float:
+        def worst(rs: Sequence[TrialResult], key: str) -> float:
             return float(np.max([r.values[key] for r in rs]))
 
         rows: list[tuple[str | float | None, ...]] = []
@@ -326,7 +299,7 @@ class Demo(Scenario):
         )
 
 
-def _picture(scene: Setup, results: list[TrialResult]) -> Scene:
+def _picture(scene: Setup, results: Sequence[TrialResult]) -> Scene:
     """The map, each leg's plan and its first trial's run, the waypoints."""
     paths, traces, seen = [], [], set()
     for r in results:

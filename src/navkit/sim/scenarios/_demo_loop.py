@@ -17,7 +17,17 @@ from navkit.geometry import Twist2D
 from navkit.kinematics import DiffDrive
 from navkit.mapping import LaserScan, OccupancyGrid
 from navkit.planning import MapPlanner, Path2D
-from navkit.sim import Imu, Lidar, Observation, Robot, Simulation, Trace, WheelEncoders, World
+from navkit.sim import (
+    Imu,
+    Lidar,
+    Observation,
+    Robot,
+    Simulation,
+    Trace,
+    TrackerController,
+    WheelEncoders,
+    World,
+)
 from navkit.sim.scenarios._demo_maps import OFFICE_TOUR, WILLOW_TOUR, office_grid
 
 __all__ = ["BODY_RADIUS", "PLAN_RADIUS", "Clearance", "Leg", "Setup", "run_leg", "setup"]
@@ -140,19 +150,17 @@ class Driver:
     speed is scaled down (to zero at ``STOP_GAP``).
     """
 
-    __slots__ = ("_tracker",)
+    __slots__ = ("_follow",)
 
     def __init__(self, tracker: RegulatedPurePursuit) -> None:
-        self._tracker = tracker
+        self._follow = TrackerController(tracker, control_rate=CONTROL_RATE)
 
     @property
     def done(self) -> bool:
-        return bool(self._tracker.done)
+        return self._follow.done
 
     def __call__(self, obs: Observation) -> Twist2D:
-        if obs.estimate is None:
-            return Twist2D(0.0, 0.0, 0.0)
-        twist = self._tracker.step(obs.estimate, 1.0 / CONTROL_RATE)
+        twist = self._follow(obs)
         if obs.scan is not None and twist.vx > 0.0:
             gap = gap_ahead(obs.scan.scan, BODY_RADIUS + 0.05)
             scale = min(max((gap - STOP_GAP) / (SLOW_GAP - STOP_GAP), 0.0), 1.0)

@@ -28,6 +28,7 @@ from navkit.sim import (
     Simulation,
     Table,
     Trace,
+    TrackerController,
     Trial,
     TrialResult,
     WheelEncoders,
@@ -61,8 +62,6 @@ JITTER = math.radians(0.1)
 DROPOUT = 0.02
 #: A leg is reached when the true position ends this close to its waypoint, m.
 GOAL_RADIUS = 0.1
-#: Most trials per case (as :meth:`Scenario.trials`).
-MAX_TRIALS = 100_000
 #: Shortest and longest simulated time a trial may be given, s.
 MIN_DURATION = 0.1
 MAX_DURATION = 3600.0
@@ -90,6 +89,7 @@ class _Mission:
 
     def __init__(self, tracker: FollowTheCarrot, routes: Sequence[Path2D]) -> None:
         self.tracker = tracker
+        self.follow = TrackerController(tracker, control_rate=CONTROL_RATE)
         self.routes = tuple(routes)
         self.leg = 0
         #: Simulated time at which each leg's tracker reported arrival, s.
@@ -106,8 +106,7 @@ class _Mission:
             if self.done:
                 return Twist2D(0.0, 0.0, 0.0)
             self.tracker.set_path(self.routes[self.leg])
-        pose = obs.estimate if obs.estimate is not None else obs.true_pose
-        twist = self.tracker.step(pose, 1.0 / CONTROL_RATE)
+        twist = self.follow(obs)
         if self.tracker.done:
             self.ends.append(obs.t)
         return twist
@@ -349,11 +348,7 @@ class DiffAStar(Scenario):
         tuple of (str, int)
             ``(description, trials)`` per part.
         """
-        if isinstance(trials, (bool, np.bool_)) or not isinstance(trials, (int, np.integer)):
-            raise TypeError(f"trials must be an integer, got {type(trials).__name__}")
-        if not 1 <= trials <= MAX_TRIALS:
-            raise ValueError(f"trials must be in [1, {MAX_TRIALS}], got {trials}")
-        count = int(trials) if self.noise else 1
+        count = self._check_trials(trials) if self.noise else 1
         return tuple((self._label(part), count) for part in self.parts)
 
     def run_trial(self, trial: Trial) -> TrialResult:
@@ -376,14 +371,8 @@ class DiffAStar(Scenario):
         DataNotFoundError
             ``building="willow"`` without the Willow Garage map.
         """
-        if not isinstance(trial, Trial):
-            raise TypeError(f"trial must be a Trial, got {type(trial).__name__}")
-        if not 0 <= trial.case_index < len(self.parts):
-            raise ValueError(
-                f"trial: case_index must lie in [0, {len(self.parts)}), got {trial.case_index}"
-            )
         t_wall = time.perf_counter()
-        part = self.parts[trial.case_index]
+        part = self.parts[self._case_of(trial)]
         place = site(self._site_name(part), self.data_dir)
         robot_rng, sim_rng = (
             np.random.default_rng(s) for s in np.random.SeedSequence(trial.seed).spawn(2)
@@ -448,21 +437,7 @@ class DiffAStar(Scenario):
             Two tables (navkit beside the paper; reach, collisions and
             localisation), the summary and a scene.
         """
-        given: object = results
-        if isinstance(given, (str, bytes)) or not isinstance(given, Sequence):
-            raise TypeError(
-                f"results must be a sequence of TrialResult, got {type(given).__name__}"
-            )
-        for r in given:
-            if not isinstance(r, TrialResult):
-                raise TypeError(f"results must hold TrialResults, got a {type(r).__name__}")
-        if isinstance(seed, (bool, np.bool_)) or not isinstance(seed, (int, np.integer)):
-            raise TypeError(f"seed must be an integer, got {type(seed).__name__}")
-        if not 0 <= seed < 1 << 64:
-            raise ValueError(f"seed must lie in [0, 2**64), got {seed}")
-        by_case: dict[int, list[TrialResult]] = {}
-        for r in results:
-            by_case.setdefault(r.trial.case_index, []).append(r)
+        results, by_case, seed = self._results_by_case(results, seed)
         rows: list[tuple[Any, ...]] = []
         robust: list[tuple[Any, ...]] = []
         summary: dict[str, float] = {}

@@ -33,7 +33,6 @@ from navkit.sim.scenarios._greedy_setup import (
     tb3_map,
     tb3_world,
 )
-from navkit.sim.scenarios._omni_apf_checks import check_trials, group_results
 
 __all__ = ["MAP", "PAIRS", "Greedy"]
 
@@ -162,13 +161,6 @@ class Greedy(Scenario):
     def _map_path(self) -> str:
         return str(find_data(MAP, data_dir=self.data_dir))
 
-    def _pair(self, index: int) -> tuple[tuple[float, float], tuple[float, float]]:
-        if isinstance(index, bool) or not isinstance(index, (int, np.integer)):
-            raise TypeError(f"trial.case_index must be an integer, got {type(index).__name__}")
-        if not 0 <= index < len(self.pairs):
-            raise ValueError(f"trial.case_index must be in [0, {len(self.pairs)}), got {index}")
-        return self.pairs[index]
-
     def cases(self, trials: int) -> tuple[tuple[str, int], ...]:
         """One case per start/goal pair.
 
@@ -187,7 +179,7 @@ class Greedy(Scenario):
         >>> Greedy(pairs=[((0.0, 0.0), (1.0, 0.0))]).cases(3)
         (('(0, 0) -> (1, 0) m', 3),)
         """
-        trials = check_trials(trials)
+        trials = self._check_trials(trials)
         count = int(trials) if self.noise else 1
         return tuple(
             (f"({s[0]:g}, {s[1]:g}) -> ({g[0]:g}, {g[1]:g}) m", count) for s, g in self.pairs
@@ -228,9 +220,7 @@ class Greedy(Scenario):
         ...     print("no map")
         no map
         """
-        if not isinstance(trial, Trial):
-            raise TypeError(f"trial must be a Trial, got {type(trial).__name__}")
-        start, goal = self._pair(trial.case_index)
+        start, goal = self.pairs[self._case_of(trial)]
         path = self._map_path()
         began = time.perf_counter()
         heading = math.atan2(goal[1] - start[1], goal[0] - start[0])
@@ -293,7 +283,7 @@ class Greedy(Scenario):
         >>> Greedy().summarize([], seed=0).summary["trials"]
         0.0
         """
-        results, by_case, seed = group_results(results, seed, self._pair)
+        results, by_case, seed = self._results_by_case(results, seed)
         return ScenarioResult(
             scenario=self.name,
             seed=seed,
@@ -350,9 +340,9 @@ class Greedy(Scenario):
             first = by_case[index][0]
             if first.trace is not None:
                 traces.append((f"greedy {first.trial.case}", first.trace))
-            start, goal = self._pair(index)
+            start, goal = self.pairs[index]
             routes.append((f"A* {first.trial.case}", astar_route(path, start, goal).points))
-        pairs = [self._pair(i) for i in sorted(by_case)]
+        pairs = [self.pairs[i] for i in sorted(by_case)]
         return Scene(
             "greedy: TurtleBot3 Burger on the TurtleBot3 world map",
             grid=tb3_map(path),

@@ -4,12 +4,12 @@ The lab is a 14.4 × 12 m room (walls 0.1 m thick, inside the outline) with a
 4.8 × 4.4 m side room partitioned off in its north-east corner, entered through
 a 1.0 m door in the side room's south wall. Furniture (optional): two lab
 benches, a central table, shelves along the walls, a desk, and a table and
-cabinet in the side room. Everything is built once per process and cached.
+cabinet in the side room. The floor plan's grid and world are built once per
+process and cached; the maps the robot plans on are in :mod:`._indoor_nav_mapping`.
 """
 
 from __future__ import annotations
 
-import itertools
 import math
 from functools import lru_cache
 
@@ -17,26 +17,30 @@ import numpy as np
 from shapely.geometry import Polygon, box
 
 from navkit.mapping import OccupancyGrid
-from navkit.planning import MapPlanner, Path2D
+from navkit.planning import Path2D
 from navkit.sim import World
 
 __all__ = [
     "BODY_RADIUS",
+    "DOOR",
     "LAB_HEIGHT",
     "LAB_WIDTH",
+    "MAP_TOUR",
+    "PLAN_INFLATION_SCANS",
     "PLAN_RADIUS",
+    "PLAN_RADIUS_SCANS",
     "PLAN_ROUTES",
+    "ROOM_SPANS",
     "SIDE_ROOM",
     "TARGETS",
     "TOUR_START",
     "TRACK_PATHS",
+    "WALL",
+    "anchored",
     "heading_share",
     "lab_grid",
     "lab_obstacles",
-    "lab_planner",
     "lab_world",
-    "tour_legs",
-    "track_route",
 ]
 
 LAB_WIDTH = 14.4  # m, x
@@ -48,9 +52,16 @@ SIDE_ROOM = (LAB_WIDTH - 4.8, LAB_HEIGHT - 4.4, LAB_WIDTH, LAB_HEIGHT)
 DOOR = (SIDE_ROOM[0] + 1.4, SIDE_ROOM[0] + 2.4)
 
 #: The simulated robot's body radius and the planners' inflation, m: the
-#: 0.15 m difference is the margin left for localisation error.
+#: 0.15 m difference is the margin left for localisation error. On the map
+#: built from scans, whose walls and furniture lie up to ~0.2 m off, the
+#: planners keep more clearance: 0.05 m more inflation (more would close the
+#: side room's door) and costs decaying out to 0.8 m (Nav2's inflation), so
+#: paths keep away from obstacles where there is room (with the plan's 0.35 m
+#: alone the localisation tour grazes a bench).
 BODY_RADIUS = 0.2
 PLAN_RADIUS = 0.35
+PLAN_RADIUS_SCANS = 0.4
+PLAN_INFLATION_SCANS = 0.8
 
 #: Start pose of the localisation tour, (x, y, theta).
 TOUR_START = (1.0, 1.0, 0.0)
@@ -83,6 +94,38 @@ PLAN_ROUTES: tuple[tuple[tuple[float, float], tuple[float, float]], ...] = (
     ((1.2, 3.0), (8.0, 8.4)),
     ((11.0, 3.6), (2.6, 11.0)),
 )
+#: The mapping tour (the operator's route, driven once to build the map): waypoints
+#: through the lab, into the side room through its door and around it, back out and
+#: round the lab's west half; each leg is planned on the floor plan, m.
+MAP_TOUR: tuple[tuple[float, float], ...] = (
+    TOUR_START[:2],
+    (6.8, 1.4),
+    (10.4, 2.0),
+    (13.2, 1.6),
+    (13.2, 5.6),
+    (11.5, 6.6),
+    (11.5, 8.4),  # through the door
+    (13.4, 9.0),
+    (11.0, 11.0),
+    (11.5, 8.4),
+    (11.5, 6.6),  # and out
+    (7.0, 4.6),
+    (1.2, 4.6),
+    (1.4, 8.4),
+    (6.6, 8.8),
+    (8.6, 11.2),
+    (1.6, 11.2),
+)
+#: The rooms' inside dimensions (wall face to wall face), m, and where to measure
+#: them on a map: name -> (true span, axis the span runs along, the other
+#: coordinate of each measuring line, a point of the room on the span's axis).
+#: The lines keep clear of the furniture.
+ROOM_SPANS: dict[str, tuple[float, str, tuple[float, ...], float]] = {
+    "lab width": (LAB_WIDTH - 2 * WALL, "x", (1.2, 1.6, 2.0, 4.0, 4.6, 5.0), 7.0),
+    "lab depth": (LAB_HEIGHT - 2 * WALL, "y", (1.0, 1.4, 1.8, 6.4, 6.8, 7.2), 4.6),
+    "side room width": (SIDE_ROOM[2] - SIDE_ROOM[0] - WALL, "x", (7.85, 7.95, 10.05, 10.15), 12.0),
+    "side room depth": (SIDE_ROOM[3] - SIDE_ROOM[1] - WALL, "y", (10.4, 10.7, 12.3, 12.6), 9.0),
+}
 
 
 def lab_obstacles(furniture: bool) -> tuple[Polygon, ...]:
@@ -145,59 +188,22 @@ def lab_world(furniture: bool) -> World:
     return World(list(lab_obstacles(furniture)))
 
 
-@lru_cache(maxsize=8)
-def lab_planner(resolution: float, furniture: bool, planner: str) -> MapPlanner:
-    """A :class:`MapPlanner` (``"astar"`` or ``"field_dstar"``) on the lab map, cached.
+def anchored(path: Path2D, start: tuple[float, float], goal: tuple[float, float]) -> Path2D:
+    """``path`` with its end points moved from cell centres to the exact start and goal.
 
     Examples
     --------
-    >>> lab_planner(0.1, False, "astar").robot_radius
-    0.35
+    >>> path = Path2D(np.array([[0.05, 0.05], [1.05, 0.05]]), "world", cost=1.0, length=1.0,
+    ...               expanded=2)
+    >>> anchored(path, (0.0, 0.0), (1.0, 0.0)).length
+    1.0
     """
-    grid = lab_grid(resolution, furniture)
-    if planner == "astar":
-        return MapPlanner(grid, robot_radius=PLAN_RADIUS, planner="astar")
-    return MapPlanner(grid, robot_radius=PLAN_RADIUS, planner="field_dstar")
-
-
-def _anchored(path: Path2D, start: tuple[float, float], goal: tuple[float, float]) -> Path2D:
-    """``path`` with its end points moved from cell centres to the exact start and goal."""
     pts = np.array(path.points, dtype=np.float64)
     pts[0] = start
     pts[-1] = goal
     seg = np.diff(pts, axis=0)
     length = float(np.sum(np.hypot(seg[:, 0], seg[:, 1])))
     return Path2D(pts, "world", cost=path.cost, length=length, expanded=path.expanded)
-
-
-@lru_cache(maxsize=8)
-def tour_legs(resolution: float, furniture: bool, targets: int) -> tuple[Path2D, ...]:
-    """Field D* paths from the tour's start through its first ``targets`` targets, cached.
-
-    Examples
-    --------
-    >>> legs = tour_legs(0.1, True, 2)
-    >>> len(legs), legs[1].points[-1].tolist() == list(TARGETS[1])
-    (2, True)
-    """
-    planner = lab_planner(resolution, furniture, "field_dstar")
-    points = [TOUR_START[:2], *TARGETS[:targets]]
-    return tuple(_anchored(planner.plan(a, b), a, b) for a, b in itertools.pairwise(points))
-
-
-@lru_cache(maxsize=8)
-def track_route(resolution: float, furniture: bool, index: int) -> Path2D:
-    """The Field D* path of tracking path ``index``, cached.
-
-    Examples
-    --------
-    >>> route = track_route(0.1, True, 0)
-    >>> route.points[0].tolist(), route.points[-1].tolist()
-    ([1.0, 1.0], [13.4, 2.4])
-    """
-    start, goal = TRACK_PATHS[index]
-    planner = lab_planner(resolution, furniture, "field_dstar")
-    return _anchored(planner.plan(start[:2], goal[:2]), start[:2], goal[:2])
 
 
 def heading_share(points_xy: np.ndarray, *, tolerance: float = 1e-6) -> float:

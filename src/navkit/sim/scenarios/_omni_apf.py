@@ -21,7 +21,6 @@ from navkit.sim import (
     Trial,
     TrialResult,
 )
-from navkit.sim.scenarios._omni_apf_checks import check_trials, group_results
 from navkit.sim.scenarios._omni_apf_setup import (
     ARRIVE_TOLERANCE,
     DRIVE,
@@ -148,13 +147,9 @@ class OmniApf(Scenario):
         return (False, True) if self.obstacles is None else (self.obstacles,)
 
     def _case(self, index: int) -> tuple[tuple[float, float], bool]:
-        if isinstance(index, bool) or not isinstance(index, (int, np.integer)):
-            raise TypeError(f"trial.case_index must be an integer, got {type(index).__name__}")
+        """The target and obstacle flag of a (checked) case index."""
         n = len(self.targets)
-        series = self._series()
-        if not 0 <= index < n * len(series):
-            raise ValueError(f"trial.case_index must be in [0, {n * len(series)}), got {index}")
-        return self.targets[index % n], series[index // n]
+        return self.targets[index % n], self._series()[index // n]
 
     def cases(self, trials: int) -> tuple[tuple[str, int], ...]:
         """The targets, first without then with the obstacle.
@@ -174,7 +169,7 @@ class OmniApf(Scenario):
         >>> OmniApf(targets=[(3.0, 0.0)]).cases(5)
         (('target (3, 0) m, no obstacle', 5), ('target (3, 0) m, obstacle', 5))
         """
-        trials = check_trials(trials)
+        trials = self._check_trials(trials)
         count = int(trials) if self.noise else 1
         return tuple(
             (f"target ({x:g}, {y:g}) m, {'obstacle' if obst else 'no obstacle'}", count)
@@ -208,9 +203,7 @@ class OmniApf(Scenario):
         >>> round(r.values["final_x"], 2), r.values["collisions"]
         (0.99, 0.0)
         """
-        if not isinstance(trial, Trial):
-            raise TypeError(f"trial must be a Trial, got {type(trial).__name__}")
-        target, obstacle = self._case(trial.case_index)
+        target, obstacle = self._case(self._case_of(trial))
         began = time.perf_counter()
         controller = ApfController(target, control_rate=CONTROL_RATE)
         sim = Simulation(
@@ -258,7 +251,7 @@ class OmniApf(Scenario):
         >>> out.summary["reached_rate"], out.summary["error_max"] < 0.04
         (1.0, True)
         """
-        results, by_case, seed = group_results(results, seed, self._case)
+        results, by_case, seed = self._results_by_case(results, seed)
         tables = (_trial_table(results), _target_table(self, by_case))
         return ScenarioResult(
             scenario=self.name,

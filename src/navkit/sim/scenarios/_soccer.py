@@ -56,8 +56,6 @@ CONTROL_RATE = 30.0
 PAPER_ATTACK = (5.07, 13.47)
 PAPER_DEFEND = (5.17, 7.36)
 _SUCCESS = ("scored", "ball taken", "in position")
-#: Most trials per case (as Scenario.trials).
-_MAX_TRIALS = 100_000
 _GAME_KEYS = ("reached", "collisions", "stalled", "time", "time_to_ball", "distance",
               "min_clearance", "opponents")  # fmt: skip
 _TABLE6_KEYS = (
@@ -188,11 +186,8 @@ class Soccer(Scenario):
         >>> Soccer().cases(3)[-1]
         ('Table 6: potential minima, blending widths 1, 10, 50, 100 cells', 1)
         """
-        if isinstance(trials, bool) or not isinstance(trials, (int, np.integer)):
-            raise TypeError(f"trials must be an integer, got {type(trials).__name__}")
-        if not 1 <= trials <= _MAX_TRIALS:
-            raise ValueError(f"trials must lie in [1, {_MAX_TRIALS}], got {trials}")
-        return (*((layout.label, int(trials)) for layout in LAYOUTS), (_TABLE6_CASE, 1))
+        trials = self._check_trials(trials)
+        return (*((layout.label, trials) for layout in LAYOUTS), (_TABLE6_CASE, 1))
 
     def run_trial(self, trial: Trial) -> TrialResult:
         """Play one game (or recompute Table 6 for its case).
@@ -218,17 +213,12 @@ class Soccer(Scenario):
         >>> scenario.run_trial(trial).values["linear_min"]
         -0.5
         """
-        if not isinstance(trial, Trial):
-            raise TypeError(f"trial must be a Trial, got {type(trial).__name__}")
-        if not 0 <= trial.case_index <= len(LAYOUTS):
-            raise ValueError(
-                f"trial.case_index must lie in [0, {len(LAYOUTS)}], got {trial.case_index}"
-            )
+        case = self._case_of(trial)
         start = time.perf_counter()
-        if trial.case_index == len(LAYOUTS):
+        if case == len(LAYOUTS):
             values = dict(table6_values(self.table_cells))
             return TrialResult(trial, values, None, time.perf_counter() - start)
-        layout = LAYOUTS[trial.case_index]
+        layout = LAYOUTS[case]
         game = make_game(layout, trial.seed)
         player = Player(game, max_speed=self.max_speed, control_rate=CONTROL_RATE,
                         noise=self.perception_noise, seed=trial.seed)  # fmt: skip
@@ -274,34 +264,11 @@ class Soccer(Scenario):
         >>> result.summary["reach_rate"], result.summary["collisions"]
         (1.0, 0.0)
         """
-        if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)):
-            raise TypeError(f"seed must be an integer, got {type(seed).__name__}")
-        if not 0 <= seed < 2**63:
-            shown = f"{int(seed)}" if abs(seed) < 10**30 else "a larger integer"
-            raise ValueError(f"seed must lie in [0, 2**63), got {shown}")
-        given: object = results
-        if isinstance(given, (str, bytes)) or not isinstance(given, Sequence):
-            kind = type(given).__name__
-            raise TypeError(f"results must be a sequence of TrialResult, got {kind}")
-        results = tuple(results)
-        for k, r in enumerate(results):
-            if not isinstance(r, TrialResult):
-                raise TypeError(f"results[{k}] must be a TrialResult, got {type(r).__name__}")
-            if 0 <= r.trial.case_index < len(LAYOUTS):
-                missing = [key for key in _GAME_KEYS if key not in r.values]
-            elif r.trial.case_index == len(LAYOUTS):
-                missing = [key for key in _TABLE6_KEYS if key not in r.values]
-            else:
-                raise ValueError(f"results[{k}]: case_index {r.trial.case_index} is not a case")
-            if missing:
-                raise ValueError(f"results[{k}]: values lack {', '.join(missing)}")
-        games: dict[int, list[TrialResult]] = {}
-        table6: dict[str, float] | None = None
-        for r in results:
-            if r.trial.case_index == len(LAYOUTS):
-                table6 = dict(r.values)
-            elif 0 <= r.trial.case_index < len(LAYOUTS):
-                games.setdefault(r.trial.case_index, []).append(r)
+        results, by_case, seed = self._results_by_case(
+            results, seed, keys=lambda case: _TABLE6_KEYS if case == len(LAYOUTS) else _GAME_KEYS
+        )
+        games = {case: runs for case, runs in by_case.items() if case < len(LAYOUTS)}
+        table6 = dict(by_case[len(LAYOUTS)][-1].values) if len(LAYOUTS) in by_case else None
         tables = [self._games_table(games)]
         summary = _game_summary(games)
         if table6 is not None:

@@ -1,0 +1,125 @@
+"""Writing files atomically: temporary files beside the targets, then ``os.replace``.
+
+Every file navkit writes (maps, pictures, JSON results) goes through
+:func:`atomic_paths`: readers see the old file or the whole new one, and a
+failure (an exception, a full disk, an interrupt) leaves every target as it was
+and no temporary file behind.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import secrets
+import stat
+from collections.abc import Iterator, Sequence
+from pathlib import Path
+
+__all__ = ["atomic_path", "atomic_paths"]
+
+#: Random temporary names tried before giving up.
+_ATTEMPTS = 100
+
+
+@contextlib.contextmanager
+def atomic_paths(targets: Sequence[Path]) -> Iterator[tuple[Path, ...]]:
+    """Yield one new empty temporary file per target; on success rename them over the targets.
+
+    Each temporary file is created exclusively in its target's folder, hidden,
+    named ``.<stem>.<random>.tmp<suffix>`` (the target's suffix kept, for
+    writers that pick a format from it). The caller writes them (by path; a
+    writer may replace the empty file). When the ``with`` block ends normally
+    every temporary file is flushed to disk (``fsync``) and given the mode of
+    the existing target (a new one keeps ``0o666`` less the umask, what a plain
+    write gives), *then* they are renamed over the targets in order
+    (``os.replace``) and the folders are synced where the system allows. If
+    anything fails before the renames, no target is touched; the temporary
+    files are always removed.
+
+    Parameters
+    ----------
+    targets : sequence of Path
+        The files to write, in existing folders (not folders themselves).
+
+    Yields
+    ------
+    tuple of Path
+        The temporary files, one per target, in order.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     a, b = Path(folder) / "a.txt", Path(folder) / "b.txt"
+    ...     with atomic_paths([a, b]) as (ta, tb):
+    ...         _ = ta.write_text("A"), tb.write_text("B")
+    ...     print(sorted(p.name for p in Path(folder).iterdir()), a.read_text() + b.read_text())
+    ['a.txt', 'b.txt'] AB
+    """
+    temporaries: list[Path] = []
+    try:
+        for target in targets:
+            temporaries.append(_new_temporary(target))
+        yield tuple(temporaries)
+        for temporary, target in zip(temporaries, targets, strict=True):
+            _sync(temporary, os.O_RDWR)
+            with contextlib.suppress(FileNotFoundError):
+                os.chmod(temporary, stat.S_IMODE(os.stat(target).st_mode))
+        for temporary, target in zip(temporaries, targets, strict=True):
+            os.replace(temporary, target)
+    finally:
+        for temporary in temporaries:
+            temporary.unlink(missing_ok=True)
+    for folder in dict.fromkeys(target.parent for target in targets):
+        with contextlib.suppress(OSError):  # make the renames durable where possible (POSIX)
+            _sync(folder, os.O_RDONLY)
+
+
+@contextlib.contextmanager
+def atomic_path(target: Path) -> Iterator[Path]:
+    """Yield a new empty temporary file beside ``target``; rename it over ``target`` on success.
+
+    :func:`atomic_paths` for one file.
+
+    Parameters
+    ----------
+    target : Path
+        The file to write, in an existing folder.
+
+    Yields
+    ------
+    Path
+        The temporary file to write.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     with atomic_path(Path(folder) / "out.json") as temporary:
+    ...         _ = temporary.write_text("{}")
+    ...     print([p.name for p in Path(folder).iterdir()])
+    ['out.json']
+    """
+    with atomic_paths((target,)) as (temporary,):
+        yield temporary
+
+
+def _new_temporary(target: Path) -> Path:
+    """Create a new empty hidden file beside ``target`` (mode 0o666 less the umask)."""
+    for _ in range(_ATTEMPTS):
+        temporary = target.with_name(f".{target.stem}.{secrets.token_hex(4)}.tmp{target.suffix}")
+        try:
+            fd = os.open(temporary, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)
+        except FileExistsError:
+            continue
+        os.close(fd)
+        return temporary
+    raise FileExistsError(f"cannot create a temporary file beside {target}")  # pragma: no cover
+
+
+def _sync(path: Path, flags: int) -> None:
+    fd = os.open(path, flags)
+    try:
+        os.fsync(fd)
+    finally:
+        os.close(fd)

@@ -1,0 +1,137 @@
+"""Adapters that turn navkit's algorithms into :class:`~navkit.sim.Simulation` controllers."""
+
+from __future__ import annotations
+
+from typing import Protocol
+
+from navkit._shared.validation import as_bool, positive_float
+from navkit.geometry import Pose2D, Twist2D
+from navkit.sim._simulation import Observation
+
+__all__ = ["TrackerController"]
+
+#: Highest control rate accepted, Hz.
+_MAX_RATE = 1e6
+
+
+class _Tracker(Protocol):
+    """What :class:`TrackerController` drives: navkit's path trackers.
+
+    :class:`~navkit.control.FollowTheCarrot`, :class:`~navkit.control.OnOffTracker`
+    and :class:`~navkit.control.RegulatedPurePursuit` are path trackers: a
+    ``step(pose, dt)`` returning a ``Twist2D`` and a ``done`` flag.
+    """
+
+    @property
+    def done(self) -> bool: ...
+
+    def step(self, pose: Pose2D, dt: float) -> Twist2D: ...
+
+
+class TrackerController:
+    """A path tracker as a :class:`~navkit.sim.Simulation` controller.
+
+    Each control step calls ``tracker.step(pose, 1 / control_rate)`` with the
+    estimator's pose (``use_estimate=True``; a zero twist while there is no
+    estimate yet) or the true pose (an oracle, for tests and baselines). The
+    run ends when the tracker is done (:attr:`done`). Give the tracker its path
+    (``tracker.set_path(route)``) before the run; the adapter only steps it.
+
+    Parameters
+    ----------
+    tracker : path tracker
+        A navkit path tracker (FollowTheCarrot, OnOffTracker,
+        RegulatedPurePursuit) or anything with ``step(pose, dt)`` and ``done``.
+    control_rate : float
+        The simulation's ``control_rate``, Hz, in (0, 1e6]: the tracker's
+        ``dt`` is its inverse.
+    use_estimate : bool, default True
+        Track the estimator's pose (True) or the true pose (False).
+
+    Attributes
+    ----------
+    tracker : path tracker
+        The tracker stepped.
+
+    Examples
+    --------
+    >>> from shapely.geometry import box
+    >>> from navkit.control import FollowTheCarrot
+    >>> from navkit.kinematics import DiffDrive
+    >>> from navkit.sim import Robot, Simulation, World
+    >>> tracker = FollowTheCarrot(max_speed=0.5)
+    >>> tracker.set_path([[1.0, 1.0], [3.0, 1.0]])
+    >>> follow = TrackerController(tracker, control_rate=20.0, use_estimate=False)
+    >>> robot = Robot(drive=DiffDrive(track=0.3, wheel_radius=0.05), footprint=0.15)
+    >>> trace = Simulation(World([box(0.0, 0.0, 4.0, 2.0).exterior]), robot, follow,
+    ...                    start=(1.0, 1.0, 0.0), goal=(3.0, 1.0), control_rate=20.0,
+    ...                    stop_at_goal=False).run()
+    >>> follow.done, trace.metrics.reached, trace.metrics.collisions
+    (True, True, 0)
+    """
+
+    __slots__ = ("_dt", "_use_estimate", "tracker")
+
+    def __init__(
+        self, tracker: _Tracker, *, control_rate: float, use_estimate: bool = True
+    ) -> None:
+        step = getattr(tracker, "step", None)
+        if not callable(step) or not hasattr(type(tracker), "done"):
+            raise TypeError(
+                f"tracker must have a step(pose, dt) method and a done flag, "
+                f"got {type(tracker).__name__}"
+            )
+        rate = positive_float(control_rate, "control_rate")
+        if rate > _MAX_RATE:
+            raise ValueError(f"control_rate must be in (0, {_MAX_RATE:g}] Hz, got {rate:g}")
+        self.tracker = tracker
+        self._dt = 1.0 / rate
+        self._use_estimate = as_bool(use_estimate, "use_estimate")
+
+    @property
+    def done(self) -> bool:
+        """Whether the tracker has finished its path (the run then ends).
+
+        Returns
+        -------
+        bool
+            ``tracker.done``.
+
+        Examples
+        --------
+        >>> from navkit.control import OnOffTracker
+        >>> TrackerController(OnOffTracker(), control_rate=10.0).done
+        False
+        """
+        return bool(self.tracker.done)
+
+    def __call__(self, obs: Observation) -> Twist2D:
+        """One control step: the tracker's twist at the observed pose.
+
+        Parameters
+        ----------
+        obs : Observation
+            The simulation's observation.
+
+        Returns
+        -------
+        Twist2D
+            The tracker's command, robot frame; zero without an estimate when
+            ``use_estimate`` is set.
+
+        Examples
+        --------
+        >>> from navkit.control import OnOffTracker
+        >>> follow = TrackerController(OnOffTracker(), control_rate=10.0)
+        >>> follow(Observation(0.0, None, None, None, None, (), None, Pose2D(0.0, 0.0, 0.0)))
+        Twist2D(vx=0.0, vy=0.0, omega=0.0)
+        """
+        if not isinstance(obs, Observation):
+            raise TypeError(f"obs must be an Observation, got {type(obs).__name__}")
+        pose = obs.estimate if self._use_estimate else obs.true_pose
+        if pose is None:
+            return Twist2D(0.0, 0.0, 0.0)
+        twist = self.tracker.step(pose, self._dt)
+        if not isinstance(twist, Twist2D):
+            raise TypeError(f"tracker.step must return a Twist2D, got {type(twist).__name__}")
+        return twist
