@@ -71,7 +71,7 @@ def radial_minima(field: AttractiveField) -> tuple[FloatArray, FloatArray]:
 
     The profile is sampled every 0.1 mm out to 3 m; the goal is ``field.goal_xy``.
     """
-    r = np.arange(0.0, _PROFILE_REACH, _PROFILE_STEP)
+    r: FloatArray = np.arange(0.0, _PROFILE_REACH, _PROFILE_STEP, dtype=np.float64)
     pts = field.goal_xy + np.column_stack((r, np.zeros_like(r)))
     u = field.potential(pts)
     inner = u[1:-1]
@@ -79,9 +79,7 @@ def radial_minima(field: AttractiveField) -> tuple[FloatArray, FloatArray]:
     highs = np.flatnonzero((inner > u[:-2]) & (inner >= u[2:])) + 1
     if u[0] < u[1]:
         lows = np.concatenate(([0], lows))
-    lo: FloatArray = r[lows]
-    hi: FloatArray = r[highs]
-    return lo, hi
+    return r[lows], r[highs]
 
 
 def _blended(width: float) -> BlendedAttraction:
