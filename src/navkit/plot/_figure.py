@@ -106,11 +106,9 @@ def as_color(value: Any, name: str) -> Any:
     require_matplotlib()
     from matplotlib.colors import to_rgba
 
-    if isinstance(value, str):
-        pass
-    elif isinstance(value, (tuple, list)):
+    if isinstance(value, (tuple, list)):
         value = tuple(as_float_array(value, name, ndim=1))
-    else:
+    elif not isinstance(value, str):
         raise TypeError(
             f"{name} must be a matplotlib colour (a str or RGB(A) tuple) or None, "
             f"got {type(value).__name__}"
