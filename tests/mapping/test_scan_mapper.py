@@ -256,3 +256,35 @@ def test_intel_first_100_scans_beat_the_prior_and_kiss_icp(shared_data: Path) ->
     assert trans.mean() < 0.045 and rot.mean() < 1.04
     assert rot.mean() < 0.5 * np.degrees(np.abs(prior[:, 2])).mean()
     assert _ate(est, truth) < 0.5 * _ate(odometry, truth)
+
+
+#: The CARMEN harness's matcher (benchmarks/carmen_navkit.py): a heading pull of
+#: 3.5/rad towards its 2° motion prior.
+HARNESS_MATCHER = {
+    "translation_weight": 1.0,
+    "rotation_weight": 3.5,
+    "search_distance": 0.1,
+    "search_angle": 0.1,
+}
+
+
+@pytest.mark.parametrize(("first", "stop"), [(0, 60), (350, 410)])
+def test_csail_in_place_turns_without_gross_failure(
+    shared_data: Path, first: int, stop: int
+) -> None:
+    # Between scans 41-43 and 363-400 the corrected csail log turns 10-20° in
+    # place between keyframes; with the default 1/rad pull the matcher follows
+    # the scans into > 10° disagreements with the corrected poses there.
+    log = read_carmen(shared_data / "carmen-logs" / "csail-corrected.log.gz")
+    truth = np.array([[p.x, p.y, p.theta] for p in log.laser_poses[first:stop]])
+    for seed in (0, 1, 2):
+        odometry = _noisy_odometry(truth, 0.05, math.radians(2.0), seed=seed)
+        mapper = ScanMapper(matcher=ScanMatcher(**HARNESS_MATCHER))
+        for scan, odom in zip(log.scans[first:stop], odometry, strict=True):
+            mapper.update(scan, odometry=odom)
+        pair = _pair_errors(np.array(mapper.trajectory), truth)
+        prior = _pair_errors(odometry, truth)
+        trans, rot = np.hypot(pair[:, 0], pair[:, 1]), np.degrees(np.abs(pair[:, 2]))
+        assert trans.max() < 0.5 and rot.max() < 10.0, (seed, trans.max(), rot.max())
+        assert trans.mean() < np.hypot(prior[:, 0], prior[:, 1]).mean()
+        assert rot.mean() < np.degrees(np.abs(prior[:, 2])).mean()
