@@ -56,7 +56,7 @@ def test_a_cold_cache_is_announced(monkeypatch: pytest.MonkeyPatch, tmp_path: Pa
     assert cache_folders("navkit.sim")[0].parent == tmp_path
     assert not kernels_cached("simulation")
     assert announce_compilation("simulation", notice)
-    assert "compiling navkit's kernels once (about 30 s), cached afterwards" in notice.getvalue()
+    assert "compiling navkit's kernels once (about 10 s), cached afterwards" in notice.getvalue()
 
 
 def test_every_key_kernel_exists() -> None:

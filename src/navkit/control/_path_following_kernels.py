@@ -13,10 +13,10 @@ import math
 
 import numpy as np
 
-from navkit._shared.jit import njit_no_refcount
+from navkit._shared.jit import njit_helper, njit_no_refcount
 
 
-@njit_no_refcount
+@njit_helper
 def segment_of(cum: np.ndarray, s: float) -> int:
     """Index of the segment holding arc length ``s``: the last ``i`` with ``cum[i] <= s``.
 

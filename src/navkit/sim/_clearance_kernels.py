@@ -32,9 +32,10 @@ import math
 
 import numpy as np
 
-from navkit._shared.jit import njit_no_refcount
+from navkit._shared.jit import njit_helper, njit_no_refcount
 
 __all__ = ["TOUCH", "footprint_clearance"]
+
 
 TOUCH = 1e-12
 """Clearance (m) at or below which a footprint touches an obstacle: the distance
@@ -44,7 +45,7 @@ few 1e-17 m apart instead of 0."""
 _INF = math.inf
 
 
-@njit_no_refcount
+@njit_helper
 def _point_segment(px: float, py: float, ax: float, ay: float, bx: float, by: float) -> float:
     ex = bx - ax
     ey = by - ay
@@ -59,47 +60,29 @@ def _point_segment(px: float, py: float, ax: float, ay: float, bx: float, by: fl
     return math.sqrt(qx * qx + qy * qy)
 
 
-@njit_no_refcount
-def _orient(ax: float, ay: float, bx: float, by: float, cx: float, cy: float) -> float:
-    return (bx - ax) * (cy - ay) - (by - ay) * (cx - ax)
-
-
-@njit_no_refcount
-def _segments_cross(
-    ax: float, ay: float, bx: float, by: float, cx: float, cy: float, dx: float, dy: float
-) -> bool:
-    """Whether segments ab and cd share a point (touching included)."""
-    d1 = _orient(cx, cy, dx, dy, ax, ay)
-    d2 = _orient(cx, cy, dx, dy, bx, by)
-    d3 = _orient(ax, ay, bx, by, cx, cy)
-    d4 = _orient(ax, ay, bx, by, dx, dy)
-    if ((d1 > 0.0 and d2 < 0.0) or (d1 < 0.0 and d2 > 0.0)) and (
-        (d3 > 0.0 and d4 < 0.0) or (d3 < 0.0 and d4 > 0.0)
-    ):
-        return True
-    # Collinear or touching cases: an endpoint lies on the other segment.
-    if d1 == 0.0 and _point_segment(ax, ay, cx, cy, dx, dy) == 0.0:
-        return True
-    if d2 == 0.0 and _point_segment(bx, by, cx, cy, dx, dy) == 0.0:
-        return True
-    if d3 == 0.0 and _point_segment(cx, cy, ax, ay, bx, by) == 0.0:
-        return True
-    return d4 == 0.0 and _point_segment(dx, dy, ax, ay, bx, by) == 0.0
-
-
-@njit_no_refcount
+@njit_helper
 def _segment_segment(
     ax: float, ay: float, bx: float, by: float, cx: float, cy: float, dx: float, dy: float
 ) -> float:
-    if _segments_cross(ax, ay, bx, by, cx, cy, dx, dy):
+    """Distance between segments ab and cd (0 when they share a point, touching included)."""
+    # Orientations of a and b about cd, and of c and d about ab.
+    d1 = (dx - cx) * (ay - cy) - (dy - cy) * (ax - cx)
+    d2 = (dx - cx) * (by - cy) - (dy - cy) * (bx - cx)
+    d3 = (bx - ax) * (cy - ay) - (by - ay) * (cx - ax)
+    d4 = (bx - ax) * (dy - ay) - (by - ay) * (dx - ax)
+    if ((d1 > 0.0 and d2 < 0.0) or (d1 < 0.0 and d2 > 0.0)) and (
+        (d3 > 0.0 and d4 < 0.0) or (d3 < 0.0 and d4 > 0.0)
+    ):
         return 0.0
+    # Otherwise the nearest points include an endpoint (0 when one lies on the other
+    # segment: the collinear and touching cases).
     return min(
         min(_point_segment(ax, ay, cx, cy, dx, dy), _point_segment(bx, by, cx, cy, dx, dy)),
         min(_point_segment(cx, cy, ax, ay, bx, by), _point_segment(dx, dy, ax, ay, bx, by)),
     )
 
 
-@njit_no_refcount
+@njit_helper
 def _inside_polygon(px: float, py: float, verts: np.ndarray, n: int) -> bool:
     """Even-odd rule point-in-polygon test against the first ``n`` rows of ``verts``."""
     inside = False
@@ -117,7 +100,7 @@ def _inside_polygon(px: float, py: float, verts: np.ndarray, n: int) -> bool:
     return inside
 
 
-@njit_no_refcount
+@njit_helper
 def _to_segment(
     cx: float,
     cy: float,
@@ -146,7 +129,7 @@ def _to_segment(
     return best
 
 
-@njit_no_refcount
+@njit_helper
 def _to_circle(
     cx: float, cy: float, radius: float, verts: np.ndarray, n: int, ox: float, oy: float, r: float
 ) -> float:
@@ -172,7 +155,7 @@ def _to_circle(
     return 0.0
 
 
-@njit_no_refcount
+@njit_helper
 def _to_square(
     cx: float,
     cy: float,
@@ -196,13 +179,18 @@ def _to_square(
             return 0.0
     if _inside_polygon(xa, ya, lverts, n):
         return 0.0
-    best = _to_segment(0.0, 0.0, 0.0, lverts, n, xa, ya, xb, ya)
-    best = min(best, _to_segment(0.0, 0.0, 0.0, lverts, n, xb, ya, xb, yb))
-    best = min(best, _to_segment(0.0, 0.0, 0.0, lverts, n, xb, yb, xa, yb))
-    return min(best, _to_segment(0.0, 0.0, 0.0, lverts, n, xa, yb, xa, ya))
+    # The square's edges, counter-clockwise from (xa, ya).
+    best = _INF
+    for e in range(4):
+        x0 = xa if e == 0 or e == 3 else xb
+        y0 = ya if e < 2 else yb
+        x1 = xb if e < 2 else xa
+        y1 = ya if e == 0 or e == 3 else yb
+        best = min(best, _to_segment(0.0, 0.0, 0.0, lverts, n, x0, y0, x1, y1))
+    return best
 
 
-@njit_no_refcount
+@njit_helper
 def _edge_grid_distance(
     cx: float,
     cy: float,
@@ -279,7 +267,7 @@ def _edge_grid_distance(
     return best
 
 
-@njit_no_refcount
+@njit_helper
 def _occupancy_distance(
     cx: float,
     cy: float,

@@ -43,9 +43,10 @@ import math
 
 import numpy as np
 
-from navkit._shared.jit import njit_no_refcount
+from navkit._shared.jit import njit_helper, njit_no_refcount
 
 __all__ = ["apply_range_noise", "cast_rays"]
+
 
 _INF = math.inf
 #: Chessboard distance (cells) from which the occupancy walk jumps across the
@@ -54,15 +55,21 @@ _INF = math.inf
 _JUMP = 8
 
 
-@njit_no_refcount
+@njit_helper
 def _ray_segment(
-    ox: float, oy: float, dx: float, dy: float, seg: np.ndarray, i: int, best: float
+    ox: float,
+    oy: float,
+    dx: float,
+    dy: float,
+    ax: float,
+    ay: float,
+    bx: float,
+    by: float,
+    best: float,
 ) -> float:
-    """Smaller of ``best`` and the ray parameter t >= 0 where the ray meets segment ``i``."""
-    ax = seg[i, 0]
-    ay = seg[i, 1]
-    ex = seg[i, 2] - ax
-    ey = seg[i, 3] - ay
+    """Smaller of ``best`` and the ray parameter t >= 0 where the ray meets segment ab."""
+    ex = bx - ax
+    ey = by - ay
     wx = ax - ox
     wy = ay - oy
     denom = dx * ey - dy * ex
@@ -78,7 +85,7 @@ def _ray_segment(
     if wx * dy - wy * dx != 0.0:
         return best
     ta = wx * dx + wy * dy
-    tb = (seg[i, 2] - ox) * dx + (seg[i, 3] - oy) * dy
+    tb = (bx - ox) * dx + (by - oy) * dy
     lo = min(ta, tb)
     hi = max(ta, tb)
     if hi < 0.0:
@@ -87,7 +94,7 @@ def _ray_segment(
     return t if t < best else best
 
 
-@njit_no_refcount
+@njit_helper
 def _ray_circle(
     ox: float, oy: float, dx: float, dy: float, cx: float, cy: float, r: float, best: float
 ) -> float:
@@ -108,7 +115,7 @@ def _ray_circle(
     return t if t < best else best
 
 
-@njit_no_refcount
+@njit_helper
 def _cast_edge_grid(
     ox: float,
     oy: float,
@@ -164,7 +171,10 @@ def _cast_edge_grid(
         for m in range(cell_start[k], cell_start[k + 1]):
             item = cell_items[m]
             if item < n_seg:
-                best = _ray_segment(ox, oy, dx, dy, segs, item, best)
+                best = _ray_segment(
+                    ox, oy, dx, dy, segs[item, 0], segs[item, 1], segs[item, 2], segs[item, 3],
+                    best,
+                )  # fmt: skip
             else:
                 c = item - n_seg
                 best = _ray_circle(
@@ -186,7 +196,7 @@ def _cast_edge_grid(
                 return best
 
 
-@njit_no_refcount
+@njit_helper
 def _cast_occupancy(
     ox: float,
     oy: float,
@@ -350,7 +360,10 @@ def cast_rays(
         if has_occ:
             best = _cast_occupancy(ox, oy, dx, dy, best, cheb, gox, goy, gcos, gsin, res)
         for m in range(n_dseg):
-            best = _ray_segment(ox, oy, dx, dy, dyn_segs, m, best)
+            best = _ray_segment(
+                ox, oy, dx, dy, dyn_segs[m, 0], dyn_segs[m, 1], dyn_segs[m, 2], dyn_segs[m, 3],
+                best,
+            )  # fmt: skip
         for m in range(n_dcirc):
             best = _ray_circle(
                 ox, oy, dx, dy, dyn_circles[m, 0], dyn_circles[m, 1], dyn_circles[m, 2], best

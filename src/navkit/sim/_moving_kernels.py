@@ -24,16 +24,17 @@ from __future__ import annotations
 
 import numpy as np
 
-from navkit._shared.jit import njit_no_refcount
+from navkit._shared.jit import njit_helper, njit_no_refcount
 
 __all__ = ["EXTEND", "LOOP", "STOP", "place_moving"]
+
 
 STOP = 0
 LOOP = 1
 EXTEND = 2
 
 
-@njit_no_refcount
+@njit_helper
 def _position(
     t: float, path_xy: np.ndarray, times: np.ndarray, first: int, count: int, after: int
 ) -> tuple[float, float]:

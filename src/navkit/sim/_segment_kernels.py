@@ -23,13 +23,14 @@ import math
 
 import numpy as np
 
-from navkit._shared.jit import njit_no_refcount
+from navkit._shared.jit import njit_helper, njit_no_refcount
 from navkit.sim._clearance_kernels import TOUCH, footprint_clearance
 from navkit.sim._moving_kernels import place_moving
 from navkit.sim._wheel_kernels import wheel_step
 
 __all__ = ["COLLIDED", "GOAL", "REACHED", "STAT_COLLISIONS", "STAT_IN_CONTACT",
            "STAT_MIN_CLEARANCE", "STAT_TIME_TO_GOAL", "due_step", "run_segment"]  # fmt: skip
+
 
 REACHED = 0
 COLLIDED = 1
@@ -48,9 +49,12 @@ _COMPASS = 1
 _IMU = 2
 
 
-@njit_no_refcount
 def due_step(k: int, rate: float, dt: float) -> int:
-    """First step ``i`` with ``i * dt + 1e-9 >= k / rate``."""
+    """First step ``i`` with ``i * dt + 1e-9 >= k / rate``.
+
+    Plain Python (called from Python a few times per control step): the same
+    IEEE operations as a kernel would do, without a kernel's compilation.
+    """
     when = k / rate
     i = max(math.ceil((when - _EPS) / dt) - 1, 0)
     while i * dt + _EPS < when:
@@ -58,7 +62,7 @@ def due_step(k: int, rate: float, dt: float) -> int:
     return i
 
 
-@njit_no_refcount
+@njit_helper
 def _at_goal(state: np.ndarray, goal: np.ndarray) -> bool:
     """``goal`` = [x, y, radius, yaw, yaw tolerance]; NaN x for no goal, NaN yaw for none."""
     if math.isnan(goal[0]):
@@ -72,7 +76,7 @@ def _at_goal(state: np.ndarray, goal: np.ndarray) -> bool:
     return close
 
 
-@njit_no_refcount
+@njit_helper
 def _sample(
     i: int,
     t: float,
@@ -111,7 +115,7 @@ def _sample(
             imu_out[row, 3] = state[7]
 
 
-@njit_no_refcount
+@njit_helper
 def _record(buf: np.ndarray, i: int, t: float, state: np.ndarray, cmd: np.ndarray) -> None:
     buf[i, 0] = t
     buf[i, 1] = state[0]

@@ -261,13 +261,13 @@ def _simulation() -> None:
 
 #: The warm-up steps, ``name: (function, relative cost)``; costly steps start first.
 _STEPS: dict[str, tuple[Callable[[], None], float]] = {
-    "field_dstar": (_field_dstar, 20.0),
-    "estimation": (_estimation, 17.0),
-    "simulation": (_simulation, 12.0),
-    "astar": (_astar, 7.0),
-    "mapping": (_mapping, 5.0),
-    "control": (_control, 2.0),
-    "reactive": (_reactive, 1.0),
+    "estimation": (_estimation, 7.5),
+    "field_dstar": (_field_dstar, 7.0),
+    "astar": (_astar, 6.0),
+    "simulation": (_simulation, 5.5),
+    "mapping": (_mapping, 4.0),
+    "control": (_control, 1.5),
+    "reactive": (_reactive, 0.5),
     "geometry": (_geometry, 0.5),
 }
 

@@ -1,0 +1,291 @@
+"""First use with an empty numba cache: CPU seconds per entry point, the whole library, peers.
+
+Run with ``python -m pytest benchmarks/test_bench_cold_start.py --benchmark-only -s``
+(``-k quick`` for a subset of a few cheap entry points and the peers, about a
+minute) or as a script, which prints the table::
+
+    python benchmarks/test_bench_cold_start.py            # every entry point, ~2-4 min
+    python benchmarks/test_bench_cold_start.py --quick
+    python benchmarks/test_bench_cold_start.py --only astar --only field_dstar --kernels
+
+Every entry point runs in its own fresh Python process with ``NUMBA_CACHE_DIR``
+pointing at a new empty folder (cold: numba compiles every kernel it meets),
+then in a second fresh process on the same, now filled, folder (warm: numba
+loads the machine code). The figure is the child's CPU time
+(``time.process_time()``) of the call alone, imports and input construction
+excluded, so a loaded 2-core machine changes it little. ``import navkit.planning``
+times the import itself; ``whole library`` is :func:`navkit.sim.warmup` in one
+process (``workers=1``), which calls every entry point with every option that
+selects another kernel. The peers, pyastar2d and tcod's A*, run their first
+call in a fresh process the same way (they ship compiled code: nothing to
+compile). ``--kernels`` also prints, per entry point, the navkit kernels it
+compiled with their signature count and compile seconds (numba's own timers,
+``dispatcher.get_metadata(sig)['timers']``; a caller's time includes the
+callees it typed).
+
+The issue 17 goal: whole library <= 8 s, any single entry point <= 3 s.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import textwrap
+from typing import Any
+
+import pytest
+
+#: Code run before the clock starts (imports, inputs), per entry point.
+_ROOM = """
+import math
+import numpy as np
+from navkit.mapping import LaserScan, OccupancyGrid
+angles = np.linspace(-math.pi, math.pi, 90, endpoint=False)
+with np.errstate(divide="ignore"):
+    ranges = np.minimum(3.0 / np.abs(np.cos(angles)), 2.0 / np.abs(np.sin(angles)))
+scan = LaserScan(ranges, angle_min=-math.pi, angle_increment=2 * math.pi / 90,
+                 range_min=0.1, range_max=10.0)
+room = OccupancyGrid.empty(width=8.0, height=6.0, resolution=0.1, origin=(-4.0, -3.0, 0.0))
+"""
+
+_COSTS = """
+import numpy as np
+costs = np.ones((64, 64))
+costs[10:50, 30] = np.inf
+"""
+
+#: name -> (setup code, timed code, in the quick subset).
+ENTRIES: dict[str, tuple[str, str, bool]] = {
+    "import navkit.planning": ("", "import navkit.planning", True),
+    "rollout": (
+        "import numpy as np\nfrom navkit.geometry import rollout",
+        "rollout((0.0, 0.0, 0.0), np.array([[1.0, 0.0, 0.5], [0.5, 0.1, 0.0]]), 0.5)",
+        True,
+    ),
+    "integrate_scan": (
+        _ROOM + "from navkit.mapping import integrate_scan",
+        "integrate_scan(room, scan, (0.0, 0.0, 0.0))",
+        False,
+    ),
+    "astar": (_COSTS + "from navkit.planning import astar", "astar(costs, (0, 0), (63, 63))", True),
+    "distance_field": (
+        _COSTS + "from navkit.planning import distance_field",
+        "distance_field(costs, (63, 63))",
+        False,
+    ),
+    "JPS": (
+        _COSTS + "from navkit.planning import astar",
+        "astar(costs, (0, 0), (63, 63), method='jps')",
+        False,
+    ),
+    "MapPlanner.plan": (
+        "import numpy as np\nfrom navkit.mapping import OccupancyGrid\n"
+        "from navkit.planning import MapPlanner\n"
+        "occupied = np.zeros((10, 12), dtype=bool)\noccupied[:6, 6] = True\n"
+        "grid = OccupancyGrid.from_occupancy(occupied, resolution=0.1)",
+        "MapPlanner(grid, robot_radius=0.05).plan((0.15, 0.15), (1.05, 0.15))",
+        False,
+    ),
+    "ScanMatcher.match": (
+        _ROOM + "from navkit.mapping import ScanMatcher, integrate_scan\n"
+        "integrate_scan(room, scan, (0.0, 0.0, 0.0))",
+        "ScanMatcher().match(room, scan, (0.05, -0.05, 0.02))",
+        False,
+    ),
+    "ScanMapper": (
+        _ROOM + "from navkit.mapping import ScanMapper",
+        "mapper = ScanMapper(resolution=0.1)\nmapper.update(scan)\n"
+        "mapper.update(scan, odometry=(0.5, 0.0, 0.95))",
+        False,
+    ),
+    "FieldDStar": (
+        "import numpy as np\nfrom navkit.planning import FieldDStar\n"
+        "costs = np.ones((10, 10))\ncosts[3:7, 5] = 3.0",
+        "planner = FieldDStar(costs)\nplanner.plan((0, 0), (10, 7))\n"
+        "planner.update_costs([(3, 1), (3, 2)], np.inf)\nplanner.replan()",
+        False,
+    ),
+    "PlanarFusion": (
+        "import numpy as np\nfrom navkit.estimation import MeasurementLog, PlanarFusion\n"
+        "t = np.linspace(0.0, 0.4, 5)\n"
+        "log = MeasurementLog.from_streams(odometry=(t, np.ones(5), np.zeros(5)))",
+        "fusion = PlanarFusion()\nfusion.update_odometry(0.02, 1.0, 0.1, v_variance=1e-4,"
+        " omega_variance=1e-4)\nPlanarFusion().update_batch(log)",
+        False,
+    ),
+    "ExtendedKalmanFilter": (
+        "import numpy as np\nfrom navkit.estimation import ExtendedKalmanFilter\n"
+        "jac = np.eye(3)\njac[0, 1] = 0.1",
+        "ekf = ExtendedKalmanFilter([0.0, 1.0, 0.0], np.eye(3), angle_states=(2,))\n"
+        "ekf.predict(lambda x: jac @ x, jac, 0.01 * np.eye(3))\n"
+        "ekf.update([0.1], lambda x: x[:1], np.array([[1.0, 0.0, 0.0]]), [[0.01]])",
+        False,
+    ),
+    "repulsion": (
+        _ROOM + "from navkit.planning import repulsive_force_from_scan",
+        "repulsive_force_from_scan(scan, influence_radius=2.5)",
+        True,
+    ),
+    "Simulation.run": (
+        "from shapely.geometry import box\nfrom navkit.geometry import Twist2D\n"
+        "from navkit.kinematics import DiffDrive\n"
+        "from navkit.sim import Circle, Lidar, Robot, Simulation, World\n"
+        "walls = box(0.0, 0.0, 4.0, 3.0).exterior\n"
+        "def forward(_obs):\n    return Twist2D(0.4, 0.0, 0.2)",
+        "world = World([walls, Circle((2.5, 2.0), 0.2)])\n"
+        "robot = Robot(drive=DiffDrive(track=0.3, wheel_radius=0.05), footprint=0.15,\n"
+        "              lidar=Lidar(n_beams=16), max_wheel_acceleration=40.0)\n"
+        "Simulation(world, robot, forward, start=(1.0, 1.0, 0.0), goal=(1.5, 1.2),"
+        " duration=0.3).run()",
+        False,
+    ),
+    "whole library": ("from navkit.sim import warmup", "warmup(workers=1)", False),
+}
+
+#: Peers: their first call in a fresh process (compiled ahead, nothing to compile).
+PEERS: dict[str, tuple[str, str]] = {
+    "pyastar2d (peer)": (
+        "import numpy as np\nimport pyastar2d\nw = np.ones((64, 64), dtype=np.float32)\n"
+        "w[10:50, 30] = np.inf",
+        "pyastar2d.astar_path(w, (0, 0), (63, 63), allow_diagonal=True)",
+    ),
+    "tcod AStar (peer)": (
+        "import numpy as np\nimport tcod.path\ncost = np.ones((64, 64), dtype=np.int8)\n"
+        "cost[10:50, 30] = 0",
+        "tcod.path.AStar(cost, diagonal=1.41).get_path(0, 0, 63, 63)",
+    ),
+}
+
+_CHILD = """
+import json, sys, time
+{setup}
+_cpu, _wall = time.process_time(), time.perf_counter()
+{timed}
+_cpu, _wall = time.process_time() - _cpu, time.perf_counter() - _wall
+_kernels = {{}}
+if {kernels}:
+    from numba.core.dispatcher import Dispatcher
+    for _name, _module in list(sys.modules.items()):
+        if not _name.startswith("navkit.") or _module is None:
+            continue
+        for _value in list(vars(_module).values()):
+            if isinstance(_value, Dispatcher) and _value.py_func.__module__ == _name:
+                _misses = sum(_value.stats.cache_misses.values())
+                if not _misses:
+                    continue
+                _secs = 0.0
+                for _sig in _value.signatures:
+                    try:
+                        _t = _value.get_metadata(_sig)["timers"]
+                        _secs += _t.get("compiler_lock", 0.0)
+                    except Exception:
+                        pass
+                _kernels[_name + "." + _value.py_func.__name__] = [len(_value.signatures), _secs]
+print("@@" + json.dumps({{"cpu": _cpu, "wall": _wall, "kernels": _kernels}}))
+"""
+
+
+def run_child(setup: str, timed: str, cache_dir: str, *, kernels: bool = False) -> dict[str, Any]:
+    """Run ``timed`` after ``setup`` in a fresh process with numba's cache in ``cache_dir``."""
+    code = _CHILD.format(setup=setup, timed=timed, kernels=kernels)
+    env = dict(os.environ, NUMBA_CACHE_DIR=cache_dir)
+    out = subprocess.run(
+        [sys.executable, "-c", textwrap.dedent(code)],
+        check=True, capture_output=True, text=True, env=env,
+    )  # fmt: skip
+    line = next(ln for ln in out.stdout.splitlines() if ln.startswith("@@"))
+    result: dict[str, Any] = json.loads(line[2:])
+    return result
+
+
+def measure(name: str, *, kernels: bool = False) -> dict[str, Any]:
+    """Cold (empty cache) and warm (cache filled by the cold run) CPU seconds of one entry."""
+    setup, timed = ENTRIES[name][:2] if name in ENTRIES else PEERS[name]
+    with tempfile.TemporaryDirectory(prefix="navkit-cold-") as cache_dir:
+        cold = run_child(setup, timed, cache_dir, kernels=kernels)
+        warm = run_child(setup, timed, cache_dir)
+    return {"cold_cpu_s": cold["cpu"], "cold_wall_s": cold["wall"], "warm_cpu_s": warm["cpu"],
+            "kernels": cold["kernels"]}  # fmt: skip
+
+
+def _names(quick: bool) -> list[str]:
+    return [name for name, entry in ENTRIES.items() if entry[2] or not quick] + list(PEERS)
+
+
+def _table(results: dict[str, dict[str, Any]]) -> str:
+    lines = ["| entry point | cold CPU s | warm CPU s | cold wall s |",
+             "| --- | ---: | ---: | ---: |"]
+    for name, r in results.items():
+        lines.append(f"| {name} | {r['cold_cpu_s']:.4f} | {r['warm_cpu_s']:.4f} "
+                     f"| {r['cold_wall_s']:.2f} |")  # fmt: skip
+    return "\n".join(lines)
+
+
+_RESULTS: dict[str, dict[str, Any]] = {}
+
+
+@pytest.fixture(scope="module", autouse=True)
+def _print_table() -> Any:
+    yield
+    if _RESULTS:
+        print("\n\nfirst use with an empty numba cache (CPU s of the call, fresh process each)")
+        print(_table(_RESULTS))
+
+
+def _bench(benchmark: Any, name: str) -> None:
+    results: list[dict[str, Any]] = []
+    benchmark.group = "cold start"
+    benchmark.pedantic(lambda: results.append(measure(name)), rounds=1, iterations=1)
+    result = results[0]
+    benchmark.extra_info.update({k: v for k, v in result.items() if k != "kernels"})
+    _RESULTS[name] = result
+    assert result["cold_cpu_s"] >= 0.0 and result["warm_cpu_s"] >= 0.0
+
+
+@pytest.mark.parametrize("name", [n for n, e in ENTRIES.items() if e[2]] + list(PEERS))
+def test_cold_start_quick(benchmark: Any, name: str) -> None:
+    _bench(benchmark, name)
+
+
+@pytest.mark.parametrize("name", [n for n, e in ENTRIES.items() if not e[2]])
+def test_cold_start(benchmark: Any, name: str) -> None:
+    _bench(benchmark, name)
+
+
+def main(argv: list[str] | None = None) -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="a few cheap entry points + peers")
+    parser.add_argument("--only", action="append", help="entry point name (repeatable)")
+    parser.add_argument("--kernels", action="store_true", help="per-kernel compile seconds")
+    parser.add_argument("--json", help="write the results to this file")
+    parser.add_argument("--list", action="store_true", help="list the entry points")
+    args = parser.parse_args(argv)
+    if args.list:
+        print("\n".join(_names(False)))
+        return
+    names = args.only or _names(args.quick)
+    for name in names:
+        if name not in ENTRIES and name not in PEERS:
+            parser.error(f"unknown entry point {name!r}; see --list")
+    results: dict[str, dict[str, Any]] = {}
+    for name in names:
+        results[name] = measure(name, kernels=args.kernels)
+        r = results[name]
+        print(f"{name:24s} cold {r['cold_cpu_s']:8.4f} s  warm {r['warm_cpu_s']:7.4f} s",
+              flush=True)  # fmt: skip
+        if args.kernels:
+            for kernel, (sigs, secs) in sorted(r["kernels"].items(), key=lambda kv: -kv[1][1]):
+                print(f"    {secs:7.2f} s  {sigs} sig  {kernel}")
+    print()
+    print(_table(results))
+    if args.json:
+        with open(args.json, "w", encoding="utf-8") as f:
+            json.dump(results, f, indent=1)
+
+
+if __name__ == "__main__":
+    main()
