@@ -88,7 +88,7 @@ def test_grid_is_validated_and_converted_once(monkeypatch: pytest.MonkeyPatch) -
     def no_validation(*args: object, **kwargs: object) -> None:
         raise AssertionError("the grid was validated again")
 
-    monkeypatch.setattr(astar_module, "checked_costs", no_validation)
+    monkeypatch.setattr(astar_module, "checked_cost_range", no_validation)
     for _ in range(3):
         _same_path(planner.plan((0, 0), (49, 59)), expected[0])
         np.testing.assert_array_equal(planner.distance_field((49, 59)), expected[1])

@@ -12,7 +12,7 @@ from hypothesis import strategies as st
 
 from navkit.planning import AStarPlanner, astar, distance_field
 from navkit.planning.grid._distance_field import _bucket_field
-from navkit.planning.grid._limits import checked_costs
+from navkit.planning.grid._limits import checked_cost_range
 
 SQRT2 = math.sqrt(2.0)
 
@@ -144,16 +144,17 @@ def test_bucket_segments_grow_and_wide_cost_ranges_fall_back() -> None:
     costs = rng.integers(1, 5, (70, 90)).astype(np.float64)
     costs[rng.random(costs.shape) < 0.2] = np.inf
     costs[35, 45] = 1.0
-    grid, lowest = checked_costs(costs)
+    grid, lowest, highest = checked_cost_range(costs)
     for eight in (False, True):
-        default = _bucket_field(grid, lowest, (35, 45), eight, False)
-        tiny = _bucket_field(grid, lowest, (35, 45), eight, False, cap=8)
+        default = _bucket_field(grid, lowest, highest, (35, 45), eight, False)
+        tiny = _bucket_field(grid, lowest, highest, (35, 45), eight, False, cap=8)
         assert default is not None and tiny is not None
         np.testing.assert_array_equal(tiny, default)
     # Costs spanning 1..1e6 would need a million buckets: the heap answers.
     costs[0, 0] = 1e6
-    grid, lowest = checked_costs(costs)
-    assert _bucket_field(grid, lowest, (35, 45), True, False) is None
+    grid, lowest, highest = checked_cost_range(costs)
+    assert highest == 1e6
+    assert _bucket_field(grid, lowest, highest, (35, 45), True, False) is None
     np.testing.assert_array_equal(
         distance_field(costs, (35, 45)), AStarPlanner(costs).distance_field((35, 45))
     )

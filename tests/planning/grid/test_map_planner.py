@@ -198,7 +198,7 @@ def test_map_planner_builds_the_costmap_once(monkeypatch: pytest.MonkeyPatch) ->
         raise AssertionError("the costmap was rebuilt or revalidated")
 
     monkeypatch.setattr(OccupancyGrid, "traversal_costs", forbidden)
-    monkeypatch.setattr("navkit.planning.grid._astar.checked_costs", forbidden)
+    monkeypatch.setattr("navkit.planning.grid._astar.checked_cost_range", forbidden)
     monkeypatch.setattr("navkit.planning.grid._map_planner.checked_costs", forbidden)
     for _ in range(2):
         for (s, g), want in zip(queries, expected, strict=True):

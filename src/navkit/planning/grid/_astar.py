@@ -17,8 +17,14 @@ from navkit.planning.grid._arguments import (
     traversable_cell,
 )
 from navkit.planning.grid._astar_kernels import grid_search, trace_path
+from navkit.planning.grid._distance_field_kernels import highest_finite
 from navkit.planning.grid._jps_kernels import jps_search, jps_tables, jps_trace
-from navkit.planning.grid._limits import MAX_HEURISTIC_WEIGHT, bounded_float, checked_costs
+from navkit.planning.grid._limits import (
+    MAX_HEURISTIC_WEIGHT,
+    bounded_float,
+    checked_cost_range,
+    read_only,
+)
 from navkit.planning.grid._path import Path2D
 from navkit.planning.grid._workspace import grow_heap, workspace
 
@@ -152,14 +158,22 @@ class AStarPlanner:
     5.0
     >>> planner.distance_field((0, 0))[2].tolist()
     [2.0, 3.0, 4.0, 5.0]
-    >>> jps = AStarPlanner(costs, method="jps")
+    >>> jps = AStarPlanner(costs, method="jps")  # another path of the same cost
     >>> path = jps.plan((2, 0), (0, 3))
     >>> path.cells.tolist(), path.cost
-    ([[2, 0], [2, 1], [2, 2], [2, 3], [1, 3], [0, 3]], 5.0)
+    ([[2, 0], [1, 0], [0, 0], [0, 1], [0, 2], [0, 3]], 5.0)
     """
 
     __slots__ = (
-        "_costs", "_cutting", "_eight", "_flat", "_jps", "_lowest", "_scale", "_weight",
+        "_costs",
+        "_cutting",
+        "_eight",
+        "_flat",
+        "_highest",
+        "_jps",
+        "_lowest",
+        "_scale",
+        "_weight",
     )
 
     _costs: FloatArray
@@ -169,6 +183,7 @@ class AStarPlanner:
     _weight: float
     _scale: float
     _lowest: float
+    _highest: float | None
     # JPS tables (row bits, column bits) and the uniform cell cost,
     # or None when this planner runs A*.
     _jps: tuple[NDArray[np.uint64], NDArray[np.uint64], float] | None
@@ -182,12 +197,12 @@ class AStarPlanner:
         heuristic_weight: float = 1.0,
         method: str = "astar",
     ) -> None:
-        grid, lowest = checked_costs(costs)
+        grid, lowest, highest = checked_cost_range(costs)
         # Validation converts only when needed: copy whenever the result may
         # still be (a view of) the caller's array.
         if grid is costs or grid.base is not None:
             grid = grid.copy()
-        self._setup(grid, lowest, connectivity, corner_cutting, heuristic_weight, method)
+        self._setup(grid, lowest, connectivity, corner_cutting, heuristic_weight, method, highest)
 
     @classmethod
     def _borrowing(
@@ -198,14 +213,18 @@ class AStarPlanner:
         corner_cutting: Any,
         heuristic_weight: Any,
         method: Any = "astar",
+        highest: float | None = None,
     ) -> AStarPlanner:
         """A planner on an already validated grid, without copying it.
 
         For the one-shot functions, whose planner lives for one query while the
         caller's array cannot change, and for owners of a private grid.
+        ``highest``: the grid's largest finite cost when known (found when needed).
         """
         planner = cls.__new__(cls)
-        planner._setup(grid, lowest, connectivity, corner_cutting, heuristic_weight, method)
+        planner._setup(
+            grid, lowest, connectivity, corner_cutting, heuristic_weight, method, highest
+        )
         return planner
 
     def _setup(
@@ -216,6 +235,7 @@ class AStarPlanner:
         corner_cutting: Any,
         heuristic_weight: Any,
         method: Any,
+        highest: float | None,
     ) -> None:
         check_search_size(grid)
         self._eight = check_connectivity(connectivity)
@@ -227,8 +247,10 @@ class AStarPlanner:
         # traversable), so the scale is finite then.
         self._scale = self._weight * lowest
         self._lowest = lowest
+        self._highest = highest
         self._costs = grid
-        self._flat = grid.ravel()
+        # Read-only: the kernels are compiled for read-only grids only.
+        self._flat = read_only(grid.reshape(-1))
         self._jps = None
         how = _check_method(method)
         if how == "astar":
@@ -242,8 +264,7 @@ class AStarPlanner:
             )
         if not options_fit:
             return
-        rows, cols = grid.shape
-        row_bits, col_bits, uniform = jps_tables(self._flat, rows, cols)
+        row_bits, col_bits, uniform = jps_tables(grid, lowest, self._highest_cost())
         if uniform < 0.0:
             if how == "jps":
                 raise ValueError(
@@ -252,6 +273,12 @@ class AStarPlanner:
                 )
             return
         self._jps = (row_bits, col_bits, uniform)
+
+    def _highest_cost(self) -> float:
+        """The largest finite cost of the grid (-inf if none), found once."""
+        if self._highest is None:
+            self._highest = highest_finite(self._flat)
+        return self._highest
 
     @property
     def costs(self) -> FloatArray:
@@ -331,8 +358,18 @@ class AStarPlanner:
         while True:
             rec, meta, heap, stamp = workspace(rows * cols)
             expanded, found = grid_search(
-                self._flat, rows, cols, s[0] * cols + s[1], goal_index, self._eight,
-                self._cutting, self._scale, rec, meta, heap, stamp,
+                self._flat,
+                rows,
+                cols,
+                s[0] * cols + s[1],
+                goal_index,
+                self._eight,
+                self._cutting,
+                self._scale,
+                rec,
+                meta,
+                heap,
+                stamp,
             )
             if found >= 0:
                 break
@@ -357,8 +394,17 @@ class AStarPlanner:
         while True:
             records, meta, blocks, stamp = _jps_workspace(rows * cols)
             expanded, found = jps_search(
-                row_bits, col_bits, rows, cols, s[0] * cols + s[1], goal_index,
-                records, meta, blocks, _jps_scratch.heap, stamp,
+                row_bits,
+                col_bits,
+                rows,
+                cols,
+                s[0] * cols + s[1],
+                goal_index,
+                records,
+                meta,
+                blocks,
+                _jps_scratch.heap,
+                stamp,
             )
             if found >= 0:
                 break
@@ -395,7 +441,9 @@ class AStarPlanner:
 
         grid = self._costs
         t = traversable_cell(grid, goal_cell, "goal_cell")
-        field = _bucket_field(grid, self._lowest, t, self._eight, self._cutting)
+        field = _bucket_field(
+            grid, self._lowest, self._highest_cost(), t, self._eight, self._cutting
+        )
         if field is not None:
             return field
         # Cost ranges too wide for the bucket queue: Dijkstra on the heap.
@@ -404,8 +452,18 @@ class AStarPlanner:
         while True:
             rec, meta, heap, stamp = workspace(n)
             _, status = grid_search(
-                self._flat, rows, cols, t[0] * cols + t[1], -1, self._eight, self._cutting,
-                0.0, rec, meta, heap, stamp,
+                self._flat,
+                rows,
+                cols,
+                t[0] * cols + t[1],
+                -1,
+                self._eight,
+                self._cutting,
+                0.0,
+                rec,
+                meta,
+                heap,
+                stamp,
             )
             if status >= 0:
                 break
@@ -510,9 +568,8 @@ def astar(
     >>> astar(costs, (2, 0), (0, 3), method="jps").cost
     5.0
     """
-    grid, lowest = checked_costs(costs)
+    grid, lowest, highest = checked_cost_range(costs)
     planner = AStarPlanner._borrowing(
-        grid, lowest, connectivity, corner_cutting, heuristic_weight, method
+        grid, lowest, connectivity, corner_cutting, heuristic_weight, method, highest
     )
     return planner.plan(start_cell, goal_cell)
-

@@ -18,7 +18,7 @@ import math
 
 import numpy as np
 
-from navkit._shared.jit import njit_cached, njit_inline, njit_inline_no_refcount, njit_no_refcount
+from navkit._shared.jit import njit_cached, njit_force_inline, njit_inline, njit_no_refcount
 from navkit.planning.grid._search_heap import (
     REC_BASE,
     rec_pop,
@@ -47,7 +47,7 @@ def _cells_to_goal(r: int, c: int, gr: int, gc: int, octile: bool) -> float:
     return float(dr + dc)
 
 
-@njit_inline_no_refcount
+@njit_force_inline
 def _relax(
     flat: np.ndarray,
     rec: np.ndarray,
@@ -57,7 +57,7 @@ def _relax(
     open_mark: int,
     closed_mark: int,
     v: int,
-    d: int,
+    code: int,
     step: float,
     gu: float,
     cu: float,
@@ -71,8 +71,11 @@ def _relax(
     next_key: float,
     next_v: int,
 ) -> tuple[float, float, int, int]:
-    """Try the move ``d`` to cell ``v`` = (r, c); return the next-node candidate and queue size.
+    """Try a move to cell ``v`` = (r, c); return the next-node candidate and queue size.
 
+    ``code`` is what the cell's record stores when the move improves it,
+    ``open_mark << 4 | (d + 1)`` for the move's direction ``d`` (computed by
+    the caller: a literal argument would compile this function once more).
     The candidate (next_f, next_key, next_v) is the best newly reached
     neighbour; it is kept out of the heap because it is often the very node
     the next pop would return (next_v = -1: none yet).
@@ -89,7 +92,7 @@ def _relax(
     if queued and new_g >= rec[2 * v]:
         return next_f, next_key, next_v, n
     rec[2 * v] = new_g
-    meta[4 * v + 2] = (open_mark << 4) | (d + 1)
+    meta[4 * v + 2] = code
     h = _cells_to_goal(r, c, gr, gc, octile)
     f = new_g + scale * h
     # Ties in f go to the cell nearer the goal, which keeps A* from expanding
@@ -98,7 +101,7 @@ def _relax(
     if queued:
         # Every open cell is queued (the candidate is queued or expanded
         # before the next expansion): lower its priority in place.
-        rec_sift_up(heap, meta, meta[4 * v + 3], f, key)
+        rec_sift_up(heap, meta, np.int64(meta[4 * v + 3]), f, key)
         return next_f, next_key, next_v, n
     if f < next_f or (f == next_f and key < next_key):
         if next_v >= 0:
@@ -188,11 +191,12 @@ def grid_search(
     closed_mark = stamp + 1
     gr = goal // cols if goal >= 0 else 0
     gc = goal - gr * cols if goal >= 0 else 0
+    open16 = open_mark << 4
     rec[2 * start] = 0.0
     meta[4 * start + 2] = open_mark << 4
     expanded = 0
     found = 0
-    n = 0
+    n = np.int64(0)  # np.int64: a literal 0 would compile callees once more
     u = start
     while True:
         meta[4 * u + 2] = (closed_mark << 4) | (meta[4 * u + 2] & 15)
@@ -213,23 +217,103 @@ def grid_search(
         e_in = c + 1 < cols
         nf = np.inf
         nk = np.inf
-        nv = -1
+        nv = np.int64(-1)
         if n_in:
-            nf, nk, nv, n = _relax(flat, rec, meta, heap, n, open_mark, closed_mark,
-                                   u - cols, 0, 1.0, gu, cu, r - 1, c, gr, gc, eight, scale,
-                                   nf, nk, nv)
+            nf, nk, nv, n = _relax(
+                flat,
+                rec,
+                meta,
+                heap,
+                n,
+                open_mark,
+                closed_mark,
+                u - cols,
+                open16 | 1,
+                1.0,
+                gu,
+                cu,
+                r - 1,
+                c,
+                gr,
+                gc,
+                eight,
+                scale,
+                nf,
+                nk,
+                nv,
+            )
         if s_in:
-            nf, nk, nv, n = _relax(flat, rec, meta, heap, n, open_mark, closed_mark,
-                                   u + cols, 1, 1.0, gu, cu, r + 1, c, gr, gc, eight, scale,
-                                   nf, nk, nv)
+            nf, nk, nv, n = _relax(
+                flat,
+                rec,
+                meta,
+                heap,
+                n,
+                open_mark,
+                closed_mark,
+                u + cols,
+                open16 | 2,
+                1.0,
+                gu,
+                cu,
+                r + 1,
+                c,
+                gr,
+                gc,
+                eight,
+                scale,
+                nf,
+                nk,
+                nv,
+            )
         if w_in:
-            nf, nk, nv, n = _relax(flat, rec, meta, heap, n, open_mark, closed_mark,
-                                   u - 1, 2, 1.0, gu, cu, r, c - 1, gr, gc, eight, scale,
-                                   nf, nk, nv)
+            nf, nk, nv, n = _relax(
+                flat,
+                rec,
+                meta,
+                heap,
+                n,
+                open_mark,
+                closed_mark,
+                u - 1,
+                open16 | 3,
+                1.0,
+                gu,
+                cu,
+                r,
+                c - 1,
+                gr,
+                gc,
+                eight,
+                scale,
+                nf,
+                nk,
+                nv,
+            )
         if e_in:
-            nf, nk, nv, n = _relax(flat, rec, meta, heap, n, open_mark, closed_mark,
-                                   u + 1, 3, 1.0, gu, cu, r, c + 1, gr, gc, eight, scale,
-                                   nf, nk, nv)
+            nf, nk, nv, n = _relax(
+                flat,
+                rec,
+                meta,
+                heap,
+                n,
+                open_mark,
+                closed_mark,
+                u + 1,
+                open16 | 4,
+                1.0,
+                gu,
+                cu,
+                r,
+                c + 1,
+                gr,
+                gc,
+                eight,
+                scale,
+                nf,
+                nk,
+                nv,
+            )
         if eight:
             if corner_cutting:
                 nw = n_in and w_in
@@ -247,21 +331,101 @@ def grid_search(
                 sw = s_ok and w_ok
                 se = s_ok and e_ok
             if nw:
-                nf, nk, nv, n = _relax(flat, rec, meta, heap, n, open_mark, closed_mark,
-                                       u - cols - 1, 4, SQRT2, gu, cu, r - 1, c - 1,
-                                       gr, gc, eight, scale, nf, nk, nv)
+                nf, nk, nv, n = _relax(
+                    flat,
+                    rec,
+                    meta,
+                    heap,
+                    n,
+                    open_mark,
+                    closed_mark,
+                    u - cols - 1,
+                    open16 | 5,
+                    SQRT2,
+                    gu,
+                    cu,
+                    r - 1,
+                    c - 1,
+                    gr,
+                    gc,
+                    eight,
+                    scale,
+                    nf,
+                    nk,
+                    nv,
+                )
             if ne:
-                nf, nk, nv, n = _relax(flat, rec, meta, heap, n, open_mark, closed_mark,
-                                       u - cols + 1, 5, SQRT2, gu, cu, r - 1, c + 1,
-                                       gr, gc, eight, scale, nf, nk, nv)
+                nf, nk, nv, n = _relax(
+                    flat,
+                    rec,
+                    meta,
+                    heap,
+                    n,
+                    open_mark,
+                    closed_mark,
+                    u - cols + 1,
+                    open16 | 6,
+                    SQRT2,
+                    gu,
+                    cu,
+                    r - 1,
+                    c + 1,
+                    gr,
+                    gc,
+                    eight,
+                    scale,
+                    nf,
+                    nk,
+                    nv,
+                )
             if sw:
-                nf, nk, nv, n = _relax(flat, rec, meta, heap, n, open_mark, closed_mark,
-                                       u + cols - 1, 6, SQRT2, gu, cu, r + 1, c - 1,
-                                       gr, gc, eight, scale, nf, nk, nv)
+                nf, nk, nv, n = _relax(
+                    flat,
+                    rec,
+                    meta,
+                    heap,
+                    n,
+                    open_mark,
+                    closed_mark,
+                    u + cols - 1,
+                    open16 | 7,
+                    SQRT2,
+                    gu,
+                    cu,
+                    r + 1,
+                    c - 1,
+                    gr,
+                    gc,
+                    eight,
+                    scale,
+                    nf,
+                    nk,
+                    nv,
+                )
             if se:
-                nf, nk, nv, n = _relax(flat, rec, meta, heap, n, open_mark, closed_mark,
-                                       u + cols + 1, 7, SQRT2, gu, cu, r + 1, c + 1,
-                                       gr, gc, eight, scale, nf, nk, nv)
+                nf, nk, nv, n = _relax(
+                    flat,
+                    rec,
+                    meta,
+                    heap,
+                    n,
+                    open_mark,
+                    closed_mark,
+                    u + cols + 1,
+                    open16 | 8,
+                    SQRT2,
+                    gu,
+                    cu,
+                    r + 1,
+                    c + 1,
+                    gr,
+                    gc,
+                    eight,
+                    scale,
+                    nf,
+                    nk,
+                    nv,
+                )
         if nv >= 0:
             top_f = heap[2 * REC_BASE]
             if n == 0 or nf < top_f or (nf == top_f and nk < heap[2 * REC_BASE + 1]):

@@ -19,10 +19,9 @@ from navkit.planning.grid._distance_field_kernels import (
     bucket_field,
     crop,
     fill_inf,
-    highest_finite,
     pad_grid,
 )
-from navkit.planning.grid._limits import checked_costs
+from navkit.planning.grid._limits import checked_cost_range, read_only
 
 __all__ = ["distance_field"]
 
@@ -91,20 +90,21 @@ def distance_field(
     array([[0.    ,    inf, 2.8284],
            [1.    , 1.4142, 2.4142]])
     """
-    grid, lowest = checked_costs(costs)
+    grid, lowest, highest = checked_cost_range(costs)
     eight = check_connectivity(connectivity)
     cutting = as_bool(corner_cutting, "corner_cutting")
     goal = traversable_cell(grid, goal_cell, "goal_cell")
-    field = _bucket_field(grid, lowest, goal, eight, cutting)
+    field = _bucket_field(grid, lowest, highest, goal, eight, cutting)
     if field is not None:
         return field
-    planner = AStarPlanner._borrowing(grid, lowest, connectivity, cutting, 1.0)
+    planner = AStarPlanner._borrowing(grid, lowest, connectivity, cutting, 1.0, "astar", highest)
     return planner.distance_field(goal)
 
 
 def _bucket_field(
     grid: FloatArray,
     lowest: float,
+    highest: float,
     goal: tuple[int, int],
     eight: bool,
     cutting: bool,
@@ -112,11 +112,11 @@ def _bucket_field(
 ) -> FloatArray | None:
     """The field by the bucket-queue kernel, or None when the cost range needs too many buckets.
 
+    ``lowest``, ``highest``: the smallest and largest finite costs of ``grid``.
     ``cap``: initial bucket segment length (0: about one wavefront, ``4 * (rows + cols)``).
     """
     rows, cols = grid.shape
-    flat = grid.reshape(-1)
-    highest = highest_finite(flat)
+    flat = read_only(grid.reshape(-1))
     width = lowest * WIDTH_MARGIN
     w_max = SQRT2 * highest if eight else highest
     span = int(w_max / width) + 3
@@ -141,8 +141,24 @@ def _bucket_field(
     inv = 1.0 / width
     mask = n_slots - 1
     uniform_cost = lowest if uniform else 0.0
-    while bucket_field(free, padded, uniform_cost, cols, eight, cutting, inv, mask, dist,
-                       buckets, cap, counts, state) == GROW:
+    while (
+        bucket_field(
+            free,
+            padded,
+            uniform_cost,
+            cols,
+            eight,
+            cutting,
+            inv,
+            mask,
+            dist,
+            buckets,
+            cap,
+            counts,
+            state,
+        )
+        == GROW
+    ):
         grown = np.empty(n_slots * 2 * cap, dtype=np.int32)
         for s in range(n_slots):
             grown[2 * s * cap : 2 * s * cap + counts[s]] = buckets[s * cap : s * cap + counts[s]]

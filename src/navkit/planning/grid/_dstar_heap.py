@@ -20,20 +20,36 @@ kernels never allocate Python objects in their loops:
 
 Capacity equal to the number of nodes is always enough because a node is queued
 at most once.
+
+Compilation: :func:`heap_new` is plain NumPy (nothing to compile); the sifts are
+compiled once each and called (never inlined) by the three inlined operations,
+whose arguments keep one type set (int64 slots, never literal constants) so no
+kernel is compiled twice.
 """
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
-from navkit._shared.jit import njit_cached, njit_inline
+from navkit._shared.jit import NO_REFCOUNT, njit_inline, typed_njit
 from navkit._shared.jit import njit_inline_no_refcount as _njit_inline_no_refcount
-from navkit._shared.jit import njit_no_refcount as _njit_no_refcount
+
+# Compile options of the Field D* kernel modules (this one and the D* Lite, path and
+# polyline kernels). Kernels called from Python need no cfunc wrapper (navkit never
+# passes a kernel as a first-class function value); helpers called only from kernels
+# need no Python wrapper either: each wrapper is compiled (and its LLVM optimised) with
+# the kernel on first use. The numpy error model drops the zero-divisor checks (every
+# division is guarded, so no result changes) and their exception code.
+KERNEL_OPTIONS: dict[str, Any] = {**NO_REFCOUNT, "error_model": "numpy"}
+HELPER_OPTIONS: dict[str, Any] = {**KERNEL_OPTIONS, "no_cpython_wrapper": True}
+_helper = typed_njit(**HELPER_OPTIONS)
 
 
-@njit_cached
 def heap_new(n_nodes: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Allocate an empty heap able to hold every one of ``n_nodes`` node ids."""
+    n_nodes = int(n_nodes)
     nodes = np.empty(n_nodes, dtype=np.int64)
     keys = np.empty((n_nodes, 2), dtype=np.float64)
     pos = np.full(n_nodes, -1, dtype=np.int64)
@@ -58,7 +74,7 @@ def _put(
     keys[i, 1] = k1
 
 
-@_njit_no_refcount
+@_helper
 def _sift_up(
     nodes: np.ndarray, keys: np.ndarray, pos: np.ndarray, i: int, node: int, k0: float, k1: float
 ) -> None:
@@ -74,7 +90,7 @@ def _sift_up(
     _put(nodes, keys, pos, i, node, k0, k1)
 
 
-@_njit_no_refcount
+@_helper
 def _sift_down(
     nodes: np.ndarray,
     keys: np.ndarray,
@@ -138,7 +154,9 @@ def heap_pop(nodes: np.ndarray, keys: np.ndarray, pos: np.ndarray, size: np.ndar
     last = size[0] - 1
     size[0] = last
     if last > 0:
-        _sift_down(nodes, keys, pos, 0, last, nodes[last], keys[last, 0], keys[last, 1])
+        # The root slot as a variable: a literal 0 would compile a second _sift_down.
+        root = last - last
+        _sift_down(nodes, keys, pos, root, last, nodes[last], keys[last, 0], keys[last, 1])
     pos[top] = -1
     return int(top)
 

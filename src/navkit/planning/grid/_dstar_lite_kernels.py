@@ -50,12 +50,18 @@ from typing import Any
 
 import numpy as np
 
-from navkit._shared.jit import njit_inline, njit_no_refcount
-from navkit.planning.grid._dstar_heap import heap_pop, heap_push, heap_remove
+from navkit._shared.jit import njit_inline, typed_njit
+from navkit.planning.grid._dstar_heap import (
+    HELPER_OPTIONS,
+    KERNEL_OPTIONS,
+    heap_pop,
+    heap_push,
+    heap_remove,
+)
 
 SQRT2 = math.sqrt(2.0)
 FIELD_HSCALE = 1.0 / SQRT2
-_OCT = SQRT2 - 1.0
+OCT = SQRT2 - 1.0
 # Least cost above g(u) of any option through an axis neighbour u (cell costs >= 1).
 _AXIS_GAIN = 1.0 / SQRT2
 
@@ -63,6 +69,9 @@ _AXIS_GAIN = 1.0 / SQRT2
 # axis neighbours, odd entries the diagonal ones. Pair k is (ring[k], ring[k+1]).
 RING_R = np.array([0, -1, -1, -1, 0, 1, 1, 1], dtype=np.int64)
 RING_C = np.array([1, 1, 0, -1, -1, -1, 0, 1], dtype=np.int64)
+
+_kernel = typed_njit(**KERNEL_OPTIONS)
+_helper = typed_njit(**HELPER_OPTIONS)
 
 
 def _pair_tables() -> tuple[np.ndarray, ...]:
@@ -126,9 +135,17 @@ def params(
     hscale: float,
 ) -> tuple[Any, ...]:
     """The ``prm`` tuple of the search kernels (types fixed so numba compiles once)."""
-    return (int(width), int(nrows), int(ncols), int(start[0]), int(start[1]), int(goal),
-            float(km), bool(interp), float(hscale))
-
+    return (
+        int(width),
+        int(nrows),
+        int(ncols),
+        int(start[0]),
+        int(start[1]),
+        int(goal),
+        float(km),
+        bool(interp),
+        float(hscale),
+    )
 
 
 @njit_inline
@@ -184,16 +201,14 @@ def corner_cost(g1: float, g2: float, c: float, b: float, interp: bool) -> float
     return best
 
 
-
 @njit_inline
 def heuristic(sr: int, sc: int, i: int, j: int, hscale: float) -> float:
     """Heuristic ``hscale * octile`` distance between nodes (sr, sc) and (i, j)."""
     dr = abs(i - sr)
     dc = abs(j - sc)
     if dr < dc:
-        return hscale * (dc + _OCT * dr)
-    return hscale * (dr + _OCT * dc)
-
+        return hscale * (dc + OCT * dr)
+    return hscale * (dr + OCT * dc)
 
 
 @njit_inline
@@ -232,7 +247,7 @@ def _pair_value(
     return corner_cost(g1, g[(i + PAIR_DR[k]) * ncols + j + PAIR_DC[k]], c, b, interp)
 
 
-@njit_no_refcount
+@_helper
 def node_rhs(
     pad: np.ndarray, width: int, g: np.ndarray, ncols: int, i: int, j: int, interp: bool
 ) -> float:
@@ -246,7 +261,7 @@ def node_rhs(
 
 
 @njit_inline
-def _update_vertex(
+def _queue(
     s: int,
     i: int,
     j: int,
@@ -269,7 +284,32 @@ def _update_vertex(
         heap_remove(nodes, keys, pos, size, s)
 
 
-@njit_no_refcount
+@_helper
+def update_vertex(
+    s: int,
+    i: int,
+    j: int,
+    g: np.ndarray,
+    rhs: np.ndarray,
+    nodes: np.ndarray,
+    keys: np.ndarray,
+    pos: np.ndarray,
+    size: np.ndarray,
+    sr: int,
+    sc: int,
+    km: float,
+    hscale: float,
+) -> None:
+    """Queue node s = (i, j) with its key if it is inconsistent, else dequeue it.
+
+    Compiled once and called (not inlined) where it is not hot: a rising node
+    itself, a requeued key, :func:`update_cells`. The hot sites (the
+    neighbours of an expanded node in :func:`settle`) inline the same code.
+    """
+    _queue(s, i, j, g, rhs, nodes, keys, pos, size, sr, sc, km, hscale)
+
+
+@_helper
 def settle(
     st: tuple[np.ndarray, ...],
     prm: tuple[Any, ...],
@@ -288,6 +328,9 @@ def settle(
     for a node whose value rises) to ``work[0]``; once ``work[0] > work[1]`` the
     loop stops early, leaving the target unsettled and the state mid-repair (the
     caller then starts afresh, see :func:`extract_path`).
+
+    Called (never inlined) by its one caller, :func:`extract_path` of the path
+    kernels, so its body is compiled once.
     """
     pad, g, rhs, nodes, keys, pos, size, work = st
     width, nrows, ncols, sr, sc, goal, km, interp, hscale = prm
@@ -311,7 +354,8 @@ def settle(
             mu = min(g[u], rhs[u])
             k0 = mu + heuristic(sr, sc, ui, uj, hscale) + km
             if top0 < k0 or (top0 == k0 and top1 < mu):
-                heap_push(nodes, keys, pos, size, u, k0, mu)
+                # A queued node is inconsistent: this requeues it with its key.
+                update_vertex(u, ui, uj, g, rhs, nodes, keys, pos, size, sr, sc, km, hscale)
                 continue
         expanded += 1
         if g[u] > rhs[u]:
@@ -338,7 +382,7 @@ def settle(
                     v = v2
                 if v < rhs[s]:
                     rhs[s] = v
-                    _update_vertex(s, si, sj, g, rhs, nodes, keys, pos, size, sr, sc, km, hscale)
+                    _queue(s, si, sj, g, rhs, nodes, keys, pos, size, sr, sc, km, hscale)
         else:
             spent += RAISE_WORK
             g_old = g[u]
@@ -356,15 +400,15 @@ def settle(
                 if s == goal or rhs[s] < g_old + gain - 1e-9 * (1.0 + g_old):
                     continue
                 rhs[s] = node_rhs(pad, width, g, ncols, si, sj, interp)
-                _update_vertex(s, si, sj, g, rhs, nodes, keys, pos, size, sr, sc, km, hscale)
+                _queue(s, si, sj, g, rhs, nodes, keys, pos, size, sr, sc, km, hscale)
             # rhs(u) depends on its neighbours only: unchanged, but u now
             # needs requeueing (or leaves the queue if g = rhs = inf).
-            _update_vertex(u, ui, uj, g, rhs, nodes, keys, pos, size, sr, sc, km, hscale)
+            update_vertex(u, ui, uj, g, rhs, nodes, keys, pos, size, sr, sc, km, hscale)
     work[0] = spent
     return expanded
 
 
-@njit_no_refcount
+@_kernel
 def update_cells(
     st: tuple[np.ndarray, ...],
     prm: tuple[Any, ...],
@@ -390,5 +434,4 @@ def update_cells(
                 if s == goal:
                     continue
                 rhs[s] = node_rhs(pad, width, g, ncols, i, j, interp)
-                _update_vertex(s, i, j, g, rhs, nodes, keys, pos, size, sr, sc, km, hscale)
-
+                update_vertex(s, i, j, g, rhs, nodes, keys, pos, size, sr, sc, km, hscale)

@@ -14,15 +14,22 @@ from navkit._shared.types import FloatArray, IntArray
 from navkit._shared.validation import as_bool, as_cell, as_float_array
 from navkit.errors import NoPathError
 from navkit.geometry import Pose2D, as_pose
-from navkit.planning.grid._dstar_heap import heap_new, heap_push
+from navkit.planning.grid._dstar_heap import heap_new
 from navkit.planning.grid._dstar_lite_kernels import (
     FIELD_HSCALE,
-    heuristic,
+    OCT,
     params,
     state,
     update_cells,
 )
-from navkit.planning.grid._field_path_kernels import ABORTED, NO_PATH, OK, extract_path
+from navkit.planning.grid._field_path_kernels import (
+    ABORTED,
+    CANDIDATES,
+    FULL,
+    NO_PATH,
+    OK,
+    extract_path,
+)
 from navkit.planning.grid._limits import (
     COORDINATE_LIMIT,
     MAX_COST,
@@ -54,6 +61,9 @@ _NODE_LIMIT = float(2**53)
 _REPAIR_FRACTION = 0.05
 _REPAIR_MIN_WORK = 4096
 _NO_LIMIT = np.iinfo(np.int64).max // 2
+# Initial room of the path buffer, points per node row and column; a longer walk
+# is repeated with a buffer twice as large.
+_POINTS_PER_SIDE = 4
 
 
 class FieldDStar:
@@ -501,8 +511,7 @@ class FieldDStar:
         s = self._passable_cell(start_cell, "start_cell")
         gl = self._passable_cell(goal_cell, "goal_cell")
         if s == gl:
-            return Path2D(np.array([s], dtype=np.float64), "grid", cost=0.0, length=0.0,
-                          expanded=0)
+            return Path2D(np.array([s], dtype=np.float64), "grid", cost=0.0, length=0.0, expanded=0)
         cell_s = np.array(s, dtype=np.int64)
         cell_g = np.array(gl, dtype=np.int64)
         centre_s = cell_s + 0.5
@@ -651,7 +660,8 @@ class FieldDStar:
             self._params(),
             np.ascontiguousarray(idx[:, 0]),
             np.ascontiguousarray(idx[:, 1]),
-            np.ascontiguousarray(vals),
+            # Writable too (a caller's read-only array is copied): one kernel signature.
+            np.require(vals, np.float64, ["C", "W"]),
         )
 
     # ------------------------------------------------------------ internals
@@ -673,7 +683,9 @@ class FieldDStar:
         if not np.all(np.isfinite(raw)) or not np.all(raw == np.floor(raw)):
             raise ValueError("cells must hold integer (row, col) indices")
         inside = (
-            (raw[:, 0] >= 0) & (raw[:, 0] < self._rows) & (raw[:, 1] >= 0)
+            (raw[:, 0] >= 0)
+            & (raw[:, 0] < self._rows)
+            & (raw[:, 1] >= 0)
             & (raw[:, 1] < self._cols)
         )
         if not inside.all():
@@ -731,7 +743,7 @@ class FieldDStar:
     def _move_start(self, s: tuple[int, int]) -> None:
         assert self._start is not None
         # D* Lite: keys already queued stay lower bounds if km grows by h(old, new).
-        self._km += heuristic(self._start[0], self._start[1], s[0], s[1], self._hscale)
+        self._km += _heuristic(self._start, s, self._hscale)
         self._start = s
 
     def _reset(
@@ -756,9 +768,13 @@ class FieldDStar:
         self._goal_point = (float(goal_point[0]), float(goal_point[1]))
         goal_id = gl[0] * self._ncols + gl[1]
         self._rhs[goal_id] = 0.0
+        # Queue the goal with key (h(start, goal), 0) in the empty heap.
         nodes, keys, pos, size = self._heap
-        h = heuristic(s[0], s[1], gl[0], gl[1], self._hscale)
-        heap_push(nodes, keys, pos, size, goal_id, h, 0.0)
+        nodes[0] = goal_id
+        keys[0, 0] = _heuristic(s, gl, self._hscale)
+        keys[0, 1] = 0.0
+        pos[goal_id] = 0
+        size[0] = 1
 
     def _state(self) -> tuple[np.ndarray, ...]:
         return state(self._pad, self._g, self._rhs, self._heap, self._work)
@@ -766,8 +782,16 @@ class FieldDStar:
     def _params(self) -> tuple[Any, ...]:
         start = self._start if self._start is not None else (0, 0)
         goal_id = -1 if self._goal is None else self._goal[0] * self._ncols + self._goal[1]
-        return params(self._width, self._nrows, self._ncols, start, goal_id, self._km,
-                      self._interp, self._hscale)
+        return params(
+            self._width,
+            self._nrows,
+            self._ncols,
+            start,
+            goal_id,
+            self._km,
+            self._interp,
+            self._hscale,
+        )
 
     def _search(self) -> tuple[FloatArray, float, float, int]:
         """Node path (node coordinates), its exact cost and length, expansions.
@@ -784,18 +808,15 @@ class FieldDStar:
         fresh = self._fresh
         self._work[0] = 0
         self._work[1] = (
-            _NO_LIMIT if fresh
-            else max(int(_REPAIR_FRACTION * self._fresh_work), _REPAIR_MIN_WORK)
+            _NO_LIMIT if fresh else max(int(_REPAIR_FRACTION * self._fresh_work), _REPAIR_MIN_WORK)
         )
-        pts, k, expanded, status = extract_path(self._state(), self._params(), self._lookahead)
+        pts, k, expanded, status = self._walk()
         if status == ABORTED:
             assert self._start_point is not None and self._goal_point is not None
             self._reset(self._start, self._goal, self._start_point, self._goal_point)
             self._work[0] = 0
             self._work[1] = _NO_LIMIT
-            pts, k, more, status = extract_path(
-                self._state(), self._params(), self._lookahead
-            )
+            pts, k, more, status = self._walk()
             expanded += more
             fresh = True
         if fresh:
@@ -824,6 +845,31 @@ class FieldDStar:
         self._cached = (self._start, points.copy(), float(cost), float(length))
         return points, float(cost), float(length), int(expanded)
 
+    def _walk(self) -> tuple[FloatArray, int, int, int]:
+        """Run :func:`extract_path`: (points buffer, K, expansions, status)."""
+        pts = np.empty((max(_POINTS_PER_SIDE * (self._nrows + self._ncols), 1), 2))
+        cand = np.empty((CANDIDATES, 4))
+        cand2 = np.empty((CANDIDATES, 4))
+        corner_g = np.empty(4)
+        counter = np.zeros(1, dtype=np.int64)
+        need = np.zeros(1, dtype=np.int64)
+        while True:
+            k, status = extract_path(
+                self._state(),
+                self._params(),
+                self._lookahead,
+                pts,
+                cand,
+                cand2,
+                corner_g,
+                counter,
+                need,
+            )
+            if status != FULL:
+                return pts, int(k), int(counter[0]), int(status)
+            # Out of room: walk again with twice the buffer (the values stay settled).
+            pts = np.empty((2 * pts.shape[0], 2))
+
     def _linked(self, points: FloatArray) -> tuple[FloatArray, float, float]:
         """The node path with the stored end points attached, smoothed, and its cost/length."""
         assert self._start_point is not None and self._goal_point is not None
@@ -833,8 +879,7 @@ class FieldDStar:
         keep[1:] = np.any(linked[1:] != linked[:-1], axis=1)
         linked = np.ascontiguousarray(linked[keep])
         if self._smooth:
-            linked = shortcut(self._pad, self._width, linked, linked.shape[0],
-                              _SHORTCUT_PATIENCE)
+            linked = shortcut(self._pad, self._width, linked, linked.shape[0], _SHORTCUT_PATIENCE)
         cost, length = polyline_cost(self._pad, self._width, linked, linked.shape[0])
         return linked, float(cost), float(length)
 
@@ -842,9 +887,21 @@ class FieldDStar:
         linked, cost, length = self._linked(points)
         res = self._resolution
         return Path2D(
-            self.node_to_world(linked), "world", cost=cost * res, length=length * res,
+            self.node_to_world(linked),
+            "world",
+            cost=cost * res,
+            length=length * res,
             expanded=expanded,
         )
+
+
+def _heuristic(a: tuple[int, int], b: tuple[int, int], hscale: float) -> float:
+    """``heuristic`` of the search kernels (the same float operations) between nodes a, b."""
+    dr = abs(b[0] - a[0])
+    dc = abs(b[1] - a[1])
+    if dr < dc:
+        return hscale * (dc + OCT * dr)
+    return hscale * (dr + OCT * dc)
 
 
 def _check_range(values: FloatArray, limit: float, name: str, unit: str) -> None:

@@ -6,6 +6,16 @@ around it, settling (:func:`navkit.planning.grid._dstar_lite_kernels.settle`)
 every node value it reads first. Points are in node coordinates (cell
 ``(r, c)`` covers ``[r, r+1] × [c, c+1]``); the ``st``/``prm`` calling convention
 is that of :mod:`navkit.planning.grid._dstar_lite_kernels`.
+
+Compilation: :func:`extract_path` is the one kernel called from Python and the
+one caller of :func:`settle`: the candidate kernels only read settled values
+and, meeting a node that is not settled yet, hand it back to be settled and
+the step repeated, so the search loop's machine code is not linked into
+them. Every helper is compiled once and called (LLVM still inlines the small
+ones into their callers): the walk is not hot, and numba's own inlining types
+and lowers a helper's body again at every call site. The caller
+passes every buffer (float64/int64, C-contiguous, writable), so the kernels
+allocate nothing and run without reference counting.
 """
 
 from __future__ import annotations
@@ -15,7 +25,8 @@ from typing import Any
 
 import numpy as np
 
-from navkit._shared.jit import njit_cached, njit_inline
+from navkit._shared.jit import typed_njit
+from navkit.planning.grid._dstar_heap import HELPER_OPTIONS, KERNEL_OPTIONS
 from navkit.planning.grid._dstar_lite_kernels import (
     PAIR_AC,
     PAIR_AR,
@@ -37,9 +48,16 @@ NO_PATH = 1
 STUCK = 2
 # The work limit of the state (``work[1]``) was reached: the repair was cut short.
 ABORTED = 3
+# The point buffer is full: call again with a larger one (values stay settled).
+FULL = 4
+# Rows of a candidate buffer: at most 4 cells x 4 edges + 4 lines + 8 pairs.
+CANDIDATES = 32
+
+_kernel = typed_njit(**KERNEL_OPTIONS)
+_helper = typed_njit(**HELPER_OPTIONS)
 
 
-@njit_cached
+@_helper
 def _edge_min(
     pr: float,
     pc: float,
@@ -99,18 +117,20 @@ def _edge_min(
     return n + 1
 
 
-@njit_inline
-def _node_value(
+@_helper
+def _settled_value(
     st: tuple[np.ndarray, ...],
     prm: tuple[Any, ...],
     i: int,
     j: int,
-    counter: np.ndarray,
+    need: np.ndarray,
 ) -> float:
-    """Exact cost-to-goal of node (i, j), settling it first (expansions -> counter).
+    """Exact cost-to-goal of node (i, j) if it is settled, else NaN (node id -> need[0]).
 
-    A node already settled (consistent, its key not above the queue's top, the
-    stopping rule of :func:`settle`) is read without calling :func:`settle`.
+    Settled: consistent, its key not above the queue's top (the stopping rule
+    of :func:`settle`). The helpers never search themselves: they ask
+    :func:`extract_path`, the one caller of :func:`settle`, to settle the node
+    and repeat the step (so the search loop is compiled into one kernel only).
     """
     g = st[1]
     rhs = st[2]
@@ -121,15 +141,14 @@ def _node_value(
     gs = g[s]
     if gs == rhs[s] and (
         size[0] == 0
-        or key_reached(keys[0, 0], keys[0, 1], gs, heuristic(prm[3], prm[4], i, j, prm[8]),
-                       prm[6])
+        or key_reached(keys[0, 0], keys[0, 1], gs, heuristic(prm[3], prm[4], i, j, prm[8]), prm[6])
     ):
         return float(gs)
-    counter[0] += settle(st, prm, s)
-    return float(g[s])
+    need[0] = s
+    return np.nan
 
 
-@njit_inline
+@_helper
 def _line_cost(pad: np.ndarray, width: int, pr: float, pc: float, i: int, j: int) -> float:
     """Cost per unit length along the grid line from p to node (i, j) (one cell long)."""
     if pr == i:
@@ -139,44 +158,15 @@ def _line_cost(pad: np.ndarray, width: int, pr: float, pc: float, i: int, j: int
     return min(cell_cost(pad, width, row, j - 1), cell_cost(pad, width, row, j))
 
 
-@njit_cached
-def _line_candidate(
-    st: tuple[np.ndarray, ...],
-    prm: tuple[Any, ...],
-    pr: float,
-    pc: float,
-    i: int,
-    j: int,
-    counter: np.ndarray,
-    out: np.ndarray,
-    n: int,
-) -> int:
-    """Append the move along the grid line from p to the node (i, j) if it is open."""
-    pad = st[0]
-    width, nrows, ncols = prm[0], prm[1], prm[2]
-    if i < 0 or i >= nrows or j < 0 or j >= ncols:
-        return n
-    edge = _line_cost(pad, width, pr, pc, i, j)
-    if edge == np.inf:
-        return n
-    gq = _node_value(st, prm, i, j, counter)
-    if gq == np.inf:
-        return n
-    out[n, 0] = edge * math.hypot(pr - i, pc - j)
-    out[n, 1] = gq
-    out[n, 2] = i
-    out[n, 3] = j
-    return n + 1
-
-
-@njit_cached
+@_helper
 def _candidates(
     st: tuple[np.ndarray, ...],
     prm: tuple[Any, ...],
     pr: float,
     pc: float,
-    counter: np.ndarray,
     out: np.ndarray,
+    corner_g: np.ndarray,
+    need: np.ndarray,
 ) -> int:
     """Next-point candidates of the interpolated path from point p on the grid lines.
 
@@ -184,11 +174,14 @@ def _candidates(
     q_col). They are: the optimal crossing point of every far edge of every
     passable cell touching p, the ends of the grid edges through p (paying the
     cheaper cell beside the edge) and, from a node, the point where option D of
-    :func:`corner_cost` leaves the cheap edge.
+    :func:`corner_cost` leaves the cheap edge. ``corner_g`` (4,) is scratch.
+    Returns the number of rows, or -1 when a node value it needs is not
+    settled yet (its id in ``need[0]``).
     """
     pad = st[0]
-    width = prm[0]
-    n = 0
+    width, nrows, ncols = prm[0], prm[1], prm[2]
+    # A variable, not the literal 0 (a literal argument compiles _edge_min twice).
+    n: int = width - width
     fr = math.floor(pr)
     fc = math.floor(pc)
     on_r = pr == fr
@@ -200,26 +193,61 @@ def _candidates(
             cost = cell_cost(pad, width, r, c)
             if cost == np.inf:
                 continue
-            g00 = _node_value(st, prm, r, c, counter)
-            g01 = _node_value(st, prm, r, c + 1, counter)
-            g10 = _node_value(st, prm, r + 1, c, counter)
-            g11 = _node_value(st, prm, r + 1, c + 1, counter)
-            if pr != r:
-                n = _edge_min(pr, pc, r, c, 0.0, 1.0, g00, g01, cost, out, n)
-            if pr != r + 1:
-                n = _edge_min(pr, pc, r + 1, c, 0.0, 1.0, g10, g11, cost, out, n)
-            if pc != c:
-                n = _edge_min(pr, pc, r, c, 1.0, 0.0, g00, g10, cost, out, n)
-            if pc != c + 1:
-                n = _edge_min(pr, pc, r, c + 1, 1.0, 0.0, g01, g11, cost, out, n)
+            # Values of the corners (r, c), (r, c+1), (r+1, c), (r+1, c+1).
+            for q in range(4):
+                gq = _settled_value(st, prm, r + (q >> 1), c + (q & 1), need)
+                if gq != gq:
+                    return -1
+                corner_g[q] = gq
+            # The four edges: rows r and r+1 (along the columns), columns c and c+1.
+            for e in range(4):
+                if e < 2:
+                    if pr == r + e:
+                        continue
+                    e0r = float(r + e)
+                    e0c = float(c)
+                    tr = 0.0
+                    tc = 1.0
+                    g0 = corner_g[2 * e]
+                    g1 = corner_g[2 * e + 1]
+                else:
+                    if pc == c + e - 2:
+                        continue
+                    e0r = float(r)
+                    e0c = float(c + e - 2)
+                    tr = 1.0
+                    tc = 0.0
+                    g0 = corner_g[e - 2]
+                    g1 = corner_g[e]
+                n = _edge_min(pr, pc, e0r, e0c, tr, tc, g0, g1, cost, out, n)
     # Along the grid lines through p, to the nearest nodes on either side.
-    for side in range(2):
-        if on_r:
+    for line in range(4):
+        side = line >> 1
+        if line & 1 == 0:
+            if not on_r:
+                continue
+            i = int(fr)
             j = int(fc) - 1 + 2 * side if on_c else int(fc) + side
-            n = _line_candidate(st, prm, pr, pc, int(fr), j, counter, out, n)
-        if on_c:
+        else:
+            if not on_c:
+                continue
             i = int(fr) - 1 + 2 * side if on_r else int(fr) + side
-            n = _line_candidate(st, prm, pr, pc, i, int(fc), counter, out, n)
+            j = int(fc)
+        if i < 0 or i >= nrows or j < 0 or j >= ncols:
+            continue
+        edge = _line_cost(pad, width, pr, pc, i, j)
+        if edge == np.inf:
+            continue
+        gq = _settled_value(st, prm, i, j, need)
+        if gq != gq:
+            return -1
+        if gq == np.inf:
+            continue
+        out[n, 0] = edge * math.hypot(pr - i, pc - j)
+        out[n, 1] = gq
+        out[n, 2] = i
+        out[n, 3] = j
+        n += 1
     if on_r and on_c:
         i = int(fr)
         j = int(fc)
@@ -232,7 +260,9 @@ def _candidates(
             w = b / math.sqrt(c * c - b * b)
             if w >= 1.0:
                 continue
-            g2 = _node_value(st, prm, i + PAIR_DR[k], j + PAIR_DC[k], counter)
+            g2 = _settled_value(st, prm, i + PAIR_DR[k], j + PAIR_DC[k], need)
+            if g2 != g2:
+                return -1
             if g2 == np.inf:
                 continue
             x = 1.0 - w
@@ -244,32 +274,22 @@ def _candidates(
     return n
 
 
-@njit_cached
-def _push_point(pts: np.ndarray, k: int, r: float, c: float) -> np.ndarray:
-    if k == pts.shape[0]:
-        grown = np.empty((2 * k, 2), dtype=np.float64)
-        grown[:k] = pts
-        pts = grown
-    pts[k, 0] = r
-    pts[k, 1] = c
-    return pts
-
-
-@njit_cached
+@_helper
 def _descend(
     st: tuple[np.ndarray, ...],
     prm: tuple[Any, ...],
     pr: float,
     pc: float,
     cur: float,
-    counter: np.ndarray,
+    need: np.ndarray,
 ) -> tuple[float, float, float, float]:
     """Cheapest straight step from p to a corner of a passable cell touching p.
 
     Only corners whose cost-to-goal is below ``cur`` qualify. From a node this
     is the 8-connected move set (an axis move is offered by both cells beside
     the edge, so it pays the cheaper one). Returns (total, g at the corner,
-    corner row, corner col), total = inf when no corner qualifies.
+    corner row, corner col), total = inf when no corner qualifies, NaN when a
+    node value it needs is not settled yet (its id in ``need[0]``).
     """
     pad = st[0]
     width = prm[0]
@@ -286,37 +306,46 @@ def _descend(
             cost = cell_cost(pad, width, r, c)
             if cost == np.inf:
                 continue
-            for di in range(2):
-                for dj in range(2):
-                    i = r + di
-                    j = c + dj
-                    if i == pr and j == pc:
-                        continue
-                    gn = _node_value(st, prm, i, j, counter)
-                    if not gn < cur:
-                        continue
-                    di_r = i - pr
-                    dj_c = j - pc
-                    if di_r == 0.0 or dj_c == 0.0:
-                        # Along a grid line: the cheaper cell beside it is paid.
-                        t = min(cost, _line_cost(pad, width, pr, pc, i, j)) * math.hypot(
-                            di_r, dj_c) + gn
-                    else:
-                        t = cost * math.hypot(di_r, dj_c) + gn
-                    if t < best:
-                        best = t
-                        best_g = gn
-                        qr = float(i)
-                        qc = float(j)
+            for q in range(4):
+                i = r + (q >> 1)
+                j = c + (q & 1)
+                if i == pr and j == pc:
+                    continue
+                gn = _settled_value(st, prm, i, j, need)
+                if gn != gn:
+                    return np.nan, np.nan, 0.0, 0.0
+                if not gn < cur:
+                    continue
+                di_r = i - pr
+                dj_c = j - pc
+                if di_r == 0.0 or dj_c == 0.0:
+                    # Along a grid line: the cheaper cell beside it is paid.
+                    t = (
+                        min(cost, _line_cost(pad, width, pr, pc, i, j)) * math.hypot(di_r, dj_c)
+                        + gn
+                    )
+                else:
+                    t = cost * math.hypot(di_r, dj_c) + gn
+                if t < best:
+                    best = t
+                    best_g = gn
+                    qr = float(i)
+                    qc = float(j)
     return best, best_g, qr, qc
 
 
-@njit_cached
+@_kernel
 def extract_path(
     st: tuple[np.ndarray, ...],
     prm: tuple[Any, ...],
     lookahead: bool,
-) -> tuple[np.ndarray, int, int, int]:
+    pts: np.ndarray,
+    cand: np.ndarray,
+    cand2: np.ndarray,
+    corner_g: np.ndarray,
+    counter: np.ndarray,
+    need: np.ndarray,
+) -> tuple[int, int]:
     """Settle the start and follow the cost field from it to the goal.
 
     Interpolated mode: at each point take the candidate of :func:`_candidates`
@@ -336,51 +365,86 @@ def extract_path(
     has no cycle and it ends at the goal. 8-connected mode takes only
     :func:`_descend` steps: an optimal D* Lite path.
 
-    The walk stops with status ``ABORTED`` as soon as the state's work limit
-    is reached (:func:`settle`).
+    Buffers (all written): ``pts`` (K, 2) the path points, ``cand`` and
+    ``cand2`` (:data:`CANDIDATES`, 4) candidate rows, ``corner_g`` (4,)
+    scratch, ``counter`` (1,) int64 to which the expansions are added,
+    ``need`` (1,) int64 scratch.
 
-    Returns (points (K', 2) with the first K valid, K, expansions, status).
+    The walk stops with status ``ABORTED`` as soon as the state's work limit
+    is reached (:func:`settle`), and with ``FULL`` when ``pts`` has no room
+    left (call again with a larger buffer).
+
+    Returns (K, status): the first K rows of ``pts`` are the path.
     """
     g = st[1]
     work = st[7]
-    nrows, ncols, sr, sc, goal, interp = prm[1], prm[2], prm[3], prm[4], prm[5], prm[7]
+    ncols, sr, sc, goal, interp = prm[2], prm[3], prm[4], prm[5], prm[7]
     start = sr * ncols + sc
-    counter = np.zeros(1, dtype=np.int64)
-    counter[0] = settle(st, prm, start)
-    pts = np.empty((4 * (nrows + ncols), 2), dtype=np.float64)
-    if work[0] > work[1]:
-        return pts, 0, counter[0], ABORTED
-    if g[start] == np.inf:
-        return pts, 0, counter[0], NO_PATH
     gi = goal // ncols
     gj = goal - gi * ncols
-    pts = _push_point(pts, 0, sr, sc)
-    k = 1
+    capacity = pts.shape[0]
     pr = float(sr)
     pc = float(sc)
-    cur = g[start]
+    cur = np.inf
     # Value at the last node the walk passed (the start, at first).
-    node_v = cur
-    cand = np.empty((32, 4), dtype=np.float64)
-    cand2 = np.empty((32, 4), dtype=np.float64)
-    max_steps = 4 * nrows * ncols + 16
-    for _ in range(max_steps):
+    node_v = np.inf
+    k = 0
+    steps = 0
+    max_steps = 4 * prm[1] * ncols + 16
+    need[0] = start
+    while True:
+        if need[0] >= 0:
+            # The one call of the search loop: the start first, then any node
+            # value a step needs that is not settled yet (the step is repeated).
+            counter[0] += settle(st, prm, need[0])
+            need[0] = -1
+            if work[0] > work[1]:
+                return k, ABORTED
+            if k == 0:
+                if g[start] == np.inf:
+                    return 0, NO_PATH
+                cur = g[start]
+                node_v = cur
+                pts[0, 0] = sr
+                pts[0, 1] = sc
+                k = 1
         if pr == gi and pc == gj:
-            return pts, k, counter[0], OK
+            return k, OK
+        if steps >= max_steps:
+            return k, STUCK
+        if k == capacity:
+            return k, FULL
         best = np.inf
         best_v = np.inf
         qr = 0.0
         qc = 0.0
         if interp:
-            n = _candidates(st, prm, pr, pc, counter, cand)
-            for a in range(n):
-                v = cand[a, 1]
-                cr = cand[a, 2]
-                cc = cand[a, 3]
-                if lookahead and (cr != math.floor(cr) or cc != math.floor(cc)):
-                    n2 = _candidates(st, prm, cr, cc, counter, cand2)
+            # Candidates of p (a = -1), then for each candidate a inside an
+            # edge its own candidates (the lookahead): one _candidates site.
+            n = 0
+            a = -1
+            while a < n:
+                if a < 0:
+                    cr = pr
+                    cc = pc
+                    v = 0.0
+                    expand = True
+                else:
+                    cr = cand[a, 2]
+                    cc = cand[a, 3]
+                    v = cand[a, 1]
+                    expand = lookahead and (cr != math.floor(cr) or cc != math.floor(cc))
+                if expand:
+                    buf = cand if a < 0 else cand2
+                    m = _candidates(st, prm, cr, cc, buf, corner_g, need)
+                    if m < 0:
+                        break
+                    if a < 0:
+                        n = m
+                        a = 0
+                        continue
                     la = np.inf
-                    for b2 in range(n2):
+                    for b2 in range(m):
                         t = cand2[b2, 0] + cand2[b2, 1]
                         if t < la:
                             la = t
@@ -391,23 +455,30 @@ def extract_path(
                     best_v = v
                     qr = cr
                     qc = cc
-        if work[0] > work[1]:
-            return pts, k, counter[0], ABORTED
+                a += 1
+            if need[0] >= 0:
+                continue
         if best == np.inf:
-            best, best_v, qr, qc = _descend(st, prm, pr, pc, cur, counter)
-            if best == np.inf and (pr != math.floor(pr) or pc != math.floor(pc)):
-                # A point inside an edge whose value rounded to a corner's.
-                best, best_v, qr, qc = _descend(st, prm, pr, pc, node_v, counter)
-            if work[0] > work[1]:
-                return pts, k, counter[0], ABORTED
+            # A straight step to a corner below the current value, or (from a
+            # point inside an edge whose value rounded to a corner's) below the
+            # value of the last node passed.
+            for attempt in range(2):
+                if attempt == 1 and pr == math.floor(pr) and pc == math.floor(pc):
+                    break
+                below = cur if attempt == 0 else node_v
+                best, best_v, qr, qc = _descend(st, prm, pr, pc, below, need)
+                if best != np.inf:  # also NaN: a value to settle first
+                    break
+            if need[0] >= 0:
+                continue
             if best == np.inf:
-                return pts, k, counter[0], STUCK
-        pts = _push_point(pts, k, qr, qc)
+                return k, STUCK
+        pts[k, 0] = qr
+        pts[k, 1] = qc
         k += 1
+        steps += 1
         pr = qr
         pc = qc
         cur = best_v
         if qr == math.floor(qr) and qc == math.floor(qc):
             node_v = best_v
-    return pts, k, counter[0], ABORTED if work[0] > work[1] else STUCK
-

@@ -28,10 +28,10 @@ cells at the maximum cost. Checking it costs O(1) after each search.
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import Any, TypeVar
 
 import numpy as np
-from numpy.typing import ArrayLike
+from numpy.typing import ArrayLike, NDArray
 
 from navkit._shared.costs import validate_costs_lowest
 from navkit._shared.jit import njit_cached
@@ -50,8 +50,12 @@ __all__ = [
     "RESOLUTION_MIN",
     "bounded_float",
     "check_node_count",
+    "checked_cost_range",
     "checked_costs",
+    "read_only",
 ]
+
+_T = TypeVar("_T", bound=np.generic)
 
 MAX_COST = 1e12
 """Largest finite traversal cost the grid planners accept."""
@@ -79,24 +83,52 @@ _INF_BITS = int(np.array(np.inf).view(np.int64))
 
 
 @njit_cached
-def _cost_scan(bits: np.ndarray, max_bits: int, inf_bits: int) -> tuple[int, int]:
-    """(smallest bit pattern, number of entries above ``max_bits`` other than inf).
+def _cost_scan(bits: np.ndarray, max_bits: int, inf_bits: int) -> tuple[int, int, int]:
+    """(smallest bit pattern, largest one up to ``max_bits`` or -1, entries above it but inf).
 
     Integer comparisons vectorise, so this costs what ``ndarray.min`` costs.
     """
     lo = bits[0]
+    hi = -1
     over = 0
     for i in range(bits.shape[0]):
         v = bits[i]
         lo = min(lo, v)
+        hi = max(hi, v if v <= max_bits else -1)
         over += (v > max_bits) & (v != inf_bits)
-    return lo, over
+    return lo, hi, over
+
+
+def read_only(array: NDArray[_T]) -> NDArray[_T]:
+    """A read-only view of ``array`` (O(1), no copy).
+
+    The grid kernels receive their input grids only as read-only arrays:
+    numba compiles a kernel once per argument type, and read-only and
+    writable arrays are different types, so passing both would compile the
+    kernels twice (callers' grids may be either).
+    """
+    view: NDArray[_T] = array.view()
+    view.flags.writeable = False
+    return view
 
 
 def checked_costs(
     costs: ArrayLike, name: str = "costs", *, corner_nodes: bool = False
 ) -> tuple[FloatArray, float]:
     """A cost grid as C-contiguous float64 and its smallest value (inf if none is finite).
+
+    See :func:`checked_cost_range`, which also returns the largest finite value.
+    """
+    grid, lowest, _ = checked_cost_range(costs, name, corner_nodes=corner_nodes)
+    return grid, lowest
+
+
+def checked_cost_range(
+    costs: ArrayLike, name: str = "costs", *, corner_nodes: bool = False
+) -> tuple[FloatArray, float, float]:
+    """A cost grid as C-contiguous float64, its smallest value and its largest finite value.
+
+    The smallest value is inf and the largest -inf when no value is finite.
 
     The checks of :func:`navkit.mapping.validate_costs` (2-D, not empty, real
     numbers, no NaN, finite values >= 1) plus the planners' limits: at most
@@ -121,13 +153,19 @@ def checked_costs(
         validate_costs_lowest(arr, name)  # raises, with the shared message
     rows, cols = arr.shape
     if corner_nodes:
-        check_node_count((rows + 1) * (cols + 1), f"Field D* on {name} of shape {arr.shape}",
-                         _FIELD_BYTES_PER_NODE)
+        check_node_count(
+            (rows + 1) * (cols + 1),
+            f"Field D* on {name} of shape {arr.shape}",
+            _FIELD_BYTES_PER_NODE,
+        )
     else:
-        check_node_count(rows * cols, f"A search on {name} of shape {arr.shape}",
-                         _SEARCH_BYTES_PER_CELL, "cells")
+        check_node_count(
+            rows * cols, f"A search on {name} of shape {arr.shape}", _SEARCH_BYTES_PER_CELL, "cells"
+        )
     out = np.ascontiguousarray(arr, dtype=np.float64)
-    lo_bits, over = _cost_scan(out.reshape(-1).view(np.int64), _MAX_BITS, _INF_BITS)
+    lo_bits, hi_bits, over = _cost_scan(
+        read_only(out.reshape(-1).view(np.int64)), _MAX_BITS, _INF_BITS
+    )
     if lo_bits < _ONE_BITS or over:
         validate_costs_lowest(out, name)  # NaN or below 1: the shared message
         bad = np.isfinite(out) & (out > MAX_COST)
@@ -137,7 +175,8 @@ def checked_costs(
             f"found {float(out[where])} at {where}"
         )
     lowest = float(np.array(lo_bits, dtype=np.int64).view(np.float64))
-    return out, lowest
+    highest = float(np.array(hi_bits, dtype=np.int64).view(np.float64)) if hi_bits >= 0 else -np.inf
+    return out, lowest, highest
 
 
 def bounded_float(value: Any, name: str, low: float, high: float, unit: str = "") -> float:

@@ -14,7 +14,10 @@ import math
 
 import numpy as np
 
-from navkit._shared.jit import njit_cached, njit_inline
+from navkit._shared.jit import njit_inline, typed_njit
+from navkit.planning.grid._dstar_heap import HELPER_OPTIONS, KERNEL_OPTIONS
+
+_helper = typed_njit(**HELPER_OPTIONS)
 
 
 @njit_inline
@@ -23,7 +26,7 @@ def cell_cost(pad: np.ndarray, width: int, r: int, c: int) -> float:
     return float(pad[(r + 1) * width + c + 1])
 
 
-@njit_cached
+@_helper
 def segment_cost(pad: np.ndarray, width: int, r0: float, c0: float, r1: float, c1: float) -> float:
     """Exact cost of the straight segment p0 -> p1: sum of length × cell cost.
 
@@ -56,7 +59,8 @@ def segment_cost(pad: np.ndarray, width: int, r0: float, c0: float, r1: float, c
     while t < 1.0:
         tr = (nr_line - r0) / dr if dr != 0.0 else np.inf
         tc = (nc_line - c0) / dc if dc != 0.0 else np.inf
-        t1 = min(tr, tc, 1.0)
+        # Nested two-argument minima: the three-argument min compiles an extra kernel.
+        t1 = min(min(tr, tc), 1.0)
         if tr <= t1:
             nr_line += step_r
         if tc <= t1:
@@ -70,12 +74,14 @@ def segment_cost(pad: np.ndarray, width: int, r0: float, c0: float, r1: float, c
             rc = round(mc)
             if abs(mr - rr) < 1e-9 and abs(dr) * (t1 - t) < 1e-9:
                 col = math.floor(mc)
-                cost = min(cell_cost(pad, width, int(rr) - 1, col),
-                           cell_cost(pad, width, int(rr), col))
+                cost = min(
+                    cell_cost(pad, width, int(rr) - 1, col), cell_cost(pad, width, int(rr), col)
+                )
             elif abs(mc - rc) < 1e-9 and abs(dc) * (t1 - t) < 1e-9:
                 row = math.floor(mr)
-                cost = min(cell_cost(pad, width, row, int(rc) - 1),
-                           cell_cost(pad, width, row, int(rc)))
+                cost = min(
+                    cell_cost(pad, width, row, int(rc) - 1), cell_cost(pad, width, row, int(rc))
+                )
             else:
                 cost = cell_cost(pad, width, math.floor(mr), math.floor(mc))
             if cost == np.inf:
@@ -85,7 +91,7 @@ def segment_cost(pad: np.ndarray, width: int, r0: float, c0: float, r1: float, c
     return total
 
 
-@njit_cached
+@typed_njit(**KERNEL_OPTIONS)
 def polyline_cost(pad: np.ndarray, width: int, pts: np.ndarray, k: int) -> tuple[float, float]:
     """(cost, length) of the polyline through the first ``k`` points."""
     cost = 0.0
@@ -96,7 +102,8 @@ def polyline_cost(pad: np.ndarray, width: int, pts: np.ndarray, k: int) -> tuple
     return cost, length
 
 
-@njit_cached
+# Allocates its result: compiled with reference counting.
+@typed_njit(**{**KERNEL_OPTIONS, "_nrt": True})
 def shortcut(pad: np.ndarray, width: int, pts: np.ndarray, k: int, patience: int) -> np.ndarray:
     """Replace runs of the polyline by straight segments that cost no more.
 
@@ -106,8 +113,10 @@ def shortcut(pad: np.ndarray, width: int, pts: np.ndarray, k: int, patience: int
     input's, and a segment through an impassable cell interior costs inf, so it
     is never taken.
     """
+    # Element copies only: whole-row and slice assignments compile far more code.
     out = np.empty((k, 2), dtype=np.float64)
-    out[0] = pts[0]
+    out[0, 0] = pts[0, 0]
+    out[0, 1] = pts[0, 1]
     m = 1
     i = 0
     while i < k - 1:
@@ -127,8 +136,12 @@ def shortcut(pad: np.ndarray, width: int, pts: np.ndarray, k: int, patience: int
                     if misses > patience:
                         break
             j += 1
-        out[m] = pts[best]
+        out[m, 0] = pts[best, 0]
+        out[m, 1] = pts[best, 1]
         m += 1
         i = best
-    res: np.ndarray = out[:m].copy()
+    res = np.empty((m, 2), dtype=np.float64)
+    for a in range(m):
+        res[a, 0] = out[a, 0]
+        res[a, 1] = out[a, 1]
     return res

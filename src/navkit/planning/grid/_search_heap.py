@@ -34,7 +34,7 @@ import math
 
 import numpy as np
 
-from navkit._shared.jit import njit_inline, njit_no_refcount
+from navkit._shared.jit import njit_inline, njit_no_refcount, njit_not_inlined
 
 MAX_NODES = 2**31 - 1
 """Largest number of nodes (grid cells) the heap can index."""
@@ -79,7 +79,7 @@ def _rec_place(heap: np.ndarray, meta: np.ndarray, i: int, f: float, key: float)
     meta[4 * node_of(key) + 3] = i
 
 
-@njit_no_refcount
+@njit_not_inlined
 def rec_sift_up(heap: np.ndarray, meta: np.ndarray, i: int, f: float, key: float) -> None:
     """Move the hole at slot i up past larger parents, then drop (f, key) in.
 
@@ -111,8 +111,12 @@ def _rec_smallest_child(heap: np.ndarray, i: int, n: int) -> tuple[int, float, f
         left = first + b_wins
         right = first + 2 + d_wins
         r_wins = int(
-            _precedes(heap[b + 2 * right], heap[b + 2 * right + 1],
-                      heap[b + 2 * left], heap[b + 2 * left + 1])
+            _precedes(
+                heap[b + 2 * right],
+                heap[b + 2 * right + 1],
+                heap[b + 2 * left],
+                heap[b + 2 * left + 1],
+            )
         )
         best = left + r_wins * (right - left)
         return best, heap[b + 2 * best], heap[b + 2 * best + 1]
@@ -148,7 +152,7 @@ def rec_pop(heap: np.ndarray, meta: np.ndarray, n: int) -> int:
             break
         _rec_place(heap, meta, i, bestf, bestk)
         i = best
-    rec_sift_up(heap, meta, i, f, key)
+    rec_sift_up(heap, meta, np.int64(i), f, key)
     return top
 
 
