@@ -22,6 +22,9 @@ group is the speed-up the issue's ≥ 10× target refers to, and
   step (the Jacobian, f, h, each on a copy of the state): the floor of any
   filter driven by them. ``general − callbacks`` against ``filterpy − callbacks``
   is the speed-up of the filter machinery itself.
+* group ``ekf-predict-x1000``: the same three without the update (filterpy's
+  and the general filter's predict, the Jacobian and f), so that the update's
+  share is the step minus the predict.
 * ``batch_100k``: :meth:`PlanarFusion.update_batch` over a 100,000-row log (odometry at
   50 Hz, IMU yaw at 50 Hz, gyro at 100 Hz).
 """
@@ -159,6 +162,63 @@ def test_step_model_callbacks(benchmark: Any) -> None:
             jac(x.copy())
             f(x.copy())
             h(x.copy())
+
+    benchmark(run)
+    per_step(benchmark)
+
+
+def _filterpy_model(f: Callable[[np.ndarray], np.ndarray]) -> Any:
+    """A filterpy EKF at X0, P0 whose predict runs ``f``."""
+
+    class Model(FilterpyEKF):  # type: ignore[misc]
+        def predict_x(self, u: object = 0) -> None:
+            self.x = f(self.x)
+
+    ekf = Model(dim_x=6, dim_z=2)
+    ekf.x = X0.copy()
+    ekf.P = P0.copy()
+    return ekf
+
+
+@pytest.mark.benchmark(group="ekf-predict-x1000")
+def test_predict_filterpy(benchmark: Any) -> None:
+    f, jac = motion(DT)
+    q = Q_PER_S * DT
+
+    def run() -> None:
+        ekf = _filterpy_model(f)
+        ekf.Q = q
+        for _ in MEASUREMENTS:
+            ekf.F = jac(ekf.x)
+            ekf.predict()
+
+    benchmark(run)
+    per_step(benchmark)
+
+
+@pytest.mark.benchmark(group="ekf-predict-x1000")
+def test_predict_navkit_general_ekf(benchmark: Any) -> None:
+    f, jac = motion(DT)
+    q = Q_PER_S * DT
+
+    def run() -> None:
+        ekf = ExtendedKalmanFilter(X0, P0, angle_states=(2,))
+        for _ in MEASUREMENTS:
+            ekf.predict(f, jac, q)
+
+    benchmark(run)
+    per_step(benchmark)
+
+
+@pytest.mark.benchmark(group="ekf-predict-x1000")
+def test_predict_model_callbacks(benchmark: Any) -> None:
+    f, jac = motion(DT)
+
+    def run() -> None:
+        x = X0.copy()
+        for _ in MEASUREMENTS:
+            jac(x.copy())
+            f(x.copy())
 
     benchmark(run)
     per_step(benchmark)

@@ -221,18 +221,18 @@ def test_planar_fusion_kernel_matches_general_ekf() -> None:
 
 
 def test_joseph_form_equals_textbook_update_and_is_symmetric() -> None:
-    rng = np.random.default_rng(3)
-    a = rng.normal(size=(4, 4))
-    p0 = a @ a.T + 0.1 * np.eye(4)
-    h = rng.normal(size=(2, 4))
-    r = np.diag([0.2, 0.3])
-    ekf = ExtendedKalmanFilter(np.zeros(4), p0)
-    z = np.array([0.4, -0.1])
+    rng = np.random.default_rng(3)  # the sizes of test_matches_filterpy_dense_model's filter
+    a = rng.normal(size=(5, 5))
+    p0 = a @ a.T + 0.1 * np.eye(5)
+    h = rng.normal(size=(3, 5))
+    r = np.diag([0.2, 0.3, 0.25])
+    ekf = ExtendedKalmanFilter(np.zeros(5), p0)
+    z = np.array([0.4, -0.1, 0.2])
     result = ekf.update(z, lambda x: h @ x, h, r)
     s = h @ p0 @ h.T + r
     k = p0 @ h.T @ np.linalg.inv(s)
     np.testing.assert_allclose(ekf.x, k @ z, atol=1e-12)
-    np.testing.assert_allclose(ekf.P, (np.eye(4) - k @ h) @ p0, atol=1e-12)
+    np.testing.assert_allclose(ekf.P, (np.eye(5) - k @ h) @ p0, atol=1e-12)
     np.testing.assert_array_equal(ekf.P, ekf.P.T)
     assert result.nis == pytest.approx(float(z @ np.linalg.solve(s, z)))
 
@@ -569,3 +569,66 @@ def test_copies_and_pickles_are_independent() -> None:
         assert twin.x[0] > 2.0 and ekf.x[0] == 0.0
         twin.predict(lambda x: x + 4.0, np.eye(2), 0.1 * np.eye(2))
         assert -math.pi < twin.x[1] <= math.pi  # still wraps its angle state
+
+
+def test_kernels_compile_nothing_for_other_argument_types() -> None:
+    """Lists, float32, read-only and strided arrays are converted: no new specialisations."""
+    from navkit.estimation import _ekf_kernels
+
+    _run_steps(lambda a: a, steps=4)
+    predict = _ekf_kernels.predict_kernel(6)
+    updates = [_ekf_kernels.update_kernel(6, m) for m in (1, 2)]
+    for spell in (
+        lambda a: np.asarray(a).tolist(),
+        lambda a: np.asarray(a, dtype=np.float32),
+        _read_only,
+        _strided,
+    ):
+        _run_steps(spell, steps=4)
+    for kernel in (predict, *updates):
+        assert len(kernel.signatures) == 1  # type: ignore[attr-defined]
+
+
+def test_model_functions_share_one_copy_of_the_state() -> None:
+    """F sees the prior state before f, which may update its argument in place."""
+    seen = []
+    ekf = ExtendedKalmanFilter([1.0, 2.0], np.eye(2))
+    jac = np.array([[1.0, 0.5], [0.0, 1.0]])
+
+    def f_in_place(x: FloatArray) -> FloatArray:
+        x[0] += 0.5 * x[1]
+        return x
+
+    def jac_at(x: FloatArray) -> FloatArray:
+        seen.append(x.copy())
+        return jac
+
+    ekf.predict(f_in_place, jac_at, 0.1 * np.eye(2))
+    np.testing.assert_array_equal(seen[0], [1.0, 2.0])  # the prior state
+    np.testing.assert_array_equal(ekf.x, [2.0, 2.0])
+    np.testing.assert_allclose(ekf.P, jac @ jac.T + 0.1 * np.eye(2), rtol=1e-15)
+    out = ekf.update([2.5], lambda x: x[:1], lambda x: H2, [[1.0]])
+    assert out.accepted and out.residual[0] == pytest.approx(0.5)
+
+
+def test_measurement_sizes_alternate() -> None:
+    """Alternating measurement sizes switch kernels and validated R matrices correctly."""
+    a = ExtendedKalmanFilter([0.0, 0.0], np.eye(2))
+    b = ExtendedKalmanFilter([0.0, 0.0], np.eye(2))
+    h2 = np.array([[1.0, 0.2], [0.0, 1.0]])
+    h1 = np.array([[0.5, 1.0]])
+    r2 = np.diag([0.1, 0.2])
+    r1 = np.array([[0.3]])
+    for i in range(6):
+        z2 = np.array([0.1 * i, -0.1 * i])
+        z1 = np.array([0.05 * i])
+        a.update(z2, lambda x: h2 @ x, h2, r2)
+        a.update(z1, lambda x: h1 @ x, h1, r1)
+        # the same measurements through the converting path (lists)
+        b.update(z2.tolist(), lambda x: (h2 @ x).tolist(), h2.tolist(), r2.tolist())
+        b.update(z1.tolist(), lambda x: (h1 @ x).tolist(), h1.tolist(), r1.tolist())
+    np.testing.assert_array_equal(a.x, b.x)
+    np.testing.assert_array_equal(a.P, b.P)
+    r2[0, 0] = -1.0  # a changed R is validated again, for its own size
+    with pytest.raises(ValueError, match="R must be positive definite"):
+        a.update(np.zeros(2), lambda x: h2 @ x, h2, r2)

@@ -1,8 +1,15 @@
 """A general Extended Kalman Filter on numpy arrays.
 
-The public layer checks types and shapes and calls one compiled kernel per step
-(:mod:`navkit.estimation._ekf_kernels`), which checks values, computes the step
-and commits it only when it is valid.
+Each step calls one compiled kernel (:mod:`navkit.estimation._ekf_kernels`)
+with the arrays as passed or as the model functions returned them. The kernels
+are compiled for C-contiguous writeable float64 arrays only and compile nothing
+else, so an argument of another type (a list, a strided or read-only array,
+another dtype) fails at dispatch; the kernel itself checks shapes and values and
+computes the step, committing it only when it is valid. Whatever it cannot take
+is converted and checked in full in Python, which also raises the documented
+errors. The common case thus pays for no checks in Python at all: a step costs
+the model functions, one copy of the state for them, two kernel calls and the
+result object.
 """
 
 from __future__ import annotations
@@ -16,7 +23,7 @@ from numpy.typing import ArrayLike
 
 from navkit._shared.se2 import wrap_scalar
 from navkit._shared.types import FloatArray, IntArray
-from navkit._shared.validation import as_float_array, positive_float
+from navkit._shared.validation import SMALLEST_POSITIVE, as_float_array, positive_float
 from navkit.errors import FilterError
 from navkit.estimation._covariance import covariance, index_tuple
 from navkit.estimation._ekf_kernels import (
@@ -24,6 +31,8 @@ from navkit.estimation._ekf_kernels import (
     BAD_FX,
     BAD_H,
     BAD_HX,
+    BAD_SHAPE,
+    BAD_TYPE,
     BAD_Z,
     GATED,
     NIS_OVERFLOW,
@@ -37,22 +46,39 @@ from navkit.estimation._ekf_kernels import (
     STATE_OVERFLOW,
     STATE_P,
     STATE_X,
-    ekf_predict,
-    ekf_update,
+    PredictKernel,
+    UpdateKernel,
     new_rbuf,
     new_state,
+    predict_kernel,
+    rbuf_nis,
+    set_nis,
     set_q,
     set_r,
+    update_kernel,
 )
 from navkit.estimation._gaussian import GaussianEstimate
-from navkit.estimation._result import UpdateResult, new_result
+from navkit.estimation._result import (  # the slot setters of new_result, for inlining it
+    UpdateResult,
+    _object_new,
+    _set_accepted,
+    _set_nis,
+    _set_reason,
+    _set_residual,
+    new_result,
+)
 
 __all__ = ["ExtendedKalmanFilter"]
 
 _OVERFLOW = "overflow: not applied, float64 cannot hold "
-_F64 = np.dtype(np.float64)
 _NDARRAY = np.ndarray
+_empty = np.empty
 _NO_INDICES: IntArray = np.zeros(0, dtype=np.int64)
+_NO_ANGLES: tuple[int, ...] = ()  # the default angle_measurements (the one empty tuple)
+_INF = math.inf
+_NAN = math.nan
+_NOT_TAKEN = -float(BAD_TYPE)  # the "status" of a kernel call the fast path did not make
+_SMALLEST_POSITIVE = SMALLEST_POSITIVE
 _CACHE_SIZE = 16  # validated R matrices and angle index tuples kept per filter
 
 StateFunction = Callable[[FloatArray], ArrayLike]
@@ -70,8 +96,8 @@ class ExtendedKalmanFilter(GaussianEstimate):
     :math:`P \leftarrow (I - KH) P (I - KH)^T + K R K^T`, which stays symmetric
     positive definite under rounding (the short form :math:`(I - KH)P` does not).
     After every step ``P`` is exactly symmetric (its lower triangle is computed
-    and mirrored) and checked to be finite and positive definite (a Cholesky
-    factorisation); a step that would break this raises
+    and mirrored) and checked to be finite and positive definite (an LDLᵀ
+    factorisation, Cholesky's without square roots); a step that would break this raises
     :class:`~navkit.errors.FilterError` and leaves the filter unchanged. A
     measurement whose residual, NIS or updated state would overflow float64 is
     not applied (``accepted=False`` with the reason). The state and covariance
@@ -83,6 +109,12 @@ class ExtendedKalmanFilter(GaussianEstimate):
 
     An ordinary class with ``__slots__`` rather than a frozen dataclass: every
     step changes its estimate in place.
+
+    The compiled kernels are specialised for the state dimension n (the
+    predict, compiled or loaded from numba's on-disk cache when the first
+    filter of that n is built) and for each measurement dimension m (the
+    update, at the first measurement of that size): fixed sizes let the
+    compiler unroll the small matrix products.
 
     Parameters
     ----------
@@ -113,7 +145,7 @@ class ExtendedKalmanFilter(GaussianEstimate):
     (True, array([0.1198, 1.0019]))
     """
 
-    __slots__ = ("_angles", "_meas_angles", "_n", "_rbufs", "_state")
+    __slots__ = ("_angles", "_kp", "_ku", "_m", "_meas_angles", "_n", "_rbuf", "_rbufs", "_state")
 
     def __init__(self, x0: ArrayLike, P0: ArrayLike, *, angle_states: Iterable[int] = ()) -> None:
         x = np.array(as_float_array(x0, "x0", ndim=1), dtype=np.float64, copy=True)
@@ -138,11 +170,18 @@ class ExtendedKalmanFilter(GaussianEstimate):
         self._state: FloatArray = state
         self._x = state[STATE_X]
         self._p = state[STATE_P : STATE_P + n]
-        # Per measurement size m: the last validated R and the update's scratch space.
-        self._rbufs: dict[int, FloatArray] = {}
+        # The kernels, compiled for n (and m) as constants: predict's now, update's
+        # per measurement size with its buffer (the last validated R and scratch
+        # space), the last size's tried first (nothing to begin with).
+        self._kp: PredictKernel = predict_kernel(n)
+        self._rbufs: dict[int, tuple[FloatArray, UpdateKernel]] = {}
+        self._rbuf: FloatArray = _NO_RBUF
+        self._ku: UpdateKernel = _no_update_kernel
+        self._m: int = 0
         # Validated angle_measurements by the identity of the (immutable) tuple passed,
-        # which the entry keeps alive: {id: (tuple, m, indices)}.
-        self._meas_angles: dict[int, tuple[tuple[int, ...], int, IntArray]] = {}
+        # which the entry keeps alive: {id: (tuple, indices)}. The indices are distinct
+        # and non-negative; the kernel checks them against each measurement's size.
+        self._meas_angles: dict[int, tuple[tuple[int, ...], IntArray]] = {}
 
     def __reduce__(self) -> tuple[Callable[..., ExtendedKalmanFilter], tuple[Any, ...]]:
         # The estimate lives in one array updated in place, with x and P views into it:
@@ -165,10 +204,12 @@ class ExtendedKalmanFilter(GaussianEstimate):
         Parameters
         ----------
         f : callable
-            ``f(x) -> x'`` with ``x`` a copy of the state, shape (n,).
+            ``f(x) -> x'`` with ``x`` a copy of the state, shape (n,); ``f``
+            may modify it (and return it).
         F : callable or array_like, shape (n, n)
             Jacobian of ``f`` at the current (prior) state, or a function
-            ``F(x)`` returning it.
+            ``F(x)`` returning it, called first, on the same copy of the state
+            as ``f`` (so it must not modify it).
         Q : array_like, shape (n, n)
             Process noise covariance for this step, symmetric positive
             semi-definite, entries of magnitude at most 1e100.
@@ -188,32 +229,38 @@ class ExtendedKalmanFilter(GaussianEstimate):
             If the predicted covariance is not finite or not positive definite;
             the state is unchanged.
         """
-        if not callable(f):
-            raise TypeError(f"f must be callable, got {type(f).__name__}")
+        # One copy of the state for F and f, called in this order: a Jacobian does
+        # not modify its argument, and f may, once F has seen it.
+        x = self._x.copy()
+        jac = F(x) if callable(F) else F
+        try:
+            x_new = f(x)
+        except TypeError:
+            if not callable(f):
+                raise TypeError(f"f must be callable, got {type(f).__name__}") from None
+            raise
+        # The kernel takes C-contiguous writeable float64 arrays only and checks their
+        # shapes and values itself: anything else raises at dispatch and is converted
+        # and checked in full by _predict_checked, as is any status but OK.
+        try:
+            status = self._kp(self._state, x_new, jac, Q)
+        except Exception:  # a dispatch failure: not of the compiled types
+            status = BAD_TYPE
+        if status:
+            self._predict_checked(status, x_new, jac, Q)
+
+    def _predict_checked(self, status: int, x_new: Any, jac: Any, q: Any) -> None:
+        """The rest of :meth:`predict` after a kernel ``status`` other than OK."""
         n = self._n
-        square = (n, n)
-        # Arrays of the kernels' one type (C-contiguous writeable float64) and of the
-        # right shape go straight to the kernel, which checks their values; anything
-        # else is converted and checked in full first (the checks are inlined: this
-        # runs every step).
-        jac = F(self._x.copy()) if callable(F) else F
-        if not (type(jac) is _NDARRAY and jac.dtype is _F64 and jac.shape == square
-                and jac.flags.carray):  # fmt: skip
+        if status in (BAD_TYPE, BAD_SHAPE):
+            square = (n, n)
             jac = _c_array(jac, "F", square)
-        q = Q
-        if not (type(q) is _NDARRAY and q.dtype is _F64 and q.shape == square
-                and q.flags.carray):  # fmt: skip
             q = _c_array(q, "Q", square)
-        x_new = f(self._x.copy())
-        if not (type(x_new) is _NDARRAY and x_new.dtype is _F64 and x_new.shape == (n,)
-                and x_new.flags.carray):  # fmt: skip
             x_new = _c_array(x_new, "f(x)", (n,))
-        status = ekf_predict(self._state, x_new, jac, q)
-        if status == OK:
-            return
+            status = self._kp(self._state, x_new, jac, q)
         if status == NOISE_CHANGED:
             set_q(self._state, q, covariance(q, "Q", n, semidefinite=True))
-            status = ekf_predict(self._state, x_new, jac, q)
+            status = self._kp(self._state, x_new, jac, q)
         if status != OK:
             _raise(status, "predicted covariance")
 
@@ -224,7 +271,7 @@ class ExtendedKalmanFilter(GaussianEstimate):
         H: Jacobian,
         R: ArrayLike,
         *,
-        angle_measurements: Iterable[int] = (),
+        angle_measurements: Iterable[int] = _NO_ANGLES,
         gate: float | None = None,
     ) -> UpdateResult:
         """Correct the state with a measurement.
@@ -234,9 +281,11 @@ class ExtendedKalmanFilter(GaussianEstimate):
         z : array_like, shape (m,)
             Measurement.
         h : callable
-            Measurement model ``h(x) -> (m,)``.
+            Measurement model ``h(x) -> (m,)``, called on a copy of the state
+            (which it may modify).
         H : callable or array_like, shape (m, n)
-            Jacobian of ``h`` at the current state, or a function returning it.
+            Jacobian of ``h`` at the current state, or a function returning it,
+            called first, on the same copy as ``h`` (which it must not modify).
         R : array_like, shape (m, m)
             Measurement noise covariance, symmetric positive definite, entries
             of magnitude at most 1e100.
@@ -266,42 +315,112 @@ class ExtendedKalmanFilter(GaussianEstimate):
             If the innovation or updated covariance is not finite or not
             positive definite; the state is unchanged.
         """
-        if not callable(h):
-            raise TypeError(f"h must be callable, got {type(h).__name__}")
-        meas = z
-        if not (type(meas) is _NDARRAY and meas.dtype is _F64 and meas.ndim == 1
-                and meas.flags.carray):  # fmt: skip
-            meas = _c_copy(as_float_array(meas, "z", ndim=1))
-        m = meas.shape[0]
-        if m == 0:
-            raise ValueError("z must have at least one component")
-        shape = (m, self._n)
-        jac = H(self._x.copy()) if callable(H) else H
-        if not (type(jac) is _NDARRAY and jac.dtype is _F64 and jac.shape == shape
-                and jac.flags.carray):  # fmt: skip
-            jac = _c_array(jac, "H", shape)
-        r = R
-        shape = (m, m)
-        if not (type(r) is _NDARRAY and r.dtype is _F64 and r.shape == shape
-                and r.flags.carray):  # fmt: skip
-            r = _c_array(r, "R", shape)
-        rbuf = self._rbufs.get(m)
-        if rbuf is None:
-            rbuf = self._new_rbuf(m)
-        if type(angle_measurements) is tuple and not angle_measurements:
-            angles = _NO_INDICES
+        x = self._x.copy()  # for H and h, in this order, as in predict
+        jac = H(x) if callable(H) else H
+        try:
+            hx = h(x)
+        except TypeError:
+            if not callable(h):
+                raise TypeError(f"h must be callable, got {type(h).__name__}") from None
+            raise
+        # As in predict: the kernel checks shapes and values, and anything it cannot
+        # take (other types, another measurement size, an angle tuple not seen before,
+        # a gate that is not a float) goes to _update_checked.
+        if angle_measurements is _NO_ANGLES and gate is None:  # the common case, first
+            angles: IntArray | None = _NO_INDICES
+            threshold = _INF
+            y = _empty(self._m)
+            try:
+                out = self._ku(self._state, z, hx, jac, R, self._rbuf, angles, threshold, y)
+            except Exception:  # a dispatch failure: not of the compiled types
+                out = _NOT_TAKEN
         else:
+            angles, threshold = self._fast_options(angle_measurements, gate)
+            y = _empty(self._m)
+            out = _NOT_TAKEN
+            if angles is not None:
+                try:
+                    out = self._ku(self._state, z, hx, jac, R, self._rbuf, angles, threshold, y)
+                except Exception:  # a dispatch failure: not of the compiled types
+                    out = _NOT_TAKEN
+        if out >= 0.0:  # OK: the kernel returned the NIS
+            # new_result, inlined: it is a third of the Python work of an update.
+            result: UpdateResult = _object_new(UpdateResult)
+            _set_accepted(result, True)
+            _set_nis(result, out)
+            _set_residual(result, y)
+            _set_reason(result, None)
+            return result
+        return self._update_checked(
+            int(-out), y, (z, hx, jac, R), angles, threshold, angle_measurements, gate
+        )
+
+    def _fast_options(
+        self, angle_measurements: Iterable[int], gate: float | None
+    ) -> tuple[IntArray | None, float]:
+        """The angle indices and gate threshold if already known valid, else ``(None, nan)``.
+
+        A tuple of angle indices checked before (kept by identity) and a float gate
+        in range qualify; anything else is checked in full by _update_checked.
+        """
+        if angle_measurements is _NO_ANGLES:
+            angles: IntArray | None = _NO_INDICES
+        else:
+            hit = self._meas_angles.get(id(angle_measurements))
+            angles = hit[1] if hit is not None and hit[0] is angle_measurements else None
+        if gate is None:
+            return angles, _INF
+        if isinstance(gate, float) and _SMALLEST_POSITIVE <= gate < _INF:
+            return angles, float(gate)
+        return None, _NAN
+
+    def _update_checked(
+        self,
+        status: int,
+        y: FloatArray,
+        arrays: tuple[Any, Any, Any, Any],
+        angles: IntArray | None,
+        threshold: float,
+        angle_measurements: Iterable[int],
+        gate: float | None,
+    ) -> UpdateResult:
+        """The rest of :meth:`update` after a kernel ``status`` other than OK.
+
+        ``arrays`` are z, h(x), H and R as passed or returned; ``angles`` and
+        ``threshold`` the fast path's angle indices and gate (``angles`` None
+        when it could not take them).
+        """
+        z, hx, jac, r = arrays
+        m = self._m
+        if (status == BAD_SHAPE and angles is not None and type(z) is _NDARRAY
+                and z.ndim == 1 and 0 < z.shape[0] != m):  # fmt: skip
+            # Most likely a measurement of another size than the last one: switch
+            # buffers and try again before converting anything.
+            m = z.shape[0]
+            self._use_rbuf(m)
+            y = _empty(m)
+            try:
+                status = self._run(z, hx, jac, r, angles, threshold, y)
+            except Exception:  # a dispatch failure: not of the compiled types
+                status = BAD_TYPE
+        if status in (BAD_TYPE, BAD_SHAPE):
+            # Convert and check everything, in the documented order.
+            z = _c_copy(as_float_array(z, "z", ndim=1))
+            m = z.shape[0]
+            if m == 0:
+                raise ValueError("z must have at least one component")
+            jac = _c_array(jac, "H", (m, self._n))
+            r = _c_array(r, "R", (m, m))
+            self._use_rbuf(m)
             angles = self._measurement_angles(angle_measurements, m)
-        threshold = math.inf if gate is None else positive_float(gate, "gate")
-        hx = h(self._x.copy())
-        if not (type(hx) is _NDARRAY and hx.dtype is _F64 and hx.shape == (m,)
-                and hx.flags.carray):  # fmt: skip
+            threshold = _INF if gate is None else positive_float(gate, "gate")
             hx = _c_array(hx, "h(x)", (m,))
-        y = np.empty(m)
-        status, nis = ekf_update(self._state, meas, hx, jac, r, rbuf, angles, threshold, y)
+            y = _empty(m)
+            status = self._run(z, hx, jac, r, angles, threshold, y)
         if status == NOISE_CHANGED:
-            set_r(rbuf, r, covariance(r, "R", m))
-            status, nis = ekf_update(self._state, meas, hx, jac, r, rbuf, angles, threshold, y)
+            set_r(self._rbuf, r, covariance(r, "R", m))
+            status = self._run(z, hx, jac, r, angles, threshold, y)
+        nis = rbuf_nis(self._rbuf)
         if status == OK:
             return new_result(True, nis, y, None)
         if status == GATED:
@@ -318,28 +437,55 @@ class ExtendedKalmanFilter(GaussianEstimate):
             _raise(NOT_POSITIVE_DEFINITE, "innovation covariance S")
         _raise(status, "updated covariance")
 
-    def _new_rbuf(self, m: int) -> FloatArray:
-        """A new R-and-scratch buffer for ``m``-dimensional measurements (kept for reuse)."""
-        if len(self._rbufs) >= _CACHE_SIZE:
-            self._rbufs.clear()
-        rbuf = self._rbufs[m] = new_rbuf(self._n, m)
-        return rbuf
+    def _run(
+        self, z: Any, hx: Any, jac: Any, r: Any, angles: Any, threshold: float, y: FloatArray
+    ) -> int:
+        """One call of the current update kernel: its status.
+
+        On OK the NIS is also left in the buffer, for the caller.
+        """
+        out = self._ku(self._state, z, hx, jac, r, self._rbuf, angles, threshold, y)
+        if out >= 0.0:
+            set_nis(self._rbuf, out)
+            return OK
+        return int(-out)
+
+    def _use_rbuf(self, m: int) -> None:
+        """Make the buffer and kernel of ``m``-dimensional measurements the current ones."""
+        entry = self._rbufs.get(m)
+        if entry is None:
+            if len(self._rbufs) >= _CACHE_SIZE:
+                self._rbufs.clear()
+            entry = self._rbufs[m] = (new_rbuf(self._n, m), update_kernel(self._n, m))
+        self._rbuf, self._ku = entry
+        self._m = m
 
     def _measurement_angles(self, indices: Iterable[int], m: int) -> IntArray:
-        """``angle_measurements`` as an int64 array, validated once per tuple object."""
-        if type(indices) is tuple:
-            hit = self._meas_angles.get(id(indices))
-            if hit is not None and hit[0] is indices and hit[1] == m:
-                return hit[2]
+        """``angle_measurements`` as an int64 array, checked against ``m``.
+
+        A tuple is remembered (by identity) once checked: the fast path of
+        :meth:`update` then takes its indices, which the kernel checks against
+        each measurement's size.
+        """
+        if indices is _NO_ANGLES:
+            return _NO_INDICES
         out = np.array(index_tuple(indices, "angle_measurements", m), dtype=np.int64)
         if type(indices) is tuple:
             if len(self._meas_angles) >= _CACHE_SIZE:
                 self._meas_angles.clear()
-            self._meas_angles[id(indices)] = (indices, m, out)
+            self._meas_angles[id(indices)] = (indices, out)
         return out
 
     def __repr__(self) -> str:
         return f"ExtendedKalmanFilter(dim={self._n}, angle_states={self._angles})"
+
+
+_NO_RBUF: FloatArray = np.zeros((1, 1, 1))  # the buffer before the first update
+
+
+def _no_update_kernel(*args: Any) -> float:
+    """The update "kernel" before the first update: no measurement size fits."""
+    return -float(BAD_SHAPE)
 
 
 def _restore(state: FloatArray, angles: tuple[int, ...]) -> ExtendedKalmanFilter:

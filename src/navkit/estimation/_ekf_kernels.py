@@ -1,35 +1,55 @@
 """numba kernels of navkit.estimation.ExtendedKalmanFilter, the general EKF (private).
 
 The filter keeps everything a predict needs in one float64 ``state`` array of
-shape ``(state_rows(n), n)`` (each array argument adds to a kernel call's cost):
+shape ``(6n + 3, n)`` (each array argument adds to a kernel call's cost):
 
 * row ``STATE_X`` (0): the state x;
 * rows ``STATE_P`` .. ``STATE_P + n - 1``: the covariance P;
 * row ``n + 1``: 1.0 where a state component is an angle, else 0.0;
 * rows ``n + 2`` .. ``3n + 1``: the process noise Q validated last time, as the
   caller passed it and symmetrised (NaN before the first predict);
-* the rest: scratch space of :func:`ekf_predict`.
+* the rest: scratch space of the predict kernel.
 
-Each measurement size m has an ``rbuf`` (1-D, ``rbuf_size(n, m)``): the R
-validated last time, as passed and symmetrised (NaN until then), then the
-scratch space of :func:`ekf_update`.
+Each measurement size m has an ``rbuf`` (:func:`new_rbuf`), a stack of
+``(rows, max(n, m, 2))`` float64 blocks (``rbuf[k]`` is a C-contiguous 2-D
+array, which slicing a flat buffer and reshaping it would cost a library call
+each): the R validated last time, as passed and symmetrised (NaN until then),
+and the scratch space of the update kernel. Matrices use the top-left corner
+of their block.
 
-The two kernels do one predict or one update each: they check what the public
-layer did not (finiteness of the user's arrays; whether Q or R still equals the
-matrix validated last time, else they return ``NOISE_CHANGED`` and the caller
-validates it and calls again), compute the step into scratch space, make the new
-covariance exactly symmetric, check it positive definite (a Cholesky
-factorisation, which also fails on non-finite entries) and only then commit
-it. Every outcome is a status code: the kernels never raise, never allocate
-(they are compiled without reference counting, which alone took a tenth of a
-call) and never leave ``state`` half-written. They are compiled for
-C-contiguous float64 arrays (and an int64 index array) only: the public layer
-passes nothing else. :func:`compile_kernels` compiles them ahead.
+The kernels are made per state dimension n (:func:`predict_kernel`) and per
+pair (n, m) (:func:`update_kernel`), with n and m compile-time constants: at
+these sizes (a few states) loop overhead, not arithmetic, is the cost, and
+constant trip counts let LLVM unroll the loops (2-3 times faster kernels than
+with run-time sizes). numba caches each on disk (the closure's constants are
+part of the cache key). The small helpers are inlined into the kernels (so
+that the constants reach them); each is used once or twice per kernel, which
+keeps the compile time at that of the former run-time-size kernels.
+
+Each kernel does one predict or one update. It checks what the public layer
+did not: the shapes (``BAD_SHAPE``: the caller then converts and checks its
+arguments in full, or picks the kernel of another measurement size), the
+finiteness of the user's arrays, and whether Q or R still equals the matrix
+validated last time (else ``NOISE_CHANGED``: the caller validates it and calls
+again). Then it computes the step into scratch space, makes the new covariance
+exactly symmetric, checks it positive definite (an LDLᵀ factorisation, which
+also fails on non-finite entries) and only then commits it. Every outcome is a
+status code: the kernels never raise, never allocate (they are compiled
+without reference counting, which alone took a tenth of a call) and never
+leave ``state`` half-written.
+
+They are compiled for C-contiguous, writeable, aligned float64 arrays (and a
+C-contiguous int64 index array) only, when first requested, after which their
+dispatchers compile nothing more: an argument of any other type raises at
+dispatch, which the public layer takes as "convert this argument and check it
+in full". Its fast path therefore needs no type checks of its own.
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 
@@ -43,6 +63,8 @@ __all__ = [
     "BAD_FX",
     "BAD_H",
     "BAD_HX",
+    "BAD_SHAPE",
+    "BAD_TYPE",
     "BAD_Z",
     "GATED",
     "NIS_OVERFLOW",
@@ -56,17 +78,28 @@ __all__ = [
     "STATE_X",
     "S_NOT_FINITE",
     "S_NOT_POSITIVE_DEFINITE",
+    "PredictKernel",
+    "UpdateKernel",
     "compile_kernels",
-    "ekf_predict",
-    "ekf_update",
     "new_rbuf",
     "new_state",
+    "predict_kernel",
+    "rbuf_nis",
+    "set_nis",
     "set_q",
     "set_r",
+    "update_kernel",
 ]
 
 STATE_X = 0
 STATE_P = 1
+
+_SMALLEST_NORMAL = 2.2250738585072014e-308  # sys.float_info.min
+
+# A kernel takes the public layer's arguments as they come: its dispatcher checks
+# their types (and raises on any other than the compiled ones).
+PredictKernel = Callable[..., int]  # (state, f(x), F, Q) -> status
+UpdateKernel = Callable[..., float]  # (state, z, h(x), H, R, rbuf, angles, gate, y) -> NIS|-status
 
 # Status codes shared with the public layer (one set for both kernels).
 OK = 0
@@ -84,6 +117,39 @@ RESIDUAL_OVERFLOW = 11  # z - h(x) overflowed
 NIS_OVERFLOW = 12  # the NIS overflowed
 GATED = 13  # NIS above the gate
 STATE_OVERFLOW = 14  # the updated state overflowed
+BAD_SHAPE = 15  # an argument's shape does not fit (or rbuf is another m's): check in full
+BAD_TYPE = 16  # set by the public layer: an argument is not of the compiled type
+
+# What ekf_update returns for a status other than OK: -status.
+_FAIL_SHAPE = -float(BAD_SHAPE)
+_FAIL_Z = -float(BAD_Z)
+_FAIL_H = -float(BAD_H)
+_FAIL_NOISE = -float(NOISE_CHANGED)
+_FAIL_HX = -float(BAD_HX)
+_FAIL_S_NOT_FINITE = -float(S_NOT_FINITE)
+_FAIL_S_NOT_POSITIVE_DEFINITE = -float(S_NOT_POSITIVE_DEFINITE)
+_FAIL_RESIDUAL = -float(RESIDUAL_OVERFLOW)
+_FAIL_NIS = -float(NIS_OVERFLOW)
+_FAIL_GATED = -float(GATED)
+_FAIL_STATE = -float(STATE_OVERFLOW)
+
+# Blocks of an rbuf.
+_R = 0  # R as passed
+_RS = 1  # R symmetrised
+_HP = 2  # H P (m x n)
+_CHOL = 3  # Cholesky factor of S (m x m)
+_GAIN = 4  # K (n x m)
+_KR = 5  # K R - (I - K H) P Hᵀ (n x m)
+_PCHK = 6  # the LDLᵀ factor of the new P (n x n)
+_TMP = 7  # (I - K H) P (n x n)
+_PN = 8  # the new P (n x n)
+_VEC = 9  # rows: 1 / diag(L), a solve vector, the new state, [m, NIS]
+_S = 10  # S (m x m)
+_BLOCKS = 11
+_INV_DIAG = 0
+_U = 1
+_XN = 2
+_META = 3
 
 
 def new_state(x: FloatArray, p: FloatArray, angles: tuple[int, ...]) -> FloatArray:
@@ -107,53 +173,55 @@ def set_q(state: FloatArray, q: FloatArray, q_sym: FloatArray) -> None:
     state[2 * n + 2 : 3 * n + 2] = q_sym
 
 
+def set_nis(rbuf: FloatArray, nis: float) -> None:
+    """Leave ``nis`` in ``rbuf`` as the update kernel does with a status other than OK."""
+    rbuf[_VEC, _META, 1] = nis
+
+
+def rbuf_nis(rbuf: FloatArray) -> float:
+    """The NIS the update kernel left in ``rbuf`` (with a status other than OK)."""
+    return float(rbuf[_VEC, _META, 1])
+
+
 def new_rbuf(n: int, m: int) -> FloatArray:
     """The R-and-scratch buffer of ``m``-dimensional measurements (no R validated yet)."""
     big = max(n, m)
-    rbuf = np.empty(3 * n * n + 3 * n * m + 4 * m * m + 2 * big + 2 * n)
-    rbuf[: 2 * m * m] = math.nan
+    rbuf = np.zeros((_BLOCKS, max(big, _META + 1), max(big, 2)))
+    rbuf[_R] = math.nan
+    rbuf[_RS] = math.nan
     return rbuf
 
 
 def set_r(rbuf: FloatArray, r: FloatArray, r_sym: FloatArray) -> None:
     """Store a validated R: as passed (``r``) and symmetrised (``r_sym``)."""
-    mm = r.size
-    rbuf[:mm] = r.ravel()
-    rbuf[mm : 2 * mm] = r_sym.ravel()
+    m = r.shape[0]
+    rbuf[_R, :m, :m] = r
+    rbuf[_RS, :m, :m] = r_sym
 
 
 @njit_inline_no_refcount
-def _finite_vec(v: FloatArray) -> bool:
-    """Whether every entry of the 1-D ``v`` is finite (``a - a`` is 0 only when ``a`` is)."""
-    for i in range(v.shape[0]):  # noqa: SIM110 - numba compiles no generator into all()
-        if v[i] - v[i] != 0.0:
-            return False
-    return True
-
-
-@njit_inline_no_refcount
-def _finite_mat(a: FloatArray) -> bool:
-    """Whether every entry of the 2-D ``a`` is finite."""
-    for i in range(a.shape[0]):
-        for j in range(a.shape[1]):
+def _finite_mat(a: FloatArray, rows: int, cols: int) -> bool:
+    """Whether the top-left ``rows`` x ``cols`` block of ``a`` is finite."""
+    for i in range(rows):
+        for j in range(cols):
             if a[i, j] - a[i, j] != 0.0:
                 return False
     return True
 
 
 @njit_inline_no_refcount
-def _equal(a: FloatArray, b: FloatArray) -> bool:
-    """Whether the 2-D ``a`` and ``b`` hold equal values (NaN is never equal)."""
-    for i in range(a.shape[0]):
-        for j in range(a.shape[1]):
+def _equal(a: FloatArray, b: FloatArray, n: int) -> bool:
+    """Whether the n x n ``a`` equals the top-left n x n block of ``b`` (NaN never does)."""
+    for i in range(n):
+        for j in range(n):
             if a[i, j] != b[i, j]:
                 return False
     return True
 
 
-@njit_no_refcount
-def _mul(a: FloatArray, b: FloatArray, out: FloatArray) -> None:
-    """``out = a @ b``, skipping the zeros of ``a``.
+@njit_inline_no_refcount
+def _mul(a: FloatArray, b: FloatArray, out: FloatArray, rows: int, inner: int, cols: int) -> None:
+    """``out = a @ b`` on the leading blocks (``rows`` x ``inner`` times ``inner`` x ``cols``).
 
     Loop order i, k, j: each ``out[i, j]`` still sums its products in k order
     (the order of a plain dot product), but the j loop runs independent sums
@@ -161,7 +229,6 @@ def _mul(a: FloatArray, b: FloatArray, out: FloatArray) -> None:
     adds exact zeros (``b`` is finite wherever this is used), so it is skipped:
     Jacobians and I - K H are mostly zeros.
     """
-    rows, inner, cols = a.shape[0], a.shape[1], b.shape[1]
     for i in range(rows):
         for j in range(cols):
             out[i, j] = 0.0
@@ -172,14 +239,13 @@ def _mul(a: FloatArray, b: FloatArray, out: FloatArray) -> None:
                     out[i, j] += aik * b[k, j]
 
 
-@njit_no_refcount
-def _mul_t_lower(a: FloatArray, b: FloatArray, out: FloatArray) -> None:
-    """The lower triangle (j <= i) of ``out = a @ b.T``, skipping the zeros of ``a``.
+@njit_inline_no_refcount
+def _mul_t_lower(a: FloatArray, b: FloatArray, out: FloatArray, rows: int, inner: int) -> None:
+    """The lower triangle (j <= i < rows) of ``out = a @ b.T``, skipping the zeros of ``a``.
 
     For a symmetric product such as ``A P Aᵀ = A (A P)ᵀ`` (P symmetric): the
     upper triangle is its mirror image.
     """
-    rows, inner = a.shape[0], a.shape[1]
     for i in range(rows):
         for j in range(i + 1):
             out[i, j] = 0.0
@@ -191,219 +257,327 @@ def _mul_t_lower(a: FloatArray, b: FloatArray, out: FloatArray) -> None:
 
 
 @njit_inline_no_refcount
-def _add_lower(p: FloatArray, q: FloatArray) -> None:
-    """``p += q`` on the lower triangle (j <= i)."""
-    for i in range(p.shape[0]):
+def _add_lower(p: FloatArray, q: FloatArray, n: int) -> None:
+    """``p += q`` on the lower triangle (j <= i < n)."""
+    for i in range(n):
         for j in range(i + 1):
             p[i, j] += q[i, j]
 
 
-@njit_no_refcount
-def _mirror_checked(p: FloatArray, chol: FloatArray, inv_diag: FloatArray) -> int:
-    """Copy the lower triangle of ``p`` to the upper one and check ``p``.
+@njit_inline_no_refcount
+def _positive_definite(a: FloatArray, work: FloatArray, inv_d: FloatArray, n: int) -> bool:
+    """Whether the symmetric n x n ``a`` (lower triangle read) is positive definite.
 
-    Returns OK, NOT_FINITE or NOT_POSITIVE_DEFINITE. ``chol`` receives the
-    Cholesky factor in its lower triangle (and 1 / its diagonal ``inv_diag``).
-    The factorisation fails on any non-finite entry, so the finiteness scan runs
-    only then, to tell the two failures apart.
+    An LDLᵀ factorisation (Cholesky's without its square roots, which made up
+    most of its latency): ``a`` is positive definite if and only if every pivot
+    d is positive. Pivots must also be normal floats (at least about 2.2e-308,
+    far below any covariance this filter can meet: entries are at most 1e100
+    apart in magnitude from 1) so that 1 / d is finite. An inf or NaN entry makes
+    some pivot inf or NaN, so non-finite matrices fail too. L goes to the strict
+    lower triangle of ``work``, 1 / d to ``inv_d``.
     """
-    n = p.shape[0]
     for i in range(n):
-        for j in range(i + 1):
-            v = p[i, j]
-            p[j, i] = v
-            chol[i, j] = v
-    if _cholesky_inplace(chol, n, inv_diag):
-        return OK
-    return NOT_POSITIVE_DEFINITE if _finite_mat(p) else NOT_FINITE
-
-
-@njit_no_refcount
-def ekf_predict(state: FloatArray, x_new: FloatArray, jac: FloatArray, q: FloatArray) -> int:
-    """x ← wrap(f(x)), P ← F P Fᵀ + Q in ``state``, or a status code leaving x and P unchanged.
-
-    ``x_new`` (n,) is f(x), ``jac`` (n, n) the Jacobian F, ``q`` (n, n) the
-    caller's Q (shapes checked by the caller). Returns ``BAD_F``,
-    ``NOISE_CHANGED`` or ``BAD_FX`` (checked in this order) before computing
-    anything, then ``NOT_FINITE`` or ``NOT_POSITIVE_DEFINITE`` for the predicted
-    covariance, else ``OK``.
-    """
-    n = x_new.shape[0]
-    if not _finite_mat(jac):
-        return BAD_F
-    if not _equal(q, state[n + 2 : 2 * n + 2]):
-        return NOISE_CHANGED
-    if not _finite_vec(x_new):
-        return BAD_FX
-    p = state[STATE_P : STATE_P + n]
-    qs = state[2 * n + 2 : 3 * n + 2]
-    fp = state[3 * n + 2 : 4 * n + 2]
-    pn = state[4 * n + 2 : 5 * n + 2]
-    chol = state[5 * n + 2 : 6 * n + 2]
-    inv_diag = state[6 * n + 2]
-    # F P Fᵀ = F (F P)ᵀ, P being symmetric: both products skip the zeros of F.
-    _mul(jac, p, fp)
-    _mul_t_lower(jac, fp, pn)
-    _add_lower(pn, qs)
-    status = _mirror_checked(pn, chol, inv_diag)
-    if status != OK:
-        return status
-    angle = state[n + 1]
-    for i in range(n):
-        state[STATE_X, i] = wrap_scalar(x_new[i]) if angle[i] != 0.0 else x_new[i]
-        for j in range(n):
-            p[i, j] = pn[i, j]
-    return OK
-
-
-@njit_no_refcount
-def ekf_update(
-    state: FloatArray,
-    z: FloatArray,
-    hx: FloatArray,
-    jac: FloatArray,
-    r: FloatArray,
-    rbuf: FloatArray,
-    angles: IntArray,
-    gate: float,
-    y: FloatArray,
-) -> tuple[int, float]:
-    """Joseph-form measurement update of ``state``; returns ``(status, nis)``.
-
-    ``z`` and ``hx`` (m,) are the measurement and h(x), ``jac`` (m, n) the
-    Jacobian H, ``r`` (m, m) the caller's R, ``rbuf`` the buffer of this m
-    (:func:`new_rbuf`), ``angles`` the indices of the angle components of ``z``,
-    ``gate`` the NIS threshold (inf for none). The residual is written to ``y``
-    (m,). Checks, in order: ``BAD_Z``, ``BAD_H``, ``NOISE_CHANGED``, ``BAD_HX``;
-    then S = H P Hᵀ + R (``S_NOT_FINITE``, ``S_NOT_POSITIVE_DEFINITE``), the
-    residual (``RESIDUAL_OVERFLOW``), the NIS yᵀ S⁻¹ y (``NIS_OVERFLOW``,
-    ``GATED``), the updated state (``STATE_OVERFLOW``) and the updated
-    covariance (``NOT_FINITE``, ``NOT_POSITIVE_DEFINITE``). x and P change only
-    with ``OK``; ``nis`` is NaN until computed, inf when it overflowed.
-    """
-    n = state.shape[1]
-    m = z.shape[0]
-    nn = n * n
-    nm = n * m
-    mm = m * m
-    big = max(n, m)
-    if not _finite_vec(z):
-        return BAD_Z, math.nan
-    if not _finite_mat(jac):
-        return BAD_H, math.nan
-    if not _equal(r, rbuf[:mm].reshape((m, m))):
-        return NOISE_CHANGED, math.nan
-    if not _finite_vec(hx):
-        return BAD_HX, math.nan
-    rs = rbuf[mm : 2 * mm].reshape((m, m))
-    x = state[STATE_X]
-    p = state[STATE_P : STATE_P + n]
-    for i in range(m):
-        y[i] = z[i] - hx[i]
-    for k in range(angles.shape[0]):
-        a = y[angles[k]]
-        if a - a == 0.0:  # an overflowed residual stays as it is
-            y[angles[k]] = wrap_scalar(a)
-
-    # Scratch, cut into C-contiguous blocks (reshaped 1-D slices keep numba's C
-    # layout, which 2-D slices of a wider array would not).
-    o = 2 * mm
-    hp = rbuf[o : o + nm].reshape((m, n))  # H P = (P Hᵀ)ᵀ
-    o += nm
-    s = rbuf[o : o + mm].reshape((m, m))  # S
-    o += mm
-    chol = rbuf[o : o + mm].reshape((m, m))
-    o += mm
-    gain = rbuf[o : o + nm].reshape((n, m))  # K
-    o += nm
-    kr = rbuf[o : o + nm].reshape((n, m))  # K R
-    o += nm
-    ikh = rbuf[o : o + nn].reshape((n, n))  # I - K H
-    o += nn
-    tmp = rbuf[o : o + nn].reshape((n, n))  # (I - K H) P, then K R Kᵀ
-    o += nn
-    pn = rbuf[o : o + nn].reshape((n, n))
-    o += nn
-    inv_diag = rbuf[o : o + big]
-    o += big
-    u = rbuf[o : o + big]  # a solve vector
-    o += big
-    xn = rbuf[o : o + n]  # the new state
-
-    _mul(jac, p, hp)
-    _mul_t_lower(jac, hp, s)  # H P Hᵀ
-    _add_lower(s, rs)
-    status = _mirror_checked(s, chol, inv_diag)
-    if status == NOT_FINITE:
-        return S_NOT_FINITE, math.nan
-    if status == NOT_POSITIVE_DEFINITE:
-        return S_NOT_POSITIVE_DEFINITE, math.nan
-
-    if not _finite_vec(y):
-        return RESIDUAL_OVERFLOW, math.inf
-    # NIS = |L⁻¹ y|² (never negative), by forward substitution.
-    nis = 0.0
-    for i in range(m):
-        t = y[i]
+        for j in range(i):
+            t = a[i, j]
+            for k in range(j):
+                t -= work[i, k] * work[j, k]
+            work[i, j] = t  # L[i, j] d[j], made L[i, j] below
+        d = a[i, i]
         for k in range(i):
-            t -= chol[i, k] * u[k]
-        u[i] = t * inv_diag[i]
-        nis += u[i] * u[i]
-    if not nis < math.inf:
-        return NIS_OVERFLOW, math.inf
-    if nis > gate:
-        return GATED, nis
-
-    # K = P Hᵀ S⁻¹: row i of K solves S kᵢ = (P Hᵀ)ᵢ = (H P)ᵀᵢ (S is symmetric).
-    for i in range(n):
-        for j in range(m):
-            u[j] = hp[j, i]
-        _cho_solve_vec(chol, inv_diag, m, u)
-        for j in range(m):
-            gain[i, j] = u[j]
-    angle = state[n + 1]
-    for i in range(n):
-        acc = 0.0
-        for j in range(m):
-            acc += gain[i, j] * y[j]
-        v = x[i] + acc
-        xn[i] = wrap_scalar(v) if angle[i] != 0.0 and v - v == 0.0 else v
-    if not _finite_vec(xn):
-        return STATE_OVERFLOW, nis
-
-    # Joseph form: P ← (I - K H) P (I - K H)ᵀ + K R Kᵀ.
-    _mul(gain, jac, ikh)
-    for i in range(n):
-        for j in range(n):
-            ikh[i, j] = -ikh[i, j]
-        ikh[i, i] += 1.0
-    # (I - K H) P (I - K H)ᵀ = A (A P)ᵀ with A = I - K H, P being symmetric.
-    _mul(ikh, p, tmp)
-    _mul_t_lower(ikh, tmp, pn)
-    _mul(gain, rs, kr)
-    _mul_t_lower(kr, gain, tmp)
-    _add_lower(pn, tmp)
-    status = _mirror_checked(pn, ikh, inv_diag)
-    if status != OK:
-        return status, nis
-    for i in range(n):
-        x[i] = xn[i]
-        for j in range(n):
-            p[i, j] = pn[i, j]
-    return OK, nis
+            w = work[i, k]
+            lk = w * inv_d[k]
+            d -= w * lk
+            work[i, k] = lk
+        if not _SMALLEST_NORMAL <= d < math.inf:
+            return False
+        inv_d[i] = 1.0 / d
+    return True
 
 
-def compile_kernels() -> None:
-    """Compile (or load from numba's cache) both kernels for the types the filter passes.
+@njit_inline_no_refcount
+def _mirror_checked(p: FloatArray, work: FloatArray, inv_d: FloatArray, n: int) -> int:
+    """Copy the lower triangle of the n x n ``p`` to the upper one and check ``p``.
 
-    The filter only ever passes C-contiguous, writeable float64 arrays (and a
-    C-contiguous int64 index array), so these are the only specialisations.
+    Returns OK, NOT_FINITE or NOT_POSITIVE_DEFINITE (``work`` and ``inv_d`` are
+    scratch space). The factorisation fails on any non-finite entry, so the
+    finiteness scan runs only then, to tell the two failures apart.
     """
-    x = np.zeros(1)
-    one = np.ones((1, 1))
-    state = new_state(x, one, ())
-    set_q(state, one, one)
-    ekf_predict(state, x, one, one)
-    rbuf = new_rbuf(1, 1)
-    set_r(rbuf, one, one)
-    ekf_update(state, x, x, one, one, rbuf, np.zeros(0, dtype=np.int64), math.inf, np.empty(1))
+    for i in range(n):
+        for j in range(i):
+            p[j, i] = p[i, j]
+    if _positive_definite(p, work, inv_d, n):
+        return OK
+    return NOT_POSITIVE_DEFINITE if _finite_mat(p, n, n) else NOT_FINITE
+
+
+def _make_predict(n: int) -> PredictKernel:
+    """The predict kernel of ``n``-state filters (``n`` a compile-time constant)."""
+
+    @njit_no_refcount
+    def ekf_predict(state: FloatArray, x_new: FloatArray, jac: FloatArray, q: FloatArray) -> int:
+        """x ← wrap(f(x)), P ← F P Fᵀ + Q in ``state``, or a status code leaving x and P unchanged.
+
+        ``x_new`` (n,) is f(x), ``jac`` (n, n) the Jacobian F, ``q`` (n, n) the
+        caller's Q. Returns ``BAD_SHAPE``, ``BAD_F``, ``NOISE_CHANGED`` or
+        ``BAD_FX`` (checked in this order) before computing anything, then
+        ``NOT_FINITE`` or ``NOT_POSITIVE_DEFINITE`` for the predicted covariance,
+        else ``OK``.
+        """
+        if (x_new.shape[0] != n or jac.shape[0] != n or jac.shape[1] != n
+                or q.shape[0] != n or q.shape[1] != n or state.shape[1] != n):  # fmt: skip
+            return BAD_SHAPE
+        if not _finite_mat(jac, n, n):
+            return BAD_F
+        if not _equal(q, state[n + 2 : 2 * n + 2], n):
+            return NOISE_CHANGED
+        for i in range(n):
+            if x_new[i] - x_new[i] != 0.0:
+                return BAD_FX
+        p = state[STATE_P : STATE_P + n]
+        qs = state[2 * n + 2 : 3 * n + 2]
+        fp = state[3 * n + 2 : 4 * n + 2]
+        pn = state[4 * n + 2 : 5 * n + 2]
+        work = state[5 * n + 2 : 6 * n + 2]
+        inv_diag = state[6 * n + 2]
+        # F P Fᵀ = F (F P)ᵀ, P being symmetric: both products skip the zeros of F.
+        _mul(jac, p, fp, n, n, n)
+        _mul_t_lower(jac, fp, pn, n, n)
+        _add_lower(pn, qs, n)
+        status = _mirror_checked(pn, work, inv_diag, n)
+        if status != OK:
+            return status
+        angle = state[n + 1]
+        for i in range(n):
+            state[STATE_X, i] = wrap_scalar(x_new[i]) if angle[i] != 0.0 else x_new[i]
+            for j in range(n):
+                p[i, j] = pn[i, j]
+        return OK
+
+    return ekf_predict
+
+
+def _make_update(n: int, m: int) -> UpdateKernel:
+    """The update kernel of ``n``-state filters and ``m``-dimensional measurements.
+
+    ``n`` and ``m`` are compile-time constants.
+    """
+
+    width = max(n, m, 2)  # of rbuf's blocks
+
+    @njit_no_refcount
+    def ekf_update(
+        state: FloatArray,
+        z: FloatArray,
+        hx: FloatArray,
+        jac: FloatArray,
+        r: FloatArray,
+        rbuf: FloatArray,
+        angles: IntArray,
+        gate: float,
+        y: FloatArray,
+    ) -> float:
+        """Joseph-form measurement update of ``state``; returns the NIS, or -status.
+
+        ``z`` and ``hx`` (m,) are the measurement and h(x), ``jac`` (m, n) the
+        Jacobian H, ``r`` (m, m) the caller's R, ``rbuf`` the buffer of this m
+        (:func:`new_rbuf`), ``angles`` the indices (non-negative, distinct) of the
+        angle components of ``z``, ``gate`` the NIS threshold (inf for none). The
+        residual is written to ``y`` (m,). Checks, in order: ``BAD_SHAPE`` (any
+        shape, or an angle index, not fitting ``rbuf``'s m), ``BAD_Z``,
+        ``BAD_H``, ``NOISE_CHANGED``, ``BAD_HX``; then S = H P Hᵀ + R
+        (``S_NOT_FINITE``, ``S_NOT_POSITIVE_DEFINITE``), the residual
+        (``RESIDUAL_OVERFLOW``), the NIS yᵀ S⁻¹ y (``NIS_OVERFLOW``, ``GATED``),
+        the updated state (``STATE_OVERFLOW``) and the updated covariance
+        (``NOT_FINITE``, ``NOT_POSITIVE_DEFINITE``). x and P change only with
+        ``OK``; ``nis`` is NaN until computed, inf when it overflowed.
+        """
+        vec = rbuf[_VEC]
+        vec[_META, 1] = math.nan  # the NIS a failure reports, until computed
+        if (z.shape[0] != m or hx.shape[0] != m or y.shape[0] != m or jac.shape[0] != m
+                or jac.shape[1] != n or r.shape[0] != m or r.shape[1] != m
+                or state.shape[1] != n or rbuf.shape[2] != width):  # fmt: skip
+            return _FAIL_SHAPE
+        for k in range(angles.shape[0]):
+            if angles[k] >= m:
+                return _FAIL_SHAPE
+        for i in range(m):
+            if z[i] - z[i] != 0.0:
+                return _FAIL_Z
+        if not _finite_mat(jac, m, n):
+            return _FAIL_H
+        if not _equal(r, rbuf[_R], m):
+            return _FAIL_NOISE
+        for i in range(m):
+            if hx[i] - hx[i] != 0.0:
+                return _FAIL_HX
+        rs = rbuf[_RS]
+        hp = rbuf[_HP]
+        s = rbuf[_S]
+        chol = rbuf[_CHOL]
+        inv_diag = vec[_INV_DIAG]
+        u = vec[_U]
+        x = state[STATE_X]
+        p = state[STATE_P : STATE_P + n]
+        for i in range(m):
+            y[i] = z[i] - hx[i]
+        for k in range(angles.shape[0]):
+            a = y[angles[k]]
+            if a - a == 0.0:  # an overflowed residual stays as it is
+                y[angles[k]] = wrap_scalar(a)
+
+        _mul(jac, p, hp, m, n, n)  # H P = (P Hᵀ)ᵀ
+        _mul_t_lower(jac, hp, s, m, n)  # H P Hᵀ = H (H P)ᵀ
+        for i in range(m):
+            for j in range(i + 1):
+                v = s[i, j] + rs[i, j]
+                s[i, j] = v
+                chol[i, j] = v
+        if not _cholesky_inplace(chol, m, inv_diag):
+            for i in range(m):
+                for j in range(i + 1):
+                    if s[i, j] - s[i, j] != 0.0:
+                        return _FAIL_S_NOT_FINITE
+            return _FAIL_S_NOT_POSITIVE_DEFINITE
+
+        for i in range(m):
+            if y[i] - y[i] != 0.0:
+                vec[_META, 1] = math.inf
+                return _FAIL_RESIDUAL
+        # NIS = |L⁻¹ y|² (never negative), by forward substitution.
+        nis = 0.0
+        for i in range(m):
+            t = y[i]
+            for k in range(i):
+                t -= chol[i, k] * u[k]
+            u[i] = t * inv_diag[i]
+            nis += u[i] * u[i]
+        vec[_META, 1] = nis
+        if not nis < math.inf:
+            vec[_META, 1] = math.inf
+            return _FAIL_NIS
+        if nis > gate:
+            return _FAIL_GATED
+
+        # K = P Hᵀ S⁻¹: row i of K solves S kᵢ = (P Hᵀ)ᵢ = (H P)ᵀᵢ (S is symmetric).
+        gain = rbuf[_GAIN]
+        for i in range(n):
+            for j in range(m):
+                u[j] = hp[j, i]
+            _cho_solve_vec(chol, inv_diag, m, u)
+            for j in range(m):
+                gain[i, j] = u[j]
+        xn = vec[_XN]
+        angle = state[n + 1]
+        for i in range(n):
+            acc = 0.0
+            for j in range(m):
+                acc += gain[i, j] * y[j]
+            v = x[i] + acc
+            if v - v != 0.0:
+                return _FAIL_STATE
+            xn[i] = wrap_scalar(v) if angle[i] != 0.0 else v
+
+        # Joseph form P ← A P Aᵀ + K R Kᵀ with A = I - K H, for any K (not only the
+        # optimal one), evaluated as A P Aᵀ = A P - (A P Hᵀ) Kᵀ with A P = P - K (H P):
+        # P ← A P + V Kᵀ with V = K R - A P Hᵀ. This is the Joseph form, not the short
+        # form (I - K H) P: V is the rounding error of the gain (K S - P Hᵀ, zero in exact
+        # arithmetic) and V Kᵀ takes it out to first order. A rounding error E in A P
+        # enters the result as E Aᵀ, as it does in the product (I - K H) P (I - K H)ᵀ;
+        # but this costs n²m + n²m/2 products instead of about 2n³.
+        ap = rbuf[_TMP]
+        for i in range(n):
+            for j in range(n):
+                ap[i, j] = p[i, j]
+            for k in range(m):
+                g = gain[i, k]
+                if g != 0.0:
+                    for j in range(n):
+                        ap[i, j] -= g * hp[k, j]
+        v = rbuf[_KR]
+        for i in range(n):
+            for k in range(m):
+                kr = 0.0
+                for j in range(m):
+                    kr += gain[i, j] * rs[j, k]
+                acc = 0.0
+                for j in range(n):
+                    hkj = jac[k, j]
+                    if hkj != 0.0:
+                        acc += ap[i, j] * hkj
+                v[i, k] = kr - acc  # K R - A P Hᵀ
+        pn = rbuf[_PN]
+        for i in range(n):
+            for j in range(i + 1):
+                acc = 0.0
+                for k in range(m):
+                    acc += v[i, k] * gain[j, k]
+                pn[i, j] = ap[i, j] + acc
+        status = _mirror_checked(pn, rbuf[_PCHK], inv_diag, n)
+        if status != OK:
+            return -float(status)
+        for i in range(n):
+            x[i] = xn[i]
+            for j in range(n):
+                p[i, j] = pn[i, j]
+        return nis
+
+    return ekf_update
+
+
+def _freeze(kernel: Any) -> None:
+    """Let ``kernel`` compile nothing more: other argument types raise at dispatch."""
+    kernel.disable_compile()
+
+
+_PREDICT: dict[int, PredictKernel] = {}
+_UPDATE: dict[tuple[int, int], UpdateKernel] = {}
+
+
+def predict_kernel(n: int) -> PredictKernel:
+    """The predict kernel of ``n``-state filters, compiled on first request.
+
+    Compiled (or loaded from numba's cache) for the types the filter passes
+    only, after which it compiles nothing more.
+    """
+    kernel = _PREDICT.get(n)
+    if kernel is None:
+        kernel = _make_predict(n)
+        x = np.zeros(n)
+        eye = np.eye(n)
+        state = new_state(x, eye, ())
+        set_q(state, eye, eye)
+        kernel(state, x, eye, eye)
+        _freeze(kernel)
+        _PREDICT[n] = kernel
+    return kernel
+
+
+def update_kernel(n: int, m: int) -> UpdateKernel:
+    """The update kernel of ``n``-state filters and ``m``-dimensional measurements.
+
+    Compiled on first request, as :func:`predict_kernel`.
+    """
+    kernel = _UPDATE.get((n, m))
+    if kernel is None:
+        kernel = _make_update(n, m)
+        state = new_state(np.zeros(n), np.eye(n), ())
+        rbuf = new_rbuf(n, m)
+        eye = np.eye(m)
+        set_r(rbuf, eye, eye)
+        z = np.zeros(m)
+        kernel(state, z, z, np.zeros((m, n)), eye, rbuf, np.zeros(0, dtype=np.int64), math.inf,
+               np.empty(m))  # fmt: skip
+        _freeze(kernel)
+        _UPDATE[(n, m)] = kernel
+    return kernel
+
+
+def compile_kernels(n: int = 1, m: int = 1) -> None:
+    """Compile (or load from numba's cache) the kernels of ``n`` states and ``m``-D measurements.
+
+    The filter only ever passes C-contiguous, writeable, aligned float64 arrays
+    (and a C-contiguous int64 index array), so these are the only
+    specialisations; afterwards the kernels compile nothing more.
+    """
+    predict_kernel(n)
+    update_kernel(n, m)

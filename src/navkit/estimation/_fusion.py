@@ -5,6 +5,7 @@ from __future__ import annotations
 import enum
 import math
 import numbers
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -23,14 +24,24 @@ from navkit.estimation._covariance import (
     variance,
 )
 from navkit.estimation._fusion_kernels import (
+    BUF_T,
     GATED,
+    INVALID,
     NOT_POSITIVE_DEFINITE,
     OVERFLOW,
     TIME_GAP,
-    planar_step,
+    planar_step_entry,
 )
 from navkit.estimation._gaussian import GaussianEstimate
-from navkit.estimation._result import UpdateResult, new_result
+from navkit.estimation._result import (
+    UpdateResult,
+    _object_new,
+    _set_accepted,
+    _set_nis,
+    _set_reason,
+    _set_residual,
+    new_result,
+)
 from navkit.geometry import Pose2D, wrap_angle
 
 __all__ = ["FusionResult", "FusionStatus", "MeasurementLog", "PlanarFusion"]
@@ -55,6 +66,18 @@ _KIND_COMPONENTS = {
 _ODOMETRY_NAMES = ("v", "omega", "v_variance", "omega_variance")
 
 
+def _load_step(*args: Any) -> tuple[int, float]:
+    """Compile (or load) the online step on first use, then run it (see ``_step``)."""
+    global _step
+    _step = planar_step_entry()
+    return _step(*args)
+
+
+# The online step (_fusion_kernels.planar_step) without numba's type dispatch,
+# compiled on the first online update: a filter used only in batch never compiles it.
+_step: Callable[..., tuple[int, float]] = _load_step
+
+
 class _IntCodes(enum.EnumMeta):
     """Enum metaclass whose lookup ``Enum(value)`` takes integer codes only.
 
@@ -63,8 +86,10 @@ class _IntCodes(enum.EnumMeta):
     """
 
     def __call__(cls, value: Any, *args: Any, **kwargs: Any) -> Any:
-        if not args and not kwargs and (
-            isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Integral)
+        if (
+            not args
+            and not kwargs
+            and (isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Integral))
         ):
             raise TypeError(f"{cls.__name__} takes an integer code, got {type(value).__name__}")
         return super().__call__(value, *args, **kwargs)
@@ -492,8 +517,6 @@ class PlanarFusion(GaussianEstimate):
         "_odometry_residual",
         "_q",
         "_residuals",
-        "_t",
-        "_work",
     )
 
     def __init__(
@@ -506,15 +529,14 @@ class PlanarFusion(GaussianEstimate):
         gate_probability: float | None = None,
     ) -> None:
         x = np.zeros(6) if x0 is None else as_float_array(x0, "x0", shape=(6,))
-        # x, P, Q, the current measurement and scratch space live in one array: the
-        # compiled online step takes just that array (see _fusion_kernels.BUF_*).
+        # x, P, Q, the current measurement, the filter time and scratch space live in one
+        # array: the compiled online step takes just that array (see _fusion_kernels.BUF_*).
         self._buf = np.zeros((k.BUF_ROWS, 6))
         self._x: FloatArray = self._buf[k.BUF_X]
         self._p: FloatArray = self._buf[k.BUF_P : k.BUF_P + 6]
         self._q: FloatArray = self._buf[k.BUF_Q : k.BUF_Q + 6]
         # The kernel leaves the residuals in the last row of the measurement block.
         self._residuals: FloatArray = self._buf[k.BUF_MEAS + 2]
-        self._work: FloatArray = self._buf[k.BUF_WORK :]
         self._x[:] = x
         self._x[2] = wrap_angle(float(self._x[2]))
         self._p[:, :] = _matrix(
@@ -525,7 +547,8 @@ class PlanarFusion(GaussianEstimate):
             "process_noise",
             semidefinite=True,
         )
-        self._t: float | None = None if t0 is None else finite_float(t0, "t0")
+        # NaN until the clock is set (by t0 or the first measurement).
+        self._buf[BUF_T, 0] = math.nan if t0 is None else finite_float(t0, "t0")
         self._gates = np.full(5, np.inf)
         if gate_probability is not None:
             prob = finite_float(gate_probability, "gate_probability")
@@ -546,7 +569,8 @@ class PlanarFusion(GaussianEstimate):
     @property
     def t(self) -> float | None:
         """Filter time, s; None before the first measurement when no ``t0`` was given."""
-        return self._t
+        t = float(self._buf[BUF_T, 0])
+        return None if math.isnan(t) else t
 
     @property
     def pose(self) -> Pose2D:
@@ -571,20 +595,19 @@ class PlanarFusion(GaussianEstimate):
             filter is unchanged.
         """
         time = finite_float(t, "t")
-        if self._t is not None:
-            if time < self._t:
-                raise ValueError(f"t={time} s is older than the filter time {self._t} s")
-            x = self._x.copy()
-            p = self._p.copy()
-            k.planar_predict(x, p, self._q, time - self._t, self._work)
-            if not (np.all(np.isfinite(p)) and np.all(np.isfinite(x))):
-                raise FilterError(
-                    f"predicting over the time gap of {time - self._t} s overflows float64; "
-                    "the filter is unchanged"
-                )
-            self._x[:] = x
-            self._p[:, :] = p
-        self._t = time
+        last = self.t
+        if last is None:
+            self._buf[BUF_T, 0] = time
+            return
+        if time < last:
+            raise ValueError(f"t={time} s is older than the filter time {last} s")
+        # The online step without a measurement (count 0): compiled once with the updates.
+        status, _ = _step(self._buf, time, 0, 0, 0.0, 0.0, 0.0, 0.0, math.inf)
+        if status == TIME_GAP:
+            raise FilterError(
+                f"predicting over the time gap of {time - last} s overflows float64; "
+                "the filter is unchanged"
+            )
 
     def update_odometry(
         self, t: float, v: float, omega: float, *, v_variance: float, omega_variance: float
@@ -619,27 +642,25 @@ class PlanarFusion(GaussianEstimate):
             The prediction to ``t`` would overflow float64 (a huge time gap) or
             the update would lose positive definiteness; the filter is unchanged.
         """
-        # Fast path (the call runs at the odometry rate): plain finite floats, variances
-        # in range, a running filter and an in-order time; everything else, and
-        # every measurement the kernel does not apply, goes the general way.
-        # The literals are MIN_VARIANCE and MAX_COVARIANCE (constants are faster).
-        last = self._t
-        if (
-            type(t) is type(v) is type(omega) is type(v_variance) is type(omega_variance) is float
-            and last is not None
-            and last <= t
-            and 1e-100 <= v_variance <= 1e100
-            and 1e-100 <= omega_variance <= 1e100
-            and (t + v + omega) - (t + v + omega) == 0.0
-        ):
-            dt = t - last
-            status, nis = planar_step(
-                self._buf, dt, 1, 2, v, omega, v_variance, omega_variance, self._odometry_gate
+        # Fast path (the call runs at the odometry rate): plain floats go straight to the
+        # compiled step, which checks the rest (finite values, variances in range, a
+        # running clock, an in-order time) and returns INVALID, changing nothing, if
+        # any check fails; then, and for anything but plain floats, the general way
+        # validates and explains.
+        if type(t) is type(v) is type(omega) is type(v_variance) is type(omega_variance) is float:
+            status, nis = _step(
+                self._buf, t, 1, 2, v, omega, v_variance, omega_variance, self._odometry_gate
             )
-            if status:
-                return self._not_applied(status, "odometry", t, dt, nis, slice(1, 3))
-            self._t = t
-            return new_result(True, nis, self._odometry_residual.copy(), None)
+            if not status:
+                # new_result(True, nis, residual, None), written out: this saves a call.
+                result = _object_new(UpdateResult)
+                _set_accepted(result, True)
+                _set_nis(result, nis)
+                _set_residual(result, self._odometry_residual.copy())
+                _set_reason(result, None)
+                return result
+            if status != INVALID:
+                return self._not_applied(status, "odometry", t, nis, slice(1, 3))
         return self._apply(t, "odometry", v, omega, v_variance, omega_variance, _ODOMETRY_NAMES)
 
     def update_speed(self, t: float, v: float, *, variance: float) -> UpdateResult:
@@ -775,56 +796,57 @@ class PlanarFusion(GaussianEstimate):
         var1: Any,
         names: tuple[str, str, str, str],
     ) -> UpdateResult:
-        # Fast path for plain finite floats and variances in range (the sum of finite
-        # floats may overflow: then the per-argument checks below decide).
-        # The literals are MIN_VARIANCE and MAX_COVARIANCE (constants are faster).
-        total = t + z0 + z1 if type(t) is type(z0) is type(z1) is float else math.nan
-        if not (
-            total - total == 0.0
-            and type(var0) is type(var1) is float
-            and 1e-100 <= var0 <= 1e100
-            and 1e-100 <= var1 <= 1e100
-        ):
-            t = finite_float(t, "t")
-            z0 = finite_float(z0, names[0])
-            var0 = variance(var0, names[2])
-            if names[1]:
-                z1 = finite_float(z1, names[1])
-                var1 = variance(var1, names[3])
-        last = self._t
-        if last is not None and t < last:
+        first, count, gate, comps = self._kinds[kind]
+        # Fast path: plain floats go straight to the compiled step, which checks the rest
+        # (see update_odometry).
+        if type(t) is type(z0) is type(z1) is type(var0) is type(var1) is float:
+            status, nis = _step(self._buf, t, first, count, z0, z1, var0, var1, gate)
+            if not status:
+                return new_result(True, nis, self._residuals[comps].copy(), None)
+            if status != INVALID:
+                return self._not_applied(status, kind, t, nis, comps)
+        t = finite_float(t, "t")
+        z0 = finite_float(z0, names[0])
+        var0 = variance(var0, names[2])
+        if names[1]:
+            z1 = finite_float(z1, names[1])
+            var1 = variance(var1, names[3])
+        last = self.t
+        if last is None:
+            # The first measurement sets the clock (no prediction: the step's dt is 0).
+            self._buf[BUF_T, 0] = t
+        elif t < last:
             return new_result(
                 False,
                 math.nan,
                 np.empty(0),
                 f"out of order: t={t} s is older than the filter time {last} s",
             )
-        first, count, gate, comps = self._kinds[kind]
-        dt = 0.0 if last is None else t - last
-        status, nis = planar_step(self._buf, dt, first, count, z0, z1, var0, var1, gate)
+        status, nis = _step(self._buf, t, first, count, z0, float(z1), var0, float(var1), gate)
         if status:
-            return self._not_applied(status, kind, t, dt, nis, comps)
-        residual = self._residuals[comps].copy()
-        self._t = float(t)
-        return new_result(True, nis, residual, None)
+            if last is None and status in (NOT_POSITIVE_DEFINITE, TIME_GAP):
+                self._buf[BUF_T, 0] = math.nan  # unchanged: the clock is not set either
+            return self._not_applied(status, kind, t, nis, comps)
+        return new_result(True, nis, self._residuals[comps].copy(), None)
 
     def _not_applied(
-        self, status: int, kind: str, t: float, dt: float, nis: float, comps: slice
+        self, status: int, kind: str, t: float, nis: float, comps: slice
     ) -> UpdateResult:
         """Raise or report a measurement the kernel did not apply (off the hot path)."""
         if status == NOT_POSITIVE_DEFINITE:
             raise FilterError(f"{kind} update: covariance is not positive definite")
         if status == TIME_GAP:
+            # The kernel left the filter (and its time) unchanged.
+            gap = t - float(self._buf[BUF_T, 0])
             raise FilterError(
-                f"{kind} update: predicting over the time gap of {dt} s to t={t} s overflows "
+                f"{kind} update: predicting over the time gap of {gap} s to t={t} s overflows "
                 "float64; the filter is unchanged"
             )
         residual = self._residuals[comps].copy()
         if not np.all(np.isfinite(residual)):
             residual = np.empty(0)
         # Gated and overflowing measurements still advance the clock: the kernel kept
-        # the prediction.
-        self._t = float(t)
+        # the prediction and set the time.
         if status == GATED:
             return new_result(False, nis, residual, f"rejected by the gate: NIS {nis:.6g}")
         assert status == OVERFLOW
@@ -875,24 +897,17 @@ class PlanarFusion(GaussianEstimate):
         nis = np.empty(n)
         if n == 0:
             return _fusion_result(log.times, out_x, out_p, status, nis)
-        t0 = float(log.times[0]) if self._t is None else self._t
-        x = self._x.copy()
-        p = self._p.copy()
         # The kernel undoes a TIME_GAP in row 0 from the last output row (see planar_run).
-        out_x[-1] = x
-        out_p[-1] = p
+        out_x[-1] = self._x
+        out_p[-1] = self._p
         variances = np.where(log.observed, log.variances, 0.0)
-        t_end = k.planar_run(
-            x, p, t0, log.times, log.values, variances, self._q, self._gates,
-            out_x, out_p, status, nis,
-        )  # fmt: skip
-        self._x[:] = x
-        self._p[:, :] = p
-        self._t = float(t_end)
+        k.planar_run(
+            self._buf, log.times, log.values, variances, self._gates, out_x, out_p, status, nis
+        )
         return _fusion_result(log.times, out_x, out_p, status, nis)
 
     def __repr__(self) -> str:
-        return f"PlanarFusion(t={self._t}, x={np.array2string(self._x, precision=4)})"
+        return f"PlanarFusion(t={self.t}, x={np.array2string(self._x, precision=4)})"
 
 
 def _matrix(value: ArrayLike, name: str, *, semidefinite: bool) -> FloatArray:

@@ -6,23 +6,34 @@ acceleration (m/s^2). Measurements use the "component" layout (4,):
 ``[theta, v, omega, a]`` (the observation vector [θ, ẋ, θ̇, ẍ]); component ``k``
 observes state ``k + 2``, so every measurement model is linear.
 
-The kernels never allocate: scratch space is a caller-owned ``work`` array of
-shape ``(WORK_ROWS, 6)``, because at this size heap
-allocations would cost more than the arithmetic. The public layer
-(:mod:`navkit.estimation._fusion`) validates input; these kernels assume finite,
-well-shaped arrays and never raise. They never return a non-finite state either:
-a prediction that would overflow float64 (a huge time gap) is undone
-(``TIME_GAP``), and an update that would overflow (a measurement absurdly far
-from the state for its variance) is not applied (``OVERFLOW``).
+The filter lives in one caller-owned array ``buf`` (layout ``BUF_*`` below):
+state, covariance, process noise, the current measurement, the filter time and
+scratch space, because at this size heap allocations would cost more than the
+arithmetic. The public layer (:mod:`navkit.estimation._fusion`) validates
+input; these kernels assume finite, well-shaped arrays and never raise (the
+online step checks its scalars itself and reports ``INVALID``). They never
+return a non-finite state either: a prediction that would overflow float64 (a
+huge time gap) is undone (``TIME_GAP``), and an update that would overflow (a
+measurement absurdly far from the state for its variance) is not applied
+(``OVERFLOW``).
+
+Compilation (first use with an empty cache) is kept short by design: the filter
+itself is one function, :func:`planar_row`, compiled once and called by both
+the online step and the batch loop; no array is copied with slice assignment
+(see :func:`_copy_vector`); every kernel is compiled for the one signature
+the public layer passes.
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
+from typing import Any, cast
 
 import numpy as np
+from numba import types
 
-from navkit._shared.jit import njit_cached, njit_inline
+from navkit._shared.jit import njit_cached, njit_inline, njit_no_refcount
 from navkit._shared.se2 import compose_scalar, wrap_scalar
 
 N_STATE = 6
@@ -36,6 +47,8 @@ NOT_POSITIVE_DEFINITE = 2
 OUT_OF_ORDER = 3
 TIME_GAP = 4
 OVERFLOW = 5
+# Online step only: the arguments failed its checks (see planar_step); nothing changed.
+INVALID = -1
 
 # Rows of the scratch array (each row has 6 entries).
 _E = 0  # 4 rows: F - I (rows 0-3 of F), predict
@@ -55,7 +68,8 @@ BUF_X = 0  # 1 row: state x
 BUF_P = 1  # 6 rows: covariance P
 BUF_Q = 7  # 6 rows: process noise per second Q
 BUF_MEAS = 13  # 3 rows: values, variances, residuals (columns 0-3, component layout)
-BUF_WORK = 16  # WORK_ROWS rows: scratch
+BUF_T = 16  # 1 row: the filter time in column 0 (NaN until the clock is set)
+BUF_WORK = 17  # WORK_ROWS rows: scratch
 BUF_ROWS = BUF_WORK + WORK_ROWS
 
 
@@ -119,6 +133,26 @@ def _finite(x: np.ndarray, p: np.ndarray) -> bool:
 
 
 @njit_inline
+def _copy_vector(dst: np.ndarray, src: np.ndarray) -> None:
+    """``dst[:] = src`` for 1-D arrays of equal length, as a loop.
+
+    numba compiles an array-to-array slice assignment with a shape-mismatch
+    error path that builds its message with f-strings: about 0.2-1.9 s of
+    compilation per assignment site, for a copy of 6 or 36 numbers.
+    """
+    for i in range(dst.shape[0]):
+        dst[i] = src[i]
+
+
+@njit_inline
+def _copy_matrix(dst: np.ndarray, src: np.ndarray) -> None:
+    """``dst[:, :] = src`` for 2-D arrays of equal shape, as a loop (see :func:`_copy_vector`)."""
+    for i in range(dst.shape[0]):
+        for j in range(dst.shape[1]):
+            dst[i, j] = src[i, j]
+
+
+@njit_inline
 def _symmetrize(p: np.ndarray) -> None:
     for i in range(p.shape[0]):
         for j in range(i + 1, p.shape[0]):
@@ -127,81 +161,92 @@ def _symmetrize(p: np.ndarray) -> None:
             p[j, i] = m
 
 
-@njit_inline
-def planar_predict(
-    x: np.ndarray, p: np.ndarray, q: np.ndarray, dt: float, work: np.ndarray
-) -> None:
-    """Propagate state ``x`` (6,) and covariance ``p`` (6, 6) by ``dt`` >= 0 s, in place.
+@njit_no_refcount
+def planar_row(buf: np.ndarray, dt: float, gate: float, comp: np.ndarray) -> tuple[int, float]:
+    """Predict the filter in ``buf`` by ``dt`` >= 0 s, then update it with one measurement.
 
-    Constant-acceleration unicycle: the distance s = v·dt + a·dt²/2 is travelled
-    along the mid-step heading θ + ω·dt/2 (second order in dt), then
-    θ += ω·dt, v += a·dt; ω and a are random walks. ``q`` (6, 6) is the process
-    noise per second, so P = F P Fᵀ + Q·dt.
+    The one compiled body of the filter, called (not inlined) by the online
+    step (:func:`planar_step`) and the batch loop (:func:`planar_run`), so that
+    numba types and lowers it once. It is written out as one function: numba's
+    IR inlining copies the inlined function's whole variable scope for each of
+    its blocks, so inlining a separate predict and update into the two callers
+    cost about 10 s of CPU (issue 17), and inlining even this one body into a
+    single kernel doing both jobs cost 6 s. Not inlining it costs the batch
+    nothing measurable (LLVM keeps the call; the batch got faster). ``buf``
+    (BUF_ROWS, 6) holds x, P, Q, the measurement and the scratch space (layout
+    ``BUF_*`` above); x and P change in place.
+
+    Predict: constant-acceleration unicycle. The distance s = v·dt + a·dt²/2 is
+    travelled along the mid-step heading θ + ω·dt/2 (second order in dt), then
+    θ += ω·dt, v += a·dt; ω and a are random walks. Q is the process noise per
+    second, so P = F P Fᵀ + Q·dt. If the prediction overflows, returns
+    ``(TIME_GAP, nan)`` with x and P overwritten (the caller restores them).
+
+    Update: the measurement block (3, 4) of ``buf`` packs the measurement in
+    component layout: row 0 the values ``z``, row 1 the noise variances (> 0 for
+    the observed components, 0 for the others, none observed: predict only; the
+    noise is independent between components), row 2 receives the residuals of
+    the observed components (others untouched). The yaw residual is wrapped. The
+    covariance uses the Joseph form P = (I - KH) P (I - KH)ᵀ + K R Kᵀ, then is
+    symmetrised and checked positive definite. Returns ``(status, nis)``; past
+    the prediction, x and P change only when the status is ``ACCEPTED``.
+    ``gate`` is the NIS threshold (``inf`` disables gating). ``comp`` (4,) int64
+    is scratch space for the indices of the observed components (allocated by
+    the caller: this function allocates nothing). ``OVERFLOW`` (with ``nis``
+    inf when the NIS itself overflowed) means the residual, the NIS or the
+    updated state is not finite.
     """
-    if dt == 0.0:
-        return
-    v = x[3]
-    w = x[4]
-    acc = x[5]
-    s = v * dt + 0.5 * acc * dt * dt
-    half = 0.5 * w * dt
-    mid = x[2] + half
-    c = math.cos(mid)
-    sn = math.sin(mid)
-    # Composing from the mid-step heading with a half turn lands on theta + w*dt, wrapped.
-    x[0], x[1], x[2] = compose_scalar(x[0], x[1], mid, s, 0.0, half)
-    x[3] = v + acc * dt
+    x = buf[BUF_X]
+    p = buf[BUF_P : BUF_P + N_STATE]
+    q = buf[BUF_Q : BUF_Q + N_STATE]
+    meas = buf[BUF_MEAS : BUF_MEAS + 3]
+    work = buf[BUF_WORK:]
+    if dt != 0.0:
+        v = x[3]
+        w = x[4]
+        acc = x[5]
+        s = v * dt + 0.5 * acc * dt * dt
+        half = 0.5 * w * dt
+        mid = x[2] + half
+        c = math.cos(mid)
+        sn = math.sin(mid)
+        # Composing from the mid-step heading with a half turn lands on theta + w*dt, wrapped.
+        x[0], x[1], x[2] = compose_scalar(x[0], x[1], mid, s, 0.0, half)
+        x[3] = v + acc * dt
 
-    # F = I + E with E non-zero only in rows 0-3 and columns 2-5, so F P Fᵀ is done
-    # sparsely: FP = P + E P (rows 0-3 change), then FP Fᵀ = FP + FP Eᵀ (columns 0-3).
-    e = work[_E : _E + 4]
-    e[:, :] = 0.0
-    e[0, 2] = -sn * s
-    e[0, 3] = c * dt
-    e[0, 4] = -sn * s * 0.5 * dt
-    e[0, 5] = c * 0.5 * dt * dt
-    e[1, 2] = c * s
-    e[1, 3] = sn * dt
-    e[1, 4] = c * s * 0.5 * dt
-    e[1, 5] = sn * 0.5 * dt * dt
-    e[2, 4] = dt
-    e[3, 5] = dt
-    fp = work[_FP : _FP + N_STATE]
-    fp[:, :] = p
-    for i in range(4):
-        for j in range(N_STATE):
-            t = 0.0
-            for k in range(2, N_STATE):
-                t += e[i, k] * p[k, j]
-            fp[i, j] += t
-    for i in range(N_STATE):
-        for j in range(N_STATE):
-            t = fp[i, j]
-            if j < 4:
+        # F = I + E with E non-zero only in rows 0-3 and columns 2-5, so F P Fᵀ is done
+        # sparsely: FP = P + E P (rows 0-3 change), then FP Fᵀ = FP + FP Eᵀ (columns 0-3).
+        e = work[_E : _E + 4]
+        e[:, :] = 0.0
+        e[0, 2] = -sn * s
+        e[0, 3] = c * dt
+        e[0, 4] = -sn * s * 0.5 * dt
+        e[0, 5] = c * 0.5 * dt * dt
+        e[1, 2] = c * s
+        e[1, 3] = sn * dt
+        e[1, 4] = c * s * 0.5 * dt
+        e[1, 5] = sn * 0.5 * dt * dt
+        e[2, 4] = dt
+        e[3, 5] = dt
+        fp = work[_FP : _FP + N_STATE]
+        _copy_matrix(fp, p)
+        for i in range(4):
+            for j in range(N_STATE):
+                t = 0.0
                 for k in range(2, N_STATE):
-                    t += fp[i, k] * e[j, k]
-            p[i, j] = t + q[i, j] * dt
-    _symmetrize(p)
+                    t += e[i, k] * p[k, j]
+                fp[i, j] += t
+        for i in range(N_STATE):
+            for j in range(N_STATE):
+                t = fp[i, j]
+                if j < 4:
+                    for k in range(2, N_STATE):
+                        t += fp[i, k] * e[j, k]
+                p[i, j] = t + q[i, j] * dt
+        _symmetrize(p)
+        if not _finite(x, p):
+            return TIME_GAP, math.nan
 
-
-@njit_inline
-def planar_update(
-    x: np.ndarray, p: np.ndarray, meas: np.ndarray, gate: float, work: np.ndarray, comp: np.ndarray
-) -> tuple[int, float]:
-    """Kalman update with one measurement, in place.
-
-    ``meas`` (3, 4) packs the measurement in component layout: row 0 the values
-    ``z``, row 1 the noise variances (> 0 for the observed components, 0 for the
-    others; the noise is independent between components), row 2 receives the
-    residuals of the observed components (others untouched). The yaw residual
-    is wrapped. The covariance uses the Joseph form
-    P = (I - KH) P (I - KH)ᵀ + K R Kᵀ, then is symmetrised and checked positive
-    definite. Returns ``(status, nis)``; ``x`` and ``p`` change only when the
-    status is ``ACCEPTED``. ``comp`` (4,) int64 is scratch space for the indices
-    of the observed components (allocated once by the batch loop). ``OVERFLOW``
-    (with ``nis`` inf when the NIS itself overflowed) means the residual, the NIS
-    or the updated state is not finite.
-    """
     y = work[_VEC]
     u = work[_VEC + 1]
     row = work[_VEC + 2]
@@ -280,18 +325,18 @@ def planar_update(
     if ((xn[0] * z + xn[1] * z) + (xn[2] * z + xn[3] * z)) + (xn[4] * z + xn[5] * z) != 0.0:
         return OVERFLOW, nis
     check = work[_CHECK : _CHECK + N_STATE]
-    check[:, :] = pn
+    _copy_matrix(check, pn)
     if not _cholesky_inplace(check, N_STATE, work[_VEC + 4]):
         return NOT_POSITIVE_DEFINITE, nis
-    x[:] = xn
-    p[:, :] = pn
+    _copy_vector(x, xn)
+    _copy_matrix(p, pn)
     return ACCEPTED, nis
 
 
 @njit_cached
 def planar_step(
     buf: np.ndarray,
-    dt: float,
+    t: float,
     first: int,
     count: int,
     z0: float,
@@ -300,78 +345,89 @@ def planar_step(
     var1: float,
     gate: float,
 ) -> tuple[int, float]:
-    """Predict by ``dt`` then update with one measurement (see :func:`planar_update`).
+    """Predict to time ``t`` then update with one measurement (see :func:`planar_row`).
 
-    ``buf`` (BUF_ROWS, 6) holds x, P, Q, the measurement and the scratch space
-    (layout ``BUF_*`` above). The measurement observes ``count`` (1 or 2)
-    consecutive components starting at ``first``, with values ``z0``, ``z1`` and
-    variances ``var0``, ``var1`` (the second ones unused when ``count`` is 1);
-    passing scalars is cheaper than writing them into ``buf`` from Python. x and
-    P are overwritten with the result unless the status is
-    ``NOT_POSITIVE_DEFINITE`` or ``TIME_GAP`` (the prediction over ``dt``
+    ``buf`` (BUF_ROWS, 6) holds x, P, Q, the measurement, the filter time and the
+    scratch space (layout ``BUF_*`` above). The measurement observes ``count``
+    (0, 1 or 2) consecutive components starting at ``first``, with values
+    ``z0``, ``z1`` and variances ``var0``, ``var1`` (the second ones unused when
+    ``count`` is 1; ``count`` 0 only predicts); passing scalars is cheaper than
+    writing them into ``buf`` from Python.
+
+    Returns ``INVALID`` and changes nothing unless the filter time is set, ``t``
+    is not older than it, ``t``, ``z0`` and ``z1`` are finite and the variances
+    of the observed components are in [1e-100, 1e100]: the public layer calls
+    this first and takes its general (validating, raising) way only then. x and
+    P are overwritten with the result and the filter time becomes ``t`` unless
+    the status is ``NOT_POSITIVE_DEFINITE`` or ``TIME_GAP`` (the prediction
     overflowed; no update was tried): then they are restored. A gated or
     overflowing measurement keeps the prediction. The residuals are left in the
     measurement block.
     """
+    last = buf[BUF_T, 0]
+    z = 0.0
+    if not last <= t or (t * z + z0 * z) + z1 * z != 0.0:  # NaN last: no clock yet
+        return INVALID, math.nan
+    if count > 0 and not 1e-100 <= var0 <= 1e100:
+        return INVALID, math.nan
+    if count > 1 and not 1e-100 <= var1 <= 1e100:
+        return INVALID, math.nan
     meas = buf[BUF_MEAS : BUF_MEAS + 3]
     for k in range(N_COMP):
         meas[1, k] = 0.0
-    meas[0, first] = z0
-    meas[1, first] = var0
-    if count == 2:
+    if count > 0:
+        meas[0, first] = z0
+        meas[1, first] = var0
+    if count > 1:
         meas[0, first + 1] = z1
         meas[1, first + 1] = var1
-    work = buf[BUF_WORK:]
     state = buf[BUF_X : BUF_P + N_STATE]
-    saved = work[_SAVED : _SAVED + 1 + N_STATE]
-    saved[:, :] = state
-    x = buf[BUF_X]
-    p = buf[BUF_P : BUF_P + N_STATE]
-    planar_predict(x, p, buf[BUF_Q : BUF_Q + N_STATE], dt, work)
-    if not _finite(x, p):
-        state[:, :] = saved
-        return TIME_GAP, math.nan
-    status, nis = planar_update(x, p, meas, gate, work, np.empty(N_COMP, dtype=np.int64))
-    if status == NOT_POSITIVE_DEFINITE:
-        state[:, :] = saved
+    saved = buf[BUF_WORK + _SAVED : BUF_WORK + _SAVED + 1 + N_STATE]
+    _copy_matrix(saved, state)
+    status, nis = planar_row(buf, t - last, gate, np.empty(N_COMP, dtype=np.int64))
+    if status in (TIME_GAP, NOT_POSITIVE_DEFINITE):
+        _copy_matrix(state, saved)
+    else:
+        buf[BUF_T, 0] = t
     return status, nis
 
 
 @njit_cached
 def planar_run(
-    x: np.ndarray,
-    p: np.ndarray,
-    t0: float,
+    buf: np.ndarray,
     times: np.ndarray,
     values: np.ndarray,
     variances: np.ndarray,
-    q: np.ndarray,
     gates: np.ndarray,
     out_x: np.ndarray,
     out_p: np.ndarray,
     out_status: np.ndarray,
     out_nis: np.ndarray,
-) -> float:
-    """Fuse a log; returns the filter time after the last row.
+) -> None:
+    """Fuse a log into the filter in ``buf`` (see :func:`planar_step`).
 
     Row ``i`` is a measurement at ``times[i]`` with values ``values[i]`` (4,) and
     independent variances ``variances[i]`` (4,), 0 marking components it does
     not observe. ``gates[m]`` is the NIS threshold for an m-component
-    measurement (``inf`` disables gating). ``x`` (6,) and ``p`` (6, 6) are
-    updated in place; the state after each row goes to ``out_x[i]``,
-    ``out_p[i]``. Rows older than the filter time are not applied
-    (``OUT_OF_ORDER``); nor are rows whose prediction would overflow
-    (``TIME_GAP``: the state and time stay as they were). A row whose update
-    fails numerically keeps the prediction and is marked
-    ``NOT_POSITIVE_DEFINITE`` or ``OVERFLOW``.
+    measurement (``inf`` disables gating). x, P and the time in ``buf`` are
+    updated in place; the state after each row goes to ``out_x[i]``, ``out_p[i]``. Rows
+    older than the filter time are not applied (``OUT_OF_ORDER``); nor are rows
+    whose prediction would overflow (``TIME_GAP``: the state and time stay as
+    they were). A row whose update fails numerically keeps the prediction and
+    is marked ``NOT_POSITIVE_DEFINITE`` or ``OVERFLOW``.
 
-    The caller stores the initial ``x`` and ``p`` in ``out_x[-1]`` and
-    ``out_p[-1]`` too: a ``TIME_GAP`` in row 0 restores them from there (a copy
-    made here would slow the loop down measurably).
+    The filter time in ``buf`` is the time before the first row (NaN: the
+    clock starts at ``times[0]``) and is set to the final time on return. The
+    caller stores the initial x and P in ``out_x[-1]`` and ``out_p[-1]`` too: a
+    ``TIME_GAP`` in row 0 restores them from there (a copy made here would slow
+    the loop down measurably).
     """
-    t = t0
-    meas = np.zeros((3, N_COMP))
-    work = np.zeros((WORK_ROWS, N_STATE))
+    t = buf[BUF_T, 0]
+    if math.isnan(t):  # no clock yet: it starts at the first row
+        t = times[0]
+    x = buf[BUF_X]
+    p = buf[BUF_P : BUF_P + N_STATE]
+    meas = buf[BUF_MEAS : BUF_MEAS + 3]
     comp = np.empty(N_COMP, dtype=np.int64)
     for i in range(times.shape[0]):
         ti = times[i]
@@ -379,27 +435,55 @@ def planar_run(
             out_status[i] = OUT_OF_ORDER
             out_nis[i] = math.nan
         else:
-            planar_predict(x, p, q, ti - t, work)
-            if not _finite(x, p):
-                # Undo the prediction: back to the state after the previous row (for
-                # row 0, index -1: the caller's copy of the initial state).
-                x[:] = out_x[i - 1]
-                p[:, :] = out_p[i - 1]
-                out_status[i] = TIME_GAP
-                out_nis[i] = math.nan
-                out_x[i, :] = x
-                out_p[i, :, :] = p
-                continue
-            t = ti
             m = 0
             for k in range(N_COMP):
                 meas[0, k] = values[i, k]
                 meas[1, k] = variances[i, k]
                 if variances[i, k] > 0.0:
                     m += 1
-            status, nis = planar_update(x, p, meas, gates[m], work, comp)
+            status, nis = planar_row(buf, ti - t, gates[m], comp)
+            if status == TIME_GAP:
+                # Undo the prediction: back to the state after the previous row (for
+                # row 0, index -1: the caller's copy of the initial state).
+                _copy_vector(x, out_x[i - 1])
+                _copy_matrix(p, out_p[i - 1])
+            else:
+                t = ti
             out_status[i] = status
             out_nis[i] = nis
-        out_x[i, :] = x
-        out_p[i, :, :] = p
-    return t
+        _copy_vector(out_x[i], x)
+        _copy_matrix(out_p[i], p)
+    buf[BUF_T, 0] = t
+
+
+#: numba argument types of :func:`planar_step` (the public layer always passes these).
+_STEP_TYPES = (
+    types.Array(types.float64, 2, "C"),
+    types.float64,  # t
+    types.int64,  # first
+    types.int64,  # count
+    *(types.float64,) * 5,  # z0, z1, var0, var1, gate
+)
+
+
+def planar_step_entry() -> Callable[..., tuple[int, float]]:
+    """Compiled entry of :func:`planar_step`, skipping numba's per-call type dispatch.
+
+    Calling a dispatcher first types all nine arguments to pick the compiled
+    version (about 0.15 µs of a 1 µs call); the entry returned here is that
+    version itself, compiled (or loaded from the cache) now. It checks no types:
+    the caller passes the filter's buffer (a writable C-contiguous float64 array
+    of shape (BUF_ROWS, 6)), Python floats for ``t``, the values, variances and
+    gate and ints for ``first`` and ``count``.
+
+    Examples
+    --------
+    >>> buf = np.zeros((BUF_ROWS, 6))
+    >>> buf[BUF_P : BUF_P + 6] = np.eye(6)
+    >>> buf[BUF_T, 0] = 0.0
+    >>> status, nis = planar_step_entry()(buf, 0.1, 1, 1, 1.0, 0.0, 1.0, 1.0, math.inf)
+    >>> status == ACCEPTED, round(nis, 3), float(buf[BUF_T, 0])
+    (True, 0.5, 0.1)
+    """
+    dispatcher: Any = planar_step
+    return cast(Callable[..., tuple[int, float]], dispatcher.compile(_STEP_TYPES))
