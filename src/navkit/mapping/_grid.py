@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 import os
+from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, ClassVar, Literal, overload
 
@@ -22,7 +23,11 @@ from navkit._shared.grid_coords import as_pairs, inside, one_or_many
 from navkit._shared.types import BoolArray, FloatArray, IntArray
 from navkit._shared.validation import as_bool, as_float_array, finite_float
 from navkit.geometry import Pose2D, as_pose
-from navkit.mapping._grid_kernels import world_to_cell_kernel, world_to_continuous_kernel
+from navkit.mapping._grid_kernels import (
+    world_to_cell_entry,
+    world_to_cell_kernel,
+    world_to_continuous_kernel,
+)
 from navkit.mapping._limits import (
     COORDINATE_LIMIT,
     LOGODDS_LIMIT,
@@ -52,6 +57,19 @@ if TYPE_CHECKING:
 __all__ = ["OccupancyGrid"]
 
 _FLOAT64 = np.dtype(np.float64)
+_INT64 = np.dtype(np.int64)
+_empty = np.empty
+
+# world_to_cell_kernel's compiled entry, fetched at the first fast-path call
+# (:func:`_cells_entry`) so that importing navkit compiles nothing.
+_CELLS_ENTRY: Callable[..., bool] | None = None
+
+
+def _cells_entry() -> Callable[..., bool]:
+    global _CELLS_ENTRY
+    _CELLS_ENTRY = world_to_cell_entry()
+    return _CELLS_ENTRY
+
 
 _IDENTITY = Pose2D(0.0, 0.0, 0.0)
 
@@ -152,7 +170,16 @@ class OccupancyGrid:
     True
     """
 
-    __slots__ = ("_free_thresh", "_logodds", "_occupied_thresh", "_origin", "_resolution")
+    __slots__ = (
+        "_free_thresh",
+        "_logodds",
+        "_occupied_thresh",
+        "_origin",
+        "_origin_x",
+        "_origin_y",
+        "_origin_yaw",
+        "_resolution",
+    )
 
     #: Largest number of cells of a grid (``2**28`` = 268,435,456: 1 GiB of
     #: float32 log-odds, e.g. 16384 × 16384 cells, 819 m × 819 m at 5 cm). Every
@@ -176,6 +203,10 @@ class OccupancyGrid:
             raise ValueError(f"logodds must lie within ±1e6, got {float(np.abs(arr).max())}")
         self._resolution = resolution_float(resolution)
         self._origin = grid_origin(origin)
+        # Plain floats for the per-call kernel arguments of world_to_cell.
+        self._origin_x = float(self._origin.x)
+        self._origin_y = float(self._origin.y)
+        self._origin_yaw = float(self._origin.theta)
         occ = bounded_float(occupied_thresh, "occupied_thresh", 0.0, 1.0)
         free = bounded_float(free_thresh, "free_thresh", 0.0, 1.0)
         _thresholds(occ, free)
@@ -580,22 +611,27 @@ class OccupancyGrid:
             and points_xy.dtype is _FLOAT64
             and points_xy.ndim == 2
             and points_xy.shape[1] == 2
-            and points_xy.flags.c_contiguous
+            and (flags := points_xy.flags).c_contiguous
+            and flags.aligned
         ):
-            # Fast path: C-contiguous (N, 2) float64 points go straight to the
-            # kernel, which also reports whether they were all finite (if not,
-            # the general path below raises).
-            cells = np.empty((points_xy.shape[0], 2), dtype=np.int64)
-            o = self._origin
-            if world_to_cell_kernel(points_xy, o.x, o.y, o.theta, self._resolution, cells):
+            # Fast path: (N, 2) float64 points that are already C-contiguous go
+            # straight to the compiled kernel, with the argument types it was
+            # compiled for (checked just above). The kernel also reports whether
+            # every point was finite; if not, the general path below raises.
+            cells = _empty((len(points_xy), 2), _INT64)
+            entry = _CELLS_ENTRY or _cells_entry()
+            if entry(
+                points_xy, self._origin_x, self._origin_y, self._origin_yaw, self._resolution, cells
+            ):
                 return cells
         pts, single = as_pairs(points_xy, "points_xy")
         out: IntArray | FloatArray
         if as_bool(continuous, "continuous"):
             pts = np.ascontiguousarray(pts)
             out = np.empty((pts.shape[0], 2), dtype=np.float64)
-            o = self._origin
-            world_to_continuous_kernel(pts, o.x, o.y, o.theta, self._resolution, out)
+            world_to_continuous_kernel(
+                pts, self._origin_x, self._origin_y, self._origin_yaw, self._resolution, out
+            )
         else:
             out = self._cells(pts)
         return one_or_many(out, single)
@@ -604,8 +640,9 @@ class OccupancyGrid:
         """Cells of validated (N, 2) points (the numba fast path)."""
         pts = np.ascontiguousarray(pts)
         out = np.empty((pts.shape[0], 2), dtype=np.int64)
-        o = self._origin
-        world_to_cell_kernel(pts, o.x, o.y, o.theta, self._resolution, out)
+        world_to_cell_kernel(
+            pts, self._origin_x, self._origin_y, self._origin_yaw, self._resolution, out
+        )
         return out
 
     def cell_to_world(self, cells: ArrayLike) -> FloatArray:

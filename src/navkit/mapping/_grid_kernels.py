@@ -22,12 +22,15 @@ array([[-0.1,  0.9]])
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
+from typing import Any, cast
 
 import numpy as np
+from numba import types
 
 from navkit._shared.jit import njit_cached
 
-__all__ = ["world_to_cell_kernel", "world_to_continuous_kernel"]
+__all__ = ["world_to_cell_entry", "world_to_cell_kernel", "world_to_continuous_kernel"]
 
 #: Grid coordinates are clamped to ±2**62: far outside any grid, and no int64
 #: conversion can overflow (a point at 1e300 m would otherwise wrap around).
@@ -95,3 +98,32 @@ def world_to_continuous_kernel(
         dy = xy[2 * i + 1] - origin_y
         flat[2 * i] = min(max((-s * dx + c * dy) * inv_res - 0.5, -_LIMIT), _LIMIT)
         flat[2 * i + 1] = min(max((c * dx + s * dy) * inv_res - 0.5, -_LIMIT), _LIMIT)
+
+
+#: numba argument types of :func:`world_to_cell_kernel` on the public fast path.
+_WORLD_TO_CELL_TYPES = (
+    types.Array(types.float64, 2, "C"),
+    *(types.float64,) * 4,  # origin x, y, yaw, resolution
+    types.Array(types.int64, 2, "C"),
+)
+
+
+def world_to_cell_entry() -> Callable[..., bool]:
+    """Compiled entry of :func:`world_to_cell_kernel` for float64 points, skipping dispatch.
+
+    Calling a numba dispatcher first types every argument to pick the compiled
+    version (about 0.1 µs, a third of the kernel's time on ten points); the entry
+    returned here is that version itself, compiled (or loaded from the cache)
+    now. It checks nothing: the caller guarantees C-contiguous, aligned, (N, 2)
+    float64 points (read-only ones are fine: the kernel only reads them), four
+    floats and a writable C-contiguous (N, 2) int64 ``out``; anything else reads
+    or writes the wrong memory.
+
+    Examples
+    --------
+    >>> out = np.empty((1, 2), dtype=np.int64)
+    >>> world_to_cell_entry()(np.array([[0.7, 0.2]]), 0.0, 0.0, 0.0, 0.5, out), out
+    (True, array([[0, 1]]))
+    """
+    dispatcher: Any = world_to_cell_kernel
+    return cast(Callable[..., bool], dispatcher.compile(_WORLD_TO_CELL_TYPES))

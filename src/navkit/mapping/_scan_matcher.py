@@ -255,7 +255,8 @@ class ScanMatcher:
     >>> import math
     >>> from navkit.mapping import integrate_scan
     >>> angles = np.linspace(-math.pi, math.pi, 180, endpoint=False)
-    >>> ranges = np.minimum(3.0 / np.abs(np.cos(angles)), 2.0 / np.abs(np.sin(angles)))
+    >>> with np.errstate(divide="ignore"):  # the walls of a 6 m × 4 m room
+    ...     ranges = np.minimum(3.0 / np.abs(np.cos(angles)), 2.0 / np.abs(np.sin(angles)))
     >>> scan = LaserScan(ranges, angle_min=-math.pi, angle_increment=2 * math.pi / 180,
     ...                  range_min=0.1, range_max=10.0)          # a 6 m x 4 m room
     >>> room = OccupancyGrid.empty(width=8.0, height=6.0, resolution=0.05,

@@ -8,6 +8,7 @@ numba kernel sums over the ranges with cached tables of the beam directions.
 from __future__ import annotations
 
 import threading
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -23,7 +24,11 @@ from navkit.planning.reactive._limits import (
     gain,
     length,
 )
-from navkit.planning.reactive._scan_repulsion_kernels import khatib_beam_force, piecewise_beam_force
+from navkit.planning.reactive._scan_repulsion_kernels import (
+    khatib_beam_force_into,
+    khatib_entry,
+    piecewise_beam_force,
+)
 
 __all__ = ["piecewise_repulsive_force_from_scan", "repulsive_force_from_scan"]
 
@@ -35,7 +40,14 @@ _TABLES_MAX = 32
 _TABLES_LOCK = threading.Lock()
 
 
+# The last table built or found, (angle_min, angle_increment, beam count, cos, sin):
+# one scanner usually feeds every call, and comparing three numbers costs less
+# than hashing a key (repulsive_force_from_scan checks it first).
+_LAST: tuple[float, float, int, FloatArray, FloatArray] = (0.0, 0.0, 0, np.empty(0), np.empty(0))
+
+
 def _beam_table(scan: LaserScan) -> tuple[FloatArray, FloatArray]:
+    global _LAST
     key = (scan.ranges.shape[0], scan.angle_min, scan.angle_increment)
     table = _TABLES.get(key)
     if table is None:
@@ -49,7 +61,21 @@ def _beam_table(scan: LaserScan) -> tuple[FloatArray, FloatArray]:
             if len(_TABLES) >= _TABLES_MAX:
                 _TABLES.clear()
             _TABLES[key] = table
+    _LAST = (key[1], key[2], key[0], *table)
     return table
+
+
+_empty = np.empty
+
+# khatib_beam_force_into's compiled entry, fetched at the first call
+# (:func:`_khatib`) so that importing navkit compiles nothing.
+_KHATIB: Callable[..., None] | None = None
+
+
+def _khatib() -> Callable[..., None]:
+    global _KHATIB
+    _KHATIB = khatib_entry()
+    return _KHATIB
 
 
 def _check_scan(scan: Any) -> LaserScan:
@@ -108,17 +134,27 @@ def repulsive_force_from_scan(
     >>> repulsive_force_from_scan(scan, k_rep=1.0, influence_radius=1.0)  # the beam 0.5 m ahead
     array([-4.,  0.])
     """
-    scan = _check_scan(scan)
+    exact = type(scan) is LaserScan
+    if not exact:
+        scan = _check_scan(scan)
     # Plain floats in range are taken as they are: this runs at every scan.
     k = k_rep if type(k_rep) is float and GAIN_MIN <= k_rep <= GAIN_MAX else gain(k_rep, "k_rep")
     d0 = influence_radius
     if not (type(d0) is float and LENGTH_MIN <= d0 <= LENGTH_MAX):
         d0 = length(influence_radius, "influence_radius")
-    cos_t, sin_t = _beam_table(scan)
-    fx, fy = khatib_beam_force(
-        scan.ranges, cos_t, sin_t, scan.range_min, scan.range_max, k, d0, MIN_DISTANCE
-    )
-    return np.array((fx, fy))
+    ranges = scan.ranges
+    last = _LAST
+    if last[0] == scan.angle_min and last[1] == scan.angle_increment and last[2] == ranges.shape[0]:
+        cos_t, sin_t = last[3], last[4]
+    else:
+        cos_t, sin_t = _beam_table(scan)
+    out = _empty(2)  # float64, the default (passing the dtype costs more)
+    # A LaserScan's ranges are a read-only C-contiguous float64 copy and the
+    # tables match them, so the compiled entry (no type dispatch) can take them;
+    # a subclass, whose attributes could be anything, goes through the dispatcher.
+    kernel = (_KHATIB or _khatib()) if exact else khatib_beam_force_into
+    kernel(ranges, cos_t, sin_t, scan.range_min, scan.range_max, k, d0, MIN_DISTANCE, out)
+    return out
 
 
 def piecewise_repulsive_force_from_scan(

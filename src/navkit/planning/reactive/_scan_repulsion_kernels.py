@@ -20,11 +20,20 @@ comparing false.
 
 from __future__ import annotations
 
+from collections.abc import Callable
+from typing import Any, cast
+
 import numpy as np
+from numba import types
 
 from navkit._shared.jit import typed_njit
 
-__all__ = ["khatib_beam_force", "piecewise_beam_force"]
+__all__ = [
+    "khatib_beam_force",
+    "khatib_beam_force_into",
+    "khatib_entry",
+    "piecewise_beam_force",
+]
 
 _FASTMATH = {"reassoc", "contract"}
 
@@ -63,6 +72,58 @@ def khatib_beam_force(
         fx -= w * cos_t[k]
         fy -= w * sin_t[k]
     return fx, fy
+
+
+@typed_njit(cache=True, fastmath=_FASTMATH)
+def khatib_beam_force_into(
+    ranges: np.ndarray,
+    cos_t: np.ndarray,
+    sin_t: np.ndarray,
+    range_min: float,
+    range_max: float,
+    k_rep: float,
+    influence_radius: float,
+    min_distance: float,
+    out: np.ndarray,
+) -> None:
+    """:func:`khatib_beam_force` written into ``out`` (2,) float64.
+
+    The public call returns a new array: filling one here costs less than
+    boxing a tuple and converting it.
+    """
+    fx, fy = khatib_beam_force(
+        ranges, cos_t, sin_t, range_min, range_max, k_rep, influence_radius, min_distance
+    )
+    out[0] = fx
+    out[1] = fy
+
+
+#: Read-only C-contiguous float64 beams: a LaserScan's ranges and the cached tables.
+_BEAMS = types.Array(types.float64, 1, "C", readonly=True)
+_KHATIB_TYPES = (*(_BEAMS,) * 3, *(types.float64,) * 5, types.Array(types.float64, 1, "C"))
+
+
+def khatib_entry() -> Callable[..., None]:
+    """Compiled entry of :func:`khatib_beam_force_into` for a scan's arrays, skipping dispatch.
+
+    Calling a numba dispatcher first types every argument to pick the compiled
+    version (about 0.2 µs for four arrays, a third of the kernel's time on 360
+    beams); the entry returned here is that version itself, compiled (or loaded
+    from the cache) now. It checks nothing: the caller guarantees three
+    C-contiguous, aligned float64 arrays of one length (writable or not: they
+    are only read), five floats and a writable C-contiguous float64 ``out`` of
+    length 2; anything else reads or writes the wrong memory.
+
+    Examples
+    --------
+    >>> beams = np.array([0.5])
+    >>> out = np.empty(2)
+    >>> khatib_entry()(beams, np.ones(1), np.zeros(1), 0.1, 10.0, 1.0, 1.0, 1e-9, out)
+    >>> out
+    array([-4., -0.])
+    """
+    dispatcher: Any = khatib_beam_force_into
+    return cast(Callable[..., None], dispatcher.compile(_KHATIB_TYPES))
 
 
 @typed_njit(cache=True, fastmath=_FASTMATH)
