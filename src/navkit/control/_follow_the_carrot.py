@@ -129,7 +129,9 @@ class FollowTheCarrot(PathTracker):
         self._max_omega = bounded(max_omega, "max_omega", 0.0, 100.0)
         self._heading_gain = bounded(heading_gain, "heading_gain", 0.0, 1e6)
         self._align_angle = bounded(align_angle, "align_angle", 0.0, math.pi)
-        self._align_tolerance = bounded(align_tolerance, "align_tolerance", 0.0, self._align_angle)
+        self._align_tolerance = bounded(
+            align_tolerance, "align_tolerance", 0.0, self._align_angle
+        )
 
     @property
     def carrot_distance(self) -> float:

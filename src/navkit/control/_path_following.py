@@ -65,7 +65,9 @@ def wrap(a: float) -> float:
     return r
 
 
-def bounded(value: Any, name: str, lo: float, hi: float, *, include_lo: bool = False) -> float:
+def bounded(
+    value: Any, name: str, lo: float, hi: float, *, include_lo: bool = False
+) -> float:
     """``value`` as a float in ``(lo, hi]`` (``[lo, hi]`` with ``include_lo``), else raise."""
     out = finite_float(value, name)
     if out > hi or out < lo or (out == lo and not include_lo):
@@ -106,9 +108,8 @@ def as_world_path(path: Any, name: str = "path") -> FloatArray:
             )
         raw: Any = path.points
     elif isinstance(path, (str, bytes, Mapping, set, frozenset)):
-        raise TypeError(
-            f"{name} must be an (N, 2) array of world points or a Path2D, got {type(path).__name__}"
-        )
+        raise TypeError(f"{name} must be an (N, 2) array of world points or a Path2D, "
+                        f"got {type(path).__name__}")
     else:
         raw = path
     pts = np.array(as_float_array(raw, name, shape=(None, 2)), dtype=np.float64, copy=True)
@@ -422,3 +423,4 @@ def body_velocity(wx: float, wy: float, theta: float) -> tuple[float, float]:
     c = math.cos(theta)
     s = math.sin(theta)
     return c * wx + s * wy, -s * wx + c * wy
+

@@ -38,9 +38,8 @@ class _Pid:
         self.last_error: float | None = None
 
     def update(self, error: float, dt: float) -> float:
-        self.integral = min(
-            max(self.integral + error * dt, -self.integral_limit), self.integral_limit
-        )
+        self.integral = min(max(self.integral + error * dt, -self.integral_limit),
+                            self.integral_limit)
         deriv = 0.0 if self.last_error is None else angle_diff(error, self.last_error) / dt
         self.last_error = error
         return self.kp * error + self.ki * self.integral + self.kd * deriv
@@ -188,7 +187,9 @@ class PotentialFieldController:
         self.k_rep = in_range(k_rep, "k_rep", MIN_GAIN, MAX_GAIN)
         self.influence_radius = quantity(influence_radius, "influence_radius", "m")
         # The repulsion is built every step: let it check the two parameters once here.
-        KhatibRepulsion(np.empty((0, 2)), k_rep=self.k_rep, influence_radius=self.influence_radius)
+        KhatibRepulsion(
+            np.empty((0, 2)), k_rep=self.k_rep, influence_radius=self.influence_radius
+        )
         self.max_speed = quantity(max_speed, "max_speed", "m/s")
         self.max_accel = quantity(max_accel, "max_accel", "m/s²")
         self.max_decel = quantity(max_decel, "max_decel", "m/s²")
@@ -376,14 +377,8 @@ class PotentialFieldController:
             fwd_prev = max(0.0, c * prev[0] + s * prev[1])
             fwd_want = max(0.0, c * want[0] + s * want[1])
             fwd = float(
-                _limit_change(
-                    np.array([fwd_prev]),
-                    np.array([fwd_want]),
-                    self.max_accel,
-                    self.max_decel,
-                    step,
-                    "velocity",
-                )[0]
+                _limit_change(np.array([fwd_prev]), np.array([fwd_want]), self.max_accel,
+                              self.max_decel, step, "velocity")[0]
             )
             # Below a thousandth of max_speed the field's direction is noise near the goal.
             moving = math.hypot(want[0], want[1]) > 1e-3 * self.max_speed
@@ -406,3 +401,4 @@ class PotentialFieldController:
             self._still_for = 0.0
         else:
             self._still_for += dt
+

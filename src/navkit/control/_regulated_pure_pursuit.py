@@ -272,7 +272,9 @@ class RegulatedPurePursuit(PathTracker):
         self._clearance_gain = bounded(clearance_gain, "clearance_gain", 0.0, 1e6)
         self._approach_distance = bounded(approach_distance, "approach_distance", 0.0, 1e4)
         self._min_approach_speed = bounded(min_approach_speed, "min_approach_speed", 0.0, 100.0)
-        self._max_omega = None if max_omega is None else bounded(max_omega, "max_omega", 0.0, 100.0)
+        self._max_omega = (
+            None if max_omega is None else bounded(max_omega, "max_omega", 0.0, 100.0)
+        )
         self._last = (0.0, 0.0, 0.0)
         self._motion_heading: float | None = None
         self._carrot: tuple[float, float] | None = None
@@ -359,9 +361,8 @@ class RegulatedPurePursuit(PathTracker):
         )
         speed_now = abs(vx_now) if self._drive == "diff" else math.hypot(vx_now, vy_now)
         s = self._advance(line, pose, 0.0 if self._carrot is None else self._carrot[0])
-        lookahead = min(
-            max(speed_now * self._lookahead_time, self._min_lookahead), self._max_lookahead
-        )
+        lookahead = min(max(speed_now * self._lookahead_time, self._min_lookahead),
+                        self._max_lookahead)
         s_carrot = line.circle_exit(pose.x, pose.y, s, lookahead)
         if s_carrot is None:
             # The rest of the path lies inside the circle: the point the lookahead
@@ -379,7 +380,9 @@ class RegulatedPurePursuit(PathTracker):
         self._target = (cx, cy)
         gx, gy = line.point_at(line.length)
         to_goal = math.hypot(gx - pose.x, gy - pose.y)
-        if self._phase == "final" or (s_carrot >= line.length and to_goal < self._goal_tolerance):
+        if self._phase == "final" or (
+            s_carrot >= line.length and to_goal < self._goal_tolerance
+        ):
             cmd = self._finish(pose, dt, lambda err, h: self._rotate(err, h, w_now))
             self._last = (cmd.vx, cmd.vy, cmd.omega)
             return cmd
@@ -442,7 +445,9 @@ class RegulatedPurePursuit(PathTracker):
         if isinstance(raw, np.ndarray) and raw.ndim == 0 and raw.dtype.kind in "fiu":
             raw = raw.item()
         if isinstance(raw, (bool, np.bool_)) or not isinstance(raw, numbers.Real):
-            raise TypeError(f"clearance(x, y) must return a real number, got {type(raw).__name__}")
+            raise TypeError(
+                f"clearance(x, y) must return a real number, got {type(raw).__name__}"
+            )
         value = float(raw)
         if math.isnan(value):
             raise ValueError(f"clearance(x, y) returned NaN at ({pose.x}, {pose.y})")
@@ -462,3 +467,4 @@ def _as_clearance(value: Any) -> Clearance | None:
         f"clearance must be an OccupancyGrid or a callable clearance(x, y), "
         f"got {type(value).__name__}"
     )
+

@@ -428,10 +428,8 @@ class _Run:
         # Counters wider than a float's mantissa never wrap in practice.
         self.enc_span = 0.0 if enc is None or enc.bits is None or enc.bits > 52 else 2.0**enc.bits
         imu = robot.imu
-        self.imu_bias = (
-            np.zeros(3)
-            if imu is None
-            else np.array([imu.gyro_bias, imu.accel_bias, imu.accel_bias])
+        self.imu_bias = np.zeros(3) if imu is None else np.array(
+            [imu.gyro_bias, imu.accel_bias, imu.accel_bias]
         )
         self.imu_noise: FloatArray | None = None
         if imu is not None and (imu.gyro_noise > 0.0 or imu.accel_noise > 0.0):

@@ -89,7 +89,9 @@ def as_footprint(value: Any, name: str = "footprint") -> tuple[float, FloatArray
             raise ValueError(f"{name} polygon must not have holes")
         verts = np.asarray(value.exterior.coords, dtype=np.float64)[:-1]
     elif isinstance(value, BaseGeometry):
-        raise TypeError(f"{name} must be a radius (m) or a Polygon, got a {value.geom_type}")
+        raise TypeError(
+            f"{name} must be a radius (m) or a Polygon, got a {value.geom_type}"
+        )
     else:
         if isinstance(value, (str, bytes)):
             raise TypeError(f"{name} must be a radius (m) or a polygon, got {type(value).__name__}")
@@ -505,7 +507,9 @@ class World:
                 )
         segs = np.concatenate(seg_parts) if seg_parts else np.empty((0, 4))
         if segs.shape[0] > MAX_SEGMENTS:
-            raise ValueError(f"obstacles hold {segs.shape[0]} edges; the maximum is {MAX_SEGMENTS}")
+            raise ValueError(
+                f"obstacles hold {segs.shape[0]} edges; the maximum is {MAX_SEGMENTS}"
+            )
         if segs.size and not np.all(np.isfinite(segs)):
             raise ValueError("obstacles must have finite coordinates")
         if segs.size and float(np.max(np.abs(segs))) > MAX_COORD:
@@ -513,7 +517,9 @@ class World:
         # Zero-length edges (repeated vertices) carry nothing.
         keep = (segs[:, 0] != segs[:, 2]) | (segs[:, 1] != segs[:, 3])
         self._segs: FloatArray = _read_only(np.ascontiguousarray(segs[keep]))
-        self._circles: FloatArray = _read_only(np.array(circles, dtype=np.float64).reshape(-1, 3))
+        self._circles: FloatArray = _read_only(
+            np.array(circles, dtype=np.float64).reshape(-1, 3)
+        )
         self._solid_circles: FloatArray = _read_only(
             np.array(solid_circles, dtype=np.float64).reshape(-1, 3)
         )
@@ -545,8 +551,7 @@ class World:
                 raise TypeError(f"grid must be an OccupancyGrid, got {type(grid).__name__}")
             self._grid = grid.copy()
             blocked = (
-                ~self._grid.free()
-                if as_bool(unknown_blocks, "unknown_blocks")
+                ~self._grid.free() if as_bool(unknown_blocks, "unknown_blocks")
                 else self._grid.occupied()
             )
             occ = np.ascontiguousarray(blocked, dtype=np.uint8)
@@ -558,11 +563,7 @@ class World:
             if max(abs(o.x), abs(o.y)) > MAX_COORD:
                 raise ValueError(f"grid origin must lie within ±{MAX_COORD:g} m")
             self._occ_frame = (
-                o.x,
-                o.y,
-                math.cos(o.theta),
-                math.sin(o.theta),
-                self._grid.resolution,
+                o.x, o.y, math.cos(o.theta), math.sin(o.theta), self._grid.resolution
             )
         self._init_moving(moving)
         self._scanners: dict[Any, Any] = {}

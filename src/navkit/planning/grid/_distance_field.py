@@ -142,21 +142,8 @@ def _bucket_field(
     mask = n_slots - 1
     uniform_cost = lowest if uniform else 0.0
     while (
-        bucket_field(
-            free,
-            padded,
-            uniform_cost,
-            cols,
-            eight,
-            cutting,
-            inv,
-            mask,
-            dist,
-            buckets,
-            cap,
-            counts,
-            state,
-        )
+        bucket_field(free, padded, uniform_cost, cols, eight, cutting, inv, mask, dist, buckets,
+                     cap, counts, state)
         == GROW
     ):
         grown = np.empty(n_slots * 2 * cap, dtype=np.int32)

@@ -241,70 +241,14 @@ def bucket_field(
             if int(gu * inv) != k:
                 continue  # stale: lowered into an earlier bucket and expanded there
             cu = uniform_cost if uniform else costs[u]
-            top = _relax(
-                free,
-                costs,
-                uniform,
-                dist,
-                buckets,
-                counts,
-                cap,
-                mask,
-                inv,
-                u - pc,
-                ortho,
-                gu,
-                cu,
-                top,
-            )
-            top = _relax(
-                free,
-                costs,
-                uniform,
-                dist,
-                buckets,
-                counts,
-                cap,
-                mask,
-                inv,
-                u + pc,
-                ortho,
-                gu,
-                cu,
-                top,
-            )
-            top = _relax(
-                free,
-                costs,
-                uniform,
-                dist,
-                buckets,
-                counts,
-                cap,
-                mask,
-                inv,
-                u - 1,
-                ortho,
-                gu,
-                cu,
-                top,
-            )
-            top = _relax(
-                free,
-                costs,
-                uniform,
-                dist,
-                buckets,
-                counts,
-                cap,
-                mask,
-                inv,
-                u + 1,
-                ortho,
-                gu,
-                cu,
-                top,
-            )
+            top = _relax(free, costs, uniform, dist, buckets, counts, cap, mask, inv,
+                         u - pc, ortho, gu, cu, top)
+            top = _relax(free, costs, uniform, dist, buckets, counts, cap, mask, inv,
+                         u + pc, ortho, gu, cu, top)
+            top = _relax(free, costs, uniform, dist, buckets, counts, cap, mask, inv,
+                         u - 1, ortho, gu, cu, top)
+            top = _relax(free, costs, uniform, dist, buckets, counts, cap, mask, inv,
+                         u + 1, ortho, gu, cu, top)
             if eight:
                 if corner_cutting:
                     nw = ne = sw = se = True
@@ -319,73 +263,17 @@ def bucket_field(
                     sw = s_ok and w_ok
                     se = s_ok and e_ok
                 if nw:
-                    top = _relax(
-                        free,
-                        costs,
-                        uniform,
-                        dist,
-                        buckets,
-                        counts,
-                        cap,
-                        mask,
-                        inv,
-                        u - pc - 1,
-                        diag,
-                        gu,
-                        cu,
-                        top,
-                    )
+                    top = _relax(free, costs, uniform, dist, buckets, counts, cap, mask, inv,
+                                 u - pc - 1, diag, gu, cu, top)
                 if ne:
-                    top = _relax(
-                        free,
-                        costs,
-                        uniform,
-                        dist,
-                        buckets,
-                        counts,
-                        cap,
-                        mask,
-                        inv,
-                        u - pc + 1,
-                        diag,
-                        gu,
-                        cu,
-                        top,
-                    )
+                    top = _relax(free, costs, uniform, dist, buckets, counts, cap, mask, inv,
+                                 u - pc + 1, diag, gu, cu, top)
                 if sw:
-                    top = _relax(
-                        free,
-                        costs,
-                        uniform,
-                        dist,
-                        buckets,
-                        counts,
-                        cap,
-                        mask,
-                        inv,
-                        u + pc - 1,
-                        diag,
-                        gu,
-                        cu,
-                        top,
-                    )
+                    top = _relax(free, costs, uniform, dist, buckets, counts, cap, mask, inv,
+                                 u + pc - 1, diag, gu, cu, top)
                 if se:
-                    top = _relax(
-                        free,
-                        costs,
-                        uniform,
-                        dist,
-                        buckets,
-                        counts,
-                        cap,
-                        mask,
-                        inv,
-                        u + pc + 1,
-                        diag,
-                        gu,
-                        cu,
-                        top,
-                    )
+                    top = _relax(free, costs, uniform, dist, buckets, counts, cap, mask, inv,
+                                 u + pc + 1, diag, gu, cu, top)
         counts[slot] = 0
         i = 0
         # Next non-empty bucket; a whole empty ring means the queue is empty.

@@ -782,16 +782,8 @@ class FieldDStar:
     def _params(self) -> tuple[Any, ...]:
         start = self._start if self._start is not None else (0, 0)
         goal_id = -1 if self._goal is None else self._goal[0] * self._ncols + self._goal[1]
-        return params(
-            self._width,
-            self._nrows,
-            self._ncols,
-            start,
-            goal_id,
-            self._km,
-            self._interp,
-            self._hscale,
-        )
+        return params(self._width, self._nrows, self._ncols, start, goal_id, self._km, self._interp,
+                      self._hscale)
 
     def _search(self) -> tuple[FloatArray, float, float, int]:
         """Node path (node coordinates), its exact cost and length, expansions.
@@ -854,17 +846,8 @@ class FieldDStar:
         counter = np.zeros(1, dtype=np.int64)
         need = np.zeros(1, dtype=np.int64)
         while True:
-            k, status = extract_path(
-                self._state(),
-                self._params(),
-                self._lookahead,
-                pts,
-                cand,
-                cand2,
-                corner_g,
-                counter,
-                need,
-            )
+            k, status = extract_path(self._state(), self._params(), self._lookahead, pts, cand,
+                                     cand2, corner_g, counter, need)
             if status != FULL:
                 return pts, int(k), int(counter[0]), int(status)
             # Out of room: walk again with twice the buffer (the values stay settled).

@@ -276,15 +276,14 @@ class MapPlanner:
             assert callable(self._planner)
             path = self._planner(self._costs, start_cell, goal_cell)
         if not isinstance(path, Path2D) or path.frame != "grid":
-            raise TypeError(f"the cell planner must return a 'grid' Path2D, got {path!r:.80}")
+            raise TypeError(
+                f"the cell planner must return a 'grid' Path2D, got {path!r:.80}"
+            )
         grid = self._grid
         points = np.asarray(grid.cell_to_world(path.points), dtype=np.float64).reshape(-1, 2)
         length = float(np.hypot(*np.diff(points, axis=0).T).sum())
         return Path2D(
-            points,
-            "world",
-            cost=path.cost * grid.resolution,
-            length=length,
+            points, "world", cost=path.cost * grid.resolution, length=length,
             expanded=path.expanded,
         )
 

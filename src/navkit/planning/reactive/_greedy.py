@@ -168,15 +168,8 @@ def greedy_step(
         occupied[centre, centre] = False
     tol = 1e-9 * (1.0 + float(np.hypot(gx, gy)))
     row, col, g, h, n_free = greedy_select(
-        occupied,
-        centre,
-        centre,
-        gx,
-        gy,
-        grid.resolution,
-        grid.half_width,
-        progress,
-        tol,
+        occupied, centre, centre, gx, gy, grid.resolution, grid.half_width,
+        progress, tol,
     )
     if row < 0:
         reason = "nearer the goal " if progress else ""

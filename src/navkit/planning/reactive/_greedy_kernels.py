@@ -95,7 +95,9 @@ def greedy_select(
             ok, g, h = _candidate(
                 occupied, i, j, r0, c0, goal_x, goal_y, resolution, half_width, h_limit
             )
-            if ok and g + h <= f_min + tol and h < best_h and line_is_free(occupied, r0, c0, i, j):
+            if ok and g + h <= f_min + tol and h < best_h and line_is_free(
+                occupied, r0, c0, i, j
+            ):
                 best_r = i
                 best_c = j
                 best_g = g

@@ -133,7 +133,9 @@ class SampledField:
     def world_to_cell(self, points_xy: ArrayLike, *, continuous: Literal[True]) -> FloatArray: ...
 
     @overload
-    def world_to_cell(self, points_xy: ArrayLike, *, continuous: bool) -> IntArray | FloatArray: ...
+    def world_to_cell(
+        self, points_xy: ArrayLike, *, continuous: bool
+    ) -> IntArray | FloatArray: ...
 
     def world_to_cell(
         self, points_xy: ArrayLike, *, continuous: bool = False
