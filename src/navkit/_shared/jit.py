@@ -20,21 +20,181 @@ function's signature; kernel modules use them instead of ``numba.njit``:
 None of them builds a cfunc wrapper (``no_cfunc_wrapper=True``): navkit never
 passes a kernel as a first-class function value, and every wrapper is compiled
 and optimised with its kernel on first use.
+
+numba is imported on first use, not with navkit (issue 17: importing numba
+costs about 0.3 s, most of ``import navkit.planning``). A module-level
+function decorated before then becomes a :class:`LazyKernel`, a stand-in that
+remembers the function and its options. The first call of any stand-in (or
+any attribute it does not have, or :func:`load_numba`) imports numba, makes
+every waiting function a numba dispatcher and puts the dispatchers in place
+of the stand-ins in every loaded module's namespace, so that kernels see each
+other as dispatchers when numba types them and Python calls them without the
+stand-in's extra call. Functions decorated after that (and closures, which
+are made at run time) get a dispatcher straight away. Names a kernel module
+needs from numba itself are bound in its namespace at the same moment by
+:func:`bind_numba_names`.
 """
 
 from __future__ import annotations
 
+import importlib
+import sys
+import threading
 from collections.abc import Callable
 from typing import Any, TypeVar, cast
 
-from numba import njit
-
 _F = TypeVar("_F", bound=Callable[..., Any])
+
+_LOCK = threading.RLock()
+#: numba.njit once numba is loaded.
+_NJIT: Any = None
+#: Stand-ins made before numba was loaded, and their dispatchers once it is.
+_WAITING: list[LazyKernel] = []
+#: (namespace, numba module, {name: attribute}) bound by :func:`load_numba`.
+_BINDINGS: list[tuple[dict[str, Any], str, dict[str, str]]] = []
+
+
+class LazyKernel:
+    """A kernel whose numba dispatcher is made when numba is first needed.
+
+    Calls and attribute lookups go to the dispatcher (loading numba on the
+    first); navkit's modules hold the dispatcher itself once numba is loaded.
+
+    Parameters
+    ----------
+    py_func : callable
+        The Python function to compile.
+    options : dict
+        The ``numba.njit`` options.
+
+    Examples
+    --------
+    >>> from navkit._shared.jit import LazyKernel
+    >>> def twice(x):
+    ...     return 2 * x
+    >>> LazyKernel(twice, {"cache": False})(3)
+    6
+    """
+
+    def __init__(self, py_func: Callable[..., Any], options: dict[str, Any]) -> None:
+        self.py_func = py_func
+        self.options = options
+        self.dispatcher: Any = None
+        self.__wrapped__ = py_func
+        self.__name__ = py_func.__name__
+        self.__qualname__ = py_func.__qualname__
+        self.__module__ = py_func.__module__
+        self.__doc__ = py_func.__doc__
+
+    def __call__(self, *args: Any, **kwargs: Any) -> Any:
+        dispatcher = self.dispatcher
+        if dispatcher is None:
+            dispatcher = self._load()
+        return dispatcher(*args, **kwargs)
+
+    def __getattr__(self, name: str) -> Any:
+        # Only attributes the stand-in lacks (a dispatcher's signatures, compile, ...).
+        if name.startswith("__"):
+            raise AttributeError(name)
+        return getattr(self._load(), name)
+
+    def __repr__(self) -> str:
+        return f"<navkit kernel {self.__module__}.{self.__qualname__}>"
+
+    def _load(self) -> Any:
+        """This kernel's dispatcher, made (with every waiting one) on first need."""
+        if self.dispatcher is None:
+            load_numba()
+            if self.dispatcher is None:  # made by hand after numba was loaded
+                self.dispatcher = _NJIT(**self.options)(self.py_func)
+        return self.dispatcher
+
+
+def numba_loaded() -> bool:
+    """Whether :func:`load_numba` has run (numba imported, kernels are dispatchers)."""
+    return _NJIT is not None
+
+
+def load_numba() -> None:
+    """Import numba and turn every waiting kernel into a numba dispatcher.
+
+    Binds the names registered with :func:`bind_numba_names`, makes the
+    dispatchers (nothing is compiled yet) and puts each in place of its
+    stand-in in the namespace of every loaded module. Runs once; later calls
+    return at once.
+    """
+    global _NJIT
+    if numba_loaded():
+        return
+    with _LOCK:
+        if numba_loaded():  # another thread loaded it meanwhile
+            return
+        from numba import njit
+
+        for namespace, module, names in _BINDINGS:
+            _bind(namespace, module, names)
+        for kernel in _WAITING:
+            kernel.dispatcher = njit(**kernel.options)(kernel.py_func)
+        for module_object in list(sys.modules.values()):
+            module_namespace = getattr(module_object, "__dict__", None)
+            if not isinstance(module_namespace, dict):
+                continue
+            for key, value in list(module_namespace.items()):
+                if type(value) is LazyKernel and value.dispatcher is not None:
+                    module_namespace[key] = value.dispatcher
+        _WAITING.clear()
+        _NJIT = njit
+
+
+def bind_numba_names(namespace: dict[str, Any], module: str, **names: str) -> None:
+    """Bind attributes of the numba module ``module`` in ``namespace`` when numba loads.
+
+    For what a kernel uses from numba itself (intrinsics, types): a kernel
+    module calls this with ``globals()`` instead of importing them, so that
+    importing the module does not import numba. ``names`` maps each name to
+    bind to the attribute it stands for. Binds them at once if numba is
+    already loaded.
+
+    Examples
+    --------
+    >>> from navkit._shared.jit import bind_numba_names, load_numba
+    >>> namespace = {}
+    >>> bind_numba_names(namespace, "numba.core", numba_types="types")
+    >>> load_numba()
+    >>> namespace["numba_types"].float64
+    float64
+    """
+    with _LOCK:
+        if _NJIT is None:
+            _BINDINGS.append((namespace, module, names))
+            return
+    _bind(namespace, module, names)
+
+
+def _bind(namespace: dict[str, Any], module: str, names: dict[str, str]) -> None:
+    imported = importlib.import_module(module)
+    for name, attribute in names.items():
+        namespace[name] = getattr(imported, attribute)
 
 
 def typed_njit(**options: Any) -> Callable[[_F], _F]:
-    """``numba.njit(**options)`` typed as a decorator that keeps the function's signature."""
-    return cast(Callable[[_F], _F], njit(**options))
+    """``numba.njit(**options)`` typed as a decorator that keeps the function's signature.
+
+    Before numba is loaded a module-level function becomes a
+    :class:`LazyKernel`; a closure (made at run time) loads numba and
+    becomes a dispatcher at once.
+    """
+
+    def decorate(py_func: _F) -> _F:
+        with _LOCK:
+            if _NJIT is None and "<locals>" not in py_func.__qualname__:
+                kernel = LazyKernel(py_func, options)
+                _WAITING.append(kernel)
+                return cast(_F, kernel)
+        load_numba()
+        return cast(_F, _NJIT(**options)(py_func))
+
+    return decorate
 
 
 #: Options every navkit kernel is compiled with.

@@ -26,7 +26,6 @@ from collections.abc import Callable
 from typing import Any, cast
 
 import numpy as np
-from numba import types
 
 from navkit._shared.jit import njit_cached
 
@@ -100,14 +99,6 @@ def world_to_continuous_kernel(
         flat[2 * i + 1] = min(max((c * dx + s * dy) * inv_res - 0.5, -_LIMIT), _LIMIT)
 
 
-#: numba argument types of :func:`world_to_cell_kernel` on the public fast path.
-_WORLD_TO_CELL_TYPES = (
-    types.Array(types.float64, 2, "C"),
-    *(types.float64,) * 4,  # origin x, y, yaw, resolution
-    types.Array(types.int64, 2, "C"),
-)
-
-
 def world_to_cell_entry() -> Callable[..., bool]:
     """Compiled entry of :func:`world_to_cell_kernel` for float64 points, skipping dispatch.
 
@@ -125,5 +116,12 @@ def world_to_cell_entry() -> Callable[..., bool]:
     >>> world_to_cell_entry()(np.array([[0.7, 0.2]]), 0.0, 0.0, 0.0, 0.5, out), out
     (True, array([[0, 1]]))
     """
+    from numba import types  # here: importing this module must not import numba
+
+    signature = (
+        types.Array(types.float64, 2, "C"),
+        *(types.float64,) * 4,  # origin x, y, yaw, resolution
+        types.Array(types.int64, 2, "C"),
+    )
     dispatcher: Any = world_to_cell_kernel
-    return cast(Callable[..., bool], dispatcher.compile(_WORLD_TO_CELL_TYPES))
+    return cast(Callable[..., bool], dispatcher.compile(signature))

@@ -26,6 +26,7 @@ from typing import Any
 
 import numpy as np
 
+from navkit._shared.jit import load_numba
 from navkit._shared.validation import positive_float
 
 __all__ = ["WARMUP_STEPS", "WarmupReport", "WarmupStep", "warmup"]
@@ -376,6 +377,7 @@ def _names(value: object, name: str) -> tuple[str, ...]:
 
 def _dispatchers() -> dict[str, Any]:
     """Every numba kernel defined in an imported navkit module, by ``module.function``."""
+    load_numba()  # the kernels are stand-ins until then
     from numba.core.dispatcher import Dispatcher
 
     found: dict[str, Any] = {}

@@ -24,7 +24,6 @@ from collections.abc import Callable
 from typing import Any, cast
 
 import numpy as np
-from numba import types
 
 from navkit._shared.jit import typed_njit
 
@@ -98,11 +97,6 @@ def khatib_beam_force_into(
     out[1] = fy
 
 
-#: Read-only C-contiguous float64 beams: a LaserScan's ranges and the cached tables.
-_BEAMS = types.Array(types.float64, 1, "C", readonly=True)
-_KHATIB_TYPES = (*(_BEAMS,) * 3, *(types.float64,) * 5, types.Array(types.float64, 1, "C"))
-
-
 def khatib_entry() -> Callable[..., None]:
     """Compiled entry of :func:`khatib_beam_force_into` for a scan's arrays, skipping dispatch.
 
@@ -122,8 +116,13 @@ def khatib_entry() -> Callable[..., None]:
     >>> out
     array([-4., -0.])
     """
+    from numba import types  # here: importing this module must not import numba
+
+    # Read-only C-contiguous float64 beams: a LaserScan's ranges and the cached tables.
+    beams = types.Array(types.float64, 1, "C", readonly=True)
+    signature = (beams, beams, beams, *(types.float64,) * 5, types.Array(types.float64, 1, "C"))
     dispatcher: Any = khatib_beam_force_into
-    return cast(Callable[..., None], dispatcher.compile(_KHATIB_TYPES))
+    return cast(Callable[..., None], dispatcher.compile(signature))
 
 
 @typed_njit(cache=True, fastmath=_FASTMATH)
