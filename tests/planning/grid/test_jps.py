@@ -242,7 +242,7 @@ costs = np.ones((8, 8))
 costs[2:6, 4] = np.inf
 astar(costs, (0, 0), (7, 7), method="jps")
 print(json.dumps({name: sum(getattr(_kernels, name).stats.cache_misses.values())
-                  for name in ("_columns", "jps_search", "jps_trace")}))
+                  for name in ("_columns", "jps_search")}))
 """
 
 
@@ -251,4 +251,4 @@ def test_fresh_process_loads_jps_kernels_from_cache() -> None:
     out = subprocess.run(
         [sys.executable, "-c", FRESH_PROCESS], check=True, capture_output=True, text=True
     )
-    assert json.loads(out.stdout) == {"_columns": 0, "jps_search": 0, "jps_trace": 0}
+    assert json.loads(out.stdout) == {"_columns": 0, "jps_search": 0}

@@ -16,13 +16,14 @@ from navkit.planning.grid._arguments import (
     check_search_size,
     traversable_cell,
 )
-from navkit.planning.grid._astar_kernels import grid_search, trace_path
-from navkit.planning.grid._distance_field_kernels import highest_finite
-from navkit.planning.grid._jps_kernels import jps_search, jps_tables, jps_trace
+from navkit.planning.grid._astar_kernels import grid_search
+from navkit.planning.grid._jps_kernels import SQRT2, jps_search, jps_tables
 from navkit.planning.grid._limits import (
     MAX_HEURISTIC_WEIGHT,
     bounded_float,
     checked_cost_range,
+    converted_costs,
+    highest_finite,
     read_only,
 )
 from navkit.planning.grid._path import Path2D
@@ -31,6 +32,40 @@ from navkit.planning.grid._workspace import grow_heap, workspace
 __all__ = ["AStarPlanner", "astar"]
 
 _METHODS = ("astar", "jps", "auto")
+
+
+#: JPS bit tables (row bits, column bits).
+_Tables = tuple[NDArray[np.uint64], NDArray[np.uint64]]
+
+
+def _checked_grid(
+    costs: ArrayLike,
+    connectivity: Any,
+    corner_cutting: Any,
+    heuristic_weight: Any,
+    method: Any,
+) -> tuple[FloatArray, float, float, _Tables | None]:
+    """The validated grid, its cost range and, when JPS may run, its bit tables.
+
+    When the options ask for JPS (or allow it) the kernel that builds the
+    tables also checks the values (one compiled kernel fewer on first use);
+    otherwise :func:`checked_cost_range` checks them. Options of the wrong
+    kind are reported later, by :meth:`AStarPlanner._setup`.
+    """
+    if (
+        type(method) is str
+        and (method == "jps" or method == "auto")
+        and type(connectivity) is int
+        and connectivity == 8
+        and corner_cutting is False
+        and type(heuristic_weight) in (int, float)
+        and heuristic_weight == 1.0
+    ):
+        grid = converted_costs(costs)
+        row_bits, col_bits, lowest, highest = jps_tables(grid)
+        return grid, lowest, highest, (row_bits, col_bits)
+    grid, lowest, highest = checked_cost_range(costs)
+    return grid, lowest, highest, None
 
 
 def _check_method(value: Any) -> str:
@@ -197,12 +232,16 @@ class AStarPlanner:
         heuristic_weight: float = 1.0,
         method: str = "astar",
     ) -> None:
-        grid, lowest, highest = checked_cost_range(costs)
+        grid, lowest, highest, tables = _checked_grid(
+            costs, connectivity, corner_cutting, heuristic_weight, method
+        )
         # Validation converts only when needed: copy whenever the result may
         # still be (a view of) the caller's array.
         if grid is costs or grid.base is not None:
             grid = grid.copy()
-        self._setup(grid, lowest, connectivity, corner_cutting, heuristic_weight, method, highest)
+        self._setup(
+            grid, lowest, connectivity, corner_cutting, heuristic_weight, method, highest, tables
+        )
 
     @classmethod
     def _borrowing(
@@ -214,16 +253,18 @@ class AStarPlanner:
         heuristic_weight: Any,
         method: Any = "astar",
         highest: float | None = None,
+        tables: _Tables | None = None,
     ) -> AStarPlanner:
         """A planner on an already validated grid, without copying it.
 
         For the one-shot functions, whose planner lives for one query while the
         caller's array cannot change, and for owners of a private grid.
-        ``highest``: the grid's largest finite cost when known (found when needed).
+        ``highest``: the grid's largest finite cost when known (found when needed);
+        ``tables``: its JPS bit tables when already built.
         """
         planner = cls.__new__(cls)
         planner._setup(
-            grid, lowest, connectivity, corner_cutting, heuristic_weight, method, highest
+            grid, lowest, connectivity, corner_cutting, heuristic_weight, method, highest, tables
         )
         return planner
 
@@ -236,6 +277,7 @@ class AStarPlanner:
         heuristic_weight: Any,
         method: Any,
         highest: float | None,
+        tables: _Tables | None = None,
     ) -> None:
         check_search_size(grid)
         self._eight = check_connectivity(connectivity)
@@ -264,7 +306,12 @@ class AStarPlanner:
             )
         if not options_fit:
             return
-        row_bits, col_bits, uniform = jps_tables(grid, lowest, self._highest_cost())
+        if tables is None:
+            row_bits, col_bits, _, _ = jps_tables(grid)
+        else:
+            row_bits, col_bits = tables
+        # The common cost of the traversable cells (inf when there are none).
+        uniform = lowest if lowest == np.inf or lowest == self._highest_cost() else -1.0
         if uniform < 0.0:
             if how == "jps":
                 raise ValueError(
@@ -277,7 +324,7 @@ class AStarPlanner:
     def _highest_cost(self) -> float:
         """The largest finite cost of the grid (-inf if none), found once."""
         if self._highest is None:
-            self._highest = highest_finite(self._flat)
+            self._highest = highest_finite(self._costs)
         return self._highest
 
     @property
@@ -357,7 +404,7 @@ class AStarPlanner:
         goal_index = t[0] * cols + t[1]
         while True:
             rec, meta, heap, stamp = workspace(rows * cols)
-            expanded, found = grid_search(
+            expanded, found, k, diagonal = grid_search(
                 self._flat,
                 rows,
                 cols,
@@ -373,17 +420,18 @@ class AStarPlanner:
             )
             if found >= 0:
                 break
-            grow_heap()  # rare: the queue filled up; search again with a larger one
+            # Rare: the queue filled up or the path did not fit in it; search
+            # again with a larger one.
+            grow_heap(k)
         if not found:
             raise NoPathError(
                 f"no path from start_cell {s} to goal_cell {t} (expanded {expanded} cells)",
                 expanded=expanded,
             )
-        cells, length = trace_path(meta, cols, goal_index)
-        # trace_path's array is new and only ours: hand it over without a copy.
-        return Path2D._owned(
-            cells.astype(np.float64), "grid", float(rec[2 * goal_index]), length, expanded
-        )
+        # The search wrote the path's cells into its queue's scratch.
+        cells = heap[: 2 * k].reshape(k, 2).copy()
+        length = (k - 1 - diagonal) + SQRT2 * diagonal
+        return Path2D._owned(cells, "grid", float(rec[2 * goal_index]), length, expanded)
 
     def _plan_jps(self, s: tuple[int, int], t: tuple[int, int]) -> Path2D:
         """:meth:`plan` by jump point search (tables built, cells checked)."""
@@ -393,7 +441,8 @@ class AStarPlanner:
         goal_index = t[0] * cols + t[1]
         while True:
             records, meta, blocks, stamp = _jps_workspace(rows * cols)
-            expanded, found = jps_search(
+            heap = _jps_scratch.heap
+            expanded, found, k, diagonal = jps_search(
                 row_bits,
                 col_bits,
                 rows,
@@ -403,21 +452,23 @@ class AStarPlanner:
                 records,
                 meta,
                 blocks,
-                _jps_scratch.heap,
+                heap,
                 stamp,
             )
             if found >= 0:
                 break
-            # The queue filled up (rare: it holds the open jump points): grow it
-            # and search again.
-            _jps_scratch.heap = np.empty(2 * _jps_scratch.heap.size, dtype=np.float64)
+            # The queue filled up (rare: it holds the open jump points) or the
+            # path did not fit in it: grow it and search again.
+            _jps_scratch.heap = np.empty(max(2 * heap.size, 2 * k), dtype=np.float64)
         if not found:
             raise NoPathError(
                 f"no path from start_cell {s} to goal_cell {t} (expanded {expanded} jump points)",
                 expanded=expanded,
             )
-        cells, length = jps_trace(meta, cols, goal_index)
-        return Path2D._owned(cells.astype(np.float64), "grid", uniform * length, length, expanded)
+        # The search wrote the path's cells into its queue's scratch.
+        cells = heap[: 2 * k].reshape(k, 2).copy()
+        length = (k - 1 - diagonal) + SQRT2 * diagonal
+        return Path2D._owned(cells, "grid", uniform * length, length, expanded)
 
     def distance_field(self, goal_cell: Any) -> FloatArray:
         """Least cost from every cell to ``goal_cell`` (Dijkstra to exhaustion).
@@ -451,7 +502,7 @@ class AStarPlanner:
         n = rows * cols
         while True:
             rec, meta, heap, stamp = workspace(n)
-            _, status = grid_search(
+            _, status, _, _ = grid_search(
                 self._flat,
                 rows,
                 cols,
@@ -568,8 +619,10 @@ def astar(
     >>> astar(costs, (2, 0), (0, 3), method="jps").cost
     5.0
     """
-    grid, lowest, highest = checked_cost_range(costs)
+    grid, lowest, highest, tables = _checked_grid(
+        costs, connectivity, corner_cutting, heuristic_weight, method
+    )
     planner = AStarPlanner._borrowing(
-        grid, lowest, connectivity, corner_cutting, heuristic_weight, method, highest
+        grid, lowest, connectivity, corner_cutting, heuristic_weight, method, highest, tables
     )
     return planner.plan(start_cell, goal_cell)

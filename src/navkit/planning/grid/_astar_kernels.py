@@ -18,7 +18,7 @@ import math
 
 import numpy as np
 
-from navkit._shared.jit import njit_cached, njit_force_inline, njit_inline, njit_no_refcount
+from navkit._shared.jit import njit_force_inline, njit_helper, njit_inline, njit_no_refcount
 from navkit.planning.grid._search_heap import (
     REC_BASE,
     rec_pop,
@@ -126,7 +126,7 @@ def grid_search(
     meta: np.ndarray,
     heap: np.ndarray,
     stamp: int,
-) -> tuple[int, int]:
+) -> tuple[int, int, int, int]:
     """Best-first search from ``start``: A*, weighted A* or Dijkstra.
 
     Parameters
@@ -160,7 +160,8 @@ def grid_search(
     heap : (2 * capacity,) float64
         Scratch for the queue, (f, tie key) pairs of the indexed 4-ary heap of
         :func:`navkit.planning.grid._search_heap.rec_pop` (slot i at entry
-        ``i + REC_BASE``; 64-byte aligned, from ``aligned_heap``).
+        ``i + REC_BASE``; 64-byte aligned, from ``aligned_heap``). Receives
+        the path when the goal is reached (see ``cells``).
     stamp : int
         This search's open mark (closed is ``stamp + 1``), above every mark
         left in ``meta`` by earlier searches and below ``2**27 - 1``.
@@ -171,8 +172,15 @@ def grid_search(
         Number of cells closed.
     found : int
         1 when ``goal`` was closed, 0 when not (unreachable, or ``goal`` -1),
-        -1 when ``heap`` filled up: search again with a larger one and a
-        fresh stamp.
+        -1 when ``heap`` filled up, -2 when the path did not fit in it
+        (``cells`` cells): search again with a larger one and a fresh stamp.
+    cells : int
+        Number of cells on the path when found (else 0); ``heap[2 * i]``,
+        ``heap[2 * i + 1]`` are then the row and column of its i-th cell
+        from ``start`` (see :func:`_trace`).
+    diagonal : int
+        How many of its steps are diagonal: its length in cells is
+        ``cells - 1 - diagonal + sqrt(2) * diagonal``.
 
     Notes
     -----
@@ -206,7 +214,7 @@ def grid_search(
             break
         # One expansion queues at most 8 cells.
         if 2 * (n + 8 + REC_BASE) > heap.size:
-            return expanded, -1
+            return expanded, -1, 0, 0
         r = u // cols
         c = u - r * cols
         gu = rec[2 * u]
@@ -278,17 +286,23 @@ def grid_search(
             break
         u = rec_pop(heap, meta, n)
         n -= 1
-    return expanded, found
+    if not found:
+        return expanded, 0, 0, 0
+    cells, diagonal = _trace(meta, cols, goal, heap)
+    return expanded, 1 if cells <= heap.size >> 1 else -2, cells, diagonal
 
 
-@njit_cached
-def trace_path(meta: np.ndarray, cols: int, goal: int) -> tuple[np.ndarray, float]:
-    """Cells (K, 2) ``(row, col)`` from the search source to ``goal`` and their length.
+@njit_helper
+def _trace(meta: np.ndarray, cols: int, goal: int, out: np.ndarray) -> tuple[int, int]:
+    """Write the path's cells into ``out``; return (cell count, diagonal steps).
 
     Follows the direction indices written by :func:`grid_search` (low 4 bits
     of ``meta[4 * v + 2]``, direction + 1) back from ``goal`` until the source
-    (0 there). The length is geometric, in cells:
-    orthogonal steps count 1 and diagonal steps sqrt(2).
+    (0 there): ``out[2 * i]``, ``out[2 * i + 1]`` are the row and column of
+    the i-th cell from the source. Writes nothing when ``out`` is too small
+    (the count says how large it must be). Run by the search kernel rather
+    than as a kernel of its own: a kernel that allocates the path costs a
+    quarter of a second of first-use compilation.
     """
     k = 1
     v = goal
@@ -296,16 +310,17 @@ def trace_path(meta: np.ndarray, cols: int, goal: int) -> tuple[np.ndarray, floa
         d = (meta[4 * v + 2] & 15) - 1
         v -= DR[d] * cols + DC[d]
         k += 1
-    cells = np.empty((k, 2), dtype=np.int64)
+    if 2 * k > out.size:
+        return k, 0
     n_diag = 0
     v = goal
     for i in range(k - 1, -1, -1):
         r = v // cols
-        cells[i, 0] = r
-        cells[i, 1] = v - r * cols
+        out[2 * i] = r
+        out[2 * i + 1] = v - r * cols
         if i > 0:
             d = (meta[4 * v + 2] & 15) - 1
             if d >= 4:
                 n_diag += 1
             v -= DR[d] * cols + DC[d]
-    return cells, (k - 1 - n_diag) + SQRT2 * n_diag
+    return k, n_diag

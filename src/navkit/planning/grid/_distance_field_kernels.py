@@ -58,17 +58,6 @@ GROW = 1
 
 
 @njit_no_refcount
-def highest_finite(flat: np.ndarray) -> float:
-    """The largest finite entry of ``flat`` (-inf if none)."""
-    highest = -np.inf
-    for i in range(flat.shape[0]):
-        v = flat[i]
-        if v < np.inf and v > highest:
-            highest = v
-    return highest
-
-
-@njit_no_refcount
 def pad_grid(
     flat: np.ndarray, rows: int, cols: int, free: np.ndarray, padded: np.ndarray, uniform: bool
 ) -> None:

@@ -40,17 +40,19 @@ unpadded flat indices ``r * cols + c`` of the caller's grid.
 from __future__ import annotations
 
 import math
-from typing import Any, cast
+import threading
+from typing import Any
 
 import numpy as np
-from numba.cpython.unsafe.numbers import leading_zeros, trailing_zeros
 
 from navkit._shared.jit import (
-    njit_cached,
-    njit_inline_no_refcount,
+    NO_REFCOUNT,
+    bind_numba_names,
+    njit_helper,
     njit_no_refcount,
-    njit_not_inlined,
+    typed_njit,
 )
+from navkit.planning.grid._limits import INF_BITS, read_only, scanned_cost_range
 from navkit.planning.grid._search_heap import (
     node_of,
     tie_key,
@@ -59,9 +61,12 @@ from navkit.planning.grid._search_heap import (
 SQRT2 = math.sqrt(2.0)
 _OCTILE_EXTRA = SQRT2 - 1.0
 
-# numba intrinsics (LLVM cttz / ctlz), typed for mypy as plain callables.
-_ctz = cast(Any, trailing_zeros)
-_clz = cast(Any, leading_zeros)
+# numba intrinsics (LLVM cttz / ctlz), bound when numba is loaded (importing this
+# module must not import numba), typed for mypy as plain callables.
+_ctz: Any = None
+_clz: Any = None
+bind_numba_names(globals(), "numba.cpython.unsafe.numbers", _ctz="trailing_zeros",
+                 _clz="leading_zeros")  # fmt: skip
 
 _ONE = np.uint64(1)
 _ALL = np.uint64(0xFFFFFFFFFFFFFFFF)
@@ -72,8 +77,17 @@ _B63 = np.uint64(63)
 _DR = np.array([-1, 1, 0, 0, -1, -1, 1, 1], dtype=np.int64)
 _DC = np.array([0, 0, -1, 1, -1, 1, -1, 1], dtype=np.int64)
 
+# Helpers called only from other kernels are compiled without a Python wrapper
+# (njit_helper): a wrapper costs tenths of a second of first-use compilation.
+# These are also kept out of LLVM inlining explicitly (numba passes a caller's
+# forceinline on to callees that leave it unset).
+_helper_not_inlined = typed_njit(**NO_REFCOUNT, no_cpython_wrapper=True, forceinline=False)
+# Typed once and inlined by LLVM into each caller (numba's inline="always" would
+# type the body again at every call site).
+_helper_inlined = typed_njit(**NO_REFCOUNT, no_cpython_wrapper=True, forceinline=True)
 
-@njit_no_refcount
+
+@njit_helper
 def _transpose64(block: np.ndarray) -> None:
     """Transpose the 64 x 64 bit matrix ``block`` in place (bit j of word i <-> bit i of word j).
 
@@ -97,18 +111,23 @@ def _transpose64(block: np.ndarray) -> None:
         mask ^= mask << np.uint64(width)
 
 
+#: Per-thread scratch of :func:`jps_tables`.
+_scratch = threading.local()
+
+
 def jps_tables(
-    grid: np.ndarray, lowest: float, highest: float
-) -> tuple[np.ndarray, np.ndarray, float]:
-    """Bit tables of a cost grid for :func:`jps_search`.
+    grid: np.ndarray, name: str = "costs"
+) -> tuple[np.ndarray, np.ndarray, float, float]:
+    """Bit tables of a cost grid for :func:`jps_search`, and the grid's checked cost range.
 
     Parameters
     ----------
     grid : (rows, cols) float64
-        Validated costs (C-contiguous, finite values >= 1 or inf).
-    lowest, highest : float
-        Its smallest value and its largest finite value (inf and -inf when no
-        cell is traversable).
+        Costs converted by :func:`~navkit.planning.grid._limits.converted_costs`
+        (C-contiguous) but not yet checked: the kernel that builds the column
+        table also scans the values, which saves a compiled kernel of its own.
+    name : str
+        The grid's name in error messages.
 
     Returns
     -------
@@ -118,9 +137,15 @@ def jps_tables(
         set when padded cell ``(q, p)`` is traversable.
     col_bits : ((cols + 2) * V,) uint64
         The same for the columns (the transposed grid), ``V`` words each.
-    uniform : float
-        The common cost of the traversable cells, or -1 when they differ
-        (JPS needs equal costs); +inf when no cell is traversable.
+    lowest, highest : float
+        The smallest value and the largest finite value (inf and -inf when no
+        cell is traversable); JPS applies when they are equal.
+
+    Raises
+    ------
+    ValueError
+        Values the planners refuse, as
+        :func:`~navkit.planning.grid._limits.checked_cost_range`.
 
     Notes
     -----
@@ -129,45 +154,93 @@ def jps_tables(
     """
     rows, cols = grid.shape
     hw = ((cols + 2 + 63) >> 6) + 2
-    free = np.zeros((rows + 2, 64 * (hw - 2)), dtype=np.bool_)
-    np.less(grid, np.inf, out=free[1 : rows + 1, 1 : cols + 1])
-    row_bits = np.zeros((rows + 2, hw), dtype=np.uint64)
-    row_bits[:, 1 : hw - 1] = np.packbits(free, axis=1, bitorder="little").view("<u8")
-    flat_rows = row_bits.reshape(-1)
+    # One bool per bit of the row table, padding words included: packed as one
+    # flat array, it is the table. The array is kept per thread and reused for
+    # grids of the same shape (only its inside is written, its border stays
+    # False): a fresh one of this size is mapped anew, page by page, each time.
+    free = getattr(_scratch, "free", None)
+    if free is None or free.shape != (rows + 2, 64 * hw):
+        free = _scratch.free = np.zeros((rows + 2, 64 * hw), dtype=np.bool_)
+    np.less(grid, np.inf, out=free[1 : rows + 1, 65 : cols + 65])
+    flat_rows = np.packbits(free.reshape(-1), bitorder="little").view("<u8")
     col_bits = np.zeros((cols + 2) * (((rows + 2 + 63) >> 6) + 2), dtype=np.uint64)
-    _columns(flat_rows, rows, cols, col_bits, np.empty(64, dtype=np.uint64))
-    if lowest == np.inf:
-        return flat_rows, col_bits, np.inf
-    return flat_rows, col_bits, lowest if lowest == highest else -1.0
+    lo_bits, hi_bits = _columns(
+        flat_rows,
+        rows,
+        cols,
+        col_bits,
+        np.empty(64, dtype=np.uint64),
+        read_only(grid.reshape(-1).view(np.int64)),
+        INF_BITS,
+    )
+    lowest, highest = scanned_cost_range(grid, name, lo_bits, hi_bits)
+    return flat_rows, col_bits, lowest, highest
 
 
 @njit_no_refcount
 def _columns(
-    row_bits: np.ndarray, rows: int, cols: int, col_bits: np.ndarray, block: np.ndarray
-) -> None:
+    row_bits: np.ndarray,
+    rows: int,
+    cols: int,
+    col_bits: np.ndarray,
+    block: np.ndarray,
+    cost_bits: np.ndarray,
+    inf_bits: int,
+) -> tuple[int, int]:
     """Fill the column bit table ``col_bits`` (zeros) of :func:`jps_tables` from the row table.
 
-    Transposes 64 x 64 bit blocks in the scratch ``block`` of 64 words.
+    Transposes 64 x 64 bit blocks in the scratch ``block`` of 64 words. Also
+    scans the costs' bit patterns ``cost_bits`` (the float64 grid viewed as
+    int64) and returns the smallest pattern and the largest one other than
+    ``inf_bits`` (``INF_BITS``; -1 if none), for
+    :func:`~navkit.planning.grid._limits.scanned_cost_range`.
     """
+    # The scan first: it streams the whole grid through the caches, and the
+    # search that follows wants the tables (read and written last) in them.
+    lo, hi = _scan_costs(cost_bits, inf_bits)
     hw = ((cols + 2 + 63) >> 6) + 2
     vw = ((rows + 2 + 63) >> 6) + 2
     for qb in range((rows + 2 + 63) >> 6):
         for pb in range((cols + 2 + 63) >> 6):
+            every = _ALL
+            some = np.uint64(0)
             for i in range(64):
                 q = 64 * qb + i
-                block[i] = row_bits[q * hw + pb + 1] if q < rows + 2 else np.uint64(0)
-            _transpose64(block)
+                word = row_bits[q * hw + pb + 1] if q < rows + 2 else np.uint64(0)
+                block[i] = word
+                every &= word
+                some |= word
+            if some == 0:
+                continue  # all blocked: the column words stay 0
+            if every != _ALL:
+                _transpose64(block)  # else all free: every column word is all ones
             for j in range(min(64, cols + 2 - 64 * pb)):
                 col_bits[(64 * pb + j) * vw + qb + 1] = block[j]
+    return lo, hi
 
 
-@njit_not_inlined
+@njit_helper
+def _scan_costs(bits: np.ndarray, inf_bits: int) -> tuple[int, int]:
+    """(smallest of ``bits``, largest one other than ``inf_bits`` or -1).
+
+    Integer comparisons vectorise, so this costs what ``ndarray.min`` costs.
+    """
+    lo = bits[0]
+    hi = -1
+    for i in range(bits.shape[0]):
+        v = bits[i]
+        lo = min(lo, v)
+        hi = max(hi, v if v != inf_bits else -1)
+    return lo, hi
+
+
+@_helper_not_inlined
 def _free(bits: np.ndarray, nw: int, q: int, p: int) -> bool:
     """Whether padded cell (q, p) is traversable, from the bit rows ``bits`` of ``nw`` words."""
     return bool((bits[q * nw + (p >> 6) + 1] >> np.uint64(p & 63)) & _ONE)
 
 
-@njit_not_inlined
+@_helper_not_inlined
 def _scan_forward(bits: np.ndarray, nw: int, line: int, p: int, target: int) -> int:
     """Jump from position ``p`` of ``line`` towards larger positions.
 
@@ -201,7 +274,7 @@ def _scan_forward(bits: np.ndarray, nw: int, line: int, p: int, target: int) -> 
     return -1
 
 
-@njit_not_inlined
+@_helper_not_inlined
 def _scan_backward(bits: np.ndarray, nw: int, line: int, p: int, target: int) -> int:
     """As :func:`_scan_forward`, towards smaller positions."""
     base = line * nw
@@ -230,7 +303,7 @@ def _scan_backward(bits: np.ndarray, nw: int, line: int, p: int, target: int) ->
     return -1
 
 
-@njit_no_refcount
+@njit_helper
 def _jump_diagonal(
     row_bits: np.ndarray,
     hw: int,
@@ -274,7 +347,7 @@ def _jump_diagonal(
             return k
 
 
-@njit_not_inlined
+@_helper_not_inlined
 def _successor_directions(row_bits: np.ndarray, hw: int, q: int, p: int, d: int) -> int:
     """Bit set of the directions (0-7) to scan from padded (q, p) reached by move ``d``.
 
@@ -305,7 +378,7 @@ def _successor_directions(row_bits: np.ndarray, hw: int, q: int, p: int, d: int)
     return out
 
 
-@njit_no_refcount
+@njit_helper
 def _heap_push(heap: np.ndarray, n: int, f: float, key: float) -> None:
     """Add (f, key) to the 4-ary min-heap of ``n`` entries in ``heap`` (room for one more)."""
     i = n
@@ -323,7 +396,7 @@ def _heap_push(heap: np.ndarray, n: int, f: float, key: float) -> None:
     heap[2 * i + 1] = key
 
 
-@njit_no_refcount
+@njit_helper
 def _heap_replace_top(heap: np.ndarray, last: int, f: float, key: float) -> int:
     """Replace the smallest of the entries ``0 .. last`` by (f, key); return its node.
 
@@ -356,7 +429,7 @@ def _heap_replace_top(heap: np.ndarray, last: int, f: float, key: float) -> int:
     return top
 
 
-@njit_inline_no_refcount
+@_helper_inlined
 def _straight(
     row_bits: np.ndarray,
     hw: int,
@@ -381,7 +454,7 @@ def _straight(
     return _scan_backward(col_bits, vw, p, q, gq if p == gp else -1)
 
 
-@njit_inline_no_refcount
+@_helper_inlined
 def _reach(
     blocks: np.ndarray,
     g: np.ndarray,
@@ -416,7 +489,7 @@ def _reach(
     return True
 
 
-@njit_no_refcount
+@njit_helper
 def _follow_corridor(
     row_bits: np.ndarray,
     hw: int,
@@ -486,7 +559,7 @@ def jps_search(
     blocks: np.ndarray,
     heap: np.ndarray,
     stamp: int,
-) -> tuple[int, int]:
+) -> tuple[int, int, int, int]:
     """A* over jump points from ``start`` to ``goal``, in cell lengths.
 
     Parameters
@@ -515,6 +588,7 @@ def jps_search(
     heap : (2 * capacity,) float64
         Scratch for the queue: (f, tie key) pairs, lazy deletion (a node is
         queued again when its cost improves; stale entries are skipped).
+        Receives the path when the goal is reached (see ``cells``).
     stamp : int
         This search's stamp, larger than every stamp in ``blocks``.
 
@@ -525,9 +599,16 @@ def jps_search(
     found : int
         1 when ``goal`` was reached: then ``g[2 * goal]`` is its path length
         in cells and the parents link it back to ``start`` (-1) through jump
-        points joined by straight or diagonal lines (see :func:`jps_trace`).
-        0 when it is unreachable, -1 when ``heap`` filled up (search again
-        with a larger one and a fresh stamp).
+        points joined by straight or diagonal lines, and ``heap[: 2 *
+        cells]`` holds every cell ``(row, col)`` of the path (see
+        :func:`_trace`). 0 when it is unreachable; -1 when ``heap`` filled
+        up, -2 when the path did not fit in it (``cells`` cells): search
+        again with a larger one and a fresh stamp.
+    cells : int
+        Number of cells on the path (0 unless found).
+    diagonal : int
+        How many of its steps are diagonal: its length in cells is
+        ``cells - 1 - diagonal + sqrt(2) * diagonal``.
     """
     hw = ((cols + 2 + 63) >> 6) + 2
     vw = ((rows + 2 + 63) >> 6) + 2
@@ -628,7 +709,7 @@ def jps_search(
                 if v < 0:
                     continue
             if 2 * n == heap.size:
-                return expanded, -1
+                return expanded, -1, 0, 0
             _heap_push(heap, n, f, key)
             n += 1
         if next_v >= 0:
@@ -652,18 +733,23 @@ def jps_search(
             u = -1
         if u < 0:
             break
-    return expanded, found
+    if not found:
+        return expanded, 0, 0, 0
+    cells, diagonal = _trace(meta, cols, goal, heap)
+    return expanded, 1 if cells <= heap.size >> 1 else -2, cells, diagonal
 
 
-@njit_cached
-def jps_trace(meta: np.ndarray, cols: int, goal: int) -> tuple[np.ndarray, float]:
-    """Every cell ``(row, col)`` of the path from the search source to ``goal``, and its length.
+@njit_helper
+def _trace(meta: np.ndarray, cols: int, goal: int, out: np.ndarray) -> tuple[int, int]:
+    """Write every cell of the path to ``goal`` into ``out``; (cell count, diagonal steps).
 
     Follows the parent jump points written by :func:`jps_search` (in ``meta``)
     and fills in the cells of the straight or diagonal line between each pair,
-    so consecutive cells are 8-neighbours. The length counts orthogonal steps
-    1 and diagonal ones sqrt(2), as
-    :func:`navkit.planning.grid._astar_kernels.trace_path`.
+    so consecutive cells are 8-neighbours: ``out[2 * i]``, ``out[2 * i + 1]``
+    is the row and column of the i-th cell from the search source. Writes
+    nothing when ``out`` is too small (the count says how large it must be).
+    Done in the search kernel rather than a kernel of its own: a kernel that
+    allocates the path costs a quarter of a second of first-use compilation.
     """
     k = 1
     v = goal
@@ -673,14 +759,15 @@ def jps_trace(meta: np.ndarray, cols: int, goal: int) -> tuple[np.ndarray, float
         vr = v // cols
         k += max(abs(vr - ur), abs((v - vr * cols) - (u - ur * cols)))
         v = u
-    cells = np.empty((k, 2), dtype=np.int64)
+    if 2 * k > out.size:
+        return k, 0
     n_diag = 0
     i = k - 1
     v = goal
     r = v // cols
     c = v - r * cols
-    cells[i, 0] = r
-    cells[i, 1] = c
+    out[2 * i] = r
+    out[2 * i + 1] = c
     while meta[4 * v + 2] >= 0:
         u = meta[4 * v + 2]
         ur = u // cols
@@ -692,9 +779,9 @@ def jps_trace(meta: np.ndarray, cols: int, goal: int) -> tuple[np.ndarray, float
             r += sr
             c += sc
             i -= 1
-            cells[i, 0] = r
-            cells[i, 1] = c
+            out[2 * i] = r
+            out[2 * i + 1] = c
             if diagonal:
                 n_diag += 1
         v = u
-    return cells, (k - 1 - n_diag) + SQRT2 * n_diag
+    return k, n_diag

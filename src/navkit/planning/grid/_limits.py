@@ -34,7 +34,6 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from navkit._shared.costs import validate_costs_lowest
-from navkit._shared.jit import njit_cached
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import finite_float
 from navkit.planning.grid._search_heap import MAX_NODES
@@ -52,7 +51,11 @@ __all__ = [
     "check_node_count",
     "checked_cost_range",
     "checked_costs",
+    "converted_costs",
+    "cost_range",
+    "highest_finite",
     "read_only",
+    "scanned_cost_range",
 ]
 
 _T = TypeVar("_T", bound=np.generic)
@@ -75,28 +78,11 @@ _SEARCH_BYTES_PER_CELL = 33
 _FIELD_BYTES_PER_NODE = 56
 
 # Bit patterns of non-negative float64 values order like the values themselves
-# (and every negative value, -0.0 included, is a negative int64), so one integer
-# pass finds the minimum and the finite values above MAX_COST; NaN is above inf.
-_ONE_BITS = int(np.array(1.0).view(np.int64))
-_MAX_BITS = int(np.array(MAX_COST).view(np.int64))
-_INF_BITS = int(np.array(np.inf).view(np.int64))
-
-
-@njit_cached
-def _cost_scan(bits: np.ndarray, max_bits: int, inf_bits: int) -> tuple[int, int, int]:
-    """(smallest bit pattern, largest one up to ``max_bits`` or -1, entries above it but inf).
-
-    Integer comparisons vectorise, so this costs what ``ndarray.min`` costs.
-    """
-    lo = bits[0]
-    hi = -1
-    over = 0
-    for i in range(bits.shape[0]):
-        v = bits[i]
-        lo = min(lo, v)
-        hi = max(hi, v if v <= max_bits else -1)
-        over += (v > max_bits) & (v != inf_bits)
-    return lo, hi, over
+# (and every negative value, -0.0 included, is a negative int64), so integer
+# comparisons of the bit patterns order the costs; NaN is above inf.
+ONE_BITS = int(np.array(1.0).view(np.int64))
+MAX_BITS = int(np.array(MAX_COST).view(np.int64))
+INF_BITS = int(np.array(np.inf).view(np.int64))
 
 
 def read_only(array: NDArray[_T]) -> NDArray[_T]:
@@ -134,9 +120,8 @@ def checked_cost_range(
     numbers, no NaN, finite values >= 1) plus the planners' limits: at most
     :data:`MAX_NODES` cells (``corner_nodes``: Field D*'s ``(rows + 1) ×
     (cols + 1)`` nodes), checked before anything is converted or allocated,
-    and finite values <= :data:`MAX_COST`. One pass over the grid. The input
-    is never modified; it is copied only when a dtype or layout conversion is
-    needed.
+    and finite values <= :data:`MAX_COST`. The input is never modified; it is
+    copied only when a dtype or layout conversion is needed.
 
     Raises
     ------
@@ -144,6 +129,20 @@ def checked_cost_range(
         Not real numbers (complex, strings, booleans, ragged input), wrong
         dimension, empty, NaN, values below 1 or finite values above 1e12
         (the same exception as :func:`navkit.mapping.validate_costs`).
+    """
+    out = converted_costs(costs, name, corner_nodes=corner_nodes)
+    lowest, highest = cost_range(out, name)
+    return out, lowest, highest
+
+
+def converted_costs(
+    costs: ArrayLike, name: str = "costs", *, corner_nodes: bool = False
+) -> FloatArray:
+    """The conversion half of :func:`checked_cost_range`: its values are not checked yet.
+
+    Type, dimension, emptiness and size are (before anything is converted or
+    allocated); the caller must check the values, with :func:`cost_range` or
+    from a scan of its own (:func:`scanned_cost_range`).
     """
     try:
         arr = np.asarray(costs)
@@ -162,21 +161,70 @@ def checked_cost_range(
         check_node_count(
             rows * cols, f"A search on {name} of shape {arr.shape}", _SEARCH_BYTES_PER_CELL, "cells"
         )
-    out = np.ascontiguousarray(arr, dtype=np.float64)
-    lo_bits, hi_bits, over = _cost_scan(
-        read_only(out.reshape(-1).view(np.int64)), _MAX_BITS, _INF_BITS
-    )
-    if lo_bits < _ONE_BITS or over:
-        validate_costs_lowest(out, name)  # NaN or below 1: the shared message
-        bad = np.isfinite(out) & (out > MAX_COST)
-        where = tuple(int(i) for i in np.unravel_index(int(np.argmax(bad)), out.shape))
-        raise ValueError(
-            f"{name} must be <= {MAX_COST:g} where finite (np.inf marks impassable cells); "
-            f"found {float(out[where])} at {where}"
-        )
+    out: FloatArray = np.ascontiguousarray(arr, dtype=np.float64)
+    return out
+
+
+def cost_range(grid: FloatArray, name: str = "costs") -> tuple[float, float]:
+    """The smallest value and the largest finite value of a converted grid, checked.
+
+    NumPy reductions, no compiled kernel (issue 17: a kernel costs about 0.1 s
+    of compilation in every entry point that validates a grid): the minimum
+    (NaN propagates, so it also finds NaN), the maximum, and, when the grid
+    has impassable cells, :func:`highest_finite`. Raises as
+    :func:`checked_cost_range`.
+    """
+    lowest = float(grid.min())
+    if not lowest >= 1.0:
+        validate_costs_lowest(grid, name)  # NaN or below 1: raises, the shared message
+    highest = float(grid.max())
+    if highest == np.inf:
+        highest = highest_finite(grid)
+    if highest > MAX_COST:
+        _raise_above_max(grid, name)
+    return lowest, highest
+
+
+def highest_finite(grid: FloatArray) -> float:
+    """The largest finite value of a float64 grid of non-negative values or inf (-inf if none).
+
+    On the bit patterns: ``bits - INF_BITS`` read as unsigned is 0 for inf and
+    grows with the value below it, so one subtraction and one maximum find it.
+    """
+    bits = grid.reshape(-1).view(np.int64)
+    top = int(np.subtract(bits, INF_BITS).view(np.uint64).max())
+    if top == 0:
+        return -np.inf
+    return float(np.array((top + INF_BITS) % 2**64, dtype=np.uint64).view(np.float64))
+
+
+def scanned_cost_range(
+    grid: FloatArray, name: str, lo_bits: int, hi_bits: int
+) -> tuple[float, float]:
+    """:func:`cost_range` from a kernel's scan of the grid's bit patterns, checked.
+
+    ``lo_bits`` is the smallest bit pattern of ``grid`` (viewed as int64) and
+    ``hi_bits`` the largest one other than inf's (-1 if none). Every value is
+    valid when ``lo_bits`` is at least 1.0's pattern (no negative value, no
+    NaN with its sign bit set) and ``hi_bits`` at most :data:`MAX_BITS` (no
+    value above 1e12 but inf, no other NaN); otherwise :func:`cost_range`
+    finds and reports the culprit.
+    """
+    if lo_bits < ONE_BITS or hi_bits > MAX_BITS:
+        cost_range(grid, name)  # raises
     lowest = float(np.array(lo_bits, dtype=np.int64).view(np.float64))
     highest = float(np.array(hi_bits, dtype=np.int64).view(np.float64)) if hi_bits >= 0 else -np.inf
-    return out, lowest, highest
+    return lowest, highest
+
+
+def _raise_above_max(grid: FloatArray, name: str) -> None:
+    validate_costs_lowest(grid, name)  # NaN is reported as NaN
+    bad = np.isfinite(grid) & (grid > MAX_COST)
+    where = tuple(int(i) for i in np.unravel_index(int(np.argmax(bad)), grid.shape))
+    raise ValueError(
+        f"{name} must be <= {MAX_COST:g} where finite (np.inf marks impassable cells); "
+        f"found {float(grid[where])} at {where}"
+    )
 
 
 def bounded_float(value: Any, name: str, low: float, high: float, unit: str = "") -> float:

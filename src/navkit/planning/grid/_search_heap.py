@@ -34,7 +34,14 @@ import math
 
 import numpy as np
 
-from navkit._shared.jit import njit_inline, njit_no_refcount, njit_not_inlined
+from navkit._shared.jit import NO_REFCOUNT, njit_helper, njit_inline, typed_njit
+
+# The heap operations are called only from the search kernels, so they are
+# compiled without a Python wrapper (a wrapper costs about a tenth of a second
+# of first-use compilation each); the tests call them through kernels of their
+# own. rec_sift_up is called from an LLVM-inlined function (the A* relax step):
+# it says explicitly that it is not to be inlined itself.
+_helper_not_inlined = typed_njit(**NO_REFCOUNT, no_cpython_wrapper=True, forceinline=False)
 
 MAX_NODES = 2**31 - 1
 """Largest number of nodes (grid cells) the heap can index."""
@@ -79,7 +86,7 @@ def _rec_place(heap: np.ndarray, meta: np.ndarray, i: int, f: float, key: float)
     meta[4 * node_of(key) + 3] = i
 
 
-@njit_not_inlined
+@_helper_not_inlined
 def rec_sift_up(heap: np.ndarray, meta: np.ndarray, i: int, f: float, key: float) -> None:
     """Move the hole at slot i up past larger parents, then drop (f, key) in.
 
@@ -135,7 +142,7 @@ def _rec_smallest_child(heap: np.ndarray, i: int, n: int) -> tuple[int, float, f
     return best, bestf, bestk
 
 
-@njit_no_refcount
+@njit_helper
 def rec_pop(heap: np.ndarray, meta: np.ndarray, n: int) -> int:
     """Remove the smallest of the ``n`` (> 0) entries and return its node."""
     top = node_of(heap[2 * REC_BASE + 1])
@@ -156,7 +163,7 @@ def rec_pop(heap: np.ndarray, meta: np.ndarray, n: int) -> int:
     return top
 
 
-@njit_no_refcount
+@njit_helper
 def rec_replace_top(heap: np.ndarray, meta: np.ndarray, n: int, f: float, key: float) -> int:
     """Remove the top of the ``n`` (> 0) entries, add (f, key) and return the removed node.
 

@@ -69,6 +69,10 @@ def workspace(n: int) -> Workspace:
     return ws.rec, ws.meta, ws.heap, ws.stamp
 
 
-def grow_heap() -> None:
-    """Double this thread's queue capacity (a search filled it; it is searched again)."""
-    _local.heap = aligned_heap(_local.heap.size)
+def grow_heap(entries: int = 0) -> None:
+    """Double this thread's queue capacity, to at least ``entries`` entries.
+
+    A search filled it, or the path it writes there did not fit; the search
+    runs again.
+    """
+    _local.heap = aligned_heap(max(_local.heap.size, entries))
