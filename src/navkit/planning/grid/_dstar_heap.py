@@ -44,7 +44,9 @@ from navkit._shared.jit import njit_inline_no_refcount as _njit_inline_no_refcou
 # division is guarded, so no result changes) and their exception code.
 KERNEL_OPTIONS: dict[str, Any] = {**NO_REFCOUNT, "error_model": "numpy"}
 HELPER_OPTIONS: dict[str, Any] = {**KERNEL_OPTIONS, "no_cpython_wrapper": True}
-_helper = typed_njit(**HELPER_OPTIONS)
+# The sifts stay calls also from LLVM-inlined callers (numba passes ``forceinline``
+# on to callees that leave it unset).
+_helper = typed_njit(**HELPER_OPTIONS, forceinline=False)
 
 
 def heap_new(n_nodes: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:

@@ -35,10 +35,18 @@ cell) and at least ``c >= 1`` for the diagonal one, while h changes by at most
 depends on: each node is expanded once per search and the stopping rule is
 exact. (Costs are >= 1, so this holds after any cost update.)
 
+Compilation. The helpers inlined at several sites (:func:`_queue`,
+:func:`_pair_value`) are LLVM-inlined (numba's ``forceinline``: typed and
+lowered once) rather than inlined by numba at IR level, which types and lowers
+the body again at each site; the rarely hot :func:`update_vertex` and
+:func:`node_rhs` stay calls.
+
 Calling convention. The search kernels take the planner's arrays as one tuple
-``st = (pad, g, rhs, nodes, keys, pos, size, work)`` (``nodes, keys, pos, size``
-being the indexed heap of :mod:`navkit.planning.grid._dstar_heap`, ``work`` the
-int64 pair (work done, work limit), see :func:`settle`) and its scalars as
+``st = (pad, g, rhs, nodes, keys, pos, size, work, changed)`` (``nodes, keys,
+pos, size`` being the indexed heap of :mod:`navkit.planning.grid._dstar_heap`,
+``work`` the int64 pair (work done, work limit), see :func:`settle`, and
+``changed`` the int64 list of cells changed since the last search, see
+:func:`update_cells`) and its scalars as
 ``prm = (width, nrows, ncols, start_row, start_col, goal, km, interp, hscale)``;
 both are built by :func:`state` and :func:`params`.
 """
@@ -72,6 +80,12 @@ RING_C = np.array([1, 1, 0, -1, -1, -1, 0, 1], dtype=np.int64)
 
 _kernel = typed_njit(**KERNEL_OPTIONS)
 _helper = typed_njit(**HELPER_OPTIONS)
+# Compiled once and inlined by LLVM into every caller (numba's ``forceinline``):
+# numba's own ``inline="always"`` types and lowers the body again at each call site.
+_inlined = typed_njit(**HELPER_OPTIONS, forceinline=True)
+# A callee of an LLVM-inlined helper that stays a call (numba passes ``forceinline``
+# on to callees that leave it unset).
+_called = typed_njit(**HELPER_OPTIONS, forceinline=False)
 
 
 def _pair_tables() -> tuple[np.ndarray, ...]:
@@ -119,9 +133,10 @@ def state(
     rhs: np.ndarray,
     heap: tuple[np.ndarray, ...],
     work: np.ndarray,
+    changed: np.ndarray,
 ) -> tuple[np.ndarray, ...]:
     """The ``st`` tuple of the search kernels."""
-    return (pad, g, rhs, *heap, work)
+    return (pad, g, rhs, *heap, work, changed)
 
 
 def params(
@@ -231,7 +246,7 @@ def key_reached(top0: float, top1: float, m: float, h: float, km: float) -> bool
     return top0 > t1 + tol or (top0 >= t1 - tol and top1 >= m)
 
 
-@njit_inline
+@_inlined
 def _pair_value(
     pad: np.ndarray, width: int, g: np.ndarray, ncols: int, i: int, j: int, k: int, interp: bool
 ) -> float:
@@ -247,7 +262,7 @@ def _pair_value(
     return corner_cost(g1, g[(i + PAIR_DR[k]) * ncols + j + PAIR_DC[k]], c, b, interp)
 
 
-@_helper
+@_called
 def node_rhs(
     pad: np.ndarray, width: int, g: np.ndarray, ncols: int, i: int, j: int, interp: bool
 ) -> float:
@@ -260,7 +275,7 @@ def node_rhs(
     return best
 
 
-@njit_inline
+@_inlined
 def _queue(
     s: int,
     i: int,
@@ -277,6 +292,9 @@ def _queue(
     hscale: float,
 ) -> None:
     # Node s is (i, j): passed in, as an integer division per call is costly.
+    # Typed and compiled once, inlined by LLVM at every call site (numba's IR
+    # inlining typed heap_push and heap_remove again at each site: about a
+    # second of first-use compilation for the three sites).
     if g[s] != rhs[s]:
         m = min(g[s], rhs[s])
         heap_push(nodes, keys, pos, size, s, m + heuristic(sr, sc, i, j, hscale) + km, m)
@@ -284,7 +302,7 @@ def _queue(
         heap_remove(nodes, keys, pos, size, s)
 
 
-@_helper
+@_called
 def update_vertex(
     s: int,
     i: int,
@@ -302,9 +320,10 @@ def update_vertex(
 ) -> None:
     """Queue node s = (i, j) with its key if it is inconsistent, else dequeue it.
 
-    Compiled once and called (not inlined) where it is not hot: a rising node
-    itself, a requeued key, :func:`update_cells`. The hot sites (the
-    neighbours of an expanded node in :func:`settle`) inline the same code.
+    Called (not inlined) where it is not hot: a rising node itself, a requeued
+    key, the corners of changed cells. The neighbours of an expanded node in
+    :func:`settle` call :func:`_queue` itself, which LLVM inlines (or, where
+    a value falls, push the key directly).
     """
     _queue(s, i, j, g, rhs, nodes, keys, pos, size, sr, sc, km, hscale)
 
@@ -322,7 +341,9 @@ def settle(
     with the start as target this is the plain D* Lite search; the path
     extraction calls it again for every node it reads, so every value it uses is
     exact and the same in a fresh plan and in a repaired one. Returns the number
-    of expansions.
+    of expansions. Its first call after cost changes first requeues the corners
+    of the changed cells (:func:`update_cells` only lists them), so every search
+    must call it before reading any node value.
 
     Work bound: every expansion adds its work units (1, or :data:`RAISE_WORK`
     for a node whose value rises) to ``work[0]``; once ``work[0] > work[1]`` the
@@ -332,8 +353,25 @@ def settle(
     Called (never inlined) by its one caller, :func:`extract_path` of the path
     kernels, so its body is compiled once.
     """
-    pad, g, rhs, nodes, keys, pos, size, work = st
+    pad, g, rhs, nodes, keys, pos, size, work, changed = st
     width, nrows, ncols, sr, sc, goal, km, interp, hscale = prm
+    n_changed = changed[0]
+    if n_changed > 0:
+        # Cells changed since the last search (update_cells): rhs of a node depends
+        # only on the four cells around it, so their corners are the only nodes
+        # whose rhs can change. Requeued here, with the current start and km.
+        changed[0] = 0
+        for q in range(1, n_changed + 1):
+            cell_i = changed[q] // width - 1
+            cell_j = changed[q] - (cell_i + 1) * width - 1
+            for di in range(2):
+                for dj in range(2):
+                    i = cell_i + di
+                    j = cell_j + dj
+                    s = i * ncols + j
+                    if s != goal:
+                        rhs[s] = node_rhs(pad, width, g, ncols, i, j, interp)
+                        update_vertex(s, i, j, g, rhs, nodes, keys, pos, size, sr, sc, km, hscale)
     ti = target // ncols
     th = heuristic(sr, sc, ti, target - ti * ncols, hscale)
     expanded = 0
@@ -382,7 +420,14 @@ def settle(
                     v = v2
                 if v < rhs[s]:
                     rhs[s] = v
-                    _queue(s, si, sj, g, rhs, nodes, keys, pos, size, sr, sc, km, hscale)
+                    # _queue's own code for the usual case (measured 1-2 % faster
+                    # here than the LLVM-inlined call).
+                    if g[s] != v:
+                        mv = min(g[s], v)
+                        kv = mv + heuristic(sr, sc, si, sj, hscale) + km
+                        heap_push(nodes, keys, pos, size, s, kv, mv)
+                    else:
+                        update_vertex(s, si, sj, g, rhs, nodes, keys, pos, size, sr, sc, km, hscale)
         else:
             spent += RAISE_WORK
             g_old = g[u]
@@ -410,28 +455,25 @@ def settle(
 
 @_kernel
 def update_cells(
-    st: tuple[np.ndarray, ...],
-    prm: tuple[Any, ...],
+    pad: np.ndarray,
+    width: int,
+    changed: np.ndarray,
     cell_r: np.ndarray,
     cell_c: np.ndarray,
     values: np.ndarray,
 ) -> None:
-    """Write new cell costs and requeue the four corners of every changed cell.
+    """Write new cell costs and list the cells for the next search to requeue.
 
-    ``rhs`` of a node depends only on the four cells around it, so these corners
-    are the only nodes whose ``rhs`` can change.
+    ``changed[0]`` counts the listed cells, ``changed[1:]`` holds their padded
+    flat indices; the caller makes room for ``cell_r.shape[0]`` more. The first
+    :func:`settle` of the next search recomputes ``rhs`` of their corners and
+    requeues them (so this kernel links no search code and compiles quickly).
+    With repeated cells the last value wins.
     """
-    pad, g, rhs, nodes, keys, pos, size, _ = st
-    width, _, ncols, sr, sc, goal, km, interp, hscale = prm
-    for n in range(cell_r.shape[0]):
-        pad[(cell_r[n] + 1) * width + cell_c[n] + 1] = values[n]
-    for n in range(cell_r.shape[0]):
-        for di in range(2):
-            for dj in range(2):
-                i = cell_r[n] + di
-                j = cell_c[n] + dj
-                s = i * ncols + j
-                if s == goal:
-                    continue
-                rhs[s] = node_rhs(pad, width, g, ncols, i, j, interp)
-                update_vertex(s, i, j, g, rhs, nodes, keys, pos, size, sr, sc, km, hscale)
+    n = changed[0]
+    for q in range(cell_r.shape[0]):
+        cell = (cell_r[q] + 1) * width + cell_c[q] + 1
+        pad[cell] = values[q]
+        n += 1
+        changed[n] = cell
+    changed[0] = n

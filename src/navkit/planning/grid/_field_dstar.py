@@ -60,6 +60,17 @@ _NODE_LIMIT = float(2**53)
 # the goal makes nearly every node value rise, a repair of 2-5 fresh searches.
 _REPAIR_FRACTION = 0.05
 _REPAIR_MIN_WORK = 4096
+# A repair first runs for this fraction of its bound (at least _REPAIR_PROBE_MIN_WORK).
+# Its queue's top key then shows how far it got from the lowest changed key
+# towards the start's: a repair whose work so far, extrapolated linearly over
+# that key range, exceeds _REPAIR_OVERSHOOT bounds is hopeless (a change near
+# the goal raises nearly every node value) and the fresh search starts at once;
+# otherwise the repair goes on up to the full bound. (A wave growing from the
+# change front-loads none of its work, so the linear extrapolation does not
+# overestimate it.)
+_REPAIR_PROBE = 0.2
+_REPAIR_PROBE_MIN_WORK = 1024
+_REPAIR_OVERSHOOT = 2.0
 _NO_LIMIT = np.iinfo(np.int64).max // 2
 # Initial room of the path buffer, points per node row and column; a longer walk
 # is repeated with a buffer twice as large.
@@ -197,6 +208,7 @@ class FieldDStar:
 
     __slots__ = (
         "_cached",
+        "_changed",
         "_clean",
         "_cols",
         "_fresh",
@@ -209,6 +221,7 @@ class FieldDStar:
         "_interp",
         "_km",
         "_lookahead",
+        "_lowered",
         "_ncols",
         "_nrows",
         "_origin",
@@ -262,6 +275,10 @@ class FieldDStar:
         self._km = 0.0
         # (work done, work limit) of the current search, see settle().
         self._work = np.zeros(2, dtype=np.int64)
+        # Cells changed since the last search (count, then padded flat indices), see
+        # update_cells(), and whether any of them became cheaper.
+        self._changed = np.zeros(64, dtype=np.int64)
+        self._lowered = False
         # Whether the next search starts from scratch, and the work of the last one that did.
         self._fresh = True
         self._fresh_work = 0
@@ -654,10 +671,17 @@ class FieldDStar:
         if np.array_equal(self._pad[cells_u], vals[::-1][last]):
             return  # nothing changes: the search state and the cached path stay valid
         self._cached = None
-        self._clean = False
+        self._lowered = self._lowered or bool(np.any(vals[::-1][last] < self._pad[cells_u]))
+        listed = int(self._changed[0])
+        if listed + idx.shape[0] >= self._changed.shape[0]:
+            grown = np.zeros(2 * (listed + idx.shape[0] + 1), dtype=np.int64)
+            grown[: listed + 1] = self._changed[: listed + 1]
+            self._changed = grown
+        # The costs are written now; the next search requeues the changed cells' corners.
         update_cells(
-            self._state(),
-            self._params(),
+            self._pad,
+            self._width,
+            self._changed,
             np.ascontiguousarray(idx[:, 0]),
             np.ascontiguousarray(idx[:, 1]),
             # Writable too (a caller's read-only array is copied): one kernel signature.
@@ -755,10 +779,15 @@ class FieldDStar:
     ) -> None:
         """Start a new search from node ``s`` to node ``gl`` (the path's end points given)."""
         if not self._clean:
+            # Cleared in place, not allocated again: memory already paged in makes a
+            # search on a used planner (a replan's fallback) faster than on a new one.
             self._g.fill(np.inf)
             self._rhs.fill(np.inf)
-            self._heap = heap_new(self._g.shape[0])
+            self._heap[2].fill(-1)  # pos: no node queued
+            self._heap[3][0] = 0  # size
         self._clean = False
+        self._changed[0] = 0  # a fresh search reads the costs as they are
+        self._lowered = False
         self._km = 0.0
         self._fresh = True
         self._cached = None
@@ -777,7 +806,7 @@ class FieldDStar:
         size[0] = 1
 
     def _state(self) -> tuple[np.ndarray, ...]:
-        return state(self._pad, self._g, self._rhs, self._heap, self._work)
+        return state(self._pad, self._g, self._rhs, self._heap, self._work, self._changed)
 
     def _params(self) -> tuple[Any, ...]:
         start = self._start if self._start is not None else (0, 0)
@@ -788,9 +817,10 @@ class FieldDStar:
     def _search(self) -> tuple[FloatArray, float, float, int]:
         """Node path (node coordinates), its exact cost and length, expansions.
 
-        A repair is bounded (``_REPAIR_FRACTION``): cut short, it is replaced
-        by a fresh search from the current start, which returns the same path
-        (the repair's expansions are counted too). With no cost changed since
+        A repair is bounded (``_REPAIR_FRACTION``, and earlier when its probe
+        finds it hopeless, see :meth:`_repair`): cut short, it is replaced by a
+        fresh search from the current start on the planner's own arrays, which
+        returns the same path (the repair's expansions are counted too). With no cost changed since
         the last search from the same start, that search's path is returned.
         """
         assert self._start is not None and self._goal is not None
@@ -799,10 +829,11 @@ class FieldDStar:
             return cached[1].copy(), cached[2], cached[3], 0
         fresh = self._fresh
         self._work[0] = 0
-        self._work[1] = (
-            _NO_LIMIT if fresh else max(int(_REPAIR_FRACTION * self._fresh_work), _REPAIR_MIN_WORK)
-        )
-        pts, k, expanded, status = self._walk()
+        if fresh:
+            self._work[1] = _NO_LIMIT
+            pts, k, expanded, status = self._walk()
+        else:
+            pts, k, expanded, status = self._repair()
         if status == ABORTED:
             assert self._start_point is not None and self._goal_point is not None
             self._reset(self._start, self._goal, self._start_point, self._goal_point)
@@ -836,6 +867,54 @@ class FieldDStar:
         cost, length = polyline_cost(self._pad, self._width, points, points.shape[0])
         self._cached = (self._start, points.copy(), float(cost), float(length))
         return points, float(cost), float(length), int(expanded)
+
+    def _repair(self) -> tuple[FloatArray, int, int, int]:
+        """:meth:`_walk` on the repaired state, bounded (``ABORTED`` when hopeless)."""
+        assert self._start is not None
+        limit = max(int(_REPAIR_FRACTION * self._fresh_work), _REPAIR_MIN_WORK)
+        probe = max(int(_REPAIR_PROBE * limit), _REPAIR_PROBE_MIN_WORK)
+        lowered = self._lowered
+        _, keys, _, size = self._heap
+        start_id = self._start[0] * self._ncols + self._start[1]
+        # Key range of the repair: from the lowest key queued or about to be (a changed
+        # cell's corner, whose value does not fall when no cell got cheaper) to the
+        # start's (old) key.
+        first = min(float(keys[0, 0]) if size[0] > 0 else np.inf, self._changed_key())
+        end = min(float(self._g[start_id]), float(self._rhs[start_id])) + self._km
+        self._lowered = False
+        if lowered or not first < end < np.inf or probe >= limit:
+            self._work[1] = limit
+            return self._walk()
+        self._work[1] = probe
+        pts, k, expanded, status = self._walk()
+        if status != ABORTED:
+            return pts, k, expanded, status
+        reached = float(keys[0, 0]) if size[0] > 0 else end
+        done = float(self._work[0])
+        # Hopeless when done / progress > overshoot * limit (progress in (0, 1]).
+        if (reached - first) * _REPAIR_OVERSHOOT * limit < done * (end - first):
+            return pts, k, expanded, status
+        self._work[1] = limit
+        pts, k, more, status = self._walk()
+        return pts, k, expanded + more, status
+
+    def _changed_key(self) -> float:
+        """Least key ``min(g, rhs) + h + km`` of the changed cells' corners (before requeueing)."""
+        n = int(self._changed[0])
+        if n == 0:
+            return np.inf
+        assert self._start is not None
+        cells = self._changed[1 : n + 1]
+        rows = cells // self._width - 1
+        cols = cells - (rows + 1) * self._width - 1
+        i = (rows[:, None] + _CORNERS[:, 0]).ravel()
+        j = (cols[:, None] + _CORNERS[:, 1]).ravel()
+        ids = i * self._ncols + j
+        m = np.minimum(self._g[ids], self._rhs[ids])
+        dr = np.abs(i - self._start[0])
+        dc = np.abs(j - self._start[1])
+        h = self._hscale * (np.maximum(dr, dc) + OCT * np.minimum(dr, dc))
+        return float((m + h).min()) + self._km
 
     def _walk(self) -> tuple[FloatArray, int, int, int]:
         """Run :func:`extract_path`: (points buffer, K, expansions, status)."""

@@ -6,6 +6,13 @@ same ``+inf``-padded flat array ``pad`` of row width ``width = cols + 2``. A
 segment pays, per unit length, the cost of the cell it crosses, or the cheaper
 of the two cells beside a grid line it runs along. Used by Field D* for the
 true cost of its paths and by its shortcut (smoothing) pass.
+
+Compilation: one kernel called from Python, :func:`_polyline`, does both jobs
+(:func:`shortcut` and :func:`polyline_cost` are plain Python functions calling
+it), and :func:`segment_cost` is its one helper: every compiled function costs a
+fixed tenth of a second or so on first use, and a helper linked into several
+kernels is optimised again in each of them. Cell costs are read inline
+(``pad[(r + 1) * width + c + 1]``) rather than through an IR-inlined function.
 """
 
 from __future__ import annotations
@@ -22,7 +29,10 @@ _helper = typed_njit(**HELPER_OPTIONS)
 
 @njit_inline
 def cell_cost(pad: np.ndarray, width: int, r: int, c: int) -> float:
-    """Cost of cell (r, c), ``-1 <= r <= rows``, ``-1 <= c <= cols`` (+inf off the grid)."""
+    """Cost of cell (r, c), ``-1 <= r <= rows``, ``-1 <= c <= cols`` (+inf off the grid).
+
+    For the path kernels; this module's own kernels index ``pad`` directly.
+    """
     return float(pad[(r + 1) * width + c + 1])
 
 
@@ -33,6 +43,7 @@ def segment_cost(pad: np.ndarray, width: int, r0: float, c0: float, r1: float, c
     The segment is split where it crosses grid lines; each piece pays the cell
     containing its midpoint, or the cheaper of the two cells beside a grid line
     it runs along. Pieces shorter than 1e-12 (passing through a corner) are free.
+    Cell ``(r, c)`` costs ``pad[(r + 1) * width + c + 1]``.
     """
     dr = r1 - r0
     dc = c1 - c0
@@ -73,17 +84,15 @@ def segment_cost(pad: np.ndarray, width: int, r0: float, c0: float, r1: float, c
             rr = round(mr)
             rc = round(mc)
             if abs(mr - rr) < 1e-9 and abs(dr) * (t1 - t) < 1e-9:
-                col = math.floor(mc)
-                cost = min(
-                    cell_cost(pad, width, int(rr) - 1, col), cell_cost(pad, width, int(rr), col)
-                )
+                # Along row line rr: cells (rr - 1, col) and (rr, col).
+                at = int(rr) * width + math.floor(mc) + 1
+                cost = min(pad[at], pad[at + width])
             elif abs(mc - rc) < 1e-9 and abs(dc) * (t1 - t) < 1e-9:
-                row = math.floor(mr)
-                cost = min(
-                    cell_cost(pad, width, row, int(rc) - 1), cell_cost(pad, width, row, int(rc))
-                )
+                # Along column line rc: cells (row, rc - 1) and (row, rc).
+                at = (math.floor(mr) + 1) * width + int(rc)
+                cost = min(pad[at], pad[at + 1])
             else:
-                cost = cell_cost(pad, width, math.floor(mr), math.floor(mc))
+                cost = pad[(math.floor(mr) + 1) * width + math.floor(mc) + 1]
             if cost == np.inf:
                 return np.inf
             total += cost * piece
@@ -91,28 +100,24 @@ def segment_cost(pad: np.ndarray, width: int, r0: float, c0: float, r1: float, c
     return total
 
 
-@typed_njit(**KERNEL_OPTIONS)
-def polyline_cost(pad: np.ndarray, width: int, pts: np.ndarray, k: int) -> tuple[float, float]:
-    """(cost, length) of the polyline through the first ``k`` points."""
-    cost = 0.0
-    length = 0.0
-    for a in range(k - 1):
-        cost += segment_cost(pad, width, pts[a, 0], pts[a, 1], pts[a + 1, 0], pts[a + 1, 1])
-        length += math.hypot(pts[a + 1, 0] - pts[a, 0], pts[a + 1, 1] - pts[a, 1])
-    return cost, length
-
-
-# Allocates its result: compiled with reference counting.
+# Allocates the shortcut's result: compiled with reference counting.
 @typed_njit(**{**KERNEL_OPTIONS, "_nrt": True})
-def shortcut(pad: np.ndarray, width: int, pts: np.ndarray, k: int, patience: int) -> np.ndarray:
-    """Replace runs of the polyline by straight segments that cost no more.
+def _polyline(
+    pad: np.ndarray, width: int, pts: np.ndarray, k: int, patience: int
+) -> tuple[np.ndarray, float, float]:
+    """Both jobs of this module in one compiled kernel.
 
-    From each kept point, the farthest later point whose straight segment costs
-    at most the polyline between them is kept next; the scan gives up after
-    ``patience`` consecutive refusals. The result's cost never exceeds the
-    input's, and a segment through an impassable cell interior costs inf, so it
-    is never taken.
+    With ``patience >= 0`` the :func:`shortcut` of the first ``k`` points:
+    (result, 0, 0); with ``patience < 0`` their :func:`polyline_cost`:
+    (``pts`` itself, cost, length).
     """
+    if patience < 0:
+        cost = 0.0
+        length = 0.0
+        for a in range(k - 1):
+            cost += segment_cost(pad, width, pts[a, 0], pts[a, 1], pts[a + 1, 0], pts[a + 1, 1])
+            length += math.hypot(pts[a + 1, 0] - pts[a, 0], pts[a + 1, 1] - pts[a, 1])
+        return pts, cost, length
     # Element copies only: whole-row and slice assignments compile far more code.
     out = np.empty((k, 2), dtype=np.float64)
     out[0, 0] = pts[0, 0]
@@ -144,4 +149,22 @@ def shortcut(pad: np.ndarray, width: int, pts: np.ndarray, k: int, patience: int
     for a in range(m):
         res[a, 0] = out[a, 0]
         res[a, 1] = out[a, 1]
-    return res
+    return res, 0.0, 0.0
+
+
+def polyline_cost(pad: np.ndarray, width: int, pts: np.ndarray, k: int) -> tuple[float, float]:
+    """(cost, length) of the polyline through the first ``k`` points (node coordinates)."""
+    _, cost, length = _polyline(pad, width, pts, k, -1)
+    return cost, length
+
+
+def shortcut(pad: np.ndarray, width: int, pts: np.ndarray, k: int, patience: int) -> np.ndarray:
+    """Replace runs of the polyline by straight segments that cost no more.
+
+    From each kept point, the farthest later point whose straight segment costs
+    at most the polyline between them is kept next; the scan gives up after
+    ``patience`` (>= 0) consecutive refusals. The result's cost never exceeds
+    the input's, and a segment through an impassable cell interior costs inf,
+    so it is never taken.
+    """
+    return _polyline(pad, width, pts, k, patience)[0]
