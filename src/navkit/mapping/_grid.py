@@ -19,13 +19,12 @@ from typing import TYPE_CHECKING, Any, ClassVar, Literal, overload
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from navkit._shared.grid_coords import as_pairs, inside, one_or_many
+from navkit._shared.grid_coords import CELL_LIMIT, as_pairs, inside, one_or_many
 from navkit._shared.types import BoolArray, FloatArray, IntArray
 from navkit._shared.validation import as_bool, as_float_array, finite_float
 from navkit.geometry import Pose2D, as_pose
 from navkit.mapping._grid_kernels import (
     world_to_cell_entry,
-    world_to_cell_kernel,
     world_to_continuous_kernel,
 )
 from navkit.mapping._limits import (
@@ -627,6 +626,13 @@ class OccupancyGrid:
         pts, single = as_pairs(points_xy, "points_xy")
         out: IntArray | FloatArray
         if as_bool(continuous, "continuous"):
+            if pts.shape[0] == 1:
+                row, col = self._grid_frame(float(pts[0, 0]), float(pts[0, 1]))
+                out = np.array(
+                    [[min(max(row - 0.5, -CELL_LIMIT), CELL_LIMIT),
+                      min(max(col - 0.5, -CELL_LIMIT), CELL_LIMIT)]]
+                )  # fmt: skip
+                return one_or_many(out, single)
             pts = np.ascontiguousarray(pts)
             out = np.empty((pts.shape[0], 2), dtype=np.float64)
             world_to_continuous_kernel(
@@ -636,11 +642,35 @@ class OccupancyGrid:
             out = self._cells(pts)
         return one_or_many(out, single)
 
+    def _grid_frame(self, x: float, y: float) -> tuple[float, float]:
+        """Unclamped ``(row, col)`` grid-frame coordinates of one world point, in cells.
+
+        The arithmetic of :func:`world_to_cell_kernel`, operation for operation,
+        so that one point gives the kernel's answer bit for bit.
+        """
+        inv_res = 1.0 / self._resolution
+        c = math.cos(self._origin_yaw)
+        s = math.sin(self._origin_yaw)
+        dx = x - self._origin_x
+        dy = y - self._origin_y
+        return (-s * dx + c * dy) * inv_res, (c * dx + s * dy) * inv_res
+
     def _cells(self, pts: FloatArray) -> IntArray:
-        """Cells of validated (N, 2) points (the numba fast path)."""
+        """Cells of validated (N, 2) points (the numba kernel; one point in Python)."""
+        if pts.shape[0] == 1:
+            # One point (a start, a goal, a sensor pose) in Python, as the kernel
+            # computes it: a first call then compiles no kernel (about 0.3 s).
+            row, col = self._grid_frame(float(pts[0, 0]), float(pts[0, 1]))
+            return np.array(
+                [[math.floor(min(max(row, -CELL_LIMIT), CELL_LIMIT)),
+                  math.floor(min(max(col, -CELL_LIMIT), CELL_LIMIT))]],
+                dtype=np.int64,
+            )  # fmt: skip
         pts = np.ascontiguousarray(pts)
         out = np.empty((pts.shape[0], 2), dtype=np.int64)
-        world_to_cell_kernel(
+        # The fast path's compiled entry, so that read-only points compile no
+        # second signature (the points are finite float64 here: validated).
+        (_CELLS_ENTRY or _cells_entry())(
             pts, self._origin_x, self._origin_y, self._origin_yaw, self._resolution, out
         )
         return out

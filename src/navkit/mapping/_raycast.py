@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable
 
+import numpy as np
 from numpy.typing import ArrayLike
 
 from navkit._shared.validation import as_bool, finite_float
@@ -145,5 +146,6 @@ def integrate_scan(
             lo,
             hi,
             walk_exact,
+            np.empty(grid._logodds.size, dtype=np.uint8),  # kernel scratch
         )
     )

@@ -271,6 +271,8 @@ class ScanMapper:
         ranges[drop] = np.nan  # no echo: neither a hit nor free space (Hector)
         ranges.flags.writeable = False  # as integrate_scan's: one kernel specialisation
         lo, hi = self._clamp
+        # The ray casting's scratch buffer, sized for the finest (largest) level.
+        scratch = np.empty(self._levels[0]._logodds.size, dtype=np.uint8)
         for grid in self._levels:
             o = grid.origin
             integrate_beams(
@@ -292,6 +294,7 @@ class ScanMapper:
                 lo,
                 hi,
                 False,
+                scratch,
             )
 
     # ----------------------------------------------------------------- growth

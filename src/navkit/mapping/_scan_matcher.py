@@ -434,6 +434,11 @@ class ScanMatcher:
             self._search(levels[-1], points, pose)
         iterations = 0
         status = STATUS_MAX_ITERATIONS
+        # Scratch arrays of match_level, allocated here so that the kernel allocates nothing.
+        hessian = np.empty((3, 3))
+        gradient = np.empty(3)
+        step = np.empty(3)
+        no_hessian = np.empty((0, 0))
         for depth in range(len(levels) - 1, -1, -1):
             grid = levels[depth]
             o = grid.origin
@@ -457,14 +462,16 @@ class ScanMatcher:
                 self._translation_weight,
                 self._rotation_weight,
                 FLOOR,
+                hessian,
+                gradient,
+                step,
+                no_hessian,
             )
             iterations += done
             if status != STATUS_SINGULAR:
                 pose = trial
         if status == STATUS_SINGULAR:
             return failed("degenerate", iterations)
-        hessian = np.empty((3, 3))
-        gradient = np.empty(3)
         o = finest.origin
         cost, total = accumulate(
             finest._logodds,

@@ -17,7 +17,8 @@ two factors, so its gradient is not the derivative of its own interpolant.)
   of a scan at a pose, with the cost ``Σ (1 - M)²`` and ``Σ M``;
 * :func:`match_level`: Gauss–Newton iterations on one map level with a step
   clamp, a backtracking line search and a convergence test;
-* :func:`correlative_search`: the best pose of a grid of rotations and
+* :func:`correlative_search` (:func:`correlative_search_kernel` with its
+  scratch array): the best pose of a grid of rotations and
   translations around a guess (nearest-cell lookups), the start of
   Gauss–Newton when the guess may lie outside its basin.
 
@@ -35,10 +36,11 @@ array([[0.6, 0. , 0.4]])
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 
-from navkit._shared.jit import njit_cached, njit_inline
+from navkit._shared.jit import njit_cached, njit_inline, njit_no_refcount
 
 __all__ = [
     "STATUS_CONVERGED",
@@ -46,6 +48,7 @@ __all__ = [
     "STATUS_SINGULAR",
     "accumulate",
     "correlative_search",
+    "correlative_search_kernel",
     "interpolate_batch",
     "match_level",
 ]
@@ -61,7 +64,9 @@ _HALVINGS = 4
 
 @njit_inline
 def _probability(logodds: np.ndarray, r: int, c: int, floor: float) -> float:
-    return max(1.0 / (1.0 + math.exp(-float(logodds[r, c]))), floor)
+    p = 1.0 / (1.0 + math.exp(-float(logodds[r, c])))
+    # max(p, floor), without numba compiling max() for it on first use.
+    return floor if floor > p else p
 
 
 @njit_inline
@@ -109,7 +114,7 @@ def interpolate_batch(logodds: np.ndarray, coords: np.ndarray, out: np.ndarray) 
         out[i, 2] = d_col
 
 
-@njit_cached
+@njit_no_refcount
 def accumulate(
     logodds: np.ndarray,
     origin_x: float,
@@ -192,7 +197,11 @@ def _solve3(h: np.ndarray, g: np.ndarray, step: np.ndarray) -> bool:
     A tiny relative ridge (1e-9 of the largest diagonal entry) keeps a
     semi-definite matrix solvable; truly singular directions still fail.
     """
-    ridge = 1e-9 * max(h[0, 0], h[1, 1], h[2, 2])
+    # max(h[0, 0], h[1, 1], h[2, 2]), without numba compiling max() for it.
+    largest = h[0, 0]
+    largest = h[1, 1] if h[1, 1] > largest else largest
+    largest = h[2, 2] if h[2, 2] > largest else largest
+    ridge = 1e-9 * largest
     a00 = h[0, 0] + ridge
     a11 = h[1, 1] + ridge
     a22 = h[2, 2] + ridge
@@ -219,7 +228,7 @@ def _solve3(h: np.ndarray, g: np.ndarray, step: np.ndarray) -> bool:
     return math.isfinite(step[0]) and math.isfinite(step[1]) and math.isfinite(step[2])
 
 
-@njit_cached
+@njit_no_refcount
 def match_level(
     logodds: np.ndarray,
     origin_x: float,
@@ -237,6 +246,10 @@ def match_level(
     translation_weight: float,
     rotation_weight: float,
     floor: float,
+    hessian: np.ndarray,
+    gradient: np.ndarray,
+    step: np.ndarray,
+    no_hessian: np.ndarray,
 ) -> tuple[int, int]:
     """Gauss–Newton on one map level, updating ``pose`` (3,) ``[x, y, theta]`` in place.
 
@@ -254,15 +267,16 @@ def match_level(
     the cost (converged: a minimum along the Gauss–Newton direction), when ``H``
     is singular, or after ``max_iterations``.
 
+    ``hessian`` (3, 3), ``gradient`` (3,), ``step`` (3,) and ``no_hessian``
+    (0, 0) are scratch arrays of the caller (float64, C-contiguous), allocated
+    in NumPy so that this kernel allocates nothing: numba's array allocation
+    costs tenths of a second of first-use compilation.
+
     Returns
     -------
     (int, int)
         Iterations done and the status (``STATUS_*``).
     """
-    hessian = np.empty((3, 3))
-    gradient = np.empty(3)
-    step = np.empty(3)
-    no_hessian = np.empty((0, 0))
     x = pose[0]
     y = pose[1]
     theta = pose[2]
@@ -307,7 +321,9 @@ def match_level(
         if norm > max_step_xy:
             step[0] *= max_step_xy / norm
             step[1] *= max_step_xy / norm
-        step[2] = min(max(step[2], -max_step_theta), max_step_theta)
+        turn = step[2]
+        turn = -max_step_theta if -max_step_theta > turn else turn
+        step[2] = max_step_theta if max_step_theta < turn else turn
         scale = 1.0
         accepted = False
         for _ in range(_HALVINGS + 1):
@@ -358,8 +374,8 @@ def match_level(
     return max_iterations, STATUS_MAX_ITERATIONS
 
 
-@njit_cached
-def correlative_search(
+@njit_no_refcount
+def correlative_search_kernel(
     logodds: np.ndarray,
     origin_x: float,
     origin_y: float,
@@ -373,6 +389,7 @@ def correlative_search(
     step_theta: float,
     translation_weight: float,
     rotation_weight: float,
+    scratch: np.ndarray,
 ) -> float:
     """Move ``pose`` (3,) to the best of a grid of poses around it; returns that pose's cost.
 
@@ -385,6 +402,9 @@ def correlative_search(
     interpolation. A candidate is dropped as soon as its partial sum exceeds
     the best cost so far; candidates are visited from the input pose outwards
     and a tie keeps the earlier one, so a flat cost leaves the pose unchanged.
+    ``scratch`` is a float64 C-contiguous (2, N) work array of the caller (N
+    the number of points), so that this kernel allocates nothing
+    (:func:`correlative_search` allocates it).
     """
     n = points.shape[0]
     inv_res = 1.0 / resolution
@@ -398,8 +418,8 @@ def correlative_search(
     t0 = pose[2]
     wt2 = translation_weight * translation_weight
     wr2 = rotation_weight * rotation_weight
-    base_col = np.empty(n)
-    base_row = np.empty(n)
+    base_col = scratch[0]
+    base_row = scratch[1]
     best = math.inf
     best_x = x0
     best_y = y0
@@ -417,7 +437,8 @@ def correlative_search(
             dy = y0 + st * points[q, 0] + ct * points[q, 1] - origin_y
             base_col[q] = (co * dx + so * dy) * inv_res
             base_row[q] = (-so * dx + co * dy) * inv_res
-        rot_pull = wr2 * (k * step_theta) ** 2
+        turn = k * step_theta
+        rot_pull = wr2 * (turn * turn)
         for ii in range(n_xy * n_xy):
             a = ii // n_xy
             b = ii % n_xy
@@ -452,3 +473,15 @@ def correlative_search(
     pose[1] = best_y
     pose[2] = best_t
     return best
+
+
+def correlative_search(*args: Any) -> float:
+    """:func:`correlative_search_kernel` on ``args`` (all but ``scratch``), scratch made here.
+
+    The scratch array is allocated in NumPy (a microsecond per call) rather
+    than in the kernel, where numba's array allocation would add tenths of a
+    second to its first-use compilation.
+    """
+    kernel: Any = correlative_search_kernel
+    points = args[5]
+    return float(kernel(*args, np.empty((2, points.shape[0]))))
