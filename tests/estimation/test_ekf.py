@@ -632,3 +632,52 @@ def test_measurement_sizes_alternate() -> None:
     r2[0, 0] = -1.0  # a changed R is validated again, for its own size
     with pytest.raises(ValueError, match="R must be positive definite"):
         a.update(np.zeros(2), lambda x: h2 @ x, h2, r2)
+
+
+def linear(h: FloatArray) -> Callable[[FloatArray], FloatArray]:
+    """The measurement model x -> h x."""
+    return lambda x: h @ x
+
+
+def test_update_options_switch_with_each_call() -> None:
+    """Each update uses its own angle_measurements and gate, whatever the previous ones were.
+
+    ``a`` passes the same objects again and again (the buffers keep their options by
+    identity), ``b`` new lists and new float objects every time (checked in full).
+    """
+    a = ExtendedKalmanFilter([0.0, 3.0], np.eye(2), angle_states=(1,))
+    b = ExtendedKalmanFilter([0.0, 3.0], np.eye(2), angle_states=(1,))
+    h2 = np.eye(2)
+    h1 = np.array([[0.0, 1.0]])
+    angles2 = (1,)
+    angles1 = (0,)
+    gate = 4.0
+    calls: list[tuple[FloatArray, FloatArray, tuple[int, ...] | None, float | None]] = [
+        (np.array([0.1, -3.1]), h2, angles2, None),
+        (np.array([0.1, -3.1]), h2, None, None),  # the same z, now not an angle: far off
+        (np.array([30.0, 3.0]), h2, angles2, gate),  # gated
+        (np.array([30.0, 3.0]), h2, angles2, None),  # the same, no gate: accepted
+        (np.array([-3.0]), h1, angles1, gate),
+        (np.array([-3.0]), h1, None, gate),  # gated without the wrap
+        (np.array([0.2, 3.1]), h2, None, 1e9),
+        (np.array([3.1]), h1, angles1, None),
+    ]
+    for z, h, angles, g in calls * 3:
+        options_a: dict[str, Any] = {}
+        options_b: dict[str, Any] = {}
+        if angles is not None:
+            options_a["angle_measurements"] = angles
+            options_b["angle_measurements"] = list(angles)
+        if g is not None:
+            options_a["gate"] = g
+            options_b["gate"] = float(str(g))  # an equal float, another object
+        out_a = a.update(z, linear(h), h, np.eye(len(z)), **options_a)
+        out_b = b.update(z.tolist(), linear(h), h, np.eye(len(z)), **options_b)
+        assert (out_a.accepted, out_a.reason) == (out_b.accepted, out_b.reason)
+        np.testing.assert_array_equal(out_a.residual, out_b.residual)
+        np.testing.assert_array_equal(a.x, b.x)
+        np.testing.assert_array_equal(a.P, b.P)
+        if angles is not None:  # the residual of an angle component is wrapped
+            assert all(-math.pi < out_a.residual[i] <= math.pi for i in angles)
+    results = [a.update(z, linear(h), h, np.eye(len(z)), gate=gate) for z, h, *_ in calls]
+    assert not all(r.accepted for r in results)  # the gate of this call, not of the last one

@@ -1,8 +1,8 @@
 """PlanarFusion's compiled paths: one filter body, one signature per kernel, fast = general.
 
 Issue 17 cut the first use with an empty numba cache from about 16 s to about
-5 s of CPU: the filter is one function (``planar_row``) that the online step
-and the batch loop both call, kernels copy arrays with loops instead of slice
+4.5 s of CPU: the filter is one function, the online step (``planar_step``),
+which the batch loop calls too, kernels copy arrays with loops instead of slice
 assignment, and the public layer always passes the same types. These tests
 keep those properties; they never time anything.
 """
@@ -41,11 +41,33 @@ def _every_path(fusion: PlanarFusion) -> None:
 def test_every_kernel_is_compiled_for_one_signature() -> None:
     """Each online kind, predict, the general path and the batch share the same kernels."""
     _every_path(PlanarFusion(gate_probability=0.99))
+    # planar_step too: the batch loop calls it with int64 (not literal) mode arguments.
     for kernel in (kernels.planar_step, kernels.planar_run):
         assert len(kernel.signatures) == 1, kernel.__name__
-    # Compiled once when the cache is empty; with a warm cache the callers' cached code
-    # contains it and it is not loaded at all.
-    assert len(kernels.planar_row.signatures) <= 1
+
+
+def test_the_batch_loop_calls_the_online_step() -> None:
+    """The filter is compiled once: planar_run has no filter body of its own."""
+    source = inspect.getsource(kernels.planar_run)
+    assert "planar_step(" in source and "_cholesky_inplace" not in source
+    assert not hasattr(kernels, "planar_row")
+
+
+@pytest.mark.parametrize("t0", [None, 0.5])
+def test_a_refused_online_step_is_undone_with_the_clock(t0: float | None) -> None:
+    """TIME_GAP leaves x, P and the time as before (restored by undo_step)."""
+    fusion = PlanarFusion(t0=t0)
+    fusion.update_speed(1.0, 1.0, variance=1e-3)
+    x, p, t = fusion.x, fusion.P, fusion.t
+    for call in (
+        lambda: fusion.predict(1e300),
+        lambda: fusion.update_yaw(1e300, 0.0, variance=1e-3),
+        lambda: fusion.update_yaw(np.float64(1e300), 0.0, variance=1e-3),  # type: ignore[arg-type]
+    ):
+        with pytest.raises(FilterError, match="time gap"):
+            call()
+        assert fusion.t == t
+        assert np.array_equal(fusion.x, x) and np.array_equal(fusion.P, p)
 
 
 def _slice_copies(tree: ast.AST) -> list[int]:

@@ -21,7 +21,6 @@ from typing import Any, NoReturn
 import numpy as np
 from numpy.typing import ArrayLike
 
-from navkit._shared.se2 import wrap_scalar
 from navkit._shared.types import FloatArray, IntArray
 from navkit._shared.validation import SMALLEST_POSITIVE, as_float_array, positive_float
 from navkit.errors import FilterError
@@ -51,8 +50,10 @@ from navkit.estimation._ekf_kernels import (
     new_rbuf,
     new_state,
     predict_kernel,
+    rbuf_gate,
     rbuf_nis,
     set_nis,
+    set_options,
     set_q,
     set_r,
     update_kernel,
@@ -67,6 +68,7 @@ from navkit.estimation._result import (  # the slot setters of new_result, for i
     _set_residual,
     new_result,
 )
+from navkit.geometry import wrap_angle
 
 __all__ = ["ExtendedKalmanFilter"]
 
@@ -76,10 +78,10 @@ _empty = np.empty
 _NO_INDICES: IntArray = np.zeros(0, dtype=np.int64)
 _NO_ANGLES: tuple[int, ...] = ()  # the default angle_measurements (the one empty tuple)
 _INF = math.inf
-_NAN = math.nan
 _NOT_TAKEN = -float(BAD_TYPE)  # the "status" of a kernel call the fast path did not make
 _SMALLEST_POSITIVE = SMALLEST_POSITIVE
 _CACHE_SIZE = 16  # validated R matrices and angle index tuples kept per filter
+_UNSET = object()  # an option key no argument is: its options are checked again
 
 StateFunction = Callable[[FloatArray], ArrayLike]
 Jacobian = Callable[[FloatArray], ArrayLike] | ArrayLike
@@ -145,7 +147,10 @@ class ExtendedKalmanFilter(GaussianEstimate):
     (True, array([0.1198, 1.0019]))
     """
 
-    __slots__ = ("_angles", "_kp", "_ku", "_m", "_meas_angles", "_n", "_rbuf", "_rbufs", "_state")
+    __slots__ = (
+        "_angles", "_entry", "_gate", "_kp", "_ku", "_m", "_meas_angles", "_n", "_options",
+        "_rbuf", "_rbufs", "_state",
+    )  # fmt: skip
 
     def __init__(self, x0: ArrayLike, P0: ArrayLike, *, angle_states: Iterable[int] = ()) -> None:
         x = np.array(as_float_array(x0, "x0", ndim=1), dtype=np.float64, copy=True)
@@ -154,8 +159,8 @@ class ExtendedKalmanFilter(GaussianEstimate):
             raise ValueError("x0 must have at least one component")
         p = covariance(P0, "P0", n)
         self._angles = index_tuple(angle_states, "angle_states", n)
-        for i in self._angles:
-            x[i] = wrap_scalar(float(x[i]))
+        for i in self._angles:  # in Python (as the kernels wrap, bit for bit): compiles nothing
+            x[i] = wrap_angle(float(x[i]))
         # Everything a predict needs in one array (see _ekf_kernels), including the
         # last validated Q: filters usually pass the same matrices every step, and
         # re-checking symmetry and definiteness would cost more than the step. The
@@ -171,17 +176,23 @@ class ExtendedKalmanFilter(GaussianEstimate):
         self._x = state[STATE_X]
         self._p = state[STATE_P : STATE_P + n]
         # The kernels, compiled for n (and m) as constants: predict's now, update's
-        # per measurement size with its buffer (the last validated R and scratch
-        # space), the last size's tried first (nothing to begin with).
+        # per measurement size with its buffer (the last validated R, the options
+        # angle_measurements and gate, scratch space), the last size's tried first
+        # (nothing to begin with). An entry of _rbufs is [rbuf, kernel, angle key,
+        # gate key]: the keys are the (immutable) angle_measurements and gate whose
+        # values the buffer holds, so that a call passing the same objects (the
+        # defaults, usually) needs no look at them.
         self._kp: PredictKernel = predict_kernel(n)
-        self._rbufs: dict[int, tuple[FloatArray, UpdateKernel]] = {}
+        self._rbufs: dict[int, list[Any]] = {}
+        self._entry: list[Any] = [_NO_RBUF, _no_update_kernel, _NO_ANGLES, None]
         self._rbuf: FloatArray = _NO_RBUF
         self._ku: UpdateKernel = _no_update_kernel
+        self._options: object = _NO_ANGLES
+        self._gate: object = None
         self._m: int = 0
         # Validated angle_measurements by the identity of the (immutable) tuple passed,
-        # which the entry keeps alive: {id: (tuple, indices)}. The indices are distinct
-        # and non-negative; the kernel checks them against each measurement's size.
-        self._meas_angles: dict[int, tuple[tuple[int, ...], IntArray]] = {}
+        # which the entry keeps alive: {id: (tuple, indices, 1 + largest index)}.
+        self._meas_angles: dict[int, tuple[tuple[int, ...], IntArray, int]] = {}
 
     def __reduce__(self) -> tuple[Callable[..., ExtendedKalmanFilter], tuple[Any, ...]]:
         # The estimate lives in one array updated in place, with x and P views into it:
@@ -324,85 +335,96 @@ class ExtendedKalmanFilter(GaussianEstimate):
                 raise TypeError(f"h must be callable, got {type(h).__name__}") from None
             raise
         # As in predict: the kernel checks shapes and values, and anything it cannot
-        # take (other types, another measurement size, an angle tuple not seen before,
-        # a gate that is not a float) goes to _update_checked.
-        if angle_measurements is _NO_ANGLES and gate is None:  # the common case, first
-            angles: IntArray | None = _NO_INDICES
-            threshold = _INF
-            y = _empty(self._m)
+        # take (other types, another measurement size, options it does not hold that
+        # are not cheaply known valid) goes to _update_checked.
+        y = _empty(self._m)
+        if (angle_measurements is self._options and gate is self._gate) or self._fast_options(
+            angle_measurements, gate
+        ):
             try:
-                out = self._ku(self._state, z, hx, jac, R, self._rbuf, angles, threshold, y)
+                out = self._ku(self._state, z, hx, jac, R, self._rbuf, y)
             except Exception:  # a dispatch failure: not of the compiled types
                 out = _NOT_TAKEN
+            if out >= 0.0:  # OK: the kernel returned the NIS
+                # new_result, inlined: it is a third of the Python work of an update.
+                result: UpdateResult = _object_new(UpdateResult)
+                _set_accepted(result, True)
+                _set_nis(result, out)
+                _set_residual(result, y)
+                _set_reason(result, None)
+                return result
         else:
-            angles, threshold = self._fast_options(angle_measurements, gate)
-            y = _empty(self._m)
             out = _NOT_TAKEN
-            if angles is not None:
-                try:
-                    out = self._ku(self._state, z, hx, jac, R, self._rbuf, angles, threshold, y)
-                except Exception:  # a dispatch failure: not of the compiled types
-                    out = _NOT_TAKEN
-        if out >= 0.0:  # OK: the kernel returned the NIS
-            # new_result, inlined: it is a third of the Python work of an update.
-            result: UpdateResult = _object_new(UpdateResult)
-            _set_accepted(result, True)
-            _set_nis(result, out)
-            _set_residual(result, y)
-            _set_reason(result, None)
-            return result
-        return self._update_checked(
-            int(-out), y, (z, hx, jac, R), angles, threshold, angle_measurements, gate
-        )
+        return self._update_checked(int(-out), y, (z, hx, jac, R), angle_measurements, gate)
 
-    def _fast_options(
-        self, angle_measurements: Iterable[int], gate: float | None
-    ) -> tuple[IntArray | None, float]:
-        """The angle indices and gate threshold if already known valid, else ``(None, nan)``.
+    def _fast_options(self, angle_measurements: Iterable[int], gate: float | None) -> bool:
+        """Give the current buffer these options if cheaply known valid; whether it did.
 
-        A tuple of angle indices checked before (kept by identity) and a float gate
-        in range qualify; anything else is checked in full by _update_checked.
+        A tuple of angle indices checked before (kept by identity) and fitting the
+        current measurement size, and a float gate in range, qualify; anything
+        else is checked in full by _update_checked.
         """
+        if self._m == 0:  # no buffer yet
+            return False
         if angle_measurements is _NO_ANGLES:
-            angles: IntArray | None = _NO_INDICES
+            indices, bound = _NO_INDICES, 0
         else:
             hit = self._meas_angles.get(id(angle_measurements))
-            angles = hit[1] if hit is not None and hit[0] is angle_measurements else None
+            if hit is None or hit[0] is not angle_measurements:
+                return False
+            indices, bound = hit[1], hit[2]
         if gate is None:
-            return angles, _INF
-        if isinstance(gate, float) and _SMALLEST_POSITIVE <= gate < _INF:
-            return angles, float(gate)
-        return None, _NAN
+            threshold = _INF
+        elif isinstance(gate, float) and _SMALLEST_POSITIVE <= gate < _INF:
+            threshold = float(gate)
+        else:
+            return False
+        if bound > self._m:
+            return False
+        self._set_options(indices, threshold, angle_measurements, gate)
+        return True
+
+    def _set_options(
+        self, indices: IntArray, threshold: float, angle_measurements: object, gate: object
+    ) -> None:
+        """Store validated options in the current buffer, keyed by the objects passed."""
+        set_options(self._rbuf, indices, threshold)
+        # Only immutable objects can stand for their values.
+        key = angle_measurements if type(angle_measurements) is tuple else _UNSET
+        gate_key = gate if gate is None or type(gate) is float else _UNSET
+        entry = self._entry
+        entry[2] = self._options = key
+        entry[3] = self._gate = gate_key
 
     def _update_checked(
         self,
         status: int,
         y: FloatArray,
         arrays: tuple[Any, Any, Any, Any],
-        angles: IntArray | None,
-        threshold: float,
         angle_measurements: Iterable[int],
         gate: float | None,
     ) -> UpdateResult:
         """The rest of :meth:`update` after a kernel ``status`` other than OK.
 
-        ``arrays`` are z, h(x), H and R as passed or returned; ``angles`` and
-        ``threshold`` the fast path's angle indices and gate (``angles`` None
-        when it could not take them).
+        ``arrays`` are z, h(x), H and R as passed or returned.
         """
         z, hx, jac, r = arrays
         m = self._m
-        if (status == BAD_SHAPE and angles is not None and type(z) is _NDARRAY
+        if (status == BAD_SHAPE and type(z) is _NDARRAY
                 and z.ndim == 1 and 0 < z.shape[0] != m):  # fmt: skip
             # Most likely a measurement of another size than the last one: switch
             # buffers and try again before converting anything.
             m = z.shape[0]
             self._use_rbuf(m)
             y = _empty(m)
-            try:
-                status = self._run(z, hx, jac, r, angles, threshold, y)
-            except Exception:  # a dispatch failure: not of the compiled types
-                status = BAD_TYPE
+            status = BAD_TYPE
+            if (angle_measurements is self._options and gate is self._gate) or self._fast_options(
+                angle_measurements, gate
+            ):
+                try:
+                    status = self._run(z, hx, jac, r, y)
+                except Exception:  # a dispatch failure: not of the compiled types
+                    status = BAD_TYPE
         if status in (BAD_TYPE, BAD_SHAPE):
             # Convert and check everything, in the documented order.
             z = _c_copy(as_float_array(z, "z", ndim=1))
@@ -411,19 +433,21 @@ class ExtendedKalmanFilter(GaussianEstimate):
                 raise ValueError("z must have at least one component")
             jac = _c_array(jac, "H", (m, self._n))
             r = _c_array(r, "R", (m, m))
-            self._use_rbuf(m)
-            angles = self._measurement_angles(angle_measurements, m)
+            indices = self._measurement_angles(angle_measurements, m)
             threshold = _INF if gate is None else positive_float(gate, "gate")
             hx = _c_array(hx, "h(x)", (m,))
+            self._use_rbuf(m)
+            self._set_options(indices, threshold, angle_measurements, gate)
             y = _empty(m)
-            status = self._run(z, hx, jac, r, angles, threshold, y)
+            status = self._run(z, hx, jac, r, y)
         if status == NOISE_CHANGED:
             set_r(self._rbuf, r, covariance(r, "R", m))
-            status = self._run(z, hx, jac, r, angles, threshold, y)
+            status = self._run(z, hx, jac, r, y)
         nis = rbuf_nis(self._rbuf)
         if status == OK:
             return new_result(True, nis, y, None)
         if status == GATED:
+            threshold = rbuf_gate(self._rbuf)
             return new_result(False, nis, y, f"rejected by the gate: NIS {nis:.6g} > {threshold}")
         if status == RESIDUAL_OVERFLOW:
             return new_result(False, math.inf, np.empty(0), _OVERFLOW + "the residual z - h(x)")
@@ -437,14 +461,12 @@ class ExtendedKalmanFilter(GaussianEstimate):
             _raise(NOT_POSITIVE_DEFINITE, "innovation covariance S")
         _raise(status, "updated covariance")
 
-    def _run(
-        self, z: Any, hx: Any, jac: Any, r: Any, angles: Any, threshold: float, y: FloatArray
-    ) -> int:
+    def _run(self, z: Any, hx: Any, jac: Any, r: Any, y: FloatArray) -> int:
         """One call of the current update kernel: its status.
 
         On OK the NIS is also left in the buffer, for the caller.
         """
-        out = self._ku(self._state, z, hx, jac, r, self._rbuf, angles, threshold, y)
+        out = self._ku(self._state, z, hx, jac, r, self._rbuf, y)
         if out >= 0.0:
             set_nis(self._rbuf, out)
             return OK
@@ -456,16 +478,19 @@ class ExtendedKalmanFilter(GaussianEstimate):
         if entry is None:
             if len(self._rbufs) >= _CACHE_SIZE:
                 self._rbufs.clear()
-            entry = self._rbufs[m] = (new_rbuf(self._n, m), update_kernel(self._n, m))
-        self._rbuf, self._ku = entry
+            # A new buffer holds the default options (no angles, no gate).
+            entry = [new_rbuf(self._n, m), update_kernel(self._n, m), _NO_ANGLES, None]
+            self._rbufs[m] = entry
+        self._entry = entry
+        self._rbuf, self._ku, self._options, self._gate = entry
         self._m = m
 
     def _measurement_angles(self, indices: Iterable[int], m: int) -> IntArray:
         """``angle_measurements`` as an int64 array, checked against ``m``.
 
         A tuple is remembered (by identity) once checked: the fast path of
-        :meth:`update` then takes its indices, which the kernel checks against
-        each measurement's size.
+        :meth:`update` then takes its indices, checked against each
+        measurement's size.
         """
         if indices is _NO_ANGLES:
             return _NO_INDICES
@@ -473,7 +498,7 @@ class ExtendedKalmanFilter(GaussianEstimate):
         if type(indices) is tuple:
             if len(self._meas_angles) >= _CACHE_SIZE:
                 self._meas_angles.clear()
-            self._meas_angles[id(indices)] = (indices, out)
+            self._meas_angles[id(indices)] = (indices, out, int(out.max(initial=-1)) + 1)
         return out
 
     def __repr__(self) -> str:

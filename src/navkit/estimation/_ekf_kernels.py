@@ -22,9 +22,9 @@ pair (n, m) (:func:`update_kernel`), with n and m compile-time constants: at
 these sizes (a few states) loop overhead, not arithmetic, is the cost, and
 constant trip counts let LLVM unroll the loops (2-3 times faster kernels than
 with run-time sizes). numba caches each on disk (the closure's constants are
-part of the cache key). The small helpers are inlined into the kernels (so
-that the constants reach them); each is used once or twice per kernel, which
-keeps the compile time at that of the former run-time-size kernels.
+part of the cache key). The small helpers are compiled once per size (the sizes reach them as
+literal constants) and inlined by LLVM (``njit_force_inline``): numba's IR
+inlining re-typed each body at every call site, a third more compile time.
 
 Each kernel does one predict or one update. It checks what the public layer
 did not: the shapes (``BAD_SHAPE``: the caller then converts and checks its
@@ -38,11 +38,11 @@ status code: the kernels never raise, never allocate (they are compiled
 without reference counting, which alone took a tenth of a call) and never
 leave ``state`` half-written.
 
-They are compiled for C-contiguous, writeable, aligned float64 arrays (and a
-C-contiguous int64 index array) only, when first requested, after which their
-dispatchers compile nothing more: an argument of any other type raises at
-dispatch, which the public layer takes as "convert this argument and check it
-in full". Its fast path therefore needs no type checks of its own.
+They are compiled for C-contiguous, writeable, aligned float64 arrays only,
+when first requested, after which their dispatchers compile nothing more: an
+argument of any other type raises at dispatch, which the public layer takes as
+"convert this argument and check it in full". Its fast path therefore needs no
+type checks of its own.
 """
 
 from __future__ import annotations
@@ -53,10 +53,9 @@ from typing import Any
 
 import numpy as np
 
-from navkit._shared.jit import njit_inline_no_refcount, njit_no_refcount
+from navkit._shared.jit import njit_force_inline, njit_no_refcount
 from navkit._shared.se2 import wrap_scalar
 from navkit._shared.types import FloatArray, IntArray
-from navkit.estimation._fusion_kernels import _cho_solve_vec, _cholesky_inplace
 
 __all__ = [
     "BAD_F",
@@ -84,8 +83,10 @@ __all__ = [
     "new_rbuf",
     "new_state",
     "predict_kernel",
+    "rbuf_gate",
     "rbuf_nis",
     "set_nis",
+    "set_options",
     "set_q",
     "set_r",
     "update_kernel",
@@ -99,7 +100,7 @@ _SMALLEST_NORMAL = 2.2250738585072014e-308  # sys.float_info.min
 # A kernel takes the public layer's arguments as they come: its dispatcher checks
 # their types (and raises on any other than the compiled ones).
 PredictKernel = Callable[..., int]  # (state, f(x), F, Q) -> status
-UpdateKernel = Callable[..., float]  # (state, z, h(x), H, R, rbuf, angles, gate, y) -> NIS|-status
+UpdateKernel = Callable[..., float]  # (state, z, h(x), H, R, rbuf, y) -> NIS|-status
 
 # Status codes shared with the public layer (one set for both kernels).
 OK = 0
@@ -137,19 +138,21 @@ _FAIL_STATE = -float(STATE_OVERFLOW)
 _R = 0  # R as passed
 _RS = 1  # R symmetrised
 _HP = 2  # H P (m x n)
-_CHOL = 3  # Cholesky factor of S (m x m)
+_CHOL = 3  # the unit lower triangular L of S = L D Lᵀ (m x m)
 _GAIN = 4  # K (n x m)
 _KR = 5  # K R - (I - K H) P Hᵀ (n x m)
 _PCHK = 6  # the LDLᵀ factor of the new P (n x n)
 _TMP = 7  # (I - K H) P (n x n)
 _PN = 8  # the new P (n x n)
-_VEC = 9  # rows: 1 / diag(L), a solve vector, the new state, [m, NIS]
+_VEC = 9  # rows: 1 / diag(L), a solve vector, the new state, [m, NIS, gate], angle flags
 _S = 10  # S (m x m)
 _BLOCKS = 11
 _INV_DIAG = 0
 _U = 1
 _XN = 2
 _META = 3
+_ANGLE = 4  # 1.0 where a measurement component is an angle, else 0.0
+_GATE = 2  # column of _META: the NIS threshold (inf: none)
 
 
 def new_state(x: FloatArray, p: FloatArray, angles: tuple[int, ...]) -> FloatArray:
@@ -183,13 +186,27 @@ def rbuf_nis(rbuf: FloatArray) -> float:
     return float(rbuf[_VEC, _META, 1])
 
 
+def rbuf_gate(rbuf: FloatArray) -> float:
+    """The NIS gate held in ``rbuf`` (inf: none)."""
+    return float(rbuf[_VEC, _META, _GATE])
+
+
 def new_rbuf(n: int, m: int) -> FloatArray:
     """The R-and-scratch buffer of ``m``-dimensional measurements (no R validated yet)."""
     big = max(n, m)
-    rbuf = np.zeros((_BLOCKS, max(big, _META + 1), max(big, 2)))
+    rbuf = np.zeros((_BLOCKS, max(big, _ANGLE + 1), max(big, _GATE + 1)))
     rbuf[_R] = math.nan
     rbuf[_RS] = math.nan
+    rbuf[_VEC, _META, _GATE] = math.inf  # no gate and (all flags 0) no angles
     return rbuf
+
+
+def set_options(rbuf: FloatArray, angles: IntArray, gate: float) -> None:
+    """Store the update options: ``angles`` the (valid) angle indices of z, ``gate`` (inf: none)."""
+    flags = rbuf[_VEC, _ANGLE]
+    flags[:] = 0.0
+    flags[angles] = 1.0
+    rbuf[_VEC, _META, _GATE] = gate
 
 
 def set_r(rbuf: FloatArray, r: FloatArray, r_sym: FloatArray) -> None:
@@ -199,7 +216,7 @@ def set_r(rbuf: FloatArray, r: FloatArray, r_sym: FloatArray) -> None:
     rbuf[_RS, :m, :m] = r_sym
 
 
-@njit_inline_no_refcount
+@njit_force_inline
 def _finite_mat(a: FloatArray, rows: int, cols: int) -> bool:
     """Whether the top-left ``rows`` x ``cols`` block of ``a`` is finite."""
     for i in range(rows):
@@ -209,7 +226,7 @@ def _finite_mat(a: FloatArray, rows: int, cols: int) -> bool:
     return True
 
 
-@njit_inline_no_refcount
+@njit_force_inline
 def _equal(a: FloatArray, b: FloatArray, n: int) -> bool:
     """Whether the n x n ``a`` equals the top-left n x n block of ``b`` (NaN never does)."""
     for i in range(n):
@@ -219,7 +236,7 @@ def _equal(a: FloatArray, b: FloatArray, n: int) -> bool:
     return True
 
 
-@njit_inline_no_refcount
+@njit_force_inline
 def _mul(a: FloatArray, b: FloatArray, out: FloatArray, rows: int, inner: int, cols: int) -> None:
     """``out = a @ b`` on the leading blocks (``rows`` x ``inner`` times ``inner`` x ``cols``).
 
@@ -239,7 +256,7 @@ def _mul(a: FloatArray, b: FloatArray, out: FloatArray, rows: int, inner: int, c
                     out[i, j] += aik * b[k, j]
 
 
-@njit_inline_no_refcount
+@njit_force_inline
 def _mul_t_lower(a: FloatArray, b: FloatArray, out: FloatArray, rows: int, inner: int) -> None:
     """The lower triangle (j <= i < rows) of ``out = a @ b.T``, skipping the zeros of ``a``.
 
@@ -256,7 +273,7 @@ def _mul_t_lower(a: FloatArray, b: FloatArray, out: FloatArray, rows: int, inner
                     out[i, j] += aik * b[j, k]
 
 
-@njit_inline_no_refcount
+@njit_force_inline
 def _add_lower(p: FloatArray, q: FloatArray, n: int) -> None:
     """``p += q`` on the lower triangle (j <= i < n)."""
     for i in range(n):
@@ -264,7 +281,7 @@ def _add_lower(p: FloatArray, q: FloatArray, n: int) -> None:
             p[i, j] += q[i, j]
 
 
-@njit_inline_no_refcount
+@njit_force_inline
 def _positive_definite(a: FloatArray, work: FloatArray, inv_d: FloatArray, n: int) -> bool:
     """Whether the symmetric n x n ``a`` (lower triangle read) is positive definite.
 
@@ -294,7 +311,7 @@ def _positive_definite(a: FloatArray, work: FloatArray, inv_d: FloatArray, n: in
     return True
 
 
-@njit_inline_no_refcount
+@njit_force_inline
 def _mirror_checked(p: FloatArray, work: FloatArray, inv_d: FloatArray, n: int) -> int:
     """Copy the lower triangle of the n x n ``p`` to the upper one and check ``p``.
 
@@ -362,7 +379,7 @@ def _make_update(n: int, m: int) -> UpdateKernel:
     ``n`` and ``m`` are compile-time constants.
     """
 
-    width = max(n, m, 2)  # of rbuf's blocks
+    width = max(n, m, _GATE + 1)  # of rbuf's blocks
 
     @njit_no_refcount
     def ekf_update(
@@ -372,18 +389,16 @@ def _make_update(n: int, m: int) -> UpdateKernel:
         jac: FloatArray,
         r: FloatArray,
         rbuf: FloatArray,
-        angles: IntArray,
-        gate: float,
         y: FloatArray,
     ) -> float:
         """Joseph-form measurement update of ``state``; returns the NIS, or -status.
 
         ``z`` and ``hx`` (m,) are the measurement and h(x), ``jac`` (m, n) the
         Jacobian H, ``r`` (m, m) the caller's R, ``rbuf`` the buffer of this m
-        (:func:`new_rbuf`), ``angles`` the indices (non-negative, distinct) of the
-        angle components of ``z``, ``gate`` the NIS threshold (inf for none). The
-        residual is written to ``y`` (m,). Checks, in order: ``BAD_SHAPE`` (any
-        shape, or an angle index, not fitting ``rbuf``'s m), ``BAD_Z``,
+        (:func:`new_rbuf`), which also holds the options (:func:`set_options`:
+        which components of ``z`` are angles, the NIS gate). The residual is
+        written to ``y`` (m,). Checks, in order: ``BAD_SHAPE`` (any
+        shape not fitting ``rbuf``'s m), ``BAD_Z``,
         ``BAD_H``, ``NOISE_CHANGED``, ``BAD_HX``; then S = H P Hᵀ + R
         (``S_NOT_FINITE``, ``S_NOT_POSITIVE_DEFINITE``), the residual
         (``RESIDUAL_OVERFLOW``), the NIS yᵀ S⁻¹ y (``NIS_OVERFLOW``, ``GATED``),
@@ -397,9 +412,6 @@ def _make_update(n: int, m: int) -> UpdateKernel:
                 or jac.shape[1] != n or r.shape[0] != m or r.shape[1] != m
                 or state.shape[1] != n or rbuf.shape[2] != width):  # fmt: skip
             return _FAIL_SHAPE
-        for k in range(angles.shape[0]):
-            if angles[k] >= m:
-                return _FAIL_SHAPE
         for i in range(m):
             if z[i] - z[i] != 0.0:
                 return _FAIL_Z
@@ -420,19 +432,20 @@ def _make_update(n: int, m: int) -> UpdateKernel:
         p = state[STATE_P : STATE_P + n]
         for i in range(m):
             y[i] = z[i] - hx[i]
-        for k in range(angles.shape[0]):
-            a = y[angles[k]]
-            if a - a == 0.0:  # an overflowed residual stays as it is
-                y[angles[k]] = wrap_scalar(a)
+        flags = vec[_ANGLE]
+        for i in range(m):
+            if flags[i] != 0.0:
+                a = y[i]
+                if a - a == 0.0:  # an overflowed residual stays as it is
+                    y[i] = wrap_scalar(a)
 
         _mul(jac, p, hp, m, n, n)  # H P = (P Hᵀ)ᵀ
         _mul_t_lower(jac, hp, s, m, n)  # H P Hᵀ = H (H P)ᵀ
         for i in range(m):
             for j in range(i + 1):
-                v = s[i, j] + rs[i, j]
-                s[i, j] = v
-                chol[i, j] = v
-        if not _cholesky_inplace(chol, m, inv_diag):
+                s[i, j] += rs[i, j]
+        # S = L D Lᵀ (L unit lower triangular, in chol; 1 / D in inv_diag).
+        if not _positive_definite(s, chol, inv_diag, m):
             for i in range(m):
                 for j in range(i + 1):
                     if s[i, j] - s[i, j] != 0.0:
@@ -443,29 +456,37 @@ def _make_update(n: int, m: int) -> UpdateKernel:
             if y[i] - y[i] != 0.0:
                 vec[_META, 1] = math.inf
                 return _FAIL_RESIDUAL
-        # NIS = |L⁻¹ y|² (never negative), by forward substitution.
+        # NIS = Σ uᵢ² / dᵢ with u = L⁻¹ y (never negative), by forward substitution.
         nis = 0.0
         for i in range(m):
             t = y[i]
             for k in range(i):
                 t -= chol[i, k] * u[k]
-            u[i] = t * inv_diag[i]
-            nis += u[i] * u[i]
+            u[i] = t
+            # (t / d) t overflows only when t² / d does (d >= the smallest normal float);
+            # t t / d could overflow first.
+            nis += (t * inv_diag[i]) * t
         vec[_META, 1] = nis
         if not nis < math.inf:
             vec[_META, 1] = math.inf
             return _FAIL_NIS
-        if nis > gate:
+        if nis > vec[_META, _GATE]:
             return _FAIL_GATED
 
         # K = P Hᵀ S⁻¹: row i of K solves S kᵢ = (P Hᵀ)ᵢ = (H P)ᵀᵢ (S is symmetric).
         gain = rbuf[_GAIN]
         for i in range(n):
-            for j in range(m):
-                u[j] = hp[j, i]
-            _cho_solve_vec(chol, inv_diag, m, u)
-            for j in range(m):
-                gain[i, j] = u[j]
+            for j in range(m):  # L w = (H P)ᵀᵢ
+                t = hp[j, i]
+                for k in range(j):
+                    t -= chol[j, k] * u[k]
+                u[j] = t
+            for j in range(m - 1, -1, -1):  # Lᵀ kᵢ = D⁻¹ w
+                t = u[j] * inv_diag[j]
+                for k in range(j + 1, m):
+                    t -= chol[k, j] * u[k]
+                u[j] = t
+                gain[i, j] = t
         xn = vec[_XN]
         angle = state[n + 1]
         for i in range(n):
@@ -565,8 +586,7 @@ def update_kernel(n: int, m: int) -> UpdateKernel:
         eye = np.eye(m)
         set_r(rbuf, eye, eye)
         z = np.zeros(m)
-        kernel(state, z, z, np.zeros((m, n)), eye, rbuf, np.zeros(0, dtype=np.int64), math.inf,
-               np.empty(m))  # fmt: skip
+        kernel(state, z, z, np.zeros((m, n)), eye, rbuf, np.empty(m))
         _freeze(kernel)
         _UPDATE[(n, m)] = kernel
     return kernel
@@ -575,9 +595,8 @@ def update_kernel(n: int, m: int) -> UpdateKernel:
 def compile_kernels(n: int = 1, m: int = 1) -> None:
     """Compile (or load from numba's cache) the kernels of ``n`` states and ``m``-D measurements.
 
-    The filter only ever passes C-contiguous, writeable, aligned float64 arrays
-    (and a C-contiguous int64 index array), so these are the only
-    specialisations; afterwards the kernels compile nothing more.
+    The filter only ever passes C-contiguous, writeable, aligned float64 arrays,
+    so these are the only specialisations; afterwards the kernels compile nothing more.
     """
     predict_kernel(n)
     update_kernel(n, m)

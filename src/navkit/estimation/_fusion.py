@@ -31,6 +31,7 @@ from navkit.estimation._fusion_kernels import (
     OVERFLOW,
     TIME_GAP,
     planar_step_entry,
+    undo_step,
 )
 from navkit.estimation._gaussian import GaussianEstimate
 from navkit.estimation._result import (
@@ -74,7 +75,7 @@ def _load_step(*args: Any) -> tuple[int, float]:
 
 
 # The online step (_fusion_kernels.planar_step) without numba's type dispatch,
-# compiled on the first online update: a filter used only in batch never compiles it.
+# compiled on the first online update.
 _step: Callable[..., tuple[int, float]] = _load_step
 
 
@@ -604,6 +605,7 @@ class PlanarFusion(GaussianEstimate):
         # The online step without a measurement (count 0): compiled once with the updates.
         status, _ = _step(self._buf, time, 0, 0, 0.0, 0.0, 0.0, 0.0, math.inf)
         if status == TIME_GAP:
+            undo_step(self._buf)
             raise FilterError(
                 f"predicting over the time gap of {time - last} s overflows float64; "
                 "the filter is unchanged"
@@ -824,8 +826,9 @@ class PlanarFusion(GaussianEstimate):
             )
         status, nis = _step(self._buf, t, first, count, z0, float(z1), var0, float(var1), gate)
         if status:
-            if last is None and status in (NOT_POSITIVE_DEFINITE, TIME_GAP):
-                self._buf[BUF_T, 0] = math.nan  # unchanged: the clock is not set either
+            if last is None:
+                # Before the step the clock was not set: undone, it is not set either.
+                self._buf[BUF_T, 1] = math.nan
             return self._not_applied(status, kind, t, nis, comps)
         return new_result(True, nis, self._residuals[comps].copy(), None)
 
@@ -833,10 +836,11 @@ class PlanarFusion(GaussianEstimate):
         self, status: int, kind: str, t: float, nis: float, comps: slice
     ) -> UpdateResult:
         """Raise or report a measurement the kernel did not apply (off the hot path)."""
+        if status in (NOT_POSITIVE_DEFINITE, TIME_GAP):
+            undo_step(self._buf)  # the filter (and its time) as before the step
         if status == NOT_POSITIVE_DEFINITE:
             raise FilterError(f"{kind} update: covariance is not positive definite")
         if status == TIME_GAP:
-            # The kernel left the filter (and its time) unchanged.
             gap = t - float(self._buf[BUF_T, 0])
             raise FilterError(
                 f"{kind} update: predicting over the time gap of {gap} s to t={t} s overflows "

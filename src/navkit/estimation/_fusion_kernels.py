@@ -18,10 +18,12 @@ measurement absurdly far from the state for its variance) is not applied
 (``OVERFLOW``).
 
 Compilation (first use with an empty cache) is kept short by design: the filter
-itself is one function, :func:`planar_row`, compiled once and called by both
-the online step and the batch loop; no array is copied with slice assignment
-(see :func:`_copy_vector`); every kernel is compiled for the one signature
-the public layer passes.
+is one function, the online step :func:`planar_step`, which the batch loop
+:func:`planar_run` calls too (a separate filter function called by both, as
+before issue 17's second round, was optimised by LLVM three times: alone and
+linked into each caller); no array is copied with slice assignment (see
+:func:`_copy_vector`); every kernel is compiled for the one signature the
+public layer passes.
 """
 
 from __future__ import annotations
@@ -31,9 +33,8 @@ from collections.abc import Callable
 from typing import Any, cast
 
 import numpy as np
-from numba import types
 
-from navkit._shared.jit import njit_cached, njit_inline, njit_no_refcount
+from navkit._shared.jit import njit_inline, njit_no_refcount
 from navkit._shared.se2 import compose_scalar, wrap_scalar
 
 N_STATE = 6
@@ -60,7 +61,8 @@ _PN = 25  # 6 rows: updated covariance
 _CHECK = 31  # 6 rows: positive-definiteness check
 _X = 37  # 1 row: updated state
 _SAVED = 38  # 7 rows: x and P saved by planar_step
-WORK_ROWS = 45
+_COMP = 45  # 1 row: the indices of the observed components (as int64), update
+WORK_ROWS = 46
 
 # Rows of the online filter buffer of :func:`planar_step`: everything in one array,
 # because numba's per-call dispatch cost grows with every array argument.
@@ -68,7 +70,8 @@ BUF_X = 0  # 1 row: state x
 BUF_P = 1  # 6 rows: covariance P
 BUF_Q = 7  # 6 rows: process noise per second Q
 BUF_MEAS = 13  # 3 rows: values, variances, residuals (columns 0-3, component layout)
-BUF_T = 16  # 1 row: the filter time in column 0 (NaN until the clock is set)
+BUF_T = 16  # 1 row: the filter time in column 0 (NaN until the clock is set), in column 1
+#            the time saved by the online step (see undo_step)
 BUF_WORK = 17  # WORK_ROWS rows: scratch
 BUF_ROWS = BUF_WORK + WORK_ROWS
 
@@ -162,25 +165,52 @@ def _symmetrize(p: np.ndarray) -> None:
 
 
 @njit_no_refcount
-def planar_row(buf: np.ndarray, dt: float, gate: float, comp: np.ndarray) -> tuple[int, float]:
-    """Predict the filter in ``buf`` by ``dt`` >= 0 s, then update it with one measurement.
+def planar_step(
+    buf: np.ndarray,
+    t: float,
+    first: int,
+    count: int,
+    z0: float,
+    z1: float,
+    var0: float,
+    var1: float,
+    gate: float,
+) -> tuple[int, float]:
+    """Predict the filter in ``buf`` to time ``t``, then update it with one measurement.
 
-    The one compiled body of the filter, called (not inlined) by the online
-    step (:func:`planar_step`) and the batch loop (:func:`planar_run`), so that
-    numba types and lowers it once. It is written out as one function: numba's
-    IR inlining copies the inlined function's whole variable scope for each of
-    its blocks, so inlining a separate predict and update into the two callers
-    cost about 10 s of CPU (issue 17), and inlining even this one body into a
-    single kernel doing both jobs cost 6 s. Not inlining it costs the batch
-    nothing measurable (LLVM keeps the call; the batch got faster). ``buf``
-    (BUF_ROWS, 6) holds x, P, Q, the measurement and the scratch space (layout
-    ``BUF_*`` above); x and P change in place.
+    The one compiled body of the filter: the online updates call it from
+    Python and the batch loop (:func:`planar_run`) calls it, so that numba
+    types and lowers it once and LLVM optimises it twice (alone and linked into
+    the batch loop; issue 17). ``buf`` (BUF_ROWS, 6) holds x, P, Q, the
+    measurement, the filter time and the scratch space (layout ``BUF_*``
+    above); x and P change in place. It allocates nothing: the indices of the
+    observed components go to a scratch row of ``buf`` viewed as int64.
+
+    Online (``count`` >= 0): the measurement observes ``count`` (0, 1 or 2)
+    consecutive components starting at ``first``, with values ``z0``, ``z1`` and
+    variances ``var0``, ``var1`` (the second ones unused when ``count`` is 1;
+    ``count`` 0 only predicts); passing scalars is cheaper than writing them
+    into ``buf`` from Python. Returns ``INVALID`` and changes nothing unless the
+    filter time is set, ``t`` is not older than it, ``t``, ``z0`` and ``z1`` are
+    finite and the variances of the observed components are in [1e-100,
+    1e100]: the public layer calls this first and takes its general
+    (validating, raising) way only then. Otherwise x, P and the filter time are
+    saved in ``buf``, the time becomes ``t`` and x and P are overwritten with
+    the result; after ``NOT_POSITIVE_DEFINITE`` or ``TIME_GAP`` (the prediction
+    overflowed; no update was tried) the caller restores them with
+    :func:`undo_step` (rare outcomes: the public layer raises after them). A
+    gated or overflowing measurement keeps the prediction.
+
+    Batch (``count`` -1, :func:`planar_run`): the caller has written the
+    measurement block of ``buf`` and passes the time step in ``z0``; nothing is
+    checked, saved, restored or timed here (``t``, ``first``, ``z1``, ``var0``
+    and ``var1`` are unused).
 
     Predict: constant-acceleration unicycle. The distance s = v·dt + a·dt²/2 is
     travelled along the mid-step heading θ + ω·dt/2 (second order in dt), then
     θ += ω·dt, v += a·dt; ω and a are random walks. Q is the process noise per
-    second, so P = F P Fᵀ + Q·dt. If the prediction overflows, returns
-    ``(TIME_GAP, nan)`` with x and P overwritten (the caller restores them).
+    second, so P = F P Fᵀ + Q·dt. If the prediction overflows, the status is
+    ``TIME_GAP`` (``nis`` NaN).
 
     Update: the measurement block (3, 4) of ``buf`` packs the measurement in
     component layout: row 0 the values ``z``, row 1 the noise variances (> 0 for
@@ -190,12 +220,37 @@ def planar_row(buf: np.ndarray, dt: float, gate: float, comp: np.ndarray) -> tup
     covariance uses the Joseph form P = (I - KH) P (I - KH)ᵀ + K R Kᵀ, then is
     symmetrised and checked positive definite. Returns ``(status, nis)``; past
     the prediction, x and P change only when the status is ``ACCEPTED``.
-    ``gate`` is the NIS threshold (``inf`` disables gating). ``comp`` (4,) int64
-    is scratch space for the indices of the observed components (allocated by
-    the caller: this function allocates nothing). ``OVERFLOW`` (with ``nis``
-    inf when the NIS itself overflowed) means the residual, the NIS or the
-    updated state is not finite.
+    ``gate`` is the NIS threshold (``inf`` disables gating). ``OVERFLOW`` (with
+    ``nis`` inf when the NIS itself overflowed) means the residual, the NIS or
+    the updated state is not finite.
     """
+    online = count >= 0
+    if online:
+        last = buf[BUF_T, 0]
+        z = 0.0
+        if not last <= t or (t * z + z0 * z) + z1 * z != 0.0:  # NaN last: no clock yet
+            return INVALID, math.nan
+        if count > 0 and not 1e-100 <= var0 <= 1e100:
+            return INVALID, math.nan
+        if count > 1 and not 1e-100 <= var1 <= 1e100:
+            return INVALID, math.nan
+        meas = buf[BUF_MEAS : BUF_MEAS + 3]
+        for k in range(N_COMP):
+            meas[1, k] = 0.0
+        if count > 0:
+            meas[0, first] = z0
+            meas[1, first] = var0
+        if count > 1:
+            meas[0, first + 1] = z1
+            meas[1, first + 1] = var1
+        state = buf[BUF_X : BUF_P + N_STATE]
+        saved = buf[BUF_WORK + _SAVED : BUF_WORK + _SAVED + 1 + N_STATE]
+        _copy_matrix(saved, state)
+        buf[BUF_T, 1] = last
+        buf[BUF_T, 0] = t
+        dt = t - last
+    else:
+        dt = z0
     x = buf[BUF_X]
     p = buf[BUF_P : BUF_P + N_STATE]
     q = buf[BUF_Q : BUF_Q + N_STATE]
@@ -232,21 +287,22 @@ def planar_row(buf: np.ndarray, dt: float, gate: float, comp: np.ndarray) -> tup
         _copy_matrix(fp, p)
         for i in range(4):
             for j in range(N_STATE):
-                t = 0.0
+                tmp = 0.0
                 for k in range(2, N_STATE):
-                    t += e[i, k] * p[k, j]
-                fp[i, j] += t
+                    tmp += e[i, k] * p[k, j]
+                fp[i, j] += tmp
         for i in range(N_STATE):
             for j in range(N_STATE):
-                t = fp[i, j]
+                tmp = fp[i, j]
                 if j < 4:
                     for k in range(2, N_STATE):
-                        t += fp[i, k] * e[j, k]
-                p[i, j] = t + q[i, j] * dt
+                        tmp += fp[i, k] * e[j, k]
+                p[i, j] = tmp + q[i, j] * dt
         _symmetrize(p)
         if not _finite(x, p):
             return TIME_GAP, math.nan
 
+    comp = work[_COMP].view(np.int64)
     y = work[_VEC]
     u = work[_VEC + 1]
     row = work[_VEC + 2]
@@ -291,20 +347,20 @@ def planar_row(buf: np.ndarray, dt: float, gate: float, comp: np.ndarray) -> tup
             gain[i, a] = row[a]
     xn = work[_X]
     for i in range(N_STATE):
-        t = x[i]
+        tmp = x[i]
         for a in range(m):
-            t += gain[i, a] * y[a]
-        xn[i] = t
+            tmp += gain[i, a] * y[a]
+        xn[i] = tmp
     xn[THETA] = wrap_scalar(xn[THETA])
     # Joseph form with H selecting the observed states: A = I - K H differs from I only in
     # those columns, so A P = P - K (H P) and (A P) Aᵀ = A P - (A P Hᵀ) Kᵀ; then + K R Kᵀ.
     ap = work[_FP : _FP + N_STATE]
     for i in range(N_STATE):
         for j in range(N_STATE):
-            t = p[i, j]
+            tmp = p[i, j]
             for a in range(m):
-                t -= gain[i, a] * p[comp[a] + 2, j]
-            ap[i, j] = t
+                tmp -= gain[i, a] * p[comp[a] + 2, j]
+            ap[i, j] = tmp
     # The result is symmetric: compute the upper triangle and mirror it (exact symmetry).
     pn = work[_PN : _PN + N_STATE]
     for i in range(N_STATE):
@@ -316,9 +372,9 @@ def planar_row(buf: np.ndarray, dt: float, gate: float, comp: np.ndarray) -> tup
                 rk = meas[1, k]
                 t1 += (gain[i, a] * rk - ap[i, k + 2]) * gain[j, a]
                 t2 += (gain[j, a] * rk - ap[j, k + 2]) * gain[i, a]
-            t = 0.5 * (t1 + t2)
-            pn[i, j] = t
-            pn[j, i] = t
+            tmp = 0.5 * (t1 + t2)
+            pn[i, j] = tmp
+            pn[j, i] = tmp
     # The state may overflow (then it is inf or NaN); the covariance is checked finite
     # by the Cholesky factorisation below.
     z = 0.0
@@ -333,66 +389,7 @@ def planar_row(buf: np.ndarray, dt: float, gate: float, comp: np.ndarray) -> tup
     return ACCEPTED, nis
 
 
-@njit_cached
-def planar_step(
-    buf: np.ndarray,
-    t: float,
-    first: int,
-    count: int,
-    z0: float,
-    z1: float,
-    var0: float,
-    var1: float,
-    gate: float,
-) -> tuple[int, float]:
-    """Predict to time ``t`` then update with one measurement (see :func:`planar_row`).
-
-    ``buf`` (BUF_ROWS, 6) holds x, P, Q, the measurement, the filter time and the
-    scratch space (layout ``BUF_*`` above). The measurement observes ``count``
-    (0, 1 or 2) consecutive components starting at ``first``, with values
-    ``z0``, ``z1`` and variances ``var0``, ``var1`` (the second ones unused when
-    ``count`` is 1; ``count`` 0 only predicts); passing scalars is cheaper than
-    writing them into ``buf`` from Python.
-
-    Returns ``INVALID`` and changes nothing unless the filter time is set, ``t``
-    is not older than it, ``t``, ``z0`` and ``z1`` are finite and the variances
-    of the observed components are in [1e-100, 1e100]: the public layer calls
-    this first and takes its general (validating, raising) way only then. x and
-    P are overwritten with the result and the filter time becomes ``t`` unless
-    the status is ``NOT_POSITIVE_DEFINITE`` or ``TIME_GAP`` (the prediction
-    overflowed; no update was tried): then they are restored. A gated or
-    overflowing measurement keeps the prediction. The residuals are left in the
-    measurement block.
-    """
-    last = buf[BUF_T, 0]
-    z = 0.0
-    if not last <= t or (t * z + z0 * z) + z1 * z != 0.0:  # NaN last: no clock yet
-        return INVALID, math.nan
-    if count > 0 and not 1e-100 <= var0 <= 1e100:
-        return INVALID, math.nan
-    if count > 1 and not 1e-100 <= var1 <= 1e100:
-        return INVALID, math.nan
-    meas = buf[BUF_MEAS : BUF_MEAS + 3]
-    for k in range(N_COMP):
-        meas[1, k] = 0.0
-    if count > 0:
-        meas[0, first] = z0
-        meas[1, first] = var0
-    if count > 1:
-        meas[0, first + 1] = z1
-        meas[1, first + 1] = var1
-    state = buf[BUF_X : BUF_P + N_STATE]
-    saved = buf[BUF_WORK + _SAVED : BUF_WORK + _SAVED + 1 + N_STATE]
-    _copy_matrix(saved, state)
-    status, nis = planar_row(buf, t - last, gate, np.empty(N_COMP, dtype=np.int64))
-    if status in (TIME_GAP, NOT_POSITIVE_DEFINITE):
-        _copy_matrix(state, saved)
-    else:
-        buf[BUF_T, 0] = t
-    return status, nis
-
-
-@njit_cached
+@njit_no_refcount
 def planar_run(
     buf: np.ndarray,
     times: np.ndarray,
@@ -404,7 +401,7 @@ def planar_run(
     out_status: np.ndarray,
     out_nis: np.ndarray,
 ) -> None:
-    """Fuse a log into the filter in ``buf`` (see :func:`planar_step`).
+    """Fuse a log into the filter in ``buf`` with :func:`planar_step` (in batch mode).
 
     Row ``i`` is a measurement at ``times[i]`` with values ``values[i]`` (4,) and
     independent variances ``variances[i]`` (4,), 0 marking components it does
@@ -428,7 +425,10 @@ def planar_run(
     x = buf[BUF_X]
     p = buf[BUF_P : BUF_P + N_STATE]
     meas = buf[BUF_MEAS : BUF_MEAS + 3]
-    comp = np.empty(N_COMP, dtype=np.int64)
+    # Batch mode of planar_step (count -1). Typed int64, not as literal constants: a literal
+    # argument would compile planar_step a second time, for the literal values.
+    first = np.int64(0)
+    batch = np.int64(-1)
     for i in range(times.shape[0]):
         ti = times[i]
         if ti < t:
@@ -441,7 +441,7 @@ def planar_run(
                 meas[1, k] = variances[i, k]
                 if variances[i, k] > 0.0:
                     m += 1
-            status, nis = planar_row(buf, ti - t, gates[m], comp)
+            status, nis = planar_step(buf, ti, first, batch, ti - t, 0.0, 0.0, 0.0, gates[m])
             if status == TIME_GAP:
                 # Undo the prediction: back to the state after the previous row (for
                 # row 0, index -1: the caller's copy of the initial state).
@@ -456,14 +456,44 @@ def planar_run(
     buf[BUF_T, 0] = t
 
 
-#: numba argument types of :func:`planar_step` (the public layer always passes these).
-_STEP_TYPES = (
-    types.Array(types.float64, 2, "C"),
-    types.float64,  # t
-    types.int64,  # first
-    types.int64,  # count
-    *(types.float64,) * 5,  # z0, z1, var0, var1, gate
-)
+def undo_step(buf: np.ndarray) -> None:
+    """Undo an online :func:`planar_step` that returned ``TIME_GAP`` or ``NOT_POSITIVE_DEFINITE``.
+
+    Restores x, P and the filter time saved by the step (in NumPy: these
+    outcomes are rare, and the public layer raises after them).
+
+    Examples
+    --------
+    >>> buf = np.zeros((BUF_ROWS, 6))
+    >>> buf[BUF_P : BUF_P + 6] = np.eye(6)
+    >>> buf[BUF_T, 0] = 0.0
+    >>> status, nis = planar_step_entry()(buf, 1e300, 0, 0, 0.0, 0.0, 0.0, 0.0, math.inf)
+    >>> status == TIME_GAP, float(buf[BUF_T, 0])
+    (True, 1e+300)
+    >>> undo_step(buf)
+    >>> float(buf[BUF_T, 0]), float(buf[BUF_P, 0])
+    (0.0, 1.0)
+    """
+    saved = BUF_WORK + _SAVED
+    np.copyto(buf[BUF_X : BUF_P + N_STATE], buf[saved : saved + 1 + N_STATE])
+    buf[BUF_T, 0] = buf[BUF_T, 1]
+
+
+def _step_types() -> tuple[Any, ...]:
+    """numba argument types of :func:`planar_step`: the ones the public layer always passes.
+
+    Argument types only, as :func:`planar_run` compiles it (also the key of the
+    on-disk cache).
+    """
+    from numba.core import types
+
+    return (
+        types.Array(types.float64, 2, "C"),
+        types.float64,  # t
+        types.int64,  # first
+        types.int64,  # count
+        *(types.float64,) * 5,  # z0, z1, var0, var1, gate
+    )
 
 
 def planar_step_entry() -> Callable[..., tuple[int, float]]:
@@ -486,4 +516,4 @@ def planar_step_entry() -> Callable[..., tuple[int, float]]:
     (True, 0.5, 0.1)
     """
     dispatcher: Any = planar_step
-    return cast(Callable[..., tuple[int, float]], dispatcher.compile(_STEP_TYPES))
+    return cast(Callable[..., tuple[int, float]], dispatcher.compile(_step_types()))
