@@ -1,6 +1,6 @@
 """numba kernels for simulated 2-D LiDAR: exact ray casting and range noise (private).
 
-``cast_rays`` finds, for every beam from one origin, the distance to the first
+A scan finds, for every beam from one origin, the distance to the first
 obstacle it meets, exactly (closed-form ray–segment and ray–circle
 intersections, exact cell traversal of an occupancy grid) and only among the
 primitives near the beam:
@@ -16,6 +16,11 @@ primitives near the beam:
   cell's corner counts);
 * moving obstacles (few) are tested by brute force.
 
+A scan is one or two passes over the beams: ``cast_edge_rays`` for segments
+and circles, static and moving, then ``cast_occupancy_rays`` for an
+occupancy grid, starting from the ranges of the first pass: a world compiles
+only the passes of the kinds it has on first use.
+
 ``apply_range_noise`` turns exact ranges into REP 117 readings with relative
 Gaussian noise by distance band and dropouts.
 
@@ -24,17 +29,16 @@ Every kernel takes all its inputs as arguments and allocates nothing.
 Examples
 --------
 >>> import numpy as np
->>> out = np.empty(2)
 >>> square = np.array([[2.0, -5.0, 2.0, 5.0]])
 >>> none3, none4 = np.empty((0, 3)), np.empty((0, 4))
->>> occ, cheb = np.zeros((0, 0), np.uint8), np.zeros((0, 0), np.uint8)
 >>> start = np.array([0, 1], dtype=np.int64)
 >>> items = np.array([0], dtype=np.int64)
->>> cast_rays(out, 0.0, 0.0, 0.0, np.array([0.0, np.pi / 3]), 10.0,
-...           square, none3, 1.0, -6.0, 12.0, 1, 1, start, items,
-...           occ, cheb, 0.0, 0.0, 1.0, 0.0, 1.0, none4, none3)
+>>> angles = np.array([0.0, np.pi / 3, np.pi])
+>>> out, dirs = np.empty(3), np.empty((3, 2))
+>>> cast_edge_rays(out, dirs, 0.0, 0.0, 0.0, angles, 10.0, True,
+...                square, none3, 1.0, -6.0, 12.0, 1, 1, start, items, none4, none3)
 >>> out.round(12).tolist()
-[2.0, 4.0]
+[2.0, 4.0, inf]
 """
 
 from __future__ import annotations
@@ -45,7 +49,7 @@ import numpy as np
 
 from navkit._shared.jit import njit_helper, njit_no_refcount
 
-__all__ = ["apply_range_noise", "cast_rays"]
+__all__ = ["apply_range_noise", "cast_edge_rays", "cast_occupancy_rays"]
 
 
 _INF = math.inf
@@ -310,13 +314,15 @@ def _cast_occupancy(
 
 
 @njit_no_refcount
-def cast_rays(
+def cast_edge_rays(
     out: np.ndarray,
+    dirs: np.ndarray,
     ox: float,
     oy: float,
     heading: float,
     angles: np.ndarray,
     range_max: float,
+    last: bool,
     segs: np.ndarray,
     circles: np.ndarray,
     gx0: float,
@@ -326,25 +332,19 @@ def cast_rays(
     ny: int,
     cell_start: np.ndarray,
     cell_items: np.ndarray,
-    occ: np.ndarray,
-    cheb: np.ndarray,
-    gox: float,
-    goy: float,
-    gcos: float,
-    gsin: float,
-    res: float,
     dyn_segs: np.ndarray,
     dyn_circles: np.ndarray,
 ) -> None:
-    """Exact distance to the first obstacle along every beam, into ``out``.
+    """First pass of a scan: segments and circles, static (grid index) and moving.
 
-    Beam ``k`` leaves ``(ox, oy)`` at world angle ``heading + angles[k]``.
-    ``out[k]`` is the distance to the first segment, circle boundary, occupied
-    cell or moving obstacle it meets, or ``inf`` when there is none closer than
-    ``range_max``. An empty index (``nx * ny`` cells with no items), an empty
-    occupancy grid (shape (0, 0)) or empty moving arrays are skipped.
+    Beam ``k`` leaves ``(ox, oy)`` at world angle ``heading + angles[k]``;
+    ``out[k]`` becomes the distance to the first segment or circle boundary
+    it meets below ``range_max`` (else ``range_max``) and, unless ``last``,
+    ``dirs[k]`` its direction ``(cos, sin)``. The static primitives are looked up in the
+    uniform grid (skipped when its ``cell_items`` is empty), the moving ones
+    (few) tested by brute force. When ``last`` (no other pass follows) ranges
+    at or beyond ``range_max`` become ``inf``.
     """
-    has_occ = occ.shape[0] > 0
     has_grid = cell_items.shape[0] > 0
     n_dseg = dyn_segs.shape[0]
     n_dcirc = dyn_circles.shape[0]
@@ -352,13 +352,14 @@ def cast_rays(
         phi = heading + angles[k]
         dx = math.cos(phi)
         dy = math.sin(phi)
+        if not last:
+            dirs[k, 0] = dx
+            dirs[k, 1] = dy
         best = range_max
         if has_grid:
             best = _cast_edge_grid(
                 ox, oy, dx, dy, best, segs, circles, gx0, gy0, h, nx, ny, cell_start, cell_items
             )
-        if has_occ:
-            best = _cast_occupancy(ox, oy, dx, dy, best, cheb, gox, goy, gcos, gsin, res)
         for m in range(n_dseg):
             best = _ray_segment(
                 ox, oy, dx, dy, dyn_segs[m, 0], dyn_segs[m, 1], dyn_segs[m, 2], dyn_segs[m, 3],
@@ -368,6 +369,44 @@ def cast_rays(
             best = _ray_circle(
                 ox, oy, dx, dy, dyn_circles[m, 0], dyn_circles[m, 1], dyn_circles[m, 2], best
             )
+        out[k] = best if not last or best < range_max else _INF
+
+
+@njit_no_refcount
+def cast_occupancy_rays(
+    out: np.ndarray,
+    dirs: np.ndarray,
+    ox: float,
+    oy: float,
+    heading: float,
+    angles: np.ndarray,
+    range_max: float,
+    first: bool,
+    cheb: np.ndarray,
+    gox: float,
+    goy: float,
+    gcos: float,
+    gsin: float,
+    res: float,
+) -> None:
+    """Last pass of a scan: the occupancy grid (``cheb``: its chessboard distances).
+
+    Starts from ``range_max`` when ``first``, otherwise from the ranges and
+    directions :func:`cast_edge_rays` left in ``out`` and ``dirs``; ``out[k]``
+    becomes the distance at which beam ``k`` enters the first blocked cell
+    when that is nearer. Ranges at or beyond ``range_max`` become ``inf``.
+    """
+    for k in range(angles.shape[0]):
+        if first:
+            phi = heading + angles[k]
+            dx = math.cos(phi)
+            dy = math.sin(phi)
+            best = range_max
+        else:
+            dx = dirs[k, 0]
+            dy = dirs[k, 1]
+            best = out[k]
+        best = _cast_occupancy(ox, oy, dx, dy, best, cheb, gox, goy, gcos, gsin, res)
         out[k] = best if best < range_max else _INF
 
 

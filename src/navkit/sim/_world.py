@@ -20,7 +20,7 @@ from navkit.geometry import Pose2D, as_pose
 from navkit.mapping import OccupancyGrid
 from navkit.sim._clearance_kernels import TOUCH, footprint_clearance
 from navkit.sim._edge_grid_kernels import build_cell_lists, chebyshev_distance
-from navkit.sim._lidar_kernels import cast_rays
+from navkit.sim._lidar_kernels import cast_edge_rays, cast_occupancy_rays
 from navkit.sim._moving_kernels import EXTEND, LOOP, STOP, place_moving
 
 __all__ = ["Circle", "MovingObstacle", "World"]
@@ -41,6 +41,8 @@ _MAX_CELLS_PER_AXIS = 2048
 _EMPTY2 = np.empty((0, 2))
 _EMPTY3 = np.empty((0, 3))
 _EMPTY4 = np.empty((0, 4))
+#: Beam directions of a scan in one pass (never written nor read).
+_NO_DIRS = np.empty((0, 2))
 
 
 def _read_only(arr: np.ndarray) -> np.ndarray:
@@ -337,7 +339,7 @@ class MovingObstacle:
         after = np.array([_AFTER_CODES[self.after]], dtype=np.int64)
         out = np.empty((1, 3))
         place_moving(
-            time, np.ascontiguousarray(self.path_xy), np.ascontiguousarray(self.times),
+            time, self.path_xy.copy(), self.times.copy(),  # writable: one signature
             first, count, after, _EMPTY4, np.empty(0, dtype=np.int64), np.empty((0, 4)),
             np.zeros((1, 3)), np.zeros(1, dtype=np.int64), out,
         )  # fmt: skip
@@ -453,6 +455,7 @@ class World:
         "_dyn_seg_owner",
         "_dyn_segs",
         "_grid",
+        "_has_edges",
         "_index",
         "_moving",
         "_moving_t",
@@ -566,6 +569,11 @@ class World:
                 o.x, o.y, math.cos(o.theta), math.sin(o.theta), self._grid.resolution
             )
         self._init_moving(moving)
+        # Whether a scan needs the pass over segments and circles.
+        self._has_edges = (
+            self._cell_items.shape[0] > 0 or self._dyn_segs.shape[0] > 0
+            or self._dyn_circles.shape[0] > 0
+        )  # fmt: skip
         self._scanners: dict[Any, Any] = {}
 
     # ------------------------------------------------------------ construction
@@ -740,16 +748,29 @@ class World:
         self, out: FloatArray, x: float, y: float, heading: float, angles: FloatArray,
         range_max: float, t: float,
     ) -> None:  # fmt: skip
-        """Exact ranges into ``out`` (validated inputs; the LiDAR's fast path)."""
+        """Exact ranges into ``out`` (validated inputs; the LiDAR's fast path).
+
+        A pass over the segments and circles (static and moving), then one
+        over the occupancy grid: a world without a grid never compiles the grid
+        walk, nor one with only a grid the other.
+        """
         self._place(t)
-        gx0, gy0, h, nx, ny = self._index
-        gox, goy, gcos, gsin, res = self._occ_frame
-        cast_rays(
-            out, x, y, heading, angles, range_max,
-            self._segs, self._circles, gx0, gy0, h, nx, ny, self._cell_start, self._cell_items,
-            self._occ, self._cheb, gox, goy, gcos, gsin, res,
-            self._dyn_segs, self._dyn_circles,
-        )  # fmt: skip
+        has_occ = self._occ.shape[0] > 0
+        # Beam directions, written by the first pass when the grid's pass follows.
+        dirs = np.empty((angles.shape[0], 2)) if has_occ and self._has_edges else _NO_DIRS
+        if self._has_edges or not has_occ:
+            gx0, gy0, h, nx, ny = self._index
+            cast_edge_rays(
+                out, dirs, x, y, heading, angles, range_max, not has_occ,
+                self._segs, self._circles, gx0, gy0, h, nx, ny, self._cell_start,
+                self._cell_items, self._dyn_segs, self._dyn_circles,
+            )  # fmt: skip
+        if has_occ:
+            gox, goy, gcos, gsin, res = self._occ_frame
+            cast_occupancy_rays(
+                out, dirs, x, y, heading, angles, range_max, not self._has_edges,
+                self._cheb, gox, goy, gcos, gsin, res,
+            )  # fmt: skip
 
     def _clearance(
         self,

@@ -1,0 +1,156 @@
+"""The simulator compiles each kernel once, and a scan's passes agree with one another.
+
+A kernel compiled for two argument type sets (read-only next to writable
+arrays, int32 next to int64, a literal next to a variable) pays its
+compilation twice on first use (issue 17). The first test runs simulations on
+every kind of world (segments and circles, occupancy grid, moving obstacles,
+all of them, none) with disc and polygon footprints, every drive and sensor,
+plus the world's public queries, in a fresh process, and checks that no
+simulator kernel was specialised twice.
+
+A scan is a pass over the segments and circles and then one over the
+occupancy grid (a world compiles only the passes it needs): the other tests
+check that a world with every kind of obstacle sees, beam by beam and bit for
+bit, the nearest of what worlds with one kind each see.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import subprocess
+import sys
+
+import numpy as np
+from shapely.geometry import box
+
+from navkit.mapping import OccupancyGrid
+from navkit.sim import Circle, MovingObstacle, World
+
+SCRIPT = """
+import json
+import numpy as np
+from numba.core.dispatcher import Dispatcher
+from shapely.geometry import box
+from navkit.geometry import Twist2D
+from navkit.kinematics import DiffDrive, OmniDrive
+from navkit.mapping import OccupancyGrid
+from navkit.sim import (
+    Circle, Compass, Imu, Lidar, MovingObstacle, Robot, Simulation, WheelEncoders, World,
+)
+from navkit.sim import (
+    _clearance_kernels, _lidar_kernels, _moving_kernels, _polyline_distance_kernels,
+    _segment_kernels, _wheel_kernels,
+)
+
+occupied = np.zeros((30, 40), dtype=bool)
+occupied[0, :] = occupied[-1, :] = occupied[:, 0] = occupied[:, -1] = True
+grid = OccupancyGrid.from_occupancy(occupied, resolution=0.1)
+moving = MovingObstacle.constant_velocity(0.2, start_xy=(3.0, 2.0), velocity_xy=(-0.1, 0.0))
+walls = box(0.0, 0.0, 4.0, 3.0).exterior
+worlds = [
+    World([walls, Circle((2.5, 2.0), 0.2)]),
+    World(grid=grid),
+    World(moving=[moving]),
+    World([walls, box(3.0, 0.5, 3.5, 1.0)], grid=grid, moving=[moving]),
+    World([]),
+]
+diff = DiffDrive(track=0.3, wheel_radius=0.05)
+omni = OmniDrive([0.0, 2.0944, 4.1888], wheel_radius=0.05, base_radius=0.2)
+square = [[-0.1, -0.1], [0.1, -0.1], [0.1, 0.1], [-0.1, 0.1]]
+robots = [
+    Robot(drive=diff, footprint=0.15, lidar=Lidar(n_beams=8), max_wheel_acceleration=40.0),
+    Robot(drive=diff, footprint=square, wheel_slip=0.01, lidar=Lidar(n_beams=8),
+          encoders=WheelEncoders(), compass=Compass(), imu=Imu()),
+    Robot(drive=omni, footprint=0.15, max_wheel_speed=20.0),
+]
+for world in worlds:
+    for robot in robots:
+        Simulation(
+            world, robot, lambda _obs: Twist2D(0.4, 0.0, 0.2), start=(1.0, 1.0, 0.0),
+            goal=(1.5, 1.2), duration=0.2, reference_path=[[1.0, 1.0], [2.0, 1.0]],
+        ).run()
+    world.clearance(0.15, (1.0, 1.0, 0.0))
+    world.clearance(square, (1.0, 1.0, 0.3))
+    world.collides(0.15, (1.0, 1.0, 0.0))
+    world.raycast((1.0, 1.0, 0.0), np.linspace(-1.0, 1.0, 5), range_max=5.0)
+moving.position_at(1.0)
+counts = {}
+modules = (_clearance_kernels, _lidar_kernels, _moving_kernels, _polyline_distance_kernels,
+           _segment_kernels, _wheel_kernels)
+for module in modules:
+    for name, value in vars(module).items():
+        if isinstance(value, Dispatcher) and value.py_func.__module__ == module.__name__:
+            counts[module.__name__.rsplit(".", 1)[1] + "." + name] = [
+                str(s) for s in value.signatures
+            ]
+print(json.dumps(counts))
+"""
+
+
+def test_every_simulator_kernel_is_compiled_for_one_signature() -> None:
+    out = subprocess.run(
+        [sys.executable, "-c", SCRIPT], check=True, capture_output=True, text=True
+    )
+    signatures = json.loads(out.stdout.strip().splitlines()[-1])
+    # The kernels Python calls (a cached caller loads its callees' code with it).
+    for name in ("_lidar_kernels.cast_edge_rays", "_lidar_kernels.cast_occupancy_rays",
+                 "_lidar_kernels.apply_range_noise", "_segment_kernels.run_segment",
+                 "_clearance_kernels.footprint_clearance", "_moving_kernels.place_moving",
+                 "_polyline_distance_kernels.point_polyline_distances"):  # fmt: skip
+        assert signatures[name], name
+    twice = {name: sigs for name, sigs in signatures.items() if len(sigs) > 1}
+    assert not twice, twice
+
+
+def _worlds() -> dict[str, World]:
+    rng = np.random.default_rng(3)
+    occupied = rng.random((40, 50)) < 0.04
+    grid = OccupancyGrid.from_occupancy(occupied, resolution=0.1)
+    walls = [box(0.0, 0.0, 5.0, 4.0).exterior]
+    walls += [box(x, y, x + 0.3, y + 0.2) for x, y in rng.uniform(0.3, 3.5, (12, 2))]
+    circle = Circle((2.5, 2.0), 0.3)
+    moving = [
+        MovingObstacle.constant_velocity(0.25, start_xy=(3.0, 2.5), velocity_xy=(-0.2, 0.1)),
+        MovingObstacle.constant_velocity(
+            box(-0.2, -0.1, 0.2, 0.1), start_xy=(1.0, 3.0), velocity_xy=(0.1, -0.1)
+        ),
+    ]
+    return {
+        "edges": World([*walls, circle]),
+        "grid": World(grid=grid),
+        "moving": World(moving=moving),
+        "all": World([*walls, circle], grid=grid, moving=moving),
+        "edges+grid": World([*walls, circle], grid=grid),
+        "grid+moving": World(grid=grid, moving=moving),
+    }
+
+
+def _nearest(*scans: np.ndarray) -> np.ndarray:
+    return np.minimum.reduce(scans)
+
+
+def test_a_scan_of_every_kind_is_the_nearest_of_each_kind() -> None:
+    worlds = _worlds()
+    rng = np.random.default_rng(4)
+    angles = np.linspace(-math.pi, math.pi, 180, endpoint=False)
+    for _ in range(25):
+        pose = (rng.uniform(-0.5, 5.5), rng.uniform(-0.5, 4.5), rng.uniform(-math.pi, math.pi))
+        t = float(rng.uniform(0.0, 8.0))
+        range_max = float(rng.choice([0.7, 3.0, 12.0]))
+        scan = {
+            name: w.raycast(pose, angles, range_max=range_max, t=t) for name, w in worlds.items()
+        }
+        # inf (nothing in range) is the largest value: the nearest of the kinds.
+        expected = _nearest(scan["edges"], scan["grid"], scan["moving"])
+        np.testing.assert_array_equal(scan["all"], expected)
+        np.testing.assert_array_equal(scan["edges+grid"], _nearest(scan["edges"], scan["grid"]))
+        np.testing.assert_array_equal(scan["grid+moving"], _nearest(scan["grid"], scan["moving"]))
+        assert np.all((scan["all"] < range_max) | (scan["all"] == np.inf))
+
+
+def test_a_scan_of_an_empty_world_sees_nothing() -> None:
+    world = World([])
+    ranges = world.raycast((0.0, 0.0, 0.0), np.linspace(-1.0, 1.0, 7), range_max=4.0)
+    assert ranges.shape == (7,)
+    assert np.all(ranges == np.inf)
