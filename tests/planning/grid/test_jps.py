@@ -195,6 +195,24 @@ def test_planner_copies_costs_and_inputs_are_not_modified() -> None:
     np.testing.assert_array_equal(costs[:, :35], before[:, :35])
 
 
+def test_a_narrower_grid_after_a_wider_one_sees_only_its_own_cells() -> None:
+    # 52 and 48 columns pack into the same number of 64-bit words, so the
+    # second grid reuses the first one's bit-table scratch: the columns 48-51
+    # the first left traversable must not become a way around the wall.
+    astar(np.ones((10, 52)), (0, 0), (9, 51), method="jps")
+    walled = np.ones((10, 48))
+    walled[5, :] = np.inf
+    with pytest.raises(NoPathError):
+        astar(walled, (0, 46), (9, 46), method="jps")
+    with pytest.raises(NoPathError):
+        AStarPlanner(walled, method="jps").plan((0, 47), (9, 47))
+    # And a grid that does have a way: the path stays inside it.
+    walled[5, 47] = 1.0
+    path = astar(walled, (0, 46), (9, 46), method="jps")
+    assert path.cells[:, 1].max() == 47
+    assert path.cost == pytest.approx(astar(walled, (0, 46), (9, 46)).cost, rel=1e-12)
+
+
 def test_queue_growth_and_stamp_restart_give_the_same_paths() -> None:
     rng = np.random.default_rng(3)
     costs = np.where(rng.random((120, 160)) < 0.25, np.inf, 1.0)

@@ -156,12 +156,15 @@ def jps_tables(
     hw = ((cols + 2 + 63) >> 6) + 2
     # One bool per bit of the row table, padding words included: packed as one
     # flat array, it is the table. The array is kept per thread and reused for
-    # grids of the same shape (only its inside is written, its border stays
-    # False): a fresh one of this size is mapped anew, page by page, each time.
+    # grids of the same table shape (a fresh one of this size is mapped anew,
+    # page by page, each time): its top and bottom rows and left padding are
+    # never written; the right padding is cleared, since a wider grid of the
+    # same word count left its cells there.
     free = getattr(_scratch, "free", None)
     if free is None or free.shape != (rows + 2, 64 * hw):
         free = _scratch.free = np.zeros((rows + 2, 64 * hw), dtype=np.bool_)
     np.less(grid, np.inf, out=free[1 : rows + 1, 65 : cols + 65])
+    free[1 : rows + 1, cols + 65 :] = False
     flat_rows = np.packbits(free.reshape(-1), bitorder="little").view("<u8")
     col_bits = np.zeros((cols + 2) * (((rows + 2 + 63) >> 6) + 2), dtype=np.uint64)
     lo_bits, hi_bits = _columns(
