@@ -70,6 +70,34 @@ def test_astar_equals_distance_field_and_scipy(
     assert dijkstra.expanded >= path.expanded
 
 
+@pytest.mark.parametrize("fraction", [0.2, 0.35])
+@pytest.mark.parametrize("corner_cutting", [True, False])
+def test_astar_is_exact_on_larger_grids(fraction: float, corner_cutting: bool) -> None:
+    # Half a million cells (past the sizes the other tests use, so heaps of
+    # thousands of entries), with and without corner cutting: A* against the
+    # bucket-queue field, from starts spread over the grid.
+    rng = np.random.default_rng(17)
+    shape = (620, 860)
+    costs = np.where(rng.random(shape) < fraction, np.inf, 1.0 + 3.0 * rng.random(shape))
+    goal = (619, 858)
+    costs[goal] = 1.0
+    field = distance_field(costs, goal, corner_cutting=corner_cutting)
+    reached = np.argwhere(np.isfinite(field))
+    assert len(reached) > 1000
+    for k in np.linspace(0, len(reached) - 1, 7).astype(int):
+        start = (int(reached[k][0]), int(reached[k][1]))
+        path = astar(costs, start, goal, corner_cutting=corner_cutting)
+        assert path.cost == pytest.approx(field[start], rel=1e-12)
+        cost, _ = assert_valid_path(
+            costs, path.cells, start, goal, connectivity=8, corner_cutting=corner_cutting
+        )
+        assert path.cost == pytest.approx(cost, rel=1e-12)
+    blocked = np.argwhere(np.isinf(field) & np.isfinite(costs))
+    if len(blocked):
+        with pytest.raises(NoPathError):
+            astar(costs, tuple(int(i) for i in blocked[0]), goal, corner_cutting=corner_cutting)
+
+
 @settings(max_examples=100, deadline=None)
 @given(case=weighted_grids(max_side=10), weight=st.floats(1.0, 5.0), corner_cutting=st.booleans())
 def test_weighted_astar_respects_its_suboptimality_bound(

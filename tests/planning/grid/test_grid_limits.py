@@ -12,6 +12,7 @@ from hypothesis import strategies as st
 
 from navkit import NoPathError
 from navkit.planning import AStarPlanner, FieldDStar, astar, distance_field, field_dstar
+from navkit.planning.grid import _limits
 
 INF = math.inf
 # The grid: the only way from node (3, 0) to node (0, 4) crosses cell (1, 1).
@@ -274,3 +275,28 @@ def test_field_dstar_origin_and_points_range() -> None:
         planner.world_to_node([0.0, 0.0], continuous="no")  # type: ignore[arg-type]
     with pytest.raises(TypeError, match="points_xy"):
         planner.world_to_node([1 + 1j, 0.0])
+
+
+@pytest.mark.parametrize(
+    ("value", "message"), [(math.nan, "NaN"), (0.5, ">= 1"), (2e12, "<= 1e\\+12")]
+)
+def test_cost_range_checks_every_block_of_a_large_grid(value: float, message: str) -> None:
+    # 300 x 300 cells span two blocks of the value scan: the largest finite
+    # cost and a bad value in the second block are found as in the first.
+    costs = np.full((300, 300), 2.0)
+    costs[::7, ::5] = np.inf
+    costs[299, 298] = 9.5
+    costs[0, 1] = 1.25
+    grid = costs.copy()
+    grid.flags.writeable = False
+    path = astar(grid, (1, 1), (299, 299))
+    assert path.cost > 0.0
+    lowest, highest = _limits.cost_range(grid)
+    assert (lowest, highest) == (1.25, 9.5)
+    assert _limits.highest_finite(grid) == 9.5
+    assert _limits.highest_finite(np.full((300, 300), np.inf)) == -np.inf
+    costs[250, 100] = value
+    with pytest.raises(ValueError, match=message):
+        astar(costs, (1, 1), (299, 299))
+    with pytest.raises(ValueError, match=message):
+        distance_field(costs, (1, 1))
