@@ -10,18 +10,11 @@ that no kernel of theirs was specialised twice.
 
 from __future__ import annotations
 
-import json
-import subprocess
-import sys
+from kernel_signatures import compiled_signatures
 
 SCRIPT = """
-import json
 import numpy as np
-from numba.core.dispatcher import Dispatcher
 from navkit.planning import AStarPlanner, astar, distance_field
-from navkit.planning.grid import (
-    _astar_kernels, _distance_field_kernels, _jps_kernels, _limits, _search_heap,
-)
 costs = np.ones((12, 12))
 costs[2:9, 5] = np.inf
 ro = costs.copy()
@@ -41,23 +34,13 @@ AStarPlanner(wide).distance_field((0, 0))  # the heap path
 distance_field(costs, (0, 0))
 distance_field(ro, (0, 0), corner_cutting=True, connectivity=4)
 distance_field(costs + np.eye(12), (0, 0))
-counts = {}
-for module in (_astar_kernels, _distance_field_kernels, _jps_kernels, _limits, _search_heap):
-    for name, value in vars(module).items():
-        if isinstance(value, Dispatcher) and value.py_func.__module__ == module.__name__:
-            if value.signatures:
-                counts[module.__name__.rsplit(".", 1)[1] + "." + name] = [
-                    str(s) for s in value.signatures
-                ]
-print(json.dumps(counts))
 """
 
 
 def test_every_search_kernel_is_compiled_for_one_signature() -> None:
-    out = subprocess.run(
-        [sys.executable, "-c", SCRIPT], check=True, capture_output=True, text=True
-    )
-    signatures = json.loads(out.stdout.strip().splitlines()[-1])
+    signatures = compiled_signatures(SCRIPT, [f"navkit.planning.grid.{name}" for name in (
+        "_astar_kernels", "_distance_field_kernels", "_jps_kernels", "_limits", "_search_heap"
+    )])  # fmt: skip
     # The kernels the public layer calls (their callees are not loaded when cached).
     for kernel in ("_astar_kernels.grid_search", "_jps_kernels.jps_search",
                    "_distance_field_kernels.bucket_field", "_jps_kernels._columns"):
