@@ -22,12 +22,18 @@ as its peer, and the benchmark checks that both return the same path):
   and ``moved-2``: no cost changed, the robot moved 2 cells along its path.
 
 Expansions are in ``extra_info``.
+
+The issue's ratios come from ``test_*_ratio`` (groups ``ratios-*``): the two
+sides alternate in one loop, so machine load and memory state affect both
+alike, and the median per-round ratio of this thread's CPU time is in
+``extra_info`` (below 1: the first side is faster).
 """
 
 from __future__ import annotations
 
 import math
 import os
+import time
 from functools import cache
 from pathlib import Path
 from typing import Any
@@ -212,3 +218,68 @@ def test_field_dstar_fresh_mid_maze(benchmark: Any, moved: bool) -> None:
 @pytest.mark.parametrize("name", MAPS)
 def test_field_dstar_replan_unchanged(benchmark: Any, name: str, moved: bool) -> None:
     _replan_case(benchmark, name, f"replan-unchanged-{name}", None, moved)
+
+
+def _alternate(first: Any, second: Any, rounds: int, setup: Any = None) -> float:
+    """Median over ``rounds`` of CPU-time(first) / CPU-time(second), run alternately."""
+    ratios = []
+    for _ in range(rounds):
+        args = setup() if setup is not None else ()
+        c0 = time.thread_time()
+        first(*args)
+        c1 = time.thread_time()
+        second()
+        c2 = time.thread_time()
+        ratios.append((c1 - c0) / (c2 - c1))
+    return float(np.median(ratios))
+
+
+def _changed_problem(
+    name: str, distance: float | None
+) -> tuple[np.ndarray, np.ndarray, list[tuple[int, int]], tuple[int, int], tuple[int, int]]:
+    costs, start, goal = problem(name)
+    nodes = FieldDStar(costs).plan(start, goal).points + 0.5
+    if distance is None:  # the middle of the path
+        distance = shapely.LineString(nodes).length / 2
+    cells = _blocking_cells(costs, nodes, distance)
+    changed = costs.copy()
+    for cell in cells:
+        changed[cell] = np.inf
+    return costs, changed, cells, start, goal
+
+
+@pytest.mark.parametrize(("name", "distance"), [*((m, -5.0) for m in MAPS), (MAZE, None)],
+                         ids=[*(f"goal-{m}" for m in MAPS), f"mid-{MAZE}"])
+def test_replan_ratio(benchmark: Any, name: str, distance: float | None) -> None:
+    """Replan after blocking 2 x 2 cells (near the goal, or mid-path) ÷ a fresh plan."""
+    costs, changed, cells, start, goal = _changed_problem(name, distance)
+
+    def setup() -> tuple[FieldDStar]:
+        planner = FieldDStar(costs)
+        planner.plan(start, goal)
+        planner.update_costs(cells, np.inf)
+        return (planner,)
+
+    def rounds() -> dict[str, float]:
+        ratio = _alternate(lambda planner: planner.replan(),
+                           lambda: FieldDStar(changed).plan(start, goal), 9, setup)
+        return {"replan_over_fresh": ratio}
+
+    benchmark.group = "ratios-replan"
+    benchmark.extra_info.update(benchmark.pedantic(rounds, rounds=1, iterations=1))
+
+
+@pytest.mark.parametrize("name", MAPS)
+def test_fresh_over_astar_ratio(benchmark: Any, name: str) -> None:
+    """A fresh Field D* plan ÷ navkit's A* (no corner cutting) on the same map."""
+    costs = benchmark_map(name)
+    FieldDStar(costs).plan(NODE_START, NODE_GOAL)
+    astar(costs, START, GOAL)
+
+    def rounds() -> dict[str, float]:
+        ratio = _alternate(lambda: FieldDStar(costs).plan(NODE_START, NODE_GOAL),
+                           lambda: astar(costs, START, GOAL), 7)
+        return {"field_dstar_over_astar": ratio}
+
+    benchmark.group = "ratios-fresh"
+    benchmark.extra_info.update(benchmark.pedantic(rounds, rounds=1, iterations=1))

@@ -68,7 +68,7 @@ _REPAIR_MIN_WORK = 4096
 # otherwise the repair goes on up to the full bound. (A wave growing from the
 # change front-loads none of its work, so the linear extrapolation does not
 # overestimate it.)
-_REPAIR_PROBE = 0.2
+_REPAIR_PROBE = 0.1
 _REPAIR_PROBE_MIN_WORK = 1024
 _REPAIR_OVERSHOOT = 2.0
 _NO_LIMIT = np.iinfo(np.int64).max // 2
