@@ -24,8 +24,13 @@ def _no_minimum_work(monkeypatch: pytest.MonkeyPatch) -> None:
 
 
 def _probe(fresh: int) -> float:
-    """The probe's work bound after a fresh search of ``fresh`` expansions (its work)."""
-    return field_dstar_module._REPAIR_PROBE * field_dstar_module._REPAIR_FRACTION * fresh
+    """The first stage's work bound after a fresh search of ``fresh`` expansions (its work)."""
+    return field_dstar_module._REPAIR_PROBE * fresh
+
+
+def _single_bound(monkeypatch: pytest.MonkeyPatch) -> None:
+    """One stage as long as the cap: no projection before the repair ends or reaches it."""
+    monkeypatch.setattr(field_dstar_module, "_REPAIR_PROBE", field_dstar_module._REPAIR_CAP)
 
 
 def _costs(seed: int) -> np.ndarray:
@@ -66,10 +71,11 @@ def test_a_change_near_the_goal_is_given_up_after_the_probe(
     # Blocked 4 cells before the goal: nearly every node value rises.
     costs = _costs(seed)
     replan, fresh, _ = _replan(costs, _block(costs, -4.0))
-    # The probe stops within one rising expansion (RAISE_WORK units) past its bound.
+    # The first stage stops within one rising expansion (RAISE_WORK units) past its
+    # bound, and its projection gives up.
     assert fresh < replan <= fresh + _probe(fresh) + 3
-    # Without the probe the same repair runs on to the full bound.
-    monkeypatch.setattr(field_dstar_module, "_REPAIR_PROBE", 1.0)
+    # Without the projection the same repair runs on to the cap.
+    _single_bound(monkeypatch)
     full, _, _ = _replan(costs, _block(costs, -4.0))
     assert full > replan
 
@@ -78,15 +84,15 @@ def test_a_change_near_the_goal_is_given_up_after_the_probe(
 def test_repairs_the_probe_lets_through_match_the_single_bound(
     seed: int, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    # Changes at several distances from the start: the two-stage bound gives the
-    # same expansions as one bound wherever that one repairs without falling back.
+    # Changes at several distances from the start: the staged bound gives the same
+    # expansions as one bound wherever that one repairs without falling back.
     costs = _costs(seed)
     past_probe = 0
     for distance in (3.0, 8.0, 15.0, 25.0):
         cells = _block(costs, distance)
         two_stage, fresh, _ = _replan(costs, cells)
         with monkeypatch.context() as m:
-            m.setattr(field_dstar_module, "_REPAIR_PROBE", 1.0)
+            _single_bound(m)
             single, _, _ = _replan(costs, cells)
         if single < fresh:  # repaired under the single bound
             assert two_stage == single
@@ -95,7 +101,7 @@ def test_repairs_the_probe_lets_through_match_the_single_bound(
 
 
 def test_the_fallback_reuses_the_planner_arrays(monkeypatch: pytest.MonkeyPatch) -> None:
-    monkeypatch.setattr(field_dstar_module, "_REPAIR_FRACTION", 0.0)
+    monkeypatch.setattr(field_dstar_module, "_REPAIR_CAP", 0.0)
     costs = _costs(6)
     planner = FieldDStar(costs)
     planner.plan(START, GOAL)
@@ -109,3 +115,17 @@ def test_the_fallback_reuses_the_planner_arrays(monkeypatch: pytest.MonkeyPatch)
     for cell in cells:
         changed[cell] = np.inf
     np.testing.assert_array_equal(got.points, FieldDStar(changed).plan(START, GOAL).points)
+
+
+@pytest.mark.parametrize("seed", [3, 5])
+def test_repairs_longer_than_a_twentieth_of_a_search_go_on(seed: int) -> None:
+    # Changes along the path: those whose projected repair stays under a fresh
+    # search are repaired to the end (not cut short at a fixed small fraction of
+    # it, which made replans after changes mid-path cost a fresh search and more).
+    costs = _costs(seed)
+    long_repairs = 0
+    for distance in (10.0, 20.0, 30.0, 40.0, 50.0, 60.0, 70.0, 80.0):
+        replan, fresh, _ = _replan(costs, _block(costs, distance))
+        if replan < fresh:  # repaired, no fallback
+            long_repairs += replan > 0.05 * fresh
+    assert long_repairs > 0

@@ -52,25 +52,35 @@ _CORNERS = np.array([(0, 0), (0, 1), (1, 0), (1, 1)], dtype=np.int64)
 # Node coordinates beyond this are refused: integers stay exact and their world
 # points finite.
 _NODE_LIMIT = float(2**53)
-# Repair bound: a replan whose repair needs more work (expansions, a rising node
-# counting RAISE_WORK) than this fraction of the last fresh search's, and more
-# than _REPAIR_MIN_WORK, is cut short and replaced by a fresh search, so a
-# replan costs at most about (1 + fraction) fresh searches. Local changes near
-# the robot need well under 1 % of a fresh search on large maps; a change near
-# the goal makes nearly every node value rise, a repair of 2-5 fresh searches.
+# Repair bounds. A repair's work counts expansions, a rising node RAISE_WORK; the
+# bounds are fractions of the last fresh search's work (and at least
+# _REPAIR_MIN_WORK). A repair that exceeds its bound is cut short and replaced by
+# a fresh search on the planner's own arrays (the same path).
+#
+# After cost rises (the usual case: cells blocked), a repair sweeps the queue's
+# keys from the lowest changed key `first` to the start's key `end`, and the
+# region it has touched grows in two dimensions as the sweep advances, so its
+# work grows about as the square of the key progress (measured on 1024² random
+# and rooms maps and on maze512-32-9 at 40 change positions along the path:
+# between linear and quadratic early, quadratic as the wave widens). The repair
+# runs in stages of _REPAIR_PROBE, then twice as much work each time; after
+# each stage the work so far, extrapolated quadratically over the key range,
+# gives the projected total. A projection above _REPAIR_CAP (a repair that would
+# cost more than a fresh search: a change near the goal raises nearly every
+# node value, 2-4 fresh searches' work) falls back to the fresh search at once;
+# the projection overestimates a repair that finishes, so a hopeless one is
+# caught within a stage or two while most changes mid-path still repair. A
+# repair work unit costs about 0.5-0.65 of a fresh expansion's time (measured),
+# so a repair that finishes under the cap costs at most about 0.65 fresh
+# searches, and one caught by the projection wastes one stage.
+_REPAIR_CAP = 1.0
+_REPAIR_PROBE = 0.005
+_REPAIR_PROBE_MIN_WORK = 1024
+# When some cell got cheaper (a falling wave, no key range to project over), the
+# repair gets one bound: local changes near the robot need well under 1 % of a
+# fresh search on large maps.
 _REPAIR_FRACTION = 0.05
 _REPAIR_MIN_WORK = 4096
-# A repair first runs for this fraction of its bound (at least _REPAIR_PROBE_MIN_WORK).
-# Its queue's top key then shows how far it got from the lowest changed key
-# towards the start's: a repair whose work so far, extrapolated linearly over
-# that key range, exceeds _REPAIR_OVERSHOOT bounds is hopeless (a change near
-# the goal raises nearly every node value) and the fresh search starts at once;
-# otherwise the repair goes on up to the full bound. (A wave growing from the
-# change front-loads none of its work, so the linear extrapolation does not
-# overestimate it.)
-_REPAIR_PROBE = 0.1
-_REPAIR_PROBE_MIN_WORK = 1024
-_REPAIR_OVERSHOOT = 2.0
 _NO_LIMIT = np.iinfo(np.int64).max // 2
 # Initial room of the path buffer, points per node row and column; a longer walk
 # is repeated with a buffer twice as large.
@@ -817,11 +827,11 @@ class FieldDStar:
     def _search(self) -> tuple[FloatArray, float, float, int]:
         """Node path (node coordinates), its exact cost and length, expansions.
 
-        A repair is bounded (``_REPAIR_FRACTION``, and earlier when its probe
-        finds it hopeless, see :meth:`_repair`): cut short, it is replaced by a
-        fresh search from the current start on the planner's own arrays, which
-        returns the same path (the repair's expansions are counted too). With no cost changed since
-        the last search from the same start, that search's path is returned.
+        A repair is bounded (see ``_REPAIR_CAP`` and :meth:`_repair`): cut short,
+        it is replaced by a fresh search from the current start on the planner's
+        own arrays, which returns the same path (the repair's expansions are
+        counted too). With no cost changed since the last search from the same
+        start, that search's path is returned.
         """
         assert self._start is not None and self._goal is not None
         cached = self._cached
@@ -869,10 +879,12 @@ class FieldDStar:
         return points, float(cost), float(length), int(expanded)
 
     def _repair(self) -> tuple[FloatArray, int, int, int]:
-        """:meth:`_walk` on the repaired state, bounded (``ABORTED`` when hopeless)."""
+        """:meth:`_walk` on the repaired state, bounded (``ABORTED`` when hopeless).
+
+        See the notes on ``_REPAIR_CAP`` for the staged, projected bound.
+        """
         assert self._start is not None
-        limit = max(int(_REPAIR_FRACTION * self._fresh_work), _REPAIR_MIN_WORK)
-        probe = max(int(_REPAIR_PROBE * limit), _REPAIR_PROBE_MIN_WORK)
+        fresh = self._fresh_work
         lowered = self._lowered
         _, keys, _, size = self._heap
         start_id = self._start[0] * self._ncols + self._start[1]
@@ -882,21 +894,25 @@ class FieldDStar:
         first = min(float(keys[0, 0]) if size[0] > 0 else np.inf, self._changed_key())
         end = min(float(self._g[start_id]), float(self._rhs[start_id])) + self._km
         self._lowered = False
-        if lowered or not first < end < np.inf or probe >= limit:
-            self._work[1] = limit
+        if lowered or not first < end < np.inf:
+            self._work[1] = max(int(_REPAIR_FRACTION * fresh), _REPAIR_MIN_WORK)
             return self._walk()
-        self._work[1] = probe
-        pts, k, expanded, status = self._walk()
-        if status != ABORTED:
-            return pts, k, expanded, status
-        reached = float(keys[0, 0]) if size[0] > 0 else end
-        done = float(self._work[0])
-        # Hopeless when done / progress > overshoot * limit (progress in (0, 1]).
-        if (reached - first) * _REPAIR_OVERSHOOT * limit < done * (end - first):
-            return pts, k, expanded, status
-        self._work[1] = limit
-        pts, k, more, status = self._walk()
-        return pts, k, expanded + more, status
+        cap = max(int(_REPAIR_CAP * fresh), _REPAIR_MIN_WORK)
+        stage = max(int(_REPAIR_PROBE * fresh), _REPAIR_PROBE_MIN_WORK)
+        span = end - first
+        expanded = 0
+        while True:
+            self._work[1] = min(stage, cap)
+            pts, k, more, status = self._walk()
+            expanded += more
+            done = float(self._work[0])
+            if status != ABORTED or done >= cap:
+                return pts, k, expanded, status
+            progress = (float(keys[0, 0]) if size[0] > 0 else end) - first
+            # Hopeless when the projected total done * (span / progress)^2 exceeds the cap.
+            if not progress > 0.0 or done * span * span > cap * progress * progress:
+                return pts, k, expanded, status
+            stage *= 2
 
     def _changed_key(self) -> float:
         """Least key ``min(g, rhs) + h + km`` of the changed cells' corners (before requeueing)."""
