@@ -36,10 +36,12 @@ depends on: each node is expanded once per search and the stopping rule is
 exact. (Costs are >= 1, so this holds after any cost update.)
 
 Compilation. The helpers inlined at several sites (:func:`_queue`,
-:func:`_pair_value`) are LLVM-inlined (numba's ``forceinline``: typed and
-lowered once) rather than inlined by numba at IR level, which types and lowers
-the body again at each site; the rarely hot :func:`update_vertex` and
-:func:`node_rhs` stay calls.
+:func:`_pair_value`, :func:`heuristic`, :func:`key_reached`) are LLVM-inlined
+(numba's ``forceinline``: typed and lowered once) rather than inlined by numba
+at IR level, which translates, types and lowers the body again at each site
+(about 10 ms a site even for a one-line helper); the rarely hot
+:func:`update_vertex` and :func:`node_rhs` stay calls. :func:`corner_cost` (one
+site) stays IR-inlined: tests call it from Python.
 
 Calling convention. The search kernels take the planner's arrays as one tuple
 ``st = (pad, g, rhs, nodes, keys, pos, size, work, changed)`` (``nodes, keys,
@@ -216,7 +218,7 @@ def corner_cost(g1: float, g2: float, c: float, b: float, interp: bool) -> float
     return best
 
 
-@njit_inline
+@_inlined
 def heuristic(sr: int, sc: int, i: int, j: int, hscale: float) -> float:
     """Heuristic ``hscale * octile`` distance between nodes (sr, sc) and (i, j)."""
     dr = abs(i - sr)
@@ -226,7 +228,7 @@ def heuristic(sr: int, sc: int, i: int, j: int, hscale: float) -> float:
     return hscale * (dr + OCT * dc)
 
 
-@njit_inline
+@_inlined
 def key_reached(top0: float, top1: float, m: float, h: float, km: float) -> bool:
     """Whether the queue's top key (top0, top1) is not below the key of a node.
 

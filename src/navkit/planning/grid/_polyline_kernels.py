@@ -13,6 +13,11 @@ it), and :func:`segment_cost` is its one helper: every compiled function costs a
 fixed tenth of a second or so on first use, and a helper linked into several
 kernels is optimised again in each of them. Cell costs are read inline
 (``pad[(r + 1) * width + c + 1]``) rather than through an IR-inlined function.
+The caller passes the shortcut's output buffer, so :func:`_polyline` allocates
+nothing and runs without reference counting: allocating in it compiled numba's
+``np.empty`` implementation and its allocator with it (about 0.2 s of first
+use). :func:`cell_cost`, used by the path kernels at six sites, is compiled once
+and inlined by LLVM (numba's IR inlining translated and typed it again at each).
 """
 
 from __future__ import annotations
@@ -21,13 +26,15 @@ import math
 
 import numpy as np
 
-from navkit._shared.jit import njit_inline, typed_njit
+from navkit._shared.jit import typed_njit
 from navkit.planning.grid._dstar_heap import HELPER_OPTIONS, KERNEL_OPTIONS
 
+_kernel = typed_njit(**KERNEL_OPTIONS)
 _helper = typed_njit(**HELPER_OPTIONS)
 
 
-@njit_inline
+# Compiled once, inlined by LLVM (numba's forceinline) at every call site.
+@typed_njit(**HELPER_OPTIONS, forceinline=True)
 def cell_cost(pad: np.ndarray, width: int, r: int, c: int) -> float:
     """Cost of cell (r, c), ``-1 <= r <= rows``, ``-1 <= c <= cols`` (+inf off the grid).
 
@@ -100,16 +107,16 @@ def segment_cost(pad: np.ndarray, width: int, r0: float, c0: float, r1: float, c
     return total
 
 
-# Allocates the shortcut's result: compiled with reference counting.
-@typed_njit(**{**KERNEL_OPTIONS, "_nrt": True})
+@_kernel
 def _polyline(
-    pad: np.ndarray, width: int, pts: np.ndarray, k: int, patience: int
-) -> tuple[np.ndarray, float, float]:
+    pad: np.ndarray, width: int, pts: np.ndarray, k: int, patience: int, out: np.ndarray
+) -> tuple[int, float, float]:
     """Both jobs of this module in one compiled kernel.
 
-    With ``patience >= 0`` the :func:`shortcut` of the first ``k`` points:
-    (result, 0, 0); with ``patience < 0`` their :func:`polyline_cost`:
-    (``pts`` itself, cost, length).
+    With ``patience >= 0`` the :func:`shortcut` of the first ``k`` points,
+    written to the first m rows of ``out`` ((k, 2), filled by the caller):
+    (m, 0, 0); with ``patience < 0`` their :func:`polyline_cost`: (0, cost,
+    length), ``out`` unused.
     """
     if patience < 0:
         cost = 0.0
@@ -117,9 +124,8 @@ def _polyline(
         for a in range(k - 1):
             cost += segment_cost(pad, width, pts[a, 0], pts[a, 1], pts[a + 1, 0], pts[a + 1, 1])
             length += math.hypot(pts[a + 1, 0] - pts[a, 0], pts[a + 1, 1] - pts[a, 1])
-        return pts, cost, length
+        return 0, cost, length
     # Element copies only: whole-row and slice assignments compile far more code.
-    out = np.empty((k, 2), dtype=np.float64)
     out[0, 0] = pts[0, 0]
     out[0, 1] = pts[0, 1]
     m = 1
@@ -145,16 +151,12 @@ def _polyline(
         out[m, 1] = pts[best, 1]
         m += 1
         i = best
-    res = np.empty((m, 2), dtype=np.float64)
-    for a in range(m):
-        res[a, 0] = out[a, 0]
-        res[a, 1] = out[a, 1]
-    return res, 0.0, 0.0
+    return m, 0.0, 0.0
 
 
 def polyline_cost(pad: np.ndarray, width: int, pts: np.ndarray, k: int) -> tuple[float, float]:
     """(cost, length) of the polyline through the first ``k`` points (node coordinates)."""
-    _, cost, length = _polyline(pad, width, pts, k, -1)
+    _, cost, length = _polyline(pad, width, pts, k, -1, pts)
     return cost, length
 
 
@@ -167,4 +169,7 @@ def shortcut(pad: np.ndarray, width: int, pts: np.ndarray, k: int, patience: int
     the input's, and a segment through an impassable cell interior costs inf,
     so it is never taken.
     """
-    return _polyline(pad, width, pts, k, patience)[0]
+    out = np.empty((max(k, 1), 2))
+    m: int = _polyline(pad, width, pts, k, patience, out)[0]
+    smooth: np.ndarray = out[:m].copy()  # not a view of the larger buffer
+    return smooth
