@@ -24,7 +24,8 @@ from navkit.estimation._covariance import (
     variance,
 )
 from navkit.estimation._fusion_kernels import (
-    BUF_T,
+    BUF_SAVED_TIME,
+    BUF_TIME,
     GATED,
     INVALID,
     NOT_POSITIVE_DEFINITE,
@@ -531,13 +532,15 @@ class PlanarFusion(GaussianEstimate):
     ) -> None:
         x = np.zeros(6) if x0 is None else as_float_array(x0, "x0", shape=(6,))
         # x, P, Q, the current measurement, the filter time and scratch space live in one
-        # array: the compiled online step takes just that array (see _fusion_kernels.BUF_*).
-        self._buf = np.zeros((k.BUF_ROWS, 6))
-        self._x: FloatArray = self._buf[k.BUF_X]
-        self._p: FloatArray = self._buf[k.BUF_P : k.BUF_P + 6]
-        self._q: FloatArray = self._buf[k.BUF_Q : k.BUF_Q + 6]
+        # flat array: the compiled online step takes just that array (see
+        # _fusion_kernels.BUF_*); x, P, Q and the residuals are views of its rows.
+        self._buf = np.zeros(k.BUF_SIZE)
+        rows = self._buf.reshape(k.BUF_ROWS, k.W)
+        self._x: FloatArray = rows[k.BUF_X]
+        self._p: FloatArray = rows[k.BUF_P : k.BUF_P + 6]
+        self._q: FloatArray = rows[k.BUF_Q : k.BUF_Q + 6]
         # The kernel leaves the residuals in the last row of the measurement block.
-        self._residuals: FloatArray = self._buf[k.BUF_MEAS + 2]
+        self._residuals: FloatArray = rows[k.BUF_MEAS + 2]
         self._x[:] = x
         self._x[2] = wrap_angle(float(self._x[2]))
         self._p[:, :] = _matrix(
@@ -549,7 +552,7 @@ class PlanarFusion(GaussianEstimate):
             semidefinite=True,
         )
         # NaN until the clock is set (by t0 or the first measurement).
-        self._buf[BUF_T, 0] = math.nan if t0 is None else finite_float(t0, "t0")
+        self._buf[BUF_TIME] = math.nan if t0 is None else finite_float(t0, "t0")
         self._gates = np.full(5, np.inf)
         if gate_probability is not None:
             prob = finite_float(gate_probability, "gate_probability")
@@ -570,7 +573,7 @@ class PlanarFusion(GaussianEstimate):
     @property
     def t(self) -> float | None:
         """Filter time, s; None before the first measurement when no ``t0`` was given."""
-        t = float(self._buf[BUF_T, 0])
+        t = float(self._buf[BUF_TIME])
         return None if math.isnan(t) else t
 
     @property
@@ -598,7 +601,7 @@ class PlanarFusion(GaussianEstimate):
         time = finite_float(t, "t")
         last = self.t
         if last is None:
-            self._buf[BUF_T, 0] = time
+            self._buf[BUF_TIME] = time
             return
         if time < last:
             raise ValueError(f"t={time} s is older than the filter time {last} s")
@@ -816,7 +819,7 @@ class PlanarFusion(GaussianEstimate):
         last = self.t
         if last is None:
             # The first measurement sets the clock (no prediction: the step's dt is 0).
-            self._buf[BUF_T, 0] = t
+            self._buf[BUF_TIME] = t
         elif t < last:
             return new_result(
                 False,
@@ -828,7 +831,7 @@ class PlanarFusion(GaussianEstimate):
         if status:
             if last is None:
                 # Before the step the clock was not set: undone, it is not set either.
-                self._buf[BUF_T, 1] = math.nan
+                self._buf[BUF_SAVED_TIME] = math.nan
             return self._not_applied(status, kind, t, nis, comps)
         return new_result(True, nis, self._residuals[comps].copy(), None)
 
@@ -841,7 +844,7 @@ class PlanarFusion(GaussianEstimate):
         if status == NOT_POSITIVE_DEFINITE:
             raise FilterError(f"{kind} update: covariance is not positive definite")
         if status == TIME_GAP:
-            gap = t - float(self._buf[BUF_T, 0])
+            gap = t - float(self._buf[BUF_TIME])
             raise FilterError(
                 f"{kind} update: predicting over the time gap of {gap} s to t={t} s overflows "
                 "float64; the filter is unchanged"

@@ -17,13 +17,41 @@ huge time gap) is undone (``TIME_GAP``), and an update that would overflow (a
 measurement absurdly far from the state for its variance) is not applied
 (``OVERFLOW``).
 
-Compilation (first use with an empty cache) is kept short by design: the filter
-is one function, the online step :func:`planar_step`, which the batch loop
-:func:`planar_run` calls too (a separate filter function called by both, as
-before issue 17's second round, was optimised by LLVM three times: alone and
-linked into each caller); no array is copied with slice assignment (see
-:func:`_copy_vector`); every kernel is compiled for the one signature the
-public layer passes.
+Compilation (first use with an empty cache) is kept short by design (issue 17):
+
+* the filter is one function, the online step :func:`planar_step`, which the
+  batch loop :func:`planar_run` calls too (a separate filter function called
+  by both was optimised by LLVM three times: alone and linked into each
+  caller); every kernel is compiled for the one signature the public layer
+  passes;
+* no array is copied with slice assignment: numba compiles ``a[:] = b`` with a
+  shape-mismatch error path whose message it builds with f-strings, 0.2-1.9 s
+  per site; copies are loops;
+* the buffer is flat and indexed at constant offsets (``buf[_P0 + W * i + j]``),
+  not through 2-D views: a 2-D index or a slice lowers to several times the IR
+  of a 1-D index, and LLVM sees every address as a constant offset from one
+  pointer (no run-time row stride to multiply by or to version loops on). This
+  cut the unoptimised IR of planar_step from 18,600 to 12,900 lines and its
+  compilation by about 0.2 s, and made the batch loop about 10 % faster;
+* a loop over the observed components (their number m, 1-4, known only at
+  run time) is never nested in a loop of constant length: LLVM unrolled such
+  a loop four times, with a remainder loop, inside each of the 6-36 entries of
+  the unrolled 6 x 6 loops around it (half of planar_step's 11,700 lines of
+  optimised IR). The loops over the components are the outer ones, and K and
+  S⁻¹ y come from one solve with 7 right-hand sides: LLVM spends about 0.7 s
+  less over both kernels, and the kernels run faster;
+* no ``.view()``: numba compiles a dtype-compatibility check for it (0.3 s), so
+  the indices of the observed components are stored as floats;
+* a helper inlined at numba IR level (``njit_inline``) is copied, typed and
+  lowered again at every call site: :func:`compose_scalar
+  <navkit._shared.se2.compose_scalar>` is written out (the step has its cosine
+  and sine already) and the three angle wraps call :func:`_wrap`, typed once
+  and inlined by LLVM (0.07 s less). The Cholesky factorisation (two sites) and
+  the solve stay IR-inlined: as ``njit_force_inline`` functions they cost
+  about 0.1 s more (separate compilations, and LLVM work at each site).
+
+Together: planar_step about 2.6 -> 1.9 s, planar_run 0.8 -> 0.4 s, the first
+use of PlanarFusion 3.7 -> 2.5 s of CPU.
 """
 
 from __future__ import annotations
@@ -34,8 +62,8 @@ from typing import Any, cast
 
 import numpy as np
 
-from navkit._shared.jit import njit_inline, njit_no_refcount
-from navkit._shared.se2 import compose_scalar, wrap_scalar
+from navkit._shared.jit import njit_force_inline, njit_inline, njit_no_refcount
+from navkit._shared.se2 import wrap_scalar
 
 N_STATE = 6
 N_COMP = 4
@@ -51,117 +79,116 @@ OVERFLOW = 5
 # Online step only: the arguments failed its checks (see planar_step); nothing changed.
 INVALID = -1
 
-# Rows of the scratch array (each row has 6 entries).
-_E = 0  # 4 rows: F - I (rows 0-3 of F), predict
-_FP = 4  # 6 rows: F P, predict; reused as A P, update
-_VEC = 10  # rows 10-14: residual y, solved u, a row of K, two 1/diag(L) rows
-_CHOL = 15  # 4 rows: Cholesky factor of S (m x m in the top-left corner)
-_GAIN = 19  # 6 rows: K (6 x m)
-_PN = 25  # 6 rows: updated covariance
-_CHECK = 31  # 6 rows: positive-definiteness check
-_X = 37  # 1 row: updated state
-_SAVED = 38  # 7 rows: x and P saved by planar_step
-_COMP = 45  # 1 row: the indices of the observed components (as int64), update
-WORK_ROWS = 46
-
-# Rows of the online filter buffer of :func:`planar_step`: everything in one array,
-# because numba's per-call dispatch cost grows with every array argument.
+# The filter buffer of :func:`planar_step` is one flat float64 array: everything in one
+# array, because numba's per-call dispatch cost grows with every array argument, and
+# flat, so that every index is a constant offset plus 6 i + j (see "Compilation").
+# It is laid out in rows of W entries; a matrix takes N_STATE rows, stored by rows.
+W = 6
 BUF_X = 0  # 1 row: state x
 BUF_P = 1  # 6 rows: covariance P
 BUF_Q = 7  # 6 rows: process noise per second Q
-BUF_MEAS = 13  # 3 rows: values, variances, residuals (columns 0-3, component layout)
-BUF_T = 16  # 1 row: the filter time in column 0 (NaN until the clock is set), in column 1
-#            the time saved by the online step (see undo_step)
-BUF_WORK = 17  # WORK_ROWS rows: scratch
-BUF_ROWS = BUF_WORK + WORK_ROWS
+BUF_MEAS = 13  # 3 rows: values, variances, residuals (entries 0-3, component layout)
+BUF_T = 16  # 1 row: the filter time (NaN until the clock is set), then the time saved
+#            by the online step (see undo_step)
+BUF_WORK = 17  # scratch rows, below
+# Scratch rows.
+_E = BUF_WORK  # 4 rows: F - I (rows 0-3 of F), predict
+_FP = _E + 4  # 6 rows: F P, predict; reused as A P, update
+_Y = _FP + N_STATE  # 1 row: residual y, update
+_INV = _Y + 1  # 2 rows: 1/diag(L) of S and of the updated covariance, update
+_COMP = _INV + 2  # 1 row: the indices of the observed components (as floats), update
+_CHOL = _COMP + 1  # 4 rows: Cholesky factor of S (m x m in the top-left corner)
+_SOLVE = _CHOL + N_COMP  # 7 rows (m entries each): K (rows 0-5) and S⁻¹ y (row 6)
+_XN = _SOLVE + N_STATE + 1  # 1 row: updated state
+_PN = _XN + 1  # 6 rows: updated covariance (below the state, as P below x)
+_CHECK = _PN + N_STATE  # 6 rows: positive-definiteness check
+_SAVED = _CHECK + N_STATE  # 7 rows: x and P saved by planar_step
+BUF_ROWS = _SAVED + 1 + N_STATE
+BUF_SIZE = W * BUF_ROWS
+#: Indices in the buffer of the filter time and of the time saved by the online step.
+BUF_TIME = W * BUF_T
+BUF_SAVED_TIME = BUF_TIME + 1
+
+# Offsets (entries) of the blocks the kernels index.
+_X0 = W * BUF_X
+_P0 = W * BUF_P
+_Q0 = W * BUF_Q
+_Z0 = W * BUF_MEAS  # values
+_R0 = _Z0 + W  # variances
+_RES0 = _R0 + W  # residuals
+_E0 = W * _E
+_FP0 = W * _FP
+_Y0 = W * _Y
+_INV0 = W * _INV
+_COMP0 = W * _COMP
+_CHOL0 = W * _CHOL
+_SOLVE0 = W * _SOLVE
+_PN0 = W * _PN
+_CHECK0 = W * _CHECK
+_XN0 = W * _XN
+_SAVED0 = W * _SAVED
+
+
+@njit_force_inline
+def _wrap(a: float) -> float:
+    """:func:`navkit._shared.se2.wrap_scalar`, typed once (LLVM inlines it)."""
+    return wrap_scalar(a)
 
 
 @njit_inline
-def _cholesky_inplace(a: np.ndarray, n: int, inv_diag: np.ndarray) -> bool:
-    """Lower Cholesky factor L of the leading n×n block of ``a``, in place.
+def _cholesky_inplace(buf: np.ndarray, a: int, n: int, inv_diag: int) -> bool:
+    """Lower Cholesky factor L of the leading n×n block of the matrix at ``buf[a]``, in place.
 
-    Also stores 1 / L[j, j] in ``inv_diag[j]`` so that the solves multiply
-    instead of divide. Returns False (and stops) if the block is not positive
-    definite or not finite (an inf or NaN entry makes some pivot inf or NaN).
+    The matrix is stored by rows of ``W`` entries. Also stores 1 / L[j, j] in
+    ``buf[inv_diag + j]`` so that the solves multiply instead of divide.
+    Returns False (and stops) if the block is not positive definite or not
+    finite (an inf or NaN entry makes some pivot inf or NaN).
     """
     for j in range(n):
-        s = a[j, j]
+        s = buf[a + W * j + j]
         for k in range(j):
-            s -= a[j, k] * a[j, k]
+            s -= buf[a + W * j + k] * buf[a + W * j + k]
         if not 0.0 < s < math.inf:
             return False
         d = math.sqrt(s)
-        a[j, j] = d
+        buf[a + W * j + j] = d
         inv = 1.0 / d
-        inv_diag[j] = inv
+        buf[inv_diag + j] = inv
         for i in range(j + 1, n):
-            t = a[i, j]
+            t = buf[a + W * i + j]
             for k in range(j):
-                t -= a[i, k] * a[j, k]
-            a[i, j] = t * inv
+                t -= buf[a + W * i + k] * buf[a + W * j + k]
+            buf[a + W * i + j] = t * inv
     return True
 
 
 @njit_inline
-def _cho_solve_vec(lower: np.ndarray, inv_diag: np.ndarray, n: int, b: np.ndarray) -> None:
-    """Solve (L Lᵀ) u = b for the first n entries of ``b``, in place."""
+def _cho_solve_rows(buf: np.ndarray, lower: int, inv_diag: int, n: int, b: int) -> None:
+    """Solve (L Lᵀ) uᵣ = bᵣ for the 7 rows bᵣ (first n entries) of the block at ``buf[b]``.
+
+    ``L`` is the factor at ``buf[lower]`` and ``buf[inv_diag]`` the inverse of its
+    diagonal (:func:`_cholesky_inplace`); the solutions replace the rows. The
+    rows are solved together, entry by entry, so that the loops over the rows
+    have a constant length (LLVM unrolls them) and the loops over ``n`` are not
+    copied once per row; each entry sees the same operations in the same order
+    as in a solve of its row alone.
+    """
     for i in range(n):
-        t = b[i]
         for k in range(i):
-            t -= lower[i, k] * b[k]
-        b[i] = t * inv_diag[i]
+            f = buf[lower + W * i + k]
+            for r in range(N_STATE + 1):
+                buf[b + W * r + i] -= f * buf[b + W * r + k]
+        f = buf[inv_diag + i]
+        for r in range(N_STATE + 1):
+            buf[b + W * r + i] *= f
     for i in range(n - 1, -1, -1):
-        t = b[i]
         for k in range(i + 1, n):
-            t -= lower[k, i] * b[k]
-        b[i] = t * inv_diag[i]
-
-
-@njit_inline
-def _finite(x: np.ndarray, p: np.ndarray) -> bool:
-    """Whether the predicted state ``x`` (6,) and covariance ``p`` (6, 6) are finite.
-
-    The prediction changes only x, y, θ, v and the covariance; the diagonal
-    suffices for the covariance: every entry of a positive semi-definite matrix
-    is bounded by its diagonal (|P_ij| <= sqrt(P_ii P_jj)), so an overflow
-    anywhere shows on the diagonal (as inf or NaN). ``v * 0.0`` is 0 for a
-    finite ``v`` and NaN otherwise, so the check never overflows itself; the sum
-    is a tree, not a chain, to keep its latency short.
-    """
-    z = 0.0
-    a = (x[0] * z + x[1] * z) + (x[2] * z + x[3] * z)
-    b = (p[0, 0] * z + p[1, 1] * z) + (p[2, 2] * z + p[3, 3] * z)
-    ok: bool = (a + b) + (p[4, 4] * z + p[5, 5] * z) == 0.0
-    return ok
-
-
-@njit_inline
-def _copy_vector(dst: np.ndarray, src: np.ndarray) -> None:
-    """``dst[:] = src`` for 1-D arrays of equal length, as a loop.
-
-    numba compiles an array-to-array slice assignment with a shape-mismatch
-    error path that builds its message with f-strings: about 0.2-1.9 s of
-    compilation per assignment site, for a copy of 6 or 36 numbers.
-    """
-    for i in range(dst.shape[0]):
-        dst[i] = src[i]
-
-
-@njit_inline
-def _copy_matrix(dst: np.ndarray, src: np.ndarray) -> None:
-    """``dst[:, :] = src`` for 2-D arrays of equal shape, as a loop (see :func:`_copy_vector`)."""
-    for i in range(dst.shape[0]):
-        for j in range(dst.shape[1]):
-            dst[i, j] = src[i, j]
-
-
-@njit_inline
-def _symmetrize(p: np.ndarray) -> None:
-    for i in range(p.shape[0]):
-        for j in range(i + 1, p.shape[0]):
-            m = 0.5 * (p[i, j] + p[j, i])
-            p[i, j] = m
-            p[j, i] = m
+            f = buf[lower + W * k + i]
+            for r in range(N_STATE + 1):
+                buf[b + W * r + i] -= f * buf[b + W * r + k]
+        f = buf[inv_diag + i]
+        for r in range(N_STATE + 1):
+            buf[b + W * r + i] *= f
 
 
 @njit_no_refcount
@@ -181,10 +208,10 @@ def planar_step(
     The one compiled body of the filter: the online updates call it from
     Python and the batch loop (:func:`planar_run`) calls it, so that numba
     types and lowers it once and LLVM optimises it twice (alone and linked into
-    the batch loop; issue 17). ``buf`` (BUF_ROWS, 6) holds x, P, Q, the
+    the batch loop; issue 17). ``buf`` (BUF_SIZE,) holds x, P, Q, the
     measurement, the filter time and the scratch space (layout ``BUF_*``
     above); x and P change in place. It allocates nothing: the indices of the
-    observed components go to a scratch row of ``buf`` viewed as int64.
+    observed components go to a scratch row of ``buf`` (as floats).
 
     Online (``count`` >= 0): the measurement observes ``count`` (0, 1 or 2)
     consecutive components starting at ``first``, with values ``z0``, ``z1`` and
@@ -212,13 +239,14 @@ def planar_step(
     second, so P = F P Fᵀ + Q·dt. If the prediction overflows, the status is
     ``TIME_GAP`` (``nis`` NaN).
 
-    Update: the measurement block (3, 4) of ``buf`` packs the measurement in
-    component layout: row 0 the values ``z``, row 1 the noise variances (> 0 for
-    the observed components, 0 for the others, none observed: predict only; the
-    noise is independent between components), row 2 receives the residuals of
-    the observed components (others untouched). The yaw residual is wrapped. The
-    covariance uses the Joseph form P = (I - KH) P (I - KH)ᵀ + K R Kᵀ, then is
-    symmetrised and checked positive definite. Returns ``(status, nis)``; past
+    Update: the measurement block (3 rows of ``buf``) packs the measurement in
+    component layout (entries 0-3): row 0 the values ``z``, row 1 the noise
+    variances (> 0 for the observed components, 0 for the others, none
+    observed: predict only; the noise is independent between components), row
+    2 receives the residuals of the observed components (others untouched).
+    The yaw residual is wrapped. The covariance uses the Joseph form
+    P = (I - KH) P (I - KH)ᵀ + K R Kᵀ, then is symmetrised and checked
+    positive definite. Returns ``(status, nis)``; past
     the prediction, x and P change only when the status is ``ACCEPTED``.
     ``gate`` is the NIS threshold (``inf`` disables gating). ``OVERFLOW`` (with
     ``nis`` inf when the NIS itself overflowed) means the residual, the NIS or
@@ -226,7 +254,7 @@ def planar_step(
     """
     online = count >= 0
     if online:
-        last = buf[BUF_T, 0]
+        last = buf[BUF_TIME]
         z = 0.0
         if not last <= t or (t * z + z0 * z) + z1 * z != 0.0:  # NaN last: no clock yet
             return INVALID, math.nan
@@ -234,158 +262,168 @@ def planar_step(
             return INVALID, math.nan
         if count > 1 and not 1e-100 <= var1 <= 1e100:
             return INVALID, math.nan
-        meas = buf[BUF_MEAS : BUF_MEAS + 3]
         for k in range(N_COMP):
-            meas[1, k] = 0.0
+            buf[_R0 + k] = 0.0
         if count > 0:
-            meas[0, first] = z0
-            meas[1, first] = var0
+            buf[_Z0 + first] = z0
+            buf[_R0 + first] = var0
         if count > 1:
-            meas[0, first + 1] = z1
-            meas[1, first + 1] = var1
-        state = buf[BUF_X : BUF_P + N_STATE]
-        saved = buf[BUF_WORK + _SAVED : BUF_WORK + _SAVED + 1 + N_STATE]
-        _copy_matrix(saved, state)
-        buf[BUF_T, 1] = last
-        buf[BUF_T, 0] = t
+            buf[_Z0 + first + 1] = z1
+            buf[_R0 + first + 1] = var1
+        for i in range(W * (1 + N_STATE)):  # x and P
+            buf[_SAVED0 + i] = buf[_X0 + i]
+        buf[BUF_SAVED_TIME] = last
+        buf[BUF_TIME] = t
         dt = t - last
     else:
         dt = z0
-    x = buf[BUF_X]
-    p = buf[BUF_P : BUF_P + N_STATE]
-    q = buf[BUF_Q : BUF_Q + N_STATE]
-    meas = buf[BUF_MEAS : BUF_MEAS + 3]
-    work = buf[BUF_WORK:]
     if dt != 0.0:
-        v = x[3]
-        w = x[4]
-        acc = x[5]
+        v = buf[_X0 + 3]
+        omega = buf[_X0 + 4]
+        acc = buf[_X0 + 5]
         s = v * dt + 0.5 * acc * dt * dt
-        half = 0.5 * w * dt
-        mid = x[2] + half
+        half = 0.5 * omega * dt
+        mid = buf[_X0 + 2] + half
         c = math.cos(mid)
         sn = math.sin(mid)
-        # Composing from the mid-step heading with a half turn lands on theta + w*dt, wrapped.
-        x[0], x[1], x[2] = compose_scalar(x[0], x[1], mid, s, 0.0, half)
-        x[3] = v + acc * dt
+        # navkit._shared.se2.compose_scalar(x, y, mid, s, 0.0, half) written out (it would
+        # compute the cosine and sine again): from the mid-step heading with a half turn.
+        buf[_X0] = buf[_X0] + c * s - sn * 0.0
+        buf[_X0 + 1] = buf[_X0 + 1] + sn * s + c * 0.0
+        buf[_X0 + 2] = _wrap(mid + half)
+        buf[_X0 + 3] = v + acc * dt
 
         # F = I + E with E non-zero only in rows 0-3 and columns 2-5, so F P Fᵀ is done
         # sparsely: FP = P + E P (rows 0-3 change), then FP Fᵀ = FP + FP Eᵀ (columns 0-3).
-        e = work[_E : _E + 4]
-        e[:, :] = 0.0
-        e[0, 2] = -sn * s
-        e[0, 3] = c * dt
-        e[0, 4] = -sn * s * 0.5 * dt
-        e[0, 5] = c * 0.5 * dt * dt
-        e[1, 2] = c * s
-        e[1, 3] = sn * dt
-        e[1, 4] = c * s * 0.5 * dt
-        e[1, 5] = sn * 0.5 * dt * dt
-        e[2, 4] = dt
-        e[3, 5] = dt
-        fp = work[_FP : _FP + N_STATE]
-        _copy_matrix(fp, p)
-        for i in range(4):
-            for j in range(N_STATE):
-                tmp = 0.0
-                for k in range(2, N_STATE):
-                    tmp += e[i, k] * p[k, j]
-                fp[i, j] += tmp
+        for i in range(4 * W):
+            buf[_E0 + i] = 0.0
+        buf[_E0 + 2] = -sn * s
+        buf[_E0 + 3] = c * dt
+        buf[_E0 + 4] = -sn * s * 0.5 * dt
+        buf[_E0 + 5] = c * 0.5 * dt * dt
+        buf[_E0 + W + 2] = c * s
+        buf[_E0 + W + 3] = sn * dt
+        buf[_E0 + W + 4] = c * s * 0.5 * dt
+        buf[_E0 + W + 5] = sn * 0.5 * dt * dt
+        buf[_E0 + 2 * W + 4] = dt
+        buf[_E0 + 3 * W + 5] = dt
         for i in range(N_STATE):
             for j in range(N_STATE):
-                tmp = fp[i, j]
+                tmp = buf[_P0 + W * i + j]
+                if i < 4:
+                    ep = 0.0
+                    for k in range(2, N_STATE):
+                        ep += buf[_E0 + W * i + k] * buf[_P0 + W * k + j]
+                    tmp += ep
+                buf[_FP0 + W * i + j] = tmp
+        for i in range(N_STATE):
+            for j in range(N_STATE):
+                tmp = buf[_FP0 + W * i + j]
                 if j < 4:
                     for k in range(2, N_STATE):
-                        tmp += fp[i, k] * e[j, k]
-                p[i, j] = tmp + q[i, j] * dt
-        _symmetrize(p)
-        if not _finite(x, p):
+                        tmp += buf[_FP0 + W * i + k] * buf[_E0 + W * j + k]
+                buf[_P0 + W * i + j] = tmp + buf[_Q0 + W * i + j] * dt
+        for i in range(N_STATE):
+            for j in range(i + 1, N_STATE):
+                tmp = 0.5 * (buf[_P0 + W * i + j] + buf[_P0 + W * j + i])
+                buf[_P0 + W * i + j] = tmp
+                buf[_P0 + W * j + i] = tmp
+        # Overflow check: the prediction changes x, y, θ, v and P. An overflow anywhere in P
+        # shows on its diagonal (as inf or NaN): every entry of a positive semi-definite
+        # matrix is bounded by its diagonal (|P_ij| <= sqrt(P_ii P_jj)). ``u * 0.0`` is 0
+        # for a finite ``u`` and NaN otherwise, so the check never overflows itself.
+        z = 0.0
+        for i in range(N_STATE):
+            z += buf[_X0 + i] * 0.0 + buf[_P0 + (W + 1) * i] * 0.0
+        if z != 0.0:
             return TIME_GAP, math.nan
 
-    comp = work[_COMP].view(np.int64)
-    y = work[_VEC]
-    u = work[_VEC + 1]
-    row = work[_VEC + 2]
-    inv_diag = work[_VEC + 3]
+    # The indices of the observed components (as floats), the residuals and S.
     m = 0
     for k in range(N_COMP):
-        if meas[1, k] > 0.0:
-            comp[m] = k
+        if buf[_R0 + k] > 0.0:
+            buf[_COMP0 + m] = k
             m += 1
     if m == 0:
         return ACCEPTED, 0.0
+    # Right-hand sides solved with S: the rows of P Hᵀ (for K = P Hᵀ S⁻¹; S is symmetric, so
+    # each row of K solves S kᵢ = (P Hᵀ)ᵢ) and, in row 6, y (for the NIS yᵀ S⁻¹ y).
     for a in range(m):
-        k = comp[a]
-        y[a] = meas[0, k] - x[k + 2]
+        k = int(buf[_COMP0 + a])
+        r = buf[_Z0 + k] - buf[_X0 + k + 2]
         if k + 2 == THETA:
-            y[a] = wrap_scalar(y[a])
-        meas[2, k] = y[a]
-    chol = work[_CHOL : _CHOL + N_COMP]
+            r = _wrap(r)
+        buf[_RES0 + k] = r
+        buf[_Y0 + a] = r
+        buf[_SOLVE0 + W * N_STATE + a] = r
+        for i in range(N_STATE):
+            buf[_SOLVE0 + W * i + a] = buf[_P0 + W * i + k + 2]
     for a in range(m):
+        k = int(buf[_COMP0 + a])
         for b in range(m):
-            chol[a, b] = p[comp[a] + 2, comp[b] + 2]
-        chol[a, a] += meas[1, comp[a]]
-    if not _cholesky_inplace(chol, m, inv_diag):
+            buf[_CHOL0 + W * a + b] = buf[_P0 + W * (k + 2) + int(buf[_COMP0 + b]) + 2]
+        buf[_CHOL0 + (W + 1) * a] += buf[_R0 + k]
+    if not _cholesky_inplace(buf, _CHOL0, m, _INV0):
         return NOT_POSITIVE_DEFINITE, math.nan
-    for a in range(m):
-        u[a] = y[a]
-    _cho_solve_vec(chol, inv_diag, m, u)
+    _cho_solve_rows(buf, _CHOL0, _INV0, m, _SOLVE0)
     nis = 0.0
     for a in range(m):
-        nis += y[a] * u[a]
+        nis += buf[_Y0 + a] * buf[_SOLVE0 + W * N_STATE + a]
     if not nis < math.inf:  # also NaN: an infinite residual
         return OVERFLOW, math.inf
     if nis > gate:
         return GATED, nis
-    # K = P Hᵀ S⁻¹; S is symmetric, so each row of K solves S kᵢ = (P Hᵀ)ᵢ.
-    gain = work[_GAIN : _GAIN + N_STATE]
+    # From here on K is rows 0-5 of the solved block. The loops over the observed
+    # components are the outer ones: the inner loops have a constant length and LLVM
+    # unrolls them, instead of copying a loop over the components (unrolled four times,
+    # with a remainder loop) into each of 6 or 36 entries. Each entry still sees the same
+    # operations in the same order.
     for i in range(N_STATE):
-        for a in range(m):
-            row[a] = p[i, comp[a] + 2]
-        _cho_solve_vec(chol, inv_diag, m, row)
-        for a in range(m):
-            gain[i, a] = row[a]
-    xn = work[_X]
-    for i in range(N_STATE):
-        tmp = x[i]
-        for a in range(m):
-            tmp += gain[i, a] * y[a]
-        xn[i] = tmp
-    xn[THETA] = wrap_scalar(xn[THETA])
+        buf[_XN0 + i] = buf[_X0 + i]
+    for a in range(m):
+        ya = buf[_Y0 + a]
+        for i in range(N_STATE):
+            buf[_XN0 + i] += buf[_SOLVE0 + W * i + a] * ya
+    buf[_XN0 + THETA] = _wrap(buf[_XN0 + THETA])
     # Joseph form with H selecting the observed states: A = I - K H differs from I only in
     # those columns, so A P = P - K (H P) and (A P) Aᵀ = A P - (A P Hᵀ) Kᵀ; then + K R Kᵀ.
-    ap = work[_FP : _FP + N_STATE]
-    for i in range(N_STATE):
-        for j in range(N_STATE):
-            tmp = p[i, j]
-            for a in range(m):
-                tmp -= gain[i, a] * p[comp[a] + 2, j]
-            ap[i, j] = tmp
-    # The result is symmetric: compute the upper triangle and mirror it (exact symmetry).
-    pn = work[_PN : _PN + N_STATE]
+    for i in range(W * N_STATE):
+        buf[_FP0 + i] = buf[_P0 + i]
+    for a in range(m):
+        k = int(buf[_COMP0 + a]) + 2
+        for i in range(N_STATE):
+            g = buf[_SOLVE0 + W * i + a]
+            for j in range(N_STATE):
+                buf[_FP0 + W * i + j] -= g * buf[_P0 + W * k + j]
+    # M = A P + (K R - A P Hᵀ) Kᵀ, entry by entry; the result is symmetric in exact
+    # arithmetic, so it is the mean of M and Mᵀ (exactly symmetric).
+    for i in range(W * N_STATE):
+        buf[_PN0 + i] = buf[_FP0 + i]
+    for a in range(m):
+        k = int(buf[_COMP0 + a])
+        rk = buf[_R0 + k]
+        for i in range(N_STATE):
+            g = buf[_SOLVE0 + W * i + a] * rk - buf[_FP0 + W * i + k + 2]
+            for j in range(N_STATE):
+                buf[_PN0 + W * i + j] += g * buf[_SOLVE0 + W * j + a]
     for i in range(N_STATE):
         for j in range(i, N_STATE):
-            t1 = ap[i, j]
-            t2 = ap[j, i]
-            for a in range(m):
-                k = comp[a]
-                rk = meas[1, k]
-                t1 += (gain[i, a] * rk - ap[i, k + 2]) * gain[j, a]
-                t2 += (gain[j, a] * rk - ap[j, k + 2]) * gain[i, a]
-            tmp = 0.5 * (t1 + t2)
-            pn[i, j] = tmp
-            pn[j, i] = tmp
+            tmp = 0.5 * (buf[_PN0 + W * i + j] + buf[_PN0 + W * j + i])
+            buf[_PN0 + W * i + j] = tmp
+            buf[_PN0 + W * j + i] = tmp
     # The state may overflow (then it is inf or NaN); the covariance is checked finite
     # by the Cholesky factorisation below.
     z = 0.0
-    if ((xn[0] * z + xn[1] * z) + (xn[2] * z + xn[3] * z)) + (xn[4] * z + xn[5] * z) != 0.0:
+    for i in range(N_STATE):
+        z += buf[_XN0 + i] * 0.0
+    if z != 0.0:
         return OVERFLOW, nis
-    check = work[_CHECK : _CHECK + N_STATE]
-    _copy_matrix(check, pn)
-    if not _cholesky_inplace(check, N_STATE, work[_VEC + 4]):
+    for i in range(W * N_STATE):
+        buf[_CHECK0 + i] = buf[_PN0 + i]
+    if not _cholesky_inplace(buf, _CHECK0, N_STATE, _INV0 + W):
         return NOT_POSITIVE_DEFINITE, nis
-    _copy_vector(x, xn)
-    _copy_matrix(p, pn)
+    for i in range(W * (1 + N_STATE)):  # x and P from the updated x and P below each other
+        buf[_X0 + i] = buf[_XN0 + i]
     return ACCEPTED, nis
 
 
@@ -419,12 +457,9 @@ def planar_run(
     ``TIME_GAP`` in row 0 restores them from there (a copy made here would slow
     the loop down measurably).
     """
-    t = buf[BUF_T, 0]
+    t = buf[BUF_TIME]
     if math.isnan(t):  # no clock yet: it starts at the first row
         t = times[0]
-    x = buf[BUF_X]
-    p = buf[BUF_P : BUF_P + N_STATE]
-    meas = buf[BUF_MEAS : BUF_MEAS + 3]
     # Batch mode of planar_step (count -1). Typed int64, not as literal constants: a literal
     # argument would compile planar_step a second time, for the literal values.
     first = np.int64(0)
@@ -437,23 +472,27 @@ def planar_run(
         else:
             m = 0
             for k in range(N_COMP):
-                meas[0, k] = values[i, k]
-                meas[1, k] = variances[i, k]
+                buf[_Z0 + k] = values[i, k]
+                buf[_R0 + k] = variances[i, k]
                 if variances[i, k] > 0.0:
                     m += 1
             status, nis = planar_step(buf, ti, first, batch, ti - t, 0.0, 0.0, 0.0, gates[m])
             if status == TIME_GAP:
                 # Undo the prediction: back to the state after the previous row (for
                 # row 0, index -1: the caller's copy of the initial state).
-                _copy_vector(x, out_x[i - 1])
-                _copy_matrix(p, out_p[i - 1])
+                for j in range(N_STATE):
+                    buf[_X0 + j] = out_x[i - 1, j]
+                    for k in range(N_STATE):
+                        buf[_P0 + W * j + k] = out_p[i - 1, j, k]
             else:
                 t = ti
             out_status[i] = status
             out_nis[i] = nis
-        _copy_vector(out_x[i], x)
-        _copy_matrix(out_p[i], p)
-    buf[BUF_T, 0] = t
+        for j in range(N_STATE):
+            out_x[i, j] = buf[_X0 + j]
+            for k in range(N_STATE):
+                out_p[i, j, k] = buf[_P0 + W * j + k]
+    buf[BUF_TIME] = t
 
 
 def undo_step(buf: np.ndarray) -> None:
@@ -464,19 +503,19 @@ def undo_step(buf: np.ndarray) -> None:
 
     Examples
     --------
-    >>> buf = np.zeros((BUF_ROWS, 6))
-    >>> buf[BUF_P : BUF_P + 6] = np.eye(6)
-    >>> buf[BUF_T, 0] = 0.0
+    >>> buf = np.zeros(BUF_SIZE)
+    >>> buf.reshape(BUF_ROWS, W)[BUF_P : BUF_P + 6] = np.eye(6)
+    >>> buf[BUF_TIME] = 0.0
     >>> status, nis = planar_step_entry()(buf, 1e300, 0, 0, 0.0, 0.0, 0.0, 0.0, math.inf)
-    >>> status == TIME_GAP, float(buf[BUF_T, 0])
+    >>> status == TIME_GAP, float(buf[BUF_TIME])
     (True, 1e+300)
     >>> undo_step(buf)
-    >>> float(buf[BUF_T, 0]), float(buf[BUF_P, 0])
+    >>> float(buf[BUF_TIME]), float(buf[W * BUF_P])
     (0.0, 1.0)
     """
-    saved = BUF_WORK + _SAVED
-    np.copyto(buf[BUF_X : BUF_P + N_STATE], buf[saved : saved + 1 + N_STATE])
-    buf[BUF_T, 0] = buf[BUF_T, 1]
+    size = W * (1 + N_STATE)  # x and P
+    np.copyto(buf[_X0 : _X0 + size], buf[_SAVED0 : _SAVED0 + size])
+    buf[BUF_TIME] = buf[BUF_SAVED_TIME]
 
 
 def _step_types() -> tuple[Any, ...]:
@@ -488,7 +527,7 @@ def _step_types() -> tuple[Any, ...]:
     from numba.core import types
 
     return (
-        types.Array(types.float64, 2, "C"),
+        types.Array(types.float64, 1, "C"),
         types.float64,  # t
         types.int64,  # first
         types.int64,  # count
@@ -508,11 +547,11 @@ def planar_step_entry() -> Callable[..., tuple[int, float]]:
 
     Examples
     --------
-    >>> buf = np.zeros((BUF_ROWS, 6))
-    >>> buf[BUF_P : BUF_P + 6] = np.eye(6)
-    >>> buf[BUF_T, 0] = 0.0
+    >>> buf = np.zeros(BUF_SIZE)
+    >>> buf.reshape(BUF_ROWS, W)[BUF_P : BUF_P + 6] = np.eye(6)
+    >>> buf[BUF_TIME] = 0.0
     >>> status, nis = planar_step_entry()(buf, 0.1, 1, 1, 1.0, 0.0, 1.0, 1.0, math.inf)
-    >>> status == ACCEPTED, round(nis, 3), float(buf[BUF_T, 0])
+    >>> status == ACCEPTED, round(nis, 3), float(buf[BUF_TIME])
     (True, 0.5, 0.1)
     """
     dispatcher: Any = planar_step
