@@ -26,7 +26,8 @@ __all__ = ["KERNELS", "announce_compilation", "cache_folders", "kernels_cached"]
 #: how long compiling everything that work needs takes on a cold cache, s
 #: (measured on 2 cores).
 KERNELS: dict[str, tuple[tuple[str, str, str], float]] = {
-    "simulation": (("navkit.sim", "_segment_kernels", "run_segment"), 10.0),
+    # _sample: called by both run kernels (edges-only worlds and the rest).
+    "simulation": (("navkit.sim", "_segment_kernels", "_sample"), 10.0),
     "astar": (("navkit.planning.grid", "_astar_kernels", "grid_search"), 3.0),
     "field_dstar": (("navkit.planning.grid", "_dstar_lite_kernels", "update_cells"), 8.0),
 }

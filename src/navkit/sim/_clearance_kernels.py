@@ -11,6 +11,17 @@ cells of the uniform grid (and of the occupancy grid) in rings around the
 footprint and stops once the rings are farther than the best distance found
 or than ``limit``, returning ``min(distance, limit)``.
 
+Compilation on first use is kept to what a world and a robot need:
+
+* ``footprint_clearance`` measures against every kind of obstacle;
+  ``edge_clearance`` is the same search for a world of static segments and
+  circles only, without the occupancy grid's and the moving obstacles' code
+  (about half a second less to compile);
+* a disc footprint passes None for the polygon's vertex arrays: numba then
+  drops the polygon's branches (``if verts is None``) before typing, so a disc
+  robot never compiles the polygon distances (about another half second), and
+  a polygon robot compiles the kernels once more, for its own arrays.
+
 Examples
 --------
 >>> import numpy as np
@@ -19,8 +30,7 @@ Examples
 >>> items = np.array([0], dtype=np.int64)
 >>> occ = np.zeros((0, 0), np.uint8)
 >>> none3, none4 = np.empty((0, 3)), np.empty((0, 4))
->>> none2 = np.empty((0, 2))
->>> footprint_clearance(0.0, 0.0, 0.0, 0.5, none2, none2, none2, segs, none3, 1.0, -2.0, 2.0,
+>>> footprint_clearance(0.0, 0.0, 0.0, 0.5, None, None, None, segs, none3, 1.0, -2.0, 2.0,
 ...                     1, 1, start, items, occ, 0.0, 0.0, 1.0, 0.0, 1.0, none4, none3,
 ...                     np.inf)
 1.5
@@ -34,7 +44,7 @@ import numpy as np
 
 from navkit._shared.jit import njit_helper, njit_no_refcount
 
-__all__ = ["TOUCH", "footprint_clearance"]
+__all__ = ["TOUCH", "edge_clearance", "footprint_clearance"]
 
 
 TOUCH = 1e-12
@@ -105,16 +115,21 @@ def _to_segment(
     cx: float,
     cy: float,
     radius: float,
-    verts: np.ndarray,
-    n: int,
+    verts: np.ndarray | None,
     ax: float,
     ay: float,
     bx: float,
     by: float,
 ) -> float:
-    """Footprint-to-segment distance (0 on contact or containment)."""
-    if n == 0:
+    """Footprint-to-segment distance (0 on contact or containment).
+
+    The footprint is the placed polygon ``verts``, or the disc of ``radius``
+    about ``(cx, cy)`` when ``verts`` is None (numba then compiles only the
+    first branch).
+    """
+    if verts is None:
         return max(_point_segment(cx, cy, ax, ay, bx, by) - radius, 0.0)
+    n = verts.shape[0]
     if _inside_polygon(ax, ay, verts, n):
         return 0.0
     best = _INF
@@ -131,14 +146,18 @@ def _to_segment(
 
 @njit_helper
 def _to_circle(
-    cx: float, cy: float, radius: float, verts: np.ndarray, n: int, ox: float, oy: float, r: float
+    cx: float, cy: float, radius: float, verts: np.ndarray | None, ox: float, oy: float, r: float
 ) -> float:
-    """Footprint-to-circle-boundary distance (0 when the boundary meets the footprint)."""
-    if n == 0:
+    """Footprint-to-circle-boundary distance (0 when the boundary meets the footprint).
+
+    The footprint as for :func:`_to_segment`.
+    """
+    if verts is None:
         d = math.sqrt((cx - ox) ** 2 + (cy - oy) ** 2)
         if d + radius < r:
             return r - (d + radius)
         return max(d - radius - r, 0.0)
+    n = verts.shape[0]
     near = _INF
     if _inside_polygon(ox, oy, verts, n):
         near = 0.0
@@ -160,19 +179,19 @@ def _to_square(
     cx: float,
     cy: float,
     radius: float,
-    lverts: np.ndarray,
-    n: int,
+    lverts: np.ndarray | None,
     xa: float,
     ya: float,
     s: float,
 ) -> float:
-    """Footprint-to-square distance; footprint in the square's frame (``lverts[:n]``)."""
+    """Footprint-to-square distance; footprint in the square's frame (``lverts``)."""
     xb = xa + s
     yb = ya + s
-    if n == 0:
+    if lverts is None:
         qx = cx - min(max(cx, xa), xb)
         qy = cy - min(max(cy, ya), yb)
         return max(math.sqrt(qx * qx + qy * qy) - radius, 0.0)
+    n = lverts.shape[0]
     # A vertex of the footprint inside the square, or a square corner inside the footprint.
     for i in range(n):
         if xa <= lverts[i, 0] <= xb and ya <= lverts[i, 1] <= yb:
@@ -186,7 +205,7 @@ def _to_square(
         y0 = ya if e < 2 else yb
         x1 = xb if e < 2 else xa
         y1 = ya if e == 0 or e == 3 else yb
-        best = min(best, _to_segment(0.0, 0.0, 0.0, lverts, n, x0, y0, x1, y1))
+        best = min(best, _to_segment(0.0, 0.0, 0.0, lverts, x0, y0, x1, y1))
     return best
 
 
@@ -195,8 +214,7 @@ def _edge_grid_distance(
     cx: float,
     cy: float,
     radius: float,
-    verts: np.ndarray,
-    n: int,
+    verts: np.ndarray | None,
     bx0: float,
     by0: float,
     bx1: float,
@@ -249,15 +267,14 @@ def _edge_grid_distance(
                         item = cell_items[m]
                         if item < n_seg:
                             d = _to_segment(
-                                cx, cy, radius, verts, n,
+                                cx, cy, radius, verts,
                                 segs[item, 0], segs[item, 1], segs[item, 2], segs[item, 3],
                             )  # fmt: skip
                         else:
                             c = item - n_seg
                             d = _to_circle(
-                                cx, cy, radius, verts, n,
-                                circles[c, 0], circles[c, 1], circles[c, 2],
-                            )  # fmt: skip
+                                cx, cy, radius, verts, circles[c, 0], circles[c, 1], circles[c, 2]
+                            )
                         if d < best:
                             best = d
                 i += i_step
@@ -272,9 +289,8 @@ def _occupancy_distance(
     cx: float,
     cy: float,
     radius: float,
-    verts: np.ndarray,
-    n: int,
-    lverts: np.ndarray,
+    verts: np.ndarray | None,
+    lverts: np.ndarray | None,
     occ: np.ndarray,
     gox: float,
     goy: float,
@@ -285,8 +301,8 @@ def _occupancy_distance(
 ) -> float:
     """Smallest distance below ``best`` to an occupied cell, searching rings of cells.
 
-    ``lverts`` is scratch space of at least ``n`` rows for the footprint in the
-    grid frame.
+    ``lverts`` is scratch space of the shape of ``verts`` for the footprint in
+    the grid frame (both None for a disc).
     """
     rows = occ.shape[0]
     cols = occ.shape[1]
@@ -295,7 +311,8 @@ def _occupancy_distance(
     ry = cy - goy
     lcx = gcos * rx + gsin * ry
     lcy = -gsin * rx + gcos * ry
-    if n == 0:
+    # Both None or neither; the second test only tells mypy so (numba prunes on the first).
+    if verts is None or lverts is None:
         bx0 = lcx - radius
         bx1 = lcx + radius
         by0 = lcy - radius
@@ -303,7 +320,7 @@ def _occupancy_distance(
     else:
         bx0 = by0 = _INF
         bx1 = by1 = -_INF
-        for v in range(n):
+        for v in range(verts.shape[0]):
             wx = verts[v, 0] - gox
             wy = verts[v, 1] - goy
             lx = gcos * wx + gsin * wy
@@ -341,7 +358,7 @@ def _occupancy_distance(
             i = i_first
             while i <= min(hi_i, cols - 1):
                 if i >= 0 and occ[j, i] != 0:
-                    d = _to_square(lcx, lcy, radius, lverts, n, i * res, j * res, res)
+                    d = _to_square(lcx, lcy, radius, lverts, i * res, j * res, res)
                     if d < best:
                         best = d
                 i += i_step
@@ -351,15 +368,81 @@ def _occupancy_distance(
     return best
 
 
+@njit_helper
+def _place_footprint(
+    px: float,
+    py: float,
+    ptheta: float,
+    radius: float,
+    body_verts: np.ndarray | None,
+    verts: np.ndarray | None,
+) -> tuple[float, float, float, float]:
+    """A polygon footprint at the pose into ``verts``; the footprint's bounding box.
+
+    Returns ``(x0, y0, x1, y1)``.
+    """
+    # Both None or neither; the second test only tells mypy so (numba prunes on the first).
+    if body_verts is None or verts is None:
+        return px - radius, py - radius, px + radius, py + radius
+    c = math.cos(ptheta)
+    s = math.sin(ptheta)
+    bx0 = by0 = _INF
+    bx1 = by1 = -_INF
+    for v in range(body_verts.shape[0]):
+        x = px + c * body_verts[v, 0] - s * body_verts[v, 1]
+        y = py + s * body_verts[v, 0] + c * body_verts[v, 1]
+        verts[v, 0] = x
+        verts[v, 1] = y
+        bx0 = min(bx0, x)
+        bx1 = max(bx1, x)
+        by0 = min(by0, y)
+        by1 = max(by1, y)
+    return bx0, by0, bx1, by1
+
+
+@njit_no_refcount
+def edge_clearance(
+    px: float,
+    py: float,
+    ptheta: float,
+    radius: float,
+    body_verts: np.ndarray | None,
+    verts: np.ndarray | None,
+    segs: np.ndarray,
+    circles: np.ndarray,
+    gx0: float,
+    gy0: float,
+    h: float,
+    nx: int,
+    ny: int,
+    cell_start: np.ndarray,
+    cell_items: np.ndarray,
+    limit: float,
+) -> float:
+    """:func:`footprint_clearance` in a world of static segments and circles only.
+
+    The same result as :func:`footprint_clearance` given no occupancy grid and
+    no moving obstacles, without compiling their distance code.
+    """
+    bx0, by0, bx1, by1 = _place_footprint(px, py, ptheta, radius, body_verts, verts)
+    best = limit
+    if best > 0.0 and cell_items.shape[0] > 0:
+        best = _edge_grid_distance(
+            px, py, radius, verts, bx0, by0, bx1, by1,
+            segs, circles, gx0, gy0, h, nx, ny, cell_start, cell_items, best,
+        )  # fmt: skip
+    return best
+
+
 @njit_no_refcount
 def footprint_clearance(
     px: float,
     py: float,
     ptheta: float,
     radius: float,
-    body_verts: np.ndarray,
-    verts: np.ndarray,
-    scratch: np.ndarray,
+    body_verts: np.ndarray | None,
+    verts: np.ndarray | None,
+    scratch: np.ndarray | None,
     segs: np.ndarray,
     circles: np.ndarray,
     gx0: float,
@@ -382,49 +465,31 @@ def footprint_clearance(
     """``min(limit, distance)`` from the footprint at a pose to the nearest obstacle boundary.
 
     The footprint is the disc of ``radius`` about ``(px, py)`` when
-    ``body_verts`` is empty, otherwise the polygon ``body_verts`` (robot
-    frame) placed at the pose ``(px, py, ptheta)``. 0 means contact.
-    ``verts`` and ``scratch`` are float64 work arrays of the shape of
-    ``body_verts`` (the footprint in the world and in the grid frame).
+    ``body_verts`` is None, otherwise the polygon ``body_verts`` (robot
+    frame, shape (V, 2)) placed at the pose ``(px, py, ptheta)``. 0 means
+    contact. ``verts`` and ``scratch`` are float64 work arrays of the shape of
+    ``body_verts`` (the footprint in the world and in the grid frame), None
+    with it.
     """
-    n = body_verts.shape[0]
-    c = math.cos(ptheta)
-    s = math.sin(ptheta)
-    if n == 0:
-        bx0 = px - radius
-        bx1 = px + radius
-        by0 = py - radius
-        by1 = py + radius
-    else:
-        bx0 = by0 = _INF
-        bx1 = by1 = -_INF
-        for v in range(n):
-            x = px + c * body_verts[v, 0] - s * body_verts[v, 1]
-            y = py + s * body_verts[v, 0] + c * body_verts[v, 1]
-            verts[v, 0] = x
-            verts[v, 1] = y
-            bx0 = min(bx0, x)
-            bx1 = max(bx1, x)
-            by0 = min(by0, y)
-            by1 = max(by1, y)
+    bx0, by0, bx1, by1 = _place_footprint(px, py, ptheta, radius, body_verts, verts)
     best = limit
     for m in range(dyn_segs.shape[0]):
         d = _to_segment(
-            px, py, radius, verts, n, dyn_segs[m, 0], dyn_segs[m, 1], dyn_segs[m, 2], dyn_segs[m, 3]
+            px, py, radius, verts, dyn_segs[m, 0], dyn_segs[m, 1], dyn_segs[m, 2], dyn_segs[m, 3]
         )
         best = min(best, d)
     for m in range(dyn_circles.shape[0]):
         d = _to_circle(
-            px, py, radius, verts, n, dyn_circles[m, 0], dyn_circles[m, 1], dyn_circles[m, 2]
+            px, py, radius, verts, dyn_circles[m, 0], dyn_circles[m, 1], dyn_circles[m, 2]
         )
         best = min(best, d)
     if best > 0.0 and cell_items.shape[0] > 0:
         best = _edge_grid_distance(
-            px, py, radius, verts, n, bx0, by0, bx1, by1,
+            px, py, radius, verts, bx0, by0, bx1, by1,
             segs, circles, gx0, gy0, h, nx, ny, cell_start, cell_items, best,
         )  # fmt: skip
     if best > 0.0 and occ.shape[0] > 0:
         best = _occupancy_distance(
-            px, py, radius, verts, n, scratch, occ, gox, goy, gcos, gsin, res, best
+            px, py, radius, verts, scratch, occ, gox, goy, gcos, gsin, res, best
         )
     return best

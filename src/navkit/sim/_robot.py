@@ -195,15 +195,18 @@ class Body:
         self.angles = np.zeros(n)
         self.command = np.zeros(n)
         fp = robot.footprint
+        # A disc has no vertices: None, for which the kernels compile only the disc's
+        # distance code (and a polygon only the polygon's).
+        self.verts: FloatArray | None = None
+        self.work: FloatArray | None = None
+        self.scratch: FloatArray | None = None
         if isinstance(fp, np.ndarray):
             self.radius = 0.0
             self.verts = np.ascontiguousarray(fp, dtype=np.float64)
+            self.work = np.empty_like(self.verts)
+            self.scratch = np.empty_like(self.verts)
         else:
             self.radius = float(fp)
-            self.verts = np.empty((0, 2))
-            self.verts.flags.writeable = False  # as a polygon's: one kernel specialisation
-        self.work = np.empty_like(self.verts)
-        self.scratch = np.empty_like(self.verts)
 
     def set_command(self, twist: Twist2D) -> None:
         """Turn a body twist into wheel-speed commands, scaled together to the speed limit."""

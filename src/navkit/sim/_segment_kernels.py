@@ -15,6 +15,12 @@ holds the next ``k``.
 Status codes returned with the step reached: ``REACHED`` (``i_end``),
 ``COLLIDED`` (a collision ended the run at that step) and ``GOAL`` (the goal
 was reached and ends the run).
+
+``run_edge_segment`` is ``run_segment`` for a world of static segments and
+circles only (no occupancy grid, no moving obstacles): it checks the
+clearance with ``edge_clearance`` and places no obstacles, so that such a
+world compiles neither the grid's nor the moving obstacles' code on first use.
+The two share the work after the clearance check (``_settle``).
 """
 
 from __future__ import annotations
@@ -23,13 +29,14 @@ import math
 
 import numpy as np
 
-from navkit._shared.jit import njit_helper, njit_no_refcount
-from navkit.sim._clearance_kernels import TOUCH, footprint_clearance
+from navkit._shared.jit import njit_force_inline, njit_helper, njit_no_refcount
+from navkit.sim._clearance_kernels import TOUCH, edge_clearance, footprint_clearance
 from navkit.sim._moving_kernels import place_moving
 from navkit.sim._wheel_kernels import wheel_step
 
 __all__ = ["COLLIDED", "GOAL", "REACHED", "STAT_COLLISIONS", "STAT_IN_CONTACT",
-           "STAT_MIN_CLEARANCE", "STAT_TIME_TO_GOAL", "due_step", "run_segment"]  # fmt: skip
+           "STAT_MIN_CLEARANCE", "STAT_TIME_TO_GOAL", "due_step", "run_edge_segment",
+           "run_segment"]  # fmt: skip
 
 
 REACHED = 0
@@ -126,6 +133,82 @@ def _record(buf: np.ndarray, i: int, t: float, state: np.ndarray, cmd: np.ndarra
     buf[i, 9] = cmd[2]
 
 
+# Compiled once and inlined by LLVM into both run kernels: left a call (LLVM finds it too
+# big to inline), it made the physics loop a few per cent slower.
+@njit_force_inline
+def _settle(
+    i: int,
+    t: float,
+    dt: float,
+    clearance: float,
+    state: np.ndarray,
+    wheels: np.ndarray,
+    angles: np.ndarray,
+    command: np.ndarray,
+    goal: np.ndarray,
+    stop_at_goal: bool,
+    end_on_collision: bool,
+    rates: np.ndarray,
+    counts: np.ndarray,
+    n_out: np.ndarray,
+    enc_scale: float,
+    enc_span: float,
+    enc_out: np.ndarray,
+    compass_out: np.ndarray,
+    imu_out: np.ndarray,
+    buf: np.ndarray,
+    cmd: np.ndarray,
+    stats: np.ndarray,
+    contacts: np.ndarray,
+    prev: np.ndarray,
+) -> int:
+    """Finish the step that reached step ``i`` with the footprint's ``clearance``.
+
+    Stops the robot on contact (back at ``prev`` unless the run ends), records
+    the goal and samples the sensors; returns ``REACHED`` to go on, otherwise
+    the status that ends the segment (the trace row is written either way).
+    """
+    if clearance <= TOUCH:
+        clearance = 0.0  # touching: the few 1e-17 m left are rounding
+    if clearance < stats[STAT_MIN_CLEARANCE]:
+        stats[STAT_MIN_CLEARANCE] = clearance
+    if clearance <= 0.0:
+        if stats[STAT_IN_CONTACT] == 0.0:
+            n = int(stats[STAT_COLLISIONS])
+            if n < contacts.shape[0]:
+                contacts[n] = t
+            stats[STAT_COLLISIONS] = n + 1
+            stats[STAT_IN_CONTACT] = 1.0
+        # Every wheel stops at once.
+        for w in range(wheels.shape[0]):
+            wheels[w] = 0.0
+            command[w] = 0.0
+        for k in range(3, 8):
+            state[k] = 0.0
+        cmd[0] = 0.0
+        cmd[1] = 0.0
+        cmd[2] = 0.0
+        if end_on_collision:
+            _record(buf, i, t, state, cmd)
+            return COLLIDED
+        state[0] = prev[0]
+        state[1] = prev[1]
+        state[2] = prev[2]
+    else:
+        stats[STAT_IN_CONTACT] = 0.0
+    if math.isnan(stats[STAT_TIME_TO_GOAL]) and _at_goal(state, goal):
+        stats[STAT_TIME_TO_GOAL] = t
+        if stop_at_goal:
+            _record(buf, i, t, state, cmd)
+            return GOAL
+    _sample(
+        i, t, dt, state, angles, rates, counts, n_out, enc_scale, enc_span,
+        enc_out, compass_out, imu_out,
+    )  # fmt: skip
+    _record(buf, i, t, state, cmd)
+    return REACHED
+
+
 @njit_no_refcount
 def run_segment(
     i0: int,
@@ -142,9 +225,8 @@ def run_segment(
     slip_z: np.ndarray,
     fwd: np.ndarray,
     radius: float,
-    body_verts: np.ndarray,
-    verts: np.ndarray,
-    scratch: np.ndarray,
+    body_verts: np.ndarray | None,
+    verts: np.ndarray | None,
     segs: np.ndarray,
     circles: np.ndarray,
     gx0: float,
@@ -154,6 +236,7 @@ def run_segment(
     ny: int,
     cell_start: np.ndarray,
     cell_items: np.ndarray,
+    scratch: np.ndarray | None,
     occ: np.ndarray,
     gox: float,
     goy: float,
@@ -198,7 +281,8 @@ def run_segment(
     first reached (NaN before), the number of collisions and whether the robot
     is in contact; the times of the collisions are appended to ``contacts``
     (as far as it has room; ``stats[STAT_COLLISIONS]`` counts them all).
-    ``prev`` (3,) is scratch for the pose before a step.
+    ``prev`` (3,) is scratch for the pose before a step. ``body_verts``,
+    ``verts`` and ``scratch`` are None for a disc footprint.
     """
     has_moving = mv_first.shape[0] > 0
     i = i0
@@ -230,42 +314,94 @@ def run_segment(
             occ, gox, goy, gcos, gsin, res, dyn_segs, dyn_circles,
             stats[STAT_MIN_CLEARANCE],
         )  # fmt: skip
-        if clearance <= TOUCH:
-            clearance = 0.0  # touching: the few 1e-17 m left are rounding
-        if clearance < stats[STAT_MIN_CLEARANCE]:
-            stats[STAT_MIN_CLEARANCE] = clearance
-        if clearance <= 0.0:
-            if stats[STAT_IN_CONTACT] == 0.0:
-                n = int(stats[STAT_COLLISIONS])
-                if n < contacts.shape[0]:
-                    contacts[n] = t
-                stats[STAT_COLLISIONS] = n + 1
-                stats[STAT_IN_CONTACT] = 1.0
-            # Every wheel stops at once.
-            for w in range(wheels.shape[0]):
-                wheels[w] = 0.0
-                command[w] = 0.0
-            for k in range(3, 8):
-                state[k] = 0.0
-            cmd[0] = 0.0
-            cmd[1] = 0.0
-            cmd[2] = 0.0
-            if end_on_collision:
-                _record(buf, i, t, state, cmd)
-                return COLLIDED, i
-            state[0] = prev[0]
-            state[1] = prev[1]
-            state[2] = prev[2]
-        else:
-            stats[STAT_IN_CONTACT] = 0.0
-        if math.isnan(stats[STAT_TIME_TO_GOAL]) and _at_goal(state, goal):
-            stats[STAT_TIME_TO_GOAL] = t
-            if stop_at_goal:
-                _record(buf, i, t, state, cmd)
-                return GOAL, i
+        status = _settle(
+            i, t, dt, clearance, state, wheels, angles, command, goal, stop_at_goal,
+            end_on_collision, rates, counts, n_out, enc_scale, enc_span, enc_out,
+            compass_out, imu_out, buf, cmd, stats, contacts, prev,
+        )  # fmt: skip
+        if status != REACHED:
+            return status, i
+    return REACHED, i
+
+
+@njit_no_refcount
+def run_edge_segment(
+    i0: int,
+    i_end: int,
+    dt: float,
+    sample_first: bool,
+    state: np.ndarray,
+    wheels: np.ndarray,
+    angles: np.ndarray,
+    command: np.ndarray,
+    max_accel: float,
+    radius_factor: np.ndarray,
+    slip: float,
+    slip_z: np.ndarray,
+    fwd: np.ndarray,
+    radius: float,
+    body_verts: np.ndarray | None,
+    verts: np.ndarray | None,
+    segs: np.ndarray,
+    circles: np.ndarray,
+    gx0: float,
+    gy0: float,
+    h: float,
+    nx: int,
+    ny: int,
+    cell_start: np.ndarray,
+    cell_items: np.ndarray,
+    goal: np.ndarray,
+    stop_at_goal: bool,
+    end_on_collision: bool,
+    rates: np.ndarray,
+    counts: np.ndarray,
+    n_out: np.ndarray,
+    enc_scale: float,
+    enc_span: float,
+    enc_out: np.ndarray,
+    compass_out: np.ndarray,
+    imu_out: np.ndarray,
+    buf: np.ndarray,
+    cmd: np.ndarray,
+    stats: np.ndarray,
+    contacts: np.ndarray,
+    prev: np.ndarray,
+) -> tuple[int, int]:
+    """:func:`run_segment` in a world of static segments and circles only.
+
+    The same steps as :func:`run_segment` given no occupancy grid and no moving
+    obstacles (its arguments without theirs), checking the clearance with
+    :func:`~navkit.sim._clearance_kernels.edge_clearance`.
+    ``body_verts`` and ``verts`` are None for a disc footprint.
+    """
+    i = i0
+    if sample_first:
         _sample(
-            i, t, dt, state, angles, rates, counts, n_out, enc_scale, enc_span,
+            i, i * dt, dt, state, angles, rates, counts, n_out, enc_scale, enc_span,
             enc_out, compass_out, imu_out,
         )  # fmt: skip
-        _record(buf, i, t, state, cmd)
+        _record(buf, i, i * dt, state, cmd)
+    while i < i_end:
+        prev[0] = state[0]
+        prev[1] = state[1]
+        prev[2] = state[2]
+        wheel_step(
+            state, wheels, angles, command, max_accel, dt, radius_factor, slip_z[i - i0],
+            slip, fwd,
+        )  # fmt: skip
+        i += 1
+        t = i * dt
+        clearance = edge_clearance(
+            state[0], state[1], state[2], radius, body_verts, verts,
+            segs, circles, gx0, gy0, h, nx, ny, cell_start, cell_items,
+            stats[STAT_MIN_CLEARANCE],
+        )  # fmt: skip
+        status = _settle(
+            i, t, dt, clearance, state, wheels, angles, command, goal, stop_at_goal,
+            end_on_collision, rates, counts, n_out, enc_scale, enc_span, enc_out,
+            compass_out, imu_out, buf, cmd, stats, contacts, prev,
+        )  # fmt: skip
+        if status != REACHED:
+            return status, i
     return REACHED, i

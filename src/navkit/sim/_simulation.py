@@ -26,6 +26,7 @@ from navkit.sim._segment_kernels import (
     STAT_MIN_CLEARANCE,
     STAT_TIME_TO_GOAL,
     due_step,
+    run_edge_segment,
     run_segment,
 )
 from navkit.sim._sensors import (
@@ -481,22 +482,32 @@ class _Run:
             self.slip_z[:n] = sim._rng.standard_normal((n, robot.n_wheels))
         self.n_out[:] = 0
         gx0, gy0, h, nx, ny = world._index
-        gox, goy, gcos, gsin, res = world._occ_frame
-        status, i = run_segment(
+        motion = (
             i0, i_end, self.dt, sample_first,
             body.state, body.wheels, body.angles, body.command, robot.max_wheel_acceleration,
             body.radius_factor, robot.wheel_slip, self.slip_z, body.forward,
-            body.radius, body.verts, body.work, body.scratch,
+            body.radius, body.verts, body.work,
             world._segs, world._circles, gx0, gy0, h, nx, ny, world._cell_start,
-            world._cell_items, world._occ, gox, goy, gcos, gsin, res,
-            world._mv_path, world._mv_times, world._mv_first, world._mv_count, world._mv_after,
-            world._dyn_base_segs, world._dyn_seg_owner, world._dyn_segs,
-            world._dyn_base_circles, world._dyn_circle_owner, world._dyn_circles,
+            world._cell_items,
+        )  # fmt: skip
+        bookkeeping = (
             self.goal, sim._stop_at_goal, sim._end_on_collision,
             self.rates, self.counts, self.n_out, self.enc_scale, self.enc_span,
             self.out_encoders, self.out_compass, self.out_imu,
             self.buf, self.cmd, self.stats, self.contacts, self.prev,
         )  # fmt: skip
+        if world._edges_only:
+            # No grid, no moving obstacles: the kernel that compiles without their code.
+            status, i = run_edge_segment(*motion, *bookkeeping)
+        else:
+            gox, goy, gcos, gsin, res = world._occ_frame
+            status, i = run_segment(
+                *motion, body.scratch, world._occ, gox, goy, gcos, gsin, res,
+                world._mv_path, world._mv_times, world._mv_first, world._mv_count,
+                world._mv_after, world._dyn_base_segs, world._dyn_seg_owner, world._dyn_segs,
+                world._dyn_base_circles, world._dyn_circle_owner, world._dyn_circles,
+                *bookkeeping,
+            )  # fmt: skip
         # The kernel moved the obstacles; the world's cache of their time is stale.
         world._moving_t = math.nan
         self._queue_proprioceptive()

@@ -232,10 +232,12 @@ def _simulation() -> None:
     occupied[0, :] = occupied[-1, :] = occupied[:, 0] = occupied[:, -1] = True
     grid = OccupancyGrid.from_occupancy(occupied, resolution=0.1)
     moving = MovingObstacle.constant_velocity(0.2, start_xy=(3.0, 2.0), velocity_xy=(-0.1, 0.0))
+    # Segments and circles alone, and a grid with moving obstacles: a world of the
+    # first kind runs kernels compiled without the grid's and moving obstacles' code.
     worlds = [
         World([box(0.0, 0.0, 4.0, 3.0).exterior, box(3.0, 0.5, 3.5, 1.0),
-               Circle(np.array([2.5, 2.0]), 0.2)], moving=[moving]),
-        World(grid=grid),
+               Circle(np.array([2.5, 2.0]), 0.2)]),
+        World(grid=grid, moving=[moving]),
     ]  # fmt: skip
     diff = DiffDrive(track=0.3, wheel_radius=0.05)
     omni = OmniDrive([0.0, 2.0944, 4.1888], wheel_radius=0.05, base_radius=0.2)

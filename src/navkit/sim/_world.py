@@ -18,7 +18,7 @@ from navkit._shared.types import FloatArray, IntArray
 from navkit._shared.validation import as_bool, as_float_array, finite_float, positive_float
 from navkit.geometry import Pose2D, as_pose
 from navkit.mapping import OccupancyGrid
-from navkit.sim._clearance_kernels import TOUCH, footprint_clearance
+from navkit.sim._clearance_kernels import TOUCH, edge_clearance, footprint_clearance
 from navkit.sim._edge_grid_kernels import build_cell_lists, chebyshev_distance
 from navkit.sim._lidar_kernels import cast_edge_rays, cast_occupancy_rays
 from navkit.sim._moving_kernels import EXTEND, LOOP, STOP, place_moving
@@ -112,6 +112,19 @@ def as_footprint(value: Any, name: str = "footprint") -> tuple[float, FloatArray
         raise ValueError(f"{name} polygon must be simple (no self-intersection) with area > 0")
     # Read-only like every array handed to the kernels: one compiled specialisation.
     return 0.0, _read_only(np.array(verts, dtype=np.float64, order="C"))
+
+
+def _footprint_arrays(
+    verts: FloatArray,
+) -> tuple[FloatArray | None, FloatArray | None, FloatArray | None]:
+    """A footprint's vertices and two work arrays of their shape, as the kernels take them.
+
+    None for a disc (no vertices): the kernels then compile only the disc's
+    distance code.
+    """
+    if verts.shape[0] == 0:
+        return None, None, None
+    return verts, np.empty_like(verts), np.empty_like(verts)
 
 
 @dataclass(frozen=True, slots=True, eq=False)
@@ -454,6 +467,7 @@ class World:
         "_dyn_circles",
         "_dyn_seg_owner",
         "_dyn_segs",
+        "_edges_only",
         "_grid",
         "_has_edges",
         "_index",
@@ -574,6 +588,10 @@ class World:
             self._cell_items.shape[0] > 0 or self._dyn_segs.shape[0] > 0
             or self._dyn_circles.shape[0] > 0
         )  # fmt: skip
+        # Whether its only obstacles are static segments and circles (or none): the
+        # simulation and the clearance queries then use kernels compiled without
+        # the grid's and the moving obstacles' code.
+        self._edges_only = self._occ.shape[0] == 0 and not self._moving
         self._scanners: dict[Any, Any] = {}
 
     # ------------------------------------------------------------ construction
@@ -778,17 +796,24 @@ class World:
         y: float,
         theta: float,
         radius: float,
-        verts: FloatArray,
-        work: FloatArray,
-        scratch: FloatArray,
+        verts: FloatArray | None,
+        work: FloatArray | None,
+        scratch: FloatArray | None,
         t: float,
         limit: float,
     ) -> float:
-        """Footprint clearance for validated inputs (the simulation's fast path)."""
-        self._place(t)
+        """Footprint clearance for validated inputs (None arrays for a disc footprint)."""
         gx0, gy0, h, nx, ny = self._index
+        if self._edges_only:
+            # No grid, no moving obstacles: the kernel that compiles without their code.
+            distance: float = edge_clearance(
+                x, y, theta, radius, verts, work, self._segs, self._circles,
+                gx0, gy0, h, nx, ny, self._cell_start, self._cell_items, limit,
+            )  # fmt: skip
+            return distance
+        self._place(t)
         gox, goy, gcos, gsin, res = self._occ_frame
-        distance: float = footprint_clearance(
+        distance = footprint_clearance(
             x, y, theta, radius, verts, work, scratch,
             self._segs, self._circles, gx0, gy0, h, nx, ny, self._cell_start,
             self._cell_items, self._occ, gox, goy, gcos, gsin, res,
@@ -876,10 +901,9 @@ class World:
         """
         radius, verts = as_footprint(footprint)
         p = _as_query_pose(pose)
-        work = np.empty_like(verts)
-        scratch = np.empty_like(verts)
+        body, work, scratch = _footprint_arrays(verts)
         return self._clearance(
-            p.x, p.y, p.theta, radius, verts, work, scratch, finite_float(t, "t"), math.inf
+            p.x, p.y, p.theta, radius, body, work, scratch, finite_float(t, "t"), math.inf
         )
 
     def collides(
@@ -917,10 +941,9 @@ class World:
         radius, verts = as_footprint(footprint)
         p = _as_query_pose(pose)
         time = finite_float(t, "t")
-        work = np.empty_like(verts)
-        scratch = np.empty_like(verts)
+        body, work, scratch = _footprint_arrays(verts)
         # A small positive limit: the search stops at once unless something touches.
-        if self._clearance(p.x, p.y, p.theta, radius, verts, work, scratch, time, 1e-9) <= TOUCH:
+        if self._clearance(p.x, p.y, p.theta, radius, body, work, scratch, time, 1e-9) <= TOUCH:
             return True
         return self._point_in_solid(p, radius, verts, time)
 
