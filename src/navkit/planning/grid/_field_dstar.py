@@ -102,8 +102,13 @@ class FieldDStar:
     The search is D* Lite (Koenig & Likhachev) backwards from the goal, so after
     :meth:`update_costs` the next :meth:`replan` repairs only the part of the
     cost field the change affects, also when the robot has moved (new start,
-    same goal). A class with ``__slots__``: it keeps and updates the search
-    state between calls.
+    same goal). A repair that would cost more than a fresh search (a change
+    near the goal raises nearly every node's value) is detected early, from
+    how its work grows while it sweeps the affected values, and replaced by a
+    fresh search on the planner's own arrays: a replan costs about as much as
+    a fresh plan at worst, and a small fraction of one after most changes
+    between the robot and the goal. A class with ``__slots__``: it keeps and
+    updates the search state between calls.
 
     Three ways to give the ends, each returning a :class:`Path2D`:
 
