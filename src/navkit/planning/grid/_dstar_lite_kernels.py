@@ -35,13 +35,20 @@ cell) and at least ``c >= 1`` for the diagonal one, while h changes by at most
 depends on: each node is expanded once per search and the stopping rule is
 exact. (Costs are >= 1, so this holds after any cost update.)
 
-Compilation. The helpers inlined at several sites (:func:`_queue`,
-:func:`_pair_value`, :func:`heuristic`, :func:`key_reached`) are LLVM-inlined
+Compilation. The helpers inlined at several sites (:func:`_pair_value`,
+:func:`heuristic`, :func:`key_reached`, :func:`update_vertex`) are LLVM-inlined
 (numba's ``forceinline``: typed and lowered once) rather than inlined by numba
 at IR level, which translates, types and lowers the body again at each site
-(about 10 ms a site even for a one-line helper); the rarely hot
-:func:`update_vertex` and :func:`node_rhs` stay calls. :func:`corner_cost` (one
-site) stays IR-inlined: tests call it from Python.
+(about 10 ms a site even for a one-line helper; 0.17 s more for
+:func:`update_vertex`); the rarely hot :func:`node_rhs` stays a call.
+:func:`corner_cost` (one site) stays IR-inlined: tests call it from Python.
+Every heap change is a call of
+:func:`navkit.planning.grid._dstar_heap.heap_update`, except the sift-up of a
+lowered value's key (the hot path), which
+:func:`~navkit.planning.grid._dstar_heap.heap_lower` inlines. ``min()`` of two
+values is written out (``b if b < a else a``, the value numba's ``min(a, b)``
+picks): numba compiles ``min()`` as a function of its own for every argument
+type set.
 
 Calling convention. The search kernels take the planner's arrays as one tuple
 ``st = (pad, g, rhs, nodes, keys, pos, size, work, changed)`` (``nodes, keys,
@@ -64,9 +71,8 @@ from navkit._shared.jit import njit_inline, typed_njit
 from navkit.planning.grid._dstar_heap import (
     HELPER_OPTIONS,
     KERNEL_OPTIONS,
-    heap_pop,
-    heap_push,
-    heap_remove,
+    heap_lower,
+    heap_update,
 )
 
 SQRT2 = math.sqrt(2.0)
@@ -195,7 +201,7 @@ def corner_cost(g1: float, g2: float, c: float, b: float, interp: bool) -> float
     which crosses b, covers that edge). With
     ``interp`` false only A and B remain: the classic 8-connected move costs.
     """
-    best = min(c, b) + g1
+    best = (b if b < c else c) + g1  # min(c, b), as numba's min picks
     if c < np.inf:
         v = c * SQRT2 + g2
         if v < best:
@@ -278,33 +284,6 @@ def node_rhs(
 
 
 @_inlined
-def _queue(
-    s: int,
-    i: int,
-    j: int,
-    g: np.ndarray,
-    rhs: np.ndarray,
-    nodes: np.ndarray,
-    keys: np.ndarray,
-    pos: np.ndarray,
-    size: np.ndarray,
-    sr: int,
-    sc: int,
-    km: float,
-    hscale: float,
-) -> None:
-    # Node s is (i, j): passed in, as an integer division per call is costly.
-    # Typed and compiled once, inlined by LLVM at every call site (numba's IR
-    # inlining typed heap_push and heap_remove again at each site: about a
-    # second of first-use compilation for the three sites).
-    if g[s] != rhs[s]:
-        m = min(g[s], rhs[s])
-        heap_push(nodes, keys, pos, size, s, m + heuristic(sr, sc, i, j, hscale) + km, m)
-    elif pos[s] >= 0:
-        heap_remove(nodes, keys, pos, size, s)
-
-
-@_called
 def update_vertex(
     s: int,
     i: int,
@@ -322,12 +301,22 @@ def update_vertex(
 ) -> None:
     """Queue node s = (i, j) with its key if it is inconsistent, else dequeue it.
 
-    Called (not inlined) where it is not hot: a rising node itself, a requeued
-    key, the corners of changed cells. The neighbours of an expanded node in
-    :func:`settle` call :func:`_queue` itself, which LLVM inlines (or, where
-    a value falls, push the key directly).
+    Node s is (i, j): passed in, as an integer division per call is costly.
+    Compiled once and inlined by LLVM at its call sites (a rising node and its
+    neighbours, a requeued key, the corners of changed cells): as a call of its
+    own, on top of the call of :func:`heap_update`, repairs were about 5 %
+    slower. Where a value falls, :func:`settle` queues the key itself.
+    ``queued`` is passed on as computed (a literal ``True``/``False`` would
+    compile :func:`heap_update` once per value).
     """
-    _queue(s, i, j, g, rhs, nodes, keys, pos, size, sr, sc, km, hscale)
+    gs = g[s]
+    rs = rhs[s]
+    queued = gs != rs
+    if queued:
+        m = rs if rs < gs else gs  # min(g, rhs), as numba's min picks
+        heap_update(nodes, keys, pos, size, s, m + heuristic(sr, sc, i, j, hscale) + km, m, queued)
+    elif pos[s] >= 0:
+        heap_update(nodes, keys, pos, size, s, 0.0, 0.0, queued)
 
 
 @_helper
@@ -380,10 +369,12 @@ def settle(
     spent = work[0]
     limit = work[1]
     while size[0] > 0 and spent <= limit:
-        mt = min(g[target], rhs[target])
+        gt = g[target]
+        rt = rhs[target]
+        mt = rt if rt < gt else gt
         top0 = keys[0, 0]
         top1 = keys[0, 1]
-        if g[target] == rhs[target] and key_reached(top0, top1, mt, th, km):
+        if gt == rt and key_reached(top0, top1, mt, th, km):
             break
         u = nodes[0]
         ui = u // ncols
@@ -391,7 +382,9 @@ def settle(
         if km > 0.0:
             # Keys stored before the start moved may be low: requeue with the
             # current one (with km == 0 the start never moved and keys are exact).
-            mu = min(g[u], rhs[u])
+            gu = g[u]
+            ru = rhs[u]
+            mu = ru if ru < gu else gu
             k0 = mu + heuristic(sr, sc, ui, uj, hscale) + km
             if top0 < k0 or (top0 == k0 and top1 < mu):
                 # A queued node is inconsistent: this requeues it with its key.
@@ -402,7 +395,9 @@ def settle(
             spent += 1
             g[u] = rhs[u]
             gu = g[u]
-            heap_pop(nodes, keys, pos, size)  # u is the top
+            # u (the top) is consistent now: dequeuing it pops the top. (gu != rhs[u]
+            # is False, but not a literal: that would compile heap_update again.)
+            heap_update(nodes, keys, pos, size, u, gu, gu, gu != rhs[u])
             for m in range(8):
                 si = ui - RING_R[m]
                 sj = uj - RING_C[m]
@@ -422,12 +417,14 @@ def settle(
                     v = v2
                 if v < rhs[s]:
                     rhs[s] = v
-                    # _queue's own code for the usual case (measured 1-2 % faster
-                    # here than the LLVM-inlined call).
-                    if g[s] != v:
-                        mv = min(g[s], v)
+                    # update_vertex's own code, with the sift-up inlined: the hot path.
+                    gs = g[s]
+                    queued = gs != v
+                    if queued:
+                        mv = v if v < gs else gs
                         kv = mv + heuristic(sr, sc, si, sj, hscale) + km
-                        heap_push(nodes, keys, pos, size, s, kv, mv)
+                        if not heap_lower(nodes, keys, pos, size, s, kv, mv):
+                            heap_update(nodes, keys, pos, size, s, kv, mv, queued)
                     else:
                         update_vertex(s, si, sj, g, rhs, nodes, keys, pos, size, sr, sc, km, hscale)
         else:
@@ -447,7 +444,7 @@ def settle(
                 if s == goal or rhs[s] < g_old + gain - 1e-9 * (1.0 + g_old):
                     continue
                 rhs[s] = node_rhs(pad, width, g, ncols, si, sj, interp)
-                _queue(s, si, sj, g, rhs, nodes, keys, pos, size, sr, sc, km, hscale)
+                update_vertex(s, si, sj, g, rhs, nodes, keys, pos, size, sr, sc, km, hscale)
             # rhs(u) depends on its neighbours only: unchanged, but u now
             # needs requeueing (or leaves the queue if g = rhs = inf).
             update_vertex(u, ui, uj, g, rhs, nodes, keys, pos, size, sr, sc, km, hscale)

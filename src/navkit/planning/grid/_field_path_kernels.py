@@ -13,7 +13,12 @@ and, meeting a node that is not settled yet, hand it back to be settled and
 the step repeated, so the search loop's machine code is not linked into
 them. Every helper is compiled once and called (LLVM still inlines the small
 ones into their callers): the walk is not hot, and numba's own inlining types
-and lowers a helper's body again at every call site. The caller
+and lowers a helper's body again at every call site. Cell costs are read
+inline (``pad[(r + 1) * width + c + 1]``) and ``min()`` of two values is
+written out: a function for either (an LLVM-inlined ``cell_cost``, numba's
+``min()``, compiled once per argument type set) was compiled on its own and
+optimised again in every kernel linking it. ``math.floor`` already returns an
+int (``int()`` of it compiled numba's ``int()`` too). The caller
 passes every buffer (float64/int64, C-contiguous, writable), so the kernels
 allocate nothing and run without reference counting.
 """
@@ -40,7 +45,6 @@ from navkit.planning.grid._dstar_lite_kernels import (
     key_reached,
     settle,
 )
-from navkit.planning.grid._polyline_kernels import cell_cost
 
 # Status codes of :func:`extract_path`.
 OK = 0
@@ -151,11 +155,19 @@ def _settled_value(
 @_helper
 def _line_cost(pad: np.ndarray, width: int, pr: float, pc: float, i: int, j: int) -> float:
     """Cost per unit length along the grid line from p to node (i, j) (one cell long)."""
+    # Comparisons written out rather than min(): numba compiles min() as a function
+    # of its own per argument type set.
     if pr == i:
-        col = math.floor(min(pc, j))
-        return min(cell_cost(pad, width, i - 1, col), cell_cost(pad, width, i, col))
-    row = math.floor(min(pr, i))
-    return min(cell_cost(pad, width, row, j - 1), cell_cost(pad, width, row, j))
+        col = j if j < pc else math.floor(pc)
+        # Cells (i - 1, col) and (i, col).
+        a = pad[i * width + col + 1]
+        b = pad[(i + 1) * width + col + 1]
+    else:
+        row = i if i < pr else math.floor(pr)
+        # Cells (row, j - 1) and (row, j).
+        a = pad[(row + 1) * width + j]
+        b = pad[(row + 1) * width + j + 1]
+    return float(b if b < a else a)
 
 
 @_helper
@@ -186,11 +198,11 @@ def _candidates(
     fc = math.floor(pc)
     on_r = pr == fr
     on_c = pc == fc
-    r_lo = int(fr) - 1 if on_r else int(fr)
-    c_lo = int(fc) - 1 if on_c else int(fc)
-    for r in range(r_lo, int(fr) + 1):
-        for c in range(c_lo, int(fc) + 1):
-            cost = cell_cost(pad, width, r, c)
+    r_lo = fr - 1 if on_r else fr
+    c_lo = fc - 1 if on_c else fc
+    for r in range(r_lo, fr + 1):
+        for c in range(c_lo, fc + 1):
+            cost = pad[(r + 1) * width + c + 1]  # cell (r, c)
             if cost == np.inf:
                 continue
             # Values of the corners (r, c), (r, c+1), (r+1, c), (r+1, c+1).
@@ -226,13 +238,13 @@ def _candidates(
         if line & 1 == 0:
             if not on_r:
                 continue
-            i = int(fr)
-            j = int(fc) - 1 + 2 * side if on_c else int(fc) + side
+            i = fr
+            j = fc - 1 + 2 * side if on_c else fc + side
         else:
             if not on_c:
                 continue
-            i = int(fr) - 1 + 2 * side if on_r else int(fr) + side
-            j = int(fc)
+            i = fr - 1 + 2 * side if on_r else fr + side
+            j = fc
         if i < 0 or i >= nrows or j < 0 or j >= ncols:
             continue
         edge = _line_cost(pad, width, pr, pc, i, j)
@@ -249,8 +261,8 @@ def _candidates(
         out[n, 3] = j
         n += 1
     if on_r and on_c:
-        i = int(fr)
-        j = int(fc)
+        i = fr
+        j = fc
         base = i * width + j
         for k in range(8):
             c = pad[base + PAIR_CR[k] * width + PAIR_CC[k]]
@@ -299,11 +311,11 @@ def _descend(
     qc = 0.0
     fr = math.floor(pr)
     fc = math.floor(pc)
-    r_lo = int(fr) - 1 if pr == fr else int(fr)
-    c_lo = int(fc) - 1 if pc == fc else int(fc)
-    for r in range(r_lo, int(fr) + 1):
-        for c in range(c_lo, int(fc) + 1):
-            cost = cell_cost(pad, width, r, c)
+    r_lo = fr - 1 if pr == fr else fr
+    c_lo = fc - 1 if pc == fc else fc
+    for r in range(r_lo, fr + 1):
+        for c in range(c_lo, fc + 1):
+            cost = pad[(r + 1) * width + c + 1]  # cell (r, c)
             if cost == np.inf:
                 continue
             for q in range(4):
@@ -320,10 +332,8 @@ def _descend(
                 dj_c = j - pc
                 if di_r == 0.0 or dj_c == 0.0:
                     # Along a grid line: the cheaper cell beside it is paid.
-                    t = (
-                        min(cost, _line_cost(pad, width, pr, pc, i, j)) * math.hypot(di_r, dj_c)
-                        + gn
-                    )
+                    line = _line_cost(pad, width, pr, pc, i, j)
+                    t = (line if line < cost else cost) * math.hypot(di_r, dj_c) + gn
                 else:
                     t = cost * math.hypot(di_r, dj_c) + gn
                 if t < best:

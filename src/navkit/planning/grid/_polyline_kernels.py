@@ -16,8 +16,8 @@ kernels is optimised again in each of them. Cell costs are read inline
 The caller passes the shortcut's output buffer, so :func:`_polyline` allocates
 nothing and runs without reference counting: allocating in it compiled numba's
 ``np.empty`` implementation and its allocator with it (about 0.2 s of first
-use). :func:`cell_cost`, used by the path kernels at six sites, is compiled once
-and inlined by LLVM (numba's IR inlining translated and typed it again at each).
+use). ``min()`` is written out (numba compiles it as a function of its own per
+argument type set), and ``round`` already returns an int.
 """
 
 from __future__ import annotations
@@ -31,16 +31,6 @@ from navkit.planning.grid._dstar_heap import HELPER_OPTIONS, KERNEL_OPTIONS
 
 _kernel = typed_njit(**KERNEL_OPTIONS)
 _helper = typed_njit(**HELPER_OPTIONS)
-
-
-# Compiled once, inlined by LLVM (numba's forceinline) at every call site.
-@typed_njit(**HELPER_OPTIONS, forceinline=True)
-def cell_cost(pad: np.ndarray, width: int, r: int, c: int) -> float:
-    """Cost of cell (r, c), ``-1 <= r <= rows``, ``-1 <= c <= cols`` (+inf off the grid).
-
-    For the path kernels; this module's own kernels index ``pad`` directly.
-    """
-    return float(pad[(r + 1) * width + c + 1])
 
 
 @_helper
@@ -77,8 +67,10 @@ def segment_cost(pad: np.ndarray, width: int, r0: float, c0: float, r1: float, c
     while t < 1.0:
         tr = (nr_line - r0) / dr if dr != 0.0 else np.inf
         tc = (nc_line - c0) / dc if dc != 0.0 else np.inf
-        # Nested two-argument minima: the three-argument min compiles an extra kernel.
-        t1 = min(min(tr, tc), 1.0)
+        # min(tr, tc, 1.0) written out: numba compiles min() as a function of its own.
+        t1 = tc if tc < tr else tr
+        if t1 > 1.0:
+            t1 = 1.0
         if tr <= t1:
             nr_line += step_r
         if tc <= t1:
@@ -92,12 +84,16 @@ def segment_cost(pad: np.ndarray, width: int, r0: float, c0: float, r1: float, c
             rc = round(mc)
             if abs(mr - rr) < 1e-9 and abs(dr) * (t1 - t) < 1e-9:
                 # Along row line rr: cells (rr - 1, col) and (rr, col).
-                at = int(rr) * width + math.floor(mc) + 1
-                cost = min(pad[at], pad[at + width])
+                at = rr * width + math.floor(mc) + 1
+                cost = pad[at]
+                if pad[at + width] < cost:
+                    cost = pad[at + width]
             elif abs(mc - rc) < 1e-9 and abs(dc) * (t1 - t) < 1e-9:
                 # Along column line rc: cells (row, rc - 1) and (row, rc).
-                at = (math.floor(mr) + 1) * width + int(rc)
-                cost = min(pad[at], pad[at + 1])
+                at = (math.floor(mr) + 1) * width + rc
+                cost = pad[at]
+                if pad[at + 1] < cost:
+                    cost = pad[at + 1]
             else:
                 cost = pad[(math.floor(mr) + 1) * width + math.floor(mc) + 1]
             if cost == np.inf:
