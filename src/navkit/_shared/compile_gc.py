@@ -64,7 +64,7 @@ def _make_listeners() -> tuple[Any, Any]:
             gc.disable()
 
         def on_end(self, ev: Any) -> None:
-            pass
+            """Nothing here: the collector resumes when the compiler lock is released."""
 
     class LockRelease(event.Listener):  # type: ignore[misc]
         """Resume it when the compiling thread releases numba's compiler lock."""
