@@ -391,60 +391,59 @@ def settle(
                 update_vertex(u, ui, uj, g, rhs, nodes, keys, pos, size, sr, sc, km, hscale)
                 continue
         expanded += 1
-        if g[u] > rhs[u]:
+        # One neighbour loop for both cases: u's value falls to rhs(u) (lowered)
+        # or rises to inf; ref is the value that options through u are bounded by.
+        lowered = g[u] > rhs[u]
+        if lowered:
             spent += 1
             g[u] = rhs[u]
-            gu = g[u]
-            # u (the top) is consistent now: dequeuing it pops the top. (gu != rhs[u]
+            ref = g[u]
+            # u (the top) is consistent now: dequeuing it pops the top. (ref != rhs[u]
             # is False, but not a literal: that would compile heap_update again.)
-            heap_update(nodes, keys, pos, size, u, gu, gu, gu != rhs[u])
-            for m in range(8):
-                si = ui - RING_R[m]
-                sj = uj - RING_C[m]
-                if si < 0 or si >= nrows or sj < 0 or sj >= ncols:
-                    continue
-                s = si * ncols + sj
-                # Every option through u costs at least g(u) + 1/sqrt(2) (u an
-                # axis neighbour of s) or g(u) + 1 (diagonal), see the module
-                # notes; a neighbour already below that cannot improve.
-                gain = _AXIS_GAIN if m % 2 == 0 else 1.0
-                if s == goal or rhs[s] <= gu + gain - 1e-9 * (1.0 + gu):
-                    continue
+            heap_update(nodes, keys, pos, size, u, ref, ref, ref != rhs[u])
+        else:
+            spent += RAISE_WORK
+            ref = g[u]
+            g[u] = np.inf
+        for m in range(8):
+            si = ui - RING_R[m]
+            sj = uj - RING_C[m]
+            if si < 0 or si >= nrows or sj < 0 or sj >= ncols:
+                continue
+            s = si * ncols + sj
+            if s == goal:
+                continue
+            # Every option through u costs at least ref + 1/sqrt(2) (u an axis
+            # neighbour of s) or ref + 1 (diagonal), see the module notes. A
+            # lowered u cannot improve a neighbour at or below that; a neighbour
+            # below it did not take its value from a raised u, and raising g(u)
+            # (which never lowers an option) leaves its rhs unchanged.
+            gain = _AXIS_GAIN if m % 2 == 0 else 1.0
+            bound = ref + gain - 1e-9 * (1.0 + ref)
+            rs = rhs[s]
+            if rs < bound or (lowered and rs == bound):
+                continue
+            if lowered:
                 # u is ring[m] of s: only the pairs m-1 and m of s contain it.
                 v = _pair_value(pad, width, g, ncols, si, sj, m, interp)
                 v2 = _pair_value(pad, width, g, ncols, si, sj, m - 1 if m > 0 else 7, interp)
                 if v2 < v:
                     v = v2
-                if v < rhs[s]:
-                    rhs[s] = v
-                    # update_vertex's own code, with the sift-up inlined: the hot path.
-                    gs = g[s]
-                    queued = gs != v
-                    if queued:
-                        mv = v if v < gs else gs
-                        kv = mv + heuristic(sr, sc, si, sj, hscale) + km
-                        if not heap_lower(nodes, keys, pos, size, s, kv, mv):
-                            heap_update(nodes, keys, pos, size, s, kv, mv, queued)
-                    else:
-                        update_vertex(s, si, sj, g, rhs, nodes, keys, pos, size, sr, sc, km, hscale)
-        else:
-            spent += RAISE_WORK
-            g_old = g[u]
-            g[u] = np.inf
-            for m in range(8):
-                si = ui - RING_R[m]
-                sj = uj - RING_C[m]
-                if si < 0 or si >= nrows or sj < 0 or sj >= ncols:
+                if not v < rs:
                     continue
-                s = si * ncols + sj
-                # As above, every option through u cost at least g_old + gain: a
-                # neighbour below that did not take its value from u, and raising
-                # g(u) (which never lowers an option) leaves its rhs unchanged.
-                gain = _AXIS_GAIN if m % 2 == 0 else 1.0
-                if s == goal or rhs[s] < g_old + gain - 1e-9 * (1.0 + g_old):
-                    continue
-                rhs[s] = node_rhs(pad, width, g, ncols, si, sj, interp)
+            else:
+                v = node_rhs(pad, width, g, ncols, si, sj, interp)
+            rhs[s] = v
+            gs = g[s]
+            if lowered and gs != v:
+                # update_vertex's own code, with the sift-up inlined: the hot path.
+                mv = v if v < gs else gs
+                kv = mv + heuristic(sr, sc, si, sj, hscale) + km
+                if not heap_lower(nodes, keys, pos, size, s, kv, mv):
+                    heap_update(nodes, keys, pos, size, s, kv, mv, gs != v)
+            else:
                 update_vertex(s, si, sj, g, rhs, nodes, keys, pos, size, sr, sc, km, hscale)
+        if not lowered:
             # rhs(u) depends on its neighbours only: unchanged, but u now
             # needs requeueing (or leaves the queue if g = rhs = inf).
             update_vertex(u, ui, uj, g, rhs, nodes, keys, pos, size, sr, sc, km, hscale)
