@@ -47,6 +47,7 @@ import numpy as np
 
 import navkit
 from navkit.errors import FilterError, NavkitError
+from navkit.sim._scenario import _MAX_TRIALS
 
 SRC = Path(navkit.__file__).resolve().parent
 CALL_TIMEOUT_S = 10.0
@@ -758,9 +759,22 @@ class Real(Kind):
         "bool_array",
     }
 
-    def __init__(self, *, integer: bool = False, **kw: Any) -> None:
+    def __init__(
+        self, *, integer: bool = False, expensive: tuple[int, int] | None = None, **kw: Any
+    ) -> None:
         super().__init__(**kw)
         self.integer = integer
+        # (low, high): valid integers in (low, high] only cost time (a number of
+        # trials to run): generated ones are not tried, as the watchdog would take
+        # a long valid run for a hang. Those beyond high must still be refused.
+        self.expensive = expensive
+
+    def costly(self, value: Any) -> bool:
+        """Whether ``value`` is a valid integer that would only make the call long."""
+        if self.expensive is None or isinstance(value, (bool, np.bool_)):
+            return False
+        low, high = self.expensive
+        return isinstance(value, numbers.Integral) and low < int(value) <= high
 
     def catalogue(self, valid: Any = None) -> list[Hostile]:
         return _scalar_hostiles(self.integer) + _wrong_objects()[:1] + super().catalogue(valid)
@@ -770,6 +784,11 @@ class Real(Kind):
         if why is None and self.integer and "fraction" in tags:
             return "a non-integral number for an integer"
         return why
+
+
+#: A number of trials to run (``Scenario.run``, ``sweep``): every valid count up to
+#: the documented maximum is accepted, and above 64 it only makes the call long.
+TRIALS = Real(integer=True, optional=True, expensive=(64, _MAX_TRIALS))
 
 
 class Flag(Kind):
@@ -1683,6 +1702,11 @@ class Spec:
         Parameters (``"self"`` for the receiver) the call is documented to modify.
     expect_error
         The valid call itself must raise this (abstract classes, protocols).
+    degenerate
+        ``degenerate(receiver) -> bool``: an accepted hostile call left the
+        receiver in a state that float64 cannot carry further (a covariance
+        whose eigenvalues lie more than 1/eps apart); the valid call may then
+        raise ``FilterError`` (the documented answer) instead of working.
     """
 
     name: str
@@ -1692,6 +1716,7 @@ class Spec:
     nan_ok: str | Callable[[Any], bool] | None = None
     mutates: tuple[str, ...] = ()
     expect_error: type[BaseException] | None = None
+    degenerate: Callable[[Any], bool] | None = None
 
 
 SPECS: dict[str, Spec] = {}
@@ -1991,6 +2016,10 @@ def _still_usable(
         except Hang as exc:
             return [Failure(s.name, case.label, f"then the valid call hangs ({exc})", text())]
         except BaseException as exc:
+            if isinstance(exc, FilterError) and s.degenerate is not None:
+                with np.errstate(all="ignore"):
+                    if s.degenerate(receiver):
+                        return []
             if isinstance(exc, FilterError) or not allowed_error(exc, ()):
                 problem = (
                     "leaves the object unusable: the valid call then raises "
@@ -2036,7 +2065,10 @@ def generated_strategy(kind: Kind, valid: Any) -> Any:
 
     floats = st.floats(allow_nan=True, allow_infinity=True, allow_subnormal=True)
     if isinstance(kind, (Real, Choice)) and not isinstance(kind, Flag):
-        return st.one_of(floats, st.integers(min_value=-(2**70), max_value=2**70))
+        numbers_ = st.one_of(floats, st.integers(min_value=-(2**70), max_value=2**70))
+        if isinstance(kind, Real) and kind.expensive is not None:
+            return numbers_.filter(lambda v: not kind.costly(v))
+        return numbers_
     if isinstance(kind, Flag):
         return st.one_of(st.integers(-2, 2), st.text(max_size=3), st.none(), floats)
     if isinstance(kind, PoseLike):

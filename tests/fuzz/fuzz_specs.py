@@ -929,6 +929,13 @@ def _ekf() -> Call:
 
 
 EKF_KINDS = {"angle_states": IntSequence()}
+
+
+def _past_float64(ekf: ExtendedKalmanFilter) -> bool:
+    """The documented limit: a covariance whose condition number nears 1/eps (class notes)."""
+    return bool(np.linalg.cond(ekf.P) > 1e15)
+
+
 spec(
     "navkit.estimation.ExtendedKalmanFilter",
     lambda c: call(
@@ -941,6 +948,7 @@ spec(
     lambda c: method(_ekf(), "predict", _f, F_MATRIX.copy(), 0.01 * np.eye(2)),
     kinds={"f": Function(), "F": MatrixOrFunction()},
     mutates=("self",),
+    degenerate=_past_float64,
 )
 spec(
     "navkit.estimation.ExtendedKalmanFilter.update",
@@ -954,6 +962,7 @@ spec(
     mutates=("self",),
     nan_ok=_uncomputed_nis,
     inf_ok=_rejected,
+    degenerate=_past_float64,
 )
 spec(
     "navkit.estimation.UpdateResult",

@@ -8,7 +8,19 @@ arguments (``list``) that write nothing.
 
 from __future__ import annotations
 
-from fuzz_engine import Anything, Call, Choice, Function, Obj, Real, Text, call, method, spec
+from fuzz_engine import (
+    TRIALS,
+    Anything,
+    Call,
+    Choice,
+    Function,
+    Obj,
+    Real,
+    Text,
+    call,
+    method,
+    spec,
+)
 
 from navkit.cli import main
 from navkit.sim import Trial, TrialResult, sweep
@@ -18,7 +30,7 @@ P = "navkit.sim.scenarios.Demo"
 
 NAN_OK = "a leg cut short before the tracker moves has no cross-track yet (NaN)"
 RUN_KINDS = {
-    "trials": Real(integer=True, optional=True),
+    "trials": TRIALS,
     "seed": Real(integer=True),
     "workers": Real(integer=True, optional=True),
     "executor": Anything(optional=True),
@@ -79,7 +91,7 @@ spec(
     lambda c: call(sweep, demo(), trials=1, seeds=3, workers=1),
     kinds={
         "scenario": Anything(),
-        "trials": Real(integer=True, optional=True),
+        "trials": TRIALS,
         "seeds": Real(integer=True),
         "workers": Real(integer=True, optional=True),
         "executor": Anything(optional=True),

@@ -13,7 +13,20 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
-from fuzz_engine import Anything, Array, Call, Flag, Function, Obj, Real, Text, call, method, spec
+from fuzz_engine import (
+    TRIALS,
+    Anything,
+    Array,
+    Call,
+    Flag,
+    Function,
+    Obj,
+    Real,
+    Text,
+    call,
+    method,
+    spec,
+)
 
 from navkit.errors import DataNotFoundError
 from navkit.sim import Trial, TrialResult
@@ -27,7 +40,7 @@ NO_MAP = None if HAVE_MAP else DataNotFoundError
 
 NAN_OK = "a trial that ends before the robot stops has time NaN (and NaN means in the tables)"
 RUN_KINDS = {
-    "trials": Real(integer=True, optional=True),
+    "trials": TRIALS,
     "seed": Real(integer=True),
     "workers": Real(integer=True, optional=True),
     "executor": Anything(optional=True),

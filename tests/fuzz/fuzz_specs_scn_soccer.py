@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import math
 
-from fuzz_engine import Anything, Call, Function, Obj, Real, call, method, spec
+from fuzz_engine import TRIALS, Anything, Call, Function, Obj, Real, call, method, spec
 
 from navkit.sim import Trial, TrialResult
 from navkit.sim.scenarios import Soccer
@@ -71,7 +71,7 @@ spec(
     P + ".run",
     lambda c: method(soccer(), "run", 1, seed=2, workers=1),
     kinds={
-        "trials": Real(integer=True, optional=True),
+        "trials": TRIALS,
         "seed": Real(integer=True),
         "workers": Real(integer=True, optional=True),
         "executor": Anything(optional=True),

@@ -117,8 +117,20 @@ def test_scans_are_reproducible_with_a_seed() -> None:
         ({"limits": (), "sigma": ()}, ValueError),
         ({"limits": "3", "sigma": (0.1,)}, TypeError),
         ({"limits": (math.nan, math.inf), "sigma": (0.1, 0.1)}, ValueError),
+        # Empty arrays of the wrong dtype or dimension: no element to refuse, but
+        # the array itself is not a sequence of numbers (found by the slow fuzz run).
+        ({"limits": (math.inf,), "sigma": (0.1,), "bias": np.array([], dtype="<U2")}, TypeError),
+        ({"limits": (math.inf,), "sigma": (0.1,), "bias": np.array([], dtype=bool)}, TypeError),
+        ({"limits": (math.inf,), "sigma": (0.1,), "bias": np.zeros((0, 1, 3))}, ValueError),
+        ({"limits": np.array([[math.inf]]), "sigma": (0.1,)}, ValueError),
     ],
 )
 def test_bad_noise_bands(kwargs: dict[str, object], error: type[Exception]) -> None:
     with pytest.raises(error):
         RangeNoise(**kwargs)  # type: ignore[arg-type]
+
+
+def test_bands_as_arrays_equal_bands_as_tuples() -> None:
+    as_arrays = RangeNoise(np.array([1.0, math.inf]), np.array([0.01, 0.02]), np.array([0, 0.01]))
+    assert as_arrays == RangeNoise((1.0, math.inf), (0.01, 0.02), (0.0, 0.01))
+    assert RangeNoise((math.inf,), (0.1,), np.array([])).bias == (0.0,)

@@ -10,7 +10,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import finite_float
+from navkit._shared.validation import as_float_array, finite_float
 
 __all__ = ["RangeNoise"]
 
@@ -26,6 +26,10 @@ def _floats(value: Sequence[float], name: str, *, allow_inf: bool = False) -> tu
     """``value`` as a tuple of finite floats (``+inf`` too with ``allow_inf``)."""
     if isinstance(value, (str, bytes, Mapping)):
         raise TypeError(f"{name} must be a sequence of numbers, got {type(value).__name__}")
+    if isinstance(value, np.ndarray):
+        # Dtype and dimension checked as for any array argument: an empty array of
+        # strings or booleans has no element for the checks below to refuse.
+        value = as_float_array(value, name, ndim=1, finite=False)
     try:
         items = tuple(value)
     except TypeError:
