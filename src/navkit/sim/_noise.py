@@ -8,6 +8,7 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
+from numpy.typing import NDArray
 
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, finite_float
@@ -22,7 +23,9 @@ PAPER_LIMITS = (3.0, math.inf)
 PAPER_SIGMA = (0.0223, 0.0538)
 
 
-def _floats(value: Sequence[float], name: str, *, allow_inf: bool = False) -> tuple[float, ...]:
+def _floats(
+    value: Sequence[float] | NDArray[np.generic], name: str, *, allow_inf: bool = False
+) -> tuple[float, ...]:
     """``value`` as a tuple of finite floats (``+inf`` too with ``allow_inf``)."""
     if isinstance(value, (str, bytes, Mapping)):
         raise TypeError(f"{name} must be a sequence of numbers, got {type(value).__name__}")
