@@ -79,10 +79,10 @@ def test_a_failed_compile_restores_the_collector(tmp_path: Path) -> None:
     out = _run(
         """
         import numpy as np
-        from navkit.planning.grid._dstar_lite_kernels import update_cells
-        cells = np.zeros(2, dtype=np.int64)
-        try:  # strings where arrays belong: numba starts compiling, then fails typing
-            update_cells("pad", 4, cells, cells, cells, "values")
+        from navkit.mapping._grid_kernels import world_to_continuous_kernel
+        out = np.zeros((1, 2))
+        try:  # a string where an array belongs: numba starts compiling, then fails typing
+            world_to_continuous_kernel("points", 0.0, 0.0, 0.0, 1.0, out)
         except Exception as error:
             failed = type(error).__name__
         print(failed, [on for module, on in seen if module.startswith("navkit")], gc.isenabled())

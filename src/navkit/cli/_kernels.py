@@ -29,7 +29,7 @@ KERNELS: dict[str, tuple[tuple[str, str, str], float]] = {
     # _sample: called by both run kernels (edges-only worlds and the rest).
     "simulation": (("navkit.sim", "_segment_kernels", "_sample"), 10.0),
     "astar": (("navkit.planning.grid", "_astar_kernels", "grid_search"), 3.0),
-    "field_dstar": (("navkit.planning.grid", "_dstar_lite_kernels", "update_cells"), 8.0),
+    "field_dstar": (("navkit.planning.grid", "_field_path_kernels", "extract_path"), 8.0),
 }
 
 

@@ -39,7 +39,7 @@ def test_every_kernel_is_compiled_for_one_signature() -> None:
             if signatures:
                 compiled[f"{module.__name__}.{name}"] = len(signatures)
     assert "navkit.planning.grid._field_path_kernels.extract_path" in compiled
-    assert "navkit.planning.grid._dstar_lite_kernels.update_cells" in compiled
+    assert "navkit.planning.grid._polyline_kernels._polyline" in compiled
     assert {name: n for name, n in compiled.items() if n != 1} == {}
 
 

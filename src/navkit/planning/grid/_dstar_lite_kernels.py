@@ -54,8 +54,9 @@ Calling convention. The search kernels take the planner's arrays as one tuple
 ``st = (pad, g, rhs, nodes, keys, pos, size, work, changed)`` (``nodes, keys,
 pos, size`` being the indexed heap of :mod:`navkit.planning.grid._dstar_heap`,
 ``work`` the int64 pair (work done, work limit), see :func:`settle`, and
-``changed`` the int64 list of cells changed since the last search, see
-:func:`update_cells`) and its scalars as
+``changed`` the int64 list of cells changed since the last search: their
+count, then their padded flat indices, written by ``FieldDStar.update_costs``)
+and its scalars as
 ``prm = (width, nrows, ncols, start_row, start_col, goal, km, interp, hscale)``;
 both are built by :func:`state` and :func:`params`.
 """
@@ -70,7 +71,6 @@ import numpy as np
 from navkit._shared.jit import njit_inline, typed_njit
 from navkit.planning.grid._dstar_heap import (
     HELPER_OPTIONS,
-    KERNEL_OPTIONS,
     heap_lower,
     heap_update,
 )
@@ -86,7 +86,6 @@ _AXIS_GAIN = 1.0 / SQRT2
 RING_R = np.array([0, -1, -1, -1, 0, 1, 1, 1], dtype=np.int64)
 RING_C = np.array([1, 1, 0, -1, -1, -1, 0, 1], dtype=np.int64)
 
-_kernel = typed_njit(**KERNEL_OPTIONS)
 _helper = typed_njit(**HELPER_OPTIONS)
 # Compiled once and inlined by LLVM into every caller (numba's ``forceinline``):
 # numba's own ``inline="always"`` types and lowers the body again at each call site.
@@ -333,7 +332,7 @@ def settle(
     extraction calls it again for every node it reads, so every value it uses is
     exact and the same in a fresh plan and in a repaired one. Returns the number
     of expansions. Its first call after cost changes first requeues the corners
-    of the changed cells (:func:`update_cells` only lists them), so every search
+    of the changed cells (``FieldDStar.update_costs`` only lists them), so every search
     must call it before reading any node value.
 
     Work bound: every expansion adds its work units (1, or :data:`RAISE_WORK`
@@ -348,7 +347,7 @@ def settle(
     width, nrows, ncols, sr, sc, goal, km, interp, hscale = prm
     n_changed = changed[0]
     if n_changed > 0:
-        # Cells changed since the last search (update_cells): rhs of a node depends
+        # Cells changed since the last search (listed by update_costs): rhs of a node depends
         # only on the four cells around it, so their corners are the only nodes
         # whose rhs can change. Requeued here, with the current start and km.
         changed[0] = 0
@@ -449,29 +448,3 @@ def settle(
             update_vertex(u, ui, uj, g, rhs, nodes, keys, pos, size, sr, sc, km, hscale)
     work[0] = spent
     return expanded
-
-
-@_kernel
-def update_cells(
-    pad: np.ndarray,
-    width: int,
-    changed: np.ndarray,
-    cell_r: np.ndarray,
-    cell_c: np.ndarray,
-    values: np.ndarray,
-) -> None:
-    """Write new cell costs and list the cells for the next search to requeue.
-
-    ``changed[0]`` counts the listed cells, ``changed[1:]`` holds their padded
-    flat indices; the caller makes room for ``cell_r.shape[0]`` more. The first
-    :func:`settle` of the next search recomputes ``rhs`` of their corners and
-    requeues them (so this kernel links no search code and compiles quickly).
-    With repeated cells the last value wins.
-    """
-    n = changed[0]
-    for q in range(cell_r.shape[0]):
-        cell = (cell_r[q] + 1) * width + cell_c[q] + 1
-        pad[cell] = values[q]
-        n += 1
-        changed[n] = cell
-    changed[0] = n

@@ -20,7 +20,6 @@ from navkit.planning.grid._dstar_lite_kernels import (
     OCT,
     params,
     state,
-    update_cells,
 )
 from navkit.planning.grid._field_path_kernels import (
     ABORTED,
@@ -291,7 +290,7 @@ class FieldDStar:
         # (work done, work limit) of the current search, see settle().
         self._work = np.zeros(2, dtype=np.int64)
         # Cells changed since the last search (count, then padded flat indices), see
-        # update_cells(), and whether any of them became cheaper.
+        # update_costs(), and whether any of them became cheaper.
         self._changed = np.zeros(64, dtype=np.int64)
         self._lowered = False
         # Whether the next search starts from scratch, and the work of the last one that did.
@@ -680,28 +679,26 @@ class FieldDStar:
             )
         if idx.shape[0] == 0:
             return
-        # With repeats the last value wins: compare each cell's final value.
+        # With repeats the last value wins: each cell's final value.
         flat = (idx[:, 0] + 1) * self._width + idx[:, 1] + 1
         cells_u, last = np.unique(flat[::-1], return_index=True)
-        if np.array_equal(self._pad[cells_u], vals[::-1][last]):
+        final = vals[::-1][last]
+        if np.array_equal(self._pad[cells_u], final):
             return  # nothing changes: the search state and the cached path stay valid
         self._cached = None
-        self._lowered = self._lowered or bool(np.any(vals[::-1][last] < self._pad[cells_u]))
+        self._lowered = self._lowered or bool(np.any(final < self._pad[cells_u]))
         listed = int(self._changed[0])
-        if listed + idx.shape[0] >= self._changed.shape[0]:
-            grown = np.zeros(2 * (listed + idx.shape[0] + 1), dtype=np.int64)
+        added = cells_u.shape[0]
+        if listed + added >= self._changed.shape[0]:
+            grown = np.zeros(2 * (listed + added + 1), dtype=np.int64)
             grown[: listed + 1] = self._changed[: listed + 1]
             self._changed = grown
-        # The costs are written now; the next search requeues the changed cells' corners.
-        update_cells(
-            self._pad,
-            self._width,
-            self._changed,
-            np.ascontiguousarray(idx[:, 0]),
-            np.ascontiguousarray(idx[:, 1]),
-            # Writable too (a caller's read-only array is copied): one kernel signature.
-            np.require(vals, np.float64, ["C", "W"]),
-        )
+        # The costs are written now and the cells listed; the next search requeues
+        # their corners (settle). NumPy, not a kernel: one compiled function fewer
+        # on first use, and a few cells take microseconds either way.
+        self._pad[cells_u] = final
+        self._changed[listed + 1 : listed + 1 + added] = cells_u
+        self._changed[0] = listed + added
 
     # ------------------------------------------------------------ internals
     def _update_cells(self, cells: Any) -> IntArray:
