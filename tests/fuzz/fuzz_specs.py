@@ -568,7 +568,11 @@ spec(
         range_max=4.0,
     ),
     # REP 117: NaN an erroneous reading, +inf no return, -inf an object closer than range_min.
-    kinds={"ranges": Array(allow={"nan", "posinf", "neginf"}), "intensities": Array(optional=True)},
+    # Intensities are kept as the driver gave them, non-finite ones too (documented).
+    kinds={
+        "ranges": Array(allow={"nan", "posinf", "neginf"}),
+        "intensities": Array(optional=True, allow={"nan", "posinf", "neginf"}),
+    },
 )
 spec("navkit.mapping.LaserScan.angles", lambda c: method(scan(), "angles"))
 spec("navkit.mapping.LaserScan.valid_mask", lambda c: method(scan(), "valid_mask"))

@@ -97,6 +97,14 @@ def test_scan_copies_and_freezes_its_arrays() -> None:
     assert scan.intensities is not None and scan.intensities.tolist() == [3.0, 4.0]
 
 
+def test_non_finite_intensities_are_kept_as_given() -> None:
+    given_values = [math.nan, -math.inf, math.inf]
+    scan = LaserScan([1.0, 2.0, 3.0], angle_min=0.0, angle_increment=0.1, range_min=0.1,
+                     range_max=5.0, intensities=given_values)  # fmt: skip
+    assert scan.intensities is not None
+    np.testing.assert_array_equal(scan.intensities, given_values)
+
+
 @pytest.mark.parametrize(
     ("kwargs", "match"),
     [

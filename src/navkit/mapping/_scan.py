@@ -71,7 +71,9 @@ class LaserScan:
         Valid range interval in metres, ``0 <= range_min < range_max <= 1e9``.
     intensities : array_like, shape (N,), optional
         Intensity of each beam; ``None`` or empty when the sensor gives none.
-        Stored as a read-only float64 copy.
+        Any float64 values, NaN and ±inf included: they are kept as the driver
+        or log gave them (navkit computes nothing from them). Stored as a
+        read-only float64 copy.
 
     Raises
     ------
