@@ -357,3 +357,29 @@ def test_covariance_stays_symmetric_positive_definite(
         assert np.linalg.eigvalsh(p)[0] > 0.0
         assert -math.pi < fusion.x[2] <= math.pi
     assert fusion.t == t
+
+
+def test_copies_and_pickles_are_independent() -> None:
+    """Each copy gets its own buffer: x, P and the clock follow its own updates only."""
+    import copy
+    import pickle
+
+    fusion = PlanarFusion(t0=0.0, gate_probability=0.99)
+    fusion.update_odometry(0.1, 1.0, 0.0, v_variance=1e-3, omega_variance=1e-3)
+    x_before, p_before = fusion.x.copy(), fusion.P.copy()
+    reference = PlanarFusion(t0=0.0, gate_probability=0.99)
+    reference.update_odometry(0.1, 1.0, 0.0, v_variance=1e-3, omega_variance=1e-3)
+    reference.update_odometry(1.1, 1.0, 0.2, v_variance=1e-3, omega_variance=1e-3)
+    x_want, p_want = reference.x.copy(), reference.P.copy()
+    gated = reference.update_yaw(1.2, 3.0, variance=1e-6)
+    assert not gated.accepted
+    for twin in (copy.copy(fusion), copy.deepcopy(fusion), pickle.loads(pickle.dumps(fusion))):
+        assert type(twin) is PlanarFusion and twin.t == 0.1
+        np.testing.assert_array_equal(twin.x, x_before)
+        twin.update_odometry(1.1, 1.0, 0.2, v_variance=1e-3, omega_variance=1e-3)
+        assert twin.t == 1.1 and fusion.t == 0.1  # the original did not move
+        np.testing.assert_array_equal(twin.x, x_want)  # the twin's views follow it
+        np.testing.assert_array_equal(twin.P, p_want)
+        np.testing.assert_array_equal(fusion.x, x_before)
+        np.testing.assert_array_equal(fusion.P, p_before)
+        assert twin.update_yaw(1.2, 3.0, variance=1e-6).reason == gated.reason  # same gates

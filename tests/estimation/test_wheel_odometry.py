@@ -181,20 +181,52 @@ def test_diff_update_equals_update_batch_and_matches_composition(
     assert angle_diff(traj[-1, 2], stepped.theta) == pytest.approx(0.0, abs=1e-9)
 
 
+@pytest.mark.parametrize("bits", [32, 64, None])
+def test_diff_update_batch_takes_uint64_readings_after_earlier_ones(bits: int | None) -> None:
+    """Later batches continue from the last reading whatever the readings' dtype.
+
+    Joining the last reading (a Python int) to uint64 readings used to promote
+    them to float64, which the second batch then refused.
+    """
+    readings = np.array([[10, 10], [20, 30], [30, 40], [45, 41]], dtype=np.uint64)
+    whole = DiffOdometry(DIFF, ticks_per_rev=TPR, encoder_bits=bits)
+    want = whole.update_batch(readings[:, 0].astype(np.int64), readings[:, 1].astype(np.int64))
+    split = DiffOdometry(DIFF, ticks_per_rev=TPR, encoder_bits=bits)
+    split.update_batch(readings[:2, 0], readings[:2, 1])
+    got = split.update_batch(readings[2:, 0], readings[2:, 1])
+    np.testing.assert_allclose(got, want[2:], rtol=1e-12, atol=1e-15)  # sums split in two
+
+
+def test_diff_update_batch_wraps_from_the_top_of_a_64_bit_counter() -> None:
+    stepwise = DiffOdometry(DIFF, ticks_per_rev=TPR, encoder_bits=64)
+    batch = DiffOdometry(DIFF, ticks_per_rev=TPR, encoder_bits=64)
+    for odo in (stepwise, batch):
+        odo.update(2**64 - 1, 0)
+    poses = [stepwise.update(5, 5).as_array(), stepwise.update(6, 6).as_array()]
+    np.testing.assert_allclose(batch.update_batch([5, 6], [5, 6]), poses, atol=1e-15)
+    # 7 left ticks (2**64 - 1 -> 5 -> 6) against 6 right ones: one tick of turn.
+    assert poses[-1][2] == pytest.approx(-2 * math.pi * 0.05 / TPR / DIFF.track)
+
+
 def test_diff_bad_input() -> None:
     odo = DiffOdometry(DIFF, ticks_per_rev=TPR, encoder_bits=16)
     with pytest.raises(TypeError, match="left_ticks"):
         odo.update_batch([0.5], [1])
     with pytest.raises(ValueError, match="equal length"):
         odo.update_batch([1, 2], [1])
-    with pytest.raises(ValueError, match="16-bit"):
+    with pytest.raises(ValueError, match=r"left_ticks holds readings outside .* 16-bit"):
         odo.update_batch([70000], [1])
+    with pytest.raises(ValueError, match=r"right_ticks holds readings outside .* 16-bit"):
+        odo.update(1, -40000)
     with pytest.raises(ValueError, match="encoder_bits"):
         DiffOdometry(DIFF, ticks_per_rev=TPR, encoder_bits=1)
     with pytest.raises(ValueError, match="ticks_per_rev"):
         DiffOdometry(DIFF, ticks_per_rev=0)
     with pytest.raises(ValueError, match="method"):
         DiffOdometry(DIFF, ticks_per_rev=TPR, method="euler")  # type: ignore[arg-type]
+    for bad in (["arc"], np.array(["arc"]), None):
+        with pytest.raises(TypeError, match="method must be one of"):
+            DiffOdometry(DIFF, ticks_per_rev=TPR, method=bad)  # type: ignore[arg-type]
     with pytest.raises(TypeError, match="positional"):
         DiffOdometry(DIFF, TPR)  # type: ignore[call-arg]
     with pytest.raises(TypeError, match="pose must be a Pose2D"):

@@ -531,16 +531,18 @@ class PlanarFusion(GaussianEstimate):
         gate_probability: float | None = None,
     ) -> None:
         x = np.zeros(6) if x0 is None else as_float_array(x0, "x0", shape=(6,))
+        gates = np.full(5, np.inf)
+        if gate_probability is not None:
+            prob = finite_float(gate_probability, "gate_probability")
+            if not 0.0 < prob < 1.0:
+                raise ValueError(f"gate_probability must be in (0, 1), got {prob}")
+            from scipy.stats import chi2
+
+            gates[1:] = chi2.ppf(prob, np.arange(1, 5))
         # x, P, Q, the current measurement, the filter time and scratch space live in one
         # flat array: the compiled online step takes just that array (see
-        # _fusion_kernels.BUF_*); x, P, Q and the residuals are views of its rows.
-        self._buf = np.zeros(k.BUF_SIZE)
-        rows = self._buf.reshape(k.BUF_ROWS, k.W)
-        self._x: FloatArray = rows[k.BUF_X]
-        self._p: FloatArray = rows[k.BUF_P : k.BUF_P + 6]
-        self._q: FloatArray = rows[k.BUF_Q : k.BUF_Q + 6]
-        # The kernel leaves the residuals in the last row of the measurement block.
-        self._residuals: FloatArray = rows[k.BUF_MEAS + 2]
+        # _fusion_kernels.BUF_*).
+        self._adopt(np.zeros(k.BUF_SIZE), gates)
         self._x[:] = x
         self._x[2] = wrap_angle(float(self._x[2]))
         self._p[:, :] = _matrix(
@@ -553,14 +555,19 @@ class PlanarFusion(GaussianEstimate):
         )
         # NaN until the clock is set (by t0 or the first measurement).
         self._buf[BUF_TIME] = math.nan if t0 is None else finite_float(t0, "t0")
-        self._gates = np.full(5, np.inf)
-        if gate_probability is not None:
-            prob = finite_float(gate_probability, "gate_probability")
-            if not 0.0 < prob < 1.0:
-                raise ValueError(f"gate_probability must be in (0, 1), got {prob}")
-            from scipy.stats import chi2
 
-            self._gates[1:] = chi2.ppf(prob, np.arange(1, 5))
+    def _adopt(self, buf: FloatArray, gates: FloatArray) -> None:
+        """Take ``buf`` (see _fusion_kernels.BUF_*) and the chi-square ``gates`` as the filter's."""
+        self._buf = buf
+        self._gates = gates
+        # x, P, Q and the residuals are views of the buffer's rows: the kernels update
+        # the buffer in place, and the properties read it through these.
+        rows = buf.reshape(k.BUF_ROWS, k.W)
+        self._x: FloatArray = rows[k.BUF_X]
+        self._p: FloatArray = rows[k.BUF_P : k.BUF_P + 6]
+        self._q: FloatArray = rows[k.BUF_Q : k.BUF_Q + 6]
+        # The kernel leaves the residuals in the last row of the measurement block.
+        self._residuals: FloatArray = rows[k.BUF_MEAS + 2]
         # (first component, count, gate, residual slice) of each online measurement kind.
         self._kinds: dict[str, tuple[int, int, float, slice]] = {
             kind: (first, count, float(self._gates[count]), slice(first, first + count))
@@ -569,6 +576,11 @@ class PlanarFusion(GaussianEstimate):
         # The odometry fast path's gate and residual view, looked up once.
         self._odometry_gate = self._kinds["odometry"][2]
         self._odometry_residual: FloatArray = self._residuals[self._kinds["odometry"][3]]
+
+    def __reduce__(self) -> tuple[Callable[..., PlanarFusion], tuple[Any, ...]]:
+        # The estimate lives in one buffer updated in place, with x, P and Q views into
+        # it: copies (copy.copy too) and pickles get their own buffer and views.
+        return _restore_fusion, (self._buf.copy(), self._gates.copy())
 
     @property
     def t(self) -> float | None:
@@ -915,6 +927,13 @@ class PlanarFusion(GaussianEstimate):
 
     def __repr__(self) -> str:
         return f"PlanarFusion(t={self.t}, x={np.array2string(self._x, precision=4)})"
+
+
+def _restore_fusion(buf: FloatArray, gates: FloatArray) -> PlanarFusion:
+    """A :class:`PlanarFusion` with the given buffer and gates (unpickling, copies)."""
+    fusion: PlanarFusion = object.__new__(PlanarFusion)
+    fusion._adopt(buf, gates)
+    return fusion
 
 
 def _matrix(value: ArrayLike, name: str, *, semidefinite: bool) -> FloatArray:

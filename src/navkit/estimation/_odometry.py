@@ -84,6 +84,18 @@ def _integer_readings(value: object, name: str) -> NDArray[Any]:
     return arr
 
 
+def _batch_deltas(last: int | NDArray[Any], readings: NDArray[Any], bits: int) -> NDArray[Any]:
+    """Wrap-aware tick differences of successive ``readings``, the first from ``last``.
+
+    Each pair is differenced by :func:`tick_delta` in the readings' own dtype:
+    joining ``last`` (a Python int) to the readings first would promote uint64
+    readings to float64.
+    """
+    first = np.asarray(tick_delta(last, readings[:1], bits=bits))
+    rest = np.asarray(tick_delta(readings[:-1], readings[1:], bits=bits))
+    return np.concatenate((first, rest))
+
+
 def _is_bit_width(value: object) -> bool:
     if isinstance(value, bool) or not isinstance(value, numbers.Integral):
         return False
@@ -291,6 +303,8 @@ class DiffOdometry:
         if not isinstance(drive, DiffDrive):
             raise TypeError(f"drive must be a DiffDrive, got {type(drive).__name__}")
         start = Pose2D(0.0, 0.0, 0.0) if pose is None else as_pose(pose, "pose")
+        if not isinstance(method, str):
+            raise TypeError(f"method must be one of {_METHODS}, got {type(method).__name__}")
         if method not in _METHODS:
             raise ValueError(f"method must be one of {_METHODS}, got {method!r}")
         if encoder_bits is not None and not _is_bit_width(encoder_bits):
@@ -451,22 +465,20 @@ class DiffOdometry:
             return np.empty((0, 3))
         # Counters that never wrap are differenced as 64-bit integers.
         bits = 64 if self._bits is None else self._bits
-        if self._last is None:
-            prev_l = np.concatenate((left[:1], left[:-1]))
-            prev_r = np.concatenate((right[:1], right[:-1]))
-        else:
-            prev_l = np.concatenate(([self._last[0]], left[:-1]))
-            prev_r = np.concatenate(([self._last[1]], right[:-1]))
+        for readings, name in ((left, "left_ticks"), (right, "right_ticks")):
+            if int(readings.min()) < -(1 << (bits - 1)) or int(readings.max()) >= 1 << bits:
+                raise ValueError(f"{name} holds readings outside the range of a {bits}-bit counter")
+        last_l, last_r = (left[:1], right[:1]) if self._last is None else self._last
         d_left = np.asarray(
             ticks_to_distance(
-                tick_delta(prev_l, left, bits=bits),
+                _batch_deltas(last_l, left, bits),
                 ticks_per_rev=self._ticks_per_rev,
                 wheel_radius=self._drive.left_radius,
             )
         )
         d_right = np.asarray(
             ticks_to_distance(
-                tick_delta(prev_r, right, bits=bits),
+                _batch_deltas(last_r, right, bits),
                 ticks_per_rev=self._ticks_per_rev,
                 wheel_radius=self._drive.right_radius,
             )
