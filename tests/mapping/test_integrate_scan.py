@@ -315,6 +315,34 @@ def test_beams_leaving_the_map_are_clipped() -> None:
     )
 
 
+@pytest.mark.parametrize("exact", [False, True])
+def test_beams_along_the_top_or_right_edge_enter_no_cell(exact: bool) -> None:
+    """Cells are half-open: the lines y = height and x = width lie outside the grid.
+
+    Such beams used to be clipped against the closed window and their cells
+    clamped into it, clearing the whole top row or right column.
+    """
+    beam = {"angle_increment": 0.1, "range_min": 0.1, "range_max": 3.0}
+    cases = [
+        (LaserScan([5.0], angle_min=0.0, **beam), (-1.0, 2.0, 0.0)),  # along y = 2 (top)
+        (LaserScan([1.0], angle_min=math.pi / 2, **beam), (2.0, 0.25, 0.0)),  # along x = 2
+        (LaserScan([1.0], angle_min=0.0, **beam), (2.0, 0.25, math.pi / 2)),  # same, yawed
+        (LaserScan([2.0], angle_min=-math.pi / 4, **beam), (1.0, 3.0, 0.0)),  # touches (2, 2)
+    ]
+    for scan, pose in cases:
+        grid = OccupancyGrid.empty(width=2.0, height=2.0, resolution=0.5)
+        assert integrate_scan(grid, scan, pose, hit=1.0, miss=-0.5, exact=exact) == 0
+        assert not grid.logodds.any()
+    # The bottom and left edge lines belong to the grid's first row and column.
+    for scan, pose, cells in (
+        (LaserScan([5.0], angle_min=0.0, **beam), (-1.0, 0.0, 0.0), (0, slice(None))),
+        (LaserScan([5.0], angle_min=math.pi / 2, **beam), (0.0, -1.0, 0.0), (slice(None), 0)),
+    ):
+        grid = OccupancyGrid.empty(width=2.0, height=2.0, resolution=0.5)
+        assert integrate_scan(grid, scan, pose, hit=1.0, miss=-0.5, exact=exact) == 4
+        assert np.all(grid.logodds[cells] == -0.5) and np.count_nonzero(grid.logodds) == 4
+
+
 def test_clamping() -> None:
     grid = OccupancyGrid.empty(width=3.0, height=1.0, resolution=0.1)
     scan = LaserScan([2.0], angle_min=0.0, angle_increment=0.1, range_min=0.1, range_max=2.5)

@@ -148,6 +148,10 @@ def test_ascii_p2_with_comments_and_16_bit(tmp_path: Path) -> None:
     # Image top row (0, 1000, 800) is the last grid row; 1000 = white = free.
     assert grid.occupied().tolist() == [[False, False, True], [True, False, False]]
     assert grid.free().tolist() == [[True, True, False], [False, True, True]]
+    # Leading zeros are digits like any others (the P2 value 0001000 is 1000).
+    padded_pgm = pgm.replace(b" 900", b" 0000900")
+    padded = OccupancyGrid.load(make_map_files(tmp_path, GOOD_YAML, padded_pgm))
+    assert np.array_equal(padded.logodds, grid.logodds)
     p5 = b"P5 3 1 1000\n" + np.array([0, 1000, 600], dtype=">u2").tobytes()
     grid16 = OccupancyGrid.load(make_map_files(tmp_path, GOOD_YAML, p5))
     assert grid16.occupied().tolist() == [[True, False, False]]
@@ -701,3 +705,72 @@ def test_save_never_writes_over_another_maps_image(tmp_path: Path) -> None:
     small_grid(False).save(tmp_path / "map2.yaml")
     small_grid(True).save(tmp_path / "map2.yaml")
     assert np.array_equal(read_map(tmp_path / "map2.yaml").occupied(), small_grid(True).occupied())
+
+
+@pytest.mark.parametrize(
+    ("occupied_thresh", "free_thresh"), [(0.45, 0.2), (0.9, 0.6), (0.65, 0.196)]
+)
+def test_unknown_pixels_stay_unknown_whatever_the_thresholds(
+    tmp_path: Path, occupied_thresh: float, free_thresh: float
+) -> None:
+    """Unknown pixels used to be stored at p = 0.5, which thresholds not around 0.5 class."""
+    yaml = GOOD_YAML.replace("0.65", str(occupied_thresh)).replace("0.196", str(free_thresh))
+    (tmp_path / "m.yaml").write_text(yaml)
+    # Pixels: black, a grey in the unknown band (map_server's -1), white.
+    grey = round(255 * (1 - 0.5 * (occupied_thresh + free_thresh)))
+    (tmp_path / "m.pgm").write_bytes(b"P5 3 1 255\n" + bytes([0, grey, 254]))
+    grid = read_map(tmp_path / "m.yaml")
+    assert grid.occupied().tolist() == [[True, False, False]]
+    assert grid.unknown().tolist() == [[False, True, False]]
+    assert grid.free().tolist() == [[False, False, True]]
+    if free_thresh <= 0.5 <= occupied_thresh:
+        assert grid.logodds[0, 1] == 0.0  # no evidence either way
+
+
+@pytest.mark.parametrize("mode", ["trinary", "scale"])
+@pytest.mark.parametrize(
+    ("occupied_thresh", "free_thresh"), [(0.3, 0.25), (0.8, 0.79), (0.5, 0.497)]
+)
+def test_write_read_keeps_the_classes_with_narrow_or_off_centre_bands(
+    tmp_path: Path, mode: str, occupied_thresh: float, free_thresh: float
+) -> None:
+    middle = 0.5 * (occupied_thresh + free_thresh)
+    grid = OccupancyGrid.from_probabilities(
+        [[0.05, middle, 0.95, 0.5, free_thresh, occupied_thresh]], resolution=0.1,
+        occupied_thresh=occupied_thresh, free_thresh=free_thresh,
+    )  # fmt: skip
+    write_map(grid, tmp_path / "m.yaml", mode=mode)
+    back = read_map(tmp_path / "m.yaml")
+    for view in ("occupied", "free", "unknown"):
+        assert np.array_equal(getattr(back, view)(), getattr(grid, view)()), view
+
+
+def test_unknown_cells_that_no_grey_level_can_hold_are_refused(tmp_path: Path) -> None:
+    # Between p = 0.499 and 0.5 lies no (255 - k) / 255: 127 reads as 0.50196, 128 as 0.49804.
+    grid = OccupancyGrid.from_probabilities(
+        [[0.4995, 0.9, 0.1]], resolution=0.1, occupied_thresh=0.5, free_thresh=0.499
+    )
+    for mode in ("trinary", "scale"):
+        with pytest.raises(ValueError, match=r"no 8-bit grey level .* unknown"):
+            write_map(grid, tmp_path / "m.yaml", mode=mode)
+    assert list(tmp_path.iterdir()) == []
+    known = OccupancyGrid.from_probabilities(  # nothing unknown to write: fine
+        [[0.9, 0.1]], resolution=0.1, occupied_thresh=0.5, free_thresh=0.499
+    )
+    write_map(known, tmp_path / "m.yaml")
+    assert read_map(tmp_path / "m.yaml").occupied().tolist() == [[True, False]]
+
+
+def test_16_bit_png_spans_its_full_range(tmp_path: Path) -> None:
+    """A 16-bit image is scaled by its depth, not by the largest value it holds."""
+    from PIL import Image
+
+    (tmp_path / "m.yaml").write_text(GOOD_YAML.replace("m.pgm", "m.png"))
+    for pixels, occupied, free in (
+        ([0, 200, 255], [True, True, True], [False, False, False]),  # all near black
+        ([0, 40000, 65535], [True, False, False], [False, False, True]),
+    ):
+        Image.fromarray(np.array([pixels], dtype=np.uint16)).save(tmp_path / "m.png")
+        grid = read_map(tmp_path / "m.yaml")
+        assert grid.occupied().tolist() == [occupied]
+        assert grid.free().tolist() == [free]

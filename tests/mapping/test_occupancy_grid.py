@@ -175,6 +175,11 @@ def test_coordinate_input_validation() -> None:
         (lambda: OccupancyGrid(np.zeros(5), resolution=0.1), ValueError, "logodds must be 2-D"),
         (lambda: OccupancyGrid(np.zeros((0, 3)), resolution=0.1), ValueError, "must not be empty"),
         (
+            lambda: OccupancyGrid.from_probabilities(np.zeros((0, 0)), resolution=0.1),
+            ValueError,
+            r"^probabilities must not be empty",
+        ),
+        (
             lambda: OccupancyGrid(np.zeros((2, 2)), resolution=0.1, free_thresh=0.7),
             ValueError,
             "free_thresh .* must be smaller",

@@ -182,6 +182,16 @@ def test_bad_grid_messages(info: dict[str, object], error: type[Exception], matc
         grid_from_msg(msg_with(**info))
 
 
+def test_grid_messages_with_object_arrays_of_integers() -> None:
+    """Python integers in an object array are occupancy values like any others."""
+    values = [100, -1]
+    want = grid_from_msg(msg_with(data=values))
+    got = grid_from_msg(msg_with(data=np.array(values, dtype=object)))
+    np.testing.assert_array_equal(got.logodds, want.logodds)
+    with pytest.raises(ValueError, match=r"msg\.data values must be -1 \(unknown\) or 0\.\.100"):
+        grid_from_msg(msg_with(data=np.array([-1, 101], dtype=object)))
+
+
 def test_quaternions_are_normalised() -> None:
     # A zero quaternion (ROS 1's default) is no rotation; a scaled one the same as its unit.
     assert grid_from_msg(msg_with(qx=0.0, qy=0.0, qz=0.0, qw=0.0)).origin.theta == 0.0

@@ -28,6 +28,10 @@ from navkit._shared.validation import (
         ["1.0", "2.0"],
         [True, False],
         np.array([True]),
+        [True, 0.6],  # NumPy converts a bool among numbers to 1.0
+        [[0.5, 1.0], (2.0, np.False_)],
+        ([1.0], [True]),
+        [np.array([True, False]), [0.5, 1.0]],
         [None, 1.0],
         [[1.0, 2.0], [3.0]],
         b"12",
@@ -168,6 +172,11 @@ def test_positive_means_a_normal_float_so_its_reciprocal_is_finite(value: float)
 def test_object_arrays_and_sequences_of_real_numbers_convert(value: object) -> None:
     out = as_float_array(value, "x")  # type: ignore[arg-type]
     assert out.dtype == np.float64 and out.shape == (2,)
+
+
+def test_nested_sequences_of_real_numbers_and_arrays_convert() -> None:
+    value = [np.array([1.0, 2.0]), (3, np.float32(4.0)), [np.int8(5), 6.0]]
+    np.testing.assert_array_equal(as_float_array(value, "x"), [[1, 2], [3, 4], [5, 6]])
 
 
 @pytest.mark.parametrize(

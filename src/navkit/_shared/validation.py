@@ -18,6 +18,7 @@ import math
 import numbers
 import sys
 from collections.abc import Mapping, Sequence
+from itertools import chain
 from typing import Any
 
 import numpy as np
@@ -92,6 +93,29 @@ def as_bool(value: Any, name: str) -> bool:
     return bool(value)
 
 
+_SEQUENCES = {list, tuple}
+
+
+def _holds_bool(value: list[Any] | tuple[Any, ...]) -> bool:
+    """Whether nested lists or tuples hold a bool (or a bool array) at any depth.
+
+    One nesting level at a time, with C-level loops (``map``, ``chain``): about
+    as fast as NumPy's own conversion of the lists.
+    """
+    items: list[Any] | tuple[Any, ...] = value
+    while True:
+        types = set(map(type, items))
+        if bool in types or np.bool_ in types:
+            return True
+        if np.ndarray in types and any(
+            item.dtype.kind == "b" for item in items if type(item) is np.ndarray
+        ):
+            return True
+        if not types or not types <= _SEQUENCES:
+            return False  # numbers (or ragged nesting, which the conversion refuses)
+        items = list(chain.from_iterable(items))
+
+
 def _real_array(value: Any, name: str) -> FloatArray:
     """``value`` as float64, refusing what only converts by accident.
 
@@ -107,6 +131,9 @@ def _real_array(value: Any, name: str) -> FloatArray:
             raise TypeError(f"{name} must hold real numbers, got dtype {value.dtype}")
     elif isinstance(value, (str, bytes, complex, bool, np.bool_, np.complexfloating)):
         raise TypeError(f"{name} must be numeric array-like, got {type(value).__name__}")
+    elif isinstance(value, (list, tuple)) and _holds_bool(value):
+        # NumPy would turn [True, 0.5] into [1.0, 0.5] (only all-bool lists stay bool).
+        raise TypeError(f"{name} must hold real numbers, got an element of type bool")
     try:
         raw = np.asarray(value)
     except (TypeError, ValueError) as exc:

@@ -384,6 +384,8 @@ class OccupancyGrid:
         ([[False, False, True]], [[False, True, False]])
         """
         p = as_float_array(probabilities, "probabilities", ndim=2)
+        if p.shape[0] == 0 or p.shape[1] == 0:
+            raise ValueError(f"probabilities must not be empty, got shape {p.shape}")
         check_cell_count(float(p.size), "probabilities")
         if p.size and (p.min() < 0.0 or p.max() > 1.0):
             raise ValueError("probabilities must lie in [0, 1]")

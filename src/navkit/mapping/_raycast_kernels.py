@@ -207,7 +207,9 @@ def integrate_beams(
             lo = w_c0 if axis == 0 else w_r0
             hi = w_c1 if axis == 0 else w_r1
             if d == 0.0:
-                if s < lo or s > hi:
+                # Cells are half-open: a beam along the window's top or right
+                # edge line runs outside it.
+                if s < lo or s >= hi:
                     t0 = 1.0
                     t1 = 0.0
             else:
@@ -223,6 +225,8 @@ def integrate_beams(
         # bounds checks and its length is bounded by the grid, not by the range.
         au = su + t0 * du if t0 > 0.0 else su
         av = sv + t0 * dv if t0 > 0.0 else sv
+        if t0 == t1 and not (au < w_c1 and av < w_r1):
+            continue  # it only touches the window's top or right edge: no cell entered
         # Start and end cells clamped to the window.
         r = math.floor(av)
         r = w_r0 if r < w_r0 else w_r1 - 1 if r >= w_r1 else r

@@ -402,7 +402,7 @@ def read_pgm(path: str | os.PathLike[str]) -> NDArray[np.float64]:
                 raise ValueError(
                     f"{pgm}: P2 raster holds {token[:20]!r}, not a non-negative integer"
                 )
-            if len(token) > 5:  # more than 65535, read without converting a huge number
+            if len(token.lstrip(b"0")) > 5:  # > 65535, found without converting a huge number
                 raise ValueError(f"{pgm}: PGM pixel value {token[:20]!r} exceeds maxval {maxval}")
         pixels = np.array([int(t) for t in tokens], dtype=np.int64)
     if pixels.size and (pixels.min() < 0 or pixels.max() > maxval):
@@ -469,8 +469,12 @@ def _read_with_pillow(path: Path) -> tuple[NDArray[np.float64], NDArray[np.float
                 picture = picture.convert("RGBA" if "transparency" in picture.info else "L")
             arr = np.asarray(picture)
             mode = picture.mode
+            sixteen_bit = mode.startswith("I;16") or (mode == "I" and img.format == "PNG")
     if mode.startswith("I"):
-        peak = 65535.0 if arr.max(initial=0) > 255 else 255.0
+        # 16-bit images (PNG's deepest grey, which older Pillow versions open as
+        # mode "I") span 0..65535 whatever they hold; only 32-bit ones, whose range
+        # no map format fixes, are scaled by what they hold.
+        peak = 65535.0 if sixteen_bit or arr.max(initial=0) > 255 else 255.0
         grey = np.clip(arr.astype(np.float64) * (255.0 / peak), 0.0, 255.0)
         return grey, None
     if arr.ndim == 2:
@@ -551,7 +555,9 @@ def read_map(path: str | os.PathLike[str]) -> OccupancyGrid:
     ``raw``). PGM images (P5, P2) are read with numpy; other formats such as
     PNG need Pillow. The image's top row becomes the last grid row. The
     YAML's thresholds become the grid's thresholds, so the views reproduce
-    map_server's trinary classification.
+    map_server's trinary classification. Unknown pixels become p = 0.5
+    (log-odds 0), or the middle of the unknown band when the thresholds do not
+    class 0.5 as unknown. 16-bit images span 0..65535.
 
     Parameters
     ----------
@@ -599,8 +605,13 @@ def read_map(path: str | os.PathLike[str]) -> OccupancyGrid:
     except ValueError as exc:
         raise ValueError(f"{path}: map image {exc}") from None
     prob, unknown = pixel_occupancy(grey, alpha, meta)
+    # Unknown cells hold p = 0.5 (log-odds 0, no evidence) when the YAML's thresholds
+    # class 0.5 as unknown; otherwise the middle of their band, so that the grid's
+    # views still find them unknown, as map_server does.
+    occ_t, free_t = meta.occupied_thresh, meta.free_thresh
+    p_unknown = 0.5 if free_t <= 0.5 <= occ_t else 0.5 * (free_t + occ_t)
     return OccupancyGrid.from_probabilities(
-        np.where(unknown, 0.5, prob)[::-1],
+        np.where(unknown, p_unknown, prob)[::-1],
         resolution=meta.resolution,
         origin=Pose2D(*meta.origin),
         occupied_thresh=meta.occupied_thresh,
@@ -613,12 +624,10 @@ def _map_pixels(grid: OccupancyGrid, mode: str) -> NDArray[np.uint8]:
     occ_t, free_t = grid.occupied_thresh, grid.free_thresh
     occupied, free = grid.occupied(), grid.free()
     if mode == "trinary":
-        unknown_px = 205
-        p_unknown = (255 - unknown_px) / 255.0
-        if not free_t <= p_unknown <= occ_t:
-            unknown_px = round(255.0 * (1.0 - 0.5 * (occ_t + free_t)))
-        pixels = np.full(grid.shape, unknown_px, dtype=np.uint8)
-        pixels[free] = 254
+        unknown = ~occupied & ~free
+        pixels = np.full(grid.shape, 254, dtype=np.uint8)
+        if unknown.any():
+            pixels[unknown] = _unknown_pixel(occ_t, free_t, preferred=205)
         pixels[occupied] = 0
         return pixels
     pixels = np.rint(255.0 * (1.0 - grid.probability())).astype(np.uint8)
@@ -627,8 +636,33 @@ def _map_pixels(grid: OccupancyGrid, mode: str) -> NDArray[np.uint8]:
     pixels[occupied & ~(p_px > occ_t)] = 0
     pixels[free & ~(p_px < free_t)] = 255
     between = ~occupied & ~free & ((p_px > occ_t) | (p_px < free_t))
-    pixels[between] = round(255.0 * (1.0 - 0.5 * (occ_t + free_t)))
+    if between.any():
+        pixels[between] = _unknown_pixel(occ_t, free_t, preferred=-1)
     return pixels
+
+
+_GREY_LEVELS = np.arange(256)
+
+
+def _unknown_pixel(occupied_thresh: float, free_thresh: float, *, preferred: int) -> int:
+    """A grey level map_server reads as unknown under these thresholds.
+
+    ``preferred`` when it is one (205, map_saver's unknown, in trinary mode),
+    else the one nearest the middle of the unknown band; ValueError when the band
+    holds no 8-bit grey level, as it can when it is narrower than 1/255.
+    """
+    p = (255.0 - _GREY_LEVELS) / 255.0  # map_server's reading of each level (negate 0)
+    unknown = (free_thresh <= p) & (p <= occupied_thresh)
+    if 0 <= preferred <= 255 and unknown[preferred]:
+        return preferred
+    if not unknown.any():
+        raise ValueError(
+            f"the grid's thresholds (free_thresh={free_thresh}, occupied_thresh="
+            f"{occupied_thresh}) leave no 8-bit grey level that map_server reads as "
+            "unknown, so its unknown cells cannot be written; widen the band between them"
+        )
+    middle = 0.5 * (free_thresh + occupied_thresh)
+    return int(_GREY_LEVELS[unknown][np.argmin(np.abs(p[unknown] - middle))])
 
 
 def _replace_all(files: list[tuple[Path, bytes]]) -> None:
@@ -726,7 +760,9 @@ def write_map(grid: OccupancyGrid, path: str | os.PathLike[str], *, mode: str = 
         ``.jpg``, ...: the YAML would overwrite an image); an image name that
         the YAML could not give back when read; the YAML or the image path is
         a directory; the image path holds a file that the existing YAML at
-        ``path`` does not name (another map's image). Nothing is written then.
+        ``path`` does not name (another map's image); unknown cells to write
+        while the grid's thresholds leave no 8-bit grey level between them
+        (a band narrower than 1/255). Nothing is written then.
     OSError
         Writing fails (disk full, permissions, ...): the temporary files are
         removed and an existing map is left as it was.

@@ -59,8 +59,10 @@ def _occupancy_values(raw: Any, name: str) -> NDArray[np.int64]:
     if arr.dtype.kind == "O":
         items = arr.ravel().tolist()
         if all(isinstance(v, numbers.Integral) and not isinstance(v, bool) for v in items):
-            # Integers too large for int64 (NumPy kept them as objects).
-            raise ValueError(f"{name} values must be -1 (unknown) or 0..100")
+            # Python integers of any size (an object array, or ints too large for int64).
+            if any(not -1 <= v <= 100 for v in items):
+                raise ValueError(f"{name} values must be -1 (unknown) or 0..100")
+            arr = np.array(items, dtype=np.int64).reshape(arr.shape)
     if arr.dtype == np.bool_ or arr.dtype.kind not in "iu":
         raise TypeError(f"{name} must hold integers, got dtype {arr.dtype}")
     if arr.size and (arr.min() < -1 or arr.max() > 100):
