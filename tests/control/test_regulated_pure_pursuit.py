@@ -155,8 +155,9 @@ def test_curvature_regulation() -> None:
 
 @pytest.mark.parametrize(
     ("clearance", "speed"),
-    [(0.45, 0.5 * 0.45 / 0.6), (0.7, 0.5), (math.inf, 0.5), (0.1, 0.25), (-1.0, 0.25)],
-)
+    [(0.45, 0.5 * 0.45 / 0.6), (0.7, 0.5), (math.inf, 0.5), (0.1, 0.25), (-1.0, 0.25),
+     (10**400, 0.5), (-(10**400), 0.25)],  # integers beyond float64 are ±inf
+)  # fmt: skip
 def test_clearance_regulation(clearance: float, speed: float) -> None:
     """Closer than 0.6 m to an obstacle: speed × gain × c / 0.6, not below 0.25 m/s."""
     calls = []
@@ -278,6 +279,24 @@ def test_final_rotation_uses_the_rotate_profile(closed_loop: Callable[..., Any])
     # Speeding up is limited by max_angular_accel; slowing down follows sqrt(2 a |angle|).
     assert np.all(np.diff(speeds) <= 3.2 * 0.05 + 1e-12)
     assert abs(run.poses[-1, 2] - 2.0) <= 0.01
+
+
+def test_a_turn_the_wrong_way_slows_at_the_acceleration_limit() -> None:
+    """Turning away from the goal heading at 1 rad/s, 0.1 rad short of it.
+
+    The stop cap (sqrt(2 · 3.2 · 0.1) = 0.8 rad/s) applies to turns toward the
+    target; applied here as in Nav2 it commanded +0.8 rad/s, a change of
+    1.8 rad/s in one 0.05 s step against the limit of 0.16.
+    """
+    tracker = make()
+    tracker.set_path([[0.0, 0.0], [1.0, 0.0]], goal_heading=0.1)
+    cmd = tracker.step((1.0, 0.0, 0.0), 0.05, velocity=Twist2D(0.0, 0.0, -1.0))
+    assert tracker.phase == "final"
+    assert cmd.omega == pytest.approx(-1.0 + 3.2 * 0.05)
+    toward = make()
+    toward.set_path([[0.0, 0.0], [1.0, 0.0]], goal_heading=0.1)
+    cmd = toward.step((1.0, 0.0, 0.0), 0.05, velocity=Twist2D(0.0, 0.0, 1.0))
+    assert cmd.omega == pytest.approx(0.8)  # toward it: capped to stop on it, as before
 
 
 def test_max_omega_keeps_the_arc() -> None:

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 import numbers
 from collections.abc import Callable
-from typing import Any, Literal
+from typing import Any, Literal, cast
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -75,8 +75,9 @@ class RegulatedPurePursuit(PathTracker):
        ``rotate_to_heading_angle`` off the robot's heading (the path points
        sideways or behind), a differential robot turns in place toward it at
        ``rotate_omega``, within ``max_angular_accel`` of its current turn rate
-       and slow enough to stop on it (``|ω| <= sqrt(2 a |angle|)``) — phase
-       **rotate**.
+       and slow enough to stop on it (``|ω| <= sqrt(2 a |angle|)``; a robot
+       still turning the other way first slows at ``max_angular_accel``, where
+       Nav2 would reverse its turn at once) — phase **rotate**.
     3. **Track.** Otherwise it drives on the arc through the lookahead point,
        curvature ``κ = 2 y / d²`` (``y`` the point's lateral offset, ``d`` its
        distance, usually ``L``), at
@@ -347,7 +348,10 @@ class RegulatedPurePursuit(PathTracker):
         dw = self._max_angular_accel * dt
         w = min(max(w, omega_now - dw), omega_now + dw)
         stop = min(math.sqrt(2.0 * self._max_angular_accel * abs(angle)), abs(angle) / dt)
-        if abs(w) > stop:
+        if sign * w > stop:
+            # Only a turn toward the target is capped to stop on it. A robot still
+            # turning away keeps slowing at max_angular_accel: Nav2 sets sign * stop
+            # there too, which reverses the turn in one step, past the limit.
             w = sign * stop
         return w
 
@@ -448,7 +452,10 @@ class RegulatedPurePursuit(PathTracker):
             raise TypeError(
                 f"clearance(x, y) must return a real number, got {type(raw).__name__}"
             )
-        value = float(raw)
+        try:
+            value = float(raw)
+        except OverflowError:  # an integer beyond float64: as far as infinity
+            value = math.inf if cast(int, raw) > 0 else -math.inf
         if math.isnan(value):
             raise ValueError(f"clearance(x, y) returned NaN at ({pose.x}, {pose.y})")
         return max(value, 0.0)

@@ -953,6 +953,49 @@ def test_replan_world_after_node_and_cell_plans_keeps_their_end_points() -> None
     np.testing.assert_allclose(planner.replan_world().points, [[1.0, 1.0], [11.0, 11.0]])
     moved = planner.replan_world((3.0, 1.0))
     np.testing.assert_allclose(moved.points, [[3.0, 1.0], [11.0, 11.0]])
+    # A plan to the start's own cell is a point, and its goal is the one kept
+    # (it used to leave the previous plan's goal in place).
+    assert planner.plan_cells((2, 2), (2, 2)).points.tolist() == [[2.0, 2.0]]
+    np.testing.assert_allclose(planner.replan_world().points[[0, -1]], [[5.0, 5.0], [5.0, 5.0]])
+    assert planner.replan_world().cost == 0.0
+    back = planner.replan_world((11.0, 5.0))  # pushed 6 m along x: straight back
+    np.testing.assert_allclose(back.points, [[11.0, 5.0], [5.0, 5.0]])
+    assert back.cost == pytest.approx(6.0)
+    fresh = FieldDStar(np.ones((6, 6)), resolution=2.0)
+    fresh.plan_cells((2, 2), (2, 2))  # the first plan of a planner
+    np.testing.assert_allclose(fresh.replan_world((1.0, 5.0)).points, [[1.0, 5.0], [5.0, 5.0]])
+
+
+def test_replan_world_after_plan_cells_equals_a_search_to_the_same_goal_corner() -> None:
+    """The goal keeps plan_cells' corner: a repaired plan equals one searched afresh to it."""
+    rng = np.random.default_rng(7)
+    for _ in range(40):
+        costs = np.where(rng.random((8, 8)) < 0.2, np.inf, rng.uniform(1.0, 3.0, (8, 8)))
+        free = [tuple(int(v) for v in c) for c in np.argwhere(np.isfinite(costs))]
+        s, g, moved = (free[i] for i in rng.choice(len(free), 3, replace=False))
+        changed = free[rng.integers(len(free))]
+        moved_xy = (moved[1] + 0.3, moved[0] + 0.6)
+        if changed in (s, g, moved):
+            continue
+        planner = FieldDStar(costs)
+        try:
+            planner.plan_cells(s, g)
+        except NoPathError:
+            continue
+        planner.update_costs([changed], np.inf)
+        new_costs = costs.copy()
+        new_costs[changed] = np.inf
+        reference = FieldDStar(new_costs)
+        try:
+            reference.plan_cells(s, g)  # the same goal corner (start cell unchanged)
+            want = reference.replan_world(moved_xy)  # nothing changed: a start move only
+        except NoPathError:
+            with pytest.raises(NoPathError):
+                planner.replan_world(moved_xy)
+            continue
+        got = planner.replan_world(moved_xy)
+        np.testing.assert_allclose(got.points, want.points, atol=1e-12)
+        assert got.cost == pytest.approx(want.cost, rel=1e-12)
 
 
 def test_world_errors_and_options() -> None:

@@ -541,8 +541,6 @@ class FieldDStar:
         """
         s = self._passable_cell(start_cell, "start_cell")
         gl = self._passable_cell(goal_cell, "goal_cell")
-        if s == gl:
-            return Path2D(np.array([s], dtype=np.float64), "grid", cost=0.0, length=0.0, expanded=0)
         cell_s = np.array(s, dtype=np.int64)
         cell_g = np.array(gl, dtype=np.int64)
         centre_s = cell_s + 0.5
@@ -556,6 +554,8 @@ class FieldDStar:
             (float(centre_s[0]), float(centre_s[1])),
             (float(centre_g[0]), float(centre_g[1])),
         )
+        if s == gl:  # no search, but the goal is recorded for replan_world
+            return Path2D(np.array([s], dtype=np.float64), "grid", cost=0.0, length=0.0, expanded=0)
         points, _, _, expanded = self._search()
         points, cost, length = self._linked(points)
         return Path2D(points - 0.5, "grid", cost=cost, length=length, expanded=expanded)
@@ -611,8 +611,13 @@ class FieldDStar:
         Path2D
             ``"world"`` path from the start point to the goal point of the last
             plan (the goal node itself after :meth:`plan`, the goal cell's
-            centre after :meth:`plan_cells`). Equal to what a fresh
-            :meth:`plan_world` on the current costs returns.
+            centre after :meth:`plan_cells`), linked to the same goal node.
+            Equal to a fresh search between the same nodes on the current
+            costs: after :meth:`plan_world`, to what a fresh
+            :meth:`plan_world` returns. After :meth:`plan_cells` the goal
+            keeps the corner that plan_cells linked its centre to (the one
+            nearest the start cell's centre), which a fresh plan_world, linking
+            the centre to its nearest node, may not choose.
 
         Raises
         ------
