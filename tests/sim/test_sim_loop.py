@@ -207,6 +207,17 @@ def test_cross_track_and_clearance() -> None:
     assert m.distance == pytest.approx(m.time_to_goal * 0.5, abs=0.01)
 
 
+def test_min_clearance_counts_the_start_pose() -> None:
+    """Starting 0.05 m from a wall and driving away: the smallest clearance is the start's."""
+    world = World(box(-5.0, -5.0, 5.0, 5.0).exterior)
+    robot = Robot(drive=DIFF, footprint=0.15)
+    away = Simulation(world, robot, lambda obs: Twist2D(0.5), start=(-4.8, 0.0, 0.0), duration=1.0)
+    assert away.run().metrics.min_clearance == pytest.approx(0.05, abs=1e-12)
+    # Already at the goal: no step, and the clearance is the start's, not inf.
+    there = Simulation(world, robot, lambda obs: Twist2D(0.5), start=(0.0, 0.0, 0.0), goal=(0, 0))
+    assert there.run().metrics.min_clearance == pytest.approx(4.85, abs=1e-12)
+
+
 def test_moving_obstacle_hits_the_robot() -> None:
     ball = MovingObstacle.constant_velocity(0.1, start_xy=(3.0, 2.0), velocity_xy=(0.0, -1.0))
     world = World(moving=[ball])
@@ -262,6 +273,7 @@ def test_closed_loop_on_a_real_map(shared_data: Path) -> None:
         ({"duration": 1e6, "rate": 1000.0}, ValueError, "physics steps"),
         ({"start": (0.5, 2.9, 0.0)}, ValueError, "starts inside an obstacle"),
         ({"start": "origin"}, TypeError, "start"),
+        ({"start": (1e300, 0.0, 0.0)}, ValueError, r"^start must lie within ±1e\+12 m"),
         ({"goal_radius": 0.0}, ValueError, "goal_radius"),
         ({"goal": (1.0, 2.0), "goal_yaw_tolerance": 0.1}, ValueError, "heading"),
         ({"goal": (1.0, 2.0, 3.0, 4.0)}, ValueError, "goal"),

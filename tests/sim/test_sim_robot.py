@@ -70,6 +70,39 @@ def test_wheel_speed_saturation_keeps_the_direction() -> None:
     np.testing.assert_allclose(trace.commands[-1], [1.0, 0.0, 1.0])  # what was asked
 
 
+@pytest.mark.parametrize("speed", [1e306, 1e308, 1.7e308])
+def test_commands_beyond_float64_wheel_speeds_still_saturate(speed: float) -> None:
+    """Wheel speeds that overflow float64 are scaled down along the same direction.
+
+    They used to make the wheel commands inf · 0 = NaN and the pose NaN.
+    """
+    for drive, twist in ((DIFF, Twist2D(speed, 0.0, speed)),
+                         (OmniDrive.three_wheel(wheel_radius=0.05, base_radius=0.2),
+                          Twist2D(speed, -speed, speed))):  # fmt: skip
+        limited = Robot(drive=drive, footprint=0.2, max_wheel_speed=5.0)
+        small = Twist2D(twist.vx / speed, twist.vy / speed, twist.omega / speed)
+        want, _ = run(limited, small, 0.5)
+        got, _ = run(limited, twist, 0.5)
+        np.testing.assert_allclose(got.poses, want.poses, rtol=1e-12, atol=1e-15)
+    unlimited = Robot(drive=DIFF, footprint=0.2)
+    if speed * 20.0 == math.inf:  # the wheel speed vx / r overflows: nothing to scale to
+        with pytest.raises(ValueError, match=r"beyond float64 .* no max_wheel_speed"):
+            run(unlimited, Twist2D(speed), 0.1)
+
+
+def test_encoders_wider_than_52_bits_wrap_as_unsigned_readings() -> None:
+    """Backwards from zero, a counter of 53..63 bits reads 2**bits - n (as WheelEncoders.counts)."""
+    for bits in (53, 60, 63):
+        encoders = WheelEncoders(ticks_per_rev=1024, bits=bits)
+        robot = Robot(drive=DIFF, footprint=0.2, encoders=encoders)
+        _, ctrl = run(robot, Twist2D(-0.5), 0.5)
+        last = ctrl.readings(EncoderReading)[-1]
+        angle = -0.5 / 0.05 * last.stamp
+        want = encoders.counts(np.array([angle, angle]))
+        assert want.tolist() == [2**bits - 815] * 2  # floor(-10 · 0.5 / 2π · 1024) = -815
+        np.testing.assert_array_equal(last.ticks, want)
+
+
 def test_wheel_radius_error_moves_farther_than_odometry_says() -> None:
     from navkit.estimation import DiffOdometry
 

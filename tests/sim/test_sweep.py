@@ -214,6 +214,8 @@ def test_a_scenario_by_name() -> None:
         ({"seeds": "1"}, TypeError, "seeds"),
         ({"seeds": []}, ValueError, "seeds"),
         ({"seeds": [1, -2]}, ValueError, r"seeds\[1\]"),
+        ({"seeds": 2**64}, ValueError, r"^seeds must be in \[0, 2\*\*64\)"),
+        ({"seeds": [1, 2**64]}, ValueError, r"^seeds\[1\] must be in \[0, 2\*\*64\)"),
         ({"seeds": [1, 2], "trials": 3}, ValueError, "seeds"),
         ({"workers": 0}, ValueError, "workers"),
         ({"workers": True}, TypeError, "workers"),

@@ -183,7 +183,11 @@ class Body:
             inv = drive.inverse_batch(eye, ignore_lateral=True)  # (3, n): twist basis -> wheels
         else:
             inv = drive.inverse_batch(eye)
-        self._inverse = np.ascontiguousarray(inv.T)  # (n, 3)
+        # Rows (per wheel) of Python floats: their products overflow to inf silently,
+        # where NumPy scalars would warn, and cost less per control step.
+        self._inverse: tuple[tuple[float, float, float], ...] = tuple(
+            (float(a), float(b), float(c)) for a, b, c in inv.T
+        )
         self.forward = np.ascontiguousarray(drive.forward_batch(np.eye(n)).T)  # (3, n)
         self._holonomic = robot.holonomic
         self._max_speed = robot.max_wheel_speed
@@ -215,12 +219,30 @@ class Body:
                 f"the controller asked a differential drive for a lateral velocity "
                 f"vy={twist.vy}; a differential drive cannot move sideways"
             )
-        inv = self._inverse
+        peak = self._wheel_speeds(twist.vx, twist.vy, twist.omega)
+        if not peak < math.inf:
+            # Wheel speeds beyond float64 (inf, or NaN from inf - inf): those of the
+            # twist scaled down to its largest component give the direction.
+            scale = max(abs(twist.vx), abs(twist.vy), abs(twist.omega))
+            peak = self._wheel_speeds(twist.vx / scale, twist.vy / scale, twist.omega / scale)
+            if not self._max_speed < math.inf:
+                raise ValueError(
+                    f"the controller's command {twist} needs wheel speeds beyond float64 "
+                    "and the robot has no max_wheel_speed to scale it down to"
+                )
+            self.command *= self._max_speed / peak
+        elif peak > self._max_speed:
+            self.command *= self._max_speed / peak
+
+    def _wheel_speeds(self, vx: float, vy: float, omega: float) -> float:
+        """Write the wheel speeds of a body twist to ``command``; their largest magnitude.
+
+        inf when one is not finite (NaN included).
+        """
         cmd = self.command
         peak = 0.0
-        for i in range(cmd.shape[0]):
-            w = inv[i, 0] * twist.vx + inv[i, 1] * twist.vy + inv[i, 2] * twist.omega
+        for i, (a, b, c) in enumerate(self._inverse):
+            w = a * vx + b * vy + c * omega
             cmd[i] = w
-            peak = max(peak, abs(w))
-        if peak > self._max_speed:
-            cmd *= self._max_speed / peak
+            peak = max(peak, abs(w)) if abs(w) < math.inf else math.inf
+        return peak

@@ -246,7 +246,8 @@ class WheelEncoders:
             return ticks
         if self.bits == 64:
             return ticks
-        out: IntArray = np.mod(ticks, np.int64(1) << np.int64(self.bits))
+        # Modulo 2**bits in two's complement: a mask, as 2**63 does not fit an int64.
+        out: IntArray = ticks & np.int64((1 << self.bits) - 1)
         return out
 
 

@@ -37,7 +37,7 @@ from navkit.sim._sensors import (
     ScanReading,
 )
 from navkit.sim._trace import Event, Metrics, Trace, cross_track, nan_if_empty
-from navkit.sim._world import World, as_world
+from navkit.sim._world import World, as_query_pose, as_world
 
 __all__ = ["Controller", "Observation", "Simulation"]
 
@@ -299,7 +299,7 @@ class Simulation:
                 f"duration × rate is {steps} physics steps; the maximum is {MAX_STEPS} "
                 "(shorten the run or lower the rate)"
             )
-        self._start = as_pose(start, "start")
+        self._start = as_query_pose(start, "start")
         self._goal = _goal(goal)
         self._goal_radius = positive_float(goal_radius, "goal_radius")
         if self._goal_radius > 1e6:
@@ -353,7 +353,9 @@ class Simulation:
         RuntimeError
             When called a second time (build a new Simulation).
         ValueError
-            When the controller asks a differential robot to move sideways.
+            When the controller asks a differential robot to move sideways, or
+            a robot without ``max_wheel_speed`` for wheel speeds beyond float64
+            (with one, such commands are scaled down like any other).
         """
         if self._ran:
             raise RuntimeError("a Simulation runs once; build a new one for another run")
@@ -382,6 +384,7 @@ class _Run:
         "contacts",
         "counts",
         "dt",
+        "enc_mask",
         "enc_scale",
         "enc_span",
         "encoders",
@@ -426,8 +429,11 @@ class _Run:
         self.counts = np.zeros(3, dtype=np.int64)
         enc = robot.encoders
         self.enc_scale = 1.0 if enc is None else enc.ticks_per_rev / (2.0 * math.pi)
-        # Counters wider than a float's mantissa never wrap in practice.
+        # The kernel wraps counters in floats, exact up to 52 bits; wider ones (up to 63)
+        # are wrapped in int64 when queued, 64-bit ones stay signed (as WheelEncoders.counts).
         self.enc_span = 0.0 if enc is None or enc.bits is None or enc.bits > 52 else 2.0**enc.bits
+        bits = None if enc is None else enc.bits
+        self.enc_mask = (1 << bits) - 1 if bits is not None and 52 < bits < 64 else 0
         imu = robot.imu
         self.imu_bias = np.zeros(3) if imu is None else np.array(
             [imu.gyro_bias, imu.accel_bias, imu.accel_bias]
@@ -447,7 +453,9 @@ class _Run:
         steps = math.ceil(sim._duration * sim._rate - _EPS)
         self.buf = np.full((min(steps + 2, 1 << 14), _COLUMNS), np.nan)
         self.cmd = np.zeros(3)
-        self.stats = np.array([math.inf, math.nan, 0.0, 0.0])
+        # The start pose counts for the smallest clearance too (the steps measure after
+        # each move); collides() already refused a start touching an obstacle.
+        self.stats = np.array([sim._world.clearance(robot.footprint, s, t=0.0), math.nan, 0.0, 0.0])
         self.contacts = np.zeros(1024)
         self.prev = np.zeros(3)
         goal = sim._goal
@@ -522,6 +530,8 @@ class _Run:
             rows = self.out_encoders[:n_enc]
             stamps = rows[:, 0].tolist()
             ticks = rows[:, 1:].astype(np.int64)
+            if self.enc_mask:  # modulo 2**bits in two's complement
+                ticks &= self.enc_mask
             for k in range(n_enc):
                 self._push(stream, stamps[k], EncoderReading(stamps[k], ticks[k]))
         if n_cmp:

@@ -46,8 +46,8 @@ def _as_scenario(scenario: object) -> Scenario:
 def _seed_int(value: object, name: str) -> int:
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Integral):
         raise TypeError(f"{name} must be an integer, got {type(value).__name__}")
-    if int(value) < 0:
-        raise ValueError(f"{name} must be >= 0, got {int(value)}")
+    if not 0 <= int(value) < 2**64:  # trial_seed's range of base seeds
+        raise ValueError(f"{name} must be in [0, 2**64), got {int(value)}")
     return int(value)
 
 

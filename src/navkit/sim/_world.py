@@ -60,11 +60,11 @@ def _coords(value: ArrayLike, name: str, shape: tuple[int | None, ...]) -> Float
 MAX_POSE_COORD = 1e12
 
 
-def _as_query_pose(value: Any) -> Pose2D:
+def as_query_pose(value: Any, name: str = "pose") -> Pose2D:
     """A query pose, its position within ±1e12 m (distances must not overflow)."""
-    p = as_pose(value, "pose")
+    p = as_pose(value, name)
     if abs(p.x) > MAX_POSE_COORD or abs(p.y) > MAX_POSE_COORD:
-        raise ValueError(f"pose must lie within ±{MAX_POSE_COORD:g} m, got ({p.x:g}, {p.y:g})")
+        raise ValueError(f"{name} must lie within ±{MAX_POSE_COORD:g} m, got ({p.x:g}, {p.y:g})")
     return p
 
 
@@ -855,7 +855,7 @@ class World:
         >>> World(box(-1, -1, 1, 1).exterior).raycast([0, 0, 0], [0.0, 3.0], range_max=0.5)
         array([inf, inf])
         """
-        p = _as_query_pose(pose)
+        p = as_query_pose(pose)
         ang = np.ascontiguousarray(as_float_array(angles, "angles", ndim=1))
         rmax = positive_float(range_max, "range_max")
         if rmax > MAX_COORD:
@@ -900,7 +900,7 @@ class World:
         0.8
         """
         radius, verts = as_footprint(footprint)
-        p = _as_query_pose(pose)
+        p = as_query_pose(pose)
         body, work, scratch = _footprint_arrays(verts)
         return self._clearance(
             p.x, p.y, p.theta, radius, body, work, scratch, finite_float(t, "t"), math.inf
@@ -939,7 +939,7 @@ class World:
         (True, False)
         """
         radius, verts = as_footprint(footprint)
-        p = _as_query_pose(pose)
+        p = as_query_pose(pose)
         time = finite_float(t, "t")
         body, work, scratch = _footprint_arrays(verts)
         # A small positive limit: the search stops at once unless something touches.
