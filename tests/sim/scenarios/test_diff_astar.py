@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import math
+import pickle
 from pathlib import Path
 
 import numpy as np
@@ -137,6 +138,24 @@ def test_noise_free_cases_run_once() -> None:
     scenario = DiffAStar(noise=False, building="corridor")
     assert [n for _, n in scenario.cases(7)] == [1, 1]
     assert DiffAStar().cases(4)[0][1] == 4
+
+
+def test_the_building_and_its_folder_are_fixed_at_construction(
+    shared_data: Path, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A worker whose $NAVKIT_DATA or working directory differ runs the same building.
+
+    ``building="auto"`` and the data folder used to be looked up again in every
+    trial, so a sweep's workers elsewhere could run the corridor building instead.
+    """
+    monkeypatch.setenv("NAVKIT_DATA", str(shared_data))
+    scenario = DiffAStar(parts=("building",), noise=False)
+    monkeypatch.setenv("NAVKIT_DATA", str(tmp_path))  # a worker without the data
+    monkeypatch.chdir(tmp_path)
+    assert "Willow Garage map" in scenario.cases(1)[0][0]
+    assert "Willow Garage map" in pickle.loads(pickle.dumps(scenario)).cases(1)[0][0]
+    # The folder the trials read the map from is the one found at construction.
+    assert scenario._site_dir == str(shared_data.resolve())
 
 
 def test_auto_building_without_data_is_the_corridor(tmp_path: Path) -> None:

@@ -39,8 +39,8 @@ from navkit.sim.scenarios._diff_astar_sites import (
     INFLATION,
     Site,
     SiteName,
-    building_kind,
     heading_of,
+    resolve_building,
     site,
 )
 
@@ -311,6 +311,9 @@ class DiffAStar(Scenario):
         self.building: Literal["auto", "willow", "corridor"] = building
         self.noise = as_bool(noise, "noise")
         self.data_dir = None if data_dir is None else os.fspath(data_dir)
+        # The building and its data folder, resolved now (as Demo's map) so that
+        # every worker of a sweep runs the same building.
+        self._building, self._site_dir = resolve_building(building, self.data_dir)
         self.duration: float | None = None
         if duration is not None:
             limit = positive_float(duration, "duration")
@@ -327,7 +330,7 @@ class DiffAStar(Scenario):
         )
 
     def _site_name(self, part: Part) -> SiteName:
-        return "house" if part == "house" else building_kind(self.building, self.data_dir)
+        return "house" if part == "house" else self._building
 
     def _label(self, part: Part) -> str:
         if part == "house":
@@ -373,7 +376,7 @@ class DiffAStar(Scenario):
         """
         t_wall = time.perf_counter()
         part = self.parts[self._case_of(trial)]
-        place = site(self._site_name(part), self.data_dir)
+        place = site(self._site_name(part), self._site_dir)
         robot_rng, sim_rng = (
             np.random.default_rng(s) for s in np.random.SeedSequence(trial.seed).spawn(2)
         )
@@ -448,8 +451,8 @@ class DiffAStar(Scenario):
             if not got:
                 continue
             name = self._site_name(part)
-            place = site(name, self.data_dir)
-            build, plan = _planning_times(name, self.data_dir)
+            place = site(name, self._site_dir)
+            build, plan = _planning_times(name, self._site_dir)
             n = len(got)
             if part == "house":
                 for k in range(len(place.routes)):

@@ -21,6 +21,7 @@ import functools
 import itertools
 import math
 from dataclasses import dataclass
+from pathlib import PurePath
 from typing import Literal
 
 import numpy as np
@@ -32,6 +33,7 @@ from navkit.mapping import OccupancyGrid
 from navkit.planning import MapPlanner, Path2D
 from navkit.sim import World
 from navkit.sim.scenarios._data import find_data
+from navkit.sim.scenarios._demo_maps import WILLOW
 from navkit.sim.scenarios._diff_astar_localizer import LikelihoodField
 
 __all__ = [
@@ -49,7 +51,6 @@ SiteName = Literal["house", "willow", "corridor"]
 #: The paper's inflation of the map for A*, m.
 INFLATION = 0.3
 #: The Willow Garage map, inside the data folder.
-WILLOW = "ros-map-server-maps/willow_garage_2010/willow-2010-02-18-0.10.yaml"
 #: Map resolution of the built places, m.
 RESOLUTION = 0.05
 #: Wall thickness of the built places, m.
@@ -263,6 +264,47 @@ def building_kind(building: str, data_dir: str | None) -> Literal["willow", "cor
     except DataNotFoundError:
         return "corridor"
     return "willow"
+
+
+def resolve_building(
+    building: str, data_dir: str | None
+) -> tuple[Literal["willow", "corridor"], str | None]:
+    """The building to use and the data folder to read it from, both fixed now.
+
+    The building is :func:`building_kind`'s choice. For the Willow Garage map,
+    the folder is the absolute data folder it was found in: without it each
+    process of a sweep would look again, at its own ``$NAVKIT_DATA`` and
+    working directory (see :func:`find_data`), and might run another building.
+
+    Parameters
+    ----------
+    building : {"auto", "willow", "corridor"}
+        The scenario's option.
+    data_dir : str, optional
+        The data folder as given.
+
+    Returns
+    -------
+    building : {"willow", "corridor"}
+        The building.
+    data_dir : str or None
+        The folder to pass to :func:`site`: ``data_dir`` as given unless the
+        Willow Garage map was found (``building="willow"`` without it raises in
+        :func:`site`).
+
+    Examples
+    --------
+    >>> resolve_building("auto", "/nonexistent")
+    ('corridor', '/nonexistent')
+    """
+    kind = building_kind(building, data_dir)
+    if kind == "willow":
+        try:
+            found = find_data(WILLOW, data_dir=data_dir).resolve()
+        except DataNotFoundError:
+            return kind, data_dir
+        return kind, str(found.parents[len(PurePath(WILLOW).parts) - 1])
+    return kind, data_dir
 
 
 def heading_of(path: Path2D) -> float:
