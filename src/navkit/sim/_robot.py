@@ -220,16 +220,16 @@ class Body:
                 f"vy={twist.vy}; a differential drive cannot move sideways"
             )
         peak = self._wheel_speeds(twist.vx, twist.vy, twist.omega)
-        if not peak < math.inf:
+        if peak == math.inf:
             # Wheel speeds beyond float64 (inf, or NaN from inf - inf): those of the
             # twist scaled down to its largest component give the direction.
-            scale = max(abs(twist.vx), abs(twist.vy), abs(twist.omega))
-            peak = self._wheel_speeds(twist.vx / scale, twist.vy / scale, twist.omega / scale)
-            if not self._max_speed < math.inf:
+            if self._max_speed == math.inf:
                 raise ValueError(
                     f"the controller's command {twist} needs wheel speeds beyond float64 "
                     "and the robot has no max_wheel_speed to scale it down to"
                 )
+            scale = max(abs(twist.vx), abs(twist.vy), abs(twist.omega))
+            peak = self._wheel_speeds(twist.vx / scale, twist.vy / scale, twist.omega / scale)
             self.command *= self._max_speed / peak
         elif peak > self._max_speed:
             self.command *= self._max_speed / peak

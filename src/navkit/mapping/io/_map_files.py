@@ -637,14 +637,16 @@ def _map_pixels(grid: OccupancyGrid, mode: str) -> NDArray[np.uint8]:
     pixels[free & ~(p_px < free_t)] = 255
     between = ~occupied & ~free & ((p_px > occ_t) | (p_px < free_t))
     if between.any():
-        pixels[between] = _unknown_pixel(occ_t, free_t, preferred=-1)
+        pixels[between] = _unknown_pixel(occ_t, free_t, preferred=None)
     return pixels
 
 
 _GREY_LEVELS = np.arange(256)
 
 
-def _unknown_pixel(occupied_thresh: float, free_thresh: float, *, preferred: int) -> int:
+def _unknown_pixel(
+    occupied_thresh: float, free_thresh: float, *, preferred: int | None
+) -> int:
     """A grey level map_server reads as unknown under these thresholds.
 
     ``preferred`` when it is one (205, map_saver's unknown, in trinary mode),
@@ -653,7 +655,7 @@ def _unknown_pixel(occupied_thresh: float, free_thresh: float, *, preferred: int
     """
     p = (255.0 - _GREY_LEVELS) / 255.0  # map_server's reading of each level (negate 0)
     unknown = (free_thresh <= p) & (p <= occupied_thresh)
-    if 0 <= preferred <= 255 and unknown[preferred]:
+    if preferred is not None and unknown[preferred]:
         return preferred
     if not unknown.any():
         raise ValueError(

@@ -42,7 +42,6 @@ __all__ = [
     "WILLOW",
     "Site",
     "SiteName",
-    "building_kind",
     "site",
 ]
 
@@ -235,46 +234,16 @@ def site(name: SiteName, data_dir: str | None = None) -> Site:
     raise ValueError(f"name must be 'house', 'willow' or 'corridor', got {name!r}")
 
 
-def building_kind(building: str, data_dir: str | None) -> Literal["willow", "corridor"]:
-    """The building to use: ``"willow"``, ``"corridor"``, or for ``"auto"`` Willow when found.
-
-    Parameters
-    ----------
-    building : {"auto", "willow", "corridor"}
-        The scenario's option.
-    data_dir : str, optional
-        The data folder.
-
-    Returns
-    -------
-    {"willow", "corridor"}
-        The building.
-
-    Examples
-    --------
-    >>> building_kind("auto", "/nonexistent")
-    'corridor'
-    """
-    if building == "corridor":
-        return "corridor"
-    if building == "willow":
-        return "willow"
-    try:
-        find_data(WILLOW, data_dir=data_dir)
-    except DataNotFoundError:
-        return "corridor"
-    return "willow"
-
-
 def resolve_building(
     building: str, data_dir: str | None
 ) -> tuple[Literal["willow", "corridor"], str | None]:
     """The building to use and the data folder to read it from, both fixed now.
 
-    The building is :func:`building_kind`'s choice. For the Willow Garage map,
-    the folder is the absolute data folder it was found in: without it each
-    process of a sweep would look again, at its own ``$NAVKIT_DATA`` and
-    working directory (see :func:`find_data`), and might run another building.
+    ``"willow"`` or ``"corridor"`` as asked; for ``"auto"`` the Willow Garage
+    map when it is found, else the corridor building. With the map found, the
+    folder is the absolute data folder it was found in: without it each process
+    of a sweep would look again, at its own ``$NAVKIT_DATA`` and working
+    directory (see :func:`find_data`), and might run another building.
 
     Parameters
     ----------
@@ -297,14 +266,13 @@ def resolve_building(
     >>> resolve_building("auto", "/nonexistent")
     ('corridor', '/nonexistent')
     """
-    kind = building_kind(building, data_dir)
-    if kind == "willow":
-        try:
-            found = find_data(WILLOW, data_dir=data_dir).resolve()
-        except DataNotFoundError:
-            return kind, data_dir
-        return kind, str(found.parents[len(PurePath(WILLOW).parts) - 1])
-    return kind, data_dir
+    if building == "corridor":
+        return "corridor", data_dir
+    try:
+        found = find_data(WILLOW, data_dir=data_dir).resolve()
+    except DataNotFoundError:
+        return ("willow" if building == "willow" else "corridor"), data_dir
+    return "willow", str(found.parents[len(PurePath(WILLOW).parts) - 1])
 
 
 def heading_of(path: Path2D) -> float:
