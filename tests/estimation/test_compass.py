@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from fractions import Fraction
 
 import numpy as np
 import pytest
@@ -131,3 +132,49 @@ def test_options_are_keyword_only() -> None:
     with pytest.raises(TypeError, match="positional"):
         CompassCalibration(True)  # type: ignore[call-arg]
     assert compass_to_yaw(10.0, initial_deg=20.0) == pytest.approx(math.radians(10.0))
+
+
+def exact_yaw(raw: float, initial: float) -> float:
+    """The paper's rule in exact rational arithmetic, then rounded once to radians."""
+    rel = (Fraction(raw) - Fraction(initial)) % 360
+    return math.radians(float(-rel if rel < 180 else 360 - rel))
+
+
+@settings(max_examples=300, deadline=None)
+@given(
+    raw=st.floats(-1e300, 1e300, allow_nan=False),
+    initial=st.floats(-1e300, 1e300, allow_nan=False),
+)
+def test_large_readings_are_taken_modulo_360_exactly(raw: float, initial: float) -> None:
+    # raw - initial used to round away the smaller of the two once the other was large.
+    yaw = compass_to_yaw(raw, initial_deg=initial)
+    assert -math.pi < yaw <= math.pi
+    assert angle_diff(yaw, exact_yaw(raw, initial)) == pytest.approx(0.0, abs=1e-12)
+
+
+@pytest.mark.parametrize(
+    ("raw", "initial", "expected_deg"),
+    [(1e20, 10.0, 90.0), (10.0, 1e20, -90.0), (-1e17, 45.0, -35.0), (1e300, 1.0, 1.0)],
+)
+def test_large_readings_known(raw: float, initial: float, expected_deg: float) -> None:
+    assert compass_to_yaw(raw, initial_deg=initial) == pytest.approx(math.radians(expected_deg))
+    cal = CompassCalibration()
+    cal(initial)
+    assert np.asarray(cal(np.array([raw])))[0] == pytest.approx(math.radians(expected_deg))
+
+
+def test_calibration_unwrap_refuses_2d_readings_without_latching() -> None:
+    # It used to unwrap a 2-D array in C order and return it 2-D; compass_to_yaw refuses it.
+    cal = CompassCalibration(unwrap=True)
+    with pytest.raises(ValueError, match=r"raw_deg.*\(2, 2\)"):
+        cal(np.array([[0.0, 90.0], [180.0, 270.0]]))
+    with pytest.raises(ValueError, match="raw_deg"):
+        cal(np.empty((1, 0)))
+    assert cal(30.0) == 0.0  # 30° is the first reading latched, not the 0° of the 2-D array
+    assert cal.initial_deg == 30.0
+    out = cal(np.array([120.0, 210.0]))
+    assert isinstance(out, np.ndarray) and out.shape == (2,)
+    np.testing.assert_allclose(out, [-math.pi / 2, -math.pi])
+    # Without unwrapping a 2-D array keeps its shape.
+    plain = CompassCalibration()
+    assert np.shape(plain(np.zeros((2, 3)))) == (2, 3)

@@ -251,3 +251,57 @@ def test_diff_pose_accepts_a_sequence() -> None:
     pose = odo.update(TPR, TPR)  # one wheel turn forward, facing +y
     assert pose.x == pytest.approx(1.0, abs=1e-12)
     assert pose.y == pytest.approx(-1.0 + 2 * math.pi * 0.05)
+
+
+def test_diff_readings_beyond_64_bits_are_out_of_range_and_change_nothing() -> None:
+    # They used to be refused as a TypeError ("got object"), not as out of range.
+    odo = DiffOdometry(DIFF, ticks_per_rev=TPR, encoder_bits=16)
+    odo.update(0, 0)
+    for huge in (2**64, 2**70, -(2**70)):
+        with pytest.raises(ValueError, match=r"right_ticks holds readings outside .* 16-bit"):
+            odo.update(0, huge)
+        with pytest.raises(ValueError, match=r"left_ticks holds readings outside .* 16-bit"):
+            odo.update_batch([1, huge], [1, 2])
+    unbounded = DiffOdometry(DIFF, ticks_per_rev=TPR)
+    with pytest.raises(ValueError, match=r"left_ticks holds readings outside .* 64-bit"):
+        unbounded.update_batch([2**64], [0])
+    assert odo.pose == unbounded.pose == Pose2D(0.0, 0.0, 0.0)
+    assert odo.update(TPR, TPR).x == pytest.approx(2 * math.pi * 0.05)  # still from (0, 0)
+
+
+def test_diff_update_batch_takes_empty_lists_and_mixed_signed_unsigned_readings() -> None:
+    odo = DiffOdometry(DIFF, ticks_per_rev=TPR, encoder_bits=64)
+    empty = odo.update_batch([], [])  # float64 to NumPy
+    assert empty.shape == (0, 3)
+    # 2**64 - 1 and -1 are the same 64-bit reading; NumPy has no integer dtype for both.
+    traj = odo.update_batch([2**64 - 1, -1, TPR - 1], [-1, 2**64 - 1, TPR - 1])
+    want = np.zeros((3, 3))
+    want[2, 0] = 2 * math.pi * 0.05
+    np.testing.assert_allclose(traj, want)
+    assert odo.update(2 * TPR - 1, 2 * TPR - 1).x == pytest.approx(4 * math.pi * 0.05)
+
+
+@pytest.mark.parametrize("readings", [[False, TPR], (0, True), [np.True_, 5]])
+def test_diff_refuses_booleans_mixed_into_lists(readings: object) -> None:
+    # NumPy converts [False, 2048] to int64 [0, 2048]: a flag read as a counter value.
+    odo = DiffOdometry(DIFF, ticks_per_rev=TPR, encoder_bits=16)
+    with pytest.raises(TypeError, match=r"left_ticks .* bool"):
+        odo.update_batch(readings, [0, TPR])  # type: ignore[arg-type]
+    with pytest.raises(TypeError, match=r"right_ticks .* bool"):
+        odo.update_batch([0, TPR], readings)  # type: ignore[arg-type]
+    assert odo.pose == Pose2D(0.0, 0.0, 0.0)
+    assert odo.update(0, 0) == Pose2D(0.0, 0.0, 0.0)  # nothing was latched
+
+
+@pytest.mark.parametrize(
+    ("bits", "error"),
+    [(True, TypeError), (np.True_, TypeError), (16.0, TypeError), ("16", TypeError),
+     (1, ValueError), (65, ValueError)],
+)  # fmt: skip
+def test_diff_encoder_bits_errors(bits: object, error: type[Exception]) -> None:
+    with pytest.raises(error, match="encoder_bits"):
+        DiffOdometry(DIFF, ticks_per_rev=TPR, encoder_bits=bits)  # type: ignore[arg-type]
+    # A NumPy integer is a width like any other: 65535 -> 1 is two ticks forward.
+    odo = DiffOdometry(DIFF, ticks_per_rev=TPR, encoder_bits=np.int8(16))  # type: ignore[arg-type]
+    odo.update(65535, 65535)
+    assert odo.update(1, 1).x == pytest.approx(2 / TPR * 2 * math.pi * DIFF.left_radius)

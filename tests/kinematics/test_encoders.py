@@ -74,3 +74,45 @@ def test_tick_delta_arrays_and_errors() -> None:
         tick_delta(0, 70000, bits=16)
     with pytest.raises(TypeError, match="positional"):
         tick_delta(0, 1, 16)  # type: ignore[call-overload]
+
+
+@pytest.mark.parametrize(
+    ("prev", "cur", "bits", "expected"),
+    [
+        ([], [], 16, []),  # an empty list is float64 to NumPy
+        ([2**64 - 1, -1], [0, 2**63], 64, [1, -(2**63) + 1]),  # no common integer dtype
+        ([[2**64 - 1], [-1]], 0, 64, [[1], [1]]),
+    ],
+)
+def test_tick_delta_takes_python_int_readings_that_numpy_gives_no_integer_dtype(
+    prev: object, cur: object, bits: int, expected: list[int]
+) -> None:
+    """Unsigned and signed readings may be mixed, and a log may be empty."""
+    out = tick_delta(prev, cur, bits=bits)  # type: ignore[call-overload]
+    assert isinstance(out, np.ndarray) and out.dtype == np.int64
+    np.testing.assert_array_equal(out, expected)
+
+
+@pytest.mark.parametrize("huge", [2**64, 2**70, -(2**70), [3, 2**100]])
+def test_tick_delta_readings_beyond_64_bits_are_out_of_range(huge: object) -> None:
+    # They used to be refused as a TypeError ("got dtype object"), not as out of range.
+    with pytest.raises(ValueError, match=r"current holds readings outside .* 64-bit"):
+        tick_delta(0, huge, bits=64)  # type: ignore[call-overload]
+    with pytest.raises(ValueError, match=r"previous holds readings outside .* 16-bit"):
+        tick_delta(huge, 0, bits=16)  # type: ignore[call-overload]
+
+
+@pytest.mark.parametrize("readings", [[True, 5], (0, False), [[1, 2], [np.True_, 3]]])
+def test_tick_delta_refuses_booleans_mixed_into_lists(readings: object) -> None:
+    # NumPy converts [True, 5] to int64 [1, 5]: a flag read as a counter value.
+    with pytest.raises(TypeError, match=r"previous .* bool"):
+        tick_delta(readings, 0, bits=16)  # type: ignore[call-overload]
+    with pytest.raises(TypeError, match=r"current .* bool"):
+        tick_delta(0, readings, bits=16)  # type: ignore[call-overload]
+
+
+@pytest.mark.parametrize("bits", [True, np.True_, 16.0])
+def test_tick_delta_bits_that_are_not_integers_are_type_errors(bits: object) -> None:
+    # As documented: a bool is not a counter width, even though operator.index takes it.
+    with pytest.raises(TypeError, match="bits"):
+        tick_delta(1, 2, bits=bits)  # type: ignore[arg-type]

@@ -22,7 +22,7 @@ from itertools import chain
 from typing import Any
 
 import numpy as np
-from numpy.typing import ArrayLike
+from numpy.typing import ArrayLike, NDArray
 
 from navkit._shared.types import FloatArray
 
@@ -155,6 +155,39 @@ def _real_array(value: Any, name: str) -> FloatArray:
         ) from None
     except (TypeError, ValueError) as exc:
         raise TypeError(f"{name} must be numeric array-like: {exc}") from None
+
+
+def integer_readings(value: object, name: str) -> NDArray[Any]:
+    """``value`` as an integer array (unconverted), or a TypeError naming ``name``.
+
+    For counter readings (encoder ticks), whose range the caller checks. Integers
+    that NumPy gives no integer dtype (an empty list is float64, ints beyond 64
+    bits are objects, ``[2**64 - 1, -1]`` is float64) come back as an object
+    array of Python ints, so that the caller's range check refuses the ones out
+    of range with a ValueError rather than their dtype with a TypeError.
+    Booleans, alone or mixed into lists (NumPy turns ``[True, 5]`` into
+    ``[1, 5]``), are refused.
+    """
+    if isinstance(value, (str, bytes)):
+        raise TypeError(f"{name} must hold integer counter readings, got {type(value).__name__}")
+    if isinstance(value, (list, tuple)) and _holds_bool(value):
+        raise TypeError(f"{name} must hold integer counter readings, got an element of type bool")
+    try:
+        arr = np.asarray(value)
+    except (TypeError, ValueError, OverflowError) as exc:
+        raise TypeError(f"{name} must hold integer counter readings: {exc}") from None
+    kind = arr.dtype.kind
+    if kind in "iu":
+        return arr
+    if kind == "O" or (kind == "f" and not isinstance(value, np.ndarray)):
+        items = arr if kind == "O" else np.asarray(value, dtype=object)
+        if all(_is_integer(item) for item in items.flat):
+            return items
+    raise TypeError(f"{name} must hold integer counter readings, got dtype {arr.dtype}")
+
+
+def _is_integer(item: object) -> bool:
+    return isinstance(item, numbers.Integral) and not isinstance(item, (bool, np.bool_))
 
 
 def as_float_array(

@@ -72,11 +72,9 @@ def compass_to_yaw(
     raw = as_float_array(raw_deg, "raw_deg")
     theta0 = finite_float(initial_deg, "initial_deg")
     flag = as_bool(unwrap, "unwrap")
-    with np.errstate(over="ignore", invalid="ignore"):
-        diff = raw - theta0 + 360.0
-    if not np.all(np.isfinite(diff)):
-        # Readings near the float limit: reduce each angle first (same value mod 360).
-        diff = np.mod(raw, 360.0) - (theta0 % 360.0) + 360.0
+    # Reduce each angle first (np.mod is exact): raw - theta0 would round away the
+    # smaller of the two once the other is large (1e20 - 10 == 1e20), or overflow.
+    diff = np.mod(raw, 360.0) - (theta0 % 360.0) + 360.0
     rel = np.mod(diff, 360.0)
     # np.mod can round a tiny negative difference up to exactly 360.
     rel = np.where(rel >= 360.0, 0.0, rel)
@@ -147,9 +145,16 @@ class CompassCalibration:
         """Yaw (rad) of compass reading(s) ``raw_deg`` (degrees clockwise from north).
 
         Returns a float for a scalar, otherwise a new array (1-D for
-        ``unwrap=True``).
+        ``unwrap=True``). Raises TypeError or ValueError, naming ``raw_deg``, for
+        readings that are not finite real numbers, or not a scalar or 1-D with
+        ``unwrap=True`` (as :func:`compass_to_yaw`); nothing is latched then.
         """
         raw = as_float_array(raw_deg, "raw_deg")
+        if self._unwrap and raw.ndim > 1:
+            # A log has one time axis: which way would a 2-D array be unwrapped?
+            raise ValueError(
+                f"unwrap needs a scalar or a 1-D array of readings (raw_deg), got shape {raw.shape}"
+            )
         if raw.size == 0:
             return np.empty(raw.shape)
         if self._initial is None:

@@ -11,7 +11,12 @@ from numpy.typing import ArrayLike, NDArray
 
 from navkit._shared.se2 import exp_body
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import as_float_array, finite_float, positive_float
+from navkit._shared.validation import (
+    as_float_array,
+    finite_float,
+    integer_readings,
+    positive_float,
+)
 from navkit.geometry import Pose2D, as_pose, wrap_angle
 from navkit.kinematics import DiffDrive, OdometryMethod, OmniDrive, tick_delta, ticks_to_distance
 
@@ -71,19 +76,6 @@ def _finite_poses(out: FloatArray, name: str) -> None:
         )
 
 
-def _integer_readings(value: object, name: str) -> NDArray[Any]:
-    """``value`` as an integer array (unconverted), or a TypeError naming ``name``."""
-    if isinstance(value, (str, bytes)):
-        raise TypeError(f"{name} must hold integer counter readings, got {type(value).__name__}")
-    try:
-        arr = np.asarray(value)
-    except (TypeError, ValueError, OverflowError) as exc:
-        raise TypeError(f"{name} must hold integer counter readings: {exc}") from None
-    if arr.dtype.kind not in "iu":
-        raise TypeError(f"{name} must hold integer counter readings, got {arr.dtype}")
-    return arr
-
-
 def _batch_deltas(last: int | NDArray[Any], readings: NDArray[Any], bits: int) -> NDArray[Any]:
     """Wrap-aware tick differences of successive ``readings``, the first from ``last``.
 
@@ -96,10 +88,13 @@ def _batch_deltas(last: int | NDArray[Any], readings: NDArray[Any], bits: int) -
     return np.concatenate((first, rest))
 
 
-def _is_bit_width(value: object) -> bool:
-    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
-        return False
-    return 2 <= int(value) <= 64
+def _bit_width(value: object) -> int:
+    """``encoder_bits`` as an int from 2 to 64 (TypeError for a non-integer, bools included)."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Integral):
+        raise TypeError(f"encoder_bits must be an integer or None, got {type(value).__name__}")
+    if not 2 <= int(value) <= 64:
+        raise ValueError(f"encoder_bits must be an integer from 2 to 64, got {value!r}")
+    return int(value)
 
 
 class OmniOdometry:
@@ -307,13 +302,12 @@ class DiffOdometry:
             raise TypeError(f"method must be one of {_METHODS}, got {type(method).__name__}")
         if method not in _METHODS:
             raise ValueError(f"method must be one of {_METHODS}, got {method!r}")
-        if encoder_bits is not None and not _is_bit_width(encoder_bits):
-            raise ValueError(f"encoder_bits must be an integer from 2 to 64, got {encoder_bits!r}")
+        bits = None if encoder_bits is None else _bit_width(encoder_bits)
         self._drive = drive
         # ticks_to_distance owns the documented range of ticks_per_rev; checked here once.
         ticks_to_distance(0, ticks_per_rev=ticks_per_rev, wheel_radius=drive.left_radius)
         self._ticks_per_rev = positive_float(ticks_per_rev, "ticks_per_rev")
-        self._bits = None if encoder_bits is None else int(encoder_bits)
+        self._bits = bits
         self._pose = start
         self._method: OdometryMethod = method
         self._last: tuple[int, int] | None = None
@@ -453,8 +447,8 @@ class DiffOdometry:
             Shapes that differ, readings outside the counter's range, or a
             pose that would overflow float64; the odometry is then unchanged.
         """
-        left = _integer_readings(left_ticks, "left_ticks")
-        right = _integer_readings(right_ticks, "right_ticks")
+        left = integer_readings(left_ticks, "left_ticks")
+        right = integer_readings(right_ticks, "right_ticks")
         if left.ndim != 1 or right.shape != left.shape:
             raise ValueError(
                 f"left_ticks and right_ticks must be 1-D of equal length, got shapes "

@@ -4,13 +4,13 @@ from __future__ import annotations
 
 import math
 import operator
-from typing import Any, overload
+from typing import overload
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+from numpy.typing import ArrayLike
 
 from navkit._shared.types import FloatArray, IntArray
-from navkit._shared.validation import as_float_array
+from navkit._shared.validation import as_float_array, integer_readings
 from navkit.kinematics._ranges import (
     MAX_LENGTH,
     MAX_TICKS_PER_REV,
@@ -126,11 +126,13 @@ def tick_delta(previous: ArrayLike, current: ArrayLike, *, bits: int) -> int | I
     >>> tick_delta(5, 65534, bits=16)
     -7
     """
+    if isinstance(bits, (bool, np.bool_)):
+        raise TypeError(f"bits must be an integer, got {bits!r}")
     try:
         nbits = operator.index(bits)
     except TypeError:
         raise TypeError(f"bits must be an integer, got {bits!r}") from None
-    if isinstance(bits, bool) or not 2 <= nbits <= 64:
+    if not 2 <= nbits <= 64:
         raise ValueError(f"bits must be an integer from 2 to 64, got {bits!r}")
     prev = _as_counter(previous, "previous", nbits)
     cur = _as_counter(current, "current", nbits)
@@ -153,23 +155,15 @@ def tick_delta(previous: ArrayLike, current: ArrayLike, *, bits: int) -> int | I
 
 
 def _as_counter(value: ArrayLike, name: str, bits: int) -> IntArray:
-    arr = _integer_readings(value, name)
+    arr = integer_readings(value, name)
     low, high = -(2 ** (bits - 1)), 2**bits - 1
     if arr.size and (int(arr.min()) < low or int(arr.max()) > high):
         raise ValueError(f"{name} holds readings outside the range of a {bits}-bit counter")
     if arr.dtype == np.uint64:
         return arr.view(np.int64)
+    if arr.dtype == object:
+        # Python ints that share no NumPy integer dtype ([2**64 - 1, -1]): the same
+        # readings modulo 2**64, all that the modular difference of tick_delta needs.
+        wrapped = [int(item) % (1 << 64) for item in arr.flat]
+        return np.array(wrapped, dtype=np.uint64).reshape(arr.shape).view(np.int64)
     return arr.astype(np.int64)
-
-
-def _integer_readings(value: object, name: str) -> NDArray[Any]:
-    """``value`` as an integer array (unconverted), or a TypeError naming ``name``."""
-    if isinstance(value, (str, bytes)):
-        raise TypeError(f"{name} must hold integer counter readings, got {type(value).__name__}")
-    try:
-        arr = np.asarray(value)
-    except (TypeError, ValueError, OverflowError) as exc:
-        raise TypeError(f"{name} must hold integer counter readings: {exc}") from None
-    if arr.dtype.kind not in "iu":
-        raise TypeError(f"{name} must hold integer counter readings, got dtype {arr.dtype}")
-    return arr
