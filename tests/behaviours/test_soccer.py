@@ -185,3 +185,14 @@ def test_attacker_reaches_the_ball_past_an_opponent() -> None:
         closest = min(closest, math.hypot(pose.x - opponent[0], pose.y - opponent[1]))
     assert state.has_ball
     assert closest > 0.3
+
+
+def test_replace_infers_possession_again_when_asked() -> None:
+    """As documented: replace() keeps inferred values unless they are passed as None."""
+    state = GameState(robot_xy=(0.0, 0.0), ball_xy=(0.1, 0.0), opponents_xy=[[3.0, 0.0]],
+                      own_goal_xy=(-4.0, 0.0), opponent_goal_xy=(4.0, 0.0))  # fmt: skip
+    assert state.has_ball is True and state.opponent_with_ball is None
+    kept = dataclasses.replace(state, ball_xy=(3.05, 0.0))
+    assert kept.has_ball is True and kept.opponent_with_ball is None
+    fresh = dataclasses.replace(state, ball_xy=(3.05, 0.0), has_ball=None, opponent_with_ball=None)
+    assert fresh.has_ball is False and fresh.opponent_with_ball == 0

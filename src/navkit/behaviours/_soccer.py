@@ -90,6 +90,9 @@ class GameState:
     read-only or modified); ``has_ball`` and ``opponent_with_ball``, when
     omitted, are inferred on construction, so after it ``has_ball`` is always a
     bool. Positions are any finite numbers (NaN rows only for unseen players).
+    ``dataclasses.replace`` passes the values inferred for the old positions on
+    as given ones: pass ``has_ball=None, opponent_with_ball=None`` with new
+    positions to have them inferred again.
 
     Parameters
     ----------
