@@ -128,6 +128,27 @@ def test_carrot_is_ahead_along_the_path() -> None:
     assert tracker.target_xy == pytest.approx((0.2, 0.2))  # 0.3 m on by arc length
 
 
+def test_carrot_farther_than_the_search_window() -> None:
+    """A carrot more than 2 m ahead: the closest point is searched up to the last carrot."""
+    tracker = FollowTheCarrot(carrot_distance=5.0, max_speed=10.0)
+    tracker.set_path([[0.0, 0.0], [20.0, 0.0]])
+    assert tracker.step(Pose2D(0.0, 0.0, 0.0), 1.0).vx == 5.0  # drives onto the carrot
+    tracker.step(Pose2D(5.0, 0.0, 0.0), 1.0)
+    assert tracker.progress == 5.0
+    assert tracker.target_xy == pytest.approx((10.0, 0.0))
+
+
+def test_reaching_a_far_carrot_on_a_hairpin_does_not_stall(
+    closed_loop: Callable[..., Any],
+) -> None:
+    # The carrot, 3 m on, lies on the way back; once the robot stood on it, its
+    # closest point within 2 m of path was the same point as before, and so was
+    # the carrot: a zero command for ever.
+    path = np.array([[0.0, 0.0], [2.0, 0.0], [0.0, 0.4]])
+    run = closed_loop(FollowTheCarrot(carrot_distance=3.0), path, (0.0, 0.0, 0.0), t_max=60.0)
+    assert run.done and run.goal_error() <= 0.05
+
+
 def test_no_goal_heading_ends_at_the_position(closed_loop: Callable[..., Any]) -> None:
     run = closed_loop(FollowTheCarrot(), np.array([[0.0, 0.0], [1.0, 0.0]]), (0.0, 0.0, 0.0))
     assert run.done and "final" not in run.phases

@@ -85,6 +85,39 @@ def test_diff_drive_commands_never_exceed_limits(
         prev = cmd.vx
 
 
+@settings(max_examples=40, deadline=None)
+@given(st.lists(st.tuples(poses, poses, period), min_size=2, max_size=25),
+       st.floats(0.2, 2.0), rate, rate)
+def test_diff_drive_limits_hold_from_the_previous_command(
+    steps: list[tuple[Pose2D, Pose2D, float]], max_speed: float, accel: float, decel: float,
+) -> None:
+    """Without a measured velocity the base is the last command's ``vx``, however it turned."""
+    ctl = PotentialFieldController(max_speed=max_speed, max_accel=accel, max_decel=decel,
+                                   drive="diff")
+    prev = 0.0
+    for pose, target, dt in steps:
+        cmd = ctl.step(pose, target, dt=dt)
+        limit = accel if cmd.vx > prev else decel
+        assert abs(cmd.vx - prev) <= limit * dt * (1 + 1e-9) + TOL, (prev, cmd.vx)
+        prev = cmd.vx
+
+
+def test_diff_drive_no_velocity_is_the_previous_command() -> None:
+    # Driving +x at 0.5 m/s, then a pose turned by 1 rad: projected on the new
+    # heading the previous velocity was 0.27 m/s, a drop ten times max_decel * dt.
+    ctls = [PotentialFieldController(drive="diff", max_decel=0.2) for _ in range(2)]
+    target = Pose2D(10.0, 0.0, 0.0)
+    for ctl in ctls:
+        for _ in range(20):
+            last = ctl.step(Pose2D(0.0, 0.0, 0.0), target, dt=0.1)
+    assert last.vx == 0.5
+    turned = Pose2D(0.0, 0.0, 1.0)
+    implicit = ctls[0].step(turned, target, dt=0.1)
+    explicit = ctls[1].step(turned, target, dt=0.1, velocity=last)
+    assert implicit.vx == pytest.approx(explicit.vx, abs=1e-15)
+    assert implicit.vx == pytest.approx(0.5 - 0.2 * 0.1)
+
+
 def run(
     ctl: PotentialFieldController,
     start: Pose2D,

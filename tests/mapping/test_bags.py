@@ -13,6 +13,7 @@ import pytest
 from navkit.geometry import quaternion_to_yaw, rpy_to_quaternion
 from navkit.mapping.io import (
     BagImu,
+    BagOdometry,
     bag_topics,
     read_bag_imu,
     read_bag_odometry,
@@ -285,6 +286,15 @@ def test_imu_to_base_rotates_readings_and_covariances(tmp_path: Path) -> None:
     assert not base.orientations.flags.writeable
 
 
+def test_odometry_record_wraps_a_given_yaw() -> None:
+    q, v, c = np.zeros((2, 4)), np.zeros((2, 3)), np.zeros((2, 6, 6))
+    poses = np.array([[1.0, 2.0, 4.0], [0.0, 0.0, -math.pi]])
+    odom = BagOdometry("/odom", "odom", "base_link", [0.0, 0.1], [0.0, 0.1], poses, q, v, c, c)
+    np.testing.assert_allclose(odom.poses[:, 2], [4.0 - 2.0 * math.pi, math.pi], rtol=0, atol=1e-15)
+    assert odom.poses[1, 2] == math.pi  # (-π, π]: -π becomes +π
+    assert poses[0, 2] == 4.0 and not odom.poses.flags.writeable
+
+
 # ------------------------------------------------------------ bad input
 def test_bad_paths(tmp_path: Path) -> None:
     with pytest.raises(FileNotFoundError, match="does not exist"):
@@ -306,6 +316,63 @@ def test_truncated_ros1_bag(shared_data: Path, tmp_path: Path) -> None:
     cut.write_bytes((shared_data / RL / "test2.bag").read_bytes()[:200_000])
     with pytest.raises(ValueError, match="cannot read the ROS 1 bag"):
         read_bag_odometry(cut)
+
+
+def test_topics_without_messages_read_as_empty(tmp_path: Path) -> None:
+    # ROS 2 records a topic that was advertised but never published: count 0.
+    types = {
+        "/scan": "sensor_msgs/msg/LaserScan",
+        "/odom": "nav_msgs/msg/Odometry",
+        "/imu": "sensor_msgs/msg/Imu",
+    }
+    with Writer2(tmp_path / "bag2", version=9) as writer:
+        for topic, msgtype in types.items():
+            writer.add_connection(topic, msgtype, typestore=STORE2)
+    with Writer1(tmp_path / "bag1.bag") as writer1:
+        writer1.add_connection("/odom", types["/odom"], typestore=STORE1)
+    scans = read_bag_scans(tmp_path / "bag2")
+    assert (len(scans), scans.frame_id, scans.scans, scans.times.shape) == (0, "", (), (0,))
+    for path in (tmp_path / "bag2", tmp_path / "bag1.bag"):
+        odom = read_bag_odometry(path)
+        assert len(odom) == 0 and odom.child_frame_id == ""
+        assert odom.poses.shape == (0, 3) and odom.twist_covariances.shape == (0, 6, 6)
+    imu = read_bag_imu(tmp_path / "bag2")
+    assert len(imu) == 0 and imu.orientation_covariances.shape == (0, 3, 3)
+    assert len(imu.to_base(rpy_to_quaternion(0.0, 0.0, 1.0))) == 0
+
+
+def test_corrupt_bags_raise_value_errors_naming_the_bag(tmp_path: Path) -> None:
+    # rosbags' own reactions to these were OSError (bz2), a bare ValueError of an
+    # enum and UnicodeDecodeError, none naming the bag.
+    path = tmp_path / "bz2.bag"
+    bz2_writer = Writer1(path)
+    bz2_writer.set_compression(Writer1.CompressionFormat.BZ2)
+    with bz2_writer as writer:
+        for topic, (msgtype, items) in mixed_bag(tmp_path, STORE1).items():
+            conn = writer.add_connection(topic, msgtype, typestore=STORE1)
+            for t, msg in items:
+                writer.write(conn, round(t * 1e9), STORE1.serialize_ros1(msg, msgtype))
+    data = path.read_bytes()
+    assert len(read_bag_imu(path)) == 5
+    start = data.index(b"BZh")  # the compressed chunk
+    chunk = tmp_path / "chunk.bag"
+    chunk.write_bytes(data[: start + 40] + b"\xff" * 8 + data[start + 48 :])
+    with pytest.raises(ValueError, match="corrupt compressed chunk") as info:
+        read_bag_imu(chunk)
+    assert str(chunk) in str(info.value)
+    op = data.rindex(b"op=\x07")  # the last connection record of the index
+    index = tmp_path / "index.bag"
+    index.write_bytes(data[:op] + b"op=J" + data[op + 4 :])
+    for read in (bag_topics, read_bag_scans):
+        with pytest.raises(ValueError, match="cannot read the ROS 1 bag") as info:
+            read(index)
+        assert str(index) in str(info.value)
+    folder = write_bag2(tmp_path / "bag2", mixed_bag(tmp_path, STORE2))
+    meta = (folder / "metadata.yaml").read_text()
+    (folder / "metadata.yaml").write_bytes(meta.replace("/imu", "/\xe9mu").encode("latin-1"))
+    with pytest.raises(ValueError, match="cannot read the ROS 2 bag") as info:
+        read_bag_imu(folder)
+    assert type(info.value) is ValueError and str(folder) in str(info.value)
 
 
 def test_topic_errors(tmp_path: Path) -> None:

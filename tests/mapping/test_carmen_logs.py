@@ -58,6 +58,32 @@ def test_logs_match_their_readme(
         assert np.array_equal(s.valid_mask(), s.ranges < range_max)
 
 
+def test_odometry_headings_are_wrapped(tmp_path: Path) -> None:
+    path = tmp_path / "log.txt"
+    path.write_text(
+        "FLASER 2 1.0 2.0 0 0 3.5 0 0 3.5 1.0 h 1.0\n"
+        "ODOM 1 2 3.5 0 0 0 2.0 h 2.0\nODOM 1 2 -3.141592653589793 0 0 0 3.0 h 3.0\n"
+    )
+    log = read_carmen(path)
+    assert log.laser_poses[0].theta == pytest.approx(3.5 - 2.0 * math.pi)
+    np.testing.assert_allclose(log.odometry[:, 2], [3.5 - 2.0 * math.pi, math.pi], atol=1e-12)
+    assert log.odometry[1, 2] > 0.0  # (-π, π]: -π becomes +π
+    assert log.odometry[:, [0, 1, 3]].tolist() == [[1.0, 2.0, 2.0], [1.0, 2.0, 3.0]]
+    made = CarmenLog(log.scans, log.laser_poses, log.robot_poses, [1.0], [[0.0, 0.0, -7.0, 1.0]])
+    assert made.odometry[0, 2] == pytest.approx(-7.0 + 2.0 * math.pi)
+
+
+def test_real_odometry_headings_are_wrapped(shared_data: Path) -> None:
+    # csail's ODOM headings run up to 11.06 rad, intel's to 3.247 rad.
+    for name in ("csail", "intel"):
+        log = read_carmen(shared_data / LOGS / f"{name}-corrected.log.gz")
+        theta = log.odometry[:, 2]
+        assert np.all((theta > -math.pi) & (theta <= math.pi))
+        if name == "csail":  # the line "ODOM 21.44 4.5 11.058 0 0 0 1.13486e+09 ..."
+            row = np.flatnonzero((log.odometry[:, 0] == 21.44) & (log.odometry[:, 1] == 4.5))
+            assert theta[row].tolist() == pytest.approx([11.058 - 4.0 * math.pi])
+
+
 def test_odometry_agrees_with_corrected_poses(shared_data: Path) -> None:
     # README: the ODOM poses of intel and aces agree with the corrected FLASER
     # poses to a few cm. ODOM lines with timestamp 0 are copies written after
@@ -241,6 +267,11 @@ GOOD_RL1 = (
             GOOD_RL1.replace("0.25 8.0", "0.25 2e9"),
             r"log.txt:1: range_max must be > 0 and <= 1e9 m",
         ),
+        # A maximum range of 0 was reported as "cannot determine a maximum range".
+        (GOOD_RL1.replace("0.25 8.0", "0.25 0"), r"log.txt:1: range_max must be > 0"),
+        # Python reads "1_0" as 10; CARMEN's strtod does not.
+        ("FLASER 3 1_0 2.0 5.0 0 0 0 0 0 0 1.0 host 1.0\n", r":1: malformed FLASER .*numbers"),
+        ("ODOM 1 2 0.5 0 0 0 1_000.0 h 1.0\n" + GOOD_RL1, r":1: malformed ODOM .*numbers"),
     ],
 )
 def test_malformed_lines_name_the_file_and_line(tmp_path: Path, text: str, match: str) -> None:
@@ -249,6 +280,14 @@ def test_malformed_lines_name_the_file_and_line(tmp_path: Path, text: str, match
     with pytest.raises(ValueError, match=match) as info:
         read_carmen(path)
     assert str(path) in str(info.value)
+
+
+def test_robotlaser1_range_below_range_min_names_the_line(tmp_path: Path) -> None:
+    path = tmp_path / "log.txt"
+    path.write_text("FLASER 3 1.0 2.0 20.0 0 0 0 0 0 0 1.0 host 1.0\n" + GOOD_RL1)
+    assert [s.range_max for s in read_carmen(path, range_min=1.0).scans] == [20.0, 8.0]
+    with pytest.raises(ValueError, match=r"log.txt:2: range_max \(8.0\) must be greater than"):
+        read_carmen(path, range_min=10.0)  # the FLASER max is 20 m, the ROBOTLASER1's 8 m
 
 
 def test_corrupt_gzip_is_a_value_error(tmp_path: Path) -> None:

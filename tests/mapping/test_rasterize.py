@@ -104,6 +104,23 @@ def test_rasterize_refuses_what_is_not_geometries() -> None:
         )
 
 
+def test_rasterize_refuses_nan_coordinates_that_the_bounds_leave_out() -> None:
+    # GEOS computes bounds without the NaN coordinates: these have finite bounds.
+    with np.errstate(invalid="ignore"):  # shapely warns while building them
+        bad = [
+            shapely.LineString([(0.0, 0.0), (1.0, math.nan)]),
+            Polygon([(0.0, 0.0), (1.0, 0.0), (math.nan, 1.0), (0.0, 1.0)]),
+            shapely.MultiPoint([(0.5, 0.5), (math.nan, math.nan)]),
+        ]
+    for geom in bad:
+        assert np.isfinite(geom.bounds).all()
+        with pytest.raises(ValueError, match=r"geometries\[1\] has non-finite coordinates"):
+            rasterize_polygons([box(0, 0, 1, 1), geom], bounds=(0, 0, 1, 1), resolution=0.1)
+    # A NaN z (a 2-D point read as 3-D) is not a coordinate of the raster.
+    grid = rasterize_polygons(Point(0.55, 0.55, math.nan), bounds=(0, 0, 1, 1), resolution=0.1)
+    assert grid.occupied().sum() == 1 and grid.occupied()[5, 5]
+
+
 def test_huge_obstacles_are_quick_and_exact() -> None:
     # An obstacle far larger than the area: every cell, without an overflow.
     grid = rasterize_polygons(

@@ -95,6 +95,7 @@ def test_msg_fields_are_a_frozen_record() -> None:
         ({"data": [0, 0, 0]}, ValueError, r"data must have shape \(4,\)"),
         ({"data": [0, 0, 0, 101]}, ValueError, r"-1 \(unknown\) or 0\.\.100"),
         ({"data": [0.0, 0.0, 0.0, 0.0]}, TypeError, "data must hold integers"),
+        ({"data": [[0, 0], [0]]}, ValueError, "data must be a flat sequence of integers"),
     ],
 )
 def test_bad_msg_fields(kwargs: dict[str, object], error: type[Exception], match: str) -> None:
@@ -166,6 +167,8 @@ def msg_with(**info: object) -> SimpleNamespace:
         ({"data": [0.0, 100.0]}, TypeError, r"msg\.data must hold integers"),
         ({"data": [True, False]}, TypeError, r"msg\.data must hold integers"),
         ({"data": ["0", "100"]}, TypeError, r"msg\.data must hold integers"),
+        # NumPy's own "inhomogeneous shape" error named no argument.
+        ({"data": [[0, 100], [0]]}, ValueError, r"msg\.data must be a flat sequence of integers"),
         ({"width": 2.0}, TypeError, r"msg\.info\.width must be an integer, got float"),
         ({"height": True}, TypeError, r"msg\.info\.height must be an integer, got bool"),
         ({"width": 10**10, "height": 10**10}, ValueError, r"exceeds OccupancyGrid\.MAX_CELLS"),

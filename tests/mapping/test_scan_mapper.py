@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -234,6 +235,69 @@ def test_arguments() -> None:
         LaserScan([math.nan] * 8, angle_min=0.0, angle_increment=0.5, range_min=0.1, range_max=5.0)
     )
     assert len(mapper) == 1 and "scans=1" in repr(mapper)
+
+
+def test_odometry_after_a_scan_without_it_is_not_counted_twice() -> None:
+    # Scans with no valid return keep the guess, so the trajectory is the guesses.
+    blank = LaserScan(
+        [math.nan] * 8, angle_min=0.0, angle_increment=0.5, range_min=0.1, range_max=5.0
+    )
+    mapper = ScanMapper()
+    mapper.update(blank, odometry=(0.0, 0.0, 0.0))
+    mapper.update(blank, odometry=(1.0, 0.0, 0.0))
+    mapper.update(blank)  # no odometry: the previous motion, 1 m, is repeated
+    # The odometry moved 1 m since the previous scan (2 m since the last odometry):
+    # the increment across two scans must not be added to the repeated motion.
+    mapper.update(blank, odometry=(3.0, 0.0, 0.0))
+    mapper.update(blank, odometry=(4.0, 0.0, 0.5))
+    np.testing.assert_allclose(
+        mapper.trajectory,
+        [[0, 0, 0], [1, 0, 0], [2, 0, 0], [3, 0, 0], [4, 0, 0.5]],
+        atol=1e-12,
+    )
+
+
+def test_first_map_fits_the_cell_limit(monkeypatch: pytest.MonkeyPatch) -> None:
+    # At the finest documented resolutions (1e-3 m) ±10 m would be 4e8 cells of
+    # the 2**28 allowed; a smaller limit shows the cap at everyday sizes.
+    import navkit.mapping._scan_mapper as scan_mapper
+
+    limit = 2**16
+    monkeypatch.setattr(scan_mapper, "MAX_CELLS", limit)
+    mapper = ScanMapper(resolution=0.05)  # ±10 m would be 400 x 400 cells
+    scan = LaserScan(
+        [1.0] * 90,
+        angle_min=-math.pi,
+        angle_increment=2 * math.pi / 90,
+        range_min=0.1,
+        range_max=5.0,
+    )
+    mapper.update(scan, odometry=(0.0, 0.0, 0.0))
+    grid = mapper.map
+    assert grid.shape == (256, 256) and grid.contains([[-1.5, -1.5], [1.5, 1.5]]).all()
+    # No level count whose smallest map (2 x 2 coarsest cells) cannot fit.
+    ScanMapper(matcher=ScanMatcher(levels=14))
+    with pytest.raises(ValueError, match=r"matcher\.levels=15 .* would need 1\.07e\+09 cells"):
+        ScanMapper(matcher=ScanMatcher(levels=15))
+
+
+def test_a_pose_far_off_the_map_keeps_the_map_without_warnings() -> None:
+    scan = LaserScan(
+        [1.0] * 90,
+        angle_min=-math.pi,
+        angle_increment=2 * math.pi / 90,
+        range_min=0.1,
+        range_max=5.0,
+    )
+    mapper = ScanMapper()
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # no overflow warning on the way to "too big"
+        mapper.update(scan, odometry=(0.0, 0.0, 0.0))
+        shape = mapper.map.shape
+        result = mapper.update(scan, odometry=(1e300, -1e300, 0.0))
+    assert result.reason == "guess outside the map" and result.pose.x == 1e300
+    assert result.pose.y == -1e300
+    assert mapper.map.shape == shape
 
 
 # -------------------------------------------------------------------- CARMEN

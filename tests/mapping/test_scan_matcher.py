@@ -205,6 +205,39 @@ def test_correlative_search_widens_the_basin() -> None:
     assert recovered["plain"] < len(trials) // 2
 
 
+def test_correlative_search_spreads_translations_beyond_its_pose_budget(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """A wide window on a fine grid keeps to the pose budget and still covers the window.
+
+    (A 100 m window on a 1 cm grid used to mean 3e11 candidate poses: days.)
+    """
+    import navkit.mapping._scan_matcher as module
+
+    calls: list[tuple[int, float, int, float]] = []
+
+    def spy(*args: object) -> float:
+        calls.append(args[7:11])  # type: ignore[arg-type]
+        return float(correlative_search(*args))  # type: ignore[arg-type]
+
+    angles = np.linspace(-math.pi, math.pi, 180, endpoint=False)
+    with np.errstate(divide="ignore"):
+        ranges = np.minimum(3.0 / np.abs(np.cos(angles)), 2.0 / np.abs(np.sin(angles)))
+    scan = _scan(list(ranges))
+    room = OccupancyGrid.empty(width=8.0, height=6.0, resolution=RES, origin=(-4.0, -3.0, 0.0))
+    integrate_scan(room, scan, (0.0, 0.0, 0.0), hit=2.2, miss=-0.4)
+    monkeypatch.setattr(module, "correlative_search", spy)
+    matcher = ScanMatcher(levels=1, search_distance=2.0, search_angle=0.3)
+    matcher.match(room, scan, Pose2D(0.1, 0.0, 0.0))
+    steps_xy, step_xy, steps_theta, _ = calls[-1]
+    assert (steps_xy, step_xy) == (40, RES)  # within the budget: one cell apart
+    monkeypatch.setattr(module, "_MAX_SEARCH_POSES", 20_000)
+    matcher.match(room, scan, Pose2D(0.1, 0.0, 0.0))
+    steps_xy, step_xy, steps_theta, _ = calls[-1]
+    assert (2 * steps_xy + 1) ** 2 * (2 * steps_theta + 1) <= 20_000
+    assert steps_xy < 40 and steps_xy * step_xy == pytest.approx(2.0)
+
+
 def test_correlative_search_kernel_finds_the_grid_pose() -> None:
     # An L of occupied cells; points placed at a pose that is on the search grid.
     logodds = np.full((60, 60), -2.0, dtype=np.float32)

@@ -105,6 +105,7 @@ class FollowTheCarrot(PathTracker):
         "_align_angle",
         "_align_tolerance",
         "_carrot_distance",
+        "_carrot_s",
         "_heading_gain",
         "_max_omega",
         "_max_speed",
@@ -132,6 +133,7 @@ class FollowTheCarrot(PathTracker):
         self._align_tolerance = bounded(
             align_tolerance, "align_tolerance", 0.0, self._align_angle
         )
+        self._carrot_s = 0.0
 
     @property
     def carrot_distance(self) -> float:
@@ -151,6 +153,7 @@ class FollowTheCarrot(PathTracker):
     def _reset(self) -> None:
         # A differential robot first turns to face the path (phase 1).
         self._phase = "rotate" if self._drive == "diff" else "track"
+        self._carrot_s = 0.0
 
     def _turn(self, err: float, dt: float) -> float:
         rate = min(self._heading_gain * abs(err), self._max_omega, abs(err) / dt)
@@ -159,7 +162,11 @@ class FollowTheCarrot(PathTracker):
     def _command(
         self, line: Polyline, pose: Pose2D, dt: float, measured: Twist2D | None
     ) -> Twist2D:
-        s = self._advance(line, pose)
+        # The search for the closest point reaches the last carrot, as documented for
+        # progress: with a carrot more than SEARCH_AHEAD ahead, a robot that drove to
+        # it would otherwise project behind it, onto the same carrot, and stop there.
+        s = self._advance(line, pose, self._carrot_s)
+        self._carrot_s = min(s + self._carrot_distance, line.length)
         gx, gy = line.point_at(line.length)
         near_end = s + self._carrot_distance >= line.length
         if self._phase == "final" or (

@@ -374,7 +374,13 @@ class PotentialFieldController:
             heading = target_pose.theta
             vx, vy = c * v[0] + s * v[1], -s * v[0] + c * v[1]
         else:
-            fwd_prev = max(0.0, c * prev[0] + s * prev[1])
+            # Without a measurement, the previous command's forward speed: its world
+            # velocity points along the heading it was commanded at, and projected on
+            # the current heading it would shrink with every turn, a drop max_decel
+            # never limited.
+            fwd_prev = (
+                math.hypot(prev[0], prev[1]) if measured is None else max(0.0, measured.vx)
+            )
             fwd_want = max(0.0, c * want[0] + s * want[1])
             fwd = float(
                 _limit_change(np.array([fwd_prev]), np.array([fwd_want]), self.max_accel,

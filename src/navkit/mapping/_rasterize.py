@@ -162,8 +162,12 @@ def rasterize_polygons(geometries: Any, *, bounds: ArrayLike, resolution: float)
     for i, g in enumerate(geoms):
         if not isinstance(g, shapely.Geometry):
             raise TypeError(f"geometries[{i}] must be a shapely geometry, got {type(g).__name__}")
-        if not g.is_empty and not np.all(np.isfinite(g.bounds)):
-            raise ValueError(f"geometries[{i}] has non-finite coordinates (bounds {g.bounds})")
+        # Every x, y checked, not the bounds: GEOS leaves NaN out of a geometry's
+        # bounds, so a LineString through (1, NaN) has finite ones.
+        if not g.is_empty and not np.isfinite(shapely.get_coordinates(g)).all():
+            raise ValueError(
+                f"geometries[{i}] has non-finite coordinates (NaN or ±inf; bounds {g.bounds})"
+            )
     rows, cols = grid_shape(
         width=xmax - xmin,
         height=ymax - ymin,

@@ -10,7 +10,13 @@ from numpy.typing import ArrayLike
 from navkit._shared.types import FloatArray
 from navkit.geometry import Pose2D, as_pose
 from navkit.mapping._grid import OccupancyGrid
-from navkit.mapping._limits import MAX_CELLS, RESOLUTION_MAX, bounded_float, resolution_float
+from navkit.mapping._limits import (
+    MAX_CELLS,
+    RESOLUTION_MAX,
+    bounded_float,
+    check_cell_count,
+    resolution_float,
+)
 from navkit.mapping._logodds import logit
 from navkit.mapping._raycast import _clamp_pair
 from navkit.mapping._raycast_kernels import integrate_beams
@@ -38,7 +44,8 @@ class ScanMapper:
        second scan);
     2. matches the scan to the map from that guess (:meth:`ScanMatcher.match`;
        when the match cannot be made, e.g. a featureless corridor, the guess is
-       kept);
+       kept, or with the default matcher's pull towards the guess the pose
+       that pull fixes: see :class:`ScanMatchResult`);
     3. writes the scan into **every** level (ray casting as
        :func:`navkit.mapping.integrate_scan`, log-odds ``logit(occupied)`` for
        end cells and ``logit(free)`` for crossed cells, each cell updated once
@@ -47,8 +54,10 @@ class ScanMapper:
        write (the first scan is always written). Returns with no echo
        (``>= range_max``) and beyond ``max_range`` are not written, as in Hector.
 
-    The map grows (by whole coarse cells, keeping every level aligned) when a
-    scan would reach beyond it, up to :attr:`OccupancyGrid.MAX_CELLS` cells.
+    The map starts about ±10 m around the first pose (less where that would
+    exceed :attr:`OccupancyGrid.MAX_CELLS` cells, below about 1.2 mm cells) and
+    grows (by whole coarse cells, keeping every level aligned) when a scan
+    would reach beyond it, up to :attr:`OccupancyGrid.MAX_CELLS` cells.
 
     The name says what it does — mapping from scans by scan matching — rather
     than naming one implementation; the defaults are Hector's.
@@ -83,6 +92,8 @@ class ScanMapper:
         cell and ±0.1 rad around the guess, which puts Gauss–Newton in the
         right basin when the guess is a few degrees off (odometry noise of
         about 5 cm and 2° per step; give a wider window for worse odometry).
+        At most 14 levels: the smallest map, 2 × 2 cells of the coarsest
+        level, must fit in :attr:`OccupancyGrid.MAX_CELLS` cells of the finest.
 
     Examples
     --------
@@ -158,6 +169,13 @@ class ScanMapper:
         )
         if self._resolution * 2 ** (matcher.levels - 1) > RESOLUTION_MAX:
             raise ValueError("resolution * 2**(levels - 1) must be <= 1e6 m")
+        # The smallest map the mapper builds is 2 x 2 cells of the coarsest level:
+        # (2 * 2**(levels - 1))**2 cells of the finest, within MAX_CELLS up to 14 levels.
+        side = 2 * 2 ** (matcher.levels - 1)
+        check_cell_count(
+            float(side * side),
+            f"a map of matcher.levels={matcher.levels} (2 x 2 cells on its coarsest level)",
+        )
         self._start = as_pose(start, "start")
         self._levels: list[OccupancyGrid] = []
         self._poses: list[Pose2D] = []
@@ -209,8 +227,9 @@ class ScanMapper:
         odometry : Pose2D or array_like [x, y, theta], optional
             Odometry pose of the **sensor** at this scan, in any fixed frame
             (compose a mounting offset yourself: ``robot_odometry @ mount``).
-            Only increments between consecutive scans are used. Without it the
-            previous scan-to-scan motion is repeated.
+            Only increments between consecutive scans are used. Without it, or
+            when the previous scan came without it, the previous scan-to-scan
+            motion is repeated.
 
         Returns
         -------
@@ -237,8 +256,9 @@ class ScanMapper:
         result = self._matcher._match(tuple(self._levels), points, guess)
         pose = result.pose
         self._poses.append(pose)
-        if odom is not None:
-            self._last_odometry = odom
+        # A scan without odometry breaks the chain: the next odometry increment
+        # would span two scans, on top of this scan's constant-velocity guess.
+        self._last_odometry = odom
         if self._should_write(pose):
             self._write(scan, pose)
             self._last_write = pose
@@ -303,7 +323,12 @@ class ScanMapper:
 
     def _create_levels(self, centre: Pose2D) -> None:
         step = self._coarsest()
-        n = max(1, math.ceil(_MARGIN / step))
+        # ±_MARGIN around the start, in whole coarse cells; fewer at the finest
+        # resolutions, so that the finest level (2 n 2**(levels - 1) cells a side)
+        # keeps within MAX_CELLS (the constructor checked that n = 1 does).
+        scale = 2 ** (self._matcher.levels - 1)
+        n_max = math.isqrt(MAX_CELLS) // (2 * scale)
+        n = max(1, min(math.ceil(_MARGIN / step), n_max))
         x0 = centre.x - n * step
         y0 = centre.y - n * step
         self._levels = [
@@ -336,17 +361,19 @@ class ScanMapper:
         ):
             return
         step = self._coarsest()
-        # Coarse cells added on each side (the need plus the margin), as floats
-        # first: a pose far away must not reach an integer conversion.
-        left_f = (o.x - (lo[0] - _MARGIN)) / step if lo[0] - margin < o.x else 0.0
-        down_f = (o.y - (lo[1] - _MARGIN)) / step if lo[1] - margin < o.y else 0.0
-        right_need = hi[0] + margin - (o.x + width)
-        up_need = hi[1] + margin - (o.y + height)
-        right_f = (right_need + _MARGIN) / step if right_need > 0 else 0.0
-        up_f = (up_need + _MARGIN) / step if up_need > 0 else 0.0
         rows, cols = finest.shape
         scale = 2 ** (self._matcher.levels - 1)
-        need = (rows + (down_f + up_f + 2) * scale) * (cols + (left_f + right_f + 2) * scale)
+        # Coarse cells added on each side (the need plus the margin), as floats
+        # first: a pose far away must not reach an integer conversion (its
+        # counts overflow to inf, quietly: the size check below refuses them).
+        with np.errstate(over="ignore"):
+            left_f = (o.x - (lo[0] - _MARGIN)) / step if lo[0] - margin < o.x else 0.0
+            down_f = (o.y - (lo[1] - _MARGIN)) / step if lo[1] - margin < o.y else 0.0
+            right_need = hi[0] + margin - (o.x + width)
+            up_need = hi[1] + margin - (o.y + height)
+            right_f = (right_need + _MARGIN) / step if right_need > 0 else 0.0
+            up_f = (up_need + _MARGIN) / step if up_need > 0 else 0.0
+            need = (rows + (down_f + up_f + 2) * scale) * (cols + (left_f + right_f + 2) * scale)
         if not need <= MAX_CELLS:
             return  # keep the map; returns beyond it are clipped by the ray casting
         left, down, right, up = (math.ceil(v) for v in (left_f, down_f, right_f, up_f))

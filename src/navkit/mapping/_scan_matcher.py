@@ -39,6 +39,9 @@ _MAX_ITERATIONS = 10_000
 # Finest rotation step of the correlative pre-search (rad) and most steps each way.
 _MIN_SEARCH_STEP = math.radians(0.25)
 _MAX_SEARCH_STEPS = 360
+# Most candidate poses of one pre-search (about 15 s at the worst, 0.45 µs a pose
+# for a 360-beam scan): a window of 100 m on a 1 cm grid would otherwise be 3e11.
+_MAX_SEARCH_POSES = 2**25
 
 #: Every ``reason`` a :class:`ScanMatchResult` can give.
 REASONS = (
@@ -86,12 +89,16 @@ class ScanMatchResult:
     ----------
     pose : Pose2D
         Matched world pose of the sensor; the guess itself when the match could
-        not be made (``reason`` other than ``"converged"`` or ``"max_iterations"``).
+        not be made (``reason`` other than ``"converged"`` or ``"max_iterations"``),
+        except that a ``"degenerate"`` match with both ``translation_weight``
+        and ``rotation_weight`` of the matcher above 0 keeps its estimate: the
+        pull towards the guess fixes what the map leaves free.
     covariance : ndarray, shape (3, 3)
         Covariance of ``(x, y, theta)`` (m², m·rad, rad²): the residual variance
         ``Σ (1 - M)² / (n - 3)`` times the inverse Gauss–Newton Hessian on the
-        finest level. Read-only. Infinite variances (zero covariances) when the
-        pose is the guess because no match could be made.
+        finest level. Read-only. Infinite variances (zero covariances) when no
+        match could be made (every ``reason`` but ``"converged"`` and
+        ``"max_iterations"``).
     iterations : int
         Gauss–Newton iterations done, all levels together.
     score : float
@@ -216,8 +223,10 @@ class ScanMatcher:
     the scan has fewer than three valid returns, when the guess lies outside
     the finest map, or when the map does not constrain all three directions
     (the Hessian's weakest direction, rotation scaled by the RMS range of the
-    points, is below 1e-2 of its strongest: a featureless corridor). Wrong
-    types and values raise ``TypeError`` / ``ValueError`` naming the argument.
+    points, is below 1e-2 of its strongest: a featureless corridor; with both
+    weights above 0 the result then carries the estimate the pull towards the
+    guess fixes, still with ``converged=False``). Wrong types and values
+    raise ``TypeError`` / ``ValueError`` naming the argument.
 
     Parameters
     ----------
@@ -246,7 +255,9 @@ class ScanMatcher:
         [0, 100], rad in [0, π]): the cost (nearest cells, plus the pull) is
         evaluated on a grid of translations one coarsest cell apart and of
         rotations that move the far points (90th percentile of the ranges) by
-        half a cell, and Gauss–Newton starts from the best. It widens the
+        half a cell (at most 360 each way), and Gauss–Newton starts from the
+        best. Grids of more than 2**25 poses (about 15 s) have their
+        translations spread further apart to fit. It widens the
         basin from about a coarse cell and a few degrees to the window; about
         ±2σ of the guess's error is a good window. 0 and 0: no search.
 
@@ -522,6 +533,12 @@ class ScanMatcher:
         steps_theta = min(math.ceil(self._search_angle / step_theta - 1e-9), _MAX_SEARCH_STEPS)
         if steps_theta:
             step_theta = self._search_angle / steps_theta
+        step_xy = res
+        rotations = 2 * steps_theta + 1
+        if (2 * steps_xy + 1) ** 2 * rotations > _MAX_SEARCH_POSES:
+            # Too many poses: the translations spread out to fit the budget.
+            steps_xy = max(1, (math.isqrt(_MAX_SEARCH_POSES // rotations) - 1) // 2)
+            step_xy = self._search_distance / steps_xy
         o = grid.origin
         correlative_search(
             grid._logodds,
@@ -532,7 +549,7 @@ class ScanMatcher:
             points,
             pose,
             steps_xy,
-            res,
+            step_xy,
             steps_theta,
             step_theta,
             self._translation_weight,

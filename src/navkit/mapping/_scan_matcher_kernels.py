@@ -396,7 +396,8 @@ def correlative_search_kernel(
     The grid: rotations ``theta + k step_theta`` for ``|k| <= steps_theta`` and
     translations ``(x + i step_xy, y + j step_xy)`` for ``|i|, |j| <= steps_xy``.
     The cost of a pose is the mean ``(1 - p)²`` of the points, ``p`` the
-    occupancy probability of the cell each point falls in (1 off the map), plus
+    occupancy probability of the cell each point falls in (0 off the map, as
+    :func:`accumulate` takes it: a point there costs 1), plus
     the pull ``translation_weight² |t - t₀|² + rotation_weight² (θ - θ₀)²``
     towards the input pose ``t₀, θ₀`` — :func:`match_level`'s cost without the
     interpolation. A candidate is dropped as soon as its partial sum exceeds

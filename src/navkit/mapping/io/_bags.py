@@ -12,7 +12,8 @@ import bz2
 import importlib
 import os
 import struct
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterable, Iterator
+from contextlib import contextmanager, suppress
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, NamedTuple, TypeVar
@@ -22,7 +23,7 @@ from numpy.typing import ArrayLike
 
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array
-from navkit.geometry import imu_to_base, quaternion_to_matrix, quaternion_to_yaw
+from navkit.geometry import imu_to_base, quaternion_to_matrix, quaternion_to_yaw, wrap_angle
 from navkit.mapping import LaserScan
 from navkit.mapping.io._paths import as_path
 from navkit.mapping.io._ros_msgs import scan_from_msg
@@ -183,6 +184,11 @@ class BagOdometry:
             "twist_covariances": (6, 6),
         }
         _check_fields(self, ("topic", "frame_id", "child_frame_id"), arrays)
+        # Poses given directly (not read from a bag) may carry any yaw: wrap it too.
+        poses = self.poses.copy()
+        poses[:, 2] = wrap_angle(poses[:, 2])
+        poses.flags.writeable = False
+        object.__setattr__(self, "poses", poses)
 
     def __len__(self) -> int:
         return int(self.times.shape[0])
@@ -352,6 +358,54 @@ def _check_path(path: Any) -> Path:
     return bag_path
 
 
+class _RosbagsFailed(Exception):
+    """rosbags could not open a bag or read its messages (the message says why)."""
+
+
+def _failure(exc: Exception) -> Exception:
+    """What to raise for an exception of rosbags: an error of the operating system (with an
+    errno: a file it refuses to read) as it is, anything else as :class:`_RosbagsFailed`."""
+    if isinstance(exc, OSError) and exc.errno is not None:
+        return exc
+    return _RosbagsFailed(str(exc) or type(exc).__name__)
+
+
+@contextmanager
+def _opened(reader_class: Any, bag_path: Path) -> Iterator[Any]:
+    """An open rosbags reader of ``bag_path``, closed on exit."""
+    # rosbags reacts to corrupt bytes with whatever its decoders raise (ReaderError,
+    # OSError from bz2, UnicodeDecodeError, sqlite3 errors, ValueError of an enum ...).
+    try:
+        reader = reader_class(bag_path)
+        reader.open()
+    except Exception as exc:
+        raise _failure(exc) from None
+    try:
+        yield reader
+    finally:
+        with suppress(Exception):
+            reader.close()
+
+
+def _guarded(messages: Callable[[], Iterable[tuple[Any, int, Any]]]) -> Iterator[tuple[int, bytes]]:
+    """(record ns, raw message) of the rosbags messages ``messages()`` gives, its failures as
+    :class:`_RosbagsFailed` (chunks are decompressed and checked only as they are read)."""
+    try:
+        for _, stamp, raw in messages():
+            yield stamp, bytes(raw)
+    except Exception as exc:
+        raise _failure(exc) from None
+
+
+def _connection_topics(connections: Iterable[Any]) -> dict[str, _Topic]:
+    """``{topic: (type, count)}`` of rosbags connections (a topic may have several)."""
+    topics: dict[str, _Topic] = {}
+    for c in connections:
+        old = topics.get(c.topic)
+        topics[c.topic] = _Topic(_normalize(c.msgtype), c.msgcount + (old.n_messages if old else 0))
+    return topics
+
+
 def _with_bag(bag_path: Path, use: Callable[[_Bag], _T]) -> _T:
     """Open ``bag_path`` (ROS 1 file or ROS 2 folder) and call ``use`` on it."""
     rosbag1, rosbag2, _, _ = _rosbags()
@@ -359,20 +413,14 @@ def _with_bag(bag_path: Path, use: Callable[[_Bag], _T]) -> _T:
         if not (bag_path / "metadata.yaml").is_file():
             raise ValueError(f"{bag_path} is a folder without metadata.yaml, not a ROS 2 bag")
         try:
-            with rosbag2.Reader(bag_path) as reader:
-                topics = {
-                    c.topic: _Topic(_normalize(c.msgtype), c.msgcount) for c in reader.connections
-                }
+            with _opened(rosbag2.Reader, bag_path) as reader:
 
                 def messages2(topic: str) -> Iterator[tuple[int, bytes]]:
                     conns = [c for c in reader.connections if c.topic == topic]
-                    for _, stamp, raw in reader.messages(connections=conns):
-                        yield stamp, bytes(raw)
+                    return _guarded(lambda: reader.messages(connections=conns))
 
-                return use(_Bag(True, topics, messages2))
-        except (rosbag2.ReaderError, KeyError, OSError, AssertionError) as exc:
-            if isinstance(exc, FileNotFoundError):
-                raise
+                return use(_Bag(True, _connection_topics(reader.connections), messages2))
+        except _RosbagsFailed as exc:
             raise ValueError(f"{bag_path}: cannot read the ROS 2 bag: {exc}") from None
     if not bag_path.is_file():
         raise ValueError(f"{bag_path} is neither a ROS 1 bag file nor a ROS 2 bag folder")
@@ -384,29 +432,20 @@ def _with_bag(bag_path: Path, use: Callable[[_Bag], _T]) -> _T:
             "from its folder"
         )
     try:
-        with rosbag1.Reader(bag_path) as reader:
-            topics = {}
-            for c in reader.connections:
-                old = topics.get(c.topic)
-                topics[c.topic] = _Topic(
-                    _normalize(c.msgtype), c.msgcount + (old.n_messages if old else 0)
-                )
+        with _opened(rosbag1.Reader, bag_path) as reader:
 
             def messages1(topic: str) -> Iterator[tuple[int, bytes]]:
                 conns = [c for c in reader.connections if c.topic == topic]
-                for _, stamp, raw in reader.messages(connections=conns):
-                    yield stamp, bytes(raw)
+                return _guarded(lambda: reader.messages(connections=conns))
 
-            return use(_Bag(False, topics, messages1))
-    except (rosbag1.ReaderError, AssertionError, struct.error) as exc:
+            return use(_Bag(False, _connection_topics(reader.connections), messages1))
+    except _RosbagsFailed as exc:
         # rosbags refuses bags whose index records are damaged (e.g. an index
         # data record longer than its entries): read the chunks directly.
         try:
             bag = _walk_ros1(bag_path)
         except _Corrupt as walk_exc:
-            raise ValueError(
-                f"{bag_path}: cannot read the ROS 1 bag: {exc or type(exc).__name__}; {walk_exc}"
-            ) from None
+            raise ValueError(f"{bag_path}: cannot read the ROS 1 bag: {exc}; {walk_exc}") from None
         return use(bag)
 
 
@@ -593,7 +632,8 @@ def _xyzw(q: Any) -> tuple[float, float, float, float]:
 
 
 def _finite(arr: FloatArray, what: str, bag_path: Any, topic: str) -> FloatArray:
-    bad = ~np.isfinite(arr.reshape(arr.shape[0], -1)).all(axis=1)
+    # Reduced over the trailing axes, not reshaped: a topic without messages has N = 0.
+    bad = ~np.isfinite(arr).all(axis=tuple(range(1, arr.ndim)))
     if bad.any():
         raise ValueError(
             f"{bag_path}: message {int(np.argmax(bad))} of {topic} has a non-finite {what}"
@@ -719,7 +759,7 @@ def read_bag_odometry(path: str | os.PathLike[str], *, topic: str | None = None)
             ("pose covariance", pose_cov),
             ("twist covariance", twist_cov),
         ):
-            _finite(arr.reshape(n, -1), what, path, name)
+            _finite(arr, what, path, name)
         yaw = np.asarray(quaternion_to_yaw(quat), dtype=np.float64).reshape(n)
         return BagOdometry(
             name,
@@ -795,7 +835,7 @@ def read_bag_imu(path: str | os.PathLike[str], *, topic: str | None = None) -> B
             "linear acceleration covariance": cov("linear_acceleration_covariance"),
         }
         for what, arr in arrays.items():
-            _finite(arr.reshape(n, -1), what, path, name)
+            _finite(arr, what, path, name)
         values = list(arrays.values())
         return BagImu(
             name,

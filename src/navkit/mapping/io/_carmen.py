@@ -15,7 +15,7 @@ import numpy as np
 
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, positive_float
-from navkit.geometry import Pose2D, as_pose
+from navkit.geometry import Pose2D, as_pose, wrap_angle
 from navkit.mapping import LaserScan
 from navkit.mapping.io._paths import as_path
 
@@ -65,8 +65,9 @@ class CarmenLog:
         Scan timestamps, s (the message's own ``timestamp`` field), finite.
         Stored as a read-only copy (the caller's array is neither kept nor frozen).
     odometry : ndarray, shape (M, 4)
-        ODOM records ``(x, y, theta, timestamp)``, finite; an empty sequence
-        gives shape (0, 4). Stored as a read-only copy.
+        ODOM records ``(x, y, theta, timestamp)``, finite, ``theta`` wrapped to
+        (-π, π] (as the poses' headings are); an empty sequence gives shape
+        (0, 4). Stored as a read-only copy.
 
     Raises
     ------
@@ -106,6 +107,8 @@ class CarmenLog:
         if odometry_in.size == 0:
             odometry_in = odometry_in.reshape(0, 4)
         odometry = np.array(as_float_array(odometry_in, "odometry", shape=(None, 4)), copy=True)
+        # Logs write the integrated odometry heading unwrapped (csail's reaches 11 rad).
+        odometry[:, 2] = wrap_angle(odometry[:, 2])
         if not len(scans) == len(laser) == len(robot) == stamps.shape[0]:
             raise ValueError(
                 "scans, laser_poses, robot_poses and timestamps must have the same length, got "
@@ -165,6 +168,9 @@ def _count(token: str, what: str) -> int:
 
 def _values(tokens: list[str], what: str, hint: str = "") -> FloatArray:
     """``tokens`` as finite float64 numbers."""
+    # Python (and so NumPy) reads "1_0" as 10; CARMEN's strtod stops at the underscore.
+    if any("_" in token for token in tokens):
+        raise _LineError(f"{what} must be numbers{hint}")
     try:
         out = np.array(tokens, dtype=np.float64)
     except ValueError:
@@ -281,9 +287,15 @@ def _parse(log_path: Path) -> tuple[list[_Record], list[tuple[float, float, floa
 
 
 def _scan(log_path: Path, record: _Record, range_min: float, range_max: float | None) -> LaserScan:
-    rmax = record.range_max if record.range_max is not None else range_max
-    if rmax is None or rmax <= range_min:
-        raise ValueError(f"{log_path}: cannot determine a maximum range above range_min")
+    rmax = record.range_max
+    if rmax is None:  # FLASER: the reader's range_max or the largest FLASER reading
+        if range_max is None or range_max <= range_min:
+            raise ValueError(
+                f"{log_path}: cannot determine a maximum range of the FLASER scans above "
+                f"range_min ({range_min} m); give range_max"
+            )
+        rmax = range_max
+    # A ROBOTLASER1 line's own maximum range is checked by LaserScan, naming the line.
     try:
         return LaserScan(
             record.ranges,

@@ -55,7 +55,10 @@ def _tuple_of_floats(value: Any, n: int, name: str) -> tuple[float, ...]:
 
 def _occupancy_values(raw: Any, name: str) -> NDArray[np.int64]:
     """Occupancy values -1..100 as int64; floats, booleans and strings are refused."""
-    arr = np.asarray(raw)
+    try:
+        arr = np.asarray(raw)
+    except ValueError:  # NumPy refuses ragged nested sequences
+        raise ValueError(f"{name} must be a flat sequence of integers, got a ragged one") from None
     if arr.dtype.kind == "O":
         items = arr.ravel().tolist()
         if all(isinstance(v, numbers.Integral) and not isinstance(v, bool) for v in items):
