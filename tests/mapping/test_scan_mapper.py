@@ -192,6 +192,20 @@ def test_writes_only_after_moving_and_saves_a_map(tmp_path: Path) -> None:
     assert np.array_equal(back.occupied(), grid.occupied())
 
 
+def test_a_scan_with_nothing_to_write_does_not_count_as_written() -> None:
+    # A first scan without valid returns (a sensor starting up) used to count as the
+    # first write, so the next scans waited for the robot to move min_distance.
+    world = _office()
+    lidar = Lidar(n_beams=360, range_max=10.0, noise=None)
+    mapper = ScanMapper(start=(2.0, 4.0, 0.0), min_distance=0.4, min_rotation=0.9)
+    blank = LaserScan(np.full(360, np.inf), angle_min=-math.pi, angle_increment=math.tau / 360,
+                      range_min=0.1, range_max=10.0)  # fmt: skip
+    mapper.update(blank)
+    assert not mapper.map.occupied().any()
+    mapper.update(lidar.scan(world, (2.0, 4.0, 0.0)), odometry=(0.0, 0.0, 0.0))
+    assert mapper.map.occupied().any()
+
+
 def test_map_grows_with_the_route() -> None:
     # A 60 m corridor walked end to end: the map starts ±10 m around the start.
     world = World([box(0, 0, 60, 3).exterior] + [box(x, 0, x + 0.3, 0.6) for x in range(3, 60, 4)])

@@ -51,8 +51,9 @@ class ScanMapper:
        end cells and ``logit(free)`` for crossed cells, each cell updated once
        per scan, clamped to ``clamp``) when the pose has moved more than
        ``min_distance`` or turned more than ``min_rotation`` since the last
-       write (the first scan is always written). Returns with no echo
-       (``>= range_max``) and beyond ``max_range`` are not written, as in Hector.
+       write (the first scan with a return to write is always written).
+       Returns with no echo (``>= range_max``) and beyond ``max_range`` are not
+       written, as in Hector.
 
     The map starts about ±10 m around the first pose (less where that would
     exceed :attr:`OccupancyGrid.MAX_CELLS` cells, below about 1.2 mm cells) and
@@ -259,7 +260,9 @@ class ScanMapper:
         # A scan without odometry breaks the chain: the next odometry increment
         # would span two scans, on top of this scan's constant-velocity guess.
         self._last_odometry = odom
-        if self._should_write(pose):
+        # A scan with nothing to write (no valid return within max_range) does not
+        # count as written: the next scan would then wait for min_distance.
+        if points.shape[0] and self._should_write(pose):
             self._write(scan, pose)
             self._last_write = pose
         return result
