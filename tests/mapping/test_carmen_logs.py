@@ -311,6 +311,8 @@ def test_reader_arguments(tmp_path: Path) -> None:
         read_carmen(3)  # type: ignore[arg-type]
     with pytest.raises(ValueError, match="is not a regular file"):
         read_carmen(tmp_path)
+    with pytest.raises(ValueError, match="path must not be empty"):  # was "CARMEN log ."
+        read_carmen("")
     with pytest.raises(ValueError, match=r"range_max must be > 0 and <= 1e9 m"):
         read_carmen(path, range_max=1e12)
     with pytest.raises(TypeError, match="range_max must be a real number"):

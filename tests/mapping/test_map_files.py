@@ -680,6 +680,11 @@ def test_paths_must_be_paths(tmp_path: Path) -> None:
             write_map(small_grid(), bad)  # type: ignore[arg-type]
     with pytest.raises(ValueError, match="NUL"):
         read_map("map\x00.yaml")
+    # "" would be the working directory ("." is a folder, not a map).
+    with pytest.raises(ValueError, match="path must not be empty"):
+        read_map("")
+    with pytest.raises(ValueError, match="path must not be empty"):
+        write_map(small_grid(), "")
     with pytest.raises(TypeError, match="mode must be a str"):
         write_map(small_grid(), tmp_path / "m.yaml", mode=None)  # type: ignore[arg-type]
     assert list(tmp_path.iterdir()) == []
