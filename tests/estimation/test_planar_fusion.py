@@ -383,3 +383,20 @@ def test_copies_and_pickles_are_independent() -> None:
         np.testing.assert_array_equal(fusion.x, x_before)
         np.testing.assert_array_equal(fusion.P, p_before)
         assert twin.update_yaw(1.2, 3.0, variance=1e-6).reason == gated.reason  # same gates
+
+
+def test_fortran_ordered_log_uses_the_one_compiled_batch_kernel() -> None:
+    """A log built from transposed (4, T) arrays is stored C-ordered (no second compile)."""
+    from navkit.estimation import _fusion_kernels as kernels
+
+    t = np.linspace(0.1, 0.5, 5)
+    columns = np.stack([np.full(5, 0.2), np.ones(5), np.full(5, 0.1), np.zeros(5)])
+    variances = np.full((4, 5), 1e-3)
+    observed = np.ones((4, 5), dtype=bool)
+    log = MeasurementLog(t, columns.T, variances.T, observed.T)  # Fortran-ordered views
+    for arr in (log.times, log.values, log.variances, log.observed):
+        assert arr.flags.c_contiguous
+    ref = MeasurementLog(t, columns.T.copy(), variances.T.copy(), observed.T.copy())
+    result = PlanarFusion(t0=0.0).update_batch(log)
+    np.testing.assert_array_equal(result.states, PlanarFusion(t0=0.0).update_batch(ref).states)
+    assert len(kernels.planar_run.signatures) == 1

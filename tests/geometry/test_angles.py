@@ -59,3 +59,12 @@ def test_angle_diff_known() -> None:
 def test_non_finite_rejected(bad: object) -> None:
     with pytest.raises(ValueError, match="angle"):
         wrap_angle(bad)  # type: ignore[arg-type]
+
+
+def test_angle_diff_shapes_that_do_not_broadcast_name_a_and_b() -> None:
+    with pytest.raises(ValueError, match=r"a and b must broadcast together.*\(2,\).*\(3,\)"):
+        angle_diff([1.0, 2.0], [1.0, 2.0, 3.0])
+    # Also where a - b would overflow (the path that wraps both angles first).
+    with pytest.raises(ValueError, match="a and b must broadcast together"):
+        angle_diff([1e308, 0.0], [-1e308, 0.0, 1.0])
+    assert angle_diff([[1.0]], [2.0, 3.0]).shape == (1, 2)  # type: ignore[union-attr]

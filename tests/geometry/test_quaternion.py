@@ -155,3 +155,12 @@ def test_husky_mounting() -> None:
 def test_bad_input_names_the_argument(call, error, name) -> None:  # type: ignore[no-untyped-def]
     with pytest.raises(error, match=name):
         call()
+
+
+def test_imu_in_base_holds_unit_quaternions() -> None:
+    """The attribute is documented as unit quaternions: normalised like every input here."""
+    zeros = np.zeros((2, 3))
+    readings = ImuInBase([[0.0, 0.0, 0.6, 1.6], [0.0, 0.0, 0.0, 0.0]], zeros, zeros)
+    np.testing.assert_allclose(np.linalg.norm(readings.orientations, axis=-1), 1.0, atol=1e-15)
+    np.testing.assert_array_equal(readings.orientations[1], [0.0, 0.0, 0.0, 1.0])
+    assert quaternion_to_yaw(readings.orientations[0]) == pytest.approx(2 * math.atan2(0.6, 1.6))

@@ -127,3 +127,14 @@ def test_rollout_accepts_twist_objects_and_a_pose_sequence() -> None:
         rollout(Pose2D(0, 0), [Twist2D(1.0), [1.0, 0.0]], 0.1)
     with pytest.raises(ValueError, match="dt"):
         rollout(Pose2D(0, 0), twists, [0.1, 0.2])
+
+
+def test_an_overflowing_turn_is_named_as_such() -> None:
+    # A 0.5 m circle: the pose stays bounded, but omega * dt = 2e308 rad is not a float.
+    with pytest.raises(ValueError, match=r"twist, dt: the heading change omega \* dt overflows"):
+        integrate(Pose2D(0, 0, 0), Twist2D(1.0, 0.0, 2.0), 1e308)
+    with pytest.raises(ValueError, match=r"twists, dt: the heading change omega \* dt overflows"):
+        rollout(Pose2D(0, 0, 0), [[1.0, 0.0, 0.0], [1.0, 0.0, 2.0]], 1e308)
+    # A position that overflows is still reported as one.
+    with pytest.raises(ValueError, match="twist, dt: the motion overflows float64"):
+        integrate(Pose2D(0, 0, 0), Twist2D(1e308, 0.0, 0.0), 10.0)

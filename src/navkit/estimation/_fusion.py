@@ -191,11 +191,14 @@ class MeasurementLog:
         # Unobserved entries are never read by the kernel; zero them so the arrays are clean.
         values = np.where(obs, values, 0.0)
         var = np.where(obs, var, 1.0)
+        # C order whatever the caller's layout (a transposed (4, T) array is Fortran
+        # ordered): planar_run is compiled for C-ordered arrays only, and a Fortran
+        # ordered log would make numba compile it a second time (issue 17).
         for name, arr in (("times", times), ("values", values), ("variances", var)):
-            arr = np.array(arr, dtype=np.float64, copy=True)
+            arr = np.array(arr, dtype=np.float64, copy=True, order="C")
             arr.flags.writeable = False
             object.__setattr__(self, name, arr)
-        obs = np.array(obs, copy=True)
+        obs = np.array(obs, copy=True, order="C")
         obs.flags.writeable = False
         object.__setattr__(self, "observed", obs)
 

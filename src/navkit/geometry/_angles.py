@@ -102,7 +102,8 @@ def angle_diff(a: ArrayLike, b: ArrayLike) -> float | NDArray[np.float64]:
     Raises
     ------
     TypeError, ValueError
-        As :func:`wrap_angle`, naming ``a`` or ``b``.
+        As :func:`wrap_angle`, naming ``a`` or ``b``; ``ValueError`` also if
+        their shapes do not broadcast together.
 
     Examples
     --------
@@ -118,6 +119,13 @@ def angle_diff(a: ArrayLike, b: ArrayLike) -> float | NDArray[np.float64]:
             return _wrap_float(d)
     first = as_float_array(a, "a")
     second = as_float_array(b, "b")
+    try:
+        np.broadcast_shapes(first.shape, second.shape)
+    except ValueError:
+        # NumPy's own message names neither argument.
+        raise ValueError(
+            f"a and b must broadcast together, got shapes {first.shape} and {second.shape}"
+        ) from None
     # a - b overflows only when |a| or |b| exceeds half the float range.
     if max(_peak(first), _peak(second)) < 8e307:
         return wrap_angle(np.subtract(first, second))

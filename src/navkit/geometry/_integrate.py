@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from typing import Any
 
@@ -44,7 +45,8 @@ def integrate(pose: Pose2D | ArrayLike, twist: Twist2D | ArrayLike, dt: float) -
         three numbers, or ``dt`` is not a real number.
     ValueError
         Non-finite values, a negative ``dt``, or a motion so large that the
-        pose would overflow float64 (never a NaN pose).
+        pose or the heading change ``omega * dt`` would overflow float64
+        (never a NaN pose).
 
     Examples
     --------
@@ -62,7 +64,7 @@ def integrate(pose: Pose2D | ArrayLike, twist: Twist2D | ArrayLike, dt: float) -
         raise ValueError(f"dt must be >= 0, got {step}")
     x, y, th = integrate_kernel(start.x, start.y, start.theta, tw.vx, tw.vy, tw.omega, step)
     if not (x - x == 0.0 and y - y == 0.0 and th - th == 0.0):
-        raise _overflow()
+        raise _overflow("twist", turn=not math.isfinite(tw.omega * step))
     return Pose2D(x, y, th)
 
 
@@ -94,7 +96,8 @@ def rollout(
         booleans are refused), naming them.
     ValueError
         Non-finite values, wrong shapes, a negative ``dt``, or motions so large
-        that a pose would overflow float64 (never a NaN pose).
+        that a pose or a heading change ``omega * dt`` would overflow float64
+        (never a NaN pose).
 
     Examples
     --------
@@ -125,13 +128,23 @@ def rollout(
     )
     # Once a pose overflows (inf) the later ones are inf or NaN, so the last row tells.
     if not np.isfinite(out[-1]).all():
-        raise _overflow()
+        with np.errstate(over="ignore"):
+            turn = not np.isfinite(tw[:, 2] * steps).all()
+        raise _overflow("twists", turn=turn)
     return out
 
 
-def _overflow() -> ValueError:
+def _overflow(name: str, *, turn: bool) -> ValueError:
+    """The error of a motion that overflows; ``turn``: because omega * dt itself does."""
+    if turn:
+        # The arc stays within |v| / |omega| of its start, but its end heading (and so
+        # its end point) is not computable when the heading change is not a float.
+        return ValueError(
+            f"{name}, dt: the heading change omega * dt overflows float64 (beyond "
+            "±1.8e308 rad); give smaller yaw rates or time steps"
+        )
     return ValueError(
-        "twists, dt: the motion overflows float64 (a pose beyond ±1.8e308 m); "
+        f"{name}, dt: the motion overflows float64 (a pose beyond ±1.8e308 m); "
         "give smaller twists or time steps"
     )
 

@@ -244,7 +244,8 @@ class ImuInBase:
     Notes
     -----
     Every array is a read-only float64 copy. Shapes are checked (the same
-    leading shape for all three), values must be finite.
+    leading shape for all three), values must be finite; orientations are
+    normalised (a zero quaternion becomes the identity ``(0, 0, 0, 1)``).
 
     Examples
     --------
@@ -258,9 +259,9 @@ class ImuInBase:
     linear_accelerations: FloatArray
 
     def __post_init__(self) -> None:
-        q = as_float_array(self.orientations, "orientations")
-        if q.ndim == 0 or q.shape[-1] != 4:
-            raise ValueError(f"orientations must have shape (..., 4), got {q.shape}")
+        # Normalised as everywhere in this module (the attribute holds unit quaternions;
+        # a zero quaternion, ROS's unset orientation, is no rotation).
+        q = _quaternions(self.orientations, "orientations")
         lead = q.shape[:-1]
         w = _vectors(self.angular_velocities, "angular_velocities")
         a = _vectors(self.linear_accelerations, "linear_accelerations")
