@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
+import copy
 import inspect
 import math
+import pickle
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -264,6 +266,24 @@ def test_arrays_are_copied_and_read_only() -> None:
     )
     assert np.array_equal(grid.logodds, before)
     assert not np.array_equal(other.logodds, before)
+
+
+def test_copy_module_copies_own_their_log_odds() -> None:
+    grid = OccupancyGrid.from_probabilities(
+        [[0.2, 0.5, 0.9]], resolution=0.1, origin=(1.0, 2.0, 0.3), occupied_thresh=0.8,
+        free_thresh=0.3,
+    )  # fmt: skip
+    before = grid.logodds.copy()
+    scan = LaserScan([0.25], angle_min=0.0, angle_increment=0.1, range_min=0.01, range_max=1.0)
+    for other in (copy.copy(grid), copy.deepcopy(grid), pickle.loads(pickle.dumps(grid))):
+        assert np.array_equal(other.logodds, before)
+        assert (other.resolution, other.origin, other.occupied_thresh, other.free_thresh) == (
+            0.1, grid.origin, 0.8, 0.3,
+        )  # fmt: skip
+        # Ray casting writes into the copy's log-odds, never into the original's.
+        assert other.integrate_scan(scan, [*grid.cell_to_world([0, 0]).tolist(), 0.3]) > 0
+        assert not np.array_equal(other.logodds, before)
+        assert np.array_equal(grid.logodds, before)
 
 
 def test_from_occupancy_unknown() -> None:

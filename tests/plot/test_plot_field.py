@@ -50,6 +50,38 @@ def test_a_sampled_field_is_drawn_as_sampled() -> None:
     assert ax.get_xlim()[0] <= -0.875 and ax.get_xlim()[1] >= 0.875
 
 
+def _ramp(rows: int, cols: int) -> SampledField:
+    """A field rising along x and y, ``rows`` × ``cols`` samples 1 m apart."""
+    x, y = np.arange(cols) + 0.5, np.arange(rows) + 0.5
+    return SampledField(x, y, np.add.outer(y, x), np.zeros((rows, cols, 2)), resolution=1.0)
+
+
+@pytest.mark.parametrize("cols", [2, 4])
+def test_thinned_contours_reach_the_last_sample(cols: int) -> None:
+    # 1100 rows are thinned to every third one for drawing: rows 0, 3, ..., 1098
+    # and the last, 1099, which a plain [::3] would drop (and two columns would
+    # become one, which matplotlib cannot contour).
+    field = _ramp(1100, cols)
+    ax = plot_field(field, kind="contour")
+    assert ax.get_ylim() == (0.5, 1099.5)
+    assert ax.get_xlim() == (0.5, cols - 0.5)
+    levels = np.asarray(ax.collections[0].levels)  # type: ignore[attr-defined]
+    assert levels[-1] >= field.potential.max()
+
+
+@pytest.mark.parametrize("shape", [(1, 1), (1, 5), (5, 1)])
+def test_contours_of_a_field_one_sample_wide_are_refused(shape: tuple[int, int]) -> None:
+    with pytest.raises(ValueError, match=r"kind='contour' needs .* 2 × 2 samples"):
+        plot_field(_ramp(*shape), kind="contour")
+    # A PotentialField sampled in one cell: the same.
+    with pytest.raises(ValueError, match="2 × 2"):
+        plot_field(ConicAttraction((0.0, 0.0)), kind="contour", xlim=(0.0, 1.0),
+                   ylim=(0.0, 1.0), resolution=2.0)  # fmt: skip
+    # The other kinds draw it.
+    assert len(plot_field(_ramp(*shape), kind="quiver").collections) == 1
+    assert len(plot_field(_ramp(*shape)).collections) == 1
+
+
 def test_quiver_arrows_point_along_the_force_and_are_thinned() -> None:
     goal = ConicAttraction((0.0, 0.0))
     ax = plot_field(goal, kind="quiver", xlim=(-4.0, 4.0), ylim=(-4.0, 4.0), resolution=0.05)

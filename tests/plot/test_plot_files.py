@@ -5,6 +5,7 @@ from __future__ import annotations
 import itertools
 import math
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pytest
@@ -15,7 +16,16 @@ from navkit.geometry import Twist2D
 from navkit.kinematics import DiffDrive
 from navkit.mapping import OccupancyGrid
 from navkit.plot import animate_trace, plot_grid, save_figure
-from navkit.sim import Lidar, MovingObstacle, Robot, Scene, Simulation, Trace, World
+from navkit.sim import (
+    Lidar,
+    Metrics,
+    MovingObstacle,
+    Robot,
+    Scene,
+    Simulation,
+    Trace,
+    World,
+)
 
 pytest.importorskip("matplotlib")
 
@@ -135,6 +145,34 @@ def test_a_bare_trace_and_a_polygon_footprint_animate_too(tmp_path: Path) -> Non
     out = animate_trace(trace, tmp_path / "bare.gif", max_frames=1000, dpi=20, footprint=square)
     # One frame per row at most (fewer rows than max_frames); Pillow merges identical ones.
     assert 5 < len(_frames(out)) <= len(trace)
+
+
+def test_the_view_holds_a_turned_polygon_footprint_whole(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    import navkit.plot._animate as animate
+
+    figures = []
+    original = animate.new_figure
+
+    def new_figure(**kwargs: Any) -> Any:  # keeps the animation's figure to look at
+        figures.append(original(**kwargs))
+        return figures[-1]
+
+    monkeypatch.setattr(animate, "new_figure", new_figure)
+    # A 2 m square robot driving along y = 1 turned by 45°: its corners reach
+    # √2 m from its centre, beyond its largest coordinate (1 m).
+    times = np.linspace(0.0, 2.0, 5)
+    poses = np.column_stack((times, np.ones_like(times), np.full_like(times, math.pi / 4)))
+    metrics = Metrics(False, "timeout", 2.0, *[math.nan] * 6, 0.1, 0, 2.0)
+    trace = Trace(times, poses, poses.copy(), np.zeros_like(poses), (), (), metrics)
+    square = [[-1.0, -1.0], [1.0, -1.0], [1.0, 1.0], [-1.0, 1.0]]
+    animate_trace(trace, tmp_path / "turned.gif", footprint=square, max_frames=2, dpi=20)
+    (ax,) = figures[0].axes
+    (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
+    reach = math.sqrt(2.0)
+    assert x0 <= -reach + 1e-9 and x1 >= 2.0 + reach - 1e-9
+    assert y0 <= 1.0 - reach + 1e-9 and y1 >= 1.0 + reach - 1e-9
 
 
 @pytest.mark.parametrize(

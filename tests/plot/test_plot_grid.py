@@ -78,6 +78,28 @@ def test_a_huge_grid_is_shrunk_without_losing_one_cell_walls() -> None:
     assert float(ax.images[0].get_extent()[1]) >= 250.0  # the whole map is covered
 
 
+@pytest.mark.parametrize("theta", [0.0, 0.4])
+def test_a_shrunk_grid_is_drawn_over_its_own_extent_only(tmp_path: Path, theta: float) -> None:
+    # 2049 × 3 unknown cells of 1 m are shrunk in blocks of 2 × 2, padded to
+    # 2050 × 4: the padding (a row above the map, a column right of it) is not map.
+    grid = OccupancyGrid(np.zeros((2049, 3)), resolution=1.0, origin=(10.0, 20.0, theta))
+    ax = plot_grid(grid)
+    corners = grid.origin.transform_points([[0, 0], [3, 0], [0, 2049], [3, 2049]])
+    np.testing.assert_allclose(ax.dataLim.get_points(),
+                               [corners.min(axis=0), corners.max(axis=0)], atol=1e-9)  # fmt: skip
+    # Zoom in on the top right corner of the map (map frame x = 3 m, y = 2049 m).
+    centre = grid.origin.transform_points([[3.0, 2048.0]])[0]
+    ax.set_aspect("auto")
+    ax.set_xlim(centre[0] - 3.0, centre[0] + 3.0)
+    ax.set_ylim(centre[1] - 3.0, centre[1] + 3.0)
+    image, pixel = render(ax, tmp_path)
+    inside, right, above = pixel(grid.origin.transform_points([[2.5, 2047.5], [3.5, 2047.5],
+                                                               [1.5, 2049.5]]))  # fmt: skip
+    assert 0.6 < grey_at(image, inside) < 0.9  # unknown grey
+    assert grey_at(image, right) > 0.99  # the axes' white background, not map
+    assert grey_at(image, above) > 0.99
+
+
 def test_draws_on_given_axes_with_opacity() -> None:
     from matplotlib.figure import Figure
 

@@ -67,6 +67,19 @@ def test_the_rendered_scene_puts_the_map_and_walls_in_place(tmp_path: Path) -> N
     assert pixel([4.5, 3.3])[0, 0] < pixel([3.0, 2.0])[0, 0]
 
 
+def test_a_solid_polygon_with_a_hole_leaves_the_hole_clear(tmp_path: Path) -> None:
+    # A solid square ring: the world is free inside its hole, so must the picture be.
+    ring = box(0.0, 0.0, 4.0, 4.0).difference(box(1.0, 1.0, 3.0, 3.0))
+    for solid in (ring, ring.reverse()):  # either orientation of the rings
+        world = World([solid])
+        assert not world.collides(0.1, (2.0, 2.0, 0.0))
+        ax = plot_scene(Scene("ring", world=world), legend=False)
+        image, pixel = render(ax, tmp_path)
+        assert grey_at(image, pixel([2.0, 2.0]), radius=3) > 0.99  # the hole: white
+        assert grey_at(image, pixel([0.5, 2.0]), radius=3) < 0.9  # the ring: shaded
+        assert grey_at(image, pixel([2.0, 3.5]), radius=3) < 0.9
+
+
 def test_the_view_is_cropped_to_the_known_map_and_the_drawing() -> None:
     known = np.zeros((400, 400), dtype=bool)
     known[190:210, 180:220] = True  # a 4 × 2 m known patch in a 40 × 40 m map

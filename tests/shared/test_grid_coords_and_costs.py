@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import math
 import warnings
+from fractions import Fraction
 
 import numpy as np
 import pytest
@@ -19,6 +21,20 @@ def test_far_coordinates_round_to_a_clamped_cell_not_an_undefined_cast() -> None
     assert cells.dtype == np.int64
     assert cells.tolist() == [2**62, -(2**62), 2**62, -(2**62), 3]
     assert CELL_LIMIT == 2.0**62
+
+
+def test_values_just_below_a_cell_edge_and_odd_integers_past_2_52_keep_their_cell() -> None:
+    # floor(v + 0.5) rounds the sum first: 0.5 - 2**-54 + 0.5 is 1.0, and
+    # 2**52 + 1.5 is 2**52 + 2 (ties to even), each one cell too far.
+    below_edge = np.nextafter(0.5, 0.0)
+    values = np.array([below_edge, -below_edge, 2.0**52 + 1, -(2.0**52 + 1), 2.0**53 - 1])
+    assert round_half_up(values).tolist() == [0, 0, 2**52 + 1, -(2**52 + 1), 2**53 - 1]
+    # Exact rational arithmetic agrees on values of every magnitude, edges included.
+    rng = np.random.default_rng(7)
+    values = rng.choice([-1.0, 1.0], 2000) * 2.0 ** rng.uniform(-3, 55, 2000)
+    values[:8] = [0.5, -0.5, 1.5, -1.5, 2.5, -2.5, 0.0, -0.0]
+    exact = [math.floor(Fraction(v) + Fraction(1, 2)) for v in values.tolist()]
+    assert round_half_up(values).tolist() == exact
 
 
 def test_pairs_one_or_many() -> None:

@@ -41,7 +41,7 @@ CELL_LIMIT = float(2**62)
 
 
 def round_half_up(values: FloatArray) -> IntArray:
-    """Cells of continuous coordinates: ``floor(v + 0.5)`` as int64.
+    """Cells of continuous coordinates: each value rounded half up (``⌊v + ½⌋``) as int64.
 
     ``np.rint`` rounds half to even; cell boundaries must not depend on parity.
     Values beyond ±2**62 (:data:`CELL_LIMIT`) give ±2**62, a cell outside every
@@ -51,10 +51,17 @@ def round_half_up(values: FloatArray) -> IntArray:
     --------
     >>> round_half_up(np.array([0.5, 1.5, -0.5, 2.49]))
     array([1, 2, 0, 2])
+    >>> round_half_up(np.array([0.49999999999999994, 2.0**52 + 1])).tolist()
+    [0, 4503599627370497]
     >>> round_half_up(np.array([1e300, -1e300])).tolist() == [2**62, -(2**62)]
     True
     """
-    out: IntArray = np.clip(np.floor(values + 0.5), -CELL_LIMIT, CELL_LIMIT).astype(np.int64)
+    # Not np.floor(values + 0.5): that sum is rounded before the floor, so a value
+    # just below a cell edge (0.5 - 2**-54) or an odd integer beyond 2**52 lands
+    # one cell up. The fraction v - floor(v) is exact, and so is this comparison.
+    low = np.floor(values)
+    cells = low + (values - low >= 0.5)
+    out: IntArray = np.clip(cells, -CELL_LIMIT, CELL_LIMIT).astype(np.int64)
     return out
 
 

@@ -287,6 +287,11 @@ class OccupancyGrid:
             free_thresh=self._free_thresh,
         )
 
+    def __copy__(self) -> OccupancyGrid:
+        # Ray casting updates the log-odds in place: a shallow copy sharing the
+        # array would write its scans into this grid, so copy.copy copies it too.
+        return self.copy()
+
     # ------------------------------------------------------------ constructors
     @classmethod
     def empty(

@@ -178,8 +178,8 @@ def animate_trace(
     x0, x1 = ax.get_xlim()
     y0, y1 = ax.get_ylim()
     for r in robots:
-        lo = r.true_xy.min(axis=0) - r.reach
-        hi = r.true_xy.max(axis=0) + r.reach
+        lo = r.true_xy.min(axis=0) - r.radius
+        hi = r.true_xy.max(axis=0) + r.radius
         x0, x1 = min(x0, lo[0]), max(x1, hi[0])
         y0, y1 = min(y0, lo[1]), max(y1, hi[1])
     ax.set_xlim(x0, x1)
@@ -258,6 +258,9 @@ class _Robot:
         self.artists: list[Any] = [self.body, self.heading, self.driven, self.estimated, self.scan]
         self.scan_times = np.array([s.stamp for s in trace.scans], dtype=np.float64)
         self.reach = float(np.abs(outline).max())
+        # The farthest the body reaches from the robot's position in any heading (a
+        # square's corner turned by 45° lies beyond its largest coordinate).
+        self.radius = float(np.hypot(outline[:, 0], outline[:, 1]).max())
 
     def show(self, t: float, mount: Pose2D) -> None:
         i = _index_at(self.trace.times, t)

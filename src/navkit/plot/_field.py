@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING, Any, Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
-from navkit._shared.types import FloatArray
+from navkit._shared.types import FloatArray, IntArray
 from navkit._shared.validation import as_float_array, finite_float
 from navkit.planning import PotentialField, SampledField, sample_field
 from navkit.plot._figure import COORD_LIMIT, axes_for, finish_axes
@@ -63,6 +63,17 @@ def _sampled(field: Any, xlim: Any, ylim: Any, resolution: Any) -> SampledField:
 
 def _stride(n: int, most: int) -> int:
     return max(1, math.ceil(n / most))
+
+
+def _thinned(n: int, stride: int) -> IntArray:
+    """Every ``stride``-th of ``n`` sample indices, the last one always kept.
+
+    A plain ``[::stride]`` drops up to ``stride - 1`` samples at the far edge:
+    the drawing would stop short of the field, and a field two samples wide
+    could be left one sample wide, which matplotlib cannot contour.
+    """
+    out: IntArray = np.unique(np.append(np.arange(0, n, stride), n - 1))
+    return out
 
 
 def _clipped_potential(sampled: SampledField, clip: float | None) -> FloatArray:
@@ -123,7 +134,8 @@ def plot_field(
     ValueError
         Unknown ``kind``; ``kind="surface"`` on 2-D axes; sampling options
         with a SampledField, missing ones with a PotentialField, a window
-        beyond ±1e9 m or needing more than 2**20 samples.
+        beyond ±1e9 m or needing more than 2**20 samples; ``kind="contour"``
+        of a field less than 2 samples wide or high.
 
     Examples
     --------
@@ -142,6 +154,12 @@ def plot_field(
     if max(abs(sampled.x[0]), abs(sampled.x[-1]), abs(sampled.y[0]), abs(sampled.y[-1])) \
             > COORD_LIMIT:  # fmt: skip
         raise ValueError(f"field must lie within ±{COORD_LIMIT:g} m to be drawn")
+    if kind == "contour" and min(sampled.shape) < 2:
+        raise ValueError(
+            f"kind='contour' needs a field of at least 2 × 2 samples, got {sampled.shape[0]} × "
+            f"{sampled.shape[1]} (rows along y, columns along x): sample a larger window or a "
+            "finer resolution, or use kind='quiver'"
+        )
     axes = axes_for(ax, three_d=kind == "surface")
     is_3d = axes.name == "3d"
     if kind == "surface" and not is_3d:
@@ -157,8 +175,9 @@ def plot_field(
     elif kind == "contour":
         pot = _clipped_potential(sampled, cap)
         s = _stride(max(pot.shape), _CONTOUR_CELLS)
-        filled = axes.contourf(sampled.x[::s], sampled.y[::s], pot[::s, ::s], levels=20,
-                               cmap="viridis")  # fmt: skip
+        rows, cols = _thinned(pot.shape[0], s), _thinned(pot.shape[1], s)
+        filled = axes.contourf(sampled.x[cols], sampled.y[rows], pot[np.ix_(rows, cols)],
+                               levels=20, cmap="viridis")  # fmt: skip
         if fig is not None:
             fig.colorbar(filled, ax=axes, label="potential")
         finish_axes(axes)

@@ -89,12 +89,14 @@ def grid_shades(grid: OccupancyGrid) -> FloatArray:
         padded = np.full((rows, cols), FREE_GREY)
         padded[: shades.shape[0], : shades.shape[1]] = shades
         shades = padded.reshape(rows // k, k, cols // k, k).min(axis=(1, 3))
-        # The padding keeps the cell size; the image covers the padded extent.
+        # The padding keeps the cell size; the image covers the padded extent,
+        # and draw_grid clips it to the map's.
     return shades
 
 
 def draw_grid(ax: Axes, grid: OccupancyGrid, *, alpha: float = 1.0, zorder: float = 0.0) -> None:
     """Draw ``grid`` on ``ax`` (checked arguments) and extend the data limits to it."""
+    from matplotlib.path import Path as MplPath
     from matplotlib.transforms import Affine2D
 
     o = grid.origin
@@ -103,23 +105,36 @@ def draw_grid(ax: Axes, grid: OccupancyGrid, *, alpha: float = 1.0, zorder: floa
     if not np.all(np.abs(corners) <= COORD_LIMIT):
         raise ValueError(f"grid must lie within ±{COORD_LIMIT:g} m to be drawn")
     shades = grid_shades(grid)
-    k = math.ceil(max(grid.shape) / MAX_IMAGE_CELLS)
-    width = shades.shape[1] * grid.resolution * max(k, 1)
-    height = shades.shape[0] * grid.resolution * max(k, 1)
+    k = max(math.ceil(max(grid.shape) / MAX_IMAGE_CELLS), 1)
+    width = shades.shape[1] * grid.resolution * k
+    height = shades.shape[0] * grid.resolution * k
     image_kw: dict[str, Any] = {
         "cmap": "gray", "vmin": 0.0, "vmax": 1.0, "origin": "lower", "alpha": alpha,
         "interpolation": "antialiased", "zorder": zorder,
     }  # fmt: skip
+    # imshow extends the data limits by its extent, which is not the map's when
+    # the map is rotated (the extent is in the map frame) or padded to whole
+    # blocks (grid_shades): undo that, the corners below are the real limits.
+    limits = ax.dataLim.frozen()
+    ignore = ax.ignore_existing_data_limits
     if o.theta == 0.0:
-        ax.imshow(shades, extent=(o.x, o.x + width, o.y, o.y + height), **image_kw)
+        image = ax.imshow(shades, extent=(o.x, o.x + width, o.y, o.y + height), **image_kw)
+        map_to_data = Affine2D().translate(o.x, o.y)
     else:
-        # imshow extends the data limits by its extent (the unrotated map frame):
-        # undo that, the rotated corners below are the real limits.
-        limits = ax.dataLim.frozen()
-        ignore = ax.ignore_existing_data_limits
         image = ax.imshow(shades, extent=(0.0, width, 0.0, height), **image_kw)
-        image.set_transform(Affine2D().rotate(o.theta).translate(o.x, o.y) + ax.transData)
-        ax.dataLim.set(limits)
-        ax.ignore_existing_data_limits = ignore
+        map_to_data = Affine2D().rotate(o.theta).translate(o.x, o.y)
+        image.set_transform(map_to_data + ax.transData)
+    if shades.shape[0] * k != grid.shape[0] or shades.shape[1] * k != grid.shape[1]:
+        # The padded blocks reach up to k - 1 cells past the map's edges: show the
+        # map's own rectangle only (a Path, not a Rectangle, which matplotlib
+        # would turn into the axis-aligned clip box, wrong for a rotated map).
+        outline = MplPath([(0.0, 0.0), (grid.width, 0.0), (grid.width, grid.height),
+                           (0.0, grid.height), (0.0, 0.0)], closed=True)  # fmt: skip
+        image.set_clip_path(outline, map_to_data + ax.transData)
+    ax.dataLim.set(limits)
+    ax.ignore_existing_data_limits = ignore
+    # No autoscale margins around the map itself, as around any image, in world axes.
+    image.sticky_edges.x[:] = [float(corners[:, 0].min()), float(corners[:, 0].max())]
+    image.sticky_edges.y[:] = [float(corners[:, 1].min()), float(corners[:, 1].max())]
     ax.update_datalim(corners)
     ax.autoscale_view()

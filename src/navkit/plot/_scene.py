@@ -17,6 +17,7 @@ from navkit.sim import Scene, Trace, World
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
+    from matplotlib.path import Path as MplPath
 
 __all__ = ["CheckedScene", "check_scene", "draw_scene", "draw_world", "plot_scene"]
 
@@ -203,17 +204,34 @@ def scene_limits(
             float(hi[0]) + margin, float(hi[1]) + margin)  # fmt: skip
 
 
+def _polygon_path(poly: Any) -> MplPath:
+    """A shapely polygon's outline with its holes, as a path whose holes are not filled.
+
+    matplotlib fills by the nonzero winding rule: the holes must turn the other
+    way round from the exterior, which shapely's ``orient`` guarantees.
+    """
+    from matplotlib.path import Path as MplPath
+    from shapely.geometry.polygon import orient
+
+    oriented = orient(poly, sign=1.0)  # exterior counter-clockwise, holes clockwise
+    rings = (oriented.exterior, *oriented.interiors)
+    return MplPath.make_compound_path(
+        *(MplPath(np.asarray(ring.coords, dtype=np.float64), closed=True) for ring in rings)
+    )
+
+
 def draw_world(ax: Axes, world: World, *, t: float = 0.0) -> list[Any]:
     """Draw a world's static edges and circles; returns the moving obstacles' patches.
 
-    Solid polygons and solid circles are filled; walls (lines, rings, a circular
-    room) are outlines only.
+    Solid polygons (their holes left clear) and solid circles are filled; walls
+    (lines, rings, a circular room) are outlines only.
 
     Moving obstacles are drawn where they are at ``t`` (dashed outlines), their
     routes dotted; the returned patches are what an animation moves.
     """
     from matplotlib.collections import LineCollection
     from matplotlib.patches import Circle as CirclePatch
+    from matplotlib.patches import PathPatch
     from matplotlib.patches import Polygon as PolygonPatch
 
     segs = as_coords(world.segments, "world.segments", ncols=4)
@@ -225,9 +243,8 @@ def draw_world(ax: Axes, world: World, *, t: float = 0.0) -> list[Any]:
     if solids is not None:
         for poly in getattr(solids, "geoms", [solids]):
             if poly.geom_type == "Polygon" and not poly.is_empty:
-                ax.add_patch(PolygonPatch(np.asarray(poly.exterior.coords), closed=True, fill=True,
-                                          facecolor=_WALL_COLOUR, alpha=0.25, linewidth=0,
-                                          zorder=1))  # fmt: skip
+                ax.add_patch(PathPatch(_polygon_path(poly), fill=True, facecolor=_WALL_COLOUR,
+                                       alpha=0.25, linewidth=0, zorder=1))  # fmt: skip
     solid_rows = {tuple(row) for row in np.asarray(world.solid_circles).tolist()}
     circles = as_coords(world.circles, "world.circles", ncols=3)
     for cx, cy, r in circles:

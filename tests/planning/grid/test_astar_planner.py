@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
@@ -10,6 +11,7 @@ import pytest
 from grid_oracle import assert_valid_path, scipy_costs_from, weighted_grids
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from numpy.typing import ArrayLike
 
 from navkit import NoPathError
 from navkit.planning import AStarPlanner, Path2D, astar, distance_field
@@ -105,6 +107,43 @@ def test_planner_owns_a_copy_of_the_grid() -> None:
     assert costs.flags.writeable  # the caller's array is never frozen
     with pytest.raises(ValueError):
         planner.costs[0, 0] = 2.0
+
+
+
+class _OwnArray:
+    """An array-like whose ``__array__`` hands over its own array (base None)."""
+
+    def __init__(self, data: np.ndarray) -> None:
+        self.data = data
+
+    def __array__(self, dtype: object = None, copy: object = None) -> np.ndarray:
+        return self.data
+
+
+@pytest.mark.parametrize(
+    "wrap",
+    [
+        _OwnArray,
+        memoryview,
+        lambda a: a[:, :],  # a view
+        lambda a: a,
+    ],
+    ids=["__array__", "memoryview", "view", "ndarray"],
+)
+@pytest.mark.parametrize("method", ["astar", "jps"])
+def test_planner_copies_array_likes_sharing_the_callers_memory(
+    wrap: Callable[[np.ndarray], ArrayLike], method: str
+) -> None:
+    # Only ndarrays and lists were recognised: an object whose __array__
+    # returned its own array (no base) was used in place, so later changes
+    # to it reached the planner.
+    data = np.ones((6, 8))
+    planner = AStarPlanner(wrap(data), method=method)
+    before = planner.plan((0, 0), (5, 7))
+    data[:, 4] = np.inf
+    _same_path(planner.plan((0, 0), (5, 7)), before)
+    assert np.all(planner.costs == 1.0)
+    assert not np.shares_memory(planner.costs, data)
 
 
 def test_many_queries_on_one_grid_and_threads() -> None:

@@ -1034,3 +1034,90 @@ def test_world_errors_and_options() -> None:
     assert other.origin == Pose2D(1.0, 2.0, 0.5)
     assert other.shape == (5, 5)
     assert "FieldDStar(<5x5 costs>" in repr(other)
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    resolution=st.sampled_from([0.05, 0.1, 0.15, 0.2, 0.3, 0.7, 1.0 / 3.0]),
+    yaw=st.sampled_from([0.0, 0.5, -2.0, math.pi / 2]),
+    origin_cm=st.tuples(st.integers(-2000, 2000), st.integers(-2000, 2000)),
+    points_cm=st.lists(
+        st.tuples(st.integers(-3000, 3000), st.integers(-3000, 3000)), min_size=1, max_size=20
+    ),
+)
+def test_world_points_fall_in_the_cell_of_the_occupancy_grid(
+    resolution: float,
+    yaw: float,
+    origin_cm: tuple[int, int],
+    points_cm: list[tuple[int, int]],
+) -> None:
+    """Points given to the centimetre (many on cell edges) land in the map's own cell.
+
+    world_to_node divided by the resolution: 0.3 / 0.1 < 3, so the point
+    x = 0.3 m fell in column 2 while OccupancyGrid.world_to_cell (and so the
+    map the costs were built from) puts it in column 3.
+    """
+    from navkit.mapping import OccupancyGrid
+
+    origin = (origin_cm[0] / 100, origin_cm[1] / 100, yaw)
+    planner = FieldDStar(np.ones((4, 4)), resolution=resolution, origin=origin)
+    grid = OccupancyGrid(np.zeros((4, 4)), resolution=resolution, origin=origin)
+    points = np.array(points_cm, dtype=np.float64) / 100
+    nodes = planner.world_to_node(points, continuous=True)
+    np.testing.assert_array_equal(np.floor(nodes).astype(np.int64), grid.world_to_cell(points))
+    for point in points[:3]:  # one point at a time too (the map's scalar path)
+        one = planner.world_to_node(point, continuous=True)
+        np.testing.assert_array_equal(np.floor(one).astype(np.int64), grid.world_to_cell(point))
+
+
+def test_plan_world_accepts_a_point_on_a_cell_edge_as_the_map_does() -> None:
+    costs = np.ones((3, 6))
+    costs[:, 2] = np.inf  # column 2 blocked, column 3 free
+    planner = FieldDStar(costs, resolution=0.1)
+    # x = 0.3 m is the edge between columns 2 and 3: the map's column 3.
+    path = planner.plan_world((0.3, 0.15), (0.55, 0.15))
+    np.testing.assert_allclose(path.points[[0, -1]], [[0.3, 0.15], [0.55, 0.15]], atol=1e-12)
+    assert path.cost == pytest.approx(0.25, rel=1e-9)
+
+
+def test_replan_world_refuses_kept_end_points_whose_cell_became_impassable() -> None:
+    # The link from a kept end point to its node ran through the now impassable
+    # cell: the path cost was inf and Path2D raised "cost must be finite".
+    planner = FieldDStar(np.ones((6, 6)))
+    planner.plan_world((0.3, 0.6), (5.5, 5.2))
+    planner.update_costs((0, 0), np.inf)
+    with pytest.raises(ValueError, match=r"start_xy \(0\.3, 0\.6\) .* impassable cell \(0, 0\)"):
+        planner.replan_world()
+    # A fresh plan_world refuses the point the same way.
+    with pytest.raises(ValueError, match=r"start_xy .* impassable cell \(0, 0\)"):
+        FieldDStar(planner.costs).plan_world((0.3, 0.6), (5.5, 5.2))
+    # A new start point in a free cell plans on.
+    moved = planner.replan_world((1.5, 0.5))
+    np.testing.assert_allclose(moved.points[[0, -1]], [[1.5, 0.5], [5.5, 5.2]], atol=1e-12)
+    assert math.isfinite(moved.cost)
+    planner.update_costs((5, 5), np.inf)
+    with pytest.raises(ValueError, match=r"goal_xy \(5\.5, 5\.2\) .* impassable cell \(5, 5\)"):
+        planner.replan_world((1.5, 0.5))
+    # After plan_cells the kept goal is the goal cell's centre.
+    cells = FieldDStar(np.ones((6, 6)), resolution=0.5)
+    cells.plan_cells((0, 0), (4, 3))
+    cells.update_costs((4, 3), np.inf)
+    with pytest.raises(ValueError, match=r"goal_xy \(1\.75, 2\.25\) .* impassable cell \(4, 3\)"):
+        cells.replan_world()
+    # End points on nodes (plan) have no link: the repair decides alone.
+    nodes = FieldDStar(np.ones((6, 6)))
+    nodes.plan((1, 1), (5, 5))
+    nodes.update_costs([(0, 0), (1, 1), (4, 4)], np.inf)
+    path = nodes.replan_world()
+    np.testing.assert_allclose(path.points[[0, -1]], [[1.0, 1.0], [5.0, 5.0]], atol=1e-12)
+
+
+def test_world_end_nodes_round_as_world_to_node() -> None:
+    # The search's start node used floor(p + 0.5), which rounds p + 0.5 first: a point
+    # just below a half (0.5 - 2**-54 cells) went to the node above, unlike world_to_node.
+    fd = FieldDStar(np.ones((4, 4)))
+    below_half = 0.49999999999999994
+    for node_xy in ([1.0, below_half], [below_half, 2.0], [2.5, 1.5]):
+        world = fd.node_to_world(node_xy)
+        _, node = fd._world_end(world, "start_xy")
+        assert node == tuple(fd.world_to_node(world).tolist())

@@ -15,7 +15,7 @@ from scipy.spatial import cKDTree
 
 from navkit import NoPathError
 from navkit.geometry import Pose2D
-from navkit.mapping import OccupancyGrid
+from navkit.mapping import LaserScan, OccupancyGrid
 from navkit.planning import (
     AStarPlanner,
     CellPlanner,
@@ -303,6 +303,38 @@ def test_unknown_space_keeps_robot_radius_clear_by_default() -> None:
     assert np.isinf(explicit.costs[5, 13]) and np.isfinite(explicit.costs[5, 12])
     with pytest.raises(ValueError, match=r"start .* within robot_radius \(0.25 m\) of unknown"):
         MapPlanner(grid, robot_radius=0.25).plan((1.35, 0.45), goal)
+
+
+
+def test_start_and_goal_errors_explain_the_costs_after_the_map_changed() -> None:
+    # The costs are a snapshot of the map, but the reason for a blocked cell
+    # was read from the map as it is now: a cell that became occupied was
+    # reported as "in an obstacle" although the planner blocks it as unknown,
+    # and an obstacle that was cleared as being "within robot_radius of
+    # unknown space" on a map without any unknown cell.
+    scan = LaserScan([1.4], angle_min=0.0, angle_increment=0.1, range_min=0.1, range_max=3.0)
+    logodds = np.full((1, 4), -5.0)
+    logodds[0, 3] = 0.0  # unknown
+    grid = OccupancyGrid(logodds, resolution=0.5)
+    planner = MapPlanner(grid)
+    for _ in range(5):
+        grid.integrate_scan(scan, (0.25, 0.25, 0.0))
+    assert grid.occupied()[0, 3]  # the map changed, the planner's costs did not
+    with pytest.raises(ValueError, match=r"goal .* is in unknown space \(unknown_cost is inf\)"):
+        planner.plan((0.25, 0.25), (1.75, 0.25))
+
+    occupied = np.zeros((1, 4), dtype=bool)
+    occupied[0, 3] = True
+    grid = OccupancyGrid.from_occupancy(occupied, resolution=0.5)
+    planner = MapPlanner(grid)
+    far = LaserScan([3.0], angle_min=0.0, angle_increment=0.1, range_min=0.1, range_max=2.0)
+    for _ in range(20):
+        grid.integrate_scan(far, (0.25, 0.25, 0.0))
+    assert grid.free().all()
+    with pytest.raises(ValueError, match=r"goal .* \(cell \(0, 3\)\) is in an obstacle$"):
+        planner.plan((0.25, 0.25), (1.75, 0.25))
+    assert planner.grid is grid
+    assert np.isinf(planner.costs[0, 3])
 
 
 @pytest.mark.parametrize(

@@ -2,8 +2,11 @@
 
 from __future__ import annotations
 
+import copy
 import dataclasses
 import math
+import pickle
+from collections.abc import Callable
 
 import numpy as np
 import pytest
@@ -136,3 +139,30 @@ def test_records_built_from_lists_copy_and_never_freeze() -> None:
     a = astar(np.ones((3, 3)), (0, 0), (2, 2))
     assert not a.points.flags.writeable
     assert not a.cells.flags.writeable
+
+
+@pytest.mark.parametrize(
+    "duplicate",
+    [lambda p: pickle.loads(pickle.dumps(p)), copy.deepcopy, copy.copy],
+    ids=["pickle", "deepcopy", "copy"],
+)
+def test_copied_and_unpickled_paths_keep_read_only_points(
+    duplicate: Callable[[Path2D], Path2D],
+) -> None:
+    # pickle and deepcopy rebuild the fields without __post_init__; the copied
+    # points array used to come back writable, so the "frozen" path could change.
+    for path in (
+        Path2D([[0, 0], [1, 1]], "grid", cost=1.5, length=math.sqrt(2), expanded=3),
+        astar(np.ones((3, 3)), (0, 0), (2, 2)),
+    ):
+        twin = duplicate(path)
+        assert not twin.points.flags.writeable
+        with pytest.raises(ValueError, match="read-only"):
+            twin.points[0, 0] = 5.0
+        np.testing.assert_array_equal(twin.points, path.points)
+        assert (twin.frame, twin.cost, twin.length, twin.expanded) == (
+            path.frame,
+            path.cost,
+            path.length,
+            path.expanded,
+        )

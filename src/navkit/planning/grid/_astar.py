@@ -235,9 +235,15 @@ class AStarPlanner:
         grid, lowest, highest, tables = _checked_grid(
             costs, connectivity, corner_cutting, heuristic_weight, method
         )
-        # Validation converts only when needed: copy whenever the result may
-        # still be (a view of) the caller's array.
-        if grid is costs or grid.base is not None:
+        # Validation converts only when needed: copy unless the result is surely a
+        # new array. Nested lists always convert; an ndarray converts when its
+        # dtype or layout differs (the bounds test is O(1)); any other array-like
+        # may hand over its own memory (an ``__array__`` returning the object's
+        # array unchanged, which has no base).
+        if not (
+            isinstance(costs, (list, tuple))
+            or (isinstance(costs, np.ndarray) and not np.may_share_memory(grid, costs))
+        ):
             grid = grid.copy()
         self._setup(
             grid, lowest, connectivity, corner_cutting, heuristic_weight, method, highest, tables

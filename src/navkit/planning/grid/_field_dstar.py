@@ -390,12 +390,16 @@ class FieldDStar:
         o = self._origin
         c = math.cos(o.theta)
         s = math.sin(o.theta)
+        inv_res = 1.0 / self._resolution
         dx = pts[:, 0] - o.x
         dy = pts[:, 1] - o.y
-        # Local frame of the grid: x along columns, y along rows.
+        # Local frame of the grid: x along columns, y along rows. The operations of
+        # OccupancyGrid.world_to_cell (times 1 / resolution, not divided by it), so a
+        # point on a cell edge falls in the same cell as in the map the costs come
+        # from (0.3 / 0.1 < 3 but 0.3 * (1 / 0.1) > 3).
         nodes = np.empty_like(pts)
-        nodes[:, 0] = (-s * dx + c * dy) / self._resolution
-        nodes[:, 1] = (c * dx + s * dy) / self._resolution
+        nodes[:, 0] = (-s * dx + c * dy) * inv_res
+        nodes[:, 1] = (c * dx + s * dy) * inv_res
         out: FloatArray | IntArray = (
             nodes if as_bool(continuous, "continuous") else round_half_up(nodes)
         )
@@ -624,8 +628,11 @@ class FieldDStar:
         RuntimeError
             No plan was made yet.
         ValueError
-            ``start_xy`` outside the grid or in an impassable cell; a path cost
-            of ``2**52`` or more.
+            ``start_xy`` outside the grid or in an impassable cell; without
+            ``start_xy``, the kept start point's cell has become impassable, or
+            the kept goal point's has (as a fresh :meth:`plan_world` refuses
+            them; an end point on a node itself has no cell to check); a path
+            cost of ``2**52`` or more.
         navkit.NoPathError
             The goal cannot be reached any more.
 
@@ -645,6 +652,9 @@ class FieldDStar:
             p_s, s = self._world_end(start_xy, "start_xy")
             self._move_start(s)
             self._start_point = p_s
+        else:
+            self._check_kept_point(self._start_point, "start_xy")
+        self._check_kept_point(self._goal_point, "goal_xy")
         points, _, _, expanded = self._search()
         return self._world_path(points, expanded)
 
@@ -771,8 +781,28 @@ class FieldDStar:
             raise ValueError(f"{name} {where} is outside the grid")
         if not math.isfinite(self._cell_cost(row, col)):
             raise ValueError(f"{name} {where} is in an impassable cell {(row, col)} (cost inf)")
-        node = (math.floor(p[0] + 0.5), math.floor(p[1] + 0.5))
-        return (float(p[0]), float(p[1])), node
+        # As world_to_node: floor(p + 0.5) would round p + 0.5 first (0.5 - 2**-54 -> 1).
+        near = round_half_up(p)
+        return (float(p[0]), float(p[1])), (int(near[0]), int(near[1]))
+
+    def _check_kept_point(self, point: tuple[float, float] | None, name: str) -> None:
+        """Refuse an end point kept from the last plan whose cell has become impassable.
+
+        The point is linked to its node by a segment inside that cell (the
+        cell :meth:`_world_end` checked), so after :meth:`update_costs` made
+        the cell impassable the linked path would cost inf. A point on a node
+        itself (a :meth:`plan` end) has no link to check.
+        """
+        assert point is not None
+        if point[0].is_integer() and point[1].is_integer():
+            return
+        row, col = math.floor(point[0]), math.floor(point[1])
+        if not math.isfinite(self._cell_cost(row, col)):
+            where = tuple(self.node_to_world(point).tolist())
+            raise ValueError(
+                f"{name} {where} (kept from the last plan) is in an impassable cell "
+                f"{(row, col)} (cost inf) since update_costs()"
+            )
 
     def _require_plan(self, method: str) -> None:
         if self._start is None or self._goal is None:

@@ -73,7 +73,9 @@ class MapPlanner:
     ``__slots__``: it owns the costs and the prepared planner.
 
     The costs are a snapshot: later changes to ``grid`` (e.g. ray casting) do
-    not reach them; build a new planner for a changed map.
+    not reach them; build a new planner for a changed map. The planner keeps a
+    copy of the map as it was (4 bytes a cell), so that the errors of
+    :meth:`plan` explain the costs it plans on.
 
     Parameters
     ----------
@@ -150,6 +152,7 @@ class MapPlanner:
         "_planner",
         "_prepared",
         "_robot_radius",
+        "_snapshot",
         "_unknown_cost",
     )
 
@@ -177,7 +180,10 @@ class MapPlanner:
             )
         radius = bounded_float(robot_radius, "robot_radius", 0.0, RADIUS_LIMIT, "m")
         inflate = None if inflate_unknown is None else as_bool(inflate_unknown, "inflate_unknown")
-        costs = grid.traversal_costs(
+        # The map as the costs see it: ray casting may change ``grid`` later, and
+        # the errors of plan() must explain the costs, not the map of the moment.
+        snapshot = grid.copy()
+        costs = snapshot.traversal_costs(
             robot_radius=radius,
             inflation_radius=inflation_radius,
             unknown_cost=unknown_cost,
@@ -195,6 +201,7 @@ class MapPlanner:
             else:
                 prepared = FieldDStar(costs)
         self._grid = grid
+        self._snapshot = snapshot
         self._costs = costs
         self._robot_radius = radius
         self._inflation_radius = inflation_radius
@@ -299,8 +306,12 @@ class MapPlanner:
         return row, col
 
     def _blocked_reason(self, row: int, col: int) -> str:
-        """Why cell (row, col) is impassable (only on the error path: reads the map's views)."""
-        grid = self._grid
+        """Why cell (row, col) is impassable (only on the error path: reads the map's views).
+
+        From the snapshot the costs were built on: the map itself may have
+        changed since (the costs have not).
+        """
+        grid = self._snapshot
         if grid.occupied()[row, col]:
             return "is in an obstacle"
         if grid.unknown()[row, col] and math.isinf(self._unknown_cost):

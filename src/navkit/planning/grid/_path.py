@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import numbers
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 from typing import Any, Literal
 
 import numpy as np
@@ -124,6 +124,17 @@ class Path2D:
         object.__setattr__(path, "length", float(length))
         object.__setattr__(path, "expanded", int(expanded))
         return path
+
+    def __setstate__(self, state: list[Any]) -> None:
+        """Restore the fields (pickle, :func:`copy.deepcopy`), ``points`` read-only again.
+
+        Both rebuild the fields without ``__post_init__``, and a copied or
+        unpickled array is writable: the dataclass default would give a
+        "frozen" path whose points can be changed.
+        """
+        for field, value in zip(fields(self), state, strict=True):
+            object.__setattr__(self, field.name, value)
+        self.points.flags.writeable = False
 
     @property
     def cells(self) -> IntArray:
