@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -236,3 +237,15 @@ def test_positive_float_results_have_finite_reciprocals(value: float) -> None:
     except ValueError:
         return
     assert out > 0.0 and math.isfinite(1.0 / out)
+
+
+def test_signalling_nans_widen_without_a_warning() -> None:
+    # A float32 signalling NaN (raw sensor bytes) made NumPy warn while widening it,
+    # an error under -W error; it is a NaN like any other.
+    snan = np.array([0x7FA00000, 0x3F800000], dtype=np.uint32).view(np.float32)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        out = as_float_array(snan, "ranges", finite=False)
+    assert out.dtype == np.float64 and np.isnan(out[0]) and out[1] == 1.0
+    with pytest.raises(ValueError, match="ranges must contain only finite values"):
+        as_float_array(snan, "ranges")

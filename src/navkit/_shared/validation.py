@@ -94,6 +94,7 @@ def as_bool(value: Any, name: str) -> bool:
 
 
 _SEQUENCES = {list, tuple}
+_FLOAT64 = np.dtype(np.float64)
 
 
 def _holds_bool(value: list[Any] | tuple[Any, ...]) -> bool:
@@ -125,8 +126,13 @@ def _real_array(value: Any, name: str) -> FloatArray:
     """
     if isinstance(value, np.ndarray):
         kind = value.dtype.kind
-        if kind in "iuf":
+        if kind in "iu" or value.dtype is _FLOAT64:
             return np.asarray(value, dtype=np.float64)
+        if kind == "f":
+            # Widening a signalling NaN (float32 from a driver or a bag) makes NumPy
+            # warn "invalid value encountered in cast"; it is still a NaN.
+            with np.errstate(invalid="ignore"):
+                return np.asarray(value, dtype=np.float64)
         if kind != "O":
             raise TypeError(f"{name} must hold real numbers, got dtype {value.dtype}")
     elif isinstance(value, (str, bytes, complex, bool, np.bool_, np.complexfloating)):
