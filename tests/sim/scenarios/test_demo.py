@@ -15,8 +15,8 @@ import numpy as np
 import pytest
 
 from navkit.errors import DataNotFoundError
-from navkit.sim import ScenarioResult, Scene
-from navkit.sim.scenarios import Demo, get_scenario
+from navkit.sim import ScenarioResult, Scene, Trial, TrialResult
+from navkit.sim.scenarios import Demo, find_data, get_scenario
 
 
 def run(demo: Demo, trials: int | None = None, *, seed: int = 0) -> ScenarioResult:
@@ -126,3 +126,21 @@ def test_pickles_for_worker_processes() -> None:
 def test_bad_options(kwargs: dict[str, object], error: type[Exception]) -> None:
     with pytest.raises(error):
         Demo(**kwargs)  # type: ignore[arg-type]
+
+
+def test_summarize_names_missing_values() -> None:
+    # A result without the demo's values used to fail with a bare KeyError.
+    result = TrialResult(Trial("leg 1", 0, 0, 1), {"plan_length": 20.0})
+    with pytest.raises(ValueError, match=r"results\[0\]\.values lack plan_wall_time"):
+        Demo(map="office").summarize([result], seed=0)
+
+
+def test_an_empty_data_dir_is_refused(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    # data_dir="" used to mean the working directory: run from a folder holding the
+    # maps, it found them there (as a relative path) instead of refusing the option.
+    (tmp_path / "ros-map-server-maps").mkdir()
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(ValueError, match="data_dir must not be empty"):
+        find_data("ros-map-server-maps", data_dir="")
+    with pytest.raises(ValueError, match="data_dir must not be empty"):
+        Demo(data_dir="", map="willow")

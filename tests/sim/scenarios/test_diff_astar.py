@@ -213,3 +213,24 @@ def test_a_trial_cut_short_reports_unfinished_legs() -> None:
         DiffAStar(duration=0.0)
     with pytest.raises(ValueError, match="trial"):
         scenario.run_trial(scenario.trials(1)[0].__class__("x", 3, 0, 1))
+
+
+def test_legs_a_short_run_never_started_have_no_figures() -> None:
+    """Leg 2 of a run cut short in leg 1 has no cross-track or final error.
+
+    Its samples used to be the run's last pose, still on leg 1: ``leg2_xte_max``
+    was that pose's 2.7 m distance to leg 2's route, and so was the run's ``xte_max``.
+    """
+    scenario = DiffAStar(parts=("house",), noise=False, duration=5.0)
+    v = scenario.run_trial(scenario.trials(1)[0]).values
+    assert math.isnan(v["leg1_travel_time"]) and v["leg1_xte_max"] < XTE_BOUND
+    for key in ("xte_mean", "xte_max", "xte_est_mean", "xte_est_max", "final_error",
+                "travel_time"):  # fmt: skip
+        assert math.isnan(v["leg2_" + key]), key
+    assert v["leg2_reached"] == 0.0
+    assert v["xte_max"] == v["leg1_xte_max"] and v["xte_est_max"] == v["leg1_xte_est_max"]
+
+
+def test_parts_of_the_wrong_type_are_named() -> None:
+    with pytest.raises(TypeError, match=r"parts\[0\] must be a str"):
+        DiffAStar(parts=[["house"]])  # type: ignore[list-item]

@@ -3,14 +3,18 @@
 from __future__ import annotations
 
 import json
+import math
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 from navkit.errors import DataNotFoundError
-from navkit.sim import Scenario, ScenarioResult, Scene
+from navkit.mapping import LaserScan
+from navkit.sim import Scenario, ScenarioResult, Scene, Trial, TrialResult
 from navkit.sim.scenarios import Greedy, get_scenario
+from navkit.sim.scenarios._greedy import MAP
+from navkit.sim.scenarios._greedy_setup import GreedyController
 
 
 def run(scenario: Scenario, trials: int | None = None, *, seed: int = 0) -> ScenarioResult:
@@ -111,3 +115,52 @@ def test_options() -> None:
         Greedy(inflation=2.0)
     with pytest.raises(TypeError, match="data_dir"):
         Greedy(data_dir=3)  # type: ignore[arg-type]
+
+
+def _ring(radius: float) -> LaserScan:
+    """A 1 m scan with a return at ``radius`` in every direction."""
+    return LaserScan(np.full(360, radius), angle_min=-math.pi, angle_increment=math.tau / 360,
+                     range_min=0.12, range_max=1.0)  # fmt: skip
+
+
+@pytest.mark.parametrize(
+    ("radius", "inflation", "waypoint", "fallbacks"),
+    [
+        (0.3, 0.25, True, 1),  # the grown grid is shut, the plain one is not: a fallback
+        (0.15, 0.25, False, 0),  # both shut: no step was planned on the plain grid
+        (0.15, 0.0, False, 0),  # no grown grid, so never a fallback
+        (0.9, 0.25, True, 0),
+    ],
+)
+def test_fallbacks_count_steps_planned_on_the_plain_grid(
+    radius: float, inflation: float, waypoint: bool, fallbacks: int
+) -> None:
+    """``fallbacks`` used to count the grids that failed (2 for a step failing on both)."""
+    controller = GreedyController((3.0, 0.0), inflation=inflation)
+    out = controller._plan(_ring(radius), (3.0, 0.0), 0.0, 0.0, 1.0, 0.0)
+    assert (out is not None) == waypoint
+    assert controller.steps == 1 and controller.fallbacks == fallbacks
+
+
+def test_summarize_names_missing_values() -> None:
+    result = TrialResult(Trial("case", 0, 0, 1), {"reached": 1.0})
+    with pytest.raises(ValueError, match=r"results\[0\]\.values lack collisions"):
+        Greedy(data_dir="/nonexistent").summarize([result], seed=0)
+
+
+def test_the_map_is_found_once_when_built(
+    shared_data: Path, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # As Demo and DiffAStar: a sweep's workers, whose $NAVKIT_DATA and working
+    # directory may differ, must run on the map the scenario was built with.
+    import shutil
+
+    copy = tmp_path / "data"
+    folder = (copy / MAP).parent
+    shutil.copytree((shared_data / MAP).parent, folder)
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setenv("NAVKIT_DATA", str(copy))
+    scenario = Greedy(noise=False)
+    monkeypatch.setenv("NAVKIT_DATA", str(tmp_path / "elsewhere"))
+    found = Path(scenario._map_path())
+    assert found.is_absolute() and found.samefile(copy / MAP)

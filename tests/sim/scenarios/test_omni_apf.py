@@ -8,7 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from navkit.sim import Scenario, ScenarioResult, Scene, Table
+from navkit.sim import Scenario, ScenarioResult, Scene, Table, Trial, TrialResult
 from navkit.sim.scenarios import OmniApf, get_scenario
 
 
@@ -130,3 +130,10 @@ def test_cases_and_options() -> None:
         OmniApf(noise="yes")  # type: ignore[arg-type]
     with pytest.raises(TypeError, match="trial"):
         OmniApf().run_trial("trial")  # type: ignore[arg-type]
+
+
+def test_summarize_names_missing_values() -> None:
+    # A result without the scenario's values used to fail with a bare KeyError.
+    result = TrialResult(Trial("case", 0, 0, 1), {"error": 0.01})
+    with pytest.raises(ValueError, match=r"results\[0\]\.values lack target_x"):
+        OmniApf().summarize([result], seed=0)

@@ -11,8 +11,10 @@ hand-derived radial derivative).
 
 from __future__ import annotations
 
+import copy
 import json
 import math
+from typing import Any
 
 import numpy as np
 import pytest
@@ -23,6 +25,7 @@ from scipy.optimize import brentq
 
 from navkit.sim import Scene, Trial, TrialResult, trial_seed
 from navkit.sim.scenarios import Soccer, get_scenario
+from navkit.sim.scenarios import _soccer as soccer_module
 from navkit.sim.scenarios._soccer_play import LAYOUTS, PLAYER_RADIUS, Game, make_game
 from navkit.sim.scenarios._soccer_table6 import RESOLUTION, THRESHOLD_RADIUS, WIDTHS_PX
 
@@ -275,3 +278,33 @@ def test_run_equals_the_trials_run_here(scenario: Soccer) -> None:
     direct = small.summarize([small.run_trial(t) for t in small.trials(1, seed=2)], seed=2)
     swept = small.run(1, seed=2, workers=1)
     assert json.dumps(swept.to_dict()["summary"]) == json.dumps(direct.to_dict()["summary"])
+
+
+def test_placement_noise_and_slip_draw_independent_streams(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The trial's seed used to seed all three alike: the perception noise and the wheel
+    slip drew the very numbers that placed the players (start x = -5.5 + the noise's
+    first uniform)."""
+    seen: dict[str, np.random.Generator] = {}
+
+    class Recording(soccer_module.Player):
+        __slots__ = ()
+
+        def __init__(self, *args: Any, **kwargs: Any) -> None:
+            super().__init__(*args, **kwargs)
+            seen["noise"] = copy.deepcopy(self.rng)
+
+    real = soccer_module.Simulation
+
+    def simulation(*args: Any, **kwargs: Any) -> Any:
+        seed = kwargs["seed"]
+        seen["sim"] = copy.deepcopy(seed) if isinstance(seed, np.random.Generator) else (
+            np.random.default_rng(seed))  # fmt: skip
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(soccer_module, "Player", Recording)
+    monkeypatch.setattr(soccer_module, "Simulation", simulation)
+    trial = Trial(LAYOUTS[0].label, 0, 0, 12345)
+    Soccer(duration=0.1, table_cells=50).run_trial(trial)
+    firsts = {name: rng.random() for name, rng in seen.items()}
+    firsts["placement"] = np.random.default_rng(trial.seed).random()
+    assert len(firsts) == 3 and len(set(firsts.values())) == 3, firsts

@@ -52,6 +52,9 @@ def find_data(relative: str, *, data_dir: str | os.PathLike[str] | None = None) 
     ------
     DataNotFoundError
         When no candidate folder holds ``relative``.
+    TypeError, ValueError
+        A ``relative`` that is not a non-empty str; a ``data_dir`` that is not
+        a path, or an empty one.
 
     Examples
     --------
@@ -65,6 +68,9 @@ def find_data(relative: str, *, data_dir: str | os.PathLike[str] | None = None) 
         raise TypeError(f"relative must be a non-empty str, got {relative!r}")
     if data_dir is not None and not isinstance(data_dir, (str, os.PathLike)):
         raise TypeError(f"data_dir must be a path, got {type(data_dir).__name__}")
+    if data_dir is not None and os.fspath(data_dir) == "":
+        # Path("") is the working directory: not a data folder anyone means.
+        raise ValueError("data_dir must not be empty (None looks in the default places)")
     looked = _candidates(data_dir)
     for base in looked:
         path = base / relative

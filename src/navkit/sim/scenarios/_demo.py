@@ -31,6 +31,10 @@ MapChoice = Literal["auto", "willow", "office"]
 _MAPS = ("auto", "willow", "office")
 #: Shortest and longest simulated time per leg the option accepts, s.
 _MIN_DURATION, _MAX_DURATION = 0.1, 3600.0
+#: The values of a trial (what run_trial gives and summarize reads).
+_KEYS = ("plan_length", "plan_wall_time", "travel_time", "final_error", "cross_track_mean",
+         "cross_track_max", "estimate_error", "estimate_error_max", "min_clearance",
+         "collisions", "reached", "distance", "willow")  # fmt: skip
 
 
 class Demo(Scenario):
@@ -222,7 +226,7 @@ class Demo(Scenario):
         >>> print(result.table().splitlines()[0])
         navkit demo: plan, track and estimate on the synthetic office (24 x 14 m, built in code)
         """
-        results, legs, seed = self._results_by_case(results, seed)
+        results, legs, seed = self._results_by_case(results, seed, keys=lambda _: _KEYS)
         if not results:
             raise ValueError("results: the demo needs at least one trial")
         scene = setup(self.map_path)

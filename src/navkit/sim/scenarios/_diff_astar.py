@@ -156,10 +156,14 @@ def _leg_values(
     begin = 0.0
     for k, route in enumerate(place.routes):
         leg = f"leg{k + 1}_"
+        # A leg starts when the one before it finishes: a run cut short never
+        # drives the legs after the unfinished one, so they have no samples
+        # (its last pose is not on their routes).
+        started = k <= len(ends)
         finished = k < len(ends)
         end = ends[k] if finished else t_end_run
         rows = (times >= begin - 1e-9) & (times <= end + 1e-9)
-        if not rows.any():
+        if not started or not rows.any():
             xt = xe = np.zeros(0)
             final_error = math.nan
         else:
@@ -301,6 +305,9 @@ class DiffAStar(Scenario):
         if isinstance(parts, str) or not isinstance(parts, Sequence):
             raise TypeError(f"parts must be a sequence of part names, got {type(parts).__name__}")
         names = tuple(parts)
+        for k, name in enumerate(names):
+            if not isinstance(name, str):  # before the set below: a list does not hash
+                raise TypeError(f"parts[{k}] must be a str, got {type(name).__name__}")
         if not names or len(set(names)) != len(names) or any(p not in _PARTS for p in names):
             raise ValueError(f"parts must hold 'house' and/or 'building' once each, got {names!r}")
         if building not in _BUILDINGS:

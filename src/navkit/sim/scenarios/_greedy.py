@@ -11,6 +11,7 @@ from typing import Any
 import numpy as np
 
 from navkit._shared.validation import as_bool, as_float_array, positive_float
+from navkit.errors import DataNotFoundError
 from navkit.estimation import DiffOdometry
 from navkit.sim import (
     Scenario,
@@ -54,6 +55,9 @@ PHYSICS_RATE = 50.0  # Hz: at most 4.4 mm per step at 0.22 m/s
 _MIN_DURATION = 0.1  # s
 _MAX_DURATION = 3600.0  # s
 _MAX_COORD = 1e4  # m
+#: The values of a trial (what run_trial gives and summarize reads).
+_KEYS = ("reached", "collisions", "time", "final_error", "path_length", "astar_length",
+         "length_ratio", "min_clearance", "greedy_steps", "fallbacks")  # fmt: skip
 
 
 def _pairs(value: Any) -> tuple[tuple[tuple[float, float], tuple[float, float]], ...]:
@@ -110,8 +114,10 @@ class Greedy(Scenario):
         greedy lines of sight graze the pillars).
     data_dir : str or None, default None
         The data folder holding ``ros-map-server-maps`` (see
-        :func:`~navkit.sim.scenarios.find_data`); a trial raises
-        :class:`~navkit.errors.DataNotFoundError` when the map is not found.
+        :func:`~navkit.sim.scenarios.find_data`). The map is looked up when
+        the scenario is built, so that every worker of a sweep runs on that
+        file; a trial raises :class:`~navkit.errors.DataNotFoundError` when it
+        was not found.
 
     Examples
     --------
@@ -151,6 +157,13 @@ class Greedy(Scenario):
         if data_dir is not None and not isinstance(data_dir, (str, os.PathLike)):
             raise TypeError(f"data_dir must be a str or None, got {type(data_dir).__name__}")
         self.data_dir = None if data_dir is None else os.fspath(data_dir)
+        # The map is looked up once, here, as Demo and DiffAStar do theirs: a sweep's
+        # workers (another working directory or $NAVKIT_DATA) then run on the same
+        # map. Without it, each trial looks again and raises DataNotFoundError.
+        try:
+            self._map_file: str | None = str(find_data(MAP, data_dir=self.data_dir).resolve())
+        except DataNotFoundError:
+            self._map_file = None
 
     def __repr__(self) -> str:
         return (
@@ -159,7 +172,9 @@ class Greedy(Scenario):
         )
 
     def _map_path(self) -> str:
-        return str(find_data(MAP, data_dir=self.data_dir))
+        if self._map_file is not None:
+            return self._map_file
+        return str(find_data(MAP, data_dir=self.data_dir))  # raises DataNotFoundError
 
     def cases(self, trials: int) -> tuple[tuple[str, int], ...]:
         """One case per start/goal pair.
@@ -283,7 +298,7 @@ class Greedy(Scenario):
         >>> Greedy().summarize([], seed=0).summary["trials"]
         0.0
         """
-        results, by_case, seed = self._results_by_case(results, seed)
+        results, by_case, seed = self._results_by_case(results, seed, keys=lambda _: _KEYS)
         return ScenarioResult(
             scenario=self.name,
             seed=seed,

@@ -177,12 +177,14 @@ class GreedyController:
     ) -> tuple[float, float] | None:  # fmt: skip
         plain, grown = inflated_grid(scan, self._inflation)
         self.steps += 1
-        for grid in (grown, plain) if grown is not plain else (plain,):
+        for k, grid in enumerate((grown, plain) if grown is not plain else (plain,)):
             try:
                 step = greedy_step(grid, goal_robot)
             except NoPathError:
-                self.fallbacks += 1
                 continue
+            # A fallback is a step planned on the plain grid after the grown one
+            # failed (not a grid that failed: a step may fail on both).
+            self.fallbacks += k
             px, py = float(step.waypoint_xy[0]), float(step.waypoint_xy[1])
             return x + c * px - s * py, y + s * px + c * py
         return None

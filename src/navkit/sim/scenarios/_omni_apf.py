@@ -42,6 +42,10 @@ PHYSICS_RATE = 100.0  # Hz
 _MAX_TARGET = 50.0  # m
 _MIN_DURATION = 0.1  # s
 _MAX_DURATION = 3600.0  # s
+#: The values of a trial (what run_trial gives and summarize reads).
+_KEYS = ("target_x", "target_y", "final_x", "final_y", "odometry_x", "odometry_y", "error",
+         "odometry_error", "drift", "time", "reached", "collisions", "min_clearance",
+         "distance")  # fmt: skip
 
 
 def _targets(value: Any) -> tuple[tuple[float, float], ...]:
@@ -251,7 +255,7 @@ class OmniApf(Scenario):
         >>> out.summary["reached_rate"], out.summary["error_max"] < 0.04
         (1.0, True)
         """
-        results, by_case, seed = self._results_by_case(results, seed)
+        results, by_case, seed = self._results_by_case(results, seed, keys=lambda _: _KEYS)
         tables = (_trial_table(results), _target_table(self, by_case))
         return ScenarioResult(
             scenario=self.name,

@@ -220,11 +220,14 @@ class Soccer(Scenario):
             return TrialResult(trial, values, None, time.perf_counter() - start)
         layout = LAYOUTS[case]
         game = make_game(layout, trial.seed)
+        # Perception noise and the simulation (wheel slip) get streams of their own,
+        # independent of the placement's: seeded alike, all three drew the same numbers.
+        noise_seed, sim_seed = np.random.SeedSequence(trial.seed).spawn(2)
         player = Player(game, max_speed=self.max_speed, control_rate=CONTROL_RATE,
-                        noise=self.perception_noise, seed=trial.seed)  # fmt: skip
+                        noise=self.perception_noise, seed=noise_seed)  # fmt: skip
         trace = Simulation(
             game.world, _robot(self.wheel_slip), player, start=game.start, rate=PHYSICS_RATE,
-            control_rate=CONTROL_RATE, duration=self.duration, seed=trial.seed,
+            control_rate=CONTROL_RATE, duration=self.duration, seed=np.random.default_rng(sim_seed),
         ).run()  # fmt: skip
         m = trace.metrics
         reached = player.outcome in _SUCCESS and m.collisions == 0

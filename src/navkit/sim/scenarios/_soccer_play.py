@@ -270,7 +270,7 @@ class Player:
         max_speed: float,
         control_rate: float,
         noise: float,
-        seed: int,
+        seed: int | np.random.SeedSequence,
     ) -> None:
         self.game = game
         self.ctl = PotentialFieldController(
