@@ -106,6 +106,14 @@ def test_records_are_checked_and_copied() -> None:
     assert scene.points[0][1].shape == (1, 2) and not scene.points[0][1].flags.writeable
 
 
+def test_numpy_booleans_are_figures_like_python_booleans() -> None:
+    """``values`` and ``summary`` store booleans as 0.0/1.0, NumPy's as well as Python's."""
+    result = TrialResult(Trial("c", 0, 0, 1), {"ok": np.bool_(True), "also": True})
+    assert result.values == {"ok": 1.0, "also": 1.0}
+    summary = ScenarioResult("x", 0, (result,), (), {"all": np.all([True, False])})
+    assert json.loads(json.dumps(summary.to_dict()))["summary"] == {"all": 0.0}
+
+
 def test_registry_names_every_scenario() -> None:
     assert sorted(SCENARIOS) == ["demo", "diff-astar", "greedy", "indoor-nav", "omni-apf",
                                  "soccer"]  # fmt: skip

@@ -65,6 +65,23 @@ def test_the_run_ends_when_the_tracker_is_done() -> None:
     assert trace.metrics.duration < 59.0  # ended by the tracker, not the time limit
 
 
+def test_a_tracker_whose_done_flag_is_an_instance_attribute() -> None:
+    """``done`` set in ``__init__`` (not a property or class attribute) is a done flag too."""
+
+    class Once:
+        def __init__(self) -> None:
+            self.done = False
+
+        def step(self, pose: Pose2D, dt: float) -> Twist2D:
+            self.done = True
+            return Twist2D(0.1, 0.0, 0.0)
+
+    follow = TrackerController(Once(), control_rate=20.0, use_estimate=False)
+    assert not follow.done
+    assert follow(observation(None, Pose2D(0.0, 0.0, 0.0))) == Twist2D(0.1, 0.0, 0.0)
+    assert follow.done
+
+
 @pytest.mark.parametrize(
     ("args", "kwargs", "error", "match"),
     [

@@ -134,6 +134,88 @@ def test_estimators_follow_the_robot(kind: str) -> None:
     assert m.final_error_estimated < m.final_error + 0.02
 
 
+def test_the_estimators_initial_pose_is_seen_before_its_first_reading() -> None:
+    """With latency the first reading arrives late; the estimator's pose exists from t = 0."""
+    start = Pose2D(1.0, 0.5, 0.3)
+    robot = Robot(drive=DIFF, footprint=0.2, encoders=WheelEncoders(latency=0.2))
+    est = DiffOdometry(DIFF, ticks_per_rev=WheelEncoders().ticks_per_rev, pose=start)
+    ctrl = GoTo((5.0, 0.5), use_truth=True)
+    trace = Simulation(ROOM, robot, ctrl, start=start, duration=0.5, estimator=est).run()
+    early = [obs for obs in ctrl.seen if obs.t < 0.2 - 1e-9]
+    assert early and all(obs.encoders is None and obs.estimate == start for obs in early)
+    np.testing.assert_array_equal(trace.estimates[:20], np.tile([1.0, 0.5, 0.3], (20, 1)))
+    assert np.all(np.isfinite(trace.estimates))
+
+
+def test_trace_estimates_never_hold_later_readings() -> None:
+    """Row k holds the estimate after the readings delivered by step k, none delivered later.
+
+    Encoders at 50 Hz, control at 20 Hz: several readings reach the estimator at each
+    control step; the rows in between must not see the later ones.
+    """
+    start = Pose2D(0.0, 0.0, 0.2)
+    robot = Robot(drive=DIFF, footprint=0.2, encoders=WheelEncoders(ticks_per_rev=4096))
+    est = DiffOdometry(DIFF, ticks_per_rev=4096, pose=start)
+    ctrl = GoTo((5.0, 1.5), use_truth=True)
+    trace = Simulation(ROOM, robot, ctrl, start=start, duration=1.0, estimator=est).run()
+    # Replay: the odometry fed with every reading delivered by each row's time.
+    readings = [r for obs in ctrl.seen for r in obs.new if isinstance(r, EncoderReading)]
+    replay = DiffOdometry(DIFF, ticks_per_rev=4096, pose=start)
+    expected, k = [], 0
+    for t in trace.times:
+        while k < len(readings) and readings[k].stamp <= t + 1e-9:
+            replay.update(int(readings[k].ticks[0]), int(readings[k].ticks[1]))
+            k += 1
+        p = replay.pose
+        expected.append((p.x, p.y, p.theta))
+    assert trace.estimates[:, 0].max() > 0.3  # it moved
+    np.testing.assert_array_equal(trace.estimates, np.array(expected))
+
+
+def test_a_user_estimator_is_read_through_its_pose() -> None:
+    """An ``xyt`` attribute of the user's own is not taken for the internal fast path."""
+
+    class Stamps:
+        def __init__(self) -> None:
+            self.xyt = [0.0, 0.0, 0.0]  # the user's own attribute
+
+        def observe(self, t: float, reading: object) -> None:
+            self.xyt[0] = t
+
+        @property
+        def pose(self) -> Pose2D:
+            return Pose2D(self.xyt[0], 0.0, 0.0)
+
+    robot = Robot(drive=DIFF, footprint=0.2)
+    trace = Simulation(ROOM, robot, lambda obs: Twist2D(0.1), start=(0, 0, 0), duration=0.2,
+                       estimator=Stamps()).run()  # fmt: skip
+    # Encoder readings every 0.02 s, each delivered at once.
+    np.testing.assert_allclose(trace.estimates[:, 0], np.floor(trace.times / 0.02 + 1e-9) * 0.02)
+
+    class Tuple(Stamps):
+        @property
+        def pose(self) -> Any:
+            return (1.0, 2.0, 0.0)
+
+    with pytest.raises(TypeError, match=r"estimator\.pose must be a Pose2D"):
+        Simulation(ROOM, robot, lambda obs: Twist2D(0.1), start=(0, 0, 0), duration=0.2,
+                   estimator=Tuple()).run()  # fmt: skip
+
+
+def test_a_very_slow_controller_runs_without_huge_buffers() -> None:
+    """One control step in a short run: the buffers follow the run, not the control period."""
+    calls: list[float] = []
+
+    def once(obs: Observation) -> Twist2D:
+        calls.append(obs.t)
+        return Twist2D(0.3)
+
+    robot = Robot(drive=DIFF, footprint=0.2, wheel_slip=0.01, imu=Imu(), compass=Compass())
+    trace = Simulation(ROOM, robot, once, start=(0, 0, 0), duration=2.0, control_rate=1e-9).run()
+    assert calls == [0.0] and len(trace) == 201 and trace.metrics.reason == "timeout"
+    assert trace.poses[-1, 0] == pytest.approx(0.6, abs=0.01)
+
+
 def test_a_run_that_cannot_finish_times_out() -> None:
     sim = Simulation(ROOM, Robot(drive=DIFF, footprint=0.2), lambda obs: Twist2D(0.0),
                      start=(0, 0, 0), goal=(5.0, 0.0), duration=2.5)  # fmt: skip

@@ -7,7 +7,7 @@ from typing import Any
 
 import numpy as np
 import pytest
-from shapely.geometry import LineString, box
+from shapely.geometry import LineString, Polygon, box
 
 from navkit.geometry import Twist2D, integrate
 from navkit.kinematics import DiffDrive, OmniDrive, tick_delta
@@ -212,6 +212,23 @@ def test_polygon_footprint_collides_with_its_front_edge() -> None:
     assert 1.7 - 1e-9 <= trace.poses[-1, 0] <= 1.705 + 1e-9
     assert trace.metrics.min_clearance == 0.0
     assert [e.kind for e in trace.events] == ["collision"]
+
+
+def test_a_polygon_footprint_with_z_is_the_2d_polygon() -> None:
+    flat = [(-0.2, -0.15), (0.3, -0.15), (0.3, 0.15), (-0.2, 0.15)]
+    robot = Robot(drive=DIFF, footprint=Polygon([(x, y, 1.0) for x, y in flat]))
+    np.testing.assert_array_equal(robot.footprint, flat)
+    world = World(LineString([(2.0, -1.0), (2.0, 1.0)]))
+    assert world.clearance(Polygon([(x, y, 1.0) for x, y in flat]), (0, 0, 0)) == 1.7
+    trace = Simulation(world, robot, Constant(Twist2D(0.5)), start=(0, 0, 0)).run()
+    assert trace.metrics.reason == "collision"
+    assert 1.7 - 1e-9 <= trace.poses[-1, 0] <= 1.705 + 1e-9
+
+
+@pytest.mark.parametrize("inf", [math.inf, np.float64(np.inf), np.float32(np.inf)])
+def test_an_infinite_limit_of_any_float_type_is_no_limit(inf: Any) -> None:
+    robot = Robot(drive=DIFF, footprint=0.2, max_wheel_speed=inf, max_wheel_acceleration=inf)
+    assert robot.max_wheel_speed == robot.max_wheel_acceleration == math.inf
 
 
 @pytest.mark.parametrize(

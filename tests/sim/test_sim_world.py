@@ -118,6 +118,21 @@ def test_moving_obstacles() -> None:
     assert guard.geometry_at(1.0).equals(shapely.affinity.translate(sq, 5.0, 1.0))
 
 
+def test_moving_obstacle_shapes_given_as_vertices_or_with_z() -> None:
+    """Vertices (as a footprint takes them) and a polygon with z move like the 2-D polygon."""
+    tri = [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)]
+    plain = MovingObstacle.constant_velocity(Polygon(tri), start_xy=(0, 0), velocity_xy=(1, 0))
+    expected = World(moving=[plain]).clearance(0.1, (1.5, 1.5, 0.0), t=1.0)
+    assert expected == pytest.approx(math.sqrt(0.5) - 0.1)
+    for shape in (tri, np.array(tri), Polygon([(x, y, 7.0) for x, y in tri])):
+        ob = MovingObstacle.constant_velocity(shape, start_xy=(0, 0), velocity_xy=(1, 0))
+        assert isinstance(ob.shape, Polygon)
+        assert ob.geometry_at(1.0).equals(plain.geometry_at(1.0))
+        assert World(moving=[ob]).clearance(0.1, (1.5, 1.5, 0.0), t=1.0) == expected
+    with pytest.raises(ValueError, match="after"):
+        MovingObstacle(0.2, [(0.0, 0.0)], [0.0], after=["loop"])  # type: ignore[arg-type]
+
+
 @pytest.mark.parametrize(
     ("obstacles", "error"),
     [

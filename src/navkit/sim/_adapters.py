@@ -76,7 +76,10 @@ class TrackerController:
         self, tracker: _Tracker, *, control_rate: float, use_estimate: bool = True
     ) -> None:
         step = getattr(tracker, "step", None)
-        if not callable(step) or not hasattr(type(tracker), "done"):
+        # ``done`` may be a property or class attribute (looked up on the type, so a
+        # property is not evaluated) or a plain instance attribute.
+        has_done = hasattr(type(tracker), "done") or hasattr(tracker, "done")
+        if not callable(step) or not has_done:
             raise TypeError(
                 f"tracker must have a step(pose, dt) method and a done flag, "
                 f"got {type(tracker).__name__}"

@@ -14,7 +14,7 @@ from navkit.kinematics import DiffDrive, OmniDrive
 from navkit.sim._robot import Robot
 from navkit.sim._sensors import CompassReading, EncoderReading, ImuReading, Reading
 
-__all__ = ["Estimator", "as_estimator"]
+__all__ = ["Estimator", "FusionEstimator", "as_estimator"]
 
 _TWO_PI = 2.0 * math.pi
 
@@ -92,7 +92,7 @@ class _Wheels:
         return np.array(delta, dtype=np.float64) * self._rad_per_tick, dt
 
 
-class _FusionEstimator:
+class FusionEstimator:
     """PlanarFusion fed with wheel odometry, compass yaw and IMU yaw rate/acceleration."""
 
     __slots__ = (
@@ -221,7 +221,7 @@ def as_estimator(value: Any, robot: Robot) -> Estimator | None:
     if value is None:
         return None
     if isinstance(value, PlanarFusion):
-        return _FusionEstimator(value, robot)
+        return FusionEstimator(value, robot)
     if isinstance(value, OmniOdometry):
         return _OmniOdometryEstimator(value, robot)
     if isinstance(value, DiffOdometry):

@@ -27,7 +27,7 @@ _DEFAULT_ENCODERS = WheelEncoders()
 
 def _limit(value: Any, name: str, high: float, unit: str) -> float:
     """A limit in (0, high] or inf (no limit)."""
-    if isinstance(value, float) and value == math.inf:
+    if isinstance(value, (float, np.floating)) and value == math.inf:  # float32 inf too
         return math.inf
     out = finite_float(value, name)
     if not 0.0 < out <= high:

@@ -102,7 +102,8 @@ def _figures(value: object, name: str) -> dict[str, float]:
     for key, figure in value.items():
         if not isinstance(key, str):
             raise TypeError(f"{name} keys must be str, got {type(key).__name__}")
-        if not isinstance(figure, (int, float, np.integer, np.floating)):
+        # NumPy booleans too (``np.all(...)``): booleans are stored as 0.0/1.0.
+        if not isinstance(figure, (int, float, np.integer, np.floating, np.bool_)):
             raise TypeError(f"{name}[{key!r}] must be a real number, got {type(figure).__name__}")
         number = float(figure)
         if math.isinf(number):

@@ -15,7 +15,7 @@ from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_bool, as_float_array, finite_float, positive_float
 from navkit.geometry import Pose2D, Twist2D, as_pose, as_twist
 from navkit.planning import Path2D
-from navkit.sim._estimators import Estimator, as_estimator
+from navkit.sim._estimators import Estimator, FusionEstimator, as_estimator
 from navkit.sim._latency import DelayLine
 from navkit.sim._lidar import Scanner, as_generator, check_rate
 from navkit.sim._robot import Body, Robot
@@ -391,6 +391,7 @@ class _Run:
         "est_t",
         "est_xyt",
         "events",
+        "fast",
         "filled",
         "goal",
         "imu",
@@ -442,15 +443,16 @@ class _Run:
         if imu is not None and (imu.gyro_noise > 0.0 or imu.accel_noise > 0.0):
             self.imu_noise = np.array([imu.gyro_noise, imu.accel_noise, imu.accel_noise])
         self.n_out = np.zeros(3, dtype=np.int64)
-        # The longest segment: from one control step or scan to the next.
+        # The longest segment: from one control step or scan to the next, and never
+        # longer than the run (a very slow controller must not size these by its period).
+        steps = math.ceil(sim._duration * sim._rate - _EPS)
         slowest = min(sim._control_rate, robot.lidar.rate if robot.lidar is not None else math.inf)
-        span = math.ceil(sim._rate / slowest) + 2
+        span = min(math.ceil(sim._rate / slowest), steps) + 2
         n_wheels = robot.n_wheels
         self.out_encoders = np.zeros((span, 1 + n_wheels))
         self.out_compass = np.zeros((span, 2))
         self.out_imu = np.zeros((span, 4))
         self.slip_z = np.zeros((span, n_wheels))
-        steps = math.ceil(sim._duration * sim._rate - _EPS)
         self.buf = np.full((min(steps + 2, 1 << 14), _COLUMNS), np.nan)
         self.cmd = np.zeros(3)
         # The start pose counts for the smallest clearance too (the steps measure after
@@ -472,6 +474,12 @@ class _Run:
         self.est_t: list[float] = []
         self.est_xyt: list[tuple[float, float, float]] = []
         self.filled = 0
+        # The wrapped PlanarFusion's pose as three floats, cheaper than a Pose2D. Only
+        # for that wrapper: a user's estimator may have an ``xyt`` of its own.
+        est = sim._estimator
+        self.fast: Callable[[], tuple[float, float, float] | None] | None = (
+            est.xyt if isinstance(est, FusionEstimator) else None
+        )
 
     # ------------------------------------------------------------ sensing
     def _segment(self, i0: int, i_end: int, sample_first: bool) -> tuple[int, int]:
@@ -600,25 +608,33 @@ class _Run:
                 latest[type(reading)] = reading
                 pending.append(reading)
             return
-        fast = getattr(est, "xyt", None)
         last_t = math.nan
         for when, _, reading in due:
+            if when != last_t and not math.isnan(last_t):
+                # The estimate as of the earlier delivery time: noted before this later
+                # reading changes it.
+                self._note_estimate(last_t)
             latest[type(reading)] = reading
             pending.append(reading)
             est.observe(when, reading)
-            if when != last_t and not math.isnan(last_t):
-                self._note_estimate(last_t, fast)
             last_t = when
-        self._note_estimate(last_t, fast)
+        self._note_estimate(last_t)
 
-    def _note_estimate(self, t: float, fast: Any) -> None:
+    def _note_estimate(self, t: float) -> None:
         est = self.sim._estimator
         assert est is not None
-        if fast is not None:
-            xyt = fast()
+        xyt: tuple[float, float, float] | None
+        if self.fast is not None:
+            xyt = self.fast()
         else:
             pose = est.pose
-            xyt = None if pose is None else (pose.x, pose.y, pose.theta)
+            if pose is None:
+                return
+            if not isinstance(pose, Pose2D):
+                raise TypeError(
+                    f"estimator.pose must be a Pose2D or None, got {type(pose).__name__}"
+                )
+            xyt = (pose.x, pose.y, pose.theta)
         if xyt is None:
             return
         if self.est_t and self.est_t[-1] == t:
@@ -690,6 +706,10 @@ class _Run:
         next_lidar = 0 if robot.lidar is not None else n_steps + 1
         wall_start = time.perf_counter()
         reason = ""
+        if sim._estimator is not None:
+            # An estimator initialised at the start has a pose before its first reading
+            # arrives (late, with latency): the controller and the trace see it from t = 0.
+            self._note_estimate(0.0)
         # Step 0: sample the start.
         self._segment(0, 0, True)
         i = 0

@@ -89,7 +89,8 @@ def as_footprint(value: Any, name: str = "footprint") -> tuple[float, FloatArray
             raise ValueError(f"{name} polygon is empty")
         if len(value.interiors):
             raise ValueError(f"{name} polygon must not have holes")
-        verts = np.asarray(value.exterior.coords, dtype=np.float64)[:-1]
+        # x, y only: a polygon with z coordinates has three columns.
+        verts = np.asarray(value.exterior.coords, dtype=np.float64)[:-1, :2]
     elif isinstance(value, BaseGeometry):
         raise TypeError(
             f"{name} must be a radius (m) or a Polygon, got a {value.geom_type}"
@@ -180,9 +181,9 @@ class MovingObstacle:
 
     Parameters
     ----------
-    shape : float or shapely Polygon
-        A radius (m) for a disc, or a polygon given relative to the obstacle's
-        reference point (its position).
+    shape : float, shapely Polygon or array_like (V, 2)
+        A radius (m) for a disc, or a polygon (or its vertices, stored as a
+        Polygon) given relative to the obstacle's reference point (its position).
     path_xy : array_like, shape (K, 2)
         Waypoints of the reference point, m.
     times : array_like, shape (K,)
@@ -207,9 +208,13 @@ class MovingObstacle:
     after: Literal["stop", "loop", "extend"] = "stop"
 
     def __post_init__(self) -> None:
-        radius, _verts = as_footprint(self.shape, "shape")
+        radius, verts = as_footprint(self.shape, "shape")
         if radius:
             object.__setattr__(self, "shape", radius)
+        elif not isinstance(self.shape, Polygon):
+            # Vertices (V, 2), accepted as for a footprint: stored as the Polygon the
+            # rest of the class (and World) works with.
+            object.__setattr__(self, "shape", Polygon(verts))
         path = np.array(_coords(self.path_xy, "path_xy", (None, 2)), copy=True)
         if path.shape[0] == 0:
             raise ValueError("path_xy must hold at least one waypoint")
@@ -218,7 +223,7 @@ class MovingObstacle:
             raise ValueError("times must lie within ±1e9 s")
         if np.any(np.diff(times) <= 0.0):
             raise ValueError("times must be strictly increasing")
-        if self.after not in _AFTER_CODES:
+        if not isinstance(self.after, str) or self.after not in _AFTER_CODES:
             raise ValueError(f"after must be 'stop', 'loop' or 'extend', got {self.after!r}")
         if self.after == "extend" and path.shape[0] < 2:
             raise ValueError("after='extend' needs at least two waypoints")
@@ -233,9 +238,9 @@ class MovingObstacle:
 
         Parameters
         ----------
-        shape : float or shapely Polygon
-            A radius (m) for a disc, or a polygon given relative to the
-            obstacle's reference point (its position).
+        shape : float, shapely Polygon or array_like (V, 2)
+            A radius (m) for a disc, or a polygon (or its vertices) given
+            relative to the obstacle's reference point (its position).
         start_xy : array_like, shape (2,)
             Position of the reference point at t = 0, m (keyword-only).
         velocity_xy : array_like, shape (2,)
@@ -282,9 +287,9 @@ class MovingObstacle:
 
         Parameters
         ----------
-        shape : float or shapely Polygon
-            A radius (m) for a disc, or a polygon given relative to the
-            obstacle's reference point (its position).
+        shape : float, shapely Polygon or array_like (V, 2)
+            A radius (m) for a disc, or a polygon (or its vertices) given
+            relative to the obstacle's reference point (its position).
         waypoints_xy : array_like, shape (K, 2)
             Waypoints of the reference point, m.
         times : array_like, shape (K,), optional
@@ -644,7 +649,8 @@ class World:
             after.append(_AFTER_CODES[ob.after])
             offset += ob.path_xy.shape[0]
             if isinstance(ob.shape, Polygon):
-                pts = np.asarray(ob.shape.exterior.coords, dtype=np.float64)
+                # x, y only: a polygon with z coordinates has three columns.
+                pts = np.asarray(ob.shape.exterior.coords, dtype=np.float64)[:, :2]
                 segs.append(np.hstack((pts[:-1], pts[1:])))
                 seg_owner.append(np.full(pts.shape[0] - 1, m, dtype=np.int64))
             else:
