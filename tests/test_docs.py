@@ -35,3 +35,60 @@ def test_page_examples_run(page: Path, monkeypatch: pytest.MonkeyPatch) -> None:
 def test_docs_have_examples() -> None:
     assert PAGES, "no page under docs/ has a python example"
     assert os.path.isfile(DOCS.parent / "mkdocs.yml")
+
+
+# ```bash blocks that feed a script to ``python - <<'TAG'``: test_page_examples_run
+# only sees ```python blocks, so these escaped it.
+HEREDOCS = [
+    pytest.param(script, id=f"{page.relative_to(DOCS)}:{n}")
+    for page in sorted(DOCS.rglob("*.md"))
+    for n, script in enumerate(
+        m.group(2)
+        for block in re.findall(r"```bash\n(.*?)```", page.read_text(encoding="utf-8"), re.DOTALL)
+        for m in re.finditer(r"python - <<'(\w+)'\n(.*?)\n\1\n", block, re.DOTALL)
+    )
+]
+
+
+@pytest.mark.parametrize("script", HEREDOCS)
+def test_python_heredocs_in_shell_examples_run(
+    script: str, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.chdir(ROOT)
+    exec(compile(script, "<heredoc>", "exec"), {"__name__": "__main__"})
+
+
+def test_heredocs_are_found() -> None:
+    assert HEREDOCS, "docs/compilation.md warms the cache with a python heredoc"
+
+
+def _ratios(text: str, peer: str, workloads: str) -> list[float]:
+    """The ``ratio peer/navkit`` column of performance.md's rows of ``peer``."""
+    out = []
+    for line in text.splitlines():
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        if len(cells) == 8 and cells[3] == peer and re.fullmatch(workloads, cells[0]):
+            out.append(float(cells[6]))
+    return out
+
+
+def test_performance_ranges_match_the_table() -> None:
+    """The caveats quote ranges of the results table; they must be the table's."""
+    text = (DOCS / "performance.md").read_text(encoding="utf-8")
+    python = _ratios(text, "pure-Python heapq A*", r"astar-.*")
+    assert python, "no pure-Python A* rows"
+    quoted = re.search(r"`astar-\*`\s+rows \((\d+)–(\d+)×\)", text)
+    assert quoted is not None
+    assert (int(quoted[1]), int(quoted[2])) == (round(min(python)), round(max(python)))
+    pyastar = _ratios(text, "pyastar2d", r".*")
+    quoted = re.search(r"ratios ([\d.]+)–([\d.]+) in this run", text)
+    assert quoted is not None
+    assert (float(quoted[1]), float(quoted[2])) == (round(min(pyastar), 2), round(max(pyastar), 2))
+
+
+def test_getting_started_quotes_the_readmes_first_two_commands() -> None:
+    """The page says it shows "the README's first command" and "the second"."""
+    readme = (ROOT / "README.md").read_text(encoding="utf-8").split("## Install and run", 1)[1]
+    page = (DOCS / "getting-started.md").read_text(encoding="utf-8")
+    bash = r"```bash\n(.*?)```"
+    assert re.findall(bash, page, re.DOTALL)[:2] == re.findall(bash, readme, re.DOTALL)[:2]

@@ -135,3 +135,18 @@ def test_arrays_read_only() -> None:
     drive = OmniDrive.three_wheel(wheel_radius=0.05, base_radius=0.2)
     with pytest.raises(ValueError):
         drive.jacobian[0, 0] = 1.0
+
+
+def test_saturate_never_rounds_above_the_limit() -> None:
+    """w * (limit / peak) could land one ulp above the limit (3.7 rad/s: 1 in 10 commands)."""
+    drive = OmniDrive.three_wheel(wheel_radius=0.05, base_radius=0.2)
+    rng = np.random.default_rng(0)
+    wheels = rng.normal(size=(2000, 3)) * rng.uniform(1.0, 100.0, size=(2000, 1))
+    for limit in (0.3, 3.7, 10.0):
+        out = drive.saturate(wheels, max_speed=limit)
+        peaks = np.abs(out).max(axis=1)
+        assert (peaks <= limit).all()
+        np.testing.assert_array_equal(peaks[np.abs(wheels).max(axis=1) > limit], limit)
+    # A tiny limit on huge speeds keeps the direction instead of underflowing to zero.
+    out = drive.saturate([1e308, -1e308, 1e307], max_speed=1e-300)
+    np.testing.assert_allclose(out, [1e-300, -1e-300, 1e-301])

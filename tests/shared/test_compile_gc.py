@@ -90,3 +90,39 @@ def test_a_failed_compile_restores_the_collector(tmp_path: Path) -> None:
         tmp_path,
     )
     assert out == "TypingError [False] True"
+
+
+
+def test_loading_numba_from_inside_a_users_compile_keeps_the_pause_whole(tmp_path: Path) -> None:
+    """A user's kernel that calls a navkit kernel loads numba in the middle of its compile.
+
+    The listeners were then installed inside numba's compiler lock: its releases
+    outnumbered the acquires they had seen, the count stayed low for good, and
+    every later pause ended at an inner release of the lock (45 collections
+    during astar's first compile instead of 1).
+    """
+    code = """
+        import gc
+        from numba import njit
+        from navkit._shared import se2, jit
+        assert not jit.numba_loaded()
+
+        @njit
+        def users(x):
+            return se2.sinc(x) + 1.0  # typing it loads numba, inside the compile
+
+        users(0.5)
+        import numpy as np
+        from navkit.planning import astar
+        grid = np.ones((4, 4))
+        runs = []
+        gc.callbacks.append(lambda phase, info: runs.append(info) if phase == "start" else None)
+        astar(grid, (0, 0), (3, 3))  # compiles several navkit kernels
+        print(len(runs) < 10, gc.isenabled())
+        """
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path)}
+    out = subprocess.run(
+        [sys.executable, "-c", textwrap.dedent(code)],
+        check=True, capture_output=True, text=True, timeout=600, env=env,
+    )  # fmt: skip
+    assert out.stdout.strip() == "True True"

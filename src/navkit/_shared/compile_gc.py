@@ -73,7 +73,11 @@ def _make_listeners() -> tuple[Any, Any]:
             state.depth = lock_depth() + 1
 
         def on_end(self, ev: Any) -> None:
-            state.depth = lock_depth() - 1
+            # Not below 0: a release whose acquire came before install() (numba
+            # loaded from inside a compile, e.g. a user's kernel typing a navkit
+            # one) would otherwise leave the count one low for good, and later
+            # pauses would end at an inner release, mid-compile.
+            state.depth = max(lock_depth() - 1, 0)
             if state.depth == 0 and getattr(state, "paused", False):
                 state.paused = False
                 if state.resume:

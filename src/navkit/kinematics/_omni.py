@@ -40,7 +40,8 @@ class OmniDrive:
 
     i.e. ``wheel_speeds = jacobian @ [vx, vy, omega]``. :meth:`forward` applies the
     exact inverse of this map (the Moore–Penrose pseudo-inverse, a least-squares
-    fit, when N > 3), so ``forward(inverse(t)) == t`` for every layout.
+    fit, when N > 3), so ``forward(inverse(t))`` equals ``t`` (up to rounding) for
+    every layout.
 
     Notes
     -----
@@ -297,8 +298,11 @@ class OmniDrive:
             )
         peak = np.max(np.abs(w), axis=-1, keepdims=True)
         over = peak > limit
-        scale = np.divide(limit, peak, out=np.ones_like(peak), where=over)
-        return np.asarray(w * scale, dtype=np.float64)
+        # (w / peak) * limit, not w * (limit / peak): |w / peak| <= 1 exactly, so no
+        # wheel rounds to above the limit (the fastest lands on it exactly), and a
+        # small limit / peak cannot underflow to a zero command.
+        unit = np.divide(w, peak, out=np.zeros_like(w), where=over)
+        return np.asarray(np.where(over, unit * limit, w), dtype=np.float64)
 
     def __repr__(self) -> str:
         degrees = ", ".join(f"{a:.6g}" for a in np.degrees(self._wheel_angles))
