@@ -54,6 +54,8 @@ def test_pairs_one_or_many() -> None:
         {"a": 1},
         np.ones((2, 2), dtype=complex),
         np.ones((2, 2), dtype=bool),
+        [[True, 2.0], [1.0, 1.0]],  # NumPy would read True as the cost 1
+        ([1.0, np.True_],),
     ],
 )
 def test_costs_refuse_what_is_not_a_numeric_grid_with_a_value_error(costs: object) -> None:

@@ -5,6 +5,8 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from navkit._shared.validation import holds_bool
+
 
 def validate_costs(costs: ArrayLike, name: str = "costs") -> NDArray[np.float64]:
     """Check a traversal-cost grid and return it as a C-contiguous float64 array.
@@ -32,6 +34,9 @@ def validate_costs_lowest(
     and below 1 when any cell is, so the check costs nothing extra for callers
     that need the minimum anyway (the A* heuristic).
     """
+    if isinstance(costs, (list, tuple)) and holds_bool(costs):
+        # NumPy turns [[True, 2.0]] into [[1.0, 2.0]] (only all-bool lists stay bool).
+        raise ValueError(f"{name} must be a real-valued numeric array, got an element of type bool")
     try:
         arr = np.asarray(costs)
     except (TypeError, ValueError, OverflowError) as exc:  # ragged lists, unconvertible objects

@@ -97,7 +97,7 @@ _SEQUENCES = {list, tuple}
 _FLOAT64 = np.dtype(np.float64)
 
 
-def _holds_bool(value: list[Any] | tuple[Any, ...]) -> bool:
+def holds_bool(value: list[Any] | tuple[Any, ...]) -> bool:
     """Whether nested lists or tuples hold a bool (or a bool array) at any depth.
 
     One nesting level at a time, with C-level loops (``map``, ``chain``): about
@@ -137,7 +137,7 @@ def _real_array(value: Any, name: str) -> FloatArray:
             raise TypeError(f"{name} must hold real numbers, got dtype {value.dtype}")
     elif isinstance(value, (str, bytes, complex, bool, np.bool_, np.complexfloating)):
         raise TypeError(f"{name} must be numeric array-like, got {type(value).__name__}")
-    elif isinstance(value, (list, tuple)) and _holds_bool(value):
+    elif isinstance(value, (list, tuple)) and holds_bool(value):
         # NumPy would turn [True, 0.5] into [1.0, 0.5] (only all-bool lists stay bool).
         raise TypeError(f"{name} must hold real numbers, got an element of type bool")
     try:
@@ -176,7 +176,7 @@ def integer_readings(value: object, name: str) -> NDArray[Any]:
     """
     if isinstance(value, (str, bytes)):
         raise TypeError(f"{name} must hold integer counter readings, got {type(value).__name__}")
-    if isinstance(value, (list, tuple)) and _holds_bool(value):
+    if isinstance(value, (list, tuple)) and holds_bool(value):
         raise TypeError(f"{name} must hold integer counter readings, got an element of type bool")
     try:
         arr = np.asarray(value)

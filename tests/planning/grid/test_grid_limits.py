@@ -72,8 +72,8 @@ def test_every_planner_has_the_same_cost_range(name: str, value: float, error: t
 @pytest.mark.parametrize(
     "costs",
     [np.ones((2, 2)) * (1 + 1j), np.full((2, 2), "1"), np.ones((2, 2), bool),
-     [[1.0, 1.0], [1.0]], {"a": 1}, "11"],
-    ids=["complex", "str", "bool", "ragged", "dict", "string"],
+     [[1.0, 1.0], [1.0]], {"a": 1}, "11", [[1.0, True], [1.0, 1.0]]],
+    ids=["complex", "str", "bool", "ragged", "dict", "string", "bool among numbers"],
 )
 def test_costs_that_are_not_real_numbers(name: str, costs: Any) -> None:
     with pytest.raises(ValueError, match="costs"):
