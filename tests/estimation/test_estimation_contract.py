@@ -289,6 +289,9 @@ def test_records_built_from_lists_copy_and_never_freeze_the_callers_arrays() -> 
     residual[0] = 9.0
     assert result.residual[0] == 0.5
     assert UpdateResult(False, 2.0, [0.5], "gated").residual.tolist() == [0.5]
+    # As the attribute says: an accepted measurement has no reason not to be applied.
+    with pytest.raises(ValueError, match="reason must be None when accepted"):
+        UpdateResult(True, 2.0, [0.5], "gated")
 
     times = np.array([0.0, 0.1])
     values = np.zeros((2, 4))

@@ -1,10 +1,11 @@
 """Typed numba compilation decorators shared by every kernel module (private).
 
-``numba.njit`` carries no type annotations before numba 0.62 (navkit supports
-0.61.2), so under ``mypy --strict`` a function decorated with it directly
-becomes untyped ("Untyped decorator makes function untyped"). These
-decorators are ``njit`` with navkit's options, cast to keep the decorated
-function's signature; kernel modules use them instead of ``numba.njit``:
+Under ``mypy --strict`` a function decorated with ``numba.njit`` directly is
+typed only as far as the installed numba's annotations go (older releases
+have none: "Untyped decorator makes function untyped"). These decorators are
+``njit`` with navkit's options, cast to keep the decorated function's
+signature whatever numba is installed; kernel modules use them instead of
+``numba.njit``:
 
 * :data:`njit_cached`: ``njit(cache=True)``;
 * :data:`njit_inline`: ``njit(cache=True, inline="always")``, inlined into its

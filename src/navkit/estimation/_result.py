@@ -55,6 +55,8 @@ class UpdateResult:
         object.__setattr__(self, "residual", residual)
         if self.reason is not None and not isinstance(self.reason, str):
             raise TypeError(f"reason must be a str or None, got {type(self.reason).__name__}")
+        if self.accepted and self.reason is not None:
+            raise ValueError(f"reason must be None when accepted, got {self.reason!r}")
 
     def __bool__(self) -> bool:
         return self.accepted
