@@ -478,6 +478,18 @@ def test_default_blend_pulls_toward_the_goal_beyond_its_displaced_minimum() -> N
     assert field.force([[1.003, -2.0]])[0, 0] > 0.0
 
 
+@pytest.mark.parametrize(("width", "minimum"), [(0.3, 0.046), (0.38, 0.055), (0.5, 0.046)])
+def test_wide_blends_displace_the_minimum_as_documented(width: float, minimum: float) -> None:
+    # BlendedAttraction's Notes: with rad_thr = 0.5, widths of 0.3 and 0.5 put the minimum
+    # 4.6 cm from the goal and widths between them up to 5.5 cm.
+    field = BlendedAttraction((0.0, 0.0), threshold_radius=0.5, width=width)
+    d = np.linspace(1e-5, 0.2, 20000)
+    radial = field.force(np.stack((d, np.zeros_like(d)), axis=1))[:, 0]
+    outward = d[radial > 0.0]
+    assert np.all(np.diff(outward) < 2e-5)  # one interval from the goal to the minimum
+    assert outward.max() == pytest.approx(minimum, abs=5e-4)
+
+
 @pytest.mark.parametrize("cls", [KhatibRepulsion, PiecewiseRepulsion])
 def test_large_problems_match_small_ones(cls: type[PotentialField]) -> None:
     # More than 2**18 pairs go through k-d trees; one point at a time never does.

@@ -152,3 +152,40 @@ def test_options_are_keyword_only_and_field_is_checked() -> None:
     with pytest.raises(TypeError, match="field"):
         sample_field("not a field", xlim=(0.0, 1.0), ylim=(0.0, 1.0),  # type: ignore[arg-type]
                      resolution=0.1)
+
+
+@pytest.mark.parametrize(
+    ("xlim", "resolution", "cells"),
+    [
+        ((5000000.1, 5000000.2), 0.01, 10),  # UTM eastings/northings
+        ((1000000.2, 1000000.3), 0.01, 10),
+        ((100000.4, 100000.6), 0.01, 20),
+        ((1000.3, 1000.7), 1e-5, 40000),
+        ((0.0, 12.0), 0.01, 1200),
+        ((0.0, 12.001), 0.01, 1201),  # a tenth of a cell more gains a cell
+    ],
+)
+def test_exact_multiples_far_from_the_origin_gain_no_cell(
+    xlim: tuple[float, float], resolution: float, cells: int
+) -> None:
+    # In decimal the window is `cells` cells wide; as floats, lo and hi are rounded by up
+    # to half an ulp each (1e-8 of a cell at 1e6 m and 1 cm), which is no extra cell.
+    sampled = sample_field(ConicAttraction((0.0, 0.0)), xlim=xlim, ylim=(0.0, resolution),
+                           resolution=resolution)
+    assert sampled.shape == (1, cells)
+    assert sampled.x[-1] - resolution / 2 < xlim[1]  # the last cell starts inside
+
+
+def test_axis_spacing_is_checked_at_utm_offsets() -> None:
+    x = 5e6 + 0.025 + 0.05 * np.arange(3)  # spaced by 5 cm, 5000 km from the origin
+    values = (np.zeros((1, 3)), np.zeros((1, 3, 2)))
+    with pytest.raises(ValueError, match="x must be evenly spaced"):
+        SampledField(x, [0.5], *values, resolution=0.052)
+    with pytest.raises(ValueError, match="y must be evenly spaced"):
+        SampledField([0.5], x, values[0].T, np.zeros((3, 1, 2)), resolution=0.052)
+    sampled = SampledField(x, [0.5], *values, resolution=0.05)
+    np.testing.assert_array_equal(sampled.world_to_cell([x[2], 0.5]), [0, 2])
+    # sample_field's own axes pass at any offset and resolution in range.
+    for lo, res in ((-1e9, 1e-6), (5e6 + 0.3, 0.01), (999999.123, 1e6), (1e8, 1e-3)):
+        centres = lo + (np.arange(500) + 0.5) * res
+        SampledField(centres, [0.5], np.zeros((1, 500)), np.zeros((1, 500, 2)), resolution=res)

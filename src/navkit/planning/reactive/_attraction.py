@@ -270,8 +270,9 @@ class BlendedAttraction(AttractiveField):
     ``σ(0)·m·U_trans·(2·rad_thr/ω - 1)/(2·K_att·c)``. The defaults
     (``K_att = c = a = b = m = U_trans = 1``, ``rad_thr = 0.5``, ``ω = 0.15``)
     pull toward the goal everywhere beyond 4 mm, where the minimum lies (3.75 mm);
-    with ``rad_thr = 0.5`` a width of 0.1 has the ring at 0.55 m and widths of 0.3
-    to 0.5 a minimum 4.6 cm from the goal. Check a chosen parameter set with
+    with ``rad_thr = 0.5`` a width of 0.1 has the ring at 0.55 m, and widths of 0.3
+    and 0.5 a minimum 4.6 cm from the goal (widths between them up to 5.5 cm, near
+    0.38). Check a chosen parameter set with
     :func:`sample_field` or a radial profile (``tests/control/test_blending_widths.py``
     compares widths in closed loop).
 

@@ -28,6 +28,12 @@ __all__ = ["SampledField", "sample_field"]
 _CELL_LIMIT = float(2**53)
 # Bytes sample_field holds per cell: the points, potential, force and temporaries.
 _BYTES_PER_SAMPLE = 128
+# Relative rounding allowed in a centre axis' spacing: 8 float64 epsilons (the
+# rounding of lo + (k + ½)·resolution is at most about 3).
+_AXIS_ULPS = 8.0 * float(np.finfo(np.float64).eps)
+# Relative error of a float against the decimal it was written as (half an ulp is
+# at most 2**-53), with a factor 4 to spare.
+_FLOAT_SLACK = Decimal(2.0**-51)
 
 
 def _resolution(value: object) -> float:
@@ -45,8 +51,11 @@ def _axis(value: ArrayLike, name: str, resolution: float) -> FloatArray:
     if arr.shape[0] == 0:
         raise ValueError(f"{name} must hold at least one cell centre")
     check_coordinates(arr, name)
-    # Centres computed as lo + (k + ½)·resolution are spaced by it up to rounding.
-    tol = 1e-9 * (resolution + float(np.max(np.abs(arr))))
+    # Centres computed as lo + (k + ½)·resolution are spaced by it up to the rounding
+    # of each centre, a few ulps of the largest coordinate; otherwise the spacing must
+    # match to 1e-9 of a cell at any offset (UTM coordinates reach 1e7 m), or
+    # world_to_cell and cell_to_world drift from the sampled points.
+    tol = 1e-9 * resolution + _AXIS_ULPS * (resolution + float(np.max(np.abs(arr))))
     if np.any(np.abs(np.diff(arr) - resolution) > tol):
         raise ValueError(f"{name} must be evenly spaced by resolution = {resolution}")
     return _frozen(arr)
@@ -254,9 +263,14 @@ def _limits(value: ArrayLike, name: str) -> tuple[float, float]:
 
 def _count(lo: float, hi: float, resolution: float) -> Decimal:
     """Cells covering ``[lo, hi]``, exactly (no overflow before the size check)."""
-    n = (Decimal(hi) - Decimal(lo)) / Decimal(resolution)
-    # The tolerance keeps an exact multiple (12 m at 0.01 m) from gaining a cell to rounding.
-    return max(Decimal(1), (n - Decimal("1e-9")).to_integral_value(rounding=ROUND_CEILING))
+    low, high, res = Decimal(lo), Decimal(hi), Decimal(resolution)
+    n = (high - low) / res
+    # A window that is an exact multiple in decimal (12 m at 0.01 m) may exceed it once
+    # lo, hi and resolution are floats, by up to 2**-53 of |lo| + |hi| and of the width,
+    # in cells: 1e-8 cells for (1e6 + 0.2, 1e6 + 0.3) at 0.01 m. The slack keeps it
+    # from gaining a cell.
+    slack = Decimal("1e-9") + _FLOAT_SLACK * ((abs(low) + abs(high)) / res + n)
+    return max(Decimal(1), (n - slack).to_integral_value(rounding=ROUND_CEILING))
 
 
 def _centres(lo: float, n: int, resolution: float, name: str) -> FloatArray:
