@@ -1,10 +1,17 @@
-"""Shared fixtures: the real-data folder beside the repository."""
+"""Shared fixtures: the real-data folder beside the repository; hypothesis's profile."""
 
 from __future__ import annotations
 
 from pathlib import Path
 
 import pytest
+from hypothesis import settings
+
+# No per-example deadline: tests never assert wall-clock times, and on a loaded
+# 2-core machine a first example that imports SciPy or loads a compiled kernel
+# can take longer than hypothesis's default 200 ms (a flaky DeadlineExceeded).
+settings.register_profile("navkit", deadline=None)
+settings.load_profile("navkit")
 
 SHARED_DATA = Path(__file__).resolve().parents[1].parent / "shared" / "data"
 
