@@ -335,3 +335,28 @@ def test_bad_velocity(velocity: Any, error: type[Exception]) -> None:
     tracker.set_path(STRAIGHT)
     with pytest.raises(error, match="velocity"):
         tracker.step((0.0, 0.0, 0.0), 0.05, velocity=velocity)
+
+
+@pytest.mark.parametrize("goal_heading", [None, math.pi / 2])
+def test_goal_reached_at_exactly_the_tolerance(goal_heading: float | None) -> None:
+    """Nav2's SimpleGoalChecker: reached when dx² + dy² <= xy_goal_tolerance²."""
+    tracker = RegulatedPurePursuit()  # goal_tolerance 0.25
+    tracker.set_path([[0.0, 0.0], [1.0, 0.0]], goal_heading=goal_heading)
+    cmd = tracker.step((0.75, 0.0, 0.0), 0.05)  # 0.25 m from the goal, exactly
+    assert cmd.vx == 0.0
+    assert tracker.phase == ("done" if goal_heading is None else "final")
+
+
+@pytest.mark.parametrize("measured", [3.0, -3.0])
+def test_max_omega_bounds_in_place_turns_from_a_faster_measured_turn(measured: float) -> None:
+    """A measured turn above max_omega: the acceleration limit alone kept 2.84 rad/s."""
+    rotate = make(max_omega=1.0)
+    rotate.set_path([[0.0, 0.0], [0.0, -2.0]])  # a quarter turn to the right
+    cmd = rotate.step((0.0, 0.0, 0.0), 0.05, velocity=Twist2D(0.0, 0.0, measured))
+    assert rotate.phase == "rotate"
+    assert cmd.omega == math.copysign(1.0, measured)
+    final = make(max_omega=1.0)
+    final.set_path([[0.0, 0.0], [1.0, 0.0]], goal_heading=math.pi)
+    cmd = final.step((1.0, 0.0, 0.0), 0.05, velocity=Twist2D(0.0, 0.0, measured))
+    assert final.phase == "final"
+    assert cmd.omega == math.copysign(1.0, measured)

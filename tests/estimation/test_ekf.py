@@ -681,3 +681,23 @@ def test_update_options_switch_with_each_call() -> None:
             assert all(-math.pi < out_a.residual[i] <= math.pi for i in angles)
     results = [a.update(z, linear(h), h, np.eye(len(z)), gate=gate) for z, h, *_ in calls]
     assert not all(r.accepted for r in results)  # the gate of this call, not of the last one
+
+
+@pytest.mark.parametrize("p0", [[[1e-320]], np.diag([1.0, 1e-310])])
+def test_covariance_the_kernels_cannot_take_is_refused_at_construction(p0: object) -> None:
+    """A subnormal pivot passed P0's check, then failed the first (even identity) predict."""
+    with pytest.raises(ValueError, match="P0 must be positive definite with LDLᵀ pivots"):
+        ExtendedKalmanFilter(np.zeros(len(p0)), p0)  # type: ignore[arg-type]
+    tiny = ExtendedKalmanFilter([0.0], [[1e-300]])  # normal pivots: accepted, and it steps
+    tiny.predict(lambda x: x, [[1.0]], [[0.0]])
+    assert tiny.P[0, 0] == 1e-300
+
+
+def test_measurement_noise_the_kernels_cannot_take_is_refused() -> None:
+    """The same for R: a subnormal pivot failed as a FilterError on S with a zero row of H."""
+    ekf = ExtendedKalmanFilter([0.0, 0.0], np.eye(2))
+    H = np.array([[1.0, 0.0], [0.0, 0.0]])
+    with pytest.raises(ValueError, match="R must be positive definite with LDLᵀ pivots"):
+        ekf.update([0.1, 0.0], lambda x: H @ x, H, np.diag([1.0, 1e-320]))
+    np.testing.assert_array_equal(ekf.x, [0.0, 0.0])
+    assert ekf.update([0.1, 0.0], lambda x: H @ x, H, np.diag([1.0, 1e-300])).accepted

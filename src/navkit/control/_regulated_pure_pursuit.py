@@ -353,6 +353,10 @@ class RegulatedPurePursuit(PathTracker):
             # turning away keeps slowing at max_angular_accel: Nav2 sets sign * stop
             # there too, which reverses the turn in one step, past the limit.
             w = sign * stop
+        if self._max_omega is not None:
+            # The bound of every command, also when the robot (measured) turns faster:
+            # then the command drops to it, faster than max_angular_accel allows.
+            w = min(max(w, -self._max_omega), self._max_omega)
         return w
 
     def _command(
@@ -385,7 +389,7 @@ class RegulatedPurePursuit(PathTracker):
         gx, gy = line.point_at(line.length)
         to_goal = math.hypot(gx - pose.x, gy - pose.y)
         if self._phase == "final" or (
-            s_carrot >= line.length and to_goal < self._goal_tolerance
+            s_carrot >= line.length and to_goal <= self._goal_tolerance
         ):
             cmd = self._finish(pose, dt, lambda err, h: self._rotate(err, h, w_now))
             self._last = (cmd.vx, cmd.vy, cmd.omega)

@@ -15,7 +15,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import as_float_array, finite_float
+from navkit._shared.validation import SMALLEST_POSITIVE, as_float_array, finite_float
 
 __all__ = [
     "MAX_COVARIANCE",
@@ -58,7 +58,8 @@ def covariance(value: ArrayLike, name: str, n: int, *, semidefinite: bool = Fals
     """Return ``value`` as a symmetric (n, n) float64 covariance or raise naming ``name``.
 
     Positive definiteness is required unless ``semidefinite`` (process noise may
-    be zero on some states). Tiny asymmetry from rounding is averaged out.
+    be zero on some states), with LDLᵀ pivots of at least the smallest normal
+    float (as the filters' kernels need). Tiny asymmetry from rounding is averaged out.
     Entries must have magnitude <= :data:`MAX_COVARIANCE`.
     """
     arr = as_float_array(value, name, shape=(n, n))
@@ -73,9 +74,19 @@ def covariance(value: ArrayLike, name: str, n: int, *, semidefinite: bool = Fals
             raise ValueError(f"{name} must be positive semi-definite")
     else:
         try:
-            np.linalg.cholesky(arr)
+            lower = np.linalg.cholesky(arr)
         except np.linalg.LinAlgError:
             raise ValueError(f"{name} must be positive definite") from None
+        # The kernels take a matrix as positive definite only if the pivots of its
+        # LDLᵀ factorisation (the squared Cholesky diagonal) are normal floats, whose
+        # reciprocals are finite: NumPy accepts a variance of 1e-320, which would pass
+        # here and fail the filter's first step.
+        pivot = float(np.min(np.diag(lower))) ** 2 if n else SMALLEST_POSITIVE
+        if not pivot >= SMALLEST_POSITIVE:
+            raise ValueError(
+                f"{name} must be positive definite with LDLᵀ pivots of at least "
+                f"{SMALLEST_POSITIVE:.4g} (a normal float), got a pivot of {pivot:.4g}"
+            )
     return arr
 
 

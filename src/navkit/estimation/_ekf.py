@@ -124,7 +124,9 @@ class ExtendedKalmanFilter(GaussianEstimate):
         Initial state (finite).
     P0 : array_like, shape (n, n)
         Initial covariance, symmetric positive definite, entries of magnitude at
-        most 1e100 (as every covariance the filter takes: ``Q``, ``R``).
+        most 1e100 (as every covariance the filter takes: ``Q``, ``R``); the
+        pivots of its LDLᵀ factorisation (variances, when diagonal) at least
+        about 2.2e-308, the smallest normal float (as ``R``'s).
     angle_states : sequence of int, optional
         Indices of state components that are angles (rad); they are wrapped to
         (-π, π] after every step (keyword-only).
