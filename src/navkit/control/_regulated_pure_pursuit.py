@@ -157,7 +157,9 @@ class RegulatedPurePursuit(PathTracker):
         Nav2 goal checker ``yaw_goal_tolerance`` (rad), in (0, π].
     max_omega : float, optional
         Largest turn rate (rad/s) of any command, in (0, 100]; None (Nav2's
-        behaviour) limits only in-place turns (to ``rotate_omega``).
+        behaviour) limits only in-place turns, to ``rotate_omega`` or, when the
+        robot is measured turning faster, to within ``max_angular_accel`` of
+        its measured rate.
     drive : {"diff", "omni"}, default "diff"
         Differential (``vy = 0``) or omnidirectional robot.
 
