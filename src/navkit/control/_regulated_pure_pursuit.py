@@ -29,7 +29,10 @@ Clearance = Callable[[float, float], float]
 
 
 class _GridClearance:
-    """Distance (m) from a world point to the nearest occupied cell centre of a grid.
+    """Distance (m) from a world point's cell to the nearest occupied cell of a grid.
+
+    Centre to centre, as Nav2 reads its costmap by cell: within resolution/√2
+    of the point's own distance to that cell centre.
 
     The exact Euclidean distance transform is computed once; a point outside
     the map, or a map with no occupied cell, is infinitely far from obstacles
@@ -138,9 +141,10 @@ class RegulatedPurePursuit(PathTracker):
     clearance : OccupancyGrid or callable, optional
         Obstacle proximity for the cost regulation (Nav2
         ``use_cost_regulated_linear_velocity_scaling``, which reads the cost at
-        the robot): a map, whose occupied cells are the obstacles (distances to
-        cell centres, computed once), or a function ``clearance(x, y)`` giving
-        the distance (m) from a world point to the nearest obstacle (NaN is
+        the robot): a map, whose occupied cells are the obstacles (distances
+        from the robot's cell centre to theirs, computed once), or a function
+        ``clearance(x, y)`` giving the distance (m) from a world point to the
+        nearest obstacle (NaN is
         rejected, negative counts as 0, ``inf`` as far). None (default): no
         cost regulation.
     clearance_distance : float, default 0.6
