@@ -144,9 +144,8 @@ class RegulatedPurePursuit(PathTracker):
         the robot): a map, whose occupied cells are the obstacles (distances
         from the robot's cell centre to theirs, computed once), or a function
         ``clearance(x, y)`` giving the distance (m) from a world point to the
-        nearest obstacle (NaN is
-        rejected, negative counts as 0, ``inf`` as far). None (default): no
-        cost regulation.
+        nearest obstacle (NaN is rejected, negative counts as 0, ``inf`` as
+        far). None (default): no cost regulation.
     clearance_distance : float, default 0.6
         Nav2 ``cost_scaling_dist`` (m), in (0, 1e4].
     clearance_gain : float, default 1.0
