@@ -13,9 +13,12 @@
 
 Bad arguments print the usage and exit with code 2; a missing or malformed
 file, map or data set prints one line ``navkit: error: ...`` and exits with
-code 1. Progress (trials done, ETA) is drawn on standard error when it is a
-terminal and a run lasts more than about 2 s; the first run, which compiles
-navkit's kernels, says so.
+code 1, as do output files that cannot be written, two options naming one
+file and a ``--data`` that is not a folder (all checked before a run starts).
+Ctrl-C exits with code 130; a closed standard output (``navkit list | head
+-1``) ends the command quietly with code 141. Progress (trials done, ETA) is
+drawn on standard error when it is a terminal and a run lasts more than about
+2 s; the first run, which compiles navkit's kernels, says so.
 
 Examples
 --------

@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import argparse
+import contextlib
+import os
 import sys
 from collections.abc import Sequence
 from typing import TextIO
@@ -46,7 +49,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     int
         The exit code: 0 on success, 1 when a file, map or data set is missing
         or malformed (or no path exists), 2 on bad arguments (with a usage
-        message), 130 when interrupted.
+        message), 130 when interrupted, 141 (silently) when standard output is
+        closed early (``navkit list | head -1``).
 
     Raises
     ------
@@ -74,18 +78,32 @@ def main(argv: Sequence[str] | None = None) -> int:
     except SystemExit as exc:  # --help, --version (0) and bad arguments (2)
         return exc.code if isinstance(exc.code, int) else (0 if exc.code is None else 2)
     try:
-        if args.command == "list":
-            return list_scenarios(out)
-        if args.command == "plan":
-            return plan_command(args, out, err)
-        if args.command == "warmup":
-            return warmup_command(args, out, err)
-        if args.command == "demo":
-            return run_scenario(args, out, err, name="demo", workers=1)
-        return run_scenario(args, out, err, name=args.scenario, workers=args.workers)
+        code = _dispatch(args, out, err)
+        out.flush()  # a closed pipe fails here, not in the interpreter's last flush
+        return code
+    except BrokenPipeError:
+        # The reader went away (a pipe into head): stop quietly as other commands
+        # do, and send what is left in the buffer to /dev/null so that the flush
+        # at exit does not fail again ("Exception ignored ...", exit code 120).
+        with contextlib.suppress(OSError, ValueError, AttributeError):
+            os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 141  # 128 + SIGPIPE: what a shell reports for a command the pipe ended
     except EXPECTED as exc:
         err.write(f"navkit: error: {one_line(exc)}\n")
         return 1
     except KeyboardInterrupt:
         err.write("navkit: interrupted\n")
         return 130
+
+
+def _dispatch(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
+    """Run the command ``args`` names; its exit code."""
+    if args.command == "list":
+        return list_scenarios(out)
+    if args.command == "plan":
+        return plan_command(args, out, err)
+    if args.command == "warmup":
+        return warmup_command(args, out, err)
+    if args.command == "demo":
+        return run_scenario(args, out, err, name="demo", workers=1)
+    return run_scenario(args, out, err, name=args.scenario, workers=args.workers)

@@ -2,13 +2,16 @@
 
 from __future__ import annotations
 
+import os
+import tempfile
+from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
 from navkit.cli._files import write_json
 from navkit.sim import ScenarioResult, Scene
 
-__all__ = ["check_output", "save_animation", "save_json", "save_picture"]
+__all__ = ["check_distinct", "check_output", "save_animation", "save_json", "save_picture"]
 
 
 def check_output(path: str | None, suffix: str, option: str) -> None:
@@ -29,6 +32,8 @@ def check_output(path: str | None, suffix: str, option: str) -> None:
         A wrong extension, or a folder given for a file.
     FileNotFoundError
         The folder does not exist.
+    OSError
+        No file can be created in the folder (read-only, no permission).
 
     Examples
     --------
@@ -49,6 +54,48 @@ def check_output(path: str | None, suffix: str, option: str) -> None:
     folder = target.parent
     if not folder.is_dir():
         raise FileNotFoundError(f"{option}: folder {folder} does not exist")
+    # Create a file there and remove it: permissions, read-only file systems and
+    # root's exemptions make any cheaper test (os.access) unreliable.
+    try:
+        fd, probe = tempfile.mkstemp(dir=folder, prefix=".navkit-", suffix=".tmp")
+    except OSError as exc:
+        reason = exc.strerror or type(exc).__name__
+        raise OSError(f"{option}: cannot write in folder {folder} ({reason})") from exc
+    os.close(fd)
+    os.unlink(probe)
+
+
+def check_distinct(paths: Mapping[str, str | None]) -> None:
+    """Fail early when two options name the same file (the second would overwrite the first).
+
+    Parameters
+    ----------
+    paths : mapping of str to (str or None)
+        Option name to its value (None: not asked for).
+
+    Raises
+    ------
+    ValueError
+        Two options name the same file.
+
+    Examples
+    --------
+    >>> try:
+    ...     check_distinct({"--plot": "out.png", "--json": "./out.png", "--animate": None})
+    ... except ValueError as exc:
+    ...     print(exc)
+    --json and --plot name the same file ./out.png; give each its own
+    """
+    seen: dict[Path, str] = {}
+    for option, path in paths.items():
+        if path is None:
+            continue
+        key = Path(path).resolve()  # "out.png", "./out.png" and a symlink to it are one file
+        if key in seen:
+            raise ValueError(
+                f"{option} and {seen[key]} name the same file {path}; give each its own"
+            )
+        seen[key] = option
 
 
 def _plot() -> Any:

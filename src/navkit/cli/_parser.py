@@ -63,6 +63,10 @@ def _count(low: int, high: int) -> type[int]:
         try:
             value = int(text)
         except ValueError:
+            if re.fullmatch(r"\s*[+-]?\d[\d_]*\s*", text):  # beyond int()'s digit limit
+                raise argparse.ArgumentTypeError(
+                    f"must be in [{low}, {high}], got an integer of {len(text.strip())} characters"
+                ) from None
             raise argparse.ArgumentTypeError(f"expected an integer, got {text!r}") from None
         if not low <= value <= high:
             raise argparse.ArgumentTypeError(f"must be in [{low}, {high}], got {value}")
@@ -86,8 +90,10 @@ def _outputs(parser: argparse.ArgumentParser) -> None:
     """Options shared by ``demo`` and ``run``."""
     parser.add_argument("--trials", type=_count(1, 100_000), metavar="N",
                         help="trials per case (default: the scenario's)")  # fmt: skip
-    parser.add_argument("--seed", type=_count(0, 2**63 - 1), default=0, metavar="S",
-                        help="base seed (default 0): the same seed, the same figures")  # fmt: skip
+    # The library's range of base seeds (navkit.sim.trial_seed): [0, 2**64).
+    parser.add_argument("--seed", type=_count(0, 2**64 - 1), default=0, metavar="S",
+                        help="base seed in [0, 2**64) (default 0): the same seed, the same "
+                             "figures")  # fmt: skip
     parser.add_argument("--plot", metavar="FILE.png", help="write a picture of the scene")
     parser.add_argument("--animate", metavar="FILE.gif", help="write an animation of the run")
     parser.add_argument("--json", metavar="FILE", help="write the result as JSON")

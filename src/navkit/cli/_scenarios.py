@@ -8,10 +8,12 @@ import inspect
 import os
 import time
 from collections.abc import Iterator
+from pathlib import Path
 from typing import Any, TextIO
 
 from navkit.cli._kernels import announce_compilation
 from navkit.cli._outputs import (
+    check_distinct,
     check_output,
     save_animation,
     save_json,
@@ -73,9 +75,15 @@ def run_scenario(
     check_output(args.plot, ".png", "--plot")
     check_output(args.animate, ".gif", "--animate")
     check_output(args.json, "", "--json")
+    check_distinct({"--plot": args.plot, "--animate": args.animate, "--json": args.json})
+    address = getattr(args, "scheduler", None)
+    if args.data is not None and address is None and not Path(args.data).is_dir():
+        # Scenarios fall back to other places or to built-in maps when the data is
+        # absent: a mistyped --data would go unnoticed. (With --scheduler the
+        # folder is the workers', which need not exist here.)
+        raise FileNotFoundError(f"--data: {args.data} is not a folder")
     scenario = _construct(name, args)
     total = len(scenario.trials(args.trials, seed=args.seed))
-    address = getattr(args, "scheduler", None)
     if not args.quiet and address is None:
         announce_compilation("simulation", err)
     began = time.perf_counter()
