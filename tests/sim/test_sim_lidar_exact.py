@@ -247,3 +247,63 @@ def test_willow_garage_map_matches_its_walls(shared_data: Path) -> None:
         ours = lidar.scan(world, pose).ranges
         ref = boxes.raycast(pose, lidar.angles(), range_max=12.0)
         np.testing.assert_allclose(ours, ref, rtol=0.0, atol=TOL)
+
+
+def test_a_beam_through_a_vertex_does_not_slip_between_its_edges() -> None:
+    """A beam aimed at a polygon's vertex stops there when it enters the polygon.
+
+    Rounding of the edge parameter used to put the vertex a few ulps outside both
+    edges that share it, and the beam read the far side (8.25 m instead of 4.12 m).
+    """
+    triangle = Polygon([(-1.0, -1.0), (3.0, 0.0), (3.0, -5.0)])
+    d = World([triangle]).raycast((4.0, 4.0, 0.0), [math.atan2(-4.0, -1.0)], range_max=20.0)
+    assert d[0] == pytest.approx(math.sqrt(17.0), abs=1e-12)
+
+
+@pytest.mark.parametrize("seed", [0, 1])
+def test_beams_aimed_at_vertices_stop_at_them(seed: int) -> None:
+    """Integer triangles, integer origins, beams at each vertex through which they enter."""
+    rng = np.random.default_rng(seed)
+    checked = 0
+    while checked < 150:
+        pts = rng.integers(-5, 6, (3, 2)).astype(float)
+        origin = rng.integers(-5, 6, 2).astype(float)
+        triangle = Polygon(pts)
+        if triangle.area == 0.0 or triangle.intersects(Point(origin)):
+            continue
+        for v in pts:
+            along = (v - origin) / np.hypot(*(v - origin))
+            # The vertex is the beam's first contact and the beam goes on inside.
+            first = LineString([origin, v]).intersection(triangle).equals(Point(v))
+            if not (first and triangle.contains(Point(v + 1e-6 * along))):
+                continue
+            angle = math.atan2(v[1] - origin[1], v[0] - origin[0])
+            d = World([triangle]).raycast((*origin, 0.0), [angle], range_max=50.0)[0]
+            assert d == pytest.approx(math.hypot(*(v - origin)), abs=1e-9), (origin, pts, v)
+            checked += 1
+
+
+@pytest.mark.parametrize(
+    ("origin", "a", "b"),
+    [
+        ((3.0, -1.0), (11.0, 19.0), (15.0, 29.0)),
+        ((-1.0, 2.0), (14.0, 20.0), (34.0, 44.0)),
+        ((-5.0, 0.0), (3.0, -20.0), (13.0, -45.0)),
+        ((2.0, -3.0), (10.0, -17.0), (26.0, -45.0)),
+    ],
+)
+def test_a_beam_along_a_wall_meets_its_nearer_end(
+    origin: tuple[float, float], a: tuple[float, float], b: tuple[float, float]
+) -> None:
+    """A beam running along a wall reads the distance to the wall's nearer end.
+
+    Its direction is a rounding off the wall's, and solving for the crossing point
+    used to cancel to 0 m (a reading below range_min) however far the wall was.
+    """
+    angle = math.atan2(a[1] - origin[1], a[0] - origin[0])
+    near = math.hypot(a[0] - origin[0], a[1] - origin[1])
+    for wall in (LineString([a, b]), LineString([b, a])):
+        d = World(wall).raycast((*origin, 0.0), [angle], range_max=100.0)[0]
+        assert d == pytest.approx(near, abs=1e-9)
+    scan = Lidar(n_beams=1, fov=0.1, noise=None).scan(World(LineString([a, b])), (*origin, angle))
+    assert scan.ranges[0] == math.inf  # beyond range_max = 12 m, not "too close"

@@ -134,3 +134,20 @@ def test_bands_as_arrays_equal_bands_as_tuples() -> None:
     as_arrays = RangeNoise(np.array([1.0, math.inf]), np.array([0.01, 0.02]), np.array([0, 0.01]))
     assert as_arrays == RangeNoise((1.0, math.inf), (0.01, 0.02), (0.0, 0.01))
     assert RangeNoise((math.inf,), (0.1,), np.array([])).bias == (0.0,)
+
+
+@pytest.mark.parametrize(
+    ("seed", "message"),
+    [(-1, "must be >= 0 as a seed, got -1"), (1 << 128, "must be below 2\\*\\*128 as a seed")],
+)
+def test_bad_seeds_name_their_argument_once(seed: int, message: str) -> None:
+    """The seed's argument is named once: Simulation's ``seed`` read "seed seed must ..."."""
+    from navkit.kinematics import DiffDrive
+    from navkit.sim import Robot, Simulation
+
+    world = World(Circle((0.0, 0.0), 3.0, solid=False))
+    with pytest.raises(ValueError, match=f"^rng {message}"):
+        Lidar(dropout=0.1).scan(world, (0.0, 0.0, 0.0), rng=seed)
+    robot = Robot(drive=DiffDrive(track=0.3, wheel_radius=0.05), footprint=0.2)
+    with pytest.raises(ValueError, match=f"^seed {message}"):
+        Simulation(world, robot, lambda obs: (0.0, 0.0, 0.0), start=(0, 0, 0), seed=seed)

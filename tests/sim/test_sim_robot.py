@@ -18,6 +18,7 @@ from navkit.sim import (
     Imu,
     ImuReading,
     Lidar,
+    MovingObstacle,
     Observation,
     Robot,
     Simulation,
@@ -275,3 +276,63 @@ def test_bad_sensor_configuration(factory: Any, kwargs: dict[str, Any]) -> None:
         factory(**kwargs)
     with pytest.raises(TypeError):
         Lidar(n_beams=2.5)  # type: ignore[arg-type]
+
+
+def test_the_trace_keeps_the_controllers_command_at_a_collision() -> None:
+    """Trace.commands is the controller's latest output: a collision stops the wheels only."""
+    robot = Robot(drive=DIFF, footprint=0.2)
+    world = World(LineString([(2.0, -1.0), (2.0, 1.0)]))
+    trace = Simulation(world, robot, Constant(Twist2D(0.5)), start=(0, 0, 0)).run()
+    assert trace.metrics.reason == "collision"
+    np.testing.assert_array_equal(trace.commands[-1], [0.5, 0.0, 0.0])
+
+
+def test_after_a_collision_the_robot_can_drive_away() -> None:
+    """With end_on_collision=False the run goes on: the robot obeys later commands.
+
+    The clearance search was limited by the run's smallest clearance, 0 after the
+    first contact, so every later step read as a contact and the robot never moved
+    again (nor could a second collision be counted).
+    """
+
+    def forward_then_back(obs: Observation) -> Twist2D:
+        return Twist2D(0.5 if obs.t < 3.0 else -0.5)
+
+    robot = Robot(drive=DIFF, footprint=0.2)
+    world = World(LineString([(1.5, -1.0), (1.5, 1.0)]))
+    trace = Simulation(world, robot, forward_then_back, start=(0, 0, 0), duration=5.0,
+                       end_on_collision=False).run()  # fmt: skip
+    assert trace.metrics.reason == "timeout" and trace.metrics.min_clearance == 0.0
+    assert trace.poses[-1, 0] == pytest.approx(0.295, abs=0.01)  # backed off at 0.5 m/s for 2 s
+    # Pushing on from where it was put back is the same collision.
+    assert trace.metrics.collisions == 1
+
+
+@pytest.mark.parametrize("shape", [box(-1.0, -1.0, 1.0, 1.0), 1.0])
+def test_a_moving_obstacle_landing_over_the_robot_is_a_collision(shape: Any) -> None:
+    """An obstacle that jumps onto the robot in one step touches no boundary but holds it."""
+    mover = MovingObstacle.scripted(shape, [(-10.0, 0.0), (0.0, 0.0)], times=[1.0, 1.005])
+    world = World(box(-20.0, -20.0, 20.0, 20.0).exterior, moving=[mover])
+    robot = Robot(drive=DIFF, footprint=0.2)
+    trace = Simulation(world, robot, Constant(Twist2D(0.0)), start=(0, 0, 0), duration=3.0).run()
+    assert trace.metrics.reason == "collision" and trace.metrics.collisions == 1
+    assert trace.times[-1] == pytest.approx(1.01)
+    assert trace.metrics.min_clearance == 0.0
+
+
+def test_a_held_robot_hit_again_by_a_moving_obstacle_counts_two_collisions() -> None:
+    """A standing robot hit by two balls in turn: two collisions, the second one counted.
+
+    After the first contact, with end_on_collision=False, every later step used
+    to read as a contact, so the second ball was never counted.
+    """
+    path = [(1.0, 0.0), (0.25, 0.0), (1.0, 0.0)]
+    balls = [MovingObstacle.scripted(0.1, path, times=[t, t + 0.5, t + 1.0]) for t in (0.5, 2.0)]
+    world = World(moving=balls)
+    robot = Robot(drive=DIFF, footprint=0.2)
+    trace = Simulation(world, robot, Constant(Twist2D(0.0)), start=(0, 0, 0), duration=4.0,
+                       end_on_collision=False).run()  # fmt: skip
+    assert trace.metrics.collisions == 2
+    times = [e.t for e in trace.events if e.kind == "collision"]
+    # Each ball touches the disc when its centre reaches x = 0.3 m, 0.7 m in at 1.5 m/s.
+    assert times == pytest.approx([0.5 + 0.7 / 1.5, 2.0 + 0.7 / 1.5], abs=0.011)

@@ -55,10 +55,11 @@ def as_generator(value: object, name: str = "rng") -> np.random.Generator:
     if isinstance(value, bool):
         raise TypeError(f"{name} must be a numpy Generator, an int seed or None, got bool")
     if isinstance(value, numbers.Integral):
+        # "as a seed": ``name`` may itself be "seed" (Simulation's argument).
         if int(value) < 0:
-            raise ValueError(f"{name} seed must be >= 0, got {value}")
+            raise ValueError(f"{name} must be >= 0 as a seed, got {value}")
         if int(value) >= 1 << 128:
-            raise ValueError(f"{name} seed must be below 2**128")
+            raise ValueError(f"{name} must be below 2**128 as a seed, got {value}")
         return np.random.default_rng(int(value))
     raise TypeError(f"{name} must be a numpy Generator, an int seed or None, got {type(value)}")
 

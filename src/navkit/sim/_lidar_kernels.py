@@ -57,6 +57,12 @@ _INF = math.inf
 #: free square around a cell instead of stepping cell by cell: a jump costs
 #: about as much as eight steps.
 _JUMP = 8
+#: Distance (m) from a beam's line within which a segment's end counts as on it.
+#: Rounding of the beam's direction and of the products that measure the
+#: distance is about 1e-16 of the end's distance from the origin, far below
+#: this for every distance a world allows (1e6 m); a segment within it of the
+#: whole line is met at its nearer end.
+_ON_LINE = 1e-9
 
 
 @njit_helper
@@ -71,30 +77,39 @@ def _ray_segment(
     by: float,
     best: float,
 ) -> float:
-    """Smaller of ``best`` and the ray parameter t >= 0 where the ray meets segment ab."""
-    ex = bx - ax
-    ey = by - ay
+    """Smaller of ``best`` and the ray parameter t >= 0 where the ray meets segment ab.
+
+    ``(dx, dy)`` is a unit vector. The hit is found from the signed distances of
+    a and b to the ray's line, each computed from that end alone, rather than by
+    solving for the crossing point: two edges sharing a vertex then agree on the
+    vertex's side, so a beam aimed at a polygon's vertex cannot slip between
+    them (as rounding of the edge parameter let it), and a beam running along a
+    wall, its direction a rounding off the wall's, meets the wall's nearer end
+    (cancellation put the crossing point anywhere, often at the origin).
+    """
     wx = ax - ox
     wy = ay - oy
-    denom = dx * ey - dy * ex
-    if denom != 0.0:
-        t: float = (wx * ey - wy * ex) / denom
-        if t < 0.0 or t >= best:
-            return best
-        u = (wx * dy - wy * dx) / denom
-        if 0.0 <= u <= 1.0:
-            return t
-        return best
-    # Parallel: a hit only when collinear, at the nearer end in front of the origin.
-    if wx * dy - wy * dx != 0.0:
-        return best
+    qx = bx - ox
+    qy = by - oy
+    # Signed distances of a and b to the ray's line, m.
+    sa = wx * dy - wy * dx
+    sb = qx * dy - qy * dx
+    if (sa > _ON_LINE and sb > _ON_LINE) or (sa < -_ON_LINE and sb < -_ON_LINE):
+        return best  # both ends on one side of the ray's line
     ta = wx * dx + wy * dy
-    tb = (bx - ox) * dx + (by - oy) * dy
-    lo = min(ta, tb)
-    hi = max(ta, tb)
-    if hi < 0.0:
-        return best
-    t = max(lo, 0.0)
+    tb = qx * dx + qy * dy
+    if abs(sa) <= _ON_LINE and abs(sb) <= _ON_LINE:
+        # Along the ray's line: a hit at the nearer end in front of the origin.
+        if ta < 0.0 and tb < 0.0:
+            return best
+        t: float = max(min(ta, tb), 0.0)
+    else:
+        # Where the segment crosses the line: sa / (sa - sb) of the way from a to b.
+        t = ta + (tb - ta) * (sa / (sa - sb))
+        if t <= _ON_LINE:
+            if t < -_ON_LINE:
+                return best
+            t = 0.0  # the origin on the segment, to rounding
     return t if t < best else best
 
 

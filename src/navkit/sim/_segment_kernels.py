@@ -48,8 +48,18 @@ STAT_MIN_CLEARANCE = 0
 STAT_TIME_TO_GOAL = 1
 STAT_COLLISIONS = 2
 STAT_IN_CONTACT = 3
+#: Values of ``stats[STAT_IN_CONTACT]``: free; touching at the last step; held
+#: (put back after a contact and not moved since, so that pushing on from
+#: there is the same collision).
+_FREE = 0.0
+_TOUCHING = 1.0
+_HELD = 2.0
 
 _EPS = 1e-9
+#: Smallest limit of a step's clearance search, m: above ``TOUCH``, so that the
+#: search still tells contact from no contact once the run's smallest clearance
+#: (its limit otherwise) is 0, and small enough to stop the search at once.
+_CONTACT_LIMIT = 1e-9
 # Sensor slots of ``rates`` / ``counts`` / ``n_out``.
 _ENCODERS = 0
 _COMPASS = 1
@@ -133,6 +143,45 @@ def _record(buf: np.ndarray, i: int, t: float, state: np.ndarray, cmd: np.ndarra
     buf[i, 9] = cmd[2]
 
 
+@njit_helper
+def _inside_moving(
+    px: float,
+    py: float,
+    verts: np.ndarray | None,
+    dyn_segs: np.ndarray,
+    dyn_seg_owner: np.ndarray,
+    dyn_circles: np.ndarray,
+) -> bool:
+    """Whether a footprint that touches no boundary lies inside a moving obstacle.
+
+    Such a footprint is wholly inside or wholly outside each obstacle (all
+    solid), so one of its points decides: the disc's centre ``(px, py)``, or
+    the first vertex of the placed polygon ``verts``. A polygon obstacle's
+    edges are consecutive rows of ``dyn_segs`` with the same owner (even-odd
+    rule over them).
+    """
+    if verts is not None:
+        px = verts[0, 0]
+        py = verts[0, 1]
+    for m in range(dyn_circles.shape[0]):
+        if math.hypot(px - dyn_circles[m, 0], py - dyn_circles[m, 1]) < dyn_circles[m, 2]:
+            return True
+    inside = False
+    for m in range(dyn_segs.shape[0]):
+        if m > 0 and dyn_seg_owner[m] != dyn_seg_owner[m - 1]:
+            if inside:
+                return True
+            inside = False
+        ay = dyn_segs[m, 1]
+        by = dyn_segs[m, 3]
+        if (ay > py) != (by > py):
+            ax = dyn_segs[m, 0]
+            x_cross = ax + (py - ay) * (dyn_segs[m, 2] - ax) / (by - ay)
+            if px < x_cross:
+                inside = not inside
+    return inside
+
+
 # Compiled once and inlined by LLVM into both run kernels: left a call (LLVM finds it too
 # big to inline), it made the physics loop a few per cent slower.
 @njit_force_inline
@@ -172,30 +221,35 @@ def _settle(
         clearance = 0.0  # touching: the few 1e-17 m left are rounding
     if clearance < stats[STAT_MIN_CLEARANCE]:
         stats[STAT_MIN_CLEARANCE] = clearance
+    # Whether the robot moved over this step (a stopped robot's twist is exactly 0).
+    moved = state[3] != 0.0 or state[4] != 0.0 or state[5] != 0.0
+    contact = stats[STAT_IN_CONTACT]
     if clearance <= 0.0:
-        if stats[STAT_IN_CONTACT] == 0.0:
+        # A new collision, unless the contact goes on or a held robot pushes on
+        # (an obstacle reaching a held robot that stands still is a new one).
+        if contact == _FREE or (contact == _HELD and not moved):
             n = int(stats[STAT_COLLISIONS])
             if n < contacts.shape[0]:
                 contacts[n] = t
             stats[STAT_COLLISIONS] = n + 1
-            stats[STAT_IN_CONTACT] = 1.0
-        # Every wheel stops at once.
+        stats[STAT_IN_CONTACT] = _TOUCHING
+        # Every wheel stops at once and stays stopped until the next control step;
+        # ``cmd``, the controller's latest output that the trace records, stands.
         for w in range(wheels.shape[0]):
             wheels[w] = 0.0
             command[w] = 0.0
         for k in range(3, 8):
             state[k] = 0.0
-        cmd[0] = 0.0
-        cmd[1] = 0.0
-        cmd[2] = 0.0
         if end_on_collision:
             _record(buf, i, t, state, cmd)
             return COLLIDED
         state[0] = prev[0]
         state[1] = prev[1]
         state[2] = prev[2]
+    elif moved or contact == _FREE:
+        stats[STAT_IN_CONTACT] = _FREE
     else:
-        stats[STAT_IN_CONTACT] = 0.0
+        stats[STAT_IN_CONTACT] = _HELD
     if math.isnan(stats[STAT_TIME_TO_GOAL]) and _at_goal(state, goal):
         stats[STAT_TIME_TO_GOAL] = t
         if stop_at_goal:
@@ -278,8 +332,8 @@ def run_segment(
     (t, then each wheel's counter ``floor(angle * enc_scale)``, modulo
     ``enc_span`` when it is > 0), ``compass_out`` (t, yaw) and ``imu_out``
     (t, yaw rate, ax, ay). ``stats`` holds the minimum clearance, the time the goal was
-    first reached (NaN before), the number of collisions and whether the robot
-    is in contact; the times of the collisions are appended to ``contacts``
+    first reached (NaN before), the number of collisions and the robot's contact
+    state (free, touching or held); the times of the collisions are appended to ``contacts``
     (as far as it has room; ``stats[STAT_COLLISIONS]`` counts them all).
     ``prev`` (3,) is scratch for the pose before a step. ``body_verts``,
     ``verts`` and ``scratch`` are None for a disc footprint.
@@ -312,8 +366,14 @@ def run_segment(
             state[0], state[1], state[2], radius, body_verts, verts, scratch,
             segs, circles, gx0, gy0, h, nx, ny, cell_start, cell_items,
             occ, gox, goy, gcos, gsin, res, dyn_segs, dyn_circles,
-            stats[STAT_MIN_CLEARANCE],
+            max(stats[STAT_MIN_CLEARANCE], _CONTACT_LIMIT),
         )  # fmt: skip
+        # A moving obstacle may have swept over the robot: inside it is a contact too.
+        if (
+            clearance > TOUCH and has_moving
+            and _inside_moving(state[0], state[1], verts, dyn_segs, dyn_seg_owner, dyn_circles)
+        ):  # fmt: skip
+            clearance = 0.0
         status = _settle(
             i, t, dt, clearance, state, wheels, angles, command, goal, stop_at_goal,
             end_on_collision, rates, counts, n_out, enc_scale, enc_span, enc_out,
@@ -395,7 +455,7 @@ def run_edge_segment(
         clearance = edge_clearance(
             state[0], state[1], state[2], radius, body_verts, verts,
             segs, circles, gx0, gy0, h, nx, ny, cell_start, cell_items,
-            stats[STAT_MIN_CLEARANCE],
+            max(stats[STAT_MIN_CLEARANCE], _CONTACT_LIMIT),
         )  # fmt: skip
         status = _settle(
             i, t, dt, clearance, state, wheels, angles, command, goal, stop_at_goal,

@@ -40,7 +40,8 @@ def _bounded(value: object, name: str, low: float, high: float, unit: str) -> fl
 class Compass:
     """A magnetic compass: heading in degrees clockwise from north, 0 to 360.
 
-    The reading is ``(degrees(north - yaw) + bias + noise) mod 360``: 0° when
+    The reading is ``degrees(north - yaw + bias + noise) mod 360`` (``bias``
+    and ``noise`` in rad, like ``north`` and ``yaw``): 0° when
     the robot faces north, 90° facing east. North is the world direction
     ``north`` (default π/2: +y is north and +x east). Convert readings to yaw
     with :func:`navkit.estimation.compass_to_yaw`.
