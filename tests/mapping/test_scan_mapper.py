@@ -271,6 +271,12 @@ def test_odometry_after_a_scan_without_it_is_not_counted_twice() -> None:
     )
 
 
+def _ring_scan() -> LaserScan:
+    """90 returns at 1 m all around."""
+    return LaserScan([1.0] * 90, angle_min=-math.pi, angle_increment=2 * math.pi / 90,
+                     range_min=0.1, range_max=5.0)  # fmt: skip
+
+
 def test_first_map_fits_the_cell_limit(monkeypatch: pytest.MonkeyPatch) -> None:
     # At the finest documented resolutions (1e-3 m) ±10 m would be 4e8 cells of
     # the 2**28 allowed; a smaller limit shows the cap at everyday sizes.
@@ -279,13 +285,7 @@ def test_first_map_fits_the_cell_limit(monkeypatch: pytest.MonkeyPatch) -> None:
     limit = 2**16
     monkeypatch.setattr(scan_mapper, "MAX_CELLS", limit)
     mapper = ScanMapper(resolution=0.05)  # ±10 m would be 400 x 400 cells
-    scan = LaserScan(
-        [1.0] * 90,
-        angle_min=-math.pi,
-        angle_increment=2 * math.pi / 90,
-        range_min=0.1,
-        range_max=5.0,
-    )
+    scan = _ring_scan()
     mapper.update(scan, odometry=(0.0, 0.0, 0.0))
     grid = mapper.map
     assert grid.shape == (256, 256) and grid.contains([[-1.5, -1.5], [1.5, 1.5]]).all()
@@ -296,13 +296,7 @@ def test_first_map_fits_the_cell_limit(monkeypatch: pytest.MonkeyPatch) -> None:
 
 
 def test_a_pose_far_off_the_map_keeps_the_map_without_warnings() -> None:
-    scan = LaserScan(
-        [1.0] * 90,
-        angle_min=-math.pi,
-        angle_increment=2 * math.pi / 90,
-        range_min=0.1,
-        range_max=5.0,
-    )
+    scan = _ring_scan()
     mapper = ScanMapper()
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # no overflow warning on the way to "too big"
