@@ -336,3 +336,20 @@ def test_a_held_robot_hit_again_by_a_moving_obstacle_counts_two_collisions() -> 
     times = [e.t for e in trace.events if e.kind == "collision"]
     # Each ball touches the disc when its centre reaches x = 0.3 m, 0.7 m in at 1.5 m/s.
     assert times == pytest.approx([0.5 + 0.7 / 1.5, 2.0 + 0.7 / 1.5], abs=0.011)
+
+
+def test_every_collision_gets_its_event_beyond_a_thousand() -> None:
+    """A ball hitting a standing robot ten times a second for two minutes: 1200 events.
+
+    The kernel wrote the collision times into a buffer of 1024, so later ones
+    were counted but had no event, though Trace.events promises every one.
+    """
+    ball = MovingObstacle.scripted(0.1, [(1.0, 0.0), (0.25, 0.0), (1.0, 0.0)],
+                                   times=[0.0, 0.05, 0.1], loop=True)  # fmt: skip
+    robot = Robot(drive=DIFF, footprint=0.2)
+    trace = Simulation(World(moving=[ball]), robot, Constant(Twist2D(0.0)), start=(0, 0, 0),
+                       duration=120.0, end_on_collision=False).run()  # fmt: skip
+    events = [e.t for e in trace.events if e.kind == "collision"]
+    assert trace.metrics.collisions > 1100
+    assert len(events) == trace.metrics.collisions
+    assert events == sorted(events) and events[-1] > 119.0

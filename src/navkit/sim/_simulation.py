@@ -494,6 +494,12 @@ class _Run:
             grown[: self.buf.shape[0]] = self.buf
             self.buf = grown
         n = i_end - i0
+        # Room for a collision at every step of the segment: Trace.events lists them all.
+        need = int(self.stats[STAT_COLLISIONS]) + n + 2
+        if self.contacts.shape[0] < need:
+            grown_contacts = np.zeros(max(need, 2 * self.contacts.shape[0]))
+            grown_contacts[: self.contacts.shape[0]] = self.contacts
+            self.contacts = grown_contacts
         if robot.wheel_slip > 0.0 and n > 0:
             self.slip_z[:n] = sim._rng.standard_normal((n, robot.n_wheels))
         self.n_out[:] = 0
