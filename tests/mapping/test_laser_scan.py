@@ -2,7 +2,10 @@
 
 from __future__ import annotations
 
+import copy
 import math
+import pickle
+from collections.abc import Callable
 from pathlib import Path
 from types import SimpleNamespace
 
@@ -95,6 +98,35 @@ def test_scan_copies_and_freezes_its_arrays() -> None:
     with pytest.raises(ValueError):
         scan.ranges[0] = 5.0
     assert scan.intensities is not None and scan.intensities.tolist() == [3.0, 4.0]
+
+
+@pytest.mark.parametrize(
+    "duplicate",
+    [lambda s: pickle.loads(pickle.dumps(s)), copy.deepcopy, copy.copy],
+    ids=["pickle", "deepcopy", "copy"],
+)
+def test_copied_and_unpickled_scans_stay_read_only(
+    duplicate: Callable[[LaserScan], LaserScan],
+) -> None:
+    # pickle and deepcopy rebuild the fields without __post_init__; the copied
+    # arrays used to come back writable, so the "frozen" scan could change.
+    for intensities in ([3.0, 4.0], None):
+        scan = LaserScan([1.0, math.inf], angle_min=-0.5, angle_increment=0.25, range_min=0.1,
+                         range_max=5.0, intensities=intensities)  # fmt: skip
+        twin = duplicate(scan)
+        with pytest.raises(ValueError, match="read-only"):
+            twin.ranges[0] = 2.0
+        np.testing.assert_array_equal(twin.ranges, scan.ranges)
+        if intensities is None:
+            assert twin.intensities is None
+        else:
+            assert twin.intensities is not None
+            with pytest.raises(ValueError, match="read-only"):
+                twin.intensities[0] = 2.0
+            np.testing.assert_array_equal(twin.intensities, intensities)
+        assert (twin.angle_min, twin.angle_increment, twin.range_min, twin.range_max) == (
+            -0.5, 0.25, 0.1, 5.0,
+        )  # fmt: skip
 
 
 def test_non_finite_intensities_are_kept_as_given() -> None:

@@ -2,8 +2,11 @@
 
 from __future__ import annotations
 
+import copy
 import dataclasses
 import math
+import pickle
+from collections.abc import Callable
 
 import numpy as np
 import pytest
@@ -46,7 +49,8 @@ def test_local_grid_any_size(
     grid = LocalGrid.from_points(
         np.array(points).reshape(-1, 2), half_width=half_width, resolution=resolution
     )
-    n = 2 * round(half_width / resolution) + 1
+    ratio = half_width / resolution
+    n = 2 * (math.floor(ratio) + (ratio - math.floor(ratio) >= 0.5)) + 1  # half up
     assert grid.occupied.shape == (n, n)
     assert grid.half_width == pytest.approx((n - 1) / 2 * resolution)
     cells = grid.world_to_cell(np.array(points).reshape(-1, 2))
@@ -153,6 +157,37 @@ def test_local_grid_from_lists_copies_and_never_freezes_the_callers_array() -> N
     mine = np.zeros((3, 3), dtype=bool)
     LocalGrid(mine, resolution=0.5, half_width=0.5)
     assert mine.flags.writeable
+
+
+@pytest.mark.parametrize(
+    ("half_width", "resolution", "size"),
+    [(0.5, 1.0, 3), (1.5, 1.0, 5), (2.5, 1.0, 7), (3.5, 1.0, 9), (0.25, 0.5, 3), (0.25, 0.1, 7)],
+)
+def test_half_width_snaps_half_up(half_width: float, resolution: float, size: int) -> None:
+    # Halfway between two multiples of the resolution rounds up, as cells do; round()
+    # went to even: 1.5 and 2.5 cells both gave 5 cells a side, half a cell gave 1.
+    grid = LocalGrid.from_points([[0.0, half_width]], half_width=half_width, resolution=resolution)
+    assert grid.size == size
+    assert grid.half_width == (size - 1) // 2 * resolution
+    assert grid.occupied[size - 1, size // 2] and grid.occupied.sum() == 1
+
+
+@pytest.mark.parametrize(
+    "duplicate",
+    [lambda g: pickle.loads(pickle.dumps(g)), copy.deepcopy, copy.copy],
+    ids=["pickle", "deepcopy", "copy"],
+)
+def test_copied_and_unpickled_grids_stay_read_only(
+    duplicate: Callable[[LocalGrid], LocalGrid],
+) -> None:
+    # pickle and deepcopy rebuild the fields without __post_init__; the copied
+    # array used to come back writable, so the "frozen" grid could change.
+    grid = LocalGrid.from_points([[0.1, 0.0]], half_width=0.2, resolution=0.1)
+    twin = duplicate(grid)
+    with pytest.raises(ValueError, match="read-only"):
+        twin.occupied[0, 0] = True
+    np.testing.assert_array_equal(twin.occupied, grid.occupied)
+    assert (twin.resolution, twin.half_width) == (grid.resolution, grid.half_width)
 
 
 def test_local_grid_size_is_checked_before_allocating() -> None:

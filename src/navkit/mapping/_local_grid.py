@@ -4,11 +4,12 @@ from __future__ import annotations
 
 import math
 from dataclasses import KW_ONLY, dataclass
-from typing import Literal, overload
+from typing import Any, Literal, overload
 
 import numpy as np
 from numpy.typing import ArrayLike
 
+from navkit._shared.frozen import restore_read_only
 from navkit._shared.grid_coords import as_pairs, inside, one_or_many, round_half_up
 from navkit._shared.types import BoolArray, FloatArray, IntArray
 from navkit._shared.validation import as_bool, as_points
@@ -97,6 +98,10 @@ class LocalGrid:
         object.__setattr__(self, "resolution", res)
         object.__setattr__(self, "half_width", half)
 
+    def __setstate__(self, state: list[Any]) -> None:
+        """Restore from a pickle or :func:`copy.deepcopy`, ``occupied`` read-only again."""
+        restore_read_only(self, state, ("occupied",))
+
     @property
     def size(self) -> int:
         """Number of cells ``n`` along each side.
@@ -121,22 +126,23 @@ class LocalGrid:
             the grid are ignored.
         half_width : float, default 1.0
             Half the side of the grid in metres, in [0, 1e6]. It is snapped to
-            the nearest multiple of ``resolution`` so that the robot sits on a
-            cell centre.
+            the nearest multiple of ``resolution`` (halfway rounds up, as
+            cells do) so that the robot sits on a cell centre.
         resolution : float, default 0.1
             Cell size in metres, in [1e-6, 1e6].
 
         Returns
         -------
         LocalGrid
-            A grid of ``n = 2 * round(half_width / resolution) + 1`` cells per
-            side, with ``half_width`` snapped.
+            A grid of ``n = 2 * k + 1`` cells per side, ``k`` being
+            ``half_width / resolution`` rounded half up, with ``half_width``
+            snapped to ``k * resolution``.
 
         Raises
         ------
         ValueError
             A number outside its range, or a grid of more than ``2**28`` cells
-            (``2 * round(half_width / resolution) + 1`` per side; the message
+            (``2 * k + 1`` per side; the message
             says how many it would need). Nothing is allocated then.
 
         Examples
@@ -151,7 +157,13 @@ class LocalGrid:
         """
         res = resolution_float(resolution)
         half = bounded_float(half_width, "half_width", 0.0, RADIUS_LIMIT, "m")
-        side = 2.0 * round(half / res) + 1.0  # a float: compared before any allocation
+        # Half up, as cells round: round() goes to even, so 1.5 and 2.5 cells
+        # both gave 2 and half a cell gave none. At most 1e12: exact in a float.
+        ratio = half / res
+        half_cells = math.floor(ratio)
+        if ratio - half_cells >= 0.5:
+            half_cells += 1
+        side = 2.0 * half_cells + 1.0  # a float: compared before any allocation
         check_cell_count(
             side * side,
             f"a local grid of half_width {half:g} m at resolution {res:g} m",
@@ -159,7 +171,6 @@ class LocalGrid:
             dtype="bool",
         )
         pts = as_points(points_xy, "points_xy")
-        half_cells = round(half / res)
         n = 2 * half_cells + 1
         occ = np.zeros((n, n), dtype=np.bool_)
         snapped = half_cells * res

@@ -9,6 +9,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from navkit._shared.frozen import restore_read_only
 from navkit._shared.types import BoolArray, FloatArray
 from navkit._shared.validation import as_float_array, finite_float
 from navkit.geometry import Pose2D, as_pose, wrap_angle
@@ -138,6 +139,10 @@ class LaserScan:
                     f"got {inten.shape[0]}"
                 )
             object.__setattr__(self, "intensities", _readonly(inten))
+
+    def __setstate__(self, state: list[Any]) -> None:
+        """Restore from a pickle or :func:`copy.deepcopy`, the arrays read-only again."""
+        restore_read_only(self, state, ("ranges", "intensities"))
 
     def __len__(self) -> int:
         return int(self.ranges.shape[0])

@@ -3,11 +3,12 @@
 from __future__ import annotations
 
 import numbers
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 from typing import Any, Literal
 
 import numpy as np
 
+from navkit._shared.frozen import restore_read_only
 from navkit._shared.grid_coords import round_half_up
 from navkit._shared.types import FloatArray, IntArray
 from navkit._shared.validation import as_float_array, finite_float
@@ -126,15 +127,8 @@ class Path2D:
         return path
 
     def __setstate__(self, state: list[Any]) -> None:
-        """Restore the fields (pickle, :func:`copy.deepcopy`), ``points`` read-only again.
-
-        Both rebuild the fields without ``__post_init__``, and a copied or
-        unpickled array is writable: the dataclass default would give a
-        "frozen" path whose points can be changed.
-        """
-        for field, value in zip(fields(self), state, strict=True):
-            object.__setattr__(self, field.name, value)
-        self.points.flags.writeable = False
+        """Restore from a pickle or :func:`copy.deepcopy`, ``points`` read-only again."""
+        restore_read_only(self, state, ("points",))
 
     @property
     def cells(self) -> IntArray:
