@@ -328,9 +328,11 @@ def test_guess_outside_the_map_keeps_the_guess() -> None:
 
 @pytest.mark.parametrize("weights", [(0.0, 0.0), (1.0, 1.0)])
 def test_featureless_corridor_is_degenerate(weights: tuple[float, float]) -> None:
-    # Two endless parallel walls: nothing fixes the position along them.
+    # Two endless parallel walls: nothing fixes the position along them. They run
+    # along cell middles, not cell edges, where the last bit of each range would
+    # decide the row of each hit (a ragged wall that does fix the position).
     world = World([LineString([(-50, 0), (50, 0)]), LineString([(-50, 2), (50, 2)])])
-    grid = OccupancyGrid.empty(width=30, height=6, resolution=RES, origin=(-15, -2, 0))
+    grid = OccupancyGrid.empty(width=30, height=6, resolution=RES, origin=(-15, -2 - RES / 2, 0))
     lidar = Lidar(n_beams=360, range_max=8.0, noise=None)
     for x in np.linspace(-5, 5, 11):
         integrate_scan(grid, lidar.scan(world, (x, 1.0, 0.0)), (x, 1.0, 0.0), **HECTOR)
