@@ -178,13 +178,13 @@ def test_negate_and_scale_modes(tmp_path: Path) -> None:
 def test_png_maps_need_pillow(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     from PIL import Image
 
-    rgba = np.zeros((2, 3, 4), dtype=np.uint8)
-    rgba[..., :3] = [
+    rgb = np.zeros((2, 3, 3), dtype=np.uint8)
+    rgb[...] = [
         [[0, 0, 0], [254, 254, 254], [205, 205, 205]],
         [[254, 254, 254], [254, 254, 254], [0, 0, 0]],
     ]
-    rgba[..., 3] = 255
-    Image.fromarray(rgba, "RGBA").save(tmp_path / "m.png")
+    # RGB, not RGBA: trinary mode averages an alpha channel in (see the alpha test).
+    Image.fromarray(rgb, "RGB").save(tmp_path / "m.png")
     (tmp_path / "m.yaml").write_text(GOOD_YAML.replace("m.pgm", "m.png"))
     grid = OccupancyGrid.load(tmp_path / "m.yaml")
     assert grid.occupied().tolist() == [[False, False, True], [True, False, False]]
@@ -779,3 +779,118 @@ def test_16_bit_png_spans_its_full_range(tmp_path: Path) -> None:
         grid = read_map(tmp_path / "m.yaml")
         assert grid.occupied().tolist() == [occupied]
         assert grid.free().tolist() == [free]
+
+
+def nav2_cell(rgba: tuple[int, int, int, int], mode: str, negate: bool) -> int:
+    """Nav2 map_io.cpp's loadMapFromFile for one 8-bit pixel, thresholds 0.65 / 0.196."""
+    r, g, b, a = rgba
+    channels = [r, g, b] + ([a] if mode == "trinary" else [])  # alpha averaged in trinary
+    shade = sum(channels) / len(channels) / 255.0
+    occ = shade if negate else 1.0 - shade
+    if mode == "scale" and a != 255:
+        return -1
+    if occ > 0.65:
+        return 100
+    if occ < 0.196:
+        return 0
+    return -1 if mode == "trinary" else 50
+
+
+@pytest.mark.parametrize("negate", [False, True])
+@pytest.mark.parametrize("mode", ["trinary", "scale"])
+def test_alpha_channels_are_read_as_map_server_reads_them(
+    tmp_path: Path, mode: str, negate: bool
+) -> None:
+    """Trinary averages alpha in with the colours; scale makes non-opaque pixels unknown."""
+    from PIL import Image
+
+    pixels = [
+        (205, 205, 205, 255),  # map_saver's unknown grey, opaque: 217.5 on average
+        (0, 0, 0, 0),
+        (255, 255, 255, 0),
+        (0, 0, 0, 128),
+        (254, 254, 254, 255),
+        (0, 0, 0, 255),
+        (100, 100, 100, 200),
+    ]
+    Image.fromarray(np.array([pixels], dtype=np.uint8), "RGBA").save(tmp_path / "m.png")
+    text = GOOD_YAML.replace("m.pgm", "m.png").replace("negate: 0", f"negate: {int(negate)}")
+    (tmp_path / "m.yaml").write_text(text + f"mode: {mode}\n")
+    grid = read_map(tmp_path / "m.yaml")
+    expected = [nav2_cell(p, mode, negate) for p in pixels]
+    assert grid.occupied().tolist() == [[v == 100 for v in expected]]
+    assert grid.free().tolist() == [[v == 0 for v in expected]]
+    # Scale's in-between values (50 here) keep their p: neither occupied nor free.
+    assert grid.unknown().tolist() == [[v in (-1, 50) for v in expected]]
+
+
+def test_palette_and_colour_key_images_are_read_as_map_server_reads_them(
+    tmp_path: Path,
+) -> None:
+    """Palette colours are averaged (not Pillow's luma); a tRNS colour key is alpha."""
+    from PIL import Image
+
+    (tmp_path / "m.yaml").write_text(GOOD_YAML.replace("m.pgm", "m.png") + "mode: scale\n")
+    palette = Image.new("P", (2, 1))
+    # Pure green averages to 85 (p = 0.667: occupied); its luma 150 (p = 0.41) is not.
+    palette.putpalette([0, 255, 0, 250, 250, 250] + [0] * 762)
+    palette.putdata([0, 1])
+    palette.save(tmp_path / "m.png")
+    grid = read_map(tmp_path / "m.yaml")
+    assert grid.occupied().tolist() == [[True, False]]
+    assert grid.free().tolist() == [[False, True]]
+    keyed = Image.fromarray(np.array([[0, 250]], dtype=np.uint8), "L")
+    keyed.save(tmp_path / "m.png", transparency=250)  # 250 is transparent
+    grid = read_map(tmp_path / "m.yaml")
+    assert grid.occupied().tolist() == [[True, False]]
+    assert grid.unknown().tolist() == [[False, True]]
+
+
+def test_grey_levels_on_a_threshold_are_decided_as_map_server_decides_them(
+    tmp_path: Path,
+) -> None:
+    """map_server computes 1 - v / 255: level 204 is free under free_thresh 0.2."""
+    assert 1.0 - 204 / 255 < 0.2 <= (255 - 204) / 255
+    text = GOOD_YAML.replace("0.196", "0.2")
+    grid = read_map(make_map_files(tmp_path, text, b"P5 2 1 255 \xcc\xc8"))
+    assert grid.free().tolist() == [[True, False]]
+    assert grid.unknown().tolist() == [[False, True]]
+    # Writing: a cell just outside the free band must not become level 204.
+    cells = OccupancyGrid.from_probabilities(
+        [[0.2, 0.0]], resolution=0.5, occupied_thresh=0.65, free_thresh=0.2
+    )
+    assert cells.unknown().tolist() == [[True, False]]
+    write_map(cells, tmp_path / "w.yaml", mode="scale")
+    image = read_pgm(tmp_path / "w.pgm")
+    assert 1.0 - image[0, 0] / 255 >= 0.2
+    assert read_map(tmp_path / "w.yaml").unknown().tolist() == [[True, False]]
+
+
+def test_trinary_save_keeps_free_cells_under_a_tiny_free_thresh(tmp_path: Path) -> None:
+    """map_saver's free 254 reads as p = 1/255; below that free_thresh, write 255."""
+    grid = OccupancyGrid.from_probabilities(
+        [[0.0, 1.0, 0.5]], resolution=0.5, occupied_thresh=0.65, free_thresh=0.002
+    )
+    write_map(grid, tmp_path / "m.yaml", mode="trinary")
+    again = read_map(tmp_path / "m.yaml")
+    assert again.free().tolist() == grid.free().tolist() == [[True, False, False]]
+    assert again.unknown().tolist() == grid.unknown().tolist()
+    write_map(OccupancyGrid.from_occupancy([[False]], resolution=0.5), tmp_path / "m.yaml")
+    assert read_pgm(tmp_path / "m.pgm").tolist() == [[254.0]]  # map_saver's free grey kept
+
+
+@pytest.mark.parametrize("key", ["image", "resolution", "negate", "mode"])
+def test_duplicate_map_keys_are_refused(tmp_path: Path, key: str) -> None:
+    """yaml-cpp (map_server) keeps a duplicate's first value, PyYAML its last: refuse it."""
+    first = {
+        "image": "m.pgm",
+        "resolution": "0.5",
+        "negate": "0",
+        "mode": "trinary",
+    }[key]
+    text = GOOD_YAML + ("mode: trinary\n" if key == "mode" else "") + f"{key}: {first}\n"
+    with pytest.raises(ValueError, match=rf"m.yaml:\d+: .*duplicate key '{key}'"):
+        read_map(make_map_files(tmp_path, text, b"P5 1 1 255 \x00"))
+    # Duplicates of keys map_server ignores are ignored too; so are YAML merges.
+    ok = GOOD_YAML + "note: a\nnote: b\n"
+    assert read_map(make_map_files(tmp_path, ok, b"P5 1 1 255 \x00")).shape == (1, 1)

@@ -47,6 +47,7 @@ __all__ = [
 _MODES = ("trinary", "scale", "raw")
 _WRITE_MODES = ("trinary", "scale")
 _REQUIRED = ("image", "resolution", "origin", "negate", "occupied_thresh", "free_thresh")
+_KEYS = frozenset((*_REQUIRED, "mode"))
 #: A map YAML is a few hundred bytes; anything over 1 MiB is the wrong file.
 YAML_MAX_BYTES = 1 << 20
 #: A PGM header (magic, comments, width, height, maxval) must fit in 64 KiB.
@@ -71,7 +72,28 @@ _IMAGE_SUFFIXES = frozenset(
 # loader's composer recurses on the C stack and crashes the interpreter
 # (segmentation fault) on deeply nested input such as 100000 "[", where the
 # Python one raises RecursionError. Map YAMLs are a few hundred bytes.
-_Loader: Any = yaml.SafeLoader
+class _Loader(yaml.SafeLoader):
+    """PyYAML's safe loader refusing duplicates of the keys map_server reads.
+
+    PyYAML keeps a duplicate key's last value, yaml-cpp (map_server's parser)
+    its first: a map YAML naming ``image`` twice means different maps to the
+    two. Other keys are ignored anyway, so their duplicates are let through.
+    """
+
+    def construct_mapping(self, node: Any, deep: bool = False) -> Any:
+        if isinstance(node, yaml.MappingNode):
+            seen: set[Any] = set()
+            for key_node, _ in node.value:
+                if key_node.tag == "tag:yaml.org,2002:merge":
+                    continue  # "<<: *base" then "key: x" overrides on purpose
+                key = self.construct_object(key_node, deep=True)
+                if isinstance(key, str) and key in _KEYS:
+                    if key in seen:
+                        raise yaml.constructor.ConstructorError(
+                            None, None, f"duplicate key {key!r}", key_node.start_mark
+                        )
+                    seen.add(key)
+        return super().construct_mapping(node, deep=deep)
 
 
 @dataclass(frozen=True, slots=True)
@@ -465,8 +487,15 @@ def _read_with_pillow(path: Path) -> tuple[NDArray[np.float64], NDArray[np.float
             native = picture.mode in ("L", "LA", "RGB", "RGBA", "P", "1")
             if not native and not picture.mode.startswith("I"):
                 picture = picture.convert("RGBA")
-            if picture.mode in ("P", "1"):
-                picture = picture.convert("RGBA" if "transparency" in picture.info else "L")
+            if "transparency" in picture.info and picture.mode in ("L", "RGB", "P", "1"):
+                # A transparent colour (PNG tRNS) is an alpha channel to map_server.
+                picture = picture.convert("RGBA")
+            elif picture.mode == "P":
+                # Palette colours are averaged like RGB pixels (map_server's shade),
+                # not converted to Pillow's weighted luma ("L").
+                picture = picture.convert("RGB")
+            elif picture.mode == "1":
+                picture = picture.convert("L")
             arr = np.asarray(picture)
             mode = picture.mode
             sixteen_bit = mode.startswith("I;16") or (mode == "I" and img.format == "PNG")
@@ -517,11 +546,16 @@ def pixel_occupancy(
 ) -> tuple[NDArray[np.float64], NDArray[np.bool_]]:
     """map_server's reading of pixels: occupancy probability and unknown mask.
 
-    With ``negate`` 0, ``p = (255 - v) / 255``. In ``trinary`` mode a pixel is
-    occupied (p = 1) above ``occupied_thresh``, free (p = 0) below ``free_thresh``
-    and unknown otherwise. ``scale`` keeps ``p`` itself for the in-between pixels
-    and makes non-opaque ones unknown; ``raw`` reads the grey value directly as a
-    percentage (values above 100 are unknown). Rows are in image order.
+    With ``negate`` 0, ``p = 1 - v / 255`` (computed so, as Nav2's map_server
+    does: it decides pixels on a threshold such as ``free_thresh: 0.2``). In
+    ``trinary`` mode the alpha channel, when there is one, is averaged in with
+    the three colour channels (map_server's long-standing behaviour: an opaque
+    205 grey reads as 217.5) and a pixel is occupied (p = 1) above
+    ``occupied_thresh``, free (p = 0) below ``free_thresh`` and unknown
+    otherwise. ``scale`` makes every pixel that is not fully opaque unknown and
+    keeps ``p`` itself for the in-between ones; ``raw`` reads the grey value
+    directly as a percentage (values above 100 are unknown). Rows are in image
+    order.
 
     Examples
     --------
@@ -534,14 +568,22 @@ def pixel_occupancy(
         value = np.rint(grey)
         unknown = value > 100
         return np.where(unknown, 0.5, value / 100.0), unknown
-    p = grey / 255.0 if meta.negate else (255.0 - grey) / 255.0
+    if meta.mode == "trinary" and alpha is not None:
+        # map_server averages the alpha in with red, green and blue in trinary mode.
+        shade = (3.0 * grey + alpha) / (4.0 * 255.0)
+    else:
+        shade = grey / 255.0
+    # 1 - shade, not (255 - v) / 255: the two differ in the last bit for some
+    # levels (204 with free_thresh 0.2), and map_server computes the former.
+    p = shade if meta.negate else 1.0 - shade
     occupied = p > meta.occupied_thresh
     free = p < meta.free_thresh
     between = ~occupied & ~free
     if meta.mode == "trinary":
         prob = np.where(occupied, 1.0, np.where(free, 0.0, 0.5))
         return prob, between
-    unknown = between & (alpha < 255.0) if alpha is not None else np.zeros_like(between)
+    # Scale mode: map_server checks opacity first, then the thresholds.
+    unknown = alpha < 255.0 if alpha is not None else np.zeros_like(between)
     prob = np.where(occupied, 1.0, np.where(free, 0.0, p))
     return prob, unknown
 
@@ -625,14 +667,15 @@ def _map_pixels(grid: OccupancyGrid, mode: str) -> NDArray[np.uint8]:
     occupied, free = grid.occupied(), grid.free()
     if mode == "trinary":
         unknown = ~occupied & ~free
-        pixels = np.full(grid.shape, 254, dtype=np.uint8)
+        # map_saver's 254 unless free_thresh is below its reading (1/255): then 255.
+        pixels = np.full(grid.shape, 254 if _pixel_p(254) < free_t else 255, dtype=np.uint8)
         if unknown.any():
             pixels[unknown] = _unknown_pixel(occ_t, free_t, preferred=205)
         pixels[occupied] = 0
         return pixels
     pixels = np.rint(255.0 * (1.0 - grid.probability())).astype(np.uint8)
     # Rounding may push a class-boundary probability across a threshold.
-    p_px = (255.0 - pixels) / 255.0
+    p_px = _pixel_p(pixels)
     pixels[occupied & ~(p_px > occ_t)] = 0
     pixels[free & ~(p_px < free_t)] = 255
     between = ~occupied & ~free & ((p_px > occ_t) | (p_px < free_t))
@@ -644,6 +687,11 @@ def _map_pixels(grid: OccupancyGrid, mode: str) -> NDArray[np.uint8]:
 _GREY_LEVELS = np.arange(256)
 
 
+def _pixel_p(levels: Any) -> Any:
+    """map_server's occupancy of 8-bit grey ``levels`` (negate 0): ``1 - v / 255``."""
+    return 1.0 - np.asarray(levels) / 255.0
+
+
 def _unknown_pixel(
     occupied_thresh: float, free_thresh: float, *, preferred: int | None
 ) -> int:
@@ -653,7 +701,7 @@ def _unknown_pixel(
     else the one nearest the middle of the unknown band; ValueError when the band
     holds no 8-bit grey level, as it can when it is narrower than 1/255.
     """
-    p = (255.0 - _GREY_LEVELS) / 255.0  # map_server's reading of each level (negate 0)
+    p = _pixel_p(_GREY_LEVELS)  # map_server's reading of each level (negate 0)
     unknown = (free_thresh <= p) & (p <= occupied_thresh)
     if preferred is not None and unknown[preferred]:
         return preferred
@@ -743,7 +791,8 @@ def write_map(grid: OccupancyGrid, path: str | os.PathLike[str], *, mode: str = 
     mode : {"trinary", "scale"}
         ``trinary`` writes map_saver's pixels (0 occupied, 254 free, 205
         unknown, or a mid grey when 205 would not be unknown under the grid's
-        thresholds); ``scale`` writes ``round(255 * (1 - p))``. Either way
+        thresholds, and 255 for free when 254 would not be free, under a
+        ``free_thresh`` of at most 1/255); ``scale`` writes ``round(255 * (1 - p))``. Either way
         loading the files gives back the same occupied/free/unknown classes.
 
     Returns
