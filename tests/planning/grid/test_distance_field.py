@@ -11,6 +11,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from navkit.planning import AStarPlanner, astar, distance_field
+from navkit.planning.grid import _distance_field as distance_field_module
 from navkit.planning.grid._distance_field import _bucket_field
 from navkit.planning.grid._limits import checked_cost_range
 
@@ -158,3 +159,24 @@ def test_bucket_segments_grow_and_wide_cost_ranges_fall_back() -> None:
     np.testing.assert_array_equal(
         distance_field(costs, (35, 45)), AStarPlanner(costs).distance_field((35, 45))
     )
+
+
+def test_grids_whose_padded_cells_overflow_int32_use_the_heap(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    # The bucket queue stores padded cell ids, (rows + 2) * (cols + 2) of them, in
+    # int32: a 46340 x 46340 grid is within the 2**31 - 1 cell limit, but its padded
+    # ids above 2**31 - 1 wrapped around (wrong cells relaxed, out-of-range writes).
+    assert 46340**2 <= distance_field_module.MAX_PADDED_CELLS < 46342**2
+    # A read-only broadcast view stands in for the grid: refused before allocating.
+    huge = np.broadcast_to(np.float64(1.0), (46340, 46340))
+    assert _bucket_field(huge, 1.0, 1.0, (0, 0), True, False) is None
+    # Past the limit the field comes from the heap Dijkstra, bit for bit the same.
+    costs = np.ones((4, 4))
+    costs[1, 1:3] = np.inf
+    costs[3, 0] = 2.5
+    expected = distance_field(costs, (0, 0))
+    monkeypatch.setattr(distance_field_module, "MAX_PADDED_CELLS", 35)
+    grid, lowest, highest = checked_cost_range(costs)
+    assert _bucket_field(grid, lowest, highest, (0, 0), True, False) is None
+    np.testing.assert_array_equal(distance_field(costs, (0, 0)), expected)

@@ -31,6 +31,7 @@ from navkit.geometry import Pose2D
 from navkit.planning import FieldDStar, Path2D, field_dstar
 from navkit.planning.grid import _field_dstar as field_dstar_module
 from navkit.planning.grid._dstar_lite_kernels import corner_cost
+from navkit.planning.grid._polyline_kernels import polyline_cost
 
 FloatArray = NDArray[np.float64]
 SQRT2 = math.sqrt(2.0)
@@ -1121,3 +1122,22 @@ def test_world_end_nodes_round_as_world_to_node() -> None:
         world = fd.node_to_world(node_xy)
         _, node = fd._world_end(world, "start_xy")
         assert node == tuple(fd.world_to_node(world).tolist())
+
+
+def test_segment_a_hair_beside_a_grid_line_pays_the_cell_it_lies_in() -> None:
+    # The polyline cost priced a segment within 1e-9 of a grid line as running
+    # along it (the cheaper cell beside it): this straight path lies inside the
+    # cost-100 column, 5e-10 cells from its edge, and was reported to cost 1.8.
+    costs = np.array([[100.0, 1.0], [100.0, 1.0]])
+    planner = FieldDStar(costs)
+    path = planner.plan_world((1 - 5e-10, 0.1), (1 - 5e-10, 1.9))
+    points = planner.world_to_node(path.points, continuous=True)
+    assert path.cost == pytest.approx(true_cost(costs, points), rel=1e-12)
+    assert path.cost <= 180.0
+    # The straight segment itself, priced by the planner's own integrator.
+    straight = np.array([[0.1, 1 - 5e-10], [1.9, 1 - 5e-10]])
+    cost, _ = polyline_cost(planner._pad, planner._width, straight, 2)
+    assert cost == pytest.approx(180.0, rel=1e-12)
+    # Exactly on the line it pays the cheaper cell beside it.
+    on_line = np.array([[0.1, 1.0], [1.9, 1.0]])
+    assert polyline_cost(planner._pad, planner._width, on_line, 2)[0] == pytest.approx(1.8)

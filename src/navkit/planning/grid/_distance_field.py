@@ -25,6 +25,10 @@ from navkit.planning.grid._limits import checked_cost_range, read_only
 
 __all__ = ["distance_field"]
 
+MAX_PADDED_CELLS = 2**31 - 1
+"""Most cells of the padded grid (``(rows + 2) * (cols + 2)``) the bucket queue can
+hold: its entries are int32 padded cell ids."""
+
 
 def distance_field(
     costs: ArrayLike,
@@ -40,8 +44,9 @@ def distance_field(
     cost from the goal to a cell is that cell's cost-to-go. When the dearest
     move costs at most about 60 times the cheapest (every grid whose finite
     costs span a factor of up to about 40), the queue is a ring of buckets one
-    cheapest move wide (Dial's algorithm, O(1) per queue operation); otherwise
-    it is the indexed heap of :func:`astar`. Both give the same field, bit for
+    cheapest move wide (Dial's algorithm, O(1) per queue operation); otherwise,
+    and on grids within ``2 * (rows + cols) + 4`` cells of the ``2**31 - 1``
+    limit, it is the indexed heap of :func:`astar`. Both give the same field, bit for
     bit: that of :meth:`AStarPlanner.distance_field`, the prepared form.
 
     Parameters
@@ -112,19 +117,27 @@ def _bucket_field(
 ) -> FloatArray | None:
     """The field by the bucket-queue kernel, or None when the cost range needs too many buckets.
 
+    Also None when the padded grid has more cells than the int32 bucket entries
+    can name (:data:`MAX_PADDED_CELLS`): grids within a border's worth of
+    cells of the ``2**31 - 1`` limit.
+
     ``lowest``, ``highest``: the smallest and largest finite costs of ``grid``.
     ``cap``: initial bucket segment length (0: about one wavefront, ``4 * (rows + cols)``).
     """
     rows, cols = grid.shape
-    flat = read_only(grid.reshape(-1))
+    n_padded = (rows + 2) * (cols + 2)
+    if n_padded > MAX_PADDED_CELLS:
+        # A padded cell id would wrap around in the int32 buckets; the heap search
+        # indexes the unpadded cells, which the callers keep below 2**31.
+        return None
     width = lowest * WIDTH_MARGIN
     w_max = SQRT2 * highest if eight else highest
     span = int(w_max / width) + 3
     if span > MAX_SLOTS:
         return None
+    flat = read_only(grid.reshape(-1))
     n_slots = 1 << (span - 1).bit_length()
     uniform = highest == lowest
-    n_padded = (rows + 2) * (cols + 2)
     free = np.empty(n_padded, dtype=np.uint8)
     padded = np.empty(0 if uniform else n_padded, dtype=np.float64)
     pad_grid(flat, rows, cols, free, padded, uniform)

@@ -17,7 +17,7 @@ The caller passes the shortcut's output buffer, so :func:`_polyline` allocates
 nothing and runs without reference counting: allocating in it compiled numba's
 ``np.empty`` implementation and its allocator with it (about 0.2 s of first
 use). ``min()`` is written out (numba compiles it as a function of its own per
-argument type set), and ``round`` already returns an int.
+argument type set), and ``math.floor`` already returns an int.
 """
 
 from __future__ import annotations
@@ -38,15 +38,22 @@ def segment_cost(pad: np.ndarray, width: int, r0: float, c0: float, r1: float, c
     """Exact cost of the straight segment p0 -> p1: sum of length × cell cost.
 
     The segment is split where it crosses grid lines; each piece pays the cell
-    containing its midpoint, or the cheaper of the two cells beside a grid line
-    it runs along. Pieces shorter than 1e-12 (passing through a corner) are free.
-    Cell ``(r, c)`` costs ``pad[(r + 1) * width + c + 1]``.
+    containing its midpoint, or, when the whole segment lies on a grid line
+    (both ends on it exactly), the cheaper of the two cells beside it. Pieces
+    shorter than 1e-12 (passing through a corner) are free. Cell ``(r, c)``
+    costs ``pad[(r + 1) * width + c + 1]``.
     """
     dr = r1 - r0
     dc = c1 - c0
     length = math.hypot(dr, dc)
     if length == 0.0:
         return 0.0
+    # Exact tests, not a tolerance: a segment a hair beside a grid line lies in
+    # the cell on its side (the walk's points on a line are exactly on it), and
+    # pricing it at the cheaper neighbour undercounted its cost by up to the
+    # cost difference times its length.
+    on_row = dr == 0.0 and r0 == math.floor(r0)
+    on_col = dc == 0.0 and c0 == math.floor(c0)
     total = 0.0
     t = 0.0
     # Index of the next integer line in each axis, stepped by counters to avoid drift.
@@ -80,17 +87,15 @@ def segment_cost(pad: np.ndarray, width: int, r0: float, c0: float, r1: float, c
             tm = 0.5 * (t + t1)
             mr = r0 + tm * dr
             mc = c0 + tm * dc
-            rr = round(mr)
-            rc = round(mc)
-            if abs(mr - rr) < 1e-9 and abs(dr) * (t1 - t) < 1e-9:
-                # Along row line rr: cells (rr - 1, col) and (rr, col).
-                at = rr * width + math.floor(mc) + 1
+            if on_row:
+                # Along row line r0: cells (r0 - 1, col) and (r0, col).
+                at = math.floor(r0) * width + math.floor(mc) + 1
                 cost = pad[at]
                 if pad[at + width] < cost:
                     cost = pad[at + width]
-            elif abs(mc - rc) < 1e-9 and abs(dc) * (t1 - t) < 1e-9:
-                # Along column line rc: cells (row, rc - 1) and (row, rc).
-                at = (math.floor(mr) + 1) * width + rc
+            elif on_col:
+                # Along column line c0: cells (row, c0 - 1) and (row, c0).
+                at = (math.floor(mr) + 1) * width + math.floor(c0)
                 cost = pad[at]
                 if pad[at + 1] < cost:
                     cost = pad[at + 1]
