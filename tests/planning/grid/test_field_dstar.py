@@ -1141,3 +1141,15 @@ def test_segment_a_hair_beside_a_grid_line_pays_the_cell_it_lies_in() -> None:
     # Exactly on the line it pays the cheaper cell beside it.
     on_line = np.array([[0.1, 1.0], [1.9, 1.0]])
     assert polyline_cost(planner._pad, planner._width, on_line, 2)[0] == pytest.approx(1.8)
+
+
+@pytest.mark.parametrize("smooth", [True, False])
+def test_a_world_plan_from_a_point_to_itself_is_that_point(smooth: bool) -> None:
+    # Off a node it was a trip to the nearest node and back ([p, p] smoothed, or
+    # [p, node, p] with its cost), where on a node it was the one point.
+    fd = FieldDStar(np.ones((4, 4)), smooth=smooth)
+    for p in [(0.2, 0.2), (1.0, 1.0), (3.9, 0.05)]:
+        path = fd.plan_world(p, p)
+        assert path.points.tolist() == [list(p)] and path.cost == 0.0 and path.length == 0.0
+        again = fd.replan_world()
+        assert again.points.tolist() == [list(p)] and again.cost == 0.0

@@ -988,6 +988,10 @@ class FieldDStar:
     def _linked(self, points: FloatArray) -> tuple[FloatArray, float, float]:
         """The node path with the stored end points attached, smoothed, and its cost/length."""
         assert self._start_point is not None and self._goal_point is not None
+        if self._start_point == self._goal_point:
+            # Start and goal at one point (off a node too): the path is that point,
+            # not a trip to the nearest node and back.
+            return np.array([self._start_point], dtype=np.float64), 0.0, 0.0
         linked = np.vstack([self._start_point, points, self._goal_point])
         # An end point on its node adds a zero-length step: drop repeated vertices.
         keep = np.ones(linked.shape[0], dtype=bool)
