@@ -286,6 +286,31 @@ def test_imu_to_base_rotates_readings_and_covariances(tmp_path: Path) -> None:
     assert not base.orientations.flags.writeable
 
 
+def test_imu_to_base_keeps_an_orientation_marked_not_given() -> None:
+    # REP 145: an IMU without an orientation estimate sends a placeholder (here all
+    # zero) with orientation_covariance[0] = -1. Rotating the placeholder gave the
+    # mounting's inverse, e.g. (0, 0, 0, 1) for an identity mounting.
+    given = np.diag([0.1, 0.1, 0.1])
+    not_given = np.diag([-1.0, 0.0, 0.0])
+    imu = BagImu(
+        "/imu",
+        "imu_link",
+        [0.0, 0.1],
+        [0.0, 0.1],
+        [[0.0, 0.0, 0.0, 0.0], [0.0, 0.0, 0.0, 1.0]],
+        [[0.0, 0.0, 0.2]] * 2,
+        [[0.0, 0.0, 9.8]] * 2,
+        [not_given, given],
+        [given] * 2,
+        [given] * 2,
+    )
+    for mounting in ([0.0, 0.0, 0.0, 1.0], rpy_to_quaternion(0.0, 0.0, 1.0)):
+        base = imu.to_base(mounting)
+        np.testing.assert_array_equal(base.orientations[0], [0.0, 0.0, 0.0, 0.0])
+        np.testing.assert_array_equal(base.orientation_covariances[0], not_given)
+    assert quaternion_to_yaw(base.orientations[1]) == pytest.approx(-1.0)  # given: rotated
+
+
 def test_odometry_record_wraps_a_given_yaw() -> None:
     q, v, c = np.zeros((2, 4)), np.zeros((2, 3)), np.zeros((2, 6, 6))
     poses = np.array([[1.0, 2.0, 4.0], [0.0, 0.0, -math.pi]])

@@ -137,6 +137,21 @@ def test_scan_from_msg() -> None:
     assert scan_from_msg(msg).intensities is None
 
 
+def test_scan_from_msg_trusts_ranges_and_increment_over_angle_max() -> None:
+    # angle_max says 5 beams, ranges holds 3: the beams are where ranges and the increment put them.
+    msg = SimpleNamespace(
+        ranges=[1.0, 1.0, 1.0],
+        angle_min=0.5,
+        angle_max=-0.5,
+        angle_increment=-0.25,
+        range_min=0.05,
+        range_max=4.0,
+    )
+    scan = scan_from_msg(msg)
+    assert scan.angles().tolist() == [0.5, 0.25, 0.0]
+    assert scan.angle_max == 0.0
+
+
 def test_scan_from_msg_requires_the_ros_fields() -> None:
     with pytest.raises(TypeError, match="'range_max'"):
         scan_from_msg(

@@ -260,7 +260,9 @@ ndarray, shape (N, 3, 3)
         Orientations, angular velocities and accelerations as
         :func:`navkit.geometry.imu_to_base` rotates them; each covariance ``C``
         becomes ``R C Rᵀ`` (``R`` the mounting rotation), except those marked
-        "not given" (-1 first), which are kept.
+        "not given" (-1 first), which are kept. Orientations marked "not given"
+        (orientation covariance -1 first, REP 145) are kept too, as in the bag
+        (usually all zero), rather than turned into the mounting's inverse.
 
         Parameters
         ----------
@@ -294,6 +296,10 @@ ndarray, shape (N, 3, 3)
             mounting=mounting,
         )
         rot = quaternion_to_matrix(mounting)
+        # An IMU without an orientation estimate gives a placeholder (all zero); rotating
+        # it would fabricate the orientation m⁻¹ behind a still "not given" covariance.
+        no_orientation = self.orientation_covariances[:, 0, 0] == -1.0
+        orientations = np.where(no_orientation[:, None], self.orientations, rotated.orientations)
 
         def turn(cov: FloatArray) -> FloatArray:
             keep = cov[:, 0, 0] == -1.0
@@ -305,7 +311,7 @@ ndarray, shape (N, 3, 3)
             frame,
             self.times,
             self.record_times,
-            rotated.orientations,
+            orientations,
             rotated.angular_velocities,
             rotated.linear_accelerations,
             turn(self.orientation_covariances),

@@ -276,7 +276,10 @@ def scan_from_msg(msg: Any) -> LaserScan:
 
     Reads ``ranges``, ``angle_min``, ``angle_increment``, ``range_min``,
     ``range_max`` and (when present and non-empty) ``intensities``, checked
-    as :class:`~navkit.mapping.LaserScan` checks them.
+    as :class:`~navkit.mapping.LaserScan` checks them. ``angle_max`` is not
+    read: beam ``k`` of ``ranges`` points at ``angle_min + k * angle_increment``
+    whatever ``angle_max`` says (drivers disagree on whether it is the last
+    beam's angle; ROS's laser_geometry trusts ``ranges`` and the increment too).
 
     Parameters
     ----------
