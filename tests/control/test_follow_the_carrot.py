@@ -149,6 +149,19 @@ def test_reaching_a_far_carrot_on_a_hairpin_does_not_stall(
     assert run.done and run.goal_error() <= 0.05
 
 
+@drives
+def test_a_short_closed_loop_is_driven_round(closed_loop: Callable[..., Any], drive: str) -> None:
+    # A 2 m square loop, the robot 1 cm beside its start: the end of the loop, in the
+    # 2 m search window too, was nearer than the start, so the robot was done at once.
+    path = np.array([[0.0, 0.0], [0.5, 0.0], [0.5, 0.5], [0.0, 0.5], [0.0, 0.0]])
+    run = closed_loop(FollowTheCarrot(drive=drive), path, (0.0, 0.01, 0.0))
+    assert run.done and run.goal_error() <= 0.05
+    travelled = np.hypot(*np.diff(run.poses[:, :2], axis=0).T).sum()
+    assert travelled > 1.3  # round the loop, cutting its last corner by at most the carrot
+    assert run.poses[:, 0].max() > 0.4 and run.poses[:, 1].max() > 0.4
+    assert run.cross_track.max() < CARROT
+
+
 def test_no_goal_heading_ends_at_the_position(closed_loop: Callable[..., Any]) -> None:
     run = closed_loop(FollowTheCarrot(), np.array([[0.0, 0.0], [1.0, 0.0]]), (0.0, 0.0, 0.0))
     assert run.done and "final" not in run.phases

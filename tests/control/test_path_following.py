@@ -60,6 +60,23 @@ def test_projection_window_keeps_loops_in_order() -> None:
     assert s_end == pytest.approx(line.length)
 
 
+def test_projection_stops_where_the_path_leaves_the_robot() -> None:
+    """A 1.6 m square loop and a point 1 cm beside its start: the end of the loop is
+    nearer, but the path first leads more than the detour away from the point."""
+    line = Polyline(np.array([[0.0, 0.0], [0.4, 0.0], [0.4, 0.4], [0.0, 0.4], [0.0, 0.0]]))
+    assert line.project(0.0, 0.01, 0.0, 2.0) == pytest.approx((1.59, 0.0))
+    assert line.project(0.0, 0.01, 0.0, 2.0, detour=0.25) == pytest.approx((0.0, 0.01))
+    # Up to s_free the whole path is searched, the detour only counts past it.
+    assert line.project(0.0, 0.01, 0.0, 2.0, detour=0.25, s_free=1.3) == pytest.approx(
+        (1.59, 0.0)
+    )
+    # A path that only wiggles within the detour is searched to the window's end.
+    wiggle = Polyline(np.array([[0.0, 0.0], [0.1, 0.1], [0.2, 0.0], [0.3, 0.1], [0.4, 0.0]]))
+    assert wiggle.project(0.4, 0.0, 0.0, 1.0, detour=0.25) == pytest.approx(
+        (wiggle.length, 0.0)
+    )
+
+
 @settings(max_examples=200, deadline=None)
 @given(points, coord, coord)
 def test_projection_matches_shapely(pts: list[tuple[float, float]], x: float, y: float) -> None:

@@ -209,6 +209,19 @@ def test_start_at_the_goal_is_done_at_once(make: Callable[..., Any]) -> None:
     assert tracker.done
 
 
+@trackers
+@pytest.mark.parametrize("drive", ["diff", "omni"])
+def test_a_short_closed_loop_is_not_done_at_once(make: Callable[..., Any], drive: str) -> None:
+    """A 2 m square loop (start = end) and a robot 1 cm beside its start: the closest point
+    is the start, not the end just beside it (both lie within the 2 m search window)."""
+    tracker = make(drive=drive)
+    tracker.set_path([[0.0, 0.0], [0.5, 0.0], [0.5, 0.5], [0.0, 0.5], [0.0, 0.0]])
+    cmd = tracker.step((0.0, 0.01, 0.0), 0.05)
+    assert not tracker.done
+    assert cmd != Twist2D(0.0, 0.0, 0.0)
+    assert tracker.progress < 0.1
+
+
 # ---------------------------------------------------------------------- omni
 @trackers
 def test_omni_moves_sideways_without_turning(make: Callable[..., Any]) -> None:

@@ -178,3 +178,13 @@ def test_calibration_unwrap_refuses_2d_readings_without_latching() -> None:
     # Without unwrapping a 2-D array keeps its shape.
     plain = CompassCalibration()
     assert np.shape(plain(np.zeros((2, 3)))) == (2, 3)
+
+
+def test_reading_at_the_initial_heading_is_positive_zero() -> None:
+    """Yaw 0 is +0.0, not -0.0 (as the examples print it), for scalars, arrays and calibrations."""
+    assert math.copysign(1.0, compass_to_yaw(45.0, initial_deg=45.0)) == 1.0
+    assert math.copysign(1.0, compass_to_yaw(1e300)) == 1.0  # 1e300 is 0 modulo 360
+    assert not np.any(np.signbit(compass_to_yaw([0.0, 360.0, 720.0])))
+    assert math.copysign(1.0, CompassCalibration()(45.0)) == 1.0
+    assert not np.any(np.signbit(CompassCalibration(unwrap=True)([10.0, 10.0])))
+    assert str(compass_to_yaw(10.0, initial_deg=10.0)) == "0.0"

@@ -145,6 +145,10 @@ def test_measurement_variances_outside_their_range_are_refused(call, name) -> No
         (lambda: MeasurementLog.from_streams(odometry=([0.0], [1.0], [0.0]),
                                              odometry_variance=1e-3), TypeError,
          "odometry_variance must be a pair"),
+        # A 0-d array is an ndarray without a length: it raised an unnamed len() error.
+        (lambda: MeasurementLog.from_streams(odometry=([0.0], [1.0], [0.0]),
+                                             odometry_variance=np.array(1e-3)), TypeError,
+         "odometry_variance must be a pair"),
         (lambda: MeasurementLog([0.0], [[0.0, 1.0, 0.0, 0.0]], [[1.0, 1e120, 1.0, 1.0]],
                                 [[False, True, False, False]]), ValueError, "variances must be in"),
         (lambda: MeasurementLog([0.0], [[0.0, 1.0 + 1j, 0.0, 0.0]], np.ones((1, 4)),

@@ -400,3 +400,65 @@ def test_fortran_ordered_log_uses_the_one_compiled_batch_kernel() -> None:
     result = PlanarFusion(t0=0.0).update_batch(log)
     np.testing.assert_array_equal(result.states, PlanarFusion(t0=0.0).update_batch(ref).states)
     assert len(kernels.planar_run.signatures) == 1
+
+
+@pytest.mark.parametrize("name", ["P0", "process_noise"])
+def test_a_diagonal_is_checked_like_the_full_matrix(name: str) -> None:
+    """A subnormal variance given as a diagonal is refused, as in the (6, 6) matrix.
+
+    It used to pass the diagonal's sign check and make the filter's first update
+    fail (FilterError) instead of the constructor.
+    """
+    diagonal = np.array([1e-320, 1.0, 1.0, 1.0, 1.0, 1.0])
+    if name == "P0":
+        with pytest.raises(ValueError, match="P0 must be positive definite"):
+            PlanarFusion(P0=np.diag(diagonal))
+        with pytest.raises(ValueError, match="P0 must be positive definite"):
+            PlanarFusion(P0=diagonal)
+    else:
+        # Semi-definite process noise: a subnormal entry (or a zero) is fine either way.
+        log = mixed_log(50, seed=3)
+        by_vector = PlanarFusion(t0=0.0, process_noise=diagonal).update_batch(log)
+        by_matrix = PlanarFusion(t0=0.0, process_noise=np.diag(diagonal)).update_batch(log)
+        np.testing.assert_array_equal(by_vector.covariances, by_matrix.covariances)
+    # Zero process noise on some states: the diagonal and the matrix give the same filter.
+    q = np.array([0.0, 0.0, 0.06, 0.0, 0.02, 0.0])
+    log = mixed_log(50, seed=3)
+    by_vector = PlanarFusion(t0=0.0, process_noise=q).update_batch(log)
+    by_matrix = PlanarFusion(t0=0.0, process_noise=np.diag(q)).update_batch(log)
+    np.testing.assert_array_equal(by_vector.covariances, by_matrix.covariances)
+    assert np.all(by_vector.status == FusionStatus.ACCEPTED)
+
+
+@pytest.mark.parametrize("copier", ["copy", "deepcopy", "pickle"])
+def test_log_and_result_copies_and_pickles_stay_read_only(copier: str) -> None:
+    """The records' arrays are read-only in every copy, not only in the original.
+
+    pickle and deepcopy used to restore them writable: a copied log could then be
+    changed after its validation (a negative variance was silently taken as "not
+    observed" by the batch kernel).
+    """
+    import copy
+    import pickle
+
+    copiers = {
+        "copy": copy.copy,
+        "deepcopy": copy.deepcopy,
+        "pickle": lambda obj: pickle.loads(pickle.dumps(obj)),
+    }
+    log = mixed_log(20, seed=5)
+    result = PlanarFusion(t0=0.0).update_batch(log)
+    twin_log = copiers[copier](log)
+    twin_result = copiers[copier](result)
+    assert type(twin_log) is MeasurementLog and type(twin_result) is FusionResult
+    for twin, original in ((twin_log, log), (twin_result, result)):
+        for name in type(original).__dataclass_fields__:
+            arr = getattr(twin, name)
+            assert not arr.flags.writeable, name
+            assert arr.flags.c_contiguous, name
+            np.testing.assert_array_equal(arr, getattr(original, name))
+    with pytest.raises(ValueError, match="read-only"):
+        twin_log.variances[0, :] = -1.0
+    np.testing.assert_array_equal(
+        PlanarFusion(t0=0.0).update_batch(twin_log).states, result.states
+    )

@@ -4,7 +4,8 @@
   ``(N, 2)`` or a ``"world"`` :class:`~navkit.planning.Path2D`.
 * :class:`Polyline` — a path parametrised by arc length: the point at a given
   arc length, the closest point within a window (progress along the path only
-  moves forward, so loops and crossings are followed in order), pure pursuit's
+  moves forward, and the search ends where the path leaves the robot, so loops
+  and crossings are followed in order), pure pursuit's
   lookahead point (first crossing of a circle around the robot).
 * :func:`pursuit_curvature` — the curvature of the arc that leaves the robot
   along its heading and passes through a point.
@@ -32,6 +33,7 @@ from navkit.planning import Path2D
 __all__ = [
     "MAX_COORDINATE",
     "SEARCH_AHEAD",
+    "SEARCH_DETOUR",
     "ZERO_TWIST",
     "PathTracker",
     "Phase",
@@ -48,6 +50,12 @@ MAX_COORDINATE = 1e9
 
 SEARCH_AHEAD = 2.0
 """Arc length (m) of path searched ahead of the previous closest point at each step."""
+
+SEARCH_DETOUR = 0.25
+"""How much farther (m) from the robot than the closest point found so far the path
+may lead before the search for the closest point stops. Beyond such a detour a
+nearer point is a later pass of the path (the end of a closed loop shorter than
+:data:`SEARCH_AHEAD`, the far side of a crossing), not where the robot is yet."""
 
 Phase = Literal["idle", "rotate", "track", "final", "done"]
 
@@ -181,11 +189,26 @@ class Polyline:
         x, y = point_at(self.points_xy, self.cum, float(s))
         return float(x), float(y)
 
-    def project(self, x: float, y: float, s_from: float, s_to: float) -> tuple[float, float]:
-        """Closest point to ``(x, y)`` among ``s`` in ``[s_from, s_to]``: ``(s, distance)``."""
+    def project(
+        self,
+        x: float,
+        y: float,
+        s_from: float,
+        s_to: float,
+        detour: float = math.inf,
+        s_free: float = 0.0,
+    ) -> tuple[float, float]:
+        """Closest point to ``(x, y)`` among ``s`` in ``[s_from, s_to]``: ``(s, distance)``.
+
+        With a finite ``detour`` the search stops at the first vertex beyond arc
+        length ``s_free`` more than ``detour`` farther from ``(x, y)`` than the
+        closest point found so far.
+        """
         lo = min(max(float(s_from), 0.0), self.length)
         hi = min(max(float(s_to), lo), self.length)
-        s, d = project(float(x), float(y), self.points_xy, self.cum, lo, hi)
+        s, d = project(
+            float(x), float(y), self.points_xy, self.cum, lo, hi, float(s_free), float(detour)
+        )
         return float(s), float(d)
 
     def circle_exit(self, x: float, y: float, s_from: float, radius: float) -> float | None:
@@ -283,8 +306,10 @@ class PathTracker(ABC):
 
         The arc length of the robot's closest point on the path, searched each
         step within 2 m of path ahead of the previous one, or up to the point
-        the tracker last steered for (so loops and crossings are followed in
-        order); for :class:`OnOffTracker`, that of the last waypoint reached.
+        the tracker last steered for; past that point, no farther than where the
+        path first leads 0.25 m farther from the robot than the closest point so
+        far (so loops and crossings are followed in order); for
+        :class:`OnOffTracker`, that of the last waypoint reached.
         """
         return self._progress
 
@@ -397,10 +422,13 @@ class PathTracker(ABC):
 
         The window runs :data:`SEARCH_AHEAD` metres of path ahead of the previous
         closest point, or to arc length ``reach`` (where the tracker last
-        steered) if that is farther.
+        steered) if that is farther. Past ``reach`` the search ends after a
+        detour of :data:`SEARCH_DETOUR` (a robot at the start of a short closed
+        loop is not at its end); up to it, the robot may have cut across to any
+        point, having been steered there.
         """
         hi = max(self._progress + SEARCH_AHEAD, reach)
-        s, _ = line.project(pose.x, pose.y, self._progress, hi)
+        s, _ = line.project(pose.x, pose.y, self._progress, hi, SEARCH_DETOUR, reach)
         self._progress = s
         return s
 

@@ -58,12 +58,22 @@ def point_at(pts: np.ndarray, cum: np.ndarray, s: float) -> tuple[float, float]:
 
 @njit_no_refcount
 def project(
-    px: float, py: float, pts: np.ndarray, cum: np.ndarray, s_from: float, s_to: float
+    px: float,
+    py: float,
+    pts: np.ndarray,
+    cum: np.ndarray,
+    s_from: float,
+    s_to: float,
+    s_free: float,
+    detour: float,
 ) -> tuple[float, float]:
     """Closest point to ``(px, py)`` on the part ``[s_from, s_to]`` of the path.
 
     Returns ``(s, distance)``; on ties the smallest ``s`` wins. ``s_from <= s_to``
-    and both inside ``[0, length]``.
+    and both inside ``[0, length]``. The search walks the path from ``s_from``
+    and stops at the first vertex beyond arc length ``s_free`` more than
+    ``detour`` farther from ``(px, py)`` than the closest point found so far
+    (``detour = inf``: the whole window).
     """
     k = pts.shape[0]
     if k < 2:
@@ -96,6 +106,13 @@ def project(
         if d2 < best_d2:
             best_d2 = d2
             best_s = min(max(cum[i] + u, s_from), s_to)
+        # The distance to a segment's points is convex along it, so the path can only
+        # leave the robot and come back through a vertex: past one that is a detour
+        # away, a nearer point is a later pass (the end of a short loop, a crossing).
+        vx = pts[i + 1, 0] - px
+        vy = pts[i + 1, 1] - py
+        if cum[i + 1] > s_free and math.hypot(vx, vy) > math.sqrt(best_d2) + detour:
+            break
     return best_s, math.sqrt(best_d2)
 
 

@@ -78,7 +78,8 @@ def compass_to_yaw(
     rel = np.mod(diff, 360.0)
     # np.mod can round a tiny negative difference up to exactly 360.
     rel = np.where(rel >= 360.0, 0.0, rel)
-    yaw = np.radians(np.where(rel < 180.0, -rel, 360.0 - rel))
+    # 0.0 - rel, not -rel: a reading equal to the initial heading is yaw +0.0, not -0.0.
+    yaw = np.radians(np.where(rel < 180.0, 0.0 - rel, 360.0 - rel))
     if flag:
         if yaw.ndim != 1:
             raise ValueError(f"unwrap needs a 1-D array of readings, got shape {yaw.shape}")

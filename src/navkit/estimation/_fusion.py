@@ -12,6 +12,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from navkit._shared.frozen import restore_read_only
 from navkit._shared.types import BoolArray, FloatArray
 from navkit._shared.validation import as_float_array, finite_float
 from navkit.errors import FilterError
@@ -202,6 +203,10 @@ class MeasurementLog:
         obs.flags.writeable = False
         object.__setattr__(self, "observed", obs)
 
+    def __setstate__(self, state: list[Any]) -> None:
+        """Restore from a pickle or :func:`copy.deepcopy`, the arrays read-only again."""
+        restore_read_only(self, state, ("times", "values", "variances", "observed"))
+
     def __len__(self) -> int:
         return int(self.times.shape[0])
 
@@ -296,7 +301,12 @@ def _stream(stream: Any, name: str, widths: tuple[int, ...]) -> tuple[FloatArray
 
 
 def _pair(value: Any, name: str) -> tuple[Any, Any]:
-    if isinstance(value, (str, bytes)) or not isinstance(value, (tuple, list, np.ndarray)):
+    # A 0-d array is an ndarray without a length (len() would raise unnamed).
+    if (
+        isinstance(value, (str, bytes))
+        or not isinstance(value, (tuple, list, np.ndarray))
+        or (isinstance(value, np.ndarray) and value.ndim == 0)
+    ):
         raise TypeError(f"{name} must be a pair (v_variance, omega_variance)")
     if len(value) != 2:
         raise ValueError(f"{name} must be a pair (v_variance, omega_variance), got {len(value)}")
@@ -394,6 +404,10 @@ class FusionResult:
             owned = np.array(arr, copy=True)
             owned.flags.writeable = False
             object.__setattr__(self, name, owned)
+
+    def __setstate__(self, state: list[Any]) -> None:
+        """Restore from a pickle or :func:`copy.deepcopy`, the arrays read-only again."""
+        restore_read_only(self, state, ("times", "states", "covariances", "status", "nis"))
 
     @property
     def accepted(self) -> BoolArray:
@@ -946,5 +960,8 @@ def _matrix(value: ArrayLike, name: str, *, semidefinite: bool) -> FloatArray:
         if not np.all(arr >= 0.0) or (not semidefinite and not np.all(arr > 0.0)):
             bound = ">= 0" if semidefinite else "> 0"
             raise ValueError(f"{name} diagonal entries must be {bound}")
-        return np.diag(arr)
+        # The diagonal goes through the same checks as a full matrix: a positive but
+        # subnormal variance (1e-320) passes the test above, yet the kernel's LDLᵀ
+        # check refuses it, and the filter would fail its first update instead.
+        arr = np.diag(arr)
     return covariance(arr, name, 6, semidefinite=semidefinite)
