@@ -2,7 +2,11 @@
 
 from __future__ import annotations
 
+import copy
+import pickle
+from collections.abc import Callable
 from pathlib import Path
+from typing import Any
 
 import pytest
 from hypothesis import settings
@@ -22,3 +26,16 @@ def shared_data() -> Path:
     if not SHARED_DATA.is_dir():
         pytest.skip(f"real data folder {SHARED_DATA} is not available")
     return SHARED_DATA
+
+
+_DUPLICATES: dict[str, Callable[[Any], Any]] = {
+    "pickle": lambda obj: pickle.loads(pickle.dumps(obj)),
+    "deepcopy": copy.deepcopy,
+    "copy": copy.copy,
+}
+
+
+@pytest.fixture(params=list(_DUPLICATES))
+def duplicate(request: pytest.FixtureRequest) -> Callable[[Any], Any]:
+    """Each way of copying a record: a pickle round trip, ``copy.deepcopy``, ``copy.copy``."""
+    return _DUPLICATES[request.param]

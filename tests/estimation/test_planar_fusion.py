@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 import pytest
@@ -430,26 +432,19 @@ def test_a_diagonal_is_checked_like_the_full_matrix(name: str) -> None:
     assert np.all(by_vector.status == FusionStatus.ACCEPTED)
 
 
-@pytest.mark.parametrize("copier", ["copy", "deepcopy", "pickle"])
-def test_log_and_result_copies_and_pickles_stay_read_only(copier: str) -> None:
+def test_log_and_result_copies_and_pickles_stay_read_only(
+    duplicate: Callable[[Any], Any],
+) -> None:
     """The records' arrays are read-only in every copy, not only in the original.
 
     pickle and deepcopy used to restore them writable: a copied log could then be
     changed after its validation (a negative variance was silently taken as "not
     observed" by the batch kernel).
     """
-    import copy
-    import pickle
-
-    copiers = {
-        "copy": copy.copy,
-        "deepcopy": copy.deepcopy,
-        "pickle": lambda obj: pickle.loads(pickle.dumps(obj)),
-    }
     log = mixed_log(20, seed=5)
     result = PlanarFusion(t0=0.0).update_batch(log)
-    twin_log = copiers[copier](log)
-    twin_result = copiers[copier](result)
+    twin_log = duplicate(log)
+    twin_result = duplicate(result)
     assert type(twin_log) is MeasurementLog and type(twin_result) is FusionResult
     for twin, original in ((twin_log, log), (twin_result, result)):
         for name in type(original).__dataclass_fields__:

@@ -2,9 +2,7 @@
 
 from __future__ import annotations
 
-import copy
 import math
-import pickle
 from collections.abc import Callable
 from pathlib import Path
 from types import SimpleNamespace
@@ -100,11 +98,6 @@ def test_scan_copies_and_freezes_its_arrays() -> None:
     assert scan.intensities is not None and scan.intensities.tolist() == [3.0, 4.0]
 
 
-@pytest.mark.parametrize(
-    "duplicate",
-    [lambda s: pickle.loads(pickle.dumps(s)), copy.deepcopy, copy.copy],
-    ids=["pickle", "deepcopy", "copy"],
-)
 def test_copied_and_unpickled_scans_stay_read_only(
     duplicate: Callable[[LaserScan], LaserScan],
 ) -> None:

@@ -2,10 +2,8 @@
 
 from __future__ import annotations
 
-import copy
 import dataclasses
 import math
-import pickle
 from collections.abc import Callable
 
 import numpy as np
@@ -172,11 +170,6 @@ def test_half_width_snaps_half_up(half_width: float, resolution: float, size: in
     assert grid.occupied[size - 1, size // 2] and grid.occupied.sum() == 1
 
 
-@pytest.mark.parametrize(
-    "duplicate",
-    [lambda g: pickle.loads(pickle.dumps(g)), copy.deepcopy, copy.copy],
-    ids=["pickle", "deepcopy", "copy"],
-)
 def test_copied_and_unpickled_grids_stay_read_only(
     duplicate: Callable[[LocalGrid], LocalGrid],
 ) -> None:

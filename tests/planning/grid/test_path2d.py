@@ -2,10 +2,8 @@
 
 from __future__ import annotations
 
-import copy
 import dataclasses
 import math
-import pickle
 from collections.abc import Callable
 
 import numpy as np
@@ -141,11 +139,6 @@ def test_records_built_from_lists_copy_and_never_freeze() -> None:
     assert not a.cells.flags.writeable
 
 
-@pytest.mark.parametrize(
-    "duplicate",
-    [lambda p: pickle.loads(pickle.dumps(p)), copy.deepcopy, copy.copy],
-    ids=["pickle", "deepcopy", "copy"],
-)
 def test_copied_and_unpickled_paths_keep_read_only_points(
     duplicate: Callable[[Path2D], Path2D],
 ) -> None:
