@@ -188,3 +188,45 @@ def test_reading_at_the_initial_heading_is_positive_zero() -> None:
     assert math.copysign(1.0, CompassCalibration()(45.0)) == 1.0
     assert not np.any(np.signbit(CompassCalibration(unwrap=True)([10.0, 10.0])))
     assert str(compass_to_yaw(10.0, initial_deg=10.0)) == "0.0"
+
+
+def test_a_half_turn_step_keeps_its_sign_in_both_unwrappers() -> None:
+    """Readings 180° apart: a step of exactly ±π is kept, as numpy.unwrap keeps it.
+
+    CompassCalibration used to turn the step back (-π) into +π: [0, π, 2π].
+    """
+    want = [0.0, math.pi, 0.0]
+    np.testing.assert_array_equal(compass_to_yaw([0.0, 180.0, 0.0], unwrap=True), want)
+    np.testing.assert_array_equal(CompassCalibration(unwrap=True)([0.0, 180.0, 0.0]), want)
+    cal = CompassCalibration(unwrap=True)
+    assert [cal(d) for d in (0.0, 180.0, 0.0, 180.0)] == [*want, math.pi]
+    # 270° then 90° from a start at 0°: yaw π/2, then a step of exactly -π.
+    cal = CompassCalibration(unwrap=True)
+    assert [cal(d) for d in (0.0, 270.0, 90.0)] == [0.0, math.pi / 2, -math.pi / 2]
+
+
+readings = st.sampled_from([0.0, 45.0, 90.0, 135.0, 180.0, 225.0, 270.0, 315.0]) | st.floats(
+    -720.0, 720.0
+)
+
+
+@settings(max_examples=300, deadline=None)
+@given(
+    log=st.lists(readings, min_size=1, max_size=40),
+    cuts=st.lists(st.integers(0, 40), max_size=5),
+)
+def test_calibration_in_pieces_equals_compass_to_yaw_and_numpy_unwrap(
+    log: list[float], cuts: list[int]
+) -> None:
+    raws = np.array(log)
+    whole = compass_to_yaw(raws, initial_deg=log[0], unwrap=True)
+    assert isinstance(whole, np.ndarray)
+    wrapped = compass_to_yaw(raws, initial_deg=log[0])
+    np.testing.assert_array_equal(whole, np.unwrap(wrapped))
+    cal = CompassCalibration(unwrap=True)
+    pieces = np.split(raws, sorted(c for c in cuts if c < len(log)))
+    streamed = np.concatenate([np.atleast_1d(cal(p)) for p in pieces])
+    np.testing.assert_array_equal(streamed, whole)
+    # The same one reading at a time (floats, not arrays).
+    cal = CompassCalibration(unwrap=True)
+    np.testing.assert_array_equal([cal(float(r)) for r in log], whole)

@@ -150,3 +150,81 @@ def test_saturate_never_rounds_above_the_limit() -> None:
     # A tiny limit on huge speeds keeps the direction instead of underflowing to zero.
     out = drive.saturate([1e308, -1e308, 1e307], max_speed=1e-300)
     np.testing.assert_allclose(out, [1e-300, -1e-300, 1e-301])
+
+
+def accepted(angles: list[float], *, wheel_radius: float, base_radius: float) -> bool:
+    """Whether OmniDrive takes the layout (a refusal must be the singular-layout error)."""
+    try:
+        OmniDrive(angles, wheel_radius=wheel_radius, base_radius=base_radius)
+    except ValueError as err:
+        assert "singular layout" in str(err)
+        return False
+    return True
+
+
+# Factors that keep a 5 cm wheel and a 20 cm base radius within [1e-6, 1e6] m.
+ROBOT_SCALES = [1e-4, 1e-2, 1.0, 1e2, 1e4]
+BASE_RADII = [1e-6, 1e-3, 0.2, 1.0, 1e3, 1e6]
+
+
+@st.composite
+def doubtful_layouts(draw: st.DrawFn) -> list[float]:
+    """Layouts close to singular: wheels nearly parallel, at nearly two places, bunched."""
+    n = draw(st.integers(3, 5))
+    base = draw(st.floats(-math.pi, math.pi))
+    spread = draw(st.floats(0.1, 3.0))
+    kind = draw(st.sampled_from([(0.0, math.pi), (spread, -spread), (0.0, 0.0)]))
+    angles = []
+    for i in range(n):
+        exponent = draw(st.integers(-12, -1))
+        sign = draw(st.sampled_from([-1.0, 1.0]))
+        jitter = sign * 10.0**exponent * draw(st.floats(1.0, 9.0)) * (i + 1)
+        angles.append(base + kind[i % 2] + jitter)
+    return angles
+
+
+@given(doubtful_layouts())
+def test_the_singular_layout_verdict_does_not_depend_on_the_robots_size(
+    angles: list[float],
+) -> None:
+    # It used to be the condition number of the Jacobian, whose rotation column is in
+    # metres: a layout passed at one base radius and was refused at another.
+    verdict = accepted(angles, wheel_radius=0.05, base_radius=0.2)
+    for k in ROBOT_SCALES:
+        assert accepted(angles, wheel_radius=0.05 * k, base_radius=0.2 * k) == verdict
+    for base_radius in BASE_RADII:
+        assert accepted(angles, wheel_radius=0.05, base_radius=base_radius) == verdict
+
+
+def test_bunched_wheels_are_judged_alike_at_every_size() -> None:
+    # Three wheels within 0.1°: condition 8.5e6 with omega as L * omega, a usable if
+    # poor layout. The old test refused it at base radius 1e-6 m and 1e6 m, not 0.2 m.
+    angles = [0.0, 0.001, 0.002]
+    for base_radius in BASE_RADII:
+        drive = OmniDrive(angles, wheel_radius=0.05, base_radius=base_radius)
+        t = Twist2D(0.3, -0.2, 0.5)
+        back = drive.forward(drive.inverse(t))
+        # Resolved to the condition number times the rounding, with omega as L * omega
+        # (m/s) like vx and vy.
+        want = t.as_array() * np.array([1.0, 1.0, base_radius])
+        got = back.as_array() * np.array([1.0, 1.0, base_radius])
+        np.testing.assert_allclose(got, want, rtol=0.0, atol=1e-8 * np.linalg.norm(want))
+
+
+@pytest.mark.parametrize(
+    "angles",
+    [
+        [0.0, 0.0, 0.0],
+        [0.0, math.pi, 2 * math.pi],
+        [0.3, 0.3 + math.pi, 0.3, 0.3 - math.pi],
+        [-1.2, -1.2 + math.pi, -1.2 + 2 * math.pi, -1.2 - math.pi, -1.2],
+        [0.5, -0.5, 0.5],  # only two wheel positions: rank 2
+    ],
+)
+@pytest.mark.parametrize("wheel_radius", [1e-6, 0.05, 1e6])
+@pytest.mark.parametrize("base_radius", BASE_RADII)
+def test_a_singular_layout_is_refused_at_any_radius(
+    angles: list[float], wheel_radius: float, base_radius: float
+) -> None:
+    with pytest.raises(ValueError, match="wheel_angles give a singular layout"):
+        OmniDrive(angles, wheel_radius=wheel_radius, base_radius=base_radius)

@@ -9,7 +9,6 @@ from numpy.typing import ArrayLike
 
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_bool, as_float_array, finite_float
-from navkit.geometry import wrap_angle
 
 __all__ = ["CompassCalibration", "compass_to_yaw"]
 
@@ -45,7 +44,11 @@ def compass_to_yaw(
     unwrap : bool, default False
         For a 1-D log: return a continuous yaw (no 2π jumps, as
         :func:`numpy.unwrap`), starting from the wrapped first value
-        (keyword-only; a ``bool``).
+        (keyword-only; a ``bool``). A step between successive wrapped yaws
+        larger than π in magnitude is replaced by the one 2π shorter; a step
+        of exactly ±π (readings 180° apart) is kept as it is, so a jump there
+        and back returns to the start: ``[0, 180, 0]`` degrees give
+        ``[0, π, 0]``. :class:`CompassCalibration` follows the same rule.
 
     Returns
     -------
@@ -68,6 +71,8 @@ def compass_to_yaw(
     array([0.1745, 0.5236])
     >>> compass_to_yaw([170.0, 190.0, 210.0], unwrap=True).round(4)
     array([-2.9671, -3.3161, -3.6652])
+    >>> compass_to_yaw([0.0, 180.0, 0.0], unwrap=True).round(4)
+    array([0.    , 3.1416, 0.    ])
     """
     raw = as_float_array(raw_deg, "raw_deg")
     theta0 = finite_float(initial_deg, "initial_deg")
@@ -83,11 +88,32 @@ def compass_to_yaw(
     if flag:
         if yaw.ndim != 1:
             raise ValueError(f"unwrap needs a 1-D array of readings, got shape {yaw.shape}")
-        yaw = np.unwrap(yaw)
+        yaw, _ = _unwrap_after(yaw, float(yaw[0]) if yaw.size else 0.0, 0.0)
     if yaw.ndim == 0:
         return float(yaw)
     out: FloatArray = np.asarray(yaw, dtype=np.float64)
     return out
+
+
+def _unwrap_after(
+    yaw: FloatArray, previous: float, correction: float
+) -> tuple[FloatArray, float]:
+    """Unwrap the 1-D wrapped ``yaw`` that follows the wrapped yaw ``previous``.
+
+    ``correction`` is the multiple of 2π already added to ``previous``. The rule and
+    the operations are :func:`numpy.unwrap`'s (a step of exactly ±π keeps its sign),
+    so a log unwrapped in pieces, each continuing from the last, equals the whole
+    log unwrapped at once, bit for bit. Returns the unwrapped yaw and the
+    correction added to its last value.
+    """
+    step = np.diff(yaw, prepend=previous)
+    reduced = np.mod(step + np.pi, 2.0 * np.pi) - np.pi
+    # np.mod puts a step of +π at -π; numpy.unwrap gives it back its sign.
+    reduced = np.where((reduced == -np.pi) & (step > 0.0), np.pi, reduced)
+    change = np.where(np.abs(step) < np.pi, 0.0, reduced - step)
+    total = np.cumsum(np.concatenate(([correction], change)))[1:]
+    out: FloatArray = yaw + total
+    return out, float(total[-1]) if total.size else correction
 
 
 class CompassCalibration:
@@ -106,7 +132,10 @@ class CompassCalibration:
     ----------
     unwrap : bool, default False
         Return a continuous yaw instead of one wrapped to (-π, π] (keyword-only;
-        a ``bool``).
+        a ``bool``). The rule is :func:`compass_to_yaw`'s (that of
+        :func:`numpy.unwrap`: a step of exactly ±π keeps its sign, so readings
+        0°, 180°, 0° give yaw 0, π, 0); the yaws of a log given in pieces equal
+        ``compass_to_yaw(log, initial_deg=log[0], unwrap=True)``.
 
     Examples
     --------
@@ -120,12 +149,14 @@ class CompassCalibration:
     [0.0, -2.9671, -3.3161]
     """
 
-    __slots__ = ("_initial", "_last", "_unwrap")
+    __slots__ = ("_correction", "_initial", "_last", "_unwrap")
 
     def __init__(self, *, unwrap: bool = False) -> None:
         self._unwrap = as_bool(unwrap, "unwrap")
         self._initial: float | None = None
+        # When unwrapping: the last wrapped yaw, and the multiple of 2π added to it.
         self._last: float | None = None
+        self._correction = 0.0
 
     @property
     def initial_deg(self) -> float | None:
@@ -136,6 +167,7 @@ class CompassCalibration:
         """Forget θ0 (and the unwrapping history); the next reading is latched again."""
         self._initial = None
         self._last = None
+        self._correction = 0.0
 
     @overload
     def __call__(self, raw_deg: float) -> float: ...
@@ -163,11 +195,10 @@ class CompassCalibration:
         yaw = np.asarray(compass_to_yaw(raw, initial_deg=self._initial))
         if self._unwrap:
             flat = yaw.reshape(-1)
-            start = flat[0] if self._last is None else self._last
-            steps = wrap_angle(np.diff(flat, prepend=start))
-            flat = start + np.cumsum(steps)
+            previous = float(flat[0]) if self._last is None else self._last
+            unwrapped, self._correction = _unwrap_after(flat, previous, self._correction)
             self._last = float(flat[-1])
-            yaw = flat.reshape(yaw.shape)
+            yaw = unwrapped.reshape(yaw.shape)
         if yaw.ndim == 0:
             return float(yaw)
         return yaw

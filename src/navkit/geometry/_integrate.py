@@ -12,7 +12,7 @@ from numpy.typing import ArrayLike
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, finite_float
 from navkit.geometry._integrate_kernels import integrate_kernel, rollout_kernel
-from navkit.geometry._pose import Pose2D, Twist2D, as_pose, as_twist
+from navkit.geometry._pose import _SHRINK, Pose2D, Twist2D, as_pose, as_twist
 
 __all__ = ["integrate", "rollout"]
 
@@ -46,7 +46,8 @@ def integrate(pose: Pose2D | ArrayLike, twist: Twist2D | ArrayLike, dt: float) -
     ValueError
         Non-finite values, a negative ``dt``, or a motion so large that the
         pose or the heading change ``omega * dt`` would overflow float64
-        (never a NaN pose).
+        (never a NaN pose; a pose within the float range is returned even when
+        a partial sum of it would overflow).
 
     Examples
     --------
@@ -64,7 +65,23 @@ def integrate(pose: Pose2D | ArrayLike, twist: Twist2D | ArrayLike, dt: float) -
         raise ValueError(f"dt must be >= 0, got {step}")
     x, y, th = integrate_kernel(start.x, start.y, start.theta, tw.vx, tw.vy, tw.omega, step)
     if not (x - x == 0.0 and y - y == 0.0 and th - th == 0.0):
-        raise _overflow("twist", turn=not math.isfinite(tw.omega * step))
+        turn = not math.isfinite(tw.omega * step)
+        if not turn:
+            # A partial sum can overflow where the end pose does not. The position is
+            # linear in (x, y, vx, vy): the same step an eighth of the size, scaled back.
+            x, y, th = integrate_kernel(
+                start.x * _SHRINK,
+                start.y * _SHRINK,
+                start.theta,
+                tw.vx * _SHRINK,
+                tw.vy * _SHRINK,
+                tw.omega,
+                step,
+            )
+            x /= _SHRINK
+            y /= _SHRINK
+        if not (x - x == 0.0 and y - y == 0.0 and th - th == 0.0):
+            raise _overflow("twist", turn=turn)
     return Pose2D(x, y, th)
 
 
@@ -97,7 +114,8 @@ def rollout(
     ValueError
         Non-finite values, wrong shapes, a negative ``dt``, or motions so large
         that a pose or a heading change ``omega * dt`` would overflow float64
-        (never a NaN pose).
+        (never a NaN pose; poses within the float range are returned even when
+        a partial sum of one would overflow).
 
     Examples
     --------
@@ -130,7 +148,25 @@ def rollout(
     if not np.isfinite(out[-1]).all():
         with np.errstate(over="ignore"):
             turn = not np.isfinite(tw[:, 2] * steps).all()
-        raise _overflow("twists", turn=turn)
+        if not turn:
+            # As in integrate: a partial sum can overflow where no pose does, so the
+            # rollout an eighth of the size, scaled back (every row: a middle pose
+            # beyond the float range can come back within it by the last one).
+            small = np.array(tw, dtype=np.float64, order="C")  # a copy: twists is kept
+            small[:, :2] *= _SHRINK
+            rollout_kernel(
+                start.x * _SHRINK,
+                start.y * _SHRINK,
+                start.theta,
+                small,
+                np.ascontiguousarray(steps),
+                out,
+            )
+            with np.errstate(over="ignore"):
+                out[:, :2] /= _SHRINK
+            out[0] = (start.x, start.y, start.theta)
+        if not np.isfinite(out).all():
+            raise _overflow("twists", turn=turn)
     return out
 
 

@@ -41,7 +41,9 @@ class Pose2D:
     ValueError
         A field that is NaN or infinite. The operations below raise a
         ``ValueError`` naming their argument when a result would overflow
-        float64 (coordinates near ±1.8e308), never return one that is not finite.
+        float64 (coordinates beyond ±1.8e308), never return one that is not
+        finite; a finite result is returned even when a partial sum of it
+        (``x + cos(theta) * other.x``, say) would overflow.
 
     Examples
     --------
@@ -93,7 +95,12 @@ class Pose2D:
         o = other if type(other) is Pose2D else as_pose(other, "other")
         x, y, theta = compose_scalar(self.x, self.y, self.theta, o.x, o.y, o.theta)
         if not (x - x == 0.0 and y - y == 0.0):
-            raise _overflow("other", "composing the poses")
+            # A partial sum (x + c*dx) can overflow where the result does not: the
+            # same operations an eighth of the size cannot (see _SHRINK).
+            x, y, _ = compose_scalar(
+                self.x * _SHRINK, self.y * _SHRINK, self.theta, o.x * _SHRINK, o.y * _SHRINK, 0.0
+            )
+            x, y = _grow(x, y, "other", "composing the poses")
         return Pose2D(x, y, theta)
 
     def __matmul__(self, other: Pose2D | ArrayLike) -> Pose2D:
@@ -130,6 +137,12 @@ class Pose2D:
     def relative_to(self, frame: Pose2D | ArrayLike) -> Pose2D:
         """Express this pose in the frame of ``frame``: ``frame.inverse() ⊕ self``.
 
+        Computed directly as ``R(frame.theta)ᵀ (self.xy - frame.xy)`` and heading
+        ``wrap(self.theta - frame.theta)``, so the result is accurate to the
+        rounding of the distance between the poses, not of their coordinates
+        (at UTM coordinates, 1e6 m, composing with ``frame.inverse()`` would be
+        about 1e-9 m off).
+
         Parameters
         ----------
         frame : Pose2D or array_like, shape (3,)
@@ -157,14 +170,19 @@ class Pose2D:
         ref = as_pose(frame, "frame")
         c = math.cos(ref.theta)
         s = math.sin(ref.theta)
-        inv_x = -c * ref.x - s * ref.y
-        inv_y = s * ref.x - c * ref.y
-        # The inverse's heading, wrapped as Pose2D wraps it (-π becomes π).
-        inv_theta = math.pi if ref.theta == math.pi else -ref.theta
-        x, y, theta = compose_scalar(inv_x, inv_y, inv_theta, self.x, self.y, self.theta)
+        # Rotate the difference of the positions, not frame.inverse() ⊕ self: the
+        # inverse's translation is as large as the coordinates and cancels against
+        # self's, which at UTM sizes (1e6 m) costs about 1e-9 m.
+        dx = self.x - ref.x
+        dy = self.y - ref.y
+        x = c * dx + s * dy
+        y = c * dy - s * dx
         if not (x - x == 0.0 and y - y == 0.0):
-            raise _overflow("frame", "expressing the pose in frame")
-        return Pose2D(x, y, theta)
+            # The difference can overflow where the rotated result does not.
+            dx = self.x * _SHRINK - ref.x * _SHRINK
+            dy = self.y * _SHRINK - ref.y * _SHRINK
+            x, y = _grow(c * dx + s * dy, c * dy - s * dx, "frame", "expressing the pose in frame")
+        return Pose2D(x, y, _wrap_float(self.theta - ref.theta))
 
     def transform_points(self, points_xy: ArrayLike) -> FloatArray:
         """Map points from this pose's frame to the world frame.
@@ -191,6 +209,10 @@ class Pose2D:
         rot = np.array([[c, s], [-s, c]])
         with np.errstate(over="ignore", invalid="ignore"):
             out: FloatArray = pts @ rot + np.array([self.x, self.y])
+            if not np.isfinite(out).all():
+                # As in compose: a partial sum may overflow where the point does not.
+                small = (pts * _SHRINK) @ rot + np.array([self.x * _SHRINK, self.y * _SHRINK])
+                out = small / _SHRINK
         if not np.isfinite(out).all():
             raise _overflow("points_xy", "transforming the points")
         return out
@@ -288,6 +310,23 @@ class Twist2D:
         """
         arr = as_float_array(values, "values", shape=(3,))
         return cls(float(arr[0]), float(arr[1]), float(arr[2]))
+
+
+# Positions are linear in the coordinates (for fixed headings), so a result can be
+# computed an eighth of the size and scaled back, both exactly (powers of two; only
+# subnormal parts, far below the rounding of coordinates near 1e308, are rounded).
+# At that size no partial sum of x + c*dx - s*dy (|c|, |s| <= 1) overflows unless
+# the result itself is beyond ±1.8e308 when scaled back.
+_SHRINK = 0.125
+
+
+def _grow(x: float, y: float, name: str, what: str) -> tuple[float, float]:
+    """``(x, y)`` computed at :data:`_SHRINK` scale back at full size, or the overflow error."""
+    x /= _SHRINK
+    y /= _SHRINK
+    if not (x - x == 0.0 and y - y == 0.0):
+        raise _overflow(name, what)
+    return x, y
 
 
 def _overflow(name: str, what: str) -> ValueError:

@@ -12,7 +12,8 @@ from navkit.kinematics._ranges import MAX_LENGTH, MIN_LENGTH, in_range
 
 __all__ = ["OmniDrive"]
 
-# Condition number above which a wheel layout cannot resolve all three body velocities.
+# Condition number above which a wheel layout cannot resolve all three body velocities
+# (of the Jacobian with its rotation column divided by the base radius: see __init__).
 _MAX_CONDITION = 1e10
 
 
@@ -74,7 +75,10 @@ class OmniDrive:
         Arguments that are not real numbers, naming them.
     ValueError
         Fewer than three wheels, non-finite angles, radii outside their range,
-        or a layout whose Jacobian is singular (e.g. all wheels parallel). The
+        or a singular layout (e.g. all wheels parallel): the condition number of
+        the Jacobian with its rotation column divided by ``base_radius`` (rows
+        ``[-sin θi, cos θi, 1]``) above 1e10. The verdict depends on the wheel
+        angles only, not on the size of the robot. The
         methods raise ``ValueError`` naming their argument when a result would
         overflow float64 (speeds near ±1.8e308); they never return NaN.
 
@@ -104,7 +108,13 @@ class OmniDrive:
             )
             / self._wheel_radius
         )
-        if np.linalg.cond(jac) > _MAX_CONDITION:
+        # The layout's verdict, not the Jacobian's: the Jacobian's velocity columns are in
+        # 1/m and its rotation column is dimensionless (L / r), so its condition number
+        # changes with the robot's size. With omega measured as L * omega (the speed at
+        # which turning moves the wheels, m/s, like vx and vy) the test depends on the
+        # angles only.
+        layout = np.column_stack((-np.sin(angles), np.cos(angles), np.ones(angles.shape[0])))
+        if np.linalg.cond(layout) > _MAX_CONDITION:
             raise ValueError(
                 "wheel_angles give a singular layout: the wheels cannot resolve vx, vy and "
                 "omega independently (e.g. all wheels parallel)"
