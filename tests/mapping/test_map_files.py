@@ -20,7 +20,7 @@ from scipy import ndimage
 from navkit.geometry import Pose2D
 from navkit.mapping import OccupancyGrid
 from navkit.mapping.io import read_map, write_map
-from navkit.mapping.io._map_files import read_pgm
+from navkit.mapping.io._map_files import read_image, read_pgm
 
 MAPS = "ros-map-server-maps"
 
@@ -99,14 +99,17 @@ def test_turtlebot3_world_pillars(shared_data: Path) -> None:
 def test_save_load_round_trip(shared_data: Path, tmp_path: Path, yaml: str, mode: str) -> None:
     grid = read_map(maps(shared_data) / yaml)
     image = write_map(grid, tmp_path / "copy.yaml", mode=mode)
-    assert image == tmp_path / "copy.pgm"
-    assert "image: copy.pgm" in (tmp_path / "copy.yaml").read_text()
+    suffix = {"trinary": "pgm", "scale": "png"}[mode]  # map_saver's formats
+    assert image == tmp_path / f"copy.{suffix}"
+    assert f"image: copy.{suffix}" in (tmp_path / "copy.yaml").read_text()
     again = read_map(tmp_path / "copy.yaml")
     assert again.shape == grid.shape and again.resolution == grid.resolution
     assert again.origin == grid.origin
     assert np.array_equal(again.occupied(), grid.occupied())
     assert np.array_equal(again.free(), grid.free())
     assert np.array_equal(again.unknown(), grid.unknown())
+    if mode == "scale":  # the probabilities themselves come back
+        assert np.array_equal(again.logodds, grid.logodds)
 
 
 def test_round_trip_with_yaw_and_custom_thresholds(tmp_path: Path) -> None:
@@ -861,7 +864,8 @@ def test_grey_levels_on_a_threshold_are_decided_as_map_server_decides_them(
     )
     assert cells.unknown().tolist() == [[True, False]]
     write_map(cells, tmp_path / "w.yaml", mode="scale")
-    image = read_pgm(tmp_path / "w.pgm")
+    image, alpha = read_image(tmp_path / "w.png")
+    assert alpha is not None and alpha.tolist() == [[255.0, 255.0]]  # p = 0.2 is evidence
     assert 1.0 - image[0, 0] / 255 >= 0.2
     assert read_map(tmp_path / "w.yaml").unknown().tolist() == [[True, False]]
 
@@ -894,3 +898,136 @@ def test_duplicate_map_keys_are_refused(tmp_path: Path, key: str) -> None:
     # Duplicates of keys map_server ignores are ignored too; so are YAML merges.
     ok = GOOD_YAML + "note: a\nnote: b\n"
     assert read_map(make_map_files(tmp_path, ok, b"P5 1 1 255 \x00")).shape == (1, 1)
+
+
+# ------------------------------- scale maps: PNG with alpha, as Nav2's map_saver writes
+
+
+def nav2_scale_load(
+    grey: np.ndarray, alpha: np.ndarray | None, occupied_thresh: float, free_thresh: float,
+    *, inclusive: bool,
+) -> np.ndarray:
+    """Nav2 map_io.cpp's loadMapFromFile in scale mode (negate 0), vectorised.
+
+    ``inclusive``: the thresholds as the Eigen version (2025) compares them
+    (``>=``, ``<=``); else as the earlier per-pixel loop (``>``, ``<``).
+    """
+    occ = 1.0 - grey / 255.0
+    if inclusive:
+        occupied, free = occ >= occupied_thresh, occ <= free_thresh
+    else:
+        occupied, free = occ > occupied_thresh, occ < free_thresh
+    scaled = np.rint((occ - free_thresh) / (occupied_thresh - free_thresh) * 100.0)
+    cells = np.where(occupied, 100, np.where(free, 0, scaled)).astype(np.int64)
+    if alpha is not None:
+        cells[alpha < 255] = -1  # every pixel that is not fully opaque
+    return cells
+
+
+def scale_test_grid(occupied_thresh: float = 0.65, free_thresh: float = 0.196) -> OccupancyGrid:
+    """Occupied, free, never observed (log-odds 0) and in-between cells, plus random ones."""
+    rng = np.random.default_rng(5)
+    p = np.concatenate([[0.999, 0.001, 0.5, 0.3, 0.6, 0.2, 0.64, 0.197], rng.random(32)])
+    logodds = np.log(p / (1.0 - p)).reshape(5, 8)
+    logodds[1, ::3] = 0.0  # more never observed cells
+    return OccupancyGrid(
+        logodds, resolution=0.05, origin=Pose2D(-1.0, 2.0, 0.4),
+        occupied_thresh=occupied_thresh, free_thresh=free_thresh,
+    )  # fmt: skip
+
+
+def test_scale_maps_are_written_as_png_with_alpha_and_read_by_nav2_as_meant(
+    tmp_path: Path,
+) -> None:
+    # A scale map used to be a PGM: its unknown cells were mid greys, which
+    # map_server reads as in-between occupancy values, never as unknown (-1).
+    from PIL import Image
+
+    grid = scale_test_grid()
+    image = write_map(grid, tmp_path / "m.yaml", mode="scale")
+    assert image == tmp_path / "m.png"
+    assert pyyaml.safe_load((tmp_path / "m.yaml").read_text())["image"] == "m.png"
+    with Image.open(image) as png:  # decoded by Pillow, not by navkit
+        assert png.mode == "RGBA"
+        rgba = np.asarray(png).astype(np.float64)
+    assert np.array_equal(rgba[..., 0], rgba[..., 1])
+    assert np.array_equal(rgba[..., 0], rgba[..., 2])
+    grey, alpha = rgba[::-1, :, 0], rgba[::-1, :, 3]  # grid row order
+    never_observed = grid.logodds == 0.0
+    occ_t, free_t = grid.occupied_thresh, grid.free_thresh
+    for inclusive in (False, True):
+        nav2 = nav2_scale_load(grey, alpha, occ_t, free_t, inclusive=inclusive)
+        assert np.array_equal(nav2 == -1, never_observed)
+        assert np.all(nav2[grid.occupied()] == 100) and np.all(nav2[grid.free()] == 0)
+        # The other cells are values (ones next to a threshold may round to 0 or 100).
+        between = grid.unknown() & ~never_observed
+        assert between.sum() >= 5
+        expected = 100.0 * (grid.probability() - free_t) / (occ_t - free_t)
+        assert np.all(np.abs(nav2[between] - expected[between]) <= 1.0)
+    # Write then read back: the same classes, the unknown cells' log-odds exactly and
+    # the in-between probabilities to half a grey level (occupied and free cells come
+    # back certain, as map_server's 100 and 0).
+    back = read_map(tmp_path / "m.yaml")
+    assert (back.resolution, back.origin) == (grid.resolution, grid.origin)
+    for view in ("occupied", "free", "unknown"):
+        assert np.array_equal(getattr(back, view)(), getattr(grid, view)()), view
+    assert np.array_equal(back.logodds == 0.0, never_observed)
+    between = grid.unknown()
+    np.testing.assert_allclose(
+        back.probability()[between], grid.probability()[between], atol=0.5 / 255 + 1e-12
+    )
+    # Saving what was read gives the same map again.
+    write_map(back, tmp_path / "again.yaml", mode="scale")
+    assert np.array_equal(read_map(tmp_path / "again.yaml").logodds, back.logodds)
+
+
+@pytest.mark.parametrize(("occupied_thresh", "free_thresh"), [(0.45, 0.2), (0.9, 0.6)])
+def test_scale_maps_keep_unknown_cells_with_off_centre_thresholds(
+    tmp_path: Path, occupied_thresh: float, free_thresh: float
+) -> None:
+    # Thresholds that class p = 0.5 as known: read_map stores unknown pixels at the
+    # middle of the band; a scale save must write those cells transparent again.
+    yaml = GOOD_YAML.replace("0.65", str(occupied_thresh)).replace("0.196", str(free_thresh))
+    grey = round(255 * (1 - 0.5 * (occupied_thresh + free_thresh)))
+    grid = read_map(make_map_files(tmp_path, yaml, b"P5 3 1 255\n" + bytes([0, grey, 254])))
+    assert grid.unknown().tolist() == [[False, True, False]]
+    write_map(grid, tmp_path / "s.yaml", mode="scale")
+    rgba, alpha = read_image(tmp_path / "s.png")
+    assert alpha is not None and alpha.tolist() == [[255.0, 0.0, 255.0]]
+    nav2 = nav2_scale_load(rgba, alpha, occupied_thresh, free_thresh, inclusive=False)
+    assert nav2.tolist() == [[100, -1, 0]]
+    back = read_map(tmp_path / "s.yaml")
+    assert np.array_equal(back.logodds, grid.logodds)
+
+
+def test_a_scale_map_yaml_may_not_take_its_png_image_name(tmp_path: Path) -> None:
+    with pytest.raises(ValueError, match=r"ends in \.png, the image's own name"):
+        write_map(scale_test_grid(), tmp_path / "m.png", mode="scale")
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_png_bytes_decode_to_the_pixels(tmp_path: Path) -> None:
+    from PIL import Image
+
+    from navkit.mapping.io import _map_files
+
+    rng = np.random.default_rng(2)
+    rgba = rng.integers(0, 256, (37, 53, 4), dtype=np.uint8)
+    for pixels in (rgba, rgba[:1, :1]):
+        (tmp_path / "x.png").write_bytes(_map_files.png_bytes(pixels))
+        with Image.open(tmp_path / "x.png") as png:
+            png.load()
+            assert png.mode == "RGBA"
+            assert np.array_equal(np.asarray(png), pixels)
+    with pytest.raises(ValueError, match="pixels must have shape"):
+        _map_files.png_bytes(rgba[..., 0])
+
+
+def test_a_scale_map_without_pillow_names_it_and_writes_nothing(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    monkeypatch.setitem(sys.modules, "PIL", None)
+    with pytest.raises(ImportError, match=r"scale-mode map image .*needs Pillow"):
+        write_map(scale_test_grid(), tmp_path / "m.yaml", mode="scale")
+    assert list(tmp_path.iterdir()) == []
+    write_map(scale_test_grid(), tmp_path / "m.yaml")  # trinary: a PGM, no Pillow needed

@@ -133,3 +133,54 @@ def test_find_data_looks_in_data_dir_then_the_environment(
     assert find_data("set/x.yaml") == tmp_path / "set" / "x.yaml"
     with pytest.raises(DataNotFoundError, match="NAVKIT_DATA"):
         find_data("set/missing.yaml", data_dir=tmp_path)
+
+
+def test_a_misspelt_data_folder_is_not_replaced_by_the_synthetic_map(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # The "auto" maps fall back to the synthetic office when the data set is missing
+    # from a real folder (DataNotFoundError), not when the folder named is wrong.
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setenv("NAVKIT_DATA", str(tmp_path / "misspelt"))
+    with pytest.raises(ValueError, match=r"\$NAVKIT_DATA names the data folder"):
+        get_scenario("demo")()
+    with pytest.raises(ValueError, match="data_dir names the data folder"):
+        get_scenario("demo")(data_dir=tmp_path / "misspelt")
+    # A real folder without the data set: the synthetic office.
+    assert get_scenario("demo")(data_dir=tmp_path).map_path is None
+
+
+def test_find_data_refuses_a_named_folder_that_does_not_exist(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # $NAVKIT_DATA naming no folder used to be skipped silently: the lookup went on
+    # to a shared/data nearby, data the user had not chosen.
+    import re  # (only this test needs it)
+
+    nearby = tmp_path / "shared" / "data"
+    (nearby / "set").mkdir(parents=True)
+    (nearby / "set" / "x.yaml").write_text("x")
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.delenv("NAVKIT_DATA", raising=False)
+    assert find_data("set/x.yaml").samefile(nearby / "set" / "x.yaml")
+    missing = tmp_path / "misspelt"
+    monkeypatch.setenv("NAVKIT_DATA", str(missing))
+    pattern = rf"\$NAVKIT_DATA names the data folder {re.escape(str(missing))}, which does not"
+    with pytest.raises(ValueError, match=pattern):
+        find_data("set/x.yaml")
+    # A relative value is shown resolved against the working directory too.
+    monkeypatch.setenv("NAVKIT_DATA", "misspelt")
+    with pytest.raises(ValueError, match=re.escape(f"misspelt ({missing})")):
+        find_data("set/x.yaml")
+    # A file is not a data folder either.
+    monkeypatch.setenv("NAVKIT_DATA", str(nearby / "set" / "x.yaml"))
+    with pytest.raises(ValueError, match=r"NAVKIT_DATA .* is not a folder"):
+        find_data("set/x.yaml")
+    # data_dir= is the only place looked in, and the variable is not read then.
+    assert find_data("set/x.yaml", data_dir=nearby) == nearby / "set" / "x.yaml"
+    # data_dir= naming no folder says so (it used to report the file as missing).
+    with pytest.raises(ValueError, match=r"data_dir names the data folder .*does not exist"):
+        find_data("set/x.yaml", data_dir=missing)
+    # Set but empty is unset.
+    monkeypatch.setenv("NAVKIT_DATA", "")
+    assert find_data("set/x.yaml").samefile(nearby / "set" / "x.yaml")

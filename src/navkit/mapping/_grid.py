@@ -546,7 +546,8 @@ class OccupancyGrid:
         Parameters
         ----------
         path : str or path-like
-            YAML file to write; the image is the same name with suffix ``.pgm``.
+            YAML file to write; the image is the same name with suffix ``.pgm``
+            (trinary) or ``.png`` (scale, with alpha for unknown cells; needs Pillow).
         mode : {"trinary", "scale"}, default "trinary"
             Pixel encoding of the image (keyword-only; see
             :func:`navkit.mapping.io.write_map`).

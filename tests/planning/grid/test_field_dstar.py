@@ -14,6 +14,7 @@ scipy.sparse.csgraph).
 from __future__ import annotations
 
 import math
+from functools import partial
 from itertools import pairwise
 
 import numpy as np
@@ -1105,12 +1106,158 @@ def test_replan_world_refuses_kept_end_points_whose_cell_became_impassable() -> 
     cells.update_costs((4, 3), np.inf)
     with pytest.raises(ValueError, match=r"goal_xy \(1\.75, 2\.25\) .* impassable cell \(4, 3\)"):
         cells.replan_world()
-    # End points on nodes (plan) have no link: the repair decides alone.
+    # End points on nodes (plan) have no link: a node with a passable cell around it
+    # stays valid (the node check, see the next test).
     nodes = FieldDStar(np.ones((6, 6)))
     nodes.plan((1, 1), (5, 5))
     nodes.update_costs([(0, 0), (1, 1), (4, 4)], np.inf)
     path = nodes.replan_world()
     np.testing.assert_allclose(path.points[[0, -1]], [[1.0, 1.0], [5.0, 5.0]], atol=1e-12)
+
+
+# The four cells around node (3, 3) of a 6 x 6 grid.
+_AROUND_3_3 = [(2, 2), (2, 3), (3, 2), (3, 3)]
+
+
+def _error_of(call: object) -> tuple[type[BaseException], str] | None:
+    """The exception class and message a call raises, or None."""
+    assert callable(call)
+    try:
+        call()
+    except (ValueError, NoPathError) as exc:
+        return type(exc), str(exc)
+    return None
+
+
+@pytest.mark.parametrize(
+    ("ends", "blocked", "name"),
+    [
+        (((0, 0), (3, 3)), _AROUND_3_3, "goal_node"),
+        (((3, 3), (0, 0)), _AROUND_3_3, "start_node"),
+        # Both enclosed: the start is reported, as plan() checks it first.
+        (((3, 3), (0, 0)), [*_AROUND_3_3, (0, 0)], "start_node"),
+        # Start and goal on one node: the replan returned the one-point path.
+        (((3, 3), (3, 3)), _AROUND_3_3, "start_node"),
+    ],
+)
+def test_replan_refuses_kept_nodes_enclosed_since_the_plan_as_a_fresh_plan_does(
+    ends: tuple[tuple[int, int], tuple[int, int]], blocked: list[tuple[int, int]], name: str
+) -> None:
+    # A kept node whose cells all became impassable gave NoPathError (or a path),
+    # where a fresh plan() between the same nodes raises ValueError.
+    start, goal = ends
+    planner = FieldDStar(np.ones((6, 6)))
+    planner.plan(start, goal)
+    planner.update_costs(blocked, np.inf)
+    fresh = _error_of(lambda: FieldDStar(planner.costs).plan(start, goal))
+    assert fresh is not None and fresh[0] is ValueError
+    assert fresh[1].startswith(name)
+    node = start if name == "start_node" else goal
+    pattern = rf"{name} \({node[0]}, {node[1]}\) .*corner of impassable cells only"
+    with pytest.raises(ValueError, match=pattern):
+        planner.replan()
+    # The world form of the same replan refuses the node's point.
+    with pytest.raises(ValueError, match=r"_xy \(3\.0, 3\.0\) .*corner of impassable cells"):
+        planner.replan_world()
+
+
+def test_refused_replans_leave_the_planner_as_it_was() -> None:
+    planner = FieldDStar(np.ones((6, 6)))
+    planner.plan((0, 0), (3, 3))
+    planner.update_costs(_AROUND_3_3, np.inf)
+    # A valid new start with the goal enclosed: refused, and the start not moved.
+    with pytest.raises(ValueError, match=r"goal_node \(3, 3\)"):
+        planner.replan((6, 0))
+    with pytest.raises(ValueError, match=r"goal_xy \(3\.0, 3\.0\)"):
+        planner.replan_world((5.5, 0.5))
+    planner.update_costs([(3, 3)], 1.0)
+    again = planner.replan()
+    fresh = FieldDStar(planner.costs).plan((0, 0), (3, 3))
+    np.testing.assert_array_equal(again.points, fresh.points)
+    assert again.cost == fresh.cost
+
+
+def test_replan_after_a_world_plan_checks_the_kept_nodes() -> None:
+    # replan() plans node to node: its kept nodes are checked as plan() checks them.
+    planner = FieldDStar(np.ones((6, 6)))
+    planner.plan_world((0.5, 0.5), (3.2, 3.2))  # goal node (3, 3)
+    planner.update_costs(_AROUND_3_3, np.inf)
+    assert _error_of(lambda: FieldDStar(planner.costs).plan((1, 1), (3, 3))) is not None
+    with pytest.raises(ValueError, match=r"goal_node \(3, 3\) .*corner of impassable cells"):
+        planner.replan()
+    # replan_world keeps the world point: its cell is checked (as plan_world does).
+    with pytest.raises(ValueError, match=r"goal_xy \(3\.2, 3\.2\) .* impassable cell \(3, 3\)"):
+        planner.replan_world()
+
+
+def test_replan_world_refuses_a_kept_point_on_a_node_whose_cell_became_impassable() -> None:
+    # A plan_world end exactly on a node lies in the cell _world_end picks (its
+    # lower corner); a fresh plan_world refuses it once that cell is impassable,
+    # but the replan skipped points on nodes and returned a path.
+    planner = FieldDStar(np.ones((6, 6)))
+    planner.plan_world((0.5, 0.5), (3.0, 3.0))
+    planner.update_costs([(3, 3)], np.inf)
+    fresh = _error_of(lambda: FieldDStar(planner.costs).plan_world((0.5, 0.5), (3.0, 3.0)))
+    assert fresh is not None and fresh[0] is ValueError
+    with pytest.raises(ValueError, match=r"goal_xy \(3\.0, 3\.0\) .* impassable cell \(3, 3\)"):
+        planner.replan_world()
+    # A start moved onto a node by replan_world is a world point too.
+    planner.update_costs([(3, 3)], 1.0)
+    planner.replan_world((2.0, 1.0))
+    planner.update_costs([(1, 2)], np.inf)
+    with pytest.raises(ValueError, match=r"start_xy \(2\.0, 1\.0\) .* impassable cell \(1, 2\)"):
+        planner.replan_world()
+    # After replan(start_node) the start is a node again: the node check applies.
+    planner.replan((1, 2))
+    np.testing.assert_allclose(planner.replan_world().points[0], [2.0, 1.0])
+
+
+@settings(max_examples=40, deadline=None)
+@given(seed=st.integers(0, 2**32 - 1))
+def test_replans_fail_as_fresh_plans_fail(seed: int) -> None:
+    """Replan equals a fresh plan on the current costs, errors included.
+
+    Updates close and open the cells around the kept ends too, so a kept
+    node or point becomes invalid and valid again.
+    """
+    rng = np.random.default_rng(seed)
+    n = 6
+    costs = np.where(rng.random((n, n)) < 0.15, np.inf, 1.0)
+    free = np.argwhere(np.isfinite(costs))
+    if len(free) < 2:
+        return
+    a, b = free[rng.choice(len(free), 2, replace=False)]
+    start, goal = (int(a[0]), int(a[1])), (int(b[0]), int(b[1]))
+    start_xy, goal_xy = (start[1] + 0.5, start[0] + 0.5), (goal[1] + 0.5, goal[0] + 0.5)
+    node_s = (start[0] + int(rng.integers(0, 2)), start[1] + int(rng.integers(0, 2)))
+    node_g = (goal[0] + int(rng.integers(0, 2)), goal[1] + int(rng.integers(0, 2)))
+    by_nodes, by_points = FieldDStar(costs), FieldDStar(costs)
+    try:
+        by_nodes.plan(node_s, node_g)
+        by_points.plan_world(start_xy, goal_xy)
+    except NoPathError:
+        return
+    ends = np.array([start, goal])
+    for _ in range(4):
+        near = ends[rng.integers(0, 2, 3)] + rng.integers(-1, 2, (3, 2))
+        cells = np.clip(near, 0, n - 1)
+        values = np.where(rng.random(3) < 0.7, np.inf, 1.0)
+        by_nodes.update_costs(cells, values)
+        by_points.update_costs(cells, values)
+        reference = FieldDStar(by_nodes.costs)
+        for replan, fresh in (
+            (by_nodes.replan, partial(reference.plan, node_s, node_g)),
+            (by_points.replan_world, partial(reference.plan_world, start_xy, goal_xy)),
+        ):
+            want = _error_of(fresh)
+            if want is None:
+                np.testing.assert_array_equal(replan().points, fresh().points)
+                continue
+            with pytest.raises(want[0]) as info:
+                replan()
+            # The same end is named, the same way.
+            assert str(info.value).split(" ")[0] == want[1].split(" ")[0]
+            assert ("impassable" in str(info.value)) == ("impassable" in want[1])
 
 
 def test_world_end_nodes_round_as_world_to_node() -> None:

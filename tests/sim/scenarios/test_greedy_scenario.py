@@ -142,10 +142,10 @@ def test_fallbacks_count_steps_planned_on_the_plain_grid(
     assert controller.steps == 1 and controller.fallbacks == fallbacks
 
 
-def test_summarize_names_missing_values() -> None:
+def test_summarize_names_missing_values(tmp_path: Path) -> None:
     result = TrialResult(Trial("case", 0, 0, 1), {"reached": 1.0})
     with pytest.raises(ValueError, match=r"results\[0\]\.values lack collisions"):
-        Greedy(data_dir="/nonexistent").summarize([result], seed=0)
+        Greedy(data_dir=str(tmp_path)).summarize([result], seed=0)
 
 
 def test_the_map_is_found_once_when_built(

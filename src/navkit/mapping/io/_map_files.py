@@ -2,7 +2,8 @@
 
 The YAML is read with PyYAML's safe loader (every key map_server knows is
 understood; other keys are ignored). Images: PGM (P5, P2) is read and written
-with numpy; other formats are read with Pillow. Every malformed file raises a
+with numpy; other formats are read, and scale-mode PNGs written, with Pillow.
+Every malformed file raises a
 ``ValueError`` that names the file and the problem; an image's size is checked
 from its header, before anything is decoded, against
 ``OccupancyGrid.MAX_CELLS`` (``2**28`` pixels) and, for images read with
@@ -13,6 +14,7 @@ Pillow, against Pillow's own decompression-bomb limit too
 from __future__ import annotations
 
 import contextlib
+import io
 import math
 import os
 import struct
@@ -37,6 +39,7 @@ __all__ = [
     "map_yaml_text",
     "pgm_bytes",
     "pixel_occupancy",
+    "png_bytes",
     "read_image",
     "read_map",
     "read_map_yaml",
@@ -46,6 +49,10 @@ __all__ = [
 
 _MODES = ("trinary", "scale", "raw")
 _WRITE_MODES = ("trinary", "scale")
+#: The image format of each mode: map_saver's defaults (Nav2's map_io.cpp). Scale
+#: maps need the alpha channel of PNG: map_server reads every pixel of a scale map
+#: that is not fully opaque as unknown, and every opaque one as a value.
+_IMAGE_FORMAT = {"trinary": "pgm", "scale": "png"}
 _REQUIRED = ("image", "resolution", "origin", "negate", "occupied_thresh", "free_thresh")
 _KEYS = frozenset((*_REQUIRED, "mode"))
 #: A map YAML is a few hundred bytes; anything over 1 MiB is the wrong file.
@@ -445,6 +452,45 @@ def pgm_bytes(pixels: NDArray[np.uint8]) -> bytes:
     return header + np.ascontiguousarray(pixels, dtype=np.uint8).tobytes()
 
 
+def png_bytes(pixels: NDArray[np.uint8]) -> bytes:
+    """Content of an 8-bit RGBA PNG (the type map_saver writes scale maps in), by Pillow.
+
+    ``pixels`` has shape ``(height, width, 4)``; row 0 is the top of the image.
+
+    Raises
+    ------
+    ValueError
+        ``pixels`` of another shape.
+    ImportError
+        Pillow is not installed (``pip install pillow``).
+
+    Examples
+    --------
+    >>> data = png_bytes(np.array([[[0, 0, 0, 255], [128, 128, 128, 0]]], dtype=np.uint8))
+    >>> data[1:4], data[12:16], int.from_bytes(data[16:20], "big"), data[25]
+    (b'PNG', b'IHDR', 2, 6)
+    """
+    raster = np.ascontiguousarray(pixels, dtype=np.uint8)
+    if raster.ndim != 3 or raster.shape[2] != 4:
+        raise ValueError(f"pixels must have shape (h, w, 4), got {raster.shape}")
+    image_module = _pillow("writing a scale-mode map image (a PNG with alpha)")
+    out = io.BytesIO()
+    image_module.fromarray(raster, "RGBA").save(out, format="PNG")
+    return out.getvalue()
+
+
+def _pillow(what: str) -> Any:
+    """Pillow's ``PIL.Image`` module, or an ImportError saying ``what`` needs it."""
+    try:
+        from PIL import Image
+    except ImportError:
+        raise ImportError(
+            f"{what} needs Pillow (only PGM is read and written without it); install it "
+            "with `pip install pillow`"
+        ) from None
+    return Image
+
+
 @contextlib.contextmanager
 def _pillow_errors(path: Path, image_module: Any) -> Iterator[None]:
     """Turn whatever Pillow raises on a bad file into a ValueError naming it."""
@@ -470,13 +516,7 @@ def _pillow_errors(path: Path, image_module: Any) -> Iterator[None]:
 
 
 def _read_with_pillow(path: Path) -> tuple[NDArray[np.float64], NDArray[np.float64] | None]:
-    try:
-        from PIL import Image
-    except ImportError:
-        raise ImportError(
-            f"reading the map image {path.name} needs Pillow (only PGM is read without "
-            "it); install it with `pip install pillow`"
-        ) from None
+    Image = _pillow(f"reading the map image {path.name}")
     with _pillow_errors(path, Image):
         img = Image.open(path)  # reads the header only
     with img:
@@ -647,22 +687,56 @@ def read_map(path: str | os.PathLike[str]) -> OccupancyGrid:
     except ValueError as exc:
         raise ValueError(f"{path}: map image {exc}") from None
     prob, unknown = pixel_occupancy(grey, alpha, meta)
-    # Unknown cells hold p = 0.5 (log-odds 0, no evidence) when the YAML's thresholds
-    # class 0.5 as unknown; otherwise the middle of their band, so that the grid's
-    # views still find them unknown, as map_server does.
     occ_t, free_t = meta.occupied_thresh, meta.free_thresh
-    p_unknown = 0.5 if free_t <= 0.5 <= occ_t else 0.5 * (free_t + occ_t)
-    return OccupancyGrid.from_probabilities(
-        np.where(unknown, p_unknown, prob)[::-1],
+    known = OccupancyGrid.from_probabilities(
+        np.where(unknown, 0.5, prob)[::-1],
         resolution=meta.resolution,
         origin=Pose2D(*meta.origin),
-        occupied_thresh=meta.occupied_thresh,
-        free_thresh=meta.free_thresh,
+        occupied_thresh=occ_t,
+        free_thresh=free_t,
+    )
+    unknown_l = _unknown_logodds(occ_t, free_t)
+    if unknown_l == 0.0 or not unknown.any():
+        return known  # p = 0.5 is log-odds 0 exactly
+    # Unknown cells get exactly the log-odds write_map recognises as unknown.
+    logodds = np.where(unknown[::-1], unknown_l, known.logodds)
+    return OccupancyGrid(
+        logodds,
+        resolution=meta.resolution,
+        origin=Pose2D(*meta.origin),
+        occupied_thresh=occ_t,
+        free_thresh=free_t,
     )
 
 
+def _unknown_logodds(occupied_thresh: float, free_thresh: float) -> float:
+    """Log-odds :func:`read_map` gives unknown pixels (``write_map`` writes them back so).
+
+    0 (p = 0.5, no evidence) when the thresholds class p = 0.5 as unknown;
+    otherwise those of the middle of the unknown band, so that the grid's
+    views still find the cells unknown, as map_server does. Computed by the
+    grid's own conversion, so that a comparison with a grid's log-odds is exact.
+    """
+    if free_thresh <= 0.5 <= occupied_thresh:
+        return 0.0
+    middle = 0.5 * (free_thresh + occupied_thresh)
+    one = OccupancyGrid.from_probabilities(
+        [[middle]], resolution=1.0, occupied_thresh=occupied_thresh, free_thresh=free_thresh
+    )
+    return float(one.logodds[0, 0])
+
+
 def _map_pixels(grid: OccupancyGrid, mode: str) -> NDArray[np.uint8]:
-    """Image pixels of ``grid`` in grid row order (row 0 = lowest y)."""
+    """Image pixels of ``grid`` in grid row order (row 0 = lowest y).
+
+    Grey ``(rows, cols)`` in trinary mode, RGBA ``(rows, cols, 4)`` in scale
+    mode: there every cell is opaque grey ``round(255 * (1 - p))`` (map_server
+    reads it as occupied, free or an in-between value, as the grid's views
+    class it) except the unknown cells, which are transparent (map_server's
+    unknown, -1, in scale mode). Unknown cells are those whose log-odds are
+    exactly the ones :func:`read_map` gives unknown pixels: 0 (never observed)
+    when the thresholds class p = 0.5 as unknown, else the middle of the band.
+    """
     occ_t, free_t = grid.occupied_thresh, grid.free_thresh
     occupied, free = grid.occupied(), grid.free()
     if mode == "trinary":
@@ -673,15 +747,20 @@ def _map_pixels(grid: OccupancyGrid, mode: str) -> NDArray[np.uint8]:
             pixels[unknown] = _unknown_pixel(occ_t, free_t, preferred=205)
         pixels[occupied] = 0
         return pixels
+    unknown_l = _unknown_logodds(occ_t, free_t)
+    transparent = ~occupied & ~free & (grid.logodds == np.float32(unknown_l))
     pixels = np.rint(255.0 * (1.0 - grid.probability())).astype(np.uint8)
     # Rounding may push a class-boundary probability across a threshold.
     p_px = _pixel_p(pixels)
     pixels[occupied & ~(p_px > occ_t)] = 0
     pixels[free & ~(p_px < free_t)] = 255
-    between = ~occupied & ~free & ((p_px > occ_t) | (p_px < free_t))
+    between = ~occupied & ~free & ~transparent & ((p_px > occ_t) | (p_px < free_t))
     if between.any():
         pixels[between] = _unknown_pixel(occ_t, free_t, preferred=None)
-    return pixels
+    rgba = np.empty((*grid.shape, 4), dtype=np.uint8)
+    rgba[..., :3] = pixels[..., None]
+    rgba[..., 3] = np.where(transparent, 0, 255)
+    return rgba
 
 
 _GREY_LEVELS = np.arange(256)
@@ -726,22 +805,22 @@ def _replace_all(files: list[tuple[Path, bytes]]) -> None:
             temporary.write_bytes(data)
 
 
-def _image_path(yaml_path: Path) -> Path:
+def _image_path(yaml_path: Path, image_format: str) -> Path:
     """The image written beside ``yaml_path``; refuses paths it would overwrite."""
     if not yaml_path.name:
         raise ValueError(f"path must name a YAML file, got {str(yaml_path)!r}")
     suffix = yaml_path.suffix.lower()
-    if suffix == ".pgm":
+    if suffix == f".{image_format}":
         raise ValueError(
-            f"path {str(yaml_path)!r} ends in .pgm, the image's own name: the image would "
-            "overwrite the YAML; give the YAML file another suffix such as .yaml"
+            f"path {str(yaml_path)!r} ends in .{image_format}, the image's own name: the "
+            "image would overwrite the YAML; give the YAML file another suffix such as .yaml"
         )
     if suffix in _IMAGE_SUFFIXES:
         raise ValueError(
             f"path {str(yaml_path)!r} ends in {yaml_path.suffix}, an image suffix: the map "
             "YAML would overwrite an image file; give the YAML file the suffix .yaml"
         )
-    image = yaml_path.with_suffix(".pgm")
+    image = yaml_path.with_suffix(f".{image_format}")
     for target in (yaml_path, image):
         if target.is_dir():
             raise ValueError(f"cannot write the map file {target}: it is a directory")
@@ -770,7 +849,12 @@ def _names_image(yaml_path: Path, image: Path) -> bool:
 
 
 def write_map(grid: OccupancyGrid, path: str | os.PathLike[str], *, mode: str = "trinary") -> Path:
-    """Save a grid as a ROS map_server map: ``path`` (YAML) and a P5 PGM beside it.
+    """Save a grid as a ROS map_server map: ``path`` (YAML) and an image beside it.
+
+    The image is what Nav2's map_saver writes by default: a P5 PGM in
+    ``trinary`` mode, an RGBA PNG in ``scale`` mode (where map_server reads
+    every opaque pixel as a value and only pixels that are not fully opaque
+    as unknown, so a PGM, without alpha, could hold no unknown cell).
 
     An existing image is only replaced when it is the image of the map being
     replaced (the existing YAML at ``path`` names it): a save never writes over
@@ -787,13 +871,24 @@ def write_map(grid: OccupancyGrid, path: str | os.PathLike[str], *, mode: str = 
         The map to save.
     path : str or path-like
         YAML file to write; the image is the same name with suffix ``.pgm``
-        (``map.yaml`` → ``map.pgm``), stored relative to the YAML.
+        (trinary) or ``.png`` (scale): ``map.yaml`` → ``map.pgm``, stored
+        relative to the YAML.
     mode : {"trinary", "scale"}
         ``trinary`` writes map_saver's pixels (0 occupied, 254 free, 205
         unknown, or a mid grey when 205 would not be unknown under the grid's
         thresholds, and 255 for free when 254 would not be free, under a
-        ``free_thresh`` of at most 1/255); ``scale`` writes ``round(255 * (1 - p))``. Either way
-        loading the files gives back the same occupied/free/unknown classes.
+        ``free_thresh`` of at most 1/255). ``scale`` writes opaque grey
+        ``round(255 * (1 - p))`` (moved across a threshold where rounding
+        would change the cell's class) and the unknown cells transparent:
+        those whose log-odds are what :func:`read_map` gives unknown pixels
+        (0, never observed, when the thresholds class p = 0.5 as unknown;
+        else the middle of the band). Other cells between the thresholds are
+        in-between values to map_server. Either way loading the files with
+        :func:`read_map` gives back the same occupied/free/unknown classes
+        (in scale mode also the unknown cells' log-odds exactly and the
+        in-between cells' probabilities to half a grey level; occupied and
+        free cells come back certain, as map_server's 100 and 0), and
+        map_server reads occupied, free and unknown cells as such.
 
     Returns
     -------
@@ -806,14 +901,17 @@ def write_map(grid: OccupancyGrid, path: str | os.PathLike[str], *, mode: str = 
         ``grid`` is not an OccupancyGrid, ``mode`` not a str, ``path`` not a
         str or path-like.
     ValueError
-        Unknown ``mode``; a ``path`` ending in ``.pgm`` (in any case: the image
-        would overwrite the YAML) or in another image suffix (``.png``,
-        ``.jpg``, ...: the YAML would overwrite an image); an image name that
+        Unknown ``mode``; a ``path`` ending in the image's suffix (in any
+        case: the image would overwrite the YAML) or in another image suffix
+        (``.png``, ``.jpg``, ...: the YAML would overwrite an image); an image name that
         the YAML could not give back when read; the YAML or the image path is
         a directory; the image path holds a file that the existing YAML at
         ``path`` does not name (another map's image); unknown cells to write
         while the grid's thresholds leave no 8-bit grey level between them
         (a band narrower than 1/255). Nothing is written then.
+    ImportError
+        ``mode="scale"`` without Pillow installed (it writes the PNG); nothing
+        is written.
     OSError
         Writing fails (disk full, permissions, ...): the temporary files are
         removed and an existing map is left as it was.
@@ -842,8 +940,9 @@ def write_map(grid: OccupancyGrid, path: str | os.PathLike[str], *, mode: str = 
         raise TypeError(f"mode must be a str, got {type(mode).__name__}")
     if mode not in _WRITE_MODES:
         raise ValueError(f"mode must be 'trinary' or 'scale', got {mode!r}")
+    image_format = _IMAGE_FORMAT[mode]
     yaml_path = as_path(path, "path")
-    image = _image_path(yaml_path)
+    image = _image_path(yaml_path, image_format)
     o = grid.origin
     meta = MapMetadata(
         image,
@@ -855,6 +954,7 @@ def write_map(grid: OccupancyGrid, path: str | os.PathLike[str], *, mode: str = 
         mode,
     )
     text = map_yaml_text(meta, image.name)
-    pixels = _map_pixels(grid, mode)
-    _replace_all([(image, pgm_bytes(pixels[::-1])), (yaml_path, text.encode("utf-8"))])
+    pixels = _map_pixels(grid, mode)[::-1]  # image rows run top down
+    data = pgm_bytes(pixels) if image_format == "pgm" else png_bytes(pixels)
+    _replace_all([(image, data), (yaml_path, text.encode("utf-8"))])
     return image

@@ -229,6 +229,7 @@ class FieldDStar:
         "_fresh_work",
         "_g",
         "_goal",
+        "_goal_on_node",
         "_goal_point",
         "_heap",
         "_hscale",
@@ -245,6 +246,7 @@ class FieldDStar:
         "_rows",
         "_smooth",
         "_start",
+        "_start_on_node",
         "_start_point",
         "_width",
         "_work",
@@ -306,6 +308,11 @@ class FieldDStar:
         # centres after plan_cells, world points after the world methods).
         self._start_point: tuple[float, float] | None = None
         self._goal_point: tuple[float, float] | None = None
+        # Whether each end was given as a node (plan(), replan()) rather than as a
+        # point in a cell (plan_cells(), the world methods): a replan checks a kept
+        # end again the way the method that gave it checked it.
+        self._start_on_node = False
+        self._goal_on_node = False
 
     # ------------------------------------------------------------ properties
     @property
@@ -462,6 +469,7 @@ class FieldDStar:
         s = self._node(start_node, "start_node")
         gl = self._node(goal_node, "goal_node")
         self._reset(s, gl, s, gl)
+        self._start_on_node = self._goal_on_node = True
         points, cost, length, expanded = self._search()
         return Path2D(points - 0.5, "grid", cost=cost, length=length, expanded=expanded)
 
@@ -485,15 +493,27 @@ class FieldDStar:
         RuntimeError
             No plan was made yet.
         ValueError
-            Bad ``start_node``; a path cost of ``2**52`` or more.
+            Bad ``start_node``; the kept start node (without ``start_node``) or
+            the kept goal node is now a corner of impassable cells only (the
+            start checked first, as a fresh :meth:`plan` refuses them); a path
+            cost of ``2**52`` or more.
         navkit.NoPathError
             The goal cannot be reached any more.
         """
         self._require_plan("replan")
+        assert self._start is not None and self._goal is not None
+        # Every check before any state changes, in the order of plan(): a refused
+        # replan leaves the planner as it was.
         if start_node is not None:
             s = self._node(start_node, "start_node")
+        else:
+            s = self._start
+            self._check_kept_node(s, "start_node", None)
+        self._check_kept_node(self._goal, "goal_node", None)
+        if start_node is not None:
             self._move_start(s)
             self._start_point = (float(s[0]), float(s[1]))
+            self._start_on_node = True
         points, cost, length, expanded = self._search()
         return Path2D(points - 0.5, "grid", cost=cost, length=length, expanded=expanded)
 
@@ -558,6 +578,7 @@ class FieldDStar:
             (float(centre_s[0]), float(centre_s[1])),
             (float(centre_g[0]), float(centre_g[1])),
         )
+        self._start_on_node = self._goal_on_node = False
         if s == gl:  # no search, but the goal is recorded for replan_world
             return Path2D(np.array([s], dtype=np.float64), "grid", cost=0.0, length=0.0, expanded=0)
         points, _, _, expanded = self._search()
@@ -597,6 +618,7 @@ class FieldDStar:
         p_s, s = self._world_end(start_xy, "start_xy")
         p_g, gl = self._world_end(goal_xy, "goal_xy")
         self._reset(s, gl, p_s, p_g)
+        self._start_on_node = self._goal_on_node = False
         points, _, _, expanded = self._search()
         return self._world_path(points, expanded)
 
@@ -628,11 +650,14 @@ class FieldDStar:
         RuntimeError
             No plan was made yet.
         ValueError
-            ``start_xy`` outside the grid or in an impassable cell; without
-            ``start_xy``, the kept start point's cell has become impassable, or
-            the kept goal point's has (as a fresh :meth:`plan_world` refuses
-            them; an end point on a node itself has no cell to check); a path
-            cost of ``2**52`` or more.
+            ``start_xy`` outside the grid or in an impassable cell; the kept
+            start point (without ``start_xy``) or the kept goal point is no
+            longer valid (the start checked first): a point given to
+            :meth:`plan_world` or :meth:`plan_cells` whose cell is now
+            impassable (as a fresh :meth:`plan_world` refuses it, a point
+            exactly on a node too), a node given to :meth:`plan` or
+            :meth:`replan` that is now a corner of impassable cells only (as a
+            fresh :meth:`plan` refuses it); a path cost of ``2**52`` or more.
         navkit.NoPathError
             The goal cannot be reached any more.
 
@@ -648,13 +673,18 @@ class FieldDStar:
         ([0.75, 0.25], 4.308)
         """
         self._require_plan("replan_world")
+        assert self._start is not None and self._goal is not None
+        assert self._start_point is not None and self._goal_point is not None
+        # Every check before any state changes: a refused replan leaves the planner as it was.
         if start_xy is not None:
             p_s, s = self._world_end(start_xy, "start_xy")
+        else:
+            self._check_kept_end(self._start_point, self._start, self._start_on_node, "start_xy")
+        self._check_kept_end(self._goal_point, self._goal, self._goal_on_node, "goal_xy")
+        if start_xy is not None:
             self._move_start(s)
             self._start_point = p_s
-        else:
-            self._check_kept_point(self._start_point, "start_xy")
-        self._check_kept_point(self._goal_point, "goal_xy")
+            self._start_on_node = False
         points, _, _, expanded = self._search()
         return self._world_path(points, expanded)
 
@@ -750,14 +780,37 @@ class FieldDStar:
 
     def _node(self, value: Any, name: str) -> tuple[int, int]:
         node = as_cell(value, name, (self._nrows, self._ncols))
-        i, j = node
-        around = self._pad.reshape(self._rows + 2, self._cols + 2)[i : i + 2, j : j + 2]
-        if not np.isfinite(around).any():
+        if self._enclosed(node):
             raise ValueError(
                 f"{name} {node} is a corner of impassable cells only (node grid is "
                 f"(rows + 1, cols + 1) = {(self._nrows, self._ncols)})"
             )
         return node
+
+    def _enclosed(self, node: tuple[int, int]) -> bool:
+        """Whether every cell around ``node`` is impassable (or off the grid)."""
+        i, j = node
+        around = self._pad.reshape(self._rows + 2, self._cols + 2)[i : i + 2, j : j + 2]
+        return not bool(np.isfinite(around).any())
+
+    def _check_kept_node(
+        self, node: tuple[int, int], name: str, point: tuple[float, float] | None
+    ) -> None:
+        """Refuse an end node kept from the last plan that :meth:`_node` would refuse now.
+
+        After :meth:`update_costs` closed every cell around it, a search to or
+        from it finds no path; a fresh :meth:`plan` refuses such a node with
+        ``ValueError``, and a replan, equal to that fresh plan, does the same.
+        ``point`` is the kept world point to name instead of the node
+        (:meth:`replan_world`), or None.
+        """
+        if self._enclosed(node):
+            where = str(node) if point is None else str(tuple(self.node_to_world(point).tolist()))
+            raise ValueError(
+                f"{name} {where} (kept from the last plan) is a corner of impassable cells "
+                f"only since update_costs() (node grid is (rows + 1, cols + 1) = "
+                f"{(self._nrows, self._ncols)})"
+            )
 
     def _cell_cost(self, row: int, col: int) -> float:
         return float(self._pad[(row + 1) * self._width + col + 1])
@@ -785,16 +838,21 @@ class FieldDStar:
         near = round_half_up(p)
         return (float(p[0]), float(p[1])), (int(near[0]), int(near[1]))
 
-    def _check_kept_point(self, point: tuple[float, float] | None, name: str) -> None:
-        """Refuse an end point kept from the last plan whose cell has become impassable.
+    def _check_kept_end(
+        self, point: tuple[float, float], node: tuple[int, int], on_node: bool, name: str
+    ) -> None:
+        """Refuse an end kept from the last plan that a fresh plan would refuse now.
 
-        The point is linked to its node by a segment inside that cell (the
-        cell :meth:`_world_end` checked), so after :meth:`update_costs` made
-        the cell impassable the linked path would cost inf. A point on a node
-        itself (a :meth:`plan` end) has no link to check.
+        An end given as a node (:meth:`plan`, :meth:`replan`) is checked as
+        :meth:`_node` checks it. An end given as a point (:meth:`plan_world`,
+        :meth:`plan_cells`) is linked to its node by a segment inside its cell
+        (the cell :meth:`_world_end` checked), so after :meth:`update_costs`
+        made that cell impassable the linked path would cost inf and a fresh
+        :meth:`plan_world` refuses the point; this holds for a point exactly
+        on a node too, whose cell is the one :meth:`_world_end` picks.
         """
-        assert point is not None
-        if point[0].is_integer() and point[1].is_integer():
+        if on_node:
+            self._check_kept_node(node, name, point)
             return
         row, col = math.floor(point[0]), math.floor(point[1])
         if not math.isfinite(self._cell_cost(row, col)):

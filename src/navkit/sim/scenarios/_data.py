@@ -13,13 +13,35 @@ __all__ = ["find_data"]
 ENV_VAR = "NAVKIT_DATA"
 
 
+def _named_folder(folder: Path, named_by: str, hint: str = "") -> Path:
+    """``folder``, refused unless it is an existing folder.
+
+    A folder the user named (``data_dir=``, ``$NAVKIT_DATA``) that does not
+    exist is a mistake to report, not a reason to look elsewhere: falling back
+    to another ``shared/data`` would run on data the user did not choose. So it
+    is a ``ValueError``, not the ``DataNotFoundError`` of a data set missing
+    from a real folder, which the experiments' "auto" modes answer with their
+    synthetic maps.
+    """
+    if not folder.is_dir():
+        state = "is not a folder" if folder.exists() else "does not exist"
+        where = str(folder) if folder.is_absolute() else f"{folder} ({folder.absolute()})"
+        raise ValueError(
+            f"{named_by} names the data folder {where}, which {state}; it must be the "
+            f"folder holding ros-map-server-maps, carmen-logs, ...{hint}"
+        )
+    return folder
+
+
 def _candidates(data_dir: str | os.PathLike[str] | None) -> list[Path]:
     if data_dir is not None:
-        return [Path(data_dir)]
+        return [_named_folder(Path(data_dir), "data_dir")]
     found: list[Path] = []
     env = os.environ.get(ENV_VAR)
-    if env:
-        found.append(Path(env))
+    if env:  # set but empty counts as unset, as for most variables
+        found.append(
+            _named_folder(Path(env), f"${ENV_VAR}", " (or unset it to look in shared/data nearby)")
+        )
     here = Path.cwd().resolve()
     bases = [here, *list(here.parents)[:3]]
     # A checkout (src layout) keeps the data beside its root: <root>/../shared/data.
@@ -39,9 +61,10 @@ def find_data(relative: str, *, data_dir: str | os.PathLike[str] | None = None) 
         Path inside the data folder, e.g.
         ``"ros-map-server-maps/turtlebot3_world/turtlebot3_world.yaml"``.
     data_dir : str or path-like, optional
-        The data folder. Default: ``$NAVKIT_DATA``, else the first
-        ``shared/data`` found in the working directory, its parents (up to
-        three levels) or beside the navkit checkout.
+        The data folder; the only place looked in. Default: ``$NAVKIT_DATA``
+        when it is set (and not empty), then the first ``shared/data`` found
+        in the working directory, its parents (up to three levels) or beside
+        the navkit checkout.
 
     Returns
     -------
@@ -54,14 +77,19 @@ def find_data(relative: str, *, data_dir: str | os.PathLike[str] | None = None) 
         When no candidate folder holds ``relative``.
     TypeError, ValueError
         A ``relative`` that is not a non-empty str; a ``data_dir`` that is not
-        a path, or an empty one.
+        a path, or an empty one; ``data_dir``, or else ``$NAVKIT_DATA``,
+        naming a folder that does not exist (or a file): a misspelt folder is
+        reported, not replaced by another ``shared/data`` (nor, in the
+        experiments' "auto" modes, by their synthetic maps).
 
     Examples
     --------
-    >>> try:
-    ...     find_data("no-such-set/x.yaml", data_dir="/nonexistent")
-    ... except DataNotFoundError as exc:
-    ...     print("not found")
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as empty:
+    ...     try:
+    ...         find_data("no-such-set/x.yaml", data_dir=empty)
+    ...     except DataNotFoundError:
+    ...         print("not found")
     not found
     """
     if not isinstance(relative, str) or not relative:

@@ -263,8 +263,10 @@ def resolve_building(
 
     Examples
     --------
-    >>> resolve_building("auto", "/nonexistent")
-    ('corridor', '/nonexistent')
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as empty:  # a data folder without the map
+    ...     resolve_building("auto", empty)[0]
+    'corridor'
     """
     if building == "corridor":
         return "corridor", data_dir

@@ -227,12 +227,14 @@ class Greedy(Scenario):
 
         Examples
         --------
+        >>> import tempfile
         >>> from navkit.errors import DataNotFoundError
-        >>> scenario = Greedy(data_dir="/nonexistent")
-        >>> try:
-        ...     scenario.run_trial(scenario.trials(1)[0])
-        ... except DataNotFoundError:
-        ...     print("no map")
+        >>> with tempfile.TemporaryDirectory() as empty:
+        ...     scenario = Greedy(data_dir=empty)
+        ...     try:
+        ...         scenario.run_trial(scenario.trials(1)[0])
+        ...     except DataNotFoundError:
+        ...         print("no map")
         no map
         """
         start, goal = self.pairs[self._case_of(trial)]
