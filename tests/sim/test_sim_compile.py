@@ -6,9 +6,11 @@ compilation twice on first use (issue 17). The first test runs simulations on
 every kind of world (segments and circles, occupancy grid, moving obstacles,
 all of them, none) with disc and polygon footprints, every drive and sensor,
 plus the world's public queries, in a fresh process, and checks that no
-simulator kernel was specialised twice, but for the one intended pair: a disc
+simulator kernel was specialised twice, but for the intended variants: a disc
 footprint passes None for the polygon's arrays, so that a disc robot compiles
-only the disc's distance code and a polygon only the polygon's.
+only the disc's distance code and a polygon only the polygon's, and the run
+kernels' variant for steps long for the footprint differs from the other only
+in its ``sweeping`` argument (None in the other).
 
 A scan is a pass over the segments and circles and then one over the
 occupancy grid (a world compiles only the passes it needs): the other tests
@@ -64,6 +66,13 @@ for world in worlds:
             world, robot, lambda _obs: Twist2D(0.4, 0.0, 0.2), start=(1.0, 1.0, 0.0),
             goal=(1.5, 1.2), duration=0.2, reference_path=[[1.0, 1.0], [2.0, 1.0]],
         ).run()
+    # Steps of 0.4 m, long for these footprints: the run kernels' checking variants.
+    for footprint in (0.15, square):
+        Simulation(
+            world, Robot(drive=diff, footprint=footprint, encoders=None),
+            lambda _obs: Twist2D(4.0, 0.0, 0.0), start=(1.0, 1.0, 0.0), rate=10.0,
+            control_rate=10.0, duration=0.3,
+        ).run()
     world.clearance(0.15, (1.0, 1.0, 0.0))
     world.clearance(square, (1.0, 1.0, 0.3))
     world.collides(0.15, (1.0, 1.0, 0.0))
@@ -86,14 +95,17 @@ def test_every_simulator_kernel_is_compiled_for_one_signature() -> None:
         assert name in signatures, name
     twice = {
         name: sigs for name, sigs in signatures.items()
-        if len(sigs) > 2 or (len(sigs) == 2 and not _disc_and_polygon(*sigs))
+        if len(sigs) > 4 or not all(
+            _disc_and_polygon(a, b) for k, a in enumerate(sigs) for b in sigs[k + 1:]
+        )
     }  # fmt: skip
     assert not twice, twice
     # Both footprints were simulated: the footprint kernels hold one of each.
-    for name in ("_segment_kernels.run_segment", "_segment_kernels.run_edge_segment",
-                 "_clearance_kernels.footprint_clearance",
-                 "_clearance_kernels.edge_clearance"):  # fmt: skip
+    for name in ("_clearance_kernels.footprint_clearance", "_clearance_kernels.edge_clearance"):
         assert len(signatures[name]) == 2, signatures[name]
+    # The run kernels hold one of each with each variant (``sweeping`` None or a bool).
+    for name in ("_segment_kernels.run_segment", "_segment_kernels.run_edge_segment"):
+        assert len(signatures[name]) == 4, signatures[name]
 
 
 def _arguments(signature: str) -> list[str]:

@@ -79,7 +79,10 @@ class Lidar:
     ``range_max`` (or no obstacle in range) reads ``+inf``, as ROS REP 117
     asks. With ``angle_jitter`` each beam is cast off its nominal angle by a
     zero-mean Gaussian error but reported at the nominal angle, as a real
-    scanner does.
+    scanner does. A sensor inside an obstacle (a blocked cell of the world's
+    grid, a solid polygon or :class:`Circle`, a moving obstacle) or on its
+    boundary measures 0 on every beam: it reads ``-inf`` (too close) when
+    ``range_min > 0``, 0 otherwise (NaN on dropped beams).
 
     Every parameter is keyword-only; defaults describe an RPLIDAR A1 (0.15 to
     12 m, 360 beams, 10 Hz) with the omnidirectional robot paper's range

@@ -16,6 +16,15 @@ primitives near the beam:
   cell's corner counts);
 * moving obstacles (few) are tested by brute force.
 
+A beam from inside a solid obstacle (a solid polygon or circle, a moving
+obstacle) reads 0, as one from inside a blocked cell of the occupancy grid
+does: ``cast_edge_rays`` tells whether the origin is inside one before it
+casts. For the static solids it counts, by the even-odd rule, the edges of
+the union of the solid polygons (a CSR list of its own, filed in the cells of
+the same uniform grid) that a horizontal ray from the origin crosses, walking
+the origin's row of cells toward the nearer side of the grid, and tests the
+solid circles filed in those cells.
+
 A scan is one or two passes over the beams: ``cast_edge_rays`` for segments
 and circles, static and moving, then ``cast_occupancy_rays`` for an
 occupancy grid, starting from the ranges of the first pass: a world compiles
@@ -35,8 +44,10 @@ Examples
 >>> items = np.array([0], dtype=np.int64)
 >>> angles = np.array([0.0, np.pi / 3, np.pi])
 >>> out, dirs = np.empty(3), np.empty((3, 2))
+>>> no_items, no_owner = np.empty(0, dtype=np.int64), np.empty(0, dtype=np.int64)
 >>> cast_edge_rays(out, dirs, 0.0, 0.0, 0.0, angles, 10.0, True,
-...                square, none3, 1.0, -6.0, 12.0, 1, 1, start, items, none4, none3)
+...                square, none3, 1.0, -6.0, 12.0, 1, 1, start, items,
+...                none4, none3, start, no_items, none4, no_owner, none3)
 >>> out.round(12).tolist()
 [2.0, 4.0, inf]
 """
@@ -48,6 +59,7 @@ import math
 import numpy as np
 
 from navkit._shared.jit import njit_helper, njit_no_refcount
+from navkit.sim._moving_kernels import point_in_moving
 
 __all__ = ["apply_range_noise", "cast_edge_rays", "cast_occupancy_rays"]
 
@@ -328,6 +340,69 @@ def _cast_occupancy(
             return best
 
 
+@njit_helper
+def _in_static_solid(
+    px: float,
+    py: float,
+    rings: np.ndarray,
+    solid_circles: np.ndarray,
+    gx0: float,
+    gy0: float,
+    h: float,
+    nx: int,
+    ny: int,
+    solid_start: np.ndarray,
+    solid_items: np.ndarray,
+) -> bool:
+    """Whether ``(px, py)`` lies inside a static solid: a solid polygon or circle.
+
+    ``rings`` are the edges of the union of the solid polygons and
+    ``solid_start`` / ``solid_items`` their CSR lists (and those of
+    ``solid_circles``) in the uniform grid ``gx0, gy0, h, nx, ny``, which holds
+    every solid. The horizontal ray from the point toward the nearer side of
+    the grid crosses an odd number of edges when the point is inside (a vertex
+    on the ray counts as above it); a crossing is counted in the cell where it
+    lies, once, though the edge may be filed in several. A solid circle holding
+    the point has its boundary on that ray, so it is filed in a cell walked.
+    """
+    if solid_items.shape[0] == 0:
+        return False
+    inv_h = 1.0 / h
+    u = (px - gx0) * inv_h
+    v = (py - gy0) * inv_h
+    # Outside the grid's box is outside every solid.
+    if not (0.0 <= u < nx and 0.0 <= v < ny):
+        return False
+    i0 = min(math.floor(u), nx - 1)
+    j = min(math.floor(v), ny - 1)
+    n_rings = rings.shape[0]
+    right = nx - 1 - i0 <= i0
+    lo = i0 if right else 0
+    hi = nx - 1 if right else i0
+    inside = False
+    for i in range(lo, hi + 1):
+        k = j * nx + i
+        for m in range(solid_start[k], solid_start[k + 1]):
+            item = solid_items[m]
+            if item >= n_rings:
+                c = item - n_rings
+                d = math.hypot(px - solid_circles[c, 0], py - solid_circles[c, 1])
+                if d < solid_circles[c, 2]:
+                    return True
+                continue
+            ay = rings[item, 1]
+            by = rings[item, 3]
+            if (ay > py) == (by > py):
+                continue
+            ax = rings[item, 0]
+            x_cross = ax + (py - ay) * (rings[item, 2] - ax) / (by - ay)
+            if (px < x_cross) != right:
+                continue
+            if min(max(math.floor((x_cross - gx0) * inv_h), 0), nx - 1) == i:
+                inside = not inside
+    return inside
+
+
 @njit_no_refcount
 def cast_edge_rays(
     out: np.ndarray,
@@ -347,7 +422,12 @@ def cast_edge_rays(
     ny: int,
     cell_start: np.ndarray,
     cell_items: np.ndarray,
+    rings: np.ndarray,
+    solid_circles: np.ndarray,
+    solid_start: np.ndarray,
+    solid_items: np.ndarray,
     dyn_segs: np.ndarray,
+    dyn_seg_owner: np.ndarray,
     dyn_circles: np.ndarray,
 ) -> None:
     """First pass of a scan: segments and circles, static (grid index) and moving.
@@ -358,11 +438,18 @@ def cast_edge_rays(
     ``dirs[k]`` its direction ``(cos, sin)``. The static primitives are looked up in the
     uniform grid (skipped when its ``cell_items`` is empty), the moving ones
     (few) tested by brute force. When ``last`` (no other pass follows) ranges
-    at or beyond ``range_max`` become ``inf``.
+    at or beyond ``range_max`` become ``inf``. Every beam reads 0 when the
+    origin is inside a solid: the union of the solid polygons (edges ``rings``),
+    a circle of ``solid_circles`` (both filed in ``solid_start`` /
+    ``solid_items`` over the same grid) or a moving obstacle (its edges
+    ``dyn_segs`` grouped by ``dyn_seg_owner``, or a disc of ``dyn_circles``).
     """
     has_grid = cell_items.shape[0] > 0
     n_dseg = dyn_segs.shape[0]
     n_dcirc = dyn_circles.shape[0]
+    inside = _in_static_solid(
+        ox, oy, rings, solid_circles, gx0, gy0, h, nx, ny, solid_start, solid_items
+    ) or point_in_moving(ox, oy, dyn_segs, dyn_seg_owner, dyn_circles)
     for k in range(angles.shape[0]):
         phi = heading + angles[k]
         dx = math.cos(phi)
@@ -370,6 +457,9 @@ def cast_edge_rays(
         if not last:
             dirs[k, 0] = dx
             dirs[k, 1] = dy
+        if inside:
+            out[k] = 0.0
+            continue
         best = range_max
         if has_grid:
             best = _cast_edge_grid(

@@ -6,6 +6,8 @@ linearly. Before its first time it waits at the first point; after its last it
 stops (``after == STOP``), starts over (``LOOP``) or keeps the last segment's
 velocity (``EXTEND``). Its shape is a set of segments and circles given
 relative to its reference point, translated (never rotated) to its position.
+``point_in_moving`` (for other kernels only) tells whether a point lies inside
+one of the placed obstacles (all solid).
 
 Examples
 --------
@@ -22,11 +24,13 @@ Examples
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from navkit._shared.jit import njit_helper, njit_no_refcount
 
-__all__ = ["EXTEND", "LOOP", "STOP", "place_moving"]
+__all__ = ["EXTEND", "LOOP", "STOP", "place_moving", "point_in_moving"]
 
 
 STOP = 0
@@ -102,3 +106,32 @@ def place_moving(
             out_circles[i_circ, 1] = base_circles[i_circ, 1] + y
             out_circles[i_circ, 2] = base_circles[i_circ, 2]
             i_circ += 1
+
+
+@njit_helper
+def point_in_moving(
+    px: float, py: float, segs: np.ndarray, seg_owner: np.ndarray, circles: np.ndarray
+) -> bool:
+    """Whether ``(px, py)`` lies inside a placed moving obstacle (``place_moving``'s output).
+
+    Inside a disc: nearer its centre than its radius. A polygon obstacle's
+    edges are consecutive rows of ``segs`` with the same owner (even-odd rule
+    over them, a point on the horizontal through a vertex counted above it).
+    """
+    for m in range(circles.shape[0]):
+        if math.hypot(px - circles[m, 0], py - circles[m, 1]) < circles[m, 2]:
+            return True
+    inside = False
+    for m in range(segs.shape[0]):
+        if m > 0 and seg_owner[m] != seg_owner[m - 1]:
+            if inside:
+                return True
+            inside = False
+        ay = segs[m, 1]
+        by = segs[m, 3]
+        if (ay > py) != (by > py):
+            ax = segs[m, 0]
+            x_cross = ax + (py - ay) * (segs[m, 2] - ax) / (by - ay)
+            if px < x_cross:
+                inside = not inside
+    return inside

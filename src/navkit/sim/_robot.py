@@ -7,6 +7,8 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+import shapely
+from shapely.geometry import Polygon
 
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, finite_float
@@ -151,6 +153,22 @@ class Robot:
         return isinstance(self.drive, OmniDrive)
 
 
+def _inner_radius(verts: FloatArray) -> float:
+    """Radius of a disc inside the simple polygon ``verts`` (V, 2), near the largest, m > 0.
+
+    The distance from the approximate centre of the largest inscribed circle
+    to the boundary: exact for that centre, so never more than the largest
+    radius.
+    """
+    poly = Polygon(verts)
+    centre = shapely.get_point(shapely.maximum_inscribed_circle(poly), 0)
+    radius = float(shapely.distance(poly.exterior, centre))
+    if not (radius > 0.0 and poly.contains(centre)):
+        # Not expected of a valid polygon of positive area: an interior point's disc.
+        radius = float(shapely.distance(poly.exterior, poly.point_on_surface()))
+    return radius
+
+
 class Body:
     """A robot's physical state during a run: pose, twist, wheel speeds and rotations.
 
@@ -168,8 +186,10 @@ class Body:
         "forward",
         "radius",
         "radius_factor",
+        "reach",
         "scratch",
         "state",
+        "sweep",
         "verts",
         "wheels",
         "work",
@@ -204,13 +224,21 @@ class Body:
         self.verts: FloatArray | None = None
         self.work: FloatArray | None = None
         self.scratch: FloatArray | None = None
+        # How far a step may move the footprint before its sweep is checked (see
+        # navkit.sim._segment_kernels): the farthest point of the footprint from the
+        # reference point (a turn moves it most; a disc turns onto itself) and the
+        # radius of a disc inside the footprint.
         if isinstance(fp, np.ndarray):
             self.radius = 0.0
             self.verts = np.ascontiguousarray(fp, dtype=np.float64)
             self.work = np.empty_like(self.verts)
             self.scratch = np.empty_like(self.verts)
+            self.reach = float(np.max(np.hypot(fp[:, 0], fp[:, 1])))
+            self.sweep = _inner_radius(fp)
         else:
             self.radius = float(fp)
+            self.reach = 0.0
+            self.sweep = self.radius
 
     def set_command(self, twist: Twist2D) -> None:
         """Turn a body twist into wheel-speed commands, scaled together to the speed limit."""

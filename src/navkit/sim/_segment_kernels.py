@@ -8,13 +8,37 @@ are due (exact values; Python adds noise), records the trace row
 (:func:`navkit.sim._wheel_kernels.wheel_step`), places the moving obstacles,
 measures the footprint's clearance (collision when 0) and checks the goal.
 
+A step long for the footprint could carry it through a thin wall or wholly
+into a solid obstacle, both out of contact at the step's end. So when the
+step's ``span`` (a bound on how far any point of the footprint moves along
+the step's arc: ``(|v| + |omega| * reach) * dt``, ``reach`` the footprint's
+farthest point from the reference point, 0 for a disc) exceeds ``sweep`` (the
+radius of a disc that fits inside the footprint) and the end is free, the
+static obstacles are also checked at poses along the arc (the moving ones are
+placed for the step's end only). From a pose with clearance ``c`` the next one
+is ``max(c, sweep)`` further on (no point of the footprint moving farther):
+nothing is met in between when ``c`` is the larger, and the footprints at two
+poses ``sweep`` apart overlap (their inner discs do), so that no wall is
+passed and no solid entered in between. The first pose found touching an
+obstacle is the collision's, in place of the step's end.
+
 A sensor ``s`` with ``rates[s] > 0`` takes its ``k``-th sample (k = 0, 1, ...)
 at the first step ``i`` with ``i * dt + 1e-9 >= k / rates[s]``; ``counts[s]``
 holds the next ``k``.
 
 Status codes returned with the step reached: ``REACHED`` (``i_end``),
-``COLLIDED`` (a collision ended the run at that step) and ``GOAL`` (the goal
-was reached and ends the run).
+``COLLIDED`` (a collision ended the run at that step), ``GOAL`` (the goal
+was reached and ends the run) and ``LONG`` (nothing was done: call again with
+``sweeping=True``).
+
+Each run kernel comes in two variants, by the type of its ``sweeping``
+argument. With None numba drops the checks along the steps, so that the
+physics loop is compiled as it was without them (their code in the loop, even
+never run, made a disc robot's steps about 1.5 times slower); it first bounds
+the steps' spans over the segment (each wheel's speed stays between its
+present one and its command) and returns ``LONG`` at once when a step may be
+long. With True it checks the long steps along their arc; it is compiled on
+first use, by a run whose robot is fast for its footprint and physics rate.
 
 ``run_edge_segment`` is ``run_segment`` for a world of static segments and
 circles only (no occupancy grid, no moving obstacles): it checks the
@@ -30,11 +54,12 @@ import math
 import numpy as np
 
 from navkit._shared.jit import njit_force_inline, njit_helper, njit_no_refcount
+from navkit._shared.se2 import integrate_scalar
 from navkit.sim._clearance_kernels import TOUCH, edge_clearance, footprint_clearance
-from navkit.sim._moving_kernels import place_moving
+from navkit.sim._moving_kernels import place_moving, point_in_moving
 from navkit.sim._wheel_kernels import wheel_step
 
-__all__ = ["COLLIDED", "GOAL", "REACHED", "STAT_COLLISIONS", "STAT_IN_CONTACT",
+__all__ = ["COLLIDED", "GOAL", "LONG", "REACHED", "STAT_COLLISIONS", "STAT_IN_CONTACT",
            "STAT_MIN_CLEARANCE", "STAT_TIME_TO_GOAL", "due_step", "run_edge_segment",
            "run_segment"]  # fmt: skip
 
@@ -42,6 +67,7 @@ __all__ = ["COLLIDED", "GOAL", "REACHED", "STAT_COLLISIONS", "STAT_IN_CONTACT",
 REACHED = 0
 COLLIDED = 1
 GOAL = 2
+LONG = 3
 
 #: Indices of the run statistics array.
 STAT_MIN_CLEARANCE = 0
@@ -156,30 +182,124 @@ def _inside_moving(
 
     Such a footprint is wholly inside or wholly outside each obstacle (all
     solid), so one of its points decides: the disc's centre ``(px, py)``, or
-    the first vertex of the placed polygon ``verts``. A polygon obstacle's
-    edges are consecutive rows of ``dyn_segs`` with the same owner (even-odd
-    rule over them).
+    the first vertex of the placed polygon ``verts``.
     """
     if verts is not None:
         px = verts[0, 0]
         py = verts[0, 1]
-    for m in range(dyn_circles.shape[0]):
-        if math.hypot(px - dyn_circles[m, 0], py - dyn_circles[m, 1]) < dyn_circles[m, 2]:
+    return point_in_moving(px, py, dyn_segs, dyn_seg_owner, dyn_circles)
+
+
+@njit_helper
+def _long_steps(
+    wheels: np.ndarray,
+    command: np.ndarray,
+    radius_factor: np.ndarray,
+    fwd: np.ndarray,
+    reach: float,
+    dt: float,
+    sweep: float,
+) -> bool:
+    """Whether a step of this segment may be long: its ``span`` above ``sweep``.
+
+    Until the next control step every wheel's speed stays between its present
+    one and its command (it ramps toward the command; a collision stops it), and
+    slip only slows its ground speed; so ``|fwd[k]| . max(|wheel|, |command|) *
+    radius_factor`` bounds each twist component over the segment.
+    """
+    vx = 0.0
+    vy = 0.0
+    om = 0.0
+    for w in range(wheels.shape[0]):
+        top = max(abs(wheels[w]), abs(command[w])) * radius_factor[w]
+        vx += abs(fwd[0, w]) * top
+        vy += abs(fwd[1, w]) * top
+        om += abs(fwd[2, w]) * top
+    long: bool = (vx + vy + om * reach) * dt > sweep
+    return long
+
+
+@njit_helper
+def _span(state: np.ndarray, reach: float, dt: float) -> float:
+    """Bound on the distance any point of the footprint moved over the step, m."""
+    span: float = (math.hypot(state[3], state[4]) + abs(state[5]) * reach) * dt
+    return span
+
+
+@njit_helper
+def _sweep_static(
+    state: np.ndarray,
+    prev: np.ndarray,
+    dt: float,
+    reach: float,
+    sweep: float,
+    radius: float,
+    body_verts: np.ndarray | None,
+    verts: np.ndarray | None,
+    scratch: np.ndarray | None,
+    segs: np.ndarray,
+    circles: np.ndarray,
+    gx0: float,
+    gy0: float,
+    h: float,
+    nx: int,
+    ny: int,
+    cell_start: np.ndarray,
+    cell_items: np.ndarray,
+    occ: np.ndarray | None,
+    gox: float,
+    goy: float,
+    gcos: float,
+    gsin: float,
+    res: float,
+    dyn_segs: np.ndarray | None,
+    dyn_circles: np.ndarray | None,
+) -> bool:
+    """Whether the footprint touches a static obstacle along the step from ``prev``.
+
+    Checks poses along the step's arc as the module's docstring says; on
+    contact the pose in ``state`` becomes the first one touching. ``occ`` is
+    None in a world of static segments and circles only (numba then compiles
+    :func:`edge_clearance` alone, as ``run_edge_segment`` does), else the
+    occupancy grid, whose cells count too; ``dyn_segs`` and ``dyn_circles`` are
+    then the moving obstacles' arrays, of which only empty views are used (None
+    with ``occ``).
+    """
+    span = _span(state, reach, dt)
+    if not sweep < span < math.inf:
+        return False
+    vx = state[3]
+    vy = state[4]
+    om = state[5]
+    done = 0.0
+    while True:
+        x, y, th = integrate_scalar(prev[0], prev[1], prev[2], vx, vy, om, done / span * dt)
+        rest = span - done
+        limit = max(rest, _CONTACT_LIMIT)
+        if occ is None:
+            c = edge_clearance(
+                x, y, th, radius, body_verts, verts, segs, circles, gx0, gy0, h, nx, ny,
+                cell_start, cell_items, limit,
+            )  # fmt: skip
+        elif dyn_segs is not None and dyn_circles is not None:
+            # Without the moving obstacles (empty views of their arrays, so that the
+            # kernel's one signature serves): their placement holds at the step's end only.
+            c = footprint_clearance(
+                x, y, th, radius, body_verts, verts, scratch, segs, circles, gx0, gy0, h, nx,
+                ny, cell_start, cell_items, occ, gox, goy, gcos, gsin, res, dyn_segs[:0],
+                dyn_circles[:0], limit,
+            )  # fmt: skip
+        else:  # not reached: the moving obstacles' arrays come with the grid
+            c = 0.0
+        if c <= TOUCH:
+            state[0] = x
+            state[1] = y
+            state[2] = th
             return True
-    inside = False
-    for m in range(dyn_segs.shape[0]):
-        if m > 0 and dyn_seg_owner[m] != dyn_seg_owner[m - 1]:
-            if inside:
-                return True
-            inside = False
-        ay = dyn_segs[m, 1]
-        by = dyn_segs[m, 3]
-        if (ay > py) != (by > py):
-            ax = dyn_segs[m, 0]
-            x_cross = ax + (py - ay) * (dyn_segs[m, 2] - ax) / (by - ay)
-            if px < x_cross:
-                inside = not inside
-    return inside
+        advance = max(c, sweep)
+        if advance >= rest:
+            return False
+        done += advance
 
 
 # Compiled once and inlined by LLVM into both run kernels: left a call (LLVM finds it too
@@ -279,6 +399,9 @@ def run_segment(
     slip_z: np.ndarray,
     fwd: np.ndarray,
     radius: float,
+    reach: float,
+    sweep: float,
+    sweeping: bool | None,
     body_verts: np.ndarray | None,
     verts: np.ndarray | None,
     segs: np.ndarray,
@@ -335,10 +458,15 @@ def run_segment(
     first reached (NaN before), the number of collisions and the robot's contact
     state (free, touching or held); the times of the collisions are appended to ``contacts``
     (as far as it has room; ``stats[STAT_COLLISIONS]`` counts them all).
-    ``prev`` (3,) is scratch for the pose before a step. ``body_verts``,
-    ``verts`` and ``scratch`` are None for a disc footprint.
+    ``prev`` (3,) is scratch for the pose before a step. ``reach`` (m) is the
+    footprint's farthest point from the robot's reference point (0 for a
+    disc) and ``sweep`` (m, > 0) the radius of a disc inside it; ``sweeping``
+    None or True picks the variant (see the module's docstring).
+    ``body_verts``, ``verts`` and ``scratch`` are None for a disc footprint.
     """
     has_moving = mv_first.shape[0] > 0
+    if sweeping is None and _long_steps(wheels, command, radius_factor, fwd, reach, dt, sweep):
+        return LONG, i0
     i = i0
     if sample_first:
         _sample(
@@ -374,6 +502,13 @@ def run_segment(
             and _inside_moving(state[0], state[1], verts, dyn_segs, dyn_seg_owner, dyn_circles)
         ):  # fmt: skip
             clearance = 0.0
+        # A long step may have passed through a wall or into a solid.
+        if sweeping is not None and clearance > TOUCH and _sweep_static(
+            state, prev, dt, reach, sweep, radius, body_verts, verts, scratch, segs,
+            circles, gx0, gy0, h, nx, ny, cell_start, cell_items, occ, gox, goy, gcos,
+            gsin, res, dyn_segs, dyn_circles,
+        ):  # fmt: skip
+            clearance = 0.0
         status = _settle(
             i, t, dt, clearance, state, wheels, angles, command, goal, stop_at_goal,
             end_on_collision, rates, counts, n_out, enc_scale, enc_span, enc_out,
@@ -400,6 +535,9 @@ def run_edge_segment(
     slip_z: np.ndarray,
     fwd: np.ndarray,
     radius: float,
+    reach: float,
+    sweep: float,
+    sweeping: bool | None,
     body_verts: np.ndarray | None,
     verts: np.ndarray | None,
     segs: np.ndarray,
@@ -435,6 +573,8 @@ def run_edge_segment(
     :func:`~navkit.sim._clearance_kernels.edge_clearance`.
     ``body_verts`` and ``verts`` are None for a disc footprint.
     """
+    if sweeping is None and _long_steps(wheels, command, radius_factor, fwd, reach, dt, sweep):
+        return LONG, i0
     i = i0
     if sample_first:
         _sample(
@@ -457,6 +597,13 @@ def run_edge_segment(
             segs, circles, gx0, gy0, h, nx, ny, cell_start, cell_items,
             max(stats[STAT_MIN_CLEARANCE], _CONTACT_LIMIT),
         )  # fmt: skip
+        # A long step may have passed through a wall or into a solid.
+        if sweeping is not None and clearance > TOUCH and _sweep_static(
+            state, prev, dt, reach, sweep, radius, body_verts, verts, None, segs, circles,
+            gx0, gy0, h, nx, ny, cell_start, cell_items, None, 0.0, 0.0, 0.0, 0.0, 0.0,
+            None, None,
+        ):  # fmt: skip
+            clearance = 0.0
         status = _settle(
             i, t, dt, clearance, state, wheels, angles, command, goal, stop_at_goal,
             end_on_collision, rates, counts, n_out, enc_scale, enc_span, enc_out,

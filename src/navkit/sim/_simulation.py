@@ -22,6 +22,7 @@ from navkit.sim._robot import Body, Robot
 from navkit.sim._segment_kernels import (
     COLLIDED,
     GOAL,
+    LONG,
     STAT_COLLISIONS,
     STAT_MIN_CLEARANCE,
     STAT_TIME_TO_GOAL,
@@ -148,12 +149,18 @@ class Simulation:
     """A closed-loop run of one robot in a world, at a fixed physics rate.
 
     Every ``1 / rate`` seconds the robot's wheels and pose advance (see
-    :class:`Robot`) and its footprint is checked against the world (a
+    :class:`Robot`) and its footprint is checked against the world: a
     collision is found at the first physics step whose footprint touches an
-    obstacle; a robot moving more than its own size in one step could pass
-    through a thin wall). Each sensor of the robot samples at its own rate (at
-    the first physics step at or after each of its sample times); each reading
-    is delivered ``latency`` seconds later (at the first step at or after that),
+    obstacle. A step along which a point of the footprint moves farther than
+    the radius of the largest disc inside the footprint is also checked
+    against the static obstacles along its way, at poses that far apart (or
+    farther, where the clearance shows that nothing lies in between), so that
+    a fast robot or a low ``rate`` cannot carry the robot through a thin wall
+    or into a solid obstacle: the first of those poses that touches an
+    obstacle then stands for the step's end (the collision's pose). Each
+    sensor of the robot samples at its own rate (at the first physics step at
+    or after each of its sample times); each reading is delivered ``latency``
+    seconds later (at the first step at or after that),
     to the estimator, which is given it with that delivery time, and to the
     controller. The controller runs at ``control_rate``: it receives an
     :class:`Observation` (the latest readings, those new since its last call,
@@ -504,32 +511,37 @@ class _Run:
             self.slip_z[:n] = sim._rng.standard_normal((n, robot.n_wheels))
         self.n_out[:] = 0
         gx0, gy0, h, nx, ny = world._index
-        motion = (
-            i0, i_end, self.dt, sample_first,
-            body.state, body.wheels, body.angles, body.command, robot.max_wheel_acceleration,
-            body.radius_factor, robot.wheel_slip, self.slip_z, body.forward,
-            body.radius, body.verts, body.work,
-            world._segs, world._circles, gx0, gy0, h, nx, ny, world._cell_start,
-            world._cell_items,
-        )  # fmt: skip
         bookkeeping = (
             self.goal, sim._stop_at_goal, sim._end_on_collision,
             self.rates, self.counts, self.n_out, self.enc_scale, self.enc_span,
             self.out_encoders, self.out_compass, self.out_imu,
             self.buf, self.cmd, self.stats, self.contacts, self.prev,
         )  # fmt: skip
-        if world._edges_only:
-            # No grid, no moving obstacles: the kernel that compiles without their code.
-            status, i = run_edge_segment(*motion, *bookkeeping)
-        else:
-            gox, goy, gcos, gsin, res = world._occ_frame
-            status, i = run_segment(
-                *motion, body.scratch, world._occ, gox, goy, gcos, gsin, res,
-                world._mv_path, world._mv_times, world._mv_first, world._mv_count,
-                world._mv_after, world._dyn_base_segs, world._dyn_seg_owner, world._dyn_segs,
-                world._dyn_base_circles, world._dyn_circle_owner, world._dyn_circles,
-                *bookkeeping,
+        # The variant without checks along the steps first; it returns LONG, having done
+        # nothing, when a step of the segment may be long for the footprint.
+        for sweeping in (None, True):
+            motion = (
+                i0, i_end, self.dt, sample_first,
+                body.state, body.wheels, body.angles, body.command,
+                robot.max_wheel_acceleration, body.radius_factor, robot.wheel_slip,
+                self.slip_z, body.forward, body.radius, body.reach, body.sweep, sweeping,
+                body.verts, body.work, world._segs, world._circles, gx0, gy0, h, nx, ny,
+                world._cell_start, world._cell_items,
             )  # fmt: skip
+            if world._edges_only:
+                # No grid, no moving obstacles: the kernel that compiles without their code.
+                status, i = run_edge_segment(*motion, *bookkeeping)
+            else:
+                gox, goy, gcos, gsin, res = world._occ_frame
+                status, i = run_segment(
+                    *motion, body.scratch, world._occ, gox, goy, gcos, gsin, res,
+                    world._mv_path, world._mv_times, world._mv_first, world._mv_count,
+                    world._mv_after, world._dyn_base_segs, world._dyn_seg_owner,
+                    world._dyn_segs, world._dyn_base_circles, world._dyn_circle_owner,
+                    world._dyn_circles, *bookkeeping,
+                )  # fmt: skip
+            if status != LONG:
+                break
         # The kernel moved the obstacles; the world's cache of their time is stale.
         world._moving_t = math.nan
         self._queue_proprioceptive()

@@ -488,6 +488,9 @@ class World:
         "_scanners",
         "_segs",
         "_solid_circles",
+        "_solid_items",
+        "_solid_rings",
+        "_solid_start",
         "_solids",
     )
 
@@ -546,23 +549,25 @@ class World:
             np.array(solid_circles, dtype=np.float64).reshape(-1, 3)
         )
         self._solids: BaseGeometry | None = None
+        ring_parts: list[FloatArray] = []
         if solids:
             union = shapely.union_all(solids)
             shapely.prepare(union)
             self._solids = union
+            _segments_of(union, ring_parts, [])
         self._index = self._build_index()
-        start, cell_items = (
-            build_cell_lists(self._segs, self._circles, *self._index, MAX_INDEX_ENTRIES)
-            if self._segs.shape[0] + self._circles.shape[0]
-            else (np.zeros(2, dtype=np.int64), np.empty(0, dtype=np.int64))
-        )
-        if int(start[-1]) > cell_items.shape[0]:
-            raise ValueError(
-                f"the obstacles' edge index would need {int(start[-1])} entries; the maximum "
-                f"is {MAX_INDEX_ENTRIES} (too many long edges)"
-            )
+        start, cell_items = self._cell_lists(self._segs, self._circles)
         self._cell_start: IntArray = _read_only(start)
         self._cell_items: IntArray = _read_only(cell_items)
+        # The edges of the union of the solid polygons, and their cell lists (with the
+        # solid circles') in the same grid: a LiDAR tells by them whether it is inside
+        # a solid (the union, so that overlapping solids count once).
+        rings = np.concatenate(ring_parts) if ring_parts else np.empty((0, 4))
+        rings = rings[(rings[:, 0] != rings[:, 2]) | (rings[:, 1] != rings[:, 3])]
+        self._solid_rings: FloatArray = _read_only(np.ascontiguousarray(rings))
+        start, cell_items = self._cell_lists(self._solid_rings, self._solid_circles)
+        self._solid_start: IntArray = _read_only(start)
+        self._solid_items: IntArray = _read_only(cell_items)
         # Occupancy grid.
         self._grid: OccupancyGrid | None = None
         self._occ = _read_only(np.zeros((0, 0), dtype=np.uint8))
@@ -600,6 +605,20 @@ class World:
         self._scanners: dict[Any, Any] = {}
 
     # ------------------------------------------------------------ construction
+    def _cell_lists(self, segs: FloatArray, circles: FloatArray) -> tuple[IntArray, IntArray]:
+        """CSR cell lists of ``segs`` and ``circles`` in the world's uniform grid."""
+        start, cell_items = (
+            build_cell_lists(segs, circles, *self._index, MAX_INDEX_ENTRIES)
+            if segs.shape[0] + circles.shape[0]
+            else (np.zeros(2, dtype=np.int64), np.empty(0, dtype=np.int64))
+        )
+        if int(start[-1]) > cell_items.shape[0]:
+            raise ValueError(
+                f"the obstacles' edge index would need {int(start[-1])} entries; the maximum "
+                f"is {MAX_INDEX_ENTRIES} (too many long edges)"
+            )
+        return start, cell_items
+
     def _build_index(self) -> tuple[float, float, float, int, int]:
         """``(x0, y0, cell, nx, ny)`` of the uniform grid over edges and circles."""
         n = self._segs.shape[0] + self._circles.shape[0]
@@ -787,7 +806,8 @@ class World:
             cast_edge_rays(
                 out, dirs, x, y, heading, angles, range_max, not has_occ,
                 self._segs, self._circles, gx0, gy0, h, nx, ny, self._cell_start,
-                self._cell_items, self._dyn_segs, self._dyn_circles,
+                self._cell_items, self._solid_rings, self._solid_circles, self._solid_start,
+                self._solid_items, self._dyn_segs, self._dyn_seg_owner, self._dyn_circles,
             )  # fmt: skip
         if has_occ:
             gox, goy, gcos, gsin, res = self._occ_frame
@@ -852,8 +872,10 @@ class World:
         -------
         ndarray, shape (N,)
             Distances in metres; ``inf`` where nothing lies closer than
-            ``range_max``; 0 when the origin is on or inside an occupied cell or
-            on an edge.
+            ``range_max``; 0 on every ray when the origin is on an edge or a
+            circle, or on or inside an obstacle: a blocked cell of the grid, a
+            solid polygon, a solid :class:`Circle` or a moving obstacle (from
+            inside, the obstacle's own boundary is not seen).
 
         Examples
         --------
