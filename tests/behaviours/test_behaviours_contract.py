@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
+from collections.abc import Callable
 
 import numpy as np
 import pytest
@@ -46,6 +48,24 @@ def test_records_copy_arrays_and_never_freeze_the_callers() -> None:
     # The behaviours' outputs are copies too: they do not share the state's arrays.
     assert not np.shares_memory(attack(s).obstacles_xy, s.opponents_xy)
 
+
+
+def test_copied_and_unpickled_records_stay_read_only(
+    duplicate: Callable[[object], object],
+) -> None:
+    # pickle and deepcopy rebuild a frozen record without __post_init__: its arrays
+    # came back writable.
+    s = state(teammates_xy=[[-2.0, 1.0]])
+    for record in (s, support(s)):
+        copy = duplicate(record)
+        assert type(copy) is type(record)
+        for f in dataclasses.fields(record):
+            value = getattr(copy, f.name)
+            if isinstance(value, np.ndarray):
+                np.testing.assert_array_equal(value, getattr(record, f.name))
+                assert not value.flags.writeable, f.name
+            else:
+                assert value == getattr(record, f.name)
 
 @pytest.mark.parametrize("radius", [0.0, 5e-324, 1e-7, 2e6, 1e308])
 def test_possession_radius_outside_its_range_is_refused(radius: float) -> None:

@@ -136,6 +136,28 @@ def test_a_failed_step_changes_nothing(make: Callable[..., Any]) -> None:
     assert a.phase == b.phase and a.progress == b.progress
 
 
+
+@trackers
+@pytest.mark.parametrize("drive", ["diff", "omni"])
+def test_copied_and_unpickled_trackers_step_alike_with_a_read_only_path(
+    make: Callable[..., Any], drive: str, duplicate: Callable[[Any], Any]
+) -> None:
+    tracker = make(drive=drive)
+    tracker.set_path(L_PATH, goal_heading=1.0)
+    tracker.step((0.1, 0.02, 0.1), 0.05)
+    copy = duplicate(tracker)
+    # pickle and deepcopy used to give the copy a writable path.
+    with pytest.raises(ValueError, match="read-only"):
+        copy.path_xy[0, 0] = 5.0
+    np.testing.assert_array_equal(copy.path_xy, tracker.path_xy)
+    pose = (0.2, 0.0, 0.0)
+    assert copy.step(pose, 0.05) == tracker.step(pose, 0.05)
+    assert (copy.phase, copy.progress, copy.target_xy) == (
+        tracker.phase, tracker.progress, tracker.target_xy
+    )
+    copy.set_path([[5.0, 5.0]])  # the original keeps its own path
+    assert tracker.path_xy.tolist() == L_PATH.tolist()
+
 @trackers
 def test_pose_sequence_and_dt_keyword(make: Callable[..., Any]) -> None:
     a, b = make(), make()

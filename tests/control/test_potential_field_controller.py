@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 import pytest
@@ -344,6 +346,26 @@ def test_controller_is_slotted() -> None:
     with pytest.raises(AttributeError):
         ctl.d0 = 0.6  # type: ignore[attr-defined]
     assert ctl.influence_radius == 0.6
+
+
+def test_copies_step_on_their_own(duplicate: Callable[[Any], Any]) -> None:
+    # A shallow copy used to share the PID: its steps and reset moved the
+    # original's integrator and last heading error.
+    def run(ctl: PotentialFieldController, pose: Pose2D) -> Twist2D:
+        return ctl.step(pose, Pose2D(2.0, 1.0, 0.5), dt=0.1)
+
+    original = PotentialFieldController(ki=1.0, kd=0.5)
+    twin = PotentialFieldController(ki=1.0, kd=0.5)
+    for ctl in (original, twin):
+        run(ctl, Pose2D(0.0, 0.0, 0.0))
+    copy = duplicate(original)
+    assert run(copy, Pose2D(0.1, 0.0, 0.2)) == run(twin, Pose2D(0.1, 0.0, 0.2))
+    for _ in range(3):
+        run(copy, Pose2D(-1.0, 2.0, -2.5))
+    copy.reset()
+    reference = PotentialFieldController(ki=1.0, kd=0.5)
+    run(reference, Pose2D(0.0, 0.0, 0.0))
+    assert run(original, Pose2D(0.1, 0.0, 0.2)) == run(reference, Pose2D(0.1, 0.0, 0.2))
 
 
 def test_numerically_on_an_obstacle_flees_at_full_speed() -> None:

@@ -10,11 +10,14 @@ Nothing here depends on how the robot is then driven.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from collections.abc import Sequence
+from dataclasses import dataclass, field, fields
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
 
+from navkit._shared.frozen import restore_read_only
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_bool, as_float_array, as_points, finite_float
 
@@ -37,6 +40,15 @@ def _players(value: ArrayLike, name: str) -> FloatArray:
         raise ValueError(f"{name} must be finite (NaN rows mark unseen players)")
     out.setflags(write=False)
     return out
+
+
+def _restore(record: Any, state: Sequence[Any]) -> None:
+    """``__setstate__`` of the records: fields from ``state``, arrays read-only again.
+
+    pickle and :func:`copy.deepcopy` rebuild a slotted dataclass without
+    ``__post_init__``, and the arrays they copy come back writable.
+    """
+    restore_read_only(record, state, [f.name for f in fields(record)])
 
 
 def _no_players() -> FloatArray:
@@ -75,6 +87,8 @@ class BehaviourTarget:
 
     goal_xy: FloatArray
     obstacles_xy: FloatArray
+
+    __setstate__ = _restore
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "goal_xy", _point(self.goal_xy, "goal_xy"))
@@ -139,6 +153,8 @@ class GameState:
     has_ball: bool | None = None
     opponent_with_ball: int | None = None
     possession_radius: float = 0.25
+
+    __setstate__ = _restore
 
     def __post_init__(self) -> None:
         setter = object.__setattr__

@@ -184,6 +184,12 @@ class Polyline:
         self.cum: FloatArray = cum
         self.length = float(cum[-1])
 
+    def __reduce__(self) -> tuple[type[Polyline], tuple[FloatArray]]:
+        # Rebuilt from its points, so that pickles and deep copies (whose arrays
+        # would come back writable) have read-only arrays again; the arc lengths
+        # are recomputed bit for bit.
+        return Polyline, (self.points_xy,)
+
     def point_at(self, s: float) -> tuple[float, float]:
         """The point ``(x, y)`` at arc length ``s``."""
         x, y = point_at(self.points_xy, self.cum, float(s))

@@ -25,28 +25,27 @@ __all__ = ["PotentialFieldController"]
 
 
 class _Pid:
-    """Heading PID; a plain slotted class because its integrator and last error change."""
+    """Heading PID gains and law; the integrator and last error are the controller's.
 
-    __slots__ = ("integral", "integral_limit", "kd", "ki", "kp", "last_error")
+    They live in the controller's own slots, replaced at every step, so that a
+    (shallow) copy of the controller never shares them with the original.
+    """
+
+    __slots__ = ("integral_limit", "kd", "ki", "kp")
 
     def __init__(self, kp: float, ki: float, kd: float, integral_limit: float) -> None:
         self.kp = kp
         self.ki = ki
         self.kd = kd
         self.integral_limit = integral_limit
-        self.integral = 0.0
-        self.last_error: float | None = None
 
-    def update(self, error: float, dt: float) -> float:
-        self.integral = min(max(self.integral + error * dt, -self.integral_limit),
-                            self.integral_limit)
-        deriv = 0.0 if self.last_error is None else angle_diff(error, self.last_error) / dt
-        self.last_error = error
-        return self.kp * error + self.ki * self.integral + self.kd * deriv
-
-    def reset(self) -> None:
-        self.integral = 0.0
-        self.last_error = None
+    def update(
+        self, integral: float, last_error: float | None, error: float, dt: float
+    ) -> tuple[float, float]:
+        """The new integral and the output for ``error`` after ``last_error``."""
+        integral = min(max(integral + error * dt, -self.integral_limit), self.integral_limit)
+        deriv = 0.0 if last_error is None else angle_diff(error, last_error) / dt
+        return integral, self.kp * error + self.ki * integral + self.kd * deriv
 
 
 class PotentialFieldController:
@@ -138,6 +137,8 @@ class PotentialFieldController:
 
     __slots__ = (
         "_anchor",
+        "_integral",
+        "_last_error",
         "_pid",
         "_still_for",
         "_velocity",
@@ -209,7 +210,8 @@ class PotentialFieldController:
     def reset(self) -> None:
         """Forget the previous velocity, the PID state and the stall timer."""
         self._velocity: FloatArray = np.zeros(2)
-        self._pid.reset()
+        self._integral = 0.0
+        self._last_error: float | None = None
         self._anchor: FloatArray | None = None
         self._still_for = 0.0
 
@@ -391,7 +393,9 @@ class PotentialFieldController:
             heading = math.atan2(want[1], want[0]) if moving else target_pose.theta
             v = np.array([c * fwd, s * fwd])
             vx, vy = fwd, 0.0
-        omega = self._pid.update(angle_diff(heading, pose.theta), step)
+        error = angle_diff(heading, pose.theta)
+        self._integral, omega = self._pid.update(self._integral, self._last_error, error, step)
+        self._last_error = error
         omega = min(max(omega, -self.max_omega), self.max_omega)
         self._velocity = v
         self._update_stall(pose, goal, step)

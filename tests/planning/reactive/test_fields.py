@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from collections.abc import Callable
 
 import numpy as np
 import pytest
@@ -322,6 +323,25 @@ def test_fields_are_immutable_and_copy_their_input() -> None:
     attraction.with_goal(points[0])
     np.testing.assert_array_equal(points, [[0.5, 0.5]])
     assert points.flags.writeable
+
+
+@pytest.mark.parametrize("build", ALL_FIELDS)
+def test_copied_and_unpickled_fields_stay_read_only(
+    build: object, duplicate: Callable[[PotentialField], PotentialField]
+) -> None:
+    # pickle and deepcopy rebuild a frozen record without __post_init__: its arrays
+    # came back writable, and a Khatib field's cached k-d tree then went stale.
+    field = build()  # type: ignore[operator]
+    copy = duplicate(field)
+    assert type(copy) is type(field)
+    points = np.array([[0.3, 0.4], [1.5, 1.0], [-2.0, 0.5]])
+    np.testing.assert_array_equal(copy.force(points), field.force(points))
+    np.testing.assert_array_equal(copy.potential(points), field.potential(points))
+    for part in copy._parts():
+        for f in dataclasses.fields(part):  # type: ignore[arg-type]
+            value = getattr(part, f.name)
+            if isinstance(value, np.ndarray):
+                assert not value.flags.writeable, f.name
 
 
 def test_kdtree_cache_is_not_an_argument_nor_in_the_repr() -> None:

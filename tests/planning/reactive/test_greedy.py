@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from collections.abc import Callable
 
 import numpy as np
 import pytest
@@ -202,3 +203,16 @@ def test_greedy_step_is_a_frozen_result() -> None:
     assert built.waypoint_xy[0] == 0.2 and built.cost == pytest.approx(2.0)
     with pytest.raises(ValueError, match="waypoint_xy"):
         GreedyStep((10, 12), (0.2, 0.0, 0.0), 0.2, 1.8, 440)
+
+
+def test_copied_and_unpickled_steps_stay_read_only(
+    duplicate: Callable[[GreedyStep], GreedyStep],
+) -> None:
+    step = greedy_step(LocalGrid.from_points([[0.1, 0.0]]), (2.0, 0.0))
+    copy = duplicate(step)
+    assert (copy.cell, copy.g, copy.h, copy.candidates) == (
+        step.cell, step.g, step.h, step.candidates
+    )
+    np.testing.assert_array_equal(copy.waypoint_xy, step.waypoint_xy)
+    with pytest.raises(ValueError, match="read-only"):
+        copy.waypoint_xy[0] = 5.0

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from collections.abc import Callable
 
 import numpy as np
 import pytest
@@ -117,6 +118,19 @@ def test_sampled_field_is_frozen_and_copies() -> None:
     with pytest.raises(dataclasses.FrozenInstanceError):
         sampled.resolution = 2.0  # type: ignore[misc]
 
+
+
+def test_copied_and_unpickled_sampled_fields_stay_read_only(
+    duplicate: Callable[[SampledField], SampledField],
+) -> None:
+    sampled = sample_field(ConicAttraction((0.0, 0.0)), xlim=(-1.0, 1.0), ylim=(0.0, 1.0),
+                           resolution=0.5)
+    copy = duplicate(sampled)
+    for name in ("x", "y", "potential", "force"):
+        np.testing.assert_array_equal(getattr(copy, name), getattr(sampled, name))
+        with pytest.raises(ValueError, match="read-only"):
+            getattr(copy, name)[0] = 1.0
+    assert copy.resolution == sampled.resolution
 
 @pytest.mark.parametrize(
     ("build", "match"),

@@ -19,7 +19,13 @@ from numpy.typing import ArrayLike
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array
 from navkit.planning.reactive._limits import gain, length
-from navkit.planning.reactive._potential_field import PotentialField, _goal, _offsets, _unit
+from navkit.planning.reactive._potential_field import (
+    PotentialField,
+    _goal,
+    _offsets,
+    _restore,
+    _unit,
+)
 
 __all__ = [
     "AttractiveField",
@@ -73,6 +79,8 @@ class AttractiveField(PotentialField):
     """
 
     goal_xy: FloatArray
+
+    __setstate__ = _restore
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "goal_xy", _goal(self.goal_xy))
@@ -149,6 +157,8 @@ class ParaboloidAttraction(AttractiveField):
     a: float = 1.0
     b: float = 1.0
 
+    __setstate__ = _restore
+
     def __post_init__(self) -> None:
         AttractiveField.__post_init__(self)
         _check(self, ("k_att", "c"), ("a", "b"))
@@ -199,6 +209,8 @@ class ConicAttraction(AttractiveField):
     m: float = 1.0
     u_trans: float = 1.0
     threshold_radius: float = 0.0
+
+    __setstate__ = _restore
 
     def __post_init__(self) -> None:
         AttractiveField.__post_init__(self)
@@ -295,6 +307,8 @@ class BlendedAttraction(AttractiveField):
     width: float = 0.15
     m: float = 1.0
     u_trans: float = 1.0
+
+    __setstate__ = _restore
 
     def __post_init__(self) -> None:
         AttractiveField.__post_init__(self)
@@ -395,6 +409,8 @@ class PiecewiseAttraction(AttractiveField):
     alpha: float = 1.0
     goal_radius: float = 0.0
     spread: float = 1.0
+
+    __setstate__ = _restore
 
     def __post_init__(self) -> None:
         AttractiveField.__post_init__(self)

@@ -16,6 +16,7 @@ from navkit.errors import NoPathError
 from navkit.mapping import LocalGrid
 from navkit.planning.reactive._greedy_kernels import greedy_select
 from navkit.planning.reactive._limits import point
+from navkit.planning.reactive._potential_field import _restore
 
 __all__ = ["GreedyStep", "greedy_step"]
 
@@ -62,6 +63,8 @@ class GreedyStep:
     g: float
     h: float
     candidates: int
+
+    __setstate__ = _restore
 
     def __post_init__(self) -> None:
         cell: Any = self.cell

@@ -10,13 +10,14 @@ from __future__ import annotations
 
 import dataclasses
 from abc import ABC, abstractmethod
-from collections.abc import Iterable, Mapping
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
 
+from navkit._shared.frozen import restore_read_only
 from navkit._shared.types import FloatArray
 from navkit.planning.reactive._limits import point, points
 
@@ -143,6 +144,17 @@ def _frozen(arr: FloatArray) -> FloatArray:
     out = np.array(arr, dtype=np.float64, copy=True)
     out.setflags(write=False)
     return out
+
+
+def _restore(record: Any, state: Sequence[Any]) -> None:
+    """``__setstate__`` of the frozen records here: fields from ``state``, arrays read-only.
+
+    pickle and :func:`copy.deepcopy` rebuild a slotted dataclass without
+    ``__post_init__``, and the arrays they copy come back writable. Each frozen
+    dataclass assigns this as ``__setstate__`` in its own body: the dataclass
+    decorator replaces one it would inherit.
+    """
+    restore_read_only(record, state, [f.name for f in dataclasses.fields(record)])
 
 
 def _goal(goal_xy: ArrayLike) -> FloatArray:

@@ -19,7 +19,7 @@ from numpy.typing import NDArray
 
 from navkit._shared.types import FloatArray
 from navkit.planning.reactive._limits import MIN_DISTANCE, gain, length
-from navkit.planning.reactive._potential_field import PotentialField, _obstacles
+from navkit.planning.reactive._potential_field import PotentialField, _obstacles, _restore
 
 __all__ = ["KhatibRepulsion", "PiecewiseRepulsion"]
 
@@ -43,6 +43,8 @@ class _PointRepulsion(PotentialField):
 
     obstacles_xy: FloatArray
     _kdtree: Any = field(default=None, init=False, repr=False)
+
+    __setstate__ = _restore
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "obstacles_xy", _obstacles(self.obstacles_xy))
@@ -182,6 +184,8 @@ class KhatibRepulsion(_PointRepulsion):
     k_rep: float = 1.0
     influence_radius: float = 1.0
 
+    __setstate__ = _restore
+
     def __post_init__(self) -> None:
         _PointRepulsion.__post_init__(self)
         object.__setattr__(self, "k_rep", gain(self.k_rep, "k_rep"))
@@ -247,6 +251,8 @@ class PiecewiseRepulsion(_PointRepulsion):
     beta: float = 1.0
     obstacle_radius: float = 0.0
     spread: float = 1.0
+
+    __setstate__ = _restore
 
     def __post_init__(self) -> None:
         _PointRepulsion.__post_init__(self)

@@ -19,7 +19,7 @@ from navkit.planning.reactive._limits import (
     RESOLUTION_MIN,
     check_coordinates,
 )
-from navkit.planning.reactive._potential_field import PotentialField, _frozen
+from navkit.planning.reactive._potential_field import PotentialField, _frozen, _restore
 
 __all__ = ["SampledField", "sample_field"]
 
@@ -112,6 +112,8 @@ class SampledField:
     force: FloatArray
     _: KW_ONLY
     resolution: float
+
+    __setstate__ = _restore
 
     def __post_init__(self) -> None:
         res = _resolution(self.resolution)
