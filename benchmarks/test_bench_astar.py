@@ -16,7 +16,9 @@ corners, ``tcod.path.AStar(cost, diagonal=sqrt(2))`` is octile and cuts corners
 (its costs equal navkit's ``corner_cutting=True``), so navkit runs both with
 corner cutting (the peers' graph) and without (the MovingAI convention, a harder
 search with more expansions). Expansions per second are reported in
-``extra_info``.
+``extra_info``. ``test_navkit_jps`` and ``test_jps_cut_ratio_to_pyastar2d``
+run jump point search on the peers' graph (``method="jps"``, corner cutting:
+the same optimal costs as A*, uniform-cost maps only).
 """
 
 from __future__ import annotations
@@ -197,6 +199,47 @@ def test_pyastar2d(benchmark: Any, name: str) -> None:
 
 
 @pytest.mark.parametrize("name", MAPS)
+def test_navkit_jps(benchmark: Any, name: str) -> None:
+    """Jump point search on the peers' graph (``method="jps"``, corner cutting), one-shot.
+
+    Each call validates the grid and builds its bit tables, as ``astar`` does.
+    """
+    costs = benchmark_map(name)
+    benchmark.group = name
+    path = benchmark(astar, costs, START, GOAL, corner_cutting=True, method="jps")
+    reference = astar(costs, START, GOAL, corner_cutting=True)
+    assert path.cost == pytest.approx(reference.cost, rel=1e-12)
+    benchmark.extra_info.update(
+        cost=path.cost, expanded=path.expanded, astar_expanded=reference.expanded
+    )
+
+
+def alternate_with_pyastar2d(costs: np.ndarray, method: str) -> dict[str, float]:
+    """navkit's corner-cutting search and pyastar2d alternately: median per-round time ratios.
+
+    ``navkit_over_pyastar2d`` is on this thread's CPU time (both run in this
+    thread; other processes' load does not count), ``wall_navkit_over_pyastar2d``
+    on wall-clock time; below 1 means navkit is faster.
+    """
+    weights = np.where(np.isfinite(costs), 1.0, np.inf).astype(np.float32)
+    astar(costs, START, GOAL, corner_cutting=True, method=method)
+    ratios = []
+    wall = []
+    for _ in range(15):
+        c0, t0 = time.thread_time(), time.perf_counter()
+        pyastar2d.astar_path(weights, START, GOAL, allow_diagonal=True)
+        c1, t1 = time.thread_time(), time.perf_counter()
+        astar(costs, START, GOAL, corner_cutting=True, method=method)
+        c2, t2 = time.thread_time(), time.perf_counter()
+        ratios.append((c2 - c1) / (c1 - c0))
+        wall.append((t2 - t1) / (t1 - t0))
+    return {
+        "navkit_over_pyastar2d": float(np.median(ratios)),
+        "wall_navkit_over_pyastar2d": float(np.median(wall)),
+    }
+
+
+@pytest.mark.parametrize("name", MAPS)
 def test_cut_ratio_to_pyastar2d(benchmark: Any, name: str) -> None:
     """navkit's corner-cutting A* and pyastar2d alternately: median per-round time ratio.
 
@@ -207,27 +250,24 @@ def test_cut_ratio_to_pyastar2d(benchmark: Any, name: str) -> None:
     ``wall_navkit_over_pyastar2d``, on wall-clock time.
     """
     costs = benchmark_map(name)
-    weights = np.where(np.isfinite(costs), 1.0, np.inf).astype(np.float32)
-    astar(costs, START, GOAL, corner_cutting=True)
-
-    def rounds() -> dict[str, float]:
-        ratios = []
-        wall = []
-        for _ in range(15):
-            c0, t0 = time.thread_time(), time.perf_counter()
-            pyastar2d.astar_path(weights, START, GOAL, allow_diagonal=True)
-            c1, t1 = time.thread_time(), time.perf_counter()
-            astar(costs, START, GOAL, corner_cutting=True)
-            c2, t2 = time.thread_time(), time.perf_counter()
-            ratios.append((c2 - c1) / (c1 - c0))
-            wall.append((t2 - t1) / (t1 - t0))
-        return {
-            "navkit_over_pyastar2d": float(np.median(ratios)),
-            "wall_navkit_over_pyastar2d": float(np.median(wall)),
-        }
-
     benchmark.group = f"{name} ratio"
-    benchmark.extra_info.update(benchmark.pedantic(rounds, rounds=1, iterations=1))
+    benchmark.extra_info.update(
+        benchmark.pedantic(alternate_with_pyastar2d, args=(costs, "astar"), rounds=1, iterations=1)
+    )
+
+
+@pytest.mark.parametrize("name", MAPS)
+def test_jps_cut_ratio_to_pyastar2d(benchmark: Any, name: str) -> None:
+    """As :func:`test_cut_ratio_to_pyastar2d` with jump point search (``method="jps"``).
+
+    The issue's "exact A* at C++ speed" on the peers' graph: the same
+    optimal costs as corner-cutting A*, one-shot (tables built per call).
+    """
+    costs = benchmark_map(name)
+    benchmark.group = f"{name} ratio"
+    benchmark.extra_info.update(
+        benchmark.pedantic(alternate_with_pyastar2d, args=(costs, "jps"), rounds=1, iterations=1)
+    )
 
 
 @pytest.mark.parametrize("name", MAPS)

@@ -96,7 +96,8 @@ def _astar() -> None:
     uniform = np.ones((8, 8))
     uniform[2:6, 4] = np.inf
     for method in ("jps", "auto"):
-        astar(uniform, (0, 0), (7, 7), method=method)
+        for corner_cutting in (False, True):  # two kernels: the jump rules differ
+            astar(uniform, (0, 0), (7, 7), method=method, corner_cutting=corner_cutting)
     for connectivity in (4, 8):
         for corner_cutting in (False, True):
             astar(costs, (0, 0), (7, 7), connectivity=connectivity, corner_cutting=corner_cutting)
@@ -228,6 +229,9 @@ def _simulation() -> None:
     def forward(_observation: Any) -> Twist2D:
         return Twist2D(0.4, 0.0, 0.2)
 
+    def dash(_observation: Any) -> Twist2D:
+        return Twist2D(4.0, 0.0, 0.0)
+
     occupied = np.zeros((30, 40), dtype=bool)
     occupied[0, :] = occupied[-1, :] = occupied[:, 0] = occupied[:, -1] = True
     grid = OccupancyGrid.from_occupancy(occupied, resolution=0.1)
@@ -256,6 +260,13 @@ def _simulation() -> None:
             Simulation(
                 world, robot, forward, start=(1.0, 1.0, 0.0), goal=(1.5, 1.2), estimator=estimator,
                 duration=0.3, reference_path=[[1.0, 1.0], [2.0, 1.0]],
+            ).run()  # fmt: skip
+        # Steps long for the footprint (0.4 m) run the kernels' variants that check
+        # along each step.
+        for footprint in (0.15, [[-0.1, -0.1], [0.1, -0.1], [0.1, 0.1], [-0.1, 0.1]]):
+            Simulation(
+                world, Robot(drive=diff, footprint=footprint, encoders=None), dash,
+                start=(1.0, 1.0, 0.0), rate=10.0, control_rate=10.0, duration=0.3,
             ).run()  # fmt: skip
         world.clearance(0.15, (1.0, 1.0, 0.0))
         world.collides(0.15, (1.0, 1.0, 0.0))

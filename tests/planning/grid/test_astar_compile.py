@@ -25,6 +25,9 @@ astar(ro, (0, 0), (11, 11), corner_cutting=True)
 astar(ints, (0, 0), (11, 11), connectivity=4, heuristic_weight=1.5)
 astar(costs, (0, 0), (11, 11), method="jps")
 astar(ro, (0, 0), (11, 11), method="auto")
+astar(costs, (0, 0), (11, 11), method="jps", corner_cutting=True)
+astar(ro, (0, 0), (11, 11), method="auto", corner_cutting=True)
+AStarPlanner(ints, method="jps", corner_cutting=True).plan((0, 0), (11, 11))
 planner = AStarPlanner(costs + np.eye(12))
 planner.plan((0, 0), (11, 11))
 planner.distance_field((0, 0))
@@ -39,10 +42,12 @@ distance_field(costs + np.eye(12), (0, 0))
 
 def test_every_search_kernel_is_compiled_for_one_signature() -> None:
     signatures = compiled_signatures(SCRIPT, [f"navkit.planning.grid.{name}" for name in (
-        "_astar_kernels", "_distance_field_kernels", "_jps_kernels", "_limits", "_search_heap"
+        "_astar_kernels", "_distance_field_kernels", "_jps_kernels", "_jps_cut_kernels",
+        "_limits", "_search_heap"
     )])  # fmt: skip
     # The kernels the public layer calls (their callees are not loaded when cached).
     for kernel in ("_astar_kernels.grid_search", "_jps_kernels.jps_search",
+                   "_jps_cut_kernels.jps_cut_search",
                    "_distance_field_kernels.bucket_field", "_jps_kernels._columns"):
         assert kernel in signatures
     repeated = {name: sigs for name, sigs in signatures.items() if len(sigs) > 1}

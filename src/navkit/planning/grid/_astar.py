@@ -17,6 +17,7 @@ from navkit.planning.grid._arguments import (
     traversable_cell,
 )
 from navkit.planning.grid._astar_kernels import grid_search
+from navkit.planning.grid._jps_cut_kernels import jps_cut_search
 from navkit.planning.grid._jps_kernels import SQRT2, jps_search, jps_tables
 from navkit.planning.grid._limits import (
     MAX_HEURISTIC_WEIGHT,
@@ -57,7 +58,7 @@ def _checked_grid(
         and (method == "jps" or method == "auto")
         and type(connectivity) is int
         and connectivity == 8
-        and corner_cutting is False
+        and type(corner_cutting) is bool
         and type(heuristic_weight) in (int, float)
         and heuristic_weight == 1.0
     ):
@@ -81,10 +82,10 @@ class _JpsScratch(threading.local):
     """One thread's scratch for jump point search, grown to the largest grid searched.
 
     ``records`` holds 16 bytes per cell (cost from the start and parent, see
-    :func:`navkit.planning.grid._jps_kernels.jps_search`), ``meta`` is its
-    int32 view, ``blocks`` the reached / closed bits with a stamp per 64
-    cells; each search takes the next stamp, so nothing is cleared between
-    searches.
+    :func:`navkit.planning.grid._jps_kernels.jps_search`; both JPS kernels
+    use it), ``meta`` is its int32 view, ``blocks`` the reached / closed bits
+    with a stamp per 64 cells; each search takes the next stamp, so nothing
+    is cleared between searches.
     """
 
     def __init__(self) -> None:
@@ -150,16 +151,17 @@ class AStarPlanner:
         Theorem 1).
     method : {"astar", "jps", "auto"}, default "astar"
         ``"astar"`` expands cells one by one. ``"jps"`` is jump point search
-        (Harabor & Grastien, AAAI 2011; no-corner-cutting rules and 64-cell
-        block scans as in their ICAPS 2014 paper): it expands only the cells
+        (Harabor & Grastien: with ``corner_cutting=True`` the pruning rules of
+        their AAAI 2011 paper, without it those of their ICAPS 2014 paper,
+        with its 64-cell block scans either way): it expands only the cells
         where an optimal path may turn, often 10-100 times fewer, and returns
         a path of the same optimal cost through every cell (consecutive cells
         are 8-neighbours), possibly another of the equally short paths. It
-        needs every traversable cell to cost the same, ``connectivity=8``,
-        ``corner_cutting=False`` and ``heuristic_weight=1``. ``"auto"`` uses
-        JPS when those hold and A* otherwise. With ``"jps"`` and ``"auto"``
-        the constructor also builds bit tables of the grid (a quarter of a
-        byte per cell). ``expanded`` of a JPS path counts jump points.
+        needs every traversable cell to cost the same, ``connectivity=8``
+        and ``heuristic_weight=1``. ``"auto"`` uses JPS when those hold and
+        A* otherwise. With ``"jps"`` and ``"auto"`` the constructor also
+        builds bit tables of the grid (a quarter of a byte per cell).
+        ``expanded`` of a JPS path counts jump points.
 
     Raises
     ------
@@ -303,12 +305,11 @@ class AStarPlanner:
         how = _check_method(method)
         if how == "astar":
             return
-        options_fit = self._eight and not self._cutting and self._weight == 1.0
+        options_fit = self._eight and self._weight == 1.0
         if how == "jps" and not options_fit:
             raise ValueError(
-                "method='jps' needs connectivity=8, corner_cutting=False and "
-                f"heuristic_weight=1.0, got connectivity={self.connectivity}, "
-                f"corner_cutting={self._cutting}, heuristic_weight={self._weight}"
+                "method='jps' needs connectivity=8 and heuristic_weight=1.0, got "
+                f"connectivity={self.connectivity}, heuristic_weight={self._weight}"
             )
         if not options_fit:
             return
@@ -445,10 +446,11 @@ class AStarPlanner:
         row_bits, col_bits, uniform = self._jps
         rows, cols = self._costs.shape
         goal_index = t[0] * cols + t[1]
+        search = jps_cut_search if self._cutting else jps_search
         while True:
             records, meta, blocks, stamp = _jps_workspace(rows * cols)
             heap = _jps_scratch.heap
-            expanded, found, k, diagonal = jps_search(
+            expanded, found, k, diagonal = search(
                 row_bits,
                 col_bits,
                 rows,
@@ -573,9 +575,9 @@ def astar(
         w > 1 weighted A* (path cost at most w times the optimum).
     method : {"astar", "jps", "auto"}, default "astar"
         As in :class:`AStarPlanner`: ``"jps"`` runs jump point search (grids
-        whose traversable cells all cost the same, 8-connected, no corner
-        cutting, weight 1; the same optimal cost, often far fewer
-        expansions), ``"auto"`` uses it whenever it applies.
+        whose traversable cells all cost the same, 8-connected, with or
+        without corner cutting, weight 1; the same optimal cost, often far
+        fewer expansions), ``"auto"`` uses it whenever it applies.
 
     Returns
     -------
@@ -624,6 +626,8 @@ def astar(
     4.414214
     >>> astar(costs, (2, 0), (0, 3), method="jps").cost
     5.0
+    >>> round(astar(costs, (2, 0), (0, 3), method="jps", corner_cutting=True).cost, 6)
+    4.414214
     """
     grid, lowest, highest, tables = _checked_grid(
         costs, connectivity, corner_cutting, heuristic_weight, method

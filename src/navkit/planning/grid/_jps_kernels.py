@@ -35,6 +35,9 @@ a shifted word can always borrow its neighbour's edge bit.
 Coordinates inside the scans are *padded*: cell ``(r, c)`` of the grid is
 ``(r + 1, c + 1)``. Search nodes (``g``, marks, heap and parents) are the
 unpadded flat indices ``r * cols + c`` of the caller's grid.
+
+The tables, node records, queue and path tracing here also serve the
+corner-cutting variant, :mod:`navkit.planning.grid._jps_cut_kernels`.
 """
 
 from __future__ import annotations
@@ -54,7 +57,9 @@ from navkit._shared.jit import (
 )
 from navkit.planning.grid._limits import INF_BITS, read_only, scanned_cost_range
 from navkit.planning.grid._search_heap import (
+    _precedes,
     node_of,
+    smallest_child,
     tie_key,
 )
 
@@ -243,67 +248,58 @@ def _free(bits: np.ndarray, nw: int, q: int, p: int) -> bool:
     return bool((bits[q * nw + (p >> 6) + 1] >> np.uint64(p & 63)) & _ONE)
 
 
-@_helper_not_inlined
-def _scan_forward(bits: np.ndarray, nw: int, line: int, p: int, target: int) -> int:
-    """Jump from position ``p`` of ``line`` towards larger positions.
+@_helper_inlined
+def _scan_line(
+    bits: np.ndarray, nw: int, line: int, p: int, target: int, step: int, cut: np.bool_
+) -> int:
+    """Jump from position ``p`` of ``line`` in direction ``step`` (1 or -1).
 
-    Returns the position of the first jump point after ``p`` (a cell with a
-    forced side neighbour, or ``target`` when it comes first; ``target`` is -1
-    when the goal is not on this line), or -1 when a blocked cell comes first.
+    Returns the position of the first jump point after ``p``, or ``target``
+    when it comes first (``target`` is -1 when the goal is not on this line),
+    or -1 when a blocked cell comes first. A jump point is a cell with a
+    forced side neighbour: without corner cutting (``cut`` False), a free
+    side cell whose cell behind is blocked; with it, a blocked side cell
+    whose cell ahead is free (see :mod:`navkit.planning.grid._jps_cut_kernels`).
+    Compiled into each caller, where ``step`` and ``cut`` are constants.
     """
     base = line * nw
-    above = base - nw
-    below = base + nw
-    x0 = p + 1
+    x0 = p + step
     w = (x0 >> 6) + 1
-    mask = _ALL << np.uint64(x0 & 63)
+    mask = _ALL << np.uint64(x0 & 63) if step > 0 else _ALL >> np.uint64(63 - (x0 & 63))
     while True:
         b = bits[base + w]
-        a = bits[above + w]
-        d = bits[below + w]
-        a_back = (a << _ONE) | (bits[above + w - 1] >> _B63)
-        d_back = (d << _ONE) | (bits[below + w - 1] >> _B63)
-        stops = (~b | (a & ~a_back) | (d & ~d_back)) & mask
+        stops = ~b
+        for side in (base - nw, base + nw):
+            s = bits[side + w]
+            # Bit i of each: the side cell i - 1 and the side cell i + 1.
+            before = (s << _ONE) | (bits[side + w - 1] >> _B63)
+            after = (s >> _ONE) | (bits[side + w + 1] << _B63)
+            if cut:
+                stops |= ~s & (after if step > 0 else before)
+            else:
+                stops |= s & ~(before if step > 0 else after)
+        stops &= mask
         if stops != 0:
             break
         mask = _ALL
-        w += 1
-    bit = int(_ctz(stops))
+        w += step
+    bit = np.int64(_ctz(stops)) if step > 0 else 63 - np.int64(_clz(stops))
     x = ((w - 1) << 6) + bit
-    if p < target <= x:
+    if (p < target <= x) if step > 0 else (x <= target < p):
         return target
-    if (b >> np.uint64(bit)) & _ONE:
-        return x
-    return -1
+    return x if (b >> np.uint64(bit)) & _ONE else -1
+
+
+@_helper_not_inlined
+def _scan_forward(bits: np.ndarray, nw: int, line: int, p: int, target: int) -> int:
+    """:func:`_scan_line` towards larger positions, without corner cutting."""
+    return _scan_line(bits, nw, line, p, target, np.int64(1), np.bool_(False))
 
 
 @_helper_not_inlined
 def _scan_backward(bits: np.ndarray, nw: int, line: int, p: int, target: int) -> int:
-    """As :func:`_scan_forward`, towards smaller positions."""
-    base = line * nw
-    above = base - nw
-    below = base + nw
-    x0 = p - 1
-    w = (x0 >> 6) + 1
-    mask = _ALL >> np.uint64(63 - (x0 & 63))
-    while True:
-        b = bits[base + w]
-        a = bits[above + w]
-        d = bits[below + w]
-        a_back = (a >> _ONE) | (bits[above + w + 1] << _B63)
-        d_back = (d >> _ONE) | (bits[below + w + 1] << _B63)
-        stops = (~b | (a & ~a_back) | (d & ~d_back)) & mask
-        if stops != 0:
-            break
-        mask = _ALL
-        w -= 1
-    bit = 63 - int(_clz(stops))
-    x = ((w - 1) << 6) + bit
-    if x <= target < p:
-        return target
-    if (b >> np.uint64(bit)) & _ONE:
-        return x
-    return -1
+    """:func:`_scan_line` towards smaller positions, without corner cutting."""
+    return _scan_line(bits, nw, line, p, target, np.int64(-1), np.bool_(False))
 
 
 @njit_helper
@@ -409,20 +405,8 @@ def _heap_replace_top(heap: np.ndarray, last: int, f: float, key: float) -> int:
     top = node_of(heap[1])
     i = 0
     while True:
-        first = 4 * i + 1
-        if first > last:
-            break
-        best = first
-        bf = heap[2 * first]
-        bk = heap[2 * first + 1]
-        for j in range(first + 1, min(first + 4, last + 1)):
-            jf = heap[2 * j]
-            jk = heap[2 * j + 1]
-            if jf < bf or (jf == bf and jk < bk):
-                best = j
-                bf = jf
-                bk = jk
-        if f < bf or (f == bf and key < bk):
+        best, bf, bk = smallest_child(heap, 0, i, last + 1)
+        if best < 0 or not _precedes(bf, bk, f, key):
             break
         heap[2 * i] = bf
         heap[2 * i + 1] = bk
@@ -613,44 +597,22 @@ def jps_search(
         How many of its steps are diagonal: its length in cells is
         ``cells - 1 - diagonal + sqrt(2) * diagonal``.
     """
-    hw = ((cols + 2 + 63) >> 6) + 2
-    vw = ((rows + 2 + 63) >> 6) + 2
-    gr = goal // cols
-    gc = goal - gr * cols
+    hw, vw, gr, gc = _begin(rows, cols, start, goal, g, meta)
     gq = gr + 1
     gp = gc + 1
-    g[2 * start] = 0.0
-    meta[4 * start + 2] = -1
-    meta[4 * start + 3] = -1
     n = np.int64(0)  # np.int64: a literal 0 would compile _heap_push twice
     expanded = 0
-    found = 0
     u = start
-    while True:
-        # Close u: set its bit in its block's closed word (resetting a block
-        # last written by another search).
-        b = 3 * (u >> 6)
-        if blocks[b] != stamp:
-            blocks[b] = stamp
-            blocks[b + 1] = 0
-            blocks[b + 2] = 0
-        blocks[b + 2] |= np.int64(1) << np.int64(u & 63)
+    while u != goal:
+        r, c, gu, d = _expand(blocks, stamp, u, cols, g, meta)
         expanded += 1
-        if u == goal:
-            found = 1
-            break
-        r = u // cols
-        c = u - r * cols
         q = r + 1
         p = c + 1
-        gu = g[2 * u]
-        d = np.int64(meta[4 * u + 3])
         dirs = _successor_directions(row_bits, hw, q, p, d)
         # The best successor is kept out of the heap and expanded next when it
         # precedes the heap's top (often, in corridors): a push and a pop saved.
-        next_f = np.inf
-        next_key = np.inf
-        next_v = -1
+        # (np.int64: a literal -1 would compile _offer twice.)
+        next_f, next_key, next_v = np.inf, np.inf, np.int64(-1)
         for k in range(8):
             if not (dirs >> k) & 1:
                 continue
@@ -661,14 +623,7 @@ def jps_search(
                 x = _straight(row_bits, hw, col_bits, vw, q, p, k, gq, gp)
                 if x < 0:
                     continue
-                if dr == 0:
-                    steps = abs(x - p)
-                    vr = r
-                    vc = x - 1
-                else:
-                    steps = abs(x - q)
-                    vr = x - 1
-                    vc = c
+                vr, vc, steps = _line_end(r, c, q, p, k, x)
                 new_g = gu + steps
             else:
                 # The first diagonal step is tested here: in narrow corridors it
@@ -700,44 +655,129 @@ def jps_search(
                     vr = v // cols
                     vc = v - vr * cols
                     new_g = g[2 * v]
-            adr = abs(vr - gr)
-            adc = abs(vc - gc)
-            h = max(adr, adc) + _OCTILE_EXTRA * min(adr, adc)
-            f = new_g + h
-            key = tie_key(h, v)
-            if f < next_f or (f == next_f and key < next_key):
-                f, next_f = next_f, f
-                key, next_key = next_key, key
-                v, next_v = next_v, v
-                if v < 0:
-                    continue
-            if 2 * n == heap.size:
+            n, next_f, next_key, next_v = _offer(
+                heap, n, next_f, next_key, next_v, v, vr, vc, new_g, gr, gc
+            )
+            if n < 0:
                 return expanded, -1, 0, 0
-            _heap_push(heap, n, f, key)
-            n += 1
-        if next_v >= 0:
-            if n == 0 or next_f < heap[0] or (next_f == heap[0] and next_key < heap[1]):
-                u = next_v
-                continue
-            # Queue it and take the top in one walk down from the root.
-            u = _heap_replace_top(heap, n - 1, next_f, next_key)
-            if not blocks[3 * (u >> 6) + 2] & (np.int64(1) << np.int64(u & 63)):
-                continue
-        # Skip queue entries of nodes closed since they were queued.
-        u = -1
-        while n > 0:
-            n -= 1
-            if n:
-                u = _heap_replace_top(heap, n - 1, heap[2 * n], heap[2 * n + 1])
-            else:
-                u = node_of(heap[1])
-            if not blocks[3 * (u >> 6) + 2] & (np.int64(1) << np.int64(u & 63)):
-                break
-            u = -1
+        u, n = _next_node(heap, n, next_f, next_key, next_v, blocks)
         if u < 0:
-            break
-    if not found:
-        return expanded, 0, 0, 0
+            return expanded, 0, 0, 0
+    return _finish(expanded + 1, meta, cols, goal, heap)
+
+
+@_helper_inlined
+def _begin(
+    rows: int, cols: int, start: int, goal: int, g: np.ndarray, meta: np.ndarray
+) -> tuple[int, int, int, int]:
+    """Start a search: record ``start``; (row words, column words, goal row, goal column).
+
+    The word counts are those of the bit rows and bit columns of
+    :func:`jps_tables`.
+    """
+    g[2 * start] = 0.0
+    meta[4 * start + 2] = -1
+    meta[4 * start + 3] = -1
+    gr = goal // cols
+    return ((cols + 2 + 63) >> 6) + 2, ((rows + 2 + 63) >> 6) + 2, gr, goal - gr * cols
+
+
+@_helper_inlined
+def _expand(
+    blocks: np.ndarray, stamp: int, u: int, cols: int, g: np.ndarray, meta: np.ndarray
+) -> tuple[int, int, float, int]:
+    """Close node ``u``: (its row, column, cost from the start, direction it was reached by).
+
+    Sets its bit in its block's closed word, resetting a block last written
+    by another search.
+    """
+    b = 3 * (u >> 6)
+    if blocks[b] != stamp:
+        blocks[b] = stamp
+        blocks[b + 1] = 0
+        blocks[b + 2] = 0
+    blocks[b + 2] |= np.int64(1) << np.int64(u & 63)
+    r = u // cols
+    return r, u - r * cols, g[2 * u], np.int64(meta[4 * u + 3])
+
+
+@_helper_inlined
+def _line_end(r: int, c: int, q: int, p: int, k: int, x: int) -> tuple[int, int, int]:
+    """Cell (row, col) at padded position ``x`` of the straight line k through (r, c); steps."""
+    if k >= 2:
+        return r, x - 1, abs(x - p)
+    return x - 1, c, abs(x - q)
+
+
+@_helper_inlined
+def _offer(
+    heap: np.ndarray,
+    n: int,
+    next_f: float,
+    next_key: float,
+    next_v: int,
+    v: int,
+    vr: int,
+    vc: int,
+    new_g: float,
+    gr: int,
+    gc: int,
+) -> tuple[int, float, float, int]:
+    """Queue node ``v`` = (vr, vc), reached at cost ``new_g``, for expansion.
+
+    ``(next_f, next_key, next_v)`` is the best successor of the node being
+    expanded so far, held out of the heap of ``n`` entries (``next_v`` -1:
+    none yet); of it and ``v`` the better one is held, the other pushed.
+    Returns the new heap size (-1 when the heap is full) and held successor.
+    """
+    adr = abs(vr - gr)
+    adc = abs(vc - gc)
+    h = max(adr, adc) + _OCTILE_EXTRA * min(adr, adc)
+    f = new_g + h
+    key = tie_key(h, v)
+    if f < next_f or (f == next_f and key < next_key):
+        f, next_f = next_f, f
+        key, next_key = next_key, key
+        v, next_v = next_v, v
+        if v < 0:
+            return n, next_f, next_key, next_v
+    if 2 * n == heap.size:
+        return -1, next_f, next_key, next_v
+    _heap_push(heap, n, f, key)
+    return n + 1, next_f, next_key, next_v
+
+
+@_helper_inlined
+def _next_node(
+    heap: np.ndarray, n: int, next_f: float, next_key: float, next_v: int, blocks: np.ndarray
+) -> tuple[int, int]:
+    """The next node to expand and the new heap size; node -1 when the queue is empty.
+
+    The held successor ``next_v`` (see :func:`_offer`) when it precedes the
+    heap's top; otherwise the heap's first entry of a node still open (entries
+    of nodes closed since they were queued are dropped).
+    """
+    if next_v >= 0:
+        if n == 0 or next_f < heap[0] or (next_f == heap[0] and next_key < heap[1]):
+            return next_v, n
+        # Queue it and take the top in one walk down from the root.
+        u = _heap_replace_top(heap, n - 1, next_f, next_key)
+        if not blocks[3 * (u >> 6) + 2] & (np.int64(1) << np.int64(u & 63)):
+            return u, n
+    while n > 0:
+        n -= 1
+        # The last entry takes the top's place (or the top is the only one).
+        u = _heap_replace_top(heap, n - 1, heap[2 * n], heap[2 * n + 1]) if n else node_of(heap[1])
+        if not blocks[3 * (u >> 6) + 2] & (np.int64(1) << np.int64(u & 63)):
+            return u, n
+    return -1, n
+
+
+@_helper_inlined
+def _finish(
+    expanded: int, meta: np.ndarray, cols: int, goal: int, heap: np.ndarray
+) -> tuple[int, int, int, int]:
+    """The search kernels' result once ``goal`` is reached: as :func:`jps_search` returns it."""
     cells, diagonal = _trace(meta, cols, goal, heap)
     return expanded, 1 if cells <= heap.size >> 1 else -2, cells, diagonal
 

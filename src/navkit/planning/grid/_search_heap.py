@@ -106,9 +106,13 @@ def rec_sift_up(heap: np.ndarray, meta: np.ndarray, i: int, f: float, key: float
 
 
 @njit_inline
-def _rec_smallest_child(heap: np.ndarray, i: int, n: int) -> tuple[int, float, float]:
-    """Smallest child (slot, f, key) of slot i among ``n`` entries; slot -1 when none."""
-    b = 2 * REC_BASE
+def smallest_child(heap: np.ndarray, b: int, i: int, n: int) -> tuple[int, float, float]:
+    """Smallest child (slot, f, key) of slot i among ``n`` entries; slot -1 when none.
+
+    Slot ``j`` of the heap is at entries ``b + 2 * j`` (f) and ``b + 2 * j + 1``
+    (tie key): ``b`` is ``2 * REC_BASE`` for the ``rec_*`` heap, 0 for the
+    jump point search's queue.
+    """
     first = 4 * i + 1
     if first + 3 < n:
         # A two-round tournament on indices only, as in pop.
@@ -154,7 +158,7 @@ def rec_pop(heap: np.ndarray, meta: np.ndarray, n: int) -> int:
     # Floyd's method: the hole goes down to a leaf, then the last entry up.
     i = 0
     while True:
-        best, bestf, bestk = _rec_smallest_child(heap, i, last)
+        best, bestf, bestk = smallest_child(heap, 2 * REC_BASE, i, last)
         if best < 0:
             break
         _rec_place(heap, meta, i, bestf, bestk)
@@ -174,7 +178,7 @@ def rec_replace_top(heap: np.ndarray, meta: np.ndarray, n: int, f: float, key: f
     top = node_of(heap[2 * REC_BASE + 1])
     i = 0
     while True:
-        best, bestf, bestk = _rec_smallest_child(heap, i, n)
+        best, bestf, bestk = smallest_child(heap, 2 * REC_BASE, i, n)
         if best < 0 or not _precedes(bestf, bestk, f, key):
             break
         _rec_place(heap, meta, i, bestf, bestk)
