@@ -122,3 +122,41 @@ def test_a_closed_pipe_ends_the_command_quietly() -> None:
     process.stderr.close()
     assert process.wait(timeout=120) == 141, err  # 128 + SIGPIPE, as a shell reports
     assert err == ""  # no "Exception ignored ... BrokenPipeError"
+
+
+def test_json_into_a_pipe_or_device_is_written_into_it(tmp_path: Path) -> None:
+    # os.replace used to put a regular file in place of the pipe (as root, `--json
+    # /dev/null` replaced the system's /dev/null with the JSON).
+    import stat
+
+    from navkit.cli._files import write_json
+    from navkit.cli._outputs import check_output
+
+    fifo = tmp_path / "result.json"
+    os.mkfifo(fifo)
+    check_output(str(fifo), "", "--json")  # accepted before the run
+    reader = os.open(fifo, os.O_RDONLY | os.O_NONBLOCK)  # so that the writer does not block
+    try:
+        assert write_json({"a": [1, 2.5]}, fifo) == fifo
+        received = os.read(reader, 1 << 16)
+    finally:
+        os.close(reader)
+    assert json.loads(received) == {"a": [1, 2.5]}
+    assert stat.S_ISFIFO(os.lstat(fifo).st_mode)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["result.json"]
+
+
+@pytest.mark.parametrize(("option", "name"), [("--plot", "r.png"), ("--animate", "r.gif")])
+def test_pictures_over_a_pipe_are_refused_before_running(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], option: str, name: str
+) -> None:
+    import stat
+
+    fifo = tmp_path / name
+    os.mkfifo(fifo)
+    assert main(["run", "demo", "--quiet", option, str(fifo)]) == 1
+    out, err = capsys.readouterr()
+    line = one_error_line(err)
+    assert option in line and "not a regular file" in line
+    assert out == ""
+    assert stat.S_ISFIFO(os.lstat(fifo).st_mode)

@@ -111,3 +111,27 @@ def test_no_path_and_bad_points_are_one_line(
 ) -> None:
     assert main(["plan", str(walled), "--start", start, "--goal", goal, "--quiet"]) == 1
     assert words in one_error_line(capsys.readouterr().err).lower()
+
+
+def test_plot_over_the_maps_image_is_refused(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # A map whose image is a PNG: `--plot` naming that image replaced the map
+    # with the picture of the plan.
+    image_module = pytest.importorskip("PIL.Image")
+    grid = OccupancyGrid.from_occupancy(np.zeros((20, 40), dtype=bool), resolution=0.1)
+    yaml_path = tmp_path / "map.yaml"
+    pgm = grid.save(yaml_path)
+    image = tmp_path / "map.png"
+    image_module.open(pgm).save(image)
+    yaml_path.write_text(yaml_path.read_text().replace(pgm.name, image.name))
+    before = image.read_bytes()
+    argv = ["plan", str(yaml_path), "--start", "0.5,0.5", "--goal", "3.5,1.5",
+            "--plot", str(image), "--quiet"]  # fmt: skip
+    assert main(argv) == 1
+    line = one_error_line(capsys.readouterr().err)
+    assert "--plot" in line and "map's image" in line
+    assert image.read_bytes() == before
+    # Another file is still written.
+    assert main([*argv[:-2], str(tmp_path / "plan.png"), "--quiet"]) == 0
+    assert OccupancyGrid.load(yaml_path).shape == grid.shape

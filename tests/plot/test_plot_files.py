@@ -204,3 +204,21 @@ def _tiny_trace() -> Trace:
     robot = Robot(drive=DiffDrive(track=0.3, wheel_radius=0.05), footprint=0.15)
     return Simulation(World(), robot, lambda obs: Twist2D(0.2, 0.0, 0.0), start=(0.0, 0.0, 0.0),
                       duration=0.2).run()  # fmt: skip
+
+
+def test_pictures_are_never_renamed_over_a_pipe(tmp_path: Path) -> None:
+    # The atomic rename used to replace the pipe (or a device) itself with a file.
+    import os
+    import stat
+
+    ax = _axes()
+    for name in ("p.png", "a.gif"):
+        fifo = tmp_path / name
+        os.mkfifo(fifo)
+        with pytest.raises(ValueError, match="not a regular file"):
+            if name.endswith(".png"):
+                save_figure(ax, fifo, dpi=20)
+            else:
+                animate_trace(_tiny_trace(), fifo, max_frames=2, dpi=20)
+        assert stat.S_ISFIFO(os.lstat(fifo).st_mode)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.gif", "p.png"]

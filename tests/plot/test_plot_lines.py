@@ -108,6 +108,27 @@ def test_bad_traces_are_refused() -> None:
         plot_trace(_trace(), estimate=1)  # type: ignore[arg-type]
 
 
+def test_a_trace_without_rows_is_a_value_error_in_every_drawing(tmp_path: Path) -> None:
+    # It used to be an IndexError (marking the start of a run that has none).
+    from navkit.plot import animate_trace, plot_scene
+    from navkit.sim import Scene
+
+    empty = Trace(np.zeros(0), np.zeros((0, 3)), np.zeros((0, 3)), np.zeros((0, 3)), (), (),
+                  _trace().metrics)  # fmt: skip
+    with pytest.raises(ValueError, match=r"^trace has no poses"):
+        plot_trace(empty)
+    with pytest.raises(ValueError, match=r"scene\.traces\[1\] has no poses"):
+        plot_scene(Scene("s", traces=(("full", _trace()), ("empty", empty))))
+    with pytest.raises(ValueError, match="source has no poses"):
+        animate_trace(empty, tmp_path / "run.gif")
+    assert list(tmp_path.iterdir()) == []
+    # One row is a run too: start and end marked at the same place.
+    one = Trace(np.zeros(1), np.ones((1, 3)), np.full((1, 3), np.nan), np.zeros((1, 3)), (),
+                (), _trace().metrics)  # fmt: skip
+    markers = [line.get_xydata().tolist() for line in plot_trace(one).lines[1:]]
+    assert markers == [[[1.0, 1.0]], [[1.0, 1.0]]]
+
+
 # ------------------------------------------------------------------ plot_scan
 def _scan() -> LaserScan:
     return LaserScan([1.0, 2.0, math.inf, 0.01], angle_min=0.0, angle_increment=math.pi / 2,

@@ -100,3 +100,20 @@ def test_a_link_is_replaced_not_the_file_it_points_to(tmp_path: Path) -> None:
     with atomic_path(link) as temporary:
         temporary.write_text("new")
     assert other.read_text() == "keep" and link.read_text() == "new" and not link.is_symlink()
+
+
+def test_a_pipe_or_device_is_never_renamed_over(tmp_path: Path) -> None:
+    # os.replace would put a regular file in place of the pipe (and, as root, of /dev/null).
+    pipe = tmp_path / "out.json"
+    os.mkfifo(pipe)
+    regular = tmp_path / "map.yaml"
+    # (The block never runs: on failure it raises before any rename.)
+    with (
+        pytest.raises(ValueError, match=r"out\.json is not a regular file"),
+        atomic_paths([regular, pipe]),
+    ):
+        raise AssertionError("not reached")  # pragma: no cover
+    assert stat.S_ISFIFO(pipe.lstat().st_mode) and names(tmp_path) == ["out.json"]
+    with pytest.raises(ValueError, match="not a regular file"), atomic_path(Path(os.devnull)):
+        raise AssertionError("not reached")  # pragma: no cover
+    assert stat.S_ISCHR(Path(os.devnull).stat().st_mode)

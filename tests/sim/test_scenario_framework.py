@@ -4,8 +4,9 @@ from __future__ import annotations
 
 import json
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pytest
@@ -104,6 +105,16 @@ def test_records_are_checked_and_copied() -> None:
         Trial("c", 0, 0, -1)
     scene = Scene("s", points=(("goal", [1.0, 2.0]),))
     assert scene.points[0][1].shape == (1, 2) and not scene.points[0][1].flags.writeable
+
+
+def test_copied_and_unpickled_scenes_keep_read_only_arrays(
+    duplicate: Callable[[Any], Any],
+) -> None:
+    scene = Scene("s", paths=(("plan", [[0.0, 0.0], [1.0, 1.0]]),), points=(("goal", [1.0, 2.0]),))
+    copy = duplicate(scene)
+    for (_, xy), (_, original) in zip((*copy.paths, *copy.points),
+                                      (*scene.paths, *scene.points), strict=True):  # fmt: skip
+        assert not xy.flags.writeable and np.array_equal(xy, original)
 
 
 def test_numpy_booleans_are_figures_like_python_booleans() -> None:

@@ -46,6 +46,13 @@ def atomic_paths(targets: Sequence[Path]) -> Iterator[tuple[Path, ...]]:
     tuple of Path
         The temporary files, one per target, in order.
 
+    Raises
+    ------
+    ValueError
+        A target that exists and is not a regular file (a device such as
+        ``/dev/null``, a named pipe, a socket): the rename would replace the
+        device or pipe itself (as root, ``/dev/null`` too). Nothing is created.
+
     Examples
     --------
     >>> import tempfile
@@ -56,6 +63,12 @@ def atomic_paths(targets: Sequence[Path]) -> Iterator[tuple[Path, ...]]:
     ...     print(sorted(p.name for p in Path(folder).iterdir()), a.read_text() + b.read_text())
     ['a.txt', 'b.txt'] AB
     """
+    for target in targets:
+        if target.exists() and not target.is_file() and not target.is_dir():
+            raise ValueError(
+                f"{target} is not a regular file (a device, a pipe or a socket): it is written "
+                "by renaming a new file over it, which would replace it"
+            )
     temporaries: list[Path] = []
     try:
         for target in targets:

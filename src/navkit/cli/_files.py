@@ -17,7 +17,10 @@ def write_json(data: Any, path: str | os.PathLike[str]) -> Path:
 
     The text goes to a temporary file in the same folder, which then replaces
     ``path`` (``os.replace``): readers see the old file or the whole new one,
-    and a failure leaves no partial file behind.
+    and a failure leaves no partial file behind. A ``path`` that exists but is
+    not a regular file (``/dev/null``, ``/dev/stdout``, a named pipe) is
+    written into directly instead: renaming a file over it would replace the
+    device or pipe itself.
 
     Parameters
     ----------
@@ -50,6 +53,10 @@ def write_json(data: Any, path: str | os.PathLike[str]) -> Path:
     text = json.dumps(data, indent=2, allow_nan=False) + "\n"
     if target.is_dir():
         raise IsADirectoryError(f"{target} is a folder, not a file")
+    if target.exists() and not target.is_file():
+        with open(target, "w", encoding="utf-8") as stream:
+            stream.write(text)
+        return target
     folder = target.parent
     if not folder.is_dir():
         raise FileNotFoundError(f"folder {folder} does not exist")

@@ -29,7 +29,9 @@ def check_output(path: str | None, suffix: str, option: str) -> None:
     Raises
     ------
     ValueError
-        A wrong extension, or a folder given for a file.
+        A wrong extension, a folder given for a file, or a picture (a
+        ``suffix``) to be written over something that is not a regular file
+        (a device, a pipe).
     FileNotFoundError
         The folder does not exist.
     OSError
@@ -51,6 +53,10 @@ def check_output(path: str | None, suffix: str, option: str) -> None:
         raise ValueError(f"{option}: the file must end in {suffix}, got {path}")
     if target.is_dir():
         raise ValueError(f"{option}: {path} is a folder, not a file")
+    if target.exists() and not target.is_file():
+        if suffix:  # pictures are written atomically, which would replace the device itself
+            raise ValueError(f"{option}: {path} is not a regular file (a device or a pipe?)")
+        return  # written into directly (write_json), whatever its folder allows
     folder = target.parent
     if not folder.is_dir():
         raise FileNotFoundError(f"{option}: folder {folder} does not exist")

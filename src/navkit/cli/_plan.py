@@ -3,11 +3,13 @@
 from __future__ import annotations
 
 import argparse
+import os
 import time
 from pathlib import Path
 from typing import Literal, TextIO
 
 import numpy as np
+import yaml
 
 from navkit.cli._kernels import announce_compilation
 from navkit.cli._outputs import check_output, save_picture
@@ -31,10 +33,28 @@ def _warm_up(resolution: float, radius: float, planner: PlannerName) -> None:
     )
 
 
+def _check_not_an_input(plot: str | None, map_yaml: str) -> None:
+    """Refuse a ``--plot`` naming the map's YAML or the image it names (read_map checked both).
+
+    ``--plot map.png`` beside ``map.yaml`` whose image is ``map.png`` would
+    otherwise replace the map itself with the picture.
+    """
+    if plot is None or not os.path.exists(plot):
+        return
+    yaml_path = Path(map_yaml)
+    entries = yaml.safe_load(yaml_path.read_text(encoding="utf-8"))
+    image = Path(str(entries["image"]))
+    inputs = (("the map's YAML", yaml_path), ("the map's image", yaml_path.parent / image))
+    for what, path in inputs:
+        if os.path.exists(path) and os.path.samefile(plot, path):
+            raise ValueError(f"--plot: {plot} is {what} ({path}); choose another file")
+
+
 def plan_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
     """Load the map, plan, print length and time as a table, draw it if asked."""
     check_output(args.plot, ".png", "--plot")
     grid = read_map(args.map)
+    _check_not_an_input(args.plot, args.map)
     if not args.quiet:
         announce_compilation(args.planner, err)
     _warm_up(grid.resolution, args.radius, args.planner)

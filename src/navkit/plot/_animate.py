@@ -123,7 +123,8 @@ def animate_trace(
     TypeError
         ``source`` is neither a Scene nor a Trace, a bad option type.
     ValueError
-        A scene without traces, a path not ending in ``.gif``, an option out
+        A scene without traces, a trace without rows, a path not ending in
+        ``.gif`` or naming something that is not a regular file, an option out
         of range, coordinates beyond ±1e9 m.
     FileNotFoundError
         The folder of ``path`` does not exist.

@@ -33,6 +33,9 @@ def output_path(value: Any, name: str, suffix: str) -> Path:
         raise ValueError(f"{name} must end in {suffix}, got {text!r}")
     if path.is_dir():
         raise ValueError(f"{name} {text!r} is a folder")
+    if path.exists() and not path.is_file():
+        # Renaming the temporary file over it would replace the device or pipe itself.
+        raise ValueError(f"{name} {text!r} is not a regular file (a device or a pipe?)")
     folder = path.parent
     if not folder.is_dir():
         raise FileNotFoundError(f"{name}: the folder {str(folder)!r} does not exist")
@@ -78,7 +81,8 @@ def save_figure(fig_or_ax: Figure | Axes, path: str | os.PathLike[str], *,
     TypeError
         Not a Figure or Axes, a path that is not a str or path-like.
     ValueError
-        A path not ending in ``.png`` or naming a folder, ``dpi`` out of range.
+        A path not ending in ``.png`` or naming a folder or something else
+        that is not a regular file (a device, a pipe), ``dpi`` out of range.
     FileNotFoundError
         The folder of ``path`` does not exist.
 

@@ -112,9 +112,12 @@ def plot_path(
 
 
 def trace_xy(trace: Any, name: str = "trace") -> tuple[FloatArray, FloatArray]:
-    """``(true xy (T, 2), estimated xy (T, 2) with NaN rows)`` of a checked Trace."""
+    """``(true xy (T, 2), estimated xy (T, 2) with NaN rows)`` of a checked Trace (T >= 1)."""
     if not isinstance(trace, Trace):
         raise TypeError(f"{name} must be a navkit.sim.Trace, got {type(trace).__name__}")
+    if len(trace) == 0:
+        # Nothing to draw, and no start or end to mark (a Simulation records at least one row).
+        raise ValueError(f"{name} has no poses to draw (a trace of 0 rows)")
     true_xy = as_coords(trace.poses[:, :2], f"{name}.poses")
     est_xy = as_coords(trace.estimates[:, :2], f"{name}.estimates", nan_ok=True)
     return true_xy, est_xy
@@ -156,7 +159,7 @@ def plot_trace(
     TypeError
         ``trace`` is not a Trace, a wrong type of option.
     ValueError
-        Poses beyond ±1e9 m, an unknown colour.
+        A trace without rows, poses beyond ±1e9 m, an unknown colour.
 
     Examples
     --------

@@ -92,7 +92,7 @@ def plot_scene(scene: Scene, *, ax: Axes | None = None, legend: bool = True) -> 
         ``scene`` is not a Scene, or holds something of the wrong type.
     ValueError
         Coordinates that are not finite or lie beyond ±1e9 m, a ``"grid"``
-        frame Path2D without ``scene.grid``.
+        frame Path2D without ``scene.grid``, a trace without rows.
 
     Examples
     --------

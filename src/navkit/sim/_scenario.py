@@ -19,6 +19,7 @@ from typing import Any, ClassVar
 
 import numpy as np
 
+from navkit._shared.frozen import restore_read_only
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, finite_float
 from navkit.mapping import OccupancyGrid
@@ -407,6 +408,13 @@ class Scene:
         traces = _labelled(self.traces, "traces", _instance(Trace, False))
         object.__setattr__(self, "traces", traces)
         object.__setattr__(self, "points", _labelled(self.points, "points", _points))
+
+    def __setstate__(self, state: list[Any]) -> None:
+        # Pickles and deep copies skip __post_init__: the labelled arrays (inside
+        # tuples, which restore_read_only does not reach) are made read-only here.
+        restore_read_only(self, state, ())
+        for _, xy in (*self.paths, *self.points):
+            xy.flags.writeable = False
 
 
 @dataclass(frozen=True, slots=True, eq=False)

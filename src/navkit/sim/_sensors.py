@@ -5,9 +5,11 @@ from __future__ import annotations
 import math
 import numbers
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
+from navkit._shared.frozen import restore_read_only
 from navkit._shared.types import IntArray
 from navkit._shared.validation import as_float_array, finite_float, positive_float
 from navkit.mapping import LaserScan
@@ -320,7 +322,8 @@ class EncoderReading:
         Time of the reading, s (finite).
     ticks : ndarray of int64, shape (N,)
         Counter of each wheel (``[left, right]`` for a differential drive), as
-        :meth:`WheelEncoders.counts` gives them; stored as a read-only copy.
+        :meth:`WheelEncoders.counts` gives them; stored as a read-only copy
+        (read-only in copies and unpickled readings too).
 
     Examples
     --------
@@ -334,6 +337,10 @@ class EncoderReading:
     def __post_init__(self) -> None:
         object.__setattr__(self, "stamp", finite_float(self.stamp, "stamp"))
         object.__setattr__(self, "ticks", _readonly_ints(self.ticks))
+
+    def __setstate__(self, state: list[Any]) -> None:
+        """Restore from a pickle or :func:`copy.deepcopy`, ``ticks`` read-only again."""
+        restore_read_only(self, state, ("ticks",))
 
 
 @dataclass(frozen=True, slots=True)

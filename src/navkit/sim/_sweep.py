@@ -189,7 +189,8 @@ def sweep(
     order whatever order they finish in, so the same seeds give the same
     result on every executor: equal ``to_dict()`` up to wall-clock
     measurements (each trial's ``wall_time``, values and summary entries
-    named ``*_wall_time`` and table columns marked ``wall``).
+    named ``*_wall_time``, and the table columns and rows whose heading or
+    first cell holds the word ``wall``).
 
     Parameters
     ----------

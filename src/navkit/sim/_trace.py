@@ -8,6 +8,7 @@ from typing import Any, Literal
 
 import numpy as np
 
+from navkit._shared.frozen import restore_read_only
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_bool, as_float_array, finite_float
 from navkit.sim._polyline_distance_kernels import point_polyline_distances
@@ -166,7 +167,7 @@ class Trace:
 
     Notes
     -----
-    Every array is a read-only copy.
+    Every array is a read-only copy (in copies and unpickled traces too).
     """
 
     times: FloatArray
@@ -194,6 +195,10 @@ class Trace:
         object.__setattr__(self, "events", _tuple_of(self.events, "events", Event))
         if not isinstance(self.metrics, Metrics):
             raise TypeError(f"metrics must be a Metrics, got {type(self.metrics).__name__}")
+
+    def __setstate__(self, state: list[Any]) -> None:
+        """Restore from a pickle or :func:`copy.deepcopy`, the arrays read-only again."""
+        restore_read_only(self, state, ("times", "poses", "estimates", "commands"))
 
     def __len__(self) -> int:
         return int(self.times.shape[0])

@@ -234,3 +234,43 @@ def test_legs_a_short_run_never_started_have_no_figures() -> None:
 def test_parts_of_the_wrong_type_are_named() -> None:
     with pytest.raises(TypeError, match=r"parts\[0\] must be a str"):
         DiffAStar(parts=[["house"]])  # type: ignore[list-item]
+
+
+def test_only_wall_marked_figures_change_with_the_machines_speed(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """The same trials summarised on a fast and a slow machine differ in wall figures only.
+
+    The planning column was headed ``planning (ms)`` and the notes said how many
+    ms the costmap took to build, so a sweep's ``to_dict()`` differed between
+    runs of one seed outside the wall-clock figures ``sweep`` documents.
+    """
+    import re
+
+    from navkit.sim.scenarios import _diff_astar
+
+    wall = re.compile(r"\bwall\b")
+
+    def without_wall(result: ScenarioResult) -> list[dict[str, object]]:
+        tables = []
+        for table in result.to_dict()["tables"]:
+            keep = [i for i, c in enumerate(table["columns"]) if not wall.search(c)]
+            rows = [[row[i] for i in keep] for row in table["rows"]
+                    if not (isinstance(row[0], str) and wall.search(row[0]))]  # fmt: skip
+            tables.append({**table, "columns": [table["columns"][i] for i in keep], "rows": rows})
+        return tables
+
+    scenario = DiffAStar(parts=("house",), noise=False, duration=2.0)
+    results = [scenario.run_trial(t) for t in scenario.trials(1)]
+    summaries = []
+    for build, plan in ((0.002, (0.0003, 0.0004)), (0.5, (0.07, 0.09))):
+        monkeypatch.setattr(_diff_astar, "_planning_times", lambda *_a, b=build, p=plan: (b, p))
+        summaries.append(scenario.summarize(results, seed=0))
+    fast, slow = summaries
+    assert without_wall(fast) == without_wall(slow)
+    assert fast.summary == slow.summary
+    # The times are still shown, in the planning column and the costmap row.
+    text = slow.table()
+    assert "planning (wall ms)" in text and "house costmap" in text
+    assert re.search(r"house costmap \(built once\)\s+500\b", text), text
+    assert re.search(r"house leg 1\s+70\b", text), text
