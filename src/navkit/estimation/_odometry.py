@@ -386,6 +386,17 @@ class DiffOdometry:
                 self._pose = pose
                 self._last = (left, right)
                 return pose
+        # A sequence would reach update_batch as a row of readings and fail there with a
+        # message about the shapes of update_batch's arguments.
+        given: tuple[tuple[object, str], ...] = (
+            (left_ticks, "left_ticks"),
+            (right_ticks, "right_ticks"),
+        )
+        for value, name in given:
+            if isinstance(value, (list, tuple)) or (isinstance(value, np.ndarray) and value.ndim):
+                raise TypeError(
+                    f"{name} must be one integer counter reading, got {type(value).__name__}"
+                )
         return Pose2D.from_array(self.update_batch([left_ticks], [right_ticks])[-1])
 
     def _step(self, left: int, right: int) -> Pose2D | None:

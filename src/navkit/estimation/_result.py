@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
+from typing import Any
 
 import numpy as np
 
@@ -57,6 +58,21 @@ class UpdateResult:
             raise TypeError(f"reason must be a str or None, got {type(self.reason).__name__}")
         if self.accepted and self.reason is not None:
             raise ValueError(f"reason must be None when accepted, got {self.reason!r}")
+
+    def __setstate__(self, state: list[Any]) -> None:
+        """Restore from a pickle or :func:`copy.deepcopy` with a read-only ``residual``.
+
+        An unpickled or deep-copied array is writeable again. A writeable one (also
+        the residual a filter returns, shared by a :func:`copy.copy`) is replaced by
+        a read-only copy, leaving the original result's array as it was.
+        """
+        for field, value in zip(fields(self), state, strict=True):
+            object.__setattr__(self, field.name, value)
+        residual = self.residual
+        if isinstance(residual, np.ndarray) and residual.flags.writeable:
+            residual = residual.copy()
+            residual.flags.writeable = False
+            object.__setattr__(self, "residual", residual)
 
     def __bool__(self) -> bool:
         return self.accepted
