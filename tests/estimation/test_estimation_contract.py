@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 import pytest
@@ -378,3 +380,28 @@ def test_odometry_overflow_is_a_value_error_and_leaves_the_pose() -> None:
     assert diff.update(2**62, 2**62).x == 1.7976931348623157e308
     with pytest.raises(ValueError, match="ticks_per_rev must be in"):
         DiffOdometry(DiffDrive(track=0.3, wheel_radius=0.05), ticks_per_rev=0.1)
+
+
+def test_copied_update_results_keep_a_read_only_residual(
+    duplicate: Callable[[Any], Any],
+) -> None:
+    result = UpdateResult(False, 2.5, np.array([1.0, -2.0]), "rejected by the gate")
+    twin = duplicate(result)
+    assert type(twin) is UpdateResult
+    assert (twin.accepted, twin.nis, twin.reason) == (False, 2.5, "rejected by the gate")
+    np.testing.assert_array_equal(twin.residual, [1.0, -2.0])
+    with pytest.raises(ValueError, match="read-only"):
+        twin.residual[0] = 9.0
+
+
+def test_copying_a_filter_result_leaves_the_original_alone(
+    duplicate: Callable[[Any], Any],
+) -> None:
+    ekf = ExtendedKalmanFilter([0.0], [[1.0]])
+    result = ekf.update([1.0], lambda x: x, [[1.0]], [[1.0]])
+    writeable = result.residual.flags.writeable
+    twin = duplicate(result)
+    assert result.residual.flags.writeable == writeable  # a shallow copy changes no flag
+    assert not twin.residual.flags.writeable
+    np.testing.assert_array_equal(twin.residual, result.residual)
+    assert twin.nis == result.nis and twin.accepted

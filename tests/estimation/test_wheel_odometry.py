@@ -305,3 +305,28 @@ def test_diff_encoder_bits_errors(bits: object, error: type[Exception]) -> None:
     odo = DiffOdometry(DIFF, ticks_per_rev=TPR, encoder_bits=np.int8(16))  # type: ignore[arg-type]
     odo.update(65535, 65535)
     assert odo.update(1, 1).x == pytest.approx(2 / TPR * 2 * math.pi * DIFF.left_radius)
+
+
+@pytest.mark.parametrize(
+    ("left", "right", "name"),
+    [
+        ([5], 0, "left_ticks"),
+        ((5,), 0, "left_ticks"),
+        (0, np.array([5]), "right_ticks"),
+        (np.array([5, 6]), 0, "left_ticks"),
+    ],
+)
+def test_diff_odometry_update_refuses_sequences_as_not_integers(
+    left: object, right: object, name: str
+) -> None:
+    odo = DiffOdometry(DiffDrive(track=0.5, wheel_radius=0.1), ticks_per_rev=1000, encoder_bits=16)
+    odo.update(10, 10)
+    with pytest.raises(TypeError, match=f"{name} must be one integer counter reading"):
+        odo.update(left, right)  # type: ignore[arg-type]
+    assert odo.update(1010, 1010).x == pytest.approx(2 * np.pi * 0.1)  # unchanged, still latched
+
+
+def test_diff_odometry_update_takes_zero_dimensional_readings() -> None:
+    odo = DiffOdometry(DiffDrive(track=0.5, wheel_radius=0.1), ticks_per_rev=1000, encoder_bits=16)
+    odo.update(np.array(65000), np.uint16(65000))  # type: ignore[arg-type]
+    assert odo.update(np.array(464), 464).x == pytest.approx(2 * np.pi * 0.1)  # type: ignore[arg-type]
