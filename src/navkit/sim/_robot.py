@@ -9,6 +9,7 @@ from typing import Any
 import numpy as np
 import shapely
 from shapely.geometry import Polygon
+from shapely.ops import polylabel
 
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, finite_float
@@ -156,12 +157,13 @@ class Robot:
 def _inner_radius(verts: FloatArray) -> float:
     """Radius of a disc inside the simple polygon ``verts`` (V, 2), near the largest, m > 0.
 
-    The distance from the approximate centre of the largest inscribed circle
-    to the boundary: exact for that centre, so never more than the largest
-    radius.
+    The distance to the boundary from the polygon's pole of inaccessibility
+    (``polylabel``, to a thousandth of its size): exact for that centre, so
+    never more than the largest inscribed radius.
     """
     poly = Polygon(verts)
-    centre = shapely.get_point(shapely.maximum_inscribed_circle(poly), 0)
+    x0, y0, x1, y1 = poly.bounds
+    centre = polylabel(poly, tolerance=1e-3 * max(x1 - x0, y1 - y0))
     radius = float(shapely.distance(poly.exterior, centre))
     if not (radius > 0.0 and poly.contains(centre)):
         # Not expected of a valid polygon of positive area: an interior point's disc.

@@ -475,7 +475,7 @@ def png_bytes(pixels: NDArray[np.uint8]) -> bytes:
         raise ValueError(f"pixels must have shape (h, w, 4), got {raster.shape}")
     image_module = _pillow("writing a scale-mode map image (a PNG with alpha)")
     out = io.BytesIO()
-    image_module.fromarray(raster, "RGBA").save(out, format="PNG")
+    image_module.fromarray(raster).save(out, format="PNG")  # (h, w, 4) uint8: RGBA
     return out.getvalue()
 
 
