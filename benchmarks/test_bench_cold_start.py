@@ -82,6 +82,11 @@ ENTRIES: dict[str, tuple[str, str, bool]] = {
         "astar(costs, (0, 0), (63, 63), method='jps')",
         False,
     ),
+    "JPS, corner cutting": (
+        _COSTS + "from navkit.planning import astar",
+        "astar(costs, (0, 0), (63, 63), method='jps', corner_cutting=True)",
+        False,
+    ),
     "MapPlanner.plan": (
         "import numpy as np\nfrom navkit.mapping import OccupancyGrid\n"
         "from navkit.planning import MapPlanner\n"

@@ -168,3 +168,41 @@ def test_block_subdivision_matches_brute_force(seed: int) -> None:
         raster._LEAF_CELLS = leaf
     expected = brute_force_raster(geoms, -0.5, -0.25, grid.shape, 0.125)
     assert np.array_equal(grid.occupied(), expected)
+
+
+def test_edges_on_cell_boundaries_occupy_both_sides_however_they_round() -> None:
+    # 0.3 / 0.1 rounds to 3 exactly, but 0.1 * 3 to 0.30000000000000004: the
+    # square of cell 3 started just beyond the obstacle's edge at 0.3, so cell 3
+    # stayed free though world_to_cell puts the edge's points in it (an edge at
+    # 0.2, which rounds the other way, occupied cells 1 and 2).
+    grid = rasterize_polygons(box(0.0, 0.0, 0.3, 0.3), bounds=(0, 0, 1, 1), resolution=0.1)
+    expected = np.zeros((10, 10), dtype=bool)
+    expected[:4, :4] = True
+    assert np.array_equal(grid.occupied(), expected)
+    assert grid.occupied()[tuple(grid.world_to_cell([0.3, 0.3]))]
+
+
+@settings(max_examples=40, deadline=None)
+@given(
+    st.integers(0, 2**32 - 1),
+    st.sampled_from([0.1, 0.05, 0.07, 0.3, 1e-6, 3.3]),
+    st.floats(-1e9, 1e9),
+)
+def test_every_obstacle_point_lies_in_an_occupied_cell(
+    seed: int, res: float, xmin: float
+) -> None:
+    # Points on and within a few ulps of cell boundaries: the cell world_to_cell
+    # gives each (inside the grid) must be occupied.
+    rng = np.random.default_rng(seed)
+    ymin = float(rng.uniform(-10, 10))
+    k = rng.integers(0, 20, (40, 2))
+    pts = np.column_stack((xmin + k[:, 1] * res, ymin + k[:, 0] * res))
+    pts += rng.integers(-3, 4, pts.shape) * np.spacing(pts)
+    grid = rasterize_polygons(
+        shapely.MultiPoint(pts), bounds=(xmin, ymin, xmin + 20 * res, ymin + 20 * res),
+        resolution=res,
+    )  # fmt: skip
+    cells = grid.world_to_cell(pts)
+    inside = grid.contains(pts)
+    assert inside.any()
+    assert grid.occupied()[cells[inside, 0], cells[inside, 1]].all()

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import copy
 import math
 import warnings
 from pathlib import Path
@@ -360,3 +361,40 @@ def test_csail_in_place_turns_without_gross_failure(
         assert trans.max() < 0.5 and rot.max() < 10.0, (seed, trans.max(), rot.max())
         assert trans.mean() < np.hypot(prior[:, 0], prior[:, 1]).mean()
         assert rot.mean() < np.degrees(np.abs(prior[:, 2])).mean()
+
+
+def test_a_shallow_copy_is_independent() -> None:
+    # update() appends to the trajectory and writes into the map levels in place:
+    # copy.copy shared them, so updating the copy changed the original.
+    world = _office()
+    lidar = Lidar(n_beams=360, range_max=10.0, noise=None)
+    mapper = ScanMapper(start=(2.0, 4.0, 0.0))
+    mapper.update(lidar.scan(world, (2.0, 4.0, 0.0)), odometry=(2.0, 4.0, 0.0))
+    before_map = mapper.map.logodds.copy()
+    before_path = mapper.trajectory.copy()
+    twin = copy.copy(mapper)
+    for x in (2.5, 3.0):
+        twin.update(lidar.scan(world, (x, 4.0, 0.0)), odometry=(x, 4.0, 0.0))
+    assert len(twin) == 3 and len(mapper) == 1
+    assert np.array_equal(mapper.trajectory, before_path)
+    assert np.array_equal(mapper.map.logodds, before_map)
+    assert not np.array_equal(twin.map.logodds[: before_map.shape[0], : before_map.shape[1]],
+                              before_map)  # fmt: skip
+
+
+def test_start_is_checked_and_the_map_stays_within_the_origin_range() -> None:
+    # A start beyond ±1e9 m was taken and failed at the first update with a message
+    # about a grid "origin"; one near -1e9 m (in range) failed the same way, as did
+    # growing the map past -1e9 m.
+    with pytest.raises(ValueError, match="start"):
+        ScanMapper(start=(2e9, 0.0, 0.0))
+    scan = LaserScan(np.full(3, 3.0), angle_min=-1.0, angle_increment=1.0,
+                     range_min=0.1, range_max=5.0)  # fmt: skip
+    for start in ((-1e9, -1e9, 0.0), (-1e9 + 30.0, -1e9 + 30.0, 0.0)):
+        mapper = ScanMapper(start=start, resolution=0.5)
+        assert mapper.map.origin.x >= -1e9 and mapper.map.origin.y >= -1e9
+        for step in (0.0, -10.0, -20.0, -30.0, -40.0):
+            mapper.update(scan, odometry=(step, step, 0.0))
+        grid = mapper.map
+        assert len(mapper) == 5 and grid.origin.x >= -1e9 and grid.origin.y >= -1e9
+        assert grid.occupied().any()

@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
+import copy
 import dataclasses
 import math
+import pickle
 
 import numpy as np
 import pytest
@@ -425,3 +427,15 @@ def test_outside_points_do_not_pull() -> None:
     )
     result = ScanMatcher().match(grid, _scan([0.8] * 40 + [30.0] * 40), (0.5, 1.5, 0.0))
     assert np.isfinite(result.pose.as_array()).all()
+
+
+@pytest.mark.parametrize("clone", [copy.deepcopy, lambda r: pickle.loads(pickle.dumps(r))])
+def test_copied_and_unpickled_results_stay_read_only(clone: object) -> None:
+    # pickle and deepcopy rebuild the fields without __post_init__: the copied
+    # covariance came back writable, a "frozen" result that could be changed.
+    result = ScanMatchResult(Pose2D(1.0, 2.0, 0.5), np.eye(3), 4, 0.9, True, "converged")
+    back = clone(result)  # type: ignore[operator]
+    assert back.pose == result.pose and np.array_equal(back.covariance, result.covariance)
+    assert back.reason == "converged" and back.iterations == 4
+    with pytest.raises(ValueError, match="read-only"):
+        back.covariance[0, 0] = 5.0

@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from navkit._shared.types import BoolArray
+from navkit._shared.types import BoolArray, FloatArray, IntArray
 from navkit._shared.validation import as_float_array
 from navkit.geometry import Pose2D
 from navkit.mapping._grid import OccupancyGrid
@@ -25,27 +25,67 @@ __all__ = ["rasterize_polygons"]
 _LEAF_CELLS = 4096
 
 
-def _block_box(
-    xmin: float, ymin: float, res: float, r0: int, r1: int, c0: int, c1: int
-) -> shapely.Geometry:
-    """The union of the closed squares of cells [r0, r1) × [c0, c1), computed with
-    the very same float operations as each cell's square (so it encloses them)."""
-    import shapely
+_MAGNITUDE = np.int64(0x7FFF_FFFF_FFFF_FFFF)
 
-    return shapely.box(
-        xmin + c0 * res,
-        ymin + r0 * res,
-        (xmin + (c1 - 1) * res) + res,
-        (ymin + (r1 - 1) * res) + res,
-    )
+
+def _float_key(x: FloatArray) -> IntArray:
+    """int64 keys in the order of the floats ``x`` (adjacent floats, adjacent keys)."""
+    bits = x.view(np.int64)
+    out: IntArray = bits ^ ((bits >> 63) & _MAGNITUDE)
+    return out
+
+
+def _key_float(key: IntArray) -> FloatArray:
+    """The floats of :func:`_float_key`'s keys (the map is its own inverse)."""
+    out: FloatArray = (key ^ ((key >> 63) & _MAGNITUDE)).view(np.float64)
+    return out
+
+
+def _edges(origin: float, res: float, n: int) -> tuple[FloatArray, FloatArray]:
+    """Lower and upper world coordinates of the ``n + 1`` cell edges along one axis.
+
+    Cell ``k``'s closed extent is ``[low[k], high[k + 1]]``: it holds both
+    ``origin + k * res`` .. ``origin + (k + 1) * res`` (the cell in exact
+    arithmetic, as rounded) and every float that
+    :meth:`OccupancyGrid.world_to_cell` puts in cell ``k``, so that every point
+    of an obstacle lies in an occupied cell. Edge ``k`` of the latter is the
+    smallest float ``x`` whose grid coordinate ``(x - origin) * (1 / res)``
+    (its arithmetic on an axis-aligned grid) is at least ``k``; the rounded
+    ``origin + k * res`` can lie beyond it: 0.3 is in cell 3 of a 0.1 m grid
+    (0.3 * 10 = 3), whose extent then started at 0.30000000000000004.
+    """
+    inv_res = 1.0 / res
+    k = np.arange(n + 1, dtype=np.float64)
+    guess = origin + k * res
+    # A bracket [lo, hi] with f(lo) < k <= f(hi): rounding moves the edge by a
+    # few ulps of the coordinates' size (widened until it holds, as a safeguard).
+    width = 16.0 * np.spacing(np.maximum(abs(origin), np.abs(guess)))
+    lo = guess - width
+    hi = guess + width
+    while (wide := (lo - origin) * inv_res >= k).any():
+        width[wide] *= 2.0
+        lo[wide] = guess[wide] - width[wide]
+    while (wide := (hi - origin) * inv_res < k).any():
+        width[wide] *= 2.0
+        hi[wide] = guess[wide] + width[wide]
+    # Bisection on the floats themselves (their ordered bit patterns): at most
+    # 64 halvings, however many floats the bracket holds (near 0, very many).
+    lo_key = _float_key(lo)
+    hi_key = _float_key(hi)
+    while (unsettled := hi_key - lo_key > 1).any():
+        mid = (lo_key >> 1) + (hi_key >> 1) + (lo_key & hi_key & 1)  # no overflow
+        up = (_key_float(mid) - origin) * inv_res >= k
+        hi_key = np.where(unsettled & up, mid, hi_key)
+        lo_key = np.where(unsettled & ~up, mid, lo_key)
+    exact = _key_float(hi_key)
+    return np.minimum(exact, guess), np.maximum(exact, guess)
 
 
 def _fill(
     geom: shapely.Geometry,
     occ: BoolArray,
-    xmin: float,
-    ymin: float,
-    res: float,
+    xs: tuple[FloatArray, FloatArray],
+    ys: tuple[FloatArray, FloatArray],
     r0: int,
     r1: int,
     c0: int,
@@ -59,14 +99,15 @@ def _fill(
     """
     import shapely
 
-    block = _block_box(xmin, ymin, res, r0, r1, c0, c1)
+    # The block's square encloses its cells' squares (the edges are monotone).
+    block = shapely.box(xs[0][c0], ys[0][r0], xs[1][c1], ys[1][r1])
     if not shapely.intersects(geom, block):
         return
     if (r1 - r0) * (c1 - c0) <= _LEAF_CELLS:
         rr, cc = np.mgrid[r0:r1, c0:c1]
-        x0 = xmin + cc.ravel() * res
-        y0 = ymin + rr.ravel() * res
-        boxes = shapely.box(x0, y0, x0 + res, y0 + res)
+        r = rr.ravel()
+        c = cc.ravel()
+        boxes = shapely.box(xs[0][c], ys[0][r], xs[1][c + 1], ys[1][r + 1])
         occ[r0:r1, c0:c1] |= shapely.intersects(geom, boxes).reshape(rr.shape)
         return
     if shapely.covers(geom, block):
@@ -74,22 +115,25 @@ def _fill(
         return
     if r1 - r0 >= c1 - c0:
         mid = (r0 + r1) // 2
-        _fill(geom, occ, xmin, ymin, res, r0, mid, c0, c1)
-        _fill(geom, occ, xmin, ymin, res, mid, r1, c0, c1)
+        _fill(geom, occ, xs, ys, r0, mid, c0, c1)
+        _fill(geom, occ, xs, ys, mid, r1, c0, c1)
     else:
         mid = (c0 + c1) // 2
-        _fill(geom, occ, xmin, ymin, res, r0, r1, c0, mid)
-        _fill(geom, occ, xmin, ymin, res, r0, r1, mid, c1)
+        _fill(geom, occ, xs, ys, r0, r1, c0, mid)
+        _fill(geom, occ, xs, ys, r0, r1, mid, c1)
 
 
 def _window(low: float, high: float, origin: float, res: float, size: int) -> tuple[int, int]:
     """Cells ``[i0, i1)`` whose closed extent along one axis meets ``[low, high]``.
 
-    Computed on clipped floats, so that geometries at ±1e300 never overflow.
+    Computed on clipped floats, so that geometries at ±1e300 never overflow;
+    one cell wider on each side than exact arithmetic needs (cells reach a
+    little beyond their edges as rounded, see :func:`_edges`), as every cell of
+    the window is tested anyway.
     """
-    lo = min(max((low - origin) / res, -2.0), size + 2.0)
-    hi = min(max((high - origin) / res, -2.0), size + 2.0)
-    return max(0, math.ceil(lo) - 1), min(size, math.floor(hi) + 1)
+    lo = min(max((low - origin) / res, -3.0), size + 3.0)
+    hi = min(max((high - origin) / res, -3.0), size + 3.0)
+    return max(0, math.ceil(lo) - 2), min(size, math.floor(hi) + 2)
 
 
 def _geometry_list(geometries: Any) -> list[Any]:
@@ -110,6 +154,10 @@ def rasterize_polygons(geometries: Any, *, bounds: ArrayLike, resolution: float)
 
     The test is conservative: a cell whose closed square touches an obstacle
     (even along an edge or at a corner) is occupied; every other cell is free.
+    Each square also holds every float that :meth:`OccupancyGrid.world_to_cell`
+    rounds into its cell, so every point of an obstacle inside the grid lies
+    in an occupied cell (an edge at x = 0.3 m on a 0.1 m grid occupies the
+    cells on both sides, 2 and 3, as an edge at 0.2 m does).
     Large obstacles are tested block by block, so the time grows with their
     outlines rather than their areas.
 
@@ -175,6 +223,8 @@ def rasterize_polygons(geometries: Any, *, bounds: ArrayLike, resolution: float)
         what=f"bounds {tuple(float(v) for v in b)} at resolution {res:g} m",
     )
     occ = np.zeros((rows, cols), dtype=np.bool_)
+    xs = _edges(xmin, res, cols)
+    ys = _edges(ymin, res, rows)
     for g in geoms:
         if g.is_empty:
             continue
@@ -187,7 +237,7 @@ def rasterize_polygons(geometries: Any, *, bounds: ArrayLike, resolution: float)
         prepared_here = not shapely.is_prepared(g)
         shapely.prepare(g)
         try:
-            _fill(g, occ, xmin, ymin, res, r0, r1, c0, c1)
+            _fill(g, occ, xs, ys, r0, r1, c0, c1)
         finally:
             if prepared_here:
                 shapely.destroy_prepared(g)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import copy
 import math
 
 import numpy as np
@@ -9,8 +10,9 @@ from numpy.typing import ArrayLike
 
 from navkit._shared.types import FloatArray
 from navkit.geometry import Pose2D, as_pose
-from navkit.mapping._grid import OccupancyGrid
+from navkit.mapping._grid import OccupancyGrid, grid_origin
 from navkit.mapping._limits import (
+    COORDINATE_LIMIT,
     MAX_CELLS,
     RESOLUTION_MAX,
     bounded_float,
@@ -81,7 +83,8 @@ class ScanMapper:
         Returns at least this long (m) are neither matched nor written; default
         the matcher's ``max_range`` (all valid returns).
     start : Pose2D or array_like [x, y, theta], default (0, 0, 0)
-        World pose given to the first scan.
+        World pose given to the first scan, x and y within ±1e9 m (the range
+        of grid origins: the map extends no further below -1e9 m).
     matcher : ScanMatcher, optional
         The matcher and its options. Default ``ScanMatcher(translation_weight=1.0,
         rotation_weight=1.0, search_distance=0.1, search_angle=0.1)``: three
@@ -177,7 +180,8 @@ class ScanMapper:
             float(side * side),
             f"a map of matcher.levels={matcher.levels} (2 x 2 cells on its coarsest level)",
         )
-        self._start = as_pose(start, "start")
+        # Within ±1e9 m, as every grid origin: the map is built around it.
+        self._start = grid_origin(start, "start")
         self._levels: list[OccupancyGrid] = []
         self._poses: list[Pose2D] = []
         self._last_odometry: Pose2D | None = None
@@ -189,6 +193,13 @@ class ScanMapper:
 
     def __repr__(self) -> str:
         return f"ScanMapper(resolution={self._resolution}, scans={len(self)})"
+
+    def __copy__(self) -> ScanMapper:
+        # update() writes into the map levels and appends to the trajectory in
+        # place: a shallow copy sharing them would write its scans into this
+        # mapper (and leave its odometry and last write stale), so copy.copy
+        # copies them too, as OccupancyGrid's does.
+        return copy.deepcopy(self)
 
     # ------------------------------------------------------------------ views
     @property
@@ -211,7 +222,11 @@ class ScanMapper:
                 width=2 * half,
                 height=2 * half,
                 resolution=min(self._resolution, half),
-                origin=(self._start.x - half, self._start.y - half, 0.0),
+                origin=(
+                    max(self._start.x - half, -COORDINATE_LIMIT),
+                    max(self._start.y - half, -COORDINATE_LIMIT),
+                    0.0,
+                ),
             )
         return self._levels[0].copy()
 
@@ -332,8 +347,9 @@ class ScanMapper:
         scale = 2 ** (self._matcher.levels - 1)
         n_max = math.isqrt(MAX_CELLS) // (2 * scale)
         n = max(1, min(math.ceil(_MARGIN / step), n_max))
-        x0 = centre.x - n * step
-        y0 = centre.y - n * step
+        # A grid's origin lies within ±1e9 m: near -1e9 the map starts there.
+        x0 = max(centre.x - n * step, -COORDINATE_LIMIT)
+        y0 = max(centre.y - n * step, -COORDINATE_LIMIT)
         self._levels = [
             OccupancyGrid(
                 np.zeros((2 * n * 2**k, 2 * n * 2**k), dtype=np.float32),
@@ -380,8 +396,13 @@ class ScanMapper:
         if not need <= MAX_CELLS:
             return  # keep the map; returns beyond it are clipped by the ray casting
         left, down, right, up = (math.ceil(v) for v in (left_f, down_f, right_f, up_f))
-        x0 = o.x - left * step
-        y0 = o.y - down * step
+        # A grid's origin lies within ±1e9 m: the map grows no further left or down.
+        left = min(left, math.floor((o.x + COORDINATE_LIMIT) / step))
+        down = min(down, math.floor((o.y + COORDINATE_LIMIT) / step))
+        if not (left or down or right or up):
+            return
+        x0 = max(o.x - left * step, -COORDINATE_LIMIT)
+        y0 = max(o.y - down * step, -COORDINATE_LIMIT)
         grown = []
         for k, grid in enumerate(self._levels):
             f = scale // 2**k

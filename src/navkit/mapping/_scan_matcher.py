@@ -11,6 +11,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from navkit._shared.frozen import restore_read_only
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array
 from navkit.geometry import Pose2D, as_pose
@@ -148,6 +149,10 @@ class ScanMatchResult:
             raise TypeError(f"reason must be a str, got {type(self.reason).__name__}")
         if self.reason not in REASONS:
             raise ValueError(f"reason must be one of {REASONS}, got {self.reason!r}")
+
+    def __setstate__(self, state: list[Any]) -> None:
+        """Restore from a pickle or :func:`copy.deepcopy`, ``covariance`` read-only again."""
+        restore_read_only(self, state, ("covariance",))
 
 
 def _as_levels(maps: OccupancyGrid | Sequence[OccupancyGrid]) -> tuple[OccupancyGrid, ...]:
