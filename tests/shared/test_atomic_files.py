@@ -117,3 +117,23 @@ def test_a_pipe_or_device_is_never_renamed_over(tmp_path: Path) -> None:
     with pytest.raises(ValueError, match="not a regular file"), atomic_path(Path(os.devnull)):
         raise AssertionError("not reached")  # pragma: no cover
     assert stat.S_ISCHR(Path(os.devnull).stat().st_mode)
+
+
+@pytest.mark.parametrize("stem", ["a" * 251, "é" * 125 + "a"])
+def test_a_name_at_the_length_limit_is_written(tmp_path: Path, stem: str) -> None:
+    # 255 bytes with the suffix: legal, while the temporary name, 14 bytes longer,
+    # would not be unless its stem is shortened (keeping the suffix).
+    target = tmp_path / f"{stem}.png"
+    assert len(os.fsencode(target.name)) <= 255
+    with atomic_path(target) as temporary:
+        assert temporary.suffix == ".png"
+        assert len(os.fsencode(temporary.name)) <= 255
+        temporary.write_text("new")
+    assert names(tmp_path) == [target.name] and target.read_text() == "new"
+
+
+def test_a_suffix_filling_the_name_is_dropped_from_the_temporary(tmp_path: Path) -> None:
+    target = tmp_path / ("a." + "b" * 253)
+    with atomic_path(target) as temporary:
+        temporary.write_text("new")
+    assert names(tmp_path) == [target.name] and target.read_text() == "new"

@@ -4,18 +4,22 @@ from __future__ import annotations
 
 import math
 import warnings
+from typing import Any
 
 import numpy as np
 import pytest
 from hypothesis import given
 from hypothesis import strategies as st
 
+from navkit._shared.costs import validate_costs
 from navkit._shared.validation import (
+    as_array,
     as_bool,
     as_cell,
     as_float_array,
     as_points,
     finite_float,
+    is_ragged,
     positive_float,
 )
 
@@ -34,7 +38,6 @@ from navkit._shared.validation import (
         ([1.0], [True]),
         [np.array([True, False]), [0.5, 1.0]],
         [None, 1.0],
-        [[1.0, 2.0], [3.0]],
         b"12",
     ],
 )
@@ -249,3 +252,53 @@ def test_signalling_nans_widen_without_a_warning() -> None:
     assert out.dtype == np.float64 and np.isnan(out[0]) and out[1] == 1.0
     with pytest.raises(ValueError, match="ranges must contain only finite values"):
         as_float_array(snan, "ranges")
+
+
+def _lists_of(children: st.SearchStrategy[Any]) -> st.SearchStrategy[Any]:
+    return st.lists(children, max_size=3)
+
+
+# Nested lists of numbers, regular or not.
+nested = st.recursive(st.integers(-5, 5), _lists_of, max_leaves=12)
+
+
+@given(nested)
+def test_is_ragged_agrees_with_numpy(value: Any) -> None:
+    try:
+        np.asarray(value, dtype=np.float64)
+    except ValueError:
+        refused = True
+    else:
+        refused = False
+    assert is_ragged(value) == refused
+
+
+@given(st.lists(st.integers(0, 3), min_size=1, max_size=3))
+def test_numpy_blocks_nested_in_lists(shape: list[int]) -> None:
+    block = np.zeros(shape)
+    assert not is_ragged([block, block.copy()])
+    assert is_ragged([block, np.zeros([*shape[:-1], shape[-1] + 1])])
+
+
+def test_ragged_nesting_is_a_value_error_naming_the_argument() -> None:
+    for value in ([[1, 2], [3]], [1, [2, 3]]):
+        with pytest.raises(ValueError, match="pts must be a rectangular array"):
+            as_float_array(value, "pts")
+        with pytest.raises(ValueError, match="pts must be a rectangular array"):
+            as_points(value, "pts")
+    with pytest.raises(TypeError, match="pts must"):
+        as_float_array([[1, 2], ["a", "b"]], "pts")
+
+
+def test_masked_entries_are_refused_not_read_as_data() -> None:
+    masked = np.ma.masked_invalid([[1.0, 2.0], [np.nan, 4.0]])
+    with pytest.raises(ValueError, match="pts has masked entries"):
+        as_float_array(masked, "pts", finite=False)
+    with pytest.raises(ValueError, match="mask has masked entries"):
+        as_array(np.ma.masked_equal([True, False], False), "mask")
+    with pytest.raises(ValueError, match="costs has masked entries"):
+        validate_costs(np.ma.masked_greater([[1.0, 50.0]], 10.0))
+    # Without masked entries a masked array is its data.
+    unmasked = np.ma.array([[1.0, 2.0]])
+    assert as_float_array(unmasked, "pts").tolist() == [[1.0, 2.0]]
+    assert validate_costs(unmasked).tolist() == [[1.0, 2.0]]

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from navkit._shared.validation import holds_bool
+from navkit._shared.validation import holds_bool, refuse_masked
 
 
 def validate_costs(costs: ArrayLike, name: str = "costs") -> NDArray[np.float64]:
@@ -37,6 +37,7 @@ def validate_costs_lowest(
     if isinstance(costs, (list, tuple)) and holds_bool(costs):
         # NumPy turns [[True, 2.0]] into [[1.0, 2.0]] (only all-bool lists stay bool).
         raise ValueError(f"{name} must be a real-valued numeric array, got an element of type bool")
+    refuse_masked(costs, name)
     try:
         arr = np.asarray(costs)
     except (TypeError, ValueError, OverflowError) as exc:  # ragged lists, unconvertible objects

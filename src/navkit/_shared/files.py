@@ -117,10 +117,36 @@ def atomic_path(target: Path) -> Iterator[Path]:
         yield temporary
 
 
+def _name_max(folder: Path) -> int:
+    """Longest file name (bytes) the file system of ``folder`` takes; 255 if it cannot say."""
+    try:
+        return int(os.pathconf(folder, "PC_NAME_MAX"))
+    except (AttributeError, OSError, ValueError):  # no pathconf (Windows) or no limit
+        return 255
+
+
+def _temporary_name(target: Path, tag: str, name_max: int) -> str:
+    """``.{stem}.{tag}.tmp{suffix}``, the stem shortened to fit ``name_max`` bytes.
+
+    The suffix is kept (writers such as matplotlib pick the format from it)
+    unless even an empty stem leaves no room for it. A target name near the
+    limit is legal; its temporary name, 14 bytes longer, would not be.
+    """
+    stem, suffix = target.stem, target.suffix
+    while True:
+        name = f".{stem}.{tag}.tmp{suffix}"
+        if len(os.fsencode(name)) <= name_max:
+            return name
+        if not stem:
+            return f".{tag}.tmp"
+        stem = stem[:-1]
+
+
 def _new_temporary(target: Path) -> Path:
     """Create a new empty hidden file beside ``target`` (mode 0o666 less the umask)."""
+    name_max = _name_max(target.parent)
     for _ in range(_ATTEMPTS):
-        temporary = target.with_name(f".{target.stem}.{secrets.token_hex(4)}.tmp{target.suffix}")
+        temporary = target.with_name(_temporary_name(target, secrets.token_hex(4), name_max))
         try:
             fd = os.open(temporary, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)
         except FileExistsError:

@@ -117,6 +117,113 @@ def holds_bool(value: list[Any] | tuple[Any, ...]) -> bool:
         items = list(chain.from_iterable(items))
 
 
+class _Block:
+    """Stand-in for a regular (non-object) NumPy array of ``shape``: no element is read."""
+
+    __slots__ = ("shape",)
+
+    def __init__(self, shape: tuple[int, ...]) -> None:
+        self.shape = shape
+
+
+def is_ragged(value: Any) -> bool:
+    """Whether ``value`` nests lists, tuples or arrays of different lengths at one depth.
+
+    Strings and bytes anywhere make it False: those are a type error, reported
+    as such by the converters. Only called once a conversion has failed, so a
+    successful one pays nothing for it.
+
+    Examples
+    --------
+    >>> is_ragged([[1, 2], [3, 4]]), is_ragged([1, [2, 3]]), is_ragged([[1, 2], "ab"])
+    (False, True, False)
+    """
+    level: list[Any] = [value]
+    while True:
+        lengths: set[int] = set()
+        scalars = False
+        deeper: list[Any] = []
+        for item in level:
+            if isinstance(item, (str, bytes)):
+                return False
+            if isinstance(item, _Block) or (
+                isinstance(item, np.ndarray) and item.dtype.kind != "O"
+            ):
+                if not item.shape:
+                    scalars = True
+                    continue
+                lengths.add(item.shape[0])
+                # Every row has the shape of the first; an empty block's rows still
+                # have a shape that must agree with its neighbours' (numpy checks it).
+                deeper.append(_Block(item.shape[1:]))
+            elif isinstance(item, (list, tuple, np.ndarray)):
+                if isinstance(item, np.ndarray) and item.ndim == 0:
+                    scalars = True
+                    continue
+                lengths.add(len(item))
+                deeper.extend(item)
+            else:
+                scalars = True
+        if not lengths:
+            return False
+        if scalars or len(lengths) > 1:
+            return True
+        level = deeper
+
+
+def _not_an_array(value: Any, name: str, exc: Exception) -> Exception:
+    """The error for a ``value`` NumPy could not convert: ragged nesting is a wrong shape."""
+    if is_ragged(value):
+        return ValueError(
+            f"{name} must be a rectangular array, got nested sequences of different "
+            "lengths (ragged)"
+        )
+    return TypeError(f"{name} must be numeric array-like: {exc}")
+
+
+def as_array(value: ArrayLike, name: str) -> NDArray[Any]:
+    """``np.asarray(value)``, a failure an error naming ``name``.
+
+    A ragged nesting (``[[1, 2], [3]]``) is a ``ValueError``, anything else
+    NumPy cannot convert a ``TypeError``.
+
+    Examples
+    --------
+    >>> as_array([[True, False]], "mask").dtype
+    dtype('bool')
+    >>> as_array([[1, 2], [3]], "mask")
+    Traceback (most recent call last):
+    ...
+    ValueError: mask must be a rectangular array, got nested sequences of different lengths (ragged)
+    """
+    refuse_masked(value, name)
+    try:
+        return np.asarray(value)
+    except (TypeError, ValueError) as exc:
+        raise _not_an_array(value, name, exc) from None
+
+
+def refuse_masked(value: object, name: str) -> None:
+    """Refuse a masked array with masked entries: NumPy's conversions drop the mask.
+
+    ``np.asarray`` of a masked array is its data, masked entries included, so a
+    mask meant as "no value here" would be silently ignored. A masked array
+    without masked entries is its data and passes.
+
+    Examples
+    --------
+    >>> refuse_masked(np.ma.masked_invalid([1.0, np.nan]), "ranges")
+    Traceback (most recent call last):
+    ...
+    ValueError: ranges has masked entries, which would be read as their data: ...
+    """
+    if isinstance(value, np.ma.MaskedArray) and np.ma.getmaskarray(value).any():
+        raise ValueError(
+            f"{name} has masked entries, which would be read as their data: "
+            "fill them first (masked_array.filled(value))"
+        )
+
+
 def _real_array(value: Any, name: str) -> FloatArray:
     """``value`` as float64, refusing what only converts by accident.
 
@@ -125,6 +232,8 @@ def _real_array(value: Any, name: str) -> FloatArray:
     with :func:`finite_float`.
     """
     if isinstance(value, np.ndarray):
+        if type(value) is not np.ndarray:
+            refuse_masked(value, name)
         kind = value.dtype.kind
         if kind in "iu" or value.dtype is _FLOAT64:
             return np.asarray(value, dtype=np.float64)
@@ -143,7 +252,7 @@ def _real_array(value: Any, name: str) -> FloatArray:
     try:
         raw = np.asarray(value)
     except (TypeError, ValueError) as exc:
-        raise TypeError(f"{name} must be numeric array-like: {exc}") from None
+        raise _not_an_array(value, name, exc) from None
     kind = raw.dtype.kind
     if kind == "O":
         for item in raw.ravel():

@@ -300,3 +300,11 @@ def test_cost_range_checks_every_block_of_a_large_grid(value: float, message: st
         astar(costs, (1, 1), (299, 299))
     with pytest.raises(ValueError, match=message):
         distance_field(costs, (1, 1))
+
+
+@pytest.mark.parametrize("name", list(ONE_SHOT))
+def test_masked_costs_are_refused(name: str) -> None:
+    # np.asarray drops the mask: a cell masked as "no value" would be planned through.
+    costs = np.ma.masked_greater(np.array([[1.0, 50.0], [1.0, 1.0]]), 10.0)
+    with pytest.raises(ValueError, match="costs has masked entries"):
+        ONE_SHOT[name](costs)

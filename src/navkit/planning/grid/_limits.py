@@ -35,7 +35,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from navkit._shared.costs import validate_costs_lowest
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import finite_float, holds_bool
+from navkit._shared.validation import finite_float, holds_bool, refuse_masked
 from navkit.planning.grid._search_heap import MAX_NODES
 
 __all__ = [
@@ -149,6 +149,7 @@ def converted_costs(
     if isinstance(costs, (list, tuple)) and holds_bool(costs):
         # NumPy turns [[True, 2.0]] into [[1.0, 2.0]] (only all-bool lists stay bool).
         raise ValueError(f"{name} must be a real-valued numeric array, got an element of type bool")
+    refuse_masked(costs, name)
     try:
         arr = np.asarray(costs)
     except (TypeError, ValueError) as exc:
