@@ -21,7 +21,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from navkit._shared.grid_coords import CELL_LIMIT, as_pairs, inside, one_or_many
 from navkit._shared.types import BoolArray, FloatArray, IntArray
-from navkit._shared.validation import as_bool, as_float_array, finite_float
+from navkit._shared.validation import as_array, as_bool, as_float_array, finite_float
 from navkit.geometry import Pose2D, as_pose
 from navkit.mapping._grid_kernels import (
     world_to_cell_entry,
@@ -99,7 +99,7 @@ def grid_origin(value: Pose2D | ArrayLike, name: str = "origin") -> Pose2D:
 
 
 def _bool_grid(value: ArrayLike, name: str) -> BoolArray:
-    arr = np.asarray(value)
+    arr = as_array(value, name)
     if arr.dtype != np.bool_:
         raise TypeError(f"{name} must be a boolean array, got dtype {arr.dtype}")
     if arr.ndim != 2 or arr.shape[0] == 0 or arr.shape[1] == 0:
@@ -542,6 +542,9 @@ class OccupancyGrid:
         """Save as a ROS map_server map; see :func:`navkit.mapping.io.write_map`.
 
         Both files are written atomically (temporary file, then ``os.replace``).
+        Re-saving a map in the other mode removes the previous mode's image
+        once the new map is in place, but only when the replaced YAML proves it
+        is that map's own image (see :func:`navkit.mapping.io.write_map`).
 
         Parameters
         ----------
@@ -593,7 +596,9 @@ class OccupancyGrid:
         continuous : bool, default False
             False: the int64 cell containing each point. True: float continuous
             coordinates, integers at cell centres (the cell is their
-            round-half-up).
+            round-half-up, except within a rounding error of a cell edge:
+            subtracting the half cell rounds, so a point a hair below an edge,
+            e.g. at -1e-17 m, has cell -1 but continuous -0.5).
 
         Returns
         -------

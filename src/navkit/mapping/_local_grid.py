@@ -12,7 +12,7 @@ from numpy.typing import ArrayLike
 from navkit._shared.frozen import restore_read_only
 from navkit._shared.grid_coords import as_pairs, inside, one_or_many, round_half_up
 from navkit._shared.types import BoolArray, FloatArray, IntArray
-from navkit._shared.validation import as_bool, as_points
+from navkit._shared.validation import as_array, as_bool, as_points
 from navkit.mapping._limits import (
     CELL_INDEX_LIMIT,
     RADIUS_LIMIT,
@@ -80,7 +80,7 @@ class LocalGrid:
     half_width: float
 
     def __post_init__(self) -> None:
-        occ = np.array(self.occupied, copy=True)
+        occ = np.array(as_array(self.occupied, "occupied"), copy=True)
         if occ.dtype != np.bool_:
             raise TypeError(f"occupied must be a boolean array, got dtype {occ.dtype}")
         if occ.ndim != 2 or occ.shape[0] != occ.shape[1] or occ.shape[0] % 2 == 0:

@@ -181,12 +181,23 @@ def _values(tokens: list[str], what: str, hint: str = "") -> FloatArray:
     return out
 
 
-def _fields(tokens: list[str], need: int, what: str) -> None:
-    """``tokens`` must hold ``need`` fields, then at most a host name and a logger timestamp."""
+def _fields(tokens: list[str], need: int, what: str, terminated: bool) -> None:
+    """``tokens`` must hold ``need`` fields, then at most a host name and a logger timestamp.
+
+    A line without its newline (the file's last) that ends right after the
+    timestamp may have been cut inside it (``480.86`` read as ``480``), so is
+    refused; with the host after it, the timestamp is known to be whole.
+    """
     if not need <= len(tokens) <= need + 2:
         raise _LineError(
             f"{len(tokens)} fields where the counts give {need} (+ host and logger "
             f"timestamp); {what}"
+        )
+    if not terminated and len(tokens) == need:
+        raise _LineError(
+            "the file ends inside this line (no newline, nor host and logger timestamp "
+            "after the timestamp): it looks truncated; end the line with a newline if "
+            "it is whole"
         )
 
 
@@ -194,14 +205,14 @@ def _triple(values: FloatArray, start: int) -> tuple[float, float, float]:
     return float(values[start]), float(values[start + 1]), float(values[start + 2])
 
 
-def _flaser(number: int, tokens: list[str]) -> _Record:
+def _flaser(number: int, tokens: list[str], terminated: bool) -> _Record:
     """``FLASER n r_1 .. r_n x y theta odom_x odom_y odom_theta timestamp [host logger_ts]``."""
     if not tokens:
         raise _LineError("no beam count")
     n = _count(tokens[0], "the beam count")
     if n == 0:
         raise _LineError("the beam count must be at least 1")
-    _fields(tokens, n + 8, "is the beam count right?")
+    _fields(tokens, n + 8, "is the beam count right?", terminated)
     vals = _values(tokens[1 : n + 8], "ranges, poses and timestamp", " (is the beam count right?)")
     return _Record(
         number,
@@ -216,7 +227,7 @@ def _flaser(number: int, tokens: list[str]) -> _Record:
     )
 
 
-def _robotlaser1(number: int, tokens: list[str]) -> _Record:
+def _robotlaser1(number: int, tokens: list[str], terminated: bool) -> _Record:
     """``ROBOTLASER1 type start fov increment max_range accuracy remission_mode n r_1..r_n
     n_rem rem_1..rem_n_rem laser_x laser_y laser_theta robot_x robot_y robot_theta tv rv
     forward_safety side_safety turn_axis timestamp [host logger_ts]``."""
@@ -235,7 +246,7 @@ def _robotlaser1(number: int, tokens: list[str]) -> _Record:
     if len(tokens) < 9 + n:
         raise _LineError(f"{len(tokens) - 8} fields after the beam count {n}")
     n_rem = _count(tokens[8 + n], "the remission count")
-    _fields(tokens, 9 + n + n_rem + 12, "are the beam and remission counts right?")
+    _fields(tokens, 9 + n + n_rem + 12, "are the beam and remission counts right?", terminated)
     hint = " (are the beam and remission counts right?)"
     ranges = _values(tokens[8 : 8 + n], "ranges", hint)
     remissions = _values(tokens[9 + n : 9 + n + n_rem], "remissions", hint)
@@ -253,9 +264,9 @@ def _robotlaser1(number: int, tokens: list[str]) -> _Record:
     )
 
 
-def _odom(tokens: list[str]) -> tuple[float, float, float, float]:
+def _odom(tokens: list[str], terminated: bool) -> tuple[float, float, float, float]:
     """``ODOM x y theta tv rv accel timestamp [host logger_ts]``."""
-    _fields(tokens, 7, "expected x y theta tv rv accel timestamp")
+    _fields(tokens, 7, "expected x y theta tv rv accel timestamp", terminated)
     vals = _values(tokens[0:7], "pose, speeds and timestamp")
     return float(vals[0]), float(vals[1]), float(vals[2]), float(vals[6])
 
@@ -270,12 +281,14 @@ def _parse(log_path: Path) -> tuple[list[_Record], list[tuple[float, float, floa
         for number, line in enumerate(_lines(log_path), start=1):
             kind, _, rest = line.partition(" ")
             kind = kind.strip()
+            # Only the last line can lack it (text mode reads \r\n and \r as \n).
+            terminated = line.endswith("\n")
             if kind == "ODOM":
-                odometry.append(_odom(rest.split()))
+                odometry.append(_odom(rest.split(), terminated))
             elif kind == "FLASER":
-                records.append(_flaser(number, rest.split()))
+                records.append(_flaser(number, rest.split(), terminated))
             elif kind == "ROBOTLASER1":
-                records.append(_robotlaser1(number, rest.split()))
+                records.append(_robotlaser1(number, rest.split(), terminated))
     except _LineError as exc:
         raise ValueError(f"{log_path}:{number}: malformed {kind} line: {exc}") from None
     except (EOFError, zlib.error, gzip.BadGzipFile) as exc:
@@ -324,7 +337,9 @@ def read_carmen(
     gaps. ``ROBOTLASER1`` lines carry their start angle, increment, maximum
     range and remissions (as intensities). ``ODOM`` lines give ``odometry``.
     Every count must match the fields that follow it (the host name and
-    logger timestamp at the end of a line are optional).
+    logger timestamp at the end of a line are optional, except on a last line
+    without its newline: a file cut inside the timestamp would otherwise read
+    as a wrong timestamp).
 
     Parameters
     ----------
@@ -352,7 +367,8 @@ def read_carmen(
         A corrupt or truncated gzip file; a malformed FLASER, ROBOTLASER1 or
         ODOM line (the message names the file and line number): fields that
         are not numbers, NaN or infinite values, negative counts, counts that
-        do not match the number of fields, angles in degrees (a field of view
+        do not match the number of fields, a last line that may have been
+        cut (no newline and nothing after the timestamp), angles in degrees (a field of view
         or beams spanning more than 2π, a start angle beyond ±2π), a maximum
         range beyond 1e9 m; a log without laser lines; a bad ``range_min`` or
         ``range_max``.

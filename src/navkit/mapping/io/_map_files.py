@@ -756,7 +756,7 @@ def _map_pixels(grid: OccupancyGrid, mode: str) -> NDArray[np.uint8]:
     pixels[free & ~(p_px < free_t)] = 255
     between = ~occupied & ~free & ~transparent & ((p_px > occ_t) | (p_px < free_t))
     if between.any():
-        pixels[between] = _unknown_pixel(occ_t, free_t, preferred=None)
+        pixels[between] = _nearest_unknown_pixels(grid.probability()[between], occ_t, free_t)
     rgba = np.empty((*grid.shape, 4), dtype=np.uint8)
     rgba[..., :3] = pixels[..., None]
     rgba[..., 3] = np.where(transparent, 0, 255)
@@ -792,6 +792,28 @@ def _unknown_pixel(
         )
     middle = 0.5 * (free_thresh + occupied_thresh)
     return int(_GREY_LEVELS[unknown][np.argmin(np.abs(p[unknown] - middle))])
+
+
+def _nearest_unknown_pixels(
+    p: NDArray[np.float64], occupied_thresh: float, free_thresh: float
+) -> NDArray[np.uint8]:
+    """For each probability ``p``, the grey level map_server reads as unknown nearest to it.
+
+    For in-between cells whose rounded grey would cross a threshold: the
+    nearest level inside the band keeps both the class and the value as close
+    as 8 bits allow (not the middle of the band, which could be ~0.2 away).
+    ValueError, as :func:`_unknown_pixel`, when the band holds no level.
+    """
+    _unknown_pixel(occupied_thresh, free_thresh, preferred=None)  # raises if none
+    level_p = _pixel_p(_GREY_LEVELS)
+    inside = (free_thresh <= level_p) & (level_p <= occupied_thresh)
+    # Levels in increasing order of their reading (255 reads 0, 0 reads 1).
+    levels = _GREY_LEVELS[inside][::-1]
+    readings = level_p[inside][::-1]
+    upper = np.clip(np.searchsorted(readings, p), 0, len(readings) - 1)
+    lower = np.clip(upper - 1, 0, len(readings) - 1)
+    nearest = np.where(np.abs(readings[lower] - p) <= np.abs(readings[upper] - p), lower, upper)
+    return np.asarray(levels[nearest], dtype=np.uint8)
 
 
 def _replace_all(files: list[tuple[Path, bytes]]) -> None:
@@ -848,6 +870,60 @@ def _names_image(yaml_path: Path, image: Path) -> bool:
         return False
 
 
+def _superseded_image(yaml_path: Path, image: Path) -> Path | None:
+    """The other mode's image of the map at ``yaml_path``, if this save makes it stale.
+
+    A save in one mode replaces the map at ``yaml_path`` whose image may be the
+    other mode's file (``map.pgm`` when ``map.png`` is written, or the other
+    way round). That file is returned, to be removed once the new map is in
+    place, only when everything proves that it is this map's image as
+    :func:`write_map` names it: the YAML at ``yaml_path`` is a map YAML whose
+    ``image`` is exactly that file's name (relative, beside the YAML) and whose
+    ``mode`` is the one written with that format; the file is a regular file,
+    not a symbolic link (a save never writes one); and no other YAML in the
+    folder names it. Anything else (another image name, a hand-edited YAML
+    naming a shared image) gives None: the file is left alone.
+    """
+    for other_mode, image_format in _IMAGE_FORMAT.items():
+        candidate = yaml_path.with_suffix(f".{image_format}")
+        if candidate == image:
+            continue
+        try:
+            if candidate.is_symlink() or not candidate.is_file() or not yaml_path.is_file():
+                continue
+            entries = _load_yaml(_yaml_text(yaml_path), yaml_path)
+            if entries.get("image") != candidate.name:
+                continue
+            if entries.get("mode", "trinary") != other_mode:
+                continue
+            if any(_other_yaml_names(candidate, yaml_path)):
+                continue
+        except (OSError, ValueError):
+            continue
+        return candidate
+    return None
+
+
+def _other_yaml_names(image: Path, yaml_path: Path) -> Iterator[bool]:
+    """For each YAML file beside ``yaml_path`` but itself: whether it names ``image``."""
+    for entry in yaml_path.parent.iterdir():
+        if entry.suffix.lower() in (".yaml", ".yml") and entry.name != yaml_path.name:
+            yield _names_image(entry, image)
+
+
+def _remove_superseded(image: Path) -> None:
+    """Remove the previous map's image after a successful save (see :func:`write_map`)."""
+    try:
+        image.unlink(missing_ok=True)
+    except OSError as exc:
+        # The new map is saved; failing the call now would suggest it was not.
+        warnings.warn(
+            f"the map was saved, but its previous image {image} could not be removed ({exc})",
+            RuntimeWarning,
+            stacklevel=3,
+        )
+
+
 def write_map(grid: OccupancyGrid, path: str | os.PathLike[str], *, mode: str = "trinary") -> Path:
     """Save a grid as a ROS map_server map: ``path`` (YAML) and an image beside it.
 
@@ -864,6 +940,16 @@ def write_map(grid: OccupancyGrid, path: str | os.PathLike[str], *, mode: str = 
     it was. The image is
     renamed first; only a crash between the two renames (microseconds) could
     pair the new image with the old YAML.
+
+    Saving over a map in the other mode (``map.yaml`` written in trinary mode
+    with ``map.pgm``, then in scale mode with ``map.png``) removes the previous
+    image once the new map is in place, so that no orphan is left behind to
+    block a later save. Only a file this function could have written for that
+    map is removed: the replaced YAML names it exactly ``<stem>.pgm`` (mode
+    ``trinary``) or ``<stem>.png`` (mode ``scale``), it is a regular file (not
+    a symbolic link) and no other YAML in the folder names it. Any other file
+    is never removed; if the removal fails, a ``RuntimeWarning`` says so and
+    the new map stays saved.
 
     Parameters
     ----------
@@ -886,7 +972,9 @@ def write_map(grid: OccupancyGrid, path: str | os.PathLike[str], *, mode: str = 
         in-between values to map_server. Either way loading the files with
         :func:`read_map` gives back the same occupied/free/unknown classes
         (in scale mode also the unknown cells' log-odds exactly and the
-        in-between cells' probabilities to half a grey level; occupied and
+        in-between cells' probabilities to half a grey level, or, where
+        rounding would cross a threshold, as the nearest grey level
+        map_server reads as unknown; occupied and
         free cells come back certain, as map_server's 100 and 0), and
         map_server reads occupied, free and unknown cells as such.
 
@@ -956,5 +1044,9 @@ def write_map(grid: OccupancyGrid, path: str | os.PathLike[str], *, mode: str = 
     text = map_yaml_text(meta, image.name)
     pixels = _map_pixels(grid, mode)[::-1]  # image rows run top down
     data = pgm_bytes(pixels) if image_format == "pgm" else png_bytes(pixels)
+    # Decided before the YAML that names it is replaced.
+    superseded = _superseded_image(yaml_path, image)
     _replace_all([(image, data), (yaml_path, text.encode("utf-8"))])
+    if superseded is not None:
+        _remove_superseded(superseded)
     return image
