@@ -72,7 +72,7 @@ def brute_force(occupied: np.ndarray, res: float, half: float, goal: np.ndarray,
                 progress: bool) -> tuple[float, set[tuple[int, int]]]:
     """Best g + h over all visible free cells, and the cells tying with it.
 
-    Ties are within ``1e-9·(1 + ‖goal‖)``, the documented tolerance.
+    Ties are within ``1e-12·(‖goal‖ + half_width)``, the documented tolerance.
     """
     n = occupied.shape[0]
     c0 = n // 2
@@ -94,7 +94,7 @@ def brute_force(occupied: np.ndarray, res: float, half: float, goal: np.ndarray,
     if not costs:
         return math.inf, set()
     best = min(costs.values())
-    tol = 1e-9 * (1.0 + h_robot)
+    tol = 1e-12 * (h_robot + half)
     return best, {cell for cell, f in costs.items() if f <= best + tol}
 
 

@@ -38,10 +38,10 @@ def segment_cost(pad: np.ndarray, width: int, r0: float, c0: float, r1: float, c
     """Exact cost of the straight segment p0 -> p1: sum of length × cell cost.
 
     The segment is split where it crosses grid lines; each piece pays the cell
-    containing its midpoint, or, when the whole segment lies on a grid line
-    (both ends on it exactly), the cheaper of the two cells beside it. Pieces
-    shorter than 1e-12 (passing through a corner) are free. Cell ``(r, c)``
-    costs ``pad[(r + 1) * width + c + 1]``.
+    it lies in, or, when the whole segment lies on a grid line (both ends on it
+    exactly), the cheaper of the two cells beside it. Pieces shorter than
+    1e-12 (passing through a corner) are free. Cell ``(r, c)`` costs
+    ``pad[(r + 1) * width + c + 1]``.
     """
     dr = r1 - r0
     dc = c1 - c0
@@ -69,6 +69,8 @@ def segment_cost(pad: np.ndarray, width: int, r0: float, c0: float, r1: float, c
         nc_line = math.ceil(c0) - 1.0
     else:
         nc_line = 0.0
+    fr0 = float(math.floor(r0))
+    fc0 = float(math.floor(c0))
     step_r = 1.0 if dr > 0 else -1.0
     step_c = 1.0 if dc > 0 else -1.0
     while t < 1.0:
@@ -78,29 +80,32 @@ def segment_cost(pad: np.ndarray, width: int, r0: float, c0: float, r1: float, c
         t1 = tc if tc < tr else tr
         if t1 > 1.0:
             t1 = 1.0
+        # The piece's cell from the next lines to cross, not from its midpoint: a
+        # piece a hair from a grid line has a midpoint that may round onto the
+        # line, whose floor is the cell beyond it (an impassable one made a
+        # path's cost inf).
+        cell_r = nr_line - 1.0 if dr > 0 else (nr_line if dr < 0 else fr0)
+        cell_c = nc_line - 1.0 if dc > 0 else (nc_line if dc < 0 else fc0)
         if tr <= t1:
             nr_line += step_r
         if tc <= t1:
             nc_line += step_c
         piece = (t1 - t) * length
         if piece > 1e-12:
-            tm = 0.5 * (t + t1)
-            mr = r0 + tm * dr
-            mc = c0 + tm * dc
             if on_row:
                 # Along row line r0: cells (r0 - 1, col) and (r0, col).
-                at = math.floor(r0) * width + math.floor(mc) + 1
+                at = int(r0) * width + int(cell_c) + 1
                 cost = pad[at]
                 if pad[at + width] < cost:
                     cost = pad[at + width]
             elif on_col:
                 # Along column line c0: cells (row, c0 - 1) and (row, c0).
-                at = (math.floor(mr) + 1) * width + math.floor(c0)
+                at = (int(cell_r) + 1) * width + int(c0)
                 cost = pad[at]
                 if pad[at + 1] < cost:
                     cost = pad[at + 1]
             else:
-                cost = pad[(math.floor(mr) + 1) * width + math.floor(mc) + 1]
+                cost = pad[(int(cell_r) + 1) * width + int(cell_c) + 1]
             if cost == np.inf:
                 return np.inf
             total += cost * piece

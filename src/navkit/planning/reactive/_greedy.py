@@ -115,8 +115,9 @@ def greedy_step(
     candidate is feasible when the Bresenham line from the robot's cell to it
     crosses no occupied cell. The feasible cell minimising ``g + h`` (robot to
     cell plus cell to goal, Euclidean, between cell centres) is chosen; ties
-    (within 1e-9 relative) go to the cell nearer the goal. The robot moves
-    toward it and calls again with a new scan until it reaches the goal.
+    (equal up to rounding: within ``1e-12·(‖goal‖ + half_width)``) go to the
+    cell nearer the goal. The robot moves toward it and calls again with a new
+    scan until it reaches the goal.
 
     Works on any :class:`~navkit.mapping.LocalGrid` (the paper's 21 × 21 grid of
     0.1 m cells is ``scan.to_local_grid()``). The robot's own cell never blocks
@@ -169,7 +170,11 @@ def greedy_step(
     if occupied[centre, centre]:
         occupied = occupied.copy()
         occupied[centre, centre] = False
-    tol = 1e-9 * (1.0 + float(np.hypot(gx, gy)))
+    # g + h is exact to a few ulps of ‖goal‖ + half_width: this tolerance only makes
+    # exact ties (cells on the straight line, mirror images) deterministic. It
+    # scales with the goal distance but must stay far below the cell size: at
+    # 1e-9·‖goal‖ a goal 1e9 m away made cells costing up to 1 m more "tie".
+    tol = 1e-12 * (float(np.hypot(gx, gy)) + grid.half_width)
     row, col, g, h, n_free = greedy_select(
         occupied, centre, centre, gx, gy, grid.resolution, grid.half_width,
         progress, tol,

@@ -90,7 +90,8 @@ def check_coordinates(values: FloatArray, name: str, limit: float = COORDINATE_L
     if not worst <= limit:
         if not math.isfinite(worst):
             raise ValueError(f"{name} must contain only finite values")
-        raise ValueError(f"{name} must lie within ±{limit:g} m in x and y, got {worst:g}")
+        # repr, not :g: six digits showed 1e9 + 1 as "1e+09", the limit itself.
+        raise ValueError(f"{name} must lie within ±{limit:g} m in x and y, got {worst!r}")
 
 
 def points(value: ArrayLike, name: str) -> FloatArray:

@@ -172,7 +172,10 @@ def piecewise_repulsive_force_from_scan(
     beam at range ``ρ`` pushes the robot away with magnitude ``δ`` for ``ρ < r``,
     ``β(s + r - ρ)`` for ``r <= ρ <= s + r`` and 0 beyond. Equals
     ``PiecewiseRepulsion(scan.to_points(), ...).force((0, 0))`` with the same
-    parameters.
+    parameters, up to rounding at the jump: each range itself is compared
+    with ``r`` here, while the point field recomputes the distance as
+    ``hypot(ρ cos θ, ρ sin θ)``, which can round a range equal to ``r`` to just
+    below it, so such a beam pushes with ``β·s`` here and ``δ`` there.
 
     Parameters
     ----------
