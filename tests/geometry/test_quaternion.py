@@ -164,3 +164,18 @@ def test_imu_in_base_holds_unit_quaternions() -> None:
     np.testing.assert_allclose(np.linalg.norm(readings.orientations, axis=-1), 1.0, atol=1e-15)
     np.testing.assert_array_equal(readings.orientations[1], [0.0, 0.0, 0.0, 1.0])
     assert quaternion_to_yaw(readings.orientations[0]) == pytest.approx(2 * math.atan2(0.6, 1.6))
+
+
+def test_imu_in_base_copies_and_pickles_stay_read_only() -> None:
+    import copy
+    import pickle
+
+    readings = ImuInBase(
+        np.array([[0.0, 0.0, 0.6, 0.8]]), np.array([[0.0, 0.0, 0.1]]), np.array([[0.0, 0.0, 9.8]])
+    )
+    twins = (copy.copy(readings), copy.deepcopy(readings), pickle.loads(pickle.dumps(readings)))
+    for twin in twins:
+        for name in ("orientations", "angular_velocities", "linear_accelerations"):
+            arr = getattr(twin, name)
+            assert not arr.flags.writeable, name
+            np.testing.assert_array_equal(arr, getattr(readings, name))

@@ -228,3 +228,40 @@ def test_a_singular_layout_is_refused_at_any_radius(
 ) -> None:
     with pytest.raises(ValueError, match="wheel_angles give a singular layout"):
         OmniDrive(angles, wheel_radius=wheel_radius, base_radius=base_radius)
+
+
+@pytest.mark.parametrize("base_radius", [1e-6, 1.0, 1e6])
+@pytest.mark.parametrize("wheel_radius", [1e-6, 0.05, 1e6])
+def test_forward_inverts_inverse_for_a_nearly_singular_layout_at_every_size(
+    wheel_radius: float, base_radius: float
+) -> None:
+    # Accepted (condition number of the layout about 5e9 < 1e10). The pseudo-inverse
+    # used to be taken of the Jacobian, whose columns differ in scale by base_radius:
+    # at 1e6 m NumPy's pinv cut off a singular value, and forward(inverse(1 m/s ahead))
+    # gave vy = 0.05 m/s.
+    angles = np.array([0.0, 2e-8, 0.1])
+    layout = np.column_stack((-np.sin(angles), np.cos(angles), np.ones(3)))
+    cond = float(np.linalg.cond(layout))
+    assert cond < 1e10
+    drive = OmniDrive(angles, wheel_radius=wheel_radius, base_radius=base_radius)
+    for twist in ([1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0 / base_radius]):
+        back = drive.forward(drive.inverse(twist)).as_array()
+        # Errors measured as speeds (omega * base_radius for the rotation), relative to
+        # the layout's condition number: what rounding allows, at any size.
+        error = (back - twist) * np.array([1.0, 1.0, base_radius])
+        assert np.abs(error).max() <= 1e-14 * cond
+
+
+def test_copies_and_pickles_keep_the_arrays_read_only() -> None:
+    import copy
+    import pickle
+
+    drive = OmniDrive(np.radians([45.0, 135.0, 225.0, 315.0]), wheel_radius=0.05, base_radius=0.2)
+    speeds = [1.0, -2.0, 3.0, 0.5]
+    for twin in (copy.copy(drive), copy.deepcopy(drive), pickle.loads(pickle.dumps(drive))):
+        for arr in (twin.wheel_angles, twin.jacobian, twin.forward_matrix):
+            assert not arr.flags.writeable
+        assert repr(twin) == repr(drive)
+        np.testing.assert_array_equal(twin.forward_matrix, drive.forward_matrix)
+        assert twin.forward(speeds) == drive.forward(speeds)
+    assert drive.jacobian.flags.writeable is False

@@ -10,10 +10,12 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
 
+from navkit._shared.frozen import restore_read_only
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array
 
@@ -273,6 +275,12 @@ class ImuInBase:
         object.__setattr__(self, "orientations", _readonly(q))
         object.__setattr__(self, "angular_velocities", _readonly(w))
         object.__setattr__(self, "linear_accelerations", _readonly(a))
+
+    def __setstate__(self, state: list[Any]) -> None:
+        """Restore from a pickle or :func:`copy.deepcopy`, the arrays read-only again."""
+        restore_read_only(
+            self, state, ("orientations", "angular_velocities", "linear_accelerations")
+        )
 
 
 def imu_to_base(

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 from numpy.typing import ArrayLike
 
@@ -120,7 +122,28 @@ class OmniDrive:
                 "omega independently (e.g. all wheels parallel)"
             )
         self._jacobian = _read_only(jac)
-        self._forward = _read_only(np.asarray(np.linalg.pinv(jac), dtype=np.float64))
+        # jacobian = layout @ diag(1, 1, L) / r with full column rank, so its pseudo-inverse
+        # is diag(1, 1, 1/L) @ pinv(layout) * r. Taken from the layout, not the Jacobian:
+        # the Jacobian's columns differ in scale by L (up to 1e6 apart), which multiplies
+        # its condition number, and pinv's rounding, by as much; beyond 1e15 pinv drops
+        # a singular value (an accepted layout at L = 1e6 m turned 1 m/s ahead into
+        # 0.05 m/s sideways).
+        scale = np.array([1.0, 1.0, self._base_radius])[:, None]
+        forward = np.linalg.pinv(layout) / scale * self._wheel_radius
+        self._forward = _read_only(np.asarray(forward, dtype=np.float64))
+
+    def __getstate__(self) -> dict[str, Any]:
+        return {name: getattr(self, name) for name in self.__slots__}
+
+    def __setstate__(self, state: dict[str, Any] | tuple[None, dict[str, Any]]) -> None:
+        # pickle and copy.deepcopy hand back writable copies of the arrays: the
+        # documented read-only attributes of a copy must stay read-only. A pickle made
+        # before __getstate__ existed holds (None, slots) instead.
+        slots = state[1] if isinstance(state, tuple) else state
+        for name, value in slots.items():
+            if isinstance(value, np.ndarray):
+                value.flags.writeable = False
+            setattr(self, name, value)
 
     @classmethod
     def three_wheel(cls, *, wheel_radius: float, base_radius: float) -> OmniDrive:
