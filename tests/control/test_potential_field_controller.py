@@ -373,3 +373,36 @@ def test_numerically_on_an_obstacle_flees_at_full_speed() -> None:
     cmd = ctl.step(Pose2D(0.0, 1e-200, 0.0), Pose2D(0.0, 0.0, 0.0), dt=0.1,
                    obstacles=[[0.0, 0.0]])
     np.testing.assert_allclose([cmd.vx, cmd.vy], [0.0, 0.4])
+
+
+OPTIONS = (
+    "attraction", "k_rep", "influence_radius", "max_speed", "max_accel", "max_decel",
+    "max_omega", "drive", "goal_tolerance", "stall_radius", "stall_timeout",
+)
+
+
+@pytest.mark.parametrize("name", OPTIONS)
+@pytest.mark.parametrize("value", [-1.0, math.nan, 0.3, "diff", None])
+def test_options_are_read_only(name: str, value: Any) -> None:
+    # They used to be plain attributes: ``ctl.max_speed = -1`` or ``= nan`` was
+    # accepted unchecked and broke later steps (NaN commands, a reversed clip).
+    ctl = PotentialFieldController(ConicAttraction(np.zeros(2)), drive="omni")
+    before = getattr(ctl, name)
+    with pytest.raises(AttributeError):
+        setattr(ctl, name, value)
+    assert getattr(ctl, name) is before
+
+
+def test_options_read_back_as_given() -> None:
+    att = ConicAttraction(np.zeros(2))
+    ctl = PotentialFieldController(
+        att, k_rep=0.2, influence_radius=0.7, max_speed=0.8, max_accel=1.5, max_decel=2.5,
+        max_omega=3.0, drive="diff", goal_tolerance=0.03, stall_radius=0.04, stall_timeout=1.5,
+    )
+    assert ctl.attraction is att
+    assert (ctl.k_rep, ctl.influence_radius, ctl.max_speed, ctl.max_accel, ctl.max_decel,
+            ctl.max_omega, ctl.drive, ctl.goal_tolerance, ctl.stall_radius,
+            ctl.stall_timeout) == (0.2, 0.7, 0.8, 1.5, 2.5, 3.0, "diff", 0.03, 0.04, 1.5)
+    # They drive the commands: the speed clip and the stall timeout.
+    cmd = ctl.step(Pose2D(0.0, 0.0, 0.0), Pose2D(5.0, 0.0, 0.0), dt=10.0)
+    assert cmd.vx == pytest.approx(0.8)

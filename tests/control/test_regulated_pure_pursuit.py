@@ -253,11 +253,16 @@ def test_rotate_to_heading() -> None:
 
 
 def test_no_rotate_to_heading() -> None:
+    # A path behind and to the left: pure pursuit curves forward into it at once.
     tracker = make(rotate_to_heading=False)
+    tracker.set_path([[0.0, 0.0], [-2.0, 0.5]])
+    cmd = tracker.step((0.0, 0.0, 0.0), 0.05)
+    assert cmd.vx > 0.0 and cmd.omega > 0.0
+    assert tracker.phase == "track"
+    # Straight behind, the curvature 2y/d² is zero (the documented trap).
     tracker.set_path([[0.0, 0.0], [-2.0, 0.0]])
     cmd = tracker.step((0.0, 0.0, 0.0), 0.05)
-    assert cmd.vx > 0.0 and cmd.omega != 0.0
-    assert tracker.phase == "track"
+    assert cmd.vx > 0.0 and abs(cmd.omega) < 1e-12
 
 
 def test_omni_never_rotates_to_the_path() -> None:

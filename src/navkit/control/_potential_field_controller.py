@@ -71,6 +71,8 @@ class PotentialFieldController:
     The controller is stateful (previous velocity, PID integrator and last error,
     stall timer); call :meth:`reset` between runs. It is an ordinary class with
     ``__slots__`` rather than a frozen dataclass because every step changes that state.
+    Its options are read-only properties, checked once here (as the path
+    trackers'): build a new controller to change one.
 
     Local minima: the robot is reported :attr:`stalled` when it has stayed within
     ``stall_radius`` of one spot for ``stall_timeout`` seconds while farther than
@@ -137,22 +139,22 @@ class PotentialFieldController:
 
     __slots__ = (
         "_anchor",
+        "_attraction",
+        "_drive",
+        "_goal_tolerance",
+        "_influence_radius",
         "_integral",
+        "_k_rep",
         "_last_error",
+        "_max_accel",
+        "_max_decel",
+        "_max_omega",
+        "_max_speed",
         "_pid",
+        "_stall_radius",
+        "_stall_timeout",
         "_still_for",
         "_velocity",
-        "attraction",
-        "drive",
-        "goal_tolerance",
-        "influence_radius",
-        "k_rep",
-        "max_accel",
-        "max_decel",
-        "max_omega",
-        "max_speed",
-        "stall_radius",
-        "stall_timeout",
     )
 
     def __init__(
@@ -184,21 +186,21 @@ class PotentialFieldController:
             raise TypeError(f"drive must be 'omni' or 'diff', got {type(drive).__name__}")
         if drive not in ("omni", "diff"):
             raise ValueError(f"drive must be 'omni' or 'diff', got {drive!r}")
-        self.attraction = attraction
-        self.k_rep = in_range(k_rep, "k_rep", MIN_GAIN, MAX_GAIN)
-        self.influence_radius = quantity(influence_radius, "influence_radius", "m")
+        self._attraction = attraction
+        self._k_rep = in_range(k_rep, "k_rep", MIN_GAIN, MAX_GAIN)
+        self._influence_radius = quantity(influence_radius, "influence_radius", "m")
         # The repulsion is built every step: let it check the two parameters once here.
         KhatibRepulsion(
-            np.empty((0, 2)), k_rep=self.k_rep, influence_radius=self.influence_radius
+            np.empty((0, 2)), k_rep=self._k_rep, influence_radius=self._influence_radius
         )
-        self.max_speed = quantity(max_speed, "max_speed", "m/s")
-        self.max_accel = quantity(max_accel, "max_accel", "m/s²")
-        self.max_decel = quantity(max_decel, "max_decel", "m/s²")
-        self.max_omega = quantity(max_omega, "max_omega", "rad/s")
-        self.drive = drive
-        self.goal_tolerance = quantity(goal_tolerance, "goal_tolerance", "m")
-        self.stall_radius = quantity(stall_radius, "stall_radius", "m")
-        self.stall_timeout = quantity(stall_timeout, "stall_timeout", "s")
+        self._max_speed = quantity(max_speed, "max_speed", "m/s")
+        self._max_accel = quantity(max_accel, "max_accel", "m/s²")
+        self._max_decel = quantity(max_decel, "max_decel", "m/s²")
+        self._max_omega = quantity(max_omega, "max_omega", "rad/s")
+        self._drive: Literal["omni", "diff"] = drive
+        self._goal_tolerance = quantity(goal_tolerance, "goal_tolerance", "m")
+        self._stall_radius = quantity(stall_radius, "stall_radius", "m")
+        self._stall_timeout = quantity(stall_timeout, "stall_timeout", "s")
         self._pid = _Pid(
             in_range(kp, "kp", 0.0, MAX_GAIN),
             in_range(ki, "ki", 0.0, MAX_GAIN),
@@ -215,10 +217,67 @@ class PotentialFieldController:
         self._anchor: FloatArray | None = None
         self._still_for = 0.0
 
+    # The options are read-only (as the path trackers'): they are validated once,
+    # in __init__, and every step relies on their ranges.
+    @property
+    def attraction(self) -> AttractiveField:
+        """The attractive field whose parameters are used (its goal is replaced every step)."""
+        return self._attraction
+
+    @property
+    def k_rep(self) -> float:
+        """Khatib repulsion gain."""
+        return self._k_rep
+
+    @property
+    def influence_radius(self) -> float:
+        """Khatib's ``d0`` (m): obstacles farther than this do not repel."""
+        return self._influence_radius
+
+    @property
+    def max_speed(self) -> float:
+        """Maximum translational speed (m/s)."""
+        return self._max_speed
+
+    @property
+    def max_accel(self) -> float:
+        """Translational acceleration limit (m/s²)."""
+        return self._max_accel
+
+    @property
+    def max_decel(self) -> float:
+        """Translational deceleration limit (m/s²)."""
+        return self._max_decel
+
+    @property
+    def max_omega(self) -> float:
+        """Maximum turn rate (rad/s)."""
+        return self._max_omega
+
+    @property
+    def drive(self) -> Literal["omni", "diff"]:
+        """``"omni"`` (holonomic) or ``"diff"`` (differential drive, ``vy = 0``)."""
+        return self._drive
+
+    @property
+    def goal_tolerance(self) -> float:
+        """Distance (m) at which the goal counts as reached for stall detection."""
+        return self._goal_tolerance
+
+    @property
+    def stall_radius(self) -> float:
+        """Radius (m) the robot must leave to count as moving."""
+        return self._stall_radius
+
+    @property
+    def stall_timeout(self) -> float:
+        """Time (s) without leaving ``stall_radius`` before :attr:`stalled` is set."""
+        return self._stall_timeout
+
     @property
     def stalled(self) -> bool:
         """True when the robot is stuck away from the goal (a local minimum)."""
-        return self._still_for >= self.stall_timeout
+        return self._still_for >= self._stall_timeout
 
     @property
     def stall_time(self) -> float:
@@ -279,18 +338,18 @@ class PotentialFieldController:
     ) -> FloatArray:
         """:meth:`desired_velocity` on a validated pose and goal."""
         here = np.array([[pose.x, pose.y]])
-        f_att = self.attraction.with_goal(goal).force(here)[0]
+        f_att = self._attraction.with_goal(goal).force(here)[0]
         norm = float(np.hypot(f_att[0], f_att[1]))
-        if norm > self.max_speed:
-            f_att = f_att * (self.max_speed / norm)
+        if norm > self._max_speed:
+            f_att = f_att * (self._max_speed / norm)
         v: FloatArray = f_att + self._repulsion(pose, here, obstacles)
         if not np.all(np.isfinite(v)):
             # Numerically on an obstacle the repulsion is infinite: flee at full speed
             # along its infinite components, or stay put if opposite ones cancel (NaN).
             v = np.where(np.isinf(v), np.sign(v), 0.0)
         speed = float(np.hypot(v[0], v[1]))
-        if speed > self.max_speed:
-            v = v * (self.max_speed / speed)
+        if speed > self._max_speed:
+            v = v * (self._max_speed / speed)
         return v
 
     def _repulsion(
@@ -300,7 +359,7 @@ class PotentialFieldController:
             return np.zeros(2)
         if isinstance(obstacles, LaserScan):
             fx, fy = repulsive_force_from_scan(
-                obstacles, k_rep=self.k_rep, influence_radius=self.influence_radius
+                obstacles, k_rep=self._k_rep, influence_radius=self._influence_radius
             )
             c, s = math.cos(pose.theta), math.sin(pose.theta)
             return np.array([c * fx - s * fy, s * fx + c * fy])
@@ -311,7 +370,7 @@ class PotentialFieldController:
                 f"obstacles: positions must have |x|, |y| <= {MAX_COORDINATE:g} m "
                 "(rows with NaN or inf are skipped)"
             )
-        field = KhatibRepulsion(valid, k_rep=self.k_rep, influence_radius=self.influence_radius)
+        field = KhatibRepulsion(valid, k_rep=self._k_rep, influence_radius=self._influence_radius)
         out: FloatArray = field.force(here)[0]
         return out
 
@@ -371,8 +430,8 @@ class PotentialFieldController:
         goal = np.array([target_pose.x, target_pose.y])
         want = self._desired(pose, goal, obstacles)
 
-        if self.drive == "omni":
-            v = _limit_change(prev, want, self.max_accel, self.max_decel, step, "velocity")
+        if self._drive == "omni":
+            v = _limit_change(prev, want, self._max_accel, self._max_decel, step, "velocity")
             heading = target_pose.theta
             vx, vy = c * v[0] + s * v[1], -s * v[0] + c * v[1]
         else:
@@ -385,28 +444,28 @@ class PotentialFieldController:
             )
             fwd_want = max(0.0, c * want[0] + s * want[1])
             fwd = float(
-                _limit_change(np.array([fwd_prev]), np.array([fwd_want]), self.max_accel,
-                              self.max_decel, step, "velocity")[0]
+                _limit_change(np.array([fwd_prev]), np.array([fwd_want]), self._max_accel,
+                              self._max_decel, step, "velocity")[0]
             )
             # Below a thousandth of max_speed the field's direction is noise near the goal.
-            moving = math.hypot(want[0], want[1]) > 1e-3 * self.max_speed
+            moving = math.hypot(want[0], want[1]) > 1e-3 * self._max_speed
             heading = math.atan2(want[1], want[0]) if moving else target_pose.theta
             v = np.array([c * fwd, s * fwd])
             vx, vy = fwd, 0.0
         error = angle_diff(heading, pose.theta)
         self._integral, omega = self._pid.update(self._integral, self._last_error, error, step)
         self._last_error = error
-        omega = min(max(omega, -self.max_omega), self.max_omega)
+        omega = min(max(omega, -self._max_omega), self._max_omega)
         self._velocity = v
         self._update_stall(pose, goal, step)
         return Twist2D(float(vx), float(vy), float(omega))
 
     def _update_stall(self, pose: Pose2D, goal: FloatArray, dt: float) -> None:
         here = np.array([pose.x, pose.y])
-        if float(np.hypot(*(goal - here))) <= self.goal_tolerance:
+        if float(np.hypot(*(goal - here))) <= self._goal_tolerance:
             self._anchor = None
             self._still_for = 0.0
-        elif self._anchor is None or float(np.hypot(*(here - self._anchor))) > self.stall_radius:
+        elif self._anchor is None or float(np.hypot(*(here - self._anchor))) > self._stall_radius:
             self._anchor = here
             self._still_for = 0.0
         else:

@@ -122,10 +122,17 @@ class RegulatedPurePursuit(PathTracker):
     min_lookahead, max_lookahead : float, default 0.3 and 0.9
         Nav2 ``min_lookahead_dist`` / ``max_lookahead_dist`` (m), in (0, 1e4],
         ``min_lookahead <= max_lookahead``; set them equal for a fixed
-        lookahead (Nav2's ``lookahead_dist`` is 0.6).
+        lookahead (Nav2's ``lookahead_dist`` is 0.6). A lookahead point
+        closer than about 3.2 cm gives curvature 0 (as in Nav2), so a
+        lookahead that short never steers on an arc.
     rotate_to_heading : bool, default True
         Nav2 ``use_rotate_to_heading``: whether a differential robot turns in
-        place toward a path that points away (step 2).
+        place toward a path that points away (step 2), and an omnidirectional
+        one snaps its direction of travel to it. Without it a lookahead point
+        behind the robot (a path starting behind it, a U-turn) is steered for
+        on the arc through it, of radius ``d² / (2 |y|)``, which is a straight
+        line away from it when the point is right behind: as in Nav2 (without
+        reversing), the robot may never come back to the path.
     rotate_to_heading_angle : float, default 0.785
         Nav2 ``rotate_to_heading_min_angle`` (rad), in (0, π].
     rotate_omega : float, default 1.8
