@@ -54,3 +54,18 @@ def test_encoder_reading_copies_stay_read_only(duplicate: Callable[[Any], Any]) 
     with pytest.raises(ValueError, match="read-only"):
         twin.ticks[0] = 0
     assert reading.ticks.tolist() == [10, -3]
+
+
+@pytest.mark.parametrize(
+    ("args", "error", "match"),
+    [
+        ((float("nan"), "collision", "x"), ValueError, "^t "),
+        ((0.0, "crash", "x"), ValueError, "^kind "),
+        ((0.0, "collision", 5), TypeError, "^message must be a str, got int"),
+        ((0.0, "collision", b"bytes"), TypeError, "^message must be a str, got bytes"),
+    ],
+)
+def test_bad_events_name_their_field(args: tuple[Any, ...], error: type[Exception],
+                                     match: str) -> None:
+    with pytest.raises(error, match=match):
+        Event(*args)

@@ -10,6 +10,7 @@ import time
 from collections.abc import Iterator, Sequence
 from typing import Any
 
+import numpy as np
 import pytest
 
 from navkit.sim import (
@@ -180,6 +181,20 @@ def test_a_seed_sequence_gives_one_base_seed_per_trial_index() -> None:
                                                                     workers=1).trials]  # fmt: skip
     longer = sweep(scenario, seeds=[4, 8, 15, 16], workers=1)
     assert [r.trial.seed for r in longer.trials][:3] == expected[:3]
+
+
+def test_a_zero_dimensional_seed_array_is_one_base_seed() -> None:
+    # np.array(9) is neither an int nor a sequence: it raised NumPy's unnamed
+    # "iteration over a 0-d array".
+    seeds: Any = np.array(9, dtype=np.uint64)
+    result = sweep(Sleepy(), trials=3, seeds=seeds, workers=1)
+    assert [r.trial for r in result.trials] == list(Sleepy().trials(3, seed=9))
+    assert result.seed == 9
+    with pytest.raises(TypeError, match=r"^seeds must be an integer or a sequence"):
+        sweep(Sleepy(), trials=3, seeds=seeds.astype(float), workers=1)
+    negative: Any = np.array(-1)
+    with pytest.raises(ValueError, match=r"^seeds must be in \[0, 2\*\*64\)"):
+        sweep(Sleepy(), trials=3, seeds=negative, workers=1)
 
 
 # --------------------------------------------------------------------------- failures

@@ -218,7 +218,8 @@ class Lidar:
         pose : Pose2D or array_like [x, y, theta]
             Pose of the robot; the sensor sits at ``pose ⊕ mount``.
         t : float, default 0.0
-            Time of the scan (places the moving obstacles), s.
+            Time of the scan (places the moving obstacles), s, within ±1e9 s
+            when the world has moving obstacles.
         rng : numpy Generator, int seed or None
             Randomness for noise, jitter and dropouts (fresh entropy if None;
             unused without them).

@@ -283,7 +283,12 @@ class Table:
         Parameters
         ----------
         digits : int, optional
-            Significant digits of floats, in [1, 17].
+            Significant digits of floats, in [1, 17]. A float of magnitude at
+            least ``10**digits`` once rounded to them prints whole, as an
+            integer (``12346`` for 12345.6, ``1000`` for 999.6 at 3 digits),
+            while below 1e17; from 1e17 on, where a float holds fewer
+            significant digits than its integer part has, in exponent notation
+            with ``digits`` significant digits.
 
         Returns
         -------
@@ -294,6 +299,8 @@ class Table:
         --------
         >>> Table("t", ("a",), ((1.23456,),)).render(digits=2).splitlines()[-1]
         '1.2'
+        >>> Table("t", ("a", "b"), ((12345.6, 1.23456789e20),)).render().splitlines()[-1]
+        '12346  1.23e+20'
         """
         digits = _int_in(digits, "digits", 18)
         if digits < 1:
@@ -334,6 +341,12 @@ class Table:
         }
 
 
+#: Floats print whole (as integers) only below this: from 1e17 on, fixed notation
+#: shows digits beyond the float's 17 significant ones (1.23456789e20 as
+#: 123456788999999995904), and 1e300 would print 301 digits.
+_WHOLE_LIMIT = 1e17
+
+
 def _cell_text(cell: Cell, digits: int) -> str:
     if cell is None:
         return ""
@@ -342,7 +355,13 @@ def _cell_text(cell: Cell, digits: int) -> str:
     if isinstance(cell, (float, np.floating)):
         if not math.isfinite(cell):
             return "-"
-        return f"{float(cell):.{digits}g}" if abs(cell) < 10**digits else f"{float(cell):.0f}"
+        value = float(cell)
+        text = f"{value:.{digits}g}"
+        # Exponent notation from 1 up means at least 10**digits once rounded
+        # (999.6 at 3 digits too): whole, like 1000.0, while below the limit.
+        if "e" in text and 1.0 <= abs(value) < _WHOLE_LIMIT:
+            return f"{value:.0f}"
+        return text
     return str(cell)
 
 

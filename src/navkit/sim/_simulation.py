@@ -38,7 +38,7 @@ from navkit.sim._sensors import (
     ScanReading,
 )
 from navkit.sim._trace import Event, Metrics, Trace, cross_track, nan_if_empty
-from navkit.sim._world import World, as_query_pose, as_world
+from navkit.sim._world import MAX_POSE_COORD, World, as_query_pose, as_world
 
 __all__ = ["Controller", "Observation", "Simulation"]
 
@@ -138,11 +138,15 @@ def _reference(value: Any) -> FloatArray | None:
             raise ValueError(
                 "reference_path must be in world coordinates; convert a grid path first"
             )
-        return np.ascontiguousarray(value.points)
-    pts = as_float_array(value, "reference_path", shape=(None, 2))
+        pts = value.points
+    else:
+        pts = as_float_array(value, "reference_path", shape=(None, 2))
     if pts.shape[0] == 0:
         raise ValueError("reference_path must hold at least one point")
-    return np.ascontiguousarray(pts)
+    # The cross-track distances square the legs' lengths: beyond this they overflow.
+    if float(np.max(np.abs(pts))) > MAX_POSE_COORD:
+        raise ValueError(f"reference_path must lie within ±{MAX_POSE_COORD:g} m")
+    return np.ascontiguousarray(pts, dtype=np.float64)
 
 
 class Simulation:
@@ -197,7 +201,7 @@ class Simulation:
         With a goal heading: also require the heading within this, rad, in
         (0, π].
     reference_path : Path2D (world frame) or array_like (K, 2), optional
-        Path for the cross-track error.
+        Path for the cross-track error, within ±1e12 m.
     estimator : PlanarFusion, OmniOdometry, DiffOdometry or Estimator, optional
         Fed every delivered reading (at its delivery time). Initialise it at
         the start pose (e.g. ``PlanarFusion(x0=[x, y, θ, 0, 0, 0], t0=0.0)``).
@@ -206,8 +210,10 @@ class Simulation:
     control_rate : float, default 20.0
         Controller rate, Hz.
     duration : float, default 300.0
-        Longest simulated time, s, in (0, 10^7]; ``duration * rate`` may be at
-        most 10^7 steps.
+        Simulated time after which the run times out, s, in (0, 10^7]: at the
+        first physics step at or after it, step ``ceil(duration * rate)``
+        (so a duration that is not a whole number of steps runs up to one step
+        longer). ``duration * rate`` may be at most 10^7 steps.
     seed : int, numpy Generator or None, default 0
         Randomness of the run (None: fresh entropy, not reproducible).
     record_scans : bool, default False

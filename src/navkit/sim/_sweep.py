@@ -51,10 +51,10 @@ def _seed_int(value: object, name: str) -> int:
     return int(value)
 
 
-def _plan(
-    scenario: Scenario, trials: int | None, seeds: int | Sequence[int]
-) -> tuple[tuple[Trial, ...], int]:
+def _plan(scenario: Scenario, trials: int | None, seeds: object) -> tuple[tuple[Trial, ...], int]:
     """Every trial with its seed, and the base seed to record."""
+    if isinstance(seeds, np.ndarray) and seeds.ndim == 0:
+        seeds = seeds[()]  # a NumPy scalar: one base seed (or refused as one, by name)
     if isinstance(seeds, (numbers.Integral, bool, np.bool_)):
         base = _seed_int(seeds, "seeds")
         return scenario.trials(trials, seed=base), base

@@ -49,6 +49,8 @@ class Event:
         object.__setattr__(self, "t", finite_float(self.t, "t"))
         if self.kind not in _END_REASONS:
             raise ValueError(f"kind must be one of {_END_REASONS}, got {self.kind!r}")
+        if not isinstance(self.message, str):
+            raise TypeError(f"message must be a str, got {type(self.message).__name__}")
 
 
 @dataclass(frozen=True, slots=True)

@@ -14,6 +14,7 @@ from numpy.typing import ArrayLike
 from shapely.geometry import Polygon
 from shapely.geometry.base import BaseGeometry
 
+from navkit._shared.frozen import restore_read_only
 from navkit._shared.types import FloatArray, IntArray
 from navkit._shared.validation import as_bool, as_float_array, finite_float, positive_float
 from navkit.geometry import Pose2D, as_pose
@@ -58,6 +59,23 @@ def _coords(value: ArrayLike, name: str, shape: tuple[int | None, ...]) -> Float
 
 
 MAX_POSE_COORD = 1e12
+#: Largest time magnitude of a waypoint or of a query of the moving obstacles, s.
+MAX_TIME = 1e9
+#: Largest speed along each axis of an obstacle that carries on (``after="extend"``), m/s.
+MAX_EXTEND_SPEED = 1e3
+
+
+def _query_time(t: Any, name: str = "t") -> float:
+    """A query time within ±MAX_TIME s.
+
+    With waypoints within ±1e6 m and ``after="extend"`` speeds within ±1e3 m/s
+    this keeps every obstacle within ±(1e6 + 2e12) m: finite, with squared
+    distances far from overflowing (a huge ``t`` would silently give inf/NaN).
+    """
+    time = finite_float(t, name)
+    if abs(time) > MAX_TIME:
+        raise ValueError(f"{name} must lie within ±{MAX_TIME:g} s, got {time}")
+    return time
 
 
 def as_query_pose(value: Any, name: str = "pose") -> Pose2D:
@@ -164,6 +182,10 @@ class Circle:
         object.__setattr__(self, "radius", radius)
         object.__setattr__(self, "solid", as_bool(self.solid, "solid"))
 
+    def __setstate__(self, state: list[Any]) -> None:
+        """Restore from a pickle or :func:`copy.deepcopy`, ``center_xy`` read-only again."""
+        restore_read_only(self, state, ("center_xy",))
+
 
 _AFTER_CODES = {"stop": STOP, "loop": LOOP, "extend": EXTEND}
 
@@ -189,7 +211,10 @@ class MovingObstacle:
     times : array_like, shape (K,)
         Time of each waypoint, s, strictly increasing, within ±1e9 s.
     after : {"stop", "loop", "extend"}, default "stop"
-        Motion after the last waypoint (keyword-only).
+        Motion after the last waypoint (keyword-only). With ``"extend"`` the
+        last leg's velocity must lie within ±1e3 m/s along each axis (as for
+        :meth:`constant_velocity`), so that positions at any query time
+        (within ±1e9 s) stay finite.
 
     Examples
     --------
@@ -219,16 +244,29 @@ class MovingObstacle:
         if path.shape[0] == 0:
             raise ValueError("path_xy must hold at least one waypoint")
         times = np.array(as_float_array(self.times, "times", shape=(path.shape[0],)), copy=True)
-        if times.size and float(np.max(np.abs(times))) > 1e9:
-            raise ValueError("times must lie within ±1e9 s")
+        if times.size and float(np.max(np.abs(times))) > MAX_TIME:
+            raise ValueError(f"times must lie within ±{MAX_TIME:g} s")
         if np.any(np.diff(times) <= 0.0):
             raise ValueError("times must be strictly increasing")
         if not isinstance(self.after, str) or self.after not in _AFTER_CODES:
             raise ValueError(f"after must be 'stop', 'loop' or 'extend', got {self.after!r}")
         if self.after == "extend" and path.shape[0] < 2:
             raise ValueError("after='extend' needs at least two waypoints")
+        if self.after == "extend":
+            with np.errstate(over="ignore"):
+                # The division may overflow (legs of a few ulp): inf fails the check.
+                velocity = (path[-1] - path[-2]) / (times[-1] - times[-2])
+            if float(np.max(np.abs(velocity))) > MAX_EXTEND_SPEED:
+                raise ValueError(
+                    f"after='extend' needs the last leg of path_xy/times at most "
+                    f"{MAX_EXTEND_SPEED:g} m/s along each axis, got {velocity.tolist()} m/s"
+                )
         object.__setattr__(self, "path_xy", _read_only(path))
         object.__setattr__(self, "times", _read_only(times))
+
+    def __setstate__(self, state: list[Any]) -> None:
+        """Restore from a pickle or :func:`copy.deepcopy`, the arrays read-only again."""
+        restore_read_only(self, state, ("path_xy", "times"))
 
     @classmethod
     def constant_velocity(
@@ -244,7 +282,9 @@ class MovingObstacle:
         start_xy : array_like, shape (2,)
             Position of the reference point at t = 0, m (keyword-only).
         velocity_xy : array_like, shape (2,)
-            Constant velocity, m/s, each component within ±1e3 (keyword-only).
+            Constant velocity, m/s, each component within ±1e3 (keyword-only);
+            ``start_xy + velocity_xy`` (the second waypoint) must lie within
+            ±1e6 m.
 
         Returns
         -------
@@ -267,6 +307,12 @@ class MovingObstacle:
         vel = as_float_array(velocity_xy, "velocity_xy", shape=(2,))
         if float(np.max(np.abs(vel))) > 1e3:
             raise ValueError("velocity_xy must lie within ±1e3 m/s")
+        if float(np.max(np.abs(start + vel))) > MAX_COORD:
+            # Its second waypoint (t = 1 s), a path_xy the caller never gave.
+            raise ValueError(
+                f"start_xy + velocity_xy (the position at t = 1 s) must lie within "
+                f"±{MAX_COORD:g} m, got {(start + vel).tolist()}"
+            )
         return cls(shape, np.stack((start, start + vel)), np.array([0.0, 1.0]), after="extend")
 
     @classmethod
@@ -339,7 +385,7 @@ class MovingObstacle:
         Parameters
         ----------
         t : float
-            Time, s (finite).
+            Time, s, within ±1e9 s.
 
         Returns
         -------
@@ -349,9 +395,9 @@ class MovingObstacle:
         Raises
         ------
         TypeError, ValueError
-            ``t`` not a finite real number.
+            ``t`` not a real number within ±1e9 s.
         """
-        time = finite_float(t, "t")
+        time = _query_time(t)
         first = np.zeros(1, dtype=np.int64)
         count = np.array([self.path_xy.shape[0]], dtype=np.int64)
         after = np.array([_AFTER_CODES[self.after]], dtype=np.int64)
@@ -370,7 +416,7 @@ class MovingObstacle:
         Parameters
         ----------
         t : float
-            Time, s (finite).
+            Time, s, within ±1e9 s.
 
         Returns
         -------
@@ -604,6 +650,37 @@ class World:
         self._edges_only = self._occ.shape[0] == 0 and not self._moving
         self._scanners: dict[Any, Any] = {}
 
+    # ------------------------------------------------------- copy and pickle
+    #: The arrays built once and handed to the kernels read-only.
+    _READ_ONLY = (
+        "_segs", "_circles", "_solid_circles", "_cell_start", "_cell_items", "_solid_rings",
+        "_solid_start", "_solid_items", "_occ", "_cheb",
+    )  # fmt: skip
+
+    def __getstate__(self) -> dict[str, Any]:
+        """The world's state for pickle and :mod:`copy`, without its LiDAR cache."""
+        state = {name: getattr(self, name) for name in self.__slots__}
+        # Scanners are bound to this world (and hold its buffers): rebuilt on use.
+        state["_scanners"] = {}
+        return state
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        """Restore from a pickle or a (deep) copy: arrays read-only, work arrays its own."""
+        for name, value in state.items():
+            object.__setattr__(self, name, value)
+        for name in self._READ_ONLY:
+            getattr(self, name).flags.writeable = False
+        # A shallow copy would otherwise share the moving obstacles' work arrays with
+        # the original while each keeps its own note of the time they were placed at:
+        # queries of one would see the obstacles where the other last put them.
+        self._dyn_segs = np.empty_like(self._dyn_base_segs)
+        self._dyn_circles = np.empty_like(self._dyn_base_circles)
+        self._moving_t = math.nan
+        self._scanners = {}
+        if self._solids is not None:
+            shapely.prepare(self._solids)
+        self._place(0.0)
+
     # ------------------------------------------------------------ construction
     def _cell_lists(self, segs: FloatArray, circles: FloatArray) -> tuple[IntArray, IntArray]:
         """CSR cell lists of ``segs`` and ``circles`` in the world's uniform grid."""
@@ -692,9 +769,12 @@ class World:
         self._place(0.0)
 
     def _place(self, t: float) -> None:
-        """Move the moving obstacles' work arrays to time ``t``."""
+        """Move the moving obstacles' work arrays to time ``t`` (ValueError beyond ±1e9 s)."""
         if t == self._moving_t or not self._moving:
             return
+        if abs(t) > MAX_TIME:
+            # Reached from the LiDAR, which checks only that t is finite.
+            raise ValueError(f"t must lie within ±{MAX_TIME:g} s, got {t}")
         place_moving(
             t, self._mv_path, self._mv_times, self._mv_first, self._mv_count, self._mv_after,
             self._dyn_base_segs, self._dyn_seg_owner, self._dyn_segs,
@@ -866,7 +946,7 @@ class World:
         range_max : float
             Longest distance looked at, m, in (0, 1e6].
         t : float, default 0.0
-            Time at which the moving obstacles are placed, s.
+            Time at which the moving obstacles are placed, s, within ±1e9 s.
 
         Returns
         -------
@@ -889,7 +969,7 @@ class World:
         if rmax > MAX_COORD:
             raise ValueError(f"range_max must be at most {MAX_COORD:g} m, got {rmax}")
         out = np.empty(ang.shape[0])
-        self._cast(out, p.x, p.y, p.theta, ang, rmax, finite_float(t, "t"))
+        self._cast(out, p.x, p.y, p.theta, ang, rmax, _query_time(t))
         return out
 
     def clearance(
@@ -913,7 +993,7 @@ class World:
         pose : Pose2D or array_like [x, y, theta]
             Where the robot is.
         t : float, default 0.0
-            Time at which the moving obstacles are placed, s.
+            Time at which the moving obstacles are placed, s, within ±1e9 s.
 
         Returns
         -------
@@ -931,7 +1011,7 @@ class World:
         p = as_query_pose(pose)
         body, work, scratch = _footprint_arrays(verts)
         return self._clearance(
-            p.x, p.y, p.theta, radius, body, work, scratch, finite_float(t, "t"), math.inf
+            p.x, p.y, p.theta, radius, body, work, scratch, _query_time(t), math.inf
         )
 
     def collides(
@@ -950,7 +1030,8 @@ class World:
         pose : Pose2D or array_like [x, y, theta]
             Where the robot is.
         t : float, default 0.0
-            Time at which the moving obstacles are placed, s (keyword-only).
+            Time at which the moving obstacles are placed, s, within ±1e9 s
+            (keyword-only).
 
         Returns
         -------
@@ -968,7 +1049,7 @@ class World:
         """
         radius, verts = as_footprint(footprint)
         p = as_query_pose(pose)
-        time = finite_float(t, "t")
+        time = _query_time(t)
         body, work, scratch = _footprint_arrays(verts)
         # A small positive limit: the search stops at once unless something touches.
         if self._clearance(p.x, p.y, p.theta, radius, body, work, scratch, time, 1e-9) <= TOUCH:
