@@ -27,6 +27,49 @@ navkit ...
 0
 """
 
-from navkit.cli._app import main
+from __future__ import annotations
+
+import sys
+from collections.abc import Sequence
 
 __all__ = ["main"]
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the ``navkit`` command.
+
+    The command's modules (numba, scipy, the simulator: about a second) are
+    imported here rather than when ``navkit.cli`` is: a Ctrl-C while they load,
+    right after the command starts, then ends it like any other interrupt.
+
+    Parameters
+    ----------
+    argv : sequence of str, optional
+        The arguments after the program name (default ``sys.argv[1:]``).
+
+    Returns
+    -------
+    int
+        The exit code: 0 on success, 1 when a file, map or data set is missing
+        or malformed (or no path exists), 2 on bad arguments (with a usage
+        message), 130 when interrupted, 141 (silently) when standard output is
+        closed early (``navkit list | head -1``).
+
+    Raises
+    ------
+    TypeError
+        ``argv`` is not a sequence of str.
+
+    Examples
+    --------
+    >>> main(["list"])  # doctest: +ELLIPSIS
+    navkit's experiments (navkit run SCENARIO)
+    ...
+    0
+    """
+    try:
+        from navkit.cli._app import main as run
+    except KeyboardInterrupt:
+        sys.stderr.write("navkit: interrupted\n")
+        return 130
+    return run(argv)

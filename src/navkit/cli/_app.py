@@ -37,7 +37,7 @@ def one_line(exc: BaseException) -> str:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Run the ``navkit`` command.
+    """The ``navkit`` command: :func:`navkit.cli.main` once its modules are loaded.
 
     Parameters
     ----------
@@ -47,22 +47,13 @@ def main(argv: Sequence[str] | None = None) -> int:
     Returns
     -------
     int
-        The exit code: 0 on success, 1 when a file, map or data set is missing
-        or malformed (or no path exists), 2 on bad arguments (with a usage
-        message), 130 when interrupted, 141 (silently) when standard output is
-        closed early (``navkit list | head -1``).
-
-    Raises
-    ------
-    TypeError
-        ``argv`` is not a sequence of str.
+        The exit code (see :func:`navkit.cli.main`).
 
     Examples
     --------
-    >>> main(["list"])  # doctest: +ELLIPSIS
-    navkit's experiments (navkit run SCENARIO)
-    ...
-    0
+    >>> main(["--version"]) == 0  # doctest: +ELLIPSIS
+    navkit ...
+    True
     """
     if argv is not None and (
         isinstance(argv, (str, bytes)) or not isinstance(argv, Sequence)

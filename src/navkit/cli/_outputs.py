@@ -29,7 +29,7 @@ def check_output(path: str | None, suffix: str, option: str) -> None:
     Raises
     ------
     ValueError
-        A wrong extension, a folder given for a file, or a picture (a
+        An empty name, a wrong extension, a folder given for a file, or a picture (a
         ``suffix``) to be written over something that is not a regular file
         (a device, a pipe).
     FileNotFoundError
@@ -48,6 +48,9 @@ def check_output(path: str | None, suffix: str, option: str) -> None:
     """
     if path is None:
         return
+    if not path:
+        # Path("") is ".", the current folder: "is a folder" would puzzle.
+        raise ValueError(f"{option}: the file name is empty")
     target = Path(path)
     if suffix and target.suffix.lower() != suffix:
         raise ValueError(f"{option}: the file must end in {suffix}, got {path}")
