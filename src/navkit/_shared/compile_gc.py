@@ -19,6 +19,14 @@ own initialisation).
   other code (the user's own kernels) are left alone, and loading a kernel
   from numba's cache changes nothing.
 
+The collector's switch is one for the whole process while compiles and
+pauses are per thread (threads of a ROS 2 executor using navkit for the first
+time at once), so the pauses are counted process-wide: the first to start
+records whether the collector was running and the last to end restores that.
+With a record per thread, a thread that took numba's compiler lock before the
+previous holder's pause had ended compiled with the collector switched back
+on, having recorded it as off.
+
 Garbage made meanwhile is collected as usual afterwards; the peak memory of a
 compile rises by a few tens of MB (25 MB measured on Field D*'s).
 """
@@ -35,6 +43,30 @@ from typing import Any
 __all__ = ["install", "paused"]
 
 _INSTALLED: list[Any] = []
+
+#: Guards the two below (re-entrant: a collection run inside could end a pause).
+_PAUSE_LOCK = threading.RLock()
+#: Pauses under way in every thread.
+_PAUSES = 0
+#: Whether the collector ran when the first of them began.
+_RESUME = False
+
+
+def _begin_pause() -> None:
+    global _PAUSES, _RESUME
+    with _PAUSE_LOCK:
+        if _PAUSES == 0:
+            _RESUME = gc.isenabled()
+            gc.disable()
+        _PAUSES += 1
+
+
+def _end_pause() -> None:
+    global _PAUSES
+    with _PAUSE_LOCK:
+        _PAUSES -= 1
+        if _PAUSES == 0 and _RESUME:
+            gc.enable()
 
 
 def _is_navkit(dispatcher: Any) -> bool:
@@ -60,8 +92,7 @@ def _make_listeners() -> tuple[Any, Any]:
             if getattr(state, "paused", False) or not _is_navkit(data.get("dispatcher")):
                 return
             state.paused = True
-            state.resume = gc.isenabled()
-            gc.disable()
+            _begin_pause()
 
         def on_end(self, ev: Any) -> None:
             """Nothing here: the collector resumes when the compiler lock is released."""
@@ -80,8 +111,7 @@ def _make_listeners() -> tuple[Any, Any]:
             state.depth = max(lock_depth() - 1, 0)
             if state.depth == 0 and getattr(state, "paused", False):
                 state.paused = False
-                if state.resume:
-                    gc.enable()
+                _end_pause()
 
     return CompileStart(), LockRelease()
 
@@ -89,6 +119,9 @@ def _make_listeners() -> tuple[Any, Any]:
 @contextmanager
 def paused() -> Iterator[None]:
     """Disable the collector for the block, then restore its previous state.
+
+    The state restored is the one from before the first of the pauses under
+    way in any thread (this block's, or a compile's), once the last ends.
 
     For navkit's own one-off work in the library's many allocations: importing
     numba and initialising its compiler (:func:`navkit._shared.jit.load_numba`).
@@ -102,13 +135,11 @@ def paused() -> Iterator[None]:
     >>> gc.isenabled()
     True
     """
-    resume = gc.isenabled()
-    gc.disable()
+    _begin_pause()
     try:
         yield
     finally:
-        if resume:
-            gc.enable()
+        _end_pause()
 
 
 def install() -> None:

@@ -108,8 +108,9 @@ class LazyKernel:
         """This kernel's dispatcher, made (with every waiting one) on first need."""
         if self.dispatcher is None:
             load_numba()
-            if self.dispatcher is None:  # made by hand after numba was loaded
-                self.dispatcher = _NJIT(**self.options)(self.py_func)
+            with _LOCK:  # one dispatcher, whichever threads get here at once
+                if self.dispatcher is None:  # made by hand after numba was loaded
+                    self.dispatcher = _NJIT(**self.options)(self.py_func)
         return self.dispatcher
 
 
@@ -129,32 +130,41 @@ def load_numba() -> None:
     global _NJIT
     if numba_loaded():
         return
-    with _LOCK:
-        if numba_loaded():  # another thread loaded it meanwhile
-            return
-        from navkit._shared import compile_gc
+    from navkit._shared import compile_gc
 
-        with compile_gc.paused():
-            from numba import njit
-            from numba.core.registry import cpu_target
+    with compile_gc.paused():
+        from numba import njit
+        from numba.core.compiler_lock import global_compiler_lock
+        from numba.core.registry import cpu_target
 
+        # numba's compiler lock first, then navkit's, as in a thread whose compile
+        # types a stand-in (a user's kernel calling a navkit one): taken the other
+        # way round, that thread and this one each waited for the other's lock.
+        with global_compiler_lock, _LOCK:
+            if numba_loaded():  # another thread loaded it meanwhile
+                return
             compile_gc.install()
             # numba initialises its compiler (importing most of its modules) at the
             # first compile or cache load: done here, with the collector paused.
             cpu_target.target_context.refresh()
-        for namespace, module, names in _BINDINGS:
-            _bind(namespace, module, names)
-        for kernel in _WAITING:
-            kernel.dispatcher = njit(**kernel.options)(kernel.py_func)
-        for module_object in list(sys.modules.values()):
-            module_namespace = getattr(module_object, "__dict__", None)
-            if not isinstance(module_namespace, dict):
-                continue
-            for key, value in list(module_namespace.items()):
-                if type(value) is LazyKernel and value.dispatcher is not None:
-                    module_namespace[key] = value.dispatcher
-        _WAITING.clear()
-        _NJIT = njit
+            _make_dispatchers(njit)
+            _NJIT = njit
+
+
+def _make_dispatchers(njit: Any) -> None:
+    """Bind the registered numba names and put dispatchers in place of the stand-ins."""
+    for namespace, module, names in _BINDINGS:
+        _bind(namespace, module, names)
+    for kernel in _WAITING:
+        kernel.dispatcher = njit(**kernel.options)(kernel.py_func)
+    for module_object in list(sys.modules.values()):
+        module_namespace = getattr(module_object, "__dict__", None)
+        if not isinstance(module_namespace, dict):
+            continue
+        for key, value in list(module_namespace.items()):
+            if type(value) is LazyKernel and value.dispatcher is not None:
+                module_namespace[key] = value.dispatcher
+    _WAITING.clear()
 
 
 def bind_numba_names(namespace: dict[str, Any], module: str, **names: str) -> None:
