@@ -111,15 +111,13 @@ def test_chunk_walker_agrees_with_rosbags(shared_data: Path) -> None:
     """The fallback used for demo.bag gives what rosbags' own reader gives on a sound bag."""
     path = shared_data / RL / "test2.bag"
     walked = _walk_ros1(path)
-    assert {t: v.n_messages for t, v in walked.topics.items()} == {
-        t: c for t, (_, c) in bag_topics(path).items()
-    }
+    assert {t: (ty, n) for (t, ty), n in walked.counts.items()} == bag_topics(path)
     from rosbags.rosbag1 import Reader
 
     with Reader(path) as reader:
         conns = [c for c in reader.connections if c.topic == "/imu/data"]
         expected = [(ns, bytes(raw)) for _, ns, raw in reader.messages(connections=conns)]
-    assert list(walked.messages("/imu/data")) == expected
+    assert list(walked.messages("/imu/data", "sensor_msgs/msg/Imu")) == expected
 
 
 # ------------------------------------------------------------ written bags
@@ -263,10 +261,10 @@ def test_ros1_bag_round_trip_any_file_name(tmp_path: Path) -> None:
                 writer.write(conn, round((t + 0.01) * 1e9), STORE1.serialize_ros1(msg, msgtype))
     check_mixed(path)
     walked = _walk_ros1(path)
-    assert {t: v.n_messages for t, v in walked.topics.items()} == {
-        "/scan": 3,
-        "/odom": 4,
-        "/imu": 5,
+    assert walked.counts == {
+        ("/scan", "sensor_msgs/msg/LaserScan"): 3,
+        ("/odom", "nav_msgs/msg/Odometry"): 4,
+        ("/imu", "sensor_msgs/msg/Imu"): 5,
     }
 
 

@@ -341,17 +341,24 @@ def _normalize(msgtype: str) -> str:
     return f"{parts[0]}/msg/{parts[1]}" if len(parts) == 2 else msgtype
 
 
-class _Topic(NamedTuple):
-    msgtype: str
-    n_messages: int
-
-
 class _Bag(NamedTuple):
-    """An opened bag: topics, and a function yielding (record ns, raw message) of one topic."""
+    """An opened bag: its message counts by ``(topic, type)``, and a function yielding
+    (record ns, raw message) of the messages of one topic and type."""
 
     ros2: bool
-    topics: dict[str, _Topic]
-    messages: Callable[[str], Iterator[tuple[int, bytes]]]
+    counts: dict[tuple[str, str], int]
+    messages: Callable[[str, str], Iterator[tuple[int, bytes]]]
+
+    def types(self) -> dict[str, dict[str, int]]:
+        """``{topic: {type: count}}``, topics and types sorted.
+
+        A ROS 1 bag may record one topic with connections of several types (a
+        topic name reused by another node): each type is a stream of its own.
+        """
+        out: dict[str, dict[str, int]] = {}
+        for (topic, msgtype), count in sorted(self.counts.items()):
+            out.setdefault(topic, {})[msgtype] = count
+        return out
 
 
 _T = TypeVar("_T")
@@ -403,13 +410,19 @@ def _guarded(messages: Callable[[], Iterable[tuple[Any, int, Any]]]) -> Iterator
         raise _failure(exc) from None
 
 
-def _connection_topics(connections: Iterable[Any]) -> dict[str, _Topic]:
-    """``{topic: (type, count)}`` of rosbags connections (a topic may have several)."""
-    topics: dict[str, _Topic] = {}
+def _connection_counts(connections: Iterable[Any]) -> dict[tuple[str, str], int]:
+    """``{(topic, type): count}`` of rosbags connections (a topic may have several, of one
+    type or, in ROS 1, of different types)."""
+    counts: dict[tuple[str, str], int] = {}
     for c in connections:
-        old = topics.get(c.topic)
-        topics[c.topic] = _Topic(_normalize(c.msgtype), c.msgcount + (old.n_messages if old else 0))
-    return topics
+        key = (c.topic, _normalize(c.msgtype))
+        counts[key] = counts.get(key, 0) + c.msgcount
+    return counts
+
+
+def _of_stream(connections: Iterable[Any], topic: str, msgtype: str) -> list[Any]:
+    """The rosbags connections of ``topic`` with messages of ``msgtype``."""
+    return [c for c in connections if c.topic == topic and _normalize(c.msgtype) == msgtype]
 
 
 def _with_bag(bag_path: Path, use: Callable[[_Bag], _T]) -> _T:
@@ -421,11 +434,13 @@ def _with_bag(bag_path: Path, use: Callable[[_Bag], _T]) -> _T:
         try:
             with _opened(rosbag2.Reader, bag_path) as reader:
 
-                def messages2(topic: str) -> Iterator[tuple[int, bytes]]:
-                    conns = [c for c in reader.connections if c.topic == topic]
+                def messages2(topic: str, msgtype: str) -> Iterator[tuple[int, bytes]]:
+                    # Never empty (the stream was chosen from the counts): rosbags
+                    # would read every connection for an empty list.
+                    conns = _of_stream(reader.connections, topic, msgtype)
                     return _guarded(lambda: reader.messages(connections=conns))
 
-                return use(_Bag(True, _connection_topics(reader.connections), messages2))
+                return use(_Bag(True, _connection_counts(reader.connections), messages2))
         except _RosbagsFailed as exc:
             raise ValueError(f"{bag_path}: cannot read the ROS 2 bag: {exc}") from None
     if not bag_path.is_file():
@@ -440,11 +455,11 @@ def _with_bag(bag_path: Path, use: Callable[[_Bag], _T]) -> _T:
     try:
         with _opened(rosbag1.Reader, bag_path) as reader:
 
-            def messages1(topic: str) -> Iterator[tuple[int, bytes]]:
-                conns = [c for c in reader.connections if c.topic == topic]
+            def messages1(topic: str, msgtype: str) -> Iterator[tuple[int, bytes]]:
+                conns = _of_stream(reader.connections, topic, msgtype)
                 return _guarded(lambda: reader.messages(connections=conns))
 
-            return use(_Bag(False, _connection_topics(reader.connections), messages1))
+            return use(_Bag(False, _connection_counts(reader.connections), messages1))
     except _RosbagsFailed as exc:
         # rosbags refuses bags whose index records are damaged (e.g. an index
         # data record longer than its entries): read the chunks directly.
@@ -551,41 +566,46 @@ def _walk_ros1(bag_path: Path) -> _Bag:
                 ns = (stamp & 0xFFFFFFFF) * 1_000_000_000 + (stamp >> 32)
                 messages.append((ns, _int(rec, "conn", "<I"), payload))
     messages.sort(key=lambda m: m[0])
-    topics: dict[str, _Topic] = {}
-    for topic, msgtype in conns.values():
-        count = sum(1 for m in messages if conns.get(m[1], ("", ""))[0] == topic)
-        topics[topic] = _Topic(msgtype, count)
+    # Tabulated as rosbags does: by (topic, type), connections of both alike summed; a
+    # connection without messages still lists its stream (count 0). Messages of a
+    # connection the index does not declare have no type and belong to no stream.
+    counts = dict.fromkeys(conns.values(), 0)
+    for _, conn_id, _ in messages:
+        if conn_id in conns:
+            counts[conns[conn_id]] += 1
 
-    def walked(topic: str) -> Iterator[tuple[int, bytes]]:
-        for ns, conn, raw in messages:
-            if conns.get(conn, ("", ""))[0] == topic:
+    def walked(topic: str, msgtype: str) -> Iterator[tuple[int, bytes]]:
+        for ns, conn_id, raw in messages:
+            if conns.get(conn_id) == (topic, msgtype):
                 yield ns, raw
 
-    return _Bag(False, topics, walked)
+    return _Bag(False, counts, walked)
 
 
-def _describe(topics: dict[str, _Topic]) -> str:
-    if not topics:
+def _describe(types: dict[str, dict[str, int]]) -> str:
+    if not types:
         return "the bag has no topics"
-    return "topics: " + ", ".join(f"{t} ({v.msgtype})" for t, v in sorted(topics.items()))
+    return "topics: " + ", ".join(f"{t} ({', '.join(v)})" for t, v in types.items())
 
 
 def _select(bag_path: Path, bag: _Bag, msgtype: str, topic: str | None) -> str:
-    """The topic to read: ``topic``, checked, or the only one of ``msgtype``."""
+    """The topic to read ``msgtype`` messages from: ``topic``, checked, or the only one
+    with messages of that type (a topic counts once per type it was recorded with)."""
+    types = bag.types()
     if topic is None:
-        candidates = sorted(t for t, v in bag.topics.items() if v.msgtype == msgtype)
+        candidates = [t for t, v in types.items() if msgtype in v]
         if not candidates:
-            raise ValueError(f"{bag_path}: no {msgtype} topic; {_describe(bag.topics)}")
+            raise ValueError(f"{bag_path}: no {msgtype} topic; {_describe(types)}")
         if len(candidates) > 1:
             raise ValueError(
                 f"{bag_path}: several {msgtype} topics ({', '.join(candidates)}); choose one "
                 "with topic="
             )
         return candidates[0]
-    if topic not in bag.topics:
-        raise ValueError(f"topic {topic!r} is not in {bag_path}; {_describe(bag.topics)}")
-    have = bag.topics[topic].msgtype
-    if have != msgtype:
+    if topic not in types:
+        raise ValueError(f"topic {topic!r} is not in {bag_path}; {_describe(types)}")
+    if msgtype not in types[topic]:
+        have = " and ".join(types[topic])
         raise ValueError(f"topic {topic!r} of {bag_path} holds {have} messages, not {msgtype}")
     return topic
 
@@ -593,7 +613,8 @@ def _select(bag_path: Path, bag: _Bag, msgtype: str, topic: str | None) -> str:
 def _read(
     path: Any, topic: Any, msgtype: str, convert: Callable[[str, list[tuple[int, Any]]], _T]
 ) -> _T:
-    """Deserialize every message of the selected topic and hand them to ``convert``."""
+    """Deserialize every ``msgtype`` message of the selected topic (those of other types
+    recorded on it left alone) and hand them to ``convert``."""
     if topic is not None and not isinstance(topic, str):
         raise TypeError(f"topic must be a str or None, got {type(topic).__name__}")
     bag_path = _check_path(path)
@@ -604,7 +625,7 @@ def _read(
         store = get_typestore(stores.ROS2_HUMBLE if bag.ros2 else stores.ROS1_NOETIC)
         deserialize = store.deserialize_cdr if bag.ros2 else store.deserialize_ros1
         out = []
-        for i, (ns, raw) in enumerate(bag.messages(name)):
+        for i, (ns, raw) in enumerate(bag.messages(name, msgtype)):
             try:
                 out.append((ns, deserialize(raw, msgtype)))
             except Exception as exc:  # rosbags raises many kinds on corrupt bytes
@@ -656,7 +677,8 @@ def read_bag_scans(path: str | os.PathLike[str], *, topic: str | None = None) ->
         A ROS 1 ``.bag`` file or a ROS 2 bag folder (with ``metadata.yaml``,
         SQLite or MCAP storage).
     topic : str, optional
-        Topic to read; by default the bag's only LaserScan topic.
+        Topic to read; by default the bag's only LaserScan topic. Only its
+        LaserScan messages are read (a ROS 1 topic may hold several types).
 
     Returns
     -------
@@ -674,8 +696,8 @@ def read_bag_scans(path: str | os.PathLike[str], *, topic: str | None = None) ->
     TypeError
         ``path`` or ``topic`` of the wrong type.
     ValueError
-        Not a bag, a corrupt bag; ``topic`` missing from the bag or of
-        another message type; no LaserScan topic, or several and no
+        Not a bag, a corrupt bag; ``topic`` missing from the bag or
+        without messages of this type; no LaserScan topic, or several and no
         ``topic``; a message that is not a valid LaserScan (the message says
         which). Bags whose chunk index records are damaged (which ``rosbags``
         refuses) are read through their chunk records.
@@ -718,7 +740,8 @@ def read_bag_odometry(path: str | os.PathLike[str], *, topic: str | None = None)
     path : str or path-like
         A ROS 1 ``.bag`` file or a ROS 2 bag folder.
     topic : str, optional
-        Topic to read; by default the bag's only Odometry topic.
+        Topic to read; by default the bag's only Odometry topic. Only its
+        Odometry messages are read (a ROS 1 topic may hold several types).
 
     Returns
     -------
@@ -795,7 +818,8 @@ def read_bag_imu(path: str | os.PathLike[str], *, topic: str | None = None) -> B
     path : str or path-like
         A ROS 1 ``.bag`` file or a ROS 2 bag folder.
     topic : str, optional
-        Topic to read; by default the bag's only Imu topic.
+        Topic to read; by default the bag's only Imu topic. Only its
+        Imu messages are read (a ROS 1 topic may hold several types).
 
     Returns
     -------
@@ -854,7 +878,9 @@ def read_bag_imu(path: str | os.PathLike[str], *, topic: str | None = None) -> B
     return _read(path, topic, IMU_TYPE, convert)
 
 
-def bag_topics(path: str | os.PathLike[str]) -> dict[str, tuple[str, int]]:
+def bag_topics(
+    path: str | os.PathLike[str],
+) -> dict[str, tuple[str, int] | tuple[tuple[str, int], ...]]:
     """Topics of a ROS 1 or ROS 2 bag with their message types and message counts.
 
     Parameters
@@ -865,7 +891,16 @@ def bag_topics(path: str | os.PathLike[str]) -> dict[str, tuple[str, int]]:
     Returns
     -------
     dict
-        ``{topic: (message type, count)}``, types spelled ``pkg/msg/Type``.
+        ``{topic: (message type, count)}``, topics sorted, types spelled
+        ``pkg/msg/Type``, counts summed over the topic's connections of that
+        type. A bag may record one topic with connections of different message
+        types (in ROS 1, a topic name reused by another node); such a topic's
+        entry is instead a tuple of one ``(message type, count)`` pair per
+        type, sorted by type, e.g. ``{"/x": (("nav_msgs/msg/Odometry", 4),
+        ("sensor_msgs/msg/Imu", 5))}`` (check ``isinstance(entry[0], str)``
+        to tell the two forms apart). A type declared by a connection without
+        messages counts, with 0. The readers take from such a topic only the
+        messages of their own type.
 
     Raises
     ------
@@ -886,6 +921,12 @@ def bag_topics(path: str | os.PathLike[str]) -> dict[str, tuple[str, int]]:
     FileNotFoundError: ROS bag no-such.bag does not exist
     """
     bag_path = _check_path(path)
-    return _with_bag(
-        bag_path, lambda bag: {t: (v.msgtype, v.n_messages) for t, v in sorted(bag.topics.items())}
-    )
+
+    def entries(bag: _Bag) -> dict[str, tuple[str, int] | tuple[tuple[str, int], ...]]:
+        out: dict[str, tuple[str, int] | tuple[tuple[str, int], ...]] = {}
+        for topic, counts in bag.types().items():
+            pairs = tuple(counts.items())
+            out[topic] = pairs[0] if len(pairs) == 1 else pairs
+        return out
+
+    return _with_bag(bag_path, entries)
