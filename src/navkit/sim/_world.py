@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 import numbers
 from collections.abc import Iterable, Mapping
-from dataclasses import KW_ONLY, dataclass
+from dataclasses import KW_ONLY, dataclass, field
 from typing import Any, Literal
 
 import numpy as np
@@ -231,6 +231,11 @@ class MovingObstacle:
     times: FloatArray
     _: KW_ONLY
     after: Literal["stop", "loop", "extend"] = "stop"
+    # The velocity given to constant_velocity (read-only (2,)), None otherwise: the
+    # difference of its two waypoints loses the velocity's bits below ulp(start),
+    # a drift of up to ulp(start) · t. Not an init field: dataclasses.replace,
+    # which may change the waypoints, leaves it None (the waypoints then rule).
+    _velocity: FloatArray | None = field(default=None, init=False, repr=False)
 
     def __post_init__(self) -> None:
         radius, verts = as_footprint(self.shape, "shape")
@@ -266,7 +271,9 @@ class MovingObstacle:
 
     def __setstate__(self, state: list[Any]) -> None:
         """Restore from a pickle or :func:`copy.deepcopy`, the arrays read-only again."""
-        restore_read_only(self, state, ("path_xy", "times"))
+        # Pickles made before the velocity was kept hold only the four init fields.
+        values = [*state, None] if len(state) == 4 else state
+        restore_read_only(self, values, ("path_xy", "times", "_velocity"))
 
     @classmethod
     def constant_velocity(
@@ -290,7 +297,11 @@ class MovingObstacle:
         -------
         MovingObstacle
             A two-waypoint obstacle (t = 0 and t = 1 s) with ``after="extend"``;
-            before t = 0 it waits at ``start_xy``.
+            before t = 0 it waits at ``start_xy``. It keeps ``velocity_xy``
+            itself: its position at t >= 0 is ``start_xy + velocity_xy · t``
+            correctly rounded twice (the product, then the sum), not
+            extrapolated from the waypoints, whose difference may lose up to
+            ulp(start_xy) of the velocity (a drift growing with t).
 
         Raises
         ------
@@ -313,7 +324,9 @@ class MovingObstacle:
                 f"start_xy + velocity_xy (the position at t = 1 s) must lie within "
                 f"±{MAX_COORD:g} m, got {(start + vel).tolist()}"
             )
-        return cls(shape, np.stack((start, start + vel)), np.array([0.0, 1.0]), after="extend")
+        obstacle = cls(shape, np.stack((start, start + vel)), np.array([0.0, 1.0]), after="extend")
+        object.__setattr__(obstacle, "_velocity", _read_only(np.array(vel, copy=True)))
+        return obstacle
 
     @classmethod
     def scripted(
@@ -398,17 +411,33 @@ class MovingObstacle:
             ``t`` not a real number within ±1e9 s.
         """
         time = _query_time(t)
+        path, origin = self._kernel_path()
         first = np.zeros(1, dtype=np.int64)
-        count = np.array([self.path_xy.shape[0]], dtype=np.int64)
+        count = np.array([path.shape[0]], dtype=np.int64)
         after = np.array([_AFTER_CODES[self.after]], dtype=np.int64)
         out = np.empty((1, 3))
+        # A disc of radius 0 centred on the origin: placed, its centre is the position,
+        # rounded exactly as World's kernels round it.
         place_moving(
-            time, self.path_xy.copy(), self.times.copy(),  # writable: one signature
+            time, np.array(path), self.times.copy(),  # writable: one signature
             first, count, after, _EMPTY4, np.empty(0, dtype=np.int64), np.empty((0, 4)),
-            np.zeros((1, 3)), np.zeros(1, dtype=np.int64), out,
+            np.array([[origin[0], origin[1], 0.0]]), np.zeros(1, dtype=np.int64), out,
         )  # fmt: skip
         position: FloatArray = out[0, :2].copy()
         return position
+
+    def _kernel_path(self) -> tuple[FloatArray, FloatArray]:
+        """Waypoints for the moving-obstacle kernel, relative to an origin ``(2,)``.
+
+        The kernel places the obstacle's shape, given relative to the origin, at
+        its interpolated position. The waypoints themselves, with the origin 0,
+        for any obstacle but a constant-velocity one: ``(0, velocity)`` from
+        ``start_xy``, so that the kernel's difference of the two waypoints is the
+        velocity exactly and a position is ``start + fl(velocity · t)``.
+        """
+        if self._velocity is None:
+            return self.path_xy, np.zeros(2)
+        return np.stack((np.zeros(2), self._velocity)), np.array(self.path_xy[0], copy=True)
 
     def geometry_at(self, t: float) -> BaseGeometry:
         """The obstacle at time ``t`` as a shapely geometry (a disc as a fine polygon).
@@ -738,19 +767,22 @@ class World:
         circle_owner: list[int] = []
         offset = 0
         for m, ob in enumerate(obs):
-            paths.append(ob.path_xy)
+            # The shapes go in relative to the path's origin (not always the reference
+            # point: a constant-velocity obstacle's path starts at 0, its shape at start).
+            path, (ox, oy) = ob._kernel_path()
+            paths.append(path)
             times.append(ob.times)
             first.append(offset)
-            count.append(ob.path_xy.shape[0])
+            count.append(path.shape[0])
             after.append(_AFTER_CODES[ob.after])
-            offset += ob.path_xy.shape[0]
+            offset += path.shape[0]
             if isinstance(ob.shape, Polygon):
                 # x, y only: a polygon with z coordinates has three columns.
                 pts = np.asarray(ob.shape.exterior.coords, dtype=np.float64)[:, :2]
-                segs.append(np.hstack((pts[:-1], pts[1:])))
+                segs.append(np.hstack((pts[:-1], pts[1:])) + np.array([ox, oy, ox, oy]))
                 seg_owner.append(np.full(pts.shape[0] - 1, m, dtype=np.int64))
             else:
-                circles.append((0.0, 0.0, float(ob.shape)))
+                circles.append((float(ox), float(oy), float(ob.shape)))
                 circle_owner.append(m)
         self._mv_path = np.ascontiguousarray(np.concatenate(paths)) if obs else np.empty((0, 2))
         self._mv_times = np.concatenate(times) if obs else np.empty(0)
