@@ -78,7 +78,7 @@ class Demo(Scenario):
         ``"office"``: the synthetic office.
     duration : float, default 120.0
         Longest simulated time per leg, s, in [0.1, 3600] (the legs take 15 to
-        50 s; a short one makes cheap trials for testing sweeps).
+        55 s; a short one makes cheap trials for testing sweeps).
 
     Raises
     ------

@@ -40,6 +40,10 @@ PAPER_TIME_RANGE_S = (11.2, 12.9)
 CONTROL_RATE = 20.0  # Hz
 PHYSICS_RATE = 100.0  # Hz
 _MAX_TARGET = 50.0  # m
+#: Shortest route with the obstacle on it, m. On a route under 3 m the box stands
+#: halfway; from 1 m on it stays 0.13 m or more clear of the robot's body both at
+#: the start and at the target (at 0.7 m it overlaps the body at the start).
+_MIN_OBSTACLE_ROUTE = 1.0  # m
 _MIN_DURATION = 0.1  # s
 _MAX_DURATION = 3600.0  # s
 #: The values of a trial (what run_trial gives and summarize reads).
@@ -61,6 +65,19 @@ def _targets(value: Any) -> tuple[tuple[float, float], ...]:
             f"got ({arr[k, 0]:g}, {arr[k, 1]:g}), {dist[k]:g} m away"
         )
     return tuple((float(x), float(y)) for x, y in arr)
+
+
+def _check_obstacle_routes(targets: tuple[tuple[float, float], ...]) -> None:
+    """Every route long enough for the obstacle box to stand clear of both of its ends."""
+    for k, (x, y) in enumerate(targets):
+        dist = math.hypot(x, y)
+        if dist < _MIN_OBSTACLE_ROUTE:
+            raise ValueError(
+                f"targets[{k}] must lie at least {_MIN_OBSTACLE_ROUTE:g} m from the start "
+                f"when the obstacle series runs (obstacles None or True): the box on a "
+                f"shorter route touches the robot at its start or at the target; got "
+                f"({x:g}, {y:g}), {dist:g} m away"
+            )
 
 
 class OmniApf(Scenario):
@@ -99,7 +116,9 @@ class OmniApf(Scenario):
         None: both of the paper's series (without, then with the obstacle);
         True or False: only that one.
     targets : sequence of (x, y), default the paper's four
-        Targets in m, each 0.5 to 50 m from the start (at most 64).
+        Targets in m, each 0.5 to 50 m from the start (at most 64); with the
+        obstacle series (``obstacles`` None or True) at least 1 m, so that the
+        box stands clear of the robot at both ends of its route.
     duration : float, default 40.0
         Longest simulated time of a trial, s, in [0.1, 3600].
 
@@ -134,6 +153,8 @@ class OmniApf(Scenario):
         self.latency = as_bool(latency, "latency")
         self.obstacles = None if obstacles is None else as_bool(obstacles, "obstacles")
         self.targets = _targets(targets)
+        if self.obstacles is not False:
+            _check_obstacle_routes(self.targets)
         self.duration = positive_float(duration, "duration")
         if not _MIN_DURATION <= self.duration <= _MAX_DURATION:
             raise ValueError(

@@ -40,6 +40,7 @@ from navkit.sim.scenarios._soccer_play import (
     player_attraction,
 )
 from navkit.sim.scenarios._soccer_table6 import (
+    FULL_TABLE_CELLS,
     RESOLUTION,
     THRESHOLD_RADIUS,
     WIDTHS_PX,
@@ -121,8 +122,10 @@ class Soccer(Scenario):
         Longest simulated time of a trial (s), in [0.1, 600].
     table_cells : int, default 1200
         Side of the Table 6 map in 1 cm cells, in [50, 1200] (the paper's
-        1200); its features lie within 0.6 m of the goal, so 200 cells give
-        the same figures.
+        1200); its features lie within 0.6 m of the goal, so 120 cells or more
+        give the same figures. A smaller map cuts the ring of false minima
+        (out to 0.55 m from the goal) off the grid: its 'false minima' counts
+        fall short (the table says so).
 
     Examples
     --------
@@ -348,7 +351,14 @@ class Soccer(Scenario):
             "false minima just outside rad_thr, where the σ'(U_cone - U_par) term pulls outward "
             "(a robot stalls there: tests/control/test_blending_widths.py); wide widths (50, 100 "
             "cells) have no ring but mix the cone's negative offset in (σ(0) > 0): the minimum "
-            "drops below 0, and at 50 cells it is a circle around the goal, not the goal.",
+            "drops below 0, and at 50 cells it is a circle around the goal, not the goal."
+            + (
+                ""
+                if side >= FULL_TABLE_CELLS
+                else f" (On this {side}-cell map the ring, out to 0.55 m from the goal, lies "
+                "partly or wholly off the grid: the 'false minima' column counts only its cells "
+                f"on the map; {FULL_TABLE_CELLS} cells or more give the full counts.)"
+            ),
             "'min at (m)': radius of the blended potential's lowest point from the goal (radial "
             "profile, 0.1 mm steps); 'false minima': grid cells below their 8 neighbours farther "
             "than rad_thr/2 from the goal; 'trap depth': potential climb from the ring over the "

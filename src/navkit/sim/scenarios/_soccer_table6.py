@@ -27,6 +27,7 @@ from navkit.planning import (
 )
 
 __all__ = [
+    "FULL_TABLE_CELLS",
     "RESOLUTION",
     "THRESHOLD_RADIUS",
     "WIDTHS_PX",
@@ -40,6 +41,10 @@ __all__ = [
 WIDTHS_PX = (1, 10, 50, 100)
 #: Size of one map cell, m (so the paper's 1200 cells are 12 m).
 RESOLUTION = 0.01
+#: Smallest map side (cells) holding the whole ring of false minima of the
+#: narrow widths (out to 0.55 m from the goal): from it on every figure equals
+#: the 1200-cell map's (113 cells already do; a margin of a few cells).
+FULL_TABLE_CELLS = 120
 #: ``rad_thr`` (m): navkit's default.
 THRESHOLD_RADIUS = 0.5
 #: Radial profile: step (m) and reach (m) of the 1-D search for false minima.
