@@ -217,7 +217,8 @@ def refuse_masked(value: object, name: str) -> None:
     ...
     ValueError: ranges has masked entries, which would be read as their data: ...
     """
-    if isinstance(value, np.ma.MaskedArray) and np.ma.getmaskarray(value).any():
+    # .mask is np.ma.nomask (False) or a boolean array of the data's shape.
+    if isinstance(value, np.ma.MaskedArray) and bool(np.any(value.mask)):
         raise ValueError(
             f"{name} has masked entries, which would be read as their data: "
             "fill them first (masked_array.filled(value))"
