@@ -4,8 +4,6 @@ pool, a thread pool and a real Dask cluster (issue 14, "Sweeps beyond one machin
 from __future__ import annotations
 
 import concurrent.futures
-import copy
-import re
 import time
 from collections.abc import Iterator, Sequence
 from typing import Any
@@ -23,37 +21,12 @@ from navkit.sim import (
     trial_seed,
 )
 from navkit.sim.scenarios import Demo
+from scenario_results import comparable
 
 distributed = pytest.importorskip("distributed")
 
-#: The word marking a table's wall-clock columns and rows.
-WALL = re.compile(r"\bwall\b")
-
 #: A cheap demo: each trial plans a leg and simulates 0.5 s of it (~10-30 ms).
 TINY = Demo(duration=0.5)
-
-
-def comparable(result: ScenarioResult) -> dict[str, Any]:
-    """``to_dict()`` without wall-clock measurements (the only figures allowed to differ).
-
-    Those are each trial's ``wall_time``, values and summary entries named
-    ``*_wall_time``, and table columns and rows whose heading or first cell
-    holds the word ``wall``.
-    """
-    data = copy.deepcopy(result.to_dict())
-    data["summary"] = {k: v for k, v in data["summary"].items() if not k.endswith("_wall_time")}
-    for trial in data["trials"]:
-        del trial["wall_time"]
-        trial["values"] = {k: v for k, v in trial["values"].items() if not k.endswith("_wall_time")}
-    for table in data["tables"]:
-        keep = [i for i, c in enumerate(table["columns"]) if not WALL.search(c)]
-        table["columns"] = [table["columns"][i] for i in keep]
-        table["rows"] = [
-            [row[i] for i in keep]
-            for row in table["rows"]
-            if not (row and isinstance(row[0], str) and WALL.search(row[0]))
-        ]
-    return data
 
 
 class Recorder:

@@ -13,9 +13,7 @@
 
 from __future__ import annotations
 
-import copy
 import math
-import re
 from pathlib import Path
 from typing import Any
 
@@ -24,10 +22,11 @@ import shapely
 from hypothesis import given
 from hypothesis import strategies as st
 
-from navkit.sim import Scenario, ScenarioResult, sweep
+from navkit.sim import Scenario, sweep
 from navkit.sim.scenarios import DiffAStar, Greedy, IndoorNav, OmniApf, Soccer
 from navkit.sim.scenarios._omni_apf_setup import BODY_RADIUS, obstacle_boxes
 from navkit.sim.scenarios._soccer_table6 import table6_values
+from scenario_results import comparable
 
 # ---------------------------------------------------------------- omni-apf
 
@@ -99,25 +98,6 @@ def test_from_120_cells_table6_is_the_full_maps() -> None:
 
 # ------------------------------------------------------------ determinism
 
-WALL = re.compile(r"\bwall\b")
-
-
-def comparable(result: ScenarioResult) -> dict[str, Any]:
-    """``to_dict()`` without the wall-clock figures ``sweep`` documents as varying."""
-    data = copy.deepcopy(result.to_dict())
-    data["summary"] = {k: v for k, v in data["summary"].items() if not k.endswith("_wall_time")}
-    for trial in data["trials"]:
-        del trial["wall_time"]
-        trial["values"] = {k: v for k, v in trial["values"].items() if not k.endswith("_wall_time")}
-    for table in data["tables"]:
-        keep = [i for i, c in enumerate(table["columns"]) if not WALL.search(c)]
-        table["columns"] = [table["columns"][i] for i in keep]
-        table["rows"] = [
-            [row[i] for i in keep]
-            for row in table["rows"]
-            if not (row and isinstance(row[0], str) and WALL.search(row[0]))
-        ]
-    return data
 
 
 def _same(a: Any, b: Any) -> bool:
