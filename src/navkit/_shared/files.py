@@ -9,6 +9,7 @@ and no temporary file behind.
 from __future__ import annotations
 
 import contextlib
+import errno
 import os
 import secrets
 import stat
@@ -120,9 +121,13 @@ def atomic_path(target: Path) -> Iterator[Path]:
 def _name_max(folder: Path) -> int:
     """Longest file name (bytes) the file system of ``folder`` takes; 255 if it cannot say."""
     try:
-        return int(os.pathconf(folder, "PC_NAME_MAX"))
-    except (AttributeError, OSError, ValueError):  # no pathconf (Windows) or no limit
+        limit = int(os.pathconf(folder, "PC_NAME_MAX"))
+    except (AttributeError, OSError, ValueError):  # no pathconf (Windows), no such folder
         return 255
+    # pathconf answers -1 for "no limit" (not an error); 0 is no answer either.
+    # Taken as the limit, either would cut every name down to ".{tag}.tmp",
+    # dropping the suffix that writers pick their format from.
+    return limit if limit > 0 else 255
 
 
 def _temporary_name(target: Path, tag: str, name_max: int) -> str:
@@ -142,14 +147,36 @@ def _temporary_name(target: Path, tag: str, name_max: int) -> str:
         stem = stem[:-1]
 
 
+def _compact_name(target: Path, tag: str) -> str:
+    """A temporary name no longer than ``target``'s however a file system counts.
+
+    The name adds 14 ASCII characters to the stem; dropping 14 characters of the
+    stem, each at least one byte, character or UTF-16 unit, makes up for them.
+    A stem too short for that gives ``.{tag}.tmp`` (14 characters).
+    """
+    stem = target.stem[:-14]
+    return f".{stem}.{tag}.tmp{target.suffix}" if stem else f".{tag}.tmp"
+
+
 def _new_temporary(target: Path) -> Path:
     """Create a new empty hidden file beside ``target`` (mode 0o666 less the umask)."""
     name_max = _name_max(target.parent)
+    compact = False
     for _ in range(_ATTEMPTS):
-        temporary = target.with_name(_temporary_name(target, secrets.token_hex(4), name_max))
+        tag = secrets.token_hex(4)
+        name = _compact_name(target, tag) if compact else _temporary_name(target, tag, name_max)
+        temporary = target.with_name(name)
         try:
             fd = os.open(temporary, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)
         except FileExistsError:
+            continue
+        except OSError as exc:
+            # A file system whose limit is in characters or UTF-16 units while
+            # pathconf answers in bytes (vfat, exFAT: 255 characters, "1530"
+            # bytes) refuses a name the byte count let through.
+            if exc.errno != errno.ENAMETOOLONG or compact:
+                raise
+            compact = True
             continue
         os.close(fd)
         return temporary

@@ -93,6 +93,10 @@ def as_bool(value: Any, name: str) -> bool:
     return bool(value)
 
 
+#: NumPy's most dimensions (64 since NumPy 2, 32 before): deeper nestings are no array.
+_MAX_DEPTH = 64
+
+
 _SEQUENCES = {list, tuple}
 _FLOAT64 = np.dtype(np.float64)
 
@@ -101,10 +105,11 @@ def holds_bool(value: list[Any] | tuple[Any, ...]) -> bool:
     """Whether nested lists or tuples hold a bool (or a bool array) at any depth.
 
     One nesting level at a time, with C-level loops (``map``, ``chain``): about
-    as fast as NumPy's own conversion of the lists.
+    as fast as NumPy's own conversion of the lists. Not below NumPy's 64
+    dimensions (deeper lists, or one that contains itself, are no array).
     """
     items: list[Any] | tuple[Any, ...] = value
-    while True:
+    for _ in range(_MAX_DEPTH + 1):
         types = set(map(type, items))
         if bool in types or np.bool_ in types:
             return True
@@ -115,6 +120,7 @@ def holds_bool(value: list[Any] | tuple[Any, ...]) -> bool:
         if not types or not types <= _SEQUENCES:
             return False  # numbers (or ragged nesting, which the conversion refuses)
         items = list(chain.from_iterable(items))
+    return False
 
 
 class _Block:
@@ -129,9 +135,11 @@ class _Block:
 def is_ragged(value: Any) -> bool:
     """Whether ``value`` nests lists, tuples or arrays of different lengths at one depth.
 
-    Strings and bytes anywhere make it False: those are a type error, reported
-    as such by the converters. Only called once a conversion has failed, so a
-    successful one pays nothing for it.
+    A string or bytes at a depth reached makes it False: those are a type
+    error, reported as such by the converters. So does a nesting deeper than
+    NumPy's 64 dimensions (an array cannot have them, whatever the lengths),
+    which also ends the walk of a list that contains itself. Only called once
+    a conversion has failed, so a successful one pays nothing for it.
 
     Examples
     --------
@@ -139,7 +147,7 @@ def is_ragged(value: Any) -> bool:
     (False, True, False)
     """
     level: list[Any] = [value]
-    while True:
+    for _ in range(_MAX_DEPTH + 1):
         lengths: set[int] = set()
         scalars = False
         deeper: list[Any] = []
@@ -169,6 +177,7 @@ def is_ragged(value: Any) -> bool:
         if scalars or len(lengths) > 1:
             return True
         level = deeper
+    return False
 
 
 def _not_an_array(value: Any, name: str, exc: Exception) -> Exception:
