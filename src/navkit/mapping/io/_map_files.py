@@ -23,7 +23,7 @@ import zlib
 from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 import yaml
@@ -870,7 +870,15 @@ def _names_image(yaml_path: Path, image: Path) -> bool:
         return False
 
 
-def _superseded_image(yaml_path: Path, image: Path) -> Path | None:
+class _Superseded(NamedTuple):
+    """The previous mode's image to remove after a save, and the file it was when chosen."""
+
+    path: Path
+    device: int
+    inode: int
+
+
+def _superseded_image(yaml_path: Path, image: Path) -> _Superseded | None:
     """The other mode's image of the map at ``yaml_path``, if this save makes it stale.
 
     A save in one mode replaces the map at ``yaml_path`` whose image may be the
@@ -882,7 +890,8 @@ def _superseded_image(yaml_path: Path, image: Path) -> Path | None:
     ``mode`` is the one written with that format; the file is a regular file,
     not a symbolic link (a save never writes one); and no other YAML in the
     folder names it. Anything else (another image name, a hand-edited YAML
-    naming a shared image) gives None: the file is left alone.
+    naming a shared image) gives None: the file is left alone. The file's
+    device and inode are kept to check at removal that it is still that file.
     """
     for other_mode, image_format in _IMAGE_FORMAT.items():
         candidate = yaml_path.with_suffix(f".{image_format}")
@@ -898,9 +907,10 @@ def _superseded_image(yaml_path: Path, image: Path) -> Path | None:
                 continue
             if any(_other_yaml_names(candidate, yaml_path)):
                 continue
+            found = candidate.lstat()
         except (OSError, ValueError):
             continue
-        return candidate
+        return _Superseded(candidate, found.st_dev, found.st_ino)
     return None
 
 
@@ -911,14 +921,28 @@ def _other_yaml_names(image: Path, yaml_path: Path) -> Iterator[bool]:
             yield _names_image(entry, image)
 
 
-def _remove_superseded(image: Path) -> None:
-    """Remove the previous map's image after a successful save (see :func:`write_map`)."""
+def _remove_superseded(old: _Superseded, yaml_path: Path, image: Path) -> None:
+    """Remove the previous map's image after a successful save (see :func:`write_map`).
+
+    Only while it is still the file chosen before the save and ``yaml_path``
+    still names this save's ``image``: a save of the same map in the other mode
+    that finished meanwhile (another process) wrote a new file there (a new
+    inode, as every save renames one in place) and a YAML naming it, which
+    removing it would have left naming a missing image.
+    """
     try:
-        image.unlink(missing_ok=True)
+        now = old.path.lstat()
+        if (now.st_dev, now.st_ino) != (old.device, old.inode):
+            return
+        if not _names_image(yaml_path, image):
+            return
+        old.path.unlink(missing_ok=True)
+    except FileNotFoundError:
+        return
     except OSError as exc:
         # The new map is saved; failing the call now would suggest it was not.
         warnings.warn(
-            f"the map was saved, but its previous image {image} could not be removed ({exc})",
+            f"the map was saved, but its previous image {old.path} could not be removed ({exc})",
             RuntimeWarning,
             stacklevel=3,
         )
@@ -948,8 +972,9 @@ def write_map(grid: OccupancyGrid, path: str | os.PathLike[str], *, mode: str = 
     map is removed: the replaced YAML names it exactly ``<stem>.pgm`` (mode
     ``trinary``) or ``<stem>.png`` (mode ``scale``), it is a regular file (not
     a symbolic link) and no other YAML in the folder names it. Any other file
-    is never removed; if the removal fails, a ``RuntimeWarning`` says so and
-    the new map stays saved.
+    is never removed, nor is that one if, by the time this save ends, another
+    save of the map has replaced it or the YAML; if the removal fails, a
+    ``RuntimeWarning`` says so and the new map stays saved.
 
     Parameters
     ----------
@@ -1048,5 +1073,5 @@ def write_map(grid: OccupancyGrid, path: str | os.PathLike[str], *, mode: str = 
     superseded = _superseded_image(yaml_path, image)
     _replace_all([(image, data), (yaml_path, text.encode("utf-8"))])
     if superseded is not None:
-        _remove_superseded(superseded)
+        _remove_superseded(superseded, yaml_path, image)
     return image
