@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import math
-from typing import Literal
+from typing import Any, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -46,6 +46,13 @@ class _Pid:
         integral = min(max(integral + error * dt, -self.integral_limit), self.integral_limit)
         deriv = 0.0 if last_error is None else angle_diff(error, last_error) / dt
         return integral, self.kp * error + self.ki * integral + self.kd * deriv
+
+
+#: The options, once plain attributes of these names (still in old pickles).
+_OPTIONS = frozenset((
+    "attraction", "drive", "goal_tolerance", "influence_radius", "k_rep", "max_accel",
+    "max_decel", "max_omega", "max_speed", "stall_radius", "stall_timeout",
+))  # fmt: skip
 
 
 class PotentialFieldController:
@@ -216,6 +223,16 @@ class PotentialFieldController:
         self._last_error: float | None = None
         self._anchor: FloatArray | None = None
         self._still_for = 0.0
+
+    def __setstate__(self, state: tuple[dict[str, Any] | None, dict[str, Any]]) -> None:
+        """Restore from a pickle or a copy, also one made when the options were attributes."""
+        instance, slots = state
+        if instance:
+            self.__dict__.update(instance)
+        for name, value in slots.items():
+            # Pickles from before the options became properties hold them under their
+            # public names: setting those would hit the properties, which have no setter.
+            object.__setattr__(self, f"_{name}" if name in _OPTIONS else name, value)
 
     # The options are read-only (as the path trackers'): they are validated once,
     # in __init__, and every step relies on their ranges.

@@ -132,18 +132,22 @@ class OmniDrive:
         forward = np.linalg.pinv(layout) / scale * self._wheel_radius
         self._forward = _read_only(np.asarray(forward, dtype=np.float64))
 
-    def __getstate__(self) -> dict[str, Any]:
-        return {name: getattr(self, name) for name in self.__slots__}
-
-    def __setstate__(self, state: dict[str, Any] | tuple[None, dict[str, Any]]) -> None:
+    def __setstate__(
+        self, state: dict[str, Any] | tuple[dict[str, Any] | None, dict[str, Any]]
+    ) -> None:
         # pickle and copy.deepcopy hand back writable copies of the arrays: the
-        # documented read-only attributes of a copy must stay read-only. A pickle made
-        # before __getstate__ existed holds (None, slots) instead.
-        slots = state[1] if isinstance(state, tuple) else state
+        # documented read-only attributes of a copy must stay read-only. The state is
+        # the default one, (a subclass's __dict__ or None, every slot), so that
+        # subclasses copy whole; a bare dict of slots also loads.
+        instance, slots = state if isinstance(state, tuple) else (None, state)
+        if instance:
+            self.__dict__.update(instance)
         for name, value in slots.items():
-            if isinstance(value, np.ndarray):
+            if name in ("_forward", "_jacobian", "_wheel_angles") and isinstance(
+                value, np.ndarray
+            ):
                 value.flags.writeable = False
-            setattr(self, name, value)
+            object.__setattr__(self, name, value)
 
     @classmethod
     def three_wheel(cls, *, wheel_radius: float, base_radius: float) -> OmniDrive:

@@ -78,6 +78,20 @@ def _query_time(t: Any, name: str = "t") -> float:
     return time
 
 
+def _slot_names(cls: type) -> list[str]:
+    """Names of the slots of ``cls`` and of its bases (private ones mangled)."""
+    names = []
+    for klass in cls.__mro__:
+        declared = klass.__dict__.get("__slots__", ())
+        for name in (declared,) if isinstance(declared, str) else declared:
+            if name in ("__dict__", "__weakref__"):
+                continue
+            if name.startswith("__") and not name.endswith("__"):
+                name = f"_{klass.__name__.lstrip('_')}{name}"
+            names.append(name)
+    return names
+
+
 def as_query_pose(value: Any, name: str = "pose") -> Pose2D:
     """A query pose, its position within ±1e12 m (distances must not overflow)."""
     p = as_pose(value, name)
@@ -686,16 +700,24 @@ class World:
         "_solid_start", "_solid_items", "_occ", "_cheb",
     )  # fmt: skip
 
-    def __getstate__(self) -> dict[str, Any]:
+    def __getstate__(self) -> tuple[dict[str, Any] | None, dict[str, Any]]:
         """The world's state for pickle and :mod:`copy`, without its LiDAR cache."""
-        state = {name: getattr(self, name) for name in self.__slots__}
+        # The default state's layout, (a subclass's __dict__ or None, every slot of
+        # every class), so that subclasses copy whole.
+        names = _slot_names(type(self))
+        slots = {name: getattr(self, name) for name in names if hasattr(self, name)}
         # Scanners are bound to this world (and hold its buffers): rebuilt on use.
-        state["_scanners"] = {}
-        return state
+        slots["_scanners"] = {}
+        return getattr(self, "__dict__", None) or None, slots
 
-    def __setstate__(self, state: dict[str, Any]) -> None:
+    def __setstate__(
+        self, state: dict[str, Any] | tuple[dict[str, Any] | None, dict[str, Any]]
+    ) -> None:
         """Restore from a pickle or a (deep) copy: arrays read-only, work arrays its own."""
-        for name, value in state.items():
+        instance, slots = state if isinstance(state, tuple) else (None, state)
+        if instance:
+            self.__dict__.update(instance)
+        for name, value in slots.items():
             object.__setattr__(self, name, value)
         for name in self._READ_ONLY:
             getattr(self, name).flags.writeable = False
