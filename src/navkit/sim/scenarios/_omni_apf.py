@@ -8,6 +8,7 @@ from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
+import shapely
 
 from navkit._shared.validation import as_bool, as_float_array, positive_float
 from navkit.estimation import OmniOdometry
@@ -23,8 +24,10 @@ from navkit.sim import (
 )
 from navkit.sim.scenarios._omni_apf_setup import (
     ARRIVE_TOLERANCE,
+    BODY_RADIUS,
     DRIVE,
     ApfController,
+    obstacle_boxes,
     omni_robot,
     omni_world,
 )
@@ -68,7 +71,11 @@ def _targets(value: Any) -> tuple[tuple[float, float], ...]:
 
 
 def _check_obstacle_routes(targets: tuple[tuple[float, float], ...]) -> None:
-    """Every route long enough for the obstacle box to stand clear of both of its ends."""
+    """Every route long enough for the obstacle box to stand clear of both of its ends.
+
+    The boxes of all routes stand in the one world: the robot's body at each
+    target must also clear the boxes on the other routes.
+    """
     for k, (x, y) in enumerate(targets):
         dist = math.hypot(x, y)
         if dist < _MIN_OBSTACLE_ROUTE:
@@ -78,6 +85,17 @@ def _check_obstacle_routes(targets: tuple[tuple[float, float], ...]) -> None:
                 f"shorter route touches the robot at its start or at the target; got "
                 f"({x:g}, {y:g}), {dist:g} m away"
             )
+    boxes = obstacle_boxes(targets)
+    for k, (x, y) in enumerate(targets):
+        for j, obstacle in enumerate(boxes):
+            gap = shapely.distance(obstacle, shapely.Point(x, y))
+            if j != k and gap <= BODY_RADIUS:
+                raise ValueError(
+                    f"targets[{k}] ({x:g}, {y:g}) lies {gap:g} m from the obstacle box on the "
+                    f"route to targets[{j}], within the robot's radius of {BODY_RADIUS:g} m: "
+                    "the robot cannot stand there when the obstacle series runs "
+                    "(obstacles None or True)"
+                )
 
 
 class OmniApf(Scenario):
@@ -118,7 +136,8 @@ class OmniApf(Scenario):
     targets : sequence of (x, y), default the paper's four
         Targets in m, each 0.5 to 50 m from the start (at most 64); with the
         obstacle series (``obstacles`` None or True) at least 1 m, so that the
-        box stands clear of the robot at both ends of its route.
+        box stands clear of the robot at both ends of its route, and none
+        where the robot would touch the box on another target's route.
     duration : float, default 40.0
         Longest simulated time of a trial, s, in [0.1, 3600].
 
