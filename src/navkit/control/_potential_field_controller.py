@@ -8,6 +8,7 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
+from navkit._shared.frozen import restore_slots
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, as_points
 from navkit.control._ranges import MAX_COORDINATE, MAX_GAIN, MIN_GAIN, in_range, position, quantity
@@ -48,11 +49,15 @@ class _Pid:
         return integral, self.kp * error + self.ki * integral + self.kd * deriv
 
 
-#: The options, once plain attributes of these names (still in old pickles).
-_OPTIONS = frozenset((
-    "attraction", "drive", "goal_tolerance", "influence_radius", "k_rep", "max_accel",
-    "max_decel", "max_omega", "max_speed", "stall_radius", "stall_timeout",
-))  # fmt: skip
+#: The options, once plain attributes of these names (still in old pickles), and
+#: the slots they are stored in now.
+_RENAMED = {
+    name: f"_{name}"
+    for name in (
+        "attraction", "drive", "goal_tolerance", "influence_radius", "k_rep", "max_accel",
+        "max_decel", "max_omega", "max_speed", "stall_radius", "stall_timeout",
+    )
+}  # fmt: skip
 
 
 class PotentialFieldController:
@@ -226,13 +231,9 @@ class PotentialFieldController:
 
     def __setstate__(self, state: tuple[dict[str, Any] | None, dict[str, Any]]) -> None:
         """Restore from a pickle or a copy, also one made when the options were attributes."""
-        instance, slots = state
-        if instance:
-            self.__dict__.update(instance)
-        for name, value in slots.items():
-            # Pickles from before the options became properties hold them under their
-            # public names: setting those would hit the properties, which have no setter.
-            object.__setattr__(self, f"_{name}" if name in _OPTIONS else name, value)
+        # Pickles from before the options became properties hold them under their
+        # public names: setting those would hit the properties, which have no setter.
+        restore_slots(self, state, renamed=_RENAMED)
 
     # The options are read-only (as the path trackers'): they are validated once,
     # in __init__, and every step relies on their ranges.

@@ -7,6 +7,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from navkit._shared.frozen import restore_slots
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, positive_float
 from navkit.geometry import Twist2D, as_twist
@@ -136,18 +137,8 @@ class OmniDrive:
         self, state: dict[str, Any] | tuple[dict[str, Any] | None, dict[str, Any]]
     ) -> None:
         # pickle and copy.deepcopy hand back writable copies of the arrays: the
-        # documented read-only attributes of a copy must stay read-only. The state is
-        # the default one, (a subclass's __dict__ or None, every slot), so that
-        # subclasses copy whole; a bare dict of slots also loads.
-        instance, slots = state if isinstance(state, tuple) else (None, state)
-        if instance:
-            self.__dict__.update(instance)
-        for name, value in slots.items():
-            if name in ("_forward", "_jacobian", "_wheel_angles") and isinstance(
-                value, np.ndarray
-            ):
-                value.flags.writeable = False
-            object.__setattr__(self, name, value)
+        # documented read-only attributes of a copy must stay read-only.
+        restore_slots(self, state, read_only=("_forward", "_jacobian", "_wheel_angles"))
 
     @classmethod
     def three_wheel(cls, *, wheel_radius: float, base_radius: float) -> OmniDrive:

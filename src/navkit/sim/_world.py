@@ -14,7 +14,7 @@ from numpy.typing import ArrayLike
 from shapely.geometry import Polygon
 from shapely.geometry.base import BaseGeometry
 
-from navkit._shared.frozen import restore_read_only
+from navkit._shared.frozen import restore_read_only, restore_slots
 from navkit._shared.types import FloatArray, IntArray
 from navkit._shared.validation import as_bool, as_float_array, finite_float, positive_float
 from navkit.geometry import Pose2D, as_pose
@@ -714,13 +714,7 @@ class World:
         self, state: dict[str, Any] | tuple[dict[str, Any] | None, dict[str, Any]]
     ) -> None:
         """Restore from a pickle or a (deep) copy: arrays read-only, work arrays its own."""
-        instance, slots = state if isinstance(state, tuple) else (None, state)
-        if instance:
-            self.__dict__.update(instance)
-        for name, value in slots.items():
-            object.__setattr__(self, name, value)
-        for name in self._READ_ONLY:
-            getattr(self, name).flags.writeable = False
+        restore_slots(self, state, read_only=self._READ_ONLY)
         # A shallow copy would otherwise share the moving obstacles' work arrays with
         # the original while each keeps its own note of the time they were placed at:
         # queries of one would see the obstacles where the other last put them.
