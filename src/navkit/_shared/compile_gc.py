@@ -27,6 +27,18 @@ With a record per thread, a thread that took numba's compiler lock before the
 previous holder's pause had ended compiled with the collector switched back
 on, having recorded it as off.
 
+A ``gc.disable()`` made (in another thread) while a pause is under way is
+undone when the last pause ends: the collector is already off, so the call
+leaves no trace to tell it from the pause, and only hooking ``gc.disable``
+could see it. ``gc.enable()`` meanwhile is kept (the state restored is "on"
+either way, or left on). docs/compilation.md ("Threads and processes") tells
+users.
+
+A child forked while other threads pause (a ``multiprocessing`` "fork"
+worker started during a first use elsewhere) has only the forking thread: the
+count keeps that thread's pauses, and with none left the collector is
+restored there (``os.register_at_fork``).
+
 Garbage made meanwhile is collected as usual afterwards; the peak memory of a
 compile rises by a few tens of MB (25 MB measured on Field D*'s).
 """
@@ -35,6 +47,7 @@ from __future__ import annotations
 
 import gc
 import importlib
+import os
 import threading
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -50,6 +63,8 @@ _PAUSE_LOCK = threading.RLock()
 _PAUSES = 0
 #: Whether the collector ran when the first of them began.
 _RESUME = False
+#: This thread's share of them (``pauses``): all that survives a fork.
+_THREAD = threading.local()
 
 
 def _begin_pause() -> None:
@@ -59,14 +74,47 @@ def _begin_pause() -> None:
             _RESUME = gc.isenabled()
             gc.disable()
         _PAUSES += 1
+        _THREAD.pauses = getattr(_THREAD, "pauses", 0) + 1
 
 
 def _end_pause() -> None:
     global _PAUSES
     with _PAUSE_LOCK:
         _PAUSES -= 1
+        _THREAD.pauses = getattr(_THREAD, "pauses", 0) - 1
         if _PAUSES == 0 and _RESUME:
             gc.enable()
+
+
+def _before_fork() -> None:
+    # Held across the fork, so the child copies a count and a state that agree.
+    _PAUSE_LOCK.acquire()
+
+
+def _after_fork_in_parent() -> None:
+    _PAUSE_LOCK.release()
+
+
+def _after_fork_in_child() -> None:
+    """Keep only the forking thread's pauses: the other threads do not exist here.
+
+    Their pauses would never end, and the child would run with the collector
+    off for good (a worker forked while another thread compiled a kernel).
+    """
+    global _PAUSE_LOCK, _PAUSES
+    _PAUSE_LOCK = threading.RLock()  # the parent's is held, by this thread's twin
+    others = _PAUSES > 0  # or none at all: then the collector's state is the user's
+    _PAUSES = getattr(_THREAD, "pauses", 0)
+    if others and _PAUSES == 0 and _RESUME:
+        gc.enable()
+
+
+if hasattr(os, "register_at_fork"):  # not on Windows, which cannot fork
+    os.register_at_fork(
+        before=_before_fork,
+        after_in_parent=_after_fork_in_parent,
+        after_in_child=_after_fork_in_child,
+    )
 
 
 def _is_navkit(dispatcher: Any) -> bool:

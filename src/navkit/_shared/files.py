@@ -53,6 +53,10 @@ def atomic_paths(targets: Sequence[Path]) -> Iterator[tuple[Path, ...]]:
         A target that exists and is not a regular file (a device such as
         ``/dev/null``, a named pipe, a socket): the rename would replace the
         device or pipe itself (as root, ``/dev/null`` too). Nothing is created.
+    IsADirectoryError
+        A target that is a folder, found before the block runs or before the
+        renames (a folder made meanwhile): no target is replaced, not even the
+        ones before it in ``targets``.
 
     Examples
     --------
@@ -64,17 +68,14 @@ def atomic_paths(targets: Sequence[Path]) -> Iterator[tuple[Path, ...]]:
     ...     print(sorted(p.name for p in Path(folder).iterdir()), a.read_text() + b.read_text())
     ['a.txt', 'b.txt'] AB
     """
-    for target in targets:
-        if target.exists() and not target.is_file() and not target.is_dir():
-            raise ValueError(
-                f"{target} is not a regular file (a device, a pipe or a socket): it is written "
-                "by renaming a new file over it, which would replace it"
-            )
+    _check_targets(targets)
     temporaries: list[Path] = []
     try:
         for target in targets:
             temporaries.append(_new_temporary(target))
         yield tuple(temporaries)
+        # Again, now: the rename over a folder fails, after those of the targets before it.
+        _check_targets(targets)
         for temporary, target in zip(temporaries, targets, strict=True):
             _sync(temporary, os.O_RDWR)
             with contextlib.suppress(FileNotFoundError):
@@ -116,6 +117,18 @@ def atomic_path(target: Path) -> Iterator[Path]:
     """
     with atomic_paths((target,)) as (temporary,):
         yield temporary
+
+
+def _check_targets(targets: Sequence[Path]) -> None:
+    """Refuse targets that are not regular files, before any is replaced."""
+    for target in targets:
+        if target.is_dir():
+            raise IsADirectoryError(errno.EISDIR, "a folder cannot be written as a file", target)
+        if target.exists() and not target.is_file():
+            raise ValueError(
+                f"{target} is not a regular file (a device, a pipe or a socket): it is written "
+                "by renaming a new file over it, which would replace it"
+            )
 
 
 def _name_max(folder: Path) -> int:

@@ -101,20 +101,22 @@ _SEQUENCES = {list, tuple}
 _FLOAT64 = np.dtype(np.float64)
 
 
-def holds_bool(value: list[Any] | tuple[Any, ...]) -> bool:
+def holds_bool(value: list[Any] | tuple[Any, ...], top_types: set[type] | None = None) -> bool:
     """Whether nested lists or tuples hold a bool (or a bool array) at any depth.
 
     One nesting level at a time, with C-level loops (``map``, ``chain``): about
     as fast as NumPy's own conversion of the lists. Not below NumPy's 64
     dimensions (deeper lists, or one that contains itself, are no array).
+    ``top_types``, the types of ``value``'s elements, spares computing them again.
     """
     items: list[Any] | tuple[Any, ...] = value
     for _ in range(_MAX_DEPTH + 1):
-        types = set(map(type, items))
+        types = set(map(type, items)) if top_types is None else top_types
+        top_types = None
         if bool in types or np.bool_ in types:
             return True
-        if np.ndarray in types and any(
-            item.dtype.kind == "b" for item in items if type(item) is np.ndarray
+        if any(issubclass(kind, np.ndarray) for kind in types) and any(
+            item.dtype.kind == "b" for item in items if isinstance(item, np.ndarray)
         ):
             return True
         if not types or not types <= _SEQUENCES:
@@ -232,6 +234,26 @@ def refuse_masked(value: object, name: str) -> None:
             f"{name} has masked entries, which would be read as their data: "
             "fill them first (masked_array.filled(value))"
         )
+    if isinstance(value, (list, tuple)):
+        _refuse_masked_elements(value, name, set(map(type, value)))
+
+
+def _refuse_masked_elements(
+    value: list[Any] | tuple[Any, ...], name: str, types: set[type]
+) -> None:
+    """:func:`refuse_masked` for the elements of a list, ``types`` their types.
+
+    Only the top level, as ``np.ma.array`` reads a list: ``[np.ma.masked, 1.0]``
+    or a list of masked rows. NumPy's conversions read masked entries as their
+    data (the ``np.ma.masked`` constant as NaN, with a warning).
+    """
+    if any(issubclass(kind, np.ma.MaskedArray) for kind in types):
+        for item in value:
+            if isinstance(item, np.ma.MaskedArray) and bool(np.any(item.mask)):
+                raise ValueError(
+                    f"{name} has masked entries (in an element of the list), which would "
+                    "be read as their data: fill them first (masked_array.filled(value))"
+                )
 
 
 def _real_array(value: Any, name: str) -> FloatArray:
@@ -256,9 +278,12 @@ def _real_array(value: Any, name: str) -> FloatArray:
             raise TypeError(f"{name} must hold real numbers, got dtype {value.dtype}")
     elif isinstance(value, (str, bytes, complex, bool, np.bool_, np.complexfloating)):
         raise TypeError(f"{name} must be numeric array-like, got {type(value).__name__}")
-    elif isinstance(value, (list, tuple)) and holds_bool(value):
-        # NumPy would turn [True, 0.5] into [1.0, 0.5] (only all-bool lists stay bool).
-        raise TypeError(f"{name} must hold real numbers, got an element of type bool")
+    elif isinstance(value, (list, tuple)):
+        types = set(map(type, value))  # once, for both checks
+        _refuse_masked_elements(value, name, types)
+        if holds_bool(value, types):
+            # NumPy would turn [True, 0.5] into [1.0, 0.5] (only all-bool lists stay bool).
+            raise TypeError(f"{name} must hold real numbers, got an element of type bool")
     try:
         raw = np.asarray(value)
     except (TypeError, ValueError) as exc:
@@ -295,8 +320,15 @@ def integer_readings(value: object, name: str) -> NDArray[Any]:
     """
     if isinstance(value, (str, bytes)):
         raise TypeError(f"{name} must hold integer counter readings, got {type(value).__name__}")
-    if isinstance(value, (list, tuple)) and holds_bool(value):
-        raise TypeError(f"{name} must hold integer counter readings, got an element of type bool")
+    if isinstance(value, (list, tuple)):
+        types = set(map(type, value))  # once, for both checks
+        _refuse_masked_elements(value, name, types)
+        if holds_bool(value, types):
+            raise TypeError(
+                f"{name} must hold integer counter readings, got an element of type bool"
+            )
+    else:
+        refuse_masked(value, name)  # np.asarray would read masked readings as their data
     try:
         arr = np.asarray(value)
     except (TypeError, ValueError, OverflowError) as exc:

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import Literal
+from typing import Any, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -37,6 +37,12 @@ def _length(value: object, name: str) -> float:
 
 def _overflow(name: str, what: str) -> ValueError:
     return ValueError(f"{name}: {what} would overflow float64 (values far too large)")
+
+
+#: Scale of the retry when a partial result overflowed: 2**-48 is exact, and with
+#: lengths in [1e-6, 1e6] (2**±20) no product, sum or quotient of finite inputs
+#: this much smaller overflows; only a result beyond the float range stays infinite.
+_TINY = 2.0**-48
 
 
 class DiffDrive:
@@ -154,10 +160,28 @@ class DiffDrive:
         wr = float(w[1]) * self._right
         # 0.5*a + 0.5*b is 0.5*(a + b) bit for bit and cannot overflow.
         vx = 0.5 * wr + 0.5 * wl
-        omega = (wr - wl) / self._track
+        omega = (wr - wl) / self._track  # (as _twist_of, inline: the common case)
         if not (vx - vx == 0.0 and omega - omega == 0.0):
-            raise _overflow("wheel_speeds", "the twist")
+            # A product or wr - wl can overflow where the twist does not (a wide track).
+            vx, omega = self._twist_of(float(w[0]) * _TINY, float(w[1]) * _TINY)
+            with np.errstate(over="ignore"):
+                vx, omega = float(np.float64(vx) / _TINY), float(np.float64(omega) / _TINY)
+            if not (vx - vx == 0.0 and omega - omega == 0.0):
+                raise _overflow("wheel_speeds", "the twist")
         return Twist2D(vx, 0.0, omega)
+
+    def _twist_of(self, left: Any, right: Any) -> tuple[Any, Any]:
+        """``(vx, omega)`` of wheel speeds ``left``, ``right`` (floats, or arrays under
+        ``np.errstate``: an overflow is an infinity, checked by the caller)."""
+        wl = left * self._left
+        wr = right * self._right
+        # 0.5*a + 0.5*b is 0.5*(a + b) bit for bit and cannot overflow.
+        return 0.5 * wr + 0.5 * wl, (wr - wl) / self._track
+
+    def _wheels_of(self, vx: Any, omega: Any) -> tuple[Any, Any]:
+        """``(left, right)`` wheel speeds of ``vx``, ``omega`` (as :meth:`_twist_of`)."""
+        half = 0.5 * omega * self._track
+        return (vx - half) / self._left, (vx + half) / self._right
 
     def inverse(self, twist: Twist2D | ArrayLike, *, ignore_lateral: bool = False) -> FloatArray:
         """Wheel angular speeds ``[omega_left, omega_right]``, rad/s, for ``twist``.
@@ -191,11 +215,17 @@ class DiffDrive:
                 f"twist has lateral velocity vy={tw.vy}, which a differential drive cannot "
                 "follow; pass ignore_lateral=True to drop it"
             )
-        half = 0.5 * tw.omega * self._track
+        half = 0.5 * tw.omega * self._track  # (as _wheels_of, inline: the common case)
         left = (tw.vx - half) / self._left
         right = (tw.vx + half) / self._right
         if not (left - left == 0.0 and right - right == 0.0):
-            raise _overflow("twist", "the wheel speeds")
+            # A partial result (omega * track, vx - half) can overflow where a wheel
+            # speed does not (large wheels).
+            left, right = self._wheels_of(tw.vx * _TINY, tw.omega * _TINY)
+            with np.errstate(over="ignore"):
+                left, right = float(np.float64(left) / _TINY), float(np.float64(right) / _TINY)
+            if not (left - left == 0.0 and right - right == 0.0):
+                raise _overflow("twist", "the wheel speeds")
         return np.array([left, right])
 
     def forward_batch(self, wheel_speeds: ArrayLike) -> FloatArray:
@@ -220,11 +250,17 @@ class DiffDrive:
         """
         w = as_float_array(wheel_speeds, "wheel_speeds", shape=(None, 2))
         with np.errstate(over="ignore", invalid="ignore"):
-            wl = w[:, 0] * self._left
-            wr = w[:, 1] * self._right
-            out = np.column_stack((0.5 * wr + 0.5 * wl, np.zeros_like(wl), (wr - wl) / self._track))
+            vx, omega = self._twist_of(w[:, 0], w[:, 1])
+        out = np.column_stack((vx, np.zeros_like(vx), omega))
         if not np.isfinite(out).all():
-            raise _overflow("wheel_speeds", "the twists")
+            vx, omega = self._twist_of(w[:, 0] * _TINY, w[:, 1] * _TINY)  # as in forward
+            with np.errstate(over="ignore"):
+                # Only where needed: the rest stay bit for bit those of forward.
+                out = np.where(
+                    np.isfinite(out), out, np.column_stack((vx, np.zeros_like(vx), omega)) / _TINY
+                )
+            if not np.isfinite(out).all():
+                raise _overflow("wheel_speeds", "the twists")
         return out
 
     def inverse_batch(self, twists: ArrayLike, *, ignore_lateral: bool = False) -> FloatArray:
@@ -257,12 +293,13 @@ class DiffDrive:
                 "follow; pass ignore_lateral=True to drop it"
             )
         with np.errstate(over="ignore", invalid="ignore"):
-            half = 0.5 * tw[:, 2] * self._track
-            out = np.column_stack(
-                ((tw[:, 0] - half) / self._left, (tw[:, 0] + half) / self._right)
-            )
+            out = np.column_stack(self._wheels_of(tw[:, 0], tw[:, 2]))
         if not np.isfinite(out).all():
-            raise _overflow("twists", "the wheel speeds")
+            small = self._wheels_of(tw[:, 0] * _TINY, tw[:, 2] * _TINY)  # as in inverse
+            with np.errstate(over="ignore"):
+                out = np.where(np.isfinite(out), out, np.column_stack(small) / _TINY)
+            if not np.isfinite(out).all():
+                raise _overflow("twists", "the wheel speeds")
         return out
 
     def odometry_step(
@@ -323,8 +360,12 @@ class DiffDrive:
         # 0.5*a + 0.5*b is 0.5*(a + b) bit for bit and cannot overflow.
         dc = 0.5 * dr + 0.5 * dl
         dth = (dr - dl) / self._track
-        if not dth - dth == 0.0:
-            raise _overflow("d_left, d_right", "the heading change (d_right - d_left) / track")
+        if dth - dth != 0.0:
+            # dr - dl can overflow where the heading change does not (a wide track).
+            with np.errstate(over="ignore"):
+                dth = float(np.float64(dr * _TINY - dl * _TINY) / self._track / _TINY)
+            if dth - dth != 0.0:
+                raise _overflow("d_left, d_right", "the heading change (d_right - d_left) / track")
         if method == "first_order":
             dx, dy = dc, 0.0
         elif method == "midpoint":
@@ -374,6 +415,9 @@ class DiffDrive:
         dc = 0.5 * dr + 0.5 * dl
         with np.errstate(over="ignore", invalid="ignore"):
             dth = (dr - dl) / self._track
+            if not np.isfinite(dth).all():  # as in odometry_step, only where needed
+                small = (dr * _TINY - dl * _TINY) / self._track / _TINY
+                dth = np.where(np.isfinite(dth), dth, small)
         if not np.isfinite(dth).all():
             raise _overflow("d_left, d_right", "the heading change (d_right - d_left) / track")
         out = np.empty((dl.shape[0], 3), dtype=np.float64)
