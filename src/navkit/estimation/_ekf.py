@@ -58,7 +58,7 @@ from navkit.estimation._ekf_kernels import (
     set_r,
     update_kernel,
 )
-from navkit.estimation._gaussian import GaussianEstimate
+from navkit.estimation._gaussian import GaussianEstimate, subclass_state
 from navkit.estimation._result import (  # the slot setters of new_result, for inlining it
     UpdateResult,
     _object_new,
@@ -196,10 +196,15 @@ class ExtendedKalmanFilter(GaussianEstimate):
         # which the entry keeps alive: {id: (tuple, indices, 1 + largest index)}.
         self._meas_angles: dict[int, tuple[tuple[int, ...], IntArray, int]] = {}
 
-    def __reduce__(self) -> tuple[Callable[..., ExtendedKalmanFilter], tuple[Any, ...]]:
+    def __reduce__(self) -> tuple[Any, ...]:
         # The estimate lives in one array updated in place, with x and P views into it:
-        # copies (copy.copy too) and pickles get their own array and views.
-        return _restore, (self._state.copy(), self._angles)
+        # copies (copy.copy too) and pickles get their own array and views. A subclass
+        # is rebuilt as itself, with what it adds restored after (see subclass_state).
+        cls = type(self)
+        if cls is ExtendedKalmanFilter:
+            return _restore, (self._state.copy(), self._angles)
+        extra = subclass_state(self, ExtendedKalmanFilter)
+        return _restore, (self._state.copy(), self._angles, cls), extra
 
     @property
     def dim(self) -> int:
@@ -515,9 +520,16 @@ def _no_update_kernel(*args: Any) -> float:
     return -float(BAD_SHAPE)
 
 
-def _restore(state: FloatArray, angles: tuple[int, ...]) -> ExtendedKalmanFilter:
-    """An :class:`ExtendedKalmanFilter` with the given ``state`` array (unpickling, copies)."""
-    ekf: ExtendedKalmanFilter = object.__new__(ExtendedKalmanFilter)
+def _restore(
+    state: FloatArray,
+    angles: tuple[int, ...],
+    cls: type[ExtendedKalmanFilter] = ExtendedKalmanFilter,
+) -> ExtendedKalmanFilter:
+    """An :class:`ExtendedKalmanFilter` (or ``cls``) with the given ``state`` array.
+
+    For unpickling and copies; pickles made before ``cls`` existed pass two arguments.
+    """
+    ekf: ExtendedKalmanFilter = object.__new__(cls)
     ekf._angles = angles
     ekf._adopt(state)
     return ekf

@@ -35,7 +35,7 @@ from navkit.estimation._fusion_kernels import (
     planar_step_entry,
     undo_step,
 )
-from navkit.estimation._gaussian import GaussianEstimate
+from navkit.estimation._gaussian import GaussianEstimate, subclass_state
 from navkit.estimation._result import (
     UpdateResult,
     _object_new,
@@ -594,10 +594,16 @@ class PlanarFusion(GaussianEstimate):
         self._odometry_gate = self._kinds["odometry"][2]
         self._odometry_residual: FloatArray = self._residuals[self._kinds["odometry"][3]]
 
-    def __reduce__(self) -> tuple[Callable[..., PlanarFusion], tuple[Any, ...]]:
+    def __reduce__(self) -> tuple[Any, ...]:
         # The estimate lives in one buffer updated in place, with x, P and Q views into
-        # it: copies (copy.copy too) and pickles get their own buffer and views.
-        return _restore_fusion, (self._buf.copy(), self._gates.copy())
+        # it: copies (copy.copy too) and pickles get their own buffer and views. A
+        # subclass is rebuilt as itself, with what it adds restored after (see
+        # subclass_state).
+        cls = type(self)
+        if cls is PlanarFusion:
+            return _restore_fusion, (self._buf.copy(), self._gates.copy())
+        extra = subclass_state(self, PlanarFusion)
+        return _restore_fusion, (self._buf.copy(), self._gates.copy(), cls), extra
 
     @property
     def t(self) -> float | None:
@@ -946,9 +952,14 @@ class PlanarFusion(GaussianEstimate):
         return f"PlanarFusion(t={self.t}, x={np.array2string(self._x, precision=4)})"
 
 
-def _restore_fusion(buf: FloatArray, gates: FloatArray) -> PlanarFusion:
-    """A :class:`PlanarFusion` with the given buffer and gates (unpickling, copies)."""
-    fusion: PlanarFusion = object.__new__(PlanarFusion)
+def _restore_fusion(
+    buf: FloatArray, gates: FloatArray, cls: type[PlanarFusion] = PlanarFusion
+) -> PlanarFusion:
+    """A :class:`PlanarFusion` (or ``cls``) with the given buffer and gates.
+
+    For unpickling and copies; pickles made before ``cls`` existed pass two arguments.
+    """
+    fusion: PlanarFusion = object.__new__(cls)
     fusion._adopt(buf, gates)
     return fusion
 
