@@ -190,6 +190,26 @@ class RegulatedPurePursuit(PathTracker):
     step (``v <= distance / dt`` to the lookahead point, ``|ω| <= |angle| / dt``
     in place), which only binds at low control rates.
 
+    Small loops are cut, as in Nav2. A loop of the path (or any detour that
+    comes back near where it left) is skipped when either
+
+    * the lookahead circle holds it as the robot reaches it: the lookahead
+      point is the first point at least ``L`` away, beyond the loop, and
+      :attr:`progress` follows the robot there (Nav2's ``getLookAheadPoint``
+      likewise takes the first pose of the pruned plan at least ``L`` away); or
+    * it never leads more than 0.25 m farther from the robot than the path's
+      closest point: the closest-point search walks through it to the later
+      pass of the path (Nav2's closest-pose search, a minimum over
+      ``max_robot_pose_search_dist`` of path, jumps past any loop shorter
+      than that).
+
+    In practice a loop is driven round only when its width is about twice
+    ``max_lookahead`` or more and well above 0.25 m: with the defaults
+    (``L`` up to 0.9 m) a circular loop of radius 0.3 m is cut, with
+    ``min_lookahead = max_lookahead = 0.3`` it is driven; one of radius 0.1 m is
+    cut by any lookahead. To drive a small loop, lower ``max_lookahead`` or
+    give its parts as successive paths.
+
     Raises
     ------
     ValueError

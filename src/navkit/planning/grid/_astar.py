@@ -8,6 +8,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from navkit._shared.frozen import restore_slots
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_bool
 from navkit.errors import NoPathError
@@ -327,6 +328,16 @@ class AStarPlanner:
                 )
             return
         self._jps = (row_bits, col_bits, uniform)
+
+    def __setstate__(self, state: Any) -> None:
+        """Restore from a pickle or :func:`copy.deepcopy`.
+
+        Both hand back the flat grid as a writable array of its own: the search
+        kernels would compile a second time for it (see :func:`read_only`) and
+        the grid would be held twice. It becomes a read-only view of the grid again.
+        """
+        restore_slots(self, state)
+        self._flat = read_only(self._costs.reshape(-1))
 
     def _highest_cost(self) -> float:
         """The largest finite cost of the grid (-inf if none), found once."""

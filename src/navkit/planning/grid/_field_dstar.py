@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import copy
 import math
 from collections.abc import Mapping
 from typing import Any
@@ -313,6 +314,13 @@ class FieldDStar:
         # end again the way the method that gave it checked it.
         self._start_on_node = False
         self._goal_on_node = False
+
+    def __copy__(self) -> FieldDStar:
+        # update_costs() and every search write the costs and the search state in
+        # place: a shallow copy sharing them would change this planner's costs
+        # without queueing the change here, and its replans would no longer match
+        # fresh plans. copy.copy copies them too, as OccupancyGrid's does.
+        return copy.deepcopy(self)
 
     # ------------------------------------------------------------ properties
     @property

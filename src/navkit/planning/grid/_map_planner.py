@@ -3,11 +3,12 @@
 from __future__ import annotations
 
 import math
-from typing import Literal, Protocol
+from typing import Any, Literal, Protocol
 
 import numpy as np
 from numpy.typing import ArrayLike
 
+from navkit._shared.frozen import restore_slots
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_bool, as_float_array
 from navkit.geometry import Pose2D, as_pose
@@ -209,6 +210,13 @@ class MapPlanner:
         self._inflate_unknown = math.isinf(self._unknown_cost) if inflate is None else inflate
         self._planner = planner
         self._prepared = prepared
+
+    def __setstate__(self, state: Any) -> None:
+        """Restore from a pickle or :func:`copy.deepcopy`, :attr:`costs` read-only again.
+
+        The prepared A* planner borrows the same array, which stays shared.
+        """
+        restore_slots(self, state, read_only=("_costs",))
 
     @property
     def grid(self) -> OccupancyGrid:

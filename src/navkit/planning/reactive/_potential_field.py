@@ -173,10 +173,39 @@ def _offsets(pts: FloatArray, centre: FloatArray) -> tuple[FloatArray, FloatArra
     return diff, np.hypot(diff[:, 0], diff[:, 1])
 
 
+# Below this distance (m) an offset may have subnormal components, whose hypot
+# rounds by up to a factor of √2 (5e-324 on both axes has hypot 5e-324), so a
+# direction divided by it would not be a unit vector; such offsets are scaled
+# up by an exact power of two first.
+_TINY_OFFSET = 1e-290
+_RESCALE = 2.0**600
+
+
+def _direction(
+    dx: FloatArray, dy: FloatArray, d: FloatArray
+) -> tuple[FloatArray, FloatArray]:
+    """Components of ``(dx, dy) / d``, ``d = hypot(dx, dy)``; 0 where ``d == 0``.
+
+    A unit vector wherever ``d > 0``, also for offsets of a few subnormals.
+    """
+    on = d == 0.0
+    safe = np.where(on, 1.0, d)
+    ux = np.where(on, 0.0, dx / safe)
+    uy = np.where(on, 0.0, dy / safe)
+    tiny = (d < _TINY_OFFSET) & ~on
+    if tiny.any():
+        sx = dx[tiny] * _RESCALE
+        sy = dy[tiny] * _RESCALE
+        norm = np.hypot(sx, sy)
+        ux[tiny] = sx / norm
+        uy[tiny] = sy / norm
+    return ux, uy
+
+
 def _unit(diff: FloatArray, d: FloatArray) -> FloatArray:
-    """``diff / d`` row-wise, with the zero vector where ``d == 0``."""
-    safe = np.where(d > 0.0, d, 1.0)
-    return np.where((d > 0.0)[:, None], diff / safe[:, None], 0.0)
+    """``diff / d`` row-wise (unit rows), with the zero vector where ``d == 0``."""
+    ux, uy = _direction(diff[:, 0], diff[:, 1], d)
+    return np.stack((ux, uy), axis=1)
 
 
 @dataclass(frozen=True, slots=True, eq=False, repr=False)

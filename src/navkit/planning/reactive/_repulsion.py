@@ -19,7 +19,12 @@ from numpy.typing import NDArray
 
 from navkit._shared.types import FloatArray
 from navkit.planning.reactive._limits import MIN_DISTANCE, gain, length
-from navkit.planning.reactive._potential_field import PotentialField, _obstacles, _restore
+from navkit.planning.reactive._potential_field import (
+    PotentialField,
+    _direction,
+    _obstacles,
+    _restore,
+)
 
 __all__ = ["KhatibRepulsion", "PiecewiseRepulsion"]
 
@@ -119,13 +124,12 @@ class _PointRepulsion(PotentialField):
             return out
         for block, idx, dx, dy, d in self._near_pairs(pts):
             _, mag = self._radial(d)
-            # Direction (q - q_c)/d, each component in [-1, 1] (hypot >= |dx|, |dy|);
-            # a point on an obstacle has none and gets 0. The radial laws are
+            # Direction (q - q_c)/d, a unit vector even for subnormal offsets; a
+            # point on an obstacle has none and gets 0. The radial laws are
             # finite (Khatib saturates below MIN_DISTANCE), so the sum has no NaN.
-            on = d == 0.0
-            safe = np.where(on, 1.0, d)
-            fx = np.where(on, 0.0, mag * (dx / safe))
-            fy = np.where(on, 0.0, mag * (dy / safe))
+            ux, uy = _direction(dx, dy, d)
+            fx = mag * ux
+            fy = mag * uy
             n = block.stop - block.start
             out[block, 0] = np.bincount(idx, weights=fx, minlength=n)
             out[block, 1] = np.bincount(idx, weights=fy, minlength=n)

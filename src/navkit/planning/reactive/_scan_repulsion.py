@@ -96,7 +96,10 @@ def repulsive_force_from_scan(
         F = Σ_k k_rep·(1/r_k - 1/d0)·(1/r_k²)·(-cos θ_k, -sin θ_k)   over r_k <= d0
 
     which equals ``KhatibRepulsion(scan.to_points(), k_rep=k_rep,
-    influence_radius=influence_radius).force((0, 0))``. Invalid beams and beams
+    influence_radius=influence_radius).force((0, 0))`` up to rounding (for
+    ranges below about 1e-290 m, ``to_points`` rounds the sub-normal
+    coordinates and with them the beam's direction, which the per-beam sum
+    keeps exact). Invalid beams and beams
     beyond ``d0`` contribute nothing; as there, a beam shorter than 1e-9 m
     pushes as one of 1e-9 m (a finite force) and a zero range, which has no
     direction, not at all. The scan's arrays were validated when it was built,
