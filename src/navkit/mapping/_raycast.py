@@ -59,7 +59,16 @@ def integrate_scan(
     Each cell changes at most once per scan, even when several beams cross it
     (near the sensor almost all of them do): it takes ``hit`` if it is the end
     cell of any beam and ``miss`` otherwise (occupied wins, as in OctoMap's
-    ``computeUpdate``). The result is clamped to ``clamp``.
+    ``computeUpdate``). An update stops at the bound of ``clamp`` it would
+    pass, and never moves a cell against its sign: a cell already beyond that
+    bound keeps its value (a miss leaves a cell below ``clamp[0]`` alone, a
+    hit one above ``clamp[1]``, as OctoMap's ``updateNode`` does), and a cell
+    beyond the other bound moves by the increment alone. So a grid holding
+    values more certain than ``clamp`` (a loaded map: about ±6.9) is never
+    made less certain by a scan that agrees with it, and one that disagrees
+    moves it as it moves any other cell. (OctoMap clamps such a cell into
+    ``clamp`` at once; doing so costs a third min/max per cell, about 12 %
+    of a 360-beam scan.)
 
     Parameters
     ----------

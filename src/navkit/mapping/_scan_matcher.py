@@ -16,7 +16,7 @@ from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array
 from navkit.geometry import Pose2D, as_pose
 from navkit.mapping._grid import OccupancyGrid
-from navkit.mapping._limits import RANGE_LIMIT, bounded_float
+from navkit.mapping._limits import RANGE_LIMIT, RESOLUTION_MAX, bounded_float
 from navkit.mapping._scan import LaserScan
 from navkit.mapping._scan_matcher_kernels import (
     STATUS_MAX_ITERATIONS,
@@ -237,8 +237,9 @@ class ScanMatcher:
     ----------
     levels : int, default 3
         Number of map levels built from a single grid given to :meth:`match`
-        (each doubling the cell size; 1 to 16). A sequence of grids is used as
-        given.
+        (each doubling the cell size; 1 to 16; fewer for grids too small or
+        too coarse for them, see :meth:`pyramid`). A sequence of grids is
+        used as given.
     max_iterations : int, default 20
         Gauss–Newton iterations per level, 1 to 10,000.
     max_step_cells : float, default 2.0
@@ -367,7 +368,8 @@ class ScanMatcher:
         -------
         tuple of OccupancyGrid
             ``grid`` itself, then up to ``levels - 1`` coarser grids (fewer when
-            a level shrinks to one cell), finest first.
+            a level shrinks to one cell or the next one's cells would exceed
+            1e6 m, the largest resolution), finest first.
 
         Examples
         --------
@@ -379,7 +381,9 @@ class ScanMatcher:
             raise TypeError(f"grid must be an OccupancyGrid, got {type(grid).__name__}")
         out = [grid]
         for _ in range(self._levels - 1):
-            if out[-1].shape == (1, 1):
+            # No coarser level when it would be one cell, or its cells larger
+            # than a grid's largest resolution (1e6 m).
+            if out[-1].shape == (1, 1) or 2.0 * out[-1].resolution > RESOLUTION_MAX:
                 break
             out.append(downsample(out[-1]))
         return tuple(out)

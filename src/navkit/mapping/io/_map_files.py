@@ -17,6 +17,7 @@ import contextlib
 import io
 import math
 import os
+import re
 import struct
 import warnings
 import zlib
@@ -70,6 +71,8 @@ _IMAGE_MAGIC = {
     b"II*\x00": "a TIFF image",
     b"MM\x00*": "a TIFF image",
 }
+#: An integer as YAML 1.2 (yaml-cpp) and YAML 1.1 (PyYAML) read it alike.
+_DECIMAL = re.compile(r"[-+]?(?:0|[1-9][0-9]*)")
 #: Suffixes of image files: a YAML path ending in one would write over an image.
 _IMAGE_SUFFIXES = frozenset(
     {".pgm", ".pbm", ".ppm", ".pnm", ".png", ".jpg", ".jpeg", ".bmp", ".gif", ".tif", ".tiff"}
@@ -85,7 +88,24 @@ class _Loader(yaml.SafeLoader):
     PyYAML keeps a duplicate key's last value, yaml-cpp (map_server's parser)
     its first: a map YAML naming ``image`` twice means different maps to the
     two. Other keys are ignored anyway, so their duplicates are let through.
+
+    Numbers spelled as only YAML 1.1 reads them (sexagesimal ``1:20`` = 80,
+    ``1_000``, ``0b101``, octal ``010`` = 8) are kept as their text, which
+    :func:`_as_float` reads as yaml-cpp (YAML 1.2) does: ``010`` is 10, the
+    others are refused instead of read as another number.
     """
+
+    def construct_yaml_int(self, node: Any) -> Any:
+        text = self.construct_scalar(node)
+        if isinstance(text, str) and not _DECIMAL.fullmatch(text):
+            return text
+        return super().construct_yaml_int(node)
+
+    def construct_yaml_float(self, node: Any) -> Any:
+        text = self.construct_scalar(node)
+        if isinstance(text, str) and ("_" in text or ":" in text):
+            return text
+        return super().construct_yaml_float(node)
 
     def construct_mapping(self, node: Any, deep: bool = False) -> Any:
         if isinstance(node, yaml.MappingNode):
@@ -101,6 +121,10 @@ class _Loader(yaml.SafeLoader):
                         )
                     seen.add(key)
         return super().construct_mapping(node, deep=deep)
+
+
+_Loader.add_constructor("tag:yaml.org,2002:int", _Loader.construct_yaml_int)
+_Loader.add_constructor("tag:yaml.org,2002:float", _Loader.construct_yaml_float)
 
 
 @dataclass(frozen=True, slots=True)
@@ -130,6 +154,9 @@ def _short(value: Any) -> str:
 def _as_float(value: Any, key: str, path: Path) -> float:
     # YAML 1.1 reads "1e-3" (no dot) as a string: numbers in text are accepted too.
     if isinstance(value, bool) or not isinstance(value, (int, float, str)):
+        raise ValueError(f"{path}: {key} must be a number, got {_short(value)}")
+    if isinstance(value, str) and ("_" in value or not value.isascii()):
+        # Python's float() reads "1_0" and non-ASCII digits; yaml-cpp does not.
         raise ValueError(f"{path}: {key} must be a number, got {_short(value)}")
     try:
         out = float(value)
@@ -539,12 +566,17 @@ def _read_with_pillow(path: Path) -> tuple[NDArray[np.float64], NDArray[np.float
             arr = np.asarray(picture)
             mode = picture.mode
             sixteen_bit = mode.startswith("I;16") or (mode == "I" and img.format == "PNG")
+            transparent = picture.info.get("transparency")
     if mode.startswith("I"):
         # 16-bit images (PNG's deepest grey, which older Pillow versions open as
         # mode "I") span 0..65535 whatever they hold; only 32-bit ones, whose range
         # no map format fixes, are scaled by what they hold.
         peak = 65535.0 if sixteen_bit or arr.max(initial=0) > 255 else 255.0
         grey = np.clip(arr.astype(np.float64) * (255.0 / peak), 0.0, 255.0)
+        if isinstance(transparent, int) and not isinstance(transparent, bool):
+            # A transparent grey (PNG tRNS) is an alpha channel to map_server, as
+            # for 8-bit images (converted to RGBA above, which would lose 8 bits here).
+            return grey, np.where(arr == transparent, 0.0, 255.0)
         return grey, None
     if arr.ndim == 2:
         return arr.astype(np.float64), None
@@ -650,7 +682,12 @@ def read_map(path: str | os.PathLike[str]) -> OccupancyGrid:
     -------
     OccupancyGrid
         The map: log-odds of the pixels' occupancy probabilities (unknown
-        pixels 0), the YAML's resolution, origin and thresholds.
+        pixels 0), the YAML's resolution, origin and thresholds. Probabilities
+        are clipped to [0.001, 0.999] as by
+        :meth:`~navkit.mapping.OccupancyGrid.from_probabilities`, except where
+        that would move a cell across a threshold beyond the clipping (e.g.
+        ``occupied_thresh: 0.9995``): such a cell gets the log-odds just past
+        its threshold, so that the views class every pixel as map_server does.
 
     Raises
     ------
@@ -688,25 +725,82 @@ def read_map(path: str | os.PathLike[str]) -> OccupancyGrid:
         raise ValueError(f"{path}: map image {exc}") from None
     prob, unknown = pixel_occupancy(grey, alpha, meta)
     occ_t, free_t = meta.occupied_thresh, meta.free_thresh
+    p = np.where(unknown, 0.5, prob)[::-1]
+    unknown = unknown[::-1]
     known = OccupancyGrid.from_probabilities(
-        np.where(unknown, 0.5, prob)[::-1],
+        p,
         resolution=meta.resolution,
         origin=Pose2D(*meta.origin),
         occupied_thresh=occ_t,
         free_thresh=free_t,
     )
     unknown_l = _unknown_logodds(occ_t, free_t)
-    if unknown_l == 0.0 or not unknown.any():
-        return known  # p = 0.5 is log-odds 0 exactly
     # Unknown cells get exactly the log-odds write_map recognises as unknown.
-    logodds = np.where(unknown[::-1], unknown_l, known.logodds)
+    grid = known
+    if unknown_l != 0.0 and unknown.any():
+        grid = _with_logodds(known, np.where(unknown, np.float32(unknown_l), known.logodds))
+    # Thresholds beyond the grid's probability clipping ([0.001, 0.999]) can make a
+    # clipped cell change class (p = 1 not above occupied_thresh 0.9995): such
+    # cells get log-odds that the grid's views class as map_server does.
+    probe = OccupancyGrid.from_probabilities(
+        [[1.0, 0.0]], resolution=1.0, occupied_thresh=occ_t, free_thresh=free_t
+    )
+    if probe.occupied()[0, 0] and probe.free()[0, 1]:
+        return grid  # the thresholds lie inside the clipping: it changes no class
+    want_occupied = ~unknown & (p > occ_t)
+    want_free = ~unknown & (p < free_t)
+    wrong = (grid.occupied() != want_occupied) | (grid.free() != want_free)
+    if not wrong.any():
+        return grid
+    logodds = np.array(grid.logodds)
+    logodds[wrong] = _class_logodds(
+        p[wrong], want_occupied[wrong], want_free[wrong], occ_t, free_t, unknown_l
+    )
+    return _with_logodds(grid, logodds)
+
+
+def _with_logodds(grid: OccupancyGrid, logodds: NDArray[np.float32]) -> OccupancyGrid:
+    """``grid`` with other log-odds (same size, resolution, origin and thresholds)."""
     return OccupancyGrid(
         logodds,
-        resolution=meta.resolution,
-        origin=Pose2D(*meta.origin),
-        occupied_thresh=occ_t,
-        free_thresh=free_t,
+        resolution=grid.resolution,
+        origin=grid.origin,
+        occupied_thresh=grid.occupied_thresh,
+        free_thresh=grid.free_thresh,
     )
+
+
+def _class_logodds(
+    p: NDArray[np.float64],
+    occupied: NDArray[np.bool_],
+    free: NDArray[np.bool_],
+    occupied_thresh: float,
+    free_thresh: float,
+    unknown_l: float,
+) -> NDArray[np.float32]:
+    """Float32 log-odds of ``p`` in the class given, for cells clipping moved out of it.
+
+    Occupied and free cells get the next float32 past their threshold's log-odds;
+    the others ``p``'s own unclipped log-odds if the grid classes them unknown,
+    else ``unknown_l``.
+    """
+    with np.errstate(divide="ignore"):
+        out = np.log(p / (1.0 - p)).astype(np.float32)
+    one = OccupancyGrid(
+        np.where(np.isfinite(out), out, 0.0)[None, :],
+        resolution=1.0,
+        occupied_thresh=occupied_thresh,
+        free_thresh=free_thresh,
+    )
+    bad = ~np.isfinite(out) | ~one.unknown()[0]
+    out[bad] = np.float32(unknown_l)
+    if occupied.any():  # occupied_thresh < 1 then: p > occupied_thresh
+        bound = np.float32(math.log(occupied_thresh / (1.0 - occupied_thresh)))
+        out[occupied] = np.nextafter(bound, np.float32(np.inf))
+    if free.any():  # 0 < free_thresh
+        bound = np.float32(math.log(free_thresh / (1.0 - free_thresh)))
+        out[free] = np.nextafter(bound, np.float32(-np.inf))
+    return out
 
 
 def _unknown_logodds(occupied_thresh: float, free_thresh: float) -> float:
@@ -723,7 +817,26 @@ def _unknown_logodds(occupied_thresh: float, free_thresh: float) -> float:
     one = OccupancyGrid.from_probabilities(
         [[middle]], resolution=1.0, occupied_thresh=occupied_thresh, free_thresh=free_thresh
     )
-    return float(one.logodds[0, 0])
+    if one.unknown()[0, 0]:
+        return float(one.logodds[0, 0])
+    # A band beyond the grid's probability clipping (above 0.999 or below 0.001):
+    # the clipped middle would be occupied or free. The threshold's own log-odds
+    # is unknown (neither above itself nor below the lower one's).
+    for p in (middle, occupied_thresh, free_thresh):
+        if 0.0 < p < 1.0:
+            candidate = float(np.float32(math.log(p / (1.0 - p))))
+            if _one_cell(candidate, occupied_thresh, free_thresh).unknown()[0, 0]:
+                return candidate
+    raise AssertionError("unreachable: a threshold strictly inside (0, 1) is unknown")
+
+
+def _one_cell(logodds: float, occupied_thresh: float, free_thresh: float) -> OccupancyGrid:
+    return OccupancyGrid(
+        np.full((1, 1), logodds),
+        resolution=1.0,
+        occupied_thresh=occupied_thresh,
+        free_thresh=free_thresh,
+    )
 
 
 def _map_pixels(grid: OccupancyGrid, mode: str) -> NDArray[np.uint8]:
