@@ -175,6 +175,9 @@ def scene_limits(
 ) -> tuple[float, float, float, float] | None:
     """``(xmin, ymin, xmax, ymax)`` of what a scene shows, with a margin.
 
+    The margin is 5 % of the larger side, and at least 0.25 m (0.25 m around
+    a single point) or the larger side itself when that is smaller.
+
     The map counts by its known part only (a map_server map is mostly unknown
     space around the building); walls, circles, moving obstacles' routes,
     paths, traces and points count whole.
@@ -199,7 +202,10 @@ def scene_limits(
         return None
     lo = xy.min(axis=0)
     hi = xy.max(axis=0)
-    margin = max(0.05 * float(np.max(hi - lo)), 0.25)
+    span = float(np.max(hi - lo))
+    # At least 0.25 m around a point or a small scene, but not more than the scene's
+    # own size: a map of micrometre cells would otherwise be a speck in the picture.
+    margin = max(0.05 * span, min(0.25, span)) if span > 0.0 else 0.25
     return (float(lo[0]) - margin, float(lo[1]) - margin,
             float(hi[0]) + margin, float(hi[1]) + margin)  # fmt: skip
 

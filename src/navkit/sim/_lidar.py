@@ -236,7 +236,7 @@ class Lidar:
                 w._scanners.clear()
             scanner = w._scanners[self] = Scanner(self, w)
         p = as_pose(pose, "pose")
-        time = finite_float(t, "t")
+        time = w._query_time(t)
         generator = as_generator(rng) if scanner.random or rng is not None else None
         return scanner.scan(p, time, generator)
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import copy
 import math
 import time
 from collections.abc import Callable
@@ -38,7 +39,7 @@ from navkit.sim._sensors import (
     ScanReading,
 )
 from navkit.sim._trace import Event, Metrics, Trace, cross_track, nan_if_empty
-from navkit.sim._world import MAX_POSE_COORD, World, as_query_pose, as_world
+from navkit.sim._world import MAX_POSE_COORD, World, _slot_names, as_query_pose, as_world
 
 __all__ = ["Controller", "Observation", "Simulation"]
 
@@ -47,6 +48,8 @@ MAX_STEPS = 10_000_000
 #: Longest simulated duration, s.
 MAX_DURATION = 1e7
 _EPS = 1e-9
+#: Event kinds that end a run by themselves (noted when the loop stops).
+_CLOSING_KINDS = ("timeout", "controller done", "wall-clock timeout")
 #: Columns of the trace buffer: t, x, y, theta, est x, y, theta, cmd vx, vy, omega.
 _COLUMNS = 10
 
@@ -161,7 +164,12 @@ class Simulation:
     farther, where the clearance shows that nothing lies in between), so that
     a fast robot or a low ``rate`` cannot carry the robot through a thin wall
     or into a solid obstacle: the first of those poses that touches an
-    obstacle then stands for the step's end (the collision's pose). Each
+    obstacle then stands for the step's end (the collision's pose). Moving
+    obstacles are checked only at the end of each step, where they are at
+    that step's time (a robot inside one counts as a collision), never along
+    the step: a moving obstacle that crosses the robot's path within one step
+    (fast, or thinner than its motion over ``1 / rate``) is missed, so raise
+    ``rate`` for fast ones. Each
     sensor of the robot samples at its own rate (at the first physics step at
     or after each of its sample times); each reading is delivered ``latency``
     seconds later (at the first step at or after that),
@@ -180,7 +188,10 @@ class Simulation:
     ``wall_timeout`` seconds of real time have passed; the reason is in
     ``Trace.metrics.reason``. Every random draw (sensor noise, slip) comes from
     one seeded NumPy Generator, so a run with the same seed, controller and
-    estimator state is reproduced exactly. A ``Simulation`` runs once.
+    estimator state is reproduced exactly. A ``Simulation`` runs once; a copy
+    (:func:`copy.copy` too) has its own copy of the generator, so that running
+    one leaves the other's run as it would have been (a shallow copy shares
+    the world, robot, controller and estimator).
 
     An ordinary class with ``__slots__``: it holds the run's state.
 
@@ -345,6 +356,18 @@ class Simulation:
             )
         self._ran = False
 
+    def __copy__(self) -> Simulation:
+        """A shallow copy with its own random generator (a copy of this one's state)."""
+        twin = object.__new__(type(self))
+        for name in _slot_names(type(self)):
+            if hasattr(self, name):
+                object.__setattr__(twin, name, getattr(self, name))
+        if hasattr(self, "__dict__"):
+            twin.__dict__.update(self.__dict__)
+        # Shared, the generator would make a run of one change the other's draws.
+        twin._rng = copy.deepcopy(self._rng)
+        return twin
+
     def _check_not_faster(self, name: str, rate: float) -> None:
         if rate > self._rate * (1.0 + 1e-12):
             raise ValueError(
@@ -354,6 +377,11 @@ class Simulation:
     # ------------------------------------------------------------------ run
     def run(self) -> Trace:
         """Run the loop to its end and return the :class:`Trace`.
+
+        Collisions are found at the end of each physics step; a long step is
+        also swept against the static obstacles, but moving obstacles are
+        checked only at the end of each step (see :class:`Simulation`): one
+        that crosses the robot's way within a step is missed.
 
         Returns
         -------
@@ -806,7 +834,9 @@ class _Run:
         time_to_goal = float(stats[STAT_TIME_TO_GOAL])
         if not math.isnan(time_to_goal):
             self.events.append(Event(time_to_goal, "goal reached", "the robot reached the goal"))
-        self.events.sort(key=lambda e: e.t)
+        # At equal times the end of the run comes last: a collision or the goal at the
+        # final step happened before the run was stopped there.
+        self.events.sort(key=lambda e: (e.t, e.kind in _CLOSING_KINDS))
         rows = self.buf[: last + 1]
         times = rows[:, 0]
         poses = rows[:, 1:4]

@@ -400,7 +400,14 @@ class MovingObstacle:
             legs = np.hypot(*np.diff(pts, axis=0).T)
             if np.any(legs == 0.0):
                 raise ValueError("waypoints_xy must not repeat a point consecutively with speed")
-            stamps = np.concatenate(([0.0], np.cumsum(legs) / v))
+            with np.errstate(over="ignore"):
+                stamps = np.concatenate(([0.0], np.cumsum(legs) / v))
+            if not stamps[-1] <= MAX_TIME:
+                # The caller gave no times: name what made them too late.
+                raise ValueError(
+                    f"speed {v:g} m/s is too slow for waypoints_xy: the last waypoint "
+                    f"would be reached after the ±{MAX_TIME:g} s time limit"
+                )
         else:
             assert times is not None
             stamps = as_float_array(times, "times", shape=(pts.shape[0],))
@@ -516,7 +523,11 @@ class World:
     and circles are indexed once, in a uniform grid of about two cells per
     primitive, so rays and clearance queries only visit what is near them.
     Moving obstacles (:class:`MovingObstacle`) are placed at the time of each
-    query. All inputs are copied; the world never changes them.
+    query: a query sees them at that instant only. A :class:`Simulation`
+    likewise checks them only at the end of each physics step (long steps
+    are swept against the static obstacles alone), so an obstacle crossing
+    the robot's way within one step goes unnoticed. All inputs are copied;
+    the world never changes them.
 
     An ordinary class with ``__slots__`` rather than a frozen dataclass: it
     builds and keeps its index and the moving obstacles' work arrays.
@@ -816,6 +827,16 @@ class World:
         self._moving_t = math.nan
         self._place(0.0)
 
+    def _query_time(self, t: Any) -> float:
+        """A query time ``t``: finite, and within ±MAX_TIME s when obstacles move.
+
+        Only moving obstacles need the bound (their positions must stay finite);
+        a world without them ignores the time, as its LiDAR scans always did.
+        """
+        if self._moving:
+            return _query_time(t)
+        return finite_float(t, "t")
+
     def _place(self, t: float) -> None:
         """Move the moving obstacles' work arrays to time ``t`` (ValueError beyond ±1e9 s)."""
         if t == self._moving_t or not self._moving:
@@ -994,7 +1015,8 @@ class World:
         range_max : float
             Longest distance looked at, m, in (0, 1e6].
         t : float, default 0.0
-            Time at which the moving obstacles are placed, s, within ±1e9 s.
+            Time at which the moving obstacles are placed, s: finite, and within
+            ±1e9 s when the world has moving obstacles (otherwise unused).
 
         Returns
         -------
@@ -1017,7 +1039,7 @@ class World:
         if rmax > MAX_COORD:
             raise ValueError(f"range_max must be at most {MAX_COORD:g} m, got {rmax}")
         out = np.empty(ang.shape[0])
-        self._cast(out, p.x, p.y, p.theta, ang, rmax, _query_time(t))
+        self._cast(out, p.x, p.y, p.theta, ang, rmax, self._query_time(t))
         return out
 
     def clearance(
@@ -1041,7 +1063,8 @@ class World:
         pose : Pose2D or array_like [x, y, theta]
             Where the robot is.
         t : float, default 0.0
-            Time at which the moving obstacles are placed, s, within ±1e9 s.
+            Time at which the moving obstacles are placed, s: finite, and within
+            ±1e9 s when the world has moving obstacles (otherwise unused).
 
         Returns
         -------
@@ -1059,7 +1082,7 @@ class World:
         p = as_query_pose(pose)
         body, work, scratch = _footprint_arrays(verts)
         return self._clearance(
-            p.x, p.y, p.theta, radius, body, work, scratch, _query_time(t), math.inf
+            p.x, p.y, p.theta, radius, body, work, scratch, self._query_time(t), math.inf
         )
 
     def collides(
@@ -1078,8 +1101,9 @@ class World:
         pose : Pose2D or array_like [x, y, theta]
             Where the robot is.
         t : float, default 0.0
-            Time at which the moving obstacles are placed, s, within ±1e9 s
-            (keyword-only).
+            Time at which the moving obstacles are placed, s: finite, and within
+            ±1e9 s when the world has moving obstacles (otherwise unused;
+            keyword-only).
 
         Returns
         -------
@@ -1097,7 +1121,7 @@ class World:
         """
         radius, verts = as_footprint(footprint)
         p = as_query_pose(pose)
-        time = _query_time(t)
+        time = self._query_time(t)
         body, work, scratch = _footprint_arrays(verts)
         # A small positive limit: the search stops at once unless something touches.
         if self._clearance(p.x, p.y, p.theta, radius, body, work, scratch, time, 1e-9) <= TOUCH:

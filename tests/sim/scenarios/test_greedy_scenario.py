@@ -110,7 +110,8 @@ def test_options() -> None:
         Greedy(pairs=[(0.0, 1.0)])  # type: ignore[list-item]
     with pytest.raises(ValueError, match="pairs"):
         Greedy(pairs=[((0.0, float("nan")), (1.0, 1.0))])
-    assert Greedy(pairs=np.array([[[0.0, 0.0], [1.0, 0.0]]])).pairs == (((0.0, 0.0), (1.0, 0.0)),)
+    free = np.array([[[-2.0, -0.5], [-1.0, -0.5]]])  # (0, 0) is a pillar: refused when built
+    assert Greedy(pairs=free).pairs == (((-2.0, -0.5), (-1.0, -0.5)),)
     with pytest.raises(ValueError, match="inflation"):
         Greedy(inflation=2.0)
     with pytest.raises(TypeError, match="data_dir"):

@@ -11,8 +11,10 @@ from typing import Any
 import numpy as np
 
 from navkit._shared.validation import as_bool, as_float_array, positive_float
-from navkit.errors import DataNotFoundError
+from navkit.errors import DataNotFoundError, NoPathError
 from navkit.estimation import DiffOdometry
+from navkit.geometry import Pose2D
+from navkit.planning import Path2D
 from navkit.sim import (
     Scenario,
     ScenarioResult,
@@ -25,6 +27,7 @@ from navkit.sim import (
 )
 from navkit.sim.scenarios._data import find_data
 from navkit.sim.scenarios._greedy_setup import (
+    BODY_RADIUS,
     DRIVE,
     INFLATION,
     TICKS_PER_REV,
@@ -106,7 +109,10 @@ class Greedy(Scenario):
     noise : bool, default True
         Laser range noise.
     pairs : sequence of ((x, y), (x, y)), default the four above
-        Start and goal in m (at most 64 pairs); each start must be free.
+        Start and goal in m (at most 64 pairs, each goal more than 0.1 m from
+        its start). When the map is found, each pair is checked as the
+        scenario is built: the robot must fit at the start and A* must join
+        it to the goal (a ``ValueError`` naming ``pairs[i]`` otherwise).
     duration : float, default 120.0
         Longest simulated time of a trial, s, in [0.1, 3600].
     inflation : float, default 0.25
@@ -165,12 +171,31 @@ class Greedy(Scenario):
             self._map_file: str | None = str(find_data(MAP, data_dir=self.data_dir).resolve())
         except DataNotFoundError:
             self._map_file = None
+        if self._map_file is not None:
+            # Checked here, not at the end of a trial: a start in a pillar or a goal
+            # A* cannot reach would otherwise fail only after the whole run.
+            for index in range(len(self.pairs)):
+                self._route(self._map_file, index)
 
     def __repr__(self) -> str:
         return (
             f"Greedy(noise={self.noise}, pairs={self.pairs}, duration={self.duration}, "
             f"inflation={self.inflation}, data_dir={self.data_dir!r})"
         )
+
+    def _route(self, path: str, index: int) -> Path2D:
+        """A*'s route for ``pairs[index]``; a ValueError naming the pair if it has none."""
+        start, goal = self.pairs[index]
+        heading = math.atan2(goal[1] - start[1], goal[0] - start[0])
+        if tb3_world(path).collides(BODY_RADIUS, Pose2D(start[0], start[1], heading)):
+            raise ValueError(
+                f"pairs[{index}]: the robot at the start ({start[0]:g}, {start[1]:g}) "
+                "touches or overlaps an obstacle of the map"
+            )
+        try:
+            return astar_route(path, start, goal)
+        except (ValueError, NoPathError) as exc:
+            raise ValueError(f"pairs[{index}]: {exc}") from None
 
     def _map_path(self) -> str:
         if self._map_file is not None:
@@ -192,8 +217,8 @@ class Greedy(Scenario):
 
         Examples
         --------
-        >>> Greedy(pairs=[((0.0, 0.0), (1.0, 0.0))]).cases(3)
-        (('(0, 0) -> (1, 0) m', 3),)
+        >>> Greedy(pairs=[((-2.0, -0.5), (-1.0, -0.5))]).cases(3)
+        (('(-2, -0.5) -> (-1, -0.5) m', 3),)
         """
         trials = self._check_trials(trials)
         count = int(trials) if self.noise else 1
@@ -225,6 +250,9 @@ class Greedy(Scenario):
         ------
         DataNotFoundError
             The TurtleBot3 world map is not in the data folder.
+        ValueError
+            The pair has no route (checked before the run, as in the
+            constructor, when the map was found only now).
 
         Examples
         --------
@@ -238,9 +266,13 @@ class Greedy(Scenario):
         ...         print("no map")
         no map
         """
-        start, goal = self.pairs[self._case_of(trial)]
+        index = self._case_of(trial)
+        start, goal = self.pairs[index]
         path = self._map_path()
         began = time.perf_counter()
+        # Before the run (the map may have been found only now): a pair A* cannot
+        # join fails at once, not after the run.
+        astar = float(self._route(path, index).length)
         heading = math.atan2(goal[1] - start[1], goal[0] - start[0])
         controller = GreedyController(goal, inflation=self.inflation)
         sim = Simulation(
@@ -261,7 +293,6 @@ class Greedy(Scenario):
         )
         trace = sim.run()
         m = trace.metrics
-        astar = float(astar_route(path, start, goal).length)
         stopped = bool(controller.done)
         values = {
             "reached": 1.0 if stopped and m.collisions == 0 and m.final_error <= GOAL_RADIUS

@@ -173,8 +173,8 @@ class IndoorNav(Scenario):
     map_source : {"scans", "plan"}, default "scans"
         Build the map from simulated scans, or rasterise the floor plan.
     compare_speed : float or None, default 0.5
-        Speed of a second mapping tour (m/s, in [0.05, 1]) beside the 0.2 m/s
-        one; None for none. Only with ``map_source="scans"``.
+        Speed of a second mapping tour (m/s, in [0.05, 1], other than 0.2)
+        beside the 0.2 m/s one; None for none. Only with ``map_source="scans"``.
 
     Examples
     --------
@@ -229,6 +229,12 @@ class IndoorNav(Scenario):
                 raise ValueError(
                     f"compare_speed must lie in [{_SPEED_RANGE[0]}, {_SPEED_RANGE[1]}] m/s, "
                     f"got {speed}"
+                )
+            if speed == MAPPING_SPEED:
+                # The same tour twice: one case would hide the other (both "the map used").
+                raise ValueError(
+                    f"compare_speed must differ from the mapping tour's {MAPPING_SPEED:g} m/s "
+                    "(None for no comparison)"
                 )
         self.compare_speed: float | None = speed
 

@@ -56,6 +56,7 @@ _KEYS = ("target_x", "target_y", "final_x", "final_y", "odometry_x", "odometry_y
 
 
 def _targets(value: Any) -> tuple[tuple[float, float], ...]:
+    # The messages show values by repr: with :g, 50.0000001 m reads "50 m", in range.
     arr = as_float_array(value, "targets", shape=(None, 2))
     if not 1 <= arr.shape[0] <= 64:
         raise ValueError(f"targets must hold 1 to 64 (x, y) pairs, got {arr.shape[0]}")
@@ -65,7 +66,7 @@ def _targets(value: Any) -> tuple[tuple[float, float], ...]:
         k = int(bad[0])
         raise ValueError(
             f"targets[{k}] must lie 0.5 to {_MAX_TARGET:g} m from the start (0, 0), "
-            f"got ({arr[k, 0]:g}, {arr[k, 1]:g}), {dist[k]:g} m away"
+            f"got ({float(arr[k, 0])!r}, {float(arr[k, 1])!r}), {float(dist[k])!r} m away"
         )
     return tuple((float(x), float(y)) for x, y in arr)
 
@@ -83,7 +84,7 @@ def _check_obstacle_routes(targets: tuple[tuple[float, float], ...]) -> None:
                 f"targets[{k}] must lie at least {_MIN_OBSTACLE_ROUTE:g} m from the start "
                 f"when the obstacle series runs (obstacles None or True): the box on a "
                 f"shorter route touches the robot at its start or at the target; got "
-                f"({x:g}, {y:g}), {dist:g} m away"
+                f"({x!r}, {y!r}), {dist!r} m away"
             )
     boxes = obstacle_boxes(targets)
     for k, (x, y) in enumerate(targets):

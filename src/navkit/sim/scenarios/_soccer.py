@@ -90,7 +90,9 @@ def _robot(wheel_slip: float) -> Robot:
 def _option(value: Any, name: str, low: float, high: float, unit: str) -> float:
     out = finite_float(value, name)
     if not low <= out <= high:
-        raise ValueError(f"{name} must lie in [{low:g}, {high:g}] {unit}, got {out:g}")
+        # repr, not :g: 0.5000001 printed as "0.5" would look inside [0, 0.5].
+        units = f" {unit}" if unit else ""
+        raise ValueError(f"{name} must lie in [{low:g}, {high:g}]{units}, got {out!r}")
     return out
 
 
