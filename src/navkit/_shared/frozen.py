@@ -4,7 +4,9 @@
 values without running ``__post_init__``, and the arrays they copy come back
 writable: a "frozen" record whose arrays can be changed in place. The records'
 ``__setstate__`` use :func:`restore_read_only` to set their arrays read-only
-again; ordinary classes with ``__slots__`` use :func:`restore_slots`.
+again, and their ``__reduce__`` :func:`reduce_record`, which also keeps what a
+subclass adds; ordinary classes with ``__slots__`` use :func:`restore_slots`,
+and :func:`extra_state` for what a subclass adds when they reduce themselves.
 """
 
 from __future__ import annotations
@@ -15,7 +17,14 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["restore_read_only", "restore_slots"]
+__all__ = [
+    "extra_state",
+    "rebuild_record",
+    "reduce_record",
+    "restore_read_only",
+    "restore_slots",
+    "slot_names",
+]
 
 
 def restore_read_only(record: Any, state: Sequence[Any], arrays: Sequence[str]) -> None:
@@ -48,6 +57,171 @@ def restore_read_only(record: Any, state: Sequence[Any], arrays: Sequence[str]) 
         array = getattr(record, name)
         if isinstance(array, np.ndarray):
             array.flags.writeable = False
+
+
+def slot_names(cls: type, *, below: type | None = None) -> list[str]:
+    """Names of the slots of ``cls`` and its bases, private ones mangled.
+
+    Parameters
+    ----------
+    cls : type
+        The class.
+    below : type, optional
+        Stop at this base: only the slots of the classes before it in
+        ``cls.__mro__`` (what subclasses of ``below`` add). All by default.
+
+    Returns
+    -------
+    list of str
+        The attribute names (``__dict__`` and ``__weakref__`` left out).
+
+    Examples
+    --------
+    >>> class Base:
+    ...     __slots__ = ("a",)
+    >>> class Sub(Base):
+    ...     __slots__ = ("b", "__c")
+    >>> slot_names(Sub), slot_names(Sub, below=Base)
+    (['b', '_Sub__c', 'a'], ['b', '_Sub__c'])
+    """
+    names = []
+    for klass in cls.__mro__:
+        if klass is below:
+            break
+        declared = klass.__dict__.get("__slots__", ())
+        for name in (declared,) if isinstance(declared, str) else declared:
+            if name in ("__dict__", "__weakref__"):
+                continue
+            if name.startswith("__") and not name.endswith("__"):
+                name = f"_{klass.__name__.lstrip('_')}{name}"  # as Python mangles it
+            names.append(name)
+    return names
+
+
+def extra_state(
+    obj: Any, *, below: type | None = None, skip: Collection[str] = ()
+) -> tuple[dict[str, Any] | None, dict[str, Any]] | None:
+    """What ``obj`` holds beyond a base class's own state, in Python's pickle layout.
+
+    For classes that copy and pickle through a ``__reduce__`` rebuilding the
+    base's state alone: a subclass's attributes (its ``__dict__``, its slots)
+    go into the reduce value's state, which :mod:`copy` and :mod:`pickle`
+    restore after the rebuild, so that subclasses copy whole.
+
+    Parameters
+    ----------
+    obj : object
+        The object being copied or pickled.
+    below : type, optional
+        Only the slots of the classes before this one in the MRO (see
+        :func:`slot_names`); all by default.
+    skip : collection of str
+        Slots left out (a dataclass's fields, copied by the rebuild).
+
+    Returns
+    -------
+    tuple or None
+        ``(instance __dict__ or None, {slot: value})``; None when there is
+        nothing to add.
+
+    Examples
+    --------
+    >>> class Base:
+    ...     __slots__ = ("a",)
+    >>> class Sub(Base):
+    ...     __slots__ = ("b",)
+    >>> sub = Sub()
+    >>> sub.a, sub.b = 1, 2
+    >>> extra_state(sub, below=Base), extra_state(Base())
+    ((None, {'b': 2}), None)
+    """
+    slots = {
+        name: getattr(obj, name)
+        for name in slot_names(type(obj), below=below)
+        if name not in skip and hasattr(obj, name)
+    }
+    instance = getattr(obj, "__dict__", None) or None
+    if instance is None and not slots:
+        return None
+    return instance, slots
+
+
+def reduce_record(record: Any, arrays: Collection[str] | None = None) -> tuple[Any, ...]:
+    """``__reduce__`` of a frozen slotted dataclass holding read-only arrays.
+
+    A slotted dataclass pickles and copies as the list of its field values:
+    a subclass loses what it adds (its ``__dict__``, its own slots), and a
+    subclass that is itself a slotted frozen dataclass (to add a field) gets a
+    generated ``__setstate__`` of its own, which restores writable arrays. A
+    ``__reduce__`` is inherited by every subclass (the dataclass decorator
+    adds none): copies and pickles go through :func:`rebuild_record`. Keep the
+    record's ``__setstate__`` (:func:`restore_read_only`): older pickles call it.
+
+    Parameters
+    ----------
+    record : dataclass instance
+        The record being pickled or copied (its ``__reduce__``'s ``self``).
+    arrays : collection of str, optional
+        Fields whose arrays copies hold read-only. By default the fields whose
+        arrays are read-only in ``record``: copies keep the flags as they were.
+
+    Returns
+    -------
+    tuple
+        ``(rebuild_record, (class, {field: value}, arrays, instance __dict__
+        or None, {other slot: value}))``.
+
+    Examples
+    --------
+    >>> import copy
+    >>> from dataclasses import dataclass
+    >>> @dataclass(frozen=True, slots=True)
+    ... class Record:
+    ...     values: np.ndarray
+    ...     def __reduce__(self) -> tuple[Any, ...]:
+    ...         return reduce_record(self, ("values",))
+    >>> @dataclass(frozen=True, slots=True)
+    ... class Tagged(Record):
+    ...     tag: str = ""
+    >>> copied = copy.deepcopy(Tagged(np.zeros(2), "a"))
+    >>> type(copied).__name__, copied.tag, copied.values.flags.writeable
+    ('Tagged', 'a', False)
+    """
+    values = {field.name: getattr(record, field.name) for field in fields(record)}
+    if arrays is None:
+        arrays = [
+            name
+            for name, value in values.items()
+            if isinstance(value, np.ndarray) and not value.flags.writeable
+        ]
+    instance, slots = extra_state(record, skip=values) or (None, {})
+    return rebuild_record, (type(record), values, tuple(arrays), instance, slots)
+
+
+def rebuild_record(
+    cls: type,
+    values: Mapping[str, Any],
+    arrays: Collection[str],
+    instance: Mapping[str, Any] | None,
+    slots: Mapping[str, Any],
+) -> Any:
+    """The record of class ``cls`` that :func:`reduce_record` took apart, ``arrays`` read-only.
+
+    A writeable array (pickle and deepcopy hand back fresh ones) is kept as a
+    read-only view of itself: the array given is never changed, so a
+    :func:`copy.copy` cannot make the original record's array read-only.
+    """
+    record: Any = object.__new__(cls)
+    for name, value in values.items():
+        if name in arrays and isinstance(value, np.ndarray) and value.flags.writeable:
+            value = value.view()
+            value.flags.writeable = False
+        object.__setattr__(record, name, value)
+    if instance:
+        record.__dict__.update(instance)
+    for name, value in slots.items():
+        object.__setattr__(record, name, value)
+    return record
 
 
 def restore_slots(

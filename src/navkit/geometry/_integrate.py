@@ -63,25 +63,7 @@ def integrate(pose: Pose2D | ArrayLike, twist: Twist2D | ArrayLike, dt: float) -
     step = finite_float(dt, "dt")
     if step < 0.0:
         raise ValueError(f"dt must be >= 0, got {step}")
-    x, y, th = integrate_kernel(start.x, start.y, start.theta, tw.vx, tw.vy, tw.omega, step)
-    if not (x - x == 0.0 and y - y == 0.0 and th - th == 0.0):
-        turn = not math.isfinite(tw.omega * step)
-        if not turn:
-            # A partial sum can overflow where the end pose does not. The position is
-            # linear in (x, y, vx, vy): the same step an eighth of the size, scaled back.
-            x, y, th = integrate_kernel(
-                start.x * _SHRINK,
-                start.y * _SHRINK,
-                start.theta,
-                tw.vx * _SHRINK,
-                tw.vy * _SHRINK,
-                tw.omega,
-                step,
-            )
-            x /= _SHRINK
-            y /= _SHRINK
-        if not (x - x == 0.0 and y - y == 0.0 and th - th == 0.0):
-            raise _overflow("twist", turn=turn)
+    x, y, th = _step(start.x, start.y, start.theta, tw.vx, tw.vy, tw.omega, step, "twist")
     return Pose2D(x, y, th)
 
 
@@ -146,28 +128,35 @@ def rollout(
     )
     # Once a pose overflows (inf) the later ones are inf or NaN, so the last row tells.
     if not np.isfinite(out[-1]).all():
-        with np.errstate(over="ignore"):
-            turn = not np.isfinite(tw[:, 2] * steps).all()
-        if not turn:
-            # As in integrate: a partial sum can overflow where no pose does, so the
-            # rollout an eighth of the size, scaled back (every row: a middle pose
-            # beyond the float range can come back within it by the last one).
-            small = np.array(tw, dtype=np.float64, order="C")  # a copy: twists is kept
-            small[:, :2] *= _SHRINK
-            rollout_kernel(
-                start.x * _SHRINK,
-                start.y * _SHRINK,
-                start.theta,
-                small,
-                np.ascontiguousarray(steps),
-                out,
-            )
-            with np.errstate(over="ignore"):
-                out[:, :2] /= _SHRINK
-            out[0] = (start.x, start.y, start.theta)
-        if not np.isfinite(out).all():
-            raise _overflow("twists", turn=turn)
+        # From the first step that overflowed on, step by step as integrate does (a
+        # partial sum can overflow where the pose does not): the rows stay identical
+        # to repeated integrate calls, the earlier ones untouched.
+        first = int(np.argmin(np.isfinite(out).all(axis=1))) - 1
+        for i in range(first, n):
+            x, y, th = out[i].tolist()
+            vx, vy, omega = tw[i].tolist()
+            out[i + 1] = _step(x, y, th, vx, vy, omega, float(steps[i]), "twists")
     return out
+
+
+def _step(
+    x: float, y: float, th: float, vx: float, vy: float, omega: float, dt: float, name: str
+) -> tuple[float, float, float]:
+    """Pose ``(x, y, th)`` moved by the twist for ``dt``; the overflow error names ``name``."""
+    nx, ny, nth = integrate_kernel(x, y, th, vx, vy, omega, dt)
+    if not (nx - nx == 0.0 and ny - ny == 0.0 and nth - nth == 0.0):
+        turn = not math.isfinite(omega * dt)
+        if not turn:
+            # A partial sum can overflow where the end pose does not. The position is
+            # linear in (x, y, vx, vy): the same step an eighth of the size, scaled back.
+            nx, ny, nth = integrate_kernel(
+                x * _SHRINK, y * _SHRINK, th, vx * _SHRINK, vy * _SHRINK, omega, dt
+            )
+            nx /= _SHRINK
+            ny /= _SHRINK
+        if not (nx - nx == 0.0 and ny - ny == 0.0 and nth - nth == 0.0):
+            raise _overflow(name, turn=turn)
+    return nx, ny, nth
 
 
 def _overflow(name: str, *, turn: bool) -> ValueError:

@@ -211,8 +211,9 @@ class Pose2D:
             out: FloatArray = pts @ rot + np.array([self.x, self.y])
             if not np.isfinite(out).all():
                 # As in compose: a partial sum may overflow where the point does not.
+                # Only there: the other points stay those of a call of their own.
                 small = (pts * _SHRINK) @ rot + np.array([self.x * _SHRINK, self.y * _SHRINK])
-                out = small / _SHRINK
+                out = np.where(np.isfinite(out), out, small / _SHRINK)
         if not np.isfinite(out).all():
             raise _overflow("points_xy", "transforming the points")
         return out

@@ -15,7 +15,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from navkit._shared.frozen import restore_read_only
+from navkit._shared.frozen import reduce_record, restore_read_only
+from navkit._shared.products import scaled_product
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array
 
@@ -276,11 +277,16 @@ class ImuInBase:
         object.__setattr__(self, "angular_velocities", _readonly(w))
         object.__setattr__(self, "linear_accelerations", _readonly(a))
 
+    def __reduce__(self) -> tuple[Any, ...]:
+        """Copy and pickle support: the arrays read-only again, also in subclasses' copies."""
+        return reduce_record(self, _IMU_ARRAYS)
+
     def __setstate__(self, state: list[Any]) -> None:
-        """Restore from a pickle or :func:`copy.deepcopy`, the arrays read-only again."""
-        restore_read_only(
-            self, state, ("orientations", "angular_velocities", "linear_accelerations")
-        )
+        """Restore from an older pickle, the arrays read-only again."""
+        restore_read_only(self, state, _IMU_ARRAYS)
+
+
+_IMU_ARRAYS = ("orientations", "angular_velocities", "linear_accelerations")
 
 
 def imu_to_base(
@@ -325,7 +331,10 @@ def imu_to_base(
     TypeError
         Values that are not real numbers.
     ValueError
-        Non-finite values, wrong or mismatched shapes, a zero ``mounting``.
+        Non-finite values, wrong or mismatched shapes, a zero ``mounting``, or
+        readings so large (near ±1.8e308) that a rotated component would
+        overflow float64, naming the readings. A component within the float
+        range is returned even when a partial sum of it would overflow.
 
     Examples
     --------
@@ -352,6 +361,18 @@ def imu_to_base(
     if not np.any(raw_m):
         raise ValueError("mounting must be a non-zero quaternion (x, y, z, w)")
     m = _quaternions(raw_m, "mounting")
-    rot = _matrices(m)
+    rot_t = _matrices(m).T
     inverse = m * np.array([-1.0, -1.0, -1.0, 1.0])
-    return ImuInBase(_multiply(q, inverse), w @ rot.T, a @ rot.T)
+    rotated = []
+    for name, arr in (("angular_velocities", w), ("linear_accelerations", a)):
+        # A rotated vector is as long as the original, but a component of it can lie
+        # beyond the float range (up to √3 times the largest one), and a partial sum
+        # can overflow where the component does not.
+        out = scaled_product(arr, rot_t)
+        if not np.isfinite(out).all():
+            raise ValueError(
+                f"{name}: rotating the readings into the base frame overflows float64 "
+                "(values near ±1.8e308)"
+            )
+        rotated.append(out)
+    return ImuInBase(_multiply(q, inverse), rotated[0], rotated[1])

@@ -8,6 +8,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from navkit._shared.frozen import restore_slots
+from navkit._shared.products import scaled_product
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, positive_float
 from navkit.geometry import Twist2D, as_twist
@@ -25,10 +26,20 @@ def _read_only(arr: FloatArray) -> FloatArray:
     return arr
 
 
-def _finite(arr: FloatArray, name: str, what: str) -> FloatArray:
-    if not np.isfinite(arr).all():
+def _product(rows: FloatArray, matrix_t: FloatArray, name: str, what: str) -> FloatArray:
+    """``rows @ matrix_t``; a ``ValueError`` naming ``name`` if it overflows float64.
+
+    A partial sum can overflow where the result fits (terms that cancel):
+    :func:`scaled_product` computes those rows at a scale where none does.
+    """
+    with np.errstate(over="ignore", invalid="ignore"):
+        out: FloatArray = rows @ matrix_t
+    if np.isfinite(out).all():  # the common case: one pass over the result
+        return out
+    out = scaled_product(rows, matrix_t)
+    if not np.isfinite(out).all():
         raise ValueError(f"{name}: {what} would overflow float64 (values far too large)")
-    return arr
+    return out
 
 
 class OmniDrive:
@@ -214,9 +225,12 @@ class OmniDrive:
             wheel speeds would overflow float64.
         """
         tw = as_twist(twist, "twist")
+        values = tw.as_array()
         with np.errstate(over="ignore", invalid="ignore"):
-            speeds: FloatArray = self._jacobian @ tw.as_array()
-        return _finite(speeds, "twist", "the wheel speeds")
+            speeds: FloatArray = self._jacobian @ values
+        if not np.isfinite(speeds).all():
+            speeds = _product(values[None, :], self._jacobian.T, "twist", "the wheel speeds")[0]
+        return speeds
 
     def forward(self, wheel_speeds: ArrayLike) -> Twist2D:
         """Body twist from wheel angular speeds (N,) in rad/s (least squares when N > 3).
@@ -240,7 +254,10 @@ class OmniDrive:
         """
         w = as_float_array(wheel_speeds, "wheel_speeds", shape=(self.n_wheels,))
         with np.errstate(over="ignore", invalid="ignore"):
-            vx, vy, omega = _finite(self._forward @ w, "wheel_speeds", "the twist")
+            twist: FloatArray = self._forward @ w
+        if not np.isfinite(twist).all():
+            twist = _product(w[None, :], self._forward.T, "wheel_speeds", "the twist")[0]
+        vx, vy, omega = twist
         return Twist2D(float(vx), float(vy), float(omega))
 
     def inverse_batch(self, twists: ArrayLike) -> FloatArray:
@@ -263,9 +280,7 @@ class OmniDrive:
             or wheel speeds that would overflow float64.
         """
         tw = as_float_array(twists, "twists", shape=(None, 3))
-        with np.errstate(over="ignore", invalid="ignore"):
-            speeds: FloatArray = tw @ self._jacobian.T
-        return _finite(speeds, "twists", "the wheel speeds")
+        return _product(tw, self._jacobian.T, "twists", "the wheel speeds")
 
     def forward_batch(self, wheel_speeds: ArrayLike) -> FloatArray:
         """Body twists (T, 3) ``[vx, vy, omega]`` from wheel speeds (T, N), rad/s.
@@ -287,9 +302,7 @@ class OmniDrive:
             or twists that would overflow float64.
         """
         w = as_float_array(wheel_speeds, "wheel_speeds", shape=(None, self.n_wheels))
-        with np.errstate(over="ignore", invalid="ignore"):
-            twists: FloatArray = w @ self._forward.T
-        return _finite(twists, "wheel_speeds", "the twists")
+        return _product(w, self._forward.T, "wheel_speeds", "the twists")
 
     def saturate(self, wheel_speeds: ArrayLike, *, max_speed: float) -> FloatArray:
         """Scale wheel speeds so that none exceeds ``max_speed`` in magnitude.
@@ -303,13 +316,20 @@ class OmniDrive:
         wheel_speeds : array_like, shape (N,) or (T, N)
             Wheel angular speeds, rad/s.
         max_speed : float
-            Largest allowed wheel speed magnitude, rad/s, finite and > 0
-            (keyword-only).
+            Largest allowed wheel speed magnitude, rad/s, finite and at least
+            the smallest normal float, about 2.2e-308 (keyword-only).
 
         Returns
         -------
         ndarray
             New array of the input's shape.
+
+        Raises
+        ------
+        TypeError, ValueError
+            ``max_speed`` not a real number or out of its range (a subnormal
+            value such as 5e-324 included), or ``wheel_speeds`` not finite real
+            numbers of shape (N,) or (T, N); each naming the argument.
 
         Examples
         --------

@@ -24,5 +24,5 @@ def in_range(value: Any, name: str, low: float, high: float, unit: str) -> float
     """Return ``value`` as a float in [low, high] or raise naming ``name`` and the range."""
     out = finite_float(value, name)
     if not low <= out <= high:
-        raise ValueError(f"{name} must be in [{low:g}, {high:g}] {unit}, got {out:g}")
+        raise ValueError(f"{name} must be in [{low:g}, {high:g}] {unit}, got {out!r}")
     return out

@@ -1,0 +1,44 @@
+"""Matrix products whose partial sums may overflow where the result does not (private).
+
+``rows @ matrix_t`` adds terms that can each exceed the float range (or whose
+running sum does) while the sum fits: large terms of opposite signs cancel, a
+large input meets a large entry before a small one. :func:`scaled_product`
+computes such rows again with their largest input scaled to [0.5, 1) by an exact
+power of two, where no term overflows, and scales them back; a result beyond
+the float range stays infinite for the caller to refuse.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from navkit._shared.types import FloatArray
+
+__all__ = ["scaled_product"]
+
+
+def scaled_product(rows: FloatArray, matrix_t: FloatArray) -> FloatArray:
+    """``rows @ matrix_t`` for finite ``rows`` (..., K) and ``matrix_t`` (K, M), as a new array.
+
+    Rows whose plain product is finite are returned bit for bit as ``rows @
+    matrix_t`` gives them; the others are computed at a scale where no partial
+    sum overflows (entries of ``matrix_t`` up to about 1e300 in magnitude).
+    Entries beyond the float range come back infinite (no warning).
+
+    Examples
+    --------
+    >>> scaled_product(np.array([1.5e308, 1.5e308]), np.array([[1.0], [-0.5]]))
+    array([7.5e+307])
+    """
+    with np.errstate(over="ignore", invalid="ignore"):
+        out: FloatArray = rows @ matrix_t
+    bad = ~np.isfinite(out).all(axis=-1)
+    if bad.any():
+        big = rows[bad]
+        # frexp: peak = mantissa * 2**exponent with mantissa in [0.5, 1); the scaling by
+        # 2**-exponent is exact except for inputs below 2**-1022 of the row's largest,
+        # which round by at most 2**-1075 of it: far below the rounding of the terms.
+        _, exponent = np.frexp(np.max(np.abs(big), axis=-1, keepdims=True))
+        with np.errstate(over="ignore", invalid="ignore"):
+            out[bad] = np.ldexp(np.ldexp(big, -exponent) @ matrix_t, exponent)
+    return out
