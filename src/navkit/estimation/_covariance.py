@@ -48,9 +48,10 @@ def variance(value: Any, name: str) -> float:
 def check_magnitude(arr: FloatArray, name: str) -> None:
     """Raise naming ``name`` if an entry of ``arr`` exceeds :data:`MAX_COVARIANCE` in magnitude."""
     if arr.size and float(np.max(np.abs(arr))) > MAX_COVARIANCE:
+        # The value exactly (repr): ``:g`` rounds one just past the limit to "1e+100".
         raise ValueError(
             f"{name} entries must have magnitude <= {MAX_COVARIANCE:g}, "
-            f"got {float(np.max(np.abs(arr))):g}"
+            f"got {float(np.max(np.abs(arr)))!r}"
         )
 
 
@@ -85,7 +86,7 @@ def covariance(value: ArrayLike, name: str, n: int, *, semidefinite: bool = Fals
         if not pivot >= SMALLEST_POSITIVE:
             raise ValueError(
                 f"{name} must be positive definite with LDLᵀ pivots of at least "
-                f"{SMALLEST_POSITIVE:.4g} (a normal float), got a pivot of {pivot:.4g}"
+                f"{SMALLEST_POSITIVE!r} (a normal float), got a pivot of {pivot!r}"
             )
     return arr
 

@@ -21,6 +21,7 @@ from typing import Any, NoReturn
 import numpy as np
 from numpy.typing import ArrayLike
 
+from navkit._shared.frozen import extra_state
 from navkit._shared.types import FloatArray, IntArray
 from navkit._shared.validation import SMALLEST_POSITIVE, as_float_array, positive_float
 from navkit.errors import FilterError
@@ -58,7 +59,7 @@ from navkit.estimation._ekf_kernels import (
     set_r,
     update_kernel,
 )
-from navkit.estimation._gaussian import GaussianEstimate, subclass_state
+from navkit.estimation._gaussian import GaussianEstimate
 from navkit.estimation._result import (  # the slot setters of new_result, for inlining it
     UpdateResult,
     _object_new,
@@ -199,11 +200,11 @@ class ExtendedKalmanFilter(GaussianEstimate):
     def __reduce__(self) -> tuple[Any, ...]:
         # The estimate lives in one array updated in place, with x and P views into it:
         # copies (copy.copy too) and pickles get their own array and views. A subclass
-        # is rebuilt as itself, with what it adds restored after (see subclass_state).
+        # is rebuilt as itself, with what it adds restored after (see extra_state).
         cls = type(self)
         if cls is ExtendedKalmanFilter:
             return _restore, (self._state.copy(), self._angles)
-        extra = subclass_state(self, ExtendedKalmanFilter)
+        extra = extra_state(self, below=ExtendedKalmanFilter)
         return _restore, (self._state.copy(), self._angles, cls), extra
 
     @property

@@ -12,9 +12,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from navkit._shared.frozen import restore_read_only
+from navkit._shared.frozen import extra_state, reduce_record, restore_read_only
 from navkit._shared.types import BoolArray, FloatArray
-from navkit._shared.validation import as_float_array, finite_float
+from navkit._shared.validation import as_array, as_float_array, finite_float
 from navkit.errors import FilterError
 from navkit.estimation import _fusion_kernels as k
 from navkit.estimation._covariance import (
@@ -35,7 +35,7 @@ from navkit.estimation._fusion_kernels import (
     planar_step_entry,
     undo_step,
 )
-from navkit.estimation._gaussian import GaussianEstimate, subclass_state
+from navkit.estimation._gaussian import GaussianEstimate
 from navkit.estimation._result import (
     UpdateResult,
     _object_new,
@@ -64,6 +64,10 @@ _KIND_COMPONENTS = {
     "acceleration": (3, 1),
 }
 
+
+# The array fields of the records, made read-only again in their copies and pickles.
+_LOG_ARRAYS = ("times", "values", "variances", "observed")
+_RESULT_ARRAYS = ("times", "states", "covariances", "status", "nis")
 
 # Argument names for error messages: (value 0, value 1, variance 0, variance 1).
 _ODOMETRY_NAMES = ("v", "omega", "v_variance", "omega_variance")
@@ -173,7 +177,9 @@ class MeasurementLog:
     def __post_init__(self) -> None:
         times = as_float_array(self.times, "times", ndim=1)
         n = times.shape[0]
-        obs = np.asarray(self.observed)
+        # as_array, not np.asarray: a masked array's masked entries would be read as
+        # their data, and a ragged nesting raise NumPy's message, naming nothing.
+        obs = as_array(self.observed, "observed")
         if obs.dtype != np.bool_:
             raise TypeError(f"observed must be a boolean array, got dtype {obs.dtype}")
         if obs.shape != (n, 4):
@@ -203,9 +209,13 @@ class MeasurementLog:
         obs.flags.writeable = False
         object.__setattr__(self, "observed", obs)
 
+    def __reduce__(self) -> tuple[Any, ...]:
+        """Copy and pickle support: the arrays read-only again, also in subclasses' copies."""
+        return reduce_record(self, _LOG_ARRAYS)
+
     def __setstate__(self, state: list[Any]) -> None:
-        """Restore from a pickle or :func:`copy.deepcopy`, the arrays read-only again."""
-        restore_read_only(self, state, ("times", "values", "variances", "observed"))
+        """Restore from an older pickle, the arrays read-only again."""
+        restore_read_only(self, state, _LOG_ARRAYS)
 
     def __len__(self) -> int:
         return int(self.times.shape[0])
@@ -385,7 +395,7 @@ class FusionResult:
         nis = as_float_array(self.nis, "nis", shape=(n,), finite=False)
         if np.any(nis < 0.0):
             raise ValueError("nis must be >= 0 (inf when it overflowed) or NaN (not computed)")
-        raw_status = np.asarray(self.status)
+        raw_status = as_array(self.status, "status")  # masked or ragged: refused, named
         if raw_status.dtype.kind not in "iu":
             raise TypeError(f"status must hold integer codes, got dtype {raw_status.dtype}")
         if raw_status.shape != (n,):
@@ -405,9 +415,13 @@ class FusionResult:
             owned.flags.writeable = False
             object.__setattr__(self, name, owned)
 
+    def __reduce__(self) -> tuple[Any, ...]:
+        """Copy and pickle support: the arrays read-only again, also in subclasses' copies."""
+        return reduce_record(self, _RESULT_ARRAYS)
+
     def __setstate__(self, state: list[Any]) -> None:
-        """Restore from a pickle or :func:`copy.deepcopy`, the arrays read-only again."""
-        restore_read_only(self, state, ("times", "states", "covariances", "status", "nis"))
+        """Restore from an older pickle, the arrays read-only again."""
+        restore_read_only(self, state, _RESULT_ARRAYS)
 
     @property
     def accepted(self) -> BoolArray:
@@ -598,11 +612,11 @@ class PlanarFusion(GaussianEstimate):
         # The estimate lives in one buffer updated in place, with x, P and Q views into
         # it: copies (copy.copy too) and pickles get their own buffer and views. A
         # subclass is rebuilt as itself, with what it adds restored after (see
-        # subclass_state).
+        # extra_state).
         cls = type(self)
         if cls is PlanarFusion:
             return _restore_fusion, (self._buf.copy(), self._gates.copy())
-        extra = subclass_state(self, PlanarFusion)
+        extra = extra_state(self, below=PlanarFusion)
         return _restore_fusion, (self._buf.copy(), self._gates.copy(), cls), extra
 
     @property

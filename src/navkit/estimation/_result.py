@@ -7,6 +7,7 @@ from typing import Any
 
 import numpy as np
 
+from navkit._shared.frozen import reduce_record
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array
 
@@ -59,8 +60,17 @@ class UpdateResult:
         if self.accepted and self.reason is not None:
             raise ValueError(f"reason must be None when accepted, got {self.reason!r}")
 
+    def __reduce__(self) -> tuple[Any, ...]:
+        """Copy and pickle support: ``residual`` read-only, also in subclasses' copies.
+
+        Through :func:`~navkit._shared.frozen.reduce_record`, so that a subclass keeps
+        its class, its own fields and attributes. A writeable residual (the one a
+        filter returns) is held as a read-only view: the original keeps its own.
+        """
+        return reduce_record(self, ("residual",))
+
     def __setstate__(self, state: list[Any]) -> None:
-        """Restore from a pickle or :func:`copy.deepcopy` with a read-only ``residual``.
+        """Restore from an older pickle with a read-only ``residual``.
 
         An unpickled or deep-copied array is writeable again. A writeable one (also
         the residual a filter returns, shared by a :func:`copy.copy`) is replaced by
