@@ -28,7 +28,8 @@ booleans are not numbers, flags must be ``bool``):
   ``unknown_cost`` in [1, 1e9] or ``inf``; thresholds in [0, 1] with
   ``free_thresh < occupied_thresh``;
 * laser ``range_max`` at most 1e9 m; beam angles within ±2π, spanning at
-  most a full turn (more means degrees given as radians: the message says so);
+  most a full turn (more means degrees given as radians: the message says so;
+  1e-5 rad of slack for angles rounded to float32 in ROS messages);
 * world points and grid coordinates may be any finite numbers: cells of far
   points are clamped to ±2**62, and coordinates beyond ±2**62 cells are refused.
 

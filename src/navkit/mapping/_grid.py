@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING, Any, ClassVar, Literal, overload
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from navkit._shared.frozen import slot_names
 from navkit._shared.grid_coords import CELL_LIMIT, as_pairs, inside, one_or_many
 from navkit._shared.types import BoolArray, FloatArray, IntArray
 from navkit._shared.validation import as_array, as_bool, as_float_array, finite_float
@@ -270,8 +271,9 @@ class OccupancyGrid:
         Returns
         -------
         OccupancyGrid
-            A new grid with a copy of the log-odds, the same resolution, origin
-            and thresholds.
+            A new grid of the same class with a copy of the log-odds, the same
+            resolution, origin and thresholds (a subclass's own attributes are
+            copied as :func:`copy.copy` copies them: shallowly).
 
         Examples
         --------
@@ -279,13 +281,26 @@ class OccupancyGrid:
         >>> grid.copy().logodds is grid.logodds
         False
         """
-        return OccupancyGrid(
-            self._logodds,
-            resolution=self._resolution,
-            origin=self._origin,
-            occupied_thresh=self._occupied_thresh,
-            free_thresh=self._free_thresh,
-        )
+        cls = type(self)
+        if cls is OccupancyGrid:
+            return OccupancyGrid(
+                self._logodds,
+                resolution=self._resolution,
+                origin=self._origin,
+                occupied_thresh=self._occupied_thresh,
+                free_thresh=self._free_thresh,
+            )
+        # A subclass is copied as itself, with what it adds (its __dict__, its
+        # own slots), as copy.copy copies any object, and its own log-odds.
+        new = cls.__new__(cls)
+        for name in slot_names(cls):
+            if hasattr(self, name):
+                object.__setattr__(new, name, getattr(self, name))
+        instance = getattr(self, "__dict__", None)
+        if instance:
+            new.__dict__.update(instance)
+        new._logodds = self._logodds.copy()
+        return new
 
     def __copy__(self) -> OccupancyGrid:
         # Ray casting updates the log-odds in place: a shallow copy sharing the

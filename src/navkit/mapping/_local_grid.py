@@ -9,7 +9,7 @@ from typing import Any, Literal, overload
 import numpy as np
 from numpy.typing import ArrayLike
 
-from navkit._shared.frozen import restore_read_only
+from navkit._shared.frozen import reduce_record, restore_read_only
 from navkit._shared.grid_coords import as_pairs, inside, one_or_many, round_half_up
 from navkit._shared.types import BoolArray, FloatArray, IntArray
 from navkit._shared.validation import as_array, as_bool, as_points
@@ -98,8 +98,12 @@ class LocalGrid:
         object.__setattr__(self, "resolution", res)
         object.__setattr__(self, "half_width", half)
 
+    def __reduce__(self) -> tuple[Any, ...]:
+        """Copy and pickle support: the arrays read-only again, also in subclasses' copies."""
+        return reduce_record(self, ("occupied",))
+
     def __setstate__(self, state: list[Any]) -> None:
-        """Restore from a pickle or :func:`copy.deepcopy`, ``occupied`` read-only again."""
+        """Restore from an older pickle, the arrays read-only again."""
         restore_read_only(self, state, ("occupied",))
 
     @property

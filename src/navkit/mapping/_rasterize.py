@@ -200,11 +200,12 @@ def rasterize_polygons(geometries: Any, *, bounds: ArrayLike, resolution: float)
     import shapely
 
     b = as_float_array(bounds, "bounds", shape=(4,))
-    xmin, ymin, xmax, ymax = (float(v) for v in b)
+    xmin, ymin, xmax, ymax = given = tuple(float(v) for v in b)
+    # The values as given (an array's repr rounds them: 1e9 + 1e-7 would print as 1e9).
     if not float(np.abs(b).max()) <= COORDINATE_LIMIT:
-        raise ValueError(f"bounds must lie within ±1e9 m, got {b}")
+        raise ValueError(f"bounds must lie within ±1e9 m, got {given}")
     if xmax <= xmin or ymax <= ymin:
-        raise ValueError(f"bounds must be (xmin, ymin, xmax, ymax) with max > min, got {b}")
+        raise ValueError(f"bounds must be (xmin, ymin, xmax, ymax) with max > min, got {given}")
     res = resolution_float(resolution)
     geoms = _geometry_list(geometries)
     for i, g in enumerate(geoms):
@@ -220,7 +221,7 @@ def rasterize_polygons(geometries: Any, *, bounds: ArrayLike, resolution: float)
         width=xmax - xmin,
         height=ymax - ymin,
         resolution=res,
-        what=f"bounds {tuple(float(v) for v in b)} at resolution {res:g} m",
+        what=f"bounds {given} at resolution {res:g} m",
     )
     occ = np.zeros((rows, cols), dtype=np.bool_)
     xs = _edges(xmin, res, cols)

@@ -9,7 +9,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from navkit._shared.frozen import restore_read_only
+from navkit._shared.frozen import reduce_record, restore_read_only
 from navkit._shared.types import BoolArray, FloatArray
 from navkit._shared.validation import as_float_array, finite_float
 from navkit.geometry import Pose2D, as_pose, wrap_angle
@@ -37,7 +37,9 @@ def _check_angles(angle_min: float, increment: float, n: int) -> None:
         )
     for name, value in (("angle_min", angle_min), ("angle_max", angle_max)):
         if abs(value) > _TURN + _ANGLE_TOL:
-            raise ValueError(f"{name} ({value:g} rad) lies beyond ±2π: {hint}")
+            short = f"{value:g}"  # the value itself where :g would round it into range
+            text = short if float(short) == value else repr(value)
+            raise ValueError(f"{name} ({text} rad) lies beyond ±2π: {hint}")
 
 
 def _readonly(arr: NDArray[Any]) -> NDArray[Any]:
@@ -66,8 +68,10 @@ class LaserScan:
         Angle of the first beam, rad, within ±2π.
     angle_increment : float
         Angle between consecutive beams, rad (non-zero; negative for scanners
-        that sweep clockwise). The last beam ``angle_max`` must lie within
-        ±2π too, and the beams may span at most a full turn plus one increment.
+        that sweep clockwise), at most a full turn. The last beam ``angle_max``
+        must lie within ±2π too, and the beams may span at most a full turn
+        plus one increment. Each of these limits has 1e-5 rad of slack, for
+        angles rounded to float32 in ROS messages.
     range_min, range_max : float
         Valid range interval in metres, ``0 <= range_min < range_max <= 1e9``.
     intensities : array_like, shape (N,), optional
@@ -140,8 +144,12 @@ class LaserScan:
                 )
             object.__setattr__(self, "intensities", _readonly(inten))
 
+    def __reduce__(self) -> tuple[Any, ...]:
+        """Copy and pickle support: the arrays read-only again, also in subclasses' copies."""
+        return reduce_record(self, ("ranges", "intensities"))
+
     def __setstate__(self, state: list[Any]) -> None:
-        """Restore from a pickle or :func:`copy.deepcopy`, the arrays read-only again."""
+        """Restore from an older pickle, the arrays read-only again."""
         restore_read_only(self, state, ("ranges", "intensities"))
 
     def __len__(self) -> int:

@@ -253,6 +253,15 @@ class ScanMapper:
             The match (for the first scan: the ``start`` pose, reason
             ``"degenerate"`` as an empty map constrains nothing).
 
+        Raises
+        ------
+        TypeError
+            ``scan`` is not a LaserScan, ``odometry`` not real numbers.
+        ValueError
+            ``odometry`` not finite, or the pose predicted for this scan
+            (from the odometry increment, or the previous motion repeated)
+            beyond ±1.8e308 m, the float range; the mapper is unchanged.
+
         Examples
         --------
         >>> mapper = ScanMapper()
@@ -265,7 +274,16 @@ class ScanMapper:
             raise TypeError(f"scan must be a LaserScan, got {type(scan).__name__}")
         odom = None if odometry is None else as_pose(odometry, "odometry")
         points = scan_points(scan, self._max_range)
-        guess = self._guess(odom)
+        try:
+            guess = self._guess(odom)
+        except ValueError as err:  # Pose2D names its own arguments (other, frame) in it
+            source = (
+                "odometry: the increment since the previous scan's odometry, or the pose it "
+                "predicts,"
+                if odom is not None and self._last_odometry is not None
+                else "the pose predicted by repeating the previous scan-to-scan motion"
+            )
+            raise ValueError(f"{source} lies beyond ±1.8e308 m (the float range)") from err
         if not self._levels:
             self._create_levels(guess)
         self._ensure_covers(guess, points)

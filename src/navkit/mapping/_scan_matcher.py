@@ -11,7 +11,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from navkit._shared.frozen import restore_read_only
+from navkit._shared.frozen import reduce_record, restore_read_only
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array
 from navkit.geometry import Pose2D, as_pose
@@ -150,8 +150,12 @@ class ScanMatchResult:
         if self.reason not in REASONS:
             raise ValueError(f"reason must be one of {REASONS}, got {self.reason!r}")
 
+    def __reduce__(self) -> tuple[Any, ...]:
+        """Copy and pickle support: the arrays read-only again, also in subclasses' copies."""
+        return reduce_record(self, ("covariance",))
+
     def __setstate__(self, state: list[Any]) -> None:
-        """Restore from a pickle or :func:`copy.deepcopy`, ``covariance`` read-only again."""
+        """Restore from an older pickle, the arrays read-only again."""
         restore_read_only(self, state, ("covariance",))
 
 

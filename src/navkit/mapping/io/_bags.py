@@ -21,6 +21,7 @@ from typing import Any, NamedTuple, TypeVar
 import numpy as np
 from numpy.typing import ArrayLike
 
+from navkit._shared.frozen import reduce_record, restore_read_only
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array
 from navkit.geometry import imu_to_base, quaternion_to_matrix, quaternion_to_yaw, wrap_angle
@@ -72,6 +73,26 @@ def _check_fields(obj: Any, texts: tuple[str, ...], arrays: dict[str, tuple[int,
     return n
 
 
+# Trailing shapes (after the time axis) of the arrays of the odometry and IMU results.
+_ODOMETRY_SHAPES = {
+    "poses": (3,),
+    "orientations": (4,),
+    "twists": (3,),
+    "pose_covariances": (6, 6),
+    "twist_covariances": (6, 6),
+}
+_IMU_SHAPES = {
+    "orientations": (4,),
+    "angular_velocities": (3,),
+    "linear_accelerations": (3,),
+    "orientation_covariances": (3, 3),
+    "angular_velocity_covariances": (3, 3),
+    "linear_acceleration_covariances": (3, 3),
+}
+_ODOMETRY_ARRAYS = ("times", "record_times", *_ODOMETRY_SHAPES)
+_IMU_ARRAYS = ("times", "record_times", *_IMU_SHAPES)
+
+
 @dataclass(frozen=True, slots=True, eq=False)
 class BagScans:
     """``sensor_msgs/LaserScan`` messages of one bag topic (:func:`read_bag_scans`).
@@ -117,6 +138,14 @@ class BagScans:
         if len(scans) != n:
             raise ValueError(f"scans must hold {n} scans (one per time), got {len(scans)}")
         object.__setattr__(self, "scans", scans)
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        """Copy and pickle support: the arrays read-only again, also in subclasses' copies."""
+        return reduce_record(self, ("times", "record_times"))
+
+    def __setstate__(self, state: list[Any]) -> None:
+        """Restore from an older pickle, the arrays read-only again."""
+        restore_read_only(self, state, ("times", "record_times"))
 
     def __len__(self) -> int:
         return int(self.times.shape[0])
@@ -176,19 +205,20 @@ class BagOdometry:
     twist_covariances: FloatArray
 
     def __post_init__(self) -> None:
-        arrays = {
-            "poses": (3,),
-            "orientations": (4,),
-            "twists": (3,),
-            "pose_covariances": (6, 6),
-            "twist_covariances": (6, 6),
-        }
-        _check_fields(self, ("topic", "frame_id", "child_frame_id"), arrays)
+        _check_fields(self, ("topic", "frame_id", "child_frame_id"), _ODOMETRY_SHAPES)
         # Poses given directly (not read from a bag) may carry any yaw: wrap it too.
         poses = self.poses.copy()
         poses[:, 2] = wrap_angle(poses[:, 2])
         poses.flags.writeable = False
         object.__setattr__(self, "poses", poses)
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        """Copy and pickle support: the arrays read-only again, also in subclasses' copies."""
+        return reduce_record(self, _ODOMETRY_ARRAYS)
+
+    def __setstate__(self, state: list[Any]) -> None:
+        """Restore from an older pickle, the arrays read-only again."""
+        restore_read_only(self, state, _ODOMETRY_ARRAYS)
 
     def __len__(self) -> int:
         return int(self.times.shape[0])
@@ -241,15 +271,15 @@ ndarray, shape (N, 3, 3)
     linear_acceleration_covariances: FloatArray
 
     def __post_init__(self) -> None:
-        arrays = {
-            "orientations": (4,),
-            "angular_velocities": (3,),
-            "linear_accelerations": (3,),
-            "orientation_covariances": (3, 3),
-            "angular_velocity_covariances": (3, 3),
-            "linear_acceleration_covariances": (3, 3),
-        }
-        _check_fields(self, ("topic", "frame_id"), arrays)
+        _check_fields(self, ("topic", "frame_id"), _IMU_SHAPES)
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        """Copy and pickle support: the arrays read-only again, also in subclasses' copies."""
+        return reduce_record(self, _IMU_ARRAYS)
+
+    def __setstate__(self, state: list[Any]) -> None:
+        """Restore from an older pickle, the arrays read-only again."""
+        restore_read_only(self, state, _IMU_ARRAYS)
 
     def __len__(self) -> int:
         return int(self.times.shape[0])
@@ -643,7 +673,12 @@ def _stamp(msg: Any) -> float:
 
 
 def _record_times(messages: list[tuple[int, Any]]) -> FloatArray:
-    return np.array([ns * 1e-9 for ns, _ in messages], dtype=np.float64)
+    # As _stamp computes a stamp, so that the same instant gives the same float
+    # (``ns * 1e-9`` rounds ns to a multiple of 256 first: often one float off).
+    return np.array(
+        [float(ns // 1_000_000_000) + float(ns % 1_000_000_000) * 1e-9 for ns, _ in messages],
+        dtype=np.float64,
+    )
 
 
 def _frame(messages: list[tuple[int, Any]], field: Callable[[Any], str]) -> str:

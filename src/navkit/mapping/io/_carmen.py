@@ -9,10 +9,11 @@ import zlib
 from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
 import numpy as np
 
+from navkit._shared.frozen import reduce_record, restore_read_only
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, positive_float
 from navkit.geometry import Pose2D, as_pose, wrap_angle
@@ -22,6 +23,8 @@ from navkit.mapping.io._paths import as_path
 __all__ = ["CarmenLog", "read_carmen"]
 
 _TURN = 2.0 * math.pi
+#: The largest ``range_max`` a LaserScan accepts, m.
+_RANGE_LIMIT = 1e9
 
 
 def _guess_fov(n: int) -> float:
@@ -121,6 +124,14 @@ class CarmenLog:
         object.__setattr__(self, "robot_poses", robot)
         object.__setattr__(self, "timestamps", stamps)
         object.__setattr__(self, "odometry", odometry)
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        """Copy and pickle support: the arrays read-only again, also in subclasses' copies."""
+        return reduce_record(self, ("timestamps", "odometry"))
+
+    def __setstate__(self, state: list[Any]) -> None:
+        """Restore from an older pickle, the arrays read-only again."""
+        restore_read_only(self, state, ("timestamps", "odometry"))
 
     def __len__(self) -> int:
         return len(self.scans)
@@ -370,8 +381,9 @@ def read_carmen(
         do not match the number of fields, a last line that may have been
         cut (no newline and nothing after the timestamp), angles in degrees (a field of view
         or beams spanning more than 2π, a start angle beyond ±2π), a maximum
-        range beyond 1e9 m; a log without laser lines; a bad ``range_min`` or
-        ``range_max``.
+        range beyond 1e9 m (a ROBOTLASER1 line's or, without ``range_max``,
+        the largest FLASER reading); a log without laser lines; a bad
+        ``range_min`` or ``range_max``.
 
     Examples
     --------
@@ -401,9 +413,18 @@ def read_carmen(
 
     flaser_max = rmax_user
     if flaser_max is None:
-        flaser = [r.ranges for r in records if r.range_max is None]
+        flaser = [r for r in records if r.range_max is None]
         if flaser:
-            flaser_max = max(float(r.max()) for r in flaser)
+            # The first line holding the largest reading, named if it is out of range
+            # (every FLASER scan would otherwise be refused for it, naming the first).
+            top = max(flaser, key=lambda r: (float(r.ranges.max()), -r.line))
+            flaser_max = float(top.ranges.max())
+            if flaser_max > _RANGE_LIMIT:
+                raise ValueError(
+                    f"{log_path}:{top.line}: FLASER reading {flaser_max} m exceeds 1e9 m, so "
+                    "cannot be the scans' maximum range (taken from the largest reading "
+                    "when range_max is not given); give range_max"
+                )
     return CarmenLog(
         scans=tuple(_scan(log_path, r, rmin, flaser_max) for r in records),
         laser_poses=tuple(Pose2D(*r.laser_pose) for r in records),

@@ -14,8 +14,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from navkit._shared.frozen import reduce_record, restore_read_only
 from navkit._shared.validation import as_bool, finite_float
-from navkit.geometry import Pose2D
+from navkit.geometry import Pose2D, quaternion_to_yaw
 from navkit.mapping import LaserScan, OccupancyGrid
 
 __all__ = ["OccupancyGridMsgFields", "grid_from_msg", "grid_to_msg_fields", "scan_from_msg"]
@@ -137,6 +138,14 @@ class OccupancyGridMsgFields:
         data.flags.writeable = False
         object.__setattr__(self, "data", data)
 
+    def __reduce__(self) -> tuple[Any, ...]:
+        """Copy and pickle support: the arrays read-only again, also in subclasses' copies."""
+        return reduce_record(self, ("data",))
+
+    def __setstate__(self, state: list[Any]) -> None:
+        """Restore from an older pickle, the arrays read-only again."""
+        restore_read_only(self, state, ("data",))
+
 
 def grid_from_msg(msg: Any) -> OccupancyGrid:
     """Grid from a ``nav_msgs/OccupancyGrid`` (or any look-alike with its field names).
@@ -206,15 +215,14 @@ def grid_from_msg(msg: Any) -> OccupancyGrid:
         finite_float(v, f"msg.info.origin.orientation.{k}")
         for v, k in zip(quat, "xyzw", strict=True)
     )
-    norm = math.hypot(qx, qy, qz, qw)
-    if norm > 0.0:  # a zero quaternion (ROS 1's default) means no rotation
-        qx, qy, qz, qw = qx / norm, qy / norm, qz / norm, qw / norm
     data = _occupancy_values(raw, "msg.data").ravel()
     if data.size != width * height:
         raise ValueError(
             f"msg.data has {data.size} values, expected width*height = {width * height}"
         )
-    yaw = math.atan2(2.0 * (qw * qz + qx * qy), 1.0 - 2.0 * (qy * qy + qz * qz))
+    # Normalised without underflow (sub-normal components) and a zero quaternion (ROS
+    # 1's default) read as no rotation; a map pitched ±90° has no heading: yaw 0.
+    yaw = float(quaternion_to_yaw((qx, qy, qz, qw)))
     prob = np.where(data < 0, 0.5, data / 100.0).reshape(height, width)
     try:
         return OccupancyGrid.from_probabilities(
