@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from navkit._shared.frozen import restore_read_only
+from navkit._shared.frozen import reduce_record, restore_read_only
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_bool, as_float_array, as_points, finite_float
 
@@ -43,10 +43,10 @@ def _players(value: ArrayLike, name: str) -> FloatArray:
 
 
 def _restore(record: Any, state: Sequence[Any]) -> None:
-    """``__setstate__`` of the records: fields from ``state``, arrays read-only again.
+    """``__setstate__`` of the records, for pickles made before their ``__reduce__``.
 
-    pickle and :func:`copy.deepcopy` rebuild a slotted dataclass without
-    ``__post_init__``, and the arrays they copy come back writable.
+    Those hold the field values as a list; pickle hands the arrays back
+    writable, so they are made read-only again.
     """
     restore_read_only(record, state, [f.name for f in fields(record)])
 
@@ -88,6 +88,7 @@ class BehaviourTarget:
     goal_xy: FloatArray
     obstacles_xy: FloatArray
 
+    __reduce__ = reduce_record
     __setstate__ = _restore
 
     def __post_init__(self) -> None:
@@ -154,6 +155,7 @@ class GameState:
     opponent_with_ball: int | None = None
     possession_radius: float = 0.25
 
+    __reduce__ = reduce_record
     __setstate__ = _restore
 
     def __post_init__(self) -> None:
@@ -167,7 +169,7 @@ class GameState:
         radius = finite_float(self.possession_radius, "possession_radius")
         if not _MIN_RADIUS <= radius <= _MAX_RADIUS:
             raise ValueError(
-                f"possession_radius must be in [{_MIN_RADIUS:g}, {_MAX_RADIUS:g}] m, got {radius:g}"
+                f"possession_radius must be in [{_MIN_RADIUS:g}, {_MAX_RADIUS:g}] m, got {radius!r}"
             )
         setter(self, "possession_radius", radius)
         if self.has_ball is None:
@@ -273,8 +275,14 @@ def support(state: GameState) -> BehaviourTarget:
            [-4.5,  0. ]])
     """
     s = _check(state)
-    # 0.5*a + 0.5*b is 0.5*(a + b) bit for bit and cannot overflow.
-    goal = 0.5 * s.ball_xy + 0.5 * s.own_goal_xy
+    # 0.5*(a + b) is the correctly rounded midpoint: the sum rounds only where its
+    # half is normal (halving it is then exact), and is exact where halving rounds.
+    # Only where a + b overflows are the halves added, which cannot overflow.
+    # Halving first lost sub-normal halves' last bit: the midpoint of 5e-324 and
+    # 5e-324 came out 0.
+    with np.errstate(over="ignore"):
+        total = s.ball_xy + s.own_goal_xy
+    goal = np.where(np.isfinite(total), 0.5 * total, 0.5 * s.ball_xy + 0.5 * s.own_goal_xy)
     obstacles = np.concatenate((s.teammates_xy, s.opponents_xy, s.own_goal_xy[None, :]), axis=0)
     return BehaviourTarget(goal, obstacles)
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 from typing import Literal
 
+from navkit._shared.validation import finite_float
 from navkit.control._path_following import (
     PathTracker,
     Polyline,
@@ -102,9 +103,10 @@ class OnOffTracker(PathTracker):
         super().__init__(drive=drive, goal_tolerance=goal_tolerance, yaw_tolerance=yaw_tolerance)
         self._speed = bounded(speed, "speed", 0.0, 100.0)
         self._turn_rate = bounded(turn_rate, "turn_rate", 0.0, 100.0)
-        self._heading_tolerance = bounded(heading_tolerance, "heading_tolerance", 0.0, math.pi / 2)
-        if self._heading_tolerance == math.pi / 2:
-            raise ValueError(f"heading_tolerance must be < π/2, got {self._heading_tolerance}")
+        tolerance = finite_float(heading_tolerance, "heading_tolerance")
+        if not 0.0 < tolerance < math.pi / 2:
+            raise ValueError(f"heading_tolerance must be in (0, π/2), got {tolerance}")
+        self._heading_tolerance = tolerance
         self._waypoint = 0
 
     @property

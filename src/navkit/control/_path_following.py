@@ -376,7 +376,7 @@ class PathTracker(ABC):
         pose : Pose2D or array_like [x, y, theta]
             Robot pose in the world frame (coordinates within ±1e9 m).
         dt : float
-            Control period in seconds, > 0.
+            Control period in seconds, > 0 (a normal float: at least 2.2e-308).
 
         Returns
         -------
@@ -389,8 +389,8 @@ class PathTracker(ABC):
         RuntimeError
             No path yet (call :meth:`set_path` first).
         TypeError, ValueError
-            A bad ``pose`` or ``dt`` (not > 0), naming it; the tracker's state
-            is unchanged then.
+            A bad ``pose`` or ``dt`` (not a normal float > 0), naming it;
+            the tracker's state is unchanged then.
 
         Examples
         --------

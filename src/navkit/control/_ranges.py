@@ -36,7 +36,8 @@ def in_range(value: Any, name: str, low: float, high: float, unit: str = "") -> 
     out = finite_float(value, name)
     if not low <= out <= high:
         suffix = f" {unit}" if unit else ""
-        raise ValueError(f"{name} must be in [{low:g}, {high:g}]{suffix}, got {out:g}")
+        # The value exactly (repr): :g rounded 1e6 + 0.01 to "1e+06", inside the range.
+        raise ValueError(f"{name} must be in [{low:g}, {high:g}]{suffix}, got {out!r}")
     return out
 
 
@@ -49,5 +50,5 @@ def position(x: float, y: float, name: str) -> None:
     """Raise naming ``name`` unless ``|x|, |y| <= MAX_COORDINATE`` (finite floats given)."""
     if not (abs(x) <= MAX_COORDINATE and abs(y) <= MAX_COORDINATE):
         raise ValueError(
-            f"{name}: positions must have |x|, |y| <= {MAX_COORDINATE:g} m, got ({x:g}, {y:g})"
+            f"{name}: positions must have |x|, |y| <= {MAX_COORDINATE:g} m, got ({x!r}, {y!r})"
         )

@@ -346,7 +346,7 @@ class RegulatedPurePursuit(PathTracker):
         pose : Pose2D or array_like [x, y, theta]
             Robot pose in the world frame (coordinates within ±1e9 m).
         dt : float
-            Control period in seconds, > 0.
+            Control period in seconds, > 0 (a normal float: at least 2.2e-308).
         velocity : Twist2D or array_like [vx, vy, omega], optional
             Measured robot-frame velocity (Nav2's ``speed``: it sets the
             lookahead distance and the base of the angular acceleration limit);
@@ -363,9 +363,9 @@ class RegulatedPurePursuit(PathTracker):
         RuntimeError
             No path yet (call :meth:`set_path` first).
         TypeError, ValueError
-            A bad ``pose``, ``dt`` (not > 0) or ``velocity``, naming it, or a
-            ``clearance`` function returning NaN; the tracker's state is
-            unchanged then.
+            A bad ``pose``, ``dt`` (not a normal float > 0) or ``velocity``,
+            naming it, or a ``clearance`` function returning NaN; the
+            tracker's state is unchanged then.
         """
         measured = None if velocity is None else as_twist(velocity, "velocity")
         return self._run(pose, dt, measured)

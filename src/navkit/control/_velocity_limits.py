@@ -89,21 +89,27 @@ def _limit_change(
     overflows float64.
     """
     # No np.errstate here (it would cost the controller's step more than the rest of
-    # this function): an overflow, only possible for speeds near ±1e308, may warn
-    # before it is reported.
+    # this function): the norm of a change beyond about 1e154 overflows (the change
+    # is then measured scaled) and may warn.
     delta = want - prev
     n = float(np.linalg.norm(delta))
-    if not n < math.inf:
+    if n < math.inf:
+        u = delta / n if n > 0.0 else delta
+    else:
         # The squared norm overflowed (|delta| > 1e154), or delta itself did.
-        n = math.hypot(*delta.tolist())
-        if not n < math.inf:
+        scale = float(np.max(np.abs(delta)))
+        if not scale < math.inf:
             raise ValueError(
                 f"{names}: the velocity change overflows float64 (values far too large)"
             )
+        # Each component is finite but the length may not be: the direction from the
+        # scaled vector, the length possibly inf (only compared with finite steps).
+        scaled = delta / scale
+        u = scaled / float(np.linalg.norm(scaled))
+        n = scale * float(np.linalg.norm(scaled))
     if n == 0.0:
         same: FloatArray = prev.copy()
         return same
-    u = delta / n
     # Along prev + t·u the speed is below its start value exactly for 0 < t < t_slow.
     t_slow = max(0.0, -2.0 * float(np.dot(prev, u)))
     step_a = max_accel * dt

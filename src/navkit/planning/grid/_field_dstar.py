@@ -5,7 +5,7 @@ from __future__ import annotations
 import copy
 import math
 from collections.abc import Mapping
-from typing import Any
+from typing import Any, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -46,6 +46,8 @@ __all__ = ["FieldDStar", "field_dstar"]
 
 # Consecutive refusals after which the shortcut pass stops extending a segment.
 _SHORTCUT_PATIENCE = 8
+# How a planning method takes its ends (nodes, cells or world points), see FieldDStar._ends_text.
+_Ends = Literal["node", "cell", "xy"]
 _IDENTITY = Pose2D(0.0, 0.0, 0.0)
 # The four corners of a cell, as node offsets from its (row, col).
 _CORNERS = np.array([(0, 0), (0, 1), (1, 0), (1, 1)], dtype=np.int64)
@@ -137,8 +139,10 @@ class FieldDStar:
         is occasionally a few per cent costlier than the 8-connected one.
     smooth : bool, default True
         After extraction, replace runs of the polyline by straight segments
-        whenever the segment's exact cost is not higher. It never raises the
-        path cost and makes paths in uniform regions exactly straight. Used with
+        whenever the segment's exact cost is not higher (up to a relative
+        ``1e-12``, so that rounding in the sums does not block a straight
+        segment). It never raises the path cost by more than that allowance
+        and makes paths in uniform regions exactly straight. Used with
         ``interpolate=True`` by :meth:`plan` / :meth:`replan`, and always on the
         linked paths of :meth:`plan_cells` and the world methods.
     resolution : float, default 1.0
@@ -478,7 +482,7 @@ class FieldDStar:
         gl = self._node(goal_node, "goal_node")
         self._reset(s, gl, s, gl)
         self._start_on_node = self._goal_on_node = True
-        points, cost, length, expanded = self._search()
+        points, cost, length, expanded = self._search("node")
         return Path2D(points - 0.5, "grid", cost=cost, length=length, expanded=expanded)
 
     def replan(self, start_node: ArrayLike | None = None) -> Path2D:
@@ -522,7 +526,7 @@ class FieldDStar:
             self._move_start(s)
             self._start_point = (float(s[0]), float(s[1]))
             self._start_on_node = True
-        points, cost, length, expanded = self._search()
+        points, cost, length, expanded = self._search("node")
         return Path2D(points - 0.5, "grid", cost=cost, length=length, expanded=expanded)
 
     def plan_cells(self, start_cell: Any, goal_cell: Any) -> Path2D:
@@ -589,7 +593,7 @@ class FieldDStar:
         self._start_on_node = self._goal_on_node = False
         if s == gl:  # no search, but the goal is recorded for replan_world
             return Path2D(np.array([s], dtype=np.float64), "grid", cost=0.0, length=0.0, expanded=0)
-        points, _, _, expanded = self._search()
+        points, _, _, expanded = self._search("cell")
         points, cost, length = self._linked(points)
         return Path2D(points - 0.5, "grid", cost=cost, length=length, expanded=expanded)
 
@@ -627,7 +631,7 @@ class FieldDStar:
         p_g, gl = self._world_end(goal_xy, "goal_xy")
         self._reset(s, gl, p_s, p_g)
         self._start_on_node = self._goal_on_node = False
-        points, _, _, expanded = self._search()
+        points, _, _, expanded = self._search("xy")
         return self._world_path(points, expanded)
 
     def replan_world(self, start_xy: ArrayLike | None = None) -> Path2D:
@@ -693,7 +697,7 @@ class FieldDStar:
             self._move_start(s)
             self._start_point = p_s
             self._start_on_node = False
-        points, _, _, expanded = self._search()
+        points, _, _, expanded = self._search("xy")
         return self._world_path(points, expanded)
 
     def update_costs(self, cells: ArrayLike, new_costs: ArrayLike) -> None:
@@ -927,8 +931,11 @@ class FieldDStar:
         return params(self._width, self._nrows, self._ncols, start, goal_id, self._km, self._interp,
                       self._hscale)
 
-    def _search(self) -> tuple[FloatArray, float, float, int]:
+    def _search(self, ends: _Ends) -> tuple[FloatArray, float, float, int]:
         """Node path (node coordinates), its exact cost and length, expansions.
+
+        ``ends``: how the calling method takes its ends, for its errors to name
+        them as its caller gave them (see :meth:`_ends_text`).
 
         A repair is bounded (see ``_REPAIR_CAP`` and :meth:`_repair`): cut short,
         it is replaced by a fresh search from the current start on the planner's
@@ -959,17 +966,15 @@ class FieldDStar:
             self._fresh_work = int(self._work[0])
         self._fresh = False
         if status == NO_PATH:
-            raise NoPathError(
-                f"goal_node {self._goal} is unreachable from start_node {self._start}",
-                expanded=expanded,
-            )
+            start, goal = self._ends_text(ends)
+            raise NoPathError(f"{goal} is unreachable from {start}", expanded=expanded)
         to_goal = float(self._g[self._start[0] * self._ncols + self._start[1]])
         if not to_goal < PATH_COST_LIMIT:
+            start, goal = self._ends_text(ends)
             raise ValueError(
-                f"costs: the least cost from start_node {self._start} to goal_node "
-                f"{self._goal} is {to_goal:.3g} (cost units × cells); Field D* needs it "
-                "below 2**52 ≈ 4.5e15, beyond which float64 cannot tell its node values "
-                "apart (lower the largest costs)"
+                f"costs: the least cost from {start} to {goal} is {to_goal!r} (cost units "
+                "× cells); Field D* needs it below 2**52 = 4503599627370496, beyond which "
+                "float64 cannot tell its node values apart (lower the largest costs)"
             )
         if status != OK:  # pragma: no cover - guarded by the strictly decreasing walk
             raise RuntimeError("Field D* path extraction failed to reach the goal")
@@ -980,6 +985,26 @@ class FieldDStar:
         cost, length = polyline_cost(self._pad, self._width, points, points.shape[0])
         self._cached = (self._start, points.copy(), float(cost), float(length))
         return points, float(cost), float(length), int(expanded)
+
+    def _ends_text(self, ends: _Ends) -> tuple[str, str]:
+        """The start and the goal of the search as the calling method's caller gave them.
+
+        ``"node"`` (:meth:`plan`, :meth:`replan`): the nodes; ``"cell"``
+        (:meth:`plan_cells`): the cells; ``"xy"`` (the world methods): the world
+        points, also an end kept from a plan of another form (a node or a cell
+        centre as the world point it is).
+        """
+        assert self._start is not None and self._goal is not None
+        assert self._start_point is not None and self._goal_point is not None
+        if ends == "node":
+            return f"start_node {self._start}", f"goal_node {self._goal}"
+        if ends == "cell":
+            start = tuple(math.floor(v) for v in self._start_point)
+            goal = tuple(math.floor(v) for v in self._goal_point)
+            return f"start_cell {start}", f"goal_cell {goal}"
+        start_xy = tuple(self.node_to_world(self._start_point).tolist())
+        goal_xy = tuple(self.node_to_world(self._goal_point).tolist())
+        return f"start_xy {start_xy}", f"goal_xy {goal_xy}"
 
     def _repair(self) -> tuple[FloatArray, int, int, int]:
         """:meth:`_walk` on the repaired state, bounded (``ABORTED`` when hopeless).
@@ -1092,9 +1117,9 @@ def _heuristic(a: tuple[int, int], b: tuple[int, int], hscale: float) -> float:
 def _check_range(values: FloatArray, limit: float, name: str, unit: str) -> None:
     """Refuse coordinates beyond ``±limit`` (``values`` are already finite)."""
     if values.size and not float(np.abs(values).max()) <= limit:
-        raise ValueError(
-            f"{name} must lie within ±{limit:g} {unit}, got {float(np.abs(values).max()):g}"
-        )
+        # The value itself, exactly: rounded (":g") 1e9 + 0.5 would print as the limit.
+        worst = float(values.reshape(-1)[int(np.argmax(np.abs(values)))])
+        raise ValueError(f"{name} must lie within ±{limit:g} {unit}, got {worst!r}")
 
 
 def field_dstar(

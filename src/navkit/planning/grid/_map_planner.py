@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import copy
 import math
 from typing import Any, Literal, Protocol
 
@@ -11,6 +12,7 @@ from numpy.typing import ArrayLike
 from navkit._shared.frozen import restore_slots
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_bool, as_float_array
+from navkit.errors import NoPathError
 from navkit.geometry import Pose2D, as_pose
 from navkit.mapping import OccupancyGrid
 from navkit.planning.grid._astar import AStarPlanner
@@ -211,6 +213,26 @@ class MapPlanner:
         self._planner = planner
         self._prepared = prepared
 
+    def __copy__(self) -> MapPlanner:
+        """A shallow copy with its own Field D* search state.
+
+        The costs, the snapshot and the prepared A* planner are never written
+        and stay shared, as does the caller's ``grid``. A prepared
+        :class:`FieldDStar` rewrites its search state on every query: shared,
+        the copy and the original planning in two threads read each other's
+        half-finished searches (wrong paths, false :class:`navkit.NoPathError`).
+        """
+        # Python's default state of a slotted object, a subclass's __dict__ and slots
+        # included (what copy.deepcopy copies), so subclasses copy whole.
+        reduced = self.__reduce_ex__(4)
+        assert isinstance(reduced, tuple)
+        cls = type(self)
+        twin = cls.__new__(cls)
+        twin.__setstate__(reduced[2])
+        if isinstance(self._prepared, FieldDStar):
+            twin._prepared = copy.copy(self._prepared)
+        return twin
+
     def __setstate__(self, state: Any) -> None:
         """Restore from a pickle or :func:`copy.deepcopy`, :attr:`costs` read-only again.
 
@@ -283,13 +305,21 @@ class MapPlanner:
         start_cell = self._endpoint_cell(start, "start")
         goal_cell = self._endpoint_cell(goal, "goal")
         prepared = self._prepared
-        if isinstance(prepared, AStarPlanner):
-            path = prepared.plan(start_cell, goal_cell)
-        elif isinstance(prepared, FieldDStar):
-            path = prepared.plan_cells(start_cell, goal_cell)
-        else:
-            assert callable(self._planner)
-            path = self._planner(self._costs, start_cell, goal_cell)
+        try:
+            if isinstance(prepared, AStarPlanner):
+                path = prepared.plan(start_cell, goal_cell)
+            elif isinstance(prepared, FieldDStar):
+                path = prepared.plan_cells(start_cell, goal_cell)
+            else:
+                assert callable(self._planner)
+                path = self._planner(self._costs, start_cell, goal_cell)
+        except NoPathError as exc:
+            # The cell planner names the cells it was given; the caller gave points.
+            raise NoPathError(
+                f"no collision-free path from {self._end_text(start, start_cell, 'start')} "
+                f"to {self._end_text(goal, goal_cell, 'goal')}",
+                expanded=exc.expanded,
+            ) from exc
         if not isinstance(path, Path2D) or path.frame != "grid":
             raise TypeError(
                 f"the cell planner must return a 'grid' Path2D, got {path!r:.80}"
@@ -312,6 +342,11 @@ class MapPlanner:
         if not math.isfinite(self._costs[row, col]):
             raise ValueError(f"{where} (cell {(row, col)}) {self._blocked_reason(row, col)}")
         return row, col
+
+    @staticmethod
+    def _end_text(value: Pose2D | ArrayLike, cell: tuple[int, int], name: str) -> str:
+        """``name`` and the point the caller gave, with its cell (only on an error path)."""
+        return f"{name} {tuple(_point_xy(value, name).tolist())} (cell {cell})"
 
     def _blocked_reason(self, row: int, col: int) -> str:
         """Why cell (row, col) is impassable (only on the error path: reads the map's views).

@@ -8,7 +8,7 @@ from typing import Any, Literal
 
 import numpy as np
 
-from navkit._shared.frozen import restore_read_only
+from navkit._shared.frozen import reduce_record, restore_read_only
 from navkit._shared.grid_coords import round_half_up
 from navkit._shared.types import FloatArray, IntArray
 from navkit._shared.validation import as_float_array, finite_float
@@ -126,8 +126,12 @@ class Path2D:
         object.__setattr__(path, "expanded", int(expanded))
         return path
 
+    def __reduce__(self) -> tuple[Any, ...]:
+        """Copy and pickle support: the arrays read-only again, also in subclasses' copies."""
+        return reduce_record(self, ("points",))
+
     def __setstate__(self, state: list[Any]) -> None:
-        """Restore from a pickle or :func:`copy.deepcopy`, ``points`` read-only again."""
+        """Restore from an older pickle, ``points`` read-only again."""
         restore_read_only(self, state, ("points",))
 
     @property
@@ -136,7 +140,9 @@ class Path2D:
 
         Only for a ``"grid"`` path: each coordinate is rounded half up
         (``floor(v + 0.5)``), the cell whose square ``[r-½, r+½) × [c-½, c+½)``
-        holds the vertex. For an A* path these are exactly its cells.
+        holds the vertex. For an A* path these are exactly its cells. A
+        coordinate beyond ``±2**62`` (far outside every grid) gives ``±2**62``,
+        not its own cell, which int64 cannot always hold.
 
         Raises
         ------

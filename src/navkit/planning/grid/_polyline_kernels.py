@@ -167,13 +167,15 @@ def polyline_cost(pad: np.ndarray, width: int, pts: np.ndarray, k: int) -> tuple
 
 
 def shortcut(pad: np.ndarray, width: int, pts: np.ndarray, k: int, patience: int) -> np.ndarray:
-    """Replace runs of the polyline by straight segments that cost no more.
+    """Replace runs of the polyline by straight segments that cost no more (to rounding).
 
     From each kept point, the farthest later point whose straight segment costs
-    at most the polyline between them is kept next; the scan gives up after
-    ``patience`` (>= 0) consecutive refusals. The result's cost never exceeds
-    the input's, and a segment through an impassable cell interior costs inf,
-    so it is never taken.
+    at most the polyline between them, times ``1 + 1e-12``, is kept next (the
+    allowance keeps rounding in the sums from blocking the straight segment of
+    a run along a grid line); the scan gives up after ``patience`` (>= 0)
+    consecutive refusals. The result's cost exceeds the input's by at most
+    that relative ``1e-12`` (and rounding), and a segment through an
+    impassable cell interior costs inf, so it is never taken.
     """
     out = np.empty((max(k, 1), 2))
     m: int = _polyline(pad, width, pts, k, patience, out)[0]

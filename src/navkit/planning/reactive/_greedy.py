@@ -10,6 +10,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from navkit._shared.frozen import reduce_record
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_bool, as_float_array, finite_float
 from navkit.errors import NoPathError
@@ -64,6 +65,7 @@ class GreedyStep:
     h: float
     candidates: int
 
+    __reduce__ = reduce_record
     __setstate__ = _restore
 
     def __post_init__(self) -> None:

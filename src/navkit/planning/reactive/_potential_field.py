@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from navkit._shared.frozen import restore_read_only
+from navkit._shared.frozen import reduce_record, restore_read_only
 from navkit._shared.types import FloatArray
 from navkit.planning.reactive._limits import point, points
 
@@ -51,6 +51,11 @@ class PotentialField(ABC):
     """
 
     __slots__ = ()
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        # Every field (a frozen slotted dataclass) copies and pickles as itself,
+        # subclasses whole, read-only arrays read-only.
+        return reduce_record(self)
 
     def potential(self, points_xy: ArrayLike) -> FloatArray:
         """Potential energy at world points.
@@ -149,10 +154,11 @@ def _frozen(arr: FloatArray) -> FloatArray:
 def _restore(record: Any, state: Sequence[Any]) -> None:
     """``__setstate__`` of the frozen records here: fields from ``state``, arrays read-only.
 
-    pickle and :func:`copy.deepcopy` rebuild a slotted dataclass without
-    ``__post_init__``, and the arrays they copy come back writable. Each frozen
-    dataclass assigns this as ``__setstate__`` in its own body: the dataclass
-    decorator replaces one it would inherit.
+    Pickles made before the records had a ``__reduce__`` hold the list
+    of field values, restored through this; pickle and :func:`copy.deepcopy`
+    hand the arrays back writable. Each frozen dataclass assigns this as
+    ``__setstate__`` in its own body: the dataclass decorator replaces one it
+    would inherit.
     """
     restore_read_only(record, state, [f.name for f in dataclasses.fields(record)])
 

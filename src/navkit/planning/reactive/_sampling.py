@@ -9,6 +9,7 @@ from typing import Literal, overload
 import numpy as np
 from numpy.typing import ArrayLike
 
+from navkit._shared.frozen import reduce_record
 from navkit._shared.grid_coords import as_pairs, inside, one_or_many, round_half_up
 from navkit._shared.types import BoolArray, FloatArray, IntArray
 from navkit._shared.validation import as_bool, as_float_array, positive_float
@@ -19,7 +20,11 @@ from navkit.planning.reactive._limits import (
     RESOLUTION_MIN,
     check_coordinates,
 )
-from navkit.planning.reactive._potential_field import PotentialField, _frozen, _restore
+from navkit.planning.reactive._potential_field import (
+    PotentialField,
+    _frozen,
+    _restore,
+)
 
 __all__ = ["SampledField", "sample_field"]
 
@@ -113,6 +118,7 @@ class SampledField:
     _: KW_ONLY
     resolution: float
 
+    __reduce__ = reduce_record
     __setstate__ = _restore
 
     def __post_init__(self) -> None:
