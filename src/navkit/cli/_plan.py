@@ -50,6 +50,29 @@ def _check_not_an_input(plot: str | None, map_yaml: str) -> None:
             raise ValueError(f"--plot: {plot} is {what} ({path}); choose another file")
 
 
+def _in_option_names(message: str) -> str:
+    """A MapPlanner message about a blocked or off-map start or goal, in the command's terms.
+
+    The planner names its own arguments (``start``, ``robot_radius``,
+    ``unknown_cost``, ``inflate_unknown``); the command's user gave
+    ``--start``, ``--goal`` and ``--radius`` and cannot set the others (unknown
+    space is always blocked and inflated here), so those asides are dropped.
+
+    Examples
+    --------
+    >>> _in_option_names("goal (1.0, 2.0) (cell (20, 10)) is within robot_radius (0.5 m) of an "
+    ...                  "obstacle")
+    '--goal (1.0, 2.0) (cell (20, 10)) is within --radius (0.5 m) of an obstacle'
+    """
+    for name in ("start", "goal"):
+        if message.startswith(f"{name} ("):
+            message = f"--{message}"
+    message = message.replace("within robot_radius (", "within --radius (")
+    for aside in (" (unknown_cost is inf)", " (inflate_unknown is True)"):
+        message = message.replace(aside, "")
+    return message
+
+
 def plan_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
     """Load the map, plan, print length and time as a table, draw it if asked."""
     check_output(args.plot, ".png", "--plot")
@@ -61,7 +84,10 @@ def plan_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
     began = time.perf_counter()
     planner = MapPlanner(grid, robot_radius=args.radius, planner=args.planner)
     prepared = time.perf_counter()
-    path = planner.plan(args.start, args.goal)
+    try:
+        path = planner.plan(args.start, args.goal)
+    except ValueError as exc:
+        raise ValueError(_in_option_names(str(exc))) from exc
     searched = time.perf_counter()
     name = Path(args.map).name
     rows: tuple[tuple[str, str | float | int], ...] = (

@@ -104,7 +104,8 @@ def animate_trace(
     fps : int, default 10
         Frames per second of the GIF, in [1, 50].
     max_frames : int, default 60
-        Most frames, in [1, 1000].
+        Most frames, in [1, 1000]; all frames together may hold at most 2**28
+        pixels (GIF frames are held until written): at ``dpi`` 300, 97 frames.
     footprint : float or array_like (V, 2), default 0.2
         The robot's radius (m) or polygon vertices in its own frame.
     lidar_mount : Pose2D or array_like [x, y, theta], default (0, 0, 0)
@@ -125,7 +126,8 @@ def animate_trace(
     ValueError
         A scene without traces, a trace without rows, a path not ending in
         ``.gif`` or naming something that is not a regular file, an option out
-        of range, coordinates beyond ±1e9 m.
+        of range, frames of more than 2**28 pixels in all (``max_frames`` ×
+        the frame's pixels at ``dpi``), coordinates beyond ±1e9 m.
     FileNotFoundError
         The folder of ``path`` does not exist.
 

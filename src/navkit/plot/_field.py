@@ -21,6 +21,8 @@ __all__ = ["plot_field"]
 _KINDS = ("surface", "contour", "quiver")
 #: Most cells plot_field samples from a PotentialField (1024 × 1024).
 MAX_FIELD_SAMPLES = 1 << 20
+#: How far the float estimate of the samples may exceed the limit before sampling.
+_ESTIMATE_SLACK = 1.01
 #: Most cells drawn per axis: contours, the surface's facets, arrows.
 _CONTOUR_CELLS = 512
 _SURFACE_CELLS = 80
@@ -52,13 +54,23 @@ def _sampled(field: Any, xlim: Any, ylim: Any, resolution: Any) -> SampledField:
     if res > 0.0 and x[1] > x[0] and y[1] > y[0]:  # else sample_field says what is wrong
         with np.errstate(over="ignore"):
             cells = float(np.ceil((x[1] - x[0]) / res) * np.ceil((y[1] - y[0]) / res))
-        if not cells <= MAX_FIELD_SAMPLES:
-            raise ValueError(
-                f"plot_field samples at most {MAX_FIELD_SAMPLES} cells (1024 × 1024); xlim, "
-                f"ylim and resolution {res:g} m would need about {cells:.3g}: use a coarser "
-                "resolution"
-            )
-    return sample_field(field, xlim=x, ylim=y, resolution=res)
+        # Refused before sampling only when clearly too many: this float estimate can
+        # exceed sample_field's exact count by a cell per axis (1025 × 1025 for its
+        # 1024 × 1024), which is checked on the samples below.
+        if not cells <= _ESTIMATE_SLACK * MAX_FIELD_SAMPLES:
+            raise _too_many(f"about {cells:.3g}", res)
+    sampled = sample_field(field, xlim=x, ylim=y, resolution=res)
+    rows, cols = sampled.shape
+    if rows * cols > MAX_FIELD_SAMPLES:
+        raise _too_many(f"{rows} × {cols} = {rows * cols}", res)
+    return sampled
+
+
+def _too_many(needed: str, resolution: float) -> ValueError:
+    return ValueError(
+        f"plot_field samples at most {MAX_FIELD_SAMPLES} cells (1024 × 1024); xlim, ylim and "
+        f"resolution {resolution!r} m would need {needed}: use a coarser resolution"
+    )
 
 
 def _stride(n: int, most: int) -> int:

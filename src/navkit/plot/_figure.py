@@ -136,7 +136,8 @@ def bounded_float(value: Any, name: str, lo: float, hi: float) -> float:
     """A finite float in ``[lo, hi]``."""
     out = finite_float(value, name)
     if not lo <= out <= hi:
-        raise ValueError(f"{name} must lie in [{lo:g}, {hi:g}], got {out:g}")
+        # repr, not :g: 1.0000001 printed as "1" would look inside [0, 1].
+        raise ValueError(f"{name} must lie in [{lo:g}, {hi:g}], got {out!r}")
     return out
 
 

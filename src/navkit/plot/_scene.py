@@ -25,6 +25,8 @@ __all__ = ["CheckedScene", "check_scene", "draw_scene", "draw_world", "plot_scen
 _MARKERS = ("*", "D", "^", "v", "P", "X", "h")
 _WALL_COLOUR = "0.15"
 _MOVING_COLOUR = "tab:red"
+#: Smallest margin around a scene, relative to its coordinates (and in m near 0).
+_MIN_MARGIN = 1e-12
 
 
 @dataclass(frozen=True, slots=True)
@@ -176,7 +178,9 @@ def scene_limits(
     """``(xmin, ymin, xmax, ymax)`` of what a scene shows, with a margin.
 
     The margin is 5 % of the larger side, and at least 0.25 m (0.25 m around
-    a single point) or the larger side itself when that is smaller.
+    a single point) or the larger side itself when that is smaller, but never
+    less than 1e-12 of the largest coordinate's magnitude nor 1e-12 m (a
+    narrower window would not be drawn at that scale).
 
     The map counts by its known part only (a map_server map is mostly unknown
     space around the building); walls, circles, moving obstacles' routes,
@@ -205,7 +209,12 @@ def scene_limits(
     span = float(np.max(hi - lo))
     # At least 0.25 m around a point or a small scene, but not more than the scene's
     # own size: a map of micrometre cells would otherwise be a speck in the picture.
-    margin = max(0.05 * span, min(0.25, span)) if span > 0.0 else 0.25
+    # Nor less than 1e-12 of the coordinates (and 1e-12 m): matplotlib widens a
+    # window narrower than 1e-15 of its coordinates to ±5 % of them (a scene
+    # 1e-10 m wide at x = 1e6 m drawn 100 km wide), and one at the origin
+    # narrower than about 1e-287 m to ±0.05 m.
+    floor = _MIN_MARGIN * max(1.0, float(np.max(np.abs(np.concatenate((lo, hi))))))
+    margin = max(0.05 * span, min(0.25, max(span, floor))) if span > 0.0 else 0.25
     return (float(lo[0]) - margin, float(lo[1]) - margin,
             float(hi[0]) + margin, float(hi[1]) + margin)  # fmt: skip
 

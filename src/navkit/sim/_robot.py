@@ -11,7 +11,7 @@ import shapely
 from shapely.geometry import Polygon
 from shapely.ops import polylabel
 
-from navkit._shared.frozen import restore_read_only
+from navkit._shared.frozen import reduce_record, restore_read_only
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, finite_float
 from navkit.geometry import Twist2D
@@ -144,8 +144,12 @@ class Robot:
             if value is not None and not isinstance(value, kind):
                 raise TypeError(f"{name} must be a {kind.__name__} or None, got {type(value)}")
 
+    def __reduce__(self) -> tuple[Any, ...]:
+        """Copy and pickle support: the arrays read-only again, also in subclasses' copies."""
+        return reduce_record(self, ("footprint", "wheel_radius_error"))
+
     def __setstate__(self, state: list[Any]) -> None:
-        """Restore from a pickle or :func:`copy.deepcopy`, the arrays read-only again."""
+        """Restore from an older pickle, the arrays read-only again."""
         restore_read_only(self, state, ("footprint", "wheel_radius_error"))
 
     @property

@@ -53,10 +53,10 @@ def trial_seed(base: int, case_index: int, trial_index: int) -> int:
     Parameters
     ----------
     base : int
-        The run's seed, >= 0.
+        The run's seed, in [0, 2**64).
     case_index, trial_index : int
         The trial's case (0-based, in the scenario's order) and its number
-        within the case (0-based).
+        within the case (0-based), each in [0, 2**63).
 
     Returns
     -------
@@ -302,9 +302,11 @@ class Table:
         >>> Table("t", ("a", "b"), ((12345.6, 1.23456789e20),)).render().splitlines()[-1]
         '12346  1.23e+20'
         """
-        digits = _int_in(digits, "digits", 18)
-        if digits < 1:
-            raise ValueError("digits must be in [1, 17], got 0")
+        if isinstance(digits, bool) or not isinstance(digits, (int, np.integer)):
+            raise TypeError(f"digits must be an integer, got {type(digits).__name__}")
+        if not 1 <= digits <= 17:
+            raise ValueError(f"digits must be in [1, 17], got {_short_int(int(digits))}")
+        digits = int(digits)
         cells = [list(self.columns)] + [[_cell_text(c, digits) for c in row] for row in self.rows]
         widths = [max(len(r[i]) for r in cells) for i in range(len(self.columns))]
 

@@ -9,7 +9,7 @@ from typing import Any
 
 import numpy as np
 
-from navkit._shared.frozen import restore_read_only
+from navkit._shared.frozen import reduce_record, restore_read_only
 from navkit._shared.types import IntArray
 from navkit._shared.validation import as_float_array, finite_float, positive_float
 from navkit.mapping import LaserScan
@@ -56,7 +56,7 @@ class Compass:
         Constant offset of the reading, rad, in [-π, π] (clockwise positive,
         like the reading).
     north : float, default π/2
-        World angle of magnetic north, rad.
+        World angle of magnetic north, rad, in [-2π, 2π].
     rate : float, default 20.0
         Readings per second, Hz, in (0, 10^4].
     latency : float, default 0.0
@@ -338,8 +338,12 @@ class EncoderReading:
         object.__setattr__(self, "stamp", finite_float(self.stamp, "stamp"))
         object.__setattr__(self, "ticks", _readonly_ints(self.ticks))
 
+    def __reduce__(self) -> tuple[Any, ...]:
+        """Copy and pickle support: the arrays read-only again, also in subclasses' copies."""
+        return reduce_record(self, ("ticks",))
+
     def __setstate__(self, state: list[Any]) -> None:
-        """Restore from a pickle or :func:`copy.deepcopy`, ``ticks`` read-only again."""
+        """Restore from an older pickle, the arrays read-only again."""
         restore_read_only(self, state, ("ticks",))
 
 

@@ -12,9 +12,10 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from navkit._shared.frozen import slot_names
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_bool, as_float_array, finite_float, positive_float
-from navkit.geometry import Pose2D, Twist2D, as_pose, as_twist
+from navkit.geometry import Pose2D, Twist2D, as_twist
 from navkit.planning import Path2D
 from navkit.sim._estimators import Estimator, FusionEstimator, as_estimator
 from navkit.sim._latency import DelayLine
@@ -39,7 +40,7 @@ from navkit.sim._sensors import (
     ScanReading,
 )
 from navkit.sim._trace import Event, Metrics, Trace, cross_track, nan_if_empty
-from navkit.sim._world import MAX_POSE_COORD, World, _slot_names, as_query_pose, as_world
+from navkit.sim._world import MAX_POSE_COORD, World, as_query_pose, as_world
 
 __all__ = ["Controller", "Observation", "Simulation"]
 
@@ -123,12 +124,18 @@ def _goal(value: Any) -> tuple[float, float, float | None] | None:
     if value is None:
         return None
     if isinstance(value, Pose2D):
-        return value.x, value.y, value.theta
+        p = as_query_pose(value, "goal")
+        return p.x, p.y, p.theta
     arr = as_float_array(value, "goal")
     if arr.shape == (2,):
-        return float(arr[0]), float(arr[1]), None
+        # Within the bound of a pose, as the start: the distance to a farther goal
+        # (the final error) overflows.
+        x, y = float(arr[0]), float(arr[1])
+        if abs(x) > MAX_POSE_COORD or abs(y) > MAX_POSE_COORD:
+            raise ValueError(f"goal must lie within ±{MAX_POSE_COORD:g} m, got ({x:g}, {y:g})")
+        return x, y, None
     if arr.shape == (3,):
-        p = as_pose(arr, "goal")
+        p = as_query_pose(arr, "goal")
         return p.x, p.y, p.theta
     raise ValueError(f"goal must be (x, y), (x, y, theta) or a Pose2D, got shape {arr.shape}")
 
@@ -202,10 +209,11 @@ class Simulation:
     controller : callable
         ``controller(observation) -> Twist2D`` or ``[vx, vy, omega]``.
     start : Pose2D or array_like [x, y, theta]
-        Start pose; the footprint must be free there (keyword-only, as is
-        everything below).
+        Start pose, within ±1e12 m; the footprint must be free there
+        (keyword-only, as is everything below).
     goal : Pose2D or array_like (x, y) or (x, y, theta), optional
-        Goal for the metrics (and the end of the run with ``stop_at_goal``).
+        Goal for the metrics (and the end of the run with ``stop_at_goal``),
+        within ±1e12 m (as ``start``).
     goal_radius : float, default 0.1
         The goal is reached within this distance, m, in (0, 1e6].
     goal_yaw_tolerance : float, optional
@@ -359,7 +367,7 @@ class Simulation:
     def __copy__(self) -> Simulation:
         """A shallow copy with its own random generator (a copy of this one's state)."""
         twin = object.__new__(type(self))
-        for name in _slot_names(type(self)):
+        for name in slot_names(type(self)):
             if hasattr(self, name):
                 object.__setattr__(twin, name, getattr(self, name))
         if hasattr(self, "__dict__"):

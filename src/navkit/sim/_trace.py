@@ -8,7 +8,7 @@ from typing import Any, Literal
 
 import numpy as np
 
-from navkit._shared.frozen import restore_read_only
+from navkit._shared.frozen import reduce_record, restore_read_only
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_bool, as_float_array, finite_float
 from navkit.sim._polyline_distance_kernels import point_polyline_distances
@@ -198,8 +198,12 @@ class Trace:
         if not isinstance(self.metrics, Metrics):
             raise TypeError(f"metrics must be a Metrics, got {type(self.metrics).__name__}")
 
+    def __reduce__(self) -> tuple[Any, ...]:
+        """Copy and pickle support: the arrays read-only again, also in subclasses' copies."""
+        return reduce_record(self, ("times", "poses", "estimates", "commands"))
+
     def __setstate__(self, state: list[Any]) -> None:
-        """Restore from a pickle or :func:`copy.deepcopy`, the arrays read-only again."""
+        """Restore from an older pickle, the arrays read-only again."""
         restore_read_only(self, state, ("times", "poses", "estimates", "commands"))
 
     def __len__(self) -> int:

@@ -14,7 +14,7 @@ from numpy.typing import ArrayLike
 from shapely.geometry import Polygon
 from shapely.geometry.base import BaseGeometry
 
-from navkit._shared.frozen import restore_read_only, restore_slots
+from navkit._shared.frozen import reduce_record, restore_read_only, restore_slots, slot_names
 from navkit._shared.types import FloatArray, IntArray
 from navkit._shared.validation import as_bool, as_float_array, finite_float, positive_float
 from navkit.geometry import Pose2D, as_pose
@@ -76,20 +76,6 @@ def _query_time(t: Any, name: str = "t") -> float:
     if abs(time) > MAX_TIME:
         raise ValueError(f"{name} must lie within ±{MAX_TIME:g} s, got {time}")
     return time
-
-
-def _slot_names(cls: type) -> list[str]:
-    """Names of the slots of ``cls`` and of its bases (private ones mangled)."""
-    names = []
-    for klass in cls.__mro__:
-        declared = klass.__dict__.get("__slots__", ())
-        for name in (declared,) if isinstance(declared, str) else declared:
-            if name in ("__dict__", "__weakref__"):
-                continue
-            if name.startswith("__") and not name.endswith("__"):
-                name = f"_{klass.__name__.lstrip('_')}{name}"
-            names.append(name)
-    return names
 
 
 def as_query_pose(value: Any, name: str = "pose") -> Pose2D:
@@ -196,8 +182,12 @@ class Circle:
         object.__setattr__(self, "radius", radius)
         object.__setattr__(self, "solid", as_bool(self.solid, "solid"))
 
+    def __reduce__(self) -> tuple[Any, ...]:
+        """Copy and pickle support: the arrays read-only again, also in subclasses' copies."""
+        return reduce_record(self, ("center_xy",))
+
     def __setstate__(self, state: list[Any]) -> None:
-        """Restore from a pickle or :func:`copy.deepcopy`, ``center_xy`` read-only again."""
+        """Restore from an older pickle, the arrays read-only again."""
         restore_read_only(self, state, ("center_xy",))
 
 
@@ -283,8 +273,12 @@ class MovingObstacle:
         object.__setattr__(self, "path_xy", _read_only(path))
         object.__setattr__(self, "times", _read_only(times))
 
+    def __reduce__(self) -> tuple[Any, ...]:
+        """Copy and pickle support: the arrays read-only again, also in subclasses' copies."""
+        return reduce_record(self, ("path_xy", "times", "_velocity"))
+
     def __setstate__(self, state: list[Any]) -> None:
-        """Restore from a pickle or :func:`copy.deepcopy`, the arrays read-only again."""
+        """Restore from an older pickle, the arrays read-only again."""
         # Pickles made before the velocity was kept hold only the four init fields.
         values = [*state, None] if len(state) == 4 else state
         restore_read_only(self, values, ("path_xy", "times", "_velocity"))
@@ -369,7 +363,8 @@ class MovingObstacle:
             Time of each waypoint, s, strictly increasing (keyword-only).
         speed : float, optional
             Constant speed along the legs, m/s, in (0, 1e3]; consecutive
-            waypoints must differ (keyword-only).
+            waypoints must differ, by enough for each to be reached at a later
+            time than the one before (keyword-only).
         loop : bool, default False
             Start over from the first waypoint after the last (keyword-only).
 
@@ -407,6 +402,15 @@ class MovingObstacle:
                 raise ValueError(
                     f"speed {v:g} m/s is too slow for waypoints_xy: the last waypoint "
                     f"would be reached after the ±{MAX_TIME:g} s time limit"
+                )
+            if np.any(np.diff(stamps) <= 0.0):
+                # A leg shorter than the rounding of the time already spent (1e-11 m
+                # after 1e6 m) gets no time of its own: name what the caller gave.
+                k = int(np.argmax(np.diff(stamps) <= 0.0))
+                raise ValueError(
+                    f"waypoints_xy[{k + 1}] is too close to waypoints_xy[{k}] to be reached "
+                    f"at a later time at speed {v:g} m/s (the leg is shorter than the "
+                    "rounding of the time spent before it)"
                 )
         else:
             assert times is not None
@@ -715,7 +719,7 @@ class World:
         """The world's state for pickle and :mod:`copy`, without its LiDAR cache."""
         # The default state's layout, (a subclass's __dict__ or None, every slot of
         # every class), so that subclasses copy whole.
-        names = _slot_names(type(self))
+        names = slot_names(type(self))
         slots = {name: getattr(self, name) for name in names if hasattr(self, name)}
         # Scanners are bound to this world (and hold its buffers): rebuilt on use.
         slots["_scanners"] = {}

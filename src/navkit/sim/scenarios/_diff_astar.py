@@ -310,6 +310,8 @@ class DiffAStar(Scenario):
                 raise TypeError(f"parts[{k}] must be a str, got {type(name).__name__}")
         if not names or len(set(names)) != len(names) or any(p not in _PARTS for p in names):
             raise ValueError(f"parts must hold 'house' and/or 'building' once each, got {names!r}")
+        if not isinstance(building, str):
+            raise TypeError(f"building must be a str, got {type(building).__name__}")
         if building not in _BUILDINGS:
             raise ValueError(f"building must be one of {list(_BUILDINGS)}, got {building!r}")
         if data_dir is not None and not isinstance(data_dir, (str, os.PathLike)):

@@ -64,6 +64,9 @@ _KEYS = ("reached", "collisions", "time", "final_error", "path_length", "astar_l
 
 
 def _pairs(value: Any) -> tuple[tuple[tuple[float, float], tuple[float, float]], ...]:
+    if isinstance(value, (list, tuple)) and not value:
+        # Read as shape (0,), which the shape check would report instead of the count.
+        raise ValueError("pairs must hold 1 to 64 (start, goal) pairs, got 0")
     arr = as_float_array(value, "pairs", shape=(None, 2, 2))
     if not 1 <= arr.shape[0] <= 64:
         raise ValueError(f"pairs must hold 1 to 64 (start, goal) pairs, got {arr.shape[0]}")

@@ -57,6 +57,9 @@ _KEYS = ("target_x", "target_y", "final_x", "final_y", "odometry_x", "odometry_y
 
 def _targets(value: Any) -> tuple[tuple[float, float], ...]:
     # The messages show values by repr: with :g, 50.0000001 m reads "50 m", in range.
+    if isinstance(value, (list, tuple)) and not value:
+        # Read as shape (0,), which the shape check would report instead of the count.
+        raise ValueError("targets must hold 1 to 64 (x, y) pairs, got 0")
     arr = as_float_array(value, "targets", shape=(None, 2))
     if not 1 <= arr.shape[0] <= 64:
         raise ValueError(f"targets must hold 1 to 64 (x, y) pairs, got {arr.shape[0]}")
