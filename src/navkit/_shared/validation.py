@@ -316,7 +316,8 @@ def integer_readings(value: object, name: str) -> NDArray[Any]:
     array of Python ints, so that the caller's range check refuses the ones out
     of range with a ValueError rather than their dtype with a TypeError.
     Booleans, alone or mixed into lists (NumPy turns ``[True, 5]`` into
-    ``[1, 5]``), are refused.
+    ``[1, 5]``), are refused. A ragged nesting (``[[1, 2], [3]]``) is a wrong
+    shape, a ValueError, as in :func:`as_array`.
     """
     if isinstance(value, (str, bytes)):
         raise TypeError(f"{name} must hold integer counter readings, got {type(value).__name__}")
@@ -332,6 +333,8 @@ def integer_readings(value: object, name: str) -> NDArray[Any]:
     try:
         arr = np.asarray(value)
     except (TypeError, ValueError, OverflowError) as exc:
+        if is_ragged(value):  # a wrong shape, as for every other array argument
+            raise _not_an_array(value, name, exc) from None
         raise TypeError(f"{name} must hold integer counter readings: {exc}") from None
     kind = arr.dtype.kind
     if kind in "iu":

@@ -10,7 +10,6 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from navkit._shared.se2 import compose_scalar
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, as_points, finite_float
 from navkit.geometry._angles import _wrap_float
@@ -93,15 +92,24 @@ class Pose2D:
         1.0
         """
         o = other if type(other) is Pose2D else as_pose(other, "other")
-        x, y, theta = compose_scalar(self.x, self.y, self.theta, o.x, o.y, o.theta)
+        # Plain Python, the same operations as the kernels' compose_scalar: composing
+        # poses must not start numba (and a call into a kernel costs more here).
+        c = math.cos(self.theta)
+        s = math.sin(self.theta)
+        x = self.x + c * o.x - s * o.y
+        y = self.y + s * o.x + c * o.y
         if not (x - x == 0.0 and y - y == 0.0):
             # A partial sum (x + c*dx) can overflow where the result does not: the
             # same operations an eighth of the size cannot (see _SHRINK).
-            x, y, _ = compose_scalar(
-                self.x * _SHRINK, self.y * _SHRINK, self.theta, o.x * _SHRINK, o.y * _SHRINK, 0.0
+            dx = o.x * _SHRINK
+            dy = o.y * _SHRINK
+            x, y = _grow(
+                self.x * _SHRINK + c * dx - s * dy,
+                self.y * _SHRINK + s * dx + c * dy,
+                "other",
+                "composing the poses",
             )
-            x, y = _grow(x, y, "other", "composing the poses")
-        return Pose2D(x, y, theta)
+        return Pose2D(x, y, _wrap_float(self.theta + o.theta))
 
     def __matmul__(self, other: Pose2D | ArrayLike) -> Pose2D:
         """``a @ b`` is ``a.compose(b)``; ``b`` may be a sequence ``[x, y, theta]``."""
@@ -264,6 +272,14 @@ class Twist2D:
         Lateral velocity (to the robot's left), m/s.
     omega : float, default 0.0
         Yaw rate, rad/s, counter-clockwise positive.
+
+    Raises
+    ------
+    TypeError
+        A field that is not a real number (complex, strings and booleans are
+        refused).
+    ValueError
+        A field that is NaN or infinite.
 
     Examples
     --------
