@@ -9,12 +9,15 @@
   the paper's; trials in parallel on local processes or a Dask cluster.
 * ``navkit plan MAP.yaml --start X,Y --goal X,Y [--planner astar|field_dstar]
   [--radius R] [--plot FILE.png]`` — a path on any ROS map_server map.
+* ``navkit warmup [--only STEP] [--workers N] [--quiet]`` — compile every
+  numba kernel now (once per install), print what was compiled.
 * ``navkit --version``.
 
 Bad arguments print the usage and exit with code 2; a missing or malformed
 file, map or data set prints one line ``navkit: error: ...`` and exits with
 code 1, as do output files that cannot be written, two options naming one
-file and a ``--data`` that is not a folder (all checked before a run starts).
+file and a ``--data`` that is not a folder (without ``--scheduler``; all
+checked before a run starts).
 Ctrl-C exits with code 130; a closed standard output (``navkit list | head
 -1``) ends the command quietly with code 141. Progress (trials done, ETA) is
 drawn on standard error when it is a terminal and a run lasts more than about

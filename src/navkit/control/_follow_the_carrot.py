@@ -30,7 +30,8 @@ class FollowTheCarrot(PathTracker):
        exceeds ``align_angle``, e.g. at a sharp corner);
     2. **track** — drives at ``max_speed`` while turning at
        ``heading_gain × error`` (limited to ``max_omega``) toward the carrot;
-    3. **final** — once within ``goal_tolerance`` of the goal, turns in place to
+    3. **final** — once within ``goal_tolerance`` of the goal (the carrot on
+       it, so the start of a closed path does not count), turns in place to
        the goal heading (if :meth:`set_path` was given one) until within
        ``yaw_tolerance``; then :attr:`done`.
 
@@ -80,7 +81,10 @@ class FollowTheCarrot(PathTracker):
     0.3 m, 0.18 m/s, 1.5 rad/s, goal tolerance 0.05 m, yaw tolerance 0.01 rad.
     On a circle of radius ``R`` the carrot, ``d`` ahead by arc length, is a
     chord's end, and the robot settles inside the circle by at most
-    ``R (1 − cos(d / R))`` (4.5 cm for ``R = 1`` m, ``d = 0.3`` m).
+    ``R (1 − cos(d / R))`` (4.5 cm for ``R = 1`` m, ``d = 0.3`` m; 2.6 cm with
+    the default gain and speed). With a lower ``heading_gain × R / max_speed``
+    it settles nearer the circle, or just outside it (0.5 cm with
+    ``max_speed=0.5``).
 
     Raises
     ------

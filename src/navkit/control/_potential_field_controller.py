@@ -78,7 +78,9 @@ class PotentialFieldController:
        and limits its change from the previous velocity with
        :func:`limit_velocity_change` (``max_accel`` / ``max_decel``);
     4. drives the heading with a PID: to ``target_pose.theta`` for an
-       omnidirectional robot, to the direction of motion for a differential drive.
+       omnidirectional robot, to the direction of motion for a differential drive
+       (to ``target_pose.theta`` where the desired velocity is below a thousandth
+       of ``max_speed``, e.g. at the goal).
 
     The controller is stateful (previous velocity, PID integrator and last error,
     stall timer); call :meth:`reset` between runs. It is an ordinary class with
@@ -408,15 +410,19 @@ class PotentialFieldController:
         pose : Pose2D or array_like [x, y, theta]
             Robot pose in the world frame.
         target_pose : Pose2D or array_like [x, y, theta]
-            Goal position (attraction) and, for an ``"omni"`` drive, the target heading.
+            Goal position (attraction) and the target heading: always for an
+            ``"omni"`` drive, for a ``"diff"`` drive where the desired velocity
+            is below a thousandth of ``max_speed`` (at the goal).
         dt : float
             Control period in seconds, in [1e-6, 1e6].
         obstacles : array_like (M, 2), LaserScan or None, optional
             Obstacle points in the world frame (rows with NaN/inf are skipped),
             or a scan taken in the robot frame, or nothing.
         velocity : Twist2D or array_like [vx, vy, omega], optional
-            Current robot-frame velocity (e.g. from odometry, finite), the base
-            of the acceleration limits; ``None`` uses the previous command.
+            Current robot-frame velocity (e.g. from odometry, finite; one whose
+            world-frame components overflow float64, near 1e308 m/s, is
+            refused), the base of the acceleration limits; ``None`` uses the
+            previous command.
 
         Returns
         -------

@@ -243,7 +243,8 @@ class MeasurementLog:
             rates (rad/s); each shape (T_o,).
         odometry_variance : (v_variance, omega_variance)
             Variances, scalars or shape (T_o,) arrays ((m/s)², (rad/s)²); every
-            variance in [1e-100, 1e100].
+            variance in [1e-100, 1e100]. ``omega_variance`` is not read (nor
+            checked) when ``odometry`` has no yaw rates.
         yaw : (t, yaw), optional
             Absolute yaw (rad), e.g. from a compass or the IMU orientation.
         yaw_variance : float or array_like

@@ -246,8 +246,8 @@ class DiffOdometry:
         Encoder counts per wheel revolution, in [1, 1e12] (as
         :func:`navkit.kinematics.ticks_to_distance`).
     encoder_bits : int, optional
-        Width of the hardware counters (e.g. 16) for wrap-around; None for
-        counters that never wrap.
+        Width of the hardware counters (e.g. 16), an integer from 2 to 64, for
+        wrap-around; None for counters that never wrap.
     pose : Pose2D or array_like, shape (3,), default Pose2D(0, 0, 0)
         Pose at the first reading.
     method : {"arc", "midpoint", "first_order"}, default "arc"

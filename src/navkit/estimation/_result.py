@@ -25,10 +25,11 @@ class UpdateResult:
     nis : float
         Normalised innovation squared yᵀ S⁻¹ y (dimensionless; chi-square
         distributed with ``len(residual)`` degrees of freedom for a consistent
-        filter). NaN when it was never computed (e.g. out-of-order measurement).
+        filter). NaN when it was never computed (e.g. out-of-order measurement);
+        inf when it overflowed float64 (the measurement is then not applied).
     residual : ndarray, shape (m,)
         Innovation y = z - h(x) with angle components wrapped to (-π, π]; empty
-        when it was never computed.
+        when it was never computed or overflowed float64.
     reason : str or None
         Why the measurement was not applied; None when ``accepted``.
 

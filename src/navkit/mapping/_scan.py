@@ -244,12 +244,13 @@ class LaserScan:
 
         The scan is assumed to be taken in the robot frame (x forward, y left).
         With the defaults the result is the paper's 21 × 21 grid of 0.1 m cells
-        covering ±1 m, with ``i = 10 y + 10`` and ``j = 10 x + 10``.
+        centred from -1 m to 1 m, with ``i = 10 y + 10`` and ``j = 10 x + 10``.
 
         Parameters
         ----------
         half_width : float, default 1.0
-            Half the side of the grid in metres, in [0, 1e6], snapped to a
+            Distance in metres from the robot to the centres of the outermost
+            cells (half the side less half a cell), in [0, 1e6], snapped to a
             multiple of ``resolution`` (keyword-only; as
             :meth:`LocalGrid.from_points <navkit.mapping.LocalGrid.from_points>`).
         resolution : float, default 0.1

@@ -223,8 +223,8 @@ class ScanMatcher:
     (rotation; Hector clamps at 0.2 rad), then halves it up to four times
     until the cost does not increase (a backtracking line search Hector does
     not have: it keeps a step from overshooting on the piecewise-bilinear
-    surface). A level stops when a step is smaller than ``tolerance`` (m,
-    doubled on each coarser level) and ``tolerance / 10`` rad, when no
+    surface). A level stops when a step is smaller than ``tolerance`` m and
+    ``tolerance / 10`` rad (both doubled on each coarser level), when no
     halving lowers the cost, or after ``max_iterations``.
 
     Bad input never gives a NaN pose: the result carries the guess with

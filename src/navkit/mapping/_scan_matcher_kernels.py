@@ -266,7 +266,7 @@ def match_level(
     terms added), clamps the
     translation of ``Δξ`` to ``max_step_xy`` (m, keeping its direction) and the
     rotation to ``max_step_theta`` (rad), and takes the step, halved up to four
-    times until the cost ``Σ (1 - M)²`` does not increase. It stops when a step
+    times until that cost (the mean plus the pull) does not increase. It stops when a step
     is below ``tol_xy`` and ``tol_theta`` (converged), when no halving lowers
     the cost (converged: a minimum along the Gauss–Newton direction), when ``H``
     is singular, or after ``max_iterations``.

@@ -102,7 +102,8 @@ def animate_trace(
     path : str or path-like
         The ``.gif`` file to write, in an existing folder; replaced if it exists.
     fps : int, default 10
-        Frames per second of the GIF, in [1, 50].
+        Frames per second of the GIF, in [1, 50] (GIF delays are whole
+        hundredths of a second: 30 plays at 33).
     max_frames : int, default 60
         Most frames, in [1, 1000]; all frames together may hold at most 2**28
         pixels (GIF frames are held until written): at ``dpi`` 300, 97 frames.
@@ -126,8 +127,9 @@ def animate_trace(
     ValueError
         A scene without traces, a trace without rows, a path not ending in
         ``.gif`` or naming something that is not a regular file, an option out
-        of range, frames of more than 2**28 pixels in all (``max_frames`` ×
-        the frame's pixels at ``dpi``), coordinates beyond ±1e9 m.
+        of range, frames of more than 2**28 pixels in all (the frames drawn,
+        ``max_frames`` or the longest trace's rows if fewer, × the frame's
+        pixels at ``dpi``), coordinates beyond ±1e9 m.
     FileNotFoundError
         The folder of ``path`` does not exist.
 

@@ -68,11 +68,12 @@ def plot_scene(scene: Scene, *, ax: Axes | None = None, legend: bool = True) -> 
     """Draw a scenario's scene: map, world, planned paths, driven traces, markers.
 
     Layers from the bottom: the grid (``scene.grid``, else the world's own
-    map) in ROS map orientation; the world's walls and edges (lines), circles
-    (outlines) and moving obstacles (where they start, dashed, with their
-    routes dotted); the planned paths; the traces (true poses solid,
-    estimates dashed, start circle, end square, collisions as red crosses);
-    the labelled points; the title and a legend.
+    map) in ROS map orientation; the world's solid polygons and circles
+    (filled), walls and edges (lines), circular walls (``Circle(...,
+    solid=False)``: outlines) and moving obstacles (where they are at t = 0,
+    dashed, with their routes dotted); the planned paths; the traces (true
+    poses solid, estimates dashed, start circle, end square, collisions as
+    red crosses); the labelled points; the title and a legend.
 
     Parameters
     ----------
@@ -93,8 +94,8 @@ def plot_scene(scene: Scene, *, ax: Axes | None = None, legend: bool = True) -> 
     TypeError
         ``scene`` is not a Scene, or holds something of the wrong type.
     ValueError
-        Coordinates that are not finite or lie beyond ±1e9 m, a ``"grid"``
-        frame Path2D without ``scene.grid``, a trace without rows.
+        Coordinates that are not finite or lie beyond ±1e9 m, a trace
+        without rows.
 
     Examples
     --------

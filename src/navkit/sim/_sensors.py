@@ -180,8 +180,9 @@ class WheelEncoders:
 
     Each wheel's counter is ``floor(angle / 2π * ticks_per_rev)`` of the
     wheel's rotation (the motor's, before any slip on the ground), reported
-    modulo ``2**bits`` as an unsigned reading when ``bits`` is given (decode
-    with :func:`navkit.kinematics.tick_delta`).
+    modulo ``2**bits`` as an unsigned reading when ``bits`` is below 64 (a
+    64-bit counter reads as a signed int64; decode with
+    :func:`navkit.kinematics.tick_delta`).
 
     Parameters
     ----------

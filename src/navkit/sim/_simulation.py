@@ -227,7 +227,7 @@ class Simulation:
     rate : float, default 100.0
         Physics rate, Hz, in (0, 10^4]; no sensor or controller may be faster.
     control_rate : float, default 20.0
-        Controller rate, Hz.
+        Controller rate, Hz, in (0, ``rate``].
     duration : float, default 300.0
         Simulated time after which the run times out, s, in (0, 10^7]: at the
         first physics step at or after it, step ``ceil(duration * rate)``

@@ -74,7 +74,8 @@ class Metrics:
         Distance from the final estimated position to the goal, m (NaN without
         an estimator or a goal).
     estimate_error : float
-        Distance between the final estimated and true positions, m.
+        Distance between the final estimated and true positions, m (NaN
+        without an estimator).
     cross_track_mean, cross_track_max : float
         Mean and largest distance of the recorded true positions to the
         reference path, m (NaN without one).

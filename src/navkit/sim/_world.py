@@ -888,8 +888,9 @@ class World:
     def solids(self) -> BaseGeometry | None:
         """Union of the solid polygons (their inside is an obstacle), or None.
 
-        Lines and polygon rings given as walls are not in it; a grid's occupied
-        cells are edges only (:attr:`segments`).
+        Lines and polygon rings given as walls are not in it, nor are a grid's
+        blocked cells (the world keeps them as a cell mask, not as
+        :attr:`segments`).
         """
         return self._solids
 

@@ -65,10 +65,13 @@ class MapPlanner:
     The constructor turns the map into traversal costs once
     (:func:`navkit.mapping.traversal_costs`): occupied cells and every cell whose
     centre lies within ``robot_radius`` of an occupied cell are impassable (the
-    robot's centre may not go there), free cells cost 1, and with
-    ``inflation_radius > robot_radius`` cells near obstacles cost more (Nav2's
-    exponential inflation decay). Unknown space is impassable by default and,
-    like an obstacle, keeps the robot ``robot_radius`` away (``inflate_unknown``):
+    robot's centre may not go there), free cells cost 1, and cells near
+    obstacles cost more (Nav2's exponential inflation decay) out to
+    ``inflation_radius`` rounded up to whole cells, as Nav2 does: with the
+    default ``inflation_radius = robot_radius`` such a band appears only when
+    ``robot_radius`` is not a whole number of cells. Unknown space is
+    impassable by default and, like an obstacle, keeps the robot
+    ``robot_radius`` away (``inflate_unknown``):
     on a robot-built map whose walls are partly unknown cells the paths keep
     the same clearance from them. For the built-in planners it also prepares
     the planner on those costs (validation and conversion done once), so each
@@ -88,8 +91,8 @@ class MapPlanner:
         The robot's inscribed radius in m, in ``[0, 1e6]``: the obstacles'
         inflation.
     inflation_radius : float, optional
-        Distance in m up to which costs decay, in ``[robot_radius, 1e6]``;
-        default ``robot_radius``.
+        Distance in m up to which costs decay (rounded up to whole cells), in
+        ``[robot_radius, 1e6]``; default ``robot_radius``.
     unknown_cost : float, default inf
         Cost of unknown cells: ``inf`` (impassable) or a value in ``[1, 1e9]``
         (as :func:`navkit.mapping.traversal_costs`).

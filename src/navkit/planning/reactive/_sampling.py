@@ -302,7 +302,10 @@ def sample_field(
 
     The window ``[xlim[0], xlim[1]] × [ylim[0], ylim[1]]`` is divided into square
     cells of side ``resolution``; values are taken at cell centres, so
-    ``xlim=(0, 12), resolution=0.01`` gives 1200 columns.
+    ``xlim=(0, 12), resolution=0.01`` gives 1200 columns. Cells start at the
+    window's lower corner ``(xlim[0], ylim[0])``; an extent that is not a whole
+    number of cells gets one more, which reaches past the upper limit
+    (``xlim=(0, 1), resolution=0.3``: 4 columns, centres 0.15 to 1.05).
 
     Parameters
     ----------
