@@ -54,3 +54,18 @@ def test_errors_name_the_command_options(
     assert words in line
     for internal in ("robot_radius", "unknown_cost", "inflate_unknown"):
         assert internal not in line
+
+
+def test_no_path_is_reported_by_the_options_given(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # A wall across the whole map: start and goal lie on either side of it.
+    occupied = np.zeros((20, 30), dtype=bool)
+    occupied[:, 14:16] = True
+    grid = OccupancyGrid.from_occupancy(occupied, resolution=0.1)
+    grid.save(tmp_path / "split.yaml")
+    code = main(["plan", str(tmp_path / "split.yaml"), "--start", "0.55,0.55",
+                 "--goal", "2.55,0.55", "--radius", "0", "--quiet"])
+    assert code == 1
+    line = error_line(capsys)
+    assert "from --start (0.55, 0.55)" in line and "to --goal (2.55, 0.55)" in line, line

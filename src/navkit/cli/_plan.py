@@ -13,6 +13,7 @@ import yaml
 
 from navkit.cli._kernels import announce_compilation
 from navkit.cli._outputs import check_output, save_picture
+from navkit.errors import NoPathError
 from navkit.mapping import OccupancyGrid
 from navkit.mapping.io import read_map
 from navkit.planning import MapPlanner
@@ -63,10 +64,16 @@ def _in_option_names(message: str) -> str:
     >>> _in_option_names("goal (1.0, 2.0) (cell (20, 10)) is within robot_radius (0.5 m) of an "
     ...                  "obstacle")
     '--goal (1.0, 2.0) (cell (20, 10)) is within --radius (0.5 m) of an obstacle'
+    >>> _in_option_names("no collision-free path from start (0.0, 0.0) to goal (1.0, 2.0)")
+    'no collision-free path from --start (0.0, 0.0) to --goal (1.0, 2.0)'
     """
     for name in ("start", "goal"):
         if message.startswith(f"{name} ("):
             message = f"--{message}"
+    # No path: "no collision-free path from start (...) to goal (...)".
+    message = message.replace(" from start (", " from --start (").replace(
+        " to goal (", " to --goal ("
+    )
     message = message.replace("within robot_radius (", "within --radius (")
     for aside in (" (unknown_cost is inf)", " (inflate_unknown is True)"):
         message = message.replace(aside, "")
@@ -86,6 +93,8 @@ def plan_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
     prepared = time.perf_counter()
     try:
         path = planner.plan(args.start, args.goal)
+    except NoPathError as exc:
+        raise NoPathError(_in_option_names(str(exc)), expanded=exc.expanded) from exc
     except ValueError as exc:
         raise ValueError(_in_option_names(str(exc))) from exc
     searched = time.perf_counter()

@@ -18,6 +18,7 @@ from navkit._shared.frozen import reduce_record, restore_read_only
 from navkit._shared.validation import as_bool, finite_float
 from navkit.geometry import Pose2D, quaternion_to_yaw
 from navkit.mapping import LaserScan, OccupancyGrid
+from navkit.mapping.io._map_files import _unknown_logodds
 
 __all__ = ["OccupancyGridMsgFields", "grid_from_msg", "grid_to_msg_fields", "scan_from_msg"]
 
@@ -241,7 +242,12 @@ def grid_to_msg_fields(grid: OccupancyGrid, *, trinary: bool = False) -> Occupan
         The map.
     trinary : bool, default False
         (A bool.) False: ``data`` is the rounded probability in percent, with -1 for
-        cells whose log-odds are exactly 0 (never observed). True: 100 for
+        cells whose log-odds are exactly 0 (never observed) and for unknown cells
+        whose log-odds are exactly those :func:`~navkit.mapping.io.read_map` gives
+        unknown pixels (the middle of the unknown band when the thresholds do not
+        class p = 0.5 as unknown), as :func:`~navkit.mapping.io.write_map`'s scale
+        mode writes them transparent: a consumer such as Nav2's static layer reads
+        any value but -1 as known space. True: 100 for
         occupied, 0 for free, -1 for unknown cells according to the grid's
         thresholds (what map_server publishes).
 
@@ -266,7 +272,15 @@ def grid_to_msg_fields(grid: OccupancyGrid, *, trinary: bool = False) -> Occupan
         data[grid.free()] = 0
     else:
         data = np.rint(grid.probability() * 100.0).astype(np.int8)
-        data[grid.logodds == 0.0] = -1
+        logodds = grid.logodds
+        unknown = logodds == 0.0
+        unknown_l = np.float32(_unknown_logodds(grid.occupied_thresh, grid.free_thresh))
+        if unknown_l != 0.0:
+            # A map read with a band that excludes p = 0.5: its unknown pixels carry
+            # the band's middle, not 0; published as that percentage, they would be
+            # known space to every consumer of the message.
+            unknown |= (logodds == unknown_l) & grid.unknown()
+        data[unknown] = -1
     o = grid.origin
     half = 0.5 * o.theta
     return OccupancyGridMsgFields(

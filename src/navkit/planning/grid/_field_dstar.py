@@ -127,7 +127,10 @@ class FieldDStar:
         ``np.inf`` impassable (the A* convention), at most ``2**31 - 1`` nodes
         ``(rows + 1) × (cols + 1)``. Copied; the caller's array is never
         modified. The least cost from a start to the goal must moreover be below
-        ``2**52`` (about 4.5e15 cost units × cells), see Notes.
+        ``2**52`` (about 4.5e15 cost units × cells), see Notes. Paths run
+        through nodes, so they pass between two impassable cells that touch
+        only at a corner (a gap of zero width), which A* without corner
+        cutting refuses.
     interpolate : bool, default True
         ``False`` gives classic 8-connected D* Lite on the same nodes (an axis
         move pays the cheaper cell beside the edge, a diagonal ``sqrt(2)`` times

@@ -111,7 +111,9 @@ class MapPlanner:
         a path through cell centres. ``"field_dstar"``: any-angle paths,
         :meth:`FieldDStar.plan_cells` (whose path costs, in cost units ×
         cells, must stay below ``2**52``: only a huge ``unknown_cost`` on a
-        long route through unknown space comes near). Or any callable following
+        long route through unknown space comes near). Its paths may pass
+        through a corner where two impassable cells touch diagonally, where
+        ``"astar"`` finds no path. Or any callable following
         :class:`CellPlanner`, called on every query with the costs; use
         :func:`functools.partial` for options, e.g.
         ``partial(astar, corner_cutting=True)`` (a callable prepares nothing:
