@@ -43,7 +43,9 @@ class ScanMapper:
     1. guesses the sensor pose: the previous pose moved by the odometry
        increment since the previous scan when ``odometry`` is given, otherwise
        by the previous scan-to-scan motion (constant velocity; no motion for the
-       second scan);
+       second scan). That guess needs closely spaced scans: on logs that keep a
+       scan only every metre or so, with sharp turns between them (the CARMEN
+       logs), the match starts too far off and mapping without odometry fails;
     2. matches the scan to the map from that guess (:meth:`ScanMatcher.match`;
        when the match cannot be made, e.g. a featureless corridor, the guess is
        kept, or with the default matcher's pull towards the guess the pose
