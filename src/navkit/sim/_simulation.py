@@ -132,7 +132,7 @@ def _goal(value: Any) -> tuple[float, float, float | None] | None:
         # (the final error) overflows.
         x, y = float(arr[0]), float(arr[1])
         if abs(x) > MAX_POSE_COORD or abs(y) > MAX_POSE_COORD:
-            raise ValueError(f"goal must lie within ±{MAX_POSE_COORD:g} m, got ({x:g}, {y:g})")
+            raise ValueError(f"goal must lie within ±{MAX_POSE_COORD:g} m, got ({x!r}, {y!r})")
         return x, y, None
     if arr.shape == (3,):
         p = as_query_pose(arr, "goal")
