@@ -19,8 +19,10 @@ with the fixed seed :data:`MAP_SEED`), so every worker builds the same map.
 
 from __future__ import annotations
 
+import copy
 import itertools
 import math
+import threading
 import time
 from dataclasses import dataclass
 from functools import lru_cache
@@ -374,19 +376,43 @@ def lab_map(resolution: float, furniture: bool, source: str) -> OccupancyGrid:
     return lab_grid(resolution, furniture)
 
 
-@lru_cache(maxsize=16)
 def lab_planner(resolution: float, furniture: bool, planner: str, source: str) -> MapPlanner:
     """A :class:`MapPlanner` (``"astar"`` or ``"field_dstar"``) on :func:`lab_map`, cached.
 
     On the floor plan obstacles are inflated by 0.35 m; on the map built from
     scans by 0.4 m, with costs decaying out to 0.8 m (see
     :data:`PLAN_INFLATION_SCANS`), and unknown space is impassable and inflated too.
+    An A* planner is shared by every caller (its :meth:`~MapPlanner.plan` is
+    thread-safe); a Field D* one keeps search state, so each thread gets its
+    own copy of the cached planner (trials of a sweep on a thread pool plan at
+    the same time).
 
     Examples
     --------
     >>> lab_planner(0.1, False, "astar", "plan").robot_radius
     0.35
     """
+    shared = _lab_planner(resolution, furniture, planner, source)
+    if planner == "astar":
+        return shared
+    copies: dict[tuple[float, bool, str], tuple[MapPlanner, MapPlanner]] | None
+    copies = getattr(_THREAD_PLANNERS, "copies", None)
+    if copies is None:
+        copies = _THREAD_PLANNERS.copies = {}
+    key = (resolution, furniture, source)
+    held = copies.get(key)
+    if held is None or held[0] is not shared:  # none yet, or the cache made a new one
+        held = copies[key] = (shared, copy.copy(shared))
+    return held[1]
+
+
+# This thread's copies of the cached Field D* planners, by lab_planner's arguments.
+_THREAD_PLANNERS = threading.local()
+
+
+@lru_cache(maxsize=16)
+def _lab_planner(resolution: float, furniture: bool, planner: str, source: str) -> MapPlanner:
+    """The cached planner :func:`lab_planner` hands out (or copies, for Field D*)."""
     grid = lab_map(resolution, furniture, source)
     radius, inflation = plan_inflation(source)
     if planner == "astar":
