@@ -70,6 +70,14 @@ def integrate_scan(
     ``clamp`` at once; doing so costs a third min/max per cell, about 12 %
     of a 360-beam scan.)
 
+    The result does not depend on the order of the beams, nor on where the
+    grid and the sensor are in the world (moving both by one rigid motion
+    gives the same cells, up to rounding where a beam ends or passes within a
+    rounding error of a cell edge). But a scan integrated in parts is not the
+    same as the scan integrated at once: a cell that beams of both parts
+    reach takes two updates, and, near the bounds of ``clamp`` (and by
+    float32 rounding), successive updates depend on their order.
+
     Parameters
     ----------
     grid : OccupancyGrid

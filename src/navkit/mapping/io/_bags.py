@@ -521,18 +521,38 @@ def _fields(block: bytes) -> dict[str, bytes]:
     return out
 
 
-def _record(data: bytes, pos: int) -> tuple[dict[str, bytes], bytes, int]:
-    """Header fields, data and next position of the ROS 1 record at ``pos``."""
+def _record(data: bytes, pos: int, where: str = "") -> tuple[dict[str, bytes], bytes, int]:
+    """Header fields, data and next position of the ROS 1 record at ``pos``.
+
+    ``pos`` is a position in the file, or in the decompressed chunk ``where``
+    names. Both declared lengths are checked against the bytes there: a cut or
+    lying length is refused here, naming the record, rather than read as a
+    shorter header or message.
+    """
+    what = f"record at byte {pos}{where}"
     if pos < 0 or pos + 4 > len(data):
-        raise _Corrupt(f"record at byte {pos} lies beyond the file")
+        raise _Corrupt(f"{what} lies beyond the end")
     (header_len,) = struct.unpack_from("<I", data, pos)
-    header = data[pos + 4 : pos + 4 + header_len]
-    pos += 4 + header_len
-    if len(header) != header_len or pos + 4 > len(data):
-        raise _Corrupt("truncated record")
+    start = pos + 4
+    if header_len > len(data) - start:
+        raise _Corrupt(
+            f"{what} declares a {header_len}-byte header, only {len(data) - start} bytes remain"
+        )
+    header = data[start : start + header_len]
+    pos = start + header_len
+    if pos + 4 > len(data):
+        raise _Corrupt(f"{what} is cut off before its data length")
     (data_len,) = struct.unpack_from("<I", data, pos)
-    body = data[pos + 4 : pos + 4 + data_len]
-    return _fields(header), body, pos + 4 + data_len
+    start = pos + 4
+    if data_len > len(data) - start:
+        raise _Corrupt(
+            f"{what} declares {data_len} data bytes, only {len(data) - start} bytes remain"
+        )
+    try:
+        fields = _fields(header)
+    except _Corrupt as exc:
+        raise _Corrupt(f"{what}: {exc}") from None
+    return fields, data[start : start + data_len], start + data_len
 
 
 def _int(fields: dict[str, bytes], name: str, fmt: str) -> int:
@@ -590,7 +610,7 @@ def _walk_ros1(bag_path: Path) -> _Bag:
             raise _Corrupt(f"corrupt compressed chunk: {exc}") from None
         inner = 0
         while inner < len(body):
-            rec, payload, inner = _record(body, inner)
+            rec, payload, inner = _record(body, inner, f" of the chunk at byte {chunk_pos}")
             if _op(rec) == 2:
                 stamp = _int(rec, "time", "<Q")
                 ns = (stamp & 0xFFFFFFFF) * 1_000_000_000 + (stamp >> 32)

@@ -156,6 +156,13 @@ def grid_from_msg(msg: Any) -> OccupancyGrid:
     normalised and reduced to its yaw (a zero quaternion, ROS 1's default,
     gives yaw 0).
 
+    A value of 50 is probability 0.5, log-odds 0, which is also what -1 reads
+    as: the grid cannot tell the two apart, and :func:`grid_to_msg_fields`
+    publishes such a cell as -1 (never observed). Every other value, and the
+    origin's position, come back from :func:`grid_to_msg_fields` (``trinary``
+    False) as they were; the yaw, through its quaternion, to within a few units
+    in the last place.
+
     Parameters
     ----------
     msg : nav_msgs/OccupancyGrid or look-alike

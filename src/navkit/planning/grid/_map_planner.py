@@ -113,7 +113,8 @@ class MapPlanner:
         cells, must stay below ``2**52``: only a huge ``unknown_cost`` on a
         long route through unknown space comes near). Its paths may pass
         through a corner where two impassable cells touch diagonally, where
-        ``"astar"`` finds no path. Or any callable following
+        ``"astar"`` finds no path; they are usually cheaper than ``"astar"``'s,
+        not always (see :meth:`FieldDStar.plan_cells`). Or any callable following
         :class:`CellPlanner`, called on every query with the costs; use
         :func:`functools.partial` for options, e.g.
         ``partial(astar, corner_cutting=True)`` (a callable prepares nothing:
