@@ -125,7 +125,14 @@ def greedy_step(
     0.1 m cells is ``scan.to_local_grid()``). The robot's own cell never blocks
     its lines of sight, even if a return fell into it. Lines are the mapping
     layer's 8-connected Bresenham lines, which can pass diagonally between two
-    occupied cells that touch only at a corner.
+    occupied cells that touch only at a corner. Where a line passes exactly
+    halfway between two cells (the line to the cell 1 row and 2 columns away
+    crosses the middle column on the border of two rows) Bresenham's rounding
+    picks one of them by the direction of the trace, which always runs toward
+    higher rows; so the lines, and with them which cells are in sight, are
+    symmetric under mirroring the grid front to back (x → -x) but not left to
+    right (y → -y), under transposing it or under turns: mirrored or rotated
+    worlds can give steps of different cost.
 
     Parameters
     ----------
