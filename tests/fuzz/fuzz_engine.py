@@ -337,7 +337,11 @@ def materialize(value: Any, built: list[tuple[str, Any]], path: str = "") -> Any
             if value.prepare is not None:
                 value.prepare(receiver)
         args = {k: materialize(v, built, f"{path}{k}.") for k, v in value.arguments.items()}
-        out = value.invoke(receiver, args)
+        try:
+            out = value.invoke(receiver, args)
+        except Exception as exc:
+            _mark_raised_at(exc, path)
+            raise
         built.append((path.rstrip(".") or "<result>", out))
         return out
     if isinstance(value, list) and any(isinstance(v, Call) for v in value):
@@ -345,6 +349,26 @@ def materialize(value: Any, built: list[tuple[str, Any]], path: str = "") -> Any
     if isinstance(value, tuple) and any(isinstance(v, Call) for v in value):
         return tuple(materialize(v, built, f"{path}{i}.") for i, v in enumerate(value))
     return value
+
+
+RAISED_AT = "_navkit_fuzz_raised_at"
+"""The attribute :func:`materialize` puts on an exception raised by a nested call."""
+
+
+def _mark_raised_at(exc: BaseException, path: str) -> None:
+    """Note which nested call refused (the innermost one: set only once, on the way out).
+
+    ``raised_at(exc)`` then tells a check on the message which call's parameter
+    names the caller wrote for it (``test_review8_messages.py``).
+    """
+    if not hasattr(exc, RAISED_AT):
+        with contextlib.suppress(AttributeError, TypeError):
+            setattr(exc, RAISED_AT, tuple(p for p in path.split(".") if p))
+
+
+def raised_at(exc: BaseException) -> tuple[str, ...]:
+    """The path of the nested call that raised ``exc`` (``()``: the outer call itself)."""
+    return tuple(getattr(exc, RAISED_AT, ()))
 
 
 # --------------------------------------------------------------------------- value tags

@@ -431,3 +431,29 @@ def as_cell(value: Any, name: str, shape: tuple[int, ...]) -> tuple[int, int]:
     if not (0 <= row < shape[0] and 0 <= col < shape[1]):
         raise ValueError(f"{name} {(row, col)} is outside the grid of shape {shape[:2]}")
     return row, col
+
+
+def as_sequence(value: Any, name: str) -> tuple[Any, ...]:
+    """The items of ``value``, an iterable other than a string or a mapping, as a tuple.
+
+    Strings, bytes and mappings iterate over characters or keys, which no
+    argument that wants a sequence of objects means: they are refused with the
+    rest (``TypeError`` naming ``name``). The items themselves are the caller's
+    to check.
+
+    Examples
+    --------
+    >>> as_sequence([1, 2], "scans")
+    (1, 2)
+    >>> as_sequence(None, "scans")
+    Traceback (most recent call last):
+    ...
+    TypeError: scans must be a sequence, got NoneType
+    """
+    if isinstance(value, (str, bytes, Mapping)):
+        raise TypeError(f"{name} must be a sequence, got {type(value).__name__}")
+    try:
+        items = iter(value)
+    except TypeError:
+        raise TypeError(f"{name} must be a sequence, got {type(value).__name__}") from None
+    return tuple(items)

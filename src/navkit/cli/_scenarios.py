@@ -61,7 +61,13 @@ def _dask_client(address: str | None) -> Iterator[Any]:
             "--scheduler needs Dask's distributed scheduler: pip install 'navkit[distributed]'"
         ) from exc
     connect: Any = Client  # untyped
-    client = connect(address, timeout="10s")
+    try:
+        client = connect(address, timeout="10s")
+    except (OSError, ValueError) as exc:
+        # Dask's message ("missing port number in address 'x'", "Timed out trying
+        # to connect ...") names the address but not the option the user gave it in.
+        error = OSError if isinstance(exc, OSError) else ValueError
+        raise error(f"--scheduler: {exc}") from exc
     try:
         yield client
     finally:

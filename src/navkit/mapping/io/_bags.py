@@ -23,7 +23,7 @@ from numpy.typing import ArrayLike
 
 from navkit._shared.frozen import reduce_record, restore_read_only
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import as_float_array
+from navkit._shared.validation import as_float_array, as_sequence
 from navkit.geometry import imu_to_base, quaternion_to_matrix, quaternion_to_yaw, wrap_angle
 from navkit.mapping import LaserScan
 from navkit.mapping.io._paths import as_path
@@ -131,7 +131,7 @@ class BagScans:
 
     def __post_init__(self) -> None:
         n = _check_fields(self, ("topic", "frame_id"), {})
-        scans = tuple(self.scans)
+        scans = as_sequence(self.scans, "scans")
         for i, scan in enumerate(scans):
             if not isinstance(scan, LaserScan):
                 raise TypeError(f"scans[{i}] must be a LaserScan, got {type(scan).__name__}")

@@ -15,7 +15,7 @@ import numpy as np
 
 from navkit._shared.frozen import reduce_record, restore_read_only
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import as_float_array, positive_float
+from navkit._shared.validation import as_float_array, as_sequence, positive_float
 from navkit.geometry import Pose2D, as_pose, wrap_angle
 from navkit.mapping import LaserScan
 from navkit.mapping.io._paths import as_path
@@ -99,12 +99,18 @@ class CarmenLog:
     odometry: FloatArray
 
     def __post_init__(self) -> None:
-        scans = tuple(self.scans)
+        scans = as_sequence(self.scans, "scans")
         for i, scan in enumerate(scans):
             if not isinstance(scan, LaserScan):
                 raise TypeError(f"scans[{i}] must be a LaserScan, got {type(scan).__name__}")
-        laser = tuple(as_pose(p, f"laser_poses[{i}]") for i, p in enumerate(self.laser_poses))
-        robot = tuple(as_pose(p, f"robot_poses[{i}]") for i, p in enumerate(self.robot_poses))
+        laser = tuple(
+            as_pose(p, f"laser_poses[{i}]")
+            for i, p in enumerate(as_sequence(self.laser_poses, "laser_poses"))
+        )
+        robot = tuple(
+            as_pose(p, f"robot_poses[{i}]")
+            for i, p in enumerate(as_sequence(self.robot_poses, "robot_poses"))
+        )
         stamps = np.array(as_float_array(self.timestamps, "timestamps", ndim=1), copy=True)
         odometry_in = as_float_array(self.odometry, "odometry")
         if odometry_in.size == 0:
