@@ -498,8 +498,12 @@ class PlanarFusion(GaussianEstimate):
     fuses a whole log in one kernel call. Several readings with one timestamp
     (e.g. the yaw, yaw rate and acceleration of one IMU message) can be given by
     successive calls: with independent noise and linear measurements this equals
-    one joint update. In every ``update_*`` method the time and the measured
-    value(s) are positional and every variance is keyword-only.
+    one joint update (to rounding), as long as the yaw residual stays well within
+    ±π. A yaw reading nearly opposite to the estimate is ambiguous: an update
+    before it (a yaw rate, say) can move the estimate across ±π, and the order
+    of the calls then decides which way the yaw pulls it. In every ``update_*``
+    method the time and the measured value(s) are positional and every variance
+    is keyword-only.
 
     An ordinary class with ``__slots__`` rather than a frozen dataclass: every
     measurement changes its estimate in place.
