@@ -5,6 +5,8 @@ from __future__ import annotations
 from collections import deque
 from typing import Generic, TypeVar
 
+from navkit._shared.frozen import restore_slots
+
 __all__ = ["DelayLine"]
 
 _T = TypeVar("_T")
@@ -17,7 +19,8 @@ class DelayLine(Generic[_T]):
     they came in. Times are compared with a tolerance of 1e-9 s, so that an
     item due at ``t`` is delivered at a step computed as ``k * dt ≈ t``.
 
-    An ordinary class with ``__slots__``: it changes as items pass.
+    An ordinary class with ``__slots__``: it changes as items pass. Copies
+    (:func:`copy.copy` too), deep copies and pickles hold their own queue.
 
     Parameters
     ----------
@@ -39,6 +42,19 @@ class DelayLine(Generic[_T]):
     def __init__(self, delay: float) -> None:
         self._delay = float(delay)
         self._items: deque[tuple[float, _T]] = deque()
+
+    def __copy__(self) -> DelayLine[_T]:
+        """A shallow copy with its own queue (the queued items themselves shared)."""
+        # Python's default state of a slotted object, a subclass's __dict__ and slots
+        # included (what copy.deepcopy copies), so subclasses copy whole.
+        reduced = self.__reduce_ex__(4)
+        assert isinstance(reduced, tuple)
+        cls = type(self)
+        twin = cls.__new__(cls)
+        restore_slots(twin, reduced[2])
+        # Shared, a push or pop on one would change what the other delivers.
+        twin._items = deque(self._items)
+        return twin
 
     @property
     def delay(self) -> float:

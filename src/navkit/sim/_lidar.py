@@ -15,7 +15,7 @@ from navkit.geometry import Pose2D, as_pose
 from navkit.mapping import LaserScan
 from navkit.sim._lidar_kernels import apply_range_noise
 from navkit.sim._noise import RangeNoise
-from navkit.sim._world import MAX_COORD, World, as_world
+from navkit.sim._world import MAX_COORD, World, as_query_pose, as_world
 
 __all__ = ["Lidar", "Scanner", "as_generator", "check_latency", "check_rate"]
 
@@ -216,7 +216,9 @@ class Lidar:
         world : World
             What the beams hit.
         pose : Pose2D or array_like [x, y, theta]
-            Pose of the robot; the sensor sits at ``pose ⊕ mount``.
+            Pose of the robot, its position within ±1e12 m (as
+            :meth:`World.raycast` and a :class:`Simulation`'s start); the
+            sensor sits at ``pose ⊕ mount``.
         t : float, default 0.0
             Time of the scan (places the moving obstacles), s, within ±1e9 s
             when the world has moving obstacles.
@@ -228,6 +230,12 @@ class Lidar:
         -------
         LaserScan
             Ranges per REP 117, angles in the sensor frame.
+
+        Raises
+        ------
+        TypeError, ValueError
+            ``pose`` not a pose, or its position beyond ±1e12 m; ``t`` not
+            a finite time within range.
         """
         w = as_world(world)
         scanner = w._scanners.get(self)
@@ -235,7 +243,7 @@ class Lidar:
             if len(w._scanners) >= 16:
                 w._scanners.clear()
             scanner = w._scanners[self] = Scanner(self, w)
-        p = as_pose(pose, "pose")
+        p = as_query_pose(pose, "pose")
         time = w._query_time(t)
         generator = as_generator(rng) if scanner.random or rng is not None else None
         return scanner.scan(p, time, generator)

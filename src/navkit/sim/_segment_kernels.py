@@ -82,6 +82,7 @@ _TOUCHING = 1.0
 _HELD = 2.0
 
 _EPS = 1e-9
+_TWO_PI = 2.0 * math.pi
 #: Smallest limit of a step's clearance search, m: above ``TOUCH``, so that the
 #: search still tells contact from no contact once the run's smallest clearance
 #: (its limit otherwise) is 0, and small enough to stop the search at once.
@@ -129,7 +130,7 @@ def _sample(
     rates: np.ndarray,
     counts: np.ndarray,
     n_out: np.ndarray,
-    enc_scale: float,
+    enc_tpr: float,
     enc_span: float,
     enc_out: np.ndarray,
     compass_out: np.ndarray,
@@ -144,7 +145,13 @@ def _sample(
         if s == _ENCODERS:
             enc_out[row, 0] = t
             for w in range(angles.shape[0]):
-                ticks = math.floor(angles[w] * enc_scale)
+                # The tick rule of WheelEncoders.counts, in the same float arithmetic.
+                a = angles[w]
+                ticks = np.floor(a * (enc_tpr / _TWO_PI))
+                if ((ticks + 1.0) / enc_tpr) * _TWO_PI <= a:
+                    ticks += 1.0
+                elif (ticks / enc_tpr) * _TWO_PI > a:
+                    ticks -= 1.0
                 if enc_span > 0.0:
                     ticks = ticks % enc_span
                 enc_out[row, 1 + w] = ticks
@@ -320,7 +327,7 @@ def _settle(
     rates: np.ndarray,
     counts: np.ndarray,
     n_out: np.ndarray,
-    enc_scale: float,
+    enc_tpr: float,
     enc_span: float,
     enc_out: np.ndarray,
     compass_out: np.ndarray,
@@ -376,7 +383,7 @@ def _settle(
             _record(buf, i, t, state, cmd)
             return GOAL
     _sample(
-        i, t, dt, state, angles, rates, counts, n_out, enc_scale, enc_span,
+        i, t, dt, state, angles, rates, counts, n_out, enc_tpr, enc_span,
         enc_out, compass_out, imu_out,
     )  # fmt: skip
     _record(buf, i, t, state, cmd)
@@ -437,7 +444,7 @@ def run_segment(
     rates: np.ndarray,
     counts: np.ndarray,
     n_out: np.ndarray,
-    enc_scale: float,
+    enc_tpr: float,
     enc_span: float,
     enc_out: np.ndarray,
     compass_out: np.ndarray,
@@ -452,12 +459,13 @@ def run_segment(
 
     ``slip_z`` holds the slip draws, row ``k`` for the physics step leaving
     step ``i0 + k``. ``n_out`` (3,) counts the rows written to ``enc_out``
-    (t, then each wheel's counter ``floor(angle * enc_scale)``, modulo
-    ``enc_span`` when it is > 0), ``compass_out`` (t, yaw) and ``imu_out``
-    (t, yaw rate, ax, ay). ``stats`` holds the minimum clearance, the time the goal was
-    first reached (NaN before), the number of collisions and the robot's contact
-    state (free, touching or held); the times of the collisions are appended to ``contacts``
-    (as far as it has room; ``stats[STAT_COLLISIONS]`` counts them all).
+    (t, then each wheel's counter ``floor(angle / 2π * enc_tpr)`` by the rule of
+    ``WheelEncoders.counts``, modulo ``enc_span`` when it is > 0), ``compass_out``
+    (t, yaw) and ``imu_out`` (t, yaw rate, ax, ay). ``stats`` holds the minimum
+    clearance, the time the goal was first reached (NaN before), the number of
+    collisions and the robot's contact state (free, touching or held); the times
+    of the collisions are appended to ``contacts`` (as far as it has room;
+    ``stats[STAT_COLLISIONS]`` counts them all).
     ``prev`` (3,) is scratch for the pose before a step. ``reach`` (m) is the
     footprint's farthest point from the robot's reference point (0 for a
     disc) and ``sweep`` (m, > 0) the radius of a disc inside it; ``sweeping``
@@ -470,7 +478,7 @@ def run_segment(
     i = i0
     if sample_first:
         _sample(
-            i, i * dt, dt, state, angles, rates, counts, n_out, enc_scale, enc_span,
+            i, i * dt, dt, state, angles, rates, counts, n_out, enc_tpr, enc_span,
             enc_out, compass_out, imu_out,
         )  # fmt: skip
         _record(buf, i, i * dt, state, cmd)
@@ -511,7 +519,7 @@ def run_segment(
             clearance = 0.0
         status = _settle(
             i, t, dt, clearance, state, wheels, angles, command, goal, stop_at_goal,
-            end_on_collision, rates, counts, n_out, enc_scale, enc_span, enc_out,
+            end_on_collision, rates, counts, n_out, enc_tpr, enc_span, enc_out,
             compass_out, imu_out, buf, cmd, stats, contacts, prev,
         )  # fmt: skip
         if status != REACHED:
@@ -555,7 +563,7 @@ def run_edge_segment(
     rates: np.ndarray,
     counts: np.ndarray,
     n_out: np.ndarray,
-    enc_scale: float,
+    enc_tpr: float,
     enc_span: float,
     enc_out: np.ndarray,
     compass_out: np.ndarray,
@@ -578,7 +586,7 @@ def run_edge_segment(
     i = i0
     if sample_first:
         _sample(
-            i, i * dt, dt, state, angles, rates, counts, n_out, enc_scale, enc_span,
+            i, i * dt, dt, state, angles, rates, counts, n_out, enc_tpr, enc_span,
             enc_out, compass_out, imu_out,
         )  # fmt: skip
         _record(buf, i, i * dt, state, cmd)
@@ -606,7 +614,7 @@ def run_edge_segment(
             clearance = 0.0
         status = _settle(
             i, t, dt, clearance, state, wheels, angles, command, goal, stop_at_goal,
-            end_on_collision, rates, counts, n_out, enc_scale, enc_span, enc_out,
+            end_on_collision, rates, counts, n_out, enc_tpr, enc_span, enc_out,
             compass_out, imu_out, buf, cmd, stats, contacts, prev,
         )  # fmt: skip
         if status != REACHED:

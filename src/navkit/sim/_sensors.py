@@ -27,6 +27,7 @@ __all__ = [
 ]
 
 _MAX_ANGLE_NOISE = math.pi
+_TWO_PI = 2.0 * math.pi
 _MAX_RATE_NOISE = 100.0  # rad/s
 _MAX_ACCEL_NOISE = 1000.0  # m/s²
 
@@ -179,10 +180,15 @@ class WheelEncoders:
     """Incremental wheel encoders: quantised, wrapping tick counters.
 
     Each wheel's counter is ``floor(angle / 2π * ticks_per_rev)`` of the
-    wheel's rotation (the motor's, before any slip on the ground), reported
-    modulo ``2**bits`` as an unsigned reading when ``bits`` is below 64 (a
-    64-bit counter reads as a signed int64; decode with
-    :func:`navkit.kinematics.tick_delta`).
+    wheel's rotation (the motor's, before any slip on the ground): in float64,
+    the largest ``k`` whose boundary angle ``(k / ticks_per_rev) * (2 * π)``
+    (each operation rounded, ``π = math.pi``) is at most ``angle``, so that
+    ``n * 2 * math.pi`` reads exactly ``n * ticks_per_rev`` for whole
+    ``ticks_per_rev`` (a simulated run reads the same). Single ticks are
+    resolved while ``|angle| / 2π * ticks_per_rev`` is below 2**50. The
+    counter is reported modulo ``2**bits`` as an unsigned reading when
+    ``bits`` is below 64 (a 64-bit counter reads as a signed int64; decode
+    with :func:`navkit.kinematics.tick_delta`).
 
     Parameters
     ----------
@@ -233,7 +239,8 @@ class WheelEncoders:
         Returns
         -------
         ndarray of int64, shape (N,)
-            ``floor(wheel_angles / 2π * ticks_per_rev)``, modulo ``2**bits``
+            ``floor(wheel_angles / 2π * ticks_per_rev)`` (by the boundary
+            rule of the class docstring), modulo ``2**bits``
             (in ``[0, 2**bits)``) when ``bits`` is below 64, as is otherwise.
 
         Raises
@@ -245,7 +252,14 @@ class WheelEncoders:
         wheel_angles = as_float_array(wheel_angles, "wheel_angles", ndim=1)
         if wheel_angles.size and float(np.max(np.abs(wheel_angles))) > 1e9:
             raise ValueError("wheel_angles must lie within ±1e9 rad")
-        ticks = np.floor(wheel_angles * (self.ticks_per_rev / (2.0 * math.pi))).astype(np.int64)
+        tpr = self.ticks_per_rev
+        q = np.floor(wheel_angles * (tpr / _TWO_PI))
+        # The product rounds: an angle on a boundary (n whole turns, n * 2 * math.pi) can
+        # land just below it. One step to a neighbour fixes that (the error is below a
+        # tick while |q| < 2**50); beyond 2**53 q + 1 == q and nothing changes.
+        up = ((q + 1.0) / tpr) * _TWO_PI <= wheel_angles
+        down = (q / tpr) * _TWO_PI > wheel_angles
+        ticks = (q + up - down).astype(np.int64)
         if self.bits is None:
             return ticks
         if self.bits == 64:

@@ -434,8 +434,8 @@ class _Run:
         "counts",
         "dt",
         "enc_mask",
-        "enc_scale",
         "enc_span",
+        "enc_tpr",
         "encoders",
         "est_t",
         "est_xyt",
@@ -478,7 +478,7 @@ class _Run:
         )
         self.counts = np.zeros(3, dtype=np.int64)
         enc = robot.encoders
-        self.enc_scale = 1.0 if enc is None else enc.ticks_per_rev / (2.0 * math.pi)
+        self.enc_tpr = 1.0 if enc is None else enc.ticks_per_rev
         # The kernel wraps counters in floats, exact up to 52 bits; wider ones (up to 63)
         # are wrapped in int64 when queued, 64-bit ones stay signed (as WheelEncoders.counts).
         self.enc_span = 0.0 if enc is None or enc.bits is None or enc.bits > 52 else 2.0**enc.bits
@@ -555,7 +555,7 @@ class _Run:
         gx0, gy0, h, nx, ny = world._index
         bookkeeping = (
             self.goal, sim._stop_at_goal, sim._end_on_collision,
-            self.rates, self.counts, self.n_out, self.enc_scale, self.enc_span,
+            self.rates, self.counts, self.n_out, self.enc_tpr, self.enc_span,
             self.out_encoders, self.out_compass, self.out_imu,
             self.buf, self.cmd, self.stats, self.contacts, self.prev,
         )  # fmt: skip
