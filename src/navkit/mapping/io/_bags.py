@@ -15,6 +15,7 @@ import struct
 from collections.abc import Callable, Iterable, Iterator
 from contextlib import contextmanager, suppress
 from dataclasses import dataclass
+from functools import partial
 from pathlib import Path
 from typing import Any, NamedTuple, TypeVar
 
@@ -44,6 +45,11 @@ ODOMETRY_TYPE = "nav_msgs/msg/Odometry"
 IMU_TYPE = "sensor_msgs/msg/Imu"
 
 _ROS1_MAGIC = b"#ROSBAG V2.0\n"
+#: The most a ROS 1 bag chunk may declare to hold decompressed, bytes. roscpp sends
+#: no message over 1e9 bytes and rosbag closes a chunk past 768 KiB by default, so
+#: only a damaged or malicious bag declares more (a few kilobytes of bz2 can
+#: decompress to gigabytes).
+CHUNK_MAX = 1 << 30
 
 
 # ---------------------------------------------------------------- result classes
@@ -484,6 +490,7 @@ def _with_bag(bag_path: Path, use: Callable[[_Bag], _T]) -> _T:
         )
     try:
         with _opened(rosbag1.Reader, bag_path) as reader:
+            _bound_chunks(reader, bag_path)
 
             def messages1(topic: str, msgtype: str) -> Iterator[tuple[int, bytes]]:
                 conns = _of_stream(reader.connections, topic, msgtype)
@@ -496,12 +503,84 @@ def _with_bag(bag_path: Path, use: Callable[[_Bag], _T]) -> _T:
         try:
             bag = _walk_ros1(bag_path)
         except _Corrupt as walk_exc:
-            raise ValueError(f"{bag_path}: cannot read the ROS 1 bag: {exc}; {walk_exc}") from None
+            detail = str(exc) if str(exc) == str(walk_exc) else f"{exc}; {walk_exc}"
+            raise ValueError(f"{bag_path}: cannot read the ROS 1 bag: {detail}") from None
         return use(bag)
 
 
 class _Corrupt(Exception):
     """The chunk walker met something it cannot read."""
+
+
+def _inflate(compression: bytes, size: int, chunk_pos: int, body: bytes) -> bytes:
+    """The data of the chunk at ``chunk_pos``, decompressed, within its declared ``size``.
+
+    Never more than the ``size`` its header declares (as rosbag's own buffer of
+    that size), nor than :data:`CHUNK_MAX` bytes, so that a decompression bomb
+    fails before it is inflated.
+    """
+    if compression == b"none":
+        return body
+    if compression not in (b"bz2", b"lz4"):
+        raise _Corrupt(f"unknown chunk compression {compression!r}")
+    if size > CHUNK_MAX:
+        raise _Corrupt(
+            f"the chunk at byte {chunk_pos} declares {size} bytes decompressed, more than "
+            f"the {CHUNK_MAX} a bag chunk may hold"
+        )
+    try:
+        if compression == b"bz2":
+            decompressor: Any = bz2.BZ2Decompressor()
+        else:
+            decompressor = importlib.import_module("lz4.frame").LZ4FrameDecompressor()
+        out = bytes(decompressor.decompress(body, max_length=size + 1))
+        complete = decompressor.eof
+    except (OSError, ValueError, RuntimeError, EOFError) as exc:
+        raise _Corrupt(f"corrupt compressed chunk: {exc}") from None
+    if len(out) > size:
+        raise _Corrupt(
+            f"the chunk at byte {chunk_pos} decompresses to more than the {size} bytes "
+            "its header declares"
+        )
+    if not complete:
+        raise _Corrupt(f"corrupt compressed chunk at byte {chunk_pos}: its data is cut off")
+    return out
+
+
+def _bound_chunks(reader: Any, bag_path: Path) -> None:
+    """Make rosbags decompress the chunks of an open ROS 1 bag with :func:`_inflate`.
+
+    rosbags decompresses a whole chunk at once, however much comes out. Its
+    chunk table (``reader.chunks``: position → (data size, data position,
+    decompressor)) gets bounded decompressors, from each chunk header's
+    compression and size; a rosbags without that table is left as it is.
+    """
+    chunks = getattr(reader, "chunks", None)
+    if not isinstance(chunks, dict):
+        return
+    with bag_path.open("rb") as fh:
+        for chunk_pos, chunk in list(chunks.items()):
+            if not hasattr(chunk, "_replace") or not hasattr(chunk, "decompressor"):
+                return
+            fh.seek(chunk_pos)
+            head = fh.read(4)
+            try:
+                (header_len,) = struct.unpack("<I", head)
+                fields = _fields(fh.read(min(header_len, 1 << 20)))
+                compression = fields.get("compression", b"none")
+                size = _int(fields, "size", "<I")
+            except (struct.error, _Corrupt) as exc:
+                raise _RosbagsFailed(f"chunk at byte {chunk_pos}: {exc}") from None
+            chunks[chunk_pos] = chunk._replace(
+                decompressor=partial(_rosbags_inflate, compression, size, chunk_pos)
+            )
+
+
+def _rosbags_inflate(compression: bytes, size: int, chunk_pos: int, body: bytes) -> bytes:
+    try:
+        return _inflate(compression, size, chunk_pos, body)
+    except _Corrupt as exc:
+        raise _RosbagsFailed(str(exc)) from None
 
 
 def _fields(block: bytes) -> dict[str, bytes]:
@@ -598,16 +677,7 @@ def _walk_ros1(bag_path: Path) -> _Bag:
         if _op(fields) != 5:
             raise _Corrupt(f"no chunk record at byte {chunk_pos}")
         compression = fields.get("compression", b"none")
-        try:
-            if compression == b"bz2":
-                body = bz2.decompress(body)
-            elif compression == b"lz4":
-                lz4_frame = importlib.import_module("lz4.frame")  # a dependency of rosbags
-                body = lz4_frame.decompress(body)
-            elif compression != b"none":
-                raise _Corrupt(f"unknown chunk compression {compression!r}")
-        except (OSError, ValueError, RuntimeError) as exc:
-            raise _Corrupt(f"corrupt compressed chunk: {exc}") from None
+        body = _inflate(compression, _int(fields, "size", "<I"), chunk_pos, body)
         inner = 0
         while inner < len(body):
             rec, payload, inner = _record(body, inner, f" of the chunk at byte {chunk_pos}")

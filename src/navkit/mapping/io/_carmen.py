@@ -25,6 +25,12 @@ __all__ = ["CarmenLog", "read_carmen"]
 _TURN = 2.0 * math.pi
 #: The largest ``range_max`` a LaserScan accepts, m.
 _RANGE_LIMIT = 1e9
+#: The longest line read, characters: a ROBOTLASER1 line of 100,000 beams and
+#: remissions is about 2 MB. A line is held whole in memory (and split into
+#: tokens of ~50 bytes each), so a file, or a small gzip'd one (gigabytes of a
+#: byte repeated compress to megabytes), with no newline for gigabytes would
+#: otherwise exhaust the memory.
+LINE_MAX = 1 << 23
 
 
 def _guess_fov(n: int) -> float:
@@ -163,15 +169,18 @@ class _Record(NamedTuple):
 
 
 def _lines(path: Path) -> Iterator[str]:
-    """Lines of a plain or gzip'd log, read lazily (bytes that are not ASCII are replaced)."""
+    """Lines of a plain or gzip'd log, read lazily (bytes that are not ASCII are replaced).
+
+    A line longer than :data:`LINE_MAX` is given cut to ``LINE_MAX + 1`` characters.
+    """
     with path.open("rb") as fh:
         magic = fh.read(2)
     if magic == b"\x1f\x8b":
         with gzip.open(path, "rt", encoding="ascii", errors="replace") as fh:
-            yield from fh
+            yield from iter(lambda: fh.readline(LINE_MAX + 1), "")
     else:
         with path.open("r", encoding="ascii", errors="replace") as fh:
-            yield from fh
+            yield from iter(lambda: fh.readline(LINE_MAX + 1), "")
 
 
 def _count(token: str, what: str) -> int:
@@ -296,6 +305,11 @@ def _parse(log_path: Path) -> tuple[list[_Record], list[tuple[float, float, floa
     kind = ""
     try:
         for number, line in enumerate(_lines(log_path), start=1):
+            if len(line) > LINE_MAX:
+                raise ValueError(
+                    f"{log_path}:{number}: line longer than {LINE_MAX} characters: not a "
+                    "CARMEN log line (no newline for megabytes: binary data or a damaged file?)"
+                )
             kind, _, rest = line.partition(" ")
             kind = kind.strip()
             # Only the last line can lack it (text mode reads \r\n and \r as \n).
@@ -381,7 +395,8 @@ def read_carmen(
     FileNotFoundError
         Missing file.
     ValueError
-        A corrupt or truncated gzip file; a malformed FLASER, ROBOTLASER1 or
+        A corrupt or truncated gzip file; a line longer than 2**23 characters
+        (binary data: lines are read whole); a malformed FLASER, ROBOTLASER1 or
         ODOM line (the message names the file and line number): fields that
         are not numbers, NaN or infinite values, negative counts, counts that
         do not match the number of fields, a last line that may have been

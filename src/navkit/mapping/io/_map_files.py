@@ -18,6 +18,7 @@ import io
 import math
 import os
 import re
+import reprlib
 import struct
 import warnings
 import zlib
@@ -146,8 +147,21 @@ class MapMetadata:
     mode: str
 
 
+def _bounded_repr() -> reprlib.Repr:
+    limits = reprlib.Repr()
+    limits.maxlevel = 3
+    limits.maxlist = limits.maxtuple = limits.maxdict = limits.maxset = 6
+    limits.maxstring = limits.maxother = limits.maxlong = 80
+    return limits
+
+
+# YAML aliases make a value of a few hundred bytes a list of 9**10 elements
+# ("billion laughs": it shares its parts); repr() would walk all of them.
+_REPR = _bounded_repr()
+
+
 def _short(value: Any) -> str:
-    text = repr(value)
+    text = _REPR.repr(value)
     return text if len(text) <= 80 else text[:77] + "..."
 
 
@@ -434,14 +448,17 @@ def read_pgm(path: str | os.PathLike[str]) -> NDArray[np.float64]:
         magic, width, height, maxval, offset = _pgm_header(head, pgm)
         count = width * height
         fh.seek(offset)
+        # Never ask for more than the file holds: read(n) allocates n bytes first, and
+        # a header of a few bytes may declare 2**28 pixels (gigabytes for a P2 raster).
+        remaining = max(os.fstat(fh.fileno()).st_size - offset, 0)
         if magic == "P5":
             dtype = np.dtype(np.uint8) if maxval < 256 else np.dtype(">u2")
             need = count * dtype.itemsize
-            raster = fh.read(need)
+            raster = fh.read(min(need, remaining))
         else:
             # At most 5 digits and some whitespace per value; anything longer is
             # not a P2 raster of this size.
-            raster = fh.read(count * 32 + _PGM_HEADER_MAX)
+            raster = fh.read(min(count * 32 + _PGM_HEADER_MAX, remaining))
     if magic == "P5":
         if len(raster) < need:
             raise ValueError(
