@@ -34,8 +34,12 @@ def atomic_paths(targets: Sequence[Path]) -> Iterator[tuple[Path, ...]]:
     the existing target (a new one keeps ``0o666`` less the umask, what a plain
     write gives), *then* they are renamed over the targets in order
     (``os.replace``) and the folders are synced where the system allows. If
-    anything fails before the renames, no target is touched; the temporary
-    files are always removed.
+    anything fails before the renames, no target is touched; if a rename fails
+    (a permission, a file system error), the targets renamed before it are put
+    back as they were (from hard links made just before, where the file system
+    has them; a target that did not exist is removed). Only a crash during the
+    renames can leave some targets new and others old. The temporary files are
+    always removed.
 
     Parameters
     ----------
@@ -80,8 +84,7 @@ def atomic_paths(targets: Sequence[Path]) -> Iterator[tuple[Path, ...]]:
             _sync(temporary, os.O_RDWR)
             with contextlib.suppress(FileNotFoundError):
                 os.chmod(temporary, stat.S_IMODE(os.stat(target).st_mode))
-        for temporary, target in zip(temporaries, targets, strict=True):
-            os.replace(temporary, target)
+        _replace_all(temporaries, targets)
     finally:
         for temporary in temporaries:
             temporary.unlink(missing_ok=True)
@@ -169,6 +172,58 @@ def _compact_name(target: Path, tag: str) -> str:
     """
     stem = target.stem[:-14]
     return f".{stem}.{tag}.tmp{target.suffix}" if stem else f".{tag}.tmp"
+
+
+def _replace_all(temporaries: Sequence[Path], targets: Sequence[Path]) -> None:
+    """Rename each temporary file over its target; undo the renames done if one fails."""
+    if len(targets) == 1:
+        os.replace(temporaries[0], targets[0])
+        return
+    # Hard links to the targets as they are, to put them back if a later rename fails.
+    backups: list[Path | None] = []
+    try:
+        for target in targets:
+            backups.append(_backup(target))
+        done = 0
+        try:
+            for temporary, target in zip(temporaries, targets, strict=True):
+                os.replace(temporary, target)
+                done += 1
+        except BaseException:
+            for target, backup in zip(targets[:done], backups[:done], strict=True):
+                with contextlib.suppress(OSError):
+                    if backup is None:
+                        target.unlink(missing_ok=True)
+                    else:
+                        os.replace(backup, target)
+            raise
+    finally:
+        for backup in backups:
+            if backup is not None:
+                backup.unlink(missing_ok=True)
+
+
+def _backup(target: Path) -> Path | None:
+    """A new hard link to ``target`` beside it; None when there is no ``target``.
+
+    Where the file system has no hard links the target cannot be put back: the
+    renames then go ahead without (as before a rollback existed), and a failed
+    one leaves the targets before it new.
+    """
+    for _ in range(_ATTEMPTS):
+        link = target.with_name(_compact_name(target, secrets.token_hex(4)))
+        try:
+            # A symbolic link is linked itself, not what it points to (POSIX link()
+            # on Linux), so that putting it back restores the link.
+            os.link(target, link, follow_symlinks=False)
+        except FileExistsError:
+            continue
+        except FileNotFoundError:
+            return None
+        except OSError:
+            return None
+        return link
+    return None  # pragma: no cover
 
 
 def _new_temporary(target: Path) -> Path:

@@ -1092,8 +1092,9 @@ def write_map(grid: OccupancyGrid, path: str | os.PathLike[str], *, mode: str = 
     folder first and then renamed over the targets (``os.replace``), so a
     failure while writing (a full disk, an interrupt) leaves an existing map as
     it was. The image is
-    renamed first; only a crash between the two renames (microseconds) could
-    pair the new image with the old YAML.
+    renamed first; if the YAML's rename then fails (a permission error), the
+    old image is put back. Only a crash between the two renames (microseconds)
+    could pair the new image with the old YAML.
 
     Saving over a map in the other mode (``map.yaml`` written in trinary mode
     with ``map.pgm``, then in scale mode with ``map.png``) removes the previous
