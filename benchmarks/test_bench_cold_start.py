@@ -29,6 +29,7 @@ The issue 17 goal: whole library <= 8 s, any single entry point <= 3 s.
 from __future__ import annotations
 
 import argparse
+import importlib.util
 import json
 import os
 import subprocess
@@ -165,6 +166,18 @@ PEERS: dict[str, tuple[str, str]] = {
     ),
 }
 
+#: Peer -> the module it needs (from the ``bench`` extra); absent: skipped, saying so.
+PEER_MODULES = {"pyastar2d (peer)": "pyastar2d", "tcod AStar (peer)": "tcod"}
+
+
+def missing_peer(name: str) -> str | None:
+    """Why entry ``name`` cannot run here (its peer is not installed), or None."""
+    module = PEER_MODULES.get(name)
+    if module is None or importlib.util.find_spec(module) is not None:
+        return None
+    return f"peer {module} is not installed (pip install -e '.[bench]')"
+
+
 _CHILD = """
 import json, sys, time
 {setup}
@@ -242,6 +255,9 @@ def _print_table() -> Any:
 
 
 def _bench(benchmark: Any, name: str) -> None:
+    reason = missing_peer(name)
+    if reason is not None:
+        pytest.skip(reason)
     results: list[dict[str, Any]] = []
     benchmark.group = "cold start"
     benchmark.pedantic(lambda: results.append(measure(name)), rounds=1, iterations=1)
@@ -278,6 +294,10 @@ def main(argv: list[str] | None = None) -> None:
             parser.error(f"unknown entry point {name!r}; see --list")
     results: dict[str, dict[str, Any]] = {}
     for name in names:
+        reason = missing_peer(name)
+        if reason is not None:
+            print(f"{name:24s} skipped: {reason}", flush=True)
+            continue
         results[name] = measure(name, kernels=args.kernels)
         r = results[name]
         print(f"{name:24s} cold {r['cold_cpu_s']:8.4f} s  warm {r['warm_cpu_s']:7.4f} s",

@@ -85,11 +85,25 @@ MEASUREMENTS = np.column_stack(
 
 
 def per_step(benchmark: Any) -> None:
-    benchmark.extra_info["us_per_step"] = round(benchmark.stats.stats.mean / STEPS * 1e6, 3)
+    """The mean per step in ``extra_info`` (nothing under ``--benchmark-disable``)."""
+    if benchmark.stats is not None:
+        benchmark.extra_info["us_per_step"] = round(benchmark.stats.stats.mean / STEPS * 1e6, 3)
 
 
-def filterpy_steps() -> Callable[[], None]:
-    """``STEPS`` filterpy steps from X0, P0 (a new filter per call)."""
+State = tuple[np.ndarray, np.ndarray]
+
+
+def assert_same_state(ours: State, theirs: State) -> None:
+    """Final state and covariance of two filters equal (heading compared modulo 2π)."""
+    (x, p), (x2, p2) = ours, theirs
+    x2 = np.array(x2, dtype=np.float64).ravel()
+    x2[2] = math.remainder(x2[2], 2.0 * math.pi)  # filterpy does not wrap the heading
+    np.testing.assert_allclose(x2, np.ravel(x), rtol=1e-9, atol=1e-12)
+    np.testing.assert_allclose(p2, p, rtol=1e-9, atol=1e-15)
+
+
+def filterpy_steps() -> Callable[[], State]:
+    """``STEPS`` filterpy steps from X0, P0 (a new filter per call); the final x, P."""
     f, jac = motion(DT)
     q = Q_PER_S * DT
 
@@ -103,7 +117,7 @@ def filterpy_steps() -> Callable[[], None]:
     def hx(x: np.ndarray) -> np.ndarray:
         return H_ODOM @ x
 
-    def run() -> None:
+    def run() -> State:
         ekf = Model(dim_x=6, dim_z=2)
         ekf.x = X0.copy()
         ekf.P = P0.copy()
@@ -112,30 +126,34 @@ def filterpy_steps() -> Callable[[], None]:
             ekf.F = jac(ekf.x)
             ekf.predict()
             ekf.update(z, hjac, hx, R=R_ODOM)
+        return ekf.x, ekf.P
 
     return run
 
 
-def navkit_steps() -> Callable[[], None]:
-    """``STEPS`` steps of navkit's general EKF from X0, P0 (a new filter per call)."""
+def navkit_steps() -> Callable[[], State]:
+    """``STEPS`` steps of navkit's general EKF from X0, P0 (a new filter per call); x, P."""
     f, jac = motion(DT)
     q = Q_PER_S * DT
 
     def h(x: np.ndarray) -> np.ndarray:
         return H_ODOM @ x
 
-    def run() -> None:
+    def run() -> State:
         ekf = ExtendedKalmanFilter(X0, P0, angle_states=(2,))
         for z in MEASUREMENTS:
             ekf.predict(f, jac, q)
             ekf.update(z, h, H_ODOM, R_ODOM)
+        return ekf.x, ekf.P
 
     return run
 
 
 @pytest.mark.benchmark(group="ekf-step-x1000")
 def test_step_filterpy(benchmark: Any) -> None:
-    benchmark(filterpy_steps())
+    run = filterpy_steps()
+    assert_same_state(navkit_steps()(), run())
+    benchmark(run)
     per_step(benchmark)
 
 
@@ -147,18 +165,22 @@ def test_step_navkit_planar(benchmark: Any) -> None:
         DT, 0.0, 0.0, v_variance=1.0, omega_variance=1.0
     )
 
-    def run() -> None:
+    def run() -> State:
         fusion = PlanarFusion(X0, P0, process_noise=Q_PER_S, t0=0.0)
         for t, v, w in rows:
             fusion.update_odometry(t, v, w, v_variance=1e-3, omega_variance=1e-3)
+        return fusion.x, fusion.P
 
+    assert_same_state(run(), filterpy_steps()())
     benchmark(run)
     per_step(benchmark)
 
 
 @pytest.mark.benchmark(group="ekf-step-x1000")
 def test_step_navkit_general_ekf(benchmark: Any) -> None:
-    benchmark(navkit_steps())
+    run = navkit_steps()
+    assert_same_state(run(), filterpy_steps()())
+    benchmark(run)
     per_step(benchmark)
 
 
@@ -171,7 +193,7 @@ def test_step_ratio_to_filterpy(benchmark: Any) -> None:
     memory state affect both alike.
     """
     ours, theirs = navkit_steps(), filterpy_steps()
-    ours()
+    assert_same_state(ours(), theirs())  # checked (and warm) before the timed rounds
 
     def rounds() -> dict[str, float]:
         ratios = []
@@ -223,28 +245,36 @@ def test_predict_filterpy(benchmark: Any) -> None:
     f, jac = motion(DT)
     q = Q_PER_S * DT
 
-    def run() -> None:
+    def run() -> State:
         ekf = _filterpy_model(f)
         ekf.Q = q
         for _ in MEASUREMENTS:
             ekf.F = jac(ekf.x)
             ekf.predict()
+        return ekf.x, ekf.P
 
+    assert_same_state(navkit_predicts()(), run())
     benchmark(run)
     per_step(benchmark)
 
 
-@pytest.mark.benchmark(group="ekf-predict-x1000")
-def test_predict_navkit_general_ekf(benchmark: Any) -> None:
+def navkit_predicts() -> Callable[[], State]:
+    """``STEPS`` predicts of navkit's general EKF from X0, P0; the final x, P."""
     f, jac = motion(DT)
     q = Q_PER_S * DT
 
-    def run() -> None:
+    def run() -> State:
         ekf = ExtendedKalmanFilter(X0, P0, angle_states=(2,))
         for _ in MEASUREMENTS:
             ekf.predict(f, jac, q)
+        return ekf.x, ekf.P
 
-    benchmark(run)
+    return run
+
+
+@pytest.mark.benchmark(group="ekf-predict-x1000")
+def test_predict_navkit_general_ekf(benchmark: Any) -> None:
+    benchmark(navkit_predicts())
     per_step(benchmark)
 
 
@@ -289,4 +319,6 @@ def test_batch_100k(benchmark: Any, log_100k: MeasurementLog) -> None:
     PlanarFusion(t0=0.0).update_batch(log_100k)  # compile outside the timing
     result = benchmark(lambda: PlanarFusion(t0=0.0).update_batch(log_100k))
     assert result.states.shape == (100_000, 6)
-    benchmark.extra_info["us_per_measurement"] = round(benchmark.stats.stats.mean / 1e5 * 1e6, 3)
+    if benchmark.stats is not None:
+        mean = benchmark.stats.stats.mean
+        benchmark.extra_info["us_per_measurement"] = round(mean / 1e5 * 1e6, 3)

@@ -18,7 +18,8 @@ Contestants:
 * ``pyastar2d`` (C++ A*, 8-connected, diagonal steps cost 1 and cut corners,
   so it searches an easier graph than the MovingAI one).
 
-Every navkit answer is checked against the published optimum. ``test_ratio``
+Before any timing, every navkit answer is checked against the published
+optimum and every pyastar2d path for validity on its own graph. ``test_ratio``
 times JPS (prepared and one-shot) and pyastar2d alternately in one loop and
 reports the median of the per-round ratios (``speedup_*`` in ``extra_info``),
 which holds on a loaded machine where absolute times do not.
@@ -32,10 +33,15 @@ from pathlib import Path
 from typing import Any, NamedTuple
 
 import numpy as np
-import pyastar2d
 import pytest
 
 from navkit.planning import AStarPlanner, astar
+from test_bench_astar import peer
+
+try:
+    import pyastar2d
+except ImportError:  # a peer from the bench extra: its tests skip (peer())
+    pyastar2d = None
 
 DATA = (
     Path(__file__).resolve().parents[2] / "shared" / "data" / "movingai-grid-benchmarks"
@@ -100,12 +106,22 @@ def check_optimal(lengths: list[float], problems: tuple[Problem, ...]) -> None:
         assert length == pytest.approx(p.optimal, rel=1e-6, abs=1e-6), p
 
 
+def check_pyastar2d(costs: np.ndarray, paths: list[Any], problems: tuple[Problem, ...]) -> None:
+    """pyastar2d's paths: found, and valid on its graph (8-connected, corners cut)."""
+    from test_bench_movingai import assert_valid_path
+
+    for path, p in zip(paths, problems, strict=True):
+        assert path is not None, p
+        assert_valid_path(costs, path, p.start, p.goal, corner_cutting=True)
+
+
 @pytest.mark.parametrize("name", MAPS)
 def test_jps_prepared(benchmark: Any, name: str) -> None:
     costs, problems = load(name)
     planner = AStarPlanner(costs, method="jps")
+    check_optimal(run_planner(planner, problems), problems)
     benchmark.group = name
-    check_optimal(benchmark(run_planner, planner, problems), problems)
+    benchmark(run_planner, planner, problems)
     benchmark.extra_info["expanded"] = sum(
         planner.plan(p.start, p.goal).expanded for p in problems
     )
@@ -114,17 +130,18 @@ def test_jps_prepared(benchmark: Any, name: str) -> None:
 @pytest.mark.parametrize("name", MAPS)
 def test_jps_one_shot(benchmark: Any, name: str) -> None:
     costs, problems = load(name)
+    check_optimal(run_one_shot(costs, problems), problems)
     benchmark.group = name
-    check_optimal(benchmark(run_one_shot, costs, problems), problems)
+    benchmark(run_one_shot, costs, problems)
 
 
 @pytest.mark.parametrize("name", MAPS)
 def test_astar_prepared(benchmark: Any, name: str) -> None:
     costs, problems = load(name)
     planner = AStarPlanner(costs)
+    check_optimal(run_planner(planner, problems), problems)
     benchmark.group = name
-    lengths = benchmark.pedantic(run_planner, args=(planner, problems), rounds=3, iterations=1)
-    check_optimal(lengths, problems)
+    benchmark.pedantic(run_planner, args=(planner, problems), rounds=3, iterations=1)
     benchmark.extra_info["expanded"] = sum(
         planner.plan(p.start, p.goal).expanded for p in problems
     )
@@ -132,22 +149,24 @@ def test_astar_prepared(benchmark: Any, name: str) -> None:
 
 @pytest.mark.parametrize("name", MAPS)
 def test_pyastar2d(benchmark: Any, name: str) -> None:
+    peer("pyastar2d")
     costs, problems = load(name)
     weights = np.where(np.isfinite(costs), 1.0, np.inf).astype(np.float32)
+    check_pyastar2d(costs, run_pyastar2d(weights, problems), problems)
     benchmark.group = name
-    paths = benchmark.pedantic(run_pyastar2d, args=(weights, problems), rounds=3, iterations=1)
-    assert all(path is not None for path in paths)
+    benchmark.pedantic(run_pyastar2d, args=(weights, problems), rounds=3, iterations=1)
 
 
 @pytest.mark.parametrize("name", MAPS)
 def test_ratio(benchmark: Any, name: str) -> None:
     """JPS and pyastar2d alternately, ``ROUNDS`` times: median per-round speed-ups."""
+    peer("pyastar2d")
     costs, problems = load(name)
     weights = np.where(np.isfinite(costs), 1.0, np.inf).astype(np.float32)
     planner = AStarPlanner(costs, method="jps")
     check_optimal(run_planner(planner, problems), problems)
-    run_one_shot(costs, problems)
-    run_pyastar2d(weights, problems)
+    check_optimal(run_one_shot(costs, problems), problems)
+    check_pyastar2d(costs, run_pyastar2d(weights, problems), problems)
 
     def rounds() -> dict[str, float]:
         times: dict[str, list[float]] = {"prepared": [], "one_shot": [], "pyastar2d": []}

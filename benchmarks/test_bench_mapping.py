@@ -183,26 +183,45 @@ def test_navkit_and_baseline_agree() -> None:
     assert {(int(r), int(c)) for r, c in np.argwhere(grid.logodds > 0)} == ends
 
 
-@pytest.mark.benchmark(group="world_to_cell 10^6 points")
-@pytest.mark.parametrize("contestant", ["navkit", "navkit_continuous", "numpy"])
-def test_world_to_cell(benchmark: Any, contestant: str) -> None:
+def world_to_cell_case() -> tuple[OccupancyGrid, np.ndarray]:
+    """The rotated grid and the 10^6 seeded points of the ``world_to_cell`` group."""
     grid = OccupancyGrid.empty(
         width=50.0, height=40.0, resolution=RES, origin=Pose2D(-20.0, -15.0, 0.4)
     )
-    pts = np.random.default_rng(0).uniform(-30, 30, size=(1_000_000, 2))
+    return grid, np.random.default_rng(0).uniform(-30, 30, size=(1_000_000, 2))
+
+
+def numpy_world_to_cell(grid: OccupancyGrid, pts: np.ndarray) -> np.ndarray:
+    """The rule in NumPy: rotate into the grid frame, divide by the resolution, floor."""
+    o = grid.origin
+    c, s = math.cos(o.theta), math.sin(o.theta)
+    d = pts - (o.x, o.y)
+    u = (d[:, 0] * c + d[:, 1] * s) / RES
+    v = (-d[:, 0] * s + d[:, 1] * c) / RES
+    return np.floor(np.column_stack((v, u))).astype(np.int64)
+
+
+@pytest.mark.benchmark(group="world_to_cell 10^6 points")
+@pytest.mark.parametrize("contestant", ["navkit", "navkit_continuous", "numpy"])
+def test_world_to_cell(benchmark: Any, contestant: str) -> None:
+    """Checked by :func:`test_world_to_cell_agree` (``compare_peers.py`` times this
+    test's first call, so nothing runs before it here)."""
+    grid, pts = world_to_cell_case()
     if contestant == "navkit":
         cells = benchmark(grid.world_to_cell, pts)
     elif contestant == "navkit_continuous":
         cells = benchmark(lambda: grid.world_to_cell(pts, continuous=True))
     else:
-        o = grid.origin
-        c, s = math.cos(o.theta), math.sin(o.theta)
-
-        def numpy_rule() -> np.ndarray:
-            d = pts - (o.x, o.y)
-            u = (d[:, 0] * c + d[:, 1] * s) / RES
-            v = (-d[:, 0] * s + d[:, 1] * c) / RES
-            return np.floor(np.column_stack((v, u))).astype(np.int64)
-
-        cells = benchmark(numpy_rule)
+        cells = benchmark(numpy_world_to_cell, grid, pts)
     assert cells.shape == (1_000_000, 2)
+
+
+def test_world_to_cell_agree() -> None:
+    """The contestants' cells: navkit's integer cells are NumPy's; continuous ones floor
+    to them after the half-cell shift to cell centres."""
+    grid, pts = world_to_cell_case()
+    want = numpy_world_to_cell(grid, pts)
+    np.testing.assert_array_equal(grid.world_to_cell(pts), want)
+    centres = grid.world_to_cell(pts, continuous=True)
+    close = np.abs(centres + 0.5 - np.round(centres + 0.5)) < 1e-6  # a boundary: either cell
+    np.testing.assert_array_equal(np.floor(centres + 0.5)[~close], want[~close])

@@ -39,10 +39,15 @@ from typing import Any
 import numpy as np
 import pytest
 import scipy.sparse
-import tcod.path
 from scipy.sparse.csgraph import dijkstra
 
 from navkit.planning import AStarPlanner, astar, distance_field
+from test_bench_astar import peer
+
+try:
+    import tcod.path
+except ImportError:  # a peer from the bench extra: its tests skip (peer())
+    tcod = None
 
 SIZE = 4096
 START = (SIZE // 2, SIZE // 2)
@@ -66,20 +71,39 @@ def prepared() -> tuple[AStarPlanner, float]:
     return planner, time.perf_counter() - t0
 
 
+def check_cells(cells: np.ndarray, corner_cutting: bool) -> float:
+    """Check a START → GOAL cell path move by move; its recomputed cost."""
+    from test_bench_movingai import assert_valid_path
+
+    cost, _ = assert_valid_path(
+        big_map(), np.asarray(cells), START, GOAL, corner_cutting=corner_cutting
+    )
+    return float(cost)
+
+
+@cache
+def least_cost(corner_cutting: bool) -> float:
+    """The query's least cost: navkit's one-shot path, checked move by move (no cut: the
+    default of every navkit contestant)."""
+    path = astar(big_map(), START, GOAL, corner_cutting=corner_cutting)
+    assert path.cost == pytest.approx(check_cells(path.cells, corner_cutting), rel=1e-12)
+    return float(path.cost)
+
+
 def test_navkit_prepared(benchmark: Any) -> None:
     planner, prepare_s = prepared()
-    planner.plan(START, GOAL)  # the thread's scratch arrays are allocated once
+    # Also allocates the thread's scratch arrays once, outside the timer.
+    assert planner.plan(START, GOAL).cost == least_cost(False)
     benchmark.group = "4096^2 10-cell query"
     path = benchmark(planner.plan, START, GOAL)
     benchmark.extra_info.update(
         prepare_s=prepare_s, expanded=path.expanded, cost=path.cost, cells=len(path.points)
     )
-    assert path.cost == astar(big_map(), START, GOAL).cost
 
 
 def test_navkit_one_shot(benchmark: Any) -> None:
     costs = big_map()
-    astar(costs, START, GOAL)
+    assert astar(costs, START, GOAL).cost == least_cost(False)
     benchmark.group = "4096^2 10-cell query"
     path = benchmark(astar, costs, START, GOAL)
     benchmark.extra_info.update(expanded=path.expanded, cost=path.cost)
@@ -87,12 +111,14 @@ def test_navkit_one_shot(benchmark: Any) -> None:
 
 def test_navkit_one_shot_float32(benchmark: Any) -> None:
     costs = big_map().astype(np.float32)
+    assert astar(costs, START, GOAL).cost == least_cost(False)
     benchmark.group = "4096^2 10-cell query"
     path = benchmark(astar, costs, START, GOAL)
     benchmark.extra_info.update(expanded=path.expanded, cost=path.cost)
 
 
 def test_tcod_pathfinder(benchmark: Any) -> None:
+    peer("tcod")
     passable = np.isfinite(big_map()).astype(np.int8)
     t0 = time.perf_counter()
     graph = tcod.path.SimpleGraph(cost=passable, cardinal=2, diagonal=3)
@@ -105,21 +131,25 @@ def test_tcod_pathfinder(benchmark: Any) -> None:
         path: np.ndarray = finder.path_to(GOAL)
         return path
 
+    # Its own integer octile costs: a valid path (tcod cuts corners) is what it owes.
+    check_cells(query(), True)
     benchmark.group = "4096^2 10-cell query"
     path = benchmark(query)
     benchmark.extra_info.update(prepare_s=prepare_s, cells=len(path))
-    assert tuple(path[-1]) == GOAL
 
 
 def test_tcod_astar(benchmark: Any) -> None:
+    peer("tcod")
     passable = np.isfinite(big_map()).astype(np.int8)
     t0 = time.perf_counter()
     finder = tcod.path.AStar(passable, diagonal=SQRT2)
     prepare_s = time.perf_counter() - t0
+    # Octile costs with corners cut: the least cost of that graph.
+    cells = np.array([START, *finder.get_path(*START, *GOAL)])
+    assert check_cells(cells, True) == pytest.approx(least_cost(True), rel=1e-9)
     benchmark.group = "4096^2 10-cell query"
     steps = benchmark(finder.get_path, *START, *GOAL)
     benchmark.extra_info.update(prepare_s=prepare_s, cells=len(steps) + 1)
-    assert tuple(steps[-1]) == GOAL
 
 
 @pytest.mark.parametrize("what", ["prepared", "one-shot"])
@@ -130,8 +160,10 @@ def test_navkit_distance_field_1024(benchmark: Any, what: str) -> None:
     goal = (512, 512)
     costs[goal] = 1.0
     benchmark.group = "1024^2 distance field"
+    want = distance_field(costs, goal)
     if what == "prepared":
         planner = AStarPlanner(costs)
+        np.testing.assert_allclose(planner.distance_field(goal), want, rtol=1e-12)
         field = benchmark(planner.distance_field, goal)
     else:
         field = benchmark(distance_field, costs, goal)
@@ -185,12 +217,14 @@ def test_distance_field_vs_scipy(benchmark: Any, name: str, contestant: str) -> 
     costs = _field_map(name)
     goal = (512, 512)
     benchmark.group = f"1024^2 distance field, {name}"
+    graph = _csr_graph(costs)
+    kwargs = {"directed": True, "indices": goal[0] * 1024 + goal[1]}
+    # Before timing: both fields equal (same reachable cells, costs to 1e-12).
+    np.testing.assert_allclose(
+        dijkstra(graph, **kwargs), distance_field(costs, goal).ravel(), rtol=1e-12
+    )
     if contestant == "navkit":
         field = benchmark.pedantic(distance_field, (costs, goal), rounds=5, warmup_rounds=1)
         benchmark.extra_info["reachable"] = int(np.isfinite(field).sum())
     else:
-        graph = _csr_graph(costs)
-        dist = benchmark.pedantic(
-            dijkstra, (graph,), {"directed": True, "indices": goal[0] * 1024 + goal[1]}, rounds=5
-        )
-        np.testing.assert_allclose(dist, distance_field(costs, goal).ravel(), rtol=1e-12)
+        benchmark.pedantic(dijkstra, (graph,), kwargs, rounds=5)
