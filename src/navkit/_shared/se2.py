@@ -21,9 +21,13 @@ def wrap_scalar(a: float) -> float:
     """Wrap one finite angle to (-pi, pi]; angles already in range are returned unchanged."""
     if -math.pi < a <= math.pi:
         return a
-    r = math.pi - ((math.pi - a) % _TWO_PI)
+    # fmod(a, 2pi) exactly (numba has no math.fmod; % of a non-negative float is fmod),
+    # then one exact fold: bit for bit navkit.geometry.wrap_angle (see its _wrap_float).
+    r = math.copysign(abs(a) % _TWO_PI, a)
+    if r > math.pi:
+        return r - _TWO_PI
     if r <= -math.pi:
-        r += _TWO_PI
+        return r + _TWO_PI
     return r
 
 

@@ -39,6 +39,10 @@ def _overflow(name: str, what: str) -> ValueError:
     return ValueError(f"{name}: {what} would overflow float64 (values far too large)")
 
 
+#: Radii this close (half their difference at most this fraction of their mean) take
+#: the twist from the sum and difference of the wheel speeds (see DiffDrive._twist_of).
+_CLOSE_RADII = 1.0 / 64.0
+
 #: Scale of the retry when a partial result overflowed: 2**-48 is exact, and with
 #: lengths in [1e-6, 1e6] (2**±20) no product, sum or quotient of finite inputs
 #: this much smaller overflows; only a result beyond the float range stays infinite.
@@ -156,13 +160,14 @@ class DiffDrive:
             twist would overflow float64.
         """
         w = as_float_array(wheel_speeds, "wheel_speeds", shape=(2,))
-        wl = float(w[0]) * self._left
-        wr = float(w[1]) * self._right
-        # 0.5*a + 0.5*b is 0.5*(a + b) bit for bit and cannot overflow.
-        vx = 0.5 * wr + 0.5 * wl
-        omega = (wr - wl) / self._track  # (as _twist_of, inline: the common case)
+        left, right, radius = float(w[0]), float(w[1]), self._left
+        if radius == self._right:  # (as _twist_of, inline: the common case)
+            vx, omega = 0.5 * ((right + left) * radius), (right - left) * radius / self._track
+        else:
+            vx, omega = self._twist_of(left, right)
         if not (vx - vx == 0.0 and omega - omega == 0.0):
-            # A product or wr - wl can overflow where the twist does not (a wide track).
+            # A sum, product or difference can overflow where the twist does not (a wide
+            # track).
             vx, omega = self._twist_of(float(w[0]) * _TINY, float(w[1]) * _TINY)
             with np.errstate(over="ignore"):
                 vx, omega = float(np.float64(vx) / _TINY), float(np.float64(omega) / _TINY)
@@ -173,6 +178,25 @@ class DiffDrive:
     def _twist_of(self, left: Any, right: Any) -> tuple[Any, Any]:
         """``(vx, omega)`` of wheel speeds ``left``, ``right`` (floats, or arrays under
         ``np.errstate``: an overflow is an infinity, checked by the caller)."""
+        # Not 0.5*(wr*Rr + wl*Rl) and (wr*Rr - wl*Rl)/D: they round each product before
+        # a sum that cancels when driving straight (omega) or turning on the spot (vx):
+        # a slow turn came out up to 1e-7 off (1e9 ulps). The sum and the difference of
+        # the speeds are exact where they cancel (Sterbenz): a few ulps.
+        radius = self._left
+        if radius == self._right:
+            return 0.5 * ((right + left) * radius), (right - left) * radius / self._track
+        mean = 0.5 * self._right + 0.5 * self._left
+        half_diff = 0.5 * self._right - 0.5 * self._left
+        if abs(half_diff) <= _CLOSE_RADII * mean:
+            # The same for close radii, with a correction by their difference. Only
+            # there: with very unequal radii these terms can be far larger than the
+            # products, and so their rounding.
+            total = right + left
+            diff = right - left
+            return (
+                0.5 * (total * mean + diff * half_diff),
+                (diff * mean + total * half_diff) / self._track,
+            )
         wl = left * self._left
         wr = right * self._right
         # 0.5*a + 0.5*b is 0.5*(a + b) bit for bit and cannot overflow.
