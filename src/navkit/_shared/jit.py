@@ -54,7 +54,7 @@ _NJIT: Any = None
 #: Stand-ins made before numba was loaded, and their dispatchers once it is.
 _WAITING: list[LazyKernel] = []
 #: (namespace, numba module, {name: attribute}) bound by :func:`load_numba`.
-_BINDINGS: list[tuple[dict[str, Any], str, dict[str, str]]] = []
+_BINDINGS: list[tuple[dict[str, Any], str, dict[str, str], dict[str, Any]]] = []
 
 
 class LazyKernel:
@@ -153,8 +153,8 @@ def load_numba() -> None:
 
 def _make_dispatchers(njit: Any) -> None:
     """Bind the registered numba names and put dispatchers in place of the stand-ins."""
-    for namespace, module, names in _BINDINGS:
-        _bind(namespace, module, names)
+    for namespace, module, names, python in _BINDINGS:
+        _bind(namespace, module, names, python)
     for kernel in _WAITING:
         kernel.dispatcher = njit(**kernel.options)(kernel.py_func)
     for module_object in list(sys.modules.values()):
@@ -167,14 +167,21 @@ def _make_dispatchers(njit: Any) -> None:
     _WAITING.clear()
 
 
-def bind_numba_names(namespace: dict[str, Any], module: str, **names: str) -> None:
+def bind_numba_names(
+    namespace: dict[str, Any],
+    module: str,
+    python: dict[str, Any] | None = None,
+    **names: str,
+) -> None:
     """Bind attributes of the numba module ``module`` in ``namespace`` when numba loads.
 
     For what a kernel uses from numba itself (intrinsics, types): a kernel
     module calls this with ``globals()`` instead of importing them, so that
     importing the module does not import numba. ``names`` maps each name to
     bind to the attribute it stands for. Binds them at once if numba is
-    already loaded.
+    already loaded. ``python`` maps names to plain Python equivalents, bound
+    instead when numba's JIT is disabled (``NUMBA_DISABLE_JIT=1``: kernels then
+    run as Python, and numba intrinsics cannot be called from Python).
 
     Examples
     --------
@@ -187,12 +194,18 @@ def bind_numba_names(namespace: dict[str, Any], module: str, **names: str) -> No
     """
     with _LOCK:
         if _NJIT is None:
-            _BINDINGS.append((namespace, module, names))
+            _BINDINGS.append((namespace, module, names, python or {}))
             return
-    _bind(namespace, module, names)
+    _bind(namespace, module, names, python or {})
 
 
-def _bind(namespace: dict[str, Any], module: str, names: dict[str, str]) -> None:
+def _bind(
+    namespace: dict[str, Any], module: str, names: dict[str, str], python: dict[str, Any]
+) -> None:
+    config: Any = importlib.import_module("numba.core.config")
+    if config.DISABLE_JIT and python:
+        namespace.update(python)
+        return
     imported = importlib.import_module(module)
     for name, attribute in names.items():
         namespace[name] = getattr(imported, attribute)

@@ -547,7 +547,10 @@ def _make_update(n: int, m: int) -> UpdateKernel:
 
 def _freeze(kernel: Any) -> None:
     """Let ``kernel`` compile nothing more: other argument types raise at dispatch."""
-    kernel.disable_compile()
+    # A plain function when numba's JIT is disabled: nothing to freeze.
+    disable = getattr(kernel, "disable_compile", None)
+    if disable is not None:
+        disable()
 
 
 _PREDICT: dict[int, PredictKernel] = {}

@@ -555,4 +555,6 @@ def planar_step_entry() -> Callable[..., tuple[int, float]]:
     (True, 0.5, 0.1)
     """
     dispatcher: Any = planar_step
+    if not hasattr(dispatcher, "compile"):  # NUMBA_DISABLE_JIT=1: a plain function
+        return cast(Callable[..., tuple[int, float]], dispatcher)
     return cast(Callable[..., tuple[int, float]], dispatcher.compile(_step_types()))

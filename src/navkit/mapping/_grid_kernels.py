@@ -124,4 +124,6 @@ def world_to_cell_entry() -> Callable[..., bool]:
         types.Array(types.int64, 2, "C"),
     )
     dispatcher: Any = world_to_cell_kernel
+    if not hasattr(dispatcher, "compile"):  # NUMBA_DISABLE_JIT=1: a plain function
+        return cast(Callable[..., bool], dispatcher)
     return cast(Callable[..., bool], dispatcher.compile(signature))

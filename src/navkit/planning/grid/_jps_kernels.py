@@ -70,8 +70,22 @@ _OCTILE_EXTRA = SQRT2 - 1.0
 # module must not import numba), typed for mypy as plain callables.
 _ctz: Any = None
 _clz: Any = None
-bind_numba_names(globals(), "numba.cpython.unsafe.numbers", _ctz="trailing_zeros",
-                 _clz="leading_zeros")  # fmt: skip
+
+
+def _ctz_python(x: Any) -> int:
+    """Trailing zero bits of a uint64 (64 for 0): ``_ctz`` when the JIT is disabled."""
+    v = int(x)
+    return (v & -v).bit_length() - 1 if v else 64
+
+
+def _clz_python(x: Any) -> int:
+    """Leading zero bits of a uint64 (64 for 0): ``_clz`` when the JIT is disabled."""
+    return 64 - int(x).bit_length()
+
+
+bind_numba_names(globals(), "numba.cpython.unsafe.numbers",
+                 {"_ctz": _ctz_python, "_clz": _clz_python},
+                 _ctz="trailing_zeros", _clz="leading_zeros")  # fmt: skip
 
 _ONE = np.uint64(1)
 _ALL = np.uint64(0xFFFFFFFFFFFFFFFF)
@@ -815,8 +829,8 @@ def _trace(meta: np.ndarray, cols: int, goal: int, out: np.ndarray) -> tuple[int
         u = meta[4 * v + 2]
         ur = u // cols
         uc = u - ur * cols
-        sr = (ur > r) - (ur < r)
-        sc = (uc > c) - (uc < c)
+        sr = int(ur > r) - int(ur < r)
+        sc = int(uc > c) - int(uc < c)
         diagonal = sr != 0 and sc != 0
         while r != ur or c != uc:
             r += sr

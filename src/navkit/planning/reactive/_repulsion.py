@@ -9,6 +9,7 @@ navkit's vocabulary; each class states the paper's symbol of every parameter
 
 from __future__ import annotations
 
+import itertools
 from abc import abstractmethod
 from collections.abc import Iterator
 from dataclasses import dataclass, field
@@ -33,6 +34,9 @@ __all__ = ["KhatibRepulsion", "PiecewiseRepulsion"]
 _PAIR_BLOCK = 1 << 18
 # Points per k-d tree query block when there are more pairs than that.
 _TREE_BLOCK = 1 << 22
+# Below this many points per block (over 1024 obstacles), blocks are sized by the
+# pairs actually in reach instead.
+_TREE_POINTS_MIN = 1 << 12
 
 
 @dataclass(frozen=True, slots=True, eq=False, repr=False)
@@ -76,8 +80,18 @@ class _PointRepulsion(PotentialField):
         reach = self._reach()
         dense = n * m <= _PAIR_BLOCK
         step = n if dense else max(1, _TREE_BLOCK // m)
-        for start in range(0, n, step):
-            block = slice(start, min(n, start + step))
+        if step >= _TREE_POINTS_MIN or step >= n:
+            edges = [*range(0, n, step), n]
+        else:
+            # Many obstacles would make blocks of a few points, and each small block
+            # of scattered points walks most of the obstacles' tree: a cost growing
+            # with m². Blocks then hold about _TREE_BLOCK pairs in reach instead,
+            # counted first without forming them.
+            total = np.cumsum(self._tree().query_ball_point(pts, reach, return_length=True))
+            cuts = np.searchsorted(total, np.arange(_TREE_BLOCK, total[-1], _TREE_BLOCK), "right")
+            edges = np.unique(np.concatenate(([0], cuts, [n]))).tolist()
+        for start, stop in itertools.pairwise(edges):
+            block = slice(start, stop)
             if dense:
                 dx = pts[block, 0, None] - obstacles[None, :, 0]
                 dy = pts[block, 1, None] - obstacles[None, :, 1]

@@ -7,7 +7,6 @@ numba kernel sums over the ranges with cached tables of the beam directions.
 
 from __future__ import annotations
 
-import threading
 from collections.abc import Callable
 from typing import Any
 
@@ -37,7 +36,6 @@ __all__ = ["piecewise_repulsive_force_from_scan", "repulsive_force_from_scan"]
 # once instead of on every call (they would cost more than the whole force sum).
 _TABLES: dict[tuple[int, float, float], tuple[FloatArray, FloatArray]] = {}
 _TABLES_MAX = 32
-_TABLES_LOCK = threading.Lock()
 
 
 # The last table built or found, (angle_min, angle_increment, beam count, cos, sin):
@@ -57,10 +55,12 @@ def _beam_table(scan: LaserScan) -> tuple[FloatArray, FloatArray]:
         cos_t.setflags(write=False)
         sin_t.setflags(write=False)
         table = (cos_t, sin_t)
-        with _TABLES_LOCK:
-            if len(_TABLES) >= _TABLES_MAX:
-                _TABLES.clear()
-            _TABLES[key] = table
+        # No lock: a thread forked while another held it would deadlock on its
+        # first new table. Each dict operation is atomic; threads racing here can
+        # at worst lose an entry or pass the bound by one each until the next clear.
+        if len(_TABLES) >= _TABLES_MAX:
+            _TABLES.clear()
+        _TABLES[key] = table
     _LAST = (key[1], key[2], key[0], *table)
     return table
 

@@ -122,6 +122,8 @@ def khatib_entry() -> Callable[..., None]:
     beams = types.Array(types.float64, 1, "C", readonly=True)
     signature = (beams, beams, beams, *(types.float64,) * 5, types.Array(types.float64, 1, "C"))
     dispatcher: Any = khatib_beam_force_into
+    if not hasattr(dispatcher, "compile"):  # NUMBA_DISABLE_JIT=1: a plain function
+        return cast(Callable[..., None], dispatcher)
     return cast(Callable[..., None], dispatcher.compile(signature))
 
 
