@@ -112,7 +112,7 @@ class ScanMapper:
     >>> mapper.update(scan).reason         # the first scan has nothing to match
     'degenerate'
     >>> result = mapper.update(scan, odometry=(0.05, -0.04, 0.03))
-    >>> result.converged, bool(np.abs(mapper.trajectory[-1]).max() < 0.05)  # half a cell
+    >>> result.converged, bool(np.abs(mapper.pose.as_array()).max() < 0.05)  # half a cell
     (True, True)
     >>> mapper.map.resolution, len(mapper)
     (0.1, 2)
@@ -211,6 +211,21 @@ class ScanMapper:
         out = out.reshape(len(self._poses), 3)
         out.flags.writeable = False
         return out
+
+    @property
+    def pose(self) -> Pose2D:
+        """The sensor's latest world pose (``start`` before the first scan).
+
+        The last row of :attr:`trajectory`, without copying the whole
+        trajectory: read it after every :meth:`update`, as the ``pose`` of the
+        odometry classes and of :class:`~navkit.estimation.PlanarFusion`.
+
+        Examples
+        --------
+        >>> ScanMapper(start=(1.0, 2.0, 0.5)).pose
+        Pose2D(x=1.0, y=2.0, theta=0.5)
+        """
+        return self._poses[-1] if self._poses else self._start
 
     @property
     def map(self) -> OccupancyGrid:
