@@ -304,16 +304,7 @@ def message_cases(s: Spec, *, sample: bool) -> list[Case]:
 #: (callable, argument) pairs whose messages name no argument the caller wrote,
 #: in files this review may not change, with where the message is made (details:
 #: ``/work/helpers/s12/out/e1_failures.md``). Each runs as a strict xfail.
-KNOWN: dict[tuple[str, str], str] = {
-    **{
-        (f"navkit.sim.scenarios.{cls}.run", "seed"): "sim/_sweep.py:48/50/62 says 'seeds'"
-        for cls in ("Demo", "DiffAStar", "Greedy", "IndoorNav", "OmniApf", "Soccer")
-    },
-    **{
-        (f"navkit.sim.scenarios.{cls}.trials", "seed"): "sim/_scenario.py:82/84 says 'base'"
-        for cls in ("Demo", "DiffAStar", "Greedy", "IndoorNav", "OmniApf", "Soccer")
-    },
-}
+KNOWN: dict[tuple[str, str], str] = {}
 
 
 def _known(name: str, case: Case) -> bool:

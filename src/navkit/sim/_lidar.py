@@ -88,6 +88,10 @@ class Lidar:
     12 m, 360 beams, 10 Hz) with the omnidirectional robot paper's range
     noise.
 
+    A LiDAR is immutable: threads may share it, and share the world they
+    scan (:meth:`scan` writes only new arrays), each with its own ``rng``
+    (a NumPy Generator is not thread-safe; an int seed is).
+
     Parameters
     ----------
     n_beams : int, default 360
@@ -252,18 +256,18 @@ class Lidar:
 class Scanner:
     """A LiDAR bound to a world, with its work arrays: the simulation's fast path.
 
-    An ordinary class with ``__slots__``: it keeps reusable buffers.
+    An ordinary class with ``__slots__``. A world keeps one per LiDAR for
+    :meth:`Lidar.scan`, which threads may call at once: a scan writes only
+    arrays of its own, never the scanner's.
     """
 
     __slots__ = (
         "_angles",
         "_bias",
-        "_cast_angles",
         "_lidar",
         "_limits",
         "_noisy",
         "_normals",
-        "_ranges",
         "_sigma",
         "_uniforms",
         "_world",
@@ -275,8 +279,6 @@ class Scanner:
         self._world = world
         n = lidar.n_beams
         self._angles = np.ascontiguousarray(lidar.angles())
-        self._cast_angles = np.empty(n)
-        self._ranges = np.empty(n)
         self._normals = np.zeros(n)
         self._uniforms = np.ones(n)
         noise = lidar.noise
@@ -304,19 +306,21 @@ class Scanner:
         angles = self._angles
         if lidar.angle_jitter > 0.0:
             assert rng is not None
-            angles = self._cast_angles
-            np.multiply(rng.standard_normal(lidar.n_beams), lidar.angle_jitter, out=angles)
+            angles = rng.standard_normal(lidar.n_beams)
+            angles *= lidar.angle_jitter
             angles += self._angles
-        ranges = self._ranges
+        ranges = np.empty(lidar.n_beams)
         self._world._cast(ranges, x, y, heading, angles, lidar.range_max, t)
+        # The draws go to new arrays: the scanner's zeros and ones are only read.
+        normals, uniforms = self._normals, self._uniforms
         if self.random:
             assert rng is not None
             if self._noisy:
-                self._normals[:] = rng.standard_normal(lidar.n_beams)
+                normals = rng.standard_normal(lidar.n_beams)
             if lidar.dropout > 0.0:
-                self._uniforms[:] = rng.random(lidar.n_beams)
+                uniforms = rng.random(lidar.n_beams)
         apply_range_noise(
-            ranges, self._normals, self._uniforms, self._limits, self._bias, self._sigma,
+            ranges, normals, uniforms, self._limits, self._bias, self._sigma,
             lidar.dropout, lidar.range_min, lidar.range_max,
         )  # fmt: skip
         return LaserScan(

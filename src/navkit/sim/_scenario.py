@@ -21,7 +21,7 @@ import numpy as np
 
 from navkit._shared.frozen import restore_read_only
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import as_float_array, finite_float
+from navkit._shared.validation import as_float_array, as_sequence, finite_float
 from navkit.mapping import OccupancyGrid
 from navkit.sim._trace import Trace
 from navkit.sim._world import World
@@ -113,16 +113,10 @@ def _figures(value: object, name: str) -> dict[str, float]:
     return out
 
 
-def _tuple(value: object, name: str) -> tuple[Any, ...]:
-    if isinstance(value, (str, bytes, Mapping)) or not isinstance(value, Iterable):
-        raise TypeError(f"{name} must be a sequence, got {type(value).__name__}")
-    return tuple(value)
-
-
 def _labelled(value: object, name: str, check: Callable[[Any, str], Any]) -> tuple[Any, ...]:
     out = []
-    for k, item in enumerate(_tuple(value, name)):
-        pair = _tuple(item, f"{name}[{k}]")
+    for k, item in enumerate(as_sequence(value, name)):
+        pair = as_sequence(item, f"{name}[{k}]")
         if len(pair) != 2:
             raise ValueError(f"{name}[{k}] must be a (label, value) pair, got {len(pair)} items")
         out.append((_text(pair[0], f"{name}[{k}][0]"), check(pair[1], f"{name}[{k}][1]")))
@@ -257,11 +251,11 @@ class Table:
     def __post_init__(self) -> None:
         _text(self.title, "title")
         columns = tuple(
-            _text(c, f"columns[{i}]") for i, c in enumerate(_tuple(self.columns, "columns"))
+            _text(c, f"columns[{i}]") for i, c in enumerate(as_sequence(self.columns, "columns"))
         )
         rows = []
-        for i, row in enumerate(_tuple(self.rows, "rows")):
-            cells = _tuple(row, f"rows[{i}]")
+        for i, row in enumerate(as_sequence(self.rows, "rows")):
+            cells = as_sequence(row, f"rows[{i}]")
             if len(cells) != len(columns):
                 raise ValueError(f"rows[{i}] has {len(cells)} cells for {len(columns)} columns")
             for j, cell in enumerate(cells):
@@ -272,7 +266,9 @@ class Table:
                         f"rows[{i}][{j}] must be text, a number or None, got {type(cell).__name__}"
                     )
             rows.append(cells)
-        notes = tuple(_text(n, f"notes[{i}]") for i, n in enumerate(_tuple(self.notes, "notes")))
+        notes = tuple(
+            _text(n, f"notes[{i}]") for i, n in enumerate(as_sequence(self.notes, "notes"))
+        )
         object.__setattr__(self, "columns", columns)
         object.__setattr__(self, "rows", tuple(rows))
         object.__setattr__(self, "notes", notes)
@@ -475,10 +471,10 @@ class ScenarioResult:
     def __post_init__(self) -> None:
         _text(self.scenario, "scenario")
         object.__setattr__(self, "seed", _int_in(self.seed, "seed", 2**64))
-        trials = _tuple(self.trials, "trials")
+        trials = as_sequence(self.trials, "trials")
         for k, r in enumerate(trials):
             _instance(TrialResult, False)(r, f"trials[{k}]")
-        tables = _tuple(self.tables, "tables")
+        tables = as_sequence(self.tables, "tables")
         for k, t in enumerate(tables):
             _instance(Table, False)(t, f"tables[{k}]")
         object.__setattr__(self, "trials", trials)
@@ -653,9 +649,11 @@ class Scenario(ABC):
             Case by case, trial by trial.
         """
         n = self._check_trials(self.default_trials if trials is None else trials)
+        # Checked here, under the caller's name (trial_seed would call it ``base``).
+        base = _int_in(seed, "seed", 2**64)
         out: list[Trial] = []
         for ci, (case, count) in enumerate(self.cases(n)):
-            out.extend(Trial(case, ci, k, trial_seed(seed, ci, k)) for k in range(count))
+            out.extend(Trial(case, ci, k, trial_seed(base, ci, k)) for k in range(count))
         return tuple(out)
 
     def run(
@@ -690,8 +688,14 @@ class Scenario(ABC):
         """
         from navkit.sim._sweep import sweep  # _sweep imports this module
 
+        # Checked here, under the caller's name (sweep would call it ``seeds``); a 0-d
+        # array is one seed, as sweep takes it.
+        value: object = seed
+        if isinstance(value, np.ndarray) and value.ndim == 0:
+            value = value[()]
+        base = _int_in(value, "seed", 2**64)
         return sweep(
-            self, trials=trials, seeds=seed, workers=workers, executor=executor, progress=progress
+            self, trials=trials, seeds=base, workers=workers, executor=executor, progress=progress
         )
 
     # Argument checks every scenario shares (protected: for subclasses).

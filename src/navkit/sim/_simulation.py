@@ -200,7 +200,11 @@ class Simulation:
     one leaves the other's run as it would have been (a shallow copy shares
     the world, robot, controller and estimator).
 
-    An ordinary class with ``__slots__``: it holds the run's state.
+    An ordinary class with ``__slots__``: it holds the run's state. Runs of
+    different Simulations may go on in different threads at once, sharing
+    their :class:`World` and :class:`Robot` (neither is changed by a run);
+    each needs its own controller, estimator and Generator ``seed`` (which a
+    run changes), and gives what it gives alone.
 
     Parameters
     ----------
@@ -433,6 +437,8 @@ class _Run:
         "contacts",
         "counts",
         "dt",
+        "dyn_circles",
+        "dyn_segs",
         "enc_mask",
         "enc_span",
         "enc_tpr",
@@ -469,6 +475,10 @@ class _Run:
         self.body = Body(robot, s.x, s.y, s.theta)
         self.dt = 1.0 / sim._rate
         self.scanner = Scanner(robot.lidar, sim._world) if robot.lidar is not None else None
+        # The run's own work arrays for the moving obstacles, which the kernel places at
+        # every step: the world may be shared (its queries, other runs in other threads).
+        self.dyn_segs = np.empty_like(sim._world._dyn_base_segs)
+        self.dyn_circles = np.empty_like(sim._world._dyn_base_circles)
         self.lidar = _Stream(robot.lidar.latency, 0) if robot.lidar is not None else None
         self.encoders = _Stream(robot.encoders.latency, 1) if robot.encoders is not None else None
         self.compass = _Stream(robot.compass.latency, 2) if robot.compass is not None else None
@@ -579,13 +589,11 @@ class _Run:
                     *motion, body.scratch, world._occ, gox, goy, gcos, gsin, res,
                     world._mv_path, world._mv_times, world._mv_first, world._mv_count,
                     world._mv_after, world._dyn_base_segs, world._dyn_seg_owner,
-                    world._dyn_segs, world._dyn_base_circles, world._dyn_circle_owner,
-                    world._dyn_circles, *bookkeeping,
+                    self.dyn_segs, world._dyn_base_circles, world._dyn_circle_owner,
+                    self.dyn_circles, *bookkeeping,
                 )  # fmt: skip
             if status != LONG:
                 break
-        # The kernel moved the obstacles; the world's cache of their time is stale.
-        world._moving_t = math.nan
         self._queue_proprioceptive()
         return int(status), int(i)
 

@@ -13,7 +13,14 @@ from typing import Any
 
 import numpy as np
 
-from navkit.sim._scenario import Scenario, ScenarioResult, Trial, TrialResult, trial_seed
+from navkit.sim._scenario import (
+    Scenario,
+    ScenarioResult,
+    Trial,
+    TrialResult,
+    _short_int,
+    trial_seed,
+)
 
 __all__ = ["sweep"]
 
@@ -47,7 +54,7 @@ def _seed_int(value: object, name: str) -> int:
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Integral):
         raise TypeError(f"{name} must be an integer, got {type(value).__name__}")
     if not 0 <= int(value) < 2**64:  # trial_seed's range of base seeds
-        raise ValueError(f"{name} must be in [0, 2**64), got {int(value)}")
+        raise ValueError(f"{name} must be in [0, 2**64), got {_short_int(int(value))}")
     return int(value)
 
 

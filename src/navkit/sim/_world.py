@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import math
 import numbers
+import os
+import threading
 from collections.abc import Iterable, Mapping
 from dataclasses import KW_ONLY, dataclass, field
 from typing import Any, Literal
@@ -552,6 +554,15 @@ class World:
     moving : iterable of MovingObstacle, optional
         Obstacles that move (solid).
 
+    Notes
+    -----
+    A world is never changed by its queries, so one world may be shared by
+    any number of threads: :meth:`raycast`, :meth:`clearance`,
+    :meth:`collides`, :meth:`Lidar.scan <navkit.sim.Lidar.scan>` and
+    :class:`Simulation` runs may use it at once, at different times ``t``,
+    and give what they give one at a time (each query places the moving
+    obstacles in arrays of its own).
+
     Examples
     --------
     >>> import math
@@ -573,15 +584,12 @@ class World:
         "_dyn_base_circles",
         "_dyn_base_segs",
         "_dyn_circle_owner",
-        "_dyn_circles",
         "_dyn_seg_owner",
-        "_dyn_segs",
         "_edges_only",
         "_grid",
         "_has_edges",
         "_index",
         "_moving",
-        "_moving_t",
         "_mv_after",
         "_mv_count",
         "_mv_first",
@@ -589,6 +597,7 @@ class World:
         "_mv_times",
         "_occ",
         "_occ_frame",
+        "_placed",
         "_scanners",
         "_segs",
         "_solid_circles",
@@ -699,8 +708,8 @@ class World:
         self._init_moving(moving)
         # Whether a scan needs the pass over segments and circles.
         self._has_edges = (
-            self._cell_items.shape[0] > 0 or self._dyn_segs.shape[0] > 0
-            or self._dyn_circles.shape[0] > 0
+            self._cell_items.shape[0] > 0 or self._dyn_base_segs.shape[0] > 0
+            or self._dyn_base_circles.shape[0] > 0
         )  # fmt: skip
         # Whether its only obstacles are static segments and circles (or none): the
         # simulation and the clearance queries then use kernels compiled without
@@ -721,21 +730,23 @@ class World:
         # every class), so that subclasses copy whole.
         names = slot_names(type(self))
         slots = {name: getattr(self, name) for name in names if hasattr(self, name)}
-        # Scanners are bound to this world (and hold its buffers): rebuilt on use.
+        # Scanners are bound to this world: rebuilt on use; so is the last placement.
         slots["_scanners"] = {}
+        slots.pop("_placed", None)
         return getattr(self, "__dict__", None) or None, slots
 
     def __setstate__(
         self, state: dict[str, Any] | tuple[dict[str, Any] | None, dict[str, Any]]
     ) -> None:
         """Restore from a pickle or a (deep) copy: arrays read-only, work arrays its own."""
-        restore_slots(self, state, read_only=self._READ_ONLY)
-        # A shallow copy would otherwise share the moving obstacles' work arrays with
-        # the original while each keeps its own note of the time they were placed at:
-        # queries of one would see the obstacles where the other last put them.
-        self._dyn_segs = np.empty_like(self._dyn_base_segs)
-        self._dyn_circles = np.empty_like(self._dyn_base_circles)
-        self._moving_t = math.nan
+        instance, slots = state if isinstance(state, tuple) else (None, state)
+        # Worlds pickled before placements were published whole kept their work
+        # arrays in three slots that no longer exist; the placement is rebuilt below.
+        slots = {k: v for k, v in slots.items() if k not in _OLD_PLACEMENT_SLOTS}
+        restore_slots(self, (instance, slots), read_only=self._READ_ONLY)
+        self._placed: tuple[float, FloatArray, FloatArray] = (
+            math.nan, self._dyn_base_segs, self._dyn_base_circles
+        )
         self._scanners = {}
         if self._solids is not None:
             shapely.prepare(self._solids)
@@ -826,9 +837,9 @@ class World:
         )
         self._dyn_base_circles = np.array(circles, dtype=np.float64).reshape(-1, 3)
         self._dyn_circle_owner = np.array(circle_owner, dtype=np.int64)
-        self._dyn_segs = np.empty_like(self._dyn_base_segs)
-        self._dyn_circles = np.empty_like(self._dyn_base_circles)
-        self._moving_t = math.nan
+        # (time, segments, circles) of the last placement: replaced whole, never
+        # written after (see _place).
+        self._placed = (math.nan, self._dyn_base_segs, self._dyn_base_circles)
         self._place(0.0)
 
     def _query_time(self, t: Any) -> float:
@@ -841,19 +852,29 @@ class World:
             return _query_time(t)
         return finite_float(t, "t")
 
-    def _place(self, t: float) -> None:
-        """Move the moving obstacles' work arrays to time ``t`` (ValueError beyond ±1e9 s)."""
-        if t == self._moving_t or not self._moving:
-            return
+    def _place(self, t: float) -> tuple[FloatArray, FloatArray]:
+        """The moving obstacles' segments and circles at time ``t`` (ValueError beyond ±1e9 s).
+
+        Threads may query one world at different times at once: each placement
+        goes into new arrays, published with its time as one tuple (a single
+        attribute store) and never written after, and a query reads the arrays
+        returned here, never the world's attribute again.
+        """
+        placed = self._placed
+        if placed[0] == t or not self._moving:
+            return placed[1], placed[2]
         if abs(t) > MAX_TIME:
             # Reached from the LiDAR, which checks only that t is finite.
             raise ValueError(f"t must lie within ±{MAX_TIME:g} s, got {t}")
+        segs = np.empty_like(self._dyn_base_segs)
+        circles = np.empty_like(self._dyn_base_circles)
         place_moving(
             t, self._mv_path, self._mv_times, self._mv_first, self._mv_count, self._mv_after,
-            self._dyn_base_segs, self._dyn_seg_owner, self._dyn_segs,
-            self._dyn_base_circles, self._dyn_circle_owner, self._dyn_circles,
+            self._dyn_base_segs, self._dyn_seg_owner, segs,
+            self._dyn_base_circles, self._dyn_circle_owner, circles,
         )  # fmt: skip
-        self._moving_t = t
+        self._placed = (t, segs, circles)
+        return segs, circles
 
     # -------------------------------------------------------------- properties
     @property
@@ -951,7 +972,7 @@ class World:
         over the occupancy grid: a world without a grid never compiles the grid
         walk, nor one with only a grid the other.
         """
-        self._place(t)
+        dyn_segs, dyn_circles = self._place(t)
         has_occ = self._occ.shape[0] > 0
         # Beam directions, written by the first pass when the grid's pass follows.
         dirs = np.empty((angles.shape[0], 2)) if has_occ and self._has_edges else _NO_DIRS
@@ -961,7 +982,7 @@ class World:
                 out, dirs, x, y, heading, angles, range_max, not has_occ,
                 self._segs, self._circles, gx0, gy0, h, nx, ny, self._cell_start,
                 self._cell_items, self._solid_rings, self._solid_circles, self._solid_start,
-                self._solid_items, self._dyn_segs, self._dyn_seg_owner, self._dyn_circles,
+                self._solid_items, dyn_segs, self._dyn_seg_owner, dyn_circles,
             )  # fmt: skip
         if has_occ:
             gox, goy, gcos, gsin, res = self._occ_frame
@@ -991,13 +1012,13 @@ class World:
                 gx0, gy0, h, nx, ny, self._cell_start, self._cell_items, limit,
             )  # fmt: skip
             return distance
-        self._place(t)
+        dyn_segs, dyn_circles = self._place(t)
         gox, goy, gcos, gsin, res = self._occ_frame
         distance = footprint_clearance(
             x, y, theta, radius, verts, work, scratch,
             self._segs, self._circles, gx0, gy0, h, nx, ny, self._cell_start,
             self._cell_items, self._occ, gox, goy, gcos, gsin, res,
-            self._dyn_segs, self._dyn_circles, limit,
+            dyn_segs, dyn_circles, limit,
         )  # fmt: skip
         return distance
 
@@ -1140,8 +1161,13 @@ class World:
         one of its points decides.
         """
         x, y = (pose.x, pose.y) if verts.shape[0] == 0 else pose.transform_points(verts[0])[0]
-        if self._solids is not None and shapely.contains_xy(self._solids, x, y):
-            return True
+        if self._solids is not None:
+            # GEOS's prepared geometries are not thread-safe (libgeos/geos#825) and
+            # shapely releases the GIL here: two threads at once corrupt the heap.
+            with _GEOS_LOCK:
+                inside = bool(shapely.contains_xy(self._solids, x, y))
+            if inside:
+                return True
         for cx, cy, r in self._solid_circles:
             if math.hypot(x - cx, y - cy) < r:
                 return True
@@ -1152,16 +1178,35 @@ class World:
                 rows, cols = self._occ.shape
                 if 0 <= row < rows and 0 <= col < cols and self._occ[row, col]:
                     return True
-        self._place(t)
-        for cx, cy, r in self._dyn_circles:
+        for cx, cy, r in self._place(t)[1]:
             if math.hypot(x - cx, y - cy) < r:
                 return True
         for ob in self._moving:
             if isinstance(ob.shape, Polygon):
                 cx, cy = ob.position_at(t)
-                if shapely.contains_xy(ob.shape, x - cx, y - cy):
+                # contains_xy prepares the shared shape on first use: as above.
+                with _GEOS_LOCK:
+                    inside = bool(shapely.contains_xy(ob.shape, x - cx, y - cy))
+                if inside:
                     return True
         return False
+
+
+#: Serializes the queries of shared shapely geometries (see World._point_in_solid).
+_GEOS_LOCK = threading.Lock()
+
+
+def _new_geos_lock() -> None:
+    """A fresh lock in a forked child: a thread that held it does not exist there."""
+    global _GEOS_LOCK
+    _GEOS_LOCK = threading.Lock()
+
+
+if hasattr(os, "register_at_fork"):  # not on Windows, which cannot fork
+    os.register_at_fork(after_in_child=_new_geos_lock)
+
+#: Slots of the worlds pickled before :meth:`World._place` published its placements whole.
+_OLD_PLACEMENT_SLOTS = frozenset({"_dyn_segs", "_dyn_circles", "_moving_t"})
 
 
 def as_world(value: Any, name: str = "world") -> World:
