@@ -114,6 +114,14 @@ class FusionEstimator:
         drive = robot.drive
         n = robot.n_wheels
         self._forward = np.asarray(drive.forward_batch(np.eye(n)).T)  # (3, n)
+        if np.any(self._forward[1] != 0.0):
+            # The unicycle state has no sideways speed: a strafing robot would stay
+            # put in the estimate, a silent wrong result.
+            raise ValueError(
+                "estimator: PlanarFusion's state has no sideways speed, and this robot's "
+                "drive can move sideways; use OmniOdometry (with the compass for its "
+                "heading) or an Estimator of your own"
+            )
         assert robot.encoders is not None
         quantum = _TWO_PI / robot.encoders.ticks_per_rev
         # Variance of a twist from wheel speeds quantised to one tick per reading

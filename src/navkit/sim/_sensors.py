@@ -46,8 +46,9 @@ class Compass:
     The reading is ``degrees(north - yaw + bias + noise) mod 360`` (``bias``
     and ``noise`` in rad, like ``north`` and ``yaw``): 0° when
     the robot faces north, 90° facing east. North is the world direction
-    ``north`` (default π/2: +y is north and +x east). Convert readings to yaw
-    with :func:`navkit.estimation.compass_to_yaw`.
+    ``north`` (default π/2: +y is north and +x east). The world yaw of a
+    reading is ``north + compass_to_yaw(reading)``
+    (:func:`navkit.estimation.compass_to_yaw` gives the yaw from north).
 
     Parameters
     ----------
@@ -372,7 +373,8 @@ class CompassReading:
         Time of the reading, s (finite).
     heading_deg : float
         Heading, degrees clockwise from north (finite; the sensor gives
-        [0, 360)). Convert with :func:`navkit.estimation.compass_to_yaw`.
+        [0, 360)). The world yaw is ``north + compass_to_yaw(heading_deg)``
+        with the compass's ``north`` (see :class:`Compass`).
 
     Examples
     --------

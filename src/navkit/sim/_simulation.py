@@ -228,6 +228,8 @@ class Simulation:
     estimator : PlanarFusion, OmniOdometry, DiffOdometry or Estimator, optional
         Fed every delivered reading (at its delivery time). Initialise it at
         the start pose (e.g. ``PlanarFusion(x0=[x, y, θ, 0, 0, 0], t0=0.0)``).
+        A ``PlanarFusion`` needs a drive that cannot move sideways (its state
+        has no sideways speed; ``ValueError`` for an omnidirectional drive).
     rate : float, default 100.0
         Physics rate, Hz, in (0, 10^4]; no sensor or controller may be faster.
     control_rate : float, default 20.0
