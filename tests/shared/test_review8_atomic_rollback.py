@@ -69,3 +69,26 @@ def test_a_symbolic_link_target_is_put_back_as_a_link(
         tl.write_text("new")
         to.write_text("new")
     assert link.is_symlink() and link.read_text() == "pointed to"
+
+
+def test_a_target_that_cannot_be_linked_is_not_removed(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # Without hard links (os.link refused) the rollback took an existing target
+    # for one that did not exist, and deleted it: neither version was left.
+    a, b = tmp_path / "a.txt", tmp_path / "b.txt"
+    a.write_text("old a")
+    b.write_text("old b")
+
+    def no_link(*args: Any, **kwargs: Any) -> None:
+        raise PermissionError("no hard links here")
+
+    monkeypatch.setattr(os, "link", no_link)
+    monkeypatch.setattr(os, "replace", _failing_replace(2))
+    with pytest.raises(PermissionError), atomic_paths([a, b]) as (ta, tb):
+        ta.write_text("new a")
+        tb.write_text("new b")
+    # As documented: a target before the failed rename that could not be linked stays new.
+    assert a.read_text() == "new a"
+    assert b.read_text() == "old b"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.txt", "b.txt"]

@@ -7,6 +7,7 @@ guarantees, instead of comparing with a reference implementation.
 
 from __future__ import annotations
 
+import copy
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -398,7 +399,7 @@ def test_delay_line_is_a_pure_shift_and_reads_the_same_in_chunks(
     for k, s in enumerate(stamps):
         delayed.push(s, k)
         direct.push(s, k)
-    whole = __import__("copy").copy(delayed)
+    whole = copy.copy(delayed)
     got: list[tuple[float, int]] = []
     for q in queries:
         chunk = delayed.pop_due(q)

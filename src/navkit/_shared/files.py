@@ -180,7 +180,7 @@ def _replace_all(temporaries: Sequence[Path], targets: Sequence[Path]) -> None:
         os.replace(temporaries[0], targets[0])
         return
     # Hard links to the targets as they are, to put them back if a later rename fails.
-    backups: list[Path | None] = []
+    backups: list[tuple[Path | None, bool]] = []
     try:
         for target in targets:
             backups.append(_backup(target))
@@ -190,25 +190,27 @@ def _replace_all(temporaries: Sequence[Path], targets: Sequence[Path]) -> None:
                 os.replace(temporary, target)
                 done += 1
         except BaseException:
-            for target, backup in zip(targets[:done], backups[:done], strict=True):
+            for target, (backup, existed) in zip(targets[:done], backups[:done], strict=True):
                 with contextlib.suppress(OSError):
-                    if backup is None:
-                        target.unlink(missing_ok=True)
-                    else:
+                    if backup is not None:
                         os.replace(backup, target)
+                    elif not existed:
+                        target.unlink(missing_ok=True)
+                    # An old target that could not be linked stays new: removing it
+                    # would lose both versions.
             raise
     finally:
-        for backup in backups:
+        for backup, _ in backups:
             if backup is not None:
                 backup.unlink(missing_ok=True)
 
 
-def _backup(target: Path) -> Path | None:
-    """A new hard link to ``target`` beside it; None when there is no ``target``.
+def _backup(target: Path) -> tuple[Path | None, bool]:
+    """A new hard link to ``target`` beside it (None if none made), and whether ``target`` exists.
 
     Where the file system has no hard links the target cannot be put back: the
     renames then go ahead without (as before a rollback existed), and a failed
-    one leaves the targets before it new.
+    one leaves such targets before it new.
     """
     for _ in range(_ATTEMPTS):
         link = target.with_name(_compact_name(target, secrets.token_hex(4)))
@@ -219,11 +221,11 @@ def _backup(target: Path) -> Path | None:
         except FileExistsError:
             continue
         except FileNotFoundError:
-            return None
+            return None, False
         except OSError:
-            return None
-        return link
-    return None  # pragma: no cover
+            return None, True
+        return link, True
+    return None, True  # pragma: no cover
 
 
 def _new_temporary(target: Path) -> Path:
