@@ -170,6 +170,7 @@ def _make_dispatchers(njit: Any) -> None:
 def bind_numba_names(
     namespace: dict[str, Any],
     module: str,
+    *,
     python: dict[str, Any] | None = None,
     **names: str,
 ) -> None:

@@ -64,13 +64,18 @@ ZERO_TWIST = Twist2D(0.0, 0.0, 0.0)
 
 
 def wrap(a: float) -> float:
-    """Wrap one finite angle to (-π, π] (scalar, pure Python)."""
+    """Wrap one finite angle to (-π, π] (scalar, pure Python).
+
+    Bit for bit :func:`navkit.geometry.wrap_angle` of a float, which the
+    controllers cannot share (a private helper of another subpackage).
+    """
     if -math.pi < a <= math.pi:
         return a
-    r = math.pi - ((math.pi - a) % _TWO_PI)
-    if r <= -math.pi:
-        r += _TWO_PI
-    return r
+    # fmod and the one fold are exact (Sterbenz); pi - ((pi - a) % 2pi) rounds twice.
+    r = math.fmod(a, _TWO_PI)
+    if r > math.pi:
+        return r - _TWO_PI
+    return r + _TWO_PI if r <= -math.pi else r
 
 
 def bounded(

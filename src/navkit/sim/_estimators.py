@@ -9,7 +9,7 @@ import numpy as np
 
 from navkit._shared.types import FloatArray
 from navkit.estimation import DiffOdometry, OmniOdometry, PlanarFusion
-from navkit.geometry import Pose2D
+from navkit.geometry import Pose2D, wrap_angle
 from navkit.kinematics import DiffDrive, OmniDrive
 from navkit.sim._robot import Robot
 from navkit.sim._sensors import CompassReading, EncoderReading, ImuReading, Reading
@@ -17,12 +17,6 @@ from navkit.sim._sensors import CompassReading, EncoderReading, ImuReading, Read
 __all__ = ["Estimator", "FusionEstimator", "as_estimator"]
 
 _TWO_PI = 2.0 * math.pi
-
-
-def _wrap(angle: float) -> float:
-    """One angle wrapped to (-π, π] (scalar math; ``wrap_angle`` is the array form)."""
-    out = math.pi - (math.pi - angle) % _TWO_PI
-    return out if out > -math.pi else out + _TWO_PI
 
 
 @runtime_checkable
@@ -158,7 +152,7 @@ class FusionEstimator:
             )  # fmt: skip
         elif kind is CompassReading:
             assert isinstance(reading, CompassReading)
-            yaw = _wrap(self._north - math.radians(reading.heading_deg))
+            yaw = wrap_angle(self._north - math.radians(reading.heading_deg))
             fusion.update_yaw(t, yaw, variance=self._compass_var)
 
     @property
@@ -190,7 +184,7 @@ class _OmniOdometryEstimator:
 
     def observe(self, t: float, reading: Reading) -> None:
         if isinstance(reading, CompassReading):
-            self._yaw = _wrap(self._north - math.radians(reading.heading_deg))
+            self._yaw = wrap_angle(self._north - math.radians(reading.heading_deg))
         elif isinstance(reading, EncoderReading):
             step = self._wheels.increments(reading)
             if step is None:

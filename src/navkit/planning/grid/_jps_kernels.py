@@ -84,7 +84,7 @@ def _clz_python(x: Any) -> int:
 
 
 bind_numba_names(globals(), "numba.cpython.unsafe.numbers",
-                 {"_ctz": _ctz_python, "_clz": _clz_python},
+                 python={"_ctz": _ctz_python, "_clz": _clz_python},
                  _ctz="trailing_zeros", _clz="leading_zeros")  # fmt: skip
 
 _ONE = np.uint64(1)
