@@ -14,7 +14,7 @@ from typing import Any
 import numpy as np
 import pytest
 
-from navkit.mapping.io import _carmen, read_bag_scans, read_carmen, read_map
+from navkit.mapping.io import _carmen, _map_files, _paths, read_bag_scans, read_carmen, read_map
 from navkit.mapping.io._bags import CHUNK_MAX, _Corrupt, _walk_ros1
 from navkit.mapping.io._carmen import LINE_MAX
 
@@ -98,12 +98,13 @@ def test_pgm_declaring_a_huge_raster_is_not_allocated(
     (tmp_path / "m.pgm").write_bytes(header)
     (tmp_path / "m.yaml").write_text("image: m.pgm\n" + _MAP)
     sizes: list[int] = []
-    real_open: Callable[..., Any] = Path.open
+    real_open: Callable[..., Any] = _paths.open_regular
 
-    def spying_open(self: Path, *args: Any, **kwargs: Any) -> Any:
-        return _ReadSizes(real_open(self, *args, **kwargs), sizes)
+    def spying_open(path: Path, what: str) -> Any:
+        fh = real_open(path, what)
+        return _ReadSizes(fh, sizes) if path.suffix == ".pgm" else fh
 
-    monkeypatch.setattr(Path, "open", spying_open)
+    monkeypatch.setattr(_map_files, "open_regular", spying_open)
     with pytest.raises(ValueError, match=f"truncated: {message}"):
         read_map(tmp_path / "m.yaml")
     assert sizes and max(sizes) <= 1 << 16  # the header's 64 KiB at most
@@ -245,3 +246,85 @@ def test_bag_chunk_declaring_more_than_the_limit_is_refused(tmp_path: Path) -> N
     huge.write_bytes(_rebuilt(good.read_bytes(), declared))
     with pytest.raises(ValueError, match=f"declares {CHUNK_MAX + 1} bytes decompressed"):
         read_bag_scans(huge)
+
+
+# ------------------------------------------------------------------ ROS 2 bags
+def _imu_bag2(folder: Path, compression: str = "") -> Path:
+    rosbag2 = pytest.importorskip("rosbags.rosbag2")
+    enums = pytest.importorskip("rosbags.rosbag2.enums")
+    typesys = pytest.importorskip("rosbags.typesys")
+    store = typesys.get_typestore(typesys.Stores.ROS2_JAZZY)
+    kind = "sensor_msgs/msg/Imu"
+    types = store.types
+    vec, quat = types["geometry_msgs/msg/Vector3"], types["geometry_msgs/msg/Quaternion"]
+    writer = rosbag2.Writer(folder, version=9)
+    if compression:
+        writer.set_compression(getattr(enums.CompressionMode, compression),
+                               enums.CompressionFormat.ZSTD)  # fmt: skip
+    with writer:
+        conn = writer.add_connection("/imu", kind, typestore=store)
+        for i in range(3):
+            stamp = types["builtin_interfaces/msg/Time"](sec=i, nanosec=0)
+            msg = types[kind](
+                header=types["std_msgs/msg/Header"](stamp=stamp, frame_id="imu"),
+                orientation=quat(x=0.0, y=0.0, z=0.0, w=1.0),
+                orientation_covariance=np.zeros(9),
+                angular_velocity=vec(x=0.0, y=0.0, z=0.1 * i),
+                angular_velocity_covariance=np.zeros(9),
+                linear_acceleration=vec(x=0.0, y=0.0, z=9.8),
+                linear_acceleration_covariance=np.zeros(9),
+            )
+            writer.write(conn, i * 10**9 + 1, store.serialize_cdr(msg, kind))
+    return folder
+
+
+@pytest.mark.parametrize(
+    ("field", "line"),
+    [("topic name", "name: /imu"), ("topic type", "type: sensor_msgs/msg/Imu"),
+     ("message count", "message_count: 3")],
+)  # fmt: skip
+def test_ros2_metadata_field_of_another_yaml_type_is_refused(
+    tmp_path: Path, field: str, line: str
+) -> None:
+    # A topic's name, type or count given as a list (here an alias bomb of 9**7
+    # strings) raised TypeError or AttributeError from deep in the readers.
+    from navkit.mapping.io import bag_topics, read_bag_imu
+
+    folder = _imu_bag2(tmp_path / "bag")
+    meta = (folder / "metadata.yaml").read_text()
+    key = line.split(":")[0]
+    # The count is the topic's (indented), not the bag's total (first in the file).
+    at = meta.index(line, meta.index("topics_with_message_count"))
+    meta = meta[:at] + f"{key}: *g" + meta[at + len(line) :]
+    (folder / "metadata.yaml").write_text(_BOMB + meta)
+    for read in (bag_topics, read_bag_imu):
+        with pytest.raises(ValueError, match=f"cannot read the ROS 2 bag: a {field} is a list"
+                           ) as info:  # fmt: skip
+            read(folder)
+        assert str(folder) in str(info.value) and len(str(info.value)) < 500
+
+
+def test_ros2_metadata_over_the_limit_is_refused_unread(tmp_path: Path) -> None:
+    from navkit.mapping.io import read_bag_imu
+    from navkit.mapping.io._bags import METADATA_MAX
+
+    folder = _imu_bag2(tmp_path / "bag")
+    assert len(read_bag_imu(folder)) == 3
+    path = folder / "metadata.yaml"
+    text = path.read_text()
+    # A valid YAML all the same (a comment): rosbags parsed all of it in pure Python.
+    path.write_text(text + "#" * (METADATA_MAX + 1 - len(text)) + "\n")
+    with pytest.raises(ValueError, match=f"{path}: {METADATA_MAX + 2} bytes is too large"):
+        read_bag_imu(folder)
+
+
+@pytest.mark.parametrize("compression", ["FILE", "MESSAGE"])
+def test_ros2_bags_compressed_with_zstd_are_read(tmp_path: Path, compression: str) -> None:
+    # As the module docstring says (with the warning that rosbags bounds nothing there).
+    from navkit.mapping.io import read_bag_imu
+
+    plain = read_bag_imu(_imu_bag2(tmp_path / "plain"))
+    packed = read_bag_imu(_imu_bag2(tmp_path / "packed", compression))
+    assert len(packed) == 3
+    assert np.array_equal(packed.angular_velocities, plain.angular_velocities)
+    assert np.array_equal(packed.times, plain.times)

@@ -16,8 +16,12 @@ Pillow's errors, ``gzip.BadGzipFile``, ``EOFError``, ``OverflowError``). A
 missing file raises ``FileNotFoundError``; a file the operating system refuses
 to read its ``OSError`` (e.g. ``PermissionError``); a non-PGM image without
 Pillow ``ImportError``. Image sizes are checked from the header before
-decoding. Saving is atomic and never writes over the map's image or another
-image file.
+decoding; a map's YAML and image are checked to be regular files on the
+descriptor they are then read from. Saving is atomic and never writes over the
+map's image or another image file. ROS bags are read with ``rosbags``: ROS 2
+bags compressed with zstd are decompressed by it with no bound on their size (a
+``file``-mode bag whole into a temporary folder), so read those only from a
+trusted source.
 
 Examples
 --------

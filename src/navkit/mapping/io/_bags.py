@@ -4,6 +4,16 @@ One reader per message type, each returning a frozen result of time-stamped
 arrays: :func:`read_bag_scans` (``sensor_msgs/LaserScan``),
 :func:`read_bag_odometry` (``nav_msgs/Odometry``) and :func:`read_bag_imu`
 (``sensor_msgs/Imu``); :func:`bag_topics` lists what a bag holds.
+
+Damaged or malicious bags: ROS 1 chunks are decompressed at most to the size
+their header declares, and never past :data:`CHUNK_MAX`; a ROS 2 bag's
+``metadata.yaml`` must be a regular file of at most :data:`METADATA_MAX` bytes
+with topic names, types and counts of the right YAML types. ROS 2 bags
+compressed with zstd (``compression_mode`` ``file`` or ``message``, both read)
+are decompressed by ``rosbags`` with no bound on what comes out: in ``file``
+mode every storage file into a temporary folder when the bag is opened, in
+``message`` mode one message at a time in memory. Read such bags only from a
+source you trust, or decompress them first (``ros2 bag convert``).
 """
 
 from __future__ import annotations
@@ -27,7 +37,7 @@ from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, as_sequence
 from navkit.geometry import imu_to_base, quaternion_to_matrix, quaternion_to_yaw, wrap_angle
 from navkit.mapping import LaserScan
-from navkit.mapping.io._paths import as_path
+from navkit.mapping.io._paths import as_path, open_regular
 from navkit.mapping.io._ros_msgs import scan_from_msg
 
 __all__ = [
@@ -50,6 +60,10 @@ _ROS1_MAGIC = b"#ROSBAG V2.0\n"
 #: only a damaged or malicious bag declares more (a few kilobytes of bz2 can
 #: decompress to gigabytes).
 CHUNK_MAX = 1 << 30
+#: The largest ROS 2 ``metadata.yaml`` read, bytes. rosbag2 writes some hundred
+#: bytes a topic and a file (a bag split in 10,000 files: about 2 MB); rosbags
+#: reads the file whole and parses it in pure Python.
+METADATA_MAX = 1 << 24
 
 
 # ---------------------------------------------------------------- result classes
@@ -448,9 +462,23 @@ def _guarded(messages: Callable[[], Iterable[tuple[Any, int, Any]]]) -> Iterator
 
 def _connection_counts(connections: Iterable[Any]) -> dict[tuple[str, str], int]:
     """``{(topic, type): count}`` of rosbags connections (a topic may have several, of one
-    type or, in ROS 1, of different types)."""
+    type or, in ROS 1, of different types).
+
+    A ROS 2 bag's connections are its ``metadata.yaml`` as written: a topic, type
+    or count of another YAML type (a list, a mapping) is :class:`_RosbagsFailed`,
+    naming the field but not printing the value (YAML aliases can make a few
+    hundred bytes a value of billions of shared parts).
+    """
     counts: dict[tuple[str, str], int] = {}
     for c in connections:
+        for field, value, kind in (("topic name", c.topic, str), ("topic type", c.msgtype, str),
+                                   ("message count", c.msgcount, int)):  # fmt: skip
+            if not isinstance(value, kind) or isinstance(value, bool):
+                raise _RosbagsFailed(
+                    f"a {field} is a {type(value).__name__}, not a {kind.__name__}"
+                )
+        if c.msgcount < 0:
+            raise _RosbagsFailed(f"topic {c.topic[:200]!r} has a negative message count")
         key = (c.topic, _normalize(c.msgtype))
         counts[key] = counts.get(key, 0) + c.msgcount
     return counts
@@ -467,6 +495,7 @@ def _with_bag(bag_path: Path, use: Callable[[_Bag], _T]) -> _T:
     if bag_path.is_dir():
         if not (bag_path / "metadata.yaml").is_file():
             raise ValueError(f"{bag_path} is a folder without metadata.yaml, not a ROS 2 bag")
+        _check_metadata(bag_path / "metadata.yaml")
         try:
             with _opened(rosbag2.Reader, bag_path) as reader:
 
@@ -506,6 +535,18 @@ def _with_bag(bag_path: Path, use: Callable[[_Bag], _T]) -> _T:
             detail = str(exc) if str(exc) == str(walk_exc) else f"{exc}; {walk_exc}"
             raise ValueError(f"{bag_path}: cannot read the ROS 1 bag: {detail}") from None
         return use(bag)
+
+
+def _check_metadata(path: Path) -> None:
+    """Refuse a ROS 2 ``metadata.yaml`` that is not a regular file or is over
+    :data:`METADATA_MAX` bytes, which rosbags would read whole (or block on)."""
+    with open_regular(path, "ROS 2 bag metadata") as fh:
+        size = os.fstat(fh.fileno()).st_size
+    if size > METADATA_MAX:
+        raise ValueError(
+            f"{path}: {size} bytes is too large for a ROS 2 bag's metadata.yaml "
+            f"(at most {METADATA_MAX} bytes)"
+        )
 
 
 class _Corrupt(Exception):

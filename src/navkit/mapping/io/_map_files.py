@@ -25,7 +25,7 @@ import zlib
 from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, NamedTuple
+from typing import Any, BinaryIO, NamedTuple
 
 import numpy as np
 import yaml
@@ -34,7 +34,7 @@ from numpy.typing import NDArray
 from navkit._shared.files import atomic_paths
 from navkit.geometry import Pose2D
 from navkit.mapping import OccupancyGrid
-from navkit.mapping.io._paths import as_path
+from navkit.mapping.io._paths import as_path, open_regular
 
 __all__ = [
     "MapMetadata",
@@ -191,24 +191,18 @@ def _as_negate(value: Any, path: Path) -> bool:
     raise ValueError(f"{path}: negate must be 0 or 1, got {_short(value)}")
 
 
-def _regular_file(path: Path, what: str) -> None:
-    """Raise FileNotFoundError for a missing ``path``, ValueError for a directory or device."""
-    if not path.exists():
-        raise FileNotFoundError(f"{what} {path} does not exist")
-    if not path.is_file():
-        kind = "a directory" if path.is_dir() else "not a regular file"
-        raise ValueError(f"{what} {path} is {kind}")
-
-
 def _yaml_text(path: Path) -> str:
-    """The YAML file's text, refusing images, binary files and huge files."""
-    size = path.stat().st_size
+    """The YAML file's text, refusing images, binary files, huge files and non-files."""
+    with open_regular(path, "map YAML file") as fh:
+        size = os.fstat(fh.fileno()).st_size
+        if size <= YAML_MAX_BYTES:
+            data = fh.read(YAML_MAX_BYTES + 1)
+            size = len(data)  # the file may have grown since
     if size > YAML_MAX_BYTES:
         raise ValueError(
             f"{path}: {size} bytes is too large for a map YAML (at most {YAML_MAX_BYTES} "
             "bytes); is it the image? Pass the map's YAML file"
         )
-    data = path.read_bytes()
     for magic, kind in _IMAGE_MAGIC.items():
         if data.startswith(magic):
             raise ValueError(
@@ -269,7 +263,6 @@ def read_map_yaml(path: str | os.PathLike[str]) -> MapMetadata:
     ('m.pgm', (1.0, 2.0, 0.0), 'trinary')
     """
     yaml_path = as_path(path, "path")
-    _regular_file(yaml_path, "map YAML file")
     entries = _load_yaml(_yaml_text(yaml_path), yaml_path)
     missing = [key for key in _REQUIRED if key not in entries]
     if missing:
@@ -443,22 +436,28 @@ def read_pgm(path: str | os.PathLike[str]) -> NDArray[np.float64]:
     array([[  0., 255.]])
     """
     pgm = as_path(path, "path")
-    with pgm.open("rb") as fh:
-        head = fh.read(_PGM_HEADER_MAX)
-        magic, width, height, maxval, offset = _pgm_header(head, pgm)
-        count = width * height
-        fh.seek(offset)
-        # Never ask for more than the file holds: read(n) allocates n bytes first, and
-        # a header of a few bytes may declare 2**28 pixels (gigabytes for a P2 raster).
-        remaining = max(os.fstat(fh.fileno()).st_size - offset, 0)
-        if magic == "P5":
-            dtype = np.dtype(np.uint8) if maxval < 256 else np.dtype(">u2")
-            need = count * dtype.itemsize
-            raster = fh.read(min(need, remaining))
-        else:
-            # At most 5 digits and some whitespace per value; anything longer is
-            # not a P2 raster of this size.
-            raster = fh.read(min(count * 32 + _PGM_HEADER_MAX, remaining))
+    with open_regular(pgm, "PGM image") as fh:
+        return _pgm_from(fh, pgm)
+
+
+def _pgm_from(fh: BinaryIO, pgm: Path) -> NDArray[np.float64]:
+    """:func:`read_pgm` of the open regular file ``fh`` (of ``pgm``), read from its start."""
+    fh.seek(0)
+    head = fh.read(_PGM_HEADER_MAX)
+    magic, width, height, maxval, offset = _pgm_header(head, pgm)
+    count = width * height
+    fh.seek(offset)
+    # Never ask for more than the file holds: read(n) allocates n bytes first, and
+    # a header of a few bytes may declare 2**28 pixels (gigabytes for a P2 raster).
+    remaining = max(os.fstat(fh.fileno()).st_size - offset, 0)
+    if magic == "P5":
+        dtype = np.dtype(np.uint8) if maxval < 256 else np.dtype(">u2")
+        need = count * dtype.itemsize
+        raster = fh.read(min(need, remaining))
+    else:
+        # At most 5 digits and some whitespace per value; anything longer is
+        # not a P2 raster of this size.
+        raster = fh.read(min(count * 32 + _PGM_HEADER_MAX, remaining))
     if magic == "P5":
         if len(raster) < need:
             raise ValueError(
@@ -559,10 +558,13 @@ def _pillow_errors(path: Path, image_module: Any) -> Iterator[None]:
         raise ValueError(f"{path}: cannot read the image ({type(exc).__name__}: {exc})") from None
 
 
-def _read_with_pillow(path: Path) -> tuple[NDArray[np.float64], NDArray[np.float64] | None]:
+def _read_with_pillow(
+    fh: BinaryIO, path: Path
+) -> tuple[NDArray[np.float64], NDArray[np.float64] | None]:
+    """:func:`read_image` by Pillow of the open regular file ``fh`` (of ``path``)."""
     Image = _pillow(f"reading the map image {path.name}")
     with _pillow_errors(path, Image):
-        img = Image.open(path)  # reads the header only
+        img = Image.open(fh)  # reads the header only; Pillow leaves fh open
     with img:
         width, height = img.size
         _check_image_size(width, height, path)
@@ -617,15 +619,22 @@ def read_image(path: Path) -> tuple[NDArray[np.float64], NDArray[np.float64] | N
     ...     read_image(Path(folder) / "a.pgm")
     (array([[  0., 205.]]), None)
     """
-    with path.open("rb") as fh:
-        magic = fh.read(2)
+    with open_regular(path, "image") as fh:
+        return _image_from(fh, path)
+
+
+def _image_from(
+    fh: BinaryIO, path: Path
+) -> tuple[NDArray[np.float64], NDArray[np.float64] | None]:
+    """:func:`read_image` of the open regular file ``fh`` (of ``path``)."""
+    magic = fh.read(2)
     if magic in (b"P5", b"P2"):
-        return read_pgm(path), None
+        return _pgm_from(fh, path), None
     if path.suffix.lower() == ".pgm":
         raise ValueError(f"{path}: not a PGM image (magic {magic!r}, expected P5 or P2)")
     if not magic:
         raise ValueError(f"{path}: the image file is empty")
-    return _read_with_pillow(path)
+    return _read_with_pillow(fh, path)
 
 
 def pixel_occupancy(
@@ -715,7 +724,8 @@ def read_map(path: str | os.PathLike[str]) -> OccupancyGrid:
         is not a small UTF-8 map YAML (an image passed instead, binary data),
         missing or invalid keys (see :func:`read_map_yaml` for the ranges),
         an image that is garbage, truncated, not an image (the YAML itself, a
-        text file), a directory, or larger than ``OccupancyGrid.MAX_CELLS``
+        text file), a directory, a FIFO or a device (checked on the descriptor
+        the file is then read from), or larger than ``OccupancyGrid.MAX_CELLS``
         (``2**28``) pixels (checked from its header before decoding; images
         read with Pillow also against Pillow's decompression-bomb limit).
     ImportError
@@ -736,10 +746,13 @@ def read_map(path: str | os.PathLike[str]) -> OccupancyGrid:
     ([[True, False]], [[False, True]], Pose2D(x=1.0, y=2.0, theta=0.0))
     """
     meta = read_map_yaml(path)
-    try:
-        grey, alpha = read_image(meta.image)
-    except ValueError as exc:
-        raise ValueError(f"{path}: map image {exc}") from None
+    # read_map_yaml checked the image by name: it is checked again, and read, on
+    # one open descriptor, whatever was put in its place since.
+    with open_regular(meta.image, f"{as_path(path, 'path')}: map image") as fh:
+        try:
+            grey, alpha = _image_from(fh, meta.image)
+        except ValueError as exc:
+            raise ValueError(f"{path}: map image {exc}") from None
     prob, unknown = pixel_occupancy(grey, alpha, meta)
     occ_t, free_t = meta.occupied_thresh, meta.free_thresh
     p = np.where(unknown, 0.5, prob)[::-1]

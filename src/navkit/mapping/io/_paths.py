@@ -1,4 +1,4 @@
-"""File-path arguments of the readers and writers (private).
+"""File-path arguments of the readers and writers, and files opened safely (private).
 
 Examples
 --------
@@ -13,10 +13,11 @@ TypeError: path must be a str or an os.PathLike, got int
 from __future__ import annotations
 
 import os
+import stat
 from pathlib import Path
-from typing import Any
+from typing import Any, BinaryIO
 
-__all__ = ["as_path"]
+__all__ = ["as_path", "open_regular"]
 
 
 def as_path(value: Any, name: str) -> Path:
@@ -31,3 +32,40 @@ def as_path(value: Any, name: str) -> Path:
     if "\x00" in text:
         raise ValueError(f"{name} must not contain a NUL character, got {text!r}")
     return Path(text)
+
+
+def open_regular(path: Path, what: str) -> BinaryIO:
+    """``path`` opened for reading in binary, refused unless it is a regular file.
+
+    The check is made on the open descriptor, and every read goes through it: a
+    check of the name and then an open by name would read whatever was put there
+    in between (a FIFO blocks the read for ever). A FIFO does not block this open
+    (``O_NONBLOCK``); the descriptor blocks again once it is known to be a file.
+
+    Raises
+    ------
+    FileNotFoundError
+        ``path`` does not exist ("{what} {path} does not exist").
+    ValueError
+        ``path`` is a directory, a FIFO, a device or a socket.
+    """
+    nonblock = getattr(os, "O_NONBLOCK", 0)
+    # O_NOCTTY: a terminal device opened here must not become the controlling one.
+    flags = os.O_RDONLY | nonblock | getattr(os, "O_NOCTTY", 0) | getattr(os, "O_BINARY", 0)
+    try:
+        fd = os.open(path, flags)
+    except FileNotFoundError:
+        raise FileNotFoundError(f"{what} {path} does not exist") from None
+    except IsADirectoryError:  # where a directory cannot be opened at all (Windows)
+        raise ValueError(f"{what} {path} is a directory") from None
+    try:
+        mode = os.fstat(fd).st_mode
+        if not stat.S_ISREG(mode):
+            kind = "a directory" if stat.S_ISDIR(mode) else "not a regular file"
+            raise ValueError(f"{what} {path} is {kind}")
+        if nonblock:
+            os.set_blocking(fd, True)
+        return os.fdopen(fd, "rb")
+    except BaseException:
+        os.close(fd)
+        raise
