@@ -200,3 +200,23 @@ def test_ros2_bag_metadata_swapped_for_a_fifo_is_refused(
     _swap_after_stats(monkeypatch, meta, 1, _to_fifo(meta))
     with pytest.raises(ValueError, match=f"ROS 2 bag metadata {meta} is not a regular file"):
         _unblocked(lambda: bag_topics(folder), meta)
+
+
+@pytest.mark.parametrize("gzipped", [False, True])
+@pytest.mark.parametrize("after", [1, 2])
+def test_carmen_log_swapped_for_a_fifo_after_its_check_is_refused(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, after: int, gzipped: bool
+) -> None:
+    # read_carmen checks the log with exists() then is_file(), and used to open it
+    # by name twice (magic bytes, then the lines): a FIFO put there blocked.
+    import gzip
+
+    from navkit.mapping.io import read_carmen
+
+    log = tmp_path / "log.txt"
+    line = b"FLASER 3 1.0 2.0 5.0 0 0 0 0 0 0 1.0 host 1.0\n"
+    log.write_bytes(gzip.compress(line) if gzipped else line)
+    assert read_carmen(log).scans[0].range_max == 5.0
+    _swap_after_stats(monkeypatch, log, after, _to_fifo(log))
+    with pytest.raises(ValueError, match=f"CARMEN log {log} is not a regular file"):
+        _unblocked(lambda: read_carmen(log), log)

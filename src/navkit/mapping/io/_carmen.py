@@ -3,13 +3,14 @@
 from __future__ import annotations
 
 import gzip
+import io
 import math
 import os
 import zlib
 from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, NamedTuple
+from typing import Any, BinaryIO, NamedTuple
 
 import numpy as np
 
@@ -18,7 +19,7 @@ from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, as_sequence, positive_float
 from navkit.geometry import Pose2D, as_pose, wrap_angle
 from navkit.mapping import LaserScan
-from navkit.mapping.io._paths import as_path
+from navkit.mapping.io._paths import as_path, open_regular
 
 __all__ = ["CarmenLog", "read_carmen"]
 
@@ -173,13 +174,13 @@ def _lines(path: Path) -> Iterator[str]:
 
     A line longer than :data:`LINE_MAX` is given cut to ``LINE_MAX + 1`` characters.
     """
-    with path.open("rb") as fh:
-        magic = fh.read(2)
-    if magic == b"\x1f\x8b":
-        with gzip.open(path, "rt", encoding="ascii", errors="replace") as fh:
-            yield from iter(lambda: fh.readline(LINE_MAX + 1), "")
-    else:
-        with path.open("r", encoding="ascii", errors="replace") as fh:
+    # Opened once and checked on its descriptor: a FIFO swapped in after
+    # read_carmen's check by name is refused instead of read (which blocked for ever).
+    with open_regular(path, "CARMEN log") as raw:
+        gzipped = raw.read(2) == b"\x1f\x8b"
+        raw.seek(0)
+        binary: BinaryIO | gzip.GzipFile = gzip.GzipFile(fileobj=raw, mode="rb") if gzipped else raw
+        with io.TextIOWrapper(binary, encoding="ascii", errors="replace") as fh:
             yield from iter(lambda: fh.readline(LINE_MAX + 1), "")
 
 
