@@ -1240,11 +1240,14 @@ spec(
 )
 spec(
     "navkit.planning.grid.MapPlanner.plan",
+    # The start lies within robot_radius of the obstacle column: the call
+    # escapes (start_tolerance) to the free cell beside it.
     lambda c: method(
-        call(MapPlanner, grid(), robot_radius=0.05),
+        call(MapPlanner, grid(), robot_radius=0.1),
         "plan",
-        A([0.1, 0.2]),
+        A([0.24, 0.2]),
         call(Pose2D, 0.6, 0.5, 1.0),
+        start_tolerance=0.15,
     ),
     kinds={"start": PoseLike("Pose2D"), "goal": PoseLike("Pose2D")},
 )

@@ -7,24 +7,95 @@ writable: a "frozen" record whose arrays can be changed in place. The records'
 again, and their ``__reduce__`` :func:`reduce_record`, which also keeps what a
 subclass adds; ordinary classes with ``__slots__`` use :func:`restore_slots`,
 and :func:`extra_state` for what a subclass adds when they reduce themselves.
+:func:`frozen_setattr` gives a frozen slotted dataclass the ``__setattr__`` and
+``__delattr__`` Python 3.11's dataclass decorator gets wrong for it.
 """
 
 from __future__ import annotations
 
 from collections.abc import Collection, Mapping, Sequence
-from dataclasses import fields
-from typing import Any
+from dataclasses import FrozenInstanceError, fields
+from typing import Any, TypeVar
 
 import numpy as np
 
 __all__ = [
     "extra_state",
+    "frozen_setattr",
     "rebuild_record",
     "reduce_record",
     "restore_read_only",
     "restore_slots",
     "slot_names",
 ]
+
+_T = TypeVar("_T", bound=type)
+
+
+def frozen_setattr(cls: _T) -> _T:
+    """Class decorator (above ``@dataclass(frozen=True, slots=True)``): clear frozen errors.
+
+    ``dataclass(frozen=True, slots=True)`` builds a new class for the slots, but
+    the ``__setattr__`` and ``__delattr__`` it generated still refer to the
+    class it started from, so setting or deleting any name that is not a field
+    -- on the record or on an instance of a subclass -- raised ``TypeError:
+    super(type, obj): obj must be an instance or subtype of type``. These
+    replacements keep the frozen dataclass rules with the right class: on the
+    record itself every name raises :class:`dataclasses.FrozenInstanceError`
+    (an ``AttributeError``) naming the class; on a subclass the record's fields
+    raise it too, and other names are set or deleted as the subclass's own
+    layout allows (its ``__dict__`` or slots; ``AttributeError`` otherwise), as
+    for frozen dataclasses without slots. Construction does not go through
+    them (the generated ``__init__`` uses ``object.__setattr__``).
+
+    Examples
+    --------
+    >>> from dataclasses import dataclass
+    >>> @frozen_setattr
+    ... @dataclass(frozen=True, slots=True)
+    ... class Point:
+    ...     x: float
+    >>> class Tagged(Point):
+    ...     pass
+    >>> Point(1.0).y = 2.0
+    Traceback (most recent call last):
+    ...
+    dataclasses.FrozenInstanceError: cannot set attribute 'y': Point is frozen
+    >>> Tagged(1.0).x = 2.0  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    dataclasses.FrozenInstanceError: cannot assign to field 'x': Point is frozen ...
+    >>> tagged = Tagged(1.0)
+    >>> tagged.note = "kept"
+    >>> tagged.note
+    'kept'
+    """
+    names = frozenset(field.name for field in fields(cls))
+    owner: type[Any] = cls
+
+    def refuse(name: str, verb: str) -> FrozenInstanceError:
+        if name in names:
+            return FrozenInstanceError(
+                f"cannot {verb} field {name!r}: {cls.__name__} is frozen (use dataclasses.replace)"
+            )
+        what = "set" if verb == "assign to" else verb
+        return FrozenInstanceError(f"cannot {what} attribute {name!r}: {cls.__name__} is frozen")
+
+    def __setattr__(self: Any, name: str, value: Any) -> None:
+        if type(self) is owner or name in names:
+            raise refuse(name, "assign to")
+        super(owner, self).__setattr__(name, value)
+
+    def __delattr__(self: Any, name: str) -> None:
+        if type(self) is owner or name in names:
+            raise refuse(name, "delete")
+        super(owner, self).__delattr__(name)
+
+    for function in (__setattr__, __delattr__):
+        function.__qualname__ = f"{cls.__qualname__}.{function.__name__}"
+        function.__module__ = cls.__module__
+        setattr(cls, function.__name__, function)
+    return cls
 
 
 def restore_read_only(record: Any, state: Sequence[Any], arrays: Sequence[str]) -> None:

@@ -10,6 +10,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from navkit._shared.frozen import frozen_setattr
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, as_points, finite_float
 from navkit.geometry._angles import _wrap_float
@@ -17,6 +18,7 @@ from navkit.geometry._angles import _wrap_float
 __all__ = ["Pose2D", "Twist2D", "as_pose", "as_twist"]
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True)
 class Pose2D:
     """A planar pose: position (m) and heading (rad) of a frame in the world.
@@ -260,6 +262,7 @@ class Pose2D:
         return cls(float(arr[0]), float(arr[1]), float(arr[2]))
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True)
 class Twist2D:
     """A planar velocity in the robot (body) frame.

@@ -15,7 +15,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from navkit._shared.frozen import reduce_record, restore_read_only
+from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.products import scaled_product
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array
@@ -229,6 +229,7 @@ def quaternion_to_matrix(quaternion: ArrayLike) -> FloatArray:
     return np.asarray(_matrices(_quaternions(quaternion, "quaternion")), dtype=np.float64)
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True, eq=False)
 class ImuInBase:
     """IMU readings expressed in the robot's base frame (:func:`imu_to_base`).

@@ -11,7 +11,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from navkit._shared.frozen import reduce_record, restore_read_only
+from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array
 from navkit.geometry import Pose2D, as_pose
@@ -82,6 +82,7 @@ def _unknown_covariance() -> FloatArray:
     return _readonly(np.diag(np.full(3, np.inf)))
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True, eq=False)
 class ScanMatchResult:
     """Outcome of :meth:`ScanMatcher.match`.
@@ -211,7 +212,10 @@ class ScanMatcher:
         H  = Σ [∇M(Sᵢ(ξ)) ∂Sᵢ/∂ξ]ᵀ [∇M(Sᵢ(ξ)) ∂Sᵢ/∂ξ].
 
     ``M`` is the occupancy probability interpolated bilinearly between cell
-    centres, and ``∇M`` its **exact** derivative. (Hector SLAM's C++
+    centres, and ``∇M`` its **exact** derivative. (The probability of a cell is
+    computed from its float32 log-odds with a single-precision ``exp``, for
+    speed; that changes ``M`` and ``∇M`` by at most about 2e-8 and matched
+    poses by about 1e-10 m, far below any map's resolution.) (Hector SLAM's C++
     ``interpMapValueWithDerivatives`` swaps the x and y interpolation factors
     in the gradient, a long-standing open bug, so its step direction is not
     the derivative of its own interpolant; navkit's gradient agrees with

@@ -11,6 +11,13 @@ differences by the *row* fraction and along rows the column differences by the
 *column* fraction. (Hector SLAM's ``interpMapValueWithDerivatives`` swaps the
 two factors, so its gradient is not the derivative of its own interpolant.)
 
+``exp`` of the cell's log-odds runs in single precision (numba keeps a float32
+a float32), everything after it in double. This is deliberate: it makes
+:func:`accumulate` about 15-30 % faster, and the error it adds is negligible
+(measured against the same kernels computing ``exp`` in float64: ``M`` and its
+gradient within 2e-8 per cell, and matched poses of 360-beam scans on a
+5 cm office map within 1e-10 m and 3e-11 rad, with the same iteration counts).
+
 * :func:`interpolate_batch`: ``M``, ``∂M/∂row``, ``∂M/∂col`` at many points
   (used by the tests to check the gradient against finite differences);
 * :func:`accumulate`: the Gauss–Newton sums ``H = Σ JᵀJ`` and ``g = Σ Jᵀ(1 - M)``
@@ -66,8 +73,9 @@ _HALVINGS = 4
 def _probability(logodds: np.ndarray, r: int, c: int, floor: float) -> float:
     # numba's float() keeps a float32 a float32, so exp runs in single precision:
     # M within about 1e-8 of the float64 formula, and accumulate 15-30 % faster
-    # than with np.float64() here (measured); the gradient is still the exact
-    # derivative of the interpolant of these p.
+    # than with np.float64() here (measured; see the module docstring for the
+    # effect on matched poses); the gradient is still the exact derivative of
+    # the interpolant of these p.
     p = 1.0 / (1.0 + math.exp(-float(logodds[r, c])))
     # max(p, floor), without numba compiling max() for it on first use.
     return floor if floor > p else p

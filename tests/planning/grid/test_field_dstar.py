@@ -803,11 +803,10 @@ def test_plan_cells_runs_centre_to_centre_legally() -> None:
     assert path.length == pytest.approx(
         float(np.hypot(*np.diff(path.points, axis=0).T).sum()), rel=1e-12
     )
-    # The link corners (5, 1) and (5, 9) (nearest the other centre, ties to the
-    # lowest) are level with the wall's middle, and the node path between them
-    # goes over its upper end; smoothed, the path is taut over the corners
-    # (2, 4) and (2, 5) from centre to centre.
-    taut = math.hypot(5.5 - 2, 4 - 0.5) + 1 + math.hypot(5.5 - 2, 9.5 - 5)
+    # The link corners are chosen by cost: the path goes under the wall's lower
+    # end, taut over the corners (8, 4) and (8, 5) from centre to centre (over
+    # the upper end, the old position rule's choice, it costs 11.65).
+    taut = math.hypot(8 - 5.5, 4 - 0.5) + 1 + math.hypot(8 - 5.5, 9.5 - 5)
     assert path.cost == pytest.approx(taut, rel=1e-9)
     same = planner.plan_cells((3, 3), (3, 3))
     assert same.points.tolist() == [[3.0, 3.0]]

@@ -4,6 +4,7 @@ arguments, and the documented bounds of smoothing and of ``Path2D.cells``."""
 from __future__ import annotations
 
 import copy
+import math
 import sys
 import threading
 
@@ -149,7 +150,8 @@ def test_path_cost_limit_error_prints_the_cost_exactly() -> None:
     text = str(info.value)
     assert text.startswith("costs: the least cost from start_cell (0, 0) to goal_cell (0, 4999) ")
     cost = float(text.split(" is ", 1)[1].split(" ", 1)[0])
-    assert cost == pytest.approx(4998 * 1e12, rel=1e-9)  # from corner (0, 1) to (0, 4999)
+    # From corner (0, 1) to the goal cell's centre.
+    assert cost == pytest.approx((4998 + math.hypot(0.5, 0.5)) * 1e12, rel=1e-9)
 
 
 # --- documented bounds ---------------------------------------------------------------

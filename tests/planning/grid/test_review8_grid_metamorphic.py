@@ -400,8 +400,8 @@ def test_map_planner_paths_move_with_the_map(
     if planner == "astar":
         # The same world stored as a quarter-turned array with a quarter-turned
         # origin: the same cells, so A* finds the same least cost. (Field D*'s
-        # plan_cells picks its link corners by position, with ties, so its
-        # cost may change; see FieldDStar.plan_cells.)
+        # greedy shortcut pass may end a turned path elsewhere, so its cost
+        # may change; see FieldDStar's Notes.)
         turned = make(
             resolution, (cols * resolution, 0.0, math.pi / 2),
             np.ascontiguousarray(occupied[:, ::-1].T), np.ascontiguousarray(unknown[:, ::-1].T),

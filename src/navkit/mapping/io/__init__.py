@@ -18,10 +18,14 @@ to read its ``OSError`` (e.g. ``PermissionError``); a non-PGM image without
 Pillow ``ImportError``. Image sizes are checked from the header before
 decoding; a map's YAML and image are checked to be regular files on the
 descriptor they are then read from. Saving is atomic and never writes over the
-map's image or another image file. ROS bags are read with ``rosbags``: ROS 2
-bags compressed with zstd are decompressed by it with no bound on their size (a
-``file``-mode bag whole into a temporary folder), so read those only from a
-trusted source.
+map's image or another image file. ROS bags are read with ``rosbags``, through
+paths whose opens check on the descriptor that a ROS 1 bag, a ROS 2 bag's
+``metadata.yaml`` and its MCAP files are regular files (a FIFO put in their
+place is refused, never read); a ROS 2 bag's SQLite files are opened by SQLite
+by name, so a FIFO swapped in for one while it is being opened would block the
+read. ROS 2 bags compressed with zstd are decompressed by rosbags with no bound
+on their size (a ``file``-mode bag whole into a temporary folder), so read those
+only from a trusted source.
 
 Examples
 --------

@@ -14,12 +14,22 @@ are decompressed by ``rosbags`` with no bound on what comes out: in ``file``
 mode every storage file into a temporary folder when the bag is opened, in
 ``message`` mode one message at a time in memory. Read such bags only from a
 source you trust, or decompress them first (``ros2 bag convert``).
+
+Files are read only if they are regular files, checked on the descriptor each
+is read from (not by name before an open by name): navkit reads the ROS 1 bag
+itself that way, and hands rosbags a path (:class:`_CheckedPath`) whose opens
+do the same, for the ROS 1 bag, a ROS 2 bag's ``metadata.yaml`` and its MCAP
+storage files. A FIFO put in their place is refused with a ``ValueError``,
+never read (it would block for ever). One limit remains: rosbags has SQLite
+open a ROS 2 bag's ``.db3`` files by name, so a FIFO swapped in for one between
+rosbags' check and SQLite's open would block the read.
 """
 
 from __future__ import annotations
 
 import bz2
 import importlib
+import io
 import os
 import struct
 from collections.abc import Callable, Iterable, Iterator
@@ -27,12 +37,12 @@ from contextlib import contextmanager, suppress
 from dataclasses import dataclass
 from functools import partial
 from pathlib import Path
-from typing import Any, NamedTuple, TypeVar
+from typing import TYPE_CHECKING, Any, NamedTuple, TypeVar
 
 import numpy as np
 from numpy.typing import ArrayLike
 
-from navkit._shared.frozen import reduce_record, restore_read_only
+from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, as_sequence
 from navkit.geometry import imu_to_base, quaternion_to_matrix, quaternion_to_yaw, wrap_angle
@@ -113,6 +123,7 @@ _ODOMETRY_ARRAYS = ("times", "record_times", *_ODOMETRY_SHAPES)
 _IMU_ARRAYS = ("times", "record_times", *_IMU_SHAPES)
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True, eq=False)
 class BagScans:
     """``sensor_msgs/LaserScan`` messages of one bag topic (:func:`read_bag_scans`).
@@ -171,6 +182,7 @@ class BagScans:
         return int(self.times.shape[0])
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True, eq=False)
 class BagOdometry:
     """``nav_msgs/Odometry`` messages of one bag topic (:func:`read_bag_odometry`).
@@ -244,6 +256,7 @@ class BagOdometry:
         return int(self.times.shape[0])
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True, eq=False)
 class BagImu:
     """``sensor_msgs/Imu`` messages of one bag topic (:func:`read_bag_imu`).
@@ -414,6 +427,49 @@ class _Bag(NamedTuple):
 _T = TypeVar("_T")
 
 
+if TYPE_CHECKING:
+    _ConcretePath = Path
+else:  # PosixPath or WindowsPath: Python 3.11's Path itself cannot be subclassed
+    _ConcretePath = type(Path())
+
+
+class _CheckedPath(_ConcretePath):
+    """A path whose files rosbags can open only as regular files, checked on the descriptor.
+
+    rosbags opens what it reads by name, after navkit's own checks: a ROS 1 bag
+    and a ROS 2 bag's storage files with ``path.open("rb")``, a ROS 2 bag's
+    ``metadata.yaml`` with ``read_text()``. Handed this path (rosbags reads
+    through any object of its ``RPath`` protocol; paths made from it with
+    ``/`` are of this class too), every such read opens the file with
+    :func:`open_regular`: a FIFO, a device or a folder put in place of a file
+    after navkit's checks is refused instead of blocking the read, and
+    ``read_text`` reads at most :data:`METADATA_MAX` bytes. Opens for writing
+    are left to :class:`~pathlib.Path`.
+    """
+
+    def open(
+        self,
+        mode: str = "r",
+        buffering: int = -1,
+        encoding: str | None = None,
+        errors: str | None = None,
+        newline: str | None = None,
+    ) -> Any:
+        if set(mode) & set("wax+"):
+            return super().open(mode, buffering, encoding, errors, newline)
+        fh = open_regular(Path(self), "ROS bag file")
+        if "b" in mode:
+            return fh
+        return io.TextIOWrapper(fh, encoding=encoding, errors=errors, newline=newline)
+
+    def read_text(self, encoding: str | None = None, errors: str | None = None) -> str:
+        with open_regular(Path(self), "ROS bag file") as fh:
+            data = fh.read(METADATA_MAX + 1)
+        if len(data) > METADATA_MAX:
+            raise ValueError(f"{self}: larger than {METADATA_MAX} bytes")
+        return data.decode(encoding or "utf-8", errors or "strict")
+
+
 def _check_path(path: Any) -> Path:
     bag_path = as_path(path, "path")
     if not bag_path.exists():
@@ -497,7 +553,7 @@ def _with_bag(bag_path: Path, use: Callable[[_Bag], _T]) -> _T:
             raise ValueError(f"{bag_path} is a folder without metadata.yaml, not a ROS 2 bag")
         _check_metadata(bag_path / "metadata.yaml")
         try:
-            with _opened(rosbag2.Reader, bag_path) as reader:
+            with _opened(rosbag2.Reader, _CheckedPath(bag_path)) as reader:
 
                 def messages2(topic: str, msgtype: str) -> Iterator[tuple[int, bytes]]:
                     # Never empty (the stream was chosen from the counts): rosbags
@@ -510,7 +566,7 @@ def _with_bag(bag_path: Path, use: Callable[[_Bag], _T]) -> _T:
             raise ValueError(f"{bag_path}: cannot read the ROS 2 bag: {exc}") from None
     if not bag_path.is_file():
         raise ValueError(f"{bag_path} is neither a ROS 1 bag file nor a ROS 2 bag folder")
-    with bag_path.open("rb") as fh:
+    with open_regular(bag_path, "ROS bag") as fh:
         magic = fh.read(len(_ROS1_MAGIC))
     if magic != _ROS1_MAGIC:
         raise ValueError(
@@ -518,7 +574,7 @@ def _with_bag(bag_path: Path, use: Callable[[_Bag], _T]) -> _T:
             "from its folder"
         )
     try:
-        with _opened(rosbag1.Reader, bag_path) as reader:
+        with _opened(rosbag1.Reader, _CheckedPath(bag_path)) as reader:
             _bound_chunks(reader, bag_path)
 
             def messages1(topic: str, msgtype: str) -> Iterator[tuple[int, bytes]]:
@@ -599,7 +655,7 @@ def _bound_chunks(reader: Any, bag_path: Path) -> None:
     chunks = getattr(reader, "chunks", None)
     if not isinstance(chunks, dict):
         return
-    with bag_path.open("rb") as fh:
+    with open_regular(bag_path, "ROS bag") as fh:
         for chunk_pos, chunk in list(chunks.items()):
             if not hasattr(chunk, "_replace") or not hasattr(chunk, "decompressor"):
                 return
@@ -690,7 +746,8 @@ def _op(fields: dict[str, bytes]) -> int:
 def _walk_ros1(bag_path: Path) -> _Bag:
     """Read a ROS 1 bag through its connection and chunk-info records (the chunks' own indexes
     are not used)."""
-    data = bag_path.read_bytes()
+    with open_regular(bag_path, "ROS bag") as fh:
+        data = fh.read()
     header, _, _ = _record(data, len(_ROS1_MAGIC))
     if _op(header) != 3:
         raise _Corrupt("no bag header record")

@@ -14,7 +14,7 @@ from typing import Any, BinaryIO, NamedTuple
 
 import numpy as np
 
-from navkit._shared.frozen import reduce_record, restore_read_only
+from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, as_sequence, positive_float
 from navkit.geometry import Pose2D, as_pose, wrap_angle
@@ -58,6 +58,7 @@ def _guess_increment(n: int) -> float:
     return _guess_fov(n) / (n - 1) if n > 1 else math.pi
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True, eq=False)
 class CarmenLog:
     """Laser scans of a CARMEN log with their poses and timestamps.

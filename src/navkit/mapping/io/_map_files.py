@@ -32,6 +32,7 @@ import yaml
 from numpy.typing import NDArray
 
 from navkit._shared.files import atomic_paths
+from navkit._shared.frozen import frozen_setattr
 from navkit.geometry import Pose2D
 from navkit.mapping import OccupancyGrid
 from navkit.mapping.io._paths import as_path, open_regular
@@ -128,6 +129,7 @@ _Loader.add_constructor("tag:yaml.org,2002:int", _Loader.construct_yaml_int)
 _Loader.add_constructor("tag:yaml.org,2002:float", _Loader.construct_yaml_float)
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True)
 class MapMetadata:
     """Content of a map_server YAML file (``image`` resolved against the YAML's folder).
@@ -558,6 +560,86 @@ def _pillow_errors(path: Path, image_module: Any) -> Iterator[None]:
         raise ValueError(f"{path}: cannot read the image ({type(exc).__name__}: {exc})") from None
 
 
+#: Pillow's raw modes of PNGs with 16 bits per colour channel (its "RGB" and
+#: "RGBA" images keep only the high byte of each sample), and the raw mode that
+#: decodes the same bytes with the same bits per pixel into the low bytes (a
+#: little-endian 16-bit mode keeps the second byte of each big-endian sample)
+#: or, for grey + alpha, into all four bytes ``[Lhi, Llo, Ahi, Alo]``.
+_DEEP_PNG_LOW = {"RGB;16B": "RGB;16L", "RGBA;16B": "RGBA;16L", "LA;16B": "RGBA"}
+#: A raw mode with 16 bits per sample (not BMP's 16 bits per pixel "BGR;16").
+_DEEP_RAWMODE = re.compile(r";16[BLN]$")
+
+
+def _rawmodes(img: Any) -> list[str]:
+    """The raw modes of the tiles Pillow will decode ``img`` with."""
+    modes = []
+    for tile in getattr(img, "tile", None) or ():
+        args = tile[3] if len(tile) > 3 else None
+        rawmode = args[0] if isinstance(args, tuple) and args else args
+        if isinstance(rawmode, str):
+            modes.append(rawmode)
+    return modes
+
+
+def _deep_low_rawmode(img: Any, path: Path) -> str | None:
+    """None for 8-bit colour, else the raw mode giving a 16-bit-colour PNG's other bytes.
+
+    Pillow reads samples of 16 bits per colour channel to 8 bits (the high
+    byte) while Nav2's map_server averages the full-depth channels
+    (GraphicsMagick), so such images are either read whole
+    (:func:`_deep_colour`: PNG) or refused here, never truncated.
+    """
+    rawmodes = _rawmodes(img)
+    if img.mode.startswith("I") or not any(_DEEP_RAWMODE.search(m) for m in rawmodes):
+        return None
+    low = _DEEP_PNG_LOW.get(rawmodes[0]) if img.format == "PNG" and len(rawmodes) == 1 else None
+    if low is None:
+        raise ValueError(
+            f"{path}: a {img.format} image with 16 bits per colour channel "
+            f"(raw mode {', '.join(rawmodes)}), which Pillow reads only to 8 bits; save "
+            "it with 8 bits per channel, as 16-bit greyscale, or as PGM"
+        )
+    return low
+
+
+def _deep_colour(
+    img: Any, low: str, fh: BinaryIO, path: Path, image_module: Any
+) -> tuple[NDArray[np.float64], NDArray[np.float64] | None]:
+    """Grey and alpha (0..255, or None) of a PNG with 16 bits per colour channel.
+
+    The image is decoded twice: as Pillow decodes it (the high bytes), then
+    with the raw mode ``low`` (:data:`_DEEP_PNG_LOW`) on the same tile, which
+    yields the low bytes.
+    """
+    rawmode = _rawmodes(img)[0]
+    transparent = img.info.get("transparency")
+    first = img.tile[0]
+    high = None if rawmode == "LA;16B" else np.asarray(img).astype(np.uint16)
+    fh.seek(0)
+    with image_module.open(fh) as again:
+        tile = again.tile[0]
+        if tuple(tile[:4]) != tuple(first[:4]) or again.size != img.size:
+            raise ValueError("the file changed while it was read")
+        again.tile = [(tile[0], tile[1], tile[2], low)]
+        second = np.asarray(again).astype(np.uint16)
+    if high is None:  # LA: the four bytes of each pixel, [Lhi, Llo, Ahi, Alo]
+        colour = (second[..., 0] << 8 | second[..., 1])[..., np.newaxis]
+        alpha16: NDArray[Any] | None = second[..., 2] << 8 | second[..., 3]
+    else:
+        samples = high << 8 | second
+        colour = samples[..., :3]
+        alpha16 = samples[..., 3] if rawmode == "RGBA;16B" else None
+    # x / 257 maps 0..65535 onto 0..255, exactly at both ends (65535 / 257 = 255).
+    grey = colour.astype(np.float64).mean(axis=2) / 257.0
+    if alpha16 is not None:
+        return grey, alpha16.astype(np.float64) / 257.0
+    if isinstance(transparent, tuple) and len(transparent) == 3:
+        # A transparent colour (PNG tRNS, of 16-bit samples here) is an alpha channel.
+        hit = np.all(colour == np.asarray(transparent, dtype=np.uint16), axis=2)
+        return grey, np.where(hit, 0.0, 255.0)
+    return grey, None
+
+
 def _read_with_pillow(
     fh: BinaryIO, path: Path
 ) -> tuple[NDArray[np.float64], NDArray[np.float64] | None]:
@@ -568,6 +650,10 @@ def _read_with_pillow(
     with img:
         width, height = img.size
         _check_image_size(width, height, path)
+        low = _deep_low_rawmode(img, path)
+        if low is not None:
+            with _pillow_errors(path, Image):
+                return _deep_colour(img, low, fh, path, Image)
         with _pillow_errors(path, Image):
             picture: Any = img
             native = picture.mode in ("L", "LA", "RGB", "RGBA", "P", "1")
@@ -609,7 +695,10 @@ def _read_with_pillow(
 def read_image(path: Path) -> tuple[NDArray[np.float64], NDArray[np.float64] | None]:
     """Grey levels 0..255 (averaged over colour channels) and alpha (or None) of an image.
 
-    PGM files are read with numpy; anything else needs Pillow.
+    PGM files are read with numpy; anything else needs Pillow. 16-bit samples
+    are scaled from 0..65535 (PNGs with 16-bit colour channels at full depth,
+    not Pillow's 8-bit truncation); a ValueError naming the file refuses other
+    images with 16-bit colour channels.
 
     Examples
     --------
@@ -697,7 +786,10 @@ def read_map(path: str | os.PathLike[str]) -> OccupancyGrid:
     YAML's thresholds become the grid's thresholds, so the views reproduce
     map_server's trinary classification. Unknown pixels become p = 0.5
     (log-odds 0), or the middle of the unknown band when the thresholds do not
-    class 0.5 as unknown. 16-bit images span 0..65535.
+    class 0.5 as unknown. 16-bit images span 0..65535: 16-bit grey, and PNGs
+    with 16 bits per colour channel (RGB, grey + alpha, RGBA), are read at full
+    depth, as Nav2's map_server reads them; other images with 16-bit colour
+    channels (e.g. TIFF), which Pillow would truncate to 8 bits, are refused.
 
     Parameters
     ----------
@@ -724,10 +816,11 @@ def read_map(path: str | os.PathLike[str]) -> OccupancyGrid:
         is not a small UTF-8 map YAML (an image passed instead, binary data),
         missing or invalid keys (see :func:`read_map_yaml` for the ranges),
         an image that is garbage, truncated, not an image (the YAML itself, a
-        text file), a directory, a FIFO or a device (checked on the descriptor
-        the file is then read from), or larger than ``OccupancyGrid.MAX_CELLS``
-        (``2**28``) pixels (checked from its header before decoding; images
-        read with Pillow also against Pillow's decompression-bomb limit).
+        text file), a non-PNG image with 16-bit colour channels, a directory,
+        a FIFO or a device (checked on the descriptor the file is then read
+        from), or larger than ``OccupancyGrid.MAX_CELLS`` (``2**28``) pixels
+        (checked from its header before decoding; images read with Pillow
+        also against Pillow's decompression-bomb limit).
     ImportError
         A non-PGM image and Pillow is not installed.
     OSError

@@ -14,7 +14,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
-from navkit._shared.frozen import reduce_record, restore_read_only
+from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.validation import as_bool, finite_float
 from navkit.geometry import Pose2D, quaternion_to_yaw
 from navkit.mapping import LaserScan, OccupancyGrid
@@ -75,6 +75,7 @@ def _occupancy_values(raw: Any, name: str) -> NDArray[np.int64]:
     return arr.astype(np.int64)
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True, eq=False)
 class OccupancyGridMsgFields:
     """Values for the fields of a ``nav_msgs/OccupancyGrid`` message.

@@ -57,8 +57,16 @@ pos, size`` being the indexed heap of :mod:`navkit.planning.grid._dstar_heap`,
 ``changed`` the int64 list of cells changed since the last search: their
 count, then their padded flat indices, written by ``FieldDStar.update_costs``)
 and its scalars as
-``prm = (width, nrows, ncols, start_row, start_col, goal, km, interp, hscale)``;
-both are built by :func:`state` and :func:`params`.
+``prm = (width, nrows, ncols, start_row, start_col, goal, km, interp, hscale,
+walk, goal_cell)``; both are built by :func:`state` and :func:`params`.
+``(start_row, start_col)`` is the start of the heuristic; ``walk`` the node
+where the path extraction starts, or -1 for the corner of least value of the
+cell ``(start_row, start_col)`` (whose top-left corner is that node).
+``goal`` is the goal node, or -1 when the goal is a cell: then ``goal_cell``
+is the node of the cell's top-left corner (else -1), and each of the cell's
+four corners is a source valued at the cost of the segment from the cell's
+centre to it (a virtual goal at the centre linked to all four corners): its
+``rhs`` is the least of that and :func:`node_rhs`.
 """
 
 from __future__ import annotations
@@ -78,6 +86,8 @@ from navkit.planning.grid._dstar_heap import (
 SQRT2 = math.sqrt(2.0)
 FIELD_HSCALE = 1.0 / SQRT2
 OCT = SQRT2 - 1.0
+# Distance from a cell's centre to each of its corners.
+HALF_DIAGONAL = math.hypot(0.5, 0.5)
 # Least cost above g(u) of any option through an axis neighbour u (cell costs >= 1).
 _AXIS_GAIN = 1.0 / SQRT2
 
@@ -155,6 +165,8 @@ def params(
     km: float,
     interp: bool,
     hscale: float,
+    walk: int,
+    goal_cell: int,
 ) -> tuple[Any, ...]:
     """The ``prm`` tuple of the search kernels (types fixed so numba compiles once)."""
     return (
@@ -167,6 +179,8 @@ def params(
         float(km),
         bool(interp),
         float(hscale),
+        int(walk),
+        int(goal_cell),
     )
 
 
@@ -344,7 +358,14 @@ def settle(
     kernels, so its body is compiled once.
     """
     pad, g, rhs, nodes, keys, pos, size, work, changed = st
-    width, nrows, ncols, sr, sc, goal, km, interp, hscale = prm
+    width, nrows, ncols, sr, sc, goal, km, interp, hscale, _, goal_cell = prm
+    # Source value of the goal cell's corners (rows gi..gi+1, columns gj..gj+1), or
+    # inf without a goal cell: written out here, as a helper function compiled more.
+    seed = np.inf
+    gi = goal_cell // ncols
+    gj = goal_cell - gi * ncols
+    if goal_cell >= 0:
+        seed = pad[(gi + 1) * width + gj + 1] * HALF_DIAGONAL
     n_changed = changed[0]
     if n_changed > 0:
         # Cells changed since the last search (listed by update_costs): rhs of a node depends
@@ -360,7 +381,10 @@ def settle(
                     j = cell_j + dj
                     s = i * ncols + j
                     if s != goal:
-                        rhs[s] = node_rhs(pad, width, g, ncols, i, j, interp)
+                        v = node_rhs(pad, width, g, ncols, i, j, interp)
+                        if seed < v and gi <= i <= gi + 1 and gj <= j <= gj + 1:
+                            v = seed
+                        rhs[s] = v
                         update_vertex(s, i, j, g, rhs, nodes, keys, pos, size, sr, sc, km, hscale)
     ti = target // ncols
     th = heuristic(sr, sc, ti, target - ti * ncols, hscale)
@@ -432,6 +456,10 @@ def settle(
                     continue
             else:
                 v = node_rhs(pad, width, g, ncols, si, sj, interp)
+                # A goal cell's corner keeps its source value (a lowered u only
+                # lowers rhs: the least of the two stays).
+                if seed < v and gi <= si <= gi + 1 and gj <= sj <= gj + 1:
+                    v = seed
             rhs[s] = v
             gs = g[s]
             if lowered and gs != v:

@@ -358,6 +358,14 @@ def extract_path(
 ) -> tuple[int, int]:
     """Settle the start and follow the cost field from it to the goal.
 
+    The walk starts at node ``walk`` (``prm[9]``) or, when that is -1, at the
+    corner of least value of the start cell (the cell whose top-left corner is
+    the heuristic's start; ties: the first of (0, 0), (0, 1), (1, 0), (1, 1)),
+    all four settled first. It ends at the goal node or, with a goal cell
+    (``prm[10]``), at the first point on the goal cell's boundary (where
+    every value is the corners' source value: the rest of the way is the
+    straight segment to the centre, inside the cell).
+
     Interpolated mode: at each point take the candidate of :func:`_candidates`
     minimising (cost to q) + (cost-to-goal at q), where with ``lookahead`` the
     cost-to-goal of a q inside an edge is not its linear interpolation but the
@@ -388,13 +396,22 @@ def extract_path(
     """
     g = st[1]
     work = st[7]
-    ncols, sr, sc, goal, interp = prm[2], prm[3], prm[4], prm[5], prm[7]
-    start = sr * ncols + sc
+    ncols, sr, sc, interp, start, goal_cell = prm[2], prm[3], prm[4], prm[7], prm[9], prm[10]
+    # The walk ends in the box [gi, gi_hi] x [gj, gj_hi]: the goal node, or the
+    # boundary of the goal cell (points of the walk lie on grid lines).
+    goal = prm[5] if goal_cell < 0 else goal_cell
     gi = goal // ncols
     gj = goal - gi * ncols
+    gi_hi = gi if goal_cell < 0 else gi + 1
+    gj_hi = gj if goal_cell < 0 else gj + 1
+    # Start-cell corners still to settle before the walk picks its start (-1: none).
+    corner = -1
+    if start < 0:
+        corner = 0
+        start = sr * ncols + sc
     capacity = pts.shape[0]
-    pr = float(sr)
-    pc = float(sc)
+    pr = 0.0
+    pc = 0.0
     cur = np.inf
     # Value at the last node the walk passed (the start, at first).
     node_v = np.inf
@@ -411,14 +428,26 @@ def extract_path(
             if work[0] > work[1]:
                 return k, ABORTED
             if k == 0:
+                if corner >= 0:
+                    if corner < 3:
+                        corner += 1
+                        need[0] = (sr + (corner >> 1)) * ncols + sc + (corner & 1)
+                        continue
+                    corner = -1
+                    for q in range(4):
+                        s = (sr + (q >> 1)) * ncols + sc + (q & 1)
+                        if g[s] < g[start]:
+                            start = s
                 if g[start] == np.inf:
                     return 0, NO_PATH
                 cur = g[start]
                 node_v = cur
-                pts[0, 0] = sr
-                pts[0, 1] = sc
+                pr = float(start // ncols)
+                pc = float(start - (start // ncols) * ncols)
+                pts[0, 0] = pr
+                pts[0, 1] = pc
                 k = 1
-        if pr == gi and pc == gj:
+        if gi <= pr <= gi_hi and gj <= pc <= gj_hi:
             return k, OK
         if steps >= max_steps:
             return k, STUCK

@@ -4,20 +4,26 @@ from __future__ import annotations
 
 import copy
 import math
-from typing import Any, Literal, Protocol
+from collections.abc import Iterator
+from typing import Any, Literal, NamedTuple, Protocol
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from navkit._shared.frozen import restore_slots
-from navkit._shared.types import FloatArray
+from navkit._shared.types import BoolArray, FloatArray, IntArray
 from navkit._shared.validation import as_bool, as_float_array
 from navkit.errors import NoPathError
 from navkit.geometry import Pose2D, as_pose
 from navkit.mapping import OccupancyGrid
 from navkit.planning.grid._astar import AStarPlanner
 from navkit.planning.grid._field_dstar import FieldDStar
-from navkit.planning.grid._limits import RADIUS_LIMIT, bounded_float, checked_costs
+from navkit.planning.grid._limits import (
+    COORDINATE_LIMIT,
+    RADIUS_LIMIT,
+    bounded_float,
+    checked_costs,
+)
 from navkit.planning.grid._path import Path2D
 
 __all__ = ["CellPlanner", "MapPlanner", "plan_path"]
@@ -57,6 +63,16 @@ class CellPlanner(Protocol):
 
 
 _BUILT_IN = ("astar", "field_dstar")
+
+# Cost per cell of length that an escape segment pays in cells impassable only
+# through the inflation: the finite limit of the band's cost next to the
+# inscribed zone, ``1 + cost_weight`` with the cost_weight (4) MapPlanner builds
+# its costs with (navkit.mapping.traversal_costs).
+_BAND_COST = 5.0
+# An escape segment passing within this many cells of a blocked cell's square
+# counts as crossing it: a segment grazing a wall's corner is refused, never let
+# through by a rounding error.
+_GRAZE = 1e-9
 
 
 class MapPlanner:
@@ -278,7 +294,13 @@ class MapPlanner:
             f"planner={self._planner!r})"
         )
 
-    def plan(self, start: Pose2D | ArrayLike, goal: Pose2D | ArrayLike) -> Path2D:
+    def plan(
+        self,
+        start: Pose2D | ArrayLike,
+        goal: Pose2D | ArrayLike,
+        *,
+        start_tolerance: float = 0.0,
+    ) -> Path2D:
         """Collision-free path between two world points.
 
         Parameters
@@ -286,6 +308,26 @@ class MapPlanner:
         start, goal : Pose2D or array_like, shape (2,) or (3,)
             World points ``(x, y)`` in m; a :class:`~navkit.geometry.Pose2D` or
             ``(x, y, theta)`` gives its position (the heading is ignored).
+        start_tolerance : float, default 0.0
+            Distance in m, in ``[0, 1e9]`` (keyword-only), within which the
+            planner may escape from a start that is impassable only through
+            the inflation, i.e. whose cell is neither occupied nor unknown
+            space with ``unknown_cost=inf`` but lies within ``robot_radius``
+            of such a cell: a robot whose state estimate drifted into the
+            inflated band around a wall. Then the path begins at the ``start``
+            point itself, goes straight to the centre of the nearest passable
+            cell (the escape cell: least distance from ``start`` to its
+            centre, at most ``start_tolerance``; ties, equal distances in the
+            grid's float64 continuous coordinates, to the lowest
+            ``(row, col)``) and follows the path planned from that cell. Only
+            cells whose straight segment from ``start`` crosses no occupied
+            cell and no impassable unknown cell qualify (a segment touching
+            such a cell's square, a corner included, crosses it); it may cross
+            the inflated band. ``0`` (the default) never escapes: such a start
+            is refused, as are starts in an obstacle, in impassable unknown
+            space or outside the map, whatever the tolerance. ROS's navfn and
+            global_planner clear the robot's own cell before planning for the
+            same reason; Nav2's planners have a goal ``tolerance`` only.
 
         Returns
         -------
@@ -294,21 +336,39 @@ class MapPlanner:
             ``start`` to the centre of the cell containing ``goal`` (for
             ``"astar"`` through cell centres); cost in cost-weighted metres (the
             planner's cost × the resolution, equal to the length in free
-            space), length in m, expansions.
+            space), length in m, expansions. After an escape, the points are
+            ``start``, then the planned path from the escape cell's centre;
+            ``length`` is the polyline's, escape segment included; ``cost`` is
+            the planned path's plus the escape segment's, the integral of the
+            cost along it: for each cell it crosses, the length inside the
+            cell (m) × the cell's cost, an impassable (band) cell counting
+            5 (``1 + cost_weight``, the band's cost next to the inscribed
+            zone); ``expanded`` is the search's.
 
         Raises
         ------
         ValueError
-            ``start`` or ``goal`` outside the map, or on an impassable cell: the
-            message says whether it is in an obstacle, within ``robot_radius``
-            of one, in unknown space (with ``unknown_cost=inf``) or within
-            ``robot_radius`` of unknown space (with ``inflate_unknown``).
+            ``start`` or ``goal`` outside the map, or on an impassable cell
+            (``start`` in the inflation only with no escape within
+            ``start_tolerance``): the message says whether it is in an
+            obstacle, within ``robot_radius`` of one, in unknown space (with
+            ``unknown_cost=inf``) or within ``robot_radius`` of unknown space
+            (with ``inflate_unknown``); ``start_tolerance`` negative, not
+            finite or above 1e9.
         TypeError
-            ``start`` or ``goal`` is not a point or pose.
+            ``start`` or ``goal`` is not a point or pose; ``start_tolerance``
+            not a real number (or a bool).
         navkit.NoPathError
-            No collision-free path exists.
+            No collision-free path exists (from the escape cell, after an
+            escape).
         """
-        start_cell = self._endpoint_cell(start, "start")
+        tolerance = bounded_float(start_tolerance, "start_tolerance", 0.0, COORDINATE_LIMIT, "m")
+        escape: _Escape | None = None
+        start_xy = _point_xy(start, "start")
+        start_cell = self._point_cell(start_xy, "start")
+        if not math.isfinite(self._costs[start_cell]):
+            escape = self._escape(start_xy, start_cell, tolerance)
+            start_cell = escape.cell
         goal_cell = self._endpoint_cell(goal, "goal")
         prepared = self._prepared
         try:
@@ -321,9 +381,10 @@ class MapPlanner:
                 path = self._planner(self._costs, start_cell, goal_cell)
         except NoPathError as exc:
             # The cell planner names the cells it was given; the caller gave points.
+            escaped = "" if escape is None else f", escaped to cell {start_cell},"
             raise NoPathError(
-                f"no collision-free path from {self._end_text(start, start_cell, 'start')} "
-                f"to {self._end_text(goal, goal_cell, 'goal')}",
+                f"no collision-free path from {self._end_text(start, start_cell, 'start')}"
+                f"{escaped} to {self._end_text(goal, goal_cell, 'goal')}",
                 expanded=exc.expanded,
             ) from exc
         if not isinstance(path, Path2D) or path.frame != "grid":
@@ -332,21 +393,139 @@ class MapPlanner:
             )
         grid = self._grid
         points = np.asarray(grid.cell_to_world(path.points), dtype=np.float64).reshape(-1, 2)
+        cost = path.cost * grid.resolution
+        if escape is not None:
+            points = np.concatenate((escape.point[None, :], points))
+            cost += escape.cost * grid.resolution
         length = float(np.hypot(*np.diff(points, axis=0).T).sum())
         return Path2D(
-            points, "world", cost=path.cost * grid.resolution, length=length,
+            points, "world", cost=cost, length=length,
             expanded=path.expanded,
         )
 
+    def _escape(self, point: FloatArray, start: tuple[int, int], tolerance: float) -> _Escape:
+        """The escape from the impassable start cell ``start``, or the refusal.
+
+        Candidates: the passable cells whose centre lies within ``tolerance``
+        of the start point, in the start's 4-connected component of cells
+        that are not hard-blocked (occupied, or unknown with
+        ``unknown_cost=inf``) in a window around the disc: a segment crossing
+        no hard-blocked square crosses a 4-connected chain of such cells, so
+        the labelling only drops cells no segment could reach (a start in a
+        sealed pocket is refused without testing every cell beyond its
+        walls). They are tried nearest first. The reason of a refusal is
+        worked out only then (:meth:`_blocked_reason` may rebuild the costs).
+        """
+        where = f"start {tuple(point.tolist())} (cell {start})"
+        if tolerance == 0.0:
+            reason = self._blocked_reason(*start)
+            hint = (
+                "; pass start_tolerance > 0 to escape to the nearest passable cell"
+                if reason.startswith("is within robot_radius")
+                else ""
+            )
+            raise ValueError(f"{where} {reason}{hint}")
+        q_row, q_col = (
+            float(v)
+            for v in np.asarray(
+                self._grid.world_to_cell(point, continuous=True), dtype=np.float64
+            ).reshape(2)
+        )
+        snapshot = self._snapshot
+        hard = snapshot.occupied()
+        if math.isinf(self._unknown_cost):
+            hard |= snapshot.unknown()
+        if hard[start]:
+            # In an obstacle or in impassable unknown space: never escaped.
+            raise ValueError(f"{where} {self._blocked_reason(*start)}")
+        total = tolerance / self._grid.resolution
+        # A disc this large holds the whole map.
+        whole = math.hypot(*self._costs.shape) + 2.0
+        # Growing discs: the first escape is usually within a few cells, and a
+        # disc of radius ``reach`` holds every candidate nearer than one found
+        # in it, and the cells of their segments.
+        reach = 8.0
+        while True:
+            reach = total if reach >= min(total, whole) else reach
+            found = self._escape_within(point, start, (q_row, q_col), reach, tolerance, hard)
+            if found is not None:
+                return found
+            if reach == total:
+                break
+            reach *= 4.0
+        raise ValueError(
+            f"{where} {self._blocked_reason(*start)}, and no passable cell centre within "
+            f"start_tolerance ({tolerance} m) can be reached in a straight line without "
+            "crossing an obstacle" + (" or unknown space" if math.isinf(self._unknown_cost) else "")
+        )
+
+    def _escape_within(
+        self,
+        point: FloatArray,
+        start: tuple[int, int],
+        q: tuple[float, float],
+        reach: float,
+        tolerance: float,
+        hard_map: BoolArray,
+    ) -> _Escape | None:
+        """The escape among the candidates within ``reach`` cells of ``q``, if any.
+
+        ``q``: the start point in continuous grid coordinates; ``hard_map``:
+        the cells no escape segment may touch (occupied, or unknown with
+        ``unknown_cost=inf``), of which a window around the disc is used.
+        """
+        rows, cols = self._costs.shape
+        q_row, q_col = q
+        r_lo = max(0, math.floor(q_row - reach) - 1)
+        r_hi = min(rows, math.ceil(q_row + reach) + 2)
+        c_lo = max(0, math.floor(q_col - reach) - 1)
+        c_hi = min(cols, math.ceil(q_col + reach) + 2)
+        window = (slice(r_lo, r_hi), slice(c_lo, c_hi))
+        hard = hard_map[window]
+        row0, col0 = start[0] - r_lo, start[1] - c_lo
+        from scipy import ndimage  # only here: an escape is rare, the import is not free
+
+        labels, _ = ndimage.label(~hard)
+        rr, cc = np.nonzero(
+            (labels == labels[row0, col0]) & np.isfinite(self._costs[window])
+        )
+        rr += r_lo
+        cc += c_lo
+        d2 = (rr - q_row) ** 2 + (cc - q_col) ** 2
+        near = (np.sqrt(d2) * self._grid.resolution <= tolerance) & (d2 <= reach * reach)
+        rr, cc, d2 = rr[near], cc[near], d2[near]
+        origin = np.array([q_row, q_col])
+        for k in _nearest_first(d2):
+            cell = (int(rr[k]), int(cc[k]))
+            direction = np.array([cell[0] - q_row, cell[1] - q_col])
+            box_r, box_c, _, _ = _segment_cells(origin, direction, _GRAZE)
+            # Beyond the map's edge only a segment along that edge touches them.
+            inside = (box_r >= 0) & (box_r < rows) & (box_c >= 0) & (box_c < cols)
+            if hard[box_r[inside] - r_lo, box_c[inside] - c_lo].any():
+                continue
+            box_r, box_c, enter, leave = _segment_cells(origin, direction, 0.0)
+            inside = (box_r >= 0) & (box_r < rows) & (box_c >= 0) & (box_c < cols)
+            box_r, box_c, enter, leave = box_r[inside], box_c[inside], enter[inside], leave[inside]
+            cell_costs = self._costs[box_r, box_c]
+            cell_costs = np.where(np.isfinite(cell_costs), cell_costs, _BAND_COST)
+            cost = float(np.sum((leave - enter) * cell_costs)) * math.hypot(*direction)
+            return _Escape(cell, point, cost)
+        return None
+
     def _endpoint_cell(self, value: Pose2D | ArrayLike, name: str) -> tuple[int, int]:
         point = _point_xy(value, name)
+        row, col = self._point_cell(point, name)
+        if not math.isfinite(self._costs[row, col]):
+            where = f"{name} {tuple(point.tolist())}"
+            raise ValueError(f"{where} (cell {(row, col)}) {self._blocked_reason(row, col)}")
+        return row, col
+
+    def _point_cell(self, point: FloatArray, name: str) -> tuple[int, int]:
+        """The cell of a world point, refused outside the map."""
         row, col = (int(v) for v in np.asarray(self._grid.world_to_cell(point)).reshape(2))
         rows, cols = self._costs.shape
-        where = f"{name} {tuple(point.tolist())}"
         if not (0 <= row < rows and 0 <= col < cols):
-            raise ValueError(f"{where} is outside the map")
-        if not math.isfinite(self._costs[row, col]):
-            raise ValueError(f"{where} (cell {(row, col)}) {self._blocked_reason(row, col)}")
+            raise ValueError(f"{name} {tuple(point.tolist())} is outside the map")
         return row, col
 
     @staticmethod
@@ -379,6 +558,74 @@ class MapPlanner:
                     "(inflate_unknown is True)"
                 )
         return f"is within robot_radius ({self._robot_radius} m) of an obstacle"
+
+
+class _Escape(NamedTuple):
+    """The escape cell, the start point (world) and the segment's cost in cost units × cells."""
+
+    cell: tuple[int, int]
+    point: FloatArray
+    cost: float
+
+
+def _nearest_first(d2: FloatArray) -> Iterator[int]:
+    """Indices of ``d2`` by increasing value, ties in index order, sorted only as consumed.
+
+    The first escape candidate usually succeeds: sorting every cell of a huge
+    tolerance's disc (millions on a big map) would cost far more than the
+    search. Rounds of the nearest 64, 256, ... candidates, each found by a
+    partition, then stably sorted.
+    """
+    done = -math.inf
+    count = 64
+    while True:
+        rest = np.flatnonzero(d2 > done)
+        if rest.size == 0:
+            return
+        if rest.size > count:
+            bound = float(np.partition(d2[rest], count - 1)[count - 1])
+            rest = rest[d2[rest] <= bound]
+        else:
+            bound = float(d2[rest].max())
+        yield from (int(k) for k in rest[np.argsort(d2[rest], kind="stable")])
+        done = bound
+        count *= 4
+
+
+def _segment_cells(
+    start: FloatArray, direction: FloatArray, graze: float
+) -> tuple[IntArray, IntArray, FloatArray, FloatArray]:
+    """Cells whose closed square, grown by ``graze``, the segment ``start + t·direction`` meets.
+
+    Continuous grid coordinates ``(row, col)``, cell ``(r, c)`` the square
+    ``[r-½, r+½] × [c-½, c+½]``, ``t`` in ``[0, 1]``. Returns the rows and
+    columns of those cells and the ``t`` at which the segment enters and
+    leaves each (slab clipping, exact up to rounding; with ``graze = 0`` the
+    intervals partition ``[0, 1]`` but for touching points of zero length).
+    """
+    end = start + direction
+    lo = np.floor(np.minimum(start, end) + 0.5 - graze).astype(np.int64)
+    hi = np.floor(np.maximum(start, end) + 0.5 + graze).astype(np.int64)
+    rows = np.arange(lo[0], hi[0] + 1)
+    cols = np.arange(lo[1], hi[1] + 1)
+    enter = np.zeros((rows.size, cols.size))
+    leave = np.ones((rows.size, cols.size))
+    for axis, centres in ((0, rows), (1, cols)):
+        low = centres - 0.5 - graze - start[axis]
+        high = centres + 0.5 + graze - start[axis]
+        d = direction[axis]
+        if d == 0.0:
+            inside = (low <= 0.0) & (high >= 0.0)
+            t_in = np.where(inside, 0.0, np.inf)
+            t_out = np.where(inside, 1.0, -np.inf)
+        else:
+            t_in = np.minimum(low / d, high / d)
+            t_out = np.maximum(low / d, high / d)
+        shape = (-1, 1) if axis == 0 else (1, -1)
+        enter = np.maximum(enter, t_in.reshape(shape))
+        leave = np.minimum(leave, t_out.reshape(shape))
+    hit_r, hit_c = np.nonzero(enter <= leave)
+    return rows[hit_r], cols[hit_c], enter[hit_r, hit_c], leave[hit_r, hit_c]
 
 
 def _point_xy(value: Pose2D | ArrayLike, name: str) -> FloatArray:
