@@ -10,7 +10,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from navkit._shared.frozen import frozen_setattr
+from navkit._shared.frozen import frozen_setattr, reduce_record
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, as_points, finite_float
 from navkit.geometry._angles import _wrap_float
@@ -66,6 +66,11 @@ class Pose2D:
         # Plain Python (bit for bit the kernel's wrap): constructing a pose, as module
         # constants and defaults do at import, must not start numba.
         object.__setattr__(self, "theta", _wrap_float(finite_float(self.theta, "theta")))
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        # Copies and pickles keep what a subclass adds (its __dict__ or slots),
+        # which the slotted dataclass's own state drops.
+        return reduce_record(self, ())
 
     def compose(self, other: Pose2D | ArrayLike) -> Pose2D:
         """Return ``self ⊕ other``: ``other`` (given in this pose's frame) in the world frame.
@@ -298,6 +303,10 @@ class Twist2D:
         object.__setattr__(self, "vx", finite_float(self.vx, "vx"))
         object.__setattr__(self, "vy", finite_float(self.vy, "vy"))
         object.__setattr__(self, "omega", finite_float(self.omega, "omega"))
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        # As Pose2D's: a subclass's own attributes survive copies and pickles.
+        return reduce_record(self, ())
 
     def as_array(self) -> FloatArray:
         """Return ``[vx, vy, omega]`` as a new float64 array.

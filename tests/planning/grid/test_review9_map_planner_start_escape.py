@@ -28,7 +28,7 @@ from shapely.geometry import LineString, box
 
 from navkit.errors import NoPathError
 from navkit.mapping import OccupancyGrid
-from navkit.planning import MapPlanner
+from navkit.planning import MapPlanner, plan_path
 
 BAND_COST = 5.0  # 1 + cost_weight: what a band cell costs along an escape segment
 
@@ -416,3 +416,15 @@ def test_escaped_paths_never_touch_an_obstacle(
     assert tuple(int(v) for v in grid.world_to_cell(path.points[1])) == reference_escape(
         planner, start, tolerance, hard
     )
+
+
+def test_plan_path_passes_the_tolerance_through() -> None:
+    planner = wall_planner()
+    with pytest.raises(ValueError, match="start_tolerance"):
+        plan_path(planner.grid, (1.33, 0.55), (2.55, 0.55), robot_radius=0.2)
+    one_shot = plan_path(
+        planner.grid, (1.33, 0.55), (2.55, 0.55), robot_radius=0.2, start_tolerance=0.3
+    )
+    kept = planner.plan((1.33, 0.55), (2.55, 0.55), start_tolerance=0.3)
+    np.testing.assert_array_equal(one_shot.points, kept.points)
+    assert (one_shot.cost, one_shot.length) == (kept.cost, kept.length)

@@ -648,10 +648,11 @@ def plan_path(
     unknown_cost: float = math.inf,
     inflate_unknown: bool | None = None,
     planner: Literal["astar", "field_dstar"] | CellPlanner = "astar",
+    start_tolerance: float = 0.0,
 ) -> Path2D:
     """Plan a collision-free path between two world points on an occupancy grid, one-shot.
 
-    ``MapPlanner(grid, ...).plan(start, goal)``: builds the traversal costs for
+    ``MapPlanner(grid, ...).plan(start, goal, start_tolerance=...)``: builds the traversal costs for
     this one query. For many queries on the same map keep a :class:`MapPlanner`,
     which builds them once.
 
@@ -667,6 +668,9 @@ def plan_path(
         unknown space whenever ``unknown_cost`` is ``inf``; ``planner`` is
         ``"astar"``, ``"field_dstar"`` or a :class:`CellPlanner` callable
         (options by :func:`functools.partial`).
+    start_tolerance : float, default 0.0
+        As in :meth:`MapPlanner.plan`: how far, in m, a start inside the
+        inflation may escape to the nearest passable cell (0: refused).
 
     Returns
     -------
@@ -702,4 +706,4 @@ def plan_path(
         unknown_cost=unknown_cost,
         inflate_unknown=inflate_unknown,
         planner=planner,
-    ).plan(start, goal)
+    ).plan(start, goal, start_tolerance=start_tolerance)
