@@ -572,9 +572,11 @@ class PlanarFusion(GaussianEstimate):
             prob = finite_float(gate_probability, "gate_probability")
             if not 0.0 < prob < 1.0:
                 raise ValueError(f"gate_probability must be in (0, 1), got {prob}")
-            from scipy.stats import chi2
+            # The chi-square quantile as scipy.stats.chi2.ppf computes it, without
+            # importing scipy.stats (0.7 s on first use; scipy.special is 0.2 s).
+            from scipy.special import gammaincinv
 
-            gates[1:] = chi2.ppf(prob, np.arange(1, 5))
+            gates[1:] = 2.0 * gammaincinv(np.arange(1, 5) / 2.0, prob)
         # x, P, Q, the current measurement, the filter time and scratch space live in one
         # flat array: the compiled online step takes just that array (see
         # _fusion_kernels.BUF_*).

@@ -41,7 +41,7 @@ import math
 
 import numpy as np
 
-from navkit._shared.jit import njit_inline_no_refcount, njit_no_refcount
+from navkit._shared.jit import NO_REFCOUNT, njit_no_refcount, typed_njit
 
 SQRT2 = math.sqrt(2.0)
 _HALF_ORTHO = 0.5
@@ -109,7 +109,9 @@ def crop(dist: np.ndarray, rows: int, cols: int, out: np.ndarray) -> None:
             out[dst + c] = dist[src + c]
 
 
-@njit_inline_no_refcount
+# Typed once and inlined by LLVM into its eight call sites (numba's inline="always"
+# typed the body again at each of them); no Python wrapper (called from kernels only).
+@typed_njit(**NO_REFCOUNT, no_cpython_wrapper=True, forceinline=True)
 def _relax(
     free: np.ndarray,
     costs: np.ndarray,
