@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from navkit._shared.frozen import reduce_record, restore_read_only
+from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_bool, as_float_array, as_points, finite_float
 
@@ -55,6 +55,7 @@ def _no_players() -> FloatArray:
     return np.empty((0, 2), dtype=np.float64)
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True, eq=False)
 class BehaviourTarget:
     """What a behaviour asks for: a goal and the points that repel.
@@ -96,6 +97,7 @@ class BehaviourTarget:
         object.__setattr__(self, "obstacles_xy", _players(self.obstacles_xy, "obstacles_xy"))
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True, eq=False, kw_only=True)
 class GameState:
     """Positions in one frame (usually the field frame), in metres.

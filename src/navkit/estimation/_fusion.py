@@ -12,7 +12,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from navkit._shared.frozen import extra_state, reduce_record, restore_read_only
+from navkit._shared.frozen import extra_state, frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.types import BoolArray, FloatArray
 from navkit._shared.validation import as_array, as_float_array, finite_float
 from navkit.errors import FilterError
@@ -137,6 +137,7 @@ class FusionStatus(enum.IntEnum, metaclass=_IntCodes):
     OVERFLOW = k.OVERFLOW
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True, eq=False)
 class MeasurementLog:
     """Timestamped measurements for :meth:`PlanarFusion.update_batch`.
@@ -349,6 +350,7 @@ def _block(
     return t, values, var, obs
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True, eq=False)
 class FusionResult:
     """Filter output over a :class:`MeasurementLog`, one row per measurement.

@@ -325,6 +325,11 @@ class DiffOdometry:
         """Current pose estimate."""
         return self._pose
 
+    @property
+    def encoder_bits(self) -> int | None:
+        """Width of the counters it decodes (None: counters that never wrap)."""
+        return self._bits
+
     def reset(self, pose: Pose2D | ArrayLike | None = None) -> None:
         """Forget the latched counters; optionally set a new pose.
 

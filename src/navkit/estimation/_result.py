@@ -7,13 +7,14 @@ from typing import Any
 
 import numpy as np
 
-from navkit._shared.frozen import reduce_record
+from navkit._shared.frozen import frozen_setattr, reduce_record
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array
 
 __all__ = ["UpdateResult"]
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True, eq=False)
 class UpdateResult:
     """What happened to one measurement.

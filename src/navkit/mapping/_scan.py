@@ -9,7 +9,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from navkit._shared.frozen import reduce_record, restore_read_only
+from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.types import BoolArray, FloatArray
 from navkit._shared.validation import as_float_array, finite_float
 from navkit.geometry import Pose2D, as_pose, wrap_angle
@@ -47,6 +47,7 @@ def _readonly(arr: NDArray[Any]) -> NDArray[Any]:
     return arr
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True, eq=False)
 class LaserScan:
     """One planar laser scan with the fields of ROS ``sensor_msgs/LaserScan``.

@@ -64,6 +64,12 @@ class ScanMapper:
     grows (by whole coarse cells, keeping every level aligned) when a scan
     would reach beyond it, up to :attr:`OccupancyGrid.MAX_CELLS` cells.
 
+    Memory: the levels take 4 bytes a cell of the finest level and a third
+    more for the coarser ones, and the trajectory grows by one pose per scan
+    for as long as the mapper lives (about 140 bytes: 100,000 scans, under
+    three hours of a 10 Hz LiDAR, hold 14 MB). :attr:`trajectory` copies it
+    whole on every read; :attr:`pose` reads only the latest.
+
     The name says what it does — mapping from scans by scan matching — rather
     than naming one implementation; the defaults are Hector's.
 

@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from navkit._shared.frozen import frozen_setattr
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_bool
 from navkit.mapping import OccupancyGrid
@@ -29,6 +30,7 @@ _MOVING_COLOUR = "tab:red"
 _MIN_MARGIN = 1e-12
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True)
 class CheckedScene:
     """A Scene's contents, checked and converted to world arrays."""

@@ -198,9 +198,18 @@ class _OmniOdometryEstimator:
 
 
 class _DiffOdometryEstimator:
-    """DiffOdometry fed with the raw encoder counters."""
+    """DiffOdometry fed with the encoder counters, as counters of its own width.
 
-    __slots__ = ("_odometry",)
+    The raw readings when the odometry decodes counters as wide as the robot's
+    (``encoder_bits`` equal to the encoders' ``bits``; 64 and None alike, as
+    64-bit counters never wrap in a run). Otherwise an odometry built for other
+    counters (the default ``encoder_bits=None`` on the default 16-bit encoders)
+    would read the robot's wrap-around, after 64 wheel turns, as a jump of
+    -65535 ticks: it is fed the readings unwrapped at the robot's width and
+    wrapped again at its own, the same tick changes.
+    """
+
+    __slots__ = ("_fed", "_last", "_odometry", "_robot_bits", "_span", "_translate")
 
     def __init__(self, odometry: DiffOdometry, robot: Robot) -> None:
         if robot.encoders is None:
@@ -208,10 +217,38 @@ class _DiffOdometryEstimator:
         if not isinstance(robot.drive, DiffDrive):
             raise ValueError("DiffOdometry needs a differential-drive robot")
         self._odometry = odometry
+        bits = robot.encoders.bits
+        own = odometry.encoder_bits
+        self._robot_bits = None if bits is None or bits >= 64 else bits
+        self._span = None if own is None or own >= 64 else 1 << own
+        self._translate = self._span != (
+            None if self._robot_bits is None else 1 << self._robot_bits
+        )
+        self._last: list[int] | None = None
+        self._fed: list[int] | None = None
 
     def observe(self, t: float, reading: Reading) -> None:
         if isinstance(reading, EncoderReading):
-            self._odometry.update(int(reading.ticks[0]), int(reading.ticks[1]))
+            if self._translate:
+                left, right = self._counters(reading.ticks.tolist())
+                self._odometry.update(left, right)
+            else:
+                self._odometry.update(int(reading.ticks[0]), int(reading.ticks[1]))
+
+    def _counters(self, raw: list[int]) -> list[int]:
+        """``raw`` readings of the robot's counters as readings of the odometry's."""
+        last, fed = self._last, self._fed
+        self._last = raw
+        if last is None or fed is None:
+            new = raw
+        else:
+            delta = _signed_delta(last, raw, self._robot_bits)
+            new = [f + d for f, d in zip(fed, delta, strict=True)]
+        span = self._span
+        if span is not None:
+            new = [v % span for v in new]
+        self._fed = new
+        return new
 
     @property
     def pose(self) -> Pose2D | None:

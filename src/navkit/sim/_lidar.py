@@ -9,6 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
+from navkit._shared.frozen import frozen_setattr
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import finite_float, positive_float
 from navkit.geometry import Pose2D, as_pose
@@ -64,6 +65,7 @@ def as_generator(value: object, name: str = "rng") -> np.random.Generator:
     raise TypeError(f"{name} must be a numpy Generator, an int seed or None, got {type(value)}")
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True, kw_only=True)
 class Lidar:
     """A planar scanning LiDAR: geometry, noise, rate and latency.

@@ -10,6 +10,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
+from navkit._shared.frozen import frozen_setattr
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, finite_float
 
@@ -47,6 +48,7 @@ def _floats(
     return tuple(out)
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True)
 class RangeNoise:
     """Relative Gaussian range error of a LiDAR, by distance band.

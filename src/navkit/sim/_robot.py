@@ -11,7 +11,7 @@ import shapely
 from shapely.geometry import Polygon
 from shapely.ops import polylabel
 
-from navkit._shared.frozen import reduce_record, restore_read_only
+from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, finite_float
 from navkit.geometry import Twist2D
@@ -39,6 +39,7 @@ def _limit(value: Any, name: str, high: float, unit: str) -> float:
     return out
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True, kw_only=True, eq=False)
 class Robot:
     """A wheeled robot for :class:`Simulation`: drive, imperfections, footprint, sensors.

@@ -19,7 +19,7 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from navkit._shared.frozen import restore_read_only
+from navkit._shared.frozen import frozen_setattr, restore_read_only
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, as_sequence, finite_float
 from navkit.mapping import OccupancyGrid
@@ -145,6 +145,7 @@ def _instance(cls: type, optional: bool) -> Callable[[Any, str], Any]:
     return check
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True)
 class Trial:
     """One independent run of a scenario.
@@ -179,6 +180,7 @@ class Trial:
         object.__setattr__(self, "seed", _int_in(self.seed, "seed", 2**64))
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True, eq=False)
 class TrialResult:
     """What one trial produced.
@@ -217,6 +219,7 @@ class TrialResult:
         object.__setattr__(self, "wall_time", wall)
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True)
 class Table:
     """A table of figures: navkit's results, the paper's beside them.
@@ -379,6 +382,7 @@ def _json_cell(cell: Cell) -> Cell:
     return cell
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True, eq=False)
 class Scene:
     """What a picture of a scenario shows: the map, plans, driven traces, markers.
@@ -434,6 +438,7 @@ class Scene:
             xy.flags.writeable = False
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True, eq=False)
 class ScenarioResult:
     """A scenario's outcome: every trial, the tables, and what to draw.

@@ -9,7 +9,7 @@ from typing import Any
 
 import numpy as np
 
-from navkit._shared.frozen import reduce_record, restore_read_only
+from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.types import IntArray
 from navkit._shared.validation import as_float_array, finite_float, positive_float
 from navkit.mapping import LaserScan
@@ -39,6 +39,7 @@ def _bounded(value: object, name: str, low: float, high: float, unit: str) -> fl
     return out
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True, kw_only=True)
 class Compass:
     """A magnetic compass: heading in degrees clockwise from north, 0 to 360.
@@ -125,6 +126,7 @@ class Compass:
         return 0.0 if deg >= 360.0 else deg
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True, kw_only=True)
 class Imu:
     """A planar IMU: gyro yaw rate and body-frame acceleration, with noise and bias.
@@ -176,6 +178,7 @@ class Imu:
         object.__setattr__(self, "latency", check_latency(self.latency))
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True, kw_only=True)
 class WheelEncoders:
     """Incremental wheel encoders: quantised, wrapping tick counters.
@@ -301,6 +304,7 @@ def _readonly_ints(value: object) -> IntArray:
     return arr
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True, eq=False)
 class ScanReading:
     """A LiDAR scan taken at ``stamp`` (s).
@@ -328,6 +332,7 @@ class ScanReading:
             raise TypeError(f"scan must be a LaserScan, got {type(self.scan).__name__}")
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True, eq=False)
 class EncoderReading:
     """Raw wheel-encoder counters at ``stamp`` (s), one per wheel.
@@ -363,6 +368,7 @@ class EncoderReading:
         restore_read_only(self, state, ("ticks",))
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True)
 class CompassReading:
     """A compass heading at ``stamp`` (s): degrees clockwise from north, in [0, 360).
@@ -390,6 +396,7 @@ class CompassReading:
         object.__setattr__(self, "heading_deg", finite_float(self.heading_deg, "heading_deg"))
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True)
 class ImuReading:
     """An IMU sample at ``stamp`` (s): gyro yaw rate and body-frame acceleration.

@@ -12,7 +12,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from navkit._shared.frozen import slot_names
+from navkit._shared.frozen import frozen_setattr, slot_names
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_bool, as_float_array, finite_float, positive_float
 from navkit.geometry import Pose2D, Twist2D, as_twist
@@ -55,6 +55,7 @@ _CLOSING_KINDS = ("timeout", "controller done", "wall-clock timeout")
 _COLUMNS = 10
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True, eq=False)
 class Observation:
     """What a controller is given at a control step.
@@ -230,6 +231,9 @@ class Simulation:
         the start pose (e.g. ``PlanarFusion(x0=[x, y, θ, 0, 0, 0], t0=0.0)``).
         A ``PlanarFusion`` needs a drive that cannot move sideways (its state
         has no sideways speed; ``ValueError`` for an omnidirectional drive).
+        A ``DiffOdometry`` is given the counter readings as counters of its
+        own ``encoder_bits`` (the same tick changes), so that the encoders'
+        wrap-around does not depend on the two widths agreeing.
     rate : float, default 100.0
         Physics rate, Hz, in (0, 10^4]; no sensor or controller may be faster.
     control_rate : float, default 20.0

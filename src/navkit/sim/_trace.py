@@ -8,7 +8,7 @@ from typing import Any, Literal
 
 import numpy as np
 
-from navkit._shared.frozen import reduce_record, restore_read_only
+from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_bool, as_float_array, finite_float
 from navkit.sim._polyline_distance_kernels import point_polyline_distances
@@ -21,6 +21,7 @@ EndReason = Literal["goal reached", "collision", "timeout", "controller done", "
 _END_REASONS = ("goal reached", "collision", "timeout", "controller done", "wall-clock timeout")
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True)
 class Event:
     """Something that happened during a run.
@@ -53,6 +54,7 @@ class Event:
             raise TypeError(f"message must be a str, got {type(self.message).__name__}")
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True)
 class Metrics:
     """Summary of a run (NaN where a figure does not apply).
@@ -145,6 +147,7 @@ def _readonly(arr: np.ndarray) -> np.ndarray:
     return out
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True, eq=False)
 class Trace:
     """Everything recorded during a :class:`Simulation` run, one row per physics step.

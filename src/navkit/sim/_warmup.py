@@ -26,6 +26,7 @@ from typing import Any
 
 import numpy as np
 
+from navkit._shared.frozen import frozen_setattr
 from navkit._shared.jit import load_numba
 from navkit._shared.validation import positive_float
 
@@ -289,6 +290,7 @@ WARMUP_STEPS: tuple[str, ...] = tuple(_STEPS)
 """Names of the warm-up steps in starting order (``only=`` of :func:`warmup` takes a subset)."""
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True)
 class WarmupStep:
     """One step of :func:`warmup`: the kernels it compiled and what it cost.
@@ -324,6 +326,7 @@ class WarmupStep:
         object.__setattr__(self, "cpu_seconds", cpu)
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True)
 class WarmupReport:
     """What :func:`warmup` compiled, and how long it took.

@@ -16,7 +16,13 @@ from numpy.typing import ArrayLike
 from shapely.geometry import Polygon
 from shapely.geometry.base import BaseGeometry
 
-from navkit._shared.frozen import reduce_record, restore_read_only, restore_slots, slot_names
+from navkit._shared.frozen import (
+    frozen_setattr,
+    reduce_record,
+    restore_read_only,
+    restore_slots,
+    slot_names,
+)
 from navkit._shared.types import FloatArray, IntArray
 from navkit._shared.validation import as_bool, as_float_array, finite_float, positive_float
 from navkit.geometry import Pose2D, as_pose
@@ -148,6 +154,7 @@ def _footprint_arrays(
     return verts, np.empty_like(verts), np.empty_like(verts)
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True, eq=False)
 class Circle:
     """A circular obstacle, intersected analytically by rays and footprints.
@@ -196,6 +203,7 @@ class Circle:
 _AFTER_CODES = {"stop": STOP, "loop": LOOP, "extend": EXTEND}
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True, eq=False)
 class MovingObstacle:
     """An obstacle that translates along a timed polyline (it never rotates).

@@ -786,6 +786,13 @@ class FieldDStar:
         self._cached = None
         self._lowered = self._lowered or bool(np.any(final < self._pad[cells_u]))
         listed = int(self._changed[0])
+        if listed > 2 * self._rows * self._cols:
+            # Updated far more often than searched: cells listed again and again.
+            # Keep each once, so the list (and the next repair's requeue) stays
+            # bounded by the grid, not by the number of updates.
+            kept = np.unique(self._changed[1 : listed + 1])
+            self._changed[1 : kept.shape[0] + 1] = kept
+            self._changed[0] = listed = kept.shape[0]
         added = cells_u.shape[0]
         if listed + added >= self._changed.shape[0]:
             grown = np.zeros(2 * (listed + added + 1), dtype=np.int64)

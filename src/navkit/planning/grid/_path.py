@@ -8,7 +8,7 @@ from typing import Any, Literal
 
 import numpy as np
 
-from navkit._shared.frozen import reduce_record, restore_read_only
+from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.grid_coords import round_half_up
 from navkit._shared.types import FloatArray, IntArray
 from navkit._shared.validation import as_float_array, finite_float
@@ -25,6 +25,7 @@ def _short_int(value: Any) -> str:
     return str(n) if abs(n) < 10**30 else f"an integer of {n.bit_length()} bits"
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True, eq=False)
 class Path2D:
     """A polyline path with its cost, as returned by every planner.

@@ -16,6 +16,7 @@ from typing import TypeVar
 import numpy as np
 from numpy.typing import ArrayLike
 
+from navkit._shared.frozen import frozen_setattr
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array
 from navkit.planning.reactive._limits import gain, length
@@ -56,6 +57,7 @@ def _check(
         object.__setattr__(field, name, length(getattr(field, name), name, allow_zero=True))
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True, eq=False, repr=False)
 class AttractiveField(PotentialField):
     """Base of the attractive fields: a field pulling toward one goal point.
@@ -118,6 +120,7 @@ class AttractiveField(PotentialField):
         return out
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True, eq=False, repr=False, kw_only=True)
 class ParaboloidAttraction(AttractiveField):
     """Elliptic paraboloid attraction ``U = K_att·c·((x - xd)²/a² + (y - yd)²/b²)``.
@@ -179,6 +182,7 @@ class ParaboloidAttraction(AttractiveField):
         return np.stack((0.0 - 2.0 * sx * diff[:, 0], 0.0 - 2.0 * sy * diff[:, 1]), axis=1)
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True, eq=False, repr=False, kw_only=True)
 class ConicAttraction(AttractiveField):
     """Linear cone attraction ``U = m·(d - rad_thr)·U_trans``, ``d = ‖q - q_d‖``.
@@ -228,6 +232,7 @@ class ConicAttraction(AttractiveField):
         return out
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True, eq=False, repr=False, kw_only=True)
 class BlendedAttraction(AttractiveField):
     """Paraboloid near the goal blended into a cone far away by a sigmoid.
@@ -371,6 +376,7 @@ class BlendedAttraction(AttractiveField):
         return out
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True, eq=False, repr=False, kw_only=True)
 class PiecewiseAttraction(AttractiveField):
     """Piecewise-linear attraction of the omnidirectional LiDAR robot (Goodrich's form).

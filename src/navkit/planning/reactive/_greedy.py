@@ -10,7 +10,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from navkit._shared.frozen import reduce_record
+from navkit._shared.frozen import frozen_setattr, reduce_record
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_bool, as_float_array, finite_float
 from navkit.errors import NoPathError
@@ -24,6 +24,7 @@ __all__ = ["GreedyStep", "greedy_step"]
 _INT64_MAX = 2**63 - 1
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True, eq=False)
 class GreedyStep:
     """The cell chosen by :func:`greedy_step`.

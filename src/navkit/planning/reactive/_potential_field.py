@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
-from navkit._shared.frozen import reduce_record, restore_read_only
+from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.types import FloatArray
 from navkit.planning.reactive._limits import point, points
 
@@ -214,6 +214,7 @@ def _unit(diff: FloatArray, d: FloatArray) -> FloatArray:
     return np.stack((ux, uy), axis=1)
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True, eq=False, repr=False)
 class CompositeField(PotentialField):
     """Sum of fields: potential and force add up.

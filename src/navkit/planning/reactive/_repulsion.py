@@ -18,6 +18,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from navkit._shared.frozen import frozen_setattr
 from navkit._shared.types import FloatArray
 from navkit.planning.reactive._limits import MIN_DISTANCE, gain, length
 from navkit.planning.reactive._potential_field import (
@@ -40,6 +41,7 @@ _TREE_BLOCK = 1 << 22
 _TREE_POINTS_MIN = 1 << 8
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True, eq=False, repr=False)
 class _PointRepulsion(PotentialField):
     """Sum over obstacle points of a radial repulsion with a finite reach.
@@ -151,6 +153,7 @@ class _PointRepulsion(PotentialField):
         return out
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True, eq=False, repr=False, kw_only=True)
 class KhatibRepulsion(_PointRepulsion):
     """Khatib's FIRAS repulsion summed over obstacle points.
@@ -224,6 +227,7 @@ class KhatibRepulsion(_PointRepulsion):
         return u, mag
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True, eq=False, repr=False, kw_only=True)
 class PiecewiseRepulsion(_PointRepulsion):
     """Piecewise-linear repulsion of the omnidirectional LiDAR robot, per obstacle point.

@@ -9,8 +9,8 @@ from typing import Literal, overload
 import numpy as np
 from numpy.typing import ArrayLike
 
-from navkit._shared.frozen import reduce_record
-from navkit._shared.grid_coords import as_pairs, inside, one_or_many, round_half_up
+from navkit._shared.frozen import frozen_setattr, reduce_record
+from navkit._shared.grid_coords import CELL_LIMIT, as_pairs, inside, one_or_many
 from navkit._shared.types import BoolArray, FloatArray, IntArray
 from navkit._shared.validation import as_bool, as_float_array, positive_float
 from navkit.planning.reactive._limits import (
@@ -66,6 +66,7 @@ def _axis(value: ArrayLike, name: str, resolution: float) -> FloatArray:
     return _frozen(arr)
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True, eq=False)
 class SampledField:
     """A field sampled on a regular grid of cell centres.
@@ -172,7 +173,9 @@ class SampledField:
         ndarray, shape (N, 2) or (2,)
             ``(row, col)`` per point, the shape of the input. Cells are not
             clipped: points outside the window give indices outside
-            ``[0, H) × [0, W)``.
+            ``[0, H) × [0, W)``. A point on a cell edge is in the upper cell
+            (up to rounding), and the window's lower corner ``(xlim[0],
+            ylim[0])`` of :func:`sample_field` is in cell ``(0, 0)`` exactly.
 
         Examples
         --------
@@ -187,13 +190,24 @@ class SampledField:
         """
         pts, single = as_pairs(points_xy, "points_xy")
         check_coordinates(pts, "points_xy")
-        cont = np.empty_like(pts)
-        cont[:, 0] = (pts[:, 1] - self.y[0]) / self.resolution
-        cont[:, 1] = (pts[:, 0] - self.x[0]) / self.resolution
-        # Round half up (np.rint would round half to even): as OccupancyGrid and LocalGrid.
-        out: IntArray | FloatArray = (
-            cont if as_bool(continuous, "continuous") else round_half_up(cont)
-        )
+        res = self.resolution
+        out: IntArray | FloatArray
+        if as_bool(continuous, "continuous"):
+            out = np.empty_like(pts)
+            out[:, 0] = (pts[:, 1] - self.y[0]) / res
+            out[:, 1] = (pts[:, 0] - self.x[0]) / res
+            return one_or_many(out, single)
+        # Cells counted from the window's lower edge, half a cell below the first
+        # centre, which sample_field placed at x[0] = xlim[0] + res / 2 (rounded).
+        # Adding the half cell to the point, as there, brings the window's own
+        # corner exactly onto x[0], in cell 0; rounding (p - x[0]) / res half up
+        # put it at -0.5 ± a rounding error, most often in cell -1. Boundaries
+        # elsewhere are those of round half up, up to rounding.
+        half = 0.5 * res
+        edge = np.empty_like(pts)
+        edge[:, 0] = (pts[:, 1] + half - self.y[0]) / res
+        edge[:, 1] = (pts[:, 0] + half - self.x[0]) / res
+        out = np.clip(np.floor(edge), -CELL_LIMIT, CELL_LIMIT).astype(np.int64)
         return one_or_many(out, single)
 
     def cell_to_world(self, cells: ArrayLike) -> FloatArray:

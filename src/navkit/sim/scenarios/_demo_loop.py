@@ -10,6 +10,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import ndimage
 
+from navkit._shared.frozen import frozen_setattr
 from navkit._shared.types import FloatArray
 from navkit.control import RegulatedPurePursuit
 from navkit.estimation import PlanarFusion
@@ -54,6 +55,7 @@ OFFICE_LABEL = "synthetic office (24 x 14 m, built in code)"
 WILLOW_LABEL = "Willow Garage office map"
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True, eq=False)
 class Setup:
     """A map, its simulated world and planner, and the tour's waypoints."""
@@ -66,6 +68,7 @@ class Setup:
     clearance: Clearance
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True, eq=False)
 class Leg:
     """One leg of the tour: its plan, how long planning took, and the run."""

@@ -28,6 +28,7 @@ import numpy as np
 import shapely
 from shapely.geometry import Polygon, box
 
+from navkit._shared.frozen import frozen_setattr
 from navkit.errors import DataNotFoundError
 from navkit.mapping import OccupancyGrid
 from navkit.planning import MapPlanner, Path2D
@@ -65,6 +66,7 @@ HOUSE_ROOMS = (
 )  # fmt: skip
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True, eq=False)
 class Site:
     """A place with its map, world, planner, distance field and planned route.

@@ -29,6 +29,7 @@ from functools import lru_cache
 
 import numpy as np
 
+from navkit._shared.frozen import frozen_setattr
 from navkit._shared.types import FloatArray
 from navkit.estimation import DiffOdometry
 from navkit.geometry import Pose2D, Twist2D
@@ -94,6 +95,7 @@ MAP_SEED = 0
 SNAP_DISTANCE = 0.3
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True, eq=False)
 class MappingRun:
     """One mapping tour: the built map, the trajectories at each scan and the trace.

@@ -22,6 +22,7 @@ import numpy as np
 from shapely.geometry import LineString, box
 from shapely.geometry.base import BaseGeometry
 
+from navkit._shared.frozen import frozen_setattr
 from navkit._shared.types import FloatArray
 from navkit.behaviours import GameState, attack, defend, support
 from navkit.control import PotentialFieldController
@@ -95,6 +96,7 @@ def field_world(static_xy: FloatArray, moving: tuple[MovingObstacle, ...]) -> Wo
     return World(items, moving=moving)
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True)
 class Layout:
     """One obstacle variation of the paper's experiments.
@@ -130,6 +132,7 @@ LAYOUTS: tuple[Layout, ...] = (
 )
 
 
+@frozen_setattr
 @dataclass(frozen=True, slots=True, eq=False)
 class Game:
     """Everything one trial needs: start, world, ball and the other players.
