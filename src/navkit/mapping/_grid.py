@@ -333,7 +333,9 @@ class OccupancyGrid:
         OccupancyGrid
             ``height / resolution`` rows by ``width / resolution`` columns,
             each rounded up to a whole cell (at least one; a ratio within 1e-9
-            of an integer is not rounded up), every log-odds 0 (unknown).
+            of an integer, or within its float rounding, a few ulps, is not
+            rounded up: ``width = n * resolution`` gives ``n`` columns for any
+            ``n``), every log-odds 0 (unknown).
 
         Raises
         ------

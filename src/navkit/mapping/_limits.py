@@ -146,12 +146,24 @@ def cost_or_inf(value: Any, name: str) -> float:
     return out
 
 
+#: Relative rounding of a cell count ``extent / resolution`` when ``extent`` was
+#: itself computed as ``cells * resolution``: two roundings of half an ulp each,
+#: with a factor 4 to spare.
+_COUNT_ULPS = 4.0 * 2.0**-52
+
+
 def _cell_count(extent: float, resolution: float) -> float:
-    """Cells covering ``extent`` m, rounded up (a float: inf when absurdly many)."""
+    """Cells covering ``extent`` m, rounded up (a float: inf when absurdly many).
+
+    A ratio within 1e-9 cells of an integer, or within the rounding of the
+    division (a few ulps of the ratio: 3e-8 cells for 2**28), is not rounded
+    up, so that ``extent = n * resolution`` gives ``n`` cells however long the
+    grid is.
+    """
     n = extent / resolution
     if not n < 1e18:
         return math.inf if not math.isfinite(n) else n
-    return float(max(1, math.ceil(n - 1e-9)))
+    return float(max(1, math.ceil(n - (1e-9 + _COUNT_ULPS * n))))
 
 
 def grid_shape(*, width: float, height: float, resolution: float, what: str) -> tuple[int, int]:

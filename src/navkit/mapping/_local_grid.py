@@ -9,7 +9,7 @@ from typing import Any, Literal, overload
 import numpy as np
 from numpy.typing import ArrayLike
 
-from navkit._shared.frozen import reduce_record, restore_read_only
+from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.grid_coords import as_pairs, inside, one_or_many, round_half_up
 from navkit._shared.types import BoolArray, FloatArray, IntArray
 from navkit._shared.validation import as_array, as_bool, as_points
@@ -24,7 +24,12 @@ from navkit.mapping._limits import (
 
 __all__ = ["LocalGrid"]
 
+# Relative rounding of ``half_width / resolution`` for a half width given as a
+# decimal multiple of half a cell (two roundings of half an ulp, a factor 4 to spare).
+_HALF_ULPS = 4.0 * 2.0**-52
 
+
+@frozen_setattr
 @dataclass(frozen=True, slots=True, eq=False)
 class LocalGrid:
     """Square occupancy grid centred on the robot, in the robot frame.
@@ -163,9 +168,12 @@ class LocalGrid:
         half = bounded_float(half_width, "half_width", 0.0, RADIUS_LIMIT, "m")
         # Half up, as cells round: round() goes to even, so 1.5 and 2.5 cells
         # both gave 2 and half a cell gave none. At most 1e12: exact in a float.
+        # A ratio within 1e-9 cells (or its float rounding) of halfway counts as
+        # halfway: 0.15 / 0.1 is 1.4999999999999998, and 0.15 m must round up
+        # as 0.25 m (2.5 cells) does.
         ratio = half / res
         half_cells = math.floor(ratio)
-        if ratio - half_cells >= 0.5:
+        if ratio - half_cells >= 0.5 - (1e-9 + _HALF_ULPS * ratio):
             half_cells += 1
         side = 2.0 * half_cells + 1.0  # a float: compared before any allocation
         check_cell_count(
