@@ -8,7 +8,10 @@
   [--data DIR] [--quiet]`` — one paper's experiment, navkit's figures beside
   the paper's; trials in parallel on local processes or a Dask cluster.
 * ``navkit plan MAP.yaml --start X,Y --goal X,Y [--planner astar|field_dstar]
-  [--radius R] [--plot FILE.png]`` — a path on any ROS map_server map.
+  [--radius R] [--start-tolerance METRES] [--plot FILE.png]`` — a path on any
+  ROS map_server map; with ``--start-tolerance``, a start within ``R`` of an
+  obstacle or unknown space (a drifted position estimate) first moves straight
+  to the nearest passable cell centre within ``METRES`` (default 0: refused).
 * ``navkit warmup [--only STEP] [--workers N] [--quiet]`` — compile every
   numba kernel now (once per install), print what was compiled.
 * ``navkit --version``.

@@ -86,6 +86,21 @@ def _radius(text: str) -> float:
     return value
 
 
+# MapPlanner.plan's range of start_tolerance (navkit.planning's coordinate limit).
+_TOLERANCE_LIMIT = 1e9
+
+
+def _tolerance(text: str) -> float:
+    """``--start-tolerance``: metres in ``[0, 1e9]``, as MapPlanner.plan accepts."""
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a distance in metres, got {text!r}") from None
+    if not (math.isfinite(value) and 0.0 <= value <= _TOLERANCE_LIMIT):
+        raise argparse.ArgumentTypeError(f"must be in [0, 1e9] m, got {text!r}")
+    return value + 0.0  # -0 as 0
+
+
 def _outputs(parser: argparse.ArgumentParser) -> None:
     """Options shared by ``demo`` and ``run``."""
     parser.add_argument("--trials", type=_count(1, 100_000), metavar="N",
@@ -170,6 +185,11 @@ def build_parser(scenarios: list[str]) -> argparse.ArgumentParser:
                       help="astar (8-connected, default) or field_dstar (any angle)")  # fmt: skip
     plan.add_argument("--radius", type=_radius, default=0.0, metavar="R",
                       help="robot radius: obstacles inflated by R metres (default 0)")  # fmt: skip
+    plan.add_argument("--start-tolerance", type=_tolerance, default=0.0, metavar="METRES",
+                      help="a start within R of an obstacle or unknown space (a drifted "
+                           "estimate) first moves straight to the nearest passable cell "
+                           "centre within METRES (default 0: such a start is "
+                           "refused)")  # fmt: skip
     plan.add_argument("--plot", metavar="FILE.png", help="write a picture of the map and path")
     plan.add_argument("--quiet", action="store_true", help="no compilation notice on stderr")
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import math
 import os
 import time
 from pathlib import Path
@@ -11,6 +12,7 @@ from typing import Literal, TextIO
 import numpy as np
 import yaml
 
+from navkit._shared.types import FloatArray
 from navkit.cli._kernels import announce_compilation
 from navkit.cli._outputs import check_output, save_picture
 from navkit.errors import NoPathError
@@ -55,9 +57,10 @@ def _in_option_names(message: str) -> str:
     """A MapPlanner message about a blocked or off-map start or goal, in the command's terms.
 
     The planner names its own arguments (``start``, ``robot_radius``,
-    ``unknown_cost``, ``inflate_unknown``); the command's user gave
-    ``--start``, ``--goal`` and ``--radius`` and cannot set the others (unknown
-    space is always blocked and inflated here), so those asides are dropped.
+    ``start_tolerance``, ``unknown_cost``, ``inflate_unknown``); the command's
+    user gave ``--start``, ``--goal``, ``--radius`` and ``--start-tolerance``
+    and cannot set the others (unknown space is always blocked and inflated
+    here), so those asides are dropped.
 
     Examples
     --------
@@ -66,6 +69,11 @@ def _in_option_names(message: str) -> str:
     '--goal (1.0, 2.0) (cell (20, 10)) is within --radius (0.5 m) of an obstacle'
     >>> _in_option_names("no collision-free path from start (0.0, 0.0) to goal (1.0, 2.0)")
     'no collision-free path from --start (0.0, 0.0) to --goal (1.0, 2.0)'
+    >>> _in_option_names("start (1.0, 2.0) (cell (20, 10)) is within robot_radius (0.5 m) of an "
+    ...                  "obstacle; pass start_tolerance > 0 to escape to the nearest passable "
+    ...                  "cell")
+    '--start (1.0, 2.0) (cell (20, 10)) is within --radius (0.5 m) of an obstacle;
+     pass --start-tolerance > 0 to escape to the nearest passable cell'
     """
     for name in ("start", "goal"):
         if message.startswith(f"{name} ("):
@@ -75,9 +83,30 @@ def _in_option_names(message: str) -> str:
         " to goal (", " to --goal ("
     )
     message = message.replace("within robot_radius (", "within --radius (")
+    # The escape's hint ("pass start_tolerance > 0 ...") and its refusal ("within
+    # start_tolerance (0.1 m)"); the library keeps naming its keyword.
+    message = message.replace("start_tolerance", "--start-tolerance")
     for aside in (" (unknown_cost is inf)", " (inflate_unknown is True)"):
         message = message.replace(aside, "")
     return message
+
+
+def _escape_rows(
+    planner: MapPlanner, start: tuple[float, float], tolerance: float, points: FloatArray
+) -> tuple[tuple[str, str | float], ...]:
+    """The table's rows on ``--start-tolerance``: the tolerance and, after an escape, where to.
+
+    The planner escaped only from a start on an impassable cell (it refuses
+    the others); the path then runs from ``start`` to the escape cell's centre.
+    """
+    if tolerance == 0.0:
+        return ()
+    rows: tuple[tuple[str, str | float], ...] = (("start tolerance (m)", tolerance),)
+    row, col = (int(v) for v in np.asarray(planner.grid.world_to_cell(start)).reshape(2))
+    if not math.isfinite(planner.costs[row, col]):
+        x, y = (float(v) for v in points[1])
+        rows += (("escaped to (m)", f"({x:g}, {y:g})"),)
+    return rows
 
 
 def plan_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
@@ -92,7 +121,7 @@ def plan_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
     planner = MapPlanner(grid, robot_radius=args.radius, planner=args.planner)
     prepared = time.perf_counter()
     try:
-        path = planner.plan(args.start, args.goal)
+        path = planner.plan(args.start, args.goal, start_tolerance=args.start_tolerance)
     except NoPathError as exc:
         raise NoPathError(_in_option_names(str(exc)), expanded=exc.expanded) from exc
     except ValueError as exc:
@@ -104,6 +133,7 @@ def plan_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
         ("planner", args.planner),
         ("robot radius (m)", args.radius),
         ("start (m)", f"({args.start[0]:g}, {args.start[1]:g})"),
+        *_escape_rows(planner, args.start, args.start_tolerance, path.points),
         ("goal (m)", f"({args.goal[0]:g}, {args.goal[1]:g})"),
         ("length (m)", float(path.length)),
         ("plan time (ms)", 1e3 * (searched - prepared)),
