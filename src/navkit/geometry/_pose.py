@@ -69,7 +69,11 @@ class Pose2D:
 
     def __reduce__(self) -> tuple[Any, ...]:
         # Copies and pickles keep what a subclass adds (its __dict__ or slots),
-        # which the slotted dataclass's own state drops.
+        # which the slotted dataclass's own state drops. A plain pose rebuilds
+        # from its fields (theta is already wrapped: unchanged): copies as quick
+        # and pickles as small as before, which older navkit versions load too.
+        if type(self) is Pose2D:
+            return Pose2D, (self.x, self.y, self.theta)
         return reduce_record(self, ())
 
     def compose(self, other: Pose2D | ArrayLike) -> Pose2D:
@@ -306,6 +310,8 @@ class Twist2D:
 
     def __reduce__(self) -> tuple[Any, ...]:
         # As Pose2D's: a subclass's own attributes survive copies and pickles.
+        if type(self) is Twist2D:
+            return Twist2D, (self.vx, self.vy, self.omega)
         return reduce_record(self, ())
 
     def as_array(self) -> FloatArray:
