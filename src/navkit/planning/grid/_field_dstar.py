@@ -582,12 +582,15 @@ class FieldDStar:
 
         So the linked cost-to-goal is the least over all 16 corner pairs, and
         mirroring the grid or turning it by quarter turns gives the same node
-        values and link corners up to rounding. The extracted path's cost carries the caveats
-        of the class Notes (the walk is not exact, the shortcut pass is
-        greedy): in random tests on small cost grids (holes, inflated cost
-        bands) its cost was never above that of any of the 16 corner pairs
-        forced through :meth:`plan` plus the two end segments, and without
-        smoothing it was up to about 1 % above in about 2 % of the queries.
+        values and link corners up to rounding. The extracted path's cost
+        carries the caveats of the class Notes (the walk is not exact, the
+        shortcut pass is greedy): in random tests on small cost grids (holes,
+        inflated cost bands) its cost was never above that of any of the 16
+        corner pairs forced through :meth:`plan` plus the two end segments,
+        and without smoothing (with ``lookahead``) it was up to about 1 %
+        above in about 2 % of the queries. Without both smoothing and
+        ``lookahead`` the walk can be much dearer where costs differ by large
+        factors (43 % in one test with costs of 1 and 1000).
         The position rule used before (the corner nearest the other centre)
         cost up to 20 % more in such tests.
 

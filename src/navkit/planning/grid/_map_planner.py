@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import copy
 import math
-from collections.abc import Iterator
 from typing import Any, Literal, NamedTuple, Protocol
 
 import numpy as np
@@ -495,21 +494,38 @@ class MapPlanner:
         near = (np.sqrt(d2) * self._grid.resolution <= tolerance) & (d2 <= reach * reach)
         rr, cc, d2 = rr[near], cc[near], d2[near]
         origin = np.array([q_row, q_col])
-        for k in _nearest_first(d2):
+        theta = np.arctan2(cc - q_col, rr - q_row)
+        # Candidates neither tried nor hidden behind a hard cell that blocked an
+        # earlier one, in index order (ties go to the lowest (row, col)). Without the
+        # shadows a start whose candidates are all hidden (deep in a bent, band-only
+        # corridor, a large tolerance) tested every segment: minutes on a big map.
+        alive = np.arange(rr.shape[0])
+        while alive.size:
+            near_d2 = d2[alive]
+            first = int(np.argmin(near_d2))  # the first of the least: lowest index
+            k = int(alive[first])
             cell = (int(rr[k]), int(cc[k]))
             direction = np.array([cell[0] - q_row, cell[1] - q_col])
             box_r, box_c, _, _ = _segment_cells(origin, direction, _GRAZE)
             # Beyond the map's edge only a segment along that edge touches them.
             inside = (box_r >= 0) & (box_r < rows) & (box_c >= 0) & (box_c < cols)
-            if hard[box_r[inside] - r_lo, box_c[inside] - c_lo].any():
-                continue
-            box_r, box_c, enter, leave = _segment_cells(origin, direction, 0.0)
-            inside = (box_r >= 0) & (box_r < rows) & (box_c >= 0) & (box_c < cols)
-            box_r, box_c, enter, leave = box_r[inside], box_c[inside], enter[inside], leave[inside]
-            cell_costs = self._costs[box_r, box_c]
-            cell_costs = np.where(np.isfinite(cell_costs), cell_costs, _BAND_COST)
-            cost = float(np.sum((leave - enter) * cell_costs)) * math.hypot(*direction)
-            return _Escape(cell, point, cost)
+            box_r, box_c = box_r[inside], box_c[inside]
+            blocked = hard[box_r - r_lo, box_c - c_lo]
+            if not blocked.any():
+                box_r, box_c, enter, leave = _segment_cells(origin, direction, 0.0)
+                inside = (box_r >= 0) & (box_r < rows) & (box_c >= 0) & (box_c < cols)
+                box_r, box_c = box_r[inside], box_c[inside]
+                enter, leave = enter[inside], leave[inside]
+                cell_costs = self._costs[box_r, box_c]
+                cell_costs = np.where(np.isfinite(cell_costs), cell_costs, _BAND_COST)
+                cost = float(np.sum((leave - enter) * cell_costs)) * math.hypot(*direction)
+                return _Escape(cell, point, cost)
+            # The blocking cell nearest the start hides the widest wedge behind it.
+            dist2 = np.where(blocked, (box_r - q_row) ** 2 + (box_c - q_col) ** 2, np.inf)
+            blocker = int(np.argmin(dist2))
+            drop = _shadow(q, (int(box_r[blocker]), int(box_c[blocker])), theta[alive], near_d2)
+            drop[first] = True
+            alive = alive[~drop]
         return None
 
     def _endpoint_cell(self, value: Pose2D | ArrayLike, name: str) -> tuple[int, int]:
@@ -568,28 +584,37 @@ class _Escape(NamedTuple):
     cost: float
 
 
-def _nearest_first(d2: FloatArray) -> Iterator[int]:
-    """Indices of ``d2`` by increasing value, ties in index order, sorted only as consumed.
+def _shadow(
+    q: tuple[float, float], blocker: tuple[int, int], theta: FloatArray, d2: FloatArray
+) -> BoolArray:
+    """Which candidates (directions ``theta``, squared distances ``d2`` from ``q``) are hidden.
 
-    The first escape candidate usually succeeds: sorting every cell of a huge
-    tolerance's disc (millions on a big map) would cost far more than the
-    search. Rounds of the nearest 64, 256, ... candidates, each found by a
-    partition, then stably sorted.
+    A sufficient test, not an exact one: a centre whose direction from ``q``
+    lies strictly inside (by ``1e-9`` rad) the angle that the blocker's square
+    subtends and that lies farther than the square's farthest corner is
+    hidden, as its segment meets the square on the way. ``q`` touching the
+    square (within the graze) hides everything.
     """
-    done = -math.inf
-    count = 64
-    while True:
-        rest = np.flatnonzero(d2 > done)
-        if rest.size == 0:
-            return
-        if rest.size > count:
-            bound = float(np.partition(d2[rest], count - 1)[count - 1])
-            rest = rest[d2[rest] <= bound]
-        else:
-            bound = float(d2[rest].max())
-        yield from (int(k) for k in rest[np.argsort(d2[rest], kind="stable")])
-        done = bound
-        count *= 4
+    q_row, q_col = q
+    b_row, b_col = blocker
+    reach = 0.5 + _GRAZE
+    if abs(b_row - q_row) <= reach and abs(b_col - q_col) <= reach:
+        return np.ones(theta.shape[0], dtype=bool)
+    corner_r = b_row + np.array([-0.5, -0.5, 0.5, 0.5]) - q_row
+    corner_c = b_col + np.array([-0.5, 0.5, -0.5, 0.5]) - q_col
+    base = math.atan2(b_col - q_col, b_row - q_row)
+    # Offsets from the direction of the square's centre, wrapped to [-pi, pi):
+    # seen from outside, the square spans less than a half turn around it.
+    spread = (np.arctan2(corner_c, corner_r) - base + math.pi) % (2 * math.pi) - math.pi
+    offset = (theta - base + math.pi) % (2 * math.pi) - math.pi
+    far = float(np.hypot(corner_r, corner_c).max())
+    margin = 1e-9
+    hidden: BoolArray = (
+        (offset > spread.min() + margin)
+        & (offset < spread.max() - margin)
+        & (d2 > (far + margin) ** 2)
+    )
+    return hidden
 
 
 def _segment_cells(
