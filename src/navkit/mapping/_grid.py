@@ -638,16 +638,17 @@ class OccupancyGrid:
             continuous is False
             and type(points_xy) is np.ndarray
             and points_xy.dtype is _FLOAT64
-            and points_xy.ndim == 2
-            and points_xy.shape[1] == 2
+            and len(shape := points_xy.shape) == 2
+            and shape[1] == 2
             and (flags := points_xy.flags).c_contiguous
             and flags.aligned
         ):
             # Fast path: (N, 2) float64 points that are already C-contiguous go
             # straight to the compiled kernel, with the argument types it was
             # compiled for (checked just above). The kernel also reports whether
-            # every point was finite; if not, the general path below raises.
-            cells = _empty((len(points_xy), 2), _INT64)
+            # every point was finite; if not, the general path below raises. The
+            # cells take the points' shape tuple as it is (cheaper than a new one).
+            cells = _empty(shape, _INT64)
             entry = _CELLS_ENTRY or _cells_entry()
             if entry(
                 points_xy, self._origin_x, self._origin_y, self._origin_yaw, self._resolution, cells
