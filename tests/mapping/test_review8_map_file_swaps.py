@@ -9,15 +9,14 @@ check at all. A ROS 2 bag's metadata.yaml was checked by name and read by rosbag
 from __future__ import annotations
 
 import os
-import threading
 from collections.abc import Callable
-from contextlib import suppress
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 import pytest
 
+from fifo_guard import unblocked
 from navkit.mapping.io import _map_files, _paths, read_map
 from navkit.mapping.io._map_files import read_image, read_pgm
 
@@ -33,37 +32,6 @@ def _map(folder: Path) -> Path:
     (folder / "m.pgm").write_bytes(b"P5 2 1 255 \x00\xfe")
     (folder / "m.yaml").write_text(_YAML)
     return folder / "m.yaml"
-
-
-def _unblocked(call: Callable[[], Any], fifo: Path) -> Any:
-    """``call()``'s result (or exception); a call that blocks on ``fifo`` fails the test.
-
-    The call runs in a thread so that the old code, which blocked for ever opening
-    the FIFO, fails instead of hanging: the FIFO is then opened for writing and
-    closed, which ends the blocked open (and the read after it) with end-of-file.
-    """
-    outcome: dict[str, Any] = {}
-
-    def run() -> None:
-        try:
-            outcome["value"] = call()
-        except BaseException as exc:  # handed to the test's thread
-            outcome["error"] = exc
-
-    worker = threading.Thread(target=run, daemon=True)
-    worker.start()
-    worker.join(20)  # a guard against hanging only: the reads take milliseconds
-    if worker.is_alive():
-        for _ in range(20):
-            with suppress(OSError):
-                os.close(os.open(fifo, os.O_WRONLY | os.O_NONBLOCK))
-            worker.join(0.5)
-            if not worker.is_alive():
-                break
-        pytest.fail(f"blocked reading the FIFO {fifo}")
-    if "error" in outcome:
-        raise outcome["error"]
-    return outcome["value"]
 
 
 def _swap_after_stats(monkeypatch: pytest.MonkeyPatch, target: Path, after: int,
@@ -110,7 +78,7 @@ def test_image_swapped_for_a_fifo_after_its_check_is_refused(
     # either (after the second, the old code opened the FIFO and blocked).
     _swap_after_stats(monkeypatch, image, after, _to_fifo(image))
     with pytest.raises(ValueError, match=f"{path}: map image {image} is not a regular file"):
-        _unblocked(lambda: read_map(path), image)
+        unblocked(lambda: read_map(path), image)
 
 
 def test_image_swapped_for_a_folder_after_its_check_is_refused(
@@ -134,7 +102,7 @@ def test_yaml_swapped_for_a_fifo_is_read_as_it_was_or_refused(
     path = _map(tmp_path)
     _swap_after_stats(monkeypatch, path, after, _to_fifo(path))
     try:
-        grid = _unblocked(lambda: read_map(path), path)
+        grid = unblocked(lambda: read_map(path), path)
     except ValueError as exc:
         assert str(exc) == f"map YAML file {path} is not a regular file"
     else:
@@ -146,7 +114,7 @@ def test_image_readers_refuse_a_fifo_and_a_folder(tmp_path: Path, reader: Any) -
     fifo = tmp_path / "f.pgm"
     os.mkfifo(fifo)
     with pytest.raises(ValueError, match=f"{fifo} is not a regular file"):
-        _unblocked(lambda: reader(fifo), fifo)
+        unblocked(lambda: reader(fifo), fifo)
     folder = tmp_path / "d.pgm"
     folder.mkdir()
     with pytest.raises(ValueError, match=f"{folder} is a directory"):
@@ -179,7 +147,7 @@ def test_the_image_is_read_through_the_descriptor_it_was_checked_on(
         return fh
 
     monkeypatch.setattr(_map_files, "open_regular", opened_then_replaced)
-    grid = _unblocked(lambda: read_map(tmp_path / "m.yaml"), image)
+    grid = unblocked(lambda: read_map(tmp_path / "m.yaml"), image)
     assert grid.occupied().tolist() == [[True, False]]
     assert grid.free().tolist() == [[False, True]]
 
@@ -199,7 +167,7 @@ def test_ros2_bag_metadata_swapped_for_a_fifo_is_refused(
     meta = folder / "metadata.yaml"
     _swap_after_stats(monkeypatch, meta, 1, _to_fifo(meta))
     with pytest.raises(ValueError, match=f"ROS 2 bag metadata {meta} is not a regular file"):
-        _unblocked(lambda: bag_topics(folder), meta)
+        unblocked(lambda: bag_topics(folder), meta)
 
 
 @pytest.mark.parametrize("gzipped", [False, True])
@@ -219,4 +187,4 @@ def test_carmen_log_swapped_for_a_fifo_after_its_check_is_refused(
     assert read_carmen(log).scans[0].range_max == 5.0
     _swap_after_stats(monkeypatch, log, after, _to_fifo(log))
     with pytest.raises(ValueError, match=f"CARMEN log {log} is not a regular file"):
-        _unblocked(lambda: read_carmen(log), log)
+        unblocked(lambda: read_carmen(log), log)

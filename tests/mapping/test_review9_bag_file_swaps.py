@@ -11,9 +11,6 @@ storage files are opened by SQLite itself, by name: a documented limit.)
 from __future__ import annotations
 
 import os
-import threading
-from collections.abc import Callable
-from contextlib import suppress
 from pathlib import Path
 from typing import Any
 
@@ -27,6 +24,7 @@ from rosbags.rosbag2 import StoragePlugin
 from rosbags.rosbag2 import Writer as Writer2
 from rosbags.typesys import Stores, get_typestore
 
+from fifo_guard import unblocked
 from navkit.mapping.io import read_bag_scans
 
 pytestmark = pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="needs FIFOs (POSIX)")
@@ -64,37 +62,6 @@ def _bag2(folder: Path) -> Path:
     return folder
 
 
-def _unblocked(call: Callable[[], Any], fifo: Path) -> Any:
-    """``call()``'s result (or exception); a call blocked on ``fifo`` fails the test.
-
-    The call runs in a thread so that the old code, which blocked opening the
-    FIFO, fails instead of hanging: the FIFO is then opened for writing and
-    closed, which ends the blocked open (and the read after it) with end-of-file.
-    """
-    outcome: dict[str, Any] = {}
-
-    def run() -> None:
-        try:
-            outcome["value"] = call()
-        except BaseException as exc:  # handed to the test's thread
-            outcome["error"] = exc
-
-    worker = threading.Thread(target=run, daemon=True)
-    worker.start()
-    worker.join(20)  # a guard against hanging only: the reads take milliseconds
-    if worker.is_alive():
-        for _ in range(20):
-            with suppress(OSError):
-                os.close(os.open(fifo, os.O_WRONLY | os.O_NONBLOCK))
-            worker.join(0.5)
-            if not worker.is_alive():
-                break
-        pytest.fail(f"blocked reading the FIFO {fifo}")
-    if "error" in outcome:
-        raise outcome["error"]
-    return outcome["value"]
-
-
 def _swap_to_fifo_after_stats(monkeypatch: pytest.MonkeyPatch, target: Path, after: int) -> None:
     """Replace ``target`` by a FIFO once ``Path.stat`` (behind ``exists``, ``is_file``,
     ``is_dir``) has been called ``after`` times on it: a file changed after its checks."""
@@ -124,7 +91,7 @@ def test_ros1_bag_swapped_for_a_fifo_is_refused(
     _swap_to_fifo_after_stats(monkeypatch, bag, after)
     message = "is neither a ROS 1 bag file" if after < 3 else "is not a regular file"
     with pytest.raises(ValueError, match=f"{bag} {message}"):
-        _unblocked(lambda: read_bag_scans(bag), bag)
+        unblocked(lambda: read_bag_scans(bag), bag)
 
 
 @pytest.mark.parametrize("name", ["metadata.yaml", "b2.mcap"])
@@ -139,4 +106,4 @@ def test_ros2_bag_file_swapped_for_a_fifo_is_refused(
     stats = {"metadata.yaml": 2, "b2.mcap": 1}[name]
     _swap_to_fifo_after_stats(monkeypatch, target, stats)
     with pytest.raises(ValueError, match=f"{folder}.*{target} is not a regular file"):
-        _unblocked(lambda: read_bag_scans(folder), target)
+        unblocked(lambda: read_bag_scans(folder), target)
