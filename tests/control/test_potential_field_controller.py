@@ -15,27 +15,7 @@ from navkit.control import PotentialFieldController
 from navkit.geometry import Pose2D, Twist2D, integrate
 from navkit.mapping import LaserScan
 from navkit.planning import ConicAttraction, KhatibRepulsion
-
-rate = st.floats(0.1, 5.0)
-period = st.floats(0.005, 0.5)
-TOL = 1e-9
-
-
-def check_change(prev: np.ndarray, new: np.ndarray, accel: float, decel: float, dt: float) -> None:
-    """The rule: a change that raises the speed is limited by accel, any other by decel.
-
-    A speed unchanged to within rounding may be classed either way.
-    """
-    step = float(np.linalg.norm(new - prev))
-    gain = float(np.linalg.norm(new) - np.linalg.norm(prev))
-    if abs(gain) <= TOL:
-        limit = max(accel, decel) * dt
-    elif gain > 0.0:
-        limit = accel * dt
-    else:
-        limit = decel * dt
-    assert step <= limit * (1 + 1e-9) + TOL, (prev, new, step, limit)
-
+from velocity_change_rule import TOL, check_change, period, rate
 
 obstacle_lists = st.lists(st.tuples(st.floats(-4.0, 4.0), st.floats(-4.0, 4.0)), max_size=5)
 poses = st.builds(Pose2D, st.floats(-3.0, 3.0), st.floats(-3.0, 3.0),

@@ -10,27 +10,9 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from navkit.control import limit_velocity_change
+from velocity_change_rule import TOL, check_change, period, rate
 
 vec = st.tuples(st.floats(-3.0, 3.0), st.floats(-3.0, 3.0))
-rate = st.floats(0.1, 5.0)
-period = st.floats(0.005, 0.5)
-TOL = 1e-9
-
-
-def check_change(prev: np.ndarray, new: np.ndarray, accel: float, decel: float, dt: float) -> None:
-    """The rule: a change that raises the speed is limited by accel, any other by decel.
-
-    A speed unchanged to within rounding may be classed either way.
-    """
-    step = float(np.linalg.norm(new - prev))
-    gain = float(np.linalg.norm(new) - np.linalg.norm(prev))
-    if abs(gain) <= TOL:
-        limit = max(accel, decel) * dt
-    elif gain > 0.0:
-        limit = accel * dt
-    else:
-        limit = decel * dt
-    assert step <= limit * (1 + 1e-9) + TOL, (prev, new, step, limit)
 
 
 @settings(max_examples=300)

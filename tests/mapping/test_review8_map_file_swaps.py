@@ -9,7 +9,6 @@ check at all. A ROS 2 bag's metadata.yaml was checked by name and read by rosbag
 from __future__ import annotations
 
 import os
-from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -17,6 +16,7 @@ import numpy as np
 import pytest
 
 from fifo_guard import unblocked
+from file_swaps import swap_after_stats, to_fifo, to_folder
 from navkit.mapping.io import _map_files, _paths, read_map
 from navkit.mapping.io._map_files import read_image, read_pgm
 
@@ -34,40 +34,6 @@ def _map(folder: Path) -> Path:
     return folder / "m.yaml"
 
 
-def _swap_after_stats(monkeypatch: pytest.MonkeyPatch, target: Path, after: int,
-                      swap: Callable[[], None]) -> None:  # fmt: skip
-    """Call ``swap()`` once ``Path.stat`` (behind ``exists``, ``is_file``, ``is_dir``)
-    has been called ``after`` times on ``target``: a file changed after its checks."""
-    real_stat = Path.stat
-    calls = [0]
-
-    def stat(self: Path, *args: Any, **kwargs: Any) -> Any:
-        result = real_stat(self, *args, **kwargs)
-        if self == target:
-            calls[0] += 1
-            if calls[0] == after:
-                swap()
-        return result
-
-    monkeypatch.setattr(Path, "stat", stat)
-
-
-def _to_fifo(path: Path) -> Callable[[], None]:
-    def swap() -> None:
-        path.unlink()
-        os.mkfifo(path)
-
-    return swap
-
-
-def _to_folder(path: Path) -> Callable[[], None]:
-    def swap() -> None:
-        path.unlink()
-        path.mkdir()
-
-    return swap
-
-
 @pytest.mark.parametrize("after", [1, 2])
 def test_image_swapped_for_a_fifo_after_its_check_is_refused(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch, after: int
@@ -76,7 +42,7 @@ def test_image_swapped_for_a_fifo_after_its_check_is_refused(
     image = tmp_path / "m.pgm"
     # read_map_yaml checks the image with exists() then is_file(): swapped after
     # either (after the second, the old code opened the FIFO and blocked).
-    _swap_after_stats(monkeypatch, image, after, _to_fifo(image))
+    swap_after_stats(monkeypatch, image, after, to_fifo(image))
     with pytest.raises(ValueError, match=f"{path}: map image {image} is not a regular file"):
         unblocked(lambda: read_map(path), image)
 
@@ -86,7 +52,7 @@ def test_image_swapped_for_a_folder_after_its_check_is_refused(
 ) -> None:
     path = _map(tmp_path)
     image = tmp_path / "m.pgm"
-    _swap_after_stats(monkeypatch, image, 2, _to_folder(image))
+    swap_after_stats(monkeypatch, image, 2, to_folder(image))
     # Was IsADirectoryError (an OSError: "the operating system refuses to read").
     with pytest.raises(ValueError, match=f"{path}: map image {image} is a directory"):
         read_map(path)
@@ -100,7 +66,7 @@ def test_yaml_swapped_for_a_fifo_is_read_as_it_was_or_refused(
     # one open) or refuses the FIFO; the old code blocked when the swap came after
     # its is_file() check (the stat of its size then read_bytes opened the FIFO).
     path = _map(tmp_path)
-    _swap_after_stats(monkeypatch, path, after, _to_fifo(path))
+    swap_after_stats(monkeypatch, path, after, to_fifo(path))
     try:
         grid = unblocked(lambda: read_map(path), path)
     except ValueError as exc:
@@ -165,7 +131,7 @@ def test_ros2_bag_metadata_swapped_for_a_fifo_is_refused(
         pass
     assert bag_topics(folder) == {}
     meta = folder / "metadata.yaml"
-    _swap_after_stats(monkeypatch, meta, 1, _to_fifo(meta))
+    swap_after_stats(monkeypatch, meta, 1, to_fifo(meta))
     with pytest.raises(ValueError, match=f"ROS 2 bag metadata {meta} is not a regular file"):
         unblocked(lambda: bag_topics(folder), meta)
 
@@ -185,6 +151,6 @@ def test_carmen_log_swapped_for_a_fifo_after_its_check_is_refused(
     line = b"FLASER 3 1.0 2.0 5.0 0 0 0 0 0 0 1.0 host 1.0\n"
     log.write_bytes(gzip.compress(line) if gzipped else line)
     assert read_carmen(log).scans[0].range_max == 5.0
-    _swap_after_stats(monkeypatch, log, after, _to_fifo(log))
+    swap_after_stats(monkeypatch, log, after, to_fifo(log))
     with pytest.raises(ValueError, match=f"CARMEN log {log} is not a regular file"):
         unblocked(lambda: read_carmen(log), log)

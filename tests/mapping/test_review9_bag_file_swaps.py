@@ -25,6 +25,7 @@ from rosbags.rosbag2 import Writer as Writer2
 from rosbags.typesys import Stores, get_typestore
 
 from fifo_guard import unblocked
+from file_swaps import swap_after_stats, to_fifo
 from navkit.mapping.io import read_bag_scans
 
 pytestmark = pytest.mark.skipif(not hasattr(os, "mkfifo"), reason="needs FIFOs (POSIX)")
@@ -62,24 +63,6 @@ def _bag2(folder: Path) -> Path:
     return folder
 
 
-def _swap_to_fifo_after_stats(monkeypatch: pytest.MonkeyPatch, target: Path, after: int) -> None:
-    """Replace ``target`` by a FIFO once ``Path.stat`` (behind ``exists``, ``is_file``,
-    ``is_dir``) has been called ``after`` times on it: a file changed after its checks."""
-    real_stat = Path.stat
-    calls = [0]
-
-    def stat(self: Path, *args: Any, **kwargs: Any) -> Any:
-        result = real_stat(self, *args, **kwargs)
-        if self == target:
-            calls[0] += 1
-            if calls[0] == after:
-                target.unlink()
-                os.mkfifo(target)
-        return result
-
-    monkeypatch.setattr(Path, "stat", stat)
-
-
 @pytest.mark.parametrize("after", [1, 2, 3, 4])
 def test_ros1_bag_swapped_for_a_fifo_is_refused(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch, after: int
@@ -88,7 +71,7 @@ def test_ros1_bag_swapped_for_a_fifo_is_refused(
     # exists() before it opens the file (the old code blocked after the 3rd and 4th).
     bag = _bag1(tmp_path / "b.bag")
     assert len(read_bag_scans(bag)) == 1
-    _swap_to_fifo_after_stats(monkeypatch, bag, after)
+    swap_after_stats(monkeypatch, bag, after, to_fifo(bag))
     message = "is neither a ROS 1 bag file" if after < 3 else "is not a regular file"
     with pytest.raises(ValueError, match=f"{bag} {message}"):
         unblocked(lambda: read_bag_scans(bag), bag)
@@ -104,6 +87,6 @@ def test_ros2_bag_file_swapped_for_a_fifo_is_refused(
     assert target.is_file()
     # The last stat before rosbags opens it: its exists() check of the file.
     stats = {"metadata.yaml": 2, "b2.mcap": 1}[name]
-    _swap_to_fifo_after_stats(monkeypatch, target, stats)
+    swap_after_stats(monkeypatch, target, stats, to_fifo(target))
     with pytest.raises(ValueError, match=f"{folder}.*{target} is not a regular file"):
         unblocked(lambda: read_bag_scans(folder), target)

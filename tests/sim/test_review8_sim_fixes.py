@@ -12,9 +12,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from shapely.geometry import box
 
+from constant_controller import run_constant
 from navkit.geometry import Pose2D, Twist2D
 from navkit.kinematics import DiffDrive
-from navkit.sim import EncoderReading, Lidar, Observation, Robot, Simulation, WheelEncoders, World
+from navkit.sim import EncoderReading, Lidar, Robot, WheelEncoders, World
 from navkit.sim._latency import DelayLine
 from navkit.sim._world import MAX_POSE_COORD
 
@@ -55,28 +56,15 @@ def test_each_tick_starts_at_its_boundary_angle(tpr: float, k: int) -> None:
     assert encoders.counts(np.array([at, below])).tolist() == [k, k - 1]
 
 
-class _Forward:
-    def __init__(self, speed: float) -> None:
-        self.speed = speed
-        self.seen: list[Observation] = []
-
-    def __call__(self, obs: Observation) -> Twist2D:
-        self.seen.append(obs)
-        return Twist2D(self.speed)
-
-
 def test_simulated_encoders_follow_the_same_tick_rule() -> None:
     # Wheels of 1/16 m at 8π m/s turn 128π rad/s: at 64 Hz exactly one turn (2 * math.pi)
     # per step, all products and sums exact, so after 11 steps the angle is exactly
     # 11 * 2 * math.pi. The kernel's floor(angle * 360 / 2π) read 3959 there.
     drive = DiffDrive(track=0.3, wheel_radius=0.0625)
     encoders = WheelEncoders(ticks_per_rev=360, bits=None, rate=64.0)
-    ctrl = _Forward(8.0 * math.pi)
     robot = Robot(drive=drive, footprint=0.2, encoders=encoders)
-    Simulation(
-        World(), robot, ctrl, start=(0.0, 0.0, 0.0), duration=0.25, rate=64.0, control_rate=64.0
-    ).run()
-    readings = [r for obs in ctrl.seen for r in obs.new if isinstance(r, EncoderReading)]
+    _, ctrl = run_constant(robot, Twist2D(8.0 * math.pi), 0.25, rate=64.0, control_rate=64.0)
+    readings = ctrl.readings(EncoderReading)
     assert len(readings) == 17
     for k, reading in enumerate(readings):
         assert reading.stamp * 64.0 == k

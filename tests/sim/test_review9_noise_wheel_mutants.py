@@ -7,14 +7,14 @@ here fails on a one-line change of the code that every other test let through.
 from __future__ import annotations
 
 import math
-from typing import Any
 
 import numpy as np
 import pytest
 
+from constant_controller import Constant, run_constant
 from navkit.geometry import Pose2D, Twist2D
 from navkit.kinematics import DiffDrive, OmniDrive
-from navkit.sim import Imu, ImuReading, Observation, RangeNoise, Robot, Simulation, Trace, World
+from navkit.sim import Imu, ImuReading, RangeNoise, Robot, Simulation, World
 
 
 def test_equal_band_limits_are_refused() -> None:
@@ -71,29 +71,12 @@ def test_a_uniform_draw_equal_to_the_dropout_rate_keeps_the_beam() -> None:
 DIFF = DiffDrive(track=0.3, wheel_radius=0.05)
 
 
-class _Constant:
-    """Commands one twist and keeps every observation."""
-
-    def __init__(self, twist: Twist2D) -> None:
-        self.twist = twist
-        self.seen: list[Observation] = []
-
-    def __call__(self, obs: Observation) -> Twist2D:
-        self.seen.append(obs)
-        return self.twist
-
-
-def _run(robot: Robot, twist: Twist2D, duration: float, **kwargs: Any) -> tuple[Trace, _Constant]:
-    ctrl = _Constant(twist)
-    sim = Simulation(World(), robot, ctrl, start=(0.0, 0.0, 0.0), duration=duration, **kwargs)
-    return sim.run(), ctrl
-
-
 def test_imu_reads_the_centripetal_term_of_a_sideways_motion() -> None:
     # Body acceleration a = dv/dt + omega x v. Holding vy = 0.3 m/s and omega =
     # 0.5 rad/s (vx = 0), the body-frame acceleration is (-omega*vy, 0).
     omni = OmniDrive.three_wheel(wheel_radius=0.05, base_radius=0.2)
-    _, ctrl = _run(Robot(drive=omni, footprint=0.25, imu=Imu()), Twist2D(0.0, 0.3, 0.5), 1.0)
+    robot = Robot(drive=omni, footprint=0.25, imu=Imu())
+    _, ctrl = run_constant(robot, Twist2D(0.0, 0.3, 0.5), 1.0)
     late = [r for obs in ctrl.seen for r in obs.new
             if isinstance(r, ImuReading) and r.stamp > 0.2]
     assert late
@@ -107,7 +90,7 @@ def test_a_wheel_ramp_ending_inside_a_physics_step_moves_the_exact_distance(spee
     # hold: the ramp lasts t1 = speed / 0.5 s, generally ending inside a physics
     # step, and the robot covers speed * (T - t1 / 2) in T seconds.
     robot = Robot(drive=DIFF, footprint=0.2, max_wheel_acceleration=10.0)
-    trace, _ = _run(robot, Twist2D(speed), 2.0)
+    trace, _ = run_constant(robot, Twist2D(speed), 2.0)
     t1 = speed / 0.5
     assert trace.poses[-1, 0] == pytest.approx(speed * (2.0 - t1 / 2.0), abs=1e-9)
 
@@ -119,7 +102,7 @@ def test_full_slip_stops_a_wheel_instead_of_giving_it_full_grip() -> None:
     phi0, phi1 = 1.0 / math.sqrt(2.0 * math.pi), math.exp(-0.5) / math.sqrt(2.0 * math.pi)
     kept = math.erf(1.0 / math.sqrt(2.0)) - 2.0 * (phi0 - phi1)  # 0.3687
     robot = Robot(drive=DIFF, footprint=0.2, wheel_slip=1.0)
-    trace, _ = _run(robot, Twist2D(0.2), 20.0, seed=5)
+    trace, _ = run_constant(robot, Twist2D(0.2), 20.0, seed=5)
     # The forward speed is the mean of both wheels' ground speeds: the path length
     # is 0.2 m/s * 20 s times the mean kept fraction (chords of short arcs).
     assert trace.metrics.distance / (0.2 * 20.0) == pytest.approx(kept, rel=0.05)
@@ -131,7 +114,7 @@ def test_goal_heading_exactly_at_the_yaw_tolerance_is_reached() -> None:
     # difference from pi are exact in float64), which counts as reached.
     robot = Robot(drive=DIFF, footprint=0.2)
     for tol, reached in ((0.5, True), (0.4999, False)):
-        sim = Simulation(World(), robot, _Constant(Twist2D(0.2)), start=(0.0, 0.0, 0.0),
+        sim = Simulation(World(), robot, Constant(Twist2D(0.2)), start=(0.0, 0.0, 0.0),
                          goal=(0.5, 0.0, 0.5), goal_radius=0.1, goal_yaw_tolerance=tol,
                          duration=5.0)
         assert sim.run().metrics.reached is reached
@@ -142,13 +125,13 @@ def test_a_robot_exactly_goal_radius_away_has_reached_the_goal() -> None:
     # goal_radius from the goal is the time to goal. The radius is taken as the
     # float distance from a recorded pose (x only: the robot drives along +x).
     robot = Robot(drive=DIFF, footprint=0.2)
-    free = Simulation(World(), robot, _Constant(Twist2D(0.2)), start=(0.0, 0.0, 0.0),
+    free = Simulation(World(), robot, Constant(Twist2D(0.2)), start=(0.0, 0.0, 0.0),
                       duration=3.0).run()
     k = int(np.searchsorted(free.poses[:, 0], 0.3))
     assert np.all(free.poses[:, 1:] == 0.0) and free.poses[k - 1, 0] < free.poses[k, 0]
     goal_x = 0.55
     radius = goal_x - float(free.poses[k, 0])
-    trace = Simulation(World(), robot, _Constant(Twist2D(0.2)), start=(0.0, 0.0, 0.0),
+    trace = Simulation(World(), robot, Constant(Twist2D(0.2)), start=(0.0, 0.0, 0.0),
                        goal=(goal_x, 0.0), goal_radius=radius, duration=3.0).run()
     assert trace.metrics.reached
     assert trace.metrics.time_to_goal == pytest.approx(float(free.times[k]), abs=1e-12)
@@ -158,7 +141,7 @@ def test_distance_is_the_path_length_not_the_displacement() -> None:
     # On an arc of radius v / omega the path length is v * T while the start and
     # end are only a chord 2 R sin(omega T / 2) apart.
     v, omega, duration = 0.2, 0.5, 10.0
-    trace, _ = _run(Robot(drive=DIFF, footprint=0.2), Twist2D(v, 0.0, omega), duration)
+    trace, _ = run_constant(Robot(drive=DIFF, footprint=0.2), Twist2D(v, 0.0, omega), duration)
     assert trace.metrics.distance == pytest.approx(v * duration, rel=1e-3)
     chord = 2.0 * (v / omega) * math.sin(omega * duration / 2.0)
     assert math.hypot(*trace.poses[-1, :2]) == pytest.approx(chord, rel=1e-3)
@@ -178,7 +161,7 @@ class _FixedEstimate:
 def test_estimate_metrics_use_the_estimate() -> None:
     # The robot stays at the origin while its estimator says (1, 2): the final
     # error is measured from the true pose, the estimated one from the estimate.
-    sim = Simulation(World(), Robot(drive=DIFF, footprint=0.2), _Constant(Twist2D(0.0)),
+    sim = Simulation(World(), Robot(drive=DIFF, footprint=0.2), Constant(Twist2D(0.0)),
                      start=(0.0, 0.0, 0.0), goal=(3.0, 2.0), duration=0.5,
                      estimator=_FixedEstimate())
     m = sim.run().metrics
@@ -191,7 +174,7 @@ def test_metrics_refuse_a_negative_min_clearance() -> None:
     # min_clearance is a distance: >= 0 (or inf); any negative value is refused.
     import dataclasses
 
-    trace, _ = _run(Robot(drive=DIFF, footprint=0.2), Twist2D(0.1), 0.2)
+    trace, _ = run_constant(Robot(drive=DIFF, footprint=0.2), Twist2D(0.1), 0.2)
     for bad in (-0.5, -2.0):
         with pytest.raises(ValueError, match="min_clearance"):
             dataclasses.replace(trace.metrics, min_clearance=bad)
@@ -202,7 +185,7 @@ def test_reverse_wheel_speeds_saturate_too() -> None:
     # max_wheel_speed bounds |wheel speed|: 5 rad/s on 5 cm wheels is 0.25 m/s,
     # backward as forward.
     robot = Robot(drive=DIFF, footprint=0.2, max_wheel_speed=5.0)
-    trace, _ = _run(robot, Twist2D(-1.0), 2.0)
+    trace, _ = run_constant(robot, Twist2D(-1.0), 2.0)
     assert trace.poses[-1, 0] == pytest.approx(-0.25 * 2.0, abs=1e-9)
 
 

@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 from shapely.geometry import LineString, Polygon, box
 
+from constant_controller import Constant, run_constant
 from navkit.geometry import Twist2D, integrate
 from navkit.kinematics import DiffDrive, OmniDrive, tick_delta
 from navkit.sim import (
@@ -22,7 +23,6 @@ from navkit.sim import (
     Observation,
     Robot,
     Simulation,
-    Trace,
     WheelEncoders,
     World,
 )
@@ -30,31 +30,10 @@ from navkit.sim import (
 DIFF = DiffDrive(track=0.3, wheel_radius=0.05)
 
 
-class Constant:
-    """Commands one twist and keeps every observation."""
-
-    def __init__(self, twist: Twist2D) -> None:
-        self.twist = twist
-        self.seen: list[Observation] = []
-
-    def __call__(self, obs: Observation) -> Twist2D:
-        self.seen.append(obs)
-        return self.twist
-
-    def readings(self, kind: type) -> list[Any]:
-        return [r for obs in self.seen for r in obs.new if isinstance(r, kind)]
-
-
-def run(robot: Robot, twist: Twist2D, duration: float, **kwargs: Any) -> tuple[Trace, Constant]:
-    ctrl = Constant(twist)
-    sim = Simulation(World(), robot, ctrl, start=(0.0, 0.0, 0.0), duration=duration, **kwargs)
-    return sim.run(), ctrl
-
-
 def test_acceleration_limit_ramps_exactly() -> None:
     """10 rad/s² on 5 cm wheels is 0.5 m/s²: 0.25 m in the 1 s ramp, then 0.5 m/s."""
     robot = Robot(drive=DIFF, footprint=0.2, max_wheel_acceleration=10.0)
-    trace, _ = run(robot, Twist2D(0.5), 2.0)
+    trace, _ = run_constant(robot, Twist2D(0.5), 2.0)
     assert trace.metrics.reason == "timeout"
     assert trace.times[-1] == pytest.approx(2.0)
     assert trace.poses[-1, 0] == pytest.approx(0.75, abs=1e-9)
@@ -64,7 +43,7 @@ def test_acceleration_limit_ramps_exactly() -> None:
 
 def test_wheel_speed_saturation_keeps_the_direction() -> None:
     robot = Robot(drive=DIFF, footprint=0.2, max_wheel_speed=5.0)
-    trace, _ = run(robot, Twist2D(1.0, 0.0, 1.0), 2.0)
+    trace, _ = run_constant(robot, Twist2D(1.0, 0.0, 1.0), 2.0)
     scale = 5.0 / ((1.0 + 0.15) / 0.05)  # the right wheel is the fastest
     expected = integrate((0.0, 0.0, 0.0), Twist2D(scale, 0.0, scale), 2.0)
     np.testing.assert_allclose(trace.poses[-1], expected.as_array(), atol=1e-9)
@@ -82,13 +61,13 @@ def test_commands_beyond_float64_wheel_speeds_still_saturate(speed: float) -> No
                           Twist2D(speed, -speed, speed))):  # fmt: skip
         limited = Robot(drive=drive, footprint=0.2, max_wheel_speed=5.0)
         small = Twist2D(twist.vx / speed, twist.vy / speed, twist.omega / speed)
-        want, _ = run(limited, small, 0.5)
-        got, _ = run(limited, twist, 0.5)
+        want, _ = run_constant(limited, small, 0.5)
+        got, _ = run_constant(limited, twist, 0.5)
         np.testing.assert_allclose(got.poses, want.poses, rtol=1e-12, atol=1e-15)
     unlimited = Robot(drive=DIFF, footprint=0.2)
     if speed * 20.0 == math.inf:  # the wheel speed vx / r overflows: nothing to scale to
         with pytest.raises(ValueError, match=r"beyond float64 .* no max_wheel_speed"):
-            run(unlimited, Twist2D(speed), 0.1)
+            run_constant(unlimited, Twist2D(speed), 0.1)
 
 
 def test_encoders_wider_than_52_bits_wrap_as_unsigned_readings() -> None:
@@ -96,7 +75,7 @@ def test_encoders_wider_than_52_bits_wrap_as_unsigned_readings() -> None:
     for bits in (53, 60, 63):
         encoders = WheelEncoders(ticks_per_rev=1024, bits=bits)
         robot = Robot(drive=DIFF, footprint=0.2, encoders=encoders)
-        _, ctrl = run(robot, Twist2D(-0.5), 0.5)
+        _, ctrl = run_constant(robot, Twist2D(-0.5), 0.5)
         last = ctrl.readings(EncoderReading)[-1]
         angle = -0.5 / 0.05 * last.stamp
         want = encoders.counts(np.array([angle, angle]))
@@ -118,9 +97,9 @@ def test_wheel_radius_error_moves_farther_than_odometry_says() -> None:
 
 def test_slip_loses_ground_and_is_reproducible() -> None:
     robot = Robot(drive=DIFF, footprint=0.2, wheel_slip=0.1)
-    a, _ = run(robot, Twist2D(0.5), 4.0, seed=3)
-    b, _ = run(robot, Twist2D(0.5), 4.0, seed=3)
-    c, _ = run(robot, Twist2D(0.5), 4.0, seed=4)
+    a, _ = run_constant(robot, Twist2D(0.5), 4.0, seed=3)
+    b, _ = run_constant(robot, Twist2D(0.5), 4.0, seed=3)
+    c, _ = run_constant(robot, Twist2D(0.5), 4.0, seed=4)
     np.testing.assert_array_equal(a.poses, b.poses)
     assert not np.array_equal(a.poses, c.poses)
     # Half-normal slip: the mean loss is 0.1 * sqrt(2 / π) ≈ 8 %.
@@ -130,7 +109,7 @@ def test_slip_loses_ground_and_is_reproducible() -> None:
 
 def test_encoders_quantise_and_wrap() -> None:
     robot = Robot(drive=DIFF, footprint=0.2, encoders=WheelEncoders(ticks_per_rev=100, bits=8))
-    trace, ctrl = run(robot, Twist2D(0.5), 4.0)  # 2 m: 6.37 wheel turns, 637 ticks
+    trace, ctrl = run_constant(robot, Twist2D(0.5), 4.0)  # 2 m: 6.37 wheel turns, 637 ticks
     readings = ctrl.readings(EncoderReading)
     ticks = np.array([r.ticks for r in readings])
     assert ticks.dtype == np.int64 and ticks.min() >= 0 and ticks.max() < 256
@@ -143,7 +122,7 @@ def test_encoders_quantise_and_wrap() -> None:
 
 def test_compass_reads_degrees_clockwise_from_north() -> None:
     robot = Robot(drive=DIFF, footprint=0.2, compass=Compass(bias=math.radians(2.0)))
-    trace, ctrl = run(robot, Twist2D(0.0, 0.0, 1.0), 10.0)
+    trace, ctrl = run_constant(robot, Twist2D(0.0, 0.0, 1.0), 10.0)
     readings = ctrl.readings(CompassReading)
     assert len(readings) == 201  # 20 Hz from t = 0 to t = 10 s, both ends included
     for r in readings:
@@ -160,7 +139,7 @@ def test_compass_and_imu_noise_statistics() -> None:
         compass=Compass(noise=0.05, rate=100.0),
         imu=Imu(gyro_noise=0.02, gyro_bias=0.01, accel_noise=0.1, accel_bias=-0.05, rate=100.0),
     )  # fmt: skip
-    _, ctrl = run(robot, Twist2D(0.0, 0.0, 0.0), 100.0)
+    _, ctrl = run_constant(robot, Twist2D(0.0, 0.0, 0.0), 100.0)
     heading = np.array([r.heading_deg for r in ctrl.readings(CompassReading)])
     err = np.radians((heading - 90.0 + 180.0) % 360.0 - 180.0)  # facing east reads 90°
     assert abs(err.std() / 0.05 - 1.0) < 0.05 and abs(err.mean()) < 0.005
@@ -173,7 +152,7 @@ def test_compass_and_imu_noise_statistics() -> None:
 
 def test_imu_measures_body_acceleration_and_rate() -> None:
     robot = Robot(drive=DIFF, footprint=0.2, max_wheel_acceleration=10.0, imu=Imu())
-    _, ctrl = run(robot, Twist2D(0.5, 0.0, 0.5), 2.0)
+    _, ctrl = run_constant(robot, Twist2D(0.5, 0.0, 0.5), 2.0)
     imu = ctrl.readings(ImuReading)
     # The wheels (targets 8.5 and 11.5 rad/s) both ramp at 10 rad/s² until 0.85 s:
     # 0.5 m/s² forward and no turning; then the right one alone until 1.15 s.
@@ -192,7 +171,7 @@ def test_imu_measures_body_acceleration_and_rate() -> None:
 def test_omnidirectional_robot_moves_sideways() -> None:
     omni = OmniDrive.three_wheel(wheel_radius=0.05, base_radius=0.2)
     robot = Robot(drive=omni, footprint=0.25)
-    trace, _ = run(robot, Twist2D(0.0, 0.3, 0.0), 2.0)
+    trace, _ = run_constant(robot, Twist2D(0.0, 0.3, 0.0), 2.0)
     np.testing.assert_allclose(trace.poses[-1], [0.0, 0.6, 0.0], atol=1e-9)
     assert robot.holonomic and robot.n_wheels == 3
 
@@ -200,7 +179,7 @@ def test_omnidirectional_robot_moves_sideways() -> None:
 def test_differential_robot_refuses_lateral_commands() -> None:
     robot = Robot(drive=DIFF, footprint=0.2)
     with pytest.raises(ValueError, match="sideways"):
-        run(robot, Twist2D(0.2, 0.1, 0.0), 1.0)
+        run_constant(robot, Twist2D(0.2, 0.1, 0.0), 1.0)
 
 
 def test_polygon_footprint_collides_with_its_front_edge() -> None:

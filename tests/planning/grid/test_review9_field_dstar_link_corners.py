@@ -78,6 +78,20 @@ def two_free_cells(
     return free[i], free[j]
 
 
+# A drawn grid (seed, rows, cols, kind, the picks of the two end cells), and the
+# costs and end cells it stands for.
+Grid = tuple[int, int, int, int, tuple[int, int]]
+Case = tuple[NDArray[np.float64], tuple[int, int], tuple[int, int]]
+
+
+def random_case(grid: Grid) -> Case | None:
+    """The costs a drawn ``grid`` describes and its two end cells; None without two free cells."""
+    seed, rows, cols, kind, pick = grid
+    costs = random_costs(seed, rows, cols, kind)
+    ends = two_free_cells(costs, pick)
+    return None if ends is None else (costs, *ends)
+
+
 grids = st.tuples(
     st.integers(0, 2**32 - 1),  # seed
     st.integers(2, 9),  # rows
@@ -102,15 +116,11 @@ def test_wall_case_takes_the_cheaper_side_the_position_rule_missed() -> None:
 
 @settings(max_examples=40, deadline=None)
 @given(grid=grids, interpolate=st.booleans())
-def test_plan_cells_costs_no_more_than_any_corner_pair(
-    grid: tuple[int, int, int, int, tuple[int, int]], interpolate: bool
-) -> None:
-    seed, rows, cols, kind, pick = grid
-    costs = random_costs(seed, rows, cols, kind)
-    ends = two_free_cells(costs, pick)
-    if ends is None:
+def test_plan_cells_costs_no_more_than_any_corner_pair(grid: Grid, interpolate: bool) -> None:
+    case = random_case(grid)
+    if case is None:
         return
-    s, g = ends
+    costs, s, g = case
     reference = forced_corner_pairs(costs, s, g, interpolate=interpolate)
     if reference == math.inf:
         with pytest.raises(NoPathError):
@@ -122,18 +132,14 @@ def test_plan_cells_costs_no_more_than_any_corner_pair(
 
 @settings(max_examples=40, deadline=None)
 @given(grid=grids, axis=st.sampled_from([0, 1]), interpolate=st.booleans())
-def test_a_mirrored_grid_gives_the_same_cost(
-    grid: tuple[int, int, int, int, tuple[int, int]], axis: int, interpolate: bool
-) -> None:
+def test_a_mirrored_grid_gives_the_same_cost(grid: Grid, axis: int, interpolate: bool) -> None:
     # Unsmoothed: the shortcut pass is greedy along the path and may straighten a
     # mirrored path differently (see the FieldDStar Notes); the node values, the
     # corners they pick and the extracted path's cost are mirror symmetric.
-    seed, rows, cols, kind, pick = grid
-    costs = random_costs(seed, rows, cols, kind)
-    ends = two_free_cells(costs, pick)
-    if ends is None:
+    case = random_case(grid)
+    if case is None:
         return
-    s, g = ends
+    costs, s, g = case
     shape = costs.shape
 
     def mirror(cell: tuple[int, int]) -> tuple[int, int]:
@@ -155,16 +161,14 @@ def test_a_mirrored_grid_gives_the_same_cost(
 @settings(max_examples=30, deadline=None)
 @given(grid=grids, changed=st.integers(0, 10**6), blocked=st.booleans())
 def test_a_repair_after_plan_cells_equals_a_fresh_plan_cells(
-    grid: tuple[int, int, int, int, tuple[int, int]], changed: int, blocked: bool
+    grid: Grid, changed: int, blocked: bool
 ) -> None:
-    seed, rows, cols, kind, pick = grid
-    costs = random_costs(seed, rows, cols, kind)
-    ends = two_free_cells(costs, pick)
-    if ends is None:
+    case = random_case(grid)
+    if case is None:
         return
-    s, g = ends
+    costs, s, g = case
     # Any cell but the two ends, the goal cell's cost too (the corners' source value).
-    cell = divmod(changed % costs.size, cols)
+    cell = divmod(changed % costs.size, costs.shape[1])
     if cell == s:
         return
     value = np.inf if blocked and cell != g else 1.0 + (changed % 7)
