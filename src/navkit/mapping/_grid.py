@@ -108,6 +108,48 @@ def _bool_grid(value: ArrayLike, name: str) -> BoolArray:
     return arr
 
 
+# Float dtypes whose conversion to float32 rounds exactly as through float64
+# (one rounding), so the grid stores them without a float64 copy.
+_NARROW_FLOATS = (np.dtype(np.float16), np.dtype(np.float32), _FLOAT64)
+
+
+def _logodds_array(value: ArrayLike) -> NDArray[Any]:
+    """``value`` as a 2-D real array, not widened to float64 when it is a float array.
+
+    Integers and other values go through :func:`as_float_array` (an integer above
+    2**24 converted to float32 directly could round differently than via float64).
+    """
+    if type(value) is np.ndarray and value.dtype in _NARROW_FLOATS:
+        if value.ndim != 2:
+            raise ValueError(f"logodds must be 2-D, got shape {value.shape}")
+        return value
+    return as_float_array(value, "logodds", ndim=2, finite=False)
+
+
+# Cells per block of :func:`_probability_logodds`: its float64 temporaries stay
+# this small (2 x 512 KiB) whatever the grid's size.
+_BLOCK_CELLS = 1 << 16
+
+
+def _probability_logodds(p: FloatArray) -> NDArray[np.float32]:
+    """Float32 ``log(p / (1 - p))`` of ``p`` clipped to [P_MIN, P_MAX], shape (rows, cols).
+
+    Computed in float64 over blocks of rows, each rounded to float32 once, as
+    ``np.log(p / (1 - p)).astype(np.float32)`` of the whole grid would be but
+    without its three float64 temporaries of the grid's size (24 bytes a cell).
+    """
+    rows, cols = p.shape
+    out = np.empty((rows, cols), dtype=np.float32)
+    step = max(1, _BLOCK_CELLS // max(cols, 1))
+    for r in range(0, rows, step):
+        block = np.clip(p[r : r + step], P_MIN, P_MAX)
+        ratio = 1.0 - block
+        np.divide(block, ratio, out=ratio)
+        np.log(ratio, out=ratio)
+        out[r : r + step] = ratio
+    return out
+
+
 class OccupancyGrid:
     """A 2-D occupancy grid storing the log-odds of occupancy of every cell.
 
@@ -139,7 +181,9 @@ class OccupancyGrid:
         Cell size, m, in [1e-6, 1e6].
     origin : Pose2D or array_like [x, y, yaw], default Pose2D(0, 0, 0)
         World pose of the corner of cell (0, 0) (its lower-left corner), x and y
-        within ±1e9 m; the yaw rotates the whole grid.
+        within ±1e9 m; the yaw rotates the whole grid about that corner (the
+        meaning of ``nav_msgs/OccupancyGrid``'s ``info.origin`` orientation;
+        Nav2's costmaps ignore a map's yaw, so keep it 0 for maps meant for Nav2).
     occupied_thresh, free_thresh : float
         Default thresholds of the views, ``0 <= free_thresh < occupied_thresh <= 1``.
 
@@ -195,12 +239,17 @@ class OccupancyGrid:
         occupied_thresh: float = DEFAULT_OCCUPIED_THRESH,
         free_thresh: float = DEFAULT_FREE_THRESH,
     ) -> None:
-        arr = as_float_array(logodds, "logodds", ndim=2)
+        arr = _logodds_array(logodds)
         if arr.shape[0] == 0 or arr.shape[1] == 0:
             raise ValueError(f"logodds must not be empty, got shape {arr.shape}")
         check_cell_count(float(arr.size), "logodds")
-        if not float(np.abs(arr).max()) <= LOGODDS_LIMIT:
-            raise ValueError(f"logodds must lie within ±1e6, got {float(np.abs(arr).max())}")
+        # Range and finiteness from min and max: no temporary array of the grid's
+        # size (np.isfinite and np.abs of a float64 copy cost 17 bytes a cell).
+        low, high = float(arr.min()), float(arr.max())
+        if not (math.isfinite(low) and math.isfinite(high)):
+            raise ValueError("logodds must contain only finite values")
+        if not max(-low, high) <= LOGODDS_LIMIT:
+            raise ValueError(f"logodds must lie within ±1e6, got {max(-low, high)}")
         self._resolution = resolution_float(resolution)
         self._origin = grid_origin(origin)
         # Plain floats for the per-call kernel arguments of world_to_cell.
@@ -411,9 +460,8 @@ class OccupancyGrid:
         check_cell_count(float(p.size), "probabilities")
         if p.size and (p.min() < 0.0 or p.max() > 1.0):
             raise ValueError("probabilities must lie in [0, 1]")
-        p = np.clip(p, P_MIN, P_MAX)
         return cls(
-            np.log(p / (1.0 - p)),
+            _probability_logodds(p),
             resolution=resolution,
             origin=origin,
             occupied_thresh=occupied_thresh,
@@ -466,7 +514,10 @@ class OccupancyGrid:
         """
         occ = _bool_grid(occupied, "occupied")
         check_cell_count(float(occ.size), "occupied")
-        prob = np.where(occ, 1.0, 0.0)
+        # The log-odds of from_probabilities for p = 0, 1 and 0.5, written straight
+        # into float32: no float64 probability grid (8 bytes a cell) in between.
+        free_l, occupied_l, unknown_l = _probability_logodds(np.array([[0.0, 1.0, 0.5]]))[0]
+        logodds = np.where(occ, occupied_l, free_l)
         if unknown is not None:
             unk = _bool_grid(unknown, "unknown")
             if unk.shape != occ.shape:
@@ -475,8 +526,8 @@ class OccupancyGrid:
                 )
             if (unk & occ).any():
                 raise ValueError("unknown and occupied must not overlap")
-            prob[unk] = 0.5
-        return cls.from_probabilities(prob, resolution=resolution, origin=origin)
+            logodds[unk] = unknown_l
+        return cls(logodds, resolution=resolution, origin=origin)
 
     @classmethod
     def from_polygons(

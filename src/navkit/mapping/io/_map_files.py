@@ -466,7 +466,8 @@ def _pgm_from(fh: BinaryIO, pgm: Path) -> NDArray[np.float64]:
                 f"{pgm}: PGM raster truncated: {len(raster)} bytes for "
                 f"{width} x {height} pixels ({need} bytes needed)"
             )
-        pixels = np.frombuffer(raster, dtype=dtype, count=count).astype(np.int64)
+        # Widened to float64 only once checked (below): an int64 copy costs 8 bytes a pixel.
+        pixels: NDArray[Any] = np.frombuffer(raster, dtype=dtype, count=count)
     else:
         tokens = raster.split(maxsplit=count)[:count]
         if len(tokens) < count:
@@ -481,7 +482,9 @@ def _pgm_from(fh: BinaryIO, pgm: Path) -> NDArray[np.float64]:
         pixels = np.array([int(t) for t in tokens], dtype=np.int64)
     if pixels.size and (pixels.min() < 0 or pixels.max() > maxval):
         raise ValueError(f"{pgm}: PGM pixel values exceed maxval {maxval}")
-    return pixels.reshape(height, width).astype(np.float64) * (255.0 / maxval)
+    grey = pixels.reshape(height, width).astype(np.float64)
+    grey *= 255.0 / maxval  # in place: one float64 array of the image's size
+    return grey
 
 
 def pgm_bytes(pixels: NDArray[np.uint8]) -> bytes:
@@ -623,16 +626,29 @@ def _deep_colour(
         again.tile = [(tile[0], tile[1], tile[2], low)]
         second = np.asarray(again).astype(np.uint16)
     if high is None:  # LA: the four bytes of each pixel, [Lhi, Llo, Ahi, Alo]
-        colour = (second[..., 0] << 8 | second[..., 1])[..., np.newaxis]
+        colour: NDArray[Any] = (second[..., 0] << 8 | second[..., 1])[..., np.newaxis]
         alpha16: NDArray[Any] | None = second[..., 2] << 8 | second[..., 3]
     else:
-        samples = high << 8 | second
+        # In place: the samples reuse the high bytes' array.
+        samples = high
+        samples <<= 8
+        samples |= second
+        del second
         colour = samples[..., :3]
         alpha16 = samples[..., 3] if rawmode == "RGBA;16B" else None
     # x / 257 maps 0..65535 onto 0..255, exactly at both ends (65535 / 257 = 255).
-    grey = colour.astype(np.float64).mean(axis=2) / 257.0
+    # The mean of the channels, summed one at a time into one float64 array rather
+    # than widening all of them (24 bytes a pixel): sums of up to three 16-bit
+    # integers are exact in any order, then divided as ndarray.mean divides.
+    grey = colour[..., 0].astype(np.float64)
+    for channel in range(1, colour.shape[2]):
+        grey += colour[..., channel]
+    grey /= colour.shape[2]
+    grey /= 257.0
     if alpha16 is not None:
-        return grey, alpha16.astype(np.float64) / 257.0
+        alpha = alpha16.astype(np.float64)
+        alpha /= 257.0
+        return grey, alpha
     if isinstance(transparent, tuple) and len(transparent) == 3:
         # A transparent colour (PNG tRNS, of 16-bit samples here) is an alpha channel.
         hit = np.all(colour == np.asarray(transparent, dtype=np.uint16), axis=2)
@@ -677,7 +693,9 @@ def _read_with_pillow(
         # mode "I") span 0..65535 whatever they hold; only 32-bit ones, whose range
         # no map format fixes, are scaled by what they hold.
         peak = 65535.0 if sixteen_bit or arr.max(initial=0) > 255 else 255.0
-        grey = np.clip(arr.astype(np.float64) * (255.0 / peak), 0.0, 255.0)
+        grey = arr.astype(np.float64)
+        grey *= 255.0 / peak
+        np.clip(grey, 0.0, 255.0, out=grey)
         if isinstance(transparent, int) and not isinstance(transparent, bool):
             # A transparent grey (PNG tRNS) is an alpha channel to map_server, as
             # for 8-bit images (converted to RGBA above, which would lose 8 bits here).
@@ -687,7 +705,12 @@ def _read_with_pillow(
         return arr.astype(np.float64), None
     has_alpha = mode in ("LA", "RGBA")
     colour = arr[..., :-1] if has_alpha else arr
-    grey = colour.astype(np.float64).mean(axis=2)
+    # ndarray.mean(axis=2) of the channels without widening all of them to
+    # float64 first (8 bytes a channel a pixel); the sums are exact.
+    grey = colour[..., 0].astype(np.float64)
+    for channel in range(1, colour.shape[2]):
+        grey += colour[..., channel]
+    grey /= colour.shape[2]
     alpha = arr[..., -1].astype(np.float64) if has_alpha else None
     return grey, alpha
 
@@ -751,28 +774,37 @@ def pixel_occupancy(
     >>> prob, unknown
     (array([[1. , 0.5, 0. ]]), array([[False,  True, False]]))
     """
+    # The arithmetic is done in place in one new float64 array, which becomes the
+    # returned probabilities: 8 bytes a pixel, plus the boolean masks.
     if meta.mode == "raw":
         value = np.rint(grey)
         unknown = value > 100
-        return np.where(unknown, 0.5, value / 100.0), unknown
+        value /= 100.0
+        value[unknown] = 0.5
+        return value, unknown
     if meta.mode == "trinary" and alpha is not None:
         # map_server averages the alpha in with red, green and blue in trinary mode.
-        shade = (3.0 * grey + alpha) / (4.0 * 255.0)
+        shade = 3.0 * grey
+        shade += alpha
+        shade /= 4.0 * 255.0
     else:
         shade = grey / 255.0
     # 1 - shade, not (255 - v) / 255: the two differ in the last bit for some
     # levels (204 with free_thresh 0.2), and map_server computes the former.
-    p = shade if meta.negate else 1.0 - shade
+    p = shade if meta.negate else np.subtract(1.0, shade, out=shade)
     occupied = p > meta.occupied_thresh
     free = p < meta.free_thresh
     between = ~occupied & ~free
     if meta.mode == "trinary":
-        prob = np.where(occupied, 1.0, np.where(free, 0.0, 0.5))
-        return prob, between
+        p.fill(0.5)
+        p[free] = 0.0
+        p[occupied] = 1.0
+        return p, between
     # Scale mode: map_server checks opacity first, then the thresholds.
     unknown = alpha < 255.0 if alpha is not None else np.zeros_like(between)
-    prob = np.where(occupied, 1.0, np.where(free, 0.0, p))
-    return prob, unknown
+    p[free] = 0.0
+    p[occupied] = 1.0
+    return p, unknown
 
 
 def read_map(path: str | os.PathLike[str]) -> OccupancyGrid:
@@ -783,13 +815,19 @@ def read_map(path: str | os.PathLike[str]) -> OccupancyGrid:
     Nav2's map_server) and ``mode`` (``trinary`` by default, ``scale`` or
     ``raw``). PGM images (P5, P2) are read with numpy; other formats such as
     PNG need Pillow. The image's top row becomes the last grid row. The
-    YAML's thresholds become the grid's thresholds, so the views reproduce
-    map_server's trinary classification. Unknown pixels become p = 0.5
-    (log-odds 0), or the middle of the unknown band when the thresholds do not
-    class 0.5 as unknown. 16-bit images span 0..65535: 16-bit grey, and PNGs
-    with 16 bits per colour channel (RGB, grey + alpha, RGBA), are read at full
-    depth, as Nav2's map_server reads them; other images with 16-bit colour
-    channels (e.g. TIFF), which Pillow would truncate to 8 bits, are refused.
+    ``origin`` is the world pose of the outer (lower-left) corner of the
+    image's bottom-left pixel, i.e. of grid cell (0, 0), whose centre is half
+    a cell further along x and y; a non-zero yaw rotates the grid about that
+    corner, as the orientation of the ``nav_msgs/OccupancyGrid`` that Nav2's
+    map_server publishes for it (Nav2's costmaps ignore that orientation and
+    place such a map unrotated). The YAML's thresholds become the grid's
+    thresholds, so the views reproduce map_server's trinary classification.
+    Unknown pixels become p = 0.5 (log-odds 0), or the middle of the unknown
+    band when the thresholds do not class 0.5 as unknown. 16-bit images span
+    0..65535: 16-bit grey, and PNGs with 16 bits per colour channel (RGB,
+    grey + alpha, RGBA), are read at full depth, as Nav2's map_server reads
+    them; other images with 16-bit colour channels (e.g. TIFF), which Pillow
+    would truncate to 8 bits, are refused.
 
     Parameters
     ----------
@@ -826,6 +864,17 @@ def read_map(path: str | os.PathLike[str]) -> OccupancyGrid:
     OSError
         The operating system refuses to read a file (e.g. ``PermissionError``).
 
+    Notes
+    -----
+    Peak memory, in bytes a pixel, besides the returned grid (4 bytes a cell, the
+    float32 log-odds): about 16 for a PGM or an 8-bit PNG (the raster, a float64
+    grey level and the float64 probabilities), 20 for an 8-bit colour PNG, and
+    about 32 for a PNG with 16-bit colour channels, which is decoded twice at
+    8 bits by Pillow and combined (``RGBA``: 4 + 4 bytes a pixel outside
+    NumPy's, 8 for the 16-bit samples, 8 + 8 for grey and alpha). At the
+    ``2**28``-pixel limit that is, with the grid, about 5 GB for a PGM and 10 GB
+    for a 16-bit RGBA PNG: on a small computer, keep large maps in PGM or 8-bit PNG.
+
     Examples
     --------
     >>> import tempfile
@@ -847,8 +896,10 @@ def read_map(path: str | os.PathLike[str]) -> OccupancyGrid:
         except ValueError as exc:
             raise ValueError(f"{path}: map image {exc}") from None
     prob, unknown = pixel_occupancy(grey, alpha, meta)
+    del grey, alpha  # not needed any more: 8 or 16 bytes a pixel freed before the grid is built
     occ_t, free_t = meta.occupied_thresh, meta.free_thresh
-    p = np.where(unknown, 0.5, prob)[::-1]
+    prob[unknown] = 0.5  # prob is pixel_occupancy's new array
+    p = prob[::-1]
     unknown = unknown[::-1]
     known = OccupancyGrid.from_probabilities(
         p,
@@ -1191,6 +1242,9 @@ def write_map(grid: OccupancyGrid, path: str | os.PathLike[str], *, mode: str = 
     ``trinary`` mode, an RGBA PNG in ``scale`` mode (where map_server reads
     every opaque pixel as a value and only pixels that are not fully opaque
     as unknown, so a PGM, without alpha, could hold no unknown cell).
+    The image's top row is the grid's last row, and the YAML's ``origin`` is
+    the grid's origin ``[x, y, yaw]`` (the outer corner of cell (0, 0), as
+    :func:`read_map` reads it; Nav2's costmaps ignore a non-zero yaw).
 
     An existing image is only replaced when it is the image of the map being
     replaced (the existing YAML at ``path`` names it): a save never writes over

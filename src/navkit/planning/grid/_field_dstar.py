@@ -342,7 +342,7 @@ class FieldDStar:
         # Whether each end is a cell (plan_cells): the search's goal is then the
         # goal cell's centre, linked to its four corners (each a source of the
         # search), and the walk starts at the start cell's corner of least
-        # cost-to-goal; _start / _goal hold the cells' top-left corners.
+        # cost-to-goal; _start / _goal hold the cells' lower-left corners (lowest row, col).
         self._start_cell = False
         self._goal_cell = False
 
@@ -560,7 +560,7 @@ class FieldDStar:
         points, cost, length, expanded = self._search("node")
         return Path2D(points - 0.5, "grid", cost=cost, length=length, expanded=expanded)
 
-    def plan_cells(self, start_cell: Any, goal_cell: Any) -> Path2D:
+    def plan_cells(self, start_cell: tuple[int, int], goal_cell: tuple[int, int]) -> Path2D:
         """Path from the centre of ``start_cell`` to the centre of ``goal_cell``.
 
         Field D* plans between cell corners; the segment from a cell's centre
@@ -629,7 +629,7 @@ class FieldDStar:
         """
         s = self._passable_cell(start_cell, "start_cell")
         gl = self._passable_cell(goal_cell, "goal_cell")
-        # The cells' top-left corners are (row, col) themselves; the ends are the centres.
+        # The cells' lower-left corner nodes are (row, col) themselves; the ends are the centres.
         self._reset(s, gl, (s[0] + 0.5, s[1] + 0.5), (gl[0] + 0.5, gl[1] + 0.5),
                     start_cell=True, goal_cell=True)
         self._start_on_node = self._goal_on_node = False
