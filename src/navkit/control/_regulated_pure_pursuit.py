@@ -152,7 +152,8 @@ class RegulatedPurePursuit(PathTracker):
         from the robot's cell centre to theirs, computed once), or a function
         ``clearance(x, y)`` giving the distance (m) from a world point to the
         nearest obstacle (NaN is rejected, negative counts as 0, ``inf`` as
-        far). None (default): no cost regulation.
+        far). None (default): no cost regulation. The function must not call
+        this tracker's :meth:`step` or :meth:`set_path` (``RuntimeError``).
     clearance_distance : float, default 0.6
         Nav2 ``cost_scaling_dist`` (m), in (0, 1e4].
     clearance_gain : float, default 1.0
@@ -361,7 +362,9 @@ class RegulatedPurePursuit(PathTracker):
         Raises
         ------
         RuntimeError
-            No path yet (call :meth:`set_path` first).
+            No path yet (call :meth:`set_path` first), or the ``clearance``
+            function called :meth:`step` or :meth:`set_path` (what that call
+            did stays, this step does nothing).
         TypeError, ValueError
             A bad ``pose``, ``dt`` (not a normal float > 0) or ``velocity``,
             naming it, or a ``clearance`` function returning NaN; the
@@ -395,7 +398,17 @@ class RegulatedPurePursuit(PathTracker):
         self, line: Polyline, pose: Pose2D, dt: float, measured: Twist2D | None
     ) -> Twist2D:
         # Validate what can fail before any state changes.
-        clearance = None if self._clearance is None else self._clearance_at(pose)
+        clearance = None
+        if self._clearance is not None:
+            carrot = self._carrot
+            clearance = self._clearance_at(pose)
+            if self._line is not line or self._carrot is not carrot:
+                # The function stepped the tracker or gave it a new path: this step,
+                # computed from the state before that, would overwrite it.
+                raise RuntimeError(
+                    "clearance(x, y) called step or set_path of the tracker it serves; "
+                    "the nested call was applied and this step was not"
+                )
         vx_now, vy_now, w_now = (
             self._last if measured is None else (measured.vx, measured.vy, measured.omega)
         )

@@ -119,6 +119,15 @@ class ExtendedKalmanFilter(GaussianEstimate):
     update, at the first measurement of that size): fixed sizes let the
     compiler unroll the small matrix products.
 
+    A filter is not thread-safe: one thread at a time may call its methods
+    (in a ROS 2 node with a ``MultiThreadedExecutor``, put the callbacks that
+    use it in one ``MutuallyExclusiveCallbackGroup``); different filters may
+    run in different threads at once. The model functions (``f``, ``F``,
+    ``h``, ``H``) may read the filter but must not call its :meth:`predict`
+    or :meth:`update`: the outer step would then be computed from the state
+    before the nested one and applied after it, mixing the two; such a
+    nested call raises ``RuntimeError`` and leaves the filter as it was.
+
     Parameters
     ----------
     x0 : array_like, shape (n,), n >= 1
@@ -151,8 +160,8 @@ class ExtendedKalmanFilter(GaussianEstimate):
     """
 
     __slots__ = (
-        "_angles", "_entry", "_gate", "_kp", "_ku", "_m", "_meas_angles", "_n", "_options",
-        "_rbuf", "_rbufs", "_state",
+        "_angles", "_busy", "_entry", "_gate", "_kp", "_ku", "_m", "_meas_angles", "_n",
+        "_options", "_rbuf", "_rbufs", "_state",
     )  # fmt: skip
 
     def __init__(self, x0: ArrayLike, P0: ArrayLike, *, angle_states: Iterable[int] = ()) -> None:
@@ -196,6 +205,8 @@ class ExtendedKalmanFilter(GaussianEstimate):
         # Validated angle_measurements by the identity of the (immutable) tuple passed,
         # which the entry keeps alive: {id: (tuple, indices, 1 + largest index)}.
         self._meas_angles: dict[int, tuple[tuple[int, ...], IntArray, int]] = {}
+        # Whether the model functions of a step are running (see _nested).
+        self._busy: bool = False
 
     def __reduce__(self) -> tuple[Any, ...]:
         # The estimate lives in one array updated in place, with x and P views into it:
@@ -247,17 +258,27 @@ class ExtendedKalmanFilter(GaussianEstimate):
         FilterError
             If the predicted covariance is not finite or not positive definite;
             the state is unchanged.
+        RuntimeError
+            If called from a model function of a step of this filter; that step
+            then fails too (the error passes through it), leaving the state
+            unchanged.
         """
+        if self._busy:
+            _nested("predict")
         # One copy of the state for F and f, called in this order: a Jacobian does
         # not modify its argument, and f may, once F has seen it.
         x = self._x.copy()
-        jac = F(x) if callable(F) else F
+        self._busy = True
         try:
-            x_new = f(x)
-        except TypeError:
-            if not callable(f):
-                raise TypeError(f"f must be callable, got {type(f).__name__}") from None
-            raise
+            jac = F(x) if callable(F) else F
+            try:
+                x_new = f(x)
+            except TypeError:
+                if not callable(f):
+                    raise TypeError(f"f must be callable, got {type(f).__name__}") from None
+                raise
+        finally:
+            self._busy = False
         # The kernel takes C-contiguous writeable float64 arrays only and checks their
         # shapes and values itself: anything else raises at dispatch and is converted
         # and checked in full by _predict_checked, as is any status but OK.
@@ -333,15 +354,24 @@ class ExtendedKalmanFilter(GaussianEstimate):
         FilterError
             If the innovation or updated covariance is not finite or not
             positive definite; the state is unchanged.
+        RuntimeError
+            If called from a model function of a step of this filter, as in
+            :meth:`predict`.
         """
+        if self._busy:
+            _nested("update")
         x = self._x.copy()  # for H and h, in this order, as in predict
-        jac = H(x) if callable(H) else H
+        self._busy = True
         try:
-            hx = h(x)
-        except TypeError:
-            if not callable(h):
-                raise TypeError(f"h must be callable, got {type(h).__name__}") from None
-            raise
+            jac = H(x) if callable(H) else H
+            try:
+                hx = h(x)
+            except TypeError:
+                if not callable(h):
+                    raise TypeError(f"h must be callable, got {type(h).__name__}") from None
+                raise
+        finally:
+            self._busy = False
         # As in predict: the kernel checks shapes and values, and anything it cannot
         # take (other types, another measurement size, options it does not hold that
         # are not cheaply known valid) goes to _update_checked.
@@ -552,6 +582,14 @@ def _c_array(value: ArrayLike, name: str, shape: tuple[int, ...]) -> FloatArray:
     Raises ``TypeError``/``ValueError`` naming ``name``.
     """
     return _c_copy(as_float_array(value, name, shape=shape))
+
+
+def _nested(method: str) -> NoReturn:
+    """Refuse a step called from the model functions of a step of the same filter."""
+    raise RuntimeError(
+        f"ExtendedKalmanFilter.{method} called from a model function (f, F, h or H) of "
+        "the same filter's step: the steps would mix; make it after that step returns"
+    )
 
 
 def _raise(status: int, what: str) -> NoReturn:
