@@ -1,4 +1,4 @@
-"""Files and messages: ROS map_server maps, ROS messages and CARMEN laser logs.
+"""Files and messages: ROS map_server maps, ROS messages, ROS bags and CARMEN laser logs.
 
 * :func:`read_map` / :func:`write_map`: ROS map_server maps (YAML + PGM or, with
   Pillow, other images), as :class:`~navkit.mapping.OccupancyGrid`;
@@ -9,6 +9,11 @@
 * :func:`read_carmen`: a CARMEN log (FLASER / ROBOTLASER1 lines, gzip'd or not)
   as :class:`~navkit.mapping.LaserScan` objects with their laser and robot poses
   and timestamps (:class:`CarmenLog`).
+* :func:`read_bag_odometry`, :func:`read_bag_imu`, :func:`read_bag_scans`,
+  :func:`bag_topics`: ``nav_msgs/Odometry``, ``sensor_msgs/Imu`` and
+  ``sensor_msgs/LaserScan`` messages of ROS 1 and ROS 2 bags as time-stamped
+  arrays (:class:`BagOdometry`, :class:`BagImu`, :class:`BagScans`), without
+  ROS (the ``ros`` extra: ``rosbags``).
 
 Every malformed file raises ``ValueError`` naming the file (and line, for
 logs) and the problem — never a decoder's own exception (``UnicodeDecodeError``,
