@@ -28,9 +28,10 @@ from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
+from scipy import ndimage
 
 from navkit._shared.frozen import frozen_setattr
-from navkit._shared.types import FloatArray
+from navkit._shared.types import BoolArray, FloatArray, IntArray
 from navkit.estimation import DiffOdometry
 from navkit.geometry import Pose2D, Twist2D
 from navkit.mapping import OccupancyGrid, ScanMapper
@@ -473,9 +474,11 @@ def plan_between(
 
     A start or goal on an impassable cell is replaced by the nearest passable
     cell's centre within :data:`SNAP_DISTANCE` (on a built map a wall may be
-    drawn that much closer than it is), and the path then begins (ends) with the
-    straight step from (to) the given point. Otherwise the plain plan (and the
-    planner's error when nothing passable is that near).
+    drawn that much closer than it is) that a straight step reaches without
+    crossing another obstacle than the one the point is in (never through a
+    thin wall to its far side), and the path then begins (ends) with that step
+    from (to) the given point. Otherwise the plain plan (and the planner's error
+    when no such centre is that near).
 
     Examples
     --------
@@ -495,22 +498,77 @@ def plan_between(
 
 
 def _passable(planner: MapPlanner, point: tuple[float, float]) -> tuple[float, float]:
-    """``point``, or the nearest passable cell centre within SNAP_DISTANCE if it is blocked."""
+    """``point``, or the passable cell centre it is joined to if it is blocked.
+
+    The nearest passable cell centre within :data:`SNAP_DISTANCE` whose straight
+    segment from ``point`` touches (a corner included) no obstacle cell (occupied,
+    or impassable unknown space) but those of the obstacle ``point`` is in: the
+    8-connected blob of obstacle cells around its cell, near it. The step may thus
+    leave the inflation band and a wall the map draws over the point, but never
+    crosses another obstacle: a centre nearer as the crow flies but beyond a thin
+    wall is not taken. Ties go to the lowest ``(row, col)``. ``point`` itself if
+    no centre qualifies (the planner then says why it is blocked).
+    """
     grid, costs = planner.grid, planner.costs
     rows, cols = costs.shape
     r, c = (int(v) for v in grid.world_to_cell(np.array(point, dtype=np.float64)))
     if 0 <= r < rows and 0 <= c < cols and math.isfinite(costs[r, c]):
         return point
+    # Every cell a segment to a candidate centre (within k cells) can touch.
     k = math.ceil(SNAP_DISTANCE / grid.resolution)
-    r0, r1, c0, c1 = max(r - k, 0), min(r + k + 1, rows), max(c - k, 0), min(c + k + 1, cols)
+    r0, r1 = max(r - k - 1, 0), min(r + k + 2, rows)
+    c0, c1 = max(c - k - 1, 0), min(c + k + 2, cols)
     if r0 >= r1 or c0 >= c1:
         return point
-    rr, cc = np.nonzero(np.isfinite(costs[r0:r1, c0:c1]))
-    if rr.size == 0:
-        return point
-    centres = grid.cell_to_world(np.column_stack((rr + r0, cc + c0)))
+    window = (slice(r0, r1), slice(c0, c1))
+    passable = np.isfinite(costs[window])
+    # Blocked cells that are not free on the map: occupied, or unknown (the lab's
+    # planners keep unknown_cost=inf); the lab maps are never changed after.
+    obstacle = ~passable & ~grid.free()[window]
+    if 0 <= r < rows and 0 <= c < cols and obstacle[r - r0, c - c0]:
+        labels, _ = ndimage.label(obstacle, structure=np.ones((3, 3), dtype=bool))
+        obstacle &= labels != labels[r - r0, c - c0]
+    rr, cc = np.nonzero(passable)
+    rr, cc = rr + r0, cc + c0
+    centres = grid.cell_to_world(np.column_stack((rr, cc)))
     dist = np.hypot(centres[:, 0] - point[0], centres[:, 1] - point[1])
-    i = int(np.argmin(dist))
-    if dist[i] > SNAP_DISTANCE:
+    near = dist <= SNAP_DISTANCE
+    if not near.any():
         return point
+    rr, cc, centres, dist = rr[near], cc[near], centres[near], dist[near]
+    q = np.asarray(grid.world_to_cell(np.array(point, dtype=np.float64), continuous=True))
+    ob_r, ob_c = np.nonzero(obstacle)
+    clear = ~_segments_touch(q, rr, cc, ob_r + r0, ob_c + c0)
+    if not clear.any():
+        return point
+    i = int(np.flatnonzero(clear)[np.argmin(dist[clear])])
     return float(centres[i, 0]), float(centres[i, 1])
+
+
+def _segments_touch(
+    q: FloatArray, rows: IntArray, cols: IntArray, cell_rows: IntArray, cell_cols: IntArray
+) -> BoolArray:
+    """Whether each segment from ``q`` to a cell centre ``(rows[i], cols[i])`` touches a cell.
+
+    Continuous grid coordinates ``(row, col)``: cell ``(r, c)`` is the closed square
+    ``[r - 1/2, r + 1/2] x [c - 1/2, c + 1/2]``, grown by 1e-9 so that a segment
+    through a corner is caught whatever the rounding. Slab clipping of every
+    segment (axis 0) against every cell (axis 1).
+    """
+    graze = 1e-9
+    enter = np.zeros((rows.size, cell_rows.size))
+    leave = np.ones((rows.size, cell_rows.size))
+    for origin, ends, cells in ((q[0], rows, cell_rows), (q[1], cols, cell_cols)):
+        step = (ends - origin)[:, None]
+        low = (cells - 0.5 - graze - origin)[None, :]
+        high = (cells + 0.5 + graze - origin)[None, :]
+        along = step != 0.0
+        safe = np.where(along, step, 1.0)
+        # A segment parallel to this axis's slab is inside it for all t or never.
+        inside = (low <= 0.0) & (high >= 0.0)
+        t_in = np.where(along, np.minimum(low / safe, high / safe), np.where(inside, 0.0, np.inf))
+        t_out = np.where(along, np.maximum(low / safe, high / safe), np.where(inside, 1.0, -np.inf))
+        enter = np.maximum(enter, t_in)
+        leave = np.minimum(leave, t_out)
+    touched: BoolArray = np.any(enter <= leave, axis=1)
+    return touched
