@@ -415,6 +415,20 @@ class Simulation:
             When the controller asks a differential robot to move sideways, or
             a robot without ``max_wheel_speed`` for wheel speeds beyond float64
             (with one, such commands are scaled down like any other).
+        Exception
+            Whatever the controller or the estimator raises (a
+            ``KeyboardInterrupt`` too), unchanged: the run ends there and no
+            trace is returned.
+
+        Notes
+        -----
+        A run that ends with an exception is not undone: this Simulation counts
+        as run (:meth:`run` again, or on a copy of it, raises RuntimeError) and
+        its random generator has been drawn from, and the controller and the
+        estimator keep what the run did to them (an estimator has taken the
+        readings delivered up to the failure). The world and the robot are
+        unchanged. To run again, build a new Simulation with a fresh controller
+        and estimator (the same int ``seed`` gives the same draws).
         """
         if self._ran:
             raise RuntimeError("a Simulation runs once; build a new one for another run")

@@ -243,7 +243,9 @@ def sweep(
     Exception
         The first exception a trial raises, re-raised here with a note naming
         the scenario, case, trial and seed; the trials not yet started are
-        cancelled.
+        cancelled, and the results of those done are not returned. An
+        exception from ``progress`` (a ``KeyboardInterrupt`` too) ends the
+        sweep the same way, without the note.
 
     Examples
     --------
