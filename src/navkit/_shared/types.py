@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+from typing import SupportsIndex
+
 import numpy as np
 from numpy.typing import NDArray
 
@@ -13,3 +16,6 @@ IntArray = NDArray[np.int64]
 
 BoolArray = NDArray[np.bool_]
 """A boolean array."""
+
+CellLike = Sequence[SupportsIndex]
+"""A grid cell ``(row, col)`` as the planners take it: two Python or NumPy integers."""

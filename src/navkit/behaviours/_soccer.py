@@ -12,7 +12,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field, fields
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -92,6 +92,15 @@ class BehaviourTarget:
     __reduce__ = reduce_record
     __setstate__ = _restore
 
+    if TYPE_CHECKING:
+        # The generated ``__init__`` takes the arrays as array_like (``__post_init__``
+        # converts them); this signature tells type checkers so, at no runtime cost.
+        def __init__(
+            self,
+            goal_xy: ArrayLike,
+            obstacles_xy: ArrayLike,
+        ) -> None: ...
+
     def __post_init__(self) -> None:
         object.__setattr__(self, "goal_xy", _point(self.goal_xy, "goal_xy"))
         object.__setattr__(self, "obstacles_xy", _players(self.obstacles_xy, "obstacles_xy"))
@@ -159,6 +168,23 @@ class GameState:
 
     __reduce__ = reduce_record
     __setstate__ = _restore
+
+    if TYPE_CHECKING:
+        # The generated ``__init__`` takes the arrays as array_like (``__post_init__``
+        # converts them); this signature tells type checkers so, at no runtime cost.
+        def __init__(
+            self,
+            *,
+            robot_xy: ArrayLike,
+            ball_xy: ArrayLike,
+            teammates_xy: ArrayLike = ...,
+            opponents_xy: ArrayLike = ...,
+            own_goal_xy: ArrayLike,
+            opponent_goal_xy: ArrayLike,
+            has_ball: bool | None = ...,
+            opponent_with_ball: int | None = ...,
+            possession_radius: float = ...,
+        ) -> None: ...
 
     def __post_init__(self) -> None:
         setter = object.__setattr__

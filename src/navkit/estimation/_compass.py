@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import overload
 
 import numpy as np
@@ -15,6 +16,13 @@ __all__ = ["CompassCalibration", "compass_to_yaw"]
 
 @overload
 def compass_to_yaw(raw_deg: float, *, initial_deg: float = ..., unwrap: bool = ...) -> float: ...
+@overload
+def compass_to_yaw(
+    raw_deg: Sequence[float] | Sequence[Sequence[float]],
+    *,
+    initial_deg: float = ...,
+    unwrap: bool = ...,
+) -> FloatArray: ...
 @overload
 def compass_to_yaw(
     raw_deg: ArrayLike, *, initial_deg: float = ..., unwrap: bool = ...
@@ -126,7 +134,9 @@ class CompassCalibration:
     streamed in pieces.
 
     An ordinary class with ``__slots__`` rather than a frozen dataclass: it
-    latches its first reading (and the last yaw when unwrapping).
+    latches its first reading (and the last yaw when unwrapping). So it is not
+    thread-safe: one thread at a time may call it; different calibrations may
+    run in different threads at once.
 
     Parameters
     ----------
@@ -171,6 +181,8 @@ class CompassCalibration:
 
     @overload
     def __call__(self, raw_deg: float) -> float: ...
+    @overload
+    def __call__(self, raw_deg: Sequence[float] | Sequence[Sequence[float]]) -> FloatArray: ...
     @overload
     def __call__(self, raw_deg: ArrayLike) -> float | FloatArray: ...
 

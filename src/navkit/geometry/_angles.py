@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from typing import Any, overload
 
 import numpy as np
@@ -34,6 +35,8 @@ def _wrap_float(a: float) -> float:
 
 @overload
 def wrap_angle(angle: float) -> float: ...
+@overload
+def wrap_angle(angle: Sequence[float] | Sequence[Sequence[float]]) -> NDArray[np.float64]: ...
 @overload
 def wrap_angle(angle: ArrayLike) -> float | NDArray[np.float64]: ...
 
@@ -88,6 +91,14 @@ def wrap_angle(angle: ArrayLike) -> float | NDArray[np.float64]:
 
 @overload
 def angle_diff(a: float, b: float) -> float: ...
+@overload
+def angle_diff(
+    a: Sequence[float] | Sequence[Sequence[float]], b: ArrayLike
+) -> NDArray[np.float64]: ...
+@overload
+def angle_diff(
+    a: ArrayLike, b: Sequence[float] | Sequence[Sequence[float]]
+) -> NDArray[np.float64]: ...
 @overload
 def angle_diff(a: ArrayLike, b: ArrayLike) -> float | NDArray[np.float64]: ...
 

@@ -9,8 +9,9 @@ rotation, as in :func:`navkit.mapping.io.grid_from_msg`.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any, overload
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -82,6 +83,14 @@ def _matrices(q: FloatArray) -> FloatArray:
         (2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)),
     )
     return np.stack([np.stack(row, axis=-1) for row in rows], axis=-2)
+
+
+@overload
+def quaternion_to_yaw(quaternion: Sequence[float]) -> float: ...
+@overload
+def quaternion_to_yaw(quaternion: Sequence[Sequence[float]]) -> FloatArray: ...
+@overload
+def quaternion_to_yaw(quaternion: ArrayLike) -> float | FloatArray: ...
 
 
 def quaternion_to_yaw(quaternion: ArrayLike) -> float | FloatArray:
@@ -261,6 +270,16 @@ class ImuInBase:
     orientations: FloatArray
     angular_velocities: FloatArray
     linear_accelerations: FloatArray
+
+    if TYPE_CHECKING:
+        # The generated ``__init__`` takes the arrays as array_like (``__post_init__``
+        # converts them); this signature tells type checkers so, at no runtime cost.
+        def __init__(
+            self,
+            orientations: ArrayLike,
+            angular_velocities: ArrayLike,
+            linear_accelerations: ArrayLike,
+        ) -> None: ...
 
     def __post_init__(self) -> None:
         # Normalised as everywhere in this module (the attribute holds unit quaternions;

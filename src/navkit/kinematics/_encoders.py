@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import operator
+from collections.abc import Sequence
 from typing import overload
 
 import numpy as np
@@ -26,6 +27,13 @@ __all__ = ["tick_delta", "ticks_to_distance"]
 def ticks_to_distance(
     delta_ticks: float, *, ticks_per_rev: float, wheel_radius: float
 ) -> float: ...
+@overload
+def ticks_to_distance(
+    delta_ticks: Sequence[float] | Sequence[Sequence[float]],
+    *,
+    ticks_per_rev: float,
+    wheel_radius: float,
+) -> FloatArray: ...
 @overload
 def ticks_to_distance(
     delta_ticks: ArrayLike, *, ticks_per_rev: float, wheel_radius: float
@@ -83,6 +91,14 @@ def ticks_to_distance(
 
 @overload
 def tick_delta(previous: int, current: int, *, bits: int) -> int: ...
+@overload
+def tick_delta(
+    previous: Sequence[int] | Sequence[Sequence[int]], current: ArrayLike, *, bits: int
+) -> IntArray: ...
+@overload
+def tick_delta(
+    previous: ArrayLike, current: Sequence[int] | Sequence[Sequence[int]], *, bits: int
+) -> IntArray: ...
 @overload
 def tick_delta(previous: ArrayLike, current: ArrayLike, *, bits: int) -> int | IntArray: ...
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import KW_ONLY, dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -112,6 +112,20 @@ class LaserScan:
     range_min: float
     range_max: float
     intensities: FloatArray | None = None
+
+    if TYPE_CHECKING:
+        # The generated ``__init__`` takes the arrays as array_like (``__post_init__``
+        # converts them); this signature tells type checkers so, at no runtime cost.
+        def __init__(
+            self,
+            ranges: ArrayLike,
+            *,
+            angle_min: float,
+            angle_increment: float,
+            range_min: float,
+            range_max: float,
+            intensities: ArrayLike | None = ...,
+        ) -> None: ...
 
     def __post_init__(self) -> None:
         ranges = np.array(as_float_array(self.ranges, "ranges", ndim=1, finite=False), copy=True)

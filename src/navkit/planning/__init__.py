@@ -9,9 +9,36 @@ Two halves that never import each other, both re-exported here:
   repulsion summed per laser beam, the greedy laser-grid step).
 """
 
+# ruff: noqa: F405  (the names listed in __all__ come from the star imports)
 from navkit.planning.grid import *  # noqa: F403
-from navkit.planning.grid import __all__ as _grid_all
 from navkit.planning.reactive import *  # noqa: F403
-from navkit.planning.reactive import __all__ as _reactive_all
 
-__all__ = sorted([*_grid_all, *_reactive_all])
+# A literal list, not one computed from the halves' ``__all__``: type checkers
+# read only a literal ``__all__``, so ``from navkit.planning import *`` in user
+# code would otherwise import nothing under mypy (a test keeps it in sync).
+__all__ = [
+    "AStarPlanner",
+    "AttractiveField",
+    "BlendedAttraction",
+    "CellPlanner",
+    "CompositeField",
+    "ConicAttraction",
+    "FieldDStar",
+    "GreedyStep",
+    "KhatibRepulsion",
+    "MapPlanner",
+    "ParaboloidAttraction",
+    "Path2D",
+    "PiecewiseAttraction",
+    "PiecewiseRepulsion",
+    "PotentialField",
+    "SampledField",
+    "astar",
+    "distance_field",
+    "field_dstar",
+    "greedy_step",
+    "piecewise_repulsive_force_from_scan",
+    "plan_path",
+    "repulsive_force_from_scan",
+    "sample_field",
+]

@@ -8,7 +8,7 @@ import os
 import threading
 from collections.abc import Iterable, Mapping
 from dataclasses import KW_ONLY, dataclass, field
-from typing import Any, Literal
+from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
 import shapely
@@ -181,6 +181,17 @@ class Circle:
     radius: float
     _: KW_ONLY
     solid: bool = True
+
+    if TYPE_CHECKING:
+        # The generated ``__init__`` takes the arrays as array_like (``__post_init__``
+        # converts them); this signature tells type checkers so, at no runtime cost.
+        def __init__(
+            self,
+            center_xy: ArrayLike,
+            radius: float,
+            *,
+            solid: bool = ...,
+        ) -> None: ...
 
     def __post_init__(self) -> None:
         center = np.array(_coords(self.center_xy, "center_xy", (2,)), copy=True)

@@ -9,7 +9,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from navkit._shared.frozen import restore_slots
-from navkit._shared.types import FloatArray
+from navkit._shared.types import CellLike, FloatArray
 from navkit._shared.validation import as_bool
 from navkit.errors import NoPathError
 from navkit.planning.grid._arguments import (
@@ -386,7 +386,7 @@ class AStarPlanner:
             f"corner_cutting={self._cutting}, heuristic_weight={self._weight}{jps})"
         )
 
-    def plan(self, start_cell: Any, goal_cell: Any) -> Path2D:
+    def plan(self, start_cell: CellLike, goal_cell: CellLike) -> Path2D:
         """Least-cost path between two cells.
 
         Parameters
@@ -489,7 +489,7 @@ class AStarPlanner:
         length = (k - 1 - diagonal) + SQRT2 * diagonal
         return Path2D._owned(cells, "grid", uniform * length, length, expanded)
 
-    def distance_field(self, goal_cell: Any) -> FloatArray:
+    def distance_field(self, goal_cell: CellLike) -> FloatArray:
         """Least cost from every cell to ``goal_cell`` (Dijkstra to exhaustion).
 
         Ignores ``heuristic_weight`` and ``method`` (always Dijkstra); see
@@ -546,8 +546,8 @@ class AStarPlanner:
 
 def astar(
     costs: ArrayLike,
-    start_cell: Any,
-    goal_cell: Any,
+    start_cell: CellLike,
+    goal_cell: CellLike,
     *,
     connectivity: int = 8,
     corner_cutting: bool = False,

@@ -2,12 +2,10 @@
 
 from __future__ import annotations
 
-from typing import Any
-
 import numpy as np
 from numpy.typing import ArrayLike
 
-from navkit._shared.types import FloatArray
+from navkit._shared.types import CellLike, FloatArray
 from navkit._shared.validation import as_bool
 from navkit.planning.grid._arguments import check_connectivity, traversable_cell
 from navkit.planning.grid._astar import AStarPlanner
@@ -32,7 +30,7 @@ hold: its entries are int32 padded cell ids."""
 
 def distance_field(
     costs: ArrayLike,
-    goal_cell: Any,
+    goal_cell: CellLike,
     *,
     connectivity: int = 8,
     corner_cutting: bool = False,

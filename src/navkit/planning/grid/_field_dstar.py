@@ -11,7 +11,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from navkit._shared.grid_coords import as_pairs, one_or_many, round_half_up
-from navkit._shared.types import FloatArray, IntArray
+from navkit._shared.types import CellLike, FloatArray, IntArray
 from navkit._shared.validation import as_bool, as_cell, as_float_array
 from navkit.errors import NoPathError
 from navkit.geometry import Pose2D, as_pose
@@ -218,6 +218,10 @@ class FieldDStar:
     is settled first (the D* Lite loop runs until that node's key is reached),
     so a repaired plan reads exactly the values a fresh plan reads and both
     return the same path.
+
+    A planner keeps its search state between queries, so it is not
+    thread-safe: one thread at a time may call its methods (queries included);
+    different planners may run in different threads at once.
 
     Examples
     --------
@@ -560,7 +564,7 @@ class FieldDStar:
         points, cost, length, expanded = self._search("node")
         return Path2D(points - 0.5, "grid", cost=cost, length=length, expanded=expanded)
 
-    def plan_cells(self, start_cell: tuple[int, int], goal_cell: tuple[int, int]) -> Path2D:
+    def plan_cells(self, start_cell: CellLike, goal_cell: CellLike) -> Path2D:
         """Path from the centre of ``start_cell`` to the centre of ``goal_cell``.
 
         Field D* plans between cell corners; the segment from a cell's centre

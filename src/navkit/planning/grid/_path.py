@@ -4,9 +4,10 @@ from __future__ import annotations
 
 import numbers
 from dataclasses import dataclass
-from typing import Any, Literal
+from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.grid_coords import round_half_up
@@ -80,6 +81,18 @@ class Path2D:
     cost: float
     length: float
     expanded: int
+
+    if TYPE_CHECKING:
+        # The generated ``__init__`` takes the arrays as array_like (``__post_init__``
+        # converts them); this signature tells type checkers so, at no runtime cost.
+        def __init__(
+            self,
+            points: ArrayLike,
+            frame: Literal["grid", "world"],
+            cost: float,
+            length: float,
+            expanded: int,
+        ) -> None: ...
 
     def __post_init__(self) -> None:
         pts = np.array(as_float_array(self.points, "points", shape=(None, 2)), copy=True)

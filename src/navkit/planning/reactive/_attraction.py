@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import dataclasses
 from dataclasses import dataclass
-from typing import TypeVar
+from typing import TYPE_CHECKING, TypeVar
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -162,6 +162,19 @@ class ParaboloidAttraction(AttractiveField):
 
     __setstate__ = _restore
 
+    if TYPE_CHECKING:
+        # The generated ``__init__`` takes the arrays as array_like (``__post_init__``
+        # converts them); this signature tells type checkers so, at no runtime cost.
+        def __init__(
+            self,
+            goal_xy: ArrayLike,
+            *,
+            k_att: float = ...,
+            c: float = ...,
+            a: float = ...,
+            b: float = ...,
+        ) -> None: ...
+
     def __post_init__(self) -> None:
         AttractiveField.__post_init__(self)
         _check(self, ("k_att", "c"), ("a", "b"))
@@ -215,6 +228,18 @@ class ConicAttraction(AttractiveField):
     threshold_radius: float = 0.0
 
     __setstate__ = _restore
+
+    if TYPE_CHECKING:
+        # The generated ``__init__`` takes the arrays as array_like (``__post_init__``
+        # converts them); this signature tells type checkers so, at no runtime cost.
+        def __init__(
+            self,
+            goal_xy: ArrayLike,
+            *,
+            m: float = ...,
+            u_trans: float = ...,
+            threshold_radius: float = ...,
+        ) -> None: ...
 
     def __post_init__(self) -> None:
         AttractiveField.__post_init__(self)
@@ -314,6 +339,23 @@ class BlendedAttraction(AttractiveField):
     u_trans: float = 1.0
 
     __setstate__ = _restore
+
+    if TYPE_CHECKING:
+        # The generated ``__init__`` takes the arrays as array_like (``__post_init__``
+        # converts them); this signature tells type checkers so, at no runtime cost.
+        def __init__(
+            self,
+            goal_xy: ArrayLike,
+            *,
+            k_att: float = ...,
+            c: float = ...,
+            a: float = ...,
+            b: float = ...,
+            threshold_radius: float = ...,
+            width: float = ...,
+            m: float = ...,
+            u_trans: float = ...,
+        ) -> None: ...
 
     def __post_init__(self) -> None:
         AttractiveField.__post_init__(self)
@@ -417,6 +459,18 @@ class PiecewiseAttraction(AttractiveField):
     spread: float = 1.0
 
     __setstate__ = _restore
+
+    if TYPE_CHECKING:
+        # The generated ``__init__`` takes the arrays as array_like (``__post_init__``
+        # converts them); this signature tells type checkers so, at no runtime cost.
+        def __init__(
+            self,
+            goal_xy: ArrayLike,
+            *,
+            alpha: float = ...,
+            goal_radius: float = ...,
+            spread: float = ...,
+        ) -> None: ...
 
     def __post_init__(self) -> None:
         AttractiveField.__post_init__(self)

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numbers
 from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -68,6 +68,18 @@ class GreedyStep:
 
     __reduce__ = reduce_record
     __setstate__ = _restore
+
+    if TYPE_CHECKING:
+        # The generated ``__init__`` takes the arrays as array_like (``__post_init__``
+        # converts them); this signature tells type checkers so, at no runtime cost.
+        def __init__(
+            self,
+            cell: tuple[int, int],
+            waypoint_xy: ArrayLike,
+            g: float,
+            h: float,
+            candidates: int,
+        ) -> None: ...
 
     def __post_init__(self) -> None:
         cell: Any = self.cell

@@ -12,7 +12,7 @@ import dataclasses
 from abc import ABC, abstractmethod
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -240,6 +240,11 @@ class CompositeField(PotentialField):
     """
 
     fields: tuple[PotentialField, ...]
+
+    if TYPE_CHECKING:
+        # The generated ``__init__`` takes any iterable (``__post_init__`` makes it a
+        # tuple); this signature tells type checkers so, at no runtime cost.
+        def __init__(self, fields: Iterable[PotentialField]) -> None: ...
 
     def __post_init__(self) -> None:
         given: object = self.fields

@@ -13,10 +13,10 @@ import itertools
 from abc import abstractmethod
 from collections.abc import Iterator
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
 from navkit._shared.frozen import frozen_setattr
 from navkit._shared.types import FloatArray
@@ -208,6 +208,17 @@ class KhatibRepulsion(_PointRepulsion):
 
     __setstate__ = _restore
 
+    if TYPE_CHECKING:
+        # The generated ``__init__`` takes the arrays as array_like (``__post_init__``
+        # converts them); this signature tells type checkers so, at no runtime cost.
+        def __init__(
+            self,
+            obstacles_xy: ArrayLike,
+            *,
+            k_rep: float = ...,
+            influence_radius: float = ...,
+        ) -> None: ...
+
     def __post_init__(self) -> None:
         _PointRepulsion.__post_init__(self)
         object.__setattr__(self, "k_rep", gain(self.k_rep, "k_rep"))
@@ -276,6 +287,19 @@ class PiecewiseRepulsion(_PointRepulsion):
     spread: float = 1.0
 
     __setstate__ = _restore
+
+    if TYPE_CHECKING:
+        # The generated ``__init__`` takes the arrays as array_like (``__post_init__``
+        # converts them); this signature tells type checkers so, at no runtime cost.
+        def __init__(
+            self,
+            obstacles_xy: ArrayLike,
+            *,
+            delta: float = ...,
+            beta: float = ...,
+            obstacle_radius: float = ...,
+            spread: float = ...,
+        ) -> None: ...
 
     def __post_init__(self) -> None:
         _PointRepulsion.__post_init__(self)

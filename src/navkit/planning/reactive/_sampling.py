@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from dataclasses import KW_ONLY, dataclass
 from decimal import ROUND_CEILING, Decimal
-from typing import Literal, overload
+from typing import TYPE_CHECKING, Literal, overload
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -121,6 +121,19 @@ class SampledField:
 
     __reduce__ = reduce_record
     __setstate__ = _restore
+
+    if TYPE_CHECKING:
+        # The generated ``__init__`` takes the arrays as array_like (``__post_init__``
+        # converts them); this signature tells type checkers so, at no runtime cost.
+        def __init__(
+            self,
+            x: ArrayLike,
+            y: ArrayLike,
+            potential: ArrayLike,
+            force: ArrayLike,
+            *,
+            resolution: float,
+        ) -> None: ...
 
     def __post_init__(self) -> None:
         res = _resolution(self.resolution)
