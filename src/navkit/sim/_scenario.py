@@ -48,7 +48,8 @@ def trial_seed(base: int, case_index: int, trial_index: int) -> int:
 
     The seed depends only on ``(base, case_index, trial_index)``, never on the
     order trials run in or on which worker runs them, so a sweep gives the same
-    numbers on one core, a process pool or a cluster.
+    numbers on one core, a process pool or a cluster. Different triples never
+    give NumPy's ``SeedSequence`` the same entropy, whatever their size.
 
     Parameters
     ----------
@@ -68,11 +69,19 @@ def trial_seed(base: int, case_index: int, trial_index: int) -> int:
     >>> trial_seed(0, 0, 1) == trial_seed(0, 0, 1) != trial_seed(0, 0, 2)
     True
     """
-    words = [
+    values = [
         _int_in(base, "base", 2**64),
         _int_in(case_index, "case_index", 2**63),
         _int_in(trial_index, "trial_index", 2**63),
     ]
+    words = values
+    if max(values) >= 2**32:
+        # SeedSequence cuts each int into as many 32-bit words as it needs and pads
+        # the whole to four words with zeros, so (2**32, 0, k) and (0, 1, k) would
+        # give it the same words: spell every value in two words, plus a marker
+        # word that sets these seven words apart from any three small values.
+        # (Values below 2**32 keep their single words: the seeds runs have had.)
+        words = [w for v in values for w in (v & 0xFFFF_FFFF, v >> 32)] + [1]
     state = np.random.SeedSequence(words)
     return int(state.generate_state(2, dtype=np.uint64)[0] >> np.uint64(1))
 
