@@ -99,6 +99,18 @@ def rollout(
         (never a NaN pose; poses within the float range are returned even when
         a partial sum of one would overflow).
 
+    Notes
+    -----
+    Each row is the previous one moved by one step and rounded to float64, so
+    the rounding of the coordinates adds up over the steps, up to about one
+    spacing of float64 values at the coordinates' size per step (inherent in
+    stepping an absolute pose): near the origin it is negligible, but at UTM
+    coordinates (5e6 m, where floats are 9.3e-10 m apart) 10^6 steps can drift
+    by up to about 1 mm (0.4 mm measured after 1 km in 1 mm steps). For long
+    high-rate runs far from the origin, roll out from ``(0, 0, theta)`` and add
+    ``(x, y)`` to the rows afterwards (the motion does not depend on where it
+    starts).
+
     Examples
     --------
     >>> traj = rollout(Pose2D(0.0, 0.0), [[1.0, 0.0, 0.0]] * 3, 0.5)
