@@ -86,6 +86,10 @@ class FollowTheCarrot(PathTracker):
     it settles nearer the circle, or just outside it (0.5 cm with
     ``max_speed=0.5``).
 
+    A tracker is not thread-safe: one thread at a time may call its methods
+    (:meth:`set_path`, :meth:`step`); different trackers may run in different
+    threads at once.
+
     Raises
     ------
     ValueError

@@ -69,6 +69,10 @@ class OnOffTracker(PathTracker):
     ``r₀`` for β = 10°). So on a segment of length ``ℓ`` the robot stays within
     ``tol + (ℓ + tol) sin β · exp(−β / tan β)`` of it, ``tol`` the goal tolerance.
 
+    A tracker is not thread-safe: one thread at a time may call its methods
+    (:meth:`set_path`, :meth:`step`); different trackers may run in different
+    threads at once.
+
     Raises
     ------
     ValueError

@@ -133,6 +133,11 @@ class PotentialFieldController:
     navkit.planning's fields); the control period ``dt`` of :meth:`step` is in
     [1e-6, 1e6] s. Within these ranges every command is finite.
 
+    A controller is not thread-safe: one thread at a time may call its methods
+    (its PID and stall memories change at every :meth:`step`); different
+    controllers may run in different threads at once, also on scans of
+    different scanners.
+
     Raises
     ------
     TypeError, ValueError

@@ -211,6 +211,11 @@ class RegulatedPurePursuit(PathTracker):
     cut by any lookahead. To drive a small loop, lower ``max_lookahead`` or
     give its parts as successive paths.
 
+    A tracker is not thread-safe: one thread at a time may call its methods
+    (:meth:`set_path`, :meth:`step`); different trackers may run in different
+    threads at once (with one ``clearance`` grid, which they only read; a
+    ``clearance`` callable shared by them must itself be thread-safe).
+
     Raises
     ------
     ValueError

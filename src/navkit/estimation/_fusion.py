@@ -533,6 +533,11 @@ class PlanarFusion(GaussianEstimate):
     Measured values are any finite numbers; measurement variances (keyword-only
     in every ``update_*`` method) are in [1e-100, 1e100], SI units squared.
 
+    A filter is not thread-safe: one thread at a time may call its methods (in
+    a ROS 2 node with a ``MultiThreadedExecutor``, put the callbacks that use
+    it in one ``MutuallyExclusiveCallbackGroup``); different filters may run in
+    different threads at once.
+
     Raises
     ------
     TypeError, ValueError

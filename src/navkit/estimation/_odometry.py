@@ -116,7 +116,9 @@ class OmniOdometry:
       order) rather than by the heading at one end of the step.
 
     An ordinary class with ``__slots__`` rather than a frozen dataclass: every
-    update moves its pose.
+    update moves its pose. So it is not thread-safe: one thread at a time may
+    call its methods; different odometries may run in different threads at
+    once (sharing a drive, which is never changed).
 
     Parameters
     ----------
@@ -256,6 +258,10 @@ class DiffOdometry:
     Notes
     -----
     Every parameter after ``drive`` is keyword-only.
+
+    An odometry is not thread-safe: one thread at a time may call its methods;
+    different odometries may run in different threads at once (sharing a
+    drive, which is never changed).
 
     Raises
     ------

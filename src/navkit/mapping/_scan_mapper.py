@@ -70,6 +70,10 @@ class ScanMapper:
     three hours of a 10 Hz LiDAR, hold 14 MB). :attr:`trajectory` copies it
     whole on every read; :attr:`pose` reads only the latest.
 
+    A mapper is not thread-safe: one thread at a time may call its methods;
+    different mappers may run in different threads at once, also with one
+    shared :class:`ScanMatcher` (which keeps only its options).
+
     The name says what it does — mapping from scans by scan matching — rather
     than naming one implementation; the defaults are Hector's.
 

@@ -148,7 +148,9 @@ class MapPlanner:
     Notes
     -----
     With ``"astar"`` or a thread-safe callable, :meth:`plan` may be called from
-    several threads at once; ``"field_dstar"`` keeps search state and may not.
+    several threads at once; ``"field_dstar"`` keeps search state and may not:
+    give each thread its own :func:`copy.copy` of such a planner (the copies
+    share the costs, not the search state).
 
     Examples
     --------

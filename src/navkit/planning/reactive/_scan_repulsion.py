@@ -146,6 +146,8 @@ def repulsive_force_from_scan(
     if not (type(d0) is float and LENGTH_MIN <= d0 <= LENGTH_MAX):
         d0 = length(influence_radius, "influence_radius")
     ranges = scan.ranges
+    # One read of _LAST, checked and used as it was: another thread (or a scan
+    # subclass's attribute) may store its own scanner's table in between.
     last = _LAST
     if last[0] == scan.angle_min and last[1] == scan.angle_increment and last[2] == ranges.shape[0]:
         cos_t, sin_t = last[3], last[4]
