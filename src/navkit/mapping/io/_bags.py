@@ -143,7 +143,11 @@ class BagScans:
 
     Notes
     -----
-    Arrays are read-only float64 copies; lengths must agree.
+    Arrays are read-only float64 copies; lengths must agree. Memory: each
+    scan is a :class:`~navkit.mapping.LaserScan` with its own float64 arrays,
+    8 bytes a beam (16 with intensities) and some 700 bytes of objects a scan;
+    :func:`read_bag_scans` holds the decoded messages' float32 readings (4
+    bytes a beam more) until it has built them all.
 
     Examples
     --------
@@ -828,31 +832,88 @@ def _select(bag_path: Path, bag: _Bag, msgtype: str, topic: str | None) -> str:
     return topic
 
 
-def _read(
-    path: Any, topic: Any, msgtype: str, convert: Callable[[str, list[tuple[int, Any]]], _T]
+def _decoded(
+    path: Any, topic: Any, msgtype: str, use: Callable[[str, Iterator[tuple[int, Any]]], _T]
 ) -> _T:
-    """Deserialize every ``msgtype`` message of the selected topic (those of other types
-    recorded on it left alone) and hand them to ``convert``."""
+    """Hand ``use`` the selected topic's name and an iterator deserializing its ``msgtype``
+    messages (those of other types recorded on it left alone) one at a time."""
     if topic is not None and not isinstance(topic, str):
         raise TypeError(f"topic must be a str or None, got {type(topic).__name__}")
     bag_path = _check_path(path)
     _, _, stores, get_typestore = _rosbags()
 
-    def use(bag: _Bag) -> _T:
+    def opened(bag: _Bag) -> _T:
         name = _select(bag_path, bag, msgtype, topic)
         store = get_typestore(stores.ROS2_HUMBLE if bag.ros2 else stores.ROS1_NOETIC)
         deserialize = store.deserialize_cdr if bag.ros2 else store.deserialize_ros1
-        out = []
-        for i, (ns, raw) in enumerate(bag.messages(name, msgtype)):
-            try:
-                out.append((ns, deserialize(raw, msgtype)))
-            except Exception as exc:  # rosbags raises many kinds on corrupt bytes
-                raise ValueError(
-                    f"{bag_path}: message {i} of {name} cannot be decoded as {msgtype}: {exc}"
-                ) from None
-        return convert(name, out)
 
-    return _with_bag(bag_path, use)
+        def decode() -> Iterator[tuple[int, Any]]:
+            for i, (ns, raw) in enumerate(bag.messages(name, msgtype)):
+                try:
+                    msg = deserialize(raw, msgtype)
+                except Exception as exc:  # rosbags raises many kinds on corrupt bytes
+                    raise ValueError(
+                        f"{bag_path}: message {i} of {name} cannot be decoded as {msgtype}: {exc}"
+                    ) from None
+                yield ns, msg
+
+        return use(name, decode())
+
+    return _with_bag(bag_path, opened)
+
+
+def _read(
+    path: Any, topic: Any, msgtype: str, convert: Callable[[str, list[tuple[int, Any]]], _T]
+) -> _T:
+    """Deserialize every ``msgtype`` message of the selected topic and hand them to
+    ``convert``."""
+    return _decoded(path, topic, msgtype, lambda name, msgs: convert(name, list(msgs)))
+
+
+def _read_rows(
+    path: Any,
+    topic: Any,
+    msgtype: str,
+    width: int,
+    fill: Callable[[Any, FloatArray], None],
+    convert: Callable[[str, Any, FloatArray], _T],
+) -> _T:
+    """Read the selected topic's ``msgtype`` messages into one float64 row each, dropping
+    every message once ``fill`` has copied its values into ``row[1:]`` (``row[0]``: the
+    record time), and hand ``convert`` the topic, the first message (None if none) and the
+    ``(N, width)`` rows.
+
+    A deserialized message is a tree of Python objects several times the size of its
+    numbers (an Odometry some 5 kB for 83 values): holding them all until the arrays
+    are built would need that much a message. The rows grow in blocks, each twice
+    the last, so that gathering them needs at most 1.5 times their size, and
+    joining them once as much again.
+    """
+
+    def use(name: str, messages: Iterator[tuple[int, Any]]) -> _T:
+        first = None
+        blocks: list[FloatArray] = []
+        used = size = 0
+        for ns, msg in messages:
+            if first is None:
+                first = msg
+            if used == size:
+                size = 2 * size or 64
+                blocks.append(np.empty((size, width), dtype=np.float64))
+                used = 0
+            blocks[-1][used, 0] = _record_time(ns)
+            fill(msg, blocks[-1][used])  # a view not kept: it would keep its block alive
+            used += 1
+        if blocks:
+            blocks[-1] = blocks[-1][:used]
+        if len(blocks) == 1:
+            rows = blocks[0]
+        else:
+            rows = np.concatenate(blocks) if blocks else np.empty((0, width), dtype=np.float64)
+        del blocks
+        return convert(name, first, rows)
+
+    return _decoded(path, topic, msgtype, use)
 
 
 def _stamp(msg: Any) -> float:
@@ -860,13 +921,14 @@ def _stamp(msg: Any) -> float:
     return float(stamp.sec) + float(stamp.nanosec) * 1e-9
 
 
-def _record_times(messages: list[tuple[int, Any]]) -> FloatArray:
+def _record_time(ns: int) -> float:
     # As _stamp computes a stamp, so that the same instant gives the same float
     # (``ns * 1e-9`` rounds ns to a multiple of 256 first: often one float off).
-    return np.array(
-        [float(ns // 1_000_000_000) + float(ns % 1_000_000_000) * 1e-9 for ns, _ in messages],
-        dtype=np.float64,
-    )
+    return float(ns // 1_000_000_000) + float(ns % 1_000_000_000) * 1e-9
+
+
+def _record_times(messages: list[tuple[int, Any]]) -> FloatArray:
+    return np.array([_record_time(ns) for ns, _ in messages], dtype=np.float64)
 
 
 def _frame(messages: list[tuple[int, Any]], field: Callable[[Any], str]) -> str:
@@ -991,18 +1053,22 @@ def read_bag_odometry(path: str | os.PathLike[str], *, topic: str | None = None)
     TypeError: topic must be a str or None, got int
     """
 
-    def convert(name: str, messages: list[tuple[int, Any]]) -> BagOdometry:
-        msgs = [m for _, m in messages]
-        n = len(msgs)
-        times = np.array([_stamp(m) for m in msgs], dtype=np.float64)
-        position = np.array([_xyz(m.pose.pose.position) for m in msgs]).reshape(n, 3)
-        quat = np.array([_xyzw(m.pose.pose.orientation) for m in msgs]).reshape(n, 4)
-        twist = np.array(
-            [(*_xyz(m.twist.twist.linear)[:2], float(m.twist.twist.angular.z)) for m in msgs]
-        ).reshape(n, 3)
-        pose_cov = np.array([np.asarray(m.pose.covariance, float) for m in msgs]).reshape(n, 6, 6)
-        twist_cov = np.array([np.asarray(m.twist.covariance, float) for m in msgs])
-        twist_cov = twist_cov.reshape(n, 6, 6)
+    def fill(m: Any, row: FloatArray) -> None:
+        row[1] = _stamp(m)
+        row[2:5] = _xyz(m.pose.pose.position)
+        row[5:9] = _xyzw(m.pose.pose.orientation)
+        row[9:12] = (*_xyz(m.twist.twist.linear)[:2], float(m.twist.twist.angular.z))
+        row[12:48] = np.asarray(m.pose.covariance, float).reshape(36)
+        row[48:84] = np.asarray(m.twist.covariance, float).reshape(36)
+
+    def convert(name: str, first: Any, rows: FloatArray) -> BagOdometry:
+        n = rows.shape[0]
+        times = rows[:, 1]
+        position = rows[:, 2:5]
+        quat = rows[:, 5:9]
+        twist = rows[:, 9:12]
+        pose_cov = rows[:, 12:48].reshape(n, 6, 6)
+        twist_cov = rows[:, 48:84].reshape(n, 6, 6)
         for what, arr in (
             ("stamp", times),
             ("position", position),
@@ -1015,10 +1081,10 @@ def read_bag_odometry(path: str | os.PathLike[str], *, topic: str | None = None)
         yaw = np.asarray(quaternion_to_yaw(quat), dtype=np.float64).reshape(n)
         return BagOdometry(
             name,
-            _frame(messages, lambda m: m.header.frame_id),
-            _frame(messages, lambda m: m.child_frame_id),
+            "" if first is None else str(first.header.frame_id),
+            "" if first is None else str(first.child_frame_id),
             times,
-            _record_times(messages),
+            rows[:, 0],
             np.column_stack((position[:, :2], yaw)),
             quat,
             twist,
@@ -1026,7 +1092,7 @@ def read_bag_odometry(path: str | os.PathLike[str], *, topic: str | None = None)
             twist_cov,
         )
 
-    return _read(path, topic, ODOMETRY_TYPE, convert)
+    return _read_rows(path, topic, ODOMETRY_TYPE, 84, fill, convert)
 
 
 def read_bag_imu(path: str | os.PathLike[str], *, topic: str | None = None) -> BagImu:
@@ -1069,36 +1135,38 @@ def read_bag_imu(path: str | os.PathLike[str], *, topic: str | None = None) -> B
     TypeError: path must be a str or an os.PathLike, got bytes
     """
 
-    def convert(name: str, messages: list[tuple[int, Any]]) -> BagImu:
-        msgs = [m for _, m in messages]
-        n = len(msgs)
+    def fill(m: Any, row: FloatArray) -> None:
+        row[1] = _stamp(m)
+        row[2:6] = _xyzw(m.orientation)
+        row[6:9] = _xyz(m.angular_velocity)
+        row[9:12] = _xyz(m.linear_acceleration)
+        row[12:21] = np.asarray(m.orientation_covariance, float).reshape(9)
+        row[21:30] = np.asarray(m.angular_velocity_covariance, float).reshape(9)
+        row[30:39] = np.asarray(m.linear_acceleration_covariance, float).reshape(9)
 
-        def cov(field: str) -> FloatArray:
-            return np.array([np.asarray(getattr(m, field), float) for m in msgs]).reshape(n, 3, 3)
-
+    def convert(name: str, first: Any, rows: FloatArray) -> BagImu:
+        n = rows.shape[0]
         arrays = {
-            "stamp": np.array([_stamp(m) for m in msgs], dtype=np.float64),
-            "orientation": np.array([_xyzw(m.orientation) for m in msgs]).reshape(n, 4),
-            "angular velocity": np.array([_xyz(m.angular_velocity) for m in msgs]).reshape(n, 3),
-            "linear acceleration": np.array([_xyz(m.linear_acceleration) for m in msgs]).reshape(
-                n, 3
-            ),
-            "orientation covariance": cov("orientation_covariance"),
-            "angular velocity covariance": cov("angular_velocity_covariance"),
-            "linear acceleration covariance": cov("linear_acceleration_covariance"),
+            "stamp": rows[:, 1],
+            "orientation": rows[:, 2:6],
+            "angular velocity": rows[:, 6:9],
+            "linear acceleration": rows[:, 9:12],
+            "orientation covariance": rows[:, 12:21].reshape(n, 3, 3),
+            "angular velocity covariance": rows[:, 21:30].reshape(n, 3, 3),
+            "linear acceleration covariance": rows[:, 30:39].reshape(n, 3, 3),
         }
         for what, arr in arrays.items():
             _finite(arr, what, path, name)
         values = list(arrays.values())
         return BagImu(
             name,
-            _frame(messages, lambda m: m.header.frame_id),
+            "" if first is None else str(first.header.frame_id),
             values[0],
-            _record_times(messages),
+            rows[:, 0],
             *values[1:],
         )
 
-    return _read(path, topic, IMU_TYPE, convert)
+    return _read_rows(path, topic, IMU_TYPE, 39, fill, convert)
 
 
 def bag_topics(
