@@ -100,7 +100,11 @@ def fill_inf(dist: np.ndarray) -> None:
 
 @njit_no_refcount
 def crop(dist: np.ndarray, rows: int, cols: int, out: np.ndarray) -> None:
-    """Copy the interior of the padded field ``dist`` into ``out`` (``rows * cols``)."""
+    """Copy the interior of the padded field ``dist`` into ``out`` (``rows * cols``).
+
+    ``out`` may be ``dist`` itself: every value moves towards the front, onto a
+    cell already read.
+    """
     pc = cols + 2
     for r in range(rows):
         src = (r + 1) * pc + 1
