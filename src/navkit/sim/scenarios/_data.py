@@ -45,8 +45,10 @@ def _candidates(data_dir: str | os.PathLike[str] | None) -> list[Path]:
     here = Path.cwd().resolve()
     bases = [here, *list(here.parents)[:3]]
     # A checkout (src layout) keeps the data beside its root: <root>/../shared/data.
+    # An installed navkit (<venv>/lib/python3.X/site-packages/navkit) has no such
+    # root, and "<venv>/lib/shared/data" in the error would send users astray.
     source = Path(__file__).resolve().parents
-    if len(source) > 5:
+    if len(source) > 5 and source[3].name == "src" and (source[4] / "pyproject.toml").is_file():
         bases.append(source[5])
     found.extend(base / "shared" / "data" for base in bases)
     return found
@@ -59,7 +61,7 @@ def find_data(relative: str, *, data_dir: str | os.PathLike[str] | None = None) 
     ----------
     relative : str
         Path inside the data folder, e.g.
-        ``"ros-map-server-maps/turtlebot3_world/turtlebot3_world.yaml"``.
+        ``"ros-map-server-maps/turtlebot3_world/map.yaml"``.
     data_dir : str or path-like, optional
         The data folder; the only place looked in. Default: ``$NAVKIT_DATA``
         when it is set (and not empty), then the first ``shared/data`` found
@@ -106,6 +108,6 @@ def find_data(relative: str, *, data_dir: str | os.PathLike[str] | None = None) 
             return path
     where = ", ".join(str(p) for p in dict.fromkeys(looked))
     raise DataNotFoundError(
-        f"{relative} not found in {where}; set {ENV_VAR} or pass data_dir= "
-        "(the folder holding ros-map-server-maps, carmen-logs, ...)"
+        f"{relative} not found in {where}; set {ENV_VAR} or pass data_dir= (--data "
+        "on the command line): the folder holding ros-map-server-maps, carmen-logs, ..."
     )
