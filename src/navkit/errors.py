@@ -10,7 +10,7 @@ from __future__ import annotations
 import math
 import numbers
 
-__all__ = ["DataNotFoundError", "FilterError", "NavkitError", "NoPathError"]
+__all__ = ["DataNotFoundError", "FilterError", "KernelCacheWarning", "NavkitError", "NoPathError"]
 
 
 _MAX_EXPANDED = 2**63 - 1
@@ -95,4 +95,22 @@ class DataNotFoundError(NavkitError, FileNotFoundError):
     >>> err = DataNotFoundError("turtlebot3_world.yaml not found in /tmp")
     >>> isinstance(err, FileNotFoundError), isinstance(err, NavkitError)
     (True, True)
+    """
+
+
+class KernelCacheWarning(RuntimeWarning):
+    """numba cannot cache navkit's compiled kernels: each process compiles them again.
+
+    Warned once per process when neither the package's ``__pycache__`` folders
+    nor the user's cache folder is writable and ``NUMBA_CACHE_DIR`` is not set
+    (a read-only installation or container); navkit then works without the
+    cache, compiling on first use in every process.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> with warnings.catch_warnings():
+    ...     warnings.simplefilter("ignore", KernelCacheWarning)
+    >>> issubclass(KernelCacheWarning, RuntimeWarning)
+    True
     """

@@ -36,6 +36,14 @@ needs from numba itself are bound in its namespace at the same moment by
 :func:`bind_numba_names`. Loading numba also installs
 :mod:`navkit._shared.compile_gc`, which pauses Python's garbage collector
 while numba compiles a navkit kernel (about a tenth of the compile time).
+
+Where numba finds no writable folder for its on-disk cache (a read-only
+installation whose ``__pycache__`` and user cache folder cannot be written,
+and no ``NUMBA_CACHE_DIR``), numba refuses to make a ``cache=True`` dispatcher
+at all ("cannot cache function ..."). navkit then makes its kernels without
+the cache, so they work but compile again in every process, and warns once
+(:class:`KernelCacheWarning`) naming ``NUMBA_CACHE_DIR``; :func:`cache_problem`
+says why.
 """
 
 from __future__ import annotations
@@ -43,8 +51,11 @@ from __future__ import annotations
 import importlib
 import sys
 import threading
+import warnings
 from collections.abc import Callable
 from typing import Any, TypeVar, cast
+
+from navkit.errors import KernelCacheWarning
 
 _F = TypeVar("_F", bound=Callable[..., Any])
 
@@ -55,6 +66,44 @@ _NJIT: Any = None
 _WAITING: list[LazyKernel] = []
 #: (namespace, numba module, {name: attribute}) bound by :func:`load_numba`.
 _BINDINGS: list[tuple[dict[str, Any], str, dict[str, str], dict[str, Any]]] = []
+#: Why numba cannot cache navkit's kernels in this process (empty: it can, so far).
+_CACHE_PROBLEM: list[str] = []
+
+
+def _make_dispatcher(njit: Any, options: dict[str, Any], py_func: Callable[..., Any]) -> Any:
+    """``njit(**options)(py_func)``, without numba's cache where it has nowhere to write it."""
+    try:
+        return njit(**options)(py_func)
+    except RuntimeError as exc:
+        # numba's words when no cache locator has a writable folder for the file.
+        if not options.get("cache") or "cannot cache function" not in str(exc):
+            raise
+    if not _CACHE_PROBLEM:
+        source = getattr(getattr(py_func, "__code__", None), "co_filename", py_func.__module__)
+        problem = (
+            f"numba cannot cache navkit's compiled kernels: no writable cache folder for "
+            f"{source} (its __pycache__ and the user cache folder are read-only), so every process "
+            f"compiles them again on first use (seconds). Set NUMBA_CACHE_DIR to a "
+            f"writable folder (see navkit's docs/compilation.md)"
+        )
+        _CACHE_PROBLEM.append(problem)
+        warnings.warn(problem, KernelCacheWarning, stacklevel=2)
+    return njit(**{**options, "cache": False})(py_func)
+
+
+def jit_disabled() -> bool:
+    """Whether numba's JIT is disabled (``NUMBA_DISABLE_JIT=1``): kernels run as Python."""
+    config: Any = importlib.import_module("numba.core.config")
+    return bool(config.DISABLE_JIT)
+
+
+def cache_problem() -> str | None:
+    """Why numba cannot cache navkit's kernels in this process, or None if it can.
+
+    Loads numba (and makes every waiting kernel's dispatcher) first.
+    """
+    load_numba()
+    return _CACHE_PROBLEM[0] if _CACHE_PROBLEM else None
 
 
 class LazyKernel:
@@ -110,7 +159,7 @@ class LazyKernel:
             load_numba()
             with _LOCK:  # one dispatcher, whichever threads get here at once
                 if self.dispatcher is None:  # made by hand after numba was loaded
-                    self.dispatcher = _NJIT(**self.options)(self.py_func)
+                    self.dispatcher = _make_dispatcher(_NJIT, self.options, self.py_func)
         return self.dispatcher
 
 
@@ -156,7 +205,7 @@ def _make_dispatchers(njit: Any) -> None:
     for namespace, module, names, python in _BINDINGS:
         _bind(namespace, module, names, python)
     for kernel in _WAITING:
-        kernel.dispatcher = njit(**kernel.options)(kernel.py_func)
+        kernel.dispatcher = _make_dispatcher(njit, kernel.options, kernel.py_func)
     for module_object in list(sys.modules.values()):
         module_namespace = getattr(module_object, "__dict__", None)
         if not isinstance(module_namespace, dict):
@@ -227,7 +276,7 @@ def typed_njit(**options: Any) -> Callable[[_F], _F]:
                 _WAITING.append(kernel)
                 return cast(_F, kernel)
         load_numba()
-        return cast(_F, _NJIT(**options)(py_func))
+        return cast(_F, _make_dispatcher(_NJIT, options, py_func))
 
     return decorate
 

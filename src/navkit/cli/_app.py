@@ -9,6 +9,7 @@ import sys
 from collections.abc import Sequence
 from typing import TextIO
 
+from navkit.cli._encoding import tolerant_output
 from navkit.cli._parser import build_parser, join_negative_points
 from navkit.cli._plan import plan_command
 from navkit.cli._scenarios import list_scenarios, run_scenario
@@ -60,8 +61,20 @@ def main(argv: Sequence[str] | None = None) -> int:
         or not all(isinstance(a, str) for a in argv)
     ):  # fmt: skip
         raise TypeError(f"argv must be a sequence of str or None, got {argv!r:.60}")
-    out: TextIO = sys.stdout
-    err: TextIO = sys.stderr
+    # Under a locale without "×" or "±" (LC_ALL=C), ASCII stand-ins rather than a
+    # UnicodeEncodeError ending the command.
+    with contextlib.ExitStack() as closing, tolerant_output():
+        # A closed standard output or error (`navkit warmup >&-`) is None in Python:
+        # the command still runs, its text discarded.
+        streams: list[TextIO] = []
+        for stream in (sys.stdout, sys.stderr):
+            if stream is None:
+                stream = closing.enter_context(open(os.devnull, "w", encoding="utf-8"))
+            streams.append(stream)
+        return _main(argv, *streams)
+
+
+def _main(argv: Sequence[str] | None, out: TextIO, err: TextIO) -> int:
     parser = build_parser(sorted(SCENARIOS))
     try:
         given = sys.argv[1:] if argv is None else list(argv)

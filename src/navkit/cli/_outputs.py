@@ -28,6 +28,8 @@ def check_output(path: str | None, suffix: str, option: str) -> None:
 
     Raises
     ------
+    ImportError
+        A picture (``.png``, ``.gif``) without matplotlib (the ``plot`` extra).
     ValueError
         An empty name, a wrong extension, a folder given for a file, or a picture (a
         ``suffix``) to be written over something that is not a regular file
@@ -51,6 +53,8 @@ def check_output(path: str | None, suffix: str, option: str) -> None:
     if not path:
         # Path("") is ".", the current folder: "is a folder" would puzzle.
         raise ValueError(f"{option}: the file name is empty")
+    if suffix in (".png", ".gif"):
+        _check_matplotlib(option)
     target = Path(path)
     if suffix and target.suffix.lower() != suffix:
         raise ValueError(f"{option}: the file must end in {suffix}, got {path}")
@@ -72,6 +76,22 @@ def check_output(path: str | None, suffix: str, option: str) -> None:
         raise OSError(f"{option}: cannot write in folder {folder} ({reason})") from exc
     os.close(fd)
     os.unlink(probe)
+
+
+def _check_matplotlib(option: str) -> None:
+    """An ImportError naming the ``plot`` extra, before the run rather than at its end.
+
+    (matplotlib imports Pillow, which the GIFs need, itself.)
+    """
+    try:
+        # The top-level package first: a submodule alone is found in sys.modules
+        # even when its package is hidden (sys.modules["matplotlib"] = None).
+        import matplotlib
+        import matplotlib.figure  # noqa: F401
+    except ImportError:
+        raise ImportError(
+            f"{option} needs matplotlib, which is not installed: pip install 'navkit[plot]'"
+        ) from None
 
 
 def check_distinct(paths: Mapping[str, str | None]) -> None:

@@ -56,7 +56,11 @@ class ProgressBar:
         if not self._enabled:
             return
         if self._bar is None:
-            from tqdm import tqdm
+            try:
+                from tqdm import tqdm
+            except ImportError:  # a dependency missing: a bar is not worth failing the run
+                self._enabled = False
+                return
 
             # No monitor thread: sweeps may fork worker processes while the bar is up.
             tqdm.monitor_interval = 0

@@ -3,8 +3,11 @@
 from __future__ import annotations
 
 import argparse
+import warnings
 from typing import TextIO
 
+from navkit._shared.jit import cache_problem, jit_disabled
+from navkit.errors import KernelCacheWarning
 from navkit.sim import Table, WarmupReport, warmup
 
 __all__ = ["report_table", "warmup_command"]
@@ -54,7 +57,23 @@ def report_table(report: WarmupReport) -> Table:
 
 
 def warmup_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
-    """Compile (or load) every kernel and print the report table; exit code 0."""
+    """Compile (or load) every kernel and print the report table; exit code 0.
+
+    Raises
+    ------
+    OSError
+        numba has nowhere to cache the kernels (a read-only installation and
+        no ``NUMBA_CACHE_DIR``): compiling them now would be lost.
+    """
+    if jit_disabled():
+        print("numba's JIT is disabled (NUMBA_DISABLE_JIT=1): nothing to compile; navkit's "
+              "kernels run as Python.", file=out)  # fmt: skip
+        return 0
+    with warnings.catch_warnings():  # said once, below, as the command's error
+        warnings.simplefilter("ignore", KernelCacheWarning)
+        problem = cache_problem()
+    if problem is not None:
+        raise OSError(f"{problem}; nothing was compiled")
     progress = _StepProgress(err, enabled=not args.quiet)
     report = warmup(workers=args.workers, progress=progress, only=args.only)
     print(report_table(report).render(digits=3), file=out)
