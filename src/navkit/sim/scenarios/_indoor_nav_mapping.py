@@ -501,7 +501,8 @@ def _passable(planner: MapPlanner, point: tuple[float, float]) -> tuple[float, f
     """``point``, or the passable cell centre it is joined to if it is blocked.
 
     The nearest passable cell centre within :data:`SNAP_DISTANCE` whose straight
-    segment from ``point`` touches (a corner included) no obstacle cell (occupied,
+    segment from ``point`` touches (a corner included; a cell whose edge ``point``
+    lies on, only by entering it) no obstacle cell (occupied,
     or impassable unknown space) but those of the obstacle ``point`` is in: the
     8-connected blob of obstacle cells around its cell, near it. The step may thus
     leave the inflation band and a wall the map draws over the point, but never
@@ -552,23 +553,30 @@ def _segments_touch(
 
     Continuous grid coordinates ``(row, col)``: cell ``(r, c)`` is the closed square
     ``[r - 1/2, r + 1/2] x [c - 1/2, c + 1/2]``, grown by 1e-9 so that a segment
-    through a corner is caught whatever the rounding. Slab clipping of every
-    segment (axis 0) against every cell (axis 1).
+    through a corner is caught whatever the rounding. A cell whose (grown) square
+    holds ``q`` itself (``q`` on its edge: a point on a wall's face, as round
+    coordinates lie) is touched only by a segment entering its inside (shrunk by
+    1e-9), not by one leaving it. Slab clipping of every segment (axis 0) against
+    every cell (axis 1).
     """
     graze = 1e-9
+    at_q = (np.abs(cell_rows - q[0]) <= 0.5 + graze) & (np.abs(cell_cols - q[1]) <= 0.5 + graze)
+    pad = np.where(at_q, -graze, graze)
     enter = np.zeros((rows.size, cell_rows.size))
     leave = np.ones((rows.size, cell_rows.size))
     for origin, ends, cells in ((q[0], rows, cell_rows), (q[1], cols, cell_cols)):
         step = (ends - origin)[:, None]
-        low = (cells - 0.5 - graze - origin)[None, :]
-        high = (cells + 0.5 + graze - origin)[None, :]
+        low = (cells - 0.5 - pad - origin)[None, :]
+        high = (cells + 0.5 + pad - origin)[None, :]
         along = step != 0.0
         safe = np.where(along, step, 1.0)
         # A segment parallel to this axis's slab is inside it for all t or never.
         inside = (low <= 0.0) & (high >= 0.0)
-        t_in = np.where(along, np.minimum(low / safe, high / safe), np.where(inside, 0.0, np.inf))
-        t_out = np.where(along, np.maximum(low / safe, high / safe), np.where(inside, 1.0, -np.inf))
+        with np.errstate(over="ignore"):  # a step of 1e-310 cells: +-inf is right
+            t_lo, t_hi = low / safe, high / safe
+        t_in = np.where(along, np.minimum(t_lo, t_hi), np.where(inside, 0.0, np.inf))
+        t_out = np.where(along, np.maximum(t_lo, t_hi), np.where(inside, 1.0, -np.inf))
         enter = np.maximum(enter, t_in)
         leave = np.minimum(leave, t_out)
-    touched: BoolArray = np.any(enter <= leave, axis=1)
+    touched: BoolArray = np.any(np.where(at_q[None, :], enter < leave, enter <= leave), axis=1)
     return touched
