@@ -102,6 +102,11 @@ def quaternion_to_yaw(quaternion: ArrayLike) -> float | FloatArray:
     ``sensor_msgs/Imu``). Where that axis points straight up or down (pitch
     ±90°) the yaw is undefined and 0 is returned.
 
+    This is tf2's ``tf2::getYaw`` (the same formula, for non-unit quaternions
+    too) except within 0.26° of pitch ±90°, where tf2 switches to
+    ``±2·atan2(y, x)`` (its gimbal-lock branch, roll taken as 0) and this
+    function keeps the heading of the rotated x axis.
+
     Parameters
     ----------
     quaternion : array_like, shape (..., 4)

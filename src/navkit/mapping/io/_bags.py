@@ -5,6 +5,16 @@ arrays: :func:`read_bag_scans` (``sensor_msgs/LaserScan``),
 :func:`read_bag_odometry` (``nav_msgs/Odometry``) and :func:`read_bag_imu`
 (``sensor_msgs/Imu``); :func:`bag_topics` lists what a bag holds.
 
+Times: ``times`` are the messages' header stamps (when the data was taken;
+what robot_localization and tf use), ``record_times`` when the bag recorder
+received them; messages stay in record order, which need not be stamp order.
+A stamp's ``sec`` and ``nanosec`` become float64 seconds
+``sec + nanosec · 1e-9``, which resolves nanoseconds only below 2**23 s
+(97 days: simulation time); at wall-clock stamps (1.7e9 s in 2024) consecutive
+float64 values lie 2.4e-7 s apart, so a stamp is rounded to within about
+0.12 µs and a difference of stamps to within about 0.24 µs. A stamp of 0 (a driver that does not
+set it) is kept as 0: use ``record_times`` for such topics.
+
 Damaged or malicious bags: ROS 1 chunks are decompressed at most to the size
 their header declares, and never past :data:`CHUNK_MAX`; a ROS 2 bag's
 ``metadata.yaml`` must be a regular file of at most :data:`METADATA_MAX` bytes
@@ -135,7 +145,9 @@ class BagScans:
     frame_id : str
         ``header.frame_id`` of the first message (empty for no messages).
     times : ndarray, shape (N,)
-        Header stamps, s (``sec + nanosec · 1e-9``), finite.
+        Header stamps, s (``sec + nanosec · 1e-9``, rounded to float64: see
+        the module notes), finite: the time of each scan's first beam, as
+        ``sensor_msgs/LaserScan`` defines it.
     record_times : ndarray, shape (N,)
         Times the bag recorded the messages, s, finite.
     scans : tuple of LaserScan
@@ -213,8 +225,13 @@ class BagOdometry:
     twists : ndarray, shape (N, 3)
         ``[vx, vy, omega]`` in the child (robot) frame, m/s and rad/s.
     pose_covariances, twist_covariances : ndarray, shape (N, 6, 6)
-        The messages' covariances, ROS order ``(x, y, z, roll, pitch, yaw)``
-        (so the yaw variance is ``[:, 5, 5]``).
+        The messages' covariances, row-major 6×6 as in the message, over ROS's
+        order ``(x, y, z, rotation about x, about y, about z)`` (so the yaw
+        variance is ``[:, 5, 5]`` and a planar ``(x, y, yaw)`` block is
+        ``[:, [0, 1, 5]][:, :, [0, 1, 5]]``). As in the bag: drivers that do not
+        know them write zeros, which
+        :meth:`~navkit.estimation.MeasurementLog.from_streams` refuses as
+        variances.
 
     Notes
     -----
@@ -282,7 +299,10 @@ class BagImu:
         m/s², IMU frame, gravity included (REP 145).
     orientation_covariances, angular_velocity_covariances, linear_acceleration_covariances : \
 ndarray, shape (N, 3, 3)
-        As in the bag: a -1 in ``[i, 0, 0]`` means "not given" (REP 145).
+        Row-major 3×3 as in the message, about the x, y and z axes. As in the
+        bag: a -1 in ``[i, 0, 0]`` means the reading is not given (REP 145,
+        e.g. no orientation estimate), all zeros that its covariance is unknown
+        (the message's comments).
 
     Notes
     -----

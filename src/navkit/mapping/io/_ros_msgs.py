@@ -157,6 +157,15 @@ def grid_from_msg(msg: Any) -> OccupancyGrid:
     normalised and reduced to its yaw (a zero quaternion, ROS 1's default,
     gives yaw 0).
 
+    ``info.resolution`` is used as given: in a real message it is a float32,
+    so a map saved at 0.05 m reads as 0.05000000074505806 m, as ROS's own
+    consumers (Nav2's costmaps, rviz) read it. Cells then agree with a grid of
+    the same map read from its YAML (:func:`~navkit.mapping.io.read_map`,
+    0.05 exactly) to within ``width × 7.5e-10`` m, but a point lying exactly on
+    a cell boundary of one may fall in the neighbouring cell of the other.
+    ``info.origin.position.z`` is ignored, and so are the origin's roll and
+    pitch (the grid is planar).
+
     A value of 50 is probability 0.5, log-odds 0, which is also what -1 reads
     as: the grid cannot tell the two apart, and :func:`grid_to_msg_fields`
     publishes such a cell as -1 (never observed). Every other value, and the
@@ -265,6 +274,15 @@ def grid_to_msg_fields(grid: OccupancyGrid, *, trinary: bool = False) -> Occupan
         ``origin_position`` is ``(x, y, 0)``, ``origin_orientation`` the yaw's
         quaternion and ``data`` the row-major cells (row 0 at the origin).
 
+    Notes
+    -----
+    ``data`` is a NumPy int8 array. An rclpy (ROS 2) message's ``data`` setter
+    accepts an ``array.array('b')`` or a sequence of Python ints but, with
+    assertions on (the default), refuses a NumPy array: assign
+    ``array.array('b', fields.data.tobytes())`` (or ``fields.data.tolist()``).
+    ``resolution`` is a float64; the message stores it as a float32 (see
+    :func:`grid_from_msg` for what reading it back gives).
+
     Examples
     --------
     >>> grid = OccupancyGrid.from_occupancy(np.array([[True, False]]), resolution=0.1)
@@ -310,6 +328,15 @@ def scan_from_msg(msg: Any) -> LaserScan:
     read: beam ``k`` of ``ranges`` points at ``angle_min + k * angle_increment``
     whatever ``angle_max`` says (drivers disagree on whether it is the last
     beam's angle; ROS's laser_geometry trusts ``ranges`` and the increment too).
+
+    ``time_increment`` and ``scan_time`` are not read either: the beams are
+    taken as simultaneous, with no correction for the sensor's motion during
+    the sweep (laser_geometry's ``transformLaserScanToPointCloud`` interpolates
+    the sensor pose over it; navkit does not). The header stamp, which the
+    message defines as the time of the first beam, is the scan's time
+    (:func:`~navkit.mapping.io.read_bag_scans`). At 1 m/s and a 0.1 s sweep the
+    last beam was taken up to 0.1 m from where the first was: de-skew such
+    scans before converting them if that matters.
 
     Parameters
     ----------
