@@ -19,7 +19,7 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from numpy.typing import NDArray
 from scipy import ndimage
-from shapely.geometry import LineString, box
+from shapely.geometry import LineString, Point, box
 
 from navkit.errors import NoPathError
 from navkit.mapping import OccupancyGrid
@@ -93,11 +93,14 @@ def reference_snap(
 
     Continuous grid coordinates (cell ``(r, c)`` the square ``[r-1/2, r+1/2] x
     [c-1/2, c+1/2]``): a step crosses an obstacle cell when shapely's distance
-    between them is 0 (closed sets). The point's own obstacle: the 8-connected
+    between them is 0 (closed sets), except a cell whose edge holds the point
+    itself, which a step crosses only by entering its inside (leaving a wall's
+    face is allowed). The point's own obstacle: the 8-connected
     blob of obstacle cells around its cell, among the cells within
     ``ceil(SNAP_DISTANCE / resolution) + 1`` rows and columns of it (those a step
     can touch). Not clear-cut: a step within 1e-7 cells of a foreign cell without
-    touching it, or a centre within 1e-9 m of the snap distance.
+    touching it, the point within 1e-7 cells of one, or a centre within 1e-9 m
+    of the snap distance.
     """
     grid, costs = planner.grid, planner.costs
     rows, cols = costs.shape
@@ -112,8 +115,9 @@ def reference_snap(
         labels, _ = ndimage.label(obstacle & near, structure=np.ones((3, 3)))
         foreign &= labels != labels[r, c]
     squares = [box(fr - 0.5, fc - 0.5, fr + 0.5, fc + 0.5) for fr, fc in np.argwhere(foreign)]
+    at_q = [s.distance(Point(q)) == 0.0 for s in squares]
     found: list[tuple[float, tuple[float, float]]] = []
-    clear_cut = True
+    clear_cut = not any(0.0 < s.distance(Point(q)) < 1e-7 for s in squares)
     for rr in range(rows):
         for cc in range(cols):
             if not math.isfinite(costs[rr, cc]):
@@ -126,7 +130,11 @@ def reference_snap(
             step = LineString([q, (rr, cc)])  # q is in an impassable cell: never (rr, cc)
             gaps = [step.distance(s) for s in squares]
             clear_cut &= not any(0.0 < g < 1e-7 for g in gaps)
-            if not any(g == 0.0 for g in gaps):
+            crossed = (
+                step.intersects(s) and not step.touches(s) if edge else g == 0.0
+                for s, g, edge in zip(squares, gaps, at_q, strict=True)
+            )
+            if not any(crossed):
                 found.append((d, (x, y)))
     return found, clear_cut
 
