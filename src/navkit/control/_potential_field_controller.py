@@ -76,7 +76,10 @@ class PotentialFieldController:
        ``max_speed`` along the infinite components);
     3. takes the sum as the desired world-frame velocity, clipped to ``max_speed``,
        and limits its change from the previous velocity with
-       :func:`limit_velocity_change` (``max_accel`` / ``max_decel``);
+       :func:`limit_velocity_change` (``max_accel`` / ``max_decel``); the
+       command never exceeds ``max_speed``: from a measured ``velocity`` above
+       it (an odometry spike, say) it drops to ``max_speed`` at once, faster
+       than ``max_decel`` allows;
     4. drives the heading with a PID: to ``target_pose.theta`` for an
        omnidirectional robot, to the direction of motion for a differential drive
        (to ``target_pose.theta`` where the desired velocity is below a thousandth
@@ -426,7 +429,8 @@ class PotentialFieldController:
         velocity : Twist2D or array_like [vx, vy, omega], optional
             Current robot-frame velocity (e.g. from odometry, finite; one whose
             world-frame components overflow float64, near 1e308 m/s, is
-            refused), the base of the acceleration limits; ``None`` uses the
+            refused), the base of the acceleration limits (the command stays
+            within ``max_speed`` even when this is faster); ``None`` uses the
             previous command.
 
         Returns
@@ -461,6 +465,12 @@ class PotentialFieldController:
 
         if self._drive == "omni":
             v = _limit_change(prev, want, self._max_accel, self._max_decel, step, "velocity")
+            # A measured velocity above max_speed (an odometry spike, say) would keep the
+            # command above it for as long as max_decel takes: max_speed bounds every
+            # command, as max_omega does RegulatedPurePursuit's.
+            speed = math.hypot(float(v[0]), float(v[1]))
+            if speed > self._max_speed:
+                v = v * (self._max_speed / speed)
             heading = target_pose.theta
             vx, vy = c * v[0] + s * v[1], -s * v[0] + c * v[1]
         else:
@@ -476,6 +486,7 @@ class PotentialFieldController:
                 _limit_change(np.array([fwd_prev]), np.array([fwd_want]), self._max_accel,
                               self._max_decel, step, "velocity")[0]
             )
+            fwd = min(fwd, self._max_speed)  # the bound of every command, as above
             # Below a thousandth of max_speed the field's direction is noise near the goal.
             moving = math.hypot(want[0], want[1]) > 1e-3 * self._max_speed
             heading = math.atan2(want[1], want[0]) if moving else target_pose.theta

@@ -350,7 +350,11 @@ class RegulatedPurePursuit(PathTracker):
         Parameters
         ----------
         pose : Pose2D or array_like [x, y, theta]
-            Robot pose in the world frame (coordinates within ±1e9 m).
+            Robot pose in the world frame (coordinates within ±1e9 m). The
+            :attr:`progress` along the path never goes back: one pose that
+            jumps ahead (a localisation glitch) can move it up to 2 m of path
+            ahead at once, and that stretch is then skipped (most of a short
+            out-and-back path, say); :meth:`set_path` starts over.
         dt : float
             Control period in seconds, > 0 (a normal float: at least 2.2e-308).
         velocity : Twist2D or array_like [vx, vy, omega], optional

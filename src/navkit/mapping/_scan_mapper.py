@@ -266,7 +266,12 @@ class ScanMapper:
         Parameters
         ----------
         scan : LaserScan
-            The next scan, in time order.
+            The next scan, in time order. Scans may differ in beam count,
+            angles and range limits (each is read with its own). Only valid
+            returns (:meth:`LaserScan.valid_mask`) are matched and written:
+            REP 117 readings (NaN, ``±inf``), readings below ``range_min``
+            and "no echo" at or beyond ``range_max`` are skipped, clearing no
+            free space, as in Hector; a scan with none keeps the guess.
         odometry : Pose2D or array_like [x, y, theta], optional
             Odometry pose of the **sensor** at this scan, in any fixed frame
             (compose a mounting offset yourself: ``robot_odometry @ mount``).

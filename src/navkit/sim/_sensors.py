@@ -192,7 +192,14 @@ class WheelEncoders:
     resolved while ``|angle| / 2π * ticks_per_rev`` is below 2**50. The
     counter is reported modulo ``2**bits`` as an unsigned reading when
     ``bits`` is below 64 (a 64-bit counter reads as a signed int64; decode
-    with :func:`navkit.kinematics.tick_delta`).
+    with :func:`navkit.kinematics.tick_delta`). A wheel that turns half the
+    counter range (``2**(bits - 1)`` ticks) or more between two readings
+    aliases: the decoders (``tick_delta``, the estimators a
+    :class:`~navkit.sim.Simulation` wraps) read the change wrapped, and the
+    odometry is silently wrong, as on a real robot. Choose ``bits`` and
+    ``rate`` so that ``wheel speed / 2π * ticks_per_rev / rate`` stays well
+    below ``2**(bits - 1)`` (1024 ticks a turn read at 50 Hz: wheel speeds
+    below about 39 rad/s with 8 bits, 10,000 rad/s with 16).
 
     Parameters
     ----------
