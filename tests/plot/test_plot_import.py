@@ -53,7 +53,7 @@ def test_without_matplotlib_an_import_error_names_the_extra(
 ) -> None:
     monkeypatch.chdir(tmp_path)
     monkeypatch.setitem(sys.modules, "matplotlib", None)
-    with pytest.raises(ImportError, match=r"pip install navkit\[plot\]"):
+    with pytest.raises(ImportError, match=r"pip install 'navkit\[plot\]'"):
         CALLS[name]()
     assert list(tmp_path.iterdir()) == []
 

@@ -19,7 +19,7 @@ the bottom).
   write atomically (a temporary file in the same folder, then ``os.replace``).
 
 matplotlib is imported only when something is drawn; without it every function
-raises an ``ImportError`` saying ``pip install navkit[plot]``.
+raises an ``ImportError`` saying ``pip install 'navkit[plot]'``.
 
 Examples
 --------

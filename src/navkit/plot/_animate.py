@@ -102,8 +102,9 @@ def animate_trace(
     path : str or path-like
         The ``.gif`` file to write, in an existing folder; replaced if it exists.
     fps : int, default 10
-        Frames per second of the GIF, in [1, 50] (GIF delays are whole
-        hundredths of a second: 30 plays at 33).
+        Frames per second of the GIF, in [1, 50]. GIF delays are whole
+        hundredths of a second: each frame lasts the nearest one to
+        ``1 / fps`` (30 plays at 33 frames per second, 35 at 33, 15 at 14.3).
     max_frames : int, default 60
         Most frames, in [1, 1000]; all frames together may hold at most 2**28
         pixels (GIF frames are held until written): at ``dpi`` 300, 97 frames.
@@ -217,8 +218,18 @@ def animate_trace(
         frames.append(_frame(canvas))
     with written_atomically(target) as temporary:
         frames[0].save(temporary, format="GIF", save_all=True, append_images=frames[1:],
-                       duration=max(round(1000.0 / rate), 20), loop=0)  # fmt: skip
+                       duration=_frame_delay_ms(rate), loop=0)  # fmt: skip
     return target
+
+
+def _frame_delay_ms(fps: int) -> int:
+    """The GIF delay of a frame at ``fps``: the nearest whole hundredth of a second, ms.
+
+    GIF stores delays in hundredths, and Pillow truncates milliseconds to them:
+    ``round(1000 / 35)`` = 29 ms would be written as 2/100 s, 50 frames per second
+    instead of 33. At least 2/100 s (browsers slow shorter delays down to 1/10 s).
+    """
+    return 10 * max(round(100.0 / fps), 2)
 
 
 def _frame(canvas: Any) -> Any:

@@ -246,4 +246,10 @@ def _quiver(ax: Axes, sampled: SampledField, fig: Any) -> None:
     if fig is not None:
         fig.colorbar(arrows, ax=ax, label="force")
     ax.update_datalim([[sampled.x[0], sampled.y[0]], [sampled.x[-1], sampled.y[-1]]])
+    # The arrows reach half their length past the outer samples: with the samples'
+    # limits alone, a small field's edge arrows lost their heads (a single sample's
+    # arrow, 0.8 cells long, was drawn in a window 0.05 cells wide).
+    reach = 0.4 * s * sampled.resolution
+    ax.update_datalim([[float(gx.min()) - reach, float(gy.min()) - reach],
+                       [float(gx.max()) + reach, float(gy.max()) + reach]])  # fmt: skip
     ax.autoscale_view()

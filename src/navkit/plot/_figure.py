@@ -31,9 +31,12 @@ COORD_LIMIT = 1e9
 #: Size of the figures navkit.plot creates, inches (matplotlib's default).
 FIGSIZE = (6.4, 4.8)
 
+# Quoted for the shell the user pastes it into: unquoted, zsh refuses the brackets
+# ("no matches found") and bash expands them to a matching file ("navkitp") in the
+# current folder.
 _MISSING = (
     "navkit.plot needs matplotlib, which is not installed; install the plot extra: "
-    "pip install navkit[plot]"
+    "pip install 'navkit[plot]'"
 )
 
 

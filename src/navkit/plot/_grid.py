@@ -55,7 +55,7 @@ def plot_grid(grid: OccupancyGrid, *, ax: Axes | None = None, alpha: float = 1.0
     ValueError
         ``alpha`` outside [0, 1]; the map lies beyond ±1e9 m.
     ImportError
-        matplotlib is not installed (``pip install navkit[plot]``).
+        matplotlib is not installed (``pip install 'navkit[plot]'``).
 
     Examples
     --------

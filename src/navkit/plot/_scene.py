@@ -77,6 +77,11 @@ def plot_scene(scene: Scene, *, ax: Axes | None = None, legend: bool = True) -> 
     poses solid, estimates dashed, start circle, end square, collisions as
     red crosses); the labelled points; the title and a legend.
 
+    The view is the scene with a margin (of the map, its known cells only),
+    at equal scales. On axes that already hold something (artists, or limits
+    set with ``set_xlim``/``set_ylim``) the view is widened to hold what they
+    showed, and their title is replaced only by a non-empty scene title.
+
     Parameters
     ----------
     scene : navkit.sim.Scene
@@ -134,6 +139,11 @@ def plot_scene(scene: Scene, *, ax: Axes | None = None, legend: bool = True) -> 
 
 def draw_scene(ax: Axes, scene: CheckedScene, *, traces: bool) -> list[Any]:
     """Draw a checked scene (its traces too when ``traces``); returns the moving obstacles."""
+    # What the caller's axes showed before: their own artists, or limits they set.
+    shown = None
+    if not ax.ignore_existing_data_limits or not (ax.get_autoscalex_on()
+                                                  and ax.get_autoscaley_on()):  # fmt: skip
+        shown = (*ax.get_xlim(), *ax.get_ylim())
     grid = scene.grid
     if grid is None and scene.world is not None:
         grid = scene.world.grid
@@ -154,6 +164,11 @@ def draw_scene(ax: Axes, scene: CheckedScene, *, traces: bool) -> list[Any]:
         ax.set_title(scene.title)
     finish_axes(ax)
     limits = scene_limits(scene, grid)
+    if limits is not None and shown is not None:
+        # Widened to the earlier view: cropping to the scene would hide what was there.
+        x0, x1, y0, y1 = (float(v) for v in shown)
+        limits = (min(limits[0], x0, x1), min(limits[1], y0, y1),
+                  max(limits[2], x0, x1), max(limits[3], y0, y1))  # fmt: skip
     if limits is not None:
         # Fixed limits: the axes box takes the map's proportions.
         ax.set_aspect("equal", adjustable="box")
