@@ -180,9 +180,47 @@ class OmniOdometry:
             so large that the pose would overflow float64; the odometry is then
             unchanged.
         """
+        # Fast path (the simulator's call): a float64 array of the right shape and a
+        # finite float yaw take update_batch's arithmetic on one step with Python
+        # floats (the same IEEE operations, so the same bits); anything else, and a
+        # step that overflows, goes the batch way, which checks and raises.
+        inc: Any = wheel_increments
+        if (
+            type(inc) is np.ndarray
+            and inc.dtype == np.float64
+            and inc.shape == (self._drive.n_wheels,)
+            and type(yaw) is float
+            and yaw - yaw == 0.0
+        ):
+            pose = self._step(inc, yaw)
+            if pose is not None:
+                self._pose = pose
+                return pose
         inc = as_float_array(wheel_increments, "wheel_increments", shape=(self._drive.n_wheels,))
         heading = finite_float(yaw, "yaw")
         return Pose2D.from_array(self.update_batch(inc[None, :], [heading])[-1])
+
+    def _step(self, inc: FloatArray, yaw: float) -> Pose2D | None:
+        """The pose after one step of (N,) float64 increments and a finite yaw, or None.
+
+        None when the increments are not finite or the pose would overflow:
+        update_batch then raises.
+        """
+        with np.errstate(over="ignore", invalid="ignore"):
+            # The same (1, N) product as update_batch's (a matrix-vector product
+            # may sum in another order).
+            bx, by, _ = (inc[None, :] @ self._drive.forward_matrix.T)[0].tolist()
+        pose = self._pose
+        heading = wrap_angle(yaw)
+        before = pose.theta
+        mid = before + 0.5 * wrap_angle(heading - before)
+        c = math.cos(mid)
+        s = math.sin(mid)
+        x = pose.x + (c * bx - s * by)
+        y = pose.y + (s * bx + c * by)
+        if not (x - x == 0.0 and y - y == 0.0):
+            return None
+        return _pose(x, y, heading)
 
     def update_batch(self, wheel_increments: ArrayLike, yaws: ArrayLike) -> FloatArray:
         """Advance through a log of steps (vectorised) and return every pose.
