@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import SupportsIndex
+from typing import Any, SupportsIndex
 
 import numpy as np
 from numpy.typing import NDArray
@@ -17,5 +17,6 @@ IntArray = NDArray[np.int64]
 BoolArray = NDArray[np.bool_]
 """A boolean array."""
 
-CellLike = Sequence[SupportsIndex]
-"""A grid cell ``(row, col)`` as the planners take it: two Python or NumPy integers."""
+CellLike = Sequence[SupportsIndex] | NDArray[np.integer[Any]]
+"""A grid cell ``(row, col)`` as the planners take it: two Python or NumPy integers,
+or an integer array of shape (2,) (what ``world_to_cell`` returns for one point)."""

@@ -906,8 +906,9 @@ def _read_rows(
     A deserialized message is a tree of Python objects several times the size of its
     numbers (an Odometry some 5 kB for 83 values): holding them all until the arrays
     are built would need that much a message. The rows grow in blocks, each twice
-    the last, so that gathering them needs at most 1.5 times their size, and
-    joining them once as much again.
+    the last, so that gathering them allocates up to about twice their size (the
+    last block's unwritten tail, whose pages stay untouched; at worst 3 times, for 65
+    rows), and joining them once as much again.
     """
 
     def use(name: str, messages: Iterator[tuple[int, Any]]) -> _T:
