@@ -182,7 +182,10 @@ class OmniOdometry:
         """
         # Fast path (the simulator's call): a float64 array of the right shape and a
         # finite float yaw take update_batch's arithmetic on one step with Python
-        # floats (the same IEEE operations, so the same bits); anything else, and a
+        # floats (the same IEEE operations, so the same bits: math.cos/sin are the C
+        # library's, as NumPy's float64 cos/sin, whose SIMD versions are disabled,
+        # numpy#23925; a NumPy with its own, as numpy#29699 proposes, could differ in
+        # the last bit, which the fast-path tests would catch); anything else, and a
         # step that overflows, goes the batch way, which checks and raises.
         inc: Any = wheel_increments
         if (
@@ -421,7 +424,8 @@ class DiffOdometry:
         """
         # Fast path: plain ints within the counter's (and int64's) range take the
         # arithmetic of update_batch on one reading with Python floats (the same
-        # IEEE operations, so the same bits); anything else goes the batch way.
+        # IEEE operations, so the same bits; cos/sin as in OmniOdometry.update);
+        # anything else goes the batch way.
         left = left_ticks if type(left_ticks) is int else _plain_int(left_ticks)
         right = right_ticks if type(right_ticks) is int else _plain_int(right_ticks)
         if (

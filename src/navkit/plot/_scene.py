@@ -80,7 +80,9 @@ def plot_scene(scene: Scene, *, ax: Axes | None = None, legend: bool = True) -> 
     The view is the scene with a margin (of the map, its known cells only),
     at equal scales. On axes that already hold something (artists, or limits
     set with ``set_xlim``/``set_ylim``) the view is widened to hold what they
-    showed, and their title is replaced only by a non-empty scene title.
+    showed, along each axis where they hold data or had limits set (after an
+    ``axhline`` only, or ``set_xlim`` only, the other axis is the scene's),
+    and their title is replaced only by a non-empty scene title.
 
     Parameters
     ----------
@@ -139,11 +141,12 @@ def plot_scene(scene: Scene, *, ax: Axes | None = None, legend: bool = True) -> 
 
 def draw_scene(ax: Axes, scene: CheckedScene, *, traces: bool) -> list[Any]:
     """Draw a checked scene (its traces too when ``traces``); returns the moving obstacles."""
-    # What the caller's axes showed before: their own artists, or limits they set.
-    shown = None
-    if not ax.ignore_existing_data_limits or not (ax.get_autoscalex_on()
-                                                  and ax.get_autoscaley_on()):  # fmt: skip
-        shown = (*ax.get_xlim(), *ax.get_ylim())
+    # What the caller's axes showed before, axis by axis: limits they set, or their own
+    # artists' data along that axis (an axhline has none along x: the default [0, 1]
+    # there showed nothing, and widening to it squeezed a distant scene to a sliver).
+    has_data = not ax.ignore_existing_data_limits
+    shown_x = _shown(ax.get_xlim(), ax.get_autoscalex_on(), has_data, ax.dataLim.intervalx)
+    shown_y = _shown(ax.get_ylim(), ax.get_autoscaley_on(), has_data, ax.dataLim.intervaly)
     grid = scene.grid
     if grid is None and scene.world is not None:
         grid = scene.world.grid
@@ -164,17 +167,32 @@ def draw_scene(ax: Axes, scene: CheckedScene, *, traces: bool) -> list[Any]:
         ax.set_title(scene.title)
     finish_axes(ax)
     limits = scene_limits(scene, grid)
-    if limits is not None and shown is not None:
+    if limits is not None:
         # Widened to the earlier view: cropping to the scene would hide what was there.
-        x0, x1, y0, y1 = (float(v) for v in shown)
-        limits = (min(limits[0], x0, x1), min(limits[1], y0, y1),
-                  max(limits[2], x0, x1), max(limits[3], y0, y1))  # fmt: skip
+        x0, y0, x1, y1 = limits
+        if shown_x is not None:
+            x0, x1 = min(x0, shown_x[0]), max(x1, shown_x[1])
+        if shown_y is not None:
+            y0, y1 = min(y0, shown_y[0]), max(y1, shown_y[1])
+        limits = (x0, y0, x1, y1)
     if limits is not None:
         # Fixed limits: the axes box takes the map's proportions.
         ax.set_aspect("equal", adjustable="box")
         ax.set_xlim(limits[0], limits[2])
         ax.set_ylim(limits[1], limits[3])
     return moving
+
+
+def _shown(view: Any, auto: bool, has_data: bool, data: Any) -> tuple[float, float] | None:
+    """The caller's view along one axis, ``(low, high)``, if it showed something there.
+
+    Something: limits set by the caller (autoscaling off), or data of their
+    artists along this axis.
+    """
+    if not auto or (has_data and bool(np.all(np.isfinite(data)))):
+        low, high = (float(v) for v in view)
+        return (min(low, high), max(low, high))
+    return None
 
 
 def _known_corners(grid: OccupancyGrid) -> FloatArray:
