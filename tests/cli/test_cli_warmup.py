@@ -49,9 +49,6 @@ def test_bad_arguments_exit_2(argv: list[str], capsys: pytest.CaptureFixture[str
     assert "usage" in capsys.readouterr().err
 
 
-@pytest.mark.skipif(
-    not hasattr(_app, "warmup_command"), reason="navkit.cli._app does not dispatch warmup yet"
-)
 def test_main_dispatches_warmup(capsys: pytest.CaptureFixture[str]) -> None:
     assert _app.main(["warmup", "--only", "geometry", "--workers", "1"]) == 0
     assert "geometry" in capsys.readouterr().out

@@ -11,11 +11,7 @@ from typing import TextIO
 
 from navkit.cli._encoding import tolerant_output
 from navkit.cli._parser import build_parser, join_negative_points
-from navkit.cli._plan import plan_command
-from navkit.cli._scenarios import list_scenarios, run_scenario
-from navkit.cli._warmup import warmup_command
 from navkit.errors import NavkitError
-from navkit.sim.scenarios import SCENARIOS
 
 __all__ = ["main"]
 
@@ -75,12 +71,15 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 
 def _main(argv: Sequence[str] | None, out: TextIO, err: TextIO) -> int:
-    parser = build_parser(sorted(SCENARIOS))
+    parser = build_parser()
     try:
         given = sys.argv[1:] if argv is None else list(argv)
         args = parser.parse_args(join_negative_points(given))
     except SystemExit as exc:  # --help, --version (0) and bad arguments (2)
         return exc.code if isinstance(exc.code, int) else (0 if exc.code is None else 2)
+    except KeyboardInterrupt:  # while a scenario or step name is checked (imports its module)
+        err.write("navkit: interrupted\n")
+        return 130
     try:
         code = _dispatch(args, out, err)
         out.flush()  # a closed pipe fails here, not in the interpreter's last flush
@@ -101,13 +100,25 @@ def _main(argv: Sequence[str] | None, out: TextIO, err: TextIO) -> int:
 
 
 def _dispatch(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
-    """Run the command ``args`` names; its exit code."""
+    """Run the command ``args`` names; its exit code.
+
+    Each command's module is imported here, when the command runs: ``navkit
+    --help`` needs none of them, ``navkit plan`` no scenario (issue 17).
+    """
     if args.command == "list":
+        from navkit.cli._scenarios import list_scenarios
+
         return list_scenarios(out)
     if args.command == "plan":
+        from navkit.cli._plan import plan_command
+
         return plan_command(args, out, err)
     if args.command == "warmup":
+        from navkit.cli._warmup import warmup_command
+
         return warmup_command(args, out, err)
+    from navkit.cli._scenarios import run_scenario
+
     if args.command == "demo":
         return run_scenario(args, out, err, name="demo", workers=1)
     return run_scenario(args, out, err, name=args.scenario, workers=args.workers)

@@ -5,11 +5,11 @@ from __future__ import annotations
 import argparse
 import math
 import re
+from collections.abc import Callable, Sequence
 from importlib import metadata
+from typing import overload
 
-from navkit.sim import WARMUP_STEPS
-
-__all__ = ["build_parser", "join_negative_points", "version"]
+__all__ = ["Choices", "build_parser", "join_negative_points", "version"]
 
 
 def version() -> str:
@@ -40,6 +40,79 @@ def join_negative_points(argv: list[str]) -> list[str]:
             out.append(arg)
             i += 1
     return out
+
+
+class Choices(Sequence[str]):
+    """An argument's choices, looked up only when the argument is parsed or its help shown.
+
+    The names of the scenarios and of the warm-up steps come from the simulator:
+    ``navkit --help`` and ``navkit plan`` build the whole parser without
+    importing it (issue 17).
+
+    Parameters
+    ----------
+    names : callable
+        The choices, in order (called once, when first needed).
+    known : callable, optional
+        Whether a value is a choice, when that can be told without listing them
+        all (default: ``value in names()``).
+
+    Examples
+    --------
+    >>> steps = Choices(lambda: ("geometry", "planning"))
+    >>> "planning" in steps, list(steps)
+    (True, ['geometry', 'planning'])
+    """
+
+    def __init__(
+        self, names: Callable[[], Sequence[str]], known: Callable[[str], bool] | None = None
+    ) -> None:
+        self._names = names
+        self._known = known
+        self._listed: tuple[str, ...] | None = None
+
+    def _list(self) -> tuple[str, ...]:
+        if self._listed is None:
+            self._listed = tuple(self._names())
+        return self._listed
+
+    def __contains__(self, value: object) -> bool:
+        if self._known is not None and isinstance(value, str):
+            return self._known(value)
+        return value in self._list()
+
+    @overload
+    def __getitem__(self, index: int) -> str: ...
+    @overload
+    def __getitem__(self, index: slice) -> Sequence[str]: ...
+    def __getitem__(self, index: int | slice) -> str | Sequence[str]:
+        return self._list()[index]
+
+    def __len__(self) -> int:
+        return len(self._list())
+
+
+def _scenario_names() -> list[str]:
+    from navkit.sim.scenarios import SCENARIOS
+
+    return sorted(SCENARIOS)
+
+
+def _is_scenario(name: str) -> bool:
+    """Whether ``name`` is a scenario's, importing that scenario's module alone."""
+    from navkit.sim.scenarios import get_scenario
+
+    try:
+        get_scenario(name)
+    except ValueError:
+        return False
+    return True
+
+
+def _warmup_steps() -> tuple[str, ...]:
+    from navkit.sim import WARMUP_STEPS
+
+    return WARMUP_STEPS
 
 
 def _point(text: str) -> tuple[float, float]:
@@ -119,13 +192,14 @@ def _outputs(parser: argparse.ArgumentParser) -> None:
                         help="no progress bar and no compilation notice on stderr")  # fmt: skip
 
 
-def build_parser(scenarios: list[str]) -> argparse.ArgumentParser:
+def build_parser(scenarios: Sequence[str] | None = None) -> argparse.ArgumentParser:
     """The ``navkit`` argument parser.
 
     Parameters
     ----------
-    scenarios : list of str
-        The registered scenario names (``navkit run``'s choices).
+    scenarios : sequence of str, optional
+        ``navkit run``'s choices (default: the registered scenarios, imported
+        when a scenario is named).
 
     Returns
     -------
@@ -162,8 +236,10 @@ def build_parser(scenarios: list[str]) -> argparse.ArgumentParser:
         description="Run one of the papers' experiments and print navkit's figures beside "
                     "the paper's.",
     )  # fmt: skip
+    if scenarios is None:
+        scenarios = Choices(_scenario_names, known=_is_scenario)
     run.add_argument("scenario", choices=scenarios, metavar="SCENARIO",
-                     help=f"one of: {', '.join(scenarios)}")  # fmt: skip
+                     help="one of: %(choices)s")  # fmt: skip
     _outputs(run)
     run.add_argument("--workers", type=_count(1, 1024), metavar="N",
                      help="local processes (default: every core; 1: this one)")  # fmt: skip
@@ -201,7 +277,7 @@ def build_parser(scenarios: list[str]) -> argparse.ArgumentParser:
     )  # fmt: skip
     warm.add_argument("--workers", type=_count(1, 1024), metavar="N",
                       help="processes (default: every core; 1: this one)")  # fmt: skip
-    warm.add_argument("--only", action="append", choices=WARMUP_STEPS, metavar="STEP",
-                      help=f"only this step (repeatable): {', '.join(WARMUP_STEPS)}")  # fmt: skip
+    warm.add_argument("--only", action="append", choices=Choices(_warmup_steps), metavar="STEP",
+                      help="only this step (repeatable): %(choices)s")  # fmt: skip
     warm.add_argument("--quiet", action="store_true", help="no progress on stderr")
     return parser

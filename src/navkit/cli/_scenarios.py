@@ -21,13 +21,16 @@ from navkit.cli._outputs import (
 )
 from navkit.cli._progress import ProgressBar
 from navkit.sim import Scenario, ScenarioResult, Table, sweep
-from navkit.sim.scenarios import SCENARIOS, get_scenario
+from navkit.sim.scenarios import get_scenario
 
 __all__ = ["list_scenarios", "run_scenario"]
 
 
 def list_scenarios(out: TextIO) -> int:
     """Print every experiment: name, default trials per case, what it runs."""
+    # Here, not at the top: SCENARIOS imports every scenario's module, `navkit run` only its own.
+    from navkit.sim.scenarios import SCENARIOS
+
     rows = tuple((name, cls.default_trials, cls.title) for name, cls in sorted(SCENARIOS.items()))
     table = Table(
         "navkit's experiments (navkit run SCENARIO)", ("scenario", "trials", "what it runs"), rows

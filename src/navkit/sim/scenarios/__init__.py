@@ -22,14 +22,20 @@ beside the paper's.
 
 from __future__ import annotations
 
+import importlib
+import sys
+from typing import TYPE_CHECKING, Any
+
 from navkit.sim import Scenario
 from navkit.sim.scenarios._data import find_data
-from navkit.sim.scenarios._demo import Demo
-from navkit.sim.scenarios._diff_astar import DiffAStar
-from navkit.sim.scenarios._greedy import Greedy
-from navkit.sim.scenarios._indoor_nav import IndoorNav
-from navkit.sim.scenarios._omni_apf import OmniApf
-from navkit.sim.scenarios._soccer import Soccer
+
+if TYPE_CHECKING:
+    from navkit.sim.scenarios._demo import Demo
+    from navkit.sim.scenarios._diff_astar import DiffAStar
+    from navkit.sim.scenarios._greedy import Greedy
+    from navkit.sim.scenarios._indoor_nav import IndoorNav
+    from navkit.sim.scenarios._omni_apf import OmniApf
+    from navkit.sim.scenarios._soccer import Soccer
 
 __all__ = [
     "SCENARIOS",
@@ -43,10 +49,38 @@ __all__ = [
     "get_scenario",
 ]
 
-SCENARIOS: dict[str, type[Scenario]] = {
-    cls.name: cls for cls in (OmniApf, IndoorNav, Soccer, DiffAStar, Greedy, Demo)
+#: Each scenario's command-line name: its class and the module defining it. A
+#: scenario's module (and what it needs: shapely, scipy, the controllers) is
+#: imported when its class is first asked for, so that ``navkit run greedy``
+#: does not pay for the other five (issue 17).
+_REGISTRY: dict[str, tuple[str, str]] = {
+    "omni-apf": ("OmniApf", "navkit.sim.scenarios._omni_apf"),
+    "indoor-nav": ("IndoorNav", "navkit.sim.scenarios._indoor_nav"),
+    "soccer": ("Soccer", "navkit.sim.scenarios._soccer"),
+    "diff-astar": ("DiffAStar", "navkit.sim.scenarios._diff_astar"),
+    "greedy": ("Greedy", "navkit.sim.scenarios._greedy"),
+    "demo": ("Demo", "navkit.sim.scenarios._demo"),
 }
+_MODULES = dict(_REGISTRY.values())
+
+SCENARIOS: dict[str, type[Scenario]]
 """Every scenario class by its command-line name (``"omni-apf"``, ...)."""
+
+
+def __getattr__(name: str) -> Any:
+    """The scenario classes and :data:`SCENARIOS`, imported on first use (PEP 562)."""
+    if name == "SCENARIOS":
+        value: Any = {scenario: get_scenario(scenario) for scenario in _REGISTRY}
+    elif name in _MODULES:
+        value = getattr(importlib.import_module(_MODULES[name]), name)
+    else:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    globals()[name] = value  # later look-ups find it without calling this function
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted({*globals(), *__all__})
 
 
 def get_scenario(name: str) -> type[Scenario]:
@@ -74,8 +108,8 @@ def get_scenario(name: str) -> type[Scenario]:
     """
     if not isinstance(name, str):
         raise TypeError(f"name must be a str, got {type(name).__name__}")
-    try:
-        return SCENARIOS[name]
-    except KeyError:
-        known = ", ".join(sorted(SCENARIOS))
-        raise ValueError(f"name: unknown scenario {name!r}; known: {known}") from None
+    if name not in _REGISTRY:
+        known = ", ".join(sorted(_REGISTRY))
+        raise ValueError(f"name: unknown scenario {name!r}; known: {known}")
+    cls: type[Scenario] = getattr(sys.modules[__name__], _REGISTRY[name][0])
+    return cls

@@ -8,7 +8,6 @@ import time
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import ndimage
 
 from navkit._shared.frozen import frozen_setattr
 from navkit._shared.types import FloatArray
@@ -89,6 +88,8 @@ class Clearance:
     __slots__ = ("_distance", "_grid")
 
     def __init__(self, grid: OccupancyGrid) -> None:
+        from scipy import ndimage
+
         free = ~grid.occupied()
         self._distance: FloatArray = (
             ndimage.distance_transform_edt(free) * grid.resolution

@@ -16,7 +16,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from scipy import ndimage
 
 from navkit._shared.types import FloatArray
 from navkit.geometry import Pose2D, Twist2D, integrate
@@ -100,6 +99,8 @@ class LikelihoodField:
         blocked = ~grid.free()
         if not blocked.any():
             return cls(grid, np.full(grid.shape, float(clip)), clip=clip)
+        from scipy import ndimage
+
         half = 0.5 * grid.resolution
         outside = np.asarray(ndimage.distance_transform_edt(~blocked), dtype=np.float64)
         dist = outside * grid.resolution - half

@@ -6,7 +6,6 @@ import functools
 import math
 
 import numpy as np
-from scipy import ndimage
 
 from navkit.errors import NoPathError
 from navkit.geometry import Twist2D, angle_diff
@@ -113,6 +112,8 @@ def inflated_grid(scan: LaserScan, inflation: float) -> tuple[LocalGrid, LocalGr
     grid = scan.to_local_grid()
     if inflation < 0.5 * grid.resolution:
         return grid, grid
+    from scipy import ndimage
+
     structure = _disk(round(inflation / grid.resolution, 9))
     grown = ndimage.binary_dilation(grid.occupied, structure=structure)
     return grid, LocalGrid(grown, resolution=grid.resolution, half_width=grid.half_width)

@@ -28,7 +28,6 @@ from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
-from scipy import ndimage
 
 from navkit._shared.frozen import frozen_setattr
 from navkit._shared.types import BoolArray, FloatArray, IntArray
@@ -527,6 +526,8 @@ def _passable(planner: MapPlanner, point: tuple[float, float]) -> tuple[float, f
     # planners keep unknown_cost=inf); the lab maps are never changed after.
     obstacle = ~passable & ~grid.free()[window]
     if 0 <= r < rows and 0 <= c < cols and obstacle[r - r0, c - c0]:
+        from scipy import ndimage
+
         labels, _ = ndimage.label(obstacle, structure=np.ones((3, 3), dtype=bool))
         obstacle &= labels != labels[r - r0, c - c0]
     rr, cc = np.nonzero(passable)
