@@ -174,7 +174,19 @@ class CompassCalibration:
         return self._initial
 
     def reset(self) -> None:
-        """Forget θ0 (and the unwrapping history); the next reading is latched again."""
+        """Forget θ0 (and the unwrapping history); the next reading is latched again.
+
+        Examples
+        --------
+        >>> cal = CompassCalibration()
+        >>> cal(45.0), cal.initial_deg
+        (0.0, 45.0)
+        >>> cal.reset()
+        >>> cal.initial_deg is None
+        True
+        >>> cal(90.0), cal.initial_deg  # 90° is the new yaw 0
+        (0.0, 90.0)
+        """
         self._initial = None
         self._last = None
         self._correction = 0.0

@@ -234,15 +234,17 @@ class ExtendedKalmanFilter(GaussianEstimate):
         Parameters
         ----------
         f : callable
-            ``f(x) -> x'`` with ``x`` a copy of the state, shape (n,); ``f``
-            may modify it (and return it).
+            ``f(x) -> x'`` with ``x`` a copy of the state, shape (n,), in the
+            state's units (angles in rad); ``x'`` has shape (n,), in the same
+            units. ``f`` may modify ``x`` (and return it).
         F : callable or array_like, shape (n, n)
             Jacobian of ``f`` at the current (prior) state, or a function
             ``F(x)`` returning it, called first, on the same copy of the state
             as ``f`` (so it must not modify it).
         Q : array_like, shape (n, n)
-            Process noise covariance for this step, symmetric positive
-            semi-definite, entries of magnitude at most 1e100.
+            Process noise covariance for this step (products of the state's
+            units, e.g. m² and rad²), symmetric positive semi-definite, entries
+            of magnitude at most 1e100.
 
         Notes
         -----
@@ -262,6 +264,20 @@ class ExtendedKalmanFilter(GaussianEstimate):
             If called from a model function of a step of this filter; that step
             then fails too (the error passes through it), leaving the state
             unchanged.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> ekf = ExtendedKalmanFilter([0.0, 1.0], np.eye(2))  # position m, speed m/s
+        >>> F = np.array([[1.0, 0.1], [0.0, 1.0]])  # 0.1 s at constant speed
+        >>> ekf.predict(lambda x: F @ x, F, 0.01 * np.eye(2))
+        >>> ekf.x, ekf.P.round(4)  # x = F x, P = F P Fᵀ + Q
+        (array([0.1, 1. ]), array([[1.02, 0.1 ],
+                                   [0.1 , 1.01]]))
+        >>> heading = ExtendedKalmanFilter([3.0], [[0.1]], angle_states=[0])
+        >>> heading.predict(lambda x: x + 0.5, [[1.0]], [[0.01]])
+        >>> heading.x.round(4)  # 3.5 rad wrapped to (-π, π]
+        array([-2.7832])
         """
         if self._busy:
             _nested("predict")
@@ -319,16 +335,16 @@ class ExtendedKalmanFilter(GaussianEstimate):
         Parameters
         ----------
         z : array_like, shape (m,)
-            Measurement.
+            Measurement, in the units ``h`` returns (angles in rad).
         h : callable
-            Measurement model ``h(x) -> (m,)``, called on a copy of the state
-            (which it may modify).
+            Measurement model ``h(x) -> (m,)``, called on a copy of the state,
+            shape (n,) (which it may modify).
         H : callable or array_like, shape (m, n)
             Jacobian of ``h`` at the current state, or a function returning it,
             called first, on the same copy as ``h`` (which it must not modify).
         R : array_like, shape (m, m)
-            Measurement noise covariance, symmetric positive definite, entries
-            of magnitude at most 1e100.
+            Measurement noise covariance (products of the units of ``z``),
+            symmetric positive definite, entries of magnitude at most 1e100.
         angle_measurements : sequence of int, optional
             Indices of the components of ``z`` that are angles; their residuals
             are wrapped to (-π, π] (keyword-only).
@@ -340,7 +356,8 @@ class ExtendedKalmanFilter(GaussianEstimate):
         Returns
         -------
         UpdateResult
-            Whether the measurement was applied, its NIS and residual. Not
+            Whether the measurement was applied, its NIS (dimensionless) and
+            residual ``z - h(x)`` (shape (m,), units of ``z``). Not
             applied (``accepted=False``, state unchanged) when gated, or when the
             residual, the NIS or the updated state would overflow float64 (the
             reason says ``"overflow"``; ``nis`` is inf and ``residual`` empty when
@@ -357,6 +374,20 @@ class ExtendedKalmanFilter(GaussianEstimate):
         RuntimeError
             If called from a model function of a step of this filter, as in
             :meth:`predict`.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> ekf = ExtendedKalmanFilter([0.0, 1.0], np.eye(2))  # position m, speed m/s
+        >>> H = np.array([[1.0, 0.0]])  # the position is measured
+        >>> ekf.update([0.5], lambda x: x[:1], H, [[1.0]])
+        UpdateResult(accepted=True, nis=0.125, residual=array([0.5]), reason=None)
+        >>> ekf.x, ekf.P  # halfway to z: prior and measurement variances are equal
+        (array([0.25, 1.  ]), array([[0.5, 0. ],
+                                     [0. , 1. ]]))
+        >>> result = ekf.update([10.0], lambda x: x[:1], H, [[1.0]], gate=9.0)
+        >>> result.accepted, result.reason, ekf.x  # an outlier: the state is unchanged
+        (False, 'rejected by the gate: NIS 63.375 > 9.0', array([0.25, 1.  ]))
         """
         if self._busy:
             _nested("update")

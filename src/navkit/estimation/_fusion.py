@@ -247,23 +247,44 @@ class MeasurementLog:
             variance in [1e-100, 1e100]. ``omega_variance`` is not read (nor
             checked) when ``odometry`` has no yaw rates.
         yaw : (t, yaw), optional
-            Absolute yaw (rad), e.g. from a compass or the IMU orientation.
-        yaw_variance : float or array_like
+            Times (s) and absolute yaws (rad), e.g. from a compass or the IMU
+            orientation; each shape (T_y,).
+        yaw_variance : float or array_like, shape (T_y,)
             rad².
         yaw_rate : (t, omega), optional
-            Gyro yaw rate (rad/s).
-        yaw_rate_variance : float or array_like
+            Times (s) and gyro yaw rates (rad/s); each shape (T_g,).
+        yaw_rate_variance : float or array_like, shape (T_g,)
             (rad/s)².
         acceleration : (t, a), optional
-            Forward acceleration (m/s², gravity removed).
-        acceleration_variance : float or array_like
+            Times (s) and forward accelerations (m/s², gravity removed); each
+            shape (T_a,).
+        acceleration_variance : float or array_like, shape (T_a,)
             (m/s²)².
 
         Returns
         -------
         MeasurementLog
             Rows sorted by time (stable: at equal times odometry comes first,
-            then yaw, yaw rate and acceleration).
+            then yaw, yaw rate and acceleration); ``T_o + T_y + T_g + T_a``
+            rows of the streams given.
+
+        Raises
+        ------
+        TypeError, ValueError
+            No stream, a stream that is not a tuple of arrays of one length,
+            or values or variances outside their ranges, naming the argument.
+
+        Examples
+        --------
+        >>> log = MeasurementLog.from_streams(
+        ...     odometry=([0.0, 0.2], [1.0, 1.0]), odometry_variance=(0.01, 1.0),
+        ...     yaw=([0.1], [0.5]), yaw_variance=1e-3)
+        >>> log.times
+        array([0. , 0.1, 0.2])
+        >>> log.observed.astype(int).tolist()  # columns [θ, v, ω, a]; no yaw rates given
+        [[0, 1, 0, 0], [1, 0, 0, 0], [0, 1, 0, 0]]
+        >>> log.values[:, :2].tolist(), float(log.variances[1, 0])
+        ([[0.0, 1.0], [0.5, 0.0], [0.0, 1.0]], 0.001)
         """
         blocks: list[tuple[FloatArray, FloatArray, FloatArray, BoolArray]] = []
         if odometry is not None:
@@ -660,6 +681,15 @@ class PlanarFusion(GaussianEstimate):
         FilterError
             If the prediction would overflow float64 (a huge time gap); the
             filter is unchanged.
+
+        Examples
+        --------
+        >>> fusion = PlanarFusion([0.0, 0.0, 0.0, 1.0, 0.5, 0.0], t0=0.0)  # 1 m/s, 0.5 rad/s
+        >>> fusion.predict(0.5)
+        >>> fusion.t, fusion.pose  # 0.5 m along the mid-step heading 0.125 rad
+        (0.5, Pose2D(x=0.4960..., y=0.0623..., theta=0.25))
+        >>> fusion.P.diagonal().round(3)  # the uncertainty grew
+        array([0.287, 0.045, 0.28 , 1.262, 1.01 , 1.005])
         """
         time = finite_float(t, "t")
         last = self.t
@@ -699,7 +729,7 @@ class PlanarFusion(GaussianEstimate):
         UpdateResult
             Whether the measurement was applied (``accepted``; an out-of-order,
             gated or overflowing one is not, with the ``reason``), its NIS and
-            its residual ``[v - v̂, ω - ω̂]``.
+            its residual ``[v - v̂, ω - ω̂]`` (m/s, rad/s), shape (2,).
 
         Raises
         ------
@@ -709,6 +739,15 @@ class PlanarFusion(GaussianEstimate):
         FilterError
             The prediction to ``t`` would overflow float64 (a huge time gap) or
             the update would lose positive definiteness; the filter is unchanged.
+
+        Examples
+        --------
+        >>> fusion = PlanarFusion(t0=0.0)  # at rest, speed and yaw rate unknown (variance 1)
+        >>> result = fusion.update_odometry(0.1, 1.0, 0.2, v_variance=0.01, omega_variance=0.01)
+        >>> result.accepted, result.residual
+        (True, array([1. , 0.2]))
+        >>> fusion.x[3:5].round(3)  # v and ω pulled almost to the measurement
+        array([0.99 , 0.198])
         """
         # Fast path (the call runs at the odometry rate): plain floats go straight to the
         # compiled step, which checks the rest (finite values, variances in range, a
@@ -750,7 +789,7 @@ class PlanarFusion(GaussianEstimate):
         UpdateResult
             Whether the measurement was applied (``accepted``; an out-of-order,
             gated or overflowing one is not, with the ``reason``), its NIS and
-            its residual ``[v - v̂]``.
+            its residual ``[v - v̂]`` (m/s), shape (1,).
 
         Raises
         ------
@@ -760,6 +799,14 @@ class PlanarFusion(GaussianEstimate):
         FilterError
             The prediction to ``t`` would overflow float64 (a huge time gap) or
             the update would lose positive definiteness; the filter is unchanged.
+
+        Examples
+        --------
+        >>> fusion = PlanarFusion(t0=0.0)  # at rest, speed unknown (variance 1)
+        >>> fusion.update_speed(0.1, 1.0, variance=0.01).residual
+        array([1.])
+        >>> fusion.x[3:5].round(3)  # v pulled to the measurement, ω untouched
+        array([0.99, 0.  ])
         """
         return self._apply(t, "speed", v, 0.0, variance, 1.0, ("v", "", "variance", ""))
 
@@ -781,7 +828,7 @@ class PlanarFusion(GaussianEstimate):
         UpdateResult
             Whether the measurement was applied (``accepted``; an out-of-order,
             gated or overflowing one is not, with the ``reason``), its NIS and
-            its residual ``[wrap(yaw - θ̂)]``.
+            its residual ``[wrap(yaw - θ̂)]`` (rad), shape (1,).
 
         Raises
         ------
@@ -791,6 +838,15 @@ class PlanarFusion(GaussianEstimate):
         FilterError
             The prediction to ``t`` would overflow float64 (a huge time gap) or
             the update would lose positive definiteness; the filter is unchanged.
+
+        Examples
+        --------
+        >>> fusion = PlanarFusion([0.0, 0.0, 3.1, 0.0, 0.0, 0.0], [1e-9, 1e-9, 1.0, 1.0, 1.0, 1.0],
+        ...                       t0=0.0)  # heading 3.1 rad, variance 1 rad²
+        >>> fusion.update_yaw(0.0, -3.1, variance=0.01).residual.round(4)  # across ±π
+        array([0.0832])
+        >>> round(fusion.pose.theta, 4)  # moved past π, wrapped
+        -3.1008
         """
         return self._apply(t, "yaw", yaw, 0.0, variance, 1.0, ("yaw", "", "variance", ""))
 
@@ -811,7 +867,7 @@ class PlanarFusion(GaussianEstimate):
         UpdateResult
             Whether the measurement was applied (``accepted``; an out-of-order,
             gated or overflowing one is not, with the ``reason``), its NIS and
-            its residual ``[ω - ω̂]``.
+            its residual ``[ω - ω̂]`` (rad/s), shape (1,).
 
         Raises
         ------
@@ -821,6 +877,13 @@ class PlanarFusion(GaussianEstimate):
         FilterError
             The prediction to ``t`` would overflow float64 (a huge time gap) or
             the update would lose positive definiteness; the filter is unchanged.
+
+        Examples
+        --------
+        >>> fusion = PlanarFusion(t0=0.0)  # at rest, yaw rate unknown (variance 1)
+        >>> result = fusion.update_yaw_rate(0.1, 0.5, variance=1e-4)
+        >>> result.accepted, result.residual, round(float(fusion.x[4]), 3)
+        (True, array([0.5]), 0.5)
         """
         return self._apply(t, "yaw_rate", omega, 0.0, variance, 1.0, ("omega", "", "variance", ""))
 
@@ -841,7 +904,7 @@ class PlanarFusion(GaussianEstimate):
         UpdateResult
             Whether the measurement was applied (``accepted``; an out-of-order,
             gated or overflowing one is not, with the ``reason``), its NIS and
-            its residual ``[a - â]``.
+            its residual ``[a - â]`` (m/s²), shape (1,).
 
         Raises
         ------
@@ -851,6 +914,13 @@ class PlanarFusion(GaussianEstimate):
         FilterError
             The prediction to ``t`` would overflow float64 (a huge time gap) or
             the update would lose positive definiteness; the filter is unchanged.
+
+        Examples
+        --------
+        >>> fusion = PlanarFusion(t0=0.0)  # at rest, acceleration unknown (variance 1)
+        >>> result = fusion.update_acceleration(0.1, 2.0, variance=0.01)
+        >>> result.accepted, result.residual, round(float(fusion.x[5]), 2)
+        (True, array([2.]), 1.98)
         """
         return self._apply(t, "acceleration", a, 0.0, variance, 1.0, ("a", "", "variance", ""))
 
@@ -951,12 +1021,25 @@ class PlanarFusion(GaussianEstimate):
         Returns
         -------
         FusionResult
-            State, covariance, status and NIS after every row.
+            State (T, 6), covariance (T, 6, 6), status (T,) and NIS (T,) after
+            every row of the T in ``log`` (units as in :class:`FusionResult`).
 
         Raises
         ------
         TypeError
             If ``log`` is not a :class:`MeasurementLog`.
+
+        Examples
+        --------
+        >>> fusion = PlanarFusion(t0=0.0)
+        >>> log = MeasurementLog.from_streams(  # 1 s of odometry at 1 m/s, 10 Hz
+        ...     odometry=(np.arange(1, 11) * 0.1, np.ones(10), np.zeros(10)))
+        >>> result = fusion.update_batch(log)
+        >>> result.states.shape, bool(result.accepted.all()), round(result.final_pose.x, 3)
+        ((10, 6), True, 1.0)
+        >>> late = fusion.update_batch(MeasurementLog.from_streams(yaw=([0.5, 1.1], [0.0, 0.0])))
+        >>> [FusionStatus(code).name for code in late.status]  # 0.5 s is before the filter time
+        ['OUT_OF_ORDER', 'ACCEPTED']
         """
         if not isinstance(log, MeasurementLog):
             raise TypeError(f"log must be a MeasurementLog, got {type(log).__name__}")

@@ -171,7 +171,8 @@ class OmniOdometry:
         Returns
         -------
         Pose2D
-            The new pose (also kept as :attr:`pose`).
+            The new pose (m, m, rad; also kept as :attr:`pose`); its heading is
+            ``yaw`` wrapped to (-π, π].
 
         Raises
         ------
@@ -179,6 +180,16 @@ class OmniOdometry:
             Increments or yaw that are not finite real numbers, or increments
             so large that the pose would overflow float64; the odometry is then
             unchanged.
+
+        Examples
+        --------
+        >>> drive = OmniDrive.three_wheel(wheel_radius=0.05, base_radius=0.2)
+        >>> odo = OmniOdometry(drive)
+        >>> step = drive.inverse([1.0, 0.0, 0.0]) * 0.1  # 0.1 s at 1 m/s ahead
+        >>> odo.update(step, 0.0)
+        Pose2D(x=0.1, y=0.0, theta=0.0)
+        >>> odo.update(step, np.pi / 2)  # turned 90°: moved along the mid-step 45°
+        Pose2D(x=0.1707..., y=0.0707..., theta=1.5707963267948966)
         """
         # Fast path (the simulator's call): a float64 array of the right shape and a
         # finite float yaw take update_batch's arithmetic on one step with Python
@@ -238,13 +249,26 @@ class OmniOdometry:
         Returns
         -------
         ndarray, shape (T + 1, 3)
-            ``[x, y, theta]`` rows; row 0 is the pose before the log. The
-            odometry keeps the last pose.
+            ``[x, y, theta]`` rows (m, m, rad); row 0 is the pose before the
+            log. The odometry keeps the last pose.
 
         Raises
         ------
         TypeError, ValueError
             As :meth:`update`.
+
+        Examples
+        --------
+        >>> drive = OmniDrive.three_wheel(wheel_radius=0.05, base_radius=0.2)
+        >>> odo = OmniOdometry(drive)
+        >>> step = drive.inverse([1.0, 0.0, 0.0]) * 0.1  # 0.1 s at 1 m/s ahead
+        >>> odo.update_batch([step, step, step], [0.0, 0.0, np.pi / 2]).round(4) + 0.0
+        array([[0.    , 0.    , 0.    ],
+               [0.1   , 0.    , 0.    ],
+               [0.2   , 0.    , 0.    ],
+               [0.2707, 0.0707, 1.5708]])
+        >>> odo.pose
+        Pose2D(x=0.2707..., y=0.0707..., theta=1.5707963267948966)
         """
         n = self._drive.n_wheels
         inc = as_float_array(wheel_increments, "wheel_increments", shape=(None, n))
@@ -391,6 +415,15 @@ class DiffOdometry:
         ------
         TypeError, ValueError
             A ``pose`` that is not three finite real numbers.
+
+        Examples
+        --------
+        >>> odo = DiffOdometry(DiffDrive(track=0.5, wheel_radius=0.1), ticks_per_rev=1000)
+        >>> odo.update(0, 0), odo.update(500, 500).x  # half a wheel turn: 0.1π m
+        (Pose2D(x=0.0, y=0.0, theta=0.0), 0.314159...)
+        >>> odo.reset([0.0, 0.0, 1.0])
+        >>> odo.update(9000, 9000)  # counters latched again: no jump
+        Pose2D(x=0.0, y=0.0, theta=1.0)
         """
         new_pose = None if pose is None else as_pose(pose, "pose")
         self._last = None
@@ -406,13 +439,13 @@ class DiffOdometry:
         Parameters
         ----------
         left_ticks, right_ticks : int
-            Raw counter readings of the left and right encoders (wrapping at
-            ``2**encoder_bits`` when ``encoder_bits`` is set).
+            Raw counter readings (counts) of the left and right encoders
+            (wrapping at ``2**encoder_bits`` when ``encoder_bits`` is set).
 
         Returns
         -------
         Pose2D
-            The new pose (also kept as :attr:`pose`).
+            The new pose (m, m, rad; also kept as :attr:`pose`).
 
         Raises
         ------
@@ -421,6 +454,16 @@ class DiffOdometry:
         ValueError
             Readings outside the counter's range, or a pose that would overflow
             float64; the odometry is then unchanged.
+
+        Examples
+        --------
+        >>> odo = DiffOdometry(DiffDrive(track=0.5, wheel_radius=0.1), ticks_per_rev=1000)
+        >>> odo.update(0, 0)  # the first reading only latches the counters
+        Pose2D(x=0.0, y=0.0, theta=0.0)
+        >>> odo.update(500, 500)  # half a turn of each wheel: 0.1π m ahead
+        Pose2D(x=0.3141592653589793, y=0.0, theta=0.0)
+        >>> odo.update(500, 1000)  # the right wheel alone: an arc to the left
+        Pose2D(x=0.4611..., y=0.0477..., theta=0.6283...)
         """
         # Fast path: plain ints within the counter's (and int64's) range take the
         # arithmetic of update_batch on one reading with Python floats (the same
@@ -495,13 +538,13 @@ class DiffOdometry:
         Parameters
         ----------
         left_ticks, right_ticks : array_like of int, shape (T,)
-            Successive raw counter readings.
+            Successive raw counter readings (counts).
 
         Returns
         -------
         ndarray, shape (T, 3)
-            ``[x, y, theta]`` after each reading. The odometry keeps the last
-            pose and counters.
+            ``[x, y, theta]`` (m, m, rad) after each reading. The odometry keeps
+            the last pose and counters.
 
         Raises
         ------
@@ -510,6 +553,16 @@ class DiffOdometry:
         ValueError
             Shapes that differ, readings outside the counter's range, or a
             pose that would overflow float64; the odometry is then unchanged.
+
+        Examples
+        --------
+        >>> odo = DiffOdometry(DiffDrive(track=0.5, wheel_radius=0.1), ticks_per_rev=1000)
+        >>> odo.update_batch([0, 500, 1000], [0, 500, 1000]).round(4)  # row 0 latches
+        array([[0.    , 0.    , 0.    ],
+               [0.3142, 0.    , 0.    ],
+               [0.6283, 0.    , 0.    ]])
+        >>> odo.pose  # one wheel turn, 0.2π m
+        Pose2D(x=0.6283185307179586, y=0.0, theta=0.0)
         """
         left = integer_readings(left_ticks, "left_ticks")
         right = integer_readings(right_ticks, "right_ticks")

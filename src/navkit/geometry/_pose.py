@@ -221,6 +221,16 @@ class Pose2D:
         TypeError, ValueError
             ``points_xy`` not finite real points, or world points that would
             overflow float64.
+
+        Examples
+        --------
+        >>> import math
+        >>> robot = Pose2D(1.0, 2.0, math.pi / 2)
+        >>> robot.transform_points([[1.0, 0.0], [0.0, 1.0]]).round(12)
+        array([[1., 3.],
+               [0., 2.]])
+        >>> robot.transform_points([1.0, 0.0]).shape
+        (1, 2)
         """
         pts = as_points(points_xy, "points_xy")
         c = math.cos(self.theta)
@@ -244,6 +254,11 @@ class Pose2D:
         -------
         ndarray, shape (3,)
             ``[x, y, theta]`` in m, m, rad.
+
+        Examples
+        --------
+        >>> Pose2D(1.0, 2.0, 0.5).as_array()
+        array([1. , 2. , 0.5])
         """
         return np.array([self.x, self.y, self.theta], dtype=np.float64)
 
@@ -266,6 +281,13 @@ class Pose2D:
         ------
         TypeError, ValueError
             ``values`` not three finite real numbers.
+
+        Examples
+        --------
+        >>> Pose2D.from_array([1.0, 2.0, 0.5])
+        Pose2D(x=1.0, y=2.0, theta=0.5)
+        >>> Pose2D.from_array([0.0, 0.0, 4.0]).theta  # wrapped: 4 - 2π
+        -2.2831853071795862
         """
         arr = as_float_array(values, "values", shape=(3,))
         return cls(float(arr[0]), float(arr[1]), float(arr[2]))
@@ -321,6 +343,11 @@ class Twist2D:
         -------
         ndarray, shape (3,)
             ``[vx, vy, omega]`` in m/s, m/s, rad/s.
+
+        Examples
+        --------
+        >>> Twist2D(0.5, 0.0, 0.1).as_array()
+        array([0.5, 0. , 0.1])
         """
         return np.array([self.vx, self.vy, self.omega], dtype=np.float64)
 
@@ -342,6 +369,11 @@ class Twist2D:
         ------
         TypeError, ValueError
             ``values`` not three finite real numbers.
+
+        Examples
+        --------
+        >>> Twist2D.from_array([0.5, 0.0, 0.1])
+        Twist2D(vx=0.5, vy=0.0, omega=0.1)
         """
         arr = as_float_array(values, "values", shape=(3,))
         return cls(float(arr[0]), float(arr[1]), float(arr[2]))

@@ -151,13 +151,22 @@ class DiffDrive:
         Returns
         -------
         Twist2D
-            The body twist; ``vy`` is always 0.
+            The body twist ``(vx, vy, omega)`` in m/s, m/s, rad/s; ``vy`` is
+            always 0.
 
         Raises
         ------
         TypeError, ValueError
             ``wheel_speeds`` not two finite real numbers, or so large that the
             twist would overflow float64.
+
+        Examples
+        --------
+        >>> drive = DiffDrive(track=0.3, wheel_radius=0.05)
+        >>> drive.forward([10.0, 10.0])  # equal speeds: straight ahead
+        Twist2D(vx=0.5, vy=0.0, omega=0.0)
+        >>> drive.forward([-5.0, 5.0])  # opposite speeds: turning on the spot
+        Twist2D(vx=0.0, vy=0.0, omega=1.666...)
         """
         w = as_float_array(wheel_speeds, "wheel_speeds", shape=(2,))
         left, right, radius = float(w[0]), float(w[1]), self._left
@@ -221,7 +230,7 @@ class DiffDrive:
         Returns
         -------
         ndarray, shape (2,)
-            New array ``[omega_left, omega_right]``.
+            New array ``[omega_left, omega_right]``, rad/s.
 
         Raises
         ------
@@ -231,6 +240,16 @@ class DiffDrive:
             If ``twist.vy != 0`` (a differential drive cannot move sideways) unless
             ``ignore_lateral`` is true, in which case ``vy`` is dropped; or if the
             wheel speeds would overflow float64.
+
+        Examples
+        --------
+        >>> drive = DiffDrive(track=0.3, wheel_radius=0.05)
+        >>> drive.inverse([0.5, 0.0, 0.0])
+        array([10., 10.])
+        >>> drive.inverse([0.0, 0.0, 1.0])  # turn on the spot at 1 rad/s
+        array([-3.,  3.])
+        >>> drive.inverse([0.5, 0.1, 0.0], ignore_lateral=True)  # vy dropped
+        array([10., 10.])
         """
         tw = as_twist(twist, "twist")
         drop = as_bool(ignore_lateral, "ignore_lateral")
@@ -271,6 +290,13 @@ class DiffDrive:
         TypeError, ValueError
             As :meth:`forward`: speeds not finite real numbers of shape (T, 2),
             or so large that a twist would overflow float64.
+
+        Examples
+        --------
+        >>> drive = DiffDrive(track=0.3, wheel_radius=0.05)
+        >>> drive.forward_batch([[10.0, 10.0], [-5.0, 5.0]]).round(4)
+        array([[0.5   , 0.    , 0.    ],
+               [0.    , 0.    , 1.6667]])
         """
         w = as_float_array(wheel_speeds, "wheel_speeds", shape=(None, 2))
         with np.errstate(over="ignore", invalid="ignore"):
@@ -309,6 +335,13 @@ class DiffDrive:
             As :meth:`inverse`: twists not finite real numbers of shape (T, 3),
             a non-zero ``vy`` without ``ignore_lateral``, or wheel speeds that
             would overflow float64.
+
+        Examples
+        --------
+        >>> drive = DiffDrive(track=0.3, wheel_radius=0.05)
+        >>> drive.inverse_batch([[0.5, 0.0, 0.0], [0.0, 0.0, 1.0]])
+        array([[10., 10.],
+               [-3.,  3.]])
         """
         tw = as_float_array(twists, "twists", shape=(None, 3))
         if not as_bool(ignore_lateral, "ignore_lateral") and np.any(tw[:, 1] != 0.0):

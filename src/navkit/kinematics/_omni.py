@@ -223,6 +223,14 @@ class OmniDrive:
         TypeError, ValueError
             ``twist`` not a twist of finite numbers, or one so large that the
             wheel speeds would overflow float64.
+
+        Examples
+        --------
+        >>> drive = OmniDrive.three_wheel(wheel_radius=0.05, base_radius=0.2)
+        >>> drive.inverse([0.0, 0.0, 1.0]).round(6)  # turning: L * omega / r each
+        array([4., 4., 4.])
+        >>> drive.inverse(Twist2D(1.0, 0.0, 0.0)).round(6)
+        array([-10., -10.,  20.])
         """
         tw = as_twist(twist, "twist")
         values = tw.as_array()
@@ -251,6 +259,14 @@ class OmniDrive:
         TypeError, ValueError
             Speeds that are not N finite real numbers, or so large that the
             twist would overflow float64.
+
+        Examples
+        --------
+        >>> drive = OmniDrive.three_wheel(wheel_radius=0.05, base_radius=0.2)
+        >>> drive.forward([4.0, 4.0, 4.0])  # all wheels alike: turning on the spot
+        Twist2D(vx=0.0, vy=0.0, omega=1.0)
+        >>> drive.forward([-10.0, -10.0, 20.0])  # up to rounding
+        Twist2D(vx=1.0, vy=0.0, omega=0.0)
         """
         w = as_float_array(wheel_speeds, "wheel_speeds", shape=(self.n_wheels,))
         with np.errstate(over="ignore", invalid="ignore"):
@@ -278,6 +294,13 @@ class OmniDrive:
         TypeError, ValueError
             As :meth:`inverse`: twists not finite real numbers of shape (T, 3),
             or wheel speeds that would overflow float64.
+
+        Examples
+        --------
+        >>> drive = OmniDrive.three_wheel(wheel_radius=0.05, base_radius=0.2)
+        >>> drive.inverse_batch([[0.0, 0.0, 1.0], [1.0, 0.0, 0.0]]).round(6)
+        array([[  4.,   4.,   4.],
+               [-10., -10.,  20.]])
         """
         tw = as_float_array(twists, "twists", shape=(None, 3))
         return _product(tw, self._jacobian.T, "twists", "the wheel speeds")
@@ -300,6 +323,13 @@ class OmniDrive:
         TypeError, ValueError
             As :meth:`forward`: speeds not finite real numbers of shape (T, N),
             or twists that would overflow float64.
+
+        Examples
+        --------
+        >>> drive = OmniDrive.three_wheel(wheel_radius=0.05, base_radius=0.2)
+        >>> drive.forward_batch([[4.0, 4.0, 4.0], [-10.0, -10.0, 20.0]]).round(6) + 0.0
+        array([[0., 0., 1.],
+               [1., 0., 0.]])
         """
         w = as_float_array(wheel_speeds, "wheel_speeds", shape=(None, self.n_wheels))
         return _product(w, self._forward.T, "wheel_speeds", "the twists")
