@@ -26,7 +26,25 @@ def _short(value: numbers.Integral) -> str:
 
 
 class NavkitError(Exception):
-    """Base class of navkit's own exceptions."""
+    """Base class of navkit's own exceptions.
+
+    Catch it to handle every navkit-specific failure at once; invalid arguments
+    raise the built-in ``ValueError`` or ``TypeError`` instead.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from navkit.planning import astar
+    >>> costs = np.ones((3, 3))
+    >>> costs[:, 1] = np.inf  # a wall splits the grid
+    >>> try:
+    ...     astar(costs, (0, 0), (0, 2))
+    ... except NavkitError as exc:
+    ...     print(type(exc).__name__, exc.expanded)
+    NoPathError 3
+    >>> issubclass(FilterError, NavkitError), issubclass(ValueError, NavkitError)
+    (True, False)
+    """
 
 
 class NoPathError(NavkitError):

@@ -350,7 +350,7 @@ class RegulatedPurePursuit(PathTracker):
         Parameters
         ----------
         pose : Pose2D or array_like [x, y, theta]
-            Robot pose in the world frame (coordinates within ±1e9 m). The
+            Robot pose in the world frame (m, m, rad; coordinates within ±1e9 m). The
             :attr:`progress` along the path never goes back: one pose that
             jumps ahead (a localisation glitch) can move it up to 2 m of path
             ahead at once, and that stretch is then skipped (most of a short
@@ -358,15 +358,15 @@ class RegulatedPurePursuit(PathTracker):
         dt : float
             Control period in seconds, > 0 (a normal float: at least 2.2e-308).
         velocity : Twist2D or array_like [vx, vy, omega], optional
-            Measured robot-frame velocity (Nav2's ``speed``: it sets the
+            Measured robot-frame velocity (m/s, m/s, rad/s; Nav2's ``speed``: it sets the
             lookahead distance and the base of the angular acceleration limit);
             None uses the previous command.
 
         Returns
         -------
         Twist2D
-            Robot-frame command; ``vy = 0`` for ``drive="diff"``; all zero once
-            :attr:`done`.
+            Robot-frame command ``(vx, vy, omega)`` in m/s, m/s, rad/s;
+            ``vy = 0`` for ``drive="diff"``; all zero once :attr:`done`.
 
         Raises
         ------
@@ -378,6 +378,24 @@ class RegulatedPurePursuit(PathTracker):
             A bad ``pose``, ``dt`` (not a normal float > 0) or ``velocity``,
             naming it, or a ``clearance`` function returning NaN; the
             tracker's state is unchanged then.
+
+        Examples
+        --------
+        >>> tracker = RegulatedPurePursuit()
+        >>> tracker.set_path([[0.0, 0.0], [3.0, 0.0]])
+        >>> tracker.step(Pose2D(0.0, 0.0, 0.0), 0.05)  # on a straight path: max_speed
+        Twist2D(vx=0.5, vy=0.0, omega=0.0)
+
+        Facing away from the path it turns in place, the turn rate changing by at
+        most ``max_angular_accel × dt`` (0.16 rad/s) from the previous command's,
+        or from the measured ``velocity``'s:
+
+        >>> tracker.step(Pose2D(0.0, 0.0, math.pi / 2), 0.05)
+        Twist2D(vx=0.0, vy=0.0, omega=-0.16)
+        >>> tracker.step(Pose2D(0.0, 0.0, math.pi / 2), 0.05, velocity=(0.0, 0.0, 1.0))
+        Twist2D(vx=0.0, vy=0.0, omega=0.84)
+        >>> tracker.phase
+        'rotate'
         """
         measured = None if velocity is None else as_twist(velocity, "velocity")
         return self._run(pose, dt, measured)

@@ -398,10 +398,10 @@ class AStarPlanner:
         -------
         Path2D
             ``"grid"`` path through the cell centres from ``start_cell`` to
-            ``goal_cell`` (:attr:`Path2D.cells` gives them as integers), its
-            cost (sum of the move costs), length in cells (orthogonal steps 1,
-            diagonal sqrt(2)) and the number of cells expanded (jump points
-            with JPS).
+            ``goal_cell``, points of shape (K, 2) in cells (:attr:`Path2D.cells`
+            gives them as integers), its cost (sum of the move costs, in cost
+            units × cells), length in cells (orthogonal steps 1, diagonal
+            sqrt(2)) and the number of cells expanded (jump points with JPS).
 
         Raises
         ------
@@ -412,6 +412,23 @@ class AStarPlanner:
         navkit.NoPathError
             ``goal_cell`` is unreachable from ``start_cell``; ``expanded`` holds
             the number of cells expanded.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> costs = np.ones((3, 5))
+        >>> costs[:2, 2] = np.inf  # a wall with a gap in the bottom row
+        >>> planner = AStarPlanner(costs)
+        >>> path = planner.plan((0, 0), (0, 4))
+        >>> path.cells.tolist()
+        [[0, 0], [1, 1], [2, 1], [2, 2], [2, 3], [1, 4], [0, 4]]
+        >>> round(path.cost, 6), round(path.length, 6)  # 4 + 2 sqrt(2)
+        (6.828427, 6.828427)
+        >>> costs[2, 2] = np.inf  # the gap closed (the planner kept its own copy)
+        >>> AStarPlanner(costs).plan((0, 0), (0, 4))
+        Traceback (most recent call last):
+            ...
+        navkit.errors.NoPathError: no path from start_cell (0, 0) to goal_cell (0, 4) ...
         """
         grid = self._costs
         s = traversable_cell(grid, start_cell, "start_cell")
@@ -503,8 +520,23 @@ class AStarPlanner:
         Returns
         -------
         ndarray of float64, shape (rows, cols)
-            Cost-to-go of each cell; 0 at the goal and ``np.inf`` where the goal
-            is unreachable (including impassable cells).
+            Cost-to-go of each cell (cost units × cells, as :meth:`plan`'s
+            path costs); 0 at the goal and ``np.inf`` where the goal is
+            unreachable (including impassable cells).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> costs = np.ones((3, 5))
+        >>> costs[:2, 2] = np.inf  # a wall with a gap in the bottom row
+        >>> planner = AStarPlanner(costs)
+        >>> field = planner.distance_field((0, 4))
+        >>> field.round(3)
+        array([[6.828, 6.414,   inf, 1.   , 0.   ],
+               [5.828, 5.414,   inf, 1.414, 1.   ],
+               [5.414, 4.414, 3.414, 2.414, 2.   ]])
+        >>> bool(np.isclose(field[0, 0], planner.plan((0, 0), (0, 4)).cost))  # A*'s optimum
+        True
         """
         # Imported here: the distance-field module builds on this one.
         from navkit.planning.grid._distance_field import _bucket_field

@@ -498,11 +498,12 @@ class FieldDStar:
         Returns
         -------
         Path2D
-            ``"grid"`` path: its points are node − 0.5 (continuous cell
-            coordinates), from ``start_node`` to ``goal_node``; its cost is that
-            of the polyline itself (the integral of the cell cost along it, a
-            stretch along a grid line paying the cheaper cell beside it), not the
-            search's interpolated estimate; ``expanded`` counts node expansions.
+            ``"grid"`` path: its points, shape (K, 2), are node − 0.5 (continuous
+            cell coordinates), from ``start_node`` to ``goal_node``; its cost
+            (cost units × cells) is that of the polyline itself (the integral of
+            the cell cost along it, a stretch along a grid line paying the
+            cheaper cell beside it), not the search's interpolated estimate; its
+            length is in cells; ``expanded`` counts node expansions.
 
         Raises
         ------
@@ -513,6 +514,18 @@ class FieldDStar:
             Nodes that are not pairs of integers.
         navkit.NoPathError
             The goal cannot be reached from the start.
+
+        Examples
+        --------
+        On uniform costs the path is the straight line between the corners,
+        at any angle:
+
+        >>> planner = FieldDStar(np.ones((10, 10)))
+        >>> path = planner.plan((0, 0), (10, 5))
+        >>> path.points.tolist()
+        [[-0.5, -0.5], [9.5, 4.5]]
+        >>> round(path.cost, 6), round(float(np.hypot(10, 5)), 6)
+        (11.18034, 11.18034)
         """
         s = self._node(start_node, "start_node")
         gl = self._node(goal_node, "goal_node")
@@ -551,6 +564,23 @@ class FieldDStar:
             ``2**52`` or more.
         navkit.NoPathError
             The goal cannot be reached any more.
+
+        Examples
+        --------
+        >>> planner = FieldDStar(np.ones((10, 10)))
+        >>> first = planner.plan((0, 0), (10, 5))
+        >>> planner.update_costs([(4, 1), (4, 2), (4, 3)], np.inf)  # a wall appears
+        >>> again = planner.replan()
+        >>> again.points.tolist()
+        [[-0.5, -0.5], [4.5, 0.5], [9.5, 4.5]]
+
+        The path of a fresh search, found with fewer expansions:
+
+        >>> fresh = FieldDStar(planner.costs).plan((0, 0), (10, 5))
+        >>> round(again.cost, 9) == round(fresh.cost, 9), again.expanded < fresh.expanded
+        (True, True)
+        >>> planner.replan((2, 0)).points.tolist()  # the robot moved 2 rows
+        [[1.5, -0.5], [4.5, 0.5], [9.5, 4.5]]
         """
         self._require_plan("replan")
         assert self._start is not None and self._goal is not None
@@ -677,6 +707,18 @@ class FieldDStar:
             Non-numeric points.
         navkit.NoPathError
             The goal cannot be reached.
+
+        Examples
+        --------
+        Cells of 0.5 m, node ``(0, 0)`` at (1, 2); on uniform costs the path is
+        straight and its cost equals its length:
+
+        >>> planner = FieldDStar(np.ones((10, 10)), resolution=0.5, origin=(1.0, 2.0, 0.0))
+        >>> path = planner.plan_world((1.25, 2.25), (5.75, 4.25))
+        >>> path.frame, path.points.round(6).tolist()
+        ('world', [[1.25, 2.25], [5.75, 4.25]])
+        >>> round(path.length, 6), round(path.cost, 6), round(float(np.hypot(4.5, 2.0)), 6)
+        (4.924429, 4.924429, 4.924429)
         """
         p_s, s = self._world_end(start_xy, "start_xy")
         p_g, gl = self._world_end(goal_xy, "goal_xy")
@@ -762,7 +804,8 @@ class FieldDStar:
             Cells ``(row, col)`` to change (integers; integral floats such as
             ``2.0`` are accepted). With repeats, the last value wins.
         new_costs : float or (M,) array_like
-            New costs, in ``[1, 1e12]`` or ``np.inf`` (impassable).
+            New costs per unit length (as ``costs``), in ``[1, 1e12]`` or
+            ``np.inf`` (impassable); a float sets every cell listed.
 
         Raises
         ------
@@ -772,6 +815,19 @@ class FieldDStar:
         TypeError
             Cells or costs that are not real numbers (booleans, strings,
             complex numbers, mappings).
+
+        Examples
+        --------
+        >>> planner = FieldDStar(np.ones((3, 4)))
+        >>> before = planner.plan((0, 0), (3, 4))
+        >>> planner.update_costs([(1, 1), (1, 2)], [5.0, np.inf])
+        >>> planner.costs[1].tolist()
+        [1.0, 5.0, inf, 1.0]
+        >>> planner.update_costs([(1, 1), (1, 1)], [3.0, 2.0])  # repeated: the last wins
+        >>> planner.costs[1].tolist()
+        [1.0, 2.0, inf, 1.0]
+        >>> before.cost, bool(planner.replan().cost > before.cost)  # straight line blocked
+        (5.0, True)
         """
         idx = self._update_cells(cells)
         vals = as_float_array(new_costs, "new_costs", finite=False)

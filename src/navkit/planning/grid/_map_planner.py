@@ -333,11 +333,11 @@ class MapPlanner:
         Returns
         -------
         Path2D
-            ``"world"`` path ``(x, y)`` from the centre of the cell containing
-            ``start`` to the centre of the cell containing ``goal`` (for
-            ``"astar"`` through cell centres); cost in cost-weighted metres (the
-            planner's cost × the resolution, equal to the length in free
-            space), length in m, expansions. After an escape, the points are
+            ``"world"`` path, points ``(x, y)`` in m of shape (K, 2), from the
+            centre of the cell containing ``start`` to the centre of the cell
+            containing ``goal`` (for ``"astar"`` through cell centres); cost in
+            cost-weighted metres (the planner's cost × the resolution, equal to
+            the length in free space), length in m, expansions. After an escape, the points are
             ``start``, then the planned path from the escape cell's centre;
             ``length`` is the polyline's, escape segment included; ``cost`` is
             the planned path's plus the escape segment's, the integral of the
@@ -362,6 +362,34 @@ class MapPlanner:
         navkit.NoPathError
             No collision-free path exists (from the escape cell, after an
             escape).
+
+        Examples
+        --------
+        A wall from y = 0 to 0.6 m: the robot's centre passes its end at least
+        ``robot_radius`` above it, and in free space the cost equals the length:
+
+        >>> import numpy as np
+        >>> from navkit.mapping import OccupancyGrid
+        >>> occupied = np.zeros((10, 20), dtype=bool)
+        >>> occupied[:6, 10] = True
+        >>> grid = OccupancyGrid.from_occupancy(occupied, resolution=0.1)
+        >>> planner = MapPlanner(grid, robot_radius=0.2)
+        >>> path = planner.plan((0.55, 0.25), (1.55, 0.25))
+        >>> path.points[[0, -1]].tolist(), bool(path.points[:, 1].max() >= 0.8)
+        ([[0.55, 0.25], [1.55, 0.25]], True)
+        >>> round(path.length, 3), round(path.cost, 3)
+        (1.731, 1.731)
+
+        A start that drifted into the inflated band is refused, unless it may
+        escape to a passable cell within ``start_tolerance``:
+
+        >>> planner.plan((0.85, 0.25), (1.55, 0.25))
+        Traceback (most recent call last):
+            ...
+        ValueError: start (0.85, 0.25) (cell (2, 8)) is within robot_radius (0.2 m) of an ...
+        >>> escaped = planner.plan((0.85, 0.25), (1.55, 0.25), start_tolerance=0.2)
+        >>> escaped.points[:2].round(6).tolist()  # start, then the escape cell's centre
+        [[0.85, 0.25], [0.75, 0.25]]
         """
         tolerance = bounded_float(start_tolerance, "start_tolerance", 0.0, COORDINATE_LIMIT, "m")
         escape: _Escape | None = None
