@@ -109,5 +109,6 @@ def find_data(relative: str, *, data_dir: str | os.PathLike[str] | None = None) 
     where = ", ".join(str(p) for p in dict.fromkeys(looked))
     raise DataNotFoundError(
         f"{relative} not found in {where}; set {ENV_VAR} or pass data_dir= (--data "
-        "on the command line): the folder holding ros-map-server-maps, carmen-logs, ..."
+        "on the command line): the folder holding ros-map-server-maps, carmen-logs, ... "
+        "(where to download them: the 'Data sets' page of navkit's documentation, docs/data.md)"
     )
