@@ -28,6 +28,33 @@ class Estimator(Protocol):
     order; ``pose`` is the current estimate (None before there is one).
     ``navkit.estimation.PlanarFusion``, ``OmniOdometry`` and ``DiffOdometry``
     instances are wrapped into estimators automatically.
+
+    Examples
+    --------
+    >>> from navkit.geometry import Twist2D
+    >>> from navkit.kinematics import DiffDrive
+    >>> from navkit.sim import Compass, Simulation, World
+    >>> class CompassHeading:  # an Estimator of the heading only, from the compass
+    ...     def __init__(self, north):
+    ...         self.north, self.pose, self.readings = north, None, 0
+    ...     def observe(self, t, reading):
+    ...         if isinstance(reading, CompassReading):
+    ...             self.readings += 1
+    ...             yaw = wrap_angle(self.north - math.radians(reading.heading_deg))
+    ...             self.pose = Pose2D(0.0, 0.0, yaw)
+    >>> estimator = CompassHeading(north=math.pi / 2)
+    >>> isinstance(estimator, Estimator)
+    True
+    >>> robot = Robot(drive=DiffDrive(track=0.3, wheel_radius=0.05), footprint=0.2,
+    ...               compass=Compass(rate=10.0))
+    >>> def spin(obs):  # turn on the spot at 1 rad/s
+    ...     return Twist2D(0.0, 0.0, 1.0)
+    >>> trace = Simulation(World(), robot, spin, start=(0.0, 0.0, 0.0), estimator=estimator,
+    ...                    duration=0.5).run()
+    >>> estimator.readings, round(estimator.pose.theta, 6)  # 10 Hz from t = 0 to 0.5 s; rad
+    (6, 0.5)
+    >>> trace.estimates[-1].round(6).tolist()  # the trace records its pose at every step
+    [0.0, 0.0, 0.5]
     """
 
     def observe(self, t: float, reading: Reading) -> None:
@@ -42,6 +69,27 @@ class Estimator(Protocol):
             A :class:`ScanReading`, :class:`EncoderReading`,
             :class:`CompassReading` or :class:`ImuReading`; its ``stamp`` is
             when it was taken.
+
+        Examples
+        --------
+        >>> from navkit.geometry import Twist2D
+        >>> from navkit.kinematics import DiffDrive
+        >>> from navkit.sim import Compass, Simulation, World
+        >>> class Log:  # an Estimator that only notes when each reading came
+        ...     pose = None
+        ...     def __init__(self):
+        ...         self.seen = []
+        ...     def observe(self, t, reading):
+        ...         kind = type(reading).__name__
+        ...         self.seen.append((kind, round(reading.stamp, 6), round(t, 6)))
+        >>> robot = Robot(drive=DiffDrive(track=0.3, wheel_radius=0.05), footprint=0.2,
+        ...               encoders=None, compass=Compass(rate=10.0, latency=0.05))
+        >>> log = Log()
+        >>> _ = Simulation(World(), robot, lambda obs: Twist2D(0.0, 0.0, 0.0),
+        ...                start=(0.0, 0.0, 0.0), estimator=log, duration=0.3).run()
+        >>> log.seen  # (kind, taken at, delivered at), s: the compass's 0.05 s latency
+        [('CompassReading', 0.0, 0.05), ('CompassReading', 0.1, 0.15),
+         ('CompassReading', 0.2, 0.25)]
         """
 
     @property

@@ -204,6 +204,13 @@ class Lidar:
         ndarray, shape (n_beams,)
             New array ``angle_min + k * angle_increment`` (not wrapped), the
             angles of the scans' beams.
+
+        Examples
+        --------
+        >>> Lidar(n_beams=5, fov=math.pi / 2).angles().round(4).tolist()  # edges at ±fov/2
+        [-0.7854, -0.3927, 0.0, 0.3927, 0.7854]
+        >>> Lidar(n_beams=4).angles().round(4).tolist()  # a full circle: from -π, none at +π
+        [-3.1416, -1.5708, 0.0, 1.5708]
         """
         return self.angle_min + self.angle_increment * np.arange(self.n_beams, dtype=np.float64)
 
@@ -235,13 +242,35 @@ class Lidar:
         Returns
         -------
         LaserScan
-            Ranges per REP 117, angles in the sensor frame.
+            Ranges per REP 117, m, shape (n_beams,) (NaN for a dropout,
+            ``-inf`` below ``range_min``, ``+inf`` for no return); angles in
+            the sensor frame, rad (those of :meth:`angles`).
 
         Raises
         ------
         TypeError, ValueError
             ``pose`` not a pose, or its position beyond ±1e12 m; ``t`` not
             a finite time within range.
+
+        Examples
+        --------
+        >>> from shapely.geometry import box
+        >>> from navkit.sim import MovingObstacle
+        >>> room = box(0.0, 0.0, 4.0, 3.0).exterior
+        >>> lidar = Lidar(n_beams=4, range_max=2.5, noise=None)  # back, right, ahead, left
+        >>> lidar.scan(World(room), (1.0, 1.0, 0.0)).ranges.tolist()  # wall ahead at 3 m
+        [1.0, 1.0, inf, 2.0]
+        >>> lidar.scan(World(room), (1.0, 1.0, math.pi / 2)).ranges.round(12).tolist()
+        [1.0, inf, 2.0, 1.0]
+        >>> ball = MovingObstacle.constant_velocity(0.25, start_xy=(3, 1), velocity_xy=(-0.5, 0))
+        >>> world = World(room, moving=[ball])
+        >>> [float(lidar.scan(world, (1.0, 1.0, 0.0), t=t).ranges[2]) for t in (0.0, 2.0)]
+        [1.75, 0.75]
+        >>> noisy = Lidar(n_beams=4)  # the paper's range noise: 2.23 % below 3 m
+        >>> a = noisy.scan(world, (1.0, 1.0, 0.0), rng=7)
+        >>> b = noisy.scan(world, (1.0, 1.0, 0.0), rng=7)  # the same seed, the same draws
+        >>> np.array_equal(a.ranges, b.ranges), bool(abs(a.ranges[0] - 1.0) < 0.1)
+        (True, True)
         """
         w = as_world(world)
         scanner = w._scanners.get(self)

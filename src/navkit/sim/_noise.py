@@ -120,6 +120,16 @@ class RangeNoise:
         limits, bias, sigma : ndarray, shape (B,)
             One entry per band: upper edges (m, the last ``inf``), relative
             mean errors and relative standard deviations.
+
+        Examples
+        --------
+        >>> noise = RangeNoise(limits=(1.0, math.inf), sigma=(0.01, 0.02), bias=(0.0, 0.005))
+        >>> limits, bias, sigma = noise.arrays()
+        >>> limits.tolist(), bias.tolist(), sigma.tolist()
+        ([1.0, inf], [0.0, 0.005], [0.01, 0.02])
+        >>> sigma[0] = 0.5  # a new array: the noise itself is unchanged
+        >>> noise.sigma
+        (0.01, 0.02)
         """
         return (
             np.array(self.limits, dtype=np.float64),

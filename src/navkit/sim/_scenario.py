@@ -592,6 +592,25 @@ class Scenario(ABC):
         The source paper.
     default_trials : int
         Trials per case in the paper's setup.
+
+    Examples
+    --------
+    >>> class Coin(Scenario):  # the whole contract: a seeded coin, flipped once per trial
+    ...     name, title, paper, default_trials = "coin", "a fair coin", "none", 100
+    ...     def cases(self, trials):
+    ...         return (("fair coin", trials),)
+    ...     def run_trial(self, trial):
+    ...         heads = np.random.default_rng(trial.seed).random() < 0.5
+    ...         return TrialResult(trial, {"heads": float(heads)})
+    ...     def summarize(self, results, *, seed):
+    ...         share = float(np.mean([r.values["heads"] for r in results]))
+    ...         table = Table("coin", ("case", "heads (share)"), (("fair coin", share),))
+    ...         return ScenarioResult(self.name, seed, tuple(results), (table,), {"heads": share})
+    >>> result = Coin().run(seed=1)  # default_trials trials of each case
+    >>> len(result.trials), 0.35 < result.summary["heads"] < 0.65
+    (100, True)
+    >>> Coin().run(seed=1).summary == result.summary  # the same seed, the same figures
+    True
     """
 
     name: ClassVar[str]
@@ -613,6 +632,12 @@ class Scenario(ABC):
         -------
         tuple of (str, int)
             ``(case description, number of trials)`` in the scenario's order.
+
+        Examples
+        --------
+        >>> from navkit.sim.scenarios import Demo
+        >>> [count for _, count in Demo(map="office").cases(2)]  # three legs, two trials each
+        [2, 2, 2]
         """
 
     @abstractmethod
@@ -628,6 +653,16 @@ class Scenario(ABC):
         -------
         TrialResult
             The trial's values (and trace, when it simulates a run).
+
+        Examples
+        --------
+        >>> from navkit.sim.scenarios import Demo
+        >>> demo = Demo(map="office", duration=0.2)  # 0.2 s of each leg: a cheap trial
+        >>> r = demo.run_trial(demo.trials(1, seed=0)[1])
+        >>> r.trial.case_index, r.trace.metrics.duration, r.values["collisions"]  # s
+        (1, 0.2, 0.0)
+        >>> demo.run_trial(r.trial).values["distance"] == r.values["distance"]  # reproducible
+        True
         """
 
     @abstractmethod
@@ -645,6 +680,15 @@ class Scenario(ABC):
         -------
         ScenarioResult
             Tables, summary and scene.
+
+        Examples
+        --------
+        >>> from navkit.sim.scenarios import Demo
+        >>> demo = Demo(map="office", duration=0.2)
+        >>> results = [demo.run_trial(t) for t in demo.trials(1, seed=3)]
+        >>> result = demo.summarize(results, seed=3)
+        >>> result.seed, len(result.trials), result.summary["legs"]
+        (3, 3, 3.0)
         """
 
     def trials(self, trials: int | None = None, *, seed: int = 0) -> tuple[Trial, ...]:
@@ -661,6 +705,15 @@ class Scenario(ABC):
         -------
         tuple of Trial
             Case by case, trial by trial.
+
+        Examples
+        --------
+        >>> from navkit.sim.scenarios import Demo
+        >>> trials = Demo(map="office").trials(2, seed=5)  # three legs, two trials each
+        >>> [(t.case_index, t.index) for t in trials][:3]
+        [(0, 0), (0, 1), (1, 0)]
+        >>> trials[3].seed == trial_seed(5, 1, 1) != trials[2].seed
+        True
         """
         n = self._check_trials(self.default_trials if trials is None else trials)
         # Checked here, under the caller's name (trial_seed would call it ``base``).
@@ -699,6 +752,18 @@ class Scenario(ABC):
         -------
         ScenarioResult
             Tables beside the paper's, summary, trials and scene.
+
+        Examples
+        --------
+        >>> from navkit.sim.scenarios import Demo
+        >>> demo = Demo(map="office", duration=0.2)
+        >>> done = []
+        >>> result = demo.run(trials=1, seed=3, progress=lambda k, n: done.append((k, n)))
+        >>> done, [r.trial.case_index for r in result.trials]
+        ([(1, 3), (2, 3), (3, 3)], [0, 1, 2])
+        >>> by_hand = demo.summarize([demo.run_trial(t) for t in demo.trials(1, seed=3)], seed=3)
+        >>> result.summary["travel_time"] == by_hand.summary["travel_time"]
+        True
         """
         from navkit.sim._sweep import sweep  # _sweep imports this module
 

@@ -259,6 +259,14 @@ class WheelEncoders:
         TypeError, ValueError
             ``wheel_angles`` not a 1-D array of finite real numbers within
             ±1e9 rad.
+
+        Examples
+        --------
+        >>> turns = np.array([0.5, 64.0, -0.0001]) * 2 * math.pi  # half a turn, 64, a bit back
+        >>> WheelEncoders(ticks_per_rev=1024, bits=16).counts(turns)  # 65536 wraps to 0
+        array([  512,     0, 65535])
+        >>> WheelEncoders(ticks_per_rev=1024, bits=None).counts(turns)  # never wraps
+        array([  512, 65536,    -1])
         """
         wheel_angles = as_float_array(wheel_angles, "wheel_angles", ndim=1)
         if wheel_angles.size and float(np.max(np.abs(wheel_angles))) > 1e9:

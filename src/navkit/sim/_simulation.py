@@ -429,6 +429,24 @@ class Simulation:
         readings delivered up to the failure). The world and the robot are
         unchanged. To run again, build a new Simulation with a fresh controller
         and estimator (the same int ``seed`` gives the same draws).
+
+        Examples
+        --------
+        >>> from shapely.geometry import box
+        >>> from navkit.kinematics import DiffDrive
+        >>> robot = Robot(drive=DiffDrive(track=0.3, wheel_radius=0.05), footprint=0.2)
+        >>> def spin(obs):  # turn on the spot at 1 rad/s
+        ...     return Twist2D(0.0, 0.0, 1.0)
+        >>> sim = Simulation(World(box(-1.0, -1.0, 1.0, 1.0).exterior), robot, spin,
+        ...                  start=(0.0, 0.0, 0.0), duration=0.5)
+        >>> trace = sim.run()
+        >>> m = trace.metrics
+        >>> m.reason, round(float(trace.poses[-1, 2]), 6), round(m.min_clearance, 6)  # rad, m
+        ('timeout', 0.5, 0.8)
+        >>> sim.run()
+        Traceback (most recent call last):
+        ...
+        RuntimeError: a Simulation runs once; build a new one for another run
         """
         if self._ran:
             raise RuntimeError("a Simulation runs once; build a new one for another run")

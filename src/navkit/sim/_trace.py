@@ -157,13 +157,13 @@ class Trace:
     times : ndarray, shape (T,)
         Simulated times, s (row 0 is the start).
     poses : ndarray, shape (T, 3)
-        True poses ``[x, y, theta]``.
+        True poses ``[x, y, theta]``, m and rad.
     estimates : ndarray, shape (T, 3)
-        The estimator's latest pose at each step (NaN rows before the first
-        estimate or without an estimator).
+        The estimator's latest pose ``[x, y, theta]`` at each step, m and rad
+        (NaN rows before the first estimate or without an estimator).
     commands : ndarray, shape (T, 3)
-        The twist ``[vx, vy, omega]`` commanded at each step (the controller's
-        latest output, before the drive's limits).
+        The twist ``[vx, vy, omega]`` commanded at each step, m/s and rad/s
+        (the controller's latest output, before the drive's limits).
     scans : tuple of ScanReading
         Every scan taken, when the run recorded them (``record_scans=True``).
     events : tuple of Event
@@ -174,6 +174,24 @@ class Trace:
     Notes
     -----
     Every array is a read-only copy (in copies and unpickled traces too).
+
+    Examples
+    --------
+    >>> from navkit.geometry import Twist2D
+    >>> from navkit.kinematics import DiffDrive
+    >>> from navkit.sim import Robot, Simulation, World
+    >>> robot = Robot(drive=DiffDrive(track=0.3, wheel_radius=0.05), footprint=0.2)
+    >>> def forward(obs):  # 0.5 m/s straight ahead
+    ...     return Twist2D(0.5, 0.0, 0.0)
+    >>> trace = Simulation(World(), robot, forward, start=(0.0, 0.0, 0.0), duration=1.0).run()
+    >>> len(trace), trace.poses.shape, trace.commands[-1].tolist()  # 100 Hz: 101 rows in 1 s
+    (101, (101, 3), [0.5, 0.0, 0.0])
+    >>> float(trace.times[-1]), trace.poses[-1].round(6).tolist()
+    (1.0, [0.5, 0.0, 0.0])
+    >>> bool(np.isnan(trace.estimates).all()), trace.poses.flags.writeable  # no estimator
+    (True, False)
+    >>> trace.metrics.reason, [event.kind for event in trace.events]
+    ('timeout', ['timeout'])
     """
 
     times: FloatArray

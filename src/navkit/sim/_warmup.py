@@ -307,6 +307,17 @@ class WarmupStep:
         Wall-clock time of the step, s.
     cpu_seconds : float
         CPU time of the step in the process that ran it, s.
+
+    Examples
+    --------
+    >>> step = WarmupStep("geometry", ("navkit.geometry._integrate_kernels.rollout_kernel",),
+    ...                   ("navkit.geometry._integrate_kernels.integrate_kernel",), 0.9, 0.8)
+    >>> len(step.compiled), len(step.loaded), step.seconds
+    (1, 1, 0.9)
+    >>> WarmupStep("geometry", (), (), -1.0, 0.0)
+    Traceback (most recent call last):
+    ...
+    ValueError: seconds must be ...
     """
 
     name: str
@@ -339,6 +350,18 @@ class WarmupReport:
         Wall-clock time of the whole warm-up, s.
     workers : int
         Processes that ran the steps (1: the calling process).
+
+    Examples
+    --------
+    >>> rollout = "navkit.geometry._integrate_kernels.rollout_kernel"
+    >>> search = "navkit.planning.grid._astar_kernels.grid_search"
+    >>> report = WarmupReport((WarmupStep("astar", (search,), (rollout,), 1.5, 1.4),
+    ...                        WarmupStep("geometry", (rollout,), (), 0.5, 0.4)), 1.6, 2)
+    >>> report.compiled, report.loaded  # compiled by a step: not counted as loaded
+    (('navkit.geometry._integrate_kernels.rollout_kernel',
+      'navkit.planning.grid._astar_kernels.grid_search'), ())
+    >>> round(report.cpu_seconds, 6), report.seconds, report.workers  # CPU s of all steps
+    (1.8, 1.6, 2)
     """
 
     steps: tuple[WarmupStep, ...]

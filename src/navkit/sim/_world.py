@@ -455,6 +455,15 @@ class MovingObstacle:
         ------
         TypeError, ValueError
             ``t`` not a real number within ±1e9 s.
+
+        Examples
+        --------
+        >>> ob = MovingObstacle(0.2, [(0, 0), (2, 0), (2, 2)], [1.0, 3.0, 5.0])
+        >>> [ob.position_at(t).tolist() for t in (0.0, 2.0, 4.0, 9.0)]  # waits, moves, stops
+        [[0.0, 0.0], [1.0, 0.0], [2.0, 1.0], [2.0, 2.0]]
+        >>> looping = MovingObstacle(0.2, [(0, 0), (2, 0), (2, 2)], [1.0, 3.0, 5.0], after="loop")
+        >>> looping.position_at(6.0)  # one 4 s round later: as at t = 2 s
+        array([1., 0.])
         """
         time = _query_time(t)
         path, origin = self._kernel_path()

@@ -359,6 +359,15 @@ class DiffAStar(Scenario):
         -------
         tuple of (str, int)
             ``(description, trials)`` per part.
+
+        Examples
+        --------
+        >>> for case in DiffAStar(building="corridor").cases(3):
+        ...     print(case)
+        ('house: (-1, -4) -> (-4, 0) -> (-4, -2) m at 0.18 m/s', 3)
+        ('building (corridor building): (0, 0) -> (32, 6) m at 0.25 m/s', 3)
+        >>> [count for _, count in DiffAStar(building="corridor", noise=False).cases(3)]
+        [1, 1]
         """
         count = self._check_trials(trials) if self.noise else 1
         return tuple((self._label(part), count) for part in self.parts)
@@ -376,12 +385,23 @@ class DiffAStar(Scenario):
         TrialResult
             Per-leg values (``leg1_travel_time``, ``leg1_xte_max``, ...), the
             run's (``xte_max``, ``collisions``, ``loc_error_mean``, ...) and
-            the trace.
+            the trace; SI units (lengths and errors in m, times in s), flags
+            as 0.0/1.0, NaN for what a trial cut short did not reach.
 
         Raises
         ------
         DataNotFoundError
             ``building="willow"`` without the Willow Garage map.
+
+        Examples
+        --------
+        >>> scenario = DiffAStar(parts=("house",), building="corridor", noise=False,
+        ...                      duration=0.5)  # only 0.5 s of the house route
+        >>> r = scenario.run_trial(scenario.trials(1)[0])
+        >>> round(r.values["leg1_path_length"], 2), r.values["sim_time"], r.values["collisions"]
+        (7.97, 0.5, 0.0)
+        >>> r.values["leg1_reached"], math.isnan(r.values["leg1_travel_time"])  # cut short
+        (0.0, True)
         """
         t_wall = time.perf_counter()
         part = self.parts[self._case_of(trial)]
@@ -447,7 +467,18 @@ class DiffAStar(Scenario):
         -------
         ScenarioResult
             Two tables (navkit beside the paper; reach, collisions and
-            localisation), the summary and a scene.
+            localisation), the summary (SI units: m, s; rates in [0, 1]) and a
+            scene.
+
+        Examples
+        --------
+        >>> scenario = DiffAStar(parts=("house",), building="corridor", noise=False,
+        ...                      duration=0.5)
+        >>> result = scenario.summarize([scenario.run_trial(scenario.trials(1)[0])], seed=0)
+        >>> len(result.tables), round(result.summary["house_leg1_path_length"], 2)  # m
+        (2, 7.97)
+        >>> result.summary["house_reached_rate"], result.scene.title[:17]
+        (0.0, 'diff-astar: house')
         """
         results, by_case, seed = self._results_by_case(results, seed)
         rows: list[tuple[Any, ...]] = []
