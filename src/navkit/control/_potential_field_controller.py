@@ -19,10 +19,28 @@ from navkit.planning import (
     AttractiveField,
     BlendedAttraction,
     KhatibRepulsion,
+    PotentialField,
     repulsive_force_from_scan,
 )
 
 __all__ = ["PotentialFieldController"]
+
+
+def _pose(value: Any, name: str) -> Pose2D:
+    """:func:`as_pose`, with a fast path for a tuple of three finite floats.
+
+    The soccer players pass their target that way every step; ``as_pose`` would build
+    an array to check it. Anything else (a NaN or an infinity included) goes
+    through ``as_pose``, which raises.
+    """
+    if type(value) is tuple and len(value) == 3:
+        x, y, theta = value
+        if (
+            type(x) is float and type(y) is float and type(theta) is float
+            and math.isfinite(x) and math.isfinite(y) and math.isfinite(theta)
+        ):  # fmt: skip
+            return Pose2D(x, y, theta)
+    return as_pose(value, name)
 
 
 class _Pid:
@@ -232,7 +250,24 @@ class PotentialFieldController:
         self.reset()
 
     def reset(self) -> None:
-        """Forget the previous velocity, the PID state and the stall timer."""
+        """Forget the previous velocity, the PID state and the stall timer.
+
+        Call it between runs: the next :meth:`step` starts from rest (its
+        acceleration limits measured from a zero velocity) with no stall time.
+
+        Examples
+        --------
+        >>> ctl = PotentialFieldController(stall_timeout=0.5)
+        >>> for _ in range(8):  # the robot does not move: stalled after 0.5 s
+        ...     cmd = ctl.step((0.0, 0.0, 0.0), (2.0, 0.0, 0.0), dt=0.1)
+        >>> ctl.stalled, ctl.previous_velocity
+        (True, array([0.5, 0. ]))
+        >>> ctl.reset()
+        >>> ctl.stalled, ctl.stall_time, ctl.previous_velocity
+        (False, 0.0, array([0., 0.]))
+        >>> ctl.step((0.0, 0.0, 0.0), (2.0, 0.0, 0.0), dt=0.1)  # from rest again
+        Twist2D(vx=0.1, vy=0.0, omega=0.0)
+        """
         self._velocity: FloatArray = np.zeros(2)
         self._integral = 0.0
         self._last_error: float | None = None
@@ -366,12 +401,20 @@ class PotentialFieldController:
     ) -> FloatArray:
         """:meth:`desired_velocity` on a validated pose and goal."""
         here = np.array([[pose.x, pose.y]])
-        f_att = self._attraction.with_goal(goal).force(here)[0]
+        attraction = self._attraction
+        kind = type(attraction)
+        if kind.with_goal is AttractiveField.with_goal and kind.force is PotentialField.force:
+            # The goal and the pose were checked (same ranges as the fields'): no
+            # second check of either, which cost more than the field's formula.
+            f_att = attraction._with_checked_goal(goal)._force(here)[0]
+        else:  # a subclass's own with_goal or force may do more: call them
+            f_att = attraction.with_goal(goal).force(here)[0]
         norm = float(np.hypot(f_att[0], f_att[1]))
         if norm > self._max_speed:
             f_att = f_att * (self._max_speed / norm)
         v: FloatArray = f_att + self._repulsion(pose, here, obstacles)
-        if not np.all(np.isfinite(v)):
+        vx, vy = v.tolist()
+        if not (math.isfinite(vx) and math.isfinite(vy)):
             # Numerically on an obstacle the repulsion is infinite: flee at full speed
             # along its infinite components, or stay put if opposite ones cancel (NaN).
             v = np.where(np.isinf(v), np.sign(v), 0.0)
@@ -392,14 +435,24 @@ class PotentialFieldController:
             c, s = math.cos(pose.theta), math.sin(pose.theta)
             return np.array([c * fx - s * fy, s * fx + c * fy])
         pts = as_points(obstacles, "obstacles", finite=False)
-        valid = pts[np.all(np.isfinite(pts), axis=1)]
-        if valid.size and float(np.max(np.abs(valid))) > MAX_COORDINATE:
-            raise ValueError(
-                f"obstacles: positions must have |x|, |y| <= {MAX_COORDINATE:g} m "
-                "(rows with NaN or inf are skipped)"
-            )
-        field = KhatibRepulsion(valid, k_rep=self._k_rep, influence_radius=self._influence_radius)
-        out: FloatArray = field.force(here)[0]
+        # Usually every row is valid: one reduction checks that (a NaN makes the
+        # maximum NaN, an infinity exceeds the bound) and no mask is needed.
+        valid = pts
+        if pts.size and not float(np.max(np.abs(pts))) <= MAX_COORDINATE:
+            valid = pts[np.all(np.isfinite(pts), axis=1)]
+            if valid.size and float(np.max(np.abs(valid))) > MAX_COORDINATE:
+                raise ValueError(
+                    f"obstacles: positions must have |x|, |y| <= {MAX_COORDINATE:g} m "
+                    "(rows with NaN or inf are skipped)"
+                )
+        # Checked above (and the parameters in __init__): built without a second check.
+        field = KhatibRepulsion._checked(valid, self._k_rep, self._influence_radius)
+        # Nothing within reach pushes (exactly zero, as the field's own sum gives):
+        # the offsets and distances are those the field forms, so the test is exact.
+        d = np.hypot(pose.x - field.obstacles_xy[:, 0], pose.y - field.obstacles_xy[:, 1])
+        if not np.any(d <= field._reach()):
+            return np.zeros(2)
+        out: FloatArray = field._force(here)[0]
         return out
 
     def step(
@@ -416,18 +469,18 @@ class PotentialFieldController:
         Parameters
         ----------
         pose : Pose2D or array_like [x, y, theta]
-            Robot pose in the world frame.
+            Robot pose in the world frame (m, m, rad).
         target_pose : Pose2D or array_like [x, y, theta]
-            Goal position (attraction) and the target heading: always for an
+            Goal position (attraction; m) and the target heading (rad): always for an
             ``"omni"`` drive, for a ``"diff"`` drive where the desired velocity
             is below a thousandth of ``max_speed`` (at the goal).
         dt : float
             Control period in seconds, in [1e-6, 1e6].
         obstacles : array_like (M, 2), LaserScan or None, optional
-            Obstacle points in the world frame (rows with NaN/inf are skipped),
-            or a scan taken in the robot frame, or nothing.
+            Obstacle points ``(x, y)`` in m in the world frame (rows with
+            NaN/inf are skipped), or a scan taken in the robot frame, or nothing.
         velocity : Twist2D or array_like [vx, vy, omega], optional
-            Current robot-frame velocity (e.g. from odometry, finite; one whose
+            Current robot-frame velocity (m/s, m/s, rad/s; e.g. from odometry, finite; one whose
             world-frame components overflow float64, near 1e308 m/s, is
             refused), the base of the acceleration limits (the command stays
             within ``max_speed`` even when this is faster); ``None`` uses the
@@ -436,17 +489,36 @@ class PotentialFieldController:
         Returns
         -------
         Twist2D
-            Command in the robot frame: ``(vx, vy, ω)``; ``vy = 0`` for a ``"diff"`` drive.
+            Command in the robot frame: ``(vx, vy, ω)`` in m/s, m/s, rad/s;
+            ``vy = 0`` for a ``"diff"`` drive.
 
         Raises
         ------
         TypeError, ValueError
             An argument that is not what is documented, naming it; the
             controller's state is unchanged then.
+
+        Examples
+        --------
+        From rest the speed grows by at most ``max_accel × dt`` (0.1 m/s here);
+        an obstacle 0.3 m ahead then pushes harder than the goal pulls, and the
+        command reverses by at most ``max_decel × dt`` (0.2 m/s):
+
+        >>> ctl = PotentialFieldController(max_speed=0.5, max_accel=1.0, max_decel=2.0)
+        >>> ctl.step(Pose2D(0.0, 0.0, 0.0), Pose2D(2.0, 0.0, 0.0), dt=0.1)
+        Twist2D(vx=0.1, vy=0.0, omega=0.0)
+        >>> ctl.step(Pose2D(0.0, 0.0, 0.0), Pose2D(2.0, 0.0, 0.0), dt=0.1, obstacles=[[0.3, 0.0]])
+        Twist2D(vx=-0.1, vy=0.0, omega=0.0)
+
+        A differential drive first turns (at ``max_omega``) toward a goal on its left:
+
+        >>> diff = PotentialFieldController(drive="diff")
+        >>> diff.step((0.0, 0.0, 0.0), (0.0, 2.0, 0.0), dt=0.1)
+        Twist2D(vx=0.0, vy=0.0, omega=2.0)
         """
         pose = as_pose(pose, "pose")
         position(pose.x, pose.y, "pose")
-        target_pose = as_pose(target_pose, "target_pose")
+        target_pose = _pose(target_pose, "target_pose")
         position(target_pose.x, target_pose.y, "target_pose")
         measured = None if velocity is None else as_twist(velocity, "velocity")
         step = quantity(dt, "dt", "s")
@@ -501,12 +573,22 @@ class PotentialFieldController:
         return Twist2D(float(vx), float(vy), float(omega))
 
     def _update_stall(self, pose: Pose2D, goal: FloatArray, dt: float) -> None:
-        here = np.array([pose.x, pose.y])
-        if float(np.hypot(*(goal - here))) <= self._goal_tolerance:
+        # Float by float what array arithmetic gives (np.hypot on the same
+        # differences), without building arrays for two coordinates.
+        x, y = pose.x, pose.y
+        gx, gy = goal.tolist()
+        if float(np.hypot(gx - x, gy - y)) <= self._goal_tolerance:
             self._anchor = None
             self._still_for = 0.0
-        elif self._anchor is None or float(np.hypot(*(here - self._anchor))) > self._stall_radius:
-            self._anchor = here
+            return
+        anchor = self._anchor
+        if anchor is None:
+            far = True
+        else:
+            ax, ay = anchor.tolist()
+            far = float(np.hypot(x - ax, y - ay)) > self._stall_radius
+        if far:
+            self._anchor = np.array([x, y])
             self._still_for = 0.0
         else:
             self._still_for += dt

@@ -22,6 +22,7 @@ from navkit._shared.validation import as_float_array
 from navkit.planning.reactive._limits import gain, length
 from navkit.planning.reactive._potential_field import (
     PotentialField,
+    _frozen,
     _goal,
     _offsets,
     _restore,
@@ -117,6 +118,19 @@ class AttractiveField(PotentialField):
         for f in dataclasses.fields(self):
             object.__setattr__(out, f.name, getattr(self, f.name))
         object.__setattr__(out, "goal_xy", _goal(goal_xy))
+        return out
+
+    def _with_checked_goal(self: _A, goal_xy: FloatArray) -> _A:
+        """:meth:`with_goal` for a goal its caller has checked, without checking it again.
+
+        The controller's constructor path (it moves the goal every step, having
+        checked it already): ``goal_xy`` must be a float64 array of shape (2,)
+        holding finite values within ±1e9 m. It is stored as a read-only copy.
+        """
+        out = object.__new__(type(self))
+        for f in dataclasses.fields(self):
+            object.__setattr__(out, f.name, getattr(self, f.name))
+        object.__setattr__(out, "goal_xy", _frozen(goal_xy))
         return out
 
 

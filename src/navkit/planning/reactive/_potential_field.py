@@ -69,7 +69,9 @@ class PotentialField(ABC):
         Returns
         -------
         ndarray, shape (N,)
-            The potential ``U`` at each point (``+inf`` on a Khatib obstacle).
+            The potential ``U`` at each point (``+inf`` on a Khatib obstacle),
+            in the units the field's gains give it (a gain times its distance
+            law of metres).
 
         Raises
         ------
@@ -77,6 +79,19 @@ class PotentialField(ABC):
             Bad shape, NaN, infinities or coordinates beyond ±1e9 m.
         TypeError
             Non-numeric points (strings, complex numbers, booleans).
+
+        Examples
+        --------
+        >>> from navkit.planning import ConicAttraction, KhatibRepulsion
+        >>> ConicAttraction((3.0, 4.0)).potential([[0.0, 0.0], [3.0, 4.0]])  # U = d
+        array([5., 0.])
+
+        Khatib's ``U = k_rep (1/d - 1/d0)² / 2``: infinite on the obstacle,
+        0.5 at half the influence radius, zero beyond it:
+
+        >>> field = KhatibRepulsion([[1.0, 0.0]], k_rep=1.0, influence_radius=1.0)
+        >>> field.potential([[1.0, 0.0], [0.5, 0.0], [3.0, 0.0]])
+        array([inf, 0.5, 0. ])
         """
         return self._potential(points(points_xy, "points_xy"))
 
@@ -92,8 +107,10 @@ class PotentialField(ABC):
         Returns
         -------
         ndarray, shape (N, 2)
-            The force ``(Fx, Fy)`` at each point, in the world frame; always
-            finite.
+            The force ``(Fx, Fy)`` at each point, in the world frame (the
+            potential's units per metre;
+            :class:`~navkit.control.PotentialFieldController` reads it as a
+            velocity in m/s); always finite.
 
         Raises
         ------
@@ -101,6 +118,23 @@ class PotentialField(ABC):
             Bad shape, NaN, infinities or coordinates beyond ±1e9 m.
         TypeError
             Non-numeric points (strings, complex numbers, booleans).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from navkit.planning import ConicAttraction, KhatibRepulsion
+        >>> ConicAttraction((3.0, 4.0)).force([0.0, 0.0])  # a unit pull toward the goal
+        array([[0.6, 0.8]])
+        >>> ConicAttraction((3.0, 4.0)).force(np.empty((0, 2))).shape
+        (0, 2)
+
+        Khatib's push ``k_rep (1/d - 1/d0) / d²`` away from the obstacle, zero
+        beyond the influence radius:
+
+        >>> field = KhatibRepulsion([[1.0, 0.0]], k_rep=1.0, influence_radius=1.0)
+        >>> field.force([[0.5, 0.0], [3.0, 0.0]])
+        array([[-4.,  0.],
+               [ 0.,  0.]])
         """
         return self._force(points(points_xy, "points_xy"))
 

@@ -24,6 +24,7 @@ from navkit.planning.reactive._limits import MIN_DISTANCE, gain, length
 from navkit.planning.reactive._potential_field import (
     PotentialField,
     _direction,
+    _frozen,
     _obstacles,
     _restore,
 )
@@ -225,6 +226,24 @@ class KhatibRepulsion(_PointRepulsion):
         object.__setattr__(
             self, "influence_radius", length(self.influence_radius, "influence_radius")
         )
+
+    @classmethod
+    def _checked(
+        cls, obstacles_xy: FloatArray, k_rep: float, influence_radius: float
+    ) -> KhatibRepulsion:
+        """A repulsion from arguments its caller has checked, without checking them again.
+
+        The controller's constructor path (it builds one every step):
+        ``obstacles_xy`` must be a float64 ``(M, 2)`` array of finite values
+        within ±1e9 m (stored as a read-only copy), ``k_rep`` and
+        ``influence_radius`` floats within their ranges.
+        """
+        out = object.__new__(cls)
+        object.__setattr__(out, "obstacles_xy", _frozen(obstacles_xy))
+        object.__setattr__(out, "_kdtree", None)
+        object.__setattr__(out, "k_rep", k_rep)
+        object.__setattr__(out, "influence_radius", influence_radius)
+        return out
 
     def _reach(self) -> float:
         return self.influence_radius
