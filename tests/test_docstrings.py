@@ -26,6 +26,8 @@ The rules (numpydoc: a section is a title underlined with dashes):
   parameters) in an ``Attributes`` section instead, as result types do.
   Enums, protocols and exceptions that keep ``Exception``'s ``__init__`` have
   no parameters to document;
+* **functions, methods and classes** need an ``Examples`` section with a
+  runnable example (``>>>``), which ``--doctest-modules`` runs;
 * **properties** need a docstring; ``Returns`` is not required (the first
   line says what the property is);
 * **every parameter is documented and every documented parameter exists**:
@@ -284,13 +286,21 @@ def _check_class(cls: type) -> list[str]:
         doc = ""  # the text dataclasses generates for an undocumented class
     if not doc:
         return ["a docstring"]
+    problems = _example_problems(doc)
     init = _class_init(cls)
     if init is None:
-        return []
+        return problems
     params = _signature_names(init, drop_first=True)
     # A dataclass's __init__ parameters are its fields: an Attributes section documents them.
     titles = (*PARAM_SECTIONS, "Attributes") if dataclasses.is_dataclass(cls) else PARAM_SECTIONS
-    return [] if params is None else _parameter_problems(doc, params, titles)
+    return problems + ([] if params is None else _parameter_problems(doc, params, titles))
+
+
+def _example_problems(doc: str) -> list[str]:
+    """An Examples section holding a doctest, or what is missing."""
+    if ">>>" not in _sections(doc).get("Examples", ""):
+        return ["an Examples section with a runnable example (>>>)"]
+    return []
 
 
 def _check_routine(item: Item) -> list[str]:
@@ -314,7 +324,7 @@ def _check_routine(item: Item) -> list[str]:
     sections = _sections(doc)
     if returns not in (None, "None") and "Returns" not in sections and "Yields" not in sections:
         problems.append("a Returns section")
-    return problems
+    return problems + _example_problems(doc)
 
 
 def _attribute_docstring(module_name: str, name: str, depth: int = 0) -> str | None:
@@ -390,6 +400,11 @@ def test_checker_rules() -> None:
         -------
         float
             The sum.
+
+        Examples
+        --------
+        >>> good(1.0, 2.0)
+        3.0
         """
         return a + b
 
@@ -412,6 +427,10 @@ def test_checker_rules() -> None:
         ----------
         a : float
             Ignored.
+
+        Examples
+        --------
+        >>> quiet(1.0)
         """
 
     assert _check_routine(Item("good", "function", good)) == []
@@ -421,6 +440,7 @@ def test_checker_rules() -> None:
         "entries for parameter(s) c",
         "no documented parameter(s) b in the signature",
         "a Returns section",
+        "an Examples section with a runnable example (>>>)",
     ]
 
     @dataclasses.dataclass
@@ -446,8 +466,9 @@ def test_checker_rules() -> None:
 
     Result.__module__ = "navkit.example"  # only navkit's constructors are documented
     problems = _check_class(Result)
-    assert problems[0] == "entries for parameter(s) y"
-    assert "Both fields are finite." in problems[1]
+    assert problems[0] == "an Examples section with a runnable example (>>>)"
+    assert problems[1] == "entries for parameter(s) y"
+    assert "Both fields are finite." in problems[2]
     assert _attribute_docstring("navkit.kinematics", "OdometryMethod")
 
 
