@@ -235,6 +235,7 @@ INT = Real(integer=True)
 
 spec("navkit.errors.NavkitError", lambda c: call(errors.NavkitError, "boom"))
 spec("navkit.errors.FilterError", lambda c: call(errors.FilterError, "boom"))
+spec("navkit.errors.KernelCacheWarning", lambda c: call(errors.KernelCacheWarning, "boom"))
 spec(
     "navkit.errors.NoPathError",
     lambda c: call(errors.NoPathError, "no path", expanded=3),
