@@ -11,13 +11,13 @@ with margin; the values must stay SciPy's, bit for bit.
 
 from __future__ import annotations
 
-import tracemalloc
 from collections.abc import Callable
 from typing import Any
 
 import numpy as np
 from scipy import ndimage
 
+from memory_peak import peak_bytes
 from navkit.mapping import OccupancyGrid, costmap, traversal_costs
 from navkit.mapping._obstacle_distance import obstacle_distance
 
@@ -27,16 +27,7 @@ CELLS = SIDE * SIDE
 
 def _peak_per_cell(call: Callable[[], Any]) -> float:
     """Peak bytes a cell allocated while ``call`` runs (its result included)."""
-    call()  # warm up: first-call allocations of imports and caches are not the point
-    tracemalloc.start()
-    try:
-        tracemalloc.reset_peak()
-        result = call()
-        _, peak = tracemalloc.get_traced_memory()
-    finally:
-        tracemalloc.stop()
-    del result
-    return peak / CELLS
+    return peak_bytes(call)[0] / CELLS
 
 
 def _grid() -> OccupancyGrid:

@@ -10,7 +10,6 @@ margin; the earlier code needed 16 (float32 log-odds), 33 (a boolean mask), 24
 from __future__ import annotations
 
 import struct
-import tracemalloc
 import zlib
 from collections.abc import Callable
 from pathlib import Path
@@ -19,6 +18,7 @@ from typing import Any
 import numpy as np
 import pytest
 
+from memory_peak import peak_bytes
 from navkit.mapping import OccupancyGrid
 from navkit.mapping.io import read_map
 
@@ -28,16 +28,7 @@ CELLS = SIDE * SIDE
 
 def _peak_per_cell(call: Callable[[], Any]) -> float:
     """Peak bytes a cell allocated while ``call`` runs (its result included)."""
-    call()  # warm up: first-call allocations of imports and caches are not the point
-    tracemalloc.start()
-    try:
-        tracemalloc.reset_peak()
-        result = call()
-        _, peak = tracemalloc.get_traced_memory()
-    finally:
-        tracemalloc.stop()
-    del result
-    return peak / CELLS
+    return peak_bytes(call)[0] / CELLS
 
 
 def _mask() -> np.ndarray:

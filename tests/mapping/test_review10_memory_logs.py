@@ -10,7 +10,6 @@ Odometry message some 5 kB for 83 numbers: 7x the result's 672 bytes, an Imu
 
 from __future__ import annotations
 
-import tracemalloc
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -18,22 +17,10 @@ from typing import Any
 import numpy as np
 import pytest
 
+from memory_peak import peak_bytes
 from navkit.mapping.io import bag_topics, read_bag_imu, read_bag_odometry, read_carmen
 
 BAGS = "robot-localization-odom-imu-bags"
-
-
-def _peak(call: Callable[[], Any]) -> tuple[float, Any]:
-    """Peak bytes allocated while ``call`` runs, and its result."""
-    call()  # warm up: first-call imports and caches are not the point
-    tracemalloc.start()
-    try:
-        tracemalloc.reset_peak()
-        result = call()
-        _, peak = tracemalloc.get_traced_memory()
-    finally:
-        tracemalloc.stop()
-    return peak, result
 
 
 def _array_bytes(record: Any) -> int:
@@ -50,8 +37,8 @@ def test_bag_readers_do_not_hold_every_message(
 ) -> None:
     pytest.importorskip("rosbags")
     bag = shared_data / BAGS / "test2.bag"
-    opening, _ = _peak(lambda: bag_topics(bag))  # rosbags' own index of the whole bag
-    peak, result = _peak(lambda: reader(bag))
+    opening, _ = peak_bytes(lambda: bag_topics(bag))  # rosbags' own index of the whole bag
+    peak, result = peak_bytes(lambda: reader(bag))
     assert len(result) > 3000
     # The result, the rows it is copied from and one message at a time: the
     # earlier reader needed 6.4 (odometry) and 8.2 (IMU) times the result.
@@ -60,7 +47,7 @@ def test_bag_readers_do_not_hold_every_message(
 
 def test_carmen_log_holds_its_readings_once(shared_data: Path) -> None:
     path = shared_data / "carmen-logs" / "aces-corrected.log.gz"
-    peak, log = _peak(lambda: read_carmen(path))
+    peak, log = peak_bytes(lambda: read_carmen(path))
     assert len(log) > 400 and log.odometry.shape[0] > 7000
     needed = sum(scan.ranges.nbytes for scan in log.scans) + log.odometry.nbytes
     # The readings and ODOM records once, with the scans' and poses' own objects

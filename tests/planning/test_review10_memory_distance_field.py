@@ -10,13 +10,13 @@ NumPy allocations (tracemalloc) in bytes a cell, with margin.
 
 from __future__ import annotations
 
-import tracemalloc
 from collections.abc import Callable
 from typing import Any
 
 import numpy as np
 import pytest
 
+from memory_peak import peak_bytes
 from navkit.planning import AStarPlanner, distance_field
 
 SIDE = 1000
@@ -26,16 +26,7 @@ GOAL = (SIDE // 2, SIDE // 2)
 
 def _peak_per_cell(call: Callable[[], Any]) -> float:
     """Peak bytes a cell allocated while ``call`` runs (its result included)."""
-    call()  # warm up: first-call allocations of imports and caches are not the point
-    tracemalloc.start()
-    try:
-        tracemalloc.reset_peak()
-        result = call()
-        _, peak = tracemalloc.get_traced_memory()
-    finally:
-        tracemalloc.stop()
-    del result
-    return peak / CELLS
+    return peak_bytes(call)[0] / CELLS
 
 
 def _costs(uniform: bool) -> np.ndarray:
