@@ -53,6 +53,7 @@ import sys
 import threading
 import warnings
 from collections.abc import Callable
+from types import FrameType
 from typing import Any, TypeVar, cast
 
 from navkit.errors import KernelCacheWarning
@@ -68,6 +69,40 @@ _WAITING: list[LazyKernel] = []
 _BINDINGS: list[tuple[dict[str, Any], str, dict[str, str], dict[str, Any]]] = []
 #: Why numba cannot cache navkit's kernels in this process (empty: it can, so far).
 _CACHE_PROBLEM: list[str] = []
+
+
+def _user_stacklevel() -> int:
+    """The ``stacklevel`` at which ``warnings.warn``, called by our caller, names the user.
+
+    That is the first frame outside navkit and numba (a navkit kernel may be
+    made while numba compiles a user's kernel that calls it): users filter
+    warnings by module and read their location. ``warnings`` steps over
+    importlib's bootstrap frames without counting them (a kernel made while a
+    navkit module is imported), so they are not counted here either. Python
+    3.12's ``skip_file_prefixes`` would do this, but navkit supports older
+    Pythons; the walk runs once per process.
+    """
+
+    def ours(frame: FrameType) -> bool:
+        # By module name, not file: a file's path may be spelt another way (symlinks).
+        module = frame.f_globals.get("__name__")
+        return isinstance(module, str) and module.partition(".")[0] in ("navkit", "numba")
+
+    def internal(frame: FrameType) -> bool:
+        # What warnings takes for import machinery: never counted in a stacklevel.
+        filename = frame.f_code.co_filename
+        return "importlib" in filename and "_bootstrap" in filename
+
+    frame = sys._getframe(1)  # warn's caller: stacklevel 1
+    level = 1
+    while ours(frame):
+        outer = frame.f_back
+        while outer is not None and internal(outer):
+            outer = outer.f_back
+        if outer is None:  # navkit all the way down: its outermost frame
+            break
+        frame, level = outer, level + 1
+    return level
 
 
 def _make_dispatcher(njit: Any, options: dict[str, Any], py_func: Callable[..., Any]) -> Any:
@@ -87,7 +122,7 @@ def _make_dispatcher(njit: Any, options: dict[str, Any], py_func: Callable[..., 
             f"writable folder (see navkit's docs/compilation.md)"
         )
         _CACHE_PROBLEM.append(problem)
-        warnings.warn(problem, KernelCacheWarning, stacklevel=2)
+        warnings.warn(problem, KernelCacheWarning, stacklevel=_user_stacklevel())
     return njit(**{**options, "cache": False})(py_func)
 
 

@@ -64,7 +64,13 @@ _REGISTRY: dict[str, tuple[str, str]] = {
 _MODULES = dict(_REGISTRY.values())
 
 SCENARIOS: dict[str, type[Scenario]]
-"""Every scenario class by its command-line name (``"omni-apf"``, ...)."""
+"""Every scenario class by its command-line name (``"omni-apf"``, ...).
+
+A scenario of your own added here (``SCENARIOS["mine"] = Mine``, a
+:class:`~navkit.sim.Scenario` subclass) is found by :func:`get_scenario`
+and by :func:`~navkit.sim.sweep` given its name, in this process; an entry
+removed is no longer found.
+"""
 
 
 def __getattr__(name: str) -> Any:
@@ -100,6 +106,9 @@ def get_scenario(name: str) -> type[Scenario]:
     ------
     ValueError
         For an unknown name (the message lists the known ones).
+    TypeError
+        For a name that is not a str, or an entry added to :data:`SCENARIOS`
+        that is not a Scenario subclass.
 
     Examples
     --------
@@ -108,8 +117,22 @@ def get_scenario(name: str) -> type[Scenario]:
     """
     if not isinstance(name, str):
         raise TypeError(f"name must be a str, got {type(name).__name__}")
-    if name not in _REGISTRY:
-        known = ", ".join(sorted(_REGISTRY))
+    # SCENARIOS exists only once asked for: only then can a user have changed it,
+    # and until then the registry answers without importing every scenario's module.
+    scenarios: dict[str, type[Scenario]] | None = globals().get("SCENARIOS")
+    if scenarios is None:
+        if name not in _REGISTRY:
+            known = ", ".join(sorted(_REGISTRY))
+            raise ValueError(f"name: unknown scenario {name!r}; known: {known}")
+        cls: type[Scenario] = getattr(sys.modules[__name__], _REGISTRY[name][0])
+        return cls
+    if name not in scenarios:
+        known = ", ".join(sorted(map(str, scenarios)))
         raise ValueError(f"name: unknown scenario {name!r}; known: {known}")
-    cls: type[Scenario] = getattr(sys.modules[__name__], _REGISTRY[name][0])
-    return cls
+    found: object = scenarios[name]
+    if not (isinstance(found, type) and issubclass(found, Scenario)):
+        raise TypeError(
+            f"SCENARIOS[{name!r}] must be a Scenario subclass, got {found!r} "
+            f"({type(found).__name__})"
+        )
+    return found
