@@ -61,7 +61,7 @@ import timeit
 import types
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
-from datetime import datetime, timezone
+from datetime import UTC, datetime
 from pathlib import Path
 from typing import Any
 
@@ -869,7 +869,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             print(f"{work.name:26} {'quick ' if work.quick else '      '}{work.title}")
         return 0
     chosen = select(all_work, args)
-    date = datetime.now(timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+    date = datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC")
     info = machine()
     started = time.perf_counter()
 

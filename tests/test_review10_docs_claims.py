@@ -18,6 +18,7 @@ import re
 import shlex
 import subprocess
 import sys
+import tomllib
 import typing
 from pathlib import Path
 
@@ -116,17 +117,15 @@ def test_layers_quoted_as_the_architecture_test_enforces_them() -> None:
 
 
 def _pyproject() -> tuple[dict[str, str], str, set[str]]:
-    """pyproject.toml's dependency floors, ``requires-python`` and extras.
-
-    Read with regular expressions: ``tomllib`` is Python 3.11+ and navkit supports 3.10.
-    """
-    text = (ROOT / "pyproject.toml").read_text(encoding="utf-8")
-    deps = re.search(r"^dependencies = \[(.*?)^\]", text, re.M | re.S)
-    python = re.search(r'^requires-python = "(.*?)"$', text, re.M)
-    extras = re.search(r"^\[project\.optional-dependencies\]\n(.*?)^\[", text, re.M | re.S)
-    assert deps is not None and python is not None and extras is not None
-    floors = dict(re.findall(r'^\s*"([\w-]+)>=([\d.]+)",', deps[1], re.M))
-    return floors, python[1], set(re.findall(r"^([\w-]+) = \[", extras[1], re.M))
+    """pyproject.toml's dependency floors, ``requires-python`` and extras."""
+    with (ROOT / "pyproject.toml").open("rb") as file:
+        project = tomllib.load(file)["project"]
+    floors = {}
+    for requirement in project["dependencies"]:
+        floor = re.fullmatch(r"([\w-]+)>=([\d.]+)", requirement)
+        assert floor is not None, requirement
+        floors[floor[1]] = floor[2]
+    return floors, project["requires-python"], set(project["optional-dependencies"])
 
 
 def test_readme_dependency_floors_and_extras_are_pyprojects() -> None:

@@ -20,3 +20,9 @@ BoolArray = NDArray[np.bool_]
 CellLike = Sequence[SupportsIndex] | NDArray[np.integer[Any]]
 """A grid cell ``(row, col)`` as the planners take it: two Python or NumPy integers,
 or an integer array of shape (2,) (what ``world_to_cell`` returns for one point)."""
+
+KernelInt = int | np.int64
+"""An integer argument of a numba kernel: a Python ``int`` or a ``np.int64``.
+
+Kernels pass some counters as ``np.int64`` on purpose (a literal would make
+numba compile the callee once more), and reading an int64 array gives one."""

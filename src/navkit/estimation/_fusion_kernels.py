@@ -64,6 +64,7 @@ import numpy as np
 
 from navkit._shared.jit import njit_force_inline, njit_inline, njit_no_refcount
 from navkit._shared.se2 import wrap_scalar
+from navkit._shared.types import KernelInt
 
 N_STATE = 6
 N_COMP = 4
@@ -195,8 +196,8 @@ def _cho_solve_rows(buf: np.ndarray, lower: int, inv_diag: int, n: int, b: int) 
 def planar_step(
     buf: np.ndarray,
     t: float,
-    first: int,
-    count: int,
+    first: KernelInt,
+    count: KernelInt,
     z0: float,
     z1: float,
     var0: float,

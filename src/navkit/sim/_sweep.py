@@ -108,11 +108,7 @@ def _name_trial(exc: BaseException, scenario: Scenario, trial: Trial, total: int
         f"in scenario {scenario.name!r}, case {trial.case!r}, trial {trial.index} "
         f"(seed {trial.seed}; {total} trials in the sweep)"
     )
-    add_note = getattr(exc, "add_note", None)
-    if add_note is not None:
-        add_note(note)
-    else:  # pragma: no cover - Python 3.10: keep the note where 3.11 would
-        exc.__notes__ = [*getattr(exc, "__notes__", []), note]  # type: ignore[attr-defined]
+    exc.add_note(note)
 
 
 def _is_dask_client(executor: object) -> bool:

@@ -19,6 +19,7 @@ import math
 import numpy as np
 
 from navkit._shared.jit import njit_force_inline, njit_helper, njit_inline, njit_no_refcount
+from navkit._shared.types import KernelInt
 from navkit.planning.grid._search_heap import (
     REC_BASE,
     rec_pop,
@@ -37,10 +38,11 @@ DC = np.array([0, 0, -1, 1, -1, 1, -1, 1], dtype=np.int64)
 
 
 @njit_inline
-def _cells_to_goal(r: int, c: int, gr: int, gc: int, octile: bool) -> float:
+def _cells_to_goal(r: KernelInt, c: KernelInt, gr: int, gc: int, octile: bool) -> float:
     """Octile (8-connected) or Manhattan (4-connected) distance in cells."""
-    dr = abs(r - gr)
-    dc = abs(c - gc)
+    # mypy infers abs() of an ``int | np.int64`` as ``object``.
+    dr: KernelInt = abs(r - gr)  # type: ignore[assignment]
+    dc: KernelInt = abs(c - gc)  # type: ignore[assignment]
     if octile:
         # min/max rather than a branch: the comparison is unpredictable.
         return max(dr, dc) + _OCTILE_EXTRA * min(dr, dc)
@@ -53,24 +55,24 @@ def _relax(
     rec: np.ndarray,
     meta: np.ndarray,
     heap: np.ndarray,
-    n: int,
+    n: KernelInt,
     open_mark: int,
     closed_mark: int,
-    v: int,
+    v: KernelInt,
     code: int,
     step: float,
     gu: float,
     cu: float,
-    r: int,
-    c: int,
+    r: KernelInt,
+    c: KernelInt,
     gr: int,
     gc: int,
     octile: bool,
     scale: float,
     next_f: float,
     next_key: float,
-    next_v: int,
-) -> tuple[float, float, int, int]:
+    next_v: KernelInt,
+) -> tuple[float, float, KernelInt, KernelInt]:
     """Try a move to cell ``v`` = (r, c); return the next-node candidate and queue size.
 
     ``code`` is what the cell's record stores when the move improves it,
@@ -204,8 +206,8 @@ def grid_search(
     meta[4 * start + 2] = open_mark << 4
     expanded = 0
     found = 0
-    n = np.int64(0)  # np.int64: a literal 0 would compile callees once more
-    u = start
+    n: KernelInt = np.int64(0)  # np.int64: a literal 0 would compile callees once more
+    u: KernelInt = start
     while True:
         meta[4 * u + 2] = (closed_mark << 4) | (meta[4 * u + 2] & 15)
         expanded += 1
@@ -225,7 +227,7 @@ def grid_search(
         e_in = c + 1 < cols
         nf = np.inf
         nk = np.inf
-        nv = np.int64(-1)
+        nv: KernelInt = np.int64(-1)
         if n_in:
             nf, nk, nv, n = _relax(flat, rec, meta, heap, n, open_mark, closed_mark, u - cols,
                                    open16 | 1, 1.0, gu, cu, r - 1, c, gr, gc, eight, scale, nf, nk,

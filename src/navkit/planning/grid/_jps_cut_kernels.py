@@ -62,6 +62,7 @@ from __future__ import annotations
 import numpy as np
 
 from navkit._shared.jit import njit_no_refcount
+from navkit._shared.types import KernelInt
 from navkit.planning.grid._jps_kernels import (
     _DC,
     _DR,
@@ -81,13 +82,17 @@ from navkit.planning.grid._jps_kernels import (
 
 
 @_helper_not_inlined
-def _scan_forward_cut(bits: np.ndarray, nw: int, line: int, p: int, target: int) -> int:
+def _scan_forward_cut(
+    bits: np.ndarray, nw: int, line: KernelInt, p: KernelInt, target: int
+) -> KernelInt:
     """:func:`~navkit.planning.grid._jps_kernels._scan_line` towards larger positions, cutting."""
     return _scan_line(bits, nw, line, p, target, np.int64(1), np.bool_(True))
 
 
 @_helper_not_inlined
-def _scan_backward_cut(bits: np.ndarray, nw: int, line: int, p: int, target: int) -> int:
+def _scan_backward_cut(
+    bits: np.ndarray, nw: int, line: KernelInt, p: KernelInt, target: int
+) -> KernelInt:
     """:func:`~navkit.planning.grid._jps_kernels._scan_line` towards smaller positions, cutting."""
     return _scan_line(bits, nw, line, p, target, np.int64(-1), np.bool_(True))
 
@@ -98,12 +103,12 @@ def _scan(
     hw: int,
     col_bits: np.ndarray,
     vw: int,
-    q: int,
-    p: int,
+    q: KernelInt,
+    p: KernelInt,
     k: int,
     gq: int,
     gp: int,
-) -> int:
+) -> KernelInt:
     """Padded position along its line of the next jump point from (q, p) in straight direction k.
 
     -1 when a blocked cell comes first. ``(gq, gp)`` is the padded goal.
@@ -138,20 +143,20 @@ def _add_on_line(
     meta: np.ndarray,
     stamp: int,
     heap: np.ndarray,
-    n: int,
+    n: KernelInt,
     next_f: float,
     next_key: float,
-    next_v: int,
-    x: int,
+    next_v: KernelInt,
+    x: KernelInt,
     k: int,
-    r: int,
-    c: int,
+    r: KernelInt,
+    c: KernelInt,
     gu: float,
-    u: int,
+    u: KernelInt,
     cols: int,
     gr: int,
     gc: int,
-) -> tuple[int, float, float, int]:
+) -> tuple[KernelInt, float, float, KernelInt]:
     """Reach the jump point a straight scan k from node ``u`` = (r, c) found, and queue it.
 
     ``x`` is its padded position along the scanned line, ``gu`` the cost of
@@ -167,7 +172,9 @@ def _add_on_line(
 
 
 @_helper_not_inlined
-def _successor_directions(row_bits: np.ndarray, hw: int, q: int, p: int, d: int) -> int:
+def _successor_directions(
+    row_bits: np.ndarray, hw: int, q: KernelInt, p: KernelInt, d: KernelInt
+) -> KernelInt:
     """Bit set of the directions (0-7) to scan from padded (q, p) reached by move ``d``.
 
     ``d`` is -1 at the start (every direction). Directions are those of
@@ -228,9 +235,10 @@ def jps_cut_search(
     hw, vw, gr, gc = _begin(rows, cols, start, goal, g, meta)
     gq = gr + 1
     gp = gc + 1
-    n = np.int64(0)
+    n: KernelInt = np.int64(0)
     expanded = 0
-    u = start
+    u: KernelInt = start
+    next_v: KernelInt
     while u != goal:
         r, c, gu, d = _expand(blocks, stamp, u, cols, g, meta)
         expanded += 1

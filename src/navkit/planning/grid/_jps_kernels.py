@@ -55,6 +55,7 @@ from navkit._shared.jit import (
     njit_no_refcount,
     typed_njit,
 )
+from navkit._shared.types import KernelInt
 from navkit.planning.grid._limits import INF_BITS, read_only, scanned_cost_range
 from navkit.planning.grid._search_heap import (
     _precedes,
@@ -257,15 +258,21 @@ def _scan_costs(bits: np.ndarray, inf_bits: int) -> tuple[int, int]:
 
 
 @_helper_not_inlined
-def _free(bits: np.ndarray, nw: int, q: int, p: int) -> bool:
+def _free(bits: np.ndarray, nw: int, q: KernelInt, p: KernelInt) -> bool:
     """Whether padded cell (q, p) is traversable, from the bit rows ``bits`` of ``nw`` words."""
     return bool((bits[q * nw + (p >> 6) + 1] >> np.uint64(p & 63)) & _ONE)
 
 
 @_helper_inlined
 def _scan_line(
-    bits: np.ndarray, nw: int, line: int, p: int, target: int, step: int, cut: np.bool_
-) -> int:
+    bits: np.ndarray,
+    nw: int,
+    line: KernelInt,
+    p: KernelInt,
+    target: int,
+    step: KernelInt,
+    cut: np.bool_,
+) -> KernelInt:
     """Jump from position ``p`` of ``line`` in direction ``step`` (1 or -1).
 
     Returns the position of the first jump point after ``p``, or ``target``
@@ -305,13 +312,17 @@ def _scan_line(
 
 
 @_helper_not_inlined
-def _scan_forward(bits: np.ndarray, nw: int, line: int, p: int, target: int) -> int:
+def _scan_forward(
+    bits: np.ndarray, nw: int, line: KernelInt, p: KernelInt, target: int
+) -> KernelInt:
     """:func:`_scan_line` towards larger positions, without corner cutting."""
     return _scan_line(bits, nw, line, p, target, np.int64(1), np.bool_(False))
 
 
 @_helper_not_inlined
-def _scan_backward(bits: np.ndarray, nw: int, line: int, p: int, target: int) -> int:
+def _scan_backward(
+    bits: np.ndarray, nw: int, line: KernelInt, p: KernelInt, target: int
+) -> KernelInt:
     """:func:`_scan_line` towards smaller positions, without corner cutting."""
     return _scan_line(bits, nw, line, p, target, np.int64(-1), np.bool_(False))
 
@@ -322,13 +333,13 @@ def _jump_diagonal(
     hw: int,
     col_bits: np.ndarray,
     vw: int,
-    q: int,
-    p: int,
+    q: KernelInt,
+    p: KernelInt,
     dr: int,
     dc: int,
     gq: int,
     gp: int,
-) -> int:
+) -> KernelInt:
     """Number of diagonal steps (dr, dc) from padded (q, p) to the next jump point, or -1."""
     k = 0
     while True:
@@ -361,7 +372,9 @@ def _jump_diagonal(
 
 
 @_helper_not_inlined
-def _successor_directions(row_bits: np.ndarray, hw: int, q: int, p: int, d: int) -> int:
+def _successor_directions(
+    row_bits: np.ndarray, hw: int, q: KernelInt, p: KernelInt, d: KernelInt
+) -> KernelInt:
     """Bit set of the directions (0-7) to scan from padded (q, p) reached by move ``d``.
 
     ``d`` is -1 at the start (every direction).
@@ -392,7 +405,7 @@ def _successor_directions(row_bits: np.ndarray, hw: int, q: int, p: int, d: int)
 
 
 @njit_helper
-def _heap_push(heap: np.ndarray, n: int, f: float, key: float) -> None:
+def _heap_push(heap: np.ndarray, n: KernelInt, f: float, key: float) -> None:
     """Add (f, key) to the 4-ary min-heap of ``n`` entries in ``heap`` (room for one more)."""
     i = n
     while i > 0:
@@ -410,7 +423,7 @@ def _heap_push(heap: np.ndarray, n: int, f: float, key: float) -> None:
 
 
 @njit_helper
-def _heap_replace_top(heap: np.ndarray, last: int, f: float, key: float) -> int:
+def _heap_replace_top(heap: np.ndarray, last: KernelInt, f: float, key: float) -> int:
     """Replace the smallest of the entries ``0 .. last`` by (f, key); return its node.
 
     One walk down from the root, stopping where (f, key) fits. A pop is this
@@ -436,12 +449,12 @@ def _straight(
     hw: int,
     col_bits: np.ndarray,
     vw: int,
-    q: int,
-    p: int,
+    q: KernelInt,
+    p: KernelInt,
     k: int,
     gq: int,
     gp: int,
-) -> int:
+) -> KernelInt:
     """Padded position along its line of the next jump point from (q, p) in straight direction k.
 
     -1 when a blocked cell comes first. ``(gq, gp)`` is the padded goal.
@@ -461,9 +474,9 @@ def _reach(
     g: np.ndarray,
     meta: np.ndarray,
     stamp: int,
-    v: int,
+    v: KernelInt,
     new_g: float,
-    parent: int,
+    parent: KernelInt,
     k: int,
 ) -> bool:
     """Record that node ``v`` is reached at cost ``new_g`` from ``parent`` by a move in direction k.
@@ -502,9 +515,9 @@ def _follow_corridor(
     g: np.ndarray,
     meta: np.ndarray,
     stamp: int,
-    v: int,
+    v: KernelInt,
     k: int,
-) -> int:
+) -> KernelInt:
     """Pass through jump points that have one way on; return the node to queue, or -1.
 
     ``v`` was just reached by the straight move ``k`` (its record written).
@@ -614,9 +627,10 @@ def jps_search(
     hw, vw, gr, gc = _begin(rows, cols, start, goal, g, meta)
     gq = gr + 1
     gp = gc + 1
-    n = np.int64(0)  # np.int64: a literal 0 would compile _heap_push twice
+    n: KernelInt = np.int64(0)  # np.int64: a literal 0 would compile _heap_push twice
     expanded = 0
-    u = start
+    u: KernelInt = start
+    next_v: KernelInt
     while u != goal:
         r, c, gu, d = _expand(blocks, stamp, u, cols, g, meta)
         expanded += 1
@@ -698,8 +712,8 @@ def _begin(
 
 @_helper_inlined
 def _expand(
-    blocks: np.ndarray, stamp: int, u: int, cols: int, g: np.ndarray, meta: np.ndarray
-) -> tuple[int, int, float, int]:
+    blocks: np.ndarray, stamp: int, u: KernelInt, cols: int, g: np.ndarray, meta: np.ndarray
+) -> tuple[KernelInt, KernelInt, float, KernelInt]:
     """Close node ``u``: (its row, column, cost from the start, direction it was reached by).
 
     Sets its bit in its block's closed word, resetting a block last written
@@ -716,27 +730,30 @@ def _expand(
 
 
 @_helper_inlined
-def _line_end(r: int, c: int, q: int, p: int, k: int, x: int) -> tuple[int, int, int]:
+def _line_end(
+    r: KernelInt, c: KernelInt, q: KernelInt, p: KernelInt, k: int, x: KernelInt
+) -> tuple[KernelInt, KernelInt, KernelInt]:
     """Cell (row, col) at padded position ``x`` of the straight line k through (r, c); steps."""
+    # mypy infers abs() of an ``int | np.int64`` as ``object``.
     if k >= 2:
-        return r, x - 1, abs(x - p)
-    return x - 1, c, abs(x - q)
+        return r, x - 1, abs(x - p)  # type: ignore[return-value]
+    return x - 1, c, abs(x - q)  # type: ignore[return-value]
 
 
 @_helper_inlined
 def _offer(
     heap: np.ndarray,
-    n: int,
+    n: KernelInt,
     next_f: float,
     next_key: float,
-    next_v: int,
-    v: int,
-    vr: int,
-    vc: int,
+    next_v: KernelInt,
+    v: KernelInt,
+    vr: KernelInt,
+    vc: KernelInt,
     new_g: float,
     gr: int,
     gc: int,
-) -> tuple[int, float, float, int]:
+) -> tuple[KernelInt, float, float, KernelInt]:
     """Queue node ``v`` = (vr, vc), reached at cost ``new_g``, for expansion.
 
     ``(next_f, next_key, next_v)`` is the best successor of the node being
@@ -744,8 +761,9 @@ def _offer(
     none yet); of it and ``v`` the better one is held, the other pushed.
     Returns the new heap size (-1 when the heap is full) and held successor.
     """
-    adr = abs(vr - gr)
-    adc = abs(vc - gc)
+    # mypy infers abs() of an ``int | np.int64`` as ``object``.
+    adr: KernelInt = abs(vr - gr)  # type: ignore[assignment]
+    adc: KernelInt = abs(vc - gc)  # type: ignore[assignment]
     h = max(adr, adc) + _OCTILE_EXTRA * min(adr, adc)
     f = new_g + h
     key = tie_key(h, v)
@@ -763,8 +781,13 @@ def _offer(
 
 @_helper_inlined
 def _next_node(
-    heap: np.ndarray, n: int, next_f: float, next_key: float, next_v: int, blocks: np.ndarray
-) -> tuple[int, int]:
+    heap: np.ndarray,
+    n: KernelInt,
+    next_f: float,
+    next_key: float,
+    next_v: KernelInt,
+    blocks: np.ndarray,
+) -> tuple[KernelInt, KernelInt]:
     """The next node to expand and the new heap size; node -1 when the queue is empty.
 
     The held successor ``next_v`` (see :func:`_offer`) when it precedes the

@@ -35,6 +35,7 @@ import math
 import numpy as np
 
 from navkit._shared.jit import NO_REFCOUNT, njit_helper, njit_inline, typed_njit
+from navkit._shared.types import KernelInt
 
 # The heap operations are called only from the search kernels, so they are
 # compiled without a Python wrapper (a wrapper costs about a tenth of a second
@@ -55,7 +56,7 @@ _TIE_MAX = float(2**20 - 1)
 
 
 @njit_inline
-def tie_key(tie: float, node: int) -> float:
+def tie_key(tie: float, node: KernelInt) -> float:
     """Tie key of ``node``: ``tie`` (>= 0, resolution 1/16, saturating) then node id."""
     return math.floor(min(tie * _TIE_RESOLUTION, _TIE_MAX)) * _TWO32 + node
 
@@ -79,7 +80,7 @@ and share one cache line (``4i + 1 + REC_BASE`` is a multiple of 4)."""
 
 
 @njit_inline
-def _rec_place(heap: np.ndarray, meta: np.ndarray, i: int, f: float, key: float) -> None:
+def _rec_place(heap: np.ndarray, meta: np.ndarray, i: KernelInt, f: float, key: float) -> None:
     """Store the entry (f, key) in slot i and record the slot in its node's record."""
     heap[2 * i + 2 * REC_BASE] = f
     heap[2 * i + 2 * REC_BASE + 1] = key
@@ -87,7 +88,7 @@ def _rec_place(heap: np.ndarray, meta: np.ndarray, i: int, f: float, key: float)
 
 
 @_helper_not_inlined
-def rec_sift_up(heap: np.ndarray, meta: np.ndarray, i: int, f: float, key: float) -> None:
+def rec_sift_up(heap: np.ndarray, meta: np.ndarray, i: KernelInt, f: float, key: float) -> None:
     """Move the hole at slot i up past larger parents, then drop (f, key) in.
 
     ``i`` is the size of the heap to add an entry, or the queued node's slot to
@@ -106,7 +107,9 @@ def rec_sift_up(heap: np.ndarray, meta: np.ndarray, i: int, f: float, key: float
 
 
 @njit_inline
-def smallest_child(heap: np.ndarray, b: int, i: int, n: int) -> tuple[int, float, float]:
+def smallest_child(
+    heap: np.ndarray, b: int, i: int, n: KernelInt
+) -> tuple[int, float, float]:
     """Smallest child (slot, f, key) of slot i among ``n`` entries; slot -1 when none.
 
     Slot ``j`` of the heap is at entries ``b + 2 * j`` (f) and ``b + 2 * j + 1``
@@ -147,7 +150,7 @@ def smallest_child(heap: np.ndarray, b: int, i: int, n: int) -> tuple[int, float
 
 
 @njit_helper
-def rec_pop(heap: np.ndarray, meta: np.ndarray, n: int) -> int:
+def rec_pop(heap: np.ndarray, meta: np.ndarray, n: KernelInt) -> int:
     """Remove the smallest of the ``n`` (> 0) entries and return its node."""
     top = node_of(heap[2 * REC_BASE + 1])
     last = n - 1
@@ -168,7 +171,9 @@ def rec_pop(heap: np.ndarray, meta: np.ndarray, n: int) -> int:
 
 
 @njit_helper
-def rec_replace_top(heap: np.ndarray, meta: np.ndarray, n: int, f: float, key: float) -> int:
+def rec_replace_top(
+    heap: np.ndarray, meta: np.ndarray, n: KernelInt, f: float, key: float
+) -> int:
     """Remove the top of the ``n`` (> 0) entries, add (f, key) and return the removed node.
 
     One walk down from the root, stopping where (f, key) fits: cheaper than a
