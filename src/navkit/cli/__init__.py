@@ -21,8 +21,10 @@ file, map or data set prints one line ``navkit: error: ...`` and exits with
 code 1, as do output files that cannot be written, two options naming one
 file and a ``--data`` that is not a folder (without ``--scheduler``; all
 checked before a run starts).
-Ctrl-C exits with code 130; a closed standard output (``navkit list | head
--1``) ends the command quietly with code 141. Progress (trials done, ETA) is
+Ctrl-C exits with code 130 (``SIGTERM`` and ``SIGHUP`` with 143 and 129, after
+the same clean-up: worker processes stopped, no temporary files left), in one
+line; a closed standard output (``navkit list | head -1``) ends the command
+quietly with code 141. Progress (trials done, ETA) is
 drawn on standard error when it is a terminal and a run lasts more than about
 2 s; the first run, which compiles navkit's kernels, says so.
 
@@ -58,8 +60,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     int
         The exit code: 0 on success, 1 when a file, map or data set is missing
         or malformed (or no path exists), 2 on bad arguments (with a usage
-        message), 130 when interrupted, 141 (silently) when standard output is
-        closed early (``navkit list | head -1``).
+        message), 130 when interrupted (143 on ``SIGTERM``, 129 on ``SIGHUP``),
+        141 (silently) when standard output is closed early (``navkit list |
+        head -1``).
 
     Raises
     ------

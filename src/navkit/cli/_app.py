@@ -11,6 +11,7 @@ from typing import TextIO
 
 from navkit.cli._encoding import tolerant_output
 from navkit.cli._parser import build_parser, join_negative_points
+from navkit.cli._signals import Terminated, handled_signals
 from navkit.errors import NavkitError
 
 __all__ = ["main"]
@@ -59,7 +60,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         raise TypeError(f"argv must be a sequence of str or None, got {argv!r:.60}")
     # Under a locale without "×" or "±" (LC_ALL=C), ASCII stand-ins rather than a
     # UnicodeEncodeError ending the command.
-    with contextlib.ExitStack() as closing, tolerant_output():
+    with contextlib.ExitStack() as closing, tolerant_output(), handled_signals():
         # A closed standard output or error (`navkit warmup >&-`) is None in Python:
         # the command still runs, its text discarded.
         streams: list[TextIO] = []
@@ -77,9 +78,8 @@ def _main(argv: Sequence[str] | None, out: TextIO, err: TextIO) -> int:
         args = parser.parse_args(join_negative_points(given))
     except SystemExit as exc:  # --help, --version (0) and bad arguments (2)
         return exc.code if isinstance(exc.code, int) else (0 if exc.code is None else 2)
-    except KeyboardInterrupt:  # while a scenario or step name is checked (imports its module)
-        err.write("navkit: interrupted\n")
-        return 130
+    except KeyboardInterrupt as exc:  # while a scenario or step name is checked (imports it)
+        return _interrupted(exc, err)
     try:
         code = _dispatch(args, out, err)
         out.flush()  # a closed pipe fails here, not in the interpreter's last flush
@@ -94,9 +94,17 @@ def _main(argv: Sequence[str] | None, out: TextIO, err: TextIO) -> int:
     except EXPECTED as exc:
         err.write(f"navkit: error: {one_line(exc)}\n")
         return 1
-    except KeyboardInterrupt:
-        err.write("navkit: interrupted\n")
-        return 130
+    except KeyboardInterrupt as exc:
+        return _interrupted(exc, err)
+
+
+def _interrupted(exc: KeyboardInterrupt, err: TextIO) -> int:
+    """One line for Ctrl-C (exit code 130) or a termination signal (128 + signal)."""
+    if isinstance(exc, Terminated):
+        err.write(f"navkit: terminated ({exc.name})\n")
+        return exc.exit_code
+    err.write("navkit: interrupted\n")
+    return 130
 
 
 def _dispatch(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:

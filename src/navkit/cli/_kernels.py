@@ -17,10 +17,20 @@ import hashlib
 import importlib.util
 import os
 import sys
+import warnings
 from pathlib import Path
 from typing import Any, TextIO
 
-__all__ = ["KERNELS", "announce_compilation", "cache_folders", "kernels_cached"]
+from navkit._shared.jit import cache_problem, jit_disabled
+from navkit.errors import KernelCacheWarning
+
+__all__ = [
+    "KERNELS",
+    "announce_compilation",
+    "cache_folders",
+    "check_cache",
+    "kernels_cached",
+]
 
 #: Key kernels of each kind of work, ``(package, module, function)``, and about
 #: how long compiling everything that work needs takes on a cold cache, s
@@ -112,7 +122,47 @@ def kernels_cached(kind: str) -> bool:
     return any(any(folder.glob(pattern)) for folder in cache_folders(package) if folder.is_dir())
 
 
-def announce_compilation(kind: str, stream: TextIO) -> bool:
+def check_cache(stream: TextIO) -> str | None:
+    """Load numba and say on ``stream``, in one line, when it cannot cache navkit's kernels.
+
+    Called by the command before a run: worker processes forked afterwards
+    inherit numba loaded and the problem already said, instead of each
+    printing the library's two-line :class:`~navkit.errors.KernelCacheWarning`.
+    The warning filters in force still apply (``-W ignore::...`` silences the line).
+
+    Parameters
+    ----------
+    stream : text stream
+        Where to write (standard error).
+
+    Returns
+    -------
+    str or None
+        Why numba cannot cache the kernels (:func:`navkit._shared.jit.cache_problem`),
+        or None when it can.
+
+    Examples
+    --------
+    >>> import io
+    >>> check_cache(io.StringIO()) is None or True
+    True
+    """
+    with warnings.catch_warnings(record=True) as caught:
+        problem = cache_problem()
+    for warning in caught:
+        if issubclass(warning.category, KernelCacheWarning):
+            stream.write(f"navkit: warning: {' '.join(str(warning.message).split())}\n")
+        else:  # pragma: no cover - numba's own warnings, shown as they would have been
+            warnings.showwarning(
+                warning.message, warning.category, warning.filename, warning.lineno
+            )
+    stream.flush()
+    return problem
+
+
+def announce_compilation(
+    kind: str, stream: TextIO, *, problem: str | None = None, processes: int = 1
+) -> bool:
     """Say on ``stream`` that kernels will be compiled, when they are not cached.
 
     Parameters
@@ -121,24 +171,43 @@ def announce_compilation(kind: str, stream: TextIO) -> bool:
         A key of :data:`KERNELS`.
     stream : text stream
         Where to write (standard error).
+    problem : str, optional
+        Why numba cannot cache the kernels (:func:`check_cache`): then they are
+        compiled in every run, whatever the cache folders hold, and the notice
+        says so rather than promising a cache.
+    processes : int, optional
+        How many processes run the work, each compiling for itself.
 
     Returns
     -------
     bool
-        Whether the notice was written (the cache was cold).
+        Whether the notice was written (the cache was cold or unusable; never
+        with numba's JIT disabled, which compiles nothing).
 
     Examples
     --------
     >>> import io
     >>> announce_compilation("astar", io.StringIO()) in (True, False)
     True
-    """
-    if kernels_cached(kind):
+    >>> notice = io.StringIO()
+    >>> announce_compilation("astar", notice, problem="read-only", processes=2)
+    True
+    >>> print(notice.getvalue().strip())
+    navkit: compiling navkit's kernels (about 3 s, in each of 2 processes), again in every run: numba cannot cache them here
+    """  # noqa: E501
+    if jit_disabled() or (problem is None and kernels_cached(kind)):
         return False
     seconds = KERNELS[kind][1]
-    stream.write(
-        f"navkit: compiling navkit's kernels once (about {seconds:.0f} s), cached afterwards"
-        " (`navkit warmup` compiles them all ahead)\n"
-    )
+    each = f", in each of {processes} processes" if processes > 1 else ""
+    if problem is not None:
+        stream.write(
+            f"navkit: compiling navkit's kernels (about {seconds:.0f} s{each}), again in every"
+            " run: numba cannot cache them here\n"
+        )
+    else:
+        stream.write(
+            f"navkit: compiling navkit's kernels once (about {seconds:.0f} s{each}), cached"
+            " afterwards (`navkit warmup` compiles them all ahead)\n"
+        )
     stream.flush()
     return True

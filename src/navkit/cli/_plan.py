@@ -13,7 +13,7 @@ import numpy as np
 import yaml
 
 from navkit._shared.types import FloatArray
-from navkit.cli._kernels import announce_compilation
+from navkit.cli._kernels import announce_compilation, check_cache
 from navkit.cli._outputs import check_output, save_picture
 from navkit.errors import NoPathError
 from navkit.mapping import OccupancyGrid
@@ -114,8 +114,9 @@ def plan_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
     check_output(args.plot, ".png", "--plot")
     grid = read_map(args.map)
     _check_not_an_input(args.plot, args.map)
+    problem = check_cache(err)
     if not args.quiet:
-        announce_compilation(args.planner, err)
+        announce_compilation(args.planner, err, problem=problem)
     _warm_up(grid.resolution, args.radius, args.planner)
     began = time.perf_counter()
     planner = MapPlanner(grid, robot_radius=args.radius, planner=args.planner)

@@ -11,7 +11,7 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import Any, TextIO
 
-from navkit.cli._kernels import announce_compilation
+from navkit.cli._kernels import announce_compilation, check_cache
 from navkit.cli._outputs import (
     check_distinct,
     check_output,
@@ -93,8 +93,11 @@ def run_scenario(
         raise FileNotFoundError(f"--data: {args.data} is not a folder")
     scenario = _construct(name, args)
     total = len(scenario.trials(args.trials, seed=args.seed))
-    if not args.quiet and address is None:
-        announce_compilation("simulation", err)
+    if address is None:  # (a Dask cluster's workers compile, and cache, on their own machines)
+        problem = check_cache(err)
+        if not args.quiet:
+            processes = _processes(workers, total)
+            announce_compilation("simulation", err, problem=problem, processes=processes)
     began = time.perf_counter()
     with (
         _dask_client(address) as client,
@@ -121,10 +124,15 @@ def run_scenario(
     return 0
 
 
+def _processes(workers: int | None, total: int) -> int:
+    """How many local processes sweep runs ``total`` trials on (1: this one)."""
+    # sweep's rule: min(workers or the usable cores, trials) processes; 1 is this process.
+    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
+    return max(1, min(workers if workers is not None else (cores or 1), total))
+
+
 def _where(address: str | None, workers: int | None, total: int) -> str:
     if address is not None:
         return f"Dask scheduler {address}"
-    # sweep's rule: min(workers or the usable cores, trials) processes; 1 is this process.
-    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
-    n = min(workers if workers is not None else (cores or 1), total)
+    n = _processes(workers, total)
     return "this process" if n <= 1 else f"{n} local processes"

@@ -1,0 +1,108 @@
+"""Ctrl-C and termination signals while a command runs: one line, no worker noise.
+
+Python's defaults serve a command with worker processes badly:
+
+* Ctrl-C reaches the whole process group. A worker (forked by ``navkit run
+  --workers N`` or ``navkit warmup``) waiting for its next trial then died of
+  ``KeyboardInterrupt`` with a traceback of the pool's internals on standard
+  error, beside the command's own ``navkit: interrupted``.
+* ``SIGTERM`` or ``SIGHUP`` (``kill``, a CI job's time limit, a closed terminal,
+  ``docker stop``) killed the command at once: no cleanup of temporary files,
+  and the pool's workers, blocked forever on a queue no one would write to
+  again, were left behind as orphans.
+
+:func:`handled_signals` makes the command end on each of these signals as on
+Ctrl-C: an exception in the main thread, so that pools are shut down and
+temporary files removed, then exit code ``128 + signal`` and one line. A
+worker process forked meanwhile inherits the handler and ends quietly instead
+(:class:`WorkerStopped`).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import signal
+import threading
+from collections.abc import Iterator
+from types import FrameType
+
+__all__ = ["Terminated", "WorkerStopped", "handled_signals"]
+
+
+class Terminated(KeyboardInterrupt):
+    """The command received ``SIGTERM`` or ``SIGHUP``: it ends as on Ctrl-C.
+
+    A :class:`KeyboardInterrupt`, so that the library's clean-up on Ctrl-C
+    (pools shut down, temporary files removed) runs for it too.
+
+    Parameters
+    ----------
+    signum : int
+        The signal's number.
+    """
+
+    def __init__(self, signum: int) -> None:
+        super().__init__(signum)
+        self.signum = signum
+
+    @property
+    def exit_code(self) -> int:
+        """``128 + signal``, what a shell reports for a command a signal ended."""
+        return 128 + self.signum
+
+    @property
+    def name(self) -> str:
+        """The signal's name (``"SIGTERM"``)."""
+        return signal.Signals(self.signum).name
+
+
+class WorkerStopped(SystemExit, KeyboardInterrupt):
+    """A signal in a worker process the command forked.
+
+    A :class:`SystemExit` where the worker waits for work: multiprocessing
+    then ends the worker quietly rather than printing a traceback. A
+    :class:`KeyboardInterrupt` where it runs a trial: the pool sends it back to
+    the command, which stops as on Ctrl-C.
+    """
+
+
+def _stop_worker(signum: int, frame: FrameType | None) -> None:
+    raise WorkerStopped(128 + signum)
+
+
+@contextlib.contextmanager
+def handled_signals() -> Iterator[None]:
+    """Within the block, ``SIGINT``, ``SIGTERM`` and ``SIGHUP`` raise in this process.
+
+    ``SIGINT`` raises :class:`KeyboardInterrupt` (as by default), the others
+    :class:`Terminated`; in a process forked within the block, any of them
+    raises :class:`WorkerStopped`. A signal whose handler is not Python's
+    default (set by the program embedding the command) is left alone, as is
+    every signal outside the main thread, where handlers cannot be set. The
+    previous handlers are restored afterwards.
+    """
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    owner = os.getpid()
+
+    def handle(signum: int, frame: FrameType | None) -> None:
+        if os.getpid() != owner:
+            _stop_worker(signum, frame)
+        if signum == signal.SIGINT:
+            raise KeyboardInterrupt
+        raise Terminated(signum)
+
+    defaults = {signal.SIGINT: signal.default_int_handler, signal.SIGTERM: signal.SIG_DFL}
+    if hasattr(signal, "SIGHUP"):  # not on Windows
+        defaults[signal.SIGHUP] = signal.SIG_DFL
+    previous = {}
+    try:
+        for signum, default in defaults.items():
+            if signal.getsignal(signum) is default:
+                previous[signum] = signal.signal(signum, handle)
+        yield
+    finally:
+        for signum, handler in previous.items():
+            signal.signal(signum, handler)
