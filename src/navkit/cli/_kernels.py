@@ -92,9 +92,22 @@ def cache_folders(package: str) -> list[Path]:
         return []
     source_dir = Path(next(iter(spec.submodule_search_locations)))
     custom = _numba_cache_dir()
-    if custom:
+    if custom and _could_write(Path(custom) / _subfolder(source_dir)):
         return [Path(custom) / _subfolder(source_dir)]
+    # numba passes over a NUMBA_CACHE_DIR it cannot make or write to (a typo, a
+    # read-only mount) and caches where it would without one.
     return [source_dir / "__pycache__", _user_wide_dir() / _subfolder(source_dir)]
+
+
+def _could_write(folder: Path) -> bool:
+    """Whether ``folder`` is, or could be made, a writable folder (numba's test, not made)."""
+    try:
+        for existing in (folder, *folder.parents):
+            if existing.exists():
+                return existing.is_dir() and os.access(existing, os.W_OK | os.X_OK)
+    except OSError:  # a folder on the way that cannot be looked into
+        return False
+    return False
 
 
 def kernels_cached(kind: str) -> bool:
