@@ -89,3 +89,18 @@ def test_warning_can_be_filtered_by_the_users_module(tmp_path: Path) -> None:
         "rollout((0.0, 0.0, 0.0), np.array([[1.0, 0.0, 0.5]]), 0.5)  # HERE\n",
     )
     assert caught == []
+
+
+def test_stack_walk_passes_through_importlibs_public_functions() -> None:
+    # A kernel first made under importlib.import_module (e.g. a lazily imported
+    # scenario module) must still name the user's line, not importlib/__init__.py.
+    from navkit._shared import jit
+
+    navkit_side: dict[str, object] = {"__name__": "navkit.fake", "walk": jit._user_stacklevel}
+    exec("def warn_site():\n    return walk()", navkit_side)
+    importlib_side: dict[str, object] = {"__name__": "importlib", "inner": navkit_side["warn_site"]}
+    exec("def import_module():\n    return inner()", importlib_side)
+    import_module = importlib_side["import_module"]
+    assert callable(import_module)
+    # warn_site (1, navkit) <- import_module (2, importlib) <- this test (3, the user)
+    assert import_module() == 3

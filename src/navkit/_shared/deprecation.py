@@ -50,7 +50,9 @@ def renamed_keyword(
     Raises
     ------
     TypeError
-        When both names were given.
+        When both names were given. A new name passed with exactly its default
+        value cannot be told from one not passed: the old name's value then
+        wins, with the warning.
 
     Warns
     -----

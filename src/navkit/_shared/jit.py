@@ -86,7 +86,11 @@ def _user_stacklevel() -> int:
     def ours(frame: FrameType) -> bool:
         # By module name, not file: a file's path may be spelt another way (symlinks).
         module = frame.f_globals.get("__name__")
-        return isinstance(module, str) and module.partition(".")[0] in ("navkit", "numba")
+        # importlib's public functions (import_module) are counted by warnings
+        # but are not the user's line either: walk through them.
+        return isinstance(module, str) and module.partition(".")[0] in (
+            "navkit", "numba", "importlib"
+        )
 
     def internal(frame: FrameType) -> bool:
         # What warnings takes for import machinery: never counted in a stacklevel.

@@ -104,5 +104,16 @@ def handled_signals() -> Iterator[None]:
                 previous[signum] = signal.signal(signum, handle)
         yield
     finally:
-        for signum, handler in previous.items():
-            signal.signal(signum, handler)
+        # A signal between two restores would raise out of this loop and leave
+        # navkit's handler on the signals not yet restored: hold them until done.
+        mask = (
+            signal.pthread_sigmask(signal.SIG_BLOCK, previous)
+            if previous and hasattr(signal, "pthread_sigmask")
+            else None
+        )
+        try:
+            for signum, handler in previous.items():
+                signal.signal(signum, handler)
+        finally:
+            if mask is not None:  # the caller's own mask, as it was
+                signal.pthread_sigmask(signal.SIG_SETMASK, mask)
