@@ -26,7 +26,7 @@ POSES = [(1.5 + 0.1 * k, 4.0 - 0.05 * k, 0.02 * k) for k in range(40)]
 
 def _scans() -> list:
     rng = np.random.default_rng(0)
-    return [LIDAR.scan(WORLD, p, rng=rng) for p in POSES]
+    return [LIDAR.scan(WORLD, p, seed=rng) for p in POSES]
 
 
 def test_match_and_write_360_beams(benchmark: pytest.FixtureRequest) -> None:

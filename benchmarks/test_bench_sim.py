@@ -308,7 +308,7 @@ def closed_loop() -> Simulation:
         GoToGoal(GOAL),
         start=start,
         goal=GOAL,
-        goal_radius=0.2,
+        goal_tolerance=0.2,
         estimator=fusion,
         rate=100.0,
         control_rate=20.0,

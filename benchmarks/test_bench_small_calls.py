@@ -206,7 +206,7 @@ def _bare_diff_step(pose: tuple[float, float, float], dl: int, dr: int) -> tuple
 @pytest.mark.parametrize("contestant", ["public", "batch_of_one", "bare_python"])
 def test_diff_odometry_update(benchmark: Any, contestant: str) -> None:
     odo = DiffOdometry(DiffDrive(track=0.5, wheel_radius=0.1), ticks_per_rev=1000,
-                       encoder_bits=16, method="first_order")
+                       bits=16, method="first_order")
     ticks = [0]
 
     def reading() -> tuple[int, int]:

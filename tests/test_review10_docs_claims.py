@@ -255,8 +255,8 @@ def test_scan_matcher_weights_quoted_in_the_tutorial() -> None:
 
 def test_control_guide_defaults_poles_and_phases() -> None:
     page = _page("docs/guides/control.md")
-    tol = _default(OnOffTracker, "heading_tolerance")
-    assert f"`heading_tolerance` ({math.degrees(tol):.0f}°)" in page
+    tol = _default(OnOffTracker, "rotate_angle")
+    assert f"`rotate_angle` ({math.degrees(tol):.0f}°)" in page
     # ON-OFF's largest excursion r0 sin(b) exp(-b / tan(b)), as a share of r0.
     stray = math.sin(tol) * math.exp(-tol / math.tan(tol))
     assert f"({100 * stray:.2f} % of the start distance for {math.degrees(tol):.0f}°)" in page

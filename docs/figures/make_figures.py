@@ -144,7 +144,7 @@ def carmen_grid(out_dir: Path) -> Path:
     grid = OccupancyGrid.empty(width=30.0, height=30.0, resolution=0.05,
                                origin=(-12.0, -24.5, 0.0))  # fmt: skip
     for scan, pose in zip(log.scans, log.laser_poses, strict=True):
-        integrate_scan(grid, scan, pose, max_range=20.0)
+        integrate_scan(grid, scan, pose, range_max=20.0)
     fig, ax = plt.subplots(figsize=(7.0, 7.0))
     ax.imshow(1.0 - grid.probability(), origin="lower", extent=_extent(grid), cmap="gray",
               vmin=0.0, vmax=1.0, interpolation="nearest")  # fmt: skip

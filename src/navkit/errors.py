@@ -40,8 +40,8 @@ class NavkitError(Exception):
     >>> try:
     ...     astar(costs, (0, 0), (0, 2))
     ... except NavkitError as exc:
-    ...     print(type(exc).__name__, exc.expanded)
-    NoPathError 3
+    ...     print(type(exc).__name__, exc)
+    NoPathError no path from start_cell (0, 0) to goal_cell (0, 2) (expanded 3 cells)
     >>> issubclass(FilterError, NavkitError), issubclass(ValueError, NavkitError)
     (True, False)
     """

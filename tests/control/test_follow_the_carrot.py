@@ -180,7 +180,7 @@ def test_slower_control_rate_still_converges(closed_loop: Callable[..., Any],
     [("carrot_distance", 0.0, ValueError), ("carrot_distance", -0.3, ValueError),
      ("max_speed", 0.0, ValueError), ("max_speed", 1e3, ValueError),
      ("max_omega", math.inf, ValueError), ("heading_gain", -1.0, ValueError),
-     ("align_angle", 4.0, ValueError), ("align_tolerance", 1.0, ValueError),
+     ("rotate_angle", 4.0, ValueError), ("align_tolerance", 1.0, ValueError),
      ("max_speed", "fast", TypeError), ("carrot_distance", True, TypeError)],
 )
 def test_bad_options(option: str, value: Any, error: type[Exception]) -> None:

@@ -38,11 +38,11 @@ def test_spiral_constant() -> None:
 
 def test_paper_defaults() -> None:
     params = inspect.signature(OnOffTracker).parameters
-    assert params["heading_tolerance"].default == pytest.approx(math.radians(10.0))
+    assert params["rotate_angle"].default == pytest.approx(math.radians(10.0))
     assert params["goal_tolerance"].default == 0.05
     tracker = OnOffTracker()
-    assert tracker.heading_tolerance == pytest.approx(BETA)
-    assert (tracker.speed, tracker.turn_rate, tracker.goal_tolerance) == (0.2, 0.5, 0.05)
+    assert tracker.rotate_angle == pytest.approx(BETA)
+    assert (tracker.max_speed, tracker.rotate_omega, tracker.goal_tolerance) == (0.2, 0.5, 0.05)
 
 
 def _max_segment(path: np.ndarray) -> float:
@@ -117,7 +117,7 @@ def test_omni_drives_straight_at_each_waypoint(closed_loop: Callable[..., Any],
 
 
 def test_big_steps_do_not_overshoot() -> None:
-    tracker = OnOffTracker(turn_rate=2.0, speed=1.0)
+    tracker = OnOffTracker(rotate_omega=2.0, max_speed=1.0)
     tracker.set_path([[0.0, 0.0], [0.3, 0.0]])
     cmd = tracker.step((0.0, 0.0, 0.5), 1.0)  # one second at 2 rad/s would pass the target
     assert cmd.omega == pytest.approx(-0.5)
@@ -128,9 +128,10 @@ def test_big_steps_do_not_overshoot() -> None:
 
 @pytest.mark.parametrize(
     ("option", "value", "error"),
-    [("speed", 0.0, ValueError), ("speed", -0.2, ValueError), ("turn_rate", 0.0, ValueError),
-     ("turn_rate", math.nan, ValueError), ("heading_tolerance", 0.0, ValueError),
-     ("heading_tolerance", math.pi / 2, ValueError), ("speed", "slow", TypeError)],
+    [("max_speed", 0.0, ValueError), ("max_speed", -0.2, ValueError),
+     ("rotate_omega", 0.0, ValueError), ("rotate_omega", math.nan, ValueError),
+     ("rotate_angle", 0.0, ValueError), ("rotate_angle", math.pi / 2, ValueError),
+     ("max_speed", "slow", TypeError)],
 )
 def test_bad_options(option: str, value: Any, error: type[Exception]) -> None:
     with pytest.raises(error, match=option):

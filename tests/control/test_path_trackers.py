@@ -334,8 +334,8 @@ def test_follow_the_carrot_limits(path: Any, start: Any, dt: float, drive: str,
        st.floats(0.05, 1.0), st.floats(0.1, 2.0))
 def test_on_off_limits(path: Any, start: Any, dt: float, drive: str, heading: float | None,
                        speed: float, turn_rate: float) -> None:
-    """ON-OFF: either turning at most at turn_rate or driving straight at most at speed."""
-    tracker = OnOffTracker(drive=drive, speed=speed, turn_rate=turn_rate)
+    """ON-OFF: either turning at most at rotate_omega or driving straight at most at max_speed."""
+    tracker = OnOffTracker(drive=drive, max_speed=speed, rotate_omega=turn_rate)
 
     def check(cmd: Twist2D, phase: str) -> None:
         assert math.hypot(cmd.vx, cmd.vy) <= speed + _TOL

@@ -261,11 +261,12 @@ def test_bad_arguments() -> None:
 
 
 def test_options_are_keyword_only() -> None:
-    # step(pose, None, target, None, 0.05) was easy to misorder: dt and the rest are named.
+    # step(pose, None, target, None, 0.05) was easy to misorder: after dt (positional
+    # as in the trackers' step(pose, dt)) obstacles and velocity are named.
     ctl = PotentialFieldController()
     pose = Pose2D(0.0, 0.0)
     with pytest.raises(TypeError, match="positional"):
-        ctl.step(pose, pose, 0.05)  # type: ignore[misc]
+        ctl.step(pose, pose, 0.05, None)  # type: ignore[misc]
     with pytest.raises(TypeError, match="dt"):
         ctl.step(pose, pose)  # type: ignore[call-arg]
     with pytest.raises(TypeError, match="positional"):

@@ -49,7 +49,7 @@ def test_nav2_defaults() -> None:
     assert d["lookahead_time"] == 1.5
     assert (d["min_lookahead"], d["max_lookahead"]) == (0.3, 0.9)
     assert d["rotate_to_heading"] is True
-    assert d["rotate_to_heading_angle"] == 0.785
+    assert d["rotate_angle"] == 0.785  # rotate_to_heading_min_angle
     assert d["rotate_omega"] == 1.8
     assert d["max_angular_accel"] == 3.2
     assert d["curvature_regulation"] is True
@@ -319,7 +319,7 @@ def test_max_omega_keeps_the_arc() -> None:
     [("max_speed", 0.0, ValueError), ("lookahead_time", -1.0, ValueError),
      ("min_lookahead", 0.0, ValueError), ("max_lookahead", 0.2, ValueError),
      ("rotate_to_heading", 1, TypeError), ("curvature_regulation", "yes", TypeError),
-     ("rotate_to_heading_angle", 3.5, ValueError), ("rotate_omega", 0.0, ValueError),
+     ("rotate_angle", 3.5, ValueError), ("rotate_omega", 0.0, ValueError),
      ("max_angular_accel", math.inf, ValueError), ("slowdown_radius", -0.9, ValueError),
      ("min_regulated_speed", -0.1, ValueError), ("clearance", 0.5, TypeError),
      ("clearance", np.ones((3, 3)), TypeError), ("clearance_distance", 0.0, ValueError),

@@ -37,7 +37,7 @@ def test_omni_heads_straight_for_the_lookahead_point_after_snapping_to_it(theta:
     travel = _world_direction(first.vx, first.vy, theta)
     assert travel == pytest.approx(0.0, abs=1e-9)  # along the path
     # The robot is now well off the path (moved by hand): its lookahead point lies
-    # more than rotate_to_heading_angle (0.785 rad) away from its direction of travel.
+    # more than rotate_angle (0.785 rad) away from its direction of travel.
     pose = Pose2D(0.5, 1.0, theta)
     cmd = tracker.step(pose, DT)
     assert tracker.target_xy is not None

@@ -4,7 +4,7 @@
   :func:`limit_velocity_change` and positions printed a refused value with
   ``:g``, which rounds it back into range (``max_speed`` 1e6 + 1e-6 as
   "1e+06"; a pose 1e9 + 1e-6 m away as "1e+09").
-* ``OnOffTracker(heading_tolerance=...)`` just above π/2 was refused as out
+* ``OnOffTracker(rotate_angle=...)`` (then ``heading_tolerance``) just above π/2 was refused as out
   of "(0, 1.5708]", a range that holds π/2, which is refused too.
 * :func:`limit_velocity_change` refused a change whose components are finite
   but whose length exceeds the float range (from rest toward ``(1.3e308,
@@ -70,11 +70,11 @@ def test_position_errors_print_the_coordinates_exactly(arg: str) -> None:
 
 @pytest.mark.parametrize("value", [math.pi / 2, math.nextafter(math.pi / 2, 4.0)])
 def test_on_off_heading_tolerance_error_states_the_open_range(value: float) -> None:
-    with pytest.raises(ValueError, match=r"heading_tolerance must be in \(0, π/2\)") as err:
-        OnOffTracker(heading_tolerance=value)
+    with pytest.raises(ValueError, match=r"rotate_angle must be in \(0, π/2\)") as err:
+        OnOffTracker(rotate_angle=value)
     assert repr(value) in str(err.value)
     below = math.nextafter(math.pi / 2, 0.0)
-    assert OnOffTracker(heading_tolerance=below).heading_tolerance == below
+    assert OnOffTracker(rotate_angle=below).rotate_angle == below
 
 
 def test_a_change_longer_than_the_float_range_is_limited() -> None:

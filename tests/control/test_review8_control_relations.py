@@ -24,7 +24,7 @@ from navkit.control import (
     limit_velocity_change,
 )
 from navkit.control._path_following import PathTracker
-from navkit.geometry import Pose2D, Twist2D, integrate
+from navkit.geometry import Pose2D, Twist2D, angle_diff, integrate
 from navkit.mapping import LaserScan
 from navkit.planning import ConicAttraction, PiecewiseAttraction
 
@@ -49,10 +49,10 @@ def _tracker(kind: str, drive: str, clearance: Clearance) -> PathTracker:
         "carrot": lambda: FollowTheCarrot(drive=drive),  # type: ignore[arg-type]
         "carrot_wide": lambda: FollowTheCarrot(
             drive=drive, carrot_distance=0.8, max_speed=1.0, heading_gain=0.5,  # type: ignore[arg-type]
-            align_angle=2.5, align_tolerance=0.3),
+            rotate_angle=2.5, align_tolerance=0.3),
         "onoff": lambda: OnOffTracker(drive=drive),  # type: ignore[arg-type]
         "onoff_loose": lambda: OnOffTracker(
-            drive=drive, speed=1.0, turn_rate=3.0, heading_tolerance=1.2),  # type: ignore[arg-type]
+            drive=drive, max_speed=1.0, rotate_omega=3.0, rotate_angle=1.2),  # type: ignore[arg-type]
         "rpp": lambda: RegulatedPurePursuit(drive=drive),  # type: ignore[arg-type]
         "rpp_no_rotate": lambda: RegulatedPurePursuit(
             drive=drive, max_omega=0.7, rotate_to_heading=False),  # type: ignore[arg-type]
@@ -282,10 +282,13 @@ def test_potential_field_controller_in_mirrored_and_moved_worlds(
             use_velocity) else None
         ca = a.step(pose, target, dt=dt, obstacles=seen_a, velocity=va)
         cb = b.step(world(pose), world(target), dt=dt, obstacles=seen_b, velocity=vb)
-        if mirror and _turn_tie(ca, cb):
+        # The target heading exactly behind the robot (both offset alike by _start):
+        # the heading error is ±π, which (-π, π] makes +π in both worlds.
+        behind = math.isclose(abs(angle_diff(target.theta, pose.theta)), math.pi, abs_tol=1e-12)
+        if mirror and (_turn_tie(ca, cb) or (behind and ca.omega == cb.omega != 0.0)):
             # Pushed from exactly behind (a beam at angle 0 seeing an obstacle ahead
-            # of a robot at its target): the heading error rounds to ±π, which
-            # (-π, π] makes +π in both worlds, so both twins turn the same way.
+            # of a robot at its target), or turning to a target heading exactly
+            # behind: both twins turn the same way.
             break
         # Mirroring is exact up to wrap's rounding; a motion rounds positions by
         # ~1e-14 m, which the controller's Lipschitz laws keep near that.

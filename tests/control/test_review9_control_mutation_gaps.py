@@ -37,15 +37,15 @@ def test_rpp_omni_lookahead_uses_the_measured_planar_speed(
 
 @pytest.mark.parametrize("threshold", [math.pi / 2, math.pi / 4])
 def test_rpp_rotates_only_when_strictly_beyond_the_rotate_angle(threshold: float) -> None:
-    # "more than rotate_to_heading_angle off the robot's heading": a lookahead point
+    # "more than rotate_angle off the robot's heading": a lookahead point
     # exactly at that angle is tracked on its arc, a hair beyond it is turned to.
     path = [[0.0, 0.0], [0.0, 5.0]]  # the lookahead point lies straight up, at +π/2
-    at = RegulatedPurePursuit(rotate_to_heading_angle=threshold)
+    at = RegulatedPurePursuit(rotate_angle=threshold)
     at.set_path(path)
     cmd = at.step((0.0, 0.0, math.pi / 2 - threshold), 0.05)
     assert at.phase == "track"
     assert cmd.vx > 0.0
-    beyond = RegulatedPurePursuit(rotate_to_heading_angle=threshold)
+    beyond = RegulatedPurePursuit(rotate_angle=threshold)
     beyond.set_path(path)
     cmd = beyond.step((0.0, 0.0, math.pi / 2 - threshold - 1e-9), 0.05)
     assert beyond.phase == "rotate"

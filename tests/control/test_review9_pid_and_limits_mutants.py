@@ -133,21 +133,21 @@ def test_on_off_tracker_rules_at_their_thresholds() -> None:
     tracker.step(Pose2D(0.25, 0.0, 0.0), 0.1)
     assert tracker.waypoint == 2
 
-    # A heading error of exactly heading_tolerance turns in place ("at least");
+    # A heading error of exactly rotate_angle turns in place ("at least");
     # just under it, the robot drives straight.
     for theta, rotates in ((-0.25, True), (-0.2499, False)):
-        tracker = OnOffTracker(heading_tolerance=0.25, speed=0.2, turn_rate=0.5)
+        tracker = OnOffTracker(rotate_angle=0.25, max_speed=0.2, rotate_omega=0.5)
         tracker.set_path([[0.0, 0.0], [1.0, 0.0]])
         cmd = tracker.step(Pose2D(0.0, 0.0, theta), 0.1)
         assert cmd.vx == (0.0 if rotates else pytest.approx(0.2))
         assert cmd.omega == (pytest.approx(0.5) if rotates else 0.0)
 
     # The tolerance range is the open (0, π/2).
-    with pytest.raises(ValueError, match="heading_tolerance"):
-        OnOffTracker(heading_tolerance=math.pi / 2)
+    with pytest.raises(ValueError, match="rotate_angle"):
+        OnOffTracker(rotate_angle=math.pi / 2)
 
 
-def test_follow_the_carrot_turn_never_overshoots_and_tracks_at_align_angle() -> None:
+def test_follow_the_carrot_turn_never_overshoots_and_tracks_at_rotate_angle() -> None:
     from navkit.control import FollowTheCarrot
 
     path = [[0.0, 0.0], [5.0, 0.0]]
@@ -159,9 +159,9 @@ def test_follow_the_carrot_turn_never_overshoots_and_tracks_at_align_angle() -> 
     assert cmd.omega == pytest.approx(0.05)
 
     # Tracking, the robot goes back to turning in place only when the error
-    # exceeds align_angle: exactly align_angle keeps it driving.
+    # exceeds rotate_angle: exactly rotate_angle keeps it driving.
     for theta, drives in ((-0.5, True), (-0.5001, False)):
-        ftc = FollowTheCarrot(align_angle=0.5, align_tolerance=0.1)
+        ftc = FollowTheCarrot(rotate_angle=0.5, align_tolerance=0.1)
         ftc.set_path(path)
         assert ftc.step(Pose2D(0.0, 0.0, 0.0), 0.1).vx > 0.0  # aligned: tracking
         cmd = ftc.step(Pose2D(0.0, 0.0, theta), 0.1)

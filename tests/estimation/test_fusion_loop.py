@@ -80,7 +80,7 @@ def simulate(seed: int) -> dict[str, np.ndarray]:
 
 
 def wheel_only(sim: dict[str, np.ndarray]) -> np.ndarray:
-    odo = DiffOdometry(MODEL_DRIVE, ticks_per_rev=TPR, encoder_bits=32)
+    odo = DiffOdometry(MODEL_DRIVE, ticks_per_rev=TPR, bits=32)
     return odo.update_batch(sim["ticks"][:, 0], sim["ticks"][:, 1])
 
 

@@ -99,7 +99,7 @@ def test_diff_odometry_chunks_online_mirror_and_rigid_motion(
     assert_same_angles(moved[:, 2], whole[:, 2])
     # A counter that starts anywhere (and wraps) gives the same tick differences: bit for bit.
     offset = data.draw(st.integers(0, 65535))
-    wrapped = odometry(encoder_bits=16).update_batch(
+    wrapped = odometry(bits=16).update_batch(
         (left + offset) % 65536, (right + offset) % 65536
     )
     np.testing.assert_array_equal(wrapped, whole)

@@ -108,10 +108,10 @@ def test_diff_odometry_half_range_step_is_negative_as_tick_delta(bits: int) -> N
     half = 2 ** (bits - 1)
     drive = DiffDrive(track=0.5, wheel_radius=0.1)
     expected_x = -2.0 * math.pi * 0.1 * half / 1000.0
-    online = DiffOdometry(drive, ticks_per_rev=1000, encoder_bits=bits)
+    online = DiffOdometry(drive, ticks_per_rev=1000, bits=bits)
     online.update(0, 0)
     pose = online.update(half, half)
     assert math.isclose(pose.x, expected_x, rel_tol=1e-12)
-    batch = DiffOdometry(drive, ticks_per_rev=1000, encoder_bits=bits)
+    batch = DiffOdometry(drive, ticks_per_rev=1000, bits=bits)
     rows = batch.update_batch([0, half], [0, half])
     assert math.isclose(float(rows[-1, 0]), expected_x, rel_tol=1e-12)

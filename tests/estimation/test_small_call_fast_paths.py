@@ -42,7 +42,7 @@ def test_diff_odometry_update_equals_batch(
     start: int,
 ) -> None:
     drive = DiffDrive(track=track, wheel_radius=radius)
-    kw = {"ticks_per_rev": tpr, "encoder_bits": bits, "method": method, "pose": (1.0, -2.0, theta)}
+    kw = {"ticks_per_rev": tpr, "bits": bits, "method": method, "pose": (1.0, -2.0, theta)}
     fast = DiffOdometry(drive, **kw)  # type: ignore[arg-type]
     batch = DiffOdometry(drive, **kw)  # type: ignore[arg-type]
     modulus = 2 ** min(bits or 63, 63)
@@ -61,7 +61,7 @@ def test_diff_odometry_update_equals_batch(
 
 
 def test_diff_odometry_update_bad_input_unchanged() -> None:
-    odo = DiffOdometry(DiffDrive(track=0.5, wheel_radius=0.1), ticks_per_rev=1000, encoder_bits=16)
+    odo = DiffOdometry(DiffDrive(track=0.5, wheel_radius=0.1), ticks_per_rev=1000, bits=16)
     odo.update(10, 10)
     for bad in (True, 1.0, "3", None, [1]):
         with pytest.raises((TypeError, ValueError)):

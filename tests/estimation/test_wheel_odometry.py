@@ -105,7 +105,7 @@ def ticks_for(
 
 
 def test_diff_wraparound_16_bit() -> None:
-    odo = DiffOdometry(DIFF, ticks_per_rev=TPR, encoder_bits=16)
+    odo = DiffOdometry(DIFF, ticks_per_rev=TPR, bits=16)
     odo.update(65000, 64000)
     pose = odo.update(65000 + TPR - 65536, 64000 + TPR - 65536)  # both counters wrapped
     assert pose.x == pytest.approx(2 * math.pi * 0.05)
@@ -156,9 +156,9 @@ def test_diff_update_equals_update_batch_and_matches_composition(
 ) -> None:
     counts = np.cumsum(np.array([(0, 0), *steps]), axis=0)
     counts = np.mod(counts + 40000, 65536)  # a 16-bit counter that starts near the middle
-    a = DiffOdometry(DIFF, ticks_per_rev=TPR, encoder_bits=16)
+    a = DiffOdometry(DIFF, ticks_per_rev=TPR, bits=16)
     stepwise = np.array([a.update(int(left), int(right)).as_array() for left, right in counts])
-    b = DiffOdometry(DIFF, ticks_per_rev=TPR, encoder_bits=16)
+    b = DiffOdometry(DIFF, ticks_per_rev=TPR, bits=16)
     traj = b.update_batch(counts[:, 0], counts[:, 1])
     np.testing.assert_allclose(traj[:, :2], stepwise[:, :2], atol=1e-9)
     np.testing.assert_allclose(angle_diff(traj[:, 2], stepwise[:, 2]), 0.0, atol=1e-9)
@@ -189,17 +189,17 @@ def test_diff_update_batch_takes_uint64_readings_after_earlier_ones(bits: int | 
     them to float64, which the second batch then refused.
     """
     readings = np.array([[10, 10], [20, 30], [30, 40], [45, 41]], dtype=np.uint64)
-    whole = DiffOdometry(DIFF, ticks_per_rev=TPR, encoder_bits=bits)
+    whole = DiffOdometry(DIFF, ticks_per_rev=TPR, bits=bits)
     want = whole.update_batch(readings[:, 0].astype(np.int64), readings[:, 1].astype(np.int64))
-    split = DiffOdometry(DIFF, ticks_per_rev=TPR, encoder_bits=bits)
+    split = DiffOdometry(DIFF, ticks_per_rev=TPR, bits=bits)
     split.update_batch(readings[:2, 0], readings[:2, 1])
     got = split.update_batch(readings[2:, 0], readings[2:, 1])
     np.testing.assert_allclose(got, want[2:], rtol=1e-12, atol=1e-15)  # sums split in two
 
 
 def test_diff_update_batch_wraps_from_the_top_of_a_64_bit_counter() -> None:
-    stepwise = DiffOdometry(DIFF, ticks_per_rev=TPR, encoder_bits=64)
-    batch = DiffOdometry(DIFF, ticks_per_rev=TPR, encoder_bits=64)
+    stepwise = DiffOdometry(DIFF, ticks_per_rev=TPR, bits=64)
+    batch = DiffOdometry(DIFF, ticks_per_rev=TPR, bits=64)
     for odo in (stepwise, batch):
         odo.update(2**64 - 1, 0)
     poses = [stepwise.update(5, 5).as_array(), stepwise.update(6, 6).as_array()]
@@ -209,7 +209,7 @@ def test_diff_update_batch_wraps_from_the_top_of_a_64_bit_counter() -> None:
 
 
 def test_diff_bad_input() -> None:
-    odo = DiffOdometry(DIFF, ticks_per_rev=TPR, encoder_bits=16)
+    odo = DiffOdometry(DIFF, ticks_per_rev=TPR, bits=16)
     with pytest.raises(TypeError, match="left_ticks"):
         odo.update_batch([0.5], [1])
     with pytest.raises(ValueError, match="equal length"):
@@ -218,8 +218,8 @@ def test_diff_bad_input() -> None:
         odo.update_batch([70000], [1])
     with pytest.raises(ValueError, match=r"right_ticks holds readings outside .* 16-bit"):
         odo.update(1, -40000)
-    with pytest.raises(ValueError, match="encoder_bits"):
-        DiffOdometry(DIFF, ticks_per_rev=TPR, encoder_bits=1)
+    with pytest.raises(ValueError, match="bits must"):
+        DiffOdometry(DIFF, ticks_per_rev=TPR, bits=1)
     with pytest.raises(ValueError, match="ticks_per_rev"):
         DiffOdometry(DIFF, ticks_per_rev=0)
     with pytest.raises(ValueError, match="method"):
@@ -255,7 +255,7 @@ def test_diff_pose_accepts_a_sequence() -> None:
 
 def test_diff_readings_beyond_64_bits_are_out_of_range_and_change_nothing() -> None:
     # They used to be refused as a TypeError ("got object"), not as out of range.
-    odo = DiffOdometry(DIFF, ticks_per_rev=TPR, encoder_bits=16)
+    odo = DiffOdometry(DIFF, ticks_per_rev=TPR, bits=16)
     odo.update(0, 0)
     for huge in (2**64, 2**70, -(2**70)):
         with pytest.raises(ValueError, match=r"right_ticks holds readings outside .* 16-bit"):
@@ -270,7 +270,7 @@ def test_diff_readings_beyond_64_bits_are_out_of_range_and_change_nothing() -> N
 
 
 def test_diff_update_batch_takes_empty_lists_and_mixed_signed_unsigned_readings() -> None:
-    odo = DiffOdometry(DIFF, ticks_per_rev=TPR, encoder_bits=64)
+    odo = DiffOdometry(DIFF, ticks_per_rev=TPR, bits=64)
     empty = odo.update_batch([], [])  # float64 to NumPy
     assert empty.shape == (0, 3)
     # 2**64 - 1 and -1 are the same 64-bit reading; NumPy has no integer dtype for both.
@@ -284,7 +284,7 @@ def test_diff_update_batch_takes_empty_lists_and_mixed_signed_unsigned_readings(
 @pytest.mark.parametrize("readings", [[False, TPR], (0, True), [np.True_, 5]])
 def test_diff_refuses_booleans_mixed_into_lists(readings: object) -> None:
     # NumPy converts [False, 2048] to int64 [0, 2048]: a flag read as a counter value.
-    odo = DiffOdometry(DIFF, ticks_per_rev=TPR, encoder_bits=16)
+    odo = DiffOdometry(DIFF, ticks_per_rev=TPR, bits=16)
     with pytest.raises(TypeError, match=r"left_ticks .* bool"):
         odo.update_batch(readings, [0, TPR])  # type: ignore[arg-type]
     with pytest.raises(TypeError, match=r"right_ticks .* bool"):
@@ -298,11 +298,11 @@ def test_diff_refuses_booleans_mixed_into_lists(readings: object) -> None:
     [(True, TypeError), (np.True_, TypeError), (16.0, TypeError), ("16", TypeError),
      (1, ValueError), (65, ValueError)],
 )  # fmt: skip
-def test_diff_encoder_bits_errors(bits: object, error: type[Exception]) -> None:
-    with pytest.raises(error, match="encoder_bits"):
-        DiffOdometry(DIFF, ticks_per_rev=TPR, encoder_bits=bits)  # type: ignore[arg-type]
+def test_diff_bits_errors(bits: object, error: type[Exception]) -> None:
+    with pytest.raises(error, match="bits must"):
+        DiffOdometry(DIFF, ticks_per_rev=TPR, bits=bits)  # type: ignore[arg-type]
     # A NumPy integer is a width like any other: 65535 -> 1 is two ticks forward.
-    odo = DiffOdometry(DIFF, ticks_per_rev=TPR, encoder_bits=np.int8(16))  # type: ignore[arg-type]
+    odo = DiffOdometry(DIFF, ticks_per_rev=TPR, bits=np.int8(16))  # type: ignore[arg-type]
     odo.update(65535, 65535)
     assert odo.update(1, 1).x == pytest.approx(2 / TPR * 2 * math.pi * DIFF.left_radius)
 
@@ -319,7 +319,7 @@ def test_diff_encoder_bits_errors(bits: object, error: type[Exception]) -> None:
 def test_diff_odometry_update_refuses_sequences_as_not_integers(
     left: object, right: object, name: str
 ) -> None:
-    odo = DiffOdometry(DiffDrive(track=0.5, wheel_radius=0.1), ticks_per_rev=1000, encoder_bits=16)
+    odo = DiffOdometry(DiffDrive(track=0.5, wheel_radius=0.1), ticks_per_rev=1000, bits=16)
     odo.update(10, 10)
     with pytest.raises(TypeError, match=f"{name} must be one integer counter reading"):
         odo.update(left, right)  # type: ignore[arg-type]
@@ -327,6 +327,6 @@ def test_diff_odometry_update_refuses_sequences_as_not_integers(
 
 
 def test_diff_odometry_update_takes_zero_dimensional_readings() -> None:
-    odo = DiffOdometry(DiffDrive(track=0.5, wheel_radius=0.1), ticks_per_rev=1000, encoder_bits=16)
+    odo = DiffOdometry(DiffDrive(track=0.5, wheel_radius=0.1), ticks_per_rev=1000, bits=16)
     odo.update(np.array(65000), np.uint16(65000))  # type: ignore[arg-type]
     assert odo.update(np.array(464), 464).x == pytest.approx(2 * np.pi * 0.1)  # type: ignore[arg-type]

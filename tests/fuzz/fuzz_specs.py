@@ -337,7 +337,7 @@ spec(
 )
 spec(
     "navkit.kinematics.OmniDrive.saturate",
-    lambda c: method(omni_drive(), "saturate", A([10.0, -20.0, 5.0]), max_speed=8.0),
+    lambda c: method(omni_drive(), "saturate", A([10.0, -20.0, 5.0]), max_wheel_speed=8.0),
 )
 spec(
     "navkit.kinematics.OmniDrive.three_wheel",
@@ -715,7 +715,7 @@ spec(
     lambda c: call(validate_costs, costs()),
     kinds={"costs": Array(allow={"posinf"})},
 )
-INTEGRATE_KINDS = {"clamp": Array(), "max_range": Real(optional=True)}
+INTEGRATE_KINDS = {"clamp": Array(), "range_max": Real(optional=True)}
 spec(
     "navkit.mapping.OccupancyGrid.integrate_scan",
     lambda c: method(grid(), "integrate_scan", scan(), pose()),
@@ -821,7 +821,9 @@ spec(
     kinds={"msg": Namespace()},
 )
 spec(
-    "navkit.mapping.io.grid_to_msg_fields", lambda c: call(grid_to_msg_fields, grid(), trinary=True)
+    "navkit.mapping.io.grid_to_msg_fields",
+    lambda c: call(grid_to_msg_fields, grid(), mode="trinary"),
+    kinds={"mode": MAP_MODE},
 )
 spec(
     "navkit.mapping.io.OccupancyGridMsgFields",
@@ -864,14 +866,14 @@ spec(
 
 
 def _diff_odometry() -> Call:
-    return call(DiffOdometry, diff_drive(), ticks_per_rev=1000, encoder_bits=16)
+    return call(DiffOdometry, diff_drive(), ticks_per_rev=1000, bits=16)
 
 
 spec(
     "navkit.estimation.DiffOdometry",
-    lambda c: call(DiffOdometry, diff_drive(), ticks_per_rev=1000, encoder_bits=16, pose=pose()),
+    lambda c: call(DiffOdometry, diff_drive(), ticks_per_rev=1000, bits=16, pose=pose()),
     kinds={
-        "encoder_bits": Real(integer=True, optional=True),
+        "bits": Real(integer=True, optional=True),
         "pose": OPT_POSE,
         "method": ODOMETRY_METHOD,
     },

@@ -51,7 +51,7 @@ spec(
         A([[0.0, 0.0, 0.6, 0.8]]),
         A([[0.0, 0.1, 0.2]]),
         A([[0.0, 9.8, 0.0]]),
-        mounting=A([0.5, 0.5, 0.5, 0.5]),
+        mount=A([0.5, 0.5, 0.5, 0.5]),
     ),
 )
 spec(
@@ -250,5 +250,5 @@ spec(IO + "BagImu", lambda c: _imu(), kinds={"topic": Text(), "frame_id": Text()
 spec(
     IO + "BagImu.to_base",
     lambda c: method(_imu(), "to_base", A([0.5, 0.5, 0.5, 0.5]), frame_id="base_link"),
-    kinds={"mounting": Array(), "frame_id": Text()},
+    kinds={"mount": Array(), "frame_id": Text()},
 )

@@ -105,7 +105,7 @@ def simulation() -> Call:
         _forward,
         start=A([0.0, 0.0, 0.0]),
         goal=A([1.0, 0.0]),
-        goal_radius=0.1,
+        goal_tolerance=0.1,
         reference_path=A([[0.0, 0.0], [1.0, 0.0]]),
         rate=50.0,
         control_rate=10.0,
@@ -154,9 +154,14 @@ spec(
         0.2,
         A([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0]]),
         times=A([0.0, 1.0, 3.0]),
-        loop=True,
+        after="loop",
     ),
-    kinds={"shape": Real(), "speed": Real(optional=True)},
+    kinds={
+        "shape": Real(),
+        "path_xy": Array(),
+        "speed": Real(optional=True),
+        "after": Choice("stop", "loop", "extend"),
+    },
 )
 spec(P + "MovingObstacle.position_at", lambda c: method(moving(), "position_at", 0.7))
 spec(P + "MovingObstacle.geometry_at", lambda c: method(moving(), "geometry_at", 0.7))
@@ -200,8 +205,11 @@ spec(
 spec(P + "Lidar.angles", lambda c: method(lidar(), "angles"))
 spec(
     P + "Lidar.scan",
-    lambda c: method(lidar(), "scan", world(), A([0.0, 0.0, 0.1]), t=0.2, rng=1),
-    kinds={"rng": Real(integer=True, optional=True)},
+    lambda c: method(lidar(), "scan", world(), A([0.0, 0.0, 0.1]), t=0.2, seed=1),
+    kinds={
+        "seed": Real(integer=True, optional=True),
+        "rng": Real(integer=True, optional=True),  # the deprecated name of seed
+    },
 )
 spec(P + "Compass", lambda c: call(Compass, noise=1.0, bias=2.0, rate=10.0, latency=0.05))
 spec(P + "Compass.heading_deg", lambda c: method(call(Compass, bias=1.0), "heading_deg", 0.4, 0.0))
@@ -212,6 +220,11 @@ spec(
     kinds={"bits": Real(integer=True, optional=True)},
 )
 spec(
+    P + "WheelEncoders.ticks",
+    lambda c: method(call(WheelEncoders, bits=12), "ticks", A([0.5, -20.0, 3.0])),
+    kinds={"wheel_angles": Array()},
+)
+spec(  # the deprecated alias of ticks (it warns)
     P + "WheelEncoders.counts",
     lambda c: method(call(WheelEncoders, bits=12), "counts", A([0.5, -20.0, 3.0])),
     kinds={"wheel_angles": Array()},

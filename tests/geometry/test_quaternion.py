@@ -77,7 +77,7 @@ def test_imu_to_base_matches_scipy(q: np.ndarray, data: st.DataObject) -> None:
     w = data.draw(arrays(np.float64, (n, 3), elements=vectors3))
     a = data.draw(arrays(np.float64, (n, 3), elements=vectors3))
     q_before, w_before = q.copy(), w.copy()
-    out = imu_to_base(q, w, a, mounting=mount_q)
+    out = imu_to_base(q, w, a, mount=mount_q)
     mount = Rotation.from_quat(mount_q)
     np.testing.assert_allclose(out.angular_velocities, mount.apply(w), atol=1e-9)
     np.testing.assert_allclose(out.linear_accelerations, mount.apply(a), atol=1e-9)
@@ -116,7 +116,7 @@ def test_husky_mounting() -> None:
     expected = Rotation.from_euler("xyz", [math.pi / 2, 0.0, -math.pi / 2]).as_matrix()
     np.testing.assert_allclose(rot, expected, atol=1e-12)
     # A gyro turning about the IMU's y axis is the robot turning about its z axis.
-    out = imu_to_base([0.0, 0.0, 0.0, 1.0], [0.0, 0.3, 0.0], [0.0, 9.8, 0.0], mounting=mount)
+    out = imu_to_base([0.0, 0.0, 0.0, 1.0], [0.0, 0.3, 0.0], [0.0, 9.8, 0.0], mount=mount)
     np.testing.assert_allclose(out.angular_velocities, [0.0, 0.0, 0.3], atol=1e-12)
     np.testing.assert_allclose(out.linear_accelerations, [0.0, 0.0, 9.8], atol=1e-12)
 
@@ -132,19 +132,19 @@ def test_husky_mounting() -> None:
         (lambda: rpy_to_quaternion([0.0, 1.0], [0.0, 1.0, 2.0], 0.0), ValueError, "broadcast"),
         (lambda: rpy_to_quaternion(True, 0.0, 0.0), TypeError, "roll"),
         (
-            lambda: imu_to_base([0, 0, 0, 1], [0, 0, 0], [0, 0, 0], mounting=[0, 0, 0, 0]),
+            lambda: imu_to_base([0, 0, 0, 1], [0, 0, 0], [0, 0, 0], mount=[0, 0, 0, 0]),
             ValueError,
-            "mounting",
+            "mount",
         ),
         (
             lambda: imu_to_base(
-                [[0, 0, 0, 1]], [[0, 0, 0]] * 2, [[0, 0, 0]], mounting=[0, 0, 0, 1]
+                [[0, 0, 0, 1]], [[0, 0, 0]] * 2, [[0, 0, 0]], mount=[0, 0, 0, 1]
             ),
             ValueError,
             "angular_velocities",
         ),
         (
-            lambda: imu_to_base([0, 0, 0, 1], [0, 0, 0], [0, 0], mounting=[0, 0, 0, 1]),
+            lambda: imu_to_base([0, 0, 0, 1], [0, 0, 0], [0, 0], mount=[0, 0, 0, 1]),
             ValueError,
             "linear_accelerations",
         ),

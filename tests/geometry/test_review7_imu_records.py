@@ -54,23 +54,23 @@ def test_rotated_readings_within_the_float_range(
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # no NumPy overflow warning either way
         if peak < _LIMIT:
-            out = imu_to_base([[0.0, 0.0, 0.0, 1.0]], [reading], [reading], mounting=mounting)
+            out = imu_to_base([[0.0, 0.0, 0.0, 1.0]], [reading], [reading], mount=mounting)
             for got in (out.angular_velocities[0], out.linear_accelerations[0]):
                 for value, want, row in zip(got, exact, terms, strict=True):
                     size = sum(map(abs, row), Fraction(0))
                     assert abs(Fraction(float(value)) - want) <= size * Fraction(1, 2**49)
         else:
             with pytest.raises(ValueError, match="angular_velocities: rotating"):
-                imu_to_base([0.0, 0.0, 0.0, 1.0], reading, [0.0, 0.0, 0.0], mounting=mounting)
+                imu_to_base([0.0, 0.0, 0.0, 1.0], reading, [0.0, 0.0, 0.0], mount=mounting)
             with pytest.raises(ValueError, match="linear_accelerations: rotating"):
-                imu_to_base([0.0, 0.0, 0.0, 1.0], [0.0, 0.0, 0.0], reading, mounting=mounting)
+                imu_to_base([0.0, 0.0, 0.0, 1.0], [0.0, 0.0, 0.0], reading, mount=mounting)
 
 
 def test_a_component_beyond_the_float_range_is_refused_naming_the_readings() -> None:
     yawed = rpy_to_quaternion(0.0, 0.0, math.pi / 4)
     with pytest.raises(ValueError, match=r"angular_velocities: rotating .* overflows float64"):
         imu_to_base([0.0, 0.0, 0.0, 1.0], [1.7e308, 1.7e308, 0.0], [0.0, 0.0, 0.0],
-                    mounting=yawed)
+                    mount=yawed)
 
 
 @dataclass(frozen=True, slots=True, eq=False)

@@ -144,11 +144,11 @@ def test_quaternion_yaw_relations(q: tuple[float, ...], psi: float, k: float) ->
 def test_imu_mounting_and_its_inverse_cancel(
     q: tuple[float, ...], m: tuple[float, ...], w: tuple[float, ...], a: tuple[float, ...]
 ) -> None:
-    mounted = imu_to_base(q, w, a, mounting=m)
+    mounted = imu_to_base(q, w, a, mount=m)
     inverse = np.array(m) * np.array([-1.0, -1.0, -1.0, 1.0])  # conjugate: m⁻¹ up to scale
     back = imu_to_base(
         mounted.orientations, mounted.angular_velocities, mounted.linear_accelerations,
-        mounting=inverse,
+        mount=inverse,
     )
     np.testing.assert_allclose(back.angular_velocities, w, atol=1e-12)
     np.testing.assert_allclose(back.linear_accelerations, a, atol=1e-12)

@@ -71,16 +71,16 @@ def test_papers_forward_matrix_is_not_the_inverse() -> None:
 def test_saturate_keeps_direction() -> None:
     drive = OmniDrive.three_wheel(wheel_radius=0.05, base_radius=0.2)
     w = drive.inverse(Twist2D(2.0, 1.0, 3.0))
-    out = drive.saturate(w, max_speed=10.0)
+    out = drive.saturate(w, max_wheel_speed=10.0)
     assert np.max(np.abs(out)) == pytest.approx(10.0)
     t_in, t_out = drive.forward(w).as_array(), drive.forward(out).as_array()
     np.testing.assert_allclose(t_out / np.linalg.norm(t_out), t_in / np.linalg.norm(t_in))
     small = np.array([1.0, -2.0, 0.5])
-    np.testing.assert_array_equal(drive.saturate(small, max_speed=10.0), small)
-    batch = drive.saturate(np.array([w, small]), max_speed=10.0)
+    np.testing.assert_array_equal(drive.saturate(small, max_wheel_speed=10.0), small)
+    batch = drive.saturate(np.array([w, small]), max_wheel_speed=10.0)
     np.testing.assert_allclose(batch[1], small)
     assert np.max(np.abs(batch[0])) == pytest.approx(10.0)
-    np.testing.assert_array_equal(drive.saturate(np.zeros(3), max_speed=1.0), np.zeros(3))
+    np.testing.assert_array_equal(drive.saturate(np.zeros(3), max_wheel_speed=1.0), np.zeros(3))
 
 
 def test_bad_input() -> None:
@@ -101,8 +101,8 @@ def test_bad_input() -> None:
         drive.forward([1.0, 2.0])
     with pytest.raises(ValueError, match="wheel_speeds"):
         drive.forward([1.0, 2.0, math.nan])
-    with pytest.raises(ValueError, match="max_speed"):
-        drive.saturate([1.0, 2.0, 3.0], max_speed=0.0)
+    with pytest.raises(ValueError, match="max_wheel_speed"):
+        drive.saturate([1.0, 2.0, 3.0], max_wheel_speed=0.0)
     with pytest.raises(ValueError, match="twists"):
         drive.inverse_batch(np.zeros((2, 2)))
     with pytest.raises(TypeError, match="twist must be a Twist2D"):
@@ -143,12 +143,12 @@ def test_saturate_never_rounds_above_the_limit() -> None:
     rng = np.random.default_rng(0)
     wheels = rng.normal(size=(2000, 3)) * rng.uniform(1.0, 100.0, size=(2000, 1))
     for limit in (0.3, 3.7, 10.0):
-        out = drive.saturate(wheels, max_speed=limit)
+        out = drive.saturate(wheels, max_wheel_speed=limit)
         peaks = np.abs(out).max(axis=1)
         assert (peaks <= limit).all()
         np.testing.assert_array_equal(peaks[np.abs(wheels).max(axis=1) > limit], limit)
     # A tiny limit on huge speeds keeps the direction instead of underflowing to zero.
-    out = drive.saturate([1e308, -1e308, 1e307], max_speed=1e-300)
+    out = drive.saturate([1e308, -1e308, 1e307], max_wheel_speed=1e-300)
     np.testing.assert_allclose(out, [1e-300, -1e-300, 1e-301])
 
 

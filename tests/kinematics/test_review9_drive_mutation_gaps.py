@@ -32,11 +32,12 @@ def test_omni_saturate_returns_commands_at_the_limit_unchanged() -> None:
     commands = rng.uniform(-3.0, 3.0, size=(200, 4))
     limits = np.max(np.abs(commands), axis=1)
     for command, limit in zip(commands, limits, strict=True):
-        np.testing.assert_array_equal(drive.saturate(command, max_speed=float(limit)), command)
+        out = drive.saturate(command, max_wheel_speed=float(limit))
+        np.testing.assert_array_equal(out, command)
     # The batch form, each row at its own peak: the largest peak is the limit.
     top = float(limits.max())
     at_top = commands[limits == top]
-    np.testing.assert_array_equal(drive.saturate(at_top, max_speed=top), at_top)
+    np.testing.assert_array_equal(drive.saturate(at_top, max_wheel_speed=top), at_top)
 
 
 @pytest.mark.parametrize("vy", [-1e-300, -0.1, -5.0])

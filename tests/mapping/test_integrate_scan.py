@@ -249,7 +249,7 @@ def test_no_double_counting_within_a_scan() -> None:
     assert np.isclose(values[25, 25], MISS, atol=1e-6)
 
 
-def test_max_range_and_inf_clear_without_marking() -> None:
+def test_range_max_and_inf_clear_without_marking() -> None:
     grid = OccupancyGrid.empty(width=10.0, height=1.0, resolution=0.1)
     pose = Pose2D(0.05, 0.55, 0.0)
     n = integrate_scan(
@@ -273,7 +273,7 @@ def test_max_range_and_inf_clear_without_marking() -> None:
         capped,
         LaserScan([7.0], angle_min=0.0, angle_increment=0.1, range_min=0.1, range_max=8.0),
         pose,
-        max_range=4.0,
+        range_max=4.0,
     )
     assert np.array_equal(capped.logodds, grid.logodds)
 
@@ -366,8 +366,8 @@ def test_integrate_rejects_bad_input() -> None:
         grid.integrate_scan(scan, Pose2D(1, 1, 0), hit=-0.4)
     with pytest.raises(ValueError, match="clamp"):
         grid.integrate_scan(scan, Pose2D(1, 1, 0), clamp=(2.0, -2.0))
-    with pytest.raises(ValueError, match="max_range must be > 0"):
-        grid.integrate_scan(scan, Pose2D(1, 1, 0), max_range=-1.0)
+    with pytest.raises(ValueError, match="range_max must be > 0"):
+        grid.integrate_scan(scan, Pose2D(1, 1, 0), range_max=-1.0)
     with pytest.raises(TypeError, match="grid must be an OccupancyGrid"):
         integrate_scan(grid.logodds, scan, Pose2D(1, 1, 0))  # type: ignore[arg-type]
     with pytest.raises(TypeError, match="scan must be a LaserScan"):
@@ -452,7 +452,7 @@ def test_integrate_flags_and_ranges() -> None:
         ({"clamp": (0.0, 1e7)}, r"clamp\[1\] must be >= -1e6 and <= 1e6"),
         ({"clamp": 3.0}, r"clamp must be a \(low, high\) pair"),
         ({"hit": True}, "hit must be a real number"),
-        ({"max_range": "2"}, "max_range must be a real number"),
+        ({"range_max": "2"}, "range_max must be a real number"),
     ]:
         with pytest.raises((TypeError, ValueError), match=match):
             integrate_scan(grid, scan, (1, 1, 0), **kwargs)  # type: ignore[arg-type]

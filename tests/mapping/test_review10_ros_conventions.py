@@ -191,7 +191,7 @@ def test_float32_resolution_keeps_cells_within_the_documented_bound() -> None:
     width = 384
     grid = OccupancyGrid.from_occupancy(np.zeros((2, width), dtype=bool), resolution=0.05,
                                         origin=(-10.0, -10.0, 0.0))  # fmt: skip
-    fields = grid_to_msg_fields(grid, trinary=True)
+    fields = grid_to_msg_fields(grid, mode="trinary")
     info = T["nav_msgs/msg/MapMetaData"](
         map_load_time=T["builtin_interfaces/msg/Time"](sec=0, nanosec=0),
         resolution=fields.resolution, width=fields.width, height=fields.height,
@@ -214,7 +214,7 @@ def test_float32_resolution_keeps_cells_within_the_documented_bound() -> None:
 
 def test_documented_rclpy_conversion_of_grid_data() -> None:
     fields = grid_to_msg_fields(
-        OccupancyGrid.from_occupancy(np.array([[True, False]]), resolution=0.1), trinary=True
+        OccupancyGrid.from_occupancy(np.array([[True, False]]), resolution=0.1), mode="trinary"
     )
     # rclpy's int8[] setter takes an array.array('b') or a Sequence of ints, not NumPy.
     data: object = fields.data

@@ -234,7 +234,7 @@ def test_grid_round_trips_through_message_fields_at_any_yaw() -> None:
     for theta in np.linspace(-math.pi, math.pi, 41)[1:]:
         grid = OccupancyGrid.from_occupancy(np.array([[True, False]]), resolution=0.1)
         grid = OccupancyGrid(grid.logodds, resolution=0.1, origin=(1.0, 2.0, float(theta)))
-        fields = grid_to_msg_fields(grid, trinary=True)
+        fields = grid_to_msg_fields(grid, mode="trinary")
         ns = SimpleNamespace
         pos, ori = fields.origin_position, fields.origin_orientation
         msg = ns(

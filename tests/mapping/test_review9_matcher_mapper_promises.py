@@ -1,7 +1,7 @@
 """Review 9: ScanMatcher / ScanMapper promises no test pinned down (found by mutation testing).
 
 Each test checks a sentence of a docstring against an independent computation:
-the covariance formula, the ``max_range`` cut of matching and of writing, the
+the covariance formula, the ``range_max`` cut of matching and of writing, the
 write thresholds (strictly more than, with the heading change wrapped), the
 backtracking line search's halving and the tolerance doubling per level.
 """
@@ -77,14 +77,14 @@ def test_covariance_is_the_residual_variance_over_n_minus_3_times_the_inverse_he
     np.testing.assert_allclose(result.covariance, expected, rtol=1e-3, atol=1e-12)
 
 
-def test_returns_exactly_at_max_range_are_not_matched() -> None:
+def test_returns_exactly_at_range_max_are_not_matched() -> None:
     # ScanMatcher: "Only returns shorter than this (m) are matched"; with two of
-    # three returns exactly at max_range, one is left: "no valid beams".
+    # three returns exactly at range_max, one is left: "no valid beams".
     room = OccupancyGrid.empty(width=4.0, height=4.0, resolution=0.1, origin=(-2.0, -2.0, 0.0))
     scan = LaserScan(
         np.array([1.5, 1.0, 1.5]), angle_min=-0.5, angle_increment=0.5, range_min=0.1, range_max=5.0
     )
-    matcher = ScanMatcher(max_range=1.5)
+    matcher = ScanMatcher(range_max=1.5)
     assert matcher.match(room, scan, (0.0, 0.0, 0.0)).reason == "no valid beams"
     just_over = LaserScan(
         np.array([math.nextafter(1.5, 0.0), 1.0, math.nextafter(1.5, 0.0)]),
@@ -104,13 +104,13 @@ def _two_beam_scan(ranges: list[float]) -> LaserScan:
     )
 
 
-def test_returns_exactly_at_max_range_are_not_written() -> None:
+def test_returns_exactly_at_range_max_are_not_written() -> None:
     # ScanMapper: "Returns at least this long (m) are neither matched nor
-    # written": a return exactly at max_range writes what a longer one does
+    # written": a return exactly at range_max writes what a longer one does
     # (nothing), not a hit at 2 m and free cells before it.
-    at_limit = ScanMapper(resolution=0.1, max_range=2.0)
+    at_limit = ScanMapper(resolution=0.1, range_max=2.0)
     at_limit.update(_two_beam_scan([2.0, 1.0]))
-    beyond = ScanMapper(resolution=0.1, max_range=2.0)
+    beyond = ScanMapper(resolution=0.1, range_max=2.0)
     beyond.update(_two_beam_scan([3.0, 1.0]))
     np.testing.assert_array_equal(at_limit.map.logodds, beyond.map.logodds)
     # The 1 m beam itself is written (the comparison is not vacuous).

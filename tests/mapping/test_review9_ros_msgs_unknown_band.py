@@ -45,7 +45,7 @@ def _check_unknown_published(grid: OccupancyGrid) -> None:
     assert unknown.any()
     assert (data[unknown] == -1).all()
     # Known cells keep their percentages, and the message agrees with its trinary form.
-    trinary = grid_to_msg_fields(grid, trinary=True).data.reshape(grid.shape)
+    trinary = grid_to_msg_fields(grid, mode="trinary").data.reshape(grid.shape)
     np.testing.assert_array_equal(data == -1, trinary == -1)
     np.testing.assert_array_equal(data[grid.occupied()], 100)
     np.testing.assert_array_equal(data[grid.free()], 0)

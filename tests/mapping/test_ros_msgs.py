@@ -45,7 +45,7 @@ def test_msg_round_trip() -> None:
     assert fields.data.dtype == np.int8
     assert fields.data.tolist() == [-1, 0, 100, -1, 20, 80]  # 50 % is log-odds 0
     assert fields.origin_orientation[2:] == pytest.approx((math.sin(0.35), math.cos(0.35)))
-    trinary = grid_to_msg_fields(grid, trinary=True).data.tolist()
+    trinary = grid_to_msg_fields(grid, mode="trinary").data.tolist()
     assert trinary == [-1, 0, 100, -1, -1, 100]
     assert (fields.width, fields.height, fields.resolution) == (3, 2, 0.05)
     assert fields.origin_position == (1.5, -2.0, 0.0)
@@ -218,12 +218,15 @@ def test_quaternions_are_normalised() -> None:
     assert grid_from_msg(big).origin.theta == pytest.approx(0.7)
 
 
-def test_grid_to_msg_fields_trinary_must_be_a_bool() -> None:
+def test_grid_to_msg_fields_mode_must_be_scale_or_trinary() -> None:
     grid = OccupancyGrid.from_occupancy(np.array([[True, False]]), resolution=0.1)
-    for value in ("no", 1, None):
-        with pytest.raises(TypeError, match="trinary must be a bool"):
-            grid_to_msg_fields(grid, trinary=value)  # type: ignore[arg-type]
-    assert grid_to_msg_fields(grid, trinary=np.True_).data.tolist() == [100, 0]
+    for value in (True, 1, None, b"scale"):
+        with pytest.raises(TypeError, match="mode must be a str"):
+            grid_to_msg_fields(grid, mode=value)  # type: ignore[arg-type]
+    for text in ("raw", "Trinary", ""):
+        with pytest.raises(ValueError, match="mode must be 'scale' or 'trinary'"):
+            grid_to_msg_fields(grid, mode=text)
+    assert grid_to_msg_fields(grid, mode=np.str_("trinary")).data.tolist() == [100, 0]
 
 
 def test_msg_fields_from_lists_copy() -> None:

@@ -76,7 +76,7 @@ def test_maps_a_synthetic_office_from_noisy_odometry() -> None:
     truth = _route()
     lidar = Lidar(n_beams=360, range_max=10.0, noise=HOKUYO)
     rng = np.random.default_rng(4)
-    scans = [lidar.scan(world, p, rng=rng) for p in truth]
+    scans = [lidar.scan(world, p, seed=rng) for p in truth]
     odometry = _noisy_odometry(truth, 0.05, math.radians(2), seed=1)
     mapper = ScanMapper(start=truth[0])
     for scan, odom in zip(scans, odometry, strict=True):

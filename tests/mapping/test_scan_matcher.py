@@ -147,7 +147,7 @@ def _mapped(world: World, region: tuple[float, ...], rng: np.random.Generator) -
     grid = OccupancyGrid.empty(width=50.0, height=50.0, resolution=RES, origin=(-15.0, -15.0, 0.0))
     lidar = Lidar(n_beams=360, range_max=10.0, noise=HOKUYO)
     for pose in _poses(world, region, 25, rng):
-        integrate_scan(grid, lidar.scan(world, pose, rng=rng), pose, **HECTOR)
+        integrate_scan(grid, lidar.scan(world, pose, seed=rng), pose, **HECTOR)
     return grid
 
 
@@ -164,7 +164,7 @@ def test_recovers_offsets_of_30cm_and_03rad(shapes: object, region: tuple[float,
     pyramid = matcher.pyramid(grid)
     lidar = Lidar(n_beams=360, range_max=10.0, noise=HOKUYO)
     for true in _poses(world, region, 25, rng):
-        scan = lidar.scan(world, true, rng=rng)
+        scan = lidar.scan(world, true, seed=rng)
         d = rng.uniform(0.0, 0.3)
         a = rng.uniform(-math.pi, math.pi)
         turn = rng.choice([-1.0, 1.0]) * rng.uniform(0.0, 0.3)
@@ -193,7 +193,7 @@ def test_correlative_search_widens_the_basin() -> None:
     recovered = {"plain": 0, "search": 0}
     trials = _poses(world, region, 12, rng)
     for true in trials:
-        scan = lidar.scan(world, true, rng=rng)
+        scan = lidar.scan(world, true, seed=rng)
         d, a = rng.uniform(0.45, 0.6), rng.uniform(-math.pi, math.pi)
         turn = rng.choice([-1.0, 1.0]) * rng.uniform(0.45, 0.6)
         guess = Pose2D(true.x + d * math.cos(a), true.y + d * math.sin(a), true.theta + turn)
@@ -387,7 +387,7 @@ def test_wrong_arguments() -> None:
         ({"max_step_cells": 0.0}, ValueError),
         ({"max_step_angle": 4.0}, ValueError),
         ({"tolerance": -1.0}, ValueError),
-        ({"max_range": 0.0}, ValueError),
+        ({"range_max": 0.0}, ValueError),
         ({"translation_weight": -1.0}, ValueError),
         ({"rotation_weight": math.inf}, ValueError),
         ({"search_distance": -0.1}, ValueError),
@@ -413,11 +413,11 @@ def test_inputs_untouched_and_result_frozen() -> None:
         ScanMatchResult(Pose2D(0, 0, 0), np.full((3, 3), np.nan), 0, 0.5, False, "degenerate")
 
 
-def test_max_range_drops_long_returns() -> None:
+def test_range_max_drops_long_returns() -> None:
     scan = _scan([1.0, 5.0, 2.0, 8.0])
     assert len(scan_points(scan, None)) == 4
     assert len(scan_points(scan, 4.0)) == 2
-    assert ScanMatcher(max_range=4.0).max_range == 4.0
+    assert ScanMatcher(range_max=4.0).range_max == 4.0
 
 
 def test_outside_points_do_not_pull() -> None:

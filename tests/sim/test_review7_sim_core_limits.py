@@ -63,13 +63,13 @@ def test_scripted_speed_names_a_leg_too_short_to_take_time(
         obstacle = MovingObstacle.scripted(0.1, points, speed=speed)
         assert np.array_equal(obstacle.times, stamps)
         return
-    with pytest.raises(ValueError, match=r"waypoints_xy\[2\]") as info:
+    with pytest.raises(ValueError, match=r"path_xy\[2\]") as info:
         MovingObstacle.scripted(0.1, points, speed=speed)
     assert "times" not in str(info.value)
 
 
 def test_scripted_speed_with_a_leg_below_the_rounding() -> None:
-    with pytest.raises(ValueError, match=r"waypoints_xy\[2\] is too close to waypoints_xy\[1\]"):
+    with pytest.raises(ValueError, match=r"path_xy\[2\] is too close to path_xy\[1\]"):
         MovingObstacle.scripted(0.1, [(0.0, 0.0), (1e6, 0.0), (1e6, 1e-11)], speed=1.0)
 
 

@@ -34,13 +34,13 @@ def test_whole_turns_read_whole_revolutions_of_ticks(tpr: float, n: int) -> None
     # (n = -13 with 1024 ticks: -13313).
     encoders = WheelEncoders(ticks_per_rev=tpr, bits=None)
     angles = np.array([n * 2 * math.pi, n * (2 * math.pi)])
-    assert encoders.counts(angles).tolist() == [n * int(tpr)] * 2
+    assert encoders.ticks(angles).tolist() == [n * int(tpr)] * 2
 
 
 def test_whole_turns_at_1024_ticks_that_used_to_read_one_less() -> None:
     encoders = WheelEncoders(ticks_per_rev=1024, bits=None)
     for n in (-47, -29, -26, -13):
-        assert encoders.counts(np.array([n * 2 * math.pi])).tolist() == [n * 1024]
+        assert encoders.ticks(np.array([n * 2 * math.pi])).tolist() == [n * 1024]
 
 
 @settings(max_examples=60)
@@ -53,7 +53,7 @@ def test_each_tick_starts_at_its_boundary_angle(tpr: float, k: int) -> None:
     # Ticks at least 2π / 1e6 rad apart, far more than ulp(|angle| <= 2π · 1e6): the
     # float just below a boundary lies above the previous one.
     assert _boundary(float(k - 1), tpr) <= below
-    assert encoders.counts(np.array([at, below])).tolist() == [k, k - 1]
+    assert encoders.ticks(np.array([at, below])).tolist() == [k, k - 1]
 
 
 def test_simulated_encoders_follow_the_same_tick_rule() -> None:
@@ -70,7 +70,7 @@ def test_simulated_encoders_follow_the_same_tick_rule() -> None:
         assert reading.stamp * 64.0 == k
         angle = k * 2 * math.pi
         assert reading.ticks.tolist() == [360 * k] * 2
-        assert reading.ticks.tolist() == encoders.counts(np.array([angle, angle])).tolist()
+        assert reading.ticks.tolist() == encoders.ticks(np.array([angle, angle])).tolist()
 
 
 _ROOM = World(box(0.0, 0.0, 4.0, 3.0).exterior)

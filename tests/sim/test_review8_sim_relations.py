@@ -344,12 +344,12 @@ def test_encoder_counts_are_odd_about_each_boundary_and_wrap_consistently(
     """``count(-a) = -count(a)`` on a boundary, ``-count(a) - 1`` between; wrapping is a mask."""
     unwrapped = WheelEncoders(ticks_per_rev=tpr, bits=None)
     a = np.array(angles)
-    up = unwrapped.counts(a)
-    down = unwrapped.counts(-a)
+    up = unwrapped.ticks(a)
+    down = unwrapped.ticks(-a)
     # (k / tpr) * 2π is odd in k exactly: rounding is symmetric about 0.
     on_boundary = (up / tpr) * (2.0 * math.pi) == a
     np.testing.assert_array_equal(down, np.where(on_boundary, -up, -up - 1))
-    wrapped = WheelEncoders(ticks_per_rev=tpr, bits=bits).counts(a)
+    wrapped = WheelEncoders(ticks_per_rev=tpr, bits=bits).ticks(a)
     if bits == 64:
         np.testing.assert_array_equal(wrapped, up)
     else:

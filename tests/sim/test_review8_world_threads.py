@@ -96,7 +96,7 @@ def test_scans_of_one_lidar_from_threads(moving: bool) -> None:
 
     def scan(k: int) -> Any:
         pose = (1.0 + 0.01 * (k % 7), 4.0, 0.1 * k)
-        return lidar.scan(world, pose, t=TIMES[k], rng=k).ranges
+        return lidar.scan(world, pose, t=TIMES[k], seed=k).ranges
 
     assert _same_in_threads(scan, list(range(300))) == 0
 

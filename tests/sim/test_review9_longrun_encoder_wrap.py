@@ -2,7 +2,7 @@
 
 The robot's ``WheelEncoders`` report counters modulo ``2**bits`` (16 by default:
 64 wheel turns, 20 m on a 5 cm wheel). A ``DiffOdometry`` built for counters
-of another width (its default ``encoder_bits=None`` among them) read that
+of another width (its default ``bits=None`` among them) read that
 wrap-around as a huge backward step: after 40 m the estimate was at 20 m.
 """
 
@@ -27,7 +27,7 @@ def _run(robot_bits: int | None, odometry_bits: int | None, omega: float) -> tup
     robot = Robot(
         drive=DRIVE, footprint=0.15, encoders=WheelEncoders(ticks_per_rev=TICKS, bits=robot_bits)
     )
-    odometry = DiffOdometry(DRIVE, ticks_per_rev=TICKS, encoder_bits=odometry_bits)
+    odometry = DiffOdometry(DRIVE, ticks_per_rev=TICKS, bits=odometry_bits)
     trace = Simulation(
         CORRIDOR, robot, lambda obs: Twist2D(1.0, 0.0, omega), start=(0.0, 0.0, 0.0),
         estimator=odometry, duration=5.0,
@@ -58,5 +58,5 @@ def test_the_estimate_does_not_depend_on_the_odometrys_counter_width() -> None:
 
 
 def test_diff_odometry_reports_its_counter_width() -> None:
-    assert DiffOdometry(DRIVE, ticks_per_rev=TICKS).encoder_bits is None
-    assert DiffOdometry(DRIVE, ticks_per_rev=TICKS, encoder_bits=12).encoder_bits == 12
+    assert DiffOdometry(DRIVE, ticks_per_rev=TICKS).bits is None
+    assert DiffOdometry(DRIVE, ticks_per_rev=TICKS, bits=12).bits == 12

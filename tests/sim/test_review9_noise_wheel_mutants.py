@@ -110,19 +110,19 @@ def test_full_slip_stops_a_wheel_instead_of_giving_it_full_grip() -> None:
 
 def test_goal_heading_exactly_at_the_yaw_tolerance_is_reached() -> None:
     # Driving straight along +x (heading exactly 0) into a goal whose heading is
-    # 0.5 rad: the error is exactly goal_yaw_tolerance = 0.5 rad (pi - 0.5 and its
+    # 0.5 rad: the error is exactly yaw_tolerance = 0.5 rad (pi - 0.5 and its
     # difference from pi are exact in float64), which counts as reached.
     robot = Robot(drive=DIFF, footprint=0.2)
     for tol, reached in ((0.5, True), (0.4999, False)):
         sim = Simulation(World(), robot, Constant(Twist2D(0.2)), start=(0.0, 0.0, 0.0),
-                         goal=(0.5, 0.0, 0.5), goal_radius=0.1, goal_yaw_tolerance=tol,
+                         goal=(0.5, 0.0, 0.5), goal_tolerance=0.1, yaw_tolerance=tol,
                          duration=5.0)
         assert sim.run().metrics.reached is reached
 
 
-def test_a_robot_exactly_goal_radius_away_has_reached_the_goal() -> None:
+def test_a_robot_exactly_goal_tolerance_away_has_reached_the_goal() -> None:
     # "The goal is reached within this distance": the first step at exactly
-    # goal_radius from the goal is the time to goal. The radius is taken as the
+    # goal_tolerance from the goal is the time to goal. The radius is taken as the
     # float distance from a recorded pose (x only: the robot drives along +x).
     robot = Robot(drive=DIFF, footprint=0.2)
     free = Simulation(World(), robot, Constant(Twist2D(0.2)), start=(0.0, 0.0, 0.0),
@@ -132,7 +132,7 @@ def test_a_robot_exactly_goal_radius_away_has_reached_the_goal() -> None:
     goal_x = 0.55
     radius = goal_x - float(free.poses[k, 0])
     trace = Simulation(World(), robot, Constant(Twist2D(0.2)), start=(0.0, 0.0, 0.0),
-                       goal=(goal_x, 0.0), goal_radius=radius, duration=3.0).run()
+                       goal=(goal_x, 0.0), goal_tolerance=radius, duration=3.0).run()
     assert trace.metrics.reached
     assert trace.metrics.time_to_goal == pytest.approx(float(free.times[k]), abs=1e-12)
 

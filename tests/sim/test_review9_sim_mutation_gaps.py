@@ -30,7 +30,7 @@ def test_lidar_range_max_must_exceed_range_min() -> None:
 def test_lidar_dropout_one_is_allowed_and_drops_every_beam() -> None:
     # dropout is a probability in [0, 1]: 1 is a scanner that never returns.
     world = World(box(0.0, 0.0, 4.0, 3.0).exterior)
-    scan = Lidar(dropout=1.0, n_beams=8, noise=None).scan(world, (1.0, 1.0, 0.0), rng=3)
+    scan = Lidar(dropout=1.0, n_beams=8, noise=None).scan(world, (1.0, 1.0, 0.0), seed=3)
     assert scan.ranges.shape == (8,)
     assert np.isnan(scan.ranges).all()
     with pytest.raises(ValueError, match="dropout"):
@@ -82,7 +82,7 @@ def test_delay_line_delivers_every_item_due_within_the_tolerance() -> None:
 
 def test_sensor_option_ranges() -> None:
     # The documented ranges, at and just beyond their ends.
-    assert WheelEncoders(bits=2).counts(np.array([2.0 * math.pi * 5 / 1024])).tolist() == [1]
+    assert WheelEncoders(bits=2).ticks(np.array([2.0 * math.pi * 5 / 1024])).tolist() == [1]
     assert WheelEncoders(ticks_per_rev=1.0).ticks_per_rev == 1.0
     assert Imu(gyro_bias=-100.0, accel_bias=-1000.0).gyro_bias == -100.0
     assert Imu(gyro_bias=-0.5).gyro_bias == -0.5

@@ -79,7 +79,7 @@ def test_copied_obstacles_and_robots_keep_their_arrays_read_only(
         drive=DiffDrive(track=0.3, wheel_radius=0.05), footprint=square,
         wheel_radius_error=np.array([0.01, -0.02]),
     )  # fmt: skip
-    ball = MovingObstacle.scripted(0.2, [(0.0, 0.0), (1.0, 0.0)], speed=0.5, loop=True)
+    ball = MovingObstacle.scripted(0.2, [(0.0, 0.0), (1.0, 0.0)], speed=0.5, after="loop")
     pillar = Circle(np.array([1.0, 2.0]), 0.5)
     cases = (
         (robot, ("footprint", "wheel_radius_error")),

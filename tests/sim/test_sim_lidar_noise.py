@@ -21,7 +21,7 @@ def relative_errors(noise: RangeNoise, radius: float, seed: int = 0) -> np.ndarr
     lidar = Lidar(n_beams=N_BEAMS, noise=noise, range_max=40.0)
     rng = np.random.default_rng(seed)
     ranges = np.concatenate(
-        [lidar.scan(world, (0.0, 0.0, 0.0), rng=rng).ranges for _ in range(N_SCANS)]
+        [lidar.scan(world, (0.0, 0.0, 0.0), seed=rng).ranges for _ in range(N_SCANS)]
     )
     assert ranges.shape == (N_BEAMS * N_SCANS,)
     assert np.all(np.isfinite(ranges))
@@ -57,7 +57,7 @@ def test_dropouts_read_nan() -> None:
     world = World(Circle((0.0, 0.0), 2.0, solid=False))
     lidar = Lidar(n_beams=N_BEAMS, noise=None, dropout=0.1)
     rng = np.random.default_rng(1)
-    ranges = np.concatenate([lidar.scan(world, (0, 0, 0), rng=rng).ranges for _ in range(N_SCANS)])
+    ranges = np.concatenate([lidar.scan(world, (0, 0, 0), seed=rng).ranges for _ in range(N_SCANS)])
     frac = np.isnan(ranges).mean()
     assert abs(frac / 0.1 - 1.0) <= 0.05
     assert np.allclose(ranges[~np.isnan(ranges)], 2.0)
@@ -68,11 +68,11 @@ def test_angular_jitter_casts_beams_off_their_nominal_angle() -> None:
     world = World(LineString([(1.0, -50.0), (1.0, 50.0)]))
     lidar = Lidar(n_beams=1, fov=0.1, noise=None, angle_jitter=0.02)
     rng = np.random.default_rng(2)
-    ranges = np.array([lidar.scan(world, (0, 0, 0), rng=rng).ranges[0] for _ in range(20000)])
+    ranges = np.array([lidar.scan(world, (0, 0, 0), seed=rng).ranges[0] for _ in range(20000)])
     delta = np.arccos(1.0 / ranges)
     assert abs(delta.mean() / (0.02 * math.sqrt(2.0 / math.pi)) - 1.0) <= 0.05
     # The scan still reports the nominal angle.
-    assert lidar.scan(world, (0, 0, 0), rng=rng).angle_min == 0.0
+    assert lidar.scan(world, (0, 0, 0), seed=rng).angle_min == 0.0
 
 
 def test_rep117_readings() -> None:
@@ -92,7 +92,7 @@ def test_rep117_readings() -> None:
                   noise=RangeNoise(limits=(math.inf,), sigma=(0.5,)))  # fmt: skip
     rng = np.random.default_rng(0)
     readings = np.array(
-        [noisy.scan(world, Pose2D(0, 0, math.pi / 2), rng=rng).ranges[0] for _ in range(200)]
+        [noisy.scan(world, Pose2D(0, 0, math.pi / 2), seed=rng).ranges[0] for _ in range(200)]
     )
     assert np.all((readings < 3.05) | (readings == math.inf))
     assert np.any(readings == math.inf) and np.any(np.isfinite(readings))
@@ -101,8 +101,8 @@ def test_rep117_readings() -> None:
 def test_scans_are_reproducible_with_a_seed() -> None:
     world = World(Circle((0.0, 0.0), 3.0, solid=False))
     lidar = Lidar(angle_jitter=0.01, dropout=0.05)
-    a = lidar.scan(world, (0.2, 0.1, 0.3), rng=7).ranges
-    b = lidar.scan(world, (0.2, 0.1, 0.3), rng=7).ranges
+    a = lidar.scan(world, (0.2, 0.1, 0.3), seed=7).ranges
+    b = lidar.scan(world, (0.2, 0.1, 0.3), seed=7).ranges
     np.testing.assert_array_equal(a, b)
 
 
@@ -146,8 +146,8 @@ def test_bad_seeds_name_their_argument_once(seed: int, message: str) -> None:
     from navkit.sim import Robot, Simulation
 
     world = World(Circle((0.0, 0.0), 3.0, solid=False))
-    with pytest.raises(ValueError, match=f"^rng {message}"):
-        Lidar(dropout=0.1).scan(world, (0.0, 0.0, 0.0), rng=seed)
+    with pytest.raises(ValueError, match=f"^seed {message}"):
+        Lidar(dropout=0.1).scan(world, (0.0, 0.0, 0.0), seed=seed)
     robot = Robot(drive=DiffDrive(track=0.3, wheel_radius=0.05), footprint=0.2)
     with pytest.raises(ValueError, match=f"^seed {message}"):
         Simulation(world, robot, lambda obs: (0.0, 0.0, 0.0), start=(0, 0, 0), seed=seed)

@@ -123,7 +123,7 @@ def test_estimators_follow_the_robot(kind: str) -> None:
                       encoders=WheelEncoders(ticks_per_rev=4096, bits=16))  # fmt: skip
         est = (
             fusion_at(start) if kind == "fusion"
-            else DiffOdometry(DIFF, ticks_per_rev=4096, encoder_bits=16, pose=start)
+            else DiffOdometry(DIFF, ticks_per_rev=4096, bits=16, pose=start)
         )  # fmt: skip
     trace = Simulation(ROOM, robot, GoTo((6.0, 1.0)), start=start, goal=(6.0, 1.0),
                        estimator=est).run()  # fmt: skip
@@ -269,7 +269,7 @@ def test_goal_heading_and_metrics() -> None:
             return Twist2D(0.0, 0.0, 0.5)
 
     sim = Simulation(ROOM, Robot(drive=DIFF, footprint=0.2), Turn(), start=(0, 0, 0),
-                     goal=(0.0, 0.0, 1.0), goal_yaw_tolerance=0.01)  # fmt: skip
+                     goal=(0.0, 0.0, 1.0), yaw_tolerance=0.01)  # fmt: skip
     m = sim.run().metrics
     assert m.reached and m.time_to_goal == pytest.approx(1.98, abs=0.011)
     assert m.distance == pytest.approx(0.0)
@@ -356,8 +356,8 @@ def test_closed_loop_on_a_real_map(shared_data: Path) -> None:
         ({"start": (0.5, 2.9, 0.0)}, ValueError, "starts inside an obstacle"),
         ({"start": "origin"}, TypeError, "start"),
         ({"start": (1e300, 0.0, 0.0)}, ValueError, r"^start must lie within ±1e\+12 m"),
-        ({"goal_radius": 0.0}, ValueError, "goal_radius"),
-        ({"goal": (1.0, 2.0), "goal_yaw_tolerance": 0.1}, ValueError, "heading"),
+        ({"goal_tolerance": 0.0}, ValueError, "goal_tolerance"),
+        ({"goal": (1.0, 2.0), "yaw_tolerance": 0.1}, ValueError, "heading"),
         ({"goal": (1.0, 2.0, 3.0, 4.0)}, ValueError, "goal"),
         ({"estimator": "ekf"}, TypeError, "estimator"),
         ({"seed": -1}, ValueError, "seed"),

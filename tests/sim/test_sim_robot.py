@@ -78,7 +78,7 @@ def test_encoders_wider_than_52_bits_wrap_as_unsigned_readings() -> None:
         _, ctrl = run_constant(robot, Twist2D(-0.5), 0.5)
         last = ctrl.readings(EncoderReading)[-1]
         angle = -0.5 / 0.05 * last.stamp
-        want = encoders.counts(np.array([angle, angle]))
+        want = encoders.ticks(np.array([angle, angle]))
         assert want.tolist() == [2**bits - 815] * 2  # floor(-10 · 0.5 / 2π · 1024) = -815
         np.testing.assert_array_equal(last.ticks, want)
 
@@ -88,7 +88,7 @@ def test_wheel_radius_error_moves_farther_than_odometry_says() -> None:
 
     robot = Robot(drive=DIFF, footprint=0.2, wheel_radius_error=0.1,
                   encoders=WheelEncoders(ticks_per_rev=4096, bits=16))  # fmt: skip
-    odo = DiffOdometry(DIFF, ticks_per_rev=4096, encoder_bits=16)
+    odo = DiffOdometry(DIFF, ticks_per_rev=4096, bits=16)
     ctrl = Constant(Twist2D(0.5))
     trace = Simulation(World(), robot, ctrl, start=(0, 0, 0), duration=1.0, estimator=odo).run()
     assert trace.poses[-1, 0] == pytest.approx(0.55, abs=1e-9)
@@ -324,7 +324,7 @@ def test_every_collision_gets_its_event_beyond_a_thousand() -> None:
     were counted but had no event, though Trace.events promises every one.
     """
     ball = MovingObstacle.scripted(0.1, [(1.0, 0.0), (0.25, 0.0), (1.0, 0.0)],
-                                   times=[0.0, 0.05, 0.1], loop=True)  # fmt: skip
+                                   times=[0.0, 0.05, 0.1], after="loop")  # fmt: skip
     robot = Robot(drive=DIFF, footprint=0.2)
     trace = Simulation(World(moving=[ball]), robot, Constant(Twist2D(0.0)), start=(0, 0, 0),
                        duration=120.0, end_on_collision=False).run()  # fmt: skip

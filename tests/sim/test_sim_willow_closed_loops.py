@@ -65,7 +65,7 @@ def run(
                   max_wheel_acceleration=40.0, encoders=None)  # fmt: skip
     follow = TrackerController(tracker, control_rate=CONTROL_RATE, use_estimate=False)
     sim = Simulation(world, robot, follow, start=(*start_xy, heading), goal=goal_xy,
-                     goal_radius=0.3, reference_path=route, rate=PHYSICS_RATE,
+                     goal_tolerance=0.3, reference_path=route, rate=PHYSICS_RATE,
                      control_rate=CONTROL_RATE, duration=200.0, wall_timeout=60.0)  # fmt: skip
     return sim.run(), route.length
 
@@ -81,7 +81,7 @@ def run(
     [
         ("astar", lambda grid: FollowTheCarrot(max_speed=0.3)),
         ("field_dstar",
-         lambda grid: OnOffTracker(speed=0.3, turn_rate=1.5, heading_tolerance=0.05)),
+         lambda grid: OnOffTracker(max_speed=0.3, rotate_omega=1.5, rotate_angle=0.05)),
         ("astar", lambda grid: RegulatedPurePursuit(lookahead_time=1.0, clearance=grid)),
     ],
     ids=["astar-carrot", "field_dstar-onoff", "astar-rpp"],

@@ -100,7 +100,7 @@ def test_clearance_on_an_occupancy_grid() -> None:
 def test_moving_obstacles() -> None:
     ball = MovingObstacle.constant_velocity(0.2, start_xy=(0.0, 0.0), velocity_xy=(1.0, 0.0))
     sq = box(-0.25, -0.25, 0.25, 0.25)
-    guard = MovingObstacle.scripted(sq, [(5.0, 0.0), (5.0, 2.0)], speed=1.0, loop=True)
+    guard = MovingObstacle.scripted(sq, [(5.0, 0.0), (5.0, 2.0)], speed=1.0, after="loop")
     timed = MovingObstacle.scripted(0.1, [(0, 0), (1, 0), (1, 1)], times=[0.0, 1.0, 3.0])
     world = World(moving=[ball, guard, timed])
     assert world.moving == (ball, guard, timed)

@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 from typing import Literal
 
+from navkit._shared.deprecation import renamed_keyword
 from navkit.control._path_following import (
     PathTracker,
     Polyline,
@@ -27,7 +28,7 @@ class FollowTheCarrot(PathTracker):
 
     1. **rotate** — turns in place toward the carrot until its heading error is
        at most ``align_tolerance`` (at the start, and again whenever the error
-       exceeds ``align_angle``, e.g. at a sharp corner);
+       exceeds ``rotate_angle``, e.g. at a sharp corner);
     2. **track** — drives at ``max_speed`` while turning at
        ``heading_gain × error`` (limited to ``max_omega``) toward the carrot;
     3. **final** — once within ``goal_tolerance`` of the goal (the carrot on
@@ -65,15 +66,20 @@ class FollowTheCarrot(PathTracker):
         Turn rate per radian of heading error (1/s), in (0, 1e6]. With the
         default speed and carrot distance the lateral error is overdamped
         (poles −0.8 and −2.2 s⁻¹ of ``s² + k s + k v / d``).
-    align_angle : float, default π/4
+    rotate_angle : float, default π/4
         Heading error (rad) to the carrot above which a differential robot stops
         and turns in place, in (0, π]. Below π/2 the robot cannot orbit the
         goal: it always closes in on it while driving.
     align_tolerance : float, default 0.1
         Heading error (rad) at which an in-place turn toward the path ends, in
-        (0, ``align_angle``].
+        (0, ``rotate_angle``].
     drive : {"diff", "omni"}, default "diff"
         Differential (``vy = 0``) or omnidirectional robot.
+
+    Other Parameters
+    ----------------
+    align_angle : float, optional
+        Deprecated name of `rotate_angle`.
 
     Notes
     -----
@@ -109,6 +115,7 @@ class FollowTheCarrot(PathTracker):
     (True, True)
     """
 
+    # _align_angle holds rotate_angle: the private name predates the rename (pickles).
     __slots__ = (
         "_align_angle",
         "_align_tolerance",
@@ -128,16 +135,23 @@ class FollowTheCarrot(PathTracker):
         goal_tolerance: float = 0.05,
         yaw_tolerance: float = 0.01,
         heading_gain: float = 3.0,
-        align_angle: float = math.pi / 4,
+        rotate_angle: float = math.pi / 4,
         align_tolerance: float = 0.1,
         drive: Literal["diff", "omni"] = "diff",
+        align_angle: float | None = None,
     ) -> None:
+        # The name every tracker shares (docs/guides/control.md); the old one warns,
+        # and errors name the keyword the caller wrote.
+        angle_name = "rotate_angle" if align_angle is None else "align_angle"
+        rotate_angle = renamed_keyword(
+            "align_angle", align_angle, "rotate_angle", rotate_angle, math.pi / 4
+        )
         super().__init__(drive=drive, goal_tolerance=goal_tolerance, yaw_tolerance=yaw_tolerance)
         self._carrot_distance = bounded(carrot_distance, "carrot_distance", 0.0, 1e4)
         self._max_speed = bounded(max_speed, "max_speed", 0.0, 100.0)
         self._max_omega = bounded(max_omega, "max_omega", 0.0, 100.0)
         self._heading_gain = bounded(heading_gain, "heading_gain", 0.0, 1e6)
-        self._align_angle = bounded(align_angle, "align_angle", 0.0, math.pi)
+        self._align_angle = bounded(rotate_angle, angle_name, 0.0, math.pi)
         self._align_tolerance = bounded(
             align_tolerance, "align_tolerance", 0.0, self._align_angle
         )

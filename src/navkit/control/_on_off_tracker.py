@@ -3,8 +3,10 @@
 from __future__ import annotations
 
 import math
+import warnings
 from typing import Literal
 
+from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.validation import finite_float
 from navkit.control._path_following import (
     PathTracker,
@@ -17,6 +19,17 @@ from navkit.geometry import Pose2D, Twist2D
 
 __all__ = ["OnOffTracker"]
 
+_ROTATE_ANGLE = math.radians(10.0)
+
+
+def _renamed_property(old: str, new: str) -> None:
+    """Warn that the property ``old`` was read (stacklevel: the reader's line)."""
+    warnings.warn(
+        f"OnOffTracker.{old} is deprecated and will be removed in a future release: use {new}",
+        DeprecationWarning,
+        stacklevel=3,
+    )
+
 
 class OnOffTracker(PathTracker):
     """ON-OFF waypoint tracker: turn in place, or drive straight, never both.
@@ -25,16 +38,16 @@ class OnOffTracker(PathTracker):
     differential robot (``drive="diff"``) at every step:
 
     * **rotate** — while its heading error to the waypoint is at least
-      ``heading_tolerance`` (10°), turns in place at ``turn_rate``;
-    * **track** — otherwise drives straight (``omega = 0``) at ``speed``;
+      ``rotate_angle`` (10°), turns in place at ``rotate_omega``;
+    * **track** — otherwise drives straight (``omega = 0``) at ``max_speed``;
 
     and takes the next waypoint once within ``goal_tolerance`` (0.05 m) of this
-    one. After the last waypoint it turns in place at ``turn_rate`` to the goal
+    one. After the last waypoint it turns in place at ``rotate_omega`` to the goal
     heading (phase **final**, if :meth:`set_path` was given one) until within
     ``yaw_tolerance``; then :attr:`done`.
 
     An omnidirectional robot (``drive="omni"``) never turns on the way: it
-    translates straight toward the waypoint at ``speed`` (``omega = 0``), and
+    translates straight toward the waypoint at ``max_speed`` (``omega = 0``), and
     turns to the goal heading at the end.
 
     No command overshoots within one step: a turn is at most ``|error| / dt``,
@@ -46,13 +59,13 @@ class OnOffTracker(PathTracker):
 
     Parameters
     ----------
-    speed : float, default 0.2
+    max_speed : float, default 0.2
         Driving speed (m/s), in (0, 100].
-    turn_rate : float, default 0.5
+    rotate_omega : float, default 0.5
         In-place turn rate (rad/s), in (0, 100].
-    heading_tolerance : float, default 10° (0.1745 rad)
-        Heading error (rad) to the waypoint below which the robot drives, in
-        (0, π/2).
+    rotate_angle : float, default 10° (0.1745 rad)
+        Heading error (rad) to the waypoint from which the robot turns in place
+        (below it, it drives), in (0, π/2).
     goal_tolerance : float, default 0.05
         Distance (m) at which a waypoint (the last one included) is reached, in
         (0, 1e4].
@@ -61,9 +74,18 @@ class OnOffTracker(PathTracker):
     drive : {"diff", "omni"}, default "diff"
         Differential (``vy = 0``) or omnidirectional robot.
 
+    Other Parameters
+    ----------------
+    speed : float, optional
+        Deprecated name of `max_speed`.
+    turn_rate : float, optional
+        Deprecated name of `rotate_omega`.
+    heading_tolerance : float, optional
+        Deprecated name of `rotate_angle`.
+
     Notes
     -----
-    Driving with a heading error just under ``β = heading_tolerance`` the robot
+    Driving with a heading error just under ``β = rotate_angle`` the robot
     spirals onto the waypoint; its distance from the line of sight it started
     on is at most ``r₀ sin β · exp(−β / tan β)`` (6.45 % of the start distance
     ``r₀`` for β = 10°). So on a segment of length ``ℓ`` the robot stays within
@@ -92,40 +114,90 @@ class OnOffTracker(PathTracker):
     True
     """
 
+    # The private names predate the option renames; kept so that pickles load.
     __slots__ = ("_heading_tolerance", "_speed", "_turn_rate", "_waypoint")
 
     def __init__(
         self,
         *,
-        speed: float = 0.2,
-        turn_rate: float = 0.5,
-        heading_tolerance: float = math.radians(10.0),
+        max_speed: float = 0.2,
+        rotate_omega: float = 0.5,
+        rotate_angle: float = _ROTATE_ANGLE,
         goal_tolerance: float = 0.05,
         yaw_tolerance: float = 0.01,
         drive: Literal["diff", "omni"] = "diff",
+        speed: float | None = None,
+        turn_rate: float | None = None,
+        heading_tolerance: float | None = None,
     ) -> None:
+        # The names every tracker shares (docs/guides/control.md); the old ones warn,
+        # and errors name the keyword the caller wrote.
+        speed_name = "max_speed" if speed is None else "speed"
+        omega_name = "rotate_omega" if turn_rate is None else "turn_rate"
+        angle_name = "rotate_angle" if heading_tolerance is None else "heading_tolerance"
+        max_speed = renamed_keyword("speed", speed, "max_speed", max_speed, 0.2)
+        rotate_omega = renamed_keyword("turn_rate", turn_rate, "rotate_omega", rotate_omega, 0.5)
+        rotate_angle = renamed_keyword(
+            "heading_tolerance", heading_tolerance, "rotate_angle", rotate_angle, _ROTATE_ANGLE
+        )
         super().__init__(drive=drive, goal_tolerance=goal_tolerance, yaw_tolerance=yaw_tolerance)
-        self._speed = bounded(speed, "speed", 0.0, 100.0)
-        self._turn_rate = bounded(turn_rate, "turn_rate", 0.0, 100.0)
-        tolerance = finite_float(heading_tolerance, "heading_tolerance")
-        if not 0.0 < tolerance < math.pi / 2:
-            raise ValueError(f"heading_tolerance must be in (0, π/2), got {tolerance}")
-        self._heading_tolerance = tolerance
+        self._speed = bounded(max_speed, speed_name, 0.0, 100.0)
+        self._turn_rate = bounded(rotate_omega, omega_name, 0.0, 100.0)
+        angle = finite_float(rotate_angle, angle_name)
+        if not 0.0 < angle < math.pi / 2:
+            raise ValueError(f"{angle_name} must be in (0, π/2), got {angle}")
+        self._heading_tolerance = angle
         self._waypoint = 0
 
     @property
-    def speed(self) -> float:
+    def max_speed(self) -> float:
         """Driving speed (m/s)."""
         return self._speed
 
     @property
-    def turn_rate(self) -> float:
+    def rotate_omega(self) -> float:
         """In-place turn rate (rad/s)."""
         return self._turn_rate
 
     @property
+    def rotate_angle(self) -> float:
+        """Heading error (rad) to the waypoint from which the robot turns in place."""
+        return self._heading_tolerance
+
+    @property
+    def speed(self) -> float:
+        """Deprecated alias of :attr:`max_speed`.
+
+        Examples
+        --------
+        >>> OnOffTracker(max_speed=0.3).max_speed  # not .speed, which warns
+        0.3
+        """
+        _renamed_property("speed", "max_speed")
+        return self._speed
+
+    @property
+    def turn_rate(self) -> float:
+        """Deprecated alias of :attr:`rotate_omega`.
+
+        Examples
+        --------
+        >>> OnOffTracker(rotate_omega=1.5).rotate_omega  # not .turn_rate, which warns
+        1.5
+        """
+        _renamed_property("turn_rate", "rotate_omega")
+        return self._turn_rate
+
+    @property
     def heading_tolerance(self) -> float:
-        """Heading error (rad) to the waypoint below which the robot drives."""
+        """Deprecated alias of :attr:`rotate_angle`.
+
+        Examples
+        --------
+        >>> OnOffTracker(rotate_angle=0.25).rotate_angle  # not .heading_tolerance, which warns
+        0.25
+        """
+        _renamed_property("heading_tolerance", "rotate_angle")
         return self._heading_tolerance
 
     @property

@@ -171,7 +171,7 @@ class PotentialFieldController:
     >>> pose = Pose2D(0.0, 0.0, 0.0)
     >>> target = Pose2D(2.0, 0.0, 0.0)
     >>> for _ in range(200):
-    ...     cmd = ctl.step(pose, target, dt=0.05)
+    ...     cmd = ctl.step(pose, target, 0.05)
     ...     pose = integrate(pose, cmd, 0.05)
     >>> round(pose.x, 2), ctl.stalled
     (2.0, False)
@@ -259,13 +259,13 @@ class PotentialFieldController:
         --------
         >>> ctl = PotentialFieldController(stall_timeout=0.5)
         >>> for _ in range(8):  # the robot does not move: stalled after 0.5 s
-        ...     cmd = ctl.step((0.0, 0.0, 0.0), (2.0, 0.0, 0.0), dt=0.1)
+        ...     cmd = ctl.step((0.0, 0.0, 0.0), (2.0, 0.0, 0.0), 0.1)
         >>> ctl.stalled, ctl.previous_velocity
         (True, array([0.5, 0. ]))
         >>> ctl.reset()
         >>> ctl.stalled, ctl.stall_time, ctl.previous_velocity
         (False, 0.0, array([0., 0.]))
-        >>> ctl.step((0.0, 0.0, 0.0), (2.0, 0.0, 0.0), dt=0.1)  # from rest again
+        >>> ctl.step((0.0, 0.0, 0.0), (2.0, 0.0, 0.0), 0.1)  # from rest again
         Twist2D(vx=0.1, vy=0.0, omega=0.0)
         """
         self._velocity: FloatArray = np.zeros(2)
@@ -459,8 +459,8 @@ class PotentialFieldController:
         self,
         pose: Pose2D | ArrayLike,
         target_pose: Pose2D | ArrayLike,
-        *,
         dt: float,
+        *,
         obstacles: ArrayLike | LaserScan | None = None,
         velocity: Twist2D | ArrayLike | None = None,
     ) -> Twist2D:
@@ -475,7 +475,8 @@ class PotentialFieldController:
             ``"omni"`` drive, for a ``"diff"`` drive where the desired velocity
             is below a thousandth of ``max_speed`` (at the goal).
         dt : float
-            Control period in seconds, in [1e-6, 1e6].
+            Control period in seconds, in [1e-6, 1e6]; positional or keyword, so a
+            control loop calls this as it calls a path tracker's ``step(pose, dt)``.
         obstacles : array_like (M, 2), LaserScan or None, optional
             Obstacle points ``(x, y)`` in m in the world frame (rows with
             NaN/inf are skipped), or a scan taken in the robot frame, or nothing.
@@ -505,15 +506,15 @@ class PotentialFieldController:
         command reverses by at most ``max_decel × dt`` (0.2 m/s):
 
         >>> ctl = PotentialFieldController(max_speed=0.5, max_accel=1.0, max_decel=2.0)
-        >>> ctl.step(Pose2D(0.0, 0.0, 0.0), Pose2D(2.0, 0.0, 0.0), dt=0.1)
+        >>> ctl.step(Pose2D(0.0, 0.0, 0.0), Pose2D(2.0, 0.0, 0.0), 0.1)
         Twist2D(vx=0.1, vy=0.0, omega=0.0)
-        >>> ctl.step(Pose2D(0.0, 0.0, 0.0), Pose2D(2.0, 0.0, 0.0), dt=0.1, obstacles=[[0.3, 0.0]])
+        >>> ctl.step(Pose2D(0.0, 0.0, 0.0), Pose2D(2.0, 0.0, 0.0), 0.1, obstacles=[[0.3, 0.0]])
         Twist2D(vx=-0.1, vy=0.0, omega=0.0)
 
         A differential drive first turns (at ``max_omega``) toward a goal on its left:
 
         >>> diff = PotentialFieldController(drive="diff")
-        >>> diff.step((0.0, 0.0, 0.0), (0.0, 2.0, 0.0), dt=0.1)
+        >>> diff.step((0.0, 0.0, 0.0), (0.0, 2.0, 0.0), 0.1)
         Twist2D(vx=0.0, vy=0.0, omega=2.0)
         """
         pose = as_pose(pose, "pose")

@@ -10,6 +10,7 @@ from typing import Any, Literal, cast
 import numpy as np
 from numpy.typing import ArrayLike
 
+from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_bool
 from navkit.control._path_following import (
@@ -75,7 +76,7 @@ class RegulatedPurePursuit(PathTracker):
        It never moves back along the path by more than ``L`` shrank since the
        previous step.
     2. **Rotate to heading.** When the lookahead point lies more than
-       ``rotate_to_heading_angle`` off the robot's heading (the path points
+       ``rotate_angle`` off the robot's heading (the path points
        sideways or behind), a differential robot turns in place toward it at
        ``rotate_omega``, within ``max_angular_accel`` of its current turn rate
        and slow enough to stop on it (``|ω| <= sqrt(2 a |angle|)``; a robot
@@ -133,7 +134,7 @@ class RegulatedPurePursuit(PathTracker):
         on the arc through it, of radius ``d² / (2 |y|)``, which is a straight
         line away from it when the point is right behind: as in Nav2 (without
         reversing), the robot may never come back to the path.
-    rotate_to_heading_angle : float, default 0.785
+    rotate_angle : float, default 0.785
         Nav2 ``rotate_to_heading_min_angle`` (rad), in (0, π].
     rotate_omega : float, default 1.8
         Nav2 ``rotate_to_heading_angular_vel`` (rad/s), in (0, 100].
@@ -173,6 +174,11 @@ class RegulatedPurePursuit(PathTracker):
         its measured rate.
     drive : {"diff", "omni"}, default "diff"
         Differential (``vy = 0``) or omnidirectional robot.
+
+    Other Parameters
+    ----------------
+    rotate_to_heading_angle : float, optional
+        Deprecated name of `rotate_angle`.
 
     Notes
     -----
@@ -257,7 +263,7 @@ class RegulatedPurePursuit(PathTracker):
         "_motion_heading",
         "_rotate_omega",
         "_rotate_to_heading",
-        "_rotate_to_heading_angle",
+        "_rotate_to_heading_angle",  # rotate_angle: the name predates the rename (pickles)
         "_slowdown_radius",
     )
 
@@ -269,7 +275,7 @@ class RegulatedPurePursuit(PathTracker):
         min_lookahead: float = 0.3,
         max_lookahead: float = 0.9,
         rotate_to_heading: bool = True,
-        rotate_to_heading_angle: float = 0.785,
+        rotate_angle: float = 0.785,
         rotate_omega: float = 1.8,
         max_angular_accel: float = 3.2,
         curvature_regulation: bool = True,
@@ -284,7 +290,15 @@ class RegulatedPurePursuit(PathTracker):
         yaw_tolerance: float = 0.25,
         max_omega: float | None = None,
         drive: Literal["diff", "omni"] = "diff",
+        rotate_to_heading_angle: float | None = None,
     ) -> None:
+        # The name every tracker shares (docs/guides/control.md); the old one warns,
+        # and errors name the keyword the caller wrote.
+        old_used = rotate_to_heading_angle is not None
+        angle_name = "rotate_to_heading_angle" if old_used else "rotate_angle"
+        rotate_angle = renamed_keyword(
+            "rotate_to_heading_angle", rotate_to_heading_angle, "rotate_angle", rotate_angle, 0.785
+        )
         super().__init__(drive=drive, goal_tolerance=goal_tolerance, yaw_tolerance=yaw_tolerance)
         self._max_speed = bounded(max_speed, "max_speed", 0.0, 100.0)
         self._lookahead_time = bounded(lookahead_time, "lookahead_time", 0.0, 1e4)
@@ -296,9 +310,7 @@ class RegulatedPurePursuit(PathTracker):
                 f"got {self._max_lookahead}"
             )
         self._rotate_to_heading = as_bool(rotate_to_heading, "rotate_to_heading")
-        self._rotate_to_heading_angle = bounded(
-            rotate_to_heading_angle, "rotate_to_heading_angle", 0.0, math.pi
-        )
+        self._rotate_to_heading_angle = bounded(rotate_angle, angle_name, 0.0, math.pi)
         self._rotate_omega = bounded(rotate_omega, "rotate_omega", 0.0, 100.0)
         self._max_angular_accel = bounded(max_angular_accel, "max_angular_accel", 0.0, 1e4)
         self._curvature_regulation = as_bool(curvature_regulation, "curvature_regulation")

@@ -59,6 +59,7 @@ from navkit.estimation._ekf_kernels import (
     set_r,
     update_kernel,
 )
+from navkit.estimation._fusion import FusionStatus
 from navkit.estimation._gaussian import GaussianEstimate
 from navkit.estimation._result import (  # the slot setters of new_result, for inlining it
     UpdateResult,
@@ -68,12 +69,16 @@ from navkit.estimation._result import (  # the slot setters of new_result, for i
     _set_reason,
     _set_residual,
     new_result,
+    rejected_result,
 )
 from navkit.geometry import wrap_angle
 
 __all__ = ["ExtendedKalmanFilter"]
 
 _OVERFLOW = "overflow: not applied, float64 cannot hold "
+# UpdateResult.status of the measurements not applied (PlanarFusion's codes).
+_GATED = FusionStatus.GATED
+_OVERFLOWED = FusionStatus.OVERFLOW
 _NDARRAY = np.ndarray
 _empty = np.empty
 _NO_INDICES: IntArray = np.zeros(0, dtype=np.int64)
@@ -381,7 +386,8 @@ class ExtendedKalmanFilter(GaussianEstimate):
         >>> ekf = ExtendedKalmanFilter([0.0, 1.0], np.eye(2))  # position m, speed m/s
         >>> H = np.array([[1.0, 0.0]])  # the position is measured
         >>> ekf.update([0.5], lambda x: x[:1], H, [[1.0]])
-        UpdateResult(accepted=True, nis=0.125, residual=array([0.5]), reason=None)
+        UpdateResult(accepted=True, nis=0.125, residual=array([0.5]), reason=None,
+                     status=<FusionStatus.ACCEPTED: 0>)
         >>> ekf.x, ekf.P  # halfway to z: prior and measurement variances are equal
         (array([0.25, 1.  ]), array([[0.5, 0. ],
                                      [0. , 1. ]]))
@@ -517,13 +523,17 @@ class ExtendedKalmanFilter(GaussianEstimate):
             return new_result(True, nis, y, None)
         if status == GATED:
             threshold = rbuf_gate(self._rbuf)
-            return new_result(False, nis, y, f"rejected by the gate: NIS {nis:.6g} > {threshold}")
+            return rejected_result(
+                nis, y, f"rejected by the gate: NIS {nis:.6g} > {threshold}", _GATED
+            )
         if status == RESIDUAL_OVERFLOW:
-            return new_result(False, math.inf, np.empty(0), _OVERFLOW + "the residual z - h(x)")
+            return rejected_result(
+                math.inf, np.empty(0), _OVERFLOW + "the residual z - h(x)", _OVERFLOWED
+            )
         if status == NIS_OVERFLOW:
-            return new_result(False, math.inf, y, _OVERFLOW + "the NIS")
+            return rejected_result(math.inf, y, _OVERFLOW + "the NIS", _OVERFLOWED)
         if status == STATE_OVERFLOW:
-            return new_result(False, nis, y, _OVERFLOW + "the updated state")
+            return rejected_result(nis, y, _OVERFLOW + "the updated state", _OVERFLOWED)
         if status == S_NOT_FINITE:
             _raise(NOT_FINITE, "innovation covariance S")
         if status == S_NOT_POSITIVE_DEFINITE:

@@ -44,6 +44,7 @@ from navkit.estimation._result import (
     _set_reason,
     _set_residual,
     new_result,
+    rejected_result,
 )
 from navkit.geometry import Pose2D, wrap_angle
 
@@ -103,7 +104,7 @@ class _IntCodes(enum.EnumMeta):
 
 
 class FusionStatus(enum.IntEnum, metaclass=_IntCodes):
-    """Outcome of one measurement in :meth:`PlanarFusion.update_batch` (``FusionResult.status``).
+    """Outcome of one measurement: ``FusionResult.status`` and ``UpdateResult.status``.
 
     ``ACCEPTED``
         The row updated the state.
@@ -122,6 +123,15 @@ class FusionStatus(enum.IntEnum, metaclass=_IntCodes):
     ``OVERFLOW``
         The update would overflow float64 (a value absurdly far from the state
         for its variance); the state keeps the prediction.
+
+    The codes of each row of :meth:`PlanarFusion.update_batch`, and the
+    ``status`` of the :class:`UpdateResult` of an online update
+    (``PlanarFusion.update_*``, :meth:`ExtendedKalmanFilter.update`):
+    ``ACCEPTED``, ``GATED``, ``OVERFLOW`` or (PlanarFusion) ``OUT_OF_ORDER``
+    there, the filter otherwise as described (an EKF has no prediction in
+    its update: its state is unchanged); online, a loss of positive
+    definiteness or a time gap raises :class:`~navkit.errors.FilterError`
+    instead.
 
     Examples
     --------
@@ -954,11 +964,11 @@ class PlanarFusion(GaussianEstimate):
             # The first measurement sets the clock (no prediction: the step's dt is 0).
             self._buf[BUF_TIME] = t
         elif t < last:
-            return new_result(
-                False,
+            return rejected_result(
                 math.nan,
                 np.empty(0),
                 f"out of order: t={t} s is older than the filter time {last} s",
+                FusionStatus.OUT_OF_ORDER,
             )
         status, nis = _step(self._buf, t, first, count, z0, float(z1), var0, float(var1), gate)
         if status:
@@ -988,14 +998,16 @@ class PlanarFusion(GaussianEstimate):
         # Gated and overflowing measurements still advance the clock: the kernel kept
         # the prediction and set the time.
         if status == GATED:
-            return new_result(False, nis, residual, f"rejected by the gate: NIS {nis:.6g}")
+            return rejected_result(
+                nis, residual, f"rejected by the gate: NIS {nis:.6g}", FusionStatus.GATED
+            )
         assert status == OVERFLOW
-        return new_result(
-            False,
+        return rejected_result(
             nis,
             residual,
             "overflow: the update would overflow float64 (the measurement is absurdly far "
             "from the state for its variance); the prediction is kept",
+            FusionStatus.OVERFLOW,
         )
 
     def update_batch(self, log: MeasurementLog) -> FusionResult:

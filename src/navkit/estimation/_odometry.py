@@ -4,11 +4,13 @@ from __future__ import annotations
 
 import math
 import numbers
+import warnings
 from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.se2 import exp_body
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import (
@@ -88,12 +90,12 @@ def _batch_deltas(last: int | NDArray[Any], readings: NDArray[Any], bits: int) -
     return np.concatenate((first, rest))
 
 
-def _bit_width(value: object) -> int:
-    """``encoder_bits`` as an int from 2 to 64 (TypeError for a non-integer, bools included)."""
+def _bit_width(value: object, name: str) -> int:
+    """``bits`` as an int from 2 to 64 (TypeError for a non-integer, bools included)."""
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Integral):
-        raise TypeError(f"encoder_bits must be an integer or None, got {type(value).__name__}")
+        raise TypeError(f"{name} must be an integer or None, got {type(value).__name__}")
     if not 2 <= int(value) <= 64:
-        raise ValueError(f"encoder_bits must be an integer from 2 to 64, got {value!r}")
+        raise ValueError(f"{name} must be an integer from 2 to 64, got {value!r}")
     return int(value)
 
 
@@ -296,7 +298,7 @@ class DiffOdometry:
     """Differential-drive pose from successive wheel encoder counts.
 
     Counter wrap-around is handled with :func:`navkit.kinematics.tick_delta` when
-    ``encoder_bits`` is given. Each step converts the tick changes to wheel
+    ``bits`` is given. Each step converts the tick changes to wheel
     distances (each wheel with its own radius) and moves the pose with
     :meth:`navkit.kinematics.DiffDrive.odometry_step_batch`: ``"arc"`` (exact for
     constant wheel speeds over the step), ``"midpoint"`` or ``"first_order"``
@@ -312,13 +314,19 @@ class DiffOdometry:
     ticks_per_rev : float
         Encoder counts per wheel revolution, in [1, 1e12] (as
         :func:`navkit.kinematics.ticks_to_distance`).
-    encoder_bits : int, optional
+    bits : int, optional
         Width of the hardware counters (e.g. 16), an integer from 2 to 64, for
-        wrap-around; None for counters that never wrap.
+        wrap-around (as ``tick_delta(bits=)`` and ``sim.WheelEncoders(bits=)``);
+        None for counters that never wrap.
     pose : Pose2D or array_like, shape (3,), default Pose2D(0, 0, 0)
         Pose at the first reading.
     method : {"arc", "midpoint", "first_order"}, default "arc"
         Integration scheme per step.
+
+    Other Parameters
+    ----------------
+    encoder_bits : int, optional
+        Deprecated name of `bits`.
 
     Notes
     -----
@@ -336,7 +344,7 @@ class DiffOdometry:
     Examples
     --------
     >>> drive = DiffDrive(track=0.5, wheel_radius=0.1)
-    >>> odo = DiffOdometry(drive, ticks_per_rev=1000, encoder_bits=16)
+    >>> odo = DiffOdometry(drive, ticks_per_rev=1000, bits=16)
     >>> odo.update(65000, 65000)  # the first reading only latches the counters
     Pose2D(x=0.0, y=0.0, theta=0.0)
     >>> odo.update(464, 464)  # both counters wrapped: +1000 ticks, one wheel turn
@@ -362,10 +370,13 @@ class DiffOdometry:
         drive: DiffDrive,
         *,
         ticks_per_rev: float,
-        encoder_bits: int | None = None,
+        bits: int | None = None,
         pose: Pose2D | ArrayLike | None = None,
         method: OdometryMethod = "arc",
+        encoder_bits: int | None = None,
     ) -> None:
+        named = "bits" if encoder_bits is None else "encoder_bits"  # as the caller wrote it
+        bits = renamed_keyword("encoder_bits", encoder_bits, "bits", bits, None)
         if not isinstance(drive, DiffDrive):
             raise TypeError(f"drive must be a DiffDrive, got {type(drive).__name__}")
         start = Pose2D(0.0, 0.0, 0.0) if pose is None else as_pose(pose, "pose")
@@ -373,7 +384,7 @@ class DiffOdometry:
             raise TypeError(f"method must be one of {_METHODS}, got {type(method).__name__}")
         if method not in _METHODS:
             raise ValueError(f"method must be one of {_METHODS}, got {method!r}")
-        bits = None if encoder_bits is None else _bit_width(encoder_bits)
+        bits = None if bits is None else _bit_width(bits, named)
         self._drive = drive
         # ticks_to_distance owns the documented range of ticks_per_rev; checked here once.
         ticks_to_distance(0, ticks_per_rev=ticks_per_rev, wheel_radius=drive.left_radius)
@@ -397,8 +408,25 @@ class DiffOdometry:
         return self._pose
 
     @property
-    def encoder_bits(self) -> int | None:
+    def bits(self) -> int | None:
         """Width of the counters it decodes (None: counters that never wrap)."""
+        return self._bits
+
+    @property
+    def encoder_bits(self) -> int | None:
+        """Deprecated alias of :attr:`bits`.
+
+        Examples
+        --------
+        >>> DiffOdometry(DiffDrive(track=0.5, wheel_radius=0.1), ticks_per_rev=1000, bits=16).bits
+        16
+        """
+        warnings.warn(
+            "DiffOdometry.encoder_bits is deprecated and will be removed in a future release: "
+            "use DiffOdometry.bits",
+            DeprecationWarning,
+            stacklevel=2,
+        )
         return self._bits
 
     def reset(self, pose: Pose2D | ArrayLike | None = None) -> None:
@@ -440,7 +468,7 @@ class DiffOdometry:
         ----------
         left_ticks, right_ticks : int
             Raw counter readings (counts) of the left and right encoders
-            (wrapping at ``2**encoder_bits`` when ``encoder_bits`` is set).
+            (wrapping at ``2**bits`` when ``bits`` is set).
 
         Returns
         -------
@@ -609,5 +637,5 @@ class DiffOdometry:
     def __repr__(self) -> str:
         return (
             f"DiffOdometry({self._drive!r}, ticks_per_rev={self._ticks_per_rev}, "
-            f"encoder_bits={self._bits}, method={self._method!r}, pose={self._pose!r})"
+            f"bits={self._bits}, method={self._method!r}, pose={self._pose!r})"
         )

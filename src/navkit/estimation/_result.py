@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
+import numbers
 from dataclasses import dataclass, fields
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -11,7 +12,17 @@ from navkit._shared.frozen import frozen_setattr, reduce_record
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array
 
+if TYPE_CHECKING:
+    from navkit.estimation._fusion import FusionStatus
+
 __all__ = ["UpdateResult"]
+
+
+def _fusion_status() -> type[FusionStatus]:
+    """:class:`FusionStatus`, imported on use: its module imports this one."""
+    from navkit.estimation._fusion import FusionStatus
+
+    return FusionStatus
 
 
 @frozen_setattr
@@ -32,19 +43,30 @@ class UpdateResult:
         Innovation y = z - h(x) with angle components wrapped to (-π, π]; empty
         when it was never computed or overflowed float64.
     reason : str or None
-        Why the measurement was not applied; None when ``accepted``.
+        Why the measurement was not applied, as a message; None when ``accepted``.
+    status : FusionStatus or None
+        The outcome as a code, the :class:`FusionStatus` that
+        ``FusionResult.status`` holds for each row of a batch: ``ACCEPTED``
+        exactly when ``accepted``; from the filters otherwise ``GATED``,
+        ``OVERFLOW`` or (:class:`PlanarFusion`) ``OUT_OF_ORDER``. None for a
+        rejected result built without one (the default).
 
     Examples
     --------
-    >>> r = UpdateResult(False, 30.2, np.array([5.0]), "rejected by the gate")
-    >>> bool(r), r.reason
-    (False, 'rejected by the gate')
+    >>> from navkit.estimation import FusionStatus
+    >>> r = UpdateResult(False, 30.2, np.array([5.0]), "rejected by the gate",
+    ...                  FusionStatus.GATED)
+    >>> bool(r), r.reason, r.status is FusionStatus.GATED
+    (False, 'rejected by the gate', True)
+    >>> UpdateResult(True, 0.5, np.array([0.1])).status is FusionStatus.ACCEPTED
+    True
     """
 
     accepted: bool
     nis: float
     residual: FloatArray
     reason: str | None = None
+    status: FusionStatus | None = None
 
     def __post_init__(self) -> None:
         if not isinstance(self.accepted, (bool, np.bool_)):
@@ -61,6 +83,26 @@ class UpdateResult:
             raise TypeError(f"reason must be a str or None, got {type(self.reason).__name__}")
         if self.accepted and self.reason is not None:
             raise ValueError(f"reason must be None when accepted, got {self.reason!r}")
+        codes = _fusion_status()
+        raw: object = self.status  # as passed: any object
+        status: FusionStatus | None
+        if raw is None:
+            status = codes.ACCEPTED if self.accepted else None
+        elif isinstance(raw, codes):
+            status = raw
+        elif isinstance(raw, (bool, np.bool_)) or not isinstance(raw, numbers.Integral):
+            raise TypeError(f"status must be a FusionStatus or None, got {type(raw).__name__}")
+        else:
+            try:
+                status = codes(int(raw))
+            except ValueError:
+                raise ValueError(f"status must be a FusionStatus code, got {raw!r}") from None
+        if status is not None and (status is codes.ACCEPTED) != self.accepted:
+            raise ValueError(
+                f"status must be ACCEPTED exactly when accepted, got {status.name} with "
+                f"accepted={self.accepted}"
+            )
+        object.__setattr__(self, "status", status)
 
     def __reduce__(self) -> tuple[Any, ...]:
         """Copy and pickle support: ``residual`` read-only, also in subclasses' copies.
@@ -76,9 +118,10 @@ class UpdateResult:
 
         An unpickled or deep-copied array is writeable again. A writeable one (also
         the residual a filter returns, shared by a :func:`copy.copy`) is replaced by
-        a read-only copy, leaving the original result's array as it was.
+        a read-only copy, leaving the original result's array as it was. A
+        pickle from before ``status`` existed leaves it unset (see ``_Status``).
         """
-        for field, value in zip(fields(self), state, strict=True):
+        for field, value in zip(fields(self), state, strict=False):
             object.__setattr__(self, field.name, value)
         residual = self.residual
         if isinstance(residual, np.ndarray) and residual.flags.writeable:
@@ -90,11 +133,43 @@ class UpdateResult:
         return self.accepted
 
 
+class _Status:
+    """``UpdateResult.status`` over its slot: an unset slot reads from ``accepted``.
+
+    The filters' per-measurement paths build results slot by slot and leave
+    ``status`` unset when accepted (one store fewer per update): it then reads
+    as ``ACCEPTED`` (None for a rejected result unpickled from before the field).
+    """
+
+    __slots__ = ("_slot",)
+
+    def __init__(self, slot: Any) -> None:
+        self._slot = slot
+
+    def __get__(self, result: UpdateResult | None, owner: type | None = None) -> Any:
+        if result is None:
+            return self
+        try:
+            return self._slot.__get__(result, owner)
+        except AttributeError:
+            return _fusion_status().ACCEPTED if result.accepted else None
+
+    def __set__(self, result: UpdateResult, value: Any) -> None:
+        self._slot.__set__(result, value)
+
+    def __delete__(self, result: UpdateResult) -> None:
+        self._slot.__delete__(result)
+
+
+_status_slot = UpdateResult.__dict__["status"]
+type.__setattr__(UpdateResult, "status", _Status(_status_slot))
+
 _object_new = object.__new__
 _set_accepted = UpdateResult.__dict__["accepted"].__set__
 _set_nis = UpdateResult.__dict__["nis"].__set__
 _set_residual = UpdateResult.__dict__["residual"].__set__
 _set_reason = UpdateResult.__dict__["reason"].__set__
+_set_status = _status_slot.__set__
 
 
 def new_result(
@@ -115,4 +190,16 @@ def new_result(
     _set_nis(result, nis)
     _set_residual(result, residual)
     _set_reason(result, reason)
+    return result
+
+
+def rejected_result(
+    nis: float, residual: FloatArray, reason: str, status: FusionStatus
+) -> UpdateResult:
+    """A not-applied :class:`UpdateResult` for the filters, with its ``status``.
+
+    As :func:`new_result` (no validation or copy); ``status`` is not ``ACCEPTED``.
+    """
+    result = new_result(False, nis, residual, reason)
+    _set_status(result, status)
     return result

@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING, Any, overload
 import numpy as np
 from numpy.typing import ArrayLike
 
+from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.products import scaled_product
 from navkit._shared.types import FloatArray
@@ -319,7 +320,8 @@ def imu_to_base(
     angular_velocities: ArrayLike,
     linear_accelerations: ArrayLike,
     *,
-    mounting: ArrayLike,
+    mount: ArrayLike | None = None,
+    mounting: ArrayLike | None = None,
 ) -> ImuInBase:
     """Rotate IMU readings from the IMU's frame into the robot's base frame.
 
@@ -341,22 +343,29 @@ def imu_to_base(
         Angular velocities in the IMU frame, rad/s, same leading shape.
     linear_accelerations : array_like, shape (..., 3)
         Linear accelerations in the IMU frame, m/s², same leading shape.
-    mounting : array_like, shape (4,)
+    mount : array_like, shape (4,)
         Rotation of the IMU frame relative to the base frame, quaternion
         ``(x, y, z, w)`` (non-zero; e.g. ``rpy_to_quaternion(roll, pitch, yaw)``
-        of a static transform).
+        of a static transform); keyword-only, required (the name
+        ``sim.Lidar(mount=)`` uses for a sensor's pose on the robot).
 
     Returns
     -------
     ImuInBase
         Orientations, angular velocities and accelerations of the base.
 
+    Other Parameters
+    ----------------
+    mounting : array_like, optional
+        Deprecated name of `mount`.
+
     Raises
     ------
     TypeError
-        Values that are not real numbers.
+        Values that are not real numbers, ``mount`` missing, or both it and
+        its old name given.
     ValueError
-        Non-finite values, wrong or mismatched shapes, a zero ``mounting``, or
+        Non-finite values, wrong or mismatched shapes, a zero ``mount``, or
         readings so large (near ±1.8e308) that a rotated component would
         overflow float64, naming the readings. A component within the float
         range is returned even when a partial sum of it would overflow.
@@ -367,12 +376,19 @@ def imu_to_base(
     -y axis and reports a heading 90° larger than the robot's:
 
     >>> import math
-    >>> mounting = rpy_to_quaternion(0.0, 0.0, math.pi / 2)
+    >>> mount = rpy_to_quaternion(0.0, 0.0, math.pi / 2)
     >>> imu = imu_to_base(yaw_to_quaternion(math.pi / 2), [0.0, 0.0, 0.2], [0.0, -1.0, 9.8],
-    ...                   mounting=mounting)
-    >>> imu.linear_accelerations.round(6) + 0.0, round(quaternion_to_yaw(imu.orientations), 6)
-    (array([1. , 0. , 9.8]), 0.0)
+    ...                   mount=mount)
+    >>> imu.linear_accelerations.round(6) + 0.0
+    array([1. , 0. , 9.8])
+    >>> # float(): an ndarray may hold many quaternions, so type checkers expect float or array.
+    >>> round(float(quaternion_to_yaw(imu.orientations)), 6)
+    0.0
     """
+    named = "mount" if mounting is None else "mounting"  # as the caller wrote it
+    mount = renamed_keyword("mounting", mounting, "mount", mount, None)
+    if mount is None:
+        raise TypeError("imu_to_base() missing required keyword-only argument: 'mount'")
     q = _quaternions(orientations, "orientations")
     w = _vectors(angular_velocities, "angular_velocities")
     a = _vectors(linear_accelerations, "linear_accelerations")
@@ -382,10 +398,10 @@ def imu_to_base(
             raise ValueError(
                 f"{name} must have shape {(*lead, 3)} to match orientations, got {arr.shape}"
             )
-    raw_m = as_float_array(mounting, "mounting", shape=(4,))
+    raw_m = as_float_array(mount, named, shape=(4,))
     if not np.any(raw_m):
-        raise ValueError("mounting must be a non-zero quaternion (x, y, z, w)")
-    m = _quaternions(raw_m, "mounting")
+        raise ValueError(f"{named} must be a non-zero quaternion (x, y, z, w)")
+    m = _quaternions(raw_m, named)
     rot_t = _matrices(m).T
     inverse = m * np.array([-1.0, -1.0, -1.0, 1.0])
     rotated = []

@@ -7,6 +7,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.frozen import restore_slots
 from navkit._shared.products import scaled_product
 from navkit._shared.types import FloatArray
@@ -334,8 +335,14 @@ class OmniDrive:
         w = as_float_array(wheel_speeds, "wheel_speeds", shape=(None, self.n_wheels))
         return _product(w, self._forward.T, "wheel_speeds", "the twists")
 
-    def saturate(self, wheel_speeds: ArrayLike, *, max_speed: float) -> FloatArray:
-        """Scale wheel speeds so that none exceeds ``max_speed`` in magnitude.
+    def saturate(
+        self,
+        wheel_speeds: ArrayLike,
+        *,
+        max_wheel_speed: float | None = None,
+        max_speed: float | None = None,
+    ) -> FloatArray:
+        """Scale wheel speeds so that none exceeds ``max_wheel_speed`` in magnitude.
 
         All wheels of a command are scaled by the same factor, so the direction of
         motion (the ratios vx : vy : omega) is kept; commands already within the
@@ -345,29 +352,42 @@ class OmniDrive:
         ----------
         wheel_speeds : array_like, shape (N,) or (T, N)
             Wheel angular speeds, rad/s.
-        max_speed : float
+        max_wheel_speed : float
             Largest allowed wheel speed magnitude, rad/s, finite and at least
-            the smallest normal float, about 2.2e-308 (keyword-only).
+            the smallest normal float, about 2.2e-308 (keyword-only, required;
+            the name ``sim.Robot`` uses, where ``max_speed`` is a body speed in m/s).
 
         Returns
         -------
         ndarray
             New array of the input's shape.
 
+        Other Parameters
+        ----------------
+        max_speed : float, optional
+            Deprecated name of `max_wheel_speed`.
+
         Raises
         ------
         TypeError, ValueError
-            ``max_speed`` not a real number or out of its range (a subnormal
-            value such as 5e-324 included), or ``wheel_speeds`` not finite real
-            numbers of shape (N,) or (T, N); each naming the argument.
+            ``max_wheel_speed`` missing, not a real number or out of its range
+            (a subnormal value such as 5e-324 included), both it and its old
+            name given, or ``wheel_speeds`` not finite real numbers of shape
+            (N,) or (T, N); each naming the argument.
 
         Examples
         --------
         >>> drive = OmniDrive.three_wheel(wheel_radius=0.05, base_radius=0.2)
-        >>> drive.saturate([10.0, -20.0, 5.0], max_speed=10.0)
+        >>> drive.saturate([10.0, -20.0, 5.0], max_wheel_speed=10.0)
         array([ 5. , -10. ,   2.5])
         """
-        limit = positive_float(max_speed, "max_speed")
+        named = "max_wheel_speed" if max_speed is None else "max_speed"  # as the caller wrote it
+        max_wheel_speed = renamed_keyword(
+            "max_speed", max_speed, "max_wheel_speed", max_wheel_speed, None
+        )
+        if max_wheel_speed is None:
+            raise TypeError("saturate() missing required keyword-only argument: 'max_wheel_speed'")
+        limit = positive_float(max_wheel_speed, named)
         w = as_float_array(wheel_speeds, "wheel_speeds")
         if w.ndim not in (1, 2) or w.shape[-1] != self.n_wheels:
             raise ValueError(

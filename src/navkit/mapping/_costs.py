@@ -70,7 +70,7 @@ def validate_costs(costs: ArrayLike) -> FloatArray:
 
     Examples
     --------
-    >>> validate_costs([[1, 2], [np.inf, 1.5]])
+    >>> validate_costs([[1.0, 2.0], [np.inf, 1.5]])
     array([[1. , 2. ],
            [inf, 1.5]])
     >>> validate_costs([[0.5]])

@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING, Any, ClassVar, Literal, overload
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.frozen import slot_names
 from navkit._shared.grid_coords import CELL_LIMIT, as_pairs, inside, one_or_many
 from navkit._shared.types import BoolArray, FloatArray, IntArray
@@ -1090,8 +1091,9 @@ class OccupancyGrid:
         hit: float = DEFAULT_HIT,
         miss: float = DEFAULT_MISS,
         clamp: tuple[float, float] = DEFAULT_CLAMP,
-        max_range: float | None = None,
+        range_max: float | None = None,
         exact: bool = False,
+        max_range: float | None = None,
     ) -> int:
         """Ray-cast one scan into this grid in place; see :func:`navkit.mapping.integrate_scan`.
 
@@ -1106,7 +1108,7 @@ class OccupancyGrid:
             (defaults OctoMap's ``logit(0.7)`` and ``logit(0.4)``).
         clamp : (float, float)
             Log-odds bounds ``low < high``, both within ±1e6.
-        max_range : float, optional
+        range_max : float, optional
             Cap on ``scan.range_max``, m (> 0).
         exact : bool, default False
             Exact grid traversal (Amanatides–Woo) instead of Bresenham lines.
@@ -1115,6 +1117,11 @@ class OccupancyGrid:
         -------
         int
             Number of cells updated.
+
+        Other Parameters
+        ----------------
+        max_range : float, optional
+            Deprecated name of `range_max`.
 
         Raises
         ------
@@ -1134,6 +1141,10 @@ class OccupancyGrid:
         """
         from navkit.mapping._raycast import integrate_scan
 
+        if max_range is not None:
+            # Checked here, so that its errors name the keyword the caller wrote.
+            range_max = renamed_keyword("max_range", max_range, "range_max", range_max, None)
+            range_max = bounded_float(range_max, "max_range", 0.0, math.inf, "m", low_open=True)
         return integrate_scan(
             self,
             scan,
@@ -1141,6 +1152,6 @@ class OccupancyGrid:
             hit=hit,
             miss=miss,
             clamp=clamp,
-            max_range=max_range,
+            range_max=range_max,
             exact=exact,
         )

@@ -8,6 +8,7 @@ from collections.abc import Iterable
 import numpy as np
 from numpy.typing import ArrayLike
 
+from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.validation import as_bool, finite_float
 from navkit.geometry import Pose2D, as_pose
 from navkit.mapping._grid import OccupancyGrid
@@ -39,8 +40,9 @@ def integrate_scan(
     hit: float = DEFAULT_HIT,
     miss: float = DEFAULT_MISS,
     clamp: tuple[float, float] = DEFAULT_CLAMP,
-    max_range: float | None = None,
+    range_max: float | None = None,
     exact: bool = False,
+    max_range: float | None = None,
 ) -> int:
     """Ray-cast one scan into ``grid``, updating its log-odds **in place**.
 
@@ -93,11 +95,16 @@ def integrate_scan(
     clamp : (float, float)
         Log-odds bounds ``low < high``, both within ±1e6; default
         ``(logit(0.12), logit(0.97))``.
-    max_range : float, optional
-        Use ``min(scan.range_max, max_range)`` as the maximum range (m, > 0):
+    range_max : float, optional
+        Use ``min(scan.range_max, range_max)`` as the maximum range (m, > 0):
         longer readings clear up to it and mark no hit.
     exact : bool, default False
         Exact grid traversal instead of Bresenham lines.
+
+    Other Parameters
+    ----------------
+    max_range : float, optional
+        Deprecated name of `range_max`.
 
     Raises
     ------
@@ -137,9 +144,11 @@ def integrate_scan(
     m = bounded_float(m, "miss", -LOGODDS_LIMIT, 0.0)
     lo, hi = _clamp_pair(clamp)
     walk_exact = as_bool(exact, "exact")
+    named = "range_max" if max_range is None else "max_range"  # as the caller wrote it
+    range_max = renamed_keyword("max_range", max_range, "range_max", range_max, None)
     rmax = scan.range_max
-    if max_range is not None:
-        rmax = min(rmax, bounded_float(max_range, "max_range", 0.0, math.inf, "m", low_open=True))
+    if range_max is not None:
+        rmax = min(rmax, bounded_float(range_max, named, 0.0, math.inf, "m", low_open=True))
     o = grid.origin
     return int(
         integrate_beams(

@@ -8,6 +8,7 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike
 
+from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.types import FloatArray
 from navkit.geometry import Pose2D, as_pose
 from navkit.mapping._grid import OccupancyGrid, grid_origin
@@ -56,8 +57,8 @@ class ScanMapper:
        per scan, clamped to ``clamp``) when the pose has moved more than
        ``min_distance`` or turned more than ``min_rotation`` since the last
        write (the first scan with a return to write is always written).
-       Returns with no echo (``>= range_max``) and beyond ``max_range`` are not
-       written, as in Hector.
+       Returns with no echo (``>= scan.range_max``) and from ``range_max`` on are
+       not written, as in Hector.
 
     The map starts about ±10 m around the first pose (less where that would
     exceed :attr:`OccupancyGrid.MAX_CELLS` cells, below about 1.2 mm cells) and
@@ -91,9 +92,9 @@ class ScanMapper:
         Translation, m, since the last write that triggers a write (>= 0).
     min_rotation : float, default 0.9
         Rotation, rad, since the last write that triggers a write, in [0, π].
-    max_range : float, optional
+    range_max : float, optional
         Returns at least this long (m) are neither matched nor written; default
-        the matcher's ``max_range`` (all valid returns).
+        the matcher's ``range_max`` (all valid returns).
     start : Pose2D or array_like [x, y, theta], default (0, 0, 0)
         World pose given to the first scan, x and y within ±1e9 m (the range
         of grid origins: the map extends no further below -1e9 m).
@@ -110,6 +111,11 @@ class ScanMapper:
         about 5 cm and 2° per step; give a wider window for worse odometry).
         At most 14 levels: the smallest map, 2 × 2 cells of the coarsest
         level, must fit in :attr:`OccupancyGrid.MAX_CELLS` cells of the finest.
+
+    Other Parameters
+    ----------------
+    max_range : float, optional
+        Deprecated name of `range_max`.
 
     Examples
     --------
@@ -153,10 +159,13 @@ class ScanMapper:
         clamp: tuple[float, float] = (-50.0, 50.0),
         min_distance: float = 0.4,
         min_rotation: float = 0.9,
-        max_range: float | None = None,
+        range_max: float | None = None,
         start: Pose2D | ArrayLike = _IDENTITY,
         matcher: ScanMatcher | None = None,
+        max_range: float | None = None,
     ) -> None:
+        named = "range_max" if max_range is None else "max_range"  # as the caller wrote it
+        range_max = renamed_keyword("max_range", max_range, "range_max", range_max, None)
         self._resolution = resolution_float(resolution)
         if self._resolution < 1e-3:
             raise ValueError(f"resolution must be >= 1e-3 m, got {self._resolution}")
@@ -179,9 +188,9 @@ class ScanMapper:
             raise TypeError(f"matcher must be a ScanMatcher, got {type(matcher).__name__}")
         self._matcher = matcher
         self._max_range = (
-            matcher.max_range
-            if max_range is None
-            else bounded_float(max_range, "max_range", 0.0, 1e9, "m", low_open=True)
+            matcher.range_max
+            if range_max is None
+            else bounded_float(range_max, named, 0.0, 1e9, "m", low_open=True)
         )
         if self._resolution * 2 ** (matcher.levels - 1) > RESOLUTION_MAX:
             raise ValueError("resolution * 2**(levels - 1) must be <= 1e6 m")
@@ -325,7 +334,7 @@ class ScanMapper:
         # A scan without odometry breaks the chain: the next odometry increment
         # would span two scans, on top of this scan's constant-velocity guess.
         self._last_odometry = odom
-        # A scan with nothing to write (no valid return within max_range) does not
+        # A scan with nothing to write (no valid return within range_max) does not
         # count as written: the next scan would then wait for min_distance.
         if points.shape[0] and self._should_write(pose):
             self._write(scan, pose)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import numbers
+import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -11,6 +12,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array
@@ -64,11 +66,11 @@ def bounded_int(value: Any, name: str, low: int, high: int) -> int:
     return out
 
 
-def scan_points(scan: LaserScan, max_range: float | None) -> FloatArray:
-    """Sensor-frame end points (M, 2) of the valid beams shorter than ``max_range``."""
+def scan_points(scan: LaserScan, range_max: float | None) -> FloatArray:
+    """Sensor-frame end points (M, 2) of the valid beams shorter than ``range_max``."""
     points = scan.to_points()
-    if max_range is not None and points.shape[0]:
-        keep = scan.ranges[scan.valid_mask()] < max_range
+    if range_max is not None and points.shape[0]:
+        keep = scan.ranges[scan.valid_mask()] < range_max
         points = points[keep]
     return np.ascontiguousarray(points)
 
@@ -257,7 +259,7 @@ class ScanMatcher:
     tolerance : float, default 1e-3
         Convergence threshold on the finest level: a step shorter than this (m)
         and turning less than ``tolerance / 10`` rad; in (0, 1e6].
-    max_range : float, optional
+    range_max : float, optional
         Only returns shorter than this (m) are matched (all valid returns when None).
     translation_weight, rotation_weight : float, default 0.0
         Pull towards the guess: ``translation_weight² |t - t₀|² +
@@ -274,6 +276,11 @@ class ScanMatcher:
         translations spread further apart to fit. It widens the
         basin from about a coarse cell and a few degrees to the window; about
         ±2σ of the guess's error is a good window. 0 and 0: no search.
+
+    Other Parameters
+    ----------------
+    max_range : float, optional
+        Deprecated name of `range_max`.
 
     Examples
     --------
@@ -316,12 +323,15 @@ class ScanMatcher:
         max_step_cells: float = 2.0,
         max_step_angle: float = 0.2,
         tolerance: float = 1e-3,
-        max_range: float | None = None,
+        range_max: float | None = None,
         translation_weight: float = 0.0,
         rotation_weight: float = 0.0,
         search_distance: float = 0.0,
         search_angle: float = 0.0,
+        max_range: float | None = None,
     ) -> None:
+        named = "range_max" if max_range is None else "max_range"  # as the caller wrote it
+        range_max = renamed_keyword("max_range", max_range, "range_max", range_max, None)
         self._levels = bounded_int(levels, "levels", 1, _MAX_LEVELS)
         self._max_iterations = bounded_int(max_iterations, "max_iterations", 1, _MAX_ITERATIONS)
         self._max_step_cells = bounded_float(
@@ -333,8 +343,8 @@ class ScanMatcher:
         self._tolerance = bounded_float(tolerance, "tolerance", 0.0, 1e6, "m", low_open=True)
         self._max_range = (
             None
-            if max_range is None
-            else bounded_float(max_range, "max_range", 0.0, RANGE_LIMIT, "m", low_open=True)
+            if range_max is None
+            else bounded_float(range_max, named, 0.0, RANGE_LIMIT, "m", low_open=True)
         )
         self._translation_weight = bounded_float(
             translation_weight, "translation_weight", 0.0, 1e6, "1/m"
@@ -347,7 +357,7 @@ class ScanMatcher:
         return (
             f"ScanMatcher(levels={self._levels}, max_iterations={self._max_iterations}, "
             f"max_step_cells={self._max_step_cells}, max_step_angle={self._max_step_angle}, "
-            f"tolerance={self._tolerance}, max_range={self._max_range})"
+            f"tolerance={self._tolerance}, range_max={self._max_range})"
         )
 
     @property
@@ -356,9 +366,26 @@ class ScanMatcher:
         return self._levels
 
     @property
-    def max_range(self) -> float | None:
-        """Longest return matched, m (None: every valid return)."""
+    def range_max(self) -> float | None:
+        """Returns at least this long (m) are not matched (None: every valid return)."""
         return self._max_range
+
+    @property
+    def max_range(self) -> float | None:
+        """Deprecated alias of :attr:`range_max`.
+
+        Examples
+        --------
+        >>> ScanMatcher(range_max=4.0).range_max  # the new name
+        4.0
+        """
+        warnings.warn(
+            "ScanMatcher.max_range is deprecated and will be removed in a future release: "
+            "use ScanMatcher.range_max",
+            DeprecationWarning,
+            stacklevel=2,
+        )
+        return self.range_max
 
     def pyramid(self, grid: OccupancyGrid) -> tuple[OccupancyGrid, ...]:
         """``grid`` and ``levels - 1`` coarser copies, finest first, each doubling the cell size.
@@ -412,7 +439,7 @@ class ScanMatcher:
             resolution and origin; the finest defines the result's score and
             covariance). Not modified.
         scan : LaserScan
-            The scan; its valid returns (shorter than ``max_range``) are matched.
+            The scan; its valid returns (shorter than ``range_max``) are matched.
         guess : Pose2D or array_like [x, y, theta]
             Initial world pose of the sensor.
 

@@ -32,7 +32,7 @@ Examples
 2.7
 >>> robot = Robot(drive=DiffDrive(track=0.3, wheel_radius=0.05), footprint=0.15,
 ...               lidar=Lidar(), max_wheel_acceleration=40.0)
->>> def forward(obs):
+>>> def forward(obs: Observation) -> Twist2D:
 ...     return Twist2D(0.4, 0.0, 0.0)
 >>> trace = Simulation(world, robot, forward, start=(1.0, 1.0, 0.0), goal=(3.0, 1.0)).run()
 >>> trace.metrics.reached, trace.metrics.collisions

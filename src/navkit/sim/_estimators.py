@@ -33,11 +33,12 @@ class Estimator(Protocol):
     --------
     >>> from navkit.geometry import Twist2D
     >>> from navkit.kinematics import DiffDrive
-    >>> from navkit.sim import Compass, Simulation, World
+    >>> from navkit.sim import Compass, Observation, Reading, Simulation, World
     >>> class CompassHeading:  # an Estimator of the heading only, from the compass
-    ...     def __init__(self, north):
-    ...         self.north, self.pose, self.readings = north, None, 0
-    ...     def observe(self, t, reading):
+    ...     def __init__(self, north: float) -> None:
+    ...         self.north, self.readings = north, 0
+    ...         self.pose: Pose2D | None = None
+    ...     def observe(self, t: float, reading: Reading) -> None:
     ...         if isinstance(reading, CompassReading):
     ...             self.readings += 1
     ...             yaw = wrap_angle(self.north - math.radians(reading.heading_deg))
@@ -47,10 +48,11 @@ class Estimator(Protocol):
     True
     >>> robot = Robot(drive=DiffDrive(track=0.3, wheel_radius=0.05), footprint=0.2,
     ...               compass=Compass(rate=10.0))
-    >>> def spin(obs):  # turn on the spot at 1 rad/s
+    >>> def spin(obs: Observation) -> Twist2D:  # turn on the spot at 1 rad/s
     ...     return Twist2D(0.0, 0.0, 1.0)
     >>> trace = Simulation(World(), robot, spin, start=(0.0, 0.0, 0.0), estimator=estimator,
     ...                    duration=0.5).run()
+    >>> assert estimator.pose is not None  # it has seen the compass
     >>> estimator.readings, round(estimator.pose.theta, 6)  # 10 Hz from t = 0 to 0.5 s; rad
     (6, 0.5)
     >>> trace.estimates[-1].round(6).tolist()  # the trace records its pose at every step
@@ -74,12 +76,12 @@ class Estimator(Protocol):
         --------
         >>> from navkit.geometry import Twist2D
         >>> from navkit.kinematics import DiffDrive
-        >>> from navkit.sim import Compass, Simulation, World
+        >>> from navkit.sim import Compass, Reading, Simulation, World
         >>> class Log:  # an Estimator that only notes when each reading came
         ...     pose = None
-        ...     def __init__(self):
-        ...         self.seen = []
-        ...     def observe(self, t, reading):
+        ...     def __init__(self) -> None:
+        ...         self.seen: list[tuple[str, float, float]] = []
+        ...     def observe(self, t: float, reading: Reading) -> None:
         ...         kind = type(reading).__name__
         ...         self.seen.append((kind, round(reading.stamp, 6), round(t, 6)))
         >>> robot = Robot(drive=DiffDrive(track=0.3, wheel_radius=0.05), footprint=0.2,
@@ -249,9 +251,9 @@ class _DiffOdometryEstimator:
     """DiffOdometry fed with the encoder counters, as counters of its own width.
 
     The raw readings when the odometry decodes counters as wide as the robot's
-    (``encoder_bits`` equal to the encoders' ``bits``; 64 and None alike, as
+    (its ``bits`` equal to the encoders' ``bits``; 64 and None alike, as
     64-bit counters never wrap in a run). Otherwise an odometry built for other
-    counters (the default ``encoder_bits=None`` on the default 16-bit encoders)
+    counters (the default ``bits=None`` on the default 16-bit encoders)
     would read the robot's wrap-around, after 64 wheel turns, as a jump of
     -65535 ticks: it is fed the readings unwrapped at the robot's width and
     wrapped again at its own, the same tick changes.
@@ -266,7 +268,7 @@ class _DiffOdometryEstimator:
             raise ValueError("DiffOdometry needs a differential-drive robot")
         self._odometry = odometry
         bits = robot.encoders.bits
-        own = odometry.encoder_bits
+        own = odometry.bits
         self._robot_bits = None if bits is None or bits >= 64 else bits
         self._span = None if own is None or own >= 64 else 1 << own
         self._translate = self._span != (

@@ -9,6 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
+from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.frozen import frozen_setattr
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import finite_float, positive_float
@@ -91,7 +92,7 @@ class Lidar:
     noise.
 
     A LiDAR is immutable: threads may share it, and share the world they
-    scan (:meth:`scan` writes only new arrays), each with its own ``rng``
+    scan (:meth:`scan` writes only new arrays), each with its own ``seed``
     (a NumPy Generator is not thread-safe; an int seed is).
 
     Parameters
@@ -220,6 +221,7 @@ class Lidar:
         pose: Pose2D | ArrayLike,
         *,
         t: float = 0.0,
+        seed: np.random.Generator | int | None = None,
         rng: np.random.Generator | int | None = None,
     ) -> LaserScan:
         """One scan of ``world`` from a robot at ``pose``.
@@ -235,9 +237,14 @@ class Lidar:
         t : float, default 0.0
             Time of the scan (places the moving obstacles), s, within ±1e9 s
             when the world has moving obstacles.
-        rng : numpy Generator, int seed or None
-            Randomness for noise, jitter and dropouts (fresh entropy if None;
-            unused without them).
+        seed : int, numpy Generator or None, optional
+            Randomness for noise, jitter and dropouts, as ``Simulation(seed=)``
+            (fresh entropy if None; unused without them).
+
+        Other Parameters
+        ----------------
+        rng : int, numpy Generator or None, optional
+            Deprecated name of `seed`.
 
         Returns
         -------
@@ -267,8 +274,8 @@ class Lidar:
         >>> [float(lidar.scan(world, (1.0, 1.0, 0.0), t=t).ranges[2]) for t in (0.0, 2.0)]
         [1.75, 0.75]
         >>> noisy = Lidar(n_beams=4)  # the paper's range noise: 2.23 % below 3 m
-        >>> a = noisy.scan(world, (1.0, 1.0, 0.0), rng=7)
-        >>> b = noisy.scan(world, (1.0, 1.0, 0.0), rng=7)  # the same seed, the same draws
+        >>> a = noisy.scan(world, (1.0, 1.0, 0.0), seed=7)
+        >>> b = noisy.scan(world, (1.0, 1.0, 0.0), seed=7)  # the same seed, the same draws
         >>> np.array_equal(a.ranges, b.ranges), bool(abs(a.ranges[0] - 1.0) < 0.1)
         (True, True)
         """
@@ -280,7 +287,12 @@ class Lidar:
             scanner = w._scanners[self] = Scanner(self, w)
         p = as_query_pose(pose, "pose")
         time = w._query_time(t)
-        generator = as_generator(rng) if scanner.random or rng is not None else None
+        seed_name = "seed"
+        if rng is not None:  # the old name of seed (Simulation's word); errors name it
+            seed, seed_name = renamed_keyword("rng", rng, "seed", seed, None), "rng"
+        generator = (
+            as_generator(seed, seed_name) if scanner.random or seed is not None else None
+        )
         return scanner.scan(p, time, generator)
 
 

@@ -80,9 +80,10 @@ class Robot:
 
     Examples
     --------
+    >>> lidar = Lidar(noise=None)
     >>> robot = Robot(drive=DiffDrive(track=0.3, wheel_radius=0.05), footprint=0.2,
-    ...               max_wheel_speed=10.0, lidar=Lidar(noise=None))
-    >>> robot.n_wheels, robot.lidar.n_beams
+    ...               max_wheel_speed=10.0, lidar=lidar)
+    >>> robot.n_wheels, lidar.n_beams
     (2, 360)
     """
 

@@ -597,12 +597,12 @@ class Scenario(ABC):
     --------
     >>> class Coin(Scenario):  # the whole contract: a seeded coin, flipped once per trial
     ...     name, title, paper, default_trials = "coin", "a fair coin", "none", 100
-    ...     def cases(self, trials):
+    ...     def cases(self, trials: int) -> tuple[tuple[str, int], ...]:
     ...         return (("fair coin", trials),)
-    ...     def run_trial(self, trial):
+    ...     def run_trial(self, trial: Trial) -> TrialResult:
     ...         heads = np.random.default_rng(trial.seed).random() < 0.5
     ...         return TrialResult(trial, {"heads": float(heads)})
-    ...     def summarize(self, results, *, seed):
+    ...     def summarize(self, results: Sequence[TrialResult], *, seed: int) -> ScenarioResult:
     ...         share = float(np.mean([r.values["heads"] for r in results]))
     ...         table = Table("coin", ("case", "heads (share)"), (("fair coin", share),))
     ...         return ScenarioResult(self.name, seed, tuple(results), (table,), {"heads": share})
@@ -659,6 +659,7 @@ class Scenario(ABC):
         >>> from navkit.sim.scenarios import Demo
         >>> demo = Demo(map="office", duration=0.2)  # 0.2 s of each leg: a cheap trial
         >>> r = demo.run_trial(demo.trials(1, seed=0)[1])
+        >>> assert r.trace is not None  # Demo simulates every trial
         >>> r.trial.case_index, r.trace.metrics.duration, r.values["collisions"]  # s
         (1, 0.2, 0.0)
         >>> demo.run_trial(r.trial).values["distance"] == r.values["distance"]  # reproducible
@@ -757,7 +758,7 @@ class Scenario(ABC):
         --------
         >>> from navkit.sim.scenarios import Demo
         >>> demo = Demo(map="office", duration=0.2)
-        >>> done = []
+        >>> done: list[tuple[int, int]] = []
         >>> result = demo.run(trials=1, seed=3, progress=lambda k, n: done.append((k, n)))
         >>> done, [r.trial.case_index for r in result.trials]
         ([(1, 3), (2, 3), (3, 3)], [0, 1, 2])

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import numbers
+import warnings
 from dataclasses import dataclass
 from typing import Any
 
@@ -215,7 +216,7 @@ class WheelEncoders:
 
     Examples
     --------
-    >>> WheelEncoders(ticks_per_rev=2048, bits=16).counts(np.array([2 * np.pi, -0.001]))
+    >>> WheelEncoders(ticks_per_rev=2048, bits=16).ticks(np.array([2 * np.pi, -0.001]))
     array([ 2048, 65535])
     """
 
@@ -239,8 +240,10 @@ class WheelEncoders:
         object.__setattr__(self, "rate", check_rate(self.rate))
         object.__setattr__(self, "latency", check_latency(self.latency))
 
-    def counts(self, wheel_angles: np.ndarray) -> IntArray:
+    def ticks(self, wheel_angles: np.ndarray) -> IntArray:
         """Counter readings (int64) for total wheel rotations ``wheel_angles`` (rad).
+
+        What :attr:`EncoderReading.ticks` holds.
 
         Parameters
         ----------
@@ -263,9 +266,9 @@ class WheelEncoders:
         Examples
         --------
         >>> turns = np.array([0.5, 64.0, -0.0001]) * 2 * math.pi  # half a turn, 64, a bit back
-        >>> WheelEncoders(ticks_per_rev=1024, bits=16).counts(turns)  # 65536 wraps to 0
+        >>> WheelEncoders(ticks_per_rev=1024, bits=16).ticks(turns)  # 65536 wraps to 0
         array([  512,     0, 65535])
-        >>> WheelEncoders(ticks_per_rev=1024, bits=None).counts(turns)  # never wraps
+        >>> WheelEncoders(ticks_per_rev=1024, bits=None).ticks(turns)  # never wraps
         array([  512, 65536,    -1])
         """
         wheel_angles = as_float_array(wheel_angles, "wheel_angles", ndim=1)
@@ -286,6 +289,37 @@ class WheelEncoders:
         # Modulo 2**bits in two's complement: a mask, as 2**63 does not fit an int64.
         out: IntArray = ticks & np.int64((1 << self.bits) - 1)
         return out
+
+    def counts(self, wheel_angles: np.ndarray) -> IntArray:
+        """Deprecated alias of :meth:`ticks` (the name :class:`EncoderReading` uses).
+
+        Parameters
+        ----------
+        wheel_angles : ndarray, shape (N,)
+            As for :meth:`ticks`.
+
+        Returns
+        -------
+        ndarray of int64, shape (N,)
+            ``self.ticks(wheel_angles)``.
+
+        Warns
+        -----
+        DeprecationWarning
+            Always.
+
+        Examples
+        --------
+        >>> WheelEncoders(ticks_per_rev=1024).ticks(np.array([math.pi]))  # not .counts
+        array([512])
+        """
+        warnings.warn(
+            "WheelEncoders.counts is deprecated and will be removed in a future release: "
+            "use WheelEncoders.ticks",
+            DeprecationWarning,
+            stacklevel=2,
+        )
+        return self.ticks(wheel_angles)
 
 
 def real_float(
@@ -358,7 +392,7 @@ class EncoderReading:
         Time of the reading, s (finite).
     ticks : ndarray of int64, shape (N,)
         Counter of each wheel (``[left, right]`` for a differential drive), as
-        :meth:`WheelEncoders.counts` gives them; stored as a read-only copy
+        :meth:`WheelEncoders.ticks` gives them; stored as a read-only copy
         (read-only in copies and unpickled readings too).
 
     Examples

@@ -12,6 +12,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.frozen import frozen_setattr, slot_names
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_bool, as_float_array, finite_float, positive_float
@@ -219,9 +220,10 @@ class Simulation:
     goal : Pose2D or array_like (x, y) or (x, y, theta), optional
         Goal for the metrics (and the end of the run with ``stop_at_goal``),
         within ±1e12 m (as ``start``).
-    goal_radius : float, default 0.1
-        The goal is reached within this distance, m, in (0, 1e6].
-    goal_yaw_tolerance : float, optional
+    goal_tolerance : float, default 0.1
+        The goal is reached within this distance, m, in (0, 1e6] (the name the
+        controllers use).
+    yaw_tolerance : float, optional
         With a goal heading: also require the heading within this, rad, in
         (0, π].
     reference_path : Path2D (world frame) or array_like (K, 2), optional
@@ -232,7 +234,7 @@ class Simulation:
         A ``PlanarFusion`` needs a drive that cannot move sideways (its state
         has no sideways speed; ``ValueError`` for an omnidirectional drive).
         A ``DiffOdometry`` is given the counter readings as counters of its
-        own ``encoder_bits`` (the same tick changes), so that the encoders'
+        own ``bits`` (the same tick changes), so that the encoders'
         wrap-around does not depend on the two widths agreeing.
     rate : float, default 100.0
         Physics rate, Hz, in (0, 10^4]; no sensor or controller may be faster.
@@ -252,6 +254,13 @@ class Simulation:
     wall_timeout : float, optional
         Real-time limit of :meth:`run`, s, in (0, 1e6].
 
+    Other Parameters
+    ----------------
+    goal_radius : float, optional
+        Deprecated name of `goal_tolerance`.
+    goal_yaw_tolerance : float, optional
+        Deprecated name of `yaw_tolerance`.
+
     Raises
     ------
     ValueError
@@ -266,7 +275,7 @@ class Simulation:
     >>> from navkit.kinematics import DiffDrive
     >>> world = World(box(-1.0, -1.0, 4.0, 2.0).exterior)
     >>> robot = Robot(drive=DiffDrive(track=0.3, wheel_radius=0.05), footprint=0.2)
-    >>> def go(obs):  # drive straight ahead at 0.5 m/s
+    >>> def go(obs: Observation) -> Twist2D:  # drive straight ahead at 0.5 m/s
     ...     return Twist2D(0.5, 0.0, 0.0)
     >>> trace = Simulation(world, robot, go, start=(0.0, 0.0, 0.0), goal=(2.0, 0.0)).run()
     >>> trace.metrics.reached, trace.metrics.reason, round(trace.metrics.time_to_goal, 2)
@@ -305,8 +314,8 @@ class Simulation:
         *,
         start: Pose2D | ArrayLike,
         goal: Pose2D | ArrayLike | None = None,
-        goal_radius: float = 0.1,
-        goal_yaw_tolerance: float | None = None,
+        goal_tolerance: float = 0.1,
+        yaw_tolerance: float | None = None,
         reference_path: Path2D | ArrayLike | None = None,
         estimator: Any = None,
         rate: float = 100.0,
@@ -317,7 +326,19 @@ class Simulation:
         stop_at_goal: bool = True,
         end_on_collision: bool = True,
         wall_timeout: float | None = None,
+        goal_radius: float | None = None,
+        goal_yaw_tolerance: float | None = None,
     ) -> None:
+        # The controllers' names for the same tolerances; the old ones warn, and errors
+        # name the keyword the caller wrote.
+        tol_name = "goal_tolerance" if goal_radius is None else "goal_radius"
+        yaw_name = "yaw_tolerance" if goal_yaw_tolerance is None else "goal_yaw_tolerance"
+        goal_tolerance = renamed_keyword(
+            "goal_radius", goal_radius, "goal_tolerance", goal_tolerance, 0.1
+        )
+        yaw_tolerance = renamed_keyword(
+            "goal_yaw_tolerance", goal_yaw_tolerance, "yaw_tolerance", yaw_tolerance, None
+        )
         self._world = as_world(world)
         if not isinstance(robot, Robot):
             raise TypeError(f"robot must be a Robot, got {type(robot).__name__}")
@@ -343,16 +364,17 @@ class Simulation:
             )
         self._start = as_query_pose(start, "start")
         self._goal = _goal(goal)
-        self._goal_radius = positive_float(goal_radius, "goal_radius")
+        # The private names predate the renames (goal_radius, goal_yaw_tolerance).
+        self._goal_radius = positive_float(goal_tolerance, tol_name)
         if self._goal_radius > 1e6:
-            raise ValueError(f"goal_radius must be at most 1e6 m, got {self._goal_radius}")
+            raise ValueError(f"{tol_name} must be at most 1e6 m, got {self._goal_radius}")
         self._goal_yaw_tolerance: float | None = None
-        if goal_yaw_tolerance is not None:
-            tol = positive_float(goal_yaw_tolerance, "goal_yaw_tolerance")
+        if yaw_tolerance is not None:
+            tol = positive_float(yaw_tolerance, yaw_name)
             if tol > math.pi:
-                raise ValueError(f"goal_yaw_tolerance must lie in (0, π] rad, got {tol}")
+                raise ValueError(f"{yaw_name} must lie in (0, π] rad, got {tol}")
             if self._goal is None or self._goal[2] is None:
-                raise ValueError("goal_yaw_tolerance needs a goal with a heading (x, y, theta)")
+                raise ValueError(f"{yaw_name} needs a goal with a heading (x, y, theta)")
             self._goal_yaw_tolerance = tol
         self._reference = _reference(reference_path)
         self._estimator: Estimator | None = as_estimator(estimator, robot)
@@ -435,7 +457,7 @@ class Simulation:
         >>> from shapely.geometry import box
         >>> from navkit.kinematics import DiffDrive
         >>> robot = Robot(drive=DiffDrive(track=0.3, wheel_radius=0.05), footprint=0.2)
-        >>> def spin(obs):  # turn on the spot at 1 rad/s
+        >>> def spin(obs: Observation) -> Twist2D:  # turn on the spot at 1 rad/s
         ...     return Twist2D(0.0, 0.0, 1.0)
         >>> sim = Simulation(World(box(-1.0, -1.0, 1.0, 1.0).exterior), robot, spin,
         ...                  start=(0.0, 0.0, 0.0), duration=0.5)
@@ -528,7 +550,7 @@ class _Run:
         enc = robot.encoders
         self.enc_tpr = 1.0 if enc is None else enc.ticks_per_rev
         # The kernel wraps counters in floats, exact up to 52 bits; wider ones (up to 63)
-        # are wrapped in int64 when queued, 64-bit ones stay signed (as WheelEncoders.counts).
+        # are wrapped in int64 when queued, 64-bit ones stay signed (as WheelEncoders.ticks).
         self.enc_span = 0.0 if enc is None or enc.bits is None or enc.bits > 52 else 2.0**enc.bits
         bits = None if enc is None else enc.bits
         self.enc_mask = (1 << bits) - 1 if bits is not None and 52 < bits < 64 else 0

@@ -13,6 +13,7 @@ from typing import Any
 
 import numpy as np
 
+from navkit.sim._pool import process_pool
 from navkit.sim._scenario import (
     Scenario,
     ScenarioResult,
@@ -241,7 +242,10 @@ def sweep(
         the scenario, case, trial and seed; the trials not yet started are
         cancelled, and the results of those done are not returned. An
         exception from ``progress`` (a ``KeyboardInterrupt`` too) ends the
-        sweep the same way, without the note.
+        sweep the same way, without the note. In the local pool, the trials
+        running are let finish after an exception, but a ``KeyboardInterrupt``
+        (Ctrl-C, which its workers leave to this process) kills the workers at
+        once; the workers also end when this process dies.
 
     Examples
     --------
@@ -291,16 +295,12 @@ def sweep(
         if n <= 1:
             results = _serial(scenario, plan, progress)
         else:
-            with concurrent.futures.ProcessPoolExecutor(max_workers=n) as pool:
-                try:
-                    results = _submitted(
-                        lambda t: pool.submit(run_one, scenario, t),
-                        _cancel_all,
-                        scenario,
-                        plan,
-                        progress,
-                    )
-                except BaseException:
-                    pool.shutdown(wait=False, cancel_futures=True)
-                    raise
+            with process_pool(n) as pool:
+                results = _submitted(
+                    lambda t: pool.submit(run_one, scenario, t),
+                    _cancel_all,
+                    scenario,
+                    plan,
+                    progress,
+                )
     return scenario.summarize(results, seed=base)

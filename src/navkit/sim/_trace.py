@@ -179,9 +179,9 @@ class Trace:
     --------
     >>> from navkit.geometry import Twist2D
     >>> from navkit.kinematics import DiffDrive
-    >>> from navkit.sim import Robot, Simulation, World
+    >>> from navkit.sim import Observation, Robot, Simulation, World
     >>> robot = Robot(drive=DiffDrive(track=0.3, wheel_radius=0.05), footprint=0.2)
-    >>> def forward(obs):  # 0.5 m/s straight ahead
+    >>> def forward(obs: Observation) -> Twist2D:  # 0.5 m/s straight ahead
     ...     return Twist2D(0.5, 0.0, 0.0)
     >>> trace = Simulation(World(), robot, forward, start=(0.0, 0.0, 0.0), duration=1.0).run()
     >>> len(trace), trace.poses.shape, trace.commands[-1].tolist()  # 100 Hz: 101 rows in 1 s

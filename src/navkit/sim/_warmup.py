@@ -29,6 +29,7 @@ import numpy as np
 from navkit._shared.frozen import frozen_setattr
 from navkit._shared.jit import load_numba
 from navkit._shared.validation import positive_float
+from navkit.sim._pool import process_pool
 
 __all__ = ["WARMUP_STEPS", "WarmupReport", "WarmupStep", "warmup"]
 
@@ -71,7 +72,7 @@ def _mapping() -> None:
     scan = _room_scan()
     room = OccupancyGrid.empty(width=8.0, height=6.0, resolution=0.1, origin=(-4.0, -3.0, 0.0))
     integrate_scan(room, scan, (0.0, 0.0, 0.0), hit=2.2, miss=-0.4)
-    integrate_scan(room.copy(), scan, (0.0, 0.0, 0.0), exact=True, max_range=2.5)
+    integrate_scan(room.copy(), scan, (0.0, 0.0, 0.0), exact=True, range_max=2.5)
     ScanMatcher().match(room, scan, (0.05, -0.05, 0.02))
     ScanMatcher(search_distance=0.1, search_angle=0.05, translation_weight=1.0,
                 rotation_weight=1.0).match(room, scan, (0.05, -0.05, 0.02))  # fmt: skip
@@ -206,7 +207,7 @@ def _estimation() -> None:
     ekf.update([0.1, 0.0], lambda x: x[[0, 2]], np.array([[1.0, 0, 0], [0, 0, 1.0]]), np.eye(2))
     diff = DiffDrive(track=0.3, wheel_radius=0.05)
     for method in ("arc", "midpoint", "first_order"):
-        odometry = DiffOdometry(diff, ticks_per_rev=1024.0, encoder_bits=16, method=method)
+        odometry = DiffOdometry(diff, ticks_per_rev=1024.0, bits=16, method=method)
         odometry.update(10, 12)
         odometry.update_batch([20, 30], [22, 35])
     omni = OmniDrive([0.0, 2.0944, 4.1888], wheel_radius=0.05, base_radius=0.2)
@@ -253,7 +254,7 @@ def _simulation() -> None:
              PlanarFusion()),
             (Robot(drive=diff, footprint=[[-0.1, -0.1], [0.1, -0.1], [0.1, 0.1], [-0.1, 0.1]],
                    wheel_slip=0.01, **sensors),
-             DiffOdometry(diff, ticks_per_rev=1024.0, encoder_bits=16)),
+             DiffOdometry(diff, ticks_per_rev=1024.0, bits=16)),
             (Robot(drive=omni, footprint=0.15, max_wheel_speed=20.0, **sensors),
              OmniOdometry(omni)),
         ]  # fmt: skip
@@ -514,7 +515,9 @@ def warmup(
         Processes to compile in: the steps are shared among a pool of this many
         worker processes (each step in one process, costly steps first). 1 runs
         everything in this process. Default: every core this process may use
-        (at most one per step).
+        (at most one per step). A ``KeyboardInterrupt`` (Ctrl-C, which the
+        workers leave to this process) kills the workers at once, and they end
+        when this process dies.
     progress : callable, optional
         ``progress(done, total)``, called with ``done = 0`` first and after
         every step, in this process.
@@ -562,7 +565,7 @@ def warmup(
                 progress(len(results), total)
     else:
         by_cost = sorted(names, key=lambda name: -_STEPS[name][1])
-        with concurrent.futures.ProcessPoolExecutor(max_workers=n) as pool:
+        with process_pool(n) as pool:
             futures = {pool.submit(_run_step, name): name for name in by_cost}
             for future in concurrent.futures.as_completed(futures):
                 results[futures[future]] = future.result()

@@ -16,6 +16,7 @@ from numpy.typing import ArrayLike
 from shapely.geometry import Polygon
 from shapely.geometry.base import BaseGeometry
 
+from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.frozen import (
     frozen_setattr,
     reduce_record,
@@ -246,7 +247,7 @@ class MovingObstacle:
     >>> ball = MovingObstacle.constant_velocity(0.1, start_xy=(0.0, 0.0), velocity_xy=(1.0, 0.5))
     >>> ball.position_at(2.0)
     array([2., 1.])
-    >>> opponent = MovingObstacle.scripted(0.2, [(0.0, 0.0), (2.0, 0.0)], speed=0.5, loop=True)
+    >>> opponent = MovingObstacle.scripted(0.2, [(0.0, 0.0), (2.0, 0.0)], speed=0.5, after="loop")
     >>> opponent.position_at(1.0), opponent.position_at(5.0)
     (array([0.5, 0. ]), array([0.5, 0. ]))
     """
@@ -256,11 +257,24 @@ class MovingObstacle:
     times: FloatArray
     _: KW_ONLY
     after: Literal["stop", "loop", "extend"] = "stop"
+
     # The velocity given to constant_velocity (read-only (2,)), None otherwise: the
     # difference of its two waypoints loses the velocity's bits below ulp(start),
     # a drift of up to ulp(start) · t. Not an init field: dataclasses.replace,
     # which may change the waypoints, leaves it None (the waypoints then rule).
     _velocity: FloatArray | None = field(default=None, init=False, repr=False)
+
+    if TYPE_CHECKING:
+        # The generated ``__init__`` takes vertices and arrays as array_like
+        # (``__post_init__`` converts them); this tells type checkers so, at no runtime cost.
+        def __init__(
+            self,
+            shape: float | Polygon | ArrayLike,
+            path_xy: ArrayLike,
+            times: ArrayLike,
+            *,
+            after: Literal["stop", "loop", "extend"] = ...,
+        ) -> None: ...
 
     def __post_init__(self) -> None:
         radius, verts = as_footprint(self.shape, "shape")
@@ -361,44 +375,57 @@ class MovingObstacle:
     def scripted(
         cls,
         shape: float | Polygon,
-        waypoints_xy: ArrayLike,
+        path_xy: ArrayLike | None = None,
         *,
         times: ArrayLike | None = None,
         speed: float | None = None,
-        loop: bool = False,
+        after: Literal["stop", "loop", "extend"] = "stop",
+        waypoints_xy: ArrayLike | None = None,
+        loop: bool | None = None,
     ) -> MovingObstacle:
-        """An obstacle visiting ``waypoints_xy`` (K, 2) at ``times`` or at constant ``speed``.
+        """An obstacle visiting ``path_xy`` (K, 2) at ``times`` or at constant ``speed``.
 
         Give exactly one of ``times`` (s, strictly increasing) and ``speed``
-        (m/s, > 0; the first waypoint is left at t = 0). With ``loop`` it starts
-        over after the last waypoint, otherwise it stops there.
+        (m/s, > 0; the first waypoint is left at t = 0). ``after`` says what it
+        does after the last waypoint, as for the class.
 
         Parameters
         ----------
         shape : float, shapely Polygon or array_like (V, 2)
             A radius (m) for a disc, or a polygon (or its vertices) given
             relative to the obstacle's reference point (its position).
-        waypoints_xy : array_like, shape (K, 2)
-            Waypoints of the reference point, m.
+        path_xy : array_like, shape (K, 2)
+            Waypoints of the reference point, m. Required (its default None
+            only lets the deprecated ``waypoints_xy`` stand in for it).
         times : array_like, shape (K,), optional
             Time of each waypoint, s, strictly increasing (keyword-only).
         speed : float, optional
             Constant speed along the legs, m/s, in (0, 1e3]; consecutive
             waypoints must differ, by enough for each to be reached at a later
             time than the one before (keyword-only).
-        loop : bool, default False
-            Start over from the first waypoint after the last (keyword-only).
+        after : {"stop", "loop", "extend"}, default "stop"
+            Stop at the last waypoint, start over from the first, or carry on
+            with the last leg's velocity (keyword-only; see the class).
+
+        Other Parameters
+        ----------------
+        waypoints_xy : array_like, shape (K, 2), optional
+            Deprecated name of `path_xy`.
+        loop : bool, optional
+            Deprecated: ``loop=True`` is ``after="loop"``, ``loop=False``
+            ``after="stop"``.
 
         Returns
         -------
         MovingObstacle
-            The obstacle, ``after="loop"`` or ``"stop"``.
+            The obstacle.
 
         Raises
         ------
         TypeError, ValueError
-            Both or neither of ``times`` and ``speed``, or an argument of the
-            wrong type, shape or range, naming it.
+            Both or neither of ``times`` and ``speed``, a missing ``path_xy``,
+            an old and a new name given together, or an argument of the wrong
+            type, shape or range, naming it.
 
         Examples
         --------
@@ -406,7 +433,16 @@ class MovingObstacle:
         >>> ob.position_at(2.0)
         array([1. , 0.5])
         """
-        pts = _coords(waypoints_xy, "waypoints_xy", (None, 2))
+        # The class's own vocabulary (path_xy, after); the old names warn, and errors
+        # name the keyword the caller wrote.
+        name = "path_xy" if waypoints_xy is None else "waypoints_xy"
+        path_xy = renamed_keyword("waypoints_xy", waypoints_xy, "path_xy", path_xy, None)
+        if path_xy is None:
+            raise TypeError("MovingObstacle.scripted() missing the argument path_xy")
+        if loop is not None:
+            old_after: Literal["stop", "loop"] = "loop" if as_bool(loop, "loop") else "stop"
+            after = renamed_keyword("loop", old_after, "after", after, "stop")
+        pts = _coords(path_xy, name, (None, 2))
         if (times is None) == (speed is None):
             raise ValueError("give exactly one of times and speed")
         if speed is not None:
@@ -415,13 +451,13 @@ class MovingObstacle:
                 raise ValueError(f"speed must be at most 1e3 m/s, got {v}")
             legs = np.hypot(*np.diff(pts, axis=0).T)
             if np.any(legs == 0.0):
-                raise ValueError("waypoints_xy must not repeat a point consecutively with speed")
+                raise ValueError(f"{name} must not repeat a point consecutively with speed")
             with np.errstate(over="ignore"):
                 stamps = np.concatenate(([0.0], np.cumsum(legs) / v))
             if not stamps[-1] <= MAX_TIME:
                 # The caller gave no times: name what made them too late.
                 raise ValueError(
-                    f"speed {v:g} m/s is too slow for waypoints_xy: the last waypoint "
+                    f"speed {v:g} m/s is too slow for {name}: the last waypoint "
                     f"would be reached after the ±{MAX_TIME:g} s time limit"
                 )
             if np.any(np.diff(stamps) <= 0.0):
@@ -429,14 +465,14 @@ class MovingObstacle:
                 # after 1e6 m) gets no time of its own: name what the caller gave.
                 k = int(np.argmax(np.diff(stamps) <= 0.0))
                 raise ValueError(
-                    f"waypoints_xy[{k + 1}] is too close to waypoints_xy[{k}] to be reached "
+                    f"{name}[{k + 1}] is too close to {name}[{k}] to be reached "
                     f"at a later time at speed {v:g} m/s (the leg is shorter than the "
                     "rounding of the time spent before it)"
                 )
         else:
             assert times is not None
             stamps = as_float_array(times, "times", shape=(pts.shape[0],))
-        return cls(shape, pts, stamps, after="loop" if as_bool(loop, "loop") else "stop")
+        return cls(shape, pts, stamps, after=after)
 
     def position_at(self, t: float) -> FloatArray:
         """Position ``(x, y)`` of the reference point at time ``t`` (s), shape (2,).

@@ -189,7 +189,7 @@ def test_localizer_pulls_a_wrong_start_back() -> None:
     truth = Pose2D(-1.0, -4.0, 0.4)
     lidar = Lidar(noise=None)
     wrong = Pose2D(truth.x + 0.07, truth.y - 0.07, truth.theta + math.radians(3.0))
-    loc = ScanLocalizer(place.field, DRIVE, lidar, ticks_per_rev=4096, encoder_bits=16,
+    loc = ScanLocalizer(place.field, DRIVE, lidar, ticks_per_rev=4096, bits=16,
                         start=wrong)  # fmt: skip
     ticks = np.array([100, 200])
     for k in range(20):

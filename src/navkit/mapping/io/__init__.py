@@ -43,7 +43,7 @@ Examples
 ...     image = write_map(grid, Path(folder) / "map.yaml")
 ...     read_map(Path(folder) / "map.yaml").occupied().tolist()
 [[True, False], [False, True]]
->>> grid_to_msg_fields(grid, trinary=True).data
+>>> grid_to_msg_fields(grid, mode="trinary").data
 array([100,   0,   0, 100], dtype=int8)
 """
 

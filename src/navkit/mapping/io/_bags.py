@@ -52,6 +52,7 @@ from typing import TYPE_CHECKING, Any, NamedTuple, TypeVar
 import numpy as np
 from numpy.typing import ArrayLike
 
+from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, as_sequence
@@ -176,6 +177,18 @@ class BagScans:
     record_times: FloatArray
     scans: tuple[LaserScan, ...]
 
+    if TYPE_CHECKING:
+        # The generated ``__init__`` takes the arrays as array_like (``__post_init__``
+        # converts them); this signature tells type checkers so, at no runtime cost.
+        def __init__(
+            self,
+            topic: str,
+            frame_id: str,
+            times: ArrayLike,
+            record_times: ArrayLike,
+            scans: tuple[LaserScan, ...],
+        ) -> None: ...
+
     def __post_init__(self) -> None:
         n = _check_fields(self, ("topic", "frame_id"), {})
         scans = as_sequence(self.scans, "scans")
@@ -257,6 +270,23 @@ class BagOdometry:
     pose_covariances: FloatArray
     twist_covariances: FloatArray
 
+    if TYPE_CHECKING:
+        # The generated ``__init__`` takes the arrays as array_like (``__post_init__``
+        # converts them); this signature tells type checkers so, at no runtime cost.
+        def __init__(
+            self,
+            topic: str,
+            frame_id: str,
+            child_frame_id: str,
+            times: ArrayLike,
+            record_times: ArrayLike,
+            poses: ArrayLike,
+            orientations: ArrayLike,
+            twists: ArrayLike,
+            pose_covariances: ArrayLike,
+            twist_covariances: ArrayLike,
+        ) -> None: ...
+
     def __post_init__(self) -> None:
         _check_fields(self, ("topic", "frame_id", "child_frame_id"), _ODOMETRY_SHAPES)
         # Poses given directly (not read from a bag) may carry any yaw: wrap it too.
@@ -327,6 +357,23 @@ ndarray, shape (N, 3, 3)
     angular_velocity_covariances: FloatArray
     linear_acceleration_covariances: FloatArray
 
+    if TYPE_CHECKING:
+        # The generated ``__init__`` takes the arrays as array_like (``__post_init__``
+        # converts them); this signature tells type checkers so, at no runtime cost.
+        def __init__(
+            self,
+            topic: str,
+            frame_id: str,
+            times: ArrayLike,
+            record_times: ArrayLike,
+            orientations: ArrayLike,
+            angular_velocities: ArrayLike,
+            linear_accelerations: ArrayLike,
+            orientation_covariances: ArrayLike,
+            angular_velocity_covariances: ArrayLike,
+            linear_acceleration_covariances: ArrayLike,
+        ) -> None: ...
+
     def __post_init__(self) -> None:
         _check_fields(self, ("topic", "frame_id"), _IMU_SHAPES)
 
@@ -341,7 +388,13 @@ ndarray, shape (N, 3, 3)
     def __len__(self) -> int:
         return int(self.times.shape[0])
 
-    def to_base(self, mounting: ArrayLike, *, frame_id: str = "base_link") -> BagImu:
+    def to_base(
+        self,
+        mount: ArrayLike | None = None,
+        *,
+        frame_id: str = "base_link",
+        mounting: ArrayLike | None = None,
+    ) -> BagImu:
         """The same readings rotated into the robot's base frame.
 
         Orientations, angular velocities and accelerations as
@@ -353,17 +406,22 @@ ndarray, shape (N, 3, 3)
 
         Parameters
         ----------
-        mounting : array_like, shape (4,)
+        mount : array_like, shape (4,)
             Rotation of the IMU frame relative to the base frame, quaternion
             ``(x, y, z, w)`` (the ``base_link -> imu_link`` transform's rotation;
             :func:`navkit.geometry.rpy_to_quaternion` makes it from roll, pitch
-            and yaw), non-zero.
+            and yaw), non-zero; required.
         frame_id : str, default "base_link"
             ``frame_id`` of the result.
 
         Returns
         -------
         BagImu
+
+        Other Parameters
+        ----------------
+        mounting : array_like, optional
+            Deprecated name of `mount` (keyword-only).
 
         Examples
         --------
@@ -375,14 +433,17 @@ ndarray, shape (N, 3, 3)
         >>> upside_down.angular_velocities.round(6) + 0.0, upside_down.frame_id
         (array([[ 0. ,  0. , -0.2]]), 'base_link')
         """
+        mount = renamed_keyword("mounting", mounting, "mount", mount, None)
+        if mount is None:
+            raise TypeError("to_base() missing required argument: 'mount'")
         frame = _text(frame_id, "frame_id")
         rotated = imu_to_base(
             self.orientations,
             self.angular_velocities,
             self.linear_accelerations,
-            mounting=mounting,
+            mount=mount,
         )
-        rot = quaternion_to_matrix(mounting)
+        rot = quaternion_to_matrix(mount)
         # An IMU without an orientation estimate gives a placeholder (all zero); rotating
         # it would fabricate the orientation m⁻¹ behind a still "not given" covariance.
         no_orientation = self.orientation_covariances[:, 0, 0] == -1.0
@@ -1068,7 +1129,7 @@ def read_bag_odometry(path: str | os.PathLike[str], *, topic: str | None = None)
 
     Examples
     --------
-    >>> read_bag_odometry("missing.bag", topic=3)
+    >>> read_bag_odometry("missing.bag", topic=3)  # type: ignore[arg-type]
     Traceback (most recent call last):
     ...
     TypeError: topic must be a str or None, got int
@@ -1150,7 +1211,7 @@ def read_bag_imu(path: str | os.PathLike[str], *, topic: str | None = None) -> B
 
     Examples
     --------
-    >>> read_bag_imu(b"imu.bag")
+    >>> read_bag_imu(b"imu.bag")  # type: ignore[arg-type]
     Traceback (most recent call last):
     ...
     TypeError: path must be a str or an os.PathLike, got bytes

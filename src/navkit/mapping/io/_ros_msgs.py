@@ -9,11 +9,12 @@ from __future__ import annotations
 import math
 import numbers
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
+from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.validation import as_bool, finite_float
 from navkit.geometry import Pose2D, quaternion_to_yaw
@@ -117,6 +118,19 @@ class OccupancyGridMsgFields:
     origin_orientation: tuple[float, float, float, float]
     data: NDArray[np.int8]
 
+    if TYPE_CHECKING:
+        # The generated ``__init__`` takes ``data`` as array_like (``__post_init__``
+        # converts it); this signature tells type checkers so, at no runtime cost.
+        def __init__(
+            self,
+            width: int,
+            height: int,
+            resolution: float,
+            origin_position: tuple[float, float, float],
+            origin_orientation: tuple[float, float, float, float],
+            data: ArrayLike,
+        ) -> None: ...
+
     def __post_init__(self) -> None:
         width = _positive_int(self.width, "width")
         height = _positive_int(self.height, "height")
@@ -169,8 +183,8 @@ def grid_from_msg(msg: Any) -> OccupancyGrid:
     A value of 50 is probability 0.5, log-odds 0, which is also what -1 reads
     as: the grid cannot tell the two apart, and :func:`grid_to_msg_fields`
     publishes such a cell as -1 (never observed). Every other value, and the
-    origin's position, come back from :func:`grid_to_msg_fields` (``trinary``
-    False) as they were; the yaw, through its quaternion, to within a few units
+    origin's position, come back from :func:`grid_to_msg_fields` (mode
+    ``"scale"``) as they were; the yaw, through its quaternion, to within a few units
     in the last place.
 
     Parameters
@@ -250,21 +264,25 @@ def grid_from_msg(msg: Any) -> OccupancyGrid:
         raise ValueError(f"msg.info: {exc}") from None
 
 
-def grid_to_msg_fields(grid: OccupancyGrid, *, trinary: bool = False) -> OccupancyGridMsgFields:
+def grid_to_msg_fields(
+    grid: OccupancyGrid, *, mode: str = "scale", trinary: bool | None = None
+) -> OccupancyGridMsgFields:
     """Field values of the ``nav_msgs/OccupancyGrid`` equivalent to ``grid``.
 
     Parameters
     ----------
     grid : OccupancyGrid
         The map.
-    trinary : bool, default False
-        (A bool.) False: ``data`` is the rounded probability in percent, with -1 for
+    mode : {"scale", "trinary"}, default "scale"
+        The modes of :func:`~navkit.mapping.io.write_map` and
+        :meth:`~navkit.mapping.OccupancyGrid.save` (whose default is
+        ``"trinary"``). ``"scale"``: ``data`` is the rounded probability in percent, with -1 for
         cells whose log-odds are exactly 0 (never observed) and for unknown cells
         whose log-odds are exactly those :func:`~navkit.mapping.io.read_map` gives
         unknown pixels (the middle of the unknown band when the thresholds do not
         class p = 0.5 as unknown), as :func:`~navkit.mapping.io.write_map`'s scale
         mode writes them transparent: a consumer such as Nav2's static layer reads
-        any value but -1 as known space. True: 100 for
+        any value but -1 as known space. ``"trinary"``: 100 for
         occupied, 0 for free, -1 for unknown cells according to the grid's
         thresholds (what map_server publishes).
 
@@ -273,6 +291,19 @@ def grid_to_msg_fields(grid: OccupancyGrid, *, trinary: bool = False) -> Occupan
     OccupancyGridMsgFields
         ``origin_position`` is ``(x, y, 0)``, ``origin_orientation`` the yaw's
         quaternion and ``data`` the row-major cells (row 0 at the origin).
+
+    Other Parameters
+    ----------------
+    trinary : bool, optional
+        Deprecated form of `mode`: True is ``mode="trinary"``, False ``mode="scale"``.
+
+    Raises
+    ------
+    TypeError
+        ``grid`` not an :class:`~navkit.mapping.OccupancyGrid`, ``mode`` not a
+        str, ``trinary`` not a bool, or both ``mode`` and ``trinary`` given.
+    ValueError
+        ``mode`` neither ``"scale"`` nor ``"trinary"``.
 
     Notes
     -----
@@ -292,7 +323,13 @@ def grid_to_msg_fields(grid: OccupancyGrid, *, trinary: bool = False) -> Occupan
     """
     if not isinstance(grid, OccupancyGrid):
         raise TypeError(f"grid must be an OccupancyGrid, got {type(grid).__name__}")
-    if as_bool(trinary, "trinary"):
+    old_mode = None if trinary is None else ("trinary" if as_bool(trinary, "trinary") else "scale")
+    mode = renamed_keyword("trinary", old_mode, "mode", mode, "scale")
+    if not isinstance(mode, str):
+        raise TypeError(f"mode must be a str, got {type(mode).__name__}")
+    if mode not in ("scale", "trinary"):
+        raise ValueError(f"mode must be 'scale' or 'trinary', got {mode!r}")
+    if mode == "trinary":
         data = np.full(grid.shape, -1, dtype=np.int8)
         data[grid.occupied()] = 100
         data[grid.free()] = 0

@@ -3,7 +3,9 @@
 Every field maps world points ``(x, y)`` (m) to a scalar potential and to the
 force ``-∇U``, both vectorised over ``(N, 2)`` point arrays with analytic
 gradients. Fields add: ``field_a + field_b`` is a :class:`CompositeField` whose
-potential and force are the sums of its parts (``sum(fields)`` works too).
+potential and force are the sums of its parts (``sum(fields)`` works too; typed
+code gives it a field to start from, ``sum(fields, CompositeField([]))``, as type
+checkers type the default start, 0, as a possible result).
 """
 
 from __future__ import annotations
@@ -42,10 +44,11 @@ class PotentialField(ABC):
 
     Examples
     --------
-    >>> from navkit.planning import ConicAttraction, KhatibRepulsion
+    >>> from navkit.planning import CompositeField, ConicAttraction, KhatibRepulsion
     >>> fields = [ConicAttraction((1.0, 0.0)),
     ...           KhatibRepulsion([[0.5, 0.5]], influence_radius=0.5)]
-    >>> total = sum(fields)          # the obstacle is 0.71 m away, beyond its influence
+    >>> # An empty CompositeField as the start: type checkers type a bare sum as maybe 0.
+    >>> total = sum(fields, CompositeField([]))  # the obstacle (0.71 m) is beyond reach
     >>> total.force([0.0, 0.0]), total.potential([0.0, 0.0])
     (array([[1., 0.]]), array([1.]))
     """

@@ -216,7 +216,7 @@ def run_leg(scene: Setup, index: int, *, seed: int, duration: float) -> Leg:
     fusion = PlanarFusion(x0=[x, y, heading, 0.0, 0.0, 0.0], t0=0.0)
     trace = Simulation(
         scene.world, robot(), Driver(tracker), start=(x, y, heading), goal=end,
-        goal_radius=GOAL_RADIUS, reference_path=route, estimator=fusion, rate=PHYSICS_RATE,
+        goal_tolerance=GOAL_RADIUS, reference_path=route, estimator=fusion, rate=PHYSICS_RATE,
         control_rate=CONTROL_RATE, duration=duration, seed=seed, record_scans=True,
         stop_at_goal=False,
     ).run()  # fmt: skip

@@ -415,12 +415,12 @@ class DiffAStar(Scenario):
                        heading_of(place.routes[0]))  # fmt: skip
         mission = _Mission(FollowTheCarrot(max_speed=place.speed), place.routes)
         localizer = ScanLocalizer(place.field, DRIVE, robot.lidar, ticks_per_rev=TICKS_PER_REV,
-                                  encoder_bits=ENCODER_BITS, start=start)  # fmt: skip
+                                  bits=ENCODER_BITS, start=start)  # fmt: skip
         reference = np.concatenate([r.points for r in place.routes])
         length = float(sum(r.length for r in place.routes))
         trace = Simulation(
             place.world, robot, mission, start=start, goal=place.waypoints[-1],
-            goal_radius=GOAL_RADIUS, reference_path=reference, estimator=localizer,
+            goal_tolerance=GOAL_RADIUS, reference_path=reference, estimator=localizer,
             rate=PHYSICS_RATE, control_rate=CONTROL_RATE,
             duration=self.duration or 3.0 * length / place.speed + 60.0,
             seed=sim_rng, stop_at_goal=False, wall_timeout=600.0,
@@ -477,6 +477,7 @@ class DiffAStar(Scenario):
         >>> result = scenario.summarize([scenario.run_trial(scenario.trials(1)[0])], seed=0)
         >>> len(result.tables), round(result.summary["house_leg1_path_length"], 2)  # m
         (2, 7.97)
+        >>> assert result.scene is not None  # the scenario draws one
         >>> result.summary["house_reached_rate"], result.scene.title[:17]
         (0.0, 'diff-astar: house')
         """

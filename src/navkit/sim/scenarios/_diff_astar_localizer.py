@@ -176,7 +176,7 @@ class ScanLocalizer:
         The scanner (mounted at the robot's centre); its noise sets the beam weights.
     ticks_per_rev : float
         Encoder resolution.
-    encoder_bits : int or None
+    bits : int or None
         Encoder counter width.
     start : Pose2D
         The initial map pose.
@@ -194,7 +194,7 @@ class ScanLocalizer:
     >>> grid = OccupancyGrid.from_occupancy(np.zeros((10, 10), dtype=bool), resolution=0.1)
     >>> drive = DiffDrive(track=0.3, wheel_radius=0.05)
     >>> loc = ScanLocalizer(LikelihoodField.from_grid(grid), drive,
-    ...                     Lidar(), ticks_per_rev=1024, encoder_bits=16,
+    ...                     Lidar(), ticks_per_rev=1024, bits=16,
     ...                     start=Pose2D(0.5, 0.5, 0.0))
     >>> loc.observe(0.0, EncoderReading(0.0, np.array([0, 0])))
     >>> loc.observe(0.1, EncoderReading(0.1, np.array([1024, 1024])))  # one wheel turn
@@ -229,7 +229,7 @@ class ScanLocalizer:
         lidar: Lidar,
         *,
         ticks_per_rev: float,
-        encoder_bits: int | None,
+        bits: int | None,
         start: Pose2D,
         floor: float = 0.01,
         prior_sigma_xy: float = 0.05,
@@ -247,7 +247,7 @@ class ScanLocalizer:
         fwd = drive.forward_batch(np.eye(2))
         self._forward = (float(fwd[0, 0]), float(fwd[1, 0]), float(fwd[0, 2]), float(fwd[1, 2]))
         self._rad_per_tick = 2.0 * math.pi / float(ticks_per_rev)
-        self._span = None if encoder_bits is None or encoder_bits >= 64 else 1 << encoder_bits
+        self._span = None if bits is None or bits >= 64 else 1 << bits
         self._last_ticks: tuple[int, int] | None = None
         self._odom = start
         self._correction = Pose2D(0.0, 0.0, 0.0)  # map <- odom

@@ -284,7 +284,7 @@ class Greedy(Scenario):
             controller,
             start=(start[0], start[1], heading),
             goal=goal,
-            goal_radius=GOAL_RADIUS,
+            goal_tolerance=GOAL_RADIUS,
             estimator=DiffOdometry(
                 DRIVE, ticks_per_rev=TICKS_PER_REV, pose=(start[0], start[1], heading)
             ),

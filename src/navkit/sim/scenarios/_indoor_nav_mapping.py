@@ -196,7 +196,7 @@ def run_mapping(
     start = Pose2D(*TOUR_START)
     rng = np.random.default_rng(seed)
     robot = make_robot(rng, lidar=True)
-    odometry = DiffOdometry(DRIVE, ticks_per_rev=TICKS_PER_REV, encoder_bits=ENCODER_BITS,
+    odometry = DiffOdometry(DRIVE, ticks_per_rev=TICKS_PER_REV, bits=ENCODER_BITS,
                             pose=start)  # fmt: skip
     drive = _MappingDrive(tour, speed, odometry)
     sim = Simulation(

@@ -104,16 +104,16 @@ def make_robot(rng: np.random.Generator, *, lidar: bool = False) -> Robot:
     )
 
 
-def make_tracker(speed: float = SPEED, turn_rate: float = TURN_RATE) -> OnOffTracker:
+def make_tracker(max_speed: float = SPEED, rotate_omega: float = TURN_RATE) -> OnOffTracker:
     """The ON-OFF tracker with the scenario's settings (or another speed and turn rate).
 
     Examples
     --------
-    >>> make_tracker().speed, make_tracker(0.2, 0.4).turn_rate
+    >>> make_tracker().max_speed, make_tracker(0.2, 0.4).rotate_omega
     (0.3, 0.4)
     """
-    return OnOffTracker(speed=speed, turn_rate=turn_rate, heading_tolerance=math.radians(10.0),
-                        goal_tolerance=0.05)  # fmt: skip
+    return OnOffTracker(max_speed=max_speed, rotate_omega=rotate_omega,
+                        rotate_angle=math.radians(10.0), goal_tolerance=0.05)  # fmt: skip
 
 
 def fusion(start: Pose2D) -> PlanarFusion:

@@ -109,7 +109,7 @@ def run_localisation(
     start = Pose2D(*TOUR_START)
     rng = np.random.default_rng(seed)
     robot = make_robot(rng)
-    odometry = DiffOdometry(DRIVE, ticks_per_rev=TICKS_PER_REV, encoder_bits=ENCODER_BITS,
+    odometry = DiffOdometry(DRIVE, ticks_per_rev=TICKS_PER_REV, bits=ENCODER_BITS,
                             pose=start)  # fmt: skip
     tour = _Tour(legs, odometry)
     length = sum(leg.length for leg in legs)

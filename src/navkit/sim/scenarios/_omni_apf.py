@@ -260,7 +260,7 @@ class OmniApf(Scenario):
             controller,
             start=(0.0, 0.0, 0.0),
             goal=target,
-            goal_radius=2.0 * ARRIVE_TOLERANCE,
+            goal_tolerance=2.0 * ARRIVE_TOLERANCE,
             estimator=OmniOdometry(DRIVE),
             rate=PHYSICS_RATE,
             control_rate=CONTROL_RATE,

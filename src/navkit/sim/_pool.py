@@ -1,0 +1,104 @@
+"""The local process pool of :func:`~navkit.sim.sweep` and :func:`~navkit.sim.warmup`.
+
+Left to itself, a ``concurrent.futures.ProcessPoolExecutor`` serves an
+interrupted program badly: leaving its ``with`` block waits for every queued
+task (a cold :func:`~navkit.sim.warmup` ignored Ctrl-C for a minute), and a
+worker whose parent died hard (``SIGKILL``, the OOM killer) waits forever for
+work on its queue. :func:`process_pool` owns the pool instead: an interrupt
+stops it at once, and its workers end with their parent.
+"""
+
+from __future__ import annotations
+
+import concurrent.futures
+import contextlib
+import ctypes
+import multiprocessing
+import multiprocessing.connection
+import os
+import signal
+import sys
+import threading
+from collections.abc import Iterator
+
+__all__ = ["process_pool"]
+
+#: ``PR_SET_PDEATHSIG`` from ``<linux/prctl.h>``.
+_PR_SET_PDEATHSIG = 1
+
+
+@contextlib.contextmanager
+def process_pool(workers: int) -> Iterator[concurrent.futures.ProcessPoolExecutor]:
+    """A process pool of ``workers`` processes, shut down when the block ends.
+
+    On leaving the block normally, waits for the work submitted. On an
+    exception (a failed task), cancels the work not yet started and waits for
+    the tasks running. On an interrupt (``KeyboardInterrupt``, ``SystemExit``
+    or any other exception that is not an ``Exception``, also while waiting),
+    cancels the work not started and kills the workers at once: their results
+    would be thrown away, and a task may run for minutes.
+
+    The workers ignore ``SIGINT`` (a Ctrl-C reaches the whole process group:
+    the owner alone handles it, by stopping the pool) and end when their parent
+    process ends, however it ends.
+    """
+    pool = concurrent.futures.ProcessPoolExecutor(max_workers=workers, initializer=_start_worker)
+    try:
+        try:
+            yield pool
+        except Exception:
+            pool.shutdown(wait=True, cancel_futures=True)
+            raise
+        pool.shutdown(wait=True)
+    except BaseException as exc:
+        if not isinstance(exc, Exception):
+            _kill(pool)
+        raise
+
+
+def _kill(pool: concurrent.futures.ProcessPoolExecutor) -> None:
+    """Cancel the pool's queued work and kill its workers (as ``kill_workers`` in Python 3.14)."""
+    processes = list(pool._processes.values()) if pool._processes else []
+    pool.shutdown(wait=False, cancel_futures=True)
+    for process in processes:
+        with contextlib.suppress(ProcessLookupError, ValueError):  # gone, or closed
+            process.kill()
+    # The pool's thread sees the workers die, fails the futures left and joins them.
+    pool.shutdown(wait=True)
+
+
+def _start_worker() -> None:
+    """Initializer of every worker."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    parent = multiprocessing.parent_process()
+    if parent is None:  # pragma: no cover - not started by multiprocessing
+        return
+    if _kill_on_parent_death():
+        if not parent.is_alive():  # died before the request took effect
+            os._exit(1)
+        return
+    # Elsewhere a thread waits for the parent's end (its sentinel becomes ready).
+    watch = threading.Thread(
+        target=_exit_after, args=(parent.sentinel,), name="navkit-parent-watch", daemon=True
+    )
+    watch.start()
+
+
+def _kill_on_parent_death() -> bool:
+    """Ask Linux to ``SIGKILL`` this process when its parent ends; False where unsupported."""
+    if not sys.platform.startswith("linux"):
+        return False
+    try:
+        prctl = ctypes.CDLL(None, use_errno=True).prctl
+        # prctl is variadic and reads its arguments as unsigned long: pass them so.
+        args = (ctypes.c_ulong(int(signal.SIGKILL)), ctypes.c_ulong(0), ctypes.c_ulong(0))
+        return int(prctl(_PR_SET_PDEATHSIG, *args, ctypes.c_ulong(0))) == 0
+    except (OSError, AttributeError):  # no libc, or no prctl in it
+        return False
+
+
+def _exit_after(sentinel: int) -> None:
+    """Wait, without holding the GIL, for ``sentinel`` to become ready; then end this process."""
+    multiprocessing.connection.wait([sentinel])
+    # Not sys.exit: the main thread is blocked on the pool's queue, or in a task.
+    os._exit(1)
