@@ -25,6 +25,7 @@ import navkit.planning.reactive
 from navkit.behaviours import BehaviourTarget, GameState
 from navkit.geometry import ImuInBase
 from navkit.mapping import LaserScan
+from navkit.mapping.io import BagImu, BagOdometry, BagScans, OccupancyGridMsgFields
 from navkit.planning import (
     BlendedAttraction,
     CompositeField,
@@ -37,7 +38,7 @@ from navkit.planning import (
     SampledField,
 )
 from navkit.planning.grid import Path2D
-from navkit.sim import Circle
+from navkit.sim import Circle, MovingObstacle
 
 ROOT = Path(__file__).resolve().parents[1]
 USER_SCRIPT = ROOT / "tests" / "typing_user" / "user_api.py"
@@ -58,9 +59,18 @@ ARRAY_RECORDS = [
     Path2D,
     SampledField,
     CompositeField,
+    BagScans,
+    BagOdometry,
+    BagImu,
+    OccupancyGridMsgFields,
+    MovingObstacle,
 ]
 # Declared parameters that are not arrays but still wider than their field.
-WIDER = {(CompositeField, "fields"): "Iterable[PotentialField]"}
+WIDER = {
+    (CompositeField, "fields"): "Iterable[PotentialField]",
+    (OccupancyGridMsgFields, "data"): "ArrayLike",
+    (MovingObstacle, "shape"): "float | Polygon | ArrayLike",
+}
 
 
 @pytest.mark.slow
