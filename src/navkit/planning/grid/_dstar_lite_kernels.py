@@ -72,6 +72,7 @@ centre to it (a virtual goal at the centre linked to all four corners): its
 from __future__ import annotations
 
 import math
+from math import sqrt
 from typing import Any
 
 import numpy as np
@@ -84,6 +85,9 @@ from navkit.planning.grid._dstar_heap import (
 )
 
 SQRT2 = math.sqrt(2.0)
+# Read by the kernels as one frozen global (``np.inf`` is two IR statements: the
+# module, then its attribute, each typed and lowered at every use).
+INF = math.inf
 FIELD_HSCALE = 1.0 / SQRT2
 OCT = SQRT2 - 1.0
 # Distance from a cell's centre to each of its corners.
@@ -215,7 +219,7 @@ def corner_cost(g1: float, g2: float, c: float, b: float, interp: bool) -> float
     ``interp`` false only A and B remain: the classic 8-connected move costs.
     """
     best = (b if b < c else c) + g1  # min(c, b), as numba's min picks
-    if c < np.inf:
+    if c < INF:
         v = c * SQRT2 + g2
         if v < best:
             best = v
@@ -224,14 +228,14 @@ def corner_cost(g1: float, g2: float, c: float, b: float, interp: bool) -> float
             # (y < 1 means 2 f^2 < c^2); D at its optimum 1 - x = b / sqrt(c^2 - b^2)
             # costs g2 + b + sqrt(c^2 - b^2) (1 - x < 1 means 2 b^2 < c^2).
             cc = c * c
-            if g1 < np.inf:
+            if g1 < INF:
                 f = g1 - g2
                 if 2.0 * f * f < cc:
-                    v = g1 + math.sqrt(cc - f * f)
+                    v = g1 + sqrt(cc - f * f)
                     if v < best:
                         best = v
             if 2.0 * b * b < cc:
-                v = g2 + b + math.sqrt(cc - b * b)
+                v = g2 + b + sqrt(cc - b * b)
                 if v < best:
                     best = v
     return best
@@ -261,8 +265,8 @@ def key_reached(top0: float, top1: float, m: float, h: float, km: float) -> bool
     value read early).
     """
     t1 = m + h + km
-    if not t1 < np.inf:
-        return top0 == np.inf and top1 >= m
+    if not t1 < INF:
+        return top0 == INF and top1 >= m
     tol = 1e-9 * (1.0 + t1)
     return top0 > t1 + tol or (top0 >= t1 - tol and top1 >= m)
 
@@ -274,11 +278,11 @@ def _pair_value(
     base = i * width + j
     c = pad[base + PAIR_CR[k] * width + PAIR_CC[k]]
     b = pad[base + PAIR_BR[k] * width + PAIR_BC[k]]
-    if c == np.inf and b == np.inf:
-        return np.inf
+    if c == INF and b == INF:
+        return INF
     # The axis node is a corner of whichever of b, c is finite: always on the grid.
     g1 = g[(i + PAIR_AR[k]) * ncols + j + PAIR_AC[k]]
-    if c == np.inf:
+    if c == INF:
         return float(b + g1)
     return corner_cost(g1, g[(i + PAIR_DR[k]) * ncols + j + PAIR_DC[k]], c, b, interp)
 
@@ -288,7 +292,7 @@ def node_rhs(
     pad: np.ndarray, width: int, g: np.ndarray, ncols: int, i: int, j: int, interp: bool
 ) -> float:
     """Minimum over the eight neighbour pairs of node (i, j)."""
-    best = np.inf
+    best = INF
     for k in range(8):
         v = _pair_value(pad, width, g, ncols, i, j, k, interp)
         if v < best:
@@ -361,7 +365,7 @@ def settle(
     width, nrows, ncols, sr, sc, goal, km, interp, hscale, _, goal_cell = prm
     # Source value of the goal cell's corners (rows gi..gi+1, columns gj..gj+1), or
     # inf without a goal cell: written out here, as a helper function compiled more.
-    seed = np.inf
+    seed = INF
     gi = goal_cell // ncols
     gj = goal_cell - gi * ncols
     if goal_cell >= 0:
@@ -388,8 +392,10 @@ def settle(
                         update_vertex(s, i, j, g, rhs, nodes, keys, pos, size, sr, sc, km, hscale)
     ti = target // ncols
     th = heuristic(sr, sc, ti, target - ti * ncols, hscale)
-    expanded = 0
     spent = work[0]
+    # A variable 0, not the literal (whose widening to int64 cost type inference
+    # two more passes over this kernel).
+    expanded: int = spent - spent
     limit = work[1]
     while size[0] > 0 and spent <= limit:
         gt = g[target]
@@ -427,7 +433,7 @@ def settle(
         else:
             spent += RAISE_WORK
             ref = g[u]
-            g[u] = np.inf
+            g[u] = INF
         for m in range(8):
             si = ui - RING_R[m]
             sj = uj - RING_C[m]

@@ -17,17 +17,21 @@ The caller passes the shortcut's output buffer, so :func:`_polyline` allocates
 nothing and runs without reference counting: allocating in it compiled numba's
 ``np.empty`` implementation and its allocator with it (about 0.2 s of first
 use). ``min()`` is written out (numba compiles it as a function of its own per
-argument type set), and ``math.floor`` already returns an int.
+argument type set), and ``math.floor`` already returns an int: the grid line
+and cell indices are kept as ints, so no ``int()`` (a compiled function of its
+own) is needed. Counters start from a variable 0 and constants are frozen
+globals (see :mod:`navkit.planning.grid._field_path_kernels`).
 """
 
 from __future__ import annotations
 
-import math
+from math import ceil, floor, hypot
 
 import numpy as np
 
 from navkit._shared.jit import typed_njit
 from navkit.planning.grid._dstar_heap import HELPER_OPTIONS, KERNEL_OPTIONS
+from navkit.planning.grid._dstar_lite_kernels import INF
 
 _kernel = typed_njit(**KERNEL_OPTIONS)
 _helper = typed_njit(**HELPER_OPTIONS)
@@ -45,37 +49,38 @@ def segment_cost(pad: np.ndarray, width: int, r0: float, c0: float, r1: float, c
     """
     dr = r1 - r0
     dc = c1 - c0
-    length = math.hypot(dr, dc)
+    length = hypot(dr, dc)
     if length == 0.0:
         return 0.0
     # Exact tests, not a tolerance: a segment a hair beside a grid line lies in
     # the cell on its side (the walk's points on a line are exactly on it), and
     # pricing it at the cheaper neighbour undercounted its cost by up to the
     # cost difference times its length.
-    on_row = dr == 0.0 and r0 == math.floor(r0)
-    on_col = dc == 0.0 and c0 == math.floor(c0)
+    # Integers (floor() and ceil() return ints), so that cell indices need no int().
+    fr0 = floor(r0)
+    fc0 = floor(c0)
+    on_row = dr == 0.0 and r0 == fr0
+    on_col = dc == 0.0 and c0 == fc0
     total = 0.0
     t = 0.0
     # Index of the next integer line in each axis, stepped by counters to avoid drift.
     if dr > 0:
-        nr_line = math.floor(r0) + 1.0
+        nr_line = fr0 + 1
     elif dr < 0:
-        nr_line = math.ceil(r0) - 1.0
+        nr_line = ceil(r0) - 1
     else:
-        nr_line = 0.0
+        nr_line = fr0
     if dc > 0:
-        nc_line = math.floor(c0) + 1.0
+        nc_line = fc0 + 1
     elif dc < 0:
-        nc_line = math.ceil(c0) - 1.0
+        nc_line = ceil(c0) - 1
     else:
-        nc_line = 0.0
-    fr0 = float(math.floor(r0))
-    fc0 = float(math.floor(c0))
-    step_r = 1.0 if dr > 0 else -1.0
-    step_c = 1.0 if dc > 0 else -1.0
+        nc_line = fc0
+    step_r = 1 if dr > 0 else -1
+    step_c = 1 if dc > 0 else -1
     while t < 1.0:
-        tr = (nr_line - r0) / dr if dr != 0.0 else np.inf
-        tc = (nc_line - c0) / dc if dc != 0.0 else np.inf
+        tr = (nr_line - r0) / dr if dr != 0.0 else INF
+        tc = (nc_line - c0) / dc if dc != 0.0 else INF
         # min(tr, tc, 1.0) written out: numba compiles min() as a function of its own.
         t1 = tc if tc < tr else tr
         if t1 > 1.0:
@@ -84,8 +89,8 @@ def segment_cost(pad: np.ndarray, width: int, r0: float, c0: float, r1: float, c
         # piece a hair from a grid line has a midpoint that may round onto the
         # line, whose floor is the cell beyond it (an impassable one made a
         # path's cost inf).
-        cell_r = nr_line - 1.0 if dr > 0 else (nr_line if dr < 0 else fr0)
-        cell_c = nc_line - 1.0 if dc > 0 else (nc_line if dc < 0 else fc0)
+        cell_r = nr_line - 1 if dr > 0 else (nr_line if dr < 0 else fr0)
+        cell_c = nc_line - 1 if dc > 0 else (nc_line if dc < 0 else fc0)
         if tr <= t1:
             nr_line += step_r
         if tc <= t1:
@@ -94,20 +99,20 @@ def segment_cost(pad: np.ndarray, width: int, r0: float, c0: float, r1: float, c
         if piece > 1e-12:
             if on_row:
                 # Along row line r0: cells (r0 - 1, col) and (r0, col).
-                at = int(r0) * width + int(cell_c) + 1
+                at = fr0 * width + cell_c + 1
                 cost = pad[at]
                 if pad[at + width] < cost:
                     cost = pad[at + width]
             elif on_col:
                 # Along column line c0: cells (row, c0 - 1) and (row, c0).
-                at = (int(cell_r) + 1) * width + int(c0)
+                at = (cell_r + 1) * width + fc0
                 cost = pad[at]
                 if pad[at + 1] < cost:
                     cost = pad[at + 1]
             else:
-                cost = pad[(int(cell_r) + 1) * width + int(cell_c) + 1]
-            if cost == np.inf:
-                return np.inf
+                cost = pad[(cell_r + 1) * width + cell_c + 1]
+            if cost == INF:
+                return INF
             total += cost * piece
         t = t1
     return total
@@ -129,17 +134,19 @@ def _polyline(
         length = 0.0
         for a in range(k - 1):
             cost += segment_cost(pad, width, pts[a, 0], pts[a, 1], pts[a + 1, 0], pts[a + 1, 1])
-            length += math.hypot(pts[a + 1, 0] - pts[a, 0], pts[a + 1, 1] - pts[a, 1])
+            length += hypot(pts[a + 1, 0] - pts[a, 0], pts[a + 1, 1] - pts[a, 1])
         return 0, cost, length
     # Element copies only: whole-row and slice assignments compile far more code.
     out[0, 0] = pts[0, 0]
     out[0, 1] = pts[0, 1]
-    m = 1
-    i = 0
+    # Counters start from a variable, not a literal (one more pass of type inference).
+    zero = k - k
+    m = zero + 1
+    i = zero
     while i < k - 1:
         best = i + 1
         acc = 0.0
-        misses = 0
+        misses = zero
         j = i + 1
         while j < k:
             acc += segment_cost(pad, width, pts[j - 1, 0], pts[j - 1, 1], pts[j, 0], pts[j, 1])
@@ -147,7 +154,7 @@ def _polyline(
                 direct = segment_cost(pad, width, pts[i, 0], pts[i, 1], pts[j, 0], pts[j, 1])
                 if direct <= acc * (1.0 + 1e-12):
                     best = j
-                    misses = 0
+                    misses = zero
                 else:
                     misses += 1
                     if misses > patience:
