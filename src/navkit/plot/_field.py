@@ -92,6 +92,14 @@ def _clipped_potential(sampled: SampledField, clip: float | None) -> FloatArray:
     """The potential with ``+inf`` (and values above ``clip``) drawn at the cap."""
     pot = np.array(sampled.potential, dtype=np.float64)
     finite = pot[np.isfinite(pot)]
+    if not finite.size and clip is None:
+        # No finite value to cap the infinities at: drawing them at 0 (as before)
+        # showed a flat field of potential 0 where every point is inside an obstacle.
+        raise ValueError(
+            "field: every sampled potential is +inf (the window lies inside obstacles), "
+            "there is no finite potential to draw; pass clip= to draw them at that cap, "
+            "sample a window reaching outside the obstacles, or use kind='quiver'"
+        )
     top = float(finite.max()) if finite.size else 0.0
     if clip is not None:
         top = min(top, clip) if finite.size else clip
@@ -132,7 +140,8 @@ def plot_field(
     clip : float, optional
         Potentials above this are drawn at it (repulsion grows without bound
         near obstacles); ``+inf`` potentials are always drawn at the largest
-        finite one (or at ``clip``).
+        finite one (or at ``clip``). A surface or contours of a field whose
+        every potential is ``+inf`` need ``clip``.
 
     Returns
     -------
@@ -147,7 +156,8 @@ def plot_field(
         Unknown ``kind``; ``kind="surface"`` on 2-D axes; sampling options
         with a SampledField, missing ones with a PotentialField, a window
         beyond ±1e9 m or needing more than 2**20 samples; ``kind="contour"``
-        of a field less than 2 samples wide or high.
+        of a field less than 2 samples wide or high; ``kind="surface"`` or
+        ``"contour"`` of a field that is ``+inf`` everywhere, without ``clip``.
 
     Examples
     --------

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+from contextlib import contextmanager
 from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
@@ -23,6 +25,7 @@ __all__ = [
     "bounded_float",
     "bounded_int",
     "figure_of",
+    "keep_directions",
     "require_matplotlib",
 ]
 
@@ -152,6 +155,22 @@ def bounded_int(value: Any, name: str, lo: int, hi: int) -> int:
         text = str(int(value)) if abs(int(value)) < 10**30 else "a huge integer"
         raise ValueError(f"{name} must lie in [{lo}, {hi}], got {text}")
     return int(value)
+
+
+@contextmanager
+def keep_directions(ax: Axes) -> Iterator[None]:
+    """Keep the caller's axis directions (``invert_yaxis()``) through the drawing inside.
+
+    ``imshow`` and ``set_xlim``/``set_ylim`` with increasing limits turn an
+    inverted axis the right way round again.
+    """
+    x_inverted, y_inverted = ax.xaxis_inverted(), ax.yaxis_inverted()
+    try:
+        yield
+    finally:
+        # set_inverted keeps the limits (reordered) and the autoscaling state.
+        ax.xaxis.set_inverted(x_inverted)
+        ax.yaxis.set_inverted(y_inverted)
 
 
 def finish_axes(ax: Axes) -> None:

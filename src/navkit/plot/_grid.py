@@ -9,7 +9,13 @@ import numpy as np
 
 from navkit._shared.types import FloatArray
 from navkit.mapping import OccupancyGrid
-from navkit.plot._figure import COORD_LIMIT, axes_for, bounded_float, finish_axes
+from navkit.plot._figure import (
+    COORD_LIMIT,
+    axes_for,
+    bounded_float,
+    finish_axes,
+    keep_directions,
+)
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -51,7 +57,9 @@ def plot_grid(grid: OccupancyGrid, *, ax: Axes | None = None, alpha: float = 1.0
     Raises
     ------
     TypeError
-        ``grid`` is not an OccupancyGrid, ``ax`` not an Axes.
+        ``grid`` is not an OccupancyGrid (the message says how to make one of
+        a boolean or probability array, a ``LocalGrid`` or a ``ScanMapper``),
+        ``ax`` not an Axes.
     ValueError
         ``alpha`` outside [0, 1]; the map lies beyond ±1e9 m.
     ImportError
@@ -69,12 +77,33 @@ def plot_grid(grid: OccupancyGrid, *, ax: Axes | None = None, alpha: float = 1.0
     [1.0, 4.0, 2.0, 4.0]
     """
     if not isinstance(grid, OccupancyGrid):
-        raise TypeError(f"grid must be an OccupancyGrid, got {type(grid).__name__}")
+        raise TypeError(_not_a_grid(grid))
     opacity = bounded_float(alpha, "alpha", 0.0, 1.0)
     axes = axes_for(ax)
     draw_grid(axes, grid, alpha=opacity)
     finish_axes(axes)
     return axes
+
+
+def _not_a_grid(value: Any) -> str:
+    """What plot_grid takes, and how to make one of what was passed."""
+    name = type(value).__name__
+    text = f"grid must be a navkit.mapping.OccupancyGrid, got {name}"
+    if isinstance(getattr(value, "map", None), OccupancyGrid):
+        return f"{text}: pass its map (grid=mapper.map)"
+    if name == "LocalGrid":
+        return (
+            f"{text}: convert it, in the robot frame, with OccupancyGrid.from_occupancy("
+            "g.occupied, resolution=g.resolution, origin=(-g.half_width - g.resolution / 2, "
+            "-g.half_width - g.resolution / 2, 0.0))"
+        )
+    if isinstance(value, (np.ndarray, list, tuple)):
+        return (
+            f"{text}: make one of an array with OccupancyGrid.from_occupancy(occupied, "
+            "resolution=...) (booleans) or OccupancyGrid.from_probabilities(p, "
+            "resolution=...) (occupancy probabilities in [0, 1]); row 0 is the lowest y"
+        )
+    return text
 
 
 def grid_shades(grid: OccupancyGrid) -> FloatArray:
@@ -96,6 +125,11 @@ def grid_shades(grid: OccupancyGrid) -> FloatArray:
 
 def draw_grid(ax: Axes, grid: OccupancyGrid, *, alpha: float = 1.0, zorder: float = 0.0) -> None:
     """Draw ``grid`` on ``ax`` (checked arguments) and extend the data limits to it."""
+    with keep_directions(ax):
+        _draw_grid(ax, grid, alpha=alpha, zorder=zorder)
+
+
+def _draw_grid(ax: Axes, grid: OccupancyGrid, *, alpha: float, zorder: float) -> None:
     from matplotlib.path import Path as MplPath
     from matplotlib.transforms import Affine2D
 

@@ -98,7 +98,7 @@ def plot_path(
     --------
     >>> import numpy as np
     >>> ax = plot_path(np.array([[0.0, 0.0], [1.0, 0.5], [2.0, 0.5]]), label="plan")
-    >>> ax.lines[0].get_xydata().tolist()
+    >>> np.asarray(ax.lines[0].get_xydata()).tolist()  # asarray: matplotlib types it array_like
     [[0.0, 0.0], [1.0, 0.5], [2.0, 0.5]]
     """
     points = path_points(path, grid)
@@ -265,11 +265,12 @@ def plot_scan(
     Examples
     --------
     >>> import math
+    >>> import numpy as np
     >>> from navkit.mapping import LaserScan
     >>> scan = LaserScan([1.0, 2.0, math.inf], angle_min=0.0, angle_increment=math.pi / 2,
     ...                  range_min=0.1, range_max=5.0)
     >>> ax = plot_scan(scan, (1.0, 1.0, 0.0), rays=True)
-    >>> ax.collections[0].get_offsets().round(6).tolist()
+    >>> np.asarray(ax.collections[0].get_offsets()).round(6).tolist()
     [[2.0, 1.0], [1.0, 3.0]]
     """
     if not isinstance(scan, LaserScan):

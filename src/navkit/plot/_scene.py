@@ -11,7 +11,7 @@ from navkit._shared.frozen import frozen_setattr
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_bool
 from navkit.mapping import OccupancyGrid
-from navkit.plot._figure import as_coords, axes_for, finish_axes
+from navkit.plot._figure import as_coords, axes_for, finish_axes, keep_directions
 from navkit.plot._grid import draw_grid
 from navkit.plot._lines import draw_trace, trace_xy
 from navkit.sim import Scene, Trace, World
@@ -115,7 +115,9 @@ def plot_scene(scene: Scene, *, ax: Axes | None = None, legend: bool = True) -> 
     ...               paths=(("plan", np.array([[0.5, 0.5], [3.5, 2.5]])),),
     ...               points=(("goal", np.array([[3.5, 2.5]])),))
     >>> ax = plot_scene(scene)
-    >>> ax.get_title(), [t.get_text() for t in ax.get_legend().get_texts()]
+    >>> legend = ax.get_legend()
+    >>> assert legend is not None  # an entry per labelled path and point set
+    >>> ax.get_title(), [t.get_text() for t in legend.get_texts()]
     ('a room', ['plan', 'goal'])
     """
     checked = check_scene(scene)
@@ -140,7 +142,15 @@ def plot_scene(scene: Scene, *, ax: Axes | None = None, legend: bool = True) -> 
 
 
 def draw_scene(ax: Axes, scene: CheckedScene, *, traces: bool) -> list[Any]:
-    """Draw a checked scene (its traces too when ``traces``); returns the moving obstacles."""
+    """Draw a checked scene (its traces too when ``traces``); returns the moving obstacles.
+
+    An axis the caller inverted stays inverted.
+    """
+    with keep_directions(ax):
+        return _draw_scene(ax, scene, traces=traces)
+
+
+def _draw_scene(ax: Axes, scene: CheckedScene, *, traces: bool) -> list[Any]:
     # What the caller's axes showed before, axis by axis: limits they set, or their own
     # artists' data along that axis (an axhline has none along x: the default [0, 1]
     # there showed nothing, and widening to it squeezed a distant scene to a sliver).
