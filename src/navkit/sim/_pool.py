@@ -40,7 +40,10 @@ def process_pool(workers: int) -> Iterator[concurrent.futures.ProcessPoolExecuto
 
     The workers ignore ``SIGINT`` (a Ctrl-C reaches the whole process group:
     the owner alone handles it, by stopping the pool) and end when their parent
-    process ends, however it ends.
+    process ends, however it ends. Submit from the thread that entered the
+    block (as ``sweep`` and ``warmup`` do): on Linux a worker is also killed
+    when the thread that started it ends (``PR_SET_PDEATHSIG`` follows the
+    thread), and workers start at a ``submit``.
     """
     pool = concurrent.futures.ProcessPoolExecutor(max_workers=workers, initializer=_start_worker)
     try:
@@ -59,12 +62,16 @@ def process_pool(workers: int) -> Iterator[concurrent.futures.ProcessPoolExecuto
 def _kill(pool: concurrent.futures.ProcessPoolExecutor) -> None:
     """Cancel the pool's queued work and kill its workers (as ``kill_workers`` in Python 3.14)."""
     processes = list(pool._processes.values()) if pool._processes else []
+    # Taken first: shutdown(wait=False) forgets the pool's thread, so that a second
+    # shutdown(wait=True) would return at once, without waiting for it.
+    manager: threading.Thread | None = getattr(pool, "_executor_manager_thread", None)
     pool.shutdown(wait=False, cancel_futures=True)
     for process in processes:
         with contextlib.suppress(ProcessLookupError, ValueError):  # gone, or closed
             process.kill()
     # The pool's thread sees the workers die, fails the futures left and joins them.
-    pool.shutdown(wait=True)
+    if manager is not None:
+        manager.join()
 
 
 def _start_worker() -> None:

@@ -433,9 +433,15 @@ ndarray, shape (N, 3, 3)
         >>> upside_down.angular_velocities.round(6) + 0.0, upside_down.frame_id
         (array([[ 0. ,  0. , -0.2]]), 'base_link')
         """
+        named = "mount" if mounting is None else "mounting"  # as the caller wrote it
         mount = renamed_keyword("mounting", mounting, "mount", mount, None)
         if mount is None:
             raise TypeError("to_base() missing required argument: 'mount'")
+        # Checked here as imu_to_base checks it, so that its errors name the keyword
+        # the caller wrote (imu_to_base would name "mount").
+        mount = as_float_array(mount, named, shape=(4,))
+        if not np.any(mount):
+            raise ValueError(f"{named} must be a non-zero quaternion (x, y, z, w)")
         frame = _text(frame_id, "frame_id")
         rotated = imu_to_base(
             self.orientations,
