@@ -13,30 +13,21 @@ documented equations (Joseph form, residual angles and angle states wrapped to
 
 from __future__ import annotations
 
-import copy
 import math
-import pickle
 from collections.abc import Callable
 from typing import Any
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, settings
 from hypothesis import strategies as st
 from hypothesis.stateful import RuleBasedStateMachine, initialize, invariant, rule
-from hypothesis.stateful import run_state_machine_as_test as _untyped_run
 
 from navkit.errors import FilterError
 from navkit.estimation import ExtendedKalmanFilter
+from stateful_runs import COPIERS, run_machine
 
 Array = np.ndarray[Any, np.dtype[np.float64]]
-# hypothesis leaves this one untyped.
-_run: Callable[..., None] = _untyped_run
-_COPIERS: list[Callable[[ExtendedKalmanFilter], ExtendedKalmanFilter]] = [
-    copy.copy,
-    copy.deepcopy,
-    lambda f: pickle.loads(pickle.dumps(f)),
-]
+_COPIERS: tuple[Callable[[ExtendedKalmanFilter], ExtendedKalmanFilter], ...] = COPIERS
 
 
 def _wrap(a: Array) -> Array:
@@ -215,27 +206,9 @@ class EKFMachine(RuleBasedStateMachine):
 
 
 def test_step_sequences_match_numpy_ekf() -> None:
-    _run(
-        EKFMachine,
-        settings=settings(
-            max_examples=30,
-            stateful_step_count=20,
-            deadline=None,
-            database=None,
-            suppress_health_check=[HealthCheck.too_slow],
-        ),
-    )
+    run_machine(EKFMachine, examples=30, steps=20)
 
 
 @pytest.mark.slow
 def test_step_sequences_match_numpy_ekf_long() -> None:
-    _run(
-        EKFMachine,
-        settings=settings(
-            max_examples=400,
-            stateful_step_count=40,
-            deadline=None,
-            database=None,
-            suppress_health_check=[HealthCheck.too_slow],
-        ),
-    )
+    run_machine(EKFMachine, examples=400, steps=40)

@@ -13,30 +13,21 @@ modulo the counter width, per-wheel metres per tick, then the ``"arc"``,
 
 from __future__ import annotations
 
-import copy
 import math
-import pickle
 from collections.abc import Callable
 from typing import Any
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, settings
 from hypothesis import strategies as st
 from hypothesis.stateful import RuleBasedStateMachine, initialize, invariant, rule
-from hypothesis.stateful import run_state_machine_as_test as _untyped_run
 
 from navkit.estimation import DiffOdometry
 from navkit.kinematics import DiffDrive
+from stateful_runs import COPIERS, run_machine
 
 TRACK = 0.4
-# hypothesis leaves this one untyped.
-_run: Callable[..., None] = _untyped_run
-_COPIERS: list[Callable[[DiffOdometry], DiffOdometry]] = [
-    copy.copy,
-    copy.deepcopy,
-    lambda o: pickle.loads(pickle.dumps(o)),
-]
+_COPIERS: tuple[Callable[[DiffOdometry], DiffOdometry], ...] = COPIERS
 
 
 def _wrap(angle: float) -> float:
@@ -190,27 +181,9 @@ class OdometryMachine(RuleBasedStateMachine):
 
 
 def test_reading_sequences_match_the_model() -> None:
-    _run(
-        OdometryMachine,
-        settings=settings(
-            max_examples=30,
-            stateful_step_count=20,
-            deadline=None,
-            database=None,
-            suppress_health_check=[HealthCheck.too_slow],
-        ),
-    )
+    run_machine(OdometryMachine, examples=30, steps=20)
 
 
 @pytest.mark.slow
 def test_reading_sequences_match_the_model_long() -> None:
-    _run(
-        OdometryMachine,
-        settings=settings(
-            max_examples=400,
-            stateful_step_count=40,
-            deadline=None,
-            database=None,
-            suppress_health_check=[HealthCheck.too_slow],
-        ),
-    )
+    run_machine(OdometryMachine, examples=400, steps=40)

@@ -15,32 +15,22 @@ independent, the public log-odds stay read-only float32.
 
 from __future__ import annotations
 
-import copy
 import math
-import pickle
 from collections.abc import Callable
 from typing import Any
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, settings
 from hypothesis import strategies as st
 from hypothesis.stateful import RuleBasedStateMachine, initialize, invariant, rule
-from hypothesis.stateful import run_state_machine_as_test as _untyped_run
 
 from navkit.mapping import LaserScan, OccupancyGrid
+from stateful_runs import COPIERS, run_machine
 
 RES = 0.25
 Array = np.ndarray[Any, np.dtype[np.float64]]
 Mask = np.ndarray[Any, np.dtype[np.bool_]]
-# hypothesis leaves this one untyped.
-_run: Callable[..., None] = _untyped_run
-_COPIERS: list[Callable[[OccupancyGrid], OccupancyGrid]] = [
-    OccupancyGrid.copy,
-    copy.copy,
-    copy.deepcopy,
-    lambda g: pickle.loads(pickle.dumps(g)),
-]
+_COPIERS: tuple[Callable[[OccupancyGrid], OccupancyGrid], ...] = (OccupancyGrid.copy, *COPIERS)
 _CLAMP = (math.log(0.12 / 0.88), math.log(0.97 / 0.03))
 _DEFAULTS = (math.log(0.7 / 0.3), math.log(0.4 / 0.6), _CLAMP)
 # (hit, miss, clamp); None: the defaults, not passed.
@@ -171,27 +161,9 @@ class GridMachine(RuleBasedStateMachine):
 
 
 def test_scan_sequences_follow_the_update_rule() -> None:
-    _run(
-        GridMachine,
-        settings=settings(
-            max_examples=30,
-            stateful_step_count=15,
-            deadline=None,
-            database=None,
-            suppress_health_check=[HealthCheck.too_slow],
-        ),
-    )
+    run_machine(GridMachine, examples=30, steps=15)
 
 
 @pytest.mark.slow
 def test_scan_sequences_follow_the_update_rule_long() -> None:
-    _run(
-        GridMachine,
-        settings=settings(
-            max_examples=400,
-            stateful_step_count=40,
-            deadline=None,
-            database=None,
-            suppress_health_check=[HealthCheck.too_slow],
-        ),
-    )
+    run_machine(GridMachine, examples=400, steps=40)

@@ -12,30 +12,21 @@ equal the model's. Errors leave the planner usable: the sequence continues.
 
 from __future__ import annotations
 
-import copy
 import math
-import pickle
 from collections.abc import Callable
 from typing import Any
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, settings
 from hypothesis import strategies as st
 from hypothesis.stateful import RuleBasedStateMachine, initialize, invariant, rule
-from hypothesis.stateful import run_state_machine_as_test as _untyped_run
 
 from navkit.errors import NoPathError
 from navkit.planning import FieldDStar, Path2D
+from stateful_runs import COPIERS, run_machine
 
 RES = 0.5
-# hypothesis leaves this one untyped.
-_run: Callable[..., None] = _untyped_run
-_COPIERS: list[Callable[[FieldDStar], FieldDStar]] = [
-    copy.copy,
-    copy.deepcopy,
-    lambda p: pickle.loads(pickle.dumps(p)),
-]
+_COPIERS: tuple[Callable[[FieldDStar], FieldDStar], ...] = COPIERS
 Outcome = Path2D | type[Exception]
 
 
@@ -192,28 +183,10 @@ _LARGE = _machine(30, 40)  # large enough for the repair bounds to cut repairs s
 
 @pytest.mark.parametrize("machine", [_SMALL, _LARGE], ids=["5x6", "30x40"])
 def test_replans_equal_fresh_plans(machine: type[RuleBasedStateMachine]) -> None:
-    _run(
-        machine,
-        settings=settings(
-            max_examples=30,
-            stateful_step_count=15,
-            deadline=None,
-            database=None,
-            suppress_health_check=[HealthCheck.too_slow],
-        ),
-    )
+    run_machine(machine, examples=30, steps=15)
 
 
 @pytest.mark.slow
 @pytest.mark.parametrize("machine", [_SMALL, _LARGE], ids=["5x6", "30x40"])
 def test_replans_equal_fresh_plans_long(machine: type[RuleBasedStateMachine]) -> None:
-    _run(
-        machine,
-        settings=settings(
-            max_examples=400,
-            stateful_step_count=30,
-            deadline=None,
-            database=None,
-            suppress_health_check=[HealthCheck.too_slow],
-        ),
-    )
+    run_machine(machine, examples=400, steps=30)
