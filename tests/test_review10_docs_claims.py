@@ -232,12 +232,15 @@ def test_mapping_guide_defaults() -> None:
     assert f"the greedy step on a {n} × {n} laser grid" in _page("docs/papers.md")
     # Scan matching and mapping.
     assert f"(`levels={_default(ScanMatcher, 'levels')}`:" in page
-    dist, rot = _default(ScanMapper, "min_distance"), _default(ScanMapper, "min_rotation")
-    assert f"`min_distance` ({_num(dist)} m) or turned `min_rotation` ({_num(rot)} rad)" in page
+    dist, rot = _default(ScanMapper, "min_distance"), _default(ScanMapper, "min_angle")
+    assert f"`min_distance` ({_num(dist)} m) or turned `min_angle` ({_num(rot)} rad)" in page
     tutorial = _page("docs/tutorials/scans-to-map.md")
     assert f"moved {_num(dist)} m or turned {_num(rot)} rad" in tutorial
-    occupied, free_p = _default(ScanMapper, "occupied"), _default(ScanMapper, "free")
+    # hit and miss are log-odds; the prose gives their probabilities.
+    occupied = round(1.0 / (1.0 + math.exp(-_default(ScanMapper, "hit"))), 12)
+    free_p = round(1.0 / (1.0 + math.exp(-_default(ScanMapper, "miss"))), 12)
     assert f"occupied {_num(occupied)} / free {_num(free_p)} update probabilities" in page
+    assert f"`hit=logit({_num(occupied)})` and `miss=logit({_num(free_p)})`" in page
 
 
 def test_scan_matcher_weights_quoted_in_the_tutorial() -> None:

@@ -52,9 +52,9 @@ def cross_track(points_xy: np.ndarray, path: np.ndarray) -> np.ndarray:
     return out
 
 
-def run(tracker: Any, path: np.ndarray, start: Pose2D, goal_heading: float) -> np.ndarray:
+def run(tracker: Any, path: np.ndarray, start: Pose2D, goal_yaw: float) -> np.ndarray:
     """Close the loop until the tracker is done; the poses ``(M, 3)``."""
-    tracker.set_path(path, goal_heading=goal_heading)
+    tracker.set_path(path, goal_yaw=goal_yaw)
     pose = start
     poses = [pose.as_array()]
     for _ in range(int(120.0 / DT)):
@@ -66,7 +66,7 @@ def run(tracker: Any, path: np.ndarray, start: Pose2D, goal_heading: float) -> n
     return np.array(poses)
 
 
-def figure(name: str, path: np.ndarray, goal_heading: float, out_dir: Path) -> Path:
+def figure(name: str, path: np.ndarray, goal_yaw: float, out_dir: Path) -> Path:
     import matplotlib
 
     matplotlib.use("Agg")
@@ -83,7 +83,7 @@ def figure(name: str, path: np.ndarray, goal_heading: float, out_dir: Path) -> P
                                      gridspec_kw={"width_ratios": [1.1, 1]})
     ax.plot(path[:, 0], path[:, 1], color="0.6", lw=6, alpha=0.4, label="path")
     for label, tracker in trackers.items():
-        poses = run(tracker, path, start, goal_heading)
+        poses = run(tracker, path, start, goal_yaw)
         err = cross_track(poses[:, :2], path)
         ax.plot(poses[:, 0], poses[:, 1], lw=1.5, label=label)
         ax_err.plot(np.arange(len(err)) * DT, 100 * err, lw=1.2,

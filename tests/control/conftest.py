@@ -82,10 +82,10 @@ def run_tracker(
     *,
     dt: float = 0.05,
     t_max: float = 120.0,
-    goal_heading: float | None = None,
+    goal_yaw: float | None = None,
 ) -> Run:
     """Give ``path`` to ``tracker`` and close the loop until ``done`` or ``t_max``."""
-    tracker.set_path(path, goal_heading=goal_heading)
+    tracker.set_path(path, goal_yaw=goal_yaw)
     pose = start if isinstance(start, Pose2D) else Pose2D(*start)
     poses = [pose]
     commands = []

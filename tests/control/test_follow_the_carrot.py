@@ -48,7 +48,7 @@ def test_paper_defaults() -> None:
 def test_straight_line(drive: str, closed_loop: Callable[..., Any],
                        analytic_paths: dict[str, Any]) -> None:
     run = closed_loop(FollowTheCarrot(drive=drive), analytic_paths["straight"](),
-                      (0.0, 0.1, 0.3), goal_heading=0.0)
+                      (0.0, 0.1, 0.3), goal_yaw=0.0)
     assert run.done
     assert run.goal_error() <= 0.05
     assert abs(run.poses[-1, 2]) <= 0.01
@@ -60,7 +60,7 @@ def test_straight_line(drive: str, closed_loop: Callable[..., Any],
 def test_circle(drive: str, closed_loop: Callable[..., Any],
                 analytic_paths: dict[str, Any]) -> None:
     run = closed_loop(FollowTheCarrot(drive=drive), analytic_paths["circle"](),
-                      (0.0, -0.05, 0.1), goal_heading=0.5)
+                      (0.0, -0.05, 0.1), goal_yaw=0.5)
     assert run.done
     assert run.goal_error() <= 0.05
     assert abs(run.poses[-1, 2] - 0.5) <= 0.01
@@ -73,7 +73,7 @@ def test_circle(drive: str, closed_loop: Callable[..., Any],
 def test_right_angle(drive: str, closed_loop: Callable[..., Any],
                      analytic_paths: dict[str, Any]) -> None:
     run = closed_loop(FollowTheCarrot(drive=drive), analytic_paths["right_angle"](),
-                      (0.0, 0.05, 0.0), goal_heading=math.pi / 2)
+                      (0.0, 0.05, 0.0), goal_yaw=math.pi / 2)
     assert run.done
     assert run.goal_error() <= 0.05
     assert abs(run.poses[-1, 2] - math.pi / 2) <= 0.01
@@ -85,7 +85,7 @@ def test_right_angle(drive: str, closed_loop: Callable[..., Any],
 def test_s_curve(drive: str, closed_loop: Callable[..., Any],
                  analytic_paths: dict[str, Any]) -> None:
     run = closed_loop(FollowTheCarrot(drive=drive), analytic_paths["s_curve"](),
-                      (0.0, 0.05, 0.0), goal_heading=0.0)
+                      (0.0, 0.05, 0.0), goal_yaw=0.0)
     assert run.done
     assert run.goal_error() <= 0.05
     assert run.after(x_min=0.5).max() <= CIRCLE_BOUND  # settled from its 5 cm start offset
@@ -94,7 +94,7 @@ def test_s_curve(drive: str, closed_loop: Callable[..., Any],
 def test_three_phases_and_the_papers_limits(closed_loop: Callable[..., Any]) -> None:
     """Rotate in place to face the path, follow the carrot at 0.18 m/s, rotate to the goal."""
     run = closed_loop(FollowTheCarrot(), np.array([[0.0, 0.0], [2.0, 0.0]]),
-                      (0.0, 0.0, 2.0), goal_heading=-1.0)
+                      (0.0, 0.0, 2.0), goal_yaw=-1.0)
     phases = run.phases
     first_track = phases.index("track")
     first_final = phases.index("final")
@@ -162,7 +162,7 @@ def test_a_short_closed_loop_is_driven_round(closed_loop: Callable[..., Any], dr
     assert run.cross_track.max() < CARROT
 
 
-def test_no_goal_heading_ends_at_the_position(closed_loop: Callable[..., Any]) -> None:
+def test_no_goal_yaw_ends_at_the_position(closed_loop: Callable[..., Any]) -> None:
     run = closed_loop(FollowTheCarrot(), np.array([[0.0, 0.0], [1.0, 0.0]]), (0.0, 0.0, 0.0))
     assert run.done and "final" not in run.phases
 
@@ -170,7 +170,7 @@ def test_no_goal_heading_ends_at_the_position(closed_loop: Callable[..., Any]) -
 def test_slower_control_rate_still_converges(closed_loop: Callable[..., Any],
                                              analytic_paths: dict[str, Any]) -> None:
     run = closed_loop(FollowTheCarrot(), analytic_paths["right_angle"](), (0.0, 0.05, 0.0),
-                      dt=0.2, goal_heading=math.pi / 2)
+                      dt=0.2, goal_yaw=math.pi / 2)
     assert run.done and run.goal_error() <= 0.05
     assert run.cross_track.max() < CARROT
 

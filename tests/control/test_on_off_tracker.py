@@ -54,7 +54,7 @@ def test_cross_track_bound_on_analytic_paths(
     name: str, closed_loop: Callable[..., Any], analytic_paths: dict[str, Any]
 ) -> None:
     path = analytic_paths[name]()
-    run = closed_loop(OnOffTracker(), path, (0.0, 0.03, 0.4), goal_heading=0.3)
+    run = closed_loop(OnOffTracker(), path, (0.0, 0.03, 0.4), goal_yaw=0.3)
     assert run.done
     assert run.goal_error() <= TOL
     assert abs(run.poses[-1, 2] - 0.3) <= 0.01
@@ -106,7 +106,7 @@ def test_waypoints_are_taken_in_order() -> None:
 def test_omni_drives_straight_at_each_waypoint(closed_loop: Callable[..., Any],
                                               analytic_paths: dict[str, Any]) -> None:
     run = closed_loop(OnOffTracker(drive="omni"), analytic_paths["right_angle"](),
-                      (0.0, 0.03, 0.4), goal_heading=0.3)
+                      (0.0, 0.03, 0.4), goal_yaw=0.3)
     assert run.done and run.goal_error() <= TOL
     track = np.array([p == "track" for p in run.phases])
     assert np.all(run.commands[track, 2] == 0.0)

@@ -85,16 +85,16 @@ def test_the_callers_path_is_copied(make: Callable[..., Any]) -> None:
 
 @trackers
 @pytest.mark.parametrize(("heading", "error"), [(math.nan, ValueError), ("north", TypeError)])
-def test_bad_goal_heading(make: Callable[..., Any], heading: Any, error: type[Exception]) -> None:
-    with pytest.raises(error, match="goal_heading"):
-        make().set_path(L_PATH, goal_heading=heading)
+def test_bad_goal_yaw(make: Callable[..., Any], heading: Any, error: type[Exception]) -> None:
+    with pytest.raises(error, match="goal_yaw"):
+        make().set_path(L_PATH, goal_yaw=heading)
 
 
 @trackers
-def test_goal_heading_is_wrapped(make: Callable[..., Any]) -> None:
+def test_goal_yaw_is_wrapped(make: Callable[..., Any]) -> None:
     tracker = make()
-    tracker.set_path(L_PATH, goal_heading=3 * math.pi / 2)
-    assert tracker.goal_heading == pytest.approx(-math.pi / 2)
+    tracker.set_path(L_PATH, goal_yaw=3 * math.pi / 2)
+    assert tracker.goal_yaw == pytest.approx(-math.pi / 2)
 
 
 # ---------------------------------------------------------------------- step
@@ -143,7 +143,7 @@ def test_copied_and_unpickled_trackers_step_alike_with_a_read_only_path(
     make: Callable[..., Any], drive: str, duplicate: Callable[[Any], Any]
 ) -> None:
     tracker = make(drive=drive)
-    tracker.set_path(L_PATH, goal_heading=1.0)
+    tracker.set_path(L_PATH, goal_yaw=1.0)
     tracker.step((0.1, 0.02, 0.1), 0.05)
     copy = duplicate(tracker)
     # pickle and deepcopy used to give the copy a writable path.
@@ -192,7 +192,7 @@ def test_options_are_keyword_only(make: Callable[..., Any]) -> None:
 @pytest.mark.parametrize("drive", ["diff", "omni"])
 def test_done_latches_and_set_path_rearms(make: Callable[..., Any], drive: str) -> None:
     tracker = make(drive=drive)
-    tracker.set_path(L_PATH, goal_heading=math.pi / 2)
+    tracker.set_path(L_PATH, goal_yaw=math.pi / 2)
     pose = Pose2D(0.0, 0.02, 0.0)
     for _ in range(2000):
         cmd = tracker.step(pose, 0.05)
@@ -286,7 +286,7 @@ starts = st.tuples(st.floats(-0.3, 0.3), st.floats(-0.3, 0.3), st.floats(-math.p
 def _limits_hold(tracker: Any, path: list[tuple[float, float]], start: tuple[float, float, float],
                  dt: float, heading: float | None, check: Callable[[Twist2D, str], None]) -> None:
     pts = np.array(path)
-    tracker.set_path(pts, goal_heading=heading)
+    tracker.set_path(pts, goal_yaw=heading)
     pose = Pose2D(pts[0, 0] + start[0], pts[0, 1] + start[1], start[2])
     length = float(np.sum(np.hypot(*np.diff(pts, axis=0).T))) if len(pts) > 1 else 0.0
     # Generous: 4x the time to drive the path and its turns at the slowest tracking speed.

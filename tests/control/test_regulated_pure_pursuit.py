@@ -66,7 +66,7 @@ def test_nav2_defaults() -> None:
 def test_straight_line(drive: str, closed_loop: Callable[..., Any],
                        analytic_paths: dict[str, Any]) -> None:
     run = closed_loop(make(drive=drive), analytic_paths["straight"](), (0.0, 0.1, 0.2),
-                      goal_heading=0.0)
+                      goal_yaw=0.0)
     assert run.done and run.goal_error() <= 0.05 and abs(run.poses[-1, 2]) <= 0.01
     assert run.after(x_min=2.0).max() < 0.02
     assert run.cross_track.max() < 0.27
@@ -76,7 +76,7 @@ def test_straight_line(drive: str, closed_loop: Callable[..., Any],
 def test_circle(drive: str, closed_loop: Callable[..., Any],
                 analytic_paths: dict[str, Any]) -> None:
     run = closed_loop(make(drive=drive), analytic_paths["circle"](), (0.0, -0.05, 0.1),
-                      goal_heading=0.5)
+                      goal_yaw=0.5)
     assert run.done and run.goal_error() <= 0.05
     assert run.after(fraction=0.35).max() < 0.005
     assert run.poses[:, 1].max() > 1.95
@@ -86,7 +86,7 @@ def test_circle(drive: str, closed_loop: Callable[..., Any],
 def test_right_angle(drive: str, closed_loop: Callable[..., Any],
                      analytic_paths: dict[str, Any]) -> None:
     run = closed_loop(make(drive=drive), analytic_paths["right_angle"](), (0.0, 0.05, 0.0),
-                      goal_heading=math.pi / 2)
+                      goal_yaw=math.pi / 2)
     assert run.done and run.goal_error() <= 0.05
     assert abs(run.poses[-1, 2] - math.pi / 2) <= 0.01
     assert run.cross_track.max() < 0.9 / (2 * math.sqrt(2))  # measured 0.18
@@ -96,13 +96,13 @@ def test_right_angle(drive: str, closed_loop: Callable[..., Any],
 def test_s_curve(drive: str, closed_loop: Callable[..., Any],
                  analytic_paths: dict[str, Any]) -> None:
     run = closed_loop(make(drive=drive), analytic_paths["s_curve"](), (0.0, 0.05, 0.0),
-                      goal_heading=0.0)
+                      goal_yaw=0.0)
     assert run.done and run.goal_error() <= 0.05
     assert run.cross_track.max() < 0.9**2 / 4  # measured 0.12
 
 
 def test_nav2_goal_tolerance_by_default(closed_loop: Callable[..., Any]) -> None:
-    run = closed_loop(RegulatedPurePursuit(), STRAIGHT, (0.0, 0.0, 0.0), goal_heading=0.0)
+    run = closed_loop(RegulatedPurePursuit(), STRAIGHT, (0.0, 0.0, 0.0), goal_yaw=0.0)
     assert run.done and 0.2 < run.goal_error() <= 0.25
 
 
@@ -275,7 +275,7 @@ def test_omni_never_rotates_to_the_path() -> None:
 
 
 def test_final_rotation_uses_the_rotate_profile(closed_loop: Callable[..., Any]) -> None:
-    run = closed_loop(make(), STRAIGHT, (0.0, 0.0, 0.0), goal_heading=2.0)
+    run = closed_loop(make(), STRAIGHT, (0.0, 0.0, 0.0), goal_yaw=2.0)
     final = np.array([p == "final" for p in run.phases])
     assert final.any()
     assert np.all(run.commands[final, 0] == 0.0)
@@ -294,12 +294,12 @@ def test_a_turn_the_wrong_way_slows_at_the_acceleration_limit() -> None:
     1.8 rad/s in one 0.05 s step against the limit of 0.16.
     """
     tracker = make()
-    tracker.set_path([[0.0, 0.0], [1.0, 0.0]], goal_heading=0.1)
+    tracker.set_path([[0.0, 0.0], [1.0, 0.0]], goal_yaw=0.1)
     cmd = tracker.step((1.0, 0.0, 0.0), 0.05, velocity=Twist2D(0.0, 0.0, -1.0))
     assert tracker.phase == "final"
     assert cmd.omega == pytest.approx(-1.0 + 3.2 * 0.05)
     toward = make()
-    toward.set_path([[0.0, 0.0], [1.0, 0.0]], goal_heading=0.1)
+    toward.set_path([[0.0, 0.0], [1.0, 0.0]], goal_yaw=0.1)
     cmd = toward.step((1.0, 0.0, 0.0), 0.05, velocity=Twist2D(0.0, 0.0, 1.0))
     assert cmd.omega == pytest.approx(0.8)  # toward it: capped to stop on it, as before
 
@@ -342,14 +342,14 @@ def test_bad_velocity(velocity: Any, error: type[Exception]) -> None:
         tracker.step((0.0, 0.0, 0.0), 0.05, velocity=velocity)
 
 
-@pytest.mark.parametrize("goal_heading", [None, math.pi / 2])
-def test_goal_reached_at_exactly_the_tolerance(goal_heading: float | None) -> None:
+@pytest.mark.parametrize("goal_yaw", [None, math.pi / 2])
+def test_goal_reached_at_exactly_the_tolerance(goal_yaw: float | None) -> None:
     """Nav2's SimpleGoalChecker: reached when dx² + dy² <= xy_goal_tolerance²."""
     tracker = RegulatedPurePursuit()  # goal_tolerance 0.25
-    tracker.set_path([[0.0, 0.0], [1.0, 0.0]], goal_heading=goal_heading)
+    tracker.set_path([[0.0, 0.0], [1.0, 0.0]], goal_yaw=goal_yaw)
     cmd = tracker.step((0.75, 0.0, 0.0), 0.05)  # 0.25 m from the goal, exactly
     assert cmd.vx == 0.0
-    assert tracker.phase == ("done" if goal_heading is None else "final")
+    assert tracker.phase == ("done" if goal_yaw is None else "final")
 
 
 @pytest.mark.parametrize("measured", [3.0, -3.0])
@@ -361,7 +361,7 @@ def test_max_omega_bounds_in_place_turns_from_a_faster_measured_turn(measured: f
     assert rotate.phase == "rotate"
     assert cmd.omega == math.copysign(1.0, measured)
     final = make(max_omega=1.0)
-    final.set_path([[0.0, 0.0], [1.0, 0.0]], goal_heading=math.pi)
+    final.set_path([[0.0, 0.0], [1.0, 0.0]], goal_yaw=math.pi)
     cmd = final.step((1.0, 0.0, 0.0), 0.05, velocity=Twist2D(0.0, 0.0, measured))
     assert final.phase == "final"
     assert cmd.omega == math.copysign(1.0, measured)

@@ -52,7 +52,7 @@ def _commands(
     make: Any, path: np.ndarray, poses: list[Pose2D], off: tuple[float, float]
 ) -> tuple[np.ndarray, float]:
     tracker = make()
-    tracker.set_path(path + np.array(off), goal_heading=1.0)
+    tracker.set_path(path + np.array(off), goal_yaw=1.0)
     cmds = []
     for p in poses:
         cmd = tracker.step(Pose2D(p.x + off[0], p.y + off[1], p.theta), DT)

@@ -32,9 +32,8 @@ PATH = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0]]
 DT = 0.05
 
 
-def _commands(tracker: PathTracker, steps: int = 120) -> list[Twist2D]:
-    """The commands of a closed loop on a right angle, starting askew."""
-    tracker.set_path(PATH, goal_heading=math.pi / 2)
+def _loop(tracker: PathTracker, steps: int) -> list[Twist2D]:
+    """The commands of a closed loop on the tracker's path, starting askew."""
     pose = Pose2D(0.0, 0.05, 0.6)
     out = []
     for _ in range(steps):
@@ -42,6 +41,12 @@ def _commands(tracker: PathTracker, steps: int = 120) -> list[Twist2D]:
         out.append(cmd)
         pose = integrate(pose, cmd, DT)
     return out
+
+
+def _commands(tracker: PathTracker, steps: int = 120) -> list[Twist2D]:
+    """The commands of a closed loop on a right angle, starting askew."""
+    tracker.set_path(PATH, goal_yaw=math.pi / 2)
+    return _loop(tracker, steps)
 
 
 def test_pfc_step_takes_dt_positionally_like_the_trackers() -> None:
@@ -133,3 +138,54 @@ def test_on_off_old_properties_warn_and_read_the_new_ones(old: str, new: str) ->
     assert rec[0].filename == __file__
     assert value == getattr(tracker, new) == {"max_speed": 0.3, "rotate_omega": 1.2,
                                               "rotate_angle": 0.3}[new]  # fmt: skip
+
+
+# ``PathTracker.set_path(goal_heading=)`` is now ``goal_yaw=`` (row 25): "yaw" as
+# ``Pose2D.theta`` and ``yaw_tolerance``; "heading" stays the compass's clockwise-from-north word.
+TRACKERS: list[Callable[[], PathTracker]] = [FollowTheCarrot, OnOffTracker, RegulatedPurePursuit]
+
+
+@pytest.mark.parametrize("make", TRACKERS)
+def test_goal_yaw_is_reached_and_wrapped(make: Callable[[], PathTracker]) -> None:
+    tracker = make()
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        tracker.set_path(PATH, goal_yaw=5 * math.pi / 2)
+        assert tracker.goal_yaw == pytest.approx(math.pi / 2)
+        pose = Pose2D(0.0, 0.05, 0.6)
+        for _ in range(600):
+            pose = integrate(pose, tracker.step(pose, DT), DT)
+            if tracker.done:
+                break
+    assert tracker.done
+    assert abs(math.remainder(pose.theta - math.pi / 2, 2 * math.pi)) <= tracker.yaw_tolerance
+    tracker.set_path(PATH)
+    assert tracker.goal_yaw is None
+
+
+@pytest.mark.parametrize("make", TRACKERS)
+def test_goal_heading_still_works_with_a_warning(make: Callable[[], PathTracker]) -> None:
+    new, old = make(), make()
+    new.set_path(PATH, goal_yaw=-1.0)
+    with pytest.warns(DeprecationWarning, match="goal_heading is deprecated.*use goal_yaw") as rec:
+        old.set_path(PATH, goal_heading=-1.0)
+    assert rec[0].filename == __file__
+    assert _loop(old, 600) == _loop(new, 600)
+    assert old.done and new.done
+    with pytest.warns(DeprecationWarning, match=r"\.goal_heading is deprecated.*goal_yaw") as rec:
+        assert old.goal_heading == new.goal_yaw == -1.0
+    assert rec[0].filename == __file__
+    with pytest.raises(TypeError, match="both goal_yaw and its old name goal_heading"):
+        make().set_path(PATH, goal_yaw=1.0, goal_heading=1.0)
+
+
+@pytest.mark.parametrize("name", ["goal_yaw", "goal_heading"])
+def test_bad_goal_yaw_names_what_the_caller_wrote(name: str) -> None:
+    infinite: dict[str, Any] = {name: math.inf}
+    text: dict[str, Any] = {name: "north"}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DeprecationWarning)
+        with pytest.raises(ValueError, match=name):
+            OnOffTracker().set_path(PATH, **infinite)
+        with pytest.raises(TypeError, match=name):
+            OnOffTracker().set_path(PATH, **text)

@@ -16,28 +16,20 @@ from __future__ import annotations
 
 import copy
 import math
-import pickle
 from collections.abc import Callable
 from typing import Any
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, settings
 from hypothesis import strategies as st
 from hypothesis.stateful import RuleBasedStateMachine, initialize, invariant, rule
-from hypothesis.stateful import run_state_machine_as_test as _untyped_run
 
 from navkit.control import FollowTheCarrot, OnOffTracker, RegulatedPurePursuit
 from navkit.geometry import Pose2D, Twist2D
+from stateful_runs import COPIERS, run_machine
 
-# hypothesis leaves this one untyped.
-_run: Callable[..., None] = _untyped_run
 Tracker = FollowTheCarrot | OnOffTracker | RegulatedPurePursuit
-_COPIERS: list[Callable[[Tracker], Tracker]] = [
-    copy.copy,
-    copy.deepcopy,
-    lambda t: pickle.loads(pickle.dumps(t)),
-]
+_COPIERS: tuple[Callable[[Tracker], Tracker], ...] = COPIERS
 
 
 def _make(kind: str, drive: str) -> tuple[Tracker, float, float]:
@@ -91,7 +83,7 @@ class TrackerMachine(RuleBasedStateMachine):
             xy += [self.pose.x, self.pose.y]
         if duplicate:
             xy = np.repeat(xy, 2, axis=0)
-        self.tracker.set_path(xy, goal_heading=heading)
+        self.tracker.set_path(xy, goal_yaw=heading)
         # FollowTheCarrot on a differential drive starts by turning in place.
         assert self.tracker.phase in ("track", "rotate") and not self.tracker.done
         assert self.tracker.progress == 0.0
@@ -187,27 +179,9 @@ class TrackerMachine(RuleBasedStateMachine):
 
 
 def test_trackers_under_random_sequences() -> None:
-    _run(
-        TrackerMachine,
-        settings=settings(
-            max_examples=30,
-            stateful_step_count=15,
-            deadline=None,
-            database=None,
-            suppress_health_check=[HealthCheck.too_slow],
-        ),
-    )
+    run_machine(TrackerMachine, examples=30, steps=15)
 
 
 @pytest.mark.slow
 def test_trackers_under_random_sequences_long() -> None:
-    _run(
-        TrackerMachine,
-        settings=settings(
-            max_examples=400,
-            stateful_step_count=40,
-            deadline=None,
-            database=None,
-            suppress_health_check=[HealthCheck.too_slow],
-        ),
-    )
+    run_machine(TrackerMachine, examples=400, steps=40)

@@ -109,7 +109,7 @@ def _same(a: Twist2D, b: Twist2D, sign: float, tol: float) -> bool:
 @given(kinds, drives, paths, poses, headings, periods)
 def test_mirrored_world_mirrors_every_command(
     kind: str, drive: str, path_list: list[tuple[float, float]],
-    pose0: tuple[float, float, float], goal_heading: float | None, dt: float,
+    pose0: tuple[float, float, float], goal_yaw: float | None, dt: float,
 ) -> None:
     """y → -y of path, pose, goal heading and obstacles: ``(vx, -vy, -ω)``, same phase.
 
@@ -119,8 +119,8 @@ def test_mirrored_world_mirrors_every_command(
     flip = np.array([1.0, -1.0])
     a = _tracker(kind, drive, _clearance(_OBSTACLES))
     b = _tracker(kind, drive, _clearance(_OBSTACLES * flip))
-    a.set_path(path, goal_heading=goal_heading)
-    b.set_path(path * flip, goal_heading=None if goal_heading is None else -goal_heading)
+    a.set_path(path, goal_yaw=goal_yaw)
+    b.set_path(path * flip, goal_yaw=None if goal_yaw is None else -goal_yaw)
     pose = _start(pose0)
     for _ in range(STEPS):
         ca = a.step(pose, dt)
@@ -142,7 +142,7 @@ def test_mirrored_world_mirrors_every_command(
        st.floats(-50.0, 50.0), st.floats(-50.0, 50.0))
 def test_moved_world_gives_the_same_commands(
     kind: str, drive: str, path_list: list[tuple[float, float]],
-    pose0: tuple[float, float, float], goal_heading: float | None, dt: float, angle: float,
+    pose0: tuple[float, float, float], goal_yaw: float | None, dt: float, angle: float,
     tx: float, ty: float,
 ) -> None:
     """One SE(2) motion of path, pose, goal heading and obstacles: the same body twist."""
@@ -157,9 +157,9 @@ def test_moved_world_gives_the_same_commands(
 
     a = _tracker(kind, drive, _clearance(_OBSTACLES))
     b = _tracker(kind, drive, _clearance(_OBSTACLES @ rot.T + [tx, ty]))
-    a.set_path(path, goal_heading=goal_heading)
+    a.set_path(path, goal_yaw=goal_yaw)
     b.set_path(path @ rot.T + [tx, ty],
-               goal_heading=None if goal_heading is None else goal_heading + angle)
+               goal_yaw=None if goal_yaw is None else goal_yaw + angle)
     pose = _start(pose0)
     for _ in range(STEPS):
         ca = a.step(pose, dt)

@@ -169,13 +169,13 @@ def test_follow_the_carrot_turn_never_overshoots_and_tracks_at_rotate_angle() ->
 
 
 def test_final_turn_stops_exactly_at_the_yaw_tolerance() -> None:
-    # At the last waypoint the tracker turns to goal_heading "until within
+    # At the last waypoint the tracker turns to goal_yaw "until within
     # yaw_tolerance": an error of exactly yaw_tolerance is done.
     from navkit.control import OnOffTracker
 
     for theta, done in ((0.25, True), (0.2499, False)):
         tracker = OnOffTracker(yaw_tolerance=0.25, goal_tolerance=2.0)  # every waypoint reached
-        tracker.set_path([[0.0, 0.0], [1.0, 0.0]], goal_heading=0.5)
+        tracker.set_path([[0.0, 0.0], [1.0, 0.0]], goal_yaw=0.5)
         tracker.step(Pose2D(1.0, 0.0, theta), 0.1)
         assert tracker.done is done
 

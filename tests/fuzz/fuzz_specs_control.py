@@ -29,7 +29,7 @@ def _grid() -> Call:
 
 
 def _with_path(tracker: Any) -> None:
-    tracker.set_path(A(PATH), goal_heading=0.5)
+    tracker.set_path(A(PATH), goal_yaw=0.5)
 
 
 for _cls in (FollowTheCarrot, OnOffTracker, RegulatedPurePursuit):
@@ -46,7 +46,7 @@ for _cls in (FollowTheCarrot, OnOffTracker, RegulatedPurePursuit):
         spec(_name, lambda c, C=_cls: call(C, drive="omni"), kinds=_ctor_kinds)
     spec(
         f"{_name}.set_path",
-        lambda c, C=_cls: method(call(C), "set_path", A(PATH), goal_heading=0.5),
+        lambda c, C=_cls: method(call(C), "set_path", A(PATH), goal_yaw=0.5),
         kinds={"path": Array()},
         mutates=("self",),
     )

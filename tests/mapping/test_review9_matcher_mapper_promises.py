@@ -118,11 +118,11 @@ def test_returns_exactly_at_range_max_are_not_written() -> None:
 
 
 def _writes(
-    odometry: list[tuple[float, float, float]], min_distance: float, min_rotation: float
+    odometry: list[tuple[float, float, float]], min_distance: float, min_angle: float
 ) -> list[bool]:
     """For each scan after the first: did the mapper write it into its map?"""
     mapper = ScanMapper(
-        resolution=0.1, start=odometry[0], min_distance=min_distance, min_rotation=min_rotation
+        resolution=0.1, start=odometry[0], min_distance=min_distance, min_angle=min_angle
     )
     scan = _two_beam_scan([1.0, 1.5])
     out = []
@@ -137,27 +137,27 @@ def _writes(
     return out
 
 
-def test_a_write_needs_strictly_more_than_min_distance_or_min_rotation() -> None:
+def test_a_write_needs_strictly_more_than_min_distance_or_min_angle() -> None:
     # "when the pose has moved more than min_distance or turned more than
-    # min_rotation since the last write": exactly the threshold does not write.
+    # min_angle since the last write": exactly the threshold does not write.
     assert _writes(
-        [(0.0, 0.0, 0.0), (0.5, 0.0, 0.0), (0.75, 0.0, 0.0)], min_distance=0.5, min_rotation=3.0
+        [(0.0, 0.0, 0.0), (0.5, 0.0, 0.0), (0.75, 0.0, 0.0)], min_distance=0.5, min_angle=3.0
     ) == [False, True]
     assert _writes(
-        [(0.0, 0.0, 0.0), (0.0, 0.0, 0.5), (0.0, 0.0, 0.75)], min_distance=5.0, min_rotation=0.5
+        [(0.0, 0.0, 0.0), (0.0, 0.0, 0.5), (0.0, 0.0, 0.75)], min_distance=5.0, min_angle=0.5
     ) == [False, True]
     # Thresholds 0: a scan at the very pose of the last write is not written.
-    assert _writes([(0.0, 0.0, 0.0), (0.0, 0.0, 0.0)], min_distance=0.0, min_rotation=0.0) == [
+    assert _writes([(0.0, 0.0, 0.0), (0.0, 0.0, 0.0)], min_distance=0.0, min_angle=0.0) == [
         False
     ]
 
 
 def test_the_rotation_since_the_last_write_is_the_wrapped_heading_change() -> None:
     # Turning from 3.0 rad to -3.0 rad across ±π is a turn of 2π - 6 ≈ 0.28 rad,
-    # below min_rotation = 0.5: no write; turning on to -2.5 rad (0.78 rad from
+    # below min_angle = 0.5: no write; turning on to -2.5 rad (0.78 rad from
     # the last write) is above it.
     assert _writes(
-        [(0.0, 0.0, 3.0), (0.0, 0.0, -3.0), (0.0, 0.0, -2.5)], min_distance=5.0, min_rotation=0.5
+        [(0.0, 0.0, 3.0), (0.0, 0.0, -3.0), (0.0, 0.0, -2.5)], min_distance=5.0, min_angle=0.5
     ) == [False, True]
 
 

@@ -173,7 +173,7 @@ def test_constant_velocity_without_odometry() -> None:
 def test_writes_only_after_moving_and_saves_a_map(tmp_path: Path) -> None:
     world = _office()
     lidar = Lidar(n_beams=360, range_max=10.0, noise=None)
-    mapper = ScanMapper(start=(2.0, 4.0, 0.0), min_distance=0.4, min_rotation=0.9)
+    mapper = ScanMapper(start=(2.0, 4.0, 0.0), min_distance=0.4, min_angle=0.9)
     scan = lidar.scan(world, (2.0, 4.0, 0.0))
     first = mapper.update(scan)
     assert first.reason == "degenerate" and first.pose == Pose2D(2.0, 4.0, 0.0)
@@ -198,7 +198,7 @@ def test_a_scan_with_nothing_to_write_does_not_count_as_written() -> None:
     # first write, so the next scans waited for the robot to move min_distance.
     world = _office()
     lidar = Lidar(n_beams=360, range_max=10.0, noise=None)
-    mapper = ScanMapper(start=(2.0, 4.0, 0.0), min_distance=0.4, min_rotation=0.9)
+    mapper = ScanMapper(start=(2.0, 4.0, 0.0), min_distance=0.4, min_angle=0.9)
     blank = LaserScan(np.full(360, np.inf), angle_min=-math.pi, angle_increment=math.tau / 360,
                       range_min=0.1, range_max=10.0)  # fmt: skip
     mapper.update(blank)
@@ -226,14 +226,14 @@ def test_map_grows_with_the_route() -> None:
 
 
 def test_arguments() -> None:
-    with pytest.raises(ValueError, match="occupied"):
-        ScanMapper(occupied=0.4)
-    with pytest.raises(ValueError, match="free"):
-        ScanMapper(free=0.6)
+    with pytest.raises(ValueError, match="hit"):
+        ScanMapper(hit=-0.4)
+    with pytest.raises(ValueError, match="miss"):
+        ScanMapper(miss=0.4)
     with pytest.raises(ValueError, match="resolution"):
         ScanMapper(resolution=0.0)
-    with pytest.raises(ValueError, match="min_rotation"):
-        ScanMapper(min_rotation=4.0)
+    with pytest.raises(ValueError, match="min_angle"):
+        ScanMapper(min_angle=4.0)
     with pytest.raises(ValueError, match="clamp"):
         ScanMapper(clamp=(1.0, -1.0))
     with pytest.raises(TypeError, match="matcher"):

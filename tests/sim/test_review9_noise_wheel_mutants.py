@@ -108,7 +108,7 @@ def test_full_slip_stops_a_wheel_instead_of_giving_it_full_grip() -> None:
     assert trace.metrics.distance / (0.2 * 20.0) == pytest.approx(kept, rel=0.05)
 
 
-def test_goal_heading_exactly_at_the_yaw_tolerance_is_reached() -> None:
+def test_goal_yaw_exactly_at_the_yaw_tolerance_is_reached() -> None:
     # Driving straight along +x (heading exactly 0) into a goal whose heading is
     # 0.5 rad: the error is exactly yaw_tolerance = 0.5 rad (pi - 0.5 and its
     # difference from pi are exact in float64), which counts as reached.

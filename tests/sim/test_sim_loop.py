@@ -263,7 +263,7 @@ def test_pushing_into_a_wall_without_ending_the_run() -> None:
     assert trace.poses[-1, 0] == pytest.approx(0.8, abs=0.006)
 
 
-def test_goal_heading_and_metrics() -> None:
+def test_goal_yaw_and_metrics() -> None:
     class Turn:
         def __call__(self, obs: Observation) -> Twist2D:
             return Twist2D(0.0, 0.0, 0.5)

@@ -107,7 +107,7 @@ class FollowTheCarrot(PathTracker):
     --------
     >>> from navkit.geometry import integrate
     >>> tracker = FollowTheCarrot()
-    >>> tracker.set_path([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0]], goal_heading=math.pi / 2)
+    >>> tracker.set_path([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0]], goal_yaw=math.pi / 2)
     >>> pose = Pose2D(0.0, 0.05, 0.0)
     >>> while not tracker.done:
     ...     pose = integrate(pose, tracker.step(pose, 0.05), 0.05)

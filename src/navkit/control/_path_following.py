@@ -17,6 +17,7 @@
 from __future__ import annotations
 
 import math
+import warnings
 from abc import ABC, abstractmethod
 from collections.abc import Mapping
 from typing import Any, Literal
@@ -24,6 +25,7 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
+from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, finite_float, positive_float
 from navkit.control._path_following_kernels import circle_exit, point_at, project
@@ -277,12 +279,12 @@ class PathTracker(ABC):
 
     @property
     def yaw_tolerance(self) -> float:
-        """Heading error (rad) at which the goal heading is reached."""
+        """Yaw error (rad) at which the goal yaw is reached."""
         return self._yaw_tolerance
 
     @property
     def done(self) -> bool:
-        """True once the goal (position, and heading if one was given) is reached."""
+        """True once the goal (position, and yaw if one was given) is reached."""
         return self._phase == "done"
 
     @property
@@ -291,7 +293,7 @@ class PathTracker(ABC):
 
         ``"idle"`` (no path yet), ``"rotate"`` (turning in place toward the
         path), ``"track"`` (moving along it), ``"final"`` (at the goal, turning
-        in place to the goal heading) or ``"done"``.
+        in place to the goal yaw) or ``"done"``.
         """
         return self._phase
 
@@ -301,8 +303,28 @@ class PathTracker(ABC):
         return None if self._line is None else self._line.points_xy
 
     @property
+    def goal_yaw(self) -> float | None:
+        """The yaw (rad, wrapped to (-π, π]) to turn to at the goal, or None (no final rotation)."""
+        return self._goal_heading
+
+    @property
     def goal_heading(self) -> float | None:
-        """The heading (rad) to turn to at the goal, or None (no final rotation)."""
+        """Deprecated alias of :attr:`goal_yaw`.
+
+        Examples
+        --------
+        >>> from navkit.control import OnOffTracker
+        >>> tracker = OnOffTracker()
+        >>> tracker.set_path([[0.0, 0.0], [1.0, 0.0]], goal_yaw=1.0)
+        >>> tracker.goal_yaw  # not .goal_heading, which warns
+        1.0
+        """
+        warnings.warn(
+            f"{type(self).__name__}.goal_heading is deprecated and will be removed in a "
+            "future release: use goal_yaw",
+            DeprecationWarning,
+            stacklevel=2,
+        )
         return self._goal_heading
 
     @property
@@ -325,7 +347,13 @@ class PathTracker(ABC):
         return self._progress
 
     # -------------------------------------------------------------- the path
-    def set_path(self, path: Path2D | ArrayLike, *, goal_heading: float | None = None) -> None:
+    def set_path(
+        self,
+        path: Path2D | ArrayLike,
+        *,
+        goal_yaw: float | None = None,
+        goal_heading: float | None = None,
+    ) -> None:
         """Take a new path and start following it from its beginning.
 
         Clears :attr:`done` and the tracker's state (phase, progress, memory of
@@ -337,10 +365,16 @@ class PathTracker(ABC):
             World points ``(x, y)`` in metres from start to goal (N >= 1), or a
             planner's :class:`~navkit.planning.Path2D` in the ``"world"`` frame.
             Copied; consecutive duplicate points are dropped.
-        goal_heading : float, optional
-            Heading (rad) to turn to in place once the goal position is reached.
-            None (default): no final rotation, the tracker is done at the goal
+        goal_yaw : float, optional
+            Yaw (rad, counter-clockwise from the world x axis, as ``Pose2D.theta``)
+            to turn to in place once the goal position is reached. None
+            (default): no final rotation, the tracker is done at the goal
             position.
+
+        Other Parameters
+        ----------------
+        goal_heading : float, optional
+            Deprecated name of `goal_yaw`.
 
         Raises
         ------
@@ -348,20 +382,25 @@ class PathTracker(ABC):
             A ``"grid"`` Path2D (convert it with
             :meth:`~navkit.mapping.OccupancyGrid.cell_to_world` or plan with
             :class:`~navkit.planning.MapPlanner`), no point, bad shape, NaN or
-            inf, coordinates beyond ±1e9 m, a non-finite ``goal_heading``.
+            inf, coordinates beyond ±1e9 m, a non-finite ``goal_yaw``.
         TypeError
-            Non-numeric ``path`` or ``goal_heading``.
+            Non-numeric ``path`` or ``goal_yaw``; both ``goal_yaw`` and
+            ``goal_heading`` given.
 
         Examples
         --------
         >>> from navkit.control import OnOffTracker
         >>> tracker = OnOffTracker()
-        >>> tracker.set_path([[0.0, 0.0], [1.0, 0.0]], goal_heading=1.0)
-        >>> tracker.phase, tracker.goal_heading
+        >>> tracker.set_path([[0.0, 0.0], [1.0, 0.0]], goal_yaw=1.0)
+        >>> tracker.phase, tracker.goal_yaw
         ('track', 1.0)
         """
+        # "yaw" as Pose2D.theta and yaw_tolerance ("heading" is the compass's
+        # clockwise-from-north word); the old name warns, errors name what was written.
+        named = "goal_yaw" if goal_heading is None else "goal_heading"
+        goal_yaw = renamed_keyword("goal_heading", goal_heading, "goal_yaw", goal_yaw, None)
         pts = as_world_path(path, "path")
-        heading = None if goal_heading is None else wrap(finite_float(goal_heading, "goal_heading"))
+        heading = None if goal_yaw is None else wrap(finite_float(goal_yaw, named))
         self._line = Polyline(pts)
         self._goal_heading = heading
         self._phase = "track"
@@ -448,7 +487,7 @@ class PathTracker(ABC):
         return s
 
     def _finish(self, pose: Pose2D, dt: float, turn: Any) -> Twist2D:
-        """The final phase: turn in place to the goal heading with ``turn(error, dt)``."""
+        """The final phase: turn in place to the goal yaw with ``turn(error, dt)``."""
         self._phase = "final"
         if self._goal_heading is None:
             self._phase = "done"

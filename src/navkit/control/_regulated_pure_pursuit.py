@@ -234,7 +234,7 @@ class RegulatedPurePursuit(PathTracker):
     --------
     >>> from navkit.geometry import integrate
     >>> tracker = RegulatedPurePursuit(goal_tolerance=0.05)
-    >>> tracker.set_path([[0.0, 0.0], [2.0, 0.0], [2.0, 2.0]], goal_heading=math.pi / 2)
+    >>> tracker.set_path([[0.0, 0.0], [2.0, 0.0], [2.0, 2.0]], goal_yaw=math.pi / 2)
     >>> pose, top_speed = Pose2D(0.0, 0.1, 0.0), 0.0
     >>> while not tracker.done:
     ...     cmd = tracker.step(pose, 0.05)

@@ -10,10 +10,12 @@ from numpy.typing import ArrayLike
 
 from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.types import FloatArray
+from navkit._shared.validation import finite_float
 from navkit.geometry import Pose2D, as_pose
 from navkit.mapping._grid import OccupancyGrid, grid_origin
 from navkit.mapping._limits import (
     COORDINATE_LIMIT,
+    LOGODDS_LIMIT,
     MAX_CELLS,
     RESOLUTION_MAX,
     bounded_float,
@@ -29,6 +31,9 @@ from navkit.mapping._scan_matcher import ScanMatcher, ScanMatchResult, scan_poin
 __all__ = ["ScanMapper"]
 
 _IDENTITY = Pose2D(0.0, 0.0, 0.0)
+# Hector's update_factor_occupied / update_factor_free (probabilities) as log-odds.
+_HIT = logit(0.9)
+_MISS = logit(0.4)
 # Growth margin around what a scan reaches, m, and the initial half-size.
 _MARGIN = 10.0
 
@@ -52,10 +57,10 @@ class ScanMapper:
        kept, or with the default matcher's pull towards the guess the pose
        that pull fixes: see :class:`ScanMatchResult`);
     3. writes the scan into **every** level (ray casting as
-       :func:`navkit.mapping.integrate_scan`, log-odds ``logit(occupied)`` for
-       end cells and ``logit(free)`` for crossed cells, each cell updated once
-       per scan, clamped to ``clamp``) when the pose has moved more than
-       ``min_distance`` or turned more than ``min_rotation`` since the last
+       :func:`navkit.mapping.integrate_scan`, log-odds ``hit`` added to end
+       cells and ``miss`` to crossed cells, each cell updated once per scan,
+       clamped to ``clamp``) when the pose has moved more than
+       ``min_distance`` or turned more than ``min_angle`` since the last
        write (the first scan with a return to write is always written).
        Returns with no echo (``>= scan.range_max``) and from ``range_max`` on are
        not written, as in Hector.
@@ -82,15 +87,17 @@ class ScanMapper:
     ----------
     resolution : float, default 0.05
         Cell size of the finest level, m, in [1e-3, 1e6].
-    occupied, free : float, default 0.9, 0.4
-        Probabilities of the log-odds updates of end cells and crossed cells
-        (Hector's ``update_factor_occupied`` / ``update_factor_free``),
-        ``0.5 < occupied < 1`` and ``0 < free < 0.5``.
+    hit, miss : float, default logit(0.9), logit(0.4)
+        Log-odds increments of end cells and crossed cells, as
+        :func:`~navkit.mapping.integrate_scan`'s (the defaults are Hector's
+        ``update_factor_occupied`` 0.9 and ``update_factor_free`` 0.4 as
+        log-odds, about 2.197 and -0.405): ``hit`` in [0, 1e6], ``miss`` in
+        [-1e6, 0].
     clamp : (float, float), default (-50.0, 50.0)
         Bounds of the stored log-odds (Hector stops raising a cell at 50).
     min_distance : float, default 0.4
         Translation, m, since the last write that triggers a write (>= 0).
-    min_rotation : float, default 0.9
+    min_angle : float, default 0.9
         Rotation, rad, since the last write that triggers a write, in [0, π].
     range_max : float, optional
         Returns at least this long (m) are neither matched nor written; default
@@ -116,6 +123,12 @@ class ScanMapper:
     ----------------
     max_range : float, optional
         Deprecated name of `range_max`.
+    occupied : float, optional
+        Deprecated: the probability ``p`` in (0.5, 1) of ``hit=logit(p)``.
+    free : float, optional
+        Deprecated: the probability ``p`` in (0, 0.5) of ``miss=logit(p)``.
+    min_rotation : float, optional
+        Deprecated name of `min_angle`.
 
     Examples
     --------
@@ -154,32 +167,41 @@ class ScanMapper:
         self,
         *,
         resolution: float = 0.05,
-        occupied: float = 0.9,
-        free: float = 0.4,
+        hit: float = _HIT,
+        miss: float = _MISS,
         clamp: tuple[float, float] = (-50.0, 50.0),
         min_distance: float = 0.4,
-        min_rotation: float = 0.9,
+        min_angle: float = 0.9,
         range_max: float | None = None,
         start: Pose2D | ArrayLike = _IDENTITY,
         matcher: ScanMatcher | None = None,
         max_range: float | None = None,
+        occupied: float | None = None,
+        free: float | None = None,
+        min_rotation: float | None = None,
     ) -> None:
         named = "range_max" if max_range is None else "max_range"  # as the caller wrote it
         range_max = renamed_keyword("max_range", max_range, "range_max", range_max, None)
         self._resolution = resolution_float(resolution)
         if self._resolution < 1e-3:
             raise ValueError(f"resolution must be >= 1e-3 m, got {self._resolution}")
-        occ = bounded_float(occupied, "occupied", 0.5, 1.0, low_open=True)
-        if occ >= 1.0:
-            raise ValueError(f"occupied must be < 1, got {occ}")
-        fr = bounded_float(free, "free", 0.0, 0.5, low_open=True)
-        if fr >= 0.5:
-            raise ValueError(f"free must be < 0.5, got {fr}")
-        self._occupied = logit(occ)
-        self._free = logit(fr)
+        # integrate_scan's sensor model (log-odds hit/miss); the old probabilities
+        # are checked as before and converted, so they give the same increments.
+        # The slots keep their old names, so that pickled mappers still load.
+        old_hit = None if occupied is None else logit(_probability(occupied, "occupied", 0.5, 1.0))
+        old_miss = None if free is None else logit(_probability(free, "free", 0.0, 0.5))
+        hit = renamed_keyword("occupied", old_hit, "hit", hit, _HIT)
+        miss = renamed_keyword("free", old_miss, "miss", miss, _MISS)
+        self._occupied = bounded_float(hit, "hit", 0.0, LOGODDS_LIMIT)
+        m = finite_float(miss, "miss")
+        if m > 0.0:
+            raise ValueError(f"miss must be <= 0 (a log-odds decrement), got {m}")
+        self._free = bounded_float(m, "miss", -LOGODDS_LIMIT, 0.0)
         self._clamp = _clamp_pair(clamp)
         self._min_distance = bounded_float(min_distance, "min_distance", 0.0, math.inf, "m")
-        self._min_rotation = bounded_float(min_rotation, "min_rotation", 0.0, math.pi, "rad")
+        angle_name = "min_angle" if min_rotation is None else "min_rotation"
+        min_angle = renamed_keyword("min_rotation", min_rotation, "min_angle", min_angle, 0.9)
+        self._min_rotation = bounded_float(min_angle, angle_name, 0.0, math.pi, "rad")
         if matcher is None:
             matcher = ScanMatcher(
                 translation_weight=1.0, rotation_weight=1.0, search_distance=0.1, search_angle=0.1
@@ -470,3 +492,11 @@ class ScanMapper:
             arr[down * f : down * f + r, left * f : left * f + c] = grid._logodds
             grown.append(OccupancyGrid(arr, resolution=grid.resolution, origin=(x0, y0, 0.0)))
         self._levels = grown
+
+
+def _probability(value: float, name: str, low: float, high: float) -> float:
+    """A probability strictly between ``low`` and ``high`` (the deprecated options)."""
+    p = bounded_float(value, name, low, high, low_open=True)
+    if p >= high:
+        raise ValueError(f"{name} must be < {high:g}, got {p}")
+    return p

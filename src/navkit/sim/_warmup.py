@@ -168,7 +168,7 @@ def _control() -> None:
         OnOffTracker(drive="omni"),
     ]
     for tracker in trackers:
-        tracker.set_path(path, goal_heading=1.0)
+        tracker.set_path(path, goal_yaw=1.0)
         tracker.step(pose, 0.05)
     for drive in ("omni", "diff"):
         PotentialFieldController(drive=drive).step(pose, Pose2D(1.0, 0.0, 0.0), dt=0.05)

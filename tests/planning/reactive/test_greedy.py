@@ -37,10 +37,10 @@ def test_obstacle_straight_ahead_chooses_a_side_cell() -> None:
     assert row != 10  # a side cell
     assert not grid.occupied[row, col]
     assert all(not grid.occupied[r, c] for r, c in line_cells(10, 10, row, col))
-    assert step.waypoint_xy[0] >= 0.0  # sideways, not back
+    assert step.waypoint_robot_xy[0] >= 0.0  # sideways, not back
     best, winners = brute_force(grid.occupied, 0.1, 1.0, np.array([3.0, 0.0]), False)
     assert step.cell in winners and step.cost == pytest.approx(best)
-    np.testing.assert_allclose(step.waypoint_xy, [0.1 * col - 1.0, 0.1 * row - 1.0])
+    np.testing.assert_allclose(step.waypoint_robot_xy, [0.1 * col - 1.0, 0.1 * row - 1.0])
     assert step.g + step.h == pytest.approx(step.cost)
     assert step.cost > 3.0  # the detour costs more than the straight line
 
@@ -50,7 +50,7 @@ def test_repeated_steps_go_up_to_the_obstacle_then_sideways() -> None:
     # line (g + h = 3 exactly) and the tie goes to the one nearest the goal.
     first = greedy_step(flat_face_scan(0.5, 0.15).to_local_grid(), (3.0, 0.0))
     assert first.cell == (10, 14)
-    np.testing.assert_allclose(first.waypoint_xy, [0.4, 0.0], atol=1e-12)
+    np.testing.assert_allclose(first.waypoint_robot_xy, [0.4, 0.0], atol=1e-12)
     # Having moved there the face is 0.1 m ahead and the next step turns aside.
     second = greedy_step(flat_face_scan(0.1, 0.15).to_local_grid(), (2.6, 0.0))
     assert second.cell[0] != 10
@@ -60,11 +60,11 @@ def test_free_grid_heads_straight_for_the_goal_on_any_grid_size() -> None:
     grid = LocalGrid.from_points(np.empty((0, 2)), half_width=2.0, resolution=0.05)
     assert grid.occupied.shape == (81, 81)
     step = greedy_step(grid, (10.0, 0.0))
-    np.testing.assert_allclose(step.waypoint_xy, [2.0, 0.0])
+    np.testing.assert_allclose(step.waypoint_robot_xy, [2.0, 0.0])
     assert step.candidates == 81 * 81 - 1
     # A goal inside the grid is chosen itself.
     inside = greedy_step(grid, (0.55, -0.3))
-    np.testing.assert_allclose(inside.waypoint_xy, [0.55, -0.3], atol=1e-12)
+    np.testing.assert_allclose(inside.waypoint_robot_xy, [0.55, -0.3], atol=1e-12)
     assert inside.h == pytest.approx(0.0, abs=1e-12)
 
 
@@ -157,14 +157,15 @@ def test_goal_behind_a_wall_with_progress_required_raises() -> None:
 def test_return_in_the_robot_cell_does_not_block() -> None:
     grid = LocalGrid.from_points([[0.0, 0.0]])
     assert grid.occupied[10, 10]
-    np.testing.assert_allclose(greedy_step(grid, (0.0, 5.0)).waypoint_xy, [0.0, 1.0], atol=1e-12)
+    waypoint = greedy_step(grid, (0.0, 5.0)).waypoint_robot_xy
+    np.testing.assert_allclose(waypoint, [0.0, 1.0], atol=1e-12)
 
 
 def test_bad_input() -> None:
     grid = LocalGrid.from_points([])
-    with pytest.raises(ValueError, match="goal_xy"):
+    with pytest.raises(ValueError, match="goal_robot_xy"):
         greedy_step(grid, (math.nan, 0.0))
-    with pytest.raises(ValueError, match="goal_xy"):
+    with pytest.raises(ValueError, match="goal_robot_xy"):
         greedy_step(grid, (1.0, 0.0, 0.0))
     with pytest.raises(TypeError, match="local_grid"):
         greedy_step(np.zeros((21, 21), dtype=bool), (1.0, 0.0))  # type: ignore[arg-type]
@@ -195,12 +196,12 @@ def test_greedy_step_is_a_frozen_result() -> None:
     with pytest.raises(dataclasses.FrozenInstanceError):
         step.g = 0.0  # type: ignore[misc]
     with pytest.raises(ValueError, match="read-only"):
-        step.waypoint_xy[0] = 5.0
+        step.waypoint_robot_xy[0] = 5.0
     assert not hasattr(step, "__dict__")
     waypoint = np.array([0.2, 0.0])
     built = GreedyStep((10, 12), waypoint, 0.2, 1.8, 440)
     waypoint[0] = 9.0
-    assert built.waypoint_xy[0] == 0.2 and built.cost == pytest.approx(2.0)
+    assert built.waypoint_robot_xy[0] == 0.2 and built.cost == pytest.approx(2.0)
     with pytest.raises(ValueError, match="waypoint_xy"):
         GreedyStep((10, 12), (0.2, 0.0, 0.0), 0.2, 1.8, 440)
 
@@ -213,6 +214,6 @@ def test_copied_and_unpickled_steps_stay_read_only(
     assert (copy.cell, copy.g, copy.h, copy.candidates) == (
         step.cell, step.g, step.h, step.candidates
     )
-    np.testing.assert_array_equal(copy.waypoint_xy, step.waypoint_xy)
+    np.testing.assert_array_equal(copy.waypoint_robot_xy, step.waypoint_robot_xy)
     with pytest.raises(ValueError, match="read-only"):
-        copy.waypoint_xy[0] = 5.0
+        copy.waypoint_robot_xy[0] = 5.0

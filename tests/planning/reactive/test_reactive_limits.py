@@ -236,29 +236,29 @@ def test_greedy_require_progress_must_be_a_bool(flag: Any) -> None:
      ((1 + 1j, 0.0), TypeError), (("1", "2"), TypeError), ((True, False), TypeError)],
 )
 def test_greedy_goal_range(goal: Any, error: type) -> None:
-    with pytest.raises(error, match="goal_xy"):
+    with pytest.raises(error, match="goal_robot_xy"):
         greedy_step(LocalGrid.from_points([]), goal)
 
 
 def test_greedy_far_goal_inside_the_range() -> None:
     step = greedy_step(LocalGrid.from_points([]), (1e9, -1e9))
-    assert math.isfinite(step.cost) and step.waypoint_xy[0] > 0 > step.waypoint_xy[1]
+    assert math.isfinite(step.cost) and step.waypoint_robot_xy[0] > 0 > step.waypoint_robot_xy[1]
 
 
 def test_greedy_step_records_copy_and_never_freeze() -> None:
     # Issue 12: records built from lists crashed, and froze the caller's array.
     waypoint = np.array([0.2, 0.0])
     step = GreedyStep([10, 12], waypoint, g=np.float32(0.25), h=1, candidates=np.int64(440))
-    assert waypoint.flags.writeable and not np.shares_memory(waypoint, step.waypoint_xy)
+    assert waypoint.flags.writeable and not np.shares_memory(waypoint, step.waypoint_robot_xy)
     waypoint[0] = 9.0
-    assert step.waypoint_xy.tolist() == [0.2, 0.0]
+    assert step.waypoint_robot_xy.tolist() == [0.2, 0.0]
     assert step.cell == (10, 12) and type(step.cell[0]) is int
     assert (step.g, step.h, step.candidates) == (0.25, 1.0, 440)
-    assert GreedyStep((1, 2), [0.1, 0.2], 0.0, 0.0, 0).waypoint_xy.tolist() == [0.1, 0.2]
+    assert GreedyStep((1, 2), [0.1, 0.2], 0.0, 0.0, 0).waypoint_robot_xy.tolist() == [0.1, 0.2]
     with pytest.raises(ValueError):
-        step.waypoint_xy[0] = 1.0
+        step.waypoint_robot_xy[0] = 1.0
     real = greedy_step(LocalGrid.from_points([]), (2.0, 0.0))
-    assert not real.waypoint_xy.flags.writeable
+    assert not real.waypoint_robot_xy.flags.writeable
 
 
 @pytest.mark.parametrize(

@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.frozen import frozen_setattr, reduce_record
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_bool, as_float_array, finite_float
@@ -37,7 +38,8 @@ class GreedyStep:
     waypoint_xy : array_like, shape (2,)
         Its centre ``(x, y)`` in metres in the robot frame: where to move next.
         Finite; stored as a read-only copy (the caller's array is neither kept
-        nor frozen).
+        nor frozen). Read it as :attr:`waypoint_robot_xy`, whose name says the
+        frame (every other ``*_xy`` point of navkit is in the world frame).
     g : float
         Distance from the robot to the waypoint (m), finite, >= 0.
     h : float
@@ -56,8 +58,8 @@ class GreedyStep:
     Examples
     --------
     >>> step = GreedyStep((10, 12), (0.2, 0.0), g=0.2, h=1.8, candidates=440)
-    >>> step.cost
-    2.0
+    >>> step.cost, step.waypoint_robot_xy
+    (2.0, array([0.2, 0. ]))
     """
 
     cell: tuple[int, int]
@@ -120,9 +122,29 @@ class GreedyStep:
         """``g + h``, the quantity the planner minimises (m)."""
         return self.g + self.h
 
+    @property
+    def waypoint_robot_xy(self) -> FloatArray:
+        """The waypoint ``(x, y)`` in metres in the robot frame (x forward, y left).
+
+        The field ``waypoint_xy`` itself, read-only, under a name that says its
+        frame. The field keeps its name, so that the constructor,
+        :func:`dataclasses.replace` and pickles are unchanged.
+
+        Examples
+        --------
+        >>> step = greedy_step(LocalGrid.from_points([]), (2.0, 0.0))
+        >>> step.waypoint_robot_xy  # 1 m ahead: the grid's goal-ward edge
+        array([1., 0.])
+        """
+        return self.waypoint_xy
+
 
 def greedy_step(
-    local_grid: LocalGrid, goal_xy: ArrayLike, *, require_progress: bool = False
+    local_grid: LocalGrid,
+    goal_robot_xy: ArrayLike | None = None,
+    *,
+    require_progress: bool = False,
+    goal_xy: ArrayLike | None = None,
 ) -> GreedyStep:
     """One step of the TurtleBot3 greedy planner on a robot-centred grid.
 
@@ -151,25 +173,34 @@ def greedy_step(
     ----------
     local_grid : navkit.mapping.LocalGrid
         Occupancy around the robot; rows along y, columns along x (robot frame).
-    goal_xy : array_like, shape (2,)
+    goal_robot_xy : array_like, shape (2,)
         Goal ``(x, y)`` in metres in the robot frame (x forward, y left),
-        ``|x|, |y| <= 1e9``; it may lie outside the grid.
+        ``|x|, |y| <= 1e9``; it may lie outside the grid. Required (its default
+        None only lets the deprecated ``goal_xy`` stand in for it).
     require_progress : bool, default False
         Only consider cells strictly nearer the goal than the robot. The paper's
         rule (False) may choose a cell behind the robot in front of a wide wall;
         with True the planner never retreats and raises instead.
 
+    Other Parameters
+    ----------------
+    goal_xy : array_like, shape (2,), optional
+        Deprecated name of `goal_robot_xy` (every other ``goal_xy`` of navkit
+        is a world point).
+
     Returns
     -------
     GreedyStep
-        The chosen cell, its robot-frame centre ``waypoint_xy`` and its ``g`` and ``h``.
+        The chosen cell, its robot-frame centre ``waypoint_robot_xy`` and its
+        ``g`` and ``h``.
 
     Raises
     ------
     TypeError
-        ``local_grid`` is not a LocalGrid, or ``require_progress`` not a bool.
+        ``local_grid`` is not a LocalGrid, ``require_progress`` not a bool, the
+        goal missing, or given under both names.
     ValueError
-        ``goal_xy`` is not two finite numbers within ±1e9 m.
+        ``goal_robot_xy`` is not two finite numbers within ±1e9 m.
     NoPathError
         No candidate is feasible (e.g. the robot is walled in, or with
         ``require_progress`` every cell nearer the goal is hidden behind walls).
@@ -178,13 +209,19 @@ def greedy_step(
     --------
     >>> grid = LocalGrid.from_points([[0.1, 0.0]])        # a return right ahead
     >>> step = greedy_step(grid, (2.0, 0.0))
-    >>> step.cell != (10, 11), bool(step.waypoint_xy[1] != 0.0)  # not straight ahead
+    >>> step.cell != (10, 11), bool(step.waypoint_robot_xy[1] != 0.0)  # not straight ahead
     (True, True)
-    >>> greedy_step(LocalGrid.from_points([]), (2.0, 0.0)).waypoint_xy  # free: goal-ward edge
+    >>> greedy_step(LocalGrid.from_points([]), (2.0, 0.0)).waypoint_robot_xy  # goal-ward edge
     array([1., 0.])
     """
     grid = _check_grid(local_grid)
-    target = point(goal_xy, "goal_xy")
+    # The goal is in the robot frame: the name says so (goal_xy is a world point
+    # everywhere else); the old name warns, and errors name what the caller wrote.
+    named = "goal_robot_xy" if goal_xy is None else "goal_xy"
+    goal = renamed_keyword("goal_xy", goal_xy, "goal_robot_xy", goal_robot_xy, None)
+    if goal is None:
+        raise TypeError("greedy_step() missing the argument goal_robot_xy")
+    target = point(goal, named)
     progress = as_bool(require_progress, "require_progress")
     gx, gy = float(target[0]), float(target[1])
     occupied = grid.occupied

@@ -186,7 +186,7 @@ class GreedyController:
             # A fallback is a step planned on the plain grid after the grown one
             # failed (not a grid that failed: a step may fail on both).
             self.fallbacks += k
-            px, py = float(step.waypoint_xy[0]), float(step.waypoint_xy[1])
+            px, py = float(step.waypoint_robot_xy[0]), float(step.waypoint_robot_xy[1])
             return x + c * px - s * py, y + s * px + c * py
         return None
 

@@ -195,7 +195,7 @@ def run_tracking(
     rng = np.random.default_rng(seed)
     robot = make_robot(rng)
     tracker = make_tracker()
-    tracker.set_path(route, goal_heading=goal.theta)
+    tracker.set_path(route, goal_yaw=goal.theta)
     sim = Simulation(
         lab_world(furniture), robot, TrackerController(tracker, control_rate=CONTROL_RATE),
         start=start, goal=goal_t,
