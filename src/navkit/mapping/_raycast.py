@@ -20,6 +20,15 @@ from navkit.mapping._scan import LaserScan
 __all__ = ["integrate_scan"]
 
 
+def _sensor_model(hit: object, miss: object) -> tuple[float, float]:
+    """Checked log-odds increments: ``hit`` in [0, 1e6], ``miss`` in [-1e6, 0]."""
+    h = bounded_float(hit, "hit", 0.0, LOGODDS_LIMIT)
+    m = finite_float(miss, "miss")
+    if m > 0.0:
+        raise ValueError(f"miss must be <= 0 (a log-odds decrement), got {m}")
+    return h, bounded_float(m, "miss", -LOGODDS_LIMIT, 0.0)
+
+
 def _clamp_pair(clamp: Iterable[float]) -> tuple[float, float]:
     try:
         lo_raw, hi_raw = clamp
@@ -137,11 +146,7 @@ def integrate_scan(
     if not isinstance(scan, LaserScan):
         raise TypeError(f"scan must be a LaserScan, got {type(scan).__name__}")
     p = as_pose(pose, "pose")
-    h = bounded_float(hit, "hit", 0.0, LOGODDS_LIMIT)
-    m = finite_float(miss, "miss")
-    if m > 0.0:
-        raise ValueError(f"miss must be <= 0 (a log-odds decrement), got {m}")
-    m = bounded_float(m, "miss", -LOGODDS_LIMIT, 0.0)
+    h, m = _sensor_model(hit, miss)
     lo, hi = _clamp_pair(clamp)
     walk_exact = as_bool(exact, "exact")
     named = "range_max" if max_range is None else "max_range"  # as the caller wrote it

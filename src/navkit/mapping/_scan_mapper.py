@@ -10,12 +10,10 @@ from numpy.typing import ArrayLike
 
 from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import finite_float
 from navkit.geometry import Pose2D, as_pose
 from navkit.mapping._grid import OccupancyGrid, grid_origin
 from navkit.mapping._limits import (
     COORDINATE_LIMIT,
-    LOGODDS_LIMIT,
     MAX_CELLS,
     RESOLUTION_MAX,
     bounded_float,
@@ -23,7 +21,7 @@ from navkit.mapping._limits import (
     resolution_float,
 )
 from navkit.mapping._logodds import logit
-from navkit.mapping._raycast import _clamp_pair
+from navkit.mapping._raycast import _clamp_pair, _sensor_model
 from navkit.mapping._raycast_kernels import integrate_beams
 from navkit.mapping._scan import LaserScan
 from navkit.mapping._scan_matcher import ScanMatcher, ScanMatchResult, scan_points
@@ -192,11 +190,7 @@ class ScanMapper:
         old_miss = None if free is None else logit(_probability(free, "free", 0.0, 0.5))
         hit = renamed_keyword("occupied", old_hit, "hit", hit, _HIT)
         miss = renamed_keyword("free", old_miss, "miss", miss, _MISS)
-        self._occupied = bounded_float(hit, "hit", 0.0, LOGODDS_LIMIT)
-        m = finite_float(miss, "miss")
-        if m > 0.0:
-            raise ValueError(f"miss must be <= 0 (a log-odds decrement), got {m}")
-        self._free = bounded_float(m, "miss", -LOGODDS_LIMIT, 0.0)
+        self._occupied, self._free = _sensor_model(hit, miss)
         self._clamp = _clamp_pair(clamp)
         self._min_distance = bounded_float(min_distance, "min_distance", 0.0, math.inf, "m")
         angle_name = "min_angle" if min_rotation is None else "min_rotation"
