@@ -529,8 +529,8 @@ def issue_note() -> str:
     return "Issue 15's KISS-ICP (voxel 0.1 m, prior as guess): " + "; ".join(parts)
 
 
-def main(argv: Sequence[str] | None = None, *, methods: dict[str, Method] | None = None) -> int:
-    """The command line: baselines (and ``methods``) on the logs; ``--basin`` adds noise levels."""
+def make_parser() -> argparse.ArgumentParser:
+    """The harness's options (``carmen_navkit.py`` adds its own to them)."""
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--logs", nargs="+", default=list(LOGS), choices=LOGS)
     parser.add_argument(
@@ -545,6 +545,21 @@ def main(argv: Sequence[str] | None = None, *, methods: dict[str, Method] | None
     parser.add_argument(
         "--basin", action="store_true", help="also the basin: 10/20/50 cm with 5/10/20°"
     )
+    return parser
+
+
+def main(
+    argv: Sequence[str] | None = None,
+    *,
+    methods: dict[str, Method] | None = None,
+    parser: argparse.ArgumentParser | None = None,
+) -> int:
+    """The command line: baselines (and ``methods``) on the logs; ``--basin`` adds noise levels.
+
+    ``parser`` (default :func:`make_parser`) may carry a caller's extra options,
+    which this function ignores.
+    """
+    parser = make_parser() if parser is None else parser
     args = parser.parse_args(argv)
     available = {**BASELINES, **(methods or {})}
     chosen = args.methods or list(available)

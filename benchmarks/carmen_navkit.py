@@ -41,7 +41,7 @@ from __future__ import annotations
 import functools
 import math
 import sys
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 
 import numpy as np
@@ -132,13 +132,17 @@ def truth_audit(data: ce.CarmenData) -> list[tuple[int, float, float, float, flo
     return flagged
 
 
-def print_audit(logs: Sequence[str]) -> None:
+#: Reads one log with the command line's ``--max-scans`` and ``--data-dir``.
+Loader = Callable[[str], ce.CarmenData]
+
+
+def print_audit(logs: Sequence[str], load: Loader = ce.load_log) -> None:
     """Print :func:`truth_audit` of each log and navkit's gross failures beside it."""
     print("\nPairs whose corrected motion the scans contradict (ICP from the truth):\n")
     print("| log | pair i→i+1 | ICP − truth ° | ICP − truth m | inliers truth → ICP |")
     print("|---|---|---|---|---|")
     for name in logs:
-        data = ce.load_log(name)
+        data = load(name)
         for i, deg, shift, before, after in truth_audit(data):
             row = f"{deg:+.1f} | {shift:.2f} | {before:.2f} → {after:.2f}"
             print(f"| {name} | {i}→{i + 1} | {row} |")
@@ -148,11 +152,11 @@ def print_audit(logs: Sequence[str]) -> None:
         print(f"| {name} | navkit's gross failures: {[f'{i}→{i + 1}' for i in gross]} | | | |")
 
 
-def print_tuned_basin(logs: Sequence[str], seed: int) -> None:
+def print_tuned_basin(logs: Sequence[str], seed: int, load: Loader = ce.load_log) -> None:
     """The basin of ``navkit-σ`` (the mapper told the prior's noise level)."""
     results = []
     for name in logs:
-        data = ce.load_log(name)
+        data = load(name)
         for sigma_xy, sigma_theta in ce.BASIN_LEVELS:
             prior = ce.motion_prior(
                 data.poses, sigma_xy=sigma_xy, sigma_theta=sigma_theta, seed=seed
@@ -177,7 +181,9 @@ def print_tuned_basin(logs: Sequence[str], seed: int) -> None:
 SWEPT_ROTATION_WEIGHTS = (1.0, 2.0, 3.0, 3.5, 4.0, 5.0, 10.0)
 
 
-def print_weight_sweep(logs: Sequence[str], seeds: Sequence[int] = (0, 1, 2)) -> None:
+def print_weight_sweep(
+    logs: Sequence[str], seeds: Sequence[int] = (0, 1, 2), load: Loader = ce.load_log
+) -> None:
     """How the rotation pull towards the prior trades gross failures against accuracy."""
     global ROTATION_WEIGHT
     chosen = ROTATION_WEIGHT
@@ -186,7 +192,7 @@ def print_weight_sweep(logs: Sequence[str], seeds: Sequence[int] = (0, 1, 2)) ->
     print("|---|---|" + "---|" * len(SWEPT_ROTATION_WEIGHTS))
     try:
         for name in logs:
-            data = ce.load_log(name)
+            data = load(name)
             for seed in seeds:
                 prior = ce.motion_prior(data.poses, seed=seed)
                 cells = []
@@ -203,36 +209,36 @@ def print_weight_sweep(logs: Sequence[str], seeds: Sequence[int] = (0, 1, 2)) ->
         ROTATION_WEIGHT = chosen
 
 
-def warm_up() -> None:
+def warm_up(data_dir: str | None = None) -> None:
     """Compile (or load from the numba cache) the kernels outside the timed runs."""
-    data = ce.load_log("intel", max_scans=3)
+    data = ce.load_log("intel", max_scans=3, data_dir=data_dir)
     navkit_method(data.scans, ce.motion_prior(data.poses))
     navkit_method(data.scans, ce.motion_prior(data.poses), sigma_xy=0.1, sigma_theta=0.1)
 
 
 def main(argv: Sequence[str] | None = None) -> int:
     """The harness's command line with navkit added; ``--audit`` checks the ground truth."""
-    args = list(sys.argv[1:] if argv is None else argv)
-    audit = "--audit" in args
-    if audit:
-        args.remove("--audit")
-    weights = "--weights" in args
-    if weights:
-        args.remove("--weights")
-    warm_up()
-    code = ce.main(args, methods={"navkit": navkit_method})
-    logs = list(ce.LOGS)
-    if "--logs" in args:
-        start = args.index("--logs") + 1
-        logs = [a for a in args[start:] if a in ce.LOGS][: len(ce.LOGS)]
-    seed = int(args[args.index("--seed") + 1]) if "--seed" in args else 0
-    methods = args[args.index("--methods") + 1 :] if "--methods" in args else ["navkit"]
-    if "--basin" in args and "navkit" in methods:
-        print_tuned_basin(logs, seed)
-    if audit:
-        print_audit(logs)
-    if weights:
-        print_weight_sweep(logs)
+    parser = ce.make_parser()
+    parser.add_argument(
+        "--audit",
+        action="store_true",
+        help="also the pairs whose corrected motion the scans contradict",
+    )
+    parser.add_argument(
+        "--weights", action="store_true", help="also the heading pull sweep (seeds 0-2)"
+    )
+    # Parsed here as well so that --help and bad options stop before the compile,
+    # and so that --max-scans and --data-dir reach the extra tables too.
+    args = parser.parse_args(argv)
+    warm_up(args.data_dir)
+    code = ce.main(argv, methods={"navkit": navkit_method}, parser=parser)
+    load = functools.partial(ce.load_log, max_scans=args.max_scans, data_dir=args.data_dir)
+    if args.basin and "navkit" in (args.methods or ["navkit"]):
+        print_tuned_basin(args.logs, args.seed, load)
+    if args.audit:
+        print_audit(args.logs, load)
+    if args.weights:
+        print_weight_sweep(args.logs, load=load)
     return code
 
 

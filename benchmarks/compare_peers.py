@@ -79,6 +79,8 @@ PEERS: dict[str, tuple[str, str]] = {
     "ir-sim": ("irsim", "ir-sim"),
     "KISS-ICP": ("kiss_icp", "kiss-icp"),
 }
+#: Peers navkit itself imports: ``--without`` cannot hide them (navkit would not load).
+NAVKIT_NEEDS = {"scipy"}
 
 #: (min_time per sample s, repeats, budget per contestant s) of a full and a quick run.
 FULL = (0.2, 7, 4.0)
@@ -859,6 +861,11 @@ def main(argv: Sequence[str] | None = None) -> int:
         if module not in modules.values():
             raise SystemExit(
                 f"compare_peers.py: unknown peer {name!r}; choose from: {', '.join(PEERS)}"
+            )
+        if module in NAVKIT_NEEDS:
+            raise SystemExit(
+                f"compare_peers.py: --without {name}: navkit itself needs {module}, "
+                "so it cannot be treated as not installed"
             )
         sys.modules[module] = None  # type: ignore[assignment]  # imports of it now fail
         RUN.missing.add(module)

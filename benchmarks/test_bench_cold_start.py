@@ -6,7 +6,7 @@ minute) or as a script, which prints the table::
 
     python benchmarks/test_bench_cold_start.py            # every entry point, ~2-4 min
     python benchmarks/test_bench_cold_start.py --quick
-    python benchmarks/test_bench_cold_start.py --only astar --only field_dstar --kernels
+    python benchmarks/test_bench_cold_start.py --only astar --only FieldDStar --kernels
 
 Every entry point runs in its own fresh Python process with ``NUMBA_CACHE_DIR``
 pointing at a new empty folder (cold: numba compiles every kernel it meets),

@@ -32,10 +32,17 @@ from typing import Any
 import numpy as np
 import pytest
 from numba import njit
-from skimage.draw import line
 
 from navkit.geometry import Pose2D
 from navkit.mapping import LaserScan, OccupancyGrid, integrate_scan
+from test_bench_astar import peer
+
+# scikit-image is a peer (``test`` extra): without it only its contestant skips
+# (peer()), and test_bench_raycast, which imports this file, still runs.
+try:
+    from skimage.draw import line
+except ImportError:
+    line = None  # type: ignore[assignment]
 
 RES = 0.05
 ROOM = (0.0, 0.0, 16.0, 10.0)
@@ -162,6 +169,7 @@ def test_integrate_scan(benchmark: Any, contestant: str) -> None:
         benchmark(numba_bresenham, *args)
         updated = int((logodds != 0).sum())
     else:
+        peer("skimage")
         benchmark(skimage_loop, logodds, r0, c0, r1s, c1s, hits)
         updated = int((logodds != 0).sum())
     benchmark.extra_info["cells_updated"] = int(updated)

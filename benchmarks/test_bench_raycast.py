@@ -39,6 +39,7 @@ from shapely.geometry import box
 
 from navkit.mapping import LaserScan, OccupancyGrid, integrate_scan
 from navkit.sim import Lidar, World
+from test_bench_astar import peer
 from test_bench_mapping import (
     CLAMP,
     HIT,
@@ -71,6 +72,8 @@ def make_call(who: str, n_beams: int) -> Callable[[], Any]:
     its float32 log-odds array) so that the cells can be checked.
     """
     scan = room_scan_beams(n_beams)
+    if who == "skimage":
+        peer("skimage")
     if who == "navkit":
         grid = new_grid()
 
@@ -87,11 +90,11 @@ def make_call(who: str, n_beams: int) -> Callable[[], Any]:
         args = (logodds, *beam_cells(scan))
         kernel = skimage_loop
 
-    def peer() -> np.ndarray:
+    def baseline() -> np.ndarray:
         kernel(*args)
         return logodds
 
-    return peer
+    return baseline
 
 
 def assert_same_cells(navkit_logodds: np.ndarray, peer_logodds: np.ndarray, *, exact: bool) -> int:

@@ -86,3 +86,20 @@ def test_json_matches_table(run: tuple[subprocess.CompletedProcess[str], dict[st
         assert row["navkit_first_s"] > 0.0
     (ekf,) = [r for r in data["rows"] if r["workload"] == "ekf-step-x1000"]
     assert ekf["ratio"] is None and ekf["status"].startswith("not installed")
+
+
+def test_without_a_peer_navkit_needs_is_refused(tmp_path: Path) -> None:
+    """``--without SciPy`` once hid SciPy from navkit too: every row was an error."""
+    if not SCRIPT.is_file():
+        pytest.skip("benchmarks/ is not part of this installation")
+    for name in ("SciPy", "scipy"):
+        proc = subprocess.run(
+            [sys.executable, str(SCRIPT), "--without", name, "--list"],
+            capture_output=True,
+            text=True,
+            timeout=120,
+            cwd=tmp_path,
+        )
+        assert proc.returncode != 0
+        assert f"--without {name}: navkit itself needs scipy" in proc.stderr
+        assert proc.stdout == ""
