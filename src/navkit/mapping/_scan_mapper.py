@@ -10,6 +10,7 @@ from numpy.typing import ArrayLike
 
 from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.types import FloatArray
+from navkit._shared.validation import finite_float
 from navkit.geometry import Pose2D, as_pose
 from navkit.mapping._grid import OccupancyGrid, grid_origin
 from navkit.mapping._limits import (
@@ -490,7 +491,10 @@ class ScanMapper:
 
 def _probability(value: float, name: str, low: float, high: float) -> float:
     """A probability strictly between ``low`` and ``high`` (the deprecated options)."""
-    p = bounded_float(value, name, low, high, low_open=True)
-    if p >= high:
-        raise ValueError(f"{name} must be < {high:g}, got {p}")
+    p = finite_float(value, name)
+    # Both ends open: bounded_float's message ("<= high") named an end refused here.
+    if not p > low:
+        raise ValueError(f"{name} must be > {low:g} (and < {high:g}), got {p}")
+    if not p < high:
+        raise ValueError(f"{name} must be < {high:g} (and > {low:g}), got {p}")
     return p

@@ -89,7 +89,11 @@ def _not_a_grid(value: Any) -> str:
     """What plot_grid takes, and how to make one of what was passed."""
     name = type(value).__name__
     text = f"grid must be a navkit.mapping.OccupancyGrid, got {name}"
-    if isinstance(getattr(value, "map", None), OccupancyGrid):
+    try:
+        inner = getattr(value, "map", None)
+    except Exception:  # a failing property of the caller's object: no hint, the TypeError stands
+        inner = None
+    if isinstance(inner, OccupancyGrid):
         return f"{text}: pass its map (grid=mapper.map)"
     if name == "LocalGrid":
         return (
