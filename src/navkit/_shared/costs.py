@@ -43,7 +43,10 @@ def validate_costs_lowest(
     except (TypeError, ValueError, OverflowError) as exc:  # ragged lists, unconvertible objects
         raise ValueError(f"{name} must be a 2-D numeric array: {exc}") from None
     if arr.dtype == np.bool_ or arr.dtype.kind not in "fiu":
-        raise ValueError(f"{name} must be a real-valued numeric array, got dtype {arr.dtype}")
+        raise ValueError(
+            f"{name} must be a real-valued numeric array, got "
+            + _not_costs_hint(costs, arr.dtype)
+        )
     if arr.ndim != 2:
         raise ValueError(f"{name} must be 2-D (rows, cols), got shape {arr.shape}")
     if arr.shape[0] == 0 or arr.shape[1] == 0:
@@ -56,9 +59,33 @@ def validate_costs_lowest(
     if lowest < 1.0:
         raise ValueError(
             f"{name} must be >= 1 where traversable (np.inf marks impassable cells); "
-            f"found {lowest} at {_first(out == lowest)}"
+            f"found {lowest} at {_first(out == lowest)}" + (_FREE_IS_ZERO if lowest >= 0 else "")
         )
     return out, lowest
+
+
+# Occupancy arrays and Nav2 costmaps use 0 for free space, which a cost grid cannot.
+_FREE_IS_ZERO = (
+    " (an occupancy array or a Nav2 costmap, where 0 means free, is not a cost grid: "
+    "make one with navkit.mapping.traversal_costs(grid) or np.where(occupied, np.inf, 1.0))"
+)
+
+
+def _not_costs_hint(costs: object, dtype: np.dtype[np.generic]) -> str:
+    """The rest of the message refusing a non-numeric ``costs``: what it got and the fix."""
+    if dtype == np.bool_:
+        return (
+            "dtype bool (an occupancy mask is not a cost grid: use "
+            "np.where(occupied, np.inf, 1.0))"
+        )
+    kind = type(costs).__name__
+    if kind in {"OccupancyGrid", "LocalGrid"}:
+        # Duck-typed by name: this module sits below mapping and cannot import it.
+        return (
+            f"an {kind} (make a cost grid with navkit.mapping.traversal_costs(grid), "
+            "or plan on the map in metres with MapPlanner)"
+        )
+    return f"dtype {dtype}"
 
 
 def _first(mask: NDArray[np.bool_]) -> tuple[int, ...]:

@@ -10,6 +10,11 @@ conversion happens; callers that write into the result must copy explicitly
 What counts as a real number, everywhere: Python and NumPy integers and floats
 (and 0-d arrays of them); not ``bool``, not complex numbers (even with a zero
 imaginary part), not strings (even numeric ones such as ``"1.0"``), not ``None``.
+``fractions.Fraction`` is real (``numbers.Real``); ``decimal.Decimal`` is not, and
+is refused. Masked arrays and masked scalars with masked entries are refused
+(NumPy's conversions would read the data under the mask); any other array-like
+NumPy reads (byte-swapped, memory-mapped, broadcast, ``memoryview``,
+``array.array``) counts as its values.
 """
 
 from __future__ import annotations
@@ -45,6 +50,9 @@ def finite_float(value: Any, name: str) -> float:
         raise ValueError(f"{name} must be finite, got {value}")
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
         if isinstance(value, np.ndarray) and value.ndim == 0 and value.dtype.kind in "fiu":
+            # A masked scalar (np.ma.masked, an element of a masked array) has data
+            # that stands for nothing: .item() would read it.
+            refuse_masked(value, name)
             value = value.item()
         else:
             raise TypeError(f"{name} must be a real number, got {type(value).__name__}")
@@ -374,15 +382,21 @@ def as_float_array(
         Reject NaN and infinities.
     """
     arr = _real_array(value, name)
+    if arr.ndim == 1 and arr.shape[0] > 1 and arr.strides[0] <= 0:
+        # A broadcast (np.broadcast_to) or reversed view: NumPy's products (`@`) take
+        # another summation order for it than BLAS does for the same values in a
+        # plain array, so results would differ in the last bits with the layout.
+        arr = np.ascontiguousarray(arr)
     if shape is not None:
         ndim = len(shape)
     if ndim is not None and arr.ndim != ndim:
-        raise ValueError(f"{name} must be {ndim}-D, got shape {arr.shape}")
+        raise ValueError(f"{name} must be {ndim}-D, got shape {arr.shape}" + _ndim_hint(arr, ndim))
     if shape is not None:
         for axis, (got, want) in enumerate(zip(arr.shape, shape, strict=True)):
             if want is not None and got != want:
                 raise ValueError(
                     f"{name} must have length {want} along axis {axis}, got shape {arr.shape}"
+                    + transposed_hint(arr.shape, shape)
                 )
     if finite and not np.all(np.isfinite(arr)):
         raise ValueError(f"{name} must contain only finite values")
@@ -403,7 +417,55 @@ def as_points(value: ArrayLike, name: str, *, finite: bool = True) -> FloatArray
         return arr.reshape(1, 2)
     if arr.shape == (0,):
         return np.empty((0, 2), dtype=np.float64)
-    raise ValueError(f"{name} must have shape (N, 2) or (2,), got {arr.shape}")
+    raise ValueError(
+        f"{name} must have shape (N, 2) or (2,), got {arr.shape}"
+        + transposed_hint(arr.shape, (None, 2))
+    )
+
+
+def _ndim_hint(arr: NDArray[Any], ndim: int) -> str:
+    """A hint for a scalar or a column/row vector given where a 1-D array is wanted."""
+    if ndim != 1:
+        return ""
+    if arr.ndim == 0:
+        return " (wrap a single value in a list: [value])"
+    if arr.ndim == 2 and 1 in arr.shape:
+        return " (a column or row vector: pass it flattened, e.g. np.ravel(value))"
+    return ""
+
+
+def transposed_hint(got: tuple[int, ...], want: Sequence[int | None]) -> str:
+    """A hint for the common ``(k, N)``-for-``(N, k)`` mistake, or ``""``.
+
+    Column-per-point layouts (MATLAB, some plotting code) are the usual cause;
+    the hint is given only when the transpose has exactly the wanted shape.
+    """
+    two_d = len(got) == 2 and len(want) == 2 and want[0] is None and want[1] is not None
+    if two_d and got[0] == want[1] and got[1] != want[1]:
+        return f" (it looks transposed, one column per item: pass its .T, shape {got[::-1]})"
+    return ""
+
+
+def unpack(value: Any, name: str) -> tuple[Any, ...]:
+    """``tuple(value)``, also for a multi-dimensional ``memoryview``.
+
+    Python cannot iterate over a memoryview of more than one dimension (it raises
+    ``NotImplementedError``): such a view (of a NumPy array, from a buffer) gives
+    the rows of the array it views, as the array itself would. Anything that is
+    not iterable raises ``TypeError``, as ``tuple`` does (naming ``name`` only
+    for a memoryview NumPy cannot read: callers word their own message).
+
+    Examples
+    --------
+    >>> len(unpack(memoryview(np.zeros((2, 3))), "pairs"))
+    2
+    """
+    if type(value) is memoryview and value.ndim > 1:
+        try:
+            value = np.asarray(value)
+        except (TypeError, ValueError) as exc:  # a buffer format NumPy cannot read
+            raise TypeError(f"{name} is a memoryview NumPy cannot read: {exc}") from None
+    return tuple(value)
 
 
 def as_cell(value: Any, name: str, shape: tuple[int, ...]) -> tuple[int, int]:
@@ -411,7 +473,7 @@ def as_cell(value: Any, name: str, shape: tuple[int, ...]) -> tuple[int, int]:
     if isinstance(value, (str, bytes, Mapping, set, frozenset)):
         raise TypeError(f"{name} must be a (row, col) pair, got {type(value).__name__}")
     try:
-        seq = tuple(value)
+        seq = unpack(value, name)
     except TypeError:
         raise TypeError(f"{name} must be a (row, col) pair, got {value!r}") from None
     if len(seq) != 2:
@@ -424,12 +486,22 @@ def as_cell(value: Any, name: str, shape: tuple[int, ...]) -> tuple[int, int]:
             # Integral floats (2.0, from arithmetic on coordinates) are accepted.
             if isinstance(item, numbers.Real) and math.isfinite(item) and float(item).is_integer():
                 item = int(float(item))
+            elif isinstance(item, numbers.Real):
+                raise TypeError(
+                    f"{name} must hold integers, got {value!r}: a cell is an integer "
+                    "(row, col) index; convert a world point (x, y) in metres with "
+                    "world_to_cell, or plan in metres with MapPlanner"
+                )
             else:
                 raise TypeError(f"{name} must hold integers, got {value!r}")
         cell.append(int(item))
     row, col = cell
     if not (0 <= row < shape[0] and 0 <= col < shape[1]):
-        raise ValueError(f"{name} {(row, col)} is outside the grid of shape {shape[:2]}")
+        hint = ""
+        if 0 <= col < shape[0] and 0 <= row < shape[1]:
+            # The swapped pair fits: the usual cause is an (x, y) order.
+            hint = f"; cells are (row, col), and {(col, row)} is inside: was it given as (x, y)?"
+        raise ValueError(f"{name} {(row, col)} is outside the grid of shape {shape[:2]}{hint}")
     return row, col
 
 
@@ -452,6 +524,8 @@ def as_sequence(value: Any, name: str) -> tuple[Any, ...]:
     """
     if isinstance(value, (str, bytes, Mapping)):
         raise TypeError(f"{name} must be a sequence, got {type(value).__name__}")
+    if type(value) is memoryview:
+        return unpack(value, name)
     try:
         items = iter(value)
     except TypeError:

@@ -15,7 +15,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import SMALLEST_POSITIVE, as_float_array, finite_float
+from navkit._shared.validation import SMALLEST_POSITIVE, as_float_array, finite_float, unpack
 
 __all__ = [
     "MAX_COVARIANCE",
@@ -94,7 +94,7 @@ def covariance(value: ArrayLike, name: str, n: int, *, semidefinite: bool = Fals
 def index_tuple(indices: Iterable[Any], name: str, n: int) -> tuple[int, ...]:
     """Validate distinct integer indices into a length-``n`` vector."""
     try:
-        items = tuple(indices)
+        items = unpack(indices, name)
     except TypeError:
         raise TypeError(f"{name} must be a sequence of integer indices") from None
     out: list[int] = []

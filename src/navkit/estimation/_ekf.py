@@ -303,10 +303,15 @@ class ExtendedKalmanFilter(GaussianEstimate):
         # The kernel takes C-contiguous writeable float64 arrays only and checks their
         # shapes and values itself: anything else raises at dispatch and is converted
         # and checked in full by _predict_checked, as is any status but OK.
-        try:
-            status = self._kp(self._state, x_new, jac, Q)
-        except Exception:  # a dispatch failure: not of the compiled types
+        # numba's dispatcher takes any ndarray subclass as its data: a masked array
+        # (its mask dropped) must go the checked way, which refuses masked entries.
+        if type(jac) is not _NDARRAY or type(x_new) is not _NDARRAY:
             status = BAD_TYPE
+        else:
+            try:
+                status = self._kp(self._state, x_new, jac, Q)
+            except Exception:  # a dispatch failure: not of the compiled types
+                status = BAD_TYPE
         if status:
             self._predict_checked(status, x_new, jac, Q)
 
@@ -416,10 +421,14 @@ class ExtendedKalmanFilter(GaussianEstimate):
         if (angle_measurements is self._options and gate is self._gate) or self._fast_options(
             angle_measurements, gate
         ):
-            try:
-                out = self._ku(self._state, z, hx, jac, R, self._rbuf, y)
-            except Exception:  # a dispatch failure: not of the compiled types
+            # As in predict: a masked array (an ndarray subclass) goes the checked way.
+            if type(hx) is not _NDARRAY or type(jac) is not _NDARRAY or type(z) is not _NDARRAY:
                 out = _NOT_TAKEN
+            else:
+                try:
+                    out = self._ku(self._state, z, hx, jac, R, self._rbuf, y)
+                except Exception:  # a dispatch failure: not of the compiled types
+                    out = _NOT_TAKEN
             if out >= 0.0:  # OK: the kernel returned the NIS
                 # new_result, inlined: it is a third of the Python work of an update.
                 result: UpdateResult = _object_new(UpdateResult)

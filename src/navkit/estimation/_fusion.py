@@ -14,7 +14,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from navkit._shared.frozen import extra_state, frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.types import BoolArray, FloatArray
-from navkit._shared.validation import as_array, as_float_array, finite_float
+from navkit._shared.validation import as_array, as_float_array, finite_float, unpack
 from navkit.errors import FilterError
 from navkit.estimation import _fusion_kernels as k
 from navkit.estimation._covariance import (
@@ -331,7 +331,7 @@ class MeasurementLog:
 def _stream(stream: Any, name: str, widths: tuple[int, ...]) -> tuple[FloatArray, ...]:
     want = " or ".join(str(w) for w in widths)
     try:
-        parts = tuple(stream)
+        parts = unpack(stream, name)
     except TypeError:
         raise TypeError(f"{name} must be a tuple of {want} arrays") from None
     if len(parts) not in widths:

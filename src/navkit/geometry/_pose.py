@@ -404,7 +404,14 @@ def _three(value: Any, name: str, what: str, fields: str) -> tuple[float, float,
     if isinstance(value, (str, bytes)) or not isinstance(value, (Sequence, np.ndarray)):
         kind = type(value).__name__
         raise TypeError(f"{name} must be a {what} or a sequence {fields}, got {kind}")
-    arr = as_float_array(value, name, shape=(3,))
+    try:
+        arr = as_float_array(value, name, shape=(3,))
+    except ValueError as exc:
+        two = len(value) == 2 if isinstance(value, Sequence) else value.shape == (2,)
+        if not two:
+            raise
+        # Two numbers: usually a position where a whole pose (or twist) is wanted.
+        raise ValueError(f"{exc}: a {what} is {fields}, so give all three") from None
     return float(arr[0]), float(arr[1]), float(arr[2])
 
 

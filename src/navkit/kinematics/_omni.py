@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import warnings
 from typing import Any
 
 import numpy as np
@@ -114,6 +115,16 @@ class OmniDrive:
         angles = as_float_array(wheel_angles, "wheel_angles", ndim=1)
         if angles.shape[0] < 3:
             raise ValueError(f"wheel_angles needs at least 3 wheels, got {angles.shape[0]}")
+        if np.max(np.abs(angles)) > 2 * np.pi and np.all(angles == np.round(angles)):
+            # Whole numbers beyond a full turn: a mounting layout in degrees ([30, 150, 270])
+            # gives a valid but wrong drive, so say so (radians a tool computed are rarely
+            # all whole numbers).
+            warnings.warn(
+                f"wheel_angles {angles.tolist()} look like degrees (whole numbers beyond 2π): "
+                "OmniDrive takes radians, e.g. np.radians([30, 150, 270])",
+                UserWarning,
+                stacklevel=2,
+            )
         self._wheel_radius = in_range(wheel_radius, "wheel_radius", MIN_LENGTH, MAX_LENGTH, "m")
         self._base_radius = in_range(base_radius, "base_radius", MIN_LENGTH, MAX_LENGTH, "m")
         self._wheel_angles = _read_only(angles.copy())

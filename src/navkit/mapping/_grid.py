@@ -460,7 +460,15 @@ class OccupancyGrid:
             raise ValueError(f"probabilities must not be empty, got shape {p.shape}")
         check_cell_count(float(p.size), "probabilities")
         if p.size and (p.min() < 0.0 or p.max() > 1.0):
-            raise ValueError("probabilities must lie in [0, 1]")
+            lo, hi = float(p.min()), float(p.max())
+            hint = ""
+            if lo >= -1.0 and hi <= 100.0:
+                # The ROS nav_msgs/OccupancyGrid encoding: percent, -1 for unknown.
+                hint = (
+                    "; this looks like ROS OccupancyGrid data (0..100 percent, -1 unknown): "
+                    "read the message with navkit.mapping.io.grid_from_msg, or divide by 100"
+                )
+            raise ValueError(f"probabilities must lie in [0, 1], got [{lo:g}, {hi:g}]{hint}")
         return cls(
             _probability_logodds(p),
             resolution=resolution,

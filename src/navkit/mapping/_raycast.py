@@ -9,7 +9,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from navkit._shared.deprecation import renamed_keyword
-from navkit._shared.validation import as_bool, finite_float
+from navkit._shared.validation import as_bool, finite_float, unpack
 from navkit.geometry import Pose2D, as_pose
 from navkit.mapping._grid import OccupancyGrid
 from navkit.mapping._limits import LOGODDS_LIMIT, bounded_float
@@ -31,7 +31,7 @@ def _sensor_model(hit: object, miss: object) -> tuple[float, float]:
 
 def _clamp_pair(clamp: Iterable[float]) -> tuple[float, float]:
     try:
-        lo_raw, hi_raw = clamp
+        lo_raw, hi_raw = unpack(clamp, "clamp")
     except (TypeError, ValueError):
         raise ValueError(f"clamp must be a (low, high) pair, got {clamp!r}") from None
     lo = bounded_float(lo_raw, "clamp[0]", -LOGODDS_LIMIT, LOGODDS_LIMIT)

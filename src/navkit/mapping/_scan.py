@@ -58,7 +58,10 @@ class LaserScan:
     *valid* (a real return) when it is finite and ``range_min <= r < range_max``;
     a reading equal to ``range_max`` is treated as "no return", as most drivers
     and CARMEN logs report it. ROS messages convert with
-    :func:`navkit.mapping.io.scan_from_msg`.
+    :func:`navkit.mapping.io.scan_from_msg`. A driver that writes ``0`` for
+    "no return" needs ``range_min > 0`` (the sensor's real minimum range):
+    with ``range_min=0`` a zero reading is a valid return at the sensor
+    itself, and mapping marks the robot's own cell occupied.
 
     Parameters
     ----------

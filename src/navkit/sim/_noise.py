@@ -12,7 +12,7 @@ from numpy.typing import NDArray
 
 from navkit._shared.frozen import frozen_setattr
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import as_float_array, finite_float
+from navkit._shared.validation import as_float_array, finite_float, unpack
 
 __all__ = ["RangeNoise"]
 
@@ -35,7 +35,7 @@ def _floats(
         # strings or booleans has no element for the checks below to refuse.
         value = as_float_array(value, name, ndim=1, finite=False)
     try:
-        items = tuple(value)
+        items = unpack(value, name)
     except TypeError:
         kind = type(value).__name__
         raise TypeError(f"{name} must be a sequence of numbers, got {kind}") from None

@@ -12,7 +12,7 @@ import numpy as np
 
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.types import IntArray
-from navkit._shared.validation import as_float_array, finite_float, positive_float
+from navkit._shared.validation import as_float_array, finite_float, positive_float, refuse_masked
 from navkit.mapping import LaserScan
 from navkit.sim._lidar import check_latency, check_rate
 
@@ -340,6 +340,7 @@ def real_float(
 def _readonly_ints(value: object) -> IntArray:
     if isinstance(value, (str, bytes)):
         raise TypeError(f"ticks must be an integer array, got {type(value).__name__}")
+    refuse_masked(value, "ticks")  # np.asarray would read masked ticks as their data
     try:
         raw = np.asarray(value)
     except (ValueError, TypeError) as exc:

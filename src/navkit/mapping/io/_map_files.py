@@ -298,6 +298,7 @@ def read_map_yaml(path: str | os.PathLike[str]) -> MapMetadata:
         raise ValueError(
             f"{yaml_path}: need 0 <= free_thresh < occupied_thresh <= 1, got "
             f"free_thresh={free}, occupied_thresh={occ}"
+            + ("; they are probabilities, not percent" if max(occ, free) > 1.0 else "")
         )
     mode = entries.get("mode", "trinary")
     if not isinstance(mode, str) or mode.lower() not in _MODES:

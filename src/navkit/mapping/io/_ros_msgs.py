@@ -16,7 +16,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
-from navkit._shared.validation import as_bool, finite_float
+from navkit._shared.validation import as_bool, finite_float, refuse_masked, unpack
 from navkit.geometry import Pose2D, quaternion_to_yaw
 from navkit.mapping import LaserScan, OccupancyGrid
 from navkit.mapping.io._map_files import _unknown_logodds
@@ -46,7 +46,7 @@ def _tuple_of_floats(value: Any, n: int, name: str) -> tuple[float, ...]:
     if isinstance(value, (str, bytes)):
         raise TypeError(f"{name} must be a sequence of {n} numbers, got {type(value).__name__}")
     try:
-        items = tuple(value)
+        items = unpack(value, name)
     except TypeError:
         raise TypeError(
             f"{name} must be a sequence of {n} numbers, got {type(value).__name__}"
@@ -58,6 +58,7 @@ def _tuple_of_floats(value: Any, n: int, name: str) -> tuple[float, ...]:
 
 def _occupancy_values(raw: Any, name: str) -> NDArray[np.int64]:
     """Occupancy values -1..100 as int64; floats, booleans and strings are refused."""
+    refuse_masked(raw, name)  # np.asarray would read masked cells as their data
     try:
         arr = np.asarray(raw)
     except ValueError:  # NumPy refuses ragged nested sequences

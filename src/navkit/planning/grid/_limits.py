@@ -155,7 +155,7 @@ def converted_costs(
     except (TypeError, ValueError) as exc:
         raise ValueError(f"{name} must be a 2-D array of real numbers: {exc}") from None
     if arr.dtype.kind not in "fiu" or arr.ndim != 2 or arr.size == 0:
-        validate_costs_lowest(arr, name)  # raises, with the shared message
+        validate_costs_lowest(costs, name)  # raises, with the shared message
     rows, cols = arr.shape
     if corner_nodes:
         check_node_count(

@@ -571,8 +571,28 @@ class MapPlanner:
         row, col = (int(v) for v in np.asarray(self._grid.world_to_cell(point)).reshape(2))
         rows, cols = self._costs.shape
         if not (0 <= row < rows and 0 <= col < cols):
-            raise ValueError(f"{name} {tuple(point.tolist())} is outside the map")
+            raise ValueError(
+                f"{name} {tuple(point.tolist())} is outside the map{self._extent_text()}"
+            )
         return row, col
+
+    def _extent_text(self) -> str:
+        """Where the map lies, in world metres (only on an error path).
+
+        A map ``origin`` given as the map's centre, or cells given for metres,
+        are the usual causes of an endpoint outside it; the extent shows both.
+        """
+        rows, cols = self._costs.shape
+        size = np.array([[0, 0], [cols, 0], [0, rows], [cols, rows]]) * self._grid.resolution
+        corners = self._grid.origin.transform_points(size)
+        # Rounded to the nanometre: a rotated origin leaves 1e-16 m where 0 is meant.
+        lo = np.round(corners.min(axis=0), 9) + 0.0
+        hi = np.round(corners.max(axis=0), 9) + 0.0
+        return (
+            f": the map covers x in [{lo[0]:g}, {hi[0]:g}] m and y in [{lo[1]:g}, {hi[1]:g}] m "
+            "(its origin is the lower-left corner of cell (0, 0), not the map's centre; "
+            "start and goal are world points in metres, not cells)"
+        )
 
     @staticmethod
     def _end_text(value: Pose2D | ArrayLike, cell: tuple[int, int], name: str) -> str:

@@ -29,7 +29,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import as_float_array, finite_float
+from navkit._shared.validation import as_float_array, finite_float, transposed_hint
 
 __all__ = [
     "COORDINATE_LIMIT",
@@ -102,7 +102,10 @@ def points(value: ArrayLike, name: str) -> FloatArray:
     if arr.ndim == 1 and arr.shape[0] == 2:
         arr = arr.reshape(1, 2)
     elif arr.ndim != 2 or arr.shape[1] != 2:
-        raise ValueError(f"{name} must have shape (N, 2) or (2,), got {arr.shape}")
+        raise ValueError(
+            f"{name} must have shape (N, 2) or (2,), got {arr.shape}"
+            + transposed_hint(arr.shape, (None, 2))
+        )
     check_coordinates(arr, name)
     return arr
 
