@@ -48,7 +48,9 @@ def test_local_grid_any_size(
         np.array(points).reshape(-1, 2), half_width=half_width, resolution=resolution
     )
     ratio = half_width / resolution
-    n = 2 * (math.floor(ratio) + (ratio - math.floor(ratio) >= 0.5)) + 1  # half up
+    # Half up, a ratio within 1e-9 cells of a half counting as a half (as documented:
+    # 0.15 / 0.1 is 1.4999999999999998 and must round up).
+    n = 2 * (math.floor(ratio) + (ratio - math.floor(ratio) >= 0.5 - 1e-9)) + 1
     assert grid.occupied.shape == (n, n)
     assert grid.half_width == pytest.approx((n - 1) / 2 * resolution)
     cells = grid.world_to_cell(np.array(points).reshape(-1, 2))

@@ -144,8 +144,9 @@ class LocalGrid:
         -------
         LocalGrid
             A grid of ``n = 2 * k + 1`` cells per side, ``k`` being
-            ``half_width / resolution`` rounded half up, with ``half_width``
-            snapped to ``k * resolution``.
+            ``half_width / resolution`` rounded half up (a ratio within 1e-9
+            cells of a half counts as a half, so a decimal 0.15 m at 0.1 m
+            gives 2), with ``half_width`` snapped to ``k * resolution``.
 
         Raises
         ------
