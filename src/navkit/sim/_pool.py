@@ -65,10 +65,20 @@ def _kill(pool: concurrent.futures.ProcessPoolExecutor) -> None:
     # Taken first: shutdown(wait=False) forgets the pool's thread, so that a second
     # shutdown(wait=True) would return at once, without waiting for it.
     manager: threading.Thread | None = getattr(pool, "_executor_manager_thread", None)
+    results = getattr(pool, "_result_queue", None)  # shutdown forgets it too
     pool.shutdown(wait=False, cancel_futures=True)
     for process in processes:
         with contextlib.suppress(ProcessLookupError, ValueError):  # gone, or closed
             process.kill()
+    for process in processes:
+        process.join()
+    # A worker killed while sending a result leaves half a message in the result
+    # pipe, and the pool's thread would wait for the rest forever (also at exit,
+    # which joins it): with every writer gone, closing ours ends its read.
+    writer = getattr(results, "_writer", None)
+    if writer is not None:
+        with contextlib.suppress(OSError):
+            writer.close()
     # The pool's thread sees the workers die, fails the futures left and joins them.
     if manager is not None:
         manager.join()
