@@ -78,12 +78,18 @@ def _not_costs_hint(costs: object, dtype: np.dtype[np.generic]) -> str:
             "dtype bool (an occupancy mask is not a cost grid: use "
             "np.where(occupied, np.inf, 1.0))"
         )
+    # Duck-typed by name: this module sits below mapping and cannot import it.
     kind = type(costs).__name__
-    if kind in {"OccupancyGrid", "LocalGrid"}:
-        # Duck-typed by name: this module sits below mapping and cannot import it.
+    if kind == "OccupancyGrid":
         return (
-            f"an {kind} (make a cost grid with navkit.mapping.traversal_costs(grid), "
+            "an OccupancyGrid (make a cost grid with navkit.mapping.traversal_costs(grid), "
             "or plan on the map in metres with MapPlanner)"
+        )
+    if kind == "LocalGrid":
+        # traversal_costs and MapPlanner take an OccupancyGrid only.
+        return (
+            "a LocalGrid (make a cost grid from its mask: "
+            "np.where(grid.occupied, np.inf, 1.0))"
         )
     return f"dtype {dtype}"
 

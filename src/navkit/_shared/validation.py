@@ -101,6 +101,87 @@ def as_bool(value: Any, name: str) -> bool:
     return bool(value)
 
 
+def bounded_int(
+    value: Any,
+    name: str,
+    low: int | None = None,
+    high: int | None = None,
+    *,
+    exclusive: bool = False,
+    or_none: bool = False,
+) -> int:
+    """Return ``value`` as a Python int in ``[low, high]`` or raise naming ``name``.
+
+    The one check of every integer option (counts, bits, levels, seeds, indices).
+    Integers are Python ints, NumPy integer scalars and 0-d integer arrays
+    (``np.array(3)``, what a reduction or an indexing of an integer array gives);
+    ``bool`` and ``numpy.bool_`` are refused, and so are floats even when whole
+    (``2.0``): a ``TypeError``. A value outside the range is a ``ValueError``
+    that states the range.
+
+    Parameters
+    ----------
+    value : object
+        The caller's argument.
+    name : str
+        Its name, as the caller wrote it, for the messages.
+    low, high : int, optional
+        The smallest and largest values accepted; ``None`` leaves that side open.
+    exclusive : bool, default False
+        ``high`` itself is refused (an index below a length, a seed below 2**64).
+    or_none : bool, default False
+        Only the wording: the caller accepts ``None`` itself, and the type message
+        says so ("an integer or None").
+
+    Examples
+    --------
+    >>> bounded_int(np.array(3), "levels", 1, 8)
+    3
+    >>> bounded_int(2**64, "seed", 0, 2**64, exclusive=True)
+    Traceback (most recent call last):
+    ...
+    ValueError: seed must be in [0, 2**64), got 18446744073709551616
+    >>> bounded_int(np.True_, "bits")
+    Traceback (most recent call last):
+    ...
+    TypeError: bits must be an integer, got bool
+    """
+    if type(value) is int:  # the common case, first
+        out = value
+    elif _is_integer(value):
+        out = int(value)
+    elif isinstance(value, np.ndarray) and value.ndim == 0 and value.dtype.kind in "iu":
+        refuse_masked(value, name)
+        out = int(value.item())
+    else:
+        what = "an integer or None" if or_none else "an integer"
+        raise TypeError(f"{name} must be {what}, got {type(value).__name__}")
+    too_low = low is not None and out < low
+    too_high = high is not None and (out >= high if exclusive else out > high)
+    if too_low or too_high:
+        got = str(out) if abs(out) < 10**30 else _magnitude(out)
+        raise ValueError(f"{name} must be {_int_range(low, high, exclusive)}, got {got}")
+    return out
+
+
+def _int_range(low: int | None, high: int | None, exclusive: bool) -> str:
+    if high is None:
+        return f">= {_bound_text(low)}"
+    if low is None:
+        return f"{'<' if exclusive else '<='} {_bound_text(high)}"
+    return f"in [{_bound_text(low)}, {_bound_text(high)}{')' if exclusive else ']'}"
+
+
+def _bound_text(value: int | None) -> str:
+    """A range end for a message: 2**64 and 2**63 - 1 read better as powers."""
+    if value is not None and value >= 2**32:
+        if value & (value - 1) == 0:
+            return f"2**{value.bit_length() - 1}"
+        if (value + 1) & value == 0:
+            return f"2**{value.bit_length()} - 1"
+    return str(value)
+
+
 #: NumPy's most dimensions (64 since NumPy 2, 32 before): deeper nestings are no array.
 _MAX_DEPTH = 64
 

@@ -19,7 +19,7 @@ from numpy.typing import ArrayLike
 
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import as_bool, as_float_array, as_points, finite_float
+from navkit._shared.validation import as_bool, as_float_array, as_points, bounded_int, finite_float
 
 __all__ = ["BehaviourTarget", "GameState", "attack", "defend", "support"]
 
@@ -234,13 +234,13 @@ class GameState:
         n_opponents = self.opponents_xy.shape[0]
         if holder is None:
             holder = self._nearest_holder(radius)
-        elif isinstance(holder, (bool, np.bool_)) or not isinstance(holder, (int, np.integer)):
-            raise TypeError(f"opponent_with_ball must be an int or None, got {holder!r}")
-        elif not 0 <= int(holder) < n_opponents:
-            raise ValueError(
-                f"opponent_with_ball {holder} is not an index into {n_opponents} opponents"
-            )
-        setter(self, "opponent_with_ball", None if holder is None else int(holder))
+        else:
+            holder = bounded_int(holder, "opponent_with_ball", or_none=True)
+            if not 0 <= holder < n_opponents:
+                raise ValueError(
+                    f"opponent_with_ball {holder} is not an index into {n_opponents} opponents"
+                )
+        setter(self, "opponent_with_ball", holder)
 
     def _nearest_holder(self, radius: float) -> int | None:
         if self.has_ball or self.opponents_xy.shape[0] == 0:

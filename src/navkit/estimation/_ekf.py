@@ -305,7 +305,9 @@ class ExtendedKalmanFilter(GaussianEstimate):
         # and checked in full by _predict_checked, as is any status but OK.
         # numba's dispatcher takes any ndarray subclass as its data: a masked array
         # (its mask dropped) must go the checked way, which refuses masked entries.
-        if type(jac) is not _NDARRAY or type(x_new) is not _NDARRAY:
+        # Q too: the kernel reads it only to compare with the last Q, so a masked Q
+        # of the same values would pass while one of new values is refused.
+        if type(jac) is not _NDARRAY or type(x_new) is not _NDARRAY or type(Q) is not _NDARRAY:
             status = BAD_TYPE
         else:
             try:
@@ -422,7 +424,8 @@ class ExtendedKalmanFilter(GaussianEstimate):
             angle_measurements, gate
         ):
             # As in predict: a masked array (an ndarray subclass) goes the checked way.
-            if type(hx) is not _NDARRAY or type(jac) is not _NDARRAY or type(z) is not _NDARRAY:
+            if (type(hx) is not _NDARRAY or type(jac) is not _NDARRAY
+                    or type(z) is not _NDARRAY or type(R) is not _NDARRAY):  # fmt: skip
                 out = _NOT_TAKEN
             else:
                 try:

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import math
-import numbers
 import warnings
 from typing import Any
 
@@ -15,6 +14,7 @@ from navkit._shared.se2 import exp_body
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import (
     as_float_array,
+    bounded_int,
     finite_float,
     integer_readings,
     positive_float,
@@ -92,11 +92,11 @@ def _batch_deltas(last: int | NDArray[Any], readings: NDArray[Any], bits: int) -
 
 def _bit_width(value: object, name: str) -> int:
     """``bits`` as an int from 2 to 64 (TypeError for a non-integer, bools included)."""
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Integral):
-        raise TypeError(f"{name} must be an integer or None, got {type(value).__name__}")
-    if not 2 <= int(value) <= 64:
-        raise ValueError(f"{name} must be an integer from 2 to 64, got {value!r}")
-    return int(value)
+    bits = bounded_int(value, name, or_none=True)
+    if not 2 <= bits <= 64:
+        # The wording of kinematics.tick_delta, which takes the same bits.
+        raise ValueError(f"{name} must be an integer from 2 to 64, got {bits!r}")
+    return bits
 
 
 class OmniOdometry:
@@ -205,6 +205,7 @@ class OmniOdometry:
             type(inc) is np.ndarray
             and inc.dtype == np.float64
             and inc.shape == (self._drive.n_wheels,)
+            and inc.strides[0] > 0  # a reversed or broadcast view sums in another order
             and type(yaw) is float
             and yaw - yaw == 0.0
         ):

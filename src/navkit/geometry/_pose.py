@@ -407,12 +407,19 @@ def _three(value: Any, name: str, what: str, fields: str) -> tuple[float, float,
     try:
         arr = as_float_array(value, name, shape=(3,))
     except ValueError as exc:
-        two = len(value) == 2 if isinstance(value, Sequence) else value.shape == (2,)
-        if not two:
+        if not _two_numbers(value):
             raise
         # Two numbers: usually a position where a whole pose (or twist) is wanted.
         raise ValueError(f"{exc}: a {what} is {fields}, so give all three") from None
     return float(arr[0]), float(arr[1]), float(arr[2])
+
+
+def _two_numbers(value: Any) -> bool:
+    """Whether ``value`` reads as two numbers (not two poses, not a ragged nesting)."""
+    try:
+        return bool(np.shape(value) == (2,))
+    except ValueError:  # NumPy refuses ragged nested sequences
+        return False
 
 
 def as_pose(value: Pose2D | ArrayLike, name: str = "pose") -> Pose2D:

@@ -462,13 +462,20 @@ class OccupancyGrid:
         if p.size and (p.min() < 0.0 or p.max() > 1.0):
             lo, hi = float(p.min()), float(p.max())
             hint = ""
-            if lo >= -1.0 and hi <= 100.0:
-                # The ROS nav_msgs/OccupancyGrid encoding: percent, -1 for unknown.
+            if lo >= -1.0 and hi <= 100.0 and bool(np.all(p == np.round(p))):
+                # The ROS nav_msgs/OccupancyGrid encoding: whole percent (int8), -1 for
+                # unknown. Fractions out of range (log-odds, rounding) are not it, and
+                # dividing them by 100 would make a wrong map silently.
                 hint = (
                     "; this looks like ROS OccupancyGrid data (0..100 percent, -1 unknown): "
-                    "read the message with navkit.mapping.io.grid_from_msg, or divide by 100"
+                    "read the message with navkit.mapping.io.grid_from_msg, or convert it "
+                    "with np.where(data < 0, 0.5, data / 100)"
                 )
-            raise ValueError(f"probabilities must lie in [0, 1], got [{lo:g}, {hi:g}]{hint}")
+            # Exact, not :g alone: a value just above 1 (1.0000001, from arithmetic)
+            # must not print as 1 in the range it is refused for.
+            lo_text = f"{lo:g}" if float(f"{lo:g}") == lo else repr(lo)
+            hi_text = f"{hi:g}" if float(f"{hi:g}") == hi else repr(hi)
+            raise ValueError(f"probabilities must lie in [0, 1], got [{lo_text}, {hi_text}]{hint}")
         return cls(
             _probability_logodds(p),
             resolution=resolution,

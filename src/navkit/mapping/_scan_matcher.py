@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import math
-import numbers
 import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -15,7 +14,7 @@ from numpy.typing import ArrayLike
 from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import as_float_array
+from navkit._shared.validation import as_float_array, bounded_int
 from navkit.geometry import Pose2D, as_pose
 from navkit.mapping._grid import OccupancyGrid
 from navkit.mapping._limits import RANGE_LIMIT, RESOLUTION_MAX, bounded_float
@@ -54,16 +53,6 @@ REASONS = (
     "guess outside the map",
     "degenerate",
 )
-
-
-def bounded_int(value: Any, name: str, low: int, high: int) -> int:
-    """``value`` as an int in ``[low, high]``; ``TypeError`` for non-integers (bool included)."""
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Integral):
-        raise TypeError(f"{name} must be an integer, got {type(value).__name__}")
-    out = int(value)
-    if not low <= out <= high:
-        raise ValueError(f"{name} must be >= {low} and <= {high}, got {out}")
-    return out
 
 
 def scan_points(scan: LaserScan, range_max: float | None) -> FloatArray:

@@ -10,7 +10,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import as_float_array, finite_float
+from navkit._shared.validation import as_float_array, bounded_int, finite_float
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -145,16 +145,6 @@ def bounded_float(value: Any, name: str, lo: float, hi: float) -> float:
         # repr, not :g: 1.0000001 printed as "1" would look inside [0, 1].
         raise ValueError(f"{name} must lie in [{lo:g}, {hi:g}], got {out!r}")
     return out
-
-
-def bounded_int(value: Any, name: str, lo: int, hi: int) -> int:
-    """An integer (not a bool) in ``[lo, hi]``."""
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)):
-        raise TypeError(f"{name} must be an integer, got {type(value).__name__}")
-    if not lo <= int(value) <= hi:
-        text = str(int(value)) if abs(int(value)) < 10**30 else "a huge integer"
-        raise ValueError(f"{name} must lie in [{lo}, {hi}], got {text}")
-    return int(value)
 
 
 @contextmanager

@@ -12,7 +12,7 @@ from numpy.typing import ArrayLike
 from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.frozen import frozen_setattr
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import finite_float, positive_float
+from navkit._shared.validation import bounded_int, finite_float, positive_float
 from navkit.geometry import Pose2D, as_pose
 from navkit.mapping import LaserScan
 from navkit.sim._lidar_kernels import apply_range_noise
@@ -146,12 +146,7 @@ class Lidar:
     mount: Pose2D = _IDENTITY
 
     def __post_init__(self) -> None:
-        n: object = self.n_beams
-        if isinstance(n, bool) or not isinstance(n, numbers.Integral):
-            raise TypeError(f"n_beams must be an integer, got {type(n).__name__}")
-        if not 1 <= int(n) <= MAX_BEAMS:
-            raise ValueError(f"n_beams must be from 1 to {MAX_BEAMS}, got {n}")
-        object.__setattr__(self, "n_beams", int(n))
+        object.__setattr__(self, "n_beams", bounded_int(self.n_beams, "n_beams", 1, MAX_BEAMS))
         fov = positive_float(self.fov, "fov")
         if fov > _TWO_PI + 1e-12:
             raise ValueError(f"fov must lie in (0, 2π] rad, got {fov}")

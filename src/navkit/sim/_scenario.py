@@ -21,7 +21,7 @@ import numpy as np
 
 from navkit._shared.frozen import frozen_setattr, restore_read_only
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import as_float_array, as_sequence, finite_float
+from navkit._shared.validation import as_float_array, as_sequence, bounded_int, finite_float
 from navkit.mapping import OccupancyGrid
 from navkit.sim._trace import Trace
 from navkit.sim._world import World
@@ -87,15 +87,7 @@ def trial_seed(base: int, case_index: int, trial_index: int) -> int:
 
 
 def _int_in(value: object, name: str, upper: int) -> int:
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
-        raise TypeError(f"{name} must be an integer, got {type(value).__name__}")
-    if not 0 <= value < upper:
-        raise ValueError(f"{name} must be in [0, {upper:.3g}), got {_short_int(int(value))}")
-    return int(value)
-
-
-def _short_int(value: int) -> str:
-    return str(value) if abs(value) < 10**30 else "a larger integer"
+    return bounded_int(value, name, 0, upper, exclusive=True)
 
 
 def _text(value: object, name: str) -> str:
@@ -310,11 +302,7 @@ class Table:
         >>> Table("t", ("a", "b"), ((12345.6, 1.23456789e20),)).render().splitlines()[-1]
         '12346  1.23e+20'
         """
-        if isinstance(digits, bool) or not isinstance(digits, (int, np.integer)):
-            raise TypeError(f"digits must be an integer, got {type(digits).__name__}")
-        if not 1 <= digits <= 17:
-            raise ValueError(f"digits must be in [1, 17], got {_short_int(int(digits))}")
-        digits = int(digits)
+        digits = bounded_int(digits, "digits", 1, 17)
         cells = [list(self.columns)] + [[_cell_text(c, digits) for c in row] for row in self.rows]
         widths = [max(len(r[i]) for r in cells) for i in range(len(self.columns))]
 
@@ -786,11 +774,7 @@ class Scenario(ABC):
 
         Raises TypeError for a non-integer (bools included), ValueError out of range.
         """
-        if isinstance(trials, (bool, np.bool_)) or not isinstance(trials, (int, np.integer)):
-            raise TypeError(f"trials must be an integer, got {type(trials).__name__}")
-        if not 1 <= trials <= _MAX_TRIALS:
-            raise ValueError(f"trials must be in [1, {_MAX_TRIALS}], got {_short_int(int(trials))}")
-        return int(trials)
+        return bounded_int(trials, "trials", 1, _MAX_TRIALS)
 
     def _case_count(self) -> int:
         """How many cases the scenario has (``len(self.cases(1))``)."""

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import math
-import numbers
 import warnings
 from dataclasses import dataclass
 from typing import Any
@@ -12,7 +11,13 @@ import numpy as np
 
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.types import IntArray
-from navkit._shared.validation import as_float_array, finite_float, positive_float, refuse_masked
+from navkit._shared.validation import (
+    as_float_array,
+    bounded_int,
+    finite_float,
+    positive_float,
+    refuse_masked,
+)
 from navkit.mapping import LaserScan
 from navkit.sim._lidar import check_latency, check_rate
 
@@ -230,13 +235,9 @@ class WheelEncoders:
         if not 1.0 <= tpr <= 1e9:
             raise ValueError(f"ticks_per_rev must lie in [1, 1e9], got {tpr}")
         object.__setattr__(self, "ticks_per_rev", tpr)
-        bits: object = self.bits
-        if bits is not None:
-            if isinstance(bits, bool) or not isinstance(bits, numbers.Integral):
-                raise TypeError(f"bits must be an integer or None, got {type(bits).__name__}")
-            if not 2 <= int(bits) <= 64:
-                raise ValueError(f"bits must be from 2 to 64, got {bits}")
-            object.__setattr__(self, "bits", int(bits))
+        if self.bits is not None:
+            bits = bounded_int(self.bits, "bits", 2, 64, or_none=True)
+            object.__setattr__(self, "bits", bits)
         object.__setattr__(self, "rate", check_rate(self.rate))
         object.__setattr__(self, "latency", check_latency(self.latency))
 

@@ -13,13 +13,13 @@ from typing import Any
 
 import numpy as np
 
+from navkit._shared.validation import bounded_int
 from navkit.sim._pool import process_pool
 from navkit.sim._scenario import (
     Scenario,
     ScenarioResult,
     Trial,
     TrialResult,
-    _short_int,
     trial_seed,
 )
 
@@ -52,11 +52,7 @@ def _as_scenario(scenario: object) -> Scenario:
 
 
 def _seed_int(value: object, name: str) -> int:
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Integral):
-        raise TypeError(f"{name} must be an integer, got {type(value).__name__}")
-    if not 0 <= int(value) < 2**64:  # trial_seed's range of base seeds
-        raise ValueError(f"{name} must be in [0, 2**64), got {_short_int(int(value))}")
-    return int(value)
+    return bounded_int(value, name, 0, 2**64, exclusive=True)  # trial_seed's base seeds
 
 
 def _plan(scenario: Scenario, trials: int | None, seeds: object) -> tuple[tuple[Trial, ...], int]:
@@ -259,14 +255,10 @@ def sweep(
     0.0
     """
     scenario = _as_scenario(scenario)
-    options: tuple[tuple[str, object], ...] = (("trials", trials), ("workers", workers))
-    for name, value in options:
-        if value is None:
-            continue
-        if isinstance(value, bool) or not isinstance(value, numbers.Integral):
-            raise TypeError(f"{name} must be an integer or None, got {type(value).__name__}")
-    if workers is not None and not 1 <= workers <= MAX_WORKERS:
-        raise ValueError(f"workers must be in [1, {MAX_WORKERS}], got {workers}")
+    if trials is not None:  # its range is the scenario's (Scenario.trials checks it)
+        trials = bounded_int(trials, "trials", or_none=True)
+    if workers is not None:
+        workers = bounded_int(workers, "workers", 1, MAX_WORKERS, or_none=True)
     if progress is not None and not callable(progress):
         raise TypeError(f"progress must be callable or None, got {type(progress).__name__}")
     is_executor = isinstance(executor, concurrent.futures.Executor)

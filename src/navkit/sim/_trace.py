@@ -10,7 +10,7 @@ import numpy as np
 
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import as_bool, as_float_array, finite_float
+from navkit._shared.validation import as_bool, as_float_array, bounded_int, finite_float
 from navkit.sim._polyline_distance_kernels import point_polyline_distances
 from navkit.sim._sensors import ScanReading, real_float
 
@@ -124,12 +124,7 @@ class Metrics:
         if clearance < 0.0:
             raise ValueError(f"min_clearance must be >= 0 (or inf), got {clearance}")
         object.__setattr__(self, "min_clearance", clearance)
-        c = self.collisions
-        if isinstance(c, (bool, np.bool_)) or not isinstance(c, (int, np.integer)):
-            raise TypeError(f"collisions must be an int, got {type(c).__name__}")
-        if not 0 <= c <= 1 << 62:
-            raise ValueError("collisions must lie in [0, 2**62]")
-        object.__setattr__(self, "collisions", int(c))
+        object.__setattr__(self, "collisions", bounded_int(self.collisions, "collisions", 0, 2**62))
 
 
 def _tuple_of(value: object, name: str, cls: type) -> tuple[Any, ...]:

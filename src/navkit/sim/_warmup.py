@@ -16,7 +16,6 @@ from __future__ import annotations
 
 import concurrent.futures
 import math
-import numbers
 import os
 import sys
 import time
@@ -28,7 +27,7 @@ import numpy as np
 
 from navkit._shared.frozen import frozen_setattr
 from navkit._shared.jit import load_numba
-from navkit._shared.validation import positive_float
+from navkit._shared.validation import bounded_int, positive_float
 from navkit.sim._pool import process_pool
 
 __all__ = ["WARMUP_STEPS", "WarmupReport", "WarmupStep", "warmup"]
@@ -380,12 +379,7 @@ class WarmupReport:
         object.__setattr__(self, "steps", steps)
         seconds = positive_float(self.seconds, "seconds", allow_zero=True)
         object.__setattr__(self, "seconds", seconds)
-        workers: object = self.workers
-        if isinstance(workers, (bool, np.bool_)) or not isinstance(workers, numbers.Integral):
-            raise TypeError(f"workers must be an integer, got {type(workers).__name__}")
-        if not 1 <= int(workers) <= MAX_WORKERS:
-            raise ValueError(f"workers must be in [1, {MAX_WORKERS}], got {int(workers)}")
-        object.__setattr__(self, "workers", int(workers))
+        object.__setattr__(self, "workers", bounded_int(self.workers, "workers", 1, MAX_WORKERS))
 
     @property
     def compiled(self) -> tuple[str, ...]:
@@ -485,11 +479,7 @@ def _step_names(only: Iterable[str] | None) -> list[str]:
 def _worker_count(workers: object, steps: int) -> int:
     if workers is None:
         return max(1, min(_cpu_count(), steps))
-    if isinstance(workers, (bool, np.bool_)) or not isinstance(workers, numbers.Integral):
-        raise TypeError(f"workers must be an integer or None, got {type(workers).__name__}")
-    if not 1 <= int(workers) <= MAX_WORKERS:
-        raise ValueError(f"workers must be in [1, {MAX_WORKERS}], got {int(workers)}")
-    return max(1, min(int(workers), steps))
+    return max(1, min(bounded_int(workers, "workers", 1, MAX_WORKERS, or_none=True), steps))
 
 
 def warmup(

@@ -16,7 +16,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
-from navkit._shared.validation import as_bool, finite_float, refuse_masked, unpack
+from navkit._shared.validation import as_bool, bounded_int, finite_float, refuse_masked, unpack
 from navkit.geometry import Pose2D, quaternion_to_yaw
 from navkit.mapping import LaserScan, OccupancyGrid
 from navkit.mapping.io._map_files import _unknown_logodds
@@ -25,11 +25,10 @@ __all__ = ["OccupancyGridMsgFields", "grid_from_msg", "grid_to_msg_fields", "sca
 
 
 def _positive_int(value: Any, name: str) -> int:
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)):
-        raise TypeError(f"{name} must be an integer, got {type(value).__name__}")
-    if value <= 0:
-        raise ValueError(f"{name} must be a positive integer, got {value!r}")
-    return int(value)
+    out = bounded_int(value, name)
+    if out <= 0:
+        raise ValueError(f"{name} must be a positive integer, got {out!r}")
+    return out
 
 
 def _resolution(value: Any, name: str) -> float:

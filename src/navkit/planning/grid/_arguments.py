@@ -3,23 +3,21 @@
 from __future__ import annotations
 
 import math
-import numbers
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
-from navkit._shared.validation import as_cell
+from navkit._shared.validation import as_cell, bounded_int
 from navkit.planning.grid._search_heap import MAX_NODES
 
 
 def check_connectivity(value: Any) -> bool:
     """Return True for 8-connectivity, False for 4; reject anything else."""
-    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
-        raise TypeError(f"connectivity must be the integer 4 or 8, got {value!r}")
-    if int(value) not in (4, 8):
+    count = bounded_int(value, "connectivity")
+    if count not in (4, 8):
         raise ValueError(f"connectivity must be 4 or 8, got {value!r}")
-    return int(value) == 8
+    return count == 8
 
 
 def traversable_cell(costs: NDArray[np.float64], value: Any, name: str) -> tuple[int, int]:

@@ -586,10 +586,14 @@ class MapPlanner:
         size = np.array([[0, 0], [cols, 0], [0, rows], [cols, rows]]) * self._grid.resolution
         corners = self._grid.origin.transform_points(size)
         # Rounded to the nanometre: a rotated origin leaves 1e-16 m where 0 is meant.
-        lo = np.round(corners.min(axis=0), 9) + 0.0
-        hi = np.round(corners.max(axis=0), 9) + 0.0
+        # Printed exactly, not to :g's 6 digits: a map at UTM-size coordinates would
+        # read [4.51235e+06, 4.51235e+06], hiding the point's distance from it.
+        bounds = np.round(np.concatenate([corners.min(axis=0), corners.max(axis=0)]), 9) + 0.0
+        lo0, lo1, hi0, hi1 = (
+            f"{v:g}" if float(f"{v:g}") == v else repr(v) for v in bounds.tolist()
+        )
         return (
-            f": the map covers x in [{lo[0]:g}, {hi[0]:g}] m and y in [{lo[1]:g}, {hi[1]:g}] m "
+            f": the map covers x in [{lo0}, {hi0}] m and y in [{lo1}, {hi1}] m "
             "(its origin is the lower-left corner of cell (0, 0), not the map's centre; "
             "start and goal are world points in metres, not cells)"
         )

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import numbers
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Literal
 
@@ -12,18 +11,12 @@ from numpy.typing import ArrayLike
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.grid_coords import round_half_up
 from navkit._shared.types import FloatArray, IntArray
-from navkit._shared.validation import as_float_array, finite_float
+from navkit._shared.validation import as_float_array, bounded_int, finite_float
 
 __all__ = ["Path2D"]
 
 _FRAMES = ("grid", "world")
 _INT64_MAX = 2**63 - 1
-
-
-def _short_int(value: Any) -> str:
-    """``value`` for a message; a huge integer by its size (its repr may be enormous)."""
-    n = int(value)
-    return str(n) if abs(n) < 10**30 else f"an integer of {n.bit_length()} bits"
 
 
 @frozen_setattr
@@ -106,15 +99,11 @@ class Path2D:
             raise ValueError(f"frame must be 'grid' or 'world', got {frame!r}")
         cost = _non_negative(self.cost, "cost")
         length = _non_negative(self.length, "length")
-        expanded: Any = self.expanded
-        if isinstance(expanded, bool) or not isinstance(expanded, numbers.Integral):
-            raise TypeError(f"expanded must be an integer, got {type(expanded).__name__}")
-        if not 0 <= int(expanded) <= _INT64_MAX:
-            raise ValueError(f"expanded must be in [0, 2**63 - 1], got {_short_int(expanded)}")
+        expanded = bounded_int(self.expanded, "expanded", 0, _INT64_MAX)
         object.__setattr__(self, "points", pts)
         object.__setattr__(self, "cost", cost)
         object.__setattr__(self, "length", length)
-        object.__setattr__(self, "expanded", int(expanded))
+        object.__setattr__(self, "expanded", expanded)
 
     @classmethod
     def _owned(

@@ -13,7 +13,7 @@ from numpy.typing import ArrayLike
 from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.frozen import frozen_setattr, reduce_record
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import as_bool, as_float_array, finite_float
+from navkit._shared.validation import as_bool, as_float_array, bounded_int, finite_float
 from navkit.errors import NoPathError
 from navkit.mapping import LocalGrid
 from navkit.planning.reactive._greedy_kernels import greedy_select
@@ -250,19 +250,14 @@ def greedy_step(
 
 def _count(value: Any, name: str) -> int:
     """An integer in [0, 2**63 - 1] (integral floats accepted, booleans refused)."""
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
-        raise TypeError(f"{name} must hold integers, got {type(value).__name__}")
-    if isinstance(value, numbers.Integral):
-        out = int(value)
-    else:
+    if isinstance(value, numbers.Real) and not isinstance(value, numbers.Integral):
+        # Unlike other integer options, a whole float passes: cells come from
+        # arithmetic on coordinates (2.0), as in every (row, col) argument.
         number = finite_float(value, name)
         if not number.is_integer():
             raise TypeError(f"{name} must hold integers, got {value!r}")
-        out = int(number)
-    if not 0 <= out <= _INT64_MAX:
-        size = str(out) if abs(out) < 10**30 else f"an integer of {out.bit_length()} bits"
-        raise ValueError(f"{name} must be in [0, 2**63 - 1], got {size}")
-    return out
+        value = int(number)
+    return bounded_int(value, name, 0, _INT64_MAX)
 
 
 def _check_grid(value: Any) -> LocalGrid:

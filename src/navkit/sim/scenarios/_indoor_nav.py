@@ -19,14 +19,13 @@ Four parts, each beside the paper's figures:
 from __future__ import annotations
 
 import math
-import numbers
 import time
 from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
 
-from navkit._shared.validation import as_bool, finite_float
+from navkit._shared.validation import as_bool, bounded_int, finite_float
 from navkit.sim import Scenario, ScenarioResult, Scene, Table, Trace, Trial, TrialResult
 from navkit.sim.scenarios._indoor_nav_lab import (
     LAB_HEIGHT,
@@ -105,10 +104,7 @@ _SPEED_RANGE = (0.05, 1.0)
 
 def _count(value: Any, name: str, high: int) -> int:
     """An integer in [1, high]."""
-    out = _index(value, name, None)
-    if not 1 <= out <= high:
-        raise ValueError(f"{name} must lie in [1, {high}], got {out}")
-    return out
+    return bounded_int(value, name, 1, high)
 
 
 def _xy(point: Sequence[float]) -> str:
@@ -645,12 +641,3 @@ class IndoorNav(Scenario):
         )  # fmt: skip
 
 
-def _index(value: Any, name: str, high: int | None) -> int:
-    """A non-negative integer below ``high`` (None: no bound)."""
-    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Integral):
-        raise TypeError(f"{name} must be an integer, got {type(value).__name__}")
-    out = int(value)
-    if out < 0 or (high is not None and out >= high):
-        bound = f"[0, {high})" if high is not None else ">= 0"
-        raise ValueError(f"{name} must be {bound}, got {out}")
-    return out

@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from navkit._shared.validation import finite_float
+from navkit._shared.validation import bounded_int, finite_float
 from navkit.kinematics import OmniDrive
 from navkit.sim import Robot, Scenario, ScenarioResult, Scene, Simulation, Table, Trial, TrialResult
 from navkit.sim.scenarios._soccer_play import (
@@ -160,11 +160,7 @@ class Soccer(Scenario):
         self.perception_noise = _option(perception_noise, "perception_noise", 0.0, 0.5, "m")
         self.wheel_slip = _option(wheel_slip, "wheel_slip", 0.0, 0.5, "")
         self.duration = _option(duration, "duration", 0.1, 600.0, "s")
-        if isinstance(table_cells, bool) or not isinstance(table_cells, (int, np.integer)):
-            raise TypeError(f"table_cells must be an integer, got {type(table_cells).__name__}")
-        if not 50 <= table_cells <= 1200:
-            raise ValueError(f"table_cells must lie in [50, 1200], got {table_cells}")
-        self.table_cells = int(table_cells)
+        self.table_cells = bounded_int(table_cells, "table_cells", 50, 1200)
 
     def __repr__(self) -> str:
         return (
