@@ -151,8 +151,8 @@ def corridor_walls() -> list[Polygon]:
     corridor (x 31..33) runs north to the goal at (32, 6) m.
     """
     walls = _shell(-1.5, -5.0, 35.0, 7.5)
-    north = tuple((x + 1.55, x + 2.45) for x in np.arange(-1.0, 27.0, 4.0))
-    south = tuple((x + 1.55, x + 2.45) for x in np.arange(-1.0, 31.0, 4.0))
+    north = tuple((x + 1.55, x + 2.45) for x in np.arange(-1.0, 27.0, 4.0).tolist())
+    south = tuple((x + 1.55, x + 2.45) for x in np.arange(-1.0, 31.0, 4.0).tolist())
     walls += _walls_x(1.0, -1.5, 31.0, north)
     walls += _walls_x(-1.0, -1.5, 35.0, south)
     walls += _walls_y(31.0, 1.0, 7.5, ((3.55, 4.45),))
