@@ -779,6 +779,8 @@ spec(
         "scans": SequenceOf(LaserScan),
         "laser_poses": SequenceOf(Pose2D),
         "robot_poses": SequenceOf(Pose2D),
+        "times": Array(),  # required: None only lets the deprecated timestamps stand in
+        "odometry": Array(),
     },
 )
 

@@ -46,8 +46,8 @@ def test_logs_match_their_readme(
     assert {len(s) for s in log.scans} == {beams}
     assert log.odometry.shape == (odom, 4)
     if first is not None and last is not None:
-        assert log.timestamps.min() == pytest.approx(first, abs=0.05)
-        assert log.timestamps.max() == pytest.approx(last, abs=0.05)
+        assert log.times.min() == pytest.approx(first, abs=0.05)
+        assert log.times.max() == pytest.approx(last, abs=0.05)
     scan = log.scans[0]
     # CARMEN's guessed geometry: first beam at -90°, 1° (180 beams) or 0.5° (361).
     assert scan.angle_min == pytest.approx(-math.pi / 2)
@@ -91,7 +91,7 @@ def test_odometry_agrees_with_corrected_poses(shared_data: Path) -> None:
     for name in ("intel", "aces"):
         log = read_carmen(shared_data / LOGS / f"{name}-corrected.log.gz")
         odom = log.odometry[log.odometry[:, 3] > 0]
-        nearest = np.abs(odom[None, :, 3] - log.timestamps[:, None]).argmin(axis=1)
+        nearest = np.abs(odom[None, :, 3] - log.times[:, None]).argmin(axis=1)
         laser = np.array([[p.x, p.y] for p in log.laser_poses])
         gap = np.hypot(*(odom[nearest, :2] - laser).T)
         assert np.median(gap) < 0.1
@@ -148,7 +148,7 @@ def test_robotlaser1_lines(tmp_path: Path) -> None:
     assert scan.intensities is not None and scan.intensities.tolist() == [1, 2, 3, 4, 5]
     assert log.laser_poses[0] == Pose2D(1.0, 2.0, 0.1)
     assert log.robot_poses[0] == Pose2D(0.9, 2.0, 0.1)
-    assert log.timestamps.tolist() == [123.5]
+    assert log.times.tolist() == [123.5]
     assert log.odometry.tolist() == [[1.0, 2.0, 0.5, 99.0]]
 
 
@@ -197,17 +197,17 @@ def test_carmen_log_is_a_frozen_record(tmp_path: Path) -> None:
     with pytest.raises(dataclasses.FrozenInstanceError):
         log.scans = ()  # type: ignore[misc]
     with pytest.raises(ValueError, match="read-only"):
-        log.timestamps[0] = 0.0
+        log.times[0] = 0.0
     with pytest.raises(ValueError, match="read-only"):
         log.odometry[0, 0] = 0.0
     stamps = np.array([1.0])
     copy = CarmenLog(log.scans, log.laser_poses, log.robot_poses, stamps, np.zeros((0, 4)))
     stamps[0] = 5.0
-    assert copy.timestamps.tolist() == [1.0]
+    assert copy.times.tolist() == [1.0]
     with pytest.raises(ValueError, match="same length"):
-        CarmenLog(log.scans, (), log.robot_poses, log.timestamps, log.odometry)
+        CarmenLog(log.scans, (), log.robot_poses, log.times, log.odometry)
     with pytest.raises(ValueError, match="odometry must have length 4"):
-        CarmenLog(log.scans, log.laser_poses, log.robot_poses, log.timestamps, np.zeros((1, 3)))
+        CarmenLog(log.scans, log.laser_poses, log.robot_poses, log.times, np.zeros((1, 3)))
 
 
 # ------------------------------------------------------------ issue 12: bad input
@@ -334,12 +334,12 @@ def test_carmen_log_from_lists_copies_and_checks() -> None:
     log = CarmenLog((scan,), (Pose2D(0, 0, 0),), (Pose2D(0, 0, 0),), mine, odo)
     assert mine.flags.writeable and odo.flags.writeable
     mine[0] = 5.0
-    assert log.timestamps.tolist() == [2.0]
+    assert log.times.tolist() == [2.0]
     with pytest.raises(TypeError, match=r"scans\[0\] must be a LaserScan"):
         CarmenLog(([1.0],), (Pose2D(0, 0, 0),), (Pose2D(0, 0, 0),), [1.0], odo)  # type: ignore[arg-type]
     with pytest.raises(TypeError, match=r"laser_poses\[0\]"):
         CarmenLog((scan,), ("pose",), (Pose2D(0, 0, 0),), [1.0], odo)  # type: ignore[arg-type]
-    with pytest.raises(ValueError, match="timestamps must contain only finite values"):
+    with pytest.raises(ValueError, match="times must contain only finite values"):
         CarmenLog((scan,), (Pose2D(0, 0, 0),), (Pose2D(0, 0, 0),), [math.nan], odo)
     with pytest.raises(ValueError, match="odometry must contain only finite values"):
         CarmenLog((scan,), (Pose2D(0, 0, 0),), (Pose2D(0, 0, 0),), [1.0], [[0, 0, math.inf, 1]])

@@ -46,9 +46,9 @@ def test_last_lines_that_are_whole_read_with_or_without_a_newline(tmp_path: Path
         path.write_text(FLASER + tail)
         log = read_carmen(path)
         np.testing.assert_array_equal(log.odometry[:, 3], [480.86])
-        assert log.timestamps.tolist() == [12.25]
+        assert log.times.tolist() == [12.25]
     path.write_text(FLASER.rstrip("\n"))
-    assert read_carmen(path).timestamps.tolist() == [12.25]
+    assert read_carmen(path).times.tolist() == [12.25]
     path.write_text(FLASER + "O")  # an unknown record kind, cut or not, is skipped
     assert len(read_carmen(path)) == 1
     path.write_text(FLASER.replace(" host 12.3", "") + "ODOM 1 2 0.5 0 0 0 9.0\r\n")
@@ -69,6 +69,6 @@ def test_cuts_of_a_real_log_raise_or_read_a_prefix(shared_data: Path, tmp_path: 
             continue
         # What reads is exactly the records of the whole file up to the cut.
         n, m = len(log), log.odometry.shape[0]
-        np.testing.assert_array_equal(log.timestamps, whole.timestamps[:n])
+        np.testing.assert_array_equal(log.times, whole.times[:n])
         np.testing.assert_array_equal(log.odometry, whole.odometry[:m])
         np.testing.assert_array_equal(log.scans[-1].ranges, whole.scans[n - 1].ranges)

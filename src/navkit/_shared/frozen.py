@@ -280,9 +280,16 @@ def rebuild_record(
 
     A writeable array (pickle and deepcopy hand back fresh ones) is kept as a
     read-only view of itself: the array given is never changed, so a
-    :func:`copy.copy` cannot make the original record's array read-only.
+    :func:`copy.copy` cannot make the original record's array read-only. A
+    record class whose fields were renamed maps the old names to the new ones
+    in a ``_renamed_fields`` class attribute, so that pickles made before the
+    rename load into the new fields.
     """
     record: Any = object.__new__(cls)
+    renamed: Mapping[str, str] = getattr(cls, "_renamed_fields", None) or {}
+    if renamed:
+        values = {renamed.get(name, name): value for name, value in values.items()}
+        arrays = {renamed.get(name, name) for name in arrays}
     for name, value in values.items():
         if name in arrays and isinstance(value, np.ndarray) and value.flags.writeable:
             value = value.view()

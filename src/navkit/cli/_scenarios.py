@@ -5,12 +5,12 @@ from __future__ import annotations
 import argparse
 import contextlib
 import inspect
-import os
 import time
 from collections.abc import Iterator
 from pathlib import Path
 from typing import Any, TextIO
 
+from navkit._shared.cores import usable_cores
 from navkit.cli._kernels import announce_compilation, check_cache
 from navkit.cli._outputs import (
     check_distinct,
@@ -127,8 +127,7 @@ def run_scenario(
 def _processes(workers: int | None, total: int) -> int:
     """How many local processes sweep runs ``total`` trials on (1: this one)."""
     # sweep's rule: min(workers or the usable cores, trials) processes; 1 is this process.
-    cores = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
-    return max(1, min(workers if workers is not None else (cores or 1), total))
+    return max(1, min(workers if workers is not None else usable_cores(), total))
 
 
 def _where(address: str | None, workers: int | None, total: int) -> str:

@@ -74,7 +74,8 @@ class FollowTheCarrot(PathTracker):
         Heading error (rad) at which an in-place turn toward the path ends, in
         (0, ``rotate_angle``].
     drive : {"diff", "omni"}, default "diff"
-        Differential (``vy = 0``) or omnidirectional robot.
+        Differential (``vy = 0``) or omnidirectional robot (the default of
+        every path tracker; ``PotentialFieldController``'s is ``"omni"``).
 
     Other Parameters
     ----------------

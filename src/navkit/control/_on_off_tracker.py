@@ -72,7 +72,8 @@ class OnOffTracker(PathTracker):
     yaw_tolerance : float, default 0.01
         Heading error (rad) at which the goal heading is reached, in (0, π].
     drive : {"diff", "omni"}, default "diff"
-        Differential (``vy = 0``) or omnidirectional robot.
+        Differential (``vy = 0``) or omnidirectional robot (the default of
+        every path tracker; ``PotentialFieldController``'s is ``"omni"``).
 
     Other Parameters
     ----------------

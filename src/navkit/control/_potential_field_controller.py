@@ -138,7 +138,10 @@ class PotentialFieldController:
     drive : {"omni", "diff"}, default "omni"
         ``"omni"``: output ``(vx, vy, ω)`` in the robot frame. ``"diff"``: a
         differential drive, ``vy = 0`` and ``vx >= 0`` the desired velocity's
-        component along the heading.
+        component along the heading. The default is the soccer robot paper's
+        omnidirectional robot; the path trackers (``FollowTheCarrot``,
+        ``OnOffTracker``, ``RegulatedPurePursuit``) default to ``"diff"``, so
+        pass ``drive`` when swapping one for the other.
     goal_tolerance : float, default 0.05
         Distance (m) at which the goal counts as reached for stall detection, in
         [1e-6, 1e6].

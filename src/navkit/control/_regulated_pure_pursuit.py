@@ -173,7 +173,8 @@ class RegulatedPurePursuit(PathTracker):
         robot is measured turning faster, to within ``max_angular_accel`` of
         its measured rate.
     drive : {"diff", "omni"}, default "diff"
-        Differential (``vy = 0``) or omnidirectional robot.
+        Differential (``vy = 0``) or omnidirectional robot (the default of
+        every path tracker; ``PotentialFieldController``'s is ``"omni"``).
 
     Other Parameters
     ----------------

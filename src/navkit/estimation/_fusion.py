@@ -386,6 +386,13 @@ def _block(
 class FusionResult:
     """Filter output over a :class:`MeasurementLog`, one row per measurement.
 
+    Row ``k`` is the filter after row ``k`` of the log: T rows for T
+    measurements. The state before the log (``x0``, or the filter's ``x``
+    when :meth:`PlanarFusion.update_batch` was called) is not a row, as in
+    :meth:`DiffOdometry.update_batch`; :func:`navkit.geometry.rollout` and
+    :meth:`OmniOdometry.update_batch`, which take increments, return the start
+    as row 0 and T + 1 rows.
+
     Attributes
     ----------
     times : ndarray, shape (T,)
@@ -557,7 +564,10 @@ class PlanarFusion(GaussianEstimate):
         Time of ``x0``, s (any finite value; so are measurement times).
     gate_probability : float, optional
         If given, in (0, 1): reject measurements whose NIS exceeds the chi-square
-        quantile of this probability for their dimension (Mahalanobis gate).
+        quantile of this probability for their dimension (Mahalanobis gate). A
+        probability, not a threshold: ``ExtendedKalmanFilter.update(gate=)``
+        takes the quantile itself, ``scipy.stats.chi2.ppf(gate_probability, m)``
+        for a measurement of dimension ``m``.
 
     Notes
     -----
@@ -1034,7 +1044,9 @@ class PlanarFusion(GaussianEstimate):
         -------
         FusionResult
             State (T, 6), covariance (T, 6, 6), status (T,) and NIS (T,) after
-            every row of the T in ``log`` (units as in :class:`FusionResult`).
+            every row of the T in ``log`` (units as in :class:`FusionResult`);
+            the state before the log is not a row (read :attr:`x` and
+            :attr:`P` before the call for it).
 
         Raises
         ------

@@ -448,7 +448,9 @@ class ScenarioResult:
         The base seed the trials' seeds came from.
     trials : tuple of TrialResult
         Every trial, in the scenario's order (case, then trial index) whatever
-        order they ran in.
+        order they ran in: the total over the cases, not the ``trials``
+        argument of :meth:`Scenario.run` and :func:`~navkit.sim.sweep`, which
+        is trials per case (as ``navkit run --trials``).
     tables : tuple of Table
         navkit's figures beside the paper's.
     summary : Mapping[str, float]
@@ -730,8 +732,10 @@ class Scenario(ABC):
         seed : int, optional
             The base seed, >= 0; the same seed gives the same result.
         workers : int or None, optional
-            Processes to use; 1 (default) runs in this process, None uses
-            every core. Ignored when ``executor`` is given.
+            Processes to use, as for :func:`~navkit.sim.sweep`: 1 (the default
+            here) runs in this process, None uses every core this process may
+            use (its CPU affinity; the default of ``sweep``, ``warmup`` and
+            ``navkit run``). Ignored when ``executor`` is given.
         executor : concurrent.futures.Executor or dask.distributed.Client, optional
             Where to run the trials.
         progress : callable, optional

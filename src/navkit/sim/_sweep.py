@@ -5,7 +5,6 @@ from __future__ import annotations
 import concurrent.futures
 import dataclasses
 import numbers
-import os
 import queue
 import time
 from collections.abc import Callable, Sequence
@@ -13,6 +12,7 @@ from typing import Any
 
 import numpy as np
 
+from navkit._shared.cores import usable_cores
 from navkit._shared.validation import bounded_int
 from navkit.sim._pool import process_pool
 from navkit.sim._scenario import (
@@ -29,14 +29,6 @@ __all__ = ["sweep"]
 MAX_WORKERS = 1024
 
 Progress = Callable[[int, int], None]
-
-
-def _cpu_count() -> int:
-    """Cores this process may run on."""
-    try:
-        return len(os.sched_getaffinity(0))
-    except AttributeError:  # pragma: no cover - not on Linux
-        return os.cpu_count() or 1
 
 
 def _as_scenario(scenario: object) -> Scenario:
@@ -283,7 +275,7 @@ def sweep(
             progress,
         )
     else:
-        n = min(int(workers) if workers is not None else _cpu_count(), len(plan))
+        n = min(int(workers) if workers is not None else usable_cores(), len(plan))
         if n <= 1:
             results = _serial(scenario, plan, progress)
         else:

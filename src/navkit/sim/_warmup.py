@@ -16,7 +16,6 @@ from __future__ import annotations
 
 import concurrent.futures
 import math
-import os
 import sys
 import time
 from collections.abc import Callable, Iterable, Sequence
@@ -25,6 +24,7 @@ from typing import Any
 
 import numpy as np
 
+from navkit._shared.cores import usable_cores
 from navkit._shared.frozen import frozen_setattr
 from navkit._shared.jit import load_numba
 from navkit._shared.validation import bounded_int, positive_float
@@ -452,14 +452,6 @@ def _run_step(name: str) -> WarmupStep:
     return WarmupStep(name, tuple(sorted(compiled)), tuple(sorted(loaded)), wall, cpu)
 
 
-def _cpu_count() -> int:
-    """Cores this process may run on."""
-    try:
-        return len(os.sched_getaffinity(0))
-    except AttributeError:  # pragma: no cover - not on Linux
-        return os.cpu_count() or 1
-
-
 def _step_names(only: Iterable[str] | None) -> list[str]:
     if only is None:
         return list(WARMUP_STEPS)
@@ -478,7 +470,7 @@ def _step_names(only: Iterable[str] | None) -> list[str]:
 
 def _worker_count(workers: object, steps: int) -> int:
     if workers is None:
-        return max(1, min(_cpu_count(), steps))
+        return max(1, min(usable_cores(), steps))
     return max(1, min(bounded_int(workers, "workers", 1, MAX_WORKERS, or_none=True), steps))
 
 

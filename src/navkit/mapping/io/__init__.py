@@ -8,12 +8,19 @@
   ROS is never imported.
 * :func:`read_carmen`: a CARMEN log (FLASER / ROBOTLASER1 lines, gzip'd or not)
   as :class:`~navkit.mapping.LaserScan` objects with their laser and robot poses
-  and timestamps (:class:`CarmenLog`).
+  (one :class:`~navkit.geometry.Pose2D` per scan) and times (:class:`CarmenLog`).
 * :func:`read_bag_odometry`, :func:`read_bag_imu`, :func:`read_bag_scans`,
   :func:`bag_topics`: ``nav_msgs/Odometry``, ``sensor_msgs/Imu`` and
   ``sensor_msgs/LaserScan`` messages of ROS 1 and ROS 2 bags as time-stamped
   arrays (:class:`BagOdometry`, :class:`BagImu`, :class:`BagScans`), without
   ROS (the ``ros`` extra: ``rosbags``).
+
+Every reader names its array of times, in seconds, ``times`` (a bag's header
+stamps, a CARMEN line's ``timestamp`` field). ROS message helpers keep the
+message's own field names: :class:`OccupancyGridMsgFields` ``width`` and
+``height`` are ``info.width`` and ``info.height``, cell counts (columns and
+rows), whereas :attr:`OccupancyGrid.width <navkit.mapping.OccupancyGrid.width>`
+and ``height`` are extents in metres.
 
 Every malformed file raises ``ValueError`` naming the file (and line, for
 logs) and the problem — never a decoder's own exception (``UnicodeDecodeError``,

@@ -6,15 +6,19 @@ import gzip
 import io
 import math
 import os
+import warnings
 import zlib
 from array import array
 from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
+from types import MappingProxyType
 from typing import Any, BinaryIO, NamedTuple
 
 import numpy as np
+from numpy.typing import ArrayLike
 
+from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, as_sequence, positive_float
@@ -63,7 +67,7 @@ def _guess_increment(n: int) -> float:
 @frozen_setattr
 @dataclass(frozen=True, slots=True, eq=False)
 class CarmenLog:
-    """Laser scans of a CARMEN log with their poses and timestamps.
+    """Laser scans of a CARMEN log with their poses and times.
 
     Attributes
     ----------
@@ -74,21 +78,41 @@ class CarmenLog:
         ``[x, y, theta]`` sequences are converted.
     robot_poses : tuple of Pose2D
         Robot (odometry) pose logged with each scan.
-    timestamps : ndarray, shape (N,)
-        Scan timestamps, s (the message's own ``timestamp`` field), finite.
-        Stored as a read-only copy (the caller's array is neither kept nor frozen).
+    times : ndarray, shape (N,)
+        Scan times, s (the line's own ``timestamp`` field), finite: ``times``
+        as in the bag readers (:class:`BagScans`, :class:`BagOdometry`) and
+        :class:`~navkit.estimation.MeasurementLog`. Stored as a read-only copy
+        (the caller's array is neither kept nor frozen). Required (its default
+        None only lets the deprecated ``timestamps`` stand in for it).
     odometry : ndarray, shape (M, 4)
-        ODOM records ``(x, y, theta, timestamp)``, finite, ``theta`` wrapped to
-        (-π, π] (as the poses' headings are); an empty sequence gives shape
-        (0, 4). Stored as a read-only copy.
+        ODOM records ``(x, y, theta, time)`` (time in s), finite, ``theta``
+        wrapped to (-π, π] (as the poses' headings are); an empty sequence
+        gives shape (0, 4). Stored as a read-only copy. Required.
+
+    Other Parameters
+    ----------------
+    timestamps : array_like, shape (N,), optional
+        Deprecated name of `times` (the :attr:`timestamps` property too).
 
     Raises
     ------
     TypeError
         A scan that is not a LaserScan, a pose that is not a pose, arrays that
-        are not real-valued.
+        are not real-valued, a missing ``times`` or ``odometry``, both
+        ``times`` and ``timestamps``.
     ValueError
-        Non-finite timestamps or odometry, wrong shapes, different lengths.
+        Non-finite times or odometry, wrong shapes, different lengths.
+
+    Notes
+    -----
+    The poses are one :class:`~navkit.geometry.Pose2D` per scan, to pair with
+    :attr:`scans` as :func:`~navkit.mapping.integrate_scan` and
+    :meth:`~navkit.mapping.ScanMapper.update` take them (``for scan, pose in
+    zip(log.scans, log.laser_poses)``); the numeric streams (``times``,
+    ``odometry``) are arrays. For the poses as an (N, 3) array ``[x, y,
+    theta]``, the layout of :attr:`BagOdometry.poses` and
+    :attr:`~navkit.mapping.ScanMapper.trajectory`, stack them:
+    ``np.array([p.as_array() for p in log.laser_poses])``.
 
     Examples
     --------
@@ -98,15 +122,46 @@ class CarmenLog:
     ...     path = Path(folder) / "log.txt"
     ...     _ = path.write_text("FLASER 3 1.0 2.0 5.0 0.5 0 0 0.5 0 0 12.5 host 12.6\\n")
     ...     log = read_carmen(path)
-    >>> len(log), log.laser_poses[0], log.timestamps
+    >>> len(log), log.laser_poses[0], log.times
     (1, Pose2D(x=0.5, y=0.0, theta=0.0), array([12.5]))
+    >>> np.array([p.as_array() for p in log.laser_poses])  # the poses as an (N, 3) array
+    array([[0.5, 0. , 0. ]])
     """
 
     scans: tuple[LaserScan, ...]
     laser_poses: tuple[Pose2D, ...]
     robot_poses: tuple[Pose2D, ...]
-    timestamps: FloatArray
+    times: FloatArray
     odometry: FloatArray
+
+    # Fields renamed since a release, for pickles made before (see
+    # navkit._shared.frozen.rebuild_record). Not annotated: a ClassVar would still
+    # be listed in __dataclass_fields__.
+    _renamed_fields = MappingProxyType({"timestamps": "times"})
+
+    def __init__(
+        self,
+        scans: tuple[LaserScan, ...],
+        laser_poses: tuple[Pose2D, ...],
+        robot_poses: tuple[Pose2D, ...],
+        times: ArrayLike | None = None,
+        odometry: ArrayLike | None = None,
+        *,
+        timestamps: ArrayLike | None = None,
+    ) -> None:
+        # Written out (the dataclass keeps a class's own __init__) for the deprecated
+        # keyword; the checks stay in __post_init__, which dataclass subclasses'
+        # generated __init__ call too.
+        times = renamed_keyword("timestamps", timestamps, "times", times, None)
+        for name, value in (("times", times), ("odometry", odometry)):
+            if value is None:
+                raise TypeError(f"CarmenLog() missing the argument {name}")
+        object.__setattr__(self, "scans", scans)
+        object.__setattr__(self, "laser_poses", laser_poses)
+        object.__setattr__(self, "robot_poses", robot_poses)
+        object.__setattr__(self, "times", times)
+        object.__setattr__(self, "odometry", odometry)
+        self.__post_init__()
 
     def __post_init__(self) -> None:
         scans = as_sequence(self.scans, "scans")
@@ -121,7 +176,7 @@ class CarmenLog:
             as_pose(p, f"robot_poses[{i}]")
             for i, p in enumerate(as_sequence(self.robot_poses, "robot_poses"))
         )
-        stamps = np.array(as_float_array(self.timestamps, "timestamps", ndim=1), copy=True)
+        stamps = np.array(as_float_array(self.times, "times", ndim=1), copy=True)
         odometry_in = as_float_array(self.odometry, "odometry")
         if odometry_in.size == 0:
             odometry_in = odometry_in.reshape(0, 4)
@@ -130,7 +185,7 @@ class CarmenLog:
         odometry[:, 2] = wrap_angle(odometry[:, 2])
         if not len(scans) == len(laser) == len(robot) == stamps.shape[0]:
             raise ValueError(
-                "scans, laser_poses, robot_poses and timestamps must have the same length, got "
+                "scans, laser_poses, robot_poses and times must have the same length, got "
                 f"{len(scans)}, {len(laser)}, {len(robot)} and {stamps.shape[0]}"
             )
         stamps.flags.writeable = False
@@ -138,16 +193,38 @@ class CarmenLog:
         object.__setattr__(self, "scans", scans)
         object.__setattr__(self, "laser_poses", laser)
         object.__setattr__(self, "robot_poses", robot)
-        object.__setattr__(self, "timestamps", stamps)
+        object.__setattr__(self, "times", stamps)
         object.__setattr__(self, "odometry", odometry)
 
     def __reduce__(self) -> tuple[Any, ...]:
         """Copy and pickle support: the arrays read-only again, also in subclasses' copies."""
-        return reduce_record(self, ("timestamps", "odometry"))
+        return reduce_record(self, ("times", "odometry"))
 
     def __setstate__(self, state: list[Any]) -> None:
         """Restore from an older pickle, the arrays read-only again."""
-        restore_read_only(self, state, ("timestamps", "odometry"))
+        restore_read_only(self, state, ("times", "odometry"))
+
+    @property
+    def timestamps(self) -> FloatArray:
+        """Deprecated alias of :attr:`times`.
+
+        Examples
+        --------
+        >>> import tempfile
+        >>> from pathlib import Path
+        >>> with tempfile.TemporaryDirectory() as folder:
+        ...     path = Path(folder) / "log.txt"
+        ...     _ = path.write_text("FLASER 1 1.0 0 0 0 0 0 0 12.5 host 12.6\\n")
+        ...     read_carmen(path).times  # the new name
+        array([12.5])
+        """
+        warnings.warn(
+            "CarmenLog.timestamps is deprecated and will be removed in a future release: "
+            "use CarmenLog.times",
+            DeprecationWarning,
+            stacklevel=2,
+        )
+        return self.times
 
     def __len__(self) -> int:
         return len(self.scans)
@@ -409,7 +486,7 @@ def read_carmen(
     -------
     CarmenLog
         The scans in file order with their laser and robot poses and
-        timestamps, and the ODOM records.
+        times, and the ODOM records.
 
     Raises
     ------
@@ -478,6 +555,6 @@ def read_carmen(
         scans=tuple(scans),
         laser_poses=tuple(Pose2D(*r.laser_pose) for r in records),
         robot_poses=tuple(Pose2D(*r.robot_pose) for r in records),
-        timestamps=np.array([r.timestamp for r in records], dtype=np.float64),
+        times=np.array([r.timestamp for r in records], dtype=np.float64),
         odometry=np.frombuffer(odometry, dtype=np.float64).reshape(-1, 4),
     )

@@ -84,7 +84,10 @@ class OccupancyGridMsgFields:
     Parameters
     ----------
     width, height : int
-        ``info.width`` (columns) and ``info.height`` (rows), >= 1.
+        ``info.width`` (columns) and ``info.height`` (rows), >= 1: cell counts
+        under the message's own field names, ``grid.shape[1]`` and
+        ``grid.shape[0]`` of the :class:`~navkit.mapping.OccupancyGrid`, whose
+        own ``width`` and ``height`` are extents in metres.
     resolution : float
         ``info.resolution``, m per cell, in [1e-6, 1e6].
     origin_position : (float, float, float)
@@ -289,8 +292,11 @@ def grid_to_msg_fields(
     Returns
     -------
     OccupancyGridMsgFields
-        ``origin_position`` is ``(x, y, 0)``, ``origin_orientation`` the yaw's
-        quaternion and ``data`` the row-major cells (row 0 at the origin).
+        ``width`` and ``height`` are the cell counts ``grid.shape[1]`` and
+        ``grid.shape[0]`` (ROS's names; ``grid.width`` and ``grid.height`` are
+        metres), ``origin_position`` is ``(x, y, 0)``, ``origin_orientation``
+        the yaw's quaternion and ``data`` the row-major cells (row 0 at the
+        origin).
 
     Other Parameters
     ----------------

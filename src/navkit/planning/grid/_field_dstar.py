@@ -152,7 +152,11 @@ class FieldDStar:
         ``interpolate=True`` by :meth:`plan` / :meth:`replan`, and always on the
         linked paths of :meth:`plan_cells` and the world methods.
     resolution : float, default 1.0
-        Cell side in m, in ``[1e-6, 1e6]``, for the world methods.
+        Cell side in m, in ``[1e-6, 1e6]``, for the world methods (the node and
+        cell methods do not use it). The default suits a bare cost array; for
+        costs of an :class:`~navkit.mapping.OccupancyGrid` pass its
+        ``resolution`` (and ``origin``), which :class:`MapPlanner` reads from
+        its grid itself.
     origin : Pose2D or (x, y, theta), default Pose2D(0, 0, 0)
         World pose of node ``(0, 0)``, the outer corner of cell ``(0, 0)``
         (rows along the origin's y axis, columns along its x axis), for the
