@@ -363,7 +363,11 @@ def planar_step(
         k = int(buf[_COMP0 + a])
         for b in range(m):
             buf[_CHOL0 + W * a + b] = buf[_P0 + W * (k + 2) + int(buf[_COMP0 + b]) + 2]
+            # The observed states' own rows of K, H K = H P Hᵀ S⁻¹ = I - R S⁻¹, would
+            # cancel: solve for -R S⁻¹ instead (its row a solves S u = -R e_a).
+            buf[_SOLVE0 + W * (k + 2) + b] = 0.0
         buf[_CHOL0 + (W + 1) * a] += buf[_R0 + k]
+        buf[_SOLVE0 + W * (k + 2) + a] = -buf[_R0 + k]
     if not _cholesky_inplace(buf, _CHOL0, m, _INV0):
         return NOT_POSITIVE_DEFINITE, math.nan
     _cho_solve_rows(buf, _CHOL0, _INV0, m, _SOLVE0)
@@ -374,6 +378,26 @@ def planar_step(
         return OVERFLOW, math.inf
     if nis > gate:
         return GATED, nis
+    # E = R S⁻¹ (m x m) to the rows of F - I (free after the prediction), then the
+    # observed rows of K: off the diagonal -E; on it 1 - E where E <= 1/2, otherwise
+    # (a measurement less precise than the estimate) (H P Hᵀ S⁻¹)_aa with S⁻¹ = R⁻¹ E.
+    for a in range(m):
+        ka = int(buf[_COMP0 + a]) + 2
+        for b in range(m):
+            buf[_E0 + W * a + b] = -buf[_SOLVE0 + W * ka + b]
+    for a in range(m):
+        ka = int(buf[_COMP0 + a]) + 2
+        for b in range(m):
+            buf[_SOLVE0 + W * ka + b] = -buf[_E0 + W * a + b]
+        e = buf[_E0 + (W + 1) * a]
+        if e <= 0.5:
+            buf[_SOLVE0 + W * ka + a] = 1.0 - e
+        else:
+            t = 0.0
+            for b in range(m):
+                kb = int(buf[_COMP0 + b])
+                t += buf[_P0 + W * ka + kb + 2] * (buf[_E0 + W * b + a] / buf[_R0 + kb])
+            buf[_SOLVE0 + W * ka + a] = t
     # From here on K is rows 0-5 of the solved block. The loops over the observed
     # components are the outer ones: the inner loops have a constant length and LLVM
     # unrolls them, instead of copying a loop over the components (unrolled four times,
@@ -386,8 +410,15 @@ def planar_step(
         for i in range(N_STATE):
             buf[_XN0 + i] += buf[_SOLVE0 + W * i + a] * ya
     buf[_XN0 + THETA] = _wrap(buf[_XN0 + THETA])
-    # Joseph form with H selecting the observed states: A = I - K H differs from I only in
-    # those columns, so A P = P - K (H P) and (A P) Aᵀ = A P - (A P Hᵀ) Kᵀ; then + K R Kᵀ.
+    # Joseph form P = A P Aᵀ + K R Kᵀ with H selecting the observed states: A = I - K H
+    # differs from I only in those columns, so A P = P - K (H P) and (A P) Aᵀ =
+    # A P - (A P Hᵀ) Kᵀ. Except in the rows of A of the observed states themselves:
+    # there A = I - H K = R S⁻¹ (on the observed columns, 0 elsewhere), which
+    # 1 - K computes with a cancellation that leaves about ε² P for a K rounded by ε,
+    # all that is left when R < ε² P (P 1e100 and R 1e-100 gave a variance of 4e68,
+    # not 1e-100, and cross-covariances wrong by orders of magnitude). R S⁻¹ itself,
+    # (solved above), keeps them to rounding; A P Aᵀ + K R Kᵀ stays a sum of positive
+    # semi-definite terms.
     for i in range(W * N_STATE):
         buf[_FP0 + i] = buf[_P0 + i]
     for a in range(m):
@@ -396,8 +427,13 @@ def planar_step(
             g = buf[_SOLVE0 + W * i + a]
             for j in range(N_STATE):
                 buf[_FP0 + W * i + j] -= g * buf[_P0 + W * k + j]
-    # M = A P + (K R - A P Hᵀ) Kᵀ, entry by entry; the result is symmetric in exact
-    # arithmetic, so it is the mean of M and Mᵀ (exactly symmetric).
+    # The observed rows of A P: (R S⁻¹ H P) = R Kᵀ.
+    for a in range(m):
+        k = int(buf[_COMP0 + a])
+        rk = buf[_R0 + k]
+        for j in range(N_STATE):
+            buf[_FP0 + W * (k + 2) + j] = rk * buf[_SOLVE0 + W * j + a]
+    # M = A P + (K R - A P Hᵀ) Kᵀ, entry by entry, ...
     for i in range(W * N_STATE):
         buf[_PN0 + i] = buf[_FP0 + i]
     for a in range(m):
@@ -407,6 +443,22 @@ def planar_step(
             g = buf[_SOLVE0 + W * i + a] * rk - buf[_FP0 + W * i + k + 2]
             for j in range(N_STATE):
                 buf[_PN0 + W * i + j] += g * buf[_SOLVE0 + W * j + a]
+    # ... but in the observed columns (A P) Aᵀ takes the rows R S⁻¹ of A:
+    # M[:, c] = Σ_b (A P)[:, b] (R S⁻¹)[c, b] + K R K[c, :]ᵀ.
+    for c in range(m):
+        kc = int(buf[_COMP0 + c]) + 2
+        for i in range(N_STATE):
+            buf[_PN0 + W * i + kc] = 0.0
+        for b in range(m):
+            kb = int(buf[_COMP0 + b])
+            e = buf[_E0 + W * c + b]
+            kr = buf[_SOLVE0 + W * kc + b] * buf[_R0 + kb]
+            for i in range(N_STATE):
+                buf[_PN0 + W * i + kc] += (
+                    buf[_FP0 + W * i + kb + 2] * e + buf[_SOLVE0 + W * i + b] * kr
+                )
+    # The result is symmetric in exact arithmetic, so it is the mean of M and Mᵀ (exactly
+    # symmetric).
     for i in range(N_STATE):
         for j in range(i, N_STATE):
             tmp = 0.5 * (buf[_PN0 + W * i + j] + buf[_PN0 + W * j + i])
