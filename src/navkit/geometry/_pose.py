@@ -235,13 +235,12 @@ class Pose2D:
         pts = as_points(points_xy, "points_xy")
         c = math.cos(self.theta)
         s = math.sin(self.theta)
-        rot = np.array([[c, s], [-s, c]])
         with np.errstate(over="ignore", invalid="ignore"):
-            out: FloatArray = pts @ rot + np.array([self.x, self.y])
+            out = _rotate_shift(pts, c, s, self.x, self.y)
             if not np.isfinite(out).all():
                 # As in compose: a partial sum may overflow where the point does not.
                 # Only there: the other points stay those of a call of their own.
-                small = (pts * _SHRINK) @ rot + np.array([self.x * _SHRINK, self.y * _SHRINK])
+                small = _rotate_shift(pts * _SHRINK, c, s, self.x * _SHRINK, self.y * _SHRINK)
                 out = np.where(np.isfinite(out), out, small / _SHRINK)
         if not np.isfinite(out).all():
             raise _overflow("points_xy", "transforming the points")
@@ -385,6 +384,22 @@ class Twist2D:
 # At that size no partial sum of x + c*dx - s*dy (|c|, |s| <= 1) overflows unless
 # the result itself is beyond ±1.8e308 when scaled back.
 _SHRINK = 0.125
+
+
+def _rotate_shift(pts: FloatArray, c: float, s: float, x: float, y: float) -> FloatArray:
+    """``pts @ [[c, s], [-s, c]] + (x, y)``, computed element by element.
+
+    Not with ``@``: BLAS rounds a matrix product differently by its size and by
+    CPU (fused multiply-adds in some kernels), so a point would not map to the same
+    bits alone as among others (1.7e308 rotated by 45° came out 2.09e292 in a call
+    of two points and 2.00e292 alone, on an AMD EPYC's OpenBLAS).
+    """
+    px = pts[:, 0]
+    py = pts[:, 1]
+    out: FloatArray = np.empty(pts.shape)
+    out[:, 0] = px * c - py * s + x
+    out[:, 1] = px * s + py * c + y
+    return out
 
 
 def _grow(x: float, y: float, name: str, what: str) -> tuple[float, float]:
