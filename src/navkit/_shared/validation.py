@@ -383,6 +383,7 @@ def _real_array(value: Any, name: str) -> FloatArray:
             if isinstance(item, (bool, np.bool_)) or not isinstance(item, numbers.Real):
                 raise TypeError(
                     f"{name} must hold real numbers, got an element of type {type(item).__name__}"
+                    + _message_hint(item)
                 )
     elif kind not in "iuf":
         raise TypeError(f"{name} must hold real numbers, got dtype {raw.dtype}")
@@ -394,6 +395,19 @@ def _real_array(value: Any, name: str) -> FloatArray:
         ) from None
     except (TypeError, ValueError) as exc:
         raise TypeError(f"{name} must be numeric array-like: {exc}") from None
+
+
+def _message_hint(item: object) -> str:
+    """A hint for a ROS message (``geometry_msgs/Point``, ``Quaternion``, ...) passed whole."""
+    try:
+        fields = [f for f in "xyzw" if hasattr(item, f)]
+    except Exception:  # a property raising: not a message
+        return ""
+    if fields[:2] != ["x", "y"]:
+        return ""
+    listed = ", ".join(f"m.{f}" for f in fields)
+    guess = "" if type(item).__module__.startswith("navkit") else " (a ROS message?)"
+    return f" with fields {', '.join(fields)}{guess}: pass ({listed})"
 
 
 def integer_readings(value: object, name: str) -> NDArray[Any]:
