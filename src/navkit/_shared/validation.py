@@ -345,12 +345,13 @@ def _refuse_masked_elements(
                 )
 
 
-def _real_array(value: Any, name: str) -> FloatArray:
+def _real_array(value: Any, name: str, components: int | None = None) -> FloatArray:
     """``value`` as float64, refusing what only converts by accident.
 
     Complex numbers (NumPy would drop the imaginary part with a warning),
     strings (``"1.0"`` converts silently) and booleans are rejected, consistently
-    with :func:`finite_float`.
+    with :func:`finite_float`. ``components`` (the length of the last axis the
+    caller wants, if known) only shapes the hint for a ROS message given whole.
     """
     if isinstance(value, np.ndarray):
         if type(value) is not np.ndarray:
@@ -383,7 +384,7 @@ def _real_array(value: Any, name: str) -> FloatArray:
             if isinstance(item, (bool, np.bool_)) or not isinstance(item, numbers.Real):
                 raise TypeError(
                     f"{name} must hold real numbers, got an element of type {type(item).__name__}"
-                    + _message_hint(item)
+                    + _message_hint(item, components)
                 )
     elif kind not in "iuf":
         raise TypeError(f"{name} must hold real numbers, got dtype {raw.dtype}")
@@ -397,15 +398,22 @@ def _real_array(value: Any, name: str) -> FloatArray:
         raise TypeError(f"{name} must be numeric array-like: {exc}") from None
 
 
-def _message_hint(item: object) -> str:
-    """A hint for a ROS message (``geometry_msgs/Point``, ``Quaternion``, ...) passed whole."""
+def _message_hint(item: object, components: int | None = None) -> str:
+    """A hint for a ROS message (``geometry_msgs/Point``, ``Quaternion``, ...) passed whole.
+
+    With ``components`` (the values the argument takes per item), only that many
+    fields are suggested: a ``Point`` where points ``(x, y)`` are wanted is
+    ``(m.x, m.y)``, not ``(m.x, m.y, m.z)``, which would be refused for its shape.
+    """
     try:
         fields = [f for f in "xyzw" if hasattr(item, f)]
     except Exception:  # a property raising: not a message
         return ""
     if fields[:2] != ["x", "y"]:
         return ""
-    listed = ", ".join(f"m.{f}" for f in fields)
+    if components is not None and components > len(fields):
+        return ""  # not the message the argument wants: no advice beats a wrong one
+    listed = ", ".join(f"m.{f}" for f in fields[:components])
     guess = "" if type(item).__module__.startswith("navkit") else " (a ROS message?)"
     return f" with fields {', '.join(fields)}{guess}: pass ({listed})"
 
@@ -460,6 +468,7 @@ def as_float_array(
     ndim: int | None = None,
     shape: Sequence[int | None] | None = None,
     finite: bool = True,
+    components: int | None = None,
 ) -> FloatArray:
     """Convert ``value`` to a float64 array and check its shape and finiteness.
 
@@ -475,8 +484,14 @@ def as_float_array(
         Required shape; ``None`` entries match any length. Implies ``ndim``.
     finite : bool, default True
         Reject NaN and infinities.
+    components : int, optional
+        Values per item (the last axis's length) the caller wants when
+        ``shape`` does not say (``shape[-1]`` by default): the fields suggested
+        when a ROS message is passed whole.
     """
-    arr = _real_array(value, name)
+    if components is None and shape is not None and len(shape) > 0:
+        components = shape[-1]
+    arr = _real_array(value, name, components)
     if arr.ndim == 1 and arr.shape[0] > 1 and arr.strides[0] <= 0:
         # A broadcast (np.broadcast_to) or reversed view: NumPy's products (`@`) take
         # another summation order for it than BLAS does for the same values in a
@@ -505,7 +520,7 @@ def as_points(value: ArrayLike, name: str, *, finite: bool = True) -> FloatArray
     sequence (shape ``(0,)``) or shape ``(0, 2)`` — become ``(0, 2)``. Other
     empty shapes (``(3, 0)``, ``(0, 3)``, ``(0, 0)``) are mistakes and raise.
     """
-    arr = as_float_array(value, name, finite=finite)
+    arr = as_float_array(value, name, finite=finite, components=2)
     if arr.ndim == 2 and arr.shape[1] == 2:
         return arr
     if arr.shape == (2,):
