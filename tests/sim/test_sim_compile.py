@@ -6,11 +6,14 @@ compilation twice on first use (issue 17). The first test runs simulations on
 every kind of world (segments and circles, occupancy grid, moving obstacles,
 all of them, none) with disc and polygon footprints, every drive and sensor,
 plus the world's public queries, in a fresh process, and checks that no
-simulator kernel was specialised twice, but for the intended variants: a disc
+simulator kernel was specialised twice, but for the intended variant: a disc
 footprint passes None for the polygon's arrays, so that a disc robot compiles
-only the disc's distance code and a polygon only the polygon's, and the run
-kernels' variant for steps long for the footprint differs from the other only
-in its ``sweeping`` argument (None in the other).
+only the disc's distance code and a polygon only the polygon's. Steps long for
+the footprint (checked along their arc) are data, not another variant: each
+run kernel is compiled once per footprint kind (review 12; it was twice). The
+second test checks that a disc robot's first simulation in a world of segments
+and circles compiles one run kernel, for the disc, and nothing of the polygon's
+or the grid's.
 
 A scan is a pass over the segments and circles and then one over the
 occupancy grid (a world compiles only the passes it needs): the other tests
@@ -103,9 +106,56 @@ def test_every_simulator_kernel_is_compiled_for_one_signature() -> None:
     # Both footprints were simulated: the footprint kernels hold one of each.
     for name in ("_clearance_kernels.footprint_clearance", "_clearance_kernels.edge_clearance"):
         assert len(signatures[name]) == 2, signatures[name]
-    # The run kernels hold one of each with each variant (``sweeping`` None or a bool).
+    # The run kernels hold one of each too: steps long for the footprint (the script's
+    # 0.4 m steps) are checked in the same compilation as the others (review 12).
     for name in ("_segment_kernels.run_segment", "_segment_kernels.run_edge_segment"):
-        assert len(signatures[name]) == 4, signatures[name]
+        assert len(signatures[name]) == 2, signatures[name]
+    # Callees show only where this process compiled them (a cached caller loads
+    # their code with its own): at most the check along a step once per footprint and
+    # kind of world, and the SE(2) arc once for the whole simulator.
+    assert len(signatures.get("_segment_kernels._sweep_static", [])) <= 4
+    assert len(signatures.get("_wheel_kernels.arc_pose", [])) <= 1
+
+
+DISC_SCRIPT = """
+from shapely.geometry import box
+from navkit.geometry import Twist2D
+from navkit.kinematics import DiffDrive
+from navkit.sim import Circle, Lidar, Robot, Simulation, World
+
+world = World([box(0.0, 0.0, 4.0, 3.0).exterior, Circle((2.5, 2.0), 0.2)])
+robot = Robot(drive=DiffDrive(track=0.3, wheel_radius=0.05), footprint=0.15,
+              lidar=Lidar(n_beams=8), encoders=None)
+# Steps of 4 mm (0.4 m/s at 100 Hz) are short for a 0.15 m disc; steps of 0.4 m
+# (4 m/s at 10 Hz) are long: checked along their arc, by the same compiled kernel.
+for speed, rate in ((0.4, 100.0), (4.0, 10.0)):
+    Simulation(
+        world, robot, lambda _obs, v=speed: Twist2D(v, 0.0, 0.2), start=(1.0, 1.0, 0.0),
+        rate=rate, control_rate=10.0, duration=0.3,
+    ).run()
+"""
+
+
+def test_a_disc_robot_among_segments_compiles_one_run_kernel_for_the_disc() -> None:
+    signatures = compiled_signatures(DISC_SCRIPT, [f"navkit.sim.{name}" for name in (
+        "_clearance_kernels", "_segment_kernels",
+    )])  # fmt: skip
+    # One run kernel, once, whether or not the steps are long for the footprint.
+    (run,) = signatures["_segment_kernels.run_edge_segment"]
+    # body_verts and verts (the 17th and 18th arguments) are None: no polygon code.
+    assert _arguments(run)[16:18] == ["none", "none"], run
+    assert all(
+        _arguments(sig)[4:6] == ["none", "none"]
+        for sig in signatures["_clearance_kernels.edge_clearance"]
+    )
+    # Neither the grid's and moving obstacles' kernels nor the polygon's helpers.
+    for name in (
+        "_segment_kernels.run_segment",
+        "_clearance_kernels.footprint_clearance",
+        "_clearance_kernels._segment_segment",
+        "_clearance_kernels._inside_polygon",
+    ):
+        assert name not in signatures, name
 
 
 def _arguments(signature: str) -> list[str]:

@@ -22,9 +22,16 @@ pair (n, m) (:func:`update_kernel`), with n and m compile-time constants: at
 these sizes (a few states) loop overhead, not arithmetic, is the cost, and
 constant trip counts let LLVM unroll the loops (2-3 times faster kernels than
 with run-time sizes). numba caches each on disk (the closure's constants are
-part of the cache key). The small helpers are compiled once per size (the sizes reach them as
-literal constants) and inlined by LLVM (``njit_force_inline``): numba's IR
-inlining re-typed each body at every call site, a third more compile time.
+part of the cache key). Each kernel is a thin shell: its shape checks, then a
+call of :func:`_predict` or :func:`_update`, which hold the work. Those and
+the small helpers they call take the sizes as plain int64 arguments, so that
+numba types and compiles each of them once for every size (the kernels pass
+them ``np.int64`` constants, not Python ints, which numba would take as
+literal types and compile once per value: issue 17), and LLVM inlines them
+into each kernel (``njit_force_inline``), where the sizes are constants again
+and the loops unroll as before. A new size thus costs the compilation of a
+shell, not of the whole update. (numba's IR inlining instead re-typed each
+body at every call site, a third more compile time.)
 
 Each kernel does one predict or one update. It checks what the public layer
 did not: the shapes (``BAD_SHAPE``: the caller then converts and checks its
@@ -49,7 +56,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
@@ -217,6 +224,16 @@ def set_r(rbuf: FloatArray, r: FloatArray, r_sym: FloatArray) -> None:
 
 
 @njit_force_inline
+def _wrap(a: float) -> float:
+    """:func:`~navkit._shared.se2.wrap_scalar` typed once for every kernel.
+
+    numba inlines ``wrap_scalar``'s code into each caller it types; behind this
+    call that is done once, not once per kernel size.
+    """
+    return wrap_scalar(a)
+
+
+@njit_force_inline
 def _finite_mat(a: FloatArray, rows: int, cols: int) -> bool:
     """Whether the top-left ``rows`` x ``cols`` block of ``a`` is finite."""
     for i in range(rows):
@@ -327,8 +344,55 @@ def _mirror_checked(p: FloatArray, work: FloatArray, inv_d: FloatArray, n: int) 
     return NOT_POSITIVE_DEFINITE if _finite_mat(p, n, n) else NOT_FINITE
 
 
+@njit_force_inline
+def _predict(state: FloatArray, x_new: FloatArray, jac: FloatArray, q: FloatArray, n: int) -> int:
+    """The predict of :func:`_make_predict`'s kernel after its shape checks (see there).
+
+    Typed once for every ``n`` (an int64), and inlined by LLVM into each
+    kernel, where ``n`` is a constant.
+    """
+    if not _finite_mat(jac, n, n):
+        return BAD_F
+    if not _equal(q, state[n + 2 : 2 * n + 2], n):
+        return NOISE_CHANGED
+    for i in range(n):
+        if x_new[i] - x_new[i] != 0.0:
+            return BAD_FX
+    p = state[STATE_P : STATE_P + n]
+    qs = state[2 * n + 2 : 3 * n + 2]
+    fp = state[3 * n + 2 : 4 * n + 2]
+    pn = state[4 * n + 2 : 5 * n + 2]
+    work = state[5 * n + 2 : 6 * n + 2]
+    inv_diag = state[6 * n + 2]
+    # F P Fᵀ = F (F P)ᵀ, P being symmetric: both products skip the zeros of F.
+    _mul(jac, p, fp, n, n, n)
+    _mul_t_lower(jac, fp, pn, n, n)
+    _add_lower(pn, qs, n)
+    status = _mirror_checked(pn, work, inv_diag, n)
+    if status != OK:
+        return status
+    angle = state[n + 1]
+    for i in range(n):
+        state[STATE_X, i] = _wrap(x_new[i]) if angle[i] != 0.0 else x_new[i]
+        for j in range(n):
+            p[i, j] = pn[i, j]
+    return OK
+
+
+def _constant(size: int) -> int:
+    """``size`` as a kernel's constant that numba types as int64, not as a literal.
+
+    numba types a closure's Python int as a literal (``Literal[int](3)``), and
+    compiles every function called with it once per value; a NumPy int64 is
+    typed int64, and LLVM still sees a constant. (Typed int for mypy: the
+    kernels use it as one.)
+    """
+    return cast(int, np.int64(size))
+
+
 def _make_predict(n: int) -> PredictKernel:
     """The predict kernel of ``n``-state filters (``n`` a compile-time constant)."""
+    size = _constant(n)
 
     @njit_no_refcount
     def ekf_predict(state: FloatArray, x_new: FloatArray, jac: FloatArray, q: FloatArray) -> int:
@@ -340,37 +404,163 @@ def _make_predict(n: int) -> PredictKernel:
         ``NOT_FINITE`` or ``NOT_POSITIVE_DEFINITE`` for the predicted covariance,
         else ``OK``.
         """
-        if (x_new.shape[0] != n or jac.shape[0] != n or jac.shape[1] != n
-                or q.shape[0] != n or q.shape[1] != n or state.shape[1] != n):  # fmt: skip
+        if (x_new.shape[0] != size or jac.shape[0] != size or jac.shape[1] != size
+                or q.shape[0] != size or q.shape[1] != size
+                or state.shape[1] != size):  # fmt: skip
             return BAD_SHAPE
-        if not _finite_mat(jac, n, n):
-            return BAD_F
-        if not _equal(q, state[n + 2 : 2 * n + 2], n):
-            return NOISE_CHANGED
-        for i in range(n):
-            if x_new[i] - x_new[i] != 0.0:
-                return BAD_FX
-        p = state[STATE_P : STATE_P + n]
-        qs = state[2 * n + 2 : 3 * n + 2]
-        fp = state[3 * n + 2 : 4 * n + 2]
-        pn = state[4 * n + 2 : 5 * n + 2]
-        work = state[5 * n + 2 : 6 * n + 2]
-        inv_diag = state[6 * n + 2]
-        # F P Fᵀ = F (F P)ᵀ, P being symmetric: both products skip the zeros of F.
-        _mul(jac, p, fp, n, n, n)
-        _mul_t_lower(jac, fp, pn, n, n)
-        _add_lower(pn, qs, n)
-        status = _mirror_checked(pn, work, inv_diag, n)
-        if status != OK:
-            return status
-        angle = state[n + 1]
-        for i in range(n):
-            state[STATE_X, i] = wrap_scalar(x_new[i]) if angle[i] != 0.0 else x_new[i]
-            for j in range(n):
-                p[i, j] = pn[i, j]
-        return OK
+        status: int = _predict(state, x_new, jac, q, size)
+        return status
 
     return ekf_predict
+
+
+@njit_force_inline
+def _update(
+    state: FloatArray,
+    z: FloatArray,
+    hx: FloatArray,
+    jac: FloatArray,
+    r: FloatArray,
+    rbuf: FloatArray,
+    y: FloatArray,
+    n: int,
+    m: int,
+) -> float:
+    """The update of :func:`_make_update`'s kernel after its shape checks (see there).
+
+    Typed once for every ``n`` and ``m`` (int64), and inlined by LLVM into each
+    kernel, where they are constants.
+    """
+    vec = rbuf[_VEC]
+    for i in range(m):
+        if z[i] - z[i] != 0.0:
+            return _FAIL_Z
+    if not _finite_mat(jac, m, n):
+        return _FAIL_H
+    if not _equal(r, rbuf[_R], m):
+        return _FAIL_NOISE
+    for i in range(m):
+        if hx[i] - hx[i] != 0.0:
+            return _FAIL_HX
+    rs = rbuf[_RS]
+    hp = rbuf[_HP]
+    s = rbuf[_S]
+    chol = rbuf[_CHOL]
+    inv_diag = vec[_INV_DIAG]
+    u = vec[_U]
+    x = state[STATE_X]
+    p = state[STATE_P : STATE_P + n]
+    for i in range(m):
+        y[i] = z[i] - hx[i]
+    flags = vec[_ANGLE]
+    for i in range(m):
+        if flags[i] != 0.0:
+            a = y[i]
+            if a - a == 0.0:  # an overflowed residual stays as it is
+                y[i] = _wrap(a)
+
+    _mul(jac, p, hp, m, n, n)  # H P = (P Hᵀ)ᵀ
+    _mul_t_lower(jac, hp, s, m, n)  # H P Hᵀ = H (H P)ᵀ
+    for i in range(m):
+        for j in range(i + 1):
+            s[i, j] += rs[i, j]
+    # S = L D Lᵀ (L unit lower triangular, in chol; 1 / D in inv_diag).
+    if not _positive_definite(s, chol, inv_diag, m):
+        for i in range(m):
+            for j in range(i + 1):
+                if s[i, j] - s[i, j] != 0.0:
+                    return _FAIL_S_NOT_FINITE
+        return _FAIL_S_NOT_POSITIVE_DEFINITE
+
+    for i in range(m):
+        if y[i] - y[i] != 0.0:
+            vec[_META, 1] = math.inf
+            return _FAIL_RESIDUAL
+    # NIS = Σ uᵢ² / dᵢ with u = L⁻¹ y (never negative), by forward substitution.
+    nis = 0.0
+    for i in range(m):
+        t = y[i]
+        for k in range(i):
+            t -= chol[i, k] * u[k]
+        u[i] = t
+        # (t / d) t overflows only when t² / d does (d >= the smallest normal float);
+        # t t / d could overflow first.
+        nis += (t * inv_diag[i]) * t
+    vec[_META, 1] = nis
+    if not nis < math.inf:
+        vec[_META, 1] = math.inf
+        return _FAIL_NIS
+    if nis > vec[_META, _GATE]:
+        return _FAIL_GATED
+
+    # K = P Hᵀ S⁻¹: row i of K solves S kᵢ = (P Hᵀ)ᵢ = (H P)ᵀᵢ (S is symmetric).
+    gain = rbuf[_GAIN]
+    for i in range(n):
+        for j in range(m):  # L w = (H P)ᵀᵢ
+            t = hp[j, i]
+            for k in range(j):
+                t -= chol[j, k] * u[k]
+            u[j] = t
+        for j in range(m - 1, -1, -1):  # Lᵀ kᵢ = D⁻¹ w
+            t = u[j] * inv_diag[j]
+            for k in range(j + 1, m):
+                t -= chol[k, j] * u[k]
+            u[j] = t
+            gain[i, j] = t
+    xn = vec[_XN]
+    angle = state[n + 1]
+    for i in range(n):
+        acc = 0.0
+        for j in range(m):
+            acc += gain[i, j] * y[j]
+        v = x[i] + acc
+        if v - v != 0.0:
+            return _FAIL_STATE
+        xn[i] = _wrap(v) if angle[i] != 0.0 else v
+
+    # Joseph form P ← A P Aᵀ + K R Kᵀ with A = I - K H, for any K (not only the
+    # optimal one), evaluated as A P Aᵀ = A P - (A P Hᵀ) Kᵀ with A P = P - K (H P):
+    # P ← A P + V Kᵀ with V = K R - A P Hᵀ. This is the Joseph form, not the short
+    # form (I - K H) P: V is the rounding error of the gain (K S - P Hᵀ, zero in exact
+    # arithmetic) and V Kᵀ takes it out to first order. A rounding error E in A P
+    # enters the result as E Aᵀ, as it does in the product (I - K H) P (I - K H)ᵀ;
+    # but this costs n²m + n²m/2 products instead of about 2n³.
+    ap = rbuf[_TMP]
+    for i in range(n):
+        for j in range(n):
+            ap[i, j] = p[i, j]
+        for k in range(m):
+            g = gain[i, k]
+            if g != 0.0:
+                for j in range(n):
+                    ap[i, j] -= g * hp[k, j]
+    v = rbuf[_KR]
+    for i in range(n):
+        for k in range(m):
+            kr = 0.0
+            for j in range(m):
+                kr += gain[i, j] * rs[j, k]
+            acc = 0.0
+            for j in range(n):
+                hkj = jac[k, j]
+                if hkj != 0.0:
+                    acc += ap[i, j] * hkj
+            v[i, k] = kr - acc  # K R - A P Hᵀ
+    pn = rbuf[_PN]
+    for i in range(n):
+        for j in range(i + 1):
+            acc = 0.0
+            for k in range(m):
+                acc += v[i, k] * gain[j, k]
+            pn[i, j] = ap[i, j] + acc
+    status = _mirror_checked(pn, rbuf[_PCHK], inv_diag, n)
+    if status != OK:
+        return -float(status)
+    for i in range(n):
+        x[i] = xn[i]
+        for j in range(n):
+            p[i, j] = pn[i, j]
+    return nis
 
 
 def _make_update(n: int, m: int) -> UpdateKernel:
@@ -380,6 +570,8 @@ def _make_update(n: int, m: int) -> UpdateKernel:
     """
 
     width = max(n, m, _GATE + 1)  # of rbuf's blocks
+    n_states = _constant(n)
+    m_meas = _constant(m)
 
     @njit_no_refcount
     def ekf_update(
@@ -406,141 +598,14 @@ def _make_update(n: int, m: int) -> UpdateKernel:
         (``NOT_FINITE``, ``NOT_POSITIVE_DEFINITE``). x and P change only with
         ``OK``; ``nis`` is NaN until computed, inf when it overflowed.
         """
-        vec = rbuf[_VEC]
-        vec[_META, 1] = math.nan  # the NIS a failure reports, until computed
-        if (z.shape[0] != m or hx.shape[0] != m or y.shape[0] != m or jac.shape[0] != m
-                or jac.shape[1] != n or r.shape[0] != m or r.shape[1] != m
-                or state.shape[1] != n or rbuf.shape[2] != width):  # fmt: skip
+        rbuf[_VEC, _META, 1] = math.nan  # the NIS a failure reports, until computed
+        if (z.shape[0] != m_meas or hx.shape[0] != m_meas or y.shape[0] != m_meas
+                or jac.shape[0] != m_meas or jac.shape[1] != n_states
+                or r.shape[0] != m_meas or r.shape[1] != m_meas
+                or state.shape[1] != n_states or rbuf.shape[2] != width):  # fmt: skip
             return _FAIL_SHAPE
-        for i in range(m):
-            if z[i] - z[i] != 0.0:
-                return _FAIL_Z
-        if not _finite_mat(jac, m, n):
-            return _FAIL_H
-        if not _equal(r, rbuf[_R], m):
-            return _FAIL_NOISE
-        for i in range(m):
-            if hx[i] - hx[i] != 0.0:
-                return _FAIL_HX
-        rs = rbuf[_RS]
-        hp = rbuf[_HP]
-        s = rbuf[_S]
-        chol = rbuf[_CHOL]
-        inv_diag = vec[_INV_DIAG]
-        u = vec[_U]
-        x = state[STATE_X]
-        p = state[STATE_P : STATE_P + n]
-        for i in range(m):
-            y[i] = z[i] - hx[i]
-        flags = vec[_ANGLE]
-        for i in range(m):
-            if flags[i] != 0.0:
-                a = y[i]
-                if a - a == 0.0:  # an overflowed residual stays as it is
-                    y[i] = wrap_scalar(a)
-
-        _mul(jac, p, hp, m, n, n)  # H P = (P Hᵀ)ᵀ
-        _mul_t_lower(jac, hp, s, m, n)  # H P Hᵀ = H (H P)ᵀ
-        for i in range(m):
-            for j in range(i + 1):
-                s[i, j] += rs[i, j]
-        # S = L D Lᵀ (L unit lower triangular, in chol; 1 / D in inv_diag).
-        if not _positive_definite(s, chol, inv_diag, m):
-            for i in range(m):
-                for j in range(i + 1):
-                    if s[i, j] - s[i, j] != 0.0:
-                        return _FAIL_S_NOT_FINITE
-            return _FAIL_S_NOT_POSITIVE_DEFINITE
-
-        for i in range(m):
-            if y[i] - y[i] != 0.0:
-                vec[_META, 1] = math.inf
-                return _FAIL_RESIDUAL
-        # NIS = Σ uᵢ² / dᵢ with u = L⁻¹ y (never negative), by forward substitution.
-        nis = 0.0
-        for i in range(m):
-            t = y[i]
-            for k in range(i):
-                t -= chol[i, k] * u[k]
-            u[i] = t
-            # (t / d) t overflows only when t² / d does (d >= the smallest normal float);
-            # t t / d could overflow first.
-            nis += (t * inv_diag[i]) * t
-        vec[_META, 1] = nis
-        if not nis < math.inf:
-            vec[_META, 1] = math.inf
-            return _FAIL_NIS
-        if nis > vec[_META, _GATE]:
-            return _FAIL_GATED
-
-        # K = P Hᵀ S⁻¹: row i of K solves S kᵢ = (P Hᵀ)ᵢ = (H P)ᵀᵢ (S is symmetric).
-        gain = rbuf[_GAIN]
-        for i in range(n):
-            for j in range(m):  # L w = (H P)ᵀᵢ
-                t = hp[j, i]
-                for k in range(j):
-                    t -= chol[j, k] * u[k]
-                u[j] = t
-            for j in range(m - 1, -1, -1):  # Lᵀ kᵢ = D⁻¹ w
-                t = u[j] * inv_diag[j]
-                for k in range(j + 1, m):
-                    t -= chol[k, j] * u[k]
-                u[j] = t
-                gain[i, j] = t
-        xn = vec[_XN]
-        angle = state[n + 1]
-        for i in range(n):
-            acc = 0.0
-            for j in range(m):
-                acc += gain[i, j] * y[j]
-            v = x[i] + acc
-            if v - v != 0.0:
-                return _FAIL_STATE
-            xn[i] = wrap_scalar(v) if angle[i] != 0.0 else v
-
-        # Joseph form P ← A P Aᵀ + K R Kᵀ with A = I - K H, for any K (not only the
-        # optimal one), evaluated as A P Aᵀ = A P - (A P Hᵀ) Kᵀ with A P = P - K (H P):
-        # P ← A P + V Kᵀ with V = K R - A P Hᵀ. This is the Joseph form, not the short
-        # form (I - K H) P: V is the rounding error of the gain (K S - P Hᵀ, zero in exact
-        # arithmetic) and V Kᵀ takes it out to first order. A rounding error E in A P
-        # enters the result as E Aᵀ, as it does in the product (I - K H) P (I - K H)ᵀ;
-        # but this costs n²m + n²m/2 products instead of about 2n³.
-        ap = rbuf[_TMP]
-        for i in range(n):
-            for j in range(n):
-                ap[i, j] = p[i, j]
-            for k in range(m):
-                g = gain[i, k]
-                if g != 0.0:
-                    for j in range(n):
-                        ap[i, j] -= g * hp[k, j]
-        v = rbuf[_KR]
-        for i in range(n):
-            for k in range(m):
-                kr = 0.0
-                for j in range(m):
-                    kr += gain[i, j] * rs[j, k]
-                acc = 0.0
-                for j in range(n):
-                    hkj = jac[k, j]
-                    if hkj != 0.0:
-                        acc += ap[i, j] * hkj
-                v[i, k] = kr - acc  # K R - A P Hᵀ
-        pn = rbuf[_PN]
-        for i in range(n):
-            for j in range(i + 1):
-                acc = 0.0
-                for k in range(m):
-                    acc += v[i, k] * gain[j, k]
-                pn[i, j] = ap[i, j] + acc
-        status = _mirror_checked(pn, rbuf[_PCHK], inv_diag, n)
-        if status != OK:
-            return -float(status)
-        for i in range(n):
-            x[i] = xn[i]
-            for j in range(n):
-                p[i, j] = pn[i, j]
-        return nis
+        out: float = _update(state, z, hx, jac, r, rbuf, y, n_states, m_meas)
+        return out
 
     return ekf_update
 

@@ -20,7 +20,13 @@ Compilation on first use is kept to what a world and a robot need:
 * a disc footprint passes None for the polygon's vertex arrays: numba then
   drops the polygon's branches (``if verts is None``) before typing, so a disc
   robot never compiles the polygon distances (about another half second), and
-  a polygon robot compiles the kernels once more, for its own arrays.
+  a polygon robot compiles the kernels once more, for its own arrays. These
+  two specialisations are kept on purpose (issue 17, measured on 2 cores):
+  empty (0, 2) arrays for a disc instead, with the choice made at run time,
+  saved about 2.7 s of ``warmup()``'s compilation but cost a disc robot's first
+  ``Simulation.run`` about 3.8 s more (it compiled the polygon code too) and
+  its physics steps 15-20 % more time (the disc's distance no longer inlined
+  into the cell loops; 3-4 % with the choice made in the run kernels).
 
 Examples
 --------

@@ -27,18 +27,18 @@ at the first step ``i`` with ``i * dt + 1e-9 >= k / rates[s]``; ``counts[s]``
 holds the next ``k``.
 
 Status codes returned with the step reached: ``REACHED`` (``i_end``),
-``COLLIDED`` (a collision ended the run at that step), ``GOAL`` (the goal
-was reached and ends the run) and ``LONG`` (nothing was done: call again with
-``sweeping=True``).
+``COLLIDED`` (a collision ended the run at that step) and ``GOAL`` (the goal
+was reached and ends the run).
 
-Each run kernel comes in two variants, by the type of its ``sweeping``
-argument. With None numba drops the checks along the steps, so that the
-physics loop is compiled as it was without them (their code in the loop, even
-never run, made a disc robot's steps about 1.5 times slower); it first bounds
-the steps' spans over the segment (each wheel's speed stays between its
-present one and its command) and returns ``LONG`` at once when a step may be
-long. With True it checks the long steps along their arc; it is compiled on
-first use, by a run whose robot is fast for its footprint and physics rate.
+A run kernel first bounds the steps' spans over the segment (each wheel's
+speed stays between its present one and its command, :func:`_long_steps`) and
+checks the steps along their arc only when one may be long. That choice is
+data, not an argument type: one compilation serves both (issue 17: a variant
+per choice compiled each run kernel twice more, a few seconds in all, and the
+checks' code in the loop, never run, costs a disc robot's steps nothing
+measurable). Each run kernel is compiled once for a disc footprint (None for
+the polygon's arrays, so that only the disc's distance code is compiled, see
+:mod:`navkit.sim._clearance_kernels`) and once for a polygon.
 
 ``run_edge_segment`` is ``run_segment`` for a world of static segments and
 circles only (no occupancy grid, no moving obstacles): it checks the
@@ -54,12 +54,11 @@ import math
 import numpy as np
 
 from navkit._shared.jit import njit_force_inline, njit_helper, njit_no_refcount
-from navkit._shared.se2 import integrate_scalar
 from navkit.sim._clearance_kernels import TOUCH, edge_clearance, footprint_clearance
 from navkit.sim._moving_kernels import place_moving, point_in_moving
-from navkit.sim._wheel_kernels import wheel_step
+from navkit.sim._wheel_kernels import arc_pose, wheel_step
 
-__all__ = ["COLLIDED", "GOAL", "LONG", "REACHED", "STAT_COLLISIONS", "STAT_IN_CONTACT",
+__all__ = ["COLLIDED", "GOAL", "REACHED", "STAT_COLLISIONS", "STAT_IN_CONTACT",
            "STAT_MIN_CLEARANCE", "STAT_TIME_TO_GOAL", "due_step", "run_edge_segment",
            "run_segment"]  # fmt: skip
 
@@ -67,7 +66,6 @@ __all__ = ["COLLIDED", "GOAL", "LONG", "REACHED", "STAT_COLLISIONS", "STAT_IN_CO
 REACHED = 0
 COLLIDED = 1
 GOAL = 2
-LONG = 3
 
 #: Indices of the run statistics array.
 STAT_MIN_CLEARANCE = 0
@@ -104,20 +102,6 @@ def due_step(k: int, rate: float, dt: float) -> int:
     while i * dt + _EPS < when:
         i += 1
     return i
-
-
-@njit_helper
-def _at_goal(state: np.ndarray, goal: np.ndarray) -> bool:
-    """``goal`` = [x, y, radius, yaw, yaw tolerance]; NaN x for no goal, NaN yaw for none."""
-    if math.isnan(goal[0]):
-        return False
-    if math.hypot(state[0] - goal[0], state[1] - goal[1]) > goal[2]:
-        return False
-    if math.isnan(goal[3]):
-        return True
-    err = abs((state[2] - goal[3] + math.pi) % (2.0 * math.pi) - math.pi)
-    close: bool = err <= goal[4]
-    return close
 
 
 @njit_helper
@@ -227,13 +211,6 @@ def _long_steps(
 
 
 @njit_helper
-def _span(state: np.ndarray, reach: float, dt: float) -> float:
-    """Bound on the distance any point of the footprint moved over the step, m."""
-    span: float = (math.hypot(state[3], state[4]) + abs(state[5]) * reach) * dt
-    return span
-
-
-@njit_helper
 def _sweep_static(
     state: np.ndarray,
     prev: np.ndarray,
@@ -272,7 +249,9 @@ def _sweep_static(
     then the moving obstacles' arrays, of which only empty views are used (None
     with ``occ``).
     """
-    span = _span(state, reach, dt)
+    # A bound on the distance any point of the footprint moved over the step, m (not
+    # a helper of its own: compiling one costs a tenth of a second on first use).
+    span = (math.hypot(state[3], state[4]) + abs(state[5]) * reach) * dt
     if not sweep < span < math.inf:
         return False
     vx = state[3]
@@ -280,7 +259,7 @@ def _sweep_static(
     om = state[5]
     done = 0.0
     while True:
-        x, y, th = integrate_scalar(prev[0], prev[1], prev[2], vx, vy, om, done / span * dt)
+        x, y, th = arc_pose(prev[0], prev[1], prev[2], vx, vy, om, done / span * dt)
         rest = span - done
         limit = max(rest, _CONTACT_LIMIT)
         if occ is None:
@@ -377,11 +356,19 @@ def _settle(
         stats[STAT_IN_CONTACT] = _FREE
     else:
         stats[STAT_IN_CONTACT] = _HELD
-    if math.isnan(stats[STAT_TIME_TO_GOAL]) and _at_goal(state, goal):
-        stats[STAT_TIME_TO_GOAL] = t
-        if stop_at_goal:
-            _record(buf, i, t, state, cmd)
-            return GOAL
+    # The goal, first reached? ``goal`` = [x, y, radius, yaw, yaw tolerance]; NaN x for
+    # no goal, NaN yaw for any heading. (Not a helper of its own: each separately
+    # compiled function costs a tenth of a second or more on first use.)
+    if math.isnan(stats[STAT_TIME_TO_GOAL]) and not math.isnan(goal[0]):
+        at_goal = not math.hypot(state[0] - goal[0], state[1] - goal[1]) > goal[2]
+        if at_goal and not math.isnan(goal[3]):
+            err = abs((state[2] - goal[3] + math.pi) % (2.0 * math.pi) - math.pi)
+            at_goal = err <= goal[4]
+        if at_goal:
+            stats[STAT_TIME_TO_GOAL] = t
+            if stop_at_goal:
+                _record(buf, i, t, state, cmd)
+                return GOAL
     _sample(
         i, t, dt, state, angles, rates, counts, n_out, enc_tpr, enc_span,
         enc_out, compass_out, imu_out,
@@ -408,7 +395,6 @@ def run_segment(
     radius: float,
     reach: float,
     sweep: float,
-    sweeping: bool | None,
     body_verts: np.ndarray | None,
     verts: np.ndarray | None,
     segs: np.ndarray,
@@ -468,13 +454,12 @@ def run_segment(
     ``stats[STAT_COLLISIONS]`` counts them all).
     ``prev`` (3,) is scratch for the pose before a step. ``reach`` (m) is the
     footprint's farthest point from the robot's reference point (0 for a
-    disc) and ``sweep`` (m, > 0) the radius of a disc inside it; ``sweeping``
-    None or True picks the variant (see the module's docstring).
+    disc) and ``sweep`` (m, > 0) the radius of a disc inside it.
     ``body_verts``, ``verts`` and ``scratch`` are None for a disc footprint.
     """
     has_moving = mv_first.shape[0] > 0
-    if sweeping is None and _long_steps(wheels, command, radius_factor, fwd, reach, dt, sweep):
-        return LONG, i0
+    # Whether a step may be long: then every step is checked along its arc.
+    check_arcs = _long_steps(wheels, command, radius_factor, fwd, reach, dt, sweep)
     i = i0
     if sample_first:
         _sample(
@@ -511,7 +496,7 @@ def run_segment(
         ):  # fmt: skip
             clearance = 0.0
         # A long step may have passed through a wall or into a solid.
-        if sweeping is not None and clearance > TOUCH and _sweep_static(
+        if check_arcs and clearance > TOUCH and _sweep_static(
             state, prev, dt, reach, sweep, radius, body_verts, verts, scratch, segs,
             circles, gx0, gy0, h, nx, ny, cell_start, cell_items, occ, gox, goy, gcos,
             gsin, res, dyn_segs, dyn_circles,
@@ -545,7 +530,6 @@ def run_edge_segment(
     radius: float,
     reach: float,
     sweep: float,
-    sweeping: bool | None,
     body_verts: np.ndarray | None,
     verts: np.ndarray | None,
     segs: np.ndarray,
@@ -581,8 +565,8 @@ def run_edge_segment(
     :func:`~navkit.sim._clearance_kernels.edge_clearance`.
     ``body_verts`` and ``verts`` are None for a disc footprint.
     """
-    if sweeping is None and _long_steps(wheels, command, radius_factor, fwd, reach, dt, sweep):
-        return LONG, i0
+    # Whether a step may be long: then every step is checked along its arc.
+    check_arcs = _long_steps(wheels, command, radius_factor, fwd, reach, dt, sweep)
     i = i0
     if sample_first:
         _sample(
@@ -606,7 +590,7 @@ def run_edge_segment(
             max(stats[STAT_MIN_CLEARANCE], _CONTACT_LIMIT),
         )  # fmt: skip
         # A long step may have passed through a wall or into a solid.
-        if sweeping is not None and clearance > TOUCH and _sweep_static(
+        if check_arcs and clearance > TOUCH and _sweep_static(
             state, prev, dt, reach, sweep, radius, body_verts, verts, None, segs, circles,
             gx0, gy0, h, nx, ny, cell_start, cell_items, None, 0.0, 0.0, 0.0, 0.0, 0.0,
             None, None,

@@ -25,7 +25,6 @@ from navkit.sim._robot import Body, Robot
 from navkit.sim._segment_kernels import (
     COLLIDED,
     GOAL,
-    LONG,
     STAT_COLLISIONS,
     STAT_MIN_CLEARANCE,
     STAT_TIME_TO_GOAL,
@@ -629,31 +628,26 @@ class _Run:
             self.out_encoders, self.out_compass, self.out_imu,
             self.buf, self.cmd, self.stats, self.contacts, self.prev,
         )  # fmt: skip
-        # The variant without checks along the steps first; it returns LONG, having done
-        # nothing, when a step of the segment may be long for the footprint.
-        for sweeping in (None, True):
-            motion = (
-                i0, i_end, self.dt, sample_first,
-                body.state, body.wheels, body.angles, body.command,
-                robot.max_wheel_acceleration, body.radius_factor, robot.wheel_slip,
-                self.slip_z, body.forward, body.radius, body.reach, body.sweep, sweeping,
-                body.verts, body.work, world._segs, world._circles, gx0, gy0, h, nx, ny,
-                world._cell_start, world._cell_items,
+        motion = (
+            i0, i_end, self.dt, sample_first,
+            body.state, body.wheels, body.angles, body.command,
+            robot.max_wheel_acceleration, body.radius_factor, robot.wheel_slip,
+            self.slip_z, body.forward, body.radius, body.reach, body.sweep,
+            body.verts, body.work, world._segs, world._circles, gx0, gy0, h, nx, ny,
+            world._cell_start, world._cell_items,
+        )  # fmt: skip
+        if world._edges_only:
+            # No grid, no moving obstacles: the kernel that compiles without their code.
+            status, i = run_edge_segment(*motion, *bookkeeping)
+        else:
+            gox, goy, gcos, gsin, res = world._occ_frame
+            status, i = run_segment(
+                *motion, body.scratch, world._occ, gox, goy, gcos, gsin, res,
+                world._mv_path, world._mv_times, world._mv_first, world._mv_count,
+                world._mv_after, world._dyn_base_segs, world._dyn_seg_owner,
+                self.dyn_segs, world._dyn_base_circles, world._dyn_circle_owner,
+                self.dyn_circles, *bookkeeping,
             )  # fmt: skip
-            if world._edges_only:
-                # No grid, no moving obstacles: the kernel that compiles without their code.
-                status, i = run_edge_segment(*motion, *bookkeeping)
-            else:
-                gox, goy, gcos, gsin, res = world._occ_frame
-                status, i = run_segment(
-                    *motion, body.scratch, world._occ, gox, goy, gcos, gsin, res,
-                    world._mv_path, world._mv_times, world._mv_first, world._mv_count,
-                    world._mv_after, world._dyn_base_segs, world._dyn_seg_owner,
-                    self.dyn_segs, world._dyn_base_circles, world._dyn_circle_owner,
-                    self.dyn_circles, *bookkeeping,
-                )  # fmt: skip
-            if status != LONG:
-                break
         self._queue_proprioceptive()
         return int(status), int(i)
 

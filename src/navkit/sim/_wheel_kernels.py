@@ -24,10 +24,24 @@ from __future__ import annotations
 
 import numpy as np
 
-from navkit._shared.jit import njit_no_refcount
+from navkit._shared.jit import njit_helper, njit_no_refcount
 from navkit._shared.se2 import integrate_scalar
 
-__all__ = ["wheel_step"]
+__all__ = ["arc_pose", "wheel_step"]
+
+
+@njit_helper
+def arc_pose(
+    x: float, y: float, th: float, vx: float, vy: float, omega: float, dt: float
+) -> tuple[float, float, float]:
+    """The pose after holding the body twist ``(vx, vy, omega)`` for ``dt`` seconds.
+
+    :func:`~navkit._shared.se2.integrate_scalar` behind a call typed once for
+    the simulator's kernels (``wheel_step`` and the run kernels' checks along a
+    step): numba inlines that function's code into every caller it types, once
+    per caller and specialisation; LLVM still inlines this call.
+    """
+    return integrate_scalar(x, y, th, vx, vy, omega, dt)
 
 
 @njit_no_refcount
@@ -78,7 +92,7 @@ def wheel_step(
         vx += fwd[0, i] * ground
         vy += fwd[1, i] * ground
         om += fwd[2, i] * ground
-    x, y, th = integrate_scalar(state[0], state[1], state[2], vx, vy, om, dt)
+    x, y, th = arc_pose(state[0], state[1], state[2], vx, vy, om, dt)
     # Body acceleration of the reference point: dv/dt + omega × v.
     state[6] = (vx - state[3]) / dt - om * vy
     state[7] = (vy - state[4]) / dt + om * vx
