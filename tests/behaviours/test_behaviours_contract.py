@@ -11,6 +11,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit.behaviours import BehaviourTarget, GameState, attack, defend, support
 
 
@@ -103,7 +104,7 @@ def test_positions_near_the_float_limit_give_finite_targets() -> None:
     assert support(s).goal_xy.tolist() == [1.7e308, 0.0]
 
 
-@settings(deadline=None)  # the first example may load compiled kernels
+@settings(max_examples=40, deadline=None)  # the first example may load compiled kernels
 @given(
     st.tuples(st.floats(-1e300, 1e300), st.floats(-1e300, 1e300)),
     st.tuples(st.floats(-1e300, 1e300), st.floats(-1e300, 1e300)),
@@ -117,3 +118,8 @@ def test_behaviours_of_finite_states_are_finite(
         target = behaviour(s)
         assert np.isfinite(target.goal_xy).all()
         assert np.isfinite(target.obstacles_xy).all()
+
+
+test_behaviours_of_finite_states_are_finite_thoroughly = slow_twin(
+    test_behaviours_of_finite_states_are_finite, max_examples=100
+)

@@ -26,6 +26,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit.behaviours import BehaviourTarget, GameState, support
 
 
@@ -111,7 +112,7 @@ def test_old_pickles_load_with_read_only_arrays() -> None:
 finite = st.floats(allow_nan=False, allow_infinity=False)
 
 
-@settings(max_examples=300, deadline=None)
+@settings(max_examples=50, deadline=None)
 @given(finite, finite, finite, finite)
 def test_support_goal_is_the_correctly_rounded_midpoint(
     bx: float, by: float, gx: float, gy: float
@@ -119,6 +120,11 @@ def test_support_goal_is_the_correctly_rounded_midpoint(
     goal = support(_state(ball_xy=(bx, by), own_goal_xy=(gx, gy))).goal_xy
     assert goal[0] == float((Fraction(bx) + Fraction(gx)) / 2)
     assert goal[1] == float((Fraction(by) + Fraction(gy)) / 2)
+
+
+test_support_goal_is_the_correctly_rounded_midpoint_thoroughly = slow_twin(
+    test_support_goal_is_the_correctly_rounded_midpoint, max_examples=300
+)
 
 
 def test_support_midpoint_of_sub_normals_and_of_huge_values() -> None:

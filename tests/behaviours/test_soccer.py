@@ -11,6 +11,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit.behaviours import BehaviourTarget, GameState, attack, defend, support
 from navkit.control import PotentialFieldController
 from navkit.geometry import Pose2D, integrate
@@ -31,7 +32,7 @@ def state_of(robot: Any, ball: Any, teammates: Any = (), opponents: Any = (),
                      **options)
 
 
-@settings(max_examples=100)
+@settings(max_examples=40)
 @given(pt, pt, players, players, st.booleans())
 def test_behaviour_rules(
     robot: tuple[float, float], ball: tuple[float, float], mates: list[tuple[float, float]],
@@ -54,6 +55,9 @@ def test_behaviour_rules(
     np.testing.assert_array_equal(target.goal_xy, ball)
     expected = opp[1:] if holder == 0 else opp
     np.testing.assert_array_equal(target.obstacles_xy, expected)
+
+
+test_behaviour_rules_thoroughly = slow_twin(test_behaviour_rules, max_examples=100)
 
 
 def test_possession_is_inferred_from_distances() -> None:

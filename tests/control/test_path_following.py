@@ -10,6 +10,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from shapely.geometry import LineString, Point
 
+from hypothesis_twins import slow_twin
 from navkit.control._path_following import (
     Polyline,
     as_world_path,
@@ -77,7 +78,7 @@ def test_projection_stops_where_the_path_leaves_the_robot() -> None:
     )
 
 
-@settings(max_examples=200, deadline=None)
+@settings(max_examples=50, deadline=None)
 @given(points, coord, coord)
 def test_projection_matches_shapely(pts: list[tuple[float, float]], x: float, y: float) -> None:
     line = Polyline(np.array(pts))
@@ -92,7 +93,12 @@ def test_projection_matches_shapely(pts: list[tuple[float, float]], x: float, y:
     assert math.hypot(px - x, py - y) == pytest.approx(d, abs=1e-9)
 
 
-@settings(max_examples=200, deadline=None)
+test_projection_matches_shapely_thoroughly = slow_twin(
+    test_projection_matches_shapely, max_examples=200
+)
+
+
+@settings(max_examples=50, deadline=None)
 @given(points, st.floats(0.0, 1.0), st.floats(0.01, 3.0), coord, coord)
 def test_circle_exit_is_the_first_crossing(
     pts: list[tuple[float, float]], frac: float, radius: float, x: float, y: float
@@ -117,6 +123,11 @@ def test_circle_exit_is_the_first_crossing(
             assert math.hypot(qx - x, qy - y) <= radius + 1e-7
     else:
         assert dist >= radius - 1e-9
+
+
+test_circle_exit_is_the_first_crossing_thoroughly = slow_twin(
+    test_circle_exit_is_the_first_crossing, max_examples=200
+)
 
 
 def test_pursuit_curvature() -> None:

@@ -12,6 +12,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit.control import FollowTheCarrot, OnOffTracker, RegulatedPurePursuit
 from navkit.geometry import Pose2D, Twist2D, integrate
 from navkit.planning import Path2D
@@ -328,7 +329,8 @@ def test_follow_the_carrot_limits(path: Any, start: Any, dt: float, drive: str,
     _limits_hold(tracker, path, start, dt, heading, check)
 
 
-@hypothesis_settings
+# Slow ON-OFF settings take thousands of steps: fewer examples by default.
+@settings(hypothesis_settings, max_examples=15)
 @given(random_paths, starts, st.floats(0.01, 0.2), st.sampled_from(["diff", "omni"]),
        st.one_of(st.none(), st.floats(-math.pi, math.pi)),
        st.floats(0.05, 1.0), st.floats(0.1, 2.0))
@@ -345,6 +347,9 @@ def test_on_off_limits(path: Any, start: Any, dt: float, drive: str, heading: fl
             assert cmd.vy == 0.0 and cmd.vx >= 0.0
 
     _limits_hold(tracker, path, start, dt, heading, check)
+
+
+test_on_off_limits_thoroughly = slow_twin(test_on_off_limits, max_examples=40)
 
 
 @hypothesis_settings

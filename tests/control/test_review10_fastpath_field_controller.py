@@ -19,6 +19,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit.control import PotentialFieldController
 from navkit.geometry import Pose2D, as_pose
 from navkit.planning import AttractiveField, BlendedAttraction, ConicAttraction, KhatibRepulsion
@@ -81,7 +82,7 @@ def _same(a: np.ndarray, b: np.ndarray) -> None:
     assert a.tobytes() == b.tobytes(), (a, b)  # bit for bit, signs of zeros included
 
 
-@settings(max_examples=60, deadline=None)
+@settings(max_examples=25, deadline=None)
 @given(
     x=_coord,
     y=_coord,
@@ -105,6 +106,11 @@ def test_desired_velocity_matches_the_public_field_api(
     for obs in (obstacles, np.array(obstacles).reshape(-1, 2), None):
         want = _general_desired(ctl, pose, goal_xy, obs)
         _same(ctl.desired_velocity(pose, goal, obstacles=obs), want)
+
+
+test_desired_velocity_matches_the_public_field_api_thoroughly = slow_twin(
+    test_desired_velocity_matches_the_public_field_api, max_examples=60
+)
 
 
 def test_an_obstacle_exactly_at_the_reach_and_one_beyond() -> None:

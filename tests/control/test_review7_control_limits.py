@@ -20,6 +20,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit.control import OnOffTracker, PotentialFieldController, limit_velocity_change
 from navkit.geometry import Pose2D
 
@@ -98,7 +99,7 @@ huge = st.floats(min_value=1.28e308, max_value=1.7e308)
 small = st.floats(min_value=-1e3, max_value=1e3)
 
 
-@settings(max_examples=200, deadline=None)
+@settings(max_examples=50, deadline=None)
 @given(small, small, huge, huge, st.sampled_from([-1.0, 1.0]), st.sampled_from([-1.0, 1.0]),
        st.floats(1e-3, 1e3), st.floats(1e-3, 1e3))
 def test_huge_requests_move_by_one_limited_step_toward_them(
@@ -117,3 +118,8 @@ def test_huge_requests_move_by_one_limited_step_toward_them(
     direction = want / np.max(np.abs(want)) - prev / np.max(np.abs(want))
     direction /= math.hypot(*direction)
     assert move / length == pytest.approx(direction, abs=1e-9)
+
+
+test_huge_requests_move_by_one_limited_step_toward_them_thoroughly = slow_twin(
+    test_huge_requests_move_by_one_limited_step_toward_them, max_examples=200
+)

@@ -9,13 +9,14 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit.control import limit_velocity_change
 from velocity_change_rule import TOL, check_change, period, rate
 
 vec = st.tuples(st.floats(-3.0, 3.0), st.floats(-3.0, 3.0))
 
 
-@settings(max_examples=300)
+@settings(max_examples=50)
 @given(vec, vec, rate, rate, period)
 def test_limit_velocity_change_respects_both_limits(
     prev: tuple[float, float], want: tuple[float, float], accel: float, decel: float, dt: float
@@ -34,6 +35,11 @@ def test_limit_velocity_change_respects_both_limits(
     else:
         assert np.linalg.norm(new - p) >= min(accel, decel) * dt * (1 - 1e-9)
     assert np.linalg.norm(new) <= max(np.linalg.norm(p), np.linalg.norm(w)) + TOL
+
+
+test_limit_velocity_change_respects_both_limits_thoroughly = slow_twin(
+    test_limit_velocity_change_respects_both_limits, max_examples=300
+)
 
 
 def test_limit_velocity_change_examples() -> None:

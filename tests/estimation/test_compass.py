@@ -10,6 +10,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit.estimation import CompassCalibration, compass_to_yaw
 from navkit.geometry import angle_diff
 
@@ -63,7 +64,7 @@ def test_input_not_modified_and_2d_shape_kept() -> None:
     assert isinstance(out, np.ndarray) and out.shape == (2, 2)
 
 
-@settings(max_examples=300, deadline=None)
+@settings(max_examples=50, deadline=None)
 @given(
     raw=st.floats(-720.0, 720.0, allow_nan=False),
     initial=st.floats(0.0, 360.0, allow_nan=False),
@@ -77,6 +78,11 @@ def test_range_and_clockwise_is_negative(raw: float, initial: float, turn: float
     change = angle_diff(after, yaw)
     assert change < 0.0
     assert change == pytest.approx(-math.radians(turn), abs=1e-9)
+
+
+test_range_and_clockwise_is_negative_thoroughly = slow_twin(
+    test_range_and_clockwise_is_negative, max_examples=300
+)
 
 
 def test_unwrap_is_continuous() -> None:
@@ -140,7 +146,7 @@ def exact_yaw(raw: float, initial: float) -> float:
     return math.radians(float(-rel if rel < 180 else 360 - rel))
 
 
-@settings(max_examples=300, deadline=None)
+@settings(max_examples=50, deadline=None)
 @given(
     raw=st.floats(-1e300, 1e300, allow_nan=False),
     initial=st.floats(-1e300, 1e300, allow_nan=False),
@@ -150,6 +156,11 @@ def test_large_readings_are_taken_modulo_360_exactly(raw: float, initial: float)
     yaw = compass_to_yaw(raw, initial_deg=initial)
     assert -math.pi < yaw <= math.pi
     assert angle_diff(yaw, exact_yaw(raw, initial)) == pytest.approx(0.0, abs=1e-12)
+
+
+test_large_readings_are_taken_modulo_360_exactly_thoroughly = slow_twin(
+    test_large_readings_are_taken_modulo_360_exactly, max_examples=300
+)
 
 
 @pytest.mark.parametrize(
@@ -210,7 +221,7 @@ readings = st.sampled_from([0.0, 45.0, 90.0, 135.0, 180.0, 225.0, 270.0, 315.0])
 )
 
 
-@settings(max_examples=300, deadline=None)
+@settings(max_examples=50, deadline=None)
 @given(
     log=st.lists(readings, min_size=1, max_size=40),
     cuts=st.lists(st.integers(0, 40), max_size=5),
@@ -230,3 +241,8 @@ def test_calibration_in_pieces_equals_compass_to_yaw_and_numpy_unwrap(
     # The same one reading at a time (floats, not arrays).
     cal = CompassCalibration(unwrap=True)
     np.testing.assert_array_equal([cal(float(r)) for r in log], whole)
+
+
+test_calibration_in_pieces_equals_compass_to_yaw_and_numpy_unwrap_thoroughly = slow_twin(
+    test_calibration_in_pieces_equals_compass_to_yaw_and_numpy_unwrap, max_examples=300
+)

@@ -11,6 +11,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit.errors import FilterError
 from navkit.estimation import (
     CompassCalibration,
@@ -172,7 +173,7 @@ def test_fusion_status_lookup_takes_integer_codes_only() -> None:
         FusionStatus(17)
 
 
-@settings(max_examples=60, deadline=None)
+@settings(max_examples=25, deadline=None)
 @given(
     st.lists(
         st.tuples(
@@ -203,6 +204,11 @@ def test_in_range_measurements_never_give_nan(
             continue
         assert not math.isnan(result.nis)
         assert np.isfinite(fusion.x).all() and np.isfinite(fusion.P).all()
+
+
+test_in_range_measurements_never_give_nan_thoroughly = slow_twin(
+    test_in_range_measurements_never_give_nan, max_examples=60
+)
 
 
 @settings(max_examples=60, deadline=None)

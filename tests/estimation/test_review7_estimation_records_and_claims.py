@@ -23,6 +23,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit.errors import FilterError
 from navkit.estimation import (
     ExtendedKalmanFilter,
@@ -122,7 +123,7 @@ def _spd(rng: np.random.Generator, n: int, scale: float) -> np.ndarray:
     return scale * (a @ a.T + n * np.eye(n))
 
 
-@settings(max_examples=150, deadline=None)
+@settings(max_examples=50, deadline=None)
 @given(
     st.integers(1, 5),
     st.integers(1, 4),
@@ -177,6 +178,11 @@ def test_ekf_step_equals_the_textbook_equations(
         assert -math.pi < result.residual[j] <= math.pi
 
 
+test_ekf_step_equals_the_textbook_equations_thoroughly = slow_twin(
+    test_ekf_step_equals_the_textbook_equations, max_examples=150
+)
+
+
 _KIND_COMPONENTS = {
     "odometry": (1, 2),
     "speed": (1,),
@@ -214,7 +220,7 @@ def _reference_predict(
     return out, jac @ p @ jac.T + q * dt
 
 
-@settings(max_examples=100, deadline=None)
+@settings(max_examples=40, deadline=None)
 @given(
     st.lists(
         st.tuples(
@@ -262,6 +268,11 @@ def test_fusion_equals_the_documented_model(rows: list[Any], seed: int) -> None:
         np.testing.assert_allclose(fusion.P, p, rtol=1e-6, atol=1e-9 * np.abs(p).max())
 
 
+test_fusion_equals_the_documented_model_thoroughly = slow_twin(
+    test_fusion_equals_the_documented_model, max_examples=100
+)
+
+
 _STEPS = st.sampled_from([0.0, 0.01, -0.05, 1e300, 1e20, 5e-324]) | st.floats(-1.0, 2.0)
 _VALUES = st.sampled_from([0.0, 1e308, -1e308, 1e150, math.pi, -math.pi]) | st.floats(-10, 10)
 _VARIANCES = st.sampled_from([1e-100, 1e100, 1e-3, 1.0])
@@ -269,7 +280,7 @@ _VARIANCES = st.sampled_from([1e-100, 1e100, 1e-3, 1.0])
 _ONLINE_STATUS = {"rejected": 1, "out of order": 3, "overflow": 5}
 
 
-@settings(max_examples=300, deadline=None)
+@settings(max_examples=50, deadline=None)
 @given(
     st.lists(
         st.tuples(
@@ -336,6 +347,11 @@ def test_batch_equals_online_row_by_row_whatever_the_rows(
         assert np.array_equal(out.covariances[i], p)
         assert np.array_equal(out.nis[i], nis, equal_nan=True)
     assert batch.t == online.t
+
+
+test_batch_equals_online_row_by_row_whatever_the_rows_thoroughly = slow_twin(
+    test_batch_equals_online_row_by_row_whatever_the_rows, max_examples=300
+)
 
 
 # --- copies of the records ----------------------------------------------------------------

@@ -22,6 +22,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit.errors import FilterError
 from navkit.estimation import (
     CompassCalibration,
@@ -38,6 +39,8 @@ from navkit.geometry import Pose2D, angle_diff
 from navkit.kinematics import DiffDrive, OmniDrive
 
 FAST = settings(max_examples=40, deadline=None)
+# A fusion run per example (tens of ms): fewer by default, FAST's count under -m slow.
+FUSION = settings(FAST, max_examples=15)
 METHODS = ("arc", "midpoint", "first_order")
 
 
@@ -174,7 +177,7 @@ def with_values(log: MeasurementLog, values: Any, variances: Any = None) -> Meas
     return MeasurementLog(log.times, values, var, log.observed)
 
 
-@FAST
+@FUSION
 @given(measurement_logs(), states, st.floats(-100, 100), st.floats(-100, 100))
 def test_fusion_shifted_origin_shifts_the_estimate_only(
     log: MeasurementLog, x0: Any, cx: float, cy: float
@@ -189,7 +192,12 @@ def test_fusion_shifted_origin_shifts_the_estimate_only(
     np.testing.assert_allclose(shifted.states[:, :2] - [cx, cy], base.states[:, :2], atol=1e-9)
 
 
-@FAST
+test_fusion_shifted_origin_shifts_the_estimate_only_thoroughly = slow_twin(
+    test_fusion_shifted_origin_shifts_the_estimate_only, max_examples=40
+)
+
+
+@FUSION
 @given(measurement_logs(), states, st.floats(-math.pi, math.pi))
 def test_fusion_rotated_world_rotates_estimate_and_covariance(
     log: MeasurementLog, x0: Any, phi: float
@@ -211,7 +219,12 @@ def test_fusion_rotated_world_rotates_estimate_and_covariance(
     np.testing.assert_allclose(turned.covariances, jac @ base.covariances @ jac.T, atol=1e-7)
 
 
-@FAST
+test_fusion_rotated_world_rotates_estimate_and_covariance_thoroughly = slow_twin(
+    test_fusion_rotated_world_rotates_estimate_and_covariance, max_examples=40
+)
+
+
+@FUSION
 @given(measurement_logs(), states)
 def test_fusion_mirrored_world(log: MeasurementLog, x0: Any) -> None:
     base = PlanarFusion(x0, t0=0.0).update_batch(log)
@@ -226,7 +239,10 @@ def test_fusion_mirrored_world(log: MeasurementLog, x0: Any) -> None:
     np.testing.assert_allclose(mirrored.covariances, expected, atol=1e-9)
 
 
-@FAST
+test_fusion_mirrored_world_thoroughly = slow_twin(test_fusion_mirrored_world, max_examples=40)
+
+
+@FUSION
 @given(measurement_logs(), states, st.sampled_from([0.25, 4.0, 16.0]))
 def test_fusion_is_scale_free_in_lengths(log: MeasurementLog, x0: Any, k: float) -> None:
     base = PlanarFusion(x0, t0=0.0).update_batch(log)
@@ -245,7 +261,12 @@ def test_fusion_is_scale_free_in_lengths(log: MeasurementLog, x0: Any, k: float)
     np.testing.assert_allclose(scaled.nis, base.nis, rtol=1e-9, atol=1e-12)
 
 
-@FAST
+test_fusion_is_scale_free_in_lengths_thoroughly = slow_twin(
+    test_fusion_is_scale_free_in_lengths, max_examples=40
+)
+
+
+@FUSION
 @given(measurement_logs(), states, st.integers(-1000, 1000), st.data())
 def test_fusion_time_shift_chunks_and_copies_are_exact(
     log: MeasurementLog, x0: Any, shift: int, data: st.DataObject
@@ -271,7 +292,12 @@ def test_fusion_time_shift_chunks_and_copies_are_exact(
     np.testing.assert_array_equal(covariances, base.covariances)
 
 
-@FAST
+test_fusion_time_shift_chunks_and_copies_are_exact_thoroughly = slow_twin(
+    test_fusion_time_shift_chunks_and_copies_are_exact, max_examples=40
+)
+
+
+@FUSION
 @given(
     measurement_logs(kinds=[(1, 0, 0, 0), (0, 1, 1, 0), (0, 1, 0, 0), (0, 0, 1, 0), (0, 0, 0, 1)]),
     states,
@@ -300,6 +326,11 @@ def test_fusion_batch_equals_online_updates(log: MeasurementLog, x0: Any, gate: 
         assert result.accepted == bool(batch.accepted[i])
         np.testing.assert_array_equal(fusion.x, batch.states[i])
         np.testing.assert_array_equal(fusion.P, batch.covariances[i])
+
+
+test_fusion_batch_equals_online_updates_thoroughly = slow_twin(
+    test_fusion_batch_equals_online_updates, max_examples=40
+)
 
 
 @FAST
@@ -448,7 +479,7 @@ def test_compass_yaw_is_relative_and_mirrors(
     assert_same_angles(-compass_to_yaw(-raw, initial_deg=-initial), yaw)
 
 
-@FAST
+@FUSION
 @given(measurement_logs(), st.sampled_from([1e300, 1e160, 1.7e308]), st.data())
 def test_fusion_corrupt_timestamp_changes_nothing_else(
     log: MeasurementLog, bad_time: float, data: st.DataObject
@@ -485,6 +516,11 @@ def test_fusion_corrupt_timestamp_changes_nothing_else(
     np.testing.assert_array_equal(fusion.x, before[0])
     np.testing.assert_array_equal(fusion.P, before[1])
     assert fusion.t == before[2]
+
+
+test_fusion_corrupt_timestamp_changes_nothing_else_thoroughly = slow_twin(
+    test_fusion_corrupt_timestamp_changes_nothing_else, max_examples=40
+)
 
 
 @FAST

@@ -67,7 +67,7 @@ spec(P + ".cases", lambda c: method(demo(), "cases", 2), kinds={"trials": Real(i
 spec(
     P + ".trials",
     lambda c: method(demo(), "trials", 2, seed=4),
-    kinds={"trials": Real(integer=True, optional=True), "seed": Real(integer=True)},
+    kinds={"trials": TRIALS, "seed": Real(integer=True)},
 )
 spec(
     P + ".run_trial",

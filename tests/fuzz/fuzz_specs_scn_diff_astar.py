@@ -6,7 +6,19 @@ simulated time; ``run`` is fuzzed noise-free, where every case runs once.
 
 from __future__ import annotations
 
-from fuzz_engine import Anything, Call, Choice, Function, Obj, Real, Text, call, method, spec
+from fuzz_engine import (
+    TRIALS,
+    Anything,
+    Call,
+    Choice,
+    Function,
+    Obj,
+    Real,
+    Text,
+    call,
+    method,
+    spec,
+)
 
 from navkit.sim import Trial, TrialResult
 from navkit.sim.scenarios import DiffAStar
@@ -46,7 +58,7 @@ spec(P + ".cases", lambda c: method(house(), "cases", 3), kinds={"trials": Real(
 spec(
     P + ".trials",
     lambda c: method(house(), "trials", 2, seed=4),
-    kinds={"trials": Real(integer=True, optional=True), "seed": Real(integer=True)},
+    kinds={"trials": TRIALS, "seed": Real(integer=True)},
 )
 spec(
     P + ".run_trial",

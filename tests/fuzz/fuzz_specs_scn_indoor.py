@@ -8,7 +8,7 @@ one tracking path; the trial run directly is a planning route (milliseconds).
 
 from __future__ import annotations
 
-from fuzz_engine import Anything, Call, Choice, Obj, Real, call, method, spec
+from fuzz_engine import TRIALS, Anything, Call, Choice, Obj, Real, call, method, spec
 from fuzz_specs_scn_omni_greedy import RUN_KINDS  # the kinds of Scenario.run's arguments
 
 from navkit.sim import Trial, TrialResult
@@ -44,7 +44,7 @@ spec(P + ".cases", lambda c: method(indoor(), "cases", 3), kinds={"trials": Real
 spec(
     P + ".trials",
     lambda c: method(indoor(), "trials", 2, seed=4),
-    kinds={"trials": Real(integer=True, optional=True), "seed": Real(integer=True)},
+    kinds={"trials": TRIALS, "seed": Real(integer=True)},
 )
 spec(
     P + ".run_trial",

@@ -94,7 +94,7 @@ for _name, _make, _values, _kinds, _error in (
     spec(
         P + f"{_name}.trials",
         lambda c, m=_make: method(m(), "trials", 2, seed=4),
-        kinds={"trials": Real(integer=True, optional=True), "seed": Real(integer=True)},
+        kinds={"trials": TRIALS, "seed": Real(integer=True)},
     )
     spec(
         P + f"{_name}.run_trial",

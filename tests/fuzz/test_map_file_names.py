@@ -16,6 +16,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit.geometry import Pose2D
 from navkit.mapping import OccupancyGrid
 from navkit.mapping.io import read_map, write_map
@@ -131,14 +132,19 @@ NAMES = st.text(
 ).filter(lambda n: n not in (".", "..") and len(n.encode("utf-8", "surrogatepass")) <= 200)
 
 
-@FIXED
+@settings(FIXED, max_examples=40)
 @given(name=NAMES, suffix=st.sampled_from([".yaml", ".yml", "", ".YAML"]))
 def test_generated_names_round_trip_or_are_refused(name: str, suffix: str) -> None:
     with tempfile.TemporaryDirectory() as folder:
         _round_trip(Path(folder), name + suffix, _grid())
 
 
-@FIXED
+test_generated_names_round_trip_or_are_refused_thoroughly = slow_twin(
+    test_generated_names_round_trip_or_are_refused, max_examples=100
+)
+
+
+@settings(FIXED, max_examples=40)
 @given(
     cells=st.lists(st.sampled_from([0, 1, 2]), min_size=6, max_size=6),
     resolution=st.floats(1e-3, 10.0),
@@ -156,6 +162,11 @@ def test_map_metadata_round_trips_exactly(
     with tempfile.TemporaryDirectory() as folder:
         write_map(grid, Path(folder) / "m.yaml")
         _assert_same_map(grid, read_map(Path(folder) / "m.yaml"))
+
+
+test_map_metadata_round_trips_exactly_thoroughly = slow_twin(
+    test_map_metadata_round_trips_exactly, max_examples=100
+)
 
 
 def test_a_save_never_writes_over_another_maps_image(tmp_path: Path) -> None:

@@ -9,6 +9,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit.geometry import Pose2D, Twist2D, angle_diff, integrate, rollout, wrap_angle
 
 finite = st.floats(allow_nan=False, allow_infinity=False)
@@ -95,7 +96,7 @@ def test_angle_diff_is_finite_and_wrapped_for_every_finite_input(a: float, b: fl
     assert d == angle_diff(np.array([a]), np.array([b]))[0]
 
 
-@settings(deadline=None)  # the first example may load compiled kernels
+@settings(max_examples=40, deadline=None)  # the first example may load compiled kernels
 @given(
     st.lists(st.floats(-1e3, 1e3), min_size=3, max_size=3),
     st.lists(st.floats(-1e3, 1e3), min_size=3, max_size=3),
@@ -105,3 +106,8 @@ def test_integration_in_range_is_finite(pose: list[float], twist: list[float], d
     p = integrate(pose, twist, dt)
     assert all(math.isfinite(v) for v in (p.x, p.y, p.theta))
     assert np.isfinite(rollout(pose, [twist] * 3, dt)).all()
+
+
+test_integration_in_range_is_finite_thoroughly = slow_twin(
+    test_integration_in_range_is_finite, max_examples=100
+)

@@ -12,9 +12,10 @@ from fractions import Fraction
 
 import numpy as np
 import pytest
-from hypothesis import example, given
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit.geometry import Pose2D, angle_diff, integrate, rollout
 
 U = 2.0**-53  # unit roundoff of float64
@@ -60,6 +61,7 @@ northings = st.floats(1e6, 1e7)
 offsets = st.floats(-1e3, 1e3)
 
 
+@settings(max_examples=40)
 @given(eastings, northings, headings, offsets, offsets, headings)
 def test_relative_to_at_utm_coordinates_is_exact_to_rounding(
     fx: float, fy: float, ftheta: float, ox: float, oy: float, theta: float
@@ -76,6 +78,11 @@ def test_relative_to_at_utm_coordinates_is_exact_to_rounding(
     want_theta = float(Fraction(pose.theta) - Fraction(frame.theta))
     assert abs(angle_diff(rel.theta, want_theta)) <= 8 * U * math.pi
     assert -math.pi < rel.theta <= math.pi
+
+
+test_relative_to_at_utm_coordinates_is_exact_to_rounding_thoroughly = slow_twin(
+    test_relative_to_at_utm_coordinates_is_exact_to_rounding, max_examples=100
+)
 
 
 def test_relative_to_at_utm_coordinates_known_case() -> None:
@@ -115,6 +122,7 @@ def check_result(call: object, exact: tuple[Fraction, ...], scale: Fraction, nam
         check_against(value, want, scale)
 
 
+@settings(max_examples=40)
 @given(huge_or_zero, huge_or_zero, turns, huge_or_zero, huge_or_zero, headings)
 @example(0.0, 0.0, 1.0, 0.0, 2.2250738585e-313, 0.0)  # a subnormal result: rounded absolutely
 def test_compose_near_the_float_limit(
@@ -132,6 +140,12 @@ def test_compose_near_the_float_limit(
     check_result(call, exact, scale, "other")
 
 
+test_compose_near_the_float_limit_thoroughly = slow_twin(
+    test_compose_near_the_float_limit, max_examples=100
+)
+
+
+@settings(max_examples=40)
 @given(huge_or_zero, huge_or_zero, turns, huge_or_zero, huge_or_zero, headings)
 def test_relative_to_near_the_float_limit(
     x: float, y: float, theta: float, fx: float, fy: float, ftheta: float
@@ -148,6 +162,12 @@ def test_relative_to_near_the_float_limit(
     check_result(call, exact, abs(dx) + abs(dy), "frame")
 
 
+test_relative_to_near_the_float_limit_thoroughly = slow_twin(
+    test_relative_to_near_the_float_limit, max_examples=100
+)
+
+
+@settings(max_examples=40)
 @given(huge_or_zero, huge_or_zero, turns, huge_or_zero, huge_or_zero)
 def test_transform_points_near_the_float_limit(
     x: float, y: float, theta: float, px: float, py: float
@@ -164,6 +184,12 @@ def test_transform_points_near_the_float_limit(
     check_result(call, exact, scale, "points_xy")
 
 
+test_transform_points_near_the_float_limit_thoroughly = slow_twin(
+    test_transform_points_near_the_float_limit, max_examples=100
+)
+
+
+@settings(max_examples=40)
 @given(huge_or_zero, huge_or_zero, turns, huge_or_zero, huge_or_zero, st.floats(0.0, 4.0))
 def test_straight_integration_near_the_float_limit(
     x: float, y: float, theta: float, vx: float, vy: float, dt: float
@@ -185,6 +211,11 @@ def test_straight_integration_near_the_float_limit(
         return float(out[1, 0]), float(out[1, 1])
 
     check_result(call_rollout, exact, scale, "twists")
+
+
+test_straight_integration_near_the_float_limit_thoroughly = slow_twin(
+    test_straight_integration_near_the_float_limit, max_examples=100
+)
 
 
 def test_compose_with_an_overflowing_partial_sum_known_case() -> None:

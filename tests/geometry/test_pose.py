@@ -9,6 +9,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit.geometry import Pose2D, Twist2D
 
 coords = st.floats(-100, 100, allow_nan=False)
@@ -32,9 +33,13 @@ def test_inverse_is_identity(p: Pose2D) -> None:
     assert close(p.inverse().compose(p), identity)
 
 
+@settings(max_examples=40)
 @given(poses, poses, poses)
 def test_compose_associative(a: Pose2D, b: Pose2D, c: Pose2D) -> None:
     assert close((a @ b) @ c, a @ (b @ c), tol=1e-7)
+
+
+test_compose_associative_thoroughly = slow_twin(test_compose_associative, max_examples=100)
 
 
 @given(poses, poses)
@@ -42,6 +47,7 @@ def test_relative_to_roundtrip(a: Pose2D, frame: Pose2D) -> None:
     assert close(frame.compose(a.relative_to(frame)), a, tol=1e-7)
 
 
+@settings(max_examples=40)
 @given(poses, st.lists(st.tuples(coords, coords), min_size=1, max_size=5))
 def test_transform_points_matches_compose(p: Pose2D, pts: list[tuple[float, float]]) -> None:
     arr = np.array(pts)
@@ -50,6 +56,11 @@ def test_transform_points_matches_compose(p: Pose2D, pts: list[tuple[float, floa
         q = p.compose(Pose2D(x, y, 0.0))
         assert math.isclose(q.x, wx, abs_tol=1e-9)
         assert math.isclose(q.y, wy, abs_tol=1e-9)
+
+
+test_transform_points_matches_compose_thoroughly = slow_twin(
+    test_transform_points_matches_compose, max_examples=100
+)
 
 
 def test_known_values() -> None:
@@ -75,6 +86,7 @@ def test_bad_input() -> None:
         Pose2D(0, 0).transform_points(np.zeros((3, 3)))
 
 
+@settings(max_examples=40)
 @given(poses, poses)
 def test_compose_accepts_a_three_sequence(a: Pose2D, b: Pose2D) -> None:
     as_list = [b.x, b.y, b.theta]
@@ -84,6 +96,11 @@ def test_compose_accepts_a_three_sequence(a: Pose2D, b: Pose2D) -> None:
     assert a @ as_list == a @ b
     assert b.relative_to(as_list) == b.relative_to(b)
     assert a.relative_to([b.x, b.y, b.theta]) == a.relative_to(b)
+
+
+test_compose_accepts_a_three_sequence_thoroughly = slow_twin(
+    test_compose_accepts_a_three_sequence, max_examples=100
+)
 
 
 @pytest.mark.parametrize("bad", [3, 3.0, None, "1 2 3", {"x": 1.0}])

@@ -11,6 +11,7 @@ from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 from scipy.spatial.transform import Rotation
 
+from hypothesis_twins import slow_twin
 from navkit.geometry import (
     ImuInBase,
     imu_to_base,
@@ -30,6 +31,7 @@ angle = st.floats(-10.0, 10.0, allow_nan=False)
 
 
 @pytest.mark.filterwarnings("ignore:Gimbal lock detected")
+@settings(max_examples=40)
 @given(quaternions)
 def test_yaw_matches_scipy_zyx_euler(q: np.ndarray) -> None:
     rot = Rotation.from_quat(q)
@@ -42,6 +44,12 @@ def test_yaw_matches_scipy_zyx_euler(q: np.ndarray) -> None:
     np.testing.assert_allclose(diff, 0.0, atol=1e-6)
 
 
+test_yaw_matches_scipy_zyx_euler_thoroughly = slow_twin(
+    test_yaw_matches_scipy_zyx_euler, max_examples=100
+)
+
+
+@settings(max_examples=40)
 @given(quaternions)
 def test_matrix_matches_scipy(q: np.ndarray) -> None:
     np.testing.assert_allclose(
@@ -49,6 +57,10 @@ def test_matrix_matches_scipy(q: np.ndarray) -> None:
     )
 
 
+test_matrix_matches_scipy_thoroughly = slow_twin(test_matrix_matches_scipy, max_examples=100)
+
+
+@settings(max_examples=40)
 @given(arrays(np.float64, st.integers(1, 5), elements=angle), st.data())
 def test_rpy_matches_scipy(roll: np.ndarray, data: st.DataObject) -> None:
     n = roll.shape[0]
@@ -58,6 +70,9 @@ def test_rpy_matches_scipy(roll: np.ndarray, data: st.DataObject) -> None:
     expected = Rotation.from_euler("ZYX", np.column_stack((yaw, pitch, roll))).as_matrix()
     np.testing.assert_allclose(quaternion_to_matrix(q), expected, atol=1e-12)
     np.testing.assert_allclose(np.linalg.norm(q, axis=-1), 1.0, atol=1e-12)
+
+
+test_rpy_matches_scipy_thoroughly = slow_twin(test_rpy_matches_scipy, max_examples=100)
 
 
 @given(angle)

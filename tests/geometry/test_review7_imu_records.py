@@ -24,6 +24,7 @@ import pytest
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit.geometry import ImuInBase, imu_to_base, quaternion_to_matrix, rpy_to_quaternion
 
 _HUGE = st.tuples(st.floats(1.0, 17.9), st.integers(306, 307), st.booleans()).map(
@@ -35,7 +36,7 @@ _QUAT = st.lists(st.floats(-1.0, 1.0), min_size=4, max_size=4).filter(
 _LIMIT = Fraction(np.finfo(np.float64).max)
 
 
-@settings(max_examples=300, deadline=None)
+@settings(max_examples=50, deadline=None)
 @given(_QUAT, st.tuples(_HUGE, _HUGE, _HUGE))
 @example(
     [1.2665688645247233, 0.5565275331801396, -0.8489745470896223, -0.0909370888182374],
@@ -64,6 +65,11 @@ def test_rotated_readings_within_the_float_range(
                 imu_to_base([0.0, 0.0, 0.0, 1.0], reading, [0.0, 0.0, 0.0], mount=mounting)
             with pytest.raises(ValueError, match="linear_accelerations: rotating"):
                 imu_to_base([0.0, 0.0, 0.0, 1.0], [0.0, 0.0, 0.0], reading, mount=mounting)
+
+
+test_rotated_readings_within_the_float_range_thoroughly = slow_twin(
+    test_rotated_readings_within_the_float_range, max_examples=300
+)
 
 
 def test_a_component_beyond_the_float_range_is_refused_naming_the_readings() -> None:

@@ -13,6 +13,7 @@ import pytest
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit.geometry import Pose2D, integrate, rollout
 
 _TINY = st.integers(-64, 64).map(lambda k: k * 5e-324)
@@ -31,7 +32,7 @@ def _repeated(start: tuple[float, float, float], rows: list[tuple[float, float, 
     return np.array(out)
 
 
-@settings(max_examples=400, deadline=None)
+@settings(max_examples=50, deadline=None)
 @given(st.tuples(_COORD, _COORD, st.floats(-3.0, 3.0)), st.lists(_ROW, min_size=1, max_size=5),
        st.sampled_from([0.0, 1e-3, 0.5, 1.0, 2.0]))
 @example((7 * 5e-324, 3 * 5e-324, 0.0), [(0.0, 0.0, 0.0), (1.7e308, -1.7e308, 1.0)], 0.5)
@@ -46,6 +47,11 @@ def test_rollout_equals_repeated_integrate(
         assert str(info.value) == str(err).replace("twist,", "twists,")
         return
     np.testing.assert_array_equal(rollout(start, rows, dt), want)
+
+
+test_rollout_equals_repeated_integrate_thoroughly = slow_twin(
+    test_rollout_equals_repeated_integrate, max_examples=400
+)
 
 
 def test_a_robot_standing_still_keeps_its_subnormal_position() -> None:

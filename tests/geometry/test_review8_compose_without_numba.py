@@ -10,6 +10,7 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit._shared.se2 import compose_scalar
 from navkit.geometry import Pose2D
 
@@ -32,7 +33,7 @@ coordinate = st.floats(-1e6, 1e6)
 angle = st.floats(-50.0, 50.0)
 
 
-@settings(max_examples=300, deadline=None)
+@settings(max_examples=50, deadline=None)
 @given(coordinate, coordinate, angle, coordinate, coordinate, angle)
 def test_compose_equals_the_kernels_compose(
     x: float, y: float, th: float, dx: float, dy: float, dth: float
@@ -44,6 +45,11 @@ def test_compose_equals_the_kernels_compose(
         pose.x, pose.y, pose.theta, other.x, other.y, other.theta
     )
     assert -math.pi < got.theta <= math.pi
+
+
+test_compose_equals_the_kernels_compose_thoroughly = slow_twin(
+    test_compose_equals_the_kernels_compose, max_examples=300
+)
 
 
 def test_compose_of_huge_poses_still_scales() -> None:

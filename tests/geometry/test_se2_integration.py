@@ -9,6 +9,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit.geometry import Pose2D, Twist2D, integrate, rollout
 
 speeds = st.floats(-5, 5, allow_nan=False)
@@ -24,7 +25,7 @@ def assert_pose_close(a: Pose2D, b: Pose2D, tol: float = 1e-9) -> None:
     assert math.cos(a.theta - b.theta) == pytest.approx(1.0, abs=tol)
 
 
-@settings(deadline=None)
+@settings(max_examples=40, deadline=None)
 @given(poses, twists, dts)
 def test_two_half_steps_equal_one_step(p: Pose2D, t: Twist2D, dt: float) -> None:
     once = integrate(p, t, 2 * dt)
@@ -32,7 +33,12 @@ def test_two_half_steps_equal_one_step(p: Pose2D, t: Twist2D, dt: float) -> None
     assert_pose_close(once, twice, tol=1e-8)
 
 
-@settings(deadline=None)
+test_two_half_steps_equal_one_step_thoroughly = slow_twin(
+    test_two_half_steps_equal_one_step, max_examples=100
+)
+
+
+@settings(max_examples=40, deadline=None)
 @given(poses, twists, dts)
 def test_matches_fine_euler_integration(p: Pose2D, t: Twist2D, dt: float) -> None:
     n = 20000
@@ -44,6 +50,11 @@ def test_matches_fine_euler_integration(p: Pose2D, t: Twist2D, dt: float) -> Non
     x += h * np.sum(c * t.vx - s * t.vy)
     y += h * np.sum(s * t.vx + c * t.vy)
     assert_pose_close(integrate(p, t, dt), Pose2D(x, y, th + t.omega * dt), tol=1e-6)
+
+
+test_matches_fine_euler_integration_thoroughly = slow_twin(
+    test_matches_fine_euler_integration, max_examples=100
+)
 
 
 def test_known_arc_and_straight_line() -> None:

@@ -9,6 +9,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit.geometry import Pose2D, Twist2D, angle_diff, integrate
 from navkit.kinematics import DiffDrive
 
@@ -17,6 +18,7 @@ tracks = st.floats(0.05, 2.0)
 speeds = st.floats(-20, 20, allow_nan=False)
 
 
+@settings(max_examples=40)
 @given(tracks, radii, radii, speeds, speeds)
 def test_roundtrip_unequal_radii(d: float, rl: float, rr: float, wl: float, wr: float) -> None:
     drive = DiffDrive(track=d, left_radius=rl, right_radius=rr)
@@ -26,6 +28,10 @@ def test_roundtrip_unequal_radii(d: float, rl: float, rr: float, wl: float, wr: 
     assert back[1] == pytest.approx(wr, abs=1e-9)
 
 
+test_roundtrip_unequal_radii_thoroughly = slow_twin(test_roundtrip_unequal_radii, max_examples=100)
+
+
+@settings(max_examples=40)
 @given(tracks, radii, radii, st.floats(-3, 3), st.floats(-3, 3))
 def test_inverse_forward_roundtrip(d: float, rl: float, rr: float, v: float, w: float) -> None:
     drive = DiffDrive(track=d, left_radius=rl, right_radius=rr)
@@ -33,6 +39,11 @@ def test_inverse_forward_roundtrip(d: float, rl: float, rr: float, v: float, w: 
     assert t.vx == pytest.approx(v, abs=1e-9)
     assert t.omega == pytest.approx(w, abs=1e-9)
     assert t.vy == 0.0
+
+
+test_inverse_forward_roundtrip_thoroughly = slow_twin(
+    test_inverse_forward_roundtrip, max_examples=100
+)
 
 
 def test_known_values() -> None:
@@ -88,7 +99,7 @@ def test_lateral_velocity_rejected_unless_ignored() -> None:
         drive.inverse_batch([[1.0, 0.1, 0.0]])
 
 
-@settings(deadline=None)
+@settings(max_examples=40, deadline=None)
 @given(tracks, st.floats(-1, 1), st.floats(-1, 1))
 def test_arc_odometry_is_exact(d: float, dl: float, dr: float) -> None:
     """The arc step equals integrating the constant twist that rolls those distances."""
@@ -102,6 +113,9 @@ def test_arc_odometry_is_exact(d: float, dl: float, dr: float) -> None:
     assert angle_diff(step.theta, (dr - dl) / d) == pytest.approx(0.0, abs=1e-12)
     batch = drive.odometry_step_batch([dl], [dr])
     np.testing.assert_array_equal(batch[0], step.as_array())
+
+
+test_arc_odometry_is_exact_thoroughly = slow_twin(test_arc_odometry_is_exact, max_examples=100)
 
 
 def test_methods_agree_to_their_order() -> None:

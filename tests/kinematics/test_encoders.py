@@ -6,9 +6,10 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import given
+from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit.kinematics import tick_delta, ticks_to_distance
 
 
@@ -47,6 +48,7 @@ def test_tick_delta_known(prev: int, cur: int, bits: int, expected: int) -> None
     assert tick_delta(prev, cur, bits=bits) == expected
 
 
+@settings(max_examples=40)
 @given(
     st.integers(8, 64).flatmap(
         lambda b: st.tuples(
@@ -58,6 +60,11 @@ def test_tick_delta_recovers_true_step(case: tuple[int, int, int]) -> None:
     bits, start, step = case
     cur = (start + step) % 2**bits
     assert tick_delta(start, cur, bits=bits) == step
+
+
+test_tick_delta_recovers_true_step_thoroughly = slow_twin(
+    test_tick_delta_recovers_true_step, max_examples=100
+)
 
 
 def test_tick_delta_arrays_and_errors() -> None:

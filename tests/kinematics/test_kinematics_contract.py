@@ -10,6 +10,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit.kinematics import DiffDrive, OmniDrive, tick_delta, ticks_to_distance
 
 LENGTHS = st.floats(1e-6, 1e6)
@@ -106,7 +107,7 @@ def test_tick_delta_shapes_that_do_not_broadcast_name_the_arguments() -> None:
         tick_delta(np.array([1, 2]), np.array([1, 2, 3]), bits=16)
 
 
-@settings(deadline=None)  # the first example may load compiled kernels
+@settings(max_examples=40, deadline=None)  # the first example may load compiled kernels
 @given(LENGTHS, LENGTHS, st.floats(1e-6, 1e6), st.floats(-1e6, 1e6), st.floats(-1e6, 1e6))
 def test_in_range_drives_never_produce_nan(
     track: float, radius: float, base: float, w0: float, w1: float
@@ -123,3 +124,8 @@ def test_in_range_drives_never_produce_nan(
     assert np.isfinite(speeds).all()
     back = omni.forward(speeds)
     assert all(math.isfinite(v) for v in (back.vx, back.vy, back.omega))
+
+
+test_in_range_drives_never_produce_nan_thoroughly = slow_twin(
+    test_in_range_drives_never_produce_nan, max_examples=100
+)

@@ -6,9 +6,10 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import assume, given
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit.geometry import Twist2D
 from navkit.kinematics import OmniDrive
 
@@ -27,12 +28,19 @@ def layouts(draw: st.DrawFn) -> OmniDrive:
     return OmniDrive(angles, wheel_radius=r, base_radius=big_l)
 
 
+@settings(max_examples=40)
 @given(layouts(), twists)
 def test_forward_inverse_identity(drive: OmniDrive, t: Twist2D) -> None:
     back = drive.forward(drive.inverse(t))
     np.testing.assert_allclose(back.as_array(), t.as_array(), atol=1e-7)
 
 
+test_forward_inverse_identity_thoroughly = slow_twin(
+    test_forward_inverse_identity, max_examples=100
+)
+
+
+@settings(max_examples=40)
 @given(layouts(), st.lists(st.tuples(speeds, speeds, speeds), min_size=1, max_size=6))
 def test_batch_matches_single(drive: OmniDrive, rows: list[tuple[float, float, float]]) -> None:
     tw = np.array(rows)
@@ -41,6 +49,9 @@ def test_batch_matches_single(drive: OmniDrive, rows: list[tuple[float, float, f
     for row, w in zip(rows, wheels, strict=True):
         np.testing.assert_allclose(w, drive.inverse(Twist2D(*row)), atol=1e-12)
     np.testing.assert_allclose(drive.forward_batch(wheels), tw, atol=1e-7)
+
+
+test_batch_matches_single_thoroughly = slow_twin(test_batch_matches_single, max_examples=100)
 
 
 def test_three_wheel_known_values() -> None:
@@ -183,6 +194,7 @@ def doubtful_layouts(draw: st.DrawFn) -> list[float]:
     return angles
 
 
+@settings(max_examples=40)
 @given(doubtful_layouts())
 def test_the_singular_layout_verdict_does_not_depend_on_the_robots_size(
     angles: list[float],
@@ -194,6 +206,11 @@ def test_the_singular_layout_verdict_does_not_depend_on_the_robots_size(
         assert accepted(angles, wheel_radius=0.05 * k, base_radius=0.2 * k) == verdict
     for base_radius in BASE_RADII:
         assert accepted(angles, wheel_radius=0.05, base_radius=base_radius) == verdict
+
+
+test_the_singular_layout_verdict_does_not_depend_on_the_robots_size_thoroughly = slow_twin(
+    test_the_singular_layout_verdict_does_not_depend_on_the_robots_size, max_examples=100
+)
 
 
 def test_bunched_wheels_are_judged_alike_at_every_size() -> None:

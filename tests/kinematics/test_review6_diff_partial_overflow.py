@@ -16,6 +16,7 @@ import pytest
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit.geometry import wrap_angle
 from navkit.kinematics import DiffDrive
 
@@ -34,7 +35,7 @@ def _fits(exact: Fraction) -> bool:
     return abs(exact) < Fraction(1.7e308)
 
 
-@settings(max_examples=300, deadline=None)
+@settings(max_examples=50, deadline=None)
 @given(_HUGE, _HUGE, _LENGTH, _LENGTH, _LENGTH)
 @example(-1e308, 1e308, 10.0, 1.0, 1.0)
 @example(1e308, 1e308, 1e6, 1e6, 1e-6)
@@ -54,7 +55,10 @@ def test_forward_of_huge_speeds(
     np.testing.assert_array_equal(batch[1], drive.forward([1.0, 2.0]).as_array())
 
 
-@settings(max_examples=300, deadline=None)
+test_forward_of_huge_speeds_thoroughly = slow_twin(test_forward_of_huge_speeds, max_examples=300)
+
+
+@settings(max_examples=50, deadline=None)
 @given(_HUGE, _HUGE, _LENGTH, _LENGTH, _LENGTH)
 @example(1e308, -1e308, 10.0, 100.0, 100.0)
 @example(1.7e308, 1.7e308, 1e6, 1e6, 1e6)
@@ -73,6 +77,9 @@ def test_inverse_of_huge_twists(
     batch = drive.inverse_batch([[vx, 0.0, omega], [0.5, 0.0, 0.25]])
     np.testing.assert_array_equal(batch[0], speeds)
     np.testing.assert_array_equal(batch[1], drive.inverse([0.5, 0.0, 0.25]))
+
+
+test_inverse_of_huge_twists_thoroughly = slow_twin(test_inverse_of_huge_twists, max_examples=300)
 
 
 @pytest.mark.parametrize("method", ["arc", "midpoint", "first_order"])

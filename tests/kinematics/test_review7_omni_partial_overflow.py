@@ -15,6 +15,7 @@ import pytest
 from hypothesis import HealthCheck, assume, example, given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit.kinematics import OmniDrive
 
 _HUGE = st.tuples(st.floats(1.0, 17.9), st.integers(295, 307), st.booleans()).map(
@@ -57,7 +58,7 @@ def _check(got: np.ndarray, exact: list[Fraction], size: list[Fraction]) -> None
         assert abs(Fraction(float(value)) - want) <= scale * Fraction(1, 2**49)
 
 
-@settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.filter_too_much])
+@settings(max_examples=50, deadline=None, suppress_health_check=[HealthCheck.filter_too_much])
 @given(_drives(), st.tuples(_HUGE, _HUGE, _HUGE))
 @example(OmniDrive.three_wheel(wheel_radius=0.5, base_radius=0.1), (-1e308, 0.0, 1.7e308))
 def test_inverse_of_huge_twists(drive: OmniDrive, twist: tuple[float, float, float]) -> None:
@@ -76,7 +77,10 @@ def test_inverse_of_huge_twists(drive: OmniDrive, twist: tuple[float, float, flo
     _check(batch[1], *_exact(drive.jacobian, np.array([0.5, -0.25, 0.125])))
 
 
-@settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.filter_too_much])
+test_inverse_of_huge_twists_thoroughly = slow_twin(test_inverse_of_huge_twists, max_examples=300)
+
+
+@settings(max_examples=50, deadline=None, suppress_health_check=[HealthCheck.filter_too_much])
 @given(_drives(), st.lists(_HUGE, min_size=5, max_size=5))
 @example(
     OmniDrive.three_wheel(wheel_radius=1.0, base_radius=1.0),
@@ -97,6 +101,9 @@ def test_forward_of_huge_speeds(drive: OmniDrive, values: list[float]) -> None:
     batch = drive.forward_batch([w, small])
     _check(batch[0], exact, size)
     _check(batch[1], *_exact(drive.forward_matrix, small))
+
+
+test_forward_of_huge_speeds_thoroughly = slow_twin(test_forward_of_huge_speeds, max_examples=300)
 
 
 def test_results_beyond_the_float_range_are_still_refused() -> None:

@@ -16,6 +16,7 @@ import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit.geometry import Pose2D, angle_diff, integrate
 from navkit.kinematics import DiffDrive, OmniDrive
 
@@ -89,7 +90,7 @@ layouts = st.lists(st.floats(-math.pi, math.pi), min_size=3, max_size=6, unique=
 twist_values = st.tuples(st.floats(-5, 5), st.floats(-5, 5), st.floats(-5, 5))
 
 
-@FAST
+@settings(FAST, max_examples=25)
 @given(
     layouts, lengths, lengths, twist_values, st.floats(-3.0, 3.0), st.randoms(use_true_random=False)
 )
@@ -128,7 +129,10 @@ def test_omni_drive_relations(
     np.testing.assert_allclose(turned.inverse(turned_twist), wheels, rtol=1e-7, atol=1e-7)
 
 
-@FAST
+test_omni_drive_relations_thoroughly = slow_twin(test_omni_drive_relations, max_examples=60)
+
+
+@settings(FAST, max_examples=25)
 @given(layouts, lengths, lengths, twist_values, scales)
 def test_omni_drive_is_scale_free(
     angles: list[float], r: float, base: float, twist: tuple[float, float, float], k: float
@@ -142,6 +146,9 @@ def test_omni_drive_is_scale_free(
     np.testing.assert_allclose(
         big.forward(wheels).as_array(), [k * vx, k * vy, w], rtol=1e-7, atol=1e-7
     )
+
+
+test_omni_drive_is_scale_free_thoroughly = slow_twin(test_omni_drive_is_scale_free, max_examples=60)
 
 
 @pytest.mark.parametrize("method", METHODS)

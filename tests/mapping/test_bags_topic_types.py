@@ -18,6 +18,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit.mapping.io import bag_topics, read_bag_imu, read_bag_odometry, read_bag_scans
 
 pytest.importorskip("rosbags")
@@ -228,7 +229,7 @@ def layouts(draw: st.DrawFn) -> Layout:
 
 
 @pytest.mark.parametrize("kind", KINDS)
-@settings(max_examples=25, suppress_health_check=[HealthCheck.function_scoped_fixture])
+@settings(max_examples=10, suppress_health_check=[HealthCheck.function_scoped_fixture])
 @given(layout=layouts())
 def test_readers_read_each_topic_and_type_as_written(
     tmp_path_factory: pytest.TempPathFactory, kind: str, layout: Layout
@@ -237,3 +238,8 @@ def test_readers_read_each_topic_and_type_as_written(
     if kind == "ros1-walked" and not layout[1]:
         layout = (layout[0], [0])  # the damage needs an index data record
     check(write(folder / ("bag" if kind == "ros2" else "x.bag"), kind, layout), layout)
+
+
+test_readers_read_each_topic_and_type_as_written_thoroughly = slow_twin(
+    test_readers_read_each_topic_and_type_as_written, max_examples=25
+)

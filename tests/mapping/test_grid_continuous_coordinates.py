@@ -8,13 +8,14 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit._shared.grid_coords import round_half_up
 from navkit.mapping import OccupancyGrid
 
 coordinate = st.floats(-1e9, 1e9, allow_nan=False)
 
 
-@settings(max_examples=300, deadline=None)
+@settings(max_examples=50, deadline=None)
 @given(
     st.floats(1e-6, 1e6),
     coordinate,
@@ -34,6 +35,11 @@ def test_cells_are_the_continuous_coordinates_rounded_half_up_away_from_edges(
     # to within its own rounding (a few ulps), as the docstring says.
     edge = np.minimum(np.abs(continuous - (cells - 0.5)), np.abs(continuous - (cells + 0.5)))
     assert (edge[differ] <= 2.0 * np.spacing(np.abs(continuous[differ]))).all()
+
+
+test_cells_are_the_continuous_coordinates_rounded_half_up_away_from_edges_thoroughly = slow_twin(
+    test_cells_are_the_continuous_coordinates_rounded_half_up_away_from_edges, max_examples=300
+)
 
 
 def test_a_point_a_hair_below_an_edge() -> None:

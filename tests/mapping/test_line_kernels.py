@@ -6,12 +6,13 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit._shared.lines import line_cells, line_is_free
 
 coords = st.integers(-30, 30)
 
 
-@settings(max_examples=150, deadline=None)
+@settings(max_examples=50, deadline=None)
 @given(coords, coords, coords, coords)
 def test_line_cells_is_a_bresenham_line(r0: int, c0: int, r1: int, c1: int) -> None:
     cells = line_cells(r0, c0, r1, c1)
@@ -30,6 +31,11 @@ def test_line_cells_is_a_bresenham_line(r0: int, c0: int, r1: int, c1: int) -> N
     assert np.all(np.abs(cells[:, 1 - major] - exact_minor) <= 0.5 + 1e-9)
 
 
+test_line_cells_is_a_bresenham_line_thoroughly = slow_twin(
+    test_line_cells_is_a_bresenham_line, max_examples=150
+)
+
+
 @settings(max_examples=100, deadline=None)
 @given(coords, coords, coords, coords)
 def test_line_is_symmetric(r0: int, c0: int, r1: int, c1: int) -> None:
@@ -38,7 +44,7 @@ def test_line_is_symmetric(r0: int, c0: int, r1: int, c1: int) -> None:
     assert forward == backward
 
 
-@settings(max_examples=100, deadline=None)
+@settings(max_examples=40, deadline=None)
 @given(
     st.integers(0, 11),
     st.integers(0, 13),
@@ -51,6 +57,11 @@ def test_line_is_free_matches_cells(r0: int, c0: int, r1: int, c1: int, seed: in
     expected = not occ[tuple(line_cells(r0, c0, r1, c1).T)].any()
     assert line_is_free(occ, r0, c0, r1, c1) == expected
     assert line_is_free(occ, r1, c1, r0, c0) == expected
+
+
+test_line_is_free_matches_cells_thoroughly = slow_twin(
+    test_line_is_free_matches_cells, max_examples=100
+)
 
 
 def test_line_is_free_includes_both_ends_and_rejects_outside() -> None:

@@ -15,6 +15,7 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit.geometry import Pose2D
 from navkit.mapping import LaserScan, OccupancyGrid, ScanMapper, ScanMatcher, integrate_scan
 from navkit.mapping._grid_kernels import world_to_cell_kernel, world_to_continuous_kernel
@@ -29,7 +30,7 @@ from navkit.mapping._scan_matcher_kernels import (
 coords = st.floats(-1e9, 1e9, allow_nan=False) | st.floats(-1e3, 1e3)
 
 
-@settings(max_examples=60, deadline=None)
+@settings(max_examples=25, deadline=None)
 @given(
     px=coords,
     py=coords,
@@ -57,6 +58,11 @@ def test_one_point_in_python_equals_the_kernel(
     inside = bool(0 <= cells[0, 0] < rows and 0 <= cells[0, 1] < cols)
     assert bool(grid.contains((px, py))) is inside
     assert grid.contains([[px, py]]).tolist() == [inside]
+
+
+test_one_point_in_python_equals_the_kernel_thoroughly = slow_twin(
+    test_one_point_in_python_equals_the_kernel, max_examples=60
+)
 
 
 def _room_scan(n: int) -> LaserScan:

@@ -17,6 +17,7 @@ from hypothesis import strategies as st
 from shapely.geometry import box
 
 import navkit.mapping as mapping
+from hypothesis_twins import slow_twin
 from navkit.geometry import Pose2D
 from navkit.mapping import LaserScan, OccupancyGrid, io
 
@@ -500,7 +501,7 @@ def test_far_points_and_cells_never_overflow() -> None:
         grid.cell_to_world([[1e300, 0.0]])
 
 
-@settings(max_examples=100, deadline=None)
+@settings(max_examples=40, deadline=None)
 @given(
     st.floats(-1e9, 1e9),
     st.floats(-1e9, 1e9),
@@ -522,3 +523,8 @@ def test_coordinates_are_finite_for_any_finite_input(
     assert np.all(np.abs(cells - np.clip(np.floor(cont + 0.5), -(2.0**62), 2.0**62)) <= 1)
     assert np.all(np.isfinite(grid.cell_to_world(np.clip(pts, -(2.0**62), 2.0**62))))
     assert pts.tolist() == np.array(values[: len(values) // 2 * 2]).reshape(-1, 2).tolist()
+
+
+test_coordinates_are_finite_for_any_finite_input_thoroughly = slow_twin(
+    test_coordinates_are_finite_for_any_finite_input, max_examples=100
+)

@@ -8,6 +8,7 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit.mapping import LaserScan, OccupancyGrid, ScanMapper, integrate_scan
 
 
@@ -49,7 +50,7 @@ def _expected(value: float, update: float, low: float, high: float, hit: bool) -
     return value if value <= low else max(value + update, low)
 
 
-@settings(max_examples=200, deadline=None)
+@settings(max_examples=50, deadline=None)
 @given(
     st.floats(-20.0, 20.0),
     st.floats(-20.0, 20.0),
@@ -76,6 +77,11 @@ def test_updates_follow_their_sign_and_respect_the_clamp(
         # A value within the clamp stays within it, as the plain clipped update.
         if low <= old[k] <= high:
             assert abs(new[k] - min(max(old[k] + inc, low), high)) <= 1e-5 * (1.0 + abs(old[k]))
+
+
+test_updates_follow_their_sign_and_respect_the_clamp_thoroughly = slow_twin(
+    test_updates_follow_their_sign_and_respect_the_clamp, max_examples=200
+)
 
 
 def test_scan_mapper_with_a_positive_lower_clamp_keeps_crossed_cells_unknown() -> None:

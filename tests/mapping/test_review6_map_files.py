@@ -9,6 +9,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit.mapping import OccupancyGrid
 from navkit.mapping.io import read_map, write_map
 from navkit.mapping.io._map_files import pgm_bytes, png_bytes
@@ -66,7 +67,7 @@ _THRESHOLDS = st.one_of(
 
 
 @settings(
-    max_examples=150,
+    max_examples=50,
     deadline=None,
     suppress_health_check=[HealthCheck.function_scoped_fixture],
 )
@@ -100,6 +101,11 @@ def test_write_read_round_trip_keeps_classes_for_any_thresholds(
     again = read_map(tmp_path / "m.yaml")
     for view in ("occupied", "free", "unknown"):
         np.testing.assert_array_equal(getattr(again, view)(), getattr(grid, view)(), err_msg=view)
+
+
+test_write_read_round_trip_keeps_classes_for_any_thresholds_thoroughly = slow_twin(
+    test_write_read_round_trip_keeps_classes_for_any_thresholds, max_examples=150
+)
 
 
 def _yaml_with(tmp_path: Path, line: str) -> Path:

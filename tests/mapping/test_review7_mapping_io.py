@@ -15,6 +15,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit.geometry import Pose2D
 from navkit.mapping import LaserScan, OccupancyGrid
 from navkit.mapping.io import (
@@ -203,7 +204,7 @@ def test_grid_from_msg_yaw_of_a_sub_normal_quaternion() -> None:
     assert grid.origin.theta == pytest.approx(_reference_yaw((0.0, 0.0, 1e-323, 5e-324)))
 
 
-@settings(max_examples=300, deadline=None)
+@settings(max_examples=50, deadline=None)
 @given(
     yaw=st.floats(-math.pi, math.pi),
     exponent=st.integers(-1074, 1023),
@@ -222,6 +223,11 @@ def test_grid_from_msg_yaw_is_scale_free(yaw: float, exponent: int) -> None:
     gap = abs(math.remainder(theta - expected, 2.0 * math.pi))
     # Sub-normal components keep only a few bits: compare with the yaw of what was given.
     assert gap <= 1e-9, (scaled, theta, expected)
+
+
+test_grid_from_msg_yaw_is_scale_free_thoroughly = slow_twin(
+    test_grid_from_msg_yaw_is_scale_free, max_examples=300
+)
 
 
 def test_grid_from_msg_pitched_a_quarter_turn_has_yaw_zero() -> None:

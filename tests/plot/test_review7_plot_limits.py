@@ -9,6 +9,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit.geometry import Twist2D
 from navkit.kinematics import DiffDrive
 from navkit.mapping import OccupancyGrid
@@ -38,7 +39,7 @@ def test_a_tiny_scene_far_out_is_not_drawn_kilometres_wide(x: float, dx: float) 
     assert y1 - y0 <= 1e-9 * max(1.0, abs(x))
 
 
-@settings(max_examples=40, deadline=None)
+@settings(max_examples=15, deadline=None)
 @given(_COORD, _COORD, st.floats(0.0, 1e3), st.floats(0.0, 1e3))
 def test_the_drawn_window_is_the_scene_and_its_margin(
     x: float, y: float, width: float, height: float
@@ -58,6 +59,11 @@ def test_the_drawn_window_is_the_scene_and_its_margin(
     assert x1 == pytest.approx(hi[0] + margin, abs=tol)
     assert y0 == pytest.approx(lo[1] - margin, abs=tol)
     assert y1 == pytest.approx(hi[1] + margin, abs=tol)
+
+
+test_the_drawn_window_is_the_scene_and_its_margin_thoroughly = slow_twin(
+    test_the_drawn_window_is_the_scene_and_its_margin, max_examples=40
+)
 
 
 @pytest.mark.parametrize("bad", [1.0000001, math.nextafter(1.0, 2.0), -1e-9])

@@ -40,17 +40,30 @@ def _run(code: str, cache: Path) -> str:
     return out.stdout.strip()
 
 
+# What compiles: one kernel (a few seconds cold) or astar's several (the slow run).
+_COMPILES = [
+    pytest.param(
+        "OccupancyGrid.empty(width=1.0, height=1.0, resolution=0.1)"
+        ".world_to_cell(np.zeros((2, 2)), continuous=True)",
+        id="one-kernel",
+    ),
+    pytest.param("astar(np.ones((4, 4)), (0, 0), (3, 3))", id="astar", marks=pytest.mark.slow),
+]
+
+
+@pytest.mark.parametrize("call", _COMPILES)
 @pytest.mark.parametrize("enabled", [True, False])
 def test_compiling_a_navkit_kernel_pauses_and_restores_the_collector(
-    enabled: bool, tmp_path: Path
+    enabled: bool, call: str, tmp_path: Path
 ) -> None:
     out = _run(
         f"""
         import numpy as np
+        from navkit.mapping import OccupancyGrid
         from navkit.planning import astar
         if not {enabled}:
             gc.disable()
-        astar(np.ones((4, 4)), (0, 0), (3, 3))
+        {call}
         navkit_compiles = [on for module, on in seen if module.startswith("navkit")]
         print(len(navkit_compiles) > 0, any(navkit_compiles), gc.isenabled())
         """,

@@ -14,10 +14,11 @@ from typing import Any
 
 import numpy as np
 import pytest
-from hypothesis import assume, given
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from shapely.geometry import Polygon
 
+from hypothesis_twins import slow_twin
 from navkit.sim import Lidar, MovingObstacle, World
 
 coords = st.floats(-1e6, 1e6, allow_nan=False)
@@ -36,6 +37,7 @@ def two_roundings(start: float, velocity: float, t: float, got: float) -> Fracti
     return Fraction(math.ulp(product) + math.ulp(got)) / 2
 
 
+@settings(max_examples=40)
 @given(start=st.tuples(coords, coords), velocity=st.tuples(speeds, speeds), t=times)
 def test_position_is_start_plus_velocity_times_t(
     start: tuple[float, float], velocity: tuple[float, float], t: float
@@ -47,6 +49,11 @@ def test_position_is_start_plus_velocity_times_t(
         exact = exact_position(start[axis], velocity[axis], t)
         error = abs(Fraction(float(got[axis])) - exact)
         assert error <= two_roundings(start[axis], velocity[axis], t, float(got[axis]))
+
+
+test_position_is_start_plus_velocity_times_t_thoroughly = slow_twin(
+    test_position_is_start_plus_velocity_times_t, max_examples=100
+)
 
 
 def test_no_drift_after_a_long_time_far_from_the_origin() -> None:

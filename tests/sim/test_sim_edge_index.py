@@ -8,6 +8,7 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit.sim._edge_grid_kernels import build_cell_lists, chebyshev_distance
 
 PAD = 1e-6
@@ -56,7 +57,7 @@ def reference_cells(
 coord = st.floats(-3.0, 3.0, allow_nan=False).map(lambda v: round(v * 4) / 4 if v > 2 else v)
 
 
-@settings(max_examples=60, deadline=None)
+@settings(max_examples=25, deadline=None)
 @given(
     segs=st.lists(st.tuples(coord, coord, coord, coord), max_size=12),
     circles=st.lists(st.tuples(coord, coord, st.floats(0.05, 2.0)), max_size=3),
@@ -78,6 +79,11 @@ def test_cell_lists_match_reference(
     if total > 0:
         over_start, over_items = build_cell_lists(s, c, -2.0, -2.5, h, nx, ny, total - 1)
         assert over_items.shape == (0,) and over_start[-1] == total
+
+
+test_cell_lists_match_reference_thoroughly = slow_twin(
+    test_cell_lists_match_reference, max_examples=60
+)
 
 
 @settings(max_examples=40, deadline=None)

@@ -22,6 +22,7 @@ from hypothesis import strategies as st
 from shapely import affinity
 from shapely.geometry import LineString, Point, Polygon, box
 
+from hypothesis_twins import slow_twin
 from navkit.geometry import Pose2D
 from navkit.mapping import OccupancyGrid
 from navkit.sim import Circle, Lidar, World
@@ -157,7 +158,7 @@ def star_polygons(draw: st.DrawFn) -> Polygon:
     return poly
 
 
-@settings(max_examples=60, deadline=None)
+@settings(max_examples=25, deadline=None)
 @given(
     polys=st.lists(star_polygons(), min_size=1, max_size=5),
     heading=st.floats(-math.pi, math.pi),
@@ -173,6 +174,11 @@ def test_random_polygon_worlds_match_shapely(polys: list[Polygon], heading: floa
     scan = lidar.scan(world, pose)
     expected = shapely_ranges(union, pose, lidar.angles(), 40.0)
     np.testing.assert_allclose(scan.ranges, expected, rtol=0.0, atol=TOL)
+
+
+test_random_polygon_worlds_match_shapely_thoroughly = slow_twin(
+    test_random_polygon_worlds_match_shapely, max_examples=60
+)
 
 
 def cell_boxes(occupied: np.ndarray, grid: OccupancyGrid) -> list[Polygon]:

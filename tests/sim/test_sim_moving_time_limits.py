@@ -10,6 +10,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit.sim import Lidar, MovingObstacle, World
 
 
@@ -45,7 +46,7 @@ def test_world_queries_beyond_the_time_limit_raise_naming_t(after: str) -> None:
             query()
 
 
-@settings(max_examples=200, deadline=None)
+@settings(max_examples=50, deadline=None)
 @given(
     start=st.tuples(st.floats(-999e3, 999e3), st.floats(-999e3, 999e3)),
     velocity=st.tuples(st.floats(-1e3, 1e3), st.floats(-1e3, 1e3)),
@@ -71,6 +72,11 @@ def test_constant_velocity_positions_are_finite_and_exact_within_the_limits(
     # To the obstacle's boundary circle (radius 0.2), less the robot's radius 0.1.
     expected = max(abs(math.hypot(x, y) - 0.2) - 0.1, 0.0)
     assert clearance == pytest.approx(expected, rel=1e-9, abs=1e-6)
+
+
+test_constant_velocity_positions_are_finite_and_exact_within_the_limits_thoroughly = slow_twin(
+    test_constant_velocity_positions_are_finite_and_exact_within_the_limits, max_examples=200
+)
 
 
 def test_extend_with_a_last_leg_too_fast_raises() -> None:

@@ -11,6 +11,7 @@ from hypothesis import example, given, settings
 from hypothesis import strategies as st
 from shapely.geometry import LineString, MultiPolygon, Point, Polygon, box
 
+from hypothesis_twins import slow_twin
 from navkit.geometry import Pose2D
 from navkit.mapping import OccupancyGrid
 from navkit.sim import Circle, MovingObstacle, World
@@ -49,7 +50,7 @@ def test_empty_world() -> None:
 footprint = st.sampled_from([0.25, SQUARE, np.array([[0.0, -0.3], [0.4, 0.0], [0.0, 0.3]])])
 
 
-@settings(max_examples=80, deadline=None)
+@settings(max_examples=30, deadline=None)
 @given(
     fp=footprint,
     x=st.floats(-6.0, 6.0),
@@ -80,6 +81,11 @@ def test_clearance_equals_shapely_distance(fp: object, x: float, y: float, theta
         assert world.collides(fp, pose) == inside_solid
     elif expected == 0.0:
         assert world.collides(fp, pose)
+
+
+test_clearance_equals_shapely_distance_thoroughly = slow_twin(
+    test_clearance_equals_shapely_distance, max_examples=80
+)
 
 
 def test_clearance_on_an_occupancy_grid() -> None:

@@ -8,6 +8,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit.sim import Table
 
 
@@ -35,7 +36,7 @@ def test_whole_numbers_below_the_limit_keep_printing_whole() -> None:
     assert _cell(-9.6, 1) == "-10"
 
 
-@settings(max_examples=300, deadline=None)
+@settings(max_examples=50, deadline=None)
 @given(value=st.floats(allow_nan=False, allow_infinity=False), digits=st.integers(1, 17))
 def test_no_cell_shows_more_significant_digits_than_asked_or_held(
     value: float, digits: int
@@ -49,3 +50,8 @@ def test_no_cell_shows_more_significant_digits_than_asked_or_held(
     )
     significant = number.normalize().as_tuple().digits
     assert len(significant) <= max(digits, 17)
+
+
+test_no_cell_shows_more_significant_digits_than_asked_or_held_thoroughly = slow_twin(
+    test_no_cell_shows_more_significant_digits_than_asked_or_held, max_examples=300
+)

@@ -15,6 +15,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from skimage.graph import MCP_Geometric
 
+from hypothesis_twins import slow_twin
 from navkit import NavkitError, NoPathError
 from navkit._shared.jit import typed_njit
 from navkit.planning import Path2D, astar, distance_field
@@ -33,7 +34,7 @@ from navkit.planning.grid._search_heap import (
 SQRT2 = math.sqrt(2.0)
 
 
-@settings(max_examples=150, deadline=None)
+@settings(max_examples=50, deadline=None)
 @given(
     case=weighted_grids(),
     connectivity=st.sampled_from([4, 8]),
@@ -70,6 +71,11 @@ def test_astar_equals_distance_field_and_scipy(
     assert dijkstra.expanded >= path.expanded
 
 
+test_astar_equals_distance_field_and_scipy_thoroughly = slow_twin(
+    test_astar_equals_distance_field_and_scipy, max_examples=150
+)
+
+
 @pytest.mark.parametrize("fraction", [0.2, 0.35])
 @pytest.mark.parametrize("corner_cutting", [True, False])
 def test_astar_is_exact_on_larger_grids(fraction: float, corner_cutting: bool) -> None:
@@ -98,7 +104,7 @@ def test_astar_is_exact_on_larger_grids(fraction: float, corner_cutting: bool) -
             astar(costs, tuple(int(i) for i in blocked[0]), goal, corner_cutting=corner_cutting)
 
 
-@settings(max_examples=100, deadline=None)
+@settings(max_examples=40, deadline=None)
 @given(case=weighted_grids(max_side=10), weight=st.floats(1.0, 5.0), corner_cutting=st.booleans())
 def test_weighted_astar_respects_its_suboptimality_bound(
     case: tuple[np.ndarray, tuple[int, int], tuple[int, int]], weight: float, corner_cutting: bool
@@ -111,6 +117,11 @@ def test_weighted_astar_respects_its_suboptimality_bound(
     cost, _ = assert_valid_path(costs, path.cells, start, goal, corner_cutting=corner_cutting)
     assert path.cost == pytest.approx(cost, rel=1e-12)
     assert reference * (1 - 1e-12) <= path.cost <= weight * reference * (1 + 1e-12)
+
+
+test_weighted_astar_respects_its_suboptimality_bound_thoroughly = slow_twin(
+    test_weighted_astar_respects_its_suboptimality_bound, max_examples=100
+)
 
 
 def test_corner_cutting_matches_scikit_image_mcp_geometric() -> None:
@@ -372,7 +383,7 @@ def _pop(heap: np.ndarray, meta: np.ndarray, n: int) -> int:
     return rec_pop(heap, meta, n)
 
 
-@settings(max_examples=100, deadline=None)
+@settings(max_examples=40, deadline=None)
 @given(rec_ops)
 def test_record_heap_pops_in_priority_order(sequence: list[tuple[str, int, float, float]]) -> None:
     # The packed kernel's heap keeps slots in the cell records (meta[4 v + 3]).
@@ -405,3 +416,8 @@ def test_record_heap_pops_in_priority_order(sequence: list[tuple[str, int, float
         best = min(ref, key=ref.__getitem__)
         assert _pop(heap, meta, len(ref)) == best
         del ref[best]
+
+
+test_record_heap_pops_in_priority_order_thoroughly = slow_twin(
+    test_record_heap_pops_in_priority_order, max_examples=100
+)

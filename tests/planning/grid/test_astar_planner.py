@@ -8,11 +8,13 @@ from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 import pytest
-from grid_oracle import assert_valid_path, scipy_costs_from, weighted_grids
+from grid_oracle import assert_valid_path, grid_graph, scipy_costs_from, weighted_grids
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from numpy.typing import ArrayLike
+from scipy.sparse.csgraph import dijkstra
 
+from hypothesis_twins import slow_twin
 from navkit import NoPathError
 from navkit.planning import AStarPlanner, Path2D, astar, distance_field
 from navkit.planning.grid import _astar as astar_module
@@ -27,7 +29,7 @@ def _same_path(a: Path2D, b: Path2D) -> None:
     assert a.expanded == b.expanded
 
 
-@settings(max_examples=100, deadline=None)
+@settings(max_examples=40, deadline=None)
 @given(
     case=weighted_grids(),
     connectivity=st.sampled_from([4, 8]),
@@ -73,6 +75,11 @@ def test_prepared_queries_equal_the_one_shot_functions_and_scipy(
         field = planner.distance_field(t)
         np.testing.assert_array_equal(field, distance_field(costs, t, **options))
         assert field[s] == pytest.approx(reference, rel=1e-12)
+
+
+test_prepared_queries_equal_the_one_shot_functions_and_scipy_thoroughly = slow_twin(
+    test_prepared_queries_equal_the_one_shot_functions_and_scipy, max_examples=100
+)
 
 
 def test_grid_is_validated_and_converted_once(monkeypatch: pytest.MonkeyPatch) -> None:
@@ -161,7 +168,11 @@ def test_many_queries_on_one_grid_and_threads() -> None:
         except NoPathError:
             return math.inf
 
-    expected = [scipy_costs_from(costs, s, 8, True)[t] for s, t in pairs]
+    # scipy's Dijkstra from every start on the one graph (scipy_costs_from, built once).
+    graph = grid_graph(costs, 8, True)
+    cols = costs.shape[1]
+    dist = dijkstra(graph, directed=True, indices=[r * cols + c for (r, c), _ in pairs])
+    expected = [float(row[r * cols + c]) for row, (_, (r, c)) in zip(dist, pairs, strict=True)]
     assert sum(math.isfinite(e) for e in expected) > 30
     np.testing.assert_allclose([one(p) for p in pairs], expected, rtol=1e-12)
     with ThreadPoolExecutor(max_workers=3) as pool:

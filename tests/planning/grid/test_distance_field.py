@@ -10,6 +10,7 @@ from grid_oracle import DIAG, ORTHO, move_allowed, move_cost, scipy_costs_from, 
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit.planning import AStarPlanner, astar, distance_field
 from navkit.planning.grid import _distance_field as distance_field_module
 from navkit.planning.grid._distance_field import _bucket_field
@@ -18,7 +19,7 @@ from navkit.planning.grid._limits import checked_cost_range
 SQRT2 = math.sqrt(2.0)
 
 
-@settings(max_examples=100, deadline=None)
+@settings(max_examples=40, deadline=None)
 @given(
     case=weighted_grids(max_side=9),
     connectivity=st.sampled_from([4, 8]),
@@ -48,6 +49,11 @@ def test_field_equals_scipy_and_satisfies_bellman(
             if move_allowed(costs, r, c, dr, dc, corner_cutting)
         )
         assert field[r, c] == pytest.approx(best, rel=1e-12)
+
+
+test_field_equals_scipy_and_satisfies_bellman_thoroughly = slow_twin(
+    test_field_equals_scipy_and_satisfies_bellman, max_examples=100
+)
 
 
 def test_empty_grid_gives_closed_form_distances() -> None:
@@ -127,7 +133,7 @@ def _cost_grids(draw: st.DrawFn) -> tuple[np.ndarray, tuple[int, int]]:
     return costs, goal
 
 
-@settings(max_examples=150, deadline=None)
+@settings(max_examples=50, deadline=None)
 @given(case=_cost_grids(), connectivity=st.sampled_from([4, 8]), corner_cutting=st.booleans())
 def test_field_is_bit_identical_to_the_heap_dijkstra(
     case: tuple[np.ndarray, tuple[int, int]], connectivity: int, corner_cutting: bool
@@ -138,6 +144,11 @@ def test_field_is_bit_identical_to_the_heap_dijkstra(
     options = {"connectivity": connectivity, "corner_cutting": corner_cutting}
     expected = AStarPlanner(costs, **options).distance_field(goal)
     np.testing.assert_array_equal(distance_field(costs, goal, **options), expected)
+
+
+test_field_is_bit_identical_to_the_heap_dijkstra_thoroughly = slow_twin(
+    test_field_is_bit_identical_to_the_heap_dijkstra, max_examples=150
+)
 
 
 def test_bucket_segments_grow_and_wide_cost_ranges_fall_back() -> None:

@@ -5,6 +5,7 @@ from __future__ import annotations
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit.planning.grid._dstar_heap import heap_new, heap_pop, heap_push, heap_remove
 
 ops = st.lists(
@@ -18,7 +19,7 @@ ops = st.lists(
 )
 
 
-@settings(max_examples=200, deadline=None)
+@settings(max_examples=50, deadline=None)
 @given(ops)
 def test_heap_matches_reference(sequence: list[tuple[str, int, float, float]]) -> None:
     nodes, keys, pos, size = heap_new(20)
@@ -43,3 +44,6 @@ def test_heap_matches_reference(sequence: list[tuple[str, int, float, float]]) -
         drained.append(ref.pop(heap_pop(nodes, keys, pos, size)))
     assert drained == sorted(drained)
     assert not ref
+
+
+test_heap_matches_reference_thoroughly = slow_twin(test_heap_matches_reference, max_examples=200)

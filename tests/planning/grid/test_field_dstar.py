@@ -27,6 +27,7 @@ from numba import njit
 from numpy.typing import NDArray
 from scipy.sparse.csgraph import dijkstra
 
+from hypothesis_twins import slow_twin
 from navkit import NoPathError
 from navkit.geometry import Pose2D
 from navkit.planning import FieldDStar, Path2D, field_dstar
@@ -89,7 +90,9 @@ def true_cost(costs: FloatArray, points: FloatArray) -> float:
 def blocked_union(costs: FloatArray) -> shapely.Geometry:
     rows, cols = np.nonzero(~np.isfinite(costs))
     boxes = shapely.box(cols, rows, cols + 1.0, rows + 1.0)
-    return shapely.unary_union(boxes)
+    # Unit cells at integer corners: a coverage (edge to edge, never overlapping),
+    # whose union GEOS builds ten times faster than unary_union's, the same geometry.
+    return shapely.coverage_union_all(boxes)
 
 
 def blocked_crossing_length(costs: FloatArray, points: FloatArray) -> float:
@@ -243,7 +246,7 @@ def random_query(rng: np.random.Generator, n: int, density: float
 # ----------------------------------------------------------------------- interpolation
 
 
-@settings(max_examples=200, deadline=None)
+@settings(max_examples=50, deadline=None)
 @given(
     g2=st.floats(0.0, 50.0),
     f=st.floats(-3.0, 60.0),
@@ -271,6 +274,11 @@ def test_corner_cost_is_the_cheapest_path_through_the_cell(
         assert got >= best - 2e-3 * c
     else:
         assert got == best
+
+
+test_corner_cost_is_the_cheapest_path_through_the_cell_thoroughly = slow_twin(
+    test_corner_cost_is_the_cheapest_path_through_the_cell, max_examples=200
+)
 
 
 def test_corner_cost_matches_the_paper_where_its_branch_is_cheapest() -> None:
@@ -410,7 +418,7 @@ def test_random_maps_legal_and_within_bounds() -> None:
     assert float(np.median(ratios_exact)) <= 1.02
 
 
-@settings(max_examples=60, deadline=None)
+@settings(max_examples=25, deadline=None)
 @given(
     seed=st.integers(0, 2**32 - 1),
     n=st.integers(4, 24),
@@ -435,6 +443,11 @@ def test_small_binary_maps_legal_and_never_worse_than_8_connected(
             assert cost <= 1.005 * octile.cost
     exact = exact_shortest(costs, start, goal, octile.cost)
     assert exact - 1e-9 <= field_dstar(costs, start, goal).cost
+
+
+test_small_binary_maps_legal_and_never_worse_than_8_connected_thoroughly = slow_twin(
+    test_small_binary_maps_legal_and_never_worse_than_8_connected, max_examples=60
+)
 
 
 @pytest.mark.slow

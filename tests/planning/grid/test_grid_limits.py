@@ -10,6 +10,7 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit import NoPathError
 from navkit.planning import AStarPlanner, FieldDStar, astar, distance_field, field_dstar
 from navkit.planning.grid import _limits
@@ -167,7 +168,7 @@ def hostile_grids(draw: st.DrawFn) -> tuple[np.ndarray, tuple[int, int], tuple[i
     return costs, start, goal
 
 
-@settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@settings(max_examples=50, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(hostile_grids(), st.booleans(), st.booleans())
 def test_field_dstar_reaches_the_goal_on_costs_up_to_the_maximum(
     case: tuple[np.ndarray, tuple[int, int], tuple[int, int]], interpolate: bool, lookahead: bool
@@ -183,6 +184,11 @@ def test_field_dstar_reaches_the_goal_on_costs_up_to_the_maximum(
     assert path.points[0].tolist() == [start[0] - 0.5, start[1] - 0.5]
     assert path.points[-1].tolist() == [goal[0] - 0.5, goal[1] - 0.5]
     assert math.isfinite(path.cost) and path.cost >= 0.0
+
+
+test_field_dstar_reaches_the_goal_on_costs_up_to_the_maximum_thoroughly = slow_twin(
+    test_field_dstar_reaches_the_goal_on_costs_up_to_the_maximum, max_examples=300
+)
 
 
 # --- flags, cells and coordinates ----------------------------------------------------

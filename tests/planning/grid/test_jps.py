@@ -20,6 +20,7 @@ from grid_oracle import assert_valid_path, scipy_costs_from
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit import NoPathError
 from navkit.planning import AStarPlanner, astar, distance_field
 from navkit.planning.grid import _astar
@@ -89,7 +90,7 @@ def expandable_cells(
     return int(np.count_nonzero(d + h <= optimum * (1.0 + 1e-12) + 1e-9))
 
 
-@settings(max_examples=200, deadline=None)
+@settings(max_examples=50, deadline=None)
 @given(case=uniform_grids())
 def test_jps_cost_equals_astar_on_a_valid_path(
     case: tuple[np.ndarray, tuple[int, int], tuple[int, int]],
@@ -112,6 +113,11 @@ def test_jps_cost_equals_astar_on_a_valid_path(
     # optimal cost (the comparison with A*'s own count, allowing 8 more for
     # ties, failed on a 14 x 96 grid: 49 jump points against 40 cells).
     assert path.expanded <= expandable_cells(costs, start, goal, reference.cost, False)
+
+
+test_jps_cost_equals_astar_on_a_valid_path_thoroughly = slow_twin(
+    test_jps_cost_equals_astar_on_a_valid_path, max_examples=200
+)
 
 
 @settings(max_examples=60, deadline=None)

@@ -20,6 +20,7 @@ from hypothesis import strategies as st
 from test_jps import expandable_cells, uniform_grids
 from test_movingai import load, sample
 
+from hypothesis_twins import slow_twin
 from navkit import NoPathError
 from navkit.planning import AStarPlanner, astar
 from navkit.planning.grid import _astar
@@ -58,10 +59,15 @@ def check_against_astar(costs: np.ndarray, start: tuple[int, int], goal: tuple[i
     assert path.expanded <= expandable_cells(costs, start, goal, reference.cost, True)
 
 
-@settings(max_examples=400, deadline=None)
+@settings(max_examples=50, deadline=None)
 @given(case=corner_cutting_grids())
 def test_cost_equals_corner_cutting_astar_on_a_valid_path(case: Case) -> None:
     check_against_astar(*case)
+
+
+test_cost_equals_corner_cutting_astar_on_a_valid_path_thoroughly = slow_twin(
+    test_cost_equals_corner_cutting_astar_on_a_valid_path, max_examples=400
+)
 
 
 @settings(max_examples=80, deadline=None)

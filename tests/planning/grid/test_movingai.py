@@ -4,8 +4,9 @@ Data: ``../shared/data/movingai-grid-benchmarks`` (N. Sturtevant, "Benchmarks fo
 Grid-Based Pathfinding", IEEE TCIAIG 4(2), 2012). Optimal lengths are 8-connected
 octile lengths (diagonals sqrt(2)) without corner cutting, printed with 8
 decimals, so costs must agree to 1e-6 relative. CI checks a fixed random sample
-of every scenario file with A* and with jump point search (``method="jps"``);
-the slow-marked tests check every scenario.
+of every scenario file with A* and with jump point search (``method="jps"``),
+path by path too; the slow-marked tests check a larger such sample, and every
+scenario's cost.
 """
 
 from __future__ import annotations
@@ -33,9 +34,12 @@ MAPS = [
     "street/Berlin_0_512",
     "street/Berlin_0_1024",
 ]
-# Scenarios per map in the default (CI) run; chosen so the whole module stays
-# well under a minute from a cold numba cache on 2 cores.
-SAMPLE = 300
+# Scenarios per map in the default (CI) run, the longest among them; the slow run
+# checks SAMPLE_SLOW, also path by path (the check, in Python, costs about as much
+# as the search).
+SAMPLE = 100
+SAMPLE_SLOW = 300
+SAMPLES = [SAMPLE, pytest.param(SAMPLE_SLOW, marks=pytest.mark.slow)]
 PASSABLE = frozenset(".GS")
 
 
@@ -112,18 +116,22 @@ def sample(scenarios: list[Scenario], size: int) -> list[Scenario]:
     return [scenarios[i] for i in sorted(picks)]
 
 
+@pytest.mark.parametrize("size", SAMPLES)
 @pytest.mark.parametrize("name", MAPS)
-def test_random_sample_matches_published_optimum(shared_data: Path, name: str) -> None:
+def test_random_sample_matches_published_optimum(shared_data: Path, name: str, size: int) -> None:
     costs, scenarios = load(shared_data, name)
-    check(costs, sample(scenarios, SAMPLE), validate=True)
+    check(costs, sample(scenarios, size), validate=True)
 
 
+@pytest.mark.parametrize("size", SAMPLES)
 @pytest.mark.parametrize("name", MAPS)
-def test_jump_point_search_matches_published_optimum(shared_data: Path, name: str) -> None:
+def test_jump_point_search_matches_published_optimum(
+    shared_data: Path, name: str, size: int
+) -> None:
     # JPS paths are filled in between jump points: check every 4th cell by cell
     # (the check, in Python, costs more than the search).
     costs, scenarios = load(shared_data, name)
-    check(costs, sample(scenarios, SAMPLE), validate=True, method="jps", validate_every=4)
+    check(costs, sample(scenarios, size), validate=True, method="jps", validate_every=4)
 
 
 def test_distance_field_matches_published_optimum(shared_data: Path) -> None:

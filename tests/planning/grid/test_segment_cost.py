@@ -18,6 +18,7 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 from numpy.typing import NDArray
 
+from hypothesis_twins import slow_twin
 from navkit.planning import FieldDStar
 from navkit.planning.grid._polyline_kernels import polyline_cost
 
@@ -88,7 +89,7 @@ def _near_line(limit: int) -> st.SearchStrategy[float]:
     return st.one_of(st.floats(0.0, float(limit)), nudged, st.integers(0, limit).map(float))
 
 
-@settings(max_examples=400, deadline=None)
+@settings(max_examples=50, deadline=None)
 @given(
     seed=st.integers(0, 2**32 - 1),
     r0=_near_line(3),
@@ -109,6 +110,11 @@ def test_segment_cost_matches_exact_rational_reference(
         assert got == math.inf
     else:
         assert got == pytest.approx(expected, rel=1e-9, abs=1e-12)
+
+
+test_segment_cost_matches_exact_rational_reference_thoroughly = slow_twin(
+    test_segment_cost_matches_exact_rational_reference, max_examples=400
+)
 
 
 def test_segment_one_ulp_beside_a_line_pays_its_own_cell() -> None:

@@ -11,6 +11,7 @@ import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit.planning import (
     BlendedAttraction,
     CompositeField,
@@ -54,7 +55,7 @@ def far_from(p: np.ndarray, centre: np.ndarray, radii: list[float], margin: floa
 # --- force = -∇U --------------------------------------------------------------------
 
 
-@settings(max_examples=150)
+@settings(max_examples=50)
 @given(point, point, gain, gain, length, length, st.floats(0.0, 3.0), st.floats(0.05, 1.0),
        gain, gain)
 def test_blended_force_is_minus_gradient(
@@ -68,7 +69,12 @@ def test_blended_force_is_minus_gradient(
     assert_force_is_gradient(field, q)
 
 
-@settings(max_examples=100)
+test_blended_force_is_minus_gradient_thoroughly = slow_twin(
+    test_blended_force_is_minus_gradient, max_examples=150
+)
+
+
+@settings(max_examples=40)
 @given(point, point, gain, gain, length, length)
 def test_paraboloid_force_is_minus_gradient(
     p: tuple[float, float], goal: tuple[float, float], k: float, c: float, a: float, b: float
@@ -76,7 +82,12 @@ def test_paraboloid_force_is_minus_gradient(
     assert_force_is_gradient(ParaboloidAttraction(goal, k_att=k, c=c, a=a, b=b), np.array(p))
 
 
-@settings(max_examples=100)
+test_paraboloid_force_is_minus_gradient_thoroughly = slow_twin(
+    test_paraboloid_force_is_minus_gradient, max_examples=100
+)
+
+
+@settings(max_examples=40)
 @given(point, point, gain, gain, st.floats(0.0, 2.0))
 def test_conic_force_is_minus_gradient(
     p: tuple[float, float], goal: tuple[float, float], m: float, u: float,
@@ -89,7 +100,12 @@ def test_conic_force_is_minus_gradient(
     assert np.linalg.norm(field.force(q)[0]) == pytest.approx(m * u, rel=1e-12)
 
 
-@settings(max_examples=100)
+test_conic_force_is_minus_gradient_thoroughly = slow_twin(
+    test_conic_force_is_minus_gradient, max_examples=100
+)
+
+
+@settings(max_examples=40)
 @given(point, point, gain, st.floats(0.0, 2.0), length)
 def test_piecewise_attraction_force_is_minus_gradient(
     p: tuple[float, float], goal: tuple[float, float], alpha: float, r: float, s: float
@@ -100,10 +116,15 @@ def test_piecewise_attraction_force_is_minus_gradient(
     assert_force_is_gradient(field, q)
 
 
+test_piecewise_attraction_force_is_minus_gradient_thoroughly = slow_twin(
+    test_piecewise_attraction_force_is_minus_gradient, max_examples=100
+)
+
+
 obstacle_sets = st.lists(point, min_size=1, max_size=6)
 
 
-@settings(max_examples=100)
+@settings(max_examples=40)
 @given(point, obstacle_sets, gain, length)
 def test_khatib_force_is_minus_gradient(
     p: tuple[float, float], obstacles: list[tuple[float, float]], k: float, d0: float
@@ -116,7 +137,12 @@ def test_khatib_force_is_minus_gradient(
     assert_force_is_gradient(field, q)
 
 
-@settings(max_examples=100)
+test_khatib_force_is_minus_gradient_thoroughly = slow_twin(
+    test_khatib_force_is_minus_gradient, max_examples=100
+)
+
+
+@settings(max_examples=40)
 @given(point, obstacle_sets, gain, gain, st.floats(0.0, 1.0), length)
 def test_piecewise_repulsion_force_is_minus_gradient(
     p: tuple[float, float], obstacles: list[tuple[float, float]], delta: float, beta: float,
@@ -126,6 +152,11 @@ def test_piecewise_repulsion_force_is_minus_gradient(
     q = np.array(p)
     assume(all(far_from(q, np.array(o), [0.0, r, r + s], 1e-3) for o in obstacles))
     assert_force_is_gradient(field, q)
+
+
+test_piecewise_repulsion_force_is_minus_gradient_thoroughly = slow_twin(
+    test_piecewise_repulsion_force_is_minus_gradient, max_examples=100
+)
 
 
 @settings(max_examples=50)
@@ -162,7 +193,7 @@ blend_params = st.fixed_dictionaries(
 )
 
 
-@settings(max_examples=100)
+@settings(max_examples=40)
 @given(blend_params, point, st.floats(0.0, 1.0), st.floats(-math.pi, math.pi))
 def test_blended_tends_to_paraboloid_near_goal(
     params: dict[str, float], goal: tuple[float, float], frac: float, angle: float
@@ -179,7 +210,12 @@ def test_blended_tends_to_paraboloid_near_goal(
     np.testing.assert_allclose(field.potential(q), par.potential(q), rtol=1e-9, atol=1e-9)
 
 
-@settings(max_examples=100)
+test_blended_tends_to_paraboloid_near_goal_thoroughly = slow_twin(
+    test_blended_tends_to_paraboloid_near_goal, max_examples=100
+)
+
+
+@settings(max_examples=40)
 @given(blend_params, point, st.floats(0.0, 50.0), st.floats(-math.pi, math.pi))
 def test_blended_tends_to_constant_magnitude_cone_far_away(
     params: dict[str, float], goal: tuple[float, float], extra: float, angle: float
@@ -190,6 +226,11 @@ def test_blended_tends_to_constant_magnitude_cone_far_away(
     force = field.force(np.array(goal) + d * direction)[0]
     cone = -params["m"] * params["u_trans"] * direction
     np.testing.assert_allclose(force, cone, rtol=1e-9, atol=1e-9 * params["m"] * params["u_trans"])
+
+
+test_blended_tends_to_constant_magnitude_cone_far_away_thoroughly = slow_twin(
+    test_blended_tends_to_constant_magnitude_cone_far_away, max_examples=100
+)
 
 
 def test_blending_width_moves_between_the_limits() -> None:
@@ -209,7 +250,7 @@ def test_blending_width_moves_between_the_limits() -> None:
 # --- repulsion ----------------------------------------------------------------------
 
 
-@settings(max_examples=100)
+@settings(max_examples=40)
 @given(point, obstacle_sets, gain, length)
 def test_khatib_is_exactly_zero_beyond_the_influence_radius(
     p: tuple[float, float], obstacles: list[tuple[float, float]], k: float, d0: float
@@ -222,7 +263,12 @@ def test_khatib_is_exactly_zero_beyond_the_influence_radius(
     assert np.all(field.force(q) == 0.0)
 
 
-@settings(max_examples=100)
+test_khatib_is_exactly_zero_beyond_the_influence_radius_thoroughly = slow_twin(
+    test_khatib_is_exactly_zero_beyond_the_influence_radius, max_examples=100
+)
+
+
+@settings(max_examples=40)
 @given(point, obstacle_sets, gain, gain, st.floats(0.0, 1.0), length)
 def test_piecewise_repulsion_is_exactly_zero_beyond_reach(
     p: tuple[float, float], obstacles: list[tuple[float, float]], delta: float, beta: float,
@@ -234,6 +280,11 @@ def test_piecewise_repulsion_is_exactly_zero_beyond_reach(
     field = PiecewiseRepulsion(obstacles, delta=delta, beta=beta, obstacle_radius=r, spread=s)
     assert field.potential(q)[0] == 0.0
     assert np.all(field.force(q) == 0.0)
+
+
+test_piecewise_repulsion_is_exactly_zero_beyond_reach_thoroughly = slow_twin(
+    test_piecewise_repulsion_is_exactly_zero_beyond_reach, max_examples=100
+)
 
 
 @settings(max_examples=50)

@@ -17,6 +17,7 @@ import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit._shared.lines import line_cells
 from navkit.errors import NoPathError
 from navkit.mapping import LaserScan, LocalGrid
@@ -137,7 +138,7 @@ coordinate = st.one_of(
 )
 
 
-@settings(max_examples=300, deadline=None)
+@settings(max_examples=50, deadline=None)
 @given(
     st.integers(0, 6),
     st.sampled_from([0.1, 0.05, 0.25, 0.07, 1.0, 1e-6, 1e6]),
@@ -156,6 +157,11 @@ def test_matches_the_reference_on_random_grids(
     if mirrored:  # symmetric grids make exact ties of g + h and of h
         occupied = occupied | occupied[::-1] | occupied[:, ::-1]
     check(LocalGrid(occupied, resolution=res, half_width=half_cells * res), goal, progress)
+
+
+test_matches_the_reference_on_random_grids_thoroughly = slow_twin(
+    test_matches_the_reference_on_random_grids, max_examples=300
+)
 
 
 @st.composite
@@ -186,7 +192,7 @@ def reference_grid(scan: LaserScan) -> list[list[bool]]:
     return occupied
 
 
-@settings(max_examples=150, deadline=None)
+@settings(max_examples=50, deadline=None)
 @given(scans(), st.tuples(st.floats(-3.0, 3.0), st.floats(-3.0, 3.0)), st.booleans())
 def test_matches_the_reference_on_scans(
     scan: LaserScan, goal: tuple[float, float], progress: bool
@@ -194,6 +200,11 @@ def test_matches_the_reference_on_scans(
     grid = scan.to_local_grid()
     assert grid.occupied.tolist() == reference_grid(scan)
     check(grid, goal, progress)
+
+
+test_matches_the_reference_on_scans_thoroughly = slow_twin(
+    test_matches_the_reference_on_scans, max_examples=150
+)
 
 
 def test_a_far_goal_does_not_widen_ties_to_a_worse_cell() -> None:

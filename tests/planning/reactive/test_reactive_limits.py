@@ -10,6 +10,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit.mapping import LaserScan, LocalGrid
 from navkit.planning import (
     BlendedAttraction,
@@ -163,7 +164,7 @@ points = st.lists(st.tuples(coordinate, coordinate), min_size=1, max_size=6)
 
 
 @pytest.mark.parametrize("cls", list(FIELDS))
-@settings(max_examples=150, deadline=None)
+@settings(max_examples=50, deadline=None)
 @given(data=st.data())
 def test_no_nan_and_no_inf_inside_the_ranges(
     cls: type[PotentialField], data: st.DataObject
@@ -186,7 +187,12 @@ def test_no_nan_and_no_inf_inside_the_ranges(
         assert np.all(np.isfinite(potential))
 
 
-@settings(max_examples=100, deadline=None)
+test_no_nan_and_no_inf_inside_the_ranges_thoroughly = slow_twin(
+    test_no_nan_and_no_inf_inside_the_ranges, max_examples=150
+)
+
+
+@settings(max_examples=40, deadline=None)
 @given(
     st.lists(st.one_of(st.floats(0.0, 1e9), st.sampled_from([1e-300, 5e-324, 1e-9])),
              min_size=1, max_size=50),
@@ -201,6 +207,11 @@ def test_scan_repulsion_is_finite_inside_the_ranges(
     force = piecewise_repulsive_force_from_scan(scan, delta=k, beta=beta, spread=d0,
                                                 obstacle_radius=d0)
     assert np.all(np.isfinite(force))
+
+
+test_scan_repulsion_is_finite_inside_the_ranges_thoroughly = slow_twin(
+    test_scan_repulsion_is_finite_inside_the_ranges, max_examples=100
+)
 
 
 @pytest.mark.parametrize(

@@ -11,6 +11,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit.planning import (
     BlendedAttraction,
     ConicAttraction,
@@ -86,7 +87,7 @@ def test_conversion_shapes() -> None:
     assert sampled.cell_to_world([[0, 1], [1, 1]]).shape == (2, 2)
 
 
-@settings(max_examples=100)
+@settings(max_examples=40)
 @given(st.floats(-50.0, 50.0), st.floats(-50.0, 50.0), st.floats(0.01, 2.0),
        st.integers(1, 40), st.integers(1, 40), st.floats(-1.0, 1.0), st.floats(-1.0, 1.0))
 def test_world_and_cell_round_trip(
@@ -99,6 +100,11 @@ def test_world_and_cell_round_trip(
     np.testing.assert_allclose(back, cont, atol=1e-9 * (1.0 + 50.0 / res))
     cells = np.array([[sampled.shape[0] - 1, 0], [0, sampled.shape[1] - 1]])
     np.testing.assert_array_equal(sampled.world_to_cell(sampled.cell_to_world(cells)), cells)
+
+
+test_world_and_cell_round_trip_thoroughly = slow_twin(
+    test_world_and_cell_round_trip, max_examples=100
+)
 
 
 def test_sampled_field_is_frozen_and_copies() -> None:

@@ -10,6 +10,7 @@ import pytest
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit.mapping import LaserScan
 from navkit.planning import (
     KhatibRepulsion,
@@ -48,7 +49,7 @@ def close(a: np.ndarray, b: np.ndarray, scale: float) -> bool:
     return bool(np.linalg.norm(a - b) <= 1e-12 * max(1.0, scale))
 
 
-@settings(max_examples=150, deadline=None)
+@settings(max_examples=50, deadline=None)
 @given(scans(), st.floats(0.1, 10.0), st.floats(0.1, 3.0))
 def test_khatib_kernel_equals_point_field(scan: LaserScan, k: float, d0: float) -> None:
     got = repulsive_force_from_scan(scan, k_rep=k, influence_radius=d0)
@@ -62,7 +63,12 @@ def test_khatib_kernel_equals_point_field(scan: LaserScan, k: float, d0: float) 
     assert close(got, want, scale), (got, want)
 
 
-@settings(max_examples=150, deadline=None)
+test_khatib_kernel_equals_point_field_thoroughly = slow_twin(
+    test_khatib_kernel_equals_point_field, max_examples=150
+)
+
+
+@settings(max_examples=50, deadline=None)
 @given(scans(), st.floats(0.1, 10.0), st.floats(0.1, 10.0), st.floats(0.0, 1.0),
        st.floats(0.1, 2.0))
 def test_piecewise_kernel_equals_point_field(
@@ -76,6 +82,11 @@ def test_piecewise_kernel_equals_point_field(
     want = PiecewiseRepulsion(points, delta=delta, beta=beta, obstacle_radius=r,
                               spread=s).force([0.0, 0.0])[0]
     assert close(got, want, (delta + beta * s) * len(scan)), (got, want)
+
+
+test_piecewise_kernel_equals_point_field_thoroughly = slow_twin(
+    test_piecewise_kernel_equals_point_field, max_examples=150
+)
 
 
 def test_invalid_and_distant_beams_contribute_nothing() -> None:

@@ -14,6 +14,7 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from hypothesis_twins import slow_twin
 from navkit.mapping import LaserScan
 from navkit.planning import PiecewiseRepulsion, piecewise_repulsive_force_from_scan
 
@@ -29,7 +30,7 @@ def per_beam(scan: LaserScan, magnitude: float) -> np.ndarray:
     return -magnitude * np.array([np.sum(np.cos(angles)), np.sum(np.sin(angles))])
 
 
-@settings(max_examples=200, deadline=None)
+@settings(max_examples=50, deadline=None)
 @given(
     st.one_of(st.sampled_from([0.3, 0.5, 1.0 / 3.0, 0.7, 1.0]), st.floats(1e-3, 5.0)),
     st.one_of(st.sampled_from([0.1, 0.2, 1.0 / 3.0]), st.floats(1e-3, 5.0)),
@@ -69,6 +70,11 @@ def test_ranges_on_the_thresholds_differ_only_by_the_jump(
         explained = got - np.array([np.sum(change * np.cos(angles)),
                                     np.sum(change * np.sin(angles))])
         np.testing.assert_allclose(want, explained, rtol=0, atol=1e-12 * scale)
+
+
+test_ranges_on_the_thresholds_differ_only_by_the_jump_thoroughly = slow_twin(
+    test_ranges_on_the_thresholds_differ_only_by_the_jump, max_examples=200
+)
 
 
 def test_kernel_at_each_threshold() -> None:

@@ -10,11 +10,12 @@ from collections.abc import Mapping
 
 import numpy as np
 import pytest
-from hypothesis import given
+from hypothesis import given, settings
 from hypothesis import strategies as st
 from shapely.geometry import LineString, Point, box
 from shapely.ops import unary_union
 
+from hypothesis_twins import slow_twin
 from navkit.mapping import OccupancyGrid
 from navkit.sim import Scenario, ScenarioResult, Scene, Trial, TrialResult
 from navkit.sim.scenarios import IndoorNav, get_scenario
@@ -64,8 +65,10 @@ def full() -> ScenarioResult:
 
 @pytest.fixture(scope="module")
 def small() -> IndoorNav:
-    # A map built from scans at 0.1 m cells (once per process), no comparison tour.
-    return IndoorNav(targets=2, paths=1, resolution=0.1, compare_speed=None)
+    # Fewer targets and paths, no comparison tour. The map built from scans is the one
+    # ``full`` built (cached per process and resolution): building one at other cells
+    # would cost more than the runs of the tests below together.
+    return IndoorNav(targets=2, paths=1, compare_speed=None)
 
 
 def by_case(result: ScenarioResult, prefix: str) -> list[TrialResult]:
@@ -301,6 +304,7 @@ def test_bad_trials_and_results_are_refused(small: IndoorNav) -> None:
         small.summarize([None], seed=0)  # type: ignore[list-item]
 
 
+@settings(max_examples=40)
 @given(st.lists(st.tuples(st.integers(-3, 3), st.integers(-3, 3)), min_size=2, max_size=12))
 def test_heading_share_of_grid_moves_is_zero(steps: list[tuple[int, int]]) -> None:
     # Moves along the 8 grid directions (any length) never leave the 45° grid.
@@ -312,3 +316,8 @@ def test_heading_share_of_grid_moves_is_zero(steps: list[tuple[int, int]]) -> No
     tilted = points @ np.array([[math.cos(0.3), math.sin(0.3)], [-math.sin(0.3), math.cos(0.3)]])
     share = heading_share(tilted)
     assert share == (1.0 if np.any(np.hypot(*np.diff(points, axis=0).T) > 0) else 0.0)
+
+
+test_heading_share_of_grid_moves_is_zero_thoroughly = slow_twin(
+    test_heading_share_of_grid_moves_is_zero, max_examples=100
+)

@@ -21,6 +21,7 @@ from numpy.typing import NDArray
 from scipy import ndimage
 from shapely.geometry import LineString, Point, box
 
+from hypothesis_twins import slow_twin
 from navkit.errors import NoPathError
 from navkit.mapping import OccupancyGrid
 from navkit.planning import MapPlanner, Path2D
@@ -174,7 +175,7 @@ def maps_and_points(draw: st.DrawFn) -> tuple[MapPlanner, tuple[float, float]]:
     return planner, point
 
 
-@settings(max_examples=60)
+@settings(max_examples=25)
 @given(maps_and_points())
 def test_the_snap_is_the_nearest_centre_reached_without_crossing_another_obstacle(
     case: tuple[MapPlanner, tuple[float, float]],
@@ -200,3 +201,11 @@ def test_the_snap_is_the_nearest_centre_reached_without_crossing_another_obstacl
         escaping = MapPlanner(planner.grid, robot_radius=planner.robot_radius, planner=straight)
         escape = escaping.plan(point, snapped, start_tolerance=SNAP_DISTANCE)
         assert math.dist(point, escape.points[1]) == pytest.approx(nearest, abs=1e-12)
+
+
+test_the_snap_is_the_nearest_centre_reached_without_crossing_another_obstacle_thoroughly = (
+    slow_twin(
+        test_the_snap_is_the_nearest_centre_reached_without_crossing_another_obstacle,
+        max_examples=60,
+    )
+)

@@ -272,11 +272,11 @@ def test_bad_trials_are_refused(scenario: Soccer) -> None:
         scenario.cases(0)
 
 
-def test_run_equals_the_trials_run_here(scenario: Soccer) -> None:
+def test_run_equals_the_trials_run_here(scenario: Soccer, results: list[TrialResult]) -> None:
     pytest.importorskip("navkit.sim._sweep")
-    small = Soccer(table_cells=CELLS, duration=30.0)
-    direct = small.summarize([small.run_trial(t) for t in small.trials(1, seed=2)], seed=2)
-    swept = small.run(1, seed=2, workers=1)
+    # ``results``: every trial of seed 0 run here, one by one; run() of a fresh scenario.
+    direct = scenario.summarize(results, seed=0)
+    swept = Soccer(table_cells=CELLS, duration=30.0).run(1, seed=0, workers=1)
     assert json.dumps(swept.to_dict()["summary"]) == json.dumps(direct.to_dict()["summary"])
 
 
