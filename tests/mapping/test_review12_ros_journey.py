@@ -68,7 +68,7 @@ def room_ranges(pose: tuple[float, float, float], angles: np.ndarray) -> np.ndar
     x, y, theta = pose
     a = theta + angles
     c, s = np.cos(a), np.sin(a)
-    with np.errstate(divide="ignore"):
+    with np.errstate(divide="ignore", over="ignore"):  # s or c near 0: that wall is at inf
         tx = np.where(c > 0, (2.973 - x) / c, np.where(c < 0, (-2.973 - x) / c, np.inf))
         ty = np.where(s > 0, (1.981 - y) / s, np.where(s < 0, (-1.981 - y) / s, np.inf))
     return np.asarray(np.minimum(tx, ty))
