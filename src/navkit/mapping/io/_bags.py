@@ -54,6 +54,7 @@ from numpy.typing import ArrayLike
 
 from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
+from navkit._shared.times import as_times
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, as_sequence
 from navkit.geometry import imu_to_base, quaternion_to_matrix, quaternion_to_yaw, wrap_angle
@@ -107,8 +108,12 @@ def _check_fields(obj: Any, texts: tuple[str, ...], arrays: dict[str, tuple[int,
         _text(getattr(obj, name), name)
     times = _frozen(obj.times, "times", (None,))
     n = int(times.shape[0])
+    record_times = _frozen(obj.record_times, "record_times", (n,))
+    # What float64 rounded (integer nanoseconds, float32 epoch stamps) is refused.
+    as_times(obj.times, "times")
+    as_times(obj.record_times, "record_times")
     object.__setattr__(obj, "times", times)
-    object.__setattr__(obj, "record_times", _frozen(obj.record_times, "record_times", (n,)))
+    object.__setattr__(obj, "record_times", record_times)
     for name, tail in arrays.items():
         object.__setattr__(obj, name, _frozen(getattr(obj, name), name, (n, *tail)))
     return n
@@ -150,7 +155,11 @@ class BagScans:
         the module notes), finite: the time of each scan's first beam, as
         ``sensor_msgs/LaserScan`` defines it.
     record_times : ndarray, shape (N,)
-        Times the bag recorded the messages, s, finite.
+        Times the bag recorded the messages, s, finite. Both arrays of times
+        are float64 seconds: integers beyond 2**53 (integer nanoseconds) and
+        float16 / float32 times coarser than 1 ms are refused with a
+        ``ValueError`` (float64 would round the one; the other has lost its
+        timing already), as :class:`~navkit.estimation.PlanarFusion` does.
     scans : tuple of LaserScan
         The scans, in bag (record-time) order.
 
@@ -229,7 +238,8 @@ class BagOdometry:
     times : ndarray, shape (N,)
         Header stamps, s.
     record_times : ndarray, shape (N,)
-        Times the bag recorded the messages, s.
+        Times the bag recorded the messages, s (both arrays of times refused
+        as in :class:`BagScans` where float64 would round them).
     poses : ndarray, shape (N, 3)
         ``[x, y, yaw]`` (m, m, rad; yaw of the orientation by
         :func:`navkit.geometry.quaternion_to_yaw`, wrapped to (-π, π]).
@@ -319,7 +329,8 @@ class BagImu:
     times : ndarray, shape (N,)
         Header stamps, s.
     record_times : ndarray, shape (N,)
-        Times the bag recorded the messages, s.
+        Times the bag recorded the messages, s (both arrays of times refused
+        as in :class:`BagScans` where float64 would round them).
     orientations : ndarray, shape (N, 4)
         Quaternions ``(x, y, z, w)``, as in the bag (all zero when the IMU gives
         none; its covariance then starts with -1).

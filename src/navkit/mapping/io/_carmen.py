@@ -20,6 +20,7 @@ from numpy.typing import ArrayLike
 
 from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
+from navkit._shared.times import as_times
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, as_sequence, positive_float
 from navkit.geometry import Pose2D, as_pose, wrap_angle
@@ -82,8 +83,14 @@ class CarmenLog:
         Scan times, s (the line's own ``timestamp`` field), finite: ``times``
         as in the bag readers (:class:`BagScans`, :class:`BagOdometry`) and
         :class:`~navkit.estimation.MeasurementLog`. Stored as a read-only copy
-        (the caller's array is neither kept nor frozen). Required (its default
+        (the caller's array is neither kept nor frozen); refused where float64
+        would round them, as in the bag readers. Required (its default
         None only lets the deprecated ``timestamps`` stand in for it).
+        :func:`read_carmen` keeps them in file order as logged, each the
+        float64 nearest its text (within 1.2e-7 s at epoch stamps, 1.7e9 s),
+        neither sorted nor checked for order: real logs step back (Radish's
+        intel log four times, by up to 0.86 s), and one printed with few
+        digits (``1.13486e+09``) gives runs of equal times.
     odometry : ndarray, shape (M, 4)
         ODOM records ``(x, y, theta, time)`` (time in s), finite, ``theta``
         wrapped to (-π, π] (as the poses' headings are); an empty sequence
@@ -176,7 +183,7 @@ class CarmenLog:
             as_pose(p, f"robot_poses[{i}]")
             for i, p in enumerate(as_sequence(self.robot_poses, "robot_poses"))
         )
-        stamps = np.array(as_float_array(self.times, "times", ndim=1), copy=True)
+        stamps = np.array(as_times(self.times, "times"), copy=True)
         odometry_in = as_float_array(self.odometry, "odometry")
         if odometry_in.size == 0:
             odometry_in = odometry_in.reshape(0, 4)
