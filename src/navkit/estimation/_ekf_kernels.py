@@ -45,6 +45,12 @@ status code: the kernels never raise, never allocate (they are compiled
 without reference counting, which alone took a tenth of a call) and never
 leave ``state`` half-written.
 
+An update whose Joseph form cancelled (a variance shrank more than 4096-fold:
+a measurement far more precise than the estimate) commits nothing and returns
+``CANCELLED``; the public layer finishes it with :func:`finish_cancelled`,
+which may take the information form instead (in NumPy: the case is rare, and
+compiled into every update kernel it would cost compile time).
+
 They are compiled for C-contiguous, writeable, aligned float64 arrays only,
 when first requested, after which their dispatchers compile nothing more: an
 argument of any other type raises at dispatch, which the public layer takes as
@@ -72,6 +78,7 @@ __all__ = [
     "BAD_SHAPE",
     "BAD_TYPE",
     "BAD_Z",
+    "CANCELLED",
     "GATED",
     "NIS_OVERFLOW",
     "NOISE_CHANGED",
@@ -87,6 +94,7 @@ __all__ = [
     "PredictKernel",
     "UpdateKernel",
     "compile_kernels",
+    "finish_cancelled",
     "new_rbuf",
     "new_state",
     "predict_kernel",
@@ -103,6 +111,7 @@ STATE_X = 0
 STATE_P = 1
 
 _SMALLEST_NORMAL = 2.2250738585072014e-308  # sys.float_info.min
+_EPS = 2.0**-53  # the unit roundoff of float64
 
 # A kernel takes the public layer's arguments as they come: its dispatcher checks
 # their types (and raises on any other than the compiled ones).
@@ -127,6 +136,7 @@ GATED = 13  # NIS above the gate
 STATE_OVERFLOW = 14  # the updated state overflowed
 BAD_SHAPE = 15  # an argument's shape does not fit (or rbuf is another m's): check in full
 BAD_TYPE = 16  # set by the public layer: an argument is not of the compiled type
+CANCELLED = 17  # the Joseph form cancelled (a variance shrank > 4096-fold): finish_cancelled
 
 # What ekf_update returns for a status other than OK: -status.
 _FAIL_SHAPE = -float(BAD_SHAPE)
@@ -140,6 +150,14 @@ _FAIL_RESIDUAL = -float(RESIDUAL_OVERFLOW)
 _FAIL_NIS = -float(NIS_OVERFLOW)
 _FAIL_GATED = -float(GATED)
 _FAIL_STATE = -float(STATE_OVERFLOW)
+_FAIL_CANCELLED = -float(CANCELLED)
+
+# The Joseph form's error in a posterior entry is about ε P (ε = 2⁻⁵³) where the exact
+# entry is P⁺: relative to the posterior, at most about ε max(Pᵢᵢ / P⁺ᵢᵢ) (measured:
+# 1.4e-16 times that ratio). Below this ratio it stays under 1e-12 relative (12 bits
+# lost at most) and is kept; above it (a measurement far more precise than the
+# estimate) finish_cancelled computes the posterior without the cancellation.
+_SHRINK_LIMIT = 4096.0
 
 # Blocks of an rbuf.
 _R = 0  # R as passed
@@ -151,7 +169,7 @@ _KR = 5  # K R - (I - K H) P Hᵀ (n x m)
 _PCHK = 6  # the LDLᵀ factor of the new P (n x n)
 _TMP = 7  # (I - K H) P (n x n)
 _PN = 8  # the new P (n x n)
-_VEC = 9  # rows: 1 / diag(L), a solve vector, the new state, [m, NIS, gate], angle flags
+_VEC = 9  # rows: 1 / diag(L), a solve vector, the new state, [status, NIS, gate], angle flags
 _S = 10  # S (m x m)
 _BLOCKS = 11
 _INV_DIAG = 0
@@ -159,6 +177,7 @@ _U = 1
 _XN = 2
 _META = 3
 _ANGLE = 4  # 1.0 where a measurement component is an angle, else 0.0
+_JOSEPH = 0  # column of _META: with CANCELLED, the status of the Joseph-form P in _PN
 _GATE = 2  # column of _META: the NIS threshold (inf: none)
 
 
@@ -554,6 +573,13 @@ def _update(
                 acc += v[i, k] * gain[j, k]
             pn[i, j] = ap[i, j] + acc
     status = _mirror_checked(pn, rbuf[_PCHK], inv_diag, n)
+    # A variance that shrank more than _SHRINK_LIMIT-fold (or came out NaN or not
+    # positive) lost more than 12 bits to the cancellation in P - K H P: the public
+    # layer finishes the update with finish_cancelled, given this status.
+    for i in range(n):
+        if not pn[i, i] * _SHRINK_LIMIT >= p[i, i]:
+            vec[_META, _JOSEPH] = status
+            return _FAIL_CANCELLED
     if status != OK:
         return -float(status)
     for i in range(n):
@@ -595,7 +621,9 @@ def _make_update(n: int, m: int) -> UpdateKernel:
         (``S_NOT_FINITE``, ``S_NOT_POSITIVE_DEFINITE``), the residual
         (``RESIDUAL_OVERFLOW``), the NIS yᵀ S⁻¹ y (``NIS_OVERFLOW``, ``GATED``),
         the updated state (``STATE_OVERFLOW``) and the updated covariance
-        (``NOT_FINITE``, ``NOT_POSITIVE_DEFINITE``). x and P change only with
+        (``CANCELLED`` when some variance shrank more than 4096-fold, whatever
+        its own status: the caller finishes with :func:`finish_cancelled`;
+        else ``NOT_FINITE``, ``NOT_POSITIVE_DEFINITE``). x and P change only with
         ``OK``; ``nis`` is NaN until computed, inf when it overflowed.
         """
         rbuf[_VEC, _META, 1] = math.nan  # the NIS a failure reports, until computed
@@ -608,6 +636,124 @@ def _make_update(n: int, m: int) -> UpdateKernel:
         return out
 
     return ekf_update
+
+
+def _scaled_inverse(a: FloatArray) -> tuple[FloatArray, float] | None:
+    """The inverse of the symmetric positive definite ``a`` (exactly symmetric) and κ₁(D a D).
+
+    D scales the diagonal of ``a`` to ones and the inverse is D (D a D)⁻¹ D, whose
+    error relative to ``sqrt(inv_ii inv_jj)`` is about ε κ(D a D) however badly
+    ``a`` is scaled (entries from 1e-100 to 1e100, where κ(a) could be 1e200).
+    κ₁ = ‖D a D‖₁ ‖(D a D)⁻¹‖₁ is within a factor n of κ₂. None when ``a`` is not
+    finite or its inverse fails (``a`` singular to working precision).
+    """
+    diag = a.diagonal()
+    if not np.isfinite(a).all() or not (diag > 0.0).all():
+        return None
+    d = 1.0 / np.sqrt(diag)
+    scaled = a * d * d[:, None]
+    try:
+        inv = np.linalg.inv(scaled)
+    except np.linalg.LinAlgError:
+        return None
+    kappa = float(np.abs(scaled).sum(0).max() * np.abs(inv).sum(0).max())
+    inv *= d * d[:, None]
+    return 0.5 * (inv + inv.T), kappa
+
+
+def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray) -> int:
+    """Finish an update the kernel left with ``CANCELLED``; returns its status (OK or a failure).
+
+    The kernel stopped because some variance of its Joseph-form posterior
+    (``rbuf``'s ``_PN`` block, of status ``rbuf[_VEC, _META, _JOSEPH]``) shrank
+    more than ``_SHRINK_LIMIT``-fold, a sign that ``A P = P - K (H P)`` cancelled.
+    Its rounding error E enters the result as ``E Aᵀ`` (A = I - K H; see
+    :func:`_update`), which is small where A is (all of H's directions measured
+    precisely) but not in general: with a state measured far more precisely
+    than it was known, entries came out wrong by up to 1e66 times the
+    posterior's scale, or the update raised FilterError.
+
+    The alternative is the information form,
+
+        P⁺ = (P⁻¹ + Hᵀ R⁻¹ H)⁻¹,
+
+    equal in exact arithmetic to P - P Hᵀ (H P Hᵀ + R)⁻¹ H P = (I - K H) P (the
+    Woodbury identity), which the Joseph form equals for the optimal K. It
+    subtracts nothing: a precise measurement only adds a large term to the
+    information, and each inverse is of a symmetric positive definite matrix
+    scaled to a unit diagonal (:func:`_scaled_inverse`), so its error
+    relative to ``sqrt(P⁺ᵢᵢ P⁺ⱼⱼ)`` is about ε κ, κ the largest condition number
+    of the scaled P, R and P⁻¹ + Hᵀ R⁻¹ H (measured: at most 4 ε κ). The
+    Joseph form's is about ε ((|P| + |K| |H P|) |A|ᵀ)ᵢⱼ / sqrt(P⁺ᵢᵢ P⁺ⱼⱼ) (|A|
+    taking the rounding of its entries into account). The information form is
+    taken when its estimate is the smaller (and it is positive definite): for a
+    measurement far more precise than the estimate of a few of the states, it
+    is accurate to rounding where the Joseph form kept no digit; with P or R
+    nearly singular, or all directions measured precisely, the Joseph form
+    stays, its result and status as before. The state (``rbuf``'s ``_XN`` row)
+    is the kernel's. Commits x and P only with OK. ``jac`` (m, n) is the H
+    the kernel took. NumPy, not a kernel: this is rare, and compiling it into
+    every kernel would cost compile time.
+    """
+    n = state.shape[1]
+    m = jac.shape[0]
+    p = state[STATE_P : STATE_P + n]
+    joseph = rbuf[_PN, :n, :n]
+    status = int(rbuf[_VEC, _META, _JOSEPH])
+    new = joseph
+    with np.errstate(all="ignore"):
+        information = _information_posterior(p, jac, rbuf[_RS, :m, :m])
+        if information is not None:
+            posterior, kappa = information
+            gain = rbuf[_GAIN, :n, :m]
+            abs_gain = np.abs(gain)
+            a = np.abs(np.eye(n) - gain @ jac) + _EPS * (abs_gain @ np.abs(jac))
+            bound = (np.abs(p) + abs_gain @ np.abs(rbuf[_HP, :m, :n])) @ a.T
+            # The posterior's scale: where the Joseph form's variance is garbage (too
+            # large, or not positive) the accurate information form's is the smaller.
+            d = joseph.diagonal()
+            d = np.where(d > 0.0, np.minimum(d, posterior.diagonal()), posterior.diagonal())
+            # Both error estimates in units of ε.
+            joseph_error = np.tril(bound / np.sqrt(np.outer(d, d))).max()
+            if not kappa >= joseph_error:  # (NaN: the Joseph form is garbage)
+                new, status = posterior, OK
+    if status != OK:
+        return status
+    state[STATE_X] = rbuf[_VEC, _XN, :n]
+    p[...] = new
+    return OK
+
+
+def _information_posterior(
+    p: FloatArray, jac: FloatArray, r: FloatArray
+) -> tuple[FloatArray, float] | None:
+    """``(P⁻¹ + Hᵀ R⁻¹ H)⁻¹`` (exactly symmetric) and the largest condition number it met.
+
+    P and R are positive definite (checked by the kernels and the public layer).
+    None when an inverse fails or the result fails the kernels' test of a
+    covariance (:func:`_positive_definite`: finite, the pivots of its LDLᵀ
+    factorisation, those of D P⁺ D over dᵢ², normal floats).
+    """
+    prior = _scaled_inverse(p)
+    noise = _scaled_inverse(r)
+    if prior is None or noise is None:
+        return None
+    information = prior[0] + jac.T @ noise[0] @ jac
+    posterior = _scaled_inverse(0.5 * (information + information.T))
+    if posterior is None:
+        return None
+    out = posterior[0]
+    diag = out.diagonal()
+    if not np.isfinite(out).all() or not (diag > 0.0).all():
+        return None
+    d = 1.0 / np.sqrt(diag)
+    try:
+        factor = np.linalg.cholesky(out * d * d[:, None])
+    except np.linalg.LinAlgError:
+        return None
+    if not ((factor.diagonal() / d) ** 2 >= _SMALLEST_NORMAL).all():
+        return None
+    return out, max(prior[1], noise[1], posterior[1])
 
 
 def _freeze(kernel: Any) -> None:
