@@ -23,26 +23,11 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from exact_fractions import inverse
 from navkit.estimation import FusionStatus, MeasurementLog, PlanarFusion
 
 # Entries a few roundings off, relative to the posterior's own scale.
 TOLERANCE = 1e-12
-
-
-def inverse(matrix: list[list[Fraction]]) -> list[list[Fraction]]:
-    """Exact inverse (Gauss-Jordan) of a small non-singular rational matrix."""
-    n = len(matrix)
-    rows = [row[:] + [Fraction(int(i == j)) for j in range(n)] for i, row in enumerate(matrix)]
-    for col in range(n):
-        pivot = next(r for r in range(col, n) if rows[r][col] != 0)
-        rows[col], rows[pivot] = rows[pivot], rows[col]
-        head = rows[col][col]
-        rows[col] = [v / head for v in rows[col]]
-        for r in range(n):
-            if r != col and rows[r][col] != 0:
-                factor = rows[r][col]
-                rows[r] = [a - factor * b for a, b in zip(rows[r], rows[col], strict=True)]
-    return [row[n:] for row in rows]
 
 
 def exact_posterior(prior: np.ndarray, variances: list[float], states: list[int]) -> np.ndarray:

@@ -31,34 +31,13 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import navkit.estimation._ekf as ekf_module
+from exact_fractions import fractions, inverse
 from hypothesis_twins import slow_twin
 from navkit.errors import FilterError
 from navkit.estimation import ExtendedKalmanFilter
 
 # Entries a few roundings off, relative to the posterior's own scale.
 TOLERANCE = 1e-12
-
-Matrix = list[list[Fraction]]
-
-
-def inverse(matrix: Matrix) -> Matrix:
-    """Exact inverse (Gauss-Jordan) of a small non-singular rational matrix."""
-    n = len(matrix)
-    rows = [row[:] + [Fraction(int(i == j)) for j in range(n)] for i, row in enumerate(matrix)]
-    for col in range(n):
-        pivot = next(r for r in range(col, n) if rows[r][col] != 0)
-        rows[col], rows[pivot] = rows[pivot], rows[col]
-        head = rows[col][col]
-        rows[col] = [v / head for v in rows[col]]
-        for r in range(n):
-            if r != col and rows[r][col] != 0:
-                factor = rows[r][col]
-                rows[r] = [a - factor * b for a, b in zip(rows[r], rows[col], strict=True)]
-    return [row[n:] for row in rows]
-
-
-def fractions(a: np.ndarray) -> Matrix:
-    return [[Fraction(v) for v in row] for row in np.atleast_2d(a).tolist()]
 
 
 def exact_update(

@@ -1,0 +1,35 @@
+"""Exact rational linear algebra for reference results (``fractions.Fraction``).
+
+Tests of numerically delicate updates (the EKF's and the fusion filter's
+covariance updates) compare with exact arithmetic on the float inputs, rounded
+once at the end.
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+import numpy as np
+
+Matrix = list[list[Fraction]]
+
+
+def inverse(matrix: Matrix) -> Matrix:
+    """Exact inverse (Gauss-Jordan) of a small non-singular rational matrix."""
+    n = len(matrix)
+    rows = [row[:] + [Fraction(int(i == j)) for j in range(n)] for i, row in enumerate(matrix)]
+    for col in range(n):
+        pivot = next(r for r in range(col, n) if rows[r][col] != 0)
+        rows[col], rows[pivot] = rows[pivot], rows[col]
+        head = rows[col][col]
+        rows[col] = [v / head for v in rows[col]]
+        for r in range(n):
+            if r != col and rows[r][col] != 0:
+                factor = rows[r][col]
+                rows[r] = [a - factor * b for a, b in zip(rows[r], rows[col], strict=True)]
+    return [row[n:] for row in rows]
+
+
+def fractions(a: np.ndarray) -> Matrix:
+    """The exact values of a float array (a vector becomes one row)."""
+    return [[Fraction(v) for v in row] for row in np.atleast_2d(a).tolist()]
