@@ -92,7 +92,12 @@ def blocked_union(costs: FloatArray) -> shapely.Geometry:
     boxes = shapely.box(cols, rows, cols + 1.0, rows + 1.0)
     # Unit cells at integer corners: a coverage (edge to edge, never overlapping),
     # whose union GEOS builds ten times faster than unary_union's, the same geometry.
-    return shapely.coverage_union_all(boxes)
+    # The GEOS of shapely 2.0 (the oldest supported) takes some such coverages for
+    # overlapping and refuses them: unary_union then.
+    try:
+        return shapely.coverage_union_all(boxes)
+    except shapely.errors.GEOSException:
+        return shapely.unary_union(boxes)
 
 
 def blocked_crossing_length(costs: FloatArray, points: FloatArray) -> float:
