@@ -14,6 +14,7 @@ Pillow, against Pillow's own decompression-bomb limit too
 from __future__ import annotations
 
 import contextlib
+import functools
 import io
 import math
 import os
@@ -36,6 +37,13 @@ from navkit._shared.frozen import frozen_setattr
 from navkit.geometry import Pose2D
 from navkit.mapping import OccupancyGrid
 from navkit.mapping.io._paths import as_path, open_regular
+from navkit.mapping.io._step_tables import (
+    LOOK_UP_BLOCK,
+    StepLookUp,
+    StepTable,
+    row_probability,
+    step_table,
+)
 
 __all__ = [
     "MapMetadata",
@@ -1014,41 +1022,111 @@ def _one_cell(logodds: float, occupied_thresh: float, free_thresh: float) -> Occ
     )
 
 
-def _map_pixels(grid: OccupancyGrid, mode: str) -> NDArray[np.uint8]:
-    """Image pixels of ``grid`` in grid row order (row 0 = lowest y).
+def _scale_darkness(logodds: NDArray[np.float32]) -> NDArray[np.int64]:
+    """``255 -`` mode ``"scale"``'s grey ``round(255 * (1 - p))`` of every value, by the formula.
+
+    Non-decreasing in the log-odds: the oracle of :func:`_darkness_table`.
+    """
+    grey = np.rint(255.0 * (1.0 - row_probability(logodds))).astype(np.uint8)
+    return 255 - grey.astype(np.int64)
+
+
+@functools.cache
+def _darkness_table() -> StepTable:
+    """:func:`step_table` of :func:`_scale_darkness`: grey levels without an ``exp`` per cell."""
+    return step_table(_scale_darkness, 255)
+
+
+def _blocks(rows: int, cols: int, size: int) -> Iterator[tuple[int, int, int, int]]:
+    """``(row0, row1, col0, col1)``: whole rows up to ``size`` cells, or parts of one row."""
+    if cols >= size:
+        for r in range(rows):
+            for c in range(0, cols, size):
+                yield r, r + 1, c, min(c + size, cols)
+    else:
+        step = size // cols
+        for r in range(0, rows, step):
+            yield r, min(r + step, rows), 0, cols
+
+
+def _map_image(grid: OccupancyGrid, mode: str) -> NDArray[np.uint8]:
+    """Image pixels of ``grid``, top row first (the grid's last row, highest y).
 
     Grey ``(rows, cols)`` in trinary mode, RGBA ``(rows, cols, 4)`` in scale
-    mode: there every cell is opaque grey ``round(255 * (1 - p))`` (map_server
-    reads it as occupied, free or an in-between value, as the grid's views
-    class it) except the unknown cells, which are transparent (map_server's
-    unknown, -1, in scale mode). Unknown cells are those whose log-odds are
-    exactly the ones :func:`read_map` gives unknown pixels: 0 (never observed)
-    when the thresholds class p = 0.5 as unknown, else the middle of the band.
+    mode (:func:`_scale_image`).
     """
+    if mode != "trinary":
+        return _scale_image(grid)
     occ_t, free_t = grid.occupied_thresh, grid.free_thresh
     occupied, free = grid.occupied(), grid.free()
-    if mode == "trinary":
-        unknown = ~occupied & ~free
-        # map_saver's 254 unless free_thresh is below its reading (1/255): then 255.
-        pixels = np.full(grid.shape, 254 if _pixel_p(254) < free_t else 255, dtype=np.uint8)
-        if unknown.any():
-            pixels[unknown] = _unknown_pixel(occ_t, free_t, preferred=205)
-        pixels[occupied] = 0
-        return pixels
-    unknown_l = _unknown_logodds(occ_t, free_t)
-    transparent = ~occupied & ~free & (grid.logodds == np.float32(unknown_l))
-    pixels = np.rint(255.0 * (1.0 - grid.probability())).astype(np.uint8)
-    # Rounding may push a class-boundary probability across a threshold.
-    p_px = _pixel_p(pixels)
-    pixels[occupied & ~(p_px > occ_t)] = 0
-    pixels[free & ~(p_px < free_t)] = 255
-    between = ~occupied & ~free & ~transparent & ((p_px > occ_t) | (p_px < free_t))
-    if between.any():
-        pixels[between] = _nearest_unknown_pixels(grid.probability()[between], occ_t, free_t)
-    rgba = np.empty((*grid.shape, 4), dtype=np.uint8)
-    rgba[..., :3] = pixels[..., None]
-    rgba[..., 3] = np.where(transparent, 0, 255)
-    return rgba
+    unknown = ~occupied & ~free
+    # map_saver's 254 unless free_thresh is below its reading (1/255): then 255.
+    pixels = np.full(grid.shape, 254 if _pixel_p(254) < free_t else 255, dtype=np.uint8)
+    if unknown.any():
+        pixels[unknown] = _unknown_pixel(occ_t, free_t, preferred=205)
+    pixels[occupied] = 0
+    return pixels[::-1]
+
+
+def _scale_image(grid: OccupancyGrid) -> NDArray[np.uint8]:
+    """Mode ``"scale"``'s RGBA image of ``grid``, top row first, C-contiguous.
+
+    Every cell is opaque grey ``round(255 * (1 - p))`` (map_server reads it as
+    occupied, free or an in-between value, as the grid's views class it)
+    except the unknown cells, which are transparent (map_server's unknown, -1,
+    in scale mode). Unknown cells are those whose log-odds are exactly the
+    ones :func:`read_map` gives unknown pixels: 0 (never observed) when the
+    thresholds class p = 0.5 as unknown, else the middle of the band. Where
+    rounding would move a cell across a threshold, an occupied cell is 0, a
+    free one 255 and another the nearest grey level map_server reads as unknown.
+
+    Each grey level is found by look-up (:func:`_darkness_table`), the class
+    corrections by a table of the 256 levels, over blocks of cells: the same
+    pixels as the formula and the grid's views over the whole grid, with no
+    ``exp`` per cell (only for cells whose grey rounding crosses a threshold)
+    and, besides the image, memory for one block.
+    """
+    occ_t, free_t = grid.occupied_thresh, grid.free_thresh
+    unknown_l = np.float32(_unknown_logodds(occ_t, free_t))
+    # A pixel as one little-endian uint32, R | G << 8 | B << 16 | A << 24, at
+    # class << 8 | darkness (255 - grey); classes unknown, occupied, free and
+    # transparent (unknown cells written as such).
+    grey = 255 - np.arange(256, dtype=np.uint32)
+    p_px = _pixel_p(grey)
+    greys = [grey, np.where(p_px > occ_t, grey, 0), np.where(p_px < free_t, grey, 255), grey]
+    alphas = np.repeat(np.array([255, 255, 255, 0], dtype=np.uint32), 256)
+    rgba_of = (np.concatenate(greys) * 0x010101 | alphas << 24).astype("<u4")
+    # Unknown cells whose grey would read as occupied or free: the nearest unknown level.
+    crossing = np.zeros(1024, dtype=np.bool_)
+    crossing[:256] = (p_px > occ_t) | (p_px < free_t)
+    rows, cols = grid.shape
+    image = np.empty((rows, cols, 4), dtype=np.uint8)
+    image_rgba = image.view("<u4")[..., 0]
+    logodds = grid.logodds
+    size = min(rows * cols, LOOK_UP_BLOCK)
+    look_up = StepLookUp(_darkness_table(), size)
+    darkness = np.empty(size, dtype=np.uint8)
+    at = np.empty(size, dtype=np.uint16)
+    for r0, r1, c0, c1 in _blocks(rows, cols, LOOK_UP_BLOCK):
+        block = np.ascontiguousarray(logodds[r0:r1, c0:c1]).reshape(-1)
+        m = block.size
+        look_up(block, darkness[:m])
+        # Classes by the grid's own views, on a one-row grid of the block.
+        part = OccupancyGrid(
+            block.reshape(1, -1), resolution=1.0, occupied_thresh=occ_t, free_thresh=free_t
+        )
+        cls = part.occupied()[0].view(np.uint8) + 2 * part.free()[0].view(np.uint8)
+        cls[(cls == 0) & (block == unknown_l)] = 3
+        np.left_shift(cls, 8, out=at[:m], dtype=np.uint16)
+        at[:m] |= darkness[:m]
+        pixels = rgba_of[at[:m]]
+        between = crossing[at[:m]]
+        if between.any():
+            nearest = _nearest_unknown_pixels(row_probability(block[between]), occ_t, free_t)
+            pixels[between] = nearest.astype(np.uint32) * 0x010101 | 0xFF000000
+        # Grid rows r0..r1 - 1 are image rows rows - 1 - r0 down to rows - r1.
+        image_rgba[rows - r1 : rows - r0, c0:c1][::-1] = pixels.reshape(r1 - r0, c1 - c0)
+    return image
 
 
 _GREY_LEVELS = np.arange(256)
@@ -1359,7 +1437,7 @@ def write_map(grid: OccupancyGrid, path: str | os.PathLike[str], *, mode: str = 
         mode,
     )
     text = map_yaml_text(meta, image.name)
-    pixels = _map_pixels(grid, mode)[::-1]  # image rows run top down
+    pixels = _map_image(grid, mode)  # image rows run top down
     data = pgm_bytes(pixels) if image_format == "pgm" else png_bytes(pixels)
     # Decided before the YAML that names it is replaced.
     superseded = _superseded_image(yaml_path, image)

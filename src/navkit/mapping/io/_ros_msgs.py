@@ -21,6 +21,13 @@ from navkit._shared.validation import as_bool, bounded_int, finite_float, refuse
 from navkit.geometry import Pose2D, quaternion_to_yaw
 from navkit.mapping import LaserScan, OccupancyGrid
 from navkit.mapping.io._map_files import _unknown_logodds
+from navkit.mapping.io._step_tables import (
+    LOOK_UP_BLOCK,
+    StepLookUp,
+    StepTable,
+    row_probability,
+    step_table,
+)
 
 __all__ = ["OccupancyGridMsgFields", "grid_from_msg", "grid_to_msg_fields", "scan_from_msg"]
 
@@ -56,22 +63,51 @@ def _tuple_of_floats(value: Any, n: int, name: str) -> tuple[float, ...]:
     return tuple(finite_float(v, f"{name}[{i}]") for i, v in enumerate(items))
 
 
+def _byte_cells(view: memoryview, name: str) -> NDArray[Any]:
+    """The values of ``view``; those of single bytes are the message's int8 cells.
+
+    A memoryview of ``bytes``, of a ``bytearray`` or of ``array.array('B')``
+    has format ``'B'``, which NumPy reads as uint8 (``0xFF`` as 255), and one
+    cast to ``'c'`` reads as one-byte strings: a forwarded buffer of the
+    message's int8 cells either way, read here as ``array.array('b')`` is
+    (``0xFF`` is -1). Other formats keep NumPy's reading (that of
+    ``array.array('b')`` already is int8).
+    """
+    try:
+        view.format  # noqa: B018 - raises ValueError once the view is released
+    except ValueError:
+        raise ValueError(f"{name} is a released memoryview: its buffer is gone") from None
+    try:
+        arr = np.asarray(view)
+    except (TypeError, ValueError, NotImplementedError) as exc:  # a format NumPy cannot read
+        raise TypeError(f"{name} is a memoryview NumPy cannot read: {exc}") from None
+    if arr.dtype.itemsize == 1 and arr.dtype.kind in "uS":
+        return arr.view(np.int8)
+    return arr
+
+
 def _occupancy_values(raw: Any, name: str) -> NDArray[np.integer[Any]]:
     """Occupancy values -1..100 as an integer array; floats, booleans and strings are refused.
 
-    ``bytes`` and ``bytearray`` are the message's int8 cells as they lie in memory
-    (``0xFF`` is -1), as ``array.array('b', raw)`` reads them. The result is not
-    copied when ``raw`` already is an integer array (callers never modify it).
+    ``bytes``, ``bytearray`` and a ``memoryview`` of single bytes are the
+    message's int8 cells as they lie in memory (``0xFF`` is -1), as
+    ``array.array('b', raw)`` reads them (:func:`_byte_cells`). The result is not
+    copied when ``raw`` already is an integer array or buffer (callers never modify it).
     """
     refuse_masked(raw, name)  # np.asarray would read masked cells as their data
     arr: NDArray[Any]
-    try:
-        if isinstance(raw, (bytes, bytearray)):
-            arr = np.frombuffer(raw, dtype=np.int8)
-        else:
-            arr = np.asarray(raw)
-    except ValueError:  # NumPy refuses ragged nested sequences
-        raise ValueError(f"{name} must be a flat sequence of integers, got a ragged one") from None
+    if isinstance(raw, memoryview):
+        arr = _byte_cells(raw, name)
+    else:
+        try:
+            if isinstance(raw, (bytes, bytearray)):
+                arr = np.frombuffer(raw, dtype=np.int8)
+            else:
+                arr = np.asarray(raw)
+        except ValueError:  # NumPy refuses ragged nested sequences
+            raise ValueError(
+                f"{name} must be a flat sequence of integers, got a ragged one"
+            ) from None
     if arr.dtype.kind == "O":
         items = arr.ravel().tolist()
         if all(isinstance(v, numbers.Integral) and not isinstance(v, bool) for v in items):
@@ -82,7 +118,14 @@ def _occupancy_values(raw: Any, name: str) -> NDArray[np.integer[Any]]:
     if arr.dtype == np.bool_ or arr.dtype.kind not in "iu":
         raise TypeError(f"{name} must hold integers, got dtype {arr.dtype}")
     if arr.size and (arr.min() < -1 or arr.max() > 100):
-        raise ValueError(f"{name} values must be -1 (unknown) or 0..100")
+        hint = ""
+        if arr.dtype == np.uint8 and arr.max() == 255:
+            # A uint8 array is read as the values it holds; it may hold int8 cells as bytes.
+            hint = (
+                "; if it holds the message's int8 cells as bytes (255 for -1), pass "
+                f"{name}.view(np.int8) or its bytes"
+            )
+        raise ValueError(f"{name} values must be -1 (unknown) or 0..100{hint}")
     return arr
 
 
@@ -107,80 +150,18 @@ def _scale_percent(logodds: NDArray[np.float32]) -> NDArray[np.int8]:
     within the grid's range (finite, within ±1e6): the oracle of the table of
     :func:`_percent_table`, which gives the same int8 for every float32.
     """
-    grid = OccupancyGrid(logodds.reshape(1, -1), resolution=1.0)
-    return np.rint(grid.probability() * 100.0).astype(np.int8).ravel()
-
-
-def _order_keys(values: NDArray[np.float32]) -> NDArray[np.int64]:
-    """Positions of float32 ``values`` in the float32 order: integers that sort as they do.
-
-    The int32 view of a non-negative float32 grows with it; that of a negative
-    one grows with its magnitude, so flipping its 31 low bits orders it (-0 at
-    -1, +0 at 0, -inf and +inf at the ends). Its own inverse:
-    :func:`_order_values`.
-    """
-    keys = values.view(np.int32).astype(np.int64)
-    keys ^= (keys >> 31) & 0x7FFFFFFF
-    return keys
-
-
-def _order_values(keys: NDArray[np.int64]) -> NDArray[np.float32]:
-    """The float32 values at positions ``keys`` of the float32 order (see :func:`_order_keys`)."""
-    bits = keys ^ ((keys >> 31) & 0x7FFFFFFF)
-    return bits.astype(np.int32).view(np.float32)
+    return np.rint(row_probability(logodds) * 100.0).astype(np.int8)
 
 
 @functools.cache
-def _percent_table() -> tuple[NDArray[np.int8], NDArray[np.float32], int]:
+def _percent_table() -> StepTable:
     """Look-up tables giving mode ``"scale"``'s percentage of any float32 log-odds.
 
-    The percentage is a non-decreasing step function of the log-odds: it is
-    ``k`` from the first float32 ``t[k - 1]`` where :func:`_scale_percent`
-    reaches ``k`` (found by bisection over the float32 order, with that
-    function itself as the oracle) up to the next one. A value's 16 high bits
-    (sign, exponent and 7 bits of mantissa) name a bucket of float32s in which
-    ``base`` is the percentage of its smallest value; ``base[bucket]`` plus the
-    number of thresholds the value reaches within the bucket (``rounds``
-    comparisons ``value >= t[percentage]``, with ``t[100] = nan``) is its
-    percentage. The thresholds lie at least 4 % of their size apart and a bucket
-    spans under 1 %, so ``rounds`` is 1.
-
-    Made once, in a few milliseconds, on the machine that uses it, with its
-    own ``exp``. Checked outside the test suite against the formula for all
-    2**32 float32 bit patterns (NaN excepted: no grid holds one), including
-    ±inf and values beyond ±1e6, which no grid holds either.
+    :func:`~navkit.mapping.io._map_files._step_table` of :func:`_scale_percent`:
+    its thresholds lie at least 4 % of their size apart, so one comparison
+    (``rounds`` 1) finishes each look-up.
     """
-    ends = np.array([-1e6, 1e6], dtype=np.float32)  # the grid's range, ±1e6
-    if _scale_percent(ends).tolist() != [0, 100]:  # pragma: no cover - exp(1e6) = inf
-        raise AssertionError("the scale formula does not span 0..100 over the grid's range")
-    keys = _order_keys(ends)
-    # All 100 bisections at once: for percentage k = 1..100, the value at
-    # position low[k - 1] has a smaller percentage, that at high[k - 1] k or more.
-    levels = np.arange(1, 101)
-    low = np.full(100, keys[0])
-    high = np.full(100, keys[1])
-    while np.any(high - low > 1):
-        mid = (low + high) // 2
-        reached = _scale_percent(_order_values(mid)) >= levels
-        high = np.where(reached, mid, high)
-        low = np.where(reached, low, mid)
-    # After the last step, NaN: no value (+inf included) is >= it.
-    thresholds = np.append(_order_values(high), np.float32(np.nan))
-    thresholds.flags.writeable = False
-    # Smallest and largest float32 of each bucket of 65536 bit patterns (the
-    # buckets of +inf and -inf hold NaNs besides; those of NaNs alone stay 0).
-    top = np.arange(1 << 16, dtype=np.int64) << 16
-    negative = top >= 1 << 31
-    first = np.where(negative, np.minimum(top | 0xFFFF, 0xFF800000), top)
-    last = np.where(negative, top, np.minimum(top | 0xFFFF, 0x7F800000))
-    numbers = (top & 0x7FFFFFFF) <= 0x7F800000
-    steps = thresholds[:100]
-    count_first = np.searchsorted(steps, first.astype(np.uint32).view(np.float32), "right")
-    count_last = np.searchsorted(steps, last.astype(np.uint32).view(np.float32), "right")
-    base = np.where(numbers, count_first, 0).astype(np.int8)
-    base.flags.writeable = False
-    rounds = int(np.max(np.where(numbers, count_last - count_first, 0)))
-    return base, thresholds, rounds
+    return step_table(_scale_percent, 100)
 
 
 def _is_unknown(logodds: float, grid: OccupancyGrid) -> bool:
@@ -194,11 +175,6 @@ def _is_unknown(logodds: float, grid: OccupancyGrid) -> bool:
     return bool(one.unknown()[0, 0])
 
 
-# Cells per block of :func:`_scale_data`: its temporaries (14 bytes a cell,
-# 896 KiB) stay in the processor's cache whatever the grid's size.
-_SCALE_BLOCK = 1 << 16
-
-
 def _scale_data(logodds: NDArray[np.float32], unknown: list[float]) -> NDArray[np.int8]:
     """Mode ``"scale"``'s row-major ``data``: ``rint(100 p)``, -1 where ``logodds`` is ``unknown``.
 
@@ -206,25 +182,17 @@ def _scale_data(logodds: NDArray[np.float32], unknown: list[float]) -> NDArray[n
     look-up (:func:`_percent_table`) instead of an ``exp`` per cell: a
     4000 x 4000 map in a fraction of the time, over blocks of cells.
     """
-    base, thresholds, rounds = _percent_table()
     values = np.ascontiguousarray(logodds, dtype=np.float32).reshape(-1)
     data = np.empty(values.size, dtype=np.int8)
-    n = min(values.size, _SCALE_BLOCK)
-    index = np.empty(n, dtype=np.intp)
-    reached = np.empty(n, dtype=np.float32)
+    n = min(values.size, LOOK_UP_BLOCK)
+    look_up = StepLookUp(_percent_table(), n)
     mask = np.empty(n, dtype=np.bool_)
     step = np.empty(n, dtype=np.int8)
-    for start in range(0, values.size, _SCALE_BLOCK):
-        block = values[start : start + _SCALE_BLOCK]
-        out = data[start : start + _SCALE_BLOCK]
+    for start in range(0, values.size, LOOK_UP_BLOCK):
+        block = values[start : start + LOOK_UP_BLOCK]
+        out = data[start : start + LOOK_UP_BLOCK]
         m = block.size
-        # The bucket: the 16 high bits of the float32 (sign, exponent, 7 bits of mantissa).
-        np.right_shift(block.view(np.uint32), 16, out=index[:m], casting="unsafe")
-        np.take(base, index[:m], out=out, mode="clip")
-        for _ in range(rounds):
-            np.take(thresholds, out, out=reached[:m], mode="clip")
-            np.greater_equal(block, reached[:m], out=mask[:m])
-            out += mask[:m]
+        look_up(block, out.view(np.uint8))  # percentages 0..100: the same bytes as int8
         for value in unknown:
             # out = -1 where block == value, without a branch per cell.
             np.equal(block, np.float32(value), out=mask[:m])
@@ -253,9 +221,10 @@ class OccupancyGridMsgFields:
     origin_orientation : (float, float, float, float)
         ``info.origin.orientation`` quaternion ``(x, y, z, w)``, finite.
     data : array_like of int, shape (width * height,)
-        Row-major occupancy in percent (0..100) or -1 for unknown (``bytes``
-        and ``bytearray`` are int8 cells, ``0xFF`` is -1); stored as a
-        read-only int8 copy (the caller's array is neither kept nor frozen).
+        Row-major occupancy in percent (0..100) or -1 for unknown (``bytes``,
+        ``bytearray`` and a ``memoryview`` of single bytes are int8 cells,
+        ``0xFF`` is -1); stored as a read-only int8 copy (the caller's array is
+        neither kept nor frozen).
 
     Raises
     ------
@@ -356,9 +325,11 @@ def grid_from_msg(msg: Any) -> OccupancyGrid:
         (m), ``info.origin.position.{x, y}`` (m),
         ``info.origin.orientation.{x, y, z, w}`` and ``data``: an
         ``array.array('b')`` (rclpy), a NumPy integer array (rosbags), a
-        sequence of ints (rospy's tuple), or ``bytes``/``bytearray`` holding
-        the int8 cells (``0xFF`` is -1). Arrays and bytes are read through
-        their buffer, with no Python work per cell.
+        sequence of ints (rospy's tuple), or ``bytes``, ``bytearray`` or a
+        ``memoryview`` of any of these holding the int8 cells (``0xFF`` is -1,
+        also in a memoryview of format ``'B'``, as ``memoryview(bytes)`` is).
+        Arrays, bytes and memoryviews are read through their buffer, with no
+        Python work per cell.
 
     Returns
     -------
@@ -373,9 +344,10 @@ def grid_from_msg(msg: Any) -> OccupancyGrid:
         (a size that is not an integer, ``data`` that is not integers).
     ValueError
         Non-positive size, more than ``OccupancyGrid.MAX_CELLS`` cells,
-        ``data`` of the wrong length or with values outside -1..100, a
-        resolution or origin outside the ranges of
-        :class:`~navkit.mapping.OccupancyGrid`.
+        ``data`` of the wrong length or with values outside -1..100 (a NumPy
+        uint8 array's 255 among them: pass ``data.view(np.int8)`` if it holds
+        int8 cells), a released memoryview, a resolution or origin outside the
+        ranges of :class:`~navkit.mapping.OccupancyGrid`.
 
     Examples
     --------
