@@ -12,6 +12,7 @@ from typing import Literal, TextIO
 import numpy as np
 import yaml
 
+from navkit._shared.metres import metres_text
 from navkit._shared.types import FloatArray
 from navkit.cli._kernels import announce_compilation, check_cache
 from navkit.cli._outputs import check_output, save_picture
@@ -91,6 +92,17 @@ def _in_option_names(message: str) -> str:
     return message
 
 
+def _point_text(x: float, y: float) -> str:
+    """``"(x, y)"`` in metres, each coordinate to the nanometre (``metres_text``).
+
+    Examples
+    --------
+    >>> _point_text(500130.87, 4500681.73)
+    '(500130.87, 4500681.73)'
+    """
+    return f"({metres_text(x)}, {metres_text(y)})"
+
+
 def _escape_rows(
     planner: MapPlanner, start: tuple[float, float], tolerance: float, points: FloatArray
 ) -> tuple[tuple[str, str | float], ...]:
@@ -105,7 +117,7 @@ def _escape_rows(
     row, col = (int(v) for v in np.asarray(planner.grid.world_to_cell(start)).reshape(2))
     if not math.isfinite(planner.costs[row, col]):
         x, y = (float(v) for v in points[1])
-        rows += (("escaped to (m)", f"({x:g}, {y:g})"),)
+        rows += (("escaped to (m)", _point_text(x, y)),)
     return rows
 
 
@@ -133,9 +145,9 @@ def plan_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
         ("map", f"{name} ({grid.shape[1]} x {grid.shape[0]} cells of {grid.resolution:g} m)"),
         ("planner", args.planner),
         ("robot radius (m)", args.radius),
-        ("start (m)", f"({args.start[0]:g}, {args.start[1]:g})"),
+        ("start (m)", _point_text(*args.start)),
         *_escape_rows(planner, args.start, args.start_tolerance, path.points),
-        ("goal (m)", f"({args.goal[0]:g}, {args.goal[1]:g})"),
+        ("goal (m)", _point_text(*args.goal)),
         ("length (m)", float(path.length)),
         ("plan time (ms)", 1e3 * (searched - prepared)),
         ("costmap time (ms)", 1e3 * (prepared - began)),

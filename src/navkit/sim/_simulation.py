@@ -14,6 +14,7 @@ from numpy.typing import ArrayLike
 
 from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.frozen import frozen_setattr, slot_names
+from navkit._shared.metres import metres_text
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_bool, as_float_array, finite_float, positive_float
 from navkit.geometry import Pose2D, Twist2D, as_twist
@@ -390,7 +391,8 @@ class Simulation:
         if self._world.collides(robot.footprint, self._start, t=0.0):
             s = self._start
             raise ValueError(
-                f"start: the robot starts inside an obstacle at ({s.x:g}, {s.y:g}, {s.theta:g}): "
+                f"start: the robot starts inside an obstacle at ({metres_text(s.x)}, "
+                f"{metres_text(s.y)}, {s.theta:g}): "
                 "its footprint touches or overlaps the world's obstacles"
             )
         self._ran = False

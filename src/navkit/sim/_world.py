@@ -37,6 +37,13 @@ __all__ = ["Circle", "MovingObstacle", "World"]
 
 #: Largest coordinate magnitude accepted anywhere in a world, m.
 MAX_COORD = 1e6
+#: What the refusal of world coordinates beyond MAX_COORD suggests: a map in UTM or
+#: another projected frame is simulated in a local frame (the LiDAR's on-line
+#: tolerance, 1e-9 m, is absolute: a few float steps at 1e6 m, under one at 4.5e6 m).
+_LOCAL_FRAME_HINT = (
+    " (a map in UTM or another projected frame: simulate it in a local frame, its "
+    "origin and every pose shifted by the same offset, e.g. the map's origin)"
+)
 #: Most segments (edges) a world may hold.
 MAX_SEGMENTS = 10_000_000
 #: Most (cell, primitive) entries of the edge index.
@@ -715,7 +722,7 @@ class World:
         if segs.size and not np.all(np.isfinite(segs)):
             raise ValueError("obstacles must have finite coordinates")
         if segs.size and float(np.max(np.abs(segs))) > MAX_COORD:
-            raise ValueError(f"obstacles must lie within ±{MAX_COORD:g} m")
+            raise ValueError(f"obstacles must lie within ±{MAX_COORD:g} m{_LOCAL_FRAME_HINT}")
         # Zero-length edges (repeated vertices) carry nothing.
         keep = (segs[:, 0] != segs[:, 2]) | (segs[:, 1] != segs[:, 3])
         self._segs: FloatArray = _read_only(np.ascontiguousarray(segs[keep]))
@@ -765,7 +772,9 @@ class World:
             self._cheb = _read_only(cheb)
             o = self._grid.origin
             if max(abs(o.x), abs(o.y)) > MAX_COORD:
-                raise ValueError(f"grid origin must lie within ±{MAX_COORD:g} m")
+                raise ValueError(
+                    f"grid origin must lie within ±{MAX_COORD:g} m{_LOCAL_FRAME_HINT}"
+                )
             self._occ_frame = (
                 o.x, o.y, math.cos(o.theta), math.sin(o.theta), self._grid.resolution
             )

@@ -10,6 +10,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from navkit._shared.frozen import restore_slots
+from navkit._shared.metres import metres_text
 from navkit._shared.types import BoolArray, FloatArray, IntArray
 from navkit._shared.validation import as_bool, as_float_array
 from navkit.errors import NoPathError
@@ -585,13 +586,11 @@ class MapPlanner:
         rows, cols = self._costs.shape
         size = np.array([[0, 0], [cols, 0], [0, rows], [cols, rows]]) * self._grid.resolution
         corners = self._grid.origin.transform_points(size)
-        # Rounded to the nanometre: a rotated origin leaves 1e-16 m where 0 is meant.
-        # Printed exactly, not to :g's 6 digits: a map at UTM-size coordinates would
-        # read [4.51235e+06, 4.51235e+06], hiding the point's distance from it.
-        bounds = np.round(np.concatenate([corners.min(axis=0), corners.max(axis=0)]), 9) + 0.0
-        lo0, lo1, hi0, hi1 = (
-            f"{v:g}" if float(f"{v:g}") == v else repr(v) for v in bounds.tolist()
-        )
+        # To the nanometre (a rotated origin leaves 1e-16 m where 0 is meant), not to
+        # :g's 6 digits: a map at UTM-size coordinates would read [4.51235e+06,
+        # 4.51235e+06], hiding the point's distance from it.
+        bounds = np.concatenate([corners.min(axis=0), corners.max(axis=0)])
+        lo0, lo1, hi0, hi1 = (metres_text(v) for v in bounds.tolist())
         return (
             f": the map covers x in [{lo0}, {hi0}] m and y in [{lo1}, {hi1}] m "
             "(its origin is the lower-left corner of cell (0, 0), not the map's centre; "
