@@ -364,7 +364,10 @@ class ExtendedKalmanFilter(GaussianEstimate):
             symmetric positive definite, entries of magnitude at most 1e100.
         angle_measurements : sequence of int, optional
             Indices of the components of ``z`` that are angles; their residuals
-            are wrapped to (-π, π] (keyword-only).
+            are wrapped to (-π, π] (keyword-only). An angle residual never
+            overflows: where ``z - h(x)`` would (angles near ±1.8e308), it is
+            the difference of the wrapped angles, wrapped (as
+            :func:`navkit.geometry.angle_diff`).
         gate : float, optional
             Chi-square threshold on the normalised innovation squared (NIS)
             yᵀ S⁻¹ y; a measurement with NIS above it is rejected (e.g.

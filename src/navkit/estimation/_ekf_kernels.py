@@ -475,8 +475,11 @@ def _update(
     for i in range(m):
         if flags[i] != 0.0:
             a = y[i]
-            if a - a == 0.0:  # an overflowed residual stays as it is
-                y[i] = _wrap(a)
+            if a - a != 0.0:
+                # z - h(x) overflowed (angles near ±1.8e308): the difference of the
+                # wrapped angles is the same angle, and finite (as angle_diff does).
+                a = _wrap(z[i]) - _wrap(hx[i])
+            y[i] = _wrap(a)
 
     _mul(jac, p, hp, m, n, n)  # H P = (P Hᵀ)ᵀ
     _mul_t_lower(jac, hp, s, m, n)  # H P Hᵀ = H (H P)ᵀ
