@@ -22,7 +22,11 @@ def metres_text(value: float) -> str:
     --------
     >>> metres_text(0.35000000000000003), metres_text(4500681.725000001), metres_text(-0.0)
     ('0.35', '4500681.725', '0')
+    >>> import numpy as np
+    >>> metres_text(np.float64("nan"))
+    'nan'
     """
+    value = float(value)  # a NumPy float's repr would name its type
     if not abs(value) < 1e15:
         return repr(value)
     slack = max(5e-10, math.ulp(value))

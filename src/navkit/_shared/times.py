@@ -8,6 +8,7 @@ it is passed.
 
 from __future__ import annotations
 
+import math
 import numbers
 from typing import Any
 
@@ -25,16 +26,31 @@ EXACT_INTEGERS = 2**53
 TIME_RESOLUTION = 1e-3
 
 
-def time_error(value: Any, name: str) -> ValueError | None:
+#: Types of list items that float64 holds as given, and integer types to compare.
+_PLAIN = frozenset({float, np.float64})
+_INTEGERS = frozenset({int, np.int8, np.int16, np.int32, np.int64, np.uint8, np.uint16,
+                       np.uint32, np.uint64})  # fmt: skip
+
+
+def time_error(value: Any, name: str) -> Exception | None:
     """The error for a time ``value`` (a number) that float64 would not hold as given."""
     if isinstance(value, np.ndarray) and value.ndim == 0:
         value = value[()]
     if isinstance(value, (bool, np.bool_)):
         return None  # refused as a non-number by the caller's checks
+    if isinstance(value, np.timedelta64):
+        # NumPy registers it as an integer: its count of units is not seconds.
+        return TypeError(
+            f"{name} must be a time in seconds (a real number), got numpy.timedelta64 "
+            f"{value!s}: pass it as seconds, e.g. value / np.timedelta64(1, 's')"
+        )
     if isinstance(value, numbers.Integral):
-        if abs(int(value)) > EXACT_INTEGERS:
+        integer = int(value)
+        if abs(integer) > EXACT_INTEGERS:
+            digits = len(str(abs(integer))) if abs(integer) < 10**100 else None
+            shown = str(integer) if digits is not None else f"of about 10**{_log10(integer)}"
             return ValueError(
-                f"{name} must be a time in seconds, got the integer {value}, beyond 2**53 "
+                f"{name} must be a time in seconds, got the integer {shown}, beyond 2**53 "
                 "where float64 rounds integers (a nanosecond stamp? pass seconds: "
                 "sec + nanosec * 1e-9)"
             )
@@ -49,6 +65,11 @@ def time_error(value: Any, name: str) -> ValueError | None:
     return None
 
 
+def _log10(integer: int) -> int:
+    """The decimal exponent of a huge ``integer`` (its digit count less one)."""
+    return int(abs(integer).bit_length() * math.log10(2))
+
+
 def as_time(value: Any, name: str) -> float:
     """A time, s, as a finite float (:func:`finite_float`), refusing what float64 would round."""
     error = time_error(value, name)
@@ -59,22 +80,32 @@ def as_time(value: Any, name: str) -> float:
 
 def as_times(value: Any, name: str) -> FloatArray:
     """Times, s, shape (T,), as a float64 array, refusing what float64 would round (``as_time``)."""
-    times = as_float_array(value, name, ndim=1)
     if isinstance(value, (list, tuple)):
-        # Python floats (the common case) need no look; NumPy would round an integer
-        # beyond 2**53 in a list with floats into a float64 array unseen.
-        items: Any = () if all(type(v) is float for v in value) else value
+        if not set(map(type, value)) <= _PLAIN:
+            # NumPy would round an integer beyond 2**53 among floats into a float64
+            # array unseen, and read a timedelta64 as its count: such items are
+            # looked at one by one (floats and exact integers at a type check's cost).
+            _refuse_items(value, name)
+        return as_float_array(value, name, ndim=1)
+    times = as_float_array(value, name, ndim=1)
+    raw = np.asarray(value)
+    if raw.dtype.kind in "iu":
+        rounded = bool(np.any(raw > EXACT_INTEGERS) or np.any(raw < -EXACT_INTEGERS))
+    elif raw.dtype in (np.float16, np.float32):
+        rounded = bool(np.any(np.spacing(np.abs(raw)) > TIME_RESOLUTION))
     else:
-        raw = np.asarray(value)
-        kind = raw.dtype.kind
-        if kind in "iu":
-            items = raw if np.any(raw > EXACT_INTEGERS) or np.any(raw < -EXACT_INTEGERS) else ()
-        elif raw.dtype in (np.float16, np.float32):
-            items = raw if np.any(np.spacing(np.abs(raw)) > TIME_RESOLUTION) else ()
-        else:
-            items = raw if kind == "O" else ()
+        rounded = raw.dtype.kind == "O"
+    if rounded:
+        _refuse_items(raw, name)
+    return times
+
+
+def _refuse_items(items: Any, name: str) -> None:
+    """Raise :func:`time_error`'s error for the first item of ``items`` that has one."""
     for i, item in enumerate(items):
+        kind = type(item)
+        if kind in _PLAIN or (kind in _INTEGERS and -EXACT_INTEGERS <= item <= EXACT_INTEGERS):
+            continue
         error = time_error(item, f"{name}, element {i},")
         if error is not None:
             raise error
-    return times
