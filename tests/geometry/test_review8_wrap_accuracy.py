@@ -18,9 +18,9 @@ import numpy as np
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
+from navkit._shared.angles import wrap_float as _wrap_float
 from navkit._shared.se2 import wrap_scalar
 from navkit.geometry import angle_diff, wrap_angle
-from navkit.geometry._angles import _wrap_float
 
 TWO_PI = Fraction(2 * math.pi)
 angles = st.one_of(

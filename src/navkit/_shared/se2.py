@@ -22,7 +22,7 @@ def wrap_scalar(a: float) -> float:
     if -math.pi < a <= math.pi:
         return a
     # fmod(a, 2pi) exactly (numba has no math.fmod; % of a non-negative float is fmod),
-    # then one exact fold: bit for bit navkit.geometry.wrap_angle (see its _wrap_float).
+    # then one exact fold: bit for bit navkit._shared.angles.wrap_float.
     r = math.copysign(abs(a) % _TWO_PI, a)
     if r > math.pi:
         return r - _TWO_PI

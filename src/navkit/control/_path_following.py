@@ -25,6 +25,7 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
+from navkit._shared.angles import wrap_float as wrap
 from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, finite_float, positive_float
@@ -61,23 +62,7 @@ nearer point is a later pass of the path (the end of a closed loop shorter than
 
 Phase = Literal["idle", "rotate", "track", "final", "done"]
 
-_TWO_PI = 2.0 * math.pi
 ZERO_TWIST = Twist2D(0.0, 0.0, 0.0)
-
-
-def wrap(a: float) -> float:
-    """Wrap one finite angle to (-π, π] (scalar, pure Python).
-
-    Bit for bit :func:`navkit.geometry.wrap_angle` of a float, which the
-    controllers cannot share (a private helper of another subpackage).
-    """
-    if -math.pi < a <= math.pi:
-        return a
-    # fmod and the one fold are exact (Sterbenz); pi - ((pi - a) % 2pi) rounds twice.
-    r = math.fmod(a, _TWO_PI)
-    if r > math.pi:
-        return r - _TWO_PI
-    return r + _TWO_PI if r <= -math.pi else r
 
 
 def bounded(

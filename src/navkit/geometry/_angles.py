@@ -9,28 +9,12 @@ from typing import Any, overload
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from navkit._shared.angles import wrap_float
 from navkit._shared.validation import as_float_array
 
 __all__ = ["angle_diff", "wrap_angle"]
 
 _TWO_PI = 2.0 * math.pi
-
-
-def _wrap_float(a: float) -> float:
-    """:func:`wrap_angle` of one finite Python float, with the same operations (bit for bit).
-
-    ``math.fmod`` and ``np.fmod`` are exact (``a - k * _TWO_PI`` with no rounding),
-    and so is the one fold into (-π, π] (Sterbenz: both operands within a factor 2).
-    Not ``pi - ((pi - a) % 2pi)``: its difference and the divisor ``%`` adds to a
-    negative remainder are rounded, up to 6e4 ulps of the result for angles below
-    100 rad and all of its bits beyond 1e19.
-    """
-    if -math.pi < a <= math.pi:
-        return a
-    r = math.fmod(a, _TWO_PI)
-    if r > math.pi:
-        return r - _TWO_PI
-    return r + _TWO_PI if r <= -math.pi else r
 
 
 @overload
@@ -78,9 +62,9 @@ def wrap_angle(angle: ArrayLike) -> float | NDArray[np.float64]:
     """
     value: Any = angle
     if type(value) is float and value - value == 0.0:  # a finite float: the fast path
-        return _wrap_float(value)
+        return wrap_float(value)
     arr = as_float_array(angle, "angle")
-    # As _wrap_float: fmod and the fold are exact; fmod returns angles inside
+    # As wrap_float: fmod and the fold are exact; fmod returns angles inside
     # (-π, π] unchanged, and only -π itself is folded (to π).
     rem = np.fmod(arr, _TWO_PI)
     out = np.where(rem > math.pi, rem - _TWO_PI, np.where(rem <= -math.pi, rem + _TWO_PI, rem))
@@ -135,7 +119,7 @@ def angle_diff(a: ArrayLike, b: ArrayLike) -> float | NDArray[np.float64]:
     if type(first_value) is float and type(second_value) is float:
         d = first_value - second_value
         if d - d == 0.0:
-            return _wrap_float(d)
+            return wrap_float(d)
     first = as_float_array(a, "a")
     second = as_float_array(b, "b")
     try:

@@ -10,10 +10,10 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from navkit._shared.angles import wrap_float
 from navkit._shared.frozen import frozen_setattr, reduce_record
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, as_points, finite_float
-from navkit.geometry._angles import _wrap_float
 
 __all__ = ["Pose2D", "Twist2D", "as_pose", "as_twist"]
 
@@ -65,7 +65,7 @@ class Pose2D:
         object.__setattr__(self, "y", finite_float(self.y, "y"))
         # Plain Python (bit for bit the kernel's wrap): constructing a pose, as module
         # constants and defaults do at import, must not start numba.
-        object.__setattr__(self, "theta", _wrap_float(finite_float(self.theta, "theta")))
+        object.__setattr__(self, "theta", wrap_float(finite_float(self.theta, "theta")))
 
     def __reduce__(self) -> tuple[Any, ...]:
         # Copies and pickles keep what a subclass adds (its __dict__ or slots),
@@ -120,7 +120,7 @@ class Pose2D:
                 "other",
                 "composing the poses",
             )
-        return Pose2D(x, y, _wrap_float(self.theta + o.theta))
+        return Pose2D(x, y, wrap_float(self.theta + o.theta))
 
     def __matmul__(self, other: Pose2D | ArrayLike) -> Pose2D:
         """``a @ b`` is ``a.compose(b)``; ``b`` may be a sequence ``[x, y, theta]``."""
@@ -201,7 +201,7 @@ class Pose2D:
             dx = self.x * _SHRINK - ref.x * _SHRINK
             dy = self.y * _SHRINK - ref.y * _SHRINK
             x, y = _grow(c * dx + s * dy, c * dy - s * dx, "frame", "expressing the pose in frame")
-        return Pose2D(x, y, _wrap_float(self.theta - ref.theta))
+        return Pose2D(x, y, wrap_float(self.theta - ref.theta))
 
     def transform_points(self, points_xy: ArrayLike) -> FloatArray:
         """Map points from this pose's frame to the world frame.
