@@ -31,7 +31,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import navkit.estimation._ekf as ekf_module
-from exact_fractions import fractions, inverse
+from exact_fractions import exact_gain, fractions
 from hypothesis_twins import slow_twin
 from navkit.errors import FilterError
 from navkit.estimation import ExtendedKalmanFilter
@@ -47,14 +47,9 @@ def exact_update(
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
     """The exact ``x + K y``, ``P - K H P``, ``|K| |y|`` (rounding scale of x) and NIS."""
     n, m = p.shape[0], h.shape[0]
-    pf, hf, rf = fractions(p), fractions(h), fractions(r)
+    pf = fractions(p)
     yf = [Fraction(v) for v in y.tolist()]
-    hp = [[sum(hf[a][k] * pf[k][j] for k in range(n)) for j in range(n)] for a in range(m)]
-    s = [
-        [sum(hp[a][k] * hf[b][k] for k in range(n)) + rf[a][b] for b in range(m)] for a in range(m)
-    ]
-    s_inv = inverse(s)
-    gain = [[sum(hp[b][i] * s_inv[b][a] for b in range(m)) for a in range(m)] for i in range(n)]
+    hp, s_inv, gain = exact_gain(p, h, r)
     x_new = np.array([float(Fraction(x[i]) + sum(gain[i][a] * yf[a] for a in range(m)))
                       for i in range(n)])  # fmt: skip
     scale = np.array([float(sum(abs(gain[i][a] * yf[a]) for a in range(m))) for i in range(n)])

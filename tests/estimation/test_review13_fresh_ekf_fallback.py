@@ -23,7 +23,7 @@ from fractions import Fraction
 
 import numpy as np
 
-from exact_fractions import fractions, inverse
+from exact_fractions import exact_gain, fractions
 from navkit.errors import FilterError
 from navkit.estimation import ExtendedKalmanFilter
 
@@ -35,12 +35,8 @@ def _hex(rows: list[list[str]]) -> np.ndarray:
 def _exact_posterior(p: np.ndarray, h: np.ndarray, r: np.ndarray) -> np.ndarray:
     """P - P Hᵀ (H P Hᵀ + R)⁻¹ H P in exact arithmetic, rounded once."""
     n, m = p.shape[0], h.shape[0]
-    pf, hf, rf = fractions(p), fractions(h), fractions(r)
-    hp = [[sum(hf[a][k] * pf[k][j] for k in range(n)) for j in range(n)] for a in range(m)]
-    s = [
-        [sum(hp[a][k] * hf[b][k] for k in range(n)) + rf[a][b] for b in range(m)] for a in range(m)
-    ]
-    s_inv = inverse(s)
+    pf = fractions(p)
+    hp, s_inv, _ = exact_gain(p, h, r)
     out = np.empty((n, n))
     for i in range(n):
         for j in range(n):
@@ -158,14 +154,8 @@ def _exact_state(
 ) -> tuple[np.ndarray, np.ndarray]:
     """The exact x + P Hᵀ S⁻¹ y and the rounding scale |x| + |K| |y| of each state."""
     n, m = p.shape[0], h.shape[0]
-    pf, hf, rf = fractions(p), fractions(h), fractions(r)
     yf = [Fraction(v) for v in y.tolist()]
-    hp = [[sum(hf[a][k] * pf[k][j] for k in range(n)) for j in range(n)] for a in range(m)]
-    s = [
-        [sum(hp[a][k] * hf[b][k] for k in range(n)) + rf[a][b] for b in range(m)] for a in range(m)
-    ]
-    s_inv = inverse(s)
-    gain = [[sum(hp[b][i] * s_inv[b][a] for b in range(m)) for a in range(m)] for i in range(n)]
+    _, _, gain = exact_gain(p, h, r)
     state = [Fraction(x0[i]) + sum(gain[i][a] * yf[a] for a in range(m)) for i in range(n)]
     scale = [
         abs(Fraction(x0[i])) + sum(abs(gain[i][a] * yf[a]) for a in range(m)) for i in range(n)

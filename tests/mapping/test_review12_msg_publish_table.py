@@ -22,35 +22,13 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from numpy.typing import NDArray
 
+from float32_edges import BEYOND_GRID, SPECIAL, ulps
 from memory_peak import peak_bytes
 from navkit.mapping import OccupancyGrid
 from navkit.mapping.io import grid_to_msg_fields, read_map
 from navkit.mapping.io._map_files import pgm_bytes
 
 F32 = np.float32
-SPECIAL = [
-    0.0,
-    -0.0,
-    1e-45,  # smallest subnormal
-    -1e-45,
-    1.1754942e-38,  # largest subnormal
-    -1.1754942e-38,
-    1.1754944e-38,  # smallest normal
-    -1.1754944e-38,
-    1e-30,
-    -1e-30,
-    1e-8,
-    -1e-8,
-    6.906755,  # logit(0.999), the grid's clipping
-    -6.906755,
-    88.7,  # exp overflows float32 (not float64) around here
-    -88.7,
-    710.0,  # exp overflows float64
-    -710.0,
-    1e6,  # the grid's range
-    -1e6,
-]
-BEYOND_GRID = [np.inf, -np.inf, 3.4028235e38, -3.4028235e38, 1.0000001e6, -1.0000001e6]
 
 
 def _formula(logodds: NDArray[np.float32]) -> NDArray[np.int8]:
@@ -92,17 +70,6 @@ def _thresholds() -> NDArray[np.float32]:
     return _percent_table()[1][:100]
 
 
-def _ulps(values: NDArray[np.float32], n: int) -> NDArray[np.float32]:
-    """``values`` and their neighbours up to ``n`` float32 steps away on each side."""
-    out = [values]
-    down, up = values, values
-    for _ in range(n):
-        down = np.nextafter(down, F32(-np.inf))
-        up = np.nextafter(up, F32(np.inf))
-        out += [down, up]
-    return np.concatenate(out).astype(F32)
-
-
 # --------------------------------------------------------------- the steps
 
 
@@ -116,7 +83,7 @@ def test_every_step_is_where_the_formula_steps() -> None:
 
 
 def test_every_step_plus_minus_two_ulps_matches_the_formula() -> None:
-    values = _ulps(_thresholds(), 2)
+    values = ulps(_thresholds(), 2)
     np.testing.assert_array_equal(_published(values), _formula(values))
     np.testing.assert_array_equal(_looked_up(values), _formula(values))
 
@@ -124,13 +91,13 @@ def test_every_step_plus_minus_two_ulps_matches_the_formula() -> None:
 def test_step_midpoints_and_probability_levels_match() -> None:
     # log-odds of p = k/100 and (k +- 0.5)/100, where rounding and steps sit.
     p = np.concatenate([np.arange(1, 100), np.arange(0.5, 100.0, 1.0)]) / 100.0
-    values = _ulps(np.log(p / (1.0 - p)).astype(F32), 1)
+    values = ulps(np.log(p / (1.0 - p)).astype(F32), 1)
     np.testing.assert_array_equal(_looked_up(values), _formula(values))
     np.testing.assert_array_equal(_published(values), _old_scale_data(_grid(values)))
 
 
 def test_special_values_match() -> None:
-    values = _ulps(np.array(SPECIAL, dtype=F32), 1)
+    values = ulps(np.array(SPECIAL, dtype=F32), 1)
     values = values[np.abs(values) <= 1e6]
     data = _published(values)
     expected = _formula(values)

@@ -23,6 +23,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from numpy.typing import NDArray
 
+from float32_edges import BEYOND_GRID, SPECIAL, ulps
 from hypothesis_twins import slow_twin
 from memory_peak import peak_bytes
 from navkit.mapping import OccupancyGrid
@@ -31,27 +32,6 @@ from navkit.mapping.io import read_map, write_map
 from navkit.mapping.io._step_tables import StepLookUp, StepTable
 
 F32 = np.float32
-SPECIAL = [
-    0.0,
-    -0.0,
-    1e-45,  # smallest subnormal
-    -1e-45,
-    1.1754942e-38,  # largest subnormal
-    -1.1754942e-38,
-    1.1754944e-38,  # smallest normal
-    -1.1754944e-38,
-    1e-30,
-    -1e-30,
-    6.906755,  # logit(0.999), the grid's clipping
-    -6.906755,
-    88.7,  # exp overflows float32 (not float64) around here
-    -88.7,
-    710.0,  # exp overflows float64
-    -710.0,
-    1e6,  # the grid's range
-    -1e6,
-]
-BEYOND_GRID = [np.inf, -np.inf, 3.4028235e38, -3.4028235e38, 1.0000001e6, -1.0000001e6]
 # Thresholds that matter: the defaults; a band excluding p = 0.5 (unknown pixels
 # read back as the band's middle); a narrow band (grey rounding crosses it); the
 # extremes; thresholds beyond the grid's probability clipping; thresholds that
@@ -115,17 +95,6 @@ def _thresholds() -> NDArray[np.float32]:
     return mf._darkness_table().thresholds[:255]
 
 
-def _ulps(values: NDArray[np.float32], n: int) -> NDArray[np.float32]:
-    """``values`` and their neighbours up to ``n`` float32 steps away on each side."""
-    out = [values]
-    down, up = values, values
-    for _ in range(n):
-        down = np.nextafter(down, F32(-np.inf))
-        up = np.nextafter(up, F32(np.inf))
-        out += [down, up]
-    return np.concatenate(out).astype(F32)
-
-
 def _assert_as_before(values: NDArray[np.float32], **thresholds: float) -> None:
     """Grey and alpha of a one-row grid of ``values`` as the former code made them."""
     values = values[np.abs(values) <= 1e6]
@@ -156,7 +125,7 @@ def test_every_step_is_where_the_formula_steps() -> None:
 
 
 def test_every_step_plus_minus_two_ulps_matches_the_formula() -> None:
-    values = _ulps(_thresholds(), 2)
+    values = ulps(_thresholds(), 2)
     np.testing.assert_array_equal(_looked_up(values), _formula_grey(values))
     for thresholds in THRESHOLDS:
         _assert_as_before(values, **thresholds)
@@ -168,14 +137,14 @@ def test_grey_midpoints_and_class_bounds_match() -> None:
     p = np.concatenate([np.arange(1, 255), np.arange(0.5, 255.0, 1.0)]) / 255.0
     bounds = [t for th in THRESHOLDS for t in th.values() if 0.0 < t < 1.0] + [0.65, 0.196]
     p = np.concatenate([p, bounds])
-    values = _ulps(np.log(p / (1.0 - p)).astype(F32), 2)
+    values = ulps(np.log(p / (1.0 - p)).astype(F32), 2)
     np.testing.assert_array_equal(_looked_up(values), _formula_grey(values))
     for thresholds in THRESHOLDS:
         _assert_as_before(values, **thresholds)
 
 
 def test_special_values_match() -> None:
-    values = _ulps(np.array(SPECIAL, dtype=F32), 1)
+    values = ulps(np.array(SPECIAL, dtype=F32), 1)
     np.testing.assert_array_equal(_looked_up(values), _formula_grey(values))
     for thresholds in THRESHOLDS:
         _assert_as_before(values, **thresholds)
