@@ -3,9 +3,9 @@
 A full-circle Lidar's first beam points backwards. ``Lidar.angles()`` returns
 it as -π, while the LaserScan the same lidar produces gives that beam as +π
 (``LaserScan.angles()`` wraps): the two beam-angle functions of one sensor
-disagree, and one breaks the convention. Found in review 13 (angle lens);
-reported to the sim owner (the fix is ``wrap_angle`` in ``Lidar.angles``, whose
-docstring example shows -3.1416 today). ``angle_min`` is the ROS message field
+disagreed, and one broke the convention. Found in review 13 (angle lens);
+``Lidar.angles`` now wraps (the kernels still cast the unwrapped directions, so
+scans are unchanged bit for bit). ``angle_min`` is the ROS message field
 (-π for full-circle scanners, as in ROS drivers) and is not checked here.
 """
 
@@ -19,15 +19,7 @@ from shapely.geometry import box
 
 from navkit.sim import Lidar, World
 
-# Strict: the tests fail today; once Lidar.angles wraps they pass and the mark must go.
-_REPORTED = pytest.mark.xfail(
-    strict=True,
-    reason="review 13 angle lens: a full-circle Lidar.angles() returns -π for its first "
-    "beam, where LaserScan.angles() of its scans gives +π",
-)
 
-
-@_REPORTED
 @pytest.mark.parametrize("n_beams", [1, 4, 360])
 def test_full_circle_beam_angles_are_wrapped(n_beams: int) -> None:
     lidar = Lidar(n_beams=n_beams, noise=None)
@@ -36,7 +28,6 @@ def test_full_circle_beam_angles_are_wrapped(n_beams: int) -> None:
     assert angles[0] == math.pi
 
 
-@_REPORTED
 def test_lidar_and_its_scans_give_the_same_beam_angles() -> None:
     lidar = Lidar(n_beams=8, noise=None)
     scan = lidar.scan(World(box(0.0, 0.0, 4.0, 3.0).exterior), (1.0, 1.0, 0.0))

@@ -13,7 +13,7 @@ from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.frozen import frozen_setattr
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import bounded_int, finite_float, positive_float
-from navkit.geometry import Pose2D, as_pose
+from navkit.geometry import Pose2D, as_pose, wrap_angle
 from navkit.mapping import LaserScan
 from navkit.sim._lidar_kernels import apply_range_noise
 from navkit.sim._noise import RangeNoise
@@ -125,7 +125,7 @@ class Lidar:
     >>> world = World(box(0.0, 0.0, 4.0, 3.0).exterior)
     >>> lidar = Lidar(n_beams=4, noise=None)
     >>> lidar.angles().round(4).tolist()
-    [-3.1416, -1.5708, 0.0, 1.5708]
+    [3.1416, -1.5708, 0.0, 1.5708]
     >>> scan = lidar.scan(world, (1.0, 1.0, 0.0))
     >>> scan.ranges.round(12).tolist()
     [1.0, 1.0, 3.0, 2.0]
@@ -198,16 +198,21 @@ class Lidar:
         Returns
         -------
         ndarray, shape (n_beams,)
-            New array ``angle_min + k * angle_increment`` (not wrapped), the
-            angles of the scans' beams.
+            New array ``angle_min + k * angle_increment`` wrapped to (-π, π],
+            the angles :meth:`LaserScan.angles` gives of the scans' beams (a
+            full circle's first beam, at ``angle_min = -π``, is +π).
 
         Examples
         --------
         >>> Lidar(n_beams=5, fov=math.pi / 2).angles().round(4).tolist()  # edges at ±fov/2
         [-0.7854, -0.3927, 0.0, 0.3927, 0.7854]
-        >>> Lidar(n_beams=4).angles().round(4).tolist()  # a full circle: from -π, none at +π
-        [-3.1416, -1.5708, 0.0, 1.5708]
+        >>> Lidar(n_beams=4).angles().round(4).tolist()  # a full circle: backwards is +π
+        [3.1416, -1.5708, 0.0, 1.5708]
         """
+        return np.asarray(wrap_angle(self._raw_angles()), dtype=np.float64)
+
+    def _raw_angles(self) -> FloatArray:
+        """``angle_min + k * angle_increment``, not wrapped: the directions the kernels cast."""
         return self.angle_min + self.angle_increment * np.arange(self.n_beams, dtype=np.float64)
 
     def scan(
@@ -316,7 +321,7 @@ class Scanner:
         self._lidar = lidar
         self._world = world
         n = lidar.n_beams
-        self._angles = np.ascontiguousarray(lidar.angles())
+        self._angles = np.ascontiguousarray(lidar._raw_angles())
         self._normals = np.zeros(n)
         self._uniforms = np.ones(n)
         noise = lidar.noise

@@ -12,8 +12,10 @@ primitives near the beam:
 * an occupancy grid is walked cell by cell from the sensor (Amanatides–Woo),
   jumping across the free square around a cell when its chessboard distance
   to the nearest blocked cell is large; the range is the distance at which
-  the beam enters the first blocked cell (a beam that only touches a blocked
-  cell's corner counts);
+  the beam first touches a blocked cell, its closed square as a box of the
+  polygon world (a corner it passes, a face it runs along, a face the origin
+  is on), whichever way the beam's angle is written (a direction within
+  rounding of a grid axis is that axis);
 * moving obstacles (few) are tested by brute force.
 
 A beam from inside a solid obstacle (a solid polygon or circle, a moving
@@ -75,6 +77,20 @@ _JUMP = 8
 #: this for every distance a world allows (1e6 m); a segment within it of the
 #: whole line is met at its nearer end.
 _ON_LINE = 1e-9
+#: Relative size below which a direction's component across a grid axis is
+#: rounding and is taken as 0: the beam runs along the axis. The sine of a
+#: multiple of pi is up to |angle| * 2**-53 instead of 0 (1.2e-16 at pi), and
+#: rotating into a map's frame adds a few 1e-16.
+_AXIS = 2.0**-46
+#: Relative difference within which the ray's crossings of a column line and a
+#: row line are one corner: rounding of the direction and of the summed steps
+#: puts the two crossings of a corner the ray passes through a few 1e-16 apart
+#: (up to ~1e-12 after 10^4 steps), far below a step between lines.
+_TIE = 2.0**-36
+_APART = 1.0 - _TIE
+#: Relative distance (of the coordinates' size) within which a ray's start point
+#: lies on a grid line: a few hundred roundings.
+_NEAR = 2.0**-44
 
 
 @njit_helper
@@ -241,11 +257,17 @@ def _cast_occupancy(
     gsin: float,
     res: float,
 ) -> float:
-    """Distance below ``best`` at which the ray enters the first blocked cell.
+    """Distance below ``best`` at which the ray first touches a blocked cell.
 
     ``cheb`` is the chessboard distance of every cell to the nearest blocked
-    one (0 on blocked cells). Works in the grid frame in cell units: cell
-    ``(row, col)`` covers ``[col, col + 1) x [row, row + 1)``.
+    one (0 on blocked cells). Works in the grid frame in cell units. The walk
+    steps through cell ``(row, col)`` as ``[col, col + 1) x [row, row + 1)``,
+    but a blocked cell counts as its closed square, as a box of the polygon
+    world does: the ray stops where it first touches one, at a corner it
+    passes (to rounding), along a face it runs on, or at once from a point on
+    its boundary. A direction within rounding of a grid axis is
+    that axis (``sin(pi)`` is 1.2e-16, not 0), so a beam along a grid line
+    reads the same whichever way its angle is written.
     """
     rows = cheb.shape[0]
     cols = cheb.shape[1]
@@ -257,6 +279,10 @@ def _cast_occupancy(
     sv = (-gsin * rx + gcos * ry) * inv
     eu = (gcos * dx + gsin * dy) * inv
     ev = (-gsin * dx + gcos * dy) * inv
+    if abs(ev) <= _AXIS * abs(eu):
+        ev = 0.0
+    elif abs(eu) <= _AXIS * abs(ev):
+        eu = 0.0
     t0 = 0.0
     t1 = best
     if eu != 0.0:
@@ -264,7 +290,7 @@ def _cast_occupancy(
         tb = (cols - su) / eu
         if ta > tb:
             ta, tb = tb, ta
-        t0 = max(t0, ta)
+        t0 = ta if ta > t0 else t0  # not max(): -0.0 must not replace 0.0
         t1 = min(t1, tb)
     elif su < 0.0 or su > cols:
         return best
@@ -273,14 +299,39 @@ def _cast_occupancy(
         tb = (rows - sv) / ev
         if ta > tb:
             ta, tb = tb, ta
-        t0 = max(t0, ta)
+        t0 = ta if ta > t0 else t0
         t1 = min(t1, tb)
     elif sv < 0.0 or sv > rows:
         return best
-    if t0 > t1:
+    # A ray through a corner of the map enters and leaves it at once: rounding
+    # may put its exit a hair before its entry, and it still touches that cell.
+    if t0 >= best or t0 - t1 > _TIE * t0:
         return best
-    c = min(max(math.floor(su + t0 * eu), 0), cols - 1)
-    r = min(max(math.floor(sv + t0 * ev), 0), rows - 1)
+    u0 = su + t0 * eu
+    v0 = sv + t0 * ev
+    c = min(max(math.floor(u0), 0), cols - 1)
+    r = min(max(math.floor(v0), 0), rows - 1)
+    # The start point touches every cell whose closed square holds it: one, or
+    # two or four on a grid line or corner (an origin on a blocked cell's face,
+    # a ray entering the map through a corner), to rounding of its coordinates.
+    near_u = _NEAR * (abs(su) + abs(t0 * eu))
+    near_v = _NEAR * (abs(sv) + abs(t0 * ev))
+    r_lo = r - 1 if r >= 1 and abs(v0 - r) <= near_v else r
+    r_hi = r + 1 if r + 1 < rows and abs(v0 - (r + 1)) <= near_v else r
+    c_lo = c - 1 if c >= 1 and abs(u0 - c) <= near_u else c
+    c_hi = c + 1 if c + 1 < cols and abs(u0 - (c + 1)) <= near_u else c
+    for rr in range(r_lo, r_hi + 1):
+        for cc in range(c_lo, c_hi + 1):
+            if cheb[rr, cc] == 0:
+                return t0
+    # A ray along a grid line touches the cells on both sides of it: side_r
+    # (side_c) is the row (column) beside the one it steps along (-1: none).
+    side_r = -1
+    if ev == 0.0:
+        side_r = r_lo if r_lo != r else (r_hi if r_hi != r else -1)
+    side_c = -1
+    if eu == 0.0:
+        side_c = c_lo if c_lo != c else (c_hi if c_hi != c else -1)
     sc = 1 if eu > 0.0 else -1
     sr = 1 if ev > 0.0 else -1
     # Reciprocals: the walk is bound by latency, and a product is quicker than
@@ -296,42 +347,67 @@ def _cast_occupancy(
     tc = (c + off_c - su) * inv_eu if eu != 0.0 else _INF
     tr = (r + off_r - sv) * inv_ev if ev != 0.0 else _INF
     t_in: float = t0
+    if side_r >= 0 or side_c >= 0:
+        # Along a grid line (rare): step the cells on both sides of it together.
+        while True:
+            if side_r >= 0:
+                if cheb[r, c] == 0 or cheb[side_r, c] == 0:
+                    return t_in if t_in < best else best
+                t_in = tc
+                tc += dtc
+                c += sc
+            else:
+                if cheb[r, c] == 0 or cheb[r, side_c] == 0:
+                    return t_in if t_in < best else best
+                t_in = tr
+                tr += dtr
+                r += sr
+            if t_in >= t1 or c < 0 or c >= cols or r < 0 or r >= rows:
+                return best
     while True:
         d = cheb[r, c]
         if d == 0:
             return t_in if t_in < best else best
         if d >= _JUMP:
-            # Every cell within chessboard distance d - 1 is free: leave that square.
+            # Every cell within chessboard distance d - 1 is free: go to the square's
+            # last cell along the ray; the steps below cross its boundary and see
+            # what the ray touches there (a corner).
             half = np.int64(d) - 1
             xc = (c + sc * half + off_c - su) * inv_eu if eu != 0.0 else _INF
             xr = (r + sr * half + off_r - sv) * inv_ev if ev != 0.0 else _INF
-            if xc <= xr:
-                t_in = xc
-                c = c + sc * (half + 1)
-                r = min(max(math.floor(sv + t_in * ev), r - half), r + half)
-            else:
-                t_in = xr
-                r = r + sr * (half + 1)
-                c = min(max(math.floor(su + t_in * eu), c - half), c + half)
+            exit_t = min(xc, xr)
+            if exit_t - t1 > _TIE * exit_t:
+                return best  # the ray ends or leaves the map inside the free square
+            # One step before the exit the ray is well inside the square: its cell
+            # there, unlike the exit point's, is no rounding away from a corner.
+            back = exit_t - min(dtc, dtr)
+            # Within the square and the map (a ray along its top or right edge
+            # walks the last row or column, as from the start).
+            r = min(max(math.floor(sv + back * ev), r - half, 0), r + half, rows - 1)
+            c = min(max(math.floor(su + back * eu), c - half, 0), c + half, cols - 1)
             tc = (c + off_c - su) * inv_eu if eu != 0.0 else _INF
             tr = (r + off_r - sv) * inv_ev if ev != 0.0 else _INF
-        elif tc < tr:
-            t_in = tc
+            continue
+        if tc < tr * _APART:
+            # Never earlier than the last crossing: a line the start point lies
+            # on can round to a crossing a hair behind it.
+            t_in = tc if tc > t_in else t_in
             tc += dtc
             c += sc
-        elif tr < tc:
-            t_in = tr
+        elif tr < tc * _APART:
+            t_in = tr if tr > t_in else t_in
             tr += dtr
             r += sr
         else:
-            # Through a corner: the two cells beside it are touched at that point.
-            t_in = tc
-            if t_in >= t1:
-                return best
-            if 0 <= c + sc < cols and cheb[r, c + sc] == 0:
-                return t_in
-            if 0 <= r + sr < rows and cheb[r + sr, c] == 0:
-                return t_in
+            # Through a corner (to rounding): the two cells beside it are touched there.
+            t = min(tc, tr)
+            t_in = t if t > t_in else t_in
+            if t_in - t1 > _TIE * t_in:
+                return best  # a corner on the map's edge (to rounding) is still touched
+            if (0 <= c + sc < cols and cheb[r, c + sc] == 0) or (
+                0 <= r + sr < rows and cheb[r + sr, c] == 0
+            ):
+                return t_in if t_in < best else best
             tc += dtc
             tr += dtr
             c += sc

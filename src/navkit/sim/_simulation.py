@@ -56,6 +56,15 @@ _CLOSING_KINDS = ("timeout", "controller done", "wall-clock timeout")
 _COLUMNS = 10
 
 
+def _step_count(duration: float, rate: float) -> int:
+    """Physics steps of a run, ``ceil(duration * rate)``, at least one.
+
+    ``_EPS`` absorbs rounding (0.07 * 100 = 7.000000000000001 is 7 steps); a
+    positive duration below ``_EPS`` steps still runs one, as documented.
+    """
+    return max(1, math.ceil(duration * rate - _EPS))
+
+
 @frozen_setattr
 @dataclass(frozen=True, slots=True, eq=False)
 class Observation:
@@ -356,7 +365,7 @@ class Simulation:
         self._duration = positive_float(duration, "duration")
         if self._duration > MAX_DURATION:
             raise ValueError(f"duration must be at most {MAX_DURATION:g} s, got {self._duration}")
-        steps = math.ceil(self._duration * self._rate - _EPS)
+        steps = _step_count(self._duration, self._rate)
         if steps > MAX_STEPS:
             raise ValueError(
                 f"duration × rate is {steps} physics steps; the maximum is {MAX_STEPS} "
@@ -565,7 +574,7 @@ class _Run:
         self.n_out = np.zeros(3, dtype=np.int64)
         # The longest segment: from one control step or scan to the next, and never
         # longer than the run (a very slow controller must not size these by its period).
-        steps = math.ceil(sim._duration * sim._rate - _EPS)
+        steps = _step_count(sim._duration, sim._rate)
         slowest = min(sim._control_rate, robot.lidar.rate if robot.lidar is not None else math.inf)
         span = min(math.ceil(sim._rate / slowest), steps) + 2
         n_wheels = robot.n_wheels
@@ -823,7 +832,7 @@ class _Run:
         sim = self.sim
         robot = sim._robot
         dt = self.dt
-        n_steps = math.ceil(sim._duration * sim._rate - _EPS)
+        n_steps = _step_count(sim._duration, sim._rate)
         control_k = 0
         next_control = 0
         lidar_k = 0

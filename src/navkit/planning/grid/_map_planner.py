@@ -350,7 +350,11 @@ class MapPlanner:
         Raises
         ------
         ValueError
-            ``start`` or ``goal`` outside the map, or on an impassable cell
+            ``start`` or ``goal`` outside the map (cells are half-open, as in
+            :meth:`~navkit.mapping.OccupancyGrid.world_to_cell`: a point on
+            the far edges of an unrotated map, ``x = origin.x + width`` or
+            ``y = origin.y + height``, is outside; the message gives the
+            map's extent), or on an impassable cell
             (``start`` in the inflation only with no escape within
             ``start_tolerance``): the message says whether it is in an
             obstacle, within ``robot_radius`` of one, in unknown space (with
@@ -573,15 +577,18 @@ class MapPlanner:
         rows, cols = self._costs.shape
         if not (0 <= row < rows and 0 <= col < cols):
             raise ValueError(
-                f"{name} {tuple(point.tolist())} is outside the map{self._extent_text()}"
+                f"{name} {tuple(point.tolist())} is outside the map{self._extent_text(point)}"
             )
         return row, col
 
-    def _extent_text(self) -> str:
+    def _extent_text(self, point: FloatArray) -> str:
         """Where the map lies, in world metres (only on an error path).
 
         A map ``origin`` given as the map's centre, or cells given for metres,
         are the usual causes of an endpoint outside it; the extent shows both.
+        A refused ``point`` inside the printed ranges gets the reason: it is
+        on the map's far edges (cells are half-open) or, on a rotated map,
+        outside the map but inside the box around it.
         """
         rows, cols = self._costs.shape
         size = np.array([[0, 0], [cols, 0], [0, rows], [cols, rows]]) * self._grid.resolution
@@ -589,10 +596,18 @@ class MapPlanner:
         # To the nanometre (a rotated origin leaves 1e-16 m where 0 is meant), not to
         # :g's 6 digits: a map at UTM-size coordinates would read [4.51235e+06,
         # 4.51235e+06], hiding the point's distance from it.
-        bounds = np.concatenate([corners.min(axis=0), corners.max(axis=0)])
-        lo0, lo1, hi0, hi1 = (metres_text(v) for v in bounds.tolist())
+        lo, hi = corners.min(axis=0), corners.max(axis=0)
+        lo0, lo1, hi0, hi1 = (metres_text(v) for v in (*lo.tolist(), *hi.tolist()))
+        why = ""
+        if bool(np.all((lo <= point) & (point <= hi))):
+            why = (
+                f"; its far edges x = {hi0} m and y = {hi1} m belong to no cell"
+                if self._grid.origin.theta == 0.0
+                else "; the map is rotated by its origin's theta and these ranges are "
+                "the box around it"
+            )
         return (
-            f": the map covers x in [{lo0}, {hi0}] m and y in [{lo1}, {hi1}] m "
+            f": the map covers x in [{lo0}, {hi0}] m and y in [{lo1}, {hi1}] m{why} "
             "(its origin is the lower-left corner of cell (0, 0), not the map's centre; "
             "start and goal are world points in metres, not cells)"
         )
