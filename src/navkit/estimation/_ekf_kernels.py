@@ -720,7 +720,7 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
       error is the larger of the two), or where ε times P⁺'s estimate is at
       most 2⁻⁴² (P⁺ then within 1e-12) and the Joseph form's bound is larger;
     * the two states are compared: where they differ by more than
-      ``max(2⁻³³ (|x| + |x⁺ - x|), sqrt(P⁺ᵢᵢ))`` one of them is wrong. An
+      ``max(2⁻³³ (|x| + |x⁺ - x|), sqrt(P⁺ᵢᵢ))`` one of them is wrong. The
       kernel's x (off by about ε κ(S), κ of S scaled to a unit diagonal)
       stays where ε κ(S) ≤ 2⁻³⁰; else an update the Joseph form failed is
       refused (its status, as before), and otherwise x⁺ replaces the
