@@ -310,7 +310,9 @@ def test_sim_guide_range_noise_and_three_wheel_layout() -> None:
     assert f"{low:.2f} % below {_num(noise.limits[0])} m and {high:.2f} % beyond" in _page(
         "docs/guides/sim.md"
     )
-    angles = np.degrees(OmniDrive.three_wheel(wheel_radius=0.05, base_radius=0.2).wheel_angles)
+    # The docs name the mounting angles in [0°, 360°); wheel_angles reads them wrapped.
+    drive = OmniDrive.three_wheel(wheel_radius=0.05, base_radius=0.2)
+    angles = np.degrees(drive.wheel_angles) % 360.0
     quoted = "wheels at " + ", ".join(f"{a:.0f}°" for a in angles)
     for page in ("README.md", "docs/guides/kinematics.md", "docs/papers.md"):
         assert quoted in _page(page), page

@@ -57,7 +57,8 @@ test_batch_matches_single_thoroughly = slow_twin(test_batch_matches_single, max_
 def test_three_wheel_known_values() -> None:
     r, big_l = 0.05, 0.2
     drive = OmniDrive.three_wheel(wheel_radius=r, base_radius=big_l)
-    np.testing.assert_allclose(drive.wheel_angles, np.radians([30, 150, 270]))
+    # Wrapped to (-π, π]: the wheel mounted at 270° reads -90°.
+    np.testing.assert_allclose(drive.wheel_angles, np.radians([30, 150, -90]))
     s3 = math.sqrt(3) / 2
     np.testing.assert_allclose(drive.inverse(Twist2D(1.0, 0, 0)), [-0.5 / r, -0.5 / r, 1 / r])
     np.testing.assert_allclose(

@@ -140,7 +140,15 @@ def test_circle_as_fine_polygon_matches_its_polygon() -> None:
     assert np.all(circle - scan.ranges <= sagitta / math.cos(math.radians(60)) + TOL)
 
 
-coordinate = st.floats(-9.0, 9.0, allow_nan=False, allow_infinity=False)
+def _no_tiny(value: float) -> float:
+    """``value``, or 0 when ``|value| < 1e-100``."""
+    # GEOS, the oracle, misplaces a beam's crossing with an edge at such y (its
+    # products underflow; navkit is right there: test_review13_subnormal_polygon_rays
+    # checks such worlds against exact rays).
+    return 0.0 if abs(value) < 1e-100 else value
+
+
+coordinate = st.floats(-9.0, 9.0, allow_nan=False, allow_infinity=False).map(_no_tiny)
 
 
 @st.composite
@@ -148,8 +156,8 @@ def star_polygons(draw: st.DrawFn) -> Polygon:
     """A simple star-shaped polygon (3 to 9 vertices) around a random centre."""
     cx, cy = draw(coordinate), draw(coordinate)
     n = draw(st.integers(3, 9))
-    angles = np.sort(draw(st.lists(st.floats(0.0, 2 * math.pi - 1e-3), min_size=n, max_size=n,
-                                   unique=True)))  # fmt: skip
+    angles = np.sort(draw(st.lists(st.floats(0.0, 2 * math.pi - 1e-3).map(_no_tiny),
+                                   min_size=n, max_size=n, unique=True)))  # fmt: skip
     radii = draw(st.lists(st.floats(0.1, 3.0), min_size=n, max_size=n))
     pts = np.column_stack((cx + np.array(radii) * np.cos(angles),
                            cy + np.array(radii) * np.sin(angles)))  # fmt: skip

@@ -37,13 +37,15 @@ Each kernel does one predict or one update. It checks what the public layer
 did not: the shapes (``BAD_SHAPE``: the caller then converts and checks its
 arguments in full, or picks the kernel of another measurement size), the
 finiteness of the user's arrays, and whether Q or R still equals the matrix
-validated last time (else ``NOISE_CHANGED``: the caller validates it and calls
-again). Then it computes the step into scratch space, makes the new covariance
-exactly symmetric, checks it positive definite (an LDLᵀ factorisation, which
-also fails on non-finite entries) and only then commits it. Every outcome is a
-status code: the kernels never raise, never allocate (they are compiled
-without reference counting, which alone took a tenth of a call) and never
-leave ``state`` half-written.
+validated last time or is plainly valid, which it then keeps as validated
+(:func:`_adopt_dominant`: diagonally dominant, e.g. a diagonal ``Q_c dt``); else
+``NOISE_CHANGED``: the caller validates it and calls again. Then it computes
+the step into scratch space, makes the new covariance exactly symmetric,
+checks it positive definite (an LDLᵀ factorisation, which also fails on
+non-finite entries) and only then commits it. Every outcome is a status
+code: the kernels never raise, never allocate (they are compiled without
+reference counting, which alone took a tenth of a call) and never leave
+``state`` half-written.
 
 An update whose Joseph form cancelled (a variance shrank more than 4096-fold:
 a measurement far more precise than the estimate) commits nothing and returns
@@ -283,6 +285,46 @@ def _equal(a: FloatArray, b: FloatArray, n: int) -> bool:
 
 
 @njit_force_inline
+def _adopt_dominant(
+    a: FloatArray, kept: FloatArray, kept_sym: FloatArray, n: int, factor: float, floor: float
+) -> bool:
+    """Store the n x n noise ``a`` as validated if it is plainly valid; whether it was.
+
+    Plainly valid: finite, exactly symmetric, entries of magnitude at most 1e100,
+    and each diagonal entry at least ``floor`` and ``factor`` times the sum of the
+    magnitudes of the rest of its row. Q passes ``factor`` 1 and ``floor`` 0
+    (Gershgorin: positive semi-definite), R ``factor`` 2 and ``floor`` 1e-300
+    (the LDLᵀ pivots of a diagonally dominant matrix are at least its rows'
+    margins, here half the diagonal: positive definite with normal pivots).
+    The public layer's full check (``navkit.estimation._covariance.covariance``)
+    accepts every such matrix, and this stores what it would store: ``a`` as
+    passed and ``0.5 a + 0.5 aᵀ``. A Q or R that changes every step
+    (``Q = Q_c dt`` with a varying ``dt``, a sensor's per-message covariance)
+    thus costs no Python check; anything else is left to that check
+    (``NOISE_CHANGED``). (Floats, not a bool: numba would compile a literal bool
+    once per value.)
+    """
+    for i in range(n):
+        d = a[i, i]
+        if not floor <= d <= 1e100:  # NaN fails too
+            return False
+        off = 0.0
+        for j in range(n):
+            if j != i:
+                v = a[i, j]
+                if v != a[j, i] or not abs(v) <= 1e100:
+                    return False
+                off += abs(v)
+        if not factor * off <= d:
+            return False
+    for i in range(n):
+        for j in range(n):
+            kept[i, j] = a[i, j]
+            kept_sym[i, j] = 0.5 * a[i, j] + 0.5 * a[j, i]
+    return True
+
+
+@njit_force_inline
 def _mul(a: FloatArray, b: FloatArray, out: FloatArray, rows: int, inner: int, cols: int) -> None:
     """``out = a @ b`` on the leading blocks (``rows`` x ``inner`` times ``inner`` x ``cols``).
 
@@ -382,7 +424,9 @@ def _predict(state: FloatArray, x_new: FloatArray, jac: FloatArray, q: FloatArra
     """
     if not _finite_mat(jac, n, n):
         return BAD_F
-    if not _equal(q, state[n + 2 : 2 * n + 2], n):
+    if not _equal(q, state[n + 2 : 2 * n + 2], n) and not _adopt_dominant(
+        q, state[n + 2 : 2 * n + 2], state[2 * n + 2 : 3 * n + 2], n, 1.0, 0.0
+    ):
         return NOISE_CHANGED
     for i in range(n):
         if x_new[i] - x_new[i] != 0.0:
@@ -466,7 +510,9 @@ def _update(
             return _FAIL_Z
     if not _finite_mat(jac, m, n):
         return _FAIL_H
-    if not _equal(r, rbuf[_R], m):
+    if not _equal(r, rbuf[_R], m) and not _adopt_dominant(
+        r, rbuf[_R], rbuf[_RS], m, 2.0, 1e-300
+    ):
         return _FAIL_NOISE
     for i in range(m):
         if hx[i] - hx[i] != 0.0:

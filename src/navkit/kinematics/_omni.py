@@ -13,7 +13,7 @@ from navkit._shared.frozen import restore_slots
 from navkit._shared.products import scaled_product
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, positive_float
-from navkit.geometry import Twist2D, as_twist
+from navkit.geometry import Twist2D, as_twist, wrap_angle
 from navkit.kinematics._ranges import MAX_LENGTH, MIN_LENGTH, in_range
 
 __all__ = ["OmniDrive"]
@@ -78,7 +78,8 @@ class OmniDrive:
     Parameters
     ----------
     wheel_angles : array_like, shape (N,)
-        Mounting angle of each wheel in radians (finite), N >= 3.
+        Mounting angle of each wheel in radians (finite, any turn: 270° and -90°
+        are the same wheel), N >= 3.
     wheel_radius : float
         Wheel radius in metres, in [1e-6, 1e6] (keyword-only).
     base_radius : float
@@ -176,7 +177,8 @@ class OmniDrive:
         Returns
         -------
         OmniDrive
-            A drive with ``wheel_angles = radians([30, 150, 270])``.
+            A drive built from ``radians([30, 150, 270])`` (its :attr:`wheel_angles`
+            read them wrapped: 30°, 150° and -90°).
 
         Examples
         --------
@@ -189,8 +191,19 @@ class OmniDrive:
 
     @property
     def wheel_angles(self) -> FloatArray:
-        """Wheel mounting angles, rad, shape (N,) (read-only)."""
-        return self._wheel_angles
+        """Wheel mounting angles, rad, wrapped to (-π, π], shape (N,) (read-only).
+
+        navkit's angles are in (-π, π], so a wheel mounted at 270° reads -π/2. The
+        drive keeps the angles as given: its matrices are computed from them (its
+        results are the given angles', bit for bit) and its :func:`repr` shows them.
+
+        Examples
+        --------
+        >>> drive = OmniDrive.three_wheel(wheel_radius=0.05, base_radius=0.2)
+        >>> np.degrees(drive.wheel_angles).round(6).tolist()
+        [30.0, 150.0, -90.0]
+        """
+        return _read_only(np.asarray(wrap_angle(self._wheel_angles), dtype=np.float64))
 
     @property
     def wheel_radius(self) -> float:

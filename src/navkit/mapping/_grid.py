@@ -268,7 +268,12 @@ class OccupancyGrid:
     # ------------------------------------------------------------------ basics
     @property
     def logodds(self) -> NDArray[np.float32]:
-        """Read-only view of the log-odds, shape (rows, cols), float32."""
+        """Read-only view of the log-odds, shape (rows, cols), float32.
+
+        A view, not a copy: ray casting into the grid (in place, as
+        :func:`~navkit.mapping.integrate_scan`) changes what it shows; copy it
+        (``.copy()``) to keep a snapshot.
+        """
         view: NDArray[np.float32] = self._logodds.view()
         view.flags.writeable = False
         return view

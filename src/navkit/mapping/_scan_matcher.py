@@ -381,7 +381,11 @@ class ScanMatcher:
 
         A coarse cell takes the largest log-odds of the 2 × 2 cells it covers,
         so thin walls survive. Build the pyramid once and pass it to
-        :meth:`match` when matching many scans against the same map.
+        :meth:`match` when matching many scans against the same map. The
+        coarser levels are copies, made now: after the map changes (e.g.
+        :func:`~navkit.mapping.integrate_scan` writing into ``grid`` in place),
+        build the pyramid again, or the coarse levels, which guide the match,
+        go on showing the map as it was.
 
         Parameters
         ----------

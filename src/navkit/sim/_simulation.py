@@ -12,6 +12,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from navkit._shared.angles import wrap_float
 from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.frozen import frozen_setattr, slot_names
 from navkit._shared.metres import metres_text
@@ -898,10 +899,8 @@ class _Run:
         g = self.goal
         if math.isnan(g[0]) or math.hypot(state[0] - g[0], state[1] - g[1]) > g[2]:
             return False
-        if not math.isnan(g[3]):
-            err = abs((float(state[2]) - g[3] + math.pi) % (2.0 * math.pi) - math.pi)
-            if err > g[4]:
-                return False
+        if not math.isnan(g[3]) and abs(wrap_float(float(state[2]) - float(g[3]))) > g[4]:
+            return False
         self.stats[STAT_TIME_TO_GOAL] = 0.0
         return self.sim._stop_at_goal
 

@@ -104,6 +104,15 @@ def allowed(found: dict[Cell, tuple[float, float]], tol: float, slack: float) ->
 
 
 def check(grid: LocalGrid, goal: tuple[float, float], progress: bool) -> None:
+    reach = 0.5 * grid.resolution * (1.0 + 1e-9)  # the robot's own cell, border included
+    if abs(goal[0]) <= reach and abs(goal[1]) <= reach:
+        # The goal in the robot's cell: the last step, to the goal itself.
+        step = greedy_step(grid, goal, require_progress=progress)
+        c = grid.size // 2
+        assert step.cell == (c, c) and step.h == 0.0
+        assert step.g == pytest.approx(math.hypot(*goal), rel=1e-15)
+        np.testing.assert_array_equal(step.waypoint_robot_xy, goal)
+        return
     try:
         found, candidates = feasible_cells(grid.occupied.tolist(), grid.resolution,
                                            grid.half_width, goal, progress)

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import numbers
 from collections.abc import Mapping
 from dataclasses import dataclass
@@ -23,6 +24,9 @@ from navkit.planning.reactive._potential_field import _restore
 __all__ = ["GreedyStep", "greedy_step"]
 
 _INT64_MAX = 2**63 - 1
+#: Fraction of a half cell by which a goal may lie beyond the robot's cell and still
+#: be in it: world coordinates made robot-frame carry rounding of ~1e-16 of their size.
+_BORDER_SLACK = 1e-9
 
 
 @frozen_setattr
@@ -34,9 +38,11 @@ class GreedyStep:
     ----------
     cell : tuple of int
         ``(row, col)`` of the chosen cell in ``local_grid.occupied``, integers
-        >= 0 (not booleans).
+        >= 0 (not booleans); the robot's own cell for the last step, when the
+        goal lies in it.
     waypoint_xy : array_like, shape (2,)
-        Its centre ``(x, y)`` in metres in the robot frame: where to move next.
+        Its centre ``(x, y)`` in metres in the robot frame: where to move next
+        (the goal itself for the last step, with ``h = 0``).
         Finite; stored as a read-only copy (the caller's array is neither kept
         nor frozen). Read it as :attr:`waypoint_robot_xy`, whose name says the
         frame (every other ``*_xy`` point of navkit is in the world frame).
@@ -156,6 +162,17 @@ def greedy_step(
     cell nearer the goal. The robot moves toward it and calls again with a new
     scan until it reaches the goal.
 
+    When the goal lies in the robot's own cell (within half a cell of the robot
+    along x and along y, the border included, and 1e-9 of a half cell beyond it
+    for the rounding of robot-frame coordinates) the step is the goal itself, the
+    last one: ``cell`` is the robot's cell, ``waypoint_robot_xy`` the goal,
+    ``g`` its distance and ``h`` 0. Its cost ``|goal|`` is no more than any
+    cell's ``g + h``, and the robot's cell is never blocked, so this is the
+    rule's own answer once the goal is nearer than the cells' centres can say;
+    without it the robot, never offered its own cell, would stop a neighbour
+    short. A loop "step until arrival" can stop when ``h == 0`` (which a step
+    to a cell whose centre is the goal also gives: moving there arrives).
+
     Works on any :class:`~navkit.mapping.LocalGrid` (the paper's 21 × 21 grid of
     0.1 m cells is ``scan.to_local_grid()``). The robot's own cell never blocks
     its lines of sight, even if a return fell into it. Lines are the mapping
@@ -203,7 +220,8 @@ def greedy_step(
         ``goal_robot_xy`` is not two finite numbers within ±1e9 m.
     NoPathError
         No candidate is feasible (e.g. the robot is walled in, or with
-        ``require_progress`` every cell nearer the goal is hidden behind walls).
+        ``require_progress`` every cell nearer the goal is hidden behind walls),
+        and the goal is not in the robot's own cell.
 
     Examples
     --------
@@ -213,6 +231,9 @@ def greedy_step(
     (True, True)
     >>> greedy_step(LocalGrid.from_points([]), (2.0, 0.0)).waypoint_robot_xy  # goal-ward edge
     array([1., 0.])
+    >>> last = greedy_step(LocalGrid.from_points([]), (0.03, -0.04))  # in the robot's cell
+    >>> last.cell, last.waypoint_robot_xy, round(last.g, 12), last.h
+    ((10, 10), array([ 0.03, -0.04]), 0.05, 0.0)
     """
     grid = _check_grid(local_grid)
     # The goal is in the robot frame: the name says so (goal_xy is a world point
@@ -238,6 +259,16 @@ def greedy_step(
         occupied, centre, centre, gx, gy, grid.resolution, grid.half_width,
         progress, tol,
     )
+    # The goal in the robot's own cell, border included (up to rounding): the robot
+    # stepping between two cells each on the other side of a goal on their common
+    # border would never arrive.
+    reach = 0.5 * grid.resolution * (1.0 + _BORDER_SLACK)
+    if abs(gx) <= reach and abs(gy) <= reach:
+        # No candidate is the robot's cell, so a loop "step until arrival" stopped a
+        # neighbour short. The goal itself costs |goal|, no more than any cell's g + h
+        # (triangle inequality), and the robot's cell never blocks its sight.
+        arrived = np.array([gx, gy], dtype=np.float64)
+        return GreedyStep._owned((centre, centre), arrived, math.hypot(gx, gy), 0.0, n_free)
     if row < 0:
         reason = "nearer the goal " if progress else ""
         raise NoPathError(

@@ -32,7 +32,7 @@ import numpy as np
 from navkit._shared.frozen import frozen_setattr
 from navkit._shared.types import BoolArray, FloatArray, IntArray
 from navkit.estimation import DiffOdometry
-from navkit.geometry import Pose2D, Twist2D
+from navkit.geometry import Pose2D, Twist2D, angle_diff
 from navkit.mapping import OccupancyGrid, ScanMapper
 from navkit.planning import MapPlanner, Path2D
 from navkit.sim import EncoderReading, Observation, Simulation, Trace, TrackerController
@@ -317,7 +317,7 @@ def _position_errors(poses: FloatArray, truth: FloatArray) -> tuple[float, float
     if poses.shape[0] == 0:
         return math.nan, math.nan, math.nan
     err = np.hypot(poses[:, 0] - truth[:, 0], poses[:, 1] - truth[:, 1])
-    dth = np.abs(np.remainder(poses[:, 2] - truth[:, 2] + math.pi, math.tau) - math.pi)
+    dth = np.abs(angle_diff(poses[:, 2], truth[:, 2]))
     return float(err.mean()), float(err.max()), float(dth.mean())
 
 

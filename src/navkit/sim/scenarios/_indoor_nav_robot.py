@@ -12,7 +12,7 @@ import numpy as np
 
 from navkit.control import OnOffTracker
 from navkit.estimation import PlanarFusion
-from navkit.geometry import Pose2D
+from navkit.geometry import Pose2D, angle_diff
 from navkit.kinematics import DiffDrive
 from navkit.sim import Compass, Imu, Lidar, RangeNoise, Robot, WheelEncoders
 from navkit.sim.scenarios._indoor_nav_lab import BODY_RADIUS
@@ -137,5 +137,5 @@ def errors(truth: Pose2D, estimate: Pose2D) -> tuple[float, float, float]:
     >>> errors(Pose2D(0.0, 0.0, 3.1), Pose2D(0.1, -0.2, -3.1))[:2]
     (0.1, 0.2)
     """
-    dth = (estimate.theta - truth.theta + math.pi) % (2.0 * math.pi) - math.pi
+    dth = angle_diff(estimate.theta, truth.theta)
     return abs(estimate.x - truth.x), abs(estimate.y - truth.y), abs(dth)
