@@ -23,6 +23,7 @@ from navkit._shared.types import KernelInt
 from navkit.planning.grid._search_heap import (
     REC_BASE,
     rec_pop,
+    rec_remove,
     rec_replace_top,
     rec_sift_up,
     tie_key,
@@ -72,27 +73,31 @@ def _relax(
     next_f: float,
     next_key: float,
     next_v: KernelInt,
-) -> tuple[float, float, KernelInt, KernelInt]:
+    next_queued: bool,
+) -> tuple[float, float, KernelInt, KernelInt, bool]:
     """Try a move to cell ``v`` = (r, c); return the next-node candidate and queue size.
 
     ``code`` is what the cell's record stores when the move improves it,
     ``open_mark << 4 | (d + 1)`` for the move's direction ``d`` (computed by
     the caller: a literal argument would compile this function once more).
-    The candidate (next_f, next_key, next_v) is the best newly reached
-    neighbour; it is kept out of the heap because it is often the very node
-    the next pop would return (next_v = -1: none yet).
+    The candidate (next_f, next_key, next_v, next_queued) is the best
+    neighbour this expansion improved (next_v = -1: none yet). It is often
+    the very node the next pop would return, so its queue update waits:
+    a newly reached candidate is not pushed, a queued one (next_queued)
+    keeps its old, larger priority in the heap until it is either expanded
+    next (and removed from its slot) or loses the place of candidate.
     """
     cv = flat[v]
     if cv == np.inf:
-        return next_f, next_key, next_v, n
+        return next_f, next_key, next_v, n, next_queued
     mark = meta[4 * v + 2] >> 4
     if mark == closed_mark:
-        return next_f, next_key, next_v, n
+        return next_f, next_key, next_v, n, next_queued
     new_g = gu + step * 0.5 * (cu + cv)
     # The record of a cell this search has not reached is stale: test the mark first.
     queued = mark == open_mark
     if queued and new_g >= rec[2 * v]:
-        return next_f, next_key, next_v, n
+        return next_f, next_key, next_v, n, next_queued
     rec[2 * v] = new_g
     meta[4 * v + 2] = code
     h = _cells_to_goal(r, c, gr, gc, octile)
@@ -100,18 +105,22 @@ def _relax(
     # Ties in f go to the cell nearer the goal, which keeps A* from expanding
     # whole plateaus of equal f.
     key = tie_key(h, v)
-    if queued:
-        # Every open cell is queued (the candidate is queued or expanded
-        # before the next expansion): lower its priority in place.
-        rec_sift_up(heap, meta, np.int64(meta[4 * v + 3]), f, key)
-        return next_f, next_key, next_v, n
     if f < next_f or (f == next_f and key < next_key):
-        if next_v >= 0:
-            rec_sift_up(heap, meta, n, next_f, next_key)
-            n += 1
-        return f, key, v, n
-    rec_sift_up(heap, meta, n, f, key)
-    return next_f, next_key, next_v, n + 1
+        if next_v < 0:
+            return f, key, v, n, queued
+        # v becomes the candidate and the old candidate goes to the heap instead.
+        f, key, v, queued, next_f, next_key, next_v, next_queued = (
+            next_f, next_key, next_v, next_queued, f, key, v, queued
+        )
+    # A queued cell's entry moves up from its slot (A* only lowers priorities);
+    # any other cell is pushed. (Written here, not as a helper: one function
+    # fewer to compile on first use.)
+    if queued:
+        rec_sift_up(heap, meta, np.int64(meta[4 * v + 3]), f, key)
+    else:
+        rec_sift_up(heap, meta, n, f, key)
+        n += 1
+    return next_f, next_key, next_v, n, next_queued
 
 
 @njit_no_refcount
@@ -191,11 +200,15 @@ def grid_search(
     weight is <= 1. The queue orders cells by (f, tie key) with f = g + scale
     × distance in cells; the order is total, so the search is deterministic.
     A queued cell's heap slot is kept in its record, in the cache line the
-    search reads for the cell anyway. After expanding a cell, its best newly
-    reached neighbour is expanded next directly when it precedes the
-    heap's top, which is exactly the cell a push and pop would return, without
-    the two heap walks. The eight moves are written out one by one so each has
-    constant offsets and bounds tests.
+    search reads for the cell anyway. After expanding a cell, the best
+    neighbour it improved is expanded next directly when it precedes the
+    heap's top, which is exactly the cell the heap would return, without
+    the heap walks: a newly reached one is never pushed, a queued one is
+    removed from its slot (a level or two deep, usually) instead of being
+    moved up to the top and popped: the same expansions, 5-14 % faster on
+    1024² random and room maps with corner cutting, 2-10 % without. The
+    eight moves are written out one by one so each has constant offsets and
+    bounds tests.
     """
     open_mark = stamp
     closed_mark = stamp + 1
@@ -228,22 +241,28 @@ def grid_search(
         nf = np.inf
         nk = np.inf
         nv: KernelInt = np.int64(-1)
+        # Not the literal False: numba would compile _relax once more for its type.
+        nq = nv >= 0
         if n_in:
-            nf, nk, nv, n = _relax(flat, rec, meta, heap, n, open_mark, closed_mark, u - cols,
-                                   open16 | 1, 1.0, gu, cu, r - 1, c, gr, gc, eight, scale, nf, nk,
-                                   nv)
+            nf, nk, nv, n, nq = _relax(
+                flat, rec, meta, heap, n, open_mark, closed_mark, u - cols, open16 | 1, 1.0, gu, cu,
+                r - 1, c, gr, gc, eight, scale, nf, nk, nv, nq
+            )  # fmt: skip
         if s_in:
-            nf, nk, nv, n = _relax(flat, rec, meta, heap, n, open_mark, closed_mark, u + cols,
-                                   open16 | 2, 1.0, gu, cu, r + 1, c, gr, gc, eight, scale, nf, nk,
-                                   nv)
+            nf, nk, nv, n, nq = _relax(
+                flat, rec, meta, heap, n, open_mark, closed_mark, u + cols, open16 | 2, 1.0, gu, cu,
+                r + 1, c, gr, gc, eight, scale, nf, nk, nv, nq
+            )  # fmt: skip
         if w_in:
-            nf, nk, nv, n = _relax(flat, rec, meta, heap, n, open_mark, closed_mark, u - 1,
-                                   open16 | 3, 1.0, gu, cu, r, c - 1, gr, gc, eight, scale, nf, nk,
-                                   nv)
+            nf, nk, nv, n, nq = _relax(
+                flat, rec, meta, heap, n, open_mark, closed_mark, u - 1, open16 | 3, 1.0, gu, cu, r,
+                c - 1, gr, gc, eight, scale, nf, nk, nv, nq
+            )  # fmt: skip
         if e_in:
-            nf, nk, nv, n = _relax(flat, rec, meta, heap, n, open_mark, closed_mark, u + 1,
-                                   open16 | 4, 1.0, gu, cu, r, c + 1, gr, gc, eight, scale, nf, nk,
-                                   nv)
+            nf, nk, nv, n, nq = _relax(
+                flat, rec, meta, heap, n, open_mark, closed_mark, u + 1, open16 | 4, 1.0, gu, cu, r,
+                c + 1, gr, gc, eight, scale, nf, nk, nv, nq
+            )  # fmt: skip
         if eight:
             if corner_cutting:
                 nw = n_in and w_in
@@ -261,25 +280,37 @@ def grid_search(
                 sw = s_ok and w_ok
                 se = s_ok and e_ok
             if nw:
-                nf, nk, nv, n = _relax(flat, rec, meta, heap, n, open_mark, closed_mark,
-                                       u - cols - 1, open16 | 5, SQRT2, gu, cu, r - 1, c - 1, gr,
-                                       gc, eight, scale, nf, nk, nv)
+                nf, nk, nv, n, nq = _relax(
+                    flat, rec, meta, heap, n, open_mark, closed_mark, u - cols - 1, open16 | 5,
+                    SQRT2, gu, cu, r - 1, c - 1, gr, gc, eight, scale, nf, nk, nv, nq
+                )  # fmt: skip
             if ne:
-                nf, nk, nv, n = _relax(flat, rec, meta, heap, n, open_mark, closed_mark,
-                                       u - cols + 1, open16 | 6, SQRT2, gu, cu, r - 1, c + 1, gr,
-                                       gc, eight, scale, nf, nk, nv)
+                nf, nk, nv, n, nq = _relax(
+                    flat, rec, meta, heap, n, open_mark, closed_mark, u - cols + 1, open16 | 6,
+                    SQRT2, gu, cu, r - 1, c + 1, gr, gc, eight, scale, nf, nk, nv, nq
+                )  # fmt: skip
             if sw:
-                nf, nk, nv, n = _relax(flat, rec, meta, heap, n, open_mark, closed_mark,
-                                       u + cols - 1, open16 | 7, SQRT2, gu, cu, r + 1, c - 1, gr,
-                                       gc, eight, scale, nf, nk, nv)
+                nf, nk, nv, n, nq = _relax(
+                    flat, rec, meta, heap, n, open_mark, closed_mark, u + cols - 1, open16 | 7,
+                    SQRT2, gu, cu, r + 1, c - 1, gr, gc, eight, scale, nf, nk, nv, nq
+                )  # fmt: skip
             if se:
-                nf, nk, nv, n = _relax(flat, rec, meta, heap, n, open_mark, closed_mark,
-                                       u + cols + 1, open16 | 8, SQRT2, gu, cu, r + 1, c + 1, gr,
-                                       gc, eight, scale, nf, nk, nv)
+                nf, nk, nv, n, nq = _relax(
+                    flat, rec, meta, heap, n, open_mark, closed_mark, u + cols + 1, open16 | 8,
+                    SQRT2, gu, cu, r + 1, c + 1, gr, gc, eight, scale, nf, nk, nv, nq
+                )  # fmt: skip
         if nv >= 0:
             top_f = heap[2 * REC_BASE]
             if n == 0 or nf < top_f or (nf == top_f and nk < heap[2 * REC_BASE + 1]):
+                if nq:
+                    rec_remove(heap, meta, n, np.int64(meta[4 * nv + 3]))
+                    n -= 1
                 u = nv
+                continue
+            if nq:
+                rec_sift_up(heap, meta, np.int64(meta[4 * nv + 3]), nf, nk)
+                u = rec_pop(heap, meta, n)
+                n -= 1
                 continue
             # Queue it and take the top in one walk down from the root.
             u = rec_replace_top(heap, meta, n, nf, nk)

@@ -21,7 +21,9 @@ array, so a heap level is read from a single cache line:
 The heap is 4-ary (children of slot i are 4i + 1 .. 4i + 4): half the depth of a
 binary heap, and :func:`rec_pop` moves the hole down along the smallest children
 to a leaf and then sifts the last entry up from there (Floyd's bottom-up
-method), which needs one comparison per child instead of two.
+method), which needs one comparison per child instead of two. :func:`rec_remove`
+takes the entry out of any slot (A* expands a lowered node without first moving
+it to the top).
 
 Limits: node ids below 2**32 (the tie key must stay an exactly representable
 integer below 2**53) and at most 2**31 - 1 queued nodes; the public functions
@@ -181,7 +183,39 @@ def rec_replace_top(
     of the cell just expanded usually is.
     """
     top = node_of(heap[2 * REC_BASE + 1])
-    i = 0
+    _rec_sift_down(heap, meta, 0, n, f, key)
+    return top
+
+
+@njit_helper
+def rec_remove(heap: np.ndarray, meta: np.ndarray, n: KernelInt, i: KernelInt) -> None:
+    """Remove the entry in slot i of the ``n`` (> i) entries.
+
+    The last entry fills the hole and moves up or down from there: a slot
+    deep in the heap, where most entries sit, costs a walk of a level or two
+    rather than the full depth that lowering the entry to the top and
+    popping it would.
+    """
+    last = n - 1
+    if i == last:
+        return
+    f = heap[2 * REC_BASE + 2 * last]
+    key = heap[2 * REC_BASE + 2 * last + 1]
+    if i > 0:
+        parent = (i - 1) >> 2
+        pf = heap[2 * parent + 2 * REC_BASE]
+        pk = heap[2 * parent + 2 * REC_BASE + 1]
+        if _precedes(f, key, pf, pk):
+            rec_sift_up(heap, meta, i, f, key)
+            return
+    _rec_sift_down(heap, meta, i, last, f, key)
+
+
+@njit_inline
+def _rec_sift_down(
+    heap: np.ndarray, meta: np.ndarray, i: int, n: KernelInt, f: float, key: float
+) -> None:
+    """Move the hole at slot i down past smaller children (``n`` entries), then put (f, key) in."""
     while True:
         best, bestf, bestk = smallest_child(heap, 2 * REC_BASE, i, n)
         if best < 0 or not _precedes(bestf, bestk, f, key):
@@ -189,7 +223,6 @@ def rec_replace_top(
         _rec_place(heap, meta, i, bestf, bestk)
         i = best
     _rec_place(heap, meta, i, f, key)
-    return top
 
 
 def aligned_heap(entries: int) -> np.ndarray:
