@@ -369,7 +369,7 @@ class ExtendedKalmanFilter(GaussianEstimate):
             symmetric positive definite, entries of magnitude at most 1e100. As
             ``Q`` in :meth:`predict`, an R that changes every update (a sensor's
             covariance per message) is checked in the compiled step when each
-            diagonal entry is at least 1e-300 and twice the magnitudes of the
+            diagonal entry is at least 1e-300 and twice the sum of the magnitudes of the
             rest of its row; any other new R in Python, about 0.07 ms.
         angle_measurements : sequence of int, optional
             Indices of the components of ``z`` that are angles; their residuals

@@ -104,7 +104,7 @@ def allowed(found: dict[Cell, tuple[float, float]], tol: float, slack: float) ->
 
 
 def check(grid: LocalGrid, goal: tuple[float, float], progress: bool) -> None:
-    reach = 0.5 * grid.resolution * (1.0 + 1e-9)  # the robot's own cell, border included
+    reach = 0.5 * grid.resolution * (1.0 + 1e-6)  # the robot's own cell, border included
     if abs(goal[0]) <= reach and abs(goal[1]) <= reach:
         # The goal in the robot's cell: the last step, to the goal itself.
         step = greedy_step(grid, goal, require_progress=progress)

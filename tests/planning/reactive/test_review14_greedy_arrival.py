@@ -37,7 +37,7 @@ def test_goal_in_the_robot_cell_is_the_last_step(goal: tuple[float, float], prog
 
 
 def test_goal_just_outside_the_robot_cell_is_a_neighbour() -> None:
-    step = greedy_step(EMPTY, (0.05 * (1.0 + 1e-6), 0.0))
+    step = greedy_step(EMPTY, (0.05 * (1.0 + 1e-5), 0.0))
     assert step.cell == (10, 11) and step.h > 0.0
     np.testing.assert_array_equal(step.waypoint_robot_xy, EMPTY.cell_to_world([10, 11]))
 

@@ -25,8 +25,10 @@ __all__ = ["GreedyStep", "greedy_step"]
 
 _INT64_MAX = 2**63 - 1
 #: Fraction of a half cell by which a goal may lie beyond the robot's cell and still
-#: be in it: world coordinates made robot-frame carry rounding of ~1e-16 of their size.
-_BORDER_SLACK = 1e-9
+#: be in it: world coordinates made robot-frame carry rounding of ~1e-16 of their size
+#: (~1e-9 m at a UTM northing of 1e7 m, 4e-8 of a 5 cm cell's half), and the last step
+#: goes to the goal itself, so a larger slack costs no accuracy.
+_BORDER_SLACK = 1e-6
 
 
 @frozen_setattr
@@ -163,15 +165,20 @@ def greedy_step(
     scan until it reaches the goal.
 
     When the goal lies in the robot's own cell (within half a cell of the robot
-    along x and along y, the border included, and 1e-9 of a half cell beyond it
-    for the rounding of robot-frame coordinates) the step is the goal itself, the
+    along x and along y, the border included, and 1e-6 of a half cell beyond it
+    for the rounding of robot-frame coordinates, which at UTM-sized world
+    coordinates is about 1e-9 m) the step is the goal itself, the
     last one: ``cell`` is the robot's cell, ``waypoint_robot_xy`` the goal,
     ``g`` its distance and ``h`` 0. Its cost ``|goal|`` is no more than any
     cell's ``g + h``, and the robot's cell is never blocked, so this is the
     rule's own answer once the goal is nearer than the cells' centres can say;
     without it the robot, never offered its own cell, would stop a neighbour
     short. A loop "step until arrival" can stop when ``h == 0`` (which a step
-    to a cell whose centre is the goal also gives: moving there arrives).
+    to a cell whose centre is the goal also gives: moving there arrives). On
+    the robot cell's +x and +y borders this counts as the robot's cell a goal
+    that :class:`~navkit.mapping.LocalGrid` (rounding half up) puts in the
+    neighbouring cell, so that a goal on a border ends the walk from either
+    side instead of sending the robot back and forth across it.
 
     Works on any :class:`~navkit.mapping.LocalGrid` (the paper's 21 × 21 grid of
     0.1 m cells is ``scan.to_local_grid()``). The robot's own cell never blocks
