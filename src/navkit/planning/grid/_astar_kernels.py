@@ -242,7 +242,7 @@ def grid_search(
         nk = np.inf
         nv: KernelInt = np.int64(-1)
         # Not the literal False: numba would compile _relax once more for its type.
-        nq = nv >= 0
+        nq = bool(nv >= 0)
         if n_in:
             nf, nk, nv, n, nq = _relax(
                 flat, rec, meta, heap, n, open_mark, closed_mark, u - cols, open16 | 1, 1.0, gu, cu,

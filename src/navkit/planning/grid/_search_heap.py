@@ -208,7 +208,7 @@ def rec_remove(heap: np.ndarray, meta: np.ndarray, n: KernelInt, i: KernelInt) -
         if _precedes(f, key, pf, pk):
             rec_sift_up(heap, meta, i, f, key)
             return
-    _rec_sift_down(heap, meta, i, last, f, key)
+    _rec_sift_down(heap, meta, int(i), last, f, key)
 
 
 @njit_inline
