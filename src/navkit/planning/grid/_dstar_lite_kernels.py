@@ -51,13 +51,18 @@ picks): numba compiles ``min()`` as a function of its own for every argument
 type set.
 
 Calling convention. The search kernels take the planner's arrays as one tuple
-``st = (pad, g, rhs, nodes, keys, pos, size, work, changed)`` (``nodes, keys,
-pos, size`` being the indexed heap of :mod:`navkit.planning.grid._dstar_heap`,
-``work`` the int64 pair (work done, work limit), see :func:`settle`, and
-``changed`` the int64 list of cells changed since the last search: their
-count, then their padded flat indices, written by ``FieldDStar.update_costs``)
-and its scalars as
-``prm = (width, nrows, ncols, start_row, start_col, goal, km, interp, hscale,
+``st = (pad, vals, nodes, keys, pos, size, work, changed)``: ``vals`` the node
+records of :func:`navkit.planning.grid._dstar_heap.node_records` flattened
+(``g`` of node ``s`` is ``vals[RECORD * s]``, its ``rhs`` ``vals[RECORD * s +
+RHS]``; its heap slot ``pos[s]`` shares the record: one cache line holds all
+three), ``nodes, keys, pos, size`` the indexed heap of
+:mod:`navkit.planning.grid._dstar_heap`, ``work`` the int64 pair (work done,
+work limit), see :func:`settle`, and ``changed`` the int64 list of cells
+changed since the last search: their count, then their padded flat indices,
+written by ``FieldDStar.update_costs``. Flat records, not a (nodes, 3)
+array: a two-index read is more IR at each of the many sites, and first
+use compiled measurably longer with it (about 0.3 s of CPU). Its scalars
+come as ``prm = (width, nrows, ncols, start_row, start_col, goal, km, interp, hscale,
 walk, goal_cell)``; both are built by :func:`state` and :func:`params`.
 ``(start_row, start_col)`` is the start of the heuristic; ``walk`` the node
 where the path extraction starts, or -1 for the corner of least value of the
@@ -80,6 +85,8 @@ import numpy as np
 from navkit._shared.jit import njit_inline, typed_njit
 from navkit.planning.grid._dstar_heap import (
     HELPER_OPTIONS,
+    RECORD,
+    RHS,
     heap_lower,
     heap_update,
 )
@@ -150,14 +157,13 @@ RAISE_WORK = 3
 
 def state(
     pad: np.ndarray,
-    g: np.ndarray,
-    rhs: np.ndarray,
+    records: np.ndarray,
     heap: tuple[np.ndarray, ...],
     work: np.ndarray,
     changed: np.ndarray,
 ) -> tuple[np.ndarray, ...]:
-    """The ``st`` tuple of the search kernels."""
-    return (pad, g, rhs, *heap, work, changed)
+    """The ``st`` tuple of the search kernels (``records`` from ``node_records``, flattened)."""
+    return (pad, records.reshape(-1), *heap, work, changed)
 
 
 def params(
@@ -273,7 +279,7 @@ def key_reached(top0: float, top1: float, m: float, h: float, km: float) -> bool
 
 @_inlined
 def _pair_value(
-    pad: np.ndarray, width: int, g: np.ndarray, ncols: int, i: int, j: int, k: int, interp: bool
+    pad: np.ndarray, width: int, vals: np.ndarray, ncols: int, i: int, j: int, k: int, interp: bool
 ) -> float:
     base = i * width + j
     c = pad[base + PAIR_CR[k] * width + PAIR_CC[k]]
@@ -281,20 +287,20 @@ def _pair_value(
     if c == INF and b == INF:
         return INF
     # The axis node is a corner of whichever of b, c is finite: always on the grid.
-    g1 = g[(i + PAIR_AR[k]) * ncols + j + PAIR_AC[k]]
+    g1 = vals[RECORD * ((i + PAIR_AR[k]) * ncols + j + PAIR_AC[k])]
     if c == INF:
         return float(b + g1)
-    return corner_cost(g1, g[(i + PAIR_DR[k]) * ncols + j + PAIR_DC[k]], c, b, interp)
+    return corner_cost(g1, vals[RECORD * ((i + PAIR_DR[k]) * ncols + j + PAIR_DC[k])], c, b, interp)
 
 
 @_called
 def node_rhs(
-    pad: np.ndarray, width: int, g: np.ndarray, ncols: int, i: int, j: int, interp: bool
+    pad: np.ndarray, width: int, vals: np.ndarray, ncols: int, i: int, j: int, interp: bool
 ) -> float:
     """Minimum over the eight neighbour pairs of node (i, j)."""
     best = INF
     for k in range(8):
-        v = _pair_value(pad, width, g, ncols, i, j, k, interp)
+        v = _pair_value(pad, width, vals, ncols, i, j, k, interp)
         if v < best:
             best = v
     return best
@@ -305,8 +311,7 @@ def update_vertex(
     s: int,
     i: int,
     j: int,
-    g: np.ndarray,
-    rhs: np.ndarray,
+    vals: np.ndarray,
     nodes: np.ndarray,
     keys: np.ndarray,
     pos: np.ndarray,
@@ -326,8 +331,8 @@ def update_vertex(
     ``queued`` is passed on as computed (a literal ``True``/``False`` would
     compile :func:`heap_update` once per value).
     """
-    gs = g[s]
-    rs = rhs[s]
+    gs = vals[RECORD * s]
+    rs = vals[RECORD * s + RHS]
     queued = gs != rs
     if queued:
         m = rs if rs < gs else gs  # min(g, rhs), as numba's min picks
@@ -361,7 +366,7 @@ def settle(
     Called (never inlined) by its one caller, :func:`extract_path` of the path
     kernels, so its body is compiled once.
     """
-    pad, g, rhs, nodes, keys, pos, size, work, changed = st
+    pad, vals, nodes, keys, pos, size, work, changed = st
     width, nrows, ncols, sr, sc, goal, km, interp, hscale, _, goal_cell = prm
     # Source value of the goal cell's corners (rows gi..gi+1, columns gj..gj+1), or
     # inf without a goal cell: written out here, as a helper function compiled more.
@@ -385,11 +390,11 @@ def settle(
                     j = cell_j + dj
                     s = i * ncols + j
                     if s != goal:
-                        v = node_rhs(pad, width, g, ncols, i, j, interp)
+                        v = node_rhs(pad, width, vals, ncols, i, j, interp)
                         if seed < v and gi <= i <= gi + 1 and gj <= j <= gj + 1:
                             v = seed
-                        rhs[s] = v
-                        update_vertex(s, i, j, g, rhs, nodes, keys, pos, size, sr, sc, km, hscale)
+                        vals[RECORD * s + RHS] = v
+                        update_vertex(s, i, j, vals, nodes, keys, pos, size, sr, sc, km, hscale)
     ti = target // ncols
     th = heuristic(sr, sc, ti, target - ti * ncols, hscale)
     spent = work[0]
@@ -398,8 +403,8 @@ def settle(
     expanded: int = spent - spent
     limit = work[1]
     while size[0] > 0 and spent <= limit:
-        gt = g[target]
-        rt = rhs[target]
+        gt = vals[RECORD * target]
+        rt = vals[RECORD * target + RHS]
         mt = rt if rt < gt else gt
         top0 = keys[0, 0]
         top1 = keys[0, 1]
@@ -411,29 +416,29 @@ def settle(
         if km > 0.0:
             # Keys stored before the start moved may be low: requeue with the
             # current one (with km == 0 the start never moved and keys are exact).
-            gu = g[u]
-            ru = rhs[u]
+            gu = vals[RECORD * u]
+            ru = vals[RECORD * u + RHS]
             mu = ru if ru < gu else gu
             k0 = mu + heuristic(sr, sc, ui, uj, hscale) + km
             if top0 < k0 or (top0 == k0 and top1 < mu):
                 # A queued node is inconsistent: this requeues it with its key.
-                update_vertex(u, ui, uj, g, rhs, nodes, keys, pos, size, sr, sc, km, hscale)
+                update_vertex(u, ui, uj, vals, nodes, keys, pos, size, sr, sc, km, hscale)
                 continue
         expanded += 1
         # One neighbour loop for both cases: u's value falls to rhs(u) (lowered)
         # or rises to inf; ref is the value that options through u are bounded by.
-        lowered = g[u] > rhs[u]
+        lowered = vals[RECORD * u] > vals[RECORD * u + RHS]
         if lowered:
             spent += 1
-            g[u] = rhs[u]
-            ref = g[u]
-            # u (the top) is consistent now: dequeuing it pops the top. (ref != rhs[u]
+            vals[RECORD * u] = vals[RECORD * u + RHS]
+            ref = vals[RECORD * u]
+            # u (the top) is consistent now: dequeuing it pops the top. (ref != rhs(u)
             # is False, but not a literal: that would compile heap_update again.)
-            heap_update(nodes, keys, pos, size, u, ref, ref, ref != rhs[u])
+            heap_update(nodes, keys, pos, size, u, ref, ref, ref != vals[RECORD * u + RHS])
         else:
             spent += RAISE_WORK
-            ref = g[u]
-            g[u] = INF
+            ref = vals[RECORD * u]
+            vals[RECORD * u] = INF
         for m in range(8):
             si = ui - RING_R[m]
             sj = uj - RING_C[m]
@@ -449,25 +454,25 @@ def settle(
             # (which never lowers an option) leaves its rhs unchanged.
             gain = _AXIS_GAIN if m % 2 == 0 else 1.0
             bound = ref + gain - 1e-9 * (1.0 + ref)
-            rs = rhs[s]
+            rs = vals[RECORD * s + RHS]
             if rs < bound or (lowered and rs == bound):
                 continue
             if lowered:
                 # u is ring[m] of s: only the pairs m-1 and m of s contain it.
-                v = _pair_value(pad, width, g, ncols, si, sj, m, interp)
-                v2 = _pair_value(pad, width, g, ncols, si, sj, m - 1 if m > 0 else 7, interp)
+                v = _pair_value(pad, width, vals, ncols, si, sj, m, interp)
+                v2 = _pair_value(pad, width, vals, ncols, si, sj, m - 1 if m > 0 else 7, interp)
                 if v2 < v:
                     v = v2
                 if not v < rs:
                     continue
             else:
-                v = node_rhs(pad, width, g, ncols, si, sj, interp)
+                v = node_rhs(pad, width, vals, ncols, si, sj, interp)
                 # A goal cell's corner keeps its source value (a lowered u only
                 # lowers rhs: the least of the two stays).
                 if seed < v and gi <= si <= gi + 1 and gj <= sj <= gj + 1:
                     v = seed
-            rhs[s] = v
-            gs = g[s]
+            vals[RECORD * s + RHS] = v
+            gs = vals[RECORD * s]
             if lowered and gs != v:
                 # update_vertex's own code, with the sift-up inlined: the hot path.
                 mv = v if v < gs else gs
@@ -475,10 +480,10 @@ def settle(
                 if not heap_lower(nodes, keys, pos, size, s, kv, mv):
                     heap_update(nodes, keys, pos, size, s, kv, mv, gs != v)
             else:
-                update_vertex(s, si, sj, g, rhs, nodes, keys, pos, size, sr, sc, km, hscale)
+                update_vertex(s, si, sj, vals, nodes, keys, pos, size, sr, sc, km, hscale)
         if not lowered:
             # rhs(u) depends on its neighbours only: unchanged, but u now
             # needs requeueing (or leaves the queue if g = rhs = inf).
-            update_vertex(u, ui, uj, g, rhs, nodes, keys, pos, size, sr, sc, km, hscale)
+            update_vertex(u, ui, uj, vals, nodes, keys, pos, size, sr, sc, km, hscale)
     work[0] = spent
     return expanded

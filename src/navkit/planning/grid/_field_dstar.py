@@ -15,7 +15,7 @@ from navkit._shared.types import CellLike, FloatArray, IntArray
 from navkit._shared.validation import as_bool, as_cell, as_float_array
 from navkit.errors import NoPathError
 from navkit.geometry import Pose2D, as_pose
-from navkit.planning.grid._dstar_heap import heap_new
+from navkit.planning.grid._dstar_heap import RHS, G, node_records, positions
 from navkit.planning.grid._dstar_lite_kernels import (
     FIELD_HSCALE,
     HALF_DIAGONAL,
@@ -292,6 +292,7 @@ class FieldDStar:
         "_start_cell",
         "_start_on_node",
         "_start_point",
+        "_vals",
         "_width",
         "_work",
     )
@@ -327,9 +328,10 @@ class FieldDStar:
         self._nrows = self._rows + 1
         self._ncols = self._cols + 1
         n = self._nrows * self._ncols
-        self._g = np.full(n, np.inf)
-        self._rhs = np.full(n, np.inf)
-        self._heap = heap_new(n)
+        # g, rhs and the heap slot of each node side by side (one cache line per node
+        # read, see node_records); _g and _rhs are views of their columns.
+        self._vals, self._heap = node_records(n)
+        self._g, self._rhs = self._vals[:, G], self._vals[:, RHS]
         # g, rhs and the heap as allocated: the first search need not clear them.
         self._clean = True
         self._km = 0.0
@@ -363,6 +365,15 @@ class FieldDStar:
         # cost-to-goal; _start / _goal hold the cells' lower-left corners (lowest row, col).
         self._start_cell = False
         self._goal_cell = False
+
+    def __setstate__(self, state: tuple[None, dict[str, Any]]) -> None:
+        # Copies (copy.deepcopy, pickle) copy each array on its own: the views of the
+        # node records (g, rhs, the heap's slots) are made again on the copied records.
+        for name, value in state[1].items():
+            object.__setattr__(self, name, value)
+        self._g, self._rhs = self._vals[:, G], self._vals[:, RHS]
+        nodes, keys, _, size = self._heap
+        self._heap = (nodes, keys, positions(self._vals), size)
 
     def __copy__(self) -> FieldDStar:
         # update_costs() and every search write the costs and the search state in
@@ -1049,8 +1060,7 @@ class FieldDStar:
         if not self._clean:
             # Cleared in place, not allocated again: memory already paged in makes a
             # search on a used planner (a replan's fallback) faster than on a new one.
-            self._g.fill(np.inf)
-            self._rhs.fill(np.inf)
+            self._vals.fill(np.inf)
             self._heap[2].fill(-1)  # pos: no node queued
             self._heap[3][0] = 0  # size
         self._clean = False
@@ -1084,7 +1094,7 @@ class FieldDStar:
         size[0] = len(queued)
 
     def _state(self) -> tuple[np.ndarray, ...]:
-        return state(self._pad, self._g, self._rhs, self._heap, self._work, self._changed)
+        return state(self._pad, self._vals, self._heap, self._work, self._changed)
 
     def _params(self, walk: int | None = None) -> tuple[Any, ...]:
         """The kernels' scalars; ``walk``: the node the walk starts at, if not the usual one."""

@@ -41,7 +41,7 @@ from typing import Any
 import numpy as np
 
 from navkit._shared.jit import typed_njit
-from navkit.planning.grid._dstar_heap import HELPER_OPTIONS, KERNEL_OPTIONS
+from navkit.planning.grid._dstar_heap import HELPER_OPTIONS, KERNEL_OPTIONS, RECORD, RHS
 from navkit.planning.grid._dstar_lite_kernels import (
     INF,
     PAIR_AC,
@@ -149,14 +149,13 @@ def _settled_value(
     :func:`extract_path`, the one caller of :func:`settle`, to settle the node
     and repeat the step (so the search loop is compiled into one kernel only).
     """
-    g = st[1]
-    rhs = st[2]
-    keys = st[4]
-    size = st[6]
+    vals = st[1]
+    keys = st[3]
+    size = st[5]
     ncols = prm[2]
     s = i * ncols + j
-    gs = g[s]
-    if gs == rhs[s] and (
+    gs = vals[RECORD * s]
+    if gs == vals[RECORD * s + RHS] and (
         size[0] == 0
         or key_reached(keys[0, 0], keys[0, 1], gs, heuristic(prm[3], prm[4], i, j, prm[8]), prm[6])
     ):
@@ -407,8 +406,8 @@ def extract_path(
 
     Returns (K, status): the first K rows of ``pts`` are the path.
     """
-    g = st[1]
-    work = st[7]
+    vals = st[1]
+    work = st[6]
     ncols, sr, sc, interp, start, goal_cell = prm[2], prm[3], prm[4], prm[7], prm[9], prm[10]
     # The walk ends in the box [gi, gi_hi] x [gj, gj_hi]: the goal node, or the
     # boundary of the goal cell (points of the walk lie on grid lines).
@@ -453,11 +452,11 @@ def extract_path(
                     corner = -1
                     for q in range(4):
                         s = (sr + (q >> 1)) * ncols + sc + (q & 1)
-                        if g[s] < g[start]:
+                        if vals[RECORD * s] < vals[RECORD * start]:
                             start = s
-                if g[start] == INF:
+                if vals[RECORD * start] == INF:
                     return 0, NO_PATH
-                cur = g[start]
+                cur = vals[RECORD * start]
                 node_v = cur
                 pr = float(start // ncols)
                 pc = float(start - (start // ncols) * ncols)
