@@ -13,11 +13,11 @@ import pytest
 from grid_oracle import assert_valid_path, scipy_costs_from, weighted_grids
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from record_heap import pop, pop_all, push, replace_top
 from skimage.graph import MCP_Geometric
 
 from hypothesis_twins import slow_twin
 from navkit import NavkitError, NoPathError
-from navkit._shared.jit import typed_njit
 from navkit.planning import Path2D, astar, distance_field
 from navkit.planning.grid import _workspace
 from navkit.planning.grid._arguments import check_search_size
@@ -25,9 +25,6 @@ from navkit.planning.grid._search_heap import (
     REC_BASE,
     aligned_heap,
     node_of,
-    rec_pop,
-    rec_replace_top,
-    rec_sift_up,
     tie_key,
 )
 
@@ -366,23 +363,6 @@ rec_ops = st.lists(
 )
 
 
-# The heap operations are kernel-only helpers (no Python wrapper): the test
-# calls them through kernels of its own.
-@typed_njit(cache=True)
-def _sift_up(heap: np.ndarray, meta: np.ndarray, i: int, f: float, key: float) -> None:
-    rec_sift_up(heap, meta, i, f, key)
-
-
-@typed_njit(cache=True)
-def _replace_top(heap: np.ndarray, meta: np.ndarray, n: int, f: float, key: float) -> int:
-    return rec_replace_top(heap, meta, n, f, key)
-
-
-@typed_njit(cache=True)
-def _pop(heap: np.ndarray, meta: np.ndarray, n: int) -> int:
-    return rec_pop(heap, meta, n)
-
-
 @settings(max_examples=40, deadline=None)
 @given(rec_ops)
 def test_record_heap_pops_in_priority_order(sequence: list[tuple[str, int, float, float]]) -> None:
@@ -393,29 +373,20 @@ def test_record_heap_pops_in_priority_order(sequence: list[tuple[str, int, float
     for op, node, f, tie in sequence:
         new = (f, tie_key(tie, node))
         if op == "push":
-            if node in ref:
-                if new >= ref[node]:
-                    continue  # decrease-key only
-                _sift_up(heap, meta, int(meta[4 * node + 3]), *new)
-            else:
-                _sift_up(heap, meta, len(ref), *new)
-            ref[node] = new
+            push(heap, meta, ref, node, new)
         elif op == "replace" and ref and node not in ref:
             best = min(ref, key=ref.__getitem__)
-            assert _replace_top(heap, meta, len(ref), *new) == best
+            assert replace_top(heap, meta, len(ref), *new) == best
             del ref[best]
             ref[node] = new
         elif op == "pop" and ref:
             best = min(ref, key=ref.__getitem__)
-            assert _pop(heap, meta, len(ref)) == best
+            assert pop(heap, meta, len(ref)) == best
             del ref[best]
         for v in ref:  # every queued node knows its slot
             slot = int(meta[4 * v + 3])
             assert node_of(heap[2 * (slot + REC_BASE) + 1]) == v
-    while ref:
-        best = min(ref, key=ref.__getitem__)
-        assert _pop(heap, meta, len(ref)) == best
-        del ref[best]
+    pop_all(heap, meta, ref)
 
 
 test_record_heap_pops_in_priority_order_thoroughly = slow_twin(

@@ -18,18 +18,15 @@ import numpy as np
 from grid_oracle import scipy_costs_from, weighted_grids
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from record_heap import pop, pop_all, push, remove
 
 from hypothesis_twins import slow_twin
-from navkit._shared.jit import typed_njit
 from navkit.errors import NoPathError
 from navkit.planning import astar
 from navkit.planning.grid._search_heap import (
     REC_BASE,
     aligned_heap,
     node_of,
-    rec_pop,
-    rec_remove,
-    rec_sift_up,
     tie_key,
 )
 
@@ -157,22 +154,6 @@ def test_uniform_room_with_ties_expands_as_textbook_astar() -> None:
         assert path.cells.tolist() == [list(cell) for cell in cells]
 
 
-# Kernel-only helpers: called through kernels of the test's own.
-@typed_njit(cache=True)
-def _sift_up(heap: np.ndarray, meta: np.ndarray, i: int, f: float, key: float) -> None:
-    rec_sift_up(heap, meta, i, f, key)
-
-
-@typed_njit(cache=True)
-def _remove(heap: np.ndarray, meta: np.ndarray, n: int, i: int) -> None:
-    rec_remove(heap, meta, n, i)
-
-
-@typed_njit(cache=True)
-def _pop(heap: np.ndarray, meta: np.ndarray, n: int) -> int:
-    return rec_pop(heap, meta, n)
-
-
 heap_ops = st.lists(
     st.tuples(
         st.sampled_from(["push", "push", "push", "push", "remove", "remove", "pop"]),
@@ -196,21 +177,15 @@ def test_removing_any_slot_keeps_heap_and_slots(
     for op, node, f, tie in sequence:
         new = (f, tie_key(tie, node))
         if op == "push":
-            if node in ref:
-                if new >= ref[node]:
-                    continue  # decrease-key only
-                _sift_up(heap, meta, int(meta[4 * node + 3]), *new)
-            else:
-                _sift_up(heap, meta, len(ref), *new)
-            ref[node] = new
+            push(heap, meta, ref, node, new)
         elif op == "remove" and ref:
             # Remove a node chosen by the drawn id among those queued.
             victim = sorted(ref)[node % len(ref)]
-            _remove(heap, meta, len(ref), int(meta[4 * victim + 3]))
+            remove(heap, meta, len(ref), int(meta[4 * victim + 3]))
             del ref[victim]
         elif op == "pop" and ref:
             best = min(ref, key=ref.__getitem__)
-            assert _pop(heap, meta, len(ref)) == best
+            assert pop(heap, meta, len(ref)) == best
             del ref[best]
         n = len(ref)
         entries = [(heap[2 * (i + REC_BASE)], heap[2 * (i + REC_BASE) + 1]) for i in range(n)]
@@ -219,10 +194,7 @@ def test_removing_any_slot_keeps_heap_and_slots(
             assert entries[(i - 1) // 4] <= entries[i]
         for v in ref:  # every queued node knows its slot
             assert node_of(heap[2 * (int(meta[4 * v + 3]) + REC_BASE) + 1]) == v
-    while ref:
-        best = min(ref, key=ref.__getitem__)
-        assert _pop(heap, meta, len(ref)) == best
-        del ref[best]
+    pop_all(heap, meta, ref)
 
 
 test_removing_any_slot_keeps_heap_and_slots_thoroughly = slow_twin(
