@@ -1,14 +1,12 @@
 """Long runs of ScanMapper: what it keeps per scan, and a robot standing still does not drift.
 
-The class docstring states the memory of a long run: the map levels and one
-pose per scan (about 140 bytes), nothing else that grows with the scans.
+What a long run keeps per scan (24 bytes of trajectory, nothing else) is tested in
+test_review14_scan_mapper_trajectory.py.
 """
 
 from __future__ import annotations
 
-import gc
 import math
-import tracemalloc
 
 import numpy as np
 
@@ -28,30 +26,6 @@ def _room_scan(x: float, y: float, half: float = 4.0) -> LaserScan:
         np.minimum(tx, ty), angle_min=-math.pi, angle_increment=2 * math.pi / N_BEAMS,
         range_min=0.1, range_max=10.0,
     )  # fmt: skip
-
-
-def test_a_long_run_keeps_one_pose_per_scan_and_nothing_more() -> None:
-    mapper = ScanMapper(resolution=0.1)
-    scan = _room_scan(0.013, 0.021)
-    for _ in range(50):  # compile, build the levels, settle the match
-        mapper.update(scan, odometry=(0.0, 0.0, 0.0))
-    gc.collect()
-    tracemalloc.start()
-    try:
-        grown = []
-        for _ in range(2):
-            before = tracemalloc.get_traced_memory()[0]
-            for _ in range(150):
-                mapper.update(scan, odometry=(0.0, 0.0, 0.0))
-            gc.collect()
-            grown.append((tracemalloc.get_traced_memory()[0] - before) / 150)
-    finally:
-        tracemalloc.stop()
-    # About 140 bytes a scan (the docstring's figure), the same in both windows: a
-    # pose per scan, no cache or list of results growing beside it.
-    assert all(100.0 < g < 300.0 for g in grown), grown
-    assert len(mapper) == 350
-    assert mapper.trajectory.shape == (350, 3)
 
 
 def test_a_robot_standing_still_converges_to_one_pose() -> None:
