@@ -61,7 +61,7 @@ def _room_scan(x: float, y: float, theta: float, half: float = 4.0) -> LaserScan
     """A scan from pose (x, y, theta) inside the square room |x|, |y| <= half."""
     a = ANGLES + theta
     c, s = np.cos(a), np.sin(a)
-    with np.errstate(divide="ignore"):
+    with np.errstate(divide="ignore", over="ignore"):
         tx = np.where(c > 0, (half - x) / c, np.where(c < 0, (-half - x) / c, np.inf))
         ty = np.where(s > 0, (half - y) / s, np.where(s < 0, (-half - y) / s, np.inf))
     return LaserScan(
@@ -208,7 +208,9 @@ def test_a_long_run_keeps_24_bytes_a_scan_and_nothing_more() -> None:
     tracemalloc.start()
     try:
         beside = []
-        for n in (150, 600):  # the first traced window takes a one-off few kB
+        # The first traced window takes a one-off few kB, and a later one may too
+        # (other tests' lazily built caches): a leak per scan shows in every window.
+        for n in (150, 300, 300, 300):
             before = tracemalloc.get_traced_memory()[0]
             rows = mapper._path.shape[0]
             for _ in range(n):
@@ -220,9 +222,9 @@ def test_a_long_run_keeps_24_bytes_a_scan_and_nothing_more() -> None:
             assert len(mapper) <= mapper._path.shape[0] <= 1.5 * len(mapper), len(mapper)
     finally:
         tracemalloc.stop()
-    assert abs(beside[1]) < 10.0, beside
-    assert len(mapper) == 800
-    assert mapper.trajectory.shape == (800, 3)
+    assert min(abs(b) for b in beside[1:]) < 10.0, beside
+    assert len(mapper) == 1100
+    assert mapper.trajectory.shape == (1100, 3)
 
 
 class _RecordingMatcher(ScanMatcher):
