@@ -22,13 +22,13 @@ from typing import Any
 import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from room_scans import room_scan
 
 from hypothesis_twins import slow_twin
 from navkit.geometry import Pose2D
 from navkit.mapping import LaserScan, ScanMapper, ScanMatcher
 
 N_BEAMS = 90
-ANGLES = np.linspace(-math.pi, math.pi, N_BEAMS, endpoint=False)
 
 # pickle.dumps(_run(7), protocol=2) under navkit at commit 2db20da (the list layout:
 # a ``_poses`` slot holding Pose2D), zlib-compressed and base64-encoded.
@@ -57,24 +57,11 @@ _OLD_PICKLE = (
 )
 
 
-def _room_scan(x: float, y: float, theta: float, half: float = 4.0) -> LaserScan:
-    """A scan from pose (x, y, theta) inside the square room |x|, |y| <= half."""
-    a = ANGLES + theta
-    c, s = np.cos(a), np.sin(a)
-    with np.errstate(divide="ignore", over="ignore"):
-        tx = np.where(c > 0, (half - x) / c, np.where(c < 0, (-half - x) / c, np.inf))
-        ty = np.where(s > 0, (half - y) / s, np.where(s < 0, (-half - y) / s, np.inf))
-    return LaserScan(
-        np.minimum(tx, ty), angle_min=-math.pi, angle_increment=2 * math.pi / N_BEAMS,
-        range_min=0.1, range_max=10.0,
-    )  # fmt: skip
-
-
 def _steps(k: int) -> Iterator[tuple[LaserScan, tuple[float, float, float] | None]]:
     """The scans of the old pickle and after: every third one without odometry."""
     for i in range(k):
         pose = (0.15 * i - 1.0, 0.05 * i, 0.2 * i - 0.3)
-        yield _room_scan(*pose), (pose if i % 3 != 2 else None)
+        yield room_scan(*pose, beams=N_BEAMS), (pose if i % 3 != 2 else None)
 
 
 def _mapper() -> ScanMapper:
@@ -201,7 +188,7 @@ def test_a_long_run_keeps_24_bytes_a_scan_and_nothing_more() -> None:
     # The list of Pose2D took about 140 bytes a scan. Now the trajectory array's
     # rows account for what grows with the scans; a few bytes a scan of noise.
     mapper = ScanMapper(resolution=0.1)
-    scan = _room_scan(0.013, 0.021, 0.0)
+    scan = room_scan(0.013, 0.021, 0.0, beams=N_BEAMS)
     for _ in range(50):  # compile, build the levels, settle the match
         mapper.update(scan, odometry=(0.0, 0.0, 0.0))
     gc.collect()
@@ -253,7 +240,8 @@ def test_rows_are_the_matched_poses_and_feed_the_motion_model(
     for i, with_odometry in enumerate(odometry):
         # A turn of 0.4 rad a scan takes theta across ±π.
         pose = (0.1 * math.sin(i), 0.1 * math.cos(0.5 * i), heading + 0.4 * i)
-        results.append(mapper.update(_room_scan(*pose), odometry=pose if with_odometry else None))
+        scan = room_scan(*pose, beams=N_BEAMS)
+        results.append(mapper.update(scan, odometry=pose if with_odometry else None))
         # pose is the matcher's pose itself, read without copying the trajectory.
         assert mapper.pose is results[-1].pose
     path = mapper.trajectory

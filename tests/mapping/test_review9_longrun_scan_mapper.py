@@ -6,32 +6,16 @@ test_review14_scan_mapper_trajectory.py.
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
+from room_scans import room_scan
 
-from navkit.mapping import LaserScan, ScanMapper
-
-N_BEAMS = 180
-ANGLES = np.linspace(-math.pi, math.pi, N_BEAMS, endpoint=False)
-
-
-def _room_scan(x: float, y: float, half: float = 4.0) -> LaserScan:
-    """A scan from (x, y), heading 0, inside the square room |x|, |y| <= half."""
-    c, s = np.cos(ANGLES), np.sin(ANGLES)
-    with np.errstate(divide="ignore"):
-        tx = np.where(c > 0, (half - x) / c, np.where(c < 0, (-half - x) / c, np.inf))
-        ty = np.where(s > 0, (half - y) / s, np.where(s < 0, (-half - y) / s, np.inf))
-    return LaserScan(
-        np.minimum(tx, ty), angle_min=-math.pi, angle_increment=2 * math.pi / N_BEAMS,
-        range_min=0.1, range_max=10.0,
-    )  # fmt: skip
+from navkit.mapping import ScanMapper
 
 
 def test_a_robot_standing_still_converges_to_one_pose() -> None:
     """Scan after scan of the same room from the same place: the pose settles, no random walk."""
     mapper = ScanMapper(resolution=0.05)
-    scan = _room_scan(0.013, 0.021)
+    scan = room_scan(0.013, 0.021)
     for _ in range(40):
         mapper.update(scan, odometry=(0.0, 0.0, 0.0))
     settled = mapper.pose.as_array()
