@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import copy
 import math
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -258,9 +258,10 @@ class ScanMapper:
         # Python's default state (a subclass's __dict__ and slots included), with
         # the filled rows of the trajectory only: copies and pickles leave the
         # spare rows out.
-        state = object.__getstate__(self)
-        assert isinstance(state, tuple)
-        instance, slots = state
+        # A slotted object's default state is the pair (__dict__ or None, slots).
+        instance, slots = cast(
+            "tuple[dict[str, Any] | None, dict[str, Any]]", object.__getstate__(self)
+        )
         slots["_path"] = self._path[: self._path_len]
         return instance, slots
 
