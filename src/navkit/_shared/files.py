@@ -13,6 +13,7 @@ import errno
 import os
 import secrets
 import stat
+import threading
 from collections.abc import Iterator, Sequence
 from pathlib import Path
 
@@ -20,6 +21,21 @@ __all__ = ["atomic_path", "atomic_paths"]
 
 #: Random temporary names tried before giving up.
 _ATTEMPTS = 100
+
+#: Held while one :func:`atomic_paths` renames its files over their targets: two
+#: threads saving the same files (a map's image and YAML) would otherwise
+#: interleave their renames and leave one's image with the other's YAML.
+_RENAME_LOCK = threading.Lock()
+
+
+def _new_rename_lock() -> None:
+    """A fresh lock in a forked child: a thread that held it does not exist there."""
+    global _RENAME_LOCK
+    _RENAME_LOCK = threading.Lock()
+
+
+if hasattr(os, "register_at_fork"):  # not on Windows, which cannot fork
+    os.register_at_fork(after_in_child=_new_rename_lock)
 
 
 @contextlib.contextmanager
@@ -39,7 +55,9 @@ def atomic_paths(targets: Sequence[Path]) -> Iterator[tuple[Path, ...]]:
     back as they were (from hard links made just before, where the file system
     has them; a target that did not exist is removed). Only a crash during the
     renames can leave some targets new and others old. The temporary files are
-    always removed.
+    always removed. Threads of one process take turns for the renames, so
+    that two saves of the same targets at once leave all of one save's files
+    (the later one's) rather than a mix; other processes are not waited for.
 
     Parameters
     ----------
@@ -84,7 +102,8 @@ def atomic_paths(targets: Sequence[Path]) -> Iterator[tuple[Path, ...]]:
             _sync(temporary, os.O_RDWR)
             with contextlib.suppress(FileNotFoundError):
                 os.chmod(temporary, stat.S_IMODE(os.stat(target).st_mode))
-        _replace_all(temporaries, targets)
+        with _RENAME_LOCK:
+            _replace_all(temporaries, targets)
     finally:
         for temporary in temporaries:
             temporary.unlink(missing_ok=True)

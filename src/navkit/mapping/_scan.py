@@ -200,6 +200,24 @@ class LaserScan:
         array([ 3.    , -2.7832])
         """
         raw = self.angle_min + self.angle_increment * np.arange(len(self), dtype=np.float64)
+        # wrap_angle's arithmetic without its checks and fmod (most of this
+        # call's time; a scanner whose angle_min varies from scan to scan pays
+        # it at every repulsion call, which then misses its table cache). The
+        # angles grow (or fall) with k, rounding included, so the two ends
+        # bound them; within ±2π fmod returns them unchanged and only the fold
+        # by 2π is left, on the same values: the result is wrap_angle's bit for
+        # bit.
+        if raw.size:
+            first, last = float(raw[0]), float(raw[-1])
+            low, high = min(first, last), max(first, last)
+            if low > -math.pi and high <= math.pi:
+                return raw
+            if low > -_TURN and high < _TURN:
+                above = raw > math.pi
+                below = raw <= -math.pi
+                raw[above] -= _TURN
+                raw[below] += _TURN
+                return raw
         return np.asarray(wrap_angle(raw), dtype=np.float64)
 
     def valid_mask(self) -> BoolArray:

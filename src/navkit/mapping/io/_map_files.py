@@ -21,6 +21,7 @@ import os
 import re
 import reprlib
 import struct
+import threading
 import warnings
 import zlib
 from collections.abc import Iterator
@@ -548,13 +549,55 @@ def _pillow(what: str) -> Any:
     return Image
 
 
+#: Held while :func:`_hidden_bomb_warning` changes the process-wide warning filters
+#: (re-entrant: a block of one may open the image again).
+_WARNINGS_LOCK = threading.RLock()
+
+
+def _new_warnings_lock() -> None:
+    """A fresh lock in a forked child: a thread that held it does not exist there."""
+    global _WARNINGS_LOCK
+    _WARNINGS_LOCK = threading.RLock()
+
+
+if hasattr(os, "register_at_fork"):  # not on Windows, which cannot fork
+    os.register_at_fork(after_in_child=_new_warnings_lock)
+
+
 @contextlib.contextmanager
-def _pillow_errors(path: Path, image_module: Any) -> Iterator[None]:
-    """Turn whatever Pillow raises on a bad file into a ValueError naming it."""
+def _hidden_bomb_warning(image_module: Any, size: tuple[int, int] | None) -> Iterator[None]:
+    """Pillow's DecompressionBombWarning hidden in the block: our own size limit applies.
+
+    Pillow warns when it opens (and some formats when they decode) an image
+    of more than ``MAX_IMAGE_PIXELS`` pixels. ``warnings.catch_warnings``
+    changes the filters of the whole process and puts back on exit the list
+    it found on entry: two threads inside at once (maps read in parallel)
+    leave the ignore filter installed for good when the later one to enter
+    leaves last, and let the warning through in the other. navkit's threads
+    therefore take turns here: while an image is opened (its header read,
+    ``size`` None), and while one of ``size`` is decoded only if it is large
+    enough for Pillow to warn (other images decode in parallel).
+    """
+    limit = image_module.MAX_IMAGE_PIXELS
+    if size is not None and (limit is None or max(1, size[0]) * max(1, size[1]) <= limit):
+        yield
+        return
+    with _WARNINGS_LOCK, warnings.catch_warnings():
+        warnings.simplefilter("ignore", image_module.DecompressionBombWarning)
+        yield
+
+
+@contextlib.contextmanager
+def _pillow_errors(
+    path: Path, image_module: Any, size: tuple[int, int] | None = None
+) -> Iterator[None]:
+    """Turn whatever Pillow raises on a bad file into a ValueError naming it.
+
+    Also hides Pillow's DecompressionBombWarning (:func:`_hidden_bomb_warning`)
+    while an image is opened, or decoded when it has ``size``.
+    """
     try:
-        with warnings.catch_warnings():
-            # Our own size limit applies (checked before decoding), not Pillow's warning.
-            warnings.simplefilter("ignore", image_module.DecompressionBombWarning)
+        with _hidden_bomb_warning(image_module, size):
             yield
     except (FileNotFoundError, PermissionError):
         raise
@@ -628,7 +671,9 @@ def _deep_colour(
     first = img.tile[0]
     high = None if rawmode == "LA;16B" else np.asarray(img).astype(np.uint16)
     fh.seek(0)
-    with image_module.open(fh) as again:
+    with _hidden_bomb_warning(image_module, None):  # the header only, as in _read_with_pillow
+        again = image_module.open(fh)
+    with again:
         tile = again.tile[0]
         if tuple(tile[:4]) != tuple(first[:4]) or again.size != img.size:
             raise ValueError("the file changed while it was read")
@@ -677,9 +722,9 @@ def _read_with_pillow(
         _check_image_size(width, height, path)
         low = _deep_low_rawmode(img, path)
         if low is not None:
-            with _pillow_errors(path, Image):
+            with _pillow_errors(path, Image, img.size):
                 return _deep_colour(img, low, fh, path, Image)
-        with _pillow_errors(path, Image):
+        with _pillow_errors(path, Image, img.size):
             picture: Any = img
             native = picture.mode in ("L", "LA", "RGB", "RGBA", "P", "1")
             if not native and not picture.mode.startswith("I"):
