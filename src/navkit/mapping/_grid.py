@@ -171,7 +171,9 @@ class OccupancyGrid:
 
     An ordinary class with ``__slots__`` rather than a frozen dataclass because
     ray casting (:func:`navkit.mapping.integrate_scan`) updates its log-odds in
-    place.
+    place. For the same reason a grid being written serves one thread at a
+    time: a thread reading it meanwhile may see a scan half written (the
+    mapping guide's "Threads" section shows how to publish snapshots).
 
     Parameters
     ----------
