@@ -32,7 +32,17 @@ frontier of a 1024² search spans more than the L2 cache). On the 1024²
 benchmark maps the search of a fresh Field D* plan took about 5 % less time
 than with only ``g`` and ``rhs`` packed, and 16 % less than with three arrays
 and the former sift-down (together with the pop below and the aligned keys;
-the whole fresh plan 9-13 % less).
+the whole fresh plan 9-13 % less). The price is paid by repairs: after a
+block mid-path on the random 20 % map a repair took 8-12 % longer than with
+``g``/``rhs`` pairs and a separate slot array (rooms: about 1 %), and neither
+Floyd's pop nor the aligned keys account for it (each reverted alone: no
+change). A repair works where the fresh search passed long before, out of
+the L2 cache, where bytes per node count (likely cause; no perf counters):
+32-byte records (a padding column) made fresh plans 4-6 % slower and this
+repair 1-2 % (one run, near the noise). For the same
+reason the cell costs stay in ``pad``: as a fourth record column (the cost of
+the cell whose top-left corner the node is) fresh plans took 0.5-7 % longer
+(review 15, interleaved timings in one process).
 
 Popping the top (dequeuing any node) uses Floyd's method: the hole goes down
 along the least children to a leaf, the least of four children found by a
