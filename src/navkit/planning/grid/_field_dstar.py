@@ -10,12 +10,13 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from navkit._shared.frozen import restore_slots
 from navkit._shared.grid_coords import as_pairs, one_or_many, round_half_up
 from navkit._shared.types import CellLike, FloatArray, IntArray
 from navkit._shared.validation import as_bool, as_cell, as_float_array
 from navkit.errors import NoPathError
 from navkit.geometry import Pose2D, as_pose
-from navkit.planning.grid._dstar_heap import RHS, G, node_records, positions
+from navkit.planning.grid._dstar_heap import RHS, G, node_records
 from navkit.planning.grid._dstar_lite_kernels import (
     FIELD_HSCALE,
     HALF_DIAGONAL,
@@ -366,14 +367,31 @@ class FieldDStar:
         self._start_cell = False
         self._goal_cell = False
 
-    def __setstate__(self, state: tuple[None, dict[str, Any]]) -> None:
-        # Copies (copy.deepcopy, pickle) copy each array on its own: the views of the
-        # node records (g, rhs, the heap's slots) are made again on the copied records.
-        for name, value in state[1].items():
-            object.__setattr__(self, name, value)
-        self._g, self._rhs = self._vals[:, G], self._vals[:, RHS]
-        nodes, keys, _, size = self._heap
-        self._heap = (nodes, keys, positions(self._vals), size)
+    def __setstate__(self, state: Any) -> None:
+        # Copies (copy.deepcopy, pickle) copy each array on its own: the node records
+        # and the heap are made again (node_records: the keys cache-line aligned, as
+        # a fresh planner's) and filled from the copies, so that g, rhs and the heap's
+        # slots are views of the records again. A subclass's own attributes (the
+        # state's instance __dict__) are restored too. Pickles made before the node
+        # records hold g, rhs and the slots as arrays of their own.
+        instance, slots = state if isinstance(state, tuple) else (None, state)
+        slots = dict(slots)
+        old_vals = slots.pop("_vals", None)
+        old_g, old_rhs = slots.pop("_g"), slots.pop("_rhs")
+        nodes, keys, pos, size = slots.pop("_heap")
+        vals, heap = node_records(len(old_g))
+        if old_vals is None:
+            vals[:, G] = old_g
+            vals[:, RHS] = old_rhs
+            heap[2][:] = pos
+        else:
+            vals[:] = old_vals
+        heap[0][:] = nodes
+        heap[1][:] = keys
+        heap[3][:] = size
+        restore_slots(self, (instance, slots))
+        self._vals, self._heap = vals, heap
+        self._g, self._rhs = vals[:, G], vals[:, RHS]
 
     def __copy__(self) -> FieldDStar:
         # update_costs() and every search write the costs and the search state in
