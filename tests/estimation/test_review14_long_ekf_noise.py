@@ -68,11 +68,15 @@ def test_a_q_and_r_that_change_every_step_are_not_checked_in_python(
 def test_a_q_that_is_not_plainly_valid_is_still_checked_in_python(
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
-    """A dominant Q stays in the kernel; a PSD one that is not, and invalid ones, do not."""
+    """A dominant Q stays in the kernel; a singular PSD one that is not, and invalid ones, do not.
+
+    (A positive definite Q that is not dominant is kept by a compiled LDLᵀ check since
+    review 15: test_review15_ekf_residual_choice.)
+    """
     ekf = ExtendedKalmanFilter([0.0, 0.0], np.eye(2))
     seen = _counting(monkeypatch)
     dominant = np.array([[1.0, 0.9], [0.9, 1.0]])  # 0.9 <= 1.0 in each row
-    not_dominant = np.array([[1.0, 1.5], [1.5, 4.0]])  # PSD (det 1.75), but 1.5 > 1.0
+    not_dominant = np.array([[1.0, 2.0], [2.0, 4.0]])  # PSD (singular), and 2.0 > 1.0
     ekf.predict(lambda x: x, np.eye(2), dominant)
     assert seen == []
     ekf.predict(lambda x: x, np.eye(2), not_dominant)

@@ -39,7 +39,10 @@ arguments in full, or picks the kernel of another measurement size), the
 finiteness of the user's arrays, and whether Q or R still equals the matrix
 validated last time or is plainly valid, which it then keeps as validated
 (:func:`_adopt_dominant`: diagonally dominant, e.g. a diagonal ``Q_c dt``); else
-``NOISE_CHANGED``: the caller validates it and calls again. Then it computes
+``NOISE_CHANGED``: the caller validates it and calls again (a Q first by
+:func:`adopt_positive_q`, a kernel compiled when first needed: exactly
+symmetric and positive definite by an LDLᵀ factorisation, e.g. a
+constant-velocity model's; then in Python). Then it computes
 the step into scratch space, makes the new covariance exactly symmetric,
 checks it positive definite (an LDLᵀ factorisation, which also fails on
 non-finite entries) and only then commits it. Every outcome is a status
@@ -50,8 +53,9 @@ reference counting, which alone took a tenth of a call) and never leave
 An update whose Joseph form cancelled (a variance shrank more than 4096-fold:
 a measurement far more precise than the estimate) commits nothing and returns
 ``CANCELLED``; the public layer finishes it with :func:`finish_cancelled`,
-which may take the information form instead (in NumPy: the case is rare, and
-compiled into every update kernel it would cost compile time).
+which may take the information form instead, chosen by residuals computed
+exactly (in NumPy: the case is rare, and compiled into every update kernel it
+would cost compile time).
 
 They are compiled for C-contiguous, writeable, aligned float64 arrays only,
 when first requested, after which their dispatchers compile nothing more: an
@@ -96,6 +100,7 @@ __all__ = [
     "S_NOT_POSITIVE_DEFINITE",
     "PredictKernel",
     "UpdateKernel",
+    "adopt_positive_q",
     "compile_kernels",
     "finish_cancelled",
     "new_rbuf",
@@ -162,14 +167,14 @@ _FAIL_CANCELLED = -float(CANCELLED)
 # estimate) finish_cancelled computes the posterior without the cancellation.
 _SHRINK_LIMIT = 4096.0
 # finish_cancelled trusts the information form only where ε times its error estimate
-# is at most this (12 bits short of full precision): a bound, not noise.
+# (measured from residuals, see _information_update) is at most this (12 bits short).
 _WELL_CONDITIONED = 2.0**-12
 # The kernel's state, x + K y with K solved with S, is within about ε κ(S) of its
 # scale: trusted when that is at most this (about 1e-9).
 _STATE_TRUSTED = 2.0**-30
-# An information form this accurate (times ε) is kept where the Joseph form's bound
-# is larger: at most 4 times it off, 1e-12, never 10 times worse than the Joseph form.
-_ACCURATE = 2.0**-42
+# The largest n whose Q the predict kernel accepts by its LDLᵀ factorisation
+# (_adopt_positive): its backward error, about n² ε max|Q|, is then below 1e-12 max|Q|.
+_PSD_MAX_N = 64
 
 # Blocks of an rbuf.
 _R = 0  # R as passed
@@ -317,6 +322,52 @@ def _adopt_dominant(
                 off += abs(v)
         if not factor * off <= d:
             return False
+    for i in range(n):
+        for j in range(n):
+            kept[i, j] = a[i, j]
+            kept_sym[i, j] = 0.5 * a[i, j] + 0.5 * a[j, i]
+    return True
+
+
+@njit_force_inline
+def _adopt_positive(
+    a: FloatArray,
+    kept: FloatArray,
+    kept_sym: FloatArray,
+    work: FloatArray,
+    inv_d: FloatArray,
+    n: int,
+) -> bool:
+    """Store the n x n process noise ``a`` as validated if it is plainly positive definite.
+
+    For a Q that is not diagonally dominant (:func:`_adopt_dominant`), such as
+    a constant-velocity model's ``[[dt³/3, dt²/2], [dt²/2, dt]]``: exactly
+    symmetric, entries of magnitude at most 1e100, the largest at least 1e-150,
+    n at most ``_PSD_MAX_N``, and its LDLᵀ factorisation (:func:`_positive_definite`,
+    into the scratch ``work`` and ``inv_d``) succeeds with normal pivots. The
+    public layer's check (``covariance(..., semidefinite=True)``) accepts every
+    such matrix: a factorisation that succeeds in floating point is exact for
+    ``a + δa`` with ``‖δa‖₂`` at most about n² ε max|a| (its backward error;
+    no underflow above 1e-150), so the smallest eigenvalue of ``a``, and the
+    one ``numpy.linalg.eigvalsh`` computes (within about n² ε max|a| too), are
+    above -1e-12 max|a|, far inside that check's -1e-9 max|a|. It stores what
+    that check would: ``a`` as passed and ``0.5 a + 0.5 aᵀ``. Anything else is
+    left to that check (``NOISE_CHANGED``), which is what decides for the
+    positive semi-definite but singular Q it also accepts.
+    """
+    if n > _PSD_MAX_N:
+        return False
+    largest = 0.0
+    for i in range(n):
+        for j in range(i + 1):
+            v = a[i, j]
+            if v != a[j, i] or not abs(v) <= 1e100:  # NaN fails too
+                return False
+            largest = max(largest, abs(v))
+    if not largest >= 1e-150:
+        return False
+    if not _positive_definite(a, work, inv_d, n):
+        return False
     for i in range(n):
         for j in range(n):
             kept[i, j] = a[i, j]
@@ -485,6 +536,31 @@ def _make_predict(n: int) -> PredictKernel:
         return status
 
     return ekf_predict
+
+
+@njit_no_refcount
+def adopt_positive_q(state: FloatArray, q: FloatArray) -> bool:
+    """Keep ``q`` in ``state`` as the validated Q if :func:`_adopt_positive` takes it.
+
+    Returns whether it did.
+
+    Called by the public layer when the predict kernel returned
+    ``NOISE_CHANGED``, before the Python check: a Q that is positive definite
+    but not diagonally dominant (a constant-velocity model's, with a ``dt``
+    that changes every step) then costs a few microseconds instead of that
+    check's 0.06-0.2 ms. A kernel of its own, typed once for every n (a
+    run-time size) and compiled only when first needed, so that the predict
+    kernels, which every filter compiles, are as before. ``q`` must have
+    ``state``'s n x n shape (else False).
+    """
+    n = state.shape[1]
+    if q.shape[0] != n or q.shape[1] != n:
+        return False
+    kept: bool = _adopt_positive(
+        q, state[n + 2 : 2 * n + 2], state[2 * n + 2 : 3 * n + 2],
+        state[5 * n + 2 : 6 * n + 2], state[6 * n + 2], n,
+    )  # fmt: skip
+    return kept
 
 
 @njit_force_inline
@@ -697,40 +773,6 @@ def _make_update(n: int, m: int) -> UpdateKernel:
     return ekf_update
 
 
-def _scaled_inverse(a: FloatArray) -> tuple[FloatArray, float] | None:
-    """The inverse of the symmetric ``a`` (exactly symmetric) and a bound on κ(D a D).
-
-    D scales the diagonal of ``a`` to ones; ``D a D = L Lᵀ`` (Cholesky) and the
-    inverse is D L⁻ᵀ L⁻¹ D, whose error relative to ``sqrt(inv_ii inv_jj)`` is
-    about ε κ(D a D) however badly ``a`` is scaled (entries from 1e-100 to
-    1e100, where κ(a) could be 1e200). The condition number returned is the
-    larger of κ₁ = ‖D a D‖₁ ‖(D a D)⁻¹‖₁ (within a factor n of κ₂) and 1 / the
-    smallest pivot of L Lᵀ (never above κ₂, as D a D has a unit diagonal): the
-    pivots, not the inverse, say when ``D a D`` is singular to working
-    precision, where a computed inverse is noise and κ₁ from it no bound. None
-    when ``a`` is not finite, its diagonal not positive or its Cholesky
-    factorisation fails (not positive definite to working precision).
-    """
-    diag = a.diagonal()
-    if not np.isfinite(a).all() or not (diag > 0.0).all():
-        return None
-    d = 1.0 / np.sqrt(diag)
-    scaled = a * d * d[:, None]
-    try:
-        factor = np.linalg.cholesky(0.5 * (scaled + scaled.T))
-    except np.linalg.LinAlgError:
-        return None
-    smallest_pivot = float(np.min(factor.diagonal() ** 2))
-    if not smallest_pivot > 0.0:
-        return None
-    half = np.linalg.inv(factor)
-    inv = half.T @ half
-    kappa = float(np.abs(scaled).sum(0).max() * np.abs(inv).sum(0).max())
-    kappa = max(kappa, 1.0 / smallest_pivot)
-    inv *= d * d[:, None]
-    return 0.5 * (inv + inv.T), kappa
-
-
 def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: FloatArray) -> int:
     """Finish an update the kernel left with ``CANCELLED``; returns its status (OK or a failure).
 
@@ -751,26 +793,31 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
     x + K y (the Woodbury identity). It subtracts nothing in P⁺, and needs no
     solve with S = H P Hᵀ + R, which a precise measurement of dependent
     directions makes singular to working precision (the kernel's gain, and
-    its x, then have no correct digit). Its error estimate
-    (:func:`_information_update`), in units of ε relative to
-    ``sqrt(P⁺ᵢᵢ P⁺ⱼⱼ)``, bounded the measured error of P⁺ within a factor 4 in
-    9000 random updates.
+    its x, then have no correct digit). :func:`_information_update` computes
+    it with residuals of the defining equations evaluated exactly (each
+    product's terms summed with one rounding): P⁻¹ and R⁻¹ get one step of
+    iterative refinement, P⁺ one step against J = P⁻¹ + Hᵀ R⁻¹ H, and its
+    error is estimated from the residual J P⁺ - I left after that step plus
+    a bound on J's own rounding, carried through J⁻¹. The Joseph result's
+    error is then measured, not bounded: it is P⁺ (J P_Joseph - I), the
+    same residual, to within P⁺'s error.
 
-    It decides on evidence, not on the Joseph form's error bound (which can
-    exceed its actual error by 1e14). Only where the information form is well
-    conditioned, ε times its error estimate at most 2⁻¹² (else the kernel's
-    result and status stand, as before this fallback):
+    It decides on these measured errors (relative to ``sqrt(P⁺ᵢᵢ P⁺ⱼⱼ)``),
+    only where P⁺'s estimate is at most 2⁻¹² (else the kernel's result and
+    status stand, as before this fallback):
 
-    * P⁺ replaces the Joseph P where that failed its checks, or differs from
-      P⁺ by more than 8 times P⁺'s error estimate (then the Joseph form's
-      error is the larger of the two), or where ε times P⁺'s estimate is at
-      most 2⁻⁴² (P⁺ then within 1e-12) and the Joseph form's bound is larger;
+    * P⁺ replaces the Joseph P where that failed its checks, or where the
+      Joseph result's measured error exceeds twice P⁺'s (the Joseph form is
+      then the less accurate; otherwise both are within 3 times P⁺'s error
+      and the Joseph result stays);
     * the two states are compared: where they differ by more than
-      ``max(2⁻³³ (|x| + |x⁺ - x|), sqrt(P⁺ᵢᵢ))`` one of them is wrong. The
-      kernel's x (off by about ε κ(S), κ of S scaled to a unit diagonal)
-      stays where ε κ(S) ≤ 2⁻³⁰; else an update the Joseph form failed is
-      refused (its status, as before), and otherwise x⁺ replaces the
-      kernel's x where κ(S) exceeds P⁺'s error estimate.
+      ``max(2⁻³³ (|x| + |x⁺ - x|), sqrt(P⁺ᵢᵢ))`` one of them is wrong. x⁺
+      (whose solves are refined too) replaces the kernel's x where a bound
+      on its error (the roundings of g = Hᵀ R⁻¹ y and J's error, carried
+      through P⁺) is within that tolerance; else the kernel's x (off by
+      about ε κ(S), κ of S with its diagonal scaled) stays, and an update
+      the Joseph form failed is refused (its status, as before) where
+      ε κ(S) > 2⁻³⁰.
 
     Commits x and P only with OK. ``jac`` (m, n) is the H and ``y`` (m,) the
     (wrapped) residual the kernel took. NumPy, not a kernel: this is rare, and
@@ -786,18 +833,13 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
     new_p, new_x = joseph, x_kernel
     with np.errstate(all="ignore"):
         found = _information_update(p, jac, rbuf[_RS, :m, :m], y)
-        if found is not None and _EPS * found[2] <= _WELL_CONDITIONED:
-            posterior, step, error = found
+        if found is not None and _EPS * found.error <= _WELL_CONDITIONED:
+            posterior = found.posterior
             deviation = np.sqrt(posterior.diagonal())
-            gap = np.abs(posterior - joseph) / np.outer(deviation, deviation)
-            # P⁺ where the Joseph form failed, or differs from it by more than P⁺'s
-            # own error (8 times its estimate, which bounded it within 4), or is
-            # accurate to 1e-12 (2⁻⁴² times 4) and the Joseph bound is the larger.
-            take_p = (
-                status != OK
-                or not gap.max() <= 8.0 * _EPS * error
-                or (_EPS * error <= _ACCURATE and error < _joseph_bound(p, jac, rbuf, deviation))
-            )
+            # P⁺ where the Joseph form failed, or where its measured error is more
+            # than twice P⁺'s: the Joseph result is then the less accurate.
+            take_p = status != OK or not found.error_of(joseph) <= 2.0 * found.error
+            step = found.step
             x_info = x + step
             apart = x_info - x_kernel
             for i in np.flatnonzero(state[n + 1]):  # the angles, wrapped
@@ -805,14 +847,14 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
                 apart[i] = wrap_float(float(apart[i]))
             tolerance = np.maximum(2.0**-33 * (np.abs(x) + np.abs(step)), deviation)
             if not (np.abs(apart) <= tolerance).all():
-                # One state is wrong. The kernel's is within about ε κ(S) of its
-                # scale: trusted to 2⁻³⁰ (1e-9), else x⁺ if S is the worse conditioned.
-                s_kappa = _s_condition(rbuf[_S, :m, :m])
-                if not _EPS * s_kappa <= _STATE_TRUSTED:
-                    if status != OK:
-                        take_p = False  # no state to trust: refused, as before
-                    elif np.isfinite(x_info).all() and error < s_kappa:
-                        new_x = x_info
+                # One state is wrong: x⁺ where its error bound is within the
+                # tolerance. Else the kernel's, within about ε κ(S) of its scale:
+                # an update the Joseph form failed is refused where that exceeds
+                # 2⁻³⁰ (1e-9), as before.
+                if np.isfinite(x_info).all() and (found.step_error <= tolerance).all():
+                    new_x = x_info
+                elif status != OK and not _EPS * _s_condition(rbuf[_S, :m, :m]) <= _STATE_TRUSTED:
+                    take_p = False  # no state to trust: refused
             if take_p:
                 new_p, status = posterior, OK
     if status != OK:
@@ -822,55 +864,228 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
     return OK
 
 
-def _joseph_bound(p: FloatArray, jac: FloatArray, rbuf: FloatArray, scale: FloatArray) -> float:
-    """A bound on the Joseph form's error, in units of ε relative to ``scale_i scale_j``.
-
-    The error E of ``A P = P - K (H P)`` is at most about ε (|P| + |K| |H P|)
-    and enters the result as ``E Aᵀ`` (see :func:`_update`); |A| takes the
-    rounding of its entries into account. ``scale`` is sqrt(diag P⁺) of a
-    posterior known to be accurate (not the Joseph form's own, which may be noise).
-    """
-    n = p.shape[0]
-    m = jac.shape[0]
-    gain = rbuf[_GAIN, :n, :m]
-    abs_gain = np.abs(gain)
-    a = np.abs(np.eye(n) - gain @ jac) + _EPS * (abs_gain @ np.abs(jac))
-    bound = (np.abs(p) + abs_gain @ np.abs(rbuf[_HP, :m, :n])) @ a.T
-    return float(np.tril(bound / np.outer(scale, scale)).max())
-
-
 def _s_condition(s_lower: FloatArray) -> float:
-    """κ of S scaled to a unit diagonal, from the kernel's lower triangle of S (inf: singular)."""
+    """κ of S with its diagonal scaled (:func:`_scaled_inverse`), from the kernel's lower triangle.
+
+    inf where S is singular to working precision.
+    """
     lower = np.tril(s_lower)
     found = _scaled_inverse(lower + np.tril(lower, -1).T)
     return math.inf if found is None else found[1]
 
 
+_SPLIT = 134217729.0  # 2²⁷ + 1: Dekker's splitting of a float64 into two 26-bit halves
+
+
+def _halves(a: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """Dekker's split: ``a = high + low`` exactly, each with at most 26 significant bits."""
+    c = _SPLIT * a
+    high = c - (c - a)
+    return high, a - high
+
+
+def _product_minus_identity(a: FloatArray, b: FloatArray) -> FloatArray:
+    """``a @ b - I`` (square ``a``, ``b``), each entry rounded once from its exact value."""
+    return _exact_residual(a, b, np.eye(a.shape[0]))
+
+
+def _exact_residual(a: FloatArray, b: FloatArray, c: FloatArray) -> FloatArray:
+    """``a @ b - c`` (``a`` (n, k), ``b`` (k, q), ``c`` (n, q)), each entry rounded once.
+
+    Every product ``a_ik b_kj`` is split exactly into its rounded value and its
+    error (Dekker's TwoProduct; exact for entries of moderate size, as those of
+    the matrices scaled by powers of two this is used on), and the 2k + 1
+    terms of each entry are summed by :func:`math.fsum` (correctly rounded).
+    All NaN where a product or a sum overflows (a garbage candidate): callers
+    then find no error bound and reject what it was for.
+    """
+    n, k = a.shape
+    q = b.shape[1]
+    rounded = a[:, :, None] * b[None, :, :]
+    a_high, a_low = _halves(a)
+    b_high, b_low = _halves(b)
+    ah, al = a_high[:, :, None], a_low[:, :, None]
+    bh, bl = b_high[None, :, :], b_low[None, :, :]
+    error = ((ah * bh - rounded) + ah * bl + al * bh) + al * bl
+    terms = np.concatenate((rounded, error, -c[:, None, :]), axis=1)
+    if not np.isfinite(terms).all():  # a product or split overflowed: no residual
+        return np.full((n, q), math.nan)
+    rows = terms.transpose(0, 2, 1).reshape(n * q, 2 * k + 1).tolist()
+    try:
+        return np.array([math.fsum(row) for row in rows]).reshape(n, q)
+    except OverflowError:  # an exact sum beyond float64
+        return np.full((n, q), math.nan)
+
+
+def _scaled_inverse(a: FloatArray) -> tuple[FloatArray, float] | None:
+    """The inverse of the symmetric ``a`` (exactly symmetric) and a bound on κ(D a D).
+
+    D scales the diagonal of ``a`` to [0.5, 2) by powers of two; ``D a D = L Lᵀ``
+    (Cholesky) and the inverse is D L⁻ᵀ L⁻¹ D, whose error relative to
+    ``sqrt(inv_ii inv_jj)`` is about ε κ(D a D) however badly ``a`` is scaled
+    (entries from 1e-100 to 1e100, where κ(a) could be 1e200). The condition
+    number returned is the larger of κ₁ = ‖D a D‖₁ ‖(D a D)⁻¹‖₁ (within a factor
+    n of κ₂) and 1 / the smallest pivot of L Lᵀ (at most 2 κ₂, as the diagonal of
+    D a D is below 2): the
+    pivots, not the inverse, say when ``D a D`` is singular to working
+    precision, where a computed inverse is noise and κ₁ from it no bound. None
+    when ``a`` is not finite, its diagonal not positive or its Cholesky
+    factorisation fails (not positive definite to working precision).
+    """
+    found = _scaled_inverse_parts(a)
+    if found is None:
+        return None
+    _, inv, d, kappa = found
+    inv = inv * d * d[:, None]
+    return 0.5 * (inv + inv.T), kappa
+
+
+def _scaled_inverse_parts(
+    a: FloatArray,
+) -> tuple[FloatArray, FloatArray, FloatArray, float] | None:
+    """``D a D``, its inverse (symmetric), D's diagonal and κ: :func:`_scaled_inverse`'s parts.
+
+    D's entries are powers of two (the diagonal of ``D a D`` is in [0.5, 2)), so
+    that ``D a D`` holds ``a``'s values exactly and a residual computed with it
+    is ``a``'s (scaling by ``1 / sqrt(aᵢᵢ)`` rounds, an error of ε κ).
+    """
+    diag = a.diagonal()
+    if not np.isfinite(a).all() or not (diag > 0.0).all():
+        return None
+    # Powers of two, so that D a D is a's values exactly (its residuals are a's).
+    d = np.ldexp(1.0, -(np.frexp(diag)[1] // 2))
+    scaled = a * d * d[:, None]
+    scaled = 0.5 * (scaled + scaled.T)
+    try:
+        factor = np.linalg.cholesky(scaled)
+    except np.linalg.LinAlgError:
+        return None
+    smallest_pivot = float(np.min(factor.diagonal() ** 2))
+    if not smallest_pivot > 0.0:
+        return None
+    half = np.linalg.inv(factor)
+    inv = half.T @ half
+    inv = 0.5 * (inv + inv.T)
+    kappa = float(np.abs(scaled).sum(0).max() * np.abs(inv).sum(0).max())
+    return scaled, inv, d, max(kappa, 1.0 / smallest_pivot)
+
+
+def _refined_inverse(
+    a: FloatArray,
+) -> tuple[FloatArray, FloatArray, float, tuple[FloatArray, FloatArray, FloatArray, float]] | None:
+    """The inverse of the symmetric positive definite ``a``, refined once; its error bound.
+
+    :func:`_scaled_inverse`'s inverse of ``D a D`` (error about ε κ) with one
+    step of iterative refinement, ``X ← X - X (D a D X - I)``, the residual
+    exact to one rounding (:func:`_product_minus_identity`): the error drops to
+    about ε + (ε κ)², as if solved in twice the precision. Returns the inverse,
+    a bound on the magnitude of its error entry by entry (``(4 ε + 2 (ε κ)²)``
+    times ``sqrt(inv_ii inv_jj)``, at least the entry's magnitude), κ, and the
+    scaled parts
+    (:func:`_scaled_inverse_parts`, the inverse refined); None as
+    :func:`_scaled_inverse`.
+    """
+    found = _scaled_inverse_parts(a)
+    if found is None:
+        return None
+    scaled, inv, d, kappa = found
+    refined = inv - inv @ _product_minus_identity(scaled, inv)
+    refined = 0.5 * (refined + refined.T)
+    inv = refined * d * d[:, None]
+    inv = 0.5 * (inv + inv.T)
+    relative = 4.0 * _EPS + 2.0 * (_EPS * kappa) ** 2
+    unit = np.sqrt(inv.diagonal())
+    return inv, relative * np.outer(unit, unit), kappa, (scaled, refined, d, kappa)
+
+
+class _Information:
+    """The information form's posterior, its state step and error, and the means to measure others.
+
+    ``posterior`` is P⁺ = J⁻¹ (exactly symmetric), ``step`` P⁺ Hᵀ R⁻¹ y (and
+    ``step_error`` a bound on its error, entry by entry),
+    ``error`` P⁺'s estimated error in units of ε relative to
+    ``sqrt(P⁺ᵢᵢ P⁺ⱼⱼ)``. ``scaled`` is J scaled to a unit diagonal
+    (``d`` its scale) and ``reference`` P⁺ in the same units, ``floor`` (in
+    relative units) the error common to every candidate measured against J:
+    that of J itself.
+    """
+
+    __slots__ = ("d", "error", "floor", "posterior", "reference", "scaled", "step", "step_error")
+
+    def __init__(
+        self,
+        posterior: FloatArray,
+        step: FloatArray,
+        error: float,
+        scaled: FloatArray,
+        reference: FloatArray,
+        d: FloatArray,
+        floor: float,
+    ) -> None:
+        self.posterior = posterior
+        self.step = step
+        self.error = error
+        self.scaled = scaled
+        self.reference = reference
+        self.d = d
+        self.floor = floor
+        self.step_error = step
+
+    def error_of(self, candidate: FloatArray) -> float:
+        """The measured error of the covariance ``candidate``, in units of ε as ``error``.
+
+        ``P⁺ (J X - I)`` is ``X - J⁻¹`` to first order (J X - I exact to one
+        rounding), and J⁻¹ differs from the exact posterior by ``floor``. A
+        non-finite ``candidate`` has an infinite error.
+        """
+        ref = self.reference
+        scaled_candidate = candidate / (self.d * self.d[:, None])
+        if not np.isfinite(scaled_candidate).all():
+            return math.inf
+        deviation = ref @ _product_minus_identity(self.scaled, scaled_candidate)
+        unit = np.sqrt(ref.diagonal())
+        measured = float(np.max(np.abs(deviation) / np.outer(unit, unit)))
+        if not measured < math.inf:
+            return math.inf
+        return (measured + self.floor) / _EPS
+
+
 def _information_update(
     p: FloatArray, jac: FloatArray, r: FloatArray, y: FloatArray
-) -> tuple[FloatArray, FloatArray, float] | None:
+) -> _Information | None:
     """``P⁺ = (P⁻¹ + Hᵀ R⁻¹ H)⁻¹`` (exactly symmetric), the step ``P⁺ Hᵀ R⁻¹ y`` and P⁺'s error.
 
-    The estimate is in units of ε relative to ``sqrt(P⁺ᵢᵢ P⁺ⱼⱼ)``: κ of the
-    scaled information matrix J = P⁻¹ + Hᵀ R⁻¹ H (its inverse's own error)
-    plus the errors of J's two terms, each about ε κ times its scale (κ of the
-    scaled P, of the scaled R), carried through J⁻¹ to first order
+    P⁻¹ and R⁻¹ are refined once (:func:`_refined_inverse`), J = P⁻¹ + Hᵀ R⁻¹ H
+    is scaled to a unit diagonal, inverted by Cholesky and the inverse refined
+    once against J. Its error estimate, in units of ε relative to
+    ``sqrt(P⁺ᵢᵢ P⁺ⱼⱼ)``: the residual that refinement leaves (``P⁺ (J P⁺ - I)``,
+    measured) plus J's own error (the bounds of the refined inverses and J's
+    roundings, entry by entry), carried through J⁻¹ to first order
     (|P⁺| δJ |P⁺|). P and R are positive definite (checked by the kernels and
     the public layer). None when a factorisation fails (a matrix singular to
     working precision) or P⁺ fails the kernels' test of a covariance
     (:func:`_positive_definite`: finite, the pivots of its LDLᵀ
     factorisation, those of D P⁺ D over dᵢ², normal floats).
     """
-    prior = _scaled_inverse(p)
-    noise = _scaled_inverse(r)
+    prior = _refined_inverse(p)
+    noise = _refined_inverse(r)
     if prior is None or noise is None:
         return None
     p_inv, r_inv = prior[0], noise[0]
-    information = p_inv + jac.T @ r_inv @ jac
-    found = _scaled_inverse(information)
+    abs_jac = np.abs(jac)
+    gain_part = jac.T @ r_inv @ jac
+    information = p_inv + gain_part
+    found = _scaled_inverse_parts(information)
     if found is None:
         return None
-    posterior, kappa = found
+    scaled, reference, d_j, kappa_j = found
+    if not np.isfinite(reference).all():
+        return None
+    # One refinement step against J, then the residual it leaves (both exact sums).
+    reference = reference - reference @ _product_minus_identity(scaled, reference)
+    reference = 0.5 * (reference + reference.T)
+    posterior = reference * d_j * d_j[:, None]
+    posterior = 0.5 * (posterior + posterior.T)  # exactly symmetric, as a kernel's P
     diag = posterior.diagonal()
     if not np.isfinite(posterior).all() or not (diag > 0.0).all():
         return None
@@ -881,19 +1096,42 @@ def _information_update(
         return None
     if not ((factor.diagonal() / d) ** 2 >= _SMALLEST_NORMAL).all():
         return None
-    abs_jac = np.abs(jac)
-    p_scale = np.sqrt(p_inv.diagonal())
-    perturbation = prior[1] * np.outer(p_scale, p_scale)
-    perturbation += noise[1] * (abs_jac.T @ np.abs(r_inv) @ abs_jac)
-    abs_post = np.abs(posterior)
-    carried = (abs_post @ perturbation @ abs_post) * d * d[:, None]
-    error = kappa + float(carried.max())
-    # P⁺ Hᵀ R⁻¹ y as (P⁺ Hᵀ Dᵣ) (Dᵣ R⁻¹ Dᵣ) (Dᵣ⁻¹ y)... with Dᵣ = diag(R)^½: each
-    # factor near the scale of the result's, so a tiny R does not overflow R⁻¹ y.
-    r_scale = np.sqrt(r.diagonal())
-    scaled_r_inv = r_inv * r_scale * r_scale[:, None]
-    step = ((posterior @ jac.T) / r_scale) @ (scaled_r_inv @ (y / r_scale))
-    return posterior, step, error
+    # J's own error, entry by entry: the refined inverses' bounds (H and its products
+    # carry R⁻¹'s), and ε n for the roundings of Hᵀ R⁻¹ H and of the sum.
+    n, m = jac.shape[1], jac.shape[0]
+    perturbation = prior[1] + abs_jac.T @ noise[1] @ abs_jac
+    perturbation += (n + 2) * _EPS * (np.abs(p_inv) + abs_jac.T @ np.abs(r_inv) @ abs_jac)
+    scaled_perturbation = perturbation * d_j * d_j[:, None]
+    abs_ref = np.abs(reference)
+    unit = np.sqrt(reference.diagonal())
+    floor = float(np.max((abs_ref @ scaled_perturbation @ abs_ref) / np.outer(unit, unit)))
+    info = _Information(posterior, np.empty(0), 0.0, scaled, reference, d_j, floor)
+    error = info.error_of(posterior)
+    if not error < math.inf:
+        return None
+    info.error = error
+    # The step s = P⁺ g, g = Hᵀ R⁻¹ y, each solve refined once against its exact
+    # residual: w = R⁻¹ y with R scaled by powers of two (so that R⁻¹ y does not
+    # overflow for a tiny R), then J s = g. P⁺ g can cancel far beyond P⁺'s error
+    # (a residual of many posterior deviations, a correlated R): the bound on s's
+    # error carries those of g (its roundings, w's refined error) and of J through
+    # P⁺, entry by entry.
+    r_scaled, r_scaled_inv, d_r, kappa_r = noise[3]
+    y_scaled = (y * d_r)[:, None]
+    w = r_scaled_inv @ y_scaled
+    w = w - r_scaled_inv @ _exact_residual(r_scaled, w, y_scaled)
+    w_full = d_r[:, None] * w  # R⁻¹ y
+    g_scaled = (jac.T @ w_full) * d_j[:, None]  # D_J g
+    s = reference @ g_scaled  # D_J⁻¹ P⁺ g
+    s = s - reference @ _exact_residual(scaled, s, g_scaled)
+    info.step = s[:, 0] * d_j
+    w_error = (4.0 * _EPS + 2.0 * (_EPS * kappa_r) ** 2) * (np.abs(r_scaled_inv) @ np.abs(y_scaled))
+    g_error = (m + 2) * _EPS * (abs_jac.T @ np.abs(w_full)) + abs_jac.T @ (d_r[:, None] * w_error)
+    abs_s = np.abs(s)
+    s_error = abs_ref @ (g_error * d_j[:, None] + scaled_perturbation @ abs_s)
+    s_error += (4.0 * _EPS + 2.0 * (_EPS * kappa_j) ** 2) * abs_s
+    info.step_error = s_error[:, 0] * d_j
+    return info
 
 
 def _freeze(kernel: Any) -> None:

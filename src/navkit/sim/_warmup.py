@@ -202,6 +202,9 @@ def _estimation() -> None:
     jac = np.eye(3)
     jac[0, 1] = 0.1
     ekf.predict(lambda x: jac @ x, jac, 0.01 * np.eye(3))
+    # A positive definite Q that is not diagonally dominant (a constant-velocity
+    # model's) is kept by a kernel of its own.
+    ekf.predict(lambda x: jac @ x, jac, [[0.01, 0.012, 0.0], [0.012, 0.02, 0.0], [0.0, 0.0, 0.01]])
     ekf.update([0.1], lambda x: x[:1], np.array([[1.0, 0.0, 0.0]]), [[0.01]])
     ekf.update([0.1, 0.0], lambda x: x[[0, 2]], np.array([[1.0, 0, 0], [0, 0, 1.0]]), np.eye(2))
     diff = DiffDrive(track=0.3, wheel_radius=0.05)
