@@ -13,9 +13,10 @@ import errno
 import os
 import secrets
 import stat
-import threading
 from collections.abc import Iterator, Sequence
 from pathlib import Path
+
+from navkit._shared.locks import ForkSafeLock
 
 __all__ = ["atomic_path", "atomic_paths"]
 
@@ -25,17 +26,7 @@ _ATTEMPTS = 100
 #: Held while one :func:`atomic_paths` renames its files over their targets: two
 #: threads saving the same files (a map's image and YAML) would otherwise
 #: interleave their renames and leave one's image with the other's YAML.
-_RENAME_LOCK = threading.Lock()
-
-
-def _new_rename_lock() -> None:
-    """A fresh lock in a forked child: a thread that held it does not exist there."""
-    global _RENAME_LOCK
-    _RENAME_LOCK = threading.Lock()
-
-
-if hasattr(os, "register_at_fork"):  # not on Windows, which cannot fork
-    os.register_at_fork(after_in_child=_new_rename_lock)
+_RENAME_LOCK = ForkSafeLock()
 
 
 @contextlib.contextmanager

@@ -4,8 +4,6 @@ from __future__ import annotations
 
 import math
 import numbers
-import os
-import threading
 from collections.abc import Iterable, Mapping
 from dataclasses import KW_ONLY, dataclass, field
 from typing import TYPE_CHECKING, Any, Literal
@@ -24,6 +22,7 @@ from navkit._shared.frozen import (
     restore_slots,
     slot_names,
 )
+from navkit._shared.locks import ForkSafeLock
 from navkit._shared.types import FloatArray, IntArray
 from navkit._shared.validation import as_bool, as_float_array, finite_float, positive_float
 from navkit.geometry import Pose2D, as_pose
@@ -1266,17 +1265,7 @@ class World:
 
 
 #: Serializes the queries of shared shapely geometries (see World._point_in_solid).
-_GEOS_LOCK = threading.Lock()
-
-
-def _new_geos_lock() -> None:
-    """A fresh lock in a forked child: a thread that held it does not exist there."""
-    global _GEOS_LOCK
-    _GEOS_LOCK = threading.Lock()
-
-
-if hasattr(os, "register_at_fork"):  # not on Windows, which cannot fork
-    os.register_at_fork(after_in_child=_new_geos_lock)
+_GEOS_LOCK = ForkSafeLock()
 
 #: Slots of the worlds pickled before :meth:`World._place` published its placements whole.
 _OLD_PLACEMENT_SLOTS = frozenset({"_dyn_segs", "_dyn_circles", "_moving_t"})

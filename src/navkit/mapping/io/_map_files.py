@@ -21,7 +21,6 @@ import os
 import re
 import reprlib
 import struct
-import threading
 import warnings
 import zlib
 from collections.abc import Iterator
@@ -35,6 +34,7 @@ from numpy.typing import NDArray
 
 from navkit._shared.files import atomic_paths
 from navkit._shared.frozen import frozen_setattr
+from navkit._shared.locks import ForkSafeLock
 from navkit.geometry import Pose2D
 from navkit.mapping import OccupancyGrid
 from navkit.mapping.io._paths import as_path, open_regular
@@ -551,17 +551,7 @@ def _pillow(what: str) -> Any:
 
 #: Held while :func:`_hidden_bomb_warning` changes the process-wide warning filters
 #: (re-entrant: a block of one may open the image again).
-_WARNINGS_LOCK = threading.RLock()
-
-
-def _new_warnings_lock() -> None:
-    """A fresh lock in a forked child: a thread that held it does not exist there."""
-    global _WARNINGS_LOCK
-    _WARNINGS_LOCK = threading.RLock()
-
-
-if hasattr(os, "register_at_fork"):  # not on Windows, which cannot fork
-    os.register_at_fork(after_in_child=_new_warnings_lock)
+_WARNINGS_LOCK = ForkSafeLock(reentrant=True)
 
 
 @contextlib.contextmanager

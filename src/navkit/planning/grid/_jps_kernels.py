@@ -56,7 +56,7 @@ from navkit._shared.jit import (
     typed_njit,
 )
 from navkit._shared.types import KernelInt
-from navkit.planning.grid._limits import INF_BITS, read_only, scanned_cost_range
+from navkit.planning.grid._limits import compiled_cost_range
 from navkit.planning.grid._search_heap import (
     _precedes,
     node_of,
@@ -173,6 +173,9 @@ def jps_tables(
     cell); :func:`_columns` transposes the row words 64 x 64 bits at a time.
     """
     rows, cols = grid.shape
+    # The scan first: it streams the whole grid through the caches, and the
+    # search that follows wants the tables (built last) in them.
+    lowest, highest = compiled_cost_range(grid, name)
     hw = ((cols + 2 + 63) >> 6) + 2
     # One bool per bit of the row table, padding words included: packed as one
     # flat array, it is the table. The array is kept per thread and reused for
@@ -187,16 +190,7 @@ def jps_tables(
     free[1 : rows + 1, cols + 65 :] = False
     flat_rows = np.packbits(free.reshape(-1), bitorder="little").view("<u8")
     col_bits = np.zeros((cols + 2) * (((rows + 2 + 63) >> 6) + 2), dtype=np.uint64)
-    lo_bits, hi_bits = _columns(
-        flat_rows,
-        rows,
-        cols,
-        col_bits,
-        np.empty(64, dtype=np.uint64),
-        read_only(grid.reshape(-1).view(np.int64)),
-        INF_BITS,
-    )
-    lowest, highest = scanned_cost_range(grid, name, lo_bits, hi_bits)
+    _columns(flat_rows, rows, cols, col_bits, np.empty(64, dtype=np.uint64))
     return flat_rows, col_bits, lowest, highest
 
 
@@ -207,20 +201,11 @@ def _columns(
     cols: int,
     col_bits: np.ndarray,
     block: np.ndarray,
-    cost_bits: np.ndarray,
-    inf_bits: int,
-) -> tuple[int, int]:
+) -> None:
     """Fill the column bit table ``col_bits`` (zeros) of :func:`jps_tables` from the row table.
 
-    Transposes 64 x 64 bit blocks in the scratch ``block`` of 64 words. Also
-    scans the costs' bit patterns ``cost_bits`` (the float64 grid viewed as
-    int64) and returns the smallest pattern and the largest one other than
-    ``inf_bits`` (``INF_BITS``; -1 if none), for
-    :func:`~navkit.planning.grid._limits.scanned_cost_range`.
+    Transposes 64 x 64 bit blocks in the scratch ``block`` of 64 words.
     """
-    # The scan first: it streams the whole grid through the caches, and the
-    # search that follows wants the tables (read and written last) in them.
-    lo, hi = _scan_costs(cost_bits, inf_bits)
     hw = ((cols + 2 + 63) >> 6) + 2
     vw = ((rows + 2 + 63) >> 6) + 2
     for qb in range((rows + 2 + 63) >> 6):
@@ -239,22 +224,6 @@ def _columns(
                 _transpose64(block)  # else all free: every column word is all ones
             for j in range(min(64, cols + 2 - 64 * pb)):
                 col_bits[(64 * pb + j) * vw + qb + 1] = block[j]
-    return lo, hi
-
-
-@njit_helper
-def _scan_costs(bits: np.ndarray, inf_bits: int) -> tuple[int, int]:
-    """(smallest of ``bits``, largest one other than ``inf_bits`` or -1).
-
-    Integer comparisons vectorise, so this costs what ``ndarray.min`` costs.
-    """
-    lo = bits[0]
-    hi = -1
-    for i in range(bits.shape[0]):
-        v = bits[i]
-        lo = min(lo, v)
-        hi = max(hi, v if v != inf_bits else -1)
-    return lo, hi
 
 
 @_helper_not_inlined
