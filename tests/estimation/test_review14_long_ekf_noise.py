@@ -24,6 +24,7 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from python_noise_checks import counting
 
 import navkit.estimation._ekf as ekf_module
 from hypothesis_twins import slow_twin
@@ -34,25 +35,13 @@ from navkit.estimation._ekf_kernels import _R, _RS, set_q, set_r
 Array = np.ndarray[Any, np.dtype[np.float64]]
 
 
-def _counting(monkeypatch: pytest.MonkeyPatch) -> list[str]:
-    """Record the name of every matrix the public layer validates in Python."""
-    seen: list[str] = []
-
-    def counted(value: Any, name: str, n: int, *, semidefinite: bool = False) -> Array:
-        seen.append(name)
-        return covariance(value, name, n, semidefinite=semidefinite)
-
-    monkeypatch.setattr(ekf_module, "covariance", counted)
-    return seen
-
-
 def test_a_q_and_r_that_change_every_step_are_not_checked_in_python(
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
     """A 100 Hz loop's jittered dt and a per-message R: no Python validation at all."""
     rng = np.random.default_rng(7)
     ekf = ExtendedKalmanFilter([0.0, 0.0, 0.0], np.eye(3), angle_states=[2])
-    seen = _counting(monkeypatch)
+    seen = counting(monkeypatch)
     q_rate = np.diag([0.05, 0.05, 0.02])
     h_mat = np.array([[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]])
     for _ in range(300):
@@ -74,7 +63,7 @@ def test_a_q_that_is_not_plainly_valid_is_still_checked_in_python(
     review 15: test_review15_ekf_residual_choice.)
     """
     ekf = ExtendedKalmanFilter([0.0, 0.0], np.eye(2))
-    seen = _counting(monkeypatch)
+    seen = counting(monkeypatch)
     dominant = np.array([[1.0, 0.9], [0.9, 1.0]])  # 0.9 <= 1.0 in each row
     not_dominant = np.array([[1.0, 2.0], [2.0, 4.0]])  # PSD (singular), and 2.0 > 1.0
     ekf.predict(lambda x: x, np.eye(2), dominant)

@@ -290,6 +290,15 @@ def _equal(a: FloatArray, b: FloatArray, n: int) -> bool:
 
 
 @njit_force_inline
+def _keep(a: FloatArray, kept: FloatArray, kept_sym: FloatArray, n: int) -> None:
+    """Store ``a`` and ``0.5 a + 0.5 aᵀ`` as the validated noise, as the Python check does."""
+    for i in range(n):
+        for j in range(n):
+            kept[i, j] = a[i, j]
+            kept_sym[i, j] = 0.5 * a[i, j] + 0.5 * a[j, i]
+
+
+@njit_force_inline
 def _adopt_dominant(
     a: FloatArray, kept: FloatArray, kept_sym: FloatArray, n: int, factor: float, floor: float
 ) -> bool:
@@ -322,10 +331,7 @@ def _adopt_dominant(
                 off += abs(v)
         if not factor * off <= d:
             return False
-    for i in range(n):
-        for j in range(n):
-            kept[i, j] = a[i, j]
-            kept_sym[i, j] = 0.5 * a[i, j] + 0.5 * a[j, i]
+    _keep(a, kept, kept_sym, n)
     return True
 
 
@@ -368,10 +374,7 @@ def _adopt_positive(
         return False
     if not _positive_definite(a, work, inv_d, n):
         return False
-    for i in range(n):
-        for j in range(n):
-            kept[i, j] = a[i, j]
-            kept_sym[i, j] = 0.5 * a[i, j] + 0.5 * a[j, i]
+    _keep(a, kept, kept_sym, n)
     return True
 
 
