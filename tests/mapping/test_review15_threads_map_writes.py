@@ -13,6 +13,7 @@ for A instead, and the map on disk is all of one save.
 from __future__ import annotations
 
 import os
+import sys
 import threading
 from collections.abc import Callable
 from pathlib import Path
@@ -106,3 +107,44 @@ def test_saves_of_one_map_in_many_threads_leave_one_whole_map(tmp_path: Path) ->
     got = read_map(path)
     assert _same(got, A) or _same(got, B)
     assert sorted(p.name for p in tmp_path.iterdir()) == ["map.pgm", "map.yaml"]
+
+
+def _first_saves(path: Path, grids: list[OccupancyGrid]) -> list[BaseException]:
+    """Save ``grids`` to a new ``path`` from one thread each, three times; the errors."""
+    barrier = threading.Barrier(len(grids))
+    errors: list[BaseException] = []
+
+    def save(grid: OccupancyGrid) -> None:
+        try:
+            barrier.wait()
+            for _ in range(3):  # a thread that lags finds others' first saves under way
+                write_map(grid, path)
+        except BaseException as exc:  # pragma: no cover - reported below
+            errors.append(exc)
+
+    threads = [threading.Thread(target=save, args=(g,)) for g in grids]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+    return errors
+
+
+def test_first_saves_of_one_map_in_threads_never_see_each_other_half_renamed(
+    tmp_path: Path,
+) -> None:
+    # A first save renames its image, then its YAML: in between, another thread's
+    # check "is the image there the map's?" read the image as a foreign one and
+    # refused to save (6 of 40 rounds like these before the check took the lock).
+    interval = sys.getswitchinterval()
+    sys.setswitchinterval(1e-6)  # threads switch often: the window is hit
+    try:
+        for round_ in range(20):
+            path = tmp_path / str(round_) / "map.yaml"
+            path.parent.mkdir()
+            errors = _first_saves(path, [A, B] * 4)
+            assert not errors, errors
+            got = read_map(path)
+            assert _same(got, A) or _same(got, B)
+    finally:
+        sys.setswitchinterval(interval)

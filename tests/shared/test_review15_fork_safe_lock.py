@@ -36,7 +36,7 @@ def _child_takes(lock: ForkSafeLock) -> int:
 
 @pytest.mark.parametrize(
     "lock",
-    [files._RENAME_LOCK, _map_files._WARNINGS_LOCK, _world._GEOS_LOCK, ForkSafeLock()],
+    [files.RENAME_LOCK, _map_files._WARNINGS_LOCK, _world._GEOS_LOCK, ForkSafeLock()],
     ids=["renames", "warnings", "geos", "new"],
 )
 def test_a_child_forked_while_another_thread_holds_the_lock_can_take_it(

@@ -18,15 +18,17 @@ from pathlib import Path
 
 from navkit._shared.locks import ForkSafeLock
 
-__all__ = ["atomic_path", "atomic_paths"]
+__all__ = ["RENAME_LOCK", "atomic_path", "atomic_paths"]
 
 #: Random temporary names tried before giving up.
 _ATTEMPTS = 100
 
 #: Held while one :func:`atomic_paths` renames its files over their targets: two
 #: threads saving the same files (a map's image and YAML) would otherwise
-#: interleave their renames and leave one's image with the other's YAML.
-_RENAME_LOCK = ForkSafeLock()
+#: interleave their renames and leave one's image with the other's YAML. A
+#: writer that looks at the targets before writing (is this image the map's?)
+#: holds it too, so that it never sees another thread's save half renamed.
+RENAME_LOCK = ForkSafeLock()
 
 
 @contextlib.contextmanager
@@ -93,7 +95,7 @@ def atomic_paths(targets: Sequence[Path]) -> Iterator[tuple[Path, ...]]:
             _sync(temporary, os.O_RDWR)
             with contextlib.suppress(FileNotFoundError):
                 os.chmod(temporary, stat.S_IMODE(os.stat(target).st_mode))
-        with _RENAME_LOCK:
+        with RENAME_LOCK:
             _replace_all(temporaries, targets)
     finally:
         for temporary in temporaries:

@@ -32,7 +32,7 @@ import numpy as np
 import yaml
 from numpy.typing import NDArray
 
-from navkit._shared.files import atomic_paths
+from navkit._shared.files import RENAME_LOCK, atomic_paths
 from navkit._shared.frozen import frozen_setattr
 from navkit._shared.locks import ForkSafeLock
 from navkit.geometry import Pose2D
@@ -1247,9 +1247,14 @@ def _image_path(yaml_path: Path, image_format: str) -> Path:
     for target in (yaml_path, image):
         if target.is_dir():
             raise ValueError(f"cannot write the map file {target}: it is a directory")
-    if image.exists() and yaml_path.exists() and os.path.samefile(image, yaml_path):
+    # Under the lock of the renames: another thread's save of this map, its image
+    # renamed and its YAML not yet, would read as a foreign image.
+    with RENAME_LOCK:
+        same = image.exists() and yaml_path.exists() and os.path.samefile(image, yaml_path)
+        foreign = not same and image.exists() and not _names_image(yaml_path, image)
+    if same:
         raise ValueError(f"{yaml_path} and {image} are the same file")
-    if image.exists() and not _names_image(yaml_path, image):
+    if foreign:
         raise ValueError(
             f"{image} already exists and is not the image of the map {yaml_path}: saving "
             "would overwrite it (another map's image?); remove it or save under another name"
