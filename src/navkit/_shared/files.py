@@ -27,8 +27,12 @@ _ATTEMPTS = 100
 #: threads saving the same files (a map's image and YAML) would otherwise
 #: interleave their renames and leave one's image with the other's YAML. A
 #: writer that looks at the targets before writing (is this image the map's?)
-#: holds it too, so that it never sees another thread's save half renamed.
-RENAME_LOCK = ForkSafeLock()
+#: holds it too, so that it never sees another thread's save half renamed. A
+#: writer whose save also removes a file its renames make stale (``write_map``:
+#: the map's image in the other format) holds it from that choice, through its
+#: ``atomic_paths`` block, to the removal, so that no other thread's save comes
+#: in between: the lock is re-entrant for that.
+RENAME_LOCK = ForkSafeLock(reentrant=True)
 
 
 @contextlib.contextmanager

@@ -1384,7 +1384,10 @@ def write_map(grid: OccupancyGrid, path: str | os.PathLike[str], *, mode: str = 
     a symbolic link) and no other YAML in the folder names it. Any other file
     is never removed, nor is that one if, by the time this save ends, another
     save of the map has replaced it or the YAML; if the removal fails, a
-    ``RuntimeWarning`` says so and the new map stays saved.
+    ``RuntimeWarning`` says so and the new map stays saved. Saves in threads
+    of one process take turns from that choice to the removal (their writes
+    included), so that overlapping saves of a map in the two modes leave one
+    map and its image only; saves from other processes are not waited for.
 
     Parameters
     ----------
@@ -1479,9 +1482,16 @@ def write_map(grid: OccupancyGrid, path: str | os.PathLike[str], *, mode: str = 
     text = map_yaml_text(meta, image.name)
     pixels = _map_image(grid, mode)  # image rows run top down
     data = pgm_bytes(pixels) if image_format == "pgm" else png_bytes(pixels)
-    # Decided before the YAML that names it is replaced.
-    superseded = _superseded_image(yaml_path, image)
-    _replace_all([(image, data), (yaml_path, text.encode("utf-8"))])
-    if superseded is not None:
-        _remove_superseded(superseded, yaml_path, image)
+    # Decided before the YAML that names it is replaced, and removed after; all three
+    # under the lock of the renames, so that another thread's save of this map in
+    # the other mode comes wholly before or after (else both could decide before
+    # either renamed, and leave the other mode's image beside the map, a "foreign"
+    # image refusing later saves; or one's removal could unlink the other's new
+    # image renamed between its check and its unlink). Other processes are not
+    # waited for: _remove_superseded checks the file is still the one chosen.
+    with RENAME_LOCK:
+        superseded = _superseded_image(yaml_path, image)
+        _replace_all([(image, data), (yaml_path, text.encode("utf-8"))])
+        if superseded is not None:
+            _remove_superseded(superseded, yaml_path, image)
     return image
