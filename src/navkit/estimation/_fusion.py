@@ -37,6 +37,7 @@ from navkit.estimation._fusion_kernels import (
     undo_step,
 )
 from navkit.estimation._gaussian import GaussianEstimate
+from navkit.estimation._odometry import anchored
 from navkit.estimation._result import (
     UpdateResult,
     _object_new,
@@ -594,6 +595,16 @@ class PlanarFusion(GaussianEstimate):
     float32 is 128 s coarse) are refused with a ``ValueError``: float64 would
     round the one, and the other has lost its timing already.
 
+    Position is never measured: x and y are dead reckoning. The filter keeps
+    the start position (``x0``, within ±1e15 m) apart and sums the motion from
+    it, so that a start far from the origin (UTM coordinates, 5e6 m, where
+    float64 values lie 9.3e-10 m apart) gives the run from the origin shifted,
+    to within a few float spacings: each step added to the coordinates
+    themselves would be rounded at their size, with one sign for steady motion
+    (1 kHz odometry from a northing of 5e6 m drifted by 1.6 cm per 100 km).
+    :attr:`x`, :attr:`pose` and :meth:`update_batch`'s states are the world
+    values; from a start at the origin they are the sums themselves, bit for bit.
+
     A filter is not thread-safe: one thread at a time may call its methods (in
     a ROS 2 node with a ``MultiThreadedExecutor``, put the callbacks that use
     it in one ``MutuallyExclusiveCallbackGroup``); different filters may run in
@@ -616,6 +627,7 @@ class PlanarFusion(GaussianEstimate):
     """
 
     __slots__ = (
+        "_anchor",
         "_buf",
         "_gates",
         "_kinds",
@@ -648,8 +660,13 @@ class PlanarFusion(GaussianEstimate):
         # x, P, Q, the current measurement, the filter time and scratch space live in one
         # flat array: the compiled online step takes just that array (see
         # _fusion_kernels.BUF_*).
-        self._adopt(np.zeros(k.BUF_SIZE), gates)
+        # The buffer holds x and y less the start's (see _odometry.anchored): the motion summed
+        # apart from the start, which far from the origin would round every step.
+        anchor = tuple(anchored(float(v)) for v in x[:2])
+        self._adopt(np.zeros(k.BUF_SIZE), gates, (anchor[0], anchor[1]))
         self._x[:] = x
+        self._x[0] -= anchor[0]  # exactly 0.0, or x as given when not anchored
+        self._x[1] -= anchor[1]
         self._x[2] = wrap_angle(float(self._x[2]))
         self._p[:, :] = _matrix(
             DEFAULT_INITIAL_VARIANCE if P0 is None else P0, "P0", semidefinite=False
@@ -662,8 +679,14 @@ class PlanarFusion(GaussianEstimate):
         # NaN until the clock is set (by t0 or the first measurement).
         self._buf[BUF_TIME] = math.nan if t0 is None else as_time(t0, "t0")
 
-    def _adopt(self, buf: FloatArray, gates: FloatArray) -> None:
-        """Take ``buf`` (see _fusion_kernels.BUF_*) and the chi-square ``gates`` as the filter's."""
+    def _adopt(
+        self, buf: FloatArray, gates: FloatArray, anchor: tuple[float, float] = (0.0, 0.0)
+    ) -> None:
+        """Take ``buf`` (see _fusion_kernels.BUF_*) and the chi-square ``gates`` as the filter's.
+
+        ``anchor`` is the world position that the buffer's x and y are relative to.
+        """
+        self._anchor = anchor
         self._buf = buf
         self._gates = gates
         # x, P, Q and the residuals are views of the buffer's rows: the kernels update
@@ -689,10 +712,10 @@ class PlanarFusion(GaussianEstimate):
         # subclass is rebuilt as itself, with what it adds restored after (see
         # extra_state).
         cls = type(self)
+        args = (self._buf.copy(), self._gates.copy(), cls, self._anchor)
         if cls is PlanarFusion:
-            return _restore_fusion, (self._buf.copy(), self._gates.copy())
-        extra = extra_state(self, below=PlanarFusion)
-        return _restore_fusion, (self._buf.copy(), self._gates.copy(), cls), extra
+            return _restore_fusion, args
+        return _restore_fusion, args, extra_state(self, below=PlanarFusion)
 
     @property
     def t(self) -> float | None:
@@ -701,9 +724,25 @@ class PlanarFusion(GaussianEstimate):
         return None if math.isnan(t) else t
 
     @property
+    def x(self) -> FloatArray:
+        """Current state estimate ``[x, y, θ, v, ω, a]`` (6,), a copy."""
+        out = np.array(self._x, dtype=np.float64, copy=True)
+        ax, ay = self._anchor
+        if ax or ay:
+            out[0] += ax
+            out[1] += ay
+        return out
+
+    @property
     def pose(self) -> Pose2D:
         """Current pose estimate."""
-        return Pose2D(float(self._x[0]), float(self._x[1]), float(self._x[2]))
+        ax, ay = self._anchor
+        x = float(self._x[0])
+        y = float(self._x[1])
+        if ax or ay:
+            x += ax
+            y += ay
+        return Pose2D(x, y, float(self._x[2]))
 
     def predict(self, t: float) -> None:
         """Propagate the state to time ``t`` (s) without a measurement.
@@ -1112,21 +1151,30 @@ class PlanarFusion(GaussianEstimate):
         k.planar_run(
             self._buf, log.times, log.values, variances, self._gates, out_x, out_p, status, nis
         )
+        ax, ay = self._anchor
+        if ax or ay:
+            out_x[:, 0] += ax
+            out_x[:, 1] += ay
         return _fusion_result(log.times, out_x, out_p, status, nis)
 
     def __repr__(self) -> str:
-        return f"PlanarFusion(t={self.t}, x={np.array2string(self._x, precision=4)})"
+        return f"PlanarFusion(t={self.t}, x={np.array2string(self.x, precision=4)})"
 
 
 def _restore_fusion(
-    buf: FloatArray, gates: FloatArray, cls: type[PlanarFusion] = PlanarFusion
+    buf: FloatArray,
+    gates: FloatArray,
+    cls: type[PlanarFusion] = PlanarFusion,
+    anchor: tuple[float, float] = (0.0, 0.0),
 ) -> PlanarFusion:
-    """A :class:`PlanarFusion` (or ``cls``) with the given buffer and gates.
+    """A :class:`PlanarFusion` (or ``cls``) with the given buffer, gates and anchor.
 
-    For unpickling and copies; pickles made before ``cls`` existed pass two arguments.
+    For unpickling and copies; pickles made before ``cls`` existed pass two
+    arguments, and those made before the anchor (whose buffers hold the
+    absolute position) three.
     """
     fusion: PlanarFusion = object.__new__(cls)
-    fusion._adopt(buf, gates)
+    fusion._adopt(buf, gates, (float(anchor[0]), float(anchor[1])))
     return fusion
 
 

@@ -10,6 +10,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from navkit._shared.deprecation import renamed_keyword
+from navkit._shared.frozen import restore_slots
 from navkit._shared.se2 import exp_body
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import (
@@ -57,19 +58,36 @@ def _pose(x: float, y: float, theta: float) -> Pose2D:
     return pose
 
 
-def _chain(pose: Pose2D, dx: FloatArray, dy: FloatArray, heading_before: FloatArray) -> FloatArray:
+def _chain(
+    anchor: tuple[float, float],
+    travel: tuple[float, float],
+    dx: FloatArray,
+    dy: FloatArray,
+    heading_before: FloatArray,
+) -> tuple[FloatArray, FloatArray]:
     """World positions after robot-frame steps (dx, dy) taken at the given headings.
 
-    Returns (T, 2) cumulative positions starting from ``pose``; the rotation of
-    every step is known up front, so the sequential composition is a cumulative
-    sum.
+    Returns the (T, 2) positions ``anchor + travelled`` and the (T, 2) world
+    displacements travelled since ``anchor``, the pose last set, starting from
+    ``travel``: the rotation of every step is known up front, so the sequential
+    composition is a cumulative sum, step by step as one :meth:`update` after
+    another adds them (``np.cumsum`` adds in order).
+
+    The steps are summed apart from the anchor, which is added last: added to
+    the coordinates themselves, each step would be rounded at their size, with
+    one sign for steady steps (1 mm steps at a UTM northing, 5e6 m, drifted by
+    2 cm per 100 km). From the origin (anchor 0) the positions are the plain
+    running sums, bit for bit.
     """
     c = np.cos(heading_before)
     s = np.sin(heading_before)
-    out = np.empty((dx.shape[0], 2))
-    out[:, 0] = pose.x + np.cumsum(c * dx - s * dy)
-    out[:, 1] = pose.y + np.cumsum(s * dx + c * dy)
-    return out
+    moved = np.empty((dx.shape[0] + 1, 2))
+    moved[0] = travel
+    moved[1:, 0] = c * dx - s * dy
+    moved[1:, 1] = s * dx + c * dy
+    np.cumsum(moved, axis=0, out=moved)
+    travelled = moved[1:]
+    return travelled + np.asarray(anchor), travelled
 
 
 def _cumulative_turn(turn: FloatArray) -> FloatArray:
@@ -96,6 +114,56 @@ def _cumulative_turn(turn: FloatArray) -> FloatArray:
     coarse = np.trunc(turn * _TURN_SPLIT) / _TURN_SPLIT
     out: FloatArray = wrap_angle(np.cumsum(coarse)) + np.cumsum(turn - coarse)
     return out
+
+
+#: Largest start coordinate, m, kept apart from the motion (see anchored).
+ANCHOR_LIMIT = 1e15
+
+
+def anchored(start: float) -> float:
+    """The part of a start coordinate kept apart from the motion summed since the start.
+
+    The start itself, so that each step is added to the motion since the start
+    (rounded at its size) rather than to the coordinate (rounded at the
+    coordinate's size, with one sign for steady motion: 1 mm steps at a UTM
+    northing, 5e6 m, drifted by 2 cm per 100 km). 0 for a start at 0 (the
+    coordinate as given, -0.0 included: the plain running sums, bit for bit)
+    and beyond ±1e15 m, where the start plus a motion near the float64 limit
+    could overflow although neither does (within ±1e15 m the sum rounds to the
+    largest float instead).
+
+    Examples
+    --------
+    >>> anchored(5123456.5), anchored(-0.0), anchored(1e300)
+    (5123456.5, 0.0, 0.0)
+    """
+    return start if 0.0 < abs(start) <= ANCHOR_LIMIT else 0.0
+
+
+def start_apart(pose: Pose2D) -> tuple[tuple[float, float], tuple[float, float]]:
+    """``(anchor, travel)`` of a start pose: its position split by :func:`anchored`.
+
+    Examples
+    --------
+    >>> start_apart(Pose2D(5e5, 0.0, 1.0))
+    ((500000.0, 0.0), (0.0, 0.0))
+    """
+    ax = anchored(pose.x)
+    ay = anchored(pose.y)
+    return (ax, ay), (pose.x - ax, pose.y - ay)
+
+
+def _restore_odometry(obj: DiffOdometry | OmniOdometry, state: Any) -> None:
+    """Restore an odometry's slots; a pickle without ``_anchor`` (older) sums from 0.
+
+    Such a pickle holds the absolute pose only: taken as the steps summed from
+    the origin, it carries on exactly as it did when it was saved.
+    """
+    restore_slots(obj, state)
+    if not hasattr(obj, "_anchor"):
+        pose = obj._pose
+        obj._anchor = (0.0, 0.0)
+        obj._travel = (pose.x, pose.y)
 
 
 def _finite_poses(out: FloatArray, name: str) -> None:
@@ -151,6 +219,16 @@ class OmniOdometry:
     call its methods; different odometries may run in different threads at
     once (sharing a drive, which is never changed).
 
+    Far from the origin (a start in UTM coordinates, 5e6 m, where float64
+    values lie 9.3e-10 m apart) the steps are summed apart from the start pose
+    (``pose``), which is added to the sum: the positions are those of the same
+    run from the origin, shifted, to within a few float spacings of the
+    coordinates, and :meth:`update` and :meth:`update_batch` agree bit for bit
+    however the readings are split. (Steps added to the coordinates themselves would each
+    be rounded at the coordinates' size, with one sign for steady motion: 1 mm
+    steps at a northing of 5e6 m drifted by 2 cm per 100 km.) From the origin
+    the positions are the plain running sums of the steps, bit for bit.
+
     Parameters
     ----------
     drive : OmniDrive
@@ -170,13 +248,20 @@ class OmniOdometry:
     Pose2D(x=0.07071..., y=0.07071..., theta=1.5707963267948966)
     """
 
-    __slots__ = ("_drive", "_pose")
+    __slots__ = ("_anchor", "_drive", "_pose", "_travel")
 
     def __init__(self, drive: OmniDrive, *, pose: Pose2D | ArrayLike | None = None) -> None:
         if not isinstance(drive, OmniDrive):
             raise TypeError(f"drive must be an OmniDrive, got {type(drive).__name__}")
         self._drive = drive
         self._pose = Pose2D(0.0, 0.0, 0.0) if pose is None else as_pose(pose, "pose")
+        # The position is the start plus the steps summed apart (see _chain): far
+        # from the origin, steps added to the coordinates would drift.
+        self._anchor, self._travel = start_apart(self._pose)
+
+    def __setstate__(self, state: Any) -> None:
+        """Restore a copy or a pickle (one made before the start was kept apart too)."""
+        _restore_odometry(self, state)
 
     @property
     def pose(self) -> Pose2D:
@@ -256,16 +341,21 @@ class OmniOdometry:
             # The same (1, N) product as update_batch's (a matrix-vector product
             # may sum in another order).
             bx, by, _ = (inc[None, :] @ self._drive.forward_matrix.T)[0].tolist()
-        pose = self._pose
         heading = wrap_angle(yaw)
-        before = pose.theta
+        before = self._pose.theta
         mid = before + 0.5 * wrap_angle(heading - before)
         c = math.cos(mid)
         s = math.sin(mid)
-        x = pose.x + (c * bx - s * by)
-        y = pose.y + (s * bx + c * by)
+        # _chain for one step: the step summed apart from the start, then the start.
+        travel_x, travel_y = self._travel
+        anchor_x, anchor_y = self._anchor
+        travel_x += c * bx - s * by
+        travel_y += s * bx + c * by
+        x = anchor_x + travel_x
+        y = anchor_y + travel_y
         if not (x - x == 0.0 and y - y == 0.0):
             return None
+        self._travel = (travel_x, travel_y)
         return _pose(x, y, heading)
 
     def update_batch(self, wheel_increments: ArrayLike, yaws: ArrayLike) -> FloatArray:
@@ -314,11 +404,14 @@ class OmniOdometry:
         out = np.empty((t + 1, 3))
         out[0] = self._pose.as_array()
         with np.errstate(over="ignore", invalid="ignore"):
-            out[1:, :2] = _chain(self._pose, body[:, 0], body[:, 1], previous + 0.5 * turn)
+            out[1:, :2], travelled = _chain(
+                self._anchor, self._travel, body[:, 0], body[:, 1], previous + 0.5 * turn
+            )
         out[1:, 2] = heading
         _finite_poses(out, "wheel_increments")
         if t:
             self._pose = Pose2D.from_array(out[-1])
+            self._travel = (float(travelled[-1, 0]), float(travelled[-1, 1]))
         return out
 
     def __repr__(self) -> str:
@@ -337,6 +430,17 @@ class DiffOdometry:
 
     An ordinary class with ``__slots__`` rather than a frozen dataclass: every
     reading moves its pose and latches the counters.
+
+    Far from the origin (a start in UTM coordinates, 5e6 m, where float64
+    values lie 9.3e-10 m apart) the steps are summed apart from the start pose
+    (the last one given to the constructor or :meth:`reset`), which is added
+    to the sum: the positions are those of the same run from the origin,
+    shifted, to within a few float spacings of the coordinates, and
+    :meth:`update` and :meth:`update_batch` agree bit for bit however the
+    readings are split. (Steps added to the coordinates themselves would each
+    be rounded at the coordinates' size, with one sign for steady motion: 1 mm
+    steps at a northing of 5e6 m drifted by 2 cm per 100 km.) From the origin
+    the positions are the plain running sums of the steps, bit for bit.
 
     Parameters
     ----------
@@ -383,6 +487,7 @@ class DiffOdometry:
     """
 
     __slots__ = (
+        "_anchor",
         "_bits",
         "_drive",
         "_high",
@@ -394,6 +499,7 @@ class DiffOdometry:
         "_scale_left",
         "_scale_right",
         "_ticks_per_rev",
+        "_travel",
     )
 
     def __init__(
@@ -422,6 +528,9 @@ class DiffOdometry:
         self._ticks_per_rev = positive_float(ticks_per_rev, "ticks_per_rev")
         self._bits = bits
         self._pose = start
+        # The position is the start plus the steps summed apart (see _chain): far
+        # from the origin, steps added to the coordinates would drift.
+        self._anchor, self._travel = start_apart(start)
         self._method: OdometryMethod = method
         self._last: tuple[int, int] | None = None
         # For the scalar fast path of update(): the counter range, and metres per
@@ -488,6 +597,7 @@ class DiffOdometry:
         self._last = None
         if new_pose is not None:
             self._pose = new_pose
+            self._anchor, self._travel = start_apart(new_pose)
 
     def update(self, left_ticks: int, right_ticks: int) -> Pose2D:
         """Read both encoder counters and return the new pose.
@@ -585,10 +695,15 @@ class DiffOdometry:
         before = pose.theta
         c = math.cos(before)
         s = math.sin(before)
-        x = pose.x + (c * dx - s * dy)
-        y = pose.y + (s * dx + c * dy)
+        travel_x, travel_y = self._travel
+        anchor_x, anchor_y = self._anchor
+        travel_x += c * dx - s * dy
+        travel_y += s * dx + c * dy
+        x = anchor_x + travel_x
+        y = anchor_y + travel_y
         if not (x - x == 0.0 and y - y == 0.0):
             return None
+        self._travel = (travel_x, travel_y)
         return _pose(x, y, wrap_angle(before + wrap_angle(dth)))
 
     def update_batch(self, left_ticks: ArrayLike, right_ticks: ArrayLike) -> FloatArray:
@@ -659,12 +774,19 @@ class DiffOdometry:
         before = np.concatenate(([self._pose.theta], theta[:-1]))
         out = np.empty((t, 3))
         with np.errstate(over="ignore", invalid="ignore"):
-            out[:, :2] = _chain(self._pose, steps[:, 0], steps[:, 1], before)
+            out[:, :2], travelled = _chain(
+                self._anchor, self._travel, steps[:, 0], steps[:, 1], before
+            )
         _finite_poses(out[:, :2], "left_ticks, right_ticks")
         out[:, 2] = wrap_angle(theta)
         self._pose = Pose2D.from_array(out[-1])
+        self._travel = (float(travelled[-1, 0]), float(travelled[-1, 1]))
         self._last = (int(left[-1]), int(right[-1]))
         return out
+
+    def __setstate__(self, state: Any) -> None:
+        """Restore a copy or a pickle (one made before the start was kept apart too)."""
+        _restore_odometry(self, state)
 
     def __repr__(self) -> str:
         return (
