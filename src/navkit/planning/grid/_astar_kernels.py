@@ -45,8 +45,11 @@ def _cells_to_goal(r: KernelInt, c: KernelInt, gr: int, gc: int, octile: bool) -
     dr: KernelInt = abs(r - gr)  # type: ignore[assignment]
     dc: KernelInt = abs(c - gc)  # type: ignore[assignment]
     if octile:
-        # min/max rather than a branch: the comparison is unpredictable.
-        return max(dr, dc) + _OCTILE_EXTRA * min(dr, dc)
+        # Selects (LLVM makes them branch-free: the comparison is unpredictable),
+        # not the min/max builtins, which numba compiles as overloads of their own.
+        longer = dr if dr > dc else dc
+        shorter = dc if dr > dc else dr
+        return longer + _OCTILE_EXTRA * shorter
     return float(dr + dc)
 
 

@@ -222,7 +222,8 @@ def _columns(
                 continue  # all blocked: the column words stay 0
             if every != _ALL:
                 _transpose64(block)  # else all free: every column word is all ones
-            for j in range(min(64, cols + 2 - 64 * pb)):
+            left = cols + 2 - 64 * pb  # not min(): a builtin overload to compile
+            for j in range(64 if left > 64 else left):
                 col_bits[(64 * pb + j) * vw + qb + 1] = block[j]
 
 
@@ -392,14 +393,14 @@ def _heap_push(heap: np.ndarray, n: KernelInt, f: float, key: float) -> None:
 
 
 @njit_helper
-def _heap_replace_top(heap: np.ndarray, last: KernelInt, f: float, key: float) -> int:
+def _heap_replace_top(heap: np.ndarray, last: KernelInt, f: float, key: float) -> KernelInt:
     """Replace the smallest of the entries ``0 .. last`` by (f, key); return its node.
 
     One walk down from the root, stopping where (f, key) fits. A pop is this
     with (f, key) the last entry and ``last`` one less.
     """
     top = node_of(heap[1])
-    i = 0
+    i: KernelInt = 0
     while True:
         best, bf, bk = smallest_child(heap, 0, i, last + 1)
         if best < 0 or not _precedes(bf, bk, f, key):
@@ -733,7 +734,8 @@ def _offer(
     # mypy infers abs() of an ``int | np.int64`` as ``object``.
     adr: KernelInt = abs(vr - gr)  # type: ignore[assignment]
     adc: KernelInt = abs(vc - gc)  # type: ignore[assignment]
-    h = max(adr, adc) + _OCTILE_EXTRA * min(adr, adc)
+    # Selects, not the min/max builtins (compiled as overloads of their own).
+    h = (adr if adr > adc else adc) + _OCTILE_EXTRA * (adc if adr > adc else adr)
     f = new_g + h
     key = tie_key(h, v)
     if f < next_f or (f == next_f and key < next_key):
@@ -806,23 +808,25 @@ def _trace(meta: np.ndarray, cols: int, goal: int, out: np.ndarray) -> tuple[int
         u = meta[4 * v + 2]
         ur = u // cols
         vr = v // cols
-        k += max(abs(vr - ur), abs((v - vr * cols) - (u - ur * cols)))
+        dr = abs(vr - ur)
+        dc = abs((v - vr * cols) - (u - ur * cols))
+        k += dr if dr > dc else dc
         v = u
     if 2 * k > out.size:
         return k, 0
     n_diag = 0
     i = k - 1
     v = goal
-    r = v // cols
-    c = v - r * cols
+    r: KernelInt = v // cols
+    c: KernelInt = v - r * cols
     out[2 * i] = r
     out[2 * i + 1] = c
     while meta[4 * v + 2] >= 0:
         u = meta[4 * v + 2]
         ur = u // cols
         uc = u - ur * cols
-        sr = int(ur > r) - int(ur < r)
-        sc = int(uc > c) - int(uc < c)
+        sr = np.int64(ur > r) - np.int64(ur < r)
+        sc = np.int64(uc > c) - np.int64(uc < c)
         diagonal = sr != 0 and sc != 0
         while r != ur or c != uc:
             r += sr

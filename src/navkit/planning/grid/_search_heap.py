@@ -60,13 +60,16 @@ _TIE_MAX = float(2**20 - 1)
 @njit_inline
 def tie_key(tie: float, node: KernelInt) -> float:
     """Tie key of ``node``: ``tie`` (>= 0, resolution 1/16, saturating) then node id."""
-    return math.floor(min(tie * _TIE_RESOLUTION, _TIE_MAX)) * _TWO32 + node
+    # A select, not min(): numba compiles the builtin as an overload of its own.
+    t = tie * _TIE_RESOLUTION
+    return math.floor(t if t < _TIE_MAX else _TIE_MAX) * _TWO32 + node
 
 
 @njit_inline
-def node_of(key: float) -> int:
+def node_of(key: float) -> KernelInt:
     """Node id packed into a tie key."""
-    return int(key) & _LOW32
+    # np.int64, not int(): numba compiles int() as an overload of its own on first use.
+    return np.int64(key) & _LOW32
 
 
 @njit_inline
@@ -80,13 +83,11 @@ REC_BASE = 3
 the children ``4i + 1 .. 4i + 4`` of every slot then start on a 64-byte boundary
 and share one cache line (``4i + 1 + REC_BASE`` is a multiple of 4)."""
 
-
-@njit_inline
-def _rec_place(heap: np.ndarray, meta: np.ndarray, i: KernelInt, f: float, key: float) -> None:
-    """Store the entry (f, key) in slot i and record the slot in its node's record."""
-    heap[2 * i + 2 * REC_BASE] = f
-    heap[2 * i + 2 * REC_BASE + 1] = key
-    meta[4 * node_of(key) + 3] = i
+# Placing entry (f, key) in slot i is written out where it happens (three
+# stores: f, key, and the slot into the node's record at ``meta[4 * node + 3]``)
+# rather than as an ``inline="always"`` helper: numba copies and re-processes
+# such a helper's IR at every call site, a few hundredths of a second of
+# first-use compilation each (issue 17).
 
 
 @_helper_not_inlined
@@ -101,17 +102,21 @@ def rec_sift_up(heap: np.ndarray, meta: np.ndarray, i: KernelInt, f: float, key:
         pf = heap[2 * parent + 2 * REC_BASE]
         pk = heap[2 * parent + 2 * REC_BASE + 1]
         if f < pf or (f == pf and key < pk):
-            _rec_place(heap, meta, i, pf, pk)
+            heap[2 * i + 2 * REC_BASE] = pf
+            heap[2 * i + 2 * REC_BASE + 1] = pk
+            meta[4 * (np.int64(pk) & _LOW32) + 3] = i
             i = parent
         else:
             break
-    _rec_place(heap, meta, i, f, key)
+    heap[2 * i + 2 * REC_BASE] = f
+    heap[2 * i + 2 * REC_BASE + 1] = key
+    meta[4 * (np.int64(key) & _LOW32) + 3] = i
 
 
 @njit_inline
 def smallest_child(
-    heap: np.ndarray, b: int, i: int, n: KernelInt
-) -> tuple[int, float, float]:
+    heap: np.ndarray, b: KernelInt, i: KernelInt, n: KernelInt
+) -> tuple[KernelInt, float, float]:
     """Smallest child (slot, f, key) of slot i among ``n`` entries; slot -1 when none.
 
     Slot ``j`` of the heap is at entries ``b + 2 * j`` (f) and ``b + 2 * j + 1``
@@ -122,11 +127,11 @@ def smallest_child(
     if first + 3 < n:
         # A two-round tournament on indices only, as in pop.
         a = b + 2 * first
-        b_wins = int(_precedes(heap[a + 2], heap[a + 3], heap[a], heap[a + 1]))
-        d_wins = int(_precedes(heap[a + 6], heap[a + 7], heap[a + 4], heap[a + 5]))
+        b_wins = np.int64(_precedes(heap[a + 2], heap[a + 3], heap[a], heap[a + 1]))
+        d_wins = np.int64(_precedes(heap[a + 6], heap[a + 7], heap[a + 4], heap[a + 5]))
         left = first + b_wins
         right = first + 2 + d_wins
-        r_wins = int(
+        r_wins = np.int64(
             _precedes(
                 heap[b + 2 * right],
                 heap[b + 2 * right + 1],
@@ -134,7 +139,7 @@ def smallest_child(
                 heap[b + 2 * left + 1],
             )
         )
-        best = left + r_wins * (right - left)
+        best: KernelInt = left + r_wins * (right - left)
         return best, heap[b + 2 * best], heap[b + 2 * best + 1]
     if first >= n:
         return -1, 0.0, 0.0
@@ -152,21 +157,23 @@ def smallest_child(
 
 
 @njit_helper
-def rec_pop(heap: np.ndarray, meta: np.ndarray, n: KernelInt) -> int:
+def rec_pop(heap: np.ndarray, meta: np.ndarray, n: KernelInt) -> KernelInt:
     """Remove the smallest of the ``n`` (> 0) entries and return its node."""
-    top = node_of(heap[2 * REC_BASE + 1])
+    top = np.int64(heap[2 * REC_BASE + 1]) & _LOW32  # node_of, written out
     last = n - 1
     if last == 0:
         return top
     f = heap[2 * REC_BASE + 2 * last]
     key = heap[2 * REC_BASE + 2 * last + 1]
     # Floyd's method: the hole goes down to a leaf, then the last entry up.
-    i = 0
+    i: KernelInt = 0
     while True:
         best, bestf, bestk = smallest_child(heap, 2 * REC_BASE, i, last)
         if best < 0:
             break
-        _rec_place(heap, meta, i, bestf, bestk)
+        heap[2 * i + 2 * REC_BASE] = bestf
+        heap[2 * i + 2 * REC_BASE + 1] = bestk
+        meta[4 * (np.int64(bestk) & _LOW32) + 3] = i
         i = best
     rec_sift_up(heap, meta, np.int64(i), f, key)
     return top
@@ -175,15 +182,16 @@ def rec_pop(heap: np.ndarray, meta: np.ndarray, n: KernelInt) -> int:
 @njit_helper
 def rec_replace_top(
     heap: np.ndarray, meta: np.ndarray, n: KernelInt, f: float, key: float
-) -> int:
+) -> KernelInt:
     """Remove the top of the ``n`` (> 0) entries, add (f, key) and return the removed node.
 
     One walk down from the root, stopping where (f, key) fits: cheaper than a
     push and a pop when (f, key) is near the top, as the best new neighbour
     of the cell just expanded usually is.
     """
-    top = node_of(heap[2 * REC_BASE + 1])
-    _rec_sift_down(heap, meta, 0, n, f, key)
+    top = np.int64(heap[2 * REC_BASE + 1]) & _LOW32  # node_of, written out
+    # np.int64: a literal 0 would compile _rec_sift_down once more.
+    _rec_sift_down(heap, meta, np.int64(0), n, f, key)
     return top
 
 
@@ -208,21 +216,32 @@ def rec_remove(heap: np.ndarray, meta: np.ndarray, n: KernelInt, i: KernelInt) -
         if _precedes(f, key, pf, pk):
             rec_sift_up(heap, meta, i, f, key)
             return
-    _rec_sift_down(heap, meta, int(i), last, f, key)
+    _rec_sift_down(heap, meta, i, last, f, key)
 
 
-@njit_inline
+@njit_helper
 def _rec_sift_down(
-    heap: np.ndarray, meta: np.ndarray, i: int, n: KernelInt, f: float, key: float
+    heap: np.ndarray, meta: np.ndarray, i: KernelInt, n: KernelInt, f: float, key: float
 ) -> None:
-    """Move the hole at slot i down past smaller children (``n`` entries), then put (f, key) in."""
+    """Move the hole at slot i down past smaller children (``n`` entries), then put (f, key) in.
+
+    A helper of its own, shared by :func:`rec_replace_top` and
+    :func:`rec_remove` (issue 17: as an ``inline="always"`` function its body
+    and the inlined :func:`smallest_child` were typed again in each, about
+    0.4 s of first use). Not LLVM-inlined (``forceinline``) either: that made
+    corner-cutting A* on rooms 3 % slower.
+    """
     while True:
         best, bestf, bestk = smallest_child(heap, 2 * REC_BASE, i, n)
         if best < 0 or not _precedes(bestf, bestk, f, key):
             break
-        _rec_place(heap, meta, i, bestf, bestk)
+        heap[2 * i + 2 * REC_BASE] = bestf
+        heap[2 * i + 2 * REC_BASE + 1] = bestk
+        meta[4 * (np.int64(bestk) & _LOW32) + 3] = i
         i = best
-    _rec_place(heap, meta, i, f, key)
+    heap[2 * i + 2 * REC_BASE] = f
+    heap[2 * i + 2 * REC_BASE + 1] = key
+    meta[4 * (np.int64(key) & _LOW32) + 3] = i
 
 
 def aligned_heap(entries: int) -> np.ndarray:
