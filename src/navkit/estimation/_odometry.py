@@ -436,10 +436,12 @@ class DiffOdometry:
     (the last one given to the constructor or :meth:`reset`), which is added
     to the sum: the positions are those of the same run from the origin,
     shifted, to within a few float spacings of the coordinates, and
-    :meth:`update` and :meth:`update_batch` agree bit for bit however the
-    readings are split. (Steps added to the coordinates themselves would each
-    be rounded at the coordinates' size, with one sign for steady motion: 1 mm
-    steps at a northing of 5e6 m drifted by 2 cm per 100 km.) From the origin
+    :meth:`update` and :meth:`update_batch` agree to within as much however
+    the readings are split (a batch sums the turns where one reading at a time
+    wraps each, so the headings may differ in the last bits). (Steps added to
+    the coordinates themselves would each be rounded at the coordinates' size,
+    with one sign for steady motion: 1 mm steps at a northing of 5e6 m drifted
+    by 2 cm per 100 km.) From the origin
     the positions are the plain running sums of the steps, bit for bit.
 
     Parameters
