@@ -153,6 +153,28 @@ def start_apart(pose: Pose2D) -> tuple[tuple[float, float], tuple[float, float]]
     return (ax, ay), (pose.x - ax, pose.y - ay)
 
 
+def _step_apart(
+    anchor: tuple[float, float],
+    travel: tuple[float, float],
+    c: float,
+    s: float,
+    dx: float,
+    dy: float,
+) -> tuple[float, float, tuple[float, float]] | None:
+    """One robot-frame step (dx, dy) at heading (cos ``c``, sin ``s``), as :func:`_chain`.
+
+    Returns the world position ``anchor + travel + step`` and the new travel, or
+    None when the position is not finite (the caller's fallback raises).
+    """
+    tx = travel[0] + (c * dx - s * dy)
+    ty = travel[1] + (s * dx + c * dy)
+    x = anchor[0] + tx
+    y = anchor[1] + ty
+    if not (x - x == 0.0 and y - y == 0.0):
+        return None
+    return x, y, (tx, ty)
+
+
 def _restore_odometry(obj: DiffOdometry | OmniOdometry, state: Any) -> None:
     """Restore an odometry's slots; a pickle without ``_anchor`` (older) sums from 0.
 
@@ -347,15 +369,10 @@ class OmniOdometry:
         c = math.cos(mid)
         s = math.sin(mid)
         # _chain for one step: the step summed apart from the start, then the start.
-        travel_x, travel_y = self._travel
-        anchor_x, anchor_y = self._anchor
-        travel_x += c * bx - s * by
-        travel_y += s * bx + c * by
-        x = anchor_x + travel_x
-        y = anchor_y + travel_y
-        if not (x - x == 0.0 and y - y == 0.0):
+        moved = _step_apart(self._anchor, self._travel, c, s, bx, by)
+        if moved is None:
             return None
-        self._travel = (travel_x, travel_y)
+        x, y, self._travel = moved
         return _pose(x, y, heading)
 
     def update_batch(self, wheel_increments: ArrayLike, yaws: ArrayLike) -> FloatArray:
@@ -697,15 +714,10 @@ class DiffOdometry:
         before = pose.theta
         c = math.cos(before)
         s = math.sin(before)
-        travel_x, travel_y = self._travel
-        anchor_x, anchor_y = self._anchor
-        travel_x += c * dx - s * dy
-        travel_y += s * dx + c * dy
-        x = anchor_x + travel_x
-        y = anchor_y + travel_y
-        if not (x - x == 0.0 and y - y == 0.0):
+        moved = _step_apart(self._anchor, self._travel, c, s, dx, dy)
+        if moved is None:
             return None
-        self._travel = (travel_x, travel_y)
+        x, y, self._travel = moved
         return _pose(x, y, wrap_angle(before + wrap_angle(dth)))
 
     def update_batch(self, left_ticks: ArrayLike, right_ticks: ArrayLike) -> FloatArray:
