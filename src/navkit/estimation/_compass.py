@@ -220,8 +220,13 @@ class CompassCalibration:
         if self._unwrap:
             flat = yaw.reshape(-1)
             previous = float(flat[0]) if self._last is None else self._last
-            unwrapped, self._correction = _unwrap_after(flat, previous, self._correction)
-            self._last = float(flat[-1])
+            unwrapped, correction = _unwrap_after(flat, previous, self._correction)
+            last = float(flat[-1])
+            # Stored together, with no call between (Python delivers a
+            # KeyboardInterrupt at calls): a correction without its last yaw would
+            # unwrap the next readings from the wrong one, 2π off.
+            self._correction = correction
+            self._last = last
             yaw = unwrapped.reshape(yaw.shape)
         if yaw.ndim == 0:
             return float(yaw)

@@ -561,11 +561,17 @@ class ExtendedKalmanFilter(GaussianEstimate):
         self, indices: IntArray, threshold: float, angle_measurements: object, gate: object
     ) -> None:
         """Store validated options in the current buffer, keyed by the objects passed."""
+        # The keys stand for no options while the buffer changes: Python delivers a
+        # KeyboardInterrupt as a call returns, and one as set_options returned left
+        # the new options under the old keys, which the next update passing those
+        # objects took for the buffer's (no angle wrapping, no gate: a wrong step).
+        entry = self._entry
+        entry[2] = self._options = _UNSET
+        entry[3] = self._gate = _UNSET
         set_options(self._rbuf, indices, threshold)
         # Only immutable objects can stand for their values.
         key = angle_measurements if type(angle_measurements) is tuple else _UNSET
         gate_key = gate if gate is None or type(gate) in (float, int) else _UNSET
-        entry = self._entry
         entry[2] = self._options = key
         entry[3] = self._gate = gate_key
 

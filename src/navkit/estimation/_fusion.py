@@ -779,7 +779,11 @@ class PlanarFusion(GaussianEstimate):
         if time < last:
             raise ValueError(f"t={time} s is older than the filter time {last} s")
         # The online step without a measurement (count 0): compiled once with the updates.
-        status, _ = _step(self._buf, time, 0, 0, 0.0, 0.0, 0.0, 0.0, math.inf)
+        try:
+            status, _ = _step(self._buf, time, 0, 0, 0.0, 0.0, 0.0, 0.0, math.inf)
+        except BaseException:
+            self._settle()
+            raise
         if status == TIME_GAP:
             undo_step(self._buf)
             raise FilterError(
@@ -837,9 +841,13 @@ class PlanarFusion(GaussianEstimate):
         # any check fails; then, and for anything but plain floats, the general way
         # validates and explains.
         if type(t) is type(v) is type(omega) is type(v_variance) is type(omega_variance) is float:
-            status, nis = _step(
-                self._buf, t, 1, 2, v, omega, v_variance, omega_variance, self._odometry_gate
-            )
+            try:
+                status, nis = _step(
+                    self._buf, t, 1, 2, v, omega, v_variance, omega_variance, self._odometry_gate
+                )
+            except BaseException:
+                self._settle()
+                raise
             if not status:
                 # new_result(True, nis, residual, None), written out: this saves a call.
                 result = _object_new(UpdateResult)
@@ -1028,7 +1036,11 @@ class PlanarFusion(GaussianEstimate):
         # Fast path: plain floats go straight to the compiled step, which checks the rest
         # (see update_odometry).
         if type(t) is type(z0) is type(z1) is type(var0) is type(var1) is float:
-            status, nis = _step(self._buf, t, first, count, z0, z1, var0, var1, gate)
+            try:
+                status, nis = _step(self._buf, t, first, count, z0, z1, var0, var1, gate)
+            except BaseException:
+                self._settle()
+                raise
             if not status:
                 return new_result(True, nis, self._residuals[comps].copy(), None)
             if status != INVALID:
@@ -1050,13 +1062,30 @@ class PlanarFusion(GaussianEstimate):
                 f"out of order: t={t} s is older than the filter time {last} s",
                 FusionStatus.OUT_OF_ORDER,
             )
-        status, nis = _step(self._buf, t, first, count, z0, float(z1), var0, float(var1), gate)
+        try:
+            status, nis = _step(self._buf, t, first, count, z0, float(z1), var0, float(var1), gate)
+        except BaseException:
+            self._settle()
+            raise
         if status:
             if last is None:
                 # Before the step the clock was not set: undone, it is not set either.
                 self._buf[BUF_SAVED_TIME] = math.nan
             return self._not_applied(status, kind, t, nis, comps)
         return new_result(True, nis, self._residuals[comps].copy(), None)
+
+    def _settle(self) -> None:
+        """Undo a step left overflowed by an exception raised as it returned.
+
+        Python delivers a ``KeyboardInterrupt`` as a call returns: one delivered
+        as the online step returned loses its status. Only ``TIME_GAP`` leaves
+        an invalid estimate (the overflowed prediction, for :func:`undo_step`),
+        which this finds by its non-finite entries, as the kernel did; every
+        other outcome leaves a valid one (the update applied, or the prediction
+        kept).
+        """
+        if not (np.isfinite(self._x).all() and np.isfinite(self._p).all()):
+            undo_step(self._buf)
 
     def _not_applied(
         self, status: int, kind: str, t: float, nis: float, comps: slice

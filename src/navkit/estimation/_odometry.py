@@ -188,6 +188,28 @@ def _restore_odometry(obj: DiffOdometry | OmniOdometry, state: Any) -> None:
         obj._travel = (pose.x, pose.y)
 
 
+def _body_steps(inc: FloatArray, forward: FloatArray) -> tuple[FloatArray, FloatArray]:
+    """The robot-frame steps (forward, left), each (T,), of (T, N) wheel increments.
+
+    ``inc @ forward[:2].T`` with the products added wheel by wheel, in order, as
+    :meth:`OmniOdometry.update` adds them for one step: a matrix product sums in
+    an order of the BLAS's choosing, which differs between a (T, N) batch and a
+    (1, N) row (OpenBLAS: in the last bit of most rows), so that
+    :meth:`OmniOdometry.update` and :meth:`OmniOdometry.update_batch` would not
+    agree bit for bit.
+    """
+    fx = forward[0].tolist()
+    fy = forward[1].tolist()
+    wheel = inc[:, 0]
+    bx = wheel * fx[0]
+    by = wheel * fy[0]
+    for k in range(1, inc.shape[1]):
+        wheel = inc[:, k]
+        bx += wheel * fx[k]
+        by += wheel * fy[k]
+    return bx, by
+
+
 def _finite_poses(out: FloatArray, name: str) -> None:
     """Raise naming ``name`` if the poses overflowed float64 (inf or NaN)."""
     if not np.all(np.isfinite(out)):
@@ -345,24 +367,36 @@ class OmniOdometry:
             and type(yaw) is float
             and yaw - yaw == 0.0
         ):
-            pose = self._step(inc, yaw)
-            if pose is not None:
+            stepped = self._step(inc, yaw)
+            if stepped is not None:
+                # Plain stores, no call between (Python delivers a KeyboardInterrupt
+                # at calls): an interrupted update has taken the step or not.
+                pose, self._travel = stepped
                 self._pose = pose
                 return pose
         inc = as_float_array(wheel_increments, "wheel_increments", shape=(self._drive.n_wheels,))
         heading = finite_float(yaw, "yaw")
         return Pose2D.from_array(self.update_batch(inc[None, :], [heading])[-1])
 
-    def _step(self, inc: FloatArray, yaw: float) -> Pose2D | None:
-        """The pose after one step of (N,) float64 increments and a finite yaw, or None.
+    def _step(
+        self, inc: FloatArray, yaw: float
+    ) -> tuple[Pose2D, tuple[float, float]] | None:
+        """The pose and travel after one step of (N,) float64 increments and a yaw, or None.
 
         None when the increments are not finite or the pose would overflow:
         update_batch then raises.
         """
-        with np.errstate(over="ignore", invalid="ignore"):
-            # The same (1, N) product as update_batch's (a matrix-vector product
-            # may sum in another order).
-            bx, by, _ = (inc[None, :] @ self._drive.forward_matrix.T)[0].tolist()
+        # _body_steps for one step: the same products added in the same order, with
+        # Python floats (a matrix product sums in an order of the BLAS's choosing,
+        # which for a (T, N) batch differs from a (1, N) row's).
+        rows = self._drive.forward_matrix.tolist()
+        wheels = inc.tolist()
+        fx, fy = rows[0], rows[1]
+        bx = wheels[0] * fx[0]  # Python floats overflow to inf silently, as NumPy's
+        by = wheels[0] * fy[0]
+        for k in range(1, len(wheels)):
+            bx += wheels[k] * fx[k]
+            by += wheels[k] * fy[k]
         heading = wrap_angle(yaw)
         before = self._pose.theta
         mid = before + 0.5 * wrap_angle(heading - before)
@@ -372,8 +406,8 @@ class OmniOdometry:
         moved = _step_apart(self._anchor, self._travel, c, s, bx, by)
         if moved is None:
             return None
-        x, y, self._travel = moved
-        return _pose(x, y, heading)
+        x, y, travel = moved
+        return _pose(x, y, heading), travel
 
     def update_batch(self, wheel_increments: ArrayLike, yaws: ArrayLike) -> FloatArray:
         """Advance through a log of steps (vectorised) and return every pose.
@@ -415,20 +449,22 @@ class OmniOdometry:
         t = inc.shape[0]
         heading = np.asarray(wrap_angle(as_float_array(yaws, "yaws", shape=(t,))))
         with np.errstate(over="ignore", invalid="ignore"):
-            body = inc @ self._drive.forward_matrix.T  # forward_batch, overflow checked below
+            bx, by = _body_steps(inc, self._drive.forward_matrix)  # overflow checked below
         previous = np.concatenate(([self._pose.theta], heading[:-1]))
         turn = np.asarray(wrap_angle(heading - previous))
         out = np.empty((t + 1, 3))
         out[0] = self._pose.as_array()
         with np.errstate(over="ignore", invalid="ignore"):
             out[1:, :2], travelled = _chain(
-                self._anchor, self._travel, body[:, 0], body[:, 1], previous + 0.5 * turn
+                self._anchor, self._travel, bx, by, previous + 0.5 * turn
             )
         out[1:, 2] = heading
         _finite_poses(out, "wheel_increments")
         if t:
-            self._pose = Pose2D.from_array(out[-1])
-            self._travel = (float(travelled[-1, 0]), float(travelled[-1, 1]))
+            pose = Pose2D.from_array(out[-1])
+            travel = (float(travelled[-1, 0]), float(travelled[-1, 1]))
+            self._pose = pose
+            self._travel = travel
         return out
 
     def __repr__(self) -> str:
@@ -452,14 +488,16 @@ class DiffOdometry:
     values lie 9.3e-10 m apart) the steps are summed apart from the start pose
     (the last one given to the constructor or :meth:`reset`), which is added
     to the sum: the positions are those of the same run from the origin,
-    shifted, to within a few float spacings of the coordinates, and
-    :meth:`update` and :meth:`update_batch` agree to within as much however
-    the readings are split (a batch sums the turns where one reading at a time
-    wraps each, so the headings may differ in the last bits). (Steps added to
-    the coordinates themselves would each be rounded at the coordinates' size,
-    with one sign for steady motion: 1 mm steps at a northing of 5e6 m drifted
-    by 2 cm per 100 km.) From the origin
-    the positions are the plain running sums of the steps, bit for bit.
+    shifted, to within a few float spacings of the coordinates.
+    :meth:`update` and :meth:`update_batch` agree to within rounding however
+    the readings are split, not bit for bit: a batch sums the turns where one
+    reading at a time wraps each, so the headings may differ in the last bits
+    and the positions by as much times the distance travelled (1e5 readings
+    over 960 m from the origin: 5.6e-14 rad and 2e-11 m, 219 spacings).
+    (Steps added to the coordinates themselves would each be rounded at the
+    coordinates' size, with one sign for steady motion: 1 mm steps at a
+    northing of 5e6 m drifted by 2 cm per 100 km.) From the origin the
+    positions are the plain running sums of the steps, bit for bit.
 
     Parameters
     ----------
@@ -612,11 +650,16 @@ class DiffOdometry:
         >>> odo.update(9000, 9000)  # counters latched again: no jump
         Pose2D(x=0.0, y=0.0, theta=1.0)
         """
-        new_pose = None if pose is None else as_pose(pose, "pose")
+        if pose is None:
+            self._last = None
+            return
+        new_pose = as_pose(pose, "pose")
+        anchor, travel = start_apart(new_pose)
+        # Plain stores, no call between: an interrupted reset has happened or not.
         self._last = None
-        if new_pose is not None:
-            self._pose = new_pose
-            self._anchor, self._travel = start_apart(new_pose)
+        self._pose = new_pose
+        self._anchor = anchor
+        self._travel = travel
 
     def update(self, left_ticks: int, right_ticks: int) -> Pose2D:
         """Read both encoder counters and return the new pose.
@@ -665,8 +708,11 @@ class DiffOdometry:
             and self._low <= left <= self._high
             and self._low <= right <= self._high
         ):
-            pose = self._step(left, right)
-            if pose is not None:
+            stepped = self._step(left, right)
+            if stepped is not None:
+                # Plain stores, no call between (Python delivers a KeyboardInterrupt
+                # at calls): an interrupted update has taken the reading or not.
+                pose, self._travel = stepped
                 self._pose = pose
                 self._last = (left, right)
                 return pose
@@ -683,8 +729,8 @@ class DiffOdometry:
                 )
         return Pose2D.from_array(self.update_batch([left_ticks], [right_ticks])[-1])
 
-    def _step(self, left: int, right: int) -> Pose2D | None:
-        """The pose after one reading of validated counters, or None if it overflows."""
+    def _step(self, left: int, right: int) -> tuple[Pose2D, tuple[float, float]] | None:
+        """The pose and travel after one reading of validated counters, or None on overflow."""
         # The first reading only latches the counters (a zero step, as in update_batch).
         last = (left, right) if self._last is None else self._last
         pose = self._pose
@@ -717,8 +763,8 @@ class DiffOdometry:
         moved = _step_apart(self._anchor, self._travel, c, s, dx, dy)
         if moved is None:
             return None
-        x, y, self._travel = moved
-        return _pose(x, y, wrap_angle(before + wrap_angle(dth)))
+        x, y, travel = moved
+        return _pose(x, y, wrap_angle(before + wrap_angle(dth))), travel
 
     def update_batch(self, left_ticks: ArrayLike, right_ticks: ArrayLike) -> FloatArray:
         """Process a log of counter readings (vectorised) and return every pose.
@@ -793,9 +839,13 @@ class DiffOdometry:
             )
         _finite_poses(out[:, :2], "left_ticks, right_ticks")
         out[:, 2] = wrap_angle(theta)
-        self._pose = Pose2D.from_array(out[-1])
-        self._travel = (float(travelled[-1, 0]), float(travelled[-1, 1]))
-        self._last = (int(left[-1]), int(right[-1]))
+        pose = Pose2D.from_array(out[-1])
+        travel = (float(travelled[-1, 0]), float(travelled[-1, 1]))
+        last = (int(left[-1]), int(right[-1]))
+        # Plain stores, no call between: an interrupted batch has been taken or not.
+        self._pose = pose
+        self._travel = travel
+        self._last = last
         return out
 
     def __setstate__(self, state: Any) -> None:

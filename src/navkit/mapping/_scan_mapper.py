@@ -358,6 +358,12 @@ class ScanMapper:
             ``odometry`` not finite, or the pose predicted for this scan
             (from the odometry increment, or the previous motion repeated)
             beyond ±1.8e308 m, the float range; the mapper is unchanged.
+        KeyboardInterrupt
+            Or any other exception from outside the mapper raised part-way (a
+            signal handler's): the mapper has then not taken the scan, or has
+            recorded its pose (:attr:`trajectory`, :attr:`pose`, with its
+            odometry) and written it into every map level or none; never into
+            some levels only. The next update continues from that state.
 
         Examples
         --------
@@ -386,18 +392,25 @@ class ScanMapper:
         self._ensure_covers(guess, points)
         result = self._matcher._match(tuple(self._levels), points, guess)
         pose = result.pose
-        self._append(pose)
-        # A scan without odometry breaks the chain: the next odometry increment
-        # would span two scans, on top of this scan's constant-velocity guess.
+        self._reserve_row()
+        # The pose and the odometry are recorded together, by plain stores: Python
+        # delivers a KeyboardInterrupt only at calls, so an interrupted update has
+        # recorded both or neither. A scan without odometry breaks the chain: the
+        # next odometry increment would span two scans, on top of this scan's
+        # constant-velocity guess.
+        n = self._path_len
+        self._path[n] = (pose.x, pose.y, pose.theta)
+        self._path_len = n + 1
+        self._pose = pose
         self._last_odometry = odom
         # A scan with nothing to write (no valid return within range_max) does not
         # count as written: the next scan would then wait for min_distance.
         if points.shape[0] and self._should_write(pose):
             self._write(scan, pose)
-            self._last_write = pose
         return result
 
-    def _append(self, pose: Pose2D) -> None:
+    def _reserve_row(self) -> None:
+        """Make room in the trajectory array for one more row."""
         n = self._path_len
         if n == self._path.shape[0]:
             # Half as many rows again: amortised O(1) appends, at most a third
@@ -405,9 +418,6 @@ class ScanMapper:
             grown = np.empty((max(16, n + n // 2), 3), dtype=np.float64)
             grown[:n] = self._path[:n]
             self._path = grown
-        self._path[n] = (pose.x, pose.y, pose.theta)
-        self._path_len = n + 1
-        self._pose = pose
 
     def _guess(self, odom: Pose2D | None) -> Pose2D:
         n = self._path_len
@@ -441,29 +451,32 @@ class ScanMapper:
         lo, hi = self._clamp
         # The ray casting's scratch buffer, sized for the finest (largest) level.
         scratch = np.empty(self._levels[0]._logodds.size, dtype=np.uint8)
-        for grid in self._levels:
-            o = grid.origin
-            integrate_beams(
-                grid._logodds,
-                o.x,
-                o.y,
-                o.theta,
-                grid.resolution,
-                pose.x,
-                pose.y,
-                pose.theta,
-                ranges,
-                scan.angle_min,
-                scan.angle_increment,
-                scan.range_min,
-                scan.range_max,
-                self._occupied,
-                self._free,
-                lo,
-                hi,
-                False,
-                scratch,
-            )
+        # The scan goes into every level: an exception part-way (a KeyboardInterrupt,
+        # which Python delivers as a level's kernel call returns, most likely after the
+        # finest level's) is raised once all are written, never leaving the coarse
+        # levels, which steer the matching on the finer ones, without a scan the finer
+        # ones hold. So the try holds the kernel call alone (Python delivers it at a
+        # call's return, or on entering a Python function, such as a property: a level
+        # whose arguments were being read would be skipped), its arguments read before.
+        px, py, pth = pose.x, pose.y, pose.theta
+        a0, da = scan.angle_min, scan.angle_increment
+        rmin, rmax = scan.range_min, scan.range_max
+        hit, miss = self._occupied, self._free
+        frames = [(grid._logodds, grid.origin, grid.resolution) for grid in self._levels]
+        pending: BaseException | None = None
+        for logodds, o, res in frames:
+            ox, oy, oth = o.x, o.y, o.theta
+            try:
+                integrate_beams(
+                    logodds, ox, oy, oth, res, px, py, pth, ranges, a0, da, rmin, rmax,
+                    hit, miss, lo, hi, False, scratch,
+                )  # fmt: skip
+            except BaseException as exc:  # a try costs nothing in Python 3.11+
+                if pending is None:
+                    pending = exc
+        self._last_write = pose
+        if pending is not None:
+            raise pending
 
     # ----------------------------------------------------------------- growth
     def _coarsest(self) -> float:

@@ -1490,6 +1490,11 @@ def write_map(grid: OccupancyGrid, path: str | os.PathLike[str], *, mode: str = 
     # image renamed between its check and its unlink). Other processes are not
     # waited for: _remove_superseded checks the file is still the one chosen.
     with RENAME_LOCK:
+        # The image checked again (the lock is re-entrant): another thread may have
+        # saved a map of another YAML naming the same image ("map" and "map.yaml"
+        # both write map.pgm) since the first check; both would save, and one
+        # map would read the other's image.
+        _image_path(yaml_path, image_format)
         superseded = _superseded_image(yaml_path, image)
         _replace_all([(image, data), (yaml_path, text.encode("utf-8"))])
         if superseded is not None:

@@ -552,6 +552,12 @@ class FieldDStar:
             Nodes that are not pairs of integers.
         navkit.NoPathError
             The goal cannot be reached from the start.
+        KeyboardInterrupt
+            Or any other exception from outside the planner raised part-way
+            (a signal handler's): the planner then holds these ends, whose
+            search the next :meth:`replan` completes, or no plan (a replan
+            raises ``RuntimeError`` until the next plan); never a mix of the
+            two plans.
 
         Examples
         --------
@@ -567,8 +573,7 @@ class FieldDStar:
         """
         s = self._node(start_node, "start_node")
         gl = self._node(goal_node, "goal_node")
-        self._reset(s, gl, s, gl)
-        self._start_on_node = self._goal_on_node = True
+        self._reset(s, gl, s, gl, start_on_node=True, goal_on_node=True)
         points, cost, length, expanded = self._search("node")
         return Path2D(points - 0.5, "grid", cost=cost, length=length, expanded=expanded)
 
@@ -602,6 +607,12 @@ class FieldDStar:
             ``2**52`` or more.
         navkit.NoPathError
             The goal cannot be reached any more.
+        KeyboardInterrupt
+            Or any other exception from outside the planner raised part-way
+            (a signal handler's): the planner keeps its plan and the next
+            replan completes the repair, unless a hopeless repair was being
+            replaced by a fresh search: then it holds no plan (a replan raises
+            ``RuntimeError`` until the next plan).
 
         Examples
         --------
@@ -693,6 +704,12 @@ class FieldDStar:
             Non-integer cells.
         navkit.NoPathError
             The goal cell cannot be reached.
+        KeyboardInterrupt
+            Or any other exception from outside the planner raised part-way
+            (a signal handler's): the planner then holds these ends, whose
+            search the next :meth:`replan` completes, or no plan (a replan
+            raises ``RuntimeError`` until the next plan); never a mix of the
+            two plans.
 
         Examples
         --------
@@ -709,7 +726,6 @@ class FieldDStar:
         # The cells' lower-left corner nodes are (row, col) themselves; the ends are the centres.
         self._reset(s, gl, (s[0] + 0.5, s[1] + 0.5), (gl[0] + 0.5, gl[1] + 0.5),
                     start_cell=True, goal_cell=True)
-        self._start_on_node = self._goal_on_node = False
         if s == gl:  # no search, but the goal is recorded for replan_world
             return Path2D(np.array([s], dtype=np.float64), "grid", cost=0.0, length=0.0, expanded=0)
         points, _, _, expanded = self._search("cell")
@@ -745,6 +761,12 @@ class FieldDStar:
             Non-numeric points.
         navkit.NoPathError
             The goal cannot be reached.
+        KeyboardInterrupt
+            Or any other exception from outside the planner raised part-way
+            (a signal handler's): the planner then holds these ends, whose
+            search the next :meth:`replan` completes, or no plan (a replan
+            raises ``RuntimeError`` until the next plan); never a mix of the
+            two plans.
 
         Examples
         --------
@@ -761,7 +783,6 @@ class FieldDStar:
         p_s, s = self._world_end(start_xy, "start_xy")
         p_g, gl = self._world_end(goal_xy, "goal_xy")
         self._reset(s, gl, p_s, p_g)
-        self._start_on_node = self._goal_on_node = False
         points, _, _, expanded = self._search("xy")
         return self._world_path(points, expanded)
 
@@ -805,6 +826,12 @@ class FieldDStar:
             fresh :meth:`plan` refuses it); a path cost of ``2**52`` or more.
         navkit.NoPathError
             The goal cannot be reached any more.
+        KeyboardInterrupt
+            Or any other exception from outside the planner raised part-way
+            (a signal handler's): the planner keeps its plan and the next
+            replan completes the repair, unless a hopeless repair was being
+            replaced by a fresh search: then it holds no plan (a replan raises
+            ``RuntimeError`` until the next plan).
 
         Examples
         --------
@@ -1067,14 +1094,27 @@ class FieldDStar:
         *,
         start_cell: bool = False,
         goal_cell: bool = False,
+        start_on_node: bool = False,
+        goal_on_node: bool = False,
     ) -> None:
         """Start a new search from node ``s`` to node ``gl`` (the path's end points given).
 
         With ``start_cell`` ``s`` is the start cell (its top-left corner): the
         walk starts at its corner of least cost-to-goal. With ``goal_cell``
         ``gl`` is the goal cell: its four corners are the sources, each valued
-        at the cost of its segment from the centre.
+        at the cost of its segment from the centre. ``start_on_node`` and
+        ``goal_on_node``: whether each end was given as a node (see
+        :meth:`_check_kept_end`).
+
+        The planner holds no plan until the sources are queued: an exception on
+        the way (a ``KeyboardInterrupt``, which Python delivers as soon as the
+        clearing of a large grid's arrays returns) leaves it without one
+        (:meth:`replan` raises ``RuntimeError``), not with the last plan's ends
+        over cleared values and a stale queue, which a repair would turn into a
+        wrong path or an out-of-bounds read in the kernels.
         """
+        self._start = self._goal = None
+        self._cached = None
         if not self._clean:
             # Cleared in place, not allocated again: memory already paged in makes a
             # search on a used planner (a replan's fallback) faster than on a new one.
@@ -1086,13 +1126,12 @@ class FieldDStar:
         self._lowered = False
         self._km = 0.0
         self._fresh = True
-        self._cached = None
-        self._start = s
-        self._goal = gl
         self._start_point = (float(start_point[0]), float(start_point[1]))
         self._goal_point = (float(goal_point[0]), float(goal_point[1]))
         self._start_cell = start_cell
         self._goal_cell = goal_cell
+        self._start_on_node = start_on_node
+        self._goal_on_node = goal_on_node
         if goal_cell:
             seed = self._cell_cost(*gl) * HALF_DIAGONAL
             sources = [((gl[0] + di, gl[1] + dj), seed) for di, dj in _CORNERS.tolist()]
@@ -1110,6 +1149,9 @@ class FieldDStar:
             keys[slot, 1] = k1
             pos[node_id] = slot
         size[0] = len(queued)
+        # The ends last: from here on the planner holds this search.
+        self._start = s
+        self._goal = gl
 
     def _state(self) -> tuple[np.ndarray, ...]:
         return state(self._pad, self._vals, self._heap, self._work, self._changed)
@@ -1151,7 +1193,8 @@ class FieldDStar:
         if status == ABORTED:
             assert self._start_point is not None and self._goal_point is not None
             self._reset(self._start, self._goal, self._start_point, self._goal_point,
-                        start_cell=self._start_cell, goal_cell=self._goal_cell)
+                        start_cell=self._start_cell, goal_cell=self._goal_cell,
+                        start_on_node=self._start_on_node, goal_on_node=self._goal_on_node)
             self._work[0] = 0
             self._work[1] = _NO_LIMIT
             pts, k, more, status = self._walk()
