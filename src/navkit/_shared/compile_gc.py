@@ -17,7 +17,9 @@ own initialisation).
   compiling thread releases numba's compiler lock (after the kernel, its
   callees and its cache file are done, or the compile failed). Compiles of
   other code (the user's own kernels) are left alone, and loading a kernel
-  from numba's cache changes nothing.
+  from numba's cache changes nothing. The same two listeners switch
+  :mod:`navkit._shared.compile_shortcuts` on and off (cheaper numba internals
+  for the compile: error-message markup, compile-flag comparisons).
 
 The collector's switch is one for the whole process while compiles and
 pauses are per thread (threads of a ROS 2 executor using navkit for the first
@@ -52,6 +54,8 @@ import threading
 from collections.abc import Iterator
 from contextlib import contextmanager
 from typing import Any
+
+from navkit._shared import compile_shortcuts
 
 __all__ = ["install", "paused"]
 
@@ -133,7 +137,7 @@ def _make_listeners() -> tuple[Any, Any]:
         return depth
 
     class CompileStart(event.Listener):  # type: ignore[misc]  # (a class of Any)
-        """Pause the collector when a navkit kernel's compile starts."""
+        """Pause the collector, shortcuts on, when a navkit kernel's compile starts."""
 
         def on_start(self, ev: Any) -> None:
             data = ev.data if isinstance(ev.data, dict) else {}
@@ -141,12 +145,13 @@ def _make_listeners() -> tuple[Any, Any]:
                 return
             state.paused = True
             _begin_pause()
+            compile_shortcuts.begin()
 
         def on_end(self, ev: Any) -> None:
             """Nothing here: the collector resumes when the compiler lock is released."""
 
     class LockRelease(event.Listener):  # type: ignore[misc]
-        """Resume it when the compiling thread releases numba's compiler lock."""
+        """Resume it (shortcuts off) when the compiling thread releases numba's compiler lock."""
 
         def on_start(self, ev: Any) -> None:
             state.depth = lock_depth() + 1
@@ -160,6 +165,7 @@ def _make_listeners() -> tuple[Any, Any]:
             if state.depth == 0 and getattr(state, "paused", False):
                 state.paused = False
                 _end_pause()
+                compile_shortcuts.end()
 
     return CompileStart(), LockRelease()
 

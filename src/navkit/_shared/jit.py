@@ -35,7 +35,9 @@ are made at run time) get a dispatcher straight away. Names a kernel module
 needs from numba itself are bound in its namespace at the same moment by
 :func:`bind_numba_names`. Loading numba also installs
 :mod:`navkit._shared.compile_gc`, which pauses Python's garbage collector
-while numba compiles a navkit kernel (about a tenth of the compile time).
+while numba compiles a navkit kernel (about a tenth of the compile time) and
+switches on :mod:`navkit._shared.compile_shortcuts` meanwhile (cheaper numba
+internals: error-message markup, compile-flag comparisons; tenths of a second).
 
 Where numba finds no writable folder for its on-disk cache (a read-only
 installation whose ``__pycache__`` and user cache folder cannot be written,
