@@ -14,12 +14,14 @@ Pillow, against Pillow's own decompression-bomb limit too
 from __future__ import annotations
 
 import contextlib
+import errno
 import functools
 import io
 import math
 import os
 import re
 import reprlib
+import stat
 import struct
 import warnings
 import zlib
@@ -66,6 +68,9 @@ _WRITE_MODES = ("trinary", "scale")
 #: that is not fully opaque as unknown, and every opaque one as a value.
 _IMAGE_FORMAT = {"trinary": "pgm", "scale": "png"}
 _REQUIRED = ("image", "resolution", "origin", "negate", "occupied_thresh", "free_thresh")
+#: The errors ``Path.exists`` reads as "no such file" (a missing file, a path through
+#: a non-directory, a symlink loop).
+_MISSING_ERRNOS = (errno.ENOENT, errno.ENOTDIR, errno.EBADF, errno.ELOOP)
 _KEYS = frozenset((*_REQUIRED, "mode"))
 #: A map YAML is a few hundred bytes; anything over 1 MiB is the wrong file.
 YAML_MAX_BYTES = 1 << 20
@@ -285,12 +290,18 @@ def read_map_yaml(path: str | os.PathLike[str]) -> MapMetadata:
     image_path = Path(image)
     if not image_path.is_absolute():
         image_path = yaml_path.parent / image_path
-    if not image_path.exists():
-        raise FileNotFoundError(f"{yaml_path}: map image {image_path} does not exist")
-    if not image_path.is_file():
-        kind = "a directory" if image_path.is_dir() else "not a regular file"
+    # One stat for both checks: a save in the other mode (another thread or process)
+    # may remove the image between two, which read as "not a regular file".
+    try:
+        image_stat = image_path.stat()
+    except OSError as exc:
+        if exc.errno not in _MISSING_ERRNOS:
+            raise
+        raise FileNotFoundError(f"{yaml_path}: map image {image_path} does not exist") from None
+    if not stat.S_ISREG(image_stat.st_mode):
+        kind = "a directory" if stat.S_ISDIR(image_stat.st_mode) else "not a regular file"
         raise ValueError(f"{yaml_path}: map image {image_path} is {kind}")
-    if os.path.samefile(image_path, yaml_path):
+    if os.path.samestat(image_stat, yaml_path.stat()):
         raise ValueError(f"{yaml_path}: the image key names the YAML file itself ({image!r})")
 
     resolution = _as_float(entries["resolution"], "resolution", yaml_path)
