@@ -69,8 +69,11 @@ _WRITE_MODES = ("trinary", "scale")
 _IMAGE_FORMAT = {"trinary": "pgm", "scale": "png"}
 _REQUIRED = ("image", "resolution", "origin", "negate", "occupied_thresh", "free_thresh")
 #: The errors ``Path.exists`` reads as "no such file" (a missing file, a path through
-#: a non-directory, a symlink loop).
+#: a non-directory, a symlink loop) and, on Windows, the ``winerror`` codes it reads
+#: so too (a drive not ready, an invalid name such as one with ``?``, a name that
+#: cannot be resolved), whose ``errno`` is another.
 _MISSING_ERRNOS = (errno.ENOENT, errno.ENOTDIR, errno.EBADF, errno.ELOOP)
+_MISSING_WINERRORS = (21, 123, 1921)
 _KEYS = frozenset((*_REQUIRED, "mode"))
 #: A map YAML is a few hundred bytes; anything over 1 MiB is the wrong file.
 YAML_MAX_BYTES = 1 << 20
@@ -295,7 +298,8 @@ def read_map_yaml(path: str | os.PathLike[str]) -> MapMetadata:
     try:
         image_stat = image_path.stat()
     except OSError as exc:
-        if exc.errno not in _MISSING_ERRNOS:
+        gone = exc.errno in _MISSING_ERRNOS
+        if not (gone or getattr(exc, "winerror", None) in _MISSING_WINERRORS):
             raise
         raise FileNotFoundError(f"{yaml_path}: map image {image_path} does not exist") from None
     if not stat.S_ISREG(image_stat.st_mode):

@@ -642,8 +642,13 @@ class FieldDStar:
             self._check_kept_node(s, "start_node", None, self._start_cell)
         self._check_kept_node(self._goal, "goal_node", None, self._goal_cell)
         if start_node is not None:
+            # The point before the move, so that no call (where Python delivers a
+            # KeyboardInterrupt) separates the new start from its point: a start
+            # moved without it would make a later replan_world() link the old
+            # point to the new start node, a path of neither plan.
+            point = (float(s[0]), float(s[1]))
             self._move_start(s)
-            self._start_point = (float(s[0]), float(s[1]))
+            self._start_point = point
             self._start_on_node = True
         points, cost, length, expanded = self._search("node")
         return Path2D(points - 0.5, "grid", cost=cost, length=length, expanded=expanded)
