@@ -710,11 +710,7 @@ class FieldDStar:
         navkit.NoPathError
             The goal cell cannot be reached.
         KeyboardInterrupt
-            Or any other exception from outside the planner raised part-way
-            (a signal handler's): the planner then holds these ends, whose
-            search the next :meth:`replan` completes, or no plan (a replan
-            raises ``RuntimeError`` until the next plan); never a mix of the
-            two plans.
+            Part-way: as for :meth:`plan`.
 
         Examples
         --------
@@ -767,11 +763,7 @@ class FieldDStar:
         navkit.NoPathError
             The goal cannot be reached.
         KeyboardInterrupt
-            Or any other exception from outside the planner raised part-way
-            (a signal handler's): the planner then holds these ends, whose
-            search the next :meth:`replan` completes, or no plan (a replan
-            raises ``RuntimeError`` until the next plan); never a mix of the
-            two plans.
+            Part-way: as for :meth:`plan`.
 
         Examples
         --------
@@ -832,11 +824,7 @@ class FieldDStar:
         navkit.NoPathError
             The goal cannot be reached any more.
         KeyboardInterrupt
-            Or any other exception from outside the planner raised part-way
-            (a signal handler's): the planner keeps its plan and the next
-            replan completes the repair, unless a hopeless repair was being
-            replaced by a fresh search: then it holds no plan (a replan raises
-            ``RuntimeError`` until the next plan).
+            Part-way: as for :meth:`replan`.
 
         Examples
         --------
