@@ -221,8 +221,11 @@ def load_numba() -> None:
     if numba_loaded():
         return
     from navkit._shared import compile_gc
+    from navkit._shared.interrupts import interrupts_deferred
 
-    with compile_gc.paused():
+    # A Ctrl-C cutting numba's import short would leave it half imported, and
+    # every later kernel call in the process failing: the interrupt waits.
+    with interrupts_deferred(), compile_gc.paused():
         from numba import njit
         from numba.core.compiler_lock import global_compiler_lock
         from numba.core.registry import cpu_target

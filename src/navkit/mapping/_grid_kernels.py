@@ -116,6 +116,11 @@ def world_to_cell_entry() -> Callable[..., bool]:
     >>> world_to_cell_entry()(np.array([[0.7, 0.2]]), 0.0, 0.0, 0.0, 0.5, out), out
     (True, array([[0, 1]]))
     """
+    # The dispatcher first: it loads numba (holding a Ctrl-C back until numba is
+    # fully imported), which the import below would do unguarded.
+    dispatcher: Any = world_to_cell_kernel
+    if not hasattr(dispatcher, "compile"):  # NUMBA_DISABLE_JIT=1: a plain function
+        return cast(Callable[..., bool], dispatcher)
     from numba import types  # here: importing this module must not import numba
 
     signature = (
@@ -123,7 +128,4 @@ def world_to_cell_entry() -> Callable[..., bool]:
         *(types.float64,) * 4,  # origin x, y, yaw, resolution
         types.Array(types.int64, 2, "C"),
     )
-    dispatcher: Any = world_to_cell_kernel
-    if not hasattr(dispatcher, "compile"):  # NUMBA_DISABLE_JIT=1: a plain function
-        return cast(Callable[..., bool], dispatcher)
     return cast(Callable[..., bool], dispatcher.compile(signature))

@@ -116,14 +116,16 @@ def khatib_entry() -> Callable[..., None]:
     >>> out
     array([-4., -0.])
     """
+    # The dispatcher first: it loads numba (holding a Ctrl-C back until numba is
+    # fully imported), which the import below would do unguarded.
+    dispatcher: Any = khatib_beam_force_into
+    if not hasattr(dispatcher, "compile"):  # NUMBA_DISABLE_JIT=1: a plain function
+        return cast(Callable[..., None], dispatcher)
     from numba import types  # here: importing this module must not import numba
 
     # Read-only C-contiguous float64 beams: a LaserScan's ranges and the cached tables.
     beams = types.Array(types.float64, 1, "C", readonly=True)
     signature = (beams, beams, beams, *(types.float64,) * 5, types.Array(types.float64, 1, "C"))
-    dispatcher: Any = khatib_beam_force_into
-    if not hasattr(dispatcher, "compile"):  # NUMBA_DISABLE_JIT=1: a plain function
-        return cast(Callable[..., None], dispatcher)
     return cast(Callable[..., None], dispatcher.compile(signature))
 
 
