@@ -182,7 +182,9 @@ def sweep(
     result on every executor: equal ``to_dict()`` up to wall-clock
     measurements (each trial's ``wall_time``, values and summary entries
     named ``*_wall_time``, and the table columns and rows whose heading or
-    first cell holds the word ``wall``).
+    first cell holds the word ``wall``), on machines of one CPU type (the
+    scan repulsion sums are vectorised to the CPU's SIMD width: see
+    :func:`~navkit.planning.repulsive_force_from_scan`).
 
     Parameters
     ----------

@@ -129,6 +129,13 @@ def repulsive_force_from_scan(
     ValueError
         A parameter out of its range.
 
+    Notes
+    -----
+    The sum runs over SIMD lanes as wide as the CPU's vectors (the compiler may
+    reorder it): the same scan gives the same bits on every machine of one CPU
+    type, but may differ in the last bits between CPU types (AVX2 and
+    AVX-512, say), and so may a run that steers by it.
+
     Examples
     --------
     >>> import math
@@ -204,6 +211,11 @@ def piecewise_repulsive_force_from_scan(
     ------
     TypeError, ValueError
         As :func:`repulsive_force_from_scan`.
+
+    Notes
+    -----
+    Summed over SIMD lanes, as :func:`repulsive_force_from_scan`: bit for bit
+    the same on one CPU type, possibly not in the last bits across CPU types.
 
     Examples
     --------
