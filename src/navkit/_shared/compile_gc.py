@@ -130,11 +130,8 @@ def _make_listeners() -> tuple[Any, Any]:
     """The listeners of numba's compile events and of its compiler lock."""
     # Any: numba's event module is not typed in every supported numba version.
     event: Any = importlib.import_module("numba.core.event")
+    compiler_lock: Any = importlib.import_module("numba.core.compiler_lock").global_compiler_lock
     state = threading.local()
-
-    def lock_depth() -> int:
-        depth: int = getattr(state, "depth", 0)
-        return depth
 
     class CompileStart(event.Listener):  # type: ignore[misc]  # (a class of Any)
         """Pause the collector, shortcuts on, when a navkit kernel's compile starts."""
@@ -154,15 +151,19 @@ def _make_listeners() -> tuple[Any, Any]:
         """Resume it (shortcuts off) when the compiling thread releases numba's compiler lock."""
 
         def on_start(self, ev: Any) -> None:
-            state.depth = lock_depth() + 1
+            """Nothing here: numba reports the start before it waits for the lock."""
 
         def on_end(self, ev: Any) -> None:
-            # Not below 0: a release whose acquire came before install() (numba
+            # The lock itself tells whether this was the outermost release (it
+            # is re-entrant), not a count of the events: numba reports an
+            # acquire before it waits for the lock, so a wait that ends in an
+            # exception (Ctrl-C while another thread compiles) counted an
+            # acquire that never happened, and every later pause in the thread
+            # outlived its compile for good (the collector off, the shortcuts
+            # on); and a release whose acquire came before install() (numba
             # loaded from inside a compile, e.g. a user's kernel typing a navkit
-            # one) would otherwise leave the count one low for good, and later
-            # pauses would end at an inner release, mid-compile.
-            state.depth = max(lock_depth() - 1, 0)
-            if state.depth == 0 and getattr(state, "paused", False):
+            # one) would end a pause at an inner release, mid-compile.
+            if getattr(state, "paused", False) and not compiler_lock.is_locked():
                 state.paused = False
                 _end_pause()
                 compile_shortcuts.end()

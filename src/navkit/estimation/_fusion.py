@@ -779,13 +779,15 @@ class PlanarFusion(GaussianEstimate):
         if time < last:
             raise ValueError(f"t={time} s is older than the filter time {last} s")
         # The online step without a measurement (count 0): compiled once with the updates.
+        status = 0  # for _settle: unknown until the step returns
         try:
             status, _ = _step(self._buf, time, 0, 0, 0.0, 0.0, 0.0, 0.0, math.inf)
+            if status == TIME_GAP:
+                undo_step(self._buf)  # under the try: an interrupt on entering it
         except BaseException:
-            self._settle()
+            self._settle(status)
             raise
         if status == TIME_GAP:
-            undo_step(self._buf)
             raise FilterError(
                 f"predicting over the time gap of {time - last} s overflows float64; "
                 "the filter is unchanged"
@@ -841,12 +843,15 @@ class PlanarFusion(GaussianEstimate):
         # any check fails; then, and for anything but plain floats, the general way
         # validates and explains.
         if type(t) is type(v) is type(omega) is type(v_variance) is type(omega_variance) is float:
+            status = 0  # for _settle: unknown until the step returns
             try:
                 status, nis = _step(
                     self._buf, t, 1, 2, v, omega, v_variance, omega_variance, self._odometry_gate
                 )
+                if status and status != INVALID:  # undone under the try (see _settle)
+                    return self._not_applied(status, "odometry", t, nis, slice(1, 3))
             except BaseException:
-                self._settle()
+                self._settle(status)
                 raise
             if not status:
                 # new_result(True, nis, residual, None), written out: this saves a call.
@@ -856,8 +861,6 @@ class PlanarFusion(GaussianEstimate):
                 _set_residual(result, self._odometry_residual.copy())
                 _set_reason(result, None)
                 return result
-            if status != INVALID:
-                return self._not_applied(status, "odometry", t, nis, slice(1, 3))
         return self._apply(t, "odometry", v, omega, v_variance, omega_variance, _ODOMETRY_NAMES)
 
     def update_speed(self, t: float, v: float, *, variance: float) -> UpdateResult:
@@ -1036,15 +1039,16 @@ class PlanarFusion(GaussianEstimate):
         # Fast path: plain floats go straight to the compiled step, which checks the rest
         # (see update_odometry).
         if type(t) is type(z0) is type(z1) is type(var0) is type(var1) is float:
+            status = 0  # for _settle: unknown until the step returns
             try:
                 status, nis = _step(self._buf, t, first, count, z0, z1, var0, var1, gate)
+                if status and status != INVALID:  # undone under the try (see _settle)
+                    return self._not_applied(status, kind, t, nis, comps)
             except BaseException:
-                self._settle()
+                self._settle(status)
                 raise
             if not status:
                 return new_result(True, nis, self._residuals[comps].copy(), None)
-            if status != INVALID:
-                return self._not_applied(status, kind, t, nis, comps)
         t = as_time(t, "t")
         z0 = finite_float(z0, names[0])
         var0 = variance(var0, names[2])
@@ -1062,29 +1066,37 @@ class PlanarFusion(GaussianEstimate):
                 f"out of order: t={t} s is older than the filter time {last} s",
                 FusionStatus.OUT_OF_ORDER,
             )
+        status = 0  # for _settle: unknown until the step returns
         try:
             status, nis = _step(self._buf, t, first, count, z0, float(z1), var0, float(var1), gate)
+            if status:  # undone under the try (see _settle)
+                if last is None:
+                    # Before the step the clock was not set: undone, it is not set either.
+                    self._buf[BUF_SAVED_TIME] = math.nan
+                return self._not_applied(status, kind, t, nis, comps)
         except BaseException:
-            self._settle()
+            self._settle(status)
             raise
-        if status:
-            if last is None:
-                # Before the step the clock was not set: undone, it is not set either.
-                self._buf[BUF_SAVED_TIME] = math.nan
-            return self._not_applied(status, kind, t, nis, comps)
         return new_result(True, nis, self._residuals[comps].copy(), None)
 
-    def _settle(self) -> None:
-        """Undo a step left overflowed by an exception raised as it returned.
+    def _settle(self, status: int) -> None:
+        """Undo a step left overflowed or to be undone by an exception raised part-way.
 
         Python delivers a ``KeyboardInterrupt`` as a call returns: one delivered
         as the online step returned loses its status. Only ``TIME_GAP`` leaves
         an invalid estimate (the overflowed prediction, for :func:`undo_step`),
         which this finds by its non-finite entries, as the kernel did; every
         other outcome leaves a valid one (the update applied, or the prediction
-        kept).
+        kept). The callers also run their :func:`undo_step` under the same try:
+        one is delivered on entering a Python function too (``_not_applied``,
+        ``undo_step``), with the ``status`` of the step when it was known (0
+        if not): a step to be undone (``TIME_GAP``, ``NOT_POSITIVE_DEFINITE``)
+        is undone again here, whether its undo had begun or not (undoing is
+        idempotent); ``undo_step`` puts the time back before ``x`` and ``P``.
         """
-        if not (np.isfinite(self._x).all() and np.isfinite(self._p).all()):
+        if status in (TIME_GAP, NOT_POSITIVE_DEFINITE) or not (
+            np.isfinite(self._x).all() and np.isfinite(self._p).all()
+        ):
             undo_step(self._buf)
 
     def _not_applied(

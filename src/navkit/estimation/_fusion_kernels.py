@@ -567,8 +567,12 @@ def undo_step(buf: np.ndarray) -> None:
     (0.0, 1.0)
     """
     size = W * (1 + N_STATE)  # x and P
-    np.copyto(buf[_X0 : _X0 + size], buf[_SAVED0 : _SAVED0 + size])
+    # The time first: interrupted between the two (a KeyboardInterrupt as copyto
+    # is entered), x and P are still the overflowed ones, which PlanarFusion
+    # finds and undoes again (the other way round, x and P restored at the
+    # overflowed time: every later measurement out of order).
     buf[BUF_TIME] = buf[BUF_SAVED_TIME]
+    np.copyto(buf[_X0 : _X0 + size], buf[_SAVED0 : _SAVED0 + size])
 
 
 def _step_types() -> tuple[Any, ...]:

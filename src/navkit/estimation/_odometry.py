@@ -76,7 +76,7 @@ def _chain(
     The steps are summed apart from the anchor, which is added last: added to
     the coordinates themselves, each step would be rounded at their size, with
     one sign for steady steps (1 mm steps at a UTM northing, 5e6 m, drifted by
-    2 cm per 100 km). From the origin (anchor 0) the positions are the plain
+    1.6 cm per 100 km). From the origin (anchor 0) the positions are the plain
     running sums, bit for bit.
     """
     c = np.cos(heading_before)
@@ -126,7 +126,7 @@ def anchored(start: float) -> float:
     The start itself, so that each step is added to the motion since the start
     (rounded at its size) rather than to the coordinate (rounded at the
     coordinate's size, with one sign for steady motion: 1 mm steps at a UTM
-    northing, 5e6 m, drifted by 2 cm per 100 km). 0 for a start at 0 (the
+    northing, 5e6 m, drifted by 1.6 cm per 100 km). 0 for a start at 0 (the
     coordinate as given, -0.0 included: the plain running sums, bit for bit)
     and beyond ±1e15 m, where the start plus a motion near the float64 limit
     could overflow although neither does (within ±1e15 m the sum rounds to the
@@ -270,7 +270,7 @@ class OmniOdometry:
     coordinates, and :meth:`update` and :meth:`update_batch` agree bit for bit
     however the readings are split. (Steps added to the coordinates themselves would each
     be rounded at the coordinates' size, with one sign for steady motion: 1 mm
-    steps at a northing of 5e6 m drifted by 2 cm per 100 km.) From the origin
+    steps at a northing of 5e6 m drifted by 1.6 cm per 100 km.) From the origin
     the positions are the plain running sums of the steps, bit for bit.
 
     Parameters
@@ -496,7 +496,7 @@ class DiffOdometry:
     over 960 m from the origin: 5.6e-14 rad and 2e-11 m, 219 spacings).
     (Steps added to the coordinates themselves would each be rounded at the
     coordinates' size, with one sign for steady motion: 1 mm steps at a
-    northing of 5e6 m drifted by 2 cm per 100 km.) From the origin the
+    northing of 5e6 m drifted by 1.6 cm per 100 km.) From the origin the
     positions are the plain running sums of the steps, bit for bit.
 
     Parameters
