@@ -12,13 +12,15 @@ from typing import TextIO
 from navkit.cli._encoding import tolerant_output
 from navkit.cli._parser import build_parser, join_negative_points
 from navkit.cli._signals import Terminated, handled_signals
-from navkit.errors import NavkitError
+from navkit.errors import KernelCacheWarning, NavkitError
 
 __all__ = ["main"]
 
 #: Failures of the user's input or environment (files, data, maps, missing
-#: extras, unreachable plans): reported in one line with exit code 1.
-EXPECTED = (NavkitError, OSError, ValueError, ImportError)
+#: extras, unreachable plans): reported in one line with exit code 1. Under
+#: ``-W error`` a :class:`~navkit.errors.KernelCacheWarning` (no writable cache
+#: folder) is raised rather than shown: one line too, not a traceback.
+EXPECTED = (NavkitError, OSError, ValueError, ImportError, KernelCacheWarning)
 
 
 def one_line(exc: BaseException) -> str:
@@ -68,13 +70,16 @@ def main(argv: Sequence[str] | None = None) -> int:
             if stream is None:
                 stream = closing.enter_context(open(os.devnull, "w", encoding="utf-8"))
             streams.append(stream)
+        if sys.stdout is None:  # argparse's --help would go to standard error instead
+            closing.enter_context(contextlib.redirect_stdout(streams[0]))
         return _main(argv, *streams)
 
 
 def _main(argv: Sequence[str] | None, out: TextIO, err: TextIO) -> int:
     parser = build_parser()
     try:
-        given = sys.argv[1:] if argv is None else list(argv)
+        # An embedding interpreter may leave sys.argv unset: no arguments, then.
+        given = getattr(sys, "argv", [])[1:] if argv is None else list(argv)
         args = parser.parse_args(join_negative_points(given))
     except SystemExit as exc:  # --help, --version (0) and bad arguments (2)
         return exc.code if isinstance(exc.code, int) else (0 if exc.code is None else 2)

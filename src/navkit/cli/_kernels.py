@@ -8,7 +8,9 @@ key kernel exists in the folder numba would cache it in —
 ``$NUMBA_CACHE_DIR/<folder>_<sha1 of the folder path>/`` when that variable is
 set, otherwise the ``__pycache__`` folder beside the kernel's source (or, when
 that is not writable, numba's user-wide cache folder, which has the same layout
-as ``NUMBA_CACHE_DIR``).
+as ``NUMBA_CACHE_DIR``). In a frozen application without the source files
+(``sys.frozen``), numba caches in the user-wide folder alone, named after the
+path the kernel's code gives: the kernel's module is imported to read it.
 """
 
 from __future__ import annotations
@@ -132,7 +134,25 @@ def kernels_cached(kind: str) -> bool:
     (package, module, function), _ = KERNELS[kind]
     tag = f"py{sys.version_info.major}{sys.version_info.minor}"
     pattern = f"{module}.{function}-*.{tag}.nbi"
-    return any(any(folder.glob(pattern)) for folder in cache_folders(package) if folder.is_dir())
+    folders = cache_folders(package)
+    if getattr(sys, "frozen", False):
+        folders = _frozen_folders(f"{package}.{module}", function) or folders
+    return any(any(folder.glob(pattern)) for folder in folders if folder.is_dir())
+
+
+def _frozen_folders(module: str, function: str) -> list[Path]:
+    """Where numba caches a kernel of a frozen application whose source is not beside it.
+
+    numba then caches it in its user-wide folder alone, under the folder of the
+    file its code names (a relative path in a frozen application: taken from
+    the current folder); ``NUMBA_CACHE_DIR`` and ``__pycache__`` need the file.
+    Empty when the file exists (numba's usual folders apply).
+    """
+    kernel: Any = getattr(importlib.import_module(module), function, None)
+    code = getattr(getattr(kernel, "py_func", kernel), "__code__", None)
+    if code is None or os.path.exists(code.co_filename):
+        return []
+    return [_user_wide_dir() / _subfolder(Path(os.path.abspath(code.co_filename)).parent)]
 
 
 def check_cache(stream: TextIO) -> str | None:

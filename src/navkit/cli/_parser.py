@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import math
 import re
+import sys
 from collections.abc import Callable, Sequence
 from importlib import metadata
 from typing import overload
@@ -90,6 +91,26 @@ class Choices(Sequence[str]):
 
     def __len__(self) -> int:
         return len(self._list())
+
+
+class _Version(argparse.Action):
+    """``--version``: ``navkit X.Y.Z`` on one line of standard output.
+
+    argparse's own version action wraps the line to the terminal's width
+    (``COLUMNS=10``: ``navkit`` and the version on two lines) and writes it to
+    standard error when standard output is closed.
+    """
+
+    def __call__(
+        self,
+        parser: argparse.ArgumentParser,
+        namespace: argparse.Namespace,
+        values: str | Sequence[object] | None,
+        option_string: str | None = None,
+    ) -> None:
+        if sys.stdout is not None:
+            sys.stdout.write(f"navkit {version()}\n")
+        parser.exit()
 
 
 def _scenario_names() -> list[str]:
@@ -215,7 +236,8 @@ def build_parser(scenarios: Sequence[str] | None = None) -> argparse.ArgumentPar
         prog="navkit",
         description="navkit's experiments, demo and planner on the command line.",
     )
-    parser.add_argument("--version", action="version", version=f"navkit {version()}")
+    parser.add_argument("--version", action=_Version, nargs=0, default=argparse.SUPPRESS,
+                        help="show program's version number and exit")  # fmt: skip
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
 
     demo = sub.add_parser(

@@ -91,13 +91,15 @@ def run_scenario(
         # absent: a mistyped --data would go unnoticed. (With --scheduler the
         # folder is the workers', which need not exist here.)
         raise FileNotFoundError(f"--data: {args.data} is not a folder")
+    # (A Dask cluster's workers compile, and cache, on their own machines.) Checked
+    # before the scenario is made: making one may run a kernel (greedy's A* route),
+    # and an unusable cache was then reported as the library's two-line warning.
+    problem = check_cache(err) if address is None else None
     scenario = _construct(name, args)
     total = len(scenario.trials(args.trials, seed=args.seed))
-    if address is None:  # (a Dask cluster's workers compile, and cache, on their own machines)
-        problem = check_cache(err)
-        if not args.quiet:
-            processes = _processes(workers, total)
-            announce_compilation("simulation", err, problem=problem, processes=processes)
+    if address is None and not args.quiet:
+        processes = _processes(workers, total)
+        announce_compilation("simulation", err, problem=problem, processes=processes)
     began = time.perf_counter()
     with (
         _dask_client(address) as client,
