@@ -3,8 +3,8 @@
 ``node_records`` (``_dstar_heap``) allocates the heap's node ids and keys with
 ``np.empty`` and only the slots in use are ever written: a planner's pickle holds the
 rest as they were in memory (leftover bytes of the process, pointers and text
-included), so two planners built and used alike pickle differently. Reported to
-the Field D* owner; the test is a strict xfail until the unused slots are zeroed (``np.zeros``).
+included), so two planners built and used alike pickled differently. The unused
+slots are now zeros.
 """
 
 from __future__ import annotations
@@ -12,7 +12,6 @@ from __future__ import annotations
 import pickle
 
 import numpy as np
-import pytest
 
 from navkit.planning import FieldDStar
 
@@ -35,9 +34,6 @@ def test_planners_used_alike_give_the_same_path() -> None:
     assert again.replan().points.tobytes() == a.replan().points.tobytes()
 
 
-@pytest.mark.xfail(
-    strict=True, reason="node_records leaves heap slots uninitialised (np.empty); see module doc"
-)
 def test_planners_used_alike_pickle_to_the_same_bytes() -> None:
     for _ in range(5):  # uninitialised memory may match by chance once; not five times
         a, b = _used_planner(), _used_planner()

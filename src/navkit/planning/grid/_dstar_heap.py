@@ -53,13 +53,30 @@ element, the heap's last, nearly always belongs at the bottom. A raised key
 (repairs only) keeps the compare and stops where it fits: placed from a leaf,
 repairs after a change mid-path took about 10 % longer.
 
-Compilation: every change of the heap goes through one compiled function,
-:func:`heap_update` (D* Lite's ``UpdateVertex`` on the queue: queue, requeue
-or dequeue a node; popping the top is dequeuing it), called and never inlined.
+Kernel view (review 18): the search kernels get ``keys`` flat (slot i's key at
+``2 i`` and ``2 i + 1``) and the slots as :func:`flat_positions` (node s's
+slot at ``RECORD * s``), both C-contiguous views of the same memory, so a slot's
+address is a shift or a ``lea`` instead of a multiplication by a run-time
+stride, and slot and node indices are masked with :data:`NN`, which drops
+numba's wraparound of negative indices (three instructions before each load)
+from the address arithmetic. In the pop's descent these sat on the chain of
+dependent loads (keys, then the winner's index, then its key): with the
+index arithmetic gone a fresh 1024² plan took about 10 % less time,
+bit-identical (the same comparisons, so the same heap and expansion order).
+The tournament indices must stay unmasked: masked, LLVM turned the selects
+into branches (about 50 % mispredicted) and fresh plans took 15-20 % longer.
+
+Compilation: every change of the heap goes through one function,
+:func:`change` (D* Lite's ``UpdateVertex`` on the queue: queue, requeue
+or dequeue a node; popping the top is dequeuing it), compiled once; the
+search's pop of the top inlines it (LLVM) into
+:func:`navkit.planning.grid._dstar_lite_kernels.settle`, everything else
+calls it through :func:`heap_update`, never inlined (passing the four arrays
+field by field: about 2-6 % of a fresh plan's time at the pop's site).
 It replaced separately compiled sifts, slot writes and comparisons, inlined
 (by numba or LLVM) into three operations that were themselves inlined into
 every caller, so that the sift code was optimised five times over: Field D*'s
-first use took about 0.3 s longer. The one exception is the hot path of a
+first use took about 0.3 s longer. The other exception is the hot path of a
 search, the sift-up of a new or lowered key, which :func:`heap_lower` inlines
 into its caller (through the call, searches were about 7 % slower); both use
 the one sift-up loop :func:`_sift_up`, inlined by LLVM. Whether
@@ -67,9 +84,10 @@ a node is queued or dequeued is an argument computed at run time: a literal
 ``True``/``False`` argument compiles the function once per value. Key
 comparisons are written out (``a0 < b0 or (a0 == b0 and a1 < b1)``) and so
 is ``min()``: a function for either is compiled on its own.
-:func:`heap_push`, :func:`heap_pop` and :func:`heap_remove` are kernels for
-Python callers (the tests); the search kernels call :func:`heap_update`
-themselves. :func:`heap_new` and :func:`node_records` are plain NumPy.
+:func:`heap_push`, :func:`heap_pop` and :func:`heap_remove` are for Python
+callers (the tests; they pass the kernel view to one small kernel); the search
+kernels call :func:`heap_update` themselves. :func:`heap_new`,
+:func:`node_records` and :func:`flat_positions` are plain NumPy.
 """
 
 from __future__ import annotations
@@ -102,6 +120,11 @@ G = 0
 RHS = 1
 POS = 2
 RECORD = 3
+# Mask of the non-negative int64 values: ``x & NN`` is ``x`` for a slot or node id
+# (never negative), and tells LLVM so: numba's wraparound of a negative index
+# (three instructions before each load, on the heap's critical path) then drops
+# out, and the mask itself folds into the address scaling (bits 62-63 shift out).
+NN = (1 << 62) - 1
 # Keys entry of slot 0 within its 64-byte line: slot 1, the first child of the
 # root, then starts a line (16-byte keys), and so do the children of every slot.
 _KEYS_OFFSET = 48
@@ -111,6 +134,20 @@ def positions(records: np.ndarray) -> np.ndarray:
     """The heap slots (column :data:`POS`, int64, a strided view) of ``records``."""
     pos: np.ndarray = records.view(np.int64)[:, POS]
     return pos
+
+
+def flat_positions(pos: np.ndarray) -> np.ndarray:
+    """The heap slots as the kernels take them: node s's slot at ``RECORD * s``.
+
+    ``pos`` is the slot column of node records (:func:`positions`); the result is
+    the contiguous int64 view of the records from that column of the first node
+    to the last (no copy): indexing it costs no multiplication by a stride.
+    """
+    n = pos.shape[0]
+    flat: np.ndarray = np.lib.stride_tricks.as_strided(
+        pos, shape=(RECORD * (n - 1) + 1 if n else 0,), strides=(8,)
+    )
+    return flat
 
 
 def node_records(n_nodes: int) -> tuple[np.ndarray, tuple[np.ndarray, ...]]:
@@ -125,10 +162,14 @@ def node_records(n_nodes: int) -> tuple[np.ndarray, tuple[np.ndarray, ...]]:
     records = np.full((n_nodes, RECORD), np.inf)
     pos = positions(records)
     pos[:] = -1
-    raw = np.empty(2 * n_nodes + 8, dtype=np.float64)
+    # Zeros, not np.empty, though a search reads only the slots it wrote: the
+    # unused ones are pickled with the planner, and would carry leftover process
+    # memory into it (equal planners pickling to different bytes). calloc'd pages
+    # cost no more than malloc'd ones.
+    raw = np.zeros(2 * n_nodes + 8, dtype=np.float64)
     skip = (_KEYS_OFFSET - raw.ctypes.data % 64) % 64 // 8
     keys = raw[skip : skip + 2 * n_nodes].reshape(n_nodes, 2)
-    nodes = np.empty(n_nodes, dtype=np.int64)
+    nodes = np.zeros(n_nodes, dtype=np.int64)
     size = np.zeros(1, dtype=np.int64)
     return records, (nodes, keys, pos, size)
 
@@ -149,18 +190,19 @@ def _sift_up(
 
     The one sift-up of :func:`heap_update` and :func:`heap_lower` (compiled once,
     inlined by LLVM into both); the caller stores its node at the returned slot.
+    ``keys`` is flat (slot i's key at ``2 i``, ``2 i + 1``).
     """
     while i > 0:
         parent = (i - 1) >> 2
-        p0 = keys[parent, 0]
-        p1 = keys[parent, 1]
+        p0 = keys[2 * parent]
+        p1 = keys[2 * parent + 1]
         if not (k0 < p0 or (k0 == p0 and k1 < p1)):
             break
         moved = nodes[parent]
         nodes[i] = moved
-        pos[moved] = i
-        keys[i, 0] = p0
-        keys[i, 1] = p1
+        pos[RECORD * moved & NN] = i
+        keys[2 * i] = p0
+        keys[2 * i + 1] = p1
         i = parent
     return i
 
@@ -178,15 +220,35 @@ def heap_update(
 ) -> None:
     """Queue ``node`` with key (k0, k1) if ``queued``, else dequeue it (if queued).
 
+    :func:`change`, called: every change of the heap but the two hot ones of a
+    search (the pop of the top and the sift-up of a lowered key).
+    """
+    change(nodes, keys, pos, size, node, k0, k1, queued)
+
+
+@_inlined
+def change(
+    nodes: np.ndarray,
+    keys: np.ndarray,
+    pos: np.ndarray,
+    size: np.ndarray,
+    node: int,
+    k0: float,
+    k1: float,
+    queued: bool,
+) -> None:
+    """Queue ``node`` with key (k0, k1) if ``queued``, else dequeue it (if queued).
+
     Queuing a queued node changes its key; dequeuing the node in slot 0 pops
     the top. A queued node is placed at a hole ``i`` (its slot, or a new one
     at the end): above it if its key is below the key of i's parent, else at
     i or below it. For a key change this matches comparing the new key with
     the old one (the parent's key is not above the old key, which is not
     above the children's). A dequeued node's slot is filled by Floyd's
-    method (see the module notes), in the same descent loop.
+    method (see the module notes), in the same descent loop. ``keys`` is
+    flat (slot i's key at ``2 i``, ``2 i + 1``).
     """
-    i = pos[node]
+    i = pos[RECORD * node & NN]
     n = size[0]
     descend = True
     if queued:
@@ -194,26 +256,31 @@ def heap_update(
             i = n
             n += 1
             size[0] = n
-        parent = (i - 1) >> 2
+        parent = ((i - 1) >> 2) & NN
         descend = not (
-            i > 0 and (k0 < keys[parent, 0] or (k0 == keys[parent, 0] and k1 < keys[parent, 1]))
+            i > 0
+            and (k0 < keys[2 * parent] or (k0 == keys[2 * parent] and k1 < keys[2 * parent + 1]))
         )
     else:
         if i < 0:
             return
         n -= 1
         size[0] = n
-        pos[node] = -1
+        pos[RECORD * node & NN] = -1
         if i == n:
             return
         # The last element fills the hole; it may belong higher or lower.
-        node = nodes[n]
-        k0 = keys[n, 0]
-        k1 = keys[n, 1]
+        node = nodes[n & NN]
+        k0 = keys[2 * n & NN]
+        k1 = keys[(2 * n + 1) & NN]
     # Down from the hole along the least children: to a leaf for a dequeue (Floyd's
     # method; the sift-up below then places the last element, also above slot i
     # when the dequeued node was not the top), only while a child is below a
     # requeued key (a raised key, in repairs, mostly stays near its slot).
+    # Slots are masked with NN (non-negative, so numba's wraparound of negative
+    # indices drops out of the address arithmetic; see the module notes). Not the
+    # tournament's indices below: LLVM then made their selects branches.
+    i = i & NN
     while descend:
         first = 4 * i + 1
         if first >= n:
@@ -227,33 +294,33 @@ def heap_update(
         c1 = first + 1 if first + 1 < last else last
         c2 = first + 2 if first + 2 < last else last
         c3 = first + 3 if first + 3 < last else last
-        a0 = keys[first, 0]
-        b0 = keys[c1, 0]
-        c0 = keys[c2, 0]
-        d0 = keys[c3, 0]
-        second = (b0 < a0) | ((b0 == a0) & (keys[c1, 1] < keys[first, 1]))
-        fourth = (d0 < c0) | ((d0 == c0) & (keys[c3, 1] < keys[c2, 1]))
+        a0 = keys[2 * first]
+        b0 = keys[2 * c1]
+        c0 = keys[2 * c2]
+        d0 = keys[2 * c3]
+        second = (b0 < a0) | ((b0 == a0) & (keys[2 * c1 + 1] < keys[2 * first + 1]))
+        fourth = (d0 < c0) | ((d0 == c0) & (keys[2 * c3 + 1] < keys[2 * c2 + 1]))
         left = first + second * (c1 - first)
         right = c2 + fourth * (c3 - c2)
-        l0 = keys[left, 0]
-        r0 = keys[right, 0]
-        right_wins = (r0 < l0) | ((r0 == l0) & (keys[right, 1] < keys[left, 1]))
+        l0 = keys[2 * left]
+        r0 = keys[2 * right]
+        right_wins = (r0 < l0) | ((r0 == l0) & (keys[2 * right + 1] < keys[2 * left + 1]))
         best = left + right_wins * (right - left)
-        b0 = keys[best, 0]
-        b1 = keys[best, 1]
+        b0 = keys[2 * best]
+        b1 = keys[2 * best + 1]
         if queued and not (b0 < k0 or (b0 == k0 and b1 < k1)):
             break
         moved = nodes[best]
         nodes[i] = moved
-        pos[moved] = i
-        keys[i, 0] = b0
-        keys[i, 1] = b1
+        pos[RECORD * moved & NN] = i
+        keys[2 * i] = b0
+        keys[2 * i + 1] = b1
         i = best
     i = _sift_up(nodes, keys, pos, i, k0, k1)
     nodes[i] = node
-    pos[node] = i
-    keys[i, 0] = k0
-    keys[i, 1] = k1
+    pos[RECORD * node & NN] = i
+    keys[2 * i] = k0
+    keys[2 * i + 1] = k1
 
 
 @_inlined
@@ -276,21 +343,35 @@ def heap_lower(
     caller then calls :func:`heap_update` (not called from here, so that its
     code is not linked into this function too).
     """
-    i = pos[node]
+    i = pos[RECORD * node & NN]
     if i < 0:
         i = size[0]
         size[0] = i + 1
-    elif not (k0 < keys[i, 0] or (k0 == keys[i, 0] and k1 < keys[i, 1])):
+    elif not (k0 < keys[2 * i & NN] or (k0 == keys[2 * i & NN] and k1 < keys[(2 * i + 1) & NN])):
         return False
-    i = _sift_up(nodes, keys, pos, i, k0, k1)
+    i = _sift_up(nodes, keys, pos, i & NN, k0, k1)
     nodes[i] = node
-    pos[node] = i
-    keys[i, 0] = k0
-    keys[i, 1] = k1
+    pos[RECORD * node & NN] = i
+    keys[2 * i] = k0
+    keys[2 * i + 1] = k1
     return True
 
 
 @_kernel
+def _heap_change(
+    nodes: np.ndarray,
+    keys: np.ndarray,
+    pos: np.ndarray,
+    size: np.ndarray,
+    node: int,
+    k0: float,
+    k1: float,
+    queued: bool,
+) -> None:
+    """:func:`heap_update` for Python callers (``keys`` flat)."""
+    heap_update(nodes, keys, pos, size, node, k0, k1, queued)
+
+
 def heap_push(
     nodes: np.ndarray,
     keys: np.ndarray,
@@ -301,20 +382,19 @@ def heap_push(
     k2: float,
 ) -> None:
     """Queue ``node`` with key (k1, k2), or change its key if it is already queued."""
-    heap_update(nodes, keys, pos, size, node, k1, k2, node >= 0)  # node >= 0: True
+    flat = flat_positions(pos)
+    _heap_change(nodes, keys.reshape(-1), flat, size, int(node), float(k1), float(k2), True)
 
 
-@_kernel
 def heap_pop(nodes: np.ndarray, keys: np.ndarray, pos: np.ndarray, size: np.ndarray) -> int:
     """Remove and return the node with the smallest key (the heap must not be empty)."""
-    top: int = nodes[0]
-    heap_update(nodes, keys, pos, size, top, 0.0, 0.0, top < 0)  # top < 0: False
+    top = int(nodes[0])
+    _heap_change(nodes, keys.reshape(-1), flat_positions(pos), size, top, 0.0, 0.0, False)
     return top
 
 
-@_kernel
 def heap_remove(
     nodes: np.ndarray, keys: np.ndarray, pos: np.ndarray, size: np.ndarray, node: int
 ) -> None:
     """Remove ``node`` from the heap if it is queued."""
-    heap_update(nodes, keys, pos, size, node, 0.0, 0.0, node < 0)  # node < 0: False
+    _heap_change(nodes, keys.reshape(-1), flat_positions(pos), size, int(node), 0.0, 0.0, False)

@@ -46,9 +46,10 @@ level, which translates, types and lowers the body again at each site (about
 call it from Python); the search reaches it through :func:`_corner` at five
 sites (one in :func:`_pair_value`, four in :func:`_pairs_through`).
 Every heap change is a call of
-:func:`navkit.planning.grid._dstar_heap.heap_update`, except the sift-up of a
-lowered value's key (the hot path), which
-:func:`~navkit.planning.grid._dstar_heap.heap_lower` inlines. ``min()`` of two
+:func:`navkit.planning.grid._dstar_heap.heap_update`, except the two hot ones,
+LLVM-inlined into :func:`settle`: the pop of the top
+(:func:`~navkit.planning.grid._dstar_heap.change`) and the sift-up of a
+lowered value's key (:func:`~navkit.planning.grid._dstar_heap.heap_lower`). ``min()`` of two
 values is written out (``b if b < a else a``, the value numba's ``min(a, b)``
 picks): numba compiles ``min()`` as a function of its own for every argument
 type set.
@@ -57,9 +58,11 @@ Calling convention. The search kernels take the planner's arrays as one tuple
 ``st = (pad, vals, nodes, keys, pos, size, work, changed)``: ``vals`` the node
 records of :func:`navkit.planning.grid._dstar_heap.node_records` flattened
 (``g`` of node ``s`` is ``vals[RECORD * s]``, its ``rhs`` ``vals[RECORD * s +
-RHS]``; its heap slot ``pos[s]`` shares the record: one cache line holds all
+RHS]``; its heap slot ``pos[RECORD * s]`` shares the record: one cache line holds all
 three), ``nodes, keys, pos, size`` the indexed heap of
-:mod:`navkit.planning.grid._dstar_heap`, ``work`` the int64 pair (work done,
+:mod:`navkit.planning.grid._dstar_heap` in its kernel view (``keys`` flat,
+``pos`` from :func:`~navkit.planning.grid._dstar_heap.flat_positions`: node
+``s``'s slot at ``pos[RECORD * s]``), ``work`` the int64 pair (work done,
 work limit), see :func:`settle`, and ``changed`` the int64 list of cells
 changed since the last search: their count, then their padded flat indices,
 written by ``FieldDStar.update_costs``. Flat records, not a (nodes, 3)
@@ -88,8 +91,11 @@ import numpy as np
 from navkit._shared.jit import njit_inline, typed_njit
 from navkit.planning.grid._dstar_heap import (
     HELPER_OPTIONS,
+    NN,
     RECORD,
     RHS,
+    change,
+    flat_positions,
     heap_lower,
     heap_update,
 )
@@ -165,8 +171,14 @@ def state(
     work: np.ndarray,
     changed: np.ndarray,
 ) -> tuple[np.ndarray, ...]:
-    """The ``st`` tuple of the search kernels (``records`` from ``node_records``, flattened)."""
-    return (pad, records.reshape(-1), *heap, work, changed)
+    """The ``st`` tuple of the search kernels (``records`` from ``node_records``, flattened).
+
+    The heap's keys are passed flat (slot i's key at ``2 i``, ``2 i + 1``).
+    """
+    nodes, keys, pos, size = heap
+    return (
+        pad, records.reshape(-1), nodes, keys.reshape(-1), flat_positions(pos), size, work, changed
+    )
 
 
 def params(
@@ -405,7 +417,7 @@ def update_vertex(
     if queued:
         m = rs if rs < gs else gs  # min(g, rhs), as numba's min picks
         heap_update(nodes, keys, pos, size, s, m + heuristic(sr, sc, i, j, hscale) + km, m, queued)
-    elif pos[s] >= 0:
+    elif pos[RECORD * s & NN] >= 0:
         heap_update(nodes, keys, pos, size, s, 0.0, 0.0, queued)
 
 
@@ -474,8 +486,8 @@ def settle(
         gt = vals[RECORD * target]
         rt = vals[RECORD * target + RHS]
         mt = rt if rt < gt else gt
-        top0 = keys[0, 0]
-        top1 = keys[0, 1]
+        top0 = keys[0]
+        top1 = keys[1]
         if gt == rt and key_reached(top0, top1, mt, th, km):
             break
         u = nodes[0]
@@ -502,7 +514,7 @@ def settle(
             ref = vals[RECORD * u]
             # u (the top) is consistent now: dequeuing it pops the top. (ref != rhs(u)
             # is False, but not a literal: that would compile heap_update again.)
-            heap_update(nodes, keys, pos, size, u, ref, ref, ref != vals[RECORD * u + RHS])
+            change(nodes, keys, pos, size, u, ref, ref, ref != vals[RECORD * u + RHS])
         else:
             spent += RAISE_WORK
             ref = vals[RECORD * u]

@@ -157,7 +157,7 @@ def _settled_value(
     gs = vals[RECORD * s]
     if gs == vals[RECORD * s + RHS] and (
         size[0] == 0
-        or key_reached(keys[0, 0], keys[0, 1], gs, heuristic(prm[3], prm[4], i, j, prm[8]), prm[6])
+        or key_reached(keys[0], keys[1], gs, heuristic(prm[3], prm[4], i, j, prm[8]), prm[6])
     ):
         return float(gs)
     need[0] = s
