@@ -56,6 +56,7 @@ from contextlib import contextmanager
 from typing import Any
 
 from navkit._shared import compile_shortcuts
+from navkit._shared.interrupts import interrupts_deferred
 
 __all__ = ["install", "paused"]
 
@@ -140,9 +141,11 @@ def _make_listeners() -> tuple[Any, Any]:
             data = ev.data if isinstance(ev.data, dict) else {}
             if getattr(state, "paused", False) or not _is_navkit(data.get("dispatcher")):
                 return
-            state.paused = True
-            _begin_pause()
-            compile_shortcuts.begin()
+            # A Ctrl-C held back (see LockRelease): all three, or none.
+            with interrupts_deferred():
+                _begin_pause()
+                compile_shortcuts.begin()
+                state.paused = True
 
         def on_end(self, ev: Any) -> None:
             """Nothing here: the collector resumes when the compiler lock is released."""
@@ -164,9 +167,15 @@ def _make_listeners() -> tuple[Any, Any]:
             # loaded from inside a compile, e.g. a user's kernel typing a navkit
             # one) would end a pause at an inner release, mid-compile.
             if getattr(state, "paused", False) and not compiler_lock.is_locked():
-                state.paused = False
-                _end_pause()
-                compile_shortcuts.end()
+                # A Ctrl-C held back until the three are done: Python delivers
+                # one on entering a function or after a C call returns, and
+                # one landing between them left the pause (the collector off)
+                # or the shortcuts on for the rest of the process. (Landing
+                # before, it leaves the pause to the thread's next release.)
+                with interrupts_deferred():
+                    _end_pause()
+                    compile_shortcuts.end()
+                    state.paused = False
 
     return CompileStart(), LockRelease()
 

@@ -134,6 +134,13 @@ def _make_dispatcher(njit: Any, options: dict[str, Any], py_func: Callable[..., 
 
 def jit_disabled() -> bool:
     """Whether numba's JIT is disabled (``NUMBA_DISABLE_JIT=1``): kernels run as Python."""
+    if "numba.core.config" not in sys.modules:
+        from navkit._shared.interrupts import interrupts_deferred
+
+        # This may import numba (``navkit warmup`` asks before loading it): a
+        # Ctrl-C cutting that import short would break numba as in load_numba.
+        with interrupts_deferred():
+            importlib.import_module("numba.core.config")
     config: Any = importlib.import_module("numba.core.config")
     return bool(config.DISABLE_JIT)
 
@@ -224,18 +231,24 @@ def load_numba() -> None:
     from navkit._shared.interrupts import interrupts_deferred
 
     # A Ctrl-C cutting numba's import short would leave it half imported, and
-    # every later kernel call in the process failing: the interrupt waits.
+    # every later kernel call in the process failing: the interrupt waits. Not
+    # while this waits for numba's compiler lock, though, which another thread
+    # may hold for as long as its compile takes (a user's kernel): nothing is
+    # done yet then, and a Ctrl-C stops the wait as usual. (The pauses of the
+    # collector inside the deferrals: one interrupted as it ends would leave
+    # the collector off.)
     with interrupts_deferred(), compile_gc.paused():
         from numba import njit
         from numba.core.compiler_lock import global_compiler_lock
         from numba.core.registry import cpu_target
 
-        # numba's compiler lock first, then navkit's, as in a thread whose compile
-        # types a stand-in (a user's kernel calling a navkit one): taken the other
-        # way round, that thread and this one each waited for the other's lock.
-        with global_compiler_lock, _LOCK:
-            if numba_loaded():  # another thread loaded it meanwhile
-                return
+    # numba's compiler lock first, then navkit's, as in a thread whose compile
+    # types a stand-in (a user's kernel calling a navkit one): taken the other
+    # way round, that thread and this one each waited for the other's lock.
+    with global_compiler_lock, _LOCK:
+        if numba_loaded():  # another thread loaded it meanwhile
+            return
+        with interrupts_deferred(), compile_gc.paused():
             compile_gc.install()
             # numba initialises its compiler (importing most of its modules) at the
             # first compile or cache load: done here, with the collector paused.

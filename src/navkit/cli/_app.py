@@ -76,14 +76,14 @@ def main(argv: Sequence[str] | None = None) -> int:
 
 
 def _main(argv: Sequence[str] | None, out: TextIO, err: TextIO) -> int:
-    parser = build_parser()
     try:
+        parser = build_parser()
         # An embedding interpreter may leave sys.argv unset: no arguments, then.
         given = getattr(sys, "argv", [])[1:] if argv is None else list(argv)
         args = parser.parse_args(join_negative_points(given))
     except SystemExit as exc:  # --help, --version (0) and bad arguments (2)
         return exc.code if isinstance(exc.code, int) else (0 if exc.code is None else 2)
-    except KeyboardInterrupt as exc:  # while a scenario or step name is checked (imports it)
+    except KeyboardInterrupt as exc:  # while the parser is made or a name checked (imports)
         return _interrupted(exc, err)
     try:
         code = _dispatch(args, out, err)
