@@ -51,6 +51,7 @@ says why.
 from __future__ import annotations
 
 import importlib
+import os
 import sys
 import threading
 import warnings
@@ -121,11 +122,18 @@ def _make_dispatcher(njit: Any, options: dict[str, Any], py_func: Callable[..., 
             raise
     if not _CACHE_PROBLEM:
         source = getattr(getattr(py_func, "__code__", None), "co_filename", py_func.__module__)
+        if os.path.exists(source):
+            why = "its __pycache__ and the user cache folder are read-only"
+            fix = "Set NUMBA_CACHE_DIR to a writable folder"
+        else:
+            # A frozen application without its source files: numba then ignores
+            # NUMBA_CACHE_DIR and caches in the user cache folder alone.
+            why = "the source file is not there, so numba uses only the user cache folder"
+            fix = "Make HOME (or XDG_CACHE_HOME) a writable folder"
         problem = (
             f"numba cannot cache navkit's compiled kernels: no writable cache folder for "
-            f"{source} (its __pycache__ and the user cache folder are read-only), so every process "
-            f"compiles them again on first use (seconds). Set NUMBA_CACHE_DIR to a "
-            f"writable folder (see navkit's docs/compilation.md)"
+            f"{source} ({why}), so every process compiles them again on first use (seconds). "
+            f"{fix} (see navkit's docs/compilation.md)"
         )
         _CACHE_PROBLEM.append(problem)
         warnings.warn(problem, KernelCacheWarning, stacklevel=_user_stacklevel())

@@ -1,0 +1,61 @@
+"""The no-cache warning names what helps: NUMBA_CACHE_DIR, or HOME in a frozen app.
+
+numba ignores ``NUMBA_CACHE_DIR`` for a function whose source file is not there (a
+frozen application shipping bytecode only) and caches it in its user cache folder
+alone; the warning told such users to set ``NUMBA_CACHE_DIR`` all the same.
+"""
+
+from __future__ import annotations
+
+import types
+import warnings
+from collections.abc import Callable
+from typing import Any
+
+import pytest
+
+from navkit._shared import jit
+from navkit.errors import KernelCacheWarning
+
+
+def _refusing_njit(**options: Any) -> Callable[[Any], Any]:
+    """An ``njit`` that, as numba with no writable folder, refuses to cache."""
+
+    def decorate(func: Any) -> Any:
+        if options.get("cache"):
+            raise RuntimeError(f"cannot cache function {func.__name__!r}: no locator available")
+        return func
+
+    return decorate
+
+
+def _kernel_from(filename: str) -> Callable[[float], float]:
+    code = compile("def kernel(x):\n    return 2 * x\n", filename, "exec")
+    namespace: dict[str, Any] = {}
+    exec(code, namespace)
+    kernel: Callable[[float], float] = namespace["kernel"]
+    return kernel
+
+
+@pytest.mark.parametrize("frozen", [False, True])
+def test_the_warning_names_what_helps(
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Any, frozen: bool
+) -> None:
+    source = tmp_path / "kernels.py"
+    if not frozen:
+        source.write_text("# the kernel's source\n")
+    monkeypatch.setattr(jit, "_CACHE_PROBLEM", [])
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        made = jit._make_dispatcher(_refusing_njit, {"cache": True}, _kernel_from(str(source)))
+    assert isinstance(made, types.FunctionType) and made(2.0) == 4.0  # made without the cache
+    [warning] = [w for w in caught if issubclass(w.category, KernelCacheWarning)]
+    message = str(warning.message)
+    assert str(source) in message
+    if frozen:
+        assert "source file is not there" in message and "HOME" in message
+        assert "NUMBA_CACHE_DIR to" not in message
+    else:
+        assert "Set NUMBA_CACHE_DIR to a writable folder" in message
+        assert "read-only" in message
+    assert [message] == jit._CACHE_PROBLEM
