@@ -1,4 +1,4 @@
-"""The no-cache warning names what helps: NUMBA_CACHE_DIR, or HOME in a frozen app.
+"""The no-cache warning names what helps: NUMBA_CACHE_DIR, HOME in a frozen app, or sources.
 
 numba ignores ``NUMBA_CACHE_DIR`` for a function whose source file is not there (a
 frozen application shipping bytecode only) and caches it in its user cache folder
@@ -37,13 +37,15 @@ def _kernel_from(filename: str) -> Callable[[float], float]:
     return kernel
 
 
-@pytest.mark.parametrize("frozen", [False, True])
+@pytest.mark.parametrize("case", ["source", "frozen", "bytecode only"])
 def test_the_warning_names_what_helps(
-    monkeypatch: pytest.MonkeyPatch, tmp_path: Any, frozen: bool
+    monkeypatch: pytest.MonkeyPatch, tmp_path: Any, case: str
 ) -> None:
     source = tmp_path / "kernels.py"
-    if not frozen:
+    if case == "source":
         source.write_text("# the kernel's source\n")
+    if case == "frozen":
+        monkeypatch.setattr("sys.frozen", True, raising=False)
     monkeypatch.setattr(jit, "_CACHE_PROBLEM", [])
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
@@ -52,9 +54,12 @@ def test_the_warning_names_what_helps(
     [warning] = [w for w in caught if issubclass(w.category, KernelCacheWarning)]
     message = str(warning.message)
     assert str(source) in message
-    if frozen:
+    if case == "frozen":
         assert "source file is not there" in message and "HOME" in message
         assert "NUMBA_CACHE_DIR to" not in message
+    elif case == "bytecode only":  # not frozen: numba caches it nowhere
+        assert "source file is not there" in message and ".py files" in message
+        assert "NUMBA_CACHE_DIR to" not in message and "HOME" not in message
     else:
         assert "Set NUMBA_CACHE_DIR to a writable folder" in message
         assert "read-only" in message

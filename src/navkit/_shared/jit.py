@@ -125,11 +125,14 @@ def _make_dispatcher(njit: Any, options: dict[str, Any], py_func: Callable[..., 
         if os.path.exists(source):
             why = "its __pycache__ and the user cache folder are read-only"
             fix = "Set NUMBA_CACHE_DIR to a writable folder"
-        else:
+        elif getattr(sys, "frozen", False):
             # A frozen application without its source files: numba then ignores
             # NUMBA_CACHE_DIR and caches in the user cache folder alone.
             why = "the source file is not there, so numba uses only the user cache folder"
             fix = "Make HOME (or XDG_CACHE_HOME) a writable folder"
+        else:  # numba caches only functions whose source file it finds
+            why = "the source file is not there: numba caches only functions it can find"
+            fix = "Install navkit with its .py files"
         problem = (
             f"numba cannot cache navkit's compiled kernels: no writable cache folder for "
             f"{source} ({why}), so every process compiles them again on first use (seconds). "
