@@ -26,6 +26,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from interrupt_points import interrupted_at
 from navkit.estimation import DiffOdometry, OmniOdometry
 from navkit.kinematics import DiffDrive, OmniDrive
 
@@ -35,27 +36,8 @@ def _state(odo: Any) -> tuple[Any, ...]:
 
 
 def _interrupted_at(k: int, call: Callable[[], object]) -> bool:
-    """Run ``call`` with a KeyboardInterrupt at its ``k``-th call event; True if raised."""
-    seen = 0
-    armed = True
-
-    def profile(frame: Any, event: str, arg: Any) -> None:
-        nonlocal seen
-        if armed and event in ("call", "c_call"):
-            seen += 1
-            if seen == k:
-                sys.setprofile(None)
-                raise KeyboardInterrupt
-
-    sys.setprofile(profile)
-    try:
-        call()
-        armed = False  # not the finally's own call
-    except KeyboardInterrupt:
-        return True
-    finally:
-        sys.setprofile(None)
-    return False
+    """``call`` with a KeyboardInterrupt at its ``k``-th call event; True if raised."""
+    return interrupted_at(k, call, events=("call", "c_call"))
 
 
 def _check_every_point(

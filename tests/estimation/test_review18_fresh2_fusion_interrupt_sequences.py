@@ -13,13 +13,13 @@ gated measurements.
 from __future__ import annotations
 
 import copy
-import sys
 from typing import Any
 
 import numpy as np
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from interrupt_points import delivery_points, interrupted_at
 from navkit.errors import FilterError
 from navkit.estimation import PlanarFusion
 
@@ -59,42 +59,13 @@ def _estimate(fusion: PlanarFusion) -> tuple[Any, ...]:
 
 def _points(fusion: PlanarFusion, op: tuple[Any, ...]) -> int:
     """How many delivery points ``op`` passes on (a copy of) ``fusion``."""
-    seen = 0
-
-    def profile(frame: Any, event: str, arg: Any) -> None:
-        nonlocal seen
-        if event in ("call", "c_return"):
-            seen += 1
-
     dry = copy.deepcopy(fusion)
-    sys.setprofile(profile)
-    try:
-        _apply(dry, op)
-    finally:
-        sys.setprofile(None)
-    return seen
+    return delivery_points(lambda: _apply(dry, op))
 
 
 def _interrupted(fusion: PlanarFusion, op: tuple[Any, ...], k: int) -> bool:
     """``op`` with a KeyboardInterrupt at its ``k``-th delivery point; True if it landed."""
-    seen = 0
-
-    def profile(frame: Any, event: str, arg: Any) -> None:
-        nonlocal seen
-        if event in ("call", "c_return"):
-            seen += 1
-            if seen == k:
-                sys.setprofile(None)
-                raise KeyboardInterrupt
-
-    sys.setprofile(profile)
-    try:
-        _apply(fusion, op)
-    except KeyboardInterrupt:
-        return True
-    finally:
-        sys.setprofile(None)
-    return False
+    return interrupted_at(k, lambda: _apply(fusion, op))
 
 
 _OP = st.tuples(

@@ -22,13 +22,13 @@ from __future__ import annotations
 
 import contextlib
 import copy
-import sys
 from collections.abc import Callable
 from typing import Any
 
 import numpy as np
 import pytest
 
+from interrupt_points import interrupted_at
 from navkit.errors import FilterError
 from navkit.estimation import PlanarFusion, _fusion
 
@@ -60,29 +60,13 @@ def _go_on(fusion: PlanarFusion) -> tuple[Any, ...]:
 
 
 def _interrupted_at(k: int, call: Callable[[], object]) -> bool:
-    """Run ``call`` with a KeyboardInterrupt at its ``k``-th delivery point; True if raised."""
-    seen = 0
-    armed = True
+    """``call`` with a KeyboardInterrupt at its ``k``-th delivery point; True if raised."""
 
-    def profile(frame: Any, event: str, arg: Any) -> None:
-        nonlocal seen
-        if armed and event in ("call", "c_return"):
-            seen += 1
-            if seen == k:
-                sys.setprofile(None)
-                raise KeyboardInterrupt
+    def quiet() -> None:
+        with contextlib.suppress(FilterError):
+            call()
 
-    sys.setprofile(profile)
-    try:
-        call()
-        armed = False
-    except KeyboardInterrupt:
-        return True
-    except FilterError:
-        armed = False
-    finally:
-        sys.setprofile(None)
-    return False
+    return interrupted_at(k, quiet)
 
 
 @pytest.mark.parametrize("method", sorted(_CALLS))

@@ -1,0 +1,60 @@
+"""A ``KeyboardInterrupt`` injected where CPython can deliver one, through ``sys.setprofile``.
+
+CPython runs a pending signal handler on entering a Python function and after a C
+call returns: the profiler's ``call`` and ``c_return`` events. Exception-safety tests
+interrupt a call at its k-th such point, for every k, and check what it leaves.
+"""
+
+from __future__ import annotations
+
+import sys
+from collections.abc import Callable, Sequence
+from typing import Any
+
+#: Profiler events at which CPython delivers a pending interrupt.
+DELIVERY: tuple[str, ...] = ("call", "c_return")
+
+
+def interrupted_at(
+    k: int, call: Callable[[], object], *, events: Sequence[str] = DELIVERY
+) -> bool:
+    """Run ``call`` with a KeyboardInterrupt at its ``k``-th of ``events``; True if raised."""
+    seen = 0
+    armed = True
+
+    def profile(frame: Any, event: str, arg: Any) -> None:
+        nonlocal seen
+        if armed and event in events:
+            seen += 1
+            if seen == k:
+                sys.setprofile(None)
+                raise KeyboardInterrupt
+
+    sys.setprofile(profile)
+    try:
+        call()
+        armed = False  # not the finally's own call
+    except KeyboardInterrupt:
+        return True
+    finally:
+        sys.setprofile(None)
+    return False
+
+
+def delivery_points(call: Callable[[], object], *, events: Sequence[str] = DELIVERY) -> int:
+    """How many of ``events`` ``call`` passes (run it on a copy of what it changes)."""
+    seen = 0
+    armed = True
+
+    def profile(frame: Any, event: str, arg: Any) -> None:
+        nonlocal seen
+        if armed and event in events:
+            seen += 1
+
+    sys.setprofile(profile)
+    try:
+        call()
+        armed = False
+    finally:
+        sys.setprofile(None)
+    return seen
