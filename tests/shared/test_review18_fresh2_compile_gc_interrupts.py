@@ -17,12 +17,11 @@ raises ``KeyboardInterrupt``; navkit's hold keeps it for later).
 
 from __future__ import annotations
 
-import json
-import os
-import subprocess
 import sys
 
 import pytest
+
+from subprocess_probe import probe_outcome
 
 pytestmark = pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
 
@@ -96,16 +95,7 @@ print(json.dumps(outcomes))
 
 @pytest.mark.parametrize("where", ["start", "release"])
 def test_an_interrupt_anywhere_in_the_listeners_leaves_no_pause(where: str) -> None:
-    done = subprocess.run(
-        [sys.executable, "-c", _PROBE, where],
-        capture_output=True,
-        text=True,
-        timeout=300,
-        env={**os.environ, "PYTHONWARNINGS": "ignore"},
-        check=False,
-    )
-    assert done.returncode == 0, done.stderr
-    outcomes = json.loads(done.stdout.strip().splitlines()[-1])
+    outcomes = probe_outcome(_PROBE, where)
     points = {o["at"] for o in outcomes}
     # Every step was reached (the pause's and the shortcuts' own functions).
     assert ({"_begin_pause", "begin"} if where == "start" else {"_end_pause", "end"}) <= points

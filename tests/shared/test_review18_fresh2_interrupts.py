@@ -9,13 +9,12 @@ the process failed ("module 'numba' has no attribute 'core'").
 
 from __future__ import annotations
 
-import json
-import os
 import signal
-import subprocess
 import sys
 
 import pytest
+
+from subprocess_probe import probe_outcome
 
 pytestmark = pytest.mark.skipif(
     not hasattr(signal, "raise_signal") or sys.platform == "win32",
@@ -59,16 +58,7 @@ print(json.dumps(outcome))
 
 
 def test_ctrl_c_in_warmups_first_question_leaves_navkit_working() -> None:
-    done = subprocess.run(
-        [sys.executable, "-c", _INTERRUPTED_WARMUP],
-        capture_output=True,
-        text=True,
-        timeout=300,
-        env={**os.environ, "PYTHONWARNINGS": "ignore"},
-        check=False,
-    )
-    assert done.returncode == 0, done.stderr
-    outcome = json.loads(done.stdout.strip().splitlines()[-1])
+    outcome = probe_outcome(_INTERRUPTED_WARMUP)
     assert outcome["fired"]
     # The command stops as on any Ctrl-C: one line, exit code 130 ...
     assert outcome["code"] == 130
@@ -116,16 +106,7 @@ def test_ctrl_c_while_waiting_for_another_threads_compile_arrives_at_once() -> N
     # Only numba's import is held back: navkit's first call waiting for numba's
     # compiler lock (another thread compiling, for as long as that takes) is
     # interrupted as usual, and loads numba at the next call.
-    done = subprocess.run(
-        [sys.executable, "-c", _WAIT_FOR_ANOTHER_COMPILE],
-        capture_output=True,
-        text=True,
-        timeout=300,
-        env={**os.environ, "PYTHONWARNINGS": "ignore"},
-        check=False,
-    )
-    assert done.returncode == 0, done.stderr
-    outcome = json.loads(done.stdout.strip().splitlines()[-1])
+    outcome = probe_outcome(_WAIT_FOR_ANOTHER_COMPILE)
     assert outcome["first"] == "KeyboardInterrupt"
     assert outcome["while the other compile ran"]
     assert outcome["later"] == 6

@@ -7,10 +7,7 @@ numba ("partially initialized module 'numba' has no attribute 'core'").
 
 from __future__ import annotations
 
-import json
-import os
 import signal
-import subprocess
 import sys
 import threading
 from collections.abc import Iterator
@@ -19,6 +16,7 @@ from types import FrameType
 import pytest
 
 from navkit._shared.interrupts import interrupts_deferred
+from subprocess_probe import probe_outcome
 
 pytestmark = pytest.mark.skipif(
     not hasattr(signal, "raise_signal") or sys.platform == "win32",
@@ -151,16 +149,7 @@ print(json.dumps(outcome))
 
 
 def test_ctrl_c_during_numbas_import_leaves_navkit_working() -> None:
-    done = subprocess.run(
-        [sys.executable, "-c", _INTERRUPTED_IMPORT],
-        capture_output=True,
-        text=True,
-        timeout=300,
-        env={**os.environ, "PYTHONWARNINGS": "ignore"},
-        check=False,
-    )
-    assert done.returncode == 0, done.stderr
-    outcome = json.loads(done.stdout.strip().splitlines()[-1])
+    outcome = probe_outcome(_INTERRUPTED_IMPORT)
     assert outcome["fired"]
     # The user's Ctrl-C is not lost: it arrives when numba is loaded ...
     assert outcome["first"] == "KeyboardInterrupt"
