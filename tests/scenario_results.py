@@ -18,7 +18,12 @@ def comparable(result: ScenarioResult) -> dict[str, Any]:
     ``*_wall_time``, and table columns and rows whose heading or first cell
     holds the word ``wall``.
     """
-    data = copy.deepcopy(result.to_dict())
+    return comparable_dict(result.to_dict())
+
+
+def comparable_dict(data: dict[str, Any]) -> dict[str, Any]:
+    """:func:`comparable` of a result already in ``to_dict()`` form (a CLI's JSON, say)."""
+    data = copy.deepcopy(data)
     data["summary"] = {k: v for k, v in data["summary"].items() if not k.endswith("_wall_time")}
     for trial in data["trials"]:
         del trial["wall_time"]

@@ -14,28 +14,16 @@ import os
 import subprocess
 import sys
 from pathlib import Path
+from typing import Any
 
 import pytest
 
-from scenario_results import WALL
+from scenario_results import comparable_dict
 
 
-def _comparable(data: dict[str, object]) -> object:
-    """The JSON without wall-clock figures (``scenario_results.comparable``'s rules)."""
-    out = json.loads(json.dumps(data))
-    out["summary"] = {k: v for k, v in out["summary"].items() if not k.endswith("_wall_time")}
-    for trial in out["trials"]:
-        del trial["wall_time"]
-        trial["values"] = {k: v for k, v in trial["values"].items() if not k.endswith("_wall_time")}
-    for table in out["tables"]:
-        keep = [i for i, c in enumerate(table["columns"]) if not WALL.search(c)]
-        table["columns"] = [table["columns"][i] for i in keep]
-        table["rows"] = [
-            [row[i] for i in keep]
-            for row in table["rows"]
-            if not (row and isinstance(row[0], str) and WALL.search(row[0]))
-        ]
-    return out
+def _comparable(data: dict[str, Any]) -> object:
+    """The JSON without wall-clock figures."""
+    return comparable_dict(json.loads(json.dumps(data)))
 
 
 def _run(folder: Path, hash_seed: str, workers: str) -> str:
