@@ -564,7 +564,11 @@ class _CheckedPath(_ConcretePath):
             return fh
         return io.TextIOWrapper(fh, encoding=encoding, errors=errors, newline=newline)
 
-    def read_text(self, encoding: str | None = None, errors: str | None = None) -> str:
+    def read_text(
+        self, encoding: str | None = None, errors: str | None = None, newline: str | None = None
+    ) -> str:
+        # ``newline``: Path.read_text's since Python 3.13 (mypy --python-version 3.13 wants
+        # it). Line endings are returned untranslated whatever it is, as before.
         with open_regular(Path(self), "ROS bag file") as fh:
             data = fh.read(METADATA_MAX + 1)
         if len(data) > METADATA_MAX:
