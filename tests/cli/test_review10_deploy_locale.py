@@ -19,7 +19,12 @@ pytestmark = pytest.mark.skipif(sys.platform == "win32", reason="POSIX locales")
 
 def _ascii_env() -> dict[str, str]:
     dropped = ("LC_", "LANG", "PYTHONIOENCODING", "PYTHONUTF8", "NUMBA_")
-    env = {k: v for k, v in os.environ.items() if not k.startswith(dropped)}
+    # NUMBA_CACHE_DIR kept: without it the plan's kernels were cached in the
+    # checkout's src/ (numba's default, beside the sources).
+    env = {
+        k: v for k, v in os.environ.items()
+        if not k.startswith(dropped) or k == "NUMBA_CACHE_DIR"
+    }  # fmt: skip
     env.update(LC_ALL="C", PYTHONUTF8="0", PYTHONCOERCECLOCALE="0")
     return env
 
