@@ -19,6 +19,20 @@ def interrupted_at(
     k: int, call: Callable[[], object], *, events: Sequence[str] = DELIVERY
 ) -> bool:
     """Run ``call`` with a KeyboardInterrupt at its ``k``-th of ``events``; True if raised."""
+    try:
+        _profiled(call, events, stop_at=k)
+    except KeyboardInterrupt:
+        return True
+    return False
+
+
+def delivery_points(call: Callable[[], object], *, events: Sequence[str] = DELIVERY) -> int:
+    """How many of ``events`` ``call`` passes (run it on a copy of what it changes)."""
+    return _profiled(call, events, stop_at=0)
+
+
+def _profiled(call: Callable[[], object], events: Sequence[str], *, stop_at: int) -> int:
+    """Run ``call`` counting ``events``; a KeyboardInterrupt at the ``stop_at``-th (0: none)."""
     seen = 0
     armed = True
 
@@ -26,7 +40,7 @@ def interrupted_at(
         nonlocal seen
         if armed and event in events:
             seen += 1
-            if seen == k:
+            if seen == stop_at:
                 sys.setprofile(None)
                 raise KeyboardInterrupt
 
@@ -34,27 +48,6 @@ def interrupted_at(
     try:
         call()
         armed = False  # not the finally's own call
-    except KeyboardInterrupt:
-        return True
-    finally:
-        sys.setprofile(None)
-    return False
-
-
-def delivery_points(call: Callable[[], object], *, events: Sequence[str] = DELIVERY) -> int:
-    """How many of ``events`` ``call`` passes (run it on a copy of what it changes)."""
-    seen = 0
-    armed = True
-
-    def profile(frame: Any, event: str, arg: Any) -> None:
-        nonlocal seen
-        if armed and event in events:
-            seen += 1
-
-    sys.setprofile(profile)
-    try:
-        call()
-        armed = False
     finally:
         sys.setprofile(None)
     return seen
