@@ -51,3 +51,19 @@ def _profiled(call: Callable[[], object], events: Sequence[str], *, stop_at: int
     finally:
         sys.setprofile(None)
     return seen
+
+
+#: Probe-script source (needs ``signal`` imported): an import hook, ``Interrupt``,
+#: raising SIGINT once as numba imports its typing package, as a user's Ctrl-C
+#: would land; ``Interrupt.fired`` tells whether it did. Install it with
+#: ``sys.meta_path.insert(0, Interrupt())`` before numba is imported.
+CTRL_C_IN_NUMBA_IMPORT = """
+class Interrupt:
+    # Ctrl-C while numba imports its typing package, as a user's would land.
+    fired = False
+    def find_spec(self, name, path=None, target=None):
+        if name == "numba.core.typing" and not Interrupt.fired:
+            Interrupt.fired = True
+            signal.raise_signal(signal.SIGINT)
+        return None
+"""

@@ -14,6 +14,7 @@ import sys
 
 import pytest
 
+from interrupt_points import CTRL_C_IN_NUMBA_IMPORT
 from subprocess_probe import probe_outcome
 
 pytestmark = pytest.mark.skipif(
@@ -25,15 +26,7 @@ _INTERRUPTED_WARMUP = r"""
 import contextlib, io, json, signal, sys
 import numpy as np
 
-class Interrupt:
-    # Ctrl-C while numba imports its typing package, as a user's would land.
-    fired = False
-    def find_spec(self, name, path=None, target=None):
-        if name == "numba.core.typing" and not Interrupt.fired:
-            Interrupt.fired = True
-            signal.raise_signal(signal.SIGINT)
-        return None
-
+""" + CTRL_C_IN_NUMBA_IMPORT + r"""
 from navkit.cli import main
 from navkit.mapping import OccupancyGrid
 assert "numba" not in sys.modules

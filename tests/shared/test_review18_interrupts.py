@@ -15,6 +15,7 @@ from types import FrameType
 
 import pytest
 
+from interrupt_points import CTRL_C_IN_NUMBA_IMPORT
 from navkit._shared.interrupts import interrupts_deferred
 from subprocess_probe import probe_outcome
 
@@ -119,15 +120,7 @@ _INTERRUPTED_IMPORT = r"""
 import json, signal, sys
 import numpy as np
 
-class Interrupt:
-    # Ctrl-C while numba imports its typing package, as a user's would land.
-    fired = False
-    def find_spec(self, name, path=None, target=None):
-        if name == "numba.core.typing" and not Interrupt.fired:
-            Interrupt.fired = True
-            signal.raise_signal(signal.SIGINT)
-        return None
-
+""" + CTRL_C_IN_NUMBA_IMPORT + r"""
 from navkit.mapping import OccupancyGrid
 grid = OccupancyGrid(np.zeros((4, 5)), resolution=0.5)
 assert "numba" not in sys.modules
