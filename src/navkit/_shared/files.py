@@ -13,15 +13,32 @@ import errno
 import os
 import secrets
 import stat
+import sys
+import time
 from collections.abc import Iterator, Sequence
 from pathlib import Path
 
 from navkit._shared.locks import ForkSafeLock
 
+try:
+    import fcntl
+except ImportError:  # Windows
+    fcntl = None  # type: ignore[assignment]
+
 __all__ = ["RENAME_LOCK", "atomic_path", "atomic_paths"]
 
 #: Random temporary names tried before giving up.
 _ATTEMPTS = 100
+
+#: Windows: how long a rename refused with ``PermissionError`` is tried again, s.
+#: Windows refuses to rename over a file that another program has open (a virus
+#: scanner or indexer looking at the new file, a reader of the old one) for as
+#: long as it is open; such holds last milliseconds.
+_WINDOWS_RETRY_SECONDS = 1.0
+
+#: Windows' errors for a path longer than ``MAX_PATH`` (260) characters:
+#: ``ERROR_PATH_NOT_FOUND``, ``ERROR_FILENAME_EXCED_RANGE``.
+_WINDOWS_PATH_ERRORS = (3, 206)
 
 #: Held while one :func:`atomic_paths` renames its files over their targets: two
 #: threads saving the same files (a map's image and YAML) would otherwise
@@ -43,10 +60,14 @@ def atomic_paths(targets: Sequence[Path]) -> Iterator[tuple[Path, ...]]:
     named ``.<stem>.<random>.tmp<suffix>`` (the target's suffix kept, for
     writers that pick a format from it). The caller writes them (by path; a
     writer may replace the empty file). When the ``with`` block ends normally
-    every temporary file is flushed to disk (``fsync``) and given the mode of
-    the existing target (a new one keeps ``0o666`` less the umask, what a plain
-    write gives), *then* they are renamed over the targets in order
-    (``os.replace``) and the folders are synced where the system allows. If
+    every temporary file is flushed to disk (``fsync``; on macOS
+    ``F_FULLFSYNC``, as ``fsync`` there leaves the data in the drive's cache)
+    and given the mode of the existing target (a new one keeps ``0o666`` less
+    the umask, what a plain write gives; not on Windows, where a mode is only
+    a read-only flag and a read-only target is not replaced), *then* they are
+    renamed over the targets in order (``os.replace``; on Windows tried again
+    for up to a second while another program has a file open) and the folders
+    are synced where the system allows (not on Windows). If
     anything fails before the renames, no target is touched; if a rename fails
     (a permission, a file system error), the targets renamed before it are put
     back as they were (from hard links made just before, where the file system
@@ -97,8 +118,11 @@ def atomic_paths(targets: Sequence[Path]) -> Iterator[tuple[Path, ...]]:
         _check_targets(targets)
         for temporary, target in zip(temporaries, targets, strict=True):
             _sync(temporary, os.O_RDWR)
-            with contextlib.suppress(FileNotFoundError):
-                os.chmod(temporary, stat.S_IMODE(os.stat(target).st_mode))
+            if not _windows():
+                # (On Windows a mode is only the read-only flag: copied, it would make
+                # the temporary file one that cannot be removed if the rename fails.)
+                with contextlib.suppress(FileNotFoundError):
+                    os.chmod(temporary, stat.S_IMODE(os.stat(target).st_mode))
         with RENAME_LOCK:
             _replace_all(temporaries, targets)
     finally:
@@ -193,7 +217,7 @@ def _compact_name(target: Path, tag: str) -> str:
 def _replace_all(temporaries: Sequence[Path], targets: Sequence[Path]) -> None:
     """Rename each temporary file over its target; undo the renames done if one fails."""
     if len(targets) == 1:
-        os.replace(temporaries[0], targets[0])
+        _replace(temporaries[0], targets[0])
         return
     # Hard links to the targets as they are, to put them back if a later rename fails.
     backups: list[tuple[Path | None, bool]] = []
@@ -203,13 +227,13 @@ def _replace_all(temporaries: Sequence[Path], targets: Sequence[Path]) -> None:
         done = 0
         try:
             for temporary, target in zip(temporaries, targets, strict=True):
-                os.replace(temporary, target)
+                _replace(temporary, target)
                 done += 1
         except BaseException:
             for target, (backup, existed) in zip(targets[:done], backups[:done], strict=True):
                 with contextlib.suppress(OSError):
                     if backup is not None:
-                        os.replace(backup, target)
+                        _replace(backup, target)
                     elif not existed:
                         target.unlink(missing_ok=True)
                     # An old target that could not be linked stays new: removing it
@@ -219,6 +243,29 @@ def _replace_all(temporaries: Sequence[Path], targets: Sequence[Path]) -> None:
         for backup, _ in backups:
             if backup is not None:
                 backup.unlink(missing_ok=True)
+
+
+def _windows() -> bool:
+    """Whether this is Windows (looked up at each call, for tests that pretend it is)."""
+    return sys.platform == "win32"
+
+
+def _replace(source: Path, target: Path) -> None:
+    """``os.replace``; on Windows tried again for a while when another program holds a file."""
+    if not _windows():
+        os.replace(source, target)
+        return
+    deadline = time.monotonic() + _WINDOWS_RETRY_SECONDS
+    delay = 0.001
+    while True:
+        try:
+            os.replace(source, target)
+            return
+        except PermissionError:
+            if time.monotonic() >= deadline:
+                raise
+        time.sleep(delay)
+        delay = min(2 * delay, 0.1)
 
 
 def _backup(target: Path) -> tuple[Path | None, bool]:
@@ -259,8 +306,13 @@ def _new_temporary(target: Path) -> Path:
         except OSError as exc:
             # A file system whose limit is in characters or UTF-16 units while
             # pathconf answers in bytes (vfat, exFAT: 255 characters, "1530"
-            # bytes) refuses a name the byte count let through.
-            if exc.errno != errno.ENAMETOOLONG or compact:
+            # bytes) refuses a name the byte count let through. Windows refuses
+            # a path of 260 characters or more (unless long paths are enabled)
+            # as "not found": a target just short of it has a temporary beyond.
+            too_long = exc.errno == errno.ENAMETOOLONG or (
+                _windows() and getattr(exc, "winerror", None) in _WINDOWS_PATH_ERRORS
+            )
+            if not too_long or compact:
                 raise
             compact = True
             continue
@@ -270,8 +322,16 @@ def _new_temporary(target: Path) -> Path:
 
 
 def _sync(path: Path, flags: int) -> None:
+    """Flush ``path`` to the disk: ``fsync``, or on macOS ``F_FULLFSYNC`` where it works."""
     fd = os.open(path, flags)
     try:
+        full_sync = getattr(fcntl, "F_FULLFSYNC", None) if sys.platform == "darwin" else None
+        if full_sync is not None:
+            try:
+                fcntl.fcntl(fd, full_sync)  # the drive's cache too (fsync stops short of it)
+                return
+            except OSError:  # a file system without it (network shares): fsync then
+                pass
         os.fsync(fd)
     finally:
         os.close(fd)

@@ -20,7 +20,8 @@ def write_json(data: Any, path: str | os.PathLike[str]) -> Path:
     and a failure leaves no partial file behind. A ``path`` that exists but is
     not a regular file (``/dev/null``, ``/dev/stdout``, a named pipe) is
     written into directly instead: renaming a file over it would replace the
-    device or pipe itself.
+    device or pipe itself. The text is UTF-8 with LF line ends on every system
+    (Windows' text mode would write CRLF): the same result, the same bytes.
 
     Parameters
     ----------
@@ -54,12 +55,12 @@ def write_json(data: Any, path: str | os.PathLike[str]) -> Path:
     if target.is_dir():
         raise IsADirectoryError(f"{target} is a folder, not a file")
     if target.exists() and not target.is_file():
-        with open(target, "w", encoding="utf-8") as stream:
+        with open(target, "w", encoding="utf-8", newline="\n") as stream:
             stream.write(text)
         return target
     folder = target.parent
     if not folder.is_dir():
         raise FileNotFoundError(f"folder {folder} does not exist")
     with atomic_path(target) as temporary:
-        temporary.write_text(text, encoding="utf-8")
+        temporary.write_text(text, encoding="utf-8", newline="\n")  # LF on Windows too
     return target

@@ -31,7 +31,7 @@ __all__ = ["Terminated", "WorkerStopped", "handled_signals"]
 
 
 class Terminated(KeyboardInterrupt):
-    """The command received ``SIGTERM`` or ``SIGHUP``: it ends as on Ctrl-C.
+    """The command received ``SIGTERM``, ``SIGHUP`` or ``SIGBREAK``: it ends as on Ctrl-C.
 
     A :class:`KeyboardInterrupt`, so that the library's clean-up on Ctrl-C
     (pools shut down, temporary files removed) runs for it too.
@@ -75,6 +75,7 @@ def _stop_worker(signum: int, frame: FrameType | None) -> None:
 def handled_signals() -> Iterator[None]:
     """Within the block, ``SIGINT``, ``SIGTERM`` and ``SIGHUP`` raise in this process.
 
+    On Windows ``SIGBREAK`` (Ctrl-Break) does too, in place of ``SIGHUP``.
     ``SIGINT`` raises :class:`KeyboardInterrupt` (as by default), the others
     :class:`Terminated`; in a process forked within the block, any of them
     raises :class:`WorkerStopped`. A signal whose handler is not Python's
@@ -97,6 +98,8 @@ def handled_signals() -> Iterator[None]:
     defaults = {signal.SIGINT: signal.default_int_handler, signal.SIGTERM: signal.SIG_DFL}
     if hasattr(signal, "SIGHUP"):  # not on Windows
         defaults[signal.SIGHUP] = signal.SIG_DFL
+    if hasattr(signal, "SIGBREAK"):  # Windows' Ctrl-Break, which else ends it at once
+        defaults[signal.SIGBREAK] = signal.SIG_DFL
     previous = {}
     try:
         for signum, default in defaults.items():

@@ -26,6 +26,10 @@ __all__ = ["process_pool"]
 #: ``PR_SET_PDEATHSIG`` from ``<linux/prctl.h>``.
 _PR_SET_PDEATHSIG = 1
 
+#: Most workers a ``ProcessPoolExecutor`` takes on Windows (it waits on every
+#: worker's handle at once, ``WaitForMultipleObjects``' 64 less its own three).
+_MAX_WINDOWS_WORKERS = 61
+
 
 @contextlib.contextmanager
 def process_pool(workers: int) -> Iterator[concurrent.futures.ProcessPoolExecutor]:
@@ -43,8 +47,11 @@ def process_pool(workers: int) -> Iterator[concurrent.futures.ProcessPoolExecuto
     process ends, however it ends. Submit from the thread that entered the
     block (as ``sweep`` and ``warmup`` do): on Linux a worker is also killed
     when the thread that started it ends (``PR_SET_PDEATHSIG`` follows the
-    thread), and workers start at a ``submit``.
+    thread), and workers start at a ``submit``. On Windows at most 61 workers
+    start (more would make ``ProcessPoolExecutor`` refuse the pool).
     """
+    if sys.platform == "win32":
+        workers = min(workers, _MAX_WINDOWS_WORKERS)
     pool = concurrent.futures.ProcessPoolExecutor(max_workers=workers, initializer=_start_worker)
     try:
         try:

@@ -207,8 +207,12 @@ def sweep(
         Without an ``executor``: 1 runs the trials in this process; otherwise
         a ``concurrent.futures.ProcessPoolExecutor`` of
         ``min(workers, number of trials)`` processes (None: every core this
-        process may use), or this process when that is 1. Ignored with an
-        ``executor``.
+        process may use; at most 61 on Windows), or this process when that
+        is 1. Ignored with an ``executor``. The pool's workers start afresh
+        on macOS and Windows (Python's ``spawn``): there a script must call
+        ``sweep`` under ``if __name__ == "__main__":``, and the scenario must
+        pickle, its class importable by the workers (defined in a module or
+        the script, not in a notebook).
     executor : concurrent.futures.Executor or dask.distributed.Client, optional
         Where to run the trials: an executor's ``submit``, or a Dask client's
         ``submit(..., pure=False)`` (any object with ``submit`` and

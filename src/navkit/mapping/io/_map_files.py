@@ -13,6 +13,7 @@ Pillow, against Pillow's own decompression-bomb limit too
 
 from __future__ import annotations
 
+import codecs
 import contextlib
 import errno
 import functools
@@ -27,7 +28,7 @@ import warnings
 import zlib
 from collections.abc import Iterator
 from dataclasses import dataclass
-from pathlib import Path
+from pathlib import Path, PureWindowsPath
 from typing import Any, BinaryIO, NamedTuple
 
 import numpy as np
@@ -228,11 +229,20 @@ def _yaml_text(path: Path) -> str:
                 f"{path}: this is {kind}, not a map YAML; pass the map's YAML file "
                 "(the one that names the image)"
             )
+    # UTF-8 (a byte-order mark, as Windows Notepad wrote, is skipped by the YAML
+    # reader); or UTF-16 / UTF-32 with their byte-order mark, as YAML allows and
+    # map_server's yaml-cpp reads: Windows PowerShell 5's ">" writes UTF-16.
+    encoding = "utf-8"
+    if data.startswith((codecs.BOM_UTF32_LE, codecs.BOM_UTF32_BE)):
+        encoding = "utf-32"
+    elif data.startswith((codecs.BOM_UTF16_LE, codecs.BOM_UTF16_BE)):
+        encoding = "utf-16"
     try:
-        return data.decode("utf-8")
+        return data.decode(encoding)
     except UnicodeDecodeError as exc:
+        what = "UTF-8" if encoding == "utf-8" else encoding.upper()
         raise ValueError(
-            f"{path}: not a map YAML: not UTF-8 text (byte 0x{data[exc.start]:02x} at "
+            f"{path}: not a map YAML: not {what} text (byte 0x{data[exc.start]:02x} at "
             f"offset {exc.start})"
         ) from None
 
@@ -262,8 +272,9 @@ def read_map_yaml(path: str | os.PathLike[str]) -> MapMetadata:
     FileNotFoundError
         The YAML or the image it names does not exist.
     ValueError
-        The YAML is not a small UTF-8 YAML mapping (an image or a binary file
-        passed by mistake, more than 1 MiB), a required key is missing, a
+        The YAML is not a small YAML mapping in UTF-8 (or UTF-16 or UTF-32
+        with a byte-order mark; an image or a binary file passed by
+        mistake, more than 1 MiB), a required key is missing, a
         value is out of range (``resolution`` outside [1e-6, 1e6] m, origin x
         or y beyond ±1e9 m, thresholds outside [0, 1] or
         ``free_thresh >= occupied_thresh``, unknown ``mode``), or the image
@@ -290,9 +301,7 @@ def read_map_yaml(path: str | os.PathLike[str]) -> MapMetadata:
     image = entries["image"]
     if not isinstance(image, str) or not image or "\x00" in image:
         raise ValueError(f"{yaml_path}: image must be a file name, got {_short(image)}")
-    image_path = Path(image)
-    if not image_path.is_absolute():
-        image_path = yaml_path.parent / image_path
+    image_path = _image_file(yaml_path, image)
     # One stat for both checks: a save in the other mode (another thread or process)
     # may remove the image between two, which read as "not a regular file".
     try:
@@ -301,7 +310,12 @@ def read_map_yaml(path: str | os.PathLike[str]) -> MapMetadata:
         gone = exc.errno in _MISSING_ERRNOS
         if not (gone or getattr(exc, "winerror", None) in _MISSING_WINERRORS):
             raise
-        raise FileNotFoundError(f"{yaml_path}: map image {image_path} does not exist") from None
+        hint = ""
+        if "\\" in image and PureWindowsPath(image).anchor:
+            hint = " (a Windows path: give the image's path relative to the YAML)"
+        raise FileNotFoundError(
+            f"{yaml_path}: map image {image_path} does not exist{hint}"
+        ) from None
     if not stat.S_ISREG(image_stat.st_mode):
         kind = "a directory" if stat.S_ISDIR(image_stat.st_mode) else "not a regular file"
         raise ValueError(f"{yaml_path}: map image {image_path} is {kind}")
@@ -340,6 +354,23 @@ def read_map_yaml(path: str | os.PathLike[str]) -> MapMetadata:
     except ValueError as exc:
         raise ValueError(f"{yaml_path}: {exc}") from None
     return MapMetadata(image_path, resolution, (ox, oy, oyaw), negate, occ, free, mode.lower())
+
+
+def _image_file(yaml_path: Path, image: str) -> Path:
+    """The file a map YAML's ``image`` names: absolute, or relative to the YAML's folder.
+
+    A relative name with backslashes written on Windows (``maps\\office.pgm``)
+    names, where backslashes are not separators, a file with backslashes in
+    its name: when there is none, the name is read as Windows reads it.
+    """
+    image_path = Path(image)
+    if not image_path.is_absolute():
+        image_path = yaml_path.parent / image_path
+    if "\\" in image and os.sep != "\\":
+        windows = PureWindowsPath(image)
+        if not windows.anchor and not os.path.lexists(image_path):
+            return yaml_path.parent.joinpath(*windows.parts)
+    return image_path
 
 
 def map_yaml_text(meta: MapMetadata, image_name: str) -> str:
@@ -910,7 +941,8 @@ def read_map(path: str | os.PathLike[str]) -> OccupancyGrid:
         Missing YAML or image file.
     ValueError
         Anything malformed, with the file and the problem named: a YAML that
-        is not a small UTF-8 map YAML (an image passed instead, binary data),
+        is not a small map YAML in UTF-8 (or UTF-16 or UTF-32 with a
+        byte-order mark; an image passed instead, binary data),
         missing or invalid keys (see :func:`read_map_yaml` for the ranges),
         an image that is garbage, truncated, not an image (the YAML itself, a
         text file), a non-PNG image with 16-bit colour channels, a directory,
@@ -1285,7 +1317,7 @@ def _names_image(yaml_path: Path, image: Path) -> bool:
         name = _load_yaml(_yaml_text(yaml_path), yaml_path).get("image")
         if not isinstance(name, str) or not name or "\x00" in name:
             return False
-        named = Path(name) if Path(name).is_absolute() else yaml_path.parent / name
+        named = _image_file(yaml_path, name)
         return named.exists() and os.path.samefile(named, image)
     except (OSError, ValueError):
         return False

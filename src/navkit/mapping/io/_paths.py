@@ -56,8 +56,13 @@ def open_regular(path: Path, what: str) -> BinaryIO:
         fd = os.open(path, flags)
     except FileNotFoundError:
         raise FileNotFoundError(f"{what} {path} does not exist") from None
-    except IsADirectoryError:  # where a directory cannot be opened at all (Windows)
+    except IsADirectoryError:  # where a directory cannot be opened for reading
         raise ValueError(f"{what} {path} is a directory") from None
+    except PermissionError:
+        # Windows refuses to open a directory as a file with EACCES, not EISDIR.
+        if os.path.isdir(path):
+            raise ValueError(f"{what} {path} is a directory") from None
+        raise
     try:
         mode = os.fstat(fd).st_mode
         if not stat.S_ISREG(mode):
