@@ -1,4 +1,4 @@
-"""The no-cache warning names what helps: NUMBA_CACHE_DIR, HOME in a frozen app, or sources.
+"""The no-cache warning names what helps: NUMBA_CACHE_DIR, the user cache folder, or sources.
 
 numba ignores ``NUMBA_CACHE_DIR`` for a function whose source file is not there (a
 frozen application shipping bytecode only) and caches it in its user cache folder
@@ -7,6 +7,7 @@ alone; the warning told such users to set ``NUMBA_CACHE_DIR`` all the same.
 
 from __future__ import annotations
 
+import sys
 import types
 import warnings
 from collections.abc import Callable
@@ -46,6 +47,8 @@ def test_the_warning_names_what_helps(
         source.write_text("# the kernel's source\n")
     if case == "frozen":
         monkeypatch.setattr("sys.frozen", True, raising=False)
+        # numba's own folder for this system (Linux: under XDG_CACHE_HOME), by name.
+        monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path / "user cache"))
     monkeypatch.setattr(jit, "_CACHE_PROBLEM", [])
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
@@ -55,11 +58,14 @@ def test_the_warning_names_what_helps(
     message = str(warning.message)
     assert str(source) in message
     if case == "frozen":
-        assert "source file is not there" in message and "HOME" in message
+        assert "source file is not there" in message
+        assert f"Make {jit.numba_user_cache_folder()} writable" in message
+        if sys.platform.startswith("linux"):
+            assert str(tmp_path / "user cache" / "numba") in message
         assert "NUMBA_CACHE_DIR to" not in message
     elif case == "bytecode only":  # not frozen: numba caches it nowhere
         assert "source file is not there" in message and ".py files" in message
-        assert "NUMBA_CACHE_DIR to" not in message and "HOME" not in message
+        assert "NUMBA_CACHE_DIR to" not in message and "Make " not in message
     else:
         assert "Set NUMBA_CACHE_DIR to a writable folder" in message
         assert "read-only" in message

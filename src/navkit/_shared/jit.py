@@ -129,7 +129,7 @@ def _make_dispatcher(njit: Any, options: dict[str, Any], py_func: Callable[..., 
             # A frozen application without its source files: numba then ignores
             # NUMBA_CACHE_DIR and caches in the user cache folder alone.
             why = "the source file is not there, so numba uses only the user cache folder"
-            fix = "Make HOME (or XDG_CACHE_HOME) a writable folder"
+            fix = f"Make {numba_user_cache_folder()} writable"
         else:  # numba caches only functions whose source file it finds
             why = "the source file is not there: numba caches only functions it can find"
             fix = "Install navkit with its .py files"
@@ -141,6 +141,23 @@ def _make_dispatcher(njit: Any, options: dict[str, Any], py_func: Callable[..., 
         _CACHE_PROBLEM.append(problem)
         warnings.warn(problem, KernelCacheWarning, stacklevel=_user_stacklevel())
     return njit(**{**options, "cache": False})(py_func)
+
+
+def numba_user_cache_folder() -> str:
+    """numba's user-wide cache folder, where it caches what it cannot beside the sources.
+
+    ``~/.cache/numba`` on Linux (under ``XDG_CACHE_HOME`` if set),
+    ``~/Library/Caches/numba`` on macOS, ``%LOCALAPPDATA%\\numba\\Cache`` on
+    Windows: what numba's ``_UserWideCacheLocator`` asks its ``appdirs`` for.
+    """
+    try:
+        from numba.misc import appdirs
+
+        dirs: Any = appdirs.AppDirs
+        return str(dirs(appname="numba", appauthor=False).user_cache_dir)
+    except (ImportError, AttributeError):  # pragma: no cover - numba moved it
+        base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+        return os.path.join(base, "numba")
 
 
 def jit_disabled() -> bool:

@@ -23,7 +23,7 @@ import warnings
 from pathlib import Path
 from typing import Any, TextIO
 
-from navkit._shared.jit import cache_problem, jit_disabled
+from navkit._shared.jit import cache_problem, jit_disabled, numba_user_cache_folder
 from navkit.errors import KernelCacheWarning
 
 __all__ = [
@@ -56,13 +56,7 @@ def _numba_cache_dir() -> str:
 
 def _user_wide_dir() -> Path:
     """numba's user-wide cache folder (where it caches beside read-only installs)."""
-    try:
-        from numba.misc import appdirs
-
-        dirs: Any = appdirs.AppDirs
-        return Path(dirs(appname="numba", appauthor=False).user_cache_dir)
-    except (ImportError, AttributeError):  # pragma: no cover - numba moved it
-        return Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache")) / "numba"
+    return Path(numba_user_cache_folder())
 
 
 def _subfolder(source_dir: Path) -> str:

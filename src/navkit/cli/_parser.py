@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import contextlib
 import math
 import re
 import sys
@@ -98,7 +99,9 @@ class _Version(argparse.Action):
 
     argparse's own version action wraps the line to the terminal's width
     (``COLUMNS=10``: ``navkit`` and the version on two lines) and writes it to
-    standard error when standard output is closed.
+    standard error when standard output is closed. As argparse's, a line that
+    cannot be written (``navkit --version | true``, a full disk) is dropped
+    and the exit code is 0, not a traceback.
     """
 
     def __call__(
@@ -109,7 +112,9 @@ class _Version(argparse.Action):
         option_string: str | None = None,
     ) -> None:
         if sys.stdout is not None:
-            sys.stdout.write(f"navkit {version()}\n")
+            # A pipe closed early (BrokenPipeError), a full disk: dropped, as argparse does.
+            with contextlib.suppress(OSError):
+                sys.stdout.write(f"navkit {version()}\n")
         parser.exit()
 
 
