@@ -16,11 +16,19 @@ then hands it to the handler that was installed before, as if it had arrived
 just after: a :class:`KeyboardInterrupt` with the default handler, or the
 handler of the program (a CLI, a ROS 2 node) that installed its own. A second
 Ctrl-C while the step runs is delivered at once: the user insists.
+
+A handler installed outside Python (``rclpy.init()`` installs one with
+``sigaction`` that wakes the executor and then calls Python's) is invisible to
+``signal.getsignal``: putting back what that reports would leave Python's in
+its place for good, and a ROS 2 node's ``spin()`` would no longer wake on
+Ctrl-C. Where the system's action can be read (POSIX), it is put back as it
+was, and a held Ctrl-C raised again for it.
 """
 
 from __future__ import annotations
 
 import contextlib
+import os
 import signal
 import threading
 from collections.abc import Iterator
@@ -55,11 +63,24 @@ def interrupts_deferred() -> Iterator[None]:
         yield
         return
     pending: list[FrameType | None] = []
+    saved = _system_action()  # before ours: an outside handler shows only here
+    outside = False
+
+    def restore() -> None:
+        signal.signal(signal.SIGINT, previous)
+        if outside:
+            _set_system_action(saved)
+
+    def deliver(frame: FrameType | None) -> None:
+        if outside:
+            signal.raise_signal(signal.SIGINT)  # to the outside handler, which chains on
+        else:
+            _deliver(previous, signal.SIGINT, frame)
 
     def hold(signum: int, frame: FrameType | None) -> None:
         if pending:  # a second Ctrl-C: deliver it now
-            signal.signal(signal.SIGINT, previous)
-            _deliver(previous, signum, frame)
+            restore()
+            deliver(frame)
             return
         pending.append(frame)
 
@@ -68,12 +89,60 @@ def interrupts_deferred() -> Iterator[None]:
     except ValueError:  # not the main interpreter
         yield
         return
+    outside = saved is not None and _handler_address(saved) != _handler_address(
+        _system_action()
+    )
     try:
         yield
     finally:
-        signal.signal(signal.SIGINT, previous)
+        restore()
         if pending:
-            _deliver(previous, signal.SIGINT, pending[0])
+            deliver(pending[0])
+
+
+#: The C library's ``sigaction``, once looked up (None where there is none).
+_SIGACTION: list[Any] = []
+
+
+def _sigaction() -> Any:
+    """The C library's ``sigaction`` (POSIX), or None."""
+    if not _SIGACTION:
+        function = None
+        if os.name == "posix":
+            try:
+                import ctypes
+
+                function = ctypes.CDLL(None, use_errno=True).sigaction
+            except (ImportError, OSError, AttributeError):
+                function = None
+        _SIGACTION.append(function)
+    return _SIGACTION[0]
+
+
+def _system_action() -> Any:
+    """``SIGINT``'s ``struct sigaction`` as the system holds it (an opaque buffer), or None."""
+    sigaction = _sigaction()
+    if sigaction is None:
+        return None
+    import ctypes
+
+    action = ctypes.create_string_buffer(512)  # larger than any system's struct sigaction
+    return action if sigaction(signal.SIGINT, None, action) == 0 else None
+
+
+def _handler_address(action: Any) -> int | None:
+    """The handler of an action from :func:`_system_action` (its first field on POSIX systems)."""
+    if action is None:
+        return None
+    import ctypes
+
+    address: int | None = ctypes.c_void_p.from_buffer(action).value
+    return address or 0
+
+
+def _set_system_action(action: Any) -> None:
+    """Make ``action`` (from :func:`_system_action`) ``SIGINT``'s action again."""
+    _sigaction()(signal.SIGINT, action, None)
 
 
 def _deliver(handler: Any, signum: int, frame: FrameType | None) -> None:
