@@ -40,7 +40,12 @@ def _candidates(data_dir: str | os.PathLike[str] | None) -> list[Path]:
     env = os.environ.get(ENV_VAR)
     if env:  # set but empty counts as unset, as for most variables
         found.append(
-            _named_folder(Path(env), f"${ENV_VAR}", " (or unset it to look in shared/data nearby)")
+            # expanduser: a "~" that no shell expanded (quoted, or set from PowerShell)
+            _named_folder(
+                Path(env).expanduser(),
+                f"${ENV_VAR}",
+                " (or unset it to look in shared/data nearby)",
+            )
         )
     here = Path.cwd().resolve()
     bases = [here, *list(here.parents)[:3]]
