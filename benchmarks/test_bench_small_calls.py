@@ -8,7 +8,8 @@ the issue's goal is the public call within 1.5x of the kernel.
 
 * ``update_odometry``: :meth:`PlanarFusion.update_odometry` at 100 Hz against
   ``planar_step`` on the filter's buffer (``kernel``, through numba's dispatcher,
-  the issue's row; ``entry``, the compiled entry the public call uses);
+  the issue's row; ``entry``, the compiled entry the public call uses; ``floor``,
+  the entry plus the result the public call builds);
 * ``world_to_cell``: :meth:`OccupancyGrid.world_to_cell` on 10 points against
   ``world_to_cell_kernel`` into a preallocated array;
 * ``repulsion``: :func:`repulsive_force_from_scan` on a 360-beam scan against
@@ -33,6 +34,7 @@ import pytest
 
 from navkit.estimation import DiffOdometry, PlanarFusion
 from navkit.estimation._fusion_kernels import planar_step, planar_step_entry
+from navkit.estimation._result import UpdateResult, new_result
 from navkit.geometry import Pose2D
 from navkit.kinematics import DiffDrive
 from navkit.mapping import LaserScan, OccupancyGrid
@@ -59,10 +61,15 @@ class _Clock:
 
 
 @pytest.mark.benchmark(group="update_odometry")
-@pytest.mark.parametrize("contestant", ["public", "kernel", "entry"])
+@pytest.mark.parametrize("contestant", ["public", "kernel", "entry", "floor"])
 def test_update_odometry(benchmark: Any, contestant: str) -> None:
     """``kernel``: ``planar_step`` through numba's dispatcher (the issue's row); ``entry``:
-    the compiled entry without type dispatch, which the public call uses."""
+    the compiled entry without type dispatch, which the public call uses.
+
+    ``floor``: a bare function calling the entry and building the result as the
+    public call does (an :class:`UpdateResult` slot by slot, a copy of the
+    residual), without its type checks, method call and keyword arguments.
+    """
     fusion = PlanarFusion(t0=0.0)
     clock = _Clock()
     if contestant == "public":
@@ -84,6 +91,16 @@ def test_update_odometry(benchmark: Any, contestant: str) -> None:
         np.testing.assert_array_equal(buf, public._buf)
         clock.t = 0.03
         step = planar_step if contestant == "kernel" else planar_step_entry()
+        if contestant == "floor":
+            residual = fusion._odometry_residual
+
+            def floor() -> UpdateResult:
+                nis = step(buf, clock(), 1, 2, 1.0, 0.1, 1e-4, 1e-4, math.inf)[1]
+                return new_result(True, nis, residual.copy(), None)
+
+            assert floor().accepted
+            benchmark(floor)
+            return
 
         def kernel() -> Any:
             return step(buf, clock(), 1, 2, 1.0, 0.1, 1e-4, 1e-4, math.inf)

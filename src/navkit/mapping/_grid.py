@@ -60,6 +60,10 @@ __all__ = ["OccupancyGrid"]
 _FLOAT64 = np.dtype(np.float64)
 _INT64 = np.dtype(np.int64)
 _empty = np.empty
+_ndarray = np.ndarray
+# NPY_ARRAY_C_CONTIGUOUS | NPY_ARRAY_ALIGNED, the bits of ``ndarray.flags.num`` the
+# world_to_cell fast path needs: one attribute of the flags object instead of two.
+_C_ALIGNED = 0x0001 | 0x0100
 
 # world_to_cell_kernel's compiled entry, fetched at the first fast-path call
 # (:func:`_cells_entry`) so that importing navkit compiles nothing.
@@ -710,12 +714,11 @@ class OccupancyGrid:
         """
         if (
             continuous is False
-            and type(points_xy) is np.ndarray
+            and type(points_xy) is _ndarray
             and points_xy.dtype is _FLOAT64
             and len(shape := points_xy.shape) == 2
             and shape[1] == 2
-            and (flags := points_xy.flags).c_contiguous
-            and flags.aligned
+            and points_xy.flags.num & _C_ALIGNED == _C_ALIGNED  # C-contiguous and aligned
         ):
             # Fast path: (N, 2) float64 points that are already C-contiguous go
             # straight to the compiled kernel, with the argument types it was
@@ -724,9 +727,16 @@ class OccupancyGrid:
             # cells take the points' shape tuple as it is (cheaper than a new one).
             cells = _empty(shape, _INT64)
             entry = _CELLS_ENTRY or _cells_entry()
-            if entry(
-                points_xy, self._origin_x, self._origin_y, self._origin_yaw, self._resolution, cells
-            ):
+            try:
+                finite = entry(
+                    points_xy, self._origin_x, self._origin_y, self._origin_yaw, self._resolution,
+                    cells,
+                )  # fmt: skip
+            except ValueError:
+                # NUMBA_DISABLE_JIT=1 only: the kernel runs as Python, whose floor of a
+                # NaN coordinate raises; the general path names the argument.
+                finite = False
+            if finite:
                 return cells
         pts, single = as_pairs(points_xy, "points_xy")
         out: IntArray | FloatArray
@@ -772,6 +782,10 @@ class OccupancyGrid:
                 dtype=np.int64,
             )  # fmt: skip
         pts = np.ascontiguousarray(pts)
+        if not pts.flags.aligned:
+            # The entry takes aligned data only (ascontiguousarray keeps a misaligned
+            # buffer as it is); a copy is aligned.
+            pts = pts.copy()
         out = np.empty((pts.shape[0], 2), dtype=np.int64)
         # The fast path's compiled entry, so that read-only points compile no
         # second signature (the points are finite float64 here: validated).

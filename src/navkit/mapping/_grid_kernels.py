@@ -1,7 +1,11 @@
 """numba kernels for world-to-cell conversion of many points (private).
 
 Plain functions on C-contiguous arrays and scalars compiled with ``cache=True``;
-:class:`navkit.mapping.OccupancyGrid` validates input before calling them. Grid
+:class:`navkit.mapping.OccupancyGrid` validates input before calling them. They
+allocate nothing and are compiled without numba's reference counting
+(``njit_no_refcount``): with it, every call wrapped each array argument in a
+MemInfo (a malloc, atomic reference counts, a free), about 0.1 µs per array,
+a third of a ten-point call. Grid
 cells are ``(row, col)``; continuous grid coordinates put integers at cell
 centres (cell ``(r, c)`` covers ``[r - ½, r + ½) × [c - ½, c + ½)``).
 
@@ -27,7 +31,7 @@ from typing import Any, cast
 
 import numpy as np
 
-from navkit._shared.jit import njit_cached
+from navkit._shared.jit import njit_no_refcount
 
 __all__ = ["world_to_cell_entry", "world_to_cell_kernel", "world_to_continuous_kernel"]
 
@@ -36,7 +40,7 @@ __all__ = ["world_to_cell_entry", "world_to_cell_kernel", "world_to_continuous_k
 _LIMIT = float(2**62)
 
 
-@njit_cached
+@njit_no_refcount
 def world_to_cell_kernel(
     points: np.ndarray,
     origin_x: float,
@@ -73,7 +77,7 @@ def world_to_cell_kernel(
     return finite
 
 
-@njit_cached
+@njit_no_refcount
 def world_to_continuous_kernel(
     points: np.ndarray,
     origin_x: float,

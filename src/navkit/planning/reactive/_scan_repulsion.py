@@ -156,7 +156,8 @@ def repulsive_force_from_scan(
     # One read of _LAST, checked and used as it was: another thread (or a scan
     # subclass's attribute) may store its own scanner's table in between.
     last = _LAST
-    if last[0] == scan.angle_min and last[1] == scan.angle_increment and last[2] == ranges.shape[0]:
+    # len(), not .shape[0]: no shape tuple is built (ranges is 1-D).
+    if last[0] == scan.angle_min and last[1] == scan.angle_increment and last[2] == len(ranges):
         cos_t, sin_t = last[3], last[4]
     else:
         cos_t, sin_t = _beam_table(scan)

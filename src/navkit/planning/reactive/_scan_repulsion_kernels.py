@@ -16,6 +16,11 @@ about 3x faster than a branching loop on 3,600 beams, whose mispredictions
 dominate; the reordered sum differs from a sequential one by a few ulps of the
 largest term. The NaN/inf flags are deliberately not set: NaN ranges must keep
 comparing false.
+
+The kernels allocate nothing and are compiled without numba's reference
+counting (``NO_REFCOUNT``): with it, every call wrapped each of the four array
+arguments in a MemInfo (a malloc, atomic reference counts, a free), about
+0.4 µs of a 1.1 µs call on 360 beams.
 """
 
 from __future__ import annotations
@@ -25,7 +30,7 @@ from typing import Any, cast
 
 import numpy as np
 
-from navkit._shared.jit import typed_njit
+from navkit._shared.jit import NO_REFCOUNT, typed_njit
 
 __all__ = [
     "khatib_beam_force",
@@ -37,7 +42,7 @@ __all__ = [
 _FASTMATH = {"reassoc", "contract"}
 
 
-@typed_njit(cache=True, fastmath=_FASTMATH)
+@typed_njit(**NO_REFCOUNT, fastmath=_FASTMATH)
 def khatib_beam_force(
     ranges: np.ndarray,
     cos_t: np.ndarray,
@@ -73,7 +78,7 @@ def khatib_beam_force(
     return fx, fy
 
 
-@typed_njit(cache=True, fastmath=_FASTMATH)
+@typed_njit(**NO_REFCOUNT, fastmath=_FASTMATH)
 def khatib_beam_force_into(
     ranges: np.ndarray,
     cos_t: np.ndarray,
@@ -129,7 +134,7 @@ def khatib_entry() -> Callable[..., None]:
     return cast(Callable[..., None], dispatcher.compile(signature))
 
 
-@typed_njit(cache=True, fastmath=_FASTMATH)
+@typed_njit(**NO_REFCOUNT, fastmath=_FASTMATH)
 def piecewise_beam_force(
     ranges: np.ndarray,
     cos_t: np.ndarray,

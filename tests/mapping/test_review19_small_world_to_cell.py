@@ -1,0 +1,145 @@
+"""``OccupancyGrid.world_to_cell``: which arrays take the fast path (session 23, issue 17).
+
+The fast path tests C-contiguity and alignment with one read of
+``ndarray.flags.num`` (the bits ``_C_ALIGNED``) instead of two flag
+attributes, and hands the points themselves to the compiled entry, which
+checks nothing. These tests pin what goes that way: exactly the exact,
+C-contiguous, aligned (N, 2) float64 ndarrays; an unaligned, strided or
+Fortran-ordered array must reach the entry only as an aligned contiguous copy.
+The kernel is compiled without numba's reference counting (no per-argument
+MemInfo at each call); the cells stay those of the grid-frame arithmetic.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterator
+from typing import Any
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from hypothesis.extra import numpy as hnp
+
+import navkit.mapping._grid as grid_module
+from navkit._shared.jit import jit_disabled
+from navkit.geometry import Pose2D
+from navkit.mapping import OccupancyGrid
+from navkit.mapping._grid_kernels import world_to_cell_kernel, world_to_continuous_kernel
+
+
+def _grid(yaw: float = 0.4) -> OccupancyGrid:
+    return OccupancyGrid.empty(
+        width=5.0, height=4.0, resolution=0.05, origin=Pose2D(-2.0, -1.5, yaw)
+    )
+
+
+def _unaligned(pts: np.ndarray) -> np.ndarray:
+    """The same values in a C-contiguous float64 array whose data is not 8-byte aligned."""
+    raw = np.zeros(pts.size * 8 + 1, dtype=np.uint8)
+    out = raw[1:].view(np.float64).reshape(pts.shape)
+    out[...] = pts
+    return out
+
+
+@pytest.fixture
+def passed(monkeypatch: pytest.MonkeyPatch) -> Iterator[list[Any]]:
+    """The point arrays handed to the compiled entry, in call order."""
+    entry = grid_module._CELLS_ENTRY or grid_module._cells_entry()
+    seen: list[Any] = []
+
+    def recording(points: Any, *args: Any) -> Any:
+        seen.append(points)
+        return entry(points, *args)
+
+    monkeypatch.setattr(grid_module, "_CELLS_ENTRY", recording)
+    yield seen
+
+
+def _expected(grid: OccupancyGrid, pts: np.ndarray) -> np.ndarray:
+    """Cells from the one-point Python arithmetic (the kernel's, operation for operation)."""
+    rows = []
+    for x, y in pts.tolist():
+        row, col = grid._grid_frame(x, y)
+        rows.append([math.floor(row), math.floor(col)])
+    return np.array(rows, dtype=np.int64).reshape(-1, 2)
+
+
+def test_c_aligned_bits_are_numpys_flags() -> None:
+    """``_C_ALIGNED`` are the bits numpy reports for C-contiguous and aligned."""
+    cases = [
+        np.zeros((3, 2)),
+        np.zeros((3, 2), order="F"),
+        np.zeros((2, 3)).T,
+        np.zeros((6, 2))[::2],
+        _unaligned(np.zeros((3, 2))),
+        np.zeros((0, 2)),
+    ]
+    bits = grid_module._C_ALIGNED
+    for arr in cases:
+        flags = arr.flags
+        want = flags.c_contiguous and flags.aligned
+        assert (flags.num & bits == bits) == want, (arr.strides, flags)
+    assert not _unaligned(np.zeros((3, 2))).flags.aligned  # the case is real
+
+
+@given(
+    st.integers(2, 40).flatmap(
+        lambda n: hnp.arrays(np.float64, (n, 2), elements=st.floats(-50.0, 50.0))
+    ),
+    st.floats(-math.pi, math.pi),
+)
+@settings(max_examples=40, deadline=None)
+def test_fast_path_only_for_c_aligned_float64(pts: np.ndarray, yaw: float) -> None:
+    grid = _grid(yaw)
+    want = _expected(grid, pts)
+    entry = grid_module._CELLS_ENTRY or grid_module._cells_entry()
+    seen: list[Any] = []
+
+    def recording(points: Any, *args: Any) -> Any:
+        seen.append(points)
+        return entry(points, *args)
+
+    old = grid_module._CELLS_ENTRY
+    grid_module._CELLS_ENTRY = recording
+    try:
+        wide = np.zeros((pts.shape[0], 4))
+        wide[:, ::2] = pts
+        cases = {
+            "exact": (pts.copy(), True),
+            "unaligned": (_unaligned(pts), False),
+            "fortran": (np.asfortranarray(pts), False),
+            "strided": (wide[:, ::2], False),
+        }
+        for name, (arr, fast) in cases.items():
+            before = arr.copy()
+            seen.clear()
+            got = grid.world_to_cell(arr)
+            np.testing.assert_array_equal(got, want, err_msg=name)
+            assert got.dtype == np.int64 and got.flags.writeable and got.flags.c_contiguous
+            np.testing.assert_array_equal(arr, before, err_msg=name)  # input unmodified
+            assert seen, name
+            if fast:
+                assert seen[0] is arr, name
+            else:
+                assert all(p is not arr for p in seen), name
+                assert all(p.flags.c_contiguous and p.flags.aligned for p in seen), name
+    finally:
+        grid_module._CELLS_ENTRY = old
+
+
+def test_non_finite_through_fast_path_still_raises(passed: list[Any]) -> None:
+    pts = np.array([[0.0, 0.0], [math.nan, 1.0]])
+    with pytest.raises(ValueError, match="points_xy"):
+        _grid().world_to_cell(pts)
+    assert passed and passed[0] is pts  # tried fast, then explained by the general path
+
+
+@pytest.mark.skipif(jit_disabled(), reason="NUMBA_DISABLE_JIT=1: plain functions")
+def test_kernels_compiled_without_refcounting() -> None:
+    """No MemInfo per array argument per call: the kernels allocate nothing."""
+    for kernel in (world_to_cell_kernel, world_to_continuous_kernel):
+        dispatcher: Any = kernel
+        options = dispatcher.targetoptions  # loads numba: a dispatcher
+        assert options.get("_nrt") is False, kernel
