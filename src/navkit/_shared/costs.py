@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import numbers
+from typing import Any
+
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
@@ -42,6 +45,15 @@ def validate_costs_lowest(
         arr = np.asarray(costs)
     except (TypeError, ValueError, OverflowError) as exc:  # ragged lists, unconvertible objects
         raise ValueError(f"{name} must be a 2-D numeric array: {exc}") from None
+    if arr.dtype.kind == "O" and arr.ndim == 2 and _real_numbers(arr):
+        # Python numbers in an object array (pandas' .values of mixed columns,
+        # np.array(..., dtype=object)) are their values, as for every array argument.
+        try:
+            arr = arr.astype(np.float64)
+        except OverflowError:
+            raise ValueError(
+                f"{name} must hold finite numbers, got an integer too large for a float"
+            ) from None
     if arr.dtype == np.bool_ or arr.dtype.kind not in "fiu":
         raise ValueError(
             f"{name} must be a real-valued numeric array, got "
@@ -92,6 +104,15 @@ def _not_costs_hint(costs: object, dtype: np.dtype[np.generic]) -> str:
             "np.where(grid.occupied, np.inf, 1.0))"
         )
     return f"dtype {dtype}"
+
+
+def _real_numbers(arr: NDArray[Any]) -> bool:
+    """Whether an object array holds only real numbers (no bools, strings, None)."""
+    items: list[object] = arr.ravel().tolist()
+    return all(
+        isinstance(item, numbers.Real) and not isinstance(item, (bool, np.bool_))
+        for item in items
+    )
 
 
 def _first(mask: NDArray[np.bool_]) -> tuple[int, ...]:

@@ -14,7 +14,10 @@ imaginary part), not strings (even numeric ones such as ``"1.0"``), not ``None``
 is refused. Masked arrays and masked scalars with masked entries are refused
 (NumPy's conversions would read the data under the mask); any other array-like
 NumPy reads (byte-swapped, memory-mapped, broadcast, ``memoryview``,
-``array.array``) counts as its values.
+``array.array``, objects with only ``__array__`` or ``__array_interface__``)
+counts as its values, ``np.matrix`` as the 2-D array of its values. Arrays
+handed to numba kernels go through :func:`kernel_input`, so that no layout
+(read-only, strided) compiles a kernel a second time.
 """
 
 from __future__ import annotations
@@ -513,6 +516,29 @@ def as_float_array(
     return arr
 
 
+def kernel_input(arr: FloatArray) -> FloatArray:
+    """``arr`` as the C-contiguous, writeable float64 array the kernels are compiled for.
+
+    numba compiles a kernel once per array type, and a read-only array (a
+    memory map opened with mode ``"r"``, ``np.frombuffer`` of a message's bytes,
+    a broadcast view) or a non-contiguous one is another type than the fresh
+    arrays the kernels are warmed up with: passed as it is, it would pay a
+    compilation (hundreds of ms) on its first call. Such arrays are copied (the
+    caller's buffer is then not read by the kernel at all); others pass as they are.
+
+    Examples
+    --------
+    >>> frozen = np.zeros(3)
+    >>> frozen.flags.writeable = False
+    >>> kernel_input(frozen).flags.writeable
+    True
+    """
+    flags = arr.flags
+    if flags.c_contiguous and flags.writeable and arr.dtype == _FLOAT64:
+        return arr
+    return np.array(arr, dtype=np.float64, order="C")
+
+
 def as_points(value: ArrayLike, name: str, *, finite: bool = True) -> FloatArray:
     """Convert ``value`` to an ``(N, 2)`` float64 array of points.
 
@@ -559,9 +585,12 @@ def transposed_hint(got: tuple[int, ...], want: Sequence[int | None]) -> str:
 def unpack(value: Any, name: str) -> tuple[Any, ...]:
     """``tuple(value)``, also for a multi-dimensional ``memoryview``.
 
-    Python cannot iterate over a memoryview of more than one dimension (it raises
-    ``NotImplementedError``): such a view (of a NumPy array, from a buffer) gives
-    the rows of the array it views, as the array itself would. Anything that is
+    Python cannot iterate over a memoryview of more than one dimension or of a
+    non-native format such as big-endian ``">d"`` (it raises
+    ``NotImplementedError``): a memoryview gives the items (rows) of the array
+    NumPy reads from it, as does an object NumPy reads only through its array
+    protocols (:func:`has_array_protocol`); an ``np.matrix`` gives 1-D rows, as
+    the array of its values does. Anything that is
     not iterable raises ``TypeError``, as ``tuple`` does (naming ``name`` only
     for a memoryview NumPy cannot read: callers word their own message).
 
@@ -570,12 +599,47 @@ def unpack(value: Any, name: str) -> tuple[Any, ...]:
     >>> len(unpack(memoryview(np.zeros((2, 3))), "pairs"))
     2
     """
-    if type(value) is memoryview and value.ndim > 1:
+    kind = type(value)
+    if kind is tuple or kind is list:  # the common case, first
+        return tuple(value)
+    if isinstance(value, np.matrix):
+        value = np.asarray(value)  # a matrix's rows are 1-row matrices, not 1-D rows
+    elif kind is memoryview or (
+        not isinstance(value, (list, tuple, np.ndarray)) and has_array_protocol(value)
+    ):
+        # Python iterates over a memoryview of one dimension only, and not over a
+        # non-native format (big-endian ">d" from a file or a message: it raises
+        # NotImplementedError); an object with only __array__ is not iterable.
         try:
             value = np.asarray(value)
-        except (TypeError, ValueError) as exc:  # a buffer format NumPy cannot read
-            raise TypeError(f"{name} is a memoryview NumPy cannot read: {exc}") from None
+        except (TypeError, ValueError, NotImplementedError) as exc:  # a format NumPy cannot read
+            what = "a memoryview" if kind is memoryview else "an array"
+            raise TypeError(f"{name} is {what} NumPy cannot read: {exc}") from None
     return tuple(value)
+
+
+def has_array_protocol(value: object) -> bool:
+    """Whether NumPy reads ``value`` as an array through one of its protocols.
+
+    ``__array__`` (NumPy 2's ``copy=`` keyword included), ``__array_interface__``
+    or ``__array_struct__``: a foreign array type (a tensor, the buffer of a
+    message) that need not be a Python sequence. Arguments that take "a
+    sequence of numbers" accept these as ``np.asarray`` reads them, as every
+    array argument does.
+
+    Examples
+    --------
+    >>> class Wrapped:
+    ...     def __array__(self, dtype=None, copy=None):
+    ...         return np.zeros(3)
+    >>> has_array_protocol(Wrapped()), has_array_protocol([1.0, 2.0])
+    (True, False)
+    """
+    return (
+        hasattr(type(value), "__array__")
+        or hasattr(value, "__array_interface__")
+        or hasattr(value, "__array_struct__")
+    )
 
 
 def as_cell(value: Any, name: str, shape: tuple[int, ...]) -> tuple[int, int]:

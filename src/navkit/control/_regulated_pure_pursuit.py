@@ -12,7 +12,7 @@ from numpy.typing import ArrayLike
 
 from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import as_bool
+from navkit._shared.validation import as_bool, refuse_masked
 from navkit.control._path_following import (
     PathTracker,
     Polyline,
@@ -539,6 +539,7 @@ class RegulatedPurePursuit(PathTracker):
         assert self._clearance is not None
         raw: Any = self._clearance(pose.x, pose.y)
         if isinstance(raw, np.ndarray) and raw.ndim == 0 and raw.dtype.kind in "fiu":
+            refuse_masked(raw, "clearance(x, y)")  # .item() would read a masked value's data
             raw = raw.item()
         if isinstance(raw, (bool, np.bool_)) or not isinstance(raw, numbers.Real):
             raise TypeError(

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import array
 import enum
 import math
 import numbers
@@ -15,7 +16,13 @@ from numpy.typing import ArrayLike, NDArray
 from navkit._shared.frozen import extra_state, frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.times import as_time, as_times
 from navkit._shared.types import BoolArray, FloatArray
-from navkit._shared.validation import as_array, as_float_array, finite_float, unpack
+from navkit._shared.validation import (
+    as_array,
+    as_float_array,
+    finite_float,
+    has_array_protocol,
+    unpack,
+)
 from navkit.errors import FilterError
 from navkit.estimation import _fusion_kernels as k
 from navkit.estimation._covariance import (
@@ -350,6 +357,15 @@ def _stream(stream: Any, name: str, widths: tuple[int, ...]) -> tuple[FloatArray
 
 def _pair(value: Any, name: str) -> tuple[Any, Any]:
     # A 0-d array is an ndarray without a length (len() would raise unnamed).
+    if isinstance(value, (memoryview, array.array)) or (
+        not isinstance(value, (str, bytes, tuple, list, np.ndarray)) and has_array_protocol(value)
+    ):
+        # A pair of numbers in a buffer (array.array("d"), a memoryview, possibly
+        # big-endian) or a foreign array type: read as NumPy reads it.
+        try:
+            value = unpack(value, name)
+        except TypeError:  # a 0-d array, a format NumPy cannot read
+            raise TypeError(f"{name} must be a pair (v_variance, omega_variance)") from None
     if (
         isinstance(value, (str, bytes))
         or not isinstance(value, (tuple, list, np.ndarray))

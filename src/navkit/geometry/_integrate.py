@@ -10,7 +10,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import as_float_array, finite_float
+from navkit._shared.validation import as_float_array, finite_float, kernel_input
 from navkit.geometry._integrate_kernels import integrate_kernel, rollout_kernel
 from navkit.geometry._pose import _SHRINK, Pose2D, Twist2D, as_pose, as_twist
 
@@ -134,8 +134,8 @@ def rollout(
         start.x,
         start.y,
         start.theta,
-        np.ascontiguousarray(tw),
-        np.ascontiguousarray(steps),
+        kernel_input(tw),
+        kernel_input(steps),
         out,
     )
     # Once a pose overflows (inf) the later ones are inf or NaN, so the last row tells.

@@ -13,7 +13,7 @@ from numpy.typing import ArrayLike
 from navkit._shared.angles import wrap_float
 from navkit._shared.frozen import frozen_setattr, reduce_record
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import as_float_array, as_points, finite_float
+from navkit._shared.validation import as_float_array, as_points, finite_float, has_array_protocol
 
 __all__ = ["Pose2D", "Twist2D", "as_pose", "as_twist"]
 
@@ -416,7 +416,9 @@ def _overflow(name: str, what: str) -> ValueError:
 
 
 def _three(value: Any, name: str, what: str, fields: str) -> tuple[float, float, float]:
-    if isinstance(value, (str, bytes)) or not isinstance(value, (Sequence, np.ndarray)):
+    if isinstance(value, (str, bytes)) or not (
+        isinstance(value, (Sequence, np.ndarray)) or has_array_protocol(value)
+    ):
         kind = type(value).__name__
         raise TypeError(f"{name} must be a {what} or a sequence {fields}, got {kind}")
     try:

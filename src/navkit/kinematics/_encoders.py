@@ -11,7 +11,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from navkit._shared.types import FloatArray, IntArray
-from navkit._shared.validation import as_float_array, integer_readings
+from navkit._shared.validation import as_float_array, integer_readings, refuse_masked
 from navkit.kinematics._ranges import (
     MAX_LENGTH,
     MAX_TICKS_PER_REV,
@@ -144,6 +144,7 @@ def tick_delta(previous: ArrayLike, current: ArrayLike, *, bits: int) -> int | I
     """
     if isinstance(bits, (bool, np.bool_)):
         raise TypeError(f"bits must be an integer, got {bits!r}")
+    refuse_masked(bits, "bits")  # operator.index reads a masked 0-d array's data
     try:
         nbits = operator.index(bits)
     except TypeError:

@@ -37,7 +37,7 @@ from typing import Any
 import numpy as np
 
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import finite_float
+from navkit._shared.validation import finite_float, refuse_masked
 
 __all__ = [
     "CELL_INDEX_LIMIT",
@@ -137,6 +137,7 @@ def resolution_float(value: Any, name: str = "resolution") -> float:
 def cost_or_inf(value: Any, name: str) -> float:
     """A cost in [1, 1e9] or ``inf``; booleans, strings and NaN are refused."""
     if isinstance(value, np.ndarray) and value.ndim == 0 and value.dtype.kind == "f":
+        refuse_masked(value, name)  # .item() would read a masked value's data
         value = value.item()
     if isinstance(value, (float, np.floating)) and value == math.inf:
         return math.inf

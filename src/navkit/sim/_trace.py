@@ -10,7 +10,13 @@ import numpy as np
 
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import as_bool, as_float_array, bounded_int, finite_float
+from navkit._shared.validation import (
+    as_bool,
+    as_float_array,
+    bounded_int,
+    finite_float,
+    kernel_input,
+)
 from navkit.sim._polyline_distance_kernels import point_polyline_distances
 from navkit.sim._sensors import ScanReading, real_float
 
@@ -236,9 +242,11 @@ def cross_track(points_xy: FloatArray, path_xy: FloatArray) -> FloatArray:
     array([0.5])
     """
     out = np.empty(points_xy.shape[0])
+    # Writeable C-contiguous copies where needed: a Path2D's points are read-only,
+    # a list given as reference_path is not; one kernel specialisation serves both.
     point_polyline_distances(
-        np.ascontiguousarray(points_xy, dtype=np.float64),
-        np.ascontiguousarray(path_xy, dtype=np.float64),
+        kernel_input(np.asarray(points_xy, dtype=np.float64)),
+        kernel_input(np.asarray(path_xy, dtype=np.float64)),
         out,
     )
     return out

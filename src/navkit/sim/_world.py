@@ -24,7 +24,14 @@ from navkit._shared.frozen import (
 )
 from navkit._shared.locks import ForkSafeLock
 from navkit._shared.types import FloatArray, IntArray
-from navkit._shared.validation import as_bool, as_float_array, finite_float, positive_float
+from navkit._shared.validation import (
+    as_bool,
+    as_float_array,
+    finite_float,
+    kernel_input,
+    positive_float,
+    refuse_masked,
+)
 from navkit.geometry import Pose2D, as_pose
 from navkit.mapping import OccupancyGrid
 from navkit.sim._clearance_kernels import TOUCH, edge_clearance, footprint_clearance
@@ -111,6 +118,7 @@ def as_footprint(value: Any, name: str = "footprint") -> tuple[float, FloatArray
     if isinstance(value, bool):
         raise TypeError(f"{name} must be a radius (m) or a polygon, got bool")
     if isinstance(value, np.ndarray) and value.ndim == 0 and value.dtype.kind in "fiu":
+        refuse_masked(value, name)  # .item() would read a masked radius's data
         value = value.item()
     if isinstance(value, numbers.Real):
         radius = positive_float(value, name)
@@ -1132,7 +1140,7 @@ class World:
         array([inf, inf])
         """
         p = as_query_pose(pose)
-        ang = np.ascontiguousarray(as_float_array(angles, "angles", ndim=1))
+        ang = kernel_input(as_float_array(angles, "angles", ndim=1))
         rmax = positive_float(range_max, "range_max")
         if rmax > MAX_COORD:
             raise ValueError(f"range_max must be at most {MAX_COORD:g} m, got {rmax}")

@@ -14,7 +14,14 @@ from numpy.typing import ArrayLike
 from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.frozen import frozen_setattr, reduce_record
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import as_bool, as_float_array, bounded_int, finite_float
+from navkit._shared.validation import (
+    as_bool,
+    as_float_array,
+    bounded_int,
+    finite_float,
+    has_array_protocol,
+    unpack,
+)
 from navkit.errors import NoPathError
 from navkit.mapping import LocalGrid
 from navkit.planning.reactive._greedy_kernels import greedy_select
@@ -93,6 +100,18 @@ class GreedyStep:
 
     def __post_init__(self) -> None:
         cell: Any = self.cell
+        if type(cell) is memoryview or (
+            not isinstance(cell, (str, bytes, list, tuple, np.ndarray))
+            and has_array_protocol(cell)
+        ):
+            # A buffer (Python cannot iterate over a big-endian one) or a foreign
+            # array type: its items as NumPy reads them.
+            try:
+                cell = unpack(cell, "cell")
+            except TypeError:
+                raise TypeError(
+                    f"cell must be a (row, col) pair of integers, got {self.cell!r}"
+                ) from None
         if (
             isinstance(cell, (str, bytes, Mapping, set, frozenset))
             or not hasattr(cell, "__len__")
