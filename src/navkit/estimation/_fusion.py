@@ -35,6 +35,7 @@ from navkit.estimation._covariance import (
 from navkit.estimation._fusion_kernels import (
     BUF_SAVED_TIME,
     BUF_TIME,
+    BUF_UNDO,
     GATED,
     INVALID,
     NOT_POSITIVE_DEFINITE,
@@ -1099,19 +1100,22 @@ class PlanarFusion(GaussianEstimate):
         """Undo a step left overflowed or to be undone by an exception raised part-way.
 
         Python delivers a ``KeyboardInterrupt`` as a call returns: one delivered
-        as the online step returned loses its status. Only ``TIME_GAP`` leaves
-        an invalid estimate (the overflowed prediction, for :func:`undo_step`),
-        which this finds by its non-finite entries, as the kernel did; every
-        other outcome leaves a valid one (the update applied, or the prediction
-        kept). The callers also run their :func:`undo_step` under the same try:
+        as the online step returned loses its status. The step marks one to be
+        undone in the buffer (``BUF_UNDO``, cleared by :func:`undo_step`): a
+        ``TIME_GAP`` (the overflowed prediction, also found by its non-finite
+        entries) or a ``NOT_POSITIVE_DEFINITE``, which keeps a finite
+        prediction that the state alone cannot tell from a gated step's. The
+        callers also run their :func:`undo_step` under the same try:
         one is delivered on entering a Python function too (``_not_applied``,
         ``undo_step``), with the ``status`` of the step when it was known (0
         if not): a step to be undone (``TIME_GAP``, ``NOT_POSITIVE_DEFINITE``)
         is undone again here, whether its undo had begun or not (undoing is
         idempotent); ``undo_step`` puts the time back before ``x`` and ``P``.
         """
-        if status in (TIME_GAP, NOT_POSITIVE_DEFINITE) or not (
-            np.isfinite(self._x).all() and np.isfinite(self._p).all()
+        if (
+            status in (TIME_GAP, NOT_POSITIVE_DEFINITE)
+            or self._buf[BUF_UNDO] != 0.0
+            or not (np.isfinite(self._x).all() and np.isfinite(self._p).all())
         ):
             undo_step(self._buf)
 

@@ -109,6 +109,11 @@ BUF_SIZE = W * BUF_ROWS
 #: Indices in the buffer of the filter time and of the time saved by the online step.
 BUF_TIME = W * BUF_T
 BUF_SAVED_TIME = BUF_TIME + 1
+#: Index of the pending-undo mark: nonzero from an online step's return of
+#: ``TIME_GAP`` or ``NOT_POSITIVE_DEFINITE`` until :func:`undo_step` has undone
+#: it. A ``KeyboardInterrupt`` delivered as the step returns loses its status;
+#: the mark tells the public layer there is a step to undo.
+BUF_UNDO = BUF_TIME + 2
 
 # Offsets (entries) of the blocks the kernels index.
 _X0 = W * BUF_X
@@ -337,6 +342,8 @@ def planar_step(
         for i in range(N_STATE):
             z += buf[_X0 + i] * 0.0 + buf[_P0 + (W + 1) * i] * 0.0
         if z != 0.0:
+            if online:
+                buf[BUF_UNDO] = TIME_GAP
             return TIME_GAP, math.nan
 
     # The indices of the observed components (as floats), the residuals and S.
@@ -369,6 +376,8 @@ def planar_step(
         buf[_CHOL0 + (W + 1) * a] += buf[_R0 + k]
         buf[_SOLVE0 + W * (k + 2) + a] = -buf[_R0 + k]
     if not _cholesky_inplace(buf, _CHOL0, m, _INV0):
+        if online:
+            buf[BUF_UNDO] = NOT_POSITIVE_DEFINITE
         return NOT_POSITIVE_DEFINITE, math.nan
     _cho_solve_rows(buf, _CHOL0, _INV0, m, _SOLVE0)
     nis = 0.0
@@ -474,6 +483,8 @@ def planar_step(
     for i in range(W * N_STATE):
         buf[_CHECK0 + i] = buf[_PN0 + i]
     if not _cholesky_inplace(buf, _CHECK0, N_STATE, _INV0 + W):
+        if online:
+            buf[BUF_UNDO] = NOT_POSITIVE_DEFINITE
         return NOT_POSITIVE_DEFINITE, nis
     for i in range(W * (1 + N_STATE)):  # x and P from the updated x and P below each other
         buf[_X0 + i] = buf[_XN0 + i]
@@ -573,6 +584,7 @@ def undo_step(buf: np.ndarray) -> None:
     # overflowed time: every later measurement out of order).
     buf[BUF_TIME] = buf[BUF_SAVED_TIME]
     np.copyto(buf[_X0 : _X0 + size], buf[_SAVED0 : _SAVED0 + size])
+    buf[BUF_UNDO] = 0.0  # last: interrupted before this, the step is undone again
 
 
 def _step_types() -> tuple[Any, ...]:
