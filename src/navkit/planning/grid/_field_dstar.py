@@ -1149,8 +1149,11 @@ class FieldDStar:
     def _state(self) -> tuple[np.ndarray, ...]:
         return state(self._pad, self._vals, self._heap, self._work, self._changed)
 
-    def _params(self, walk: int | None = None) -> tuple[Any, ...]:
-        """The kernels' scalars; ``walk``: the node the walk starts at, if not the usual one."""
+    def _params(self, walk: int | None = None, fresh: bool = False) -> tuple[Any, ...]:
+        """The kernels' scalars; ``walk``: the node the walk starts at, if not the usual one.
+
+        ``fresh``: the search starts from scratch (see ``settle``).
+        """
         start = self._start if self._start is not None else (0, 0)
         goal_id = -1 if self._goal is None else self._goal[0] * self._ncols + self._goal[1]
         if walk is None:
@@ -1158,7 +1161,7 @@ class FieldDStar:
         goal_cell = goal_id if self._goal_cell else -1
         return params(self._width, self._nrows, self._ncols, start,
                       -1 if self._goal_cell else goal_id, self._km, self._interp, self._hscale,
-                      walk, goal_cell)
+                      walk, goal_cell, fresh)
 
     def _search(self, ends: _Ends) -> tuple[FloatArray, float, float, int]:
         """Node path (node coordinates), its exact cost and length, expansions.
@@ -1180,7 +1183,7 @@ class FieldDStar:
         self._work[0] = 0
         if fresh:
             self._work[1] = _NO_LIMIT
-            pts, k, expanded, status = self._walk()
+            pts, k, expanded, status = self._walk(fresh=True)
         else:
             pts, k, expanded, status = self._repair()
         if status == ABORTED:
@@ -1190,7 +1193,7 @@ class FieldDStar:
                         start_on_node=self._start_on_node, goal_on_node=self._goal_on_node)
             self._work[0] = 0
             self._work[1] = _NO_LIMIT
-            pts, k, more, status = self._walk()
+            pts, k, more, status = self._walk(fresh=True)
             expanded += more
             fresh = True
         if fresh:
@@ -1333,10 +1336,13 @@ class FieldDStar:
         h = self._hscale * (np.maximum(dr, dc) + OCT * np.minimum(dr, dc))
         return float((m + h).min()) + self._km
 
-    def _walk(self, walk: int | None = None) -> tuple[FloatArray, int, int, int]:
+    def _walk(
+        self, walk: int | None = None, fresh: bool = False
+    ) -> tuple[FloatArray, int, int, int]:
         """Run :func:`extract_path`: (points buffer, K, expansions, status).
 
-        ``walk``: the node id to walk from instead of the start (see :meth:`_params`).
+        ``walk``: the node id to walk from instead of the start (see :meth:`_params`);
+        ``fresh``: a search from scratch, not a repair (see :meth:`_params`).
         """
         pts = np.empty((max(_POINTS_PER_SIDE * (self._nrows + self._ncols), 1), 2))
         cand = np.empty((CANDIDATES, 4))
@@ -1345,8 +1351,8 @@ class FieldDStar:
         counter = np.zeros(1, dtype=np.int64)
         need = np.zeros(1, dtype=np.int64)
         while True:
-            k, status = extract_path(self._state(), self._params(walk), self._lookahead, pts, cand,
-                                     cand2, corner_g, counter, need)
+            k, status = extract_path(self._state(), self._params(walk, fresh), self._lookahead,
+                                     pts, cand, cand2, corner_g, counter, need)
             if status != FULL:
                 return pts, int(k), int(counter[0]), int(status)
             # Out of room: walk again with twice the buffer (the values stay settled).
