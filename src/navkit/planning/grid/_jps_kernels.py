@@ -239,7 +239,7 @@ def _scan_line(
     nw: int,
     line: KernelInt,
     p: KernelInt,
-    target: int,
+    target: KernelInt,
     step: KernelInt,
     cut: np.bool_,
 ) -> KernelInt:
@@ -283,7 +283,7 @@ def _scan_line(
 
 @_helper_not_inlined
 def _scan_forward(
-    bits: np.ndarray, nw: int, line: KernelInt, p: KernelInt, target: int
+    bits: np.ndarray, nw: int, line: KernelInt, p: KernelInt, target: KernelInt
 ) -> KernelInt:
     """:func:`_scan_line` towards larger positions, without corner cutting."""
     return _scan_line(bits, nw, line, p, target, np.int64(1), np.bool_(False))
@@ -291,7 +291,7 @@ def _scan_forward(
 
 @_helper_not_inlined
 def _scan_backward(
-    bits: np.ndarray, nw: int, line: KernelInt, p: KernelInt, target: int
+    bits: np.ndarray, nw: int, line: KernelInt, p: KernelInt, target: KernelInt
 ) -> KernelInt:
     """:func:`_scan_line` towards smaller positions, without corner cutting."""
     return _scan_line(bits, nw, line, p, target, np.int64(-1), np.bool_(False))
@@ -429,13 +429,15 @@ def _straight(
 
     -1 when a blocked cell comes first. ``(gq, gp)`` is the padded goal.
     """
+    # np.int64(-1), not -1: numba typed that branch as Literal[int](-1) on Python
+    # 3.12 and 3.13 (numpy 2.5), a second compilation of each scan.
     if k == 3:
-        return _scan_forward(row_bits, hw, q, p, gp if q == gq else -1)
+        return _scan_forward(row_bits, hw, q, p, gp if q == gq else np.int64(-1))
     if k == 2:
-        return _scan_backward(row_bits, hw, q, p, gp if q == gq else -1)
+        return _scan_backward(row_bits, hw, q, p, gp if q == gq else np.int64(-1))
     if k == 1:
-        return _scan_forward(col_bits, vw, p, q, gq if p == gp else -1)
-    return _scan_backward(col_bits, vw, p, q, gq if p == gp else -1)
+        return _scan_forward(col_bits, vw, p, q, gq if p == gp else np.int64(-1))
+    return _scan_backward(col_bits, vw, p, q, gq if p == gp else np.int64(-1))
 
 
 @_helper_inlined
