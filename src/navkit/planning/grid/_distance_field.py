@@ -27,6 +27,10 @@ MAX_PADDED_CELLS = 2**31 - 1
 """Most cells of the padded grid (``(rows + 2) * (cols + 2)``) the bucket queue can
 hold: its entries are int32 padded cell ids."""
 
+#: A field is returned as a view of its padded work buffer (no copy) when the
+#: buffer holds at most this factor more cells: the border kept alive, <= 2 %.
+_VIEW_SLACK = 1.02
+
 
 def distance_field(
     costs: ArrayLike,
@@ -173,8 +177,13 @@ def _bucket_field(
         cap *= 2
     del free, padded, buckets
     # The interior moved to the front of ``dist`` in place (each value moves towards
-    # the start, onto cells already read), then the rest cut off: the result takes
-    # no second field-sized array (8 bytes a cell of peak memory).
+    # the start, onto cells already read): the result takes no second field-sized
+    # array (8 bytes a cell of peak memory). It stays a view of the padded buffer
+    # where the border is a small part of it (no resize: numpy 2.5's shrinking
+    # resize allocates a new buffer and copies, twice the peak); a narrow grid,
+    # whose border would be most of what the view keeps alive, gets a copy.
     crop(dist, rows, cols, dist)
-    dist.resize(rows * cols, refcheck=False)
-    return dist.reshape(rows, cols)
+    field = dist[: rows * cols].reshape(rows, cols)
+    if n_padded > _VIEW_SLACK * (rows * cols):
+        return field.copy()
+    return field
