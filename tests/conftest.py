@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import copy
 import pickle
+import signal
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -16,6 +17,14 @@ from hypothesis import settings
 # can take longer than hypothesis's default 200 ms (a flaky DeadlineExceeded).
 settings.register_profile("navkit", deadline=None)
 settings.load_profile("navkit")
+
+# Ctrl-C as Python sets it up, also when the suite was started with SIGINT ignored
+# (a background job of a non-interactive shell, nohup): the interrupt tests send
+# SIGINT to this process and to probe processes, which inherit an ignored signal
+# and would wait for it until their timeouts. A caught signal is reset to its
+# default on exec, so the probes get Python's handler again.
+if signal.getsignal(signal.SIGINT) is signal.SIG_IGN:
+    signal.signal(signal.SIGINT, signal.default_int_handler)
 
 SHARED_DATA = Path(__file__).resolve().parents[1].parent / "shared" / "data"
 
