@@ -78,16 +78,6 @@ def test_windows_read_only_target_is_refused_without_leftovers(
     assert [p.name for p in tmp_path.iterdir()] == ["map.yaml"]
 
 
-def test_linux_read_only_target_is_replaced_keeping_its_mode(tmp_path: Path) -> None:
-    target = tmp_path / "map.yaml"
-    target.write_text("old")
-    target.chmod(0o444)
-    with atomic_path(target) as temporary:
-        temporary.write_text("new")
-    assert target.read_text() == "new"
-    assert stat.S_IMODE(target.stat().st_mode) == 0o444
-
-
 @pytest.mark.parametrize("holds", [1, 3])
 def test_windows_rename_waits_for_a_brief_hold(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch, holds: int
