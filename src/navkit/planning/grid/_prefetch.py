@@ -25,8 +25,7 @@ from numba.core import types
 from numba.extending import intrinsic
 
 
-@intrinsic
-def prefetch(typingctx: Any, arr: Any, idx: Any) -> Any:
+def _prefetch_typing(typingctx: Any, arr: Any, idx: Any) -> Any:
     """Prefetch the cache line of ``arr[idx]`` for reading (no bounds check, no fault)."""
     sig = types.void(arr, idx)
 
@@ -42,3 +41,8 @@ def prefetch(typingctx: Any, arr: Any, idx: Any) -> Any:
         return context.get_dummy_value()
 
     return sig, codegen
+
+
+# Not a decorator: numba 0.62's intrinsic is untyped (mypy --strict refuses the
+# decorated function there).
+prefetch: Any = intrinsic(_prefetch_typing)
