@@ -279,6 +279,7 @@ def planar_step(
         for i in range(W * (1 + N_STATE)):  # x and P
             buf[_SAVED0 + i] = buf[_X0 + i]
         buf[BUF_SAVED_TIME] = last
+        buf[BUF_UNDO] = 0.0  # a mark left by an interrupted undo is not this step's
         buf[BUF_TIME] = t
         dt = t - last
     else:
