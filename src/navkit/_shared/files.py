@@ -229,20 +229,51 @@ def _replace_all(temporaries: Sequence[Path], targets: Sequence[Path]) -> None:
             for temporary, target in zip(temporaries, targets, strict=True):
                 _replace(temporary, target)
                 done += 1
-        except BaseException:
+        except BaseException as failure:
+            # On Windows a restore may wait (see _replace): a first Ctrl-C then must
+            # not end the rollback part-way (the backups are removed below: the old
+            # files of the targets not yet put back would be lost, an image and its
+            # YAML from different saves). The wait goes on and the Ctrl-C is raised
+            # once every target has been tried; a second one stops the waiting.
+            interrupt: BaseException | None = None
+            insisted = False
             for target, (backup, existed) in zip(targets[:done], backups[:done], strict=True):
-                with contextlib.suppress(OSError):
-                    if backup is not None:
-                        _replace(backup, target)
-                    elif not existed:
-                        target.unlink(missing_ok=True)
-                    # An old target that could not be linked stays new: removing it
-                    # would lose both versions.
+                while True:
+                    try:
+                        _put_back(target, backup, existed, wait=not insisted)
+                    except OSError:
+                        pass
+                    except BaseException as exc:  # a Ctrl-C while waiting
+                        if interrupt is None:
+                            interrupt = exc
+                            continue  # the same restore again, waiting again
+                        insisted = True  # no more waiting, here or for the others
+                        with contextlib.suppress(OSError):
+                            _put_back(target, backup, existed, wait=False)
+                    break
+            if interrupt is not None:
+                raise interrupt from failure
             raise
     finally:
         for backup, _ in backups:
             if backup is not None:
                 backup.unlink(missing_ok=True)
+
+
+def _put_back(target: Path, backup: Path | None, existed: bool, *, wait: bool) -> None:
+    """Restore ``target`` from ``backup`` (see :func:`_backup`); remove it if it is new.
+
+    ``wait``: on Windows, try a refused rename again for a while (:func:`_replace`).
+    An old target that could not be linked stays new: removing it would lose both
+    versions.
+    """
+    if backup is not None:
+        if wait:
+            _replace(backup, target)
+        else:
+            os.replace(backup, target)
+    elif not existed:
+        target.unlink(missing_ok=True)
 
 
 def _windows() -> bool:
