@@ -237,6 +237,14 @@ def _yaml_text(path: Path) -> str:
         encoding = "utf-32"
     elif data.startswith((codecs.BOM_UTF16_LE, codecs.BOM_UTF16_BE)):
         encoding = "utf-16"
+    elif b"\x00" in data[:4] and (bits := _unmarked_unicode(data[:64])):
+        # No YAML text holds a NUL (the YAML reader would report a "special
+        # character #x0000"): ASCII in UTF-16 or UTF-32 without a byte-order mark
+        # has one in every code unit (YAML's own detection, spec 1.2 section 5.2).
+        raise ValueError(
+            f"{path}: not a map YAML: UTF-{bits} text without a byte-order mark; "
+            "save it as UTF-8, or with its byte-order mark"
+        )
     try:
         return data.decode(encoding)
     except UnicodeDecodeError as exc:
@@ -245,6 +253,22 @@ def _yaml_text(path: Path) -> str:
             f"{path}: not a map YAML: not {what} text (byte 0x{data[exc.start]:02x} at "
             f"offset {exc.start})"
         ) from None
+
+
+def _unmarked_unicode(head: bytes) -> int:
+    """32 or 16 if ``head`` reads as UTF-32 or UTF-16 text without a byte-order mark, else 0."""
+    for width in (4, 2):
+        units = [head[i : i + width] for i in range(0, len(head) - width + 1, width)]
+        for order in ("little", "big"):
+            codes = [int.from_bytes(unit, order) for unit in units]
+            # A printable ASCII first character (YAML's detection looks no further),
+            # then no NUL and, in UTF-32, no code beyond Unicode's.
+            first = codes[0] if codes else 0
+            if (0x20 <= first < 0x7F or first in (0x09, 0x0A, 0x0D)) and all(
+                0 < code <= 0x10FFFF for code in codes
+            ):
+                return 8 * width
+    return 0
 
 
 def _load_yaml(text: str, path: Path) -> dict[str, Any]:
