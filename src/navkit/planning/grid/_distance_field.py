@@ -28,8 +28,13 @@ MAX_PADDED_CELLS = 2**31 - 1
 hold: its entries are int32 padded cell ids."""
 
 #: A field is returned as a view of its padded work buffer (no copy) when the
-#: buffer holds at most this factor more cells: the border kept alive, <= 2 %.
-_VIEW_SLACK = 1.02
+#: buffer holds at most this factor more cells: the border kept alive, <= 20 %
+#: of it. A copy costs 8 bytes a cell of peak memory (it is made while the
+#: padded field is alive): with 1.02, uniform grids with a side under about 100
+#: (200 x 200, 90 x 5000) peaked at 16 bytes a cell, not the documented 9 (review
+#: 19); copies are left for grids whose border is a large part of what a view
+#: keeps alive (a side under 9 cells, a square under 17).
+_VIEW_SLACK = 1.25
 
 
 def distance_field(
@@ -90,9 +95,12 @@ def distance_field(
     Peak memory, in bytes a cell: 9 on a grid of one finite cost, 17
     otherwise (the padded field, which becomes the float64 result in place,
     the padded costs and a traversable flag), plus 8 when ``costs`` is not
-    C-contiguous float64 (its converted copy) and a small queue. The heap
-    search (wide cost ranges) keeps a per-thread workspace of 16 bytes a cell
-    between calls and needs about 9 more.
+    C-contiguous float64 (its converted copy) and a small queue; padded cells
+    count (a one-cell border all round). The result is a view of the padded
+    field (holding its border); where the border is more than a fifth of it
+    (a side under 9 cells, a square under 17), a copy: 8 bytes a cell more at
+    the peak. The heap search (wide cost ranges) keeps a per-thread workspace
+    of 16 bytes a cell between calls and needs about 9 more.
 
     Examples
     --------
