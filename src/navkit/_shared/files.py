@@ -242,7 +242,7 @@ def _replace_all(temporaries: Sequence[Path], targets: Sequence[Path]) -> None:
                     try:
                         _put_back(target, backup, existed, wait=not insisted)
                     except OSError:
-                        pass
+                        pass  # not put back: that target stays new, the others are tried
                     except BaseException as exc:  # a Ctrl-C while waiting
                         if interrupt is None:
                             interrupt = exc
