@@ -22,7 +22,8 @@ A handler installed outside Python (``rclpy.init()`` installs one with
 ``signal.getsignal``: putting back what that reports would leave Python's in
 its place for good, and a ROS 2 node's ``spin()`` would no longer wake on
 Ctrl-C. Where the system's action can be read (POSIX), it is put back as it
-was, and a held Ctrl-C raised again for it.
+was, and a held Ctrl-C raised again for it. An action such a library installs
+from another thread while the block runs is kept too, and gets a held Ctrl-C.
 """
 
 from __future__ import annotations
@@ -64,15 +65,31 @@ def interrupts_deferred() -> Iterator[None]:
         return
     pending: list[FrameType | None] = []
     saved = _system_action()  # before ours: an outside handler shows only here
-    outside = False
+    ours: Any = None
+    # Whether the system's action at the end is another's, not Python's (which
+    # getsignal cannot tell): the outside one from before the block, or one a
+    # C library installed from another thread during it. Raising the signal
+    # again hands a held Ctrl-C to that one.
+    outside = [False]
+    restored: list[bool] = []
 
     def restore() -> None:
+        if restored:
+            return
+        restored.append(True)
+        now = _system_action()
+        # A C library (rclpy.init() in another thread) may have installed its
+        # action during the block: signal.signal below would overwrite it too.
+        intruder = now is not None and _handler_address(now) != _handler_address(ours)
         signal.signal(signal.SIGINT, previous)
-        if outside:
+        if intruder:
+            _set_system_action(now)
+            outside[0] = True
+        elif outside[0]:
             _set_system_action(saved)
 
     def deliver(frame: FrameType | None) -> None:
-        if outside:
+        if outside[0]:
             signal.raise_signal(signal.SIGINT)  # to the outside handler, which chains on
         else:
             _deliver(previous, signal.SIGINT, frame)
@@ -89,9 +106,8 @@ def interrupts_deferred() -> Iterator[None]:
     except ValueError:  # not the main interpreter
         yield
         return
-    outside = saved is not None and _handler_address(saved) != _handler_address(
-        _system_action()
-    )
+    ours = _system_action()
+    outside[0] = saved is not None and _handler_address(saved) != _handler_address(ours)
     try:
         yield
     finally:
