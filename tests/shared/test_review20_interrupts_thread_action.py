@@ -62,3 +62,39 @@ def test_an_action_installed_by_another_thread_during_the_block_survives(held: s
 def test_without_an_outside_action_python_s_handler_is_back(held: str) -> None:
     # The control: the same run with a thread that installs nothing raises.
     assert probe_outcome(_PROBE, held, "nothing") == "KeyboardInterrupt"
+
+
+_EARLY = """
+import ctypes, json, os, signal, sys, time
+libc = ctypes.CDLL(None)
+libc.signal.restype = ctypes.c_void_p
+libc.signal.argtypes = [ctypes.c_int, ctypes.c_void_p]
+libc.signal(signal.SIGINT, ctypes.c_void_p(1))  # SIG_IGN, unseen by Python
+from navkit._shared import interrupts
+real = interrupts._system_action
+calls = []
+
+def reading():
+    calls.append(1)
+    if len(calls) == 2:  # the block's own action, read just after it is installed
+        signal.raise_signal(signal.SIGINT)  # held
+        signal.raise_signal(signal.SIGINT)  # the second: delivered at once
+    return real()
+
+interrupts._system_action = reading
+try:
+    with interrupts.interrupts_deferred():
+        pass
+except KeyboardInterrupt:
+    print(json.dumps("KeyboardInterrupt"))
+    sys.exit(0)
+interrupts._system_action = real
+os.kill(os.getpid(), signal.SIGINT)
+time.sleep(0.05)
+print(json.dumps("ignored"))
+"""
+
+
+def test_a_second_ctrl_c_before_the_block_reads_its_action_keeps_the_outside_one() -> None:
+    # Both presses go to the outside "ignore", which stays in force after.
+    assert probe_outcome(_EARLY) == "ignored"

@@ -78,9 +78,14 @@ def interrupts_deferred() -> Iterator[None]:
             return
         restored.append(True)
         now = _system_action()
-        # A C library (rclpy.init() in another thread) may have installed its
-        # action during the block: signal.signal below would overwrite it too.
-        intruder = now is not None and _handler_address(now) != _handler_address(ours)
+        intruder = False
+        if ours is None:
+            # A second Ctrl-C before the block's own action was read: ``now`` is it.
+            outside[0] = saved is not None and _handler_address(saved) != _handler_address(now)
+        else:
+            # A C library (rclpy.init() in another thread) may have installed its
+            # action during the block: signal.signal below would overwrite it too.
+            intruder = now is not None and _handler_address(now) != _handler_address(ours)
         signal.signal(signal.SIGINT, previous)
         if intruder:
             _set_system_action(now)
@@ -106,8 +111,10 @@ def interrupts_deferred() -> Iterator[None]:
     except ValueError:  # not the main interpreter
         yield
         return
-    ours = _system_action()
-    outside[0] = saved is not None and _handler_address(saved) != _handler_address(ours)
+    action = _system_action()
+    if not restored:  # else a second Ctrl-C came first and restore() has decided
+        ours = action
+        outside[0] = saved is not None and _handler_address(saved) != _handler_address(ours)
     try:
         yield
     finally:
