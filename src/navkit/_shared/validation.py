@@ -321,13 +321,27 @@ def refuse_masked(value: object, name: str) -> None:
     ValueError: ranges has masked entries, which would be read as their data: ...
     """
     # .mask is np.ma.nomask (False) or a boolean array of the data's shape.
-    if isinstance(value, np.ma.MaskedArray) and bool(np.any(value.mask)):
+    if isinstance(value, np.ma.MaskedArray) and _any_masked(value):
         raise ValueError(
             f"{name} has masked entries, which would be read as their data: "
             "fill them first (masked_array.filled(value))"
         )
     if isinstance(value, (list, tuple)):
         _refuse_masked_elements(value, name, set(map(type, value)))
+
+
+def _any_masked(value: np.ma.MaskedArray[Any, Any]) -> bool:
+    """Whether ``value`` has a masked entry (a field of one, for a structured array).
+
+    The mask of a structured array is structured too (a boolean per field), which
+    ``np.any`` cannot reduce: it raised an unnamed ``TypeError`` ("Iterator operand
+    1 dtype could not be cast") before the callers' dtype check could name the
+    argument.
+    """
+    mask = value.mask
+    if mask is not np.ma.nomask and mask.dtype.names is not None:
+        mask = np.ma.flatten_mask(mask)
+    return bool(np.any(mask))
 
 
 def _refuse_masked_elements(
@@ -341,7 +355,7 @@ def _refuse_masked_elements(
     """
     if any(issubclass(kind, np.ma.MaskedArray) for kind in types):
         for item in value:
-            if isinstance(item, np.ma.MaskedArray) and bool(np.any(item.mask)):
+            if isinstance(item, np.ma.MaskedArray) and _any_masked(item):
                 raise ValueError(
                     f"{name} has masked entries (in an element of the list), which would "
                     "be read as their data: fill them first (masked_array.filled(value))"
@@ -625,7 +639,9 @@ def has_array_protocol(value: object) -> bool:
     or ``__array_struct__``: a foreign array type (a tensor, the buffer of a
     message) that need not be a Python sequence. Arguments that take "a
     sequence of numbers" accept these as ``np.asarray`` reads them, as every
-    array argument does.
+    array argument does. A NumPy scalar (``np.float64(1.0)``, which has the
+    protocols too) is a number, not an array, as is the Python ``float`` it
+    subclasses; a class is not an array either.
 
     Examples
     --------
@@ -634,7 +650,11 @@ def has_array_protocol(value: object) -> bool:
     ...         return np.zeros(3)
     >>> has_array_protocol(Wrapped()), has_array_protocol([1.0, 2.0])
     (True, False)
+    >>> has_array_protocol(np.float64(1.0)), has_array_protocol(np.ndarray)
+    (False, False)
     """
+    if isinstance(value, (np.generic, type)):
+        return False
     return (
         hasattr(type(value), "__array__")
         or hasattr(value, "__array_interface__")
