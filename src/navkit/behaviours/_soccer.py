@@ -12,7 +12,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field, fields
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -20,6 +20,7 @@ from numpy.typing import ArrayLike
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_bool, as_float_array, as_points, bounded_int, finite_float
+from navkit.geometry import Pose2D
 
 __all__ = ["BehaviourTarget", "GameState", "attack", "defend", "support"]
 
@@ -38,13 +39,42 @@ def _point(value: ArrayLike, name: str) -> FloatArray:
             out = np.array(value, copy=True)
             out.setflags(write=False)
             return out
-    out = np.array(as_float_array(value, name, shape=(2,)), copy=True)
+    if isinstance(value, Pose2D):
+        raise TypeError(f"{name} must be a point (x, y), got a Pose2D: pass (pose.x, pose.y)")
+    try:
+        checked = as_float_array(value, name, shape=(2,))
+    except ValueError as exc:
+        if _shape(value) == (3,):  # a pose [x, y, theta] given whole
+            raise ValueError(f"{exc} (a pose [x, y, theta]? pass its (x, y) only)") from None
+        raise
+    out = np.array(checked, copy=True)
     out.setflags(write=False)
     return out
 
 
+def _shape(value: object) -> tuple[int, ...] | None:
+    """``np.shape(value)``, or None where NumPy cannot tell (ragged nesting)."""
+    try:
+        return tuple(np.shape(cast(ArrayLike, value)))
+    except (TypeError, ValueError):
+        return None
+
+
 def _players(value: ArrayLike, name: str) -> FloatArray:
-    out = np.array(as_points(value, name, finite=False), copy=True)
+    if isinstance(value, (list, tuple)) and any(isinstance(v, Pose2D) for v in value):
+        raise TypeError(
+            f"{name} must be points (x, y), got Pose2D items: "
+            "pass [(p.x, p.y) for p in poses]"
+        )
+    try:
+        points = as_points(value, name, finite=False)
+    except ValueError as exc:
+        shape = _shape(value)
+        if shape is not None and len(shape) == 2 and shape[1] == 3:  # poses [x, y, theta]
+            hint = "poses [x, y, theta]? pass the (x, y) columns, [:, :2]"
+            raise ValueError(f"{exc} ({hint})") from None
+        raise
+    out = np.array(points, copy=True)
     if np.isinf(out).any():
         raise ValueError(f"{name} must be finite (NaN rows mark unseen players)")
     out.setflags(write=False)

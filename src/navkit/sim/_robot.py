@@ -29,6 +29,13 @@ MAX_WHEEL_ACCELERATION = 1e7
 _DEFAULT_ENCODERS = WheelEncoders()
 
 
+def _kind(value: object) -> str:
+    """What ``value`` is, for an error message: a class is named as the class itself."""
+    if isinstance(value, type):
+        return f"the class {value.__name__} itself"
+    return type(value).__name__
+
+
 def _limit(value: Any, name: str, high: float, unit: str) -> float:
     """A limit in (0, high] or inf (no limit)."""
     if isinstance(value, (float, np.floating)) and value == math.inf:  # float32 inf too
@@ -101,7 +108,9 @@ class Robot:
     def __post_init__(self) -> None:
         if not isinstance(self.drive, (OmniDrive, DiffDrive)):
             raise TypeError(
-                f"drive must be an OmniDrive or a DiffDrive, got {type(self.drive).__name__}"
+                f"drive must be an OmniDrive or a DiffDrive, got {_kind(self.drive)}: "
+                "build one, e.g. DiffDrive(track=0.3, wheel_radius=0.05) or "
+                "OmniDrive.three_wheel(wheel_radius=0.05, base_radius=0.2)"
             )
         radius, verts = as_footprint(self.footprint, "footprint")
         verts.flags.writeable = False
@@ -132,7 +141,10 @@ class Robot:
                 f"got {err.shape}"
             )
         if np.any(np.abs(err) > 0.5):
-            raise ValueError("wheel_radius_error must lie in [-0.5, 0.5]")
+            raise ValueError(
+                f"wheel_radius_error must lie in [-0.5, 0.5], got {err.tolist()}: it is the "
+                "true radius over the nominal one, minus 1 (0.02 for 2 % larger wheels)"
+            )
         err = np.array(err, copy=True)
         err.flags.writeable = False
         object.__setattr__(self, "wheel_radius_error", err)
@@ -144,7 +156,15 @@ class Robot:
         ):
             value = getattr(self, name)
             if value is not None and not isinstance(value, kind):
-                raise TypeError(f"{name} must be a {kind.__name__} or None, got {type(value)}")
+                article = "an" if kind.__name__[0] in "AEIOU" else "a"
+                hint = (
+                    f": pass an instance, {kind.__name__}()"
+                    if isinstance(value, type) and issubclass(value, kind)
+                    else ""
+                )
+                raise TypeError(
+                    f"{name} must be {article} {kind.__name__} or None, got {_kind(value)}{hint}"
+                )
 
     def __reduce__(self) -> tuple[Any, ...]:
         """Copy and pickle support: the arrays read-only again, also in subclasses' copies."""

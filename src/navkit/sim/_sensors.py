@@ -41,7 +41,10 @@ _MAX_ACCEL_NOISE = 1000.0  # m/s²
 def _bounded(value: object, name: str, low: float, high: float, unit: str) -> float:
     out = finite_float(value, name)
     if not low <= out <= high:
-        raise ValueError(f"{name} must lie in [{low:g}, {high:g}] {unit}, got {out}")
+        hint = ""
+        if unit == "rad" and low <= math.radians(out) <= high:
+            hint = f" (degrees? pass math.radians({out:g}))"
+        raise ValueError(f"{name} must lie in [{low:g}, {high:g}] {unit}, got {out}{hint}")
     return out
 
 
