@@ -149,7 +149,8 @@ class Lidar:
         object.__setattr__(self, "n_beams", bounded_int(self.n_beams, "n_beams", 1, MAX_BEAMS))
         fov = positive_float(self.fov, "fov")
         if fov > _TWO_PI + 1e-12:
-            raise ValueError(f"fov must lie in (0, 2π] rad, got {fov}")
+            hint = f" (degrees? pass math.radians({fov:g}))" if fov <= 360.0 else ""
+            raise ValueError(f"fov must lie in (0, 2π] rad, got {fov}{hint}")
         object.__setattr__(self, "fov", min(fov, _TWO_PI))
         rmin = positive_float(self.range_min, "range_min", allow_zero=True)
         rmax = positive_float(self.range_max, "range_max")

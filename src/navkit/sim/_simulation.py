@@ -422,7 +422,8 @@ class Simulation:
     def _check_not_faster(self, name: str, rate: float) -> None:
         if rate > self._rate * (1.0 + 1e-12):
             raise ValueError(
-                f"{name} ({rate:g} Hz) must not exceed the simulation rate ({self._rate:g} Hz)"
+                f"{name} ({rate:g} Hz) must not exceed the simulation rate ({self._rate:g} Hz): "
+                "lower that rate or raise Simulation(rate=)"
             )
 
     # ------------------------------------------------------------------ run
