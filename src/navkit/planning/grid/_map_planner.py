@@ -237,6 +237,22 @@ class MapPlanner:
         self._planner = planner
         self._prepared = prepared
 
+    def _closers(self) -> str:
+        """What may have closed every way, for a :class:`navkit.NoPathError`'s message."""
+        closers = []
+        if self._robot_radius > 0.0:
+            closers.append(f"obstacles grown by robot_radius={self._robot_radius:g} m")
+        if math.isinf(self._unknown_cost) and bool(self._snapshot.unknown().any()):
+            # A map built from scans keeps unknown specks inside driven corridors.
+            grown = " (and grown)" if self._inflate_unknown and self._robot_radius > 0.0 else ""
+            closers.append(f"unknown cells impassable{grown} with unknown_cost=inf")
+        if not closers:
+            return ""
+        return (
+            f": {' and '.join(closers)} may close every way; a smaller robot_radius or a "
+            "finite unknown_cost may open one"
+        )
+
     def __copy__(self) -> MapPlanner:
         """A shallow copy with its own Field D* search state.
 
@@ -418,7 +434,7 @@ class MapPlanner:
             escaped = "" if escape is None else f", escaped to cell {start_cell},"
             raise NoPathError(
                 f"no collision-free path from {self._end_text(start, start_cell, 'start')}"
-                f"{escaped} to {self._end_text(goal, goal_cell, 'goal')}",
+                f"{escaped} to {self._end_text(goal, goal_cell, 'goal')}{self._closers()}",
                 expanded=exc.expanded,
             ) from exc
         if not isinstance(path, Path2D) or path.frame != "grid":
