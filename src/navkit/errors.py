@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 import numbers
+import sys
 
 __all__ = ["DataNotFoundError", "FilterError", "KernelCacheWarning", "NavkitError", "NoPathError"]
 
@@ -56,8 +57,9 @@ class NoPathError(NavkitError):
         Human-readable explanation.
     expanded : int, optional
         Number of nodes (cells or corners) the search expanded before it gave
-        up: an integer in [0, 2**63 - 1] (a ``TypeError`` for anything else,
-        ``bool`` included; a ``ValueError`` outside the range).
+        up: an integer in [0, 2**63 - 1], a 0-d integer array included (a
+        ``TypeError`` for anything else, ``bool`` included; a ``ValueError``
+        outside the range).
 
     Examples
     --------
@@ -71,6 +73,14 @@ class NoPathError(NavkitError):
         count: object = expanded
         if not isinstance(text, str):
             raise TypeError(f"message must be a str, got {type(text).__name__}")
+        numpy = sys.modules.get("numpy")  # no array without it; this module stays light
+        if numpy is not None and isinstance(count, numpy.ndarray):
+            # The shared check takes a 0-d integer array (np.array(3), what a
+            # reduction of an integer array gives) and refuses every other array
+            # as before. Imported here: navkit._shared imports this module.
+            from navkit._shared.validation import bounded_int
+
+            count = bounded_int(count, "expanded", 0, _MAX_EXPANDED)
         if isinstance(count, bool) or not isinstance(count, numbers.Integral):
             raise TypeError(f"expanded must be an integer, got {type(count).__name__}")
         if not 0 <= int(count) <= _MAX_EXPANDED:

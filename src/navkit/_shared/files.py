@@ -293,10 +293,29 @@ def _replace(source: Path, target: Path) -> None:
             os.replace(source, target)
             return
         except PermissionError:
-            if time.monotonic() >= deadline:
+            # A read-only target stays refused until someone clears its flag: no wait.
+            if time.monotonic() >= deadline or _read_only(target):
                 raise
         time.sleep(delay)
         delay = min(2 * delay, 0.1)
+
+
+def _read_only(path: Path) -> bool:
+    """Whether ``path`` is marked read-only (Windows' ``FILE_ATTRIBUTE_READONLY``).
+
+    Where ``os.stat`` gives no file attributes (not Windows: the tests that
+    pretend it is), no write permission in its mode stands for the flag, as
+    Python's ``os.stat`` on Windows reports it. A path that cannot be read
+    (gone, say) is not read-only.
+    """
+    try:
+        info = os.lstat(path)  # a symbolic link is replaced itself, not what it points to
+    except OSError:
+        return False
+    attributes = getattr(info, "st_file_attributes", None)
+    if attributes is not None:
+        return bool(attributes & stat.FILE_ATTRIBUTE_READONLY)
+    return not info.st_mode & stat.S_IWRITE
 
 
 def _backup(target: Path) -> tuple[Path | None, bool]:

@@ -173,6 +173,15 @@ def jit_disabled() -> bool:
     return bool(config.DISABLE_JIT)
 
 
+def cache_warned() -> bool:
+    """Whether this process has already warned that numba cannot cache navkit's kernels.
+
+    Unlike :func:`cache_problem`, this does not load numba: a process that has
+    made no kernel yet has not warned.
+    """
+    return bool(_CACHE_PROBLEM)
+
+
 def cache_problem() -> str | None:
     """Why numba cannot cache navkit's kernels in this process, or None if it can.
 

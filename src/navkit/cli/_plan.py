@@ -46,12 +46,23 @@ def _check_not_an_input(plot: str | None, map_yaml: str) -> None:
     if plot is None or not os.path.exists(plot):
         return
     yaml_path = Path(map_yaml)
-    entries = yaml.safe_load(yaml_path.read_text(encoding="utf-8"))
-    image = Path(str(entries["image"]))
-    inputs = (("the map's YAML", yaml_path), ("the map's image", yaml_path.parent / image))
-    for what, path in inputs:
-        if os.path.exists(path) and os.path.samefile(plot, path):
-            raise ValueError(f"--plot: {plot} is {what} ({path}); choose another file")
+    if os.path.exists(yaml_path) and os.path.samefile(plot, yaml_path):
+        raise ValueError(f"--plot: {plot} is the map's YAML ({yaml_path}); choose another file")
+    # Bytes: the YAML library tells UTF-8 from UTF-16 (by its byte-order mark, as
+    # Windows writes it) itself. read_map also reads UTF-32, which PyYAML does not:
+    # then an existing --plot is refused, not risked (navkit.mapping.io has no
+    # public way to ask for the image's name alone).
+    try:
+        entries = yaml.safe_load(yaml_path.read_bytes())
+        image = Path(str(entries["image"]))
+    except (yaml.YAMLError, UnicodeDecodeError, TypeError, KeyError):
+        raise ValueError(
+            f"--plot: {plot} exists, and whether it is the map's image could not be read "
+            f"from {yaml_path} (not UTF-8 or UTF-16 text); choose a new file"
+        ) from None
+    path = yaml_path.parent / image
+    if os.path.exists(path) and os.path.samefile(plot, path):
+        raise ValueError(f"--plot: {plot} is the map's image ({path}); choose another file")
 
 
 def _in_option_names(message: str) -> str:

@@ -19,6 +19,7 @@ from navkit._shared.types import BoolArray, FloatArray
 from navkit._shared.validation import (
     as_array,
     as_float_array,
+    bounded_int,
     finite_float,
     has_array_protocol,
     unpack,
@@ -101,9 +102,19 @@ class _IntCodes(enum.EnumMeta):
 
     ``IntEnum`` finds its members by equality, so ``True`` and ``1+0j`` would
     pass for 1; they are refused (``TypeError``), like everywhere in navkit.
+    A 0-d integer array (``np.array(1)``) is its integer, as for every navkit
+    integer argument.
     """
 
     def __call__(cls, value: Any, *args: Any, **kwargs: Any) -> Any:
+        if (
+            not args
+            and not kwargs
+            and isinstance(value, np.ndarray)
+            and value.ndim == 0
+            and value.dtype.kind in "iu"
+        ):
+            value = bounded_int(value, cls.__name__)  # masked entries refused
         if (
             not args
             and not kwargs

@@ -90,6 +90,16 @@ class UpdateResult:
             status = codes.ACCEPTED if self.accepted else None
         elif isinstance(raw, codes):
             status = raw
+        elif (
+            isinstance(raw, np.ndarray)
+            and raw.ndim == 0
+            and raw.dtype.kind in "iu"
+            and not np.ma.is_masked(raw)
+        ):
+            try:
+                status = codes(raw.item())  # a 0-d integer array: its integer
+            except ValueError:
+                raise ValueError(f"status must be a FusionStatus code, got {raw!r}") from None
         elif isinstance(raw, (bool, np.bool_)) or not isinstance(raw, numbers.Integral):
             raise TypeError(f"status must be a FusionStatus or None, got {type(raw).__name__}")
         else:

@@ -14,6 +14,7 @@ from navkit._shared.types import FloatArray
 from navkit.geometry import Pose2D, as_pose
 from navkit.plot._figure import (
     COORD_LIMIT,
+    array_like,
     as_coords,
     bounded_float,
     bounded_int,
@@ -46,7 +47,7 @@ def _footprint(value: Any) -> FloatArray:
         radius = bounded_float(value, "footprint", 1e-6, 1e6)
         a = np.linspace(0.0, 2.0 * math.pi, _CIRCLE_POINTS, endpoint=False)
         return np.column_stack((radius * np.cos(a), radius * np.sin(a)))
-    if isinstance(value, (str, bytes)) or not isinstance(value, (np.ndarray, list, tuple)):
+    if isinstance(value, (str, bytes)) or not array_like(value):
         raise TypeError(
             f"footprint must be a radius (m) or (V, 2) polygon vertices, got {type(value).__name__}"
         )

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import array
 from collections.abc import Iterator
 from contextlib import contextmanager
 from typing import TYPE_CHECKING, Any, Literal
@@ -10,7 +11,12 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import as_float_array, bounded_int, finite_float
+from navkit._shared.validation import (
+    as_float_array,
+    bounded_int,
+    finite_float,
+    has_array_protocol,
+)
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -124,6 +130,19 @@ def as_color(value: Any, name: str) -> Any:
     except (ValueError, TypeError):
         raise ValueError(f"{name}: {value!r} is not a matplotlib colour") from None
     return value
+
+
+def array_like(value: object) -> bool:
+    """Whether ``value`` is an array for an argument that also takes other objects.
+
+    An ndarray, a list or tuple, a ``memoryview`` or ``array.array``, or an
+    object NumPy reads through its array protocols (a tensor, a message's
+    buffer): what the rest of navkit reads with ``np.asarray``. The caller
+    refuses anything else with its own ``TypeError``.
+    """
+    return isinstance(value, (np.ndarray, list, tuple, memoryview, array.array)) or (
+        has_array_protocol(value)
+    )
 
 
 def as_coords(value: ArrayLike, name: str, *, ncols: int = 2, nan_ok: bool = False) -> FloatArray:

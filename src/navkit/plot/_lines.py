@@ -14,6 +14,7 @@ from navkit.mapping import LaserScan, OccupancyGrid
 from navkit.planning import Path2D
 from navkit.plot._figure import (
     COORD_LIMIT,
+    array_like,
     as_color,
     as_coords,
     as_label,
@@ -45,16 +46,12 @@ def path_points(path: Any, grid: Any, name: str = "path") -> FloatArray:
         else:
             points = path.points
         return as_coords(points, name)
-    if isinstance(path, (str, bytes)) or not _array_like(path):
+    if isinstance(path, (str, bytes)) or not array_like(path):
         raise TypeError(f"{name} must be a Path2D or an (n, 2) array, got {type(path).__name__}")
     points = as_coords(path, name)
     if points.shape[0] == 0:
         raise ValueError(f"{name} must hold at least one point, got shape (0, 2)")
     return points
-
-
-def _array_like(value: Any) -> bool:
-    return isinstance(value, (np.ndarray, list, tuple))
 
 
 def plot_path(

@@ -54,6 +54,8 @@ def as_generator(value: object, name: str = "rng") -> np.random.Generator:
         return value
     if value is None:
         return np.random.default_rng()
+    if isinstance(value, np.ndarray) and value.ndim == 0 and value.dtype.kind in "iu":
+        value = bounded_int(value, name)  # np.array(3): its integer (a masked one refused)
     if isinstance(value, bool):
         raise TypeError(f"{name} must be a numpy Generator, an int seed or None, got bool")
     if isinstance(value, numbers.Integral):

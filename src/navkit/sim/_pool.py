@@ -19,7 +19,11 @@ import os
 import signal
 import sys
 import threading
+import warnings
 from collections.abc import Iterator
+
+from navkit._shared import jit
+from navkit.errors import KernelCacheWarning
 
 __all__ = ["process_pool"]
 
@@ -48,11 +52,19 @@ def process_pool(workers: int) -> Iterator[concurrent.futures.ProcessPoolExecuto
     block (as ``sweep`` and ``warmup`` do): on Linux a worker is also killed
     when the thread that started it ends (``PR_SET_PDEATHSIG`` follows the
     thread), and workers start at a ``submit``. On Windows at most 61 workers
-    start (more would make ``ProcessPoolExecutor`` refuse the pool).
+    start (more would make ``ProcessPoolExecutor`` refuse the pool). When this
+    process has already warned that numba cannot cache the kernels
+    (:class:`~navkit.errors.KernelCacheWarning`), the workers do not say it
+    again (a spawned or forkserver worker would, once each: it does not inherit
+    this process's "said").
     """
     if sys.platform == "win32":
         workers = min(workers, _MAX_WINDOWS_WORKERS)
-    pool = concurrent.futures.ProcessPoolExecutor(max_workers=workers, initializer=_start_worker)
+    # Not cache_problem(): that would load numba here (over a second of CPU).
+    warned = jit.cache_warned()
+    pool = concurrent.futures.ProcessPoolExecutor(
+        max_workers=workers, initializer=_start_worker, initargs=(warned,)
+    )
     try:
         try:
             yield pool
@@ -91,9 +103,11 @@ def _kill(pool: concurrent.futures.ProcessPoolExecutor) -> None:
         manager.join()
 
 
-def _start_worker() -> None:
-    """Initializer of every worker."""
+def _start_worker(warned: bool = False) -> None:
+    """Initializer of every worker; ``warned``: the parent said numba cannot cache the kernels."""
     signal.signal(signal.SIGINT, signal.SIG_IGN)
+    if warned:
+        warnings.filterwarnings("ignore", category=KernelCacheWarning)
     parent = multiprocessing.parent_process()
     if parent is None:  # pragma: no cover - not started by multiprocessing
         return

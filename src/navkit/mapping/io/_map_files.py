@@ -24,6 +24,7 @@ import re
 import reprlib
 import stat
 import struct
+import unicodedata
 import warnings
 import zlib
 from collections.abc import Iterator
@@ -271,9 +272,35 @@ def _unmarked_unicode(head: bytes) -> int:
     return 0
 
 
+#: A quoted YAML scalar on one line: its tabs are its own.
+_QUOTED = re.compile(r"""("(?:[^"\\\n]|\\.)*"|'(?:[^'\n]|'')*')""")
+
+
+def _untabbed(text: str) -> str:
+    """``text`` with tabs between tokens as spaces: outside quoted scalars, after a line's indent.
+
+    YAML 1.2 and map_server's reader (yaml-cpp) take a tab as a blank between
+    tokens (``resolution:<TAB>0.05``, a tab before a comment), as hand-edited
+    map YAMLs have; PyYAML refuses it ("found character '\\t' that cannot start
+    any token"). A tab in an indent stays: YAML refuses that everywhere.
+    """
+    lines = []
+    for line in text.split("\n"):
+        body = line.lstrip(" \t")
+        parts = _QUOTED.split(body)
+        spaced = "".join(p if i % 2 else p.replace("\t", " ") for i, p in enumerate(parts))
+        lines.append(line[: len(line) - len(body)] + spaced)
+    return "\n".join(lines)
+
+
 def _load_yaml(text: str, path: Path) -> dict[str, Any]:
     try:
-        doc = yaml.load(text, Loader=_Loader)  # _Loader is a safe loader
+        try:
+            doc = yaml.load(text, Loader=_Loader)  # _Loader is a safe loader
+        except yaml.scanner.ScannerError as exc:
+            if "'\\t'" not in (exc.problem or ""):
+                raise
+            doc = yaml.load(_untabbed(text), Loader=_Loader)
     except yaml.YAMLError as exc:
         mark = getattr(exc, "context_mark", None) or getattr(exc, "problem_mark", None)
         where = f"{path}:{mark.line + 1}" if mark is not None else str(path)
@@ -1369,6 +1396,12 @@ def _superseded_image(yaml_path: Path, image: Path) -> _Superseded | None:
     folder names it. Anything else (another image name, a hand-edited YAML
     naming a shared image) gives None: the file is left alone. The file's
     device and inode are kept to check at removal that it is still that file.
+
+    On a case-insensitive file system (macOS, Windows) ``map.yaml`` may be the
+    file saved as ``MAP.yaml``, naming ``MAP.pgm``: a name differing from
+    ``map.pgm`` only in case (or Unicode normalisation) counts when the file
+    system says it is that file, and the YAML listed under its other spelling
+    is the YAML itself, not another one.
     """
     for other_mode, image_format in _IMAGE_FORMAT.items():
         candidate = yaml_path.with_suffix(f".{image_format}")
@@ -1378,7 +1411,7 @@ def _superseded_image(yaml_path: Path, image: Path) -> _Superseded | None:
             if candidate.is_symlink() or not candidate.is_file() or not yaml_path.is_file():
                 continue
             entries = _load_yaml(_yaml_text(yaml_path), yaml_path)
-            if entries.get("image") != candidate.name:
+            if not _names_spelling_of(yaml_path, entries.get("image"), candidate):
                 continue
             if entries.get("mode", "trinary") != other_mode:
                 continue
@@ -1391,10 +1424,49 @@ def _superseded_image(yaml_path: Path, image: Path) -> _Superseded | None:
     return None
 
 
+def _names_spelling_of(yaml_path: Path, named: object, candidate: Path) -> bool:
+    """Whether a map YAML's ``image`` value ``named`` names ``candidate`` as the folder reads it.
+
+    The same text; or, on a case-insensitive file system, a spelling differing
+    only in case or Unicode normalisation that the file system takes for the
+    same entry (``MAP.pgm`` written by a save of ``MAP.yaml``, read back as
+    ``map.pgm``). Never through a symbolic link, nor another name of the file.
+    """
+    if named == candidate.name:
+        return True
+    if not isinstance(named, str) or not _same_spelling(named, candidate.name):
+        return False
+    entry = yaml_path.parent / named
+    return not entry.is_symlink() and _same_file(entry, candidate)
+
+
+def _same_spelling(name: str, other: str) -> bool:
+    """Whether two file names differ only in case or Unicode normalisation (NFC/NFD)."""
+    return _folded(name) == _folded(other)
+
+
+def _folded(name: str) -> str:
+    return unicodedata.normalize("NFD", unicodedata.normalize("NFD", name).casefold())
+
+
+def _same_file(path: Path, other: Path) -> bool:
+    """``os.path.samefile``, False where either cannot be read."""
+    try:
+        return os.path.samefile(path, other)
+    except (OSError, ValueError):
+        return False
+
+
 def _other_yaml_names(image: Path, yaml_path: Path) -> Iterator[bool]:
-    """For each YAML file beside ``yaml_path`` but itself: whether it names ``image``."""
+    """For each YAML file beside ``yaml_path`` but itself: whether it names ``image``.
+
+    The YAML itself may be listed under another spelling (``MAP.yaml`` for
+    ``map.yaml`` on a case-insensitive file system): the same file is skipped.
+    """
     for entry in yaml_path.parent.iterdir():
         if entry.suffix.lower() in (".yaml", ".yml") and entry.name != yaml_path.name:
+            if _same_spelling(entry.name, yaml_path.name) and _same_file(entry, yaml_path):
+                continue
             yield _names_image(entry, image)
 
 
@@ -1412,6 +1484,11 @@ def _remove_superseded(old: _Superseded, yaml_path: Path, image: Path) -> None:
         if (now.st_dev, now.st_ino) != (old.device, old.inode):
             return
         if not _names_image(yaml_path, image):
+            return
+        # Asked again now that the new YAML is in place: a YAML skipped before the
+        # save as the same file under another spelling (case-insensitive folders)
+        # is now the new one; were it a hard link, it is now the old YAML, naming this.
+        if any(_other_yaml_names(old.path, yaml_path)):
             return
         old.path.unlink(missing_ok=True)
     except FileNotFoundError:
