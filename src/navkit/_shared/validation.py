@@ -430,9 +430,11 @@ def _message_hint(item: object, components: int | None = None) -> str:
         return ""
     if components is not None and components > len(fields):
         return ""  # not the message the argument wants: no advice beats a wrong one
+    if type(item).__module__.startswith("navkit"):  # a Pose2D, say: named as what it is
+        listed = ", ".join(f"p.{f}" for f in fields[:components])
+        return f" with fields {', '.join(fields)}: pass ({listed}) of that {type(item).__name__} p"
     listed = ", ".join(f"m.{f}" for f in fields[:components])
-    guess = "" if type(item).__module__.startswith("navkit") else " (a ROS message?)"
-    return f" with fields {', '.join(fields)}{guess}: pass ({listed})"
+    return f" with fields {', '.join(fields)} (a ROS message?): pass ({listed})"
 
 
 def integer_readings(value: object, name: str) -> NDArray[Any]:
