@@ -37,6 +37,8 @@ _HIT = logit(0.9)
 _MISS = logit(0.4)
 # Growth margin around what a scan reaches, m, and the initial half-size.
 _MARGIN = 10.0
+# The log-odds a grown level is first built with (see _ensure_covers).
+_ONE_CELL = np.zeros((1, 1), dtype=np.float32)
 
 
 class ScanMapper:
@@ -552,7 +554,13 @@ class ScanMapper:
             r, c = grid.shape
             arr = np.zeros((r + (down + up) * f, c + (left + right) * f), dtype=np.float32)
             arr[down * f : down * f + r, left * f : left * f + c] = grid._logodds
-            grown.append(OccupancyGrid(arr, resolution=grid.resolution, origin=(x0, y0, 0.0)))
+            # The grid takes arr itself: its values are the checked ones of a level and
+            # zeros, and the constructor's scan and copy of them would double the time
+            # of a growth and add a level's size to its peak (a tiny grid is built to
+            # check the resolution and origin, then given arr).
+            level = OccupancyGrid(_ONE_CELL, resolution=grid.resolution, origin=(x0, y0, 0.0))
+            level._logodds = arr
+            grown.append(level)
         self._levels = grown
 
 

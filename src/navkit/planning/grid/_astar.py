@@ -29,7 +29,7 @@ from navkit.planning.grid._limits import (
     read_only,
 )
 from navkit.planning.grid._path import Path2D
-from navkit.planning.grid._workspace import grow_heap, workspace
+from navkit.planning.grid._workspace import grow_heap, scratch_text, workspace
 
 __all__ = ["AStarPlanner", "astar"]
 
@@ -104,9 +104,17 @@ def _jps_workspace(n: int) -> tuple[FloatArray, NDArray[np.int32], NDArray[np.in
     """This thread's JPS scratch for ``n`` cells and a fresh stamp."""
     scratch = _jps_scratch
     if scratch.records.size < 2 * n:
-        scratch.records = np.empty(2 * n, dtype=np.float64)
-        scratch.meta = scratch.records.view(np.int32)
-        scratch.blocks = np.zeros(3 * ((n + 63) // 64), dtype=np.int64)
+        # Both arrays first, then the swap: a MemoryError from the second must
+        # not leave large records with the old, smaller blocks, which the
+        # kernels (no bounds checks) would then index past their end.
+        try:
+            records = np.empty(2 * n, dtype=np.float64)
+            blocks = np.zeros(3 * ((n + 63) // 64), dtype=np.int64)
+        except MemoryError as exc:
+            raise MemoryError(scratch_text(n, 16.375)) from exc
+        scratch.records = records
+        scratch.meta = records.view(np.int32)
+        scratch.blocks = blocks
         scratch.stamp = 0
     scratch.stamp += 1
     return scratch.records, scratch.meta, scratch.blocks, scratch.stamp

@@ -58,7 +58,11 @@ def workspace(n: int) -> Workspace:
     """Scratch arrays for a search over ``n`` cells with a fresh stamp."""
     ws = _local
     if n > ws.capacity:
-        ws.rec = np.zeros(2 * n, dtype=np.float64)
+        try:
+            rec = np.zeros(2 * n, dtype=np.float64)
+        except MemoryError as exc:
+            raise MemoryError(scratch_text(n, 16)) from exc
+        ws.rec = rec
         ws.meta = ws.rec.view(np.int32)
         ws.capacity = n
         ws.stamp = 0
@@ -67,6 +71,16 @@ def workspace(n: int) -> Workspace:
         ws.meta[:] = 0
         ws.stamp = 2
     return ws.rec, ws.meta, ws.heap, ws.stamp
+
+
+def scratch_text(cells: int, bytes_per_cell: float) -> str:
+    """The message of a MemoryError from a search's scratch arrays."""
+    size = cells * bytes_per_cell / 2**20
+    return (
+        f"a grid search over {cells} cells needs {size:.4g} MiB of scratch "
+        f"({bytes_per_cell:g} bytes a cell, kept per thread for later searches), "
+        "which could not be allocated"
+    )
 
 
 def grow_heap(entries: int = 0) -> None:
