@@ -1056,6 +1056,7 @@ spec(
         "process_noise": Array(optional=True),
         "t0": Real(optional=True),
         "gate_probability": Real(optional=True),
+        "pose": OPT_POSE,
     },
 )
 FUSION: dict[str, Any] = {"mutates": ("self",), "nan_ok": _uncomputed_nis, "inf_ok": _rejected}

@@ -57,7 +57,7 @@ from navkit.estimation._result import (
     new_result,
     rejected_result,
 )
-from navkit.geometry import Pose2D, wrap_angle
+from navkit.geometry import Pose2D, as_pose, wrap_angle
 
 __all__ = ["FusionResult", "FusionStatus", "MeasurementLog", "PlanarFusion"]
 
@@ -584,7 +584,7 @@ class PlanarFusion(GaussianEstimate):
     Parameters
     ----------
     x0 : array_like, shape (6,), optional
-        Initial state (finite); default zeros.
+        Initial state ``[x, y, yaw, v, omega, a]`` (finite); default zeros.
     P0 : array_like, shape (6, 6) or (6,), optional
         Initial covariance (or its diagonal), positive definite, entries of
         magnitude at most 1e100; default ``diag(1e-9, 1e-9, 1e-9, 1, 1, 1)``:
@@ -596,6 +596,9 @@ class PlanarFusion(GaussianEstimate):
     t0 : float, optional
         Time of ``x0``, s (any finite value; so are measurement times; see
         the notes on time stamps).
+    pose : Pose2D or array_like (x, y, theta), optional
+        The start pose alone, keyword-only, as the odometry classes and the
+        simulator take it: ``x0`` with zero rates. Not with ``x0``.
     gate_probability : float, optional
         If given, in (0, 1): reject measurements whose NIS exceeds the chi-square
         quantile of this probability for their dimension (Mahalanobis gate). A
@@ -652,6 +655,8 @@ class PlanarFusion(GaussianEstimate):
     (1.0, 1.0)
     >>> fusion.update_yaw(0.5, 0.0, variance=1e-3).reason
     'out of order: t=0.5 s is older than the filter time 1.0 s'
+    >>> PlanarFusion(pose=(2.0, 1.0, 0.5), t0=0.0).x.tolist()
+    [2.0, 1.0, 0.5, 0.0, 0.0, 0.0]
     """
 
     __slots__ = (
@@ -673,8 +678,15 @@ class PlanarFusion(GaussianEstimate):
         process_noise: ArrayLike | None = None,
         t0: float | None = None,
         gate_probability: float | None = None,
+        pose: Pose2D | ArrayLike | None = None,
     ) -> None:
-        x = np.zeros(6) if x0 is None else as_float_array(x0, "x0", shape=(6,))
+        if pose is not None and x0 is not None:
+            raise ValueError("give x0 or pose, not both (pose is x0 with zero rates)")
+        if pose is not None:
+            start = as_pose(pose, "pose")
+            x = np.array([start.x, start.y, start.theta, 0.0, 0.0, 0.0])
+        else:
+            x = np.zeros(6) if x0 is None else as_float_array(x0, "x0", shape=(6,))
         gates = np.full(5, np.inf)
         if gate_probability is not None:
             prob = finite_float(gate_probability, "gate_probability")

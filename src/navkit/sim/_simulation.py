@@ -240,7 +240,7 @@ class Simulation:
         Path for the cross-track error, within ±1e12 m.
     estimator : PlanarFusion, OmniOdometry, DiffOdometry or Estimator, optional
         Fed every delivered reading (at its delivery time). Initialise it at
-        the start pose (e.g. ``PlanarFusion(x0=[x, y, θ, 0, 0, 0], t0=0.0)``).
+        the start pose (e.g. ``PlanarFusion(pose=(x, y, θ), t0=0.0)``).
         A ``PlanarFusion`` needs a drive that cannot move sideways (its state
         has no sideways speed; ``ValueError`` for an omnidirectional drive).
         A ``DiffOdometry`` is given the counter readings as counters of its
