@@ -547,7 +547,7 @@ def settle(
             ref = vals[RECORD * u]
             # u (the top) is consistent now: dequeuing it pops the top. (ref != rhs(u)
             # is False, but not a literal: that would compile heap_update again.)
-            change(nodes, keys, pos, size, u, ref, ref, ref != vals[RECORD * u + RHS])
+            change(nodes, keys, pos, size, u, ref, ref, ref != vals[RECORD * u + RHS], fresh)
             if fresh and size[0] > 0:
                 # The records of the next top's neighbours (three rows of three
                 # records, 72 bytes a row: the lines of its first and last), fetched
