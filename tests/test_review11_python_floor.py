@@ -46,7 +46,8 @@ def test_python_floor_installs_the_numpy_floor() -> None:
     data = _pyproject()
     project = data["project"]
     assert isinstance(project, dict)
-    numpy = [d for d in project["dependencies"] if re.match(r"numpy\b", d)]
+    # The floor for every Python (not one under a marker, for a newer Python's wheels).
+    numpy = [d for d in project["dependencies"] if re.match(r"numpy\b", d) and ";" not in d]
     assert len(numpy) == 1
     floor = re.fullmatch(r"numpy>=([\d.]+)", numpy[0])
     assert floor is not None, numpy[0]

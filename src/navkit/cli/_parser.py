@@ -200,6 +200,17 @@ def _tolerance(text: str) -> float:
     return value + 0.0  # -0 as 0
 
 
+def _late_help(action: argparse.Action, text: str) -> None:
+    """Give ``action`` the help ``text``, which lists its :class:`Choices` when shown.
+
+    Python 3.14's ``add_argument`` checks a help string by expanding it at once:
+    a ``%(choices)s`` in it would list the choices, importing the simulator,
+    while the parser is built. Set afterwards, it is expanded only when the
+    help is shown (as ``add_argument`` does on Python 3.11-3.13).
+    """
+    action.help = text
+
+
 def _outputs(parser: argparse.ArgumentParser) -> None:
     """Options shared by ``demo`` and ``run``."""
     parser.add_argument("--trials", type=_count(1, 100_000), metavar="N",
@@ -265,8 +276,8 @@ def build_parser(scenarios: Sequence[str] | None = None) -> argparse.ArgumentPar
     )  # fmt: skip
     if scenarios is None:
         scenarios = Choices(_scenario_names, known=_is_scenario)
-    run.add_argument("scenario", choices=scenarios, metavar="SCENARIO",
-                     help="one of: %(choices)s")  # fmt: skip
+    _late_help(run.add_argument("scenario", choices=scenarios, metavar="SCENARIO"),
+               "one of: %(choices)s")  # fmt: skip
     _outputs(run)
     run.add_argument("--workers", type=_count(1, 1024), metavar="N",
                      help="local processes (default: every core; 1: this one)")  # fmt: skip
@@ -304,7 +315,8 @@ def build_parser(scenarios: Sequence[str] | None = None) -> argparse.ArgumentPar
     )  # fmt: skip
     warm.add_argument("--workers", type=_count(1, 1024), metavar="N",
                       help="processes (default: every core; 1: this one)")  # fmt: skip
-    warm.add_argument("--only", action="append", choices=Choices(_warmup_steps), metavar="STEP",
-                      help="only this step (repeatable): %(choices)s")  # fmt: skip
+    _late_help(warm.add_argument("--only", action="append", choices=Choices(_warmup_steps),
+                                 metavar="STEP"),
+               "only this step (repeatable): %(choices)s")  # fmt: skip
     warm.add_argument("--quiet", action="store_true", help="no progress on stderr")
     return parser

@@ -111,7 +111,10 @@ def _start_worker(warned: bool = False) -> None:
     parent = multiprocessing.parent_process()
     if parent is None:  # pragma: no cover - not started by multiprocessing
         return
-    if _kill_on_parent_death():
+    # Only where the pool's process is this one's parent: a forkserver worker's
+    # parent is the fork server (Python 3.14's default on Linux), which outlives a
+    # killed pool's process as long as its workers hold its "alive" pipe.
+    if parent.pid == os.getppid() and _kill_on_parent_death():
         if not parent.is_alive():  # died before the request took effect
             os._exit(1)
         return

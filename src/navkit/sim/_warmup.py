@@ -502,7 +502,10 @@ def warmup(
         everything in this process. Default: every core this process may use
         (at most one per step). A ``KeyboardInterrupt`` (Ctrl-C, which the
         workers leave to this process) kills the workers at once, and they end
-        when this process dies.
+        when this process dies. Under the ``spawn`` and ``forkserver`` start
+        methods (macOS and Windows; Linux from Python 3.14) the workers start
+        afresh: a script must call ``warmup`` under
+        ``if __name__ == "__main__":``, as for :func:`sweep`.
     progress : callable, optional
         ``progress(done, total)``, called with ``done = 0`` first and after
         every step, in this process.
