@@ -127,7 +127,22 @@ def test_plan_cells_costs_no_more_than_any_corner_pair(grid: Grid, interpolate: 
             FieldDStar(costs, interpolate=interpolate).plan_cells(s, g)
         return
     path = FieldDStar(costs, interpolate=interpolate).plan_cells(s, g)
-    assert path.cost <= reference * (1 + 1e-9)
+    # The documented bound: the start corner is chosen by its interpolated value,
+    # which can rank corners otherwise than their walked paths (3 of 5,479 random
+    # queries above the reference, by at most 0.6 %; the position rule used
+    # before was up to 20 % above).
+    assert path.cost <= reference * 1.01
+
+
+def test_a_corner_ranked_by_its_value_may_walk_a_little_dearer() -> None:
+    # Found by the property above (session 24): 7.7648 against the pair (3, 0)-(3, 4)'s
+    # 7.7616, 0.04 % above it.
+    case = random_case((936, 8, 5, 0, (36846, 17)))
+    assert case is not None
+    costs, s, g = case
+    reference = forced_corner_pairs(costs, s, g, interpolate=True)
+    cost = FieldDStar(costs, interpolate=True).plan_cells(s, g).cost
+    assert reference < cost <= reference * 1.001
 
 
 @settings(max_examples=40, deadline=None)
