@@ -203,5 +203,6 @@ def test_the_hint_serves_every_array_argument_and_names_navkit_records_plainly()
     ros_hint = r"points_xy .* \(a ROS message\?\): pass \(m\.x, m\.y\)$"
     with pytest.raises(TypeError, match=ros_hint):
         grid.world_to_cell([point])
-    with pytest.raises(TypeError, match=r"type Pose2D with fields x, y: pass \(m\.x, m\.y\)$"):
+    navkit_hint = r"type Pose2D with fields x, y: pass \(p\.x, p\.y\) of that Pose2D p$"
+    with pytest.raises(TypeError, match=navkit_hint):
         grid.world_to_cell([Pose2D(1.0, 2.0, 0.0)])
