@@ -63,11 +63,13 @@ robots = [
           encoders=WheelEncoders(), compass=Compass(), imu=Imu()),
     Robot(drive=omni, footprint=0.15, max_wheel_speed=20.0),
 ]
+long_path = np.column_stack([np.linspace(1.0, 2.0, 40), np.ones(40)])  # the chunked kernel
+references = ([[1.0, 1.0], [2.0, 1.0]], long_path, [[1.0, 1.0], [2.0, 1.0]])
 for world in worlds:
-    for robot in robots:
+    for robot, reference in zip(robots, references):
         Simulation(
             world, robot, lambda _obs: Twist2D(0.4, 0.0, 0.2), start=(1.0, 1.0, 0.0),
-            goal=(1.5, 1.2), duration=0.2, reference_path=[[1.0, 1.0], [2.0, 1.0]],
+            goal=(1.5, 1.2), duration=0.2, reference_path=reference,
         ).run()
     # Steps of 0.4 m, long for these footprints: the run kernels' checking variants.
     for footprint in (0.15, square):
@@ -94,7 +96,8 @@ def test_every_simulator_kernel_is_compiled_for_one_signature() -> None:
                  "_lidar_kernels.apply_range_noise", "_segment_kernels.run_segment",
                  "_segment_kernels.run_edge_segment", "_clearance_kernels.footprint_clearance",
                  "_clearance_kernels.edge_clearance", "_moving_kernels.place_moving",
-                 "_polyline_distance_kernels.point_polyline_distances"):  # fmt: skip
+                 "_polyline_distance_kernels.point_polyline_distances",
+                 "_polyline_distance_kernels.point_polyline_distances_chunked"):  # fmt: skip
         assert name in signatures, name
     twice = {
         name: sigs for name, sigs in signatures.items()

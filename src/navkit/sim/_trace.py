@@ -17,7 +17,12 @@ from navkit._shared.validation import (
     finite_float,
     kernel_input,
 )
-from navkit.sim._polyline_distance_kernels import point_polyline_distances
+from navkit.sim._polyline_distance_kernels import (
+    SIMPLE_MAX_SEGMENTS,
+    chunk_boxes,
+    point_polyline_distances,
+    point_polyline_distances_chunked,
+)
 from navkit.sim._sensors import ScanReading, real_float
 
 __all__ = ["EndReason", "Event", "Metrics", "Trace", "cross_track"]
@@ -244,11 +249,14 @@ def cross_track(points_xy: FloatArray, path_xy: FloatArray) -> FloatArray:
     out = np.empty(points_xy.shape[0])
     # Writeable C-contiguous copies where needed: a Path2D's points are read-only,
     # a list given as reference_path is not; one kernel specialisation serves both.
-    point_polyline_distances(
-        kernel_input(np.asarray(points_xy, dtype=np.float64)),
-        kernel_input(np.asarray(path_xy, dtype=np.float64)),
-        out,
-    )
+    points = kernel_input(np.asarray(points_xy, dtype=np.float64))
+    path = kernel_input(np.asarray(path_xy, dtype=np.float64))
+    segments = path.shape[0] - 1
+    if segments > SIMPLE_MAX_SEGMENTS:
+        # Long paths: the same distances, bit for bit, skipping far chunks of segments.
+        point_polyline_distances_chunked(points, path, chunk_boxes(path), out)
+    else:
+        point_polyline_distances(points, path, out)
     return out
 
 

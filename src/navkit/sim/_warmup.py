@@ -260,10 +260,14 @@ def _simulation() -> None:
             (Robot(drive=omni, footprint=0.15, max_wheel_speed=20.0, **sensors),
              OmniOdometry(omni)),
         ]  # fmt: skip
-        for robot, estimator in robots:
+        # A path of 2 vertices and one of over 32 segments: the cross-track distances
+        # of short and long reference paths are two kernels.
+        long_path = np.column_stack([np.linspace(1.0, 2.0, 40), np.ones(40)])
+        references = ([[1.0, 1.0], [2.0, 1.0]], long_path, [[1.0, 1.0], [2.0, 1.0]])
+        for (robot, estimator), reference in zip(robots, references, strict=True):
             Simulation(
                 world, robot, forward, start=(1.0, 1.0, 0.0), goal=(1.5, 1.2), estimator=estimator,
-                duration=0.3, reference_path=[[1.0, 1.0], [2.0, 1.0]],
+                duration=0.3, reference_path=reference,
             ).run()  # fmt: skip
         # Steps long for the footprint (0.4 m) run the kernels' variants that check
         # along each step.
