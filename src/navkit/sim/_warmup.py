@@ -263,7 +263,8 @@ def _simulation() -> None:
         # A path of 2 vertices and one of over 32 segments: the cross-track distances
         # of short and long reference paths are two kernels.
         long_path = np.column_stack([np.linspace(1.0, 2.0, 40), np.ones(40)])
-        references = ([[1.0, 1.0], [2.0, 1.0]], long_path, [[1.0, 1.0], [2.0, 1.0]])
+        short_path = np.array([[1.0, 1.0], [2.0, 1.0]])
+        references = (short_path, long_path, short_path)
         for (robot, estimator), reference in zip(robots, references, strict=True):
             Simulation(
                 world, robot, forward, start=(1.0, 1.0, 0.0), goal=(1.5, 1.2), estimator=estimator,
