@@ -122,10 +122,40 @@ def _pyproject() -> tuple[dict[str, str], str, set[str]]:
         project = tomllib.load(file)["project"]
     floors = {}
     for requirement in project["dependencies"]:
+        if ";" in requirement:  # a newer Python's floor (see _newer_python_floors)
+            continue
         floor = re.fullmatch(r"([\w-]+)>=([\d.]+)", requirement)
         assert floor is not None, requirement
         floors[floor[1]] = floor[2]
     return floors, project["requires-python"], set(project["optional-dependencies"])
+
+
+def _newer_python_floors() -> dict[str, dict[str, str]]:
+    """pyproject.toml's floors under a ``python_version >= 'X.Y'`` marker, by that version."""
+    with (ROOT / "pyproject.toml").open("rb") as file:
+        project = tomllib.load(file)["project"]
+    floors: dict[str, dict[str, str]] = {}
+    for requirement in project["dependencies"]:
+        if ";" not in requirement:
+            continue
+        found = re.fullmatch(
+            r"([\w-]+)>=([\d.]+); python_version >= '([\d.]+)'", requirement
+        )
+        assert found is not None, requirement
+        floors.setdefault(found[3], {})[found[1]] = found[2]
+    return floors
+
+
+def test_readme_states_the_newer_pythons_floors() -> None:
+    readme = _page("README.md")
+    newer = _newer_python_floors()
+    assert newer, "no marker floors: drop this test and the README sentence"
+    for version, floors in newer.items():
+        sentence = rf"On Python {re.escape(version)} the floors are [^:]*: (.*?)\.(?: |$)"
+        quoted = re.search(sentence, readme)
+        assert quoted is not None, version
+        stated = dict(re.findall(r"(\w+) \(>= ([\d.]+)\)", quoted[1]))
+        assert {k.lower(): v for k, v in stated.items()} == floors
 
 
 def test_readme_dependency_floors_and_extras_are_pyprojects() -> None:
