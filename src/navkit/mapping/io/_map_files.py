@@ -272,8 +272,11 @@ def _unmarked_unicode(head: bytes) -> int:
     return 0
 
 
-#: A quoted YAML scalar on one line: its tabs are its own.
-_QUOTED = re.compile(r"""("(?:[^"\\\n]|\\.)*"|'(?:[^'\n]|'')*')""")
+#: A quoted YAML scalar on one line: its tabs are its own. A double-quoted one not
+#: closed on its line matches to the line's end (``closed`` unset): see _spaced.
+_QUOTED = re.compile(r"""("(?:[^"\\\n]|\\.)*+(?:(?P<closed>")|\\?$)|'(?:[^'\n]|'')*')""")
+#: A single-quoted scalar on one line.
+_SINGLE_QUOTED = re.compile(r"""('(?:[^'\n]|'')*')""")
 
 
 def _untabbed(text: str) -> str:
@@ -287,10 +290,33 @@ def _untabbed(text: str) -> str:
     lines = []
     for line in text.split("\n"):
         body = line.lstrip(" \t")
-        parts = _QUOTED.split(body)
-        spaced = "".join(p if i % 2 else p.replace("\t", " ") for i, p in enumerate(parts))
-        lines.append(line[: len(line) - len(body)] + spaced)
+        lines.append(line[: len(line) - len(body)] + _spaced(body))
     return "\n".join(lines)
+
+
+def _spaced(body: str) -> str:
+    """One line's ``body`` with its tabs outside quoted scalars as spaces; linear time.
+
+    A ``"`` not closed on its line is plain text, and so is every later ``"``
+    of the line (each is inside the first one's escapes, read the same way
+    from there); single-quoted scalars after it still count. Splitting on one
+    pattern that tried each such ``"`` anew took time quadratic in the line
+    (6.6 s for a 32 KB line of ``\\"``; hours for the 1 MiB a map YAML may have).
+    """
+    out = []
+    end = 0
+    for match in _QUOTED.finditer(body):
+        out.append(body[end : match.start()].replace("\t", " "))
+        token = match.group()
+        if token[0] == '"' and match.group("closed") is None:
+            parts = _SINGLE_QUOTED.split(body[match.start() + 1 :])
+            out.append('"')
+            out.extend(p if i % 2 else p.replace("\t", " ") for i, p in enumerate(parts))
+            return "".join(out)
+        out.append(token)
+        end = match.end()
+    out.append(body[end:].replace("\t", " "))
+    return "".join(out)
 
 
 def _load_yaml(text: str, path: Path) -> dict[str, Any]:
