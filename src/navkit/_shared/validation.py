@@ -338,10 +338,15 @@ def _any_masked(value: np.ma.MaskedArray[Any, Any]) -> bool:
     1 dtype could not be cast") before the callers' dtype check could name the
     argument.
     """
-    mask = value.mask
-    if mask is not np.ma.nomask and mask.dtype.names is not None:
-        mask = np.ma.flatten_mask(mask)
-    return bool(np.any(mask))
+    return _any_set(value.mask)
+
+
+def _any_set(mask: Any) -> bool:
+    """Whether a mask (``nomask``, a boolean array, or a structured one, nested) has a True."""
+    names = None if mask is np.ma.nomask else mask.dtype.names
+    if names is None:
+        return bool(np.any(mask))
+    return any(_any_set(mask[name]) for name in names)
 
 
 def _refuse_masked_elements(
