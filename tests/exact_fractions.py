@@ -46,3 +46,23 @@ def exact_gain(p: np.ndarray, h: np.ndarray, r: np.ndarray) -> tuple[Matrix, Mat
     s_inv = inverse(s)
     gain = [[sum(hp[b][i] * s_inv[b][a] for b in range(m)) for a in range(m)] for i in range(n)]
     return hp, s_inv, gain
+
+
+def exact_update(
+    x: np.ndarray, p: np.ndarray, h: np.ndarray, r: np.ndarray, y: np.ndarray
+) -> tuple[list[Fraction], Matrix, Fraction]:
+    """A linear Kalman update exactly: ``(x⁺, P⁺, NIS)`` for the residual ``y`` (m,).
+
+    x⁺ = x + K y, P⁺ = P - K H P and NIS = yᵀ S⁻¹ y, as Fractions.
+    """
+    n, m = p.shape[0], h.shape[0]
+    hp, s_inv, gain = exact_gain(p, h, r)
+    yf = [Fraction(v) for v in np.asarray(y).tolist()]
+    nis = sum((yf[a] * s_inv[a][b] * yf[b] for a in range(m) for b in range(m)), Fraction(0))
+    pf = fractions(p)
+    post = [
+        [pf[i][j] - sum(gain[i][a] * hp[a][j] for a in range(m)) for j in range(n)]
+        for i in range(n)
+    ]
+    x_new = [Fraction(x[i]) + sum(gain[i][a] * yf[a] for a in range(m)) for i in range(n)]
+    return x_new, post, nis

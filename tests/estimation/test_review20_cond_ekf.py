@@ -25,25 +25,15 @@ from navkit.estimation import ExtendedKalmanFilter, FusionStatus
 from navkit.estimation._ekf_kernels import _EXACT_NIS_MAX_M, _exact_nis
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from exact_fractions import exact_gain, fractions
+from exact_fractions import exact_gain, exact_update
 
 pytestmark = pytest.mark.filterwarnings("error::RuntimeWarning")
 
 
 def _exact(x: np.ndarray, p: np.ndarray, h: np.ndarray, r: np.ndarray, z: np.ndarray):  # type: ignore[no-untyped-def]
     """Exact posterior (x, P) and NIS of the update, as Fractions."""
-    n, m = p.shape[0], h.shape[0]
-    hp, s_inv, gain = exact_gain(p, h, r)
     # The filter's residual z - h(x), h(x) = H @ x in float64, as the tests' h computes it.
-    y = [Fraction(v) for v in (z - h @ x).tolist()]
-    nis = sum(y[a] * s_inv[a][b] * y[b] for a in range(m) for b in range(m))
-    pf = fractions(p)
-    post = [
-        [pf[i][j] - sum(gain[i][a] * hp[a][j] for a in range(m)) for j in range(n)]
-        for i in range(n)
-    ]
-    x_new = [Fraction(x[i]) + sum(gain[i][a] * y[a] for a in range(m)) for i in range(n)]
-    return x_new, post, nis
+    return exact_update(x, p, h, r, z - h @ x)
 
 
 def _check(  # type: ignore[no-untyped-def]

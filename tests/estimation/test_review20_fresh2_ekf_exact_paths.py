@@ -29,24 +29,14 @@ from navkit.estimation import ExtendedKalmanFilter, FusionStatus
 from navkit.estimation._ekf_kernels import _EXACT_NIS_MAX_M, _INV_DIAG, _S, _VEC, GATED, retry_gated
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from exact_fractions import exact_gain, fractions
+from exact_fractions import exact_update
 
 pytestmark = pytest.mark.filterwarnings("error::RuntimeWarning")
 
 
 def _exact(x: np.ndarray, p: np.ndarray, h: np.ndarray, r: np.ndarray, y: np.ndarray):  # type: ignore[no-untyped-def]
     """Exact posterior (x, P) and NIS for the residual ``y`` the filter takes."""
-    n, m = p.shape[0], h.shape[0]
-    hp, s_inv, gain = exact_gain(p, h, r)
-    yf = [Fraction(v) for v in y.tolist()]
-    nis = sum(yf[a] * s_inv[a][b] * yf[b] for a in range(m) for b in range(m))
-    pf = fractions(p)
-    post = [
-        [pf[i][j] - sum(gain[i][a] * hp[a][j] for a in range(m)) for j in range(n)]
-        for i in range(n)
-    ]
-    x_new = [Fraction(x[i]) + sum(gain[i][a] * yf[a] for a in range(m)) for i in range(n)]
-    return x_new, post, nis
+    return exact_update(x, p, h, r, y)
 
 
 def _assert_close(ekf: ExtendedKalmanFilter, x0: np.ndarray, x_exact, p_exact, angles=()) -> None:  # type: ignore[no-untyped-def]
