@@ -173,6 +173,11 @@ class FollowTheCarrot(PathTracker):
         """Largest turn rate (rad/s)."""
         return self._max_omega
 
+    @property
+    def rotate_angle(self) -> float:
+        """Heading error (rad) to the carrot above which a differential robot turns in place."""
+        return self._align_angle
+
     def _reset(self) -> None:
         # A differential robot first turns to face the path (phase 1).
         self._phase = "rotate" if self._drive == "diff" else "track"

@@ -27,6 +27,7 @@ from numpy.typing import ArrayLike
 
 from navkit._shared.angles import wrap_float as wrap
 from navkit._shared.deprecation import renamed_keyword
+from navkit._shared.dunders import slot_state
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, finite_float, positive_float
 from navkit.control._path_following_kernels import circle_exit, point_at, project
@@ -238,6 +239,7 @@ class PathTracker(ABC):
         "_target",
         "_yaw_tolerance",
     )
+    __getstate__ = slot_state  # pickle protocols 0 and 1 too
 
     def __init__(self, *, drive: Any, goal_tolerance: Any, yaw_tolerance: Any) -> None:
         if not isinstance(drive, str) or drive not in ("diff", "omni"):

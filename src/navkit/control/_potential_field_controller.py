@@ -8,6 +8,7 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
+from navkit._shared.dunders import slot_state
 from navkit._shared.frozen import restore_slots
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, as_points
@@ -51,6 +52,7 @@ class _Pid:
     """
 
     __slots__ = ("integral_limit", "kd", "ki", "kp")
+    __getstate__ = slot_state  # pickle protocols 0 and 1 too
 
     def __init__(self, kp: float, ki: float, kd: float, integral_limit: float) -> None:
         self.kp = kp
@@ -199,6 +201,7 @@ class PotentialFieldController:
         "_still_for",
         "_velocity",
     )
+    __getstate__ = slot_state  # pickle protocols 0 and 1 too
 
     def __init__(
         self,

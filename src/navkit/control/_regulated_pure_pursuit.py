@@ -11,6 +11,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from navkit._shared.deprecation import renamed_keyword
+from navkit._shared.dunders import slot_state
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_bool, refuse_masked
 from navkit.control._path_following import (
@@ -41,6 +42,7 @@ class _GridClearance:
     """
 
     __slots__ = ("_distance", "_grid")
+    __getstate__ = slot_state  # pickle protocols 0 and 1 too
 
     def __init__(self, grid: OccupancyGrid) -> None:
         occupied = grid.occupied()
@@ -348,6 +350,11 @@ class RegulatedPurePursuit(PathTracker):
     def rotate_omega(self) -> float:
         """Turn rate (rad/s) of in-place turns."""
         return self._rotate_omega
+
+    @property
+    def rotate_angle(self) -> float:
+        """Nav2 ``rotate_to_heading_min_angle`` (rad): turns in place above this heading error."""
+        return self._rotate_to_heading_angle
 
     def _reset(self) -> None:
         self._last = (0.0, 0.0, 0.0)

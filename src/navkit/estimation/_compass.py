@@ -8,6 +8,7 @@ from typing import overload
 import numpy as np
 from numpy.typing import ArrayLike
 
+from navkit._shared.dunders import slot_state
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_bool, as_float_array, finite_float
 
@@ -160,6 +161,7 @@ class CompassCalibration:
     """
 
     __slots__ = ("_correction", "_initial", "_last", "_unwrap")
+    __getstate__ = slot_state  # pickle protocols 0 and 1 too
 
     def __init__(self, *, unwrap: bool = False) -> None:
         self._unwrap = as_bool(unwrap, "unwrap")

@@ -10,6 +10,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from navkit._shared.deprecation import renamed_keyword
+from navkit._shared.dunders import slot_state
 from navkit._shared.frozen import restore_slots
 from navkit._shared.se2 import exp_body
 from navkit._shared.types import FloatArray
@@ -293,6 +294,7 @@ class OmniOdometry:
     """
 
     __slots__ = ("_anchor", "_drive", "_pose", "_travel")
+    __getstate__ = slot_state  # pickle protocols 0 and 1 too
 
     def __init__(self, drive: OmniDrive, *, pose: Pose2D | ArrayLike | None = None) -> None:
         if not isinstance(drive, OmniDrive):
@@ -558,6 +560,7 @@ class DiffOdometry:
         "_ticks_per_rev",
         "_travel",
     )
+    __getstate__ = slot_state  # pickle protocols 0 and 1 too
 
     def __init__(
         self,

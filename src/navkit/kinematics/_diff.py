@@ -7,6 +7,7 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
+from navkit._shared.dunders import slot_state
 from navkit._shared.se2 import exp_body, exp_body_array
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_bool, as_float_array, finite_float
@@ -100,6 +101,7 @@ class DiffDrive:
     """
 
     __slots__ = ("_left", "_right", "_track")
+    __getstate__ = slot_state  # pickle protocols 0 and 1 too
 
     def __init__(
         self,

@@ -9,6 +9,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from navkit._shared.deprecation import renamed_keyword
+from navkit._shared.dunders import slot_state
 from navkit._shared.frozen import restore_slots
 from navkit._shared.products import scaled_product
 from navkit._shared.types import FloatArray
@@ -111,6 +112,7 @@ class OmniDrive:
     """
 
     __slots__ = ("_base_radius", "_forward", "_jacobian", "_wheel_angles", "_wheel_radius")
+    __getstate__ = slot_state  # pickle protocols 0 and 1 too
 
     def __init__(self, wheel_angles: ArrayLike, *, wheel_radius: float, base_radius: float) -> None:
         angles = as_float_array(wheel_angles, "wheel_angles", ndim=1)

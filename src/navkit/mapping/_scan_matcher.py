@@ -12,6 +12,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from navkit._shared.deprecation import renamed_keyword
+from navkit._shared.dunders import slot_state
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, bounded_int
@@ -303,6 +304,7 @@ class ScanMatcher:
         "_tolerance",
         "_translation_weight",
     )
+    __getstate__ = slot_state  # pickle protocols 0 and 1 too
 
     def __init__(
         self,

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from typing import Protocol
 
+from navkit._shared.dunders import slot_state
 from navkit._shared.validation import as_bool, positive_float
 from navkit.geometry import Pose2D, Twist2D
 from navkit.sim._simulation import Observation
@@ -71,6 +72,7 @@ class TrackerController:
     """
 
     __slots__ = ("_dt", "_use_estimate", "tracker")
+    __getstate__ = slot_state  # pickle protocols 0 and 1 too
 
     def __init__(
         self, tracker: _Tracker, *, control_rate: float, use_estimate: bool = True

@@ -19,6 +19,7 @@ from typing import Any, ClassVar
 
 import numpy as np
 
+from navkit._shared.dunders import bounded_repr, record_eq, record_hash
 from navkit._shared.frozen import frozen_setattr, restore_read_only
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, as_sequence, bounded_int, finite_float
@@ -252,6 +253,11 @@ class Table:
     rows: tuple[tuple[Cell, ...], ...]
     notes: tuple[str, ...] = ()
 
+    # NaN cells ("no figure") equal in a table and its copy or rerun.
+    __eq__ = record_eq
+    __hash__ = record_hash
+    __repr__ = bounded_repr
+
     def __post_init__(self) -> None:
         _text(self.title, "title")
         columns = tuple(
@@ -418,6 +424,8 @@ class Scene:
     traces: tuple[tuple[str, Trace], ...] = ()
     points: tuple[tuple[str, FloatArray], ...] = ()
 
+    __repr__ = bounded_repr
+
     def __post_init__(self) -> None:
         _text(self.title, "title")
         _instance(OccupancyGrid, True)(self.grid, "grid")
@@ -471,6 +479,8 @@ class ScenarioResult:
     tables: tuple[Table, ...]
     summary: Mapping[str, float] = field(default_factory=dict)
     scene: Scene | None = None
+
+    __repr__ = bounded_repr  # a trace per trial: print a few
 
     def __post_init__(self) -> None:
         _text(self.scenario, "scenario")

@@ -14,6 +14,7 @@ from numpy.typing import ArrayLike
 
 from navkit._shared.angles import wrap_float
 from navkit._shared.deprecation import renamed_keyword
+from navkit._shared.dunders import slot_state
 from navkit._shared.frozen import frozen_setattr, slot_names
 from navkit._shared.metres import metres_text
 from navkit._shared.types import FloatArray
@@ -315,6 +316,7 @@ class Simulation:
         "_wall_timeout",
         "_world",
     )
+    __getstate__ = slot_state  # pickle protocols 0 and 1 too
 
     def __init__(
         self,

@@ -8,6 +8,7 @@ from typing import Any, Literal
 
 import numpy as np
 
+from navkit._shared.dunders import bounded_repr, record_eq, record_hash
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import (
@@ -120,6 +121,10 @@ class Metrics:
     collisions: int
     distance: float
 
+    # NaN figures ("does not apply") equal in a run and its rerun, copy or pickle.
+    __eq__ = record_eq
+    __hash__ = record_hash
+
     def __post_init__(self) -> None:
         object.__setattr__(self, "reached", as_bool(self.reached, "reached"))
         if self.reason not in _END_REASONS:
@@ -207,6 +212,8 @@ class Trace:
     scans: tuple[ScanReading, ...]
     events: tuple[Event, ...]
     metrics: Metrics
+
+    __repr__ = bounded_repr  # a scan per recorded step: print a few
 
     def __post_init__(self) -> None:
         times = as_float_array(self.times, "times", ndim=1)

@@ -53,6 +53,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from navkit._shared.deprecation import renamed_keyword
+from navkit._shared.dunders import bounded_repr
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.times import as_times
 from navkit._shared.types import FloatArray
@@ -197,6 +198,8 @@ class BagScans:
             record_times: ArrayLike,
             scans: tuple[LaserScan, ...],
         ) -> None: ...
+
+    __repr__ = bounded_repr  # a bag of 2000 scans printed 20 MB
 
     def __post_init__(self) -> None:
         n = _check_fields(self, ("topic", "frame_id"), {})

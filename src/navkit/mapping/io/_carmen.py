@@ -19,6 +19,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from navkit._shared.deprecation import renamed_keyword
+from navkit._shared.dunders import bounded_repr
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.times import as_times
 from navkit._shared.types import FloatArray
@@ -169,6 +170,8 @@ class CarmenLog:
         object.__setattr__(self, "times", times)
         object.__setattr__(self, "odometry", odometry)
         self.__post_init__()
+
+    __repr__ = bounded_repr  # a log of thousands of scans printed megabytes
 
     def __post_init__(self) -> None:
         scans = as_sequence(self.scans, "scans")

@@ -8,6 +8,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from navkit._shared.dunders import slot_state
 from navkit._shared.frozen import restore_slots
 from navkit._shared.types import CellLike, FloatArray
 from navkit._shared.validation import as_bool
@@ -221,6 +222,7 @@ class AStarPlanner:
         "_scale",
         "_weight",
     )
+    __getstate__ = slot_state  # pickle protocols 0 and 1 too
 
     _costs: FloatArray
     _flat: FloatArray

@@ -269,7 +269,7 @@ class DiffAStar(Scenario):
         building, or the map when found and the corridor building otherwise.
     noise : bool, default True
         Sensor and wheel noise; without it every trial of a case is the same.
-    data_dir : str or None, default None
+    data_dir : str or path-like, optional
         The data folder holding ``ros-map-server-maps`` (see
         :func:`~navkit.sim.scenarios.find_data`).
     duration : float or None, default None

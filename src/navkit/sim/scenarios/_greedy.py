@@ -122,7 +122,7 @@ class Greedy(Scenario):
         Growth of the local grid's returns, m, in [0, 1]; 0 is the paper's
         plain grid (on which every default pair ends in a collision: the
         greedy lines of sight graze the pillars).
-    data_dir : str or None, default None
+    data_dir : str or path-like, optional
         The data folder holding ``ros-map-server-maps`` (see
         :func:`~navkit.sim.scenarios.find_data`). The map is looked up when
         the scenario is built, so that every worker of a sweep runs on that
@@ -151,7 +151,7 @@ class Greedy(Scenario):
         pairs: Sequence[Sequence[Sequence[float]]] = PAIRS,
         duration: float = 120.0,
         inflation: float = INFLATION,
-        data_dir: str | None = None,
+        data_dir: str | os.PathLike[str] | None = None,
     ) -> None:
         self.noise = as_bool(noise, "noise")
         self.inflation = positive_float(inflation, "inflation", allow_zero=True)
@@ -165,7 +165,7 @@ class Greedy(Scenario):
                 f"got {self.duration}"
             )
         if data_dir is not None and not isinstance(data_dir, (str, os.PathLike)):
-            raise TypeError(f"data_dir must be a str or None, got {type(data_dir).__name__}")
+            raise TypeError(f"data_dir must be a path or None, got {type(data_dir).__name__}")
         self.data_dir = None if data_dir is None else os.fspath(data_dir)
         # The map is looked up once, here, as Demo and DiffAStar do theirs: a sweep's
         # workers (another working directory or $NAVKIT_DATA) then run on the same
