@@ -105,3 +105,22 @@ def test_plot_over_the_yaml_is_still_refused(
     assert main(["plan", str(png_yaml), *PLAN, "--plot", str(png_yaml)]) == 1
     assert "--plot" in _error(capsys)
     assert png_yaml.read_bytes() == before
+
+
+def test_a_tabbed_map_plans_and_an_existing_plot_is_refused_truthfully(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # Tabs between tokens, which map_server's yaml-cpp and read_map take and PyYAML
+    # refuses (review 21): the refusal gave "not UTF-8 or UTF-16 text" as the reason.
+    yaml_path, _ = _map(tmp_path, "utf-8-sig")
+    text = yaml_path.read_bytes()[len(codecs.BOM_UTF8) :].decode()
+    yaml_path.write_text(text.replace("resolution: ", "resolution:\t"))
+    assert read_map(yaml_path).resolution == GRID.resolution
+    assert main(["plan", str(yaml_path), *PLAN, "--plot", str(tmp_path / "new.png")]) == 0
+    picture = tmp_path / "plan.png"
+    picture.write_bytes(b"an old picture")
+    capsys.readouterr()
+    assert main(["plan", str(yaml_path), *PLAN, "--plot", str(picture)]) == 1
+    line = _error(capsys)
+    assert "tabs between tokens" in line and "not UTF-8" not in line
+    assert picture.read_bytes() == b"an old picture"

@@ -51,14 +51,16 @@ def _check_not_an_input(plot: str | None, map_yaml: str) -> None:
     # Bytes: the YAML library tells UTF-8 from UTF-16 (by its byte-order mark, as
     # Windows writes it) itself. read_map also reads UTF-32, which PyYAML does not:
     # then an existing --plot is refused, not risked (navkit.mapping.io has no
-    # public way to ask for the image's name alone).
+    # public way to ask for the image's name alone). So are YAMLs with tabs
+    # between tokens, which read_map takes and PyYAML refuses.
     try:
         entries = yaml.safe_load(yaml_path.read_bytes())
         image = Path(str(entries["image"]))
     except (yaml.YAMLError, UnicodeDecodeError, TypeError, KeyError):
         raise ValueError(
             f"--plot: {plot} exists, and whether it is the map's image could not be read "
-            f"from {yaml_path} (not UTF-8 or UTF-16 text); choose a new file"
+            f"from {yaml_path} (PyYAML cannot read it: UTF-32 text, or tabs between "
+            "tokens); choose a new file"
         ) from None
     path = yaml_path.parent / image
     if os.path.exists(path) and os.path.samefile(plot, path):

@@ -279,23 +279,82 @@ _QUOTED = re.compile(r"""("(?:[^"\\\n]|\\.)*+(?:(?P<closed>")|\\?$)|'(?:[^'\n]|'
 _SINGLE_QUOTED = re.compile(r"""('(?:[^'\n]|'')*')""")
 
 
-def _untabbed(text: str) -> str:
-    """``text`` with tabs between tokens as spaces: outside quoted scalars, after a line's indent.
+def _untabbed(text: str, blank: str = " ") -> str:
+    """``text`` with tabs outside quoted scalars, after a line's indent, as ``blank``.
 
     YAML 1.2 and map_server's reader (yaml-cpp) take a tab as a blank between
     tokens (``resolution:<TAB>0.05``, a tab before a comment), as hand-edited
     map YAMLs have; PyYAML refuses it ("found character '\\t' that cannot start
-    any token"). A tab in an indent stays: YAML refuses that everywhere.
+    any token"). A tab in an indent stays: YAML refuses that everywhere. A tab
+    inside a plain scalar (``image: my<TAB>map.pgm``) is the value's own: this
+    changes it, which :func:`_load_tabbed` detects.
     """
     lines = []
     for line in text.split("\n"):
         body = line.lstrip(" \t")
-        lines.append(line[: len(line) - len(body)] + _spaced(body))
+        lines.append(line[: len(line) - len(body)] + _spaced(body, blank))
     return "\n".join(lines)
 
 
-def _spaced(body: str) -> str:
-    """One line's ``body`` with its tabs outside quoted scalars as spaces; linear time.
+def _load_tabbed(text: str, path: Path) -> object:
+    """``text``, which PyYAML refused for a tab, loaded with its tabs between tokens as blanks.
+
+    Loaded twice, the tabs as one space and as two: a tab between tokens is a
+    blank either way, one inside a value (a plain scalar's, or a block scalar's)
+    changes the value. That is refused, naming the key, rather than read as
+    another value (``image: my<TAB>map.pgm`` read as ``my map.pgm``, another
+    file). Where the second load fails (a tab after a block indicator, whose
+    width moves what follows), the first stands.
+    """
+    doc = yaml.load(_untabbed(text), Loader=_Loader)
+    try:
+        wide = yaml.load(_untabbed(text, "  "), Loader=_Loader)
+    except yaml.YAMLError:
+        return doc
+    seen: set[tuple[int, int]] = set()
+    if _same_doc(doc, wide, seen):
+        return doc
+    where = "a key or value"
+    if isinstance(doc, dict) and isinstance(wide, dict):
+        if list(doc) != list(wide):
+            where = "a key"
+        else:
+            changed = [key for key in doc if not _same_doc(doc[key], wide[key], set())]
+            where = f"the value of {_short(changed[0])}"
+    raise _TabInValue(
+        f"{path}: a tab inside {where}, which PyYAML cannot read: "
+        "quote it or replace the tab with a space"
+    )
+
+
+def _same_doc(a: object, b: object, seen: set[tuple[int, int]]) -> bool:
+    """Whether two loads of a YAML document hold the same values (NaN equal to NaN).
+
+    Each pair of nodes is compared once (``seen``): a document's aliases share
+    nodes, and comparing their expansions (as ``==`` or ``repr`` would) takes
+    time exponential in the nesting of a "billion laughs" document.
+    """
+    if type(a) is not type(b):
+        return False
+    if isinstance(a, (list, dict)) and isinstance(b, (list, dict)):
+        pair = (id(a), id(b))
+        if pair in seen:
+            return True
+        seen.add(pair)
+        if isinstance(a, dict) and isinstance(b, dict):
+            return list(a) == list(b) and all(_same_doc(a[k], b[k], seen) for k in a)
+        return len(a) == len(b) and all(_same_doc(u, v, seen) for u, v in zip(a, b, strict=True))
+    if isinstance(a, float) and a != a:  # NaN (.nan): equal to NaN only
+        return b != b
+    return a == b
+
+
+class _TabInValue(Exception):
+    """:func:`_load_tabbed`'s refusal, its message whole (not an "unreadable YAML value")."""
+
+
+def _spaced(body: str, blank: str = " ") -> str:
+    """One line's ``body`` with its tabs outside quoted scalars as ``blank``; linear time.
 
     A ``"`` not closed on its line is plain text, and so is every later ``"``
     of the line (each is inside the first one's escapes, read the same way
@@ -306,16 +365,16 @@ def _spaced(body: str) -> str:
     out = []
     end = 0
     for match in _QUOTED.finditer(body):
-        out.append(body[end : match.start()].replace("\t", " "))
+        out.append(body[end : match.start()].replace("\t", blank))
         token = match.group()
         if token[0] == '"' and match.group("closed") is None:
             parts = _SINGLE_QUOTED.split(body[match.start() + 1 :])
             out.append('"')
-            out.extend(p if i % 2 else p.replace("\t", " ") for i, p in enumerate(parts))
+            out.extend(p if i % 2 else p.replace("\t", blank) for i, p in enumerate(parts))
             return "".join(out)
         out.append(token)
         end = match.end()
-    out.append(body[end:].replace("\t", " "))
+    out.append(body[end:].replace("\t", blank))
     return "".join(out)
 
 
@@ -326,7 +385,7 @@ def _load_yaml(text: str, path: Path) -> dict[str, Any]:
         except yaml.scanner.ScannerError as exc:
             if "'\\t'" not in (exc.problem or ""):
                 raise
-            doc = yaml.load(_untabbed(text), Loader=_Loader)
+            doc = _load_tabbed(text, path)
     except yaml.YAMLError as exc:
         mark = getattr(exc, "context_mark", None) or getattr(exc, "problem_mark", None)
         where = f"{path}:{mark.line + 1}" if mark is not None else str(path)
@@ -334,6 +393,8 @@ def _load_yaml(text: str, path: Path) -> dict[str, Any]:
         raise ValueError(f"{where}: expected 'key: value' lines ({problem})") from None
     except RecursionError:
         raise ValueError(f"{path}: YAML nested too deeply for a map YAML") from None
+    except _TabInValue as exc:
+        raise ValueError(str(exc)) from None
     except (ValueError, OverflowError, TypeError) as exc:  # e.g. an integer of 10**5 digits
         raise ValueError(f"{path}: unreadable YAML value ({exc})") from None
     if not isinstance(doc, dict):
