@@ -38,11 +38,26 @@ def _estimate(fusion: PlanarFusion) -> tuple[Any, ...]:
     return fusion.t, fusion.x.tobytes(), fusion.P.tobytes()
 
 
+def _without_loading(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Make the loaded retry of a step that lost definiteness fail as the step did.
+
+    Since review 21 such a step is redone from its prediction with the variances
+    raised by 2**-40 of themselves, which took every case found; without the
+    loading the retry is the step again, and the filter raises as it did here.
+    """
+    monkeypatch.setattr(_fusion, "_load", lambda buf: None)
+
+
 @pytest.mark.parametrize("numpy_scalars", [False, True])
-def test_not_positive_definite_is_reached_with_ordinary_inputs(numpy_scalars: bool) -> None:
+def test_not_positive_definite_is_reached_with_ordinary_inputs(
+    numpy_scalars: bool, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    wrap = np.float64 if numpy_scalars else float
+    # The kernel's step loses definiteness; the loaded retry takes the reading.
+    assert _filter().update_speed(wrap(1e10), wrap(0.3), variance=wrap(1e-4)).accepted
+    _without_loading(monkeypatch)
     fusion = _filter()
     before = _estimate(fusion)
-    wrap = np.float64 if numpy_scalars else float
     with pytest.raises(FilterError, match="not positive definite"):
         fusion.update_speed(wrap(1e10), wrap(0.3), variance=wrap(1e-4))
     assert _estimate(fusion) == before  # unchanged, as documented
@@ -88,9 +103,15 @@ def test_interrupted_gated_step_keeps_its_prediction(monkeypatch: pytest.MonkeyP
     assert _estimate(fusion) == _estimate(twin)
 
 
-def test_the_undo_mark_is_clear_after_every_completed_call() -> None:
+def test_the_undo_mark_is_clear_after_every_completed_call(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
     # Set only between a step's return and its undo: a mark left over would make
     # a later interrupted call undo a step that was never its own.
+    retried = _filter()
+    assert retried.update_speed(1e10, 0.3, variance=1e-4).accepted  # the loaded retry
+    assert retried._buf[_fusion.BUF_UNDO] == 0.0
+    _without_loading(monkeypatch)
     fusion = _filter()
     with pytest.raises(FilterError, match="not positive definite"):
         fusion.update_speed(1e10, 0.3, variance=1e-4)

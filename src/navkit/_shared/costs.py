@@ -10,6 +10,11 @@ from numpy.typing import ArrayLike, NDArray
 
 from navkit._shared.validation import holds_bool, refuse_masked
 
+#: The most cells a cost grid may have: the grid searches' limit (``MAX_NODES`` of
+#: navkit.planning.grid._search_heap, which this layer cannot import; a test
+#: checks that the two agree). Beyond it the float64 copy alone takes 16 GiB.
+MAX_COST_CELLS = 2**31 - 1
+
 
 def validate_costs(costs: ArrayLike, name: str = "costs") -> NDArray[np.float64]:
     """Check a traversal-cost grid and return it as a C-contiguous float64 array.
@@ -22,8 +27,9 @@ def validate_costs(costs: ArrayLike, name: str = "costs") -> NDArray[np.float64]
     Raises
     ------
     ValueError
-        Wrong dimension, empty grid, non-numeric or boolean dtype, NaN, ``-inf``
-        or finite values below 1.
+        Wrong dimension, empty grid, more than :data:`MAX_COST_CELLS` cells
+        (checked before anything is converted or copied), non-numeric or
+        boolean dtype, NaN, ``-inf`` or finite values below 1.
     """
     return validate_costs_lowest(costs, name)[0]
 
@@ -45,6 +51,14 @@ def validate_costs_lowest(
         arr = np.asarray(costs)
     except (TypeError, ValueError, OverflowError) as exc:  # ragged lists, unconvertible objects
         raise ValueError(f"{name} must be a 2-D numeric array: {exc}") from None
+    if arr.ndim == 2 and arr.size > MAX_COST_CELLS:
+        # Before any conversion: a broadcast 50000 x 50000 view takes no memory, but
+        # its float64 copy would take 18.6 GiB (NumPy's MemoryError, or swapping).
+        raise ValueError(
+            f"{name} has {arr.size:.3g} cells (shape {arr.shape}, "
+            f"{arr.size * 8 / 2**30:.3g} GiB as float64); cost grids, like the grid "
+            f"planners, take at most 2**31 - 1 = {MAX_COST_CELLS} cells"
+        )
     if arr.dtype.kind == "O" and arr.ndim == 2 and _real_numbers(arr):
         # Python numbers in an object array (pandas' .values of mixed columns,
         # np.array(..., dtype=object)) are their values, as for every array argument.

@@ -470,8 +470,10 @@ class ExtendedKalmanFilter(GaussianEstimate):
         gated on it; x and P are then the information form's (the Joseph P
         where it is as accurate, and the kernel's x where the information
         form's bound on its own is not within a quarter of a deviation). Such
-        an update raises ``FilterError`` only where the information form's
-        checks fail as above. (Before, with κ(S) 3e16 a NIS of 21.04 was
+        an update raises ``FilterError`` only where the gate passes it and the
+        information form's checks fail as above: where S is not positive
+        definite the exact NIS is gated first, so readings 1e150 deviations
+        apart are rejected by a gate, not refused. (Before, with κ(S) 3e16 a NIS of 21.04 was
         reported for an exact 9.377, and a measurement passing a gate of 11.3
         rejected; R/P below 1e-16 raised ``FilterError``.)
         An update that reaches the information form costs about 0.5 ms

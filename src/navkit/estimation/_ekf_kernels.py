@@ -920,10 +920,11 @@ def finish_singular_s(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: F
     :func:`finish_cancelled` (:func:`_information_update`, no solve with S) for
     x and P, and the NIS yᵀ S⁻¹ y from S in exact rational arithmetic
     (:func:`_exact_nis`, rounded once: any float form of it loses every digit
-    here). The update is then gated and committed as the kernel's would be:
-    ``RESIDUAL_OVERFLOW``, ``NIS_OVERFLOW``, ``GATED``, ``STATE_OVERFLOW`` or
-    ``OK``, the NIS left in ``rbuf``. It stays ``S_NOT_POSITIVE_DEFINITE`` (the
-    state unchanged) where the information form is not trusted: its
+    here). The update is gated first, on that NIS, then committed as the
+    kernel's would be: ``RESIDUAL_OVERFLOW``, ``NIS_OVERFLOW``, ``GATED``,
+    ``STATE_OVERFLOW`` or ``OK``, the NIS left in ``rbuf``. It stays
+    ``S_NOT_POSITIVE_DEFINITE`` (the state unchanged) where a measurement the
+    gate passes meets an information form that is not trusted: its
     posterior's error estimate above 2⁻¹² (as in :func:`finish_cancelled`) or
     the bound on its state step beyond ``max(2⁻³³ (|x| + |s|), sqrt(P⁺ᵢᵢ))``;
     and for measurements of more than :data:`_EXACT_NIS_MAX_M` components, whose
@@ -939,6 +940,15 @@ def finish_singular_s(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: F
     if not np.isfinite(y).all():
         rbuf[_VEC, _META, 1] = math.inf
         return RESIDUAL_OVERFLOW
+    # The gate first: the exact NIS needs no update, so a measurement the gate
+    # rejects is rejected whether or not the information form is trusted for it
+    # (readings 1e150 deviations apart raised FilterError instead).
+    nis = _exact_nis(p, jac, r, y)
+    rbuf[_VEC, _META, 1] = nis
+    if not nis < math.inf:
+        return NIS_OVERFLOW
+    if nis > rbuf[_VEC, _META, _GATE]:
+        return GATED
     with np.errstate(all="ignore"):
         found = _information_update(p, jac, r, y)
         if found is None or not _EPS * found.error <= _WELL_CONDITIONED:
@@ -949,12 +959,6 @@ def finish_singular_s(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: F
         if not (np.isfinite(step).all() and (found.step_error <= tolerance).all()):
             return S_NOT_POSITIVE_DEFINITE
         x_new = x + step
-    nis = _exact_nis(p, jac, r, y)
-    rbuf[_VEC, _META, 1] = nis
-    if not nis < math.inf:
-        return NIS_OVERFLOW
-    if nis > rbuf[_VEC, _META, _GATE]:
-        return GATED
     for i in np.flatnonzero(state[n + 1]):  # the angles, wrapped
         x_new[i] = wrap_float(float(x_new[i]))
     if not np.isfinite(x_new).all():
@@ -974,9 +978,10 @@ def retry_gated(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: FloatAr
     the condition number of S with its diagonal scaled, read from the kernel's
     factorisation) and the measurement has at most :data:`_EXACT_NIS_MAX_M`
     components, the update is redone as :func:`finish_singular_s` does (the
-    information form, the exact NIS): gated again or applied. Elsewhere, or
-    where the information form is not trusted, ``GATED`` stands with the
-    kernel's NIS. A few microseconds for a well-conditioned S.
+    information form, the exact NIS): gated again on the exact NIS, or
+    applied. Elsewhere, or where the exact NIS passes the gate but the
+    information form is not trusted, ``GATED`` stands with the kernel's NIS. A
+    few microseconds for a well-conditioned S.
     """
     m = jac.shape[0]
     if m == 1 or m > _EXACT_NIS_MAX_M:  # m = 1: the one pivot is S itself, the ratio 1

@@ -85,6 +85,26 @@ _RESULT_ARRAYS = ("times", "states", "covariances", "status", "nis")
 _ODOMETRY_NAMES = ("v", "omega", "v_variance", "omega_variance")
 
 
+#: Relative diagonal loading of a prediction whose update lost positive definiteness.
+#: After a long time gap (weeks without measurements, at the default process noise) the
+#: predicted covariance is positive definite only in exact arithmetic: heading and yaw
+#: rate, speed and acceleration, position and heading are correlated to within rounding
+#: (the correlation matrix's smallest eigenvalue at -1e-15 after 2e6 s), and the Joseph
+#: update of any measurement then fails its check. Raising every variance by 2**-40 of
+#: itself (9.1e-13, far below the model's own error over such a gap) restores it: each
+#: of 378 such updates (gaps of 3e5 to 1e14 s, 5 kinds, 30 states) went through.
+_LOADING = 2.0**-40
+# Flat slices of the buffer: x and P, and their copy saved by the online step.
+_STATE = slice(k.W * k.BUF_X, k.W * (k.BUF_P + 6))
+_SAVED = slice(k.W * k._SAVED, k.W * (k._SAVED + 7))
+_DIAGONAL = slice(k.W * k.BUF_P, k.W * (k.BUF_P + 6), k.W + 1)
+
+
+def _load(buf: FloatArray) -> None:
+    """Raise the variances of the covariance in ``buf`` by :data:`_LOADING` of themselves."""
+    buf[_DIAGONAL] += buf[_DIAGONAL] * _LOADING
+
+
 def _load_step(*args: Any) -> tuple[int, float]:
     """Compile (or load) the online step on first use, then run it (see ``_step``)."""
     global _step
@@ -566,7 +586,13 @@ class PlanarFusion(GaussianEstimate):
     measurement whose update would overflow (a value absurdly far from the state
     for its variance, such as a speed of 1e308 m/s) is not applied:
     ``accepted=False`` with the reason, the prediction is kept. The state never
-    becomes NaN or infinite.
+    becomes NaN or infinite. After a long time without measurements (weeks at
+    the default process noise: a robot paused, then resumed) the predicted
+    covariance is positive definite only in exact arithmetic, its rounding
+    having made it indefinite, and an update would fail its check: such an
+    update is redone from the prediction with every variance raised by 2⁻⁴⁰
+    of itself (online and in :meth:`update_batch` alike), and the filter goes
+    on; it raises only if that fails too.
     Predict and update run in one compiled kernel per call; :meth:`update_batch`
     fuses a whole log in one kernel call. Several readings with one timestamp
     (e.g. the yaw, yaw rate and acceleration of one IMU message) can be given by
@@ -889,7 +915,10 @@ class PlanarFusion(GaussianEstimate):
                     self._buf, t, 1, 2, v, omega, v_variance, omega_variance, self._odometry_gate
                 )
                 if status and status != INVALID:  # undone under the try (see _settle)
-                    return self._not_applied(status, "odometry", t, nis, slice(1, 3))
+                    return self._not_applied(
+                        status, "odometry", t, nis, slice(1, 3),
+                        (1, 2, v, omega, v_variance, omega_variance, self._odometry_gate),
+                    )  # fmt: skip
             except BaseException:
                 self._settle(status)
                 raise
@@ -1083,7 +1112,8 @@ class PlanarFusion(GaussianEstimate):
             try:
                 status, nis = _step(self._buf, t, first, count, z0, z1, var0, var1, gate)
                 if status and status != INVALID:  # undone under the try (see _settle)
-                    return self._not_applied(status, kind, t, nis, comps)
+                    args = (first, count, z0, z1, var0, var1, gate)
+                    return self._not_applied(status, kind, t, nis, comps, args)
             except BaseException:
                 self._settle(status)
                 raise
@@ -1113,7 +1143,8 @@ class PlanarFusion(GaussianEstimate):
                 if last is None:
                     # Before the step the clock was not set: undone, it is not set either.
                     self._buf[BUF_SAVED_TIME] = math.nan
-                return self._not_applied(status, kind, t, nis, comps)
+                args = (first, count, z0, float(z1), var0, float(var1), gate)
+                return self._not_applied(status, kind, t, nis, comps, args)
         except BaseException:
             self._settle(status)
             raise
@@ -1143,13 +1174,31 @@ class PlanarFusion(GaussianEstimate):
             undo_step(self._buf)
 
     def _not_applied(
-        self, status: int, kind: str, t: float, nis: float, comps: slice
+        self,
+        status: int,
+        kind: str,
+        t: float,
+        nis: float,
+        comps: slice,
+        args: tuple[int, int, float, float, float, float, float],
     ) -> UpdateResult:
-        """Raise or report a measurement the kernel did not apply (off the hot path)."""
+        """Raise or report a measurement the kernel did not apply (off the hot path).
+
+        ``args`` are the step's arguments after the time: ``first``, ``count``,
+        the values, the variances and the gate.
+        """
         if status in (NOT_POSITIVE_DEFINITE, TIME_GAP):
             undo_step(self._buf)  # the filter (and its time) as before the step
         if status == NOT_POSITIVE_DEFINITE:
-            raise FilterError(f"{kind} update: covariance is not positive definite")
+            status, nis = self._loaded_step(t, args)
+            if status == NOT_POSITIVE_DEFINITE:
+                gap = t - float(self._buf[BUF_TIME])
+                raise FilterError(
+                    f"{kind} update: covariance is not positive definite (after a "
+                    f"prediction over {gap:.6g} s); the filter is unchanged"
+                )
+            if not status:
+                return new_result(True, nis, self._residuals[comps].copy(), None)
         if status == TIME_GAP:
             gap = t - float(self._buf[BUF_TIME])
             raise FilterError(
@@ -1174,6 +1223,34 @@ class PlanarFusion(GaussianEstimate):
             FusionStatus.OVERFLOW,
         )
 
+    def _loaded_step(
+        self, t: float, args: tuple[int, int, float, float, float, float, float]
+    ) -> tuple[int, float]:
+        """Redo an online step that lost positive definiteness, from a loaded prediction.
+
+        Called with the step undone. On a copy of the buffer: the prediction to
+        ``t`` alone, its variances raised by :data:`_LOADING` of themselves
+        (:func:`_load`), then the update at ``t``. The copy becomes the filter
+        unless that update lost positive definiteness too; its saved state is
+        the filter's from before the call, so that an interrupt from here on
+        undoes the whole call (:meth:`_settle`). Returns the second step's
+        status and NIS.
+        """
+        buf = self._buf
+        trial = buf.copy()
+        if math.isnan(trial[BUF_TIME]):  # no clock before the step: no prediction
+            trial[BUF_TIME] = t
+        _step(trial, t, 0, 0, 0.0, 0.0, 0.0, 0.0, math.inf)  # it did not overflow before
+        _load(trial)
+        status, nis = _step(trial, t, *args)
+        if status == NOT_POSITIVE_DEFINITE:
+            return status, nis
+        # The saved block: x, P and the time from before the call, as after a plain step.
+        trial[_SAVED] = buf[_STATE]
+        trial[BUF_SAVED_TIME] = buf[BUF_TIME]
+        np.copyto(buf, trial)  # one C call: Python delivers no interrupt inside it
+        return status, nis
+
     def update_batch(self, log: MeasurementLog) -> FusionResult:
         """Fuse a whole :class:`MeasurementLog` in one compiled kernel call.
 
@@ -1185,7 +1262,8 @@ class PlanarFusion(GaussianEstimate):
         float64 (``TIME_GAP``, e.g. a corrupt timestamp; the state and time stay
         as they were, and later rows continue from them); gated rows keep the
         prediction (``GATED``), and so does a row whose update would lose
-        positive definiteness (``NOT_POSITIVE_DEFINITE``) or overflow
+        positive definiteness even from a loaded prediction (see the class
+        notes; ``NOT_POSITIVE_DEFINITE``) or overflow
         (``OVERFLOW``). Every state and covariance in the result is finite.
 
         Parameters
@@ -1235,11 +1313,72 @@ class PlanarFusion(GaussianEstimate):
         k.planar_run(
             self._buf, log.times, log.values, variances, self._gates, out_x, out_p, status, nis
         )
+        if (status == NOT_POSITIVE_DEFINITE).any():
+            self._loaded_rows(log, variances, (out_x, out_p, status, nis))
         ax, ay = self._anchor
         if ax or ay:
             out_x[:, 0] += ax
             out_x[:, 1] += ay
         return _fusion_result(log.times, out_x, out_p, status, nis)
+
+    def _loaded_rows(
+        self,
+        log: MeasurementLog,
+        variances: FloatArray,
+        outputs: tuple[FloatArray, FloatArray, NDArray[np.int8], FloatArray],
+    ) -> None:
+        """Redo the rows of a batch that lost positive definiteness, as the online updates do.
+
+        Each such row kept its prediction: its update is redone from that
+        prediction loaded (:func:`_load`, as :meth:`_loaded_step`), and when it
+        goes through, the rows after it are fused again from the new state. A
+        row that fails again keeps its unloaded prediction, and the rows after
+        it their first results. Costs one more kernel call over the rest of the
+        log per row redone.
+        """
+        out_x, out_p, status, nis = outputs
+        # On a copy, the filter's buffer replaced at the end: interrupted part-way, the
+        # filter keeps the kernel's result (those rows' predictions), not a loaded one.
+        buf = self._buf.copy()
+        rows = buf.reshape(k.BUF_ROWS, k.W)
+        x = rows[k.BUF_X]
+        p = rows[k.BUF_P : k.BUF_P + 6]
+        n = len(log)
+        j = 0
+        while True:
+            bad = np.flatnonzero(status[j:] == NOT_POSITIVE_DEFINITE)
+            if not bad.size:
+                break
+            j += int(bad[0])
+            final = buf.copy()
+            x[:] = out_x[j]
+            p[:, :] = out_p[j]
+            _load(buf)
+            rows[k.BUF_MEAS, :4] = log.values[j]
+            rows[k.BUF_MEAS + 1, :4] = variances[j]
+            m = int(np.count_nonzero(variances[j] > 0.0))
+            # Batch mode (count -1) with a time step of 0: the update alone.
+            code, value = _step(buf, 0.0, 0, -1, 0.0, 0.0, 0.0, 0.0, float(self._gates[m]))
+            if code == NOT_POSITIVE_DEFINITE:
+                np.copyto(buf, final)
+                j += 1
+                continue
+            out_x[j] = x
+            out_p[j] = p
+            status[j] = code
+            nis[j] = value
+            buf[BUF_TIME] = log.times[j]
+            j += 1
+            if j == n:
+                break
+            # planar_run undoes a TIME_GAP in its row 0 from its last output row.
+            out_x[-1] = x
+            out_p[-1] = p
+            k.planar_run(
+                buf, log.times[j:], log.values[j:], variances[j:], self._gates,
+                out_x[j:], out_p[j:], status[j:], nis[j:],
+            )  # fmt: skip
+        np.copyto(self._buf, buf)
 
     def __repr__(self) -> str:
         return f"PlanarFusion(t={self.t}, x={np.array2string(self.x, precision=4)})"

@@ -65,8 +65,10 @@ def validate_costs(costs: ArrayLike) -> FloatArray:
     Raises
     ------
     ValueError
-        Wrong dimension, empty grid, non-numeric or boolean dtype, NaN, ``-inf``
-        or finite values below 1 (the message gives the first offending cell).
+        Wrong dimension, empty grid, more than 2**31 - 1 cells (the grid
+        planners' limit, checked before anything is converted or copied),
+        non-numeric or boolean dtype, NaN, ``-inf`` or finite values below 1
+        (the message gives the first offending cell).
 
     Examples
     --------
