@@ -14,13 +14,20 @@ signature whatever numba is installed; kernel modules use them instead of
   numba's reference counting, for kernels that allocate nothing;
 * :data:`njit_helper`: :data:`njit_no_refcount` without a Python wrapper, for
   helpers called only from other kernels;
-* :data:`njit_force_inline` / :data:`njit_not_inlined`: compiled once and
-  inlined by LLVM, and the callee of such a function that must stay a call;
+* :data:`njit_force_inline` / :data:`njit_not_inlined`: a helper compiled once
+  and inlined by LLVM, and the callee of such a function that must stay a call;
 * :func:`typed_njit`: any other options (``typed_njit(cache=True, fastmath=...)``).
 
 None of them builds a cfunc wrapper (``no_cfunc_wrapper=True``): navkit never
 passes a kernel as a first-class function value, and every wrapper is compiled
 and optimised with its kernel on first use.
+
+A kernel without a Python wrapper (``no_cpython_wrapper=True``: the helpers,
+called only from other kernels) is compiled into a lean code library
+(:func:`helper_compiler`): numba links a helper's LLVM IR into every kernel
+calling it and optimises and translates it to machine code there, so the
+helper's own module-level optimisation and machine code were never used
+(issue 17: about a tenth of a grid planner's first use; see the function).
 
 numba is imported on first use, not with navkit (issue 17: importing numba
 costs about 0.3 s, most of ``import navkit.planning``). A module-level
@@ -113,7 +120,14 @@ def _user_stacklevel() -> int:
 
 
 def _make_dispatcher(njit: Any, options: dict[str, Any], py_func: Callable[..., Any]) -> Any:
-    """``njit(**options)(py_func)``, without numba's cache where it has nowhere to write it."""
+    """``njit(**options)(py_func)``, without numba's cache where it has nowhere to write it.
+
+    A helper (``no_cpython_wrapper``) is compiled by :func:`helper_compiler`.
+    """
+    if options.get("no_cpython_wrapper") and "pipeline_class" not in options:
+        compiler = helper_compiler()
+        if compiler is not None:
+            options = {**options, "pipeline_class": compiler}
     try:
         return njit(**options)(py_func)
     except RuntimeError as exc:
@@ -141,6 +155,137 @@ def _make_dispatcher(njit: Any, options: dict[str, Any], py_func: Callable[..., 
         _CACHE_PROBLEM.append(problem)
         warnings.warn(problem, KernelCacheWarning, stacklevel=_user_stacklevel())
     return njit(**{**options, "cache": False})(py_func)
+
+
+#: Whether helpers are compiled by :func:`helper_compiler` (read as each kernel is made).
+LEAN_HELPERS = True
+#: The helper compiler class, once made ([] before; [None] where numba lacks what it needs).
+_HELPER_COMPILER: list[Any] = []
+
+
+def helper_compiler() -> Any:
+    """numba's compiler for a helper kernel, with a code library that makes no machine code.
+
+    numba compiles each kernel into a code library of its own, and a kernel
+    calling another links a copy of the callee's LLVM IR into its library,
+    where the whole is optimised (LLVM's full module pipeline) and translated
+    to machine code once more. For a helper, which has no Python wrapper and
+    is called only from other kernels, its own library's module optimisation
+    and machine code were thus work no caller used: 10-14 % of the first use
+    of A*, jump point search, ``MapPlanner`` and Field D* (3.67 -> 3.19 s CPU,
+    medians of 7 alternating runs) and about 6 % of the whole library's
+    (``navkit warmup``: 28.0 -> 26.4 s, medians of 5, single runs spread by
+    +-3 s on a busy machine). The library
+    made here skips both: its IR, optimised function by function as numba
+    does before linking, is what callers link, and each caller optimises it
+    in its own module (as it already did with the optimised copy).
+
+    The callers' results are unchanged bit for bit (the same operations, no
+    fast-math), but their machine code differs slightly from that built with
+    numba's own libraries (callers copied a helper's module after LLVM's code
+    generation had rewritten it in place). Hot loops ran as fast within the
+    noise of alternating benchmark runs (A* with and without corner cutting
+    and fresh Field D* plans on the 1024² benchmark maps: ratios to pyastar2d
+    and to navkit's A* within 0.97-1.03 of numba's own libraries).
+
+    numba's cache keeps such a helper as LLVM bitcode (its documented
+    ``bitcode`` serialisation) instead of object code plus bitcode: a later
+    process that compiles a new caller loads and links it as before. Nothing
+    writes the helper's environment pointer, which only its own machine code
+    would read. Returns None (numba's own compiler is used) if
+    :data:`LEAN_HELPERS` is False or the installed numba lacks a method this
+    relies on.
+
+    Examples
+    --------
+    >>> from navkit._shared.jit import helper_compiler
+    >>> helper_compiler().__name__
+    'HelperCompiler'
+    """
+    if not LEAN_HELPERS:
+        return None
+    with _LOCK:
+        if not _HELPER_COMPILER:
+            _HELPER_COMPILER.append(_make_helper_compiler())
+        return _HELPER_COMPILER[0]
+
+
+def _make_helper_compiler() -> Any:
+    """The class :func:`helper_compiler` returns, or None where numba lacks what it needs."""
+    from numba.core import codegen, compiler
+
+    # Any: numba is untyped in some supported versions.
+    library_class: Any = getattr(codegen, "JITCodeLibrary", None)
+    base_compiler: Any = getattr(compiler, "Compiler", None)
+    needed = (
+        "_finalize_final_module", "_finalize_dynamic_globals", "_verify_declare_only_symbols",
+        "_optimize_final_module", "serialize_using_object_code", "serialize_using_bitcode",
+        "enable_object_caching",
+    )  # fmt: skip
+    if (
+        library_class is None
+        or base_compiler is None
+        or not all(hasattr(library_class, name) for name in needed)
+        or not hasattr(base_compiler, "compile_extra")
+    ):
+        return None
+
+    class _NoEnvironment:
+        """A helper library's codegen as numba's lowering sees it: no environment to write."""
+
+        def __init__(self, inner: Any) -> None:
+            self._inner = inner
+
+        def set_env(self, env_name: str, env: Any) -> None:
+            """Nothing: the environment's slot is in the helper's machine code, never made."""
+
+        def __getattr__(self, name: str) -> Any:
+            return getattr(self._inner, name)
+
+    class HelperLibrary(library_class):  # type: ignore[misc]  # (a class of Any)
+        """A helper's code library: IR for callers to link, no machine code of its own."""
+
+        @property
+        def codegen(self) -> Any:
+            # numba's lowering writes the kernel's environment pointer into its
+            # machine code through this; there is none to write into.
+            return _NoEnvironment(self._codegen)
+
+        def _optimize_final_module(self) -> None:
+            """Nothing: every caller optimises the linked copy in its own module."""
+
+        def _finalize_final_module(self) -> None:
+            # numba's checks, without handing the module to the JIT engine
+            # (which would translate it to machine code).
+            self._finalize_dynamic_globals()
+            if self._dynamic_globals:
+                # numba finds these after its module optimisation, which drops
+                # the ones only dead code used (an exception's class address):
+                # optimised as numba does, the helper is cached where numba's
+                # own library would be (numba caches no kernel using one).
+                self._dynamic_globals.clear()
+                library_class._optimize_final_module(self)
+                self._finalize_dynamic_globals()
+            self._verify_declare_only_symbols()
+            self._finalized = True
+
+        def serialize_using_object_code(self) -> Any:
+            # There is no object code: the cache keeps the bitcode, which
+            # numba reloads and links as it does object code's bitcode.
+            return self.serialize_using_bitcode()
+
+    class HelperCompiler(base_compiler):  # type: ignore[misc]
+        """numba's compiler, with a :class:`HelperLibrary` for the kernel's code."""
+
+        def compile_extra(self, func: Any) -> Any:
+            state = self.state
+            if state.library is None:  # what numba's lowering would otherwise make
+                library = HelperLibrary(state.targetctx.codegen(), func.__qualname__)
+                library.enable_object_caching()
+                state.library = library
+            return super().compile_extra(func)
+
+    return HelperCompiler
 
 
 def numba_user_cache_folder() -> str:
@@ -402,12 +547,16 @@ njit_helper: Callable[[_F], _F] = typed_njit(**NO_REFCOUNT, no_cpython_wrapper=T
 Python wrapper is compiled (a wrapper of many arguments alone costs tenths of a
 second), so Python cannot call it."""
 
-njit_force_inline: Callable[[_F], _F] = typed_njit(**NO_REFCOUNT, forceinline=True)
+njit_force_inline: Callable[[_F], _F] = typed_njit(
+    **NO_REFCOUNT, forceinline=True, no_cpython_wrapper=True
+)
 """``njit_no_refcount`` compiled once and inlined by LLVM (``alwaysinline``) into
 its callers: as fast as numba's IR-level ``inline="always"``, which copies and
 re-types the body at every call site (seconds of first-use compilation for a
 body inlined eight times), but typed once. Its arguments must not be literals
-at any call site: each literal value compiles it once more."""
+at any call site: each literal value compiles it once more. Called only from
+kernels: no Python wrapper (A*'s 22-argument relax step: about 0.05 s of its
+first use), and compiled as a helper (:func:`helper_compiler`)."""
 
 njit_not_inlined: Callable[[_F], _F] = typed_njit(**NO_REFCOUNT, forceinline=False)
 """``njit_no_refcount`` for a kernel called from an LLVM-inlined one (numba's
