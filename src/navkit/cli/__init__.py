@@ -16,11 +16,15 @@
   numba kernel now (once per install), print what was compiled.
 * ``navkit --version``.
 
-Bad arguments print the usage and exit with code 2; a missing or malformed
-file, map or data set prints one line ``navkit: error: ...`` and exits with
-code 1, as do output files that cannot be written, two options naming one
-file and a ``--data`` that is not a folder (without ``--scheduler``; all
-checked before a run starts).
+``navkit --help`` and each ``navkit COMMAND --help`` end with examples.
+Bad arguments print the usage and exit with code 2; a mistyped name (a
+command, scenario, planner, map or warm-up step) is answered with the closest
+one (``navkit run omni``: "maybe you meant 'omni-apf'?"). A missing,
+unreadable or malformed file, map or data set prints one line ``navkit:
+error: ...`` and exits with code 1, as do output files that cannot be
+written, two options naming one file, ``--json -`` (standard output carries
+the tables: give a file) and a ``--data`` that is not a folder (without
+``--scheduler``; all checked before a run starts).
 Ctrl-C exits with code 130 (``SIGTERM`` and ``SIGHUP`` with 143 and 129, after
 the same clean-up: worker processes stopped, no temporary files left), in one
 line; a closed standard output (``navkit list | head -1``) ends the command

@@ -26,14 +26,32 @@ EXPECTED = (NavkitError, OSError, ValueError, ImportError, KernelCacheWarning)
 def one_line(exc: BaseException) -> str:
     """An exception's message (and notes) on one line.
 
+    The operating system's own errors (``[Errno 13] Permission denied:
+    'map.yaml'``) read as the system's commands write them: file, then reason.
+
     Examples
     --------
     >>> one_line(ValueError("bad\\n  map"))
     'bad map'
+    >>> one_line(PermissionError(13, "Permission denied", "maps/map.yaml"))
+    'maps/map.yaml: Permission denied'
     """
-    text = " ".join(str(exc).split()) or type(exc).__name__
+    text = " ".join(_os_error_text(exc).split()) or type(exc).__name__
     notes = [" ".join(str(n).split()) for n in getattr(exc, "__notes__", ())]
     return "; ".join([text, *notes])
+
+
+def _os_error_text(exc: BaseException) -> str:
+    """``str(exc)``, or ``"file: reason"`` for an OSError in Python's default form."""
+    text = str(exc)
+    if not (isinstance(exc, OSError) and exc.strerror and text.startswith("[Errno ")):
+        return text  # navkit's own messages (FileNotFoundError("map YAML file ... does not exist"))
+    names = [
+        os.fsdecode(name)
+        for name in (exc.filename, exc.filename2)
+        if isinstance(name, (str, bytes, os.PathLike))
+    ]
+    return f"{' -> '.join(names)}: {exc.strerror}" if names else exc.strerror
 
 
 def main(argv: Sequence[str] | None = None) -> int:

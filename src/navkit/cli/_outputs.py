@@ -31,9 +31,9 @@ def check_output(path: str | None, suffix: str, option: str) -> None:
     ImportError
         A picture (``.png``, ``.gif``) without matplotlib (the ``plot`` extra).
     ValueError
-        An empty name, a wrong extension, a folder given for a file, or a picture (a
-        ``suffix``) to be written over something that is not a regular file
-        (a device, a pipe).
+        An empty name, ``"-"`` (standard output), a wrong extension, a folder
+        given for a file, or a picture (a ``suffix``) to be written over
+        something that is not a regular file (a device, a pipe).
     FileNotFoundError
         The folder does not exist.
     OSError
@@ -53,6 +53,13 @@ def check_output(path: str | None, suffix: str, option: str) -> None:
     if not path:
         # Path("") is ".", the current folder: "is a folder" would puzzle.
         raise ValueError(f"{option}: the file name is empty")
+    if path == "-":
+        # The usual spelling of standard output, which carries the command's tables:
+        # not a file named "-" made in the current folder without a word.
+        raise ValueError(
+            f"{option}: '-' (standard output) is not supported, as the tables go there; "
+            "give a file name (./- for a file named '-')"
+        )
     if suffix in (".png", ".gif"):
         _check_matplotlib(option)
     target = Path(path)

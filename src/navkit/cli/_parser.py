@@ -4,14 +4,15 @@ from __future__ import annotations
 
 import argparse
 import contextlib
+import difflib
 import math
 import re
 import sys
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from importlib import metadata
-from typing import overload
+from typing import Any, overload
 
-__all__ = ["Choices", "build_parser", "join_negative_points", "version"]
+__all__ = ["Choices", "build_parser", "closest_choice", "join_negative_points", "version"]
 
 
 def version() -> str:
@@ -118,6 +119,115 @@ class _Version(argparse.Action):
         parser.exit()
 
 
+def closest_choice(value: str, choices: Iterable[object]) -> str | None:
+    """The choice ``value`` was most likely meant to be, or None when none is close.
+
+    Case and ``_`` against ``-`` are ignored; otherwise a choice that alone
+    starts with ``value``, else the closest by :func:`difflib.get_close_matches`.
+
+    Examples
+    --------
+    >>> names = ("demo", "diff-astar", "omni-apf", "soccer")
+    >>> closest_choice("omni_apf", names), closest_choice("diff", names)
+    ('omni-apf', 'diff-astar')
+    >>> closest_choice("Soccer", names), closest_choice("xyz", names)
+    ('soccer', None)
+    """
+    names = [c for c in choices if isinstance(c, str)]
+
+    def normal(name: str) -> str:
+        return name.casefold().replace("_", "-")
+
+    wanted = normal(value)
+    by_normal = {normal(n): n for n in reversed(names)}  # the first of equal spellings
+    if wanted in by_normal:
+        return by_normal[wanted]
+    starting = [n for n in names if wanted and normal(n).startswith(wanted)]
+    if len(starting) == 1:
+        return starting[0]
+    close = difflib.get_close_matches(wanted, list(by_normal), n=1)
+    return by_normal[close[0]] if close else None
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse's parser, naming the closest choice to a mistyped one.
+
+    ``navkit run omni`` says "maybe you meant 'omni-apf'?", as Python 3.14's
+    ``suggest_on_error`` does, on every Python version and for every choice
+    (commands, scenarios, planners, maps, warm-up steps).
+    """
+
+    def _check_value(self, action: argparse.Action, value: Any) -> None:
+        try:
+            super()._check_value(action, value)
+        except argparse.ArgumentError as exc:
+            message = exc.message
+            guess = (
+                closest_choice(value, action.choices)
+                if isinstance(value, str) and action.choices is not None
+                else None
+            )
+            if guess is None or "maybe you meant" in message:  # argparse's own (3.15)
+                raise
+            hint = f", maybe you meant {guess!r}?"
+            at = message.find(" (choose from ")
+            message = message + hint if at < 0 else message[:at] + hint + message[at:]
+            raise argparse.ArgumentError(action, message) from None
+
+
+class _Formatter(argparse.HelpFormatter):
+    """argparse's help, with the lines of a paragraph holding indented lines (examples) kept.
+
+    Other paragraphs (blank-line separated) are filled to the terminal's width
+    as argparse fills them.
+    """
+
+    def _fill_text(self, text: str, width: int, indent: str) -> str:
+        paragraphs = []
+        for paragraph in text.split("\n\n"):
+            lines = paragraph.splitlines()
+            if any(line.startswith("  ") for line in lines):
+                paragraphs.append("\n".join(indent + line for line in lines))
+            else:
+                paragraphs.append(super()._fill_text(paragraph, width, indent))
+        return "\n\n".join(paragraphs)
+
+
+#: ``navkit --help``'s closing text: examples, then the exit codes (as navkit.cli.main's).
+_EPILOG = """\
+examples:
+  navkit demo              # plan, track and localise on a real map
+  navkit list              # the papers' experiments
+  navkit run omni-apf --trials 5 --plot omni.png --json omni.json
+  navkit plan map.yaml --start -2,-0.5 --goal 2,0.5 --radius 0.1
+  navkit warmup            # compile every kernel ahead (once per machine)
+
+Run navkit COMMAND --help for a command's options. Exit codes: 0 done; 1 a file, \
+map, data set or plan failed (one line "navkit: error: ..."); 2 bad arguments (with \
+the usage); 130 Ctrl-C (143 SIGTERM, 129 SIGHUP); 141 standard output closed \
+early (navkit list | head -1)."""
+
+_RUN_EPILOG = """\
+examples:
+  navkit run soccer        # the scenario's trials per case, on every core
+  navkit run omni-apf --trials 2 --seed 7 --workers 1
+  navkit run greedy --json greedy.json --plot greedy.png
+  navkit run diff-astar --scheduler tcp://host:8786
+
+--trials counts trials per case (navkit list gives each scenario's default). \
+Tables go to standard output; the progress bar (on a terminal) and notices to \
+standard error."""
+
+_PLAN_EPILOG = """\
+examples:
+  navkit plan maps/turtlebot3_world/map.yaml --start -2,-0.5 --goal 2,0.5
+  navkit plan office.yaml --start 1.5,2 --goal 12,8.25 --radius 0.2 \\
+      --planner field_dstar --plot route.png
+
+Coordinates are world metres in the map's frame (its YAML's origin), not \
+cells; a negative one may follow --start or --goal with a space."""
+
+
 def _scenario_names() -> list[str]:
     from navkit.sim.scenarios import SCENARIOS
 
@@ -155,8 +265,9 @@ def _point(text: str) -> tuple[float, float]:
     return x, y
 
 
-def _count(low: int, high: int) -> type[int]:
-    """An integer argument in ``[low, high]``."""
+def _count(low: int, high: int, *, shown: str | None = None) -> type[int]:
+    """An integer argument in ``[low, high]`` (``shown``: the range as the help writes it)."""
+    bounds = shown if shown is not None else f"[{low}, {high}]"
 
     def parse(text: str) -> int:
         try:
@@ -164,11 +275,11 @@ def _count(low: int, high: int) -> type[int]:
         except ValueError:
             if re.fullmatch(r"\s*[+-]?\d[\d_]*\s*", text):  # beyond int()'s digit limit
                 raise argparse.ArgumentTypeError(
-                    f"must be in [{low}, {high}], got an integer of {len(text.strip())} characters"
+                    f"must be in {bounds}, got an integer of {len(text.strip())} characters"
                 ) from None
             raise argparse.ArgumentTypeError(f"expected an integer, got {text!r}") from None
         if not low <= value <= high:
-            raise argparse.ArgumentTypeError(f"must be in [{low}, {high}], got {value}")
+            raise argparse.ArgumentTypeError(f"must be in {bounds}, got {value}")
         return value
 
     parse.__name__ = "integer"
@@ -216,7 +327,8 @@ def _outputs(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--trials", type=_count(1, 100_000), metavar="N",
                         help="trials per case (default: the scenario's)")  # fmt: skip
     # The library's range of base seeds (navkit.sim.trial_seed): [0, 2**64).
-    parser.add_argument("--seed", type=_count(0, 2**64 - 1), default=0, metavar="S",
+    parser.add_argument("--seed", type=_count(0, 2**64 - 1, shown="[0, 2**64)"), default=0,
+                        metavar="S",
                         help="base seed in [0, 2**64) (default 0): the same seed, the same "
                              "figures")  # fmt: skip
     parser.add_argument("--plot", metavar="FILE.png", help="write a picture of the scene")
@@ -248,9 +360,11 @@ def build_parser(scenarios: Sequence[str] | None = None) -> argparse.ArgumentPar
     >>> build_parser(["demo"]).parse_args(["run", "demo", "--trials", "2"]).trials
     2
     """
-    parser = argparse.ArgumentParser(
+    parser = _Parser(
         prog="navkit",
         description="navkit's experiments, demo and planner on the command line.",
+        epilog=_EPILOG,
+        formatter_class=_Formatter,
     )
     parser.add_argument("--version", action=_Version, nargs=0, default=argparse.SUPPRESS,
                         help="show program's version number and exit")  # fmt: skip
@@ -262,17 +376,23 @@ def build_parser(scenarios: Sequence[str] | None = None) -> argparse.ArgumentPar
                     "(wheel encoders + IMU fusion) on a three-leg tour of the Willow Garage "
                     "office map (a synthetic office when the data is absent), then prints "
                     "a results table.",
+        epilog="examples:\n  navkit demo\n  navkit demo --map office --plot demo.png",
+        formatter_class=_Formatter,
     )  # fmt: skip
     _outputs(demo)
     demo.add_argument("--map", choices=("auto", "willow", "office"), default="auto",
                       help="the map (default auto: Willow Garage if found)")  # fmt: skip
 
-    sub.add_parser("list", help="list the experiments", description="List the experiments.")
+    sub.add_parser("list", help="list the experiments",
+                   description="List the experiments: name, default trials per case, what "
+                               "each runs.", formatter_class=_Formatter)  # fmt: skip
 
     run = sub.add_parser(
         "run", help="run an experiment and print its tables beside the paper's",
         description="Run one of the papers' experiments and print navkit's figures beside "
                     "the paper's.",
+        epilog=_RUN_EPILOG,
+        formatter_class=_Formatter,
     )  # fmt: skip
     if scenarios is None:
         scenarios = Choices(_scenario_names, known=_is_scenario)
@@ -289,6 +409,8 @@ def build_parser(scenarios: Sequence[str] | None = None) -> argparse.ArgumentPar
         "plan", help="plan a path on a ROS map_server map",
         description="Plan a path on a ROS map_server map (YAML + image) and print its "
                     "length and the planning time.",
+        epilog=_PLAN_EPILOG,
+        formatter_class=_Formatter,
     )  # fmt: skip
     plan.add_argument("map", metavar="MAP.yaml", help="the map's YAML file")
     plan.add_argument("--start", type=_point, required=True, metavar="X,Y",
@@ -312,6 +434,9 @@ def build_parser(scenarios: Sequence[str] | None = None) -> argparse.ArgumentPar
         description="Compile every numba kernel navkit uses (numba caches them on disk), "
                     "so that no later run waits for compilation; print what was compiled "
                     "and how long it took. Run it at install or image-build time.",
+        epilog="examples:\n  navkit warmup\n  navkit warmup --only astar --only field_dstar "
+               "--workers 1",
+        formatter_class=_Formatter,
     )  # fmt: skip
     warm.add_argument("--workers", type=_count(1, 1024), metavar="N",
                       help="processes (default: every core; 1: this one)")  # fmt: skip

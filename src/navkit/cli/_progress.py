@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import os
+import shutil
 from types import TracebackType
 from typing import Any, TextIO
 
@@ -9,6 +11,24 @@ __all__ = ["DELAY", "ProgressBar"]
 
 #: Seconds a run must last before its bar appears (shorter runs print nothing).
 DELAY = 2.0
+
+
+def _size(stream: TextIO) -> dict[str, Any]:
+    """tqdm's size options for a terminal ``stream``: its width as it changes, or a fixed one.
+
+    A terminal reporting no size (0 x 0: ``script``, ``docker run -t`` without
+    a terminal on the client's side) made tqdm draw nothing at all (it took
+    the bar's line for one below the screen's last row); the bar then gets
+    ``$COLUMNS``/``$LINES`` or 80 x 24.
+    """
+    try:
+        columns, lines = os.get_terminal_size(stream.fileno())
+    except (AttributeError, OSError, ValueError):  # no descriptor: tqdm finds none either
+        return {"dynamic_ncols": True}
+    if columns > 0 and lines > 0:
+        return {"dynamic_ncols": True}
+    fallback = shutil.get_terminal_size((80, 24))
+    return {"ncols": columns or fallback.columns or 80, "nrows": lines or fallback.lines or 24}
 
 
 class ProgressBar:
@@ -66,7 +86,7 @@ class ProgressBar:
             tqdm.monitor_interval = 0
             self._bar = tqdm(
                 total=total, desc=self._description, unit="trial", file=self._stream,
-                delay=DELAY, dynamic_ncols=True, leave=True,
+                delay=DELAY, leave=True, **_size(self._stream),
             )  # fmt: skip
         self._bar.update(done - self._bar.n)
 
