@@ -686,6 +686,14 @@ spec(
     lambda c: method(grid(), "unknown", occupied_thresh=0.7, free_thresh=0.2),
 )
 spec("navkit.mapping.OccupancyGrid.inflate", lambda c: method(grid(), "inflate", 0.15))
+# CELLS (session 25): OccupancyGrid.cells_near, the cells new obstacle points block.
+# Points inside, outside (0.6 m left of the map: its cells near the edge) and in one cell.
+spec(
+    "navkit.mapping.OccupancyGrid.cells_near",
+    lambda c: method(
+        grid(), "cells_near", A([[0.1, 0.2], [-0.8, 0.3], [0.12, 0.21]]), robot_radius=0.15
+    ),
+)
 spec(
     "navkit.mapping.OccupancyGrid.costmap",
     lambda c: method(grid(), "costmap", robot_radius=0.1, inflation_radius=0.3),
@@ -1142,6 +1150,33 @@ spec(
     lambda c: call(field_dstar, costs(), (6, 0), (0, 7)),
     kinds={"costs": COSTS, "start_node": NODE, "goal_node": NODE},
 )
+
+
+# STARTTOL (session 25): FieldDStar(obstacles=) and the world methods' start_tolerance.
+# Cell (1, 3) of costs() is impassable but no obstacle (the inflation): a start
+# there, (2.75, 2.65) at 0.5 m cells from (1, 2), escapes to cell (0, 3), 0.4 m away.
+def _fd_obstacles() -> np.ndarray:
+    out = ~np.isfinite(costs())
+    out[1, 3] = False
+    return out
+
+
+def _fd_escaping(name: str, *args: Any, planned: bool = False) -> Call:
+    receiver = call(
+        FieldDStar, costs(), resolution=0.5, origin=(1.0, 2.0, 0.0), obstacles=_fd_obstacles()
+    )
+    prepare = (lambda p: p.plan((6, 0), (0, 7))) if planned else None
+    return method(receiver, name, *args, prepare=prepare, start_tolerance=0.5)
+
+
+FD_OBSTACLES = {"obstacles": Array(boolean=True, optional=True)}
+
+
+class _FlagsKind(Array):
+    """``update_costs(obstacles=)``: a bool (every cell listed) or a boolean array."""
+
+    refuse_always = Array.refuse_always - {"bool"}
+
 spec(
     "navkit.planning.grid.FieldDStar",
     lambda c: call(
@@ -1152,8 +1187,9 @@ spec(
         smooth=True,
         resolution=0.5,
         origin=(1.0, 2.0, 0.0),
+        obstacles=_fd_obstacles(),
     ),
-    kinds={"costs": COSTS},
+    kinds={"costs": COSTS, **FD_OBSTACLES},
 )
 
 
@@ -1182,7 +1218,7 @@ spec(
 )
 spec(
     "navkit.planning.grid.FieldDStar.plan_world",
-    lambda c: _fd_method("plan_world", A([1.1, 2.1]), A([4.3, 4.8])),
+    lambda c: _fd_escaping("plan_world", A([2.75, 2.65]), A([4.3, 4.8])),
     **FD,
 )
 spec(
@@ -1193,14 +1229,20 @@ spec(
 )
 spec(
     "navkit.planning.grid.FieldDStar.replan_world",
-    lambda c: _fd_method("replan_world", A([1.3, 2.1]), planned=True),
+    lambda c: _fd_escaping("replan_world", A([2.75, 2.65]), planned=True),
     kinds={"start_xy": Array(optional=True)},
     **FD,
 )
 spec(
     "navkit.planning.grid.FieldDStar.update_costs",
-    lambda c: _fd_method("update_costs", A([[2, 1], [2, 2]]), A([np.inf, 3.0]), planned=True),
-    kinds={"new_costs": Array(allow={"posinf"})},
+    lambda c: _fd_method(
+        "update_costs", A([[2, 1], [2, 2]]), A([np.inf, 3.0]), planned=True,
+        obstacles=A([True, False]),
+    ),
+    kinds={
+        "new_costs": Array(allow={"posinf"}),
+        "obstacles": _FlagsKind(boolean=True, optional=True),
+    },
     **FD,
 )
 spec(

@@ -83,6 +83,7 @@ def _mapping() -> None:
     room.world_to_cell(np.array([[0.0, 0.0], [1.0, 1.0]]))
     room.world_to_cell(np.array([[0.0, 0.0]]), continuous=True)
     room.cell_to_world(np.array([[1, 1]]))
+    room.cells_near(np.array([[0.0, 0.0], [1.0, 1.0]]), robot_radius=0.3)
     LocalGrid.from_points(np.array([[0.3, 0.0]])).world_to_cell(np.array([[0.1, 0.1]]))
 
 

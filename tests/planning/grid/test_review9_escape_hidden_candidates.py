@@ -16,7 +16,7 @@ import pytest
 
 from navkit.mapping import OccupancyGrid
 from navkit.planning import MapPlanner
-from navkit.planning.grid import _map_planner
+from navkit.planning.grid import _escape
 
 
 def corridor_planner(n: int, exit_open: bool) -> tuple[MapPlanner, tuple[int, int]]:
@@ -37,13 +37,13 @@ def corridor_planner(n: int, exit_open: bool) -> tuple[MapPlanner, tuple[int, in
 
 def counting(monkeypatch: pytest.MonkeyPatch) -> list[int]:
     calls = [0]
-    real = _map_planner._segment_cells
+    real = _escape._segment_cells
 
     def wrapped(*args: object) -> object:
         calls[0] += 1
         return real(*args)  # type: ignore[arg-type]
 
-    monkeypatch.setattr(_map_planner, "_segment_cells", wrapped)
+    monkeypatch.setattr(_escape, "_segment_cells", wrapped)
     return calls
 
 
@@ -69,7 +69,7 @@ def test_the_one_visible_candidate_is_still_found(monkeypatch: pytest.MonkeyPatc
     with monkeypatch.context() as patch:
         # The reference: no candidate hidden, every segment tested.
         patch.setattr(
-            _map_planner, "_shadow", lambda q, b, theta, d2: np.zeros(theta.shape[0], dtype=bool)
+            _escape, "_shadow", lambda q, b, theta, d2: np.zeros(theta.shape[0], dtype=bool)
         )
         want = planner.plan(start, goal, start_tolerance=1e9)
     calls = counting(monkeypatch)

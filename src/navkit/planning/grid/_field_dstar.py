@@ -10,10 +10,11 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from navkit._shared.dunders import slot_state
 from navkit._shared.frozen import restore_slots
 from navkit._shared.grid_coords import as_pairs, one_or_many, round_half_up
 from navkit._shared.types import CellLike, FloatArray, IntArray
-from navkit._shared.validation import as_bool, as_cell, as_float_array
+from navkit._shared.validation import as_array, as_bool, as_cell, as_float_array
 from navkit.errors import NoPathError
 from navkit.geometry import Pose2D, as_pose
 from navkit.planning.grid._dstar_heap import RHS, G, node_records
@@ -24,6 +25,7 @@ from navkit.planning.grid._dstar_lite_kernels import (
     params,
     state,
 )
+from navkit.planning.grid._escape import nearest_escape
 from navkit.planning.grid._field_path_kernels import (
     ABORTED,
     CANDIDATES,
@@ -163,15 +165,31 @@ class FieldDStar:
         (rows along the origin's y axis, columns along its x axis), for the
         world methods: the convention of :class:`~navkit.mapping.OccupancyGrid`.
         ``|x|, |y| <= 1e9`` m.
+    obstacles : (rows, cols) array_like of bool, optional
+        Which impassable cells are obstacles (occupied, or unknown space not
+        to be crossed) rather than the inflation drawn around them; every
+        ``True`` cell must cost ``inf``. For costs from
+        ``grid.traversal_costs(robot_radius=...)`` pass ``grid.occupied() |
+        grid.unknown()`` (``grid.occupied()`` with a finite
+        ``unknown_cost``). Read only by the world methods' ``start_tolerance``
+        (:meth:`plan_world`): a start in the inflation may escape to a
+        passable cell, never through an obstacle. Copied (1 byte a cell);
+        :meth:`update_costs` keeps it current: a cell it makes impassable
+        counts as an obstacle (the planner cannot tell a new obstacle from
+        the inflation drawn around it) unless its ``obstacles=`` says
+        otherwise, one it opens does not. ``None`` (the default): every
+        impassable cell counts as an obstacle, so no start escapes (until
+        :meth:`update_costs` marks inflation with ``obstacles=False``).
 
     Raises
     ------
     ValueError
         Invalid ``costs`` (see :func:`navkit.planning.distance_field`), too
-        many nodes, ``resolution`` or ``origin`` out of range.
+        many nodes, ``resolution`` or ``origin`` out of range; ``obstacles``
+        of another shape than ``costs`` or marking a cell of finite cost.
     TypeError
         Non-bool flags (``interpolate``, ``lookahead``, ``smooth``: only
-        ``True``/``False``), a bad ``origin``.
+        ``True``/``False``), a bad ``origin``, ``obstacles`` not boolean.
 
     Notes
     -----
@@ -268,6 +286,7 @@ class FieldDStar:
         "_changed",
         "_clean",
         "_cols",
+        "_escape",
         "_fresh",
         "_fresh_work",
         "_g",
@@ -283,6 +302,7 @@ class FieldDStar:
         "_lowered",
         "_ncols",
         "_nrows",
+        "_obstacles",
         "_origin",
         "_pad",
         "_resolution",
@@ -297,6 +317,7 @@ class FieldDStar:
         "_width",
         "_work",
     )
+    __getstate__ = slot_state  # pickle protocols 0 and 1 too
 
     def __init__(
         self,
@@ -307,6 +328,7 @@ class FieldDStar:
         smooth: bool = True,
         resolution: float = 1.0,
         origin: Pose2D | ArrayLike = _IDENTITY,
+        obstacles: ArrayLike | None = None,
     ) -> None:
         arr, _ = checked_costs(costs, corner_nodes=True)
         self._interp = as_bool(interpolate, "interpolate")
@@ -321,6 +343,11 @@ class FieldDStar:
                 f"origin must lie within ±{COORDINATE_LIMIT:g} m in x and y, got {self._origin!r}"
             )
         self._rows, self._cols = (int(v) for v in arr.shape)
+        self._obstacles = None if obstacles is None else _obstacle_mask(obstacles, arr)
+        # After an escape from the inflation (start_tolerance): the start point the
+        # caller gave (node coordinates) and the escape segment's cost (cost units ×
+        # cells); _start_point is then the escape cell's centre.
+        self._escape: tuple[tuple[float, float], float] | None = None
         self._width = self._cols + 2
         pad = np.full((self._rows + 2, self._cols + 2), np.inf)
         pad[1:-1, 1:-1] = arr
@@ -389,6 +416,9 @@ class FieldDStar:
         heap[0][:] = nodes
         heap[1][:] = keys
         heap[3][:] = size
+        # Pickles made before start_tolerance: no obstacle mask, no escape.
+        slots.setdefault("_obstacles", None)
+        slots.setdefault("_escape", None)
         restore_slots(self, (instance, slots))
         self._vals, self._heap = vals, heap
         self._g, self._rhs = vals[:, G], vals[:, RHS]
@@ -650,6 +680,7 @@ class FieldDStar:
             self._move_start(s)
             self._start_point = point
             self._start_on_node = True
+            self._escape = None
         points, cost, length, expanded = self._search("node")
         return Path2D(points - 0.5, "grid", cost=cost, length=length, expanded=expanded)
 
@@ -736,7 +767,9 @@ class FieldDStar:
         points, cost, length = self._linked(points)
         return Path2D(points - 0.5, "grid", cost=cost, length=length, expanded=expanded)
 
-    def plan_world(self, start_xy: ArrayLike, goal_xy: ArrayLike) -> Path2D:
+    def plan_world(
+        self, start_xy: ArrayLike, goal_xy: ArrayLike, *, start_tolerance: float = 0.0
+    ) -> Path2D:
         """Path between two world points, from scratch.
 
         Each point is linked to its nearest node (:meth:`world_to_node`), a
@@ -748,21 +781,50 @@ class FieldDStar:
         Parameters
         ----------
         start_xy, goal_xy : array_like, shape (2,)
-            World points ``(x, y)`` in m, each inside a passable cell.
+            World points ``(x, y)`` in m, each inside a passable cell (the
+            start, with ``start_tolerance``, possibly in the inflation).
+        start_tolerance : float, default 0.0
+            Distance in m, in ``[0, 1e9]`` (keyword-only), within which a
+            start in an impassable cell that is not an obstacle (see
+            ``obstacles`` of :class:`FieldDStar`: a robot whose state
+            estimate drifted into the inflated band around a wall) may escape,
+            as :meth:`MapPlanner.plan`'s: the path begins at ``start_xy``
+            itself, goes straight to the centre of the nearest passable cell
+            (the escape cell: least distance from ``start_xy`` to its centre,
+            at most ``start_tolerance``; ties, equal distances in the grid's
+            float64 continuous coordinates, to the lowest ``(row, col)``)
+            and follows the path :meth:`plan_world` plans from that centre
+            (linked to its nearest node). Only cells whose straight segment
+            from ``start_xy`` touches no obstacle cell's square (a corner
+            included) qualify; it may cross the inflation. ``0`` (the
+            default) never escapes: such a start is refused, as are starts in
+            an obstacle (every impassable cell without ``obstacles``) or
+            outside the grid, whatever the tolerance. The goal never escapes.
 
         Returns
         -------
         Path2D
             ``"world"`` path from ``start_xy`` to ``goal_xy``; cost in cost units ×
             metres (its exact polyline cost times the resolution), length in m.
+            After an escape the points are ``start_xy``, then the path from
+            the escape cell's centre; ``length`` includes the escape segment
+            and ``cost`` its cost: for each cell it crosses, the length inside
+            the cell × the cell's cost, an impassable (inflation) cell
+            counting 5 (``1 + cost_weight`` of
+            :func:`~navkit.mapping.traversal_costs`, as :class:`MapPlanner`).
 
         Raises
         ------
         ValueError
-            A point outside the grid or in an impassable cell, not finite or
-            beyond ±1e9 m; a path cost of ``2**52`` or more.
+            A point outside the grid or in an impassable cell (the start in
+            the inflation only with no escape within ``start_tolerance``; the
+            message says whether it is in an obstacle or in the inflation,
+            when ``obstacles`` tells), not finite or beyond ±1e9 m; a path
+            cost of ``2**52`` or more; ``start_tolerance`` negative, not
+            finite or above 1e9.
         TypeError
-            Non-numeric points.
+            Non-numeric points; ``start_tolerance`` not a real number (or a
+            bool).
         navkit.NoPathError
             The goal cannot be reached.
         KeyboardInterrupt
@@ -779,14 +841,36 @@ class FieldDStar:
         ('world', [[1.25, 2.25], [5.75, 4.25]])
         >>> round(path.length, 6), round(path.cost, 6), round(float(np.hypot(4.5, 2.0)), 6)
         (4.924429, 4.924429, 4.924429)
+
+        On a map's costs, with its obstacles: a start that drifted into the
+        inflated band around a wall is refused, unless it may escape to a
+        passable cell within ``start_tolerance``:
+
+        >>> from navkit.mapping import OccupancyGrid
+        >>> occupied = np.zeros((10, 20), dtype=bool)
+        >>> occupied[:6, 10] = True
+        >>> grid = OccupancyGrid.from_occupancy(occupied, resolution=0.1)
+        >>> planner = FieldDStar(grid.traversal_costs(robot_radius=0.2), resolution=0.1,
+        ...                      obstacles=grid.occupied())
+        >>> planner.plan_world((0.85, 0.25), (1.55, 0.25))
+        Traceback (most recent call last):
+            ...
+        ValueError: start_xy (0.85, 0.25) is in an impassable cell (2, 8) (cost inf), within ...
+        >>> escaped = planner.plan_world((0.85, 0.25), (1.55, 0.25), start_tolerance=0.2)
+        >>> escaped.points[:2].round(6).tolist()  # the start, then the escape cell's centre
+        [[0.85, 0.25], [0.75, 0.25]]
         """
-        p_s, s = self._world_end(start_xy, "start_xy")
+        tolerance = bounded_float(start_tolerance, "start_tolerance", 0.0, COORDINATE_LIMIT, "m")
+        given, _, where = self._world_point(start_xy, "start_xy")
+        p_s, s, escape = self._start_end(given, where, tolerance, "")
         p_g, gl = self._world_end(goal_xy, "goal_xy")
-        self._reset(s, gl, p_s, p_g)
+        self._reset(s, gl, p_s, p_g, escape=escape)
         points, _, _, expanded = self._search("xy")
         return self._world_path(points, expanded)
 
-    def replan_world(self, start_xy: ArrayLike | None = None) -> Path2D:
+    def replan_world(
+        self, start_xy: ArrayLike | None = None, *, start_tolerance: float = 0.0
+    ) -> Path2D:
         """Repair the previous search after cost updates; world-point form of :meth:`replan`.
 
         Parameters
@@ -794,7 +878,19 @@ class FieldDStar:
         start_xy : array_like, shape (2,), optional
             The robot's new position ``(x, y)`` in m (linked to its nearest node
             as in :meth:`plan_world`); the goal stays. Defaults to the previous
-            start point.
+            start point (after an escape, the point given, not the escape
+            cell: escaped again, or not, on the current costs).
+        start_tolerance : float, default 0.0
+            As in :meth:`plan_world` (keyword-only), for ``start_xy`` or a
+            kept start point that escaped: a robot tracking a path along the
+            edge of the inflated band a few centimetres off replans from where
+            it is. Any other kept start is checked as before: a world point
+            whose cell :meth:`update_costs` closed (an obstacle from then on),
+            a node (:meth:`plan`, :meth:`replan`) or a cell (:meth:`plan_cells`)
+            never escapes. The search moves its
+            start to the escape cell's node, as for any new start, and its
+            repair stays equal to a fresh :meth:`plan_world` from
+            ``start_xy`` with this tolerance.
 
         Returns
         -------
@@ -816,14 +912,18 @@ class FieldDStar:
         RuntimeError
             No plan was made yet.
         ValueError
-            ``start_xy`` outside the grid or in an impassable cell; the kept
+            ``start_xy`` outside the grid or in an impassable cell (the
+            inflation with no escape within ``start_tolerance``); the kept
             start point (without ``start_xy``) or the kept goal point is no
             longer valid (the start checked first): a point given to
             :meth:`plan_world` or :meth:`plan_cells` whose cell is now
             impassable (as a fresh :meth:`plan_world` refuses it, a point
             exactly on a node too), a node given to :meth:`plan` or
             :meth:`replan` that is now a corner of impassable cells only (as a
-            fresh :meth:`plan` refuses it); a path cost of ``2**52`` or more.
+            fresh :meth:`plan` refuses it); a path cost of ``2**52`` or more;
+            a bad ``start_tolerance`` (as :meth:`plan_world`).
+        TypeError
+            Non-numeric ``start_xy``; ``start_tolerance`` not a real number.
         navkit.NoPathError
             The goal cannot be reached any more.
         KeyboardInterrupt
@@ -839,24 +939,54 @@ class FieldDStar:
         >>> detour = planner.replan_world((0.75, 0.25))  # the robot moved 0.5 m
         >>> detour.points[0].tolist(), round(detour.length, 3)  # straight: 4.0 m
         ([0.75, 0.25], 4.308)
+
+        A robot that drifted into the inflated band replans from where it is:
+
+        >>> from navkit.mapping import OccupancyGrid
+        >>> occupied = np.zeros((10, 20), dtype=bool)
+        >>> occupied[:6, 10] = True
+        >>> grid = OccupancyGrid.from_occupancy(occupied, resolution=0.1)
+        >>> planner = FieldDStar(grid.traversal_costs(robot_radius=0.2), resolution=0.1,
+        ...                      obstacles=grid.occupied())
+        >>> first = planner.plan_world((0.25, 0.25), (1.55, 0.25))
+        >>> drifted = planner.replan_world((0.85, 0.45), start_tolerance=0.1)
+        >>> drifted.points[:2].round(6).tolist()
+        [[0.85, 0.45], [0.75, 0.45]]
         """
         self._require_plan("replan_world")
         assert self._start is not None and self._goal is not None
         assert self._start_point is not None and self._goal_point is not None
+        tolerance = bounded_float(start_tolerance, "start_tolerance", 0.0, COORDINATE_LIMIT, "m")
         # Every check before any state changes: a refused replan leaves the planner as it was.
+        kept = start_xy is None
         if start_xy is not None:
-            p_s, s = self._world_end(start_xy, "start_xy")
+            given, _, where = self._world_point(start_xy, "start_xy")
+            p_s, s, escape = self._start_end(given, where, tolerance, "")
+        elif self._escape is not None:
+            # The point given last, not the escape cell: escaped again (or not) on
+            # the current costs with this call's tolerance.
+            given = self._escape[0]
+            where = tuple(self.node_to_world(given).tolist())
+            p_s, s, escape = self._start_end(given, where, tolerance, " (kept from the last plan)")
         else:
+            # A kept start that did not escape: its cell was passable, so one closed
+            # since is a cell update_costs() closed, an obstacle to the escape.
             self._check_kept_end(self._start_point, self._start, self._start_on_node, "start_xy")
+            kept = False
         self._check_kept_end(self._goal_point, self._goal, self._goal_on_node, "goal_xy")
-        if start_xy is not None:
+        if start_xy is not None or kept:
+            # Plain assignments after the move: no call (where Python delivers a
+            # KeyboardInterrupt) separates the new start from its point and escape.
             self._move_start(s)
             self._start_point = p_s
             self._start_on_node = False
+            self._escape = escape
         points, _, _, expanded = self._search("xy")
         return self._world_path(points, expanded)
 
-    def update_costs(self, cells: ArrayLike, new_costs: ArrayLike) -> None:
+    def update_costs(
+        self, cells: ArrayLike, new_costs: ArrayLike, *, obstacles: ArrayLike | None = None
+    ) -> None:
         """Change the cost of some cells; the next :meth:`replan` repairs the plan.
 
         Parameters
@@ -867,15 +997,28 @@ class FieldDStar:
         new_costs : float or (M,) array_like
             New costs per unit length (as ``costs``), in ``[1, 1e12]`` or
             ``np.inf`` (impassable); a float sets every cell listed.
+        obstacles : bool or (M,) array_like of bool, optional
+            Keyword-only: which of the cells are obstacles (``True``) or only
+            the inflation drawn around them (``False``), for the world
+            methods' ``start_tolerance`` (see ``obstacles`` of
+            :class:`FieldDStar`); a bool sets every cell listed, and only an
+            impassable cell may be an obstacle. ``None`` (the default): a cell
+            closed here counts as an obstacle, a cell opened does not, a cell
+            impassable before and after keeps its kind. Block a new
+            obstacle's cells and the ring around them in two calls, the ring
+            with ``obstacles=False``, so that a robot that drifts into the
+            ring may escape it. On a planner built without ``obstacles``,
+            every other impassable cell counts as an obstacle.
 
         Raises
         ------
         ValueError
             Cells outside the grid or not integral, mismatched lengths, or costs
-            that are NaN, ``-inf``, below 1 or finite above 1e12.
+            that are NaN, ``-inf``, below 1 or finite above 1e12; ``obstacles``
+            of another length or marking a cell whose new cost is finite.
         TypeError
             Cells or costs that are not real numbers (booleans, strings,
-            complex numbers, mappings).
+            complex numbers, mappings); ``obstacles`` not boolean.
 
         Examples
         --------
@@ -889,6 +1032,16 @@ class FieldDStar:
         [1.0, 2.0, inf, 1.0]
         >>> before.cost, bool(planner.replan().cost > before.cost)  # straight line blocked
         (5.0, True)
+
+        A new obstacle and the ring grown around it: a start in the ring may
+        escape it (``start_tolerance``), one in the obstacle's cell never:
+
+        >>> planner = FieldDStar(np.ones((5, 5)), obstacles=np.zeros((5, 5), dtype=bool))
+        >>> ring = [(r, c) for r in range(1, 4) for c in range(1, 4) if (r, c) != (2, 2)]
+        >>> planner.update_costs(ring, np.inf, obstacles=False)
+        >>> planner.update_costs([(2, 2)], np.inf)  # an obstacle: closed here
+        >>> planner.plan_world((1.5, 1.2), (4.5, 4.5), start_tolerance=1.0).points[:2].tolist()
+        [[1.5, 1.2], [1.5, 0.5]]
         """
         idx = self._update_cells(cells)
         vals = as_float_array(new_costs, "new_costs", finite=False)
@@ -904,14 +1057,39 @@ class FieldDStar:
                 f"new_costs must be >= 1 and <= {MAX_COST:g}, or np.inf (no NaN, no -inf); "
                 f"got {float(vals[bad][0])}"
             )
+        flags = None if obstacles is None else _obstacle_flags(obstacles, idx, vals)
         if idx.shape[0] == 0:
             return
         # With repeats the last value wins: each cell's final value.
         flat = (idx[:, 0] + 1) * self._width + idx[:, 1] + 1
         cells_u, last = np.unique(flat[::-1], return_index=True)
         final = vals[::-1][last]
+        mask = self._obstacles
+        created = mask is None and flags is not None
+        if created:
+            # Built without obstacles: every impassable cell counted as one so far.
+            mask = ~np.isfinite(self._pad.reshape(self._rows + 2, self._cols + 2)[1:-1, 1:-1])
+        kinds = None
+        if mask is not None:
+            rows = cells_u // self._width - 1
+            cols = cells_u - (rows + 1) * self._width - 1
+            if flags is None:
+                # A cell closed here counts as an obstacle: the planner cannot tell a new
+                # obstacle from the inflation drawn around it, and an escape must never
+                # cross one. A cell opened is no obstacle; one closed before keeps its kind.
+                closed = np.isfinite(self._pad[cells_u]) | mask[rows, cols]
+                kinds = np.isinf(final) & closed
+            else:
+                kinds = flags[::-1][last]
+            if not created and np.array_equal(mask[rows, cols], kinds):
+                kinds = None
+        if kinds is not None:
+            # Only start_tolerance reads the kinds: the search state does not change.
+            assert mask is not None
+            mask[rows, cols] = kinds
+            self._obstacles = mask
         if np.array_equal(self._pad[cells_u], final):
-            return  # nothing changes: the search state and the cached path stay valid
+            return  # no cost changes: the search state and the cached path stay valid
         self._cached = None
         self._lowered = self._lowered or bool(np.any(final < self._pad[cells_u]))
         listed = int(self._changed[0])
@@ -1027,6 +1205,15 @@ class FieldDStar:
         self, value: ArrayLike, name: str
     ) -> tuple[tuple[float, float], tuple[int, int]]:
         """Node coordinates of a world point and its nearest node, checked."""
+        p, (row, col), where = self._world_point(value, name)
+        if not math.isfinite(self._cell_cost(row, col)):
+            raise ValueError(f"{name} {where} is in an impassable cell {(row, col)} (cost inf)")
+        return p, _nearest_node(p)
+
+    def _world_point(
+        self, value: ArrayLike, name: str
+    ) -> tuple[tuple[float, float], tuple[int, int], tuple[float, ...]]:
+        """Node coordinates of a world point inside the grid, its cell and the point given."""
         point = as_float_array(value, name, shape=(2,))
         _check_range(point, COORDINATE_LIMIT, name, "m")
         p = self.world_to_node(point, continuous=True)
@@ -1034,11 +1221,55 @@ class FieldDStar:
         where = tuple(point.tolist())
         if not (0 <= row < self._rows and 0 <= col < self._cols):
             raise ValueError(f"{name} {where} is outside the grid")
-        if not math.isfinite(self._cell_cost(row, col)):
-            raise ValueError(f"{name} {where} is in an impassable cell {(row, col)} (cost inf)")
-        # As world_to_node: floor(p + 0.5) would round p + 0.5 first (0.5 - 2**-54 -> 1).
-        near = round_half_up(p)
-        return (float(p[0]), float(p[1])), (int(near[0]), int(near[1]))
+        return (float(p[0]), float(p[1])), (row, col), where
+
+    def _start_end(
+        self, p: tuple[float, float], where: tuple[float, ...], tolerance: float, kept: str
+    ) -> tuple[tuple[float, float], tuple[int, int], tuple[tuple[float, float], float] | None]:
+        """The start of a world search from point ``p`` (node coordinates, inside the grid).
+
+        Returns the point the path is linked from, its nearest node and the
+        escape (``p`` and the escape segment's cost) or None. ``p`` in a
+        passable cell is its own start. In an impassable cell it may escape
+        (``start_tolerance``, see :meth:`plan_world`) when that cell is not an
+        obstacle: to the escape cell's centre, linked to its nearest node as
+        :meth:`plan_world` links a point there. ``where``: the world point,
+        and ``kept`` the words after it, for the refusals ("" for a point
+        given, " (kept from the last plan)" for one kept).
+        """
+        cell = (math.floor(p[0]), math.floor(p[1]))
+        if math.isfinite(self._cell_cost(*cell)):
+            return p, _nearest_node(p), None
+        text = f"start_xy {where}{kept} is in an impassable cell {cell} (cost inf)"
+        hard = self._obstacles
+        if hard is None:
+            hint = (
+                "; start_tolerance escapes only a FieldDStar given obstacles= (which "
+                "impassable cells are obstacles, not the inflation around them)"
+                if tolerance > 0.0
+                else ""
+            )
+            raise ValueError(text + hint)
+        if hard[cell]:
+            raise ValueError(f"{text}, an obstacle")
+        text += ", within the inflation around an obstacle"
+        if tolerance == 0.0:
+            raise ValueError(
+                f"{text}; pass start_tolerance > 0 to escape to the nearest passable cell"
+            )
+        costs = self._pad.reshape(self._rows + 2, self._cols + 2)[1:-1, 1:-1]
+        # Continuous cell coordinates (integers at cell centres), as MapPlanner's.
+        found = nearest_escape(
+            costs, hard, cell, (p[0] - 0.5, p[1] - 0.5), tolerance, self._resolution
+        )
+        if found is None:
+            raise ValueError(
+                f"{text}, and no passable cell centre within start_tolerance ({tolerance} m) "
+                "can be reached in a straight line without crossing an obstacle"
+            )
+        (row, col), cost = found
+        centre = (row + 0.5, col + 0.5)
+        return centre, _nearest_node(centre), (p, cost)
 
     def _check_kept_end(
         self, point: tuple[float, float], node: tuple[int, int], on_node: bool, name: str
@@ -1092,6 +1323,7 @@ class FieldDStar:
         goal_cell: bool = False,
         start_on_node: bool = False,
         goal_on_node: bool = False,
+        escape: tuple[tuple[float, float], float] | None = None,
     ) -> None:
         """Start a new search from node ``s`` to node ``gl`` (the path's end points given).
 
@@ -1100,7 +1332,9 @@ class FieldDStar:
         ``gl`` is the goal cell: its four corners are the sources, each valued
         at the cost of its segment from the centre. ``start_on_node`` and
         ``goal_on_node``: whether each end was given as a node (see
-        :meth:`_check_kept_end`).
+        :meth:`_check_kept_end`). ``escape``: the start point given and the
+        escape segment's cost, when ``start_point`` is an escape cell's centre
+        (see :meth:`_start_end`).
 
         The planner holds no plan until the sources are queued: an exception on
         the way (a ``KeyboardInterrupt``, which Python delivers as soon as the
@@ -1128,6 +1362,7 @@ class FieldDStar:
         self._goal_cell = goal_cell
         self._start_on_node = start_on_node
         self._goal_on_node = goal_on_node
+        self._escape = escape
         if goal_cell:
             seed = self._cell_cost(*gl) * HALF_DIAGONAL
             sources = [((gl[0] + di, gl[1] + dj), seed) for di, dj in _CORNERS.tolist()]
@@ -1193,7 +1428,8 @@ class FieldDStar:
             assert self._start_point is not None and self._goal_point is not None
             self._reset(self._start, self._goal, self._start_point, self._goal_point,
                         start_cell=self._start_cell, goal_cell=self._goal_cell,
-                        start_on_node=self._start_on_node, goal_on_node=self._goal_on_node)
+                        start_on_node=self._start_on_node, goal_on_node=self._goal_on_node,
+                        escape=self._escape)
             self._work[0] = 0
             self._work[1] = _NO_LIMIT
             pts, k, more, status = self._walk(fresh=True)
@@ -1281,8 +1517,12 @@ class FieldDStar:
             start = tuple(math.floor(v) for v in self._start_point)
             goal = tuple(math.floor(v) for v in self._goal_point)
             return f"start_cell {start}", f"goal_cell {goal}"
-        start_xy = tuple(self.node_to_world(self._start_point).tolist())
         goal_xy = tuple(self.node_to_world(self._goal_point).tolist())
+        if self._escape is not None:
+            given = tuple(self.node_to_world(self._escape[0]).tolist())
+            cell = tuple(math.floor(v) for v in self._start_point)
+            return f"start_xy {given} (escaped to cell {cell})", f"goal_xy {goal_xy}"
+        start_xy = tuple(self.node_to_world(self._start_point).tolist())
         return f"start_xy {start_xy}", f"goal_xy {goal_xy}"
 
     def _repair(self) -> tuple[FloatArray, int, int, int]:
@@ -1380,6 +1620,14 @@ class FieldDStar:
 
     def _world_path(self, points: FloatArray, expanded: int) -> Path2D:
         linked, cost, length = self._linked(points)
+        if self._escape is not None:
+            # As MapPlanner: the start point given, then the path from the escape
+            # cell's centre; the escape segment priced by nearest_escape.
+            given, escape_cost = self._escape
+            step = math.hypot(linked[0, 0] - given[0], linked[0, 1] - given[1])
+            linked = np.vstack([given, linked])
+            cost += escape_cost
+            length += step
         res = self._resolution
         return Path2D(
             self.node_to_world(linked),
@@ -1388,6 +1636,52 @@ class FieldDStar:
             length=length * res,
             expanded=expanded,
         )
+
+
+def _nearest_node(p: tuple[float, float]) -> tuple[int, int]:
+    """The node nearest node coordinates ``p`` (as :meth:`FieldDStar.world_to_node` rounds)."""
+    # round_half_up, not floor(p + 0.5): that sum rounds first (0.5 - 2**-54 -> 1).
+    near = round_half_up(np.array(p, dtype=np.float64))
+    return int(near[0]), int(near[1])
+
+
+def _obstacle_mask(value: ArrayLike, costs: FloatArray) -> NDArray[np.bool_]:
+    """``obstacles`` of :class:`FieldDStar` checked against the costs, as an owned copy."""
+    arr = as_array(value, "obstacles")
+    if arr.dtype != np.bool_:
+        raise TypeError(f"obstacles must be a boolean array, got dtype {arr.dtype}")
+    if arr.shape != costs.shape:
+        raise ValueError(f"obstacles must have the shape of costs {costs.shape}, got {arr.shape}")
+    passable = arr & np.isfinite(costs)
+    if passable.any():
+        row, col = (int(v) for v in np.argwhere(passable)[0])
+        cost = float(costs[row, col])
+        raise ValueError(
+            f"obstacles marks cell {(row, col)}, whose cost is finite ({cost!r}): "
+            "an obstacle is impassable (with a finite unknown_cost, unknown cells are no obstacles)"
+        )
+    return np.array(arr, dtype=np.bool_, order="C")
+
+
+def _obstacle_flags(value: ArrayLike, cells: IntArray, costs: FloatArray) -> NDArray[np.bool_]:
+    """``obstacles`` of :meth:`FieldDStar.update_costs`, one flag a cell listed."""
+    arr = as_array(value, "obstacles")
+    if arr.dtype != np.bool_:
+        raise TypeError(f"obstacles must be a bool or a boolean array, got dtype {arr.dtype}")
+    m = cells.shape[0]
+    if arr.ndim == 0:
+        arr = np.full(m, bool(arr))
+    if arr.shape != (m,):
+        raise ValueError(f"obstacles must be a bool or have shape ({m},), got {arr.shape}")
+    passable = arr & np.isfinite(costs)
+    if passable.any():
+        k = int(np.argmax(passable))
+        cell = (int(cells[k, 0]), int(cells[k, 1]))
+        raise ValueError(
+            f"obstacles marks cell {cell}, whose new cost is finite ({float(costs[k])!r}): "
+            "an obstacle is impassable"
+        )
+    return np.array(arr, dtype=np.bool_)
 
 
 def _heuristic(a: tuple[int, int], b: tuple[int, int], hscale: float) -> float:

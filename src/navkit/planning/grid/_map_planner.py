@@ -9,14 +9,16 @@ from typing import Any, Literal, NamedTuple, Protocol
 import numpy as np
 from numpy.typing import ArrayLike
 
+from navkit._shared.dunders import slot_state
 from navkit._shared.frozen import restore_slots
 from navkit._shared.metres import metres_text
-from navkit._shared.types import BoolArray, FloatArray, IntArray
+from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_bool, as_float_array
 from navkit.errors import NoPathError
 from navkit.geometry import Pose2D, as_pose
 from navkit.mapping import OccupancyGrid
 from navkit.planning.grid._astar import AStarPlanner
+from navkit.planning.grid._escape import nearest_escape
 from navkit.planning.grid._field_dstar import FieldDStar
 from navkit.planning.grid._limits import (
     COORDINATE_LIMIT,
@@ -63,17 +65,6 @@ class CellPlanner(Protocol):
 
 
 _BUILT_IN = ("astar", "field_dstar")
-
-# Cost per cell of length that an escape segment pays in cells impassable only
-# through the inflation: the finite limit of the band's cost next to the
-# inscribed zone, ``1 + cost_weight`` with the cost_weight (4) MapPlanner builds
-# its costs with (navkit.mapping.traversal_costs).
-_BAND_COST = 5.0
-# An escape segment passing within this many cells of a blocked cell's square
-# counts as crossing it: a segment grazing a wall's corner is refused, never let
-# through by a rounding error.
-_GRAZE = 1e-9
-
 
 class MapPlanner:
     """Plans paths between world points on one occupancy grid, many times.
@@ -182,6 +173,7 @@ class MapPlanner:
         "_snapshot",
         "_unknown_cost",
     )
+    __getstate__ = slot_state  # pickle protocols 0 and 1 too
 
     def __init__(
         self,
@@ -456,15 +448,11 @@ class MapPlanner:
     def _escape(self, point: FloatArray, start: tuple[int, int], tolerance: float) -> _Escape:
         """The escape from the impassable start cell ``start``, or the refusal.
 
-        Candidates: the passable cells whose centre lies within ``tolerance``
-        of the start point, in the start's 4-connected component of cells
-        that are not hard-blocked (occupied, or unknown with
-        ``unknown_cost=inf``) in a window around the disc: a segment crossing
-        no hard-blocked square crosses a 4-connected chain of such cells, so
-        the labelling only drops cells no segment could reach (a start in a
-        sealed pocket is refused without testing every cell beyond its
-        walls). They are tried nearest first. The reason of a refusal is
-        worked out only then (:meth:`_blocked_reason` may rebuild the costs).
+        The hard cells, which no escape segment may touch, are the occupied
+        ones and, with ``unknown_cost=inf``, the unknown ones; the search is
+        :func:`~navkit.planning.grid._escape.nearest_escape`, shared with
+        :class:`FieldDStar`. The reason of a refusal is worked out only then
+        (:meth:`_blocked_reason` may rebuild the costs).
         """
         where = f"start {tuple(point.tolist())} (cell {start})"
         if tolerance == 0.0:
@@ -488,96 +476,16 @@ class MapPlanner:
         if hard[start]:
             # In an obstacle or in impassable unknown space: never escaped.
             raise ValueError(f"{where} {self._blocked_reason(*start)}")
-        total = tolerance / self._grid.resolution
-        # A disc this large holds the whole map.
-        whole = math.hypot(*self._costs.shape) + 2.0
-        # Growing discs: the first escape is usually within a few cells, and a
-        # disc of radius ``reach`` holds every candidate nearer than one found
-        # in it, and the cells of their segments.
-        reach = 8.0
-        while True:
-            reach = total if reach >= min(total, whole) else reach
-            found = self._escape_within(point, start, (q_row, q_col), reach, tolerance, hard)
-            if found is not None:
-                return found
-            if reach == total:
-                break
-            reach *= 4.0
+        found = nearest_escape(
+            self._costs, hard, start, (q_row, q_col), tolerance, self._grid.resolution
+        )
+        if found is not None:
+            return _Escape(found[0], point, found[1])
         raise ValueError(
             f"{where} {self._blocked_reason(*start)}, and no passable cell centre within "
             f"start_tolerance ({tolerance} m) can be reached in a straight line without "
             "crossing an obstacle" + (" or unknown space" if math.isinf(self._unknown_cost) else "")
         )
-
-    def _escape_within(
-        self,
-        point: FloatArray,
-        start: tuple[int, int],
-        q: tuple[float, float],
-        reach: float,
-        tolerance: float,
-        hard_map: BoolArray,
-    ) -> _Escape | None:
-        """The escape among the candidates within ``reach`` cells of ``q``, if any.
-
-        ``q``: the start point in continuous grid coordinates; ``hard_map``:
-        the cells no escape segment may touch (occupied, or unknown with
-        ``unknown_cost=inf``), of which a window around the disc is used.
-        """
-        rows, cols = self._costs.shape
-        q_row, q_col = q
-        r_lo = max(0, math.floor(q_row - reach) - 1)
-        r_hi = min(rows, math.ceil(q_row + reach) + 2)
-        c_lo = max(0, math.floor(q_col - reach) - 1)
-        c_hi = min(cols, math.ceil(q_col + reach) + 2)
-        window = (slice(r_lo, r_hi), slice(c_lo, c_hi))
-        hard = hard_map[window]
-        row0, col0 = start[0] - r_lo, start[1] - c_lo
-        from scipy import ndimage  # only here: an escape is rare, the import is not free
-
-        labels, _ = ndimage.label(~hard)
-        rr, cc = np.nonzero(
-            (labels == labels[row0, col0]) & np.isfinite(self._costs[window])
-        )
-        rr += r_lo
-        cc += c_lo
-        d2 = (rr - q_row) ** 2 + (cc - q_col) ** 2
-        near = (np.sqrt(d2) * self._grid.resolution <= tolerance) & (d2 <= reach * reach)
-        rr, cc, d2 = rr[near], cc[near], d2[near]
-        origin = np.array([q_row, q_col])
-        theta = np.arctan2(cc - q_col, rr - q_row)
-        # Candidates neither tried nor hidden behind a hard cell that blocked an
-        # earlier one, in index order (ties go to the lowest (row, col)). Without the
-        # shadows a start whose candidates are all hidden (deep in a bent, band-only
-        # corridor, a large tolerance) tested every segment: minutes on a big map.
-        alive = np.arange(rr.shape[0])
-        while alive.size:
-            near_d2 = d2[alive]
-            first = int(np.argmin(near_d2))  # the first of the least: lowest index
-            k = int(alive[first])
-            cell = (int(rr[k]), int(cc[k]))
-            direction = np.array([cell[0] - q_row, cell[1] - q_col])
-            box_r, box_c, _, _ = _segment_cells(origin, direction, _GRAZE)
-            # Beyond the map's edge only a segment along that edge touches them.
-            inside = (box_r >= 0) & (box_r < rows) & (box_c >= 0) & (box_c < cols)
-            box_r, box_c = box_r[inside], box_c[inside]
-            blocked = hard[box_r - r_lo, box_c - c_lo]
-            if not blocked.any():
-                box_r, box_c, enter, leave = _segment_cells(origin, direction, 0.0)
-                inside = (box_r >= 0) & (box_r < rows) & (box_c >= 0) & (box_c < cols)
-                box_r, box_c = box_r[inside], box_c[inside]
-                enter, leave = enter[inside], leave[inside]
-                cell_costs = self._costs[box_r, box_c]
-                cell_costs = np.where(np.isfinite(cell_costs), cell_costs, _BAND_COST)
-                cost = float(np.sum((leave - enter) * cell_costs)) * math.hypot(*direction)
-                return _Escape(cell, point, cost)
-            # The blocking cell nearest the start hides the widest wedge behind it.
-            dist2 = np.where(blocked, (box_r - q_row) ** 2 + (box_c - q_col) ** 2, np.inf)
-            blocker = int(np.argmin(dist2))
-            drop = _shadow(q, (int(box_r[blocker]), int(box_c[blocker])), theta[alive], near_d2)
-            drop[first] = True
-            alive = alive[~drop]
-        return None
 
     def _endpoint_cell(self, value: Pose2D | ArrayLike, name: str) -> tuple[int, int]:
         point = _point_xy(value, name)
@@ -666,75 +574,6 @@ class _Escape(NamedTuple):
     cell: tuple[int, int]
     point: FloatArray
     cost: float
-
-
-def _shadow(
-    q: tuple[float, float], blocker: tuple[int, int], theta: FloatArray, d2: FloatArray
-) -> BoolArray:
-    """Which candidates (directions ``theta``, squared distances ``d2`` from ``q``) are hidden.
-
-    A sufficient test, not an exact one: a centre whose direction from ``q``
-    lies strictly inside (by ``1e-9`` rad) the angle that the blocker's square
-    subtends and that lies farther than the square's farthest corner is
-    hidden, as its segment meets the square on the way. ``q`` touching the
-    square (within the graze) hides everything.
-    """
-    q_row, q_col = q
-    b_row, b_col = blocker
-    reach = 0.5 + _GRAZE
-    if abs(b_row - q_row) <= reach and abs(b_col - q_col) <= reach:
-        return np.ones(theta.shape[0], dtype=bool)
-    corner_r = b_row + np.array([-0.5, -0.5, 0.5, 0.5]) - q_row
-    corner_c = b_col + np.array([-0.5, 0.5, -0.5, 0.5]) - q_col
-    base = math.atan2(b_col - q_col, b_row - q_row)
-    # Offsets from the direction of the square's centre, wrapped to [-pi, pi):
-    # seen from outside, the square spans less than a half turn around it.
-    spread = (np.arctan2(corner_c, corner_r) - base + math.pi) % (2 * math.pi) - math.pi
-    offset = (theta - base + math.pi) % (2 * math.pi) - math.pi
-    far = float(np.hypot(corner_r, corner_c).max())
-    margin = 1e-9
-    hidden: BoolArray = (
-        (offset > spread.min() + margin)
-        & (offset < spread.max() - margin)
-        & (d2 > (far + margin) ** 2)
-    )
-    return hidden
-
-
-def _segment_cells(
-    start: FloatArray, direction: FloatArray, graze: float
-) -> tuple[IntArray, IntArray, FloatArray, FloatArray]:
-    """Cells whose closed square, grown by ``graze``, the segment ``start + t·direction`` meets.
-
-    Continuous grid coordinates ``(row, col)``, cell ``(r, c)`` the square
-    ``[r-½, r+½] × [c-½, c+½]``, ``t`` in ``[0, 1]``. Returns the rows and
-    columns of those cells and the ``t`` at which the segment enters and
-    leaves each (slab clipping, exact up to rounding; with ``graze = 0`` the
-    intervals partition ``[0, 1]`` but for touching points of zero length).
-    """
-    end = start + direction
-    lo = np.floor(np.minimum(start, end) + 0.5 - graze).astype(np.int64)
-    hi = np.floor(np.maximum(start, end) + 0.5 + graze).astype(np.int64)
-    rows = np.arange(lo[0], hi[0] + 1)
-    cols = np.arange(lo[1], hi[1] + 1)
-    enter = np.zeros((rows.size, cols.size))
-    leave = np.ones((rows.size, cols.size))
-    for axis, centres in ((0, rows), (1, cols)):
-        low = centres - 0.5 - graze - start[axis]
-        high = centres + 0.5 + graze - start[axis]
-        d = direction[axis]
-        if d == 0.0:
-            inside = (low <= 0.0) & (high >= 0.0)
-            t_in = np.where(inside, 0.0, np.inf)
-            t_out = np.where(inside, 1.0, -np.inf)
-        else:
-            t_in = np.minimum(low / d, high / d)
-            t_out = np.maximum(low / d, high / d)
-        shape = (-1, 1) if axis == 0 else (1, -1)
-        enter = np.maximum(enter, t_in.reshape(shape))
-        leave = np.minimum(leave, t_out.reshape(shape))
-    hit_r, hit_c = np.nonzero(enter <= leave)
-    return rows[hit_r], cols[hit_c], enter[hit_r, hit_c], leave[hit_r, hit_c]
 
 
 def _point_xy(value: Pose2D | ArrayLike, name: str) -> FloatArray:
