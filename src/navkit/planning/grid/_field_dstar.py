@@ -806,7 +806,9 @@ class FieldDStar:
         Path2D
             ``"world"`` path from ``start_xy`` to ``goal_xy``; cost in cost units ×
             metres (its exact polyline cost times the resolution), length in m.
-            After an escape the points are ``start_xy``, then the path from
+            After an escape the points are ``start_xy`` (as every world path
+            of this planner begins: through node coordinates and back, so
+            within a rounding step of the point given), then the path from
             the escape cell's centre; ``length`` includes the escape segment
             and ``cost`` its cost: for each cell it crosses, the length inside
             the cell × the cell's cost, an impassable (inflation) cell
@@ -882,12 +884,13 @@ class FieldDStar:
             cell: escaped again, or not, on the current costs).
         start_tolerance : float, default 0.0
             As in :meth:`plan_world` (keyword-only), for ``start_xy`` or a
-            kept start point that escaped: a robot tracking a path along the
+            kept start point that escaped or whose cell :meth:`update_costs`
+            closed with ``obstacles=False``: a robot tracking a path along the
             edge of the inflated band a few centimetres off replans from where
             it is. Any other kept start is checked as before: a world point
-            whose cell :meth:`update_costs` closed (an obstacle from then on),
-            a node (:meth:`plan`, :meth:`replan`) or a cell (:meth:`plan_cells`)
-            never escapes. The search moves its
+            whose cell :meth:`update_costs` closed as an obstacle (its
+            default), a node (:meth:`plan`, :meth:`replan`) or a cell
+            (:meth:`plan_cells`) never escapes. The search moves its
             start to the escape cell's node, as for any new start, and its
             repair stays equal to a fresh :meth:`plan_world` from
             ``start_xy`` with this tolerance.
@@ -968,9 +971,16 @@ class FieldDStar:
             given = self._escape[0]
             where = tuple(self.node_to_world(given).tolist())
             p_s, s, escape = self._start_end(given, where, tolerance, " (kept from the last plan)")
+        elif self._kept_in_inflation():
+            # A world point whose cell update_costs() closed as inflation
+            # (obstacles=False): it escapes as the same point given would.
+            given = self._start_point
+            where = tuple(self.node_to_world(given).tolist())
+            p_s, s, escape = self._start_end(given, where, tolerance, " (kept from the last plan)")
         else:
             # A kept start that did not escape: its cell was passable, so one closed
-            # since is a cell update_costs() closed, an obstacle to the escape.
+            # since is a cell update_costs() closed, an obstacle to the escape (unless
+            # closed as inflation, above).
             self._check_kept_end(self._start_point, self._start, self._start_on_node, "start_xy")
             kept = False
         self._check_kept_end(self._goal_point, self._goal, self._goal_on_node, "goal_xy")
@@ -1083,13 +1093,16 @@ class FieldDStar:
                 kinds = flags[::-1][last]
             if not created and np.array_equal(mask[rows, cols], kinds):
                 kinds = None
-        if kinds is not None:
-            # Only start_tolerance reads the kinds: the search state does not change.
-            assert mask is not None
-            mask[rows, cols] = kinds
-            self._obstacles = mask
+        # Only start_tolerance reads the kinds: the search state does not change. They
+        # are written with the costs, so that an interrupted update (a MemoryError or a
+        # KeyboardInterrupt below) marks no cell of finite cost as an obstacle.
         if np.array_equal(self._pad[cells_u], final):
-            return  # no cost changes: the search state and the cached path stay valid
+            # No cost changes: the search state and the cached path stay valid.
+            if kinds is not None:
+                assert mask is not None
+                mask[rows, cols] = kinds
+                self._obstacles = mask
+            return
         self._cached = None
         self._lowered = self._lowered or bool(np.any(final < self._pad[cells_u]))
         listed = int(self._changed[0])
@@ -1109,6 +1122,10 @@ class FieldDStar:
         # their corners (settle). NumPy, not a kernel: one compiled function fewer
         # on first use, and a few cells take microseconds either way.
         self._pad[cells_u] = final
+        if kinds is not None:  # no call since the costs: no interrupt between them
+            assert mask is not None
+            mask[rows, cols] = kinds
+            self._obstacles = mask
         self._changed[listed + 1 : listed + 1 + added] = cells_u
         self._changed[0] = listed + added
 
@@ -1294,6 +1311,19 @@ class FieldDStar:
                 f"{name} {where} (kept from the last plan) is in an impassable cell "
                 f"{(row, col)} (cost inf) since update_costs()"
             )
+
+    def _kept_in_inflation(self) -> bool:
+        """Whether the kept start is a world point in a cell the obstacle mask calls inflation.
+
+        Such a start (given to :meth:`plan_world` or :meth:`replan_world`, not
+        a node or a cell of :meth:`plan_cells`) whose cell :meth:`update_costs`
+        closed with ``obstacles=False`` may escape, as the point given anew may.
+        """
+        if self._start_on_node or self._start_cell or self._obstacles is None:
+            return False
+        assert self._start_point is not None
+        row, col = math.floor(self._start_point[0]), math.floor(self._start_point[1])
+        return not math.isfinite(self._cell_cost(row, col)) and not self._obstacles[row, col]
 
     def _require_plan(self, method: str) -> None:
         if self._start is None or self._goal is None:
@@ -1666,6 +1696,9 @@ def _obstacle_mask(value: ArrayLike, costs: FloatArray) -> NDArray[np.bool_]:
 def _obstacle_flags(value: ArrayLike, cells: IntArray, costs: FloatArray) -> NDArray[np.bool_]:
     """``obstacles`` of :meth:`FieldDStar.update_costs`, one flag a cell listed."""
     arr = as_array(value, "obstacles")
+    if arr.size == 0 and arr.ndim == 1:
+        # No flags for no cells: NumPy types an empty list float64, as cells and new_costs.
+        arr = arr.astype(np.bool_)
     if arr.dtype != np.bool_:
         raise TypeError(f"obstacles must be a bool or a boolean array, got dtype {arr.dtype}")
     m = cells.shape[0]
