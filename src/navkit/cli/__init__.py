@@ -8,10 +8,12 @@
   [--data DIR] [--quiet]`` — one paper's experiment, navkit's figures beside
   the paper's; trials in parallel on local processes or a Dask cluster.
 * ``navkit plan MAP.yaml --start X,Y --goal X,Y [--planner astar|field_dstar]
-  [--radius R] [--start-tolerance METRES] [--plot FILE.png]`` — a path on any
-  ROS map_server map; with ``--start-tolerance``, a start within ``R`` of an
+  [--radius R] [--start-tolerance METRES] [--plot FILE.png] [--json FILE]`` —
+  a path on any ROS map_server map (points also as its table prints them,
+  ``"(X, Y)"``); with ``--start-tolerance``, a start within ``R`` of an
   obstacle or unknown space (a drifted position estimate) first moves straight
-  to the nearest passable cell centre within ``METRES`` (default 0: refused).
+  to the nearest passable cell centre within ``METRES`` (default 0: refused);
+  ``--json`` holds the path's points, length and cost.
 * ``navkit warmup [--only STEP] [--workers N] [--quiet]`` — compile every
   numba kernel now (once per install), print what was compiled.
 * ``navkit --version``.
@@ -23,8 +25,10 @@ one (``navkit run omni``: "maybe you meant 'omni-apf'?"). A missing,
 unreadable or malformed file, map or data set prints one line ``navkit:
 error: ...`` and exits with code 1, as do output files that cannot be
 written, two options naming one file, ``--json -`` (standard output carries
-the tables: give a file) and a ``--data`` that is not a folder (without
-``--scheduler``; all checked before a run starts).
+the tables: give a file), an output naming the map's own files and a
+``--data`` that is not a folder (without ``--scheduler``; all checked before
+a run starts), and a failed write to standard output (``standard output: No
+space left on device``).
 Ctrl-C exits with code 130 (``SIGTERM`` and ``SIGHUP`` with 143 and 129, after
 the same clean-up: worker processes stopped, no temporary files left), in one
 line; a closed standard output (``navkit list | head -1``) ends the command

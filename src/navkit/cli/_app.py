@@ -7,7 +7,7 @@ import contextlib
 import os
 import sys
 from collections.abc import Sequence
-from typing import TextIO
+from typing import TextIO, cast
 
 from navkit.cli._encoding import tolerant_output
 from navkit.cli._parser import build_parser, join_negative_points
@@ -90,7 +90,43 @@ def main(argv: Sequence[str] | None = None) -> int:
             streams.append(stream)
         if sys.stdout is None:  # argparse's --help would go to standard error instead
             closing.enter_context(contextlib.redirect_stdout(streams[0]))
-        return _main(argv, *streams)
+        out = cast(TextIO, _NamedOutput(streams[0], "standard output"))
+        return _main(argv, out, streams[1])
+
+
+class _NamedOutput:
+    """A text stream whose write errors name it (``standard output: No space left on device``).
+
+    The system reports a failed write to an open stream without a file name
+    (``navkit plan ... > /dev/full``: "No space left on device" alone), which
+    would leave the user guessing among the command's files. A closed pipe
+    (``BrokenPipeError``) passes unchanged: the command ends quietly with 141.
+    """
+
+    def __init__(self, stream: TextIO, name: str) -> None:
+        self._stream = stream
+        self._name = name
+
+    def _name_in(self, exc: OSError) -> None:
+        if exc.filename is None and not isinstance(exc, BrokenPipeError):
+            exc.filename = self._name
+
+    def write(self, text: str) -> int:
+        try:
+            return self._stream.write(text)
+        except OSError as exc:
+            self._name_in(exc)
+            raise
+
+    def flush(self) -> None:
+        try:
+            self._stream.flush()
+        except OSError as exc:
+            self._name_in(exc)
+            raise
+
+    def __getattr__(self, name: str) -> object:  # fileno, isatty, encoding, ...
+        return getattr(self._stream, name)
 
 
 def _main(argv: Sequence[str] | None, out: TextIO, err: TextIO) -> int:

@@ -26,23 +26,35 @@ def version() -> str:
 def join_negative_points(argv: list[str]) -> list[str]:
     """``--start -1.5,2`` as ``--start=-1.5,2``: argparse would take ``-1.5,2`` for an option.
 
+    An abbreviation (``--go -1,2``) is joined too, so that argparse reads it as
+    it reads the abbreviation before a positive point (``--sta`` stays
+    ambiguous with ``--start-tolerance``, as ``--sta 1,2`` is); nothing after
+    ``--`` is changed.
+
     Examples
     --------
-    >>> join_negative_points(["plan", "m.yaml", "--start", "-1.5,-0.5", "--goal", "1,1"])
-    ['plan', 'm.yaml', '--start=-1.5,-0.5', '--goal', '1,1']
+    >>> join_negative_points(["plan", "m.yaml", "--start", "-1.5,-0.5", "--go", "-1,1"])
+    ['plan', 'm.yaml', '--start=-1.5,-0.5', '--go=-1,1']
     """
     out: list[str] = []
     i = 0
     while i < len(argv):
         arg = argv[i]
         following = argv[i + 1] if i + 1 < len(argv) else ""
-        if arg in ("--start", "--goal") and re.match(r"-[\d.]", following):
+        if arg == "--":  # the rest are positional arguments, as the user wrote them
+            return out + argv[i:]
+        if _point_option(arg) and re.match(r"\(?\s*-[\d.]", following):
             out.append(f"{arg}={following}")
             i += 2
         else:
             out.append(arg)
             i += 1
     return out
+
+
+def _point_option(arg: str) -> bool:
+    """Whether ``arg`` is ``--start`` or ``--goal`` or an abbreviation of one (``--go``)."""
+    return len(arg) > 2 and any(name.startswith(arg) for name in ("--start", "--goal"))
 
 
 class Choices(Sequence[str]):
@@ -223,9 +235,11 @@ examples:
   navkit plan maps/turtlebot3_world/map.yaml --start -2,-0.5 --goal 2,0.5
   navkit plan office.yaml --start 1.5,2 --goal 12,8.25 --radius 0.2 \\
       --planner field_dstar --plot route.png
+  navkit plan office.yaml --start "(1.5, 2)" --goal 12,8.25 --json route.json
 
 Coordinates are world metres in the map's frame (its YAML's origin), not \
-cells; a negative one may follow --start or --goal with a space."""
+cells, as X,Y or (X, Y) (quoted for the shell), as the table prints them; a \
+negative one may follow --start or --goal with a space."""
 
 
 def _scenario_names() -> list[str]:
@@ -252,12 +266,15 @@ def _warmup_steps() -> tuple[str, ...]:
 
 
 def _point(text: str) -> tuple[float, float]:
-    """``"X,Y"`` (m) as two finite floats."""
-    parts = text.split(",")
+    """``"X,Y"`` (m) as two finite floats; ``"(X, Y)"``, as the tables print points, too."""
+    inner = text.strip()
+    if inner.startswith("(") and inner.endswith(")"):
+        inner = inner[1:-1]
+    parts = inner.split(",")
     try:
         if len(parts) != 2:
             raise ValueError
-        x, y = float(parts[0]), float(parts[1])
+        x, y = float(parts[0]), float(parts[1])  # float() ignores spaces around a number
     except ValueError:
         raise argparse.ArgumentTypeError(f"expected X,Y in metres, got {text!r}") from None
     if not (math.isfinite(x) and math.isfinite(y)):
@@ -427,6 +444,9 @@ def build_parser(scenarios: Sequence[str] | None = None) -> argparse.ArgumentPar
                            "centre within METRES (default 0: such a start is "
                            "refused)")  # fmt: skip
     plan.add_argument("--plot", metavar="FILE.png", help="write a picture of the map and path")
+    plan.add_argument("--json", metavar="FILE",
+                      help="write the plan as JSON: its points (m), length, cost, "
+                           "planner")  # fmt: skip
     plan.add_argument("--quiet", action="store_true", help="no compilation notice on stderr")
 
     warm = sub.add_parser(

@@ -14,8 +14,9 @@ import yaml
 
 from navkit._shared.metres import metres_text
 from navkit._shared.types import FloatArray
+from navkit.cli._files import write_json
 from navkit.cli._kernels import announce_compilation, check_cache
-from navkit.cli._outputs import check_output, save_picture
+from navkit.cli._outputs import check_distinct, check_output, save_picture
 from navkit.errors import NoPathError
 from navkit.mapping import OccupancyGrid
 from navkit.mapping.io import read_map
@@ -37,20 +38,20 @@ def _warm_up(resolution: float, radius: float, planner: PlannerName) -> None:
     )
 
 
-def _check_not_an_input(plot: str | None, map_yaml: str) -> None:
-    """Refuse a ``--plot`` naming the map's YAML or the image it names (read_map checked both).
+def _check_not_an_input(option: str, output: str | None, map_yaml: str) -> None:
+    """Refuse an output (``--plot``, ``--json``) naming the map's YAML or the image it names.
 
     ``--plot map.png`` beside ``map.yaml`` whose image is ``map.png`` would
-    otherwise replace the map itself with the picture.
+    otherwise replace the map itself with the picture (read_map checked both).
     """
-    if plot is None or not os.path.exists(plot):
+    if output is None or not os.path.exists(output):
         return
     yaml_path = Path(map_yaml)
-    if os.path.exists(yaml_path) and os.path.samefile(plot, yaml_path):
-        raise ValueError(f"--plot: {plot} is the map's YAML ({yaml_path}); choose another file")
+    if os.path.exists(yaml_path) and os.path.samefile(output, yaml_path):
+        raise ValueError(f"{option}: {output} is the map's YAML ({yaml_path}); choose another file")
     # Bytes: the YAML library tells UTF-8 from UTF-16 (by its byte-order mark, as
     # Windows writes it) itself. read_map also reads UTF-32, which PyYAML does not:
-    # then an existing --plot is refused, not risked (navkit.mapping.io has no
+    # then an existing output file is refused, not risked (navkit.mapping.io has no
     # public way to ask for the image's name alone). So are YAMLs with tabs
     # between tokens, which read_map takes and PyYAML refuses.
     try:
@@ -58,13 +59,13 @@ def _check_not_an_input(plot: str | None, map_yaml: str) -> None:
         image = Path(str(entries["image"]))
     except (yaml.YAMLError, UnicodeDecodeError, TypeError, KeyError):
         raise ValueError(
-            f"--plot: {plot} exists, and whether it is the map's image could not be read "
+            f"{option}: {output} exists, and whether it is the map's image could not be read "
             f"from {yaml_path} (PyYAML cannot read it: UTF-32 text, or tabs between "
             "tokens); choose a new file"
         ) from None
     path = yaml_path.parent / image
-    if os.path.exists(path) and os.path.samefile(plot, path):
-        raise ValueError(f"--plot: {plot} is the map's image ({path}); choose another file")
+    if os.path.exists(path) and os.path.samefile(output, path):
+        raise ValueError(f"{option}: {output} is the map's image ({path}); choose another file")
 
 
 def _in_option_names(message: str) -> str:
@@ -135,10 +136,21 @@ def _escape_rows(
 
 
 def plan_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
-    """Load the map, plan, print length and time as a table, draw it if asked."""
+    """Load the map, plan, print length and time as a table, draw it and save it if asked.
+
+    ``--json FILE`` holds the plan in world metres (``start`` and ``goal`` as
+    given, ``points`` as ``[x, y]`` lists, ``length``, ``cost``,
+    ``robot_radius``, ``start_tolerance``), the planner's name,
+    ``cells_expanded`` and the two times in ms. The points are
+    :meth:`MapPlanner.plan`'s: from the start cell's centre (or the start
+    point itself after an escape) to the goal cell's centre.
+    """
     check_output(args.plot, ".png", "--plot")
+    check_output(args.json, "", "--json")
+    check_distinct({"--plot": args.plot, "--json": args.json})
     grid = read_map(args.map)
-    _check_not_an_input(args.plot, args.map)
+    _check_not_an_input("--plot", args.plot, args.map)
+    _check_not_an_input("--json", args.json, args.map)
     problem = check_cache(err)
     if not args.quiet:
         announce_compilation(args.planner, err, problem=problem)
@@ -179,4 +191,20 @@ def plan_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
             ),
         )
         print(f"wrote {save_picture(scene, args.plot)}", file=out)
+    if args.json is not None:
+        data = {
+            "map": args.map,
+            "planner": args.planner,
+            "robot_radius": args.radius,
+            "start_tolerance": args.start_tolerance,
+            "start": list(args.start),
+            "goal": list(args.goal),
+            "length": float(path.length),
+            "cost": float(path.cost),
+            "cells_expanded": int(path.expanded),
+            "plan_time_ms": 1e3 * (searched - prepared),
+            "costmap_time_ms": 1e3 * (prepared - began),
+            "points": path.points.tolist(),
+        }
+        print(f"wrote {write_json(data, args.json)}", file=out)
     return 0
