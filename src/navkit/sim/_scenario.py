@@ -21,6 +21,7 @@ import numpy as np
 
 from navkit._shared.dunders import bounded_repr, record_eq, record_hash
 from navkit._shared.frozen import frozen_setattr, restore_read_only
+from navkit._shared.frozendict import FrozenDict
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, as_sequence, bounded_int, finite_float
 from navkit.mapping import OccupancyGrid
@@ -97,8 +98,12 @@ def _text(value: object, name: str) -> str:
     return value
 
 
-def _figures(value: object, name: str) -> dict[str, float]:
-    """Named real figures as a new dict of floats (NaN allowed: a figure that does not apply)."""
+def _figures(value: object, name: str) -> FrozenDict[str, float]:
+    """Named real figures as a new read-only mapping of floats (NaN: a figure that does not apply).
+
+    Read-only, so that the frozen record holding it is (a plain dict could be
+    changed in place, and a ``copy.copy`` of the record shared it).
+    """
     if not isinstance(value, Mapping):
         raise TypeError(f"{name} must be a mapping of str to float, got {type(value).__name__}")
     out: dict[str, float] = {}
@@ -112,7 +117,18 @@ def _figures(value: object, name: str) -> dict[str, float]:
         if math.isinf(number):
             raise ValueError(f"{name}[{key!r}] must be finite or NaN, got {number}")
         out[key] = number
-    return out
+    return FrozenDict.wrap(out)
+
+
+def _restore_figures(record: Any, state: list[Any], name: str) -> None:
+    """``__setstate__`` of a record with figures: fields from ``state``, ``name`` read-only.
+
+    Pickles made before the figures became read-only hold a plain dict.
+    """
+    restore_read_only(record, state, ())
+    figures = getattr(record, name)
+    if type(figures) is dict:
+        object.__setattr__(record, name, FrozenDict.wrap(figures))
 
 
 def _labelled(value: object, name: str, check: Callable[[Any, str], Any]) -> tuple[Any, ...]:
@@ -193,7 +209,8 @@ class TrialResult:
         The trial that ran.
     values : Mapping[str, float]
         Named scalar outcomes in SI units (``"final_error": 0.021``); booleans
-        as 0.0/1.0. JSON-ready.
+        as 0.0/1.0. Read-only (``dict(r.values)`` gives a dict to edit); equal
+        to a dict with the same items.
     trace : Trace or None
         The simulated run, when the trial is one.
     wall_time : float
@@ -219,6 +236,9 @@ class TrialResult:
         if wall < 0.0:
             raise ValueError(f"wall_time must be >= 0 s, got {wall}")
         object.__setattr__(self, "wall_time", wall)
+
+    def __setstate__(self, state: list[Any]) -> None:
+        _restore_figures(self, state, "values")
 
 
 @frozen_setattr
@@ -463,6 +483,8 @@ class ScenarioResult:
         navkit's figures beside the paper's.
     summary : Mapping[str, float]
         The headline figures, named, SI units (what tests and sweeps compare).
+        Read-only (``dict(r.summary)`` gives a dict to edit); equal to a dict
+        with the same items.
     scene : Scene or None
         A representative picture of the run, for ``--plot``.
 
@@ -495,6 +517,9 @@ class ScenarioResult:
         object.__setattr__(self, "tables", tables)
         object.__setattr__(self, "summary", _figures(self.summary, "summary"))
         _instance(Scene, True)(self.scene, "scene")
+
+    def __setstate__(self, state: list[Any]) -> None:
+        _restore_figures(self, state, "summary")
 
     @property
     def traces(self) -> tuple[Trace, ...]:
