@@ -1284,7 +1284,7 @@ def test_world_end_nodes_round_as_world_to_node() -> None:
     below_half = 0.49999999999999994
     for node_xy in ([1.0, below_half], [below_half, 2.0], [2.5, 1.5]):
         world = fd.node_to_world(node_xy)
-        _, node = fd._world_end(world, "start_xy")
+        _, node, _ = fd._world_end(world, "start_xy")
         assert node == tuple(fd.world_to_node(world).tolist())
 
 

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import threading
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -222,7 +222,6 @@ class AStarPlanner:
         "_scale",
         "_weight",
     )
-    __getstate__ = slot_state  # pickle protocols 0 and 1 too
 
     _costs: FloatArray
     _flat: FloatArray
@@ -339,12 +338,24 @@ class AStarPlanner:
             return
         self._jps = (row_bits, col_bits, uniform)
 
+    def __getstate__(self) -> object:
+        """The state pickles and copies take: Python's default, without the flat view.
+
+        Pickle stores a view as an array of its own, so the grid was pickled
+        twice (16 MB for a 1000² grid instead of 8); :meth:`__setstate__` makes
+        the view again. Also pickle protocols 0 and 1 need a ``__getstate__``
+        (see :func:`slot_state`).
+        """
+        instance, slots = cast("tuple[Any, dict[str, Any]]", slot_state(self))
+        return instance, {name: value for name, value in slots.items() if name != "_flat"}
+
     def __setstate__(self, state: Any) -> None:
         """Restore from a pickle or :func:`copy.deepcopy`.
 
-        Both hand back the flat grid as a writable array of its own: the search
-        kernels would compile a second time for it (see :func:`read_only`) and
-        the grid would be held twice. It becomes a read-only view of the grid again.
+        The flat grid is made again as a read-only view of the grid (pickles
+        made before it was left out hand it back as a writable array of its
+        own: the search kernels would compile a second time for it, see
+        :func:`read_only`, and the grid would be held twice).
         """
         restore_slots(self, state)
         self._flat = read_only(self._costs.reshape(-1))

@@ -5,7 +5,7 @@ from __future__ import annotations
 import copy
 import math
 from collections.abc import Mapping
-from typing import Any, Literal
+from typing import Any, Literal, cast
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -294,6 +294,7 @@ class FieldDStar:
         "_goal_cell",
         "_goal_on_node",
         "_goal_point",
+        "_goal_xy",
         "_heap",
         "_hscale",
         "_interp",
@@ -313,11 +314,11 @@ class FieldDStar:
         "_start_cell",
         "_start_on_node",
         "_start_point",
+        "_start_xy",
         "_vals",
         "_width",
         "_work",
     )
-    __getstate__ = slot_state  # pickle protocols 0 and 1 too
 
     def __init__(
         self,
@@ -382,6 +383,12 @@ class FieldDStar:
         # centres after plan_cells, world points after the world methods).
         self._start_point: tuple[float, float] | None = None
         self._goal_point: tuple[float, float] | None = None
+        # The world points given for the ends (the world methods; after an escape
+        # the point given, not the escape cell's centre), or None for a node or a
+        # cell: world paths begin and end at them exactly, not at their node
+        # coordinates turned back into world points (a rounding step off).
+        self._start_xy: tuple[float, ...] | None = None
+        self._goal_xy: tuple[float, ...] | None = None
         # Whether each end was given as a node (plan(), replan()) rather than as a
         # point in a cell (plan_cells(), the world methods): a replan checks a kept
         # end again the way the method that gave it checked it.
@@ -394,31 +401,75 @@ class FieldDStar:
         self._start_cell = False
         self._goal_cell = False
 
+    def __getstate__(self) -> object:
+        """The state pickles and copies take: Python's default, without what is derived.
+
+        Pickle stores each view as an array of its own: ``_g``, ``_rhs`` and the
+        heap's slots (columns of the node records) were pickled beside the
+        records, and the heap whole although only the slots a search has
+        reached hold anything but zeros (a fresh 1000² planner pickled to
+        80 MB). Left out: the views, the heap's trailing zero slots (those
+        past the deepest a search reached: the copy is bit for bit the
+        original, slots a search left behind included), and the records of a
+        planner that has not searched yet (``_clean``: as :func:`node_records`
+        makes them). :meth:`__setstate__` makes them again. Also pickle
+        protocols 0 and 1 need a ``__getstate__`` (see :func:`slot_state`).
+        """
+        instance, slots = cast("tuple[Any, dict[str, Any]]", slot_state(self))
+        kept = {
+            name: value
+            for name, value in slots.items()
+            if name not in ("_g", "_rhs", "_heap", "_vals")
+        }
+        nodes, keys, _, size = self._heap
+        # Bits, not values: a key of -0.0 is kept.
+        written = np.flatnonzero((nodes != 0) | (keys.view(np.int64) != 0).any(axis=1))
+        used = int(written[-1]) + 1 if written.size else 0
+        # (nodes, keys, size): three items, where pickles of earlier versions hold
+        # (nodes, keys, pos, size) whole.
+        kept["_heap"] = (nodes[:used], keys[:used], int(size[0]))
+        if not self._clean:
+            kept["_vals"] = self._vals
+        return instance, kept
+
     def __setstate__(self, state: Any) -> None:
-        # Copies (copy.deepcopy, pickle) copy each array on its own: the node records
-        # and the heap are made again (node_records: the keys cache-line aligned, as
-        # a fresh planner's) and filled from the copies, so that g, rhs and the heap's
-        # slots are views of the records again. A subclass's own attributes (the
-        # state's instance __dict__) are restored too. Pickles made before the node
-        # records hold g, rhs and the slots as arrays of their own.
+        # Copies (copy.deepcopy, pickle) hand back what __getstate__ kept: the node
+        # records and the heap are made again (node_records: the keys cache-line
+        # aligned, as a fresh planner's) and filled from the copies, so that g, rhs
+        # and the heap's slots are views of the records again. A subclass's own
+        # attributes (the state's instance __dict__) are restored too. Pickles made
+        # before the records hold g, rhs and the slots as arrays of their own; those
+        # made before __getstate__ the records, g, rhs and the heap whole.
         instance, slots = state if isinstance(state, tuple) else (None, state)
         slots = dict(slots)
         old_vals = slots.pop("_vals", None)
-        old_g, old_rhs = slots.pop("_g"), slots.pop("_rhs")
-        nodes, keys, pos, size = slots.pop("_heap")
-        vals, heap = node_records(len(old_g))
-        if old_vals is None:
-            vals[:, G] = old_g
-            vals[:, RHS] = old_rhs
-            heap[2][:] = pos
+        old_g, old_rhs = slots.pop("_g", None), slots.pop("_rhs", None)
+        old_heap = slots.pop("_heap")
+        vals, heap = node_records(int(slots["_nrows"]) * int(slots["_ncols"]))
+        if len(old_heap) == 3:
+            nodes, keys, size = old_heap
+            heap[0][: len(nodes)] = nodes
+            heap[1][: len(nodes)] = keys
+            heap[3][0] = size
+            if old_vals is not None:
+                vals[:] = old_vals
         else:
-            vals[:] = old_vals
-        heap[0][:] = nodes
-        heap[1][:] = keys
-        heap[3][:] = size
-        # Pickles made before start_tolerance: no obstacle mask, no escape.
+            nodes, keys, pos, size = old_heap
+            if old_vals is None:
+                vals[:, G] = old_g
+                vals[:, RHS] = old_rhs
+                heap[2][:] = pos
+            else:
+                vals[:] = old_vals
+            heap[0][:] = nodes
+            heap[1][:] = keys
+            heap[3][:] = size
+        # Pickles made before start_tolerance: no obstacle mask, no escape; before
+        # exact world ends: no world points (paths end at the round-tripped nodes).
         slots.setdefault("_obstacles", None)
         slots.setdefault("_escape", None)
+        slots.setdefault("_start_xy", None)
+        slots.setdefault("_goal_xy", None)
         restore_slots(self, (instance, slots))
         self._vals, self._heap = vals, heap
         self._g, self._rhs = vals[:, G], vals[:, RHS]
@@ -679,6 +730,7 @@ class FieldDStar:
             point = (float(s[0]), float(s[1]))
             self._move_start(s)
             self._start_point = point
+            self._start_xy = None
             self._start_on_node = True
             self._escape = None
         points, cost, length, expanded = self._search("node")
@@ -804,11 +856,13 @@ class FieldDStar:
         Returns
         -------
         Path2D
-            ``"world"`` path from ``start_xy`` to ``goal_xy``; cost in cost units ×
-            metres (its exact polyline cost times the resolution), length in m.
-            After an escape the points are ``start_xy`` (as every world path
-            of this planner begins: through node coordinates and back, so
-            within a rounding step of the point given), then the path from
+            ``"world"`` path from ``start_xy`` to ``goal_xy``: its first and last
+            points are the points given, exactly (as float64); cost in cost
+            units × metres (its exact polyline cost times the resolution),
+            length in m, both of the polyline in node coordinates (whose ends,
+            mapped back to world points, can differ from the points given by a
+            rounding step). Equal points give a one-point path of cost 0.
+            After an escape the points are ``start_xy``, then the path from
             the escape cell's centre; ``length`` includes the escape segment
             and ``cost`` its cost: for each cell it crosses, the length inside
             the cell × the cell's cost, an impassable (inflation) cell
@@ -865,8 +919,8 @@ class FieldDStar:
         tolerance = bounded_float(start_tolerance, "start_tolerance", 0.0, COORDINATE_LIMIT, "m")
         given, _, where = self._world_point(start_xy, "start_xy")
         p_s, s, escape = self._start_end(given, where, tolerance, "")
-        p_g, gl = self._world_end(goal_xy, "goal_xy")
-        self._reset(s, gl, p_s, p_g, escape=escape)
+        p_g, gl, goal_at = self._world_end(goal_xy, "goal_xy")
+        self._reset(s, gl, p_s, p_g, escape=escape, start_xy=where, goal_xy=goal_at)
         points, _, _, expanded = self._search("xy")
         return self._world_path(points, expanded)
 
@@ -901,6 +955,9 @@ class FieldDStar:
             ``"world"`` path from the start point to the goal point of the last
             plan (the goal node itself after :meth:`plan`, the goal cell's
             centre after :meth:`plan_cells`), linked to the same goal node.
+            World points given (``start_xy``, the kept start and goal of
+            :meth:`plan_world` or this method, an escaped start) are its first
+            and last points exactly, cost and length as in :meth:`plan_world`.
             Equal to a fresh search between the same nodes on the current
             costs: after :meth:`plan_world`, to what a fresh
             :meth:`plan_world` returns. After :meth:`plan_cells` the goal
@@ -969,26 +1026,31 @@ class FieldDStar:
             # The point given last, not the escape cell: escaped again (or not) on
             # the current costs with this call's tolerance.
             given = self._escape[0]
-            where = tuple(self.node_to_world(given).tolist())
+            where = self._world_of(given, self._start_xy)
             p_s, s, escape = self._start_end(given, where, tolerance, " (kept from the last plan)")
         elif self._kept_in_inflation():
             # A world point whose cell update_costs() closed as inflation
             # (obstacles=False): it escapes as the same point given would.
             given = self._start_point
-            where = tuple(self.node_to_world(given).tolist())
+            where = self._world_of(given, self._start_xy)
             p_s, s, escape = self._start_end(given, where, tolerance, " (kept from the last plan)")
         else:
             # A kept start that did not escape: its cell was passable, so one closed
             # since is a cell update_costs() closed, an obstacle to the escape (unless
             # closed as inflation, above).
-            self._check_kept_end(self._start_point, self._start, self._start_on_node, "start_xy")
+            self._check_kept_end(
+                self._start_point, self._start, self._start_on_node, "start_xy", self._start_xy
+            )
             kept = False
-        self._check_kept_end(self._goal_point, self._goal, self._goal_on_node, "goal_xy")
+        self._check_kept_end(
+            self._goal_point, self._goal, self._goal_on_node, "goal_xy", self._goal_xy
+        )
         if start_xy is not None or kept:
             # Plain assignments after the move: no call (where Python delivers a
             # KeyboardInterrupt) separates the new start from its point and escape.
             self._move_start(s)
             self._start_point = p_s
+            self._start_xy = where
             self._start_on_node = False
             self._escape = escape
         points, _, _, expanded = self._search("xy")
@@ -1181,7 +1243,7 @@ class FieldDStar:
         self,
         node: tuple[int, int],
         name: str,
-        point: tuple[float, float] | None,
+        where: tuple[float, ...] | None,
         cell: bool = False,
     ) -> None:
         """Refuse an end node kept from the last plan that :meth:`_node` would refuse now.
@@ -1189,7 +1251,7 @@ class FieldDStar:
         After :meth:`update_costs` closed every cell around it, a search to or
         from it finds no path; a fresh :meth:`plan` refuses such a node with
         ``ValueError``, and a replan, equal to that fresh plan, does the same.
-        ``point`` is the kept world point to name instead of the node
+        ``where`` is the kept world point to name instead of the node
         (:meth:`replan_world`), or None. With ``cell`` the end is the cell
         ``node`` of :meth:`plan_cells`, refused once it is impassable (as a
         fresh :meth:`plan_cells` refuses it).
@@ -1202,9 +1264,9 @@ class FieldDStar:
                 )
             return
         if self._enclosed(node):
-            where = str(node) if point is None else str(tuple(self.node_to_world(point).tolist()))
+            text = str(node) if where is None else str(where)
             raise ValueError(
-                f"{name} {where} (kept from the last plan) is a corner of impassable cells "
+                f"{name} {text} (kept from the last plan) is a corner of impassable cells "
                 f"only since update_costs() (node grid is (rows + 1, cols + 1) = "
                 f"{(self._nrows, self._ncols)})"
             )
@@ -1220,12 +1282,20 @@ class FieldDStar:
 
     def _world_end(
         self, value: ArrayLike, name: str
-    ) -> tuple[tuple[float, float], tuple[int, int]]:
-        """Node coordinates of a world point and its nearest node, checked."""
+    ) -> tuple[tuple[float, float], tuple[int, int], tuple[float, ...]]:
+        """Node coordinates of a world point, its nearest node and the point given, checked."""
         p, (row, col), where = self._world_point(value, name)
         if not math.isfinite(self._cell_cost(row, col)):
             raise ValueError(f"{name} {where} is in an impassable cell {(row, col)} (cost inf)")
-        return p, _nearest_node(p)
+        return p, _nearest_node(p), where
+
+    def _world_of(
+        self, point: tuple[float, float], given: tuple[float, ...] | None
+    ) -> tuple[float, ...]:
+        """The world point of an end: the point given, else ``point`` (node coordinates) mapped."""
+        if given is not None:
+            return given
+        return tuple(self.node_to_world(point).tolist())
 
     def _world_point(
         self, value: ArrayLike, name: str
@@ -1289,7 +1359,12 @@ class FieldDStar:
         return centre, _nearest_node(centre), (p, cost)
 
     def _check_kept_end(
-        self, point: tuple[float, float], node: tuple[int, int], on_node: bool, name: str
+        self,
+        point: tuple[float, float],
+        node: tuple[int, int],
+        on_node: bool,
+        name: str,
+        given: tuple[float, ...] | None,
     ) -> None:
         """Refuse an end kept from the last plan that a fresh plan would refuse now.
 
@@ -1300,13 +1375,14 @@ class FieldDStar:
         made that cell impassable the linked path would cost inf and a fresh
         :meth:`plan_world` refuses the point; this holds for a point exactly
         on a node too, whose cell is the one :meth:`_world_end` picks.
+        ``given``: the world point given for the end (named in the refusal), or None.
         """
         if on_node:
-            self._check_kept_node(node, name, point)
+            self._check_kept_node(node, name, self._world_of(point, given))
             return
         row, col = math.floor(point[0]), math.floor(point[1])
         if not math.isfinite(self._cell_cost(row, col)):
-            where = tuple(self.node_to_world(point).tolist())
+            where = self._world_of(point, given)
             raise ValueError(
                 f"{name} {where} (kept from the last plan) is in an impassable cell "
                 f"{(row, col)} (cost inf) since update_costs()"
@@ -1354,6 +1430,8 @@ class FieldDStar:
         start_on_node: bool = False,
         goal_on_node: bool = False,
         escape: tuple[tuple[float, float], float] | None = None,
+        start_xy: tuple[float, ...] | None = None,
+        goal_xy: tuple[float, ...] | None = None,
     ) -> None:
         """Start a new search from node ``s`` to node ``gl`` (the path's end points given).
 
@@ -1364,7 +1442,8 @@ class FieldDStar:
         ``goal_on_node``: whether each end was given as a node (see
         :meth:`_check_kept_end`). ``escape``: the start point given and the
         escape segment's cost, when ``start_point`` is an escape cell's centre
-        (see :meth:`_start_end`).
+        (see :meth:`_start_end`). ``start_xy`` and ``goal_xy``: the world
+        points given for the ends (the world methods), or None.
 
         The planner holds no plan until the sources are queued: an exception on
         the way (a ``KeyboardInterrupt``, which Python delivers as soon as the
@@ -1393,6 +1472,8 @@ class FieldDStar:
         self._start_on_node = start_on_node
         self._goal_on_node = goal_on_node
         self._escape = escape
+        self._start_xy = start_xy
+        self._goal_xy = goal_xy
         if goal_cell:
             seed = self._cell_cost(*gl) * HALF_DIAGONAL
             sources = [((gl[0] + di, gl[1] + dj), seed) for di, dj in _CORNERS.tolist()]
@@ -1459,7 +1540,8 @@ class FieldDStar:
             self._reset(self._start, self._goal, self._start_point, self._goal_point,
                         start_cell=self._start_cell, goal_cell=self._goal_cell,
                         start_on_node=self._start_on_node, goal_on_node=self._goal_on_node,
-                        escape=self._escape)
+                        escape=self._escape, start_xy=self._start_xy,
+                        goal_xy=self._goal_xy)
             self._work[0] = 0
             self._work[1] = _NO_LIMIT
             pts, k, more, status = self._walk(fresh=True)
@@ -1547,12 +1629,12 @@ class FieldDStar:
             start = tuple(math.floor(v) for v in self._start_point)
             goal = tuple(math.floor(v) for v in self._goal_point)
             return f"start_cell {start}", f"goal_cell {goal}"
-        goal_xy = tuple(self.node_to_world(self._goal_point).tolist())
+        goal_xy = self._world_of(self._goal_point, self._goal_xy)
         if self._escape is not None:
-            given = tuple(self.node_to_world(self._escape[0]).tolist())
+            given = self._world_of(self._escape[0], self._start_xy)
             cell = tuple(math.floor(v) for v in self._start_point)
             return f"start_xy {given} (escaped to cell {cell})", f"goal_xy {goal_xy}"
-        start_xy = tuple(self.node_to_world(self._start_point).tolist())
+        start_xy = self._world_of(self._start_point, self._start_xy)
         return f"start_xy {start_xy}", f"goal_xy {goal_xy}"
 
     def _repair(self) -> tuple[FloatArray, int, int, int]:
@@ -1659,8 +1741,19 @@ class FieldDStar:
             cost += escape_cost
             length += step
         res = self._resolution
+        points = self.node_to_world(linked)
+        # The ends exactly as given (node coordinates turned back into world points
+        # are a rounding step off); cost and length stay those of the node polyline.
+        if self._start_xy is not None:
+            points[0] = self._start_xy
+        if self._goal_xy is not None:
+            if points.shape[0] == 1 and self._start_xy not in (None, self._goal_xy):
+                # Start and goal at one node point, given as two world points.
+                points = np.vstack([points, [self._goal_xy]])
+            else:
+                points[-1] = self._goal_xy
         return Path2D(
-            self.node_to_world(linked),
+            points,
             "world",
             cost=cost * res,
             length=length * res,
