@@ -148,3 +148,18 @@ def test_json_needs_a_dict_as_for_every_other_mapping() -> None:
     with pytest.raises(TypeError, match="not JSON serializable"):
         json.dumps(m)
     assert json.dumps(dict(m)) == json.dumps({"a": 1.0})
+
+
+def test_copy_and_union_give_editable_plain_dicts_and_leave_it_unchanged() -> None:
+    # What a dict's user writes to edit figures (r.summary.copy(), r.summary | {...}).
+    frozen = FrozenDict({"a": 1.0, "b": 2.0})
+    edited = frozen.copy()
+    edited["a"] = 5.0
+    assert type(edited) is dict and frozen["a"] == 1.0
+    merged = frozen | {"b": 3.0, "c": 4.0}
+    assert type(merged) is dict and merged == {"a": 1.0, "b": 3.0, "c": 4.0}
+    left = {"b": 3.0, "c": 4.0} | frozen
+    assert type(left) is dict and left == {"a": 1.0, "b": 2.0, "c": 4.0}
+    assert frozen == {"a": 1.0, "b": 2.0}
+    with pytest.raises(TypeError):
+        frozen | [("a", 1)]  # type: ignore[operator]
