@@ -31,7 +31,7 @@ def _scans() -> list:
 
 def test_match_and_write_360_beams(benchmark: pytest.FixtureRequest) -> None:
     scans = _scans()
-    mapper = ScanMapper(start=POSES[0], min_distance=0.0, min_angle=0.0)
+    mapper = ScanMapper(pose=POSES[0], min_distance=0.0, min_angle=0.0)
     for scan, pose in zip(scans, POSES, strict=True):
         mapper.update(scan, odometry=pose)
     scan = scans[-1]

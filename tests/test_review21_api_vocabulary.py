@@ -19,7 +19,12 @@ vocabulary below; these tests keep it:
 * the same bad value for the same kind of option raises the same exception type
   in every package, naming the option;
 * ``data_dir`` takes a path-like wherever it is taken (``Greedy`` was typed
-  ``str | None``, so ``Greedy(data_dir=Path(...))`` failed ``mypy --strict``).
+  ``str | None``, so ``Greedy(data_dir=Path(...))`` failed ``mypy --strict``);
+* settled after the table (APIFIX): an object with a ``.pose`` takes its start
+  pose as ``pose=`` (``ScanMapper(start=)`` deprecated); every sensor
+  configuration is keyword-only (``RangeNoise`` took its swappable tuples by
+  position); both odometries ``reset(pose)``; ``MapPlanner`` reads back every
+  option it takes (``inflation_radius``, ``unknown_cost`` were missing).
 """
 
 from __future__ import annotations
@@ -397,6 +402,57 @@ def test_greedy_takes_a_path_for_data_dir(tmp_path: Path) -> None:
     assert by_path.data_dir == by_str.data_dir == str(tmp_path)
     with pytest.raises(TypeError, match="data_dir must be a path or None, got int"):
         Greedy(data_dir=3)  # type: ignore[arg-type]
+
+
+# --- Settled after the table (APIFIX) ----------------------------------------------------
+
+
+def _public_classes() -> dict[str, type]:
+    callables = public_callables()
+    return {pc.name: pc.obj for pc in callables if pc.method is None and inspect.isclass(pc.obj)}
+
+
+def test_an_object_with_a_pose_takes_its_start_as_pose() -> None:
+    found, checked = [], []
+    for where, cls in _public_classes().items():
+        if not isinstance(inspect.getattr_static(cls, "pose", None), property):
+            continue
+        params = SIGNATURES[where].parameters
+        checked.append(where.rsplit(".", 1)[-1])
+        if "start" in params and not _is_deprecated_alias(params["start"]):
+            found.append(f"{where}(start=): use pose=")
+    assert not found, found
+    assert {"ScanMapper", "DiffOdometry", "OmniOdometry", "PlanarFusion"} <= set(checked)
+
+
+def test_sensor_configurations_are_keyword_only() -> None:
+    import navkit.sim as sim
+
+    for name in ("Compass", "Imu", "Lidar", "RangeNoise", "Robot", "WheelEncoders"):
+        kinds = {p.kind for p in SIGNATURES[f"navkit.sim.{name}"].parameters.values()}
+        assert kinds == {inspect.Parameter.KEYWORD_ONLY}, name
+        assert getattr(sim, name).__dataclass_params__.frozen, name
+
+
+def test_the_odometries_reset_alike() -> None:
+    from navkit.estimation import DiffOdometry, OmniOdometry
+
+    assert str(SIGNATURES["navkit.estimation.OmniOdometry.reset"]) == str(
+        SIGNATURES["navkit.estimation.DiffOdometry.reset"]
+    )
+    assert OmniOdometry.reset.__doc__ and DiffOdometry.reset.__doc__
+
+
+def test_map_planner_reads_back_every_option() -> None:
+    from navkit.mapping import OccupancyGrid
+    from navkit.planning import MapPlanner
+
+    grid = OccupancyGrid.from_occupancy(np.zeros((6, 6), dtype=bool), resolution=0.1)
+    options = {"robot_radius": 0.1, "inflation_radius": 0.3, "unknown_cost": 12.0,
+               "inflate_unknown": False, "planner": "field_dstar"}  # fmt: skip
+    assert set(options) == set(SIGNATURES["navkit.planning.grid.MapPlanner"].parameters) - {"grid"}
+    planner = MapPlanner(grid, **options)  # type: ignore[arg-type]
+    assert {name: getattr(planner, name) for name in options} == options
 
 
 def _group_by_name() -> dict[str, list[str]]:

@@ -916,6 +916,13 @@ spec(
     lambda c: call(OmniOdometry, omni_drive(), pose=pose()),
     kinds={"pose": OPT_POSE},
 )
+# APIFIX (review 21): OmniOdometry.reset(pose), as DiffOdometry.reset.
+spec(
+    "navkit.estimation.OmniOdometry.reset",
+    lambda c: method(_omni_odometry(), "reset", pose()),
+    kinds={"pose": OPT_POSE},
+    mutates=("self",),
+)
 spec(
     "navkit.estimation.OmniOdometry.update",
     lambda c: method(_omni_odometry(), "update", A([0.3, -0.2, 0.1]), 0.4),

@@ -42,7 +42,7 @@ def matcher() -> Call:
 
 
 def mapper() -> Call:
-    return call(ScanMapper, resolution=0.1, start=Pose2D(1.0, 1.0, 0.0), matcher=matcher())
+    return call(ScanMapper, resolution=0.1, pose=Pose2D(1.0, 1.0, 0.0), matcher=matcher())
 
 
 spec(

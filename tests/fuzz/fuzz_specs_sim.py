@@ -69,7 +69,7 @@ def world() -> Call:
 
 
 def noise() -> Call:
-    return call(RangeNoise, (1.0, math.inf), (0.01, 0.02), (0.0, 0.01))
+    return call(RangeNoise, limits=(1.0, math.inf), sigma=(0.01, 0.02), bias=(0.0, 0.01))
 
 
 def lidar() -> Call:

@@ -305,7 +305,7 @@ def test_an_upside_down_scanner_is_its_scan_mirrored() -> None:
 
 
 def test_scan_mapper_follows_float32_scans_of_a_room() -> None:
-    mapper = ScanMapper(resolution=0.05, start=(0.0, 0.0, 0.0))
+    mapper = ScanMapper(resolution=0.05, pose=(0.0, 0.0, 0.0))
     truth = [(0.02 * k, 0.01 * k, 0.02 * k) for k in range(12)]
     for pose in truth:
         ranges = room_ranges(pose, ANGLES)

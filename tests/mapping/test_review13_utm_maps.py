@@ -119,7 +119,7 @@ def test_scan_matcher_at_utm_coordinates_matches_as_at_the_origin(search: bool) 
 
 def test_scan_mapper_at_utm_coordinates_maps_as_at_the_origin() -> None:
     start = _near(_far((3.013, 5.021, 0.3)))
-    mappers = (ScanMapper(start=start), ScanMapper(start=_far(start)))
+    mappers = (ScanMapper(pose=start), ScanMapper(pose=_far(start)))
     for k in range(6):
         pose = _near(_far((start[0] + 0.3 * k, start[1] + 0.1 * k, start[2] + 0.05 * k)))
         scan = _scan(pose)  # type: ignore[arg-type]

@@ -146,7 +146,7 @@ def _old_layout(mapper: ScanMapper) -> bytes:
 
 def test_an_old_pickle_of_a_mapper_without_scans_loads_and_maps() -> None:
     start = Pose2D(1.0, -0.5, 0.25)
-    mapper = ScanMapper(resolution=0.5, start=start, matcher=ScanMatcher(levels=2))
+    mapper = ScanMapper(resolution=0.5, pose=start, matcher=ScanMatcher(levels=2))
     loaded = pickle.loads(_old_layout(mapper))
     assert len(loaded) == 0 and loaded.pose == start
     assert loaded.trajectory.shape == (0, 3)

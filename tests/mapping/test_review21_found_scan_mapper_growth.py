@@ -55,7 +55,7 @@ def _assert_kept(before: list[tuple[np.ndarray, float, float]], mapper: ScanMapp
 def test_a_corridor_grows_the_map_a_logarithmic_number_of_times(heading: float) -> None:
     # 300 m at 10 cm: growing by 10 m each time took 29 growths, each copying the map.
     scan = _corridor_scan()
-    mapper = ScanMapper(resolution=0.1, start=(0.0, 0.0, heading))
+    mapper = ScanMapper(resolution=0.1, pose=(0.0, 0.0, heading))
     shapes = []
     for i in range(601):
         # Odometry in its own frame: only increments count, 0.5 m straight ahead.

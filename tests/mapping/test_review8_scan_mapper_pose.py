@@ -18,7 +18,7 @@ def _room_scan() -> LaserScan:
 
 
 def test_pose_follows_the_trajectory() -> None:
-    mapper = ScanMapper(resolution=0.1, start=(0.3, -0.2, 0.1))
+    mapper = ScanMapper(resolution=0.1, pose=(0.3, -0.2, 0.1))
     assert mapper.pose == Pose2D(0.3, -0.2, 0.1)
     scan = _room_scan()
     for odometry in [None, (0.35, -0.18, 0.12), (0.4, -0.15, 0.15)]:

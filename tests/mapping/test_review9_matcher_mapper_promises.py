@@ -122,7 +122,7 @@ def _writes(
 ) -> list[bool]:
     """For each scan after the first: did the mapper write it into its map?"""
     mapper = ScanMapper(
-        resolution=0.1, start=odometry[0], min_distance=min_distance, min_angle=min_angle
+        resolution=0.1, pose=odometry[0], min_distance=min_distance, min_angle=min_angle
     )
     scan = _two_beam_scan([1.0, 1.5])
     out = []

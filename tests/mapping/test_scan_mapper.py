@@ -78,7 +78,7 @@ def test_maps_a_synthetic_office_from_noisy_odometry() -> None:
     rng = np.random.default_rng(4)
     scans = [lidar.scan(world, p, seed=rng) for p in truth]
     odometry = _noisy_odometry(truth, 0.05, math.radians(2), seed=1)
-    mapper = ScanMapper(start=truth[0])
+    mapper = ScanMapper(pose=truth[0])
     for scan, odom in zip(scans, odometry, strict=True):
         mapper.update(scan, odometry=odom)
     est = np.array(mapper.trajectory)
@@ -135,7 +135,7 @@ def _lab_tour_error(world: World, resolution: float) -> np.ndarray:
         (4.0 + 2.2 * np.cos(a), 3.0 + 1.8 * np.sin(a), np.remainder(a + 0.5 * math.pi, math.tau))
     )
     lidar = Lidar(n_beams=360, range_max=10.0, noise=None)
-    mapper = ScanMapper(resolution=resolution, start=truth[0])
+    mapper = ScanMapper(resolution=resolution, pose=truth[0])
     for pose in truth:
         mapper.update(lidar.scan(world, pose), odometry=pose)
     err = np.asarray(mapper.trajectory) - truth
@@ -163,7 +163,7 @@ def test_constant_velocity_without_odometry() -> None:
     world = _office()
     truth = _route()[:25]
     lidar = Lidar(n_beams=360, range_max=10.0, noise=None)
-    mapper = ScanMapper(start=truth[0])
+    mapper = ScanMapper(pose=truth[0])
     for p in truth:
         mapper.update(lidar.scan(world, p))
     est = np.array(mapper.trajectory)
@@ -173,7 +173,7 @@ def test_constant_velocity_without_odometry() -> None:
 def test_writes_only_after_moving_and_saves_a_map(tmp_path: Path) -> None:
     world = _office()
     lidar = Lidar(n_beams=360, range_max=10.0, noise=None)
-    mapper = ScanMapper(start=(2.0, 4.0, 0.0), min_distance=0.4, min_angle=0.9)
+    mapper = ScanMapper(pose=(2.0, 4.0, 0.0), min_distance=0.4, min_angle=0.9)
     scan = lidar.scan(world, (2.0, 4.0, 0.0))
     first = mapper.update(scan)
     assert first.reason == "degenerate" and first.pose == Pose2D(2.0, 4.0, 0.0)
@@ -198,7 +198,7 @@ def test_a_scan_with_nothing_to_write_does_not_count_as_written() -> None:
     # first write, so the next scans waited for the robot to move min_distance.
     world = _office()
     lidar = Lidar(n_beams=360, range_max=10.0, noise=None)
-    mapper = ScanMapper(start=(2.0, 4.0, 0.0), min_distance=0.4, min_angle=0.9)
+    mapper = ScanMapper(pose=(2.0, 4.0, 0.0), min_distance=0.4, min_angle=0.9)
     blank = LaserScan(np.full(360, np.inf), angle_min=-math.pi, angle_increment=math.tau / 360,
                       range_min=0.1, range_max=10.0)  # fmt: skip
     mapper.update(blank)
@@ -212,7 +212,7 @@ def test_map_grows_with_the_route() -> None:
     world = World([box(0, 0, 60, 3).exterior] + [box(x, 0, x + 0.3, 0.6) for x in range(3, 60, 4)])
     lidar = Lidar(n_beams=360, range_max=8.0, noise=None)
     xs = np.arange(1.0, 59.0, 0.5)
-    mapper = ScanMapper(resolution=0.1, start=(1.0, 1.5, 0.0))
+    mapper = ScanMapper(resolution=0.1, pose=(1.0, 1.5, 0.0))
     before = mapper.map.shape
     for x in xs:
         mapper.update(lidar.scan(world, (x, 1.5, 0.0)), odometry=(x, 1.5, 0.0))
@@ -368,7 +368,7 @@ def test_a_shallow_copy_is_independent() -> None:
     # copy.copy shared them, so updating the copy changed the original.
     world = _office()
     lidar = Lidar(n_beams=360, range_max=10.0, noise=None)
-    mapper = ScanMapper(start=(2.0, 4.0, 0.0))
+    mapper = ScanMapper(pose=(2.0, 4.0, 0.0))
     mapper.update(lidar.scan(world, (2.0, 4.0, 0.0)), odometry=(2.0, 4.0, 0.0))
     before_map = mapper.map.logodds.copy()
     before_path = mapper.trajectory.copy()
@@ -386,12 +386,12 @@ def test_start_is_checked_and_the_map_stays_within_the_origin_range() -> None:
     # A start beyond ±1e9 m was taken and failed at the first update with a message
     # about a grid "origin"; one near -1e9 m (in range) failed the same way, as did
     # growing the map past -1e9 m.
-    with pytest.raises(ValueError, match="start"):
-        ScanMapper(start=(2e9, 0.0, 0.0))
+    with pytest.raises(ValueError, match=r"^pose\b"):
+        ScanMapper(pose=(2e9, 0.0, 0.0))
     scan = LaserScan(np.full(3, 3.0), angle_min=-1.0, angle_increment=1.0,
                      range_min=0.1, range_max=5.0)  # fmt: skip
     for start in ((-1e9, -1e9, 0.0), (-1e9 + 30.0, -1e9 + 30.0, 0.0)):
-        mapper = ScanMapper(start=start, resolution=0.5)
+        mapper = ScanMapper(pose=start, resolution=0.5)
         assert mapper.map.origin.x >= -1e9 and mapper.map.origin.y >= -1e9
         for step in (0.0, -10.0, -20.0, -30.0, -40.0):
             mapper.update(scan, odometry=(step, step, 0.0))

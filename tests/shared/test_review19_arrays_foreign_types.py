@@ -141,9 +141,11 @@ def test_a_greedy_step_cell_from_buffers_and_array_protocols() -> None:
 
 
 def test_big_endian_noise_tables_are_their_values() -> None:
-    plain = RangeNoise((1.0, math.inf), (0.01, 0.02), (0.0, 0.01))
+    plain = RangeNoise(limits=(1.0, math.inf), sigma=(0.01, 0.02), bias=(0.0, 0.01))
     foreign = RangeNoise(
-        _big_endian_view([1.0, math.inf]), _big_endian_view([0.01, 0.02]), ArrayOnly(np.zeros(2))
+        limits=_big_endian_view([1.0, math.inf]),
+        sigma=_big_endian_view([0.01, 0.02]),
+        bias=ArrayOnly(np.zeros(2)),
     )
     assert foreign.limits == plain.limits
     assert foreign.sigma == plain.sigma

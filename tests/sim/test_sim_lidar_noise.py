@@ -131,9 +131,11 @@ def test_bad_noise_bands(kwargs: dict[str, object], error: type[Exception]) -> N
 
 
 def test_bands_as_arrays_equal_bands_as_tuples() -> None:
-    as_arrays = RangeNoise(np.array([1.0, math.inf]), np.array([0.01, 0.02]), np.array([0, 0.01]))
-    assert as_arrays == RangeNoise((1.0, math.inf), (0.01, 0.02), (0.0, 0.01))
-    assert RangeNoise((math.inf,), (0.1,), np.array([])).bias == (0.0,)
+    as_arrays = RangeNoise(
+        limits=np.array([1.0, math.inf]), sigma=np.array([0.01, 0.02]), bias=np.array([0, 0.01])
+    )
+    assert as_arrays == RangeNoise(limits=(1.0, math.inf), sigma=(0.01, 0.02), bias=(0.0, 0.01))
+    assert RangeNoise(limits=(math.inf,), sigma=(0.1,), bias=np.array([])).bias == (0.0,)
 
 
 @pytest.mark.parametrize(

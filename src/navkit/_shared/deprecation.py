@@ -3,17 +3,22 @@
 navkit renames an option when two packages used two words for one idea (one
 vocabulary across packages). The old keyword stays accepted, as a keyword-only
 argument defaulting to None and listed under "Other Parameters", and
-:func:`renamed_keyword` resolves the pair at the top of the function.
+:func:`renamed_keyword` resolves the pair at the top of the function. A
+configuration record whose fields became keyword-only keeps taking them by
+position for a release, with a warning: :func:`positional_deprecated`.
 """
 
 from __future__ import annotations
 
+import dataclasses
+import functools
 import warnings
-from typing import TypeVar
+from typing import Any, TypeVar
 
-__all__ = ["renamed_keyword"]
+__all__ = ["positional_deprecated", "renamed_keyword"]
 
 _T = TypeVar("_T")
+_C = TypeVar("_C", bound=type)
 
 
 def renamed_keyword(
@@ -92,3 +97,68 @@ def _passed(value: object, default: object) -> bool:
         return bool(value != default)
     except (TypeError, ValueError):  # an array's elementwise != has no single truth value
         return True
+
+
+def positional_deprecated(cls: _C) -> _C:
+    """Class decorator (outermost, on a ``kw_only`` dataclass): positional fields still work.
+
+    The dataclass's own ``__init__`` takes its fields by keyword only, which is
+    what type checkers and :func:`inspect.signature` see; this wrapper still
+    accepts them by position, in field order, with a :class:`DeprecationWarning`
+    pointing at the caller's line, and passes them on as keywords.
+
+    Raises
+    ------
+    TypeError
+        More positional arguments than fields, or a field given both by
+        position and by keyword (as Python's own message says).
+
+    Warns
+    -----
+    DeprecationWarning
+        When any field was passed by position.
+
+    Examples
+    --------
+    >>> import warnings
+    >>> from dataclasses import dataclass
+    >>> @positional_deprecated
+    ... @dataclass(frozen=True, kw_only=True)
+    ... class Band:
+    ...     low: float = 0.0
+    ...     high: float = 1.0
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     Band(0.5, high=2.0)
+    Band(low=0.5, high=2.0)
+    >>> print(caught[0].message)
+    Band(low) by position is deprecated and will be removed in a future release: pass low=
+    """
+    names = [f.name for f in dataclasses.fields(cls) if f.init]
+    init = cls.__dict__["__init__"]  # the dataclass's own (mypy refuses cls.__init__)
+    qualname = cls.__qualname__
+
+    @functools.wraps(init)
+    def __init__(self: Any, *args: Any, **kwargs: Any) -> None:
+        if args:
+            if len(args) > len(names):
+                raise TypeError(
+                    f"{qualname} takes at most {len(names)} positional arguments (deprecated; "
+                    f"pass {', '.join(n + '=' for n in names)}), got {len(args)}"
+                )
+            given = names[: len(args)]
+            for name in given:
+                if name in kwargs:
+                    raise TypeError(f"{qualname} got multiple values for argument {name!r}")
+            warnings.warn(
+                f"{qualname}({', '.join(given)}) by position is deprecated and will be removed "
+                f"in a future release: pass {', '.join(n + '=' for n in given)}",
+                DeprecationWarning,
+                stacklevel=2,
+            )
+            kwargs.update(zip(given, args, strict=True))
+        init(self, **kwargs)
+
+    # Set on the class built by the dataclass decorator (a slotted one is a new class).
+    setattr(cls, "__init__", __init__)  # noqa: B010 (mypy refuses assigning a method)
+    return cls

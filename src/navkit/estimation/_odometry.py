@@ -319,6 +319,46 @@ class OmniOdometry:
         """The wheel layout."""
         return self._drive
 
+    def reset(self, pose: Pose2D | ArrayLike | None = None) -> None:
+        """Optionally set a new pose, as :meth:`DiffOdometry.reset` does.
+
+        The wheels report increments, so there are no counters to forget: a
+        reset without a pose changes nothing (it is accepted so that either
+        odometry can be reset the same way). Later steps are summed apart from
+        the new pose, as from a start pose given to the constructor.
+
+        Parameters
+        ----------
+        pose : Pose2D or array_like, shape (3,), optional
+            New pose (``[x, y, theta]``, m and rad); None keeps the current one.
+            Its heading should be the compass yaw at that moment.
+
+        Raises
+        ------
+        TypeError, ValueError
+            A ``pose`` that is not three finite real numbers; the odometry is
+            then unchanged.
+
+        Examples
+        --------
+        >>> drive = OmniDrive.three_wheel(wheel_radius=0.05, base_radius=0.2)
+        >>> odo = OmniOdometry(drive)
+        >>> step = drive.inverse([1.0, 0.0, 0.0]) * 0.1  # 0.1 s at 1 m/s ahead
+        >>> odo.update(step, 0.0).x
+        0.1
+        >>> odo.reset([5.0, 2.0, 0.0])
+        >>> odo.update(step, 0.0)
+        Pose2D(x=5.1, y=2.0, theta=0.0)
+        """
+        if pose is None:
+            return
+        new_pose = as_pose(pose, "pose")
+        anchor, travel = start_apart(new_pose)
+        # Plain stores, no call between: an interrupted reset has happened or not.
+        self._pose = new_pose
+        self._anchor = anchor
+        self._travel = travel
+
     def update(self, wheel_increments: ArrayLike, yaw: float) -> Pose2D:
         """Advance by one step of wheel rotation and return the new pose.
 

@@ -118,9 +118,11 @@ class ScanMapper:
     range_max : float, optional
         Returns at least this long (m) are neither matched nor written; default
         the matcher's ``range_max`` (all valid returns).
-    start : Pose2D or array_like [x, y, theta], default (0, 0, 0)
-        World pose given to the first scan, x and y within ±1e9 m (the range
-        of grid origins: the map extends no further below -1e9 m).
+    pose : Pose2D or array_like [x, y, theta], default (0, 0, 0)
+        World pose given to the first scan (the start pose, as the odometries
+        and :class:`~navkit.estimation.PlanarFusion` take it), x and y within
+        ±1e9 m (the range of grid origins: the map extends no further below
+        -1e9 m).
     matcher : ScanMatcher, optional
         The matcher and its options. Default ``ScanMatcher(translation_weight=1.0,
         rotation_weight=1.0, search_distance=0.1, search_angle=0.1)``: three
@@ -145,6 +147,8 @@ class ScanMapper:
         Deprecated: the probability ``p`` in (0, 0.5) of ``miss=logit(p)``.
     min_rotation : float, optional
         Deprecated name of `min_angle`.
+    start : Pose2D or array_like [x, y, theta], optional
+        Deprecated name of `pose`.
 
     Examples
     --------
@@ -191,12 +195,13 @@ class ScanMapper:
         min_distance: float = 0.4,
         min_angle: float = 0.9,
         range_max: float | None = None,
-        start: Pose2D | ArrayLike = _IDENTITY,
+        pose: Pose2D | ArrayLike = _IDENTITY,
         matcher: ScanMatcher | None = None,
         max_range: float | None = None,
         occupied: float | None = None,
         free: float | None = None,
         min_rotation: float | None = None,
+        start: Pose2D | ArrayLike | None = None,
     ) -> None:
         named = "range_max" if max_range is None else "max_range"  # as the caller wrote it
         range_max = renamed_keyword("max_range", max_range, "range_max", range_max, None)
@@ -238,7 +243,9 @@ class ScanMapper:
             f"a map of matcher.levels={matcher.levels} (2 x 2 cells on its coarsest level)",
         )
         # Within ±1e9 m, as every grid origin: the map is built around it.
-        self._start = grid_origin(start, "start")
+        pose_name = "pose" if start is None else "start"  # as the caller wrote it
+        pose = renamed_keyword("start", start, "pose", pose, _IDENTITY)
+        self._start = grid_origin(pose, pose_name)
         self._levels: list[OccupancyGrid] = []
         # The trajectory: rows [x, y, theta] of the first _path_len scans, in an
         # array with spare rows (24 bytes a scan; a list of Pose2D took 140).
@@ -299,7 +306,7 @@ class ScanMapper:
 
     @property
     def pose(self) -> Pose2D:
-        """The sensor's latest world pose (``start`` before the first scan).
+        """The sensor's latest world pose (the start ``pose`` before the first scan).
 
         The last row of :attr:`trajectory`, without copying the whole
         trajectory: read it after every :meth:`update`, as the ``pose`` of the
@@ -307,14 +314,14 @@ class ScanMapper:
 
         Examples
         --------
-        >>> ScanMapper(start=(1.0, 2.0, 0.5)).pose
+        >>> ScanMapper(pose=(1.0, 2.0, 0.5)).pose
         Pose2D(x=1.0, y=2.0, theta=0.5)
         """
         return self._pose
 
     @property
     def map(self) -> OccupancyGrid:
-        """A copy of the finest map level (before any scan: an empty 1 m square at ``start``).
+        """A copy of the finest map level (before any scan: an empty 1 m square at the start pose).
 
         Save it with ``mapper.map.save(path)`` (:func:`navkit.mapping.io.write_map`).
         """
@@ -357,7 +364,7 @@ class ScanMapper:
         Returns
         -------
         ScanMatchResult
-            The match (for the first scan: the ``start`` pose, reason
+            The match (for the first scan: the start ``pose``, reason
             ``"degenerate"`` as an empty map constrains nothing).
 
         Raises

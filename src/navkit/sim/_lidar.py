@@ -65,7 +65,9 @@ def as_generator(value: object, name: str = "rng") -> np.random.Generator:
         if int(value) >= 1 << 128:
             raise ValueError(f"{name} must be below 2**128 as a seed, got {value}")
         return np.random.default_rng(int(value))
-    raise TypeError(f"{name} must be a numpy Generator, an int seed or None, got {type(value)}")
+    raise TypeError(
+        f"{name} must be a numpy Generator, an int seed or None, got {type(value).__name__}"
+    )
 
 
 @frozen_setattr
@@ -332,7 +334,7 @@ class Scanner:
             s > 0.0 or b != 0.0 for s, b in zip(noise.sigma, noise.bias, strict=True)
         )
         if noise is None:
-            noise = RangeNoise((math.inf,), (0.0,))
+            noise = RangeNoise(limits=(math.inf,), sigma=(0.0,))
         self._limits, self._bias, self._sigma = noise.arrays()
         self.random = self._noisy or lidar.angle_jitter > 0.0 or lidar.dropout > 0.0
         """Whether a scan draws random numbers."""

@@ -10,6 +10,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
+from navkit._shared.deprecation import positional_deprecated
 from navkit._shared.frozen import frozen_setattr
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, finite_float, unpack
@@ -48,8 +49,11 @@ def _floats(
     return tuple(out)
 
 
+# Keyword-only as every sensor configuration: sigma and bias are both tuples of
+# small floats, and swapped by position they passed validation.
+@positional_deprecated
 @frozen_setattr
-@dataclass(frozen=True, slots=True)
+@dataclass(frozen=True, slots=True, kw_only=True)
 class RangeNoise:
     """Relative Gaussian range error of a LiDAR, by distance band.
 
@@ -61,12 +65,15 @@ class RangeNoise:
     2.23 % below 3 m and 5.38 % beyond (the paper gives no boundary; 3 m is
     where the RPLIDAR A1 datasheet's accuracy class changes).
 
+    All three are keyword-only (by position they still work, with a
+    ``DeprecationWarning``: ``sigma`` and ``bias`` are easily swapped).
+
     Parameters
     ----------
-    limits : sequence of float
+    limits : sequence of float, default (3.0, inf)
         Upper edge of each band, m: strictly increasing, in (0, 1e6], the last
         one ``inf``.
-    sigma : sequence of float
+    sigma : sequence of float, default (0.0223, 0.0538)
         Relative standard deviation of each band, in [0, 1].
     bias : sequence of float, optional
         Relative mean error of each band, in [-0.5, 0.5]; zeros by default.

@@ -882,7 +882,9 @@ class World:
         if isinstance(moving, MovingObstacle):
             moving = [moving]
         if isinstance(moving, (str, bytes, Mapping)) or not isinstance(moving, Iterable):
-            raise TypeError(f"moving must be an iterable of MovingObstacle, got {type(moving)}")
+            raise TypeError(
+                f"moving must be an iterable of MovingObstacle, got {type(moving).__name__}"
+            )
         obs = tuple(moving)
         for k, ob in enumerate(obs):
             if not isinstance(ob, MovingObstacle):

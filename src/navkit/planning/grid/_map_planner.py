@@ -223,7 +223,8 @@ class MapPlanner:
         self._snapshot = snapshot
         self._costs = costs
         self._robot_radius = radius
-        self._inflation_radius = inflation_radius
+        # As traversal_costs validated them; None kept (pickles of older planners hold it).
+        self._inflation_radius = None if inflation_radius is None else float(inflation_radius)
         self._unknown_cost = float(unknown_cost)
         self._inflate_unknown = math.isinf(self._unknown_cost) if inflate is None else inflate
         self._planner = planner
@@ -286,6 +287,38 @@ class MapPlanner:
     def robot_radius(self) -> float:
         """The robot's inscribed radius, m."""
         return self._robot_radius
+
+    @property
+    def inflation_radius(self) -> float:
+        """Distance up to which costs decay, m (``None`` resolved to :attr:`robot_radius`).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from navkit.mapping import OccupancyGrid
+        >>> grid = OccupancyGrid.from_occupancy(np.zeros((10, 10), dtype=bool), resolution=0.1)
+        >>> MapPlanner(grid, robot_radius=0.2).inflation_radius
+        0.2
+        >>> MapPlanner(grid, robot_radius=0.2, inflation_radius=0.5).inflation_radius
+        0.5
+        """
+        if self._inflation_radius is None:
+            return self._robot_radius
+        return self._inflation_radius
+
+    @property
+    def unknown_cost(self) -> float:
+        """Cost of unknown cells: ``inf`` (impassable) or a value in ``[1, 1e9]``.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from navkit.mapping import OccupancyGrid
+        >>> grid = OccupancyGrid.from_occupancy(np.zeros((10, 10), dtype=bool), resolution=0.1)
+        >>> MapPlanner(grid).unknown_cost, MapPlanner(grid, unknown_cost=50).unknown_cost
+        (inf, 50.0)
+        """
+        return self._unknown_cost
 
     @property
     def inflate_unknown(self) -> bool:

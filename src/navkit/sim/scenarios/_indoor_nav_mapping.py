@@ -210,7 +210,7 @@ def run_mapping(
     at = np.searchsorted(np.array(drive.stamps), stamps + 1e-9, side="right") - 1
     odom = np.array(drive.poses, dtype=np.float64)[at].reshape(-1, 3)
     truth = trace.poses[np.searchsorted(trace.times, stamps - 1e-9)].reshape(-1, 3)
-    mapper = ScanMapper(resolution=resolution, start=start)
+    mapper = ScanMapper(resolution=resolution, pose=start)
     unmatched = 0
     t0 = time.perf_counter()
     for reading, guess in zip(trace.scans, odom, strict=True):
