@@ -35,6 +35,7 @@ from navkit.estimation._ekf_kernels import (
     BAD_TYPE,
     BAD_Z,
     CANCELLED,
+    GATE_PASSED,
     GATED,
     NIS_OVERFLOW,
     NOISE_CHANGED,
@@ -58,6 +59,7 @@ from navkit.estimation._ekf_kernels import (
     rbuf_gate,
     rbuf_nis,
     retry_gated,
+    set_gate,
     set_nis,
     set_options,
     set_q,
@@ -460,22 +462,43 @@ class ExtendedKalmanFilter(GaussianEstimate):
         The NIS (and the kernel's state) come from S = H P Hᵀ + R, within
         about ε κ(S) of the exact ones; a state measured twice (two rows of H
         multiples of one state), each time far more precisely than it is
-        known, makes S nearly singular: κ(S) about P/R. Where ε κ(S) exceeds
-        2⁻³⁰ in an update of at most 8 components that reaches the
-        information form, that is gated by the kernel, or whose computed S is
+        known, makes S nearly singular: κ(S) about P/R; so does a linear
+        combination of states measured so (rows of H multiples of one row),
+        where no variance need shrink. In an update of 2 to 8 components
+        whose S is that ill-conditioned (ε κ(S) above 2⁻³⁰, read from the
+        pivots of its LDLᵀ factorisation, or from S's scaled inverse where the
+        update reaches the information form anyway), or whose computed S is
         not positive definite at all (R/P below about 1e-16 rounds S =
         [[p + r, p], [p, p + r]] to a singular matrix, though the exact S of a
         positive definite P and R never is), the NIS is computed from S in
         exact rational arithmetic, rounded once (0.1 to 10 ms), and the update
-        gated on it; x and P are then the information form's (the Joseph P
+        gated on it before anything else is decided: the reported NIS is that
+        exact one, and an update whose exact NIS passes the gate is the
+        update made without the gate, bit for bit (where the kernel had
+        gated on its own NIS, the kernel runs again without the gate). x and
+        P are then the information form's where it is trusted (the Joseph P
         where it is as accurate, and the kernel's x where the information
-        form's bound on its own is not within a quarter of a deviation). Such
-        an update raises ``FilterError`` only where the gate passes it and the
-        information form's checks fail as above: where S is not positive
-        definite the exact NIS is gated first, so readings 1e150 deviations
-        apart are rejected by a gate, not refused. (Before, with κ(S) 3e16 a NIS of 21.04 was
-        reported for an exact 9.377, and a measurement passing a gate of 11.3
-        rejected; R/P below 1e-16 raised ``FilterError``.)
+        form's bound on its own is not within a quarter of a deviation), else
+        the kernel's. Such an update raises ``FilterError`` only where the
+        gate passes it and neither form gives a posterior that passes the
+        checks above, so readings 1e150 deviations apart are rejected by a
+        gate, not refused. Updates of more than 8 components keep the
+        kernel's NIS (the exact one would cost tens of milliseconds), and
+        those of 1 component have κ(S) = 1. Of 1200 random updates of a
+        combination of 1 to 4 states measured 2 to 4 times with R/P from
+        3e-17 to 1e-9 (each checked against exact arithmetic), the reported
+        NIS was more than 1e-8 off the exact one in 518 before and in none
+        now, and of the half gated near their exact NIS the gate decided
+        wrongly in 32 before and in none now; 56 raised ``FilterError`` (58
+        before). x and P stayed as accurate: the largest error of x was 6.7e-3
+        deviations before and after (5 states, now the information form's,
+        came out up to 8e-5 deviations further off than the kernel's). Such
+        an update costs about 0.35 ms (2 states) to 0.45 ms (6 states).
+        (Before, with κ(S) 3e16 a NIS of 21.04 was reported for
+        an exact 9.377, and a measurement passing a gate of 11.3 rejected;
+        with x₀ + x₁ measured twice, R = 1e-14, a NIS of 1.767 for an exact
+        1.786, accepted at a gate of 1.78; R/P below 1e-16 raised
+        ``FilterError``.)
         An update that reaches the information form costs about 0.5 ms
         (0.47 ms for 2 states, 0.65 to 0.75 ms for 6, where an ordinary
         6-state update takes 22 µs: about twice the cost of the choice by
@@ -653,6 +676,8 @@ class ExtendedKalmanFilter(GaussianEstimate):
         elif status == GATED:
             # Unless S is ill-conditioned, where the kernel's NIS is not to be trusted.
             status = retry_gated(self._state, self._rbuf, jac, y)
+            if status == GATE_PASSED:
+                status = self._run_past_gate(z, hx, jac, r, y)
         nis = rbuf_nis(self._rbuf)
         if status == OK:
             return new_result(True, nis, y, None)
@@ -685,6 +710,33 @@ class ExtendedKalmanFilter(GaussianEstimate):
             set_nis(self._rbuf, out)
             return OK
         return int(-out)
+
+    def _run_past_gate(self, z: Any, hx: Any, jac: Any, r: Any, y: FloatArray) -> int:
+        """The update the kernel gated on its NIS but whose exact NIS passes: its status.
+
+        The kernel runs again without the gate (the exact NIS, left in the buffer
+        by retry_gated, is reported on OK), so that the result is the ungated
+        update's, as for any measurement the gate passes.
+        """
+        rbuf = self._rbuf
+        nis = rbuf_nis(rbuf)
+        gate = rbuf_gate(rbuf)
+        # As in _set_options: the keys stand for no options while the gate is lifted,
+        # so that an interrupt before it is back leaves the next update to set them.
+        entry = self._entry
+        options, gate_key = entry[2], entry[3]
+        entry[2] = self._options = _UNSET
+        entry[3] = self._gate = _UNSET
+        set_gate(rbuf, _INF)
+        status = self._run(z, hx, jac, r, y)
+        set_gate(rbuf, gate)
+        entry[2] = self._options = options
+        entry[3] = self._gate = gate_key
+        if status == CANCELLED:
+            status = finish_cancelled(self._state, rbuf, jac, y)
+        if status == OK:
+            set_nis(rbuf, nis)
+        return status
 
     def _use_rbuf(self, m: int) -> None:
         """Make the buffer and kernel of ``m``-dimensional measurements the current ones."""

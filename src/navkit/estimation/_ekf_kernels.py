@@ -51,8 +51,10 @@ reference counting, which alone took a tenth of a call) and never leave
 ``state`` half-written.
 
 An update whose Joseph form cancelled (a variance shrank more than 4096-fold:
-a measurement far more precise than the estimate) commits nothing and returns
-``CANCELLED``; the public layer finishes it with :func:`finish_cancelled`,
+a measurement far more precise than the estimate), or whose S of 2 to
+``_EXACT_NIS_MAX_M`` components is ill-conditioned (its pivots give
+ε κ(S) > 2⁻³⁰, so that its NIS and x are not to be trusted), commits nothing
+and returns ``CANCELLED``; the public layer finishes it with :func:`finish_cancelled`,
 which may take the information form instead, chosen by residuals computed
 exactly (in NumPy: the case is rare, and compiled into every update kernel it
 would cost compile time).
@@ -87,6 +89,7 @@ __all__ = [
     "BAD_Z",
     "CANCELLED",
     "GATED",
+    "GATE_PASSED",
     "NIS_OVERFLOW",
     "NOISE_CHANGED",
     "NOT_FINITE",
@@ -110,6 +113,7 @@ __all__ = [
     "rbuf_gate",
     "rbuf_nis",
     "retry_gated",
+    "set_gate",
     "set_nis",
     "set_options",
     "set_q",
@@ -146,7 +150,11 @@ GATED = 13  # NIS above the gate
 STATE_OVERFLOW = 14  # the updated state overflowed
 BAD_SHAPE = 15  # an argument's shape does not fit (or rbuf is another m's): check in full
 BAD_TYPE = 16  # set by the public layer: an argument is not of the compiled type
-CANCELLED = 17  # the Joseph form cancelled (a variance shrank > 4096-fold): finish_cancelled
+CANCELLED = 17  # the Joseph form cancelled (a variance shrank > 4096-fold) or S is
+# ill-conditioned (ε κ(S) > 2⁻³⁰, 2 <= m <= _EXACT_NIS_MAX_M): finish_cancelled
+# From retry_gated only: the exact NIS passes the gate the kernel's NIS failed, and the
+# information form is not trusted: run the kernel again without the gate.
+GATE_PASSED = 18
 
 # What ekf_update returns for a status other than OK: -status.
 _FAIL_SHAPE = -float(BAD_SHAPE)
@@ -174,6 +182,9 @@ _WELL_CONDITIONED = 2.0**-12
 # The kernel's state, x + K y with K solved with S, is within about ε κ(S) of its
 # scale: trusted when that is at most this (about 1e-9).
 _STATE_TRUSTED = 2.0**-30
+# A pivot ratio max Sₖₖ / Dₖ of S = L D Lᵀ above this (ε times it above _STATE_TRUSTED)
+# marks S as that ill-conditioned (retry_gated, the update kernel).
+_PIVOT_LIMIT = _STATE_TRUSTED / _EPS
 # finish_cancelled replaces a kernel state computed with an ill-conditioned S by the
 # information form's where the bound on the latter's error is at most this many of the
 # posterior's deviations.
@@ -232,6 +243,11 @@ def set_q(state: FloatArray, q: FloatArray, q_sym: FloatArray) -> None:
 def set_nis(rbuf: FloatArray, nis: float) -> None:
     """Leave ``nis`` in ``rbuf`` as the update kernel does with a status other than OK."""
     rbuf[_VEC, _META, 1] = nis
+
+
+def set_gate(rbuf: FloatArray, gate: float) -> None:
+    """Set the NIS gate held in ``rbuf`` (inf: none), leaving the other options."""
+    rbuf[_VEC, _META, _GATE] = gate
 
 
 def rbuf_nis(rbuf: FloatArray) -> float:
@@ -720,6 +736,16 @@ def _update(
             for k in range(m):
                 acc += v[i, k] * gain[j, k]
             pn[i, j] = ap[i, j] + acc
+    # Whether S's pivots say it is ill-conditioned (retry_gated's test, read before the
+    # check of the new P reuses inv_diag): the NIS and x above are then off by about
+    # ε κ(S), with no variance cancelling where a combination of states is measured
+    # precisely (rows of H alike but not a single state's). m is a constant here, so
+    # for m = 1 (the one pivot is S itself) or m > _EXACT_NIS_MAX_M this costs nothing.
+    ill = False
+    if 2 <= m <= _EXACT_NIS_MAX_M:
+        for k in range(m):
+            if s[k, k] * inv_diag[k] > _PIVOT_LIMIT:
+                ill = True
     status = _mirror_checked(pn, rbuf[_PCHK], inv_diag, n)
     # A variance that shrank more than _SHRINK_LIMIT-fold (or came out NaN or not
     # positive) lost more than 12 bits to the cancellation in P - K H P: the public
@@ -728,6 +754,11 @@ def _update(
         if not pn[i, i] * _SHRINK_LIMIT >= p[i, i]:
             vec[_META, _JOSEPH] = status
             return _FAIL_CANCELLED
+    if ill:
+        # finish_cancelled then gates on the exact NIS and takes the information
+        # form's x and P where they are the more accurate (or where these failed).
+        vec[_META, _JOSEPH] = status
+        return _FAIL_CANCELLED
     if status != OK:
         return -float(status)
     for i in range(n):
@@ -769,8 +800,10 @@ def _make_update(n: int, m: int) -> UpdateKernel:
         (``S_NOT_FINITE``, ``S_NOT_POSITIVE_DEFINITE``), the residual
         (``RESIDUAL_OVERFLOW``), the NIS yᵀ S⁻¹ y (``NIS_OVERFLOW``, ``GATED``),
         the updated state (``STATE_OVERFLOW``) and the updated covariance
-        (``CANCELLED`` when some variance shrank more than 4096-fold, whatever
-        its own status: the caller finishes with :func:`finish_cancelled`;
+        (``CANCELLED`` when some variance shrank more than 4096-fold, or when
+        S's pivots say it is ill-conditioned (``max Sₖₖ / Dₖ`` above
+        2⁻³⁰ / ε, for 2 <= m <= ``_EXACT_NIS_MAX_M``), whatever its own
+        status: the caller finishes with :func:`finish_cancelled`;
         else ``NOT_FINITE``, ``NOT_POSITIVE_DEFINITE``). x and P change only with
         ``OK``; ``nis`` is NaN until computed, inf when it overflowed.
         """
@@ -792,7 +825,12 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
     The kernel stopped because some variance of its Joseph-form posterior
     (``rbuf``'s ``_PN`` block, of status ``rbuf[_VEC, _META, _JOSEPH]``) shrank
     more than ``_SHRINK_LIMIT``-fold, a sign that ``A P = P - K (H P)`` cancelled.
-    Its rounding error E enters the result as ``E Aᵀ`` (A = I - K H; see
+    (Or because S's pivots say S is ill-conditioned, ε κ(S) > 2⁻³⁰, with 2
+    to ``_EXACT_NIS_MAX_M`` components: a linear combination of states
+    measured twice far more precisely than it is known, where no variance
+    need shrink, but the kernel's NIS and x, from its solve with S, are off
+    by about ε κ(S).) The cancellation's rounding error E enters the result
+    as ``E Aᵀ`` (A = I - K H; see
     :func:`_update`), which is small where A is (all of H's directions measured
     precisely) but not in general: with a state measured far more precisely
     than it was known, entries came out wrong by up to 1e66 times the
@@ -837,7 +875,13 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
       deviations), the kernel's NIS, from the same solve with S, is replaced
       by the exact one (:func:`_exact_nis`, for measurements of at most
       ``_EXACT_NIS_MAX_M`` components) and the update gated again on it
-      (``GATED``, the state unchanged, where it exceeds the gate).
+      (``GATED``, the state unchanged, where it exceeds the gate);
+    * where the information form is not trusted, or where the update is
+      refused (no state to trust), and S is that ill-conditioned, the exact
+      NIS is reported and gated on all the same (the kernel's x and P and
+      status otherwise stand): a measurement the exact NIS rejects is
+      ``GATED``, not refused (measured: the kernel's NIS 7.14 for an exact
+      9.07, accepted at a gate of 8.1).
 
     Commits x and P only with OK. ``jac`` (m, n) is the H and ``y`` (m,) the
     (wrapped) residual the kernel took. NumPy, not a kernel: this is rare, and
@@ -851,9 +895,17 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
     x_kernel = rbuf[_VEC, _XN, :n]
     status = int(rbuf[_VEC, _META, _JOSEPH])
     new_p, new_x = joseph, x_kernel
+    regate = False
     with np.errstate(all="ignore"):
         found = _information_update(p, jac, rbuf[_RS, :m, :m], y)
-        if found is not None and _EPS * found.error <= _WELL_CONDITIONED:
+        if found is None or not _EPS * found.error <= _WELL_CONDITIONED:
+            # The information form is not trusted: the kernel's x and P (and status)
+            # stand, but not its NIS where S is ill-conditioned (measured 7.14 for an
+            # exact 9.07, passing a gate of 8.1): the exact one, gated again.
+            regate = m <= _EXACT_NIS_MAX_M and not (
+                _EPS * _s_condition(rbuf[_S, :m, :m]) <= _STATE_TRUSTED
+            )
+        else:
             posterior = found.posterior
             deviation = np.sqrt(posterior.diagonal())
             # P⁺ where the Joseph form failed, or where its measured error is more
@@ -866,7 +918,6 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
                 x_info[i] = wrap_float(float(x_info[i]))
                 apart[i] = wrap_float(float(apart[i]))
             tolerance = np.maximum(2.0**-33 * (np.abs(x) + np.abs(step)), deviation)
-            regate = False
             if not (np.abs(apart) <= tolerance).all():
                 # One state is wrong: x⁺ where its error bound is within the
                 # tolerance. Else the kernel's, within about ε κ(S) of its scale:
@@ -878,7 +929,8 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
                     # same solve with S, is as suspect (measured 21.0 for an exact 9.38).
                     regate = m <= _EXACT_NIS_MAX_M
                 elif status != OK and not _EPS * _s_condition(rbuf[_S, :m, :m]) <= _STATE_TRUSTED:
-                    take_p = False  # no state to trust: refused
+                    take_p = False  # no state to trust: refused, after the gate
+                    regate = m <= _EXACT_NIS_MAX_M
             elif (
                 m <= _EXACT_NIS_MAX_M
                 and not _EPS * _s_condition(rbuf[_S, :m, :m]) <= _STATE_TRUSTED
@@ -890,21 +942,31 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
                 regate = True
                 if np.isfinite(x_info).all() and (found.step_error <= _STEP_SURE * deviation).all():
                     new_x = x_info
-            if regate:
-                # The exact NIS (as finish_singular_s), gated again: the kernel
-                # gated with its own.
-                nis = _exact_nis(p, jac, rbuf[_RS, :m, :m], y)
-                rbuf[_VEC, _META, 1] = nis
-                if not nis < math.inf:
-                    return NIS_OVERFLOW
-                if nis > rbuf[_VEC, _META, _GATE]:
-                    return GATED
             if take_p:
                 new_p, status = posterior, OK
+    if regate:
+        # The exact NIS (as finish_singular_s), gated again, before any failure is
+        # reported (a measurement the gate rejects is rejected): the kernel gated
+        # with its own.
+        gated = _regate(p, jac, rbuf, y)
+        if gated != OK:
+            return gated
     if status != OK:
         return status
     state[STATE_X] = new_x
     p[...] = new_p
+    return OK
+
+
+def _regate(p: FloatArray, jac: FloatArray, rbuf: FloatArray, y: FloatArray) -> int:
+    """Leave the exact NIS of the update in ``rbuf`` and gate on it: OK, NIS_OVERFLOW or GATED."""
+    m = jac.shape[0]
+    nis = _exact_nis(p, jac, rbuf[_RS, :m, :m], y)
+    rbuf[_VEC, _META, 1] = nis
+    if not nis < math.inf:
+        return NIS_OVERFLOW
+    if nis > rbuf[_VEC, _META, _GATE]:
+        return GATED
     return OK
 
 
@@ -979,9 +1041,13 @@ def retry_gated(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: FloatAr
     factorisation) and the measurement has at most :data:`_EXACT_NIS_MAX_M`
     components, the update is redone as :func:`finish_singular_s` does (the
     information form, the exact NIS): gated again on the exact NIS, or
-    applied. Elsewhere, or where the exact NIS passes the gate but the
-    information form is not trusted, ``GATED`` stands with the kernel's NIS. A
-    few microseconds for a well-conditioned S.
+    applied. Where the exact NIS passes the gate but the information form is
+    not trusted, ``GATE_PASSED`` (the exact NIS left in ``rbuf``): the caller
+    runs the kernel again without the gate (:func:`set_gate`), as an ungated
+    update, and reports the exact NIS (before, ``GATED`` stood with the
+    kernel's NIS: measured 11.16 for an exact 11.01, rejected at a gate of
+    11.12). Elsewhere ``GATED`` stands. A few microseconds for a
+    well-conditioned S.
     """
     m = jac.shape[0]
     if m == 1 or m > _EXACT_NIS_MAX_M:  # m = 1: the one pivot is S itself, the ratio 1
@@ -994,13 +1060,13 @@ def retry_gated(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: FloatAr
     for k in range(m):
         ratio = diagonal[k] * inverse_pivots[k]
         worst = ratio if ratio > worst else worst
-    if not _EPS * worst > _STATE_TRUSTED:
+    if not worst > _PIVOT_LIMIT:
         return GATED
-    kernel_nis = float(rbuf[_VEC, _META, 1])
     status = finish_singular_s(state, rbuf, jac, y)
-    if status == S_NOT_POSITIVE_DEFINITE:  # the information form not trusted
-        rbuf[_VEC, _META, 1] = kernel_nis
-        return GATED
+    if status == S_NOT_POSITIVE_DEFINITE:
+        # The exact NIS (left in rbuf) passed the gate, but the information form is
+        # not trusted: the kernel's update without the gate, as an ungated update.
+        return GATE_PASSED
     return status
 
 
