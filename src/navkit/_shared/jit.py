@@ -16,6 +16,9 @@ signature whatever numba is installed; kernel modules use them instead of
   helpers called only from other kernels;
 * :data:`njit_force_inline` / :data:`njit_not_inlined`: a helper compiled once
   and inlined by LLVM, and the callee of such a function that must stay a call;
+* :data:`njit_released` / :data:`njit_cached_released`: :data:`njit_no_refcount`
+  and :data:`njit_cached` for the long kernels, which release the GIL while
+  they run (:data:`RELEASES_GIL`);
 * :func:`typed_njit`: any other options (``typed_njit(cache=True, fastmath=...)``).
 
 None of them builds a cfunc wrapper (``no_cfunc_wrapper=True``): navkit never
@@ -562,3 +565,35 @@ njit_not_inlined: Callable[[_F], _F] = typed_njit(**NO_REFCOUNT, forceinline=Fal
 """``njit_no_refcount`` for a kernel called from an LLVM-inlined one (numba's
 ``forceinline``): numba passes that flag on to callees that leave it unset,
 which would inline this one into every call site too."""
+
+#: The option of the kernels that release the GIL while they run (``nogil=True``).
+#:
+#: A kernel holding the GIL stops every other Python thread of the process for
+#: its whole run: a 170 ms Field D* plan in a ROS 2 timer callback delayed a
+#: 200 Hz IMU callback by 190-590 ms (4-5 ms without the plan; with this
+#: option 16-38 ms; benchmarks/test_bench_threads.py: 230-430 ms -> 6-44 ms,
+#: against 4-8 ms with no plan, on a busy 2-core machine). The long
+#: kernels (the grid searches and distance fields, the Field D* walk, passes
+#: over a whole cost grid, ray casting a scan into a map, scan matching, the
+#: simulated LiDAR, a fusion batch, a trace's cross-track distances) release it,
+#: so other threads run meanwhile and two threads planning on two maps use two
+#: cores. The others keep it: releasing and taking it back costs about 40 ns a
+#: call (a tenth to a quarter of a ten-point ``world_to_cell`` or one fusion
+#: step, issue 17's small calls), and a thread taking it back waits while
+#: another thread runs Python (up to ``sys.getswitchinterval()``, 5 ms), which
+#: a kernel called thousands of times a second would pay at every call.
+#: A kernel with this option must only read memory its caller alone writes:
+#: its arguments are per call, per thread, or read-only (the search workspaces
+#: of :mod:`navkit.planning.grid._workspace` are per thread).
+#:
+#: numba's cache does not key a kernel on its options, only on its source
+#: file's modification time and size: a kernel given this option must have it
+#: written in its own file (its decorator line), so that its cached machine
+#: code, compiled with the GIL held, is not loaded again (docs/compilation.md).
+RELEASES_GIL: dict[str, Any] = {"nogil": True}
+
+njit_released: Callable[[_F], _F] = typed_njit(**NO_REFCOUNT, **RELEASES_GIL)
+"""As :data:`njit_no_refcount`, releasing the GIL while it runs (:data:`RELEASES_GIL`)."""
+
+njit_cached_released: Callable[[_F], _F] = typed_njit(**CACHED, **RELEASES_GIL)
+"""As :data:`njit_cached`, releasing the GIL while it runs (:data:`RELEASES_GIL`)."""

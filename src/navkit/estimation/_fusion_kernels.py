@@ -62,7 +62,7 @@ from typing import Any, cast
 
 import numpy as np
 
-from navkit._shared.jit import njit_force_inline, njit_inline, njit_no_refcount
+from navkit._shared.jit import njit_force_inline, njit_inline, njit_no_refcount, njit_released
 from navkit._shared.se2 import wrap_scalar
 from navkit._shared.types import KernelInt
 
@@ -492,7 +492,7 @@ def planar_step(
     return ACCEPTED, nis
 
 
-@njit_no_refcount
+@njit_released
 def planar_run(
     buf: np.ndarray,
     times: np.ndarray,

@@ -30,7 +30,7 @@ import math
 
 import numpy as np
 
-from navkit._shared.jit import njit_cached, njit_helper
+from navkit._shared.jit import njit_cached_released, njit_helper
 
 __all__ = ["cells_near_kernel"]
 
@@ -77,7 +77,7 @@ def _half_width(d: int, reach: float) -> int:
     return lo
 
 
-@njit_cached
+@njit_cached_released
 def cells_near_kernel(
     points: np.ndarray,
     rows: int,

@@ -28,7 +28,7 @@ import math
 
 import numpy as np
 
-from navkit._shared.jit import NO_REFCOUNT, njit_no_refcount, typed_njit
+from navkit._shared.jit import NO_REFCOUNT, njit_released, typed_njit
 from navkit._shared.lines import bresenham_step
 
 __all__ = ["integrate_beams"]
@@ -75,7 +75,7 @@ def _miss_cell(
     return 1
 
 
-@njit_no_refcount
+@njit_released
 def integrate_beams(
     logodds: np.ndarray,
     origin_x: float,

@@ -47,7 +47,7 @@ from typing import Any
 
 import numpy as np
 
-from navkit._shared.jit import njit_cached, njit_inline, njit_no_refcount
+from navkit._shared.jit import njit_cached, njit_inline, njit_no_refcount, njit_released
 
 __all__ = [
     "STATUS_CONVERGED",
@@ -240,7 +240,7 @@ def _solve3(h: np.ndarray, g: np.ndarray, step: np.ndarray) -> bool:
     return math.isfinite(step[0]) and math.isfinite(step[1]) and math.isfinite(step[2])
 
 
-@njit_no_refcount
+@njit_released
 def match_level(
     logodds: np.ndarray,
     origin_x: float,
@@ -386,7 +386,7 @@ def match_level(
     return max_iterations, STATUS_MAX_ITERATIONS
 
 
-@njit_no_refcount
+@njit_released
 def correlative_search_kernel(
     logodds: np.ndarray,
     origin_x: float,

@@ -60,7 +60,7 @@ import math
 
 import numpy as np
 
-from navkit._shared.jit import njit_helper, njit_no_refcount
+from navkit._shared.jit import njit_helper, njit_no_refcount, njit_released
 from navkit.sim._moving_kernels import point_in_moving
 
 __all__ = ["apply_range_noise", "cast_edge_rays", "cast_occupancy_rays"]
@@ -479,7 +479,7 @@ def _in_static_solid(
     return inside
 
 
-@njit_no_refcount
+@njit_released
 def cast_edge_rays(
     out: np.ndarray,
     dirs: np.ndarray,
@@ -553,7 +553,7 @@ def cast_edge_rays(
         out[k] = best if not last or best < range_max else _INF
 
 
-@njit_no_refcount
+@njit_released
 def cast_occupancy_rays(
     out: np.ndarray,
     dirs: np.ndarray,

@@ -42,7 +42,7 @@ import math
 
 import numpy as np
 
-from navkit._shared.jit import njit_no_refcount
+from navkit._shared.jit import njit_released
 
 __all__ = [
     "CHUNK",
@@ -110,7 +110,7 @@ def chunk_boxes(path: np.ndarray) -> np.ndarray:
     return boxes
 
 
-@njit_no_refcount
+@njit_released
 def point_polyline_distances(points: np.ndarray, path: np.ndarray, out: np.ndarray) -> None:
     """``out[i]``: distance from ``points[i]`` to the polyline ``path`` (K >= 1 vertices)."""
     k = path.shape[0]
@@ -135,7 +135,7 @@ def point_polyline_distances(points: np.ndarray, path: np.ndarray, out: np.ndarr
         out[i] = best
 
 
-@njit_no_refcount
+@njit_released
 def point_polyline_distances_chunked(
     points: np.ndarray, path: np.ndarray, boxes: np.ndarray, out: np.ndarray
 ) -> None:

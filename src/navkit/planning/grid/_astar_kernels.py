@@ -18,7 +18,7 @@ import math
 
 import numpy as np
 
-from navkit._shared.jit import njit_force_inline, njit_helper, njit_inline, njit_no_refcount
+from navkit._shared.jit import njit_force_inline, njit_helper, njit_inline, njit_released
 from navkit._shared.types import KernelInt
 from navkit.planning.grid._search_heap import (
     REC_BASE,
@@ -126,7 +126,7 @@ def _relax(
     return next_f, next_key, next_v, n, next_queued
 
 
-@njit_no_refcount
+@njit_released
 def grid_search(
     flat: np.ndarray,
     rows: int,

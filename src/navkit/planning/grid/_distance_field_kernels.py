@@ -41,7 +41,7 @@ import math
 
 import numpy as np
 
-from navkit._shared.jit import NO_REFCOUNT, njit_no_refcount, typed_njit
+from navkit._shared.jit import NO_REFCOUNT, njit_released, typed_njit
 
 SQRT2 = math.sqrt(2.0)
 _HALF_ORTHO = 0.5
@@ -57,7 +57,7 @@ GROW = 1
 """Status of :func:`bucket_field`: a bucket segment is full; enlarge ``cap`` and call again."""
 
 
-@njit_no_refcount
+@njit_released
 def pad_grid(
     flat: np.ndarray, rows: int, cols: int, free: np.ndarray, padded: np.ndarray, uniform: bool
 ) -> None:
@@ -91,14 +91,14 @@ def pad_grid(
                 padded[row + 1 + c] = v
 
 
-@njit_no_refcount
+@njit_released
 def fill_inf(dist: np.ndarray) -> None:
     """Set every entry of ``dist`` to inf."""
     for i in range(dist.shape[0]):
         dist[i] = np.inf
 
 
-@njit_no_refcount
+@njit_released
 def crop(dist: np.ndarray, rows: int, cols: int, out: np.ndarray) -> None:
     """Copy the interior of the padded field ``dist`` into ``out`` (``rows * cols``).
 
@@ -152,7 +152,7 @@ def _relax(
     return top
 
 
-@njit_no_refcount
+@njit_released
 def bucket_field(
     free: np.ndarray,
     costs: np.ndarray,

@@ -40,7 +40,7 @@ from typing import Any
 
 import numpy as np
 
-from navkit._shared.jit import typed_njit
+from navkit._shared.jit import RELEASES_GIL, typed_njit
 from navkit.planning.grid._dstar_heap import HELPER_OPTIONS, KERNEL_OPTIONS, RECORD, RHS
 from navkit.planning.grid._dstar_lite_kernels import (
     INF,
@@ -70,7 +70,7 @@ CANDIDATES = 32
 # A frozen global for the kernels (see INF in the D* Lite kernels).
 NAN = math.nan
 
-_kernel = typed_njit(**KERNEL_OPTIONS)
+_kernel = typed_njit(**KERNEL_OPTIONS, **RELEASES_GIL)
 _helper = typed_njit(**HELPER_OPTIONS)
 
 

@@ -61,7 +61,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from navkit._shared.jit import njit_no_refcount
+from navkit._shared.jit import njit_released
 from navkit._shared.types import KernelInt
 from navkit.planning.grid._jps_kernels import (
     _DC,
@@ -210,7 +210,7 @@ def _successor_directions(
     return out
 
 
-@njit_no_refcount
+@njit_released
 def jps_cut_search(
     row_bits: np.ndarray,
     col_bits: np.ndarray,

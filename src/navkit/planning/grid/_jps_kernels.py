@@ -52,7 +52,7 @@ from navkit._shared.jit import (
     NO_REFCOUNT,
     bind_numba_names,
     njit_helper,
-    njit_no_refcount,
+    njit_released,
     typed_njit,
 )
 from navkit._shared.types import KernelInt
@@ -194,7 +194,7 @@ def jps_tables(
     return flat_rows, col_bits, lowest, highest
 
 
-@njit_no_refcount
+@njit_released
 def _columns(
     row_bits: np.ndarray,
     rows: int,
@@ -532,7 +532,7 @@ def _follow_corridor(
     return v
 
 
-@njit_no_refcount
+@njit_released
 def jps_search(
     row_bits: np.ndarray,
     col_bits: np.ndarray,

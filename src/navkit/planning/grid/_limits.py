@@ -34,7 +34,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from navkit._shared.costs import validate_costs_lowest
-from navkit._shared.jit import njit_no_refcount
+from navkit._shared.jit import njit_released
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import finite_float, holds_bool, refuse_masked
 from navkit.planning.grid._search_heap import MAX_NODES
@@ -152,7 +152,7 @@ def compiled_cost_range(grid: FloatArray, name: str = "costs") -> tuple[float, f
     return scanned_cost_range(grid, name, lo_bits, hi_bits)
 
 
-@njit_no_refcount
+@njit_released
 def _scan_cost_bits(bits: NDArray[np.int64], inf_bits: int) -> tuple[int, int]:
     """(smallest of ``bits``, largest one other than ``inf_bits`` or -1), one pass.
 

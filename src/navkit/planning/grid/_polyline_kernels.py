@@ -29,11 +29,11 @@ from math import ceil, floor, hypot
 
 import numpy as np
 
-from navkit._shared.jit import typed_njit
+from navkit._shared.jit import RELEASES_GIL, typed_njit
 from navkit.planning.grid._dstar_heap import HELPER_OPTIONS, KERNEL_OPTIONS
 from navkit.planning.grid._dstar_lite_kernels import INF
 
-_kernel = typed_njit(**KERNEL_OPTIONS)
+_kernel = typed_njit(**KERNEL_OPTIONS, **RELEASES_GIL)
 _helper = typed_njit(**HELPER_OPTIONS)
 
 
