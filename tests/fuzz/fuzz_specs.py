@@ -1064,6 +1064,7 @@ spec(
         process_noise=np.full(6, 1e-3),
         t0=0.0,
         gate_probability=0.99,
+        history=0.5,  # FUSION (review 22): late measurements within 0.5 s
     ),
     kinds={
         "x0": Array(optional=True),
@@ -1072,6 +1073,7 @@ spec(
         "t0": Real(optional=True),
         "gate_probability": Real(optional=True),
         "pose": OPT_POSE,
+        "history": Real(),  # FUSION (review 22)
     },
 )
 FUSION: dict[str, Any] = {"mutates": ("self",), "nan_ok": _uncomputed_nis, "inf_ok": _rejected}
