@@ -91,9 +91,9 @@ def test_an_ambiguous_start_is_ambiguous_before_any_point(
 def test_nothing_after_a_double_dash_is_joined() -> None:
     argv = ["plan", "m.yaml", "--go", "-1,2", "--", "--go", "-1,2"]
     assert join_negative_points(argv) == ["plan", "m.yaml", "--go=-1,2", "--", "--go", "-1,2"]
-    # Options and other commands' values are left alone.
-    assert join_negative_points(["run", "x", "--seed", "-1", "--", "-2"]) == [
-        "run", "x", "--seed", "-1", "--", "-2"]  # fmt: skip
+    # Other options' values are left alone (numbers are joined since session 26).
+    assert join_negative_points(["run", "x", "--plot", "-1.png", "--seed", "-1", "--", "-2"]) == [
+        "run", "x", "--plot", "-1.png", "--seed=-1", "--", "-2"]  # fmt: skip
 
 
 class _Full(io.StringIO):
@@ -167,7 +167,7 @@ def test_plan_json_holds_the_plan_the_table_prints(
     assert data["robot_radius"] == 0.1 and data["start_tolerance"] == 0.0
     points = np.array(data["points"])
     assert points.shape[1] == 2 and len(points) == int(table_value(out, "path points"))
-    # Start and goal are cell centres here, where MapPlanner's paths begin and end.
+    # MapPlanner's paths begin and end at the points given (cell centres here).
     assert np.allclose(points[0], data["start"]) and np.allclose(points[-1], data["goal"])
     # The path rounds the wall's top (y >= 1.4 + radius), and its length is its points'.
     assert points[:, 1].max() > 1.4

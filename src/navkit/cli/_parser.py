@@ -26,15 +26,22 @@ def version() -> str:
 def join_negative_points(argv: list[str]) -> list[str]:
     """``--start -1.5,2`` as ``--start=-1.5,2``: argparse would take ``-1.5,2`` for an option.
 
-    An abbreviation (``--go -1,2``) is joined too, so that argparse reads it as
-    it reads the abbreviation before a positive point (``--sta`` stays
-    ambiguous with ``--start-tolerance``, as ``--sta 1,2`` is); nothing after
-    ``--`` is changed.
+    After an option that takes a point or a number (``--start``, ``--goal``,
+    ``--radius``, ``--start-tolerance``, ``--trials``, ``--seed``,
+    ``--workers``), a value beginning with one ``-`` is joined to it, whatever
+    follows the dash: argparse takes only plain negative numbers (``-1``,
+    ``-0.5``) for values and answered ``--start -inf,0``, ``--start -1e3,0``
+    or ``--radius -inf`` with "expected one argument"; joined, the option's
+    own check names the problem ("X,Y must be finite, got '-inf,0'"). ``-h``
+    and ``--...`` stay options. An abbreviation (``--go -1,2``) is joined
+    too, so that argparse reads it as it reads the abbreviation before a
+    positive point (``--sta`` stays ambiguous with ``--start-tolerance``, as
+    ``--sta 1,2`` is); nothing after ``--`` is changed.
 
     Examples
     --------
-    >>> join_negative_points(["plan", "m.yaml", "--start", "-1.5,-0.5", "--go", "-1,1"])
-    ['plan', 'm.yaml', '--start=-1.5,-0.5', '--go=-1,1']
+    >>> join_negative_points(["plan", "m.yaml", "--start", "-1.5,-0.5", "--go", "-inf,1"])
+    ['plan', 'm.yaml', '--start=-1.5,-0.5', '--go=-inf,1']
     """
     out: list[str] = []
     i = 0
@@ -43,7 +50,7 @@ def join_negative_points(argv: list[str]) -> list[str]:
         following = argv[i + 1] if i + 1 < len(argv) else ""
         if arg == "--":  # the rest are positional arguments, as the user wrote them
             return out + argv[i:]
-        if _point_option(arg) and re.match(r"\(?\s*-[\d.]", following):
+        if _value_option(arg) and _dash_value(following):
             out.append(f"{arg}={following}")
             i += 2
         else:
@@ -52,9 +59,23 @@ def join_negative_points(argv: list[str]) -> list[str]:
     return out
 
 
-def _point_option(arg: str) -> bool:
-    """Whether ``arg`` is ``--start`` or ``--goal`` or an abbreviation of one (``--go``)."""
-    return len(arg) > 2 and any(name.startswith(arg) for name in ("--start", "--goal"))
+#: The options whose value is a point or a number, and so may begin with "-".
+_VALUE_OPTIONS = (
+    "--start", "--goal", "--radius", "--start-tolerance", "--trials", "--seed", "--workers"
+)
+
+
+def _value_option(arg: str) -> bool:
+    """Whether ``arg`` is one of :data:`_VALUE_OPTIONS` or an abbreviation of one (``--go``)."""
+    return len(arg) > 2 and "=" not in arg and any(n.startswith(arg) for n in _VALUE_OPTIONS)
+
+
+def _dash_value(text: str) -> bool:
+    """Whether ``text`` begins with one ``-`` and more (``-1,2``, ``-inf,0``, ``-x``), not ``-h``.
+
+    A lone ``-`` is a value to argparse already; ``--goal`` and the like are options.
+    """
+    return len(text) > 1 and text[0] == "-" and text[1] != "-" and text != "-h"
 
 
 class Choices(Sequence[str]):

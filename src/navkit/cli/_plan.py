@@ -141,9 +141,10 @@ def plan_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
     ``--json FILE`` holds the plan in world metres (``start`` and ``goal`` as
     given, ``points`` as ``[x, y]`` lists, ``length``, ``cost``,
     ``robot_radius``, ``start_tolerance``), the planner's name,
-    ``cells_expanded`` and the two times in ms. The points are
-    :meth:`MapPlanner.plan`'s: from the start cell's centre (or the start
-    point itself after an escape) to the goal cell's centre.
+    ``cells_expanded`` and the two times in ms, each point ``[x, y]`` on one
+    line. The points are :meth:`MapPlanner.plan`'s: from the start given
+    (linked to its cell's centre, or after an escape to the escape cell's) to
+    the goal given.
     """
     check_output(args.plot, ".png", "--plot")
     check_output(args.json, "", "--json")
@@ -206,5 +207,5 @@ def plan_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
             "costmap_time_ms": 1e3 * (prepared - began),
             "points": path.points.tolist(),
         }
-        print(f"wrote {write_json(data, args.json)}", file=out)
+        print(f"wrote {write_json(data, args.json, number_lists_on_one_line=True)}", file=out)
     return 0

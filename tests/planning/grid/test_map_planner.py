@@ -63,12 +63,19 @@ def test_path_matches_astar_on_the_inflated_costs_in_a_rotated_frame() -> None:
         _ = path.cells
     costs = grid.traversal_costs(robot_radius=0.15)
     reference = astar(costs, (10, 10), (50, 70))
+    # The given ends exactly, linked to A*'s path between their cells' centres.
+    np.testing.assert_array_equal(path.points[[0, -1]], [start, goal])
+    np.testing.assert_allclose(path.points[1:-1], grid.cell_to_world(reference.points), atol=1e-12)
     cells = grid.world_to_cell(path.points)
-    np.testing.assert_array_equal(cells, reference.cells)
-    assert path.cost == pytest.approx(reference.cost * 0.05, rel=1e-12)
-    assert path.length == pytest.approx(reference.length * 0.05, rel=1e-9)
+    np.testing.assert_array_equal(cells[1:-1], reference.cells)
+    np.testing.assert_array_equal(cells[[0, -1]], [(10, 10), (50, 70)])
+    links = [float(np.hypot(*(path.points[i] - path.points[j]))) for i, j in ((0, 1), (-1, -2))]
+    assert links == pytest.approx([0.01 * np.sqrt(2)] * 2, rel=1e-6)
+    # The links run in cells of cost 1 (the start's and the goal's): cost and length grow by them.
+    assert path.cost == pytest.approx(reference.cost * 0.05 + sum(links), rel=1e-12)
+    assert path.length == pytest.approx(reference.length * 0.05 + sum(links), rel=1e-9)
     assert path.expanded == reference.expanded
-    assert_valid_path(costs, cells, (10, 10), (50, 70))
+    assert_valid_path(costs, cells[1:-1], (10, 10), (50, 70))
     # The path crosses the wall through the door.
     assert set(cells[:, 1].tolist()) >= {40}
     assert np.all(clearance(grid, path.points) > 0.15)
@@ -80,7 +87,8 @@ def test_robot_radius_closes_a_narrow_door() -> None:
     grid = doorway_grid(8)  # 0.4 m door
     start, goal = (0.5, 1.5), (3.5, 1.5)
     through = plan_path(grid, start, goal, robot_radius=0.1)
-    assert through.length == pytest.approx(3.0, abs=0.06)
+    # Cell corners: linked to their cells' centres, half a diagonal each.
+    assert through.length == pytest.approx(3.0 + 0.05 * np.sqrt(2), abs=0.06)
     with pytest.raises(NoPathError) as info:
         plan_path(grid, start, goal, robot_radius=0.25)
     assert info.value.expanded > 100
@@ -251,8 +259,12 @@ def test_map_planner_with_field_dstar_keeps_one_prepared_planner() -> None:
             cells = reference.plan_cells(
                 tuple(grid.world_to_cell(start).tolist()), tuple(grid.world_to_cell(goal).tolist())
             )
-            np.testing.assert_allclose(path.points, grid.cell_to_world(cells.points), atol=1e-12)
-            assert path.cost == pytest.approx(cells.cost * grid.resolution, rel=1e-12)
+            np.testing.assert_array_equal(path.points[[0, -1]], [start, goal])
+            np.testing.assert_allclose(
+                path.points[1:-1], grid.cell_to_world(cells.points), atol=1e-12
+            )
+            links = np.hypot(*(path.points[[0, -1]] - path.points[[1, -2]]).T).sum()
+            assert path.cost == pytest.approx(cells.cost * grid.resolution + links, rel=1e-12)
             assert path.expanded == cells.expanded
             one_shot = plan_path(grid, start, goal, robot_radius=0.1, planner="field_dstar")
             np.testing.assert_array_equal(one_shot.points, path.points)

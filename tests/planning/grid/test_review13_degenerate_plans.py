@@ -73,8 +73,9 @@ def test_a_goal_a_float_step_inside_the_far_edge_is_planned_to(planner: str) -> 
     goal = (math.nextafter(3.0, 0.0), math.nextafter(4.0, 0.0))
     assert bool(grid.contains(goal))
     path = MapPlanner(grid, planner=planner).plan((1.1, 2.1), goal)  # type: ignore[arg-type]
-    # From cell (0, 0)'s centre to cell (3, 3)'s: the last cell's centre.
-    np.testing.assert_allclose(path.points[[0, -1]], [[1.25, 2.25], [2.75, 3.75]], atol=1e-12)
+    # From the start through cell (0, 0)'s centre to cell (3, 3)'s, then the goal itself.
+    np.testing.assert_array_equal(path.points[[0, -1]], [(1.1, 2.1), goal])
+    np.testing.assert_allclose(path.points[[1, -2]], [[1.25, 2.25], [2.75, 3.75]], atol=1e-12)
 
 
 def test_a_point_far_outside_gets_no_edge_note() -> None:
@@ -215,10 +216,10 @@ def test_start_equal_to_goal_is_the_one_point_path_everywhere(shape: tuple[int, 
     assert path.points.tolist() == [[shape[0] - 0.5, shape[1] - 0.5]] and path.cost == 0.0
     grid = OccupancyGrid.from_occupancy(np.zeros(shape, dtype=bool), resolution=0.5)
     corner = (0.5, 0.5) if shape == (3, 3) else (0.0, 0.0)  # a cell corner, the map's corner
-    centre = grid.cell_to_world(grid.world_to_cell(corner)).tolist()
     for name in ("astar", "field_dstar"):
+        # The point given, as FieldDStar.plan_world's (its cell's centre before session 26).
         got = MapPlanner(grid, planner=name).plan(corner, corner)  # type: ignore[arg-type]
-        assert got.points.tolist() == [centre] and got.cost == 0.0 and got.length == 0.0
+        assert got.points.tolist() == [list(corner)] and got.cost == 0.0 and got.length == 0.0
     world = planner.plan_world(corner, corner)
     assert world.points.tolist() == [list(corner)] and world.cost == 0.0
 

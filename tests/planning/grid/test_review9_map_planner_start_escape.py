@@ -396,8 +396,11 @@ def test_escaped_paths_never_touch_an_obstacle(
     ]
     pts = np.asarray(grid.world_to_cell(path.points, continuous=True)).reshape(-1, 2)
     if np.isfinite(planner.costs[cell]):
-        # No escape: the path starts at the start cell's centre, as without a tolerance.
-        np.testing.assert_array_equal(pts[0], cell)
+        # No escape: the path starts at the start itself, then the start cell's
+        # centre (unless the start is that centre), as without a tolerance.
+        np.testing.assert_array_equal(path.points[0], start)
+        first = 0 if np.allclose(pts[0], cell, rtol=0.0, atol=1e-9) else 1
+        np.testing.assert_allclose(pts[first], cell, rtol=0.0, atol=1e-12)
         return
     # Escaped: the escape segment touches no blocked square at all...
     assert not hard[cell]

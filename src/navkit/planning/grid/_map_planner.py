@@ -375,11 +375,18 @@ class MapPlanner:
         Returns
         -------
         Path2D
-            ``"world"`` path, points ``(x, y)`` in m of shape (K, 2), from the
-            centre of the cell containing ``start`` to the centre of the cell
-            containing ``goal`` (for ``"astar"`` through cell centres); cost in
-            cost-weighted metres (the planner's cost × the resolution, equal to
-            the length in free space), length in m, expansions. After an escape, the points are
+            ``"world"`` path, points ``(x, y)`` in m of shape (K, 2), from
+            ``start`` to ``goal``: its first and last points are the points
+            given, exactly (as float64), as :meth:`FieldDStar.plan_world`'s.
+            Each is linked by a straight segment inside its own (passable)
+            cell to that cell's centre, where the planned path begins or ends
+            (for ``"astar"`` through cell centres); a point within a millionth
+            of a cell of its centre takes the centre's place instead. A start
+            and goal in one cell are joined straight (one point when equal).
+            Cost in cost-weighted metres (the planner's cost × the resolution,
+            plus each link's length × its cell's cost: equal to the length in
+            free space), length in m (of the polyline, links included),
+            expansions. After an escape, the points are
             ``start``, then the planned path from the escape cell's centre;
             ``length`` is the polyline's, escape segment included; ``cost`` is
             the planned path's plus the escape segment's, the integral of the
@@ -426,6 +433,13 @@ class MapPlanner:
         >>> round(path.length, 3), round(path.cost, 3)
         (1.731, 1.731)
 
+        Points off their cells' centres begin and end the path themselves,
+        linked to those centres:
+
+        >>> off = planner.plan((0.52, 0.21), (1.58, 0.29))
+        >>> off.points[[0, 1, -2, -1]].round(6).tolist()
+        [[0.52, 0.21], [0.55, 0.25], [1.55, 0.25], [1.58, 0.29]]
+
         A start that drifted into the inflated band is refused, unless it may
         escape to a passable cell within ``start_tolerance``:
 
@@ -444,7 +458,8 @@ class MapPlanner:
         if not math.isfinite(self._costs[start_cell]):
             escape = self._escape(start_xy, start_cell, tolerance)
             start_cell = escape.cell
-        goal_cell = self._endpoint_cell(goal, "goal")
+        goal_xy = _point_xy(goal, "goal")
+        goal_cell = self._endpoint_cell(goal_xy, "goal")
         prepared = self._prepared
         try:
             if isinstance(prepared, AStarPlanner):
@@ -469,14 +484,46 @@ class MapPlanner:
         grid = self._grid
         points = np.asarray(grid.cell_to_world(path.points), dtype=np.float64).reshape(-1, 2)
         cost = path.cost * grid.resolution
-        if escape is not None:
-            points = np.concatenate((escape.point[None, :], points))
-            cost += escape.cost * grid.resolution
+        if escape is None and start_cell == goal_cell and len(points) == 1:
+            # One cell: straight from the start to the goal, inside the cell.
+            same = bool(np.array_equal(start_xy, goal_xy))
+            points = start_xy[None, :] if same else np.stack((start_xy, goal_xy))
+            cost = float(np.hypot(*(goal_xy - start_xy))) * float(self._costs[goal_cell])
+        else:
+            if escape is not None:
+                points = np.concatenate((escape.point[None, :], points))
+                cost += escape.cost * grid.resolution
+            else:
+                points, cost = self._linked(points, cost, start_xy, start_cell, 0)
+            points, cost = self._linked(points, cost, goal_xy, goal_cell, -1)
         length = float(np.hypot(*np.diff(points, axis=0).T).sum())
         return Path2D(
             points, "world", cost=cost, length=length,
             expanded=path.expanded,
         )
+
+    def _linked(
+        self, points: FloatArray, cost: float, point: FloatArray, cell: tuple[int, int], end: int
+    ) -> tuple[FloatArray, float]:
+        """``points`` (world) beginning (``end=0``) or ending (``end=-1``) at ``point`` exactly.
+
+        The planned path ends at the centre of ``cell``, the passable cell
+        holding ``point``; the straight link between them stays inside that
+        cell (a square holds the segment between two of its points), so the
+        path stays collision-free, and costs its length × the cell's cost. The
+        planned path itself is kept as planned (A*'s through cell centres). A
+        point within a millionth of a cell of the centre takes the centre's
+        place instead: a link that short is the rounding of ``cell_to_world``
+        (0.55 back as 0.5500000000000002), not a step.
+        """
+        centre = points[end]
+        step = float(np.hypot(*(point - centre)))
+        if step <= _SAME_POINT * self._grid.resolution:
+            points = points.copy()
+            points[end] = point
+            return points, cost
+        pair = (point[None, :], points) if end == 0 else (points, point[None, :])
+        return np.concatenate(pair), cost + step * float(self._costs[cell])
 
     def _escape(self, point: FloatArray, start: tuple[int, int], tolerance: float) -> _Escape:
         """The escape from the impassable start cell ``start``, or the refusal.
@@ -520,8 +567,7 @@ class MapPlanner:
             "crossing an obstacle" + (" or unknown space" if math.isinf(self._unknown_cost) else "")
         )
 
-    def _endpoint_cell(self, value: Pose2D | ArrayLike, name: str) -> tuple[int, int]:
-        point = _point_xy(value, name)
+    def _endpoint_cell(self, point: FloatArray, name: str) -> tuple[int, int]:
         row, col = self._point_cell(point, name)
         if not math.isfinite(self._costs[row, col]):
             where = f"{name} {tuple(point.tolist())}"
@@ -599,6 +645,10 @@ class MapPlanner:
                     "(inflate_unknown is True)"
                 )
         return f"is within robot_radius ({self._robot_radius} m) of an obstacle"
+
+
+#: A start or goal within this many cells of its cell's centre takes the centre's place.
+_SAME_POINT = 1e-6
 
 
 class _Escape(NamedTuple):

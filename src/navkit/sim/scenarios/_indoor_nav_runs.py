@@ -18,6 +18,7 @@ import numpy as np
 
 from navkit.estimation import DiffOdometry
 from navkit.geometry import Pose2D, Twist2D
+from navkit.mapping import OccupancyGrid
 from navkit.planning import Path2D
 from navkit.sim import EncoderReading, Observation, Simulation, Trace, TrackerController
 from navkit.sim.scenarios._indoor_nav_lab import (
@@ -139,6 +140,27 @@ def _timed_plan(
     return plan_between(planner, start, goal)
 
 
+def _planned_part(points_xy: np.ndarray, grid: OccupancyGrid) -> np.ndarray:
+    """A world path's points without :class:`MapPlanner`'s links to its end cells' centres.
+
+    ``MapPlanner`` joins a start or goal off its cell's centre to that centre
+    by a short straight link (half a cell diagonal at most): the headings
+    compared are the planner's, so a first (last) point whose neighbour is its
+    own cell's centre is left out.
+    """
+    pts = np.asarray(points_xy, dtype=np.float64)
+    lo, hi = 0, len(pts)
+    for end, inner in ((0, 1), (-1, -2)):
+        if hi - lo <= 2:
+            break
+        centre = grid.cell_to_world(grid.world_to_cell(pts[end][None, :]))[0]
+        if np.allclose(pts[inner], centre, rtol=0, atol=1e-9 * grid.resolution) and not (
+            np.allclose(pts[end], centre, rtol=0, atol=1e-9 * grid.resolution)
+        ):
+            lo, hi = (1, hi) if end == 0 else (lo, hi - 1)
+    return pts[lo:hi]
+
+
 def run_planning(
     route: int, *, resolution: float, furniture: bool, source: str
 ) -> tuple[dict[str, float], dict[str, Path2D]]:
@@ -165,7 +187,8 @@ def run_planning(
             _timed_plan(name, resolution, furniture, route, source)
             best = min(best, time.perf_counter() - t0)
         values[f"{key}_length"] = path.length
-        values[f"{key}_off45"] = heading_share(path.points)
+        grid = lab_planner(resolution, furniture, name, source).grid
+        values[f"{key}_off45"] = heading_share(_planned_part(path.points, grid))
         values[f"{key}_expanded"] = float(path.expanded)
         values[f"{key}_wall_time"] = best
         paths[key] = path
