@@ -87,6 +87,10 @@ class FrozenDict(Mapping[_K, _V]):
     def __iter__(self) -> Iterator[_K]:
         return iter(self._data)
 
+    def __reversed__(self) -> Iterator[_K]:
+        # A dict's keys, last first: Mapping has no __reversed__, so reversed() refused.
+        return reversed(self._data)
+
     def __len__(self) -> int:
         return len(self._data)
 

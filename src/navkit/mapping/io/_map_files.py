@@ -27,6 +27,7 @@ import struct
 import unicodedata
 import warnings
 import zlib
+from bisect import bisect_left
 from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path, PureWindowsPath
@@ -304,13 +305,24 @@ def _load_tabbed(text: str, path: Path) -> object:
     changes the value. That is refused, naming the key, rather than read as
     another value (``image: my<TAB>map.pgm`` read as ``my map.pgm``, another
     file). Where the second load fails (a tab after a block indicator, whose
-    width moves what follows), the first stands.
+    width moves what follows), the first stands unless one of its tabs lies
+    inside a scalar of the document (:func:`_tab_in_scalar`).
     """
-    doc = yaml.load(_untabbed(text), Loader=_Loader)
+    narrow = _untabbed(text)
+    doc = yaml.load(narrow, Loader=_Loader)
     try:
         wide = yaml.load(_untabbed(text, "  "), Loader=_Loader)
     except yaml.YAMLError:
-        return doc
+        # A tab's width moved a structure, so the loads cannot be compared: the
+        # tabs are checked by where they lie instead (unchecked, image: my<TAB>map.pgm
+        # elsewhere in such a file was read as "my map.pgm").
+        found = _tab_in_scalar(text, narrow)
+        if found is None:
+            return doc
+        raise _TabInValue(
+            f"{path}: a tab inside {found}, which PyYAML cannot read: "
+            "quote it or replace the tab with a space"
+        ) from None
     seen: set[tuple[int, int]] = set()
     if _same_doc(doc, wide, seen):
         return doc
@@ -325,6 +337,51 @@ def _load_tabbed(text: str, path: Path) -> object:
         f"{path}: a tab inside {where}, which PyYAML cannot read: "
         "quote it or replace the tab with a space"
     )
+
+
+def _tab_in_scalar(text: str, narrow: str) -> str | None:
+    """Where a tab of ``text`` lies inside a plain or block scalar of ``narrow``, or None.
+
+    ``narrow`` is ``text`` with its tabs outside quotes and indents as one
+    space each, so a character keeps its index. A scalar's span runs from its
+    first character to just past its last (a plain scalar's trailing blanks
+    are outside it), so a tab between tokens is outside every span. A tab at
+    the end of an inner line of a multi-line plain scalar, which folding
+    drops, counts as inside too: refused, not guessed. Returns "a key", "the
+    value of 'key'" or "a key or value", as :func:`_load_tabbed` words them.
+    """
+    tabs = [i for i, (a, b) in enumerate(zip(text, narrow, strict=True)) if a != b]
+    root = yaml.compose(narrow, Loader=_Loader)
+
+    def holds(node: yaml.Node, seen: set[int]) -> bool:
+        # Each node once: aliases share nodes ("billion laughs" stays linear).
+        if id(node) in seen:
+            return False
+        seen.add(id(node))
+        if isinstance(node, yaml.ScalarNode):
+            if node.style not in (None, "|", ">"):
+                return False  # quoted: its tabs were never replaced
+            # The first tab at or after the scalar's start: inside it if before its end.
+            k = bisect_left(tabs, node.start_mark.index)
+            return k < len(tabs) and tabs[k] < node.end_mark.index
+        if isinstance(node, yaml.MappingNode):
+            return any(holds(k, seen) or holds(v, seen) for k, v in node.value)
+        if isinstance(node, yaml.SequenceNode):
+            return any(holds(item, seen) for item in node.value)
+        return False
+
+    if root is None:
+        return None
+    if isinstance(root, yaml.MappingNode):
+        seen: set[int] = set()
+        for key, value in root.value:
+            if holds(key, seen):
+                return "a key"
+            if holds(value, seen):
+                name = key.value if isinstance(key, yaml.ScalarNode) else "?"
+                return f"the value of {_short(name)}"
+        return None
+    return "a key or value" if holds(root, set()) else None
 
 
 def _same_doc(a: object, b: object, seen: set[tuple[int, int]]) -> bool:
