@@ -22,11 +22,19 @@ it (``noop_wrapper``), and the compiled kernel without numba's per-call type
 dispatch (``entry``, which the public fast paths call).
 * ``DiffOdometry.update``: one encoder reading (was a one-row batch, ~0.2 ms),
   against a Python function doing the same arithmetic with no checks.
+
+Every contestant's ``extra_info`` holds, once the others of its group have run,
+the ratios of the group's ``public`` median to theirs (``public_over_kernel``,
+the issue's number, ``public_over_floor`` and so on): saved with
+``--benchmark-json``, a run reports its ratios without arithmetic by hand.
+Medians of calls this short move by tens of percent on a loaded machine;
+compare ratios from one run.
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Iterator
 from typing import Any
 
 import numpy as np
@@ -47,6 +55,36 @@ from navkit.planning.reactive._scan_repulsion_kernels import (
     khatib_beam_force_into,
     khatib_entry,
 )
+
+# Per group, each contestant's benchmark fixture, in run order: the ratios are
+# filled in as the group's contestants finish (pytest-benchmark writes
+# extra_info at the end of the session).
+_GROUPS: dict[str, dict[str, Any]] = {}
+
+
+def _record(benchmark: Any, group: str, contestant: str) -> None:
+    """Store this contestant's fixture and refresh its group's public/other ratios."""
+    members = _GROUPS.setdefault(group, {})
+    members[contestant] = benchmark
+    medians = {
+        name: bench.stats.stats.median
+        for name, bench in members.items()
+        if getattr(bench, "stats", None) is not None  # None with --benchmark-disable
+    }
+    public = medians.get("public")
+    if public is None:
+        return
+    ratios = {f"public_over_{name}": public / m for name, m in medians.items() if name != "public"}
+    for bench in members.values():
+        bench.extra_info.update(ratios)
+
+
+@pytest.fixture(autouse=True)
+def _ratios(request: pytest.FixtureRequest, benchmark: Any) -> Iterator[None]:
+    """After each contestant: record it in its group (see :func:`_record`)."""
+    yield
+    marker = request.node.get_closest_marker("benchmark")
+    _record(benchmark, marker.kwargs["group"], request.node.callspec.params["contestant"])
 
 
 class _Clock:

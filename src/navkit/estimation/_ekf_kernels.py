@@ -190,7 +190,8 @@ _PIVOT_LIMIT = _STATE_TRUSTED / _EPS
 # posterior's deviations.
 _STEP_SURE = 0.25
 # The largest measurement size whose update finish_singular_s completes (its exact NIS
-# costs about 8 ms for m = 8 with 15 states, 30 ms for m = 12); larger ones still
+# costs 0.8-2.6 ms for m = 8 with 15 states, 3.6-20 ms for m = 12, 66 ms for m = 16,
+# more the further apart the matrices' exponents lie; measured 2026-12); larger ones still
 # raise FilterError where the computed S is not positive definite.
 _EXACT_NIS_MAX_M = 8
 # The largest n whose Q the predict kernel accepts by its LDLᵀ factorisation
@@ -1080,9 +1081,10 @@ def _exact_nis(p: FloatArray, jac: FloatArray, r: FloatArray, y: FloatArray) -> 
     right-hand side (the LDLᵀ form ``Σ uₖ² / dₖ``, ``dₖ = Dₖ / Dₖ₋₁``). S is
     positive definite in exact arithmetic (P and R are), so no minor is zero.
     Used only where the computed S lost its definiteness, and so every digit of
-    its NIS: measured 0.1 ms for m = n = 2, 0.3 ms for m = 3, n = 6, 3 ms for
-    m = 6, n = 15 and 8 ms for m = 8, n = 15 (30 ms for m = 12: the cost grows
-    as m³ times the size of the minors, see :data:`_EXACT_NIS_MAX_M`).
+    its NIS: measured 0.1 ms for m = n = 2, 0.3 ms for m = 3, n = 6, and for
+    n = 15 0.8-2.6 ms for m = 8, 3.6-20 ms for m = 12 (the cost grows as m³
+    times the size of the minors, which grows with how far apart the
+    matrices' exponents lie; see :data:`_EXACT_NIS_MAX_M`).
     """
     from fractions import Fraction
 

@@ -9,6 +9,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from navkit._shared.angles import wrap_float
 from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.dunders import slot_state
 from navkit._shared.frozen import restore_slots
@@ -439,9 +440,11 @@ class OmniOdometry:
         for k in range(1, len(wheels)):
             bx += wheels[k] * fx[k]
             by += wheels[k] * fy[k]
-        heading = wrap_angle(yaw)
+        # wrap_float, not wrap_angle: yaw is a finite float (checked by update),
+        # so is the difference; wrap_angle's own check and call would cost more.
+        heading = wrap_float(yaw)
         before = self._pose.theta
-        mid = before + 0.5 * wrap_angle(heading - before)
+        mid = before + 0.5 * wrap_float(heading - before)
         c = math.cos(mid)
         s = math.sin(mid)
         # _chain for one step: the step summed apart from the start, then the start.
@@ -807,7 +810,8 @@ class DiffOdometry:
         if moved is None:
             return None
         x, y, travel = moved
-        return _pose(x, y, wrap_angle(before + wrap_angle(dth))), travel
+        # dth is finite (checked above) and before + wrap(dth) too: wrap_float directly.
+        return _pose(x, y, wrap_float(before + wrap_float(dth))), travel
 
     def update_batch(self, left_ticks: ArrayLike, right_ticks: ArrayLike) -> FloatArray:
         """Process a log of counter readings (vectorised) and return every pose.

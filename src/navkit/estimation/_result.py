@@ -10,7 +10,7 @@ import numpy as np
 
 from navkit._shared.frozen import frozen_setattr, reduce_record
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import as_float_array
+from navkit._shared.validation import as_float_array, bounded_int
 
 if TYPE_CHECKING:
     from navkit.estimation._fusion import FusionStatus
@@ -90,14 +90,12 @@ class UpdateResult:
             status = codes.ACCEPTED if self.accepted else None
         elif isinstance(raw, codes):
             status = raw
-        elif (
-            isinstance(raw, np.ndarray)
-            and raw.ndim == 0
-            and raw.dtype.kind in "iu"
-            and not np.ma.is_masked(raw)
-        ):
+        elif isinstance(raw, np.ndarray) and raw.ndim == 0 and raw.dtype.kind in "iu":
+            # A 0-d integer array is its integer; a masked one is refused as FusionStatus
+            # refuses it (ValueError), naming this argument.
+            code = bounded_int(raw, "status")
             try:
-                status = codes(raw.item())  # a 0-d integer array: its integer
+                status = codes(code)
             except ValueError:
                 raise ValueError(f"status must be a FusionStatus code, got {raw!r}") from None
         elif isinstance(raw, (bool, np.bool_)) or not isinstance(raw, numbers.Integral):
