@@ -691,14 +691,14 @@ class PlanarFusion(GaussianEstimate):
 
     Late measurements (``history`` > 0): the filter keeps each online step
     (update or :meth:`predict`) of the last ``history`` seconds with the state
-    before it. A measurement older than the filter time ``t`` but not older
-    than ``t - history`` goes back to the state before the first step later
-    than it, is fused there, and the later steps are taken again: the filter
-    ends as if the measurements had come in stamp order (measurements with one
-    stamp in the order they came), the same numbers as :meth:`update_batch` of
-    the sorted log, and its time stays the newest stamp. Its
-    :class:`UpdateResult` is its own update's, as of its stamp; the later
-    steps' gate decisions may change. An older measurement is refused
+    before it. A measurement older than the filter time ``t`` by at most
+    ``history`` (``t - stamp <= history``) goes back to the state before the
+    first step later than it, is fused there, and the later steps are taken
+    again: the filter ends as if the measurements had come in stamp order
+    (measurements with one stamp in the order they came), the same numbers as
+    :meth:`update_batch` of the sorted log, and its time stays the newest
+    stamp. Its :class:`UpdateResult` is its own update's, as of its stamp;
+    the later steps' gate decisions may change. An older measurement is refused
     (``OUT_OF_ORDER``), as is one older than ``t0`` or than the last row of
     an :meth:`update_batch` (its rows are not kept: sort a log instead).
     A late measurement costs one step per later step kept (about
@@ -1284,15 +1284,21 @@ class PlanarFusion(GaussianEstimate):
 
         The step left x, P and the time from before it in the buffer's saved
         block; ``unset``: the clock was not set before it. A step at ``t_i``
-        is needed only to fuse a measurement older than ``t_i``, and the
-        oldest fused is at ``t - history``: steps at or before that go.
+        is needed only to fuse a measurement older than ``t_i``, and one is
+        fused while its age ``t - stamp`` is at most ``history``: steps older
+        than ``history`` go (ages compared as :meth:`_rewind` does).
         """
         before = math.nan if unset else self._buf.item(BUF_SAVED_TIME)
         entries = self._entries
         entries.append((t, before, self._saved.copy(), args, kind))
-        limit = t - self._history
-        if entries[0][0] <= limit:
-            del entries[: bisect_right(entries, limit, key=_entry_time)]
+        history = self._history
+        if t - entries[0][0] > history:
+            # Each step goes once: about one a call. The loop stops at the step
+            # just kept (age 0).
+            n = 1
+            while t - entries[n][0] > history:
+                n += 1
+            del entries[:n]
 
     def _rewind(
         self, t: float, kind: str, args: _StepArgs, comps: slice, last: float
@@ -1309,7 +1315,9 @@ class PlanarFusion(GaussianEstimate):
         entries = self._entries
         i = bisect_right(entries, t, key=_entry_time)
         # entries[i][1] is NaN where the clock was not set before that step: any t goes.
-        if t < last - self._history or i == len(entries) or entries[i][1] > t:
+        # The age, not t < last - history: 1.0 - 0.7 rounds up to 0.30000000000000004,
+        # which refused a measurement at 0.3 s, 0.7 s before 1.0 s (1.0 - 0.3 is 0.7).
+        if last - t > self._history or i == len(entries) or entries[i][1] > t:
             return rejected_result(
                 math.nan,
                 np.empty(0),

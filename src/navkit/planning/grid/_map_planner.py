@@ -408,10 +408,12 @@ class MapPlanner:
             obstacle, within ``robot_radius`` of one, in unknown space (with
             ``unknown_cost=inf``) or within ``robot_radius`` of unknown space
             (with ``inflate_unknown``); ``start_tolerance`` negative, not
-            finite or above 1e9.
+            finite or above 1e9; a :class:`CellPlanner` callable's path that
+            does not begin in the start's cell and end in the goal's.
         TypeError
             ``start`` or ``goal`` is not a point or pose; ``start_tolerance``
-            not a real number (or a bool).
+            not a real number (or a bool). A :class:`CellPlanner` callable
+            returning anything but a ``"grid"`` :class:`Path2D`.
         navkit.NoPathError
             No collision-free path exists (from the escape cell, after an
             escape).
@@ -481,6 +483,7 @@ class MapPlanner:
             raise TypeError(
                 f"the cell planner must return a 'grid' Path2D, got {path!r:.80}"
             )
+        _check_ends(path.points, start_cell, goal_cell)
         grid = self._grid
         points = np.asarray(grid.cell_to_world(path.points), dtype=np.float64).reshape(-1, 2)
         cost = path.cost * grid.resolution
@@ -649,6 +652,24 @@ class MapPlanner:
 
 #: A start or goal within this many cells of its cell's centre takes the centre's place.
 _SAME_POINT = 1e-6
+
+
+def _check_ends(cells: FloatArray, start: tuple[int, int], goal: tuple[int, int]) -> None:
+    """Refuse a cell planner's path that does not begin in ``start`` and end in ``goal``.
+
+    The points given are linked straight to the path's ends, a link that is
+    collision-free only inside the end's own (passable) cell: a callable
+    breaking the :class:`CellPlanner` contract (a path from elsewhere, or
+    reversed) would otherwise get a segment across the map, through walls.
+    """
+    first, last = cells[0], cells[-1]
+    # Half a cell: the ends may be off the centres (as floats), not out of the cells.
+    if np.abs(first - start).max() <= 0.5 and np.abs(last - goal).max() <= 0.5:
+        return
+    raise ValueError(
+        f"the cell planner must return a path from start_cell {start} to goal_cell {goal}, "
+        f"got one from {tuple(first.tolist())} to {tuple(last.tolist())}"
+    )
 
 
 class _Escape(NamedTuple):
