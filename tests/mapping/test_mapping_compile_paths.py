@@ -18,7 +18,11 @@ from hypothesis import strategies as st
 from hypothesis_twins import slow_twin
 from navkit.geometry import Pose2D
 from navkit.mapping import LaserScan, OccupancyGrid, ScanMapper, ScanMatcher, integrate_scan
-from navkit.mapping._grid_kernels import world_to_cell_kernel, world_to_continuous_kernel
+from navkit.mapping._grid_kernels import (
+    world_to_cell_entry,
+    world_to_cell_kernel,
+    world_to_continuous_kernel,
+)
 from navkit.mapping._raycast_kernels import integrate_beams
 from navkit.mapping._scan_matcher_kernels import (
     accumulate,
@@ -46,7 +50,8 @@ def test_one_point_in_python_equals_the_kernel(
     o = grid.origin
     pts = np.array([[px, py]])
     cells = np.empty((1, 2), dtype=np.int64)
-    world_to_cell_kernel(pts, o.x, o.y, o.theta, grid.resolution, cells)
+    # The entry: the kernel's one compiled version (the dispatcher would compile a second).
+    world_to_cell_entry()(pts, o.x, o.y, o.theta, grid.resolution, cells)
     cont = np.empty((1, 2))
     world_to_continuous_kernel(pts, o.x, o.y, o.theta, grid.resolution, cont)
     one = grid.world_to_cell([px, py])

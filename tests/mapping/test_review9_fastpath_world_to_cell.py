@@ -1,6 +1,6 @@
 """``OccupancyGrid.world_to_cell``: the (N, 2) float64 fast path equals the general path.
 
-The fast path takes exact, C-contiguous, aligned float64 ndarrays of shape
+The fast path takes exact, C-contiguous float64 ndarrays (aligned or not) of shape
 (N, 2) straight to the compiled kernel and allocates the cells with the
 points' own shape tuple; everything else (lists, other dtypes, strided or
 Fortran arrays, subclasses, single points) goes through the general path. Both

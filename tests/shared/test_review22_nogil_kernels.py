@@ -186,7 +186,13 @@ PUBLIC = {
 def test_long_public_calls_let_other_threads_run_during_their_kernels(
     public_calls: dict[str, Callable[[], object]], name: str
 ) -> None:
-    lines = lines_beside_python(public_calls[name])
+    # A short kernel (jump point search takes about a millisecond here) may
+    # return before the woken main thread takes the GIL, on a busy machine at
+    # every try of one round: a few rounds, until it is seen.
+    for _ in range(8):
+        lines = lines_beside_python(public_calls[name])
+        if any(PUBLIC[name] + "(" in line for line in lines):
+            break
     assert any(PUBLIC[name] + "(" in line for line in lines), lines
 
 

@@ -89,6 +89,10 @@ def integrate_scan(
     reach takes two updates, and, near the bounds of ``clamp`` (and by
     float32 rounding), successive updates depend on their order.
 
+    Threads integrating scans into one grid take turns: the call holds the
+    grid's lock while it writes (the ray casting itself releases the GIL), so
+    each scan is written whole, in the order the threads got the lock.
+
     Parameters
     ----------
     grid : OccupancyGrid
@@ -155,8 +159,12 @@ def integrate_scan(
     if range_max is not None:
         rmax = min(rmax, bounded_float(range_max, named, 0.0, math.inf, "m", low_open=True))
     o = grid.origin
-    return int(
-        integrate_beams(
+    scratch = np.empty(grid._logodds.size, dtype=np.uint8)  # the kernel's
+    # The kernel releases the GIL: without the grid's lock two threads casting
+    # into one grid interleave cell by cell and lose updates. With it they take
+    # turns, each scan written whole, as when every kernel call held the GIL.
+    with grid._lock:
+        updated = integrate_beams(
             # The grid's own storage, written in place: ray casting is the one
             # job that mutates an OccupancyGrid (its public view is read-only).
             grid._logodds,
@@ -177,6 +185,6 @@ def integrate_scan(
             lo,
             hi,
             walk_exact,
-            np.empty(grid._logodds.size, dtype=np.uint8),  # kernel scratch
+            scratch,
         )
-    )
+    return int(updated)
