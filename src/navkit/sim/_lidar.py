@@ -243,8 +243,13 @@ class Lidar:
             Time of the scan (places the moving obstacles), s, within ±1e9 s
             when the world has moving obstacles.
         seed : int, numpy Generator or None, optional
-            Randomness for noise, jitter and dropouts, as ``Simulation(seed=)``
-            (fresh entropy if None; unused without them).
+            Randomness for noise, jitter and dropouts (unused without them).
+            Default None: fresh draws at every call, unlike
+            ``Simulation(seed=)``'s default 0 (a simulation keeps one
+            generator for its whole run, so its 0 gives a repeatable sequence;
+            a per-call 0 would repeat one scan's noise in every scan of a
+            loop). An int repeats one scan's draws; a Generator passed to
+            every call gives a repeatable sequence of scans.
 
         Other Parameters
         ----------------
