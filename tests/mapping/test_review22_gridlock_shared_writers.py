@@ -12,7 +12,6 @@ pickles and deep copies get a new one, and pickles carry none.
 from __future__ import annotations
 
 import copy
-import math
 import pickle
 import threading
 
@@ -22,7 +21,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from navkit.mapping import LaserScan, OccupancyGrid, integrate_scan
-from thread_runs import concurrent_results
+from thread_runs import concurrent_results, room_scan
 
 THREADS = 4
 
@@ -34,16 +33,7 @@ EXACT = {"hit": 1.0, "miss": -0.25, "clamp": (-1e6, 1e6)}
 
 
 def _scan(seed: int, beams: int = 1440) -> LaserScan:
-    """A scan in a 6 m x 4 m room from near its centre, with some clutter."""
-    rng = np.random.default_rng(seed)
-    a = -math.pi + 2 * math.pi / beams * np.arange(beams)
-    c, s = np.cos(a), np.sin(a)
-    with np.errstate(divide="ignore"):
-        tx = np.where(c > 0, 2.93 / c, np.where(c < 0, -2.97 / c, np.inf))
-        ty = np.where(s > 0, 1.91 / s, np.where(s < 0, -1.95 / s, np.inf))
-    ranges = np.minimum(tx, ty) * rng.uniform(0.9, 1.0, beams)
-    return LaserScan(ranges, angle_min=-math.pi, angle_increment=2 * math.pi / beams,
-                     range_min=0.1, range_max=8.0)  # fmt: skip
+    return room_scan(seed, beams=beams, lowest=0.9)
 
 
 def _empty() -> OccupancyGrid:

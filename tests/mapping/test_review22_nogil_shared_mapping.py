@@ -13,7 +13,6 @@ snapshot a reader plans on is the map after a whole number of scans.
 
 from __future__ import annotations
 
-import math
 import threading
 from typing import Any
 
@@ -21,22 +20,13 @@ import numpy as np
 
 from navkit.mapping import LaserScan, OccupancyGrid, ScanMatcher, integrate_scan
 from navkit.planning import MapPlanner
-from thread_runs import concurrent_results
+from thread_runs import concurrent_results, room_scan
 
 THREADS = 4
 
 
 def _scan(seed: int, beams: int = 360) -> LaserScan:
-    """A scan in a 6 m x 4 m room from near its centre, with some clutter."""
-    rng = np.random.default_rng(seed)
-    a = -math.pi + 2 * math.pi / beams * np.arange(beams)
-    c, s = np.cos(a), np.sin(a)
-    with np.errstate(divide="ignore"):
-        tx = np.where(c > 0, 2.93 / c, np.where(c < 0, -2.97 / c, np.inf))
-        ty = np.where(s > 0, 1.91 / s, np.where(s < 0, -1.95 / s, np.inf))
-    ranges = np.minimum(tx, ty) * rng.uniform(0.97, 1.0, beams)
-    return LaserScan(ranges, angle_min=-math.pi, angle_increment=2 * math.pi / beams,
-                     range_min=0.1, range_max=8.0)  # fmt: skip
+    return room_scan(seed, beams=beams, lowest=0.97)
 
 
 def _empty() -> OccupancyGrid:
