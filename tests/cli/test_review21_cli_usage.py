@@ -12,6 +12,7 @@ import argparse
 import errno
 import os
 import re
+import select
 import shlex
 import sys
 from pathlib import Path
@@ -216,7 +217,14 @@ def test_a_terminal_of_no_size_still_shows_the_bar(monkeypatch: pytest.MonkeyPat
                 bar(10, 10)
                 assert bar.shown
             stream.flush()
-        drawn = os.read(leader, 65536).decode("utf-8", "replace")
+        # A pseudo-terminal hands over what was written in pieces: read until it is drained.
+        chunks = []
+        while select.select([leader], [], [], 0.5)[0]:
+            chunk = os.read(leader, 65536)
+            if not chunk:
+                break
+            chunks.append(chunk)
+        drawn = b"".join(chunks).decode("utf-8", "replace")
     finally:
         os.close(leader)
         os.close(follower)
