@@ -34,35 +34,43 @@ __all__ = ["piecewise_repulsive_force_from_scan", "repulsive_force_from_scan"]
 # Beam direction tables keyed by (beam count, angle_min, angle_increment). A robot's
 # scanner repeats the same geometry every scan, so the cosines and sines are computed
 # once instead of on every call (they would cost more than the whole force sum).
-_TABLES: dict[tuple[int, float, float], tuple[FloatArray, FloatArray]] = {}
+# Each table is (2, N): the cosines in row 0, the sines in row 1 (one array for the
+# kernel to unbox instead of two).
+_TABLES: dict[tuple[int, float, float], FloatArray] = {}
 _TABLES_MAX = 32
 
 
-# The last table built or found, (angle_min, angle_increment, beam count, cos, sin):
+# The last table built or found, (angle_min, angle_increment, beam count, table):
 # one scanner usually feeds every call, and comparing three numbers costs less
 # than hashing a key (repulsive_force_from_scan checks it first).
-_LAST: tuple[float, float, int, FloatArray, FloatArray] = (0.0, 0.0, 0, np.empty(0), np.empty(0))
+_LAST: tuple[float, float, int, FloatArray] = (0.0, 0.0, 0, np.empty((2, 0)))
 
 
-def _beam_table(scan: LaserScan) -> tuple[FloatArray, FloatArray]:
+def _beam_directions(scan: LaserScan) -> FloatArray:
+    """The read-only (2, N) table of the scan's beam cosines (row 0) and sines (row 1)."""
     global _LAST
     key = (scan.ranges.shape[0], scan.angle_min, scan.angle_increment)
     table = _TABLES.get(key)
     if table is None:
         angles = scan.angles()
-        cos_t = np.cos(angles)
-        sin_t = np.sin(angles)
-        cos_t.setflags(write=False)
-        sin_t.setflags(write=False)
-        table = (cos_t, sin_t)
+        # np.cos(angles) as before, then copied (its SIMD loop, whatever the alignment
+        # of a row of the table, so the values are those of the earlier tables).
+        table = np.array((np.cos(angles), np.sin(angles)))
+        table.setflags(write=False)
         # No lock: a thread forked while another held it would deadlock on its
         # first new table. Each dict operation is atomic; threads racing here can
         # at worst lose an entry or pass the bound by one each until the next clear.
         if len(_TABLES) >= _TABLES_MAX:
             _TABLES.clear()
         _TABLES[key] = table
-    _LAST = (key[1], key[2], key[0], *table)
+    _LAST = (key[1], key[2], key[0], table)
     return table
+
+
+def _beam_table(scan: LaserScan) -> tuple[FloatArray, FloatArray]:
+    """The rows of :func:`_beam_directions`: (cosines, sines), each (N,), read-only."""
+    table = _beam_directions(scan)
+    return table[0], table[1]
 
 
 _empty = np.empty
@@ -144,29 +152,34 @@ def repulsive_force_from_scan(
     >>> repulsive_force_from_scan(scan, k_rep=1.0, influence_radius=1.0)  # the beam 0.5 m ahead
     array([-4.,  0.])
     """
-    exact = type(scan) is LaserScan
-    if not exact:
+    # A LaserScan's ranges are a read-only C-contiguous float64 copy and its tables
+    # match them, so the compiled entry (no type dispatch) can take them; a
+    # subclass, whose attributes could be anything, goes through the dispatcher.
+    # (The entry is fetched, compiled on a first use, only once the arguments pass.)
+    if type(scan) is LaserScan:
+        kernel = _KHATIB
+    else:
         scan = _check_scan(scan)
+        kernel = khatib_beam_force_into
     # Plain floats in range are taken as they are: this runs at every scan.
-    k = k_rep if type(k_rep) is float and GAIN_MIN <= k_rep <= GAIN_MAX else gain(k_rep, "k_rep")
-    d0 = influence_radius
-    if not (type(d0) is float and LENGTH_MIN <= d0 <= LENGTH_MAX):
-        d0 = length(influence_radius, "influence_radius")
+    if not (type(k_rep) is float and GAIN_MIN <= k_rep <= GAIN_MAX):
+        k_rep = gain(k_rep, "k_rep")
+    if not (type(influence_radius) is float and LENGTH_MIN <= influence_radius <= LENGTH_MAX):
+        influence_radius = length(influence_radius, "influence_radius")
     ranges = scan.ranges
     # One read of _LAST, checked and used as it was: another thread (or a scan
     # subclass's attribute) may store its own scanner's table in between.
     last = _LAST
     # len(), not .shape[0]: no shape tuple is built (ranges is 1-D).
-    if last[0] == scan.angle_min and last[1] == scan.angle_increment and last[2] == len(ranges):
-        cos_t, sin_t = last[3], last[4]
+    if last[2] == len(ranges) and last[0] == scan.angle_min and last[1] == scan.angle_increment:
+        directions = last[3]
     else:
-        cos_t, sin_t = _beam_table(scan)
+        directions = _beam_directions(scan)
     out = _empty(2)  # float64, the default (passing the dtype costs more)
-    # A LaserScan's ranges are a read-only C-contiguous float64 copy and the
-    # tables match them, so the compiled entry (no type dispatch) can take them;
-    # a subclass, whose attributes could be anything, goes through the dispatcher.
-    kernel = (_KHATIB or _khatib()) if exact else khatib_beam_force_into
-    kernel(ranges, cos_t, sin_t, scan.range_min, scan.range_max, k, d0, MIN_DISTANCE, out)
+    (kernel or _khatib())(
+        ranges, directions, scan.range_min, scan.range_max, k_rep, influence_radius,
+        MIN_DISTANCE, out,
+    )  # fmt: skip
     return out
 
 
