@@ -64,6 +64,26 @@ def _one_round(calls: Sequence[Callable[[], Any]]) -> list[Any]:
     return results
 
 
+def free_elsewhere(lock: Any) -> bool:
+    """Whether another thread can take ``lock`` now (a lock or an ``RLock``).
+
+    ``RLock`` has no ``locked()`` before Python 3.14, and the thread holding
+    one takes it again: asked from a thread of its own, which lets it go.
+    """
+    took: list[bool] = []
+
+    def attempt() -> None:
+        got = lock.acquire(blocking=False)
+        if got:
+            lock.release()
+        took.append(got)
+
+    th = threading.Thread(target=attempt)
+    th.start()
+    th.join()
+    return took[0]
+
+
 def lines_beside_python(call: Callable[[], object], *, tries: int = 3) -> set[str]:
     """The source lines at which ``call``, run in another thread, let the main thread run.
 

@@ -10,6 +10,7 @@ same names are thin conveniences that call them.
 
 from __future__ import annotations
 
+import copy
 import math
 import os
 import threading
@@ -24,6 +25,7 @@ from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.dunders import slot_state
 from navkit._shared.frozen import slot_names
 from navkit._shared.grid_coords import CELL_LIMIT, as_pairs, inside, one_or_many
+from navkit._shared.locks import ForkSafeLock
 from navkit._shared.types import BoolArray, FloatArray, IntArray
 from navkit._shared.validation import as_array, as_bool, as_float_array, finite_float
 from navkit.geometry import Pose2D, as_pose
@@ -80,6 +82,27 @@ def _cells_entry() -> Callable[..., bool]:
 
 
 _IDENTITY = Pose2D(0.0, 0.0, 0.0)
+
+# The grids' writer locks (OccupancyGrid._writer_lock) are stamped with the
+# number of forks into this process, and made under this lock where missing: a
+# child forked while another thread held a grid's lock (mid-scan) would wait
+# for ever on that thread, which does not exist in the child, so a lock made
+# before a fork is made anew after it (one registration for every grid).
+_LOCK_MAKING = ForkSafeLock()
+_FORKS = [0]
+
+
+def _forked() -> None:
+    _FORKS[0] += 1
+
+
+def _new_lock() -> tuple[threading.RLock, int]:
+    """A grid's writer lock, stamped with the forks so far (``OccupancyGrid._writer_lock``)."""
+    return threading.RLock(), _FORKS[0]
+
+
+if hasattr(os, "register_at_fork"):
+    os.register_at_fork(after_in_child=_forked)
 
 
 def _threshold(value: float | None, default: float, name: str) -> float:
@@ -247,14 +270,52 @@ class OccupancyGrid:
         return instance, {k: v for k, v in slots.items() if k != "_lock"}
 
     def __setstate__(self, state: object) -> None:
-        # Pickles of any release (those written before the lock included) load.
+        # Pickles of any release (those written before the lock included) load,
+        # with a lock of their own.
         instance, slots = state if isinstance(state, tuple) else (state, None)
         if instance:
             self.__dict__.update(instance)
         for name, value in (slots or {}).items():
             if name != "_lock":
                 object.__setattr__(self, name, value)
-        self._lock = threading.Lock()
+        self._lock = _new_lock()
+
+    def __deepcopy__(self, memo: dict[int, Any]) -> OccupancyGrid:
+        # copy.deepcopy's own way (the state, deep-copied, given to a new object),
+        # but with the log-odds copied under the writer lock, as copy() does: a
+        # scan another thread is writing ends first. The rest is copied outside
+        # it (a subclass's attributes may run code of their own when copied).
+        cls = type(self)
+        new = cls.__new__(cls)
+        memo[id(self)] = new
+        state = self.__getstate__()
+        with self._writer_lock():
+            logodds = self._logodds.copy()
+        memo[id(self._logodds)] = logodds  # what the state's log-odds deep-copy to
+        new.__setstate__(copy.deepcopy(state, memo))
+        return new
+
+    def _writer_lock(self) -> threading.RLock:
+        """The lock every writer of the log-odds holds (ray casting, :meth:`copy`).
+
+        Made by the constructor, copies and pickles, and here on first need
+        where none was (a grid built by ``__new__``, as a subclass's own
+        constructor may); made anew in a process forked while another thread
+        held it (that thread is not in the child).
+        Re-entrant: a signal handler (saving the map on Ctrl-C, say) runs in
+        the main thread as its ray casting returns, still holding the lock,
+        and its ``copy()`` waited there for ever; it now copies the grid with
+        that scan whole.
+        """
+        held: tuple[threading.RLock, int] | None = getattr(self, "_lock", None)
+        forks = _FORKS[0]
+        if held is not None and held[1] == forks:
+            return held[0]
+        with _LOCK_MAKING:  # one lock, whichever threads get here at once
+            held = getattr(self, "_lock", None)
+            if held is None or held[1] != forks:
+                held = self._lock = _new_lock()
+            return held[0]
 
     #: Largest number of cells of a grid (``2**28`` = 268,435,456: 1 GiB of
     #: float32 log-odds, e.g. 16384 × 16384 cells, 819 m × 819 m at 5 cm). Every
@@ -296,8 +357,9 @@ class OccupancyGrid:
         self._free_thresh = free
         # Held by every writer of _logodds whose kernel releases the GIL (ray
         # casting) and by copy(): writers take turns, so no cell update is lost
-        # (+0.3 % on a 360-beam scan into a 140 x 100 grid, 48 us).
-        self._lock = threading.Lock()
+        # (+0.3 % on a 360-beam scan into a 140 x 100 grid, 48 us). Taken
+        # through _writer_lock, which also makes it where it is missing.
+        self._lock = _new_lock()
 
     # ------------------------------------------------------------------ basics
     @property
@@ -372,7 +434,7 @@ class OccupancyGrid:
         """
         cls = type(self)
         if cls is OccupancyGrid:
-            with self._lock:  # a scan being written by another thread ends first
+            with self._writer_lock():  # a scan being written by another thread ends first
                 return OccupancyGrid(
                     self._logodds,
                     resolution=self._resolution,
@@ -389,9 +451,9 @@ class OccupancyGrid:
         instance = getattr(self, "__dict__", None)
         if instance:
             new.__dict__.update(instance)
-        with self._lock:
+        with self._writer_lock():
             new._logodds = self._logodds.copy()
-        new._lock = threading.Lock()
+        new._lock = _new_lock()
         return new
 
     def __copy__(self) -> OccupancyGrid:

@@ -163,7 +163,7 @@ def integrate_scan(
     # The kernel releases the GIL: without the grid's lock two threads casting
     # into one grid interleave cell by cell and lose updates. With it they take
     # turns, each scan written whole, as when every kernel call held the GIL.
-    with grid._lock:
+    with grid._writer_lock():
         updated = integrate_beams(
             # The grid's own storage, written in place: ray casting is the one
             # job that mutates an OccupancyGrid (its public view is read-only).
