@@ -1113,6 +1113,26 @@ spec(
     nan_ok="FusionResult.nis is NaN for out-of-order rows",
     mutates=("self",),
 )
+# FUSION (review 23): reset(x0, P0, *, t0, pose), the constructor's state arguments, on
+# a filter with steps kept for history (a refused reset keeps them).
+spec(
+    "navkit.estimation.PlanarFusion.reset",
+    lambda c: method(
+        call(PlanarFusion, t0=0.0, history=0.5),
+        "reset",
+        A([1.0, 2.0, 0.5, 0.3, 0.0, 0.0]),
+        np.eye(6) * 0.1,
+        t0=1.0,
+        prepare=lambda f: f.update_odometry(0.1, 1.0, 0.1, v_variance=1e-3, omega_variance=1e-3),
+    ),
+    kinds={
+        "x0": Array(optional=True),
+        "P0": Array(optional=True),
+        "t0": Real(optional=True),
+        "pose": OPT_POSE,
+    },
+    mutates=("self",),
+)
 
 # --------------------------------------------------------------------------- planning.grid
 

@@ -49,16 +49,7 @@ from navkit.estimation._fusion_kernels import (
 )
 from navkit.estimation._gaussian import GaussianEstimate
 from navkit.estimation._odometry import anchored
-from navkit.estimation._result import (
-    UpdateResult,
-    _object_new,
-    _set_accepted,
-    _set_nis,
-    _set_reason,
-    _set_residual,
-    new_result,
-    rejected_result,
-)
+from navkit.estimation._result import UpdateResult, _Building, new_result, rejected_result
 from navkit.geometry import Pose2D, as_pose, wrap_angle
 
 __all__ = ["FusionResult", "FusionStatus", "MeasurementLog", "PlanarFusion"]
@@ -705,8 +696,8 @@ class PlanarFusion(GaussianEstimate):
     2.5 µs each); the steps kept take about 0.7 kB each (0.17 MB a second for
     50 Hz odometry and a 200 Hz IMU's yaw rate), and keeping them about 1.5 µs
     a measurement. A ``KeyboardInterrupt`` during an update drops them
-    (later late measurements are refused until the window has filled again).
-    Copies and pickles keep them.
+    (later late measurements are refused until the window has filled again),
+    and so does :meth:`reset`. Copies and pickles keep them.
 
     A filter is not thread-safe: one thread at a time may call its methods (in
     a ROS 2 node with a ``MultiThreadedExecutor``, put the callbacks that use
@@ -769,13 +760,7 @@ class PlanarFusion(GaussianEstimate):
         pose: Pose2D | ArrayLike | None = None,
         history: float = 0.0,
     ) -> None:
-        if pose is not None and x0 is not None:
-            raise ValueError("give x0 or pose, not both (pose is x0 with zero rates)")
-        if pose is not None:
-            start = as_pose(pose, "pose")
-            x = np.array([start.x, start.y, start.theta, 0.0, 0.0, 0.0])
-        else:
-            x = np.zeros(6) if x0 is None else as_float_array(x0, "x0", shape=(6,))
+        x = _start_state(x0, pose)
         gates = np.full(5, np.inf)
         if gate_probability is not None:
             prob = finite_float(gate_probability, "gate_probability")
@@ -789,27 +774,8 @@ class PlanarFusion(GaussianEstimate):
         window = finite_float(history, "history")
         if window < 0.0:
             raise ValueError(f"history must be >= 0 s, got {window}")
-        # x, P, Q, the current measurement, the filter time and scratch space live in one
-        # flat array: the compiled online step takes just that array (see
-        # _fusion_kernels.BUF_*).
-        # The buffer holds x and y less the start's (see _odometry.anchored): the motion summed
-        # apart from the start, which far from the origin would round every step.
-        anchor = tuple(anchored(float(v)) for v in x[:2])
-        self._adopt(np.zeros(k.BUF_SIZE), gates, (anchor[0], anchor[1]), window)
-        self._x[:] = x
-        self._x[0] -= anchor[0]  # exactly 0.0, or x as given when not anchored
-        self._x[1] -= anchor[1]
-        self._x[2] = wrap_angle(float(self._x[2]))
-        self._p[:, :] = _matrix(
-            DEFAULT_INITIAL_VARIANCE if P0 is None else P0, "P0", semidefinite=False
-        )
-        self._q[:, :] = _matrix(
-            DEFAULT_PROCESS_NOISE if process_noise is None else process_noise,
-            "process_noise",
-            semidefinite=True,
-        )
-        # NaN until the clock is set (by t0 or the first measurement).
-        self._buf[BUF_TIME] = math.nan if t0 is None else as_time(t0, "t0")
+        buf, anchor = _start_buffer(x, P0, t0, process_noise=process_noise)
+        self._adopt(buf, gates, anchor, window)
 
     def _adopt(
         self,
@@ -895,6 +861,63 @@ class PlanarFusion(GaussianEstimate):
             x += ax
             y += ay
         return Pose2D(x, y, float(self._x[2]))
+
+    def reset(
+        self,
+        x0: ArrayLike | None = None,
+        P0: ArrayLike | None = None,
+        *,
+        t0: float | None = None,
+        pose: Pose2D | ArrayLike | None = None,
+    ) -> None:
+        """Restart the filter from a given state and time (robot_localization's ``set_pose``).
+
+        The filter becomes the one the constructor would build from these
+        arguments with its own ``process_noise``, ``gate_probability`` and
+        ``history``: later measurements give the same numbers, bit for bit.
+        The steps kept for ``history`` are dropped (a late measurement older
+        than ``t0`` is refused), and so is everything the previous estimate
+        left (its time among it).
+
+        Parameters
+        ----------
+        x0 : array_like, shape (6,), optional
+            New state ``[x, y, yaw, v, omega, a]`` (finite); default zeros, as
+            in the constructor (not the filter's first ``x0``).
+        P0 : array_like, shape (6, 6) or (6,), optional
+            New covariance (or its diagonal), positive definite, entries of
+            magnitude at most 1e100; default ``diag(1e-9, 1e-9, 1e-9, 1, 1, 1)``.
+        t0 : float, optional
+            Time of the new state, s; without it the next measurement sets the
+            clock (no prediction), as after a constructor without ``t0``.
+        pose : Pose2D or array_like (x, y, theta), optional
+            The new pose alone, keyword-only: ``x0`` with zero rates. Not with
+            ``x0``.
+
+        Raises
+        ------
+        TypeError, ValueError
+            As the constructor, naming the argument; the filter is then
+            unchanged.
+
+        Examples
+        --------
+        >>> fusion = PlanarFusion(t0=0.0, history=0.5)
+        >>> _ = fusion.update_odometry(0.1, 1.0, 0.0, v_variance=1e-4, omega_variance=1e-4)
+        >>> fusion.reset(pose=(2.0, 1.0, 0.5), t0=10.0)  # e.g. a localisation fix
+        >>> fusion.t, fusion.pose
+        (10.0, Pose2D(x=2.0, y=1.0, theta=0.5))
+        >>> fusion.update_yaw(9.9, 0.5, variance=1e-3).status.name  # before the reset
+        'OUT_OF_ORDER'
+        """
+        x = _start_state(x0, pose)
+        buf, anchor = _start_buffer(x, P0, t0, q=self._q.copy())
+        # Three stores, no call between (not even np.copyto's Python dispatcher): Python
+        # delivers an interrupt at calls and loops only, so an interrupted reset has
+        # happened or not. The buffer stays the same object: x, P and Q stay its views.
+        self._anchor = anchor
+        self._entries = []
+        self._buf[:] = buf
 
     def predict(self, t: float) -> None:
         """Propagate the state to time ``t`` (s) without a measurement.
@@ -1016,12 +1039,13 @@ class PlanarFusion(GaussianEstimate):
                 raise
             if not status:
                 # new_result(True, nis, residual, None), written out: this saves a call.
-                result = _object_new(UpdateResult)
-                _set_accepted(result, True)
-                _set_nis(result, nis)
-                _set_residual(result, self._odometry_residual.copy())
-                _set_reason(result, None)
-                return result
+                result = _Building()
+                result.accepted = True
+                result.nis = nis
+                result.residual = self._odometry_residual.copy()
+                result.reason = None
+                result.__class__ = UpdateResult  # type: ignore[assignment]
+                return result  # type: ignore[return-value]
         return self._apply(t, "odometry", v, omega, v_variance, omega_variance, _ODOMETRY_NAMES)
 
     def update_speed(self, t: float, v: float, *, variance: float) -> UpdateResult:
@@ -1640,3 +1664,60 @@ def _matrix(value: ArrayLike, name: str, *, semidefinite: bool) -> FloatArray:
         # check refuses it, and the filter would fail its first update instead.
         arr = np.diag(arr)
     return covariance(arr, name, 6, semidefinite=semidefinite)
+
+
+def _start_state(x0: ArrayLike | None, pose: Pose2D | ArrayLike | None) -> FloatArray:
+    """The start state ``[x, y, θ, v, ω, a]`` from ``x0`` or ``pose``, checked.
+
+    For :class:`PlanarFusion` and :meth:`PlanarFusion.reset`.
+    """
+    if pose is not None and x0 is not None:
+        raise ValueError("give x0 or pose, not both (pose is x0 with zero rates)")
+    if pose is not None:
+        start = as_pose(pose, "pose")
+        return np.array([start.x, start.y, start.theta, 0.0, 0.0, 0.0])
+    return np.zeros(6) if x0 is None else as_float_array(x0, "x0", shape=(6,))
+
+
+def _start_buffer(
+    x: FloatArray,
+    P0: ArrayLike | None,
+    t0: float | None,
+    *,
+    process_noise: ArrayLike | None = None,
+    q: FloatArray | None = None,
+) -> tuple[FloatArray, tuple[float, float]]:
+    """A filter's buffer at the start state ``x``, and the anchor its x and y are relative to.
+
+    ``P0``, ``process_noise`` (unless ``q``, a filter's own checked process
+    noise, is given) and ``t0`` are checked in that order, as the constructor
+    documents them. For :class:`PlanarFusion` and :meth:`PlanarFusion.reset`:
+    a reset filter's buffer is the one a new filter would have, bit for bit.
+    """
+    # x, P, Q, the current measurement, the filter time and scratch space live in one
+    # flat array: the compiled online step takes just that array (see
+    # _fusion_kernels.BUF_*).
+    buf = np.zeros(k.BUF_SIZE)
+    rows = buf.reshape(k.BUF_ROWS, k.W)
+    # The buffer holds x and y less the start's (see _odometry.anchored): the motion summed
+    # apart from the start, which far from the origin would round every step.
+    ax = anchored(float(x[0]))
+    ay = anchored(float(x[1]))
+    state = rows[k.BUF_X]
+    state[:] = x
+    state[0] -= ax  # exactly 0.0, or x as given when not anchored
+    state[1] -= ay
+    state[2] = wrap_angle(float(state[2]))
+    rows[k.BUF_P : k.BUF_P + 6] = _matrix(
+        DEFAULT_INITIAL_VARIANCE if P0 is None else P0, "P0", semidefinite=False
+    )
+    if q is None:
+        q = _matrix(
+            DEFAULT_PROCESS_NOISE if process_noise is None else process_noise,
+            "process_noise",
+            semidefinite=True,
+        )
+    rows[k.BUF_Q : k.BUF_Q + 6] = q
+    # NaN until the clock is set (by t0 or the first measurement).
+    buf[BUF_TIME] = math.nan if t0 is None else as_time(t0, "t0")
+    return buf, (ax, ay)
