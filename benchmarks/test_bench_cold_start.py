@@ -20,8 +20,13 @@ selects another kernel. The peers, pyastar2d and tcod's A*, run their first
 call in a fresh process the same way (they ship compiled code: nothing to
 compile). ``--kernels`` also prints, per entry point, the navkit kernels it
 compiled with their signature count and compile seconds (numba's own timers,
-``dispatcher.get_metadata(sig)['timers']``; a caller's time includes the
-callees it typed).
+``dispatcher.get_metadata(sig)['timers']``: wall-clock seconds holding the
+compiler lock, so on a busy machine more than the CPU, and a caller's time
+includes the callees it typed). ``--breakdown`` prints where the cold run's CPU went,
+each second counted once (:data:`_BREAKDOWN`): per phase (numba's passes,
+LLVM's function and module optimisation and machine-code generation, the
+Python wrappers, the cache writes, garbage collections) and per kernel (the
+function whose pass or LLVM work ran, not the callers waiting on it).
 
 The issue 17 goal: whole library <= 8 s, any single entry point <= 3 s.
 """
@@ -178,12 +183,96 @@ def missing_peer(name: str) -> str | None:
     return f"peer {module} is not installed (pip install -e '.[bench]')"
 
 
+#: Instruments the child for ``--breakdown``: exclusive CPU per phase and per kernel.
+#:
+#: numba compiles a kernel's callees while it types the kernel, so its own timers
+#: count a callee's time in every caller typing it. Here each numba pass, LLVM
+#: step, wrapper, cache write and collection is timed with a stack, and its time
+#: less that of what ran inside it is added to its phase and to the function
+#: being compiled (the innermost pass's). Where the installed numba lacks a
+#: method timed here, that phase is not split out ("other" keeps it).
+_BREAKDOWN = """
+import collections as _collections, gc as _gc
+from navkit._shared.jit import load_numba as _load_numba
+_load_numba()
+_phases, _by_kernel = _collections.Counter(), _collections.Counter()
+_stack = []  # [phase, kernel, seconds spent in nested entries]
+
+
+def _timed(_owner, _name, _phase_of):
+    _inner = getattr(_owner, _name, None)
+    if _inner is None:
+        return
+
+    def _wrapper(*_args, **_kwargs):
+        _phase, _kernel = _phase_of(_args)
+        if _kernel is None:
+            _kernel = _stack[-1][1] if _stack else "(none)"
+        _entry = [_phase, _kernel, 0.0]
+        _stack.append(_entry)
+        _t = time.process_time()
+        try:
+            return _inner(*_args, **_kwargs)
+        finally:
+            _spent = time.process_time() - _t
+            _stack.pop()
+            _phases[_phase] += _spent - _entry[2]
+            _by_kernel[_kernel] += _spent - _entry[2]
+            if _stack:
+                _stack[-1][2] += _spent
+
+    setattr(_owner, _name, _wrapper)
+
+
+def _pass_of(_args):
+    _pass, _state = _args[2], _args[3]
+    _func = getattr(getattr(_state, "func_id", None), "func", None)
+    _kernel = getattr(_func, "__module__", "?") + "." + getattr(_func, "__qualname__", "?")
+    return "numba pass " + str(_pass.name()), _kernel
+
+
+import numba.core.compiler_machinery as _machinery
+import numba.core.codegen as _codegen
+import numba.core.caching as _caching
+import numba.core.lowering as _lowering
+_timed(_machinery.PassManager, "_runPass", _pass_of)
+_timed(_codegen.CPUCodeLibrary, "_optimize_functions", lambda a: ("LLVM function passes", None))
+_timed(_codegen.CPUCodeLibrary, "_optimize_final_module", lambda a: ("LLVM module passes", None))
+_timed(_codegen.JITCodeLibrary, "_finalize_specific", lambda a: ("LLVM machine code", None))
+_timed(_caching.Cache, "save_overload", lambda a: ("cache write", None))
+_timed(_lowering.Lower, "create_cpython_wrapper", lambda a: ("Python wrapper", None))
+_gc_start = []
+
+
+def _on_gc(_phase, _info):
+    if _phase == "start":
+        _gc_start.append(time.process_time())
+    elif _gc_start:
+        _spent = time.process_time() - _gc_start.pop()
+        _phases["garbage collection"] += _spent
+        _by_kernel["garbage collection"] += _spent
+        if _stack:  # counted here, not in the pass it interrupted
+            _stack[-1][2] += _spent
+
+
+_gc.callbacks.append(_on_gc)
+"""
+
+_BREAKDOWN_REPORT = """
+_gc.callbacks.remove(_on_gc)
+_phases["other"] = _cpu - sum(_phases.values())
+_breakdown = {{"phases": dict(_phases), "kernels": dict(_by_kernel)}}
+"""
+
 _CHILD = """
 import json, sys, time
 {setup}
+{instrument}
 _cpu, _wall = time.process_time(), time.perf_counter()
 {timed}
 _cpu, _wall = time.process_time() - _cpu, time.perf_counter() - _wall
+_breakdown = None
+{report}
 _kernels = {{}}
 if {kernels}:
     from numba.core.dispatcher import Dispatcher
@@ -203,13 +292,25 @@ if {kernels}:
                     except Exception:
                         pass
                 _kernels[_name + "." + _value.py_func.__name__] = [len(_value.signatures), _secs]
-print("@@" + json.dumps({{"cpu": _cpu, "wall": _wall, "kernels": _kernels}}))
+print("@@" + json.dumps({{"cpu": _cpu, "wall": _wall, "kernels": _kernels,
+                          "breakdown": _breakdown}}))
 """
 
 
-def run_child(setup: str, timed: str, cache_dir: str, *, kernels: bool = False) -> dict[str, Any]:
-    """Run ``timed`` after ``setup`` in a fresh process with numba's cache in ``cache_dir``."""
-    code = _CHILD.format(setup=setup, timed=timed, kernels=kernels)
+def run_child(
+    setup: str, timed: str, cache_dir: str, *, kernels: bool = False, breakdown: bool = False
+) -> dict[str, Any]:
+    """Run ``timed`` after ``setup`` in a fresh process with numba's cache in ``cache_dir``.
+
+    ``breakdown``: also split the call's CPU by phase and kernel (:data:`_BREAKDOWN`).
+    Its totals are not those of the plain runs: numba is imported before the
+    clock starts (to be instrumented) and the instruments cost a little.
+    """
+    code = _CHILD.format(
+        setup=setup, timed=timed, kernels=kernels,
+        instrument=_BREAKDOWN if breakdown else "",
+        report=_BREAKDOWN_REPORT.format() if breakdown else "",
+    )  # fmt: skip
     env = dict(os.environ, NUMBA_CACHE_DIR=cache_dir)
     out = subprocess.run(
         [sys.executable, "-c", textwrap.dedent(code)],
@@ -220,14 +321,33 @@ def run_child(setup: str, timed: str, cache_dir: str, *, kernels: bool = False) 
     return result
 
 
-def measure(name: str, *, kernels: bool = False) -> dict[str, Any]:
+def measure(name: str, *, kernels: bool = False, breakdown: bool = False) -> dict[str, Any]:
     """Cold (empty cache) and warm (cache filled by the cold run) CPU seconds of one entry."""
     setup, timed = ENTRIES[name][:2] if name in ENTRIES else PEERS[name]
+    breakdown = breakdown and name in ENTRIES and name != "import navkit.planning"
     with tempfile.TemporaryDirectory(prefix="navkit-cold-") as cache_dir:
-        cold = run_child(setup, timed, cache_dir, kernels=kernels)
+        cold = run_child(setup, timed, cache_dir, kernels=kernels, breakdown=breakdown)
         warm = run_child(setup, timed, cache_dir)
     return {"cold_cpu_s": cold["cpu"], "cold_wall_s": cold["wall"], "warm_cpu_s": warm["cpu"],
-            "kernels": cold["kernels"]}  # fmt: skip
+            "kernels": cold["kernels"], "breakdown": cold["breakdown"]}  # fmt: skip
+
+
+def print_breakdown(breakdown: dict[str, dict[str, float]], *, top: int = 15) -> None:
+    """Print a ``--breakdown``: CPU s per phase, then the ``top`` kernels."""
+    total = sum(breakdown["phases"].values())
+    print(f"    where the {total:.2f} s went (each second once):")
+    small = [0, 0.0]  # phases under 1 %, summed
+    for phase, secs in sorted(breakdown["phases"].items(), key=lambda kv: -kv[1]):
+        if secs < 0.01 * total:
+            small[0] += 1
+            small[1] += secs
+            continue
+        print(f"    {secs:7.2f} s  {100 * secs / total:4.1f} %  {phase}")
+    share = 100 * small[1] / total
+    print(f"    {small[1]:7.2f} s  {share:4.1f} %  {small[0]} phases under 1 % each")
+    print(f"    the {top} kernels taking most (their own passes and LLVM work):")
+    for kernel, secs in sorted(breakdown["kernels"].items(), key=lambda kv: -kv[1])[:top]:
+        print(f"    {secs:7.2f} s  {kernel}")
 
 
 def _names(quick: bool) -> list[str]:
@@ -282,6 +402,8 @@ def main(argv: list[str] | None = None) -> None:
     parser.add_argument("--quick", action="store_true", help="a few cheap entry points + peers")
     parser.add_argument("--only", action="append", help="entry point name (repeatable)")
     parser.add_argument("--kernels", action="store_true", help="per-kernel compile seconds")
+    parser.add_argument("--breakdown", action="store_true",
+                        help="cold CPU per phase and kernel, each second once")  # fmt: skip
     parser.add_argument("--json", help="write the results to this file")
     parser.add_argument("--list", action="store_true", help="list the entry points")
     args = parser.parse_args(argv)
@@ -298,13 +420,15 @@ def main(argv: list[str] | None = None) -> None:
         if reason is not None:
             print(f"{name:24s} skipped: {reason}", flush=True)
             continue
-        results[name] = measure(name, kernels=args.kernels)
+        results[name] = measure(name, kernels=args.kernels, breakdown=args.breakdown)
         r = results[name]
         print(f"{name:24s} cold {r['cold_cpu_s']:8.4f} s  warm {r['warm_cpu_s']:7.4f} s",
               flush=True)  # fmt: skip
         if args.kernels:
             for kernel, (sigs, secs) in sorted(r["kernels"].items(), key=lambda kv: -kv[1][1]):
                 print(f"    {secs:7.2f} s  {sigs} sig  {kernel}")
+        if r["breakdown"] is not None:
+            print_breakdown(r["breakdown"])
     print()
     print(_table(results))
     if args.json:
