@@ -91,9 +91,9 @@ def test_an_ambiguous_start_is_ambiguous_before_any_point(
 def test_nothing_after_a_double_dash_is_joined() -> None:
     argv = ["plan", "m.yaml", "--go", "-1,2", "--", "--go", "-1,2"]
     assert join_negative_points(argv) == ["plan", "m.yaml", "--go=-1,2", "--", "--go", "-1,2"]
-    # Other options' values are left alone (numbers are joined since session 26).
+    # Numbers are joined since session 26, file names since session 27.
     assert join_negative_points(["run", "x", "--plot", "-1.png", "--seed", "-1", "--", "-2"]) == [
-        "run", "x", "--plot", "-1.png", "--seed=-1", "--", "-2"]  # fmt: skip
+        "run", "x", "--plot=-1.png", "--seed=-1", "--", "-2"]  # fmt: skip
 
 
 class _Full(io.StringIO):

@@ -88,7 +88,7 @@ def test_number_options_name_the_problem_of_a_dash_value(
 
 
 def test_options_and_other_values_are_left_alone(capsys: pytest.CaptureFixture[str]) -> None:
-    argv = ["plan", "m.yaml", "--start", "-h", "--goal", "--plot", "--json", "-out.json"]
+    argv = ["plan", "m.yaml", "--start", "-h", "--goal", "--plot", "--json", "-"]
     assert join_negative_points(argv) == argv
     # "-h" and "--plot" after a point option stay options, as before.
     line = usage_error(["plan", "m.yaml", "--start", "0,0", "--goal", "--plot", "p.png"], capsys)

@@ -9,7 +9,9 @@ docstring's bilinear formula evaluated in float64 NumPy.
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
+from navkit._shared.jit import jit_disabled
 from navkit.mapping._scan_matcher_kernels import interpolate_batch
 
 
@@ -28,6 +30,14 @@ def _reference(logodds: np.ndarray, coords: np.ndarray) -> np.ndarray:
     return np.column_stack((m, d_row, d_col))
 
 
+# NUMBA_DISABLE_JIT=1: a real difference, left to the kernel's owner. As Python,
+# math.exp of a saturated cell's -log-odds beyond 709 raises OverflowError where
+# the compiled float32 exp gives inf (and the probability 0): ScanMatcher.match on
+# a map with log-odds below -709 raises it too, as Python only.
+@pytest.mark.xfail(
+    jit_disabled(), reason="NUMBA_DISABLE_JIT=1: math.exp overflows as Python",
+    raises=OverflowError, strict=True,
+)  # fmt: skip
 def test_probability_and_gradient_within_documented_error() -> None:
     rng = np.random.default_rng(2026)
     logodds = rng.uniform(-20.0, 20.0, (60, 60)).astype(np.float32)

@@ -134,7 +134,7 @@ def _main(argv: Sequence[str] | None, out: TextIO, err: TextIO) -> int:
         parser = build_parser()
         # An embedding interpreter may leave sys.argv unset: no arguments, then.
         given = getattr(sys, "argv", [])[1:] if argv is None else list(argv)
-        args = parser.parse_args(join_negative_points(given))
+        args = parser.parse_args(join_negative_points(given, parser=parser))
     except SystemExit as exc:  # --help, --version (0) and bad arguments (2)
         return exc.code if isinstance(exc.code, int) else (0 if exc.code is None else 2)
     except KeyboardInterrupt as exc:  # while the parser is made or a name checked (imports)

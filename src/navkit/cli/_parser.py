@@ -23,34 +23,65 @@ def version() -> str:
         return "unknown"
 
 
-def join_negative_points(argv: list[str]) -> list[str]:
+def join_negative_points(
+    argv: Sequence[str], *, parser: argparse.ArgumentParser | None = None
+) -> list[str]:
     """``--start -1.5,2`` as ``--start=-1.5,2``: argparse would take ``-1.5,2`` for an option.
 
-    After an option that takes a point or a number (``--start``, ``--goal``,
-    ``--radius``, ``--start-tolerance``, ``--trials``, ``--seed``,
-    ``--workers``), a value beginning with one ``-`` is joined to it, whatever
-    follows the dash: argparse takes only plain negative numbers (``-1``,
-    ``-0.5``) for values and answered ``--start -inf,0``, ``--start -1e3,0``
-    or ``--radius -inf`` with "expected one argument"; joined, the option's
-    own check names the problem ("X,Y must be finite, got '-inf,0'"). ``-h``
-    and ``--...`` stay options. An abbreviation (``--go -1,2``) is joined
-    too, so that argparse reads it as it reads the abbreviation before a
-    positive point (``--sta`` stays ambiguous with ``--start-tolerance``, as
-    ``--sta 1,2`` is); nothing after ``--`` is changed.
+    After an option of the command that takes one value (a point, a number, a
+    name or a file: ``--start``, ``--radius``, ``--seed``, ``--plot``,
+    ``--json``, ...), a value beginning with one ``-`` is joined to it,
+    whatever follows the dash, as a GNU program's option takes its next word:
+    argparse takes only plain negative numbers (``-1``, ``-0.5``) for values
+    and answered ``--start -inf,0``, ``--radius -inf`` or ``--plot -x.png``
+    with "expected one argument"; joined, the option reads it and its own
+    check names any problem ("X,Y must be finite, got '-inf,0'"). ``-h`` and
+    ``--...`` stay options. An abbreviation the command reads as one option
+    (``--go -1,2``) is joined too; an ambiguous one (``--st`` for ``--start``
+    and ``--start-tolerance``) is left as typed, for argparse to name it as
+    typed; nothing after ``--`` is changed.
+
+    Parameters
+    ----------
+    argv : sequence of str
+        The arguments after the program name.
+    parser : argparse.ArgumentParser, optional
+        The parser whose commands' options are read (default
+        :func:`build_parser`'s).
+
+    Returns
+    -------
+    list of str
+        ``argv`` with those values joined (a new list).
 
     Examples
     --------
     >>> join_negative_points(["plan", "m.yaml", "--start", "-1.5,-0.5", "--go", "-inf,1"])
     ['plan', 'm.yaml', '--start=-1.5,-0.5', '--go=-inf,1']
+    >>> join_negative_points(["plan", "m.yaml", "--plot", "-x.png", "--st", "-1,0"])
+    ['plan', 'm.yaml', '--plot=-x.png', '--st', '-1,0']
     """
-    out: list[str] = []
-    i = 0
+    argv = list(argv)
+    # The command is the first word not beginning with "-": navkit's own options
+    # (--help, --version) take no value.
+    at = next((i for i, arg in enumerate(argv) if not arg.startswith("-")), len(argv))
+    commands = _commands(build_parser() if parser is None else parser)
+    command = commands.get(argv[at]) if at < len(argv) else None
+    if command is None:  # no command, or a mistyped one argparse will name
+        return argv
+    names = [n for action in command._actions for n in action.option_strings if n.startswith("--")]
+    takes_value = {
+        n for action in command._actions if action.option_strings and action.nargs in (None, 1)
+        for n in action.option_strings
+    }  # fmt: skip
+    out = argv[: at + 1]
+    i = at + 1
     while i < len(argv):
         arg = argv[i]
         following = argv[i + 1] if i + 1 < len(argv) else ""
         if arg == "--":  # the rest are positional arguments, as the user wrote them
             return out + argv[i:]
-        if _value_option(arg) and _dash_value(following):
+        if _option(arg, names) in takes_value and _dash_value(following):
             out.append(f"{arg}={following}")
             i += 2
         else:
@@ -59,15 +90,24 @@ def join_negative_points(argv: list[str]) -> list[str]:
     return out
 
 
-#: The options whose value is a point or a number, and so may begin with "-".
-_VALUE_OPTIONS = (
-    "--start", "--goal", "--radius", "--start-tolerance", "--trials", "--seed", "--workers"
-)
+def _commands(parser: argparse.ArgumentParser) -> dict[str, argparse.ArgumentParser]:
+    """``parser``'s commands by name (none for a parser without commands)."""
+    # argparse lists a parser's options and commands only in private attributes,
+    # the same on Python 3.11-3.14.
+    for action in parser._actions:
+        if isinstance(action, argparse._SubParsersAction):
+            return dict(action._name_parser_map)
+    return {}
 
 
-def _value_option(arg: str) -> bool:
-    """Whether ``arg`` is one of :data:`_VALUE_OPTIONS` or an abbreviation of one (``--go``)."""
-    return len(arg) > 2 and "=" not in arg and any(n.startswith(arg) for n in _VALUE_OPTIONS)
+def _option(arg: str, names: Sequence[str]) -> str | None:
+    """The option among ``names`` that ``arg`` names or alone abbreviates, as argparse reads it."""
+    if not arg.startswith("--") or "=" in arg or len(arg) <= 2:
+        return None
+    if arg in names:
+        return arg
+    matches = [n for n in names if n.startswith(arg)]
+    return matches[0] if len(matches) == 1 else None
 
 
 def _dash_value(text: str) -> bool:

@@ -94,7 +94,11 @@ class ScanMapper:
 
     A mapper is not thread-safe: one thread at a time may call its methods;
     different mappers may run in different threads at once, also with one
-    shared :class:`ScanMatcher` (which keeps only its options).
+    shared :class:`ScanMatcher` (which keeps only its options). While one
+    thread updates, others may read :attr:`map`: each level is written
+    holding its grid's lock, which :meth:`OccupancyGrid.copy` holds too, so
+    the copy holds a whole number of scans (the ray casting releases the
+    GIL: without the lock a copy could hold part of a scan).
 
     The name says what it does — mapping from scans by scan matching — rather
     than naming one implementation; the defaults are Hector's.
@@ -475,22 +479,34 @@ class ScanMapper:
         # ones hold. So the try holds the kernel call alone (Python delivers it at a
         # call's return, or on entering a Python function, such as a property: a level
         # whose arguments were being read would be skipped), its arguments read before.
+        # Each level is written holding its grid's writer lock, which OccupancyGrid.copy
+        # holds too: `map` read by another thread meanwhile (the kernel releases the
+        # GIL) is the finest level after a whole number of scans, not half of one.
         px, py, pth = pose.x, pose.y, pose.theta
         a0, da = scan.angle_min, scan.angle_increment
         rmin, rmax = scan.range_min, scan.range_max
         hit, miss = self._occupied, self._free
-        frames = [(grid._logodds, grid.origin, grid.resolution) for grid in self._levels]
+        frames = [
+            (grid._logodds, grid.origin, grid.resolution, grid._writer_lock())
+            for grid in self._levels
+        ]
         pending: BaseException | None = None
-        for logodds, o, res in frames:
+        for logodds, o, res, lock in frames:
             ox, oy, oth = o.x, o.y, o.theta
-            try:
-                integrate_beams(
-                    logodds, ox, oy, oth, res, px, py, pth, ranges, a0, da, rmin, rmax,
-                    hit, miss, lo, hi, False, scratch,
-                )  # fmt: skip
-            except BaseException as exc:  # a try costs nothing in Python 3.11+
-                if pending is None:
-                    pending = exc
+            started = False
+            # Waiting for the lock (another thread copying the map) may be interrupted:
+            # then the kernel has not run, and the level is tried again.
+            while not started:
+                try:
+                    with lock:
+                        started = True
+                        integrate_beams(
+                            logodds, ox, oy, oth, res, px, py, pth, ranges, a0, da, rmin,
+                            rmax, hit, miss, lo, hi, False, scratch,
+                        )  # fmt: skip
+                except BaseException as exc:  # a try costs nothing in Python 3.11+
+                    if pending is None:
+                        pending = exc
         self._last_write = pose
         if pending is not None:
             raise pending
