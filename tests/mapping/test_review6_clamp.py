@@ -5,12 +5,10 @@ from __future__ import annotations
 import math
 
 import numpy as np
-import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from hypothesis_twins import slow_twin
-from navkit._shared.jit import jit_disabled
 from navkit.mapping import LaserScan, OccupancyGrid, ScanMapper, integrate_scan
 
 
@@ -52,14 +50,6 @@ def _expected(value: float, update: float, low: float, high: float, hit: bool) -
     return value if value <= low else max(value + update, low)
 
 
-# NUMBA_DISABLE_JIT=1: a real difference, left to the kernel's owner. As Python the
-# ray casting adds a float32 cell and a float increment in float32 (NumPy 2
-# promotion, NEP 50: the increment is rounded to float32 first), where the
-# compiled kernel adds in float64 and rounds once: cells differ by a float32 ulp.
-@pytest.mark.xfail(
-    jit_disabled(), reason="NUMBA_DISABLE_JIT=1: ray casting adds in float32 as Python",
-    strict=False,
-)  # fmt: skip
 @settings(max_examples=50, deadline=None)
 @given(
     st.floats(-20.0, 20.0),

@@ -70,7 +70,7 @@ def _miss_cell(
     # miss <= 0, so no value within the clamp can pass clamp_high. (OctoMap also
     # clamps a cell above clamp_high down to it: a third min/max per cell, 12 %
     # slower at 360 beams, measured.)
-    value = logodds[ur, uc]
+    value = float(logodds[ur, uc])  # as compiled when run as Python (NUMBA_DISABLE_JIT)
     logodds[ur, uc] = np.maximum(value + miss, np.minimum(clamp_low, value))
     return 1
 
@@ -195,7 +195,7 @@ def integrate_beams(
             # np.minimum/np.maximum rather than if/elif or min/max: with numba
             # 0.68 the branchy forms made the ray loop ~7x slower (measured). As
             # in _miss_cell: a cell above clamp_high stays, a hit never lowers it.
-            value = logodds[r, c]
+            value = float(logodds[r, c])
             logodds[r, c] = np.minimum(value + hit, np.maximum(clamp_high, value))
             n_updated += 1
     # Pass 2: free space along every beam (the end cell too for max-range beams).
