@@ -17,7 +17,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from navkit.errors import FilterError
@@ -47,10 +47,15 @@ def _check(  # type: ignore[no-untyped-def]
             assert error <= 1e-12 * sigma[i] * sigma[j], (i, j, ekf.P[i, j], float(p_exact[i][j]))
         # x to within a fraction of the posterior's deviation, or a few ulps where
         # that is below float64's resolution at the size of the prior and posterior
-        # states (x + step rounds to it).
+        # states: x + step rounds once to it, and the step carries the roundings of
+        # its solves (measured over 9000 updates of the property test's kind: at most
+        # 1.8 ulps of the size; on the examples below a float64 information form,
+        # sequential Joseph updates and a square-root (QR) update are within 1.4
+        # ulps of the exact state). At 16 ulps this let through a filter keeping a
+        # state 11-33 ulps, 1-2.6 deviations, off.
         error = abs(float(x_exact[i] - Fraction(ekf.x[i])))
         size = abs(float(x_exact[i])) + abs(float(x0[i]))
-        assert error <= 0.25 * sigma[i] + 16 * 2.0**-52 * size, (i, error, sigma[i], size)
+        assert error <= 0.25 * sigma[i] + 4 * 2.0**-52 * size, (i, error, sigma[i], size)
     # The NIS: the exact one rounded once where S is ill-conditioned (ε κ(S) > 2⁻³⁰),
     # else the kernel's, within about ε κ(S) <= 1e-9 of it.
     assert abs(nis - float(nis_exact)) <= 1e-8 * float(nis_exact) + 1e-300, (nis, nis_exact)
@@ -140,6 +145,35 @@ def test_larger_measurements_still_raise() -> None:
     ratio=st.floats(-40.0, -12.0),
     correlated=st.booleans(),
     seed=st.integers(0, 2**32 - 1),
+)
+# The kernel's x kept, 4.4 deviations (170 ulps) off: the information form's, 0.01
+# deviations off, had an error bound of 0.29 deviations (found at random).
+@example(n=2, m=2, scale=0.0, ratio=-29.0, correlated=False, seed=111790)
+# The same, 4.1 deviations (20 ulps) and 1.1 deviations (33 ulps) off.
+@example(
+    n=1,
+    m=2,
+    scale=-23.71771362098264,
+    ratio=-29.106122269033513,
+    correlated=True,
+    seed=3007780589,
+)
+@example(
+    n=1,
+    m=2,
+    scale=11.526623943164275,
+    ratio=-28.968572826422005,
+    correlated=True,
+    seed=293798354,
+)
+# Passed at 16 ulps, the kernel's x 11.4 ulps (2.6 deviations) off.
+@example(
+    n=1,
+    m=2,
+    scale=16.405338145104956,
+    ratio=-29.659165190873274,
+    correlated=False,
+    seed=213129303,
 )
 def test_precise_repeated_measurements_match_exact_arithmetic(
     n: int, m: int, scale: float, ratio: float, correlated: bool, seed: int
