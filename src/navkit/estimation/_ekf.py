@@ -68,16 +68,7 @@ from navkit.estimation._ekf_kernels import (
 )
 from navkit.estimation._fusion import FusionStatus
 from navkit.estimation._gaussian import GaussianEstimate
-from navkit.estimation._result import (  # the slot setters of new_result, for inlining it
-    UpdateResult,
-    _object_new,
-    _set_accepted,
-    _set_nis,
-    _set_reason,
-    _set_residual,
-    new_result,
-    rejected_result,
-)
+from navkit.estimation._result import UpdateResult, _Building, new_result, rejected_result
 from navkit.geometry import wrap_angle
 
 __all__ = ["ExtendedKalmanFilter"]
@@ -553,13 +544,14 @@ class ExtendedKalmanFilter(GaussianEstimate):
                 except Exception:  # a dispatch failure: not of the compiled types
                     out = _NOT_TAKEN
             if out >= 0.0:  # OK: the kernel returned the NIS
-                # new_result, inlined: it is a third of the Python work of an update.
-                result: UpdateResult = _object_new(UpdateResult)
-                _set_accepted(result, True)
-                _set_nis(result, out)
-                _set_residual(result, y)
-                _set_reason(result, None)
-                return result
+                # new_result, inlined: building the result is much of an update's Python work.
+                result = _Building()
+                result.accepted = True
+                result.nis = out
+                result.residual = y
+                result.reason = None
+                result.__class__ = UpdateResult  # type: ignore[assignment]
+                return result  # type: ignore[return-value]
         else:
             out = _NOT_TAKEN
         return self._update_checked(int(-out), y, (z, hx, jac, R), angle_measurements, gate)

@@ -173,12 +173,6 @@ _status_slot = UpdateResult.__dict__["status"]
 type.__setattr__(UpdateResult, "status", _Status(_status_slot))
 
 _set_status = _status_slot.__set__
-# The slot setters, for a path that builds a result without _Building.
-_object_new = object.__new__
-_set_accepted = UpdateResult.__dict__["accepted"].__set__
-_set_nis = UpdateResult.__dict__["nis"].__set__
-_set_residual = UpdateResult.__dict__["residual"].__set__
-_set_reason = UpdateResult.__dict__["reason"].__set__
 
 
 class _Building:
