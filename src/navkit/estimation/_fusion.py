@@ -915,9 +915,12 @@ class PlanarFusion(GaussianEstimate):
         # Three stores, no call between (not even np.copyto's Python dispatcher): Python
         # delivers an interrupt at calls and loops only, so an interrupted reset has
         # happened or not. The buffer stays the same object: x, P and Q stay its views.
-        self._anchor = anchor
-        self._entries = []
+        # The one store that allocates (numpy's slice view), and so could fail, goes
+        # first; the list is made before it.
+        entries: list[_Entry] = []
         self._buf[:] = buf
+        self._anchor = anchor
+        self._entries = entries
 
     def predict(self, t: float) -> None:
         """Propagate the state to time ``t`` (s) without a measurement.

@@ -185,6 +185,8 @@ class _Building:
     order), takes plain attribute stores and then becomes an UpdateResult by
     assigning ``__class__``, which Python allows between classes of one layout.
     The result is an UpdateResult like any other; building it costs about half.
+    (A free-threaded CPython stops the world for such an assignment; numba, and
+    so navkit, runs on builds with the GIL.)
     """
 
     __slots__ = UpdateResult.__slots__

@@ -266,7 +266,13 @@ class OccupancyGrid:
     def __getstate__(self) -> object:
         # slot_state (pickle protocols 0 and 1 too), less the lock: a lock cannot
         # be pickled, and a copy or a pickle is a grid of its own with its own.
-        instance, slots = cast("tuple[dict[str, Any] | None, dict[str, Any]]", slot_state(self))
+        # Python's state is the __dict__ (or None) alone where no slot is set (a grid
+        # built by __new__ that a subclass has not filled yet).
+        state = slot_state(self)
+        instance, slots = cast(
+            "tuple[dict[str, Any] | None, dict[str, Any]]",
+            state if isinstance(state, tuple) else (state, {}),
+        )
         return instance, {k: v for k, v in slots.items() if k != "_lock"}
 
     def __setstate__(self, state: object) -> None:
@@ -281,18 +287,26 @@ class OccupancyGrid:
         self._lock = _new_lock()
 
     def __deepcopy__(self, memo: dict[int, Any]) -> OccupancyGrid:
-        # copy.deepcopy's own way (the state, deep-copied, given to a new object),
+        # copy.deepcopy's own way, from the same reduction (a subclass's
+        # __getnewargs__, __reduce__ or __getstate__ count as without this method),
         # but with the log-odds copied under the writer lock, as copy() does: a
         # scan another thread is writing ends first. The rest is copied outside
         # it (a subclass's attributes may run code of their own when copied).
-        cls = type(self)
-        new = cls.__new__(cls)
+        # None: a grid built by __new__, not filled yet. In the memo: deep-copied
+        # already (held elsewhere in what is copied), and kept shared.
+        logodds = getattr(self, "_logodds", None)
+        if logodds is not None and id(logodds) not in memo:
+            with self._writer_lock():
+                memo[id(logodds)] = logodds.copy()  # what the state's log-odds copy to
+            memo.setdefault(id(memo), []).append(logodds)  # copy.deepcopy's keep-alive
+        reduced = self.__reduce_ex__(4)
+        if isinstance(reduced, str):  # copy.deepcopy's rule: a global is itself
+            return self
+        func, args, state = reduced[0], reduced[1], (*reduced, None)[2]
+        new: OccupancyGrid = func(*copy.deepcopy(args, memo))
         memo[id(self)] = new
-        state = self.__getstate__()
-        with self._writer_lock():
-            logodds = self._logodds.copy()
-        memo[id(self._logodds)] = logodds  # what the state's log-odds deep-copy to
-        new.__setstate__(copy.deepcopy(state, memo))
+        if state is not None:
+            new.__setstate__(copy.deepcopy(state, memo))
         return new
 
     def _writer_lock(self) -> threading.RLock:

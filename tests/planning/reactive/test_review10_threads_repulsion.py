@@ -48,8 +48,18 @@ def _piecewise(scan: LaserScan) -> bytes:
 FORCES: dict[str, Callable[[LaserScan], bytes]] = {"khatib": _khatib, "piecewise": _piecewise}
 
 
+# The tables are built from LaserScan's own angles (a subclass's override is not
+# read: see test_review23_fresh2_repulsion_subclass.py), which read the scan's
+# attributes from this code.
+_ANGLES_CODE = LaserScan.angles.__code__
+
+
 class _Interrupting(LaserScan):
-    """A scan that runs ``interrupt()`` at the first read of ``attribute``, as a thread switch."""
+    """A scan that runs ``interrupt()`` at the first read of ``attribute``, as a thread switch.
+
+    ``"angles"``: at the first read while the beam angles are computed, which is
+    while a table is being built.
+    """
 
     attribute = ""
     interrupt: Callable[[], object] | None = None
@@ -57,7 +67,10 @@ class _Interrupting(LaserScan):
 
     def __getattribute__(self, name: str) -> Any:
         cls = type(self)
-        if name == cls.attribute and cls.interrupt is not None:
+        if cls.interrupt is not None and (
+            name == cls.attribute
+            or (cls.attribute == "angles" and sys._getframe(1).f_code is _ANGLES_CODE)
+        ):
             interrupt, cls.interrupt = cls.interrupt, None
             interrupt()
             cls.interrupted = True
@@ -74,7 +87,7 @@ def interrupting() -> Iterator[type[_Interrupting]]:
 
 def _forget_tables() -> None:
     scan_repulsion._TABLES.clear()
-    scan_repulsion._LAST = (0.0, 0.0, 0, np.empty(0), np.empty(0))
+    scan_repulsion._LAST = (0.0, 0.0, 0, np.empty((2, 0)))
 
 
 def _as_interrupting(scan: LaserScan) -> _Interrupting:

@@ -52,7 +52,10 @@ def _beam_directions(scan: LaserScan) -> FloatArray:
     key = (scan.ranges.shape[0], scan.angle_min, scan.angle_increment)
     table = _TABLES.get(key)
     if table is None:
-        angles = scan.angles()
+        # LaserScan's own angles, not a subclass's override: the table is shared by
+        # every scan of this geometry, plain ones included, and the force is
+        # documented over angle_min + k * angle_increment.
+        angles = LaserScan.angles(scan)
         # np.cos(angles) as before, then copied (its SIMD loop, whatever the alignment
         # of a row of the table, so the values are those of the earlier tables).
         table = np.array((np.cos(angles), np.sin(angles)))
