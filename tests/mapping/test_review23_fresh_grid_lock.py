@@ -26,6 +26,7 @@ import time
 import numpy as np
 import pytest
 
+from navkit._shared.jit import jit_disabled
 from navkit.mapping import LaserScan, OccupancyGrid, integrate_scan
 from subprocess_probe import probe_outcome
 from thread_runs import free_elsewhere, room_scan
@@ -194,6 +195,7 @@ print(json.dumps(len(copies)))
 
 
 @pytest.mark.skipif(not hasattr(signal, "setitimer"), reason="needs signal.setitimer")
+@pytest.mark.skipif(jit_disabled(), reason="NUMBA_DISABLE_JIT=1: 8,000-beam scans as Python")
 def test_a_signal_handler_copying_the_grid_during_a_scan_returns() -> None:
     try:
         assert probe_outcome(textwrap.dedent(_HANDLER_COPIES), timeout=120) >= 5
