@@ -86,6 +86,32 @@ slot a move writes), slower (loads of ``nodes`` on every level); a tournament
 with all six cross comparisons (no reload of the winners' keys), far slower
 (LLVM made branches of it).
 
+Tournament (review 23). The descent's tournament first compares the four
+children's first components alone, as two minimums and a comparison of
+them, the winner being ``first`` plus an offset of 0-3 made of the three
+outcomes; only a partial family (the last one) or an equality among the
+three compared pairs takes the comparison of whole keys, with a missing
+child standing in as a copy of the last one. Where the first components
+differ the whole keys compare as they do, so the heap is the same, slot for
+slot (``tests/planning/grid/test_review23_fd_heap_tournament.py`` checks it
+against a model of whole-key comparisons, on keys that tie often). With
+whole keys at every comparison, the x86 back end of LLVM turned the selects
+that depend on the second components into branches (its conversion of
+``cmov`` on a loop's critical path), three a level, each taken or not as
+the keys fell: the samples piled up after them, and the descent was about
+55 % of a fresh 1024² plan (``perf record -e cpu-clock``, no hardware
+counters on the machine measured). Now the code has ``vminsd``, ``seta``
+and ``cmov`` and one branch a level, nearly never taken: the whole keys were
+compared at 0.16 % (random 20 %), 0.58 % (random 35 %) and 0.12 % (rooms) of
+the 4.1-5.0 million levels a fresh 1024² plan descends. Fresh 1024² plans ÷
+A* went 4.71 -> 2.44 (random 20 %), 3.31 -> 1.80 (random 35 %) and 4.40 ->
+2.21 (rooms), medians of 5 alternating benchmark runs, bit-identical (the
+same expansions, paths and costs). A first version that compared first
+components alone but kept the clamped children's index arithmetic
+(``first + second * (c1 - first)``) and reloaded the winners' keys gained
+half as much (a fresh random 20 % plan 21 % faster, not 45 %): LLVM still
+made branches of those selects.
+
 Compilation: every change of the heap goes through one function,
 :func:`change` (D* Lite's ``UpdateVertex`` on the queue: queue, requeue
 or dequeue a node; popping the top is dequeuing it), compiled once; the
@@ -118,12 +144,15 @@ import numpy as np
 
 from navkit._shared.jit import NO_REFCOUNT, bind_numba_names, typed_njit
 
-# Compile options of the Field D* kernel modules (this one and the D* Lite, path and
-# polyline kernels). Kernels called from Python need no cfunc wrapper (navkit never
-# passes a kernel as a first-class function value); helpers called only from kernels
-# need no Python wrapper either: each wrapper is compiled (and its LLVM optimised) with
-# the kernel on first use. The numpy error model drops the zero-divisor checks (every
-# division is guarded, so no result changes) and their exception code.
+# Compile options of this module's kernels, written again in each of the other Field
+# D* kernel modules (the D* Lite, path and polyline kernels): numba's cache keys a
+# kernel's code on its own file, so each module's options must change in that file
+# (tests/planning/grid/test_review23_fd_kernel_options.py). Kernels called from
+# Python need no cfunc wrapper (navkit never passes a kernel as a first-class
+# function value); helpers called only from kernels need no Python wrapper either:
+# each wrapper is compiled (and its LLVM optimised) with the kernel on first use.
+# The numpy error model drops the zero-divisor checks (every division is guarded,
+# so no result changes) and their exception code.
 KERNEL_OPTIONS: dict[str, Any] = {**NO_REFCOUNT, "error_model": "numpy"}
 HELPER_OPTIONS: dict[str, Any] = {**KERNEL_OPTIONS, "no_cpython_wrapper": True}
 _kernel = typed_njit(**KERNEL_OPTIONS)
@@ -353,11 +382,11 @@ def change(
         first = 4 * i + 1
         if first >= n:
             break
-        # The least of the (up to four) children by a two-round tournament, with
-        # bitwise operators (no branch to mispredict) and ties to the first; a
-        # missing child stands in as a copy of the last one, so one loop body
-        # serves a full and a partial family. (A bool in integer arithmetic
-        # counts 0 or 1; int() of it would compile numba's int() overload too.)
+        # The least of the (up to four) children by a two-round tournament, ties
+        # to the first: on first components alone for a full family, unless two
+        # compared ones are equal; else on whole keys (see Tournament in the
+        # module notes). (A bool in integer arithmetic counts 0 or 1; int() of it
+        # would compile numba's int() overload too.)
         if ahead and not queued:
             # The keys of the hole's grandchildren, the next level's families: four
             # lines (slots 4 first + 1 .. 4 first + 16), fetched while this level's
@@ -368,21 +397,39 @@ def change(
             _prefetch(keys, grand + 16)
             _prefetch(keys, grand + 24)
         last = n - 1
-        c1 = first + 1 if first + 1 < last else last
-        c2 = first + 2 if first + 2 < last else last
-        c3 = first + 3 if first + 3 < last else last
-        a0 = keys[2 * first]
-        b0 = keys[2 * c1]
-        c0 = keys[2 * c2]
-        d0 = keys[2 * c3]
-        second = (b0 < a0) | ((b0 == a0) & (keys[2 * c1 + 1] < keys[2 * first + 1]))
-        fourth = (d0 < c0) | ((d0 == c0) & (keys[2 * c3 + 1] < keys[2 * c2 + 1]))
-        left = first + second * (c1 - first)
-        right = c2 + fourth * (c3 - c2)
-        l0 = keys[2 * left]
-        r0 = keys[2 * right]
-        right_wins = (r0 < l0) | ((r0 == l0) & (keys[2 * right + 1] < keys[2 * left + 1]))
-        best = left + right_wins * (right - left)
+        tie = first + 3 > last
+        if not tie:
+            # A full family: its four first components, compared alone (no second
+            # component, no index arithmetic: the winner's offset from ``first``).
+            a0 = keys[2 * first]
+            b0 = keys[2 * first + 2]
+            c0 = keys[2 * first + 4]
+            d0 = keys[2 * first + 6]
+            second = b0 < a0
+            fourth = d0 < c0
+            l0 = b0 if second else a0
+            r0 = d0 if fourth else c0
+            right_wins = r0 < l0
+            best = first + 2 * right_wins + (fourth if right_wins else second)
+            tie = (b0 == a0) | (d0 == c0) | (r0 == l0)
+        if tie:
+            # A partial family, or first components tied (rare): the second ones
+            # decide; a missing child stands in as a copy of the last one.
+            c1 = first + 1 if first + 1 < last else last
+            c2 = first + 2 if first + 2 < last else last
+            c3 = first + 3 if first + 3 < last else last
+            a0 = keys[2 * first]
+            b0 = keys[2 * c1]
+            c0 = keys[2 * c2]
+            d0 = keys[2 * c3]
+            second = (b0 < a0) | ((b0 == a0) & (keys[2 * c1 + 1] < keys[2 * first + 1]))
+            fourth = (d0 < c0) | ((d0 == c0) & (keys[2 * c3 + 1] < keys[2 * c2 + 1]))
+            left = first + second * (c1 - first)
+            right = c2 + fourth * (c3 - c2)
+            l0 = keys[2 * left]
+            r0 = keys[2 * right]
+            right_wins = (r0 < l0) | ((r0 == l0) & (keys[2 * right + 1] < keys[2 * left + 1]))
+            best = left + right_wins * (right - left)
         b0 = keys[2 * best]
         b1 = keys[2 * best + 1]
         if queued and not (b0 < k0 or (b0 == k0 and b1 < k1)):

@@ -103,9 +103,8 @@ from typing import Any
 
 import numpy as np
 
-from navkit._shared.jit import bind_numba_names, njit_inline, typed_njit
+from navkit._shared.jit import NO_REFCOUNT, bind_numba_names, njit_inline, typed_njit
 from navkit.planning.grid._dstar_heap import (
-    HELPER_OPTIONS,
     NN,
     RECORD,
     RHS,
@@ -131,6 +130,17 @@ _AXIS_GAIN = 1.0 / SQRT2
 RING_R = np.array([0, -1, -1, -1, 0, 1, 1, 1], dtype=np.int64)
 RING_C = np.array([1, 1, 0, -1, -1, -1, 0, 1], dtype=np.int64)
 
+# This module's compile options, written in this file as in each Field D* kernel
+# module (the heap's, the search's, the path's, the polyline's): numba's cache keys
+# a kernel's machine code on its own source file only, so options imported from
+# another file could change there while these kernels kept loading code compiled
+# with the old ones (tests/planning/grid/test_review23_fd_kernel_options.py checks
+# it, and that the four modules agree). See ``KERNEL_OPTIONS`` in
+# :mod:`navkit.planning.grid._dstar_heap` for what the options are for.
+# (Helpers only: no kernel here is called from Python.)
+HELPER_OPTIONS: dict[str, Any] = {
+    **NO_REFCOUNT, "error_model": "numpy", "no_cpython_wrapper": True
+}  # fmt: skip
 _helper = typed_njit(**HELPER_OPTIONS)
 # Compiled once and inlined by LLVM into every caller (numba's ``forceinline``):
 # numba's own ``inline="always"`` types and lowers the body again at each call site.

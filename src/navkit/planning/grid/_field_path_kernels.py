@@ -40,8 +40,8 @@ from typing import Any
 
 import numpy as np
 
-from navkit._shared.jit import RELEASES_GIL, typed_njit
-from navkit.planning.grid._dstar_heap import HELPER_OPTIONS, KERNEL_OPTIONS, RECORD, RHS
+from navkit._shared.jit import NO_REFCOUNT, RELEASES_GIL, typed_njit
+from navkit.planning.grid._dstar_heap import RECORD, RHS
 from navkit.planning.grid._dstar_lite_kernels import (
     INF,
     PAIR_AC,
@@ -70,6 +70,15 @@ CANDIDATES = 32
 # A frozen global for the kernels (see INF in the D* Lite kernels).
 NAN = math.nan
 
+# This module's compile options, written in this file as in each Field D* kernel
+# module (the heap's, the search's, the path's, the polyline's): numba's cache keys
+# a kernel's machine code on its own source file only, so options imported from
+# another file could change there while these kernels kept loading code compiled
+# with the old ones (tests/planning/grid/test_review23_fd_kernel_options.py checks
+# it, and that the four modules agree). See ``KERNEL_OPTIONS`` in
+# :mod:`navkit.planning.grid._dstar_heap` for what the options are for.
+KERNEL_OPTIONS: dict[str, Any] = {**NO_REFCOUNT, "error_model": "numpy"}
+HELPER_OPTIONS: dict[str, Any] = {**KERNEL_OPTIONS, "no_cpython_wrapper": True}
 _kernel = typed_njit(**KERNEL_OPTIONS, **RELEASES_GIL)
 _helper = typed_njit(**HELPER_OPTIONS)
 
