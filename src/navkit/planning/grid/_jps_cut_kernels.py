@@ -61,7 +61,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from navkit._shared.jit import njit_released
+from navkit._shared.jit import NO_REFCOUNT, njit_released, typed_njit
 from navkit._shared.types import KernelInt
 from navkit.planning.grid._jps_kernels import (
     _DC,
@@ -71,14 +71,18 @@ from navkit.planning.grid._jps_kernels import (
     _expand,
     _finish,
     _free,
-    _helper_inlined,
-    _helper_not_inlined,
     _line_end,
     _next_node,
     _offer,
     _reach,
     _scan_line,
 )
+
+# The helpers' options, as _jps_kernels' (written here: numba's cache keys a kernel's
+# code on its own file, so options imported from another file could change without
+# recompiling these). Typed once each; the inlined ones by LLVM into each caller.
+_helper_not_inlined = typed_njit(**NO_REFCOUNT, no_cpython_wrapper=True, forceinline=False)
+_helper_inlined = typed_njit(**NO_REFCOUNT, no_cpython_wrapper=True, forceinline=True)
 
 
 @_helper_not_inlined
