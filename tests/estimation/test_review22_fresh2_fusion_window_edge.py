@@ -30,10 +30,11 @@ def test_a_measurement_exactly_history_late_is_fused() -> None:
     result = fusion.update_yaw(0.3, 0.2, variance=0.1)
     assert result.accepted, result.reason
     expected = PlanarFusion(t0=0.0)
-    for t in stamps[:3]:
+    for t in stamps[:2]:
         expected.update_yaw_rate(t, 0.1, variance=0.1)
-    expected.update_yaw(0.3, 0.2, variance=0.1)  # after the one at 0.3 s, as it came
-    for t in stamps[3:]:
+    # Before the yaw rate at 0.3 s: a yaw goes first at one stamp (from_streams's order).
+    expected.update_yaw(0.3, 0.2, variance=0.1)
+    for t in stamps[2:]:
         expected.update_yaw_rate(t, 0.1, variance=0.1)
     assert _same(fusion, expected)
     # Just older than the window: refused, nothing changed.

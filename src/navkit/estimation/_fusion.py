@@ -126,6 +126,18 @@ def _entry_time(entry: _Entry) -> float:
     return entry[0]
 
 
+# The order of steps with one stamp (history): MeasurementLog.from_streams's order at
+# equal times, odometry (and speed) first, then yaw, yaw rate and acceleration; indexed
+# by the first component a step observes. One kind keeps the order it came in (a
+# stream's own order in from_streams, which sorts stably).
+_TIE_RANKS = (1, 0, 2, 3)
+
+
+def _tie_rank(args: _StepArgs) -> int:
+    """The place of a step among the steps of its stamp (predict, observing nothing: -1)."""
+    return _TIE_RANKS[args[0]] if args[1] else -1
+
+
 class _IntCodes(enum.EnumMeta):
     """Enum metaclass whose lookup ``Enum(value)`` takes integer codes only.
 
@@ -612,7 +624,9 @@ class PlanarFusion(GaussianEstimate):
     one joint update (to rounding), as long as the yaw residual stays well within
     ±π. A yaw reading nearly opposite to the estimate is ambiguous: an update
     before it (a yaw rate, say) can move the estimate across ±π, and the order
-    of the calls then decides which way the yaw pulls it. In every ``update_*``
+    of the calls then decides which way the yaw pulls it (with ``history``, the
+    order at one stamp given in the notes on late measurements decides,
+    whatever the calls' order). In every ``update_*``
     method the time and the measured value(s) are positional and every variance
     is keyword-only.
 
@@ -685,13 +699,18 @@ class PlanarFusion(GaussianEstimate):
     before it. A measurement older than the filter time ``t`` by at most
     ``history`` (``t - stamp <= history``) goes back to the state before the
     first step later than it, is fused there, and the later steps are taken
-    again: the filter ends as if the measurements had come in stamp order
-    (measurements with one stamp in the order they came), the same numbers as
-    :meth:`update_batch` of the sorted log, and its time stays the newest
-    stamp. Its :class:`UpdateResult` is its own update's, as of its stamp;
-    the later steps' gate decisions may change. An older measurement is refused
-    (``OUT_OF_ORDER``), as is one older than ``t0`` or than the last row of
-    an :meth:`update_batch` (its rows are not kept: sort a log instead).
+    again: whatever order they came in, the filter ends as if the measurements
+    had come in stamp order, the same numbers, bit for bit, as
+    :meth:`update_batch` of the log :meth:`MeasurementLog.from_streams` makes
+    of them, and its time stays the newest stamp. At one stamp that log's
+    order holds too: odometry (or speed), yaw, yaw rate, acceleration, and
+    one kind in the order it came (its stream's order), so a measurement
+    stamped as the newest steps but before them in that order goes back
+    the same way. Its :class:`UpdateResult` is its own update's, as of its
+    stamp; the later steps' gate decisions may change. An older measurement
+    is refused (``OUT_OF_ORDER``), as is one older than ``t0`` or than the
+    last row of an :meth:`update_batch` (its rows are not kept: sort a log
+    instead; one stamped as that row goes after it).
     A late measurement costs one step per later step kept (about
     2.5 µs each); the steps kept take about 0.7 kB each (0.17 MB a second for
     50 Hz odometry and a 200 Hz IMU's yaw rate), and keeping them about 1.5 µs
@@ -962,7 +981,10 @@ class PlanarFusion(GaussianEstimate):
             status, _ = _step(self._buf, time, *_PREDICT)
             if status == TIME_GAP:
                 undo_step(self._buf)  # under the try: an interrupt on entering it
-            elif self._history:  # a step too: a late measurement goes before it
+            # A step too: a late measurement goes before it. Not one to the newest stamp
+            # kept: no time passed, it changed nothing, and kept there it would come
+            # before the steps of its stamp already taken (see _TIE_RANKS).
+            elif self._history and not (self._entries and self._entries[-1][0] == time):
                 self._record(time, _PREDICT, "predict")
         except BaseException:
             self._settle(status)
@@ -1022,7 +1044,12 @@ class PlanarFusion(GaussianEstimate):
         # running clock, an in-order time) and returns INVALID, changing nothing, if
         # any check fails; then, and for anything but plain floats, the general way
         # validates and explains.
-        if type(t) is type(v) is type(omega) is type(v_variance) is type(omega_variance) is float:
+        # A stamp equal to the newest step kept for history (rare) also goes the general
+        # way: it may belong before that step (see _TIE_RANKS).
+        if (
+            type(t) is type(v) is type(omega) is type(v_variance) is type(omega_variance) is float
+            and not (self._history and self._entries and self._entries[-1][0] == t)
+        ):
             status = 0  # for _settle: unknown until the step returns
             try:
                 status, nis = _step(
@@ -1224,9 +1251,11 @@ class PlanarFusion(GaussianEstimate):
         names: tuple[str, str, str, str],
     ) -> UpdateResult:
         first, count, gate, comps = self._kinds[kind]
-        # Fast path: plain floats go straight to the compiled step, which checks the rest
-        # (see update_odometry).
-        if type(t) is type(z0) is type(z1) is type(var0) is type(var1) is float:
+        # Fast path: plain floats go straight to the compiled step, which checks the rest;
+        # a stamp equal to the newest step kept goes the general way (see update_odometry).
+        if type(t) is type(z0) is type(z1) is type(var0) is type(var1) is float and not (
+            self._history and self._entries and self._entries[-1][0] == t
+        ):
             status = 0  # for _settle: unknown until the step returns
             try:
                 status, nis = _step(self._buf, t, first, count, z0, z1, var0, var1, gate)
@@ -1252,9 +1281,9 @@ class PlanarFusion(GaussianEstimate):
         if last is None:
             # The first measurement sets the clock (no prediction: the step's dt is 0).
             self._buf[BUF_TIME] = t
+        elif t <= last and self._history and (t < last or self._goes_before(t, args)):
+            return self._rewind(t, kind, args, comps, last)
         elif t < last:
-            if self._history:
-                return self._rewind(t, kind, args, comps, last)
             return rejected_result(
                 math.nan,
                 np.empty(0),
@@ -1327,6 +1356,17 @@ class PlanarFusion(GaussianEstimate):
                 n += 1
             del entries[:n]
 
+    def _goes_before(self, t: float, args: _StepArgs) -> bool:
+        """Whether a step at the filter time ``t`` belongs before the newest kept step.
+
+        True when that step has the stamp ``t`` and comes later in the tie
+        order (:data:`_TIE_RANKS`): the step is then fused as a late one.
+        """
+        entries = self._entries
+        return bool(entries) and entries[-1][0] == t and (
+            _tie_rank(entries[-1][3]) > _tie_rank(args)
+        )
+
     def _rewind(
         self, t: float, kind: str, args: _StepArgs, comps: slice, last: float
     ) -> UpdateResult:
@@ -1334,13 +1374,18 @@ class PlanarFusion(GaussianEstimate):
 
         As robot_localization's ``smooth_lagged_data``: back to the state kept
         before the first step later than ``t``, the measurement fused there, and
-        the later steps taken again, in stamp order (an equal stamp after those
-        already taken). On a copy of the buffer, which becomes the filter's in
-        one C call at the end: refused, raising or interrupted before that, the
-        filter is unchanged.
+        the later steps taken again, in stamp order; the steps of its own stamp
+        are in the tie order of :data:`_TIE_RANKS` (one kind in the order it
+        came), as in the batch of :meth:`MeasurementLog.from_streams`. On a
+        copy of the buffer, which becomes the filter's in one C call at the end:
+        refused, raising or interrupted before that, the filter is unchanged.
         """
         entries = self._entries
         i = bisect_right(entries, t, key=_entry_time)
+        if i and entries[i - 1][0] == t:  # a tie: before the steps of t later in tie order
+            rank = _tie_rank(args)
+            while i and entries[i - 1][0] == t and _tie_rank(entries[i - 1][3]) > rank:
+                i -= 1
         # entries[i][1] is NaN where the clock was not set before that step: any t goes.
         # The age, not t < last - history: 1.0 - 0.7 rounds up to 0.30000000000000004,
         # which refused a measurement at 0.3 s, 0.7 s before 1.0 s (1.0 - 0.3 is 0.7).
