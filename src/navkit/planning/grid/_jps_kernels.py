@@ -376,20 +376,25 @@ def _successor_directions(
 
 @njit_helper
 def _heap_push(heap: np.ndarray, n: KernelInt, f: float, key: float) -> None:
-    """Add (f, key) to the 4-ary min-heap of ``n`` entries in ``heap`` (room for one more)."""
+    """Add (f, key) to the 4-ary min-heap of ``n`` entries in ``heap`` (room for one more).
+
+    Its indices, like :func:`_heap_replace_top`'s, are unsigned: numba adds no
+    negative-index wraparound code (see Indices in
+    :mod:`navkit.planning.grid._astar_kernels`; review 23).
+    """
     i = n
     while i > 0:
         up = (i - 1) >> 2
-        uf = heap[2 * up]
-        uk = heap[2 * up + 1]
+        uf = heap[np.uint64(2 * up)]
+        uk = heap[np.uint64(2 * up + 1)]
         if f < uf or (f == uf and key < uk):
-            heap[2 * i] = uf
-            heap[2 * i + 1] = uk
+            heap[np.uint64(2 * i)] = uf
+            heap[np.uint64(2 * i + 1)] = uk
             i = up
         else:
             break
-    heap[2 * i] = f
-    heap[2 * i + 1] = key
+    heap[np.uint64(2 * i)] = f
+    heap[np.uint64(2 * i + 1)] = key
 
 
 @njit_helper
@@ -405,11 +410,11 @@ def _heap_replace_top(heap: np.ndarray, last: KernelInt, f: float, key: float) -
         best, bf, bk = smallest_child(heap, 0, i, last + 1)
         if best < 0 or not _precedes(bf, bk, f, key):
             break
-        heap[2 * i] = bf
-        heap[2 * i + 1] = bk
+        heap[np.uint64(2 * i)] = bf
+        heap[np.uint64(2 * i + 1)] = bk
         i = best
-    heap[2 * i] = f
-    heap[2 * i + 1] = key
+    heap[np.uint64(2 * i)] = f
+    heap[np.uint64(2 * i + 1)] = key
     return top
 
 

@@ -25,6 +25,10 @@ method), which needs one comparison per child instead of two. :func:`rec_remove`
 takes the entry out of any slot (A* expands a lowered node without first moving
 it to the top).
 
+Every index these operations compute is unsigned (``np.uint64``), so numba
+adds no negative-index wraparound code to the accesses (review 23; see
+Indices in :mod:`navkit.planning.grid._astar_kernels`).
+
 Limits: node ids below 2**32 (the tie key must stay an exactly representable
 integer below 2**53) and at most 2**31 - 1 queued nodes; the public functions
 reject larger grids.
@@ -99,18 +103,18 @@ def rec_sift_up(heap: np.ndarray, meta: np.ndarray, i: KernelInt, f: float, key:
     """
     while i > 0:
         parent = (i - 1) >> 2
-        pf = heap[2 * parent + 2 * REC_BASE]
-        pk = heap[2 * parent + 2 * REC_BASE + 1]
+        pf = heap[np.uint64(2 * parent + 2 * REC_BASE)]
+        pk = heap[np.uint64(2 * parent + 2 * REC_BASE + 1)]
         if f < pf or (f == pf and key < pk):
-            heap[2 * i + 2 * REC_BASE] = pf
-            heap[2 * i + 2 * REC_BASE + 1] = pk
-            meta[4 * (np.int64(pk) & _LOW32) + 3] = i
+            heap[np.uint64(2 * i + 2 * REC_BASE)] = pf
+            heap[np.uint64(2 * i + 2 * REC_BASE + 1)] = pk
+            meta[np.uint64(4 * (np.int64(pk) & _LOW32) + 3)] = i
             i = parent
         else:
             break
-    heap[2 * i + 2 * REC_BASE] = f
-    heap[2 * i + 2 * REC_BASE + 1] = key
-    meta[4 * (np.int64(key) & _LOW32) + 3] = i
+    heap[np.uint64(2 * i + 2 * REC_BASE)] = f
+    heap[np.uint64(2 * i + 2 * REC_BASE + 1)] = key
+    meta[np.uint64(4 * (np.int64(key) & _LOW32) + 3)] = i
 
 
 @njit_inline
@@ -125,30 +129,46 @@ def smallest_child(
     """
     first = 4 * i + 1
     if first + 3 < n:
-        # A two-round tournament on indices only, as in pop.
+        # A two-round tournament on indices only, as in pop. (Selecting the
+        # winners' keys along with their slots instead of loading them again
+        # was no faster and took 0.2 s more of A*'s first use: review 23.)
         a = b + 2 * first
-        b_wins = np.int64(_precedes(heap[a + 2], heap[a + 3], heap[a], heap[a + 1]))
-        d_wins = np.int64(_precedes(heap[a + 6], heap[a + 7], heap[a + 4], heap[a + 5]))
+        b_wins = np.int64(
+            _precedes(
+                heap[np.uint64(a + 2)],
+                heap[np.uint64(a + 3)],
+                heap[np.uint64(a)],
+                heap[np.uint64(a + 1)],
+            )
+        )
+        d_wins = np.int64(
+            _precedes(
+                heap[np.uint64(a + 6)],
+                heap[np.uint64(a + 7)],
+                heap[np.uint64(a + 4)],
+                heap[np.uint64(a + 5)],
+            )
+        )
         left = first + b_wins
         right = first + 2 + d_wins
         r_wins = np.int64(
             _precedes(
-                heap[b + 2 * right],
-                heap[b + 2 * right + 1],
-                heap[b + 2 * left],
-                heap[b + 2 * left + 1],
+                heap[np.uint64(b + 2 * right)],
+                heap[np.uint64(b + 2 * right + 1)],
+                heap[np.uint64(b + 2 * left)],
+                heap[np.uint64(b + 2 * left + 1)],
             )
         )
         best: KernelInt = left + r_wins * (right - left)
-        return best, heap[b + 2 * best], heap[b + 2 * best + 1]
+        return best, heap[np.uint64(b + 2 * best)], heap[np.uint64(b + 2 * best + 1)]
     if first >= n:
         return -1, 0.0, 0.0
     best = first
-    bestf = heap[b + 2 * first]
-    bestk = heap[b + 2 * first + 1]
+    bestf = heap[np.uint64(b + 2 * first)]
+    bestk = heap[np.uint64(b + 2 * first + 1)]
     for j in range(first + 1, n):
-        jf = heap[b + 2 * j]
-        jk = heap[b + 2 * j + 1]
+        jf = heap[np.uint64(b + 2 * j)]
+        jk = heap[np.uint64(b + 2 * j + 1)]
         if (jf < bestf) | ((jf == bestf) & (jk < bestk)):
             best = j
             bestf = jf
@@ -163,17 +183,17 @@ def rec_pop(heap: np.ndarray, meta: np.ndarray, n: KernelInt) -> KernelInt:
     last = n - 1
     if last == 0:
         return top
-    f = heap[2 * REC_BASE + 2 * last]
-    key = heap[2 * REC_BASE + 2 * last + 1]
+    f = heap[np.uint64(2 * REC_BASE + 2 * last)]
+    key = heap[np.uint64(2 * REC_BASE + 2 * last + 1)]
     # Floyd's method: the hole goes down to a leaf, then the last entry up.
     i: KernelInt = 0
     while True:
         best, bestf, bestk = smallest_child(heap, 2 * REC_BASE, i, last)
         if best < 0:
             break
-        heap[2 * i + 2 * REC_BASE] = bestf
-        heap[2 * i + 2 * REC_BASE + 1] = bestk
-        meta[4 * (np.int64(bestk) & _LOW32) + 3] = i
+        heap[np.uint64(2 * i + 2 * REC_BASE)] = bestf
+        heap[np.uint64(2 * i + 2 * REC_BASE + 1)] = bestk
+        meta[np.uint64(4 * (np.int64(bestk) & _LOW32) + 3)] = i
         i = best
     rec_sift_up(heap, meta, np.int64(i), f, key)
     return top
@@ -207,12 +227,12 @@ def rec_remove(heap: np.ndarray, meta: np.ndarray, n: KernelInt, i: KernelInt) -
     last = n - 1
     if i == last:
         return
-    f = heap[2 * REC_BASE + 2 * last]
-    key = heap[2 * REC_BASE + 2 * last + 1]
+    f = heap[np.uint64(2 * REC_BASE + 2 * last)]
+    key = heap[np.uint64(2 * REC_BASE + 2 * last + 1)]
     if i > 0:
         parent = (i - 1) >> 2
-        pf = heap[2 * parent + 2 * REC_BASE]
-        pk = heap[2 * parent + 2 * REC_BASE + 1]
+        pf = heap[np.uint64(2 * parent + 2 * REC_BASE)]
+        pk = heap[np.uint64(2 * parent + 2 * REC_BASE + 1)]
         if _precedes(f, key, pf, pk):
             rec_sift_up(heap, meta, i, f, key)
             return
@@ -235,13 +255,13 @@ def _rec_sift_down(
         best, bestf, bestk = smallest_child(heap, 2 * REC_BASE, i, n)
         if best < 0 or not _precedes(bestf, bestk, f, key):
             break
-        heap[2 * i + 2 * REC_BASE] = bestf
-        heap[2 * i + 2 * REC_BASE + 1] = bestk
-        meta[4 * (np.int64(bestk) & _LOW32) + 3] = i
+        heap[np.uint64(2 * i + 2 * REC_BASE)] = bestf
+        heap[np.uint64(2 * i + 2 * REC_BASE + 1)] = bestk
+        meta[np.uint64(4 * (np.int64(bestk) & _LOW32) + 3)] = i
         i = best
-    heap[2 * i + 2 * REC_BASE] = f
-    heap[2 * i + 2 * REC_BASE + 1] = key
-    meta[4 * (np.int64(key) & _LOW32) + 3] = i
+    heap[np.uint64(2 * i + 2 * REC_BASE)] = f
+    heap[np.uint64(2 * i + 2 * REC_BASE + 1)] = key
+    meta[np.uint64(4 * (np.int64(key) & _LOW32) + 3)] = i
 
 
 def aligned_heap(entries: int) -> np.ndarray:
