@@ -5,10 +5,11 @@ from __future__ import annotations
 import copy
 import pickle
 import signal
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 import pytest
 from hypothesis import settings
 
@@ -25,6 +26,21 @@ settings.load_profile("navkit")
 # default on exec, so the probes get Python's handler again.
 if signal.getsignal(signal.SIGINT) is signal.SIG_IGN:
     signal.signal(signal.SIGINT, signal.default_int_handler)
+
+
+@pytest.fixture(autouse=True)
+def _numpy_error_state() -> Iterator[None]:
+    """Each test starts from, and gives back, the error state numpy had before it.
+
+    A test that interrupts code at every call can land inside
+    ``np.errstate.__enter__`` (Python code in numpy 2.3) after it set its context
+    variable: that state stayed set for every later test (a leaked
+    ``np.linalg.cholesky`` callback made shapely's ``invalid value`` warnings
+    raise ``LinAlgError``). Resetting the outer errstate's token restores it.
+    """
+    with np.errstate():
+        yield
+
 
 SHARED_DATA = Path(__file__).resolve().parents[1].parent / "shared" / "data"
 

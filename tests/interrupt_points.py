@@ -11,6 +11,8 @@ import sys
 from collections.abc import Callable, Sequence
 from typing import Any
 
+import numpy as np
+
 #: Profiler events at which CPython delivers a pending interrupt.
 DELIVERY: tuple[str, ...] = ("call", "c_return")
 
@@ -44,12 +46,16 @@ def _profiled(call: Callable[[], object], events: Sequence[str], *, stop_at: int
                 sys.setprofile(None)
                 raise KeyboardInterrupt
 
-    sys.setprofile(profile)
-    try:
-        call()
-        armed = False  # not the finally's own call
-    finally:
-        sys.setprofile(None)
+    # An interrupt landing inside ``np.errstate.__enter__`` (Python code in numpy 2.3,
+    # after it set its context variable) leaves that error state set: the outer
+    # errstate's reset puts the caller's back whatever the call left.
+    with np.errstate():
+        sys.setprofile(profile)
+        try:
+            call()
+            armed = False  # not the finally's own call
+        finally:
+            sys.setprofile(None)
     return seen
 
 
