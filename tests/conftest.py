@@ -33,8 +33,8 @@ def _numpy_error_state() -> Iterator[None]:
     """Each test starts from, and gives back, the error state numpy had before it.
 
     A test that interrupts code at every call can land inside
-    ``np.errstate.__enter__`` (Python code in numpy 2.3) after it set its context
-    variable: that state stayed set for every later test (a leaked
+    ``np.errstate.__enter__`` (Python code) after it set its context
+    variable: that state stayed set for every later test (in NumPy 2.3 a leaked
     ``np.linalg.cholesky`` callback made shapely's ``invalid value`` warnings
     raise ``LinAlgError``). Resetting the outer errstate's token restores it.
     """
