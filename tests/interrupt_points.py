@@ -46,7 +46,7 @@ def _profiled(call: Callable[[], object], events: Sequence[str], *, stop_at: int
                 sys.setprofile(None)
                 raise KeyboardInterrupt
 
-    # An interrupt landing inside ``np.errstate.__enter__`` (Python code in numpy 2.3,
+    # An interrupt landing inside ``np.errstate.__enter__`` (Python code,
     # after it set its context variable) leaves that error state set: the outer
     # errstate's reset puts the caller's back whatever the call left.
     with np.errstate():
