@@ -68,6 +68,10 @@ STATUS_SINGULAR = 2
 # Backtracking halvings tried before a Gauss–Newton step counts as no progress.
 _HALVINGS = 4
 
+# A float32 whose exp overflows float32 (beyond 88.72), so that capping exp's argument
+# at it changes no compiled result (a float32 stays a float32 in numba).
+_EXP_OVERFLOWS = np.float32(89.0)
+
 
 @njit_inline
 def _probability(logodds: np.ndarray, r: int, c: int, floor: float) -> float:
@@ -76,7 +80,13 @@ def _probability(logodds: np.ndarray, r: int, c: int, floor: float) -> float:
     # than with np.float64() here (measured; see the module docstring for the
     # effect on matched poses); the gradient is still the exact derivative of
     # the interpolant of these p.
-    p = 1.0 / (1.0 + math.exp(-float(logodds[r, c])))
+    minus = -float(logodds[r, c])
+    # Where float32's exp overflows to inf (p = 0) the argument is capped at a value
+    # that still overflows it, bit for bit as before; as Python (NUMBA_DISABLE_JIT)
+    # the cap keeps math.exp from raising OverflowError beyond 709 (p ~ 2e-39 there).
+    if minus > _EXP_OVERFLOWS:
+        minus = float(_EXP_OVERFLOWS)  # a float32 still (see above)
+    p = 1.0 / (1.0 + math.exp(minus))
     # max(p, floor), without numba compiling max() for it on first use.
     return floor if floor > p else p
 
@@ -470,7 +480,7 @@ def correlative_search_kernel(
                 col = base_col[q] + d_col
                 row = base_row[q] + d_row
                 if 0.0 <= row < rows and 0.0 <= col < cols:
-                    p = 1.0 / (1.0 + math.exp(-float(logodds[int(row), int(col)])))
+                    p = _probability(logodds, int(row), int(col), 0.0)
                     total += (1.0 - p) * (1.0 - p)
                 else:
                     total += 1.0
