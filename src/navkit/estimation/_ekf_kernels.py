@@ -152,8 +152,8 @@ BAD_SHAPE = 15  # an argument's shape does not fit (or rbuf is another m's): che
 BAD_TYPE = 16  # set by the public layer: an argument is not of the compiled type
 CANCELLED = 17  # the Joseph form cancelled (a variance shrank > 4096-fold) or S is
 # ill-conditioned (ε κ(S) > 2⁻³⁰, 2 <= m <= _EXACT_NIS_MAX_M): finish_cancelled
-# From retry_gated only: the exact NIS passes the gate the kernel's NIS failed, and the
-# information form is not trusted: run the kernel again without the gate.
+# From retry_gated only: the exact NIS passes the gate the kernel's NIS failed: run the
+# kernel again without the gate.
 GATE_PASSED = 18
 
 # What ekf_update returns for a status other than OK: -status.
@@ -879,8 +879,9 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
     * where the kernel's x was replaced that way, or where S is that
       ill-conditioned (ε κ(S) > 2⁻³⁰) and the two states agree (x⁺ then
       replaces the kernel's where its bound is within ``_STEP_SURE``
-      deviations or ``_STEP_RESOLUTION`` of ``|x| + |x⁺ - x|``), the
-      kernel's NIS, from the same solve with S, is replaced
+      deviations or ``_STEP_RESOLUTION`` of ``|x| + |x⁺ - x|``; else, where
+      the Joseph form failed, no state is trusted and the update is
+      refused), the kernel's NIS, from the same solve with S, is replaced
       by the exact one (:func:`_exact_nis`, for measurements of at most
       ``_EXACT_NIS_MAX_M`` components) and the update gated again on it
       (``GATED``, the state unchanged, where it exceeds the gate);
@@ -925,7 +926,8 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
             for i in np.flatnonzero(state[n + 1]):  # the angles, wrapped
                 x_info[i] = wrap_float(float(x_info[i]))
                 apart[i] = wrap_float(float(apart[i]))
-            tolerance = np.maximum(2.0**-33 * (np.abs(x) + np.abs(step)), deviation)
+            size = np.abs(x) + np.abs(step)
+            tolerance = np.maximum(2.0**-33 * size, deviation)
             if not (np.abs(apart) <= tolerance).all():
                 # One state is wrong: x⁺ where its error bound is within the
                 # tolerance. Else the kernel's, within about ε κ(S) of its scale:
@@ -951,11 +953,18 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
                 # (ε κ(S) > 2⁻³⁰ of its scale): kept where x⁺'s bound was above a
                 # quarter deviation, it was 4.4 deviations (170 ulps) off for a state
                 # 45.4 measured twice to 2.7e-13, x⁺ 0.01 (0.4 ulp).
+                # Else the kernel's x stays only where the Joseph form did not fail:
+                # with it failed, no state is trusted and the update is refused, as
+                # where the states disagree. "Agree" is within 2⁻³³ of the state's
+                # size, which says nothing where the posterior's deviation is far
+                # below that: committed with P⁺, the kernel's x was 8.7e5 deviations
+                # off (ε κ(S) 5.5; x⁺'s bound 4.1e3 deviations; review 25).
                 regate = True
-                resolution = _STEP_RESOLUTION * (np.abs(x) + np.abs(step))
-                within = np.maximum(_STEP_SURE * deviation, resolution)
+                within = np.maximum(_STEP_SURE * deviation, _STEP_RESOLUTION * size)
                 if np.isfinite(x_info).all() and (found.step_error <= within).all():
                     new_x = x_info
+                elif status != OK:
+                    take_p = False
             if take_p:
                 new_p, status = posterior, OK
     if regate:
@@ -1053,15 +1062,17 @@ def retry_gated(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: FloatAr
     S is that ill-conditioned (``max Sₖₖ / Dₖ`` above 2⁻³⁰ / ε, a lower bound on
     the condition number of S with its diagonal scaled, read from the kernel's
     factorisation) and the measurement has at most :data:`_EXACT_NIS_MAX_M`
-    components, the update is redone as :func:`finish_singular_s` does (the
-    information form, the exact NIS): gated again on the exact NIS, or
-    applied. Where the exact NIS passes the gate but the information form is
-    not trusted, ``GATE_PASSED`` (the exact NIS left in ``rbuf``): the caller
-    runs the kernel again without the gate (:func:`set_gate`), as an ungated
-    update, and reports the exact NIS (before, ``GATED`` stood with the
-    kernel's NIS: measured 11.16 for an exact 11.01, rejected at a gate of
-    11.12). Elsewhere ``GATED`` stands. A few microseconds for a
-    well-conditioned S.
+    components, it is gated again on the exact NIS (:func:`_exact_nis`, left
+    in ``rbuf``): ``GATED`` or ``NIS_OVERFLOW`` where that rejects it, else
+    ``GATE_PASSED``: the caller runs the kernel again without the gate
+    (:func:`set_gate`), as an ungated update, and reports the exact NIS
+    (before, ``GATED`` stood with the kernel's NIS: measured 11.16 for an
+    exact 11.01, rejected at a gate of 11.12). So a measurement the gate
+    passes is the ungated update, bit for bit (finishing it here as
+    :func:`finish_singular_s` does, with the information form's P⁺ where the
+    ungated update keeps the Joseph form's, gave a P 5.8e-8 relative away
+    from it; review 25). Elsewhere ``GATED`` stands. A few microseconds for
+    a well-conditioned S.
     """
     m = jac.shape[0]
     if m == 1 or m > _EXACT_NIS_MAX_M:  # m = 1: the one pivot is S itself, the ratio 1
@@ -1076,12 +1087,11 @@ def retry_gated(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: FloatAr
         worst = ratio if ratio > worst else worst
     if not worst > _PIVOT_LIMIT:
         return GATED
-    status = finish_singular_s(state, rbuf, jac, y)
-    if status == S_NOT_POSITIVE_DEFINITE:
-        # The exact NIS (left in rbuf) passed the gate, but the information form is
-        # not trusted: the kernel's update without the gate, as an ungated update.
-        return GATE_PASSED
-    return status
+    n = state.shape[1]
+    status = _regate(state[STATE_P : STATE_P + n], jac, rbuf, y)
+    # The exact NIS (left in rbuf) passed the gate: the kernel's update without the
+    # gate, as an ungated update.
+    return GATE_PASSED if status == OK else status
 
 
 def _exact_nis(p: FloatArray, jac: FloatArray, r: FloatArray, y: FloatArray) -> float:

@@ -88,7 +88,10 @@ _IDENTITY = Pose2D(0.0, 0.0, 0.0)
 # child forked while another thread held a grid's lock (mid-scan) would wait
 # for ever on that thread, which does not exist in the child, so a lock made
 # before a fork is made anew after it (one registration for every grid).
-_LOCK_MAKING = ForkSafeLock()
+# Re-entrant: a signal handler copying a grid can run while the main thread makes a
+# lock under it (at _new_lock's call; every grid's first use in a forked child makes
+# one), and with a plain lock it waited for ever there (review 25).
+_LOCK_MAKING = ForkSafeLock(reentrant=True)
 _FORKS = [0]
 
 
@@ -328,7 +331,16 @@ class OccupancyGrid:
         with _LOCK_MAKING:  # one lock, whichever threads get here at once
             held = getattr(self, "_lock", None)
             if held is None or held[1] != forks:
-                held = self._lock = _new_lock()
+                made = _new_lock()
+                # A signal handler run during that call may have made (and another
+                # thread since taken) one: kept. Read with no call, where no handler
+                # runs, up to the store.
+                try:
+                    held = self._lock
+                except AttributeError:
+                    held = None
+                if held is None or held[1] != forks:
+                    held = self._lock = made
             return held[0]
 
     #: Largest number of cells of a grid (``2**28`` = 268,435,456: 1 GiB of
