@@ -33,6 +33,13 @@ kernel. The bucket width's margin (2**-10 of ``delta``) exceeds the relative
 rounding of ``g / width`` over 2**41 buckets, so a final cell is never lowered
 again; if rounding ever did lower one it would be re-queued (its new bucket
 differs), which keeps the result the least fixed point.
+
+Indices stay signed (review 25): indexed with ``np.uint64`` as A* is (see
+Indices in :mod:`navkit.planning.grid._astar_kernels`), the expansion loop lost
+its wraparound code (26 -> 1 ``sar``/``and`` pairs) but the field took the same time
+(÷ the heap Dijkstra of the A* kernel on the 1024² maps and the weighted one,
+with and without corner cutting: 0.985-1.003 of before, medians of 10
+alternating runs), so the change was dropped.
 """
 
 from __future__ import annotations
