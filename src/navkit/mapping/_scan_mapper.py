@@ -39,6 +39,8 @@ _MISS = logit(0.4)
 _MARGIN = 10.0
 # The log-odds a grown level is first built with (see _ensure_covers).
 _ONE_CELL = np.zeros((1, 1), dtype=np.float32)
+# Whether the ray casting kernel has been called in this process (see _write).
+_KERNEL_CALLED = [False]
 
 
 class ScanMapper:
@@ -490,6 +492,18 @@ class ScanMapper:
             (grid._logodds, grid.origin, grid.resolution, grid._writer_lock())
             for grid in self._levels
         ]
+        if not _KERNEL_CALLED[0]:
+            # A kernel's first call in a process runs Python before the kernel does
+            # (numba loads or compiles it, for a second or more): an interrupt there
+            # raised before the first level was written, and the coarser levels were
+            # written after it. So that first call is made here, before any level, with
+            # the levels' argument types (a one-cell grid, no beams): an interrupt in it
+            # leaves every level unwritten.
+            integrate_beams(
+                np.zeros((1, 1), dtype=np.float32), 0.0, 0.0, 0.0, 1.0, px, py, pth,
+                ranges[:0], a0, da, rmin, rmax, hit, miss, lo, hi, False, scratch,
+            )  # fmt: skip
+            _KERNEL_CALLED[0] = True
         pending: BaseException | None = None
         for logodds, o, res, lock in frames:
             ox, oy, oth = o.x, o.y, o.theta
