@@ -159,7 +159,7 @@ def test_steps_as_tuple_pose_list_and_with_own_with_goal_agree(
         else:
             still += dt
         assert fast.stall_time == general.stall_time == still
-        assert fast.stalled == (still >= 0.05)
+        assert fast.stalled == (still >= 0.05 * (1.0 - 1e-9))  # the stall clock's slack
 
 
 @pytest.mark.parametrize(

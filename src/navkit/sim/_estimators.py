@@ -153,6 +153,17 @@ class FusionEstimator:
     )
 
     def __init__(self, fusion: PlanarFusion, robot: Robot) -> None:
+        t = fusion.t
+        if t is not None and t > 0.0:
+            # The run starts at 0 s and feeds readings at their delivery times: the
+            # filter would refuse each one up to its own time as out of order (results
+            # nobody sees here) and the estimate would stand still, a silent wrong run.
+            raise ValueError(
+                f"estimator: this PlanarFusion's time is {t:g} s, after the run's start "
+                "at 0 s, so it would refuse every reading taken before then (out of "
+                "order) and its estimate would stand still: build it for this run with "
+                "t0=0.0 (a filter used in an earlier run: build a new one)"
+            )
         self._fusion = fusion
         self._wheels = _Wheels(robot)
         drive = robot.drive

@@ -745,7 +745,7 @@ class Scenario(ABC):
         # Checked here, under the caller's name (trial_seed would call it ``base``).
         base = _int_in(seed, "seed", 2**64)
         out: list[Trial] = []
-        for ci, (case, count) in enumerate(self.cases(n)):
+        for ci, (case, count) in enumerate(self._checked_cases(n)):
             out.extend(Trial(case, ci, k, trial_seed(base, ci, k)) for k in range(count))
         return tuple(out)
 
@@ -814,6 +814,45 @@ class Scenario(ABC):
         Raises TypeError for a non-integer (bools included), ValueError out of range.
         """
         return bounded_int(trials, "trials", 1, _MAX_TRIALS)
+
+    def _checked_cases(self, trials: int) -> tuple[tuple[str, int], ...]:
+        """:meth:`cases` of ``trials``, checked: ``(description, count)`` pairs.
+
+        A subclass's slip is named here rather than run: a negative or boolean
+        count would run no trial (or one) of its case without a word, and a
+        count beyond the ``trials`` limit (100000) would build that many trials.
+        """
+        where = f"{type(self).__name__}.cases({trials})"
+        cases: object = self.cases(trials)
+        if isinstance(cases, (str, bytes, Mapping, set, frozenset)) or not isinstance(
+            cases, Iterable
+        ):
+            raise TypeError(
+                f"{where} must return a sequence of (description, count) pairs, "
+                f"got {type(cases).__name__}"
+            )
+        out = []
+        for k, item in enumerate(cases):
+            if isinstance(item, (str, bytes)) or not isinstance(item, Sequence):
+                raise TypeError(
+                    f"{where}[{k}] must be a (description, count) pair, got {type(item).__name__}"
+                )
+            if len(item) != 2:
+                raise TypeError(
+                    f"{where}[{k}] must be a (description, count) pair, "
+                    f"got a {type(item).__name__} of {len(item)}"
+                )
+            case, count = item
+            if not isinstance(case, str):
+                raise TypeError(
+                    f"{where}[{k}]: the description must be a str, got {type(case).__name__}"
+                )
+            try:
+                checked = bounded_int(count, "the count", 0, _MAX_TRIALS)
+            except (TypeError, ValueError) as exc:
+                raise type(exc)(f"{where}[{k}]: {exc}") from None
+            out.append((case, checked))
+        return tuple(out)
 
     def _case_count(self) -> int:
         """How many cases the scenario has (``len(self.cases(1))``)."""

@@ -230,7 +230,8 @@ class Simulation:
         (keyword-only, as is everything below).
     goal : Pose2D or array_like (x, y) or (x, y, theta), optional
         Goal for the metrics (and the end of the run with ``stop_at_goal``),
-        within ±1e12 m (as ``start``).
+        within ±1e12 m (as ``start``). Its heading counts only with
+        ``yaw_tolerance``; without it, the position alone is the goal.
     goal_tolerance : float, default 0.1
         The goal is reached within this distance, m, in (0, 1e6] (the name the
         controllers use).
@@ -243,7 +244,10 @@ class Simulation:
         Fed every delivered reading (at its delivery time). Initialise it at
         the start pose (e.g. ``PlanarFusion(pose=(x, y, θ), t0=0.0)``).
         A ``PlanarFusion`` needs a drive that cannot move sideways (its state
-        has no sideways speed; ``ValueError`` for an omnidirectional drive).
+        has no sideways speed; ``ValueError`` for an omnidirectional drive)
+        and a time of at most 0 s, the run's start (``ValueError`` for a later
+        ``t0`` or a filter used in an earlier run, which would refuse the
+        readings as out of order).
         A ``DiffOdometry`` is given the counter readings as counters of its
         own ``bits`` (the same tick changes), so that the encoders'
         wrap-around does not depend on the two widths agreeing.
@@ -276,7 +280,8 @@ class Simulation:
     ------
     ValueError
         A bad rate, duration or tolerance, a sensor faster than the physics,
-        or a robot starting in collision.
+        a robot starting in collision, or an estimator that cannot serve the
+        run (see ``estimator``).
     TypeError
         Arguments of the wrong type.
 

@@ -5,6 +5,7 @@ from __future__ import annotations
 import concurrent.futures
 import dataclasses
 import numbers
+import pickle
 import queue
 import time
 from collections.abc import Callable, Sequence
@@ -98,6 +99,23 @@ def _name_trial(exc: BaseException, scenario: Scenario, trial: Trial, total: int
         f"(seed {trial.seed}; {total} trials in the sweep)"
     )
     exc.add_note(note)
+
+
+def _check_pickles(scenario: Scenario) -> None:
+    """Refuse, before any worker starts, a scenario the pool cannot send to its workers.
+
+    pickle's own error (an ``AttributeError`` for a class defined in a function,
+    a ``PicklingError`` or ``TypeError`` for an unpicklable option) would come
+    from the first trial's submission, as another exception type.
+    """
+    try:
+        pickle.dumps(scenario)
+    except Exception as exc:  # whatever pickle raises for this object
+        raise TypeError(
+            f"scenario {type(scenario).__qualname__} must pickle to run in worker processes "
+            f"({exc}): define its class at a module's top level and give it plain options, "
+            "or run it in this process (workers=1)"
+        ) from exc
 
 
 def _is_dask_client(executor: object) -> bool:
@@ -233,7 +251,10 @@ def sweep(
     Raises
     ------
     TypeError, ValueError
-        Bad arguments (named in the message).
+        Bad arguments (named in the message); a scenario whose ``cases``,
+        ``run_trial`` or ``summarize`` returns what its contract does not
+        allow (named); with a local pool of more than one worker, a scenario
+        that does not pickle (``TypeError``, before any worker starts).
     Exception
         The first exception a trial raises, re-raised here with a note naming
         the scenario, case, trial and seed; the trials not yet started are
@@ -288,6 +309,7 @@ def sweep(
         if n <= 1:
             results = _serial(scenario, plan, progress)
         else:
+            _check_pickles(scenario)
             with process_pool(n) as pool:
                 results = _submitted(
                     lambda t: pool.submit(run_one, scenario, t),
@@ -296,4 +318,10 @@ def sweep(
                     plan,
                     progress,
                 )
-    return scenario.summarize(results, seed=base)
+    summary = scenario.summarize(results, seed=base)
+    if not isinstance(summary, ScenarioResult):
+        raise TypeError(
+            f"{type(scenario).__name__}.summarize returned a {type(summary).__name__}, "
+            "not a ScenarioResult"
+        )
+    return summary
