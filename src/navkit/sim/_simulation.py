@@ -834,7 +834,14 @@ class _Run:
         self.cmd[1] = twist.vy
         self.cmd[2] = twist.omega
         self.buf[i, 7:10] = self.cmd
-        return bool(getattr(sim._controller, "done", False))
+        done = getattr(sim._controller, "done", False)
+        try:
+            return bool(done)
+        except Exception as exc:  # numpy's "truth value ... is ambiguous", say
+            raise TypeError(
+                f"the controller's done must be true or false, got {type(done).__name__} "
+                f"({exc})"
+            ) from exc
 
     # ------------------------------------------------------------------ loop
     def execute(self) -> Trace:

@@ -40,6 +40,11 @@ def _as_scenario(scenario: object) -> Scenario:
         from navkit.sim.scenarios import get_scenario
 
         return get_scenario(scenario)()
+    if isinstance(scenario, type) and issubclass(scenario, Scenario):
+        raise TypeError(
+            f"scenario must be a Scenario or a scenario name, got the class "
+            f"{scenario.__name__}: pass an instance, {scenario.__name__}(...)"
+        )
     kind = type(scenario).__name__
     raise TypeError(f"scenario must be a Scenario or a scenario name, got {kind}")
 
