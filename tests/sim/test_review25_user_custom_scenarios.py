@@ -100,3 +100,12 @@ def test_a_scenario_that_cannot_pickle_is_refused_before_the_pool_starts() -> No
                                          r"processes.*workers=1"):  # fmt: skip
         sweep(Local(), trials=2, workers=2)
     assert sweep(Local(), trials=2, workers=1).summary == {"n": 2.0}  # in this process: fine
+
+
+def test_the_case_count_is_checked_too() -> None:
+    # _case_of (the built-in scenarios' run_trial) and _results_by_case count the
+    # cases; a broken cases() is named there as in trials() and run().
+    scenario = _with(cases_of=lambda n: (("a", -1),))
+    with pytest.raises(ValueError, match=r"Custom\.cases\(1\)\[0\]: the count must be in"):
+        scenario._case_of(Trial("a", 0, 0, 1))
+    assert Flip()._case_of(Trial("one", 0, 0, 1)) == 0

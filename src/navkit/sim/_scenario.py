@@ -855,8 +855,8 @@ class Scenario(ABC):
         return tuple(out)
 
     def _case_count(self) -> int:
-        """How many cases the scenario has (``len(self.cases(1))``)."""
-        return len(self.cases(1))
+        """How many cases the scenario has (of :meth:`cases` of 1, checked)."""
+        return len(self._checked_cases(1))
 
     def _case_of(self, trial: object) -> int:
         """The case index of ``trial`` (the argument of :meth:`run_trial`), checked.
