@@ -230,10 +230,12 @@ test_grid_from_msg_yaw_is_scale_free_thoroughly = slow_twin(
 )
 
 
-def test_grid_from_msg_pitched_a_quarter_turn_has_yaw_zero() -> None:
-    # The map's x axis points straight up: no heading (quaternion_to_yaw's convention).
+def test_grid_from_msg_pitched_a_quarter_turn_is_refused() -> None:
+    # The map's x axis points straight up: no yaw places its cells (session 30: it read
+    # as yaw 0; tests/mapping/test_review26_lenient_map_origin_tilt.py has the others).
     half = math.sqrt(0.5)
-    assert grid_from_msg(_msg((0.0, half, 0.0, half))).origin.theta == 0.0
+    with pytest.raises(ValueError, match=r"msg\.info\.origin\.orientation .* tilts the map"):
+        grid_from_msg(_msg((0.0, half, 0.0, half)))
 
 
 def test_grid_round_trips_through_message_fields_at_any_yaw() -> None:

@@ -77,6 +77,17 @@ def _players(value: ArrayLike, name: str) -> FloatArray:
     out = np.array(points, copy=True)
     if np.isinf(out).any():
         raise ValueError(f"{name} must be finite (NaN rows mark unseen players)")
+    nan = np.isnan(out)
+    if nan.any():
+        # A row with one NaN coordinate is no unseen player but a broken position
+        # (a tracker's or a conversion's fault): the controller would skip it as unseen.
+        half = nan.any(axis=1) & ~nan.all(axis=1)
+        if half.any():
+            row = int(np.argmax(half))
+            raise ValueError(
+                f"{name}[{row}] is {out[row].tolist()}: a row is a seen player (finite x "
+                "and y) or an unseen one (both NaN), not half of each"
+            )
     out.setflags(write=False)
     return out
 
@@ -106,7 +117,8 @@ class BehaviourTarget:
     obstacles_xy : array_like, shape (M, 2)
         Points ``(x, y)`` (m) that repel; rows of NaN are players that are not
         currently seen (the controller skips them). ``M = 0`` is valid.
-        Infinities are refused.
+        Infinities are refused, and so is a row with one NaN coordinate (a
+        position half known is a fault upstream, not an unseen player).
 
     Notes
     -----
@@ -167,7 +179,8 @@ class GameState:
     arrays are stored as read-only copies (the caller's arrays are never made
     read-only or modified); ``has_ball`` and ``opponent_with_ball``, when
     omitted, are inferred on construction, so after it ``has_ball`` is always a
-    bool. Positions are any finite numbers (NaN rows only for unseen players).
+    bool. Positions are any finite numbers (NaN rows only for unseen players:
+    both coordinates NaN; a row with one NaN is refused, naming it).
     ``dataclasses.replace`` passes the values inferred for the old positions on
     as given ones: pass ``has_ball=None, opponent_with_ball=None`` with new
     positions to have them inferred again.

@@ -326,6 +326,23 @@ def _warmup_steps() -> tuple[str, ...]:
     return WARMUP_STEPS
 
 
+#: Numbers as C's ``strtod`` and other command-line programs read them, in ASCII:
+#: Python's float() and int() also take ``1_0`` (10: a mistyped "1.0" or "1,0"?) and
+#: digits of other scripts (``"١٢"``), which no user means on a command line.
+_DECIMAL = re.compile(
+    r"[+-]?(?:(?:\d+\.?\d*|\.\d+)(?:e[+-]?\d+)?|inf|infinity|nan)", re.IGNORECASE | re.ASCII
+)
+_INTEGER = re.compile(r"[+-]?\d+", re.ASCII)
+
+
+def _float(text: str) -> float:
+    """``text`` as a float, spaces around it allowed; ValueError unless a plain decimal number."""
+    number = text.strip()
+    if not _DECIMAL.fullmatch(number):
+        raise ValueError(text)
+    return float(number)
+
+
 def _point(text: str) -> tuple[float, float]:
     """``"X,Y"`` (m) as two finite floats; ``"(X, Y)"``, as the tables print points, too."""
     inner = text.strip()
@@ -335,7 +352,7 @@ def _point(text: str) -> tuple[float, float]:
     try:
         if len(parts) != 2:
             raise ValueError
-        x, y = float(parts[0]), float(parts[1])  # float() ignores spaces around a number
+        x, y = _float(parts[0]), _float(parts[1])
     except ValueError:
         raise argparse.ArgumentTypeError(f"expected X,Y in metres, got {text!r}") from None
     if not (math.isfinite(x) and math.isfinite(y)):
@@ -348,14 +365,14 @@ def _count(low: int, high: int, *, shown: str | None = None) -> type[int]:
     bounds = shown if shown is not None else f"[{low}, {high}]"
 
     def parse(text: str) -> int:
+        if not _INTEGER.fullmatch(text.strip()):
+            raise argparse.ArgumentTypeError(f"expected an integer, got {text!r}")
         try:
             value = int(text)
-        except ValueError:
-            if re.fullmatch(r"\s*[+-]?\d[\d_]*\s*", text):  # beyond int()'s digit limit
-                raise argparse.ArgumentTypeError(
-                    f"must be in {bounds}, got an integer of {len(text.strip())} characters"
-                ) from None
-            raise argparse.ArgumentTypeError(f"expected an integer, got {text!r}") from None
+        except ValueError:  # beyond int()'s digit limit
+            raise argparse.ArgumentTypeError(
+                f"must be in {bounds}, got an integer of {len(text.strip())} characters"
+            ) from None
         if not low <= value <= high:
             raise argparse.ArgumentTypeError(f"must be in {bounds}, got {value}")
         return value
@@ -366,7 +383,7 @@ def _count(low: int, high: int, *, shown: str | None = None) -> type[int]:
 
 def _radius(text: str) -> float:
     try:
-        value = float(text)
+        value = _float(text)
     except ValueError:
         raise argparse.ArgumentTypeError(f"expected a radius in metres, got {text!r}") from None
     if not (math.isfinite(value) and 0.0 <= value <= 100.0):
@@ -381,7 +398,7 @@ _TOLERANCE_LIMIT = 1e9
 def _tolerance(text: str) -> float:
     """``--start-tolerance``: metres in ``[0, 1e9]``, as MapPlanner.plan accepts."""
     try:
-        value = float(text)
+        value = _float(text)
     except ValueError:
         raise argparse.ArgumentTypeError(f"expected a distance in metres, got {text!r}") from None
     if not (math.isfinite(value) and 0.0 <= value <= _TOLERANCE_LIMIT):

@@ -81,7 +81,8 @@ class Metrics:
     duration : float
         Simulated time of the run, s.
     time_to_goal : float
-        First time the goal condition held, s (NaN if never).
+        First time the goal condition held, s, at most ``duration`` (NaN if
+        never: exactly when ``reached`` is False).
     final_error : float
         Distance from the final true position to the goal, m (NaN without goal).
     final_error_estimated : float
@@ -100,6 +101,14 @@ class Metrics:
         Number of collisions.
     distance : float
         Length of the path the robot travelled, m.
+
+    Raises
+    ------
+    TypeError, ValueError
+        A value of the wrong type or out of its range, naming the field: every
+        time and distance is >= 0 (NaN only where it says so), ``duration``
+        and ``distance`` are finite, ``time_to_goal`` disagrees with
+        ``reached`` or exceeds ``duration``.
 
     Examples
     --------
@@ -129,13 +138,32 @@ class Metrics:
         object.__setattr__(self, "reached", as_bool(self.reached, "reached"))
         if self.reason not in _END_REASONS:
             raise ValueError(f"reason must be one of {_END_REASONS}, got {self.reason!r}")
+        # Every figure is a time since the run's start or a distance: none can be
+        # negative (a negative one is a sign or an origin mixed up by its maker).
         for name in ("duration", "distance"):
-            object.__setattr__(self, name, finite_float(getattr(self, name), name))
+            value = finite_float(getattr(self, name), name)
+            if value < 0.0:
+                raise ValueError(f"{name} must be >= 0, got {value!r}")
+            object.__setattr__(self, name, value)
         for name in (
             "time_to_goal", "final_error", "final_error_estimated", "estimate_error",
             "cross_track_mean", "cross_track_max",
         ):  # fmt: skip
-            object.__setattr__(self, name, real_float(getattr(self, name), name, allow_nan=True))
+            value = real_float(getattr(self, name), name, allow_nan=True)
+            if value < 0.0:
+                raise ValueError(f"{name} must be >= 0 (or NaN: does not apply), got {value!r}")
+            object.__setattr__(self, name, value)
+        # Both say whether the goal was reached, and the goal is reached within the run.
+        time_to_goal = self.time_to_goal
+        if self.reached == math.isnan(time_to_goal):
+            raise ValueError(
+                f"time_to_goal must be NaN exactly when reached is False, got reached="
+                f"{self.reached} and time_to_goal={time_to_goal!r}"
+            )
+        if time_to_goal > self.duration:
+            raise ValueError(
+                f"time_to_goal must be <= duration, got {time_to_goal!r} > {self.duration!r}"
+            )
         clearance = real_float(self.min_clearance, "min_clearance", allow_inf=True)
         if clearance < 0.0:
             raise ValueError(f"min_clearance must be >= 0 (or inf), got {clearance}")

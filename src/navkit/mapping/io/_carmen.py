@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import bz2
 import gzip
 import io
 import math
@@ -13,7 +14,7 @@ from collections.abc import Iterator
 from dataclasses import dataclass
 from pathlib import Path
 from types import MappingProxyType
-from typing import Any, BinaryIO, NamedTuple
+from typing import TYPE_CHECKING, Any, BinaryIO, NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -27,6 +28,9 @@ from navkit._shared.validation import as_float_array, as_sequence, positive_floa
 from navkit.geometry import Pose2D, as_pose, wrap_angle
 from navkit.mapping import LaserScan
 from navkit.mapping.io._paths import as_path, open_regular
+
+if TYPE_CHECKING:
+    import lzma  # imported when an xz file is read: optional in Python builds
 
 __all__ = ["CarmenLog", "read_carmen"]
 
@@ -259,19 +263,81 @@ class _Record(NamedTuple):
     timestamp: float
 
 
+#: The first bytes of the compressed files read (their format's name), and of those
+#: named when refused: decompressed as text, the others read as "no FLASER lines".
+_COMPRESSIONS = ((b"\x1f\x8b", "gzip"), (b"\xfd7zXZ\x00", "xz"))
+_NOT_READ = (
+    (b"PK\x03\x04", "zip archive"),
+    (b"\x28\xb5\x2f\xfd", "zstd-compressed file"),
+    (b"7z\xbc\xaf\x27\x1c", "7z archive"),
+    (b"\x04\x22\x4d\x18", "lz4-compressed file"),
+)
+
+
+class _CorruptFile(ValueError):
+    """A compressed log that cannot be decompressed (the reader adds the file and line)."""
+
+    def __init__(self, compression: str, exc: BaseException) -> None:
+        super().__init__(f"{type(exc).__name__}: {exc}")
+        self.compression = compression
+
+
+def _compression(head: bytes, path: Path) -> str:
+    """The compression of a file starting with ``head`` ("" for none)."""
+    for magic, name in _COMPRESSIONS:
+        if head.startswith(magic):
+            return name
+    if head[:3] == b"BZh" and head[3:4].isdigit() and head[3:4] != b"0":
+        return "bzip2"
+    for magic, what in _NOT_READ:
+        if head.startswith(magic):
+            raise ValueError(
+                f"{path}: a {what}, not a CARMEN log: read_carmen reads plain, gzip, bzip2 "
+                "and xz files; extract or decompress the log first"
+            )
+    return ""
+
+
+def _decompressed(
+    raw: BinaryIO, compression: str, path: Path
+) -> tuple[BinaryIO | gzip.GzipFile | bz2.BZ2File | lzma.LZMAFile, tuple[type[Exception], ...]]:
+    """``raw`` decompressed as ``compression`` says, and the errors its damage raises."""
+    if compression == "gzip":
+        return gzip.GzipFile(fileobj=raw, mode="rb"), (EOFError, zlib.error, gzip.BadGzipFile)
+    if compression == "bzip2":
+        # A damaged stream is an OSError without an errno; a failing disk's has one.
+        return bz2.BZ2File(raw, mode="rb"), (EOFError, OSError)
+    if compression == "xz":
+        try:
+            import lzma  # optional: Python builds without liblzma lack it
+        except ImportError:
+            raise ValueError(
+                f"{path}: an xz-compressed file, and this Python has no lzma module: "
+                "decompress it first (xz -d)"
+            ) from None
+        return lzma.LZMAFile(raw, mode="rb"), (EOFError, lzma.LZMAError)
+    return raw, ()
+
+
 def _lines(path: Path) -> Iterator[str]:
-    """Lines of a plain or gzip'd log, read lazily (bytes that are not ASCII are replaced).
+    """Lines of a plain, gzip, bzip2 or xz log, read lazily (bytes not ASCII are replaced).
 
     A line longer than :data:`LINE_MAX` is given cut to ``LINE_MAX + 1`` characters.
+    A damaged compressed file raises :class:`_CorruptFile`.
     """
     # Opened once and checked on its descriptor: a FIFO swapped in after
     # read_carmen's check by name is refused instead of read (which blocked for ever).
     with open_regular(path, "CARMEN log") as raw:
-        gzipped = raw.read(2) == b"\x1f\x8b"
+        compression = _compression(raw.read(6), path)
         raw.seek(0)
-        binary: BinaryIO | gzip.GzipFile = gzip.GzipFile(fileobj=raw, mode="rb") if gzipped else raw
+        binary, damage = _decompressed(raw, compression, path)
         with io.TextIOWrapper(binary, encoding="ascii", errors="replace") as fh:
-            yield from iter(lambda: fh.readline(LINE_MAX + 1), "")
+            try:
+                yield from iter(lambda: fh.readline(LINE_MAX + 1), "")
+            except damage as exc:
+                if isinstance(exc, OSError) and exc.errno is not None:
+                    raise  # the disk's, not the data's
+                raise _CorruptFile(compression, exc) from None
 
 
 def _count(token: str, what: str) -> int:
@@ -430,10 +496,9 @@ def _parse(log_path: Path) -> tuple[list[_Record], array[float]]:
                 records.append(_robotlaser1(number, rest.split(), terminated))
     except _LineError as exc:
         raise ValueError(f"{log_path}:{number}: malformed {kind} line: {exc}") from None
-    except (EOFError, zlib.error, gzip.BadGzipFile) as exc:
+    except _CorruptFile as exc:
         raise ValueError(
-            f"{log_path}: corrupt or truncated gzip file (after {number} lines: "
-            f"{type(exc).__name__}: {exc})"
+            f"{log_path}: corrupt or truncated {exc.compression} file (after {number} lines: {exc})"
         ) from None
     return records, odometry
 
@@ -467,7 +532,7 @@ def read_carmen(
     range_max: float | None = None,
     range_min: float = 0.0,
 ) -> CarmenLog:
-    """Read the laser scans, poses and odometry of a CARMEN log (plain or gzip'd).
+    """Read the laser scans, poses and odometry of a CARMEN log (plain or compressed).
 
     ``FLASER n r_1 .. r_n x y theta odom_x odom_y odom_theta timestamp host
     logger_timestamp`` lines carry no scanner geometry, so CARMEN's own guesses
@@ -483,7 +548,8 @@ def read_carmen(
     Parameters
     ----------
     path : str or path-like
-        Log file, gzip'd or not.
+        Log file: plain text, or compressed with gzip, bzip2 or xz (told by
+        its first bytes, whatever its name).
     range_max : float, optional
         Maximum range of FLASER scans, m, in (``range_min``, 1e9]. Readings
         equal to or beyond it are "no return". By default the largest FLASER
@@ -503,7 +569,8 @@ def read_carmen(
     FileNotFoundError
         Missing file.
     ValueError
-        A corrupt or truncated gzip file; a line longer than 2**23 characters
+        A corrupt or truncated compressed file; a zip, 7z, zstd or lz4 file
+        (named: decompress it first); a line longer than 2**23 characters
         (binary data: lines are read whole); a malformed FLASER, ROBOTLASER1 or
         ODOM line (the message names the file and line number): fields that
         are not numbers, NaN or infinite values, negative counts, counts that

@@ -18,7 +18,7 @@ from numpy.typing import ArrayLike, NDArray
 from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.validation import as_bool, bounded_int, finite_float, refuse_masked, unpack
-from navkit.geometry import Pose2D, quaternion_to_yaw
+from navkit.geometry import Pose2D, quaternion_to_matrix, quaternion_to_yaw
 from navkit.mapping import LaserScan, OccupancyGrid
 from navkit.mapping.io._map_files import _unknown_logodds
 from navkit.mapping.io._step_tables import (
@@ -30,6 +30,12 @@ from navkit.mapping.io._step_tables import (
 )
 
 __all__ = ["OccupancyGridMsgFields", "grid_from_msg", "grid_to_msg_fields", "scan_from_msg"]
+
+#: Largest tilt (rad) of a map origin's z axis from the world's: a planar grid turns
+#: about z only. Float32 rounding of a message's quaternion tilts it by ~1e-7 rad;
+#: projecting a plane tilted 1e-3 rad shortens its lengths by 5e-7 (0.05 mm in 100 m).
+#: Beyond it, reading the yaw alone gives a map stretched, or mirrored if upside down.
+_MAX_TILT = 1e-3
 
 
 def _positive_int(value: Any, name: str) -> int:
@@ -300,7 +306,9 @@ def grid_from_msg(msg: Any) -> OccupancyGrid:
     ``data`` is row-major int8 with row 0 at the origin: -1 is unknown and
     0..100 the occupancy probability in percent. The origin's quaternion is
     normalised and reduced to its yaw (a zero quaternion, ROS 1's default,
-    gives yaw 0).
+    gives yaw 0); it must be a rotation about z, within 1e-3 rad of tilt
+    (float32 rounding tilts it by ~1e-7 rad): a grid is planar, and a map plane
+    rolled or pitched (upside down at π) has no yaw that places its cells.
 
     ``info.resolution`` is used as given: in a real message it is a float32,
     so a map saved at 0.05 m reads as 0.05000000074505806 m, as ROS's own
@@ -308,8 +316,9 @@ def grid_from_msg(msg: Any) -> OccupancyGrid:
     the same map read from its YAML (:func:`~navkit.mapping.io.read_map`,
     0.05 exactly) to within ``width × 7.5e-10`` m, but a point lying exactly on
     a cell boundary of one may fall in the neighbouring cell of the other.
-    ``info.origin.position.z`` is ignored, and so are the origin's roll and
-    pitch (the grid is planar).
+    ``info.origin.position.z`` is ignored. (Nav2's map_saver writes the yaw of
+    any orientation, and its costmaps ignore the orientation: a tilted map
+    there is silently projected or mirrored.)
 
     A value of 50 is probability 0.5, log-odds 0, which is also what -1 reads
     as: the grid cannot tell the two apart, and :func:`grid_to_msg_fields`
@@ -347,7 +356,9 @@ def grid_from_msg(msg: Any) -> OccupancyGrid:
         ``data`` of the wrong length or with values outside -1..100 (a NumPy
         uint8 array's 255 among them: pass ``data.view(np.int8)`` if it holds
         int8 cells), a released memoryview, a resolution or origin outside the
-        ranges of :class:`~navkit.mapping.OccupancyGrid`.
+        ranges of :class:`~navkit.mapping.OccupancyGrid`, an origin orientation
+        tilted beyond 1e-3 rad (a roll or pitch, naming
+        ``msg.info.origin.orientation``).
 
     Examples
     --------
@@ -391,7 +402,16 @@ def grid_from_msg(msg: Any) -> OccupancyGrid:
             f"msg.data has {data.size} values, expected width*height = {width * height}"
         )
     # Normalised without underflow (sub-normal components) and a zero quaternion (ROS
-    # 1's default) read as no rotation; a map pitched ±90° has no heading: yaw 0.
+    # 1's default) read as no rotation.
+    matrix = quaternion_to_matrix((qx, qy, qz, qw))
+    tilt = math.atan2(math.hypot(matrix[0, 2], matrix[1, 2]), matrix[2, 2])
+    if tilt > _MAX_TILT:
+        flipped = ", upside down" if tilt > math.pi / 2 else ""
+        raise ValueError(
+            f"msg.info.origin.orientation (x, y, z, w) = {(qx, qy, qz, qw)} tilts the map "
+            f"plane by {tilt:.6g} rad (a roll or pitch{flipped}): a grid's origin may only "
+            f"turn about z (tilt at most {_MAX_TILT:g} rad)"
+        )
     yaw = float(quaternion_to_yaw((qx, qy, qz, qw)))
     # One table look-up per cell (the message has 102 values), not a logarithm:
     # a 4000 x 4000 map converts in a fraction of the time, to the same float32s.
