@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import os
 import threading
+from collections.abc import Callable
 from types import TracebackType
 
 __all__ = ["ForkSafeLock"]
@@ -44,13 +45,20 @@ class ForkSafeLock:
     def _renew(self) -> None:
         self._lock = self._new()
 
-    def __enter__(self) -> bool:
-        return self._lock.__enter__()
+    # ``with`` takes the lock's own (C) __enter__ and __exit__ through these
+    # properties, and CPython runs no Python code between acquiring and the block,
+    # or between the block and releasing. As Python methods calling them, a
+    # KeyboardInterrupt delivered as the lock's __enter__ returned into ours, or on
+    # entering our __exit__, left the lock held: the next ``with`` on a plain lock
+    # waited for ever (review 26).
+    @property
+    def __enter__(self) -> Callable[[], bool]:
+        return self._lock.__enter__
 
+    @property
     def __exit__(
         self,
-        exc_type: type[BaseException] | None,
-        exc: BaseException | None,
-        tb: TracebackType | None,
-    ) -> None:
-        self._lock.__exit__(exc_type, exc, tb)
+    ) -> Callable[
+        [type[BaseException] | None, BaseException | None, TracebackType | None], None
+    ]:
+        return self._lock.__exit__
