@@ -153,18 +153,8 @@ class FusionEstimator:
     )
 
     def __init__(self, fusion: PlanarFusion, robot: Robot) -> None:
-        t = fusion.t
-        if t is not None and t > 0.0:
-            # The run starts at 0 s and feeds readings at their delivery times: the
-            # filter would refuse each one up to its own time as out of order (results
-            # nobody sees here) and the estimate would stand still, a silent wrong run.
-            raise ValueError(
-                f"estimator: this PlanarFusion's time is {t:g} s, after the run's start "
-                "at 0 s, so it would refuse every reading taken before then (out of "
-                "order) and its estimate would stand still: build it for this run with "
-                "t0=0.0 (a filter used in an earlier run: build a new one)"
-            )
         self._fusion = fusion
+        self.check_start()
         self._wheels = _Wheels(robot)
         drive = robot.drive
         n = robot.n_wheels
@@ -190,6 +180,24 @@ class FusionEstimator:
         imu = robot.imu
         self._gyro_var = max(imu.gyro_noise**2, 1e-6) if imu is not None else 1e-6
         self._accel_var = max(imu.accel_noise**2, 1e-4) if imu is not None else 1e-4
+
+    def check_start(self) -> None:
+        """Refuse a filter whose time is past the run's start (ValueError, naming it).
+
+        When the simulation is built and again as it runs: one filter given to
+        two simulations built before either ran is past 0 s when the second runs.
+        """
+        t = self._fusion.t
+        if t is not None and t > 0.0:
+            # The run starts at 0 s and feeds readings at their delivery times: the
+            # filter would refuse each one up to its own time as out of order (results
+            # nobody sees here) and the estimate would stand still, a silent wrong run.
+            raise ValueError(
+                f"estimator: this PlanarFusion's time is {t:g} s, after the run's start "
+                "at 0 s, so it would refuse every reading taken before then (out of "
+                "order) and its estimate would stand still: build it for this run with "
+                "t0=0.0 (a filter used in an earlier run: build a new one)"
+            )
 
     def observe(self, t: float, reading: Reading) -> None:
         fusion = self._fusion

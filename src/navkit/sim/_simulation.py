@@ -247,7 +247,9 @@ class Simulation:
         has no sideways speed; ``ValueError`` for an omnidirectional drive)
         and a time of at most 0 s, the run's start (``ValueError`` for a later
         ``t0`` or a filter used in an earlier run, which would refuse the
-        readings as out of order).
+        readings as out of order); an earlier ``t0`` is taken, and its first
+        reading predicts over the gap from ``t0`` as well (build it with
+        ``t0=0.0`` unless the robot moved before the run).
         A ``DiffOdometry`` is given the counter readings as counters of its
         own ``bits`` (the same tick changes), so that the encoders'
         wrap-around does not depend on the two widths agreeing.
@@ -455,7 +457,10 @@ class Simulation:
         ValueError
             When the controller asks a differential robot to move sideways, or
             a robot without ``max_wheel_speed`` for wheel speeds beyond float64
-            (with one, such commands are scaled down like any other).
+            (with one, such commands are scaled down like any other); before
+            anything runs, for a ``PlanarFusion`` estimator whose time is past
+            0 s (run by another simulation since this one was built), the
+            filter unchanged.
         Exception
             Whatever the controller or the estimator raises (a
             ``KeyboardInterrupt`` too), unchanged: the run ends there and no
@@ -491,6 +496,8 @@ class Simulation:
         """
         if self._ran:
             raise RuntimeError("a Simulation runs once; build a new one for another run")
+        if isinstance(self._estimator, FusionEstimator):
+            self._estimator.check_start()  # run since this simulation was built?
         self._ran = True
         return _Run(self).execute()
 
