@@ -20,7 +20,6 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from navkit.errors import FilterError
 from navkit.estimation import ExtendedKalmanFilter, FusionStatus
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
@@ -46,11 +45,15 @@ def test_readings_1e150_deviations_apart_are_gated() -> None:
     assert result.reason == f"rejected by the gate: NIS {float(nis):.6g} > 9.0"
     np.testing.assert_array_equal(ekf.x, [0.0, 0.0])
     np.testing.assert_array_equal(ekf.P, np.diag([1e100, 1.0]))
-    # Without a gate the same update still needs the information form's state, which
-    # is not trusted here: refused, as documented, and the filter unchanged.
-    with pytest.raises(FilterError, match="innovation covariance S is not positive definite"):
-        ekf.update(z, lambda s: _H @ s, _H, rr)
-    np.testing.assert_array_equal(ekf.x, [0.0, 0.0])
+    # Without a gate the same update is applied. The information form's state is not
+    # trusted here (its bound is beyond a quarter deviation): the exact state, rounded
+    # once, is committed with P⁺ (review 26; it was refused, "innovation covariance S
+    # is not positive definite", the filter unchanged).
+    x_exact, p_exact, _ = exact_update(np.zeros(2), np.diag([1e100, 1.0]), _H, rr, z)
+    result = ekf.update(z, lambda s: _H @ s, _H, rr)
+    assert result.accepted and result.nis == float(nis)
+    np.testing.assert_array_equal(ekf.x, [float(v) for v in x_exact])
+    np.testing.assert_allclose(ekf.P, [[float(v) for v in row] for row in p_exact], rtol=1e-12)
 
 
 @settings(max_examples=40, deadline=None)

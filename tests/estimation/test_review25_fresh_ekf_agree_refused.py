@@ -9,6 +9,8 @@ was committed with the information form's P⁺, status OK: 8.7e5 posterior
 deviations off the exact state (a filter that then gates every consistent
 measurement). Where the states disagree, the same situation was already
 refused ("no state to trust"); now it is refused here too, the filter unchanged.
+Review 26: such an update now commits the exact state (x + P Hᵀ S⁻¹ y in rational
+arithmetic, rounded once) with P⁺ instead of being refused.
 The reference is exact rational arithmetic on the float inputs.
 """
 
@@ -63,14 +65,16 @@ def test_an_update_with_no_trusted_state_is_refused_not_committed_wrong() -> Non
 
 @pytest.mark.parametrize("gate", [1e-300, None])
 def test_the_gate_still_decides_first(gate: float | None) -> None:
-    # The refusal comes after the exact NIS's gate, as where the states disagree: a
-    # measurement the gate rejects is GATED (not an error), the filter unchanged.
+    # The exact NIS's gate comes first, as where the states disagree: a measurement
+    # the gate rejects is GATED (not an error), the filter unchanged. Without the
+    # gate the update is applied with the exact state (review 26; it was refused).
     ekf = ExtendedKalmanFilter(_X0, _P0)
     if gate is None:
-        with pytest.raises(FilterError):
-            ekf.update(_Z, lambda s: _H @ s, _H, _R)
-    else:
-        result = ekf.update(_Z, lambda s: _H @ s, _H, _R, gate=gate)
-        assert result.status.name == "GATED"
+        assert ekf.update(_Z, lambda s: _H @ s, _H, _R).accepted
+        x_exact, _, _ = exact_update(_X0, _P0, _H, _R, _Z - _H @ _X0)
+        np.testing.assert_array_equal(ekf.x, [float(v) for v in x_exact])
+        return
+    result = ekf.update(_Z, lambda s: _H @ s, _H, _R, gate=gate)
+    assert result.status.name == "GATED"
     np.testing.assert_array_equal(ekf.x, _X0)
     np.testing.assert_array_equal(ekf.P, _P0)

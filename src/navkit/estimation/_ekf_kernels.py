@@ -56,8 +56,10 @@ a measurement far more precise than the estimate), or whose S of 2 to
 ε κ(S) > 2⁻³⁰, so that its NIS and x are not to be trusted), commits nothing
 and returns ``CANCELLED``; the public layer finishes it with :func:`finish_cancelled`,
 which may take the information form instead, chosen by residuals computed
-exactly (in NumPy: the case is rare, and compiled into every update kernel it
-would cost compile time).
+exactly, and commits a state only with a bound on its error within a quarter
+posterior deviation (or a few ulps), else the posterior mean in exact rational
+arithmetic (in NumPy: the case is rare, and compiled into every update kernel
+it would cost compile time).
 
 They are compiled for C-contiguous, writeable, aligned float64 arrays only,
 when first requested, after which their dispatchers compile nothing more: an
@@ -860,9 +862,9 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
     error is then measured, not bounded: it is P⁺ (J P_Joseph - I), the
     same residual, to within P⁺'s error.
 
-    It decides on these measured errors (relative to ``sqrt(P⁺ᵢᵢ P⁺ⱼⱼ)``),
-    only where P⁺'s estimate is at most 2⁻¹² (else the kernel's result and
-    status stand, as before this fallback):
+    It decides P on these measured errors (relative to ``sqrt(P⁺ᵢᵢ P⁺ⱼⱼ)``),
+    only where P⁺'s estimate is at most 2⁻¹² (else the Joseph P and status
+    stand, as before this fallback):
 
     * P⁺ replaces the Joseph P where that failed its checks, or where the
       Joseph result's measured error exceeds twice P⁺'s (the Joseph form is
@@ -873,24 +875,37 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
       (whose solves are refined too) replaces the kernel's x where a bound
       on its error (the roundings of g = Hᵀ R⁻¹ y and J's error, carried
       through P⁺) is within that tolerance; else the kernel's x (off by
-      about ε κ(S), κ of S with its diagonal scaled) stays, and an update
-      the Joseph form failed is refused (its status, as before) where
-      ε κ(S) > 2⁻³⁰;
-    * where the kernel's x was replaced that way, or where S is that
-      ill-conditioned (ε κ(S) > 2⁻³⁰) and the two states agree (x⁺ then
-      replaces the kernel's where its bound is within ``_STEP_SURE``
-      deviations or ``_STEP_RESOLUTION`` of ``|x| + |x⁺ - x|``; else, where
-      the Joseph form failed, no state is trusted and the update is
-      refused), the kernel's NIS, from the same solve with S, is replaced
-      by the exact one (:func:`_exact_nis`, for measurements of at most
-      ``_EXACT_NIS_MAX_M`` components) and the update gated again on it
-      (``GATED``, the state unchanged, where it exceeds the gate);
-    * where the information form is not trusted, or where the update is
-      refused (no state to trust), and S is that ill-conditioned, the exact
-      NIS is reported and gated on all the same (the kernel's x and P and
-      status otherwise stand): a measurement the exact NIS rejects is
-      ``GATED``, not refused (measured: the kernel's NIS 7.14 for an exact
-      9.07, accepted at a gate of 8.1).
+      about ε κ(S), κ of S with its diagonal scaled) is kept for now;
+    * where S is that ill-conditioned (ε κ(S) > 2⁻³⁰) and the two states
+      agree, x⁺ replaces the kernel's where its bound is within
+      ``_STEP_SURE`` deviations or ``_STEP_RESOLUTION`` of ``|x| + |x⁺ - x|``;
+    * where the kernel's x was replaced by x⁺ because they disagree, or
+      where S is that ill-conditioned, the kernel's NIS, from the same solve
+      with S, is replaced by the exact one (:func:`_nis_of`, for
+      measurements of at most ``_EXACT_NIS_MAX_M`` components) and the
+      update gated again on it (``GATED``, the state unchanged, where it
+      exceeds the gate); so too where the information form is not trusted
+      and S is that ill-conditioned (measured: the kernel's NIS 7.14 for an
+      exact 9.07, accepted at a gate of 8.1). (Before review 26 an
+      ill-conditioned S whose states disagreed, x⁺ not trusted, kept the
+      kernel's NIS: 4.61 for an exact 2128.)
+
+    Then the state: the one chosen above only where a bound on its error is
+    within ``_STEP_SURE`` deviations or ``_STEP_RESOLUTION`` of ``|x| + |x⁺ -
+    x|`` (x⁺'s own bound; for the kernel's x, ``|x_kernel - x⁺|`` plus x⁺'s
+    bound, the only bound it has: ε κ(S) of its scale says nothing where
+    the posterior's deviations lie far below it); else x⁺ where its bound
+    is; else (and always where the information form is not trusted: nothing
+    bounds the kernel's x there) the exact posterior mean
+    ``x + P Hᵀ S⁻¹ y`` in rational arithmetic, rounded once
+    (:func:`_exact_state`, for measurements of at most
+    ``_EXACT_NIS_MAX_M`` components; ``STATE_OVERFLOW`` where it is beyond
+    float64). Larger measurements keep the chosen state, and an update
+    the Joseph form failed with S that ill-conditioned and no state within
+    the tolerance is refused (its status). (Before review 26 the kernel's x
+    was committed, with status OK, up to 1e38 posterior deviations off: in
+    a case with ε κ(S) 0.35, 315 deviations, 45,000 ulps; and updates the
+    Joseph form failed with no state trusted were refused.)
 
     Commits x and P only with OK. ``jac`` (m, n) is the H and ``y`` (m,) the
     (wrapped) residual the kernel took. NumPy, not a kernel: this is rare, and
@@ -905,15 +920,18 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
     status = int(rbuf[_VEC, _META, _JOSEPH])
     new_p, new_x = joseph, x_kernel
     regate = False
+    # Whether new_x has no bound within _STEP_SURE deviations or _STEP_RESOLUTION of
+    # its size: then the exact state replaces it (m <= _EXACT_NIS_MAX_M).
+    unvouched = True
+    exact = m <= _EXACT_NIS_MAX_M
     with np.errstate(all="ignore"):
         found = _information_update(p, jac, rbuf[_RS, :m, :m], y)
         if found is None or not _EPS * found.error <= _WELL_CONDITIONED:
-            # The information form is not trusted: the kernel's x and P (and status)
-            # stand, but not its NIS where S is ill-conditioned (measured 7.14 for an
-            # exact 9.07, passing a gate of 8.1): the exact one, gated again.
-            regate = m <= _EXACT_NIS_MAX_M and not (
-                _EPS * _s_condition(rbuf[_S, :m, :m]) <= _STATE_TRUSTED
-            )
+            # The information form is not trusted: the Joseph P (and status) stand, but
+            # not the kernel's NIS where S is ill-conditioned (measured 7.14 for an
+            # exact 9.07, passing a gate of 8.1): the exact one, gated again; nor its
+            # x, which nothing bounds: the exact state.
+            regate = exact and not _EPS * _s_condition(rbuf[_S, :m, :m]) <= _STATE_TRUSTED
         else:
             posterior = found.posterior
             deviation = np.sqrt(posterior.diagonal())
@@ -928,54 +946,72 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
                 apart[i] = wrap_float(float(apart[i]))
             size = np.abs(x) + np.abs(step)
             tolerance = np.maximum(2.0**-33 * size, deviation)
+            within = np.maximum(_STEP_SURE * deviation, _STEP_RESOLUTION * size)
+            info_bound = found.step_error if np.isfinite(x_info).all() else np.full(n, math.inf)
+            # The kernel's x is no further from the posterior mean than from x⁺ plus x⁺'s
+            # bound: the only bound it has (ε κ(S) of its scale can be 1e38 posterior
+            # deviations, where those are far below an ulp of the state; review 26).
+            kernel_bound = np.abs(apart) + info_bound
             if not (np.abs(apart) <= tolerance).all():
                 # One state is wrong: x⁺ where its error bound is within the
                 # tolerance. Else the kernel's, within about ε κ(S) of its scale:
                 # an update the Joseph form failed is refused where that exceeds
-                # 2⁻³⁰ (1e-9), as before.
-                if np.isfinite(x_info).all() and (found.step_error <= tolerance).all():
+                # 2⁻³⁰ (1e-9) and no exact state replaces it.
+                if (info_bound <= tolerance).all():
                     new_x = x_info
                     # The kernel's x more than a deviation off: its NIS, from the
                     # same solve with S, is as suspect (measured 21.0 for an exact 9.38).
-                    regate = m <= _EXACT_NIS_MAX_M
-                elif status != OK and not _EPS * _s_condition(rbuf[_S, :m, :m]) <= _STATE_TRUSTED:
-                    take_p = False  # no state to trust: refused, after the gate
-                    regate = m <= _EXACT_NIS_MAX_M
-            elif (
-                m <= _EXACT_NIS_MAX_M
-                and not _EPS * _s_condition(rbuf[_S, :m, :m]) <= _STATE_TRUSTED
-            ):
-                # Within the tolerance of each other, but the kernel's x and NIS come
-                # from an S too ill-conditioned to trust (ε κ(S) > 2⁻³⁰; measured with
-                # κ(S) 5e16: x 0.4 deviations off, NIS 0.079 for an exact 0.555): the
-                # exact NIS, and x⁺ where its bound is well below a deviation or at
-                # the state's float64 resolution. The kernel's x has no such bound
-                # (ε κ(S) > 2⁻³⁰ of its scale): kept where x⁺'s bound was above a
-                # quarter deviation, it was 4.4 deviations (170 ulps) off for a state
-                # 45.4 measured twice to 2.7e-13, x⁺ 0.01 (0.4 ulp).
-                # Else the kernel's x stays only where the Joseph form did not fail:
-                # with it failed, no state is trusted and the update is refused, as
-                # where the states disagree. "Agree" is within 2⁻³³ of the state's
-                # size, which says nothing where the posterior's deviation is far
-                # below that: committed with P⁺, the kernel's x was 8.7e5 deviations
-                # off (ε κ(S) 5.5; x⁺'s bound 4.1e3 deviations; review 25).
-                regate = True
-                within = np.maximum(_STEP_SURE * deviation, _STEP_RESOLUTION * size)
-                if np.isfinite(x_info).all() and (found.step_error <= within).all():
-                    new_x = x_info
-                elif status != OK:
-                    take_p = False
+                    regate = exact
+                else:
+                    ill = not _EPS * _s_condition(rbuf[_S, :m, :m]) <= _STATE_TRUSTED
+                    regate = exact and ill
+                    if status != OK and ill and not exact:
+                        take_p = False  # no state to trust: refused, after the gate
+            elif exact:
+                ill = not _EPS * _s_condition(rbuf[_S, :m, :m]) <= _STATE_TRUSTED
+                if ill:
+                    # Within the tolerance of each other, but the kernel's x and NIS
+                    # come from an S too ill-conditioned to trust (ε κ(S) > 2⁻³⁰;
+                    # measured with κ(S) 5e16: x 0.4 deviations off, NIS 0.079 for an
+                    # exact 0.555): the exact NIS, and x⁺ where its bound is well
+                    # below a deviation or at the state's float64 resolution. "Agree"
+                    # is within 2⁻³³ of the state's size, which says nothing where
+                    # the posterior's deviation is far below that: committed with P⁺,
+                    # the kernel's x was 8.7e5 deviations off (ε κ(S) 5.5; x⁺'s bound
+                    # 4.1e3 deviations; review 25), and with the Joseph P 315
+                    # deviations (45,000 ulps; ε κ(S) 0.35; review 26).
+                    regate = True
+                    if (info_bound <= within).all():
+                        new_x = x_info
+            # The state committed is one whose bound is within a quarter deviation or
+            # the state's float64 resolution: the one chosen above, else the other,
+            # else (unvouched) the exact state.
+            bound = info_bound if new_x is x_info else kernel_bound
+            unvouched = not (bound <= within).all()
+            if unvouched and (info_bound <= within).all():
+                new_x, unvouched = x_info, False
             if take_p:
                 new_p, status = posterior, OK
+    elimination = None
     if regate:
         # The exact NIS (as finish_singular_s), gated again, before any failure is
         # reported (a measurement the gate rejects is rejected): the kernel gated
         # with its own.
-        gated = _regate(p, jac, rbuf, y)
+        elimination = _eliminated(p, jac, rbuf[_RS, :m, :m], y)
+        gated = _gate_on(rbuf, _nis_of(elimination))
         if gated != OK:
             return gated
     if status != OK:
         return status
+    if unvouched and exact:
+        if elimination is None:
+            elimination = _eliminated(p, jac, rbuf[_RS, :m, :m], y)
+        x_exact = _exact_state(x, elimination)
+        if x_exact is None:  # the posterior mean is beyond float64
+            return STATE_OVERFLOW
+        for i in np.flatnonzero(state[n + 1]):  # the angles, wrapped
+            x_exact[i] = wrap_float(float(x_exact[i]))
+        new_x = x_exact
     state[STATE_X] = new_x
     p[...] = new_p
     return OK
@@ -984,7 +1020,11 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
 def _regate(p: FloatArray, jac: FloatArray, rbuf: FloatArray, y: FloatArray) -> int:
     """Leave the exact NIS of the update in ``rbuf`` and gate on it: OK, NIS_OVERFLOW or GATED."""
     m = jac.shape[0]
-    nis = _exact_nis(p, jac, rbuf[_RS, :m, :m], y)
+    return _gate_on(rbuf, _exact_nis(p, jac, rbuf[_RS, :m, :m], y))
+
+
+def _gate_on(rbuf: FloatArray, nis: float) -> int:
+    """Leave the exact ``nis`` in ``rbuf`` and gate on it: OK, NIS_OVERFLOW or GATED."""
     rbuf[_VEC, _META, 1] = nis
     if not nis < math.inf:
         return NIS_OVERFLOW
@@ -1007,13 +1047,18 @@ def finish_singular_s(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: F
     (:func:`_exact_nis`, rounded once: any float form of it loses every digit
     here). The update is gated first, on that NIS, then committed as the
     kernel's would be: ``RESIDUAL_OVERFLOW``, ``NIS_OVERFLOW``, ``GATED``,
-    ``STATE_OVERFLOW`` or ``OK``, the NIS left in ``rbuf``. It stays
-    ``S_NOT_POSITIVE_DEFINITE`` (the state unchanged) where a measurement the
-    gate passes meets an information form that is not trusted: its
-    posterior's error estimate above 2⁻¹² (as in :func:`finish_cancelled`) or
-    the bound on its state step beyond ``max(2⁻³³ (|x| + |s|), sqrt(P⁺ᵢᵢ))``;
-    and for measurements of more than :data:`_EXACT_NIS_MAX_M` components, whose
-    exact NIS would cost tens of milliseconds or more.
+    ``STATE_OVERFLOW`` or ``OK``, the NIS left in ``rbuf``. The state is x⁺
+    where the bound on its step is within ``_STEP_SURE`` deviations or
+    ``_STEP_RESOLUTION`` of ``|x| + |s|``, else the exact posterior mean
+    (:func:`_exact_state`, from the same elimination as the NIS). (Before
+    review 26: x⁺ within ``max(2⁻³³ (|x| + |s|), sqrt(P⁺ᵢᵢ))``, which let it
+    be 8.1e4 deviations off where those lie far below 2⁻³³ of its size, and
+    the update was refused beyond that.) It stays ``S_NOT_POSITIVE_DEFINITE``
+    (the state unchanged) where a measurement the gate passes meets an
+    information form whose posterior is not trusted (its error estimate
+    above 2⁻¹², as in :func:`finish_cancelled`), and for measurements of
+    more than :data:`_EXACT_NIS_MAX_M` components, whose exact NIS would cost
+    tens of milliseconds or more.
     """
     n = state.shape[1]
     m = jac.shape[0]
@@ -1028,22 +1073,27 @@ def finish_singular_s(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: F
     # The gate first: the exact NIS needs no update, so a measurement the gate
     # rejects is rejected whether or not the information form is trusted for it
     # (readings 1e150 deviations apart raised FilterError instead).
-    nis = _exact_nis(p, jac, r, y)
-    rbuf[_VEC, _META, 1] = nis
-    if not nis < math.inf:
-        return NIS_OVERFLOW
-    if nis > rbuf[_VEC, _META, _GATE]:
-        return GATED
+    elimination = _eliminated(p, jac, r, y)
+    gated = _gate_on(rbuf, _nis_of(elimination))
+    if gated != OK:
+        return gated
     with np.errstate(all="ignore"):
         found = _information_update(p, jac, r, y)
         if found is None or not _EPS * found.error <= _WELL_CONDITIONED:
             return S_NOT_POSITIVE_DEFINITE
         posterior = found.posterior
         step = found.step
-        tolerance = np.maximum(2.0**-33 * (np.abs(x) + np.abs(step)), np.sqrt(posterior.diagonal()))
-        if not (np.isfinite(step).all() and (found.step_error <= tolerance).all()):
-            return S_NOT_POSITIVE_DEFINITE
-        x_new = x + step
+        size = np.abs(x) + np.abs(step)
+        within = np.maximum(_STEP_SURE * np.sqrt(posterior.diagonal()), _STEP_RESOLUTION * size)
+        if np.isfinite(step).all() and (found.step_error <= within).all():
+            x_new = x + step
+        else:
+            # x⁺'s bound is beyond a quarter deviation (it was 8.1e4 deviations off
+            # within a bound of 2⁻³³ of its size; review 26): the exact state.
+            exact_x = _exact_state(x, elimination)
+            if exact_x is None:  # the posterior mean is beyond float64
+                return STATE_OVERFLOW
+            x_new = exact_x
     for i in np.flatnonzero(state[n + 1]):  # the angles, wrapped
         x_new[i] = wrap_float(float(x_new[i]))
     if not np.isfinite(x_new).all():
@@ -1099,18 +1149,34 @@ def _exact_nis(p: FloatArray, jac: FloatArray, r: FloatArray, y: FloatArray) -> 
 
     float64 values are dyadic rationals: as integers over a common power of two
     (:func:`_dyadic`) S is an exact integer matrix, and Bareiss's fraction-free
-    elimination of ``[S | y]`` gives, with ``Dₖ`` the leading principal minors
-    of S (``D₋₁ = 1``), the NIS ``Σ cₖ² / (Dₖ₋₁ Dₖ)``, ``cₖ`` the eliminated
-    right-hand side (the LDLᵀ form ``Σ uₖ² / dₖ``, ``dₖ = Dₖ / Dₖ₋₁``). S is
-    positive definite in exact arithmetic (P and R are), so no minor is zero.
-    Used only where the computed S lost its definiteness, and so every digit of
-    its NIS: measured 0.1 ms for m = n = 2, 0.3 ms for m = 3, n = 6, and for
-    n = 15 0.8-2.6 ms for m = 8, 3.6-20 ms for m = 12 (the cost grows as m³
-    times the size of the minors, which grows with how far apart the
-    matrices' exponents lie; see :data:`_EXACT_NIS_MAX_M`).
+    elimination of ``[S | y]`` (:func:`_eliminated`) gives, with ``Dₖ`` the
+    leading principal minors of S (``D₋₁ = 1``), the NIS ``Σ cₖ² / (Dₖ₋₁ Dₖ)``,
+    ``cₖ`` the eliminated right-hand side (the LDLᵀ form ``Σ uₖ² / dₖ``,
+    ``dₖ = Dₖ / Dₖ₋₁``). S is positive definite in exact arithmetic (P and R
+    are), so no minor is zero. Used only where the computed S lost its
+    definiteness, and so every digit of its NIS: measured 0.1 ms for
+    m = n = 2, 0.3 ms for m = 3, n = 6, and for n = 15 0.8-2.6 ms for m = 8,
+    3.6-20 ms for m = 12 (the cost grows as m³ times the size of the minors,
+    which grows with how far apart the matrices' exponents lie; see
+    :data:`_EXACT_NIS_MAX_M`).
     """
-    from fractions import Fraction
+    return _nis_of(_eliminated(p, jac, r, y))
 
+
+# [S | y] eliminated exactly (see _eliminated): rows, H P, and the powers of two.
+_Elimination = tuple[list[list[int]], list[list[int]], int, int, int]
+
+
+def _eliminated(p: FloatArray, jac: FloatArray, r: FloatArray, y: FloatArray) -> _Elimination:
+    """``[S | y]``, S = H P Hᵀ + R, as integers, eliminated exactly by Bareiss; with H P.
+
+    Returns ``(rows, hp, scale, k_hp, ky)``: S is the integer matrix of the
+    rows before elimination over ``2**scale``, y their last column over
+    ``2**ky`` and H P is ``hp`` over ``2**k_hp``. After the elimination row k
+    holds the leading principal minor ``Dₖ`` of the integer S in column k
+    (every division of the elimination is exact) and the eliminated y in
+    column m, for :func:`_nis_of` and :func:`_exact_state`.
+    """
     m, n = jac.shape
     h_int, kh = _dyadic(jac)
     p_int, kp = _dyadic(p)
@@ -1130,21 +1196,68 @@ def _exact_nis(p: FloatArray, jac: FloatArray, r: FloatArray, y: FloatArray) -> 
         for a in range(m)
     ]
     previous = 1
-    total = Fraction(0)
     for k in range(m):
         pivot_row = rows[k]
         pivot = pivot_row[k]
-        total += Fraction(pivot_row[m] * pivot_row[m], previous * pivot)
         for i in range(k + 1, m):
             row = rows[i]
             lead = row[k]
             for j in range(k + 1, m + 1):
                 row[j] = (pivot * row[j] - lead * pivot_row[j]) // previous
         previous = pivot
+    return rows, hp, scale, kh + kp, ky
+
+
+def _nis_of(elimination: _Elimination) -> float:
+    """The exact NIS of an :func:`_eliminated` system, rounded once (inf beyond float64)."""
+    from fractions import Fraction
+
+    rows, _, scale, _, ky = elimination
+    m = len(rows)
+    previous = 1
+    total = Fraction(0)
+    for k in range(m):
+        row = rows[k]
+        total += Fraction(row[m] * row[m], previous * row[k])
+        previous = row[k]
     try:
         return float(total * Fraction(2) ** (scale - 2 * ky))
     except OverflowError:
         return math.inf
+
+
+def _exact_state(x: FloatArray, elimination: _Elimination) -> FloatArray | None:
+    """``x + P Hᵀ S⁻¹ y`` exactly, each component rounded once, from an :func:`_eliminated` system.
+
+    By Cramer's rule the solution of the integer system ``S w = y`` is
+    ``N / det S`` with integer N: back substitution in the eliminated rows,
+    scaled by ``det S`` (the last pivot), keeps every ``Nₖ`` an integer (each
+    division exact). The step ``(H P)ᵀ w`` then has one denominator, and the
+    sum with x is rounded once (Python's int division is correctly rounded).
+    The exact posterior mean to half an ulp, whatever κ(S): about as costly
+    as :func:`_exact_nis` (measured 55 µs median, 0.2 ms at the 90th
+    percentile for n, m up to 6, up to 12 ms where P and R are 1e140 apart).
+    None where a component is beyond float64.
+    """
+    from fractions import Fraction
+
+    rows, hp, scale, k_hp, ky = elimination
+    m = len(rows)
+    det = rows[m - 1][m - 1]
+    numerators = [0] * m
+    for k in range(m - 1, -1, -1):
+        row = rows[k]
+        rest = sum(row[j] * numerators[j] for j in range(k + 1, m))
+        numerators[k] = (det * row[m] - rest) // row[k]
+    unit = Fraction(2) ** (scale - ky - k_hp)
+    out = np.empty(x.shape[0])
+    for i in range(x.shape[0]):
+        step = Fraction(sum(hp[a][i] * numerators[a] for a in range(m)), det) * unit
+        try:
+            out[i] = float(Fraction(float(x[i])) + step)
+        except OverflowError:
+            return None
+    return out
 
 
 def _dyadic(a: FloatArray) -> tuple[list[list[int]], int]:
