@@ -17,7 +17,7 @@ class DelayLine(Generic[_T]):
 
     Every item of a stream has the same delay, so items leave in the order
     they came in. Times are compared with a tolerance of 1e-9 s, so that an
-    item due at ``t`` is delivered at a step computed as ``k * dt ≈ t``.
+    item due at ``t`` is delivered at step ``k`` when ``k / rate ≈ t``.
 
     An ordinary class with ``__slots__``: it changes as items pass. Copies
     (:func:`copy.copy` too), deep copies and pickles hold their own queue.

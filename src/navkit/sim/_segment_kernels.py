@@ -22,9 +22,16 @@ poses ``sweep`` apart overlap (their inner discs do), so that no wall is
 passed and no solid entered in between. The first pose found touching an
 obstacle is the collision's, in place of the step's end.
 
+Step ``i`` happens at ``t = i / rate`` (``rate`` the physics rate, Hz): the
+time of the trace row, the sensor readings, the moving obstacles, the goal and
+the collisions, correctly rounded (0.3 at step 3 of 10 Hz, where ``3 * dt`` is
+0.30000000000000004). The physics integrates over ``dt = 1 / rate``.
+
 A sensor ``s`` with ``rates[s] > 0`` takes its ``k``-th sample (k = 0, 1, ...)
 at the first step ``i`` with ``i * dt + 1e-9 >= k / rates[s]``; ``counts[s]``
-holds the next ``k``.
+holds the next ``k``. The schedules keep comparing ``i * dt``, as
+:func:`due_step` does, so that the steps a sensor fires on stay those of
+earlier releases; only the times reported changed to ``i / rate``.
 
 Status codes returned with the step reached: ``REACHED`` (``i_end``),
 ``COLLIDED`` (a collision ended the run at that step) and ``GOAL`` (the goal
@@ -383,7 +390,7 @@ def _settle(
 def run_segment(
     i0: int,
     i_end: int,
-    dt: float,
+    rate: float,
     sample_first: bool,
     state: np.ndarray,
     wheels: np.ndarray,
@@ -445,6 +452,8 @@ def run_segment(
 ) -> tuple[int, int]:
     """Advance from step ``i0`` to step ``i_end``; returns ``(status, step reached)``.
 
+    ``rate`` is the physics rate, Hz: steps of ``1 / rate`` s, step ``i`` at
+    ``i / rate`` s.
     ``slip_z`` holds the slip draws, row ``k`` for the physics step leaving
     step ``i0 + k``. ``n_out`` (3,) counts the rows written to ``enc_out``
     (t, then each wheel's counter ``floor(angle / 2π * enc_tpr)`` by the rule of
@@ -460,15 +469,16 @@ def run_segment(
     ``body_verts``, ``verts`` and ``scratch`` are None for a disc footprint.
     """
     has_moving = mv_first.shape[0] > 0
+    dt = 1.0 / rate
     # Whether a step may be long: then every step is checked along its arc.
     check_arcs = _long_steps(wheels, command, radius_factor, fwd, reach, dt, sweep)
     i = i0
     if sample_first:
         _sample(
-            i, i * dt, dt, state, angles, rates, counts, n_out, enc_tpr, enc_span,
+            i, i / rate, dt, state, angles, rates, counts, n_out, enc_tpr, enc_span,
             enc_out, compass_out, imu_out,
         )  # fmt: skip
-        _record(buf, i, i * dt, state, cmd)
+        _record(buf, i, i / rate, state, cmd)
     while i < i_end:
         prev[0] = state[0]
         prev[1] = state[1]
@@ -478,7 +488,7 @@ def run_segment(
             slip, fwd,
         )  # fmt: skip
         i += 1
-        t = i * dt
+        t = i / rate
         if has_moving:
             place_moving(
                 t, mv_path, mv_times, mv_first, mv_count, mv_after,
@@ -518,7 +528,7 @@ def run_segment(
 def run_edge_segment(
     i0: int,
     i_end: int,
-    dt: float,
+    rate: float,
     sample_first: bool,
     state: np.ndarray,
     wheels: np.ndarray,
@@ -567,15 +577,16 @@ def run_edge_segment(
     :func:`~navkit.sim._clearance_kernels.edge_clearance`.
     ``body_verts`` and ``verts`` are None for a disc footprint.
     """
+    dt = 1.0 / rate
     # Whether a step may be long: then every step is checked along its arc.
     check_arcs = _long_steps(wheels, command, radius_factor, fwd, reach, dt, sweep)
     i = i0
     if sample_first:
         _sample(
-            i, i * dt, dt, state, angles, rates, counts, n_out, enc_tpr, enc_span,
+            i, i / rate, dt, state, angles, rates, counts, n_out, enc_tpr, enc_span,
             enc_out, compass_out, imu_out,
         )  # fmt: skip
-        _record(buf, i, i * dt, state, cmd)
+        _record(buf, i, i / rate, state, cmd)
     while i < i_end:
         prev[0] = state[0]
         prev[1] = state[1]
@@ -585,7 +596,7 @@ def run_edge_segment(
             slip, fwd,
         )  # fmt: skip
         i += 1
-        t = i * dt
+        t = i / rate
         clearance = edge_clearance(
             state[0], state[1], state[2], radius, body_verts, verts,
             segs, circles, gx0, gy0, h, nx, ny, cell_start, cell_items,

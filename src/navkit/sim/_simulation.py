@@ -255,6 +255,8 @@ class Simulation:
         wrap-around does not depend on the two widths agreeing.
     rate : float, default 100.0
         Physics rate, Hz, in (0, 10^4]; no sensor or controller may be faster.
+        Step ``i`` happens at ``i / rate`` s (the time of its trace row, its
+        readings and events: 0.35 at step 35 of 100 Hz, not ``35 * 0.01``).
     control_rate : float, default 20.0
         Controller rate, Hz, in (0, ``rate``].
     duration : float, default 300.0
@@ -656,7 +658,7 @@ class _Run:
             self.buf, self.cmd, self.stats, self.contacts, self.prev,
         )  # fmt: skip
         motion = (
-            i0, i_end, self.dt, sample_first,
+            i0, i_end, sim._rate, sample_first,
             body.state, body.wheels, body.angles, body.command,
             robot.max_wheel_acceleration, body.radius_factor, robot.wheel_slip,
             self.slip_z, body.forward, body.radius, body.reach, body.sweep,
@@ -722,11 +724,13 @@ class _Run:
         if delay == 0.0:
             stream.line.push_at(stamp, reading)
         else:
+            # The step is chosen on ``step * dt`` as the sensors' schedules are (the
+            # same steps as ever); it is delivered at that step's time, ``step / rate``.
             dt = self.dt
             step = max(math.ceil((stamp + delay - _EPS) / dt) - 1, 0)
             while step * dt + _EPS < stamp + delay:
                 step += 1
-            stream.line.push_at(step * dt, reading)
+            stream.line.push_at(step / self.sim._rate, reading)
 
     def _scan(self, i: int, t: float) -> None:
         assert self.scanner is not None and self.lidar is not None
@@ -797,11 +801,11 @@ class _Run:
         est_t = self.est_t
         if est_t and last >= self.filled:
             buf = self.buf
-            dt = self.dt
+            rate = self.sim._rate
             k = 0
             n = len(est_t)
             for i in range(self.filled, last + 1):
-                t = i * dt + _EPS
+                t = i / rate + _EPS
                 while k + 1 < n and est_t[k + 1] <= t:
                     k += 1
                 if est_t[k] <= t:
@@ -855,7 +859,8 @@ class _Run:
         sim = self.sim
         robot = sim._robot
         dt = self.dt
-        n_steps = _step_count(sim._duration, sim._rate)
+        rate = sim._rate
+        n_steps = _step_count(sim._duration, rate)
         control_k = 0
         next_control = 0
         lidar_k = 0
@@ -870,7 +875,9 @@ class _Run:
         self._segment(0, 0, True)
         i = 0
         while True:
-            t = i * dt
+            # Not i * dt, which is 0.30000000000000004 at step 3 of 10 Hz: users print
+            # and compare these times (the kernel's are i / rate too).
+            t = i / rate
             if i == 0 and self._at_start_goal():
                 reason = "goal reached"
             if not reason:
@@ -911,7 +918,7 @@ class _Run:
                 reason = "goal reached"
             if reason:
                 # Readings due before the last step still reach the estimator.
-                self._deliver(i * dt - dt)
+                self._deliver((i - 1) / rate)
                 self._fill_estimates(i)
                 break
         return self._trace(i, reason)

@@ -194,7 +194,8 @@ class Trace:
     Attributes
     ----------
     times : ndarray, shape (T,)
-        Simulated times, s (row 0 is the start).
+        Simulated times, s: row ``i`` at ``i / rate`` (row 0 is the start;
+        0.3, not ``3 * 0.1`` = 0.30000000000000004, at 10 Hz).
     poses : ndarray, shape (T, 3)
         True poses ``[x, y, theta]``, m and rad.
     estimates : ndarray, shape (T, 3)
