@@ -341,9 +341,16 @@ def test_no_update_is_much_worse_than_the_joseph_form_alone() -> None:
         ours, theirs = _run(case, joseph=False), _run(case, joseph=True)
         if theirs is None:
             continue
-        assert ours is not None  # never refuses what the Joseph form accepted here
         x0, p, h, r, z = case
         x_exact, p_exact = _exact(x0, p, h, r, z - h @ x0)
+        if ours is None:
+            # Refuses what the Joseph form accepted only where that P was more than
+            # 1e-6 off and float64 holds no covariance at the exact posterior (review
+            # 26: 283 of 18,000, the Joseph P 1.1e-6 to 1e90 off).
+            with np.errstate(all="ignore"):
+                assert _relative_error(theirs[1], p_exact) > 1e-6
+            assert not kernels._is_covariance(p_exact)
+            continue
         if not np.all(np.diag(p_exact) > 0.0):
             continue
         deviation = np.sqrt(np.diag(p_exact))
