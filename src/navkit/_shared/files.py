@@ -15,7 +15,7 @@ import secrets
 import stat
 import sys
 import time
-from collections.abc import Iterator, Sequence
+from collections.abc import Iterable, Iterator, Sequence
 from pathlib import Path
 
 from navkit._shared.locks import ForkSafeLock
@@ -112,7 +112,7 @@ def atomic_paths(targets: Sequence[Path]) -> Iterator[tuple[Path, ...]]:
     temporaries: list[Path] = []
     try:
         for target in targets:
-            temporaries.append(_new_temporary(target))
+            _new_temporary(target, temporaries)
         yield tuple(temporaries)
         # Again, now: the rename over a folder fails, after those of the targets before it.
         _check_targets(targets)
@@ -126,8 +126,11 @@ def atomic_paths(targets: Sequence[Path]) -> Iterator[tuple[Path, ...]]:
         with RENAME_LOCK:
             _replace_all(temporaries, targets)
     finally:
-        for temporary in temporaries:
-            temporary.unlink(missing_ok=True)
+        try:
+            _remove_all(temporaries)
+        except BaseException:
+            _remove_all(temporaries)  # an interrupt may have cut the removals short: again
+            raise
     for folder in dict.fromkeys(target.parent for target in targets):
         with contextlib.suppress(OSError):  # make the renames durable where possible (POSIX)
             _sync(folder, os.O_RDONLY)
@@ -223,13 +226,16 @@ def _replace_all(temporaries: Sequence[Path], targets: Sequence[Path]) -> None:
     backups: list[tuple[Path | None, bool]] = []
     try:
         for target in targets:
-            backups.append(_backup(target))
+            _backup(target, backups)
         done = 0
         try:
             for temporary, target in zip(temporaries, targets, strict=True):
-                _replace(temporary, target)
+                # Counted before: an interrupt as the rename returns must undo it too.
                 done += 1
+                _replace(temporary, target)
         except BaseException as failure:
+            if done and os.path.lexists(temporaries[done - 1]):
+                done -= 1  # that rename failed, or the interrupt came before it
             # On Windows a restore may wait (see _replace): a first Ctrl-C then must
             # not end the rollback part-way (the backups are removed below: the old
             # files of the targets not yet put back would be lost, an image and its
@@ -255,9 +261,23 @@ def _replace_all(temporaries: Sequence[Path], targets: Sequence[Path]) -> None:
                 raise interrupt from failure
             raise
     finally:
-        for backup, _ in backups:
-            if backup is not None:
-                backup.unlink(missing_ok=True)
+        try:
+            _remove_all(backup for backup, _ in backups)
+        except BaseException:
+            _remove_all(backup for backup, _ in backups)  # an interrupt may have cut them short
+            raise
+
+
+def _remove_all(paths: Iterable[Path | None]) -> None:
+    """Remove each of ``paths`` that exists (None: nothing).
+
+    A Ctrl-C landing in a removal leaves that file and the ones after it: the
+    callers then call this again (for the interrupt may also land as this
+    function is entered), and raise the interrupt after.
+    """
+    for path in paths:
+        if path is not None:
+            path.unlink(missing_ok=True)
 
 
 def _put_back(target: Path, backup: Path | None, existed: bool, *, wait: bool) -> None:
@@ -318,42 +338,52 @@ def _read_only(path: Path) -> bool:
     return not info.st_mode & stat.S_IWRITE
 
 
-def _backup(target: Path) -> tuple[Path | None, bool]:
-    """A new hard link to ``target`` beside it (None if none made), and whether ``target`` exists.
+def _backup(target: Path, backups: list[tuple[Path | None, bool]]) -> None:
+    """Append a new hard link to ``target`` beside it (None if none made), and whether it exists.
 
     Where the file system has no hard links the target cannot be put back: the
     renames then go ahead without (as before a rollback existed), and a failed
-    one leaves such targets before it new.
+    one leaves such targets before it new. The link is listed before it is
+    made, so that an interrupt just after cannot leave it behind unlisted.
     """
     for _ in range(_ATTEMPTS):
         link = target.with_name(_compact_name(target, secrets.token_hex(4)))
+        backups.append((link, True))
         try:
             # A symbolic link is linked itself, not what it points to (POSIX link()
             # on Linux), so that putting it back restores the link.
             os.link(target, link, follow_symlinks=False)
         except FileExistsError:
+            backups.pop()  # another file's name: not ours to remove
             continue
         except FileNotFoundError:
-            return None, False
+            backups[-1] = (None, False)
         except OSError:
-            return None, True
-        return link, True
-    return None, True  # pragma: no cover
+            backups[-1] = (None, True)
+        return
+    backups.append((None, True))  # pragma: no cover
 
 
-def _new_temporary(target: Path) -> Path:
-    """Create a new empty hidden file beside ``target`` (mode 0o666 less the umask)."""
+def _new_temporary(target: Path, temporaries: list[Path]) -> None:
+    """Create a new empty hidden file beside ``target`` (mode 0o666 less the umask).
+
+    Its path is appended to ``temporaries`` before the file is made, so that
+    an interrupt just after cannot leave it behind unlisted.
+    """
     name_max = _name_max(target.parent)
     compact = False
     for _ in range(_ATTEMPTS):
         tag = secrets.token_hex(4)
         name = _compact_name(target, tag) if compact else _temporary_name(target, tag, name_max)
         temporary = target.with_name(name)
+        temporaries.append(temporary)
         try:
             fd = os.open(temporary, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666)
         except FileExistsError:
+            temporaries.pop()  # another file's name: not ours to remove
             continue
         except OSError as exc:
+            temporaries.pop()
             # A file system whose limit is in characters or UTF-16 units while
             # pathconf answers in bytes (vfat, exFAT: 255 characters, "1530"
             # bytes) refuses a name the byte count let through. Windows refuses
@@ -367,7 +397,7 @@ def _new_temporary(target: Path) -> Path:
             compact = True
             continue
         os.close(fd)
-        return temporary
+        return
     raise FileExistsError(f"cannot create a temporary file beside {target}")  # pragma: no cover
 
 

@@ -247,8 +247,12 @@ def rasterize_polygons(geometries: Any, *, bounds: ArrayLike, resolution: float)
         # Every x, y checked, not the bounds: GEOS leaves NaN out of a geometry's
         # bounds, so a LineString through (1, NaN) has finite ones.
         if not g.is_empty and not np.isfinite(shapely.get_coordinates(g)).all():
+            # shapely 2.0 warns (numpy's "invalid value encountered in bounds") for a
+            # geometry with NaN coordinates, on top of the error raised here.
+            with np.errstate(invalid="ignore"):
+                shown = g.bounds
             raise ValueError(
-                f"geometries[{i}] has non-finite coordinates (NaN or ±inf; bounds {g.bounds})"
+                f"geometries[{i}] has non-finite coordinates (NaN or ±inf; bounds {shown})"
             )
     parts = [part for g in geoms if not g.is_empty for part in _own_parts(g)]
     rows, cols = grid_shape(

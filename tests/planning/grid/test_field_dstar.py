@@ -89,6 +89,8 @@ def true_cost(costs: FloatArray, points: FloatArray) -> float:
 
 def blocked_union(costs: FloatArray) -> shapely.Geometry:
     rows, cols = np.nonzero(~np.isfinite(costs))
+    if not rows.size:  # shapely 2.0's coverage union of no geometry warns (invalid value)
+        return shapely.GeometryCollection()
     boxes = shapely.box(cols, rows, cols + 1.0, rows + 1.0)
     # Unit cells at integer corners: a coverage (edge to edge, never overlapping),
     # whose union GEOS builds ten times faster than unary_union's, the same geometry.
