@@ -70,7 +70,10 @@ def open_regular(path: Path, what: str) -> BinaryIO:
             raise ValueError(f"{what} {path} is {kind}")
         if nonblock:
             os.set_blocking(fd, True)
-        return os.fdopen(fd, "rb")
     except BaseException:
         os.close(fd)
         raise
+    # The file object owns the descriptor from here (it closes it if dropped), with no
+    # Python code in between: an interrupt inside os.fdopen (Python) closed it twice, and
+    # the second close's EBADF OSError replaced the KeyboardInterrupt.
+    return open(fd, "rb")
