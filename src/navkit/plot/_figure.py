@@ -119,7 +119,8 @@ def as_color(value: Any, name: str) -> Any:
     from matplotlib.colors import to_rgba
 
     if isinstance(value, (tuple, list)):
-        value = tuple(as_float_array(value, name, ndim=1))
+        # Python floats: NumPy 2's scalars would show as np.float64(1.0) in the message.
+        value = tuple(as_float_array(value, name, ndim=1).tolist())
     elif not isinstance(value, str):
         raise TypeError(
             f"{name} must be a matplotlib colour (a str or RGB(A) tuple) or None, "
