@@ -957,6 +957,14 @@ def _read_with_pillow(
                 return _deep_colour(img, low, fh, path, Image)
         with _pillow_errors(path, Image, img.size):
             picture: Any = img
+            if picture.mode == "F":
+                # Pillow converts floats to 0..255 by clipping: a map of probabilities
+                # in [0, 1] read as black, every cell occupied, without a word.
+                raise ValueError(
+                    f"{path}: a 32-bit floating-point image, which map_server does not "
+                    "read and whose scale no map format fixes: save the map as an "
+                    "8-bit grey image (0 occupied, 255 free)"
+                )
             native = picture.mode in ("L", "LA", "RGB", "RGBA", "P", "1")
             if not native and not picture.mode.startswith("I"):
                 picture = picture.convert("RGBA")
@@ -1112,7 +1120,8 @@ def read_map(path: str | os.PathLike[str]) -> OccupancyGrid:
     0..65535: 16-bit grey, and PNGs with 16 bits per colour channel (RGB,
     grey + alpha, RGBA), are read at full depth, as Nav2's map_server reads
     them; other images with 16-bit colour channels (e.g. TIFF), which Pillow
-    would truncate to 8 bits, are refused.
+    would truncate to 8 bits, are refused, and so are 32-bit floating-point
+    images (Pillow would clip them to 0..255; map_server does not read them).
 
     Parameters
     ----------
@@ -1140,7 +1149,8 @@ def read_map(path: str | os.PathLike[str]) -> OccupancyGrid:
         byte-order mark; an image passed instead, binary data),
         missing or invalid keys (see :func:`read_map_yaml` for the ranges),
         an image that is garbage, truncated, not an image (the YAML itself, a
-        text file), a non-PNG image with 16-bit colour channels, a directory,
+        text file), a non-PNG image with 16-bit colour channels, a 32-bit
+        floating-point image, a directory,
         a FIFO or a device (checked on the descriptor the file is then read
         from), or larger than ``OccupancyGrid.MAX_CELLS`` (``2**28``) pixels
         (checked from its header before decoding; images read with Pillow
