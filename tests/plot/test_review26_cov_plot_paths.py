@@ -18,7 +18,7 @@ import pytest
 
 pytest.importorskip("matplotlib")
 import matplotlib.pyplot as plt
-from matplotlib.colors import LogNorm
+from matplotlib.colors import LogNorm, to_rgba
 
 from navkit.planning import ConicAttraction, KhatibRepulsion
 from navkit.plot import plot_field, plot_path, plot_scene
@@ -100,3 +100,15 @@ def test_a_long_legend_leaves_the_callers_figure_its_size() -> None:
     assert legend is not None and legend.get_bbox_to_anchor().x0 > ax.bbox.x1
     assert tuple(fig.get_size_inches()) == (4.0, 3.0)
     plt.close(fig)
+
+
+def test_a_colormap_row_is_a_colour() -> None:
+    # A row of cmap(values) is an ndarray of 4 floats: a colour, as matplotlib takes it.
+    from matplotlib import colormaps
+
+    rows = colormaps["viridis"](np.linspace(0.0, 1.0, 3))
+    assert isinstance(rows[1], np.ndarray)
+    line = plot_path([[0.0, 0.0], [1.0, 1.0]], color=rows[1]).get_lines()[-1]
+    np.testing.assert_allclose(to_rgba(line.get_color()), rows[1])
+    with pytest.raises(ValueError, match="color"):
+        plot_path([[0.0, 0.0], [1.0, 1.0]], color=rows)  # the whole table: not one colour

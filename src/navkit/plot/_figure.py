@@ -112,13 +112,17 @@ def as_label(value: Any, name: str) -> str | None:
 
 
 def as_color(value: Any, name: str) -> Any:
-    """A matplotlib colour (``"red"``, ``"#1f77b4"``, ``"C0"``, an RGB(A) tuple) or None."""
+    """A matplotlib colour (``"red"``, ``"#1f77b4"``, ``"C0"``, an RGB(A) tuple) or None.
+
+    An RGB(A) sequence may be a list or a 1-D ndarray too (a row of a colormap's
+    ``cmap(values)``), returned as a tuple of floats.
+    """
     if value is None:
         return None
     require_matplotlib()
     from matplotlib.colors import to_rgba
 
-    if isinstance(value, (tuple, list)):
+    if isinstance(value, (tuple, list, np.ndarray)):
         # Python floats: NumPy 2's scalars would show as np.float64(1.0) in the message.
         value = tuple(as_float_array(value, name, ndim=1).tolist())
     elif not isinstance(value, str):
