@@ -66,3 +66,22 @@ def exact_update(
     ]
     x_new = [Fraction(x[i]) + sum(gain[i][a] * yf[a] for a in range(m)) for i in range(n)]
     return x_new, post, nis
+
+
+def random_problem(
+    seed: int, n: int, m: int, log_p: float, log_r: float
+) -> tuple[np.random.Generator, np.ndarray, np.ndarray, np.ndarray]:
+    """A random measurement update: the generator (for more draws), P, H and R.
+
+    P (n, n) and R (m, m) symmetric positive definite at scales ``10**log_p`` and
+    ``10**log_r``; H (m, n) dense with about 30 % zeros.
+    """
+    rng = np.random.default_rng(seed)
+    a = rng.normal(size=(n, n))
+    p = (a @ a.T + 0.1 * np.eye(n)) * 10.0**log_p
+    p = 0.5 * (p + p.T)
+    h = rng.normal(size=(m, n)) * (rng.random((m, n)) < 0.7)
+    root = rng.normal(size=(m, m))
+    r = (root @ root.T + m * np.eye(m)) * 10.0**log_r
+    r = 0.5 * (r + r.T)
+    return rng, p, h, r

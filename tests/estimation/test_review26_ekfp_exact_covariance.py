@@ -50,7 +50,7 @@ from navkit.estimation import ExtendedKalmanFilter
 from navkit.estimation import _ekf_kernels as kernels
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from exact_fractions import exact_update
+from exact_fractions import exact_update, random_problem
 
 pytestmark = pytest.mark.filterwarnings("error::RuntimeWarning")
 
@@ -270,14 +270,7 @@ def test_a_covariance_near_an_unholdable_posterior_is_kept() -> None:
 def test_the_exact_posterior_is_the_exact_value_rounded_once(
     seed: int, n: int, m: int, log_p: float, log_r: float
 ) -> None:
-    rng = np.random.default_rng(seed)
-    a = rng.normal(size=(n, n))
-    p = (a @ a.T + 0.1 * np.eye(n)) * 10.0**log_p
-    p = 0.5 * (p + p.T)
-    h = rng.normal(size=(m, n)) * (rng.random((m, n)) < 0.7)
-    root = rng.normal(size=(m, m))
-    r = (root @ root.T + m * np.eye(m)) * 10.0**log_r
-    r = 0.5 * (r + r.T)
+    rng, p, h, r = random_problem(seed, n, m, log_p, log_r)
     y = rng.normal(size=m) * 10.0 ** (0.5 * max(log_p, log_r))
     _, p_exact, _ = exact_update(np.zeros(n), p, h, r, y)
     p_in = p.copy()

@@ -56,7 +56,7 @@ from navkit.estimation import _ekf_kernels as kernels
 from navkit.geometry import wrap_angle
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from exact_fractions import exact_update
+from exact_fractions import exact_update, random_problem
 
 pytestmark = pytest.mark.filterwarnings("error::RuntimeWarning")
 
@@ -285,14 +285,7 @@ def test_ordinary_and_realistic_precise_updates_never_compute_the_exact_state(
 def test_the_exact_state_is_the_exact_value_rounded_once(
     seed: int, n: int, m: int, log_p: float, log_r: float
 ) -> None:
-    rng = np.random.default_rng(seed)
-    a = rng.normal(size=(n, n))
-    p = (a @ a.T + 0.1 * np.eye(n)) * 10.0**log_p
-    p = 0.5 * (p + p.T)
-    h = rng.normal(size=(m, n)) * (rng.random((m, n)) < 0.7)
-    root = rng.normal(size=(m, m))
-    r = (root @ root.T + m * np.eye(m)) * 10.0**log_r
-    r = 0.5 * (r + r.T)
+    rng, p, h, r = random_problem(seed, n, m, log_p, log_r)
     x = rng.normal(size=n) * 10.0 ** (0.5 * log_p + rng.uniform(-3.0, 3.0))
     y = rng.normal(size=m) * 10.0 ** (0.5 * max(log_p, log_r))
     x_exact, _, _ = exact_update(x, p, h, r, y)
