@@ -8,6 +8,7 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
+from navkit._shared.interrupts import interrupts_deferred
 from navkit.cli._files import write_json
 from navkit.sim import ScenarioResult, Scene
 
@@ -75,14 +76,16 @@ def check_output(path: str | None, suffix: str, option: str) -> None:
     if not folder.is_dir():
         raise FileNotFoundError(f"{option}: folder {folder} does not exist")
     # Create a file there and remove it: permissions, read-only file systems and
-    # root's exemptions make any cheaper test (os.access) unreliable.
-    try:
-        fd, probe = tempfile.mkstemp(dir=folder, prefix=".navkit-", suffix=".tmp")
-    except OSError as exc:
-        reason = exc.strerror or type(exc).__name__
-        raise OSError(f"{option}: cannot write in folder {folder} ({reason})") from exc
-    os.close(fd)
-    os.unlink(probe)
+    # root's exemptions make any cheaper test (os.access) unreliable. A Ctrl-C waits
+    # until it is gone: landing in between, it left the probe file in the user's folder.
+    with interrupts_deferred():
+        try:
+            fd, probe = tempfile.mkstemp(dir=folder, prefix=".navkit-", suffix=".tmp")
+        except OSError as exc:
+            reason = exc.strerror or type(exc).__name__
+            raise OSError(f"{option}: cannot write in folder {folder} ({reason})") from exc
+        os.close(fd)
+        os.unlink(probe)
 
 
 def _check_matplotlib(option: str) -> None:
