@@ -175,7 +175,9 @@ def test_random_polygon_worlds_match_shapely(polys: list[Polygon], heading: floa
     # An origin off round numbers, so that no vertex lies exactly on a beam.
     pose = Pose2D(0.1234567891, -0.3456789123, heading)
     origin = Point(pose.x, pose.y)
-    assume(all(p.distance(origin) > 1e-3 for p in polys))
+    # GEOS 3.11 (shapely 2.0) warns "invalid value" for a ring with a repeated vertex.
+    with np.errstate(invalid="ignore"):
+        assume(all(p.distance(origin) > 1e-3 for p in polys))
     union = shapely.union_all(polys)
     world = World(polys)
     lidar = exact_lidar(72, range_max=40.0)
