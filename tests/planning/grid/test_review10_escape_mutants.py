@@ -28,7 +28,9 @@ def brute_escape(
     closed segment from the start touches no occupied square."""
     q = np.asarray(planner.grid.world_to_cell(np.array(start), continuous=True), dtype=float)
     hard = planner.grid.occupied()
-    squares = [box(r - 0.5, c - 0.5, r + 0.5, c + 0.5) for r, c in np.argwhere(hard)]
+    # Grown by the documented margin of 1e-9 cell sides (a corner missed by 1e-16 touches).
+    g = 0.5 + 1e-9
+    squares = [box(r - g, c - g, r + g, c + g) for r, c in np.argwhere(hard)]
     res = planner.grid.resolution
     rows, cols = planner.costs.shape
     candidates = sorted(

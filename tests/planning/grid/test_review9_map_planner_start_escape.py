@@ -31,6 +31,8 @@ from navkit.mapping import OccupancyGrid
 from navkit.planning import MapPlanner, plan_path
 
 BAND_COST = 5.0  # 1 + cost_weight: what a band cell costs along an escape segment
+#: The escape's documented margin, in cell sides (see navkit.planning.grid._escape).
+GRAZE = 1e-9
 
 
 def hard_cells(planner: MapPlanner, unknown_cost: float = math.inf) -> NDArray[np.bool_]:
@@ -52,7 +54,10 @@ def reference_escape(
     """The documented escape cell, brute force: every cell, shapely segment tests."""
     q = continuous(planner, start)
     res = planner.grid.resolution
-    blocked = [box(r - 0.5, c - 0.5, r + 0.5, c + 0.5) for r, c in np.argwhere(hard)]
+    # Grown by the documented margin: a segment within 1e-9 cell sides of a square
+    # touches it (one missing a corner by 1e-16, from a start on a diagonal, does).
+    g = 0.5 + GRAZE
+    blocked = [box(r - g, c - g, r + g, c + g) for r, c in np.argwhere(hard)]
     candidates = []
     rows, cols = planner.costs.shape
     for r in range(rows):
@@ -311,8 +316,9 @@ def reference_escape_window(
     reach = math.ceil(tolerance / planner.grid.resolution) + 2
     r0, c0 = max(0, int(q[0]) - reach), max(0, int(q[1]) - reach)
     r1, c1 = int(q[0]) + reach + 1, int(q[1]) + reach + 1
+    g = 0.5 + GRAZE  # as in reference_escape
     blocked = [
-        box(r + r0 - 0.5, c + c0 - 0.5, r + r0 + 0.5, c + c0 + 0.5)
+        box(r + r0 - g, c + c0 - g, r + r0 + g, c + c0 + g)
         for r, c in np.argwhere(hard[r0:r1, c0:c1])
     ]
     candidates = []

@@ -5,7 +5,9 @@
 only through the inflation (not a *hard* cell: an obstacle, or unknown space
 that may not be crossed) may go straight to the nearest passable cell centre
 within the tolerance whose segment from the start touches no hard cell's
-square (a corner included); ties, equal distances in the grid's float64
+square (a corner included) nor passes within ``_GRAZE`` (1e-9 cells) of one:
+a segment that misses a corner by a rounding error is refused (as the public
+docs say); ties, equal distances in the grid's float64
 continuous coordinates, go to the lowest ``(row, col)``. The callers word the
 refusals: only they know why a cell is impassable.
 """

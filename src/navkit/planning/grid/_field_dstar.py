@@ -848,9 +848,11 @@ class FieldDStar:
             and follows the path :meth:`plan_world` plans from that centre
             (linked to its nearest node). Only cells whose straight segment
             from ``start_xy`` touches no obstacle cell's square (a corner
-            included) qualify; it may cross the inflation. ``0`` (the
-            default) never escapes: such a start is refused, as are starts in
-            an obstacle (every impassable cell without ``obstacles``) or
+            included) qualify; a segment passing within ``1e-9`` cell sides
+            of such a square (its corner, say) counts as touching it, so that
+            rounding never lets one through. It may cross the inflation.
+            ``0`` (the default) never escapes: such a start is refused, as
+            are starts in an obstacle (every impassable cell without ``obstacles``) or
             outside the grid, whatever the tolerance. The goal never escapes.
 
         Returns

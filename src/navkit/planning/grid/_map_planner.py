@@ -365,9 +365,11 @@ class MapPlanner:
             ``(row, col)``) and follows the path planned from that cell. Only
             cells whose straight segment from ``start`` crosses no occupied
             cell and no impassable unknown cell qualify (a segment touching
-            such a cell's square, a corner included, crosses it); it may cross
-            the inflated band. ``0`` (the default) never escapes: such a start
-            is refused, as are starts in an obstacle, in impassable unknown
+            such a cell's square, a corner included, crosses it, as does one
+            passing within ``1e-9`` cell sides of it, so that rounding never
+            lets one through); it may cross the inflated band. ``0`` (the
+            default) never escapes: such a start is refused, as are starts in
+            an obstacle, in impassable unknown
             space or outside the map, whatever the tolerance. ROS's navfn and
             global_planner clear the robot's own cell before planning for the
             same reason; Nav2's planners have a goal ``tolerance`` only.
