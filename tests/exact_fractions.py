@@ -7,6 +7,7 @@ once at the end.
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from fractions import Fraction
 
 import numpy as np
@@ -85,3 +86,32 @@ def random_problem(
     r = (root @ root.T + m * np.eye(m)) * 10.0**log_r
     r = 0.5 * (r + r.T)
     return rng, p, h, r
+
+
+def precise_planar_updates(
+    seed: int, count: int
+) -> Iterator[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.ndarray]]:
+    """``count`` realistic updates of a 6-state planar filter: (x0, P0, H, R, z).
+
+    Position (x, y), position and heading, or speed measured, R/P from 1e-14 to
+    1e-2 for every other one (precise: some variance shrinks more than 4096-fold,
+    the EKF's fallback path) and 1e6 times more for the rest (ordinary).
+    """
+    rng = np.random.default_rng(seed)
+    n = 6
+    for trial in range(count):
+        scale = 10.0 ** rng.uniform(0.0, 6.0)
+        x0 = rng.normal(size=n) * np.array([scale, scale, 1.0, 5.0, 0.5, 1.0])
+        x0[2] = rng.uniform(-3.0, 3.0)
+        sd = 10.0 ** rng.uniform(0.0, 4.0, n)
+        a = rng.normal(size=(n, n)) * 0.3 + np.eye(n)
+        p0 = (a @ a.T) * np.outer(sd, sd)
+        p0 = 0.5 * (p0 + p0.T)
+        rows = [[0, 1], [0, 1, 2], [3]][trial % 3]
+        h = np.zeros((len(rows), n))
+        h[np.arange(len(rows)), rows] = 1.0
+        r = np.eye(len(rows)) * 10.0 ** rng.uniform(-6.0, -2.0)
+        if trial % 2:
+            r = r * 1e6  # ordinary: no variance shrinks 4096-fold
+        z = h @ (x0 + np.linalg.cholesky(p0) @ rng.normal(size=n))
+        yield x0, p0, h, r, z

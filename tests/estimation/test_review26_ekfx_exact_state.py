@@ -56,7 +56,7 @@ from navkit.estimation import _ekf_kernels as kernels
 from navkit.geometry import wrap_angle
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from exact_fractions import exact_update, random_problem
+from exact_fractions import exact_update, precise_planar_updates, random_problem
 
 pytestmark = pytest.mark.filterwarnings("error::RuntimeWarning")
 
@@ -249,24 +249,8 @@ def test_ordinary_and_realistic_precise_updates_never_compute_the_exact_state(
     # have a state whose bound vouches for it.
     calls = []
     monkeypatch.setattr(kernels, "_exact_state", lambda *a: calls.append(1))
-    rng = np.random.default_rng(26)
     fallback = 0
-    for trial in range(60):
-        n = 6
-        scale = 10.0 ** rng.uniform(0.0, 6.0)
-        x0 = rng.normal(size=n) * np.array([scale, scale, 1.0, 5.0, 0.5, 1.0])
-        x0[2] = rng.uniform(-3.0, 3.0)
-        sd = 10.0 ** rng.uniform(0.0, 4.0, n)
-        a = rng.normal(size=(n, n)) * 0.3 + np.eye(n)
-        p0 = (a @ a.T) * np.outer(sd, sd)
-        p0 = 0.5 * (p0 + p0.T)
-        rows = [[0, 1], [0, 1, 2], [3]][trial % 3]
-        h = np.zeros((len(rows), n))
-        h[np.arange(len(rows)), rows] = 1.0
-        r = np.eye(len(rows)) * 10.0 ** rng.uniform(-6.0, -2.0)
-        if trial % 2:
-            r = r * 1e6  # ordinary: no variance shrinks 4096-fold
-        z = h @ (x0 + np.linalg.cholesky(p0) @ rng.normal(size=n))
+    for x0, p0, h, r, z in precise_planar_updates(26, 60):
         ekf = ExtendedKalmanFilter(x0, p0, angle_states=[2])
         assert ekf.update(z, lambda s, h=h: h @ s, h, r).accepted
         fallback += bool(np.any(np.diag(ekf.P) * 4096.0 < np.diag(p0)))
