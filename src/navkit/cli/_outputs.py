@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import contextlib
 import os
+import secrets
 import tempfile
 from collections.abc import Mapping
 from pathlib import Path
@@ -78,14 +80,23 @@ def check_output(path: str | None, suffix: str, option: str) -> None:
     # Create a file there and remove it: permissions, read-only file systems and
     # root's exemptions make any cheaper test (os.access) unreliable. A Ctrl-C waits
     # until it is gone: landing in between, it left the probe file in the user's folder.
+    # SIGTERM and SIGHUP (Terminated) are not held back: the probe's own prefix finds
+    # it, made by mkstemp but its name not yet returned, for removal (review 27).
+    prefix = f".navkit-{secrets.token_hex(4)}-"
     with interrupts_deferred():
         try:
-            fd, probe = tempfile.mkstemp(dir=folder, prefix=".navkit-", suffix=".tmp")
-        except OSError as exc:
-            reason = exc.strerror or type(exc).__name__
-            raise OSError(f"{option}: cannot write in folder {folder} ({reason})") from exc
-        os.close(fd)
-        os.unlink(probe)
+            try:
+                fd, probe = tempfile.mkstemp(dir=folder, prefix=prefix, suffix=".tmp")
+            except OSError as exc:
+                reason = exc.strerror or type(exc).__name__
+                raise OSError(f"{option}: cannot write in folder {folder} ({reason})") from exc
+            os.close(fd)
+            os.unlink(probe)
+        except BaseException:
+            with contextlib.suppress(OSError):  # the error raised is the one to report
+                for left in folder.glob(f"{prefix}*.tmp"):
+                    left.unlink(missing_ok=True)
+            raise
 
 
 def _check_matplotlib(option: str) -> None:

@@ -365,13 +365,17 @@ def _count(low: int, high: int, *, shown: str | None = None) -> type[int]:
     bounds = shown if shown is not None else f"[{low}, {high}]"
 
     def parse(text: str) -> int:
-        if not _INTEGER.fullmatch(text.strip()):
+        number = text.strip()
+        if not _INTEGER.fullmatch(number):
             raise argparse.ArgumentTypeError(f"expected an integer, got {text!r}")
         try:
-            value = int(text)
+            # The stripped text, as _float reads it: int() keeps some characters that
+            # str.strip() takes for spaces ("\x1c"), and its ValueError then read as
+            # "an integer of 1 characters".
+            value = int(number)
         except ValueError:  # beyond int()'s digit limit
             raise argparse.ArgumentTypeError(
-                f"must be in {bounds}, got an integer of {len(text.strip())} characters"
+                f"must be in {bounds}, got an integer of {len(number)} characters"
             ) from None
         if not low <= value <= high:
             raise argparse.ArgumentTypeError(f"must be in {bounds}, got {value}")
