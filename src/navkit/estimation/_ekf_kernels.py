@@ -51,7 +51,9 @@ reference counting, which alone took a tenth of a call) and never leave
 ``state`` half-written.
 
 An update whose Joseph form cancelled (a variance shrank more than 4096-fold:
-a measurement far more precise than the estimate), or whose S of 2 to
+a measurement far more precise than the estimate; or a first-order estimate
+of the Joseph P's error exceeds 2⁻⁴⁰ of its scale, :func:`_joseph_in_doubt`),
+whose Joseph P failed its check, or whose S of 2 to
 ``_EXACT_NIS_MAX_M`` components is ill-conditioned (its pivots give
 ε κ(S) > 2⁻³⁰, so that its NIS and x are not to be trusted), commits nothing
 and returns ``CANCELLED``; the public layer finishes it with :func:`finish_cancelled`,
@@ -154,8 +156,9 @@ GATED = 13  # NIS above the gate
 STATE_OVERFLOW = 14  # the updated state overflowed
 BAD_SHAPE = 15  # an argument's shape does not fit (or rbuf is another m's): check in full
 BAD_TYPE = 16  # set by the public layer: an argument is not of the compiled type
-CANCELLED = 17  # the Joseph form cancelled (a variance shrank > 4096-fold) or S is
-# ill-conditioned (ε κ(S) > 2⁻³⁰, 2 <= m <= _EXACT_NIS_MAX_M): finish_cancelled
+CANCELLED = 17  # the Joseph form cancelled (a variance shrank > 4096-fold, or its P's
+# estimated error exceeds 2⁻⁴⁰) or failed its check, or S is ill-conditioned
+# (ε κ(S) > 2⁻³⁰, 2 <= m <= _EXACT_NIS_MAX_M): finish_cancelled
 # From retry_gated only: the exact NIS passes the gate the kernel's NIS failed: run the
 # kernel again without the gate.
 GATE_PASSED = 18
@@ -207,6 +210,9 @@ _STEP_RESOLUTION = 32.0 * _EPS
 # true ones: 7 of 300 precise measurements of a 6-state filter (P of scaled
 # condition 1.9e3 to 1.8e7) take the exact posterior, their P⁺ 5e-15 to 1.6e-11 off.
 _P_SURE = 2.0**-40
+# The update kernel commits its Joseph P only where a first-order estimate of its error
+# is within _P_SURE (see _joseph_in_doubt): that estimate over ε is at most this.
+_JOSEPH_LIMIT = _P_SURE / _EPS
 # Where float64 holds no covariance at the exact posterior rounded (its scaled
 # condition beyond about 1e16), a computed covariance that passed its checks is
 # committed within this of it (measured against it), else the update is refused.
@@ -519,6 +525,92 @@ def _mirror_checked(p: FloatArray, work: FloatArray, inv_d: FloatArray, n: int) 
 
 
 @njit_force_inline
+def _joseph_in_doubt(
+    p: FloatArray,
+    jac: FloatArray,
+    gain: FloatArray,
+    pn: FloatArray,
+    w: FloatArray,
+    e: FloatArray,
+    a: FloatArray,
+    work: FloatArray,
+    n: int,
+    m: int,
+) -> bool:
+    """Whether the Joseph P ``pn`` (positive definite) may be more than ``_P_SURE`` off.
+
+    Its error is, to first order, the rounding error E of ``A P = P - K (H P)``
+    carried as ``E Aᵀ`` (A = I - K H; an error of K cancels to first order), E
+    about ε (|P| + |K| |H| |P|): ε Pᵢᵢ / P⁺ᵢᵢ (the shrink) for a measured state,
+    but far more where H P cancels (states correlated so that the measured
+    combination's terms exceed it) or K and H do (an ill-conditioned S): with no
+    variance shrinking 4096-fold the Joseph P was more than 2⁻⁴⁰ (the fallbacks'
+    bound on a covariance) off the exact posterior in 8 of 18,000 random updates,
+    up to 2.8e-11 (review 27). So ``ε (E Aᵀ)ᵢⱼ`` with E = |P| + |K| |H| |P| and
+    ``|A|``, relative to ``sqrt(P⁺ᵢᵢ P⁺ⱼⱼ)``, is held to ``_P_SURE`` (measured
+    on those updates and 2000 of random filters: the error at most 0.85 times
+    this). It costs O(n³), so it is computed only where its bound
+    ``ε max(Pᵢᵢ / P⁺ᵢᵢ) (1 + β)²`` exceeds that, β = maxᵢ Σₖ |Kᵢₖ| uₖ / σᵢ
+    with σᵢ = sqrt(Pᵢᵢ) and uₖ = Σⱼ |Hₖⱼ| σⱼ (|Pᵢⱼ| <= σᵢ σⱼ), which costs O(nm):
+    β <= 1 where one state is measured, so that with no variance shrinking
+    2048-fold nothing more is computed. ``w``, ``e``, ``a`` and ``work`` are scratch blocks.
+    """
+    sigma = work[0]
+    reach = work[1]
+    for j in range(n):
+        sigma[j] = math.sqrt(p[j, j])
+    for k in range(m):
+        acc = 0.0
+        for j in range(n):
+            hkj = jac[k, j]
+            if hkj != 0.0:
+                acc += abs(hkj) * sigma[j]
+        reach[k] = acc
+    beta = 0.0
+    for i in range(n):
+        acc = 0.0
+        for k in range(m):
+            acc += abs(gain[i, k]) * reach[k]
+        b = acc / sigma[i]
+        if not b <= beta:  # NaN too
+            beta = b
+    bound = (1.0 + beta) * (1.0 + beta)
+    suspect = False
+    for i in range(n):
+        if not p[i, i] * bound <= _JOSEPH_LIMIT * pn[i, i]:
+            suspect = True
+    if not suspect:
+        return False
+    for k in range(m):  # W = |H| |P|
+        for j in range(n):
+            w[k, j] = 0.0
+        for q in range(n):
+            hkq = abs(jac[k, q])
+            if hkq != 0.0:
+                for j in range(n):
+                    w[k, j] += hkq * abs(p[q, j])
+    for i in range(n):  # E = |P| + |K| W and |A| = |I - K H|
+        for j in range(n):
+            acc = abs(p[i, j])
+            kh = 1.0 if i == j else 0.0
+            for k in range(m):
+                acc += abs(gain[i, k]) * w[k, j]
+                kh -= gain[i, k] * jac[k, j]
+            e[i, j] = acc
+            a[i, j] = abs(kh)
+    for i in range(n):
+        sigma[i] = math.sqrt(pn[i, i])  # the posterior's deviations now
+    for i in range(n):
+        for j in range(i + 1):  # the lower triangle, the one computed (and mirrored)
+            acc = 0.0
+            for q in range(n):
+                acc += e[i, q] * a[j, q]
+            if not acc <= _JOSEPH_LIMIT * sigma[i] * sigma[j]:
+                return True
+    return False
+
+
+@njit_force_inline
 def _predict(state: FloatArray, x_new: FloatArray, jac: FloatArray, q: FloatArray, n: int) -> int:
     """The predict of :func:`_make_predict`'s kernel after its shape checks (see there).
 
@@ -771,19 +863,23 @@ def _update(
                 ill = True
     status = _mirror_checked(pn, rbuf[_PCHK], inv_diag, n)
     # A variance that shrank more than _SHRINK_LIMIT-fold (or came out NaN or not
-    # positive) lost more than 12 bits to the cancellation in P - K H P: the public
-    # layer finishes the update with finish_cancelled, given this status.
+    # positive) lost more than 12 bits to the cancellation in P - K H P; a new P that
+    # failed its check may still be the rounding of a covariance (review 27: 5 of 43
+    # such updates of a 3000-update draw were); where S is ill-conditioned the NIS and
+    # x are in doubt. The public layer finishes each with finish_cancelled, given the
+    # new P's status (it gates on the exact NIS where S is ill-conditioned, and takes
+    # the information form's or the exact x and P where they are the more accurate).
     for i in range(n):
         if not pn[i, i] * _SHRINK_LIMIT >= p[i, i]:
             vec[_META, _JOSEPH] = status
             return _FAIL_CANCELLED
-    if ill:
-        # finish_cancelled then gates on the exact NIS and takes the information
-        # form's x and P where they are the more accurate (or where these failed).
+    if (
+        ill
+        or status != OK
+        or _joseph_in_doubt(p, jac, gain, pn, rbuf[_HP], rbuf[_TMP], rbuf[_KR], rbuf[_CHOL], n, m)
+    ):
         vec[_META, _JOSEPH] = status
         return _FAIL_CANCELLED
-    if status != OK:
-        return -float(status)
     for i in range(n):
         x[i] = xn[i]
         for j in range(n):
@@ -823,12 +919,16 @@ def _make_update(n: int, m: int) -> UpdateKernel:
         (``S_NOT_FINITE``, ``S_NOT_POSITIVE_DEFINITE``), the residual
         (``RESIDUAL_OVERFLOW``), the NIS yᵀ S⁻¹ y (``NIS_OVERFLOW``, ``GATED``),
         the updated state (``STATE_OVERFLOW``) and the updated covariance
-        (``CANCELLED`` when some variance shrank more than 4096-fold, or when
-        S's pivots say it is ill-conditioned (``max Sₖₖ / Dₖ`` above
-        2⁻³⁰ / ε, for 2 <= m <= ``_EXACT_NIS_MAX_M``), whatever its own
-        status: the caller finishes with :func:`finish_cancelled`;
-        else ``NOT_FINITE``, ``NOT_POSITIVE_DEFINITE``). x and P change only with
-        ``OK``; ``nis`` is NaN until computed, inf when it overflowed.
+        (``CANCELLED`` when some variance shrank more than 4096-fold, when a
+        first-order estimate of its error exceeds 2⁻⁴⁰ of the posterior's
+        scale (:func:`_joseph_in_doubt`), when S's pivots say it is
+        ill-conditioned (``max Sₖₖ / Dₖ`` above 2⁻³⁰ / ε, for
+        2 <= m <= ``_EXACT_NIS_MAX_M``), whatever its own status, or when it
+        is not finite or not positive definite (its status kept for the
+        caller, which finishes with :func:`finish_cancelled`; before review
+        27 these were returned, refusing updates whose exact posterior is a
+        covariance). x and P change only with ``OK``; ``nis`` is NaN until
+        computed, inf when it overflowed.
         """
         rbuf[_VEC, _META, 1] = math.nan  # the NIS a failure reports, until computed
         if (z.shape[0] != m_meas or hx.shape[0] != m_meas or y.shape[0] != m_meas
@@ -847,8 +947,11 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
 
     The kernel stopped because some variance of its Joseph-form posterior
     (``rbuf``'s ``_PN`` block, of status ``rbuf[_VEC, _META, _JOSEPH]``) shrank
-    more than ``_SHRINK_LIMIT``-fold, a sign that ``A P = P - K (H P)`` cancelled.
-    (Or because S's pivots say S is ill-conditioned, ε κ(S) > 2⁻³⁰, with 2
+    more than ``_SHRINK_LIMIT``-fold, a sign that ``A P = P - K (H P)`` cancelled,
+    or a first-order estimate of the Joseph P's error exceeds ``_P_SURE``
+    (:func:`_joseph_in_doubt`: H P cancelling, or K and H), or the Joseph P
+    failed its check (which the exact posterior may still pass). (Or because
+    S's pivots say S is ill-conditioned, ε κ(S) > 2⁻³⁰, with 2
     to ``_EXACT_NIS_MAX_M`` components: a linear combination of states
     measured twice far more precisely than it is known, where no variance
     need shrink, but the kernel's NIS and x, from its solve with S, are off
@@ -910,7 +1013,10 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
     bound, the only bound it has: ε κ(S) of its scale says nothing where
     the posterior's deviations lie far below it); else x⁺ where its bound
     is; else (and always where the information form is not trusted: nothing
-    bounds the kernel's x there) the exact posterior mean
+    bounds the kernel's x there; and wherever the exact NIS was computed, from
+    whose elimination the exact state costs about 0.02 ms more: before review
+    27 a vouched x⁺ was committed there, 1.25 ulps off where the kernel's x
+    was exact) the exact posterior mean
     ``x + P Hᵀ S⁻¹ y`` in rational arithmetic, rounded once
     (:func:`_exact_state`, for measurements of at most
     ``_EXACT_NIS_MAX_M`` components; ``STATE_OVERFLOW`` where it is beyond
@@ -1055,7 +1161,11 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
             new_p, status = near[0], OK
     if status != OK:
         return status
-    if unvouched and exact:
+    # The exact state where no bound vouches for one, and wherever the exact NIS was
+    # computed (S ill-conditioned): from its elimination the exact state costs about
+    # 0.02 ms more, and a vouched state may still be a few ulps off where the kernel's
+    # was exact (the information form's 1.25 ulps off; review 27).
+    if exact and (unvouched or regate):
         if elimination is None:
             elimination = _eliminated(p, jac, rbuf[_RS, :m, :m], y)
         x_exact = _exact_state(x, elimination)
@@ -1099,18 +1209,18 @@ def finish_singular_s(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: F
     (:func:`_exact_nis`, rounded once: any float form of it loses every digit
     here). The update is gated first, on that NIS, then committed as the
     kernel's would be: ``RESIDUAL_OVERFLOW``, ``NIS_OVERFLOW``, ``GATED``,
-    ``STATE_OVERFLOW`` or ``OK``, the NIS left in ``rbuf``. The state is x⁺
-    where the bound on its step is within ``_STEP_SURE`` deviations or
-    ``_STEP_RESOLUTION`` of ``|x| + |s|``, else the exact posterior mean
-    (:func:`_exact_state`, from the same elimination as the NIS). (Before
-    review 26: x⁺ within ``max(2⁻³³ (|x| + |s|), sqrt(P⁺ᵢᵢ))``, which let it
-    be 8.1e4 deviations off where those lie far below 2⁻³³ of its size, and
-    the update was refused beyond that.) P is P⁺ where its estimated error
+    ``STATE_OVERFLOW`` or ``OK``, the NIS left in ``rbuf``. The state is the
+    exact posterior mean (:func:`_exact_state`, from the same elimination as
+    the NIS). (Before review 27: x⁺ where the bound on its step was within
+    ``_STEP_SURE`` deviations or ``_STEP_RESOLUTION`` of ``|x| + |s|``,
+    193,586 ulps off in one case. Before review 26: x⁺ within
+    ``max(2⁻³³ (|x| + |s|), sqrt(P⁺ᵢᵢ))``, which let it be 8.1e4 deviations
+    off where those lie far below 2⁻³³ of its size, and the update was
+    refused beyond that.) P is P⁺ where its estimated error
     is at most ``_P_SURE``, else the exact posterior (:func:`_exact_posterior`)
     where it passes the kernels' test of a covariance, else P⁺ where that is
     trusted (its error estimate at most 2⁻¹², as in :func:`finish_cancelled`)
-    and within ``_P_NEAR`` of the exact one; where the information form is not
-    trusted, x is the exact state too. It stays ``S_NOT_POSITIVE_DEFINITE``
+    and within ``_P_NEAR`` of the exact one. It stays ``S_NOT_POSITIVE_DEFINITE``
     (the state unchanged) where a measurement the gate passes has none of
     these (before review 26: wherever the information form was not trusted;
     and P⁺ was committed up to 1e-5 off), and for measurements of more than
@@ -1150,21 +1260,12 @@ def finish_singular_s(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: F
                 posterior = found.posterior
             else:
                 return S_NOT_POSITIVE_DEFINITE
-        x_new = None
-        if found is not None:
-            step = found.step
-            size = np.abs(x) + np.abs(step)
-            deviation = np.sqrt(posterior.diagonal())
-            within = np.maximum(_STEP_SURE * deviation, _STEP_RESOLUTION * size)
-            if np.isfinite(step).all() and (found.step_error <= within).all():
-                x_new = x + step
-        if x_new is None:
-            # x⁺'s bound is beyond a quarter deviation (it was 8.1e4 deviations off
-            # within a bound of 2⁻³³ of its size; review 26), or there is no x⁺: the
-            # exact state.
-            x_new = _exact_state(x, elimination)
-            if x_new is None:  # the posterior mean is beyond float64
-                return STATE_OVERFLOW
+    # The exact state, from the elimination made for the NIS (about 0.02 ms more): a
+    # state the information form's bound vouched for was up to 32 ε of its size off
+    # (before review 27), and 8.1e4 deviations with the looser bound before review 26.
+    x_new = _exact_state(x, elimination)
+    if x_new is None:  # the posterior mean is beyond float64
+        return STATE_OVERFLOW
     for i in np.flatnonzero(state[n + 1]):  # the angles, wrapped
         x_new[i] = wrap_float(float(x_new[i]))
     if not np.isfinite(x_new).all():
