@@ -336,11 +336,31 @@ def _lines(path: Path, found: list[str] | None = None) -> Iterator[str]:
         binary, damage = _decompressed(raw, compression, path)
         with io.TextIOWrapper(binary, encoding="ascii", errors="replace") as fh:
             try:
-                yield from iter(lambda: fh.readline(LINE_MAX + 1), "")
+                lines = iter(lambda: fh.readline(LINE_MAX + 1), "")
+                first = next(lines, "")
+                if _is_tar_header(first):
+                    compressed = f" ({compression}-compressed)" if compression else ""
+                    raise ValueError(
+                        f"{path}: a tar archive{compressed}, not a CARMEN log: extract the "
+                        "log from it first"
+                    )
+                if first:
+                    yield first
+                yield from lines
             except damage as exc:
                 if isinstance(exc, OSError) and exc.errno is not None:
                     raise  # the disk's, not the data's
                 raise _CorruptFile(compression, exc) from None
+
+
+def _is_tar_header(line: str) -> bool:
+    """Whether the first line of a file is a tar header (POSIX or GNU, "ustar" at 257).
+
+    Read as text, a tar archive of one log (``.tar.gz``) gave the log's lines after a
+    header line the parser skipped, and one of several logs gave them all, run
+    together as one. The header's NUL bytes tell it from a log line holding "ustar".
+    """
+    return line[257:262] == "ustar" and "\x00" in line[:257]
 
 
 def _count(token: str, what: str) -> int:
