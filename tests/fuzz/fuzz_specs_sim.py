@@ -266,6 +266,7 @@ spec(
         (),
         None,
         call(Pose2D, 0.0, 0.0, 0.1),
+        dt=0.05,
     ),
     kinds={
         "new": Anything(),

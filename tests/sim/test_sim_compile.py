@@ -145,8 +145,8 @@ def test_a_disc_robot_among_segments_compiles_one_run_kernel_for_the_disc() -> N
     )])  # fmt: skip
     # One run kernel, once, whether or not the steps are long for the footprint.
     (run,) = signatures["_segment_kernels.run_edge_segment"]
-    # body_verts and verts (the 17th and 18th arguments) are None: no polygon code.
-    assert _arguments(run)[16:18] == ["none", "none"], run
+    # body_verts and verts (the 18th and 19th arguments) are None: no polygon code.
+    assert _arguments(run)[17:19] == ["none", "none"], run
     assert all(
         _arguments(sig)[4:6] == ["none", "none"]
         for sig in signatures["_clearance_kernels.edge_clearance"]

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import KW_ONLY, dataclass
-from typing import Any, Literal, overload
+from typing import TYPE_CHECKING, Any, Literal, overload
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -83,6 +83,13 @@ class LocalGrid:
     _: KW_ONLY
     resolution: float
     half_width: float
+
+    if TYPE_CHECKING:
+        # The generated ``__init__`` takes ``occupied`` as array_like (``__post_init__``
+        # converts it); this signature tells type checkers so, at no runtime cost.
+        def __init__(
+            self, occupied: ArrayLike, *, resolution: float, half_width: float
+        ) -> None: ...
 
     def __post_init__(self) -> None:
         occ = np.array(as_array(self.occupied, "occupied"), copy=True)

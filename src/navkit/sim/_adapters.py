@@ -32,10 +32,15 @@ class _Tracker(Protocol):
 class TrackerController:
     """A path tracker as a :class:`~navkit.sim.Simulation` controller.
 
-    Each control step calls ``tracker.step(pose, 1 / control_rate)`` with the
-    estimator's pose (``use_estimate=True``; a zero twist while there is no
-    estimate yet) or the true pose (an oracle, for tests and baselines). The
-    run ends when the tracker is done (:attr:`done`). Give the tracker its path
+    Each control step calls ``tracker.step(pose, dt)`` with the estimator's
+    pose (``use_estimate=True``; a zero twist while there is no estimate yet)
+    or the true pose (an oracle, for tests and baselines). ``dt`` is how long
+    the simulation holds the command, :attr:`Observation.dt
+    <navkit.sim.Observation.dt>` (whole physics steps, counted exactly: a
+    control rate that does not divide the physics rate holds some commands a
+    step longer than others, 0.03 s and 0.04 s at 30 Hz of 100 Hz), or
+    ``1 / control_rate`` for an observation without ``dt``. The run ends when
+    the tracker is done (:attr:`done`). Give the tracker its path
     (``tracker.set_path(route)``) before the run; the adapter only steps it.
 
     Parameters
@@ -44,8 +49,8 @@ class TrackerController:
         A navkit path tracker (FollowTheCarrot, OnOffTracker,
         RegulatedPurePursuit) or anything with ``step(pose, dt)`` and ``done``.
     control_rate : float
-        The simulation's ``control_rate``, Hz, in (0, 1e6]: the tracker's
-        ``dt`` is its inverse.
+        The simulation's ``control_rate``, Hz, in (0, 1e6]: its inverse is the
+        tracker's ``dt`` for an observation without ``dt``.
     use_estimate : bool, default True
         Track the estimator's pose (True) or the true pose (False).
 
@@ -136,7 +141,9 @@ class TrackerController:
         pose = obs.estimate if self._use_estimate else obs.true_pose
         if pose is None:
             return Twist2D(0.0, 0.0, 0.0)
-        twist = self.tracker.step(pose, self._dt)
+        # The time the command will actually be held, for trackers that rate-limit or
+        # integrate by dt: the nominal period is up to a physics step off it.
+        twist = self.tracker.step(pose, self._dt if obs.dt is None else obs.dt)
         if not isinstance(twist, Twist2D):
             raise TypeError(f"tracker.step must return a Twist2D, got {type(twist).__name__}")
         return twist

@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 import numbers
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -148,6 +149,24 @@ class Lidar:
     rate: float = 10.0
     latency: float = 0.0
     mount: Pose2D = _IDENTITY
+
+    if TYPE_CHECKING:
+        # The generated ``__init__`` takes ``mount`` as ``(x, y, theta)`` too
+        # (``__post_init__`` converts it); this signature tells type checkers so.
+        def __init__(
+            self,
+            *,
+            n_beams: int = ...,
+            fov: float = ...,
+            range_min: float = ...,
+            range_max: float = ...,
+            noise: RangeNoise | None = ...,
+            angle_jitter: float = ...,
+            dropout: float = ...,
+            rate: float = ...,
+            latency: float = ...,
+            mount: Pose2D | ArrayLike = ...,
+        ) -> None: ...
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "n_beams", bounded_int(self.n_beams, "n_beams", 1, MAX_BEAMS))

@@ -6,6 +6,7 @@ import itertools
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import NDArray
@@ -89,6 +90,17 @@ class RangeNoise:
     limits: tuple[float, ...] = PAPER_LIMITS
     sigma: tuple[float, ...] = PAPER_SIGMA
     bias: tuple[float, ...] = field(default=())
+
+    if TYPE_CHECKING:
+        # The generated ``__init__`` takes any sequence of numbers or a 1-D array
+        # (``__post_init__`` makes tuples of them); this signature tells type checkers so.
+        def __init__(
+            self,
+            *,
+            limits: Sequence[float] | NDArray[np.generic] = ...,
+            sigma: Sequence[float] | NDArray[np.generic] = ...,
+            bias: Sequence[float] | NDArray[np.generic] = ...,
+        ) -> None: ...
 
     def __post_init__(self) -> None:
         limits = _floats(self.limits, "limits", allow_inf=True)

@@ -4,10 +4,11 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import shapely
+from numpy.typing import ArrayLike
 from shapely.geometry import Polygon
 from shapely.ops import polylabel
 
@@ -95,15 +96,36 @@ class Robot:
     """
 
     drive: OmniDrive | DiffDrive
-    footprint: Any
+    # As ``__post_init__`` leaves them: a radius or read-only vertices (V, 2); one
+    # read-only error per wheel (the default 0.0 becomes zeros).
+    footprint: float | FloatArray
     max_wheel_speed: float = math.inf
     max_wheel_acceleration: float = math.inf
     wheel_slip: float = 0.0
-    wheel_radius_error: float | FloatArray = 0.0
+    wheel_radius_error: FloatArray = 0.0  # type: ignore[assignment]
     encoders: WheelEncoders | None = _DEFAULT_ENCODERS
     lidar: Lidar | None = None
     compass: Compass | None = None
     imu: Imu | None = None
+
+    if TYPE_CHECKING:
+        # The generated ``__init__`` takes what ``__post_init__`` converts (a shapely
+        # polygon, array_like vertices or errors); this signature tells type checkers
+        # so, at no runtime cost.
+        def __init__(
+            self,
+            *,
+            drive: OmniDrive | DiffDrive,
+            footprint: float | Polygon | ArrayLike,
+            max_wheel_speed: float = ...,
+            max_wheel_acceleration: float = ...,
+            wheel_slip: float = ...,
+            wheel_radius_error: float | ArrayLike = ...,
+            encoders: WheelEncoders | None = ...,
+            lidar: Lidar | None = ...,
+            compass: Compass | None = ...,
+            imu: Imu | None = ...,
+        ) -> None: ...
 
     def __post_init__(self) -> None:
         if not isinstance(self.drive, (OmniDrive, DiffDrive)):

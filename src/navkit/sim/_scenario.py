@@ -40,6 +40,9 @@ __all__ = [
 
 #: Most trials per case a run may ask for.
 _MAX_TRIALS = 100_000
+#: Most trials of a run over all its cases (the built-in scenarios ask for at most
+#: 900001 at the per-case maximum).
+_MAX_TOTAL_TRIALS = 1_000_000
 
 Cell = str | int | float | np.integer | np.floating | None
 """One table cell: text, a number (NaN shown as ``-``) or nothing."""
@@ -656,7 +659,9 @@ class Scenario(ABC):
         Returns
         -------
         tuple of (str, int)
-            ``(case description, number of trials)`` in the scenario's order.
+            ``(case description, number of trials)`` in the scenario's order:
+            each number in [0, 100000], 1000000 at most in all (a run refuses
+            more with ``ValueError``).
 
         Examples
         --------
@@ -723,7 +728,8 @@ class Scenario(ABC):
         Parameters
         ----------
         trials : int, optional
-            Trials per case (default :attr:`default_trials`).
+            Trials per case (default :attr:`default_trials`), in [1, 100000];
+            at most 1000000 trials over all the cases (``ValueError``).
         seed : int, optional
             The base seed, >= 0.
 
@@ -756,14 +762,15 @@ class Scenario(ABC):
         seed: int = 0,
         workers: int | None = 1,
         executor: Any = None,
-        progress: Callable[[int, int], None] | None = None,
+        progress: Callable[[int, int], object] | None = None,
     ) -> ScenarioResult:
         """Run every trial and summarize: :func:`~navkit.sim.sweep` on this scenario.
 
         Parameters
         ----------
         trials : int, optional
-            Trials per case (default :attr:`default_trials`).
+            Trials per case (default :attr:`default_trials`), in [1, 100000];
+            at most 1000000 trials over all the cases (``ValueError``).
         seed : int, optional
             The base seed, >= 0; the same seed gives the same result.
         workers : int or None, optional
@@ -820,7 +827,8 @@ class Scenario(ABC):
 
         A subclass's slip is named here rather than run: a negative or boolean
         count would run no trial (or one) of its case without a word, and a
-        count beyond the ``trials`` limit (100000) would build that many trials.
+        count beyond the ``trials`` limit (100000), or counts adding up to more
+        than 1000000 (10^5 cases of 10^5 trials), would build that many trials.
         """
         where = f"{type(self).__name__}.cases({trials})"
         cases: object = self.cases(trials)
@@ -832,6 +840,7 @@ class Scenario(ABC):
                 f"got {type(cases).__name__}"
             )
         out = []
+        total = 0
         for k, item in enumerate(cases):
             if isinstance(item, (str, bytes)) or not isinstance(item, Sequence):
                 raise TypeError(
@@ -851,6 +860,13 @@ class Scenario(ABC):
                 checked = bounded_int(count, "the count", 0, _MAX_TRIALS)
             except (TypeError, ValueError) as exc:
                 raise type(exc)(f"{where}[{k}]: {exc}") from None
+            total += checked
+            if total > _MAX_TOTAL_TRIALS:
+                # Said at the first case past the limit, before any more of the cases run.
+                raise ValueError(
+                    f"{where}: cases 0..{k} ask for {total} trials; a run may have at most "
+                    f"{_MAX_TOTAL_TRIALS} over all its cases (lower trials)"
+                )
             out.append((case, checked))
         return tuple(out)
 

@@ -395,6 +395,7 @@ def run_segment(
     state: np.ndarray,
     wheels: np.ndarray,
     angles: np.ndarray,
+    carry: np.ndarray,
     command: np.ndarray,
     max_accel: float,
     radius_factor: np.ndarray,
@@ -463,7 +464,9 @@ def run_segment(
     collisions and the robot's contact state (free, touching or held); the times
     of the collisions are appended to ``contacts`` (as far as it has room;
     ``stats[STAT_COLLISIONS]`` counts them all).
-    ``prev`` (3,) is scratch for the pose before a step. ``reach`` (m) is the
+    ``carry`` holds the compensation of the wheel angles' sums (see
+    :func:`~navkit.sim._wheel_kernels.wheel_step`), kept from segment to
+    segment. ``prev`` (3,) is scratch for the pose before a step. ``reach`` (m) is the
     footprint's farthest point from the robot's reference point (0 for a
     disc) and ``sweep`` (m, > 0) the radius of a disc inside it.
     ``body_verts``, ``verts`` and ``scratch`` are None for a disc footprint.
@@ -484,8 +487,8 @@ def run_segment(
         prev[1] = state[1]
         prev[2] = state[2]
         wheel_step(
-            state, wheels, angles, command, max_accel, dt, radius_factor, slip_z[i - i0],
-            slip, fwd,
+            state, wheels, angles, carry, command, max_accel, dt, radius_factor,
+            slip_z[i - i0], slip, fwd,
         )  # fmt: skip
         i += 1
         t = i / rate
@@ -533,6 +536,7 @@ def run_edge_segment(
     state: np.ndarray,
     wheels: np.ndarray,
     angles: np.ndarray,
+    carry: np.ndarray,
     command: np.ndarray,
     max_accel: float,
     radius_factor: np.ndarray,
@@ -592,8 +596,8 @@ def run_edge_segment(
         prev[1] = state[1]
         prev[2] = state[2]
         wheel_step(
-            state, wheels, angles, command, max_accel, dt, radius_factor, slip_z[i - i0],
-            slip, fwd,
+            state, wheels, angles, carry, command, max_accel, dt, radius_factor,
+            slip_z[i - i0], slip, fwd,
         )  # fmt: skip
         i += 1
         t = i / rate

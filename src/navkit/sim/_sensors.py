@@ -8,6 +8,7 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.types import IntArray
@@ -244,14 +245,14 @@ class WheelEncoders:
         object.__setattr__(self, "rate", check_rate(self.rate))
         object.__setattr__(self, "latency", check_latency(self.latency))
 
-    def ticks(self, wheel_angles: np.ndarray) -> IntArray:
+    def ticks(self, wheel_angles: ArrayLike) -> IntArray:
         """Counter readings (int64) for total wheel rotations ``wheel_angles`` (rad).
 
         What :attr:`EncoderReading.ticks` holds.
 
         Parameters
         ----------
-        wheel_angles : ndarray, shape (N,)
+        wheel_angles : array_like, shape (N,)
             Total rotation of each wheel since the start, rad, within ±1e9.
 
         Returns
@@ -294,12 +295,12 @@ class WheelEncoders:
         out: IntArray = ticks & np.int64((1 << self.bits) - 1)
         return out
 
-    def counts(self, wheel_angles: np.ndarray) -> IntArray:
+    def counts(self, wheel_angles: ArrayLike) -> IntArray:
         """Deprecated alias of :meth:`ticks` (the name :class:`EncoderReading` uses).
 
         Parameters
         ----------
-        wheel_angles : ndarray, shape (N,)
+        wheel_angles : array_like, shape (N,)
             As for :meth:`ticks`.
 
         Returns

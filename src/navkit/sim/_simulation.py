@@ -7,6 +7,7 @@ import math
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
+from fractions import Fraction
 from typing import Any
 
 import numpy as np
@@ -19,6 +20,7 @@ from navkit._shared.frozen import frozen_setattr, slot_names
 from navkit._shared.metres import metres_text
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_bool, as_float_array, finite_float, positive_float
+from navkit.estimation import DiffOdometry, OmniOdometry, PlanarFusion
 from navkit.geometry import Pose2D, Twist2D, as_twist
 from navkit.planning import Path2D
 from navkit.sim._estimators import Estimator, FusionEstimator, as_estimator
@@ -52,6 +54,7 @@ MAX_STEPS = 10_000_000
 #: Longest simulated duration, s.
 MAX_DURATION = 1e7
 _EPS = 1e-9
+_EPS_EXACT = Fraction(1, 10**9)
 #: Event kinds that end a run by themselves (noted when the loop stops).
 _CLOSING_KINDS = ("timeout", "controller done", "wall-clock timeout")
 #: Columns of the trace buffer: t, x, y, theta, est x, y, theta, cmd vx, vy, omega.
@@ -65,6 +68,21 @@ def _step_count(duration: float, rate: float) -> int:
     positive duration below ``_EPS`` steps still runs one, as documented.
     """
     return max(1, math.ceil(duration * rate - _EPS))
+
+
+def _lag_steps(latency: float, rate: float) -> int:
+    """Whole physics steps from a reading's step to its delivery's.
+
+    The fewest ``m`` with ``m / rate >= latency - 1e-9`` s, in exact rational
+    arithmetic on the two floats: one count for every reading of the stream. The
+    tolerance lets a latency of whole steps that is not a binary fraction (0.03 s
+    at 100 Hz) count as those steps. Comparing ``stamp + latency`` with each
+    step's time in floats instead rounded a latency 1e-9 s over whole steps
+    either way from one reading to the next (7 % of them a step late at 100 Hz).
+    """
+    if latency == 0.0:
+        return 0
+    return max(math.ceil((Fraction(latency) - _EPS_EXACT) * Fraction(rate)), 0)
 
 
 @frozen_setattr
@@ -87,12 +105,21 @@ class Observation:
         The estimator's current pose (None without an estimator).
     true_pose : Pose2D
         The robot's true pose: ground truth, for oracle controllers and tests.
+    dt : float or None, default None
+        Simulated time until the next control step, s: how long the command
+        returned now is held. The physics steps between the two over the physics
+        rate, counted exactly (0.05 for 5 steps of 100 Hz); a control rate that
+        does not divide the physics rate gives unequal periods (0.03 and 0.04 s
+        at 30 Hz of 100 Hz, not 1/30 s). Always set by :class:`Simulation`
+        (None: not known, for observations made elsewhere).
 
     Examples
     --------
     >>> obs = Observation(0.0, None, None, None, None, (), None, Pose2D(0.0, 0.0, 0.0))
-    >>> obs.true_pose.x
-    0.0
+    >>> obs.true_pose.x, obs.dt
+    (0.0, None)
+    >>> Observation(0.07, None, None, None, None, (), None, Pose2D(0.0, 0.0, 0.0), dt=0.04).dt
+    0.04
     """
 
     t: float
@@ -103,9 +130,12 @@ class Observation:
     new: tuple[Reading, ...]
     estimate: Pose2D | None
     true_pose: Pose2D
+    dt: float | None = None
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "t", finite_float(self.t, "t"))
+        if self.dt is not None:
+            object.__setattr__(self, "dt", positive_float(self.dt, "dt"))
         for name, cls in (
             ("scan", ScanReading), ("encoders", EncoderReading), ("compass", CompassReading),
             ("imu", ImuReading), ("estimate", Pose2D),
@@ -192,12 +222,15 @@ class Simulation:
     ``rate`` for fast ones. Each
     sensor of the robot samples at its own rate (at the first physics step at
     or after each of its sample times); each reading is delivered ``latency``
-    seconds later (at the first step at or after that),
+    seconds later, at the first step at or after that within 1e-9 s, counted
+    exactly on the floats given: the same whole number of steps after its own
+    for every reading of a sensor (0.03 s is 3 steps of 100 Hz, 0.03 s + 2e-9 s
+    is 4),
     to the estimator, which is given it with that delivery time, and to the
     controller. The controller runs at ``control_rate``: it receives an
     :class:`Observation` (the latest readings, those new since its last call,
-    the estimator's pose and the true pose) and returns a body twist, which the
-    wheels follow until the next control step. The physics between two control
+    how long its command will be held, the estimator's pose and the true pose) and returns a
+    body twist, which the wheels follow until the next control step. The physics between two control
     steps or scans runs in one compiled kernel, so a run goes hundreds of times
     faster than real time.
 
@@ -338,7 +371,7 @@ class Simulation:
         goal_tolerance: float = 0.1,
         yaw_tolerance: float | None = None,
         reference_path: Path2D | ArrayLike | None = None,
-        estimator: Any = None,
+        estimator: PlanarFusion | OmniOdometry | DiffOdometry | Estimator | None = None,
         rate: float = 100.0,
         control_rate: float = 20.0,
         duration: float = 300.0,
@@ -505,13 +538,14 @@ class Simulation:
 
 
 class _Stream:
-    """One sensor's readings on their way to delivery."""
+    """One sensor's readings on their way to delivery, each ``lag`` steps after its own."""
 
-    __slots__ = ("line", "rank")
+    __slots__ = ("lag", "line", "rank")
 
-    def __init__(self, latency: float, rank: int) -> None:
+    def __init__(self, latency: float, rank: int, rate: float) -> None:
         self.line: DelayLine[Reading] = DelayLine(latency)
         self.rank = rank
+        self.lag = _lag_steps(latency, rate)
 
 
 class _Run:
@@ -520,6 +554,7 @@ class _Run:
     __slots__ = (
         "body",
         "buf",
+        "carry",
         "cmd",
         "compass",
         "contacts",
@@ -567,10 +602,12 @@ class _Run:
         # every step: the world may be shared (its queries, other runs in other threads).
         self.dyn_segs = np.empty_like(sim._world._dyn_base_segs)
         self.dyn_circles = np.empty_like(sim._world._dyn_base_circles)
-        self.lidar = _Stream(robot.lidar.latency, 0) if robot.lidar is not None else None
-        self.encoders = _Stream(robot.encoders.latency, 1) if robot.encoders is not None else None
-        self.compass = _Stream(robot.compass.latency, 2) if robot.compass is not None else None
-        self.imu = _Stream(robot.imu.latency, 3) if robot.imu is not None else None
+        rate = sim._rate
+        self.lidar = _Stream(robot.lidar.latency, 0, rate) if robot.lidar is not None else None
+        enc, cmp, imu = robot.encoders, robot.compass, robot.imu
+        self.encoders = _Stream(enc.latency, 1, rate) if enc is not None else None
+        self.compass = _Stream(cmp.latency, 2, rate) if cmp is not None else None
+        self.imu = _Stream(imu.latency, 3, rate) if imu is not None else None
         self.rates = np.array(
             [0.0 if x is None else x.rate for x in (robot.encoders, robot.compass, robot.imu)]
         )
@@ -596,6 +633,9 @@ class _Run:
         slowest = min(sim._control_rate, robot.lidar.rate if robot.lidar is not None else math.inf)
         span = min(math.ceil(sim._rate / slowest), steps) + 2
         n_wheels = robot.n_wheels
+        # What the wheel angles' sums lost to rounding (Kahan), the run's own as the
+        # Body is (a Body's angles start at 0 for each run).
+        self.carry = np.zeros(n_wheels)
         self.out_encoders = np.zeros((span, 1 + n_wheels))
         self.out_compass = np.zeros((span, 2))
         self.out_imu = np.zeros((span, 4))
@@ -659,7 +699,7 @@ class _Run:
         )  # fmt: skip
         motion = (
             i0, i_end, sim._rate, sample_first,
-            body.state, body.wheels, body.angles, body.command,
+            body.state, body.wheels, body.angles, self.carry, body.command,
             robot.max_wheel_acceleration, body.radius_factor, robot.wheel_slip,
             self.slip_z, body.forward, body.radius, body.reach, body.sweep,
             body.verts, body.work, world._segs, world._circles, gx0, gy0, h, nx, ny,
@@ -688,11 +728,12 @@ class _Run:
             assert stream is not None
             rows = self.out_encoders[:n_enc]
             stamps = rows[:, 0].tolist()
+            dues = self._dues(stream, rows[:, 0], stamps)
             ticks = rows[:, 1:].astype(np.int64)
             if self.enc_mask:  # modulo 2**bits in two's complement
                 ticks &= self.enc_mask
             for k in range(n_enc):
-                self._push(stream, stamps[k], EncoderReading(stamps[k], ticks[k]))
+                stream.line.push_at(dues[k], EncoderReading(stamps[k], ticks[k]))
         if n_cmp:
             c = self.sim._robot.compass
             stream = self.compass
@@ -704,8 +745,9 @@ class _Run:
             deg = np.degrees(c.north - yaw + c.bias) % 360.0
             deg[deg >= 360.0] = 0.0
             stamps = rows[:, 0].tolist()
+            dues = self._dues(stream, rows[:, 0], stamps)
             for k, value in enumerate(deg.tolist()):
-                self._push(stream, stamps[k], CompassReading(stamps[k], value))
+                stream.line.push_at(dues[k], CompassReading(stamps[k], value))
         if n_imu:
             imu = self.sim._robot.imu
             stream = self.imu
@@ -715,22 +757,18 @@ class _Run:
             if self.imu_noise is not None:
                 values += self.sim._rng.standard_normal((n_imu, 3)) * self.imu_noise
             stamps = rows[:, 0].tolist()
+            dues = self._dues(stream, rows[:, 0], stamps)
             for k, (w, ax, ay) in enumerate(values.tolist()):
-                self._push(stream, stamps[k], ImuReading(stamps[k], w, ax, ay))
+                stream.line.push_at(dues[k], ImuReading(stamps[k], w, ax, ay))
 
-    def _push(self, stream: _Stream, stamp: float, reading: Reading) -> None:
-        """Queue a reading for the first step at or after ``stamp + latency``."""
-        delay = stream.line.delay
-        if delay == 0.0:
-            stream.line.push_at(stamp, reading)
-        else:
-            # The step is chosen on ``step * dt`` as the sensors' schedules are (the
-            # same steps as ever); it is delivered at that step's time, ``step / rate``.
-            dt = self.dt
-            step = max(math.ceil((stamp + delay - _EPS) / dt) - 1, 0)
-            while step * dt + _EPS < stamp + delay:
-                step += 1
-            stream.line.push_at(step / self.sim._rate, reading)
+    def _dues(self, stream: _Stream, times: FloatArray, stamps: list[float]) -> list[float]:
+        """Delivery times of readings the kernel took at ``times`` (``stamps`` as floats)."""
+        if stream.lag == 0:
+            return stamps
+        rate = self.sim._rate
+        # ``times`` are ``i / rate``: times rate is within 3e-9 of i (i <= 1e7, two
+        # roundings). The delivery step's time is ``(i + lag) / rate``, as every step's.
+        return ((np.rint(times * rate) + stream.lag) / rate).tolist()  # type: ignore[no-any-return]
 
     def _scan(self, i: int, t: float) -> None:
         assert self.scanner is not None and self.lidar is not None
@@ -741,7 +779,7 @@ class _Run:
         reading = ScanReading(t, scan)
         if self.sim._record_scans:
             self.scans.append(reading)
-        self._push(self.lidar, t, reading)
+        self.lidar.line.push_at((i + self.lidar.lag) / self.sim._rate, reading)
 
     def _deliver(self, t: float) -> None:
         """Hand every reading due by ``t`` to the estimator and the controller's queue."""
@@ -816,8 +854,8 @@ class _Run:
         self.filled = max(self.filled, last + 1)
 
     # ------------------------------------------------------------ control
-    def _control(self, i: int, t: float) -> bool:
-        """Run the controller; True when it says it is done."""
+    def _control(self, i: int, t: float, hold: int) -> bool:
+        """Run the controller for a command held ``hold`` steps; True when it says it is done."""
         sim = self.sim
         state = self.body.state
         latest = self.latest
@@ -834,6 +872,9 @@ class _Run:
             tuple(self.pending),
             estimate,
             Pose2D(float(state[0]), float(state[1]), float(state[2])),
+            # Counted in steps, as the times are: a difference of times is off the
+            # decimal (0.15 - 0.1 is 0.04999999999999999).
+            hold / sim._rate,
         )
         self.pending.clear()
         out = sim._controller(obs)
@@ -890,7 +931,7 @@ class _Run:
                 if i == next_control:
                     control_k += 1
                     next_control = due_step(control_k, sim._control_rate, dt)
-                    if self._control(i, t):
+                    if self._control(i, t, next_control - i):
                         reason = "controller done"
                         self.events.append(Event(t, reason, "the controller reported done"))
             if not reason and i >= n_steps:

@@ -29,7 +29,8 @@ __all__ = ["sweep"]
 #: Most worker processes a local pool may be asked for.
 MAX_WORKERS = 1024
 
-Progress = Callable[[int, int], None]
+# What it returns is ignored: a progress bar's ``update`` may return a value.
+Progress = Callable[[int, int], object]
 
 
 def _as_scenario(scenario: object) -> Scenario:
@@ -216,7 +217,8 @@ def sweep(
         its default options.
     trials : int, optional
         Trials per case (default the scenario's ``default_trials``, or the
-        length of ``seeds`` when that is a sequence).
+        length of ``seeds`` when that is a sequence), in [1, 100000]; at most
+        1000000 trials over all the cases.
     seeds : int or sequence of int, default 0
         An int is the base seed: trial ``k`` of case ``c`` gets
         ``trial_seed(seeds, c, k)`` (as :meth:`Scenario.trials`). A sequence

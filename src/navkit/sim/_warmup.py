@@ -32,7 +32,8 @@ from navkit.sim._pool import process_pool
 
 __all__ = ["WARMUP_STEPS", "WarmupReport", "WarmupStep", "warmup"]
 
-Progress = Callable[[int, int], None]
+# What it returns is ignored: a progress bar's ``update`` may return a value.
+Progress = Callable[[int, int], object]
 
 #: Most worker processes :func:`warmup` may be asked for.
 MAX_WORKERS = 1024
@@ -252,7 +253,7 @@ def _simulation() -> None:
     omni = OmniDrive([0.0, 2.0944, 4.1888], wheel_radius=0.05, base_radius=0.2)
     sensors: dict[str, Any] = {"lidar": Lidar(n_beams=16), "compass": Compass(), "imu": Imu()}
     for world in worlds:
-        robots = [
+        robots: list[tuple[Robot, PlanarFusion | DiffOdometry | OmniOdometry]] = [
             (Robot(drive=diff, footprint=0.15, max_wheel_acceleration=40.0, **sensors),
              PlanarFusion()),
             (Robot(drive=diff, footprint=[[-0.1, -0.1], [0.1, -0.1], [0.1, 0.1], [-0.1, 0.1]],

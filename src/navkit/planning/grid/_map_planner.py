@@ -326,7 +326,7 @@ class MapPlanner:
         return self._inflate_unknown
 
     @property
-    def planner(self) -> str | CellPlanner:
+    def planner(self) -> Literal["astar", "field_dstar"] | CellPlanner:
         """The planner name or callable given to the constructor."""
         return self._planner
 

@@ -366,7 +366,10 @@ class Player:
         # Face the goal of the move; support faces the ball.
         look = ball if role == "support" else goal
         heading = math.atan2(look[1] - pose.y, look[0] - pose.x)
-        cmd = self.ctl.step(pose, (float(goal[0]), float(goal[1]), heading), dt=self.dt,
+        # The time this command is held (3 or 4 physics steps at 30 Hz of 100 Hz), for
+        # the controller's acceleration limits and stall clock.
+        dt = self.dt if obs.dt is None else obs.dt
+        cmd = self.ctl.step(pose, (float(goal[0]), float(goal[1]), heading), dt=dt,
                             obstacles=target.obstacles_xy)  # fmt: skip
         if self.ctl.stalled:
             return self._finish(t, "stalled")
