@@ -1058,7 +1058,9 @@ def pixel_occupancy(
     otherwise. ``scale`` makes every pixel that is not fully opaque unknown and
     keeps ``p`` itself for the in-between ones; ``raw`` reads the grey value
     directly as a percentage (values above 100 are unknown). Rows are in image
-    order.
+    order. This is Nav2 Humble's reading (``map_io.cpp``); Nav2 from Jazzy on
+    differs at exact thresholds, on colour, 16-bit and, in trinary mode,
+    translucent pixels (see :func:`read_map`).
 
     Examples
     --------
@@ -1118,10 +1120,11 @@ def read_map(path: str | os.PathLike[str]) -> OccupancyGrid:
     Unknown pixels become p = 0.5 (log-odds 0), or the middle of the unknown
     band when the thresholds do not class 0.5 as unknown. 16-bit images span
     0..65535: 16-bit grey, and PNGs with 16 bits per colour channel (RGB,
-    grey + alpha, RGBA), are read at full depth, as Nav2's map_server reads
-    them; other images with 16-bit colour channels (e.g. TIFF), which Pillow
-    would truncate to 8 bits, are refused, and so are 32-bit floating-point
-    images (Pillow would clip them to 0..255; map_server does not read them).
+    grey + alpha, RGBA), are read at full depth, as Nav2's map_server up to
+    Iron reads them (see Notes); other images with 16-bit colour channels (e.g.
+    TIFF), which Pillow would truncate to 8 bits, are refused, and so are
+    32-bit floating-point images (Pillow would clip them to 0..255; map_server
+    does not read them).
 
     Parameters
     ----------
@@ -1162,6 +1165,23 @@ def read_map(path: str | os.PathLike[str]) -> OccupancyGrid:
 
     Notes
     -----
+    Pixels are classed exactly as Nav2's map_server up to Iron classes them
+    (``map_io.cpp`` of the ``humble`` branch; see :func:`pixel_occupancy`) and,
+    for 8-bit images but for one tie in the last bit (grey 204 under
+    ``free_thresh: 0.2`` is free here, unknown there), as ROS 1's. Nav2 from
+    Jazzy on (``map_io.cpp`` rewritten in 2025) classes some pixels
+    differently. It compares in float32 with ``>=`` and ``<=``: a pixel exactly
+    at a threshold is occupied or free there, unknown here (with
+    ``occupied_thresh: 1`` black is occupied there, never here; with
+    ``free_thresh: 0`` white is free there). It converts colour to
+    GraphicsMagick's luminance (weighted, not the mean of the channels) and
+    16-bit images to 8 bits. In ``trinary`` mode it reads every pixel that is
+    not fully opaque as unknown, where alpha is averaged in here (an opaque 205
+    grey in an RGBA PNG is free here and in Humble, unknown in Jazzy). Maps
+    written by map_saver or :func:`write_map` (grey PGM, 0 / 205 / 254, or
+    scale PNGs with opaque grey and transparent unknown) read the same in both
+    under the default thresholds.
+
     Peak memory, in bytes a pixel, besides the returned grid (4 bytes a cell, the
     float32 log-odds): about 16 for a PGM or an 8-bit PNG (the raster, a float64
     grey level and the float64 probabilities), 20 for an 8-bit colour PNG, and
