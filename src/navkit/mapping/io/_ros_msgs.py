@@ -320,6 +320,14 @@ def grid_from_msg(msg: Any) -> OccupancyGrid:
     any orientation, and its costmaps ignore the orientation: a tilted map
     there is silently projected or mirrored.)
 
+    map_server publishes a ``mode: scale`` map's in-between pixels rescaled
+    between its thresholds, ``rint((p - free_thresh) / (occupied_thresh -
+    free_thresh) * 100)`` (Nav2's ``map_io.cpp``), not as the pixel's
+    probability p: read here, such a value is taken as a probability, so a cell
+    may class differently than in :func:`~navkit.mapping.io.read_map` of the same
+    files (p = 0.6 under thresholds 0.65 / 0.196 is published as 89: occupied
+    here, unknown there). Trinary maps (0, 100, -1) read the same both ways.
+
     A value of 50 is probability 0.5, log-odds 0, which is also what -1 reads
     as: the grid cannot tell the two apart, and :func:`grid_to_msg_fields`
     publishes such a cell as -1 (never observed). Every other value, and the
