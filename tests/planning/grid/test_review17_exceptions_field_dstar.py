@@ -10,9 +10,10 @@ returns; never with the last plan's ends over half-cleared arrays, which a
 repair after :meth:`FieldDStar.update_costs` turned into an out-of-bounds read
 in the kernels (a segmentation fault, before session 21's fix).
 
-The interrupts are injected where a user could not: the planner's node records
-are given an ``ndarray`` subclass whose ``fill`` raises once done, and the path
-kernel's name in the module is wrapped to raise once it returned.
+The interrupts are injected where a user could not: the function blanking the
+planner's node records (``clear_box``, review 27; ``fill`` of the records
+before) is wrapped to raise once, before or after it blanked them, and the
+path kernel's name in the module is wrapped to raise once it returned.
 """
 
 from __future__ import annotations
@@ -35,36 +36,22 @@ from navkit.planning import FieldDStar, Path2D
 from navkit.planning.grid import _field_dstar
 
 
-class _InterruptedFill(np.ndarray):
-    """An array whose ``fill`` raises ``KeyboardInterrupt`` once, after filling."""
+def _arm_clear(monkeypatch: pytest.MonkeyPatch, which: str) -> None:
+    """Make the next blanking of the records raise, ``which``: "before" or "after" it."""
+    real = _field_dstar.clear_box
+    armed = [True]
 
-    armed = False
-
-    def fill(self, value: Any) -> None:
-        super().fill(value)
-        if _InterruptedFill.armed:
-            _InterruptedFill.armed = False
+    def interrupted(*args: Any) -> int:
+        if armed[0] and which == "before":
+            armed[0] = False
             raise KeyboardInterrupt
+        blanked = real(*args)
+        if armed[0]:
+            armed[0] = False
+            raise KeyboardInterrupt
+        return blanked
 
-
-def _arm_fill(planner: FieldDStar, which: str) -> None:
-    """Make the next clearing of ``which`` ("vals" or "pos") in ``planner`` raise."""
-    if which == "vals":
-        planner._vals = planner._vals.view(_InterruptedFill)
-    else:
-        heap = list(planner._heap)
-        heap[2] = heap[2].view(_InterruptedFill)
-        planner._heap = tuple(heap)
-    _InterruptedFill.armed = True
-
-
-def _disarm(planner: FieldDStar) -> None:
-    """Plain arrays again (the same memory)."""
-    _InterruptedFill.armed = False
-    planner._vals = planner._vals.view(np.ndarray)
-    heap = list(planner._heap)
-    heap[2] = heap[2].view(np.ndarray)
-    planner._heap = tuple(heap)
+    monkeypatch.setattr(_field_dstar, "clear_box", interrupted)
 
 
 def _costs(seed: int, n: int = 16, density: float = 0.2) -> np.ndarray[Any, Any]:
@@ -102,17 +89,18 @@ def _fresh_replan(costs: np.ndarray[Any, Any], method: str) -> Path2D:
     return replan(fresh)
 
 
-@pytest.mark.parametrize("which", ["vals", "pos"])
+@pytest.mark.parametrize("which", ["before", "after"])
 @pytest.mark.parametrize("method", sorted(_PLANS))
-def test_a_plan_interrupted_while_clearing_leaves_no_plan(which: str, method: str) -> None:
+def test_a_plan_interrupted_while_clearing_leaves_no_plan(
+    which: str, method: str, monkeypatch: pytest.MonkeyPatch
+) -> None:
     costs = _costs(3)
     plan, replan = _PLANS[method]
     planner = FieldDStar(costs)
     planner.plan((16, 0), (0, 16))  # an earlier plan, whose ends must not survive
-    _arm_fill(planner, which)
+    _arm_clear(monkeypatch, which)
     with pytest.raises(KeyboardInterrupt):
         plan(planner)
-    _disarm(planner)
     # Before the fix the earlier plan's ends were kept over the cleared arrays: this
     # replan returned the earlier path, and one after update_costs read out of bounds.
     with pytest.raises(RuntimeError, match="call plan"):
@@ -134,22 +122,18 @@ _CRASHES = textwrap.dedent(
     from navkit.planning import FieldDStar
     from navkit.planning.grid import _field_dstar
 
-    class Fill(np.ndarray):
-        armed = False
-        def fill(self, value):
-            super().fill(value)
-            if Fill.armed:
-                Fill.armed = False
-                raise KeyboardInterrupt
+    real = _field_dstar.clear_box
 
     def interrupted(planner, call):
-        planner._vals = planner._vals.view(Fill)
-        Fill.armed = True
+        def clear_box(*args):
+            real(*args)
+            raise KeyboardInterrupt
+        _field_dstar.clear_box = clear_box
         try:
             call()
         except KeyboardInterrupt:
             pass
-        planner._vals = planner._vals.view(np.ndarray)
+        _field_dstar.clear_box = real
 
     def outcome(call):
         try:

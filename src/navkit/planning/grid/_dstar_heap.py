@@ -243,6 +243,32 @@ def clear_records(records: np.ndarray) -> None:
     flat[whole:] = block[: flat.shape[0] - whole]
 
 
+def clear_box(
+    records: np.ndarray, ncols: int, rows: tuple[int, int], cols: tuple[int, int]
+) -> int:
+    """Blank the records of the nodes in rows ``rows`` and columns ``cols`` (inclusive).
+
+    ``records`` (C-contiguous) are those of a grid of nodes ``ncols`` wide (node
+    ``(i, j)`` at ``i * ncols + j``). A box as wide as half the grid or wider
+    blanks its rows whole (:func:`clear_records`, one pass: the contiguous
+    memory is faster to write than the box alone); a narrower one copies its
+    width of :data:`_BLANK_BLOCK` into each row (one strided copy). Returns
+    the number of records blanked.
+    """
+    top, bottom = rows
+    left, right = cols
+    if bottom < top or right < left:
+        return 0
+    span = right - left + 1
+    size = _BLANK_BLOCK.shape[0] // RECORD
+    if 2 * span >= ncols or span > size:
+        clear_records(records[top * ncols : (bottom + 1) * ncols])
+        return (bottom - top + 1) * ncols
+    box = records.reshape(-1, ncols * RECORD, copy=False)[top : bottom + 1]
+    box[:, RECORD * left : RECORD * (right + 1)] = _BLANK_BLOCK[: RECORD * span]
+    return (bottom - top + 1) * span
+
+
 def node_records(n_nodes: int) -> tuple[np.ndarray, tuple[np.ndarray, ...]]:
     """Records of ``n_nodes`` nodes (g = rhs = inf, unqueued) and an empty heap on them.
 

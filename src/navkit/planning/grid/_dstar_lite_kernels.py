@@ -62,8 +62,9 @@ RHS]``; its heap slot ``pos[RECORD * s]`` shares the record: one cache line hold
 three), ``nodes, keys, pos, size`` the indexed heap of
 :mod:`navkit.planning.grid._dstar_heap` in its kernel view (``keys`` flat,
 ``pos`` from :func:`~navkit.planning.grid._dstar_heap.flat_positions`: node
-``s``'s slot at ``pos[RECORD * s]``), ``work`` the int64 pair (work done,
-work limit), see :func:`settle`, and ``changed`` the int64 list of cells
+``s``'s slot at ``pos[RECORD * s]``), ``work`` the int64 (work done,
+work limit, then the box of the records written: first and last row, first
+and last column), see :func:`settle`, and ``changed`` the int64 list of cells
 changed since the last search: their count, then their padded flat indices,
 written by ``FieldDStar.update_costs``. Flat records, not a (nodes, 3)
 array: a two-index read is more IR at each of the many sites, and first
@@ -494,6 +495,21 @@ def settle(
     loop stops early, leaving the target unsettled and the state mid-repair (the
     caller then starts afresh, see :func:`extract_path`).
 
+    Box of the records written: in a fresh search (``fresh``) every node
+    expanded goes into ``work[2:6]`` (first and last row, first and last
+    column; ``FieldDStar`` puts the sources it queues in it). A record leaves
+    its blank state (g = rhs = inf, unqueued) only when its node is expanded
+    or a source, or when its rhs falls below inf, which takes a neighbour of
+    finite g, an expanded node; so every record written lies in the box
+    widened by one node, and the next fresh search blanks that instead of
+    every record (a short plan on a large map cost time in proportion to the
+    map). Only fresh searches keep it, where every expansion lowers a value
+    (no cost changed since they started), next to their prefetch: kept in
+    registers for every expansion, repairs took up to 4 % longer (the
+    ``maze512-32-9`` mid-path replan) and fresh 1024² plans up to 4 % (rooms);
+    as it is, no change measured (review 27). ``FieldDStar`` gives a repair
+    the whole grid as its box.
+
     Called (never inlined) by its one caller, :func:`extract_path` of the path
     kernels, so its body is compiled once.
     """
@@ -566,6 +582,16 @@ def settle(
             # u (the top) is consistent now: dequeuing it pops the top. (ref != rhs(u)
             # is False, but not a literal: that would compile heap_update again.)
             change(nodes, keys, pos, size, u, ref, ref, ref != vals[RECORD * u + RHS], fresh)
+            if fresh:
+                # The box of the records written (see above).
+                if ui < work[2]:
+                    work[2] = ui
+                if ui > work[3]:
+                    work[3] = ui
+                if uj < work[4]:
+                    work[4] = uj
+                if uj > work[5]:
+                    work[5] = uj
             if fresh and size[0] > 0:
                 # The records of the next top's neighbours (three rows of three
                 # records, 72 bytes a row: the lines of its first and last), fetched

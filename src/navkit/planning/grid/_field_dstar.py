@@ -5,7 +5,7 @@ from __future__ import annotations
 import copy
 import math
 from collections.abc import Mapping
-from typing import Any, Literal, cast
+from typing import Any, Literal, cast, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -17,7 +17,7 @@ from navkit._shared.types import CellLike, FloatArray, IntArray
 from navkit._shared.validation import as_array, as_bool, as_cell, as_float_array
 from navkit.errors import NoPathError
 from navkit.geometry import Pose2D, as_pose
-from navkit.planning.grid._dstar_heap import RHS, G, node_records
+from navkit.planning.grid._dstar_heap import RHS, G, clear_box, node_records
 from navkit.planning.grid._dstar_lite_kernels import (
     FIELD_HSCALE,
     HALF_DIAGONAL,
@@ -88,6 +88,9 @@ _REPAIR_PROBE_MIN_WORK = 1024
 _REPAIR_FRACTION = 0.05
 _REPAIR_MIN_WORK = 4096
 _NO_LIMIT = np.iinfo(np.int64).max // 2
+# The box of written records (first and last row, first and last column, see
+# FieldDStar._blank) holding no node.
+_EMPTY_BOX = (_NO_LIMIT, -1, _NO_LIMIT, -1)
 # Initial room of the path buffer, points per node row and column; a longer walk
 # is repeated with a buffer twice as large.
 _POINTS_PER_SIDE = 4
@@ -364,8 +367,9 @@ class FieldDStar:
         # g, rhs and the heap as allocated: the first search need not clear them.
         self._clean = True
         self._km = 0.0
-        # (work done, work limit) of the current search, see settle().
-        self._work = np.zeros(2, dtype=np.int64)
+        # (work done, work limit) of the current search, see settle(), then the box of
+        # the records written since they were last blanked (see _blank).
+        self._work = np.array([0, 0, *_EMPTY_BOX], dtype=np.int64)
         # Cells changed since the last search (count, then padded flat indices), see
         # update_costs(), and whether any of them became cheaper.
         self._changed = np.zeros(64, dtype=np.int64)
@@ -470,6 +474,13 @@ class FieldDStar:
         slots.setdefault("_escape", None)
         slots.setdefault("_start_xy", None)
         slots.setdefault("_goal_xy", None)
+        work = np.asarray(slots["_work"], dtype=np.int64)
+        if work.shape[0] == 2:
+            # Pickles made before the box of written records (see _blank): the whole
+            # grid, unless the planner never searched.
+            every = (0, int(slots["_nrows"]) - 1, 0, int(slots["_ncols"]) - 1)
+            box = _EMPTY_BOX if slots.get("_clean", False) else every
+            slots["_work"] = np.array([*work, *box], dtype=np.int64)
         restore_slots(self, (instance, slots))
         self._vals, self._heap = vals, heap
         self._g, self._rhs = vals[:, G], vals[:, RHS]
@@ -526,7 +537,20 @@ class FieldDStar:
         )
 
     # ------------------------------------------------------------ conversions
-    def world_to_node(self, points_xy: ArrayLike, *, continuous: bool = False) -> NDArray[Any]:
+    @overload
+    def world_to_node(
+        self, points_xy: ArrayLike, *, continuous: Literal[False] = False
+    ) -> IntArray: ...
+
+    @overload
+    def world_to_node(self, points_xy: ArrayLike, *, continuous: Literal[True]) -> FloatArray: ...
+
+    @overload
+    def world_to_node(self, points_xy: ArrayLike, *, continuous: bool) -> IntArray | FloatArray: ...
+
+    def world_to_node(
+        self, points_xy: ArrayLike, *, continuous: bool = False
+    ) -> IntArray | FloatArray:
         """Nodes nearest to world points ``(x, y)``, or their node coordinates.
 
         Parameters
@@ -1456,12 +1480,7 @@ class FieldDStar:
         """
         self._start = self._goal = None
         self._cached = None
-        if not self._clean:
-            # Cleared in place, not allocated again: memory already paged in makes a
-            # search on a used planner (a replan's fallback) faster than on a new one.
-            self._vals.fill(np.inf)
-            self._heap[2].fill(-1)  # pos: no node queued
-            self._heap[3][0] = 0  # size
+        self._blank()
         self._clean = False
         self._changed[0] = 0  # a fresh search reads the costs as they are
         self._lowered = False
@@ -1485,6 +1504,9 @@ class FieldDStar:
         # heap: in ascending order, which is a valid heap.
         queued = sorted((v + _heuristic(s, node, self._hscale), v, node) for node, v in sources)
         nodes, keys, pos, size = self._heap
+        rows = [node[0] for _, _, node in queued]
+        cols = [node[1] for _, _, node in queued]
+        self._work[2:6] = (min(rows), max(rows), min(cols), max(cols))  # the box, emptied above
         for slot, (k0, k1, node) in enumerate(queued):
             node_id = node[0] * self._ncols + node[1]
             self._rhs[node_id] = k1
@@ -1496,6 +1518,30 @@ class FieldDStar:
         # The ends last: from here on the planner holds this search.
         self._start = s
         self._goal = gl
+
+    def _blank(self) -> int:
+        """Blank the records written since the last time (and empty the queue); how many.
+
+        A fresh search keeps the box of the nodes it expanded in ``_work[2:6]``
+        (first and last row, first and last column; a repair sets the whole
+        grid, see :meth:`_walk`), and :meth:`_reset` puts the sources it queues
+        in it: every record written since lies in that box widened by one
+        node (see ``settle``), so only
+        that is blanked, and a short plan after a long one, or on a large map,
+        costs time in proportion to its own search, not to the map (a short
+        plan on a 4096² map took 25-50 ms, nearly all of it blanking every
+        record). Blanked in place, not allocated again: memory already paged
+        in makes a search on a used planner (a replan's fallback) faster than
+        on a new one.
+        """
+        top, bottom, left, right = (int(v) for v in self._work[2:6])
+        rows = (max(top - 1, 0), min(bottom + 1, self._nrows - 1))
+        cols = (max(left - 1, 0), min(right + 1, self._ncols - 1))
+        blanked = clear_box(self._vals, self._ncols, rows, cols)
+        self._heap[3][0] = 0  # size: no node queued (their slots were in the box)
+        # Emptied last: an exception on the way (see _reset) leaves the box to blank again.
+        self._work[2:6] = _EMPTY_BOX
+        return blanked
 
     def _state(self) -> tuple[np.ndarray, ...]:
         return state(self._pad, self._vals, self._heap, self._work, self._changed)
@@ -1568,7 +1614,7 @@ class FieldDStar:
             raise RuntimeError("Field D* path extraction failed to reach the goal")
         points = self._node_path(pts, k)
         if self._start_cell:
-            points, more = self._best_start_corner(points)
+            points, more = self._best_start_corner(points, fresh)
             expanded += more
         cost, length = polyline_cost(self._pad, self._width, points, points.shape[0])
         self._cached = (self._start, points.copy(), float(cost), float(length))
@@ -1582,7 +1628,7 @@ class FieldDStar:
         head: FloatArray = pts[:k].copy()
         return head
 
-    def _best_start_corner(self, points: FloatArray) -> tuple[FloatArray, int]:
+    def _best_start_corner(self, points: FloatArray, fresh: bool) -> tuple[FloatArray, int]:
         """Among start-cell corners tied at the least cost-to-goal, the cheapest linked path.
 
         The walk started at the first corner of least value (the four were
@@ -1590,6 +1636,7 @@ class FieldDStar:
         rounding, which a mirrored grid may break the other way) are walked too,
         and the one whose path, linked to the end points, costs least is kept
         (ties: the first corner). Returns the node path and the expansions.
+        ``fresh``: whether the search was fresh (see :meth:`_walk`).
         """
         assert self._start is not None
         first = (int(points[0, 0]), int(points[0, 1]))
@@ -1605,7 +1652,7 @@ class FieldDStar:
         expanded = 0
         self._work[1] = _NO_LIMIT  # the tied corners are settled: a short walk each
         for corner in tied:
-            pts, k, more, status = self._walk(corner[0] * self._ncols + corner[1])
+            pts, k, more, status = self._walk(corner[0] * self._ncols + corner[1], fresh)
             expanded += more
             if status != OK:  # pragma: no cover - every value is settled, none is far
                 continue
@@ -1699,8 +1746,12 @@ class FieldDStar:
         """Run :func:`extract_path`: (points buffer, K, expansions, status).
 
         ``walk``: the node id to walk from instead of the start (see :meth:`_params`);
-        ``fresh``: a search from scratch, not a repair (see :meth:`_params`).
+        ``fresh``: a search from scratch, not a repair (see :meth:`_params`). Only a
+        fresh search keeps the box of the records it writes (see ``settle``): a
+        repair's box is the whole grid, blanked whole by the next fresh search.
         """
+        if not fresh:
+            self._work[2:6] = (0, self._nrows - 1, 0, self._ncols - 1)
         pts = np.empty((max(_POINTS_PER_SIDE * (self._nrows + self._ncols), 1), 2))
         cand = np.empty((CANDIDATES, 4))
         cand2 = np.empty((CANDIDATES, 4))
