@@ -13,6 +13,8 @@ from fractions import Fraction
 import numpy as np
 
 Matrix = list[list[Fraction]]
+#: A pinned update (x0, P0, H, R, z) as nested lists of floats.
+Case = tuple[list[float], list[list[float]], list[list[float]], list[list[float]], list[float]]
 
 
 def inverse(matrix: Matrix) -> Matrix:
@@ -115,3 +117,24 @@ def precise_planar_updates(
             r = r * 1e6  # ordinary: no variance shrinks 4096-fold
         z = h @ (x0 + np.linalg.cholesky(p0) @ rng.normal(size=n))
         yield x0, p0, h, r, z
+
+
+def case_arrays(case: Case) -> tuple[np.ndarray, ...]:
+    """A pinned update's ``(x0, P0, H, R, z)`` as float64 arrays."""
+    return tuple(np.array(a, dtype=np.float64) for a in case)
+
+
+def exact_case(case: Case) -> tuple[np.ndarray, np.ndarray]:
+    """A pinned update's exact posterior ``(x⁺, P⁺)``, each entry rounded once."""
+    x0, p0, h, r, z = case_arrays(case)
+    x_exact, p_exact, _ = exact_update(x0, p0, h, r, z - h @ x0)
+    return (
+        np.array([float(v) for v in x_exact]),
+        np.array([[float(v) for v in row] for row in p_exact]),
+    )
+
+
+def posterior_relative(got: np.ndarray, exact: np.ndarray) -> float:
+    """Largest ``|got - exact|`` entry over ``sqrt(exact_ii exact_jj)``."""
+    unit = np.sqrt(np.diag(exact))
+    return float(np.max(np.abs(got - exact) / np.outer(unit, unit)))

@@ -50,11 +50,13 @@ from navkit.estimation import ExtendedKalmanFilter
 from navkit.estimation import _ekf_kernels as kernels
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from exact_fractions import exact_update, precise_planar_updates, random_problem
+from exact_fractions import Case, exact_update, precise_planar_updates, random_problem
+from exact_fractions import case_arrays as _arrays
+from exact_fractions import exact_case as _exact
+from exact_fractions import posterior_relative as _relative
 
 pytestmark = pytest.mark.filterwarnings("error::RuntimeWarning")
 
-Case = tuple[list[float], list[list[float]], list[list[float]], list[list[float]], list[float]]
 
 # Review 26's draw (seed 7), case 2417: the information form not trusted (estimated
 # error 2 / ε), the Joseph form passed its checks: its P stood, 3.7e20 off.
@@ -182,24 +184,6 @@ NEAR_UNHOLDABLE: Case = (
     [[1.0153979626083854e-39, 0.0], [0.0, 4.246724146717981e-24]],
     [-2827.7679108291127, 2475.6523085163267],
 )
-
-
-def _arrays(case: Case) -> tuple[np.ndarray, ...]:
-    return tuple(np.array(a, dtype=np.float64) for a in case)
-
-
-def _exact(case: Case) -> tuple[np.ndarray, np.ndarray]:
-    x0, p0, h, r, z = _arrays(case)
-    x_exact, p_exact, _ = exact_update(x0, p0, h, r, z - h @ x0)
-    return (
-        np.array([float(v) for v in x_exact]),
-        np.array([[float(v) for v in row] for row in p_exact]),
-    )
-
-
-def _relative(got: np.ndarray, exact: np.ndarray) -> float:
-    unit = np.sqrt(np.diag(exact))
-    return float(np.max(np.abs(got - exact) / np.outer(unit, unit)))
 
 
 def _update(case: Case) -> ExtendedKalmanFilter:

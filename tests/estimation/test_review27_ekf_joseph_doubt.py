@@ -47,11 +47,13 @@ from navkit.estimation import ExtendedKalmanFilter
 from navkit.estimation import _ekf_kernels as kernels
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from exact_fractions import exact_update, random_problem
+from exact_fractions import Case, random_problem
+from exact_fractions import case_arrays as _arrays
+from exact_fractions import exact_case as _exact
+from exact_fractions import posterior_relative as _relative
 
 pytestmark = pytest.mark.filterwarnings("error::RuntimeWarning")
 
-Case = tuple[list[float], list[list[float]], list[list[float]], list[list[float]], list[float]]
 
 # Item 1: cases of the 18,000-update extreme draw (seeds 3036, 17851, 10693): no
 # variance shrank 4096-fold (at most 1103, 14.4 and 3290), the kernel's Joseph P was
@@ -280,24 +282,6 @@ SINGULAR_2221: Case = (
     [[2.208042640298362e-21, 0.0], [0.0, 6.569631264073439e-31]],
     [114.87638341450086, 57.4381917071846],
 )
-
-
-def _arrays(case: Case) -> tuple[np.ndarray, ...]:
-    return tuple(np.array(a, dtype=np.float64) for a in case)
-
-
-def _exact(case: Case) -> tuple[np.ndarray, np.ndarray]:
-    x0, p0, h, r, z = _arrays(case)
-    x_exact, p_exact, _ = exact_update(x0, p0, h, r, z - h @ x0)
-    return (
-        np.array([float(v) for v in x_exact]),
-        np.array([[float(v) for v in row] for row in p_exact]),
-    )
-
-
-def _relative(got: np.ndarray, exact: np.ndarray) -> float:
-    unit = np.sqrt(np.diag(exact))
-    return float(np.max(np.abs(got - exact) / np.outer(unit, unit)))
 
 
 def _counting(monkeypatch: pytest.MonkeyPatch) -> list[str]:
