@@ -45,15 +45,3 @@ def test_a_termination_as_the_probe_is_made_leaves_no_file(
         _outputs.check_output(str(tmp_path / "result.json"), ".json", "--json")
     assert list(tmp_path.iterdir()) == []
     assert signal.getsignal(signum) is signal.SIG_DFL
-
-
-def test_a_probe_refused_by_the_folder_is_still_named(
-    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
-) -> None:
-    def refused(*args: Any, **kwargs: Any) -> tuple[int, str]:
-        raise PermissionError(13, "Permission denied")
-
-    monkeypatch.setattr(_outputs.tempfile, "mkstemp", refused)
-    with pytest.raises(OSError, match=r"--json: cannot write in folder .* \(Permission denied\)"):
-        _outputs.check_output(str(tmp_path / "result.json"), ".json", "--json")
-    assert list(tmp_path.iterdir()) == []

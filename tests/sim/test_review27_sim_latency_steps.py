@@ -20,25 +20,14 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from shapely.geometry import box
+from test_review26_simtime_step_times import _Log
 
 from navkit.geometry import Twist2D
 from navkit.kinematics import DiffDrive
-from navkit.sim import Compass, Imu, Lidar, Reading, Robot, Simulation, WheelEncoders, World
+from navkit.sim import Compass, Imu, Lidar, Robot, Simulation, WheelEncoders, World
 
 DIFF = DiffDrive(track=0.3, wheel_radius=0.05)
 ROOM = World(box(-1.0, -1.0, 1.0, 1.0).exterior)
-
-
-class _Log:
-    """An Estimator noting each delivery as (kind, stamp, delivery time)."""
-
-    pose = None
-
-    def __init__(self) -> None:
-        self.seen: list[tuple[str, float, float]] = []
-
-    def observe(self, t: float, reading: Reading) -> None:
-        self.seen.append((type(reading).__name__, reading.stamp, t))
 
 
 def _lags(rate: float, duration: float, **sensors: object) -> dict[str, Counter[int]]:
