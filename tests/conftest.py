@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import copy
+import os
 import pickle
 import signal
 from collections.abc import Callable, Iterator
@@ -17,7 +18,36 @@ from hypothesis import settings
 # 2-core machine a first example that imports SciPy or loads a compiled kernel
 # can take longer than hypothesis's default 200 ms (a flaky DeadlineExceeded).
 settings.register_profile("navkit", deadline=None)
-settings.load_profile("navkit")
+# Opt-in hunt for rare draws before CI's random seeds find them:
+# NAVKIT_HYPOTHESIS_PROFILE=thorough runs every @given test with at least
+# THOROUGH_EXAMPLES examples (see pytest_collection_modifyitems: most tests set
+# their own max_examples, which a profile alone would not raise).
+THOROUGH_EXAMPLES = 1000
+settings.register_profile("thorough", deadline=None, max_examples=THOROUGH_EXAMPLES)
+_PROFILE = os.environ.get("NAVKIT_HYPOTHESIS_PROFILE", "navkit")
+if _PROFILE not in ("navkit", "thorough"):
+    raise ValueError(f"NAVKIT_HYPOTHESIS_PROFILE must be 'navkit' or 'thorough', got {_PROFILE!r}")
+settings.load_profile(_PROFILE)
+
+
+def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+    """Under the thorough profile, raise each @given test to ``THOROUGH_EXAMPLES`` examples.
+
+    hypothesis reads a test's settings from an attribute it does not document, at
+    call time (``hypothesis_twins.slow_twin`` relies on the same one); a test's own
+    larger count, and all its other settings, are kept.
+    """
+    if _PROFILE != "thorough":
+        return
+    for item in items:
+        test = getattr(item, "obj", None)
+        test = getattr(test, "__func__", test)  # a test method: its function
+        own = getattr(test, "_hypothesis_internal_use_settings", None)
+        if own is not None and own.max_examples < THOROUGH_EXAMPLES:
+            test._hypothesis_internal_use_settings = settings(  # type: ignore[union-attr]
+                own, max_examples=THOROUGH_EXAMPLES
+            )
+
 
 # Ctrl-C as Python sets it up, also when the suite was started with SIGINT ignored
 # (a background job of a non-interactive shell, nohup): the interrupt tests send

@@ -64,12 +64,15 @@ def _khatib_scale(ranges: list[float] | np.ndarray, d0: float) -> float:
 @SETTINGS
 @given(ranges_st, st.floats(-3.0, 3.0), st.floats(0.01, 0.3), st.floats(-3.0, 3.0),
        st.floats(0.1, 2.0))
+# 25 beams 0.28125 rad apart span 6.75 rad, which LaserScan refuses (a draw of hypothesis's).
+@example([0.0] + [math.inf] * 24, -1.0, 0.28125, 0.0, 1.0)
 def test_scan_forces_turn_with_the_scan(
     ranges: list[float], angle_min: float, inc: float, alpha: float, d0: float
 ) -> None:
     """Turning every beam by ``alpha`` (the robot turned by ``-alpha``) turns the force."""
     last = angle_min + (len(ranges) - 1) * inc
     assume(max(abs(angle_min + alpha), abs(last + alpha), abs(last)) < 6.0)
+    assume(last - angle_min <= 2.0 * math.pi)  # LaserScan refuses more than a full turn
     a = _scan(ranges, angle_min, inc)
     b = _scan(ranges, angle_min + alpha, inc)
     # cos/sin of the shifted angles differ from the rotated ones by a few ulps.
@@ -85,13 +88,14 @@ def test_scan_forces_turn_with_the_scan(
 @SETTINGS
 @given(ranges_st, st.floats(-3.0, 3.0), st.floats(0.01, 0.3), st.floats(0.1, 2.0),
        st.booleans())
+@example([0.0] + [math.inf] * 24, -1.0, 0.28125, 1.0, False)
 def test_mirrored_scan_mirrors_the_force(
     ranges: list[float], angle_min: float, inc: float, d0: float, reverse: bool
 ) -> None:
     """Beams at negated angles (reversed order, or a clockwise sweep) give ``(Fx, -Fy)``."""
     n = len(ranges)
     last = angle_min + (n - 1) * inc
-    assume(abs(last) < 6.0)
+    assume(abs(last) < 6.0 and last - angle_min <= 2.0 * math.pi)  # LaserScan's full turn
     a = _scan(ranges, angle_min, inc)
     # Same beams at angles -θ_k: read backwards from -angle_max, or swept clockwise.
     m = _scan(ranges[::-1], -last, inc) if reverse else _scan(ranges, -angle_min, -inc)

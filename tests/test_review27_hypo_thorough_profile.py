@@ -1,0 +1,82 @@
+"""NAVKIT_HYPOTHESIS_PROFILE=thorough: every @given test runs at least 1000 examples."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from types import SimpleNamespace
+from typing import Any
+
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+_DRAWN: list[int] = []
+
+
+@settings(max_examples=5, deadline=None, database=None,
+          suppress_health_check=[HealthCheck.too_slow])  # fmt: skip
+@given(st.integers(0, 10**6))
+def _modest(x: int) -> None:
+    _DRAWN.append(x)
+
+
+@settings(max_examples=1500, deadline=None, database=None)
+@given(st.integers(0, 10))
+def _already_thorough(x: int) -> None:
+    pass
+
+
+@pytest.fixture
+def conftest(pytestconfig: pytest.Config) -> Any:
+    """The suite's top conftest module (``import conftest`` may find a package's)."""
+    top = Path(__file__).with_name("conftest.py")
+    found = [
+        plugin for plugin in pytestconfig.pluginmanager.get_plugins()
+        if getattr(plugin, "__file__", None) == str(top)
+    ]  # fmt: skip
+    assert len(found) == 1
+    return found[0]
+
+
+class _Method:
+    @settings(max_examples=7, deadline=None, database=None)
+    @given(st.integers(0, 10**6))
+    def method(self, x: int) -> None:
+        _DRAWN.append(x)
+
+
+def _collect(conftest: Any, monkeypatch: pytest.MonkeyPatch, profile: str, *tests: object) -> None:
+    monkeypatch.setattr(conftest, "_PROFILE", profile)
+    for test in tests:
+        # Restored after the test: the hook rewrites the settings in place.
+        function = getattr(test, "__func__", test)
+        monkeypatch.setattr(function, "_hypothesis_internal_use_settings",
+                            function._hypothesis_internal_use_settings)  # fmt: skip
+    items = [SimpleNamespace(obj=test) for test in tests]
+    conftest.pytest_collection_modifyitems(items)  # type: ignore[arg-type]
+
+
+def test_the_thorough_profile_raises_every_count_and_keeps_the_other_settings(
+    conftest: Any, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    _collect(conftest, monkeypatch, "thorough", _modest, _already_thorough, _Method().method)
+    kept = _modest._hypothesis_internal_use_settings  # type: ignore[attr-defined]
+    assert kept.max_examples == conftest.THOROUGH_EXAMPLES == 1000
+    assert kept.deadline is None and kept.database is None
+    assert HealthCheck.too_slow in kept.suppress_health_check
+    _DRAWN.clear()
+    _modest()
+    assert len(_DRAWN) == 1000
+    assert _already_thorough._hypothesis_internal_use_settings.max_examples == 1500  # type: ignore[attr-defined]
+    assert _Method.method._hypothesis_internal_use_settings.max_examples == 1000  # type: ignore[attr-defined]
+
+
+def test_the_default_profile_keeps_each_tests_count(
+    conftest: Any, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    _collect(conftest, monkeypatch, "navkit", _modest, _Method().method)
+    assert _modest._hypothesis_internal_use_settings.max_examples == 5  # type: ignore[attr-defined]
+    assert _Method.method._hypothesis_internal_use_settings.max_examples == 7  # type: ignore[attr-defined]
+    _DRAWN.clear()
+    _modest()
+    assert len(_DRAWN) == 5
