@@ -47,6 +47,8 @@ from navkit.estimation import ExtendedKalmanFilter
 from navkit.estimation import _ekf_kernels as kernels
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from test_review26_ekfp_exact_covariance import _update
+
 from exact_fractions import Case, random_problem
 from exact_fractions import case_arrays as _arrays
 from exact_fractions import exact_case as _exact
@@ -296,13 +298,6 @@ def _counting(monkeypatch: pytest.MonkeyPatch) -> list[str]:
 
         monkeypatch.setattr(ekf_module, name, counted)
     return calls
-
-
-def _update(case: Case) -> ExtendedKalmanFilter:
-    x0, p0, h, r, z = _arrays(case)
-    ekf = ExtendedKalmanFilter(x0, p0)
-    assert ekf.update(z, lambda s: h @ s, h, r).accepted
-    return ekf
 
 
 @pytest.mark.parametrize(
