@@ -41,8 +41,23 @@ def variance(value: Any, name: str) -> float:
     """Return ``value`` as a float in [MIN_VARIANCE, MAX_COVARIANCE] or raise naming ``name``."""
     out = finite_float(value, name)
     if not MIN_VARIANCE <= out <= MAX_COVARIANCE:
-        raise ValueError(f"{name} must be in [{MIN_VARIANCE:g}, {MAX_COVARIANCE:g}], got {out}")
+        raise ValueError(
+            f"{name} must be in [{MIN_VARIANCE:g}, {MAX_COVARIANCE:g}], got {out}"
+            + not_given_hint(np.array([out]))
+        )
     return out
+
+
+def not_given_hint(values: FloatArray) -> str:
+    """A hint for an out-of-range variance message where ``values`` hold -1 ("" if none).
+
+    ROS messages mark a covariance "not given" by -1 in its first entry (REP 145,
+    ``sensor_msgs/Imu``), and the bag readers keep those rows as recorded: passed
+    on as variances, they are out of range for that reason.
+    """
+    if np.any(values == -1.0):
+        return " (-1 marks a covariance not given in ROS messages, REP 145: drop those rows)"
+    return ""
 
 
 def check_magnitude(arr: FloatArray, name: str) -> None:

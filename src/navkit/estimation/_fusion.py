@@ -33,6 +33,7 @@ from navkit.estimation._covariance import (
     MIN_VARIANCE,
     check_magnitude,
     covariance,
+    not_given_hint,
     variance,
 )
 from navkit.estimation._fusion_kernels import (
@@ -300,6 +301,7 @@ class MeasurementLog:
         if not np.all((seen >= MIN_VARIANCE) & (seen <= MAX_COVARIANCE)):
             raise ValueError(
                 f"variances must be in [{MIN_VARIANCE:g}, {MAX_COVARIANCE:g}] where observed"
+                + not_given_hint(seen)
             )
         # Unobserved entries are never read by the kernel; zero them so the arrays are clean.
         values = np.where(obs, values, 0.0)
@@ -468,7 +470,9 @@ def _stream_variance(value: ArrayLike, name: str, n: int) -> FloatArray:
     elif var.shape != (n,):
         raise ValueError(f"{name} must be a scalar or have shape ({n},), got {var.shape}")
     if not np.all((var >= MIN_VARIANCE) & (var <= MAX_COVARIANCE)):
-        raise ValueError(f"{name} must be in [{MIN_VARIANCE:g}, {MAX_COVARIANCE:g}]")
+        raise ValueError(
+            f"{name} must be in [{MIN_VARIANCE:g}, {MAX_COVARIANCE:g}]" + not_given_hint(var)
+        )
     return var
 
 
