@@ -317,13 +317,13 @@ class BlendedAttraction(AttractiveField):
     Notes
     -----
     The blend is not automatically free of spurious minima. At ``d = rad_thr``
-    the cone term is 0 while the paraboloid is ``K_att·c·rad_thr²`` (circular
-    case), so the ``σ'(U_cone - U_par)`` term pulls the robot outward with up to
-    ``K_att·c·rad_thr²/(2ω)``; when that exceeds the inward
-    ``K_att·c·rad_thr + m·U_trans/2`` the field has a ring of local minima just
+    the cone term is 0 while the paraboloid is ``K_att·c·rad_thr²/a²`` (circular
+    case, ``a = b``), so the ``σ'(U_cone - U_par)`` term pulls the robot outward
+    with ``K_att·c·rad_thr²/(2ω·a²)``; when that exceeds the inward
+    ``K_att·c·rad_thr/a² + m·U_trans/2`` the field has a ring of local minima just
     outside ``rad_thr`` (narrow widths, large ``rad_thr``). Inside, σ(0) > 0 and the
     cone's negative offset displace the minimum from the goal, to first order by
-    ``σ(0)·m·U_trans·(2·rad_thr/ω - 1)/(2·K_att·c)``. The defaults
+    ``σ(0)·m·U_trans·(2·rad_thr/ω - 1)·a²/(2·K_att·c)``. The defaults
     (``K_att = c = a = b = m = U_trans = 1``, ``rad_thr = 0.5``, ``ω = 0.15``)
     pull toward the goal everywhere beyond 4 mm, where the minimum lies (3.75 mm);
     with ``rad_thr = 0.5`` a width of 0.1 has the ring at 0.55 m, and widths of 0.3
