@@ -538,13 +538,16 @@ def _refuse_damaged(lines: Iterator[str], compression: list[str], path: Path, nu
     of 40 random single-bit flips each, 34 in a gzip log, 33 in a bzip2 one and 12
     in an xz one were reported as malformed lines). Read on this error path only,
     plain files never: at most what reading the whole file costs. (Not for a line
-    beyond LINE_MAX: binary data, as a decompression bomb, is refused at once.)
+    beyond LINE_MAX: binary data, as a decompression bomb, is refused at once, and
+    the check stops at one, where the parser would: read through, 1 GB of zeros
+    after a malformed line took 0.8 s; review 28.)
     """
     if not compression or not compression[0]:
         return
     try:
-        for _ in lines:
-            pass
+        for line in lines:
+            if len(line) > LINE_MAX:
+                return
     except _CorruptFile as exc:
         raise ValueError(
             f"{path}: corrupt or truncated {exc.compression} file (line {number} came out "
