@@ -49,14 +49,21 @@ def variance(value: Any, name: str) -> float:
 
 
 def not_given_hint(values: FloatArray) -> str:
-    """A hint for an out-of-range variance message where ``values`` hold -1 ("" if none).
+    """A hint for an out-of-range variance message where ``values`` hold -1 or 0 ("" if neither).
 
     ROS messages mark a covariance "not given" by -1 in its first entry (REP 145,
-    ``sensor_msgs/Imu``), and the bag readers keep those rows as recorded: passed
-    on as variances, they are out of range for that reason.
+    ``sensor_msgs/Imu``) and "unknown" by all zeros (``sensor_msgs/Imu``), and the
+    bag readers keep those rows as recorded: passed on as variances, they are out
+    of range for that reason. A planar user reads the yaw variance from entry
+    ``[2, 2]`` or ``[8]``, which is 0 in both kinds of row.
     """
     if np.any(values == -1.0):
         return " (-1 marks a covariance not given in ROS messages, REP 145: drop those rows)"
+    if np.any(values == 0.0):
+        return (
+            " (0 may be a ROS message's covariance of all zeros, which marks it unknown"
+            " (sensor_msgs/Imu): assume a variance or drop those rows)"
+        )
     return ""
 
 
