@@ -136,7 +136,9 @@ _PACKAGES = (
 )  # fmt: skip
 
 # Protocols and abstract bases: their concrete classes stand for them.
-_ABSTRACT = {"AttractiveField", "CellPlanner", "Estimator", "PotentialField", "Scenario"}
+_ABSTRACT = {
+    "AttractiveField", "CellPlanner", "Estimator", "PotentialField", "Scenario", "Tracker",
+}  # fmt: skip
 
 
 def _room_scan(n: int = 90) -> LaserScan:

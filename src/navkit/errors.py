@@ -86,7 +86,7 @@ class NoPathError(NavkitError):
         if not 0 <= int(count) <= _MAX_EXPANDED:
             raise ValueError(f"expanded must be in [0, 2**63 - 1], got {_short(count)}")
         super().__init__(text)
-        self.expanded = int(count)
+        self.expanded: int = int(count)
 
 
 class FilterError(NavkitError):

@@ -6,7 +6,7 @@ from fuzz_engine import Anything, Call, Obj, call, method, spec
 
 from navkit.control import FollowTheCarrot
 from navkit.geometry import Pose2D
-from navkit.sim import Observation, TrackerController
+from navkit.sim import Observation, Tracker, TrackerController
 
 P = "navkit.sim."
 
@@ -33,3 +33,4 @@ spec(
     kinds={"obs": Obj(Observation)},
     mutates=("self",),
 )
+spec(P + "Tracker", lambda c: call(Tracker), expect_error=TypeError)

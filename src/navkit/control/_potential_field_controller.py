@@ -421,7 +421,9 @@ class PotentialFieldController:
             # second check of either, which cost more than the field's formula.
             f_att = attraction._with_checked_goal(goal)._force(here)[0]
         else:  # a subclass's own with_goal or force may do more: call them
-            f_att = attraction.with_goal(goal).force(here)[0]
+            # Checked: a NaN would pass the clip below and come out as a silent stop.
+            raw = attraction.with_goal(goal).force(here)
+            f_att = as_float_array(raw, f"{kind.__name__}.force", shape=(1, 2))[0]
         norm = float(np.hypot(f_att[0], f_att[1]))
         if norm > self._max_speed:
             f_att = f_att * (self._max_speed / norm)

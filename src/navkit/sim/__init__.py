@@ -39,7 +39,7 @@ Examples
 (True, 0)
 """
 
-from navkit.sim._adapters import TrackerController
+from navkit.sim._adapters import Tracker, TrackerController
 from navkit.sim._estimators import Estimator
 from navkit.sim._lidar import Lidar
 from navkit.sim._noise import RangeNoise
@@ -95,6 +95,7 @@ __all__ = [
     "Simulation",
     "Table",
     "Trace",
+    "Tracker",
     "TrackerController",
     "Trial",
     "TrialResult",

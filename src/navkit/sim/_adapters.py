@@ -2,34 +2,91 @@
 
 from __future__ import annotations
 
-from typing import Protocol
+from typing import Generic, Protocol, TypeVar
 
 from navkit._shared.dunders import slot_state
 from navkit._shared.validation import as_bool, positive_float
 from navkit.geometry import Pose2D, Twist2D
 from navkit.sim._simulation import Observation
 
-__all__ = ["TrackerController"]
+__all__ = ["Tracker", "TrackerController"]
 
 #: Highest control rate accepted, Hz.
 _MAX_RATE = 1e6
 
 
-class _Tracker(Protocol):
-    """What :class:`TrackerController` drives: navkit's path trackers.
+class Tracker(Protocol):
+    """What :class:`TrackerController` drives: a path tracker.
 
-    :class:`~navkit.control.FollowTheCarrot`, :class:`~navkit.control.OnOffTracker`
-    and :class:`~navkit.control.RegulatedPurePursuit` are path trackers: a
-    ``step(pose, dt)`` returning a ``Twist2D`` and a ``done`` flag.
+    navkit's :class:`~navkit.control.FollowTheCarrot`,
+    :class:`~navkit.control.OnOffTracker` and
+    :class:`~navkit.control.RegulatedPurePursuit` are trackers; so is any
+    object with a ``step(pose, dt)`` method returning a ``Twist2D`` and a
+    ``done`` flag (a property or a plain attribute). Type a tracker of your own
+    against it; ``TrackerController`` is generic in the tracker type, so
+    ``TrackerController(tracker, ...).tracker`` keeps that type (its
+    ``set_path``, say).
+
+    Examples
+    --------
+    >>> from navkit.sim import Observation
+    >>> class Forward:  # a Tracker that drives straight on for 1 s of commands
+    ...     def __init__(self) -> None:
+    ...         self.done, self.elapsed = False, 0.0
+    ...     def step(self, pose: Pose2D, dt: float) -> Twist2D:
+    ...         self.elapsed += dt
+    ...         self.done = self.elapsed >= 1.0
+    ...         return Twist2D(0.5, 0.0, 0.0)
+    >>> tracker: Tracker = Forward()
+    >>> follow = TrackerController(Forward(), control_rate=10.0, use_estimate=False)
+    >>> obs = Observation(0.0, None, None, None, None, (), None, Pose2D(0.0, 0.0, 0.0), dt=0.5)
+    >>> follow(obs), follow.tracker.elapsed  # tracker keeps its type: Forward
+    (Twist2D(vx=0.5, vy=0.0, omega=0.0), 0.5)
+    >>> _ = follow(obs); follow.done
+    True
     """
 
     @property
-    def done(self) -> bool: ...
+    def done(self) -> bool:
+        """Whether the tracker has finished (the simulation then ends, "controller done").
 
-    def step(self, pose: Pose2D, dt: float) -> Twist2D: ...
+        Read after every control step; a plain attribute serves too.
+        """
+        ...
+
+    def step(self, pose: Pose2D, dt: float) -> Twist2D:
+        """One control step: the command to hold for the next ``dt`` seconds.
+
+        Parameters
+        ----------
+        pose : Pose2D
+            The robot's pose in the world frame (m, m, rad in (-π, π]): the
+            estimator's or the true pose (see :class:`TrackerController`).
+        dt : float
+            How long the command is held, s (> 0).
+
+        Returns
+        -------
+        Twist2D
+            The command in the robot frame (m/s, m/s, rad/s); anything else
+            raises ``TypeError`` in :class:`TrackerController`.
+
+        Examples
+        --------
+        >>> from navkit.control import OnOffTracker
+        >>> on_off = OnOffTracker(max_speed=0.5)
+        >>> on_off.set_path([[0.0, 0.0], [1.0, 0.0]])
+        >>> tracker: Tracker = on_off
+        >>> tracker.step(Pose2D(0.0, 0.0, 0.0), 0.05)  # facing the waypoint: full speed
+        Twist2D(vx=0.5, vy=0.0, omega=0.0)
+        """
+        ...
 
 
-class TrackerController:
+_T = TypeVar("_T", bound=Tracker)
+
+
+class TrackerController(Generic[_T]):
     """A path tracker as a :class:`~navkit.sim.Simulation` controller.
 
     Each control step calls ``tracker.step(pose, dt)`` with the estimator's
@@ -45,9 +102,10 @@ class TrackerController:
 
     Parameters
     ----------
-    tracker : path tracker
+    tracker : Tracker
         A navkit path tracker (FollowTheCarrot, OnOffTracker,
-        RegulatedPurePursuit) or anything with ``step(pose, dt)`` and ``done``.
+        RegulatedPurePursuit) or anything with ``step(pose, dt)`` and ``done``
+        (see :class:`Tracker`).
     control_rate : float
         The simulation's ``control_rate``, Hz, in (0, 1e6]: its inverse is the
         tracker's ``dt`` for an observation without ``dt``.
@@ -56,8 +114,9 @@ class TrackerController:
 
     Attributes
     ----------
-    tracker : path tracker
-        The tracker stepped.
+    tracker : Tracker
+        The tracker stepped, typed as given (``TrackerController[FollowTheCarrot]``
+        has a ``FollowTheCarrot``).
 
     Examples
     --------
@@ -79,9 +138,7 @@ class TrackerController:
     __slots__ = ("_dt", "_use_estimate", "tracker")
     __getstate__ = slot_state  # pickle protocols 0 and 1 too
 
-    def __init__(
-        self, tracker: _Tracker, *, control_rate: float, use_estimate: bool = True
-    ) -> None:
+    def __init__(self, tracker: _T, *, control_rate: float, use_estimate: bool = True) -> None:
         step = getattr(tracker, "step", None)
         # ``done`` may be a property or class attribute (looked up on the type, so a
         # property is not evaluated) or a plain instance attribute.
@@ -94,7 +151,7 @@ class TrackerController:
         rate = positive_float(control_rate, "control_rate")
         if rate > _MAX_RATE:
             raise ValueError(f"control_rate must be in (0, {_MAX_RATE:g}] Hz, got {rate:g}")
-        self.tracker = tracker
+        self.tracker: _T = tracker
         self._dt = 1.0 / rate
         self._use_estimate = as_bool(use_estimate, "use_estimate")
 
@@ -107,13 +164,24 @@ class TrackerController:
         bool
             ``tracker.done``.
 
+        Raises
+        ------
+        TypeError
+            ``tracker.done`` has no truth value (an array of several flags, say).
+
         Examples
         --------
         >>> from navkit.control import OnOffTracker
         >>> TrackerController(OnOffTracker(), control_rate=10.0).done
         False
         """
-        return bool(self.tracker.done)
+        done = self.tracker.done
+        try:
+            return bool(done)
+        except Exception as exc:  # numpy's "truth value ... is ambiguous", say
+            raise TypeError(
+                f"tracker.done must be true or false, got {type(done).__name__} ({exc})"
+            ) from exc
 
     def __call__(self, obs: Observation) -> Twist2D:
         """One control step: the tracker's twist at the observed pose.

@@ -335,6 +335,13 @@ def as_estimator(value: Any, robot: Robot) -> Estimator | None:
     if isinstance(value, DiffOdometry):
         return _DiffOdometryEstimator(value, robot)
     if isinstance(value, Estimator):
+        # The protocol check sees only that the names exist: a non-callable observe
+        # would fail at the first reading, as "'int' object is not callable".
+        if not callable(value.observe):
+            raise TypeError(
+                f"estimator.observe must be a method observe(t, reading), "
+                f"got {type(value.observe).__name__}"
+            )
         return value
     raise TypeError(
         "estimator must be a PlanarFusion, OmniOdometry, DiffOdometry or an object with "

@@ -277,7 +277,10 @@ class Table:
     notes: tuple[str, ...] = ()
 
     # NaN cells ("no figure") equal in a table and its copy or rerun.
-    __eq__ = record_eq
+    def __eq__(self, other: object) -> bool:
+        # A method, not ``__eq__ = record_eq``: type checkers then see object's signature.
+        return record_eq(self, other)
+
     __hash__ = record_hash
     __repr__ = bounded_repr
 

@@ -8,6 +8,7 @@ import time
 from collections.abc import Callable
 from dataclasses import dataclass
 from fractions import Fraction
+from types import MemberDescriptorType
 from typing import Any
 
 import numpy as np
@@ -886,7 +887,14 @@ class _Run:
         self.cmd[1] = twist.vy
         self.cmd[2] = twist.omega
         self.buf[i, 7:10] = self.cmd
-        done = getattr(sim._controller, "done", False)
+        controller: Any = sim._controller
+        on_type = getattr(type(controller), "done", None)
+        if on_type is not None and not isinstance(on_type, MemberDescriptorType):
+            # A property (or class attribute): an AttributeError from inside it (a typo
+            # in the property) is the user's bug, not "no done" ending nothing silently.
+            done = controller.done
+        else:
+            done = getattr(controller, "done", False)
         try:
             return bool(done)
         except Exception as exc:  # numpy's "truth value ... is ambiguous", say

@@ -131,7 +131,10 @@ class Metrics:
     distance: float
 
     # NaN figures ("does not apply") equal in a run and its rerun, copy or pickle.
-    __eq__ = record_eq
+    def __eq__(self, other: object) -> bool:
+        # A method, not ``__eq__ = record_eq``: type checkers then see object's signature.
+        return record_eq(self, other)
+
     __hash__ = record_hash
 
     def __post_init__(self) -> None:

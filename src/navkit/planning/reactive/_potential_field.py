@@ -11,8 +11,9 @@ checkers type the default start, 0, as a possible result).
 from __future__ import annotations
 
 import dataclasses
+import functools
 from abc import ABC, abstractmethod
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -21,6 +22,7 @@ from numpy.typing import ArrayLike
 
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.types import FloatArray
+from navkit._shared.validation import as_float_array
 from navkit.planning.reactive._limits import point, points
 
 __all__ = ["CompositeField", "PotentialField"]
@@ -35,6 +37,16 @@ class PotentialField(ABC):
     :class:`dataclasses.FrozenInstanceError`. Subclasses implement ``_potential``
     and ``_force`` on a validated ``(N, 2)`` float64 array; the public
     :meth:`potential` and :meth:`force` validate once.
+
+    A field of your own is such a subclass (an :class:`AttractiveField` one can
+    drive :class:`~navkit.control.PotentialFieldController`): ``_potential(pts)``
+    returns shape ``(N,)``, ``_force(pts)`` shape ``(N, 2)``, world frame. For a
+    class defined outside navkit both are checked wherever they are called (in
+    a :class:`CompositeField`, :func:`sample_field` and the controller too):
+    ``pts`` is a read-only view (the caller's points are never changed), and
+    an output of another shape, a NaN or -inf potential or a non-finite force raises
+    ``ValueError`` (``TypeError`` for a non-numeric one) naming the method; the
+    result is the caller's own copy.
 
     Ranges (checked where a field is built and on every query): points within
     ``±1e9`` m in x and y, gains in ``[1e-12, 1e12]``, lengths (semi-axes,
@@ -51,9 +63,39 @@ class PotentialField(ABC):
     >>> total = sum(fields, CompositeField([]))  # the obstacle (0.71 m) is beyond reach
     >>> total.force([0.0, 0.0]), total.potential([0.0, 0.0])
     (array([[1., 0.]]), array([1.]))
+
+    A field of your own, a uniform pull along +x of 0.5 (potential ``-0.5 x``):
+
+    >>> import numpy as np
+    >>> from dataclasses import dataclass
+    >>> from numpy.typing import NDArray
+    >>> @dataclass(frozen=True, slots=True, eq=False)
+    ... class Wind(PotentialField):
+    ...     strength: float = 0.5
+    ...     def _potential(self, pts: NDArray[np.float64]) -> NDArray[np.float64]:
+    ...         return -self.strength * pts[:, 0]
+    ...     def _force(self, pts: NDArray[np.float64]) -> NDArray[np.float64]:
+    ...         return np.tile([self.strength, 0.0], (len(pts), 1))
+    >>> (Wind() + ConicAttraction((1.0, 0.0))).force([[0.0, 0.0], [2.0, 0.0]])
+    array([[ 1.5,  0. ],
+           [-0.5,  0. ]])
     """
 
     __slots__ = ()
+
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        # Only a user's fields: navkit's own meet the contract and pay nothing for it.
+        if cls.__module__ == "navkit" or cls.__module__.startswith("navkit."):
+            return
+        for name in ("_potential", "_force"):
+            method = cls.__dict__.get(name)
+            if (
+                callable(method)
+                and not getattr(method, "__isabstractmethod__", False)
+                and not getattr(method, "_navkit_checked", False)  # the dataclass's slots copy
+            ):
+                setattr(cls, name, _checked_output(method, name))
 
     def __reduce__(self) -> tuple[Any, ...]:
         # Every field (a frozen slotted dataclass) copies and pickles as itself,
@@ -170,6 +212,41 @@ class PotentialField(ABC):
             f"{f.name}={_short(getattr(self, f.name))}" for f in dataclasses.fields(obj) if f.repr
         )
         return f"{type(self).__name__}({args})"
+
+
+def _checked_output(
+    method: Callable[[Any, FloatArray], Any], name: str
+) -> Callable[[Any, FloatArray], FloatArray]:
+    """A user field's ``_potential`` or ``_force`` (``name``), its input and output checked.
+
+    Every caller (the public methods, a CompositeField's sum, sample_field, the
+    controller) calls these directly on validated points, so the check sits here.
+    """
+    force = name == "_force"
+
+    @functools.wraps(method)
+    def checked(self: Any, pts: FloatArray) -> FloatArray:
+        # Read-only: the points may be the caller's own array, and a CompositeField
+        # hands the same array to each of its fields in turn.
+        view = pts.view()
+        view.flags.writeable = False
+        out = method(self, view)
+        shape = (pts.shape[0], 2) if force else (pts.shape[0],)
+        if type(out) is np.ndarray and out.dtype == np.float64 and out.shape == shape:
+            # The common case, without the conversions' cost (a few µs a call).
+            ok = np.isfinite(out).all() if force else (out > -np.inf).all()
+            if ok:
+                return out.copy()
+        where = f"{type(self).__name__}.{name}(points)"
+        arr = as_float_array(out, where, shape=shape, finite=force)
+        # NaN and -inf fail the comparison; +inf (an obstacle, as sample_field takes) passes.
+        if not force and not bool((arr > -np.inf).all()):
+            raise ValueError(f"{where} must not return NaN or -inf (+inf is allowed)")
+        # The caller's own array: the field may keep (and later change) the one it returned.
+        return np.array(arr, copy=True) if arr is out else arr
+
+    checked._navkit_checked = True  # type: ignore[attr-defined]
+    return checked
 
 
 def _short(value: Any) -> str:

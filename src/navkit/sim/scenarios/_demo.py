@@ -113,12 +113,12 @@ class Demo(Scenario):
             raise TypeError(f"map must be a str, got {type(map).__name__}")
         if map not in _MAPS:
             raise ValueError(f"map must be one of {', '.join(_MAPS)}; got {map!r}")
-        self.duration = positive_float(duration, "duration")
+        self.duration: float = positive_float(duration, "duration")
         if not _MIN_DURATION <= self.duration <= _MAX_DURATION:
             raise ValueError(
                 f"duration must be in [{_MIN_DURATION:g}, {_MAX_DURATION:g}] s, got {self.duration}"
             )
-        self.data_dir = None if data_dir is None else os.fspath(data_dir)
+        self.data_dir: str | None = None if data_dir is None else os.fspath(data_dir)
         self.map: MapChoice = map
         #: The map file used (None: the synthetic office), resolved now so that
         #: every worker of a sweep runs on the same map.

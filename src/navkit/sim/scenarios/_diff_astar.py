@@ -318,8 +318,8 @@ class DiffAStar(Scenario):
             raise TypeError(f"data_dir must be a path or None, got {type(data_dir).__name__}")
         self.parts: tuple[Part, ...] = names
         self.building: Literal["auto", "willow", "corridor"] = building
-        self.noise = as_bool(noise, "noise")
-        self.data_dir = None if data_dir is None else os.fspath(data_dir)
+        self.noise: bool = as_bool(noise, "noise")
+        self.data_dir: str | None = None if data_dir is None else os.fspath(data_dir)
         # The building and its data folder, resolved now (as Demo's map) so that
         # every worker of a sweep runs the same building.
         self._building, self._site_dir = resolve_building(building, self.data_dir)

@@ -153,12 +153,12 @@ class Greedy(Scenario):
         inflation: float = INFLATION,
         data_dir: str | os.PathLike[str] | None = None,
     ) -> None:
-        self.noise = as_bool(noise, "noise")
-        self.inflation = positive_float(inflation, "inflation", allow_zero=True)
+        self.noise: bool = as_bool(noise, "noise")
+        self.inflation: float = positive_float(inflation, "inflation", allow_zero=True)
         if self.inflation > 1.0:
             raise ValueError(f"inflation must lie in [0, 1] m, got {self.inflation}")
-        self.pairs = _pairs(pairs)
-        self.duration = positive_float(duration, "duration")
+        self.pairs: tuple[tuple[tuple[float, float], tuple[float, float]], ...] = _pairs(pairs)
+        self.duration: float = positive_float(duration, "duration")
         if not _MIN_DURATION <= self.duration <= _MAX_DURATION:
             raise ValueError(
                 f"duration must lie in [{_MIN_DURATION:g}, {_MAX_DURATION:g}] s, "
@@ -166,7 +166,7 @@ class Greedy(Scenario):
             )
         if data_dir is not None and not isinstance(data_dir, (str, os.PathLike)):
             raise TypeError(f"data_dir must be a path or None, got {type(data_dir).__name__}")
-        self.data_dir = None if data_dir is None else os.fspath(data_dir)
+        self.data_dir: str | None = None if data_dir is None else os.fspath(data_dir)
         # The map is looked up once, here, as Demo and DiffAStar do theirs: a sweep's
         # workers (another working directory or $NAVKIT_DATA) then run on the same
         # map. Without it, each trial looks again and raises DataNotFoundError.

@@ -206,9 +206,9 @@ class IndoorNav(Scenario):
         map_source: str = "scans",
         compare_speed: float | None = 0.5,
     ) -> None:
-        self.targets = _count(targets, "targets", len(TARGETS))
-        self.paths = _count(paths, "paths", len(TRACK_PATHS))
-        self.furniture = as_bool(furniture, "furniture")
+        self.targets: int = _count(targets, "targets", len(TARGETS))
+        self.paths: int = _count(paths, "paths", len(TRACK_PATHS))
+        self.furniture: bool = as_bool(furniture, "furniture")
         res = finite_float(resolution, "resolution")
         if not 0.025 <= res <= 0.1:
             raise ValueError(f"resolution must lie in [0.025, 0.1] m, got {res}")

@@ -172,13 +172,13 @@ class OmniApf(Scenario):
         targets: Sequence[Sequence[float]] = PAPER_TARGETS,
         duration: float = 40.0,
     ) -> None:
-        self.noise = as_bool(noise, "noise")
-        self.latency = as_bool(latency, "latency")
-        self.obstacles = None if obstacles is None else as_bool(obstacles, "obstacles")
-        self.targets = _targets(targets)
+        self.noise: bool = as_bool(noise, "noise")
+        self.latency: bool = as_bool(latency, "latency")
+        self.obstacles: bool | None = None if obstacles is None else as_bool(obstacles, "obstacles")
+        self.targets: tuple[tuple[float, float], ...] = _targets(targets)
         if self.obstacles is not False:
             _check_obstacle_routes(self.targets)
-        self.duration = positive_float(duration, "duration")
+        self.duration: float = positive_float(duration, "duration")
         if not _MIN_DURATION <= self.duration <= _MAX_DURATION:
             raise ValueError(
                 f"duration must lie in [{_MIN_DURATION:g}, {_MAX_DURATION:g}] s, "

@@ -156,11 +156,11 @@ class Soccer(Scenario):
         duration: float = 40.0,
         table_cells: int = 1200,
     ) -> None:
-        self.max_speed = _option(max_speed, "max_speed", 0.2, 5.0, "m/s")
-        self.perception_noise = _option(perception_noise, "perception_noise", 0.0, 0.5, "m")
-        self.wheel_slip = _option(wheel_slip, "wheel_slip", 0.0, 0.5, "")
-        self.duration = _option(duration, "duration", 0.1, 600.0, "s")
-        self.table_cells = bounded_int(table_cells, "table_cells", 50, 1200)
+        self.max_speed: float = _option(max_speed, "max_speed", 0.2, 5.0, "m/s")
+        self.perception_noise: float = _option(perception_noise, "perception_noise", 0.0, 0.5, "m")
+        self.wheel_slip: float = _option(wheel_slip, "wheel_slip", 0.0, 0.5, "")
+        self.duration: float = _option(duration, "duration", 0.1, 600.0, "s")
+        self.table_cells: int = bounded_int(table_cells, "table_cells", 50, 1200)
 
     def __repr__(self) -> str:
         return (
