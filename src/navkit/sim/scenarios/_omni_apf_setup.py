@@ -171,8 +171,11 @@ class ApfController:
         speed = math.hypot(want[0], want[1])
         if speed > MAX_SPEED:
             want = want * (MAX_SPEED / speed)
+        # The time this command is held (whole physics steps); the nominal period
+        # only for an observation made outside a Simulation.
+        dt = self._dt if obs.dt is None else obs.dt
         v = limit_velocity_change(
-            self._velocity, want, max_accel=MAX_ACCEL, max_decel=MAX_DECEL, dt=self._dt
+            self._velocity, want, max_accel=MAX_ACCEL, max_decel=MAX_DECEL, dt=dt
         )
         self._velocity = v
         if dist <= SETTLE_RADIUS and math.hypot(v[0], v[1]) < SETTLE_SPEED:
