@@ -495,20 +495,23 @@ def settle(
     loop stops early, leaving the target unsettled and the state mid-repair (the
     caller then starts afresh, see :func:`extract_path`).
 
-    Box of the records written: in a fresh search (``fresh``) every node
-    expanded goes into ``work[2:6]`` (first and last row, first and last
-    column; ``FieldDStar`` puts the sources it queues in it). A record leaves
-    its blank state (g = rhs = inf, unqueued) only when its node is expanded
-    or a source, or when its rhs falls below inf, which takes a neighbour of
-    finite g, an expanded node; so every record written lies in the box
-    widened by one node, and the next fresh search blanks that instead of
+    Box of the records written: every node whose value falls goes into
+    ``work[2:6]`` (first and last row, first and last column; ``FieldDStar``
+    puts the sources it queues in it). g becomes finite only where a value
+    falls, and a record leaves its blank state (g = rhs = inf, unqueued) only
+    when its node is a source, when its value falls, when it is a neighbour of
+    an expanded node (one whose value falls, or rises, which takes a finite
+    g), or when its rhs becomes finite (a changed cell's corner requeued
+    above: that takes a neighbour of finite g; one of inf stays blank). So
+    every record written since the box was emptied lies in the box widened by
+    one node, and the next fresh search blanks that instead of
     every record (a short plan on a large map cost time in proportion to the
-    map). Only fresh searches keep it, where every expansion lowers a value
-    (no cost changed since they started), next to their prefetch: kept in
-    registers for every expansion, repairs took up to 4 % longer (the
-    ``maze512-32-9`` mid-path replan) and fresh 1024² plans up to 4 % (rooms);
-    as it is, no change measured (review 27). ``FieldDStar`` gives a repair
-    the whole grid as its box.
+    map; a fresh plan after a repair, to the map, until review 28 tracked
+    repairs too). Kept where a value falls only, next to the fresh searches'
+    prefetch: kept for every expansion, in registers, repairs took up to 4 %
+    longer (the ``maze512-32-9`` mid-path replan) and fresh 1024² plans up to
+    4 % (rooms, review 27); as it is, within the noise (see review 28's notes
+    in ``FieldDStar._blank``).
 
     Called (never inlined) by its one caller, :func:`extract_path` of the path
     kernels, so its body is compiled once.
@@ -582,16 +585,15 @@ def settle(
             # u (the top) is consistent now: dequeuing it pops the top. (ref != rhs(u)
             # is False, but not a literal: that would compile heap_update again.)
             change(nodes, keys, pos, size, u, ref, ref, ref != vals[RECORD * u + RHS], fresh)
-            if fresh:
-                # The box of the records written (see above).
-                if ui < work[2]:
-                    work[2] = ui
-                if ui > work[3]:
-                    work[3] = ui
-                if uj < work[4]:
-                    work[4] = uj
-                if uj > work[5]:
-                    work[5] = uj
+            # The box of the records written (see above).
+            if ui < work[2]:
+                work[2] = ui
+            if ui > work[3]:
+                work[3] = ui
+            if uj < work[4]:
+                work[4] = uj
+            if uj > work[5]:
+                work[5] = uj
             if fresh and size[0] > 0:
                 # The records of the next top's neighbours (three rows of three
                 # records, 72 bytes a row: the lines of its first and last), fetched

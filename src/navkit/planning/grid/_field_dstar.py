@@ -1522,17 +1522,17 @@ class FieldDStar:
     def _blank(self) -> int:
         """Blank the records written since the last time (and empty the queue); how many.
 
-        A fresh search keeps the box of the nodes it expanded in ``_work[2:6]``
-        (first and last row, first and last column; a repair sets the whole
-        grid, see :meth:`_walk`), and :meth:`_reset` puts the sources it queues
-        in it: every record written since lies in that box widened by one
-        node (see ``settle``), so only
-        that is blanked, and a short plan after a long one, or on a large map,
-        costs time in proportion to its own search, not to the map (a short
-        plan on a 4096² map took 25-50 ms, nearly all of it blanking every
-        record). Blanked in place, not allocated again: memory already paged
-        in makes a search on a used planner (a replan's fallback) faster than
-        on a new one.
+        Every search keeps the box of the nodes whose value fell in
+        ``_work[2:6]`` (first and last row, first and last column), and
+        :meth:`_reset` puts the sources it queues in it: every record written
+        since lies in that box widened by one node (see ``settle``), so only
+        that is blanked, and a short plan after a long one, on a large map, or
+        after a replan, costs time in proportion to the searches since, not to
+        the map (a short plan on a 4096² map took 25-50 ms, nearly all of it
+        blanking every record; until review 28 a repair's box was the whole
+        grid). Blanked in place, not allocated again: memory already paged in
+        makes a search on a used planner (a replan's fallback) faster than on a
+        new one.
         """
         top, bottom, left, right = (int(v) for v in self._work[2:6])
         rows = (max(top - 1, 0), min(bottom + 1, self._nrows - 1))
@@ -1746,12 +1746,10 @@ class FieldDStar:
         """Run :func:`extract_path`: (points buffer, K, expansions, status).
 
         ``walk``: the node id to walk from instead of the start (see :meth:`_params`);
-        ``fresh``: a search from scratch, not a repair (see :meth:`_params`). Only a
-        fresh search keeps the box of the records it writes (see ``settle``): a
-        repair's box is the whole grid, blanked whole by the next fresh search.
+        ``fresh``: a search from scratch, not a repair (see :meth:`_params`). Fresh
+        searches and repairs alike widen the box of the records written (see
+        ``settle``), which the next fresh search blanks.
         """
-        if not fresh:
-            self._work[2:6] = (0, self._nrows - 1, 0, self._ncols - 1)
         pts = np.empty((max(_POINTS_PER_SIDE * (self._nrows + self._ncols), 1), 2))
         cand = np.empty((CANDIDATES, 4))
         cand2 = np.empty((CANDIDATES, 4))
