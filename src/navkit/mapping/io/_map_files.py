@@ -693,8 +693,12 @@ def read_pgm(path: str | os.PathLike[str]) -> NDArray[np.float64]:
         return _pgm_from(fh, pgm)
 
 
-def _pgm_from(fh: BinaryIO, pgm: Path) -> NDArray[np.float64]:
-    """:func:`read_pgm` of the open regular file ``fh`` (of ``pgm``), read from its start."""
+def _pgm_from(fh: BinaryIO, pgm: Path, *, map_server: bool = False) -> NDArray[np.float64]:
+    """:func:`read_pgm` of the open regular file ``fh`` (of ``pgm``), read from its start.
+
+    ``map_server``: the grey levels Nav2's map_server reads (see :func:`_magick_grey`),
+    not the samples scaled exactly.
+    """
     fh.seek(0)
     head = fh.read(_PGM_HEADER_MAX)
     magic, width, height, maxval, offset = _pgm_header(head, pgm)
@@ -734,8 +738,51 @@ def _pgm_from(fh: BinaryIO, pgm: Path) -> NDArray[np.float64]:
     if pixels.size and (pixels.min() < 0 or pixels.max() > maxval):
         raise ValueError(f"{pgm}: PGM pixel values exceed maxval {maxval}")
     grey = pixels.reshape(height, width).astype(np.float64)
+    if map_server and maxval not in (255, 65535):
+        return _magick_grey(grey, magic, maxval)
     grey *= 255.0 / maxval  # in place: one float64 array of the image's size
     return grey
+
+
+#: GraphicsMagick's largest sample with 16 bits a sample (``MaxRGB``, QuantumDepth 16).
+_MAX_RGB = 65535.0
+
+
+def _magick_grey(samples: NDArray[np.float64], magic: str, maxval: int) -> NDArray[np.float64]:
+    """Grey levels 0..255 of PGM ``samples`` (float64, changed in place) as Nav2 reads them.
+
+    Nav2's map_server (Humble to Iron) reads images with GraphicsMagick's
+    Magick++ (``Image::pixelColor``), which Debian and Ubuntu build with 16 bits a
+    sample (``libgraphicsmagick++-q16``). Its PNM reader (``coders/pnm.c``) gives
+    a PGM of at least ``maxval`` pixels a grey colormap (``AllocateImageColormap``
+    in ``magick/colormap.c``: entry ``i`` is ``i * (65535 // maxval)``, an integer
+    division), and ``pixelColor`` reads that colormap: for a maxval other than
+    255 and 65535 the levels fall short of the exact ``v * 65535 / maxval`` by up
+    to one ``65535 // maxval`` step (maxval 1000: 65 in 65535, so the sample 1000
+    reads as 252.9, not 255). A smaller image keeps its samples, scaled and
+    rounded (``ScaleAnyToQuantum`` for P2, ``RoundDoubleToQuantum`` of the
+    samples widened to 16 bits for P5). Checked against GraphicsMagick 1.3.40
+    (Debian 12), Nav2's reading with Magick++, for maxval 3 to 4095.
+    """
+    q = samples
+    if samples.size >= maxval:
+        q *= float(_MAX_RGB // maxval)  # the colormap entry of each sample
+    elif magic == "P2":
+        q *= _MAX_RGB
+        q /= maxval
+        q += 0.5
+        np.floor(q, out=q)
+    else:
+        # P5 samples are widened to 16 bits first (257 v for one byte a sample), then
+        # scaled by 65535 / sample_max, the widened maxval.
+        wide = 257.0 if maxval < 256 else 1.0
+        q *= wide
+        q *= _MAX_RGB / (wide * maxval)
+        q += 0.5
+        np.floor(q, out=q)
+        np.minimum(q, _MAX_RGB, out=q)
+    q *= 255.0 / _MAX_RGB
+    return q
 
 
 def pgm_bytes(pixels: NDArray[np.uint8]) -> bytes:
@@ -1011,7 +1058,10 @@ def _read_with_pillow(
 def read_image(path: Path) -> tuple[NDArray[np.float64], NDArray[np.float64] | None]:
     """Grey levels 0..255 (averaged over colour channels) and alpha (or None) of an image.
 
-    PGM files are read with numpy; anything else needs Pillow. 16-bit samples
+    PGM files are read with numpy, their grey levels as Nav2's map_server reads
+    them (GraphicsMagick's; for a ``maxval`` other than 255 and 65535 they differ
+    from the exact ``v * 255 / maxval`` that :func:`read_pgm` returns, see
+    :func:`read_map`); anything else needs Pillow. 16-bit samples
     are scaled from 0..65535 (PNGs with 16-bit colour channels at full depth,
     not Pillow's 8-bit truncation); a ValueError naming the file refuses other
     images with 16-bit colour channels.
@@ -1034,7 +1084,7 @@ def _image_from(
     """:func:`read_image` of the open regular file ``fh`` (of ``path``)."""
     magic = fh.read(2)
     if magic in (b"P5", b"P2"):
-        return _pgm_from(fh, path), None
+        return _pgm_from(fh, path, map_server=True), None
     if path.suffix.lower() == ".pgm":
         raise ValueError(f"{path}: not a PGM image (magic {magic!r}, expected P5 or P2)")
     if not magic:
@@ -1181,6 +1231,26 @@ def read_map(path: str | os.PathLike[str]) -> OccupancyGrid:
     written by map_saver or :func:`write_map` (grey PGM, 0 / 205 / 254, or
     scale PNGs with opaque grey and transparent unknown) read the same in both
     under the default thresholds.
+
+    A PGM whose ``maxval`` is neither 255 nor 65535 is read as Nav2 reads it with
+    GraphicsMagick (16 bits a sample, as Debian and Ubuntu build it): an image
+    of at least ``maxval`` pixels through a grey colormap of ``65535 // maxval``
+    steps, whose levels fall short of the exact ``v * 255 / maxval`` (maxval
+    1000: sample 53 is 13 % in ``raw`` mode, not 14; 163 of the 1001 levels
+    differ), a smaller one with its samples rounded to 16 bits (checked against
+    GraphicsMagick 1.3.40 for maxval 3 to 4095). Not reproduced:
+    GraphicsMagick reads a binary (P5) PGM with ``maxval`` 1 as packed bits,
+    eight pixels a byte, where the PGM format (and navkit) has one byte a pixel.
+
+    ``negate`` and ``raw`` mode: Nav2 (``map_io.cpp``, ``MapMode::Raw`` reads
+    ``shade``, before ``negate`` applies) and navkit ignore ``negate`` in raw
+    mode; ROS 1's map_server (``map_server/src/image_loader.cpp`` of
+    ros-planning/navigation: ``if(negate) color_avg = 255 - color_avg;`` comes
+    before ``if(mode==RAW)``) applies it, so a raw map with ``negate: 1`` reads
+    255 - v there. ROS 1 also stores that level itself as the cell's value,
+    with no limit at 100 (a byte copied into the int8 data: 101-127 stay,
+    128-255 become negative), where Nav2 and navkit read levels above 100 as
+    unknown.
 
     Peak memory, in bytes a pixel, besides the returned grid (4 bytes a cell, the
     float32 log-odds): about 16 for a PGM or an 8-bit PNG (the raster, a float64
