@@ -577,7 +577,14 @@ class DiffOdometry:
     bits : int, optional
         Width of the hardware counters (e.g. 16), an integer from 2 to 64, for
         wrap-around (as ``tick_delta(bits=)`` and ``sim.WheelEncoders(bits=)``);
-        None for counters that never wrap.
+        None for counters that never wrap (read as 64-bit). Nothing can tell
+        a wrap from motion, so the width must be the counter's: a 16-bit
+        counter read with None (or 32) takes each wrap, 65535 → 4, as 65,531
+        ticks backwards, a silent jump of 20 m on a 5 cm wheel at 1024 ticks
+        a turn (with 16: +5 ticks). Between two readings a wheel must turn
+        less than half the counter's range (``2**(bits - 1)`` ticks): more is
+        read as the shorter change the other way, as
+        :func:`navkit.kinematics.tick_delta` does.
     pose : Pose2D or array_like, shape (3,), default Pose2D(0, 0, 0)
         Pose at the first reading.
     method : {"arc", "midpoint", "first_order"}, default "arc"
