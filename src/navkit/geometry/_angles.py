@@ -67,10 +67,14 @@ def wrap_angle(angle: ArrayLike) -> float | NDArray[np.float64]:
     # As wrap_float: fmod and the fold are exact; fmod returns angles inside
     # (-π, π] unchanged, and only -π itself is folded (to π).
     rem = np.fmod(arr, _TWO_PI)
-    out = np.where(rem > math.pi, rem - _TWO_PI, np.where(rem <= -math.pi, rem + _TWO_PI, rem))
-    if out.ndim == 0:
-        return float(out)
-    return out
+    if rem.ndim == 0:
+        r = float(rem)
+        return r - _TWO_PI if r > math.pi else r + _TWO_PI if r <= -math.pi else r
+    # Folded in place (np.where's branches took four more arrays of the input's
+    # size). rem - 2π is exact for rem in (π, 2π) and above -π: never folded twice.
+    np.subtract(rem, _TWO_PI, out=rem, where=rem > math.pi)
+    np.add(rem, _TWO_PI, out=rem, where=rem <= -math.pi)
+    return rem
 
 
 @overload

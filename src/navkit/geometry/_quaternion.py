@@ -42,9 +42,11 @@ def _quaternions(value: ArrayLike, name: str) -> FloatArray:
     zero = big == 0.0
     scaled = q / np.where(zero, 1.0, big)
     norm = np.sqrt(np.sum(scaled * scaled, axis=-1, keepdims=True))
-    unit = scaled / np.where(zero, 1.0, norm)
-    identity = np.array([0.0, 0.0, 0.0, 1.0])
-    return np.asarray(np.where(zero, identity, unit), dtype=np.float64)
+    # In place on this function's own array: fresh copies for the unit
+    # quaternions and the identity rows held three at once (memory, batches).
+    np.divide(scaled, np.where(zero, 1.0, norm), out=scaled)
+    np.copyto(scaled, np.array([0.0, 0.0, 0.0, 1.0]), where=zero)
+    return scaled
 
 
 def _vectors(value: ArrayLike, name: str) -> FloatArray:
@@ -78,12 +80,19 @@ def _multiply(a: FloatArray, b: FloatArray) -> FloatArray:
 def _matrices(q: FloatArray) -> FloatArray:
     """Rotation matrices (..., 3, 3) of unit quaternions (..., 4)."""
     x, y, z, w = (q[..., i] for i in range(4))
-    rows = (
-        (1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)),
-        (2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)),
-        (2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)),
-    )
-    return np.stack([np.stack(row, axis=-1) for row in rows], axis=-2)
+    # Each entry written into the result as it is computed: the nine entries, the
+    # rows stacked from them and the stacked result were alive at once (memory).
+    out = np.empty((*q.shape[:-1], 3, 3), dtype=np.float64)
+    out[..., 0, 0] = 1 - 2 * (y * y + z * z)
+    out[..., 0, 1] = 2 * (x * y - z * w)
+    out[..., 0, 2] = 2 * (x * z + y * w)
+    out[..., 1, 0] = 2 * (x * y + z * w)
+    out[..., 1, 1] = 1 - 2 * (x * x + z * z)
+    out[..., 1, 2] = 2 * (y * z - x * w)
+    out[..., 2, 0] = 2 * (x * z - y * w)
+    out[..., 2, 1] = 2 * (y * z + x * w)
+    out[..., 2, 2] = 1 - 2 * (x * x + y * y)
+    return out
 
 
 @overload
@@ -136,14 +145,17 @@ def quaternion_to_yaw(quaternion: ArrayLike) -> float | FloatArray:
     """
     q = _quaternions(quaternion, "quaternion")
     x, y, z, w = (q[..., i] for i in range(4))
-    yaw = np.arctan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
+    # Each argument computed once (twice, they took 14 times the result's memory).
+    sin_part = 2.0 * (w * z + x * y)
+    cos_part = 1.0 - 2.0 * (y * y + z * z)
+    del q, x, y, z, w
+    yaw = np.asarray(np.arctan2(sin_part, cos_part))
     # Pitch ±90°: both arguments are rounding noise; call the yaw 0 rather than noise.
-    horizontal = np.hypot(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
-    yaw = np.where(horizontal < 1e-12, 0.0, yaw)
-    yaw = np.where(yaw <= -math.pi, math.pi, yaw)
+    np.copyto(yaw, 0.0, where=np.hypot(sin_part, cos_part) < 1e-12)
+    np.copyto(yaw, math.pi, where=yaw <= -math.pi)
     if yaw.ndim == 0:
         return float(yaw)
-    return np.asarray(yaw, dtype=np.float64)
+    return yaw
 
 
 def yaw_to_quaternion(yaw: ArrayLike) -> FloatArray:

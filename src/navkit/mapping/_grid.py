@@ -985,8 +985,15 @@ class OccupancyGrid:
         >>> OccupancyGrid.empty(width=1.0, height=0.5, resolution=0.5).probability()
         array([[0.5, 0.5]])
         """
+        # In place on the one float64 array: the expression's temporaries doubled
+        # the peak (review 28: 268 MB against 134 MB for 4096 x 4096 cells).
+        out = self._logodds.astype(np.float64)
+        np.negative(out, out=out)
         with np.errstate(over="ignore"):  # exp(1e6) = inf gives p = 0, as it should
-            return np.asarray(1.0 / (1.0 + np.exp(-self._logodds.astype(np.float64))))
+            np.exp(out, out=out)
+        np.add(out, 1.0, out=out)
+        np.divide(1.0, out, out=out)
+        return out
 
     def occupied(self, threshold: float | None = None) -> BoolArray:
         """Cells with ``p > threshold`` (default: the grid's ``occupied_thresh``).

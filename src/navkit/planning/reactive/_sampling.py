@@ -386,16 +386,20 @@ def sample_field(
     res = _resolution(res)
     xs = _centres(x0, int(nx), res, "xlim")
     ys = _centres(y0, int(ny), res, "ylim")
-    gx, gy = np.meshgrid(xs, ys)
-    pts = np.stack((gx.ravel(), gy.ravel()), axis=1)
     shape = (ys.size, xs.size)
-    return SampledField(
-        xs,
-        ys,
-        field._potential(pts).reshape(shape),
-        field._force(pts).reshape((*shape, 2)),
-        resolution=res,
-    )
+    # The points row by row, x fastest (a meshgrid's order), written in place:
+    # the meshgrid and its stacked copy held three arrays of this size at once.
+    pts = np.empty((shape[0] * shape[1], 2))
+    grid = pts.reshape((*shape, 2))
+    grid[:, :, 0] = xs
+    grid[:, :, 1] = ys[:, None]
+    del grid
+    potential = field._potential(pts).reshape(shape)
+    force = field._force(pts).reshape((*shape, 2))
+    # Gone before SampledField copies the results (a field's own arrays are never
+    # frozen in place): the points would add their size to that copy's peak.
+    del pts
+    return SampledField(xs, ys, potential, force, resolution=res)
 
 
 def _bytes_text(n: Decimal) -> str:
