@@ -309,8 +309,12 @@ class MeasurementLog:
         # C order whatever the caller's layout (a transposed (4, T) array is Fortran
         # ordered): planar_run is compiled for C-ordered arrays only, and a Fortran
         # ordered log would make numba compile it a second time (issue 17).
+        # values and var are np.where's own arrays (C order unless the caller's were
+        # Fortran ordered): frozen as they are, not copied a second time.
+        del seen
+        times = np.array(times, dtype=np.float64, copy=True, order="C")
         for name, arr in (("times", times), ("values", values), ("variances", var)):
-            arr = np.array(arr, dtype=np.float64, copy=True, order="C")
+            arr = np.ascontiguousarray(arr)
             arr.flags.writeable = False
             object.__setattr__(self, name, arr)
         obs = np.array(obs, copy=True, order="C")
@@ -418,12 +422,14 @@ class MeasurementLog:
             raise ValueError("give at least one measurement stream")
         times = np.concatenate([b[0] for b in blocks])
         order = np.argsort(times, kind="stable")
-        return cls(
-            times[order],
-            np.concatenate([b[1] for b in blocks])[order],
-            np.concatenate([b[2] for b in blocks])[order],
-            np.concatenate([b[3] for b in blocks])[order],
-        )
+        fields = [list(parts) for parts in zip(*blocks, strict=True)]
+        del blocks
+        sorted_ = []
+        for parts in fields:
+            sorted_.append(np.concatenate(parts)[order])
+            parts.clear()
+        del times, order
+        return cls(*sorted_)
 
 
 def _stream(stream: Any, name: str, widths: tuple[int, ...]) -> tuple[FloatArray, ...]:
