@@ -167,7 +167,8 @@ class TrackerController(Generic[_T]):
         Raises
         ------
         TypeError
-            ``tracker.done`` has no truth value (an array of several flags, say).
+            ``tracker.done`` has no truth value (an array of several flags, say),
+            or is a method (``def done(self)`` without ``@property``).
 
         Examples
         --------
@@ -176,6 +177,13 @@ class TrackerController(Generic[_T]):
         False
         """
         done = self.tracker.done
+        if callable(done):
+            # A method done() without @property: a bound method is true, and the run
+            # ended at its first step.
+            raise TypeError(
+                f"tracker.done must be true or false (a property or an attribute), got a "
+                f"{type(done).__name__}: a method done() needs @property"
+            )
         try:
             return bool(done)
         except Exception as exc:  # numpy's "truth value ... is ambiguous", say

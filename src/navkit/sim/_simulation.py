@@ -895,6 +895,13 @@ class _Run:
             done = controller.done
         else:
             done = getattr(controller, "done", False)
+        if callable(done):
+            # A method done() without @property: bool() of a bound method is True, and
+            # the run ended at its first step, "controller done", without a word.
+            raise TypeError(
+                f"the controller's done must be true or false (a property or an attribute), "
+                f"got a {type(done).__name__}: a method done() needs @property"
+            )
         try:
             return bool(done)
         except Exception as exc:  # numpy's "truth value ... is ambiguous", say

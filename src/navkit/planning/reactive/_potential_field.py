@@ -85,21 +85,28 @@ class PotentialField(ABC):
 
     def __init_subclass__(cls, **kwargs: Any) -> None:
         super().__init_subclass__(**kwargs)
-        # Only a user's fields: navkit's own meet the contract and pay nothing for it.
-        if cls.__module__ == "navkit" or cls.__module__.startswith("navkit."):
-            return
         for name in ("_potential", "_force"):
-            method = cls.__dict__.get(name)
+            # The one the instances call, wherever the MRO finds it: a mixin's (class
+            # Mine(Mixin, ConicAttraction)) is a user's too, not only one in the body.
+            owner = next(k for k in cls.__mro__ if name in k.__dict__)
+            # Only a user's: navkit's own meet the contract and pay nothing for it.
+            if owner.__module__ == "navkit" or owner.__module__.startswith("navkit."):
+                continue
+            attr = owner.__dict__[name]
             if (
-                callable(method)
-                and not getattr(method, "__isabstractmethod__", False)
-                and not getattr(method, "_navkit_checked", False)  # the dataclass's slots copy
+                (callable(attr) or hasattr(type(attr), "__get__"))
+                and not getattr(attr, "__isabstractmethod__", False)
+                and not getattr(attr, "_navkit_checked", False)  # the dataclass's slots copy
             ):
-                setattr(cls, name, _checked_output(method, name))
+                setattr(cls, name, _checked_output(attr, name))
 
     def __reduce__(self) -> tuple[Any, ...]:
         # Every field (a frozen slotted dataclass) copies and pickles as itself,
         # subclasses whole, read-only arrays read-only.
+        if not hasattr(type(self), "__dataclass_fields__"):
+            # A user's field that is no dataclass: as Python pickles any object (its
+            # __dict__ and slots), where reduce_record raised a TypeError naming nothing.
+            return _new_field, (type(self),), object.__getstate__(self)
         return reduce_record(self)
 
     def potential(self, points_xy: ArrayLike) -> FloatArray:
@@ -214,15 +221,21 @@ class PotentialField(ABC):
         return f"{type(self).__name__}({args})"
 
 
-def _checked_output(
-    method: Callable[[Any, FloatArray], Any], name: str
-) -> Callable[[Any, FloatArray], FloatArray]:
+def _new_field(kind: type[PotentialField]) -> PotentialField:
+    """An instance of ``kind`` not initialised, for its state to be set (``__reduce__``)."""
+    return kind.__new__(kind)
+
+
+def _checked_output(method: Any, name: str) -> Callable[[Any, FloatArray], FloatArray]:
     """A user field's ``_potential`` or ``_force`` (``name``), its input and output checked.
 
     Every caller (the public methods, a CompositeField's sum, sample_field, the
     controller) calls these directly on validated points, so the check sits here.
+    ``method`` is the class attribute as defined: bound as Python would bind it
+    (a staticmethod or classmethod as one, a callable that is no descriptor not at all).
     """
     force = name == "_force"
+    bind = getattr(type(method), "__get__", None)
 
     @functools.wraps(method)
     def checked(self: Any, pts: FloatArray) -> FloatArray:
@@ -230,7 +243,7 @@ def _checked_output(
         # hands the same array to each of its fields in turn.
         view = pts.view()
         view.flags.writeable = False
-        out = method(self, view)
+        out = (method if bind is None else bind(method, self, type(self)))(view)
         shape = (pts.shape[0], 2) if force else (pts.shape[0],)
         if type(out) is np.ndarray and out.dtype == np.float64 and out.shape == shape:
             # The common case, without the conversions' cost (a few µs a call).
@@ -242,8 +255,9 @@ def _checked_output(
         # NaN and -inf fail the comparison; +inf (an obstacle, as sample_field takes) passes.
         if not force and not bool((arr > -np.inf).all()):
             raise ValueError(f"{where} must not return NaN or -inf (+inf is allowed)")
-        # The caller's own array: the field may keep (and later change) the one it returned.
-        return np.array(arr, copy=True) if arr is out else arr
+        # The caller's own array: the field may keep (and later change) the one it
+        # returned, or a view of it (an ndarray subclass, an object's __array__).
+        return np.array(arr, copy=True)
 
     checked._navkit_checked = True  # type: ignore[attr-defined]
     return checked
