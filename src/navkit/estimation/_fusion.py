@@ -422,14 +422,16 @@ class MeasurementLog:
             raise ValueError("give at least one measurement stream")
         times = np.concatenate([b[0] for b in blocks])
         order = np.argsort(times, kind="stable")
-        fields = [list(parts) for parts in zip(*blocks, strict=True)]
+        # One column at a time, each block's part freed once merged: the blocks
+        # and the merged columns were alive together (memory, review 28).
+        columns: list[list[FloatArray]] = [list(c) for c in zip(*blocks, strict=True)]
         del blocks
-        sorted_ = []
-        for parts in fields:
-            sorted_.append(np.concatenate(parts)[order])
-            parts.clear()
+        merged: list[FloatArray] = []
+        for column in columns:
+            merged.append(np.concatenate(column)[order])
+            column.clear()
         del times, order
-        return cls(*sorted_)
+        return cls(*merged)
 
 
 def _stream(stream: Any, name: str, widths: tuple[int, ...]) -> tuple[FloatArray, ...]:
