@@ -28,6 +28,7 @@ def renamed_keyword(
     new_value: _T,
     new_default: _T,
     *,
+    use: str | None = None,
     stacklevel: int = 3,
 ) -> _T:
     """The value of a renamed keyword, warning when the caller used its old name.
@@ -43,6 +44,10 @@ def renamed_keyword(
         What the caller passed under the new name (its default when not used).
     new_default : object
         The new name's default, to tell "not passed" from "passed".
+    use : str, optional
+        What the warning tells the caller to write instead, when the new
+        keyword takes the value in another form (``"after='loop'"`` for
+        ``loop=True``); default ``new_name``, for the same value.
     stacklevel : int, optional
         Passed to :func:`warnings.warn`; the default 3 points at the caller
         of the function that calls this one.
@@ -82,7 +87,10 @@ def renamed_keyword(
     if _passed(new_value, new_default):
         raise TypeError(f"got both {new_name} and its old name {old_name}: pass only {new_name}")
     warnings.warn(
-        f"{old_name} is deprecated and will be removed in a future release: use {new_name}",
+        # The old value is not always one the new name takes (loop=True is
+        # after='loop'): "use after" alone sent callers to after=True.
+        f"{old_name} is deprecated and will be removed in a future release: "
+        f"use {new_name if use is None else use}",
         DeprecationWarning,
         stacklevel=stacklevel,
     )

@@ -84,6 +84,10 @@ def _in_option_names(message: str) -> str:
     '--goal (1.0, 2.0) (cell (20, 10)) is within --radius (0.5 m) of an obstacle'
     >>> _in_option_names("no collision-free path from start (0.0, 0.0) to goal (1.0, 2.0)")
     'no collision-free path from --start (0.0, 0.0) to --goal (1.0, 2.0)'
+    >>> _in_option_names("no collision-free path: obstacles grown by robot_radius=0.3 m may "
+    ...                  "close every way; a smaller robot_radius may open one")
+    'no collision-free path: obstacles grown by --radius 0.3 m may close every way; a smaller
+     --radius may open one'
     >>> _in_option_names("start (1.0, 2.0) (cell (20, 10)) is within robot_radius (0.5 m) of an "
     ...                  "obstacle; pass start_tolerance > 0 to escape to the nearest passable "
     ...                  "cell")
@@ -98,6 +102,18 @@ def _in_option_names(message: str) -> str:
         " to goal (", " to --goal ("
     )
     message = message.replace("within robot_radius (", "within --radius (")
+    # No path's hint on what may have closed every way, in the command's options:
+    # "a smaller robot_radius or a finite unknown_cost" named a keyword the command
+    # spells --radius and one it does not take.
+    message = message.replace("obstacles grown by robot_radius=", "obstacles grown by --radius ")
+    message = message.replace(" with unknown_cost=inf may close", " may close")
+    message = message.replace(" or a finite unknown_cost may open one", " may open one")
+    message = message.replace(
+        "; a smaller robot_radius may open one", "; a smaller --radius may open one"
+    )
+    message = message.replace(
+        "; a finite unknown_cost may open one", " (the command keeps them impassable)"
+    )
     # The escape's hint ("pass start_tolerance > 0 ...") and its refusal ("within
     # start_tolerance (0.1 m)"); the library keeps naming its keyword.
     message = message.replace("start_tolerance", "--start-tolerance")

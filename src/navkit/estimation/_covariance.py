@@ -43,26 +43,28 @@ def variance(value: Any, name: str) -> float:
     if not MIN_VARIANCE <= out <= MAX_COVARIANCE:
         raise ValueError(
             f"{name} must be in [{MIN_VARIANCE:g}, {MAX_COVARIANCE:g}], got {out}"
-            + not_given_hint(np.array([out]))
+            + not_given_hint(np.array([out]), drop="skip that reading")
         )
     return out
 
 
-def not_given_hint(values: FloatArray) -> str:
+def not_given_hint(values: FloatArray, drop: str = "drop those rows") -> str:
     """A hint for an out-of-range variance message where ``values`` hold -1 or 0 ("" if neither).
 
     ROS messages mark a covariance "not given" by -1 in its first entry (REP 145,
     ``sensor_msgs/Imu``) and "unknown" by all zeros (``sensor_msgs/Imu``), and the
     bag readers keep those rows as recorded: passed on as variances, they are out
     of range for that reason. A planar user reads the yaw variance from entry
-    ``[2, 2]`` or ``[8]``, which is 0 in both kinds of row.
+    ``[2, 2]`` or ``[8]``, which is 0 in both kinds of row. ``drop``: what to
+    leave out, the rows of a stream or, for one measurement's variance, that
+    reading (a scalar update has no rows to drop).
     """
     if np.any(values == -1.0):
-        return " (-1 marks a covariance not given in ROS messages, REP 145: drop those rows)"
+        return f" (-1 marks a covariance not given in ROS messages, REP 145: {drop})"
     if np.any(values == 0.0):
         return (
             " (0 may be a ROS message's covariance of all zeros, which marks it unknown"
-            " (sensor_msgs/Imu): assume a variance or drop those rows)"
+            f" (sensor_msgs/Imu): assume a variance or {drop})"
         )
     return ""
 

@@ -219,8 +219,12 @@ class ScanMapper:
         # The slots keep their old names, so that pickled mappers still load.
         old_hit = None if occupied is None else logit(_probability(occupied, "occupied", 0.5, 1.0))
         old_miss = None if free is None else logit(_probability(free, "free", 0.0, 0.5))
-        hit = renamed_keyword("occupied", old_hit, "hit", hit, _HIT)
-        miss = renamed_keyword("free", old_miss, "miss", miss, _MISS)
+        # The warnings give the log-odds to write: hit=0.7 for occupied=0.7 is silently
+        # another sensor model, and miss=0.4 for free=0.4 an error.
+        hit = renamed_keyword("occupied", old_hit, "hit", hit, _HIT, use=_log_odds("hit", old_hit))
+        miss = renamed_keyword(
+            "free", old_miss, "miss", miss, _MISS, use=_log_odds("miss", old_miss)
+        )
         self._occupied, self._free = _sensor_model(hit, miss)
         self._clamp = _clamp_pair(clamp)
         self._min_distance = bounded_float(min_distance, "min_distance", 0.0, math.inf, "m")
@@ -650,3 +654,10 @@ def _probability(value: float, name: str, low: float, high: float) -> float:
     if not p < high:
         raise ValueError(f"{name} must be < {high:g} (and > {low:g}), got {p}")
     return p
+
+
+def _log_odds(name: str, value: float | None) -> str | None:
+    """What to write for a deprecated probability: ``name=`` its log-odds (None: not used)."""
+    if value is None:
+        return None
+    return f"{name}={float(value)!r}, the log-odds log(p / (1 - p)) of that probability"

@@ -455,7 +455,9 @@ class MovingObstacle:
             raise TypeError("MovingObstacle.scripted() missing the argument path_xy")
         if loop is not None:
             old_after: Literal["stop", "loop"] = "loop" if as_bool(loop, "loop") else "stop"
-            after = renamed_keyword("loop", old_after, "after", after, "stop")
+            after = renamed_keyword(
+                "loop", old_after, "after", after, "stop", use=f"after={old_after!r}"
+            )
         pts = _coords(path_xy, name, (None, 2))
         if (times is None) == (speed is None):
             raise ValueError("give exactly one of times and speed")

@@ -493,7 +493,7 @@ def grid_to_msg_fields(
     if not isinstance(grid, OccupancyGrid):
         raise TypeError(f"grid must be an OccupancyGrid, got {type(grid).__name__}")
     old_mode = None if trinary is None else ("trinary" if as_bool(trinary, "trinary") else "scale")
-    mode = renamed_keyword("trinary", old_mode, "mode", mode, "scale")
+    mode = renamed_keyword("trinary", old_mode, "mode", mode, "scale", use=f"mode={old_mode!r}")
     if not isinstance(mode, str):
         raise TypeError(f"mode must be a str, got {type(mode).__name__}")
     if mode not in ("scale", "trinary"):

@@ -233,18 +233,21 @@ class MapPlanner:
     def _closers(self) -> str:
         """What may have closed every way, for a :class:`navkit.NoPathError`'s message."""
         closers = []
+        # Each remedy only with its cause: "a smaller robot_radius" at robot_radius=0, or
+        # "a finite unknown_cost" on a map without unknown cells, could not open a way.
+        remedies = []
         if self._robot_radius > 0.0:
             closers.append(f"obstacles grown by robot_radius={self._robot_radius:g} m")
+            remedies.append("a smaller robot_radius")
         if math.isinf(self._unknown_cost) and bool(self._snapshot.unknown().any()):
             # A map built from scans keeps unknown specks inside driven corridors.
             grown = " (and grown)" if self._inflate_unknown and self._robot_radius > 0.0 else ""
             closers.append(f"unknown cells impassable{grown} with unknown_cost=inf")
+            remedies.append("a finite unknown_cost")
         if not closers:
             return ""
-        return (
-            f": {' and '.join(closers)} may close every way; a smaller robot_radius or a "
-            "finite unknown_cost may open one"
-        )
+        closed, opened = " and ".join(closers), " or ".join(remedies)
+        return f": {closed} may close every way; {opened} may open one"
 
     def __copy__(self) -> MapPlanner:
         """A shallow copy with its own Field D* search state.
