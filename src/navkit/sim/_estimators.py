@@ -243,9 +243,15 @@ class _OmniOdometryEstimator:
 
     def __init__(self, odometry: OmniOdometry, robot: Robot) -> None:
         if robot.compass is None:
-            raise ValueError("OmniOdometry takes its heading from a compass: give the Robot one")
+            raise ValueError(
+                "estimator: OmniOdometry takes its heading from a compass: "
+                "give the Robot one (Robot(compass=Compass()))"
+            )
         if not isinstance(robot.drive, OmniDrive):
-            raise ValueError("OmniOdometry needs an omnidirectional robot")
+            raise ValueError(
+                "estimator: OmniOdometry needs an omnidirectional robot "
+                "(Robot(drive=OmniDrive(...)))"
+            )
         self._odometry = odometry
         self._wheels = _Wheels(robot)
         self._north = robot.compass.north
@@ -282,9 +288,14 @@ class _DiffOdometryEstimator:
 
     def __init__(self, odometry: DiffOdometry, robot: Robot) -> None:
         if robot.encoders is None:
-            raise ValueError("DiffOdometry needs wheel encoders: give the Robot encoders=")
+            raise ValueError(
+                "estimator: DiffOdometry needs wheel encoders: give the Robot encoders="
+            )
         if not isinstance(robot.drive, DiffDrive):
-            raise ValueError("DiffOdometry needs a differential-drive robot")
+            raise ValueError(
+                "estimator: DiffOdometry needs a differential-drive robot "
+                "(Robot(drive=DiffDrive(...)))"
+            )
         self._odometry = odometry
         bits = robot.encoders.bits
         own = odometry.bits

@@ -468,7 +468,7 @@ class Simulation:
         if rate > self._rate * (1.0 + 1e-12):
             raise ValueError(
                 f"{name} ({rate:g} Hz) must not exceed the simulation rate ({self._rate:g} Hz): "
-                "lower that rate or raise Simulation(rate=)"
+                f"lower {name} or raise Simulation(rate=)"
             )
 
     # ------------------------------------------------------------------ run
