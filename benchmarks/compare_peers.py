@@ -408,12 +408,9 @@ def _ekf() -> Workload:
         return ready(run)
 
     def check(ours: Any, theirs: Any) -> str:
-        (x, p), (x2, p2) = ours, theirs
-        x2 = np.array(x2, dtype=np.float64)
-        x2[2] = math.remainder(x2[2], 2.0 * math.pi)  # filterpy does not wrap the heading
-        np.testing.assert_allclose(x2, x, rtol=1e-9, atol=1e-12)
-        np.testing.assert_allclose(p2, p, rtol=1e-9, atol=1e-15)
-        return "same state and covariance (1e-9)"
+        mod = bench("test_bench_ekf")
+        mod.assert_same_state(ours, theirs)
+        return f"same state and covariance ({mod.SAME_STATE_RTOL:.0e})"
 
     return Workload(
         "ekf-step-x1000",

@@ -104,13 +104,25 @@ def per_step(benchmark: Any) -> None:
 State = tuple[np.ndarray, np.ndarray]
 
 
+#: Issue 17's bound on the EKF against filterpy: the filters reach the same state to
+#: 1e-12. After the 1000 steps they differ by about 1e-13 (rounding, and navkit's wrapped
+#: heading), so a check at 1e-9 would pass a filter a thousand times further off.
+SAME_STATE_RTOL = 1e-12
+
+
 def assert_same_state(ours: State, theirs: State) -> None:
-    """Final state and covariance of two filters equal (heading compared modulo 2π)."""
+    """Final state and covariance of two filters equal to :data:`SAME_STATE_RTOL`.
+
+    The heading is compared modulo 2π; entries near zero to the same bound
+    relative to the largest entry of x or P.
+    """
     (x, p), (x2, p2) = ours, theirs
+    x, p = np.ravel(x), np.asarray(p, dtype=np.float64)
     x2 = np.array(x2, dtype=np.float64).ravel()
     x2[2] = math.remainder(x2[2], 2.0 * math.pi)  # filterpy does not wrap the heading
-    np.testing.assert_allclose(x2, np.ravel(x), rtol=1e-9, atol=1e-12)
-    np.testing.assert_allclose(p2, p, rtol=1e-9, atol=1e-15)
+    rtol = SAME_STATE_RTOL
+    np.testing.assert_allclose(x2, x, rtol=rtol, atol=rtol * float(np.max(np.abs(x))))
+    np.testing.assert_allclose(p2, p, rtol=rtol, atol=rtol * float(np.max(np.abs(p))))
 
 
 def filterpy_steps() -> Callable[[], State]:
