@@ -76,12 +76,15 @@ def integrate_scalar(
 
 
 @njit_cached
-def exp_body_array(
-    vx: FloatArray, vy: FloatArray, omega: FloatArray, dt: FloatArray, out: FloatArray
-) -> None:
-    """Vectorised :func:`exp_body` over 1-D arrays of equal length into ``out`` (N, 3)."""
+def exp_forward_array(vx: FloatArray, omega: FloatArray, out: FloatArray) -> None:
+    """:func:`exp_body` of each row's forward distance and turn (``vy`` 0, ``dt`` 1) into ``out``.
+
+    ``vx``, ``omega``: 1-D arrays of equal length; ``out``: (N, 3). One odometry
+    step a row, without the two constant arrays of the input's size (``vy``,
+    ``dt``) that a general vectorised form would need.
+    """
     for i in range(vx.shape[0]):
-        dx, dy, dth = exp_body(vx[i], vy[i], omega[i], dt[i])
+        dx, dy, dth = exp_body(vx[i], 0.0, omega[i], 1.0)
         out[i, 0] = dx
         out[i, 1] = dy
         out[i, 2] = dth

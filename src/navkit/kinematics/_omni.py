@@ -425,8 +425,12 @@ class OmniDrive:
         # (w / peak) * limit, not w * (limit / peak): |w / peak| <= 1 exactly, so no
         # wheel rounds to above the limit (the fastest lands on it exactly), and a
         # small limit / peak cannot underflow to a zero command.
-        unit = np.divide(w, peak, out=np.zeros_like(w), where=over)
-        return np.asarray(np.where(over, unit * limit, w), dtype=np.float64)
+        # In place on a copy, only where over (review 28: unit, unit * limit and the
+        # np.where took 3.4 times the result at the peak; now about 1.4).
+        out = w.copy()
+        np.divide(w, peak, out=out, where=over)
+        np.multiply(out, limit, out=out, where=over)
+        return out
 
     def __repr__(self) -> str:
         degrees = ", ".join(f"{a:.6g}" for a in np.degrees(self._wheel_angles))

@@ -272,6 +272,15 @@ def sweep(
         (Ctrl-C, which its workers leave to this process) kills the workers at
         once; the workers also end when this process dies.
 
+    Notes
+    -----
+    The result keeps every trial's :class:`~navkit.sim.Trace`
+    (``result.traces``), so memory grows with the number of trials: 80 bytes
+    a recorded step (times, poses, estimates and commands: 8 kB a simulated
+    second at :class:`~navkit.sim.Simulation`'s default 100 Hz) and the scans
+    when they are recorded; about 120 kB a trial for ``Greedy`` with its
+    default options (measured: 4.9 MB for its 40 trials of ``trials=10``).
+
     Examples
     --------
     >>> from navkit.sim.scenarios import Demo

@@ -168,9 +168,11 @@ class BagScans:
     -----
     Arrays are read-only float64 copies; lengths must agree. Memory: each
     scan is a :class:`~navkit.mapping.LaserScan` with its own float64 arrays,
-    8 bytes a beam (16 with intensities) and some 700 bytes of objects a scan;
+    8 bytes a beam (16 with intensities) and some 330 bytes of objects a scan;
     :func:`read_bag_scans` holds the decoded messages' float32 readings (4
-    bytes a beam more) until it has built them all.
+    bytes a beam more) until it has built them all. (Measured on a bag of 360
+    scans of 681 beams: 5.8 kB a scan kept, and 6 bytes a beam more at the
+    peak; review 28: this said 700 bytes of objects.)
 
     Examples
     --------
