@@ -54,8 +54,9 @@ An update whose Joseph form cancelled (a variance shrank more than 4096-fold:
 a measurement far more precise than the estimate; or a first-order estimate
 of the Joseph P's error exceeds 2⁻⁴⁰ of its scale, :func:`_joseph_in_doubt`),
 whose Joseph P failed its check, or whose S of 2 to
-``_EXACT_NIS_MAX_M`` components is ill-conditioned (its pivots give
-ε κ(S) > 2⁻³⁰, so that its NIS and x are not to be trusted), commits nothing
+``_EXACT_NIS_MAX_M`` components is ill-conditioned for its rounding error
+(its pivots, against a bound on that error, give ε κ(S) > 2⁻³⁰, so that its
+NIS and x are not to be trusted; H P Hᵀ cancelling counts), commits nothing
 and returns ``CANCELLED``; the public layer finishes it with :func:`finish_cancelled`,
 which may take the information form instead, chosen by residuals computed
 exactly, and commits a state only with a bound on its error within a quarter
@@ -113,6 +114,7 @@ __all__ = [
     "compile_kernels",
     "finish_cancelled",
     "finish_singular_s",
+    "gated_s_ill",
     "new_rbuf",
     "new_state",
     "predict_kernel",
@@ -189,8 +191,9 @@ _WELL_CONDITIONED = 2.0**-12
 # The kernel's state, x + K y with K solved with S, is within about ε κ(S) of its
 # scale: trusted when that is at most this (about 1e-9).
 _STATE_TRUSTED = 2.0**-30
-# A pivot ratio max Sₖₖ / Dₖ of S = L D Lᵀ above this (ε times it above _STATE_TRUSTED)
-# marks S as that ill-conditioned (retry_gated, the update kernel).
+# A pivot ratio max cₖ / Dₖ of S = L D Lᵀ above this (ε times it above _STATE_TRUSTED),
+# cₖ >= Sₖₖ bounding the size of the terms of Sₖₖ (see _update), marks S as that
+# ill-conditioned (retry_gated, the update kernel).
 _PIVOT_LIMIT = _STATE_TRUSTED / _EPS
 # finish_cancelled replaces a kernel state computed with an ill-conditioned S by the
 # information form's where the bound on the latter's error is at most this many of the
@@ -553,19 +556,12 @@ def _joseph_in_doubt(
     ``ε max(Pᵢᵢ / P⁺ᵢᵢ) (1 + β)²`` exceeds that, β = maxᵢ Σₖ |Kᵢₖ| uₖ / σᵢ
     with σᵢ = sqrt(Pᵢᵢ) and uₖ = Σⱼ |Hₖⱼ| σⱼ (|Pᵢⱼ| <= σᵢ σⱼ), which costs O(nm):
     β <= 1 where one state is measured, so that with no variance shrinking
-    2048-fold nothing more is computed. ``w``, ``e``, ``a`` and ``work`` are scratch blocks.
+    2048-fold nothing more is computed. σ and u are read from rows 0 and 1 of
+    ``work``, where :func:`_update` left them for its test of S (computed here
+    before review 28); ``w``, ``e``, ``a`` and ``work`` are scratch blocks.
     """
     sigma = work[0]
     reach = work[1]
-    for j in range(n):
-        sigma[j] = math.sqrt(p[j, j])
-    for k in range(m):
-        acc = 0.0
-        for j in range(n):
-            hkj = jac[k, j]
-            if hkj != 0.0:
-                acc += abs(hkj) * sigma[j]
-        reach[k] = acc
     beta = 0.0
     for i in range(n):
         acc = 0.0
@@ -851,15 +847,43 @@ def _update(
             for k in range(m):
                 acc += v[i, k] * gain[j, k]
             pn[i, j] = ap[i, j] + acc
-    # Whether S's pivots say it is ill-conditioned (retry_gated's test, read before the
-    # check of the new P reuses inv_diag): the NIS and x above are then off by about
-    # ε κ(S), with no variance cancelling where a combination of states is measured
-    # precisely (rows of H alike but not a single state's). m is a constant here, so
-    # for m = 1 (the one pivot is S itself) or m > _EXACT_NIS_MAX_M this costs nothing.
+    # Whether S is ill-conditioned for its rounding error (retry_gated's test, read
+    # before the check of the new P reuses inv_diag): the NIS, K and x above are then
+    # off by about ε κ(S), with no variance cancelling where a combination of states is
+    # measured precisely (rows of H alike but not a single state's). With σⱼ =
+    # sqrt(Pⱼⱼ) and uₖ = Σⱼ |Hₖⱼ| σⱼ, cₖ = uₖ² + Rₖₖ >= (|H| |P| |H|ᵀ + |R|)ₖₖ
+    # (|Pᵢⱼ| <= σᵢ σⱼ): the rounding error of S's entry (k, l) is within about
+    # n ε sqrt(cₖ cₗ), however far H P Hᵀ cancels, so max cₖ / Dₖ (1 / the smallest
+    # pivot of C⁻¹ S C⁻¹, C = diag(sqrt(cₖ))) bounds from below how far that error
+    # reaches the NIS and K, as max Sₖₖ / Dₖ does for an error relative to S's own
+    # diagonal. Where H P Hᵀ cancels (rows of H nearly orthogonal to the main
+    # direction of a strongly correlated P) cₖ is far above Sₖₖ: in review 28's case
+    # cₖ / Sₖₖ was 2.7e12 and max Sₖₖ / Dₖ 2.8e4 (ε max cₖ / Dₖ 8.7, the limit 2⁻³⁰),
+    # the NIS 298.8 for an exact 4.18 and the Joseph P 1.27e-11 off (the gain's
+    # second-order error, which _joseph_in_doubt does not see). The larger of cₖ and
+    # Sₖₖ, so that no S the diagonal's test flags escapes this one by a rounding of
+    # uₖ². m is a constant here, so for m = 1 or m > _EXACT_NIS_MAX_M the test costs
+    # nothing; σ and u are needed by _joseph_in_doubt anyway (here since review 28; L
+    # of S, in chol, is not needed any more).
+    sigma = chol[0]
+    reach = chol[1]
+    for j in range(n):
+        sigma[j] = math.sqrt(p[j, j])
+    for k in range(m):
+        acc = 0.0
+        for j in range(n):
+            hkj = jac[k, j]
+            if hkj != 0.0:
+                acc += abs(hkj) * sigma[j]
+        reach[k] = acc
     ill = False
     if 2 <= m <= _EXACT_NIS_MAX_M:
         for k in range(m):
-            if s[k, k] * inv_diag[k] > _PIVOT_LIMIT:
+            uk = reach[k]
+            c = uk * uk + rs[k, k]
+            if c < s[k, k]:
+                c = s[k, k]
+            if c * inv_diag[k] > _PIVOT_LIMIT:
                 ill = True
     status = _mirror_checked(pn, rbuf[_PCHK], inv_diag, n)
     # A variance that shrank more than _SHRINK_LIMIT-fold (or came out NaN or not
@@ -922,7 +946,8 @@ def _make_update(n: int, m: int) -> UpdateKernel:
         (``CANCELLED`` when some variance shrank more than 4096-fold, when a
         first-order estimate of its error exceeds 2⁻⁴⁰ of the posterior's
         scale (:func:`_joseph_in_doubt`), when S's pivots say it is
-        ill-conditioned (``max Sₖₖ / Dₖ`` above 2⁻³⁰ / ε, for
+        ill-conditioned for its rounding error (``max cₖ / Dₖ`` above
+        2⁻³⁰ / ε, ``cₖ = max(uₖ² + Rₖₖ, Sₖₖ)``, ``uₖ = Σⱼ |Hₖⱼ| sqrt(Pⱼⱼ)``, for
         2 <= m <= ``_EXACT_NIS_MAX_M``), whatever its own status, or when it
         is not finite or not positive definite (its status kept for the
         caller, which finishes with :func:`finish_cancelled`; before review
@@ -953,9 +978,12 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
     failed its check (which the exact posterior may still pass). (Or because
     S's pivots say S is ill-conditioned, ε κ(S) > 2⁻³⁰, with 2
     to ``_EXACT_NIS_MAX_M`` components: a linear combination of states
-    measured twice far more precisely than it is known, where no variance
-    need shrink, but the kernel's NIS and x, from its solve with S, are off
-    by about ε κ(S).) The cancellation's rounding error E enters the result
+    measured twice far more precisely than it is known, or H P Hᵀ
+    cancelling, where no variance need shrink, but the kernel's NIS and x,
+    from its solve with S, are off by about ε κ(S). Here κ(S) is
+    :func:`_s_amplification`, which counts that cancellation: with S's
+    condition alone, before review 28, an NIS of 298.8 for an exact 4.18
+    was reported.) The cancellation's rounding error E enters the result
     as ``E Aᵀ`` (A = I - K H; see
     :func:`_update`), which is small where A is (all of H's directions measured
     precisely) but not in general: with a state measured far more precisely
@@ -1072,7 +1100,7 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
             # not the kernel's NIS where S is ill-conditioned (measured 7.14 for an
             # exact 9.07, passing a gate of 8.1): the exact one, gated again; nor its
             # x, which nothing bounds: the exact state.
-            regate = exact and not _EPS * _s_condition(rbuf[_S, :m, :m]) <= _STATE_TRUSTED
+            regate = exact and not _EPS * _s_amplification(rbuf, p, jac) <= _STATE_TRUSTED
         else:
             posterior = found.posterior
             deviation = np.sqrt(posterior.diagonal())
@@ -1107,12 +1135,12 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
                     # same solve with S, is as suspect (measured 21.0 for an exact 9.38).
                     regate = exact
                 else:
-                    ill = not _EPS * _s_condition(rbuf[_S, :m, :m]) <= _STATE_TRUSTED
+                    ill = not _EPS * _s_amplification(rbuf, p, jac) <= _STATE_TRUSTED
                     regate = exact and ill
                     if status != OK and ill and not exact:
                         take_p = False  # no state to trust: refused, after the gate
             elif exact:
-                ill = not _EPS * _s_condition(rbuf[_S, :m, :m]) <= _STATE_TRUSTED
+                ill = not _EPS * _s_amplification(rbuf, p, jac) <= _STATE_TRUSTED
                 if ill:
                     # Within the tolerance of each other, but the kernel's x and NIS
                     # come from an S too ill-conditioned to trust (ε κ(S) > 2⁻³⁰;
@@ -1275,15 +1303,52 @@ def finish_singular_s(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: F
     return OK
 
 
+@njit_no_refcount
+def gated_s_ill(state: FloatArray, rbuf: FloatArray, jac: FloatArray) -> bool:
+    """Whether the S of a gated update is ill-conditioned for its rounding error.
+
+    The update kernel's test (see :func:`_update`), on the S and the pivots it
+    left in ``rbuf`` where it gated: ``max cₖ / Dₖ`` above ``_PIVOT_LIMIT``,
+    ``cₖ = max(uₖ² + Rₖₖ, Sₖₖ)``, ``uₖ = Σⱼ |Hₖⱼ| sqrt(Pⱼⱼ)``, with the same
+    floats. A kernel of its own, typed once for every n and m (run-time sizes)
+    and compiled only when first needed, as :func:`adopt_positive_q`: in the
+    update kernels the test cost every filter's first use 3 % more compile
+    time, and in NumPy 2.2 µs of a gated update's 5.5. ``jac`` (m, n) is the H
+    the kernel took.
+    """
+    n = state.shape[1]
+    m = jac.shape[0]
+    s = rbuf[_S]
+    rs = rbuf[_RS]
+    inv_diag = rbuf[_VEC, _INV_DIAG]
+    for k in range(m):
+        acc = 0.0
+        for j in range(n):
+            hkj = jac[k, j]
+            if hkj != 0.0:
+                acc += abs(hkj) * math.sqrt(state[STATE_P + j, j])
+        c = acc * acc + rs[k, k]
+        if c < s[k, k]:
+            c = s[k, k]
+        if c * inv_diag[k] > _PIVOT_LIMIT:
+            return True
+    return False
+
+
 def retry_gated(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: FloatArray) -> int:
     """Check a kernel's ``GATED`` verdict where its S is ill-conditioned; returns the status.
 
     The kernel's NIS comes from its LDLᵀ factorisation of the computed S, off
     by about ε κ(S) relative (measured 21.0 for an exact 9.38 at κ(S) 3e16: a
     measurement that passes a gate of 11.3 was rejected). Where the pivots say
-    S is that ill-conditioned (``max Sₖₖ / Dₖ`` above 2⁻³⁰ / ε, a lower bound on
-    the condition number of S with its diagonal scaled, read from the kernel's
-    factorisation) and the measurement has at most :data:`_EXACT_NIS_MAX_M`
+    S is that ill-conditioned for its rounding error, the update kernel's test
+    (``max cₖ / Dₖ`` above 2⁻³⁰ / ε, ``cₖ = max(uₖ² + Rₖₖ, Sₖₖ)`` with
+    ``uₖ = Σⱼ |Hₖⱼ| sqrt(Pⱼⱼ)``: a lower bound on how far S's rounding error,
+    within about n ε sqrt(cₖ cₗ) in entry (k, l), reaches the NIS; read from
+    the kernel's factorisation by :func:`gated_s_ill`. With Sₖₖ for cₖ, before
+    review 28, S's own condition only, which missed H P Hᵀ cancelling: the NIS
+    298.8 for an exact 4.18, rejected at a gate of 13.28) and the measurement
+    has at most :data:`_EXACT_NIS_MAX_M`
     components, it is gated again on the exact NIS (:func:`_exact_nis`, left
     in ``rbuf``): ``GATED`` or ``NIS_OVERFLOW`` where that rejects it, else
     ``GATE_PASSED``: the caller runs the kernel again without the gate
@@ -1293,24 +1358,19 @@ def retry_gated(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: FloatAr
     passes is the ungated update, bit for bit (finishing it here as
     :func:`finish_singular_s` does, with the information form's P⁺ where the
     ungated update keeps the Joseph form's, gave a P 5.8e-8 relative away
-    from it; review 25). Elsewhere ``GATED`` stands. A few microseconds for
-    a well-conditioned S.
+    from it; review 25). Elsewhere ``GATED`` stands. About 3 µs for a
+    well-conditioned S (the whole gated update).
     """
     m = jac.shape[0]
-    if m == 1 or m > _EXACT_NIS_MAX_M:  # m = 1: the one pivot is S itself, the ratio 1
+    # m = 1: untested, as in the update kernel (no κ(S) amplifies S's error; a scalar S
+    # that cancels makes the Joseph check's bound large: measured NIS errors 5e-10).
+    if m == 1 or m > _EXACT_NIS_MAX_M:
         return GATED
-    # As Python floats, entry by entry: NumPy's reductions, or its scalars read
-    # one by one, cost more here (about 2 µs more for m = 8, of 10 for the update).
-    diagonal = rbuf[_S].diagonal()[:m].tolist()
-    inverse_pivots = rbuf[_VEC, _INV_DIAG, :m].tolist()
-    worst = 0.0
-    for k in range(m):
-        ratio = diagonal[k] * inverse_pivots[k]
-        worst = ratio if ratio > worst else worst
-    if not worst > _PIVOT_LIMIT:
+    if not gated_s_ill(state, rbuf, jac):
         return GATED
     n = state.shape[1]
-    status = _regate(state[STATE_P : STATE_P + n], jac, rbuf, y)
+    p = state[STATE_P : STATE_P + n]
+    status = _regate(p, jac, rbuf, y)
     # The exact NIS (left in rbuf) passed the gate: the kernel's update without the
     # gate, as an ungated update.
     return GATE_PASSED if status == OK else status
@@ -1524,14 +1584,28 @@ def _dyadic(a: FloatArray) -> tuple[list[list[int]], int]:
     return [[num << (k - den.bit_length() + 1) for num, den in row] for row in ratios], k
 
 
-def _s_condition(s_lower: FloatArray) -> float:
-    """κ of S with its diagonal scaled (:func:`_scaled_inverse`), from the kernel's lower triangle.
+def _s_amplification(rbuf: FloatArray, p: FloatArray, jac: FloatArray) -> float:
+    """How far the kernel's NIS and x may be off, over ε: S's condition for its rounding error.
 
-    inf where S is singular to working precision.
+    The larger of κ of S with its diagonal scaled (:func:`_scaled_inverse`) and
+    ``max cₖ (S⁻¹)ₖₖ``, ``cₖ = max(uₖ² + Rₖₖ, Sₖₖ)`` with ``uₖ = Σⱼ |Hₖⱼ| sqrt(Pⱼⱼ)``:
+    the computed S's rounding error is within about n ε sqrt(cₖ cₗ) in entry
+    (k, l) however far H P Hᵀ cancels, and its effect is λmax(C S⁻¹ C) ε
+    (C = diag(sqrt(cₖ))), of which ``max cₖ (S⁻¹)ₖₖ`` is a lower bound at least
+    the update kernel's ``max cₖ / Dₖ`` (a pivot Dₖ of S = L D Lᵀ is at least
+    ``1 / (S⁻¹)ₖₖ``). inf where S is singular to working precision. ``p`` is
+    the prior P and ``jac`` the H of the update whose S ``rbuf`` holds.
     """
-    lower = np.tril(s_lower)
+    m = jac.shape[0]
+    lower = np.tril(rbuf[_S, :m, :m])
     found = _scaled_inverse(lower + np.tril(lower, -1).T)
-    return math.inf if found is None else found[1]
+    if found is None:
+        return math.inf
+    inverse, kappa = found
+    reach = np.abs(jac) @ np.sqrt(p.diagonal())
+    scale = np.maximum(reach * reach + rbuf[_RS, :m, :m].diagonal(), lower.diagonal())
+    worst = float(np.max(scale * inverse.diagonal()))
+    return max(kappa, worst) if worst - worst == 0.0 else math.inf
 
 
 _SPLIT = 134217729.0  # 2²⁷ + 1: Dekker's splitting of a float64 into two 26-bit halves
