@@ -209,6 +209,10 @@ def _estimation() -> None:
     ekf.predict(lambda x: jac @ x, jac, [[0.01, 0.012, 0.0], [0.012, 0.02, 0.0], [0.0, 0.0, 0.01]])
     ekf.update([0.1], lambda x: x[:1], np.array([[1.0, 0.0, 0.0]]), [[0.01]])
     ekf.update([0.1, 0.0], lambda x: x[[0, 2]], np.array([[1.0, 0, 0], [0, 0, 1.0]]), np.eye(2))
+    # A measurement of two components the gate rejects: its retry checks S in a
+    # kernel of its own.
+    ekf.update([1e3, 0.0], lambda x: x[[0, 2]], np.array([[1.0, 0, 0], [0, 0, 1.0]]), np.eye(2),
+               gate=1.0)  # fmt: skip
     diff = DiffDrive(track=0.3, wheel_radius=0.05)
     for method in ("arc", "midpoint", "first_order"):
         odometry = DiffOdometry(diff, ticks_per_rev=1024.0, bits=16, method=method)
