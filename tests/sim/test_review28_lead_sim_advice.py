@@ -25,7 +25,8 @@ def _still(obs: Observation) -> Twist2D:
 
 def test_the_rate_advice_names_the_sensor_rate() -> None:
     robot = Robot(drive=DIFF, footprint=0.2, imu=Imu(rate=150.0))
-    with pytest.raises(ValueError, match=r"lower robot\.imu\.rate or raise Simulation"):
+    advice = r"lower robot\.imu\.rate \(Imu\(rate=\.\.\.\)\) or raise Simulation"
+    with pytest.raises(ValueError, match=advice):
         Simulation(ROOM, robot, _still, start=(0.0, 0.0, 0.0), rate=100.0, duration=0.1)
     # Either remedy runs.
     Simulation(ROOM, robot, _still, start=(0.0, 0.0, 0.0), rate=150.0, duration=0.1).run()
@@ -45,6 +46,9 @@ def test_the_estimator_refusals_name_the_argument_and_the_fix() -> None:
     with pytest.raises(ValueError, match=r"^estimator: DiffOdometry needs a differential-drive"):
         odometry = DiffOdometry(DIFF, ticks_per_rev=1024)
         Simulation(ROOM, omni, _still, start=start, estimator=odometry)
+    no_encoders = Robot(drive=OMNI, footprint=0.2, compass=Compass(), encoders=None)
+    with pytest.raises(ValueError, match=r"^estimator: .*Robot\(encoders=WheelEncoders\(\)\)"):
+        Simulation(ROOM, no_encoders, _still, start=start, estimator=OmniOdometry(OMNI))
     # Following the first advice: the run goes.
     fixed = Robot(drive=OMNI, footprint=0.2, compass=Compass())
     Simulation(ROOM, fixed, _still, start=start, estimator=OmniOdometry(OMNI), duration=0.1).run()

@@ -929,6 +929,10 @@ class DiffOdometry:
         )
         steps = self._drive.odometry_step_batch(d_left, d_right, method=self._method)
         del d_left, d_right
+        if type(self._drive).odometry_step_batch is not DiffDrive.odometry_step_batch:
+            # The poses are written over the steps below: a subclass's may be kept
+            # by it or read-only, so only DiffDrive's own fresh array is reused.
+            steps = np.array(steps, dtype=np.float64, order="C")
         theta = _cumulative_turn(steps[:, 2])
         theta += self._pose.theta
         before = np.concatenate(([self._pose.theta], theta[:-1]))

@@ -116,7 +116,10 @@ class _Wheels:
 
     def __init__(self, robot: Robot) -> None:
         if robot.encoders is None:
-            raise ValueError("this estimator needs wheel encoders: give the Robot encoders=")
+            raise ValueError(
+                "estimator: this estimator needs wheel encoders: give the Robot some "
+                "(Robot(encoders=WheelEncoders()))"
+            )
         bits = robot.encoders.bits
         self._bits = None if bits is None or bits >= 64 else bits
         self._rad_per_tick = _TWO_PI / robot.encoders.ticks_per_rev
@@ -289,7 +292,8 @@ class _DiffOdometryEstimator:
     def __init__(self, odometry: DiffOdometry, robot: Robot) -> None:
         if robot.encoders is None:
             raise ValueError(
-                "estimator: DiffOdometry needs wheel encoders: give the Robot encoders="
+                "estimator: DiffOdometry needs wheel encoders: give the Robot some "
+                "(Robot(encoders=WheelEncoders()))"
             )
         if not isinstance(robot.drive, DiffDrive):
             raise ValueError(

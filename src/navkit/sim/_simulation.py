@@ -407,7 +407,9 @@ class Simulation:
         for name in ("lidar", "compass", "imu", "encoders"):
             sensor = getattr(robot, name)
             if sensor is not None:
-                self._check_not_faster(f"robot.{name}.rate", sensor.rate)
+                self._check_not_faster(
+                    f"robot.{name}.rate", sensor.rate, f"{type(sensor).__name__}(rate=...)"
+                )
         self._duration = positive_float(duration, "duration")
         if self._duration > MAX_DURATION:
             raise ValueError(f"duration must be at most {MAX_DURATION:g} s, got {self._duration}")
@@ -464,11 +466,12 @@ class Simulation:
         twin._rng = copy.deepcopy(self._rng)
         return twin
 
-    def _check_not_faster(self, name: str, rate: float) -> None:
+    def _check_not_faster(self, name: str, rate: float, remedy: str | None = None) -> None:
         if rate > self._rate * (1.0 + 1e-12):
+            lower = name if remedy is None else f"{name} ({remedy})"
             raise ValueError(
                 f"{name} ({rate:g} Hz) must not exceed the simulation rate ({self._rate:g} Hz): "
-                f"lower {name} or raise Simulation(rate=)"
+                f"lower {lower} or raise Simulation(rate=)"
             )
 
     # ------------------------------------------------------------------ run

@@ -1532,7 +1532,7 @@ def _unknown_pixel(
             f"the grid's thresholds (free_thresh={free_thresh}, occupied_thresh="
             f"{occupied_thresh}) leave no 8-bit grey level that map_server reads as "
             "unknown, so its unknown cells cannot be written; widen the band between them "
-            "(the same cells with thresholds at least 1/255 apart: OccupancyGrid(grid.logodds, "
+            "(the same cells with thresholds more than 1/255 apart: OccupancyGrid(grid.logodds, "
             "resolution=grid.resolution, origin=grid.origin, occupied_thresh=..., "
             "free_thresh=...))"
         )
