@@ -7,6 +7,7 @@ from typing import Generic, Protocol, TypeVar
 from navkit._shared.dunders import slot_state
 from navkit._shared.validation import as_bool, positive_float
 from navkit.geometry import Pose2D, Twist2D
+from navkit.sim._done import done_flag
 from navkit.sim._simulation import Observation
 
 __all__ = ["Tracker", "TrackerController"]
@@ -176,20 +177,7 @@ class TrackerController(Generic[_T]):
         >>> TrackerController(OnOffTracker(), control_rate=10.0).done
         False
         """
-        done = self.tracker.done
-        if callable(done):
-            # A method done() without @property: a bound method is true, and the run
-            # ended at its first step.
-            raise TypeError(
-                f"tracker.done must be true or false (a property or an attribute), got a "
-                f"{type(done).__name__}: a method done() needs @property"
-            )
-        try:
-            return bool(done)
-        except Exception as exc:  # numpy's "truth value ... is ambiguous", say
-            raise TypeError(
-                f"tracker.done must be true or false, got {type(done).__name__} ({exc})"
-            ) from exc
+        return done_flag(self.tracker.done, "tracker.done")
 
     def __call__(self, obs: Observation) -> Twist2D:
         """One control step: the tracker's twist at the observed pose.

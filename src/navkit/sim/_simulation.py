@@ -24,6 +24,7 @@ from navkit._shared.validation import as_bool, as_float_array, finite_float, pos
 from navkit.estimation import DiffOdometry, OmniOdometry, PlanarFusion
 from navkit.geometry import Pose2D, Twist2D, as_twist
 from navkit.planning import Path2D
+from navkit.sim._done import done_flag
 from navkit.sim._estimators import Estimator, FusionEstimator, as_estimator
 from navkit.sim._latency import DelayLine
 from navkit.sim._lidar import Scanner, as_generator, check_rate
@@ -898,20 +899,7 @@ class _Run:
             done = controller.done
         else:
             done = getattr(controller, "done", False)
-        if callable(done):
-            # A method done() without @property: bool() of a bound method is True, and
-            # the run ended at its first step, "controller done", without a word.
-            raise TypeError(
-                f"the controller's done must be true or false (a property or an attribute), "
-                f"got a {type(done).__name__}: a method done() needs @property"
-            )
-        try:
-            return bool(done)
-        except Exception as exc:  # numpy's "truth value ... is ambiguous", say
-            raise TypeError(
-                f"the controller's done must be true or false, got {type(done).__name__} "
-                f"({exc})"
-            ) from exc
+        return done_flag(done, "the controller's done")
 
     # ------------------------------------------------------------------ loop
     def execute(self) -> Trace:

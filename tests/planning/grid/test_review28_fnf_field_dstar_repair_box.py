@@ -22,28 +22,12 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from numpy.typing import NDArray
+from test_review27_fdreset_records import _outside_blank
 
 from hypothesis_twins import slow_twin
 from navkit.errors import NoPathError
 from navkit.planning import FieldDStar
 from navkit.planning.grid import _field_dstar
-from navkit.planning.grid._dstar_heap import POS, RECORD
-
-
-def _blank_bits() -> NDArray[np.int64]:
-    blank = np.full(RECORD, np.inf)
-    blank.view(np.int64)[POS] = -1
-    return blank.view(np.int64)
-
-
-def _outside_blank(planner: FieldDStar) -> bool:
-    """Whether every record outside the box of written records, widened by one, is blank."""
-    top, bottom, left, right = (int(v) for v in planner._work[2:6])
-    recs = planner._vals.view(np.int64).reshape(planner._nrows, planner._ncols, RECORD)
-    outside = np.ones(recs.shape[:2], dtype=bool)
-    if bottom >= top:
-        outside[max(top - 1, 0) : bottom + 2, max(left - 1, 0) : right + 2] = False
-    return bool(np.all(recs[outside] == _blank_bits()))
 
 
 def _counting(monkeypatch: pytest.MonkeyPatch) -> list[int]:
