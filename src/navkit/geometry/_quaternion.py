@@ -40,7 +40,7 @@ def _quaternions(value: ArrayLike, name: str) -> FloatArray:
     # Scale by the largest component first so huge values cannot overflow when squared.
     big = np.max(np.abs(q), axis=-1, keepdims=True)
     zero = big == 0.0
-    scaled = q / np.where(zero, 1.0, big)
+    scaled: FloatArray = q / np.where(zero, 1.0, big)
     norm = np.sqrt(np.sum(scaled * scaled, axis=-1, keepdims=True))
     # In place on this function's own array: fresh copies for the unit
     # quaternions and the identity rows held three at once (memory, batches).
