@@ -107,7 +107,10 @@ def _pytest_without(peers: list[str], tmp_path: Path, *selection: str) -> str:
         [sys.executable, "-m", "pytest", "-p", "no:cacheprovider", "-p", "hide_peers_plugin",
          "--benchmark-disable", "-q", "-rA", "--no-header", *selection],
         capture_output=True, text=True, timeout=600, cwd=BENCHMARKS.parent,
-        env={**os.environ, "PYTHONPATH": str(tmp_path)},
+        # The plugin's folder first, the caller's path kept (navkit may come from it).
+        env={**os.environ, "PYTHONPATH": os.pathsep.join(
+            p for p in (str(tmp_path), os.environ.get("PYTHONPATH", "")) if p
+        )},
     )  # fmt: skip
     assert proc.returncode == 0, proc.stdout[-3000:] + proc.stderr[-2000:]
     return proc.stdout
