@@ -18,8 +18,9 @@ from typing import Any
 
 import numpy as np
 import pytest
+from test_review11_mapping_vocabulary import _room_scan
 
-from navkit.mapping import LaserScan, OccupancyGrid, ScanMapper
+from navkit.mapping import OccupancyGrid, ScanMapper
 from navkit.mapping.io import grid_to_msg_fields
 
 
@@ -30,14 +31,6 @@ def _advice(call: Any, old: str, new: str) -> tuple[Any, Any]:
     found = re.search(rf": use {new}=([^,\s]+)", str(rec[0].message))
     assert found, f"the warning names no value for {new}=: {rec[0].message}"
     return result, ast.literal_eval(found.group(1))
-
-
-def _room_scan() -> LaserScan:
-    angles = np.linspace(-math.pi, math.pi, 90, endpoint=False)
-    with np.errstate(divide="ignore"):
-        ranges = np.minimum(3.0 / np.abs(np.cos(angles)), 2.0 / np.abs(np.sin(angles)))
-    return LaserScan(ranges, angle_min=-math.pi, angle_increment=2 * math.pi / 90,
-                     range_min=0.1, range_max=10.0)  # fmt: skip
 
 
 def _map(mapper: ScanMapper) -> np.ndarray:
