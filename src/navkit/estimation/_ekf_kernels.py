@@ -53,7 +53,7 @@ reference counting, which alone took a tenth of a call) and never leave
 An update whose Joseph form cancelled (a variance shrank more than 4096-fold:
 a measurement far more precise than the estimate; or a first-order estimate
 of the Joseph P's error exceeds 2⁻⁴⁰ of its scale, :func:`_joseph_in_doubt`),
-whose Joseph P failed its check, or whose S of 2 to
+whose Joseph P failed its check, or whose S of at most
 ``_EXACT_NIS_MAX_M`` components is ill-conditioned for its rounding error
 (its pivots, against a bound on that error, give ε κ(S) > 2⁻³⁰, so that its
 NIS and x are not to be trusted; H P Hᵀ cancelling counts), commits nothing
@@ -160,7 +160,7 @@ BAD_SHAPE = 15  # an argument's shape does not fit (or rbuf is another m's): che
 BAD_TYPE = 16  # set by the public layer: an argument is not of the compiled type
 CANCELLED = 17  # the Joseph form cancelled (a variance shrank > 4096-fold, or its P's
 # estimated error exceeds 2⁻⁴⁰) or failed its check, or S is ill-conditioned
-# (ε κ(S) > 2⁻³⁰, 2 <= m <= _EXACT_NIS_MAX_M): finish_cancelled
+# for its rounding error (ε max cₖ / Dₖ > 2⁻³⁰, m <= _EXACT_NIS_MAX_M): finish_cancelled
 # From retry_gated only: the exact NIS passes the gate the kernel's NIS failed: run the
 # kernel again without the gate.
 GATE_PASSED = 18
@@ -862,9 +862,11 @@ def _update(
     # the NIS 298.8 for an exact 4.18 and the Joseph P 1.27e-11 off (the gain's
     # second-order error, which _joseph_in_doubt does not see). The larger of cₖ and
     # Sₖₖ, so that no S the diagonal's test flags escapes this one by a rounding of
-    # uₖ². m is a constant here, so for m = 1 or m > _EXACT_NIS_MAX_M the test costs
-    # nothing; σ and u are needed by _joseph_in_doubt anyway (here since review 28; L
-    # of S, in chol, is not needed any more).
+    # uₖ². m = 1 too: the one pivot is S itself, but S's error is its terms' (review
+    # 29: a scalar S with c / S 1.1e15 gave a NIS of 1.827 for an exact 1.911). m is a
+    # constant here, so for m > _EXACT_NIS_MAX_M the test costs nothing; σ and u are
+    # needed by _joseph_in_doubt anyway (here since review 28; L of S, in chol, is not
+    # needed any more).
     sigma = chol[0]
     reach = chol[1]
     for j in range(n):
@@ -877,7 +879,7 @@ def _update(
                 acc += abs(hkj) * sigma[j]
         reach[k] = acc
     ill = False
-    if 2 <= m <= _EXACT_NIS_MAX_M:
+    if m <= _EXACT_NIS_MAX_M:
         for k in range(m):
             uk = reach[k]
             c = uk * uk + rs[k, k]
@@ -948,7 +950,7 @@ def _make_update(n: int, m: int) -> UpdateKernel:
         scale (:func:`_joseph_in_doubt`), when S's pivots say it is
         ill-conditioned for its rounding error (``max cₖ / Dₖ`` above
         2⁻³⁰ / ε, ``cₖ = max(uₖ² + Rₖₖ, Sₖₖ)``, ``uₖ = Σⱼ |Hₖⱼ| sqrt(Pⱼⱼ)``, for
-        2 <= m <= ``_EXACT_NIS_MAX_M``), whatever its own status, or when it
+        m <= ``_EXACT_NIS_MAX_M``), whatever its own status, or when it
         is not finite or not positive definite (its status kept for the
         caller, which finishes with :func:`finish_cancelled`; before review
         27 these were returned, refusing updates whose exact posterior is a
@@ -976,11 +978,12 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
     or a first-order estimate of the Joseph P's error exceeds ``_P_SURE``
     (:func:`_joseph_in_doubt`: H P cancelling, or K and H), or the Joseph P
     failed its check (which the exact posterior may still pass). (Or because
-    S's pivots say S is ill-conditioned, ε κ(S) > 2⁻³⁰, with 2
-    to ``_EXACT_NIS_MAX_M`` components: a linear combination of states
+    S's pivots say S is ill-conditioned, ε κ(S) > 2⁻³⁰, with at most
+    ``_EXACT_NIS_MAX_M`` components: a linear combination of states
     measured twice far more precisely than it is known, or H P Hᵀ
-    cancelling, where no variance need shrink, but the kernel's NIS and x,
-    from its solve with S, are off by about ε κ(S). Here κ(S) is
+    cancelling (for one component too, since review 29), where no variance
+    need shrink, but the kernel's NIS and x, from its solve with S, are off
+    by about ε κ(S). Here κ(S) is
     :func:`_s_amplification`, which counts that cancellation: with S's
     condition alone, before review 28, an NIS of 298.8 for an exact 4.18
     was reported.) The cancellation's rounding error E enters the result
@@ -1362,9 +1365,10 @@ def retry_gated(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: FloatAr
     well-conditioned S (the whole gated update).
     """
     m = jac.shape[0]
-    # m = 1: untested, as in the update kernel (no κ(S) amplifies S's error; a scalar S
-    # that cancels makes the Joseph check's bound large: measured NIS errors 5e-10).
-    if m == 1 or m > _EXACT_NIS_MAX_M:
+    # m = 1 too, as in the update kernel: a scalar S whose H P Hᵀ cancels is as far off
+    # as its terms are large against it (review 29: NIS 1.4266 for an exact 1.4040,
+    # rejected at a gate of 1.415; before, m = 1 was not tested, κ(S) being 1).
+    if m > _EXACT_NIS_MAX_M:
         return GATED
     if not gated_s_ill(state, rbuf, jac):
         return GATED

@@ -1521,7 +1521,9 @@ def _unknown_pixel(
 
     ``preferred`` when it is one (205, map_saver's unknown, in trinary mode),
     else the one nearest the middle of the unknown band; ValueError when the band
-    holds no 8-bit grey level, as it can when it is narrower than 1/255.
+    holds no 8-bit grey level, as it can when it is narrower than 0.004: the levels'
+    ``p`` are rounded, and the widest gap between two is 0.0039215686274510775,
+    9.7e-17 more than 1/255 (review 29: the advice said "more than 1/255").
     """
     p = _pixel_p(_GREY_LEVELS)  # map_server's reading of each level (negate 0)
     unknown = (free_thresh <= p) & (p <= occupied_thresh)
@@ -1532,7 +1534,7 @@ def _unknown_pixel(
             f"the grid's thresholds (free_thresh={free_thresh}, occupied_thresh="
             f"{occupied_thresh}) leave no 8-bit grey level that map_server reads as "
             "unknown, so its unknown cells cannot be written; widen the band between them "
-            "(the same cells with thresholds more than 1/255 apart: OccupancyGrid(grid.logodds, "
+            "(the same cells with thresholds at least 0.004 apart: OccupancyGrid(grid.logodds, "
             "resolution=grid.resolution, origin=grid.origin, occupied_thresh=..., "
             "free_thresh=...))"
         )
