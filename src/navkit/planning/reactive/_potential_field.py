@@ -106,7 +106,9 @@ class PotentialField(ABC):
         if not hasattr(type(self), "__dataclass_fields__"):
             # A user's field that is no dataclass: as Python pickles any object (its
             # __dict__ and slots), where reduce_record raised a TypeError naming nothing.
-            return _new_field, (type(self),), object.__getstate__(self)
+            # Through its own __getstate__ if it has one (dropping a lock, say): its
+            # __setstate__ reads that state.
+            return _new_field, (type(self),), self.__getstate__()
         return reduce_record(self)
 
     def potential(self, points_xy: ArrayLike) -> FloatArray:
