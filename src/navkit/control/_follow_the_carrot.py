@@ -97,6 +97,16 @@ class FollowTheCarrot(PathTracker):
     (:meth:`set_path`, :meth:`step`); different trackers may run in different
     threads at once.
 
+    Subclasses may add attributes (their own ``__slots__`` or an instance
+    ``__dict__``) and methods, and override the public methods, calling the
+    base's through ``super()``: the base's methods call none of the public
+    ones, so an override changes only its own callers. Copies and pickles
+    rebuild a subclass as itself, with what it adds (its ``__init__`` is not
+    called), and ``repr`` names it. A tracker of a new kind cannot be written
+    this way: the hooks each step calls (``_command`` and the like) belong to
+    a private base class and, as every name with a leading underscore, may
+    change in any release.
+
     Raises
     ------
     ValueError

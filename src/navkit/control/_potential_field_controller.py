@@ -176,6 +176,18 @@ class PotentialFieldController:
     TypeError, ValueError
         A parameter of the wrong type or outside its range, naming it.
 
+    Notes
+    -----
+    Subclasses may add attributes (their own ``__slots__`` or an instance
+    ``__dict__``) and methods, and override the public methods, calling the
+    base's through ``super()``. The base's methods call none of the public
+    ones but one: ``__init__`` ends with :meth:`reset`, so an override of it
+    runs there too, before the subclass's own ``__init__`` goes on. Copies
+    and pickles rebuild a subclass as itself, with what it adds (its
+    ``__init__`` is not called), and ``repr`` names it. Names with a leading
+    underscore are private and may change in any release. The attraction
+    may be a field of your own (see :class:`~navkit.planning.PotentialField`).
+
     Examples
     --------
     >>> from navkit.geometry import integrate

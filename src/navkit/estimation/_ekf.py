@@ -153,6 +153,20 @@ class ExtendedKalmanFilter(GaussianEstimate):
     TypeError, ValueError
         An argument outside the ranges above, naming it.
 
+    Notes
+    -----
+    Subclasses may add attributes (their own ``__slots__`` or an instance
+    ``__dict__``) and methods (a motion model's ``step(u, dt)`` calling
+    :meth:`predict` with its own ``f``, ``F`` and ``Q``, say), and override
+    the public methods, calling the base's through ``super()``: the base's
+    methods call none of the public ones, so an override changes only its
+    own callers. Copies (:func:`copy.copy`, :func:`copy.deepcopy`) and
+    pickles rebuild a subclass as itself, with what it adds (its
+    ``__init__`` is not called), and ``repr`` names it. Names with a leading
+    underscore (the compiled kernels, their buffers, the fallbacks of
+    :meth:`update`) are private: a subclass must neither use nor override
+    them; they may change in any release.
+
     Examples
     --------
     A 1-D constant-velocity model observed in position:
@@ -483,7 +497,10 @@ class ExtendedKalmanFilter(GaussianEstimate):
         multiples of one state), each time far more precisely than it is
         known, makes S nearly singular: κ(S) about P/R; so does a linear
         combination of states measured so (rows of H multiples of one row),
-        where no variance need shrink. In an update of 2 to 8 components
+        where no variance need shrink; so does, even for one component, a
+        combination of strongly correlated states whose terms in H P Hᵀ far
+        exceed it (κ(S) here counts that cancellation: S's rounding error is
+        that of its terms). In an update of at most 8 components
         whose S is that ill-conditioned (ε κ(S) above 2⁻³⁰, read from the
         pivots of its LDLᵀ factorisation, or from S's scaled inverse where the
         update reaches the information form anyway), or whose computed S is
@@ -503,8 +520,12 @@ class ExtendedKalmanFilter(GaussianEstimate):
         above, so readings 1e150 deviations apart are rejected by a gate,
         not refused (and without a gate applied, with the exact state).
         Updates of more than 8 components keep the kernel's NIS (the exact
-        one would cost tens of milliseconds), and those of 1 component have
-        κ(S) = 1. Of 1200 random updates of a combination of 1 to 4 states
+        one would cost tens of milliseconds). (Before review 29 one
+        component was not tested, its κ(S) taken as 1: of 375 random updates
+        whose H P Hᵀ cancels, 345 reported a NIS more than 1e-9 off, up to 8
+        times the exact one, and a gate 0.1 % from the exact NIS decided
+        wrongly in 32; now none is more than 3e-11 off, none decided wrongly.)
+        Of 1200 random updates of a combination of 1 to 4 states
         measured 2 to 4 times with R/P from
         3e-17 to 1e-9 (each checked against exact arithmetic), the reported
         NIS was more than 1e-8 off the exact one in 518 before and in none
@@ -821,7 +842,8 @@ class ExtendedKalmanFilter(GaussianEstimate):
         return out
 
     def __repr__(self) -> str:
-        return f"ExtendedKalmanFilter(dim={self._n}, angle_states={self._angles})"
+        # A user subclass is named as itself (as navkit's potential fields are).
+        return f"{type(self).__name__}(dim={self._n}, angle_states={self._angles})"
 
 
 _NO_RBUF: FloatArray = np.zeros((1, 1, 1))  # the buffer before the first update

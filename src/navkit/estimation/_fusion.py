@@ -1711,7 +1711,8 @@ class PlanarFusion(GaussianEstimate):
         np.copyto(self._buf, buf)
 
     def __repr__(self) -> str:
-        return f"PlanarFusion(t={self.t}, x={np.array2string(self.x, precision=4)})"
+        # A user subclass is named as itself (as navkit's potential fields are).
+        return f"{type(self).__name__}(t={self.t}, x={np.array2string(self.x, precision=4)})"
 
 
 def _loaded_into(buf: FloatArray, t: float, args: _StepArgs) -> tuple[int, float]:
