@@ -235,4 +235,4 @@ class CompassCalibration:
         return yaw
 
     def __repr__(self) -> str:
-        return f"CompassCalibration(unwrap={self._unwrap}, initial_deg={self._initial})"
+        return f"{type(self).__name__}(unwrap={self._unwrap}, initial_deg={self._initial})"

@@ -555,7 +555,7 @@ class OmniOdometry:
         return out
 
     def __repr__(self) -> str:
-        return f"OmniOdometry({self._drive!r}, pose={self._pose!r})"
+        return f"{type(self).__name__}({self._drive!r}, pose={self._pose!r})"
 
 
 class DiffOdometry:
@@ -962,6 +962,6 @@ class DiffOdometry:
 
     def __repr__(self) -> str:
         return (
-            f"DiffOdometry({self._drive!r}, ticks_per_rev={self._ticks_per_rev}, "
+            f"{type(self).__name__}({self._drive!r}, ticks_per_rev={self._ticks_per_rev}, "
             f"bits={self._bits}, method={self._method!r}, pose={self._pose!r})"
         )

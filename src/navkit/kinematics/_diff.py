@@ -525,5 +525,6 @@ class DiffDrive:
 
     def __repr__(self) -> str:
         return (
-            f"DiffDrive(track={self._track}, left_radius={self._left}, right_radius={self._right})"
+            f"{type(self).__name__}(track={self._track}, left_radius={self._left}, "
+            f"right_radius={self._right})"
         )

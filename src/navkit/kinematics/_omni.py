@@ -435,6 +435,6 @@ class OmniDrive:
     def __repr__(self) -> str:
         degrees = ", ".join(f"{a:.6g}" for a in np.degrees(self._wheel_angles))
         return (
-            f"OmniDrive(wheel_angles=radians([{degrees}]), wheel_radius={self._wheel_radius}, "
-            f"base_radius={self._base_radius})"
+            f"{type(self).__name__}(wheel_angles=radians([{degrees}]), "
+            f"wheel_radius={self._wheel_radius}, base_radius={self._base_radius})"
         )

@@ -438,7 +438,7 @@ class OccupancyGrid:
 
     def __repr__(self) -> str:
         return (
-            f"OccupancyGrid(shape={self.shape}, resolution={self._resolution}, "
+            f"{type(self).__name__}(shape={self.shape}, resolution={self._resolution}, "
             f"origin={self._origin!r})"
         )
 

@@ -272,7 +272,7 @@ class ScanMapper:
         return self._path_len
 
     def __repr__(self) -> str:
-        return f"ScanMapper(resolution={self._resolution}, scans={len(self)})"
+        return f"{type(self).__name__}(resolution={self._resolution}, scans={len(self)})"
 
     def __copy__(self) -> ScanMapper:
         # update() writes into the map levels and appends to the trajectory in

@@ -346,7 +346,7 @@ class ScanMatcher:
 
     def __repr__(self) -> str:
         return (
-            f"ScanMatcher(levels={self._levels}, max_iterations={self._max_iterations}, "
+            f"{type(self).__name__}(levels={self._levels}, max_iterations={self._max_iterations}, "
             f"max_step_cells={self._max_step_cells}, max_step_angle={self._max_step_angle}, "
             f"tolerance={self._tolerance}, range_max={self._max_range})"
         )

@@ -1047,7 +1047,7 @@ class World:
     def __repr__(self) -> str:
         grid = None if self._grid is None else self._grid.shape
         return (
-            f"World(edges={self._segs.shape[0]}, circles={self._circles.shape[0]}, "
+            f"{type(self).__name__}(edges={self._segs.shape[0]}, circles={self._circles.shape[0]}, "
             f"grid={grid}, moving={len(self._moving)})"
         )
 

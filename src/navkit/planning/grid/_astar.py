@@ -403,7 +403,7 @@ class AStarPlanner:
         rows, cols = self.shape
         jps = "" if self._jps is None else ", method='jps'"
         return (
-            f"AStarPlanner(<{rows}x{cols} costs>, connectivity={self.connectivity}, "
+            f"{type(self).__name__}(<{rows}x{cols} costs>, connectivity={self.connectivity}, "
             f"corner_cutting={self._cutting}, heuristic_weight={self._weight}{jps})"
         )
 

@@ -531,7 +531,7 @@ class FieldDStar:
 
     def __repr__(self) -> str:
         return (
-            f"FieldDStar(<{self._rows}x{self._cols} costs>, interpolate={self._interp}, "
+            f"{type(self).__name__}(<{self._rows}x{self._cols} costs>, interpolate={self._interp}, "
             f"lookahead={self._lookahead}, smooth={self._smooth}, "
             f"resolution={self._resolution}, origin={self._origin!r})"
         )

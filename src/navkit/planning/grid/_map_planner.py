@@ -336,7 +336,7 @@ class MapPlanner:
     def __repr__(self) -> str:
         rows, cols = self._costs.shape
         return (
-            f"MapPlanner(<{rows}x{cols} map>, robot_radius={self._robot_radius}, "
+            f"{type(self).__name__}(<{rows}x{cols} map>, robot_radius={self._robot_radius}, "
             f"planner={self._planner!r})"
         )
 
