@@ -383,8 +383,10 @@ def _real_array(value: Any, name: str, components: int | None = None) -> FloatAr
             return np.asarray(value, dtype=np.float64)
         if kind == "f":
             # Widening a signalling NaN (float32 from a driver or a bag) makes NumPy
-            # warn "invalid value encountered in cast"; it is still a NaN.
-            with np.errstate(invalid="ignore"):
+            # warn "invalid value encountered in cast"; it is still a NaN. A long
+            # double beyond float64's range warns "overflow": it is an infinity,
+            # which the finiteness check names.
+            with np.errstate(invalid="ignore", over="ignore"):
                 return np.asarray(value, dtype=np.float64)
         if kind != "O":
             raise TypeError(f"{name} must hold real numbers, got dtype {value.dtype}")
@@ -411,7 +413,8 @@ def _real_array(value: Any, name: str, components: int | None = None) -> FloatAr
     elif kind not in "iuf":
         raise TypeError(f"{name} must hold real numbers, got dtype {raw.dtype}")
     try:
-        return np.asarray(raw, dtype=np.float64)
+        with np.errstate(invalid="ignore", over="ignore"):  # as for an ndarray above
+            return np.asarray(raw, dtype=np.float64)
     except OverflowError:
         raise ValueError(
             f"{name} must hold finite numbers, got an integer too large for a float"
