@@ -28,6 +28,12 @@ LLVM's function and module optimisation and machine-code generation, the
 Python wrappers, the cache writes, garbage collections) and per kernel (the
 function whose pass or LLVM work ran, not the callers waiting on it).
 
+Each child also counts the navkit kernel signatures numba compiled (cache
+misses) and loaded from the cache (hits), and the files in the cache folder
+when it started and after the call; the tests assert on those counts, never
+on times (:func:`check_cold_and_warm`): a cold run that found a cache or
+compiled nothing, or a warm run that compiled again, fails.
+
 The issue 17 goal: whole library <= 8 s, any single entry point <= 3 s.
 """
 
@@ -265,7 +271,14 @@ _breakdown = {{"phases": dict(_phases), "kernels": dict(_by_kernel)}}
 """
 
 _CHILD = """
-import json, sys, time
+import json, os, sys, time
+
+
+def _cache_files():
+    return sum(len(files) for _, _, files in os.walk(os.environ["NUMBA_CACHE_DIR"]))
+
+
+_files_before = _cache_files()
 {setup}
 {instrument}
 _cpu, _wall = time.process_time(), time.perf_counter()
@@ -274,26 +287,35 @@ _cpu, _wall = time.process_time() - _cpu, time.perf_counter() - _wall
 _breakdown = None
 {report}
 _kernels = {{}}
-if {kernels}:
+_compiled = _loaded = 0
+if "numba" in sys.modules:  # not imported by the call: nothing compiled or loaded
+    import gc
     from numba.core.dispatcher import Dispatcher
-    for _name, _module in list(sys.modules.items()):
-        if not _name.startswith("navkit.") or _module is None:
+    # Every navkit dispatcher, the closures made by kernel factories included
+    # (not in any module's namespace; some entry points call only those when warm).
+    for _value in gc.get_objects():
+        if not isinstance(_value, Dispatcher):
             continue
-        for _value in list(vars(_module).values()):
-            if isinstance(_value, Dispatcher) and _value.py_func.__module__ == _name:
-                _misses = sum(_value.stats.cache_misses.values())
-                if not _misses:
-                    continue
-                _secs = 0.0
-                for _sig in _value.signatures:
-                    try:
-                        _t = _value.get_metadata(_sig)["timers"]
-                        _secs += _t.get("compiler_lock", 0.0)
-                    except Exception:
-                        pass
-                _kernels[_name + "." + _value.py_func.__name__] = [len(_value.signatures), _secs]
+        _name = getattr(_value.py_func, "__module__", None) or ""
+        if not _name.startswith("navkit."):
+            continue
+        _misses = sum(_value.stats.cache_misses.values())
+        _compiled += _misses
+        _loaded += sum(_value.stats.cache_hits.values())
+        if not {kernels} or not _misses:
+            continue
+        _secs = 0.0
+        for _sig in _value.signatures:
+            try:
+                _t = _value.get_metadata(_sig)["timers"]
+                _secs += _t.get("compiler_lock", 0.0)
+            except Exception:
+                pass
+        _kernels[_name + "." + _value.py_func.__qualname__] = [len(_value.signatures), _secs]
 print("@@" + json.dumps({{"cpu": _cpu, "wall": _wall, "kernels": _kernels,
-                          "breakdown": _breakdown}}))
+                          "breakdown": _breakdown, "compiled": _compiled, "loaded": _loaded,
+                          "cache_files_before": _files_before,
+                          "cache_files_after": _cache_files()}}))
 """
 
 
@@ -328,8 +350,48 @@ def measure(name: str, *, kernels: bool = False, breakdown: bool = False) -> dic
     with tempfile.TemporaryDirectory(prefix="navkit-cold-") as cache_dir:
         cold = run_child(setup, timed, cache_dir, kernels=kernels, breakdown=breakdown)
         warm = run_child(setup, timed, cache_dir)
+    counts = {
+        f"{run}_{key}": child[key]
+        for run, child in (("cold", cold), ("warm", warm))
+        for key in ("compiled", "loaded", "cache_files_before", "cache_files_after")
+    }
     return {"cold_cpu_s": cold["cpu"], "cold_wall_s": cold["wall"], "warm_cpu_s": warm["cpu"],
-            "kernels": cold["kernels"], "breakdown": cold["breakdown"]}  # fmt: skip
+            "kernels": cold["kernels"], "breakdown": cold["breakdown"], **counts}  # fmt: skip
+
+
+def check_cold_and_warm(name: str, result: dict[str, Any]) -> None:
+    """That the two runs of entry ``name`` measured what they claim (:func:`measure`).
+
+    Signatures count navkit's kernels (every numba dispatcher of a navkit
+    module): ``compiled`` those numba compiled (cache misses), ``loaded``
+    those it read from the cache (hits).
+
+    * Cold, every navkit entry point: the child started with an empty cache
+      folder, compiled navkit kernels, loaded none, and left the folder filled.
+    * Warm: the child started on that filled folder, loaded kernels from it,
+      compiled none and wrote nothing (a kernel compiling again in every
+      process, one numba cannot cache, fails here; so does a kernel source
+      file edited between the two runs, which numba's cache keys on).
+    * ``import navkit.planning`` and the peers: nothing compiled, the folder
+      left empty (issue 17: importing compiles nothing; the peers ship
+      compiled code).
+    """
+    assert result["cold_cache_files_before"] == 0, f"{name}: the cold cache was not empty"
+    if name in PEERS or name == "import navkit.planning":
+        for run in ("cold", "warm"):
+            assert result[f"{run}_compiled"] == 0, f"{name}: {run} run compiled navkit kernels"
+            assert result[f"{run}_loaded"] == 0, f"{name}: {run} run loaded navkit kernels"
+        assert result["cold_cache_files_after"] == 0, f"{name}: wrote to the numba cache"
+        return
+    assert result["cold_compiled"] > 0, f"{name}: the cold run compiled nothing"
+    assert result["cold_loaded"] == 0, f"{name}: the cold run loaded kernels from a cache"
+    assert result["cold_cache_files_after"] > 0, f"{name}: the cold run cached nothing"
+    assert result["warm_cache_files_before"] > 0, f"{name}: the warm run had no cache"
+    assert result["warm_loaded"] > 0, f"{name}: the warm run loaded nothing from the cache"
+    assert result["warm_compiled"] == 0, f"{name}: the warm run compiled again"
+    assert result["warm_cache_files_after"] == result["warm_cache_files_before"], (
+        f"{name}: the warm run wrote to the cache"
+    )
 
 
 def print_breakdown(breakdown: dict[str, dict[str, float]], *, top: int = 15) -> None:
@@ -384,7 +446,7 @@ def _bench(benchmark: Any, name: str) -> None:
     result = results[0]
     benchmark.extra_info.update({k: v for k, v in result.items() if k != "kernels"})
     _RESULTS[name] = result
-    assert result["cold_cpu_s"] >= 0.0 and result["warm_cpu_s"] >= 0.0
+    check_cold_and_warm(name, result)
 
 
 @pytest.mark.parametrize("name", [n for n, e in ENTRIES.items() if e[2]] + list(PEERS))

@@ -20,14 +20,17 @@ Contestants:
 
 Before any timing, every navkit answer is checked against the published
 optimum and every pyastar2d path for validity on its own graph. ``test_ratio``
-times JPS (prepared and one-shot) and pyastar2d alternately in one loop and
-reports the median of the per-round ratios (``speedup_*`` in ``extra_info``),
-which holds on a loaded machine where absolute times do not.
+times JPS (prepared and one-shot) and pyastar2d alternately in one loop (the
+order reversed every other round), each with this thread's CPU time, checks
+every round's answers the same way, and reports the median of the per-round
+ratios (``speedup_*`` in ``extra_info``), which holds on a loaded machine
+where absolute times do not.
 """
 
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from functools import cache
 from pathlib import Path
 from typing import Any, NamedTuple
@@ -159,7 +162,15 @@ def test_pyastar2d(benchmark: Any, name: str) -> None:
 
 @pytest.mark.parametrize("name", MAPS)
 def test_ratio(benchmark: Any, name: str) -> None:
-    """JPS and pyastar2d alternately, ``ROUNDS`` times: median per-round speed-ups."""
+    """JPS and pyastar2d alternately, ``ROUNDS`` times: median per-round speed-ups.
+
+    Each round runs the three contestants on the map's ``QUERIES`` problems
+    (the order reversed every other round) and times each with this thread's
+    CPU time (``time.thread_time()``), as the other ratio benchmarks do, so
+    machine load and the other threads affect every side alike. Every round's
+    answers are checked (outside the timers): a contestant that went wrong
+    under the timing fails the test instead of reporting a speed-up.
+    """
     peer("pyastar2d")
     costs, problems = load(name)
     weights = np.where(np.isfinite(costs), 1.0, np.inf).astype(np.float32)
@@ -170,15 +181,20 @@ def test_ratio(benchmark: Any, name: str) -> None:
 
     def rounds() -> dict[str, float]:
         times: dict[str, list[float]] = {"prepared": [], "one_shot": [], "pyastar2d": []}
-        for _ in range(ROUNDS):
-            for key, run in (
-                ("pyastar2d", lambda: run_pyastar2d(weights, problems)),
-                ("prepared", lambda: run_planner(planner, problems)),
-                ("one_shot", lambda: run_one_shot(costs, problems)),
-            ):
-                t0 = time.perf_counter()
-                run()
-                times[key].append(time.perf_counter() - t0)
+        sides: dict[str, Callable[[], list[Any]]] = {
+            "pyastar2d": lambda: run_pyastar2d(weights, problems),
+            "prepared": lambda: run_planner(planner, problems),
+            "one_shot": lambda: run_one_shot(costs, problems),
+        }
+        for i in range(ROUNDS):
+            answers = {}
+            for key in sides if i % 2 == 0 else list(sides)[::-1]:
+                t0 = time.thread_time()
+                answers[key] = sides[key]()
+                times[key].append(time.thread_time() - t0)
+            check_optimal(answers["prepared"], problems)
+            check_optimal(answers["one_shot"], problems)
+            check_pyastar2d(costs, answers["pyastar2d"], problems)
         peer = np.array(times["pyastar2d"])
         return {
             "speedup_prepared": float(np.median(peer / np.array(times["prepared"]))),
