@@ -571,9 +571,13 @@ class PotentialFieldController:
             prev = np.array([vx_w, vy_w])
         goal = np.array([target_pose.x, target_pose.y])
         want = self._desired(pose, goal, obstacles)
+        # A measured speed beyond about 1e154 m/s overflows the norm of the change
+        # (handled, but NumPy warns): only then is the limit run under np.errstate,
+        # which would cost an ordinary step more than the limit itself.
+        huge = measured is not None and not abs(measured.vx) + abs(measured.vy) < 1e150
 
         if self._drive == "omni":
-            v = _limit_change(prev, want, self._max_accel, self._max_decel, step, "velocity")
+            v = _limited(prev, want, self._max_accel, self._max_decel, step, huge)
             # A measured velocity above max_speed (an odometry spike, say) would keep the
             # command above it for as long as max_decel takes: max_speed bounds every
             # command, as max_omega does RegulatedPurePursuit's.
@@ -592,8 +596,8 @@ class PotentialFieldController:
             )
             fwd_want = max(0.0, c * want[0] + s * want[1])
             fwd = float(
-                _limit_change(np.array([fwd_prev]), np.array([fwd_want]), self._max_accel,
-                              self._max_decel, step, "velocity")[0]
+                _limited(np.array([fwd_prev]), np.array([fwd_want]), self._max_accel,
+                         self._max_decel, step, huge)[0]
             )
             fwd = min(fwd, self._max_speed)  # the bound of every command, as above
             # Below a thousandth of max_speed the field's direction is noise near the goal.
@@ -636,3 +640,17 @@ class PotentialFieldController:
             return np.array([x, y]), 0.0
         return anchor, self._still_for + dt
 
+
+def _limited(
+    prev: FloatArray,
+    want: FloatArray,
+    max_accel: float,
+    max_decel: float,
+    dt: float,
+    huge: bool,
+) -> FloatArray:
+    """``_limit_change`` of the controller's step, without NumPy's overflow warnings if ``huge``."""
+    if huge:
+        with np.errstate(over="ignore", invalid="ignore"):
+            return _limit_change(prev, want, max_accel, max_decel, dt, "velocity")
+    return _limit_change(prev, want, max_accel, max_decel, dt, "velocity")
