@@ -1584,6 +1584,7 @@ class PlanarFusion(GaussianEstimate):
         Rows are taken in the log's order even with ``history``, and are not
         kept for it: online measurements older than the log's last row are
         refused afterwards (fuse a sorted log: :meth:`MeasurementLog.from_streams`).
+        An empty log changes nothing, the history included.
         Instead of raising, a row is marked in ``FusionResult.status``
         (:class:`FusionStatus`): rows older than the filter time are skipped
         (``OUT_OF_ORDER``), and so are rows whose prediction would overflow
