@@ -158,14 +158,24 @@ def _sample(
 
 
 @njit_helper
-def _record(buf: np.ndarray, i: int, t: float, state: np.ndarray, cmd: np.ndarray) -> None:
-    buf[i, 0] = t
-    buf[i, 1] = state[0]
-    buf[i, 2] = state[1]
-    buf[i, 3] = state[2]
-    buf[i, 7] = cmd[0]
-    buf[i, 8] = cmd[1]
-    buf[i, 9] = cmd[2]
+def _record(
+    times: np.ndarray,
+    poses: np.ndarray,
+    commands: np.ndarray,
+    i: int,
+    t: float,
+    state: np.ndarray,
+    cmd: np.ndarray,
+) -> None:
+    # One array per trace column group, grown and trimmed in place: the trace
+    # adopts them without a copy.
+    times[i] = t
+    poses[i, 0] = state[0]
+    poses[i, 1] = state[1]
+    poses[i, 2] = state[2]
+    commands[i, 0] = cmd[0]
+    commands[i, 1] = cmd[1]
+    commands[i, 2] = cmd[2]
 
 
 @njit_helper
@@ -319,7 +329,9 @@ def _settle(
     enc_out: np.ndarray,
     compass_out: np.ndarray,
     imu_out: np.ndarray,
-    buf: np.ndarray,
+    times: np.ndarray,
+    poses: np.ndarray,
+    commands: np.ndarray,
     cmd: np.ndarray,
     stats: np.ndarray,
     contacts: np.ndarray,
@@ -355,7 +367,7 @@ def _settle(
         for k in range(3, 8):
             state[k] = 0.0
         if end_on_collision:
-            _record(buf, i, t, state, cmd)
+            _record(times, poses, commands, i, t, state, cmd)
             return COLLIDED
         state[0] = prev[0]
         state[1] = prev[1]
@@ -376,13 +388,13 @@ def _settle(
         if at_goal:
             stats[STAT_TIME_TO_GOAL] = t
             if stop_at_goal:
-                _record(buf, i, t, state, cmd)
+                _record(times, poses, commands, i, t, state, cmd)
                 return GOAL
     _sample(
         i, t, dt, state, angles, rates, counts, n_out, enc_tpr, enc_span,
         enc_out, compass_out, imu_out,
     )  # fmt: skip
-    _record(buf, i, t, state, cmd)
+    _record(times, poses, commands, i, t, state, cmd)
     return REACHED
 
 
@@ -445,7 +457,9 @@ def run_segment(
     enc_out: np.ndarray,
     compass_out: np.ndarray,
     imu_out: np.ndarray,
-    buf: np.ndarray,
+    times: np.ndarray,
+    poses: np.ndarray,
+    commands: np.ndarray,
     cmd: np.ndarray,
     stats: np.ndarray,
     contacts: np.ndarray,
@@ -481,7 +495,7 @@ def run_segment(
             i, i / rate, dt, state, angles, rates, counts, n_out, enc_tpr, enc_span,
             enc_out, compass_out, imu_out,
         )  # fmt: skip
-        _record(buf, i, i / rate, state, cmd)
+        _record(times, poses, commands, i, i / rate, state, cmd)
     while i < i_end:
         prev[0] = state[0]
         prev[1] = state[1]
@@ -520,7 +534,7 @@ def run_segment(
         status = _settle(
             i, t, dt, clearance, state, wheels, angles, command, goal, stop_at_goal,
             end_on_collision, rates, counts, n_out, enc_tpr, enc_span, enc_out,
-            compass_out, imu_out, buf, cmd, stats, contacts, prev,
+            compass_out, imu_out, times, poses, commands, cmd, stats, contacts, prev,
         )  # fmt: skip
         if status != REACHED:
             return status, i
@@ -568,7 +582,9 @@ def run_edge_segment(
     enc_out: np.ndarray,
     compass_out: np.ndarray,
     imu_out: np.ndarray,
-    buf: np.ndarray,
+    times: np.ndarray,
+    poses: np.ndarray,
+    commands: np.ndarray,
     cmd: np.ndarray,
     stats: np.ndarray,
     contacts: np.ndarray,
@@ -590,7 +606,7 @@ def run_edge_segment(
             i, i / rate, dt, state, angles, rates, counts, n_out, enc_tpr, enc_span,
             enc_out, compass_out, imu_out,
         )  # fmt: skip
-        _record(buf, i, i / rate, state, cmd)
+        _record(times, poses, commands, i, i / rate, state, cmd)
     while i < i_end:
         prev[0] = state[0]
         prev[1] = state[1]
@@ -616,7 +632,7 @@ def run_edge_segment(
         status = _settle(
             i, t, dt, clearance, state, wheels, angles, command, goal, stop_at_goal,
             end_on_collision, rates, counts, n_out, enc_tpr, enc_span, enc_out,
-            compass_out, imu_out, buf, cmd, stats, contacts, prev,
+            compass_out, imu_out, times, poses, commands, cmd, stats, contacts, prev,
         )  # fmt: skip
         if status != REACHED:
             return status, i

@@ -248,20 +248,29 @@ class Trace:
     __repr__ = bounded_repr  # a scan per recorded step: print a few
 
     def __post_init__(self) -> None:
+        self._check(adopt=False)
+
+    def _check(self, *, adopt: bool) -> None:
+        """Check and store the fields; ``adopt``: own the given arrays, as they are."""
         times = as_float_array(self.times, "times", ndim=1)
         n = times.shape[0]
-        object.__setattr__(self, "times", _readonly(times))
+        if adopt and times is self.times:
+            times.flags.writeable = False
+        else:
+            times = _readonly(times)
+        object.__setattr__(self, "times", times)
         for name in ("poses", "estimates", "commands"):
             value = getattr(self, name)
-            if isinstance(value, np.ndarray):
+            if isinstance(value, np.ndarray) and not adopt:
                 value = value.copy()  # never touch the caller's array, even on failure
             finite = name != "estimates"
             arr = as_float_array(value, name, shape=(n, 3), finite=finite)
             if not finite and np.isinf(arr).any():
                 raise ValueError(f"{name} must be finite or NaN, got an infinity")
             if arr is value and type(arr) is np.ndarray:
-                # The copy above, ours alone: stored as it is (review 28: copied again,
-                # a whole run peaked at 2.85 times its trace, now 2.55).
+                # The copy above (or the adopted array), ours alone: stored as it is
+                # (review 28: copied again, a whole run peaked at 2.85 times its trace;
+                # a run's trace now adopts the run's arrays, see adopted_trace).
                 arr.flags.writeable = False
             else:
                 arr = _readonly(arr)
@@ -281,6 +290,41 @@ class Trace:
 
     def __len__(self) -> int:
         return int(self.times.shape[0])
+
+
+def adopted_trace(
+    times: FloatArray,
+    poses: FloatArray,
+    estimates: FloatArray,
+    commands: FloatArray,
+    scans: tuple[ScanReading, ...],
+    events: tuple[Event, ...],
+    metrics: Metrics,
+) -> Trace:
+    """A :class:`Trace` that owns the given float64 arrays without copying them.
+
+    For :class:`~navkit.sim.Simulation`, whose run hands over arrays nothing
+    else refers to: they are checked as ``Trace(...)`` checks them and made
+    read-only. A Trace of a whole run then takes no memory beyond the run's.
+
+    Examples
+    --------
+    >>> nan = float("nan")
+    >>> metrics = Metrics(False, "timeout", 0.01, nan, nan, nan, nan, nan, nan, 1.0, 0, 0.0)
+    >>> times, poses = np.array([0.0, 0.01]), np.zeros((2, 3))
+    >>> trace = adopted_trace(times, poses, np.full((2, 3), nan), np.zeros((2, 3)), (), (),
+    ...                       metrics)
+    >>> trace.poses is poses, poses.flags.writeable
+    (True, False)
+    """
+    trace = object.__new__(Trace)
+    for name, value in (
+        ("times", times), ("poses", poses), ("estimates", estimates), ("commands", commands),
+        ("scans", scans), ("events", events), ("metrics", metrics),
+    ):  # fmt: skip
+        object.__setattr__(trace, name, value)
+    trace._check(adopt=True)
+    return trace
 
 
 def cross_track(points_xy: FloatArray, path_xy: FloatArray) -> FloatArray:

@@ -144,6 +144,15 @@ class MapPlanner:
     give each thread its own :func:`copy.copy` of such a planner (the copies
     share the costs, not the search state).
 
+    Memory: a planner keeps 12 bytes a cell, its snapshot of the map (4) and
+    its costs (8), with ``"astar"`` (which borrows the costs) or a callable;
+    with ``"field_dstar"`` about 68: the :class:`FieldDStar` adds 56 bytes a
+    node (its padded copy of the costs, its search values and its queue; 68 MB
+    for 1000 × 1000 cells against 12 MB). :attr:`costs` stays an array of its
+    own beside the padded copy: a read-only C-contiguous array that no search
+    touches. Each :func:`copy.copy` of a ``"field_dstar"`` planner adds the 56
+    bytes a node of its own search state.
+
     Examples
     --------
     >>> import numpy as np
