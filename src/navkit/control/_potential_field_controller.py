@@ -436,6 +436,13 @@ class PotentialFieldController:
             # Checked: a NaN would pass the clip below and come out as a silent stop.
             raw = attraction.with_goal(goal).force(here)
             f_att = as_float_array(raw, f"{kind.__name__}.force", shape=(1, 2))[0]
+        ax, ay = f_att.tolist()
+        if not abs(ax) + abs(ay) < 1e300:
+            # A user's field whose finite pull is longer than float64 holds (np.hypot
+            # would warn and give inf, scaling the pull to zero): its direction at
+            # max_speed, as any pull beyond it.
+            unit = f_att / max(abs(ax), abs(ay))
+            f_att = unit * (self._max_speed / float(np.hypot(unit[0], unit[1])))
         norm = float(np.hypot(f_att[0], f_att[1]))
         if norm > self._max_speed:
             f_att = f_att * (self._max_speed / norm)

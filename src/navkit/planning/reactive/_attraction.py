@@ -71,7 +71,7 @@ def _moved(field: _A, goal: FloatArray) -> _A:
     fields = dataclasses.fields(field)
     # navkit's own fields hold their dataclass fields alone: not looked for there
     # (3 µs a controller step, 5 % of it).
-    if not kind.__module__.startswith("navkit."):
+    if kind not in _OWN_FIELDS:
         extra = extra_state(field, skip=[f.name for f in fields])
         if extra is not None:
             instance, slots = extra
@@ -525,3 +525,10 @@ class PiecewiseAttraction(AttractiveField):
         mag = self.alpha * np.clip(d - self.goal_radius, 0.0, self.spread)
         out: FloatArray = 0.0 - mag[:, None] * _unit(diff, d)
         return out
+
+
+#: navkit's own fields, whose state is their dataclass fields alone (not a module
+#: name test: a user's subclass may live in a package named ``navkit...``).
+_OWN_FIELDS = frozenset(
+    {AttractiveField, ParaboloidAttraction, ConicAttraction, BlendedAttraction, PiecewiseAttraction}
+)
