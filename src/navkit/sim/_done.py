@@ -2,25 +2,59 @@
 
 from __future__ import annotations
 
+from numbers import Number
 from typing import Any
+
+import numpy as np
 
 __all__ = ["done_flag"]
 
 
 def done_flag(done: Any, name: str) -> bool:
-    """``bool(done)``, or a ``TypeError`` naming ``name`` where that would mislead or fail.
+    """``bool(done)``, or an error naming ``name`` where that would mislead or fail.
 
     ``name`` is what the message calls the flag ("tracker.done", "the
     controller's done"). A method ``done()`` written without ``@property`` is
-    refused: a bound method is true, and the run would end at its first step
-    without a word. A value without a truth value (NumPy's "truth value ... is
-    ambiguous" for an array of several flags) is refused naming ``name``.
+    refused (``TypeError``): a bound method is true, and the run would end at
+    its first step without a word. A value without a truth value (NumPy's
+    "truth value ... is ambiguous" for an array of several flags) is refused
+    naming ``name`` (``TypeError``). A number (or a one-element numeric array)
+    other than 0 or 1 is refused (``ValueError``): a NaN or a ``0.3`` is true
+    in Python and would end the run silently, where a flag was meant. Flags
+    (``bool``, ``np.bool_``, one-element boolean arrays), 0 and 1, and
+    anything that is no number keep their truth value.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> done_flag(np.True_, "tracker.done"), done_flag(0, "tracker.done")
+    (True, False)
+    >>> done_flag(np.float64("nan"), "tracker.done")
+    Traceback (most recent call last):
+    ...
+    ValueError: tracker.done must be true or false, got float64 nan (a number other than 0 or 1)
     """
+    if done is True or done is False:  # every control step: the common case first
+        return done
     if callable(done):
         raise TypeError(
             f"{name} must be true or false (a property or an attribute), got a "
             f"{type(done).__name__}: a method done() needs @property"
         )
+    value = done
+    if isinstance(done, np.ndarray) and done.size == 1 and done.dtype.kind in "iufc":
+        value = done.reshape(-1)[0]  # a NumPy scalar; ``done`` itself is not changed
+    if isinstance(value, Number) and not isinstance(value, (bool, np.bool_)):
+        number: Any = value  # Number declares no comparisons; its subclasses have them
+        try:
+            flag = bool(number == 0 or number == 1)
+        except Exception:  # a number that cannot be compared (a signalling Decimal NaN)
+            flag = False
+        if not flag:
+            raise ValueError(
+                f"{name} must be true or false, got {type(done).__name__} {value} "
+                "(a number other than 0 or 1)"
+            )
     try:
         return bool(done)
     except Exception as exc:
