@@ -22,6 +22,7 @@ import numpy as np
 __all__ = [
     "extra_state",
     "frozen_setattr",
+    "rebuild_from_state",
     "rebuild_record",
     "reduce_record",
     "restore_read_only",
@@ -228,6 +229,12 @@ def reduce_record(record: Any, arrays: Collection[str] | None = None) -> tuple[A
     adds none): copies and pickles go through :func:`rebuild_record`. Keep the
     record's ``__setstate__`` (:func:`restore_read_only`): older pickles call it.
 
+    A subclass whose own ``__getstate__`` (a user's: not the one a slotted
+    frozen dataclass generates, nor navkit's) says what it pickles, to drop a
+    lock or a cache, say, is taken at its word, as Python takes it: the state
+    goes to the class's ``__setstate__`` (see :func:`rebuild_from_state`), and
+    the ``arrays`` are read-only again after it.
+
     Parameters
     ----------
     record : dataclass instance
@@ -240,7 +247,8 @@ def reduce_record(record: Any, arrays: Collection[str] | None = None) -> tuple[A
     -------
     tuple
         ``(rebuild_record, (class, {field: value}, arrays, instance __dict__
-        or None, {other slot: value}))``.
+        or None, {other slot: value}))``; ``(rebuild_from_state, (class,
+        state, arrays))`` for a class with a user's ``__getstate__``.
 
     Examples
     --------
@@ -265,8 +273,75 @@ def reduce_record(record: Any, arrays: Collection[str] | None = None) -> tuple[A
             for name, value in values.items()
             if isinstance(value, np.ndarray) and not value.flags.writeable
         ]
+    if _user_getstate(type(record)) is not None:
+        return rebuild_from_state, (type(record), record.__getstate__(), tuple(arrays))
     instance, slots = extra_state(record, skip=values) or (None, {})
     return rebuild_record, (type(record), values, tuple(arrays), instance, slots)
+
+
+def _user_getstate(cls: type) -> Any:
+    """The ``__getstate__`` that a user's class gives ``cls``, or None.
+
+    Not object's, not the one ``dataclass(frozen=True, slots=True)`` generates
+    (it lists the fields alone, as :func:`reduce_record` would do better), and
+    not one of navkit's own classes (whose pickles stay as they were).
+    """
+    for klass in cls.__mro__:
+        getstate = klass.__dict__.get("__getstate__")
+        if getstate is None:
+            continue
+        module = klass.__module__
+        if (
+            klass is object
+            or getattr(getstate, "__module__", None) == "dataclasses"
+            or module == "navkit"
+            or module.startswith("navkit.")
+        ):
+            return None
+        return getstate
+    return None
+
+
+def rebuild_from_state(cls: type, state: Any, arrays: Collection[str]) -> Any:
+    """The record of class ``cls`` restored from a user's ``__getstate__`` ``state``.
+
+    As :mod:`pickle` and :mod:`copy` restore an object: through the class's
+    ``__setstate__``, or, without one, ``state`` as the instance ``__dict__``
+    (or ``(__dict__, {slot: value})``); nothing for a None state. The fields
+    named in ``arrays`` that hold writeable arrays then hold read-only views
+    of them (the arrays themselves are not changed).
+
+    Examples
+    --------
+    >>> from dataclasses import dataclass
+    >>> @dataclass(frozen=True)
+    ... class Record:
+    ...     values: np.ndarray
+    >>> record = rebuild_from_state(Record, {"values": np.zeros(2)}, ("values",))
+    >>> record.values.flags.writeable
+    False
+    """
+    record: Any = object.__new__(cls)
+    if state is not None:
+        setstate = getattr(record, "__setstate__", None)
+        if setstate is not None:
+            setstate(state)
+        else:
+            slots = None
+            if isinstance(state, tuple) and len(state) == 2:
+                state, slots = state
+            if state:
+                record.__dict__.update(state)
+            if slots:
+                for name, value in slots.items():
+                    setattr(record, name, value)
+    for name in arrays:
+        value = getattr(record, name, None)
+        if isinstance(value, np.ndarray) and value.flags.writeable:
+            value = value.view()
+            value.flags.writeable = False
+            object.__setattr__(record, name, value)
+    return record
 
 
 def rebuild_record(
