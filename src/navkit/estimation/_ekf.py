@@ -310,7 +310,7 @@ class ExtendedKalmanFilter(GaussianEstimate):
         array([-2.7832])
         """
         if self._busy:
-            _nested("predict")
+            _nested(self, "predict")
         # One copy of the state for F and f, called in this order: a Jacobian does
         # not modify its argument, and f may, once F has seen it.
         x = self._x.copy()
@@ -596,7 +596,7 @@ class ExtendedKalmanFilter(GaussianEstimate):
         (False, 'rejected by the gate: NIS 63.375 > 9.0', array([0.25, 1.  ]))
         """
         if self._busy:
-            _nested("update")
+            _nested(self, "update")
         x = self._x.copy()  # for H and h, in this order, as in predict
         self._busy = True
         try:
@@ -903,10 +903,11 @@ def _c_array(value: ArrayLike, name: str, shape: tuple[int, ...]) -> FloatArray:
     return _c_copy(as_float_array(value, name, shape=shape))
 
 
-def _nested(method: str) -> NoReturn:
+def _nested(ekf: ExtendedKalmanFilter, method: str) -> NoReturn:
     """Refuse a step called from the model functions of a step of the same filter."""
+    # Named by its class, as the repr is: a user's subclass is what the user calls.
     raise RuntimeError(
-        f"ExtendedKalmanFilter.{method} called from a model function (f, F, h or H) of "
+        f"{type(ekf).__name__}.{method} called from a model function (f, F, h or H) of "
         "the same filter's step: the steps would mix; make it after that step returns"
     )
 

@@ -790,6 +790,24 @@ class PlanarFusion(GaussianEstimate):
     it in one ``MutuallyExclusiveCallbackGroup``); different filters may run in
     different threads at once.
 
+    Subclasses may add attributes (their own ``__slots__`` or an instance
+    ``__dict__``) and methods, and override the public methods, calling the
+    base's through ``super()``: no public method calls another (a late
+    measurement replays the steps after it, and :meth:`update_batch` steps,
+    without :meth:`predict` or the updates), so an override of one changes
+    only its own callers. Override none of the properties (:attr:`t`,
+    :attr:`x`, :attr:`P`, :attr:`pose`, :attr:`history`): :meth:`predict`,
+    ``repr`` and the updates given other than plain floats read the filter
+    time through :attr:`t` (``repr`` reads :attr:`x` too), while the updates
+    given plain floats read it directly, so an overridden :attr:`t` would be
+    obeyed by some steps and not by others. Copies
+    (:func:`copy.copy`, :func:`copy.deepcopy`) and pickles rebuild a subclass
+    as itself, with what it adds and the steps kept for late measurements
+    (its ``__init__`` is not called), and ``repr`` names it. Names with a
+    leading underscore (the compiled kernels, the filter's buffer and its
+    views, the steps kept) are private: a subclass must neither use nor
+    override them; they may change in any release.
+
     Raises
     ------
     TypeError, ValueError
