@@ -15,35 +15,22 @@ from typing import Any
 import numpy as np
 import pytest
 from numpy.typing import NDArray
+from test_review29_freshb_user_field_state import Boost as _Boost
+from test_review29_freshb_user_field_state import SlotBoost as _SlotBoost
 
 from navkit.control import PotentialFieldController
-from navkit.planning import ConicAttraction
 
 F64 = NDArray[np.float64]
 
 
-class Boost(ConicAttraction):
-    """A cone scaled by a gain of its own, set in ``__init__``."""
-
-    def __init__(self, goal_xy: Any, gain: float) -> None:
-        super().__init__(goal_xy)
-        self.gain = gain
-
-    def _force(self, pts: F64) -> F64:
-        return ConicAttraction._force(self, pts) * self.gain
+class Boost(_Boost):
+    """Review 29's cone with a gain set in ``__init__``, in a module named navkit...."""
 
 
-class SlotBoost(ConicAttraction):
+class SlotBoost(_SlotBoost):
     """The same with the gain in a slot."""
 
-    __slots__ = ("gain",)
-
-    def __init__(self, goal_xy: Any, gain: float) -> None:
-        super().__init__(goal_xy)
-        object.__setattr__(self, "gain", gain)
-
-    def _force(self, pts: F64) -> F64:
-        return ConicAttraction._force(self, pts) * self.gain
+    __slots__ = ()
 
 
 # As if defined in a plugin package named navkit.contrib.
