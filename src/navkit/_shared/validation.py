@@ -413,8 +413,10 @@ def _real_array(value: Any, name: str, components: int | None = None) -> FloatAr
     elif kind not in "iuf":
         raise TypeError(f"{name} must hold real numbers, got dtype {raw.dtype}")
     try:
-        with np.errstate(invalid="ignore", over="ignore"):  # as for an ndarray above
-            return np.asarray(raw, dtype=np.float64)
+        if kind == "f" and raw.dtype.itemsize > 8:  # a long double: as for an ndarray above
+            with np.errstate(invalid="ignore", over="ignore"):
+                return np.asarray(raw, dtype=np.float64)
+        return np.asarray(raw, dtype=np.float64)
     except OverflowError:
         raise ValueError(
             f"{name} must hold finite numbers, got an integer too large for a float"
