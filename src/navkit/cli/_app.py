@@ -148,7 +148,15 @@ def _main(argv: Sequence[str] | None, out: TextIO, err: TextIO) -> int:
         # do, and send what is left in the buffer to /dev/null so that the flush
         # at exit does not fail again ("Exception ignored ...", exit code 120).
         with contextlib.suppress(OSError, ValueError, AttributeError):
-            os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+            # The standard output's descriptor first: a stream without one opens nothing.
+            fileno = sys.stdout.fileno()
+            devnull = os.open(os.devnull, os.O_WRONLY)
+            try:
+                os.dup2(devnull, fileno)
+            finally:
+                # dup2 made its own copy: this one would stay open until the process ends
+                # (main() may be called many times in one process, in tests and embedders).
+                os.close(devnull)
         return 141  # 128 + SIGPIPE: what a shell reports for a command the pipe ended
     except EXPECTED as exc:
         err.write(f"navkit: error: {one_line(exc)}\n")

@@ -795,12 +795,11 @@ class PlanarFusion(GaussianEstimate):
     base's through ``super()``: no public method calls another (a late
     measurement replays the steps after it, and :meth:`update_batch` steps,
     without :meth:`predict` or the updates), so an override of one changes
-    only its own callers. Override none of the properties (:attr:`t`,
-    :attr:`x`, :attr:`P`, :attr:`pose`, :attr:`history`): :meth:`predict`,
-    ``repr`` and the updates given other than plain floats read the filter
-    time through :attr:`t` (``repr`` reads :attr:`x` too), while the updates
-    given plain floats read it directly, so an overridden :attr:`t` would be
-    obeyed by some steps and not by others. Copies
+    only its own callers. The same holds for the properties (:attr:`t`,
+    :attr:`x`, :attr:`P`, :attr:`pose`, :attr:`history`): the filter's own
+    methods, ``repr`` among them, read its state directly, never through a
+    property, so an override changes what its callers read and not the
+    filter's arithmetic. Copies
     (:func:`copy.copy`, :func:`copy.deepcopy`) and pickles rebuild a subclass
     as itself, with what it adds and the steps kept for late measurements
     (its ``__init__`` is not called), and ``repr`` names it. Names with a
@@ -1054,8 +1053,9 @@ class PlanarFusion(GaussianEstimate):
         array([0.287, 0.045, 0.28 , 1.262, 1.01 , 1.005])
         """
         time = as_time(t, "t")
-        last = self.t
-        if last is None:
+        # The buffer's time, not the t property, which a subclass may override.
+        last = float(self._buf[BUF_TIME])
+        if math.isnan(last):  # the clock is not set
             self._buf[BUF_TIME] = time
             return
         if time < last:
@@ -1362,8 +1362,10 @@ class PlanarFusion(GaussianEstimate):
             z1 = finite_float(z1, names[1])
             var1 = variance(var1, names[3])
         args = (first, count, z0, float(z1), var0, float(var1), gate)
-        last = self.t
-        if last is None:
+        # The buffer's time, not the t property, which a subclass may override.
+        last = float(self._buf[BUF_TIME])
+        unset = math.isnan(last)
+        if unset:
             # The first measurement sets the clock (no prediction: the step's dt is 0).
             self._buf[BUF_TIME] = t
         elif t <= last and self._history and (t < last or self._goes_before(t, args)):
@@ -1379,12 +1381,12 @@ class PlanarFusion(GaussianEstimate):
         try:
             status, nis = _step(self._buf, t, *args)
             if status:  # undone under the try (see _settle)
-                if last is None:
+                if unset:
                     # Before the step the clock was not set: undone, it is not set either.
                     self._buf[BUF_SAVED_TIME] = math.nan
                 return self._not_applied(status, kind, t, nis, comps, args)
             if self._history:  # under the try: interrupted, the history is dropped
-                self._record(t, args, kind, unset=last is None)
+                self._record(t, args, kind, unset=unset)
         except BaseException:
             self._settle(status)
             raise
@@ -1730,8 +1732,11 @@ class PlanarFusion(GaussianEstimate):
         np.copyto(self._buf, buf)
 
     def __repr__(self) -> str:
-        # A user subclass is named as itself (as navkit's potential fields are).
-        return f"{type(self).__name__}(t={self.t}, x={np.array2string(self.x, precision=4)})"
+        # A user subclass is named as itself (as navkit's potential fields are), with the
+        # filter's own time and state: not its t and x, which it may override.
+        t = PlanarFusion.t.__get__(self)
+        x = PlanarFusion.x.__get__(self)
+        return f"{type(self).__name__}(t={t}, x={np.array2string(x, precision=4)})"
 
 
 def _loaded_into(buf: FloatArray, t: float, args: _StepArgs) -> tuple[int, float]:
