@@ -237,11 +237,16 @@ def player_attraction(max_speed: float) -> BlendedAttraction:
     """The robot's attraction: the paper's blend, the cone's gradient ``m`` its top speed.
 
     ``threshold_radius`` 0.5 m and width 0.15 m (navkit's defaults, free of the
-    narrow-width ring of false minima), ``K_att = 2`` so the paraboloid still
-    pulls at 0.9 m/s where the ball is taken (0.45 m), ``m = max_speed``.
+    narrow-width ring of false minima), ``m = max_speed`` and
+    ``K_att = max_speed / 0.75`` (2 at the default 1.5 m/s), so the paraboloid
+    still pulls at 0.6 × the top speed where the ball is taken (0.45 m).
     """
-    return BlendedAttraction(np.zeros(2), k_att=2.0, threshold_radius=0.5, width=0.15,
-                             m=max_speed)  # fmt: skip
+    # K_att scales with m: a fixed K_att = 2 left the blend pulling outward just
+    # beyond rad_thr for m <= 1.2 (a ring of false minima the robot stalls on,
+    # outside the 0.45 m where the ball is taken); at K_att = m / 0.75 the pull
+    # is inward by at least 5 % of m from 0.2 m to 3 m for every m in [0.2, 5].
+    return BlendedAttraction(np.zeros(2), k_att=max_speed / 0.75, threshold_radius=0.5,
+                             width=0.15, m=max_speed)  # fmt: skip
 
 
 class Player:
