@@ -286,30 +286,68 @@ def _user_getstate(cls: type) -> Any:
     (it lists the fields alone, as :func:`reduce_record` would do better), and
     not one of navkit's own classes (whose pickles stay as they were).
     """
+    return _user_method(cls, "__getstate__")
+
+
+def _user_method(cls: type, name: str) -> Any:
+    """The method ``name`` that a user's class gives ``cls``: as :func:`_user_getstate`."""
     for klass in cls.__mro__:
-        getstate = klass.__dict__.get("__getstate__")
-        if getstate is None:
+        method = klass.__dict__.get(name)
+        if method is None:
             continue
         module = klass.__module__
         if (
             klass is object
-            or getattr(getstate, "__module__", None) == "dataclasses"
+            or getattr(method, "__module__", None) == "dataclasses"
             or module == "navkit"
             or module.startswith("navkit.")
         ):
             return None
-        return getstate
+        return method
     return None
+
+
+def _restore_default(record: Any, state: Any) -> None:
+    """Restore ``state`` as :mod:`pickle` restores a class without ``__setstate__``.
+
+    ``state`` is the instance ``__dict__`` or ``(__dict__, {slot: value})``. Set
+    past the frozen guard (a record's fields are slots, which a user's state
+    names): the record is not yet anyone's.
+    """
+    slots = None
+    if isinstance(state, tuple) and len(state) == 2:
+        state, slots = state
+    for part in (state, slots):
+        if not part:
+            continue
+        if not isinstance(part, Mapping):
+            raise TypeError(
+                f"{type(record).__name__}.__getstate__ returned a state that a class "
+                "without a __setstate__ of its own cannot restore: a dict, or a pair "
+                f"(dict or None, dict), got a {type(part).__name__} in it; define "
+                "__setstate__ as well"
+            )
+        for name, value in part.items():
+            object.__setattr__(record, name, value)
 
 
 def rebuild_from_state(cls: type, state: Any, arrays: Collection[str]) -> Any:
     """The record of class ``cls`` restored from a user's ``__getstate__`` ``state``.
 
-    As :mod:`pickle` and :mod:`copy` restore an object: through the class's
-    ``__setstate__``, or, without one, ``state`` as the instance ``__dict__``
-    (or ``(__dict__, {slot: value})``); nothing for a None state. The fields
+    As :mod:`pickle` and :mod:`copy` restore an object: through a
+    ``__setstate__`` of the user's classes, or, without one, ``state`` as the
+    instance ``__dict__`` or ``(__dict__, {slot: value})``, a field (a slot)
+    set from either; nothing for a None state. The record's own
+    ``__setstate__`` (navkit's, or a slotted dataclass's) reads a list of
+    field values, never a user's state: it is not called. The fields
     named in ``arrays`` that hold writeable arrays then hold read-only views
     of them (the arrays themselves are not changed).
+
+    Raises
+    ------
+    TypeError
+        Without a user's ``__setstate__``, for a state that is not a dict
+        (or such a pair), naming the class.
 
     Examples
     --------
@@ -323,18 +361,13 @@ def rebuild_from_state(cls: type, state: Any, arrays: Collection[str]) -> Any:
     """
     record: Any = object.__new__(cls)
     if state is not None:
-        setstate = getattr(record, "__setstate__", None)
-        if setstate is not None:
-            setstate(state)
+        if _user_method(cls, "__setstate__") is not None:
+            record.__setstate__(state)
         else:
-            slots = None
-            if isinstance(state, tuple) and len(state) == 2:
-                state, slots = state
-            if state:
-                record.__dict__.update(state)
-            if slots:
-                for name, value in slots.items():
-                    setattr(record, name, value)
+            # Not the record's own __setstate__ (navkit's loader of older pickles, or the
+            # one a slotted dataclass generates: both read a list of field values, and a
+            # user's dict went in as one, each field set to its own name).
+            _restore_default(record, state)
     for name in arrays:
         value = getattr(record, name, None)
         if isinstance(value, np.ndarray) and value.flags.writeable:

@@ -413,7 +413,10 @@ def _real_array(value: Any, name: str, components: int | None = None) -> FloatAr
     elif kind not in "iuf":
         raise TypeError(f"{name} must hold real numbers, got dtype {raw.dtype}")
     try:
-        if kind == "f" and raw.dtype.itemsize > 8:  # a long double: as for an ndarray above
+        if kind == "f" and raw.dtype.itemsize != 8:
+            # As for an ndarray above: a long double that overflows, a float32
+            # signalling NaN that warns (review 30). Lists of Python floats, float64,
+            # cast nothing and skip the errstate.
             with np.errstate(invalid="ignore", over="ignore"):
                 return np.asarray(raw, dtype=np.float64)
         return np.asarray(raw, dtype=np.float64)

@@ -18,9 +18,11 @@ def done_flag(done: Any, name: str) -> bool:
     refused (``TypeError``): a bound method is true, and the run would end at
     its first step without a word. A value without a truth value (NumPy's
     "truth value ... is ambiguous" for an array of several flags) is refused
-    naming ``name`` (``TypeError``). A number (or a one-element numeric array)
-    other than 0 or 1 is refused (``ValueError``): a NaN or a ``0.3`` is true
-    in Python and would end the run silently, where a flag was meant. Flags
+    naming ``name`` (``TypeError``). A number (or a one-element array, numeric
+    or of objects, holding one) other than 0 or 1 is refused (``ValueError``):
+    a NaN or a ``0.3`` is true in Python and would end the run silently, where
+    a flag was meant. So is a masked value (``np.ma.masked``, a masked array
+    with a masked element): missing, whatever lies under its mask. Flags
     (``bool``, ``np.bool_``, one-element boolean arrays), 0 and 1, and
     anything that is no number keep their truth value.
 
@@ -41,9 +43,13 @@ def done_flag(done: Any, name: str) -> bool:
             f"{name} must be true or false (a property or an attribute), got a "
             f"{type(done).__name__}: a method done() needs @property"
         )
+    if isinstance(done, np.ma.MaskedArray) and np.ma.getmaskarray(done).any():
+        # Missing, not false: its truth value is the data under the mask's.
+        raise ValueError(f"{name} must be true or false, got a masked value (missing)")
     value = done
-    if isinstance(done, np.ndarray) and done.size == 1 and done.dtype.kind in "iufc":
-        value = done.reshape(-1)[0]  # a NumPy scalar; ``done`` itself is not changed
+    if isinstance(done, np.ndarray) and done.size == 1 and done.dtype.kind in "iufcO":
+        # A NumPy scalar, or an object array's element; ``done`` itself is not changed.
+        value = np.asarray(done).reshape(-1)[0]
     if isinstance(value, Number) and not isinstance(value, (bool, np.bool_)):
         number: Any = value  # Number declares no comparisons; its subclasses have them
         try:
@@ -52,10 +58,19 @@ def done_flag(done: Any, name: str) -> bool:
             flag = False
         if not flag:
             raise ValueError(
-                f"{name} must be true or false, got {type(done).__name__} {value} "
+                f"{name} must be true or false, got {type(done).__name__} {_text(value)} "
                 "(a number other than 0 or 1)"
             )
     try:
         return bool(done)
     except Exception as exc:
         raise TypeError(f"{name} must be true or false, got {type(done).__name__} ({exc})") from exc
+
+
+def _text(value: Any) -> str:
+    """``str(value)``, at most 40 characters: an int past 4300 digits has no str."""
+    try:
+        text = str(value)
+    except ValueError:
+        return "of more than 4300 digits"
+    return text if len(text) <= 40 else f"{text[:18]}...{text[-18:]}"
