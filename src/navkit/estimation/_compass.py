@@ -148,6 +148,11 @@ class CompassCalibration:
         0°, 180°, 0° give yaw 0, π, 0); the yaws of a log given in pieces equal
         ``compass_to_yaw(log, initial_deg=log[0], unwrap=True)``.
 
+    Raises
+    ------
+    TypeError
+        ``unwrap`` that is not a ``bool``.
+
     Examples
     --------
     >>> cal = CompassCalibration()

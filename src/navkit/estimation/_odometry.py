@@ -320,6 +320,14 @@ class OmniOdometry:
         Start pose (keyword-only); its heading should be the compass yaw at the
         start (e.g. 0 with :class:`CompassCalibration`).
 
+    Raises
+    ------
+    TypeError
+        A ``drive`` that is not an :class:`~navkit.kinematics.OmniDrive`; a
+        ``pose`` that is not a pose.
+    ValueError
+        A ``pose`` with NaN or inf, or not three long.
+
     Examples
     --------
     >>> import numpy as np

@@ -171,6 +171,13 @@ def yaw_to_quaternion(yaw: ArrayLike) -> FloatArray:
     ndarray, shape (..., 4)
         ``(0, 0, sin(yaw / 2), cos(yaw / 2))``.
 
+    Raises
+    ------
+    TypeError
+        Values that are not real numbers.
+    ValueError
+        Non-finite values.
+
     Examples
     --------
     >>> yaw_to_quaternion(0.0)
@@ -244,6 +251,13 @@ def quaternion_to_matrix(quaternion: ArrayLike) -> FloatArray:
     ndarray, shape (..., 3, 3)
         ``R`` with ``v_parent = R @ v_child`` for the frame the quaternion
         orients.
+
+    Raises
+    ------
+    TypeError
+        Values that are not real numbers.
+    ValueError
+        Non-finite values or a last axis that is not 4 long.
 
     Examples
     --------

@@ -519,9 +519,13 @@ class OccupancyGrid:
 
         Raises
         ------
+        TypeError
+            ``width``, ``height`` or ``resolution`` not a real number, or an
+            ``origin`` that is not a pose.
         ValueError
-            A value outside its range, or a grid of more than :attr:`MAX_CELLS`
-            cells (the message says how many it would need); nothing is allocated.
+            A value outside its range (an ``origin`` with NaN, inf or the wrong
+            length included), or a grid of more than :attr:`MAX_CELLS` cells
+            (the message says how many it would need); nothing is allocated.
 
         Examples
         --------
@@ -736,8 +740,9 @@ class OccupancyGrid:
 
         Raises
         ------
-        FileNotFoundError, ValueError, ImportError, OSError
-            As :func:`navkit.mapping.io.read_map`.
+        TypeError, FileNotFoundError, ValueError, ImportError, OSError
+            As :func:`navkit.mapping.io.read_map` (TypeError: a ``path`` that is
+            not a str or path-like).
 
         Examples
         --------
@@ -773,6 +778,15 @@ class OccupancyGrid:
         -------
         Path
             The path of the image written beside the YAML ``path``.
+
+        Raises
+        ------
+        TypeError, ValueError, ImportError, OSError
+            As :func:`navkit.mapping.io.write_map`: a ``path`` that is not a
+            str or path-like, a ``mode`` that is not a str (TypeError); an
+            unknown ``mode`` or a ``path`` ending in an image suffix
+            (ValueError); ``"scale"`` without Pillow (ImportError); a missing
+            folder (``FileNotFoundError``) or another failure to write (OSError).
 
         Examples
         --------
@@ -822,6 +836,13 @@ class OccupancyGrid:
             more than 2**62 cells away get ±2**62 (so that no int64
             overflows). Vectorised in a numba kernel (10^6 points take
             milliseconds).
+
+        Raises
+        ------
+        TypeError
+            Non-numeric ``points_xy``; a ``continuous`` that is not a bool.
+        ValueError
+            ``points_xy`` of another shape or with NaN or inf.
 
         Examples
         --------
@@ -925,6 +946,13 @@ class OccupancyGrid:
         -------
         ndarray, shape (N, 2), or (2,) for one cell given as shape (2,)
             New array of world points ``(x, y)``, m.
+
+        Raises
+        ------
+        TypeError
+            Non-numeric ``cells``.
+        ValueError
+            Another shape, NaN or inf, or cells beyond ±2**62.
 
         Examples
         --------

@@ -157,10 +157,14 @@ class LocalGrid:
 
         Raises
         ------
+        TypeError
+            Non-numeric ``points_xy``; ``half_width`` or ``resolution`` not a
+            real number (a bool included).
         ValueError
-            A number outside its range, or a grid of more than ``2**28`` cells
-            (``2 * k + 1`` per side; the message
-            says how many it would need). Nothing is allocated then.
+            ``points_xy`` of another shape or with NaN or inf, a number outside
+            its range, or a grid of more than ``2**28`` cells (``2 * k + 1``
+            per side; the message says how many it would need). Nothing is
+            allocated then.
 
         Examples
         --------
@@ -232,6 +236,13 @@ class LocalGrid:
             Not clipped to the grid: points outside it fall outside ``[0, n)``
             (use :meth:`contains` to test); points more than 2**62 cells away
             get ±2**62.
+
+        Raises
+        ------
+        TypeError
+            Non-numeric ``points_xy``; a ``continuous`` that is not a bool.
+        ValueError
+            ``points_xy`` of another shape or with NaN or inf.
 
         Examples
         --------

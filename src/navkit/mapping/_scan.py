@@ -300,6 +300,8 @@ class LaserScan:
 
         Raises
         ------
+        TypeError
+            ``half_width`` or ``resolution`` not a real number (a bool included).
         ValueError
             A number outside its range, or a grid of more than ``2**28`` cells.
 

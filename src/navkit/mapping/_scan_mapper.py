@@ -156,6 +156,16 @@ class ScanMapper:
     start : Pose2D or array_like [x, y, theta], optional
         Deprecated name of `pose`.
 
+    Raises
+    ------
+    TypeError
+        An option of the wrong type (a ``matcher`` that is not a
+        :class:`ScanMatcher` included); a new name given with its deprecated one.
+    ValueError
+        An option outside its range, NaN or inf; a ``clamp`` that is not a
+        ``(low, high)`` pair with ``low < high``; a matcher with more levels
+        than :attr:`OccupancyGrid.MAX_CELLS` allows.
+
     Examples
     --------
     >>> import math

@@ -272,6 +272,15 @@ class ScanMatcher:
     max_range : float, optional
         Deprecated name of `range_max`.
 
+    Raises
+    ------
+    TypeError
+        An option of the wrong type (``levels`` and ``max_iterations`` not an
+        integer, the others not a real number); both ``range_max`` and
+        ``max_range`` given.
+    ValueError
+        An option outside its range, NaN or inf.
+
     Examples
     --------
     >>> import math
@@ -348,7 +357,12 @@ class ScanMatcher:
         return (
             f"{type(self).__name__}(levels={self._levels}, max_iterations={self._max_iterations}, "
             f"max_step_cells={self._max_step_cells}, max_step_angle={self._max_step_angle}, "
-            f"tolerance={self._tolerance}, range_max={self._max_range})"
+            f"tolerance={self._tolerance}, range_max={self._max_range}, "
+            # The pull and the pre-search change every match: without them ScanMapper's
+            # default matcher (weights 1, search 0.1) printed as a bare ScanMatcher().
+            f"translation_weight={self._translation_weight}, "
+            f"rotation_weight={self._rotation_weight}, "
+            f"search_distance={self._search_distance}, search_angle={self._search_angle})"
         )
 
     @property

@@ -119,6 +119,14 @@ class TrackerController(Generic[_T]):
         The tracker stepped, typed as given (``TrackerController[FollowTheCarrot]``
         has a ``FollowTheCarrot``).
 
+    Raises
+    ------
+    TypeError
+        A ``tracker`` without a ``step(pose, dt)`` method and a ``done`` flag;
+        a parameter of the wrong type.
+    ValueError
+        A ``control_rate`` not > 0, NaN or inf.
+
     Examples
     --------
     >>> from shapely.geometry import box

@@ -124,6 +124,14 @@ class Lidar:
     mount : Pose2D or array_like [x, y, theta], default (0, 0, 0)
         Pose of the sensor in the robot frame.
 
+    Raises
+    ------
+    TypeError
+        A parameter of the wrong type (``n_beams`` not an integer, ``noise``
+        not a :class:`RangeNoise` or None, ...).
+    ValueError
+        A parameter outside its range, NaN or inf.
+
     Examples
     --------
     >>> from shapely.geometry import box

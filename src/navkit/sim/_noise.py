@@ -79,6 +79,13 @@ class RangeNoise:
     bias : sequence of float, optional
         Relative mean error of each band, in [-0.5, 0.5]; zeros by default.
 
+    Raises
+    ------
+    TypeError
+        ``limits``, ``sigma`` or ``bias`` not a sequence of numbers.
+    ValueError
+        Values outside their ranges, NaN, or sequences of different lengths.
+
     Examples
     --------
     >>> RangeNoise()

@@ -86,6 +86,14 @@ class Robot:
     compass : Compass, optional
     imu : Imu, optional
 
+    Raises
+    ------
+    TypeError
+        A ``drive`` that is not an :class:`~navkit.kinematics.OmniDrive` or a
+        :class:`~navkit.kinematics.DiffDrive`; a parameter of the wrong type.
+    ValueError
+        A parameter outside its range, NaN or inf; a bad ``footprint``.
+
     Examples
     --------
     >>> lidar = Lidar(noise=None)

@@ -69,6 +69,14 @@ def trial_seed(base: int, case_index: int, trial_index: int) -> int:
     int
         A seed in [0, 2**63).
 
+    Raises
+    ------
+    TypeError
+        An argument that is not an integer.
+    ValueError
+        An argument outside its range (``base`` in ``[0, 2**64)``, the indices
+        in ``[0, 2**63)``).
+
     Examples
     --------
     >>> trial_seed(0, 0, 1) == trial_seed(0, 0, 1) != trial_seed(0, 0, 2)

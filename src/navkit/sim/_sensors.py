@@ -75,6 +75,14 @@ class Compass:
     latency : float, default 0.0
         Delivery delay, s, in [0, 10^4].
 
+    Raises
+    ------
+    TypeError
+        A parameter of the wrong type.
+    ValueError
+        A parameter outside its range (a ``rate`` not > 0 included), NaN or
+        inf.
+
     Examples
     --------
     >>> Compass(noise=0.01).rate
@@ -162,6 +170,14 @@ class Imu:
     latency : float, default 0.0
         s, in [0, 10^4].
 
+    Raises
+    ------
+    TypeError
+        A parameter of the wrong type.
+    ValueError
+        A parameter outside its range (a ``rate`` not > 0 included), NaN or
+        inf.
+
     Examples
     --------
     >>> Imu(gyro_noise=0.01, accel_noise=0.05).rate
@@ -222,6 +238,14 @@ class WheelEncoders:
     latency : float, default 0.0
         s, in [0, 10^4] (the omnidirectional paper measured 0.08 s for
         odometry).
+
+    Raises
+    ------
+    TypeError
+        A parameter of the wrong type.
+    ValueError
+        A parameter outside its range (a ``rate`` not > 0 included), NaN or
+        inf.
 
     Examples
     --------

@@ -185,6 +185,13 @@ class Circle:
         e.g. the boundary of a circular room, inside which a robot may stand.
         Keyword-only.
 
+    Raises
+    ------
+    TypeError
+        A non-numeric ``center_xy`` or ``radius``.
+    ValueError
+        A ``radius`` not > 0; NaN or inf.
+
     Examples
     --------
     >>> room = Circle((0.0, 0.0), 5.0, solid=False)
@@ -255,6 +262,15 @@ class MovingObstacle:
         last leg's velocity must lie within ±1e3 m/s along each axis (as for
         :meth:`constant_velocity`), so that positions at any query time
         (within ±1e9 s) stay finite.
+
+    Raises
+    ------
+    TypeError
+        A ``shape`` that is neither a radius nor a polygon; non-numeric
+        ``path_xy`` or ``times``.
+    ValueError
+        A ``shape`` not > 0, bad shapes of ``path_xy`` and ``times``, NaN or
+        inf.
 
     Examples
     --------
@@ -639,6 +655,14 @@ class World:
         "unknown"; with False only cells with ``p > occupied_thresh`` block.
     moving : iterable of MovingObstacle, optional
         Obstacles that move (solid).
+
+    Raises
+    ------
+    TypeError
+        ``obstacles`` that are not shapely geometries or :class:`Circle`
+        objects; a ``grid`` that is not an :class:`~navkit.mapping.OccupancyGrid`.
+    ValueError
+        Geometry with NaN or inf coordinates, or other values out of range.
 
     Notes
     -----

@@ -618,6 +618,9 @@ def read_carmen(
 
     Raises
     ------
+    TypeError
+        A ``path`` that is not a str or path-like; a ``range_min`` or
+        ``range_max`` that is not a real number.
     FileNotFoundError
         Missing file.
     ValueError

@@ -1194,6 +1194,8 @@ def read_map(path: str | os.PathLike[str]) -> OccupancyGrid:
 
     Raises
     ------
+    TypeError
+        A ``path`` that is not a str or path-like.
     FileNotFoundError
         Missing YAML or image file.
     ValueError

@@ -545,6 +545,14 @@ class AStarPlanner:
             path costs); 0 at the goal and ``np.inf`` where the goal is
             unreachable (including impassable cells).
 
+        Raises
+        ------
+        TypeError
+            ``goal_cell`` not a pair of integers (a world point in metres
+            included: the message names ``world_to_cell``).
+        ValueError
+            ``goal_cell`` outside the grid or on an impassable cell.
+
         Examples
         --------
         >>> import numpy as np

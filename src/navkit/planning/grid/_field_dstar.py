@@ -617,6 +617,13 @@ class FieldDStar:
         ndarray of float64, shape (2,) or (N, 2)
             World points in m; same leading shape as ``nodes``.
 
+        Raises
+        ------
+        TypeError
+            Non-numeric ``nodes``.
+        ValueError
+            ``nodes`` of another shape, with NaN or inf, or beyond ``±2**53``.
+
         Examples
         --------
         >>> planner = FieldDStar(np.ones((4, 4)), resolution=0.5, origin=(1.0, 0.0, 0.0))

@@ -254,6 +254,13 @@ class ConicAttraction(AttractiveField):
         Offset ``rad_thr`` of the cone (m), in ``[0, 1e6]``; shifts the
         potential only.
 
+    Raises
+    ------
+    ValueError
+        A parameter out of its range, a goal beyond ±1e9 m or not finite.
+    TypeError
+        A parameter that is not a real number (or is a bool).
+
     Examples
     --------
     >>> ConicAttraction((0.0, 0.0), m=0.5).force([[3.0, 4.0]])
@@ -354,6 +361,13 @@ class BlendedAttraction(AttractiveField):
     0.38). Check a chosen parameter set with
     :func:`sample_field` or a radial profile (``tests/control/test_blending_widths.py``
     compares widths in closed loop).
+
+    Raises
+    ------
+    ValueError
+        A parameter out of its range, a goal beyond ±1e9 m or not finite.
+    TypeError
+        A parameter that is not a real number (or is a bool).
 
     Examples
     --------
@@ -481,6 +495,13 @@ class PiecewiseAttraction(AttractiveField):
         Goal radius ``r`` (m) inside which there is no force, in ``[0, 1e6]``.
     spread : float, default 1.0
         Width ``s`` of the linear zone (m), in ``[1e-6, 1e6]``.
+
+    Raises
+    ------
+    ValueError
+        A parameter out of its range, a goal beyond ±1e9 m or not finite.
+    TypeError
+        A parameter that is not a real number (or is a bool).
 
     Examples
     --------

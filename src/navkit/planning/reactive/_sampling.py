@@ -190,6 +190,13 @@ class SampledField:
             (up to rounding), and the window's lower corner ``(xlim[0],
             ylim[0])`` of :func:`sample_field` is in cell ``(0, 0)`` exactly.
 
+        Raises
+        ------
+        TypeError
+            Non-numeric ``points_xy``; a ``continuous`` that is not a bool.
+        ValueError
+            ``points_xy`` of another shape or with NaN or inf.
+
         Examples
         --------
         >>> from navkit.planning import ConicAttraction
@@ -236,6 +243,13 @@ class SampledField:
         -------
         ndarray, shape (N, 2) or (2,)
             ``(x, y)`` in metres, the shape of the input.
+
+        Raises
+        ------
+        TypeError
+            Non-numeric ``cells``.
+        ValueError
+            ``cells`` of another shape, with NaN or inf, or beyond ``±2**53``.
 
         Examples
         --------
