@@ -1036,6 +1036,8 @@ class PlanarFusion(GaussianEstimate):
 
         Raises
         ------
+        TypeError
+            If ``t`` is not a real number (a bool, a string, None).
         ValueError
             If ``t`` is not finite, is a time float64 would round (see the
             class notes) or is older than the filter time.

@@ -21,7 +21,6 @@ from navkit.mapping._limits import (
     RESOLUTION_MAX,
     bounded_float,
     check_cell_count,
-    resolution_float,
 )
 from navkit.mapping._logodds import logit
 from navkit.mapping._raycast import _clamp_pair, _sensor_model
@@ -221,9 +220,9 @@ class ScanMapper:
     ) -> None:
         named = "range_max" if max_range is None else "max_range"  # as the caller wrote it
         range_max = renamed_keyword("max_range", max_range, "range_max", range_max, None)
-        self._resolution = resolution_float(resolution)
-        if self._resolution < 1e-3:
-            raise ValueError(f"resolution must be >= 1e-3 m, got {self._resolution}")
+        # The mapper's own lower bound (its pyramid's cells), stated in the one message:
+        # a grid's 1e-6 would be named for 1e-7 and then refused for 1e-6.
+        self._resolution = bounded_float(resolution, "resolution", 1e-3, RESOLUTION_MAX, "m")
         # integrate_scan's sensor model (log-odds hit/miss); the old probabilities
         # are checked as before and converted, so they give the same increments.
         # The slots keep their old names, so that pickled mappers still load.
