@@ -742,12 +742,22 @@ class Scenario(ABC):
             Trials per case (default :attr:`default_trials`), in [1, 100000];
             at most 1000000 trials over all the cases (``ValueError``).
         seed : int, optional
-            The base seed, >= 0.
+            The base seed, in [0, 2**64).
 
         Returns
         -------
         tuple of Trial
             Case by case, trial by trial.
+
+        Raises
+        ------
+        TypeError
+            ``trials`` or ``seed`` not an integer (bools included); a
+            subclass's :meth:`cases` not returning ``(description, count)``
+            pairs.
+        ValueError
+            ``trials`` or ``seed`` out of range; the cases' counts out of range
+            or summing to more than 1000000.
 
         Examples
         --------
@@ -783,7 +793,7 @@ class Scenario(ABC):
             Trials per case (default :attr:`default_trials`), in [1, 100000];
             at most 1000000 trials over all the cases (``ValueError``).
         seed : int, optional
-            The base seed, >= 0; the same seed gives the same result.
+            The base seed, in [0, 2**64); the same seed gives the same result.
         workers : int or None, optional
             Processes to use, as for :func:`~navkit.sim.sweep`: 1 (the default
             here) runs in this process, None uses every core this process may
@@ -801,6 +811,15 @@ class Scenario(ABC):
             trial's trace, so memory grows with the number of trials: 80 bytes
             a recorded step, about 120 kB a trial for ``Greedy`` (see
             :func:`~navkit.sim.sweep`).
+
+        Raises
+        ------
+        TypeError
+            ``trials``, ``seed`` or ``workers`` not an integer (bools
+            included), ``progress`` not callable, or as :meth:`trials`.
+        ValueError
+            ``trials``, ``seed`` or ``workers`` out of range, or as
+            :meth:`trials`.
 
         Examples
         --------

@@ -332,6 +332,11 @@ class WheelEncoders:
         ndarray of int64, shape (N,)
             ``self.ticks(wheel_angles)``.
 
+        Raises
+        ------
+        TypeError, ValueError
+            As :meth:`ticks`.
+
         Warns
         -----
         DeprecationWarning

@@ -576,6 +576,13 @@ class MovingObstacle:
             The shape translated to :meth:`position_at` ``(t)``, world frame (m);
             a disc as a polygon of 256 vertices.
 
+        Raises
+        ------
+        TypeError
+            ``t`` not a real number (a bool, a string).
+        ValueError
+            ``t`` not finite, or beyond ±1e9 s.
+
         Examples
         --------
         >>> ob = MovingObstacle.constant_velocity(1.0, start_xy=(0, 0), velocity_xy=(1, 0))
@@ -1167,6 +1174,15 @@ class World:
             solid polygon, a solid :class:`Circle` or a moving obstacle (from
             inside, the obstacle's own boundary is not seen).
 
+        Raises
+        ------
+        TypeError
+            ``pose``, ``angles``, ``range_max`` or ``t`` not numeric.
+        ValueError
+            ``pose`` not three finite values, ``angles`` not 1-D or not finite,
+            ``range_max`` not in (0, 1e6], ``t`` not finite (or, with moving
+            obstacles, beyond ±1e9 s).
+
         Examples
         --------
         >>> from shapely.geometry import box
@@ -1211,6 +1227,16 @@ class World:
         float
             Distance, m, >= 0 (``inf`` in a world with nothing in it).
 
+        Raises
+        ------
+        TypeError
+            ``footprint`` neither a number nor a polygon, ``pose`` or ``t`` not
+            numeric.
+        ValueError
+            A radius not positive and finite, a polygon of fewer than 3
+            vertices or not of shape (V, 2), ``pose`` not three finite values,
+            ``t`` not finite (or, with moving obstacles, beyond ±1e9 s).
+
         Examples
         --------
         >>> from shapely.geometry import box
@@ -1251,6 +1277,16 @@ class World:
             True when the footprint touches an obstacle's boundary (comes
             within 1e-12 m of it, the distance computation's rounding) or lies
             inside a solid obstacle.
+
+        Raises
+        ------
+        TypeError
+            ``footprint`` neither a number nor a polygon, ``pose`` or ``t`` not
+            numeric.
+        ValueError
+            A radius not positive and finite, a polygon of fewer than 3
+            vertices or not of shape (V, 2), ``pose`` not three finite values,
+            ``t`` not finite (or, with moving obstacles, beyond ±1e9 s).
 
         Examples
         --------

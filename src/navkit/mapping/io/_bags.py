@@ -434,6 +434,14 @@ ndarray, shape (N, 3, 3)
         -------
         BagImu
 
+        Raises
+        ------
+        TypeError
+            ``mount`` missing or not numeric, both ``mount`` and ``mounting``
+            given, ``frame_id`` not a str.
+        ValueError
+            ``mount`` not four finite values, or all zero.
+
         Other Parameters
         ----------------
         mounting : array_like, optional
