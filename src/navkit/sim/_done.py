@@ -9,6 +9,9 @@ import numpy as np
 
 __all__ = ["done_flag"]
 
+# Values whose truth is their length: a flag held in one, or its text, is a slip.
+_CONTAINERS = (str, bytes, bytearray, list, tuple, dict, set, frozenset)
+
 
 def done_flag(done: Any, name: str) -> bool:
     """``bool(done)``, or an error naming ``name`` where that would mislead or fail.
@@ -22,9 +25,12 @@ def done_flag(done: Any, name: str) -> bool:
     or of objects, holding one) other than 0 or 1 is refused (``ValueError``):
     a NaN or a ``0.3`` is true in Python and would end the run silently, where
     a flag was meant. So is a masked value (``np.ma.masked``, a masked array
-    with a masked element): missing, whatever lies under its mask. Flags
-    (``bool``, ``np.bool_``, one-element boolean arrays), 0 and 1, and
-    anything that is no number keep their truth value.
+    with a masked element): missing, whatever lies under its mask. Strings
+    and Python containers (list, tuple, dict, set, bytes) are refused
+    (``TypeError``): their truth value is whether they are empty, so
+    ``[False]`` and ``"False"`` are true. Flags (``bool``, ``np.bool_``,
+    one-element boolean arrays), 0 and 1, and anything else that is no number
+    keep their truth value.
 
     Examples
     --------
@@ -42,6 +48,12 @@ def done_flag(done: Any, name: str) -> bool:
         raise TypeError(
             f"{name} must be true or false (a property or an attribute), got a "
             f"{type(done).__name__}: a method done() needs @property"
+        )
+    if isinstance(done, _CONTAINERS):
+        # Python's truth value of these is "not empty": [False] and "False" are true.
+        raise TypeError(
+            f"{name} must be true or false, got a {type(done).__name__} (whose truth "
+            "value is whether it is empty, not what it holds)"
         )
     if isinstance(done, np.ma.MaskedArray) and np.ma.getmaskarray(done).any():
         # Missing, not false: its truth value is the data under the mask's.
