@@ -55,7 +55,9 @@ def test_plan_on_real_maps(
         start, goal
     )
     assert figure(out, "length (m)") == pytest.approx(expected.length, rel=1e-3)
-    assert figure(out, "cells expanded") == expected.expanded
+    # Field D* expands grid corners: its row says nodes.
+    label = "cells expanded" if planner == "astar" else "nodes expanded"
+    assert figure(out, label) == expected.expanded
     assert 0.0 < figure(out, "plan time (ms)") < 10_000.0
     assert planner in out and path.name in out
 

@@ -26,6 +26,8 @@ from navkit.sim import Scene, Table
 __all__ = ["plan_command"]
 
 PlannerName = Literal["astar", "field_dstar"]
+# The table's row for Path2D.expanded: Field D* expands grid corners, not cells.
+_EXPANDED_LABEL = {"astar": "cells expanded", "field_dstar": "nodes expanded"}
 
 
 def _warm_up(resolution: float, radius: float, planner: PlannerName) -> None:
@@ -157,7 +159,9 @@ def plan_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
     ``--json FILE`` holds the plan in world metres (``start`` and ``goal`` as
     given, ``points`` as ``[x, y]`` lists, ``length``, ``cost``,
     ``robot_radius``, ``start_tolerance``), the planner's name,
-    ``cells_expanded`` and the two times in ms, each point ``[x, y]`` on one
+    ``cells_expanded`` (the search's expansions: cells for ``astar``, corner
+    nodes for ``field_dstar``, as the table's "cells expanded" or "nodes
+    expanded" row says) and the two times in ms, each point ``[x, y]`` on one
     line. The points are :meth:`MapPlanner.plan`'s: from the start given
     (linked to its cell's centre, or after an escape to the escape cell's) to
     the goal given.
@@ -193,7 +197,7 @@ def plan_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
         ("length (m)", float(path.length)),
         ("plan time (ms)", 1e3 * (searched - prepared)),
         ("costmap time (ms)", 1e3 * (prepared - began)),
-        ("cells expanded", int(path.expanded)),
+        (_EXPANDED_LABEL[args.planner], int(path.expanded)),
         ("path points", len(path.points)),
     )
     print(Table(f"navkit plan on {name}", ("", "value"), rows).render(digits=4), file=out)

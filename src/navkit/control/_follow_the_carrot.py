@@ -168,6 +168,16 @@ class FollowTheCarrot(PathTracker):
         )
         self._carrot_s = 0.0
 
+    def __repr__(self) -> str:
+        # Every option, as the planners and estimators print theirs (eval gives a twin).
+        return (
+            f"{type(self).__name__}(carrot_distance={self._carrot_distance}, "
+            f"max_speed={self._max_speed}, max_omega={self._max_omega}, "
+            f"goal_tolerance={self._goal_tolerance}, yaw_tolerance={self._yaw_tolerance}, "
+            f"heading_gain={self._heading_gain}, rotate_angle={self._align_angle}, "
+            f"align_tolerance={self._align_tolerance}, drive={self._drive!r})"
+        )
+
     @property
     def carrot_distance(self) -> float:
         """Arc length (m) from the robot's closest path point to the carrot."""

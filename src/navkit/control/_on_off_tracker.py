@@ -160,6 +160,14 @@ class OnOffTracker(PathTracker):
         self._heading_tolerance = angle
         self._waypoint = 0
 
+    def __repr__(self) -> str:
+        # Every option, as the planners and estimators print theirs (eval gives a twin).
+        return (
+            f"{type(self).__name__}(max_speed={self._speed}, rotate_omega={self._turn_rate}, "
+            f"rotate_angle={self._heading_tolerance}, goal_tolerance={self._goal_tolerance}, "
+            f"yaw_tolerance={self._yaw_tolerance}, drive={self._drive!r})"
+        )
+
     @property
     def max_speed(self) -> float:
         """Driving speed (m/s)."""

@@ -307,6 +307,19 @@ class PotentialFieldController:
 
     # The options are read-only (as the path trackers'): they are validated once,
     # in __init__, and every step relies on their ranges.
+    def __repr__(self) -> str:
+        # Every option, as the planners and estimators print theirs (eval gives a twin).
+        pid = self._pid
+        return (
+            f"{type(self).__name__}(attraction={self._attraction!r}, k_rep={self._k_rep}, "
+            f"influence_radius={self._influence_radius}, max_speed={self._max_speed}, "
+            f"max_accel={self._max_accel}, max_decel={self._max_decel}, "
+            f"max_omega={self._max_omega}, kp={pid.kp}, ki={pid.ki}, kd={pid.kd}, "
+            f"integral_limit={pid.integral_limit}, drive={self._drive!r}, "
+            f"goal_tolerance={self._goal_tolerance}, stall_radius={self._stall_radius}, "
+            f"stall_timeout={self._stall_timeout})"
+        )
+
     @property
     def attraction(self) -> AttractiveField:
         """The attractive field whose parameters are used (its goal is replaced every step)."""

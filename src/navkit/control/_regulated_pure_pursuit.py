@@ -346,6 +346,28 @@ class RegulatedPurePursuit(PathTracker):
         self._motion_heading: float | None = None
         self._carrot: tuple[float, float] | None = None
 
+    def __repr__(self) -> str:
+        # Every option, as the planners and estimators print theirs; a clearance map
+        # prints as the grid it was built from (eval gives a twin when there is none).
+        clearance = self._clearance
+        shown = clearance._grid if isinstance(clearance, _GridClearance) else clearance
+        return (
+            f"{type(self).__name__}(max_speed={self._max_speed}, "
+            f"lookahead_time={self._lookahead_time}, min_lookahead={self._min_lookahead}, "
+            f"max_lookahead={self._max_lookahead}, rotate_to_heading={self._rotate_to_heading}, "
+            f"rotate_angle={self._rotate_to_heading_angle}, rotate_omega={self._rotate_omega}, "
+            f"max_angular_accel={self._max_angular_accel}, "
+            f"curvature_regulation={self._curvature_regulation}, "
+            f"slowdown_radius={self._slowdown_radius}, "
+            f"min_regulated_speed={self._min_regulated_speed}, clearance={shown!r}, "
+            f"clearance_distance={self._clearance_distance}, "
+            f"clearance_gain={self._clearance_gain}, "
+            f"approach_distance={self._approach_distance}, "
+            f"min_approach_speed={self._min_approach_speed}, "
+            f"goal_tolerance={self._goal_tolerance}, yaw_tolerance={self._yaw_tolerance}, "
+            f"max_omega={self._max_omega}, drive={self._drive!r})"
+        )
+
     @property
     def max_speed(self) -> float:
         """Nav2 ``desired_linear_vel`` (m/s)."""

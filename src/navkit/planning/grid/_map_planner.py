@@ -430,7 +430,10 @@ class MapPlanner:
             returning anything but a ``"grid"`` :class:`Path2D`.
         navkit.NoPathError
             No collision-free path exists (from the escape cell, after an
-            escape).
+            escape). The message names the start and goal given, with their
+            cells, and the search's expansions (``expanded``: cells for
+            ``"astar"``, nodes for ``"field_dstar"`` and a
+            :class:`CellPlanner` callable), as :func:`astar`'s does.
 
         Examples
         --------
@@ -488,9 +491,13 @@ class MapPlanner:
         except NoPathError as exc:
             # The cell planner names the cells it was given; the caller gave points.
             escaped = "" if escape is None else f", escaped to cell {start_cell},"
+            # How far the search got (a handful: the start itself is boxed in), as
+            # astar's own message says it.
+            unit = "cells" if isinstance(prepared, AStarPlanner) else "nodes"
             raise NoPathError(
                 f"no collision-free path from {self._end_text(start, start_cell, 'start')}"
-                f"{escaped} to {self._end_text(goal, goal_cell, 'goal')}{self._closers()}",
+                f"{escaped} to {self._end_text(goal, goal_cell, 'goal')}"
+                f" (expanded {exc.expanded} {unit}){self._closers()}",
                 expanded=exc.expanded,
             ) from exc
         if not isinstance(path, Path2D) or path.frame != "grid":
