@@ -121,7 +121,10 @@ class PotentialFieldController:
     Local minima: the robot is reported :attr:`stalled` when it has stayed within
     ``stall_radius`` of one spot for ``stall_timeout`` seconds while farther than
     ``goal_tolerance`` from the goal (this catches both a standstill and a small
-    oscillation where attraction and repulsion cancel).
+    oscillation where attraction and repulsion cancel). An oscillation wider
+    than ``stall_radius`` (a robot jittering a few centimetres to and fro in
+    front of an obstacle, with scan points as obstacles) is not caught: raise
+    ``stall_radius`` to the widest jitter that still means "stuck".
 
     Parameters
     ----------

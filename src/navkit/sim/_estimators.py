@@ -31,9 +31,11 @@ class Estimator(Protocol):
 
     Examples
     --------
-    >>> from navkit.geometry import Twist2D
+    >>> import math
+    >>> from navkit.geometry import Pose2D, Twist2D, wrap_angle
     >>> from navkit.kinematics import DiffDrive
-    >>> from navkit.sim import Compass, Observation, Reading, Simulation, World
+    >>> from navkit.sim import (Compass, CompassReading, Estimator, Observation, Reading,
+    ...                         Robot, Simulation, World)
     >>> class CompassHeading:  # an Estimator of the heading only, from the compass
     ...     def __init__(self, north: float) -> None:
     ...         self.north, self.readings = north, 0
