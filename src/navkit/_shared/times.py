@@ -72,6 +72,10 @@ def _log10(integer: int) -> int:
 
 def as_time(value: Any, name: str) -> float:
     """A time, s, as a finite float (:func:`finite_float`), refusing what float64 would round."""
+    # A plain float is float64 already, which time_error never refuses; its isinstance
+    # tests (numbers.Integral is an ABC) cost a filter's online step about 0.35 us.
+    if type(value) is float and math.isfinite(value):
+        return value
     error = time_error(value, name)
     if error is not None:
         raise error
