@@ -128,7 +128,10 @@ def inflation_costs(
     # exp(-cost_scaling_factor * (d - robot_radius)), in place on the band's distances.
     np.subtract(factor, robot_radius, out=factor)
     np.multiply(factor, -cost_scaling_factor, out=factor)
-    np.exp(factor, out=factor)
+    # Far cells' exp underflows to 0 (cost 0), as Nav2's does: not an error under a
+    # caller's np.seterr(under="raise") either.
+    with np.errstate(under="ignore"):
+        np.exp(factor, out=factor)
     # Nav2 truncates: (unsigned char)((INSCRIBED_INFLATED_OBSTACLE - 1) * factor).
     np.multiply(factor, INSCRIBED_INFLATED_OBSTACLE - 1, out=factor)
     cost[band] = factor.astype(np.uint8)

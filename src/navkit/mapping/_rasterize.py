@@ -262,8 +262,11 @@ def rasterize_polygons(geometries: Any, *, bounds: ArrayLike, resolution: float)
         what=f"bounds {given} at resolution {res:g} m",
     )
     occ = np.zeros((rows, cols), dtype=np.bool_)
-    xs = _edges(xmin, res, cols)
-    ys = _edges(ymin, res, rows)
+    # The bisection near a coordinate 0 visits subnormal floats, whose products
+    # underflow as they should: not an error under a caller's np.seterr(under=...).
+    with np.errstate(under="ignore"):
+        xs = _edges(xmin, res, cols)
+        ys = _edges(ymin, res, rows)
     for g in parts:
         if g.is_empty:
             continue
