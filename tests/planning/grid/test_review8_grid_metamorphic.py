@@ -263,18 +263,45 @@ def _field_cases(draw: st.DrawFn) -> tuple[FloatArray, Cell, Cell]:
     return costs, draw(st.sampled_from(nodes)), draw(st.sampled_from(nodes))
 
 
+def _field_values(
+    costs: FloatArray, s: Cell, t: Cell, lookahead: bool
+) -> tuple[float, FloatArray]:
+    """Unsmoothed path cost (inf: no path) and the node values the search left."""
+    planner = FieldDStar(costs, lookahead=lookahead, smooth=False)
+    try:
+        cost = planner.plan(s, t).cost
+    except NoPathError:
+        cost = math.inf
+    rows, cols = costs.shape
+    return cost, planner._g.reshape(rows + 1, cols + 1).copy()
+
+
 @settings(max_examples=40)
 @given(case=_field_cases(), lookahead=st.booleans())
-def test_field_dstar_raw_cost_is_the_same_on_every_drawing_of_the_grid(
+def test_field_dstar_node_values_are_the_same_on_every_drawing_of_the_grid(
     case: tuple[FloatArray, Cell, Cell], lookahead: bool
 ) -> None:
-    # Without the (greedy, orientation-dependent) shortcut pass the extracted
-    # path's cost does not depend on how the grid is drawn; see the class Notes.
+    # The node values (interpolated cost-to-goal) do not depend on how the grid
+    # is drawn, up to rounding; the unsmoothed path's cost may, where the walk
+    # meets two candidates tied in value (it takes the first it scans): about 3
+    # draws in 10^4 here, by up to 24 % without the lookahead, 1.5 % with it
+    # (see the class Notes), so it is not compared. Nodes the search never
+    # expanded (inf) may differ: the search stops at the start's key, and equal
+    # keys are taken in scan order.
     costs, s, t = case
-    want = _field_cost(costs, s, t, lookahead=lookahead, smooth=False)
+    want, values = _field_values(costs, s, t, lookahead)
+    floor = math.hypot(s[0] - t[0], s[1] - t[1]) * float(costs[np.isfinite(costs)].min())
+    rows, cols = costs.shape
     for grid, node in _node_symmetry(costs.shape):
-        got = _field_cost(grid(costs), node(s), node(t), lookahead=lookahead, smooth=False)
-        assert _close(got, want), (got, want)
+        got, drawn = _field_values(grid(costs), node(s), node(t), lookahead)
+        assert math.isfinite(got) == math.isfinite(want), (got, want)
+        assert got >= floor * (1 - REL)
+        assert _close(drawn[node(s)], values[s]), (drawn[node(s)], values[s])
+        for i in range(rows + 1):
+            for j in range(cols + 1):
+                a, b = values[i, j], drawn[node((i, j))]
+                if math.isfinite(a) and math.isfinite(b):
+                    assert _close(a, b), ((i, j), a, b)
 
 
 @settings(max_examples=40)
