@@ -13,6 +13,7 @@ from collections.abc import Callable, Iterator
 
 import numpy as np
 import pytest
+from test_review8_grid_metamorphic import _node_symmetry
 
 from navkit.planning import FieldDStar
 
@@ -25,24 +26,7 @@ def _drawings(
     shape: tuple[int, int],
 ) -> Iterator[tuple[Callable[[FloatArray], FloatArray], Callable[[Node], Node]]]:
     """(cost grid transform, node transform) for the 8 symmetries of the square."""
-    for transpose in (False, True):
-        for flip_rows in (False, True):
-            for flip_cols in (False, True):
-                n, m = (shape[1] + 1, shape[0] + 1) if transpose else (shape[0] + 1, shape[1] + 1)
-
-                def grid(a: FloatArray, t: bool = transpose, fr: bool = flip_rows,
-                         fc: bool = flip_cols) -> FloatArray:
-                    b = a.T if t else a
-                    b = b[::-1] if fr else b
-                    b = b[:, ::-1] if fc else b
-                    return np.ascontiguousarray(b)
-
-                def node(p: Node, t: bool = transpose, fr: bool = flip_rows,
-                         fc: bool = flip_cols, n: int = n, m: int = m) -> Node:
-                    r, c = (p[1], p[0]) if t else p
-                    return (n - 1 - r if fr else r, m - 1 - c if fc else c)
-
-                yield grid, node
+    yield from _node_symmetry(shape)
 
 
 # From node (0, 2) the optimal crossing point of the far edge of cell (0, 1) is
