@@ -384,6 +384,12 @@ def _new_temporary(target: Path, temporaries: list[Path]) -> None:
             continue
         except OSError as exc:
             temporaries.pop()
+            if exc.errno in (errno.ENOENT, errno.ENOTDIR) and not target.parent.is_dir():
+                # Named as the folder the caller gave: the temporary file's name
+                # (".map.1f2e3d4c.tmp.pgm") is one the caller never heard of.
+                raise FileNotFoundError(
+                    errno.ENOENT, "no such folder", os.fspath(target.parent)
+                ) from None
             # A file system whose limit is in characters or UTF-16 units while
             # pathconf answers in bytes (vfat, exFAT: 255 characters, "1530"
             # bytes) refuses a name the byte count let through. Windows refuses

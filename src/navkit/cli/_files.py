@@ -2,14 +2,16 @@
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
 from navkit._shared.files import atomic_path
 
-__all__ = ["json_text", "write_json"]
+__all__ = ["json_text", "named_write_errors", "write_json"]
 
 
 def write_json(
@@ -60,16 +62,53 @@ def write_json(
     text = json_text(data, number_lists_on_one_line=number_lists_on_one_line) + "\n"
     if target.is_dir():
         raise IsADirectoryError(f"{target} is a folder, not a file")
-    if target.exists() and not target.is_file():
-        with open(target, "w", encoding="utf-8", newline="\n") as stream:
-            stream.write(text)
-        return target
-    folder = target.parent
-    if not folder.is_dir():
-        raise FileNotFoundError(f"folder {folder} does not exist")
-    with atomic_path(target) as temporary:
-        temporary.write_text(text, encoding="utf-8", newline="\n")  # LF on Windows too
+    with named_write_errors(target):
+        if target.exists() and not target.is_file():
+            with open(target, "w", encoding="utf-8", newline="\n") as stream:
+                stream.write(text)
+            return target
+        folder = target.parent
+        if not folder.is_dir():
+            raise FileNotFoundError(f"folder {folder} does not exist")
+        with atomic_path(target) as temporary:
+            temporary.write_text(text, encoding="utf-8", newline="\n")  # LF on Windows too
     return target
+
+
+@contextlib.contextmanager
+def named_write_errors(target: Path) -> Iterator[None]:
+    """Give ``target`` as the file name of an ``OSError`` raised without one.
+
+    The system reports a failed write or flush (a full disk, ``/dev/full``, a
+    file-size limit) without a file name: ``navkit: error: No space left on
+    device`` alone would leave the user guessing which output failed. An error
+    that names its file already (the folder's, the temporary file's) keeps it.
+
+    Parameters
+    ----------
+    target : Path
+        The output file being written.
+
+    Yields
+    ------
+    None
+        Once; the block writes ``target``.
+
+    Examples
+    --------
+    >>> try:
+    ...     with named_write_errors(Path("out.json")):
+    ...         raise OSError(28, "No space left on device")
+    ... except OSError as exc:
+    ...     print(exc)
+    [Errno 28] No space left on device: 'out.json'
+    """
+    try:
+        yield
+    except OSError as exc:
+        if exc.filename is None and exc.strerror:
+            exc.filename = os.fspath(target)
+        raise
 
 
 def json_text(data: Any, *, number_lists_on_one_line: bool = False) -> str:

@@ -11,7 +11,7 @@ from pathlib import Path
 from typing import Any
 
 from navkit._shared.interrupts import interrupts_deferred
-from navkit.cli._files import write_json
+from navkit.cli._files import named_write_errors, write_json
 from navkit.sim import ScenarioResult, Scene
 
 __all__ = ["check_distinct", "check_output", "save_animation", "save_json", "save_picture"]
@@ -161,13 +161,15 @@ def save_picture(scene: Scene, path: str) -> Path:
     """Write a PNG of a scene (map, plans, driven traces, obstacles, markers)."""
     plot = _plot()
     ax = plot.plot_scene(scene)
-    written: Path = plot.save_figure(ax, path)
+    with named_write_errors(Path(path)):
+        written: Path = plot.save_figure(ax, path)
     return written
 
 
 def save_animation(scene: Scene, path: str) -> Path:
     """Write a GIF of a scene's runs (robot, scans, plan)."""
-    written: Path = _plot().animate_trace(scene, path)
+    with named_write_errors(Path(path)):
+        written: Path = _plot().animate_trace(scene, path)
     return written
 
 
