@@ -601,9 +601,12 @@ class _RosbagsFailed(Exception):
 
 
 def _failure(exc: Exception) -> Exception:
-    """What to raise for an exception of rosbags: an error of the operating system (with an
-    errno: a file it refuses to read) as it is, anything else as :class:`_RosbagsFailed`."""
-    if isinstance(exc, OSError) and exc.errno is not None:
+    """What to raise for an exception of rosbags: an error of the operating system that
+    names its file (one it refuses to open) as it is, anything else as
+    :class:`_RosbagsFailed`: a seek past the largest offset a damaged index asks for is
+    an ``OSError`` (EINVAL) naming no file, which would reach the caller as "Invalid
+    argument" alone."""
+    if isinstance(exc, OSError) and exc.errno is not None and exc.filename is not None:
         return exc
     return _RosbagsFailed(str(exc) or type(exc).__name__)
 
@@ -633,6 +636,55 @@ def _guarded(messages: Callable[[], Iterable[tuple[Any, int, Any]]]) -> Iterator
             yield stamp, bytes(raw)
     except Exception as exc:
         raise _failure(exc) from None
+
+
+def _counted(
+    messages: Iterator[tuple[int, bytes]], declared: int, topic: str
+) -> Iterator[tuple[int, bytes]]:
+    """``messages``, then :class:`_RosbagsFailed` unless there were ``declared`` of them.
+
+    A ROS 2 storage file without checksums (an MCAP written without chunk CRCs,
+    as ``rosbags-convert`` writes them) can lose messages to damage without an
+    error from the reader: the count in ``metadata.yaml`` tells.
+    """
+    read = 0
+    for item in messages:
+        read += 1
+        yield item
+    if read != declared:
+        raise _RosbagsFailed(
+            f"metadata.yaml declares {declared} messages on {topic[:200]!r} but {read} "
+            "could be read: the bag is damaged, or its metadata.yaml is stale (`ros2 bag "
+            "reindex` rewrites it)"
+        )
+
+
+def _check_index(reader: Any) -> None:
+    """:class:`_RosbagsFailed` where an open ROS 1 bag's two message counts disagree.
+
+    rosbags counts a connection's messages from the index records after each
+    chunk; the chunk-info records at the end of the file count them too. A
+    damaged index record loses messages without an error from rosbags, so a
+    difference sends the bag to the chunk walker (:func:`_walk_ros1`), which
+    reads the chunks themselves. A rosbags without these tables is not checked.
+    """
+    infos = getattr(reader, "chunk_infos", None)
+    if not isinstance(infos, list):
+        return
+    declared: dict[Any, int] = {}
+    for info in infos:
+        counts = getattr(info, "connection_counts", None)
+        if not isinstance(counts, dict):
+            return
+        for conn_id, count in counts.items():
+            declared[conn_id] = declared.get(conn_id, 0) + count
+    for c in reader.connections:
+        want = declared.get(getattr(c, "id", None), 0)
+        if c.msgcount != want:
+            raise _RosbagsFailed(
+                f"the index lists {c.msgcount} messages on {c.topic[:200]!r}, the chunk "
+                f"records {want}"
+            )
 
 
 def _connection_counts(connections: Iterable[Any]) -> dict[tuple[str, str], int]:
@@ -678,7 +730,10 @@ def _with_bag(bag_path: Path, use: Callable[[_Bag], _T]) -> _T:
                     # Never empty (the stream was chosen from the counts): rosbags
                     # would read every connection for an empty list.
                     conns = _of_stream(reader.connections, topic, msgtype)
-                    return _guarded(lambda: reader.messages(connections=conns))
+                    declared = sum(c.msgcount for c in conns)
+                    return _counted(
+                        _guarded(lambda: reader.messages(connections=conns)), declared, topic
+                    )
 
                 return use(_Bag(True, _connection_counts(reader.connections), messages2))
         except _RosbagsFailed as exc:
@@ -695,6 +750,7 @@ def _with_bag(bag_path: Path, use: Callable[[_Bag], _T]) -> _T:
     try:
         with _opened(rosbag1.Reader, _CheckedPath(bag_path)) as reader:
             _bound_chunks(reader, bag_path)
+            _check_index(reader)
 
             def messages1(topic: str, msgtype: str) -> Iterator[tuple[int, bytes]]:
                 conns = _of_stream(reader.connections, topic, msgtype)
@@ -1100,8 +1156,11 @@ def read_bag_scans(path: str | os.PathLike[str], *, topic: str | None = None) ->
         Not a bag, a corrupt bag; ``topic`` missing from the bag or
         without messages of this type; no LaserScan topic, or several and no
         ``topic``; a message that is not a valid LaserScan (the message says
-        which). Bags whose chunk index records are damaged (which ``rosbags``
-        refuses) are read through their chunk records.
+        which); a ROS 2 bag whose messages on the topic are not as many as
+        its ``metadata.yaml`` declares (damaged, or stale metadata). ROS 1
+        bags whose index records are damaged (which ``rosbags`` refuses, or
+        reads short of the counts the chunk-info records give) are read
+        through their chunk records.
 
     Examples
     --------
