@@ -494,7 +494,7 @@ def read_map_yaml(path: str | os.PathLike[str]) -> MapMetadata:
         raise ValueError(f"{yaml_path}: missing required key(s) {', '.join(missing)}")
 
     image = entries["image"]
-    if not isinstance(image, str) or not image or "\x00" in image:
+    if not isinstance(image, str) or not image or "\x00" in image or not _encodable(image):
         raise ValueError(f"{yaml_path}: image must be a file name, got {_short(image)}")
     image_path = _image_file(yaml_path, image)
     # One stat for both checks: a save in the other mode (another thread or process)
@@ -549,6 +549,19 @@ def read_map_yaml(path: str | os.PathLike[str]) -> MapMetadata:
     except ValueError as exc:
         raise ValueError(f"{yaml_path}: {exc}") from None
     return MapMetadata(image_path, resolution, (ox, oy, oyaw), negate, occ, free, mode.lower())
+
+
+def _encodable(name: str) -> bool:
+    """Whether ``name`` is a file name the file system can be asked for.
+
+    A YAML escape can make a lone surrogate (``"\\ud800.pgm"``), which no file
+    system encoding takes: ``stat`` would raise ``UnicodeEncodeError``.
+    """
+    try:
+        os.fsencode(name)
+    except UnicodeEncodeError:
+        return False
+    return True
 
 
 def _image_file(yaml_path: Path, image: str) -> Path:
