@@ -55,7 +55,7 @@ def done_flag(done: Any, name: str) -> bool:
             f"{name} must be true or false, got a {type(done).__name__} (whose truth "
             "value is whether it is empty, not what it holds)"
         )
-    if isinstance(done, np.ma.MaskedArray) and np.ma.getmaskarray(done).any():
+    if isinstance(done, np.ma.MaskedArray) and np.any(done.mask):
         # Missing, not false: its truth value is the data under the mask's.
         raise ValueError(f"{name} must be true or false, got a masked value (missing)")
     value = done
