@@ -83,7 +83,15 @@ from navkit.mapping import (
     ScanMatchResult,
     integrate_scan,
 )
-from navkit.mapping.io import BagImu, BagOdometry, BagScans, CarmenLog, OccupancyGridMsgFields
+from navkit.mapping.io import (
+    BagImu,
+    BagOdometry,
+    BagScans,
+    CarmenLog,
+    MovingAIMap,
+    MovingAIScenarios,
+    OccupancyGridMsgFields,
+)
 from navkit.planning import (
     AStarPlanner,
     BlendedAttraction,
@@ -336,6 +344,10 @@ _INSTANCES: dict[str, Callable[[], Any]] = {
     ),
     "OccupancyGridMsgFields": lambda: OccupancyGridMsgFields(
         2, 1, 0.1, (0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 1.0), np.array([0, 100], np.int8)
+    ),
+    "MovingAIMap": lambda: MovingAIMap(["..@", "T.S"]),
+    "MovingAIScenarios": lambda: MovingAIScenarios(
+        [0], ["t.map"], [[2, 3]], [[0, 0]], [[1, 2]], [2.5]
     ),
     # estimation
     "CompassCalibration": _compass,

@@ -1589,6 +1589,7 @@ import fuzz_specs_cli  # noqa: E402, F401
 import fuzz_specs_control  # noqa: E402, F401 - registers navkit.control's tracker specs
 import fuzz_specs_framework  # noqa: E402, F401 - registers the experiment framework's specs
 import fuzz_specs_jps  # noqa: E402, F401
+import fuzz_specs_movingai  # noqa: E402, F401
 import fuzz_specs_plot  # noqa: E402, F401
 import fuzz_specs_scan_matching  # noqa: E402, F401
 import fuzz_specs_scn_diff_astar  # noqa: E402, F401

@@ -1,4 +1,4 @@
-"""Files and messages: ROS map_server maps, ROS messages, ROS bags and CARMEN laser logs.
+"""Files and messages: ROS map_server maps, ROS messages, ROS bags, CARMEN laser logs, MovingAI.
 
 * :func:`read_map` / :func:`write_map`: ROS map_server maps (YAML + PGM or, with
   Pillow, other images), as :class:`~navkit.mapping.OccupancyGrid`;
@@ -14,6 +14,10 @@
   ``sensor_msgs/LaserScan`` messages of ROS 1 and ROS 2 bags as time-stamped
   arrays (:class:`BagOdometry`, :class:`BagImu`, :class:`BagScans`), without
   ROS (the ``ros`` extra: ``rosbags``).
+* :func:`read_movingai_map`, :func:`read_movingai_scenarios`: the MovingAI
+  grid-pathfinding benchmarks (``.map`` terrain as :class:`MovingAIMap`, with a
+  cost grid for the grid planners; ``.scen`` problems with their optimal
+  lengths as :class:`MovingAIScenarios`, cells ``(row, col)``).
 
 Every reader names its array of times, in seconds, ``times`` (a bag's header
 stamps, a CARMEN line's ``timestamp`` field). ROS message helpers keep the
@@ -65,6 +69,12 @@ from navkit.mapping.io._bags import (
 )
 from navkit.mapping.io._carmen import CarmenLog, read_carmen
 from navkit.mapping.io._map_files import read_map, write_map
+from navkit.mapping.io._movingai import (
+    MovingAIMap,
+    MovingAIScenarios,
+    read_movingai_map,
+    read_movingai_scenarios,
+)
 from navkit.mapping.io._ros_msgs import (
     OccupancyGridMsgFields,
     grid_from_msg,
@@ -77,6 +87,8 @@ __all__ = [
     "BagOdometry",
     "BagScans",
     "CarmenLog",
+    "MovingAIMap",
+    "MovingAIScenarios",
     "OccupancyGridMsgFields",
     "bag_topics",
     "grid_from_msg",
@@ -86,6 +98,8 @@ __all__ = [
     "read_bag_scans",
     "read_carmen",
     "read_map",
+    "read_movingai_map",
+    "read_movingai_scenarios",
     "scan_from_msg",
     "write_map",
 ]

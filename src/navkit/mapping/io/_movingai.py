@@ -1,0 +1,581 @@
+"""MovingAI grid-pathfinding benchmark files: ``.map`` grids and ``.scen`` problems.
+
+The format of N. Sturtevant, "Benchmarks for Grid-Based Pathfinding", IEEE
+Trans. on Computational Intelligence and AI in Games 4(2):144-148, 2012
+(movingai.com/benchmarks/formats.html), the standard test set of grid
+planners: every map comes with problems and their optimal 8-connected path
+lengths (straight moves 1, diagonal moves sqrt(2), no corner cutting).
+"""
+
+from __future__ import annotations
+
+import math
+import numbers
+import os
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING, Any, BinaryIO
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from navkit._shared.dunders import bounded_repr
+from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
+from navkit._shared.types import BoolArray, FloatArray, IntArray
+from navkit._shared.validation import (
+    as_array,
+    as_float_array,
+    as_sequence,
+    holds_bool,
+    refuse_masked,
+)
+from navkit.mapping.io._paths import as_path, open_regular
+
+__all__ = ["MovingAIMap", "MovingAIScenarios", "read_movingai_map", "read_movingai_scenarios"]
+
+#: The terrain characters of the format: passable (``.``, ``G``), out of bounds
+#: (``@``, ``O``), trees (``T``), swamp (``S``: passable from regular terrain) and
+#: water (``W``: traversable, but not from regular terrain).
+TERRAIN = ".G@OTSW"
+#: The characters whose cells a unit on land can enter: those of the benchmark's paths.
+PASSABLE = ".GS"
+#: Most cells of a map: what navkit's grid planners take (int32 cell indices).
+MAX_CELLS = 2**31 - 1
+#: Longest header or scenario line read, in bytes: a binary file is refused at once.
+LINE_MAX = 4096
+# Lookup tables by character code: whether it is terrain, whether it is passable.
+_IS_TERRAIN = np.zeros(256, dtype=bool)
+_IS_TERRAIN[list(TERRAIN.encode("ascii"))] = True
+_IS_PASSABLE = np.zeros(256, dtype=bool)
+_IS_PASSABLE[list(PASSABLE.encode("ascii"))] = True
+
+
+@frozen_setattr
+@dataclass(frozen=True, slots=True, eq=False)
+class MovingAIMap:
+    """The terrain of a MovingAI ``.map`` file, one character per cell.
+
+    Parameters
+    ----------
+    terrain : array_like of str, shape (rows, cols)
+        One character of ``".G@OTSW"`` per cell, row 0 the top row of the file
+        (the format's y = 0) and column 0 its left end (x = 0): a 2-D array of
+        one-character strings, or a sequence of equally long row strings.
+        Stored as a read-only ``<U1`` copy. At least one cell, at most
+        ``2**31 - 1``.
+
+    Raises
+    ------
+    TypeError
+        ``terrain`` not strings.
+    ValueError
+        A character outside ``".G@OTSW"`` (named with its cell), rows of
+        different lengths, not two dimensions, no cells or too many.
+
+    Examples
+    --------
+    >>> grid = MovingAIMap(["..@", "T.."])
+    >>> grid.passable
+    array([[ True,  True, False],
+           [False,  True,  True]])
+    >>> grid.costs[0]
+    array([ 1.,  1., inf])
+    """
+
+    terrain: NDArray[np.str_]
+
+    if TYPE_CHECKING:
+        # The generated ``__init__`` takes array_like (``__post_init__`` converts it).
+        def __init__(self, terrain: ArrayLike) -> None: ...
+
+    def __post_init__(self) -> None:
+        terrain = _terrain_codes(self.terrain).view("S1").astype("U1")
+        terrain.flags.writeable = False
+        object.__setattr__(self, "terrain", terrain)
+
+    @property
+    def passable(self) -> BoolArray:
+        """True on the cells a unit on land can enter, shape (rows, cols).
+
+        ``.``, ``G`` and ``S`` (swamp): the cells of the benchmark's optimal
+        paths. Water (``W``), traversable only from other water, is not
+        passable here. A new array at each access.
+
+        Examples
+        --------
+        >>> MovingAIMap(["..@", "T.S"]).passable
+        array([[ True,  True, False],
+               [False,  True,  True]])
+        """
+        passable: BoolArray = _IS_PASSABLE[self.terrain.view(np.uint32) & 255]
+        return passable
+
+    @property
+    def costs(self) -> FloatArray:
+        """Cost grid for the grid planners, shape (rows, cols): 1 where passable, else inf.
+
+        For :class:`~navkit.planning.AStarPlanner` and the other grid
+        planners: with their default ``corner_cutting=False`` the path costs
+        are the ``.scen`` files' optimal lengths, in cell lengths. A new array
+        at each access (change it freely: to add obstacles, say).
+
+        Examples
+        --------
+        >>> MovingAIMap(["..@"]).costs
+        array([[ 1.,  1., inf]])
+        """
+        return np.where(self.passable, 1.0, np.inf)
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        """``(rows, cols)``: the file's ``(height, width)``."""
+        rows, cols = self.terrain.shape
+        return rows, cols
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        """Copy and pickle support: the arrays read-only again, also in subclasses' copies."""
+        return reduce_record(self, ("terrain",))
+
+    def __setstate__(self, state: list[Any]) -> None:
+        """Restore from a pickle's field values, the arrays read-only again."""
+        restore_read_only(self, state, ("terrain",))
+
+    def __repr__(self) -> str:
+        rows, cols = self.shape
+        passable = int(self.passable.sum())
+        return f"{type(self).__name__}(<{rows} x {cols} terrain, {passable} passable>)"
+
+
+def _terrain_codes(terrain: Any) -> NDArray[np.uint8]:
+    """``terrain`` as a C-contiguous (rows, cols) uint8 array of ASCII codes, checked."""
+    refuse_masked(terrain, "terrain")
+    if isinstance(terrain, str):
+        raise TypeError(
+            "terrain must be rows of characters (a 2-D array or a list of str), got str"
+        )
+    if isinstance(terrain, np.ndarray):
+        arr = terrain
+    else:
+        items = as_sequence(terrain, "terrain")
+        if not items:
+            raise ValueError("terrain must have at least one cell, got an empty sequence")
+        if all(isinstance(row, str) for row in items):
+            widths = {len(row) for row in items}
+            if len(widths) != 1:
+                raise ValueError(f"terrain rows must be equally long, got lengths {sorted(widths)}")
+            arr = np.array([list(row) for row in items], dtype="U1").reshape(len(items), -1)
+        else:
+            try:
+                arr = np.asarray(items)
+            except (TypeError, ValueError) as exc:
+                raise ValueError(
+                    f"terrain must be a (rows, cols) array of characters: {exc}"
+                ) from None
+    if arr.dtype.kind != "U":
+        raise TypeError(f"terrain must hold one-character str cells, got dtype {arr.dtype}")
+    if arr.ndim != 2:
+        raise ValueError(f"terrain must have 2 dimensions (rows, cols), got shape {arr.shape}")
+    if arr.size == 0:
+        raise ValueError(f"terrain must have at least one cell, got shape {arr.shape}")
+    if arr.size > MAX_CELLS:
+        raise ValueError(f"terrain must have at most {MAX_CELLS} cells, got {arr.size}")
+    as_u1 = np.ascontiguousarray(arr, dtype="U1")
+    if arr.dtype.itemsize > 4 and not np.array_equal(as_u1, arr):
+        raise ValueError("terrain must hold one character per cell, got a longer string")
+    wide = as_u1.view(np.uint32)
+    bad = (wide > 255) | ~_IS_TERRAIN[wide & 255]
+    if bad.any():
+        row, col = (int(i) for i in np.argwhere(bad)[0])
+        raise ValueError(
+            f"terrain[{row}, {col}] is {str(as_u1[row, col])!r}, not a MovingAI terrain "
+            f"character (one of {TERRAIN!r}); {int(bad.sum())} such cell(s)"
+        )
+    return wide.astype(np.uint8)
+
+
+@frozen_setattr
+@dataclass(frozen=True, slots=True, eq=False)
+class MovingAIScenarios:
+    """The problems of a MovingAI ``.scen`` file, one per row of each array.
+
+    Cells are ``(row, col)``, the file's ``(y, x)``: pass them to the grid
+    planners as they are.
+
+    Parameters
+    ----------
+    buckets : array_like of int, shape (k,)
+        Each problem's bucket (problems grouped by length), >= 0.
+    map_names : sequence of str, length k
+        The map file each problem is on, as written in the file.
+    map_shapes : array_like of int, shape (k, 2)
+        ``(rows, cols)`` of that map (the file's height and width), >= 1.
+    start_cells, goal_cells : array_like of int, shape (k, 2)
+        ``(row, col)`` of start and goal, inside the map shape.
+    optimal_lengths : array_like of float, shape (k,)
+        The optimal 8-connected path length (straight moves 1, diagonal moves
+        sqrt(2), no corner cutting), in cell lengths, finite and >= 0. The
+        files print 8 decimals: compare to about 1e-6 relative.
+
+    Raises
+    ------
+    TypeError
+        Arrays that are not integers (or, for the lengths, real numbers); map
+        names that are not strings.
+    ValueError
+        Wrong shapes or lengths, negative values, cells outside their map,
+        non-finite lengths.
+
+    Notes
+    -----
+    The arrays are stored as read-only int64 and float64 copies (the
+    caller's arrays are neither kept nor frozen).
+
+    Examples
+    --------
+    >>> problems = MovingAIScenarios([0], ["arena.map"], [[49, 49]], [[1, 2]], [[3, 2]], [2.0])
+    >>> len(problems), problems.start_cells[0].tolist(), problems.optimal_lengths[0]
+    (1, [1, 2], np.float64(2.0))
+    """
+
+    buckets: IntArray
+    map_names: tuple[str, ...]
+    map_shapes: IntArray
+    start_cells: IntArray
+    goal_cells: IntArray
+    optimal_lengths: FloatArray
+
+    if TYPE_CHECKING:
+        # The generated ``__init__`` takes array_likes (``__post_init__`` converts them).
+        def __init__(
+            self,
+            buckets: ArrayLike,
+            map_names: Any,
+            map_shapes: ArrayLike,
+            start_cells: ArrayLike,
+            goal_cells: ArrayLike,
+            optimal_lengths: ArrayLike,
+        ) -> None: ...
+
+    def __post_init__(self) -> None:
+        names = as_sequence(self.map_names, "map_names")
+        for name in names:
+            if not isinstance(name, str):
+                raise TypeError(f"map_names must hold str, got {type(name).__name__}")
+        k = len(names)
+        buckets = _int_array(self.buckets, "buckets", (k,), low=0)
+        shapes = _int_array(self.map_shapes, "map_shapes", (k, 2), low=1)
+        starts = _int_array(self.start_cells, "start_cells", (k, 2), low=0)
+        goals = _int_array(self.goal_cells, "goal_cells", (k, 2), low=0)
+        for cells, name in ((starts, "start_cells"), (goals, "goal_cells")):
+            outside = np.flatnonzero(np.any(cells >= shapes, axis=1))
+            if outside.size:
+                i = int(outside[0])
+                raise ValueError(
+                    f"{name}[{i}] {tuple(cells[i].tolist())} is outside its map of shape "
+                    f"{tuple(shapes[i].tolist())} (cells are (row, col))"
+                )
+        lengths = np.array(
+            as_float_array(self.optimal_lengths, "optimal_lengths", shape=(k,), finite=False),
+            dtype=np.float64,
+            copy=True,
+        )
+        bad = np.flatnonzero(~(np.isfinite(lengths) & (lengths >= 0.0)))
+        if bad.size:
+            i = int(bad[0])
+            raise ValueError(f"optimal_lengths[{i}] must be finite and >= 0, got {lengths[i]}")
+        object.__setattr__(self, "map_names", names)
+        for name, array in (
+            ("buckets", buckets), ("map_shapes", shapes), ("start_cells", starts),
+            ("goal_cells", goals), ("optimal_lengths", lengths),
+        ):  # fmt: skip
+            array.flags.writeable = False
+            object.__setattr__(self, name, array)
+
+    def __len__(self) -> int:
+        return len(self.map_names)
+
+    __repr__ = bounded_repr
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        """Copy and pickle support: the arrays read-only again, also in subclasses' copies."""
+        return reduce_record(self, _SCENARIO_ARRAYS)
+
+    def __setstate__(self, state: list[Any]) -> None:
+        """Restore from a pickle's field values, the arrays read-only again."""
+        restore_read_only(self, state, _SCENARIO_ARRAYS)
+
+
+_SCENARIO_ARRAYS = ("buckets", "map_shapes", "start_cells", "goal_cells", "optimal_lengths")
+
+
+def _int_array(value: Any, name: str, shape: tuple[int, ...], *, low: int) -> IntArray:
+    """``value`` as an int64 copy of ``shape`` with every entry >= ``low``."""
+    if isinstance(value, (list, tuple)) and holds_bool(value):
+        raise TypeError(f"{name} must hold integers, got an element of type bool")
+    arr = as_array(value, name)
+    if arr.dtype.kind == "f" and arr.size == 0 and not isinstance(value, np.ndarray):
+        arr = arr.astype(np.int64)  # an empty list
+    if arr.dtype.kind == "O" and all(_is_int(item) for item in arr.flat):
+        pass  # Python ints, perhaps beyond 64 bits: refused by range below
+    elif arr.dtype.kind not in "iu":
+        raise TypeError(f"{name} must hold integers, got dtype {arr.dtype}")
+    if arr.shape != shape:
+        raise ValueError(f"{name} must have shape {shape}, got {arr.shape}")
+    if arr.size:
+        smallest, largest = min(arr.flat), max(arr.flat)
+        if smallest < low:
+            raise ValueError(f"{name} must be >= {low}, got {int(smallest)}")
+        if largest > _INT64_MAX:
+            raise ValueError(f"{name} must be at most {_INT64_MAX}, got {int(largest)}")
+    return np.array(arr, dtype=np.int64, copy=True)
+
+
+def _is_int(item: object) -> bool:
+    return isinstance(item, numbers.Integral) and not isinstance(item, (bool, np.bool_))
+
+
+_INT64_MAX = int(np.iinfo(np.int64).max)
+
+
+def read_movingai_map(path: str | os.PathLike[str]) -> MovingAIMap:
+    """Read a MovingAI ``.map`` file.
+
+    The header (``type octile``, ``height H``, ``width W``, in any order) is
+    followed by a ``map`` line and H rows of W terrain characters; blank
+    lines after them are ignored, and line ends may be ``\\n`` or ``\\r\\n``.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The ``.map`` file.
+
+    Returns
+    -------
+    MovingAIMap
+        The terrain, with its ``passable`` cells and a ``costs`` grid for the
+        grid planners.
+
+    Raises
+    ------
+    FileNotFoundError
+        ``path`` does not exist.
+    TypeError
+        ``path`` not a str or path-like.
+    ValueError
+        ``path`` not a regular file, or a malformed file (named, with the line
+        and the problem): a header key missing, repeated or unknown, a type
+        other than ``octile``, a size that is not a positive integer or
+        exceeds ``2**31 - 1`` cells, too few or too many rows, a row of the
+        wrong length, a character that is not terrain.
+    OSError
+        The operating system refuses to read the file.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = Path(folder) / "tiny.map"
+    ...     _ = path.write_text("type octile\\nheight 2\\nwidth 3\\nmap\\n..@\\nT..\\n")
+    ...     grid = read_movingai_map(path)
+    >>> grid.shape, grid.passable.sum()
+    ((2, 3), np.int64(4))
+    """
+    file = as_path(path, "path")
+    with open_regular(file, "MovingAI map") as fh:
+        rows, cols, number = _map_header(fh, file)
+        # Rows of cols characters and a line end each, then only blank lines.
+        body = fh.read(rows * (cols + 2) + LINE_MAX)
+        extra = fh.read(1)
+    lines = body.split(b"\n")
+    while lines and not lines[-1].strip():
+        lines.pop()
+    if extra or len(lines) > rows:
+        raise ValueError(
+            f"{file}: more than the {rows} rows of the header's height after the 'map' line"
+        )
+    if len(lines) < rows:
+        raise ValueError(
+            f"{file}: {len(lines)} rows after the 'map' line, the header's height is {rows}"
+        )
+    for i, line in enumerate(lines):
+        if line.endswith(b"\r"):
+            line = lines[i] = line[:-1]
+        if len(line) != cols:
+            raise ValueError(
+                f"{file}:{number + 1 + i}: a row of {len(line)} characters, the header's "
+                f"width is {cols}"
+            )
+    codes = np.frombuffer(b"".join(lines), dtype=np.uint8).reshape(rows, cols)
+    bad = ~_IS_TERRAIN[codes]
+    if bad.any():
+        row, col = (int(i) for i in np.argwhere(bad)[0])
+        code = int(codes[row, col])
+        char = repr(chr(code)) if 32 <= code < 127 else f"byte 0x{code:02x}"
+        raise ValueError(
+            f"{file}:{number + 1 + row}: {char} at column {col} is not a MovingAI terrain "
+            f"character (one of {TERRAIN!r})"
+        )
+    return MovingAIMap(codes.view("S1").astype("U1"))
+
+
+def _map_header(fh: BinaryIO, file: Path) -> tuple[int, int, int]:
+    """Read a ``.map`` header up to its ``map`` line: (rows, cols, that line's number)."""
+    header: dict[str, str] = {}
+    number = 0
+    while True:
+        raw = fh.readline(LINE_MAX + 1)
+        number += 1
+        if not raw:
+            raise ValueError(f"{file}: no 'map' line: not a MovingAI map")
+        text = _ascii_line(raw, file, number, "map")
+        words = text.split()
+        if not words:
+            continue
+        if words == ["map"]:
+            break
+        if len(words) != 2 or words[0] not in ("type", "height", "width"):
+            raise ValueError(
+                f"{file}:{number}: {text.strip()[:80]!r} is not a header line ('type octile', "
+                "'height H', 'width W' or 'map')"
+            )
+        if words[0] in header:
+            raise ValueError(f"{file}:{number}: a second {words[0]!r} line")
+        header[words[0]] = words[1]
+    missing = [key for key in ("type", "height", "width") if key not in header]
+    if missing:
+        raise ValueError(f"{file}: no {missing[0]!r} line before the 'map' line")
+    if header["type"] != "octile":
+        raise ValueError(f"{file}: type {header['type']!r}, expected 'octile'")
+    rows, cols = (_size(header[key], key, file) for key in ("height", "width"))
+    if rows * cols > MAX_CELLS:
+        raise ValueError(f"{file}: {rows} x {cols} cells, more than {MAX_CELLS}")
+    return rows, cols, number
+
+
+def _ascii_line(raw: bytes, file: Path, number: int, kind: str) -> str:
+    """A header or scenario line as text: refused if too long or not ASCII."""
+    if len(raw) > LINE_MAX:
+        raise ValueError(
+            f"{file}:{number}: a line longer than {LINE_MAX} bytes: not a MovingAI {kind} file"
+        )
+    try:
+        return raw.decode("ascii")
+    except UnicodeDecodeError:
+        raise ValueError(
+            f"{file}:{number}: bytes that are not ASCII: not a MovingAI {kind} file"
+        ) from None
+
+
+def _size(text: str, key: str, file: Path) -> int:
+    if not (text.isascii() and text.isdigit()) or int(text) == 0:
+        raise ValueError(f"{file}: {key} {text!r} is not a positive integer")
+    return int(text)
+
+
+def read_movingai_scenarios(path: str | os.PathLike[str]) -> MovingAIScenarios:
+    """Read a MovingAI ``.scen`` file (version 1).
+
+    After a ``version 1`` line, one problem per line: ``bucket map width
+    height start_x start_y goal_x goal_y optimal_length``, separated by tabs
+    (or, where a line has no tabs, spaces). x is the column and y the row:
+    the cells are returned as ``(row, col)`` = ``(y, x)``. Blank lines are
+    ignored.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The ``.scen`` file.
+
+    Returns
+    -------
+    MovingAIScenarios
+        The problems in file order.
+
+    Raises
+    ------
+    FileNotFoundError
+        ``path`` does not exist.
+    TypeError
+        ``path`` not a str or path-like.
+    ValueError
+        ``path`` not a regular file, or a malformed file (named, with the line
+        and the problem): no ``version 1`` line, a line without 9 fields, a
+        field that is not a non-negative integer (or, for the length, a
+        finite number), a cell outside its map's width and height.
+    OSError
+        The operating system refuses to read the file.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from pathlib import Path
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = Path(folder) / "tiny.map.scen"
+    ...     _ = path.write_text("version 1\\n0\\ttiny.map\\t3\\t2\\t0\\t0\\t2\\t1\\t2.41421356\\n")
+    ...     problems = read_movingai_scenarios(path)
+    >>> problems.start_cells.tolist(), problems.goal_cells.tolist(), problems.map_shapes.tolist()
+    ([[0, 0]], [[1, 2]], [[2, 3]])
+    """
+    file = as_path(path, "path")
+    ints: list[tuple[int, ...]] = []
+    names: list[str] = []
+    lengths: list[float] = []
+    with open_regular(file, "MovingAI scenario") as fh:
+        first = _ascii_line(fh.readline(LINE_MAX + 1), file, 1, "scenario")
+        if first.split() not in (["version", "1"], ["version", "1.0"]):
+            raise ValueError(
+                f"{file}:1: {first.strip()[:80]!r}, expected 'version 1': not a MovingAI "
+                "scenario file of version 1"
+            )
+        number = 1
+        for raw in iter(lambda: fh.readline(LINE_MAX + 1), b""):
+            number += 1
+            text = _ascii_line(raw, file, number, "scenario")
+            if not text.strip():
+                continue
+            fields = text.rstrip("\r\n").split("\t") if "\t" in text else text.split()
+            if len(fields) != 9:
+                raise ValueError(
+                    f"{file}:{number}: {len(fields)} fields, a problem has 9 (bucket map "
+                    "width height start_x start_y goal_x goal_y optimal_length)"
+                )
+            values = []
+            for field, label in zip(fields[:8], _SCEN_FIELDS, strict=False):
+                if label is None:
+                    continue
+                word = field.strip()
+                if not (word.isascii() and word.isdigit()):
+                    raise ValueError(
+                        f"{file}:{number}: {label} {word[:40]!r} is not a non-negative integer"
+                    )
+                values.append(int(word))
+            try:
+                length = float(fields[8])
+            except ValueError:
+                length = math.nan
+            if not (math.isfinite(length) and length >= 0.0):
+                raise ValueError(
+                    f"{file}:{number}: optimal_length {fields[8].strip()[:40]!r} is not a "
+                    "finite number >= 0"
+                )
+            bucket, width, height, sx, sy, gx, gy = values
+            if width == 0 or height == 0:
+                raise ValueError(f"{file}:{number}: a map of width {width} and height {height}")
+            for x, y, what in ((sx, sy, "start"), (gx, gy, "goal")):
+                if x >= width or y >= height:
+                    raise ValueError(
+                        f"{file}:{number}: {what} (x, y) = ({x}, {y}) is outside the map's "
+                        f"width {width} and height {height}"
+                    )
+            ints.append((bucket, height, width, sy, sx, gy, gx))
+            names.append(fields[1].strip())
+            lengths.append(length)
+    table = np.array(ints, dtype=np.int64).reshape(-1, 7)
+    return MovingAIScenarios(
+        table[:, 0], names, table[:, 1:3], table[:, 3:5], table[:, 5:7], lengths
+    )
+
+
+# The integer fields of a scenario line, by position (None: the map name).
+_SCEN_FIELDS = ("bucket", None, "width", "height", "start_x", "start_y", "goal_x", "goal_y")
