@@ -203,7 +203,12 @@ class GameState:
     opponent_with_ball : int, optional
         Index into ``opponents_xy`` of the opponent holding the ball; inferred
         when omitted as the nearest seen opponent within ``possession_radius``
-        (none if there is none or this robot holds the ball).
+        (``‖opponent - ball_xy‖ <= possession_radius``, computed as for
+        ``has_ball``: an opponent exactly at the radius holds it), the lowest
+        index among opponents equally near; None if there is none, if there
+        are no opponents, or if this robot holds the ball. A given index is
+        taken as given, also one of an unseen (NaN) row or when ``has_ball``
+        is true (a contested ball).
     possession_radius : float, default 0.25
         Distance (m) within which a player holds the ball, in [1e-6, 1e6].
 
@@ -286,13 +291,18 @@ class GameState:
         setter(self, "opponent_with_ball", holder)
 
     def _nearest_holder(self, radius: float) -> int | None:
-        if self.has_ball or self.opponents_xy.shape[0] == 0:
+        if self.has_ball:
             return None
-        with np.errstate(over="ignore", invalid="ignore"):
-            dist = np.hypot(*(self.opponents_xy - self.ball_xy).T)
-        dist = np.where(np.isnan(dist), np.inf, dist)
-        k = int(np.argmin(dist))
-        return k if dist[k] <= radius else None
+        # math.hypot, as for has_ball: NumPy's hypot differs from it in the last bit
+        # for about 1 offset in 170, so a robot and an opponent at the same distance
+        # could be judged apart at the radius. (An unseen row's NaN is never <=.)
+        bx, by = self.ball_xy.tolist()
+        holder, nearest = None, radius
+        for k, (x, y) in enumerate(self.opponents_xy.tolist()):
+            d = math.hypot(x - bx, y - by)
+            if d < nearest or (holder is None and d == nearest):
+                holder, nearest = k, d
+        return holder
 
 
 def _check(state: GameState) -> GameState:

@@ -11,6 +11,7 @@ from pathlib import Path
 from typing import Any, TextIO
 
 from navkit._shared.cores import usable_cores
+from navkit._shared.counts import counted
 from navkit.cli._kernels import announce_compilation, check_cache
 from navkit.cli._outputs import (
     check_distinct,
@@ -86,6 +87,13 @@ def run_scenario(
     check_output(args.json, "", "--json")
     check_distinct({"--plot": args.plot, "--animate": args.animate, "--json": args.json})
     address = getattr(args, "scheduler", None)
+    if args.data == "":
+        # Path("") is the working directory: taken as the data folder by the check
+        # below, and refused by the scenarios in their keyword's words (data_dir).
+        raise ValueError(
+            "--data must not be empty: leave it out to look in $NAVKIT_DATA, then "
+            "shared/data nearby"
+        )
     if args.data is not None and address is None and not Path(args.data).is_dir():
         # Scenarios fall back to other places or to built-in maps when the data is
         # absent: a mistyped --data would go unnoticed. (With --scheduler the
@@ -113,7 +121,7 @@ def run_scenario(
         where = _where(address, workers, total)
     elapsed = time.perf_counter() - began
     print(result.table(), file=out)
-    print(f"\n{total} trials in {elapsed:.1f} s ({where}), seed {args.seed}", file=out)
+    print(f"\n{counted(total, 'trial')} in {elapsed:.1f} s ({where}), seed {args.seed}", file=out)
     if args.json is not None:
         print(f"wrote {save_json(result, args.json)}", file=out)
     if args.plot is not None or args.animate is not None:

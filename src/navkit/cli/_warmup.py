@@ -6,6 +6,7 @@ import argparse
 import warnings
 from typing import TextIO
 
+from navkit._shared.counts import counted
 from navkit._shared.jit import cache_problem, jit_disabled
 from navkit.errors import KernelCacheWarning
 from navkit.sim import Table, WarmupReport, warmup
@@ -78,7 +79,8 @@ def warmup_command(args: argparse.Namespace, out: TextIO, err: TextIO) -> int:
     report = warmup(workers=args.workers, progress=progress, only=args.only)
     print(report_table(report).render(digits=3), file=out)
     if report.compiled:
-        print(f"{len(report.compiled)} kernels compiled and cached: later runs load them.",
+        print(f"{counted(len(report.compiled), 'kernel')} compiled and cached: later runs "
+              "load them.",
               file=out)  # fmt: skip
     else:
         print("Every kernel was already cached: nothing to compile.", file=out)

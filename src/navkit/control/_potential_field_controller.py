@@ -183,9 +183,9 @@ class PotentialFieldController:
     -----
     Subclasses may add attributes (their own ``__slots__`` or an instance
     ``__dict__``) and methods, and override the public methods, calling the
-    base's through ``super()``. The base's methods call none of the public
-    ones but one: ``__init__`` ends with :meth:`reset`, so an override of it
-    runs there too, before the subclass's own ``__init__`` goes on. Copies
+    base's through ``super()``. The base's methods, ``__init__`` included,
+    call none of the public ones: an override of :meth:`reset` may clear
+    state the subclass's ``__init__`` sets up after ``super().__init__()``. Copies
     and pickles rebuild a subclass as itself, with what it adds (its
     ``__init__`` is not called), and ``repr`` names it. Names with a leading
     underscore are private and may change in any release. The attraction
@@ -275,7 +275,9 @@ class PotentialFieldController:
             in_range(kd, "kd", 0.0, MAX_GAIN),
             quantity(integral_limit, "integral_limit", "rad·s"),
         )
-        self.reset()
+        # Not reset(): a subclass's override may clear state its own __init__ has
+        # not set up yet, when this runs.
+        self._clear()
 
     def reset(self) -> None:
         """Forget the previous velocity, the PID state and the stall timer.
@@ -296,6 +298,10 @@ class PotentialFieldController:
         >>> ctl.step((0.0, 0.0, 0.0), (2.0, 0.0, 0.0), 0.1)  # from rest again
         Twist2D(vx=0.1, vy=0.0, omega=0.0)
         """
+        self._clear()
+
+    def _clear(self) -> None:
+        """Set the run state to rest (what :meth:`reset` does, for ``__init__`` too)."""
         self._velocity: FloatArray = np.zeros(2)
         self._integral = 0.0
         self._last_error: float | None = None

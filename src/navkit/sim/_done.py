@@ -28,9 +28,12 @@ def done_flag(done: Any, name: str) -> bool:
     with a masked element): missing, whatever lies under its mask. Strings
     and Python containers (list, tuple, dict, set, bytes) are refused
     (``TypeError``): their truth value is whether they are empty, so
-    ``[False]`` and ``"False"`` are true. Flags (``bool``, ``np.bool_``,
-    one-element boolean arrays), 0 and 1, and anything else that is no number
-    keep their truth value.
+    ``[False]`` and ``"False"`` are true. So is an object whose class defines
+    neither ``__bool__`` nor ``__len__`` (``TypeError``): Python takes every
+    such object for true, and it is what a ``__getattr__`` returning a default
+    for every name gives for ``done``. Flags (``bool``, ``np.bool_``,
+    one-element boolean arrays), 0 and 1, None, and anything else that is no
+    number and defines its truth value keep it.
 
     Examples
     --------
@@ -73,6 +76,16 @@ def done_flag(done: Any, name: str) -> bool:
                 f"{name} must be true or false, got {type(done).__name__} {_text(value)} "
                 "(a number other than 0 or 1)"
             )
+    kind = type(done)
+    if getattr(kind, "__bool__", None) is None and getattr(kind, "__len__", None) is None:
+        # Python takes any such object for true: a __getattr__ that answers every
+        # name (a default for options, say) answers for ``done`` too, and the run
+        # ended at its first step as "controller done".
+        raise TypeError(
+            f"{name} must be true or false, got a {kind.__name__}, which has no truth "
+            f"value of its own (every {kind.__name__} is true); a __getattr__ that "
+            "answers every name answers for done too"
+        )
     try:
         return bool(done)
     except Exception as exc:

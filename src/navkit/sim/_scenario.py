@@ -19,6 +19,7 @@ from typing import Any, ClassVar
 
 import numpy as np
 
+from navkit._shared.counts import counted
 from navkit._shared.dunders import bounded_repr, record_eq, record_hash
 from navkit._shared.frozen import frozen_setattr, restore_read_only
 from navkit._shared.frozendict import FrozenDict
@@ -147,7 +148,9 @@ def _labelled(value: object, name: str, check: Callable[[Any, str], Any]) -> tup
     for k, item in enumerate(as_sequence(value, name)):
         pair = as_sequence(item, f"{name}[{k}]")
         if len(pair) != 2:
-            raise ValueError(f"{name}[{k}] must be a (label, value) pair, got {len(pair)} items")
+            raise ValueError(
+                f"{name}[{k}] must be a (label, value) pair, got {counted(len(pair), 'item')}"
+            )
         out.append((_text(pair[0], f"{name}[{k}][0]"), check(pair[1], f"{name}[{k}][1]")))
     return tuple(out)
 
@@ -301,7 +304,10 @@ class Table:
         for i, row in enumerate(as_sequence(self.rows, "rows")):
             cells = as_sequence(row, f"rows[{i}]")
             if len(cells) != len(columns):
-                raise ValueError(f"rows[{i}] has {len(cells)} cells for {len(columns)} columns")
+                raise ValueError(
+                    f"rows[{i}] has {counted(len(cells), 'cell')} for "
+                    f"{counted(len(columns), 'column')}"
+                )
             for j, cell in enumerate(cells):
                 if cell is not None and not isinstance(
                     cell, (str, int, float, np.integer, np.floating)

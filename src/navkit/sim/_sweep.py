@@ -14,6 +14,7 @@ from typing import Any
 import numpy as np
 
 from navkit._shared.cores import usable_cores
+from navkit._shared.counts import counted
 from navkit._shared.validation import bounded_int
 from navkit.sim._pool import process_pool
 from navkit.sim._scenario import (
@@ -68,7 +69,8 @@ def _plan(scenario: Scenario, trials: int | None, seeds: object) -> tuple[tuple[
         raise ValueError("seeds must hold at least one seed")
     if trials is not None and trials != len(bases):
         raise ValueError(
-            f"seeds holds {len(bases)} seeds for trials={trials}: give one per trial index"
+            f"seeds holds {counted(len(bases), 'seed')} for trials={trials}: give one per "
+            "trial index"
         )
     out = []
     for t in scenario.trials(len(bases) if trials is None else trials, seed=0):
@@ -102,7 +104,7 @@ def _name_trial(exc: BaseException, scenario: Scenario, trial: Trial, total: int
     """Add a note naming the failed trial to ``exc`` (shown under its traceback)."""
     note = (
         f"in scenario {scenario.name!r}, case {trial.case!r}, trial {trial.index} "
-        f"(seed {trial.seed}; {total} trials in the sweep)"
+        f"(seed {trial.seed}; {counted(total, 'trial')} in the sweep)"
     )
     exc.add_note(note)
 

@@ -16,6 +16,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from navkit._shared.counts import counted
 from navkit.cli import main
 from navkit.errors import NoPathError
 from navkit.mapping import OccupancyGrid
@@ -31,15 +32,15 @@ def _walled() -> OccupancyGrid:
 
 @pytest.mark.parametrize(
     ("planner", "unit"),
-    [("astar", "cells"), ("field_dstar", "nodes"), (partial(astar, method="jps"), "nodes")],
+    [("astar", "cell"), ("field_dstar", "node"), (partial(astar, method="jps"), "jump point")],
 )
 def test_no_path_message_gives_the_expansions(planner: object, unit: str) -> None:
     with pytest.raises(NoPathError) as info:
         plan_path(_walled(), (0.25, 0.25), (1.75, 0.25), planner=planner)  # type: ignore[arg-type]
     message = str(info.value)
     assert info.value.expanded > 0
-    assert re.search(r"\(cell \(2, 17\)\) \(expanded (\d+) (\w+)\)$", message), message
-    assert message.endswith(f" (expanded {info.value.expanded} {unit})"), message
+    assert re.search(r"\(cell \(2, 17\)\) \(expanded (\d+) ([\w ]+)\)$", message), message
+    assert message.endswith(f" (expanded {counted(info.value.expanded, unit)})"), message
 
 
 def test_the_count_is_the_cell_planners_own() -> None:

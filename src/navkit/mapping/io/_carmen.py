@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING, Any, BinaryIO, NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike
 
+from navkit._shared.counts import counted
 from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.dunders import bounded_repr
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
@@ -440,7 +441,7 @@ def _robotlaser1(number: int, tokens: list[str], terminated: bool) -> _Record:
     n_rem rem_1..rem_n_rem laser_x laser_y laser_theta robot_x robot_y robot_theta tv rv
     forward_safety side_safety turn_axis timestamp [host logger_ts]``."""
     if len(tokens) < 9:
-        raise _LineError(f"only {len(tokens)} fields")
+        raise _LineError(f"only {counted(len(tokens), 'field')}")
     head = _values(tokens[0:7], "laser type, angles, range and accuracy")
     start, fov, inc, maxr = (float(v) for v in head[1:5])
     if abs(fov) > _TURN + 1e-5:
@@ -452,7 +453,7 @@ def _robotlaser1(number: int, tokens: list[str], terminated: bool) -> _Record:
     if n == 0:
         raise _LineError("the beam count must be at least 1")
     if len(tokens) < 9 + n:
-        raise _LineError(f"{len(tokens) - 8} fields after the beam count {n}")
+        raise _LineError(f"{counted(len(tokens) - 8, 'field')} after the beam count {n}")
     n_rem = _count(tokens[8 + n], "the remission count")
     _fields(tokens, 9 + n + n_rem + 12, "are the beam and remission counts right?", terminated)
     hint = " (are the beam and remission counts right?)"
@@ -524,7 +525,8 @@ def _parse(log_path: Path) -> tuple[list[_Record], array[float]]:
         raise ValueError(f"{log_path}:{number}: malformed {kind} line: {exc}") from None
     except _CorruptFile as exc:
         raise ValueError(
-            f"{log_path}: corrupt or truncated {exc.compression} file (after {number} lines: {exc})"
+            f"{log_path}: corrupt or truncated {exc.compression} file (after "
+            f"{counted(number, 'line')}: {exc})"
         ) from None
     return records, odometry
 

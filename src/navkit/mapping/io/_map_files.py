@@ -37,6 +37,7 @@ import numpy as np
 import yaml
 from numpy.typing import NDArray
 
+from navkit._shared.counts import counted
 from navkit._shared.files import RENAME_LOCK, atomic_paths
 from navkit._shared.frozen import frozen_setattr
 from navkit._shared.locks import ForkSafeLock
@@ -731,8 +732,8 @@ def _pgm_from(fh: BinaryIO, pgm: Path, *, map_server: bool = False) -> NDArray[n
     if magic == "P5":
         if len(raster) < need:
             raise ValueError(
-                f"{pgm}: PGM raster truncated: {len(raster)} bytes for "
-                f"{width} x {height} pixels ({need} bytes needed)"
+                f"{pgm}: PGM raster truncated: {counted(len(raster), 'byte')} for "
+                f"{width} x {height} pixels ({counted(need, 'byte')} needed)"
             )
         # Widened to float64 only once checked (below): an int64 copy costs 8 bytes a pixel.
         pixels: NDArray[Any] = np.frombuffer(raster, dtype=dtype, count=count)

@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from navkit._shared.counts import counted
 from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.validation import as_bool, bounded_int, finite_float, refuse_masked, unpack
@@ -407,7 +408,7 @@ def grid_from_msg(msg: Any) -> OccupancyGrid:
     data = _occupancy_values(raw, "msg.data").ravel()
     if data.size != width * height:
         raise ValueError(
-            f"msg.data has {data.size} values, expected width*height = {width * height}"
+            f"msg.data has {counted(data.size, 'value')}, expected width*height = {width * height}"
         )
     # Normalised without underflow (sub-normal components) and a zero quaternion (ROS
     # 1's default) read as no rotation.

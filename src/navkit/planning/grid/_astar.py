@@ -8,6 +8,7 @@ from typing import Any, cast
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from navkit._shared.counts import counted
 from navkit._shared.dunders import slot_state
 from navkit._shared.frozen import restore_slots
 from navkit._shared.types import CellLike, FloatArray
@@ -319,7 +320,7 @@ class AStarPlanner:
         if how == "jps" and not options_fit:
             raise ValueError(
                 "method='jps' needs connectivity=8 and heuristic_weight=1.0, got "
-                f"connectivity={self.connectivity}, heuristic_weight={self._weight}"
+                f"connectivity={8 if self._eight else 4}, heuristic_weight={self._weight}"
             )
         if not options_fit:
             return
@@ -481,7 +482,8 @@ class AStarPlanner:
             grow_heap(k)
         if not found:
             raise NoPathError(
-                f"no path from start_cell {s} to goal_cell {t} (expanded {expanded} cells)",
+                f"no path from start_cell {s} to goal_cell {t} "
+                f"(expanded {counted(expanded, 'cell')})",
                 expanded=expanded,
             )
         # The search wrote the path's cells into its queue's scratch.
@@ -519,7 +521,8 @@ class AStarPlanner:
             _jps_scratch.heap = np.empty(max(2 * heap.size, 2 * k), dtype=np.float64)
         if not found:
             raise NoPathError(
-                f"no path from start_cell {s} to goal_cell {t} (expanded {expanded} jump points)",
+                f"no path from start_cell {s} to goal_cell {t} "
+                f"(expanded {counted(expanded, 'jump point')})",
                 expanded=expanded,
             )
         # The search wrote the path's cells into its queue's scratch.

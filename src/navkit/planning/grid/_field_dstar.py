@@ -10,6 +10,7 @@ from typing import Any, Literal, cast, overload
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from navkit._shared.counts import counted
 from navkit._shared.dunders import slot_state
 from navkit._shared.frozen import restore_slots
 from navkit._shared.grid_coords import as_pairs, one_or_many, round_half_up
@@ -1616,7 +1617,11 @@ class FieldDStar:
         self._fresh = False
         if status == NO_PATH:
             start, goal = self._ends_text(ends)
-            raise NoPathError(f"{goal} is unreachable from {start}", expanded=expanded)
+            # The words of astar's message (the ends as this method's caller gave them).
+            raise NoPathError(
+                f"no path from {start} to {goal} (expanded {counted(expanded, 'node')})",
+                expanded=expanded,
+            )
         # The walk's start: the start node, or the start cell's corner it picked.
         to_goal = float(self._g[int(pts[0, 0]) * self._ncols + int(pts[0, 1])]) if k else np.inf
         if not to_goal < PATH_COST_LIMIT:

@@ -4,11 +4,13 @@ from __future__ import annotations
 
 import copy
 import math
+import re
 from typing import Any, Literal, NamedTuple, Protocol
 
 import numpy as np
 from numpy.typing import ArrayLike
 
+from navkit._shared.counts import counted
 from navkit._shared.dunders import slot_state
 from navkit._shared.frozen import restore_slots
 from navkit._shared.metres import metres_text
@@ -493,11 +495,10 @@ class MapPlanner:
             escaped = "" if escape is None else f", escaped to cell {start_cell},"
             # How far the search got (a handful: the start itself is boxed in), as
             # astar's own message says it.
-            unit = "cells" if isinstance(prepared, AStarPlanner) else "nodes"
             raise NoPathError(
                 f"no collision-free path from {self._end_text(start, start_cell, 'start')}"
                 f"{escaped} to {self._end_text(goal, goal_cell, 'goal')}"
-                f" (expanded {exc.expanded} {unit}){self._closers()}",
+                f" (expanded {_expansions(prepared, exc)}){self._closers()}",
                 expanded=exc.expanded,
             ) from exc
         if not isinstance(path, Path2D) or path.frame != "grid":
@@ -673,6 +674,24 @@ class MapPlanner:
 
 #: A start or goal within this many cells of its cell's centre takes the centre's place.
 _SAME_POINT = 1e-6
+
+
+#: The count at the end of navkit's cell planners' NoPathError ("... (expanded 3 cells)").
+_EXPANDED = re.compile(r" \(expanded (\d+ [a-z]+(?: [a-z]+)?)\)$")
+
+
+def _expansions(prepared: AStarPlanner | FieldDStar | None, exc: NoPathError) -> str:
+    """``"200 cells"``: how far the cell planner's search got, named as it names it."""
+    if isinstance(prepared, AStarPlanner):
+        return counted(exc.expanded, "jump point" if prepared.method == "jps" else "cell")
+    if isinstance(prepared, FieldDStar):
+        return counted(exc.expanded, "node")
+    # A cell planner of the caller's: its count in its own words (navkit's astar
+    # and Field D* end their message with it), or the bare number.
+    found = _EXPANDED.search(str(exc))
+    if found is not None and found.group(1).split(" ", 1)[0] == str(exc.expanded):
+        return found.group(1)
+    return str(exc.expanded)
 
 
 def _check_ends(cells: FloatArray, start: tuple[int, int], goal: tuple[int, int]) -> None:

@@ -10,6 +10,8 @@ the piecewise ``r`` is ``goal_radius`` and ``s`` is ``spread``).
 from __future__ import annotations
 
 import dataclasses
+import functools
+import weakref
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, TypeVar
 
@@ -76,7 +78,12 @@ def _moved(field: _A, goal: FloatArray) -> _A:
         if extra is not None:
             instance, slots = extra
             if instance:
-                out.__dict__.update(instance)
+                # A cached_property's value was computed for the old goal: dropped,
+                # it is computed again for the new one when read.
+                cached = _cached_names(kind)
+                out.__dict__.update(
+                    {k: v for k, v in instance.items() if k not in cached} if cached else instance
+                )
             for name, value in slots.items():
                 object.__setattr__(out, name, value)
     # The fields last: a dataclass subclass without slots keeps its own in __dict__ too.
@@ -84,6 +91,24 @@ def _moved(field: _A, goal: FloatArray) -> _A:
         object.__setattr__(out, f.name, getattr(field, f.name))
     object.__setattr__(out, "goal_xy", goal)
     return out
+
+
+def _cached_names(kind: type) -> frozenset[str]:
+    """The names of ``kind``'s :func:`functools.cached_property` attributes (found once)."""
+    names = _CACHED.get(kind)
+    if names is None:
+        # The first class of the MRO defining a name decides what it is.
+        found: dict[str, bool] = {}
+        for klass in kind.__mro__:
+            for name, value in vars(klass).items():
+                found.setdefault(name, isinstance(value, functools.cached_property))
+        names = frozenset(name for name, cached in found.items() if cached)
+        _CACHED[kind] = names
+    return names
+
+
+#: Per class, its cached_property names: looked up at every controller step.
+_CACHED: weakref.WeakKeyDictionary[type, frozenset[str]] = weakref.WeakKeyDictionary()
 
 
 @frozen_setattr
@@ -121,9 +146,11 @@ class AttractiveField(PotentialField):
 
         Only the goal is validated: the parameters were checked when ``self``
         was built. What a subclass adds beyond its dataclass fields (its
-        ``__dict__``, its own slots) is kept as :func:`copy.copy` keeps it, so a
-        value of its own that depends on the goal must be computed from
-        ``goal_xy`` where it is used, not stored.
+        ``__dict__``, its own slots) is kept as :func:`copy.copy` keeps it, but
+        for the values of its :func:`functools.cached_property` attributes,
+        which the new field computes again when they are read. Any other value
+        of its own that depends on the goal must be computed from ``goal_xy``
+        where it is used, not stored.
 
         Parameters
         ----------

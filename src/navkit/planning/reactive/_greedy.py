@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from navkit._shared.counts import counted
 from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.frozen import frozen_setattr, reduce_record
 from navkit._shared.types import FloatArray
@@ -298,7 +299,8 @@ def greedy_step(
     if row < 0:
         reason = "nearer the goal " if progress else ""
         raise NoPathError(
-            f"no free cell {reason}is in line of sight of the robot ({n_free} candidates)",
+            f"no free cell {reason}is in line of sight of the robot "
+            f"({counted(n_free, 'candidate')})",
             expanded=n_free,
         )
     waypoint_xy = np.array(grid.cell_to_world(np.array([[row, col]]))[0], dtype=np.float64)

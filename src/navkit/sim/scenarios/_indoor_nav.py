@@ -25,6 +25,7 @@ from typing import Any
 
 import numpy as np
 
+from navkit._shared.counts import counted
 from navkit._shared.validation import as_bool, bounded_int, finite_float
 from navkit.sim import Scenario, ScenarioResult, Scene, Table, Trace, Trial, TrialResult
 from navkit.sim.scenarios._indoor_nav_lab import (
@@ -279,8 +280,8 @@ class IndoorNav(Scenario):
                 used = " (the map used)" if param == MAPPING_SPEED else " (for comparison)"
                 out.append((f"mapping: ScanMapper on the mapping tour at {param:g} m/s{used}", 1))
             elif kind == _LOCALISATION:
-                out.append((f"localisation: wheel odometry vs EKF fusion, {self.targets} targets",
-                            n))  # fmt: skip
+                out.append((f"localisation: wheel odometry vs EKF fusion, "
+                            f"{counted(self.targets, 'target')}", n))  # fmt: skip
             elif kind == _PLANNING:
                 out.append(("planning: Field D* vs 8-connected A*", len(PLAN_ROUTES)))
             else:
@@ -492,9 +493,10 @@ class IndoorNav(Scenario):
         distance = _mean([r.values["distance"] for r in runs])
         summary["targets_reached"] = float(reached) / max(len(runs), 1)
         notes = (
-            f"Mean absolute error of the pose estimate at the {self.targets} target points, "
-            f"over {len(runs)} run(s) of the tour ({distance:.1f} m each; "
-            f"{reached:.0f} target arrivals, {collisions:.0f} collisions).",
+            f"Mean absolute error of the pose estimate at the "
+            f"{counted(self.targets, 'target point')}, over {len(runs)} run(s) of the tour "
+            f"({distance:.1f} m each; {counted(round(reached), 'target arrival')}, "
+            f"{counted(round(collisions), 'collision')}).",
             "One run feeds both estimates the same encoder readings; the robot drives "
             "(ON-OFF along Field D* legs) on the EKF estimate. Wheels: true radii off by "
             f"N(0, {RADIUS_ERROR_SIGMA:.1%}), slip {WHEEL_SLIP:.1%}; IMU: gyro "
