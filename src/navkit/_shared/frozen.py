@@ -25,6 +25,7 @@ __all__ = [
     "rebuild_from_state",
     "rebuild_record",
     "reduce_record",
+    "restore_extra",
     "restore_read_only",
     "restore_slots",
     "slot_names",
@@ -106,8 +107,11 @@ def restore_read_only(record: Any, state: Sequence[Any], arrays: Sequence[str]) 
     ----------
     record : dataclass instance
         The record being restored (its ``__setstate__``'s ``self``).
-    state : sequence
-        The field values, in field order (what a slotted dataclass pickles).
+    state : list or tuple
+        The field values, in field order (what a slotted dataclass pickles); or
+        the tuple ``(instance __dict__ or None, {slot: value})`` of what a
+        subclass adds, which :func:`reduce_record` restores after the rebuild
+        (:func:`restore_extra`; the fields are left as they are).
     arrays : sequence of str
         Names of the fields holding arrays to make read-only (None values skipped).
 
@@ -123,6 +127,11 @@ def restore_read_only(record: Any, state: Sequence[Any], arrays: Sequence[str]) 
     >>> copy.deepcopy(Record(np.zeros(2))).values.flags.writeable
     False
     """
+    if isinstance(state, tuple):
+        # What reduce_record restores after the rebuild (a subclass's __dict__ and
+        # slots); the fields of older pickles come as a list.
+        restore_extra(record, state)
+        return
     for field, value in zip(fields(record), state, strict=True):
         object.__setattr__(record, field.name, value)
     for name in arrays:
@@ -226,8 +235,13 @@ def reduce_record(record: Any, arrays: Collection[str] | None = None) -> tuple[A
     subclass that is itself a slotted frozen dataclass (to add a field) gets a
     generated ``__setstate__`` of its own, which restores writable arrays. A
     ``__reduce__`` is inherited by every subclass (the dataclass decorator
-    adds none): copies and pickles go through :func:`rebuild_record`. Keep the
-    record's ``__setstate__`` (:func:`restore_read_only`): older pickles call it.
+    adds none): copies and pickles go through :func:`rebuild_record`. Give the
+    record a ``__setstate__`` calling :func:`restore_read_only`: older pickles
+    call it with the field values, and :mod:`pickle` and :mod:`copy` with what
+    a subclass adds (its ``__dict__``, its slots), restored after the rebuild so
+    that an attribute referring back to the record finds the new one. A record
+    whose ``__setstate__`` is not navkit's gets what a subclass adds among the
+    rebuild's arguments instead (an attribute referring back is then lost).
 
     A subclass whose own ``__getstate__`` (a user's: not the one a slotted
     frozen dataclass generates, nor navkit's) says what it pickles, to drop a
@@ -246,9 +260,14 @@ def reduce_record(record: Any, arrays: Collection[str] | None = None) -> tuple[A
     Returns
     -------
     tuple
-        ``(rebuild_record, (class, {field: value}, arrays, instance __dict__
-        or None, {other slot: value}))``; ``(rebuild_from_state, (class,
-        state, arrays))`` for a class with a user's ``__getstate__``.
+        ``(rebuild_record, (class, {field: value}, arrays, None, {}),
+        (instance __dict__ or None, {other slot: value}))``, without the last
+        item when a subclass adds nothing; ``(rebuild_record, (class, {field:
+        value}, arrays, instance __dict__ or None, {other slot: value}))``
+        when the class's ``__setstate__`` is not navkit's (the one a slotted
+        dataclass subclass of the user's generates would read the pair as
+        field values); ``(rebuild_from_state, (class, state,
+        arrays))`` for a class with a user's ``__getstate__``.
 
     Examples
     --------
@@ -275,8 +294,58 @@ def reduce_record(record: Any, arrays: Collection[str] | None = None) -> tuple[A
         ]
     if _user_getstate(type(record)) is not None:
         return rebuild_from_state, (type(record), record.__getstate__(), tuple(arrays))
-    instance, slots = extra_state(record, skip=values) or (None, {})
-    return rebuild_record, (type(record), values, tuple(arrays), instance, slots)
+    extra = extra_state(record, skip=values)
+    if extra is None:
+        return rebuild_record, (type(record), values, tuple(arrays), None, {})
+    if _restores_extra(type(record)):
+        # After the rebuild, as Python restores any object's state: an attribute that
+        # leads back to the record (a parent link, a bound method kept as a callback)
+        # then finds the new record. Among the rebuild's arguments it was pickled (and
+        # deep-copied) before the record existed: pickles lost the whole __dict__.
+        return rebuild_record, (type(record), values, tuple(arrays), None, {}), extra
+    return rebuild_record, (type(record), values, tuple(arrays), *extra)
+
+
+def restore_extra(record: Any, state: tuple[Any, Any]) -> None:
+    """Restore what a subclass adds to a record: ``(instance __dict__ or None, {slot: value})``.
+
+    As Python restores the state of an object with slots, the record's own
+    frozen guard passed (its subclass's attributes are not its fields).
+
+    Examples
+    --------
+    >>> from dataclasses import dataclass
+    >>> @dataclass(frozen=True, slots=True)
+    ... class Record:
+    ...     x: float
+    >>> class Tagged(Record):
+    ...     pass
+    >>> tagged = object.__new__(Tagged)
+    >>> restore_extra(tagged, ({"tag": "a"}, {}))
+    >>> tagged.tag
+    'a'
+    """
+    instance, slots = state
+    if instance:
+        record.__dict__.update(instance)
+    for name, value in (slots or {}).items():
+        object.__setattr__(record, name, value)
+
+
+def _restores_extra(cls: type) -> bool:
+    """Whether the ``__setstate__`` that :mod:`pickle` calls on a ``cls`` is navkit's.
+
+    Navkit's read :func:`restore_extra`'s pair (through
+    :func:`restore_read_only`). Not the one a slotted dataclass generates (a
+    user's subclass that adds a field), which would set the pair's two items
+    as the first two fields, nor a user's, which is not called on this path.
+    """
+    for klass in cls.__mro__:
+        method = klass.__dict__.get("__setstate__")
+        if method is not None:
+            module = getattr(method, "__module__", None) or ""
+            return module == "navkit" or module.startswith("navkit.")
+    return False
 
 
 def _user_getstate(cls: type) -> Any:

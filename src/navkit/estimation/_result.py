@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from navkit._shared.frozen import frozen_setattr, reduce_record
+from navkit._shared.frozen import frozen_setattr, reduce_record, restore_extra
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, bounded_int
 
@@ -121,14 +121,19 @@ class UpdateResult:
         """
         return reduce_record(self, ("residual",))
 
-    def __setstate__(self, state: list[Any]) -> None:
+    def __setstate__(self, state: list[Any] | tuple[Any, Any]) -> None:
         """Restore from an older pickle with a read-only ``residual``.
 
         An unpickled or deep-copied array is writeable again. A writeable one (also
         the residual a filter returns, shared by a :func:`copy.copy`) is replaced by
         a read-only copy, leaving the original result's array as it was. A
         pickle from before ``status`` existed leaves it unset (see ``_Status``).
+        A tuple is what a subclass adds, restored after the rebuild
+        (:func:`~navkit._shared.frozen.reduce_record`).
         """
+        if isinstance(state, tuple):
+            restore_extra(self, state)
+            return
         for field, value in zip(fields(self), state, strict=False):
             object.__setattr__(self, field.name, value)
         residual = self.residual

@@ -11,7 +11,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from navkit._shared.angles import wrap_float
-from navkit._shared.frozen import frozen_setattr, reduce_record
+from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, as_points, finite_float, has_array_protocol
 
@@ -75,6 +75,11 @@ class Pose2D:
         if type(self) is Pose2D:
             return Pose2D, (self.x, self.y, self.theta)
         return reduce_record(self, ())
+
+    def __setstate__(self, state: Any) -> None:
+        # A subclass's own attributes, restored after the rebuild (reduce_record);
+        # the field values of a pickle older than __reduce__.
+        restore_read_only(self, state, ())
 
     def compose(self, other: Pose2D | ArrayLike) -> Pose2D:
         """Return ``self ⊕ other``: ``other`` (given in this pose's frame) in the world frame.
@@ -334,6 +339,10 @@ class Twist2D:
         if type(self) is Twist2D:
             return Twist2D, (self.vx, self.vy, self.omega)
         return reduce_record(self, ())
+
+    def __setstate__(self, state: Any) -> None:
+        # As Pose2D's.
+        restore_read_only(self, state, ())
 
     def as_array(self) -> FloatArray:
         """Return ``[vx, vy, omega]`` as a new float64 array.

@@ -1018,11 +1018,12 @@ class OccupancyGrid:
         out = self._logodds.astype(np.float64)
         np.negative(out, out=out)
         # exp(1e6) = inf gives p = 0, as it should; exp(-1e3) = 0 gives p = 1, whatever
-        # the caller's np.seterr (underflow is no error here).
+        # the caller's np.seterr (underflow is no error here). The division too: a
+        # log-odds near -709 gives a subnormal p (review 31).
         with np.errstate(over="ignore", under="ignore"):
             np.exp(out, out=out)
-        np.add(out, 1.0, out=out)
-        np.divide(1.0, out, out=out)
+            np.add(out, 1.0, out=out)
+            np.divide(1.0, out, out=out)
         return out
 
     def occupied(self, threshold: float | None = None) -> BoolArray:

@@ -371,6 +371,10 @@ class CompositeField(PotentialField):
 
     fields: tuple[PotentialField, ...]
 
+    # As every field's: older pickles' field lists, and what a subclass adds after
+    # the rebuild (reduce_record), where the dataclass's own would read it as fields.
+    __setstate__ = _restore
+
     if TYPE_CHECKING:
         # The generated ``__init__`` takes any iterable (``__post_init__`` makes it a
         # tuple); this signature tells type checkers so, at no runtime cost.
