@@ -30,7 +30,8 @@ def scaled_product(rows: FloatArray, matrix_t: FloatArray) -> FloatArray:
     >>> scaled_product(np.array([1.5e308, 1.5e308]), np.array([[1.0], [-0.5]]))
     array([7.5e+307])
     """
-    with np.errstate(over="ignore", invalid="ignore"):
+    # Tiny terms underflow to 0 as under NumPy's defaults, whatever the caller's np.seterr.
+    with np.errstate(over="ignore", invalid="ignore", under="ignore"):
         out: FloatArray = rows @ matrix_t
     bad = ~np.isfinite(out).all(axis=-1)
     if bad.any():
@@ -39,6 +40,6 @@ def scaled_product(rows: FloatArray, matrix_t: FloatArray) -> FloatArray:
         # 2**-exponent is exact except for inputs below 2**-1022 of the row's largest,
         # which round by at most 2**-1075 of it: far below the rounding of the terms.
         _, exponent = np.frexp(np.max(np.abs(big), axis=-1, keepdims=True))
-        with np.errstate(over="ignore", invalid="ignore"):
+        with np.errstate(over="ignore", invalid="ignore", under="ignore"):
             out[bad] = np.ldexp(np.ldexp(big, -exponent) @ matrix_t, exponent)
     return out

@@ -447,6 +447,19 @@ class PotentialFieldController:
         self, pose: Pose2D, goal: FloatArray, obstacles: ArrayLike | LaserScan | None
     ) -> FloatArray:
         """:meth:`desired_velocity` on a validated pose and goal."""
+        try:
+            return self._desired_velocity(pose, goal, obstacles)
+        except FloatingPointError:
+            # Only under a caller's np.seterr(under="raise"): a field's squared offset
+            # of 1e-200 m underflows. The work is pure: done again for NumPy's default
+            # answer (a try costs the step nothing, an np.errstate a microsecond).
+            with np.errstate(under="ignore"):
+                return self._desired_velocity(pose, goal, obstacles)
+
+    def _desired_velocity(
+        self, pose: Pose2D, goal: FloatArray, obstacles: ArrayLike | LaserScan | None
+    ) -> FloatArray:
+        """:meth:`_desired`'s work."""
         here = np.array([[pose.x, pose.y]])
         attraction = self._attraction
         kind = type(attraction)

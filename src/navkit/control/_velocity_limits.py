@@ -88,37 +88,45 @@ def _limit_change(
     ``names`` names the arguments in the error raised when ``want - prev``
     overflows float64.
     """
-    # No np.errstate here (it would cost the controller's step more than the rest of
-    # this function): the norm of a change beyond about 1e154 overflows (the change
-    # is then measured scaled) and may warn.
-    delta = want - prev
-    n = float(np.linalg.norm(delta))
-    if n < math.inf:
-        u = delta / n if n > 0.0 else delta
-    else:
-        # The squared norm overflowed (|delta| > 1e154), or delta itself did.
-        scale = float(np.max(np.abs(delta)))
-        if not scale < math.inf:
-            raise ValueError(
-                f"{names}: the velocity change overflows float64 (values far too large)"
-            )
-        # Each component is finite but the length may not be: the direction from the
-        # scaled vector, the length possibly inf (only compared with finite steps).
-        scaled = delta / scale
-        u = scaled / float(np.linalg.norm(scaled))
-        n = scale * float(np.linalg.norm(scaled))
-    if n == 0.0:
-        same: FloatArray = prev.copy()
-        return same
-    # Along prev + t·u the speed is below its start value exactly for 0 < t < t_slow.
-    t_slow = max(0.0, -2.0 * float(np.dot(prev, u)))
-    step_a = max_accel * dt
-    step_d = max_decel * dt
-    if n <= t_slow:
-        t = min(n, step_d)
-    elif step_a > t_slow:
-        t = min(n, step_a)
-    else:
-        t = min(t_slow, step_d)
-    out: FloatArray = prev + t * u
-    return out
+    try:
+        # No np.errstate here (it would cost the controller's step more than the rest of
+        # this function): the norm of a change beyond about 1e154 overflows (the change
+        # is then measured scaled) and may warn.
+        delta = want - prev
+        n = float(np.linalg.norm(delta))
+        if n < math.inf:
+            u = delta / n if n > 0.0 else delta
+        else:
+            # The squared norm overflowed (|delta| > 1e154), or delta itself did.
+            scale = float(np.max(np.abs(delta)))
+            if not scale < math.inf:
+                raise ValueError(
+                    f"{names}: the velocity change overflows float64 (values far too large)"
+                )
+            # Each component is finite but the length may not be: the direction from the
+            # scaled vector, the length possibly inf (only compared with finite steps).
+            scaled = delta / scale
+            u = scaled / float(np.linalg.norm(scaled))
+            n = scale * float(np.linalg.norm(scaled))
+        if n == 0.0:
+            same: FloatArray = prev.copy()
+            return same
+        # Along prev + t·u the speed is below its start value exactly for 0 < t < t_slow.
+        t_slow = max(0.0, -2.0 * float(np.dot(prev, u)))
+        step_a = max_accel * dt
+        step_d = max_decel * dt
+        if n <= t_slow:
+            t = min(n, step_d)
+        elif step_a > t_slow:
+            t = min(n, step_a)
+        else:
+            t = min(t_slow, step_d)
+        out: FloatArray = prev + t * u
+        return out
+    except FloatingPointError:
+        # Only under a caller's np.seterr(...="raise"): a norm whose squares underflow
+        # (a change of 1e-200 m/s). The work is pure, so it is done again for NumPy's
+        # default answer (nothing here divides by zero: no error is hidden). A try
+        # costs the controller's step nothing, an np.errstate per call a microsecond.
+        with np.errstate(all="ignore"):
+            return _limit_change(prev, want, max_accel, max_decel, dt, names)

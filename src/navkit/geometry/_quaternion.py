@@ -40,11 +40,14 @@ def _quaternions(value: ArrayLike, name: str) -> FloatArray:
     # Scale by the largest component first so huge values cannot overflow when squared.
     big = np.max(np.abs(q), axis=-1, keepdims=True)
     zero = big == 0.0
-    scaled: FloatArray = q / np.where(zero, 1.0, big)
-    norm = np.sqrt(np.sum(scaled * scaled, axis=-1, keepdims=True))
-    # In place on this function's own array: fresh copies for the unit
-    # quaternions and the identity rows held three at once (memory, batches).
-    np.divide(scaled, np.where(zero, 1.0, norm), out=scaled)
+    # A component below 1e-154 of the largest squares to 0 (its share of the norm is
+    # below rounding): NumPy's default answer, also under a caller's np.seterr(under=).
+    with np.errstate(under="ignore"):
+        scaled: FloatArray = q / np.where(zero, 1.0, big)
+        norm = np.sqrt(np.sum(scaled * scaled, axis=-1, keepdims=True))
+        # In place on this function's own array: fresh copies for the unit
+        # quaternions and the identity rows held three at once (memory, batches).
+        np.divide(scaled, np.where(zero, 1.0, norm), out=scaled)
     np.copyto(scaled, np.array([0.0, 0.0, 0.0, 1.0]), where=zero)
     return scaled
 
@@ -66,15 +69,17 @@ def _multiply(a: FloatArray, b: FloatArray) -> FloatArray:
     """Hamilton products ``a ⊗ b`` of ``(x, y, z, w)`` quaternions (broadcast)."""
     ax, ay, az, aw = (a[..., i] for i in range(4))
     bx, by, bz, bw = (b[..., i] for i in range(4))
-    return np.stack(
-        (
-            aw * bx + ax * bw + ay * bz - az * by,
-            aw * by - ax * bz + ay * bw + az * bx,
-            aw * bz + ax * by - ay * bx + az * bw,
-            aw * bw - ax * bx - ay * by - az * bz,
-        ),
-        axis=-1,
-    )
+    # Products of two tiny components underflow to 0, as under NumPy's defaults.
+    with np.errstate(under="ignore"):
+        return np.stack(
+            (
+                aw * bx + ax * bw + ay * bz - az * by,
+                aw * by - ax * bz + ay * bw + az * bx,
+                aw * bz + ax * by - ay * bx + az * bw,
+                aw * bw - ax * bx - ay * by - az * bz,
+            ),
+            axis=-1,
+        )
 
 
 def _matrices(q: FloatArray) -> FloatArray:
@@ -83,15 +88,17 @@ def _matrices(q: FloatArray) -> FloatArray:
     # Each entry written into the result as it is computed: the nine entries, the
     # rows stacked from them and the stacked result were alive at once (memory).
     out = np.empty((*q.shape[:-1], 3, 3), dtype=np.float64)
-    out[..., 0, 0] = 1 - 2 * (y * y + z * z)
-    out[..., 0, 1] = 2 * (x * y - z * w)
-    out[..., 0, 2] = 2 * (x * z + y * w)
-    out[..., 1, 0] = 2 * (x * y + z * w)
-    out[..., 1, 1] = 1 - 2 * (x * x + z * z)
-    out[..., 1, 2] = 2 * (y * z - x * w)
-    out[..., 2, 0] = 2 * (x * z - y * w)
-    out[..., 2, 1] = 2 * (y * z + x * w)
-    out[..., 2, 2] = 1 - 2 * (x * x + y * y)
+    # Products of two tiny components underflow to 0, as under NumPy's defaults.
+    with np.errstate(under="ignore"):
+        out[..., 0, 0] = 1 - 2 * (y * y + z * z)
+        out[..., 0, 1] = 2 * (x * y - z * w)
+        out[..., 0, 2] = 2 * (x * z + y * w)
+        out[..., 1, 0] = 2 * (x * y + z * w)
+        out[..., 1, 1] = 1 - 2 * (x * x + z * z)
+        out[..., 1, 2] = 2 * (y * z - x * w)
+        out[..., 2, 0] = 2 * (x * z - y * w)
+        out[..., 2, 1] = 2 * (y * z + x * w)
+        out[..., 2, 2] = 1 - 2 * (x * x + y * y)
     return out
 
 
@@ -146,8 +153,10 @@ def quaternion_to_yaw(quaternion: ArrayLike) -> float | FloatArray:
     q = _quaternions(quaternion, "quaternion")
     x, y, z, w = (q[..., i] for i in range(4))
     # Each argument computed once (twice, they took 14 times the result's memory).
-    sin_part = 2.0 * (w * z + x * y)
-    cos_part = 1.0 - 2.0 * (y * y + z * z)
+    # Products of tiny components underflow to 0, as under NumPy's defaults.
+    with np.errstate(under="ignore"):
+        sin_part = 2.0 * (w * z + x * y)
+        cos_part = 1.0 - 2.0 * (y * y + z * z)
     del q, x, y, z, w
     yaw = np.asarray(np.arctan2(sin_part, cos_part))
     # Pitch ±90°: both arguments are rounding noise; call the yaw 0 rather than noise.
@@ -227,15 +236,17 @@ def rpy_to_quaternion(roll: ArrayLike, pitch: ArrayLike, yaw: ArrayLike) -> Floa
     cr, sr = np.cos(0.5 * r), np.sin(0.5 * r)
     cp, sp = np.cos(0.5 * p), np.sin(0.5 * p)
     cy, sy = np.cos(0.5 * y), np.sin(0.5 * y)
-    return np.stack(
-        (
-            sr * cp * cy - cr * sp * sy,
-            cr * sp * cy + sr * cp * sy,
-            cr * cp * sy - sr * sp * cy,
-            cr * cp * cy + sr * sp * sy,
-        ),
-        axis=-1,
-    )
+    # Products of two or three tiny sines underflow to 0, as under NumPy's defaults.
+    with np.errstate(under="ignore"):
+        return np.stack(
+            (
+                sr * cp * cy - cr * sp * sy,
+                cr * sp * cy + sr * cp * sy,
+                cr * cp * sy - sr * sp * cy,
+                cr * cp * cy + sr * sp * sy,
+            ),
+            axis=-1,
+        )
 
 
 def quaternion_to_matrix(quaternion: ArrayLike) -> FloatArray:

@@ -35,7 +35,9 @@ def _product(rows: FloatArray, matrix_t: FloatArray, name: str, what: str) -> Fl
     A partial sum can overflow where the result fits (terms that cancel):
     :func:`scaled_product` computes those rows at a scale where none does.
     """
-    with np.errstate(over="ignore", invalid="ignore"):
+    # Tiny terms underflow to 0 as under NumPy's defaults, whatever the caller's np.seterr
+    # (the block is paid for overflow anyway: ignoring underflow too costs nothing).
+    with np.errstate(over="ignore", invalid="ignore", under="ignore"):
         out: FloatArray = rows @ matrix_t
     if np.isfinite(out).all():  # the common case: one pass over the result
         return out
@@ -261,7 +263,7 @@ class OmniDrive:
         """
         tw = as_twist(twist, "twist")
         values = tw.as_array()
-        with np.errstate(over="ignore", invalid="ignore"):
+        with np.errstate(over="ignore", invalid="ignore", under="ignore"):
             speeds: FloatArray = self._jacobian @ values
         if not np.isfinite(speeds).all():
             speeds = _product(values[None, :], self._jacobian.T, "twist", "the wheel speeds")[0]
@@ -296,7 +298,7 @@ class OmniDrive:
         Twist2D(vx=1.0, vy=0.0, omega=0.0)
         """
         w = as_float_array(wheel_speeds, "wheel_speeds", shape=(self.n_wheels,))
-        with np.errstate(over="ignore", invalid="ignore"):
+        with np.errstate(over="ignore", invalid="ignore", under="ignore"):
             twist: FloatArray = self._forward @ w
         if not np.isfinite(twist).all():
             twist = _product(w[None, :], self._forward.T, "wheel_speeds", "the twist")[0]

@@ -378,7 +378,11 @@ class OccupancyGrid:
         free = bounded_float(free_thresh, "free_thresh", 0.0, 1.0)
         _thresholds(occ, free)
         # The one mutable array: ray casting (navkit.mapping._raycast) writes into it.
-        self._logodds: NDArray[np.float32] = np.array(arr, dtype=np.float32, order="C", copy=True)
+        # A log-odds of 1e-200 rounds to 0 in float32: no error, whatever np.seterr says.
+        with np.errstate(under="ignore"):
+            self._logodds: NDArray[np.float32] = np.array(
+                arr, dtype=np.float32, order="C", copy=True
+            )
         self._occupied_thresh = occ
         self._free_thresh = free
         # Held by every writer of _logodds whose kernel releases the GIL (ray

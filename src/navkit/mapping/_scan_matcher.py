@@ -632,16 +632,20 @@ class ScanMatcher:
 
 def _covariance(hessian: FloatArray, cost: float, points: FloatArray) -> FloatArray | None:
     """``σ² H⁻¹`` with ``σ² = cost / (n - 3)``; None when ``H`` is degenerate."""
-    length = math.sqrt(float(np.mean(np.sum(points * points, axis=1)))) or 1.0
-    scaling = np.array([1.0, 1.0, 1.0 / length])
-    scaled = hessian * np.outer(scaling, scaling)
-    eig = np.linalg.eigvalsh(scaled)
-    if not (eig[-1] > 0.0 and eig[0] > DEGENERACY_RATIO * eig[-1]):
-        return None
-    n = points.shape[0]
-    sigma2 = cost / max(n - MIN_POINTS, 1)
-    cov = np.linalg.inv(hessian) * sigma2
-    cov = 0.5 * (cov + cov.T)
+    # A coordinate below 1e-154 squares to 0 and a near-perfect match's tiny cost
+    # scales entries to 0, as under NumPy's defaults: no error under a caller's
+    # np.seterr(under="raise") either (once per match: a microsecond).
+    with np.errstate(under="ignore"):
+        length = math.sqrt(float(np.mean(np.sum(points * points, axis=1)))) or 1.0
+        scaling = np.array([1.0, 1.0, 1.0 / length])
+        scaled = hessian * np.outer(scaling, scaling)
+        eig = np.linalg.eigvalsh(scaled)
+        if not (eig[-1] > 0.0 and eig[0] > DEGENERACY_RATIO * eig[-1]):
+            return None
+        n = points.shape[0]
+        sigma2 = cost / max(n - MIN_POINTS, 1)
+        cov = np.linalg.inv(hessian) * sigma2
+        cov = 0.5 * (cov + cov.T)
     if not np.isfinite(cov).all():
         return None
     return _readonly(cov)

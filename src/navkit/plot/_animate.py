@@ -292,7 +292,10 @@ class _Robot:
         x, y, theta = (float(v) for v in self.trace.poses[i])
         c, s = math.cos(theta), math.sin(theta)
         rot = np.array([[c, s], [-s, c]])
-        self.body.set_xy(self.outline @ rot + (x, y))
+        # A heading below 1e-290 rad times an outline's rounding-noise coordinate
+        # (1e-17) underflows to 0, as under NumPy's defaults, whatever np.seterr says.
+        with np.errstate(under="ignore"):
+            self.body.set_xy(self.outline @ rot + (x, y))
         self.heading.set_data([x, x + self.reach * c], [y, y + self.reach * s])
         self.driven.set_data(self.true_xy[: i + 1, 0], self.true_xy[: i + 1, 1])
         self.estimated.set_data(self.est_xy[: i + 1, 0], self.est_xy[: i + 1, 1])

@@ -481,7 +481,8 @@ ndarray, shape (N, 3, 3)
 
         def turn(cov: FloatArray) -> FloatArray:
             keep = cov[:, 0, 0] == -1.0
-            out = rot @ cov @ rot.T
+            with np.errstate(under="ignore"):  # tiny products: 0, whatever np.seterr says
+                out = rot @ cov @ rot.T
             return np.asarray(np.where(keep[:, None, None], cov, out), dtype=np.float64)
 
         return BagImu(

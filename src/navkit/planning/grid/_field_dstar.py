@@ -606,8 +606,11 @@ class FieldDStar:
         # point on a cell edge falls in the same cell as in the map the costs come
         # from (0.3 / 0.1 < 3 but 0.3 * (1 / 0.1) > 3).
         nodes = np.empty_like(pts)
-        nodes[:, 0] = (-s * dx + c * dy) * inv_res
-        nodes[:, 1] = (c * dx + s * dy) * inv_res
+        # Products of a tiny offset and a tiny sine underflow to 0, as under NumPy's
+        # defaults, whatever the caller's np.seterr.
+        with np.errstate(under="ignore"):
+            nodes[:, 0] = (-s * dx + c * dy) * inv_res
+            nodes[:, 1] = (c * dx + s * dy) * inv_res
         out: FloatArray | IntArray = (
             nodes if as_bool(continuous, "continuous") else round_half_up(nodes)
         )

@@ -147,7 +147,11 @@ class PotentialField(ABC):
         >>> field.potential([[1.0, 0.0], [0.5, 0.0], [3.0, 0.0]])
         array([inf, 0.5, 0. ])
         """
-        return self._potential(points(points_xy, "points_xy"))
+        pts = points(points_xy, "points_xy")
+        try:
+            return self._potential(pts)
+        except FloatingPointError:
+            return _redone(self._potential, pts)
 
     def force(self, points_xy: ArrayLike) -> FloatArray:
         """Force ``-∇U`` at world points.
@@ -190,7 +194,11 @@ class PotentialField(ABC):
         array([[-4.,  0.],
                [ 0.,  0.]])
         """
-        return self._force(points(points_xy, "points_xy"))
+        pts = points(points_xy, "points_xy")
+        try:
+            return self._force(pts)
+        except FloatingPointError:
+            return _redone(self._force, pts)
 
     @abstractmethod
     def _potential(self, pts: FloatArray) -> FloatArray: ...
@@ -221,6 +229,18 @@ class PotentialField(ABC):
             f"{f.name}={_short(getattr(self, f.name))}" for f in dataclasses.fields(obj) if f.repr
         )
         return f"{type(self).__name__}({args})"
+
+
+def _redone(method: Callable[[FloatArray], FloatArray], pts: FloatArray) -> FloatArray:
+    """``method(pts)`` again with underflow no error: NumPy's default answer.
+
+    Only a caller's ``np.seterr(under="raise")`` makes a field's formula raise, where
+    a squared offset of 1e-200 m underflows to 0. The formulas are pure, so they
+    are evaluated again: a ``try`` costs nothing, an ``np.errstate`` per call more
+    than a small field's formula.
+    """
+    with np.errstate(under="ignore"):
+        return method(pts)
 
 
 def _new_field(kind: type[PotentialField]) -> PotentialField:

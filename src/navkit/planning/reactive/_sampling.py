@@ -23,6 +23,7 @@ from navkit.planning.reactive._limits import (
 from navkit.planning.reactive._potential_field import (
     PotentialField,
     _frozen,
+    _redone,
     _restore,
 )
 
@@ -408,8 +409,12 @@ def sample_field(
     grid[:, :, 0] = xs
     grid[:, :, 1] = ys[:, None]
     del grid
-    potential = field._potential(pts).reshape(shape)
-    force = field._force(pts).reshape((*shape, 2))
+    try:
+        potential = field._potential(pts).reshape(shape)
+        force = field._force(pts).reshape((*shape, 2))
+    except FloatingPointError:  # a caller's np.seterr(under="raise"): see _redone
+        potential = _redone(field._potential, pts).reshape(shape)
+        force = _redone(field._force, pts).reshape((*shape, 2))
     # Gone before SampledField copies the results (a field's own arrays are never
     # frozen in place): the points would add their size to that copy's peak.
     del pts
