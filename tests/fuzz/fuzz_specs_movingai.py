@@ -43,6 +43,10 @@ MAP_FILES = FileKind(
         ("a digit in a row", lambda d: _file(d, "a.map", _MAP.replace("..@", ".1@"))),
         ("a byte not ASCII", lambda d: _file(d, "a.map", _MAP.encode().replace(b"T", b"\xff"))),
         ("a scenario file", lambda d: _file(d, "a.map", _SCEN)),
+        (
+            "2**31 - 1 rows claimed",
+            lambda d: _file(d, "a.map", _MAP.replace("height 2", "height 2147483647")),
+        ),
     ]
 )
 SCEN_FILES = FileKind(
@@ -58,6 +62,12 @@ SCEN_FILES = FileKind(
         ("a NaN length", lambda d: _file(d, "a.scen", _SCEN.replace("1.41421356", "nan"))),
         ("width 0", lambda d: _file(d, "a.scen", _SCEN.replace("map\t3", "map\t0"))),
         ("a map file", lambda d: _file(d, "a.scen", _MAP)),
+        (
+            "a bucket of 30 digits",
+            lambda d: _file(d, "a.scen", _SCEN.replace("1\n0", "1\n" + "9" * 30)),
+        ),
+        ("a length 1_0", lambda d: _file(d, "a.scen", _SCEN.replace("1.41421356", "1_0"))),
+        ("no map name", lambda d: _file(d, "a.scen", _SCEN.replace("tiny.map", ""))),
     ]
 )
 

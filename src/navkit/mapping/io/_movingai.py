@@ -9,10 +9,13 @@ lengths (straight moves 1, diagonal moves sqrt(2), no corner cutting).
 
 from __future__ import annotations
 
+import codecs
 import math
 import numbers
 import os
+import re
 from dataclasses import dataclass
+from itertools import chain
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, BinaryIO
 
@@ -48,6 +51,9 @@ _IS_TERRAIN = np.zeros(256, dtype=bool)
 _IS_TERRAIN[list(TERRAIN.encode("ascii"))] = True
 _IS_PASSABLE = np.zeros(256, dtype=bool)
 _IS_PASSABLE[list(PASSABLE.encode("ascii"))] = True
+# A C double as HOG2's stream reads it, without a sign: float() also took "1_0",
+# "-0.0" and surrounding blanks.
+_LENGTH = re.compile(r"(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
 
 
 @frozen_setattr
@@ -89,7 +95,9 @@ class MovingAIMap:
         def __init__(self, terrain: ArrayLike) -> None: ...
 
     def __post_init__(self) -> None:
-        terrain = _terrain_codes(self.terrain).view("S1").astype("U1")
+        # A UCS-4 character is its code point: a uint32 copy viewed as <U1 is the
+        # str array (an astype from bytes ("S1") took 56 ms a megacell).
+        terrain = _terrain_codes(self.terrain).astype(np.uint32).view(np.dtype("U1"))
         terrain.flags.writeable = False
         object.__setattr__(self, "terrain", terrain)
 
@@ -171,6 +179,12 @@ def _terrain_codes(terrain: Any) -> NDArray[np.uint8]:
                 raise ValueError(
                     f"terrain must be a (rows, cols) array of characters: {exc}"
                 ) from None
+            if arr.ndim == 2:
+                # NumPy makes str of numbers and bytes beside str: 1 became the cell '1'.
+                _refuse_not_str(set(map(type, chain.from_iterable(items))))
+    if arr.dtype.kind == "O" and arr.size:
+        _refuse_not_str(set(map(type, arr.flat)))
+        arr = arr.astype(str)
     if arr.dtype.kind != "U":
         raise TypeError(f"terrain must hold one-character str cells, got dtype {arr.dtype}")
     if arr.ndim != 2:
@@ -183,14 +197,25 @@ def _terrain_codes(terrain: Any) -> NDArray[np.uint8]:
     if arr.dtype.itemsize > 4 and not np.array_equal(as_u1, arr):
         raise ValueError("terrain must hold one character per cell, got a longer string")
     wide = as_u1.view(np.uint32)
-    bad = (wide > 255) | ~_IS_TERRAIN[wide & 255]
+    # Narrowed first, looked up once: no uint32 temporaries of the grid's size.
+    codes = wide.astype(np.uint8)
+    bad = ~_IS_TERRAIN[codes]
+    if wide.max() > 255:
+        bad |= wide > 255
     if bad.any():
         row, col = (int(i) for i in np.argwhere(bad)[0])
         raise ValueError(
             f"terrain[{row}, {col}] is {str(as_u1[row, col])!r}, not a MovingAI terrain "
             f"character (one of {TERRAIN!r}); {int(bad.sum())} such cell(s)"
         )
-    return wide.astype(np.uint8)
+    return codes
+
+
+def _refuse_not_str(types: set[type]) -> None:
+    """Refuse terrain cells of any type but str (``types``: those of the cells)."""
+    for kind in types:
+        if not issubclass(kind, str):
+            raise TypeError(f"terrain must hold str cells, got an element of type {kind.__name__}")
 
 
 @frozen_setattr
@@ -222,8 +247,9 @@ class MovingAIScenarios:
         Arrays that are not integers (or, for the lengths, real numbers); map
         names that are not strings.
     ValueError
-        Wrong shapes or lengths, negative values, cells outside their map,
-        non-finite lengths.
+        Wrong shapes or lengths, negative values, empty map names, a map shape
+        of more than ``2**31 - 1`` cells, cells outside their map, non-finite
+        lengths.
 
     Notes
     -----
@@ -258,12 +284,24 @@ class MovingAIScenarios:
 
     def __post_init__(self) -> None:
         names = as_sequence(self.map_names, "map_names")
-        for name in names:
+        for i, name in enumerate(names):
             if not isinstance(name, str):
                 raise TypeError(f"map_names must hold str, got {type(name).__name__}")
+            if not name:
+                raise ValueError(f"map_names[{i}] is empty: it must name the problem's map")
+        # Plain str (str.__str__ copies a subclass's value): np.str_ names printed as
+        # np.str_('a.map') in the record's repr.
+        names = tuple(str.__str__(name) for name in names)
         k = len(names)
         buckets = _int_array(self.buckets, "buckets", (k,), low=0)
         shapes = _int_array(self.map_shapes, "map_shapes", (k, 2), low=1)
+        # No map of more cells can be read (MovingAIMap, read_movingai_map).
+        huge = np.flatnonzero(shapes[:, 0] > MAX_CELLS // shapes[:, 1])
+        if huge.size:
+            i = int(huge[0])
+            raise ValueError(
+                f"map_shapes[{i}] {tuple(shapes[i].tolist())} has more than {MAX_CELLS} cells"
+            )
         starts = _int_array(self.start_cells, "start_cells", (k, 2), low=0)
         goals = _int_array(self.goal_cells, "goal_cells", (k, 2), low=0)
         for cells, name in ((starts, "start_cells"), (goals, "goal_cells")):
@@ -283,6 +321,7 @@ class MovingAIScenarios:
         if bad.size:
             i = int(bad[0])
             raise ValueError(f"optimal_lengths[{i}] must be finite and >= 0, got {lengths[i]}")
+        lengths += 0.0  # -0.0 becomes 0.0
         object.__setattr__(self, "map_names", names)
         for name, array in (
             ("buckets", buckets), ("map_shapes", shapes), ("start_cells", starts),
@@ -315,6 +354,11 @@ def _int_array(value: Any, name: str, shape: tuple[int, ...], *, low: int) -> In
     arr = as_array(value, name)
     if arr.dtype.kind == "f" and arr.size == 0 and not isinstance(value, np.ndarray):
         arr = arr.astype(np.int64)  # an empty list
+    elif arr.dtype.kind == "f" and not isinstance(value, np.ndarray):
+        # NumPy makes float64 of integers beyond int64 and of int8 mixed with uint64.
+        items = np.array(value, dtype=object)
+        if items.shape == arr.shape and all(_is_int(item) for item in items.flat):
+            arr = items
     if arr.dtype.kind == "O" and all(_is_int(item) for item in arr.flat):
         pass  # Python ints, perhaps beyond 64 bits: refused by range below
     elif arr.dtype.kind not in "iu":
@@ -342,7 +386,9 @@ def read_movingai_map(path: str | os.PathLike[str]) -> MovingAIMap:
 
     The header (``type octile``, ``height H``, ``width W``, in any order) is
     followed by a ``map`` line and H rows of W terrain characters; blank
-    lines after them are ignored, and line ends may be ``\\n`` or ``\\r\\n``.
+    lines after them, and spaces or tabs after a row, are ignored (as HOG2,
+    the benchmark's own code, skips them); line ends may be ``\\n`` or
+    ``\\r\\n``, and a UTF-8 byte-order mark may start the file.
 
     Parameters
     ----------
@@ -384,8 +430,11 @@ def read_movingai_map(path: str | os.PathLike[str]) -> MovingAIMap:
     file = as_path(path, "path")
     with open_regular(file, "MovingAI map") as fh:
         rows, cols, number = _map_header(fh, file)
-        # Rows of cols characters and a line end each, then only blank lines.
-        body = fh.read(rows * (cols + 2) + LINE_MAX)
+        # Rows of cols characters and a line end each, then only blank lines; never
+        # more than the file holds: read(n) allocates n bytes first, and a header of
+        # 40 bytes may claim 2**31 cells.
+        remaining = max(os.fstat(fh.fileno()).st_size - fh.tell(), 0)
+        body = fh.read(min(rows * (cols + 2) + LINE_MAX, remaining))
         extra = fh.read(1)
     lines = body.split(b"\n")
     while lines and not lines[-1].strip():
@@ -399,8 +448,8 @@ def read_movingai_map(path: str | os.PathLike[str]) -> MovingAIMap:
             f"{file}: {len(lines)} rows after the 'map' line, the header's height is {rows}"
         )
     for i, line in enumerate(lines):
-        if line.endswith(b"\r"):
-            line = lines[i] = line[:-1]
+        # A CR line end, or blanks after the row (HOG2 skips them).
+        line = lines[i] = line.rstrip(b" \t\r")
         if len(line) != cols:
             raise ValueError(
                 f"{file}:{number + 1 + i}: a row of {len(line)} characters, the header's "
@@ -416,7 +465,7 @@ def read_movingai_map(path: str | os.PathLike[str]) -> MovingAIMap:
             f"{file}:{number + 1 + row}: {char} at column {col} is not a MovingAI terrain "
             f"character (one of {TERRAIN!r})"
         )
-    return MovingAIMap(codes.view("S1").astype("U1"))
+    return MovingAIMap(codes.astype(np.uint32).view(np.dtype("U1")))
 
 
 def _map_header(fh: BinaryIO, file: Path) -> tuple[int, int, int]:
@@ -426,6 +475,8 @@ def _map_header(fh: BinaryIO, file: Path) -> tuple[int, int, int]:
     while True:
         raw = fh.readline(LINE_MAX + 1)
         number += 1
+        if number == 1:
+            raw = raw.removeprefix(codecs.BOM_UTF8)  # as Windows Notepad writes
         if not raw:
             raise ValueError(f"{file}: no 'map' line: not a MovingAI map")
         text = _ascii_line(raw, file, number, "map")
@@ -479,8 +530,10 @@ def read_movingai_scenarios(path: str | os.PathLike[str]) -> MovingAIScenarios:
     After a ``version 1`` line, one problem per line: ``bucket map width
     height start_x start_y goal_x goal_y optimal_length``, separated by tabs
     (or, where a line has no tabs, spaces). x is the column and y the row:
-    the cells are returned as ``(row, col)`` = ``(y, x)``. Blank lines are
-    ignored.
+    the cells are returned as ``(row, col)`` = ``(y, x)``. Blank lines, and
+    spaces or tabs after a line's last field, are ignored; a UTF-8
+    byte-order mark may start the file. The map names are kept as written
+    (often relative to the ``.scen`` file's folder, or as ``maps/<set>/<name>``).
 
     Parameters
     ----------
@@ -500,9 +553,11 @@ def read_movingai_scenarios(path: str | os.PathLike[str]) -> MovingAIScenarios:
         ``path`` not a str or path-like.
     ValueError
         ``path`` not a regular file, or a malformed file (named, with the line
-        and the problem): no ``version 1`` line, a line without 9 fields, a
-        field that is not a non-negative integer (or, for the length, a
-        finite number), a cell outside its map's width and height.
+        and the problem): no ``version 1`` line, a line without 9 fields or
+        with a control character, an empty map name, a field that is not a
+        non-negative integer of ASCII digits (or, for the length, a finite
+        decimal number without sign), a bucket beyond int64, a map of more
+        than ``2**31 - 1`` cells, a cell outside its map's width and height.
     OSError
         The operating system refuses to read the file.
 
@@ -522,7 +577,8 @@ def read_movingai_scenarios(path: str | os.PathLike[str]) -> MovingAIScenarios:
     names: list[str] = []
     lengths: list[float] = []
     with open_regular(file, "MovingAI scenario") as fh:
-        first = _ascii_line(fh.readline(LINE_MAX + 1), file, 1, "scenario")
+        head = fh.readline(LINE_MAX + 1).removeprefix(codecs.BOM_UTF8)
+        first = _ascii_line(head, file, 1, "scenario")
         if first.split() not in (["version", "1"], ["version", "1.0"]):
             raise ValueError(
                 f"{file}:1: {first.strip()[:80]!r}, expected 'version 1': not a MovingAI "
@@ -531,10 +587,16 @@ def read_movingai_scenarios(path: str | os.PathLike[str]) -> MovingAIScenarios:
         number = 1
         for raw in iter(lambda: fh.readline(LINE_MAX + 1), b""):
             number += 1
-            text = _ascii_line(raw, file, number, "scenario")
-            if not text.strip():
+            # Blanks after the last field are no field (HOG2 reads a stream of words).
+            text = _ascii_line(raw, file, number, "scenario").rstrip(" \t\r\n")
+            if not text:
                 continue
-            fields = text.rstrip("\r\n").split("\t") if "\t" in text else text.split()
+            if not text.replace("\t", " ").isprintable():
+                raise ValueError(
+                    f"{file}:{number}: a control character: a scenario line holds printable "
+                    "fields separated by tabs or spaces"
+                )
+            fields = text.split("\t") if "\t" in text else text.split()
             if len(fields) != 9:
                 raise ValueError(
                     f"{file}:{number}: {len(fields)} fields, a problem has 9 (bucket map "
@@ -550,18 +612,25 @@ def read_movingai_scenarios(path: str | os.PathLike[str]) -> MovingAIScenarios:
                         f"{file}:{number}: {label} {word[:40]!r} is not a non-negative integer"
                     )
                 values.append(int(word))
-            try:
-                length = float(fields[8])
-            except ValueError:
-                length = math.nan
-            if not (math.isfinite(length) and length >= 0.0):
+            word = fields[8].strip()
+            length = float(word) if _LENGTH.fullmatch(word) else math.nan
+            if not math.isfinite(length):
                 raise ValueError(
-                    f"{file}:{number}: optimal_length {fields[8].strip()[:40]!r} is not a "
-                    "finite number >= 0"
+                    f"{file}:{number}: optimal_length {word[:40]!r} is not a finite number >= 0"
                 )
             bucket, width, height, sx, sy, gx, gy = values
             if width == 0 or height == 0:
                 raise ValueError(f"{file}:{number}: a map of width {width} and height {height}")
+            # Python ints here: NumPy's int64 table raised a bare OverflowError.
+            if height * width > MAX_CELLS:
+                raise ValueError(
+                    f"{file}:{number}: a map of {height} x {width} cells, more than {MAX_CELLS}"
+                )
+            if bucket > _INT64_MAX:
+                raise ValueError(f"{file}:{number}: bucket {bucket} is more than {_INT64_MAX}")
+            name = fields[1].strip()
+            if not name:
+                raise ValueError(f"{file}:{number}: an empty map name")
             for x, y, what in ((sx, sy, "start"), (gx, gy, "goal")):
                 if x >= width or y >= height:
                     raise ValueError(
@@ -569,7 +638,7 @@ def read_movingai_scenarios(path: str | os.PathLike[str]) -> MovingAIScenarios:
                         f"width {width} and height {height}"
                     )
             ints.append((bucket, height, width, sy, sx, gy, gx))
-            names.append(fields[1].strip())
+            names.append(name)
             lengths.append(length)
     table = np.array(ints, dtype=np.int64).reshape(-1, 7)
     return MovingAIScenarios(
