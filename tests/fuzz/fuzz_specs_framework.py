@@ -138,6 +138,11 @@ spec(
 spec(S + "Table.render", lambda c: method(table(), "render", digits=4), kinds=DIGITS)
 spec(S + "Table.to_dict", lambda c: method(table(), "to_dict"))
 spec(
+    S + "Table.from_dict",
+    lambda c: call(Table.from_dict, Table("t", ("a", "b"), (("x", 1.0),), ("n",)).to_dict()),
+    kinds={"data": Anything()},
+)
+spec(
     S + "Scene",
     lambda c: call(
         Scene,
@@ -168,6 +173,21 @@ spec(
 )
 spec(S + "ScenarioResult.table", lambda c: method(result(), "table", digits=2), kinds=DIGITS)
 spec(S + "ScenarioResult.to_dict", lambda c: method(result(), "to_dict"))
+spec(
+    S + "ScenarioResult.from_dict",
+    lambda c: call(
+        ScenarioResult.from_dict,
+        ScenarioResult(
+            "x",
+            3,
+            (TrialResult(Trial("case", 0, 0, 1), {"error": 0.02}),),
+            (Table("t", ("a",), ((1.0,),)),),
+            {"error": 0.02, "missing": float("nan")},
+        ).to_dict(),
+    ),
+    kinds={"data": Anything()},
+    nan_ok="a figure that does not apply is NaN",
+)
 spec(
     S + "Scenario",
     lambda c: call(Scenario),

@@ -13,7 +13,8 @@ from __future__ import annotations
 import json
 import math
 from abc import ABC, abstractmethod
-from collections.abc import Callable, Iterable, Mapping, Sequence
+from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import Any, ClassVar
 
@@ -384,6 +385,45 @@ class Table:
             "notes": list(self.notes),
         }
 
+    @classmethod
+    def from_dict(cls, data: Mapping[str, Any]) -> Table:
+        """The table that :meth:`to_dict` gave ``data`` for (read back from JSON, say).
+
+        Parameters
+        ----------
+        data : Mapping
+            ``{"title", "columns", "rows", "notes"}`` as :meth:`to_dict` makes
+            them (lists where it made lists; tuples are as good).
+
+        Returns
+        -------
+        Table
+            Equal to the table :meth:`to_dict` was called on, but that a NaN or
+            infinite cell (None in ``data``) comes back as None, an empty cell:
+            ``data`` cannot tell them apart.
+
+        Raises
+        ------
+        TypeError
+            ``data`` not a mapping, or a value of the wrong type.
+        ValueError
+            A key missing or unknown, a row of the wrong length.
+
+        Examples
+        --------
+        >>> import json
+        >>> t = Table("errors", ("case", "error (m)"), (("a", 0.25),), ("a note",))
+        >>> Table.from_dict(json.loads(json.dumps(t.to_dict()))) == t
+        True
+        """
+        fields = _record_fields(data, "data", _TABLE_KEYS)
+        with _naming("data"):
+            rows = tuple(
+                as_sequence(row, f"rows[{i}]")
+                for i, row in enumerate(as_sequence(fields["rows"], "rows"))
+            )
+            return cls(fields["title"], fields["columns"], rows, fields["notes"])
+
 
 #: Floats print whole (as integers) only below this: from 1e17 on, fixed notation
 #: shows digits beyond the float's 17 significant ones (1.23456789e20 as
@@ -415,6 +455,43 @@ def _looks_numeric(text: str) -> bool:
     except ValueError:
         return text == "-"
     return True
+
+
+_TABLE_KEYS = ("title", "columns", "rows", "notes")
+_RESULT_KEYS = ("scenario", "seed", "summary", "tables", "trials")
+_TRIAL_KEYS = ("case", "case_index", "index", "seed", "values", "wall_time")
+
+
+def _record_fields(data: object, name: str, keys: tuple[str, ...]) -> Mapping[str, Any]:
+    """``data`` (what a ``to_dict`` made) checked to hold exactly ``keys``."""
+    if not isinstance(data, Mapping):
+        raise TypeError(
+            f"{name} must be a mapping (what to_dict gives), got {type(data).__name__}"
+        )
+    expected = ", ".join(keys)
+    for key in keys:
+        if key not in data:
+            raise ValueError(f"{name} has no {key!r} key (to_dict gives {expected})")
+    for key in data:
+        if key not in keys:
+            raise ValueError(f"{name} has an unknown key {key!r} (to_dict gives {expected})")
+    return data
+
+
+def _json_figures(value: object, name: str) -> Any:
+    """Figures as :func:`_json_cell` wrote them: None is NaN again (the rest checked later)."""
+    if not isinstance(value, Mapping):
+        return value  # refused by _figures, naming ``name``
+    return {key: math.nan if figure is None else figure for key, figure in value.items()}
+
+
+@contextmanager
+def _naming(where: str) -> Iterator[None]:
+    """Errors of the records built inside prefixed with where their values came from."""
+    try:
+        yield
+    except (TypeError, ValueError) as exc:
+        raise type(exc)(f"{where}: {exc}") from None
 
 
 def _json_cell(cell: Cell) -> Cell:
@@ -615,6 +692,75 @@ class ScenarioResult:
         }
         json.dumps(data)  # fail here, not in the caller's writer, if something slipped in
         return data
+
+    @classmethod
+    def from_dict(cls, data: Mapping[str, Any]) -> ScenarioResult:
+        """The result that :meth:`to_dict` gave ``data`` for (``navkit run --json``'s file, say).
+
+        For comparing runs saved as JSON: the tables print as they did
+        (:meth:`table`), and the trials' figures and the summary are there to
+        compare. What :meth:`to_dict` leaves out is not restored: the traces
+        and the scene are None.
+
+        Parameters
+        ----------
+        data : Mapping
+            ``{"scenario", "seed", "summary", "tables", "trials"}`` as
+            :meth:`to_dict` makes them (lists where it made lists; tuples are
+            as good).
+
+        Returns
+        -------
+        ScenarioResult
+            The scenario, seed, trials (without traces), tables and summary.
+            A figure that was NaN (None in ``data``) is NaN again; a table cell
+            that was NaN or infinite comes back as None (see
+            :meth:`Table.from_dict`).
+
+        Raises
+        ------
+        TypeError
+            ``data`` not a mapping, or a value of the wrong type.
+        ValueError
+            A key missing or unknown, a value out of its range (a negative
+            seed, an infinite figure).
+
+        Examples
+        --------
+        >>> import json
+        >>> trial = TrialResult(Trial("target (0, 3) m", 0, 0, 7), {"error": 0.02}, wall_time=0.5)
+        >>> result = ScenarioResult("x", 0, (trial,), (), {"error": float("nan")})
+        >>> back = ScenarioResult.from_dict(json.loads(json.dumps(result.to_dict())))
+        >>> back.trials[0].values["error"], back.summary["error"]
+        (0.02, nan)
+        >>> back.to_dict() == result.to_dict()
+        True
+        """
+        fields = _record_fields(data, "data", _RESULT_KEYS)
+        trials = []
+        for k, item in enumerate(as_sequence(fields["trials"], "data['trials']")):
+            where = f"data['trials'][{k}]"
+            trial = _record_fields(item, where, _TRIAL_KEYS)
+            with _naming(where):
+                trials.append(
+                    TrialResult(
+                        Trial(trial["case"], trial["case_index"], trial["index"], trial["seed"]),
+                        _json_figures(trial["values"], "values"),
+                        wall_time=trial["wall_time"],
+                    )
+                )
+        tables = tuple(
+            Table.from_dict(table)
+            for table in as_sequence(fields["tables"], "data['tables']")
+        )
+        with _naming("data"):
+            return cls(
+                fields["scenario"],
+                fields["seed"],
+                tuple(trials),
+                tables,
+                _json_figures(fields["summary"], "summary"),
+            )
 
 
 class Scenario(ABC):
