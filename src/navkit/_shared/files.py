@@ -386,7 +386,13 @@ def _new_temporary(target: Path, temporaries: list[Path]) -> None:
             temporaries.pop()
             if exc.errno in (errno.ENOENT, errno.ENOTDIR) and not target.parent.is_dir():
                 # Named as the folder the caller gave: the temporary file's name
-                # (".map.1f2e3d4c.tmp.pgm") is one the caller never heard of.
+                # (".map.1f2e3d4c.tmp.pgm") is one the caller never heard of. A file
+                # where a folder of the path should be is named as the system would.
+                blocker = _file_in_path(target.parent)
+                if blocker is not None:
+                    raise NotADirectoryError(
+                        errno.ENOTDIR, "not a folder", os.fspath(blocker)
+                    ) from None
                 raise FileNotFoundError(
                     errno.ENOENT, "no such folder", os.fspath(target.parent)
                 ) from None
@@ -405,6 +411,14 @@ def _new_temporary(target: Path, temporaries: list[Path]) -> None:
         os.close(fd)
         return
     raise FileExistsError(f"cannot create a temporary file beside {target}")  # pragma: no cover
+
+
+def _file_in_path(folder: Path) -> Path | None:
+    """The nearest existing ancestor of ``folder`` (itself included) if it is no folder."""
+    for candidate in (folder, *folder.parents):
+        if candidate.exists():
+            return None if candidate.is_dir() else candidate
+    return None
 
 
 def _sync(path: Path, flags: int) -> None:
