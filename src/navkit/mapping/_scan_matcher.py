@@ -38,6 +38,10 @@ MIN_POINTS = 3
 DEGENERACY_RATIO = 1e-2
 _MAX_LEVELS = 16
 FLOOR = 0.0
+#: Largest mean ``(1 - M)²`` of a scan whose points all lie on a plateau of occupied
+#: cells (zero Hessian) for the match to count as converged there: M of at least
+#: 0.9 on average (a scan with nothing mapped in reach has 0.25, on unknown cells).
+PLATEAU_COST = 0.01
 _MAX_ITERATIONS = 10_000
 # Finest rotation step of the correlative pre-search (rad) and most steps each way.
 _MIN_SEARCH_STEP = math.radians(0.25)
@@ -92,7 +96,13 @@ class ScanMatchResult:
         ``Σ (1 - M)² / (n - 3)`` times the inverse Gauss–Newton Hessian on the
         finest level. Read-only. Infinite variances (zero covariances) when no
         match could be made (every ``reason`` but ``"converged"`` and
-        ``"max_iterations"``).
+        ``"max_iterations"``). Where every point lies on a plateau of occupied
+        cells (walls drawn on cell edges are two cells thick, and a noise-free
+        scan's points fall between the two), the Hessian is zero though the scan
+        fits: the match is ``"converged"`` at the last iterate, with the
+        covariance of a uniform error over one cell (``resolution² / 12`` m² per
+        axis, and the rotation moving the points' RMS range ``r`` by as much:
+        ``resolution² / (12 r²)`` rad²).
     iterations : int
         Gauss–Newton iterations done, all levels together.
     score : float
@@ -535,6 +545,10 @@ class ScanMatcher:
             if status != STATUS_SINGULAR:
                 pose = trial
         if status == STATUS_SINGULAR:
+            if not hessian.any():
+                plateau = self._plateau(finest, points, trial, iterations)
+                if plateau is not None:
+                    return plateau
             return failed("degenerate", iterations)
         o = finest.origin
         cost, total = accumulate(
@@ -574,6 +588,37 @@ class ScanMatcher:
             converged,
             "converged" if converged else "max_iterations",
         )
+
+    @staticmethod
+    def _plateau(
+        finest: OccupancyGrid, points: FloatArray, pose: FloatArray, iterations: int
+    ) -> ScanMatchResult | None:
+        """The match at ``pose`` if every point lies on a plateau of occupied cells.
+
+        The Gauss–Newton Hessian is then exactly zero (no point sees a slope), as
+        where nothing is in reach; but here the scan fits (mean ``(1 - M)²`` at most
+        :data:`PLATEAU_COST`): walls drawn on cell edges are two cells thick, and a
+        noise-free scan's points all fall between the two. The iterate is as good
+        as the map can place the scan, to about a cell: the covariance is that of a
+        uniform error over one cell (``resolution² / 12`` per axis, the rotation
+        moving the points' RMS range by as much). None otherwise.
+        """
+        o = finest.origin
+        x, y, theta = (float(v) for v in pose)
+        cost, total = accumulate(
+            finest._logodds, o.x, o.y, o.theta, finest.resolution, points,
+            x, y, theta, FLOOR, np.empty((0, 0)), np.empty(0),
+        )  # fmt: skip
+        n = points.shape[0]
+        if not cost <= PLATEAU_COST * n:
+            return None
+        spread = finest.resolution**2 / 12.0
+        with np.errstate(under="ignore"):
+            length = math.sqrt(float(np.mean(np.sum(points * points, axis=1)))) or 1.0
+        covariance = _readonly(np.diag([spread, spread, spread / (length * length)]))
+        score = min(max(total / n, 0.0), 1.0)
+        pose_found = Pose2D(x, y, theta)
+        return ScanMatchResult(pose_found, covariance, iterations, score, True, "converged")
 
     def _search(self, grid: OccupancyGrid, points: FloatArray, pose: FloatArray) -> None:
         """Correlative pre-search on ``grid`` (the coarsest level): move ``pose`` to the best
