@@ -93,7 +93,7 @@ class _Flags:
 
 
 def test_a_done_without_a_truth_value_is_named() -> None:
-    follow = TrackerController(_Flags(), control_rate=10.0)
+    follow = TrackerController(_Flags(), control_rate=10.0, use_estimate=False)
     with pytest.raises(TypeError, match=r"tracker\.done must be true or false, got ndarray"):
         _ = follow.done
     # And in a run, where the simulation reads it after every control step.

@@ -104,7 +104,7 @@ def _sim(controller: object) -> Simulation:
 
 
 def test_a_nan_done_does_not_end_a_run_silently() -> None:
-    follow = TrackerController(_NanTracker(), control_rate=10.0)
+    follow = TrackerController(_NanTracker(), control_rate=10.0, use_estimate=False)
     with pytest.raises(ValueError, match=r"tracker\.done must be true or false, got float64 nan"):
         _ = follow.done
     with pytest.raises(ValueError, match=r"tracker\.done"):

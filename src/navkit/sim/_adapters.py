@@ -111,7 +111,10 @@ class TrackerController(Generic[_T]):
         The simulation's ``control_rate``, Hz, in (0, 1e6]: its inverse is the
         tracker's ``dt`` for an observation without ``dt``.
     use_estimate : bool, default True
-        Track the estimator's pose (True) or the true pose (False).
+        Track the estimator's pose (True) or the true pose (False). A
+        :class:`~navkit.sim.Simulation` without an estimator refuses True
+        (``ValueError``): no estimate would come, and the robot would stand
+        still until the run timed out.
 
     Attributes
     ----------

@@ -70,6 +70,22 @@ _CLOSING_KINDS = ("timeout", "controller done", "wall-clock timeout")
 _FIRST_ROWS = 1 << 14
 
 
+def _check_pose_source(controller: Controller) -> None:
+    """Refuse a tracker adapter that tracks an estimate in a run without an estimator.
+
+    It would send zero twists for the whole run (no estimate ever comes), ending
+    on the timeout with the robot where it started and no event saying why.
+    """
+    from navkit.sim._adapters import TrackerController  # it imports this module
+
+    if isinstance(controller, TrackerController) and controller._use_estimate:
+        raise ValueError(
+            "controller: TrackerController(use_estimate=True) tracks the estimator's pose, "
+            "and this Simulation has no estimator: pass estimator=..., or "
+            "use_estimate=False to track the true pose"
+        )
+
+
 def _step_count(duration: float, rate: float) -> int:
     """Physics steps of a run, ``ceil(duration * rate)``, at least one.
 
@@ -326,8 +342,9 @@ class Simulation:
     ------
     ValueError
         A bad rate, duration or tolerance, a sensor faster than the physics,
-        a robot starting in collision, or an estimator that cannot serve the
-        run (see ``estimator``).
+        a robot starting in collision, an estimator that cannot serve the
+        run (see ``estimator``), or a ``TrackerController`` tracking the
+        estimate in a run without an estimator.
     TypeError
         Arguments of the wrong type.
 
@@ -443,6 +460,8 @@ class Simulation:
             self._goal_yaw_tolerance = tol
         self._reference = _reference(reference_path)
         self._estimator: Estimator | None = as_estimator(estimator, robot)
+        if self._estimator is None:
+            _check_pose_source(controller)
         self._rng = as_generator(seed, "seed")
         self._record_scans = as_bool(record_scans, "record_scans")
         self._stop_at_goal = as_bool(stop_at_goal, "stop_at_goal")
