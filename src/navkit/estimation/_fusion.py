@@ -121,6 +121,9 @@ _StepArgs = tuple[int, int, float, float, float, float, float]
 _Entry = tuple[float, float, FloatArray, _StepArgs, str]
 # predict(t) kept as a step: no component observed.
 _PREDICT: _StepArgs = (0, 0, 0.0, 0.0, 0.0, 0.0, math.inf)
+# What takes the place of a step gone from the window until the list drops its slot
+# (PlanarFusion._record): the step and its arrays are freed as it goes, not in bulk.
+_GONE: _Entry = (math.nan, math.nan, np.empty(0), _PREDICT, "gone")
 
 
 def _entry_time(entry: _Entry) -> float:
@@ -841,8 +844,8 @@ class PlanarFusion(GaussianEstimate):
     __slots__ = (
         "_anchor",
         "_buf",
-        "_entries",
         "_gates",
+        "_head",
         "_history",
         "_kinds",
         "_odometry_gate",
@@ -850,6 +853,7 @@ class PlanarFusion(GaussianEstimate):
         "_q",
         "_residuals",
         "_saved",
+        "_steps",
     )
 
     def __init__(
@@ -895,7 +899,11 @@ class PlanarFusion(GaussianEstimate):
         """
         self._anchor = anchor
         self._history = history
-        self._entries: list[_Entry] = [] if entries is None else entries
+        # The steps kept are _steps[_head:], in time order; the slots before _head are
+        # _GONE, dropped together once they are half the list (see _record). The list
+        # is empty when no step is kept (so _steps[-1] is the newest kept, if any).
+        self._steps: list[_Entry] = [] if entries is None else entries
+        self._head = 0
         self._buf = buf
         self._gates = gates
         # x, P, Q and the residuals are views of the buffer's rows: the kernels update
@@ -924,11 +932,16 @@ class PlanarFusion(GaussianEstimate):
         # extra_state).
         cls = type(self)
         # The entries' arrays are never written after they are made: a copy may share them.
-        kept = (self._history, list(self._entries))
+        kept = (self._history, self._steps[self._head :])
         args = (self._buf.copy(), self._gates.copy(), cls, self._anchor, kept)
         if cls is PlanarFusion:
             return _restore_fusion, args
         return _restore_fusion, args, extra_state(self, below=PlanarFusion)
+
+    @property
+    def _entries(self) -> list[_Entry]:
+        """The steps kept for ``history``, oldest first (a new list)."""
+        return self._steps[self._head :]
 
     @property
     def history(self) -> float:
@@ -1015,7 +1028,7 @@ class PlanarFusion(GaussianEstimate):
         """
         x = _start_state(x0, pose)
         buf, anchor = _start_buffer(x, P0, t0, q=self._q.copy())
-        # Three stores, no call between (not even np.copyto's Python dispatcher): Python
+        # Four stores, no call between (not even np.copyto's Python dispatcher): Python
         # delivers an interrupt at calls and loops only, so an interrupted reset has
         # happened or not. The buffer stays the same object: x, P and Q stay its views.
         # The one store that allocates (numpy's slice view), and so could fail, goes
@@ -1023,7 +1036,8 @@ class PlanarFusion(GaussianEstimate):
         entries: list[_Entry] = []
         self._buf[:] = buf
         self._anchor = anchor
-        self._entries = entries
+        self._steps = entries
+        self._head = 0
 
     def predict(self, t: float) -> None:
         """Propagate the state to time ``t`` (s) without a measurement.
@@ -1071,7 +1085,7 @@ class PlanarFusion(GaussianEstimate):
             # A step too: a late measurement goes before it. Not one to the newest stamp
             # kept: no time passed, it changed nothing, and kept there it would come
             # before the steps of its stamp already taken (see _TIE_RANKS).
-            elif self._history and not (self._entries and self._entries[-1][0] == time):
+            elif self._history and not (self._steps and self._steps[-1][0] == time):
                 self._record(time, _PREDICT, "predict")
         except BaseException:
             self._settle(status)
@@ -1135,7 +1149,7 @@ class PlanarFusion(GaussianEstimate):
         # way: it may belong before that step (see _TIE_RANKS).
         if (
             type(t) is type(v) is type(omega) is type(v_variance) is type(omega_variance) is float
-            and not (self._history and self._entries and self._entries[-1][0] == t)
+            and not (self._history and self._steps and self._steps[-1][0] == t)
         ):
             status = 0  # for _settle: unknown until the step returns
             try:
@@ -1341,7 +1355,7 @@ class PlanarFusion(GaussianEstimate):
         # Fast path: plain floats go straight to the compiled step, which checks the rest;
         # a stamp equal to the newest step kept goes the general way (see update_odometry).
         if type(t) is type(z0) is type(z1) is type(var0) is type(var1) is float and not (
-            self._history and self._entries and self._entries[-1][0] == t
+            self._history and self._steps and self._steps[-1][0] == t
         ):
             status = 0  # for _settle: unknown until the step returns
             try:
@@ -1422,7 +1436,10 @@ class PlanarFusion(GaussianEstimate):
         ):
             undo_step(self._buf)
         if not isinstance(sys.exception(), FilterError):
-            self._entries.clear()
+            # A new list, not clear(): two stores without a call between (see reset),
+            # where a list cleared in place and interrupted keeps _head past its end.
+            self._steps = []
+            self._head = 0
 
     def _record(self, t: float, args: _StepArgs, kind: str, *, unset: bool = False) -> None:
         """Keep the online step just taken at ``t`` for ``history``; forget the old ones.
@@ -1439,10 +1456,11 @@ class PlanarFusion(GaussianEstimate):
         at 0.7 s, ``history=0.3`` at 1.0 s).
         """
         before = math.nan if unset else self._buf.item(BUF_SAVED_TIME)
-        entries = self._entries
-        entries.append((t, before, self._saved.copy(), args, kind))
+        steps = self._steps
+        steps.append((t, before, self._saved.copy(), args, kind))
         history = self._history
-        age = t - entries[0][0]
+        head = self._head
+        age = t - steps[head][0]
         if age > history:
             # Past the window with _too_old's slack for any stamp (see _TRIM_RTOL),
             # computed once a call (35 ns, where _too_old step by step cost 80).
@@ -1450,10 +1468,19 @@ class PlanarFusion(GaussianEstimate):
             if age > limit:
                 # Each step goes once: about one a call. The loop stops at the
                 # step just kept (age 0).
-                n = 1
-                while t - entries[n][0] > limit:
+                n = head + 1
+                while t - steps[n][0] > limit:
                     n += 1
-                del entries[:n]
+                self._head = n
+                # Deleting the steps gone shifted the whole list, every call: O(window)
+                # a call (21 µs at 1 kHz with a 256 s window). Their slots are dropped
+                # once they are half the list, a shift per window's worth of calls.
+                while head < n:
+                    steps[head] = _GONE
+                    head += 1
+                if n > len(steps) >> 1:
+                    del steps[:n]
+                    self._head = 0
 
     def _goes_before(self, t: float, args: _StepArgs) -> bool:
         """Whether a step at the filter time ``t`` belongs before the newest kept step.
@@ -1461,7 +1488,7 @@ class PlanarFusion(GaussianEstimate):
         True when that step has the stamp ``t`` and comes later in the tie
         order (:data:`_TIE_RANKS`): the step is then fused as a late one.
         """
-        entries = self._entries
+        entries = self._steps
         return bool(entries) and entries[-1][0] == t and (
             _tie_rank(entries[-1][3]) > _tie_rank(args)
         )
@@ -1479,11 +1506,12 @@ class PlanarFusion(GaussianEstimate):
         copy of the buffer, which becomes the filter's in one C call at the end:
         refused, raising or interrupted before that, the filter is unchanged.
         """
-        entries = self._entries
-        i = bisect_right(entries, t, key=_entry_time)
-        if i and entries[i - 1][0] == t:  # a tie: before the steps of t later in tie order
+        entries = self._steps
+        head = self._head  # the steps kept are entries[head:]
+        i = bisect_right(entries, t, lo=head, key=_entry_time)
+        if i > head and entries[i - 1][0] == t:  # a tie: before those later in tie order
             rank = _tie_rank(args)
-            while i and entries[i - 1][0] == t and _tie_rank(entries[i - 1][3]) > rank:
+            while i > head and entries[i - 1][0] == t and _tie_rank(entries[i - 1][3]) > rank:
                 i -= 1
         # entries[i][1] is NaN where the clock was not set before that step: any t goes.
         # The age, not t < last - history: 1.0 - 0.7 rounds up to 0.30000000000000004,
@@ -1521,7 +1549,8 @@ class PlanarFusion(GaussianEstimate):
             np.copyto(self._buf, trial)  # one C call: Python delivers no interrupt inside it
             entries[i:] = new
         except BaseException:  # between the two: the filter took the measurement
-            entries.clear()
+            self._steps = []  # and _head with it, no call between (see _settle)
+            self._head = 0
             raise
         if not status:
             return new_result(True, nis, residual, None)
@@ -1657,8 +1686,10 @@ class PlanarFusion(GaussianEstimate):
         nis = np.empty(n)
         if n == 0:
             return _fusion_result(log.times, out_x, out_p, status, nis)
-        # The log's rows are not kept for ``history``, nor the steps before them.
-        self._entries.clear()
+        # The log's rows are not kept for ``history``, nor the steps before them (a
+        # new list and _head with it, no call between: see _settle).
+        self._steps = []
+        self._head = 0
         # The kernel undoes a TIME_GAP in row 0 from the last output row (see planar_run).
         out_x[-1] = self._x
         out_p[-1] = self._p
