@@ -23,12 +23,11 @@ by about 1e-15 relative).
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
-from typing import Any
 
 import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from test_ekf import planar_model  # the fusion model as EKF callbacks
 
 from hypothesis_twins import slow_twin
 from navkit.estimation import ExtendedKalmanFilter, PlanarFusion
@@ -104,31 +103,6 @@ test_online_fusion_shifted_to_epoch_stamps_is_the_same_run_thoroughly = slow_twi
 )
 
 
-def _motion(dt: float) -> tuple[Callable[[Any], Any], Callable[[Any], Any]]:
-    """PlanarFusion's model as the general EKF's callbacks (benchmarks/test_bench_ekf.py)."""
-
-    def f(x: np.ndarray) -> np.ndarray:
-        s = x[3] * dt + 0.5 * x[5] * dt * dt
-        mid = x[2] + 0.5 * x[4] * dt
-        return np.array(
-            [x[0] + s * math.cos(mid), x[1] + s * math.sin(mid), x[2] + x[4] * dt,
-             x[3] + x[5] * dt, x[4], x[5]]
-        )  # fmt: skip
-
-    def jac(x: np.ndarray) -> np.ndarray:
-        s = x[3] * dt + 0.5 * x[5] * dt * dt
-        mid = x[2] + 0.5 * x[4] * dt
-        c, sn = math.cos(mid), math.sin(mid)
-        out = np.eye(6)
-        out[0, 2:6] = [-s * sn, dt * c, -0.5 * dt * s * sn, 0.5 * dt * dt * c]
-        out[1, 2:6] = [s * c, dt * sn, 0.5 * dt * s * c, 0.5 * dt * dt * sn]
-        out[2, 4] = dt
-        out[3, 5] = dt
-        return out
-
-    return f, jac
-
-
 @settings(max_examples=10, deadline=None)
 @given(
     shift=st.sampled_from((0.0, *SHIFTS)),
@@ -147,7 +121,7 @@ def test_ekf_with_the_fusion_model_agrees_at_epoch_stamps(
     h_odom = np.zeros((2, 6))
     h_odom[0, 3] = h_odom[1, 4] = 1.0
     r_odom = np.diag([1e-3, 1e-3])
-    f, jac = _motion(dt)
+    f, jac = planar_model(dt)
     ekf = ExtendedKalmanFilter(x0, p0, angle_states=(2,))
     fusion = PlanarFusion(x0, p0, process_noise=Q_PER_S, t0=shift)
     for i in range(steps):
