@@ -12,10 +12,10 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from test_movingai_files import _scenarios  # the valid record, fields changed
 
 from navkit.mapping.io import (
     MovingAIMap,
-    MovingAIScenarios,
     read_movingai_map,
     read_movingai_scenarios,
 )
@@ -133,19 +133,6 @@ def test_the_terrain_record_takes_object_arrays_and_refuses_cells_that_are_not_s
         MovingAIMap([[".", "@"], [".", b"."]])
     with pytest.raises(TypeError, match="got an element of type NoneType"):
         MovingAIMap(np.array([[".", None]], dtype=object))
-
-
-def _scenarios(**changes: object) -> MovingAIScenarios:
-    fields: dict[str, object] = {
-        "buckets": [0, 1],
-        "map_names": ["a.map", "a.map"],
-        "map_shapes": [[2, 3], [2, 3]],
-        "start_cells": [[0, 0], [1, 2]],
-        "goal_cells": [[1, 2], [0, 0]],
-        "optimal_lengths": [2.5, 2.5],
-    }
-    fields.update(changes)
-    return MovingAIScenarios(**fields)  # type: ignore[arg-type]
 
 
 def test_scenario_records_take_integers_numpy_would_make_floats() -> None:
