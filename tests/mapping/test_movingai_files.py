@@ -131,7 +131,7 @@ def test_random_terrain_reads_back_cell_for_cell(
     ("text", "message"),
     [
         (TINY.replace("T.S", "T."), r":6: a row of 2 characters, the header's width is 3"),
-        (TINY.replace("T.S\n", ""), r"1 rows after the 'map' line, the header's height is 2"),
+        (TINY.replace("T.S\n", ""), r"1 row after the 'map' line, the header's height is 2"),
         (TINY + "...\n", "more than the 2 rows"),
         (TINY.replace("height 2", "height 0"), "height '0' is not a positive integer"),
         (TINY.replace("height 2", "height -2"), "height '-2' is not a positive integer"),

@@ -98,11 +98,14 @@ class ScanMatchResult:
         match could be made (every ``reason`` but ``"converged"`` and
         ``"max_iterations"``). Where every point lies on a plateau of occupied
         cells (walls drawn on cell edges are two cells thick, and a noise-free
-        scan's points fall between the two), the Hessian is zero though the scan
-        fits: the match is ``"converged"`` at the last iterate, with the
+        scan's points fall between the two), the map's Hessian is zero though the
+        scan fits: the match is ``"converged"`` at the last iterate (with the
+        matcher's prior weights or without), with the
         covariance of a uniform error over one cell (``resolution² / 12`` m² per
         axis, and the rotation moving the points' RMS range ``r`` by as much:
-        ``resolution² / (12 r²)`` rad²).
+        ``resolution² / (12 r²)`` rad²), if the plateau ends within a cell in
+        every direction; one the scan could slide on (inside a solid block,
+        along a corridor) is ``"degenerate"``.
     iterations : int
         Gauss–Newton iterations done, all levels together.
     score : float
@@ -545,10 +548,10 @@ class ScanMatcher:
             if status != STATUS_SINGULAR:
                 pose = trial
         if status == STATUS_SINGULAR:
-            if not hessian.any():
-                plateau = self._plateau(finest, points, trial, iterations)
-                if plateau is not None:
-                    return plateau
+            # _plateau checks the map's own Hessian: the kernel's holds a prior's weights.
+            plateau = self._plateau(finest, points, trial, iterations)
+            if plateau is not None:
+                return plateau
             return failed("degenerate", iterations)
         o = finest.origin
         cost, total = accumulate(
@@ -568,6 +571,11 @@ class ScanMatcher:
         n = points.shape[0]
         covariance = _covariance(hessian, cost, points)
         if covariance is None:
+            if not hessian.any():
+                # A plateau where a prior's weights kept the solve regular (at the guess).
+                plateau = self._plateau(finest, points, pose, iterations)
+                if plateau is not None:
+                    return plateau
             if self._translation_weight > 0.0 and self._rotation_weight > 0.0:
                 # The prior fixes what the map leaves free: keep its estimate.
                 return ScanMatchResult(
@@ -601,20 +609,42 @@ class ScanMatcher:
         noise-free scan's points all fall between the two. The iterate is as good
         as the map can place the scan, to about a cell: the covariance is that of a
         uniform error over one cell (``resolution² / 12`` per axis, the rotation
-        moving the points' RMS range by as much). None otherwise.
+        moving the points' RMS range by as much). None otherwise, and where the
+        plateau does not end within a cell in every direction (the scan inside a
+        solid block, or on a corridor's walls only).
         """
         o = finest.origin
         x, y, theta = (float(v) for v in pose)
+        res = finest.resolution
+        probe = np.empty((3, 3))
+        gradient = np.empty(3)
         cost, total = accumulate(
-            finest._logodds, o.x, o.y, o.theta, finest.resolution, points,
-            x, y, theta, FLOOR, np.empty((0, 0)), np.empty(0),
+            finest._logodds, o.x, o.y, o.theta, res, points,
+            x, y, theta, FLOOR, probe, gradient,
         )  # fmt: skip
         n = points.shape[0]
-        if not cost <= PLATEAU_COST * n:
+        if probe.any() or not cost <= PLATEAU_COST * n:
             return None
-        spread = finest.resolution**2 / 12.0
+        spread = res**2 / 12.0
         with np.errstate(under="ignore"):
             length = math.sqrt(float(np.mean(np.sum(points * points, axis=1)))) or 1.0
+        # A plateau the scan could slide on places it nowhere: inside a solid block
+        # every pose fits, along a corridor's walls every x. A thin plateau ends
+        # within a cell: the Hessians a cell (and the rotation moving the RMS range
+        # a cell) either side must fix every direction, as a match's own Hessian must.
+        probes = np.zeros((3, 3))
+        for axis, step in ((0, res), (1, res), (2, res / length)):
+            for sign in (-1.0, 1.0):
+                shifted = [x, y, theta]
+                shifted[axis] += sign * step
+                accumulate(
+                    finest._logodds, o.x, o.y, o.theta, res, points,
+                    shifted[0], shifted[1], shifted[2], FLOOR, probe, gradient,
+                )  # fmt: skip
+                probes += probe
+        with np.errstate(under="ignore"):  # as in _covariance
+            if _degenerate(probes, length):
+                return None
         covariance = _readonly(np.diag([spread, spread, spread / (length * length)]))
         score = min(max(total / n, 0.0), 1.0)
         pose_found = Pose2D(x, y, theta)
@@ -675,6 +705,17 @@ class ScanMatcher:
         return score
 
 
+def _degenerate(hessian: FloatArray, length: float) -> bool:
+    """Whether ``hessian`` leaves a direction free (call under ``np.errstate(under="ignore")``).
+
+    Its eigenvalues, the rotation's scaled by the points' RMS range ``length``,
+    spread more than :data:`DEGENERACY_RATIO`, or none is positive.
+    """
+    scaling = np.array([1.0, 1.0, 1.0 / length])
+    eig = np.linalg.eigvalsh(hessian * np.outer(scaling, scaling))
+    return not (eig[-1] > 0.0 and eig[0] > DEGENERACY_RATIO * eig[-1])
+
+
 def _covariance(hessian: FloatArray, cost: float, points: FloatArray) -> FloatArray | None:
     """``σ² H⁻¹`` with ``σ² = cost / (n - 3)``; None when ``H`` is degenerate."""
     # A coordinate below 1e-154 squares to 0 and a near-perfect match's tiny cost
@@ -682,10 +723,7 @@ def _covariance(hessian: FloatArray, cost: float, points: FloatArray) -> FloatAr
     # np.seterr(under="raise") either (once per match: a microsecond).
     with np.errstate(under="ignore"):
         length = math.sqrt(float(np.mean(np.sum(points * points, axis=1)))) or 1.0
-        scaling = np.array([1.0, 1.0, 1.0 / length])
-        scaled = hessian * np.outer(scaling, scaling)
-        eig = np.linalg.eigvalsh(scaled)
-        if not (eig[-1] > 0.0 and eig[0] > DEGENERACY_RATIO * eig[-1]):
+        if _degenerate(hessian, length):
             return None
         n = points.shape[0]
         sigma2 = cost / max(n - MIN_POINTS, 1)

@@ -31,9 +31,10 @@ def done_flag(done: Any, name: str) -> bool:
     ``[False]`` and ``"False"`` are true. So is an object whose class defines
     neither ``__bool__`` nor ``__len__`` (``TypeError``): Python takes every
     such object for true, and it is what a ``__getattr__`` returning a default
-    for every name gives for ``done``. Flags (``bool``, ``np.bool_``,
-    one-element boolean arrays), 0 and 1, None, and anything else that is no
-    number and defines its truth value keep it.
+    for every name gives for ``done``; a metaclass's do not count (they are
+    the class's truth value), so a member of a plain ``Enum`` is refused too.
+    Flags (``bool``, ``np.bool_``, one-element boolean arrays), 0 and 1, None,
+    and anything else that is no number and defines its truth value keep it.
 
     Examples
     --------
@@ -97,7 +98,7 @@ def done_flag(done: Any, name: str) -> bool:
                 "(a number other than 0 or 1)"
             )
     kind = type(done)
-    if getattr(kind, "__bool__", None) is None and getattr(kind, "__len__", None) is None:
+    if not _defines_truth(kind):
         # Python takes any such object for true: a __getattr__ that answers every
         # name (a default for options, say) answers for ``done`` too, and the run
         # ended at its first step as "controller done".
@@ -133,3 +134,17 @@ def _length_truth(kind: type) -> bool:
         if "__bool__" in vars(klass):
             return False
     return True  # pragma: no cover (kind is a subclass of one of _CONTAINERS)
+
+
+def _defines_truth(kind: type) -> bool:
+    """Whether ``kind`` or a class it inherits from defines ``__bool__`` or ``__len__``.
+
+    Not ``getattr(kind, ...)``: that falls back to the metaclass, whose methods
+    are the class's own truth value, not its instances' (``EnumType.__bool__``
+    let every member of a plain Enum, all true, through).
+    """
+    return any(
+        vars(klass).get(name) is not None
+        for klass in kind.__mro__
+        for name in ("__bool__", "__len__")
+    )

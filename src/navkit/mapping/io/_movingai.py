@@ -22,6 +22,7 @@ from typing import TYPE_CHECKING, Any, BinaryIO
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from navkit._shared.counts import counted
 from navkit._shared.dunders import bounded_repr
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.types import BoolArray, FloatArray, IntArray
@@ -77,6 +78,15 @@ class MovingAIMap:
     ValueError
         A character outside ``".G@OTSW"`` (named with its cell), rows of
         different lengths, not two dimensions, no cells or too many.
+
+    Notes
+    -----
+    Row 0 is the file's top row, as the ``.scen`` files' cells expect: the
+    grid planners take :attr:`costs` and those cells as they are. An
+    :class:`~navkit.mapping.OccupancyGrid` puts row 0 at the lowest y (as an
+    image map is read): a grid made from these rows shows the file's picture
+    upside down unless the rows are flipped (``np.flipud``, and cell
+    ``(row, col)`` becomes ``(rows - 1 - row, col)``).
 
     Examples
     --------
@@ -136,7 +146,13 @@ class MovingAIMap:
 
     @property
     def shape(self) -> tuple[int, int]:
-        """``(rows, cols)``: the file's ``(height, width)``."""
+        """``(rows, cols)``: the file's ``(height, width)``.
+
+        Examples
+        --------
+        >>> MovingAIMap(["..@", "T.."]).shape
+        (2, 3)
+        """
         rows, cols = self.terrain.shape
         return rows, cols
 
@@ -206,7 +222,7 @@ def _terrain_codes(terrain: Any) -> NDArray[np.uint8]:
         row, col = (int(i) for i in np.argwhere(bad)[0])
         raise ValueError(
             f"terrain[{row}, {col}] is {str(as_u1[row, col])!r}, not a MovingAI terrain "
-            f"character (one of {TERRAIN!r}); {int(bad.sum())} such cell(s)"
+            f"character (one of {TERRAIN!r}); {counted(int(bad.sum()), 'such cell')}"
         )
     return codes
 
@@ -363,10 +379,16 @@ def _int_array(value: Any, name: str, shape: tuple[int, ...], *, low: int) -> In
         pass  # Python ints, perhaps beyond 64 bits: refused by range below
     elif arr.dtype.kind not in "iu":
         raise TypeError(f"{name} must hold integers, got dtype {arr.dtype}")
+    if arr.shape == (0,) and shape[0] == 0:
+        arr = arr.reshape(shape)  # no problems: [] is a (0, 2) table too
     if arr.shape != shape:
         raise ValueError(f"{name} must have shape {shape}, got {arr.shape}")
     if arr.size:
-        smallest, largest = min(arr.flat), max(arr.flat)
+        # NumPy's reductions on integer arrays; Python's on object arrays of ints.
+        if arr.dtype.kind == "O":
+            smallest, largest = min(arr.flat), max(arr.flat)
+        else:
+            smallest, largest = arr.min(), arr.max()
         if smallest < low:
             raise ValueError(f"{name} must be >= {low}, got {int(smallest)}")
         if largest > _INT64_MAX:
@@ -435,25 +457,31 @@ def read_movingai_map(path: str | os.PathLike[str]) -> MovingAIMap:
         # 40 bytes may claim 2**31 cells.
         remaining = max(os.fstat(fh.fileno()).st_size - fh.tell(), 0)
         body = fh.read(min(rows * (cols + 2) + LINE_MAX, remaining))
-        extra = fh.read(1)
+        # Blank lines after the rows are ignored however many there are: read past
+        # in bounded chunks, kept only if something else follows.
+        extra = fh.read(LINE_MAX)
+        while extra and not extra.strip():
+            extra = fh.read(1 << 20)
     lines = body.split(b"\n")
     while lines and not lines[-1].strip():
         lines.pop()
     if extra or len(lines) > rows:
         raise ValueError(
-            f"{file}: more than the {rows} rows of the header's height after the 'map' line"
+            f"{file}: more than the {counted(rows, 'row')} of the header's height after "
+            "the 'map' line"
         )
     if len(lines) < rows:
         raise ValueError(
-            f"{file}: {len(lines)} rows after the 'map' line, the header's height is {rows}"
+            f"{file}: {counted(len(lines), 'row')} after the 'map' line, the header's "
+            f"height is {rows}"
         )
     for i, line in enumerate(lines):
         # A CR line end, or blanks after the row (HOG2 skips them).
         line = lines[i] = line.rstrip(b" \t\r")
         if len(line) != cols:
             raise ValueError(
-                f"{file}:{number + 1 + i}: a row of {len(line)} characters, the header's "
-                f"width is {cols}"
+                f"{file}:{number + 1 + i}: a row of {counted(len(line), 'character')}, the "
+                f"header's width is {cols}"
             )
     codes = np.frombuffer(b"".join(lines), dtype=np.uint8).reshape(rows, cols)
     bad = ~_IS_TERRAIN[codes]
@@ -599,8 +627,8 @@ def read_movingai_scenarios(path: str | os.PathLike[str]) -> MovingAIScenarios:
             fields = text.split("\t") if "\t" in text else text.split()
             if len(fields) != 9:
                 raise ValueError(
-                    f"{file}:{number}: {len(fields)} fields, a problem has 9 (bucket map "
-                    "width height start_x start_y goal_x goal_y optimal_length)"
+                    f"{file}:{number}: {counted(len(fields), 'field')}, a problem has 9 (bucket "
+                    "map width height start_x start_y goal_x goal_y optimal_length)"
                 )
             values = []
             for field, label in zip(fields[:8], _SCEN_FIELDS, strict=False):
