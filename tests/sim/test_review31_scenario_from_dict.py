@@ -118,8 +118,9 @@ def _changed(path: tuple[Any, ...], value: Any) -> dict[str, Any]:
         (_changed(("trials", 0, "wall_time"), -1.0), ValueError,
          r"^data\['trials'\]\[0\]: wall_time must be >= 0"),
         (_changed(("tables", 0, "rows"), [[1.0, 2.0]]), ValueError,
-         r"^data: rows\[0\] has 2 cells for 1 column"),
-        (_changed(("tables", 0, "notes"), KeyError), ValueError, r"^data has no 'notes' key"),
+         r"^data\['tables'\]\[0\]: rows\[0\] has 2 cells for 1 column"),
+        (_changed(("tables", 0, "notes"), KeyError), ValueError,
+         r"^data\['tables'\]\[0\] has no 'notes' key"),
     ],
 )  # fmt: skip
 def test_bad_data_is_refused_naming_where(data: Any, error: type, message: str) -> None:

@@ -677,6 +677,29 @@ def has_array_protocol(value: object) -> bool:
     )
 
 
+def shown(value: object) -> str:
+    """``repr(value)`` for a message, NumPy scalars written as the numbers they hold.
+
+    NumPy 2 writes its scalars with their type (``np.float64(1.5)``), so a
+    message quoting a tuple built from an array (``tuple(xy)``) read
+    ``got (np.float64(1.5), np.float64(2.0))``. Tuples and lists are followed
+    one level in; anything else is its own ``repr``.
+
+    Examples
+    --------
+    >>> shown((np.float64(1.5), np.int64(2))), shown(np.True_), shown([np.float32(0.5)])
+    ('(1.5, 2)', 'True', '[0.5]')
+    >>> shown(np.array([1.5]))
+    'array([1.5])'
+    """
+    if isinstance(value, np.generic):
+        return repr(value.item())
+    if type(value) is tuple or type(value) is list:
+        items = [x.item() if isinstance(x, np.generic) else x for x in value]
+        return repr(tuple(items) if type(value) is tuple else items)
+    return repr(value)
+
+
 def as_cell(value: Any, name: str, shape: tuple[int, ...]) -> tuple[int, int]:
     """Convert ``value`` to an integer ``(row, col)`` inside an array of ``shape``."""
     if isinstance(value, (str, bytes, Mapping, set, frozenset)):
@@ -684,25 +707,25 @@ def as_cell(value: Any, name: str, shape: tuple[int, ...]) -> tuple[int, int]:
     try:
         seq = unpack(value, name)
     except TypeError:
-        raise TypeError(f"{name} must be a (row, col) pair, got {value!r}") from None
+        raise TypeError(f"{name} must be a (row, col) pair, got {shown(value)}") from None
     if len(seq) != 2:
-        raise ValueError(f"{name} must be a (row, col) pair, got {value!r}")
+        raise ValueError(f"{name} must be a (row, col) pair, got {shown(value)}")
     cell: list[int] = []
     for item in seq:
         if isinstance(item, (bool, np.bool_)):
-            raise TypeError(f"{name} must hold integers, got {value!r}")
+            raise TypeError(f"{name} must hold integers, got {shown(value)}")
         if not isinstance(item, numbers.Integral):
             # Integral floats (2.0, from arithmetic on coordinates) are accepted.
             if isinstance(item, numbers.Real) and math.isfinite(item) and float(item).is_integer():
                 item = int(float(item))
             elif isinstance(item, numbers.Real):
                 raise TypeError(
-                    f"{name} must hold integers, got {value!r}: a cell is an integer "
+                    f"{name} must hold integers, got {shown(value)}: a cell is an integer "
                     "(row, col) index; convert a world point (x, y) in metres with "
                     "world_to_cell, or plan in metres with MapPlanner"
                 )
             else:
-                raise TypeError(f"{name} must hold integers, got {value!r}")
+                raise TypeError(f"{name} must hold integers, got {shown(value)}")
         cell.append(int(item))
     row, col = cell
     if not (0 <= row < shape[0] and 0 <= col < shape[1]):

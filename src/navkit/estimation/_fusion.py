@@ -189,6 +189,9 @@ class _IntCodes(enum.EnumMeta):
             and (isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Integral))
         ):
             raise TypeError(f"{cls.__name__} takes an integer code, got {type(value).__name__}")
+        if not args and not kwargs and isinstance(value, np.integer):
+            # Python's int: enum's message quoted np.int64(9) ("np.int64(9) is not a valid ...").
+            value = int(value)
         return super().__call__(value, *args, **kwargs)
 
 

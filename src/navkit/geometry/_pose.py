@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 from typing import Any
 
 import numpy as np
@@ -54,6 +54,8 @@ class Pose2D:
     array([[1., 3.]])
     >>> robot.compose(Pose2D(1.0, 0.0, 0.0))
     Pose2D(x=1.0, y=3.0, theta=1.5707963267948966)
+    >>> f"{robot:.2f}"  # a format spec applies to each field
+    'Pose2D(x=1.00, y=2.00, theta=1.57)'
     """
 
     x: float
@@ -80,6 +82,9 @@ class Pose2D:
         # A subclass's own attributes, restored after the rebuild (reduce_record);
         # the field values of a pickle older than __reduce__.
         restore_read_only(self, state, ())
+
+    def __format__(self, format_spec: str) -> str:
+        return _formatted(self, format_spec)
 
     def compose(self, other: Pose2D | ArrayLike) -> Pose2D:
         """Return ``self ⊕ other``: ``other`` (given in this pose's frame) in the world frame.
@@ -344,6 +349,9 @@ class Twist2D:
         # As Pose2D's.
         restore_read_only(self, state, ())
 
+    def __format__(self, format_spec: str) -> str:
+        return _formatted(self, format_spec)
+
     def as_array(self) -> FloatArray:
         """Return ``[vx, vy, omega]`` as a new float64 array.
 
@@ -385,6 +393,27 @@ class Twist2D:
         """
         arr = as_float_array(values, "values", shape=(3,))
         return cls(float(arr[0]), float(arr[1]), float(arr[2]))
+
+
+def _formatted(record: Pose2D | Twist2D, format_spec: str) -> str:
+    """``format(record, spec)``: the record's repr, each field formatted with ``spec``.
+
+    Without it ``f"{pose:.2f}"`` raised ``TypeError`` (object's ``__format__``
+    takes no spec); an empty spec gives ``str(record)``, as before.
+    """
+    if not format_spec:
+        return str(record)
+    try:
+        parts = ", ".join(
+            f"{field.name}={format(getattr(record, field.name), format_spec)}"
+            for field in fields(record)
+        )
+    except ValueError as exc:
+        raise ValueError(
+            f"format spec {format_spec!r} of a {type(record).__name__} must format its "
+            f"float fields: {exc}"
+        ) from None
+    return f"{type(record).__qualname__}({parts})"
 
 
 # Positions are linear in the coordinates (for fixed headings), so a result can be

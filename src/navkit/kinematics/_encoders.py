@@ -11,7 +11,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from navkit._shared.types import FloatArray, IntArray
-from navkit._shared.validation import as_float_array, integer_readings, refuse_masked
+from navkit._shared.validation import as_float_array, integer_readings, refuse_masked, shown
 from navkit.kinematics._ranges import (
     MAX_LENGTH,
     MAX_TICKS_PER_REV,
@@ -143,14 +143,14 @@ def tick_delta(previous: ArrayLike, current: ArrayLike, *, bits: int) -> int | I
     -7
     """
     if isinstance(bits, (bool, np.bool_)):
-        raise TypeError(f"bits must be an integer, got {bits!r}")
+        raise TypeError(f"bits must be an integer, got {shown(bits)}")
     refuse_masked(bits, "bits")  # operator.index reads a masked 0-d array's data
     try:
         nbits = operator.index(bits)
     except TypeError:
-        raise TypeError(f"bits must be an integer, got {bits!r}") from None
+        raise TypeError(f"bits must be an integer, got {shown(bits)}") from None
     if not 2 <= nbits <= 64:
-        raise ValueError(f"bits must be an integer from 2 to 64, got {bits!r}")
+        raise ValueError(f"bits must be an integer from 2 to 64, got {shown(bits)}")
     prev = _as_counter(previous, "previous", nbits)
     cur = _as_counter(current, "current", nbits)
     try:

@@ -435,8 +435,42 @@ class OmniDrive:
         return out
 
     def __repr__(self) -> str:
-        degrees = ", ".join(f"{a:.6g}" for a in np.degrees(self._wheel_angles))
+        # Degrees read best ([30, 150, 270]), but only where they give back the very
+        # angles: 6 digits of degrees printed a drive that evaluated to a different one
+        # (0.1 rad showed as radians([5.72958])); other angles show exactly, in radians.
+        degrees = _degrees_text(self._wheel_angles)
+        angles = (
+            f"radians([{degrees}])"
+            if degrees is not None
+            else f"[{', '.join(repr(a) for a in self._wheel_angles.tolist())}]"
+        )
         return (
-            f"{type(self).__name__}(wheel_angles=radians([{degrees}]), "
+            f"{type(self).__name__}(wheel_angles={angles}, "
             f"wheel_radius={self._wheel_radius}, base_radius={self._base_radius})"
         )
+
+
+def _degrees_text(angles: FloatArray) -> str | None:
+    """``angles`` as degrees of at most 6 decimals that ``np.radians`` maps back bit for bit.
+
+    None when an angle has no such spelling.
+
+    Examples
+    --------
+    >>> _degrees_text(np.radians([30.0, 150.0, 270.0]))
+    '30, 150, 270'
+    >>> _degrees_text(np.array([0.1, 2.2, 4.3])) is None
+    True
+    """
+    out = []
+    for angle in angles.tolist():
+        for decimals in range(7):
+            text = f"{np.degrees(angle):.{decimals}f}"
+            text = text.rstrip("0").rstrip(".") if "." in text else text
+            back = float(np.radians(float(text)))
+            if back == angle and np.signbit(back) == np.signbit(angle):
+                out.append(text)
+                break
+        else:
+            return None
+    return ", ".join(out)

@@ -724,7 +724,7 @@ class OccupancyGrid:
         # Imported here: the function modules build on this class.
         from navkit.mapping._rasterize import rasterize_polygons
 
-        return rasterize_polygons(geometries, bounds=bounds, resolution=resolution)
+        return cls._built_as(rasterize_polygons(geometries, bounds=bounds, resolution=resolution))
 
     # ------------------------------------------------------------------ files
     @classmethod
@@ -759,7 +759,25 @@ class OccupancyGrid:
         """
         from navkit.mapping.io import read_map
 
-        return read_map(path)
+        return cls._built_as(read_map(path))
+
+    @classmethod
+    def _built_as(cls, grid: OccupancyGrid) -> OccupancyGrid:
+        """``grid`` as an instance of ``cls``: itself, or rebuilt through ``cls``'s constructor.
+
+        The functions behind :meth:`from_polygons` and :meth:`load` build an
+        ``OccupancyGrid``; a user's subclass calling them got one too, where
+        the other constructors (:meth:`from_occupancy`, ...) give the subclass.
+        """
+        if type(grid) is cls:
+            return grid
+        return cls(
+            grid._logodds,
+            resolution=grid._resolution,
+            origin=grid._origin,
+            occupied_thresh=grid._occupied_thresh,
+            free_thresh=grid._free_thresh,
+        )
 
     def save(self, path: str | os.PathLike[str], *, mode: str = "trinary") -> Path:
         """Save as a ROS map_server map; see :func:`navkit.mapping.io.write_map`.

@@ -280,6 +280,14 @@ class ScanMapper:
         """Number of scans processed."""
         return self._path_len
 
+    def __bool__(self) -> bool:
+        """Always True: a mapper is an object, not a collection of scans.
+
+        Without it Python takes ``len(mapper)``, so a fresh mapper was false:
+        ``if self.mapper:`` (an optional mapper) never fed it its first scan.
+        """
+        return True
+
     def __repr__(self) -> str:
         return f"{type(self).__name__}(resolution={self._resolution}, scans={len(self)})"
 

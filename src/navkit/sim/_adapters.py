@@ -167,6 +167,15 @@ class TrackerController(Generic[_T]):
         self._dt = 1.0 / rate
         self._use_estimate = as_bool(use_estimate, "use_estimate")
 
+    def __repr__(self) -> str:
+        # The rate back from its period, to 15 digits: 1 / (1 / rate) may differ from
+        # the rate given in the last bit.
+        rate = float(f"{1.0 / self._dt:.15g}")
+        return (
+            f"{type(self).__name__}({self.tracker!r}, control_rate={rate!r}, "
+            f"use_estimate={self._use_estimate})"
+        )
+
     @property
     def done(self) -> bool:
         """Whether the tracker has finished its path (the run then ends).

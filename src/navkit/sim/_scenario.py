@@ -108,7 +108,24 @@ def _int_in(value: object, name: str, upper: int) -> int:
 def _text(value: object, name: str) -> str:
     if not isinstance(value, str):
         raise TypeError(f"{name} must be a str, got {type(value).__name__}")
-    return value
+    # A plain str: a NumPy string (a label from an array) printed as np.str_('...') in reprs.
+    return str.__str__(value)
+
+
+def _cell(value: object, name: str) -> Cell:
+    """A table cell as a Python object: NumPy scalars printed as ``np.float64(2.0)`` in reprs."""
+    if value is None:
+        return None
+    if isinstance(value, str):
+        return str.__str__(value)
+    # Booleans before integers (a bool is an int): shown as yes/no, NumPy's as Python's.
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    if isinstance(value, (int, np.integer)):
+        return int(value)
+    if isinstance(value, (float, np.floating)):
+        return float(value)
+    raise TypeError(f"{name} must be text, a number or None, got {type(value).__name__}")
 
 
 def _figures(value: object, name: str) -> FrozenDict[str, float]:
@@ -207,7 +224,7 @@ class Trial:
     seed: int
 
     def __post_init__(self) -> None:
-        _text(self.case, "case")
+        object.__setattr__(self, "case", _text(self.case, "case"))
         object.__setattr__(self, "case_index", _int_in(self.case_index, "case_index", 2**63))
         object.__setattr__(self, "index", _int_in(self.index, "index", 2**63))
         object.__setattr__(self, "seed", _int_in(self.seed, "seed", 2**64))
@@ -268,7 +285,8 @@ class Table:
     columns : tuple of str
         Column headings, units included (``"error (mm)"``).
     rows : tuple of tuple
-        One tuple per row, as long as ``columns``: text, numbers or None.
+        One tuple per row, as long as ``columns``: text, numbers or None,
+        NumPy's stored as Python's (``str``, ``bool``, ``int``, ``float``).
     notes : tuple of str
         Sentences printed under the table (where the setup differs from the
         paper's, what the paper reports, ...).
@@ -297,7 +315,7 @@ class Table:
     __repr__ = bounded_repr
 
     def __post_init__(self) -> None:
-        _text(self.title, "title")
+        object.__setattr__(self, "title", _text(self.title, "title"))
         columns = tuple(
             _text(c, f"columns[{i}]") for i, c in enumerate(as_sequence(self.columns, "columns"))
         )
@@ -309,14 +327,7 @@ class Table:
                     f"rows[{i}] has {counted(len(cells), 'cell')} for "
                     f"{counted(len(columns), 'column')}"
                 )
-            for j, cell in enumerate(cells):
-                if cell is not None and not isinstance(
-                    cell, (str, int, float, np.integer, np.floating)
-                ):
-                    raise TypeError(
-                        f"rows[{i}][{j}] must be text, a number or None, got {type(cell).__name__}"
-                    )
-            rows.append(cells)
+            rows.append(tuple(_cell(cell, f"rows[{i}][{j}]") for j, cell in enumerate(cells)))
         notes = tuple(
             _text(n, f"notes[{i}]") for i, n in enumerate(as_sequence(self.notes, "notes"))
         )
@@ -416,8 +427,13 @@ class Table:
         >>> Table.from_dict(json.loads(json.dumps(t.to_dict()))) == t
         True
         """
-        fields = _record_fields(data, "data", _TABLE_KEYS)
-        with _naming("data"):
+        return cls._from_data(data, "data")
+
+    @classmethod
+    def _from_data(cls, data: Mapping[str, Any], where: str) -> Table:
+        """:meth:`from_dict`, its errors naming ``data`` as ``where`` (a result's table)."""
+        fields = _record_fields(data, where, _TABLE_KEYS)
+        with _naming(where):
             rows = tuple(
                 as_sequence(row, f"rows[{i}]")
                 for i, row in enumerate(as_sequence(fields["rows"], "rows"))
@@ -544,7 +560,7 @@ class Scene:
     __repr__ = bounded_repr
 
     def __post_init__(self) -> None:
-        _text(self.title, "title")
+        object.__setattr__(self, "title", _text(self.title, "title"))
         _instance(OccupancyGrid, True)(self.grid, "grid")
         _instance(World, True)(self.world, "world")
         object.__setattr__(self, "paths", _labelled(self.paths, "paths", _points))
@@ -602,7 +618,7 @@ class ScenarioResult:
     __repr__ = bounded_repr  # a trace per trial: print a few
 
     def __post_init__(self) -> None:
-        _text(self.scenario, "scenario")
+        object.__setattr__(self, "scenario", _text(self.scenario, "scenario"))
         object.__setattr__(self, "seed", _int_in(self.seed, "seed", 2**64))
         trials = as_sequence(self.trials, "trials")
         for k, r in enumerate(trials):
@@ -698,7 +714,8 @@ class ScenarioResult:
         """The result that :meth:`to_dict` gave ``data`` for (``navkit run --json``'s file, say).
 
         For comparing runs saved as JSON: the tables print as they did
-        (:meth:`table`), and the trials' figures and the summary are there to
+        (:meth:`table`) but for NaN cells (printed ``-``, they come back empty:
+        JSON has no NaN), and the trials' figures and the summary are there to
         compare. What :meth:`to_dict` leaves out is not restored: the traces
         and the scene are None.
 
@@ -750,8 +767,8 @@ class ScenarioResult:
                     )
                 )
         tables = tuple(
-            Table.from_dict(table)
-            for table in as_sequence(fields["tables"], "data['tables']")
+            Table._from_data(table, f"data['tables'][{k}]")
+            for k, table in enumerate(as_sequence(fields["tables"], "data['tables']"))
         )
         with _naming("data"):
             return cls(

@@ -493,6 +493,16 @@ class Simulation:
         twin._rng = copy.deepcopy(self._rng)
         return twin
 
+    def __repr__(self) -> str:
+        # Where, from where to where, how long: the robot (hundreds of characters) and
+        # the controller (any callable) are left out.
+        goal = self._goal if self._goal is None or self._goal[2] is not None else self._goal[:2]
+        return (
+            f"{type(self).__name__}({self._world!r}, start={self._start!r}, goal={goal!r}, "
+            f"duration={self._duration!r}, rate={self._rate!r}, "
+            f"control_rate={self._control_rate!r})"
+        )
+
     def _check_not_faster(self, name: str, rate: float, remedy: str | None = None) -> None:
         if rate > self._rate * (1.0 + 1e-12):
             lower = name if remedy is None else f"{name} ({remedy})"

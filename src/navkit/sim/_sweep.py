@@ -15,7 +15,7 @@ import numpy as np
 
 from navkit._shared.cores import usable_cores
 from navkit._shared.counts import counted
-from navkit._shared.validation import bounded_int
+from navkit._shared.validation import bounded_int, shown
 from navkit.sim._pool import process_pool
 from navkit.sim._scenario import (
     Scenario,
@@ -63,7 +63,7 @@ def _plan(scenario: Scenario, trials: int | None, seeds: object) -> tuple[tuple[
         base = _seed_int(seeds, "seeds")
         return scenario.trials(trials, seed=base), base
     if isinstance(seeds, (str, bytes)) or not isinstance(seeds, (Sequence, np.ndarray)):
-        raise TypeError(f"seeds must be an integer or a sequence of integers, got {seeds!r}")
+        raise TypeError(f"seeds must be an integer or a sequence of integers, got {shown(seeds)}")
     bases = [_seed_int(s, f"seeds[{i}]") for i, s in enumerate(seeds)]
     if not bases:
         raise ValueError("seeds must hold at least one seed")

@@ -21,6 +21,7 @@ from navkit._shared.validation import (
     bounded_int,
     finite_float,
     has_array_protocol,
+    shown,
     unpack,
 )
 from navkit.errors import NoPathError
@@ -314,7 +315,7 @@ def _count(value: Any, name: str) -> int:
         # arithmetic on coordinates (2.0), as in every (row, col) argument.
         number = finite_float(value, name)
         if not number.is_integer():
-            raise TypeError(f"{name} must hold integers, got {value!r}")
+            raise TypeError(f"{name} must hold integers, got {shown(value)}")
         value = int(number)
     return bounded_int(value, name, 0, _INT64_MAX)
 
