@@ -31,10 +31,11 @@ a run starts), and a failed write to standard output (``standard output: No
 space left on device``).
 Ctrl-C exits with code 130 (``SIGTERM`` and ``SIGHUP`` with 143 and 129, after
 the same clean-up: worker processes stopped, no temporary files left), in one
-line; a closed standard output (``navkit list | head -1``) ends the command
-quietly with code 141. Progress (trials done, ETA) is
-drawn on standard error when it is a terminal and a run lasts more than about
-2 s; the first run, which compiles navkit's kernels, says so.
+line; a standard output closed early (``navkit list | head -1``, once the
+output outgrows the pipe's buffer) ends the command quietly with code 141.
+Progress (trials done, ETA) is drawn on standard error when it is a terminal
+and a run lasts more than about 2 s; the first run, which compiles navkit's
+kernels, says so.
 
 Examples
 --------

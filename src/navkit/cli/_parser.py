@@ -278,7 +278,7 @@ examples:
 Run navkit COMMAND --help for a command's options. Exit codes: 0 done; 1 a file, \
 map, data set or plan failed (one line "navkit: error: ..."); 2 bad arguments (with \
 the usage); 130 Ctrl-C (143 SIGTERM, 129 SIGHUP); 141 standard output closed \
-early (navkit list | head -1)."""
+early (navkit list | head -1, once the output outgrows the pipe)."""
 
 _RUN_EPILOG = """\
 examples:

@@ -778,8 +778,8 @@ class PlanarFusion(GaussianEstimate):
     last row of an :meth:`update_batch` (its rows are not kept: sort a log
     instead; one stamped as that row goes after it).
     A late measurement costs one step per later step kept (about
-    2.5 µs each); the steps kept take about 0.7 kB each (0.17 MB a second for
-    50 Hz odometry and a 200 Hz IMU's yaw rate), and keeping them about 1.5 µs
+    1 µs each); the steps kept take about 0.7 kB each (0.17 MB a second for
+    50 Hz odometry and a 200 Hz IMU's yaw rate), and keeping them about 0.8 µs
     a measurement. A ``KeyboardInterrupt`` during an update drops them
     (later late measurements are refused until the window has filled again),
     and so does :meth:`reset`. Copies and pickles keep them.

@@ -316,9 +316,10 @@ class OmniOdometry:
     ----------
     drive : OmniDrive
         Wheel layout.
-    pose : Pose2D or array_like, shape (3,), default Pose2D(0, 0, 0)
-        Start pose (keyword-only); its heading should be the compass yaw at the
-        start (e.g. 0 with :class:`CompassCalibration`).
+    pose : Pose2D, array_like, shape (3,), or None, default None
+        Start pose (keyword-only); None is the origin, ``Pose2D(0, 0, 0)``. Its
+        heading should be the compass yaw at the start (e.g. 0 with
+        :class:`CompassCalibration`).
 
     Raises
     ------
@@ -612,8 +613,8 @@ class DiffOdometry:
         less than half the counter's range (``2**(bits - 1)`` ticks): more is
         read as the shorter change the other way, as
         :func:`navkit.kinematics.tick_delta` does.
-    pose : Pose2D or array_like, shape (3,), default Pose2D(0, 0, 0)
-        Pose at the first reading.
+    pose : Pose2D, array_like, shape (3,), or None, default None
+        Pose at the first reading; None is the origin, ``Pose2D(0, 0, 0)``.
     method : {"arc", "midpoint", "first_order"}, default "arc"
         Integration scheme per step.
 

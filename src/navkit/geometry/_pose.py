@@ -133,7 +133,13 @@ class Pose2D:
         return Pose2D(x, y, wrap_float(self.theta + o.theta))
 
     def __matmul__(self, other: Pose2D | ArrayLike) -> Pose2D:
-        """``a @ b`` is ``a.compose(b)``; ``b`` may be a sequence ``[x, y, theta]``."""
+        """``a @ b`` is ``a.compose(b)``; ``b`` may be a sequence ``[x, y, theta]``.
+
+        Raises
+        ------
+        TypeError, ValueError
+            As :meth:`compose`.
+        """
         return self.compose(other)
 
     def inverse(self) -> Pose2D:

@@ -184,6 +184,13 @@ class OmniDrive:
             A drive built from ``radians([30, 150, 270])`` (its :attr:`wheel_angles`
             read them wrapped: 30°, 150° and -90°).
 
+        Raises
+        ------
+        TypeError
+            A radius that is not a real number.
+        ValueError
+            A radius not finite or outside [1e-6, 1e6].
+
         Examples
         --------
         >>> OmniDrive.three_wheel(wheel_radius=0.05, base_radius=0.2).n_wheels

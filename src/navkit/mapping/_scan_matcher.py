@@ -428,6 +428,11 @@ class ScanMatcher:
             a level shrinks to one cell or the next one's cells would exceed
             1e6 m, the largest resolution), finest first.
 
+        Raises
+        ------
+        TypeError
+            ``grid`` not an :class:`~navkit.mapping.OccupancyGrid`.
+
         Examples
         --------
         >>> grid = OccupancyGrid.empty(width=1.0, height=0.5, resolution=0.1)

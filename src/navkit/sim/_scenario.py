@@ -353,6 +353,13 @@ class Table:
         str
             Title, header, rule, rows and notes, one per line.
 
+        Raises
+        ------
+        TypeError
+            ``digits`` not an integer (a bool is none).
+        ValueError
+            ``digits`` outside [1, 17].
+
         Examples
         --------
         >>> Table("t", ("a",), ((1.23456,),)).render(digits=2).splitlines()[-1]
@@ -662,6 +669,13 @@ class ScenarioResult:
         -------
         str
             The tables separated by blank lines.
+
+        Raises
+        ------
+        TypeError
+            ``digits`` not an integer (a bool is none).
+        ValueError
+            ``digits`` outside [1, 17].
 
         Examples
         --------

@@ -164,7 +164,7 @@ def _scale_percent(logodds: NDArray[np.float32]) -> NDArray[np.int8]:
 def _percent_table() -> StepTable:
     """Look-up tables giving mode ``"scale"``'s percentage of any float32 log-odds.
 
-    :func:`~navkit.mapping.io._map_files._step_table` of :func:`_scale_percent`:
+    :func:`~navkit.mapping.io._step_tables.step_table` of :func:`_scale_percent`:
     its thresholds lie at least 4 % of their size apart, so one comparison
     (``rounds`` 1) finishes each look-up.
     """

@@ -725,11 +725,14 @@ class FieldDStar:
         RuntimeError
             No plan was made yet.
         ValueError
-            Bad ``start_node``; the kept start node (without ``start_node``) or
-            the kept goal node is now a corner of impassable cells only (the
+            A ``start_node`` not of length 2, off the node grid or a corner of
+            impassable cells only; the kept start node (without
+            ``start_node``) or the kept goal node is now such a corner (the
             start checked first, as a fresh :meth:`plan` refuses them), or a
             cell kept from :meth:`plan_cells` is impassable; a path cost of
             ``2**52`` or more.
+        TypeError
+            A ``start_node`` that is not a pair of integers.
         navkit.NoPathError
             The goal cannot be reached any more.
         KeyboardInterrupt

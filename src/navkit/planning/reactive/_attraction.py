@@ -453,6 +453,13 @@ class BlendedAttraction(AttractiveField):
             New array of σ values in [0, 1], the shape of ``d``: 0 near the goal
             (the paraboloid), 1 far from it (the cone), ½ at ``threshold_radius``.
 
+        Raises
+        ------
+        TypeError
+            ``d`` not real numbers.
+        ValueError
+            ``d`` holding NaN or an infinity.
+
         Examples
         --------
         >>> BlendedAttraction((0.0, 0.0), threshold_radius=1.0).sigma([1.0])
