@@ -18,12 +18,27 @@ import numpy as np
 import pytest
 
 import test_docstrings as docstrings
-from navkit.geometry import Pose2D
+from navkit.estimation import UpdateResult
+from navkit.geometry import ImuInBase, Pose2D
 from navkit.kinematics import OmniDrive
-from navkit.mapping import ScanMatcher
+from navkit.mapping import LaserScan, ScanMatcher, ScanMatchResult
+from navkit.mapping.io import BagImu, BagOdometry, BagScans
+from navkit.planning import CompositeField
 from navkit.planning.grid import FieldDStar
 from navkit.planning.reactive import BlendedAttraction
-from navkit.sim import ScenarioResult, Table
+from navkit.sim import (
+    CompassReading,
+    EncoderReading,
+    Event,
+    ImuReading,
+    ScanReading,
+    ScenarioResult,
+    Table,
+    Trace,
+    WarmupReport,
+    WarmupStep,
+)
+from navkit.sim.scenarios import DiffAStar, Greedy, IndoorNav, OmniApf, Soccer
 
 
 def _planned() -> FieldDStar:
@@ -65,7 +80,63 @@ CASES: list[tuple[Callable[..., Any], Callable[[], Any], type[Exception]]] = [
     (ScanMatcher.pyramid, lambda: ScanMatcher().pyramid(None), TypeError),  # type: ignore[arg-type]
     (Pose2D.__matmul__, lambda: Pose2D(0.0, 0.0, 0.0) @ [1.0, 2.0], ValueError),
     (Pose2D.__matmul__, lambda: Pose2D(0.0, 0.0, 0.0) @ ["a", 0.0, 0.0], TypeError),
+    # Review 32 (FNF): record constructors that validated their input with no Raises section.
+    (UpdateResult, lambda: UpdateResult("no", 1.0, np.zeros(1)), TypeError),  # type: ignore[arg-type]
+    (BagScans, lambda: BagScans(123, "laser", [1.5], [1.6], (_scan(),)), TypeError),  # type: ignore[arg-type]
+    (BagOdometry, lambda: _odometry(times=[0.0, np.nan]), ValueError),
+    (BagImu, lambda: _imu(frame_id=b"imu"), TypeError),
+    (ImuInBase, lambda: ImuInBase([0.0, 0.0, 0.0, 1.0], [[0.0, 0.0, 0.1]] * 2, [0.0, 0.0, 9.8]),
+     ValueError),
+    (CompositeField, lambda: CompositeField([None]), TypeError),  # type: ignore[list-item]
+    (ScanReading, lambda: ScanReading(0.1, None), TypeError),  # type: ignore[arg-type]
+    (EncoderReading, lambda: EncoderReading(0.0, np.array([[1, 2]])), ValueError),
+    (CompassReading, lambda: CompassReading(np.nan, 90.0), ValueError),
+    (ImuReading, lambda: ImuReading(0.0, "a", 0.0, 0.0), TypeError),  # type: ignore[arg-type]
+    (Event, lambda: Event(0.0, "crashed", "x"), ValueError),
+    (Trace, lambda: _trace(metrics=None), TypeError),
+    (WarmupStep, lambda: WarmupStep(b"astar", (), (), 1.0, 1.0), TypeError),  # type: ignore[arg-type]
+    (WarmupReport, lambda: WarmupReport((), 1.0, 0), ValueError),
+    (DiffAStar, lambda: DiffAStar(parts=[]), ValueError),
+    (Greedy, lambda: Greedy(noise="no"), TypeError),  # type: ignore[arg-type]
+    (IndoorNav, lambda: IndoorNav(targets=0), ValueError),
+    (OmniApf, lambda: OmniApf(latency=1.5), TypeError),  # type: ignore[arg-type]
+    (Soccer, lambda: Soccer(max_speed=np.inf), ValueError),
+    (ScanMatchResult, lambda: ScanMatchResult(Pose2D(0, 0, 0), np.eye(3), 0, 0.5, False, b"x"),
+     TypeError),
+    (ScanMatchResult, lambda: ScanMatchResult(Pose2D(0, 0, 0), np.eye(3), 0, 0.5, False, "x"),
+     ValueError),
 ]  # fmt: skip
+
+
+def _scan() -> LaserScan:
+    return LaserScan([1.0, 2.0], angle_min=0.0, angle_increment=0.1, range_min=0.1, range_max=5.0)
+
+
+def _odometry(times: Any) -> BagOdometry:
+    return BagOdometry(
+        "/odom", "odom", "base_link", times, [0.1, 0.2], np.zeros((2, 3)),
+        np.tile([0.0, 0.0, 0.0, 1.0], (2, 1)), np.zeros((2, 3)), np.zeros((2, 6, 6)),
+        np.zeros((2, 6, 6)),
+    )  # fmt: skip
+
+
+def _imu(frame_id: Any) -> BagImu:
+    return BagImu(
+        "/imu", frame_id, [0.0], [0.1], [[0.0, 0.0, 0.0, 1.0]], [[0.0, 0.0, 0.2]],
+        [[0.0, 0.0, 9.8]], np.eye(3)[None], np.eye(3)[None], np.eye(3)[None],
+    )  # fmt: skip
+
+
+def _trace(metrics: Any) -> Trace:
+    return Trace(
+        np.array([0.0, 0.1]),
+        np.zeros((2, 3)),
+        np.zeros((2, 3)),
+        np.zeros((2, 3)),
+        (),
+        (),
+        metrics,
+    )
 
 
 def _table() -> Table:

@@ -13,6 +13,7 @@ and :func:`extra_state` for what a subclass adds when they reduce themselves.
 
 from __future__ import annotations
 
+import threading
 from collections.abc import Collection, Mapping, Sequence
 from dataclasses import FrozenInstanceError, fields
 from typing import Any, TypeVar
@@ -243,11 +244,16 @@ def reduce_record(record: Any, arrays: Collection[str] | None = None) -> tuple[A
     whose ``__setstate__`` is not navkit's gets what a subclass adds among the
     rebuild's arguments instead (an attribute referring back is then lost).
 
-    A subclass whose own ``__getstate__`` (a user's: not the one a slotted
-    frozen dataclass generates, nor navkit's) says what it pickles, to drop a
-    lock or a cache, say, is taken at its word, as Python takes it: the state
-    goes to the class's ``__setstate__`` (see :func:`rebuild_from_state`), and
-    the ``arrays`` are read-only again after it.
+    A subclass whose own ``__getstate__`` or ``__setstate__`` (a user's: not
+    the one a slotted frozen dataclass generates, nor navkit's) says what it
+    pickles, to drop a lock or a cache, say, is taken at its word, as Python
+    takes it: the state (the user's ``__getstate__``'s, else Python's default
+    ``(instance __dict__ or None, {slot: value})``) goes to the user's
+    ``__setstate__``, or without one is restored as Python restores it (see
+    :func:`rebuild_from_state`), and the ``arrays`` are read-only again after
+    it. The state is pickled (and deep-copied) after the new record exists, so
+    a state referring back to the record (a parent link) refers to the new one:
+    cycles are kept, as for any Python object.
 
     Parameters
     ----------
@@ -266,8 +272,9 @@ def reduce_record(record: Any, arrays: Collection[str] | None = None) -> tuple[A
         value}, arrays, instance __dict__ or None, {other slot: value}))``
         when the class's ``__setstate__`` is not navkit's (the one a slotted
         dataclass subclass of the user's generates would read the pair as
-        field values); ``(rebuild_from_state, (class, state,
-        arrays))`` for a class with a user's ``__getstate__``.
+        field values); ``(_shell_record, (shell,))`` for a class with a
+        user's ``__getstate__`` or ``__setstate__``, the shell reducing to a
+        new empty record and the state.
 
     Examples
     --------
@@ -292,8 +299,12 @@ def reduce_record(record: Any, arrays: Collection[str] | None = None) -> tuple[A
             for name, value in values.items()
             if isinstance(value, np.ndarray) and not value.flags.writeable
         ]
-    if _user_getstate(type(record)) is not None:
-        return rebuild_from_state, (type(record), record.__getstate__(), tuple(arrays))
+    cls = type(record)
+    if _takes_user_state(cls):
+        # The state is pickled after the new record exists (the shell's), so that a
+        # state referring back to the record finds the new one: in the rebuild's
+        # arguments it recursed until RecursionError.
+        return _shell_record, (_source_shell(record, tuple(arrays)),)
     extra = extra_state(record, skip=values)
     if extra is None:
         return rebuild_record, (type(record), values, tuple(arrays), None, {})
@@ -358,6 +369,16 @@ def _user_getstate(cls: type) -> Any:
     return _user_method(cls, "__getstate__")
 
 
+def _takes_user_state(cls: type) -> bool:
+    """Whether a user's class gives ``cls`` its ``__getstate__`` or its ``__setstate__``."""
+    module = cls.__module__
+    if module == "navkit" or module.startswith("navkit."):
+        # Every copy of a record asks: navkit's own classes (and their navkit bases)
+        # answer without walking the MRO twice.
+        return False
+    return _user_getstate(cls) is not None or _user_method(cls, "__setstate__") is not None
+
+
 def _user_method(cls: type, name: str) -> Any:
     """The method ``name`` that a user's class gives ``cls``: as :func:`_user_getstate`."""
     for klass in cls.__mro__:
@@ -403,6 +424,10 @@ def _restore_default(record: Any, state: Any) -> None:
 def rebuild_from_state(cls: type, state: Any, arrays: Collection[str]) -> Any:
     """The record of class ``cls`` restored from a user's ``__getstate__`` ``state``.
 
+    What pickles of records with a user's ``__getstate__`` made before review
+    32 load through; :func:`reduce_record` now pickles the state after the new
+    record exists, restored the same way.
+
     As :mod:`pickle` and :mod:`copy` restore an object: through a
     ``__setstate__`` of the user's classes, or, without one, ``state`` as the
     instance ``__dict__`` or ``(__dict__, {slot: value})``, a field (a slot)
@@ -429,8 +454,112 @@ def rebuild_from_state(cls: type, state: Any, arrays: Collection[str]) -> Any:
     False
     """
     record: Any = object.__new__(cls)
+    _restore_state(record, state, arrays)
+    return record
+
+
+class _Shell:
+    """Holder of a record copied or pickled through a user's state (:func:`reduce_record`).
+
+    A source shell (``loaded`` False) stands for the original record: its
+    reduce value is the new shell, then the state, which :mod:`pickle` and
+    :mod:`copy` take after the new shell exists. A reference back to the record
+    inside the state is reduced to the same source shell (found in
+    ``_SHELLS``), that is to the new shell's record: cycles are kept, as
+    Python keeps them for any object whose state refers back to it.
+    """
+
+    __slots__ = ("arrays", "loaded", "record")
+
+    def __init__(self, record: Any, arrays: tuple[str, ...], loaded: bool) -> None:
+        self.record = record
+        self.arrays = arrays
+        self.loaded = loaded
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        state = (_state_of(self.record), _Forget(self.record))
+        return _new_shell, (type(self.record), self.arrays), state
+
+    def __setstate__(self, state: tuple[Any, Any]) -> None:
+        _restore_state(self.record, state[0], self.arrays)
+
+
+class _Forget:
+    """Last item of a shell's state: pickled or copied once the state before it is, it
+    drops the source shell from ``_SHELLS``."""
+
+    __slots__ = ("record",)
+
+    def __init__(self, record: Any) -> None:
+        self.record = record
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        _forget(self.record)
+        return _nothing, ()
+
+
+# Source shells of the records being copied or pickled in this thread, by id(record):
+# the reductions of one record met again inside its own state share one shell. An
+# entry holds its record, so the id is not reused while it is there.
+_SHELLS = threading.local()
+
+
+def _shells() -> dict[int, _Shell]:
+    table: dict[int, _Shell] | None = getattr(_SHELLS, "table", None)
+    if table is None:
+        table = _SHELLS.table = {}
+    return table
+
+
+def _source_shell(record: Any, arrays: tuple[str, ...]) -> _Shell:
+    table = _shells()
+    shell = table.get(id(record))
+    if shell is None or shell.record is not record:
+        shell = table[id(record)] = _Shell(record, arrays, loaded=False)
+    return shell
+
+
+def _forget(record: Any) -> None:
+    table = _shells()
+    shell = table.get(id(record))
+    if shell is not None and shell.record is record:
+        del table[id(record)]
+
+
+def _nothing() -> None:
+    return None
+
+
+def _new_shell(cls: type, arrays: tuple[str, ...]) -> _Shell:
+    return _Shell(object.__new__(cls), arrays, loaded=True)
+
+
+def _shell_record(shell: _Shell) -> Any:
+    """The record a shell holds: the new one of a pickle or deep copy; for
+    :func:`copy.copy` (the reduce value used as it is) a new record restored
+    from the original's state, not copied, as Python copies any object."""
+    if shell.loaded:
+        return shell.record
+    source = shell.record
+    _forget(source)
+    record = object.__new__(type(source))
+    _restore_state(record, _state_of(source), shell.arrays)
+    return record
+
+
+def _state_of(record: Any) -> Any:
+    """``record``'s state as Python takes it: its class's ``__getstate__`` if a user's
+    class defines one, else the default ``(instance __dict__ or None, {slot: value})``
+    (not the list of fields that a slotted dataclass's ``__getstate__`` gives)."""
+    if _user_getstate(type(record)) is not None:
+        return record.__getstate__()
+    return object.__getstate__(record)
+
+
+def _restore_state(record: Any, state: Any, arrays: Collection[str]) -> None:
+    """Restore ``state`` into ``record`` as :func:`rebuild_from_state` does."""
     if state is not None:
-        if _user_method(cls, "__setstate__") is not None:
+        if _user_method(type(record), "__setstate__") is not None:
             record.__setstate__(state)
         else:
             # Not the record's own __setstate__ (navkit's loader of older pickles, or the
@@ -443,7 +572,6 @@ def rebuild_from_state(cls: type, state: Any, arrays: Collection[str]) -> Any:
             value = value.view()
             value.flags.writeable = False
             object.__setattr__(record, name, value)
-    return record
 
 
 def rebuild_record(

@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_extra
+from navkit._shared.text import as_text
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, bounded_int
 
@@ -51,6 +52,16 @@ class UpdateResult:
         ``OVERFLOW`` or (:class:`PlanarFusion`) ``OUT_OF_ORDER``. None for a
         rejected result built without one (the default).
 
+    Raises
+    ------
+    TypeError
+        ``accepted`` not a bool, ``nis`` or ``residual`` not real numbers,
+        ``reason`` not a str or None, ``status`` not a FusionStatus code.
+    ValueError
+        ``nis`` negative (NaN is allowed), ``residual`` not one-dimensional or
+        not finite, a ``reason`` for an accepted update, ``status`` an
+        unknown code or one that contradicts ``accepted``.
+
     Examples
     --------
     >>> from navkit.estimation import FusionStatus
@@ -79,8 +90,11 @@ class UpdateResult:
         residual = np.array(as_float_array(self.residual, "residual", ndim=1), copy=True)
         residual.flags.writeable = False
         object.__setattr__(self, "residual", residual)
-        if self.reason is not None and not isinstance(self.reason, str):
-            raise TypeError(f"reason must be a str or None, got {type(self.reason).__name__}")
+        if self.reason is not None:
+            if not isinstance(self.reason, str):
+                raise TypeError(f"reason must be a str or None, got {type(self.reason).__name__}")
+            # Plain str: an np.str_ printed as np.str_('...') in the record's repr.
+            object.__setattr__(self, "reason", as_text(self.reason, "reason"))
         if self.accepted and self.reason is not None:
             raise ValueError(f"reason must be None when accepted, got {self.reason!r}")
         codes = _fusion_status()

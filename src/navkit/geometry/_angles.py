@@ -40,9 +40,15 @@ def wrap_angle(angle: ArrayLike) -> float | NDArray[np.float64]:
         Angles already inside (-π, π] are returned unchanged, so the function is
         idempotent bit for bit. Others are reduced exactly, with no rounding, by
         a multiple of the float ``2 * math.pi`` (``wrap_angle(2 * math.pi)`` is
-        0.0): that is 2.4e-16 less than 2π, so the result is ``k * 2.4e-16``
-        rad away from the exact reduction by 2π, where ``k`` is the number of
-        turns removed (under 1e-14 rad for angles within ±100 rad).
+        0.0): that is 2.4e-16 less than 2π, so the result is within
+        ``k * 2.4e-16`` rad of the exact reduction by 2π, where ``k`` is the
+        number of multiples of ``2 * math.pi`` removed (under 1e-14 rad for
+        angles within ±100 rad). That is a circular distance (as
+        :func:`angle_diff` measures it): within ``k * 2.4e-16`` of ±π the
+        result and the exact reduction may lie on opposite sides of the seam,
+        2π apart as numbers. ``wrap_angle(-3 * math.pi)`` is +π (the float
+        ``math.pi``, removing ``k = 2`` multiples), the exact reduction
+        -π + 3.7e-16: 4.9e-16 apart around the circle.
 
     Raises
     ------
@@ -58,6 +64,8 @@ def wrap_angle(angle: ArrayLike) -> float | NDArray[np.float64]:
     >>> wrap_angle(3 * math.pi / 2)
     -1.5707963267948966
     >>> wrap_angle(-math.pi) == math.pi
+    True
+    >>> wrap_angle(-3 * math.pi) == math.pi  # the seam: -π + 3.7e-16 exactly
     True
     """
     value: Any = angle

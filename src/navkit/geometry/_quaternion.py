@@ -297,6 +297,14 @@ class ImuInBase:
         Linear acceleration, m/s², in the base frame (gravity as the IMU
         measured it; the lever arm of the mounting offset is not removed).
 
+    Raises
+    ------
+    TypeError
+        An array not of real numbers, naming it.
+    ValueError
+        ``orientations`` not of shape (..., 4), the vectors not of shape
+        (..., 3) with the same leading shape, or a value NaN or infinite.
+
     Notes
     -----
     Every array is a read-only float64 copy. Shapes are checked (the same

@@ -14,6 +14,7 @@ from numpy.typing import ArrayLike
 from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.dunders import slot_state
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
+from navkit._shared.text import as_text
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, bounded_int
 from navkit.geometry import Pose2D, as_pose
@@ -122,6 +123,17 @@ class ScanMatchResult:
         directions: a featureless corridor, a single wall, no mapped
         obstacle in reach).
 
+    Raises
+    ------
+    TypeError
+        ``pose`` not a :class:`~navkit.geometry.Pose2D` or sequence of three
+        numbers, ``covariance`` not real numbers, ``iterations`` not an
+        integer, ``converged`` not a bool, ``reason`` not a str.
+    ValueError
+        ``pose`` or ``covariance`` of the wrong shape, ``covariance`` with NaN
+        or -inf, ``iterations`` or ``score`` out of range, an unknown
+        ``reason``.
+
     Examples
     --------
     >>> result = ScanMatchResult(Pose2D(1.0, 2.0, 0.0), np.eye(3), 4, 0.9, True, "converged")
@@ -151,10 +163,10 @@ class ScanMatchResult:
         if not isinstance(self.converged, (bool, np.bool_)):
             raise TypeError(f"converged must be a bool, got {type(self.converged).__name__}")
         object.__setattr__(self, "converged", bool(self.converged))
-        if not isinstance(self.reason, str):
-            raise TypeError(f"reason must be a str, got {type(self.reason).__name__}")
-        if self.reason not in REASONS:
-            raise ValueError(f"reason must be one of {REASONS}, got {self.reason!r}")
+        reason = as_text(self.reason, "reason")
+        if reason not in REASONS:
+            raise ValueError(f"reason must be one of {REASONS}, got {reason!r}")
+        object.__setattr__(self, "reason", reason)
 
     def __reduce__(self) -> tuple[Any, ...]:
         """Copy and pickle support: the arrays read-only again, also in subclasses' copies."""

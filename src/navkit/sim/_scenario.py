@@ -24,6 +24,7 @@ from navkit._shared.counts import counted
 from navkit._shared.dunders import bounded_repr, record_eq, record_hash
 from navkit._shared.frozen import frozen_setattr, restore_read_only
 from navkit._shared.frozendict import FrozenDict
+from navkit._shared.text import as_text
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, as_sequence, bounded_int, finite_float
 from navkit.mapping import OccupancyGrid
@@ -105,13 +106,6 @@ def _int_in(value: object, name: str, upper: int) -> int:
     return bounded_int(value, name, 0, upper, exclusive=True)
 
 
-def _text(value: object, name: str) -> str:
-    if not isinstance(value, str):
-        raise TypeError(f"{name} must be a str, got {type(value).__name__}")
-    # A plain str: a NumPy string (a label from an array) printed as np.str_('...') in reprs.
-    return str.__str__(value)
-
-
 def _cell(value: object, name: str) -> Cell:
     """A table cell as a Python object: NumPy scalars printed as ``np.float64(2.0)`` in reprs."""
     if value is None:
@@ -169,7 +163,7 @@ def _labelled(value: object, name: str, check: Callable[[Any, str], Any]) -> tup
             raise ValueError(
                 f"{name}[{k}] must be a (label, value) pair, got {counted(len(pair), 'item')}"
             )
-        out.append((_text(pair[0], f"{name}[{k}][0]"), check(pair[1], f"{name}[{k}][1]")))
+        out.append((as_text(pair[0], f"{name}[{k}][0]"), check(pair[1], f"{name}[{k}][1]")))
     return tuple(out)
 
 
@@ -224,7 +218,7 @@ class Trial:
     seed: int
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "case", _text(self.case, "case"))
+        object.__setattr__(self, "case", as_text(self.case, "case"))
         object.__setattr__(self, "case_index", _int_in(self.case_index, "case_index", 2**63))
         object.__setattr__(self, "index", _int_in(self.index, "index", 2**63))
         object.__setattr__(self, "seed", _int_in(self.seed, "seed", 2**64))
@@ -315,9 +309,9 @@ class Table:
     __repr__ = bounded_repr
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "title", _text(self.title, "title"))
+        object.__setattr__(self, "title", as_text(self.title, "title"))
         columns = tuple(
-            _text(c, f"columns[{i}]") for i, c in enumerate(as_sequence(self.columns, "columns"))
+            as_text(c, f"columns[{i}]") for i, c in enumerate(as_sequence(self.columns, "columns"))
         )
         rows = []
         for i, row in enumerate(as_sequence(self.rows, "rows")):
@@ -329,7 +323,7 @@ class Table:
                 )
             rows.append(tuple(_cell(cell, f"rows[{i}][{j}]") for j, cell in enumerate(cells)))
         notes = tuple(
-            _text(n, f"notes[{i}]") for i, n in enumerate(as_sequence(self.notes, "notes"))
+            as_text(n, f"notes[{i}]") for i, n in enumerate(as_sequence(self.notes, "notes"))
         )
         object.__setattr__(self, "columns", columns)
         object.__setattr__(self, "rows", tuple(rows))
@@ -567,7 +561,7 @@ class Scene:
     __repr__ = bounded_repr
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "title", _text(self.title, "title"))
+        object.__setattr__(self, "title", as_text(self.title, "title"))
         _instance(OccupancyGrid, True)(self.grid, "grid")
         _instance(World, True)(self.world, "world")
         object.__setattr__(self, "paths", _labelled(self.paths, "paths", _points))
@@ -625,7 +619,7 @@ class ScenarioResult:
     __repr__ = bounded_repr  # a trace per trial: print a few
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "scenario", _text(self.scenario, "scenario"))
+        object.__setattr__(self, "scenario", as_text(self.scenario, "scenario"))
         object.__setattr__(self, "seed", _int_in(self.seed, "seed", 2**64))
         trials = as_sequence(self.trials, "trials")
         for k, r in enumerate(trials):

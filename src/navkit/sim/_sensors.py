@@ -400,6 +400,13 @@ class ScanReading:
     scan : LaserScan
         The scan, in the sensor frame.
 
+    Raises
+    ------
+    TypeError
+        ``stamp`` not a real number, ``scan`` not a LaserScan.
+    ValueError
+        ``stamp`` NaN or infinite.
+
     Examples
     --------
     >>> ScanReading(0.1, LaserScan([1.0], angle_min=0.0, angle_increment=0.1,
@@ -429,6 +436,13 @@ class EncoderReading:
         Counter of each wheel (``[left, right]`` for a differential drive), as
         :meth:`WheelEncoders.ticks` gives them; stored as a read-only copy
         (read-only in copies and unpickled readings too).
+
+    Raises
+    ------
+    TypeError
+        ``stamp`` not a real number, ``ticks`` not an integer array.
+    ValueError
+        ``stamp`` NaN or infinite, ``ticks`` not one-dimensional.
 
     Examples
     --------
@@ -466,6 +480,13 @@ class CompassReading:
         [0, 360)). The world yaw is ``north + compass_to_yaw(heading_deg)``
         with the compass's ``north`` (see :class:`Compass`).
 
+    Raises
+    ------
+    TypeError
+        ``stamp`` or ``heading_deg`` not a real number.
+    ValueError
+        ``stamp`` or ``heading_deg`` NaN or infinite.
+
     Examples
     --------
     >>> CompassReading(0.05, 90.0).heading_deg
@@ -494,6 +515,13 @@ class ImuReading:
     acceleration_x, acceleration_y : float
         Acceleration in the robot frame (x forward, y left), m/s², gravity
         removed (finite).
+
+    Raises
+    ------
+    TypeError
+        A value not a real number, naming the field.
+    ValueError
+        A value NaN or infinite, naming the field.
 
     Examples
     --------

@@ -10,6 +10,7 @@ import numpy as np
 
 from navkit._shared.dunders import bounded_repr, record_eq, record_hash
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
+from navkit._shared.text import as_text
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import (
     as_bool,
@@ -48,6 +49,14 @@ class Event:
     message : str
         What happened, for people.
 
+    Raises
+    ------
+    TypeError
+        ``t`` not a real number, ``message`` not a str (nor ``kind``, when
+        it equals a reason without being a str).
+    ValueError
+        ``t`` NaN or infinite; ``kind`` not one of the reasons above.
+
     Examples
     --------
     >>> Event(1.5, "collision", "the footprint touched an obstacle").kind
@@ -62,8 +71,9 @@ class Event:
         object.__setattr__(self, "t", finite_float(self.t, "t"))
         if self.kind not in _END_REASONS:
             raise ValueError(f"kind must be one of {_END_REASONS}, got {self.kind!r}")
-        if not isinstance(self.message, str):
-            raise TypeError(f"message must be a str, got {type(self.message).__name__}")
+        # Plain str: an np.str_ printed as np.str_('collision') in the record's repr.
+        object.__setattr__(self, "kind", as_text(self.kind, "kind"))
+        object.__setattr__(self, "message", as_text(self.message, "message"))
 
 
 @frozen_setattr
@@ -141,6 +151,7 @@ class Metrics:
         object.__setattr__(self, "reached", as_bool(self.reached, "reached"))
         if self.reason not in _END_REASONS:
             raise ValueError(f"reason must be one of {_END_REASONS}, got {self.reason!r}")
+        object.__setattr__(self, "reason", as_text(self.reason, "reason"))
         # Every figure is a time since the run's start or a distance: none can be
         # negative (a negative one is a sign or an origin mixed up by its maker).
         for name in ("duration", "distance"):
@@ -213,6 +224,16 @@ class Trace:
         Collisions, reaching the goal and the end of the run, in order.
     metrics : Metrics
         The run's summary.
+
+    Raises
+    ------
+    TypeError
+        An array not of real numbers; ``scans``, ``events`` not tuples (or
+        lists) of ScanReading, Event; ``metrics`` not a Metrics.
+    ValueError
+        ``times`` not one-dimensional or not finite; ``poses``, ``estimates``
+        or ``commands`` not of shape (N, 3) for N times, ``poses`` or
+        ``commands`` not finite, ``estimates`` holding an infinity.
 
     Notes
     -----

@@ -27,6 +27,7 @@ import numpy as np
 from navkit._shared.cores import usable_cores
 from navkit._shared.frozen import frozen_setattr
 from navkit._shared.jit import load_numba
+from navkit._shared.text import as_text
 from navkit._shared.validation import bounded_int, positive_float
 from navkit.sim._pool import process_pool
 
@@ -322,6 +323,14 @@ class WarmupStep:
     cpu_seconds : float
         CPU time of the step in the process that ran it, s.
 
+    Raises
+    ------
+    TypeError
+        ``name`` not a str; ``compiled`` or ``loaded`` not a sequence of str;
+        a time not a real number.
+    ValueError
+        ``seconds`` or ``cpu_seconds`` negative, NaN or infinite.
+
     Examples
     --------
     >>> step = WarmupStep("geometry", ("navkit.geometry._integrate_kernels.rollout_kernel",),
@@ -341,8 +350,8 @@ class WarmupStep:
     cpu_seconds: float
 
     def __post_init__(self) -> None:
-        if not isinstance(self.name, str):
-            raise TypeError(f"name must be a str, got {type(self.name).__name__}")
+        # Plain str: an np.str_ printed as np.str_('astar') in the record's repr.
+        object.__setattr__(self, "name", as_text(self.name, "name"))
         object.__setattr__(self, "compiled", _names(self.compiled, "compiled"))
         object.__setattr__(self, "loaded", _names(self.loaded, "loaded"))
         seconds = positive_float(self.seconds, "seconds", allow_zero=True)
@@ -364,6 +373,14 @@ class WarmupReport:
         Wall-clock time of the whole warm-up, s.
     workers : int
         Processes that ran the steps (1: the calling process).
+
+    Raises
+    ------
+    TypeError
+        ``steps`` not a sequence of WarmupStep; ``seconds`` not a real number,
+        ``workers`` not an integer.
+    ValueError
+        ``seconds`` negative, NaN or infinite; ``workers`` outside [1, 1024].
 
     Examples
     --------
@@ -420,7 +437,8 @@ def _names(value: object, name: str) -> tuple[str, ...]:
     for item in out:
         if not isinstance(item, str):
             raise TypeError(f"{name} must hold str, got {type(item).__name__}")
-    return out
+    # Plain str: np.str_ kernel names printed as np.str_('...') in the record's repr.
+    return tuple(str.__str__(item) for item in out)
 
 
 def _dispatchers() -> dict[str, Any]:

@@ -23,6 +23,7 @@ from navkit._shared.frozen import (
     slot_names,
 )
 from navkit._shared.locks import ForkSafeLock
+from navkit._shared.text import as_text
 from navkit._shared.types import FloatArray, IntArray
 from navkit._shared.validation import (
     as_bool,
@@ -329,6 +330,8 @@ class MovingObstacle:
             raise ValueError("times must be strictly increasing")
         if not isinstance(self.after, str) or self.after not in _AFTER_CODES:
             raise ValueError(f"after must be 'stop', 'loop' or 'extend', got {self.after!r}")
+        # Plain str: an np.str_ printed as np.str_('loop') in the record's repr.
+        object.__setattr__(self, "after", as_text(self.after, "after"))
         if self.after == "extend" and path.shape[0] < 2:
             raise ValueError("after='extend' needs at least two waypoints")
         if self.after == "extend":

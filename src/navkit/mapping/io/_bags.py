@@ -55,6 +55,7 @@ from numpy.typing import ArrayLike
 from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.dunders import bounded_repr
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
+from navkit._shared.text import as_text
 from navkit._shared.times import as_times
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, as_sequence
@@ -96,17 +97,12 @@ def _frozen(value: ArrayLike, name: str, shape: tuple[int | None, ...]) -> Float
     return arr
 
 
-def _text(value: Any, name: str) -> str:
-    if not isinstance(value, str):
-        raise TypeError(f"{name} must be a str, got {type(value).__name__}")
-    return value
-
-
 def _check_fields(obj: Any, texts: tuple[str, ...], arrays: dict[str, tuple[int, ...]]) -> int:
     """Check the text fields, ``times`` and ``record_times`` and the ``arrays`` (trailing
     shapes after the time axis) of a result, freezing copies; return the number of messages."""
     for name in texts:
-        _text(getattr(obj, name), name)
+        # Plain str: an np.str_ topic printed as np.str_('/scan') in the record's repr.
+        object.__setattr__(obj, name, as_text(getattr(obj, name), name))
     times = _frozen(obj.times, "times", (None,))
     n = int(times.shape[0])
     record_times = _frozen(obj.record_times, "record_times", (n,))
@@ -163,6 +159,16 @@ class BagScans:
         timing already), as :class:`~navkit.estimation.PlanarFusion` does.
     scans : tuple of LaserScan
         The scans, in bag (record-time) order.
+
+    Raises
+    ------
+    TypeError
+        A text field not a str; an array not of real numbers; ``scans`` not
+        a sequence of LaserScan.
+    ValueError
+        An array of the wrong shape (``times`` one-dimensional,
+        ``record_times`` of its length), times that float64 cannot hold
+        exactly, a value NaN or infinite, or not one scan per time.
 
     Notes
     -----
@@ -261,6 +267,16 @@ class BagOdometry:
         :meth:`~navkit.estimation.MeasurementLog.from_streams` refuses as
         variances.
 
+    Raises
+    ------
+    TypeError
+        A text field not a str; an array not of real numbers.
+    ValueError
+        An array of the wrong shape (one row per message: ``times``
+        one-dimensional, ``record_times`` and every other array of its
+        length, with the trailing shapes above), times that float64 cannot
+        hold exactly, or a value NaN or infinite.
+
     Notes
     -----
     Arrays are read-only float64 copies, finite, with matching lengths.
@@ -349,6 +365,16 @@ ndarray, shape (N, 3, 3)
         bag: a -1 in ``[i, 0, 0]`` means the reading is not given (REP 145,
         e.g. no orientation estimate), all zeros that its covariance is unknown
         (the message's comments).
+
+    Raises
+    ------
+    TypeError
+        A text field not a str; an array not of real numbers.
+    ValueError
+        An array of the wrong shape (one row per message: ``times``
+        one-dimensional, ``record_times`` and every other array of its
+        length, with the trailing shapes above), times that float64 cannot
+        hold exactly, or a value NaN or infinite.
 
     Notes
     -----
@@ -466,7 +492,7 @@ ndarray, shape (N, 3, 3)
         mount = as_float_array(mount, named, shape=(4,))
         if not np.any(mount):
             raise ValueError(f"{named} must be a non-zero quaternion (x, y, z, w)")
-        frame = _text(frame_id, "frame_id")
+        frame = as_text(frame_id, "frame_id")
         rotated = imu_to_base(
             self.orientations,
             self.angular_velocities,

@@ -10,6 +10,7 @@ from numpy.typing import ArrayLike
 
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.grid_coords import round_half_up
+from navkit._shared.text import as_text
 from navkit._shared.types import FloatArray, IntArray
 from navkit._shared.validation import as_float_array, bounded_int, finite_float
 
@@ -97,6 +98,8 @@ class Path2D:
             raise TypeError(f"frame must be 'grid' or 'world', got {type(frame).__name__}")
         if frame not in _FRAMES:
             raise ValueError(f"frame must be 'grid' or 'world', got {frame!r}")
+        # Plain str: an np.str_ printed as np.str_('grid') in the record's repr.
+        object.__setattr__(self, "frame", as_text(frame, "frame"))
         cost = _non_negative(self.cost, "cost")
         length = _non_negative(self.length, "length")
         expanded = bounded_int(self.expanded, "expanded", 0, _INT64_MAX)

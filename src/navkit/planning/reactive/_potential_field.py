@@ -377,6 +377,12 @@ class CompositeField(PotentialField):
         The parts (a list, tuple or other ordered iterable; not a mapping, set
         or string), stored as a tuple; an empty one is the zero field.
 
+    Raises
+    ------
+    TypeError
+        ``fields`` not an iterable of PotentialField (a single field, a
+        mapping, a str or a set included), naming the first item that is not one.
+
     Examples
     --------
     >>> from navkit.planning import ConicAttraction, KhatibRepulsion

@@ -277,6 +277,15 @@ class DiffAStar(Scenario):
         the time the route takes at the paper's speed, plus a minute. A trial
         cut short has NaN travel times for the legs it did not finish.
 
+    Raises
+    ------
+    TypeError
+        ``parts`` not a sequence of str, ``building`` not a str, ``noise`` not
+        a bool, ``data_dir`` not a path or None, ``duration`` not a real number.
+    ValueError
+        ``parts`` not 'house' and/or 'building' once each, an unknown
+        ``building``, ``duration`` outside its range.
+
     Examples
     --------
     >>> scenario = DiffAStar(parts=("house",))

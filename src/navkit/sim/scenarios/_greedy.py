@@ -129,6 +129,17 @@ class Greedy(Scenario):
         file; a trial raises :class:`~navkit.errors.DataNotFoundError` when it
         was not found.
 
+    Raises
+    ------
+    TypeError
+        ``noise`` not a bool, ``pairs``, ``duration`` or ``inflation`` not real
+        numbers, ``data_dir`` not a path or None.
+    ValueError
+        ``inflation``, ``duration`` or the number of ``pairs`` outside its
+        range, a goal within the goal radius of its start; with the map
+        found, a start touching an obstacle or a goal A* cannot reach,
+        naming the pair.
+
     Examples
     --------
     >>> scenario = Greedy(noise=False)

@@ -173,6 +173,16 @@ class IndoorNav(Scenario):
         Speed of a second mapping tour (m/s, in [0.05, 1], other than 0.2)
         beside the 0.2 m/s one; None for none. Only with ``map_source="scans"``.
 
+    Raises
+    ------
+    TypeError
+        ``targets`` or ``paths`` not an integer, ``furniture`` not a bool,
+        ``resolution`` or ``compare_speed`` not a real number, ``map_source``
+        not a str.
+    ValueError
+        An argument outside its range, an unknown ``map_source``, a
+        ``compare_speed`` equal to the mapping tour's.
+
     Examples
     --------
     >>> scenario = IndoorNav(targets=1, paths=1, map_source="plan")

@@ -145,6 +145,16 @@ class OmniApf(Scenario):
     duration : float, default 40.0
         Longest simulated time of a trial, s, in [0.1, 3600].
 
+    Raises
+    ------
+    TypeError
+        ``noise``, ``latency`` or ``obstacles`` not a bool (``obstacles`` also
+        None), ``targets`` or ``duration`` not real numbers.
+    ValueError
+        ``duration`` or the number of ``targets`` outside its range, a target
+        nearer than 0.5 m to the start or too far from it, or (with the
+        obstacle series) too near the start or an obstacle box, naming it.
+
     Examples
     --------
     >>> scenario = OmniApf(noise=False, obstacles=False, targets=[(0.0, 1.0)], duration=10.0)

@@ -136,6 +136,13 @@ class Soccer(Scenario):
         (out to 0.55 m from the goal) off the grid: its 'false minima' counts
         fall short (the table says so).
 
+    Raises
+    ------
+    TypeError
+        A number not a real number (``table_cells`` not an integer).
+    ValueError
+        A value NaN, infinite or outside its documented range, naming it.
+
     Examples
     --------
     >>> scenario = Soccer(duration=20.0)
