@@ -8,6 +8,7 @@ real data sets skip when they are absent.
 
 from __future__ import annotations
 
+import gc
 import os
 import re
 from pathlib import Path
@@ -28,8 +29,11 @@ def test_page_examples_run(page: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.chdir(ROOT)
     monkeypatch.setenv("MPLBACKEND", "Agg")
     namespace: dict[str, object] = {"__name__": f"docs_{page.stem}"}
-    for block in re.findall(r"```python\n(.*?)```", text, re.DOTALL):
-        exec(compile(block, str(page), "exec"), namespace)
+    try:
+        for block in re.findall(r"```python\n(.*?)```", text, re.DOTALL):
+            exec(compile(block, str(page), "exec"), namespace)
+    finally:
+        gc.unfreeze()  # a page's gc.freeze() (compilation.md) is for a robot's process
 
 
 def test_docs_have_examples() -> None:

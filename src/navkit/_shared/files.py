@@ -361,7 +361,7 @@ def _backup(target: Path, backups: list[tuple[Path | None, bool]]) -> None:
         except OSError:
             backups[-1] = (None, True)
         return
-    backups.append((None, True))  # pragma: no cover
+    backups.append((None, True))  # every name taken: no link, as where links fail
 
 
 def _new_temporary(target: Path, temporaries: list[Path]) -> None:
@@ -410,7 +410,7 @@ def _new_temporary(target: Path, temporaries: list[Path]) -> None:
             continue
         os.close(fd)
         return
-    raise FileExistsError(f"cannot create a temporary file beside {target}")  # pragma: no cover
+    raise FileExistsError(f"cannot create a temporary file beside {target}")
 
 
 def _file_in_path(folder: Path) -> Path | None:

@@ -10,12 +10,11 @@ signature whatever numba is installed; kernel modules use them instead of
 * :data:`njit_cached`: ``njit(cache=True)``;
 * :data:`njit_inline`: ``njit(cache=True, inline="always")``, inlined into its
   callers at numba IR level;
-* :data:`njit_no_refcount` / :data:`njit_inline_no_refcount`: the same without
-  numba's reference counting, for kernels that allocate nothing;
+* :data:`njit_no_refcount`: :data:`njit_cached` without numba's reference
+  counting, for kernels that allocate nothing;
 * :data:`njit_helper`: :data:`njit_no_refcount` without a Python wrapper, for
   helpers called only from other kernels;
-* :data:`njit_force_inline` / :data:`njit_not_inlined`: a helper compiled once
-  and inlined by LLVM, and the callee of such a function that must stay a call;
+* :data:`njit_force_inline`: a helper compiled once and inlined by LLVM;
 * :data:`njit_released` / :data:`njit_cached_released`: :data:`njit_no_refcount`
   and :data:`njit_cached` for the long kernels, which release the GIL while
   they run (:data:`RELEASES_GIL`);
@@ -542,9 +541,6 @@ NO_REFCOUNT: dict[str, Any] = {**CACHED, "_nrt": False}
 njit_no_refcount: Callable[[_F], _F] = typed_njit(**NO_REFCOUNT)
 """``numba.njit(cache=True)`` without reference counting, for allocation-free kernels."""
 
-njit_inline_no_refcount: Callable[[_F], _F] = typed_njit(inline="always", **NO_REFCOUNT)
-"""As :data:`njit_no_refcount`, inlined into the caller at numba IR level."""
-
 njit_helper: Callable[[_F], _F] = typed_njit(**NO_REFCOUNT, no_cpython_wrapper=True)
 """As :data:`njit_no_refcount`, for a helper called only from other kernels: no
 Python wrapper is compiled (a wrapper of many arguments alone costs tenths of a
@@ -560,11 +556,6 @@ body inlined eight times), but typed once. Its arguments must not be literals
 at any call site: each literal value compiles it once more. Called only from
 kernels: no Python wrapper (A*'s 22-argument relax step: about 0.05 s of its
 first use), and compiled as a helper (:func:`helper_compiler`)."""
-
-njit_not_inlined: Callable[[_F], _F] = typed_njit(**NO_REFCOUNT, forceinline=False)
-"""``njit_no_refcount`` for a kernel called from an LLVM-inlined one (numba's
-``forceinline``): numba passes that flag on to callees that leave it unset,
-which would inline this one into every call site too."""
 
 #: The option of the kernels that release the GIL while they run (``nogil=True``).
 #:

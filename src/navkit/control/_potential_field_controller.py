@@ -484,8 +484,9 @@ class PotentialFieldController:
         v: FloatArray = f_att + self._repulsion(pose, here, obstacles)
         vx, vy = v.tolist()
         if not (math.isfinite(vx) and math.isfinite(vy)):
-            # Numerically on an obstacle the repulsion is infinite: flee at full speed
-            # along its infinite components, or stay put if opposite ones cancel (NaN).
+            # Not reached with navkit's own fields (the repulsion saturates below 1e-9 m:
+            # finite, as the pull clipped above); kept so that an infinite or NaN sum
+            # never becomes the command: full speed along infinite components, else 0.
             v = np.where(np.isinf(v), np.sign(v), 0.0)
         speed = float(np.hypot(v[0], v[1]))
         if speed > self._max_speed:

@@ -48,7 +48,11 @@ _NUMPY_INTS = frozenset(
 
 
 def _plain_int(value: object) -> int | None:
-    """A NumPy integer scalar as a Python int; None for anything else."""
+    """A NumPy integer scalar or 0-d integer array as a Python int; None for anything else."""
+    if type(value) is np.ndarray and value.ndim == 0:
+        # A 0-d array (a reading picked with arr[i, ...]) took update_batch's way:
+        # 0.1 ms a call instead of 2 us, and its first call compiled a kernel.
+        value = value[()]
     return int(value) if type(value) in _NUMPY_INTS else None  # type: ignore[call-overload]
 
 

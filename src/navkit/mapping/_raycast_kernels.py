@@ -49,7 +49,6 @@ def _miss_cell(
     w_cols: int,
     miss: float,
     clamp_low: float,
-    clamp_high: float,
 ) -> int:
     """Give cell (r, c) (inside the window) the miss update unless already updated.
 
@@ -270,7 +269,7 @@ def integrate_beams(
             for i in range(ddr + ddc + 1):
                 if i < ddr + ddc or not skip_end:
                     n_updated += _miss_cell(
-                        logodds, mark, r, c, w_r0, w_c0, w_cols, miss, clamp_low, clamp_high
+                        logodds, mark, r, c, w_r0, w_c0, w_cols, miss, clamp_low
                     )
                 # Never step past the end cell's row or column, so rounding in
                 # t cannot make the walk miss the end cell.
@@ -285,7 +284,7 @@ def integrate_beams(
             for i in range(n_steps + 1):
                 if i < n_steps or not skip_end:
                     n_updated += _miss_cell(
-                        logodds, mark, r, c, w_r0, w_c0, w_cols, miss, clamp_low, clamp_high
+                        logodds, mark, r, c, w_r0, w_c0, w_cols, miss, clamp_low
                     )
                 r, c, err = bresenham_step(r, c, err, ddr, ddc, sr, sc)
     return n_updated

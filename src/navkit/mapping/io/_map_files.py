@@ -950,7 +950,7 @@ def _deep_low_rawmode(img: Any, path: Path) -> str | None:
 
 
 def _deep_colour(
-    img: Any, low: str, fh: BinaryIO, path: Path, image_module: Any
+    img: Any, low: str, fh: BinaryIO, image_module: Any
 ) -> tuple[NDArray[np.float64], NDArray[np.float64] | None]:
     """Grey and alpha (0..255, or None) of a PNG with 16 bits per colour channel.
 
@@ -1015,7 +1015,7 @@ def _read_with_pillow(
         low = _deep_low_rawmode(img, path)
         if low is not None:
             with _pillow_errors(path, Image, img.size):
-                return _deep_colour(img, low, fh, path, Image)
+                return _deep_colour(img, low, fh, Image)
         with _pillow_errors(path, Image, img.size):
             picture: Any = img
             if picture.mode == "F":

@@ -358,6 +358,10 @@ class FieldDStar:
             )
         self._rows, self._cols = (int(v) for v in arr.shape)
         self._obstacles = None if obstacles is None else _obstacle_mask(obstacles, arr)
+        if self._obstacles is not None:
+            # Only a planner told its obstacles escapes (start_tolerance): scipy.ndimage
+            # (0.05-0.5 s to import) here, not in the first escape of a control loop.
+            import scipy.ndimage  # noqa: F401
         # After an escape from the inflation (start_tolerance): the start point the
         # caller gave (node coordinates) and the escape segment's cost (cost units ×
         # cells); _start_point is then the escape cell's centre.
@@ -1190,6 +1194,7 @@ class FieldDStar:
         if created:
             # Built without obstacles: every impassable cell counted as one so far.
             mask = ~np.isfinite(self._pad.reshape(self._rows + 2, self._cols + 2)[1:-1, 1:-1])
+            import scipy.ndimage  # noqa: F401  # it may escape from now on: see __init__
         kinds = None
         if mask is not None:
             rows = cells_u // self._width - 1

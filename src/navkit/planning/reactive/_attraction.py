@@ -438,6 +438,8 @@ class BlendedAttraction(AttractiveField):
     def __post_init__(self) -> None:
         AttractiveField.__post_init__(self)
         _check(self, ("k_att", "c", "m", "u_trans"), ("a", "b", "width"), ("threshold_radius",))
+        # scipy.special (0.1-0.3 s to import) here, not in the first force of a control loop.
+        import scipy.special  # noqa: F401
 
     def sigma(self, d: ArrayLike) -> FloatArray:
         """Blending function σ(d) = ½[tanh((d - rad_thr)/ω) + 1] for distances ``d`` (m).
