@@ -49,7 +49,7 @@ from typing import Any
 
 import numpy as np
 import pytest
-from hypothesis import assume, given, settings
+from hypothesis import assume, example, given, settings
 from hypothesis import strategies as st
 
 import navkit.estimation._ekf as ekf_module
@@ -101,12 +101,21 @@ def _combination(seed: int, n: int, log_p: float, log_ratio: float, log_tiny: fl
     if rng.random() < 0.5:  # orthogonal to v but for rounding: H P Hᵀ cancels
         h = h - (h @ v) / (v @ v) * v
     h = h.reshape(1, n)
-    hph = float(sum(Fraction(a) * Fraction(q) * Fraction(c) for a, row in zip(h[0], p0, strict=True)
-                    for q, c in zip(row, h[0], strict=True)))  # fmt: skip
+    hph = float(_exact_hph(h, p0))
+    # Where hph <= 0, R (the floor times 10**log_ratio) is subnormal or 0, which update
+    # refuses: _check_combination counts such a draw invalid.
     r = np.array([[max(hph, 1e-300) * 10.0**log_ratio]])
     x0 = rng.normal(size=n) * 10.0 ** (0.5 * log_p + rng.uniform(-1.0, 2.0))
     z = h @ x0 + math.sqrt(max(hph, 0.0) + float(r[0, 0])) * rng.normal(size=1)
     return x0, p0, h, r, z
+
+
+def _exact_hph(h: np.ndarray, p0: np.ndarray) -> Fraction:
+    return sum(
+        (Fraction(a) * Fraction(q) * Fraction(c) for a, row in zip(h[0], p0, strict=True)
+         for q, c in zip(row, h[0], strict=True)),
+        Fraction(0),
+    )  # fmt: skip
 
 
 def _exact(draw: Draw) -> tuple[list[Fraction], np.ndarray, Fraction]:
@@ -156,6 +165,11 @@ def _check_single(draw: Draw) -> None:
 def _check_combination(draw: Draw) -> tuple[str, np.ndarray | None]:
     """The outcome and the state committed, after checking them against the exact update."""
     x0, p0, h, r, z = draw
+    if _exact_hph(h, p0) <= 0:
+        # P0 nearly of rank one, positive definite to rounding only, and H P0 Hᵀ <= 0
+        # exactly: no R / H P Hᵀ to draw, and R's floor is no covariance (update
+        # documents R's LDLᵀ pivots normal floats). About 1 uniform draw in 4000.
+        return "invalid", None
     x_exact, p_exact, nis = _exact(draw)
     holdable = kernels._is_covariance(p_exact)
     try:
@@ -193,6 +207,7 @@ def test_a_precise_scalar_measurement_of_a_state_is_the_exact_update(
 
 
 @settings(max_examples=80, deadline=None)
+@example(seed=157749113, n=2, log_p=1.2081386936021445, log_ratio=-9.0, log_tiny=-15.0)
 @given(
     seed=st.integers(0, 2**32 - 1),
     n=st.integers(2, 5),

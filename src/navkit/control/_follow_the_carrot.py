@@ -214,6 +214,13 @@ class FollowTheCarrot(PathTracker):
         # progress: with a carrot more than SEARCH_AHEAD ahead, a robot that drove to
         # it would otherwise project behind it, onto the same carrot, and stop there.
         s = self._advance(line, pose, self._carrot_s)
+        cx, cy = line.point_at(s + self._carrot_distance)
+        while cx == pose.x and cy == pose.y and s + self._carrot_distance < line.length:
+            # The robot stands on the carrot, on a path doubling back through it
+            # (closest at s and at the carrot's arc too): its command would be zero
+            # at every step. It is at the carrot's arc too: project it there.
+            s += self._carrot_distance
+            cx, cy = line.point_at(s + self._carrot_distance)
         self._carrot_s = min(s + self._carrot_distance, line.length)
         gx, gy = line.point_at(line.length)
         near_end = s + self._carrot_distance >= line.length
@@ -222,7 +229,6 @@ class FollowTheCarrot(PathTracker):
         ):
             self._target = (gx, gy)
             return self._finish(pose, dt, self._turn)
-        cx, cy = line.point_at(s + self._carrot_distance)
         self._target = (cx, cy)
         dx = cx - pose.x
         dy = cy - pose.y
