@@ -27,6 +27,13 @@ from navkit.mapping import OccupancyGrid
 
 __all__ = ["RegulatedPurePursuit"]
 
+# pursuit_curvature's straight-line zone (d² <= 1e-3 m²) and the widest heading error
+# (rad) at which a robot in it drives rather than turns (see _command).
+_STRAIGHT_D2 = 1e-3
+_STRAIGHT_ANGLE = math.pi / 4
+# Folds of a path met at one step (see _command): a bound, so that the search always ends.
+_MAX_FOLDS = 64
+
 Clearance = Callable[[float, float], float]
 
 
@@ -76,14 +83,20 @@ class RegulatedPurePursuit(PathTracker):
        robot (interpolated on its segment); when the whole rest of the path is
        nearer, the point ``L`` further along the path (the goal near the end).
        It never moves back along the path by more than ``L`` shrank since the
-       previous step.
+       previous step. A lookahead point no farther from the robot than its
+       closest point (where the two passes of a path doubling back inside the
+       circle meet) is where the robot is too: :attr:`progress` moves there
+       and the lookahead point is found again from it.
     2. **Rotate to heading.** When the lookahead point lies more than
        ``rotate_angle`` off the robot's heading (the path points
        sideways or behind), a differential robot turns in place toward it at
        ``rotate_omega``, within ``max_angular_accel`` of its current turn rate
        and slow enough to stop on it (``|ω| <= sqrt(2 a |angle|)``; a robot
        still turning the other way first slows at ``max_angular_accel``, where
-       Nav2 would reverse its turn at once) — phase **rotate**.
+       Nav2 would reverse its turn at once) — phase **rotate**. Within 3.2 cm
+       of the point (where the arc is a straight line) it turns from 45° off
+       (π/4), whatever a wider ``rotate_angle``: a straight run more than 60°
+       off would end farther from the point (the goal) than it began.
     3. **Track.** Otherwise it drives on the arc through the lookahead point,
        curvature ``κ = 2 y / d²`` (``y`` the point's lateral offset, ``d`` its
        distance, usually ``L``), at
@@ -498,20 +511,33 @@ class RegulatedPurePursuit(PathTracker):
         s = self._advance(line, pose, 0.0 if self._carrot is None else self._carrot[0])
         lookahead = min(max(speed_now * self._lookahead_time, self._min_lookahead),
                         self._max_lookahead)
-        s_carrot = line.circle_exit(pose.x, pose.y, s, lookahead)
-        if s_carrot is None:
-            # The rest of the path lies inside the circle: the point the lookahead
-            # distance further along it (the goal near the end; Nav2 takes the
-            # goal anywhere, which makes a path folding back near its start a trap).
-            s_carrot = min(s + lookahead, line.length)
-        if self._carrot is not None:
-            # The lookahead point moves back along the path only as far as the
-            # lookahead distance shrank: on a path looping inside the circle it
-            # could otherwise alternate between two stretches of it for ever.
-            back = max(0.0, self._carrot[1] - lookahead)
-            s_carrot = max(s_carrot, min(self._carrot[0] - back, line.length))
+        for _ in range(_MAX_FOLDS):
+            s_carrot = line.circle_exit(pose.x, pose.y, s, lookahead)
+            if s_carrot is None:
+                # The rest of the path lies inside the circle: the point the lookahead
+                # distance further along it (the goal near the end; Nav2 takes the
+                # goal anywhere, which makes a path folding back near its start a trap).
+                s_carrot = min(s + lookahead, line.length)
+            if self._carrot is not None:
+                # The lookahead point moves back along the path only as far as the
+                # lookahead distance shrank: on a path looping inside the circle it
+                # could otherwise alternate between two stretches of it for ever.
+                back = max(0.0, self._carrot[1] - lookahead)
+                s_carrot = max(s_carrot, min(self._carrot[0] - back, line.length))
+            cx, cy = line.point_at(s_carrot)
+            if not s < s_carrot < line.length:
+                break
+            fx, fy = line.point_at(s)
+            if math.hypot(cx - pose.x, cy - pose.y) > math.hypot(fx - pose.x, fy - pose.y):
+                break
+            # The lookahead point is as near as the closest point: on a path doubling
+            # back through the robot (an out-and-back shorter than the lookahead) the
+            # robot meets it where the two passes cross, and every command after that
+            # was zero, or a creep toward a point 1e-16 m away. The robot is at the
+            # lookahead point's arc too: project it there and look ahead from it.
+            s = s_carrot
+            self._progress = s
         self._carrot = (s_carrot, lookahead)
-        cx, cy = line.point_at(s_carrot)
         self._target = (cx, cy)
         gx, gy = line.point_at(line.length)
         to_goal = math.hypot(gx - pose.x, gy - pose.y)
@@ -530,7 +556,14 @@ class RegulatedPurePursuit(PathTracker):
         else:
             heading = bearing if self._motion_heading is None else self._motion_heading
         angle = wrap(bearing - heading)
-        if self._rotate_to_heading and abs(angle) > self._rotate_to_heading_angle:
+        dist = math.hypot(cx - pose.x, cy - pose.y)
+        # Nearer than pursuit_curvature steers (3.2 cm) the robot drives straight, and a
+        # straight run up to the point's distance moves away from it when more than 60
+        # degrees off: with a wider rotate_angle and a goal tolerance of millimetres it
+        # circled the goal for ever. Turning to within 45 degrees there first, each run
+        # ends at most 0.77 times as far (the default 0.785 rad turns there already).
+        too_wide = dist * dist <= _STRAIGHT_D2 and abs(angle) > _STRAIGHT_ANGLE
+        if self._rotate_to_heading and (abs(angle) > self._rotate_to_heading_angle or too_wide):
             if self._drive == "diff":
                 self._phase = "rotate"
                 w = self._rotate(angle, dt, w_now)
@@ -539,7 +572,6 @@ class RegulatedPurePursuit(PathTracker):
             heading = bearing
             angle = 0.0
         self._phase = "track"
-        dist = math.hypot(cx - pose.x, cy - pose.y)
         kappa = pursuit_curvature(dist * math.cos(angle), dist * math.sin(angle))
 
         v = self._max_speed
