@@ -512,12 +512,11 @@ class RegulatedPurePursuit(PathTracker):
         lookahead = min(max(speed_now * self._lookahead_time, self._min_lookahead),
                         self._max_lookahead)
         for _ in range(_MAX_FOLDS):
-            s_carrot = line.circle_exit(pose.x, pose.y, s, lookahead)
-            if s_carrot is None:
-                # The rest of the path lies inside the circle: the point the lookahead
-                # distance further along it (the goal near the end; Nav2 takes the
-                # goal anywhere, which makes a path folding back near its start a trap).
-                s_carrot = min(s + lookahead, line.length)
+            s_exit = line.circle_exit(pose.x, pose.y, s, lookahead)
+            # With the rest of the path inside the circle: the point the lookahead
+            # distance further along it (the goal near the end; Nav2 takes the goal
+            # anywhere, which makes a path folding back near its start a trap).
+            s_carrot = min(s + lookahead, line.length) if s_exit is None else s_exit
             if self._carrot is not None:
                 # The lookahead point moves back along the path only as far as the
                 # lookahead distance shrank: on a path looping inside the circle it
