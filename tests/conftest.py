@@ -72,6 +72,18 @@ def _numpy_error_state() -> Iterator[None]:
         yield
 
 
+@pytest.fixture
+def restore_mpmath_digits() -> Iterator[None]:
+    """For tests that set mpmath's global precision: later tests find it as it was.
+
+    Use with ``pytestmark = pytest.mark.usefixtures("restore_mpmath_digits")``.
+    """
+    mp = pytest.importorskip("mpmath")
+    saved = mp.mp.dps
+    yield
+    mp.mp.dps = saved
+
+
 SHARED_DATA = Path(__file__).resolve().parents[1].parent / "shared" / "data"
 
 

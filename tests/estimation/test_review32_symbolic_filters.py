@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import functools
 import math
-from collections.abc import Callable, Iterator
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -33,12 +33,7 @@ mp = pytest.importorskip("mpmath")
 EPS = 2.0**-52
 
 
-@pytest.fixture(autouse=True)
-def _restore_mpmath_digits() -> Iterator[None]:
-    """The tests set mpmath's global precision: other tests find it as it was."""
-    saved = mp.mp.dps
-    yield
-    mp.mp.dps = saved
+pytestmark = pytest.mark.usefixtures("restore_mpmath_digits")
 
 
 def _spd(rng: np.random.Generator, n: int, cond: float, scale: float) -> np.ndarray:

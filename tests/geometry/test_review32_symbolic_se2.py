@@ -18,7 +18,6 @@ ulps of the size of the terms.
 from __future__ import annotations
 
 import math
-from collections.abc import Iterator
 from typing import Any
 
 import numpy as np
@@ -31,12 +30,7 @@ mp = pytest.importorskip("mpmath")
 EPS = 2.0**-52
 
 
-@pytest.fixture(autouse=True)
-def _restore_mpmath_digits() -> Iterator[None]:
-    """The tests set mpmath's global precision: other tests find it as it was."""
-    saved = mp.mp.dps
-    yield
-    mp.mp.dps = saved
+pytestmark = pytest.mark.usefixtures("restore_mpmath_digits")
 
 
 def _pose(rng: np.random.Generator, spread: float) -> Pose2D:
