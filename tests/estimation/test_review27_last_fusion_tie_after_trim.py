@@ -43,12 +43,15 @@ def test_late_odometry_at_one_decimal_stamp_goes_before_that_stamps_yaw() -> Non
     assert _state(fusion) == _state(expected)
 
 
-@pytest.mark.parametrize("t0", [0.0, 12345.678, 1.7e9])
-@pytest.mark.parametrize("rate", [10.0, 30.0, 100.0])
-def test_every_stamp_exactly_history_late_keeps_the_tie_order(t0: float, rate: float) -> None:
+def _tie_order_breaks(t0: float, rate: float, lags: range) -> list[tuple[int, bool]]:
+    """The lags whose late odometry, stamped ``t0 + k / rate``, was refused or misordered.
+
+    For each lag, odometry ``lag / rate`` late (exactly ``history``) against a
+    filter fed the same updates in stamp order, odometry before yaw at a stamp.
+    """
     n = 12
     wrong = []
-    for lag in range(1, 9):
+    for lag in lags:
         late = n - lag
         fusion = PlanarFusion(t0=t0, history=lag / rate)
         expected = PlanarFusion(t0=t0)
@@ -58,7 +61,27 @@ def test_every_stamp_exactly_history_late_keeps_the_tie_order(t0: float, rate: f
                 assert _odometry(fusion, t)
             assert _yaw(fusion, t, k)
             assert _odometry(expected, t) and _yaw(expected, t, k)
-        assert _odometry(fusion, t0 + late / rate), (t0, rate, lag)
-        if _state(fusion) != _state(expected):
-            wrong.append(lag)
-    assert wrong == []
+        accepted = _odometry(fusion, t0 + late / rate)
+        if not accepted or _state(fusion) != _state(expected):
+            wrong.append((lag, accepted))
+    return wrong
+
+
+@pytest.mark.parametrize("t0", [0.0, 12345.678, 1.7e9])
+@pytest.mark.parametrize("rate", [10.0, 30.0, 100.0])
+def test_every_stamp_exactly_history_late_keeps_the_tie_order(t0: float, rate: float) -> None:
+    assert _tie_order_breaks(t0, rate, range(1, 9)) == []
+
+
+@pytest.mark.parametrize("rate", [7.0, 30.0])
+@pytest.mark.parametrize("t0", [-0.45, -1.3])
+def test_stamps_exactly_history_late_around_zero_keep_the_tie_order(t0: float, rate: float) -> None:
+    """Windows longer than the time itself (review 32, mutation).
+
+    The steps kept go once older than ``history + _TRIM_RTOL (|t| + history)``;
+    a mutant trimming at ``history + _TRIM_RTOL (|t| - history)`` survived the
+    suite, whose windows all had ``|t| >= history``: near zero that limit falls
+    below ``history``, a step exactly ``history`` old went, and the late
+    odometry was fused after that stamp's yaw update.
+    """
+    assert _tie_order_breaks(t0, rate, range(1, 12)) == []
