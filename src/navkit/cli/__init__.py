@@ -21,7 +21,9 @@
 ``navkit --help`` and each ``navkit COMMAND --help`` end with examples.
 Bad arguments print the usage and exit with code 2; a mistyped name (a
 command, scenario, planner, map or warm-up step) is answered with the closest
-one (``navkit run omni``: "maybe you meant 'omni-apf'?"). A missing,
+one (``navkit run omni``: "maybe you meant 'omni-apf'?"), and an option the
+command does not have with the command's own usage and its closest option
+(``navkit demo --trail 3``: "maybe you meant '--trials'?"). A missing,
 unreadable or malformed file, map or data set prints one line ``navkit:
 error: ...`` and exits with code 1, as do output files that cannot be
 written, two options naming one file, ``--json -`` (standard output carries

@@ -10,7 +10,7 @@ from collections.abc import Sequence
 from typing import TextIO, cast
 
 from navkit.cli._encoding import tolerant_output
-from navkit.cli._parser import build_parser, join_negative_points
+from navkit.cli._parser import build_parser, join_negative_points, parse_command_line
 from navkit.cli._signals import Terminated, handled_signals
 from navkit.errors import KernelCacheWarning, NavkitError
 
@@ -134,7 +134,7 @@ def _main(argv: Sequence[str] | None, out: TextIO, err: TextIO) -> int:
         parser = build_parser()
         # An embedding interpreter may leave sys.argv unset: no arguments, then.
         given = getattr(sys, "argv", [])[1:] if argv is None else list(argv)
-        args = parser.parse_args(join_negative_points(given, parser=parser))
+        args = parse_command_line(parser, join_negative_points(given, parser=parser))
     except SystemExit as exc:  # --help, --version (0) and bad arguments (2)
         return exc.code if isinstance(exc.code, int) else (0 if exc.code is None else 2)
     except KeyboardInterrupt as exc:  # while the parser is made or a name checked (imports)

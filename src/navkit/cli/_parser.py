@@ -12,7 +12,14 @@ from collections.abc import Callable, Iterable, Sequence
 from importlib import metadata
 from typing import Any, overload
 
-__all__ = ["Choices", "build_parser", "closest_choice", "join_negative_points", "version"]
+__all__ = [
+    "Choices",
+    "build_parser",
+    "closest_choice",
+    "join_negative_points",
+    "parse_command_line",
+    "version",
+]
 
 
 def version() -> str:
@@ -88,6 +95,48 @@ def join_negative_points(
             out.append(arg)
             i += 1
     return out
+
+
+def parse_command_line(parser: argparse.ArgumentParser, argv: Sequence[str]) -> argparse.Namespace:
+    """``parser.parse_args(argv)``, an unknown option reported by the command it was given to.
+
+    argparse reports an option no command has (``navkit demo --trail 3``,
+    ``navkit plan ... --robot-radius 0.2``) from the top-level parser: its
+    usage, ``navkit [-h] [--version] COMMAND ...``, lists none of the
+    command's options. Here the command's parser reports it, with its own
+    usage, and names the command's option closest to the first unknown one.
+
+    Parameters
+    ----------
+    parser : argparse.ArgumentParser
+        :func:`build_parser`'s parser.
+    argv : sequence of str
+        The arguments after the program name.
+
+    Returns
+    -------
+    argparse.Namespace
+        The parsed arguments; bad arguments exit with code 2 and the usage.
+
+    Examples
+    --------
+    >>> parse_command_line(build_parser(["demo"]), ["run", "demo", "--trials", "2"]).trials
+    2
+    """
+    args, extras = parser.parse_known_args(argv)
+    if extras:
+        command = _commands(parser).get(str(getattr(args, "command", "")))
+        reporter = parser if command is None else command
+        message = f"unrecognized arguments: {' '.join(extras)}"
+        typed = next((e.partition("=")[0] for e in extras if e.startswith("--")), None)
+        # --help is left out: "--step" is closer to it than to anything a user meant.
+        names = [
+            n for a in reporter._actions if not isinstance(a, (argparse._HelpAction, _Version))
+            for n in a.option_strings if n.startswith("--")
+        ]  # fmt: skip
+        guess = None if typed is None else closest_choice(typed, names)
+        reporter.error(message if guess is None else f"{message}, maybe you meant {guess!r}?")
+    return args
 
 
 def _commands(parser: argparse.ArgumentParser) -> dict[str, argparse.ArgumentParser]:
@@ -273,7 +322,7 @@ examples:
   navkit list              # the papers' experiments
   navkit run omni-apf --trials 5 --plot omni.png --json omni.json
   navkit plan map.yaml --start -2,-0.5 --goal 2,0.5 --radius 0.1
-  navkit warmup            # compile every kernel ahead (once per machine)
+  navkit warmup            # compile every kernel ahead (once per install)
 
 Run navkit COMMAND --help for a command's options. Exit codes: 0 done; 1 a file, \
 map, data set or plan failed (one line "navkit: error: ..."); 2 bad arguments (with \

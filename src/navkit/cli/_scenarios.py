@@ -12,6 +12,7 @@ from typing import Any, TextIO
 
 from navkit._shared.cores import usable_cores
 from navkit._shared.counts import counted
+from navkit._shared.relative_paths import relative_to_cwd
 from navkit.cli._kernels import announce_compilation, check_cache
 from navkit.cli._outputs import (
     check_distinct,
@@ -98,7 +99,7 @@ def run_scenario(
         # Scenarios fall back to other places or to built-in maps when the data is
         # absent: a mistyped --data would go unnoticed. (With --scheduler the
         # folder is the workers', which need not exist here.)
-        raise FileNotFoundError(f"--data: {args.data} is not a folder")
+        raise FileNotFoundError(f"--data: {args.data} is not a folder{relative_to_cwd(args.data)}")
     # (A Dask cluster's workers compile, and cache, on their own machines.) Checked
     # before the scenario is made: making one may run a kernel (greedy's A* route),
     # and an unusable cache was then reported as the library's two-line warning.

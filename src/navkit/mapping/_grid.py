@@ -157,6 +157,12 @@ def _logodds_array(value: ArrayLike) -> NDArray[Any]:
         if value.ndim != 2:
             raise ValueError(f"logodds must be 2-D, got shape {value.shape}")
         return value
+    if isinstance(value, np.ndarray) and value.dtype == np.bool_:
+        # An occupancy mask is the usual first grid: name the constructor that takes it.
+        raise TypeError(
+            "logodds must hold real numbers, got dtype bool: make a grid of a boolean "
+            "occupancy mask with OccupancyGrid.from_occupancy(mask, resolution=...)"
+        )
     return as_float_array(value, "logodds", ndim=2, finite=False)
 
 

@@ -55,6 +55,7 @@ from numpy.typing import ArrayLike
 from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.dunders import bounded_repr
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
+from navkit._shared.relative_paths import relative_to_cwd
 from navkit._shared.text import as_text
 from navkit._shared.times import as_times
 from navkit._shared.types import FloatArray
@@ -619,7 +620,7 @@ class _CheckedPath(_ConcretePath):
 def _check_path(path: Any) -> Path:
     bag_path = as_path(path, "path")
     if not bag_path.exists():
-        raise FileNotFoundError(f"ROS bag {bag_path} does not exist")
+        raise FileNotFoundError(f"ROS bag {bag_path} does not exist{relative_to_cwd(bag_path)}")
     return bag_path
 
 

@@ -23,6 +23,7 @@ from navkit._shared.counts import counted
 from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.dunders import bounded_repr
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
+from navkit._shared.relative_paths import relative_to_cwd
 from navkit._shared.times import as_times
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, as_sequence, positive_float
@@ -651,7 +652,7 @@ def read_carmen(
     """
     log_path = as_path(path, "path")
     if not log_path.exists():
-        raise FileNotFoundError(f"CARMEN log {log_path} does not exist")
+        raise FileNotFoundError(f"CARMEN log {log_path} does not exist{relative_to_cwd(log_path)}")
     if not log_path.is_file():
         raise ValueError(f"CARMEN log {log_path} is not a regular file")
     rmin = positive_float(range_min, "range_min", allow_zero=True)

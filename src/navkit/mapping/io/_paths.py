@@ -17,6 +17,8 @@ import stat
 from pathlib import Path
 from typing import Any, BinaryIO
 
+from navkit._shared.relative_paths import relative_to_cwd
+
 __all__ = ["as_path", "open_regular"]
 
 
@@ -45,7 +47,8 @@ def open_regular(path: Path, what: str) -> BinaryIO:
     Raises
     ------
     FileNotFoundError
-        ``path`` does not exist ("{what} {path} does not exist").
+        ``path`` does not exist ("{what} {path} does not exist", with the
+        working directory a relative ``path`` was looked up in).
     ValueError
         ``path`` is a directory, a FIFO, a device or a socket.
     """
@@ -55,7 +58,7 @@ def open_regular(path: Path, what: str) -> BinaryIO:
     try:
         fd = os.open(path, flags)
     except FileNotFoundError:
-        raise FileNotFoundError(f"{what} {path} does not exist") from None
+        raise FileNotFoundError(f"{what} {path} does not exist{relative_to_cwd(path)}") from None
     except IsADirectoryError:  # where a directory cannot be opened for reading
         raise ValueError(f"{what} {path} is a directory") from None
     except PermissionError:
@@ -77,3 +80,4 @@ def open_regular(path: Path, what: str) -> BinaryIO:
     # Python code in between: an interrupt inside os.fdopen (Python) closed it twice, and
     # the second close's EBADF OSError replaced the KeyboardInterrupt.
     return open(fd, "rb")
+

@@ -112,8 +112,15 @@ def find_data(relative: str, *, data_dir: str | os.PathLike[str] | None = None) 
         if path.exists():
             return path
     where = ", ".join(str(p) for p in dict.fromkeys(looked))
+    # Told to "pass data_dir=" after passing it, a user was left guessing; the usual
+    # slip is a folder one level off (a data set's own folder, or its parent).
+    advice = (
+        f"set {ENV_VAR} or pass data_dir= (--data on the command line): the folder holding"
+        if data_dir is None
+        else f"data_dir= (--data on the command line) is the only folder looked in (not "
+        f"{ENV_VAR}, not shared/data nearby): it must be the one that itself holds"
+    )
     raise DataNotFoundError(
-        f"{relative} not found in {where}; set {ENV_VAR} or pass data_dir= (--data "
-        "on the command line): the folder holding ros-map-server-maps, carmen-logs, ... "
+        f"{relative} not found in {where}; {advice} ros-map-server-maps, carmen-logs, ... "
         "(where to download them: the 'Data sets' page of navkit's documentation, docs/data.md)"
     )
