@@ -95,8 +95,9 @@ class RegulatedPurePursuit(PathTracker):
        still turning the other way first slows at ``max_angular_accel``, where
        Nav2 would reverse its turn at once) — phase **rotate**. Within 3.2 cm
        of the point (where the arc is a straight line) it turns from 45° off
-       (π/4), whatever a wider ``rotate_angle``: a straight run more than 60°
-       off would end farther from the point (the goal) than it began.
+       (π/4), whatever a wider ``rotate_angle`` and also without
+       ``rotate_to_heading``: a straight run more than 60° off would end
+       farther from the point (the goal) than it began.
     3. **Track.** Otherwise it drives on the arc through the lookahead point,
        curvature ``κ = 2 y / d²`` (``y`` the point's lateral offset, ``d`` its
        distance, usually ``L``), at
@@ -148,7 +149,11 @@ class RegulatedPurePursuit(PathTracker):
         behind the robot (a path starting behind it, a U-turn) is steered for
         on the arc through it, of radius ``d² / (2 |y|)``, which is a straight
         line away from it when the point is right behind: as in Nav2 (without
-        reversing), the robot may never come back to the path.
+        reversing), the robot may never come back to the path. Within 3.2 cm of
+        the lookahead point, where the tracker drives straight rather than on
+        an arc, it still turns (snaps) toward a point more than 45° off (step
+        2): a robot passing the goal a hair to its side would otherwise drive
+        on, away from it.
     rotate_angle : float, default 0.785
         Nav2 ``rotate_to_heading_min_angle`` (rad), in (0, π].
     rotate_omega : float, default 1.8
@@ -561,8 +566,11 @@ class RegulatedPurePursuit(PathTracker):
         # degrees off: with a wider rotate_angle and a goal tolerance of millimetres it
         # circled the goal for ever. Turning to within 45 degrees there first, each run
         # ends at most 0.77 times as far (the default 0.785 rad turns there already).
+        # Whatever rotate_to_heading: there is no arc there to steer on instead, and
+        # without the turn a robot passing the goal a hair to its side drove on, away
+        # from it for good (the goal then right behind).
         too_wide = dist * dist <= _STRAIGHT_D2 and abs(angle) > _STRAIGHT_ANGLE
-        if self._rotate_to_heading and (abs(angle) > self._rotate_to_heading_angle or too_wide):
+        if too_wide or (self._rotate_to_heading and abs(angle) > self._rotate_to_heading_angle):
             if self._drive == "diff":
                 self._phase = "rotate"
                 w = self._rotate(angle, dt, w_now)
