@@ -14,6 +14,7 @@ and :func:`extra_state` for what a subclass adds when they reduce themselves.
 from __future__ import annotations
 
 import threading
+import weakref
 from collections.abc import Collection, Mapping, Sequence
 from dataclasses import FrozenInstanceError, fields
 from typing import Any, TypeVar
@@ -469,7 +470,7 @@ class _Shell:
     Python keeps them for any object whose state refers back to it.
     """
 
-    __slots__ = ("arrays", "loaded", "record")
+    __slots__ = ("__weakref__", "arrays", "loaded", "record")
 
     def __init__(self, record: Any, arrays: tuple[str, ...], loaded: bool) -> None:
         self.record = record
@@ -477,7 +478,13 @@ class _Shell:
         self.loaded = loaded
 
     def __reduce__(self) -> tuple[Any, ...]:
-        state = (_state_of(self.record), _Forget(self.record))
+        try:
+            state = (_state_of(self.record), _Forget(self.record))
+        except BaseException:
+            # A user's __getstate__ that raised: the copy ends here, and the traceback
+            # (which holds this shell) must not keep its entry.
+            _forget(self.record)
+            raise
         return _new_shell, (type(self.record), self.arrays), state
 
     def __setstate__(self, state: tuple[Any, Any]) -> None:
@@ -500,14 +507,18 @@ class _Forget:
 
 # Source shells of the records being copied or pickled in this thread, by id(record):
 # the reductions of one record met again inside its own state share one shell. An
-# entry holds its record, so the id is not reused while it is there.
+# entry holds its record, so the id is not reused while it is there. Weak values:
+# the copy or pickle under way holds its shell (in its memo or on its stack) until it
+# ends; one that failed after the shell's state was handed over (an item of the state
+# that cannot be pickled or copied) never reaches _Forget, and its entry goes with
+# the shell instead of keeping the record until that record is copied again.
 _SHELLS = threading.local()
 
 
-def _shells() -> dict[int, _Shell]:
-    table: dict[int, _Shell] | None = getattr(_SHELLS, "table", None)
+def _shells() -> weakref.WeakValueDictionary[int, _Shell]:
+    table: weakref.WeakValueDictionary[int, _Shell] | None = getattr(_SHELLS, "table", None)
     if table is None:
-        table = _SHELLS.table = {}
+        table = _SHELLS.table = weakref.WeakValueDictionary()
     return table
 
 

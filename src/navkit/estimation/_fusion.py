@@ -133,24 +133,39 @@ def _entry_time(entry: _Entry) -> float:
 #: Relative slack of a late measurement's age. The age is a difference of two
 #: rounded stamps: one exactly ``history`` old may come out above it (at 1.0 s a
 #: stamp 0.7 is 0.3 s old, but 1.0 - 0.7 is 0.30000000000000004 > 0.3; 58 of 192
-#: stamps t0 + k / rate exactly ``history`` late were refused), by at most
-#: 2**-52 (|now| + |stamp| + history) for stamps rounded twice (as t0 + k / rate
-#: is): twice that is slack, 1.5 µs at epoch stamps (1.7e9 s), far below any period.
+#: stamps t0 + k / rate exactly ``history`` late were refused). A stamp t0 + k / rate
+#: is rounded twice, k / rate at |stamp - t0| <= |t0| + |stamp| and the sum at
+#: |stamp|: the age is off by at most 2**-52 (|t0| + |now| + |stamp| + history),
+#: where t0 is the clock's origin (_BUF_ORIGIN). Twice that is slack: 1.5 µs at epoch
+#: stamps (1.7e9 s), far below any period. Without |t0| the slack missed the
+#: rounding of stamps near 0 on clocks crossing it (t0 = -0.35 at 30 Hz: an age
+#: 4.9e-17 over a slack of 4.4e-17 refused a measurement exactly ``history`` late).
 _AGE_RTOL = 2.0**-51
+
+#: Buffer index of the clock's origin, s: the time the clock was set at (t0 or the
+#: first step's stamp; 0.0 before), the scale of the stamps' rounding in the age
+#: slack. Entry 3 of the buffer's time row, which the kernels leave alone; a pickle
+#: from before it holds 0.0 there (the slack it had then).
+_BUF_ORIGIN = BUF_TIME + 3
 
 
 #: The steps kept (PlanarFusion._record) go once older than ``history +
-#: _TRIM_RTOL (|t| + history)``: beyond _too_old's slack for every stamp, however
-#: far back (|stamp| <= |t| + age), with a margin of 2**-50 (|t| + history) for the
-#: roundings. Trimmed at ``history`` itself, a step of a late measurement's own
-#: stamp whose age rounded above it went, and the measurement, taken by the slack,
-#: was fused after that step, where the tie order puts it before (review 27).
+#: _TRIM_RTOL (|t0| + |t| + history)``: beyond _too_old's slack for every stamp,
+#: however far back (|stamp| <= |t| + age), with a margin of 2**-50 (|t0| + |t| +
+#: history) for the roundings. Trimmed at ``history`` itself, a step of a late
+#: measurement's own stamp whose age rounded above it went, and the measurement, taken
+#: by the slack, was fused after that step, where the tie order puts it before
+#: (review 27).
 _TRIM_RTOL = 4.0 * _AGE_RTOL
 
 
-def _too_old(now: float, stamp: float, history: float) -> bool:
-    """Whether ``stamp`` is older than the filter time ``now`` by more than ``history``."""
-    return now - stamp > history + _AGE_RTOL * (abs(now) + abs(stamp) + history)
+def _too_old(now: float, stamp: float, history: float, origin: float) -> bool:
+    """Whether ``stamp`` is older than the filter time ``now`` by more than ``history``.
+
+    Give or take the stamps' rounding (:data:`_AGE_RTOL`) on a clock set at ``origin``.
+    """
+    scale = abs(origin) + abs(now) + abs(stamp) + history
+    return now - stamp > history + _AGE_RTOL * scale
 
 
 # The order of steps with one stamp (history): MeasurementLog.from_streams's order at
@@ -760,9 +775,10 @@ class PlanarFusion(GaussianEstimate):
     Late measurements (``history`` > 0): the filter keeps each online step
     (update or :meth:`predict`) of the last ``history`` seconds with the state
     before it. A measurement older than the filter time ``t`` by at most
-    ``history`` (``t - stamp <= history``, give or take ``2**-51 (|t| + |stamp|
-    + history)`` for the stamps' rounding, 1.5 µs at epoch stamps: at 1.0 s a
-    stamp 0.7 is 0.3 s old, though ``1.0 - 0.7`` rounds to 0.30000000000000004)
+    ``history`` (``t - stamp <= history``, give or take ``2**-51 (|t0| + |t| +
+    |stamp| + history)`` for the stamps' rounding, ``t0`` the time the clock was
+    set at, 1.5 µs at epoch stamps: at 1.0 s a stamp 0.7 is 0.3 s old, though
+    ``1.0 - 0.7`` rounds to 0.30000000000000004)
     goes back to the state before the
     first step later than it, is fused there, and the later steps are taken
     again: whatever order they came in, the filter ends as if the measurements
@@ -845,6 +861,7 @@ class PlanarFusion(GaussianEstimate):
     """
 
     __slots__ = (
+        "_age_scale",
         "_anchor",
         "_buf",
         "_gates",
@@ -902,6 +919,9 @@ class PlanarFusion(GaussianEstimate):
         """
         self._anchor = anchor
         self._history = history
+        # |origin| + history: the part of the age slack's scale fixed while the clock
+        # runs, read by every step kept (_record), which the buffer's item would slow.
+        self._age_scale = abs(buf.item(_BUF_ORIGIN)) + history
         # The steps kept are _steps[_head:], in time order; the slots before _head are
         # _GONE, dropped together once they are half the list (see _record). The list
         # is empty when no step is kept (so _steps[-1] is the newest kept, if any).
@@ -1031,16 +1051,18 @@ class PlanarFusion(GaussianEstimate):
         """
         x = _start_state(x0, pose)
         buf, anchor = _start_buffer(x, P0, t0, q=self._q.copy())
-        # Four stores, no call between (not even np.copyto's Python dispatcher): Python
+        # Five stores, no call between (not even np.copyto's Python dispatcher): Python
         # delivers an interrupt at calls and loops only, so an interrupted reset has
         # happened or not. The buffer stays the same object: x, P and Q stay its views.
         # The one store that allocates (numpy's slice view), and so could fail, goes
-        # first; the list is made before it.
+        # first; the list and the slack's scale are made before it.
         entries: list[_Entry] = []
+        age_scale = abs(buf.item(_BUF_ORIGIN)) + self._history
         self._buf[:] = buf
         self._anchor = anchor
         self._steps = entries
         self._head = 0
+        self._age_scale = age_scale
 
     def predict(self, t: float) -> None:
         """Propagate the state to time ``t`` (s) without a measurement.
@@ -1076,6 +1098,7 @@ class PlanarFusion(GaussianEstimate):
         last = float(self._buf[BUF_TIME])
         if math.isnan(last):  # the clock is not set
             self._buf[BUF_TIME] = time
+            self._set_origin(time)
             return
         if time < last:
             raise ValueError(f"t={time} s is older than the filter time {last} s")
@@ -1456,9 +1479,12 @@ class PlanarFusion(GaussianEstimate):
         the measurement's own stamp whose age rounded above ``history`` went,
         and the measurement, taken, was fused after it where the tie order
         puts it before (review 27: late odometry at 0.7 s after the yaw update
-        at 0.7 s, ``history=0.3`` at 1.0 s).
+        at 0.7 s, ``history=0.3`` at 1.0 s). A step that set the clock sets its
+        origin (:data:`_BUF_ORIGIN`), the slack's scale.
         """
         before = math.nan if unset else self._buf.item(BUF_SAVED_TIME)
+        if before != before:  # NaN: this step set the clock (also a gated first step)
+            self._set_origin(t)
         steps = self._steps
         steps.append((t, before, self._saved.copy(), args, kind))
         history = self._history
@@ -1467,7 +1493,7 @@ class PlanarFusion(GaussianEstimate):
         if age > history:
             # Past the window with _too_old's slack for any stamp (see _TRIM_RTOL),
             # computed once a call (35 ns, where _too_old step by step cost 80).
-            limit = history + _TRIM_RTOL * ((t if t > 0.0 else -t) + history)
+            limit = history + _TRIM_RTOL * ((t if t > 0.0 else -t) + self._age_scale)
             if age > limit:
                 # Each step goes once: about one a call. The loop stops at the
                 # step just kept (age 0).
@@ -1484,6 +1510,12 @@ class PlanarFusion(GaussianEstimate):
                 if n > len(steps) >> 1:
                     del steps[:n]
                     self._head = 0
+
+    def _set_origin(self, t: float) -> None:
+        """Take ``t``, where the clock was just set, as its origin (:data:`_BUF_ORIGIN`)."""
+        age_scale = abs(t) + self._history
+        self._buf[_BUF_ORIGIN] = t
+        self._age_scale = age_scale
 
     def _goes_before(self, t: float, args: _StepArgs) -> bool:
         """Whether a step at the filter time ``t`` belongs before the newest kept step.
@@ -1521,7 +1553,8 @@ class PlanarFusion(GaussianEstimate):
         # which refused a measurement at 0.3 s, 0.7 s before 1.0 s (1.0 - 0.3 is 0.7);
         # and with a slack for the stamps' rounding, which refused one at 0.7 s with
         # history=0.3 (see _AGE_RTOL).
-        if _too_old(last, t, self._history) or i == len(entries) or entries[i][1] > t:
+        origin = self._buf.item(_BUF_ORIGIN)
+        if _too_old(last, t, self._history, origin) or i == len(entries) or entries[i][1] > t:
             return rejected_result(
                 math.nan,
                 np.empty(0),
@@ -1696,6 +1729,8 @@ class PlanarFusion(GaussianEstimate):
         # The kernel undoes a TIME_GAP in row 0 from the last output row (see planar_run).
         out_x[-1] = self._x
         out_p[-1] = self._p
+        if math.isnan(self._buf[BUF_TIME]):  # the clock starts at the first row
+            self._set_origin(float(log.times[0]))
         variances = np.where(log.observed, log.variances, 0.0)
         k.planar_run(
             self._buf, log.times, log.values, variances, self._gates, out_x, out_p, status, nis
@@ -1908,4 +1943,6 @@ def _start_buffer(
     rows[k.BUF_Q : k.BUF_Q + 6] = q
     # NaN until the clock is set (by t0 or the first measurement).
     buf[BUF_TIME] = math.nan if t0 is None else as_time(t0, "t0")
+    if t0 is not None:
+        buf[_BUF_ORIGIN] = buf[BUF_TIME]
     return buf, (ax, ay)

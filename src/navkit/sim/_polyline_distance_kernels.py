@@ -42,7 +42,8 @@ import math
 
 import numpy as np
 
-from navkit._shared.jit import njit_released
+from navkit._shared.jit import njit_force_inline, njit_released
+from navkit._shared.types import KernelInt
 
 __all__ = [
     "CHUNK",
@@ -110,29 +111,43 @@ def chunk_boxes(path: np.ndarray) -> np.ndarray:
     return boxes
 
 
+@njit_force_inline
+def _nearer(
+    px: float, py: float, path: np.ndarray, j0: KernelInt, j1: KernelInt, best: float
+) -> float:
+    """The least of ``best`` and the distances from ``(px, py)`` to segments ``j0 .. j1 - 1``.
+
+    The one segment loop of both kernels: the chunked kernel's distances are the
+    plain one's, bit for bit, because they are computed here alike.
+    """
+    for j in range(j0, j1):
+        ax = path[j, 0]
+        ay = path[j, 1]
+        ex = path[j + 1, 0] - ax
+        ey = path[j + 1, 1] - ay
+        wx = px - ax
+        wy = py - ay
+        ee = ex * ex + ey * ey
+        t = 0.0
+        if ee > 0.0:
+            t = min(max((wx * ex + wy * ey) / ee, 0.0), 1.0)
+        d = math.hypot(wx - t * ex, wy - t * ey)
+        if d < best:
+            best = d
+    return best
+
+
 @njit_released
 def point_polyline_distances(points: np.ndarray, path: np.ndarray, out: np.ndarray) -> None:
     """``out[i]``: distance from ``points[i]`` to the polyline ``path`` (K >= 1 vertices)."""
-    k = path.shape[0]
+    nseg = path.shape[0] - 1
+    # Typed int64, not the literal 0: a literal argument compiles _nearer once more.
+    first = np.int64(0)
     for i in range(points.shape[0]):
         px = points[i, 0]
         py = points[i, 1]
         best = math.hypot(px - path[0, 0], py - path[0, 1])
-        for j in range(k - 1):
-            ax = path[j, 0]
-            ay = path[j, 1]
-            ex = path[j + 1, 0] - ax
-            ey = path[j + 1, 1] - ay
-            wx = px - ax
-            wy = py - ay
-            ee = ex * ex + ey * ey
-            t = 0.0
-            if ee > 0.0:
-                t = min(max((wx * ex + wy * ey) / ee, 0.0), 1.0)
-            d = math.hypot(wx - t * ex, wy - t * ey)
-            if d < best:
-                best = d
-        out[i] = best
+        out[i] = _nearer(px, py, path, first, nseg, best)
 
 
 @njit_released
@@ -189,21 +204,7 @@ def point_polyline_distances_chunked(
             j1 = r * CHUNK + CHUNK
             if j1 > nseg:
                 j1 = nseg
-            lower = best
-            for j in range(r * CHUNK, j1):
-                ax = path[j, 0]
-                ay = path[j, 1]
-                ex = path[j + 1, 0] - ax
-                ey = path[j + 1, 1] - ay
-                wx = px - ax
-                wy = py - ay
-                ee = ex * ex + ey * ey
-                t = 0.0
-                if ee > 0.0:
-                    t = min(max((wx * ex + wy * ey) / ee, 0.0), 1.0)
-                d = math.hypot(wx - t * ex, wy - t * ey)
-                if d < lower:
-                    lower = d
+            lower = _nearer(px, py, path, r * CHUNK, j1, best)
             if lower < best:
                 best = lower
                 found = r

@@ -495,10 +495,10 @@ def _record_fields(data: object, name: str, keys: tuple[str, ...]) -> Mapping[st
     return data
 
 
-def _json_figures(value: object, name: str) -> Any:
+def _json_figures(value: object) -> Any:
     """Figures as :func:`_json_cell` wrote them: None is NaN again (the rest checked later)."""
     if not isinstance(value, Mapping):
-        return value  # refused by _figures, naming ``name``
+        return value  # refused by _figures, under the field's name
     return {key: math.nan if figure is None else figure for key, figure in value.items()}
 
 
@@ -770,7 +770,7 @@ class ScenarioResult:
                 trials.append(
                     TrialResult(
                         Trial(trial["case"], trial["case_index"], trial["index"], trial["seed"]),
-                        _json_figures(trial["values"], "values"),
+                        _json_figures(trial["values"]),
                         wall_time=trial["wall_time"],
                     )
                 )
@@ -784,7 +784,7 @@ class ScenarioResult:
                 fields["seed"],
                 tuple(trials),
                 tables,
-                _json_figures(fields["summary"], "summary"),
+                _json_figures(fields["summary"]),
             )
 
 

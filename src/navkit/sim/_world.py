@@ -67,8 +67,6 @@ _ENTRIES_PER_PRIMITIVE = 32.0
 #: of the near ones costs more than the loop over a few).
 _FEW_CIRCLES = 16
 
-_EMPTY2 = np.empty((0, 2))
-_EMPTY3 = np.empty((0, 3))
 _EMPTY4 = np.empty((0, 4))
 #: Beam directions of a scan in one pass (never written nor read).
 _NO_DIRS = np.empty((0, 2))
@@ -1317,9 +1315,9 @@ class World:
         # A small positive limit: the search stops at once unless something touches.
         if self._clearance(p.x, p.y, p.theta, radius, body, work, scratch, time, 1e-9) <= TOUCH:
             return True
-        return self._point_in_solid(p, radius, verts, time)
+        return self._point_in_solid(p, verts, time)
 
-    def _point_in_solid(self, pose: Pose2D, radius: float, verts: FloatArray, t: float) -> bool:
+    def _point_in_solid(self, pose: Pose2D, verts: FloatArray, t: float) -> bool:
         """Whether one point of a footprint that touches no boundary is inside a solid.
 
         Such a footprint is wholly inside or wholly outside every obstacle, so

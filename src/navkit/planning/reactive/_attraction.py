@@ -452,8 +452,10 @@ class BlendedAttraction(AttractiveField):
         Returns
         -------
         ndarray
-            New array of σ values in [0, 1], the shape of ``d``: 0 near the goal
-            (the paraboloid), 1 far from it (the cone), ½ at ``threshold_radius``.
+            New array of σ values in [0, 1], the shape of ``d`` (0-d for a
+            scalar: an array always, as :meth:`potential` and :meth:`force`
+            return): 0 near the goal (the paraboloid), 1 far from it (the cone),
+            ½ at ``threshold_radius``.
 
         Raises
         ------
@@ -464,15 +466,20 @@ class BlendedAttraction(AttractiveField):
 
         Examples
         --------
-        >>> BlendedAttraction((0.0, 0.0), threshold_radius=1.0).sigma([1.0])
+        >>> field = BlendedAttraction((0.0, 0.0), threshold_radius=1.0)
+        >>> field.sigma([1.0])
         array([0.5])
+        >>> field.sigma(1.0)
+        array(0.5)
         """
         from scipy.special import expit
 
         dist = as_float_array(d, "d")
+        # Into an array of its own: for a 0-d d, expit (a ufunc) returns a NumPy scalar.
+        out: FloatArray = np.empty_like(dist)
         # Far beyond the blend the argument may overflow to ±inf: σ is then 1 or 0.
         with np.errstate(over="ignore"):
-            out: FloatArray = expit(2.0 * (dist - self.threshold_radius) / self.width)
+            expit(2.0 * (dist - self.threshold_radius) / self.width, out=out)
         return out
 
     def _terms(
