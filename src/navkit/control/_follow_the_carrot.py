@@ -17,6 +17,10 @@ from navkit.geometry import Pose2D, Twist2D
 
 __all__ = ["FollowTheCarrot"]
 
+# Folds of a path through the robot passed at one step (see _command), as
+# RegulatedPurePursuit's: a bound, so that the search always ends.
+_MAX_FOLDS = 64
+
 
 class FollowTheCarrot(PathTracker):
     """Follow-the-carrot path tracker in three phases.
@@ -215,11 +219,21 @@ class FollowTheCarrot(PathTracker):
         # it would otherwise project behind it, onto the same carrot, and stop there.
         s = self._advance(line, pose, self._carrot_s)
         cx, cy = line.point_at(s + self._carrot_distance)
-        while cx == pose.x and cy == pose.y and s + self._carrot_distance < line.length:
+        folds = 0
+        while (
+            cx == pose.x
+            and cy == pose.y
+            and s < s + self._carrot_distance < line.length
+            and folds < _MAX_FOLDS
+        ):
             # The robot stands on the carrot, on a path doubling back through it
             # (closest at s and at the carrot's arc too): its command would be zero
-            # at every step. It is at the carrot's arc too: project it there.
+            # at every step. It is at the carrot's arc too: project it there. Bounded,
+            # and s must grow: a carrot distance below half an ulp of s left it where
+            # it was, and the step never returned. The next step goes on from there.
             s += self._carrot_distance
+            self._progress = s
+            folds += 1
             cx, cy = line.point_at(s + self._carrot_distance)
         self._carrot_s = min(s + self._carrot_distance, line.length)
         gx, gy = line.point_at(line.length)

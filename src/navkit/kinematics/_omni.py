@@ -474,6 +474,9 @@ def _degrees_text(angles: FloatArray) -> str | None:
         for decimals in range(7):
             text = f"{np.degrees(angle):.{decimals}f}"
             text = text.rstrip("0").rstrip(".") if "." in text else text
+            if text == "-0":
+                # eval reads -0 as the integer 0, whose radians are +0.0.
+                text = "-0.0"
             back = float(np.radians(float(text)))
             if back == angle and np.signbit(back) == np.signbit(angle):
                 out.append(text)

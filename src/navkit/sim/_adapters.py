@@ -168,9 +168,15 @@ class TrackerController(Generic[_T]):
         self._use_estimate = as_bool(use_estimate, "use_estimate")
 
     def __repr__(self) -> str:
-        # The rate back from its period, to 15 digits: 1 / (1 / rate) may differ from
-        # the rate given in the last bit.
-        rate = float(f"{1.0 / self._dt:.15g}")
+        # The rate back from its period, in the fewest digits that give the period
+        # back: 1 / (1 / rate) may differ from the rate given in the last bit, and 15
+        # digits alone printed 1/3 Hz as 0.333333333333333, a period 3e-15 s longer.
+        rate = 1.0 / self._dt
+        for digits in range(1, 18):
+            shortest = float(f"{rate:.{digits}g}")
+            if 1.0 / shortest == self._dt:
+                rate = shortest
+                break
         return (
             f"{type(self).__name__}({self.tracker!r}, control_rate={rate!r}, "
             f"use_estimate={self._use_estimate})"

@@ -34,6 +34,24 @@ EndReason = Literal["goal reached", "collision", "timeout", "controller done", "
 _END_REASONS = ("goal reached", "collision", "timeout", "controller done", "wall-clock timeout")
 
 
+def _end_reason(value: object, name: str) -> str:
+    """``value``, one of the end reasons, as a plain ``str`` (``TypeError``, ``ValueError``)."""
+    if isinstance(value, str):
+        # Checked as the plain str stored: a subclass's own == (case-blind, say) let
+        # "COLLISION" through, stored as it is, no reason at all.
+        text = as_text(value, name)
+        if text not in _END_REASONS:
+            raise ValueError(f"{name} must be one of {_END_REASONS}, got {text!r}")
+        return text
+    try:
+        equal = value in _END_REASONS
+    except ValueError:  # an array of several texts: its == has no single truth value
+        equal = True
+    if not equal:
+        raise ValueError(f"{name} must be one of {_END_REASONS}, got {value!r}")
+    return as_text(value, name)  # equal to a reason without being a str: TypeError
+
+
 @frozen_setattr
 @dataclass(frozen=True, slots=True)
 class Event:
@@ -53,9 +71,11 @@ class Event:
     ------
     TypeError
         ``t`` not a real number, ``message`` not a str (nor ``kind``, when
-        it equals a reason without being a str).
+        it equals a reason without being a str, or is an array of texts).
     ValueError
-        ``t`` NaN or infinite; ``kind`` not one of the reasons above.
+        ``t`` NaN or infinite; ``kind`` not one of the reasons above (a
+        ``str`` subclass compared as the plain text stored, not with its own
+        ``==``).
 
     Examples
     --------
@@ -69,10 +89,8 @@ class Event:
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "t", finite_float(self.t, "t"))
-        if self.kind not in _END_REASONS:
-            raise ValueError(f"kind must be one of {_END_REASONS}, got {self.kind!r}")
         # Plain str: an np.str_ printed as np.str_('collision') in the record's repr.
-        object.__setattr__(self, "kind", as_text(self.kind, "kind"))
+        object.__setattr__(self, "kind", _end_reason(self.kind, "kind"))
         object.__setattr__(self, "message", as_text(self.message, "message"))
 
 
@@ -149,9 +167,7 @@ class Metrics:
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "reached", as_bool(self.reached, "reached"))
-        if self.reason not in _END_REASONS:
-            raise ValueError(f"reason must be one of {_END_REASONS}, got {self.reason!r}")
-        object.__setattr__(self, "reason", as_text(self.reason, "reason"))
+        object.__setattr__(self, "reason", _end_reason(self.reason, "reason"))
         # Every figure is a time since the run's start or a distance: none can be
         # negative (a negative one is a sign or an origin mixed up by its maker).
         for name in ("duration", "distance"):

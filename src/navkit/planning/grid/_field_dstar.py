@@ -498,6 +498,10 @@ class FieldDStar:
         restore_slots(self, (instance, slots))
         self._vals, self._heap = vals, heap
         self._g, self._rhs = vals[:, G], vals[:, RHS]
+        if self._obstacles is not None:
+            # As in __init__: a planner unpickled in a fresh process (a sweep's worker)
+            # paid the import of scipy.ndimage at its first escape, in the control loop.
+            import scipy.ndimage  # noqa: F401
 
     def __copy__(self) -> FieldDStar:
         # update_costs() and every search write the costs and the search state in

@@ -96,10 +96,12 @@ class Path2D:
         frame: Any = self.frame
         if not isinstance(frame, str):
             raise TypeError(f"frame must be 'grid' or 'world', got {type(frame).__name__}")
+        # Plain str: an np.str_ printed as np.str_('grid') in the record's repr. Checked
+        # as stored: a subclass's own == (case-blind, say) let "GRID" through.
+        frame = as_text(frame, "frame")
         if frame not in _FRAMES:
             raise ValueError(f"frame must be 'grid' or 'world', got {frame!r}")
-        # Plain str: an np.str_ printed as np.str_('grid') in the record's repr.
-        object.__setattr__(self, "frame", as_text(frame, "frame"))
+        object.__setattr__(self, "frame", frame)
         cost = _non_negative(self.cost, "cost")
         length = _non_negative(self.length, "length")
         expanded = bounded_int(self.expanded, "expanded", 0, _INT64_MAX)
