@@ -134,6 +134,15 @@ class CompassCalibration:
     calls (successive readings never jump by 2π), as needed for logs that are
     streamed in pieces.
 
+    The first reading's noise stays in every yaw as a constant offset: with
+    readings of independent noise of standard deviation σ, each yaw (after
+    the first, which is exactly 0) is off by the difference of two readings'
+    noise, standard deviation σ√2, and any two yaws' errors are correlated
+    by 1/2 (the first reading's share). Where that matters (a filter fusing
+    the yaws as independent readings of variance σ² would be overconfident),
+    latch a heading averaged over readings taken standing still instead:
+    :func:`compass_to_yaw` with that ``initial_deg``.
+
     An ordinary class with ``__slots__`` rather than a frozen dataclass: it
     latches its first reading (and the last yaw when unwrapping). So it is not
     thread-safe: one thread at a time may call it; different calibrations may

@@ -107,6 +107,22 @@ class ScanMatchResult:
         ``resolution² / (12 r²)`` rad²), if the plateau ends within a cell in
         every direction; one the scan could slide on (inside a solid block,
         along a corridor) is ``"degenerate"``.
+        This is the uncertainty of the fit, not a bound on the pose error:
+        it leaves out the map's discretisation, and range noise beyond about
+        half a cell (a point more than a cell from its wall adds nothing to
+        the fit's slope). Measured over 100 simulated scans each (360 beams,
+        RMS range 2.6 m, a room mapped from the true pose in 5 cm cells): the
+        spread of the matches is 0.7 to 1.2 times the reported standard
+        deviations at 1 % range noise, about 2 times at 2.23 % (the default
+        of ``navkit.sim.RangeNoise``) and 4 times at 5 %; noise-free
+        matches are biased by about 0.1 cell where walls lie inside cells and
+        0.4 cell where they lie on cell edges of a map built with
+        :func:`~navkit.mapping.integrate_scan` (2 to 5 times the reported
+        deviation; the plateau matches of walls drawn on cell edges land
+        within 0.3 mm, well inside their one-cell covariance). Adding the
+        one-cell covariance (``resolution² / 12`` per axis) covered bias and
+        spread up to 2.23 % noise (mean NEES 0.3 to 2.5; 3 is consistent),
+        not at 5 % (12.5).
     iterations : int
         Gauss–Newton iterations done, all levels together.
     score : float

@@ -64,7 +64,8 @@ class Compass:
     Parameters
     ----------
     noise : float, default 0.0
-        Standard deviation of the reading, rad, in [0, π].
+        Standard deviation of each reading, rad, in [0, π]; independent from
+        reading to reading (white), whatever the ``rate``.
     bias : float, default 0.0
         Constant offset of the reading, rad, in [-π, π] (clockwise positive,
         like the reading).
@@ -150,19 +151,25 @@ class Imu:
     """A planar IMU: gyro yaw rate and body-frame acceleration, with noise and bias.
 
     The gyro reads the true yaw rate plus ``gyro_bias`` plus Gaussian noise of
-    ``gyro_noise``; the accelerometer reads the true acceleration of the
-    robot's reference point in the robot frame (gravity removed),
-    ``(v̇x - ω vy, v̇y + ω vx)``, plus ``accel_bias`` plus Gaussian noise of
-    ``accel_noise`` on each axis.
+    standard deviation ``gyro_noise``; the accelerometer reads the true
+    acceleration of the robot's reference point in the robot frame (gravity
+    removed), ``(v̇x - ω vy, v̇y + ω vx)``, plus ``accel_bias`` plus Gaussian
+    noise of standard deviation ``accel_noise`` on each axis. The noise is
+    drawn independently for every sample and axis (white), with these
+    standard deviations per sample whatever the ``rate``: they are not noise
+    densities (a datasheet's density ``N``, in rad/s/√Hz or m/s²/√Hz, sampled
+    at ``rate`` is about ``N * sqrt(rate)`` per sample). The biases are
+    constant (no random walk).
 
     Parameters
     ----------
     gyro_noise : float, default 0.0
-        rad/s, in [0, 100].
+        Standard deviation of each gyro sample, rad/s, in [0, 100].
     gyro_bias : float, default 0.0
         rad/s, in [-100, 100].
     accel_noise : float, default 0.0
-        m/s², in [0, 1000].
+        Standard deviation of each accelerometer sample on each axis, m/s², in
+        [0, 1000].
     accel_bias : float, default 0.0
         m/s², in [-1000, 1000], the same on both axes.
     rate : float, default 100.0

@@ -307,7 +307,20 @@ class Simulation:
         ``t0`` or a filter used in an earlier run, which would refuse the
         readings as out of order); an earlier ``t0`` is taken, and its first
         reading predicts over the gap from ``t0`` as well (build it with
-        ``t0=0.0`` unless the robot moved before the run).
+        ``t0=0.0`` unless the robot moved before the run). It is given the
+        sensors' own noise as variances: the compass's ``noise²`` (at least
+        1e-6 rad²) for the yaw, the IMU's ``gyro_noise²`` (at least 1e-6) and
+        ``accel_noise²`` (at least 1e-4) for the yaw rate and the forward
+        acceleration, and for the odometry's speed and yaw rate the
+        encoders' quantisation (a uniform error of one tick at each end of
+        each interval); biases, slip and wheel-radius errors are not in
+        them. Each reading is fused as if taken at its delivery time, so with
+        latency the estimate lags the robot by it, which its covariance does
+        not include (turning at 0.4 rad/s with 0.1 s on every sensor: the
+        heading 0.043 rad behind, a mean heading NEES of about 1.9 where 1 is
+        consistent, 0.8 without latency); an :class:`Estimator` of your own
+        can pass ``reading.stamp`` to a ``PlanarFusion`` whose ``history``
+        covers the latencies.
         A ``DiffOdometry`` is given the counter readings as counters of its
         own ``bits`` (the same tick changes), so that the encoders'
         wrap-around does not depend on the two widths agreeing.
