@@ -68,7 +68,7 @@ def test_cells_near_points_whose_discs_miss_the_map_is_empty() -> None:
 def test_grid_repr_names_shape_resolution_and_origin() -> None:
     grid = OccupancyGrid.empty(width=1.0, height=0.6, resolution=0.2, origin=(1.0, -2.0, 0.5))
     assert repr(grid) == (
-        "OccupancyGrid(shape=(3, 5), resolution=0.2, origin=Pose2D(x=1.0, y=-2.0, theta=0.5))"
+        "OccupancyGrid(<3x5 cells>, resolution=0.2, origin=Pose2D(x=1.0, y=-2.0, theta=0.5))"
     )
 
 

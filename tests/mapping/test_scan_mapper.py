@@ -249,7 +249,7 @@ def test_arguments() -> None:
     mapper.update(
         LaserScan([math.nan] * 8, angle_min=0.0, angle_increment=0.5, range_min=0.1, range_max=5.0)
     )
-    assert len(mapper) == 1 and "scans=1" in repr(mapper)
+    assert len(mapper) == 1 and "<1 scan>" in repr(mapper)
 
 
 def test_odometry_after_a_scan_without_it_is_not_counted_twice() -> None:

@@ -29,7 +29,7 @@ def _simulation(cls: type[Simulation] = Simulation, **kw: object) -> Simulation:
 def test_a_simulation_prints_its_run() -> None:
     text = repr(_simulation(goal=(5.0, 5.0)))
     assert text == (
-        "Simulation(World(edges=4, circles=0, grid=None, moving=0), "
+        "Simulation(World(<4 edges, 0 circles>, grid=None, moving=<0 obstacles>), "
         "start=Pose2D(x=1.0, y=2.0, theta=0.5), goal=(5.0, 5.0), duration=3.0, "
         "rate=100.0, control_rate=20.0)"
     )

@@ -36,7 +36,7 @@ def test_obstacle_kinds() -> None:
     assert world.collides(0.2, (2.5, 2.5, 0.0))
     assert world.collides(0.2, (8.0, 8.0, 0.0))  # inside the solid circle
     assert not World(Circle((8.0, 8.0), 3.0, solid=False)).collides(0.2, (8.0, 8.0, 0.0))
-    assert "edges=21" in repr(world)
+    assert "<21 edges, 1 circle>" in repr(world)
 
 
 def test_empty_world() -> None:

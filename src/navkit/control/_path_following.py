@@ -30,7 +30,7 @@ from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.dunders import slot_state
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, finite_float, positive_float
-from navkit.control._path_following_kernels import circle_exit, point_at, project
+from navkit.control._path_following_kernels import circle_exit, point_at, project, project_point
 from navkit.geometry import Pose2D, Twist2D, as_pose
 from navkit.planning import Path2D
 
@@ -160,7 +160,7 @@ class Polyline:
     (2.5, 1.0)
     """
 
-    __slots__ = ("cum", "length", "points_xy")
+    __slots__ = ("cum", "end", "length", "points_xy")
 
     def __init__(self, points_xy: FloatArray) -> None:
         pts = np.asarray(points_xy, dtype=np.float64)
@@ -176,6 +176,8 @@ class Polyline:
         self.points_xy: FloatArray = pts
         self.cum: FloatArray = cum
         self.length = float(cum[-1])
+        # point_at(length), the last point: read at every step of some trackers.
+        self.end = (float(pts[-1, 0]), float(pts[-1, 1]))
 
     def __reduce__(self) -> tuple[type[Polyline], tuple[FloatArray]]:
         # Rebuilt from its points, so that pickles and deep copies (whose arrays
@@ -209,6 +211,17 @@ class Polyline:
             float(x), float(y), self.points_xy, self.cum, lo, hi, float(s_free), float(detour)
         )
         return float(s), float(d)
+
+    def project_point(
+        self, x: float, y: float, s_from: float, s_to: float, detour: float, s_free: float
+    ) -> tuple[float, float, float]:
+        """:meth:`project`'s ``s`` and ``point_at(s)`` in one call: ``(s, px, py)``."""
+        lo = min(max(float(s_from), 0.0), self.length)
+        hi = min(max(float(s_to), lo), self.length)
+        s, px, py = project_point(
+            float(x), float(y), self.points_xy, self.cum, lo, hi, float(s_free), float(detour)
+        )
+        return float(s), float(px), float(py)
 
     def circle_exit(self, x: float, y: float, s_from: float, radius: float) -> float | None:
         """First ``s >= s_from`` whose point is at least ``radius`` from ``(x, y)``.
@@ -472,6 +485,15 @@ class PathTracker(ABC):
         s, _ = line.project(pose.x, pose.y, self._progress, hi, SEARCH_DETOUR, reach)
         self._progress = s
         return s
+
+    def _advance_point(
+        self, line: Polyline, pose: Pose2D, reach: float
+    ) -> tuple[float, float, float]:
+        """:meth:`_advance`, returning the new progress's point too: ``(s, x, y)``."""
+        hi = max(self._progress + SEARCH_AHEAD, reach)
+        s, x, y = line.project_point(pose.x, pose.y, self._progress, hi, SEARCH_DETOUR, reach)
+        self._progress = s
+        return s, x, y
 
     def _finish(self, pose: Pose2D, dt: float, turn: Any) -> Twist2D:
         """The final phase: turn in place to the goal yaw with ``turn(error, dt)``."""

@@ -513,11 +513,15 @@ class RegulatedPurePursuit(PathTracker):
             self._last if measured is None else (measured.vx, measured.vy, measured.omega)
         )
         speed_now = abs(vx_now) if self._drive == "diff" else math.hypot(vx_now, vy_now)
-        s = self._advance(line, pose, 0.0 if self._carrot is None else self._carrot[0])
+        px, py = pose.x, pose.y
+        # With the point at the new progress: the fold check below needs it, and a
+        # second call for it cost 0.4 µs of a 7 µs step.
+        reach = 0.0 if self._carrot is None else self._carrot[0]
+        s, fx, fy = self._advance_point(line, pose, reach)
         lookahead = min(max(speed_now * self._lookahead_time, self._min_lookahead),
                         self._max_lookahead)
         for _ in range(_MAX_FOLDS):
-            s_exit = line.circle_exit(pose.x, pose.y, s, lookahead)
+            s_exit = line.circle_exit(px, py, s, lookahead)
             # With the rest of the path inside the circle: the point the lookahead
             # distance further along it (the goal near the end; Nav2 takes the goal
             # anywhere, which makes a path folding back near its start a trap).
@@ -529,10 +533,10 @@ class RegulatedPurePursuit(PathTracker):
                 back = max(0.0, self._carrot[1] - lookahead)
                 s_carrot = max(s_carrot, min(self._carrot[0] - back, line.length))
             cx, cy = line.point_at(s_carrot)
+            dist = math.hypot(cx - px, cy - py)
             if not s < s_carrot < line.length:
                 break
-            fx, fy = line.point_at(s)
-            if math.hypot(cx - pose.x, cy - pose.y) > math.hypot(fx - pose.x, fy - pose.y):
+            if dist > math.hypot(fx - px, fy - py):
                 break
             # The lookahead point is as near as the closest point: on a path doubling
             # back through the robot (an out-and-back shorter than the lookahead) the
@@ -541,10 +545,11 @@ class RegulatedPurePursuit(PathTracker):
             # lookahead point's arc too: project it there and look ahead from it.
             s = s_carrot
             self._progress = s
+            fx, fy = cx, cy  # point_at(s), as computed for the lookahead point
         self._carrot = (s_carrot, lookahead)
         self._target = (cx, cy)
-        gx, gy = line.point_at(line.length)
-        to_goal = math.hypot(gx - pose.x, gy - pose.y)
+        gx, gy = line.end
+        to_goal = math.hypot(gx - px, gy - py)
         if self._phase == "final" or (
             s_carrot >= line.length and to_goal <= self._goal_tolerance
         ):
@@ -560,7 +565,6 @@ class RegulatedPurePursuit(PathTracker):
         else:
             heading = bearing if self._motion_heading is None else self._motion_heading
         angle = wrap(bearing - heading)
-        dist = math.hypot(cx - pose.x, cy - pose.y)
         # Nearer than pursuit_curvature steers (3.2 cm) the robot drives straight, and a
         # straight run up to the point's distance moves away from it when more than 60
         # degrees off: with a wider rotate_angle and a goal tolerance of millimetres it

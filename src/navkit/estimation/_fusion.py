@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from navkit._shared.counts import counted
 from navkit._shared.frozen import extra_state, frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.times import as_time, as_times
 from navkit._shared.types import BoolArray, FloatArray
@@ -422,7 +423,7 @@ class MeasurementLog:
         blocks: list[tuple[FloatArray, FloatArray, FloatArray, BoolArray]] = []
         if odometry is not None:
             parts = _stream(odometry, "odometry", (2, 3))
-            odo_var = _pair(odometry_variance, "odometry_variance")
+            odo_var = _pair(odometry_variance, "odometry_variance", rates=len(parts) == 3)
             t = parts[0]
             comps = {}
             for comp, val in enumerate(parts[1:], start=1):
@@ -470,7 +471,8 @@ def _stream(stream: Any, name: str, widths: tuple[int, ...]) -> tuple[FloatArray
     return (t, *rest)
 
 
-def _pair(value: Any, name: str) -> tuple[Any, Any]:
+def _pair(value: Any, name: str, *, rates: bool) -> tuple[Any, Any]:
+    """``(v_variance, omega_variance)``; ``rates``: whether the odometry has yaw rates."""
     # A 0-d array is an ndarray without a length (len() would raise unnamed).
     if isinstance(value, (memoryview, array.array)) or (
         not isinstance(value, (str, bytes, tuple, list, np.ndarray)) and has_array_protocol(value)
@@ -488,7 +490,17 @@ def _pair(value: Any, name: str) -> tuple[Any, Any]:
     ):
         raise TypeError(f"{name} must be a pair (v_variance, omega_variance)")
     if len(value) != 2:
-        raise ValueError(f"{name} must be a pair (v_variance, omega_variance), got {len(value)}")
+        # Most often one variance per sample given bare: say how to give those.
+        hint = (
+            "a pair of arrays, (v_variances, omega_variances)"
+            if rates
+            else "(v_variances, 1.0): the second is not read, the odometry having no yaw rates"
+        )
+        got = counted(len(value), "item")
+        raise ValueError(
+            f"{name} must be a pair (v_variance, omega_variance), got {got}; "
+            f"for one variance per sample give {hint}"
+        )
     return value[0], value[1]
 
 

@@ -117,12 +117,27 @@ def _threshold(value: float | None, default: float, name: str) -> float:
     return out
 
 
-def _thresholds(occupied: float, free: float) -> None:
-    if not free < occupied:
+def _thresholds(
+    occupied: float, free: float, *, own_occupied: bool = False, own_free: bool = False
+) -> None:
+    """Refuse ``free >= occupied``; ``own_*``: that value is the grid's, not the caller's."""
+    if free < occupied:
+        return
+    if own_free and not own_occupied:
+        # "Swapped?" would blame two values the caller did not both give.
         raise ValueError(
-            f"free_thresh ({free}) must be smaller than occupied_thresh ({occupied}); "
-            "are the two swapped?"
+            f"occupied_thresh ({occupied}) must be larger than free_thresh ({free}: the "
+            "grid's own, as free_thresh was not given)"
         )
+    if own_occupied and not own_free:
+        raise ValueError(
+            f"free_thresh ({free}) must be smaller than occupied_thresh ({occupied}: the "
+            "grid's own, as occupied_thresh was not given)"
+        )
+    raise ValueError(
+        f"free_thresh ({free}) must be smaller than occupied_thresh ({occupied}); "
+        "are the two swapped?"
+    )
 
 
 def grid_origin(value: Pose2D | ArrayLike, name: str = "origin") -> Pose2D:
@@ -447,8 +462,11 @@ class OccupancyGrid:
         return self.shape[0] * self._resolution
 
     def __repr__(self) -> str:
+        # The log-odds, an argument not printed, as <...> (as AStarPlanner's costs):
+        # "shape=" read as a keyword the constructor does not take.
+        rows, cols = self.shape
         return (
-            f"{type(self).__name__}(shape={self.shape}, resolution={self._resolution}, "
+            f"{type(self).__name__}(<{rows}x{cols} cells>, resolution={self._resolution}, "
             f"origin={self._origin!r})"
         )
 
@@ -1144,7 +1162,7 @@ class OccupancyGrid:
         """
         occ = _threshold(occupied_thresh, self._occupied_thresh, "occupied_thresh")
         free = _threshold(free_thresh, self._free_thresh, "free_thresh")
-        _thresholds(occ, free)
+        _thresholds(occ, free, own_occupied=occupied_thresh is None, own_free=free_thresh is None)
         return ~(self._logodds > logit_bound(occ)) & ~(self._logodds < logit_bound(free))
 
     # --------------------------------------------------------------- inflation

@@ -9,6 +9,7 @@ from typing import Any, cast
 import numpy as np
 from numpy.typing import ArrayLike
 
+from navkit._shared.counts import counted
 from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.frozen import restore_slots
 from navkit._shared.types import FloatArray
@@ -289,7 +290,9 @@ class ScanMapper:
         return True
 
     def __repr__(self) -> str:
-        return f"{type(self).__name__}(resolution={self._resolution}, scans={len(self)})"
+        # The scans taken are no argument: <...> as the library's other reprs show state.
+        scans = counted(len(self), "scan")
+        return f"{type(self).__name__}(<{scans}>, resolution={self._resolution})"
 
     def __copy__(self) -> ScanMapper:
         # update() writes into the map levels and appends to the trajectory in

@@ -134,6 +134,10 @@ def _figures(value: object, name: str) -> FrozenDict[str, float]:
     for key, figure in value.items():
         if not isinstance(key, str):
             raise TypeError(f"{name} keys must be str, got {type(key).__name__}")
+        # Plain str: an np.str_ key printed as np.str_('error') in the record's repr.
+        key = as_text(key, f"{name} keys")
+        if key in out:  # two subclass keys spelling the same text (their own hash differs)
+            raise ValueError(f"{name} has the key {key!r} twice")
         # NumPy booleans too (``np.all(...)``): booleans are stored as 0.0/1.0.
         if not isinstance(figure, (int, float, np.integer, np.floating, np.bool_)):
             raise TypeError(f"{name}[{key!r}] must be a real number, got {type(figure).__name__}")
@@ -151,8 +155,10 @@ def _restore_figures(record: Any, state: list[Any], name: str) -> None:
     """
     restore_read_only(record, state, ())
     figures = getattr(record, name)
-    if type(figures) is dict:
-        object.__setattr__(record, name, FrozenDict.wrap(figures))
+    if type(figures) is dict or any(type(key) is not str for key in figures):
+        # Older pickles may also hold np.str_ keys (before they were stored as plain str).
+        plain = {as_text(key, name): figure for key, figure in figures.items()}
+        object.__setattr__(record, name, FrozenDict.wrap(plain))
 
 
 def _labelled(value: object, name: str, check: Callable[[Any, str], Any]) -> tuple[Any, ...]:
@@ -975,7 +981,7 @@ class Scenario(ABC):
             Processes to use, as for :func:`~navkit.sim.sweep`: 1 (the default
             here) runs in this process, None uses every core this process may
             use (its CPU affinity; the default of ``sweep``, ``warmup`` and
-            ``navkit run``). Ignored when ``executor`` is given.
+            ``navkit run``). Not used when ``executor`` is given (still checked).
         executor : concurrent.futures.Executor or dask.distributed.Client, optional
             Where to run the trials.
         progress : callable, optional

@@ -235,11 +235,12 @@ def sweep(
         a ``concurrent.futures.ProcessPoolExecutor`` of
         ``min(workers, number of trials)`` processes (None: every core this
         process may use; at most 61 on Windows), or this process when that
-        is 1. Ignored with an ``executor``. The pool starts its workers by
-        :mod:`multiprocessing`'s start method (``multiprocessing.set_start_method``
-        chooses it): they start afresh with ``spawn`` (the default on macOS and
-        Windows) and ``forkserver`` (the default on Linux from Python 3.14;
-        ``fork`` before): there a script must call ``sweep`` under
+        is 1. Not used with an ``executor`` (still checked). The pool starts
+        its workers by :mod:`multiprocessing`'s start method
+        (``multiprocessing.set_start_method`` chooses it): they start afresh
+        with ``spawn`` (the default on macOS and Windows) and ``forkserver``
+        (the default on Linux from Python 3.14; ``fork`` before): there a
+        script must call ``sweep`` under
         ``if __name__ == "__main__":`` (starting the workers runs the script's
         top level again), and the scenario must pickle, its class importable by
         the workers (defined in a module or the script, not in a notebook).

@@ -14,6 +14,7 @@ from numpy.typing import ArrayLike
 from shapely.geometry import Polygon
 from shapely.geometry.base import BaseGeometry
 
+from navkit._shared.counts import counted
 from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.frozen import (
     frozen_setattr,
@@ -326,10 +327,15 @@ class MovingObstacle:
             raise ValueError(f"times must lie within ±{MAX_TIME:g} s")
         if np.any(np.diff(times) <= 0.0):
             raise ValueError("times must be strictly increasing")
-        if not isinstance(self.after, str) or self.after not in _AFTER_CODES:
+        if not isinstance(self.after, str):
             raise ValueError(f"after must be 'stop', 'loop' or 'extend', got {self.after!r}")
-        # Plain str: an np.str_ printed as np.str_('loop') in the record's repr.
-        object.__setattr__(self, "after", as_text(self.after, "after"))
+        # Plain str (an np.str_ printed as np.str_('loop') in the record's repr), checked
+        # as stored: a subclass's own == (case-blind, say) let "LOOP" through, and World
+        # then found no code for it (a bare KeyError).
+        after = as_text(self.after, "after")
+        if after not in _AFTER_CODES:
+            raise ValueError(f"after must be 'stop', 'loop' or 'extend', got {after!r}")
+        object.__setattr__(self, "after", after)
         if self.after == "extend" and path.shape[0] < 2:
             raise ValueError("after='extend' needs at least two waypoints")
         if self.after == "extend":
@@ -1089,11 +1095,16 @@ class World:
         )  # fmt: skip
 
     def __repr__(self) -> str:
-        grid = None if self._grid is None else self._grid.shape
-        return (
-            f"{type(self).__name__}(edges={self._segs.shape[0]}, circles={self._circles.shape[0]}, "
-            f"grid={grid}, moving={len(self._moving)})"
-        )
+        # The call's form, what it was given summarised as <...> (as AStarPlanner's
+        # costs): "edges=4" read as keywords the constructor does not take.
+        grid = "None"
+        if self._grid is not None:
+            rows, cols = self._grid.shape
+            grid = f"<{rows}x{cols} cells>"
+        edges = counted(self._segs.shape[0], "edge")
+        circles = counted(self._circles.shape[0], "circle")
+        moving = counted(len(self._moving), "obstacle")
+        return f"{type(self).__name__}(<{edges}, {circles}>, grid={grid}, moving=<{moving}>)"
 
     # ----------------------------------------------------------------- queries
     def _cast(

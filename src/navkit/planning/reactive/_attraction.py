@@ -12,8 +12,9 @@ from __future__ import annotations
 import dataclasses
 import functools
 import weakref
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, TypeVar
+from typing import TYPE_CHECKING, Any, TypeVar
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -328,6 +329,13 @@ class ConicAttraction(AttractiveField):
         return out
 
 
+def _with_scipy_special(rebuild: Callable[..., Any], args: tuple[Any, ...]) -> Any:
+    """``rebuild(*args)`` after importing scipy.special (see ``BlendedAttraction.__reduce__``)."""
+    import scipy.special  # noqa: F401
+
+    return rebuild(*args)
+
+
 @frozen_setattr
 @dataclass(frozen=True, slots=True, eq=False, repr=False, kw_only=True)
 class BlendedAttraction(AttractiveField):
@@ -416,7 +424,16 @@ class BlendedAttraction(AttractiveField):
     m: float = 1.0
     u_trans: float = 1.0
 
-    __setstate__ = _restore
+    def __reduce__(self) -> tuple[Any, ...]:
+        # As __post_init__ does, which a copy unpickled in a fresh process (a sweep's
+        # worker) never runs: its first force paid the scipy.special import (0.3 s).
+        # Not in __setstate__: the rebuild that copies go through does not call it.
+        rebuild, args, *rest = AttractiveField.__reduce__(self)
+        return (_with_scipy_special, (rebuild, args), *rest)
+
+    def __setstate__(self, state: Sequence[Any]) -> None:
+        _restore(self, state)
+        import scipy.special  # noqa: F401  # older pickles: see __reduce__
 
     if TYPE_CHECKING:
         # The generated ``__init__`` takes the arrays as array_like (``__post_init__``
