@@ -71,9 +71,10 @@ COPIES: list[Callable[[Any], Any]] = [
 
 def test_a_subclass_is_named_by_its_repr() -> None:
     ekf = Slotted([0.0, 1.0], np.eye(2), "a")
-    assert repr(ekf) == "Slotted(dim=2, angle_states=(0,))"
+    assert repr(ekf) == "Slotted(<2 states>, angle_states=(0,))"
     assert (
-        repr(ExtendedKalmanFilter([0.0], [[1.0]])) == "ExtendedKalmanFilter(dim=1, angle_states=())"
+        repr(ExtendedKalmanFilter([0.0], [[1.0]]))
+        == "ExtendedKalmanFilter(<1 state>, angle_states=())"
     )
     assert repr(Fusion()).startswith("Fusion(t=0.0, x=[")
     assert repr(PlanarFusion(t0=0.0)).startswith("PlanarFusion(t=0.0, x=[")
@@ -99,7 +100,7 @@ def test_a_subclass_copies_as_itself_and_steps_as_the_base(
     twin = make_copy(ekf)
     assert type(twin) is cls
     assert (twin.tag, twin.predictions) == ("a", 3)
-    assert repr(twin) == f"{cls.__name__}(dim=2, angle_states=(0,))"
+    assert repr(twin) == f"{cls.__name__}(<2 states>, angle_states=(0,))"
     if cls is WithDict:
         assert twin.note == [1]  # type: ignore[attr-defined]
     # The same estimate, and each goes on as the base filter does, bit for bit.

@@ -13,9 +13,9 @@ from navkit.estimation import CompassCalibration, ExtendedKalmanFilter
 
 def test_compass_calibration_repr_shows_its_start() -> None:
     cal = CompassCalibration(unwrap=True)
-    assert repr(cal) == "CompassCalibration(unwrap=True, initial_deg=None)"
+    assert repr(cal) == "CompassCalibration(unwrap=True, <no reading yet>)"
     cal(45.0)
-    assert repr(cal) == "CompassCalibration(unwrap=True, initial_deg=45.0)"
+    assert repr(cal) == "CompassCalibration(unwrap=True, <initial 45.0 deg>)"
 
 
 def test_non_iterable_angle_indices_are_refused_by_name() -> None:

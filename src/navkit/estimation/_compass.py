@@ -249,4 +249,6 @@ class CompassCalibration:
         return yaw
 
     def __repr__(self) -> str:
-        return f"{type(self).__name__}(unwrap={self._unwrap}, initial_deg={self._initial})"
+        # The latched reading is no argument: <...>, as for the other reprs in call form.
+        start = "no reading yet" if self._initial is None else f"initial {self._initial} deg"
+        return f"{type(self).__name__}(unwrap={self._unwrap}, <{start}>)"

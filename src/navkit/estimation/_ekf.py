@@ -855,8 +855,10 @@ class ExtendedKalmanFilter(GaussianEstimate):
         return out
 
     def __repr__(self) -> str:
-        # A user subclass is named as itself (as navkit's potential fields are).
-        return f"{type(self).__name__}(dim={self._n}, angle_states={self._angles})"
+        # A user subclass is named as itself (as navkit's potential fields are). The
+        # state is no argument (x0 and P0 are): <...>, as for the other reprs in call form.
+        states = "state" if self._n == 1 else "states"
+        return f"{type(self).__name__}(<{self._n} {states}>, angle_states={self._angles})"
 
 
 _NO_RBUF: FloatArray = np.zeros((1, 1, 1))  # the buffer before the first update
