@@ -70,10 +70,23 @@ def _beam_directions(scan: LaserScan) -> FloatArray:
     return table
 
 
+# The last table whose rows _beam_table returned, and those rows: (table, cosines,
+# sines). Slicing the rows anew made two array views per call, about 0.1 µs (7-9 %
+# of piecewise_repulsive_force_from_scan on 360 beams). Holding the table
+# keeps its id from being reused, so the identity check cannot match another.
+_ROWS: tuple[FloatArray, FloatArray, FloatArray] = (np.empty((2, 0)), np.empty(0), np.empty(0))
+
+
 def _beam_table(scan: LaserScan) -> tuple[FloatArray, FloatArray]:
     """The rows of :func:`_beam_directions`: (cosines, sines), each (N,), read-only."""
+    global _ROWS
     table = _beam_directions(scan)
-    return table[0], table[1]
+    # One read of _ROWS, checked and used as it was (another thread may replace it).
+    rows = _ROWS
+    if rows[0] is not table:
+        rows = (table, table[0], table[1])
+        _ROWS = rows
+    return rows[1], rows[2]
 
 
 _empty = np.empty
