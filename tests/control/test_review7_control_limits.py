@@ -54,8 +54,16 @@ def test_dt_errors_print_the_value_exactly(value: float) -> None:
 
 
 def test_limits_themselves_are_accepted() -> None:
-    PotentialFieldController(max_speed=1e6, influence_radius=1e-6, kd=1e12, kp=0.0)
-    limit_velocity_change([0.0], [1.0], max_accel=1e6, max_decel=1e-6, dt=1e6)
+    ctl = PotentialFieldController(max_speed=1e6, influence_radius=1e-6, kd=1e12, kp=0.0)
+    assert (ctl.max_speed, ctl.influence_radius) == (1e6, 1e-6)
+    assert "kd=1000000000000.0," in repr(ctl) and "kp=0.0," in repr(ctl)
+    # At the limits the steps are exact: 1e6 m/s² or 1e-6 m/s² over 1e6 s.
+    got = limit_velocity_change([0.0], [1.0], max_accel=1e6, max_decel=1e-6, dt=1e6)
+    np.testing.assert_array_equal(got, [1.0])
+    got = limit_velocity_change([0.0], [3e12], max_accel=1e6, max_decel=1e-6, dt=1e6)
+    np.testing.assert_array_equal(got, [1e12])
+    got = limit_velocity_change([3.0], [0.0], max_accel=1e6, max_decel=1e-6, dt=1e6)
+    np.testing.assert_array_equal(got, [2.0])
 
 
 @pytest.mark.parametrize("arg", ["pose", "target_pose"])

@@ -63,9 +63,11 @@ def test_diff_odometry_update_equals_batch(
 def test_diff_odometry_update_bad_input_unchanged() -> None:
     odo = DiffOdometry(DiffDrive(track=0.5, wheel_radius=0.1), ticks_per_rev=1000, bits=16)
     odo.update(10, 10)
-    for bad in (True, 1.0, "3", None, [1]):
-        with pytest.raises((TypeError, ValueError)):
+    for bad in (True, 1.0, "3", None, [1]):  # wrong types: the argument named, not the other
+        with pytest.raises(TypeError, match=r"^left_ticks must "):
             odo.update(bad, 10)  # type: ignore[arg-type]
+        with pytest.raises(TypeError, match=r"^right_ticks must "):
+            odo.update(10, bad)  # type: ignore[arg-type]
     with pytest.raises(ValueError, match="16-bit counter"):
         odo.update(2**16, 10)
     assert odo.update(1010, 1010).x == pytest.approx(2 * math.pi * 0.1)

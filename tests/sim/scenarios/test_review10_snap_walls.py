@@ -15,7 +15,7 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import assume, given, settings
+from hypothesis import assume, example, given, settings
 from hypothesis import strategies as st
 from numpy.typing import NDArray
 from scipy import ndimage
@@ -175,8 +175,20 @@ def maps_and_points(draw: st.DrawFn) -> tuple[MapPlanner, tuple[float, float]]:
     return planner, point
 
 
+def _wall_band_case(point: tuple[float, float]) -> tuple[MapPlanner, tuple[float, float]]:
+    """A point in the inflation band beside a wall column."""
+    occupied = np.zeros((6, 6), dtype=bool)
+    occupied[:, 3] = True
+    grid = OccupancyGrid.from_occupancy(occupied, resolution=0.1, origin=(0.0, 0.0, 0.0))
+    return MapPlanner(grid, robot_radius=0.15), point
+
+
 @settings(max_examples=25)
 @given(maps_and_points())
+# The draws reach the inflation-band escape check at the end 0 to 3 times a run (none in
+# 2 of 8 seeds): these two, one each side of the wall, reach it every run.
+@example(_wall_band_case((0.21, 0.27)))
+@example(_wall_band_case((0.45, 0.33)))
 def test_the_snap_is_the_nearest_centre_reached_without_crossing_another_obstacle(
     case: tuple[MapPlanner, tuple[float, float]],
 ) -> None:
