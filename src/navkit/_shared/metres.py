@@ -30,5 +30,8 @@ def metres_text(value: float) -> str:
     if not abs(value) < 1e15:
         return repr(value)
     slack = max(5e-10, math.ulp(value))
-    decimals = next(d for d in range(10) if abs(round(value, d) - value) <= slack)
+    # Nine decimals are the nanometre whatever the test says: the float nearest to
+    # the rounded text may lie 5e-10 plus its own rounding from the value (at
+    # 32768.6277635715, 5.02e-10), and the search then found no decimals at all.
+    decimals = next((d for d in range(9) if abs(round(value, d) - value) <= slack), 9)
     return f"{round(value, decimals) + 0.0:.{decimals}f}"  # + 0.0: no "-0"
