@@ -31,6 +31,8 @@ it (``noop_wrapper``), and the compiled kernel without numba's per-call type
 dispatch (``entry``, which the public fast paths call).
 * ``DiffOdometry.update``: one encoder reading (was a one-row batch, ~0.2 ms),
   against a Python function doing the same arithmetic with no checks.
+* ``quaternion_to_yaw``: one quaternion (plain floats, session 37's fast path)
+  against the general array way and the bare formula with ``math``.
 
 Every contestant's ``extra_info`` holds, once the others of its group have run,
 the ratios of the group's ``public`` median to theirs (``public_over_kernel``,
@@ -71,7 +73,7 @@ import pytest
 from navkit.estimation import DiffOdometry, PlanarFusion
 from navkit.estimation._fusion_kernels import BUF_TIME, planar_step, planar_step_entry
 from navkit.estimation._result import UpdateResult, new_result
-from navkit.geometry import Pose2D
+from navkit.geometry import Pose2D, quaternion_to_yaw
 from navkit.kinematics import DiffDrive
 from navkit.mapping import LaserScan, OccupancyGrid
 from navkit.mapping._grid_kernels import world_to_cell_entry, world_to_cell_kernel
@@ -464,3 +466,27 @@ def test_diff_odometry_update(benchmark: Any, contestant: str) -> None:
         benchmark(lambda: odo.update_batch(*([v] for v in reading())))
     else:
         benchmark(lambda: _bare_diff_step((0.0, 0.0, 0.0), *reading()))
+
+
+@pytest.mark.benchmark(group="quaternion_to_yaw one", warmup=True, warmup_iterations=2000)
+@pytest.mark.parametrize("contestant", ["public", "public_array", "general", "bare_math"])
+def test_quaternion_to_yaw_one(benchmark: Any, contestant: str) -> None:
+    """One ``(x, y, z, w)`` of a ROS message: the plain-float fast path (a list;
+    ``public_array`` a float64 (4,) array) against the general, validating array
+    way it skips (``general``: the same values byte-swapped, which takes that
+    way) and the bare formula with ``math`` and no checks (``bare_math``)."""
+    q = [0.01, -0.02, math.sin(0.25), math.cos(0.25)]
+    want = quaternion_to_yaw(np.array(q, dtype=">f8"))
+    if contestant == "public":
+        assert benchmark(quaternion_to_yaw, q) == want
+    elif contestant == "public_array":
+        assert benchmark(quaternion_to_yaw, np.array(q)) == want
+    elif contestant == "general":
+        assert benchmark(quaternion_to_yaw, np.array(q, dtype=">f8")) == want
+    else:
+        x, y, z, w = q
+
+        def bare_math() -> float:
+            return math.atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
+
+        benchmark(bare_math)

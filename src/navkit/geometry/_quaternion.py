@@ -150,6 +150,13 @@ def quaternion_to_yaw(quaternion: ArrayLike) -> float | FloatArray:
     >>> quaternion_to_yaw([[0.0, 0.0, 1.0, 0.0], [0.0, 0.0, 0.0, 0.0]]).round(6)
     array([3.141593, 0.      ])
     """
+    # One quaternion as plain floats (a ROS message's fields, one IMU reading, at up
+    # to 1 kHz): plain float arithmetic, 1.4 µs against 17 µs the validating way below.
+    kind: type[Any] = type(quaternion)
+    if kind is list or kind is tuple or kind is np.ndarray:
+        values = _plain_quaternion(quaternion)
+        if values is not None:
+            return _yaw_of_floats(*values)
     q = _quaternions(quaternion, "quaternion")
     x, y, z, w = (q[..., i] for i in range(4))
     # Each argument computed once (twice, they took 14 times the result's memory).
@@ -165,6 +172,57 @@ def quaternion_to_yaw(quaternion: ArrayLike) -> float | FloatArray:
     if yaw.ndim == 0:
         return float(yaw)
     return yaw
+
+
+def _plain_quaternion(value: Any) -> tuple[float, float, float, float] | None:
+    """``value`` as four finite floats when it is one quaternion of plain floats, else None.
+
+    None sends the value the general way, which converts and validates anything
+    else (integers, other dtypes, batches) and makes its refusals.
+    """
+    if type(value) is np.ndarray:
+        if value.dtype != np.float64 or value.shape != (4,):
+            return None
+        # tolist() reads any strides without compiling anything for the layout.
+        value = value.tolist()
+    elif len(value) != 4:
+        return None
+    x, y, z, w = value
+    # np.float64 is a float subclass: converted, so that its arithmetic cannot follow
+    # a caller's np.seterr (the general way ignores underflow).
+    for v in (x, y, z, w):
+        if (type(v) is not float and type(v) is not np.float64) or not math.isfinite(v):
+            return None
+    return float(x), float(y), float(z), float(w)
+
+
+def _yaw_of_floats(x: float, y: float, z: float, w: float) -> float:
+    """:func:`quaternion_to_yaw` of one finite quaternion, bit for bit as the array way.
+
+    The same operations in the same order: the largest magnitude scaled out,
+    the squares summed left to right (as ``np.sum`` of four values does), and
+    NumPy's own ``arctan2`` and ``hypot`` (its ``arctan2`` may be a SIMD one
+    that differs from ``math.atan2`` in the last bit).
+    """
+    big = max(abs(x), abs(y), abs(z), abs(w))
+    if big == 0.0:
+        return 0.0  # the identity's yaw, as the general way's arctan2(0.0, 1.0)
+    x, y, z, w = x / big, y / big, z / big, w / big
+    norm = math.sqrt(x * x + y * y + z * z + w * w)
+    x, y, z, w = x / norm, y / norm, z / norm, w / norm
+    sin_part = 2.0 * (w * z + x * y)
+    cos_part = 1.0 - 2.0 * (y * y + z * z)
+    # Pitch ±90°: both arguments are rounding noise; call the yaw 0 rather than noise.
+    # A hypot is never below its larger argument, so NumPy's is asked only when both
+    # are below the threshold (0.7 µs a call).
+    if (
+        abs(sin_part) < 1e-12
+        and abs(cos_part) < 1e-12
+        and float(np.hypot(sin_part, cos_part)) < 1e-12
+    ):
+        return 0.0
+    yaw = float(np.arctan2(sin_part, cos_part))
+    return math.pi if yaw <= -math.pi else yaw
 
 
 def yaw_to_quaternion(yaw: ArrayLike) -> FloatArray:

@@ -31,10 +31,12 @@ from navkit._shared.validation import as_array, as_bool, as_float_array, finite_
 from navkit.geometry import Pose2D, as_pose
 from navkit.mapping._cells_near_kernels import cells_near_kernel
 from navkit.mapping._grid_kernels import (
+    cell_to_world_entry,
     world_to_cell_entry,
     world_to_continuous_kernel,
 )
 from navkit.mapping._limits import (
+    CELL_INDEX_LIMIT,
     COORDINATE_LIMIT,
     LOGODDS_LIMIT,
     MAX_CELLS,
@@ -69,6 +71,8 @@ _ndarray = np.ndarray
 # The strides of a C-contiguous (N, 2) float64 array: what the world_to_cell
 # fast path asks of its points (with two columns and the dtype).
 _PAIR_STRIDES = (16, 8)
+# Exact types (no subclasses) whose one pair the single-point fast paths read.
+_ONE_PAIR_TYPES = (list, tuple, np.ndarray)
 
 # world_to_cell_kernel's compiled entry, fetched at the first fast-path call
 # (:func:`_cells_entry`) so that importing navkit compiles nothing.
@@ -79,6 +83,46 @@ def _cells_entry() -> Callable[..., bool]:
     global _CELLS_ENTRY
     _CELLS_ENTRY = world_to_cell_entry()
     return _CELLS_ENTRY
+
+
+# cell_to_world_kernel's compiled entries by cell dtype, each fetched at the first
+# fast-path call with such cells (:func:`_points_entry`), as _CELLS_ENTRY.
+_POINTS_ENTRIES: dict[np.dtype[Any], Callable[..., bool]] = {}
+
+
+def _points_entry(dtype: np.dtype[Any]) -> Callable[..., bool]:
+    entry = _POINTS_ENTRIES[dtype] = cell_to_world_entry(dtype)
+    return entry
+
+
+def _one_pair(value: Any, ints: bool) -> tuple[float, float] | None:
+    """One pair given as a list, tuple or (2,) float64 array as two finite floats, else None.
+
+    Items must be floats (``np.float64`` too) or, with ``ints``, integers within
+    ±2**53 (converted exactly, as NumPy's int64 to float64). None sends the
+    value the general way, which converts and validates anything else.
+    """
+    if type(value) is _ndarray:
+        if value.dtype is not _FLOAT64 or value.shape != (2,):
+            return None
+        # tolist() reads any strides without compiling anything for the layout.
+        value = value.tolist()
+    elif len(value) != 2:
+        return None
+    a, b = value
+    pair = []
+    for v in (a, b):
+        kind = type(v)
+        if kind is float or kind is np.float64:
+            v = float(v)
+            if not math.isfinite(v):
+                return None
+        elif ints and kind is int and -(2**53) <= v <= 2**53:
+            v = float(v)
+        else:
+            return None
+        pair.append(v)
+    return pair[0], pair[1]
 
 
 _IDENTITY = Pose2D(0.0, 0.0, 0.0)
@@ -926,6 +970,16 @@ class OccupancyGrid:
                 finite = False
             if finite:
                 return cells
+        if continuous is True and type(points_xy) in _ONE_PAIR_TYPES:
+            # One point as plain floats: the single-point arithmetic below, without
+            # the array conversion and checks (1.1 µs against 5.8 µs).
+            pair = _one_pair(points_xy, False)
+            if pair is not None:
+                row, col = self._grid_frame(pair[0], pair[1])
+                return np.array(
+                    [min(max(row - 0.5, -CELL_LIMIT), CELL_LIMIT),
+                     min(max(col - 0.5, -CELL_LIMIT), CELL_LIMIT)]
+                )  # fmt: skip
         pts, single = as_pairs(points_xy, "points_xy")
         out: IntArray | FloatArray
         if as_bool(continuous, "continuous"):
@@ -1011,6 +1065,41 @@ class OccupancyGrid:
         >>> grid.cell_to_world([0.5, 0.0])
         array([0.25, 0.5 ])
         """
+        if (
+            type(cells) is _ndarray
+            and ((dtype := cells.dtype) is _FLOAT64 or dtype is _INT64)
+            and cells.strides == _PAIR_STRIDES
+            and (shape := cells.shape)[1] == 2
+        ):
+            # Fast path: C-contiguous (N, 2) float64 or int64 cells straight to the
+            # compiled kernel (0.6 µs against 14 µs for 10 cells); a cell beyond
+            # ±2**62, NaN or inf sends them the general way, which raises.
+            out = _empty(shape, _FLOAT64)
+            entry = _POINTS_ENTRIES.get(dtype) or _points_entry(dtype)
+            theta = self._origin_yaw
+            if entry(
+                cells, self._origin_x, self._origin_y, math.cos(theta), math.sin(theta),
+                self._resolution, out,
+            ):  # fmt: skip
+                return out
+        elif type(cells) in _ONE_PAIR_TYPES:
+            pair = _one_pair(cells, True)
+            if (
+                pair is not None
+                and abs(pair[0]) <= CELL_INDEX_LIMIT
+                and abs(pair[1]) <= CELL_INDEX_LIMIT
+            ):
+                # One cell (a path's goal, a planner's answer): the kernel's
+                # arithmetic in Python floats (0.9 µs against 16 µs).
+                row, col = pair
+                c = math.cos(self._origin_yaw)
+                s = math.sin(self._origin_yaw)
+                px = (col + 0.5) * self._resolution
+                py = (row + 0.5) * self._resolution
+                wx = px * c - py * s + self._origin_x
+                wy = px * s + py * c + self._origin_y
+                if wx - wx == 0.0 and wy - wy == 0.0:
+                    return np.array([wx, wy])
         arr, single = as_pairs(cells, "cells")
         check_cell_range(arr)
         local = (arr[:, ::-1] + 0.5) * self._resolution

@@ -37,7 +37,13 @@ import numpy as np
 
 from navkit._shared.jit import njit_no_refcount
 
-__all__ = ["world_to_cell_entry", "world_to_cell_kernel", "world_to_continuous_kernel"]
+__all__ = [
+    "cell_to_world_entry",
+    "cell_to_world_kernel",
+    "world_to_cell_entry",
+    "world_to_cell_kernel",
+    "world_to_continuous_kernel",
+]
 
 #: Grid coordinates are clamped to ±2**62: far outside any grid, and no int64
 #: conversion can overflow (a point at 1e300 m would otherwise wrap around).
@@ -137,5 +143,73 @@ def world_to_cell_entry() -> Callable[..., bool]:
         types.Array(types.float64, 2, "C", aligned=False),
         *(types.float64,) * 4,  # origin x, y, yaw, resolution
         types.Array(types.int64, 2, "C"),
+    )
+    return cast(Callable[..., bool], dispatcher.compile(signature))
+
+
+@njit_no_refcount
+def cell_to_world_kernel(
+    cells: np.ndarray,
+    origin_x: float,
+    origin_y: float,
+    cos_yaw: float,
+    sin_yaw: float,
+    resolution: float,
+    out: np.ndarray,
+) -> bool:
+    """Fill ``out`` (N, 2) float64 with the world points ``(x, y)`` of ``(row, col)`` cells.
+
+    ``OccupancyGrid.cell_to_world``'s general arithmetic, operation for
+    operation (its results bit for bit): the point ``((col + ½) res,
+    (row + ½) res)`` in the grid frame, rotated by ``(cos_yaw, sin_yaw)`` and
+    shifted by the origin. Returns whether every cell lay within ±2**62 and
+    every point is finite; if not, ``out`` is meaningless (the caller's
+    general way then raises or rescales).
+    """
+    rc = cells.reshape(-1)
+    flat = out.reshape(-1)
+    ok = True
+    for i in range(cells.shape[0]):
+        row = float(rc[2 * i])
+        col = float(rc[2 * i + 1])
+        # NaN fails both comparisons; & keeps the loop branch-free.
+        ok &= (abs(row) <= _LIMIT) & (abs(col) <= _LIMIT)
+        px = (col + 0.5) * resolution
+        py = (row + 0.5) * resolution
+        wx = px * cos_yaw - py * sin_yaw + origin_x
+        wy = px * sin_yaw + py * cos_yaw + origin_y
+        flat[2 * i] = wx
+        flat[2 * i + 1] = wy
+        ok &= (wx - wx == 0.0) & (wy - wy == 0.0)
+    return ok
+
+
+def cell_to_world_entry(dtype: np.dtype[Any]) -> Callable[..., bool]:
+    """The compiled entry of :func:`cell_to_world_kernel` for cells of ``dtype``.
+
+    ``dtype`` is float64 or int64. As :func:`world_to_cell_entry`: no dispatch,
+    no checks; the caller guarantees C-contiguous (N, 2) cells of that dtype
+    (read-only or unaligned are fine), five floats and a writable C-contiguous
+    (N, 2) float64 ``out``. One entry per dtype, compiled when first asked for
+    (0.3 s each in a cold cache: a map planner needs float64 only, the greedy
+    step int64 only).
+
+    Examples
+    --------
+    >>> out = np.empty((1, 2))
+    >>> entry = cell_to_world_entry(np.dtype(np.int64))
+    >>> entry(np.array([[0, 1]]), 0.0, 0.0, 1.0, 0.0, 0.5, out), out
+    (True, array([[0.75, 0.25]]))
+    """
+    dispatcher: Any = cell_to_world_kernel
+    if not hasattr(dispatcher, "compile"):  # NUMBA_DISABLE_JIT=1: a plain function
+        return cast(Callable[..., bool], dispatcher)
+    from numba import types  # here: importing this module must not import numba
+
+    kind = types.float64 if dtype == np.float64 else types.int64
+    signature = (
+        types.Array(kind, 2, "C", aligned=False),
+        *(types.float64,) * 5,  # origin x, y, cos and sin of its yaw, resolution
+        types.Array(types.float64, 2, "C"),
     )
     return cast(Callable[..., bool], dispatcher.compile(signature))
