@@ -17,21 +17,9 @@ from typing import Any
 import numpy as np
 import pytest
 
+from case_blind import CaseBlind
 from navkit._shared.frozendict import FrozenDict
 from navkit.sim import ScenarioResult, Trial, TrialResult
-
-
-class CaseBlind(str):
-    """Text equal to any text that differs from it in case alone (a user's key type, say)."""
-
-    def __eq__(self, other: object) -> bool:
-        return isinstance(other, str) and self.lower() == other.lower()
-
-    def __ne__(self, other: object) -> bool:
-        return not self == other
-
-    def __hash__(self) -> int:
-        return hash(self.lower())
 
 
 def _trial(values: Any) -> TrialResult:

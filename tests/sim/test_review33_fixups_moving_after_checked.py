@@ -14,20 +14,8 @@ from typing import Any
 
 import pytest
 
+from case_blind import CaseBlind
 from navkit.sim import MovingObstacle, World
-
-
-class CaseBlind(str):
-    """Text equal to any text that differs from it in case alone (a user's key type, say)."""
-
-    def __eq__(self, other: object) -> bool:
-        return isinstance(other, str) and self.lower() == other.lower()
-
-    def __ne__(self, other: object) -> bool:
-        return not self == other
-
-    def __hash__(self) -> int:
-        return hash(self.lower())
 
 
 def _make(after: Any) -> MovingObstacle:

@@ -18,19 +18,8 @@ from typing import Any
 import numpy as np
 import pytest
 
+from case_blind import CaseBlind
 from navkit.sim import Event, Metrics
-
-
-class CaseBlind(str):
-    """Text equal to any text that differs from it in case alone (a user's key type, say)."""
-
-    def __eq__(self, other: object) -> bool:
-        return isinstance(other, str) and self.lower() == other.lower()
-
-    def __ne__(self, other: object) -> bool:
-        return not self == other
-
-    __hash__ = str.__hash__
 
 
 def _metrics(reason: Any) -> Metrics:

@@ -13,17 +13,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from case_blind import CaseBlind
 from navkit.planning.grid import Path2D
-
-
-class CaseBlind(str):
-    def __eq__(self, other: object) -> bool:
-        return isinstance(other, str) and self.lower() == other.lower()
-
-    def __ne__(self, other: object) -> bool:
-        return not self == other
-
-    __hash__ = str.__hash__
 
 
 def test_a_str_subclass_equal_to_a_frame_only_by_its_own_eq_is_refused() -> None:
