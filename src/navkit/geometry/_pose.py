@@ -251,7 +251,9 @@ class Pose2D:
         pts = as_points(points_xy, "points_xy")
         c = math.cos(self.theta)
         s = math.sin(self.theta)
-        with np.errstate(over="ignore", invalid="ignore"):
+        # Underflow too: a product of normal values may be subnormal (yaw 1e-307, a
+        # point 1 cm off), NumPy's default answer under any caller's np.seterr.
+        with np.errstate(over="ignore", invalid="ignore", under="ignore"):
             out = _rotate_shift(pts, c, s, self.x, self.y)
             if not np.isfinite(out).all():
                 # As in compose: a partial sum may overflow where the point does not.

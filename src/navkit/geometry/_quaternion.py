@@ -161,13 +161,14 @@ def quaternion_to_yaw(quaternion: ArrayLike) -> float | FloatArray:
     x, y, z, w = (q[..., i] for i in range(4))
     # Each argument computed once (twice, they took 14 times the result's memory).
     # Products of tiny components underflow to 0, as under NumPy's defaults.
+    # (The yaw too: normal components can give a subnormal one, (1e-160, 1e-160, 0, 1).)
     with np.errstate(under="ignore"):
         sin_part = 2.0 * (w * z + x * y)
         cos_part = 1.0 - 2.0 * (y * y + z * z)
-    del q, x, y, z, w
-    yaw = np.asarray(np.arctan2(sin_part, cos_part))
-    # Pitch ±90°: both arguments are rounding noise; call the yaw 0 rather than noise.
-    np.copyto(yaw, 0.0, where=np.hypot(sin_part, cos_part) < 1e-12)
+        del q, x, y, z, w
+        yaw = np.asarray(np.arctan2(sin_part, cos_part))
+        # Pitch ±90°: both arguments are rounding noise; call the yaw 0 rather than noise.
+        np.copyto(yaw, 0.0, where=np.hypot(sin_part, cos_part) < 1e-12)
     np.copyto(yaw, math.pi, where=yaw <= -math.pi)
     if yaw.ndim == 0:
         return float(yaw)
@@ -221,7 +222,11 @@ def _yaw_of_floats(x: float, y: float, z: float, w: float) -> float:
         and float(np.hypot(sin_part, cos_part)) < 1e-12
     ):
         return 0.0
-    yaw = float(np.arctan2(sin_part, cos_part))
+    try:
+        yaw = float(np.arctan2(sin_part, cos_part))
+    except FloatingPointError:  # a subnormal yaw under a caller's np.seterr(under=)
+        with np.errstate(under="ignore"):
+            yaw = float(np.arctan2(sin_part, cos_part))
     return math.pi if yaw <= -math.pi else yaw
 
 
@@ -252,9 +257,14 @@ def yaw_to_quaternion(yaw: ArrayLike) -> FloatArray:
     >>> float(quaternion_to_yaw(yaw_to_quaternion(2.5)))
     2.5
     """
-    half = 0.5 * as_float_array(yaw, "yaw")
+    yaws = as_float_array(yaw, "yaw")
+    # Half of a yaw below 4.45e-308 (and its sine) is subnormal: NumPy's default answer
+    # whatever the caller's np.seterr.
+    with np.errstate(under="ignore"):
+        half = 0.5 * yaws
+        sines = np.sin(half)
     zero = np.zeros_like(half)
-    return np.stack((zero, zero, np.sin(half), np.cos(half)), axis=-1)
+    return np.stack((zero, zero, sines, np.cos(half)), axis=-1)
 
 
 def rpy_to_quaternion(roll: ArrayLike, pitch: ArrayLike, yaw: ArrayLike) -> FloatArray:
@@ -291,11 +301,12 @@ def rpy_to_quaternion(roll: ArrayLike, pitch: ArrayLike, yaw: ArrayLike) -> Floa
     except ValueError:
         shapes = ", ".join(str(a.shape) for a in arrays)
         raise ValueError(f"roll, pitch and yaw must broadcast together, got {shapes}") from None
-    cr, sr = np.cos(0.5 * r), np.sin(0.5 * r)
-    cp, sp = np.cos(0.5 * p), np.sin(0.5 * p)
-    cy, sy = np.cos(0.5 * y), np.sin(0.5 * y)
-    # Products of two or three tiny sines underflow to 0, as under NumPy's defaults.
+    # Products of two or three tiny sines underflow to 0, as under NumPy's defaults, and
+    # half of an angle below 4.45e-308 is subnormal.
     with np.errstate(under="ignore"):
+        cr, sr = np.cos(0.5 * r), np.sin(0.5 * r)
+        cp, sp = np.cos(0.5 * p), np.sin(0.5 * p)
+        cy, sy = np.cos(0.5 * y), np.sin(0.5 * y)
         return np.stack(
             (
                 sr * cp * cy - cr * sp * sy,

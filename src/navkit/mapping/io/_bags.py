@@ -1412,7 +1412,7 @@ def bag_topics(
     >>> bag_topics("no-such.bag")
     Traceback (most recent call last):
     ...
-    FileNotFoundError: ROS bag no-such.bag does not exist
+    FileNotFoundError: ROS bag no-such.bag does not exist (relative to the working directory ...)
     """
     bag_path = _check_path(path)
 
