@@ -7,6 +7,7 @@ interrupt a call at its k-th such point, for every k, and check what it leaves.
 
 from __future__ import annotations
 
+import gc
 import sys
 from collections.abc import Callable, Sequence
 from typing import Any
@@ -49,13 +50,23 @@ def _profiled(call: Callable[[], object], events: Sequence[str], *, stop_at: int
     # An interrupt landing inside ``np.errstate.__enter__`` (Python code,
     # after it set its context variable) leaves that error state set: the outer
     # errstate's reset puts the caller's back whatever the call left.
-    with np.errstate():
-        sys.setprofile(profile)
-        try:
-            call()
-            armed = False  # not the finally's own call
-        finally:
-            sys.setprofile(None)
+    # No garbage collection inside the call: a collection there runs other objects'
+    # finalizers and weak-reference callbacks (Python calls, so more delivery points),
+    # which made the count differ from run to run (session 37: a weak-valued table's
+    # callback, as the records' copies left garbage behind).
+    enabled = gc.isenabled()
+    gc.disable()
+    try:
+        with np.errstate():
+            sys.setprofile(profile)
+            try:
+                call()
+                armed = False  # not the finally's own call
+            finally:
+                sys.setprofile(None)
+    finally:
+        if enabled:
+            gc.enable()
     return seen
 
 
