@@ -22,26 +22,15 @@ from __future__ import annotations
 import math
 
 import pytest
+from test_review32_liveness_rpp_goal_orbit import _run
 
 from navkit.control import RegulatedPurePursuit
-from navkit.geometry import Pose2D, integrate
+from navkit.geometry import Pose2D
 
 DT = 0.05
 GOAL = (2.0, 0.0)
 STARTS = [(0.0, 0.3, 0.0), (0.0, -0.2, 1.0), (-0.5, 0.5, 2.0), (0.3, 0.0, 3.0), (0.0, 0.0, 0.0)]
-
-
-def _run(tracker: RegulatedPurePursuit, start: tuple[float, float, float]) -> list[Pose2D]:
-    tracker.set_path([[0.0, 0.0], list(GOAL)])
-    pose = Pose2D(*start)
-    poses = [pose]
-    for _ in range(3000):
-        cmd = tracker.step(pose, DT)
-        if tracker.done:
-            break
-        pose = integrate(pose, cmd, DT)
-        poses.append(pose)
-    return poses
+# The 2 m path to GOAL, run until done (at most 5000 steps), as review 32's orbit test does.
 
 
 def _to_goal(pose: Pose2D) -> float:

@@ -11,21 +11,10 @@ from __future__ import annotations
 
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from test_review27_last_fusion_tie_after_trim import _odometry, _state, _yaw
 
 from navkit.estimation import FusionStatus, PlanarFusion
 from navkit.estimation._fusion import _AGE_RTOL
-
-
-def _state(f: PlanarFusion) -> tuple[float | None, bytes, bytes]:
-    return f.t, f.x.tobytes(), f.P.tobytes()
-
-
-def _odometry(f: PlanarFusion, t: float) -> bool:
-    return f.update_odometry(t, 1.0, 0.1, v_variance=1e-4, omega_variance=1e-4).accepted
-
-
-def _yaw(f: PlanarFusion, t: float, k: int) -> bool:
-    return f.update_yaw(t, 0.01 * k, variance=1e-3).accepted
 
 
 def test_the_reported_stamp_at_30_hz_from_minus_035_s_is_fused() -> None:
