@@ -313,6 +313,20 @@ class _DiffOdometryEstimator:
         self._last: list[int] | None = None
         self._fed: list[int] | None = None
 
+    def start_run(self) -> None:
+        """Forget the counters read before this run: the robot's count from 0 in every run.
+
+        An odometry that read counters before (an earlier run's: a route driven
+        leg by leg, a Simulation a leg, with one odometry) would take the
+        difference to this run's first reading as motion, a jump by the whole
+        distance counted before. So the run's first reading only latches the
+        counters, as a new odometry's does (:meth:`DiffOdometry.reset`); the
+        pose goes on from where it is.
+        """
+        self._last = None
+        self._fed = None
+        self._odometry.reset()
+
     def observe(self, t: float, reading: Reading) -> None:
         if isinstance(reading, EncoderReading):
             if self._translate:

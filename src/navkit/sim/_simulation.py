@@ -25,7 +25,12 @@ from navkit.estimation import DiffOdometry, OmniOdometry, PlanarFusion
 from navkit.geometry import Pose2D, Twist2D, as_twist
 from navkit.planning import Path2D
 from navkit.sim._done import done_flag
-from navkit.sim._estimators import Estimator, FusionEstimator, as_estimator
+from navkit.sim._estimators import (
+    Estimator,
+    FusionEstimator,
+    _DiffOdometryEstimator,
+    as_estimator,
+)
 from navkit.sim._latency import DelayLine
 from navkit.sim._lidar import Scanner, as_generator, check_rate
 from navkit.sim._robot import Body, Robot
@@ -323,7 +328,12 @@ class Simulation:
         covers the latencies.
         A ``DiffOdometry`` is given the counter readings as counters of its
         own ``bits`` (the same tick changes), so that the encoders'
-        wrap-around does not depend on the two widths agreeing.
+        wrap-around does not depend on the two widths agreeing. The robot's
+        counters count from 0 in every run: the counters a ``DiffOdometry``
+        read before (in an earlier run) are forgotten when the run starts,
+        as its ``reset()`` forgets them, so its first reading only latches
+        them and its pose goes on from where it was (a route driven leg by
+        leg with one odometry, each leg started at its pose).
     rate : float, default 100.0
         Physics rate, Hz, in (0, 10^4]; no sensor or controller may be faster.
         Step ``i`` happens at ``i / rate`` s (the time of its trace row, its
@@ -593,9 +603,12 @@ class Simulation:
         """
         if self._ran:
             raise RuntimeError("a Simulation runs once; build a new one for another run")
-        if isinstance(self._estimator, FusionEstimator):
-            self._estimator.check_start()  # run since this simulation was built?
+        estimator = self._estimator
+        if isinstance(estimator, FusionEstimator):
+            estimator.check_start()  # run since this simulation was built?
         self._ran = True
+        if isinstance(estimator, _DiffOdometryEstimator):
+            estimator.start_run()  # counters latched in an earlier run are not this run's
         return _Run(self).execute()
 
 
