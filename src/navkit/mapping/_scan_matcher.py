@@ -489,10 +489,15 @@ class ScanMatcher:
         Parameters
         ----------
         maps : OccupancyGrid or sequence of OccupancyGrid
-            The map: one grid (its :meth:`pyramid` is built, ``levels`` levels)
-            or the levels themselves, finest first (each may have its own
-            resolution and origin; the finest defines the result's score and
-            covariance). Not modified.
+            The map: one grid (its :meth:`pyramid` is built, ``levels`` levels,
+            on every call) or the levels themselves, finest first (each may
+            have its own resolution and origin; the finest defines the
+            result's score and covariance). Not modified. Building the
+            pyramid costs far more than a match: on a 1284 × 1379 map
+            (Radish's aces log at 5 cm) ``match(grid, ...)`` took 117 ms and
+            ``match(levels, ...)`` 2 ms. To match many scans against one map
+            (localisation), build ``levels = matcher.pyramid(grid)`` once and
+            pass ``levels``.
         scan : LaserScan
             The scan; its valid returns (shorter than ``range_max``) are matched.
         guess : Pose2D or array_like [x, y, theta]
