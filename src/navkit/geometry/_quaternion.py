@@ -216,18 +216,27 @@ def _yaw_of_floats(x: float, y: float, z: float, w: float) -> float:
     # Pitch ±90°: both arguments are rounding noise; call the yaw 0 rather than noise.
     # A hypot is never below its larger argument, so NumPy's is asked only when both
     # are below the threshold (0.7 µs a call).
-    if (
-        abs(sin_part) < 1e-12
-        and abs(cos_part) < 1e-12
-        and float(np.hypot(sin_part, cos_part)) < 1e-12
-    ):
-        return 0.0
-    try:
-        yaw = float(np.arctan2(sin_part, cos_part))
-    except FloatingPointError:  # a subnormal yaw under a caller's np.seterr(under=)
+    if abs(sin_part) < 1e-12 and abs(cos_part) < 1e-12:
+        with np.errstate(under="ignore"):  # as the general way's (rare: no cost)
+            if float(np.hypot(sin_part, cos_part)) < 1e-12:
+                return 0.0
+    if sin_part != 0.0 and -_TINY_SIN < sin_part < _TINY_SIN:
+        # A yaw that may be subnormal (|cos_part| <= 1): NumPy's default answer and
+        # silent, as the general way, whatever the caller's np.seterr. Catching
+        # FloatingPointError covered under="raise" only: "warn", "call" and "log"
+        # warned (an error under -W error), called or logged where the general way
+        # stayed silent.
         with np.errstate(under="ignore"):
             yaw = float(np.arctan2(sin_part, cos_part))
+    else:
+        yaw = float(np.arctan2(sin_part, cos_part))
     return math.pi if yaw <= -math.pi else yaw
+
+
+#: Below this |sin_part| a yaw may be subnormal (|cos_part| <= 1 for a unit quaternion,
+#: so |yaw| >= |sin_part| / (1 + 2**-50) otherwise): the only arctan2 that can raise
+#: NumPy's underflow flag (measured: only subnormal results do).
+_TINY_SIN = 2.0**-1000
 
 
 def yaw_to_quaternion(yaw: ArrayLike) -> FloatArray:
