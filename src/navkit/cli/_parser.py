@@ -128,7 +128,13 @@ def parse_command_line(parser: argparse.ArgumentParser, argv: Sequence[str]) -> 
         command = _commands(parser).get(str(getattr(args, "command", "")))
         reporter = parser if command is None else command
         message = f"unrecognized arguments: {' '.join(extras)}"
-        typed = next((e.partition("=")[0] for e in extras if e.startswith("--")), None)
+        # Words after a "--" are no options: guessed from, "-- --trials" was answered
+        # "maybe you meant '--trials'?", the very word typed.
+        ended = list(argv[argv.index("--") + 1 :]) if "--" in argv else []
+        options = [e for e in extras if e.startswith("--") and e != "--" and e not in ended]
+        typed = options[0].partition("=")[0] if options else None
+        if typed is None and any(e.startswith("--") for e in ended if e in extras):
+            message += " (after '--' no word is read as an option)"
         # --help is left out: "--step" is closer to it than to anything a user meant.
         names = [
             n for a in reporter._actions if not isinstance(a, (argparse._HelpAction, _Version))
