@@ -486,7 +486,16 @@ def integer_readings(value: object, name: str) -> NDArray[Any]:
         items = arr if kind == "O" else np.asarray(value, dtype=object)
         if all(_is_integer(item) for item in items.flat):
             return items
-    raise TypeError(f"{name} must hold integer counter readings, got dtype {arr.dtype}")
+    hint = ""
+    if kind == "f":
+        # Review 34: a ROS robot's wheels arrive as sensor_msgs/JointState angles.
+        hint = (
+            " (encoder counts are integers; wheel angles in radians, as a ROS"
+            " sensor_msgs/JointState gives them, are not counts: step"
+            " DiffDrive.odometry_step with the distances rolled, wheel radius times"
+            " each angle's change)"
+        )
+    raise TypeError(f"{name} must hold integer counter readings, got dtype {arr.dtype}{hint}")
 
 
 def _is_integer(item: object) -> bool:
