@@ -10,6 +10,7 @@ from numpy.typing import ArrayLike
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array
 from navkit.control._ranges import quantity
+from navkit.geometry import Twist2D
 
 __all__ = ["limit_velocity_change"]
 
@@ -48,7 +49,8 @@ def limit_velocity_change(
     ------
     TypeError
         Arguments that are not real numbers (complex numbers, strings and
-        booleans are refused), naming them.
+        booleans are refused), naming them; a :class:`~navkit.geometry.Twist2D`,
+        whose ``omega`` is no velocity in m/s (the message says what to pass).
     ValueError
         Non-finite velocities, shapes that differ, limits or ``dt`` outside
         their ranges, or velocities so far apart that their difference
@@ -63,6 +65,14 @@ def limit_velocity_change(
     ...                       dt=0.1)  # braking
     array([0.8, 0. ])
     """
+    for value, name in ((previous, "previous"), (desired, "desired")):
+        if isinstance(value, Twist2D):
+            # Review 34: one norm over (vx, vy, omega) would add m/s to rad/s.
+            raise TypeError(
+                f"{name} is a Twist2D, whose (vx, vy, omega) mixes m/s and rad/s: pass its "
+                "linear velocity, [twist.vx, twist.vy] ([twist.vx] for a differential "
+                "drive), and limit [twist.omega] in a call of its own"
+            )
     prev = as_float_array(previous, "previous", ndim=1)
     want = as_float_array(desired, "desired", shape=prev.shape)
     limits = (
