@@ -9,22 +9,24 @@ motion: the estimate jumped back by the whole distance counted before, a
 silent wrong run (3 m here; on a 16-bit counter, modulo its range). A
 ``PlanarFusion`` reused so is refused (``FusionEstimator.check_start``); an
 odometry can go on, and should: the run forgets the latched counters, as
-``reset()`` does, and its first reading only latches them.
+``reset()`` does, and its first reading only latches them. The refusal of a
+``PlanarFusion`` now names the way to carry its estimate on into the next leg.
 """
 
 from __future__ import annotations
 
 import copy
 import math
+import re
 
 import numpy as np
 import pytest
 from shapely.geometry import box
 
-from navkit.estimation import DiffOdometry
+from navkit.estimation import DiffOdometry, PlanarFusion
 from navkit.geometry import Pose2D, Twist2D
 from navkit.kinematics import DiffDrive
-from navkit.sim import Observation, Robot, Simulation, Trace, WheelEncoders, World
+from navkit.sim import Compass, Imu, Observation, Robot, Simulation, Trace, WheelEncoders, World
 
 DRIVE = DiffDrive(track=0.3, wheel_radius=0.05)
 WORLD = World([box(-20.0, -20.0, 20.0, 20.0).exterior])
@@ -94,3 +96,20 @@ def test_a_new_odometry_runs_as_before() -> None:
     b = leg(latched, rob, start, 2.0)
     np.testing.assert_array_equal(a.estimates, b.estimates)
     assert a.metrics.estimate_error < 0.01
+
+
+def test_a_fusion_filter_refused_for_a_new_leg_says_how_to_carry_it_on() -> None:
+    # A PlanarFusion cannot go back to the new run's 0 s: it is refused, and the
+    # message names the way to carry its estimate on, which then works.
+    rob = Robot(drive=DRIVE, footprint=0.2, encoders=WheelEncoders(), compass=Compass(), imu=Imu())
+    start = Pose2D(0.0, 0.0, 0.0)
+    fusion = PlanarFusion(pose=start, t0=0.0)
+    first = Simulation(WORLD, rob, arc, start=start, estimator=fusion, duration=4.0).run()
+    end = Pose2D(*first.poses[-1])
+    with pytest.raises(ValueError, match=re.escape("fusion.reset(fusion.x, fusion.P, t0=0.0)")):
+        Simulation(WORLD, rob, arc, start=end, estimator=fusion, duration=4.0).run()
+    carried = fusion.x
+    fusion.reset(fusion.x, fusion.P, t0=0.0)
+    again = Simulation(WORLD, rob, arc, start=end, estimator=fusion, duration=4.0).run()
+    assert np.allclose(again.estimates[0], carried[:3], rtol=0.0, atol=1e-6)
+    assert again.metrics.estimate_error < 0.02

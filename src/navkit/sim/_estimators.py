@@ -201,7 +201,8 @@ class FusionEstimator:
                 f"estimator: this PlanarFusion's time is {t:g} s, after the run's start "
                 "at 0 s, so it would refuse every reading taken before then (out of "
                 "order) and its estimate would stand still: build it for this run with "
-                "t0=0.0 (a filter used in an earlier run: build a new one)"
+                "t0=0.0 (a filter used in an earlier run: build a new one, or carry its "
+                "estimate on into this run with fusion.reset(fusion.x, fusion.P, t0=0.0))"
             )
 
     def observe(self, t: float, reading: Reading) -> None:

@@ -310,7 +310,8 @@ class Simulation:
         has no sideways speed; ``ValueError`` for an omnidirectional drive)
         and a time of at most 0 s, the run's start (``ValueError`` for a later
         ``t0`` or a filter used in an earlier run, which would refuse the
-        readings as out of order); an earlier ``t0`` is taken, and its first
+        readings as out of order: to carry one's estimate on into a new run,
+        ``fusion.reset(fusion.x, fusion.P, t0=0.0)``); an earlier ``t0`` is taken, and its first
         reading predicts over the gap from ``t0`` as well (build it with
         ``t0=0.0`` unless the robot moved before the run). It is given the
         sensors' own noise as variances: the compass's ``noise²`` (at least
