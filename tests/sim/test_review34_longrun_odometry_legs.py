@@ -18,14 +18,15 @@ from __future__ import annotations
 import copy
 import math
 import re
+from pathlib import Path
 
 import numpy as np
 import pytest
 from shapely.geometry import box
 
-from navkit.estimation import DiffOdometry, PlanarFusion
+from navkit.estimation import DiffOdometry, OmniOdometry, PlanarFusion
 from navkit.geometry import Pose2D, Twist2D
-from navkit.kinematics import DiffDrive
+from navkit.kinematics import DiffDrive, OmniDrive
 from navkit.sim import Compass, Imu, Observation, Robot, Simulation, Trace, WheelEncoders, World
 
 DRIVE = DiffDrive(track=0.3, wheel_radius=0.05)
@@ -113,3 +114,20 @@ def test_a_fusion_filter_refused_for_a_new_leg_says_how_to_carry_it_on() -> None
     again = Simulation(WORLD, rob, arc, start=end, estimator=fusion, duration=4.0).run()
     assert np.allclose(again.estimates[0], carried[:3], rtol=0.0, atol=1e-6)
     assert again.metrics.estimate_error < 0.02
+
+
+def test_an_omni_odometry_goes_on_from_leg_to_leg_as_the_sim_guide_says() -> None:
+    drive = OmniDrive.three_wheel(wheel_radius=0.05, base_radius=0.2)
+    rob = Robot(drive=drive, footprint=0.25, encoders=WheelEncoders(), compass=Compass())
+    odometry = OmniOdometry(drive)
+    first = Simulation(WORLD, rob, arc, start=(0.0, 0.0, 0.0), estimator=odometry,
+                       duration=4.0).run()  # fmt: skip
+    carried = odometry.pose
+    again = Simulation(WORLD, rob, arc, start=first.poses[-1], estimator=odometry,
+                       duration=4.0).run()  # fmt: skip
+    np.testing.assert_array_equal(again.estimates[0], carried.as_array())
+    assert again.metrics.estimate_error < first.metrics.estimate_error + 0.05
+    guide = " ".join((Path(__file__).resolve().parents[2] / "docs/guides/sim.md").read_text(
+        encoding="utf-8").split())  # fmt: skip
+    assert "an `OmniOdometry` or a `DiffOdometry` goes on as it is" in guide
+    assert "`fusion.reset(fusion.x, fusion.P, t0=0.0)` before each new leg" in guide
