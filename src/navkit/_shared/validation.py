@@ -428,6 +428,27 @@ def _real_array(value: Any, name: str, components: int | None = None) -> FloatAr
         raise TypeError(f"{name} must be numeric array-like: {exc}") from None
 
 
+def _points_hint(item: object) -> str:
+    """A hint for a navkit ``Path2D`` or ``LaserScan`` passed whole where points are wanted.
+
+    Told by their type's name and module (this layer imports neither): review 34
+    found an integrator passing a planner's route to ``world_to_cell`` and a scan
+    to ``LocalGrid.from_points``.
+    """
+    kind = type(item)
+    if not kind.__module__.startswith("navkit"):
+        return ""
+    names = {k.__name__ for k in kind.__mro__}
+    if "Path2D" in names:
+        return " (a whole path: pass path.points, (K, 2) in the frame path.frame names)"
+    if "LaserScan" in names:
+        return (
+            " (a whole scan: pass its end points, scan.to_points(pose) in the world"
+            " or scan.to_points() in the sensor frame)"
+        )
+    return ""
+
+
 def _message_hint(item: object, components: int | None = None) -> str:
     """A hint for a ROS message (``geometry_msgs/Point``, ``Quaternion``, ...) passed whole.
 
@@ -435,6 +456,10 @@ def _message_hint(item: object, components: int | None = None) -> str:
     fields are suggested: a ``Point`` where points ``(x, y)`` are wanted is
     ``(m.x, m.y)``, not ``(m.x, m.y, m.z)``, which would be refused for its shape.
     """
+    if components == 2:  # an argument of (x, y) points
+        hint = _points_hint(item)
+        if hint:
+            return hint
     try:
         fields = [f for f in "xyzw" if hasattr(item, f)]
     except Exception:  # a property raising: not a message
