@@ -41,6 +41,7 @@ from navkit._shared.counts import counted
 from navkit._shared.files import RENAME_LOCK, atomic_paths
 from navkit._shared.frozen import frozen_setattr
 from navkit._shared.locks import ForkSafeLock
+from navkit._shared.text import as_text
 from navkit.geometry import Pose2D
 from navkit.mapping import OccupancyGrid
 from navkit.mapping.io._paths import as_path, open_regular
@@ -1875,8 +1876,9 @@ def write_map(grid: OccupancyGrid, path: str | os.PathLike[str], *, mode: str = 
     """
     if not isinstance(grid, OccupancyGrid):
         raise TypeError(f"grid must be an OccupancyGrid, got {type(grid).__name__}")
-    if not isinstance(mode, str):
-        raise TypeError(f"mode must be a str, got {type(mode).__name__}")
+    # Checked and written as the plain str: an np.str_ (or any str subclass) went into
+    # the YAML, whose safe dumper raised its own RepresenterError for it.
+    mode = as_text(mode, "mode")
     if mode not in _WRITE_MODES:
         raise ValueError(f"mode must be 'trinary' or 'scale', got {mode!r}")
     image_format = _IMAGE_FORMAT[mode]
