@@ -3,13 +3,14 @@
 from __future__ import annotations
 
 import math
-from typing import Any, Literal
+from typing import Any, Literal, cast
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from navkit._shared.dunders import slot_state
 from navkit._shared.frozen import restore_slots
+from navkit._shared.text import as_text
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, as_points
 from navkit.control._ranges import MAX_COORDINATE, MAX_GAIN, MIN_GAIN, in_range, position, quantity
@@ -252,6 +253,7 @@ class PotentialFieldController:
             )
         if not isinstance(drive, str):
             raise TypeError(f"drive must be 'omni' or 'diff', got {type(drive).__name__}")
+        drive = cast(Literal["omni", "diff"], as_text(drive, "drive"))  # checked as stored
         if drive not in ("omni", "diff"):
             raise ValueError(f"drive must be 'omni' or 'diff', got {drive!r}")
         self._attraction = attraction

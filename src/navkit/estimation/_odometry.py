@@ -14,6 +14,7 @@ from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.dunders import slot_state
 from navkit._shared.frozen import restore_slots
 from navkit._shared.se2 import exp_body
+from navkit._shared.text import as_text
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import (
     as_float_array,
@@ -685,6 +686,7 @@ class DiffOdometry:
         start = Pose2D(0.0, 0.0, 0.0) if pose is None else as_pose(pose, "pose")
         if not isinstance(method, str):
             raise TypeError(f"method must be one of {_METHODS}, got {type(method).__name__}")
+        method = cast(OdometryMethod, as_text(method, "method"))  # checked and kept as plain str
         if method not in _METHODS:
             raise ValueError(f"method must be one of {_METHODS}, got {method!r}")
         bits = None if bits is None else _bit_width(bits, named)

@@ -5,7 +5,7 @@ from __future__ import annotations
 import copy
 import math
 import re
-from typing import Any, Literal, NamedTuple, Protocol
+from typing import Any, Literal, NamedTuple, Protocol, cast
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -14,6 +14,7 @@ from navkit._shared.counts import counted
 from navkit._shared.dunders import slot_state
 from navkit._shared.frozen import restore_slots
 from navkit._shared.metres import metres_text
+from navkit._shared.text import as_text
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_bool, as_float_array
 from navkit.errors import NoPathError
@@ -199,6 +200,9 @@ class MapPlanner:
         if not isinstance(grid, OccupancyGrid):
             raise TypeError(f"grid must be an OccupancyGrid, got {type(grid).__name__}")
         if isinstance(planner, str):
+            # Checked and kept as the plain str (an np.str_ printed as np.str_('astar'), a
+            # case-blind subclass's own == let "ASTAR" through).
+            planner = cast(Literal["astar", "field_dstar"], as_text(planner, "planner"))
             if planner not in _BUILT_IN:
                 raise ValueError(
                     f"planner must be one of {list(_BUILT_IN)} or a CellPlanner callable, "

@@ -6,10 +6,11 @@ import itertools
 import math
 import os
 from collections.abc import Sequence
-from typing import Literal
+from typing import Literal, cast
 
 import numpy as np
 
+from navkit._shared.text import as_text
 from navkit._shared.validation import positive_float
 from navkit.errors import DataNotFoundError
 from navkit.sim import Scenario, ScenarioResult, Scene, Table, Trial, TrialResult
@@ -111,6 +112,7 @@ class Demo(Scenario):
             raise TypeError(f"data_dir must be a path or None, got {type(data_dir).__name__}")
         if not isinstance(map, str):
             raise TypeError(f"map must be a str, got {type(map).__name__}")
+        map = cast(MapChoice, as_text(map, "map"))  # checked and kept as the plain str
         if map not in _MAPS:
             raise ValueError(f"map must be one of {', '.join(_MAPS)}; got {map!r}")
         self.duration: float = positive_float(duration, "duration")

@@ -8,11 +8,12 @@ import os
 import statistics
 import time
 from collections.abc import Sequence
-from typing import Any, Literal
+from typing import Any, Literal, cast
 
 import numpy as np
 import shapely
 
+from navkit._shared.text import as_text
 from navkit._shared.validation import as_bool, positive_float
 from navkit.control import FollowTheCarrot
 from navkit.geometry import Pose2D, Twist2D
@@ -317,10 +318,13 @@ class DiffAStar(Scenario):
         for k, name in enumerate(names):
             if not isinstance(name, str):  # before the set below: a list does not hash
                 raise TypeError(f"parts[{k}] must be a str, got {type(name).__name__}")
+        # Checked and kept as plain str (an np.str_ printed as np.str_(...) in the repr).
+        names = tuple(cast(Part, as_text(name, "parts")) for name in names)
         if not names or len(set(names)) != len(names) or any(p not in _PARTS for p in names):
             raise ValueError(f"parts must hold 'house' and/or 'building' once each, got {names!r}")
         if not isinstance(building, str):
             raise TypeError(f"building must be a str, got {type(building).__name__}")
+        building = cast(Literal["auto", "willow", "corridor"], as_text(building, "building"))
         if building not in _BUILDINGS:
             raise ValueError(f"building must be one of {list(_BUILDINGS)}, got {building!r}")
         if data_dir is not None and not isinstance(data_dir, (str, os.PathLike)):
