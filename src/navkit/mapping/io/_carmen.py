@@ -102,6 +102,13 @@ class CarmenLog:
         ODOM records ``(x, y, theta, time)`` (time in s), finite, ``theta``
         wrapped to (-π, π] (as the poses' headings are); an empty sequence
         gives shape (0, 4). Stored as a read-only copy. Required.
+        :func:`read_carmen` keeps them in file order as logged, neither
+        sorted nor checked for order, as ``times``: Radish's corrected logs
+        follow scans with an ODOM line stamped 0 that repeats the scan's
+        corrected pose (aces 440 rows, one per scan; csail 406; intel 841),
+        and intel's other ODOM times step back 696 times. To look the
+        odometry up at scan times, drop the rows stamped 0 and sort the
+        rest by time (``np.argsort(odometry[:, 3], kind="stable")``) first.
 
     Other Parameters
     ----------------
