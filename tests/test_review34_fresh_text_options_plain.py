@@ -1,13 +1,14 @@
 """Text options checked and kept as the plain ``str`` (a fresh-eyes review of review 33).
 
 Review 33 checked ``Event.kind``, ``Metrics.reason``, ``Path2D.frame`` and
-``MovingObstacle.after`` as the plain text stored. Five more options compared
-a ``str`` subclass with its own ``==`` and kept it as it was:
+``MovingObstacle.after`` as the plain text stored. Six more options compared a
+``str`` subclass with its own ``==`` and kept it as it was:
 ``MapPlanner(planner=)``, ``DiffOdometry(method=)``,
-``PotentialFieldController(drive=)``, ``Demo(map=)`` and ``DiffAStar(building=,
-parts=)``. An ``np.str_`` (an option read from a NumPy array) printed as
-``np.str_('astar')`` in their reprs and properties, and a case-blind subclass's
-``"ASTAR"`` was taken and kept, no name the library documents.
+``PotentialFieldController(drive=)``, ``Demo(map=)``, ``DiffAStar(building=,
+parts=)`` and ``IndoorNav(map_source=)``. An ``np.str_`` (an option read from a
+NumPy array) printed as ``np.str_('astar')`` in their reprs and properties, and
+a case-blind subclass's ``"ASTAR"`` was taken and kept, no name the library
+documents.
 """
 
 from __future__ import annotations
@@ -25,7 +26,7 @@ from navkit.kinematics import DiffDrive
 from navkit.mapping import OccupancyGrid
 from navkit.planning import MapPlanner
 from navkit.planning.reactive import ConicAttraction
-from navkit.sim.scenarios import Demo, DiffAStar
+from navkit.sim.scenarios import Demo, DiffAStar, IndoorNav
 
 
 def _grid() -> OccupancyGrid:
@@ -44,6 +45,7 @@ _CASES: list[tuple[str, str, Callable[[Any], Any], Callable[[Any], Any]]] = [
     ("map", "office", lambda v: Demo(map=v), lambda o: o.map),
     ("building", "corridor", lambda v: DiffAStar(building=v), lambda o: o.building),
     ("parts", "house", lambda v: DiffAStar(parts=(v,)), lambda o: o.parts[0]),
+    ("map_source", "plan", lambda v: IndoorNav(map_source=v), lambda o: o.map_source),
 ]  # fmt: skip
 
 

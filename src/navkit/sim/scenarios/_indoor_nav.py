@@ -26,6 +26,7 @@ from typing import Any
 import numpy as np
 
 from navkit._shared.counts import counted
+from navkit._shared.text import as_text
 from navkit._shared.validation import as_bool, bounded_int, finite_float
 from navkit.sim import Scenario, ScenarioResult, Scene, Table, Trace, Trial, TrialResult
 from navkit.sim.scenarios._indoor_nav_lab import (
@@ -226,6 +227,7 @@ class IndoorNav(Scenario):
         self.resolution: float = res
         if not isinstance(map_source, str):
             raise TypeError(f"map_source must be a str, got {type(map_source).__name__}")
+        map_source = as_text(map_source, "map_source")  # checked and kept as the plain str
         if map_source not in MAP_SOURCES:
             raise ValueError(f"map_source must be one of {MAP_SOURCES}, got {map_source!r}")
         self.map_source: str = map_source
