@@ -178,6 +178,15 @@ class RegulatedPurePursuit(PathTracker):
         nearest obstacle (NaN is rejected, negative counts as 0, ``inf`` as
         far). None (default): no cost regulation. The function must not call
         this tracker's :meth:`step` or :meth:`set_path` (``RuntimeError``).
+        A map's unknown cells are not obstacles here (nor in Nav2, whose
+        inflation skips unknown space by default), though
+        :class:`~navkit.planning.MapPlanner` and ``World(grid=...)`` treat
+        them as ones: on a robot-built map whose walls are mostly unknown
+        cells (the Willow Garage map: 0.2 % occupied, 68 % unknown) pass
+        ``OccupancyGrid.from_occupancy(grid.occupied() | grid.unknown(),
+        resolution=grid.resolution, origin=grid.origin)`` (on the controller
+        loop tutorial's route: a mean speed of 0.37 m/s instead of 0.46 with
+        ``clearance=grid``, 0.48 without regulation).
     clearance_distance : float, default 0.6
         Nav2 ``cost_scaling_dist`` (m), in (0, 1e4].
     clearance_gain : float, default 1.0
