@@ -141,6 +141,24 @@ class _Wheels:
         return np.array(delta, dtype=np.float64) * self._rad_per_tick, dt
 
 
+def _in_order(first: list[float], second: list[float], values: list[float]) -> tuple[float, float]:
+    """``first @ values`` and ``second @ values``, the products added in order.
+
+    A matrix product sums in an order (and with fused multiply-adds) of the BLAS
+    kernel's choosing, which differs between CPUs: OpenBLAS's kernel for recent
+    Intel CPUs gave a straight drive's yaw rate as -7.4e-17 rad/s where the one
+    for older CPUs gives 0, so the same seed ran a different estimate on each
+    machine. Each product rounded once, added wheel by wheel, is the same
+    everywhere (and 0 where equal wheel speeds cancel exactly).
+    """
+    a = first[0] * values[0]
+    b = second[0] * values[0]
+    for k in range(1, len(values)):
+        a += first[k] * values[k]
+        b += second[k] * values[k]
+    return a, b
+
+
 class FusionEstimator:
     """PlanarFusion fed with wheel odometry, compass yaw and IMU yaw rate/acceleration."""
 
@@ -218,10 +236,11 @@ class FusionEstimator:
             if step is None:
                 return
             inc, dt = step
-            twist = self._forward @ (inc / dt)
+            rows = self._forward
+            v, omega = _in_order(rows[0].tolist(), rows[2].tolist(), (inc / dt).tolist())
             scale = 1.0 / (dt * dt)
             fusion.update_odometry(
-                t, float(twist[0]), float(twist[2]),
+                t, v, omega,
                 v_variance=max(self._v_var * scale, 1e-6),
                 omega_variance=max(self._omega_var * scale, 1e-6),
             )  # fmt: skip
