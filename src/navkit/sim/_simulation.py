@@ -218,8 +218,10 @@ def _reference(value: Any) -> FloatArray | None:
         return None
     if isinstance(value, Path2D):
         if value.frame != "world":
+            # The trackers' advice for the same mistake (control's as_world_path).
             raise ValueError(
-                "reference_path must be in world coordinates; convert a grid path first"
+                f"reference_path must be in the world frame, got a {value.frame!r} Path2D "
+                "(convert its points with OccupancyGrid.cell_to_world, or plan with MapPlanner)"
             )
         pts = value.points
     else:
@@ -366,9 +368,10 @@ class Simulation:
     ------
     ValueError
         A bad rate, duration or tolerance, a sensor faster than the physics,
-        a robot starting in collision, an estimator that cannot serve the
-        run (see ``estimator``), or a ``TrackerController`` tracking the
-        estimate in a run without an estimator.
+        a ``"grid"`` ``Path2D`` as ``reference_path`` (the message says how
+        to convert it), a robot starting in collision, an estimator that
+        cannot serve the run (see ``estimator``), or a ``TrackerController``
+        tracking the estimate in a run without an estimator.
     TypeError
         Arguments of the wrong type.
 
