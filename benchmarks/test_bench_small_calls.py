@@ -8,8 +8,10 @@ the issue's goal is the public call within 1.5x of the kernel.
 
 * ``update_odometry``: :meth:`PlanarFusion.update_odometry` at 100 Hz against
   ``planar_step`` on the filter's buffer (``kernel``, through numba's dispatcher,
-  the issue's row; ``entry``, the compiled entry the public call uses; ``floor``,
-  the entry plus the result the public call builds);
+  the issue's row; ``entry``, its compiled float64 entry, the same code as the
+  entry the public call uses, ``planar_step_plain_entry``, which also takes
+  the place of the public call's type checks; ``floor``, the entry plus the
+  result the public call builds);
 * ``world_to_cell``: :meth:`OccupancyGrid.world_to_cell` on 10 points against
   ``world_to_cell_kernel`` into a preallocated array: the kernel the public
   call ends in (through its compiled entry, into a new array). The public call

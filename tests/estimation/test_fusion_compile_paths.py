@@ -1,8 +1,8 @@
 """PlanarFusion's compiled paths: one filter body, one signature per kernel, fast = general.
 
 Issue 17 cut the first use with an empty numba cache from about 16 s to about
-4.5 s of CPU: the filter is one function, the online step (``planar_step``),
-which the batch loop calls too, kernels copy arrays with loops instead of slice
+4.5 s of CPU: the filter is one function, the step (``_planar_step``), which
+the online entries and the batch loop call, kernels copy arrays with loops instead of slice
 assignment, and the public layer always passes the same types. These tests
 keep those properties; they never time anything.
 """
@@ -41,15 +41,20 @@ def _every_path(fusion: PlanarFusion) -> None:
 def test_every_kernel_is_compiled_for_one_signature() -> None:
     """Each online kind, predict, the general path and the batch share the same kernels."""
     _every_path(PlanarFusion(gate_probability=0.99))
-    # planar_step too: the batch loop calls it with int64 (not literal) mode arguments.
-    for kernel in (kernels.planar_step, kernels.planar_run):
+    for kernel in (kernels.planar_step_plain, kernels.planar_run):
         assert len(kernel.signatures) == 1, kernel.__name__
+    # The step's body (a helper) once at most: the batch loop calls it with int64 (not
+    # literal) mode arguments, as the online entry does (none when both callers were
+    # loaded from numba's cache).
+    assert len(kernels._planar_step.signatures) <= 1
 
 
 def test_the_batch_loop_calls_the_online_step() -> None:
     """The filter is compiled once: planar_run has no filter body of its own."""
     source = inspect.getsource(kernels.planar_run)
-    assert "planar_step(" in source and "_cholesky_inplace" not in source
+    assert "_planar_step(" in source and "_cholesky_inplace" not in source
+    for entry in (kernels.planar_step, kernels.planar_step_plain):  # thin entries
+        assert "_planar_step(" in inspect.getsource(entry)
     assert not hasattr(kernels, "planar_row")
 
 

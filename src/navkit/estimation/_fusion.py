@@ -46,7 +46,7 @@ from navkit.estimation._fusion_kernels import (
     NOT_POSITIVE_DEFINITE,
     OVERFLOW,
     TIME_GAP,
-    planar_step_entry,
+    planar_step_plain_entry,
     undo_step,
 )
 from navkit.estimation._gaussian import GaussianEstimate
@@ -105,12 +105,15 @@ def _load(buf: FloatArray) -> None:
 def _load_step(*args: Any) -> tuple[int, float]:
     """Compile (or load) the online step on first use, then run it (see ``_step``)."""
     global _step
-    _step = planar_step_entry()
+    _step = planar_step_plain_entry()
     return _step(*args)
 
 
-# The online step (_fusion_kernels.planar_step) without numba's type dispatch,
-# compiled on the first online update.
+# The online step (_fusion_kernels._planar_step) without numba's type dispatch, compiled
+# on the first online update. Entered through planar_step_plain: a time, value or
+# variance that is not a float (or NumPy float64) arrives as NaN, which the step refuses
+# (INVALID, nothing changed), so the fast paths need no type checks in Python; every
+# other caller passes validated floats.
 _step: Callable[..., tuple[int, float]] = _load_step
 
 # The arguments of an online step after its time: first, count, the values, the
@@ -1178,16 +1181,18 @@ class PlanarFusion(GaussianEstimate):
         >>> fusion.x[3:5].round(3)  # v and ω pulled almost to the measurement
         array([0.99 , 0.198])
         """
-        # Fast path (the call runs at the odometry rate): plain floats go straight to the
-        # compiled step, which checks the rest (finite values, variances in range, a
-        # running clock, an in-order time) and returns INVALID, changing nothing, if
-        # any check fails; then, and for anything but plain floats, the general way
-        # validates and explains.
+        # Fast path (the call runs at the odometry rate): the arguments go straight to
+        # the compiled step, whose entry takes anything but a float (or NumPy float64)
+        # as NaN (a check in C: five type() tests in Python cost about 70 ns) and which
+        # checks the rest (finite values, variances in range, a running clock, an
+        # in-order time), returning INVALID, changing nothing, if any check fails;
+        # then, and so for anything but floats, the general way validates and explains.
         # A stamp equal to the newest step kept for history (rare) also goes the general
-        # way: it may belong before that step (see _TIE_RANKS).
-        if (
-            type(t) is type(v) is type(omega) is type(v_variance) is type(omega_variance) is float
-            and not (self._history and self._steps and self._steps[-1][0] == t)
+        # way: it may belong before that step (see _TIE_RANKS); the stamp is compared
+        # only once known to be a float.
+        if not (
+            self._history
+            and (type(t) is not float or (self._steps and self._steps[-1][0] == t))
         ):
             status = 0  # for _settle: unknown until the step returns
             try:
@@ -1196,12 +1201,15 @@ class PlanarFusion(GaussianEstimate):
                 )
                 if status:
                     if status != INVALID:  # undone under the try (see _settle)
+                        # As floats, as the step took them (an int or NumPy float64 too).
                         return self._not_applied(
-                            status, "odometry", t, nis, slice(1, 3),
-                            (1, 2, v, omega, v_variance, omega_variance, self._odometry_gate),
+                            status, "odometry", float(t), nis, slice(1, 3),
+                            (1, 2, float(v), float(omega), float(v_variance),
+                             float(omega_variance), self._odometry_gate),
                         )  # fmt: skip
                 elif self._history:  # under the try: interrupted, the history is dropped
-                    args = (1, 2, v, omega, v_variance, omega_variance, self._odometry_gate)
+                    args = (1, 2, float(v), float(omega), float(v_variance),
+                            float(omega_variance), self._odometry_gate)  # fmt: skip
                     self._record(t, args, "odometry")
             except BaseException:
                 self._settle(status)
@@ -1215,7 +1223,9 @@ class PlanarFusion(GaussianEstimate):
                 result.reason = None
                 result.__class__ = UpdateResult  # type: ignore[assignment]
                 return result  # type: ignore[return-value]
-        return self._apply(t, "odometry", v, omega, v_variance, omega_variance, _ODOMETRY_NAMES)
+        return self._apply(
+            t, "odometry", v, omega, v_variance, omega_variance, _ODOMETRY_NAMES, tried=True
+        )
 
     def update_speed(self, t: float, v: float, *, variance: float) -> UpdateResult:
         """Fuse a forward speed ``v`` (m/s) alone; ``variance`` in (m/s)², keyword-only.
@@ -1388,22 +1398,31 @@ class PlanarFusion(GaussianEstimate):
         var0: Any,
         var1: Any,
         names: tuple[str, str, str, str],
+        *,
+        tried: bool = False,
     ) -> UpdateResult:
+        """Fuse a measurement of ``kind``: the fast path, unless ``tried`` (the caller's
+        own fast path returned INVALID, which this one would too), then the general way."""
         first, count, gate, comps = self._kinds[kind]
-        # Fast path: plain floats go straight to the compiled step, which checks the rest;
-        # a stamp equal to the newest step kept goes the general way (see update_odometry).
-        if type(t) is type(z0) is type(z1) is type(var0) is type(var1) is float and not (
-            self._history and self._steps and self._steps[-1][0] == t
+        # Fast path: the arguments go straight to the compiled step, which takes anything
+        # but a float as NaN and checks the rest; a stamp equal to the newest step kept
+        # goes the general way (see update_odometry).
+        if not tried and not (
+            self._history
+            and (type(t) is not float or (self._steps and self._steps[-1][0] == t))
         ):
             status = 0  # for _settle: unknown until the step returns
             try:
                 status, nis = _step(self._buf, t, first, count, z0, z1, var0, var1, gate)
                 if status:
                     if status != INVALID:  # undone under the try (see _settle)
-                        args = (first, count, z0, z1, var0, var1, gate)
-                        return self._not_applied(status, kind, t, nis, comps, args)
+                        # As floats, as the step took them (an int or NumPy float64 too).
+                        args = (first, count, float(z0), float(z1), float(var0), float(var1),
+                                gate)  # fmt: skip
+                        return self._not_applied(status, kind, float(t), nis, comps, args)
                 elif self._history:  # under the try: interrupted, the history is dropped
-                    self._record(t, (first, count, z0, z1, var0, var1, gate), kind)
+                    args = (first, count, float(z0), float(z1), float(var0), float(var1), gate)
+                    self._record(t, args, kind)
             except BaseException:
                 self._settle(status)
                 raise

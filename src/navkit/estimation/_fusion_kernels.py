@@ -19,11 +19,16 @@ measurement absurdly far from the state for its variance) is not applied
 
 Compilation (first use with an empty cache) is kept short by design (issue 17):
 
-* the filter is one function, the online step :func:`planar_step`, which the
-  batch loop :func:`planar_run` calls too (a separate filter function called
-  by both was optimised by LLVM three times: alone and linked into each
-  caller); every kernel is compiled for the one signature the public layer
-  passes;
+* the filter is one function, the step :func:`_planar_step`, which the online
+  entry :func:`planar_step_plain` and the batch loop :func:`planar_run` call
+  (a separate filter function called by both was optimised by LLVM three
+  times: alone and linked into each caller). It is a helper (no Python
+  wrapper, no machine code of its own): each caller links and optimises it
+  once, so a process using only the batch loop no longer compiles the online
+  step as well (0.2 s less); :func:`planar_step`, the same step entered with
+  float64 arguments, is compiled only when Python calls it (tests,
+  benchmarks). Every kernel is compiled for the one signature the public
+  layer passes;
 * no array is copied with slice assignment: numba compiles ``a[:] = b`` with a
   shape-mismatch error path whose message it builds with f-strings, 0.2-1.9 s
   per site; copies are loops;
@@ -62,9 +67,44 @@ from typing import Any, cast
 
 import numpy as np
 
-from navkit._shared.jit import njit_force_inline, njit_inline, njit_no_refcount, njit_released
+from navkit._shared.jit import (
+    bind_numba_names,
+    njit_force_inline,
+    njit_helper,
+    njit_inline,
+    njit_no_refcount,
+    njit_released,
+)
 from navkit._shared.se2 import wrap_scalar
 from navkit._shared.types import KernelInt
+
+# A float64 of a PLAIN_FLOAT argument (navkit.estimation._plain_float, which imports
+# numba: bound when numba loads), for planar_step_plain.
+plain_value: Any = None
+
+
+def _plain_value_python(x: Any) -> float:
+    """``plain_value`` when the JIT is disabled: the float ``x`` as PLAIN_FLOAT takes it.
+
+    Kernels then run as Python: a float, an instance of a float subclass defined
+    in C (NumPy's float64) or an int of magnitude at most 2**53 gives its value,
+    anything else NaN.
+    """
+    if type(x) is float:
+        return x
+    if type(x) is int:
+        return float(x) if -_EXACT_INT <= x <= _EXACT_INT else math.nan
+    if isinstance(x, float) and not type(x).__flags__ & _HEAPTYPE:
+        return float.__float__(x)  # its value, calling nothing of its own
+    return math.nan
+
+
+_HEAPTYPE = 1 << 9  # CPython's type flag of classes defined in Python
+_EXACT_INT = 2**53  # the ints float64 holds exactly lie within ±this
+bind_numba_names(
+    globals(), "navkit.estimation._plain_float",
+    python={"plain_value": _plain_value_python}, plain_value="plain_value",
+)  # fmt: skip
 
 N_STATE = 6
 N_COMP = 4
@@ -197,8 +237,8 @@ def _cho_solve_rows(buf: np.ndarray, lower: int, inv_diag: int, n: int, b: int) 
             buf[b + W * r + i] *= f
 
 
-@njit_no_refcount
-def planar_step(
+@njit_helper
+def _planar_step(
     buf: np.ndarray,
     t: float,
     first: KernelInt,
@@ -211,10 +251,10 @@ def planar_step(
 ) -> tuple[int, float]:
     """Predict the filter in ``buf`` to time ``t``, then update it with one measurement.
 
-    The one compiled body of the filter: the online updates call it from
-    Python and the batch loop (:func:`planar_run`) calls it, so that numba
-    types and lowers it once and LLVM optimises it twice (alone and linked into
-    the batch loop; issue 17). ``buf`` (BUF_SIZE,) holds x, P, Q, the
+    The one compiled body of the filter: the online updates call it through
+    :func:`planar_step_plain` and the batch loop (:func:`planar_run`) calls it,
+    so that numba types and lowers it once and LLVM optimises it once in each
+    caller (issue 17). ``buf`` (BUF_SIZE,) holds x, P, Q, the
     measurement, the filter time and the scratch space (layout ``BUF_*``
     above); x and P change in place. It allocates nothing: the indices of the
     observed components go to a scratch row of ``buf`` (as floats).
@@ -492,6 +532,22 @@ def planar_step(
     return ACCEPTED, nis
 
 
+@njit_no_refcount
+def planar_step(
+    buf: np.ndarray,
+    t: float,
+    first: KernelInt,
+    count: KernelInt,
+    z0: float,
+    z1: float,
+    var0: float,
+    var1: float,
+    gate: float,
+) -> tuple[int, float]:
+    """The online step (:func:`_planar_step`) called from Python with float64 arguments."""
+    return _planar_step(buf, t, first, count, z0, z1, var0, var1, gate)
+
+
 @njit_released
 def planar_run(
     buf: np.ndarray,
@@ -504,7 +560,7 @@ def planar_run(
     out_status: np.ndarray,
     out_nis: np.ndarray,
 ) -> None:
-    """Fuse a log into the filter in ``buf`` with :func:`planar_step` (in batch mode).
+    """Fuse a log into the filter in ``buf`` with :func:`_planar_step` (in batch mode).
 
     Row ``i`` is a measurement at ``times[i]`` with values ``values[i]`` (4,) and
     independent variances ``variances[i]`` (4,), 0 marking components it does
@@ -525,8 +581,8 @@ def planar_run(
     t = buf[BUF_TIME]
     if math.isnan(t):  # no clock yet: it starts at the first row
         t = times[0]
-    # Batch mode of planar_step (count -1). Typed int64, not as literal constants: a literal
-    # argument would compile planar_step a second time, for the literal values.
+    # Batch mode of _planar_step (count -1). Typed int64, not as literal constants: a literal
+    # argument would compile _planar_step a second time, for the literal values.
     first = np.int64(0)
     batch = np.int64(-1)
     for i in range(times.shape[0]):
@@ -541,7 +597,7 @@ def planar_run(
                 buf[_R0 + k] = variances[i, k]
                 if variances[i, k] > 0.0:
                     m += 1
-            status, nis = planar_step(buf, ti, first, batch, ti - t, 0.0, 0.0, 0.0, gates[m])
+            status, nis = _planar_step(buf, ti, first, batch, ti - t, 0.0, 0.0, 0.0, gates[m])
             if status == TIME_GAP:
                 # Undo the prediction: back to the state after the previous row (for
                 # row 0, index -1: the caller's copy of the initial state).
@@ -608,6 +664,8 @@ def _step_types() -> tuple[Any, ...]:
 def planar_step_entry() -> Callable[..., tuple[int, float]]:
     """Compiled entry of :func:`planar_step`, skipping numba's per-call type dispatch.
 
+    (The filter's online updates use :func:`planar_step_plain_entry`.)
+
     Calling a dispatcher first types all nine arguments to pick the compiled
     version (about 0.15 µs of a 1 µs call); the entry returned here is that
     version itself, compiled (or loaded from the cache) now. It checks no types:
@@ -628,3 +686,70 @@ def planar_step_entry() -> Callable[..., tuple[int, float]]:
     if not hasattr(dispatcher, "compile"):  # NUMBA_DISABLE_JIT=1: a plain function
         return cast(Callable[..., tuple[int, float]], dispatcher)
     return cast(Callable[..., tuple[int, float]], dispatcher.compile(_step_types()))
+
+
+@njit_no_refcount
+def planar_step_plain(
+    buf: np.ndarray,
+    t: float,
+    first: KernelInt,
+    count: KernelInt,
+    z0: float,
+    z1: float,
+    var0: float,
+    var1: float,
+    gate: float,
+) -> tuple[int, float]:
+    """The online step (:func:`_planar_step`), ``t``, the values and the variances as given.
+
+    Its compiled entry (:func:`planar_step_plain_entry`) takes those five
+    arguments as :data:`~navkit.estimation._plain_float.PLAIN_FLOAT`: a float, a
+    NumPy float64 or an int float64 holds exactly is its value, anything else
+    NaN, which the step refuses (``INVALID``, nothing changed). The public
+    layer's fast paths call it with whatever they were given, instead of
+    checking five types in Python first.
+    """
+    return _planar_step(
+        buf, plain_value(t), first, count, plain_value(z0), plain_value(z1),
+        plain_value(var0), plain_value(var1), gate,
+    )  # fmt: skip
+
+
+def planar_step_plain_entry() -> Callable[..., tuple[int, float]]:
+    """Compiled entry of :func:`planar_step_plain`: the online step for the fast paths.
+
+    As :func:`planar_step_entry`, with ``t``, ``z0``, ``z1``, ``var0`` and
+    ``var1`` of type :data:`~navkit.estimation._plain_float.PLAIN_FLOAT`: a
+    ``float``, a NumPy ``float64`` or an ``int`` of magnitude at most 2**53 is
+    taken as its float value; anything else (a bool, a larger int, a string, a
+    ``float32``, a float subclass defined in Python) is taken as NaN, without
+    calling any of its methods, so that the step returns ``INVALID`` and
+    changes nothing (it refuses a NaN time or value; the variances it reads
+    must lie in [1e-100, 1e100]: pass 1.0 for an unobserved second component,
+    as the filter does). The caller passes the filter's buffer, ints for
+    ``first`` and ``count`` and a float gate. With the JIT disabled, the
+    kernel itself (in Python), converting the same way.
+
+    Examples
+    --------
+    >>> buf = np.zeros(BUF_SIZE)
+    >>> buf.reshape(BUF_ROWS, W)[BUF_P : BUF_P + 6] = np.eye(6)
+    >>> buf[BUF_TIME] = 0.0
+    >>> step = planar_step_plain_entry()
+    >>> status, nis = step(buf, 0.1, 1, 1, 1.0, 0.0, 1.0, 1.0, math.inf)
+    >>> status == ACCEPTED, round(nis, 3), float(buf[BUF_TIME])
+    (True, 0.5, 0.1)
+    >>> step(buf, 0.2, 1, 1, "1.0", 0.0, 1.0, 1.0, math.inf)[0] == INVALID  # a string
+    True
+    >>> float(buf[BUF_TIME])  # nothing changed
+    0.1
+    """
+    dispatcher: Any = planar_step_plain
+    if not hasattr(dispatcher, "compile"):  # NUMBA_DISABLE_JIT=1: a plain function
+        return cast(Callable[..., tuple[int, float]], dispatcher)
+    from navkit.estimation._plain_float import PLAIN_FLOAT
+
+    types = list(_step_types())
+    for i in (1, 4, 5, 6, 7):  # t, z0, z1, var0, var1
+        types[i] = PLAIN_FLOAT
+    return cast(Callable[..., tuple[int, float]], dispatcher.compile(tuple(types)))
