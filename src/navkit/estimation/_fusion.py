@@ -111,9 +111,9 @@ def _load_step(*args: Any) -> tuple[int, float]:
 
 # The online step (_fusion_kernels._planar_step) without numba's type dispatch, compiled
 # on the first online update. Entered through planar_step_plain: a time, value or
-# variance that is not a float (or NumPy float64) arrives as NaN, which the step refuses
-# (INVALID, nothing changed), so the fast paths need no type checks in Python; every
-# other caller passes validated floats.
+# variance that is not a float (a NumPy float64 and an int float64 holds exactly count as
+# floats) arrives as NaN, which the step refuses (INVALID, nothing changed), so the fast
+# paths need no type checks in Python; every other caller passes validated floats.
 _step: Callable[..., tuple[int, float]] = _load_step
 
 # The arguments of an online step after its time: first, count, the values, the
@@ -1182,11 +1182,12 @@ class PlanarFusion(GaussianEstimate):
         array([0.99 , 0.198])
         """
         # Fast path (the call runs at the odometry rate): the arguments go straight to
-        # the compiled step, whose entry takes anything but a float (or NumPy float64)
-        # as NaN (a check in C: five type() tests in Python cost about 70 ns) and which
-        # checks the rest (finite values, variances in range, a running clock, an
-        # in-order time), returning INVALID, changing nothing, if any check fails;
-        # then, and so for anything but floats, the general way validates and explains.
+        # the compiled step, whose entry takes anything but a float (a NumPy float64 or
+        # an exact int counts as one) as NaN (a check in C: five type() tests in Python
+        # cost about 70 ns) and which checks the rest (finite values, variances in range,
+        # a running clock, an in-order time), returning INVALID, changing nothing, if any
+        # check fails; then, and so for anything but floats, the general way validates
+        # and explains.
         # A stamp equal to the newest step kept for history (rare) also goes the general
         # way: it may belong before that step (see _TIE_RANKS); the stamp is compared
         # only once known to be a float.
