@@ -250,6 +250,10 @@ spec(
     "navkit.geometry.Pose2D.__matmul__", lambda c: method(pose(), "__matmul__", A([0.5, -1.0, 1.0]))
 )
 spec(
+    "navkit.geometry.Pose2D.__rmatmul__",
+    lambda c: method(pose(), "__rmatmul__", A([0.5, -1.0, 1.0])),
+)
+spec(
     "navkit.geometry.Pose2D.relative_to",
     lambda c: method(pose(), "relative_to", A([0.5, -1.0, 1.0])),
 )

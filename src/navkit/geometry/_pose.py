@@ -62,6 +62,12 @@ class Pose2D:
     y: float
     theta: float = 0.0
 
+    # NumPy defers binary operators to the pose: ``row @ pose`` reaches __rmatmul__
+    # (it raised NumPy's "matmul: Input operand 1 does not have enough dimensions")
+    # and ``row == pose`` is False (it compared each element with the pose). Not a
+    # field (no annotation); np.asarray(pose) is still a 0-d object array.
+    __array_ufunc__ = None
+
     def __post_init__(self) -> None:
         object.__setattr__(self, "x", finite_float(self.x, "x"))
         object.__setattr__(self, "y", finite_float(self.y, "y"))
@@ -141,6 +147,27 @@ class Pose2D:
             As :meth:`compose`.
         """
         return self.compose(other)
+
+    def __rmatmul__(self, left: Pose2D | ArrayLike) -> Pose2D:
+        """``left @ pose`` for ``left`` a sequence or array row ``[x, y, theta]``.
+
+        ``as_pose(left) ⊕ pose``: an odometry pose kept as an array row (a row
+        of ``BagOdometry.poses``) composes with a pose as a ``Pose2D`` does,
+        ``odometry_row @ mount``.
+
+        Raises
+        ------
+        TypeError, ValueError
+            ``left`` not three finite real numbers (as :func:`as_pose`, naming
+            the left operand).
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> np.array([1.0, 0.0, np.pi / 2]) @ Pose2D(1.0, 0.0, 0.0)
+        Pose2D(x=1.0, y=1.0, theta=1.5707963267948966)
+        """
+        return as_pose(left, "left operand of @").compose(self)
 
     def inverse(self) -> Pose2D:
         """Return the inverse transform, so that ``p.compose(p.inverse())`` is the identity.
@@ -341,6 +368,9 @@ class Twist2D:
     vx: float
     vy: float = 0.0
     omega: float = 0.0
+
+    # As Pose2D's: ``array == twist`` is False, not a comparison of each element.
+    __array_ufunc__ = None
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "vx", finite_float(self.vx, "vx"))

@@ -386,7 +386,9 @@ class ScanMapper:
             free space, as in Hector; a scan with none keeps the guess.
         odometry : Pose2D or array_like [x, y, theta], optional
             Odometry pose of the **sensor** at this scan, in any fixed frame
-            (compose a mounting offset yourself: ``robot_odometry @ mount``).
+            (compose a mounting offset yourself: ``robot_odometry @ mount``
+            with ``mount`` a ``Pose2D``; ``robot_odometry`` may be a pose or
+            an ``[x, y, theta]`` array row, such as a ``BagOdometry.poses`` row).
             Only increments between consecutive scans are used. Without it, or
             when the previous scan came without it, the previous scan-to-scan
             motion is repeated.
