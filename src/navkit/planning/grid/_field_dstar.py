@@ -158,17 +158,18 @@ class FieldDStar:
         and makes paths in uniform regions exactly straight. Used with
         ``interpolate=True`` by :meth:`plan` / :meth:`replan`, and always on the
         linked paths of :meth:`plan_cells` and the world methods.
-    resolution : float, default 1.0
+    resolution : float, optional
         Cell side in m, in ``[1e-6, 1e6]``, for the world methods (the node and
-        cell methods do not use it). The default suits a bare cost array; for
-        costs of an :class:`~navkit.mapping.OccupancyGrid` pass its
-        ``resolution`` (and ``origin``), which :class:`MapPlanner` reads from
+        cell methods do not use it). Default (``None``): 1 m, which suits a bare
+        cost array; for costs of an :class:`~navkit.mapping.OccupancyGrid` pass
+        its ``resolution`` and ``origin``, which :class:`MapPlanner` reads from
         its grid itself.
     origin : Pose2D or (x, y, theta), default Pose2D(0, 0, 0)
         World pose of node ``(0, 0)``, the outer corner of cell ``(0, 0)``
         (rows along the origin's y axis, columns along its x axis), for the
         world methods: the convention of :class:`~navkit.mapping.OccupancyGrid`.
-        ``|x|, |y| <= 1e9`` m.
+        ``|x|, |y| <= 1e9`` m. Only with ``resolution``: a grid's origin given
+        alone would place the nodes 1 m apart, so it raises ``ValueError``.
     obstacles : (rows, cols) array_like of bool, optional
         Which impassable cells are obstacles (occupied, or unknown space not
         to be crossed) rather than the inflation drawn around them; every
@@ -189,8 +190,9 @@ class FieldDStar:
     ------
     ValueError
         Invalid ``costs`` (see :func:`navkit.planning.distance_field`), too
-        many nodes, ``resolution`` or ``origin`` out of range; ``obstacles``
-        of another shape than ``costs`` or marking a cell of finite cost.
+        many nodes, ``resolution`` or ``origin`` out of range, ``origin``
+        without ``resolution``; ``obstacles`` of another shape than ``costs``
+        or marking a cell of finite cost.
     TypeError
         Non-bool flags (``interpolate``, ``lookahead``, ``smooth``: only
         ``True``/``False``), a bad ``origin``, ``obstacles`` not boolean.
@@ -340,7 +342,7 @@ class FieldDStar:
         interpolate: bool = True,
         lookahead: bool = True,
         smooth: bool = True,
-        resolution: float = 1.0,
+        resolution: float | None = None,
         origin: Pose2D | ArrayLike = _IDENTITY,
         obstacles: ArrayLike | None = None,
     ) -> None:
@@ -348,13 +350,20 @@ class FieldDStar:
         self._interp = as_bool(interpolate, "interpolate")
         self._lookahead = as_bool(lookahead, "lookahead")
         self._smooth = as_bool(smooth, "smooth")
-        self._resolution = bounded_float(
+        self._resolution = 1.0 if resolution is None else bounded_float(
             resolution, "resolution", RESOLUTION_MIN, RESOLUTION_MAX, "m"
-        )
+        )  # fmt: skip
         self._origin = as_pose(origin, "origin")
         if not max(abs(self._origin.x), abs(self._origin.y)) <= COORDINATE_LIMIT:
             raise ValueError(
                 f"origin must lie within ±{COORDINATE_LIMIT:g} m in x and y, got {self._origin!r}"
+            )
+        if resolution is None and origin is not _IDENTITY:
+            # A grid's origin without its resolution planned on 1 m cells, silently.
+            raise ValueError(
+                "origin needs resolution, the cell side of the same grid: pass both "
+                "(resolution=grid.resolution, origin=grid.origin); alone, the origin "
+                "would place the nodes 1 m apart (the default for a bare cost array)"
             )
         self._rows, self._cols = (int(v) for v in arr.shape)
         self._obstacles = None if obstacles is None else _obstacle_mask(obstacles, arr)
