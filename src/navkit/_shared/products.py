@@ -1,4 +1,11 @@
-"""Matrix products whose partial sums may overflow where the result does not (private).
+"""Products computed the same way on every CPU, or where partial sums overflow (private).
+
+:func:`ordered_dot` is ``np.dot`` of two short vectors with the products added
+in order, one rounded product at a time: what OpenBLAS's x86-64 kernels of the
+AVX2 era (Haswell, Zen, Sandy Bridge, Nehalem) compute for up to 15 terms, and
+what its AVX-512 kernels (SkylakeX, Cooper Lake, Sapphire Rapids) do not: they
+fuse multiplies and adds and add in another order, so a result that depends on
+the last bit of a dot product (a norm, a speed limit) differed on those CPUs.
 
 ``rows @ matrix_t`` adds terms that can each exceed the float range (or whose
 running sum does) while the sum fits: large terms of opposite signs cancel, a
@@ -14,7 +21,33 @@ import numpy as np
 
 from navkit._shared.types import FloatArray
 
-__all__ = ["scaled_product"]
+__all__ = ["ORDERED_MAX", "ordered_dot", "scaled_product"]
+
+#: Most terms :func:`ordered_dot` adds in order; longer vectors go to ``np.dot``
+#: (whose older kernels add 16 or more terms in blocks, not in order).
+ORDERED_MAX = 15
+
+
+def ordered_dot(a: FloatArray, b: FloatArray) -> float:
+    """``float(np.dot(a, b))`` of 1-D float64 arrays, added in order up to 15 terms.
+
+    ``0.0 + a[0]*b[0] + a[1]*b[1] + ...``, each product rounded, then each sum:
+    the same bits on every CPU, equal to those of OpenBLAS's Haswell kernel
+    (which computed navkit's documented figures). Vectors of more than
+    :data:`ORDERED_MAX` terms use ``np.dot``. Products beyond the float range
+    give ``inf`` (no warning, no error under any ``np.seterr``).
+
+    Examples
+    --------
+    >>> ordered_dot(np.array([3.0, 4.0]), np.array([3.0, 4.0]))
+    25.0
+    """
+    if a.shape[0] > ORDERED_MAX:
+        return float(np.dot(a, b))
+    total = 0.0
+    for x, y in zip(a.tolist(), b.tolist(), strict=True):
+        total += x * y
+    return total
 
 
 def scaled_product(rows: FloatArray, matrix_t: FloatArray) -> FloatArray:
