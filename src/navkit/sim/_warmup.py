@@ -145,6 +145,8 @@ def _reactive() -> None:
     piecewise_repulsive_force_from_scan(scan, spread=2.0)
     greedy_step(LocalGrid.from_points(np.array([[0.2, 0.0]])), (2.0, 0.0))
     greedy_step(LocalGrid.from_points(np.array([[0.2, 0.0]])), (2.0, 0.0), require_progress=True)
+    # A return in the robot's own cell: greedy_step frees that cell in a copy.
+    greedy_step(LocalGrid.from_points(np.array([[0.0, 0.0]])), (2.0, 0.0))
 
 
 def _control() -> None:
@@ -291,6 +293,15 @@ def _simulation() -> None:
         world.raycast((1.0, 1.0, 0.0), np.linspace(-1.0, 1.0, 5), range_max=5.0)
 
 
+def _scenarios() -> None:
+    # The scenarios' own kernels (navkit run): the diff-astar localiser's scan match,
+    # compiled at its first scan (0.5 s of the house route matches a few).
+    from navkit.sim.scenarios import DiffAStar
+
+    scenario = DiffAStar(parts=("house",), building="corridor", noise=False, duration=0.5)
+    scenario.run_trial(scenario.trials(1)[0])
+
+
 #: The warm-up steps, ``name: (function, relative cost)``; costly steps start first.
 _STEPS: dict[str, tuple[Callable[[], None], float]] = {
     "estimation": (_estimation, 7.5),
@@ -298,6 +309,7 @@ _STEPS: dict[str, tuple[Callable[[], None], float]] = {
     "astar": (_astar, 6.0),
     "simulation": (_simulation, 5.5),
     "mapping": (_mapping, 4.0),
+    "scenarios": (_scenarios, 2.0),
     "control": (_control, 1.5),
     "reactive": (_reactive, 0.5),
     "geometry": (_geometry, 0.5),
@@ -517,13 +529,20 @@ def warmup(
     """Compile every navkit kernel now, so that no later call waits for numba.
 
     Calls each public entry point that runs a numba kernel once on tiny inputs
-    (planning, mapping, estimation, control and the simulator, with every option
-    that selects another kernel). numba caches the machine code on disk
-    (``cache=True``, see ``docs/compilation.md``), so every later process,
-    including this one, loads it in milliseconds instead of compiling. Kernels
-    already cached are only loaded, which takes a second or two in all. Run it
-    once at install or image-build time (``navkit warmup`` on the command line)
-    or in a long-running program's start-up.
+    (planning, mapping, estimation, control, the simulator and the scenarios of
+    ``navkit run``, with every option that selects another kernel). numba caches
+    the machine code on disk (``cache=True``, see ``docs/compilation.md``), so
+    every later process, including this one, loads it in milliseconds instead of
+    compiling. Kernels already cached are only loaded, which takes a second or
+    two in all. Run it once at install or image-build time (``navkit warmup`` on
+    the command line) or in a long-running program's start-up.
+
+    One family of kernels is compiled per size: :class:`~navkit.estimation.ExtendedKalmanFilter`
+    specialises its predict for the state's size n and its update for each
+    (n, measurement size m). The warm-up compiles n = 3 with m = 1 and 2; a
+    filter of other sizes compiles its own at its first predict and update
+    (0.6-0.7 s CPU for n = 4 or 5, once per cache): warm those by building the
+    filter and calling both once at start-up.
 
     Parameters
     ----------

@@ -278,6 +278,9 @@ def greedy_step(
     if occupied[centre, centre]:
         occupied = occupied.copy()
         occupied[centre, centre] = False
+        # Read-only as LocalGrid.occupied: numba compiles a kernel once per array type
+        # (a writable copy compiled greedy_select again, after navkit warmup too).
+        occupied.flags.writeable = False
     # g + h is exact to a few ulps of ‖goal‖ + half_width: this tolerance only makes
     # exact ties (cells on the straight line, mirror images) deterministic. It
     # scales with the goal distance but must stay far below the cell size: at
