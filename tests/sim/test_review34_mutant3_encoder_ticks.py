@@ -15,7 +15,7 @@ import math
 import numpy as np
 import pytest
 
-from navkit.sim import WheelEncoders
+from navkit.sim import EncoderReading, WheelEncoders
 
 _TWO_PI = 2.0 * math.pi
 
@@ -50,3 +50,18 @@ def test_ticks_follow_the_boundary_rule(tpr: float, bits: int | None) -> None:
             assert g == k, (a, tpr)
         else:
             assert g == k % (1 << bits), (a, tpr, bits)
+
+
+def test_an_encoder_reading_holds_a_read_only_int64_copy() -> None:
+    source = np.array([10, -3], dtype=np.int32)
+    reading = EncoderReading(0.02, source)
+    assert reading.ticks.dtype == np.int64
+    assert not reading.ticks.flags.writeable
+    source[0] = 99  # the caller's array stays the caller's
+    assert reading.ticks.tolist() == [10, -3]
+
+
+@pytest.mark.parametrize("ticks", [np.array([1.5, 2.0]), np.array([True, False]), [1.0, 2.0]])
+def test_an_encoder_reading_refuses_ticks_that_are_not_integers(ticks: object) -> None:
+    with pytest.raises(TypeError, match="ticks"):
+        EncoderReading(0.02, ticks)  # type: ignore[arg-type]
