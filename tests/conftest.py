@@ -2,12 +2,26 @@
 
 from __future__ import annotations
 
-import copy
 import os
+from pathlib import Path
+
+# Before NumPy loads OpenBLAS (it reads this once): the kernels of CPUs with AVX2
+# and FMA, whatever this CPU's newest are. OpenBLAS picks its matrix-product
+# kernels for the CPU, and they differ in the last bits (their order of sums and
+# fused multiply-adds): the tests' random draws built with ``@`` (covariances
+# ``a @ a.T``, measurements ``h @ x``) differed on an AVX-512 Xeon, and so did the
+# outcome counts pinned over thousands of them (review 34). Tests of navkit's own
+# results under each kernel set the variable themselves
+# (tests/sim/test_review34_lead_repro_fusion_odometry.py).
+if "OPENBLAS_CORETYPE" not in os.environ:
+    _CPU = Path("/proc/cpuinfo")
+    if _CPU.exists() and {"avx2", "fma"} <= set(_CPU.read_text().split()):
+        os.environ["OPENBLAS_CORETYPE"] = "Haswell"
+
+import copy
 import pickle
 import signal
 from collections.abc import Callable, Iterator
-from pathlib import Path
 from typing import Any
 
 import numpy as np
