@@ -222,7 +222,23 @@ def _logodds_array(value: ArrayLike) -> NDArray[Any]:
             "logodds must hold real numbers, got dtype bool: make a grid of a boolean "
             "occupancy mask with OccupancyGrid.from_occupancy(mask, resolution=...)"
         )
+    if isinstance(value, np.ndarray) and value.dtype in _MESSAGE_CELLS:
+        # A message's cells taken as log-odds would be a silent wrong map: free (0)
+        # cells unknown, a costmap's lethal 254 occupied and its free 0 unknown.
+        raise TypeError(
+            f"logodds must hold log-odds, got dtype {value.dtype}, the dtype of ROS map "
+            "cells (nav_msgs/OccupancyGrid's int8 percentages and -1, a costmap's uint8 "
+            "costs): read a message with navkit.mapping.io.grid_from_msg, convert "
+            "percentages with OccupancyGrid.from_probabilities(np.where(cells < 0, 0.5, "
+            "cells / 100), resolution=...), or convert the array to float first if it "
+            "really holds log-odds"
+        )
     return as_float_array(value, "logodds", ndim=2, finite=False)
+
+
+#: The dtypes of ROS map cells (nav_msgs/OccupancyGrid's int8, a costmap's uint8): no
+#: log-odds grid is stored as them.
+_MESSAGE_CELLS = (np.dtype(np.int8), np.dtype(np.uint8))
 
 
 # Cells per block of :func:`_probability_logodds`: its float64 temporaries stay
@@ -295,8 +311,9 @@ class OccupancyGrid:
     Raises
     ------
     TypeError
-        ``logodds`` is not real-valued (complex, strings, booleans), a number is
-        not a real number.
+        ``logodds`` is not real-valued (complex, strings, booleans), an int8 or
+        uint8 array (the dtypes of ROS map cells: :func:`navkit.mapping.io.grid_from_msg`
+        reads a message), a number is not a real number.
     ValueError
         Wrong shape, NaN or ±inf, a value outside its range, more than
         :attr:`MAX_CELLS` cells.
