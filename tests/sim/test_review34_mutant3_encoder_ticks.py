@@ -65,3 +65,13 @@ def test_an_encoder_reading_holds_a_read_only_int64_copy() -> None:
 def test_an_encoder_reading_refuses_ticks_that_are_not_integers(ticks: object) -> None:
     with pytest.raises(TypeError, match="ticks"):
         EncoderReading(0.02, ticks)  # type: ignore[arg-type]
+
+
+def test_an_older_pickle_of_an_encoder_reading_loads_read_only() -> None:
+    # What unpickling a slotted dataclass pickled before ``__reduce__`` does: a bare
+    # instance, then BUILD, which calls __setstate__ with the field values in order.
+    reading = EncoderReading.__new__(EncoderReading)
+    reading.__setstate__([0.25, np.array([7, -2], dtype=np.int64)])
+    assert reading.stamp == 0.25
+    assert reading.ticks.tolist() == [7, -2]
+    assert not reading.ticks.flags.writeable
