@@ -7,6 +7,7 @@ from typing import Any, Protocol, runtime_checkable
 
 import numpy as np
 
+from navkit._shared.products import ordered_dot
 from navkit._shared.types import FloatArray
 from navkit.estimation import DiffOdometry, OmniOdometry, PlanarFusion
 from navkit.geometry import Pose2D, wrap_angle
@@ -141,24 +142,6 @@ class _Wheels:
         return np.array(delta, dtype=np.float64) * self._rad_per_tick, dt
 
 
-def _in_order(first: list[float], second: list[float], values: list[float]) -> tuple[float, float]:
-    """``first @ values`` and ``second @ values``, the products added in order.
-
-    A matrix product sums in an order (and with fused multiply-adds) of the BLAS
-    kernel's choosing, which differs between CPUs: OpenBLAS's kernel for recent
-    Intel CPUs gave a straight drive's yaw rate as -7.4e-17 rad/s where the one
-    for older CPUs gives 0, so the same seed ran a different estimate on each
-    machine. Each product rounded once, added wheel by wheel, is the same
-    everywhere (and 0 where equal wheel speeds cancel exactly).
-    """
-    a = first[0] * values[0]
-    b = second[0] * values[0]
-    for k in range(1, len(values)):
-        a += first[k] * values[k]
-        b += second[k] * values[k]
-    return a, b
-
-
 class FusionEstimator:
     """PlanarFusion fed with wheel odometry, compass yaw and IMU yaw rate/acceleration."""
 
@@ -236,8 +219,11 @@ class FusionEstimator:
             if step is None:
                 return
             inc, dt = step
-            rows = self._forward
-            v, omega = _in_order(rows[0].tolist(), rows[2].tolist(), (inc / dt).tolist())
+            # Added in order, not by a BLAS kernel of the CPU's choosing: the same bits
+            # on every machine (a straight drive's yaw rate exactly 0, say).
+            rates = inc / dt
+            v = ordered_dot(self._forward[0], rates)
+            omega = ordered_dot(self._forward[2], rates)
             scale = 1.0 / (dt * dt)
             fusion.update_odometry(
                 t, v, omega,
