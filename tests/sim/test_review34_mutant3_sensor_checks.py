@@ -69,3 +69,29 @@ def test_an_angle_in_degrees_gets_the_hint_up_to_the_range_ends(degrees: float) 
     # 180 degrees is pi rad, the end of bias's range: still a plausible angle in degrees.
     with pytest.raises(ValueError, match=r"degrees\? pass math\.radians"):
         Compass(bias=degrees)
+
+
+def test_compass_reading_adds_bias_and_scaled_noise_clockwise_from_north() -> None:
+    # degrees(north - yaw + bias + noise * z) mod 360, each term with its own sign.
+    compass = Compass(noise=0.1, bias=0.05)
+    want = math.degrees(math.pi / 2 - 0.3 + 0.05 + 0.1 * 2.0) % 360.0
+    assert compass.heading_deg(0.3, 2.0) == pytest.approx(want, abs=1e-12)
+    want = math.degrees(math.pi / 2 - 0.3 + 0.05 - 0.1 * 1.5) % 360.0
+    assert compass.heading_deg(0.3, -1.5) == pytest.approx(want, abs=1e-12)
+
+
+@pytest.mark.parametrize(("yaw", "z"), [(2e6, 0.0), (0.0, -2e6)])
+def test_compass_refuses_yaw_or_draw_beyond_1e6(yaw: float, z: float) -> None:
+    with pytest.raises(ValueError, match="within"):
+        Compass().heading_deg(yaw, z)
+
+
+@pytest.mark.parametrize("bits", [1, 65, 0])
+def test_encoder_bits_outside_2_to_64_are_refused(bits: int) -> None:
+    with pytest.raises(ValueError, match="bits"):
+        WheelEncoders(bits=bits)
+
+
+def test_encoder_bits_given_as_a_numpy_integer_are_kept_as_a_plain_int() -> None:
+    enc = WheelEncoders(bits=np.int64(16))
+    assert type(enc.bits) is int and enc.bits == 16
