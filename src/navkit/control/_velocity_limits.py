@@ -7,6 +7,7 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike
 
+from navkit._shared.products import ordered_dot
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array
 from navkit.control._ranges import quantity
@@ -103,7 +104,9 @@ def _limit_change(
         # this function): the norm of a change beyond about 1e154 overflows (the change
         # is then measured scaled) and may warn.
         delta = want - prev
-        n = float(np.linalg.norm(delta))
+        # Norms and dot products added in order (not np.linalg.norm / np.dot, whose BLAS
+        # kernel differs by CPU: review 34): the same limit, bit for bit, everywhere.
+        n = math.sqrt(ordered_dot(delta, delta))
         if n < math.inf:
             u = delta / n if n > 0.0 else delta
         else:
@@ -116,13 +119,14 @@ def _limit_change(
             # Each component is finite but the length may not be: the direction from the
             # scaled vector, the length possibly inf (only compared with finite steps).
             scaled = delta / scale
-            u = scaled / float(np.linalg.norm(scaled))
-            n = scale * float(np.linalg.norm(scaled))
+            length = math.sqrt(ordered_dot(scaled, scaled))
+            u = scaled / length
+            n = scale * length
         if n == 0.0:
             same: FloatArray = prev.copy()
             return same
         # Along prev + t·u the speed is below its start value exactly for 0 < t < t_slow.
-        t_slow = max(0.0, -2.0 * float(np.dot(prev, u)))
+        t_slow = max(0.0, -2.0 * ordered_dot(prev, u))
         step_a = max_accel * dt
         step_d = max_decel * dt
         if n <= t_slow:
