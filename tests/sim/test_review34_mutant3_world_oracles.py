@@ -301,3 +301,11 @@ def test_clearance_among_many_small_primitives_matches_brute_force(seed: int) ->
         got = world.clearance(r, (x, y, th))
         if not inside:
             assert got == pytest.approx(max(want, 0.0), abs=TOL), (x, y)
+
+
+@pytest.mark.parametrize("velocity", [(1.5e3, 0.0), (0.0, -2e3)])
+def test_constant_velocity_refuses_speeds_beyond_1e3(velocity: tuple[float, float]) -> None:
+    with pytest.raises(ValueError, match="velocity_xy"):
+        MovingObstacle.constant_velocity(0.5, start_xy=(0.0, 0.0), velocity_xy=velocity)
+    ob = MovingObstacle.constant_velocity(0.5, start_xy=(0.0, 0.0), velocity_xy=(1e3, -1e3))
+    assert ob.position_at(1.0).tolist() == [1e3, -1e3]  # the ends are within
