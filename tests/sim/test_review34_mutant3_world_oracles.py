@@ -309,3 +309,14 @@ def test_constant_velocity_refuses_speeds_beyond_1e3(velocity: tuple[float, floa
         MovingObstacle.constant_velocity(0.5, start_xy=(0.0, 0.0), velocity_xy=velocity)
     ob = MovingObstacle.constant_velocity(0.5, start_xy=(0.0, 0.0), velocity_xy=(1e3, -1e3))
     assert ob.position_at(1.0).tolist() == [1e3, -1e3]  # the ends are within
+
+
+def test_bounds_hold_every_static_obstacle_circles_included() -> None:
+    rng = np.random.default_rng(9)
+    world, walls, rings, solids, discs = _random_edge_world(rng)
+    shapes = [LineString([a, b]) for a, b in walls] + solids
+    shapes += [Point(c).buffer(r, quad_segs=1024) for c, r in rings + discs]
+    xs0, ys0, xs1, ys1 = zip(*(g.bounds for g in shapes), strict=True)
+    want = (min(xs0), min(ys0), max(xs1), max(ys1))
+    assert world.bounds == pytest.approx(want, abs=1e-6)
+    assert World(Circle((3.0, -2.0), 0.5)).bounds == (2.5, -2.5, 3.5, -1.5)
