@@ -320,3 +320,12 @@ def test_bounds_hold_every_static_obstacle_circles_included() -> None:
     want = (min(xs0), min(ys0), max(xs1), max(ys1))
     assert world.bounds == pytest.approx(want, abs=1e-6)
     assert World(Circle((3.0, -2.0), 0.5)).bounds == (2.5, -2.5, 3.5, -1.5)
+
+
+@pytest.mark.parametrize("pose", [(2e12, 0.0, 0.0), (0.0, -1.5e12, 0.0)])
+def test_query_poses_beyond_1e12_m_are_refused(pose: tuple[float, float, float]) -> None:
+    world = World(Circle((0.0, 0.0), 1.0))
+    with pytest.raises(ValueError, match="pose must lie within"):
+        world.raycast(pose, [0.0], range_max=10.0)
+    with pytest.raises(ValueError, match="pose must lie within"):
+        world.clearance(0.1, pose)
