@@ -86,7 +86,7 @@ def _public_methods(cls: type) -> list[str]:
     return sorted(out)
 
 
-OPERATORS = ("__call__", "__add__", "__radd__", "__matmul__", "__getitem__")
+OPERATORS = ("__call__", "__add__", "__radd__", "__matmul__", "__rmatmul__", "__getitem__")
 
 
 @dataclass(frozen=True)

@@ -45,7 +45,7 @@ def _colourful_scene() -> Scene:
     cells[150:200, 200:400] = 100
     noise = rng.random(cells.shape) < 0.3
     cells[noise] = rng.choice(np.array([0, 100, -1], dtype=np.int8), int(noise.sum()))
-    grid = OccupancyGrid(cells, resolution=0.01)
+    grid = OccupancyGrid(cells.astype(np.float32), resolution=0.01)  # log-odds -1, 0, 100
     paths = tuple((f"plan {k}", np.array([[0.5, 0.4 + 0.35 * k], [5.5, 0.4 + 0.35 * k]]))
                   for k in range(10))  # fmt: skip
     points = tuple((f"mark {k}", np.array([[0.6 + 0.5 * k, 3.5]])) for k in range(7))
