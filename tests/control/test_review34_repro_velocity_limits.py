@@ -13,12 +13,12 @@ from __future__ import annotations
 
 import json
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
 
 from navkit.control import limit_velocity_change
+from openblas_kernels import core_types
 from subprocess_probe import probe_outcome
 
 
@@ -68,15 +68,10 @@ print(json.dumps(hashlib.sha256(np.concatenate(out).tobytes()).hexdigest()))
 """
 
 
-def _core_types() -> list[str]:
-    flags = Path("/proc/cpuinfo").read_text() if Path("/proc/cpuinfo").exists() else ""
-    return ["Haswell", "Sandybridge"] + (["SkylakeX"] if " avx512f" in flags else [])
-
-
 @pytest.mark.slow
 def test_the_same_limits_under_every_openblas_kernel(monkeypatch: pytest.MonkeyPatch) -> None:
     digests = {}
-    for core in _core_types():
+    for core in core_types():
         monkeypatch.setenv("OPENBLAS_CORETYPE", core)
         digests[core] = probe_outcome(_PROBE)
     assert len(set(digests.values())) == 1, json.dumps(digests)

@@ -14,12 +14,12 @@ from __future__ import annotations
 
 import json
 from fractions import Fraction
-from pathlib import Path
 
 import numpy as np
 import pytest
 
 from navkit._shared.products import ORDERED_MAX, ordered_dot
+from openblas_kernels import core_types
 from subprocess_probe import probe_outcome
 
 
@@ -85,18 +85,10 @@ print(json.dumps({"digest": digest, "blas_in_order": all(same.values())}))
 """
 
 
-def _core_types() -> list[str]:
-    # OpenBLAS cannot run its AVX-512 kernels on a CPU without them.
-    flags = Path("/proc/cpuinfo").read_text() if Path("/proc/cpuinfo").exists() else ""
-    return ["Haswell", "Sandybridge", "Nehalem"] + (
-        ["SkylakeX", "SapphireRapids"] if " avx512f" in flags else []
-    )
-
-
 @pytest.mark.slow
 def test_the_same_bits_under_every_openblas_kernel(monkeypatch: pytest.MonkeyPatch) -> None:
     outcomes = {}
-    for core in _core_types():
+    for core in core_types(("Haswell", "Sandybridge", "Nehalem"), ("SkylakeX", "SapphireRapids")):
         monkeypatch.setenv("OPENBLAS_CORETYPE", core)
         outcomes[core] = probe_outcome(_PROBE)
     assert len({o["digest"] for o in outcomes.values()}) == 1, json.dumps(outcomes)

@@ -12,7 +12,6 @@ wheel by wheel, in order: the same bits everywhere.
 from __future__ import annotations
 
 import json
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -22,6 +21,7 @@ from navkit.estimation import PlanarFusion
 from navkit.geometry import Twist2D
 from navkit.kinematics import DiffDrive
 from navkit.sim import Observation, Robot, Simulation, WheelEncoders, World
+from openblas_kernels import core_types
 from subprocess_probe import probe_outcome
 
 
@@ -81,18 +81,12 @@ print(json.dumps(hashlib.sha256(trace.estimates.tobytes()).hexdigest()))
 """
 
 
-def _core_types() -> list[str]:
-    # OpenBLAS cannot run its AVX-512 kernels on a CPU without them.
-    flags = Path("/proc/cpuinfo").read_text() if Path("/proc/cpuinfo").exists() else ""
-    return ["Haswell", "Sandybridge"] + (["SkylakeX"] if " avx512f" in flags else [])
-
-
 @pytest.mark.slow
 def test_the_estimate_is_the_same_under_every_openblas_kernel(
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
     digests = {}
-    for core in _core_types():
+    for core in core_types():
         monkeypatch.setenv("OPENBLAS_CORETYPE", core)
         digests[core] = probe_outcome(_PROBE)
     assert len(set(digests.values())) == 1, json.dumps(digests)

@@ -14,10 +14,10 @@ out: ``OmniDrive``'s LAPACK pseudo-inverse, documented in the simulation guide's
 from __future__ import annotations
 
 import json
-from pathlib import Path
 
 import pytest
 
+from openblas_kernels import has_avx512
 from subprocess_probe import probe_outcome
 
 _PROBE = """
@@ -41,7 +41,6 @@ _NO_AVX512 = "AVX512_SPR AVX512_ICL X86_V4"
 
 
 def _settings() -> dict[str, dict[str, str]]:
-    flags = Path("/proc/cpuinfo").read_text() if Path("/proc/cpuinfo").exists() else ""
     settings = {
         "Haswell": {"OPENBLAS_CORETYPE": "Haswell"},
         "Sandybridge": {"OPENBLAS_CORETYPE": "Sandybridge"},
@@ -50,7 +49,7 @@ def _settings() -> dict[str, dict[str, str]]:
             "NPY_DISABLE_CPU_FEATURES": _NO_AVX512,
         },
     }
-    if " avx512f" in flags:
+    if has_avx512():
         settings["SkylakeX"] = {"OPENBLAS_CORETYPE": "SkylakeX"}
     return settings
 
