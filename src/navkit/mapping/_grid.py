@@ -27,7 +27,13 @@ from navkit._shared.frozen import slot_names
 from navkit._shared.grid_coords import CELL_LIMIT, as_pairs, inside, one_or_many
 from navkit._shared.locks import ForkSafeLock
 from navkit._shared.types import BoolArray, FloatArray, IntArray
-from navkit._shared.validation import as_array, as_bool, as_float_array, finite_float
+from navkit._shared.validation import (
+    as_array,
+    as_bool,
+    as_float_array,
+    finite_float,
+    holds_bool,
+)
 from navkit.geometry import Pose2D, as_pose
 from navkit.mapping._cells_near_kernels import cells_near_kernel
 from navkit.mapping._grid_kernels import (
@@ -218,10 +224,7 @@ def _logodds_array(value: ArrayLike) -> NDArray[Any]:
         return value
     if isinstance(value, np.ndarray) and value.dtype == np.bool_:
         # An occupancy mask is the usual first grid: name the constructor that takes it.
-        raise TypeError(
-            "logodds must hold real numbers, got dtype bool: make a grid of a boolean "
-            "occupancy mask with OccupancyGrid.from_occupancy(mask, resolution=...)"
-        )
+        raise TypeError(f"logodds must hold real numbers, got dtype bool: {_MASK_HINT}")
     if isinstance(value, np.ndarray) and value.dtype in _MESSAGE_CELLS:
         # A message's cells taken as log-odds would be a silent wrong map: free (0)
         # cells unknown, a costmap's lethal 254 occupied and its free 0 unknown.
@@ -233,8 +236,20 @@ def _logodds_array(value: ArrayLike) -> NDArray[Any]:
             "cells / 100), resolution=...), or convert the array to float first if it "
             "really holds log-odds"
         )
-    return as_float_array(value, "logodds", ndim=2, finite=False)
+    try:
+        return as_float_array(value, "logodds", ndim=2, finite=False)
+    except TypeError as exc:
+        # Nested lists of bools (a mask typed by hand) get the mask's hint too.
+        if isinstance(value, (list, tuple)) and holds_bool(value):
+            raise TypeError(f"{exc}: {_MASK_HINT}") from None
+        raise
 
+
+#: The advice given with a boolean ``logodds``: an occupancy mask is the usual first grid.
+_MASK_HINT = (
+    "make a grid of a boolean occupancy mask with "
+    "OccupancyGrid.from_occupancy(mask, resolution=...)"
+)
 
 #: The dtypes of ROS map cells (nav_msgs/OccupancyGrid's int8, a costmap's uint8): no
 #: log-odds grid is stored as them.
@@ -976,15 +991,10 @@ class OccupancyGrid:
             # cells take the points' shape tuple as it is (cheaper than a new one).
             cells = _empty(shape, _INT64)
             entry = _CELLS_ENTRY or _cells_entry()
-            try:
-                finite = entry(
-                    points_xy, self._origin_x, self._origin_y, self._origin_yaw, self._resolution,
-                    cells,
-                )  # fmt: skip
-            except ValueError:
-                # NUMBA_DISABLE_JIT=1 only: the kernel runs as Python, whose floor of a
-                # NaN coordinate raises; the general path names the argument.
-                finite = False
+            finite = entry(
+                points_xy, self._origin_x, self._origin_y, self._origin_yaw, self._resolution,
+                cells,
+            )  # fmt: skip
             if finite:
                 return cells
         if continuous is True and type(points_xy) in _ONE_PAIR_TYPES:

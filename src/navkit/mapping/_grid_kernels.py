@@ -136,7 +136,7 @@ def world_to_cell_entry() -> Callable[..., bool]:
     # fully imported), which the import below would do unguarded.
     dispatcher: Any = world_to_cell_kernel
     if not hasattr(dispatcher, "compile"):  # NUMBA_DISABLE_JIT=1: a plain function
-        return cast(Callable[..., bool], dispatcher)
+        return _python_cells_entry
     from numba import types  # here: importing this module must not import numba
 
     signature = (
@@ -145,6 +145,31 @@ def world_to_cell_entry() -> Callable[..., bool]:
         types.Array(types.int64, 2, "C"),
     )
     return cast(Callable[..., bool], dispatcher.compile(signature))
+
+
+def _python_cells_entry(
+    points: np.ndarray,
+    origin_x: float,
+    origin_y: float,
+    origin_yaw: float,
+    resolution: float,
+    out: np.ndarray,
+) -> bool:
+    """:func:`world_to_cell_kernel` run as Python (``NUMBA_DISABLE_JIT=1``), as compiled.
+
+    Compiled, a NaN or infinite point gives False (the caller's general way then
+    names the argument). As Python the kernel reads NumPy scalars: ``inf - inf``
+    obeys the caller's :func:`numpy.seterr` (a ``FloatingPointError`` under
+    ``all="raise"``, a ``RuntimeWarning`` by default) and ``math.floor`` of a
+    NaN raises ``ValueError``; both are the same False here.
+    """
+    with np.errstate(all="ignore"):
+        try:
+            return bool(
+                world_to_cell_kernel(points, origin_x, origin_y, origin_yaw, resolution, out)
+            )
+        except (ValueError, OverflowError):
+            return False
 
 
 @njit_no_refcount
