@@ -65,7 +65,8 @@ class Pose2D:
     # NumPy defers binary operators to the pose: ``row @ pose`` reaches __rmatmul__
     # (it raised NumPy's "matmul: Input operand 1 does not have enough dimensions")
     # and ``row == pose`` is False (it compared each element with the pose). Not a
-    # field (no annotation); np.asarray(pose) is still a 0-d object array.
+    # field (no annotation); np.asarray(pose) is still a 0-d object array. An object
+    # array (of poses) is still compared element by element: see __eq__.
     __array_ufunc__ = None
 
     def __post_init__(self) -> None:
@@ -91,6 +92,19 @@ class Pose2D:
 
     def __format__(self, format_spec: str) -> str:
         return _formatted(self, format_spec)
+
+    def __eq__(self, other: object) -> Any:
+        # The dataclass's comparison (fields, same class), and an object array's
+        # elements compared with the pose (``pose in np.array([p, q])``): with
+        # __array_ufunc__ = None NumPy leaves that to the pose (review 35).
+        if other.__class__ is self.__class__:
+            return self.x == other.x and self.y == other.y and self.theta == other.theta
+        return _elementwise(np.equal, other, self)
+
+    def __ne__(self, other: object) -> Any:
+        if other.__class__ is self.__class__:
+            return not (self.x == other.x and self.y == other.y and self.theta == other.theta)
+        return _elementwise(np.not_equal, other, self)
 
     def compose(self, other: Pose2D | ArrayLike) -> Pose2D:
         """Return ``self ⊕ other``: ``other`` (given in this pose's frame) in the world frame.
@@ -369,7 +383,8 @@ class Twist2D:
     vy: float = 0.0
     omega: float = 0.0
 
-    # As Pose2D's: ``array == twist`` is False, not a comparison of each element.
+    # As Pose2D's: ``array == twist`` is False, not a comparison of each element
+    # (but an object array's elements are compared with the twist: see __eq__).
     __array_ufunc__ = None
 
     def __post_init__(self) -> None:
@@ -389,6 +404,17 @@ class Twist2D:
 
     def __format__(self, format_spec: str) -> str:
         return _formatted(self, format_spec)
+
+    def __eq__(self, other: object) -> Any:
+        # As Pose2D's.
+        if other.__class__ is self.__class__:
+            return self.vx == other.vx and self.vy == other.vy and self.omega == other.omega
+        return _elementwise(np.equal, other, self)
+
+    def __ne__(self, other: object) -> Any:
+        if other.__class__ is self.__class__:
+            return not (self.vx == other.vx and self.vy == other.vy and self.omega == other.omega)
+        return _elementwise(np.not_equal, other, self)
 
     def as_array(self) -> FloatArray:
         """Return ``[vx, vy, omega]`` as a new float64 array.
@@ -584,3 +610,19 @@ def as_twist(value: Twist2D | ArrayLike, name: str = "twist") -> Twist2D:
     if isinstance(value, Twist2D):
         return value
     return Twist2D(*_three(value, name, "Twist2D", "[vx, vy, omega]"))
+
+
+def _elementwise(compare: np.ufunc, other: object, record: Pose2D | Twist2D) -> Any:
+    """``compare`` of each element of an object array with ``record``, else NotImplemented.
+
+    What NumPy computed before ``__array_ufunc__ = None`` (review 34) made it leave
+    ``array == pose`` to the pose: a bool array, each element compared with the
+    record by its own ``==``. The record goes in a 0-d object array, as NumPy
+    held it then (a ufunc refuses the record itself). Anything else (a numeric
+    row, a list, a number) is NotImplemented: then not equal.
+    """
+    if isinstance(other, np.ndarray) and other.dtype == object:
+        held = np.empty((), dtype=object)
+        held[()] = record
+        return compare(other, held)
+    return NotImplemented
