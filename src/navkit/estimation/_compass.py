@@ -86,12 +86,14 @@ def compass_to_yaw(
     raw = as_float_array(raw_deg, "raw_deg")
     theta0 = finite_float(initial_deg, "initial_deg")
     flag = as_bool(unwrap, "unwrap")
-    # Reduce each angle first (np.mod is exact): raw - theta0 would round away the
-    # smaller of the two once the other is large (1e20 - 10 == 1e20), or overflow.
+    # Reduce each angle first: raw - theta0 would round away the smaller of the two
+    # once the other is large (1e20 - 10 == 1e20), or overflow. Each reduced angle
+    # lies in [0, 360] (360 itself for a tiny negative angle: -1e-20 % 360 rounds up
+    # to it), so diff lies in [0, 720] (never -0.0: -360 + 360 is +0.0), and the
+    # remainder of a non-negative diff is exact: rel is in [0, 360), never 360.
+    # (Were it 360, the yaw below would be 360 - 360 = +0.0, as for rel = 0.)
     diff = np.mod(raw, 360.0) - (theta0 % 360.0) + 360.0
     rel = np.mod(diff, 360.0)
-    # np.mod can round a tiny negative difference up to exactly 360.
-    rel = np.where(rel >= 360.0, 0.0, rel)
     # 0.0 - rel, not -rel: a reading equal to the initial heading is yaw +0.0, not -0.0.
     yaw = np.radians(np.where(rel < 180.0, 0.0 - rel, 360.0 - rel))
     if flag:
