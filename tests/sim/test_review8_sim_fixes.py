@@ -98,9 +98,9 @@ def test_lidar_scans_at_the_pose_bound() -> None:
 def test_delay_line_copies_hold_their_own_queue(duplicate: Callable[[Any], Any]) -> None:
     # copy.copy shared the deque: a push to the copy was delivered by the original.
     line: DelayLine[str] = DelayLine(0.5)
-    line.push(0.0, "a")
+    line.push_at(0.5, "a")
     twin = duplicate(line)
-    twin.push(0.1, "b")
+    twin.push_at(0.6, "b")
     assert (len(line), len(twin)) == (1, 2)
     assert line.pop_due(10.0) == [(0.5, "a")]
     assert twin.pop_due(10.0) == [(0.5, "a"), (0.6, "b")]
@@ -117,7 +117,7 @@ def test_delay_line_subclass_copies_keep_their_slots() -> None:
 
     line = _TaggedLine(0.25)
     line.tag = "lidar"
-    line.push(1.0, "x")
+    line.push_at(1.25, "x")
     twin = copy.copy(line)
     assert type(twin) is _TaggedLine and twin.tag == "lidar"
     twin.pop_due(2.0)

@@ -67,11 +67,11 @@ def test_compass_reading_formula_and_draw_range() -> None:
 
 # -------------------------------------------------------------------- latency
 def test_delay_line_delivers_every_item_due_within_the_tolerance() -> None:
-    # Items are due at stamp + delay and delivered, all of them in order, once due
-    # by now + 1e-9 s (inclusive), not a hair earlier.
+    # Items are delivered, all of them in order, once due by now + 1e-9 s
+    # (inclusive), not a hair earlier.
     line: DelayLine[str] = DelayLine(0.25)
     for k, item in enumerate("abc"):
-        line.push(0.25 * k, item)  # due at 0.25, 0.5, 0.75
+        line.push_at(0.25 * k + 0.25, item)  # due at 0.25, 0.5, 0.75
     assert line.pop_due(0.25 - 2e-9) == []
     assert line.pop_due(0.5 - 5e-10) == [(0.25, "a"), (0.5, "b")]
     boundary = 0.75 - 1e-9

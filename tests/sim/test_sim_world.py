@@ -210,7 +210,7 @@ def test_chebyshev_distance() -> None:
 def test_delay_line_keeps_order_and_delay() -> None:
     line: DelayLine[str] = DelayLine(0.08)
     for k in range(5):
-        line.push(0.02 * k, f"r{k}")
+        line.push_at(0.02 * k + 0.08, f"r{k}")
     assert line.pop_due(0.079) == []
     assert [item for _, item in line.pop_due(0.12)] == ["r0", "r1", "r2"]
     assert len(line) == 2

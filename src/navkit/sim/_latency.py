@@ -15,9 +15,12 @@ _T = TypeVar("_T")
 class DelayLine(Generic[_T]):
     """Holds the items of one stream until their delivery time.
 
-    Every item of a stream has the same delay, so items leave in the order
-    they came in. Times are compared with a tolerance of 1e-9 s, so that an
-    item due at ``t`` is delivered at step ``k`` when ``k / rate ≈ t``.
+    The caller queues each item with its due time (:meth:`push_at`; the
+    simulator computes the due times of a whole batch of readings at once, in
+    steps of its clock), never before an item already queued, so items leave
+    in the order they came in. Times are compared with a tolerance of 1e-9 s,
+    so that an item due at ``t`` is delivered at step ``k`` when
+    ``k / rate ≈ t``.
 
     An ordinary class with ``__slots__``: it changes as items pass. Copies
     (:func:`copy.copy` too), deep copies and pickles hold their own queue.
@@ -25,12 +28,13 @@ class DelayLine(Generic[_T]):
     Parameters
     ----------
     delay : float
-        Delivery delay, s, >= 0 (validated by the caller).
+        The stream's delivery delay, s, >= 0 (validated by the caller; kept as
+        :attr:`delay`, the due times given to :meth:`push_at` include it).
 
     Examples
     --------
     >>> line = DelayLine(0.5)
-    >>> line.push(0.0, "a"); line.push(0.1, "b")
+    >>> line.push_at(0.5, "a"); line.push_at(0.6, "b")
     >>> line.pop_due(0.5), line.pop_due(0.55), line.pop_due(0.6)
     ([(0.5, 'a')], [], [(0.6, 'b')])
     """
@@ -60,10 +64,6 @@ class DelayLine(Generic[_T]):
     def delay(self) -> float:
         """The delivery delay, s."""
         return self._delay
-
-    def push(self, stamp: float, item: _T) -> None:
-        """Queue ``item`` sampled at ``stamp``; it is due at ``stamp + delay``."""
-        self._items.append((stamp + self._delay, item))
 
     def push_at(self, due: float, item: _T) -> None:
         """Queue ``item`` due at ``due`` (not before any item already queued)."""
