@@ -39,7 +39,13 @@ users.
 A child forked while other threads pause (a ``multiprocessing`` "fork"
 worker started during a first use elsewhere) has only the forking thread: the
 count keeps that thread's pauses, and with none left the collector is
-restored there (``os.register_at_fork``).
+restored there (``os.register_at_fork``). A fork waits for numba's compiler
+lock (review 35): numba holds it for every compile and every load of a kernel
+from its cache, and a child forked while another thread held it inherited it
+held by a thread that does not exist there, so its first kernel call waited
+for ever (a ``sweep`` over a ``fork`` process pool started while a ROS 2
+callback made a first call never ended). The fork now happens between
+compiles, as CPython's own fork waits for its import lock.
 
 Garbage made meanwhile is collected as usual afterwards; the peak memory of a
 compile rises by a few tens of MB (25 MB measured on Field D*'s).
@@ -50,6 +56,7 @@ from __future__ import annotations
 import gc
 import importlib
 import os
+import sys
 import threading
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -91,13 +98,41 @@ def _end_pause() -> None:
             gc.enable()
 
 
+#: numba's compiler lock while this thread forks (see _before_fork), else empty.
+_HELD_FOR_FORK: list[Any] = []
+
+
+def _numba_compiler_lock() -> Any:
+    """The re-entrant lock in numba's ``global_compiler_lock``; None before numba is imported."""
+    module = sys.modules.get("numba.core.compiler_lock")
+    lock = getattr(getattr(module, "global_compiler_lock", None), "_lock", None)
+    return lock if callable(getattr(lock, "release", None)) else None
+
+
 def _before_fork() -> None:
+    # numba's compiler lock first: a fork waits for the compile (or cache load) under
+    # way in another thread, whose child would find the lock held for ever. Taken
+    # without numba's events (its lock object's own acquire reports one), before
+    # _PAUSE_LOCK, as a compiling thread takes them (this handler runs before
+    # compile_shortcuts', registered earlier, which takes that module's lock). A
+    # Ctrl-C during the wait leaves the lock untaken: Python reports the
+    # interrupt as an exception ignored in this handler, and forks.
+    lock = _numba_compiler_lock()
+    if lock is not None:
+        lock.acquire()
+        _HELD_FOR_FORK.append(lock)
     # Held across the fork, so the child copies a count and a state that agree.
     _PAUSE_LOCK.acquire()
 
 
+def _release_compiler_lock() -> None:
+    while _HELD_FOR_FORK:
+        _HELD_FOR_FORK.pop().release()
+
+
 def _after_fork_in_parent() -> None:
     _PAUSE_LOCK.release()
+    _release_compiler_lock()
 
 
 def _after_fork_in_child() -> None:
@@ -105,6 +140,7 @@ def _after_fork_in_child() -> None:
 
     Their pauses would never end, and the child would run with the collector
     off for good (a worker forked while another thread compiled a kernel).
+    numba's compiler lock, held by this thread across the fork, is let go.
     """
     global _PAUSE_LOCK, _PAUSES
     _PAUSE_LOCK = threading.RLock()  # the parent's is held, by this thread's twin
@@ -112,6 +148,7 @@ def _after_fork_in_child() -> None:
     _PAUSES = getattr(_THREAD, "pauses", 0)
     if others and _PAUSES == 0 and _RESUME:
         gc.enable()
+    _release_compiler_lock()
 
 
 if hasattr(os, "register_at_fork"):  # not on Windows, which cannot fork
