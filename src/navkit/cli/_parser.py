@@ -129,11 +129,15 @@ def parse_command_line(parser: argparse.ArgumentParser, argv: Sequence[str]) -> 
         reporter = parser if command is None else command
         message = f"unrecognized arguments: {' '.join(extras)}"
         # Words after a "--" are no options: guessed from, "-- --trials" was answered
-        # "maybe you meant '--trials'?", the very word typed.
-        ended = list(argv[argv.index("--") + 1 :]) if "--" in argv else []
-        options = [e for e in extras if e.startswith("--") and e != "--" and e not in ended]
+        # "maybe you meant '--trials'?", the very word typed. Told apart by their place,
+        # not their text: the same word may be typed before the "--" too.
+        after = _after_dashdash(argv, extras)
+        options = [e for e, late in zip(extras, after, strict=True)
+                   if not late and e.startswith("--") and e != "--"]  # fmt: skip
         typed = options[0].partition("=")[0] if options else None
-        if typed is None and any(e.startswith("--") for e in ended if e in extras):
+        if typed is None and any(
+            late and e.startswith("--") for e, late in zip(extras, after, strict=True)
+        ):
             message += " (after '--' no word is read as an option)"
         # --help is left out: "--step" is closer to it than to anything a user meant.
         names = [
@@ -143,6 +147,30 @@ def parse_command_line(parser: argparse.ArgumentParser, argv: Sequence[str]) -> 
         guess = None if typed is None else closest_choice(typed, names)
         reporter.error(message if guess is None else f"{message}, maybe you meant {guess!r}?")
     return args
+
+
+def _after_dashdash(argv: Sequence[str], extras: Sequence[str]) -> list[bool]:
+    """Whether each of ``extras`` (argparse's unread words) stands after ``argv``'s first ``--``.
+
+    ``extras`` keep ``argv``'s order; matched from the end, each takes the last
+    place of its text not yet taken, so a word typed both before the ``--`` (and
+    read there, as ``--trials 1``) and after it is the one after it.
+
+    Examples
+    --------
+    >>> _after_dashdash(["demo", "--trail", "--", "--trail"], ["--trail", "--", "--trail"])
+    [False, False, True]
+    """
+    words = list(argv)
+    cut = words.index("--") if "--" in words else len(words)
+    flags: list[bool] = []
+    j = len(words)
+    for extra in reversed(extras):
+        j -= 1
+        while j >= 0 and words[j] != extra:
+            j -= 1
+        flags.append(j > cut)
+    return flags[::-1]
 
 
 def _commands(parser: argparse.ArgumentParser) -> dict[str, argparse.ArgumentParser]:
