@@ -5,6 +5,8 @@ from __future__ import annotations
 import math
 from typing import Literal
 
+import numpy as np
+
 from navkit._shared.deprecation import renamed_keyword
 from navkit.control._path_following import (
     PathTracker,
@@ -20,6 +22,11 @@ __all__ = ["FollowTheCarrot"]
 # Folds of a path through the robot passed at one step (see _command), as
 # RegulatedPurePursuit's: a bound, so that the search always ends.
 _MAX_FOLDS = 64
+
+# The shortest carrot distance a path takes, relative to its extent (its length or
+# its largest coordinate): 2**6 float steps at that magnitude, so that the carrot,
+# computed by arc length and interpolation, is never the robot's own closest point.
+_CARROT_RESOLUTION = 2.0**-46
 
 
 class FollowTheCarrot(PathTracker):
@@ -56,7 +63,11 @@ class FollowTheCarrot(PathTracker):
     ----------
     carrot_distance : float, default 0.3
         Arc length (m) from the robot's closest path point to the carrot, in
-        (0, 1e4].
+        (0, 1e4]. :meth:`set_path` refuses a path whose extent (its length or
+        its largest coordinate, whichever is larger) exceeds ``2**46`` carrot
+        distances (7e13: 1.4e-5 m for coordinates of 1e9 m): a carrot that
+        near rounds onto the robot's own closest point, and the robot, steered
+        to where it stands, never moves.
     max_speed : float, default 0.18
         Forward speed (m/s) while tracking, in (0, 100].
     max_omega : float, default 1.5
@@ -114,7 +125,8 @@ class FollowTheCarrot(PathTracker):
     Raises
     ------
     ValueError
-        An option outside its range, naming it.
+        An option outside its range, naming it; from :meth:`set_path`, a
+        ``carrot_distance`` too short for the path, naming it.
     TypeError
         A non-numeric option.
 
@@ -201,6 +213,19 @@ class FollowTheCarrot(PathTracker):
     def rotate_angle(self) -> float:
         """Heading error (rad) to the carrot above which a differential robot turns in place."""
         return self._align_angle
+
+    def _check_line(self, line: Polyline) -> None:
+        # A carrot below the float resolution of the path's arc lengths and points
+        # is the robot's own closest point: a command of zero, at every step.
+        extent = max(line.length, float(np.max(np.abs(line.points_xy))))
+        if self._carrot_distance < extent * _CARROT_RESOLUTION:
+            raise ValueError(
+                f"carrot_distance {self._carrot_distance} m is too short for this path: "
+                f"below 2**-46 ({extent * _CARROT_RESOLUTION:.3g} m) of its extent "
+                f"{extent:g} m (its length or largest coordinate), the carrot would round "
+                "onto the robot's own closest point and the robot would not move; use a "
+                "longer carrot_distance"
+            )
 
     def _reset(self) -> None:
         # A differential robot first turns to face the path (phase 1).

@@ -382,7 +382,10 @@ class PathTracker(ABC):
             A ``"grid"`` Path2D (convert it with
             :meth:`~navkit.mapping.OccupancyGrid.cell_to_world` or plan with
             :class:`~navkit.planning.MapPlanner`), no point, bad shape, NaN or
-            inf, coordinates beyond ±1e9 m, a non-finite ``goal_yaw``.
+            inf, coordinates beyond ±1e9 m, a non-finite ``goal_yaw``; for
+            :class:`~navkit.control.FollowTheCarrot`, a ``carrot_distance``
+            too short for the path (below 2**-46 of its extent). The tracker
+            keeps its previous path then.
         TypeError
             Non-numeric ``path`` or ``goal_yaw``; both ``goal_yaw`` and
             ``goal_heading`` given.
@@ -401,7 +404,9 @@ class PathTracker(ABC):
         goal_yaw = renamed_keyword("goal_heading", goal_heading, "goal_yaw", goal_yaw, None)
         pts = as_world_path(path, "path")
         heading = None if goal_yaw is None else wrap(finite_float(goal_yaw, named))
-        self._line = Polyline(pts)
+        line = Polyline(pts)
+        self._check_line(line)  # before anything changes: a refused path keeps the old one
+        self._line = line
         self._goal_heading = heading
         self._phase = "track"
         self._progress = 0.0
@@ -410,6 +415,9 @@ class PathTracker(ABC):
 
     def _reset(self) -> None:  # noqa: B027 - an optional hook; most trackers keep no extra state
         """Forget per-path state (subclasses extend it)."""
+
+    def _check_line(self, line: Polyline) -> None:  # noqa: B027 - an optional hook
+        """Refuse (``ValueError``) a path the tracker's options cannot follow; any by default."""
 
     # ------------------------------------------------------------------ step
     def step(self, pose: Pose2D | ArrayLike, dt: float) -> Twist2D:
