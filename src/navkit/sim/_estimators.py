@@ -129,6 +129,11 @@ class _Wheels:
         self._last: list[int] | None = None
         self._last_stamp = 0.0
 
+    def start_run(self) -> None:
+        """Forget the readings of an earlier run: the next reading only latches."""
+        self._last = None
+        self._last_stamp = 0.0
+
     def increments(self, reading: EncoderReading) -> tuple[FloatArray, float] | None:
         """Wheel rotations (rad) since the previous reading and the time between them."""
         last = self._last
@@ -267,6 +272,19 @@ class _OmniOdometryEstimator:
         self._wheels = _Wheels(robot)
         self._north = robot.compass.north
         self._yaw: float | None = None
+
+    def start_run(self) -> None:
+        """Forget the compass yaw and the counters read in an earlier run.
+
+        A shallow copy of a Simulation shares this adapter: run after the
+        original, it would rotate its first wheel increments (those before its
+        own first compass reading) by the yaw the original's run read last,
+        where a new Simulation with the same odometry takes the odometry's
+        heading. Each run starts as a new adapter does; the odometry's pose
+        goes on from where it is.
+        """
+        self._yaw = None
+        self._wheels.start_run()
 
     def observe(self, t: float, reading: Reading) -> None:
         if isinstance(reading, CompassReading):

@@ -29,6 +29,7 @@ from navkit.sim._estimators import (
     Estimator,
     FusionEstimator,
     _DiffOdometryEstimator,
+    _OmniOdometryEstimator,
     as_estimator,
 )
 from navkit.sim._latency import DelayLine
@@ -275,8 +276,14 @@ class Simulation:
     one seeded NumPy Generator, so a run with the same seed, controller and
     estimator state is reproduced exactly. A ``Simulation`` runs once; a copy
     (:func:`copy.copy` too) has its own copy of the generator, so that running
-    one leaves the other's run as it would have been (a shallow copy shares
-    the world, robot, controller and estimator).
+    one leaves the other's draws as they would have been. A shallow copy
+    shares the world and robot (which no run changes) and the controller and
+    estimator (which a run changes): run after the original, the copy's
+    controller and estimator go on from the state that run left them in, and
+    its run is that of a new Simulation given them in that state (a
+    ``PlanarFusion`` past 0 s is refused then, as by a new Simulation). For
+    independent runs, copy with :func:`copy.deepcopy` or build each
+    Simulation with its own controller and estimator.
 
     An ordinary class with ``__slots__``: it holds the run's state. Runs of
     different Simulations may go on in different threads at once, sharing
@@ -611,8 +618,10 @@ class Simulation:
         if isinstance(estimator, FusionEstimator):
             estimator.check_start()  # run since this simulation was built?
         self._ran = True
-        if isinstance(estimator, _DiffOdometryEstimator):
-            estimator.start_run()  # counters latched in an earlier run are not this run's
+        if isinstance(estimator, (_DiffOdometryEstimator, _OmniOdometryEstimator)):
+            # Counters (and a compass yaw) read in an earlier run are not this run's:
+            # a shallow copy shares the adapter, and runs as a new Simulation would.
+            estimator.start_run()
         return _Run(self).execute()
 
 
