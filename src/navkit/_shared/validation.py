@@ -433,12 +433,10 @@ def _points_hint(item: object) -> str:
 
     Told by their type's name and module (this layer imports neither): review 34
     found an integrator passing a planner's route to ``world_to_cell`` and a scan
-    to ``LocalGrid.from_points``.
+    to ``LocalGrid.from_points``. A subclass (a user's ``Route(Path2D)``) is one
+    too: every navkit class among its bases is looked at.
     """
-    kind = type(item)
-    if not kind.__module__.startswith("navkit"):
-        return ""
-    names = {k.__name__ for k in kind.__mro__}
+    names = {k.__name__ for k in type(item).__mro__ if k.__module__.startswith("navkit.")}
     if "Path2D" in names:
         return " (a whole path: pass path.points, (K, 2) in the frame path.frame names)"
     if "LaserScan" in names:
