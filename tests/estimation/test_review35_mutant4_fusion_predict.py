@@ -94,3 +94,17 @@ def test_the_yaw_rate_s_cross_terms_reach_the_position() -> None:
     assert f.P[0, 4] == pytest.approx(0.25 * gx, rel=1e-9)
     assert f.P[1, 4] == pytest.approx(0.25 * gy, rel=1e-9)
     assert f.P[2, 4] == pytest.approx(0.25 * dt, rel=1e-9)
+
+
+@pytest.mark.parametrize("seed", [0, 1, 2, 3, 4, 5])
+def test_the_predicted_covariance_is_exactly_symmetric(seed: int) -> None:
+    # F P Fᵀ + Q dt is symmetric in exact arithmetic, not in rounding: the kernel
+    # averages each pair of mirrored entries (a mutant skipping the pairs next to the
+    # diagonal, range(i + 2, 6), passed the suite).
+    rng = np.random.default_rng(seed)
+    x0, p0, q = rng.uniform(-1.5, 1.5, 6), _spd(rng, 0.3), _spd(rng, 0.05)
+    f = PlanarFusion(x0, p0, process_noise=q, t0=0.0)
+    for k in range(1, 4):
+        f.predict(0.29 * k)
+        p = f.P
+        assert np.array_equal(p, p.T)
