@@ -14,14 +14,14 @@ the issue's goal is the public call within 1.5x of the kernel.
   result the public call builds);
 * ``world_to_cell``: :meth:`OccupancyGrid.world_to_cell` on 10 points against
   ``world_to_cell_kernel`` into a preallocated array: the kernel the public
-  call ends in (through its compiled entry, into a new array). The public call
-  is not built on a kernel allocating its own result, which would make that
-  kernel the one to compare with, because it is slower: numba's allocation and
-  boxing of the (10, 2) result cost about 0.33 µs against 0.09 µs for
-  ``np.empty`` from Python (0.55 µs against 0.31 µs for allocation and kernel,
-  session 27). With a new array per call, the public contract, the issue's 1.5x
-  is out of reach: ``floor`` (``np.empty`` and the kernel, no checks) is about
-  1.6x the kernel itself;
+  call ends in. Since session 39 the public fast path is one compiled entry
+  (``navkit.mapping._new_cells_kernel``) that tests the points in C, makes the
+  new (10, 2) result with NumPy's own ``PyArray_Empty`` and runs that kernel's
+  code, so the public call costs less than ``floor`` (``np.empty`` from Python
+  and the kernel through the dispatcher, no checks; about 1.6x the kernel).
+  numba's own allocation and boxing of a result (a kernel returning a new
+  array) remain slower: about 0.33 µs against 0.09 µs for ``np.empty`` from
+  Python (session 27);
 * ``repulsion``: :func:`repulsive_force_from_scan` on a 360-beam scan against
   ``khatib_beam_force`` with the cached beam tables (and ``khatib_beam_force_into``,
   the variant writing into an array with the (2, N) direction table, which the
@@ -30,7 +30,7 @@ the issue's goal is the public call within 1.5x of the kernel.
 The last two groups also time the floors of any Python wrapper: a bare function
 that allocates the result and calls the kernel (``floor``), one that only calls
 it (``noop_wrapper``), and the compiled kernel without numba's per-call type
-dispatch (``entry``, which the public fast paths call).
+dispatch (``entry``, which the repulsion's fast path and ``world_to_cell``'s general path call).
 * ``DiffOdometry.update``: one encoder reading (was a one-row batch, ~0.2 ms),
   against a Python function doing the same arithmetic with no checks.
 * ``quaternion_to_yaw``: one quaternion (plain floats, session 37's fast path)
@@ -276,7 +276,8 @@ def test_world_to_cell_10(benchmark: Any, contestant: str) -> None:
     ``floor``: a bare function allocating the result and calling the kernel.
     ``noop_wrapper`` only calls the kernel (into the preallocated array) from a
     Python function; ``entry`` is the compiled kernel without numba's type
-    dispatch (what the public fast path calls). ``paired``: the public call
+    dispatch (the general path's; the fast path runs its code in an entry of its
+    own that also checks and allocates). ``paired``: the public call
     against ``kernel``, ``floor``, ``entry`` and ``np.empty`` of the result
     alone (``empty``) in one timing loop (the issue's number; module docstring).
     """

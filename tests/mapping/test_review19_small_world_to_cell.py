@@ -1,12 +1,14 @@
 """``OccupancyGrid.world_to_cell``: which arrays take the fast path (session 23, issue 17).
 
-The fast path tests the points' strides against ``_PAIR_STRIDES`` (16, 8)
-and their second dimension (session 26; before, ``ndarray.flags.num``'s
-C-contiguous and aligned bits), and hands the points themselves to the
-compiled entry, which checks nothing and is compiled for unaligned data.
-These tests pin what goes that way: exactly the exact, C-contiguous (N, 2)
-float64 ndarrays, aligned or not; a strided or Fortran-ordered array must
-reach the entry only as a contiguous copy.
+The fast path hands ``points_xy`` itself to one compiled entry (session 39,
+``navkit.mapping._new_cells_kernel``), which tests in C that it is an exact
+ndarray of native float64 with strides ``_PAIR_STRIDES`` (16, 8) and two
+columns (sessions 26-38 tested that in Python, before them
+``ndarray.flags.num``'s C-contiguous and aligned bits) and returns the cells,
+or None for the general path. These tests pin what goes that way: exactly the
+exact, C-contiguous (N, 2) float64 ndarrays, aligned or not; a strided or
+Fortran-ordered array must reach the general path's entry (which checks
+nothing and is compiled for unaligned data) only as a contiguous copy.
 The kernel is compiled without numba's reference counting (no per-argument
 MemInfo at each call); the cells stay those of the grid-frame arithmetic.
 """
@@ -46,15 +48,16 @@ def _unaligned(pts: np.ndarray) -> np.ndarray:
 
 @pytest.fixture
 def passed(monkeypatch: pytest.MonkeyPatch) -> Iterator[list[Any]]:
-    """The point arrays handed to the compiled entry, in call order."""
-    entry = grid_module._CELLS_ENTRY or grid_module._cells_entry()
+    """The point arrays handed to the fast path's entry and whether it answered, in order."""
+    entry = grid_module._NEW_CELLS or grid_module._new_cells()
     seen: list[Any] = []
 
     def recording(points: Any, *args: Any) -> Any:
-        seen.append(points)
-        return entry(points, *args)
+        cells = entry(points, *args)
+        seen.append((points, cells is not None))
+        return cells
 
-    monkeypatch.setattr(grid_module, "_CELLS_ENTRY", recording)
+    monkeypatch.setattr(grid_module, "_NEW_CELLS", recording)
     yield seen
 
 
@@ -106,14 +109,22 @@ def test_fast_path_only_for_c_aligned_float64(pts: np.ndarray, yaw: float) -> No
     grid = _grid(yaw)
     want = _expected(grid, pts)
     entry = grid_module._CELLS_ENTRY or grid_module._cells_entry()
-    seen: list[Any] = []
+    new_entry = grid_module._NEW_CELLS or grid_module._new_cells()
+    seen: list[Any] = []  # the general path's entry's points
+    tried: list[Any] = []  # the fast path's: (points, answered)
 
     def recording(points: Any, *args: Any) -> Any:
         seen.append(points)
         return entry(points, *args)
 
-    old = grid_module._CELLS_ENTRY
+    def new_recording(points: Any, *args: Any) -> Any:
+        cells = new_entry(points, *args)
+        tried.append((points, cells is not None))
+        return cells
+
+    old, old_new = grid_module._CELLS_ENTRY, grid_module._NEW_CELLS
     grid_module._CELLS_ENTRY = recording
+    grid_module._NEW_CELLS = new_recording
     try:
         wide = np.zeros((pts.shape[0], 4))
         wide[:, ::2] = pts
@@ -126,25 +137,29 @@ def test_fast_path_only_for_c_aligned_float64(pts: np.ndarray, yaw: float) -> No
         for name, (arr, fast) in cases.items():
             before = arr.copy()
             seen.clear()
+            tried.clear()
             got = grid.world_to_cell(arr)
             np.testing.assert_array_equal(got, want, err_msg=name)
             assert got.dtype == np.int64 and got.flags.writeable and got.flags.c_contiguous
+            assert got.flags.owndata and got.base is None, name
             np.testing.assert_array_equal(arr, before, err_msg=name)  # input unmodified
-            assert seen, name
+            assert len(tried) == 1 and tried[0][0] is arr, name
             if fast:
-                assert seen[0] is arr, name
+                assert tried[0][1] and not seen, name
             else:
+                assert not tried[0][1] and seen, name
                 assert all(p is not arr for p in seen), name
                 assert all(p.flags.c_contiguous for p in seen), name
     finally:
-        grid_module._CELLS_ENTRY = old
+        grid_module._CELLS_ENTRY, grid_module._NEW_CELLS = old, old_new
 
 
 def test_non_finite_through_fast_path_still_raises(passed: list[Any]) -> None:
     pts = np.array([[0.0, 0.0], [math.nan, 1.0]])
     with pytest.raises(ValueError, match="points_xy"):
         _grid().world_to_cell(pts)
-    assert passed and passed[0] is pts  # tried fast, then explained by the general path
+    # Tried fast (not answered), then explained by the general path.
+    assert len(passed) == 1 and passed[0][0] is pts and not passed[0][1]
 
 
 @pytest.mark.skipif(jit_disabled(), reason="NUMBA_DISABLE_JIT=1: plain functions")
