@@ -23,7 +23,6 @@ from navkit.planning.reactive._limits import (
 from navkit.planning.reactive._potential_field import (
     PotentialField,
     _frozen,
-    _redone,
     _restore,
 )
 
@@ -409,12 +408,13 @@ def sample_field(
     grid[:, :, 0] = xs
     grid[:, :, 1] = ys[:, None]
     del grid
-    try:
+    # An underflow to 0 (a squared offset of 1e-200 m from a goal) is no error, nor
+    # a warning under a caller's np.seterr(under="warn"): NumPy's default answer. One
+    # np.errstate per call (about 2 µs, 1 % of the smallest grid's 0.2 ms), where the
+    # field methods, called once per control step, redo the work under "raise" only.
+    with np.errstate(under="ignore"):
         potential = field._potential(pts).reshape(shape)
         force = field._force(pts).reshape((*shape, 2))
-    except FloatingPointError:  # a caller's np.seterr(under="raise"): see _redone
-        potential = _redone(field._potential, pts).reshape(shape)
-        force = _redone(field._force, pts).reshape((*shape, 2))
     # Gone before SampledField copies the results (a field's own arrays are never
     # frozen in place): the points would add their size to that copy's peak.
     del pts
