@@ -30,6 +30,7 @@ from navkit._shared.jit import jit_disabled
 from navkit.geometry import Pose2D
 from navkit.mapping import OccupancyGrid
 from navkit.mapping._grid_kernels import world_to_cell_kernel, world_to_continuous_kernel
+from navkit.mapping._new_cells_kernel import new_cells_entry
 
 
 def _grid(yaw: float = 0.4) -> OccupancyGrid:
@@ -49,7 +50,7 @@ def _unaligned(pts: np.ndarray) -> np.ndarray:
 @pytest.fixture
 def passed(monkeypatch: pytest.MonkeyPatch) -> Iterator[list[Any]]:
     """The point arrays handed to the fast path's entry and whether it answered, in order."""
-    entry = grid_module._NEW_CELLS or grid_module._new_cells()
+    entry = new_cells_entry()
     seen: list[Any] = []
 
     def recording(points: Any, *args: Any) -> Any:
@@ -109,7 +110,7 @@ def test_fast_path_only_for_c_aligned_float64(pts: np.ndarray, yaw: float) -> No
     grid = _grid(yaw)
     want = _expected(grid, pts)
     entry = grid_module._CELLS_ENTRY or grid_module._cells_entry()
-    new_entry = grid_module._NEW_CELLS or grid_module._new_cells()
+    new_entry = new_cells_entry()
     seen: list[Any] = []  # the general path's entry's points
     tried: list[Any] = []  # the fast path's: (points, answered)
 

@@ -29,6 +29,7 @@ from hypothesis import strategies as st
 from hypothesis.extra import numpy as hnp
 
 import navkit.mapping._grid as grid_module
+from kernel_signatures import compiled_signatures
 from navkit._shared.jit import jit_disabled
 from navkit.geometry import Pose2D
 from navkit.mapping import OccupancyGrid
@@ -236,3 +237,29 @@ def test_entry_is_compiled_without_refcounting() -> None:
     new_cells_entry()
     assert dispatcher.targetoptions.get("_nrt") is False
     assert len(dispatcher.signatures) == 1
+
+
+@pytest.mark.skipif(jit_disabled(), reason="NUMBA_DISABLE_JIT=1: plain functions")
+def test_lists_and_one_point_compile_nothing_arrays_one_entry() -> None:
+    """In a fresh process, lists and tuples (one point or several: the general way)
+    load or compile no kernel, as before; the first ndarray loads the fast path's
+    entry, whose kernel code is the general way's one signature."""
+    modules = ["navkit.mapping._new_cells_kernel", "navkit.mapping._grid_kernels"]
+    setup = (
+        "from navkit.mapping import OccupancyGrid\n"
+        "g = OccupancyGrid.empty(width=2.0, height=2.0, resolution=0.5)\n"
+        "g.world_to_cell([0.1, 0.2]); g.world_to_cell(((0.1, 0.2),))\n"
+        "assert g.contains([0.1, 0.2])\n"
+    )
+    assert compiled_signatures(setup, modules) == {}
+    arrays = setup + (
+        "import numpy as np\n"
+        "g.world_to_cell(np.array([[0.1, 0.2], [0.3, 0.4]]))\n"
+        "g.world_to_cell([[0.1, 0.2], [0.3, 0.4]])\n"  # the general way's entry
+    )
+    got = compiled_signatures(arrays, modules)
+    assert sorted(got) == [
+        "_grid_kernels.world_to_cell_kernel",
+        "_new_cells_kernel.world_to_new_cells",
+    ]
+    assert all(len(signatures) == 1 for signatures in got.values()), got

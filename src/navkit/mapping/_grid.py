@@ -92,15 +92,26 @@ def _cells_entry() -> Callable[..., bool]:
     return _CELLS_ENTRY
 
 
-# world_to_new_cells's compiled entry (world_to_cell's fast path), fetched at the
-# first world_to_cell call, as _CELLS_ENTRY.
-_NEW_CELLS: NewCellsEntry | None = None
+def _first_new_cells(
+    points: object, origin_x: float, origin_y: float, origin_yaw: float, resolution: float
+) -> IntArray | None:
+    """world_to_cell's fast path until its entry is fetched: by the first ndarray.
 
-
-def _new_cells() -> NewCellsEntry:
+    A list, a tuple or one point given as such goes the general way, which
+    compiles no kernel for one point (a start, a goal): those calls must not
+    compile the fast path's entry either (about 0.35 s in an empty cache).
+    """
     global _NEW_CELLS
+    if type(points) is not _ndarray:
+        return None
     _NEW_CELLS = new_cells_entry()
-    return _NEW_CELLS
+    return _NEW_CELLS(points, origin_x, origin_y, origin_yaw, resolution)
+
+
+# world_to_new_cells's compiled entry (world_to_cell's fast path; navkit.mapping.
+# _new_cells_kernel), in place of _first_new_cells from the first ndarray on, so
+# that importing navkit compiles nothing.
+_NEW_CELLS: NewCellsEntry = _first_new_cells
 
 
 # cell_to_world_kernel's compiled entries by cell dtype, each fetched at the first
@@ -995,7 +1006,7 @@ class OccupancyGrid:
             # validates and raises (issue 17: 0.25 µs against 0.50 µs for Python's
             # type, dtype, stride and shape tests, np.empty and the kernel's entry,
             # ten points; navkit.mapping._new_cells_kernel).
-            cells = (_NEW_CELLS or _new_cells())(
+            cells = _NEW_CELLS(
                 points_xy, self._origin_x, self._origin_y, self._origin_yaw, self._resolution
             )
             if cells is not None:
