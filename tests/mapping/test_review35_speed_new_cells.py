@@ -19,6 +19,7 @@ that fails raises NumPy's ``MemoryError`` as ``np.empty`` did.
 from __future__ import annotations
 
 import math
+import subprocess
 import sys
 from typing import Any
 
@@ -263,3 +264,16 @@ def test_lists_and_one_point_compile_nothing_arrays_one_entry() -> None:
         "_new_cells_kernel.world_to_new_cells",
     ]
     assert all(len(signatures) == 1 for signatures in got.values()), got
+
+
+def test_loading_leaves_ctypes_pythonapi_as_it_was() -> None:
+    """The NumPy C-API table is read through a ctypes prototype of navkit's own: the
+    process-wide ``ctypes.pythonapi.PyCapsule_GetPointer`` keeps its types."""
+    code = (
+        "import ctypes\n"
+        "f = ctypes.pythonapi.PyCapsule_GetPointer\n"
+        "before = (f.restype, f.argtypes)\n"
+        "import navkit.mapping._array_objects\n"
+        "assert (f.restype, f.argtypes) == before, (f.restype, f.argtypes)\n"
+    )
+    subprocess.run([sys.executable, "-c", code], check=True, capture_output=True)

@@ -130,9 +130,10 @@ LAYOUT_OK = _layout_ok()
 
 
 def _register_symbols() -> None:
-    get_pointer = ctypes.pythonapi.PyCapsule_GetPointer
-    get_pointer.restype = ctypes.c_void_p
-    get_pointer.argtypes = [ctypes.py_object, ctypes.c_char_p]
+    # A prototype of our own: setting restype and argtypes on
+    # ctypes.pythonapi.PyCapsule_GetPointer would change them for every user of it.
+    prototype = ctypes.PYFUNCTYPE(ctypes.c_void_p, ctypes.py_object, ctypes.c_char_p)
+    get_pointer = prototype(("PyCapsule_GetPointer", ctypes.pythonapi))
     capsule = importlib.import_module("numpy._core._multiarray_umath")._ARRAY_API
     table = ctypes.cast(get_pointer(capsule, None), ctypes.POINTER(ctypes.c_void_p))
     binding.add_symbol(_ARRAY_EMPTY, table[_EMPTY_INDEX])
