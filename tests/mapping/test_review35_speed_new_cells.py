@@ -242,14 +242,17 @@ def test_entry_is_compiled_without_refcounting() -> None:
 
 @pytest.mark.skipif(jit_disabled(), reason="NUMBA_DISABLE_JIT=1: plain functions")
 def test_lists_and_one_point_compile_nothing_arrays_one_entry() -> None:
-    """In a fresh process, lists and tuples (one point or several: the general way)
-    load or compile no kernel, as before; the first ndarray loads the fast path's
-    entry, whose kernel code is the general way's one signature."""
+    """In a fresh process, lists, tuples and arrays of one point the fast path does not
+    take (the general way) load or compile no kernel, as before; the first points
+    it takes load its entry, whose kernel code is the general way's one signature."""
     modules = ["navkit.mapping._new_cells_kernel", "navkit.mapping._grid_kernels"]
     setup = (
         "from navkit.mapping import OccupancyGrid\n"
         "g = OccupancyGrid.empty(width=2.0, height=2.0, resolution=0.5)\n"
         "g.world_to_cell([0.1, 0.2]); g.world_to_cell(((0.1, 0.2),))\n"
+        "import numpy as np\n"
+        "g.world_to_cell(np.array([0.1, 0.2])); g.world_to_cell(np.array([[1, 2]]))\n"
+        "g.world_to_cell(np.array([[0.1, 0.2]], order='F')[:, ::-1])\n"
         "assert g.contains([0.1, 0.2])\n"
     )
     assert compiled_signatures(setup, modules) == {}

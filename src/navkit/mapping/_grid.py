@@ -95,22 +95,28 @@ def _cells_entry() -> Callable[..., bool]:
 def _first_new_cells(
     points: object, origin_x: float, origin_y: float, origin_yaw: float, resolution: float
 ) -> IntArray | None:
-    """world_to_cell's fast path until its entry is fetched: by the first ndarray.
+    """world_to_cell's fast path until its entry is fetched: by the first points it takes.
 
-    A list, a tuple or one point given as such goes the general way, which
-    compiles no kernel for one point (a start, a goal): those calls must not
-    compile the fast path's entry either (about 0.35 s in an empty cache).
+    Anything else (a list, a tuple, one point as a (2,) array: a start, a goal)
+    goes the general way, which compiles no kernel for one point: those calls
+    must not compile the fast path's entry either (about 0.35 s in an empty
+    cache). Python's tests of the former fast path, until then.
     """
     global _NEW_CELLS
-    if type(points) is not _ndarray:
+    if not (
+        type(points) is _ndarray
+        and points.dtype is _FLOAT64
+        and points.strides == _PAIR_STRIDES
+        and points.shape[1] == 2
+    ):
         return None
     _NEW_CELLS = new_cells_entry()
     return _NEW_CELLS(points, origin_x, origin_y, origin_yaw, resolution)
 
 
 # world_to_new_cells's compiled entry (world_to_cell's fast path; navkit.mapping.
-# _new_cells_kernel), in place of _first_new_cells from the first ndarray on, so
-# that importing navkit compiles nothing.
+# _new_cells_kernel), in place of _first_new_cells from the first points it takes
+# on, so that importing navkit compiles nothing.
 _NEW_CELLS: NewCellsEntry = _first_new_cells
 
 
