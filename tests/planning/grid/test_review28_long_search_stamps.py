@@ -33,6 +33,10 @@ def test_searches_across_the_stamp_restart_are_fresh_searches(
 ) -> None:
     grid = _grid()
     planner = AStarPlanner(grid)
+    # A workspace of the test's own: setting this thread's stamp back afterwards
+    # would leave it below the marks these searches wrote, and later searches in
+    # the process (other tests') misread them (review 35: a flaky "no path").
+    monkeypatch.setattr(workspace, "_local", workspace._ThreadWorkspace())
     monkeypatch.setattr(workspace._local, "stamp", 0)
     expected = astar(grid, (0, 0), (39, 49))
     field = planner.distance_field((39, 49))

@@ -31,7 +31,7 @@ from navkit.planning.grid._limits import (
     read_only,
 )
 from navkit.planning.grid._path import Path2D
-from navkit.planning.grid._workspace import grow_heap, scratch_text, workspace
+from navkit.planning.grid._workspace import grow_heap, scratch_text, used_meanwhile, workspace
 
 __all__ = ["AStarPlanner", "astar"]
 
@@ -102,10 +102,15 @@ class _JpsScratch(threading.local):
 _jps_scratch = _JpsScratch()
 
 
-def _jps_workspace(n: int) -> tuple[FloatArray, NDArray[np.int32], NDArray[np.int64], int]:
-    """This thread's JPS scratch for ``n`` cells and a fresh stamp."""
+def _jps_workspace(
+    n: int, own: bool = False
+) -> tuple[FloatArray, NDArray[np.int32], NDArray[np.int64], NDArray[np.float64], int]:
+    """This thread's JPS scratch for ``n`` cells, its queue and a fresh stamp.
+
+    ``own``: new arrays, not this thread's (see :func:`_jps_used_meanwhile`).
+    """
     scratch = _jps_scratch
-    if scratch.records.size < 2 * n:
+    if own or scratch.records.size < 2 * n:
         # Both arrays first, then the swap: a MemoryError from the second must
         # not leave large records with the old, smaller blocks, which the
         # kernels (no bounds checks) would then index past their end.
@@ -114,12 +119,26 @@ def _jps_workspace(n: int) -> tuple[FloatArray, NDArray[np.int32], NDArray[np.in
             blocks = np.zeros(3 * ((n + 63) // 64), dtype=np.int64)
         except MemoryError as exc:
             raise MemoryError(scratch_text(n, 16.375)) from exc
+        if own:
+            heap = np.empty(scratch.heap.size, dtype=np.float64)
+            return records, records.view(np.int32), blocks, heap, 1
         scratch.records = records
         scratch.meta = records.view(np.int32)
         scratch.blocks = blocks
         scratch.stamp = 0
     scratch.stamp += 1
-    return scratch.records, scratch.meta, scratch.blocks, scratch.stamp
+    return scratch.records, scratch.meta, scratch.blocks, scratch.heap, scratch.stamp
+
+
+def _jps_used_meanwhile(records: FloatArray, heap: NDArray[np.float64], stamp: int) -> bool:
+    """Whether another search took this thread's JPS scratch since the one given these.
+
+    As :func:`~navkit.planning.grid._workspace.used_meanwhile`: a signal
+    handler's search in this thread, which may have overwritten the answer
+    (the path in ``heap``) before it was read.
+    """
+    scratch = _jps_scratch
+    return scratch.records is not records or scratch.heap is not heap or scratch.stamp != stamp
 
 
 class AStarPlanner:
@@ -459,8 +478,9 @@ class AStarPlanner:
             return self._plan_jps(s, t)
         rows, cols = grid.shape
         goal_index = t[0] * cols + t[1]
+        own = False
         while True:
-            rec, meta, heap, stamp = workspace(rows * cols)
+            rec, meta, heap, stamp = workspace(rows * cols, own=own)
             expanded, found, k, diagonal = grid_search(
                 self._flat,
                 rows,
@@ -475,21 +495,26 @@ class AStarPlanner:
                 heap,
                 stamp,
             )
-            if found >= 0:
+            if found < 0:
+                # Rare: the queue filled up or the path did not fit in it; search
+                # again with a larger one.
+                grow_heap(k)
+                continue
+            # The search wrote the path's cells into its queue's scratch.
+            cells = heap[: 2 * k].reshape(k, 2).copy() if found else heap[:0]
+            cost = float(rec[2 * goal_index])
+            if own or not used_meanwhile(rec, stamp):
                 break
-            # Rare: the queue filled up or the path did not fit in it; search
-            # again with a larger one.
-            grow_heap(k)
+            # A signal handler searched in this thread meanwhile: again, alone.
+            own = True
         if not found:
             raise NoPathError(
                 f"no path from start_cell {s} to goal_cell {t} "
                 f"(expanded {counted(expanded, 'cell')})",
                 expanded=expanded,
             )
-        # The search wrote the path's cells into its queue's scratch.
-        cells = heap[: 2 * k].reshape(k, 2).copy()
         length = (k - 1 - diagonal) + SQRT2 * diagonal
-        return Path2D._owned(cells, "grid", float(rec[2 * goal_index]), length, expanded)
+        return Path2D._owned(cells, "grid", cost, length, expanded)
 
     def _plan_jps(self, s: tuple[int, int], t: tuple[int, int]) -> Path2D:
         """:meth:`plan` by jump point search (tables built, cells checked)."""
@@ -498,9 +523,9 @@ class AStarPlanner:
         rows, cols = self._costs.shape
         goal_index = t[0] * cols + t[1]
         search = jps_cut_search if self._cutting else jps_search
+        own = False
         while True:
-            records, meta, blocks, stamp = _jps_workspace(rows * cols)
-            heap = _jps_scratch.heap
+            records, meta, blocks, heap, stamp = _jps_workspace(rows * cols, own)
             expanded, found, k, diagonal = search(
                 row_bits,
                 col_bits,
@@ -514,19 +539,23 @@ class AStarPlanner:
                 heap,
                 stamp,
             )
-            if found >= 0:
+            if found < 0:
+                # The queue filled up (rare: it holds the open jump points) or the
+                # path did not fit in it: grow it and search again.
+                _jps_scratch.heap = np.empty(max(2 * heap.size, 2 * k), dtype=np.float64)
+                continue
+            # The search wrote the path's cells into its queue's scratch.
+            cells = heap[: 2 * k].reshape(k, 2).copy() if found else heap[:0]
+            if own or not _jps_used_meanwhile(records, heap, stamp):
                 break
-            # The queue filled up (rare: it holds the open jump points) or the
-            # path did not fit in it: grow it and search again.
-            _jps_scratch.heap = np.empty(max(2 * heap.size, 2 * k), dtype=np.float64)
+            # A signal handler searched in this thread meanwhile: again, alone.
+            own = True
         if not found:
             raise NoPathError(
                 f"no path from start_cell {s} to goal_cell {t} "
                 f"(expanded {counted(expanded, 'jump point')})",
                 expanded=expanded,
             )
-        # The search wrote the path's cells into its queue's scratch.
-        cells = heap[: 2 * k].reshape(k, 2).copy()
         length = (k - 1 - diagonal) + SQRT2 * diagonal
         return Path2D._owned(cells, "grid", uniform * length, length, expanded)
 
@@ -583,8 +612,9 @@ class AStarPlanner:
         # Cost ranges too wide for the bucket queue: Dijkstra on the heap.
         rows, cols = grid.shape
         n = rows * cols
+        own = False
         while True:
-            rec, meta, heap, stamp = workspace(n)
+            rec, meta, heap, stamp = workspace(n, own=own)
             _, status, _, _ = grid_search(
                 self._flat,
                 rows,
@@ -599,13 +629,16 @@ class AStarPlanner:
                 heap,
                 stamp,
             )
-            if status >= 0:
-                break
-            grow_heap()
-        # Exhaustion closes every reachable cell; costs are stale everywhere else.
-        closed = (meta[2 : 4 * n : 4] >> 4) == stamp + 1
-        out: FloatArray = np.where(closed, rec[0 : 2 * n : 2], np.inf).reshape(rows, cols)
-        return out
+            if status < 0:
+                grow_heap()
+                continue
+            # Exhaustion closes every reachable cell; costs are stale everywhere else.
+            closed = (meta[2 : 4 * n : 4] >> 4) == stamp + 1
+            out: FloatArray = np.where(closed, rec[0 : 2 * n : 2], np.inf).reshape(rows, cols)
+            if own or not used_meanwhile(rec, stamp):
+                return out
+            # A signal handler searched in this thread meanwhile: again, alone.
+            own = True
 
 
 def astar(

@@ -202,12 +202,17 @@ def jps_tables(
     # page by page, each time): its top and bottom rows and left padding are
     # never written; the right padding is cleared, since a wider grid of the
     # same word count left its cells there.
+    # Taken from the thread while in use, and given back once packed: a signal
+    # handler building tables in this thread meanwhile (Python runs it between
+    # two bytecodes) makes rows of its own instead of overwriting these.
     free = getattr(_scratch, "free", None)
+    _scratch.free = None
     if free is None or free.shape != (rows + 2, 64 * hw):
-        free = _scratch.free = np.zeros((rows + 2, 64 * hw), dtype=np.bool_)
+        free = np.zeros((rows + 2, 64 * hw), dtype=np.bool_)
     np.less(grid, np.inf, out=free[1 : rows + 1, 65 : cols + 65])
     free[1 : rows + 1, cols + 65 :] = False
     flat_rows = np.packbits(free.reshape(-1), bitorder="little").view("<u8")
+    _scratch.free = free
     col_bits = np.zeros((cols + 2) * (((rows + 2 + 63) >> 6) + 2), dtype=np.uint64)
     _columns(flat_rows, rows, cols, col_bits, np.empty(64, dtype=np.uint64))
     return flat_rows, col_bits, lowest, highest

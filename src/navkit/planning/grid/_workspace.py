@@ -11,6 +11,14 @@ last reached its cell; a search with stamp ``s`` treats a mark below ``s`` as
 never reached, ``s`` as open and ``s + 1`` as closed, so advancing the stamp by
 2 forgets the previous search in O(1), and the rest of a record is only read
 where its mark says this search wrote it.
+
+A search reads its answer from the workspace after its kernel returns, and a
+signal handler can search in the same thread before it does: Python runs a
+handler in the main thread between two bytecodes, and a signal arriving while
+a kernel runs (they release the GIL) is handled as soon as it returns. So a
+search checks, once it has read its answer, that no other took the workspace
+meanwhile (:func:`used_meanwhile`: each search advances the stamp or replaces
+the arrays), and otherwise searches again with arrays of its own (``own``).
 """
 
 from __future__ import annotations
@@ -54,8 +62,18 @@ class _ThreadWorkspace(threading.local):
 _local = _ThreadWorkspace()
 
 
-def workspace(n: int) -> Workspace:
-    """Scratch arrays for a search over ``n`` cells with a fresh stamp."""
+def workspace(n: int, *, own: bool = False) -> Workspace:
+    """Scratch arrays for a search over ``n`` cells with a fresh stamp.
+
+    ``own``: new arrays, not this thread's (for a search made again because
+    another one used the thread's before its answer was read).
+    """
+    if own:
+        try:
+            rec = np.zeros(2 * n, dtype=np.float64)
+        except MemoryError as exc:
+            raise MemoryError(scratch_text(n, 16)) from exc
+        return rec, rec.view(np.int32), aligned_heap(_local.heap.size), 2
     ws = _local
     if n > ws.capacity:
         try:
@@ -71,6 +89,18 @@ def workspace(n: int) -> Workspace:
         ws.meta[:] = 0
         ws.stamp = 2
     return ws.rec, ws.meta, ws.heap, ws.stamp
+
+
+def used_meanwhile(rec: FloatArray, stamp: int) -> bool:
+    """Whether another search took this thread's workspace since one given ``rec`` and ``stamp``.
+
+    A signal handler's search in this thread, which may have overwritten the
+    answer before its reader read it. Every search given the thread's
+    workspace advances its stamp or replaces its arrays; a stamp that came back
+    to the same value after a full clear would have passed 2**27 searches.
+    """
+    ws = _local
+    return ws.rec is not rec or ws.stamp != stamp
 
 
 def scratch_text(cells: int, bytes_per_cell: float) -> str:
