@@ -116,13 +116,15 @@ def _before_fork() -> None:
     # _PAUSE_LOCK, as a compiling thread takes them (this handler runs before
     # compile_shortcuts', registered earlier, which takes that module's lock). A
     # Ctrl-C during the wait leaves the lock untaken: Python reports the
-    # interrupt as an exception ignored in this handler, and forks.
-    lock = _numba_compiler_lock()
-    if lock is not None:
-        lock.acquire()
-        _HELD_FOR_FORK.append(lock)
-    # Held across the fork, so the child copies a count and a state that agree.
-    _PAUSE_LOCK.acquire()
+    # interrupt as an exception ignored in this handler, and forks as before.
+    try:
+        lock = _numba_compiler_lock()
+        if lock is not None:
+            lock.acquire()
+            _HELD_FOR_FORK.append(lock)
+    finally:
+        # Held across the fork, so the child copies a count and a state that agree.
+        _PAUSE_LOCK.acquire()
 
 
 def _release_compiler_lock() -> None:
