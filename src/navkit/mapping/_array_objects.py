@@ -34,8 +34,10 @@ The struct offsets are NumPy's public ``PyArrayObject_fields`` and
 ``PyArray_Descr`` layouts after CPython's object header, unchanged since
 NumPy 1.7 (NumPy 2 kept the fields read here where they were); they are
 checked against a real array when this module is imported
-(:data:`LAYOUT_OK`), and if any differs :func:`float_pairs` refuses every
-object, so callers take their general way.
+(:data:`LAYOUT_OK`, which also requires NumPy 2, whose C-API table gives
+``PyArray_Empty``), and if any differs :func:`float_pairs` refuses every
+object, so callers take their general way (and ``PyArray_Empty`` is never
+called).
 """
 
 from __future__ import annotations
@@ -125,8 +127,10 @@ def _layout_ok() -> bool:
     )
 
 
-#: Whether NumPy's structs are laid out as this module reads them (see the module).
-LAYOUT_OK = _layout_ok()
+#: Whether NumPy's structs are laid out as this module reads them (see the module),
+#: in a NumPy 2 (whose C-API table, read by index below, is fixed for the major
+#: version: a NumPy 3 takes the general way until checked).
+LAYOUT_OK = np.lib.NumpyVersion(np.__version__).major == 2 and _layout_ok()
 
 
 def _register_symbols() -> None:
