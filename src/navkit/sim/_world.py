@@ -1375,7 +1375,12 @@ class World:
 
 
 #: Serializes the queries of shared shapely geometries (see World._point_in_solid).
-_GEOS_LOCK = ForkSafeLock()
+#: Re-entrant: a signal handler querying a world runs in the main thread between two
+#: bytecodes, also while that thread holds the lock (right after shapely returns, a
+#: signal that arrived during the test being handled then), and with a plain lock it
+#: waited for ever (review 35). Its query runs after the interrupted one's GEOS call
+#: has returned, never beside it.
+_GEOS_LOCK = ForkSafeLock(reentrant=True)
 
 #: Slots of the worlds pickled before :meth:`World._place` published its placements whole.
 _OLD_PLACEMENT_SLOTS = frozenset({"_dyn_segs", "_dyn_circles", "_moving_t"})
