@@ -254,11 +254,11 @@ def _logodds_array(value: ArrayLike) -> NDArray[Any]:
     if isinstance(value, np.ndarray) and value.dtype == np.bool_:
         # An occupancy mask is the usual first grid: name the constructor that takes it.
         raise TypeError(f"logodds must hold real numbers, got dtype bool: {_MASK_HINT}")
-    if isinstance(value, np.ndarray) and value.dtype in _MESSAGE_CELLS:
+    if _message_dtype(value) in _MESSAGE_CELLS:
         # A message's cells taken as log-odds would be a silent wrong map: free (0)
         # cells unknown, a costmap's lethal 254 occupied and its free 0 unknown.
         raise TypeError(
-            f"logodds must hold log-odds, got dtype {value.dtype}, the dtype of ROS map "
+            f"logodds must hold log-odds, got dtype {_message_dtype(value)}, the dtype of ROS map "
             "cells (nav_msgs/OccupancyGrid's int8 percentages and -1, a costmap's uint8 "
             "costs): read a message with navkit.mapping.io.grid_from_msg, convert "
             "percentages with OccupancyGrid.from_probabilities(np.where(cells < 0, 0.5, "
@@ -272,6 +272,22 @@ def _logodds_array(value: ArrayLike) -> NDArray[Any]:
         if isinstance(value, (list, tuple)) and holds_bool(value):
             raise TypeError(f"{exc}: {_MASK_HINT}") from None
         raise
+
+
+def _message_dtype(value: object) -> np.dtype[Any] | None:
+    """The dtype NumPy gives ``value`` (None if it gives none), to spot ROS map cells.
+
+    An ndarray's own; for anything else (rclpy's ``array.array('b')`` rows of a
+    message, a memoryview, an object with ``__array__``) what ``np.asarray``
+    makes of it, once: building a grid from a non-array is not a hot path.
+    """
+    try:
+        dtype: np.dtype[Any] = (
+            value.dtype if isinstance(value, np.ndarray) else np.asarray(value).dtype
+        )
+    except Exception:  # the general conversion that follows raises navkit's error
+        return None
+    return dtype
 
 
 #: The advice given with a boolean ``logodds``: an occupancy mask is the usual first grid.
