@@ -36,7 +36,7 @@ for n, sizes in ((2, (1, 2)), (3, (1, 3))):
         ekf.update(np.full(m, 0.1), lambda x: h @ x, h, 0.1 * np.eye(m),
                    angle_measurements=(0,), gate=50.0)
 # The kernels themselves: one per size, each compiled once.
-kernels = list(_ekf_kernels._PREDICT.values()) + list(_ekf_kernels._UPDATE.values())
+kernels = _ekf_kernels.kernel_dispatchers()  # (the filter calls their compiled entries)
 assert len(kernels) == 6, len(kernels)
 assert all(len(kernel.signatures) == 1 for kernel in kernels)
 """

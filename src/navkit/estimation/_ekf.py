@@ -1,15 +1,15 @@
 """A general Extended Kalman Filter on numpy arrays.
 
-Each step calls one compiled kernel (:mod:`navkit.estimation._ekf_kernels`)
-with the arrays as passed or as the model functions returned them. The kernels
-are compiled for C-contiguous writeable float64 arrays only and compile nothing
-else, so an argument of another type (a list, a strided or read-only array,
-another dtype) fails at dispatch; the kernel itself checks shapes and values and
-computes the step, committing it only when it is valid. Whatever it cannot take
-is converted and checked in full in Python, which also raises the documented
-errors. The common case thus pays for no checks in Python at all: a step costs
-the model functions, one copy of the state for them, two kernel calls and the
-result object.
+Each step calls one compiled kernel (:mod:`navkit.estimation._ekf_kernels`),
+through its compiled entry (no numba dispatcher), with the arrays as passed or
+as the model functions returned them. The kernel tests in C that they are
+C-contiguous writeable float64 ndarrays and returns ``BAD_TYPE`` for anything
+else (a list, a strided or read-only array, another dtype, an ndarray
+subclass); it checks shapes and values and computes the step, committing it
+only when it is valid. Whatever it cannot take is converted and checked in
+full in Python, which also raises the documented errors. The common case thus
+pays for no checks in Python at all: a step costs the model functions, one copy
+of the state for them, two kernel calls and the result object.
 """
 
 from __future__ import annotations
@@ -325,20 +325,13 @@ class ExtendedKalmanFilter(GaussianEstimate):
                 raise
         finally:
             self._busy = False
-        # The kernel takes C-contiguous writeable float64 arrays only and checks their
-        # shapes and values itself: anything else raises at dispatch and is converted
-        # and checked in full by _predict_checked, as is any status but OK.
-        # numba's dispatcher takes any ndarray subclass as its data: a masked array
-        # (its mask dropped) must go the checked way, which refuses masked entries.
-        # Q too: the kernel reads it only to compare with the last Q, so a masked Q
-        # of the same values would pass while one of new values is refused.
-        if type(jac) is not _NDARRAY or type(x_new) is not _NDARRAY or type(Q) is not _NDARRAY:
-            status = BAD_TYPE
-        else:
-            try:
-                status = self._kp(self._state, x_new, jac, Q)
-            except Exception:  # a dispatch failure: not of the compiled types
-                status = BAD_TYPE
+        # The kernel's compiled entry takes the objects as they are and checks in C that
+        # each is an ndarray (exactly: a masked array, whose mask numba would drop, goes
+        # the checked way, Q too) of native float64, C-contiguous and writeable (as
+        # numba's dispatcher typed them), then their shapes and values: anything else
+        # (BAD_TYPE, as any status but OK) is converted and checked in full by
+        # _predict_checked.
+        status = self._kp(self._state, x_new, jac, Q)
         if status:
             self._predict_checked(status, x_new, jac, Q)
 
@@ -629,15 +622,7 @@ class ExtendedKalmanFilter(GaussianEstimate):
         if (angle_measurements is self._options and gate is self._gate) or self._fast_options(
             angle_measurements, gate
         ):
-            # As in predict: a masked array (an ndarray subclass) goes the checked way.
-            if (type(hx) is not _NDARRAY or type(jac) is not _NDARRAY
-                    or type(z) is not _NDARRAY or type(R) is not _NDARRAY):  # fmt: skip
-                out = _NOT_TAKEN
-            else:
-                try:
-                    out = self._ku(self._state, z, hx, jac, R, self._rbuf, y)
-                except Exception:  # a dispatch failure: not of the compiled types
-                    out = _NOT_TAKEN
+            out = self._ku(self._state, z, hx, jac, R, self._rbuf, y)
             if out >= 0.0:  # OK: the kernel returned the NIS
                 # new_result, inlined: building the result is much of an update's Python work.
                 result = _Building()
@@ -731,10 +716,7 @@ class ExtendedKalmanFilter(GaussianEstimate):
             if (angle_measurements is self._options and gate is self._gate) or self._fast_options(
                 angle_measurements, gate
             ):
-                try:
-                    status = self._run(z, hx, jac, r, y)
-                except Exception:  # a dispatch failure: not of the compiled types
-                    status = BAD_TYPE
+                status = self._run(z, hx, jac, r, y)
         if status in (BAD_TYPE, BAD_SHAPE):
             # Convert and check everything, in the documented order.
             z = _c_copy(as_float_array(z, "z", ndim=1))

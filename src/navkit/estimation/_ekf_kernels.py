@@ -67,11 +67,19 @@ scale, else the exact posterior covariance, rounded once, where float64 holds
 it as a covariance (in NumPy: the case is rare, and compiled into every update
 kernel it would cost compile time).
 
-They are compiled for C-contiguous, writeable, aligned float64 arrays only,
-when first requested, after which their dispatchers compile nothing more: an
-argument of any other type raises at dispatch, which the public layer takes as
-"convert this argument and check it in full". Its fast path therefore needs no
-type checks of its own.
+Each kernel is compiled, when first requested, for one signature: the
+filter's own arrays (``state``, ``rbuf``, ``y``) as numba arrays and the
+user's (f(x), F, Q; z, h(x), H, R) as :data:`~navkit._shared.array_objects.OBJECT`,
+any object. The public layer calls its compiled entry directly, skipping
+numba's dispatcher, and the kernel tests those objects in C first
+(:func:`~navkit._shared.array_objects.float_vector`, ``float_matrix``):
+anything but an ndarray (exactly) of native float64 of the right ndim,
+C-contiguous and writeable (what the dispatcher typed as the one type the
+kernels were compiled for, aligned or not) returns ``BAD_TYPE``, which the
+public layer takes as "convert the arguments and check them in full", as it
+took a dispatch failure before. Issue 17: the dispatcher's typing of the
+arguments and the Python type tests that kept masked arrays from it cost
+about 0.45 µs of a 7.3 µs step of the benchmark's 6-state model.
 """
 
 from __future__ import annotations
@@ -83,7 +91,7 @@ from typing import Any, cast
 import numpy as np
 
 from navkit._shared.angles import wrap_float
-from navkit._shared.jit import njit_force_inline, njit_no_refcount
+from navkit._shared.jit import bind_numba_names, njit_force_inline, njit_no_refcount
 from navkit._shared.se2 import wrap_scalar
 from navkit._shared.types import FloatArray, IntArray
 
@@ -116,6 +124,7 @@ __all__ = [
     "finish_cancelled",
     "finish_singular_s",
     "gated_s_ill",
+    "kernel_dispatchers",
     "new_rbuf",
     "new_state",
     "predict_kernel",
@@ -133,11 +142,41 @@ __all__ = [
 STATE_X = 0
 STATE_P = 1
 
+_NO_FLOATS = np.zeros(0)
+
+
+def _float_view_python(obj: object, ndim: int) -> tuple[bool, Any]:
+    """The check of :func:`navkit._shared.array_objects.float_vector` in Python."""
+    if (
+        type(obj) is np.ndarray
+        and obj.ndim == ndim
+        and obj.dtype.num == np.dtype(np.float64).num
+        and obj.dtype.byteorder == "="
+        and obj.flags.c_contiguous
+        and obj.flags.writeable
+    ):
+        return True, obj
+    return False, _NO_FLOATS.reshape((0,) * ndim)
+
+
+# navkit._shared.array_objects's intrinsics (it imports numba): bound when numba
+# loads; with the JIT disabled (NUMBA_DISABLE_JIT=1), the same checks in Python.
+float_vector: Any = None
+float_matrix: Any = None
+bind_numba_names(
+    globals(), "navkit._shared.array_objects",
+    python={
+        "float_vector": lambda obj: _float_view_python(obj, 1),
+        "float_matrix": lambda obj: _float_view_python(obj, 2),
+    },
+    float_vector="float_vector", float_matrix="float_matrix",
+)  # fmt: skip
+
 _SMALLEST_NORMAL = 2.2250738585072014e-308  # sys.float_info.min
 _EPS = 2.0**-53  # the unit roundoff of float64
 
-# A kernel takes the public layer's arguments as they come: its dispatcher checks
-# their types (and raises on any other than the compiled ones).
+# A kernel's compiled entry takes the public layer's arguments as they come and
+# checks their types itself (BAD_TYPE for any but a writeable float64 C array).
 PredictKernel = Callable[..., int]  # (state, f(x), F, Q) -> status
 UpdateKernel = Callable[..., float]  # (state, z, h(x), H, R, rbuf, y) -> NIS|-status
 
@@ -168,6 +207,7 @@ GATE_PASSED = 18
 
 # What ekf_update returns for a status other than OK: -status.
 _FAIL_SHAPE = -float(BAD_SHAPE)
+_FAIL_TYPE = -float(BAD_TYPE)
 _FAIL_Z = -float(BAD_Z)
 _FAIL_H = -float(BAD_H)
 _FAIL_NOISE = -float(NOISE_CHANGED)
@@ -697,15 +737,22 @@ def _make_predict(n: int) -> PredictKernel:
     size = _constant(n)
 
     @njit_no_refcount
-    def ekf_predict(state: FloatArray, x_new: FloatArray, jac: FloatArray, q: FloatArray) -> int:
+    def ekf_predict(state: FloatArray, x_obj: object, jac_obj: object, q_obj: object) -> int:
         """x ← wrap(f(x)), P ← F P Fᵀ + Q in ``state``, or a status code leaving x and P unchanged.
 
-        ``x_new`` (n,) is f(x), ``jac`` (n, n) the Jacobian F, ``q`` (n, n) the
-        caller's Q. Returns ``BAD_SHAPE``, ``BAD_F``, ``NOISE_CHANGED`` or
-        ``BAD_FX`` (checked in this order) before computing anything, then
-        ``NOT_FINITE`` or ``NOT_POSITIVE_DEFINITE`` for the predicted covariance,
-        else ``OK``.
+        ``x_obj`` (n,) is f(x), ``jac_obj`` (n, n) the Jacobian F, ``q_obj``
+        (n, n) the caller's Q, each as the caller has it (any object, see
+        :data:`OBJECT`). Returns ``BAD_TYPE`` (one is not a writeable
+        C-contiguous ndarray of native float64, exactly, of its ndim),
+        ``BAD_SHAPE``, ``BAD_F``, ``NOISE_CHANGED`` or ``BAD_FX`` (checked in
+        this order) before computing anything, then ``NOT_FINITE`` or
+        ``NOT_POSITIVE_DEFINITE`` for the predicted covariance, else ``OK``.
         """
+        x_ok, x_new = float_vector(x_obj)
+        jac_ok, jac = float_matrix(jac_obj)
+        q_ok, q = float_matrix(q_obj)
+        if not (x_ok and jac_ok and q_ok):
+            return BAD_TYPE
         if (x_new.shape[0] != size or jac.shape[0] != size or jac.shape[1] != size
                 or q.shape[0] != size or q.shape[1] != size
                 or state.shape[1] != size):  # fmt: skip
@@ -966,20 +1013,22 @@ def _make_update(n: int, m: int) -> UpdateKernel:
     @njit_no_refcount
     def ekf_update(
         state: FloatArray,
-        z: FloatArray,
-        hx: FloatArray,
-        jac: FloatArray,
-        r: FloatArray,
+        z_obj: object,
+        hx_obj: object,
+        jac_obj: object,
+        r_obj: object,
         rbuf: FloatArray,
         y: FloatArray,
     ) -> float:
         """Joseph-form measurement update of ``state``; returns the NIS, or -status.
 
-        ``z`` and ``hx`` (m,) are the measurement and h(x), ``jac`` (m, n) the
-        Jacobian H, ``r`` (m, m) the caller's R, ``rbuf`` the buffer of this m
-        (:func:`new_rbuf`), which also holds the options (:func:`set_options`:
-        which components of ``z`` are angles, the NIS gate). The residual is
-        written to ``y`` (m,). Checks, in order: ``BAD_SHAPE`` (any
+        ``z_obj`` and ``hx_obj`` (m,) are the measurement and h(x), ``jac_obj``
+        (m, n) the Jacobian H, ``r_obj`` (m, m) the caller's R, each as the
+        caller has it (any object, see :data:`OBJECT`), ``rbuf`` the buffer of
+        this m (:func:`new_rbuf`), which also holds the options
+        (:func:`set_options`: which components of ``z`` are angles, the NIS
+        gate). The residual is written to ``y`` (m,). Checks, in order:
+        ``BAD_TYPE`` (as the predict kernel's), ``BAD_SHAPE`` (any
         shape not fitting ``rbuf``'s m), ``BAD_Z``,
         ``BAD_H``, ``NOISE_CHANGED``, ``BAD_HX``; then S = H P Hᵀ + R
         (``S_NOT_FINITE``, ``S_NOT_POSITIVE_DEFINITE``), the residual
@@ -997,6 +1046,12 @@ def _make_update(n: int, m: int) -> UpdateKernel:
         covariance). x and P change only with ``OK``; ``nis`` is NaN until
         computed, inf when it overflowed.
         """
+        z_ok, z = float_vector(z_obj)
+        hx_ok, hx = float_vector(hx_obj)
+        jac_ok, jac = float_matrix(jac_obj)
+        r_ok, r = float_matrix(r_obj)
+        if not (z_ok and hx_ok and jac_ok and r_ok):
+            return _FAIL_TYPE  # as a dispatch failure was: nothing written
         rbuf[_VEC, _META, 1] = math.nan  # the NIS a failure reports, until computed
         if (z.shape[0] != m_meas or hx.shape[0] != m_meas or y.shape[0] != m_meas
                 or jac.shape[0] != m_meas or jac.shape[1] != n_states
@@ -1914,14 +1969,30 @@ def _information_update(
     return info
 
 
-def _freeze(kernel: Any) -> None:
-    """Let ``kernel`` compile nothing more: other argument types raise at dispatch."""
-    # A plain function when numba's JIT is disabled: nothing to freeze.
-    disable = getattr(kernel, "disable_compile", None)
-    if disable is not None:
-        disable()
+def _entry(kernel: Any, *arrays: int) -> Any:
+    """The compiled entry of ``kernel`` for its signature (see the module).
+
+    ``arrays`` gives each argument's kind: the ndim of one of the filter's own
+    arrays (a writeable, aligned C-contiguous float64 array, as numba types
+    it), or 0 for an :data:`OBJECT`. With numba's JIT disabled, the kernel
+    itself (a plain function).
+    """
+    compile_for = getattr(kernel, "compile", None)
+    if compile_for is None:  # NUMBA_DISABLE_JIT=1
+        return kernel
+    from numba.core import types  # here: importing this module must not import numba
+
+    from navkit._shared.array_objects import OBJECT
+
+    _DISPATCHERS.append(kernel)
+    sig = tuple(OBJECT if k == 0 else types.Array(types.float64, k, "C") for k in arrays)
+    entry = compile_for(sig)
+    kernel.disable_compile()  # nothing else ever reaches the dispatcher
+    return entry
 
 
+# The dispatchers of the kernels compiled so far (each for its one signature).
+_DISPATCHERS: list[Any] = []
 _PREDICT: dict[int, PredictKernel] = {}
 _UPDATE: dict[tuple[int, int], UpdateKernel] = {}
 
@@ -1929,18 +2000,14 @@ _UPDATE: dict[tuple[int, int], UpdateKernel] = {}
 def predict_kernel(n: int) -> PredictKernel:
     """The predict kernel of ``n``-state filters, compiled on first request.
 
-    Compiled (or loaded from numba's cache) for the types the filter passes
-    only, after which it compiles nothing more.
+    Compiled (or loaded from numba's cache) for its one signature: the
+    filter's state array and three :data:`OBJECT` arguments. Returns the
+    compiled entry (no dispatcher: the kernel types its arguments itself),
+    which takes any objects.
     """
     kernel = _PREDICT.get(n)
     if kernel is None:
-        kernel = _make_predict(n)
-        x = np.zeros(n)
-        eye = np.eye(n)
-        state = new_state(x, eye, ())
-        set_q(state, eye, eye)
-        kernel(state, x, eye, eye)
-        _freeze(kernel)
+        kernel = _entry(_make_predict(n), 2, 0, 0, 0)
         _PREDICT[n] = kernel
     return kernel
 
@@ -1948,27 +2015,27 @@ def predict_kernel(n: int) -> PredictKernel:
 def update_kernel(n: int, m: int) -> UpdateKernel:
     """The update kernel of ``n``-state filters and ``m``-dimensional measurements.
 
-    Compiled on first request, as :func:`predict_kernel`.
+    Compiled on first request, as :func:`predict_kernel`: the state, four
+    :data:`OBJECT` arguments, the buffer and the residual (``y``, a new
+    array of the caller's).
     """
     kernel = _UPDATE.get((n, m))
     if kernel is None:
-        kernel = _make_update(n, m)
-        state = new_state(np.zeros(n), np.eye(n), ())
-        rbuf = new_rbuf(n, m)
-        eye = np.eye(m)
-        set_r(rbuf, eye, eye)
-        z = np.zeros(m)
-        kernel(state, z, z, np.zeros((m, n)), eye, rbuf, np.empty(m))
-        _freeze(kernel)
+        kernel = _entry(_make_update(n, m), 2, 0, 0, 0, 0, 3, 1)
         _UPDATE[(n, m)] = kernel
     return kernel
+
+
+def kernel_dispatchers() -> list[Any]:
+    """The numba dispatchers of the kernels compiled so far (for tests: one signature each)."""
+    return list(_DISPATCHERS)
 
 
 def compile_kernels(n: int = 1, m: int = 1) -> None:
     """Compile (or load from numba's cache) the kernels of ``n`` states and ``m``-D measurements.
 
-    The filter only ever passes C-contiguous, writeable, aligned float64 arrays,
-    so these are the only specialisations; afterwards the kernels compile nothing more.
+    Each kernel has one signature (its own arrays and :data:`OBJECT` arguments,
+    see the module); afterwards they compile nothing more.
     """
     predict_kernel(n)
     update_kernel(n, m)

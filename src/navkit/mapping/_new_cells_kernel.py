@@ -11,7 +11,7 @@ and returns it; it returns ``None`` for any other object and for points that
 are not all finite, and the caller's general way then converts, validates
 and raises. One dispatch instead of Python's type, dtype, stride and shape
 tests, ``np.empty`` and a compiled call (issue 17: 0.25 µs against 0.50 µs on
-ten points). See :mod:`navkit.mapping._array_objects` for the types.
+ten points). See :mod:`navkit._shared.array_objects` for the types.
 
 Examples
 --------
@@ -38,14 +38,14 @@ from navkit.mapping._grid_kernels import world_to_cell_entry, world_to_cell_kern
 
 __all__ = ["new_cells_entry", "world_to_new_cells"]
 
-# navkit.mapping._array_objects's intrinsics (it imports numba): bound when numba loads.
+# navkit._shared.array_objects's intrinsics (it imports numba): bound when numba loads.
 float_pairs: Any = None
 new_int_pairs: Any = None
 is_null: Any = None
 discard: Any = None
 no_object: Any = None
 bind_numba_names(
-    globals(), "navkit.mapping._array_objects",
+    globals(), "navkit._shared.array_objects",
     float_pairs="float_pairs", new_int_pairs="new_int_pairs", is_null="is_null",
     discard="discard", no_object="no_object",
 )  # fmt: skip
@@ -121,6 +121,6 @@ def new_cells_entry() -> NewCellsEntry:
         return _python_new_cells
     from numba import types  # here: importing this module must not import numba
 
-    from navkit.mapping._array_objects import OBJECT
+    from navkit._shared.array_objects import OBJECT
 
     return cast(NewCellsEntry, dispatcher.compile((OBJECT, *(types.float64,) * 4)))
