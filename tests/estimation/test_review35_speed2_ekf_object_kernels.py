@@ -15,6 +15,9 @@ argument takes.
 
 from __future__ import annotations
 
+import os
+import subprocess
+import sys
 from collections.abc import Callable
 from typing import Any
 
@@ -188,3 +191,58 @@ def test_bad_input_in_any_spelling_raises_as_before() -> None:
         with pytest.raises(ValueError, match=r"^z must"):
             ekf.update(spell(np.array([[1.0]])), lambda x: x[:1], np.eye(1, 3), [[1.0]])
         np.testing.assert_array_equal(ekf.x, np.zeros(3))
+
+
+_OTHER_NUMPY = """
+import numba  # noqa: F401  (numba itself refuses a NumPy 3: loaded before the change)
+import numpy as np
+np.__version__ = "3.0.0"
+from navkit._shared import array_objects
+from navkit.estimation import ExtendedKalmanFilter
+jac = np.array([[1.0, 0.1], [0.0, 1.0]])
+h = np.array([[1.0, 0.0]])
+spells = (lambda a: a, lambda a: np.asarray(a).tolist(), np.ma.masked_array)
+out = [str(array_objects.LAYOUT_OK)]
+for spell in spells:
+    ekf = ExtendedKalmanFilter([0.1, 3.0], np.eye(2), angle_states=(1,))
+    for k in range(5):
+        ekf.predict(lambda x: spell(jac @ x), spell(jac), spell(0.01 * np.eye(2)))
+        r = ekf.update(spell(np.array([0.3 * k])), lambda x: spell(x[:1]), spell(h),
+                       spell(np.array([[0.1]])))
+        out.append(r.residual.tobytes().hex() + np.float64(r.nis).tobytes().hex())
+    out.append(ekf.x.tobytes().hex() + ekf.P.tobytes().hex())
+    try:
+        ekf.predict(lambda x: x, spell(np.array([[1.0, np.nan], [0.0, 1.0]])), np.eye(2))
+    except ValueError as error:
+        out.append(str(error))
+print(chr(10).join(out))
+"""
+
+
+def test_under_another_numpy_major_the_filter_answers_the_same() -> None:
+    """Where the C test cannot read NumPy's structs, the kernels are typed by numba's
+    dispatcher as before: the same bits and errors (the first version raised FilterError
+    at every step there: every array refused, even the converted ones)."""
+    jac = np.array([[1.0, 0.1], [0.0, 1.0]])
+    h = np.array([[1.0, 0.0]])
+    expected = ["False"]
+    spells = (lambda a: a, lambda a: np.asarray(a).tolist(), np.ma.masked_array)
+    for spell in spells:
+        ekf = ExtendedKalmanFilter([0.1, 3.0], np.eye(2), angle_states=(1,))
+        for k in range(5):
+            ekf.predict(lambda x, s=spell: s(jac @ x), spell(jac), spell(0.01 * np.eye(2)))
+            r = ekf.update(spell(np.array([0.3 * k])), lambda x, s=spell: s(x[:1]), spell(h),
+                           spell(np.array([[0.1]])))  # fmt: skip
+            expected.append(r.residual.tobytes().hex() + np.float64(r.nis).tobytes().hex())
+        expected.append(ekf.x.tobytes().hex() + ekf.P.tobytes().hex())
+        expected.append("F must contain only finite values")
+    # The default cache: there the kernels are compiled for other signatures (arrays,
+    # not objects), which a process under NumPy 2 never asks for.
+    env = dict(os.environ)
+    env.pop("NUMBA_DISABLE_JIT", None)
+    done = subprocess.run(
+        [sys.executable, "-c", _OTHER_NUMPY], env=env, capture_output=True, text=True,
+        check=False,
+    )  # fmt: skip
+    assert done.returncode == 0, done.stderr[-3000:]
+    assert done.stdout.splitlines() == expected

@@ -21,7 +21,9 @@ without the dispatcher, make those tests in C:
   unaligned one too, as ``numba.typeof`` does not look at alignment), they give
   ``True`` and a view of it (its data, shape and strides), else ``False`` and
   an empty view, having read nothing beyond the object's type unless that
-  type is ``ndarray``;
+  type is ``ndarray``; given a numba array of that type (a kernel compiled
+  for arrays, typed by the dispatcher, where :data:`LAYOUT_OK` is False), they
+  give ``True`` and the array;
 * :func:`float_pairs` (``world_to_cell``'s points) likewise gives ``N`` and
   a view of an ``ndarray`` (exactly) of native-order float64 with shape
   ``(N, 2)`` and strides ``(16, 8)`` (C-contiguous; aligned or not, read-only
@@ -363,11 +365,18 @@ def _no_object_typing(typingctx: Any) -> Any:
     return NEW_OBJECT(), codegen
 
 
+def _itself(context: Any, builder: Any, signature: Any, args: Any) -> Any:
+    """``(True, the array)``: :func:`float_vector` or :func:`float_matrix` of a typed array."""
+    return context.make_tuple(builder, signature.return_type, [cgutils.true_bit, args[0]])
+
+
 def _float_view_typing(ndim: int) -> Any:
     """The typing of :func:`float_vector` (``ndim`` 1) or :func:`float_matrix` (2)."""
     kind = types.Array(types.float64, ndim, "C")
 
     def typing(typingctx: Any, obj: Any) -> Any:
+        if obj == kind:  # an array typed by numba's dispatcher (see LAYOUT_OK): itself
+            return _Tuple((types.boolean, kind))(obj), _itself
         if not isinstance(obj, PyObjectArg):
             return None
         sig = _Tuple((types.boolean, kind))(obj)

@@ -1969,25 +1969,55 @@ def _information_update(
     return info
 
 
-def _entry(kernel: Any, *arrays: int) -> Any:
+def _entry(kernel: Any, refused: float, *arrays: int) -> Any:
     """The compiled entry of ``kernel`` for its signature (see the module).
 
     ``arrays`` gives each argument's kind: the ndim of one of the filter's own
-    arrays (a writeable, aligned C-contiguous float64 array, as numba types
-    it), or 0 for an :data:`OBJECT`. With numba's JIT disabled, the kernel
-    itself (a plain function).
+    arrays (a writeable C-contiguous float64 array, as numba types it), or
+    minus the ndim of an :data:`OBJECT` (the user's). With numba's JIT
+    disabled, the kernel itself (a plain function). Where NumPy's structs are
+    not known to :mod:`navkit._shared.array_objects` (``LAYOUT_OK`` False:
+    another NumPy major), the objects cannot be typed in C: the kernel is
+    compiled for arrays in their place, and the entry is its dispatcher
+    behind the public layer's former tests (:func:`_typed_by_dispatcher`),
+    returning ``refused`` for what the C test refuses.
     """
     compile_for = getattr(kernel, "compile", None)
     if compile_for is None:  # NUMBA_DISABLE_JIT=1
         return kernel
     from numba.core import types  # here: importing this module must not import numba
 
-    from navkit._shared.array_objects import OBJECT
+    from navkit._shared.array_objects import LAYOUT_OK, OBJECT
 
     _DISPATCHERS.append(kernel)
-    sig = tuple(OBJECT if k == 0 else types.Array(types.float64, k, "C") for k in arrays)
+    if not LAYOUT_OK:
+        compile_for(tuple(types.Array(types.float64, abs(k), "C") for k in arrays))
+        kernel.disable_compile()
+        objects = tuple(i for i, k in enumerate(arrays) if k < 0)
+        return _typed_by_dispatcher(kernel, objects, refused)
+    sig = tuple(OBJECT if k < 0 else types.Array(types.float64, k, "C") for k in arrays)
     entry = compile_for(sig)
     kernel.disable_compile()  # nothing else ever reaches the dispatcher
+    return entry
+
+
+def _typed_by_dispatcher(kernel: Any, objects: tuple[int, ...], refused: float) -> Any:
+    """``kernel`` (a dispatcher of one signature of arrays) as the entry of :func:`_entry`.
+
+    The arguments at ``objects`` must be ndarrays exactly (numba's dispatcher
+    would take a masked array's data, dropping its mask) of the compiled types
+    (any other raises at dispatch): else ``refused``.
+    """
+
+    def entry(*args: Any) -> Any:
+        for i in objects:
+            if type(args[i]) is not np.ndarray:
+                return refused
+        try:
+            return kernel(*args)
+        except Exception:  # a dispatch failure: not of the compiled types
+            return refused
+
     return entry
 
 
@@ -2007,7 +2037,7 @@ def predict_kernel(n: int) -> PredictKernel:
     """
     kernel = _PREDICT.get(n)
     if kernel is None:
-        kernel = _entry(_make_predict(n), 2, 0, 0, 0)
+        kernel = _entry(_make_predict(n), BAD_TYPE, 2, -1, -2, -2)
         _PREDICT[n] = kernel
     return kernel
 
@@ -2021,7 +2051,7 @@ def update_kernel(n: int, m: int) -> UpdateKernel:
     """
     kernel = _UPDATE.get((n, m))
     if kernel is None:
-        kernel = _entry(_make_update(n, m), 2, 0, 0, 0, 0, 3, 1)
+        kernel = _entry(_make_update(n, m), _FAIL_TYPE, 2, -1, -1, -2, -2, 3, 1)
         _UPDATE[(n, m)] = kernel
     return kernel
 
