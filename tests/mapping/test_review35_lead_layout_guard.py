@@ -1,6 +1,6 @@
 """world_to_cell's C fast path stands aside where its struct reading is not known good.
 
-``navkit.mapping._array_objects`` reads NumPy's array structs by offset and calls
+``navkit._shared.array_objects`` reads NumPy's array structs by offset and calls
 ``PyArray_Empty`` by its index in NumPy's C-API table, which NumPy fixes for a
 major version only: under any NumPy but 2 (or a layout that does not check out)
 the fast entry must refuse every object, so the general way answers, with the
@@ -23,7 +23,7 @@ import numba  # noqa: F401  (numba itself refuses a NumPy 3: loaded before the c
 import numpy as np
 np.__version__ = {version!r}
 from navkit.mapping import OccupancyGrid
-from navkit.mapping import _array_objects
+from navkit._shared import array_objects as _array_objects
 from navkit.mapping._new_cells_kernel import new_cells_entry
 points = np.array([[0.7, 0.2], [-1.3, 2.6], [0.05, -0.05]])
 print(_array_objects.LAYOUT_OK)

@@ -276,7 +276,7 @@ def test_loading_leaves_ctypes_pythonapi_as_it_was() -> None:
         "import ctypes\n"
         "f = ctypes.pythonapi.PyCapsule_GetPointer\n"
         "before = (f.restype, f.argtypes)\n"
-        "import navkit.mapping._array_objects\n"
+        "import navkit._shared.array_objects\n"
         "assert (f.restype, f.argtypes) == before, (f.restype, f.argtypes)\n"
     )
     subprocess.run([sys.executable, "-c", code], check=True, capture_output=True)

@@ -48,8 +48,13 @@ checked against a real array when this module is imported
 (:data:`LAYOUT_OK`, which also requires NumPy 2, whose C-API table gives
 ``PyArray_Empty``), and if any differs :func:`float_pairs`,
 :func:`float_vector` and :func:`float_matrix` refuse every object, so callers
-take their general way (and ``PyArray_Empty`` is never called). This module
-was ``navkit.mapping._array_objects`` (kept as an alias there, see it).
+take their general way (and ``PyArray_Empty`` is never called).
+
+This module's path is written into users' numba cache indexes (each names the
+module of its argument types) and numba unpickles an index before it checks
+whether the index is stale: moving or renaming the module, or the type
+classes, makes every cache written before fail to load with
+``ModuleNotFoundError``/``AttributeError``; keep an alias where they were.
 """
 
 from __future__ import annotations
