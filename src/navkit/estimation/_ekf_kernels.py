@@ -2005,13 +2005,18 @@ def _typed_by_dispatcher(kernel: Any, objects: tuple[int, ...], refused: float) 
     """``kernel`` (a dispatcher of one signature of arrays) as the entry of :func:`_entry`.
 
     The arguments at ``objects`` must be ndarrays exactly (numba's dispatcher
-    would take a masked array's data, dropping its mask) of the compiled types
-    (any other raises at dispatch): else ``refused``.
+    would take a masked array's data, dropping its mask) of native byte order
+    and of the compiled types (any other raises at dispatch): else
+    ``refused``. numba's dispatcher itself does not tell byte orders apart
+    once it has typed an unaligned array (its type cache keys an unaligned
+    array by a fingerprint without the byte order): a big-endian array passed
+    after an unaligned one was read as native float64, its bytes swapped.
     """
 
     def entry(*args: Any) -> Any:
         for i in objects:
-            if type(args[i]) is not np.ndarray:
+            arg = args[i]
+            if type(arg) is not np.ndarray or not arg.dtype.isnative:
                 return refused
         try:
             return kernel(*args)
