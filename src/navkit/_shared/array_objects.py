@@ -49,6 +49,15 @@ checked against a real array when this module is imported
 ``PyArray_Empty``), and if any differs :func:`float_pairs`,
 :func:`float_vector` and :func:`float_matrix` refuse every object, so callers
 take their general way (and ``PyArray_Empty`` is never called).
+:data:`LAYOUT_OK` is read when a kernel is compiled and becomes part of its
+machine code, which numba's cache does not key by: that is safe because
+another NumPy major needs another numba, whose version numba checks before it
+loads any cache; a test that fakes another NumPy (``np.__version__``) and
+compiles a kernel with an :data:`OBJECT` argument must use a cache of its own.
+The byte order is tested, not assumed: numba's dispatcher, once it has typed
+an unaligned float64 array, types a big-endian one of the same ndim as native
+float64 (its fingerprint of an array leaves the byte order out) and reads its
+bytes swapped.
 
 This module's path is written into users' numba cache indexes (each names the
 module of its argument types) and numba unpickles an index before it checks
