@@ -259,6 +259,12 @@ def _symbol(builder: Any, name: str) -> Any:
     return builder.ptrtoint(variable, _I64)
 
 
+def _is_exact_ndarray(builder: Any, base: Any) -> Any:
+    """Whether the object at integer address ``base`` is an ``ndarray`` (its type, no subclass)."""
+    ob_type = _field(builder, base, _HEAD - 8, _I64)  # ob_type: the header's last field
+    return builder.icmp_unsigned("==", ob_type, _symbol(builder, _NDARRAY_TYPE))
+
+
 def _view(context: Any, builder: Any, kind: Any, data: Any, rows: Any) -> Any:
     """A numba array of type ``kind``, shape ``(rows, 2)``, over ``data`` (no owner)."""
     array = arrayobj.make_array(kind)(context, builder)
@@ -286,8 +292,7 @@ def _float_pairs_typing(typingctx: Any, obj: Any) -> Any:
         data = cgutils.alloca_once_value(builder, _BYTE_PTR(None))
         base = builder.ptrtoint(args[0], _I64)
         if LAYOUT_OK:
-            ob_type = _field(builder, base, _HEAD - 8, _I64)
-            exact = builder.icmp_unsigned("==", ob_type, _symbol(builder, _NDARRAY_TYPE))
+            exact = _is_exact_ndarray(builder, base)
             # Nothing past the object header is read unless it is an ndarray.
             with builder.if_then(exact, likely=True):
                 ndim = _field(builder, base, _NDIM, _I32)
@@ -402,8 +407,7 @@ def _float_view_typing(ndim: int) -> Any:
             strides = [cgutils.alloca_once_value(builder, _I64(0)) for _ in range(ndim)]
             base = builder.ptrtoint(args[0], _I64)
             if LAYOUT_OK:
-                ob_type = _field(builder, base, _HEAD - 8, _I64)
-                exact = builder.icmp_unsigned("==", ob_type, _symbol(builder, _NDARRAY_TYPE))
+                exact = _is_exact_ndarray(builder, base)
                 # Nothing past the object header is read unless it is an ndarray.
                 with builder.if_then(exact, likely=True):
                     nd = _field(builder, base, _NDIM, _I32)
