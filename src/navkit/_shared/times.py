@@ -34,7 +34,7 @@ _INTEGERS = frozenset({int, np.int8, np.int16, np.int32, np.int64, np.uint8, np.
 
 def time_error(value: Any, name: str) -> Exception | None:
     """The error for a time ``value`` (a number) that float64 would not hold as given."""
-    if isinstance(value, np.ndarray) and value.ndim == 0:
+    if issubclass(type(value), np.ndarray) and value.ndim == 0:
         value = value[()]
     if isinstance(value, (bool, np.bool_)):
         return None  # refused as a non-number by the caller's checks

@@ -27,7 +27,7 @@ import numbers
 import sys
 from collections.abc import Mapping, Sequence
 from itertools import chain
-from typing import Any
+from typing import Any, TypeGuard, cast
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -52,7 +52,7 @@ def finite_float(value: Any, name: str) -> float:
             return value
         raise ValueError(f"{name} must be finite, got {value}")
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
-        if isinstance(value, np.ndarray) and value.ndim == 0 and value.dtype.kind in "fiu":
+        if is_ndarray(value) and value.ndim == 0 and value.dtype.kind in "fiu":
             # A masked scalar (np.ma.masked, an element of a masked array) has data
             # that stands for nothing: .item() would read it.
             refuse_masked(value, name)
@@ -153,7 +153,7 @@ def bounded_int(
         out = value
     elif _is_integer(value):
         out = int(value)
-    elif isinstance(value, np.ndarray) and value.ndim == 0 and value.dtype.kind in "iu":
+    elif is_ndarray(value) and value.ndim == 0 and value.dtype.kind in "iu":
         refuse_masked(value, name)
         out = int(value.item())
     else:
@@ -208,7 +208,7 @@ def holds_bool(value: list[Any] | tuple[Any, ...], top_types: set[type] | None =
         if bool in types or np.bool_ in types:
             return True
         if any(issubclass(kind, np.ndarray) for kind in types) and any(
-            item.dtype.kind == "b" for item in items if isinstance(item, np.ndarray)
+            item.dtype.kind == "b" for item in items if issubclass(type(item), np.ndarray)
         ):
             return True
         if not types or not types <= _SEQUENCES:
@@ -249,7 +249,7 @@ def is_ragged(value: Any) -> bool:
             if isinstance(item, (str, bytes)):
                 return False
             if isinstance(item, _Block) or (
-                isinstance(item, np.ndarray) and item.dtype.kind != "O"
+                issubclass(type(item), np.ndarray) and item.dtype.kind != "O"
             ):
                 if not item.shape:
                     scalars = True
@@ -258,8 +258,8 @@ def is_ragged(value: Any) -> bool:
                 # Every row has the shape of the first; an empty block's rows still
                 # have a shape that must agree with its neighbours' (numpy checks it).
                 deeper.append(_Block(item.shape[1:]))
-            elif isinstance(item, (list, tuple, np.ndarray)):
-                if isinstance(item, np.ndarray) and item.ndim == 0:
+            elif isinstance(item, (list, tuple)) or issubclass(type(item), np.ndarray):
+                if issubclass(type(item), np.ndarray) and item.ndim == 0:
                     scalars = True
                     continue
                 lengths.add(len(item))
@@ -321,7 +321,9 @@ def refuse_masked(value: object, name: str) -> None:
     ValueError: ranges has masked entries, which would be read as their data: ...
     """
     # .mask is np.ma.nomask (False) or a boolean array of the data's shape.
-    if isinstance(value, np.ma.MaskedArray) and _any_masked(value):
+    if issubclass(type(value), np.ma.MaskedArray) and _any_masked(
+        cast("np.ma.MaskedArray[Any, Any]", value)
+    ):
         raise ValueError(
             f"{name} has masked entries, which would be read as their data: "
             "fill them first (masked_array.filled(value))"
@@ -360,7 +362,7 @@ def _refuse_masked_elements(
     """
     if any(issubclass(kind, np.ma.MaskedArray) for kind in types):
         for item in value:
-            if isinstance(item, np.ma.MaskedArray) and _any_masked(item):
+            if issubclass(type(item), np.ma.MaskedArray) and _any_masked(item):
                 raise ValueError(
                     f"{name} has masked entries (in an element of the list), which would "
                     "be read as their data: fill them first (masked_array.filled(value))"
@@ -375,8 +377,12 @@ def _real_array(value: Any, name: str, components: int | None = None) -> FloatAr
     with :func:`finite_float`. ``components`` (the length of the last axis the
     caller wants, if known) only shapes the hint for a ROS message given whole.
     """
-    if isinstance(value, np.ndarray):
-        if type(value) is not np.ndarray:
+    kind_of = type(value)
+    # The type itself, not isinstance: an object whose ``__class__`` says ndarray
+    # (a ``Mock(spec=np.ndarray)``, a wrapper) has none of its attributes; it is
+    # read by np.asarray below as any array-like is (review 36).
+    if kind_of is np.ndarray or issubclass(kind_of, np.ndarray):
+        if kind_of is not np.ndarray:
             refuse_masked(value, name)
         kind = value.dtype.kind
         if kind in "iu" or value.dtype is _FLOAT64:
@@ -505,7 +511,7 @@ def integer_readings(value: object, name: str) -> NDArray[Any]:
     kind = arr.dtype.kind
     if kind in "iu":
         return arr
-    if kind == "O" or (kind == "f" and not isinstance(value, np.ndarray)):
+    if kind == "O" or (kind == "f" and not issubclass(type(value), np.ndarray)):
         items = arr if kind == "O" else np.asarray(value, dtype=object)
         if all(_is_integer(item) for item in items.flat):
             return items
@@ -666,7 +672,7 @@ def unpack(value: Any, name: str) -> tuple[Any, ...]:
     if isinstance(value, np.matrix):
         value = np.asarray(value)  # a matrix's rows are 1-row matrices, not 1-D rows
     elif kind is memoryview or (
-        not isinstance(value, (list, tuple, np.ndarray)) and has_array_protocol(value)
+        not issubclass(kind, (list, tuple, np.ndarray)) and has_array_protocol(value)
     ):
         # Python iterates over a memoryview of one dimension only, and not over a
         # non-native format (big-endian ">d" from a file or a message: it raises
@@ -677,6 +683,27 @@ def unpack(value: Any, name: str) -> tuple[Any, ...]:
             what = "a memoryview" if kind is memoryview else "an array"
             raise TypeError(f"{name} is {what} NumPy cannot read: {exc}") from None
     return tuple(value)
+
+
+def is_ndarray(value: object) -> TypeGuard[NDArray[Any]]:
+    """Whether ``value`` is a NumPy array (or a subclass's) by its type.
+
+    Not ``isinstance``, which believes an object's ``__class__``: a
+    ``unittest.mock.Mock(spec=np.ndarray)`` or a wrapper whose ``__class__``
+    says ``np.ndarray`` passed and then lacked ``.dtype``/``.ndim`` (an
+    ``AttributeError``); such objects are array-likes like any other, read
+    through ``np.asarray`` or refused naming the argument (review 36). Hot
+    paths spell it inline: ``issubclass(type(value), np.ndarray)``.
+
+    Examples
+    --------
+    >>> from unittest import mock
+    >>> is_ndarray(np.zeros(2)), is_ndarray(np.ma.array([1.0]))
+    (True, True)
+    >>> is_ndarray(mock.Mock(spec=np.ndarray)), is_ndarray([1.0])
+    (False, False)
+    """
+    return issubclass(type(value), np.ndarray)
 
 
 def has_array_protocol(value: object) -> bool:

@@ -629,7 +629,7 @@ class RegulatedPurePursuit(PathTracker):
     def _clearance_at(self, pose: Pose2D) -> float:
         assert self._clearance is not None
         raw: Any = self._clearance(pose.x, pose.y)
-        if isinstance(raw, np.ndarray) and raw.ndim == 0 and raw.dtype.kind in "fiu":
+        if issubclass(type(raw), np.ndarray) and raw.ndim == 0 and raw.dtype.kind in "fiu":
             refuse_masked(raw, "clearance(x, y)")  # .item() would read a masked value's data
             raw = raw.item()
         if isinstance(raw, (bool, np.bool_)) or not isinstance(raw, numbers.Real):

@@ -21,6 +21,7 @@ from navkit._shared.validation import (
     bounded_int,
     finite_float,
     integer_readings,
+    is_ndarray,
     positive_float,
 )
 from navkit.geometry import Pose2D, as_pose, wrap_angle
@@ -835,7 +836,7 @@ class DiffOdometry:
             (right_ticks, "right_ticks"),
         )
         for value, name in given:
-            if isinstance(value, (list, tuple)) or (isinstance(value, np.ndarray) and value.ndim):
+            if isinstance(value, (list, tuple)) or (is_ndarray(value) and value.ndim):
                 raise TypeError(
                     f"{name} must be one integer counter reading, got {type(value).__name__}"
                 )

@@ -11,7 +11,7 @@ import numpy as np
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_extra
 from navkit._shared.text import as_text
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import as_float_array, bounded_int
+from navkit._shared.validation import as_float_array, bounded_int, is_ndarray
 
 if TYPE_CHECKING:
     from navkit.estimation._fusion import FusionStatus
@@ -104,7 +104,7 @@ class UpdateResult:
             status = codes.ACCEPTED if self.accepted else None
         elif isinstance(raw, codes):
             status = raw
-        elif isinstance(raw, np.ndarray) and raw.ndim == 0 and raw.dtype.kind in "iu":
+        elif is_ndarray(raw) and raw.ndim == 0 and raw.dtype.kind in "iu":
             # A 0-d integer array is its integer; a masked one is refused as FusionStatus
             # refuses it (ValueError), naming this argument.
             code = bounded_int(raw, "status")

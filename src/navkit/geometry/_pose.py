@@ -13,7 +13,13 @@ from numpy.typing import ArrayLike
 from navkit._shared.angles import wrap_float
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import as_float_array, as_points, finite_float, has_array_protocol
+from navkit._shared.validation import (
+    as_float_array,
+    as_points,
+    finite_float,
+    has_array_protocol,
+    is_ndarray,
+)
 
 __all__ = ["Pose2D", "Twist2D", "as_pose", "as_twist"]
 
@@ -519,7 +525,9 @@ def _overflow(name: str, what: str) -> ValueError:
 
 def _three(value: Any, name: str, what: str, fields: str) -> tuple[float, float, float]:
     if isinstance(value, (str, bytes)) or not (
-        isinstance(value, (Sequence, np.ndarray)) or has_array_protocol(value)
+        isinstance(value, Sequence)
+        or issubclass(type(value), np.ndarray)
+        or has_array_protocol(value)
     ):
         kind = type(value).__name__
         raise TypeError(f"{name} must be a {what} or a sequence {fields}, got {kind}")
@@ -621,7 +629,7 @@ def _elementwise(compare: np.ufunc, other: object, record: Pose2D | Twist2D) -> 
     held it then (a ufunc refuses the record itself). Anything else (a numeric
     row, a list, a number) is NotImplemented: then not equal.
     """
-    if isinstance(other, np.ndarray) and other.dtype == object:
+    if is_ndarray(other) and other.dtype == object:
         held = np.empty((), dtype=object)
         held[()] = record
         return compare(other, held)

@@ -33,6 +33,7 @@ from navkit._shared.validation import (
     as_float_array,
     finite_float,
     holds_bool,
+    is_ndarray,
 )
 from navkit.geometry import Pose2D, as_pose
 from navkit.mapping._cells_near_kernels import cells_near_kernel
@@ -251,7 +252,7 @@ def _logodds_array(value: ArrayLike) -> NDArray[Any]:
         if value.ndim != 2:
             raise ValueError(f"logodds must be 2-D, got shape {value.shape}")
         return value
-    if isinstance(value, np.ndarray) and value.dtype == np.bool_:
+    if is_ndarray(value) and value.dtype == np.bool_:
         # An occupancy mask is the usual first grid: name the constructor that takes it.
         raise TypeError(f"logodds must hold real numbers, got dtype bool: {_MASK_HINT}")
     if _message_dtype(value) in _MESSAGE_CELLS:
@@ -283,7 +284,7 @@ def _message_dtype(value: object) -> np.dtype[Any] | None:
     """
     try:
         dtype: np.dtype[Any] = (
-            value.dtype if isinstance(value, np.ndarray) else np.asarray(value).dtype
+            value.dtype if is_ndarray(value) else np.asarray(value).dtype
         )
     except Exception:  # the general conversion that follows raises navkit's error
         return None

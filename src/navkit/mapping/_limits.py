@@ -136,7 +136,7 @@ def resolution_float(value: Any, name: str = "resolution") -> float:
 
 def cost_or_inf(value: Any, name: str) -> float:
     """A cost in [1, 1e9] or ``inf``; booleans, strings and NaN are refused."""
-    if isinstance(value, np.ndarray) and value.ndim == 0 and value.dtype.kind == "f":
+    if issubclass(type(value), np.ndarray) and value.ndim == 0 and value.dtype.kind == "f":
         refuse_masked(value, name)  # .item() would read a masked value's data
         value = value.item()
     if isinstance(value, (float, np.floating)) and value == math.inf:

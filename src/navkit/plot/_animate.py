@@ -42,7 +42,7 @@ def _footprint(value: Any) -> FloatArray:
     if isinstance(value, (bool, np.bool_)):
         raise TypeError("footprint must be a radius (m) or (V, 2) polygon vertices, got bool")
     if isinstance(value, (int, float, np.integer, np.floating)) or (
-        isinstance(value, np.ndarray) and value.ndim == 0
+        issubclass(type(value), np.ndarray) and value.ndim == 0
     ):
         radius = bounded_float(value, "footprint", 1e-6, 1e6)
         a = np.linspace(0.0, 2.0 * math.pi, _CIRCLE_POINTS, endpoint=False)

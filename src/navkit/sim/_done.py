@@ -65,7 +65,7 @@ def done_flag(done: Any, name: str) -> bool:
         # Missing, not false: its truth value is the data under the mask's.
         raise ValueError(f"{name} must be true or false, got a masked value (missing)")
     value = done
-    if isinstance(done, np.ndarray) and done.size == 1:
+    if issubclass(type(done), np.ndarray) and done.size == 1:
         if done.dtype.kind in "US":
             # Its truth value is its text's: "False" (and b"0") true, as for a str.
             raise TypeError(

@@ -13,7 +13,7 @@ from numpy.typing import ArrayLike
 from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.frozen import frozen_setattr
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import bounded_int, finite_float, positive_float
+from navkit._shared.validation import bounded_int, finite_float, is_ndarray, positive_float
 from navkit.geometry import Pose2D, as_pose, wrap_angle
 from navkit.mapping import LaserScan
 from navkit.sim._lidar_kernels import apply_range_noise
@@ -55,7 +55,7 @@ def as_generator(value: object, name: str = "rng") -> np.random.Generator:
         return value
     if value is None:
         return np.random.default_rng()
-    if isinstance(value, np.ndarray) and value.ndim == 0 and value.dtype.kind in "iu":
+    if is_ndarray(value) and value.ndim == 0 and value.dtype.kind in "iu":
         value = bounded_int(value, name)  # np.array(3): its integer (a masked one refused)
     if isinstance(value, bool):
         raise TypeError(f"{name} must be a numpy Generator, an int seed or None, got bool")

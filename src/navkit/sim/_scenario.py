@@ -26,7 +26,13 @@ from navkit._shared.frozen import frozen_setattr, restore_read_only
 from navkit._shared.frozendict import FrozenDict
 from navkit._shared.text import as_text
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import as_float_array, as_sequence, bounded_int, finite_float
+from navkit._shared.validation import (
+    as_float_array,
+    as_sequence,
+    bounded_int,
+    finite_float,
+    is_ndarray,
+)
 from navkit.mapping import OccupancyGrid
 from navkit.sim._trace import Trace
 from navkit.sim._world import World
@@ -1021,7 +1027,7 @@ class Scenario(ABC):
         # Checked here, under the caller's name (sweep would call it ``seeds``); a 0-d
         # array is one seed, as sweep takes it.
         value: object = seed
-        if isinstance(value, np.ndarray) and value.ndim == 0:
+        if is_ndarray(value) and value.ndim == 0:
             value = value[()]
         base = _int_in(value, "seed", 2**64)
         return sweep(

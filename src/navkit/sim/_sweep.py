@@ -15,7 +15,7 @@ import numpy as np
 
 from navkit._shared.cores import usable_cores
 from navkit._shared.counts import counted
-from navkit._shared.validation import bounded_int, shown
+from navkit._shared.validation import bounded_int, is_ndarray, shown
 from navkit.sim._pool import process_pool
 from navkit.sim._scenario import (
     Scenario,
@@ -57,12 +57,12 @@ def _seed_int(value: object, name: str) -> int:
 
 def _plan(scenario: Scenario, trials: int | None, seeds: object) -> tuple[tuple[Trial, ...], int]:
     """Every trial with its seed, and the base seed to record."""
-    if isinstance(seeds, np.ndarray) and seeds.ndim == 0:
+    if is_ndarray(seeds) and seeds.ndim == 0:
         seeds = seeds[()]  # a NumPy scalar: one base seed (or refused as one, by name)
     if isinstance(seeds, (numbers.Integral, bool, np.bool_)):
         base = _seed_int(seeds, "seeds")
         return scenario.trials(trials, seed=base), base
-    if isinstance(seeds, (str, bytes)) or not isinstance(seeds, (Sequence, np.ndarray)):
+    if isinstance(seeds, (str, bytes)) or not (isinstance(seeds, Sequence) or is_ndarray(seeds)):
         raise TypeError(f"seeds must be an integer or a sequence of integers, got {shown(seeds)}")
     bases = [_seed_int(s, f"seeds[{i}]") for i, s in enumerate(seeds)]
     if not bases:

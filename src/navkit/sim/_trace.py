@@ -298,7 +298,7 @@ class Trace:
         object.__setattr__(self, "times", times)
         for name in ("poses", "estimates", "commands"):
             value = getattr(self, name)
-            if isinstance(value, np.ndarray) and not adopt:
+            if issubclass(type(value), np.ndarray) and not adopt:
                 value = value.copy()  # never touch the caller's array, even on failure
             finite = name != "estimates"
             arr = as_float_array(value, name, shape=(n, 3), finite=finite)

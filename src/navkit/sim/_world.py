@@ -122,7 +122,7 @@ def as_footprint(value: Any, name: str = "footprint") -> tuple[float, FloatArray
     """
     if isinstance(value, bool):
         raise TypeError(f"{name} must be a radius (m) or a polygon, got bool")
-    if isinstance(value, np.ndarray) and value.ndim == 0 and value.dtype.kind in "fiu":
+    if issubclass(type(value), np.ndarray) and value.ndim == 0 and value.dtype.kind in "fiu":
         refuse_masked(value, name)  # .item() would read a masked radius's data
         value = value.item()
     if isinstance(value, numbers.Real):

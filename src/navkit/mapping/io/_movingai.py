@@ -177,7 +177,7 @@ def _terrain_codes(terrain: Any) -> NDArray[np.uint8]:
         raise TypeError(
             "terrain must be rows of characters (a 2-D array or a list of str), got str"
         )
-    if isinstance(terrain, np.ndarray):
+    if issubclass(type(terrain), np.ndarray):
         arr = terrain
     else:
         items = as_sequence(terrain, "terrain")
@@ -368,9 +368,9 @@ def _int_array(value: Any, name: str, shape: tuple[int, ...], *, low: int) -> In
     if isinstance(value, (list, tuple)) and holds_bool(value):
         raise TypeError(f"{name} must hold integers, got an element of type bool")
     arr = as_array(value, name)
-    if arr.dtype.kind == "f" and arr.size == 0 and not isinstance(value, np.ndarray):
+    if arr.dtype.kind == "f" and arr.size == 0 and not issubclass(type(value), np.ndarray):
         arr = arr.astype(np.int64)  # an empty list
-    elif arr.dtype.kind == "f" and not isinstance(value, np.ndarray):
+    elif arr.dtype.kind == "f" and not issubclass(type(value), np.ndarray):
         # NumPy makes float64 of integers beyond int64 and of int8 mixed with uint64.
         items = np.array(value, dtype=object)
         if items.shape == arr.shape and all(_is_int(item) for item in items.flat):

@@ -103,7 +103,7 @@ class GreedyStep:
     def __post_init__(self) -> None:
         cell: Any = self.cell
         if type(cell) is memoryview or (
-            not isinstance(cell, (str, bytes, list, tuple, np.ndarray))
+            not issubclass(type(cell), (str, bytes, list, tuple, np.ndarray))
             and has_array_protocol(cell)
         ):
             # A buffer (Python cannot iterate over a big-endian one) or a foreign
