@@ -225,7 +225,11 @@ class WheelEncoders:
     resolved while ``|angle| / 2π * ticks_per_rev`` is below 2**50. The
     counter is reported modulo ``2**bits`` as an unsigned reading when
     ``bits`` is below 64 (a 64-bit counter reads as a signed int64; decode
-    with :func:`navkit.kinematics.tick_delta`). A wheel that turns half the
+    with :func:`navkit.kinematics.tick_delta`). In a
+    :class:`~navkit.sim.Simulation` a count beyond the int64 range (2**63
+    ticks: 5.8e10 rad at 1e9 ticks a turn, days of wheels at 1e5 rad/s)
+    reads as a 64-bit counter wraps, also with ``bits=None``, which
+    ``tick_delta(..., bits=64)`` decodes. A wheel that turns half the
     counter range (``2**(bits - 1)`` ticks) or more between two readings
     aliases: the decoders (``tick_delta``, the estimators a
     :class:`~navkit.sim.Simulation` wraps) read the change wrapped, and the
@@ -239,7 +243,8 @@ class WheelEncoders:
     ticks_per_rev : float, default 1024.0
         Counts per wheel revolution, in [1, 1e9].
     bits : int or None, default 16
-        Counter width, 2 to 64; None for counters that never wrap.
+        Counter width, 2 to 64; None for counters that never wrap (in a
+        simulation, beyond the int64 range they wrap as 64-bit ones).
     rate : float, default 50.0
         Hz, in (0, 10^4].
     latency : float, default 0.0

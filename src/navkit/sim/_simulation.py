@@ -101,6 +101,35 @@ def _step_count(duration: float, rate: float) -> int:
     return max(1, math.ceil(duration * rate - _EPS))
 
 
+#: Float tick counts at or beyond this magnitude do not fit an int64 reading.
+_INT64_SPAN = 2.0**63
+
+
+def _int64_counts(counts: FloatArray) -> FloatArray:
+    """Whole-number float tick counts as the int64 values a 64-bit counter holds.
+
+    Counts within the int64 range are returned as they are. The others (a long
+    run of fast wheels on a fine encoder: 2**63 ticks are 5.8e10 rad at 1e9
+    ticks a turn) are reduced modulo 2**64 into ``[-2**63, 2**63)``, exactly:
+    ``fmod`` is exact, and so is adding or subtracting 2**64 to a count within
+    a factor 2 of it. Casting them as they were is undefined (NumPy gave
+    INT64_MIN with a RuntimeWarning). Congruent modulo 2**64, the result keeps
+    a narrower counter's reading under its mask.
+
+    Examples
+    --------
+    >>> counts = np.array([5.0, 2.0**64 + 4096.0, -(2.0**63) - 4096.0])
+    >>> _int64_counts(counts).astype(np.int64).tolist()  # the last is 2**63 - 4096
+    [5, 4096, 9223372036854771712]
+    """
+    if counts.size == 0 or float(np.max(np.abs(counts))) < _INT64_SPAN:
+        return counts
+    wrapped = np.fmod(counts, 2.0 * _INT64_SPAN)
+    wrapped[wrapped >= _INT64_SPAN] -= 2.0 * _INT64_SPAN
+    wrapped[wrapped < -_INT64_SPAN] += 2.0 * _INT64_SPAN
+    return wrapped
+
+
 def _lag_steps(latency: float, rate: float) -> int:
     """Whole physics steps from a reading's step to its delivery's.
 
@@ -857,7 +886,9 @@ class _Run:
             rows = self.out_encoders[:n_enc]
             stamps = rows[:, 0].tolist()
             dues = self._dues(stream, rows[:, 0], stamps)
-            ticks = rows[:, 1:].astype(np.int64)
+            # Counters wider than 52 bits (and those that never wrap) are wrapped
+            # here, in int64: as a 64-bit counter once beyond its range.
+            ticks = _int64_counts(rows[:, 1:]).astype(np.int64)
             if self.enc_mask:  # modulo 2**bits in two's complement
                 ticks &= self.enc_mask
             for k in range(n_enc):
