@@ -45,7 +45,15 @@ from its cache, and a child forked while another thread held it inherited it
 held by a thread that does not exist there, so its first kernel call waited
 for ever (a ``sweep`` over a ``fork`` process pool started while a ROS 2
 callback made a first call never ended). The fork now happens between
-compiles, as CPython's own fork waits for its import lock.
+compiles, as CPython's own fork waits for its import lock. It waits for
+navkit's import of numba in another thread too (:data:`NUMBA_IMPORT`,
+review 36): a child forked during the import (the first half second of a
+process's first kernel call) inherited Python's locks of the modules under
+way, held by a thread it does not have, and hung at its first kernel call.
+A Ctrl-C while a fork waits is held and raised in the parent after the fork
+(:func:`navkit._shared.interrupts.held_for_fork`): Python ignores an
+exception in a fork hook and forks anyway, so it was lost, and the fork made
+without the lock.
 
 Garbage made meanwhile is collected as usual afterwards; the peak memory of a
 compile rises by a few tens of MB (25 MB measured on Field D*'s).
@@ -55,6 +63,14 @@ from __future__ import annotations
 
 import gc
 import importlib
+
+# Before this module registers its fork hooks (and numba's import, which uses
+# logging): a hook registered later runs its ``before`` part earlier, so
+# logging's would hold logging's lock while this module's waits for a numba
+# import that needs it (numba's modules call logging.getLogger). And one
+# registered while a fork waits has its ``after`` parts run without its
+# ``before`` ("cannot release un-acquired lock").
+import logging  # noqa: F401
 import os
 import sys
 import threading
@@ -63,7 +79,12 @@ from contextlib import contextmanager
 from typing import Any
 
 from navkit._shared import compile_shortcuts
-from navkit._shared.interrupts import interrupts_deferred
+from navkit._shared.interrupts import (
+    held_for_fork,
+    interrupts_deferred,
+    release_in_child,
+    release_in_parent,
+)
 
 __all__ = ["install", "paused"]
 
@@ -98,8 +119,13 @@ def _end_pause() -> None:
             gc.enable()
 
 
-#: numba's compiler lock while this thread forks (see _before_fork), else empty.
+#: Held while navkit imports numba (jit.load_numba, jit.jit_disabled): a fork waits for it.
+NUMBA_IMPORT = threading.RLock()
+
+#: The locks this thread holds across a fork (see _before_fork), else empty.
 _HELD_FOR_FORK: list[Any] = []
+#: The Ctrl-C held while a fork waits (interrupts.held_for_fork), until it is done.
+_FORK_HOLD: list[Any] = []
 
 
 def _numba_compiler_lock() -> Any:
@@ -109,32 +135,61 @@ def _numba_compiler_lock() -> Any:
     return lock if callable(getattr(lock, "release", None)) else None
 
 
-def _before_fork() -> None:
-    # numba's compiler lock first: a fork waits for the compile (or cache load) under
-    # way in another thread, whose child would find the lock held for ever. Taken
-    # without numba's events (its lock object's own acquire reports one), before
-    # _PAUSE_LOCK, as a compiling thread takes them (this handler runs before
-    # compile_shortcuts', registered earlier, which takes that module's lock). A
-    # Ctrl-C during the wait leaves the lock untaken: Python reports the
-    # interrupt as an exception ignored in this handler, and forks as before.
-    try:
+def _take_locks_for_fork(*, blocking: bool) -> bool:
+    """Take numba's compiler lock, then navkit's import lock; False if one was not free."""
+    # The compiler lock first: a thread compiling a user's kernel that calls a
+    # navkit one takes it, then NUMBA_IMPORT (load_numba); a thread importing
+    # numba takes NUMBA_IMPORT alone (numba's import never takes the compiler
+    # lock), and the compiler lock after letting it go. Before numba's import
+    # there is no compiler lock to take: if it appears while this waits for the
+    # import, the import lock is let go and both are taken in order.
+    while True:
         lock = _numba_compiler_lock()
         if lock is not None:
-            lock.acquire()
+            if not lock.acquire(blocking):
+                return False
             _HELD_FOR_FORK.append(lock)
+        if not NUMBA_IMPORT.acquire(blocking):
+            _release_held_locks()
+            return False
+        _HELD_FOR_FORK.append(NUMBA_IMPORT)
+        if lock is not None or _numba_compiler_lock() is None:
+            return True
+        _release_held_locks()
+
+
+def _before_fork() -> None:
+    # A fork waits for numba's compiler lock and for navkit's import of numba
+    # under way in another thread: numba holds the one for every compile and
+    # load of a kernel from its cache, and a child forked meanwhile inherited it
+    # held by a thread that does not exist there, so its first kernel call
+    # waited for ever; a child forked during the import (Python's locks of the
+    # modules being imported held) hung at its first use of numba. Taken
+    # without numba's events (its lock object's own acquire reports one),
+    # before _PAUSE_LOCK, as a compiling thread takes them (this handler runs
+    # before compile_shortcuts', registered earlier, which takes that module's
+    # lock). A Ctrl-C during a wait is held until the fork is done and raised
+    # in the parent after os.fork returns: raised here, Python would report it
+    # as ignored in this hook and fork without the lock.
+    try:
+        if not _take_locks_for_fork(blocking=False):
+            _FORK_HOLD.append(held_for_fork(sys._getframe(1)))  # os.fork's caller
+            _take_locks_for_fork(blocking=True)
     finally:
         # Held across the fork, so the child copies a count and a state that agree.
         _PAUSE_LOCK.acquire()
 
 
-def _release_compiler_lock() -> None:
+def _release_held_locks() -> None:
     while _HELD_FOR_FORK:
         _HELD_FOR_FORK.pop().release()
 
 
 def _after_fork_in_parent() -> None:
     _PAUSE_LOCK.release()
-    _release_compiler_lock()
+    _release_held_locks()
+    while _FORK_HOLD:
+        release_in_parent(_FORK_HOLD.pop())
 
 
 def _after_fork_in_child() -> None:
@@ -142,7 +197,8 @@ def _after_fork_in_child() -> None:
 
     Their pauses would never end, and the child would run with the collector
     off for good (a worker forked while another thread compiled a kernel).
-    numba's compiler lock, held by this thread across the fork, is let go.
+    numba's compiler lock and navkit's import lock, held by this thread across
+    the fork, are let go; a Ctrl-C held meanwhile was the parent's.
     """
     global _PAUSE_LOCK, _PAUSES
     _PAUSE_LOCK = threading.RLock()  # the parent's is held, by this thread's twin
@@ -150,7 +206,9 @@ def _after_fork_in_child() -> None:
     _PAUSES = getattr(_THREAD, "pauses", 0)
     if others and _PAUSES == 0 and _RESUME:
         gc.enable()
-    _release_compiler_lock()
+    _release_held_locks()
+    while _FORK_HOLD:
+        release_in_child(_FORK_HOLD.pop())
 
 
 if hasattr(os, "register_at_fork"):  # not on Windows, which cannot fork

@@ -31,12 +31,19 @@ from __future__ import annotations
 import contextlib
 import os
 import signal
+import sys
 import threading
+import time
 from collections.abc import Iterator
 from types import FrameType
 from typing import Any
 
-__all__ = ["interrupts_deferred"]
+__all__ = [
+    "held_for_fork",
+    "interrupts_deferred",
+    "release_in_child",
+    "release_in_parent",
+]
 
 
 @contextlib.contextmanager
@@ -56,71 +63,184 @@ def interrupts_deferred() -> Iterator[None]:
     >>> total
     45
     """
-    if threading.current_thread() is not threading.main_thread():
+    hold = _Hold(insist=True)
+    if not hold.start():
         yield
         return
-    previous: Any = signal.getsignal(signal.SIGINT)
-    if previous is None:
-        yield
-        return
-    pending: list[FrameType | None] = []
-    saved = _system_action()  # before ours: an outside handler shows only here
-    ours: Any = None
-    # Whether the system's action at the end is another's, not Python's (which
-    # getsignal cannot tell): the outside one from before the block, or one a
-    # C library installed from another thread during it. Raising the signal
-    # again hands a held Ctrl-C to that one.
-    outside = [False]
-    restored: list[bool] = []
-
-    def restore() -> None:
-        if restored:
-            return
-        restored.append(True)
-        now = _system_action()
-        intruder = False
-        if ours is None:
-            # A second Ctrl-C before the block's own action was read: ``now`` is it.
-            outside[0] = saved is not None and _handler_address(saved) != _handler_address(now)
-        else:
-            # A C library (rclpy.init() in another thread) may have installed its
-            # action during the block: signal.signal below would overwrite it too.
-            intruder = now is not None and _handler_address(now) != _handler_address(ours)
-        signal.signal(signal.SIGINT, previous)
-        if intruder:
-            _set_system_action(now)
-            outside[0] = True
-        elif outside[0]:
-            _set_system_action(saved)
-
-    def deliver(frame: FrameType | None) -> None:
-        if outside[0]:
-            signal.raise_signal(signal.SIGINT)  # to the outside handler, which chains on
-        else:
-            _deliver(previous, signal.SIGINT, frame)
-
-    def hold(signum: int, frame: FrameType | None) -> None:
-        if pending:  # a second Ctrl-C: deliver it now
-            restore()
-            deliver(frame)
-            return
-        pending.append(frame)
-
-    try:
-        signal.signal(signal.SIGINT, hold)
-    except ValueError:  # not the main interpreter
-        yield
-        return
-    action = _system_action()
-    if not restored:  # else a second Ctrl-C came first and restore() has decided
-        ours = action
-        outside[0] = saved is not None and _handler_address(saved) != _handler_address(ours)
     try:
         yield
     finally:
-        restore()
-        if pending:
-            deliver(pending[0])
+        hold.restore()
+        if hold.pending:
+            hold.deliver(hold.pending[0])
+
+
+class _Hold:
+    """``SIGINT`` held back from :meth:`start` to :meth:`restore` (the parts of a deferral).
+
+    ``insist``: a second Ctrl-C is delivered at once (the user insists), else
+    every one is held.
+    """
+
+    def __init__(self, *, insist: bool) -> None:
+        self.insist = insist
+        #: The frames the held Ctrl-Cs interrupted (the first is delivered).
+        self.pending: list[FrameType | None] = []
+        self.previous: Any = None
+        self.saved: Any = None
+        self.ours: Any = None
+        # Whether the system's action at the end is another's, not Python's (which
+        # getsignal cannot tell): the outside one from before the block, or one a
+        # C library installed from another thread during it. Raising the signal
+        # again hands a held Ctrl-C to that one.
+        self.outside = False
+        self.restored = False
+        #: For a fork (see held_for_fork): the frame that called ``os.fork``.
+        self.fork_caller: FrameType | None = None
+
+    def start(self) -> bool:
+        """Hold ``SIGINT`` from now on; False where it cannot be held (see interrupts_deferred)."""
+        if threading.current_thread() is not threading.main_thread():
+            return False
+        self.previous = signal.getsignal(signal.SIGINT)
+        if self.previous is None:
+            return False
+        self.saved = _system_action()  # before ours: an outside handler shows only here
+        try:
+            signal.signal(signal.SIGINT, self.hold)
+        except ValueError:  # not the main interpreter
+            return False
+        action = _system_action()
+        if not self.restored:  # else a second Ctrl-C came first and restore() has decided
+            self.ours = action
+            self.outside = self.saved is not None and _handler_address(
+                self.saved
+            ) != _handler_address(action)
+        return True
+
+    def restore(self) -> None:
+        """Put the handler (and the system's action) from before :meth:`start` back."""
+        if self.restored:
+            return
+        self.restored = True
+        now = _system_action()
+        intruder = False
+        if self.ours is None:
+            # A second Ctrl-C before the block's own action was read: ``now`` is it.
+            self.outside = self.saved is not None and _handler_address(
+                self.saved
+            ) != _handler_address(now)
+        else:
+            # A C library (rclpy.init() in another thread) may have installed its
+            # action during the block: signal.signal below would overwrite it too.
+            intruder = now is not None and _handler_address(now) != _handler_address(self.ours)
+        signal.signal(signal.SIGINT, self.previous)
+        if intruder:
+            _set_system_action(now)
+            self.outside = True
+        elif self.outside:
+            _set_system_action(self.saved)
+
+    def deliver(self, frame: FrameType | None) -> None:
+        """Hand a held Ctrl-C to the handler from before :meth:`start` (after :meth:`restore`)."""
+        if self.outside:
+            signal.raise_signal(signal.SIGINT)  # to the outside handler, which chains on
+        else:
+            _deliver(self.previous, signal.SIGINT, frame)
+
+    def hold(self, signum: int, frame: FrameType | None) -> None:
+        """The handler while held."""
+        if self.pending and self.insist:  # a second Ctrl-C: deliver it now
+            self.restore()
+            self.deliver(frame)
+            return
+        self.pending.append(frame)
+
+
+def held_for_fork(fork_caller: FrameType | None) -> _Hold | None:
+    """Hold every ``SIGINT`` from now until the fork under way is done (a ``before`` fork hook).
+
+    For a fork hook that waits for a lock another thread holds: Python ignores
+    an exception raised in a fork hook (it prints "Exception ignored") and
+    forks all the same, so a Ctrl-C raised during the wait was lost, and the
+    fork made without the lock. Held, the wait goes on to the end, and
+    :func:`release_in_parent` delivers the Ctrl-C as ``os.fork`` returns in
+    the parent; the child drops it (:func:`release_in_child`). A second Ctrl-C
+    is held as well: cutting the wait short would fork without the lock.
+    ``fork_caller`` is the frame that called ``os.fork`` (the hook's caller:
+    C code adds no frame). None where nothing can be held (see
+    :func:`interrupts_deferred`).
+
+    Examples
+    --------
+    >>> import sys
+    >>> from navkit._shared.interrupts import held_for_fork, release_in_parent
+    >>> hold = held_for_fork(sys._getframe())  # a Ctrl-C from here on waits for the fork
+    >>> release_in_parent(hold)  # no fork made: nothing held, the handler is back
+    """
+    hold = _Hold(insist=False)
+    if not hold.start():
+        return None
+    hold.fork_caller = fork_caller
+    return hold
+
+
+def release_in_parent(hold: _Hold | None) -> None:
+    """End :func:`held_for_fork`'s hold in the parent (an ``after_in_parent`` hook).
+
+    The handler from before is put back, and a held Ctrl-C is sent again (a
+    ``SIGINT`` to the process, to whatever handles it then) once ``os.fork``
+    has returned to its caller, not here: Python runs the hooks registered
+    after this one next (logging's releases its lock), and an exception in a
+    hook is ignored, its work left undone. A thread of a few milliseconds
+    watches the main thread's frames for the return (a Python signal handler
+    cannot tell: it would run at the first point Python checks for signals,
+    inside a hook).
+    """
+    if hold is None:
+        return
+    hold.restore()
+    caller, hold.fork_caller = hold.fork_caller, None
+    if not hold.pending:
+        return
+    hold.pending.clear()
+    threading.Thread(
+        target=_interrupt_after_fork,
+        args=(caller, caller.f_lasti if caller is not None else -1),
+        name="navkit-held-ctrl-c",
+        daemon=True,
+    ).start()
+
+
+def _interrupt_after_fork(caller: FrameType | None, at: int) -> None:
+    """Send ``SIGINT`` once the main thread has left ``caller``'s ``os.fork`` (at ``at``)."""
+    main = threading.main_thread().ident
+    while caller is not None:
+        frame = sys._current_frames().get(main) if main is not None else None
+        inside = frame is caller or _called_from(frame, caller)
+        if not inside or caller.f_lasti != at:  # returned (its next instruction), or gone
+            break
+        time.sleep(0.0005)
+    os.kill(os.getpid(), signal.SIGINT)
+
+
+def _called_from(frame: FrameType | None, caller: FrameType) -> bool:
+    """Whether ``caller`` is among ``frame``'s callers (not ``frame`` itself)."""
+    outer = frame.f_back if frame is not None else None
+    while outer is not None:
+        if outer is caller:
+            return True
+        outer = outer.f_back
+    return False
+
+
+def release_in_child(hold: _Hold | None) -> None:
+    """End :func:`held_for_fork`'s hold in a forked child: the held Ctrl-Cs were the parent's."""
+    if hold is None:
+        return
+    hold.pending.clear()
+    hold.fork_caller = None
+    hold.restore()
 
 
 #: The C library's ``sigaction``, once looked up (None where there is none).

@@ -310,11 +310,13 @@ def numba_user_cache_folder() -> str:
 def jit_disabled() -> bool:
     """Whether numba's JIT is disabled (``NUMBA_DISABLE_JIT=1``): kernels run as Python."""
     if "numba.core.config" not in sys.modules:
+        from navkit._shared import compile_gc
         from navkit._shared.interrupts import interrupts_deferred
 
         # This may import numba (``navkit warmup`` asks before loading it): a
-        # Ctrl-C cutting that import short would break numba as in load_numba.
-        with interrupts_deferred():
+        # Ctrl-C cutting that import short would break numba as in load_numba,
+        # and a fork meanwhile waits for it (compile_gc.NUMBA_IMPORT).
+        with compile_gc.NUMBA_IMPORT, interrupts_deferred():
             importlib.import_module("numba.core.config")
     config: Any = importlib.import_module("numba.core.config")
     return bool(config.DISABLE_JIT)
@@ -421,7 +423,10 @@ def load_numba() -> None:
     # done yet then, and a Ctrl-C stops the wait as usual. (The pauses of the
     # collector inside the deferrals: one interrupted as it ends would leave
     # the collector off.)
-    with interrupts_deferred(), compile_gc.paused():
+    # Under navkit's import lock, which a fork waits for (compile_gc): a child
+    # forked during the import hung at its first kernel call (Python's locks of
+    # the modules under way held by a thread it does not have).
+    with compile_gc.NUMBA_IMPORT, interrupts_deferred(), compile_gc.paused():
         from numba import njit
         from numba.core.compiler_lock import global_compiler_lock
         from numba.core.registry import cpu_target
