@@ -267,6 +267,15 @@ spec(
 spec("navkit.geometry.Twist2D", lambda c: call(Twist2D, 0.4, 0.1, 0.3))
 spec("navkit.geometry.Twist2D.as_array", lambda c: method(twist(), "as_array"))
 spec("navkit.geometry.Twist2D.from_array", lambda c: call(Twist2D.from_array, A([0.4, 0.1, 0.3])))
+# ``record + offset`` has no meaning: a TypeError with a hint for every operand (review 36).
+for _key, _record in (("Pose2D", pose), ("Twist2D", twist)):
+    for _op in ("__add__", "__radd__"):
+        spec(
+            f"navkit.geometry.{_key}.{_op}",
+            lambda c, r=_record, op=_op: method(r(), op, A([0.5, -1.0, 1.0])),
+            kinds={"other": Anything()},
+            expect_error=TypeError,
+        )
 spec("navkit.geometry.angle_diff", lambda c: call(angle_diff, A([0.1, 3.0]), A([-3.0, 0.2])))
 spec("navkit.geometry.wrap_angle", lambda c: call(wrap_angle, A([0.1, 4.0, -7.0])))
 spec(

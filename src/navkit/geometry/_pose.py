@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, fields
-from typing import Any
+from typing import Any, Never
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -188,6 +188,50 @@ class Pose2D:
         Pose2D(x=1.0, y=1.0, theta=1.5707963267948966)
         """
         return as_pose(left, "left operand of @").compose(self)
+
+    def __add__(self, other: Never) -> Any:
+        """No sum: ``pose + row`` raises a ``TypeError`` that says what to write.
+
+        A pose is a transform, not a vector of three numbers. With an array, a
+        list, a tuple or a record the ``TypeError`` names the ways to move a
+        pose; with anything else Python's own (``NotImplemented``).
+
+        Raises
+        ------
+        TypeError
+            Always, as Python's ``+`` does for unsupported operands.
+
+        Examples
+        --------
+        >>> Pose2D(1.0, 2.0, 0.0) + [0.5, 0.0, 0.0]
+        Traceback (most recent call last):
+        ...
+        TypeError: unsupported operand type(s) for +: 'Pose2D' and 'list' (a Pose2D is ...
+        """
+        return _no_sum(self, other, reflected=False)
+
+    def __radd__(self, other: Never) -> Any:
+        """``row + pose``: a ``TypeError`` as :meth:`__add__`'s.
+
+        NumPy left ``row + pose`` to the pose (``__array_ufunc__ = None``) and,
+        with no ``__radd__``, Python fell back to the array's sequence
+        concatenation: "Concatenation operation is not implemented for NumPy
+        arrays, use np.concatenate() instead".
+
+        Raises
+        ------
+        TypeError
+            Always, as Python's ``+`` does for unsupported operands.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> np.array([0.5, 0.0, 0.0]) + Pose2D(1.0, 2.0, 0.0)
+        Traceback (most recent call last):
+        ...
+        TypeError: unsupported operand type(s) for +: 'numpy.ndarray' and 'Pose2D' (a Pose2D is ...
+        """
+        return _no_sum(self, other, reflected=True)
 
     def inverse(self) -> Pose2D:
         """Return the inverse transform, so that ``p.compose(p.inverse())`` is the identity.
@@ -422,6 +466,43 @@ class Twist2D:
             return not (self.vx == other.vx and self.vy == other.vy and self.omega == other.omega)
         return _elementwise(np.not_equal, other, self)
 
+    def __add__(self, other: Never) -> Any:
+        """No sum: ``twist + row`` raises a ``TypeError`` that says what to write.
+
+        As :meth:`Pose2D.__add__`: with an array, a list, a tuple or a record
+        the ``TypeError`` says how to add to the fields.
+
+        Raises
+        ------
+        TypeError
+            Always, as Python's ``+`` does for unsupported operands.
+
+        Examples
+        --------
+        >>> Twist2D(0.5) + Twist2D(0.1)
+        Traceback (most recent call last):
+        ...
+        TypeError: unsupported operand type(s) for +: 'Twist2D' and 'Twist2D' (a Twist2D has ...
+        """
+        return _no_sum(self, other, reflected=False)
+
+    def __radd__(self, other: Never) -> Any:
+        """``row + twist``: a ``TypeError`` as :meth:`__add__`'s (not NumPy's "Concatenation").
+
+        Raises
+        ------
+        TypeError
+            Always, as Python's ``+`` does for unsupported operands.
+
+        Examples
+        --------
+        >>> [0.1, 0.0, 0.0] + Twist2D(0.5)
+        Traceback (most recent call last):
+        ...
+        TypeError: unsupported operand type(s) for +: 'list' and 'Twist2D' (a Twist2D has ...
+        """
+        return _no_sum(self, other, reflected=True)
+
     def as_array(self) -> FloatArray:
         """Return ``[vx, vy, omega]`` as a new float64 array.
 
@@ -618,6 +699,45 @@ def as_twist(value: Twist2D | ArrayLike, name: str = "twist") -> Twist2D:
     if isinstance(value, Twist2D):
         return value
     return Twist2D(*_three(value, name, "Twist2D", "[vx, vy, omega]"))
+
+
+_SUM_HINTS = {
+    "Pose2D": (
+        "a Pose2D is a transform, not a vector: pose @ Pose2D(dx, dy, dtheta) moves it by"
+        " (dx, dy) in its own frame and turns it by dtheta;"
+        " Pose2D.from_array(pose.as_array() + [dx, dy, dtheta]) adds in the world frame"
+    ),
+    "Twist2D": (
+        "a Twist2D has no arithmetic:"
+        " Twist2D.from_array(twist.as_array() + [dvx, dvy, domega]) adds to its fields"
+    ),
+}
+
+
+def _no_sum(record: Pose2D | Twist2D, other: object, *, reflected: bool) -> Any:
+    """``record + other`` (``other + record`` if ``reflected``): NotImplemented or a TypeError.
+
+    An array, a list, a tuple or a navkit record (what a user adds a pose or a
+    twist to, meaning an offset) gets Python's message with a hint; anything
+    else is NotImplemented (the other operand may know the sum; if not, Python
+    raises its own message). Without this, ``row + pose`` ended in NumPy's
+    "Concatenation operation is not implemented for NumPy arrays" and
+    ``pose + row`` in "operand 'Pose2D' does not support ufuncs".
+    """
+    if not (isinstance(other, (list, tuple, Pose2D, Twist2D)) or is_ndarray(other)):
+        return NotImplemented
+    left, right = (other, record) if reflected else (record, other)
+    base = next(k.__name__ for k in type(record).__mro__ if k in (Pose2D, Twist2D))
+    raise TypeError(
+        f"unsupported operand type(s) for +: {_type_name(left)!r} and"
+        f" {_type_name(right)!r} ({_SUM_HINTS[base]})"
+    )
+
+
+def _type_name(value: object) -> str:
+    """The operand's type as Python's own operator messages name it ('numpy.ndarray')."""
+    kind = type(value)
+    return f"numpy.{kind.__name__}" if kind.__module__ == "numpy" else kind.__name__
 
 
 def _elementwise(compare: np.ufunc, other: object, record: Pose2D | Twist2D) -> Any:
