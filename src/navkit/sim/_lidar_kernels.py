@@ -283,6 +283,19 @@ def _cast_occupancy(
         ev = 0.0
     elif abs(eu) <= _AXIS * abs(ev):
         eu = 0.0
+    # A start point within rounding of the map's edge is on it, as one within
+    # rounding of an inner grid line is on that line: a sensor on the edge of a
+    # rotated map lands a few 1e-16 inside or outside, and outside it read
+    # nothing along the edge (or from the face of a blocked cell there).
+    edge_tol = _NEAR * (abs(su) + abs(sv))
+    if -edge_tol <= su < 0.0:
+        su = 0.0
+    elif cols < su <= cols + edge_tol:
+        su = float(cols)
+    if -edge_tol <= sv < 0.0:
+        sv = 0.0
+    elif rows < sv <= rows + edge_tol:
+        sv = float(rows)
     t0 = 0.0
     t1 = best
     if eu != 0.0:
