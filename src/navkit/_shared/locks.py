@@ -1,19 +1,110 @@
-"""Process-wide locks that forked children get afresh (private).
+"""Process-wide locks that forked children get afresh; one caller at a time (private).
 
 A module-level lock held by some thread when the process forks stays held in
 the child, where that thread does not exist: the child's first ``with`` on it
 would wait for ever. :class:`ForkSafeLock` makes itself anew in the child
 (``os.register_at_fork``; Windows cannot fork).
+
+:func:`one_caller` guards the methods of a stateful object documented as
+used by one thread at a time: a call made while another is under way (from
+another thread, or a signal handler's in the same thread) raises a clear
+``RuntimeError`` instead of corrupting the object's state.
 """
 
 from __future__ import annotations
 
+import functools
 import os
 import threading
+from _thread import get_ident as _get_ident
 from collections.abc import Callable
 from types import TracebackType
+from typing import Concatenate, ParamSpec, Protocol, TypeVar
 
-__all__ = ["ForkSafeLock"]
+__all__ = ["ForkSafeLock", "one_caller"]
+
+_P = ParamSpec("_P")
+_R = TypeVar("_R")
+
+
+class _Guarded(Protocol):
+    """An object with the callers list :func:`one_caller` keeps (a ``_callers`` slot)."""
+
+    _callers: list[tuple[int, str]]
+
+
+_G = TypeVar("_G", bound=_Guarded)
+
+
+def one_caller(
+    method: Callable[Concatenate[_G, _P], _R],
+) -> Callable[Concatenate[_G, _P], _R]:
+    """Make ``method`` refuse to run while another guarded method of the object runs.
+
+    The object keeps a list ``_callers``, empty at rest (give a copy or an
+    unpickled object an empty one: a copy made while another thread calls the
+    original is not in use). Each call appends a token (its thread, its
+    method) and runs only if its token is the first; it takes that token out
+    as it returns or raises, whatever the point (a ``KeyboardInterrupt``
+    included: the append, a C call, is done or not before one can land, and
+    the ``finally`` takes out only that token). Appending is atomic, so of two
+    threads calling at once exactly one runs and the other gets
+    ``RuntimeError``, which says whether the call under way is another
+    thread's or the same thread's (a signal handler's). The cost is about
+    half a microsecond a call: for methods of milliseconds.
+
+    Examples
+    --------
+    >>> class Counter:
+    ...     __slots__ = ("_callers", "n")
+    ...     def __init__(self) -> None:
+    ...         self._callers, self.n = [], 0
+    ...     @one_caller
+    ...     def bump(self, inner: bool = False) -> None:
+    ...         self.n += 1
+    ...         if inner:
+    ...             self.bump()  # as a signal handler's call would
+    >>> counter = Counter()
+    >>> counter.bump()
+    >>> try:
+    ...     counter.bump(inner=True)
+    ... except RuntimeError as error:
+    ...     print(str(error)[:55])
+    Counter.bump was called during this Counter's own bump,
+    >>> counter.n, counter._callers
+    (2, [])
+    """
+    name = method.__name__
+
+    @functools.wraps(method)
+    def guarded(self: _G, /, *args: _P.args, **kwargs: _P.kwargs) -> _R:
+        callers = self._callers
+        token = (_get_ident(), name)  # a new tuple: the first is told by identity
+        try:
+            callers.append(token)
+            if callers[0] is not token:
+                raise RuntimeError(_in_use(type(self).__name__, name, callers[0]))
+            return method(self, *args, **kwargs)
+        finally:
+            # An equal token is this thread's same method, re-entered: the same.
+            callers.remove(token)
+
+    return guarded
+
+
+def _in_use(cls: str, name: str, other: tuple[int, str]) -> str:
+    """The message of a call ``name`` refused because ``other`` (a token) is under way."""
+    ident, running = other
+    if ident == threading.get_ident():
+        return (
+            f"{cls}.{name} was called during this {cls}'s own {running}, in the same "
+            f"thread (from a signal handler?): a {cls} takes one call at a time"
+        )
+    return (
+        f"{cls}.{name} was called while another thread was in this {cls}'s {running}: "
+        f"a {cls} is used by one thread at a time (one per thread, or a lock of your "
+        "own around its calls)"
+    )
 
 
 class ForkSafeLock:

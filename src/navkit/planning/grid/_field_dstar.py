@@ -14,6 +14,7 @@ from navkit._shared.counts import counted
 from navkit._shared.dunders import slot_state
 from navkit._shared.frozen import restore_slots
 from navkit._shared.grid_coords import as_pairs, one_or_many, round_half_up
+from navkit._shared.locks import one_caller
 from navkit._shared.types import CellLike, FloatArray, IntArray
 from navkit._shared.validation import as_array, as_bool, as_cell, as_float_array
 from navkit.errors import NoPathError
@@ -269,7 +270,10 @@ class FieldDStar:
 
     A planner keeps its search state between queries, so it is not
     thread-safe: one thread at a time may call its methods (queries included);
-    different planners may run in different threads at once.
+    different planners may run in different threads at once. A plan, replan or
+    cost update called while another is under way (another thread's, or a
+    signal handler's interrupting one in the same thread) raises
+    ``RuntimeError`` and changes nothing; the call under way goes on as alone.
 
     Examples
     --------
@@ -298,6 +302,7 @@ class FieldDStar:
 
     __slots__ = (
         "_cached",
+        "_callers",
         "_changed",
         "_clean",
         "_cols",
@@ -346,6 +351,8 @@ class FieldDStar:
         origin: Pose2D | ArrayLike = _IDENTITY,
         obstacles: ArrayLike | None = None,
     ) -> None:
+        # The calls under way (one at most: see one_caller; not copied or pickled).
+        self._callers: list[tuple[int, str]] = []
         arr, _ = checked_costs(costs, corner_nodes=True)
         self._interp = as_bool(interpolate, "interpolate")
         self._lookahead = as_bool(lookahead, "lookahead")
@@ -439,14 +446,15 @@ class FieldDStar:
         past the deepest a search reached: the copy is bit for bit the
         original, slots a search left behind included), and the records of a
         planner that has not searched yet (``_clean``: as :func:`node_records`
-        makes them). :meth:`__setstate__` makes them again. Also pickle
-        protocols 0 and 1 need a ``__getstate__`` (see :func:`slot_state`).
+        makes them), and the calls under way (a copy is not in use).
+        :meth:`__setstate__` makes them again. Also pickle protocols 0 and 1
+        need a ``__getstate__`` (see :func:`slot_state`).
         """
         instance, slots = cast("tuple[Any, dict[str, Any]]", slot_state(self))
         kept = {
             name: value
             for name, value in slots.items()
-            if name not in ("_g", "_rhs", "_heap", "_vals")
+            if name not in ("_g", "_rhs", "_heap", "_vals", "_callers")
         }
         nodes, keys, _, size = self._heap
         # Bits, not values: a key of -0.0 is kept.
@@ -495,6 +503,8 @@ class FieldDStar:
         # exact world ends: no world points (paths end at the round-tripped nodes).
         slots.setdefault("_obstacles", None)
         slots.setdefault("_escape", None)
+        # Not in use, whatever the original was doing as it was copied (another thread's call).
+        slots["_callers"] = []
         slots.setdefault("_start_xy", None)
         slots.setdefault("_goal_xy", None)
         work = np.asarray(slots["_work"], dtype=np.int64)
@@ -666,6 +676,7 @@ class FieldDStar:
         return one_or_many(out, single)
 
     # ------------------------------------------------------------ planning
+    @one_caller
     def plan(self, start_node: ArrayLike, goal_node: ArrayLike) -> Path2D:
         """Search from scratch and return the path from ``start_node`` to ``goal_node``.
 
@@ -700,6 +711,10 @@ class FieldDStar:
             search the next :meth:`replan` completes, or no plan (a replan
             raises ``RuntimeError`` until the next plan); never a mix of the
             two plans.
+        RuntimeError
+            Another call of this planner is under way (another thread's, or a
+            signal handler's in the same thread): one call at a time, see the
+            class notes; nothing is changed.
 
         Examples
         --------
@@ -719,6 +734,7 @@ class FieldDStar:
         points, cost, length, expanded = self._search("node")
         return Path2D(points - 0.5, "grid", cost=cost, length=length, expanded=expanded)
 
+    @one_caller
     def replan(self, start_node: ArrayLike | None = None) -> Path2D:
         """Repair the previous search after cost updates and return the new path.
 
@@ -740,7 +756,9 @@ class FieldDStar:
         Raises
         ------
         RuntimeError
-            No plan was made yet.
+            No plan was made yet, or another call of this planner is under way
+            (another thread's, or a signal handler's in the same thread: one
+            call at a time, see the class notes; nothing is changed).
         ValueError
             A ``start_node`` not of length 2, off the node grid or a corner of
             impassable cells only; the kept start node (without
@@ -800,6 +818,7 @@ class FieldDStar:
         points, cost, length, expanded = self._search("node")
         return Path2D(points - 0.5, "grid", cost=cost, length=length, expanded=expanded)
 
+    @one_caller
     def plan_cells(self, start_cell: CellLike, goal_cell: CellLike) -> Path2D:
         """Path from the centre of ``start_cell`` to the centre of ``goal_cell``.
 
@@ -861,6 +880,10 @@ class FieldDStar:
             The goal cell cannot be reached.
         KeyboardInterrupt
             Part-way: as for :meth:`plan`.
+        RuntimeError
+            Another call of this planner is under way (another thread's, or a
+            signal handler's in the same thread): one call at a time, see the
+            class notes; nothing is changed.
 
         Examples
         --------
@@ -883,6 +906,7 @@ class FieldDStar:
         points, cost, length = self._linked(points)
         return Path2D(points - 0.5, "grid", cost=cost, length=length, expanded=expanded)
 
+    @one_caller
     def plan_world(
         self, start_xy: ArrayLike, goal_xy: ArrayLike, *, start_tolerance: float = 0.0
     ) -> Path2D:
@@ -951,6 +975,10 @@ class FieldDStar:
             The goal cannot be reached.
         KeyboardInterrupt
             Part-way: as for :meth:`plan`.
+        RuntimeError
+            Another call of this planner is under way (another thread's, or a
+            signal handler's in the same thread): one call at a time, see the
+            class notes; nothing is changed.
 
         Examples
         --------
@@ -990,6 +1018,7 @@ class FieldDStar:
         points, _, _, expanded = self._search("xy")
         return self._world_path(points, expanded)
 
+    @one_caller
     def replan_world(
         self, start_xy: ArrayLike | None = None, *, start_tolerance: float = 0.0
     ) -> Path2D:
@@ -1036,7 +1065,9 @@ class FieldDStar:
         Raises
         ------
         RuntimeError
-            No plan was made yet.
+            No plan was made yet, or another call of this planner is under way
+            (another thread's, or a signal handler's in the same thread: one
+            call at a time, see the class notes; nothing is changed).
         ValueError
             ``start_xy`` outside the grid or in an impassable cell (the
             inflation with no escape within ``start_tolerance``); the kept
@@ -1122,6 +1153,7 @@ class FieldDStar:
         points, _, _, expanded = self._search("xy")
         return self._world_path(points, expanded)
 
+    @one_caller
     def update_costs(
         self, cells: ArrayLike, new_costs: ArrayLike, *, obstacles: ArrayLike | None = None
     ) -> None:
@@ -1157,6 +1189,10 @@ class FieldDStar:
         TypeError
             Cells or costs that are not real numbers (booleans, strings,
             complex numbers, mappings); ``obstacles`` not boolean.
+        RuntimeError
+            Another call of this planner is under way (another thread's, or a
+            signal handler's in the same thread): one call at a time, see the
+            class notes; nothing is changed.
 
         Examples
         --------
