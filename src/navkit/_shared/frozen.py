@@ -50,7 +50,11 @@ def frozen_setattr(cls: _T) -> _T:
     raise it too, and other names are set or deleted as the subclass's own
     layout allows (its ``__dict__`` or slots; ``AttributeError`` otherwise), as
     for frozen dataclasses without slots. Construction does not go through
-    them (the generated ``__init__`` uses ``object.__setattr__``).
+    them (the generated ``__init__`` uses ``object.__setattr__``). A record
+    with no ``__reduce__`` of its own also gets a ``__reduce_ex__`` that copies
+    and pickles a subclass through :func:`reduce_record` (what it adds is kept;
+    a user's ``__getstate__`` taken at its word, as Python takes it); the
+    record's own pickles are unchanged.
 
     Examples
     --------
@@ -95,7 +99,23 @@ def frozen_setattr(cls: _T) -> _T:
             raise refuse(name, "delete")
         super(owner, self).__delattr__(name)
 
-    for function in (__setattr__, __delattr__):
+    functions: list[Any] = [__setattr__, __delattr__]
+    reductions = ("__reduce__", "__reduce_ex__")
+    if all(getattr(cls, name) is getattr(object, name) for name in reductions):
+        # A record without a __reduce__ of its own pickles and copies as the list of
+        # its field values (the slotted dataclass's __getstate__): a user's subclass
+        # lost the attributes it added (its __dict__, its slots), and one with a
+        # __getstate__ returning a dict had its keys read as field values (review
+        # 36). Subclasses go through reduce_record as the records with a __reduce__
+        # do; the record itself pickles as before, byte for byte.
+
+        def __reduce_ex__(self: Any, protocol: Any) -> Any:
+            if type(self) is owner:
+                return object.__reduce_ex__(self, protocol)
+            return reduce_record(self)
+
+        functions.append(__reduce_ex__)
+    for function in functions:
         function.__qualname__ = f"{cls.__qualname__}.{function.__name__}"
         function.__module__ = cls.__module__
         setattr(cls, function.__name__, function)
