@@ -122,10 +122,27 @@ def _end_pause() -> None:
 #: Held while navkit imports numba (jit.load_numba, jit.jit_disabled): a fork waits for it.
 NUMBA_IMPORT = threading.RLock()
 
-#: The locks this thread holds across a fork (see _before_fork), else empty.
-_HELD_FOR_FORK: list[Any] = []
-#: The Ctrl-C held while a fork waits (interrupts.held_for_fork), until it is done.
-_FORK_HOLD: list[Any] = []
+
+
+def _held_for_fork() -> list[Any]:
+    """The locks this thread holds across its fork (see _before_fork), else empty.
+
+    Per thread, as the hold of a Ctrl-C below: two threads may fork at once
+    (one waiting in its ``before`` hook for the locks the other's fork holds),
+    and each after-fork hook must let go of its own thread's only.
+    """
+    held: list[Any] | None = getattr(_THREAD, "held_for_fork", None)
+    if held is None:
+        held = _THREAD.held_for_fork = []
+    return held
+
+
+def _fork_hold() -> list[Any]:
+    """The Ctrl-C hold of this thread's fork (interrupts.held_for_fork), until it is done."""
+    hold: list[Any] | None = getattr(_THREAD, "fork_hold", None)
+    if hold is None:
+        hold = _THREAD.fork_hold = []
+    return hold
 
 
 def _numba_compiler_lock() -> Any:
@@ -148,11 +165,11 @@ def _take_locks_for_fork(*, blocking: bool) -> bool:
         if lock is not None:
             if not lock.acquire(blocking):
                 return False
-            _HELD_FOR_FORK.append(lock)
+            _held_for_fork().append(lock)
         if not NUMBA_IMPORT.acquire(blocking):
             _release_held_locks()
             return False
-        _HELD_FOR_FORK.append(NUMBA_IMPORT)
+        _held_for_fork().append(NUMBA_IMPORT)
         if lock is not None or _numba_compiler_lock() is None:
             return True
         _release_held_locks()
@@ -173,7 +190,7 @@ def _before_fork() -> None:
     # as ignored in this hook and fork without the lock.
     try:
         if not _take_locks_for_fork(blocking=False):
-            _FORK_HOLD.append(held_for_fork(sys._getframe(1)))  # os.fork's caller
+            _fork_hold().append(held_for_fork(sys._getframe(1)))  # os.fork's caller
             _take_locks_for_fork(blocking=True)
     finally:
         # Held across the fork, so the child copies a count and a state that agree.
@@ -181,15 +198,17 @@ def _before_fork() -> None:
 
 
 def _release_held_locks() -> None:
-    while _HELD_FOR_FORK:
-        _HELD_FOR_FORK.pop().release()
+    held = _held_for_fork()
+    while held:
+        held.pop().release()
 
 
 def _after_fork_in_parent() -> None:
     _PAUSE_LOCK.release()
     _release_held_locks()
-    while _FORK_HOLD:
-        release_in_parent(_FORK_HOLD.pop())
+    hold = _fork_hold()
+    while hold:
+        release_in_parent(hold.pop())
 
 
 def _after_fork_in_child() -> None:
@@ -207,8 +226,9 @@ def _after_fork_in_child() -> None:
     if others and _PAUSES == 0 and _RESUME:
         gc.enable()
     _release_held_locks()
-    while _FORK_HOLD:
-        release_in_child(_FORK_HOLD.pop())
+    hold = _fork_hold()
+    while hold:
+        release_in_child(hold.pop())
 
 
 if hasattr(os, "register_at_fork"):  # not on Windows, which cannot fork
