@@ -680,6 +680,10 @@ def restore_slots(
     if instance:
         obj.__dict__.update(instance)
     for name, value in slots.items():
+        if name == "__weakref__":
+            # Not state (Python's default leaves it out): a state built from a
+            # class's __slots__, which list it since review 36, may hold it.
+            continue
         if renamed is not None:
             name = renamed.get(name, name)
         if name in read_only and isinstance(value, np.ndarray):

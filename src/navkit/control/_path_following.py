@@ -243,6 +243,7 @@ class PathTracker(ABC):
     """
 
     __slots__ = (
+        "__weakref__",  # weakref.ref(obj) for callbacks and caches (review 36)
         "_drive",
         "_goal_heading",
         "_goal_tolerance",

@@ -206,6 +206,7 @@ class PotentialFieldController:
     """
 
     __slots__ = (
+        "__weakref__",  # weakref.ref(obj) for callbacks and caches (review 36)
         "_anchor",
         "_attraction",
         "_drive",

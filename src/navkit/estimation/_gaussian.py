@@ -16,7 +16,7 @@ class GaussianEstimate:
     they cannot corrupt the filter by writing into what they read.
     """
 
-    __slots__ = ("_p", "_x")
+    __slots__ = ("__weakref__", "_p", "_x")
 
     _x: FloatArray
     _p: FloatArray

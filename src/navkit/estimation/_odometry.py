@@ -346,7 +346,7 @@ class OmniOdometry:
     Pose2D(x=0.07071..., y=0.07071..., theta=1.5707963267948966)
     """
 
-    __slots__ = ("_anchor", "_drive", "_forward_rows", "_pose", "_travel")
+    __slots__ = ("__weakref__", "_anchor", "_drive", "_forward_rows", "_pose", "_travel")
     __getstate__ = _odometry_state  # pickle protocols 0 and 1 too
 
     def __init__(self, drive: OmniDrive, *, pose: Pose2D | ArrayLike | None = None) -> None:
@@ -653,6 +653,7 @@ class DiffOdometry:
     """
 
     __slots__ = (
+        "__weakref__",  # weakref.ref(obj) for callbacks and caches (review 36)
         "_anchor",
         "_bits",
         "_drive",

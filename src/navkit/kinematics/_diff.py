@@ -100,7 +100,7 @@ class DiffDrive:
     array([10., 12.])
     """
 
-    __slots__ = ("_left", "_right", "_track")
+    __slots__ = ("__weakref__", "_left", "_right", "_track")
     __getstate__ = slot_state  # pickle protocols 0 and 1 too
 
     def __init__(

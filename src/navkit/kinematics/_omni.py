@@ -113,7 +113,14 @@ class OmniDrive:
     OmniDrive(wheel_angles=radians([45, 135, 225, 315]), wheel_radius=0.05, base_radius=0.2)
     """
 
-    __slots__ = ("_base_radius", "_forward", "_jacobian", "_wheel_angles", "_wheel_radius")
+    __slots__ = (
+        "__weakref__",
+        "_base_radius",
+        "_forward",
+        "_jacobian",
+        "_wheel_angles",
+        "_wheel_radius",
+    )
     __getstate__ = slot_state  # pickle protocols 0 and 1 too
 
     def __init__(self, wheel_angles: ArrayLike, *, wheel_radius: float, base_radius: float) -> None:

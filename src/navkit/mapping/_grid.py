@@ -398,6 +398,7 @@ class OccupancyGrid:
     """
 
     __slots__ = (
+        "__weakref__",  # weakref.ref(obj) for callbacks and caches (review 36)
         "_free_thresh",
         "_lock",
         "_logodds",

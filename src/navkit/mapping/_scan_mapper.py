@@ -184,6 +184,7 @@ class ScanMapper:
     """
 
     __slots__ = (
+        "__weakref__",  # weakref.ref(obj) for callbacks and caches (review 36)
         "_clamp",
         "_free",
         "_last_odometry",

@@ -343,6 +343,7 @@ class ScanMatcher:
     """
 
     __slots__ = (
+        "__weakref__",  # weakref.ref(obj) for callbacks and caches (review 36)
         "_levels",
         "_max_iterations",
         "_max_range",

@@ -147,7 +147,7 @@ class TrackerController(Generic[_T]):
     (True, True, 0)
     """
 
-    __slots__ = ("_dt", "_use_estimate", "tracker")
+    __slots__ = ("__weakref__", "_dt", "_use_estimate", "tracker")
     __getstate__ = slot_state  # pickle protocols 0 and 1 too
 
     def __init__(self, tracker: _T, *, control_rate: float, use_estimate: bool = True) -> None:

@@ -706,6 +706,7 @@ class World:
     """
 
     __slots__ = (
+        "__weakref__",  # weakref.ref(obj) for callbacks and caches (review 36)
         "_cell_items",
         "_cell_start",
         "_cheb",

@@ -175,6 +175,7 @@ class MapPlanner:
     """
 
     __slots__ = (
+        "__weakref__",  # weakref.ref(obj) for callbacks and caches (review 36)
         "_costs",
         "_grid",
         "_inflate_unknown",
