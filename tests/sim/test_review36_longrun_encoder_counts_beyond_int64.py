@@ -31,6 +31,7 @@ import numpy as np
 import pytest
 from shapely.geometry import box
 
+from navkit.estimation import DiffOdometry, PlanarFusion
 from navkit.kinematics import DiffDrive, tick_delta
 from navkit.sim import EncoderReading, Reading, Robot, Simulation, WheelEncoders, World
 
@@ -121,3 +122,49 @@ def test_tick_delta_decodes_the_steps_across_the_int64_range(bits: int | None) -
     per_reading = WHEEL_SPEED * 500.0 / (2 * math.pi) * TPR
     assert np.abs(steps[:, 1] - per_reading).max() < SLACK
     assert np.abs(steps[:, 0] + per_reading).max() < SLACK
+
+
+# The simulator's own estimators decode the readings across the int64 range too: the
+# wrapped step of a 64-bit counter was taken as a plain difference, a jump of -2**64
+# ticks (5.8e9 m on these wheels) at the reading that crossed it; and a DiffOdometry of
+# 64 bits fed a narrower counter's readings, unwrapped, was given sums past the int64
+# range, which it refuses (ValueError mid-run). Readings every 500 s of a straight drive
+# at 5000 m/s (both wheels at 1e5 rad/s) decode to the same steps whatever the width
+# (8e15 ticks a step, within half of a 60-bit range), so the estimates are the same.
+
+
+def _straight(bits: int | None, estimator: object) -> np.ndarray:
+    robot = Robot(
+        drive=DRIVE,
+        footprint=0.15,
+        max_wheel_speed=WHEEL_SPEED,
+        encoders=WheelEncoders(ticks_per_rev=TPR, bits=bits, rate=RATE),
+    )
+    twist = DRIVE.forward(np.array([WHEEL_SPEED, WHEEL_SPEED]))
+    sim = Simulation(World(), robot, lambda obs: twist, start=(0.0, 0.0, 0.0),
+                     estimator=estimator, rate=RATE, control_rate=RATE,
+                     duration=DURATION)  # fmt: skip
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        trace = sim.run()
+    assert trace.poses[-1, 0] == pytest.approx(5000.0 * DURATION)  # 7.5e9 m, past 2**64 ticks
+    return trace.estimates
+
+
+@pytest.mark.parametrize("bits", [None, 64])
+def test_a_fusion_estimator_reads_64_bit_counters_across_the_int64_range(
+    bits: int | None,
+) -> None:
+    wide = _straight(bits, PlanarFusion(t0=0.0))
+    narrow = _straight(60, PlanarFusion(t0=0.0))
+    np.testing.assert_array_equal(wide, narrow)
+
+
+@pytest.mark.parametrize("own", [None, 64])
+def test_a_64_bit_diff_odometry_reads_a_narrower_counter_past_the_int64_range(
+    own: int | None,
+) -> None:
+    wide = _straight(60, DiffOdometry(DRIVE, ticks_per_rev=TPR, bits=own))
+    narrow = _straight(60, DiffOdometry(DRIVE, ticks_per_rev=TPR, bits=60))
+    np.testing.assert_array_equal(wide, narrow)
+    assert wide[-1, 0] == pytest.approx(5000.0 * DURATION)

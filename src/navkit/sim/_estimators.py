@@ -102,12 +102,18 @@ class Estimator(Protocol):
         """The current pose estimate."""
 
 
+#: Half the range of a 64-bit counter: int64 readings lie in [-2**63, 2**63).
+_INT64_HALF = 1 << 63
+
+
 def _signed_delta(previous: list[int], current: list[int], bits: int | None) -> list[int]:
     """Tick changes corrected for counter wrap-around (Python integers: exact, and
-    quicker than NumPy for a few wheels)."""
-    if bits is None:
-        return [c - p for p, c in zip(previous, current, strict=True)]
-    span = 1 << bits
+    quicker than NumPy for a few wheels).
+
+    ``bits`` None: 64-bit counters and those that never wrap, which a simulation
+    wraps as 64-bit ones past the int64 range (see :class:`WheelEncoders`).
+    """
+    span = 1 << (64 if bits is None else bits)
     half = span >> 1
     return [((c - p + half) % span) - half for p, c in zip(previous, current, strict=True)]
 
@@ -305,8 +311,9 @@ class _DiffOdometryEstimator:
     """DiffOdometry fed with the encoder counters, as counters of its own width.
 
     The raw readings when the odometry decodes counters as wide as the robot's
-    (its ``bits`` equal to the encoders' ``bits``; 64 and None alike, as
-    64-bit counters never wrap in a run). Otherwise an odometry built for other
+    (its ``bits`` equal to the encoders' ``bits``; 64 and None alike: both are
+    64-bit counters, which a run wraps past the int64 range, and DiffOdometry
+    decodes them so). Otherwise an odometry built for other
     counters (the default ``bits=None`` on the default 16-bit encoders)
     would read the robot's wrap-around, after 64 wheel turns, as a jump of
     -65535 ticks: it is fed the readings unwrapped at the robot's width and
@@ -371,6 +378,10 @@ class _DiffOdometryEstimator:
         span = self._span
         if span is not None:
             new = [v % span for v in new]
+        else:
+            # A 64-bit (or never-wrapping) odometry: the int64 values a 64-bit counter
+            # holds, which it decodes across the wrap (a sum past them is refused).
+            new = [(v + _INT64_HALF) % (2 * _INT64_HALF) - _INT64_HALF for v in new]
         self._fed = new
         return new
 
