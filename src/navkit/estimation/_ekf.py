@@ -15,7 +15,9 @@ of the state for them, two kernel calls and the result object.
 from __future__ import annotations
 
 import math
+import sys
 from collections.abc import Callable, Iterable
+from types import FrameType
 from typing import Any, NoReturn
 
 import numpy as np
@@ -901,11 +903,28 @@ def _c_array(value: ArrayLike, name: str, shape: tuple[int, ...]) -> FloatArray:
 
 
 def _nested(ekf: ExtendedKalmanFilter, method: str) -> NoReturn:
-    """Refuse a step called from the model functions of a step of the same filter."""
+    """Refuse a step made while a step of the same filter runs its model functions.
+
+    From those functions (this thread's stack holds the running step), or from
+    another thread meanwhile: the two need different advice. Looked up here,
+    on the error path, rather than by recording the stepping thread, which
+    would cost every step a call.
+    """
     # Named by its class, as the repr is: a user's subclass is what the user calls.
+    name = f"{type(ekf).__name__}.{method}"
+    steps = (ExtendedKalmanFilter.predict.__code__, ExtendedKalmanFilter.update.__code__)
+    frame: FrameType | None = sys._getframe(2)
+    while frame is not None:
+        if frame.f_code in steps and frame.f_locals.get("self") is ekf:
+            raise RuntimeError(
+                f"{name} called from a model function (f, F, h or H) of the same "
+                "filter's step: the steps would mix; make it after that step returns"
+            )
+        frame = frame.f_back
     raise RuntimeError(
-        f"{type(ekf).__name__}.{method} called from a model function (f, F, h or H) of "
-        "the same filter's step: the steps would mix; make it after that step returns"
+        f"{name} called while another thread's step of the same filter runs its model "
+        "functions: a filter is used by one thread at a time (a lock around its steps, "
+        "or one filter per thread)"
     )
 
 
