@@ -8,6 +8,7 @@ it is passed.
 
 from __future__ import annotations
 
+import datetime
 import math
 import numbers
 from typing import Any
@@ -62,6 +63,40 @@ def time_error(value: Any, name: str) -> Exception | None:
                 f"{step:g} s coarse: keep time stamps in float64 (float32 rounds an epoch "
                 "stamp, 1.7e9 s, to 128 s)"
             )
+    elif not isinstance(value, numbers.Real):
+        hint = _stamp_hint(value)
+        if hint is not None:
+            return TypeError(
+                f"{name} must be a time in seconds (a real number), got "
+                f"{type(value).__name__}: {hint}"
+            )
+    return None
+
+
+def _stamp_hint(value: object) -> str | None:
+    """What to pass instead of a time stamp object (a ROS stamp, a datetime), if it is one.
+
+    Told by attributes, not types: navkit imports neither rclpy nor rospy.
+    """
+    if isinstance(value, np.datetime64):
+        return (
+            "pass seconds since the epoch: "
+            "(value - np.datetime64(0, 's')) / np.timedelta64(1, 's')"
+        )
+    if isinstance(value, datetime.datetime):
+        return "pass seconds since the epoch: value.timestamp()"
+    if isinstance(value, datetime.timedelta):
+        return "pass seconds: value.total_seconds()"
+    try:
+        if hasattr(value, "sec") and hasattr(value, "nanosec"):
+            # builtin_interfaces/msg/Time (ROS 2), as in a message's header.stamp.
+            return "a ROS 2 stamp? pass seconds: stamp.sec + stamp.nanosec * 1e-9"
+        if hasattr(value, "secs") and hasattr(value, "nsecs"):
+            return "a ROS 1 stamp? pass seconds: stamp.to_sec()"
+        if hasattr(value, "nanoseconds") and hasattr(value, "seconds_nanoseconds"):
+            return "an rclpy Time? pass seconds: time.nanoseconds * 1e-9"
+    except Exception:  # an attribute that raises: no hint, the caller's error stands
+        return None
     return None
 
 
