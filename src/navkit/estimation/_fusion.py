@@ -1714,6 +1714,13 @@ class PlanarFusion(GaussianEstimate):
         notes; ``NOT_POSITIVE_DEFINITE``) or overflow
         (``OVERFLOW``). Every state and covariance in the result is finite.
 
+        The result holds every row's state and covariance, about 350 bytes a
+        row (1.3 GB for an hour of readings at 1 kHz). Fuse a longer log in
+        pieces, each a :class:`MeasurementLog` of consecutive rows
+        (``MeasurementLog(log.times[i:j], log.values[i:j], log.variances[i:j],
+        log.observed[i:j])``): each call continues from the state the last
+        left, and the final state is the same as from the whole log.
+
         Parameters
         ----------
         log : MeasurementLog
@@ -1839,7 +1846,10 @@ class PlanarFusion(GaussianEstimate):
         # filter's own time and state: not its t and x, which it may override.
         t = PlanarFusion.t.__get__(self)
         x = PlanarFusion.x.__get__(self)
-        return f"{type(self).__name__}(t={t}, x={np.array2string(x, precision=4)})"
+        # Each state as Python writes a float (as Pose2D's repr and the odometries'):
+        # rounding to a few digits showed a UTM position 4.6123e+06 (to 50 m).
+        state = ", ".join(repr(float(v)) for v in x)
+        return f"{type(self).__name__}(t={t}, x=[{state}])"
 
 
 def _loaded_into(buf: FloatArray, t: float, args: _StepArgs) -> tuple[int, float]:
