@@ -13,7 +13,7 @@ import pytest
 from grid_oracle import assert_valid_path, scipy_costs_from, weighted_grids
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from record_heap import pop, pop_all, push, replace_top
+from record_heap import pop, pop_all, push, queued_node, replace_top
 from skimage.graph import MCP_Geometric
 
 from hypothesis_twins import slow_twin
@@ -24,7 +24,6 @@ from navkit.planning.grid._arguments import check_search_size
 from navkit.planning.grid._search_heap import (
     REC_BASE,
     aligned_heap,
-    node_of,
     tie_key,
 )
 
@@ -385,7 +384,7 @@ def test_record_heap_pops_in_priority_order(sequence: list[tuple[str, int, float
             del ref[best]
         for v in ref:  # every queued node knows its slot
             slot = int(meta[4 * v + 3])
-            assert node_of(heap[2 * (slot + REC_BASE) + 1]) == v
+            assert queued_node(heap, slot) == v
     pop_all(heap, meta, ref)
 
 

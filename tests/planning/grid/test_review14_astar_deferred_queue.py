@@ -18,15 +18,13 @@ import numpy as np
 from grid_oracle import scipy_costs_from, weighted_grids
 from hypothesis import given, settings
 from hypothesis import strategies as st
-from record_heap import pop, pop_all, push, remove
+from record_heap import entry, pop, pop_all, push, queued_node, remove
 
 from hypothesis_twins import slow_twin
 from navkit.errors import NoPathError
 from navkit.planning import astar
 from navkit.planning.grid._search_heap import (
-    REC_BASE,
     aligned_heap,
-    node_of,
     tie_key,
 )
 
@@ -188,12 +186,12 @@ def test_removing_any_slot_keeps_heap_and_slots(
             assert pop(heap, meta, len(ref)) == best
             del ref[best]
         n = len(ref)
-        entries = [(heap[2 * (i + REC_BASE)], heap[2 * (i + REC_BASE) + 1]) for i in range(n)]
+        entries = [entry(heap, i) for i in range(n)]
         assert sorted(entries) == sorted(ref.values())
         for i in range(1, n):  # the heap property
             assert entries[(i - 1) // 4] <= entries[i]
         for v in ref:  # every queued node knows its slot
-            assert node_of(heap[2 * (int(meta[4 * v + 3]) + REC_BASE) + 1]) == v
+            assert queued_node(heap, int(meta[4 * v + 3])) == v
     pop_all(heap, meta, ref)
 
 

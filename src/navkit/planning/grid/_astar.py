@@ -500,8 +500,8 @@ class AStarPlanner:
                 # again with a larger one.
                 grow_heap(k)
                 continue
-            # The search wrote the path's cells into its queue's scratch.
-            cells = heap[: 2 * k].reshape(k, 2).copy() if found else heap[:0]
+            # The search wrote the path's cells into its queue's scratch (uint64).
+            cells = heap[: 2 * k].reshape(k, 2).astype(np.float64) if found else rec[:0]
             cost = float(rec[2 * goal_index])
             if own or not used_meanwhile(rec, stamp):
                 break

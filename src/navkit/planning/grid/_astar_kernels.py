@@ -36,15 +36,54 @@ pop's next families, or the neighbour rows' records and costs at each
 expansion, no change; the first level of a push written into :func:`_relax`
 (no call when the entry stays a leaf), no change; branch-free
 comparisons (``_precedes``) in :func:`_relax` and the sift-up, no change.
+
+Integer queue entries (session 40, issue 17's A* row on an AVX-512 Xeon,
+where random 35 % was 1.00-1.04 times pyastar2d's time). The queue holds f
+as its IEEE 754 bits and the tie key as an integer (see
+:mod:`navkit.planning.grid._search_heap`): integer comparisons in every
+heap walk and candidate test, the tie keys' as a carry
+(``f1 < f2 + (k1 < k2)``), and node ids read with a mask instead of a
+float-to-integer conversion; and a queued candidate that does not go next
+is taken out of its slot and queued again by the top's removal (one walk
+from the root that stops near the top) instead of being moved up and the
+top popped (a walk to a leaf). Same expansions, paths and costs. A* ÷
+pyastar2d with corner cutting (thread CPU, medians of alternating runs in
+one process, the kernel alone): 0.80 / 0.97 / 0.81 -> 0.74 / 0.87 / 0.68
+on random 20 %, random 35 % and rooms (integer entries with the
+lexicographic comparison alone: 0.76 / 0.93 / 0.77; the carry gave the
+rest). Tried in the same session and
+dropped (no gain or slower, every variant with the same expansions): a
+branch-free mask of the moves to open or unreached traversable cells,
+walked with a trailing-zero count (16-25 % slower) or tested bit by bit
+(8-12 % slower); one comparison per move against a limit selected from
+the mark (closed -inf, queued g, unreached +inf; 4-14 % slower): the
+branches let the CPU run ahead to the next loads, which a chain of
+selects does not; heap slots in an int32 array of their own (denser than
+the records; 2-4 % slower); a top-down pop (sift-down of the last entry)
+instead of Floyd's, or the pop's sift-up LLVM-inlined, within noise; the
+search compiled for corner cutting only (constants for ``eight`` and
+``corner_cutting``), within noise; costs read from a float32 copy of the
+grid (an experiment, not exact for every grid), 2-4 %. A profile
+(``perf record -e cpu-clock``, no hardware counters in this virtual
+machine) put about 47 % of the search in the heap walks, most of it in
+the pop's dependent chain of child loads and comparisons, and about 14 %
+in loading the marks and costs of neighbours not yet in cache.
 """
 
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 
-from navkit._shared.jit import njit_force_inline, njit_helper, njit_inline, njit_released
+from navkit._shared.jit import (
+    bind_numba_names,
+    njit_force_inline,
+    njit_helper,
+    njit_inline,
+    njit_released,
+)
 from navkit._shared.types import KernelInt
 from navkit.planning.grid._search_heap import (
     REC_BASE,
@@ -52,11 +91,27 @@ from navkit.planning.grid._search_heap import (
     rec_remove,
     rec_replace_top,
     rec_sift_up,
-    tie_key,
+    tie_key_bits,
 )
 
 SQRT2 = math.sqrt(2.0)
 _OCTILE_EXTRA = SQRT2 - 1.0
+# The bits of a float64 (an LLVM bitcast, see navkit.planning.grid._float_bits),
+# bound when numba loads: importing this module must not import numba.
+_f64_bits: Any = None
+
+
+def _f64_bits_python(x: float) -> np.uint64:
+    """``_f64_bits`` when the JIT is disabled: NumPy's view of the scalar."""
+    return np.float64(x).view(np.uint64)
+
+
+bind_numba_names(globals(), "navkit.planning.grid._float_bits",
+                 python={"_f64_bits": _f64_bits_python}, _f64_bits="f64_bits")  # fmt: skip
+
+# "No candidate yet": above the bits of every f a search queues (finite, >= 0:
+# below 2**63) and every tie key, and below 2**64 - 1 (see _bits_precede).
+_NONE = np.uint64(2**63)
 
 # Move directions: 0-3 orthogonal (N, S, W, E), 4-7 diagonal (NW, NE, SW, SE).
 # A diagonal d passes beside the orthogonal cells (DR[d], 0) and (0, DC[d]).
@@ -99,18 +154,20 @@ def _relax(
     gc: int,
     octile: bool,
     scale: float,
-    next_f: float,
-    next_key: float,
+    next_f: np.uint64,
+    next_key: np.uint64,
     next_v: KernelInt,
     next_queued: bool,
-) -> tuple[float, float, KernelInt, KernelInt, bool]:
+) -> tuple[np.uint64, np.uint64, KernelInt, KernelInt, bool]:
     """Try a move to cell ``v`` = (r, c); return the next-node candidate and queue size.
 
     ``code`` is what the cell's record stores when the move improves it,
     ``open_mark << 4 | (d + 1)`` for the move's direction ``d`` (computed by
     the caller: a literal argument would compile this function once more).
     The candidate (next_f, next_key, next_v, next_queued) is the best
-    neighbour this expansion improved (next_v = -1: none yet). It is often
+    neighbour this expansion improved (next_v = -1: none yet); its f and
+    tie key are in the queue's uint64 form (see ``heap`` in
+    :mod:`navkit.planning.grid._search_heap`), as ``heap`` is. It is often
     the very node the next pop would return, so its queue update waits:
     a newly reached candidate is not pushed, a queued one (next_queued)
     keeps its old, larger priority in the heap until it is either expanded
@@ -130,11 +187,12 @@ def _relax(
     rec[np.uint64(2 * v)] = new_g
     meta[np.uint64(4 * v + 2)] = code
     h = _cells_to_goal(r, c, gr, gc, octile)
-    f = new_g + scale * h
+    # The bits of f (>= 0, finite), which order as f does.
+    f: np.uint64 = _f64_bits(new_g + scale * h)
     # Ties in f go to the cell nearer the goal, which keeps A* from expanding
     # whole plateaus of equal f.
-    key = tie_key(h, v)
-    if f < next_f or (f == next_f and key < next_key):
+    key = tie_key_bits(h, v)
+    if f < next_f + np.uint64(key < next_key):  # _bits_precede, written out
         if next_v < 0:
             return f, key, v, n, queued
         # v becomes the candidate and the old candidate goes to the heap instead.
@@ -197,11 +255,12 @@ def grid_search(
         this search (the rest of the record is then stale).
     meta : (4 * rows * cols,) int32
         The int32 view of ``rec``.
-    heap : (2 * capacity,) float64
+    heap : (2 * capacity,) uint64
         Scratch for the queue, (f, tie key) pairs of the indexed 4-ary heap of
-        :func:`navkit.planning.grid._search_heap.rec_pop` (slot i at entry
-        ``i + REC_BASE``; 64-byte aligned, from ``aligned_heap``). Receives
-        the path when the goal is reached (see ``cells``).
+        :func:`navkit.planning.grid._search_heap.rec_pop` in their integer
+        form (the bits of f and the integer tie key, see that module; slot i
+        at entry ``i + REC_BASE``; 64-byte aligned, from ``aligned_heap``).
+        Receives the path when the goal is reached (see ``cells``).
     stamp : int
         This search's open mark (closed is ``stamp + 1``), above every mark
         left in ``meta`` by earlier searches and below ``2**27 - 1``.
@@ -267,8 +326,8 @@ def grid_search(
         s_in = r + 1 < rows
         w_in = c > 0
         e_in = c + 1 < cols
-        nf = np.inf
-        nk = np.inf
+        nf = _NONE
+        nk = _NONE
         nv: KernelInt = np.int64(-1)
         # Not the literal False: numba would compile _relax once more for its type.
         nq = bool(nv >= 0)
@@ -330,17 +389,22 @@ def grid_search(
                 )  # fmt: skip
         if nv >= 0:
             top_f = heap[2 * REC_BASE]
-            if n == 0 or nf < top_f or (nf == top_f and nk < heap[2 * REC_BASE + 1]):
+            # Equal keys: the top is the candidate's own entry (a queued cell
+            # whose g fell by less than f's rounding), which goes next.
+            if n == 0 or nf < top_f + np.uint64(nk <= heap[2 * REC_BASE + 1]):
                 if nq:
                     rec_remove(heap, meta, n, np.int64(meta[np.uint64(4 * nv + 3)]))
                     n -= 1
                 u = nv
                 continue
             if nq:
-                rec_sift_up(heap, meta, np.int64(meta[np.uint64(4 * nv + 3)]), nf, nk)
-                u = rec_pop(heap, meta, n)
+                # Out of its slot (a walk of a level or two), then queued again
+                # with the top's removal below: a walk down from the root that
+                # stops where it fits, near the top, where moving it up and
+                # popping walked the hole down to a leaf (A* ÷ pyastar2d on
+                # random 35 %, corner cutting: 1-4 % faster; session 40).
+                rec_remove(heap, meta, n, np.int64(meta[np.uint64(4 * nv + 3)]))
                 n -= 1
-                continue
             # Queue it and take the top in one walk down from the root.
             u = rec_replace_top(heap, meta, n, nf, nk)
             continue

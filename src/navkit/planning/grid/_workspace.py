@@ -41,7 +41,7 @@ _HEAP_ENTRIES = 4096
 Workspace = tuple[
     FloatArray,  # rec: packed cell records, cost-to-come at 2 * v
     NDArray[np.int32],  # meta: int32 view of rec, mark and parent at 4 * v + 2, slot at 4 * v + 3
-    FloatArray,  # heap: (f, tie key) pairs of the 4-ary queue
+    NDArray[np.uint64],  # heap: (f, tie key) pairs of the 4-ary queue, as integers
     int,  # stamp: this search's open mark (closed is stamp + 1)
 ]
 """Scratch of one search, a plain tuple (built once per query, so kept as cheap
