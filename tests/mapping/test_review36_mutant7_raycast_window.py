@@ -4,7 +4,7 @@
 reach, clipped to the map, in a caller's buffer of exactly the map's size, and
 writes no bounds checks (numba has none by default). A mutant that clipped the
 window's top row one row too high (``rows + 1`` for ``rows - 1`` in the test of
-the clip) survived every test: it only overran the scratch buffer, by a few bytes,
+the clip) survived the ray-casting tests: it only overran the scratch buffer, by a few bytes,
 when the scan's reach ended between one and two rows above the map.
 
 Here the kernel writes into views of larger buffers whose guard bands hold known

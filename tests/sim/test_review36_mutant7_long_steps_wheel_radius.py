@@ -3,7 +3,7 @@
 A segment's physics steps are checked along their arc only when a step may be
 long for the footprint: ``_long_steps`` bounds the twist from the wheels' speeds
 times ``1 + wheel_radius_error`` (the true radius over the nominal one). A
-mutant that divided by that factor instead survived every test: the tunnelling
+mutant that divided by that factor instead survived the simulator tests: the tunnelling
 tests use exact wheels. With wheels 50 % larger than nominal, a command of
 1.45 disc radii per step moves the robot 2.175 radii per step: the mutant took
 that for a short step (0.97 radii) and the disc jumped a thin wall.
