@@ -163,16 +163,6 @@ DEFAULT = [
     "navkit.kinematics.tick_delta",
 ]
 
-#: Left to the files' owners this session (see the CHANGELOG entry): the fusion's
-#: FusionStatus and odometry-variance checks and FieldDStar.update_costs's cells.
-OPEN = (
-    "navkit.estimation.FusionStatus: value",
-    "navkit.estimation.MeasurementLog.from_streams: odometry_variance",
-    "navkit.estimation.PlanarFusion.update_batch: log.odometry_variance",
-    "navkit.planning.grid.FieldDStar.update_costs: cells",
-)
-
-
 @pytest.mark.parametrize("name", DEFAULT)
 def test_liars_are_read_as_arrays_or_refused_by_name(name: str, folder: Path) -> None:
     problems = _problems(name, folder)
@@ -182,7 +172,6 @@ def test_liars_are_read_as_arrays_or_refused_by_name(name: str, folder: Path) ->
 @pytest.mark.slow
 def test_every_spec_reads_or_refuses_liars(folder: Path) -> None:
     problems = [p for name in sorted(SPECS) for p in _problems(name, folder)]
-    problems = [p for p in problems if not p.startswith(OPEN)]
     assert not problems, f"{len(problems)} problem(s):\n  " + "\n  ".join(problems[:40])
 
 

@@ -43,11 +43,13 @@ WEAK = [
     "PotentialFieldController",
     "TrackerController",
     "World",
+    "FieldDStar",
+    "Simulation",
+    "CompassCalibration",
 ]
-#: Found, not done (their files were another change's this session): AStarPlanner,
-#: FieldDStar, Simulation and CompassCalibration still refuse weak references; a
-#: "__weakref__" in each one's __slots__ is the whole change.
-OPEN = ["AStarPlanner", "FieldDStar", "Simulation", "CompassCalibration"]
+#: Found, not done (its file was another change's this session): AStarPlanner still
+#: refuses weak references; a "__weakref__" in its __slots__ is the whole change.
+OPEN = ["AStarPlanner"]
 
 
 @pytest.mark.parametrize("name", WEAK)

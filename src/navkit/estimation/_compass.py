@@ -182,7 +182,7 @@ class CompassCalibration:
     [0.0, -2.9671, -3.3161]
     """
 
-    __slots__ = ("_correction", "_initial", "_last", "_unwrap")
+    __slots__ = ("__weakref__", "_correction", "_initial", "_last", "_unwrap")
     __getstate__ = slot_state  # pickle protocols 0 and 1 too
 
     def __init__(self, *, unwrap: bool = False) -> None:

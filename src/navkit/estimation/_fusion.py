@@ -25,6 +25,7 @@ from navkit._shared.validation import (
     bounded_int,
     finite_float,
     has_array_protocol,
+    is_ndarray,
     unpack,
 )
 from navkit.errors import FilterError
@@ -197,7 +198,7 @@ class _IntCodes(enum.EnumMeta):
         if (
             not args
             and not kwargs
-            and isinstance(value, np.ndarray)
+            and is_ndarray(value)
             and value.ndim == 0
             and value.dtype.kind in "iu"
         ):
@@ -478,7 +479,8 @@ def _pair(value: Any, name: str, *, rates: bool) -> tuple[Any, Any]:
     """``(v_variance, omega_variance)``; ``rates``: whether the odometry has yaw rates."""
     # A 0-d array is an ndarray without a length (len() would raise unnamed).
     if isinstance(value, (memoryview, array.array)) or (
-        not isinstance(value, (str, bytes, tuple, list, np.ndarray)) and has_array_protocol(value)
+        not (isinstance(value, (str, bytes, tuple, list)) or is_ndarray(value))
+        and has_array_protocol(value)
     ):
         # A pair of numbers in a buffer (array.array("d"), a memoryview, possibly
         # big-endian) or a foreign array type: read as NumPy reads it.
@@ -488,8 +490,8 @@ def _pair(value: Any, name: str, *, rates: bool) -> tuple[Any, Any]:
             raise TypeError(f"{name} must be a pair (v_variance, omega_variance)") from None
     if (
         isinstance(value, (str, bytes))
-        or not isinstance(value, (tuple, list, np.ndarray))
-        or (isinstance(value, np.ndarray) and value.ndim == 0)
+        or not (isinstance(value, (tuple, list)) or is_ndarray(value))
+        or (is_ndarray(value) and value.ndim == 0)
     ):
         raise TypeError(f"{name} must be a pair (v_variance, omega_variance)")
     if len(value) != 2:

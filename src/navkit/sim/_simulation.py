@@ -428,6 +428,7 @@ class Simulation:
     """
 
     __slots__ = (
+        "__weakref__",
         "_control_rate",
         "_controller",
         "_duration",

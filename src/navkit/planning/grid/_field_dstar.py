@@ -16,7 +16,7 @@ from navkit._shared.frozen import restore_slots
 from navkit._shared.grid_coords import as_pairs, one_or_many, round_half_up
 from navkit._shared.locks import one_caller
 from navkit._shared.types import CellLike, FloatArray, IntArray
-from navkit._shared.validation import as_array, as_bool, as_cell, as_float_array
+from navkit._shared.validation import as_array, as_bool, as_cell, as_float_array, is_ndarray
 from navkit.errors import NoPathError
 from navkit.geometry import Pose2D, as_pose
 from navkit.planning.grid._dstar_heap import RHS, G, clear_box, node_records
@@ -301,6 +301,7 @@ class FieldDStar:
     """
 
     __slots__ = (
+        "__weakref__",
         "_cached",
         "_callers",
         "_changed",
@@ -1300,7 +1301,7 @@ class FieldDStar:
         if isinstance(cells, (str, bytes, Mapping, set, frozenset)):
             raise TypeError(f"cells must be (row, col) pairs, got {type(cells).__name__}")
         raw = as_float_array(cells, "cells", finite=False)
-        if isinstance(cells, np.ndarray) and cells.dtype.kind in "iu":
+        if is_ndarray(cells) and cells.dtype.kind in "iu":
             exact = np.asarray(cells, dtype=np.int64)  # no round trip through float64
         else:
             exact = None
