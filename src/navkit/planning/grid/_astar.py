@@ -232,6 +232,7 @@ class AStarPlanner:
     """
 
     __slots__ = (
+        "__weakref__",
         "_costs",
         "_cutting",
         "_eight",
