@@ -18,8 +18,10 @@ import math
 
 import numpy as np
 import pytest
-from shapely.geometry import LineString, Point
+from shapely.geometry import LineString, Point, Polygon
+from shapely.ops import unary_union
 
+from navkit.mapping import OccupancyGrid
 from navkit.sim import World
 
 
@@ -38,3 +40,35 @@ def test_wide_disc_clearance_among_many_short_walls_matches_shapely(seed: int) -
         got = world.clearance(r, (x, y, th))
         assert got == pytest.approx(want, abs=1e-9), (x, y, r)
         assert world.collides(r, (x, y, th)) == (want == 0.0)
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_wide_disc_clearance_to_a_rotated_map_matches_shapely(seed: int) -> None:
+    """The same in a map's cells, the search's box in the map's frame. A mutant that
+    multiplied the box's lower edge by the resolution instead of dividing survived:
+    with cells below 1 m it only grows the box (a slower search, the same answer);
+    with cells above 1 m it moves the box's lower edge up past rows the footprint covers."""
+    rng = np.random.default_rng(3670 + seed)
+    occ = rng.random((50, 60)) < 0.02
+    res = [0.05, 0.2, 2.5][seed]  # metres per cell: also above 1
+    yaw = float(rng.uniform(-math.pi, math.pi))
+    origin = (float(rng.uniform(-2.0, 2.0)), float(rng.uniform(-2.0, 2.0)))
+    world = World(grid=OccupancyGrid.from_occupancy(occ, resolution=res, origin=(*origin, yaw)))
+    c, s = math.cos(yaw), math.sin(yaw)
+    squares = []
+    for row, col in np.argwhere(occ):
+        corners = [(col, row), (col + 1, row), (col + 1, row + 1), (col, row + 1)]
+        squares.append(
+            Polygon([(origin[0] + res * (c * u - s * v), origin[1] + res * (s * u + c * v))
+                     for u, v in corners])
+        )  # fmt: skip
+    cells = unary_union(squares)
+    for u, v in rng.uniform([-5.0, -5.0], [65.0, 55.0], (80, 2)):
+        x = origin[0] + res * (c * u - s * v)
+        y = origin[1] + res * (s * u + c * v)
+        r = float(rng.uniform(3.0, 15.0)) * res
+        want = max(cells.boundary.distance(Point(x, y)) - r, 0.0)
+        if cells.contains(Point(x, y)):
+            want = 0.0
+        got = world.clearance(r, (x, y, 0.0))
+        assert got == pytest.approx(want, abs=1e-9), (u, v, r)
