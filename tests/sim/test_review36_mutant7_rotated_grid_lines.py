@@ -82,3 +82,40 @@ def test_beams_along_the_lines_of_a_rotated_map_match_the_cell_squares(seed: int
                     assert got[k] == pytest.approx(want * res, abs=1e-9), (yaw, p, d)
                 checked += 1
     assert checked > 150
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_diagonal_beams_through_the_corners_of_a_rotated_map_match_the_cell_squares(
+    seed: int,
+) -> None:
+    """Beams at 45 degrees to the map's axes from its lattice points, in and around the
+    map: each passes through cell corners only, entering the map through one from
+    outside. A mutant that shrank the rounding allowance of the point where a beam
+    enters the map (``abs(sv) - abs(t0 * ev)`` for ``+``) survived the other tests."""
+    rng = np.random.default_rng(3610 + seed)
+    rows, cols = 12, 15
+    occ = rng.random((rows, cols)) < 0.12
+    cells = np.argwhere(occ)
+    res = float(rng.choice([0.05, 0.1, 0.25, 0.3]))
+    half = math.sqrt(0.5)
+    axes = ((half, half), (-half, half), (-half, -half), (half, -half))
+    for _ in range(12):
+        yaw = float(rng.uniform(-math.pi, math.pi))
+        origin = (float(rng.uniform(-3.0, 3.0)), float(rng.uniform(-3.0, 3.0)))
+        world = World(grid=OccupancyGrid.from_occupancy(occ, resolution=res, origin=(*origin, yaw)))
+        c, s = math.cos(yaw), math.sin(yaw)
+        angles = np.array([yaw + math.pi / 4 + k * math.pi / 2 for k in range(4)])
+        for _ in range(10):
+            p = (float(rng.integers(-4, cols + 5)), float(rng.integers(-4, rows + 5)))
+            x = origin[0] + res * (c * p[0] - s * p[1])
+            y = origin[1] + res * (s * p[0] + c * p[1])
+            got = world.raycast((x, y, 0.0), angles, range_max=100.0)
+            for k, d in enumerate(axes):
+                want = min(
+                    (_cell_hit(p, d, float(col), float(row)) for row, col in cells),
+                    default=math.inf,
+                )
+                if math.isinf(want):
+                    assert got[k] == math.inf, (yaw, p, d, got[k])
+                else:
+                    assert got[k] == pytest.approx(want * res, abs=1e-9), (yaw, p, d)
