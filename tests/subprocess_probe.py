@@ -10,6 +10,7 @@ import json
 import os
 import subprocess
 import sys
+from pathlib import Path
 from typing import Any
 
 
@@ -29,3 +30,25 @@ def probe_outcome(script: str, *args: str, timeout: float = 300) -> Any:
     )
     assert done.returncode == 0, done.stderr
     return json.loads(done.stdout.strip().splitlines()[-1])
+
+
+def bounds_checked(script: str, cache: Path, *, timeout: float = 900) -> list[str]:
+    """The lines ``script`` prints, run compiled with numba's bounds checks on (it must exit 0).
+
+    A fresh process with ``NUMBA_BOUNDSCHECK=1`` and the empty numba cache
+    ``cache`` of its own (a cached kernel compiled without the checks would be
+    loaded otherwise), where an index past an array's end raises ``IndexError``;
+    ``NUMBA_DISABLE_JIT`` is dropped, since compiled code is what is checked.
+    """
+    env = dict(os.environ, NUMBA_BOUNDSCHECK="1", NUMBA_CACHE_DIR=str(cache))
+    env.pop("NUMBA_DISABLE_JIT", None)
+    done = subprocess.run(
+        [sys.executable, "-c", script],
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=timeout,
+        check=False,
+    )
+    assert done.returncode == 0, done.stderr[-3000:]
+    return done.stdout.splitlines()

@@ -16,11 +16,10 @@ was written).
 
 from __future__ import annotations
 
-import os
-import subprocess
-import sys
 import textwrap
 from pathlib import Path
+
+from subprocess_probe import bounds_checked
 
 _SCRIPT = textwrap.dedent(
     """
@@ -53,15 +52,4 @@ _SCRIPT = textwrap.dedent(
 
 
 def test_the_ekf_kernels_stay_in_bounds(tmp_path: Path) -> None:
-    env = dict(os.environ, NUMBA_BOUNDSCHECK="1", NUMBA_CACHE_DIR=str(tmp_path))
-    env.pop("NUMBA_DISABLE_JIT", None)  # compiled code is what is checked
-    done = subprocess.run(
-        [sys.executable, "-c", _SCRIPT],
-        env=env,
-        capture_output=True,
-        text=True,
-        timeout=900,
-        check=False,
-    )
-    assert done.returncode == 0, done.stderr[-3000:]
-    assert done.stdout.splitlines() == ["in bounds"]
+    assert bounds_checked(_SCRIPT, tmp_path) == ["in bounds"]

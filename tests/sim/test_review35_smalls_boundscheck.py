@@ -13,13 +13,12 @@ checks it is caught.
 
 from __future__ import annotations
 
-import os
-import subprocess
-import sys
 import textwrap
 from pathlib import Path
 
 import pytest
+
+from subprocess_probe import bounds_checked
 
 _WORLD = textwrap.dedent(
     """
@@ -127,27 +126,11 @@ _SIMULATION = textwrap.dedent(
 )
 
 
-def _run_checked(script: str, cache: Path) -> subprocess.CompletedProcess[str]:
-    """``script`` in a fresh process compiled with bounds checks, into ``cache``."""
-    env = dict(os.environ, NUMBA_BOUNDSCHECK="1", NUMBA_CACHE_DIR=str(cache))
-    env.pop("NUMBA_DISABLE_JIT", None)  # compiled code is what is checked
-    return subprocess.run(
-        [sys.executable, "-c", script],
-        env=env,
-        capture_output=True,
-        text=True,
-        timeout=900,
-        check=False,
-    )
-
-
 def test_world_and_lidar_kernels_stay_in_bounds(tmp_path: Path) -> None:
-    done = _run_checked(_WORLD, tmp_path)
-    assert done.returncode == 0, done.stderr[-3000:]
-    lines = done.stdout.splitlines()
+    lines = bounds_checked(_WORLD, tmp_path)
     assert lines[0] == "in bounds"
     # ... and the harness catches the mutant that no test caught before.
-    assert lines[1].startswith("mutant caught: index is out of bounds"), done.stdout
+    assert lines[1].startswith("mutant caught: index is out of bounds"), lines
 
 
 @pytest.mark.slow
@@ -155,6 +138,4 @@ def test_the_simulation_loop_stays_in_bounds(tmp_path: Path) -> None:
     # The segment kernels, wheels, encoders, compass, IMU, latency, estimators
     # (OmniOdometry, PlanarFusion), a polygon footprint, moving obstacles, a grid and
     # the cross-track distances: about 12 s of compilation.
-    done = _run_checked(_SIMULATION, tmp_path)
-    assert done.returncode == 0, done.stderr[-3000:]
-    assert done.stdout.splitlines() == ["in bounds"]
+    assert bounds_checked(_SIMULATION, tmp_path) == ["in bounds"]
