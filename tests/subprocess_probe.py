@@ -32,6 +32,21 @@ def probe_outcome(script: str, *args: str, timeout: float = 300) -> Any:
     return json.loads(done.stdout.strip().splitlines()[-1])
 
 
+#: Run before a bounds-checked script: the checks are on, or the process fails.
+_CHECKS_ON = """
+import numba as _numba, numpy as _np
+@_numba.njit
+def _past_the_end(a):
+    return a[len(a)]
+try:
+    _past_the_end(_np.zeros(2))
+except IndexError:
+    pass
+else:
+    raise SystemExit("numba's bounds checks are off: NUMBA_BOUNDSCHECK=1 had no effect")
+"""
+
+
 def bounds_checked(script: str, cache: Path, *, timeout: float = 900) -> list[str]:
     """The lines ``script`` prints, run compiled with numba's bounds checks on (it must exit 0).
 
@@ -39,11 +54,12 @@ def bounds_checked(script: str, cache: Path, *, timeout: float = 900) -> list[st
     ``cache`` of its own (a cached kernel compiled without the checks would be
     loaded otherwise), where an index past an array's end raises ``IndexError``;
     ``NUMBA_DISABLE_JIT`` is dropped, since compiled code is what is checked.
+    The process first checks that an index past an array's end does raise.
     """
     env = dict(os.environ, NUMBA_BOUNDSCHECK="1", NUMBA_CACHE_DIR=str(cache))
     env.pop("NUMBA_DISABLE_JIT", None)
     done = subprocess.run(
-        [sys.executable, "-c", script],
+        [sys.executable, "-c", _CHECKS_ON + script],
         env=env,
         capture_output=True,
         text=True,
