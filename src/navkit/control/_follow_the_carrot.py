@@ -243,11 +243,13 @@ class FollowTheCarrot(PathTracker):
         # progress: with a carrot more than SEARCH_AHEAD ahead, a robot that drove to
         # it would otherwise project behind it, onto the same carrot, and stop there.
         s = self._advance(line, pose, self._carrot_s)
-        cx, cy = line.point_at(s + self._carrot_distance)
+        # The carrot as an offset from the robot, subtracted first (and as a point):
+        # the command is the same wherever the problem is translated, where the
+        # carrot's world coordinates lost 1e-8 rad/s to rounding in a UTM frame.
+        dx, dy, cx, cy = line.offset_at(s + self._carrot_distance, pose.x, pose.y)
         folds = 0
         while (
-            cx == pose.x
-            and cy == pose.y
+            ((dx == 0.0 and dy == 0.0) or (cx == pose.x and cy == pose.y))
             and s < s + self._carrot_distance < line.length
             and folds < _MAX_FOLDS
         ):
@@ -259,7 +261,7 @@ class FollowTheCarrot(PathTracker):
             s += self._carrot_distance
             self._progress = s
             folds += 1
-            cx, cy = line.point_at(s + self._carrot_distance)
+            dx, dy, cx, cy = line.offset_at(s + self._carrot_distance, pose.x, pose.y)
         self._carrot_s = min(s + self._carrot_distance, line.length)
         gx, gy = line.point_at(line.length)
         near_end = s + self._carrot_distance >= line.length
@@ -269,8 +271,6 @@ class FollowTheCarrot(PathTracker):
             self._target = (gx, gy)
             return self._finish(pose, dt, self._turn)
         self._target = (cx, cy)
-        dx = cx - pose.x
-        dy = cy - pose.y
         dist = math.hypot(dx, dy)
         speed = min(self._max_speed, dist / dt)
         if self._drive == "omni":

@@ -30,7 +30,14 @@ from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.dunders import slot_state
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, finite_float, positive_float
-from navkit.control._path_following_kernels import circle_exit, point_at, project, project_point
+from navkit.control._path_following_kernels import (
+    circle_exit,
+    offset_at,
+    point_at,
+    project,
+    project_offset,
+    project_point,
+)
 from navkit.geometry import Pose2D, Twist2D, as_pose
 from navkit.planning import Path2D
 
@@ -190,6 +197,17 @@ class Polyline:
         x, y = point_at(self.points_xy, self.cum, float(s))
         return float(x), float(y)
 
+    def offset_at(self, s: float, x: float, y: float) -> tuple[float, float, float, float]:
+        """``point_at(s)`` minus ``(x, y)``, subtracted first, and ``point_at(s)``:
+        ``(dx, dy, px, py)``.
+
+        The offset is what a tracker steers by: the same wherever the problem is
+        translated (to about 1e-16 of its length), where ``point_at(s) - (x, y)``
+        carries the rounding of world coordinates (1e-9 m at UTM northings).
+        """
+        dx, dy, px, py = offset_at(self.points_xy, self.cum, float(s), float(x), float(y))
+        return float(dx), float(dy), float(px), float(py)
+
     def project(
         self,
         x: float,
@@ -222,6 +240,17 @@ class Polyline:
             float(x), float(y), self.points_xy, self.cum, lo, hi, float(s_free), float(detour)
         )
         return float(s), float(px), float(py)
+
+    def project_offset(
+        self, x: float, y: float, s_from: float, s_to: float, detour: float, s_free: float
+    ) -> tuple[float, float, float]:
+        """:meth:`project`'s ``s`` and ``offset_at(s, x, y)`` in one call: ``(s, dx, dy)``."""
+        lo = min(max(float(s_from), 0.0), self.length)
+        hi = min(max(float(s_to), lo), self.length)
+        s, dx, dy = project_offset(
+            float(x), float(y), self.points_xy, self.cum, lo, hi, float(s_free), float(detour)
+        )
+        return float(s), float(dx), float(dy)
 
     def circle_exit(self, x: float, y: float, s_from: float, radius: float) -> float | None:
         """First ``s >= s_from`` whose point is at least ``radius`` from ``(x, y)``.
@@ -495,14 +524,17 @@ class PathTracker(ABC):
         self._progress = s
         return s
 
-    def _advance_point(
+    def _advance_offset(
         self, line: Polyline, pose: Pose2D, reach: float
     ) -> tuple[float, float, float]:
-        """:meth:`_advance`, returning the new progress's point too: ``(s, x, y)``."""
+        """:meth:`_advance`, returning the new progress's point's offset from the
+        robot too: ``(s, dx, dy)`` (see :meth:`Polyline.offset_at`)."""
         hi = max(self._progress + SEARCH_AHEAD, reach)
-        s, x, y = line.project_point(pose.x, pose.y, self._progress, hi, SEARCH_DETOUR, reach)
+        s, dx, dy = line.project_offset(
+            pose.x, pose.y, self._progress, hi, SEARCH_DETOUR, reach
+        )
         self._progress = s
-        return s, x, y
+        return s, dx, dy
 
     def _finish(self, pose: Pose2D, dt: float, turn: Any) -> Twist2D:
         """The final phase: turn in place to the goal yaw with ``turn(error, dt)``."""

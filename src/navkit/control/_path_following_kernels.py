@@ -57,6 +57,36 @@ def point_at(pts: np.ndarray, cum: np.ndarray, s: float) -> tuple[float, float]:
 
 
 @njit_no_refcount
+def offset_at(
+    pts: np.ndarray, cum: np.ndarray, s: float, px: float, py: float
+) -> tuple[float, float, float, float]:
+    """The point at arc length ``s`` (clamped) minus ``(px, py)``, and the point:
+    ``(dx, dy, x, y)``.
+
+    The offset is subtracted first, ``(a - p) + t (b - a)`` on the segment from
+    ``a`` to ``b``, rather than ``point_at(s) - p``: the point carries the
+    rounding of its world coordinates (1e-9 m at UTM northings of 4.6e6 m), the
+    offset only its own, so a problem translated anywhere gives the same offsets
+    to about 1e-16 of their length. The point is :func:`point_at`'s, bit for bit.
+    """
+    k = pts.shape[0]
+    if k < 2 or s <= 0.0:
+        return pts[0, 0] - px, pts[0, 1] - py, pts[0, 0], pts[0, 1]
+    if s >= cum[k - 1]:
+        return pts[k - 1, 0] - px, pts[k - 1, 1] - py, pts[k - 1, 0], pts[k - 1, 1]
+    i = segment_of(cum, s)
+    t = (s - cum[i]) / (cum[i + 1] - cum[i])
+    ex = pts[i + 1, 0] - pts[i, 0]
+    ey = pts[i + 1, 1] - pts[i, 1]
+    return (
+        (pts[i, 0] - px) + t * ex,
+        (pts[i, 1] - py) + t * ey,
+        pts[i, 0] + t * ex,
+        pts[i, 1] + t * ey,
+    )
+
+
+@njit_no_refcount
 def project(
     px: float,
     py: float,
@@ -100,8 +130,9 @@ def project(
         else:
             u = lo
             f = 0.0
-        qx = ax + ex * f - px
-        qy = ay + ey * f - py
+        # Subtracted first (the offset's rounding, not the world coordinates').
+        qx = (ax - px) + ex * f
+        qy = (ay - py) + ey * f
         d2 = qx * qx + qy * qy
         if d2 < best_d2:
             best_d2 = d2
@@ -139,6 +170,26 @@ def project_point(
 
 
 @njit_no_refcount
+def project_offset(
+    px: float,
+    py: float,
+    pts: np.ndarray,
+    cum: np.ndarray,
+    s_from: float,
+    s_to: float,
+    s_free: float,
+    detour: float,
+) -> tuple[float, float, float]:
+    """:func:`project`'s ``s`` and :func:`offset_at` for it: ``(s, dx, dy)``.
+
+    In one call, without the second call's dispatch (0.4 µs).
+    """
+    s, _ = project(px, py, pts, cum, s_from, s_to, s_free, detour)
+    dx, dy, _, _ = offset_at(pts, cum, s, px, py)
+    return s, dx, dy
+
+
+@njit_no_refcount
 def circle_exit(
     px: float, py: float, pts: np.ndarray, cum: np.ndarray, s_from: float, radius: float
 ) -> float:
@@ -154,22 +205,22 @@ def circle_exit(
     if k < 2:
         return 0.0 if (pts[0, 0] - px) ** 2 + (pts[0, 1] - py) ** 2 >= radius * radius else -1.0
     r2 = radius * radius
-    ax, ay = point_at(pts, cum, s_from)
+    # Offsets from the robot throughout (a - p, b - p), each subtracted first: the
+    # same result wherever the problem is translated (see offset_at).
+    fx, fy, _, _ = offset_at(pts, cum, s_from, px, py)
     s_a: float = s_from
-    if (ax - px) ** 2 + (ay - py) ** 2 >= r2:
+    if fx * fx + fy * fy >= r2:
         return s_from
     for j in range(segment_of(cum, s_from) + 1, k):
         if cum[j] <= s_a:
             continue
-        bx: float = pts[j, 0]
-        by: float = pts[j, 1]
-        if (bx - px) ** 2 + (by - py) ** 2 >= r2:
+        gx: float = pts[j, 0] - px
+        gy: float = pts[j, 1] - py
+        if gx * gx + gy * gy >= r2:
             # |a + t (b - a) - p| = radius with |a - p| < radius <= |b - p|: the
             # larger root of the quadratic lies in (0, 1].
-            dx = bx - ax
-            dy = by - ay
-            fx = ax - px
-            fy = ay - py
+            dx = gx - fx
+            dy = gy - fy
             qa = dx * dx + dy * dy
             if qa == 0.0:
                 return float(cum[j])
@@ -180,7 +231,7 @@ def circle_exit(
             t = min(max(t, 0.0), 1.0)
             end: float = cum[j]
             return s_a + t * (end - s_a)
-        ax = bx
-        ay = by
+        fx = gx
+        fy = gy
         s_a = cum[j]
     return -1.0
