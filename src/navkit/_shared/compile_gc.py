@@ -50,10 +50,12 @@ navkit's import of numba in another thread too (:data:`NUMBA_IMPORT`,
 review 36): a child forked during the import (the first half second of a
 process's first kernel call) inherited Python's locks of the modules under
 way, held by a thread it does not have, and hung at its first kernel call.
-A Ctrl-C while a fork waits is held and raised in the parent after the fork
-(:func:`navkit._shared.interrupts.held_for_fork`): Python ignores an
-exception in a fork hook and forks anyway, so it was lost, and the fork made
-without the lock.
+A Ctrl-C during a fork's hooks is held and raised in the parent after the
+fork (:func:`navkit._shared.interrupts.held_for_fork`): Python ignores an
+exception in a fork hook and forks anyway, so one during a wait was lost, and
+the fork made without the lock; and one between a lock's acquire and its
+record, or in the after hook before its releases, left the lock held for good
+(review 37).
 
 Garbage made meanwhile is collected as usual afterwards; the peak memory of a
 compile rises by a few tens of MB (25 MB measured on Field D*'s).
@@ -124,25 +126,25 @@ NUMBA_IMPORT = threading.RLock()
 
 
 
-def _held_for_fork() -> list[Any]:
-    """The locks this thread holds across its fork (see _before_fork), else empty.
+def _forks() -> list[list[Any]]:
+    """This thread's forks under way, innermost last: each the Ctrl-C hold and locks it took.
 
-    Per thread, as the hold of a Ctrl-C below: two threads may fork at once
-    (one waiting in its ``before`` hook for the locks the other's fork holds),
-    and each after-fork hook must let go of its own thread's only.
+    Per thread: two threads may fork at once (one waiting in its ``before``
+    hook for the locks the other's fork holds), and each after-fork hook must
+    let go of its own thread's only. A stack: a signal handler may fork while
+    this thread's own fork waits, and its hooks must not let go of the outer
+    fork's hold or locks.
     """
-    held: list[Any] | None = getattr(_THREAD, "held_for_fork", None)
-    if held is None:
-        held = _THREAD.held_for_fork = []
-    return held
+    forks: list[list[Any]] | None = getattr(_THREAD, "forks", None)
+    if forks is None:
+        forks = _THREAD.forks = []
+    return forks
 
 
-def _fork_hold() -> list[Any]:
-    """The Ctrl-C hold of this thread's fork (interrupts.held_for_fork), until it is done."""
-    hold: list[Any] | None = getattr(_THREAD, "fork_hold", None)
-    if hold is None:
-        hold = _THREAD.fork_hold = []
-    return hold
+def _held_for_fork() -> list[Any]:
+    """The locks the innermost fork under way in this thread has taken, else empty."""
+    forks = _forks()
+    return list(forks[-1][1:]) if forks else []
 
 
 def _numba_compiler_lock() -> Any:
@@ -152,8 +154,8 @@ def _numba_compiler_lock() -> Any:
     return lock if callable(getattr(lock, "release", None)) else None
 
 
-def _take_locks_for_fork(*, blocking: bool) -> bool:
-    """Take numba's compiler lock, then navkit's import lock; False if one was not free."""
+def _take_locks_for_fork(record: list[Any]) -> None:
+    """Take numba's compiler lock, then navkit's import lock, each recorded in ``record``."""
     # The compiler lock first: a thread compiling a user's kernel that calls a
     # navkit one takes it, then NUMBA_IMPORT (load_numba); a thread importing
     # numba takes NUMBA_IMPORT alone (numba's import never takes the compiler
@@ -163,16 +165,13 @@ def _take_locks_for_fork(*, blocking: bool) -> bool:
     while True:
         lock = _numba_compiler_lock()
         if lock is not None:
-            if not lock.acquire(blocking):
-                return False
-            _held_for_fork().append(lock)
-        if not NUMBA_IMPORT.acquire(blocking):
-            _release_held_locks()
-            return False
-        _held_for_fork().append(NUMBA_IMPORT)
+            lock.acquire()
+            record.append(lock)
+        NUMBA_IMPORT.acquire()
+        record.append(NUMBA_IMPORT)
         if lock is not None or _numba_compiler_lock() is None:
-            return True
-        _release_held_locks()
+            return
+        _release_locks(record)
 
 
 def _before_fork() -> None:
@@ -185,30 +184,44 @@ def _before_fork() -> None:
     # without numba's events (its lock object's own acquire reports one),
     # before _PAUSE_LOCK, as a compiling thread takes them (this handler runs
     # before compile_shortcuts', registered earlier, which takes that module's
-    # lock). A Ctrl-C during a wait is held until the fork is done and raised
-    # in the parent after os.fork returns: raised here, Python would report it
-    # as ignored in this hook and fork without the lock.
-    try:
-        if not _take_locks_for_fork(blocking=False):
-            _fork_hold().append(held_for_fork(sys._getframe(1)))  # os.fork's caller
-            _take_locks_for_fork(blocking=True)
-    finally:
-        # Held across the fork, so the child copies a count and a state that agree.
-        _PAUSE_LOCK.acquire()
+    # lock). A Ctrl-C from the hook's start to os.fork's return is held and
+    # raised in the parent after os.fork returns: raised here, Python would
+    # report it as ignored in this hook and fork without the lock; and raised
+    # between a lock's acquire and its record, or in the after hook before its
+    # releases, it left the lock held for good (review 37: numba's compiler
+    # lock held by the main thread, every other thread's compile waiting for
+    # ever). Only a Ctrl-C before the hold is in place reaches the hook
+    # (nothing is taken yet then). The hold costs about 0.4 ms a fork from the
+    # main thread (its signal handler swapped and read back through ctypes).
+    record: list[Any] = []
+    _forks().append(record)
+    record.append(held_for_fork(sys._getframe(1)))  # os.fork's caller
+    _take_locks_for_fork(record)
+    # Held across the fork, so the child copies a count and a state that agree.
+    _PAUSE_LOCK.acquire()
+    record.append(_PAUSE_LOCK)
 
 
-def _release_held_locks() -> None:
-    held = _held_for_fork()
-    while held:
-        held.pop().release()
+def _release_locks(record: list[Any]) -> None:
+    """Let go of the locks ``record`` holds (after its first item, the hold), last first."""
+    while len(record) > 1:
+        record[-1].release()
+        record.pop()
+
+
+def _end_fork() -> Any:
+    """This thread's innermost fork's Ctrl-C hold, its locks let go; None if there is none."""
+    forks = _forks()
+    if not forks:  # the before hook was cut short before it recorded its fork
+        return None
+    record = forks[-1]
+    _release_locks(record)
+    forks.pop()
+    return record[0] if record else None
 
 
 def _after_fork_in_parent() -> None:
-    _PAUSE_LOCK.release()
-    _release_held_locks()
-    hold = _fork_hold()
-    while hold:
-        release_in_parent(hold.pop())
+    release_in_parent(_end_fork())
 
 
 def _after_fork_in_child() -> None:
@@ -225,10 +238,7 @@ def _after_fork_in_child() -> None:
     _PAUSES = getattr(_THREAD, "pauses", 0)
     if others and _PAUSES == 0 and _RESUME:
         gc.enable()
-    _release_held_locks()
-    hold = _fork_hold()
-    while hold:
-        release_in_child(hold.pop())
+    release_in_child(_end_fork())
 
 
 if hasattr(os, "register_at_fork"):  # not on Windows, which cannot fork
