@@ -151,7 +151,12 @@ class PotentialFieldController:
     drive : {"omni", "diff"}, default "omni"
         ``"omni"``: output ``(vx, vy, ω)`` in the robot frame. ``"diff"``: a
         differential drive, ``vy = 0`` and ``vx >= 0`` the desired velocity's
-        component along the heading. The default is the soccer robot paper's
+        component along the heading, but at most ``max_omega`` times the radius
+        ``d² / (2 |y|)`` of the arc that leaves along the heading through the
+        goal (``y`` its lateral offset, ``d`` its distance): turning at
+        ``max_omega`` the robot stays on or inside that arc, where a faster one
+        would circle a goal beside it (with the default ``max_omega`` and
+        attraction the bound never binds). The default is the soccer robot paper's
         omnidirectional robot; the path trackers (``FollowTheCarrot``,
         ``OnOffTracker``, ``RegulatedPurePursuit``) default to ``"diff"``, so
         pass ``drive`` when swapping one for the other.
@@ -641,6 +646,18 @@ class PotentialFieldController:
                 math.hypot(prev[0], prev[1]) if measured is None else max(0.0, measured.vx)
             )
             fwd_want = max(0.0, c * want[0] + s * want[1])
+            # No faster than max_omega times the radius of the arc that leaves along
+            # the heading through the goal (pure pursuit's d² / (2 |y|), the goal's
+            # offset subtracted first): a robot that turns slowly otherwise drove
+            # past the goal on wider circles than its turn allowed and orbited it,
+            # spiralling in for minutes (max_omega=0.1: 6 cm off after 400 s) and
+            # reported stalled on the way. Turning at max_omega it stays on or
+            # inside that arc, whose heading error to the goal only shrinks.
+            gdx, gdy = target_pose.x - pose.x, target_pose.y - pose.y
+            lateral = abs(c * gdy - s * gdx)
+            if lateral > 0.0:
+                arc_speed = self._max_omega * (gdx * gdx + gdy * gdy) / (2.0 * lateral)
+                fwd_want = min(fwd_want, arc_speed)
             fwd = float(
                 _limited(np.array([fwd_prev]), np.array([fwd_want]), self._max_accel,
                          self._max_decel, step, huge)[0]
