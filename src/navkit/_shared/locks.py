@@ -19,7 +19,7 @@ import threading
 from _thread import get_ident as _get_ident
 from collections.abc import Callable
 from types import TracebackType
-from typing import Concatenate, ParamSpec, Protocol, TypeVar
+from typing import Any, Concatenate, ParamSpec, Protocol, TypeVar
 
 __all__ = ["ForkSafeLock", "one_caller"]
 
@@ -28,9 +28,13 @@ _R = TypeVar("_R")
 
 
 class _Guarded(Protocol):
-    """An object with the callers list :func:`one_caller` keeps (a ``_callers`` slot)."""
+    """An object with the callers list :func:`one_caller` keeps (a ``_callers`` slot).
 
-    _callers: list[tuple[int, str]]
+    Its tokens are ``(thread ident, method name, object)`` tuples (``Any``: a
+    class may declare the list as it likes; only :func:`one_caller` fills it).
+    """
+
+    _callers: list[Any]
 
 
 _G = TypeVar("_G", bound=_Guarded)
@@ -44,10 +48,14 @@ def one_caller(
     The object keeps a list ``_callers``, empty at rest (give a copy or an
     unpickled object an empty one: a copy made while another thread calls the
     original is not in use). Each call appends a token (its thread, its
-    method) and runs only if its token is the first; it takes that token out
-    as it returns or raises, whatever the point (a ``KeyboardInterrupt``
-    included: the append, a C call, is done or not before one can land, and
-    the ``finally`` takes out only that token). Appending is atomic, so of two
+    method, an object of its own) and runs only if its token is the first; it
+    takes that token out as it returns or raises, whatever the point (a
+    ``KeyboardInterrupt`` included: the append, a C call, is done or not before
+    one can land, and the ``finally`` takes out only that token: no other
+    token equals it, so a signal handler's call of the same method, refused,
+    takes out its own and not the runner's; with (thread, method) tokens it
+    took the runner's, and the runner, at its check, was refused too).
+    Appending is atomic, so of two
     threads calling at once exactly one runs and the other gets
     ``RuntimeError``, which says whether the call under way is another
     thread's or the same thread's (a signal handler's). The cost is about
@@ -79,22 +87,27 @@ def one_caller(
     @functools.wraps(method)
     def guarded(self: _G, /, *args: _P.args, **kwargs: _P.kwargs) -> _R:
         callers = self._callers
-        token = (_get_ident(), name)  # a new tuple: the first is told by identity
+        # Equal to no other token (its object): list.remove takes out the first equal
+        # one, which for (thread, method) alone was the runner's when a signal
+        # handler's call of the same method was refused.
+        token = (_get_ident(), name, object())
         try:
             callers.append(token)
             if callers[0] is not token:
                 raise RuntimeError(_in_use(type(self).__name__, name, callers[0]))
             return method(self, *args, **kwargs)
         finally:
-            # An equal token is this thread's same method, re-entered: the same.
             callers.remove(token)
 
     return guarded
 
 
-def _in_use(cls: str, name: str, other: tuple[int, str]) -> str:
-    """The message of a call ``name`` refused because ``other`` (a token) is under way."""
-    ident, running = other
+def _in_use(cls: str, name: str, other: tuple[Any, ...]) -> str:
+    """The message of a call ``name`` refused because ``other`` (a token) is under way.
+
+    ``other`` starts with the thread ident and the method name of the call under way.
+    """
+    ident, running = other[0], other[1]
     if ident == threading.get_ident():
         return (
             f"{cls}.{name} was called during this {cls}'s own {running}, in the same "
