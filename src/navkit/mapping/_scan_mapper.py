@@ -12,6 +12,7 @@ from numpy.typing import ArrayLike
 from navkit._shared.counts import counted
 from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.frozen import restore_slots
+from navkit._shared.locks import one_caller
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import finite_float
 from navkit.geometry import Pose2D, as_pose
@@ -94,13 +95,20 @@ class ScanMapper:
     100,000 scans, against 70 ms to gather the former list of poses);
     :attr:`pose` reads only the latest.
 
-    A mapper is not thread-safe: one thread at a time may call its methods;
-    different mappers may run in different threads at once, also with one
-    shared :class:`ScanMatcher` (which keeps only its options). While one
-    thread updates, others may read :attr:`map`: each level is written
-    holding its grid's lock, which :meth:`OccupancyGrid.copy` holds too, so
-    the copy holds a whole number of scans (the ray casting releases the
-    GIL: without the lock a copy could hold part of a scan).
+    A mapper keeps its map and trajectory between calls, so it is not
+    thread-safe: one thread at a time may call :meth:`update`; different
+    mappers may run in different threads at once, also with one shared
+    :class:`ScanMatcher` (which keeps only its options). An update called
+    while another is under way (another thread's, or a signal handler's
+    interrupting one in the same thread) raises ``RuntimeError`` and changes
+    nothing; the update under way goes on as alone (before, the two matched
+    from one guess and recorded each other's poses: wrong poses and a map
+    written at them, without an error). Copies and pickles of a mapper in
+    use are not in use. While one thread updates, others may read
+    :attr:`map`: each level is written holding its grid's lock, which
+    :meth:`OccupancyGrid.copy` holds too, so the copy holds a whole number
+    of scans (the ray casting releases the GIL: without the lock a copy
+    could hold part of a scan).
 
     The name says what it does — mapping from scans by scan matching — rather
     than naming one implementation; the defaults are Hector's.
@@ -185,6 +193,7 @@ class ScanMapper:
 
     __slots__ = (
         "__weakref__",  # weakref.ref(obj) for callbacks and caches (review 36)
+        "_callers",
         "_clamp",
         "_free",
         "_last_odometry",
@@ -220,6 +229,8 @@ class ScanMapper:
         min_rotation: float | None = None,
         start: Pose2D | ArrayLike | None = None,
     ) -> None:
+        # The updates under way (one at most: see one_caller; not copied or pickled).
+        self._callers: list[tuple[int, str, object]] = []
         named = "range_max" if max_range is None else "max_range"  # as the caller wrote it
         range_max = renamed_keyword("max_range", max_range, "range_max", range_max, None)
         # The mapper's own lower bound (its pyramid's cells), stated in the one message:
@@ -311,6 +322,8 @@ class ScanMapper:
             "tuple[dict[str, Any] | None, dict[str, Any]]", object.__getstate__(self)
         )
         slots["_path"] = self._path[: self._path_len]
+        # Not in use, whatever the original is doing (pickles as before the guard).
+        slots.pop("_callers", None)
         return instance, slots
 
     def __setstate__(self, state: Any) -> None:
@@ -325,6 +338,7 @@ class ScanMapper:
             slots["_pose"] = poses[-1] if poses else slots["_start"]
         # The state's array holds no spare row: the next update appends to a new
         # one, never writing into what pickle or deepcopy handed over.
+        slots["_callers"] = []
         restore_slots(self, (instance, slots))
 
     # ------------------------------------------------------------------ views
@@ -371,6 +385,7 @@ class ScanMapper:
         return self._levels[0].copy()
 
     # ----------------------------------------------------------------- update
+    @one_caller
     def update(
         self, scan: LaserScan, odometry: Pose2D | ArrayLike | None = None
     ) -> ScanMatchResult:
@@ -408,6 +423,10 @@ class ScanMapper:
             ``odometry`` not finite, or the pose predicted for this scan
             (from the odometry increment, or the previous motion repeated)
             beyond ±1.8e308 m, the float range; the mapper is unchanged.
+        RuntimeError
+            Another update of this mapper is under way (another thread's, or a
+            signal handler's in the same thread): one call at a time, see the
+            class notes; the mapper is unchanged.
         KeyboardInterrupt
             Or any other exception from outside the mapper raised part-way (a
             signal handler's): the mapper has then not taken the scan, or has
