@@ -318,7 +318,11 @@ class Simulation:
     different Simulations may go on in different threads at once, sharing
     their :class:`World` and :class:`Robot` (neither is changed by a run);
     each needs its own controller, estimator and Generator ``seed`` (which a
-    run changes), and gives what it gives alone.
+    run changes), and gives what it gives alone. A Simulation runs once: a
+    :meth:`run` called while its run is under way (another thread's, or a
+    signal handler's interrupting it in the same thread) raises
+    ``RuntimeError`` as a second run does and changes nothing; the run under
+    way goes on as alone.
 
     Parameters
     ----------
@@ -593,7 +597,8 @@ class Simulation:
         Raises
         ------
         RuntimeError
-            When called a second time (build a new Simulation).
+            When called a second time (build a new Simulation), also while the
+            first run is under way (another thread's, or a signal handler's).
         ValueError
             When the controller asks a differential robot to move sideways, or
             a robot without ``max_wheel_speed`` for wheel speeds beyond float64
@@ -644,10 +649,19 @@ class Simulation:
         """
         if self._ran:
             raise RuntimeError("a Simulation runs once; build a new one for another run")
-        estimator = self._estimator
-        if isinstance(estimator, FusionEstimator):
-            estimator.check_start()  # run since this simulation was built?
+        # Marked run at once: no call between the check and the store, where Python
+        # could switch threads or run a signal handler. A second run() started there
+        # (the isinstance below, the filter's check) ran the whole loop, and this run
+        # went on after it with the controller, estimator and generator it left: two
+        # traces, this one wrong, and no error.
         self._ran = True
+        estimator = self._estimator
+        try:
+            if isinstance(estimator, FusionEstimator):
+                estimator.check_start()  # run since this simulation was built?
+        except BaseException:
+            self._ran = False  # refused before anything ran: this Simulation may run
+            raise
         if isinstance(estimator, (_DiffOdometryEstimator, _OmniOdometryEstimator)):
             # Counters (and a compass yaw) read in an earlier run are not this run's:
             # a shallow copy shares the adapter, and runs as a new Simulation would.
