@@ -369,10 +369,27 @@ class PathTracker(ABC):
 
         The arc length of the robot's closest point on the path, searched each
         step within 2 m of path ahead of the previous one, or up to the point
-        the tracker last steered for; past that point, no farther than where the
-        path first leads 0.25 m farther from the robot than the closest point so
-        far (so loops and crossings are followed in order); for
-        :class:`OnOffTracker`, that of the last waypoint reached.
+        the tracker last steered for (at the first step of a path, the whole
+        path: a robot starting partway along it carries on from there); past
+        that point, no farther than where the path first leads 0.25 m farther
+        from the robot than the closest point so far (so loops and crossings are
+        followed in order); for :class:`OnOffTracker`, that of the last waypoint
+        reached.
+
+        Both distances are absolute, whatever the speed, the control rate or
+        the path's spacing: a search costs O(log N) on a path of N points plus
+        the points within the window (a 10 km path of 10^5 poses steps as fast
+        as a 20 m one). The window always reaches the point last steered for,
+        which the robot does not pass within a step, so a fast robot is not
+        lost; 2 m bounds how far one glitching pose moves the progress. A robot
+        that leaves the path and comes back farther along (pushed, or
+        re-localised) is found again at up to 2 m of path a step. The 0.25 m
+        detour does not shrink with a small robot's options: a loop or
+        out-and-back of the path that never leads 0.25 m farther from the robot
+        than its closest point is walked through to the later pass, whatever
+        ``carrot_distance`` or lookahead (a loop of 0.1 m radius is cut where the
+        same path ten times larger is followed round); give such a path in
+        parts. Paths scaled up are followed as the original is.
         """
         return self._progress
 
@@ -460,7 +477,8 @@ class PathTracker(ABC):
             :attr:`progress` along the path never goes back: one pose that
             jumps ahead (a localisation glitch) can move it up to 2 m of path
             ahead at once, and that stretch is then skipped (most of a short
-            out-and-back path, say); :meth:`set_path` starts over.
+            out-and-back path, say); :meth:`set_path` starts over, and its
+            first step finds the robot anywhere along the path.
         dt : float
             Control period in seconds, > 0 (a normal float: at least 2.2e-308).
 
@@ -514,24 +532,39 @@ class PathTracker(ABC):
 
         The window runs :data:`SEARCH_AHEAD` metres of path ahead of the previous
         closest point, or to arc length ``reach`` (where the tracker last
-        steered) if that is farther. Past ``reach`` the search ends after a
-        detour of :data:`SEARCH_DETOUR` (a robot at the start of a short closed
-        loop is not at its end); up to it, the robot may have cut across to any
-        point, having been steered there.
+        steered) if that is farther; at the first step of a path, the whole
+        path. Past ``reach`` the search ends after a detour of
+        :data:`SEARCH_DETOUR` (a robot at the start of a short closed loop is not
+        at its end); up to it, the robot may have cut across to any point,
+        having been steered there.
         """
-        hi = max(self._progress + SEARCH_AHEAD, reach)
-        s, _ = line.project(pose.x, pose.y, self._progress, hi, SEARCH_DETOUR, reach)
+        s, _ = line.project(
+            pose.x, pose.y, self._progress, self._window_end(line, reach), SEARCH_DETOUR, reach
+        )
         self._progress = s
         return s
+
+    def _window_end(self, line: Polyline, reach: float) -> float:
+        """Where the closest-point search may end: see :meth:`_advance`.
+
+        The whole path at the first step of a path (no target yet): a robot that
+        starts partway along it (a replan that begins behind it) is found there,
+        the search still ending where the path first leads a detour away from it.
+        The 2 m window, a bound on how far one glitching pose moves the progress,
+        made it catch up 2 m a step meanwhile, steering the robot back toward the
+        path's start (100 m along: turned round for 50 steps).
+        """
+        if self._target is None:
+            return line.length
+        return max(self._progress + SEARCH_AHEAD, reach)
 
     def _advance_offset(
         self, line: Polyline, pose: Pose2D, reach: float
     ) -> tuple[float, float, float]:
         """:meth:`_advance`, returning the new progress's point's offset from the
         robot too: ``(s, dx, dy)`` (see :meth:`Polyline.offset_at`)."""
-        hi = max(self._progress + SEARCH_AHEAD, reach)
         s, dx, dy = line.project_offset(
-            pose.x, pose.y, self._progress, hi, SEARCH_DETOUR, reach
+            pose.x, pose.y, self._progress, self._window_end(line, reach), SEARCH_DETOUR, reach
         )
         self._progress = s
         return s, dx, dy

@@ -436,7 +436,8 @@ class RegulatedPurePursuit(PathTracker):
             :attr:`progress` along the path never goes back: one pose that
             jumps ahead (a localisation glitch) can move it up to 2 m of path
             ahead at once, and that stretch is then skipped (most of a short
-            out-and-back path, say); :meth:`set_path` starts over.
+            out-and-back path, say); :meth:`set_path` starts over, and its
+            first step finds the robot anywhere along the path.
         dt : float
             Control period in seconds, > 0 (a normal float: at least 2.2e-308).
         velocity : Twist2D or array_like [vx, vy, omega], optional
