@@ -62,17 +62,21 @@ from __future__ import annotations
 import importlib
 import os
 import sys
-import threading
 import warnings
 from collections.abc import Callable
 from types import FrameType
 from typing import Any, TypeVar, cast
 
+from navkit._shared.locks import ForkSafeLock
 from navkit.errors import KernelCacheWarning
 
 _F = TypeVar("_F", bound=Callable[..., Any])
 
-_LOCK = threading.RLock()
+# Made anew in a forked child (review 37): held by another thread when the
+# process forked (a kernel module decorating its kernels, binding numba's
+# names), the child's copy stayed held by a thread it does not have, and its
+# next kernel module import or decorated function waited for ever.
+_LOCK = ForkSafeLock(reentrant=True)
 #: numba.njit once numba is loaded.
 _NJIT: Any = None
 #: Stand-ins made before numba was loaded, and their dispatchers once it is.
