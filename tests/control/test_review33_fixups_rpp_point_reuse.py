@@ -1,12 +1,12 @@
 """Review 33 (FIXUPS): ``RegulatedPurePursuit.step`` reuses the closest point it found.
 
 Review 32's fold check called ``point_at(s)`` for the closest point (0.4 µs of
-a 7 µs step) after ``project`` had found ``s``; the kernel ``project_point``
-now returns both. ``project``'s own distance is measured to the foot of the
-perpendicular, which may differ from ``point_at(s)`` in the last bits (it is
-not used): these tests pin that the point is ``point_at(s)`` bit for bit, so
-that every command stays as it was (also checked against HEAD in closed loop
-on 190 random paths, both drives: identical commands, progress and targets).
+a 7 µs step) after ``project`` had found ``s``; one kernel now returns both
+(``project_offset`` since review 37, which works on offsets from the robot for
+translation invariance). ``project``'s own distance is measured to the foot of
+the perpendicular, which may differ from ``point_at(s)`` in the last bits (it
+is not used): these tests pin that the offset is ``offset_at(s)``'s bit for
+bit, so that every command stays as it was.
 """
 
 from __future__ import annotations
@@ -31,7 +31,7 @@ _coord = st.floats(-1e3, 1e3, allow_nan=False)
     free=st.floats(0.0, 1e4),
     detour=st.sampled_from([0.25, math.inf]),
 )
-def test_project_point_is_project_then_point_at_bit_for_bit(
+def test_project_offset_is_project_then_offset_at_bit_for_bit(
     pts: list[tuple[float, float]],
     offset: float,
     robot: tuple[float, float],
@@ -42,10 +42,10 @@ def test_project_point_is_project_then_point_at_bit_for_bit(
     line = Polyline(np.array(pts) + offset)
     x, y = robot[0] + offset, robot[1] + offset
     s_from, s_to = min(window), max(window)
-    s, px, py = line.project_point(x, y, s_from, s_to, detour, free)
+    s, dx, dy = line.project_offset(x, y, s_from, s_to, detour, free)
     s_ref, _ = line.project(x, y, s_from, s_to, detour, free)
     assert s == s_ref
-    assert (px, py) == line.point_at(s_ref)
+    assert (dx, dy) == line.offset_at(s_ref, x, y)[:2]
 
 
 def test_polyline_end_is_point_at_length() -> None:

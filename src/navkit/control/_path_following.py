@@ -36,7 +36,6 @@ from navkit.control._path_following_kernels import (
     point_at,
     project,
     project_offset,
-    project_point,
 )
 from navkit.geometry import Pose2D, Twist2D, as_pose
 from navkit.planning import Path2D
@@ -229,17 +228,6 @@ class Polyline:
             float(x), float(y), self.points_xy, self.cum, lo, hi, float(s_free), float(detour)
         )
         return float(s), float(d)
-
-    def project_point(
-        self, x: float, y: float, s_from: float, s_to: float, detour: float, s_free: float
-    ) -> tuple[float, float, float]:
-        """:meth:`project`'s ``s`` and ``point_at(s)`` in one call: ``(s, px, py)``."""
-        lo = min(max(float(s_from), 0.0), self.length)
-        hi = min(max(float(s_to), lo), self.length)
-        s, px, py = project_point(
-            float(x), float(y), self.points_xy, self.cum, lo, hi, float(s_free), float(detour)
-        )
-        return float(s), float(px), float(py)
 
     def project_offset(
         self, x: float, y: float, s_from: float, s_to: float, detour: float, s_free: float

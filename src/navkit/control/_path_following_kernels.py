@@ -148,28 +148,6 @@ def project(
 
 
 @njit_no_refcount
-def project_point(
-    px: float,
-    py: float,
-    pts: np.ndarray,
-    cum: np.ndarray,
-    s_from: float,
-    s_to: float,
-    s_free: float,
-    detour: float,
-) -> tuple[float, float, float]:
-    """:func:`project`'s ``s`` and the point :func:`point_at` gives for it: ``(s, x, y)``.
-
-    The point bit for bit as a separate ``point_at`` call gives it (not the foot
-    of the perpendicular ``project`` measured, which may differ in the last
-    bits), without the second call's dispatch (0.4 µs).
-    """
-    s, _ = project(px, py, pts, cum, s_from, s_to, s_free, detour)
-    x, y = point_at(pts, cum, s)
-    return s, x, y
-
-
-@njit_no_refcount
 def project_offset(
     px: float,
     py: float,
