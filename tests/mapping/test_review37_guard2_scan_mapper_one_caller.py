@@ -24,6 +24,7 @@ import math
 import pickle
 import sys
 import threading
+import time
 from collections.abc import Callable
 from typing import Any
 
@@ -155,8 +156,11 @@ def test_two_threads_on_one_mapper_take_whole_updates_or_the_refusal() -> None:
     outcomes: list[list[str]] = [[], []]
 
     def run(k: int) -> None:
+        deadline = time.monotonic() + 120.0
         for scan, odom in scans[k::2]:
-            for _ in range(10_000):  # until taken (a refusal is quick)
+            # Until taken: a refusal is quick, the other thread's update takes
+            # milliseconds (tens of thousands of refusals).
+            while time.monotonic() < deadline:
                 try:
                     mapper.update(scan, odometry=odom)
                 except RuntimeError as error:
