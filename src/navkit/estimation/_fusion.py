@@ -838,10 +838,10 @@ class PlanarFusion(GaussianEstimate):
     thread) raises ``RuntimeError`` and changes nothing; the call under way
     goes on as alone (before, such a pair kept the steps out of time order or
     lost one of the two measurements, and later late measurements were fused
-    wrongly, without an error). The check costs about 0.2 µs a call, a tenth
-    of a step kept for ``history`` (about 2 µs). Without ``history`` the calls
-    are not checked (the check would be a fifth of a step of about 1 µs): two
-    at once may leave a wrong estimate or result without an error.
+    wrongly, without an error). The check costs about 0.2 µs a call, an
+    eighth of a step kept for ``history`` (about 1.8 µs). Without ``history``
+    the calls are not checked (the check would be a fifth of a step of about
+    1 µs): two at once may leave a wrong estimate or result without an error.
 
     Subclasses may add attributes (their own ``__slots__`` or an instance
     ``__dict__``) and methods, and override the public methods, calling the
