@@ -53,7 +53,8 @@ def frozen_setattr(cls: _T) -> _T:
     them (the generated ``__init__`` uses ``object.__setattr__``). A record
     with no ``__reduce__`` of its own also gets a ``__reduce_ex__`` that copies
     and pickles a subclass through :func:`reduce_record` (what it adds is kept;
-    a user's ``__getstate__`` taken at its word, as Python takes it); the
+    a user's ``__getstate__`` taken at its word, as Python takes it; a
+    subclass's own ``__reduce__`` called instead, as Python calls it); the
     record's own pickles are unchanged.
 
     Examples
@@ -112,6 +113,11 @@ def frozen_setattr(cls: _T) -> _T:
         def __reduce_ex__(self: Any, protocol: Any) -> Any:
             if type(self) is owner:
                 return object.__reduce_ex__(self, protocol)
+            reduce: Any = type(self).__reduce__
+            if reduce is not object.__reduce__:
+                # A subclass's own __reduce__ (a user's) is called, as Python's
+                # __reduce_ex__ calls it; it was ignored (review 37).
+                return self.__reduce__()
             return reduce_record(self)
 
         functions.append(__reduce_ex__)
