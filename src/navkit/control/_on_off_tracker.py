@@ -93,7 +93,12 @@ class OnOffTracker(PathTracker):
     ``tol + (ℓ + tol) sin β · exp(−β / tan β)`` of it, ``tol`` the goal tolerance.
 
     A tracker is not thread-safe: one thread at a time may call its methods
-    (:meth:`set_path`, :meth:`step`); different trackers may run in different
+    (:meth:`set_path`, :meth:`step`), and a call made while another runs is not
+    detected (a check would cost about a tenth of a step): a :meth:`set_path`
+    landing inside a :meth:`step` (from another thread or a signal handler)
+    leaves the new path with the old one's progress and target. In a ROS 2
+    node, give the path subscription and the control timer one mutually
+    exclusive callback group. Different trackers may run in different
     threads at once.
 
     Subclasses may add attributes (their own ``__slots__`` or an instance

@@ -251,7 +251,12 @@ class RegulatedPurePursuit(PathTracker):
     give its parts as successive paths.
 
     A tracker is not thread-safe: one thread at a time may call its methods
-    (:meth:`set_path`, :meth:`step`); different trackers may run in different
+    (:meth:`set_path`, :meth:`step`), and a call made while another runs is not
+    detected (a check would cost about a tenth of a step): a :meth:`set_path`
+    landing inside a :meth:`step` (from another thread or a signal handler)
+    leaves the new path with the old one's progress and target. In a ROS 2
+    node, give the path subscription and the control timer one mutually
+    exclusive callback group. Different trackers may run in different
     threads at once (with one ``clearance`` grid, which they only read; a
     ``clearance`` callable shared by them must itself be thread-safe).
 
