@@ -266,7 +266,9 @@ class FieldDStar:
     Memory: a planner keeps 56 bytes a node ((rows + 1) × (cols + 1) nodes)
     between queries: its values ``g`` and ``rhs`` and the padded costs, 8 bytes
     each, and a priority queue able to hold every node, 32 (about 900 MB for a
-    4000 × 4000 grid). Returned paths hold only their own points.
+    4000 × 4000 grid). Of the queue, 24 bytes a node (past 1 MiB) are pages
+    mapped on their own, which take memory only where a search writes (the
+    first few thousand slots). Returned paths hold only their own points.
 
     A planner keeps its search state between queries, so it is not
     thread-safe: one thread at a time may call its methods (queries included);
@@ -384,7 +386,11 @@ class FieldDStar:
         # cells); _start_point is then the escape cell's centre.
         self._escape: tuple[tuple[float, float], float] | None = None
         self._width = self._cols + 2
-        pad = np.full((self._rows + 2, self._cols + 2), np.inf)
+        # The border inf, then the costs: one pass over the memory (a fill with inf
+        # first wrote every line twice).
+        pad = np.empty((self._rows + 2, self._cols + 2))
+        pad[0] = pad[-1] = np.inf
+        pad[1:-1, 0] = pad[1:-1, -1] = np.inf
         pad[1:-1, 1:-1] = arr
         self._pad = pad.ravel()
         self._hscale = FIELD_HSCALE if self._interp else 1.0
