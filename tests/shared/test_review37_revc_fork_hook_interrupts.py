@@ -218,3 +218,57 @@ def test_a_fork_in_a_signal_handler_during_a_forks_wait_keeps_the_outer_forks_ho
     # free; the Ctrl-C was raised once, after the outer os.fork had returned.
     assert (returned, interrupts, inner, child, handler) == (True, 1, [0], 0, True)
     assert "Exception ignored" not in done.stderr, done.stderr[-2000:]
+
+
+# A thread compiling (numba's compiler lock held) forks while the main thread's
+# own fork waits in its hook for that lock, its Ctrl-C hold in place. The child
+# copied the hold's handler, which nothing there ends: every Ctrl-C in the child
+# was kept for good (a worker that Ctrl-C could not stop).
+_OTHER_THREADS_CHILD = textwrap.dedent(
+    """
+    import faulthandler, json, os, signal, threading, time
+    faulthandler.dump_traceback_later(200, exit=True)
+    from navkit._shared.jit import load_numba
+    from numba.core.compiler_lock import global_compiler_lock
+
+    load_numba()
+    holding = threading.Event()
+    out = {}
+
+    def compile_and_fork():
+        with global_compiler_lock:
+            holding.set()
+            time.sleep(0.5)  # the main thread's fork waits in its hook meanwhile
+            read, write = os.pipe()
+            pid = os.fork()
+            if pid == 0:
+                default = signal.getsignal(signal.SIGINT) is signal.default_int_handler
+                try:
+                    signal.raise_signal(signal.SIGINT)
+                    time.sleep(0.1)
+                    stopped = False
+                except KeyboardInterrupt:
+                    stopped = True
+                os.write(write, json.dumps([default, stopped]).encode())
+                os._exit(0)
+            os.close(write)
+            out["child"] = json.loads(os.read(read, 100).decode() or "null")
+            os.waitpid(pid, 0)
+
+    thread = threading.Thread(target=compile_and_fork)
+    thread.start()
+    assert holding.wait(60)
+    pid = os.fork()
+    if pid == 0:
+        os._exit(0)
+    os.waitpid(pid, 0)
+    thread.join(60)
+    handler = signal.getsignal(signal.SIGINT) is signal.default_int_handler
+    print(json.dumps([out.get("child"), handler]))
+    """
+)
+
+
+def test_a_child_of_another_thread_forking_meanwhile_stops_on_ctrl_c() -> None:
+    # The child has Python's SIGINT handler and a Ctrl-C stops it; the parent's is back.
+    assert probe_outcome(_OTHER_THREADS_CHILD, timeout=200) == [[True, True], True]

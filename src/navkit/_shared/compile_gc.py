@@ -86,6 +86,7 @@ from navkit._shared.interrupts import (
     interrupts_deferred,
     release_in_child,
     release_in_parent,
+    release_others_in_child,
 )
 
 __all__ = ["install", "paused"]
@@ -100,6 +101,8 @@ _PAUSES = 0
 _RESUME = False
 #: This thread's share of them (``pauses``): all that survives a fork.
 _THREAD = threading.local()
+#: The main thread's (the forking thread's in a forked child).
+_MAIN = threading.main_thread().ident
 
 
 def _begin_pause() -> None:
@@ -230,15 +233,20 @@ def _after_fork_in_child() -> None:
     Their pauses would never end, and the child would run with the collector
     off for good (a worker forked while another thread compiled a kernel).
     numba's compiler lock and navkit's import lock, held by this thread across
-    the fork, are let go; a Ctrl-C held meanwhile was the parent's.
+    the fork, are let go; a Ctrl-C held meanwhile was the parent's. Forked by
+    another thread than the main one, the main thread's holds of Ctrl-C (its
+    own fork waiting for this one's locks) are ended too: nothing here would.
     """
-    global _PAUSE_LOCK, _PAUSES
+    global _PAUSE_LOCK, _PAUSES, _MAIN
     _PAUSE_LOCK = threading.RLock()  # the parent's is held, by this thread's twin
     others = _PAUSES > 0  # or none at all: then the collector's state is the user's
     _PAUSES = getattr(_THREAD, "pauses", 0)
     if others and _PAUSES == 0 and _RESUME:
         gc.enable()
     release_in_child(_end_fork())
+    if threading.get_ident() != _MAIN:
+        _MAIN = threading.get_ident()
+        release_others_in_child()
 
 
 if hasattr(os, "register_at_fork"):  # not on Windows, which cannot fork

@@ -43,6 +43,7 @@ __all__ = [
     "interrupts_deferred",
     "release_in_child",
     "release_in_parent",
+    "release_others_in_child",
 ]
 
 
@@ -241,6 +242,28 @@ def release_in_child(hold: _Hold | None) -> None:
     hold.pending.clear()
     hold.fork_caller = None
     hold.restore()
+
+
+def release_others_in_child() -> None:
+    """End, in a forked child, the holds of the parent's main thread still in place.
+
+    For a child forked by a thread other than the main one. Only the main
+    thread holds ``SIGINT`` (:func:`held_for_fork`, :func:`interrupts_deferred`):
+    a child forked while the main thread's own fork waited in its hook (for
+    the locks this fork held) copied that hold's handler, which nothing in the
+    child ends, and every Ctrl-C in the child was kept for good (review 37).
+    The handlers from before are put back, their held Ctrl-Cs dropped (the
+    parent's).
+    """
+    handler = signal.getsignal(signal.SIGINT)
+    while getattr(handler, "__func__", None) is _Hold.hold:
+        hold: _Hold = handler.__self__  # type: ignore[union-attr]
+        hold.pending.clear()
+        hold.fork_caller = None
+        if hold.restored:  # put back already: nothing more to do
+            return
+        hold.restore()
+        handler = signal.getsignal(signal.SIGINT)
 
 
 #: The C library's ``sigaction``, once looked up (None where there is none).
