@@ -161,10 +161,12 @@ class _Hold:
 def held_for_fork(fork_caller: FrameType | None) -> _Hold | None:
     """Hold every ``SIGINT`` from now until the fork under way is done (a ``before`` fork hook).
 
-    For a fork hook that waits for a lock another thread holds: Python ignores
-    an exception raised in a fork hook (it prints "Exception ignored") and
-    forks all the same, so a Ctrl-C raised during the wait was lost, and the
-    fork made without the lock. Held, the wait goes on to the end, and
+    For fork hooks that take locks across a fork, perhaps waiting for another
+    thread's: Python ignores an exception raised in a fork hook (it prints
+    "Exception ignored") and forks all the same, so a Ctrl-C raised during a
+    wait was lost, and the fork made without the lock; raised between taking a
+    lock and recording it, or in an after hook before its releases, it left the
+    lock held. Held, the wait goes on to the end, and
     :func:`release_in_parent` delivers the Ctrl-C as ``os.fork`` returns in
     the parent; the child drops it (:func:`release_in_child`). A second Ctrl-C
     is held as well: cutting the wait short would fork without the lock.
