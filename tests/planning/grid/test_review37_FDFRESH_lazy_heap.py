@@ -81,7 +81,7 @@ def test_lazy_zeros_are_writeable_pages() -> None:
 
 
 def test_a_failed_mapping_falls_back_to_plain_zeros(monkeypatch: pytest.MonkeyPatch) -> None:
-    def refuse(*args: object) -> None:
+    def refuse(*args: object, **kwargs: object) -> None:
         raise OSError(12, "Cannot allocate memory")
 
     monkeypatch.setattr(_dstar_heap.mmap, "mmap", refuse)

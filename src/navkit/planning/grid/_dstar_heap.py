@@ -273,6 +273,12 @@ def clear_box(
 # Zeros of at least this many bytes are mapped pages of their own (_lazy_zeros).
 _LAZY_BYTES = 1 << 20
 
+# Copy-on-write in a forked child, as malloc'd memory is (Windows cannot fork, and
+# its anonymous mappings are the process's own).
+_PRIVATE: dict[str, int] = (
+    {"flags": mmap.MAP_PRIVATE | mmap.MAP_ANONYMOUS} if hasattr(mmap, "MAP_PRIVATE") else {}
+)
+
 
 def _lazy_zeros(count: int, dtype: type[np.generic]) -> np.ndarray:
     """``count`` zeros of ``dtype``; a large array in pages zeroed on first touch.
@@ -284,11 +290,14 @@ def _lazy_zeros(count: int, dtype: type[np.generic]) -> np.ndarray:
     (about 2.5 ms a 1024² planner). An anonymous mapping is always lazy. Where
     the mapping fails (``OSError``: no memory, or the process's limit of
     mappings), ``np.zeros`` (a ``MemoryError`` if there is no memory at all).
+    The mapping is private where the system can fork: ``mmap.mmap(-1, n)``
+    alone maps shared pages there, which a forked child's searches would
+    write into its parent's planner.
     """
     nbytes = count * np.dtype(dtype).itemsize
     if nbytes >= _LAZY_BYTES:
         try:
-            pages = mmap.mmap(-1, nbytes)
+            pages = mmap.mmap(-1, nbytes, **_PRIVATE)
         except OSError:
             pass
         else:
