@@ -21,7 +21,8 @@ documented limits down to the queue's operations:
 * searches on extreme grids (costs one ulp apart at 1 and at 1e12, the largest
   weight; plateaus of equal f; goals beyond the tie key's saturation at 65,536
   cells) expand exactly what a textbook A* in the same arithmetic expands, and
-  the heap Dijkstra's distance fields equal SciPy's bit for bit.
+  the heap Dijkstra's distance fields equal SciPy's bit for bit; a heuristic
+  weight of -0.0 (accepted: -0.0 >= 0) searches as 0.0 does.
 """
 
 from __future__ import annotations
@@ -293,6 +294,29 @@ def test_extreme_grids_expand_as_textbook_astar(
     if weight <= 1.0:
         optimum = scipy_costs_from(costs, start, 8 if eight else 4, corner_cutting)[goal]
         assert math.isclose(path.cost, optimum, rel_tol=1e-12)
+
+
+@settings(max_examples=30, deadline=None)
+@given(case=extreme_grids(), eight=st.booleans())
+def test_negative_zero_weight_queues_no_negative_zero(
+    case: tuple[np.ndarray, tuple[int, int], tuple[int, int]], eight: bool
+) -> None:
+    # heuristic_weight=-0.0 passes the range check (-0.0 >= 0) and makes the
+    # heuristic's scale -0.0; every queued f is still g > 0 plus -0.0, i.e. g:
+    # the search is Dijkstra's, as with 0.0, never a -0.0 above every f's bits.
+    costs, start, goal = case
+    connectivity = 8 if eight else 4
+    try:
+        plain = astar(costs, start, goal, connectivity=connectivity, heuristic_weight=0.0)
+    except NoPathError as exc:
+        with pytest.raises(NoPathError) as info:
+            astar(costs, start, goal, connectivity=connectivity, heuristic_weight=-0.0)
+        assert info.value.expanded == exc.expanded
+        return
+    signed = astar(costs, start, goal, connectivity=connectivity, heuristic_weight=-0.0)
+    assert signed.expanded == plain.expanded
+    assert signed.cells.tolist() == plain.cells.tolist()
+    assert _bits(signed.cost) == _bits(plain.cost)
 
 
 @settings(max_examples=40, deadline=None)
