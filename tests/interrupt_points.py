@@ -70,6 +70,47 @@ def _profiled(call: Callable[[], object], events: Sequence[str], *, stop_at: int
     return seen
 
 
+def interleaved(
+    k: int, main: Callable[[], Any], handler: Callable[[], Any], *, catch_main: bool = True
+) -> dict[str, Any]:
+    """Run ``main``, running ``handler`` at its ``k``-th delivery point, as a signal would.
+
+    Returns what each returned or the RuntimeError it raised (``"h"`` missing: the
+    call had fewer points; ``catch_main=False`` lets ``main``'s propagate), and
+    ``"points"``, how many ``main`` passed. No garbage collection meanwhile (no
+    finalizers' calls among the points, see :func:`_profiled`).
+    """
+    seen = 0
+    out: dict[str, Any] = {}
+
+    def profile(frame: Any, event: str, arg: Any) -> None:
+        nonlocal seen
+        if event in DELIVERY:
+            seen += 1
+            if seen == k:
+                sys.setprofile(None)
+                try:
+                    out["h"] = handler()
+                except RuntimeError as error:
+                    out["h"] = error
+
+    enabled = gc.isenabled()
+    gc.disable()
+    sys.setprofile(profile)
+    try:
+        out["m"] = main()
+    except RuntimeError as error:
+        if not catch_main:
+            raise
+        out["m"] = error
+    finally:
+        sys.setprofile(None)
+        if enabled:
+            gc.enable()
+    out["points"] = seen
+    return out
+
+
 #: Probe-script source (needs ``signal`` imported): an import hook, ``Interrupt``,
 #: raising SIGINT once as numba imports its typing package, as a user's Ctrl-C
 #: would land; ``Interrupt.fired`` tells whether it did. Install it with

@@ -21,7 +21,6 @@ point where CPython runs a signal handler (``interrupt_points.DELIVERY``).
 from __future__ import annotations
 
 import copy
-import gc
 import pickle
 import sys
 import threading
@@ -31,48 +30,13 @@ from typing import Any
 import numpy as np
 import pytest
 
-from interrupt_points import DELIVERY
+from interrupt_points import interleaved
 from navkit.estimation import MeasurementLog, PlanarFusion
 
 ODO = {"v_variance": 1e-2, "omega_variance": 1e-2}
 RATE_VAR = 1e-3
 # The filter's steps before each case: odometry at 0.1 ... 0.5 s.
 BASE_ODOMETRY = [(0.1 * i, 1.0, 0.1 * i) for i in range(1, 6)]
-
-
-def _interleaved(k: int, main: Callable[[], Any], handler: Callable[[], Any]) -> dict[str, Any]:
-    """Run ``main``, running ``handler`` at its ``k``-th delivery point, as a signal would.
-
-    Returns what each returned or the RuntimeError it raised (``"h"`` missing: the
-    call had fewer points), and ``"points"``, how many ``main`` passed.
-    """
-    seen = 0
-    out: dict[str, Any] = {}
-
-    def profile(frame: Any, event: str, arg: Any) -> None:
-        nonlocal seen
-        if event in DELIVERY:
-            seen += 1
-            if seen == k:
-                sys.setprofile(None)
-                try:
-                    out["h"] = handler()
-                except RuntimeError as error:
-                    out["h"] = error
-
-    enabled = gc.isenabled()
-    gc.disable()  # no finalizers' calls among the points (see interrupt_points)
-    sys.setprofile(profile)
-    try:
-        out["m"] = main()
-    except RuntimeError as error:
-        out["m"] = error
-    finally:
-        sys.setprofile(None)
-        if enabled:
-            gc.enable()
-    out["points"] = seen
-    return out
 
 
 def _base() -> PlanarFusion:
@@ -121,12 +85,12 @@ def _taken(what: tuple[str, float, float]) -> tuple[list[Any], list[Any]]:
 @pytest.mark.parametrize("case", list(CASES))
 def test_a_handlers_update_at_every_point_is_refused_or_fused_in_stamp_order(case: str) -> None:
     main, other = CASES[case]
-    points = _interleaved(0, _call(_base(), main), lambda: None)["points"]
+    points = interleaved(0, _call(_base(), main), lambda: None)["points"]
     assert points > 5
     refused = 0
     for k in range(1, points + 1):
         fusion = _base()
-        out = _interleaved(k, _call(fusion, main), _call(fusion, other))
+        out = interleaved(k, _call(fusion, main), _call(fusion, other))
         odometry, rates = list(BASE_ODOMETRY), []
         for who, what in (("m", main), ("h", other)):
             result = out.get(who)
@@ -169,10 +133,10 @@ def test_the_refusal_names_both_calls_and_changes_nothing() -> None:
             assert _state(fusion) == before
             raise
 
-    points = _interleaved(0, _call(_base(), ("odo", 0.6, 1.2)), lambda: None)["points"]
+    points = interleaved(0, _call(_base(), ("odo", 0.6, 1.2)), lambda: None)["points"]
     for k in range(1, points + 1):
         fusion = _base()
-        out = _interleaved(k, _call(fusion, ("odo", 0.6, 1.2)), handler)
+        out = interleaved(k, _call(fusion, ("odo", 0.6, 1.2)), handler)
         assert fusion._callers == []
         if isinstance(out.get("h"), RuntimeError):
             assert _state(fusion) == _state(alone)
@@ -211,8 +175,8 @@ def test_every_method_of_a_filter_with_history_is_refused_during_another(name: s
     alone = _base()
     alone.update_yaw_rate(0.45, 0.2, variance=RATE_VAR)  # a late one: rewound and replayed
     # A point inside the late measurement's replay: the step kept at 0.5 s taken again.
-    points = _interleaved(0, _call(_base(), ("rate", 0.45, 0.2)), lambda: None)["points"]
-    out = _interleaved(points // 2, _call(fusion, ("rate", 0.45, 0.2)), inside)
+    points = interleaved(0, _call(_base(), ("rate", 0.45, 0.2)), lambda: None)["points"]
+    out = interleaved(points // 2, _call(fusion, ("rate", 0.45, 0.2)), inside)
     assert len(seen) == 1, out
     assert f"PlanarFusion.{name} was called during this PlanarFusion's own update_yaw_rate" in (
         str(seen[0])
@@ -230,8 +194,8 @@ def test_copies_and_pickles_of_a_filter_in_use_are_not_in_use() -> None:
         copies.extend((copy.copy(fusion), copy.deepcopy(fusion)))
         copies.append(pickle.loads(pickle.dumps(fusion)))
 
-    points = _interleaved(0, _call(_base(), ("rate", 0.45, 0.2)), lambda: None)["points"]
-    _interleaved(points // 2, _call(fusion, ("rate", 0.45, 0.2)), take)
+    points = interleaved(0, _call(_base(), ("rate", 0.45, 0.2)), lambda: None)["points"]
+    interleaved(points // 2, _call(fusion, ("rate", 0.45, 0.2)), take)
     assert len(copies) == 3
     for other in copies:
         assert other._callers == []
@@ -295,7 +259,7 @@ def test_without_history_the_calls_are_not_checked() -> None:
     # without history keeps no callers and a handler's update inside one runs.
     fusion = PlanarFusion(t0=0.0)
     fusion.update_odometry(0.1, 1.0, 0.0, **ODO)
-    out = _interleaved(
+    out = interleaved(
         3,
         lambda: fusion.update_odometry(0.2, 1.0, 0.0, **ODO),
         lambda: fusion.update_yaw_rate(0.3, 0.1, variance=RATE_VAR),

@@ -19,48 +19,17 @@ point where CPython runs a signal handler (``interrupt_points.DELIVERY``).
 from __future__ import annotations
 
 import copy
-import gc
 import math
 import pickle
 import sys
 import threading
 import time
-from collections.abc import Callable
 from typing import Any
 
 import numpy as np
 
-from interrupt_points import DELIVERY
+from interrupt_points import interleaved
 from navkit.mapping import LaserScan, ScanMapper
-
-
-def _interleaved(k: int, main: Callable[[], Any], handler: Callable[[], Any]) -> dict[str, Any]:
-    """Run ``main``, running ``handler`` at its ``k``-th delivery point, as a signal would."""
-    seen = 0
-    out: dict[str, Any] = {}
-
-    def profile(frame: Any, event: str, arg: Any) -> None:
-        nonlocal seen
-        if event in DELIVERY:
-            seen += 1
-            if seen == k:
-                sys.setprofile(None)
-                try:
-                    out["h"] = handler()
-                except RuntimeError as error:
-                    out["h"] = error
-
-    enabled = gc.isenabled()
-    gc.disable()
-    sys.setprofile(profile)
-    try:
-        out["m"] = main()
-    finally:
-        sys.setprofile(None)
-        if enabled:
-            gc.enable()
-    out["points"] = seen
-    return out
 
 
 def _room_scan(x: float, y: float, beams: int = 90) -> LaserScan:
@@ -105,15 +74,19 @@ def test_a_handlers_update_at_every_point_of_an_update_is_refused_or_taken_whole
         both.update(second[0], odometry=second[1])
         orders.append(_state(both))
     probe = copy.deepcopy(base)
-    points = _interleaved(0, lambda: probe.update(SCAN_A, odometry=ODOM_A), lambda: None)["points"]
+    first = interleaved(
+        0, lambda: probe.update(SCAN_A, odometry=ODOM_A), lambda: None, catch_main=False
+    )
+    points = first["points"]
     assert points > 50
     refused = 0
     for k in range(1, points + 1):
         mapper = copy.deepcopy(base)
-        out = _interleaved(
+        out = interleaved(
             k,
             lambda m=mapper: m.update(SCAN_A, odometry=ODOM_A),  # type: ignore[misc]
             lambda m=mapper: m.update(SCAN_B, odometry=ODOM_B),  # type: ignore[misc]
+            catch_main=False,
         )
         assert mapper._callers == []
         if "h" not in out:  # fewer points this time
@@ -140,8 +113,11 @@ def test_copies_and_pickles_of_a_mapper_in_use_are_not_in_use() -> None:
         assert mapper._callers  # in use: the copies are taken inside the update
 
     probe = copy.deepcopy(mapper)
-    points = _interleaved(0, lambda: probe.update(SCAN_A, odometry=ODOM_A), lambda: None)["points"]
-    _interleaved(points // 2, lambda: mapper.update(SCAN_A, odometry=ODOM_A), take)
+    first = interleaved(
+        0, lambda: probe.update(SCAN_A, odometry=ODOM_A), lambda: None, catch_main=False
+    )
+    points = first["points"]
+    interleaved(points // 2, lambda: mapper.update(SCAN_A, odometry=ODOM_A), take, catch_main=False)
     assert len(copies) == 3
     for other in copies:
         assert other._callers == []

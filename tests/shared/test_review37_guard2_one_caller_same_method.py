@@ -15,47 +15,13 @@ The interleavings are forced at every delivery point of the runner
 
 from __future__ import annotations
 
-import gc
-import sys
-from collections.abc import Callable
 from typing import Any
 
 import numpy as np
 
-from interrupt_points import DELIVERY
+from interrupt_points import interleaved
 from navkit._shared.locks import one_caller
 from navkit.planning import FieldDStar
-
-
-def _interleaved(k: int, main: Callable[[], Any], handler: Callable[[], Any]) -> dict[str, Any]:
-    """Run ``main``, running ``handler`` at its ``k``-th delivery point, as a signal would."""
-    seen = 0
-    out: dict[str, Any] = {}
-
-    def profile(frame: Any, event: str, arg: Any) -> None:
-        nonlocal seen
-        if event in DELIVERY:
-            seen += 1
-            if seen == k:
-                sys.setprofile(None)
-                try:
-                    out["h"] = handler()
-                except RuntimeError as error:
-                    out["h"] = error
-
-    enabled = gc.isenabled()
-    gc.disable()
-    sys.setprofile(profile)
-    try:
-        out["m"] = main()
-    except RuntimeError as error:
-        out["m"] = error
-    finally:
-        sys.setprofile(None)
-        if enabled:
-            gc.enable()
-    out["points"] = seen
-    return out
 
 
 class _Counter:
@@ -72,12 +38,12 @@ class _Counter:
 
 
 def test_a_handlers_refused_call_of_the_same_method_leaves_the_runner_running() -> None:
-    points = _interleaved(0, _Counter().bump, lambda: None)["points"]
+    points = interleaved(0, _Counter().bump, lambda: None)["points"]
     assert points >= 3
     refused_handlers = 0
     for k in range(1, points + 1):
         counter = _Counter()
-        out = _interleaved(k, counter.bump, counter.bump)
+        out = interleaved(k, counter.bump, counter.bump)
         handler = out.get("h")
         # The runner is never refused by a handler's call that was itself refused.
         if isinstance(handler, RuntimeError):
@@ -99,12 +65,12 @@ def test_a_field_dstar_plan_goes_on_when_a_handlers_plan_is_refused() -> None:
     costs = 1.0 + rng.random((12, 15))
     want = FieldDStar(costs).plan((0, 0), (12, 15))
     probe = FieldDStar(costs)
-    points = _interleaved(0, lambda: probe.plan((0, 0), (12, 15)), lambda: None)["points"]
+    points = interleaved(0, lambda: probe.plan((0, 0), (12, 15)), lambda: None)["points"]
     refused = 0
     # The guard's own points come first: the append's return is among the first ten.
     for k in range(1, min(points, 10) + 1):
         planner = FieldDStar(costs)
-        out = _interleaved(k, lambda p=planner: p.plan((0, 0), (12, 15)),  # type: ignore[misc]
+        out = interleaved(k, lambda p=planner: p.plan((0, 0), (12, 15)),  # type: ignore[misc]
                            lambda p=planner: p.plan((12, 0), (0, 15)))  # type: ignore[misc]  # fmt: skip
         if isinstance(out.get("h"), RuntimeError):
             refused += 1

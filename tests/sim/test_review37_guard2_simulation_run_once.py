@@ -19,51 +19,17 @@ within the first run's start.
 
 from __future__ import annotations
 
-import gc
-import sys
 import threading
-from collections.abc import Callable
 from typing import Any
 
 import pytest
 from shapely.geometry import box
 
-from interrupt_points import DELIVERY
+from interrupt_points import interleaved
 from navkit.estimation import PlanarFusion
 from navkit.geometry import Twist2D
 from navkit.kinematics import DiffDrive
 from navkit.sim import Compass, Observation, Robot, Simulation, World
-
-
-def _interleaved(k: int, main: Callable[[], Any], handler: Callable[[], Any]) -> dict[str, Any]:
-    """Run ``main``, running ``handler`` at its ``k``-th delivery point, as a signal would."""
-    seen = 0
-    out: dict[str, Any] = {}
-
-    def profile(frame: Any, event: str, arg: Any) -> None:
-        nonlocal seen
-        if event in DELIVERY:
-            seen += 1
-            if seen == k:
-                sys.setprofile(None)
-                try:
-                    out["h"] = handler()
-                except RuntimeError as error:
-                    out["h"] = error
-
-    enabled = gc.isenabled()
-    gc.disable()
-    sys.setprofile(profile)
-    try:
-        out["m"] = main()
-    except RuntimeError as error:
-        out["m"] = error
-    finally:
-        sys.setprofile(None)
-        if enabled:
-            gc.enable()
-    out["points"] = seen
-    return out
 
 
 class _Turning:
@@ -100,11 +66,11 @@ def test_a_run_started_while_a_run_starts_is_refused_and_the_first_runs_alone(
     want = make().run()
     # The run's start: the first points of the whole run (a run has thousands).
     window = 60
-    assert _interleaved(0, make().run, lambda: None)["points"] > window
+    assert interleaved(0, make().run, lambda: None)["points"] > window
     refused = 0
     for k in range(1, window + 1):
         sim = make()
-        out = _interleaved(k, sim.run, sim.run)
+        out = interleaved(k, sim.run, sim.run)
         traces = [out[w] for w in ("m", "h") if w in out and not isinstance(out[w], RuntimeError)]
         errors = [out[w] for w in ("m", "h") if isinstance(out.get(w), RuntimeError)]
         # Exactly one run, the one a fresh Simulation gives; the other refused.
