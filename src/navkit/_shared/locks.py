@@ -15,10 +15,11 @@ from __future__ import annotations
 
 import functools
 import os
+import sys
 import threading
 from _thread import get_ident as _get_ident
 from collections.abc import Callable
-from types import TracebackType
+from types import FrameType, TracebackType
 from typing import Any, Concatenate, ParamSpec, Protocol, TypeVar
 
 __all__ = ["ForkSafeLock", "one_caller"]
@@ -58,8 +59,11 @@ def one_caller(
     Appending is atomic, so of two
     threads calling at once exactly one runs and the other gets
     ``RuntimeError``, which says whether the call under way is another
-    thread's or the same thread's (a signal handler's). The cost is about
-    half a microsecond a call: for methods of milliseconds.
+    thread's or the same thread's (a signal handler's), or, in a forked
+    child, was a thread's of the parent when it forked: that call never ends
+    here, and the object, perhaps half-updated, refuses every call (review
+    37; worked out on the refusal only). The cost is about half a
+    microsecond a call: for methods of milliseconds.
 
     Examples
     --------
@@ -94,7 +98,7 @@ def one_caller(
         try:
             callers.append(token)
             if callers[0] is not token:
-                raise RuntimeError(_in_use(type(self).__name__, name, callers[0]))
+                raise RuntimeError(_in_use(type(self).__name__, name, callers))
             return method(self, *args, **kwargs)
         finally:
             callers.remove(token)
@@ -102,12 +106,29 @@ def one_caller(
     return guarded
 
 
-def _in_use(cls: str, name: str, other: tuple[Any, ...]) -> str:
-    """The message of a call ``name`` refused because ``other`` (a token) is under way.
+#: The code of every method :func:`one_caller` makes (see :func:`_running_here`).
+_GUARDED_CODE = one_caller(lambda self: None).__code__
 
-    ``other`` starts with the thread ident and the method name of the call under way.
+
+def _in_use(cls: str, name: str, callers: list[Any]) -> str:
+    """The message of a call ``name`` refused because ``callers[0]`` (a token) is under way.
+
+    A token starts with the thread ident and the method name of its call.
+    Worked out on the refusal only: whether the call is under way in this
+    process (see :func:`_running_here`), and then in which thread.
     """
+    other = callers[0]
     ident, running = other[0], other[1]
+    if not _running_here(other) and any(token is other for token in callers):
+        # Still listed, yet no thread of this process is in its call: its thread
+        # was another of the parent's, which a forked child does not have (a
+        # token is taken out only by its own call's ``finally``). Read the list
+        # after the frames: a call that ended between the two is not listed.
+        return (
+            f"{cls}.{name} was called while a call of this {cls}'s {running} was under "
+            "way in a thread of the parent process when this process was forked: "
+            f"the {cls} may be half-updated, and takes no more calls here (make a new one)"
+        )
     if ident == threading.get_ident():
         return (
             f"{cls}.{name} was called during this {cls}'s own {running}, in the same "
@@ -118,6 +139,24 @@ def _in_use(cls: str, name: str, other: tuple[Any, ...]) -> str:
         f"a {cls} is used by one thread at a time (one per thread, or a lock of your "
         "own around its calls)"
     )
+
+
+def _running_here(token: tuple[Any, ...]) -> bool:
+    """Whether some thread of this process is inside the guarded call that made ``token``.
+
+    A thread in a call has a frame of ``guarded`` holding the token, among the
+    frames ``sys._current_frames`` gives (a thread made outside Python too,
+    while it runs Python code). In a forked child, only the forking thread's
+    frames are there. The thread ident alone cannot tell: a thread started in
+    the child may get the ident of one of the parent's (its stack reused).
+    """
+    for top in sys._current_frames().values():
+        frame: FrameType | None = top
+        while frame is not None:
+            if frame.f_code is _GUARDED_CODE and frame.f_locals.get("token") is token:
+                return True
+            frame = frame.f_back
+    return False
 
 
 class ForkSafeLock:
