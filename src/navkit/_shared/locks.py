@@ -98,7 +98,7 @@ def one_caller(
         try:
             callers.append(token)
             if callers[0] is not token:
-                raise RuntimeError(_in_use(type(self).__name__, name, callers))
+                raise RuntimeError(_in_use(type(self).__name__, name, callers[0], callers))
             return method(self, *args, **kwargs)
         finally:
             callers.remove(token)
@@ -106,24 +106,29 @@ def one_caller(
     return guarded
 
 
-#: The code of every method :func:`one_caller` makes (see :func:`_running_here`).
-_GUARDED_CODE = one_caller(lambda self: None).__code__
+#: This process's id when this module was imported: another one is a forked child's.
+_PID = os.getpid()
 
 
-def _in_use(cls: str, name: str, callers: list[Any]) -> str:
-    """The message of a call ``name`` refused because ``callers[0]`` (a token) is under way.
+def _in_use(cls: str, name: str, other: tuple[Any, ...], callers: list[Any] | None = None) -> str:
+    """The message of a call ``name`` refused because ``other`` (a token) is under way.
 
-    A token starts with the thread ident and the method name of its call.
-    Worked out on the refusal only: whether the call is under way in this
-    process (see :func:`_running_here`), and then in which thread.
+    ``other`` starts with the thread ident and the method name of the call
+    under way; its call holds it in a local variable named ``token`` (see
+    :func:`_running_here`). ``callers``, the list it was read from, if given,
+    is read again (a call that ended meanwhile is not listed). Worked out on
+    the refusal only: in a forked child, whether the call is under way in this
+    process at all, and then in which thread.
     """
-    other = callers[0]
     ident, running = other[0], other[1]
-    if not _running_here(other) and any(token is other for token in callers):
-        # Still listed, yet no thread of this process is in its call: its thread
-        # was another of the parent's, which a forked child does not have (a
-        # token is taken out only by its own call's ``finally``). Read the list
-        # after the frames: a call that ended between the two is not listed.
+    if (
+        os.getpid() != _PID
+        and not _running_here(other)
+        and (callers is None or any(listed is other for listed in callers))
+    ):
+        # A forked child, and no thread of it is in the call: its thread was
+        # another of the parent's, which the child does not have (a token is
+        # taken out only by its own call's ``finally``).
         return (
             f"{cls}.{name} was called while a call of this {cls}'s {running} was under "
             "way in a thread of the parent process when this process was forked: "
@@ -141,19 +146,22 @@ def _in_use(cls: str, name: str, callers: list[Any]) -> str:
     )
 
 
-def _running_here(token: tuple[Any, ...]) -> bool:
-    """Whether some thread of this process is inside the guarded call that made ``token``.
+def _running_here(wanted: tuple[Any, ...]) -> bool:
+    """Whether some thread of this process is inside the guarded call that made ``wanted``.
 
-    A thread in a call has a frame of ``guarded`` holding the token, among the
-    frames ``sys._current_frames`` gives (a thread made outside Python too,
-    while it runs Python code). In a forked child, only the forking thread's
-    frames are there. The thread ident alone cannot tell: a thread started in
-    the child may get the ident of one of the parent's (its stack reused).
+    A thread in a call has a frame holding the token in its local ``token``
+    (``one_caller``'s ``guarded``, or a class's own guard written the same
+    way; this function's parameter and :func:`_in_use`'s are named
+    otherwise), among the frames ``sys._current_frames`` gives (a thread made
+    outside Python too, while it runs Python code). In a forked child, only
+    the forking thread's frames are there. The thread ident alone cannot
+    tell: a thread started in the child may get the ident of one of the
+    parent's (glibc reuses the stacks of the threads the child lacks).
     """
     for top in sys._current_frames().values():
         frame: FrameType | None = top
         while frame is not None:
-            if frame.f_code is _GUARDED_CODE and frame.f_locals.get("token") is token:
+            if "token" in frame.f_code.co_varnames and frame.f_locals.get("token") is wanted:
                 return True
             frame = frame.f_back
     return False
