@@ -465,16 +465,15 @@ def active() -> bool:
         return bool(_SAVED)
 
 
-def _before_fork() -> None:
-    _LOCK.acquire()
-
-
-def _after_fork_in_parent() -> None:
-    _LOCK.release()
-
-
 def _after_fork_in_child() -> None:
-    """Keep only the forking thread's count; with none, numba's own methods are back."""
+    """Keep only the forking thread's count; with none, numba's own methods are back.
+
+    :data:`_LOCK` is taken across a fork by :mod:`navkit._shared.compile_gc`'s
+    fork hooks (which import this module), under their hold of signals: taken
+    and let go here, outside it, a Ctrl-C in the after hook (a second one, the
+    first having cut compile_gc's before hook short) left it held for good
+    (review 37).
+    """
     global _LOCK, _COUNT
     _LOCK = threading.RLock()  # the parent's is held, by this thread's twin
     _COUNT = getattr(_THREAD, "count", 0)
@@ -483,8 +482,4 @@ def _after_fork_in_child() -> None:
 
 
 if hasattr(os, "register_at_fork"):  # not on Windows, which cannot fork
-    os.register_at_fork(
-        before=_before_fork,
-        after_in_parent=_after_fork_in_parent,
-        after_in_child=_after_fork_in_child,
-    )
+    os.register_at_fork(after_in_child=_after_fork_in_child)
