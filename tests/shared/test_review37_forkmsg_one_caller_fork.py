@@ -117,3 +117,63 @@ def test_the_refusal_messages_in_one_process_are_unchanged() -> None:
             assert out["m"] == 1
         assert box._callers == []
     assert refused >= 1
+
+
+# A class guarding its calls inline, as PlanarFusion does (its token in a local
+# named ``token``, ``_in_use`` given the token alone).
+_INLINE = textwrap.dedent(
+    """
+    import faulthandler, json, os, threading
+    from _thread import get_ident
+    faulthandler.dump_traceback_later(60, exit=True)
+    from navkit._shared.locks import _in_use
+
+    class Filter:
+        def __init__(self):
+            self._callers = []
+
+        def step(self, inside=None, leave=None):
+            callers = self._callers
+            token = (get_ident(), "step", object())
+            try:
+                callers.append(token)
+                if callers[0] is not token:
+                    raise RuntimeError(_in_use("Filter", "step", callers[0]))
+                if inside is not None:
+                    inside.set()
+                    leave.wait(30)
+            finally:
+                callers.remove(token)
+
+    def message(call):
+        try:
+            call()
+        except RuntimeError as error:
+            return str(error)
+        return None
+
+    f = Filter()
+    inside, leave = threading.Event(), threading.Event()
+    worker = threading.Thread(target=f.step, args=(inside, leave))
+    worker.start()
+    assert inside.wait(30)
+    parent = message(f.step)
+    read, write = os.pipe()
+    pid = os.fork()
+    if pid == 0:
+        os.write(write, json.dumps(message(f.step)).encode())
+        os._exit(0)
+    os.close(write)
+    child = json.loads(os.read(read, 100000).decode())
+    os.waitpid(pid, 0)
+    leave.set()
+    worker.join(30)
+    print(json.dumps([parent, child]))
+    """
+)
+
+
+def test_an_inline_guard_given_the_token_alone_tells_the_fork_too() -> None:
+    parent, child = probe_outcome(_INLINE, timeout=120)
+    assert "another thread was in this Filter's step" in parent
+    assert "parent process when this process was forked" in child, child
