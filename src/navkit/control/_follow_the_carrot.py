@@ -9,7 +9,9 @@ import numpy as np
 
 from navkit._shared.deprecation import renamed_keyword
 from navkit.control._path_following import (
+    PathState,
     PathTracker,
+    Phase,
     Polyline,
     body_velocity,
     bounded,
@@ -29,7 +31,17 @@ _MAX_FOLDS = 64
 _CARROT_RESOLUTION = 2.0**-46
 
 
-class FollowTheCarrot(PathTracker):
+class _CarrotState(PathState):
+    """:class:`PathState` and the arc length of the last carrot (``carrot_s``)."""
+
+    __slots__ = ("carrot_s",)
+
+    def __init__(self, line: Polyline | None, goal_heading: float | None, phase: Phase) -> None:
+        super().__init__(line, goal_heading, phase)
+        self.carrot_s = 0.0
+
+
+class FollowTheCarrot(PathTracker[_CarrotState]):
     """Follow-the-carrot path tracker in three phases.
 
     The carrot is the point ``carrot_distance`` further along the path (by arc
@@ -110,12 +122,16 @@ class FollowTheCarrot(PathTracker):
 
     A tracker is not thread-safe: one thread at a time may call its methods
     (:meth:`set_path`, :meth:`step`), and a call made while another runs is not
-    detected (a check would cost about a tenth of a step): a :meth:`set_path`
-    landing inside a :meth:`step` (from another thread or a signal handler)
-    leaves the new path with the old one's progress and target. In a ROS 2
-    node, give the path subscription and the control timer one mutually
-    exclusive callback group. Different trackers may run in different
-    threads at once.
+    detected (a check would cost about a tenth of a step). A :meth:`set_path`
+    and a :meth:`step` overlapping (from another thread or a signal handler)
+    are safe all the same: :meth:`set_path` installs the new path's state
+    whole, and a step works on the state it read as it began, so its command is
+    for the old path (the new one, had the :meth:`set_path` come first) and the
+    next step follows the new path from its start. Two steps at once are
+    not: they share the path's progress. In a ROS 2 node the path subscription
+    may run in a callback group of its own; the control timer's must not let
+    its callback overlap itself (mutually exclusive, the default). Different
+    trackers may run in different threads at once.
 
     Subclasses may add attributes (their own ``__slots__`` or an instance
     ``__dict__``) and methods, and override the public methods, calling the
@@ -152,7 +168,6 @@ class FollowTheCarrot(PathTracker):
         "_align_angle",
         "_align_tolerance",
         "_carrot_distance",
-        "_carrot_s",
         "_heading_gain",
         "_max_omega",
         "_max_speed",
@@ -187,7 +202,6 @@ class FollowTheCarrot(PathTracker):
         self._align_tolerance = bounded(
             align_tolerance, "align_tolerance", 0.0, self._align_angle
         )
-        self._carrot_s = 0.0
 
     def __repr__(self) -> str:
         # Every option, as the planners and estimators print theirs (eval gives a twin).
@@ -232,22 +246,31 @@ class FollowTheCarrot(PathTracker):
                 "longer carrot_distance"
             )
 
-    def _reset(self) -> None:
+    def _new_state(
+        self, line: Polyline | None, goal_heading: float | None, phase: Phase
+    ) -> _CarrotState:
+        return _CarrotState(line, goal_heading, phase)
+
+    def _start_phase(self) -> Phase:
         # A differential robot first turns to face the path (phase 1).
-        self._phase = "rotate" if self._drive == "diff" else "track"
-        self._carrot_s = 0.0
+        return "rotate" if self._drive == "diff" else "track"
 
     def _turn(self, err: float, dt: float) -> float:
         rate = min(self._heading_gain * abs(err), self._max_omega, abs(err) / dt)
         return math.copysign(rate, err)
 
     def _command(
-        self, line: Polyline, pose: Pose2D, dt: float, measured: Twist2D | None
+        self,
+        state: _CarrotState,
+        line: Polyline,
+        pose: Pose2D,
+        dt: float,
+        measured: Twist2D | None,
     ) -> Twist2D:
         # The search for the closest point reaches the last carrot, as documented for
         # progress: with a carrot more than SEARCH_AHEAD ahead, a robot that drove to
         # it would otherwise project behind it, onto the same carrot, and stop there.
-        s = self._advance(line, pose, self._carrot_s)
+        s = self._advance(state, line, pose, state.carrot_s)
         # The carrot as an offset from the robot, subtracted first (and as a point):
         # the command is the same wherever the problem is translated, where the
         # carrot's world coordinates lost 1e-8 rad/s to rounding in a UTM frame.
@@ -264,32 +287,32 @@ class FollowTheCarrot(PathTracker):
             # and s must grow: a carrot distance below half an ulp of s left it where
             # it was, and the step never returned. The next step goes on from there.
             s += self._carrot_distance
-            self._progress = s
+            state.progress = s
             folds += 1
             dx, dy, cx, cy = line.offset_at(s + self._carrot_distance, pose.x, pose.y)
-        self._carrot_s = min(s + self._carrot_distance, line.length)
+        state.carrot_s = min(s + self._carrot_distance, line.length)
         gx, gy = line.point_at(line.length)
         near_end = s + self._carrot_distance >= line.length
-        if self._phase == "final" or (
+        if state.phase == "final" or (
             near_end and math.hypot(gx - pose.x, gy - pose.y) <= self._goal_tolerance
         ):
-            self._target = (gx, gy)
-            return self._finish(pose, dt, self._turn)
-        self._target = (cx, cy)
+            state.target = (gx, gy)
+            return self._finish(state, pose, dt, self._turn)
+        state.target = (cx, cy)
         dist = math.hypot(dx, dy)
         speed = min(self._max_speed, dist / dt)
         if self._drive == "omni":
-            self._phase = "track"
+            state.phase = "track"
             if dist == 0.0:
                 return Twist2D(0.0, 0.0, 0.0)
             vx, vy = body_velocity(dx * speed / dist, dy * speed / dist, pose.theta)
             return Twist2D(vx, vy, 0.0)
         err = wrap(math.atan2(dy, dx) - pose.theta) if dist > 0.0 else 0.0
-        if self._phase == "rotate":
+        if state.phase == "rotate":
             if abs(err) > self._align_tolerance:
                 return Twist2D(0.0, 0.0, self._turn(err, dt))
-            self._phase = "track"
+            state.phase = "track"
         elif abs(err) > self._align_angle:
-            self._phase = "rotate"
+            state.phase = "rotate"
             return Twist2D(0.0, 0.0, self._turn(err, dt))
         return Twist2D(speed, 0.0, self._turn(err, dt))

@@ -9,7 +9,9 @@ from typing import Literal
 from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.validation import finite_float
 from navkit.control._path_following import (
+    PathState,
     PathTracker,
+    Phase,
     Polyline,
     body_velocity,
     bounded,
@@ -31,7 +33,17 @@ def _renamed_property(old: str, new: str) -> None:
     )
 
 
-class OnOffTracker(PathTracker):
+class _WaypointState(PathState):
+    """:class:`PathState` and the index of the waypoint approached (``waypoint``)."""
+
+    __slots__ = ("waypoint",)
+
+    def __init__(self, line: Polyline | None, goal_heading: float | None, phase: Phase) -> None:
+        super().__init__(line, goal_heading, phase)
+        self.waypoint = 0
+
+
+class OnOffTracker(PathTracker[_WaypointState]):
     """ON-OFF waypoint tracker: turn in place, or drive straight, never both.
 
     The path's points are waypoints taken in order. For each one, a
@@ -94,12 +106,16 @@ class OnOffTracker(PathTracker):
 
     A tracker is not thread-safe: one thread at a time may call its methods
     (:meth:`set_path`, :meth:`step`), and a call made while another runs is not
-    detected (a check would cost about a tenth of a step): a :meth:`set_path`
-    landing inside a :meth:`step` (from another thread or a signal handler)
-    leaves the new path with the old one's progress and target. In a ROS 2
-    node, give the path subscription and the control timer one mutually
-    exclusive callback group. Different trackers may run in different
-    threads at once.
+    detected (a check would cost about a tenth of a step). A :meth:`set_path`
+    and a :meth:`step` overlapping (from another thread or a signal handler)
+    are safe all the same: :meth:`set_path` installs the new path's state
+    whole, and a step works on the state it read as it began, so its command is
+    for the old path (the new one, had the :meth:`set_path` come first) and the
+    next step follows the new path from its start. Two steps at once are
+    not: they share the path's progress. In a ROS 2 node the path subscription
+    may run in a callback group of its own; the control timer's must not let
+    its callback overlap itself (mutually exclusive, the default). Different
+    trackers may run in different threads at once.
 
     Subclasses may add attributes (their own ``__slots__`` or an instance
     ``__dict__``) and methods, and override the public methods, calling the
@@ -131,7 +147,7 @@ class OnOffTracker(PathTracker):
     """
 
     # The private names predate the option renames; kept so that pickles load.
-    __slots__ = ("_heading_tolerance", "_speed", "_turn_rate", "_waypoint")
+    __slots__ = ("_heading_tolerance", "_speed", "_turn_rate")
 
     def __init__(
         self,
@@ -163,7 +179,6 @@ class OnOffTracker(PathTracker):
         if not 0.0 < angle < math.pi / 2:
             raise ValueError(f"{angle_name} must be in (0, π/2), got {angle}")
         self._heading_tolerance = angle
-        self._waypoint = 0
 
     def __repr__(self) -> str:
         # Every option, as the planners and estimators print theirs (eval gives a twin).
@@ -228,42 +243,49 @@ class OnOffTracker(PathTracker):
     def waypoint(self) -> int:
         """Index in :attr:`path_xy` of the waypoint being approached (its length when all
         are reached)."""
-        return self._waypoint
+        return self._state.waypoint
 
-    def _reset(self) -> None:
-        self._waypoint = 0
+    def _new_state(
+        self, line: Polyline | None, goal_heading: float | None, phase: Phase
+    ) -> _WaypointState:
+        return _WaypointState(line, goal_heading, phase)
 
     def _turn(self, err: float, dt: float) -> float:
         return math.copysign(min(self._turn_rate, abs(err) / dt), err)
 
     def _command(
-        self, line: Polyline, pose: Pose2D, dt: float, measured: Twist2D | None
+        self,
+        state: _WaypointState,
+        line: Polyline,
+        pose: Pose2D,
+        dt: float,
+        measured: Twist2D | None,
     ) -> Twist2D:
         pts = line.points_xy
         k = pts.shape[0]
-        i = self._waypoint
+        i = state.waypoint
         while i < k and math.hypot(pts[i, 0] - pose.x, pts[i, 1] - pose.y) <= self._goal_tolerance:
             i += 1
-        self._waypoint = i
+        state.waypoint = i
         if i == k:
-            self._progress = line.length
-            self._target = (float(pts[-1, 0]), float(pts[-1, 1]))
-            return self._finish(pose, dt, self._turn)
+            state.progress = line.length
+            state.target = (float(pts[-1, 0]), float(pts[-1, 1]))
+            return self._finish(state, pose, dt, self._turn)
         tx = float(pts[i, 0])
         ty = float(pts[i, 1])
-        self._target = (tx, ty)
-        self._progress = float(line.cum[i - 1]) if i > 0 else 0.0
+        state.target = (tx, ty)
+        state.progress = float(line.cum[i - 1]) if i > 0 else 0.0
         dx = tx - pose.x
         dy = ty - pose.y
         dist = math.hypot(dx, dy)
         speed = min(self._speed, dist / dt)
         if self._drive == "omni":
-            self._phase = "track"
+            state.phase = "track"
             vx, vy = body_velocity(dx * speed / dist, dy * speed / dist, pose.theta)
             return Twist2D(vx, vy, 0.0)
         err = wrap(math.atan2(dy, dx) - pose.theta)
         if abs(err) >= self._heading_tolerance:
-            self._phase = "rotate"
+            state.phase = "rotate"
             return Twist2D(0.0, 0.0, self._turn(err, dt))
-        self._phase = "track"
+        state.phase = "track"
         return Twist2D(speed, 0.0, 0.0)

@@ -9,6 +9,9 @@
   lookahead point (first crossing of a circle around the robot).
 * :func:`pursuit_curvature` — the curvature of the arc that leaves the robot
   along its heading and passes through a point.
+* :class:`PathState` — what a tracker knows of its current path (the path,
+  progress, phase, target, ...), in one object that :meth:`PathTracker.set_path`
+  builds whole and installs with one attribute store.
 * :class:`PathTracker` — the stateful skeleton of :class:`FollowTheCarrot`,
   :class:`OnOffTracker` and :class:`RegulatedPurePursuit`: ``set_path``, ``step``
   (validation, the latched ``done``), ``phase``, the common options.
@@ -20,14 +23,14 @@ import math
 import warnings
 from abc import ABC, abstractmethod
 from collections.abc import Mapping
-from typing import Any, Literal
+from typing import Any, Generic, Literal, TypeVar, cast
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from navkit._shared.angles import wrap_float as wrap
 from navkit._shared.deprecation import renamed_keyword
-from navkit._shared.dunders import slot_state
+from navkit._shared.frozen import restore_slots
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, finite_float, positive_float
 from navkit.control._path_following_kernels import (
@@ -45,6 +48,7 @@ __all__ = [
     "SEARCH_AHEAD",
     "SEARCH_DETOUR",
     "ZERO_TWIST",
+    "PathState",
     "PathTracker",
     "Phase",
     "Polyline",
@@ -250,27 +254,89 @@ class Polyline:
         return None if s < 0.0 else s
 
 
-class PathTracker(ABC):
+class PathState:
+    """What a tracker knows of its current path: one object per :meth:`PathTracker.set_path`.
+
+    ``set_path`` builds it whole and installs it with one attribute store;
+    ``step`` reads the tracker's state once, at its start, and reads and writes
+    only that object. So a ``set_path`` landing inside a ``step`` (another
+    thread, a signal handler) is not overwritten by the step's writes: that
+    step's command is for the old path, and the next step follows the new one
+    from its start. Trackers keeping more per-path state subclass it (each
+    slot ``name`` pickles as the tracker's old attribute ``_name``).
+
+    Parameters
+    ----------
+    line : Polyline or None
+        The path (None before the first ``set_path``).
+    goal_heading : float or None
+        The goal yaw (rad), or None.
+    phase : str
+        The phase to start in.
+    """
+
+    __slots__ = ("goal_heading", "line", "phase", "progress", "target")
+
+    def __init__(self, line: Polyline | None, goal_heading: float | None, phase: Phase) -> None:
+        self.line = line
+        self.goal_heading = goal_heading
+        self.phase: Phase = phase
+        self.progress = 0.0
+        self.target: tuple[float, float] | None = None
+
+    @classmethod
+    def fields(cls) -> tuple[str, ...]:
+        """Every slot of the class and its bases."""
+        return tuple(
+            name for klass in cls.__mro__ for name in getattr(klass, "__slots__", ())
+        )
+
+
+S = TypeVar("S", bound=PathState)
+
+
+class PathTracker(ABC, Generic[S]):
     """Skeleton of a stateful path tracker; subclasses implement :meth:`_command`.
 
-    Holds the path (:meth:`set_path`), the progress along it, the phase, and
-    turns :meth:`step` into validated calls of :meth:`_command`. Once the goal
-    is reached :attr:`done` stays set and :meth:`step` returns a zero twist
-    until the next :meth:`set_path`.
+    Holds the path (:meth:`set_path`), the progress along it, the phase (all
+    in one :class:`PathState`, :attr:`_state`), and turns :meth:`step` into
+    validated calls of :meth:`_command` on that state. Once the goal is reached
+    :attr:`done` stays set and :meth:`step` returns a zero twist until the next
+    :meth:`set_path`.
+
+    Copies and pickles hold the state's fields as the tracker's attributes
+    ``_line``, ``_progress``, ... (as before the state object: pickles load
+    both ways), and a copy gets a state of its own.
     """
 
     __slots__ = (
         "__weakref__",  # weakref.ref(obj) for callbacks and caches (review 36)
         "_drive",
-        "_goal_heading",
         "_goal_tolerance",
-        "_line",
-        "_phase",
-        "_progress",
-        "_target",
+        "_state",
         "_yaw_tolerance",
     )
-    __getstate__ = slot_state  # pickle protocols 0 and 1 too
+
+    def __getstate__(self) -> object:
+        # Python's default state (pickle protocols 0 and 1 too, see slot_state) with
+        # the per-path state's fields as the attributes they were before it: a copy
+        # gets a state object of its own, and pickles load in older releases too.
+        instance, slots = cast(
+            "tuple[dict[str, Any] | None, dict[str, Any]]", object.__getstate__(self)
+        )
+        state = slots.pop("_state")
+        for name in state.fields():
+            slots["_" + name] = getattr(state, name)
+        return instance, slots
+
+    def __setstate__(self, state: Any) -> None:
+        instance, slots = state if isinstance(state, tuple) else (None, state)
+        slots = dict(slots)
+        path = self._new_state(None, None, "idle")
+        for name in path.fields():
+            if "_" + name in slots:
+                setattr(path, name, slots.pop("_" + name))
+        restore_slots(self, (instance, {**slots, "_state": path}))
 
     def __init__(self, *, drive: Any, goal_tolerance: Any, yaw_tolerance: Any) -> None:
         if not isinstance(drive, str) or drive not in ("diff", "omni"):
@@ -278,11 +344,11 @@ class PathTracker(ABC):
         self._drive: Literal["diff", "omni"] = "diff" if drive == "diff" else "omni"
         self._goal_tolerance = bounded(goal_tolerance, "goal_tolerance", 0.0, 1e4)
         self._yaw_tolerance = bounded(yaw_tolerance, "yaw_tolerance", 0.0, math.pi)
-        self._line: Polyline | None = None
-        self._goal_heading: float | None = None
-        self._phase: Phase = "idle"
-        self._progress = 0.0
-        self._target: tuple[float, float] | None = None
+        self._state: S = self._new_state(None, None, "idle")
+
+    @abstractmethod
+    def _new_state(self, line: Polyline | None, goal_heading: float | None, phase: Phase) -> S:
+        """A fresh per-path state of the tracker's kind (reads no option)."""
 
     # ----------------------------------------------------------------- state
     @property
@@ -303,7 +369,7 @@ class PathTracker(ABC):
     @property
     def done(self) -> bool:
         """True once the goal (position, and yaw if one was given) is reached."""
-        return self._phase == "done"
+        return self._state.phase == "done"
 
     @property
     def phase(self) -> Phase:
@@ -313,17 +379,18 @@ class PathTracker(ABC):
         path), ``"track"`` (moving along it), ``"final"`` (at the goal, turning
         in place to the goal yaw) or ``"done"``.
         """
-        return self._phase
+        return self._state.phase
 
     @property
     def path_xy(self) -> FloatArray | None:
         """The path's points ``(K, 2)`` (read-only, consecutive duplicates dropped), or None."""
-        return None if self._line is None else self._line.points_xy
+        line = self._state.line
+        return None if line is None else line.points_xy
 
     @property
     def goal_yaw(self) -> float | None:
         """The yaw (rad, wrapped to (-π, π]) to turn to at the goal, or None (no final rotation)."""
-        return self._goal_heading
+        return self._state.goal_heading
 
     @property
     def goal_heading(self) -> float | None:
@@ -343,13 +410,13 @@ class PathTracker(ABC):
             DeprecationWarning,
             stacklevel=2,
         )
-        return self._goal_heading
+        return self._state.goal_heading
 
     @property
     def target_xy(self) -> tuple[float, float] | None:
         """The point the last :meth:`step` steered toward (carrot, lookahead point or
         waypoint), or None before the first step of a path."""
-        return self._target
+        return self._state.target
 
     @property
     def progress(self) -> float:
@@ -379,7 +446,7 @@ class PathTracker(ABC):
         same path ten times larger is followed round); give such a path in
         parts. Paths scaled up are followed as the original is.
         """
-        return self._progress
+        return self._state.progress
 
     # -------------------------------------------------------------- the path
     def set_path(
@@ -392,7 +459,10 @@ class PathTracker(ABC):
         """Take a new path and start following it from its beginning.
 
         Clears :attr:`done` and the tracker's state (phase, progress, memory of
-        previous commands); the options are kept.
+        previous commands); the options are kept. The new state is built whole
+        and installed at once: a :meth:`step` running meanwhile (another thread,
+        a signal handler) finishes on the old path, and the next one follows the
+        new path from its start.
 
         Parameters
         ----------
@@ -441,17 +511,15 @@ class PathTracker(ABC):
         heading = None if goal_yaw is None else wrap(finite_float(goal_yaw, named))
         line = Polyline(pts)
         self._check_line(line)  # before anything changes: a refused path keeps the old one
-        self._line = line
-        self._goal_heading = heading
-        self._phase = "track"
-        self._progress = 0.0
-        self._target = None
-        self._reset()
+        # Built whole, then installed with one store: a step under way (which works on
+        # the state it read at its start) cannot overwrite any of it.
+        self._state = self._new_state(line, heading, self._start_phase())
 
-    def _reset(self) -> None:  # noqa: B027 - an optional hook; most trackers keep no extra state
-        """Forget per-path state (subclasses extend it)."""
+    def _start_phase(self) -> Phase:
+        """The phase a new path starts in."""
+        return "track"
 
-    def _check_line(self, line: Polyline) -> None:  # noqa: B027 - an optional hook
+    def _check_line(self, line: Polyline) -> None:
         """Refuse (``ValueError``) a path the tracker's options cannot follow; any by default."""
 
     # ------------------------------------------------------------------ step
@@ -502,20 +570,25 @@ class PathTracker(ABC):
         if abs(p.x) > MAX_COORDINATE or abs(p.y) > MAX_COORDINATE:
             raise ValueError(f"pose coordinates must be within ±{MAX_COORDINATE:g} m")
         step = positive_float(dt, "dt")
-        if self._line is None:
+        # The state is read once: the step reads and writes only this object, so a
+        # set_path meanwhile (which installs a new one) is not overwritten.
+        state = self._state
+        line = state.line
+        if line is None:
             raise RuntimeError(f"{type(self).__name__} has no path: call set_path(path) first")
-        if self._phase == "done":
+        if state.phase == "done":
             return ZERO_TWIST
-        return self._command(self._line, p, step, measured)
+        return self._command(state, line, p, step, measured)
 
     @abstractmethod
     def _command(
-        self, line: Polyline, pose: Pose2D, dt: float, measured: Twist2D | None
+        self, state: S, line: Polyline, pose: Pose2D, dt: float, measured: Twist2D | None
     ) -> Twist2D:
-        """The tracker's own control law: the command for ``pose`` on ``line`` (validated)."""
+        """The tracker's own control law: the command for ``pose`` on ``line``
+        (``state.line``; validated), reading and writing ``state`` only."""
 
     # --------------------------------------------------------------- helpers
-    def _advance(self, line: Polyline, pose: Pose2D, reach: float = 0.0) -> float:
+    def _advance(self, state: S, line: Polyline, pose: Pose2D, reach: float = 0.0) -> float:
         """Move :attr:`progress` to the closest point within the search window.
 
         The window runs :data:`SEARCH_AHEAD` metres of path ahead of the previous
@@ -525,15 +598,6 @@ class PathTracker(ABC):
         :data:`SEARCH_DETOUR` (a robot at the start of a short closed loop is not
         at its end); up to it, the robot may have cut across to any point,
         having been steered there.
-        """
-        s, _ = line.project(
-            pose.x, pose.y, self._progress, self._window_end(line, reach), SEARCH_DETOUR, reach
-        )
-        self._progress = s
-        return s
-
-    def _window_end(self, line: Polyline, reach: float) -> float:
-        """Where the closest-point search may end: see :meth:`_advance`.
 
         The whole path at the first step of a path (no target yet): a robot that
         starts partway along it (a replan that begins behind it) is found there,
@@ -542,30 +606,34 @@ class PathTracker(ABC):
         made it catch up 2 m a step meanwhile, steering the robot back toward the
         path's start (100 m along: turned round for 50 steps).
         """
-        if self._target is None:
-            return line.length
-        return max(self._progress + SEARCH_AHEAD, reach)
+        # The window's end computed here rather than by a helper: one call less a step.
+        progress = state.progress
+        end = line.length if state.target is None else max(progress + SEARCH_AHEAD, reach)
+        s, _ = line.project(pose.x, pose.y, progress, end, SEARCH_DETOUR, reach)
+        state.progress = s
+        return s
 
     def _advance_offset(
-        self, line: Polyline, pose: Pose2D, reach: float
+        self, state: S, line: Polyline, pose: Pose2D, reach: float
     ) -> tuple[float, float, float]:
         """:meth:`_advance`, returning the new progress's point's offset from the
         robot too: ``(s, dx, dy)`` (see :meth:`Polyline.offset_at`)."""
-        s, dx, dy = line.project_offset(
-            pose.x, pose.y, self._progress, self._window_end(line, reach), SEARCH_DETOUR, reach
-        )
-        self._progress = s
+        progress = state.progress
+        end = line.length if state.target is None else max(progress + SEARCH_AHEAD, reach)
+        s, dx, dy = line.project_offset(pose.x, pose.y, progress, end, SEARCH_DETOUR, reach)
+        state.progress = s
         return s, dx, dy
 
-    def _finish(self, pose: Pose2D, dt: float, turn: Any) -> Twist2D:
+    def _finish(self, state: S, pose: Pose2D, dt: float, turn: Any) -> Twist2D:
         """The final phase: turn in place to the goal yaw with ``turn(error, dt)``."""
-        self._phase = "final"
-        if self._goal_heading is None:
-            self._phase = "done"
+        state.phase = "final"
+        goal = state.goal_heading
+        if goal is None:
+            state.phase = "done"
             return ZERO_TWIST
-        err = wrap(self._goal_heading - pose.theta)
+        err = wrap(goal - pose.theta)
         if abs(err) <= self._yaw_tolerance:
-            self._phase = "done"
+            state.phase = "done"
             return ZERO_TWIST
         omega: float = turn(err, dt)
         return Twist2D(0.0, 0.0, omega)

@@ -15,7 +15,9 @@ from navkit._shared.dunders import slot_state
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_bool, refuse_masked
 from navkit.control._path_following import (
+    PathState,
     PathTracker,
+    Phase,
     Polyline,
     body_velocity,
     bounded,
@@ -70,7 +72,24 @@ class _GridClearance:
         return math.inf
 
 
-class RegulatedPurePursuit(PathTracker):
+class _PursuitState(PathState):
+    """:class:`PathState` and the memory of previous steps.
+
+    ``last``: the previous command ``(vx, vy, omega)``; ``motion_heading``: an
+    omnidirectional robot's direction of travel (rad), or None; ``carrot``: the
+    previous lookahead point's arc length and lookahead distance, or None.
+    """
+
+    __slots__ = ("carrot", "last", "motion_heading")
+
+    def __init__(self, line: Polyline | None, goal_heading: float | None, phase: Phase) -> None:
+        super().__init__(line, goal_heading, phase)
+        self.last = (0.0, 0.0, 0.0)
+        self.motion_heading: float | None = None
+        self.carrot: tuple[float, float] | None = None
+
+
+class RegulatedPurePursuit(PathTracker[_PursuitState]):
     """Regulated Pure Pursuit, with Nav2's semantics and default parameters.
 
     Each :meth:`step` (Macenski et al., 2023; Nav2's
@@ -252,13 +271,20 @@ class RegulatedPurePursuit(PathTracker):
 
     A tracker is not thread-safe: one thread at a time may call its methods
     (:meth:`set_path`, :meth:`step`), and a call made while another runs is not
-    detected (a check would cost about a tenth of a step): a :meth:`set_path`
-    landing inside a :meth:`step` (from another thread or a signal handler)
-    leaves the new path with the old one's progress and target. In a ROS 2
-    node, give the path subscription and the control timer one mutually
-    exclusive callback group. Different trackers may run in different
-    threads at once (with one ``clearance`` grid, which they only read; a
-    ``clearance`` callable shared by them must itself be thread-safe).
+    detected (a check would cost about a tenth of a step). A :meth:`set_path`
+    and a :meth:`step` overlapping (from another thread or a signal handler)
+    are safe all the same: :meth:`set_path` installs the new path's state
+    whole, and a step works on the state it read as it began, so its command is
+    for the old path (the new one, had the :meth:`set_path` come first) and the
+    next step follows the new path from its start (with a ``clearance``
+    function, a :meth:`set_path` while the function runs makes the step raise
+    ``RuntimeError`` instead, as one that the function makes itself does). Two
+    steps at once are not: they share the path's progress. In a ROS 2 node the
+    path subscription may run in a callback group of its own; the control
+    timer's must not let its callback overlap itself (mutually exclusive, the
+    default). Different trackers may run in different threads at once (with
+    one ``clearance`` grid, which they only read; a ``clearance`` callable
+    shared by them must itself be thread-safe).
 
     Subclasses may add attributes (their own ``__slots__`` or an instance
     ``__dict__``) and methods, and override the public methods, calling the
@@ -294,12 +320,10 @@ class RegulatedPurePursuit(PathTracker):
 
     __slots__ = (
         "_approach_distance",
-        "_carrot",
         "_clearance",
         "_clearance_distance",
         "_clearance_gain",
         "_curvature_regulation",
-        "_last",
         "_lookahead_time",
         "_max_angular_accel",
         "_max_lookahead",
@@ -308,7 +332,6 @@ class RegulatedPurePursuit(PathTracker):
         "_min_approach_speed",
         "_min_lookahead",
         "_min_regulated_speed",
-        "_motion_heading",
         "_rotate_omega",
         "_rotate_to_heading",
         "_rotate_to_heading_angle",  # rotate_angle: the name predates the rename (pickles)
@@ -374,9 +397,6 @@ class RegulatedPurePursuit(PathTracker):
         self._max_omega = (
             None if max_omega is None else bounded(max_omega, "max_omega", 0.0, 100.0)
         )
-        self._last = (0.0, 0.0, 0.0)
-        self._motion_heading: float | None = None
-        self._carrot: tuple[float, float] | None = None
 
     def __repr__(self) -> str:
         # Every option, as the planners and estimators print theirs; a clearance map
@@ -420,10 +440,10 @@ class RegulatedPurePursuit(PathTracker):
         """Nav2 ``rotate_to_heading_min_angle`` (rad): turns in place above this heading error."""
         return self._rotate_to_heading_angle
 
-    def _reset(self) -> None:
-        self._last = (0.0, 0.0, 0.0)
-        self._motion_heading = None
-        self._carrot = None
+    def _new_state(
+        self, line: Polyline | None, goal_heading: float | None, phase: Phase
+    ) -> _PursuitState:
+        return _PursuitState(line, goal_heading, phase)
 
     def step(
         self,
@@ -510,14 +530,19 @@ class RegulatedPurePursuit(PathTracker):
         return w
 
     def _command(
-        self, line: Polyline, pose: Pose2D, dt: float, measured: Twist2D | None
+        self,
+        state: _PursuitState,
+        line: Polyline,
+        pose: Pose2D,
+        dt: float,
+        measured: Twist2D | None,
     ) -> Twist2D:
         # Validate what can fail before any state changes.
         clearance = None
         if self._clearance is not None:
-            carrot = self._carrot
+            carrot = state.carrot
             clearance = self._clearance_at(pose)
-            if self._line is not line or self._carrot is not carrot:
+            if self._state is not state or state.carrot is not carrot:
                 # The function stepped the tracker or gave it a new path: this step,
                 # computed from the state before that, would overwrite it.
                 raise RuntimeError(
@@ -525,7 +550,7 @@ class RegulatedPurePursuit(PathTracker):
                     "the nested call was applied and this step was not"
                 )
         vx_now, vy_now, w_now = (
-            self._last if measured is None else (measured.vx, measured.vy, measured.omega)
+            state.last if measured is None else (measured.vx, measured.vy, measured.omega)
         )
         speed_now = abs(vx_now) if self._drive == "diff" else math.hypot(vx_now, vy_now)
         px, py = pose.x, pose.y
@@ -534,8 +559,9 @@ class RegulatedPurePursuit(PathTracker):
         # from the robot, subtracted first, so that the command is the same wherever
         # the problem is translated (a UTM frame lost 1e-8 rad/s to the rounding of
         # world coordinates).
-        reach = 0.0 if self._carrot is None else self._carrot[0]
-        s, fx, fy = self._advance_offset(line, pose, reach)
+        last_carrot = state.carrot
+        reach = 0.0 if last_carrot is None else last_carrot[0]
+        s, fx, fy = self._advance_offset(state, line, pose, reach)
         lookahead = min(max(speed_now * self._lookahead_time, self._min_lookahead),
                         self._max_lookahead)
         for _ in range(_MAX_FOLDS):
@@ -544,12 +570,12 @@ class RegulatedPurePursuit(PathTracker):
             # distance further along it (the goal near the end; Nav2 takes the goal
             # anywhere, which makes a path folding back near its start a trap).
             s_carrot = min(s + lookahead, line.length) if s_exit is None else s_exit
-            if self._carrot is not None:
+            if last_carrot is not None:
                 # The lookahead point moves back along the path only as far as the
                 # lookahead distance shrank: on a path looping inside the circle it
                 # could otherwise alternate between two stretches of it for ever.
-                back = max(0.0, self._carrot[1] - lookahead)
-                s_carrot = max(s_carrot, min(self._carrot[0] - back, line.length))
+                back = max(0.0, last_carrot[1] - lookahead)
+                s_carrot = max(s_carrot, min(last_carrot[0] - back, line.length))
             cx, cy, wx, wy = line.offset_at(s_carrot, px, py)  # from the robot; the point
             dist = math.hypot(cx, cy)
             if not s < s_carrot < line.length:
@@ -562,17 +588,17 @@ class RegulatedPurePursuit(PathTracker):
             # was zero, or a creep toward a point 1e-16 m away. The robot is at the
             # lookahead point's arc too: project it there and look ahead from it.
             s = s_carrot
-            self._progress = s
+            state.progress = s
             fx, fy = cx, cy  # offset_at(s), as computed for the lookahead point
-        self._carrot = (s_carrot, lookahead)
-        self._target = (wx, wy)
+        state.carrot = (s_carrot, lookahead)
+        state.target = (wx, wy)
         gx, gy = line.end
         to_goal = math.hypot(gx - px, gy - py)
-        if self._phase == "final" or (
+        if state.phase == "final" or (
             s_carrot >= line.length and to_goal <= self._goal_tolerance
         ):
-            cmd = self._finish(pose, dt, lambda err, h: self._rotate(err, h, w_now))
-            self._last = (cmd.vx, cmd.vy, cmd.omega)
+            cmd = self._finish(state, pose, dt, lambda err, h: self._rotate(err, h, w_now))
+            state.last = (cmd.vx, cmd.vy, cmd.omega)
             return cmd
 
         # The heading the pure-pursuit law steers: the robot's, or (omni) its
@@ -581,7 +607,8 @@ class RegulatedPurePursuit(PathTracker):
         if self._drive == "diff":
             heading = pose.theta
         else:
-            heading = bearing if self._motion_heading is None else self._motion_heading
+            motion = state.motion_heading
+            heading = bearing if motion is None else motion
         angle = wrap(bearing - heading)
         # Nearer than pursuit_curvature steers (3.2 cm) the robot drives straight, and a
         # straight run up to the point's distance moves away from it when more than 60
@@ -594,13 +621,13 @@ class RegulatedPurePursuit(PathTracker):
         too_wide = dist * dist <= _STRAIGHT_D2 and abs(angle) > _STRAIGHT_ANGLE
         if too_wide or (self._rotate_to_heading and abs(angle) > self._rotate_to_heading_angle):
             if self._drive == "diff":
-                self._phase = "rotate"
+                state.phase = "rotate"
                 w = self._rotate(angle, dt, w_now)
-                self._last = (0.0, 0.0, w)
+                state.last = (0.0, 0.0, w)
                 return Twist2D(0.0, 0.0, w)
             heading = bearing
             angle = 0.0
-        self._phase = "track"
+        state.phase = "track"
         kappa = pursuit_curvature(dist * math.cos(angle), dist * math.sin(angle))
 
         v = self._max_speed
@@ -625,14 +652,14 @@ class RegulatedPurePursuit(PathTracker):
             w = math.copysign(self._max_omega, w)
 
         if self._drive == "diff":
-            self._last = (v, 0.0, w)
+            state.last = (v, 0.0, w)
             return Twist2D(v, 0.0, w)
         # Omni: translate along the chord of the arc, keep the body heading.
         turn = w * dt
         mid = heading + 0.5 * turn
         bx, by = body_velocity(v * math.cos(mid), v * math.sin(mid), pose.theta)
-        self._motion_heading = wrap(heading + turn)
-        self._last = (bx, by, 0.0)
+        state.motion_heading = wrap(heading + turn)
+        state.last = (bx, by, 0.0)
         return Twist2D(bx, by, 0.0)
 
     def _clearance_at(self, pose: Pose2D) -> float:
