@@ -10,6 +10,7 @@ order, the row's place in its stream), and compared with the merge bit for bit.
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 from navkit.estimation import MeasurementLog
 
@@ -114,3 +115,23 @@ def test_one_long_stream_of_one_stamp_keeps_its_order() -> None:
     yaw = rng.uniform(-3.0, 3.0, n)
     log = MeasurementLog.from_streams(yaw=(np.full(n, 1.5), yaw), yaw_variance=1e-3)
     assert log.values[:, 0].tolist() == yaw.tolist()
+
+
+@pytest.mark.parametrize("kind", ["yaw", "yaw_rate", "acceleration"])
+@pytest.mark.parametrize("shape", [(1,), (2,), (4,), (3, 1)])
+def test_a_per_sample_variance_of_another_length_is_refused_naming_it(
+    kind: str, shape: tuple[int, ...]
+) -> None:
+    # One variance per sample or a scalar: a (1,) array is neither (it broadcast to
+    # every row, unnoticed, with the shape check deleted), nor a (2,) one for 3 samples.
+    stream = (np.array([0.0, 0.1, 0.2]), np.zeros(3))
+    message = rf"^{kind}_variance must be a scalar or have shape \(3,\)"
+    with pytest.raises(ValueError, match=message):
+        MeasurementLog.from_streams(**{kind: stream, f"{kind}_variance": np.full(shape, 1e-3)})
+
+
+def test_odometry_variances_of_another_length_are_refused_naming_them() -> None:
+    odometry = (np.array([0.0, 0.1, 0.2]), np.ones(3), np.zeros(3))
+    for which, pair in ((0, (np.full(1, 1e-3), 1e-3)), (1, (1e-3, np.full(2, 1e-3)))):
+        with pytest.raises(ValueError, match=rf"^odometry_variance\[{which}\] must be a scalar"):
+            MeasurementLog.from_streams(odometry=odometry, odometry_variance=pair)
