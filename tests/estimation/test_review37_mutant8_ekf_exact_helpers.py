@@ -19,6 +19,7 @@ from pathlib import Path
 
 import numpy as np
 
+from navkit.estimation import ExtendedKalmanFilter
 from navkit.estimation import _ekf_kernels as kernels
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
@@ -126,3 +127,30 @@ def test_the_refined_inverse_s_bound_bounds_its_error() -> None:
         assert (error <= bound).all(), (trial, kappa)
         worst = max(worst, float(np.max(error / bound)))
     assert worst > 1e-3  # the bound is reached within a few orders, not vacuous
+
+
+def test_is_covariance_agrees_with_the_filter_s_own_check() -> None:
+    # "as _positive_definite requires of every committed P": the fallbacks' test of an
+    # exact posterior takes what the filter takes as a P0, and no more, across the
+    # smallest normal pivot (a subnormal variance, or correlated variances whose second
+    # pivot is below 2.2e-308).
+    rng = np.random.default_rng(308)
+    verdicts = set()
+    for _ in range(60):
+        scale = 10.0 ** rng.uniform(-325.0, -270.0)
+        rho = 1.0 - 2.0 ** -rng.uniform(1.0, 50.0)
+        a = np.array([[1.0, rho], [rho, 1.0]]) * scale * rng.uniform(1.0, 2.0)
+        a = 0.5 * (a + a.T)
+        if not a[0, 0] > 0.0:
+            continue
+        try:
+            ExtendedKalmanFilter(np.zeros(2), a)
+            taken = True
+        except ValueError:
+            taken = False
+        assert kernels._is_covariance(a) == taken, a.tolist()
+        verdicts.add(taken)
+    for value in (1e-310, 3e-308):
+        a = np.diag([value, 1.0])
+        assert kernels._is_covariance(a) == (value >= 2.2250738585072014e-308)
+    assert verdicts == {True, False}
