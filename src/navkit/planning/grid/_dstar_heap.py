@@ -139,6 +139,7 @@ kernels call :func:`heap_update` themselves. :func:`heap_new`,
 from __future__ import annotations
 
 import mmap
+import sys
 from typing import Any
 
 import numpy as np
@@ -273,11 +274,16 @@ def clear_box(
 # Zeros of at least this many bytes are mapped pages of their own (_lazy_zeros).
 _LAZY_BYTES = 1 << 20
 
-# Copy-on-write in a forked child, as malloc'd memory is (Windows cannot fork, and
-# its anonymous mappings are the process's own).
-_PRIVATE: dict[str, int] = (
-    {"flags": mmap.MAP_PRIVATE | mmap.MAP_ANONYMOUS} if hasattr(mmap, "MAP_PRIVATE") else {}
-)
+
+def _anonymous_pages(nbytes: int) -> mmap.mmap:
+    """``nbytes`` of zeroed anonymous pages, copy-on-write in a forked child.
+
+    As ``malloc``'d memory is: ``mmap.mmap(-1, n)`` alone maps shared pages on
+    POSIX. Windows cannot fork, and its anonymous mappings are the process's own.
+    """
+    if sys.platform == "win32":
+        return mmap.mmap(-1, nbytes)
+    return mmap.mmap(-1, nbytes, flags=mmap.MAP_PRIVATE | mmap.MAP_ANONYMOUS)
 
 
 def _lazy_zeros(count: int, dtype: type[np.generic]) -> np.ndarray:
@@ -297,7 +303,7 @@ def _lazy_zeros(count: int, dtype: type[np.generic]) -> np.ndarray:
     nbytes = count * np.dtype(dtype).itemsize
     if nbytes >= _LAZY_BYTES:
         try:
-            pages = mmap.mmap(-1, nbytes, **_PRIVATE)
+            pages = _anonymous_pages(nbytes)
         except OSError:
             pass
         else:
