@@ -6,6 +6,9 @@ two threads calling them really run them at the same time, on two cores:
 * :func:`concurrent_results` starts one thread per call, lines them up at a
   barrier and lets them go together, a few rounds, and returns every round's
   results, to compare bit for bit with the same calls made one after another;
+* :func:`run_switching_often` runs ``target(k)`` in one thread per ``k``
+  with a switch interval of 1 µs, so that the threads' calls interleave
+  (tests of the one-call guard);
 * :func:`lines_beside_python` tells where another thread ran Python while
   ``call`` ran, without timing anything: with a switch interval of 100 s a
   thread holding the GIL is never asked to give it up, so the main thread
@@ -62,6 +65,24 @@ def _one_round(calls: Sequence[Callable[[], Any]]) -> list[Any]:
     if errors:
         raise errors[0]
     return results
+
+
+def run_switching_often(target: Callable[[int], object], *, threads: int = 2) -> None:
+    """``target(k)`` for ``k`` in ``range(threads)``, each in a thread, switching every 1 µs.
+
+    The interpreter's switch interval is lowered for the run (and put back), so
+    the threads' Python code interleaves finely; waits up to 300 s for each.
+    """
+    interval = sys.getswitchinterval()
+    sys.setswitchinterval(1e-6)
+    try:
+        workers = [threading.Thread(target=target, args=(k,)) for k in range(threads)]
+        for worker in workers:
+            worker.start()
+        for worker in workers:
+            worker.join(300)
+    finally:
+        sys.setswitchinterval(interval)
 
 
 def free_elsewhere(lock: Any) -> bool:

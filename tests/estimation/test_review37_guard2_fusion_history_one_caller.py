@@ -22,8 +22,6 @@ from __future__ import annotations
 
 import copy
 import pickle
-import sys
-import threading
 from collections.abc import Callable
 from typing import Any
 
@@ -32,6 +30,7 @@ import pytest
 
 from interrupt_points import interleaved
 from navkit.estimation import MeasurementLog, PlanarFusion
+from thread_runs import run_switching_often
 
 ODO = {"v_variance": 1e-2, "omega_variance": 1e-2}
 RATE_VAR = 1e-3
@@ -229,16 +228,7 @@ def test_two_threads_on_one_filter_with_history_are_refused_or_fused_in_stamp_or
                 else:
                     rates.append((t, 0.02 * (i % 5)))
 
-    interval = sys.getswitchinterval()
-    sys.setswitchinterval(1e-6)
-    try:
-        threads = [threading.Thread(target=feed, args=(k,)) for k in (0, 1)]
-        for thread in threads:
-            thread.start()
-        for thread in threads:
-            thread.join(300)
-    finally:
-        sys.setswitchinterval(interval)
+    run_switching_often(feed)
     for seen in outcomes:
         assert set(seen) <= {"accepted", "refused"}, sorted(set(seen))[:3]
     assert fusion._callers == []

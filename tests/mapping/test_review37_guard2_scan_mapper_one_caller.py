@@ -21,8 +21,6 @@ from __future__ import annotations
 import copy
 import math
 import pickle
-import sys
-import threading
 import time
 from typing import Any
 
@@ -30,6 +28,7 @@ import numpy as np
 
 from interrupt_points import interleaved
 from navkit.mapping import LaserScan, ScanMapper
+from thread_runs import run_switching_often
 
 
 def _room_scan(x: float, y: float, beams: int = 90) -> LaserScan:
@@ -145,16 +144,7 @@ def test_two_threads_on_one_mapper_take_whole_updates_or_the_refusal() -> None:
                 outcomes[k].append("taken")
                 break
 
-    interval = sys.getswitchinterval()
-    sys.setswitchinterval(1e-6)
-    try:
-        threads = [threading.Thread(target=run, args=(k,)) for k in (0, 1)]
-        for thread in threads:
-            thread.start()
-        for thread in threads:
-            thread.join(300)
-    finally:
-        sys.setswitchinterval(interval)
+    run_switching_often(run)
     for seen in outcomes:
         assert set(seen) <= {"taken", "refused"}, sorted(set(seen))
     # Every scan taken is a row of the trajectory, none lost or written over.

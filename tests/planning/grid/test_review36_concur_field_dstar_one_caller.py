@@ -28,6 +28,7 @@ import numpy as np
 import pytest
 
 from navkit.planning import FieldDStar
+from thread_runs import run_switching_often
 
 
 def _costs() -> np.ndarray:
@@ -170,16 +171,7 @@ def test_two_threads_on_one_planner_get_right_paths_or_the_refusal() -> None:
                 continue
             outcomes[k].append("right" if _same(got, want[k]) else "wrong path")
 
-    interval = sys.getswitchinterval()
-    sys.setswitchinterval(1e-6)
-    try:
-        threads = [threading.Thread(target=run, args=(k,)) for k in (0, 1)]
-        for thread in threads:
-            thread.start()
-        for thread in threads:
-            thread.join(300)
-    finally:
-        sys.setswitchinterval(interval)
+    run_switching_often(run)
     for seen in outcomes:
         assert set(seen) <= {"right", "refused"}, sorted(set(seen))
         assert seen.count("right") == 60
