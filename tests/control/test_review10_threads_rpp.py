@@ -3,7 +3,8 @@
 A ``clearance(x, y)`` that gave the tracker a new path (or stepped it) had the
 outer step carry on with the old path and overwrite the state the nested call
 left: progress beyond the new path's length, a target off it. The step now
-raises ``RuntimeError`` and keeps what the nested call did.
+raises ``RuntimeError`` and keeps the new path; a nested step is refused
+(``RuntimeError``, review 38) and the outer step changes nothing.
 """
 
 from __future__ import annotations
@@ -52,16 +53,18 @@ def test_set_path_from_clearance_raises_and_keeps_the_new_path() -> None:
     assert tracker.target_xy == reference.target_xy
 
 
-def test_step_from_clearance_raises_after_the_nested_step() -> None:
+def test_step_from_clearance_is_refused_and_changes_nothing() -> None:
+    # Review 38: a step inside a step is refused by the trackers' one-step guard
+    # (before it, the nested step was applied and the outer one raised); the
+    # refusal, raised in the function, ends the outer step before it changed anything.
     pose = Pose2D(2.0, 0.0, 0.0)
     tracker = _tracker(lambda t: t.step(pose, 0.1))
     tracker.step(Pose2D(1.0, 0.0, 0.0), 0.1)
-    with pytest.raises(RuntimeError, match="clearance"):
+    with pytest.raises(RuntimeError, match=r"own step.*clearance\(x, y\) function call step"):
         tracker.step(pose, 0.1)
     reference = RegulatedPurePursuit(clearance=lambda x, y: 10.0)
     reference.set_path(LONG)
-    reference.step(Pose2D(1.0, 0.0, 0.0), 0.1)
-    reference.step(pose, 0.1)  # the nested step, the only one applied
+    reference.step(Pose2D(1.0, 0.0, 0.0), 0.1)  # the only step applied
     assert (tracker.progress, tracker.target_xy, tracker.phase) == (
         reference.progress, reference.target_xy, reference.phase,
     )  # fmt: skip

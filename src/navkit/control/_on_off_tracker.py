@@ -104,18 +104,19 @@ class OnOffTracker(PathTracker[_WaypointState]):
     ``r₀`` for β = 10°). So on a segment of length ``ℓ`` the robot stays within
     ``tol + (ℓ + tol) sin β · exp(−β / tan β)`` of it, ``tol`` the goal tolerance.
 
-    A tracker is not thread-safe: one thread at a time may call its methods
-    (:meth:`set_path`, :meth:`step`), and a call made while another runs is not
-    detected (a check would cost about a tenth of a step). A :meth:`set_path`
-    and a :meth:`step` overlapping (from another thread or a signal handler)
-    are safe all the same: :meth:`set_path` installs the new path's state
+    A tracker takes one :meth:`step` at a time: a step called while another
+    is under way (another thread's, or a signal handler's) raises
+    ``RuntimeError``, saying which, and changes nothing; the step under way
+    goes on as alone (the check costs about 0.2 µs of a 2.5 to 6.5 µs step).
+    A :meth:`set_path` and a :meth:`step` overlapping (from another thread or
+    a signal handler) are safe: :meth:`set_path` installs the new path's state
     whole, and a step works on the state it read as it began, so its command is
     for the old path (the new one, had the :meth:`set_path` come first) and the
-    next step follows the new path from its start. Two steps at once are
-    not: they share the path's progress. In a ROS 2 node the path subscription
-    may run in a callback group of its own; the control timer's must not let
-    its callback overlap itself (mutually exclusive, the default). Different
-    trackers may run in different threads at once.
+    next step follows the new path from its start. In a ROS 2 node the path
+    subscription may run in a callback group of its own; the control timer's
+    must not let its callback overlap itself (mutually exclusive, the default),
+    or its overlapping steps are refused. Different trackers may run in
+    different threads at once.
 
     Subclasses may add attributes (their own ``__slots__`` or an instance
     ``__dict__``) and methods, and override the public methods, calling the

@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import math
 import warnings
+from _thread import get_ident
 from abc import ABC, abstractmethod
 from collections.abc import Mapping
 from typing import Any, Generic, Literal, TypeVar, cast
@@ -31,6 +32,7 @@ from numpy.typing import ArrayLike
 from navkit._shared.angles import wrap_float as wrap
 from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.frozen import restore_slots
+from navkit._shared.locks import _in_use
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, finite_float, positive_float
 from navkit.control._path_following_kernels import (
@@ -307,10 +309,17 @@ class PathTracker(ABC, Generic[S]):
     Copies and pickles hold the state's fields as the tracker's attributes
     ``_line``, ``_progress``, ... (as before the state object: pickles load
     both ways), and a copy gets a state of its own.
+
+    One :meth:`step` at a time: a step called while another is under way
+    (another thread's, or a signal handler's in the same thread) raises
+    ``RuntimeError`` and changes nothing, and the step under way goes on as
+    alone (the guard of :func:`navkit._shared.locks.one_caller`, written out:
+    the tokens in ``_callers``, the same messages).
     """
 
     __slots__ = (
         "__weakref__",  # weakref.ref(obj) for callbacks and caches (review 36)
+        "_callers",
         "_drive",
         "_goal_tolerance",
         "_state",
@@ -327,18 +336,33 @@ class PathTracker(ABC, Generic[S]):
         state = slots.pop("_state")
         for name in state.fields():
             slots["_" + name] = getattr(state, name)
+        # Not in use, whatever the original is doing (pickles as before the guard).
+        slots.pop("_callers", None)
         return instance, slots
 
     def __setstate__(self, state: Any) -> None:
         instance, slots = state if isinstance(state, tuple) else (None, state)
         slots = dict(slots)
         path = self._new_state(None, None, "idle")
+        # A subclass's __getstate__ giving Python's default state (object.__getstate__,
+        # slot_state) holds the state object itself: its fields are taken (into a state
+        # of the copy's own), where it was replaced by an idle one and the copy had no
+        # path (review 38). The attributes of before, if also there, win.
+        given = slots.pop("_state", None)
+        if isinstance(given, PathState):
+            for name in given.fields():
+                if name in path.fields():
+                    setattr(path, name, getattr(given, name))
         for name in path.fields():
             if "_" + name in slots:
                 setattr(path, name, slots.pop("_" + name))
+        # Not in use (a copy made during a step, or a pickle of one, holds its token).
+        slots["_callers"] = []
         restore_slots(self, (instance, {**slots, "_state": path}))
 
     def __init__(self, *, drive: Any, goal_tolerance: Any, yaw_tolerance: Any) -> None:
+        # The steps under way (one at most: see _run; not copied or pickled).
+        self._callers: list[tuple[int, str, object]] = []
         if not isinstance(drive, str) or drive not in ("diff", "omni"):
             raise ValueError(f"drive must be 'diff' or 'omni', got {drive!r}")
         self._drive: Literal["diff", "omni"] = "diff" if drive == "diff" else "omni"
@@ -547,7 +571,9 @@ class PathTracker(ABC, Generic[S]):
         Raises
         ------
         RuntimeError
-            No path yet (call :meth:`set_path` first).
+            No path yet (call :meth:`set_path` first), or another step under
+            way (another thread's, or a signal handler's): this one changes
+            nothing.
         TypeError, ValueError
             A bad ``pose`` or ``dt`` (not a normal float > 0), naming it;
             the tracker's state is unchanged then.
@@ -570,15 +596,35 @@ class PathTracker(ABC, Generic[S]):
         if abs(p.x) > MAX_COORDINATE or abs(p.y) > MAX_COORDINATE:
             raise ValueError(f"pose coordinates must be within ±{MAX_COORDINATE:g} m")
         step = positive_float(dt, "dt")
-        # The state is read once: the step reads and writes only this object, so a
-        # set_path meanwhile (which installs a new one) is not overwritten.
-        state = self._state
-        line = state.line
-        if line is None:
-            raise RuntimeError(f"{type(self).__name__} has no path: call set_path(path) first")
-        if state.phase == "done":
-            return ZERO_TWIST
-        return self._command(state, line, p, step, measured)
+        # One step at a time (one_caller's guard, written out: its wrapper's call cost
+        # a tenth of a step). Two steps at once (two threads, a signal handler's step
+        # inside the main loop's) both started from the progress before either, and
+        # the later store won: progress went back (4.6 -> 4.0 m), RPP's memory of the
+        # lookahead point and direction of travel mixed the two (review 38).
+        callers = self._callers
+        # Equal to no other token (its object): see one_caller.
+        token = (get_ident(), "step", object())
+        try:
+            callers.append(token)
+            if callers[0] is not token:
+                raise RuntimeError(self._refusal(callers[0], callers))
+            # The state is read once: the step reads and writes only this object, so a
+            # set_path meanwhile (which installs a new one) is not overwritten.
+            state = self._state
+            line = state.line
+            if line is None:
+                raise RuntimeError(
+                    f"{type(self).__name__} has no path: call set_path(path) first"
+                )
+            if state.phase == "done":
+                return ZERO_TWIST
+            return self._command(state, line, p, step, measured)
+        finally:
+            callers.remove(token)
+
+    def _refusal(self, other: tuple[Any, ...], callers: list[Any]) -> str:
+        """The message of a step refused while the step of token ``other`` runs."""
+        return _in_use(type(self).__name__, "step", other, callers)
 
     @abstractmethod
     def _command(
