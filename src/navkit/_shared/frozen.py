@@ -128,6 +128,20 @@ def frozen_setattr(cls: _T) -> _T:
     return cls
 
 
+def read_only_view(array: np.ndarray[Any, Any]) -> np.ndarray[Any, Any]:
+    """A read-only view of ``array``, which is left as it is (writeable or not).
+
+    Examples
+    --------
+    >>> values = np.zeros(2)
+    >>> read_only_view(values).flags.writeable, values.flags.writeable
+    (False, True)
+    """
+    view = array.view()
+    view.flags.writeable = False
+    return view
+
+
 def restore_read_only(record: Any, state: Sequence[Any], arrays: Sequence[str]) -> None:
     """Set ``record``'s fields from ``state`` (their values, in order); freeze ``arrays``.
 
@@ -462,7 +476,9 @@ def rebuild_from_state(cls: type, state: Any, arrays: Collection[str]) -> Any:
     ``__setstate__`` (navkit's, or a slotted dataclass's) reads a list of
     field values, never a user's state: it is not called. The fields
     named in ``arrays`` that hold writeable arrays then hold read-only views
-    of them (the arrays themselves are not changed).
+    of them (the arrays themselves are not changed), and a record class
+    with a ``_freeze_nested(record)`` method (arrays nested in its fields'
+    tuples) has it called.
 
     Raises
     ------
@@ -606,9 +622,13 @@ def _restore_state(record: Any, state: Any, arrays: Collection[str]) -> None:
     for name in arrays:
         value = getattr(record, name, None)
         if isinstance(value, np.ndarray) and value.flags.writeable:
-            value = value.view()
-            value.flags.writeable = False
-            object.__setattr__(record, name, value)
+            object.__setattr__(record, name, read_only_view(value))
+    freeze_nested = getattr(type(record), "_freeze_nested", None)
+    if freeze_nested is not None:
+        # Arrays inside a field's tuples (Scene's labelled paths), which ``arrays``
+        # does not reach: the record's own __setstate__ freezes them, and a user's
+        # state skips it (their arrays came back writable, review 38).
+        freeze_nested(record)
 
 
 def rebuild_record(
@@ -634,8 +654,7 @@ def rebuild_record(
         arrays = {renamed.get(name, name) for name in arrays}
     for name, value in values.items():
         if name in arrays and isinstance(value, np.ndarray) and value.flags.writeable:
-            value = value.view()
-            value.flags.writeable = False
+            value = read_only_view(value)
         object.__setattr__(record, name, value)
     if instance:
         record.__dict__.update(instance)

@@ -22,7 +22,7 @@ import numpy as np
 
 from navkit._shared.counts import counted
 from navkit._shared.dunders import bounded_repr, record_eq, record_hash
-from navkit._shared.frozen import frozen_setattr, restore_read_only
+from navkit._shared.frozen import frozen_setattr, read_only_view, restore_read_only
 from navkit._shared.frozendict import FrozenDict
 from navkit._shared.text import as_text
 from navkit._shared.types import FloatArray
@@ -585,8 +585,17 @@ class Scene:
         # Pickles and deep copies skip __post_init__: the labelled arrays (inside
         # tuples, which restore_read_only does not reach) are made read-only here.
         restore_read_only(self, state, ())
-        for _, xy in (*self.paths, *self.points):
-            xy.flags.writeable = False
+        self._freeze_nested()
+
+    def _freeze_nested(self) -> None:
+        # Also called after a user's subclass state is restored (which skips
+        # __setstate__): see navkit._shared.frozen.rebuild_from_state. Views, so
+        # that an array the state shares with someone else stays theirs.
+        for name in ("paths", "points"):
+            labelled = getattr(self, name, ())
+            if any(xy.flags.writeable for _, xy in labelled):
+                frozen = tuple((label, read_only_view(xy)) for label, xy in labelled)
+                object.__setattr__(self, name, frozen)
 
 
 @frozen_setattr
