@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from _thread import get_ident
 from typing import Any, Literal, cast
 
 import numpy as np
@@ -10,6 +11,7 @@ from numpy.typing import ArrayLike
 
 from navkit._shared.dunders import slot_state
 from navkit._shared.frozen import restore_slots
+from navkit._shared.locks import _in_use
 from navkit._shared.text import as_text
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, as_points
@@ -175,10 +177,13 @@ class PotentialFieldController:
     navkit.planning's fields); the control period ``dt`` of :meth:`step` is in
     [1e-6, 1e6] s. Within these ranges every command is finite.
 
-    A controller is not thread-safe: one thread at a time may call its methods
-    (its PID and stall memories change at every :meth:`step`); different
-    controllers may run in different threads at once, also on scans of
-    different scanners.
+    A controller takes one :meth:`step` at a time (its PID and stall memories
+    change at every step): a step called while another is under way (another
+    thread's, or a signal handler's) raises ``RuntimeError``, saying which, and
+    changes nothing; the step under way goes on as alone. A :meth:`reset`
+    while a step runs wins: that step's command is for the state before it, and
+    the next step starts from rest. Different controllers may run in different
+    threads at once, also on scans of different scanners.
 
     Raises
     ------
@@ -214,6 +219,7 @@ class PotentialFieldController:
         "__weakref__",  # weakref.ref(obj) for callbacks and caches (review 36)
         "_anchor",
         "_attraction",
+        "_callers",
         "_drive",
         "_goal_tolerance",
         "_influence_radius",
@@ -230,7 +236,14 @@ class PotentialFieldController:
         "_still_for",
         "_velocity",
     )
-    __getstate__ = slot_state  # pickle protocols 0 and 1 too
+    def __getstate__(self) -> object:
+        # Python's default state (pickle protocols 0 and 1 too, see slot_state), not
+        # in use whatever the original is doing (pickles as before the guard).
+        instance, slots = cast(
+            "tuple[dict[str, Any] | None, dict[str, Any]]", slot_state(self)
+        )
+        slots.pop("_callers", None)
+        return instance, slots
 
     def __init__(
         self,
@@ -251,6 +264,8 @@ class PotentialFieldController:
         stall_radius: float = 0.05,
         stall_timeout: float = 2.0,
     ) -> None:
+        # The steps under way (one at most: see step; not copied or pickled).
+        self._callers: list[tuple[int, str, object]] = []
         if attraction is None:
             attraction = BlendedAttraction(np.zeros(2))
         if not isinstance(attraction, AttractiveField):
@@ -291,7 +306,9 @@ class PotentialFieldController:
         """Forget the previous velocity, the PID state and the stall timer.
 
         Call it between runs: the next :meth:`step` starts from rest (its
-        acceleration limits measured from a zero velocity) with no stall time.
+        acceleration limits measured from a zero velocity) with no stall time,
+        also when the reset comes while a step runs (another thread, a signal
+        handler): that step's command is for the state before.
 
         Examples
         --------
@@ -310,7 +327,12 @@ class PotentialFieldController:
 
     def _clear(self) -> None:
         """Set the run state to rest (what :meth:`reset` does, for ``__init__`` too)."""
-        self._velocity: FloatArray = np.zeros(2)
+        # The new velocity first, then plain stores with no call between them: a step
+        # landing at the call finishes on the state before, and this reset wins. The
+        # velocity is a new object: a step under way sees it and drops its stores
+        # (see step), so a reset landing in a step is not overwritten either.
+        velocity: FloatArray = np.zeros(2)
+        self._velocity: FloatArray = velocity
         self._integral = 0.0
         self._last_error: float | None = None
         self._anchor: FloatArray | None = None
@@ -321,6 +343,8 @@ class PotentialFieldController:
         # Pickles from before the options became properties hold them under their
         # public names: setting those would hit the properties, which have no setter.
         restore_slots(self, state, renamed=_RENAMED)
+        # Not in use (a copy made during a step, or a pickle of one, holds its token).
+        self._callers = []
 
     # The options are read-only (as the path trackers'): they are validated once,
     # in __init__, and every step relies on their ranges.
@@ -585,6 +609,9 @@ class PotentialFieldController:
         TypeError, ValueError
             An argument that is not what is documented, naming it; the
             controller's state is unchanged then.
+        RuntimeError
+            Another step under way (another thread's, or a signal handler's):
+            this one changes nothing.
 
         Examples
         --------
@@ -610,9 +637,50 @@ class PotentialFieldController:
         position(target_pose.x, target_pose.y, "target_pose")
         measured = None if velocity is None else as_twist(velocity, "velocity")
         step = quantity(dt, "dt", "s")
+        # One step at a time (one_caller's guard, written out): two steps at once (two
+        # threads, a signal handler's step inside the main loop's) both started from
+        # the state before either, and the later stores won: the other step was lost
+        # (its time from the stall clock, its command from the velocity limits' base;
+        # review 38).
+        callers = self._callers
+        # Equal to no other token (its object): see one_caller.
+        token = (get_ident(), "step", object())
+        running = False
+        try:
+            callers.append(token)
+            if callers[0] is not token:
+                raise RuntimeError(_in_use(type(self).__name__, "step", callers[0], callers))
+            running = True
+            return self._step(pose, target_pose, step, obstacles, measured)
+        finally:
+            if running:
+                # The step's token is the first (only refused calls' come after it, and
+                # they take theirs out): deleted without a call, so that no Ctrl-C can
+                # land after the step's stores (a loop catching it would step twice).
+                del callers[0]
+            else:
+                callers.remove(token)
+
+    def _step(
+        self,
+        pose: Pose2D,
+        target_pose: Pose2D,
+        step: float,
+        obstacles: ArrayLike | LaserScan | None,
+        measured: Twist2D | None,
+    ) -> Twist2D:
+        """:meth:`step` on validated arguments, inside its guard."""
+        # The state read at once (no call between the reads, where a signal handler's
+        # reset could land): the command is for the state before a reset meanwhile
+        # (another thread's, a signal handler's), which installs a new velocity; this
+        # step's stores are then dropped, and the reset is not overwritten.
+        current = self._velocity
+        integral0, last_error, anchor, still_for = (
+            self._integral, self._last_error, self._anchor, self._still_for
+        )
         c, s = math.cos(pose.theta), math.sin(pose.theta)
         if measured is None:
-            prev = self._velocity
+            prev = current
         else:
             vx_w = c * measured.vx - s * measured.vy
             vy_w = s * measured.vx + c * measured.vy
@@ -669,13 +737,19 @@ class PotentialFieldController:
             v = np.array([c * fwd, s * fwd])
             vx, vy = fwd, 0.0
         error = angle_diff(heading, pose.theta)
-        integral, omega = self._pid.update(self._integral, self._last_error, error, step)
+        integral, omega = self._pid.update(integral0, last_error, error, step)
         omega = min(max(omega, -self._max_omega), self._max_omega)
-        anchor, still_for = self._stall_after(pose, goal, step)
+        anchor, still_for = _stall_after(
+            pose, goal, step, anchor, still_for, self._goal_tolerance, self._stall_radius
+        )
         out = Twist2D(float(vx), float(vy), float(omega))
         # Every new value first, then plain stores with no call between them, where
         # a Ctrl-C could land: an interrupted step leaves the state as it was, and
         # a loop that catches the interrupt and steps again integrates once.
+        if self._velocity is not current:
+            # A reset came while this step ran: the next step starts from rest, as the
+            # reset said (its stores were overwritten by this step's; review 38).
+            return out
         self._integral = integral
         self._last_error = error
         self._velocity = v
@@ -683,25 +757,32 @@ class PotentialFieldController:
         self._still_for = still_for
         return out
 
-    def _stall_after(
-        self, pose: Pose2D, goal: FloatArray, dt: float
-    ) -> tuple[FloatArray | None, float]:
-        """The stall anchor and time after a step of ``dt`` at ``pose`` (nothing stored)."""
-        # Float by float what array arithmetic gives (np.hypot on the same
-        # differences), without building arrays for two coordinates.
-        x, y = pose.x, pose.y
-        gx, gy = goal.tolist()
-        if float(np.hypot(gx - x, gy - y)) <= self._goal_tolerance:
-            return None, 0.0
-        anchor = self._anchor
-        if anchor is None:
-            far = True
-        else:
-            ax, ay = anchor.tolist()
-            far = float(np.hypot(x - ax, y - ay)) > self._stall_radius
-        if far:
-            return np.array([x, y]), 0.0
-        return anchor, self._still_for + dt
+
+def _stall_after(
+    pose: Pose2D,
+    goal: FloatArray,
+    dt: float,
+    anchor: FloatArray | None,
+    still_for: float,
+    goal_tolerance: float,
+    stall_radius: float,
+) -> tuple[FloatArray | None, float]:
+    """The stall anchor and time after a step of ``dt`` at ``pose`` from ``anchor`` and
+    ``still_for`` (the controller's, read as its step began)."""
+    # Float by float what array arithmetic gives (np.hypot on the same
+    # differences), without building arrays for two coordinates.
+    x, y = pose.x, pose.y
+    gx, gy = goal.tolist()
+    if float(np.hypot(gx - x, gy - y)) <= goal_tolerance:
+        return None, 0.0
+    if anchor is None:
+        far = True
+    else:
+        ax, ay = anchor.tolist()
+        far = float(np.hypot(x - ax, y - ay)) > stall_radius
+    if far:
+        return np.array([x, y]), 0.0
+    return anchor, still_for + dt
 
 
 def _limited(
