@@ -819,7 +819,11 @@ class PlanarFusion(GaussianEstimate):
     50 Hz odometry and a 200 Hz IMU's yaw rate), and keeping them about 0.8 µs
     a measurement. A ``KeyboardInterrupt`` during an update drops them
     (later late measurements are refused until the window has filled again),
-    and so does :meth:`reset`. Copies and pickles keep them.
+    and so does :meth:`reset`. Copies and pickles keep them, except one made
+    during a call of the filter (by a signal handler or another thread), which
+    may be between a step and its record and so keeps none; copying is then a
+    call of the filter itself (another thread's call meanwhile raises
+    ``RuntimeError``, see below).
     The window is one of time, not of steps: every step of one stamp is kept,
     and a measurement that goes before them in the order at that stamp takes
     them all again. Stamps that do not advance (a driver that leaves them 0,
@@ -989,9 +993,35 @@ class PlanarFusion(GaussianEstimate):
         # subclass is rebuilt as itself, with what it adds restored after (see
         # extra_state).
         cls = type(self)
-        # The entries' arrays are never written after they are made: a copy may share them.
-        kept = (self._history, self._steps[self._head :])
-        args = (self._buf.copy(), self._gates.copy(), cls, self._anchor, kept)
+        if self._history:
+            # A copy made during a call of this filter (a signal handler's, another
+            # thread's) takes the buffer as that call left it, which the steps kept
+            # may not match yet (a step taken, not yet kept): it keeps none, as after
+            # an interrupted call. A short call under way itself (the one-call
+            # guard's token): another thread's call meanwhile is refused, rather
+            # than change the buffer or the steps between their two reads.
+            callers = self._callers
+            token = (get_ident(), "__reduce__", object())
+            try:
+                callers.append(token)
+                busy = callers[0] is not token
+                buf = self._buf.copy()
+                # The entries' arrays are never written after they are made: a copy
+                # may share them.
+                steps = [] if busy else self._steps[self._head :]
+            finally:
+                callers.remove(token)
+        else:
+            buf = self._buf.copy()
+            steps = self._steps[self._head :]
+        if buf[BUF_UNDO] != 0.0:
+            # Made between a step to be undone (a time gap's overflowed prediction, a
+            # lost positive definiteness) and its undo: the copy is the filter as
+            # before that step (kept as it was, its next step clears the mark and
+            # goes on from the overflowed state; see _settle).
+            undo_step(buf)
+        kept = (self._history, steps)
+        args = (buf, self._gates.copy(), cls, self._anchor, kept)
         if cls is PlanarFusion:
             return _restore_fusion, args
         return _restore_fusion, args, extra_state(self, below=PlanarFusion)
