@@ -74,6 +74,7 @@ import importlib
 # ``before`` ("cannot release un-acquired lock").
 import logging  # noqa: F401
 import os
+import re
 import sys
 import threading
 from collections.abc import Iterator
@@ -165,16 +166,105 @@ def _take_locks_for_fork(record: list[Any]) -> None:
     # lock), and the compiler lock after letting it go. Before numba's import
     # there is no compiler lock to take: if it appears while this waits for the
     # import, the import lock is let go and both are taken in order.
+    nested = _inside_navkit_lock()
     while True:
         lock = _numba_compiler_lock()
         if lock is not None:
-            lock.acquire()
-            record.append(lock)
-        NUMBA_IMPORT.acquire()
-        record.append(NUMBA_IMPORT)
+            _take_for_fork(lock, record, nested=nested)
+        _take_for_fork(NUMBA_IMPORT, record, nested=nested)
         if lock is not None or _numba_compiler_lock() is None:
             return
         _release_locks(record)
+
+
+class _NotTaken:
+    """A lock a fork was made without (see :func:`_take_for_fork`): made anew in the child."""
+
+    __slots__ = ("lock",)
+
+    def __init__(self, lock: Any) -> None:
+        self.lock = lock
+
+    def release(self) -> None:
+        """Nothing to let go: it was not taken."""
+
+
+def _inside_navkit_lock() -> bool:
+    """Whether this thread holds a navkit lock that a compiling thread takes under numba's.
+
+    Then this fork is made from inside navkit's own code (a signal handler
+    that forks, run where the main thread was), and the thread holding numba's
+    compiler lock or navkit's import lock may be waiting for that lock (the
+    lock order is numba's compiler lock, navkit's import lock, then the others).
+    """
+    jit = sys.modules.get("navkit._shared.jit")
+    jit_lock = getattr(getattr(jit, "_LOCK", None), "_lock", None)
+    for lock in (NUMBA_IMPORT, jit_lock, _PAUSE_LOCK, compile_shortcuts._LOCK):
+        owned = getattr(lock, "_is_owned", None)
+        if owned is not None and owned():
+            return True
+    return False
+
+
+#: navkit's modules whose functions take the locks of :func:`_inside_navkit_lock`.
+_LOCKING_FILES = frozenset(
+    os.path.join(os.path.dirname(os.path.abspath(__file__)), name)
+    for name in ("compile_gc.py", "compile_shortcuts.py", "jit.py", "locks.py")
+)
+
+
+def _take_for_fork(lock: Any, record: list[Any], *, nested: bool) -> None:
+    """Take ``lock`` for a fork and record it; nested (see below), perhaps go without it.
+
+    A fork made while this thread holds one of navkit's locks that come after
+    ``lock`` in the lock order (:func:`_inside_navkit_lock`: a signal handler
+    forking where the main thread was in navkit's code) waited for ever when the
+    thread holding ``lock`` was waiting for that one (review 38: a thread
+    compiling holds numba's compiler lock and takes the collector's pause lock
+    at its compile's start and end, navkit's kernel table lock at a first
+    kernel call). Such a fork waits only while that thread is elsewhere than
+    in navkit's own locking code; found waiting there (the same frame and
+    instruction for 10 ms), it forks without ``lock``, recorded as
+    :class:`_NotTaken`, and the child makes the lock anew.
+    """
+    if not nested or lock.acquire(blocking=False):
+        if not nested:
+            lock.acquire()
+        record.append(lock)
+        return
+    seen: tuple[int, int] | None = None
+    still = 0
+    while not lock.acquire(timeout=0.002):
+        where = _where_holder_waits(lock)
+        still = still + 1 if where is not None and where == seen else 0
+        seen = where
+        if still >= 5:
+            record.append(_NotTaken(lock))
+            return
+    record.append(lock)
+
+
+def _where_holder_waits(lock: Any) -> tuple[int, int] | None:
+    """Where ``lock``'s holder is (frame, instruction) if in navkit's locking code, else None."""
+    match = re.search(r"owner=(\d+)", repr(lock))
+    frame = sys._current_frames().get(int(match.group(1))) if match else None
+    if frame is None or os.path.abspath(frame.f_code.co_filename) not in _LOCKING_FILES:
+        return None
+    return id(frame), frame.f_lasti
+
+
+def _renew_not_taken(record: list[Any]) -> None:
+    """In a forked child, make anew the locks its fork was made without (held by a lost thread)."""
+    global NUMBA_IMPORT
+    for item in record:
+        if not isinstance(item, _NotTaken):
+            continue
+        if item.lock is NUMBA_IMPORT:
+            NUMBA_IMPORT = threading.RLock()
+        module = sys.modules.get("numba.core.compiler_lock")
+        compiler = getattr(module, "global_compiler_lock", None)
+        if compiler is not None and getattr(compiler, "_lock", None) is item.lock:
+            compiler._lock = threading.RLock()
 
 
 def _before_fork() -> None:
@@ -197,11 +287,17 @@ def _before_fork() -> None:
     # raising SystemExit left them held the same way). Only a signal before
     # the hold is in place reaches the hook (nothing is taken yet then: the
     # hold is recorded before it starts, and undone by the after hook however
-    # far it got). The hooks cost about 20 µs a fork from the main thread
-    # (35 with one more signal handled in Python), but a whole fork takes about
-    # 0.4 ms longer than without the hold (1.06 -> 1.47 ms at os.fork's return,
-    # review 37): most of it page faults after the fork, as the handler is put
-    # back in pages the child now shares.
+    # far it got: a handler that raises there is reported as ignored, its
+    # exception lost, see held_for_fork). The hold costs about 10 µs a fork
+    # from the main thread, but a whole fork takes longer than without it
+    # (review 37: 1.06 -> 1.47 ms at os.fork's return): page copies after the
+    # fork, as the handlers are put back in pages the child now shares. Put back
+    # without signal.signal's enum conversions and ctypes' buffer making, the
+    # hold adds about half what it did (review 38: 0.61 -> 0.34 ms on a loaded
+    # 2-core machine, 300 alternating forks with and without it, medians).
+    # A fork from a signal handler run inside navkit's own locking code does not
+    # wait for ever for a thread waiting for the lock it interrupted
+    # (_take_for_fork).
     record: list[Any] = []
     _forks().append(record)
     held_for_fork(sys._getframe(1), record)  # os.fork's caller; record[0]
@@ -210,11 +306,9 @@ def _before_fork() -> None:
     # compile_shortcuts' lock too, taken here under the hold: its own hooks,
     # which ran outside it, left it held when a second Ctrl-C came in its after
     # hook (review 37: the first before the hold, cutting this hook short).
-    _PAUSE_LOCK.acquire()
-    record.append(_PAUSE_LOCK)
-    shortcuts = compile_shortcuts._LOCK
-    shortcuts.acquire()
-    record.append(shortcuts)
+    nested = _inside_navkit_lock()
+    _take_for_fork(_PAUSE_LOCK, record, nested=nested)
+    _take_for_fork(compile_shortcuts._LOCK, record, nested=nested)
 
 
 def _release_locks(record: list[Any]) -> None:
@@ -255,6 +349,9 @@ def _after_fork_in_child() -> None:
     _PAUSES = getattr(_THREAD, "pauses", 0)
     if others and _PAUSES == 0 and _RESUME:
         gc.enable()
+    forks = _forks()
+    if forks:
+        _renew_not_taken(forks[-1])
     release_in_child(_end_fork())
     if threading.get_ident() != _MAIN:
         _MAIN = threading.get_ident()
