@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import math
 import numbers
-from _thread import get_ident
 from collections.abc import Callable
 from typing import Any, Literal, cast
 
@@ -673,9 +672,10 @@ class RegulatedPurePursuit(PathTracker[_PursuitState]):
 
     def _refusal(self, other: tuple[Any, ...], callers: list[Any]) -> str:
         message = super()._refusal(other, callers)
-        if self._clearance is not None and other[0] == get_ident():
+        if self._clearance is not None and "in the same thread" in message:
             # The same thread: a signal handler's step, or one the clearance function
-            # made (the step calls it).
+            # made (the step calls it). Not a forked child's refusal of a call under
+            # way in its parent, whose thread may have had this ident.
             message += " (nor may its clearance(x, y) function call step)"
         return message
 
