@@ -216,7 +216,11 @@ class RegulatedPurePursuit(PathTracker[_PursuitState]):
     min_approach_speed : float, default 0.05
         Nav2 ``min_approach_linear_velocity`` (m/s), in (0, 100].
     goal_tolerance : float, default 0.25
-        Nav2 goal checker ``xy_goal_tolerance`` (m), in (0, 1e4].
+        Nav2 goal checker ``xy_goal_tolerance`` (m), in (0, 1e4]. A goal
+        tolerance below the float resolution of the goal's coordinates (one
+        ulp of the larger: 9.3e-10 m at a UTM northing of 4.6e6 m) counts as
+        that resolution: a pose one ulp beside the goal is as near as any
+        but the goal itself.
     yaw_tolerance : float, default 0.25
         Nav2 goal checker ``yaw_goal_tolerance`` (rad), in (0, π].
     max_omega : float, optional
@@ -603,7 +607,8 @@ class RegulatedPurePursuit(PathTracker[_PursuitState]):
         gx, gy = line.end
         to_goal = math.hypot(gx - px, gy - py)
         if state.phase == "final" or (
-            s_carrot >= line.length and to_goal <= self._goal_tolerance
+            s_carrot >= line.length
+            and (to_goal <= self._goal_tolerance or to_goal <= _resolution(gx, gy))
         ):
             cmd = self._finish(state, pose, dt, lambda err, h: self._rotate(err, h, w_now))
             state.last = (cmd.vx, cmd.vy, cmd.omega)
@@ -696,6 +701,19 @@ class RegulatedPurePursuit(PathTracker[_PursuitState]):
         if math.isnan(value):
             raise ValueError(f"clearance(x, y) returned NaN at ({pose.x}, {pose.y})")
         return max(value, 0.0)
+
+
+def _resolution(x: float, y: float) -> float:
+    """The float resolution (m) of world coordinates at the point ``(x, y)``: one ulp
+    of the larger coordinate.
+
+    A goal tolerance below it (1e-12 m at a UTM northing of 4.6e6 m, where it is
+    9.3e-10 m) is met only on the goal itself, which a differential robot's arcs
+    did not land on: it turned in place and crept between two points one ulp
+    beside the goal for ever, never done (review 38; every start of 20 tried).
+    A goal that near counts as reached: no pose is nearer without being on it.
+    """
+    return math.ulp(max(abs(x), abs(y)))
 
 
 def _as_clearance(value: Any) -> Clearance | None:
