@@ -442,8 +442,7 @@ class ExtendedKalmanFilter(GaussianEstimate):
         2⁻¹² / ε it replaces a Joseph result that failed its checks or whose
         measured error is more than twice its own. The state committed is
         one with a bound on its error within 2⁻²⁰ of the posterior's
-        deviation (a quarter of it for measurements of more than 8
-        components) or 32 ε (|x| + |x⁺ - x|): the kernel's (bounded by its
+        deviation or 32 ε (|x| + |x⁺ - x|): the kernel's (bounded by its
         distance from the information form's plus that one's bound, the
         roundings of g = Hᵀ R⁻¹ y and of J carried through P⁺) or, where the
         two disagree, the information form's, else, for measurements of at

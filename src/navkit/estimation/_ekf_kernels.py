@@ -60,12 +60,12 @@ NIS and x are not to be trusted; H P Hᵀ cancelling counts), commits nothing
 and returns ``CANCELLED``; the public layer finishes it with :func:`finish_cancelled`,
 which may take the information form instead, chosen by residuals computed
 exactly, and commits a state only with a bound on its error within 2⁻²⁰ of a
-posterior deviation (a quarter of one for more than ``_EXACT_NIS_MAX_M``
-components) or a few ulps, else the posterior mean in exact rational
-arithmetic, and a covariance only with a measured error within 2⁻⁴⁰ of its
-scale, else the exact posterior covariance, rounded once, where float64 holds
-it as a covariance (in NumPy: the case is rare, and compiled into every update
-kernel it would cost compile time).
+posterior deviation or a few ulps, else the posterior mean in exact rational
+arithmetic (for more than ``_EXACT_NIS_MAX_M`` components, the information
+form's state where its bound is within a quarter of one), and a covariance
+only with a measured error within 2⁻⁴⁰ of its scale, else the exact posterior
+covariance, rounded once, where float64 holds it as a covariance (in NumPy: the
+case is rare, and compiled into every update kernel it would cost compile time).
 
 Each kernel is compiled, when first requested, for one signature: the
 filter's own arrays (``state``, ``rbuf``, ``y``) as numba arrays and the
@@ -1136,20 +1136,21 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
       kernel's NIS: 4.61 for an exact 2128.)
 
     Then the state: the one chosen above only where a bound on its error is
-    within ``_STEP_EXACT_SURE`` deviations (2⁻²⁰; ``_STEP_SURE``, a quarter,
-    for measurements of more than ``_EXACT_NIS_MAX_M`` components, which have
-    no exact state; before review 33 a quarter for all, which kept the
-    kernel's x up to 1.5e-3 deviations off where x⁺ was within 1e-7 of one) or
+    within ``_STEP_EXACT_SURE`` deviations (2⁻²⁰; before review 33 a quarter,
+    which kept the kernel's x up to 1.5e-3 deviations off where x⁺ was within
+    1e-7 of one, and before review 38 still a quarter for measurements of more
+    than ``_EXACT_NIS_MAX_M`` components, which have no exact state: the
+    kernel's x up to 0.013 deviations off where x⁺'s bound was 1.4e-4) or
     ``_STEP_RESOLUTION`` of ``|x| + |x⁺ - x|`` (x⁺'s own bound; for the
     kernel's x, ``|x_kernel - x⁺|`` plus x⁺'s bound, the only bound it has:
     ε κ(S) of its scale says nothing where the posterior's deviations lie far
     below it); else, for measurements of more than ``_EXACT_NIS_MAX_M``
-    components, x⁺ where its bound
-    is; else (and always where the information form is not trusted: nothing
-    bounds the kernel's x there; and wherever the exact NIS was computed, from
-    whose elimination the exact state costs about 0.02 ms more: before review
-    27 a vouched x⁺ was committed there, 1.25 ulps off where the kernel's x
-    was exact) the exact posterior mean
+    components, x⁺ where its bound is within ``_STEP_SURE`` deviations (a
+    quarter) or that resolution; else (and always where the information form
+    is not trusted: nothing bounds the kernel's x there; and wherever the
+    exact NIS was computed, from whose elimination the exact state costs
+    about 0.02 ms more: before review 27 a vouched x⁺ was committed there,
+    1.25 ulps off where the kernel's x was exact) the exact posterior mean
     ``x + P Hᵀ S⁻¹ y`` in rational arithmetic, rounded once
     (:func:`_exact_state`, for measurements of at most
     ``_EXACT_NIS_MAX_M`` components; ``STATE_OVERFLOW`` where it is beyond
@@ -1223,8 +1224,7 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
                 apart[i] = wrap_float(float(apart[i]))
             size = np.abs(x) + np.abs(step)
             tolerance = np.maximum(2.0**-33 * size, deviation)
-            sure = _STEP_EXACT_SURE if exact else _STEP_SURE
-            within = np.maximum(sure * deviation, _STEP_RESOLUTION * size)
+            within = np.maximum(_STEP_EXACT_SURE * deviation, _STEP_RESOLUTION * size)
             info_bound = found.step_error if np.isfinite(x_info).all() else np.full(n, math.inf)
             # The kernel's x is no further from the posterior mean than from x⁺ plus x⁺'s
             # bound: the only bound it has (ε κ(S) of its scale can be 1e38 posterior
@@ -1261,15 +1261,20 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
                     regate = True
                     if (info_bound <= within).all():
                         new_x = x_info
-            # The state committed is one whose bound is within `sure` deviations or
-            # the state's float64 resolution: the one chosen above, else the exact
-            # state where there is one, else the other. (Not x⁺ before the exact
-            # one: where the kernel's x is unvouched but 1e-16 deviations off, x⁺
-            # within 2⁻²⁰ was 2.5e-9 off; review 33.)
+            # The state committed is one whose bound is within _STEP_EXACT_SURE
+            # deviations or the state's float64 resolution: the one chosen above, else
+            # the exact state where there is one, else x⁺ where its bound is within
+            # _STEP_SURE deviations. (Not x⁺ before the exact one: where the kernel's
+            # x is unvouched but 1e-16 deviations off, x⁺ within 2⁻²⁰ was 2.5e-9 off;
+            # review 33. Vouched within _STEP_SURE for more than _EXACT_NIS_MAX_M
+            # components, the kernel's x was up to 0.245 deviations off where x⁺ was
+            # 3e-7 off; review 38.)
             bound = info_bound if new_x is x_info else kernel_bound
             unvouched = not (bound <= within).all()
-            if unvouched and not exact and (info_bound <= within).all():
-                new_x, unvouched = x_info, False
+            if unvouched and not exact:
+                loose = np.maximum(_STEP_SURE * deviation, _STEP_RESOLUTION * size)
+                if (info_bound <= loose).all():
+                    new_x, unvouched = x_info, False
             if take_p:
                 new_p, status = posterior, OK
     elimination = None
