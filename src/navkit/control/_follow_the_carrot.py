@@ -30,6 +30,10 @@ _MAX_FOLDS = 64
 # computed by arc length and interpolation, is never the robot's own closest point.
 _CARROT_RESOLUTION = 2.0**-46
 
+# The spacing of float64 headings just below π (4.4e-16 rad): a turn of less in one
+# step may leave the heading where it was (see FollowTheCarrot._final_turn).
+_HEADING_RESOLUTION = math.ulp(math.pi)
+
 
 class _CarrotState(PathState):
     """:class:`PathState` and the arc length of the last carrot (``carrot_s``)."""
@@ -89,6 +93,9 @@ class FollowTheCarrot(PathTracker[_CarrotState]):
         reached, in (0, 1e4].
     yaw_tolerance : float, default 0.01
         Heading error (rad) at which the goal heading is reached, in (0, π].
+        A tolerance near the resolution of float64 headings (4.4e-16 rad at
+        ±π) is met too: once the proportional turn of one step would be
+        smaller than that, the rest of the error is turned in that step.
     heading_gain : float, default 3.0
         Turn rate per radian of heading error (1/s), in (0, 1e6]. With the
         default speed and carrot distance the lateral error is overdamped
@@ -260,6 +267,16 @@ class FollowTheCarrot(PathTracker[_CarrotState]):
         rate = min(self._heading_gain * abs(err), self._max_omega, abs(err) / dt)
         return math.copysign(rate, err)
 
+    def _final_turn(self, err: float, dt: float) -> float:
+        omega = self._turn(err, dt)
+        if abs(omega) * dt < _HEADING_RESOLUTION:
+            # A proportional turn this small is lost when added to a heading near ±π:
+            # with a yaw_tolerance near that resolution the robot stopped turning
+            # short of it and never finished (review 38). The last bit is turned at
+            # once, which lands on the goal yaw itself.
+            omega = math.copysign(min(self._max_omega, abs(err) / dt), err)
+        return omega
+
     def _command(
         self,
         state: _CarrotState,
@@ -298,7 +315,7 @@ class FollowTheCarrot(PathTracker[_CarrotState]):
             near_end and math.hypot(gx - pose.x, gy - pose.y) <= self._goal_tolerance
         ):
             state.target = (gx, gy)
-            return self._finish(state, pose, dt, self._turn)
+            return self._finish(state, pose, dt, self._final_turn)
         state.target = (cx, cy)
         dist = math.hypot(dx, dy)
         speed = min(self._max_speed, dist / dt)
