@@ -23,6 +23,7 @@ from navkit.planning.grid import _workspace
 from navkit.planning.grid._arguments import check_search_size
 from navkit.planning.grid._search_heap import (
     REC_BASE,
+    TIE_RESOLUTION,
     aligned_heap,
     tie_key,
 )
@@ -370,7 +371,7 @@ def test_record_heap_pops_in_priority_order(sequence: list[tuple[str, int, float
     meta = np.zeros(4 * 200, dtype=np.int32)
     ref: dict[int, tuple[float, float]] = {}
     for op, node, f, tie in sequence:
-        new = (f, tie_key(tie, node))
+        new = (f, tie_key(tie, node, TIE_RESOLUTION))
         if op == "push":
             push(heap, meta, ref, node, new)
         elif op == "replace" and ref and node not in ref:

@@ -24,8 +24,11 @@ from hypothesis_twins import slow_twin
 from navkit.errors import NoPathError
 from navkit.planning import astar
 from navkit.planning.grid._search_heap import (
+    HEAP_TIE_LIMIT,
+    TIE_RESOLUTION,
     aligned_heap,
     tie_key,
+    tie_resolution,
 )
 
 SQRT2 = math.sqrt(2.0)
@@ -60,7 +63,9 @@ def textbook_astar(
     g = {start: 0.0}
     parent: dict[tuple[int, int], tuple[int, int]] = {}
     closed: set[tuple[int, int]] = set()
-    queue = [(scale * h(*start), tie_key(h(*start), start[0] * cols + start[1]), start)]
+    # The kernel's tie resolution for the grid (1/16 cell below 2**27 rows + cols).
+    res = tie_resolution(rows, cols, HEAP_TIE_LIMIT)
+    queue = [(scale * h(*start), tie_key(h(*start), start[0] * cols + start[1], res), start)]
     expanded = 0
     while queue:
         _, _, u = heapq.heappop(queue)
@@ -93,7 +98,7 @@ def textbook_astar(
             g[(r2, c2)] = new_g
             parent[(r2, c2)] = u
             hv = h(r2, c2)
-            heapq.heappush(queue, (new_g + scale * hv, tie_key(hv, r2 * cols + c2), (r2, c2)))
+            heapq.heappush(queue, (new_g + scale * hv, tie_key(hv, r2 * cols + c2, res), (r2, c2)))
     return expanded, None
 
 
@@ -173,7 +178,7 @@ def test_removing_any_slot_keeps_heap_and_slots(
     meta = np.zeros(4 * 150, dtype=np.int32)
     ref: dict[int, tuple[float, float]] = {}
     for op, node, f, tie in sequence:
-        new = (f, tie_key(tie, node))
+        new = (f, tie_key(tie, node, TIE_RESOLUTION))
         if op == "push":
             push(heap, meta, ref, node, new)
         elif op == "remove" and ref:

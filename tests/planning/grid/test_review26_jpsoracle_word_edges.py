@@ -94,6 +94,11 @@ class Reference:
         self.free_cells = free.tolist()
         self.rows, self.cols = free.shape
         self.cutting = cutting
+        # The kernels' tie resolution: 1/16 cell unless rows + cols >= 2**17, where
+        # it halves until every tie (h < rows + cols) stays below 2**21 (review 38).
+        self.tie_resolution = 16.0
+        while self.tie_resolution * (self.rows + self.cols) >= 2.0**21:
+            self.tie_resolution *= 0.5
         # Per search: the goal, node records, open and closed nodes, queue.
         self.goal: Cell = (-1, -1)
         self.records: dict[int, tuple[float, int, int]] = {}
@@ -194,7 +199,7 @@ class Reference:
         """Queue ``v`` by f = g + octile h, ties by the kernels' tie key (h to 1/16, then node)."""
         adr, adc = abs(v[0] - self.goal[0]), abs(v[1] - self.goal[1])
         h = max(adr, adc) + OCTILE_EXTRA * min(adr, adc)
-        key = math.floor(min(h * 16.0, float(2**20 - 1))) * float(2**32) + self.flat(v)
+        key = math.floor(h * self.tie_resolution) * float(2**32) + self.flat(v)
         heapq.heappush(self.heap, (g + h, key, self.flat(v)))
 
     @staticmethod

@@ -19,8 +19,8 @@ documented limits down to the queue's operations:
   exact on heaps of two and three entries and when one node is re-queued
   twice in a row;
 * searches on extreme grids (costs one ulp apart at 1 and at 1e12, the largest
-  weight; plateaus of equal f; goals beyond the tie key's saturation at 65,536
-  cells) expand exactly what a textbook A* in the same arithmetic expands, and
+  weight; plateaus of equal f; goals beyond 65,536 cells, where the tie key
+  saturated until review 38) expand exactly what a textbook A* in the same arithmetic expands, and
   the heap Dijkstra's distance fields equal SciPy's bit for bit; a heuristic
   weight of -0.0 (accepted: -0.0 >= 0) searches as 0.0 does.
 """
@@ -45,11 +45,14 @@ from navkit.planning import AStarPlanner, astar
 from navkit.planning.grid._astar_kernels import _NONE, SQRT2, _f64_bits_python
 from navkit.planning.grid._limits import MAX_COST, MAX_HEURISTIC_WEIGHT, MAX_NODES
 from navkit.planning.grid._search_heap import (
-    _TIE_MAX,
+    FLOAT_TIE_LIMIT,
+    HEAP_TIE_LIMIT,
+    TIE_RESOLUTION,
     _bits_precede,
     aligned_heap,
     tie_key,
     tie_key_bits,
+    tie_resolution,
 )
 
 _MAX_FINITE = float(np.finfo(np.float64).max)
@@ -73,11 +76,16 @@ def test_largest_f_the_limits_allow_leaves_room_for_the_carry() -> None:
     assert math.isfinite(f_max)
     assert _bits(f_max) + 1 < int(_NONE)  # a carry onto any f stays below "none"
     assert int(_NONE) + 1 < 2**64  # a carry onto "none" itself does not wrap
-    # The largest tie key (saturated tie, largest node id) is below "none" too,
-    # and below 2**53, exact as the float tie key of the jump point search.
-    largest_key = int(tie_key_bits(1e30, MAX_NODES - 1))
-    assert largest_key == (int(_TIE_MAX) << 32 | (MAX_NODES - 1)) < 2**53 < int(_NONE)
-    assert float(tie_key(1e30, MAX_NODES - 1)) == largest_key
+    # The largest tie key (the largest tie of the longest grid at its resolution,
+    # the largest node id) is below "none" too; jump point search's float tie
+    # key of it is exact, below 2**53 (review 38: ties no longer saturate).
+    h_max = float(MAX_NODES)  # above every h of a grid of MAX_NODES cells
+    resolution = tie_resolution(1, MAX_NODES, HEAP_TIE_LIMIT)
+    largest_key = int(tie_key_bits(h_max, MAX_NODES - 1, resolution))
+    assert largest_key == (math.floor(resolution * h_max) << 32 | (MAX_NODES - 1)) < int(_NONE)
+    resolution = tie_resolution(1, MAX_NODES, FLOAT_TIE_LIMIT)
+    largest_float = tie_key(h_max, MAX_NODES - 1, resolution)
+    assert largest_float == math.floor(resolution * h_max) * 2**32 + MAX_NODES - 1 < 2**53
 
 
 # --- the comparison and the bitcast over every double >= 0 --------------------------
@@ -191,7 +199,7 @@ def test_requeue_on_heaps_of_two_and_three_entries(
     meta = np.zeros(4 * 8, dtype=np.int32)
     ref: dict[int, tuple[float, float]] = {}
     for node, (f, tie) in enumerate(priorities):
-        push(heap, meta, ref, node, (f, tie_key(tie, node)))
+        push(heap, meta, ref, node, (f, tie_key(tie, node, TIE_RESOLUTION)))
     top = min(ref, key=ref.__getitem__)
     others = [v for v in ref if v != top]
     node = others[pick % len(others)]
@@ -221,7 +229,7 @@ def test_repeated_requeues_of_the_same_cells_keep_heap_and_slots(
     meta = np.zeros(4 * 64, dtype=np.int32)
     ref: dict[int, tuple[float, float]] = {}
     for node, f in pushes:
-        push(heap, meta, ref, node, (f, tie_key(node % 3, node)))
+        push(heap, meta, ref, node, (f, tie_key(node % 3, node, TIE_RESOLUTION)))
     for pick, drop in lowers:
         if len(ref) < 2:
             break
@@ -350,17 +358,21 @@ def test_heap_distance_field_equals_scipy_bit_for_bit(
 
 
 @pytest.mark.parametrize("corner_cutting", [True, pytest.param(False, marks=pytest.mark.slow)])
-def test_goal_beyond_the_tie_keys_saturation_expands_as_textbook_astar(
+def test_goal_beyond_the_old_tie_saturation_expands_as_textbook_astar(
     corner_cutting: bool,
 ) -> None:
-    # The tie (16 h) saturates at 2**20 - 1, h = 65,536 cells: the first 4,000
-    # columns here tie on it and go by node id alone. Still a total order, the
+    # The tie (16 h) saturated at 2**20 - 1, h = 65,536 cells, until review 38:
+    # the first 4,000 columns here tied on it and went by node id alone. Now
+    # they tie on h as every other cell does. A total order either way, the
     # textbook's too, and the path optimal.
     cols = 70_000
     costs = np.ones((2, cols))
     costs[0, 1000:cols:997] = np.inf
     start, goal = (0, 0), (1, cols - 1)
-    assert int(tie_key_bits(cols - 4_000.0, 0)) >> 32 == int(_TIE_MAX)
+    resolution = tie_resolution(2, cols, HEAP_TIE_LIMIT)
+    assert resolution == TIE_RESOLUTION
+    nearer = int(tie_key_bits(cols - 4_001.0, 0, resolution)) >> 32
+    assert nearer < int(tie_key_bits(cols - 4_000.0, 0, resolution)) >> 32
     expected_expanded, expected_path = textbook_astar(costs, start, goal, True, corner_cutting, 1.0)
     assert expected_path is not None
     path = astar(costs, start, goal, corner_cutting=corner_cutting)

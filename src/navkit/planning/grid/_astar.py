@@ -707,7 +707,14 @@ def astar(
     about 256 MB (A*) or more with JPS and :func:`distance_field`; search
     huge grids in a worker thread that ends to give the memory back.
     Grids may have at most 2**31 - 1 cells. Ties among equal f are broken by the
-    heuristic (to 1/16 cell), then by cell index, so results are deterministic.
+    heuristic (to 1/16 cell at any distance from the goal on grids with rows +
+    cols below 2**27, or 2**17 with JPS; on longer ones to the finest power of
+    two that fits), then by cell index, so results are deterministic. Equal
+    means equal as computed: on open grids of one cost, sums of 1 and sqrt(2)
+    in different orders round differently, so cells of one plateau differ in f
+    by an ulp and A* may expand many cells off the path (an empty 512 x 512
+    grid from (0, 0) to (511, 250): 63,760 cells for a path of 512; JPS 3).
+    The path is optimal all the same.
 
     Raises
     ------

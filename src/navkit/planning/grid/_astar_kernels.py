@@ -86,12 +86,14 @@ from navkit._shared.jit import (
 )
 from navkit._shared.types import KernelInt
 from navkit.planning.grid._search_heap import (
+    HEAP_TIE_LIMIT,
     REC_BASE,
     rec_pop,
     rec_remove,
     rec_replace_top,
     rec_sift_up,
     tie_key_bits,
+    tie_resolution,
 )
 
 SQRT2 = math.sqrt(2.0)
@@ -154,6 +156,7 @@ def _relax(
     gc: int,
     octile: bool,
     scale: float,
+    tie_res: float,
     next_f: np.uint64,
     next_key: np.uint64,
     next_v: KernelInt,
@@ -190,8 +193,8 @@ def _relax(
     # The bits of f (>= 0, finite), which order as f does.
     f: np.uint64 = _f64_bits(new_g + scale * h)
     # Ties in f go to the cell nearer the goal, which keeps A* from expanding
-    # whole plateaus of equal f.
-    key = tie_key_bits(h, v)
+    # whole plateaus of equal f (h to 1 / tie_res cells, at every distance).
+    key = tie_key_bits(h, v, tie_res)
     if f < next_f + np.uint64(key < next_key):  # _bits_precede, written out
         if next_v < 0:
             return f, key, v, n, queued
@@ -303,6 +306,8 @@ def grid_search(
     gr = goal // cols if goal >= 0 else 0
     gc = goal - gr * cols if goal >= 0 else 0
     open16 = open_mark << 4
+    # Ties to 1/16 cell unless rows + cols >= 2**27 (see _search_heap).
+    tie_res = tie_resolution(rows, cols, HEAP_TIE_LIMIT)
     rec[np.uint64(2 * start)] = 0.0
     meta[np.uint64(4 * start + 2)] = open_mark << 4
     expanded = 0
@@ -334,22 +339,22 @@ def grid_search(
         if n_in:
             nf, nk, nv, n, nq = _relax(
                 flat, rec, meta, heap, n, open_mark, closed_mark, u - cols, open16 | 1, 1.0, gu, cu,
-                r - 1, c, gr, gc, eight, scale, nf, nk, nv, nq
+                r - 1, c, gr, gc, eight, scale, tie_res, nf, nk, nv, nq
             )  # fmt: skip
         if s_in:
             nf, nk, nv, n, nq = _relax(
                 flat, rec, meta, heap, n, open_mark, closed_mark, u + cols, open16 | 2, 1.0, gu, cu,
-                r + 1, c, gr, gc, eight, scale, nf, nk, nv, nq
+                r + 1, c, gr, gc, eight, scale, tie_res, nf, nk, nv, nq
             )  # fmt: skip
         if w_in:
             nf, nk, nv, n, nq = _relax(
                 flat, rec, meta, heap, n, open_mark, closed_mark, u - 1, open16 | 3, 1.0, gu, cu, r,
-                c - 1, gr, gc, eight, scale, nf, nk, nv, nq
+                c - 1, gr, gc, eight, scale, tie_res, nf, nk, nv, nq
             )  # fmt: skip
         if e_in:
             nf, nk, nv, n, nq = _relax(
                 flat, rec, meta, heap, n, open_mark, closed_mark, u + 1, open16 | 4, 1.0, gu, cu, r,
-                c + 1, gr, gc, eight, scale, nf, nk, nv, nq
+                c + 1, gr, gc, eight, scale, tie_res, nf, nk, nv, nq
             )  # fmt: skip
         if eight:
             if corner_cutting:
@@ -370,22 +375,22 @@ def grid_search(
             if nw:
                 nf, nk, nv, n, nq = _relax(
                     flat, rec, meta, heap, n, open_mark, closed_mark, u - cols - 1, open16 | 5,
-                    SQRT2, gu, cu, r - 1, c - 1, gr, gc, eight, scale, nf, nk, nv, nq
+                    SQRT2, gu, cu, r - 1, c - 1, gr, gc, eight, scale, tie_res, nf, nk, nv, nq
                 )  # fmt: skip
             if ne:
                 nf, nk, nv, n, nq = _relax(
                     flat, rec, meta, heap, n, open_mark, closed_mark, u - cols + 1, open16 | 6,
-                    SQRT2, gu, cu, r - 1, c + 1, gr, gc, eight, scale, nf, nk, nv, nq
+                    SQRT2, gu, cu, r - 1, c + 1, gr, gc, eight, scale, tie_res, nf, nk, nv, nq
                 )  # fmt: skip
             if sw:
                 nf, nk, nv, n, nq = _relax(
                     flat, rec, meta, heap, n, open_mark, closed_mark, u + cols - 1, open16 | 7,
-                    SQRT2, gu, cu, r + 1, c - 1, gr, gc, eight, scale, nf, nk, nv, nq
+                    SQRT2, gu, cu, r + 1, c - 1, gr, gc, eight, scale, tie_res, nf, nk, nv, nq
                 )  # fmt: skip
             if se:
                 nf, nk, nv, n, nq = _relax(
                     flat, rec, meta, heap, n, open_mark, closed_mark, u + cols + 1, open16 | 8,
-                    SQRT2, gu, cu, r + 1, c + 1, gr, gc, eight, scale, nf, nk, nv, nq
+                    SQRT2, gu, cu, r + 1, c + 1, gr, gc, eight, scale, tie_res, nf, nk, nv, nq
                 )  # fmt: skip
         if nv >= 0:
             top_f = heap[2 * REC_BASE]

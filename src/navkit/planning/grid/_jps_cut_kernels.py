@@ -77,6 +77,7 @@ from navkit.planning.grid._jps_kernels import (
     _reach,
     _scan_line,
 )
+from navkit.planning.grid._search_heap import FLOAT_TIE_LIMIT, tie_resolution
 
 # The helpers' options, as _jps_kernels' (written here: numba's cache keys a kernel's
 # code on its own file, so options imported from another file could change without
@@ -160,6 +161,7 @@ def _add_on_line(
     cols: int,
     gr: int,
     gc: int,
+    tie_res: float,
 ) -> tuple[KernelInt, float, float, KernelInt]:
     """Reach the jump point a straight scan k from node ``u`` = (r, c) found, and queue it.
 
@@ -172,7 +174,7 @@ def _add_on_line(
     v = vr * cols + vc
     if not _reach(blocks, g, meta, stamp, v, gu + run, u, k):
         return n, next_f, next_key, next_v
-    return _offer(heap, n, next_f, next_key, next_v, v, vr, vc, gu + run, gr, gc)
+    return _offer(heap, n, next_f, next_key, next_v, v, vr, vc, gu + run, gr, gc, tie_res)
 
 
 @_helper_not_inlined
@@ -237,6 +239,8 @@ def jps_cut_search(
     counts queued jump points only (see the module notes).
     """
     hw, vw, gr, gc = _begin(rows, cols, start, goal, g, meta)
+    # Ties to 1/16 cell unless rows + cols >= 2**17 (see _search_heap).
+    tie_res = tie_resolution(rows, cols, FLOAT_TIE_LIMIT)
     gq = gr + 1
     gp = gc + 1
     n: KernelInt = np.int64(0)
@@ -258,7 +262,7 @@ def jps_cut_search(
                 if x >= 0:
                     n, next_f, next_key, next_v = _add_on_line(
                         blocks, g, meta, stamp, heap, n, next_f, next_key, next_v,
-                        x, k, r, c, gu, u, cols, gr, gc,
+                        x, k, r, c, gu, u, cols, gr, gc, tie_res,
                     )  # fmt: skip
                 if n < 0:
                     return expanded, -1, 0, 0
@@ -288,7 +292,7 @@ def jps_cut_search(
                 if z == goal or _diagonal_forced(row_bits, hw, zr + 1, zc + 1, dr, dc):
                     if _reach(blocks, g, meta, stamp, z, gz, parent, k):
                         n, next_f, next_key, next_v = _offer(
-                            heap, n, next_f, next_key, next_v, z, zr, zc, gz, gr, gc
+                            heap, n, next_f, next_key, next_v, z, zr, zc, gz, gr, gc, tie_res
                         )
                     break
                 xh = _scan(row_bits, hw, col_bits, vw, zr + 1, zc + 1, kh, gq, gp)
@@ -304,7 +308,7 @@ def jps_cut_search(
                     if x >= 0:
                         n, next_f, next_key, next_v = _add_on_line(
                             blocks, g, meta, stamp, heap, n, next_f, next_key, next_v,
-                            x, kk, zr, zc, gz, z, cols, gr, gc,
+                            x, kk, zr, zc, gz, z, cols, gr, gc, tie_res,
                         )  # fmt: skip
                         if n < 0:
                             return expanded, -1, 0, 0

@@ -77,10 +77,12 @@ from navkit._shared.jit import (
 from navkit._shared.types import KernelInt
 from navkit.planning.grid._limits import compiled_cost_range
 from navkit.planning.grid._search_heap import (
+    FLOAT_TIE_LIMIT,
     _precedes,
     node_of,
     smallest_child,
     tie_key,
+    tie_resolution,
 )
 
 SQRT2 = math.sqrt(2.0)
@@ -626,6 +628,8 @@ def jps_search(
         ``cells - 1 - diagonal + sqrt(2) * diagonal``.
     """
     hw, vw, gr, gc = _begin(rows, cols, start, goal, g, meta)
+    # Ties to 1/16 cell unless rows + cols >= 2**17 (see _search_heap).
+    tie_res = tie_resolution(rows, cols, FLOAT_TIE_LIMIT)
     gq = gr + 1
     gp = gc + 1
     n: KernelInt = np.int64(0)  # np.int64: a literal 0 would compile _heap_push twice
@@ -685,7 +689,7 @@ def jps_search(
                     vc = v - vr * cols
                     new_g = g[2 * v]
             n, next_f, next_key, next_v = _offer(
-                heap, n, next_f, next_key, next_v, v, vr, vc, new_g, gr, gc
+                heap, n, next_f, next_key, next_v, v, vr, vc, new_g, gr, gc, tie_res
             )
             if n < 0:
                 return expanded, -1, 0, 0
@@ -754,12 +758,15 @@ def _offer(
     new_g: float,
     gr: int,
     gc: int,
+    tie_res: float,
 ) -> tuple[KernelInt, float, float, KernelInt]:
     """Queue node ``v`` = (vr, vc), reached at cost ``new_g``, for expansion.
 
     ``(next_f, next_key, next_v)`` is the best successor of the node being
     expanded so far, held out of the heap of ``n`` entries (``next_v`` -1:
     none yet); of it and ``v`` the better one is held, the other pushed.
+    Ties in f go to the smaller h, to ``1 / tie_res`` cells (from
+    :func:`~navkit.planning.grid._search_heap.tie_resolution`), then node id.
     Returns the new heap size (-1 when the heap is full) and held successor.
     """
     # mypy infers abs() of an ``int | np.int64`` as ``object``.
@@ -768,7 +775,7 @@ def _offer(
     # Selects, not the min/max builtins (compiled as overloads of their own).
     h = (adr if adr > adc else adc) + _OCTILE_EXTRA * (adc if adr > adc else adr)
     f = new_g + h
-    key = tie_key(h, v)
+    key = tie_key(h, v, tie_res)
     if f < next_f or (f == next_f and key < next_key):
         f, next_f = next_f, f
         key, next_key = next_key, key

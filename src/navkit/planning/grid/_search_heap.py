@@ -7,9 +7,10 @@ array, so a heap level is read from a single cache line:
 
 ``heap`` uint64, from :func:`aligned_heap`
     Slot ``i`` holds the primary key ``f`` at entry ``REC_BASE + 2 * i`` and its
-    tie key, ``tie << 32 | node`` (see :func:`tie_key_bits`), next to it: ties in
-    ``f`` go to the smaller ``tie``, then to the smaller node id, so the order is
-    total and a search is deterministic. Packing the node id into the tie key
+    tie key, ``floor(resolution * tie) << 32 | node`` (see :func:`tie_key_bits`
+    and Tie keys below), next to it: ties in ``f`` go to the smaller ``tie``,
+    then to the smaller node id, so the order is total and a search is
+    deterministic. Packing the node id into the tie key
     saves a third array and a random access per move. The array is 64-byte
     aligned and offset by ``REC_BASE`` so the four children of a slot share one
     cache line. ``f`` is stored as its IEEE 754 bits (``f.view(np.uint64)``):
@@ -38,9 +39,24 @@ Every index these operations compute is unsigned (``np.uint64``), so numba
 adds no negative-index wraparound code to the accesses (review 23; see
 Indices in :mod:`navkit.planning.grid._astar_kernels`).
 
-Limits: node ids below 2**32 (the tie key must stay an exactly representable
-integer below 2**53) and at most 2**31 - 1 queued nodes; the public functions
-reject larger grids.
+Tie keys. The searches' tie is h, the heuristic distance to the goal in
+cells (below ``rows + cols``), quantised to ``1 / resolution`` of a cell;
+:func:`tie_resolution` picks, per grid, the finest power of two up to 16 whose
+quantised ties fit the key: 31 bits in the ``rec_*`` heap's integer keys (a
+key stays below 2**63, the "no candidate" sentinel of the A* kernel), 21 bits
+in jump point search's float64 keys (below 2**53, exact). That is 1/16 of a
+cell on every grid with ``rows + cols`` below 2**27 (A*) or 2**17 = 131,072
+(JPS), and coarser by halves on longer grids only, never saturating. (Until
+review 38 the tie was ``min(16 h, 2**20 - 1)`` on every grid: from 65,536
+cells away from the goal every tie went by node id alone, which favours the
+upper rows, and A* on a tall open grid with the goal at the bottom expanded
+the plateau of equal f row by row: 101,248 cells for a path of 70,007 on a
+4-connected 70,000 x 8 grid, 2,035,436 for 200,000 corner to corner on an
+8-connected 16 x 200,000 one. The keys are the same bits as before wherever
+every h is below 65,535.9375 on grids within those spans.)
+
+Limits: node ids below 2**32 and at most 2**31 - 1 queued nodes; the public
+functions reject larger grids.
 """
 
 from __future__ import annotations
@@ -65,26 +81,52 @@ MAX_NODES = 2**31 - 1
 
 _TWO32 = float(2**32)
 _LOW32 = 2**32 - 1
-# Tie values are quantised to 1/16 and saturate at 2**20 - 1, so the tie key
-# stays below 2**52 for every node id below 2**32.
-_TIE_RESOLUTION = 16.0
-_TIE_MAX = float(2**20 - 1)
 _U32 = np.uint64(32)
 
+TIE_RESOLUTION = 16.0
+"""The finest tie resolution, per cell (ties in f go to the smaller h to 1/16 cell)."""
+HEAP_TIE_LIMIT = float(2**31)
+"""Quantised ties of the ``rec_*`` heap stay below this: its keys below 2**63."""
+FLOAT_TIE_LIMIT = float(2**21)
+"""Quantised ties of float64 keys (jump point search) stay below this: keys below 2**53."""
+
 
 @njit_inline
-def tie_key(tie: float, node: KernelInt) -> float:
-    """Tie key of ``node``: ``tie`` (>= 0, resolution 1/16, saturating) then node id."""
-    # A select, not min(): numba compiles the builtin as an overload of its own.
-    t = tie * _TIE_RESOLUTION
-    return math.floor(t if t < _TIE_MAX else _TIE_MAX) * _TWO32 + node
+def tie_resolution(rows: int, cols: int, limit: float) -> float:
+    """Finest power of two up to :data:`TIE_RESOLUTION` with ``resolution * (rows + cols) < limit``.
+
+    Every tie a search on a ``rows`` x ``cols`` grid makes (h in cells, octile
+    or Manhattan, to a goal or, for Dijkstra, to cell (0, 0)) is below
+    ``rows + cols``, so ``floor(resolution * h)`` is below ``limit``: the tie
+    keys never saturate (see Tie keys in this module's docstring). A power of
+    two, so ``resolution * h`` is exact.
+    """
+    resolution = TIE_RESOLUTION
+    span = float(rows) + float(cols)
+    while resolution * span >= limit:
+        resolution *= 0.5
+    return resolution
 
 
 @njit_inline
-def tie_key_bits(tie: float, node: KernelInt) -> np.uint64:
-    """:func:`tie_key` as an integer, ``floor(16 * tie) << 32 | node`` (tie saturating)."""
-    t = tie * _TIE_RESOLUTION
-    return (np.uint64(math.floor(t if t < _TIE_MAX else _TIE_MAX)) << _U32) | np.uint64(node)
+def tie_key(tie: float, node: KernelInt, resolution: float) -> float:
+    """Tie key of ``node``, a float: ``floor(resolution * tie) * 2**32 + node``.
+
+    ``tie`` >= 0 with ``resolution * tie`` below :data:`FLOAT_TIE_LIMIT` (see
+    :func:`tie_resolution`), so the key is an exact integer below 2**53.
+    """
+    return math.floor(tie * resolution) * _TWO32 + node
+
+
+@njit_inline
+def tie_key_bits(tie: float, node: KernelInt, resolution: float) -> np.uint64:
+    """:func:`tie_key` as an integer, ``floor(resolution * tie) << 32 | node``.
+
+    ``tie`` >= 0 with ``resolution * tie`` below :data:`HEAP_TIE_LIMIT` (see
+    :func:`tie_resolution`), so the key is below 2**63. The conversion
+    truncates, which is the floor of a number >= 0 (no rounding instruction).
+    """
+    return (np.uint64(np.int64(tie * resolution)) << _U32) | np.uint64(node)
 
 
 @njit_inline
