@@ -313,3 +313,86 @@ def test_ctrl_c_ignored_or_default_is_so_again_after_a_fork(handler: str) -> Non
 
     expected = repr(getattr(signal, handler))  # <Handlers.SIG_IGN: 1>
     assert probe_outcome(_PLAIN_SIGINT, handler, timeout=120) == [expected, expected]
+
+
+# A real os.fork, the signal raised (signal.raise_signal, as if it had just
+# arrived) at its k-th point where CPython runs handlers (a profile function
+# counts them in both processes), for every k: before the holds are in place,
+# during them, and as the handlers are put back. The handler runs once; its
+# exception reaches os.fork's caller once, in the parent; the child is made with
+# numba's compiler lock free; the handlers are back. Before review 38 the
+# handler's exception was reported as ignored and lost at the hooks' first 93
+# points (before its hold) and at 34 as the handlers were put back.
+_EVERY_POINT = textwrap.dedent(
+    """
+    import faulthandler, json, os, signal, sys, time
+    faulthandler.dump_traceback_later(200, exit=True)
+    from navkit._shared.jit import load_numba
+    from numba.core.compiler_lock import global_compiler_lock
+
+    load_numba()
+    calls = []
+
+    def on_term(signum, frame):
+        calls.append(signum)
+        raise SystemExit("terminated")
+
+    signal.signal(signal.SIGTERM, on_term)
+    SIGNUM, EXC = {
+        "term": (signal.SIGTERM, SystemExit),
+        "int": (signal.SIGINT, KeyboardInterrupt),
+    }[sys.argv[1]]
+
+    def run(k):
+        seen = 0
+
+        def profile(frame, event, arg):
+            nonlocal seen
+            if event in ("call", "c_return"):
+                seen += 1
+                if seen == k:
+                    sys.setprofile(None)
+                    signal.raise_signal(SIGNUM)
+
+        calls.clear()
+        raised, pid = 0, None
+        try:
+            sys.setprofile(profile)
+            pid = os.fork()
+            sys.setprofile(None)
+            if pid == 0:
+                os._exit(0 if global_compiler_lock._lock.acquire(timeout=5) else 7)
+            end = time.monotonic() + 1.0  # a held signal comes within milliseconds
+            while time.monotonic() < end:
+                time.sleep(0.002)
+        except EXC:
+            raised += 1
+        sys.setprofile(None)
+        child = os.waitpid(pid or -1, 0)[1]  # None: raised as os.fork returned
+        back = signal.getsignal(signal.SIGTERM) is on_term
+        back = back and signal.getsignal(signal.SIGINT) is signal.default_int_handler
+        free = global_compiler_lock._lock.acquire(timeout=1)
+        if free:
+            global_compiler_lock._lock.release()
+        handler_runs = len(calls) if SIGNUM == signal.SIGTERM else 1
+        return seen, [raised, handler_runs, child, back, free]
+
+    bad = {}
+    k = 2  # the first, the fork hook's own first line, cannot be caught in it
+    while True:
+        seen, outcome = run(k)
+        if seen < k:
+            break
+        if outcome != [1, 1, 0, True, True]:
+            bad[k] = outcome
+        k += 1
+    print(json.dumps({"points": k - 1, "bad": bad}))
+    """
+)
+
+
+@pytest.mark.parametrize("mode", ["term", pytest.param("int", marks=pytest.mark.slow)])
+def test_a_signal_anywhere_in_the_fork_hooks_reaches_the_caller_once(mode: str) -> None:
+    out = probe_outcome(_EVERY_POINT, mode, timeout=300)
+    assert out["points"] >= 150  # the hooks' points, before, during and after the holds
+    assert out["bad"] == {}, out["bad"]

@@ -285,10 +285,10 @@ def _before_fork() -> None:
     # lock held by the main thread, every other thread's compile waiting for
     # ever). So is every other signal with a Python handler (a SIGTERM handler
     # raising SystemExit left them held the same way). Only a signal before
-    # the hold is in place reaches the hook (nothing is taken yet then: the
-    # hold is recorded before it starts, and undone by the after hook however
-    # far it got: a handler that raises there is reported as ignored, its
-    # exception lost, see held_for_fork). The hold costs about 10 µs a fork
+    # the hold is in place reaches the hook (its handler runs there: the hold
+    # is recorded before it starts, undone by the after hook however far it
+    # got, and the hook goes on; a handler's exception is kept and raised as
+    # os.fork returns, see held_for_fork). The hold costs about 10 µs a fork
     # from the main thread, but a whole fork takes longer than without it
     # (review 37: 1.06 -> 1.47 ms at os.fork's return): page copies after the
     # fork, as the handlers are put back in pages the child now shares. Put back
@@ -299,8 +299,25 @@ def _before_fork() -> None:
     # wait for ever for a thread waiting for the lock it interrupted
     # (_take_for_fork).
     record: list[Any] = []
-    _forks().append(record)
-    held_for_fork(sys._getframe(1), record)  # os.fork's caller; record[0]
+    early: BaseException | None = None
+    while True:
+        # A signal's handler raising before the hold is in place: kept by the
+        # hold and raised as os.fork returns (review 38), and the hook goes on
+        # (held_for_fork's own start keeps the ones landing in it).
+        try:
+            if not record:
+                forks = _forks()
+                if not forks or forks[-1] is not record:
+                    forks.append(record)
+                held_for_fork(sys._getframe(1), record)  # os.fork's caller; record[0]
+            else:
+                record[0].start()  # goes on from where it was cut short
+            break
+        except BaseException as error:
+            if early is None:
+                early = error
+    if early is not None and record[0].early is None:
+        record[0].early = early
     _take_locks_for_fork(record)
     # Held across the fork, so the child copies a count and a state that agree;
     # compile_shortcuts' lock too, taken here under the hold: its own hooks,

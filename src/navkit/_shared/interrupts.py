@@ -170,47 +170,93 @@ class _Hold:
 class _ForkHold:
     """The signals :func:`held_for_fork` holds for one fork: a :class:`_Hold` each."""
 
-    __slots__ = ("fork_caller", "holds")
+    __slots__ = ("early", "fork_caller", "holds", "signums")
 
     def __init__(self, fork_caller: FrameType | None) -> None:
         #: The frame that called ``os.fork``.
         self.fork_caller = fork_caller
         #: SIGINT's first, then every other signal's with a Python handler.
         self.holds: list[_Hold] = []
+        #: The signals but SIGINT to hold, once looked up.
+        self.signums: list[int] | None = None
+        #: The exception a signal's handler raised before its hold was in place.
+        self.early: BaseException | None = None
 
     def start(self) -> None:
-        """Hold ``SIGINT``, then every other signal whose handler is a Python callable."""
+        """Hold ``SIGINT``, then every other signal whose handler is a Python callable.
+
+        A handler that raises before its signal's hold is in place (its signal
+        came first) does not cut this short: its exception is kept in
+        :attr:`early`, raised in the parent as ``os.fork`` returns
+        (:func:`release_in_parent`), and the holds go on from where they were,
+        the one cut short made again if its handler is not in place. Callable
+        again after an exception before its own first line: it goes on.
+        """
         if threading.current_thread() is not threading.main_thread():
             return  # only the main thread runs Python's handlers
-        hold = _Hold(insist=False)
-        self.holds.append(hold)  # before it starts: cut short, restore() undoes what it did
-        hold.start()
-        for signum, handler in zip(_SIGNALS, map(_getsignal, _SIGNALS), strict=True):
-            if callable(handler):
-                hold = _Hold(insist=False, signum=signum)
-                self.holds.append(hold)
-                hold.start()
+        while True:
+            try:
+                holds = self.holds
+                last = holds[-1] if holds else None
+                if last is not None and last.ours is None and _getsignal(last.signum) != last.hold:
+                    # cut short before its handler was in place: made again
+                    hold = _Hold(insist=False, signum=last.signum)
+                    holds.append(hold)  # before it starts: cut short, restore() undoes it
+                    hold.start()
+                if not holds:
+                    hold = _Hold(insist=False)
+                    holds.append(hold)
+                    hold.start()
+                if self.signums is None:
+                    self.signums = [s for s in _SIGNALS if callable(_getsignal(s))]
+                done = {hold.signum for hold in holds}
+                for signum in self.signums:
+                    if signum not in done:
+                        hold = _Hold(insist=False, signum=signum)
+                        holds.append(hold)
+                        hold.start()
+                return
+            except BaseException as error:  # a handler's, its signal not yet held
+                if self.early is None:
+                    self.early = error
 
     def restore(self) -> list[int]:
         """Put every handler back, last held first; the signals that came meanwhile.
 
         Once a handler is back, its signal can come again, and its handler
-        raise, while the next ones are put back: those are put back all the
-        same (the handler's exception then goes on; only a second signal
-        within the microseconds of the ``finally`` could cut that short).
+        raise, while the next ones are put back: the exception is kept in
+        :attr:`early` (raised as ``os.fork`` returns, see
+        :func:`release_in_parent`; raised here, in a fork hook, Python reported
+        it as ignored and lost it, review 38) and the rest are put back all the
+        same (only a signal within the microseconds of the ``finally`` could
+        cut that short).
         """
-        came = []
+        came: list[int] = []
+        done = False
         try:
-            for hold in reversed(self.holds):
-                hold.restore()
-                if hold.pending and not _woken_already(hold.previous):
-                    came.append(hold.signum)
-                hold.pending.clear()
+            while not done:
+                try:
+                    for hold in reversed(self.holds):
+                        hold.restore()  # once: again, nothing
+                        again = hold.pending and hold.signum not in came
+                        if again and not _woken_already(hold.previous):
+                            came.append(hold.signum)
+                        hold.pending.clear()
+                    self._put_back_cut_short()
+                    done = True
+                except BaseException as error:  # a handler put back, its signal come again
+                    if self.early is None:
+                        self.early = error
         finally:
-            for hold in self.holds:
-                if _getsignal(hold.signum) == hold.hold:  # cut short: its own put back
-                    _put_back(hold.signum, hold.previous)
+            if not done:
+                self._put_back_cut_short()
         return came
+
+    def _put_back_cut_short(self) -> None:
+        """Put back the handlers of the holds cut short as they started (their own in place)."""
+        for hold in self.holds:
+            if _getsignal(hold.signum) == hold.hold:
+                _put_back(hold.signum, hold.previous)
 
 
 def _woken_already(handler: Any) -> bool:
@@ -251,9 +297,9 @@ def held_for_fork(fork_caller: FrameType | None, record: list[Any]) -> _ForkHold
     one, as the kernel delivers signals pending together), except one whose
     handler is asyncio's, which its loop has read from its wakeup fd already
     (:func:`_woken_already`). A signal landing before its own hold is in place
-    (review 38: the hook's first 30 points where Python runs a handler for
-    Ctrl-C) runs its handler in the hook: an exception it raises is reported
-    as ignored there, and lost. ``fork_caller`` is the frame that called
+    runs its handler in the hook: an exception it raises is kept (review 38:
+    reported as ignored there, it was lost) and raised as ``os.fork`` returns
+    (:func:`release_in_parent`). ``fork_caller`` is the frame that called
     ``os.fork`` (the hook's caller: C code adds no frame). Nothing is held
     outside the main thread of the main interpreter (see
     :func:`interrupts_deferred`).
@@ -289,6 +335,9 @@ def release_in_parent(hold: _ForkHold | None) -> None:
         return
     came = hold.restore()
     caller, hold.fork_caller = hold.fork_caller, None
+    early, hold.early = hold.early, None  # no call here: a signal could land on it
+    if early is not None:
+        _raise_as_fork_returns(caller, early)
     if not came:
         return
     threading.Thread(
@@ -297,6 +346,29 @@ def release_in_parent(hold: _ForkHold | None) -> None:
         name="navkit-held-ctrl-c",
         daemon=True,
     ).start()
+
+
+def _raise_as_fork_returns(caller: FrameType | None, error: BaseException) -> None:
+    """Raise ``error`` in this thread at its first event after ``os.fork`` returns to ``caller``.
+
+    For an exception a signal's handler raised in the before hook, before its
+    signal was held (:attr:`_ForkHold.early`): raised there, Python reported it
+    as ignored and lost it (review 38). A profile function (``sys.setprofile``)
+    raises it at the caller's next call or return once ``os.fork`` has returned
+    (its instruction moved on: the after hooks registered after this one are
+    called from it before). Where a profiler is in use already, or the caller
+    is unknown, it is raised here, as before.
+    """
+    if caller is None or sys.getprofile() is not None:
+        raise error
+    at = caller.f_lasti
+
+    def profile(frame: FrameType, event: str, arg: Any) -> None:
+        if frame is caller or (frame.f_back is caller and caller.f_lasti != at):
+            sys.setprofile(None)
+            raise error
+
+    sys.setprofile(profile)
 
 
 def _interrupt_after_fork(caller: FrameType | None, at: int, came: list[int]) -> None:
@@ -326,8 +398,13 @@ def release_in_child(hold: _ForkHold | None) -> None:
     """End :func:`held_for_fork`'s hold in a forked child: the signals held were the parent's."""
     if hold is None:
         return
-    hold.fork_caller = None
+    caller, hold.fork_caller = hold.fork_caller, None
+    hold.early = None  # the parent's
     hold.restore()
+    held: Any = hold  # (its early set again by restore)
+    early, hold.early = held.early, None
+    if early is not None:  # the child's own signal, come as its handler was put back
+        _raise_as_fork_returns(caller, early)
 
 
 def release_others_in_child() -> None:
