@@ -136,3 +136,24 @@ def test_the_exact_reference_is_the_information_form_s_too() -> None:
     got = np.array([[float(v) for v in row] for row in inverse(info)])
     assert np.array_equal(got, post)
     assert isinstance(info[0][0], Fraction)
+
+
+def test_scaled_inverse_is_the_inverse_to_eps_kappa() -> None:
+    # "The inverse of the symmetric a (exactly symmetric) and a bound on κ(D a D) ...
+    # whose error relative to sqrt(inv_ii inv_jj) is about ε κ(D a D)": against the
+    # exact inverse, badly scaled (entries 1e-12 to 1e12 apart). _s_amplification
+    # reads its diagonal: a mutant doubling the inverse survived every other test.
+    from exact_fractions import fractions, inverse
+
+    rng = np.random.default_rng(33)
+    for trial in range(24):
+        n = int(rng.integers(1, 6))
+        a = _spd(rng, n, 8.0 * trial / 23, 6.0)
+        found = kernels._scaled_inverse(a)
+        assert found is not None
+        inv, kappa = found
+        assert np.array_equal(inv, inv.T)
+        exact = np.array([[float(v) for v in row] for row in inverse(fractions(a))])
+        unit = np.sqrt(np.diag(exact))
+        error = float(np.max(np.abs(inv - exact) / np.outer(unit, unit)))
+        assert error <= 4.0 * n * _EPS * kappa, (trial, error, kappa)
