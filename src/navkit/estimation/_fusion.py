@@ -1005,6 +1005,11 @@ class PlanarFusion(GaussianEstimate):
             try:
                 callers.append(token)
                 busy = callers[0] is not token
+                # The anchor with the buffer, no call between (see _reset's stores): read
+                # after a call, a reset landing there (a signal handler's, another
+                # thread's once the token was out) gave the copy the old buffer at the
+                # new anchor, off by the anchors' difference (review 38).
+                anchor = self._anchor
                 buf = self._buf.copy()
                 # The entries' arrays are never written after they are made: a copy
                 # may share them.
@@ -1012,6 +1017,7 @@ class PlanarFusion(GaussianEstimate):
             finally:
                 callers.remove(token)
         else:
+            anchor = self._anchor  # with the buffer, no call between (see above)
             buf = self._buf.copy()
             steps = self._steps[self._head :]
         if buf[BUF_UNDO] != 0.0:
@@ -1021,7 +1027,7 @@ class PlanarFusion(GaussianEstimate):
             # goes on from the overflowed state; see _settle).
             undo_step(buf)
         kept = (self._history, steps)
-        args = (buf, self._gates.copy(), cls, self._anchor, kept)
+        args = (buf, self._gates.copy(), cls, anchor, kept)
         if cls is PlanarFusion:
             return _restore_fusion, args
         return _restore_fusion, args, extra_state(self, below=PlanarFusion)
