@@ -12,8 +12,8 @@ has to restart the kernel, as with the interrupted import of numba that
 numba's import and its first refresh (``load_numba``) but not during the later
 ones.
 
-Strict xfail: ``navkit._shared.jit`` was outside REVMM's files this session; the
-proposed fix is in REVMM's report.
+Fixed by NUMBAINT (``navkit._shared.jit._hold_refreshes``): the refreshes are held
+too, and the interrupt arrives as the refresh ends.
 """
 
 from __future__ import annotations
@@ -64,11 +64,6 @@ print(json.dumps([bool(fired), first, later]))
 """
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="numba's registry refresh is not held against Ctrl-C (navkit._shared.jit, "
-    "outside REVMM's files): see REVMM's report",
-)
 def test_a_ctrl_c_in_a_kernels_first_call_leaves_numba_working() -> None:
     fired, first, later = probe_outcome(_PROBE, timeout=300)
     if not fired:
