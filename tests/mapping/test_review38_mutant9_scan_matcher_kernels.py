@@ -10,12 +10,14 @@ Oracle: ``numpy.linalg.solve`` of H plus the documented ridge (1e-9 of the large
 diagonal entry). And ``match_level``'s pull towards a prior pose: the public matcher's
 prior is its guess, where the pull starts at zero, so the rotation pull's gradient
 with the wrong sign, or its Hessian term taking the translation weight, survived the
-suite; on a flat map the prior alone is the minimum (closed form).
+suite; on a flat map the prior alone is the minimum (closed form), and its first step
+is clamped to the documented largest steps (mutants of both clamps survived too).
 """
 
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 from navkit.mapping._scan_matcher_kernels import STATUS_CONVERGED, _solve3, match_level
 
@@ -77,3 +79,29 @@ def test_on_an_empty_map_the_prior_alone_is_the_minimum() -> None:
         _, status = _match(logodds, points, pose, prior, weights)
         assert status == STATUS_CONVERGED
         np.testing.assert_allclose(pose, prior, atol=1e-6)
+
+
+@pytest.mark.parametrize("sign", [1.0, -1.0])
+@pytest.mark.parametrize("reach", [10.0, 0.08])  # steps of 5 m and 1.2 rad, 0.4 m and 0.15 rad
+def test_a_step_is_clamped_to_the_largest_steps_keeping_its_direction(
+    sign: float, reach: float
+) -> None:
+    # "clamps the translation of Δξ to max_step_xy (m, keeping its direction) and the
+    # rotation to max_step_theta (rad)": on a flat map the first step is the whole way
+    # to the prior; one iteration with limits 0.25 m and 0.1 rad takes that much, along
+    # that direction (the cost falls, so no halving). Mutants doubling
+    # the translation's limit, or dropping the rotation's upper clamp, survived the suite.
+    logodds = np.full((40, 40), -40.0, dtype=np.float32)
+    points = np.array([[0.3, 0.0], [0.0, 0.4]])
+    start = np.array([2.0, 1.5, 0.0])
+    prior = start + sign * np.array([3.0 * reach, 4.0 * reach, 0.15 if reach < 1.0 else 1.2])
+    pose = start.copy()
+    scratch = (np.empty((3, 3)), np.empty(3), np.empty(3), np.empty((0, 0)))
+    done, _ = match_level(
+        logodds, 0.0, 0.0, 0.0, 0.1, points, pose, 1, 0.25, 0.1, 1e-9, 1e-9,
+        prior, 1.0, 1.0, 0.0, *scratch,
+    )  # fmt: skip
+    assert done == 1
+    moved = pose - start
+    np.testing.assert_allclose(moved[:2], sign * 0.25 * np.array([0.6, 0.8]), rtol=1e-9)
+    assert moved[2] == pytest.approx(sign * 0.1, rel=1e-12)
