@@ -218,9 +218,9 @@ class RegulatedPurePursuit(PathTracker[_PursuitState]):
     goal_tolerance : float, default 0.25
         Nav2 goal checker ``xy_goal_tolerance`` (m), in (0, 1e4]. A goal
         tolerance below the float resolution of the goal's coordinates (one
-        ulp of the larger: 9.3e-10 m at a UTM northing of 4.6e6 m) counts as
-        that resolution: a pose one ulp beside the goal is as near as any
-        but the goal itself.
+        ulp of the finer: 9.3e-10 m at (4.6e6, 4.6e6) m, 5.8e-11 m at
+        (4.6e6, 5e5) m) counts as that resolution: a pose one ulp beside the
+        goal is as near as any but the goal itself.
     yaw_tolerance : float, default 0.25
         Nav2 goal checker ``yaw_goal_tolerance`` (rad), in (0, π].
     max_omega : float, optional
@@ -705,15 +705,18 @@ class RegulatedPurePursuit(PathTracker[_PursuitState]):
 
 def _resolution(x: float, y: float) -> float:
     """The float resolution (m) of world coordinates at the point ``(x, y)``: one ulp
-    of the larger coordinate.
+    of the finer coordinate (the smaller in magnitude).
 
-    A goal tolerance below it (1e-12 m at a UTM northing of 4.6e6 m, where it is
-    9.3e-10 m) is met only on the goal itself, which a differential robot's arcs
-    did not land on: it turned in place and crept between two points one ulp
-    beside the goal for ever, never done (review 38; every start of 20 tried).
-    A goal that near counts as reached: no pose is nearer without being on it.
+    A goal tolerance below it (1e-12 m at (4.6e6, 4.6e6) m, where it is 9.3e-10 m)
+    is met only on the goal itself, which a differential robot's arcs did not land
+    on: it turned in place and crept between two points one ulp beside the goal
+    for ever, never done (review 38; every start of 20 tried). A goal that near
+    counts as reached: no pose is nearer without being on it. Not the ulp of the
+    larger coordinate: where the other is finer, nearer poses exist and are
+    reached (1e-12 m at (4.6e6, 0.5) m was met within 1e-12 m), and that radius
+    ended those runs 5e-10 to 8e-10 m away (review 38, REV38).
     """
-    return math.ulp(max(abs(x), abs(y)))
+    return math.ulp(min(abs(x), abs(y)))
 
 
 def _as_clearance(value: Any) -> Clearance | None:
