@@ -71,7 +71,9 @@ def _linear(h: np.ndarray) -> Callable[[np.ndarray], np.ndarray]:
     return measure
 
 
-@pytest.mark.parametrize("seeds", [range(0, 100), range(300, 400)])
+@pytest.mark.parametrize(
+    "seeds", [range(0, 100), pytest.param(range(300, 400), marks=pytest.mark.slow)]
+)
 def test_cancelled_updates_of_more_than_eight_components_commit_the_better_state(
     monkeypatch: pytest.MonkeyPatch, seeds: range
 ) -> None:
@@ -114,7 +116,9 @@ def test_cancelled_updates_of_more_than_eight_components_commit_the_better_state
     assert checked >= 15
 
 
-@pytest.mark.parametrize("seeds", [range(0, 100), range(100, 200)])
+@pytest.mark.parametrize(
+    "seeds", [range(0, 100), pytest.param(range(100, 200), marks=pytest.mark.slow)]
+)
 def test_a_trusted_information_form_bounds_the_covariance_committed(
     monkeypatch: pytest.MonkeyPatch, seeds: range
 ) -> None:
