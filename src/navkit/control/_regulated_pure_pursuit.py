@@ -636,8 +636,11 @@ class RegulatedPurePursuit(PathTracker[_PursuitState]):
             if self._drive == "diff":
                 state.phase = "rotate"
                 w = self._rotate(angle, dt, w_now)
+                # The command made before the store, no call after it (Twist2D's
+                # checks are calls): see the omnidirectional return below.
+                out = Twist2D(0.0, 0.0, w)
                 state.last = (0.0, 0.0, w)
-                return Twist2D(0.0, 0.0, w)
+                return out
             heading = bearing
             angle = 0.0
         state.phase = "track"
@@ -665,15 +668,23 @@ class RegulatedPurePursuit(PathTracker[_PursuitState]):
             w = math.copysign(self._max_omega, w)
 
         if self._drive == "diff":
+            out = Twist2D(v, 0.0, w)
             state.last = (v, 0.0, w)
-            return Twist2D(v, 0.0, w)
+            return out
         # Omni: translate along the chord of the arc, keep the body heading.
         turn = w * dt
         mid = heading + 0.5 * turn
         bx, by = body_velocity(v * math.cos(mid), v * math.sin(mid), pose.theta)
-        state.motion_heading = wrap(heading + turn)
+        # Every new value first (the command too: Twist2D's checks are calls), then
+        # plain stores: a Ctrl-C landing after the stores (in the wrap or the Twist2D)
+        # left the memory of this step with its command lost, and a loop that caught
+        # it and stepped again limited the turn from this step's command, not the one
+        # before (review 25's retry rule; review 38, REV38).
+        motion = wrap(heading + turn)
+        out = Twist2D(bx, by, 0.0)
+        state.motion_heading = motion
         state.last = (bx, by, 0.0)
-        return Twist2D(bx, by, 0.0)
+        return out
 
     def _refusal(self, other: tuple[Any, ...], callers: list[Any]) -> str:
         message = super()._refusal(other, callers)
