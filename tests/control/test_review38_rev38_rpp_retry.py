@@ -8,8 +8,8 @@ omnidirectional robot's direction of travel) and then built the returned
 ``Twist2D``, whose checks are Python calls, where a Ctrl-C lands: the step's
 memory was kept with its command lost, and the step tried again limited its
 turn from that command instead of the one before (omnidirectional, and
-differential with a ``clearance`` callable while rotating to the heading; review
-25's cases, a differential robot with a clearance grid, happened to be clean).
+differential with a ``clearance`` callable; review 25's cases, a differential
+robot with a clearance grid, happened to be clean).
 The command is now built before the stores.
 """
 
