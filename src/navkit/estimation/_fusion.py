@@ -846,6 +846,9 @@ class PlanarFusion(GaussianEstimate):
     eighth of a step kept for ``history`` (about 1.8 µs). Without ``history``
     the calls are not checked (the check would be a fifth of a step of about
     1 µs): two at once may leave a wrong estimate or result without an error.
+    A copy or pickle taken during a call (another thread's, a signal
+    handler's) is the filter as before or after one of that call's steps,
+    with or without ``history``.
 
     Subclasses may add attributes (their own ``__slots__`` or an instance
     ``__dict__``) and methods, and override the public methods, calling the
