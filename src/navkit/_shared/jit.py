@@ -59,6 +59,7 @@ says why.
 
 from __future__ import annotations
 
+import _thread
 import importlib
 import os
 import sys
@@ -136,7 +137,7 @@ def _make_dispatcher(njit: Any, options: dict[str, Any], py_func: Callable[..., 
         if compiler is not None:
             options = {**options, "pipeline_class": compiler}
     try:
-        return njit(**options)(py_func)
+        return _count_compiles_in_c(njit(**options)(py_func))
     except RuntimeError as exc:
         # numba's words when no cache locator has a writable folder for the file.
         if not options.get("cache") or "cannot cache function" not in str(exc):
@@ -161,7 +162,62 @@ def _make_dispatcher(njit: Any, options: dict[str, Any], py_func: Callable[..., 
         )
         _CACHE_PROBLEM.append(problem)
         warnings.warn(problem, KernelCacheWarning, stacklevel=_user_stacklevel())
-    return njit(**{**options, "cache": False})(py_func)
+    return _count_compiles_in_c(njit(**{**options, "cache": False})(py_func))
+
+
+class _CompileDepth:
+    """A dispatcher's count of its compiles under way, which a Ctrl-C cannot leave up.
+
+    numba counts them in a ``CompilingCounter`` (``with dispatcher._compiling_counter:``
+    around every compile and cache load), whose ``__exit__`` is Python code:
+    CPython runs a pending signal handler as a Python function is entered, so a
+    Ctrl-C arriving there raised ``KeyboardInterrupt`` before the count went
+    down, and the dispatcher counted as compiling for the rest of the process.
+    numba then took every later call to it from a kernel being compiled for
+    recursion: each compile of a kernel calling that helper failed for good
+    (review 38: A*'s first call interrupted there, every later one raised
+    "NotImplementedError: call to CPUDispatcher(<function rec_sift_up>):
+    unsupported recursion"). Here the count is a re-entrant C lock's: ``with``
+    looks both methods up (this class's properties, Python, before anything is
+    counted) and calls them, the lock's own C ``__enter__`` and ``__exit__``, with
+    no Python code in between in which a signal's handler could run. numba holds
+    its compiler lock around every compile, so one thread at a time counts, and
+    the count is true for the thread reading it (numba's type inference, in the
+    compiling thread).
+    """
+
+    __slots__ = ("_lock",)
+
+    def __init__(self) -> None:
+        # C: its __enter__ and __exit__ run no Python. Any: _is_owned is untyped.
+        self._lock: Any = _thread.RLock()
+
+    @property
+    def __enter__(self) -> Any:
+        return self._lock.__enter__
+
+    @property
+    def __exit__(self) -> Any:
+        return self._lock.__exit__
+
+    def __bool__(self) -> bool:
+        return bool(self._lock._is_owned())
+
+    @property
+    def counter(self) -> int:
+        """numba's name: how deep this thread's compiles of the dispatcher are (0 or more)."""
+        text = repr(self._lock)
+        if not self:
+            return 0
+        count = text.partition("count=")[2].split(" ", 1)[0]
+        return int(count) if count.isdigit() else 1
+
+
+def _count_compiles_in_c(dispatcher: Any) -> Any:
+    """``dispatcher`` with a :class:`_CompileDepth` in place of numba's compile counter."""
+    if hasattr(dispatcher, "_compiling_counter"):  # numba's, since 0.2x
+        dispatcher._compiling_counter = _CompileDepth()
+    return dispatcher
 
 
 #: Whether helpers are compiled by :func:`helper_compiler` (read as each kernel is made).
