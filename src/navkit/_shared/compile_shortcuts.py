@@ -48,6 +48,12 @@ what numba makes of it (issue 17; measured on a cold ``astar`` and a cold
 * **Variable lists** (review 22): numba lists an IR statement's variables by
   one recursive call per attribute value (630,000 calls a Field D* plan);
   the items of a container are tested in place (:func:`_list_vars_method`).
+* **Live variables** (review 38): numba finds the variables live at each
+  block's entry (``analysis.compute_live_map``, after every pass that
+  changes the IR: 1,955 times in ``navkit warmup``) by fix-point sweeps
+  over sets holding nearly every variable of the function; the same sweeps
+  run on ints with a bit per variable and give the same sets
+  (:func:`_live_map_function`): 1.75 -> 0.41 s of ``navkit warmup``.
 
 The four of review 22 took a cold first Field D* plan (plan, cost update,
 replan) from 3.08 to 2.63 s CPU (medians of 7 alternating runs on a 2-core
@@ -85,6 +91,7 @@ from __future__ import annotations
 import importlib
 import os
 import threading
+from collections import defaultdict
 from collections.abc import Callable
 from typing import Any
 
@@ -342,6 +349,84 @@ def _list_vars_method(var_class: Any, inst_class: Any) -> Callable[..., list[Any
     return _rec_list_vars
 
 
+def _live_map_function(numba_live_map: Callable[..., Any]) -> Callable[..., dict[Any, set[str]]]:
+    """``analysis.compute_live_map`` with each block's variable sets as bits of an int.
+
+    numba finds the variables live at each block's entry (for its variable
+    deletions and dead-code removal, after every pass that changes the IR) by
+    two fix-point sweeps over the blocks: the variables defined or used in
+    any block reaching a block, then those used later without being defined
+    again. The first sets hold nearly every variable of the function, and
+    their set unions took about 6 % of a cold ``Simulation.run``'s compile
+    (0.72 s of 12 in ``navkit warmup``'s simulation step, 1.75 s of the whole
+    warm-up). The same sweeps, in the same order, are made here on ints with
+    a bit per variable (an OR of a few machine words each), and the live sets
+    built from the bits: the same sets for every block (equal to numba's at
+    each of the 1,955 calls of ``navkit warmup``, compared in one run), 0.13 s
+    and 0.41 s. Installed only where numba's own sweeps follow the graph's
+    topological order, as numba 0.68's do (elsewhere numba's own is kept).
+    """
+
+    def compute_live_map(cfg: Any, blocks: Any, var_use_map: Any, var_def_map: Any) -> Any:
+        topo_order = cfg.topo_order()
+        bit: dict[str, int] = {}
+        names: list[str] = []
+
+        def bits(variables: Any) -> int:
+            out = 0
+            for name in variables:
+                b = bit.get(name)
+                if b is None:
+                    b = bit[name] = 1 << len(names)
+                    names.append(name)
+                out |= b
+            return out
+
+        use = {offset: bits(var_use_map[offset]) for offset in var_use_map}
+        defs = {offset: bits(var_def_map[offset]) for offset in var_def_map}
+        # numba's def_reach: what is defined or used in a block reaching each block.
+        reach: defaultdict[Any, int] = defaultdict(int)
+        succ = {offset: [out for out, _ in cfg.successors(offset)] for offset in topo_order}
+        changed = True
+        while changed:
+            changed = False
+            for offset in topo_order:
+                value = reach[offset] | defs[offset] | use[offset]
+                if value != reach[offset]:
+                    reach[offset] = value
+                    changed = True
+                for out in succ[offset]:
+                    merged = reach[out] | value
+                    if merged != reach[out]:
+                        reach[out] = merged
+                        changed = True
+        # numba's liveness: a variable live at a block's entry is live at its
+        # predecessors' exits where defined before and not defined there.
+        live = {offset: use[offset] for offset in blocks}
+        preds = {offset: [inc for inc, _ in cfg.predecessors(offset)] for offset in topo_order}
+        changed = True
+        while changed:
+            changed = False
+            for offset in reversed(topo_order):
+                here = live[offset]
+                for inc in preds[offset]:
+                    merged = live[inc] | (here & reach[inc] & ~defs[inc])
+                    if merged != live[inc]:
+                        live[inc] = merged
+                        changed = True
+        live_map: dict[Any, set[str]] = {}
+        for offset, value in live.items():
+            variables: set[str] = set()
+            while value:
+                low = value & -value
+                variables.add(names[low.bit_length() - 1])
+                value ^= low
+            live_map[offset] = variables
+        return live_map
+
+    return compute_live_map
+
+
 def _replacements() -> list[tuple[Any, str, Any]]:
     """(owner, attribute, replacement) for the numba installed, as far as it has them."""
     out: list[tuple[Any, str, Any]] = []
@@ -366,6 +451,17 @@ def _replacements() -> list[tuple[Any, str, Any]]:
     var_class, inst_class = getattr(ir, "Var", None), getattr(ir, "Inst", None)
     if var_class is not None and inst_class is not None and "_rec_list_vars" in vars(inst_class):
         out.append((inst_class, "_rec_list_vars", _list_vars_method(var_class, inst_class)))
+    analysis: Any = importlib.import_module("numba.core.analysis")
+    numba_live_map = vars(analysis).get("compute_live_map")
+    # Only where numba's own sweeps follow the topological order: the bits follow them.
+    if callable(numba_live_map) and "topo_order" in getattr(
+        getattr(numba_live_map, "__code__", None), "co_names", ()
+    ):
+        ours = _live_map_function(numba_live_map)
+        out.append((analysis, "compute_live_map", ours))
+        ir_utils: Any = importlib.import_module("numba.core.ir_utils")
+        if vars(ir_utils).get("compute_live_map") is numba_live_map:  # imported by name
+            out.append((ir_utils, "compute_live_map", ours))
     base: Any = importlib.import_module("numba.core.base")
     base_context = getattr(base, "BaseContext", None)
     if callable(vars(base).get("_has_loc")):
