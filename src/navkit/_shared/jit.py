@@ -192,13 +192,8 @@ class _CompileDepth:
         # C: its __enter__ and __exit__ run no Python. Any: _is_owned is untyped.
         self._lock: Any = _thread.RLock()
 
-    @property
-    def __enter__(self) -> Any:
-        return self._lock.__enter__
-
-    @property
-    def __exit__(self) -> Any:
-        return self._lock.__exit__
+    __enter__: Any
+    __exit__: Any
 
     def __bool__(self) -> bool:
         return bool(self._lock._is_owned())
@@ -211,6 +206,31 @@ class _CompileDepth:
             return 0
         count = text.partition("count=")[2].split(" ", 1)[0]
         return int(count) if count.isdigit() else 1
+
+
+class _LockMethod:
+    """:class:`_CompileDepth`'s ``__enter__`` or ``__exit__``: its C lock's own, bound.
+
+    ``with`` looks it up on the class and binds it (this ``__get__``, Python code
+    run before the block, where an interrupt changes nothing), then calls the C
+    method. Looked up on the class itself (``contextlib.ExitStack.enter_context``),
+    it is a function of the instance, as a method would be.
+    """
+
+    __slots__ = ("name",)
+
+    def __init__(self, name: str) -> None:
+        self.name = name
+
+    def __get__(self, depth: Any, owner: Any = None) -> Any:
+        if depth is None:
+            name = self.name
+            return lambda depth, *args: getattr(depth._lock, name)(*args)
+        return getattr(depth._lock, self.name)
+
+
+_CompileDepth.__enter__ = _LockMethod("__enter__")
+_CompileDepth.__exit__ = _LockMethod("__exit__")
 
 
 def _count_compiles_in_c(dispatcher: Any) -> Any:
