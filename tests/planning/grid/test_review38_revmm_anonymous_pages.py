@@ -14,8 +14,8 @@ What has to hold around them:
 * planners made in two threads at once plan as planners made one by one;
 * out of memory (an address-space limit, where the mapping fails with
   ``OSError`` and ``np.zeros`` is tried) the user gets a ``MemoryError``, never
-  an ``OSError``; it should name the grid (strict xfail: the fix belongs to
-  ``_field_dstar.py``, claimed by another helper this session; see the report).
+  an ``OSError``, naming the grid (NumPy's message named an array's shape
+  only; fixed in ``_field_dstar.py`` by the lead from REVMM's report).
 """
 
 from __future__ import annotations
@@ -244,11 +244,6 @@ def test_out_of_address_space_a_planner_raises_memory_error_never_os_error() -> 
 
 
 @pytest.mark.skipif(sys.platform != "linux", reason="RLIMIT_AS limits allocations on Linux")
-@pytest.mark.xfail(
-    strict=True,
-    reason="NumPy's message names an array's shape, not the grid: the fix is for "
-    "_field_dstar.py (claimed by FDSEARCH this session), see REVMM's report",
-)
 def test_out_of_memory_the_message_names_the_grid() -> None:
     refused = [o for o in _limited_outcomes() if o[0] != "planned"]
     assert refused

@@ -281,9 +281,13 @@ def _anonymous_pages(nbytes: int) -> mmap.mmap:
     As ``malloc``'d memory is: ``mmap.mmap(-1, n)`` alone maps shared pages on
     POSIX. Windows cannot fork, and its anonymous mappings are the process's own.
     """
+    # Both branches under the platform check (not an early return): mypy skips the
+    # other platform's branch, where it reported the statement after the return as
+    # unreachable (``mypy --platform win32``; MAP_PRIVATE is not in Windows' stubs).
     if sys.platform == "win32":
         return mmap.mmap(-1, nbytes)
-    return mmap.mmap(-1, nbytes, flags=mmap.MAP_PRIVATE | mmap.MAP_ANONYMOUS)
+    else:
+        return mmap.mmap(-1, nbytes, flags=mmap.MAP_PRIVATE | mmap.MAP_ANONYMOUS)
 
 
 def _lazy_zeros(count: int, dtype: type[np.generic]) -> np.ndarray:

@@ -197,6 +197,9 @@ class FieldDStar:
     TypeError
         Non-bool flags (``interpolate``, ``lookahead``, ``smooth``: only
         ``True``/``False``), a bad ``origin``, ``obstacles`` not boolean.
+    MemoryError
+        No memory for the planner's arrays (about 56 bytes a node), naming
+        the grid's size.
 
     Notes
     -----
@@ -388,7 +391,10 @@ class FieldDStar:
         self._width = self._cols + 2
         # The border inf, then the costs: one pass over the memory (a fill with inf
         # first wrote every line twice).
-        pad = np.empty((self._rows + 2, self._cols + 2))
+        try:
+            pad = np.empty((self._rows + 2, self._cols + 2))
+        except MemoryError as exc:
+            raise MemoryError(_memory_text(self._rows, self._cols)) from exc
         pad[0] = pad[-1] = np.inf
         pad[1:-1, 0] = pad[1:-1, -1] = np.inf
         pad[1:-1, 1:-1] = arr
@@ -396,10 +402,9 @@ class FieldDStar:
         self._hscale = FIELD_HSCALE if self._interp else 1.0
         self._nrows = self._rows + 1
         self._ncols = self._cols + 1
-        n = self._nrows * self._ncols
         # g, rhs and the heap slot of each node side by side (one cache line per node
         # read, see node_records); _g and _rhs are views of their columns.
-        self._vals, self._heap = node_records(n)
+        self._vals, self._heap = _search_state(self._rows, self._cols)
         self._g, self._rhs = self._vals[:, G], self._vals[:, RHS]
         # g, rhs and the heap as allocated: the first search need not clear them.
         self._clean = True
@@ -487,7 +492,7 @@ class FieldDStar:
         old_vals = slots.pop("_vals", None)
         old_g, old_rhs = slots.pop("_g", None), slots.pop("_rhs", None)
         old_heap = slots.pop("_heap")
-        vals, heap = node_records(int(slots["_nrows"]) * int(slots["_ncols"]))
+        vals, heap = _search_state(int(slots["_nrows"]) - 1, int(slots["_ncols"]) - 1)
         if len(old_heap) == 3:
             nodes, keys, size = old_heap
             heap[0][: len(nodes)] = nodes
@@ -2021,3 +2026,32 @@ def field_dstar(
     """
     planner = FieldDStar(costs, interpolate=interpolate, lookahead=lookahead, smooth=smooth)
     return planner.plan(start_node, goal_node)
+
+
+#: Bytes a node of a planner's search state takes: its record (g, rhs, heap slot: 24),
+#: its heap entry (key 16, node id 8) and about its padded cell cost (8).
+_BYTES_PER_NODE = 56
+
+
+def _memory_text(rows: int, cols: int) -> str:
+    """The message of a MemoryError from a planner's arrays, naming the grid."""
+    nodes = (rows + 1) * (cols + 1)
+    size = nodes * _BYTES_PER_NODE / 2**20
+    return (
+        f"a FieldDStar planner of {rows} x {cols} cells ({nodes} nodes) needs about "
+        f"{size:.4g} MiB for its costs and search state ({_BYTES_PER_NODE} bytes a node), "
+        "which could not be allocated"
+    )
+
+
+def _search_state(rows: int, cols: int) -> tuple[FloatArray, tuple[np.ndarray, ...]]:
+    """:func:`node_records` of the nodes of a ``rows`` x ``cols`` grid; MemoryError naming it.
+
+    The heap's large arrays are anonymous pages of their own, or ``np.zeros`` where
+    the mapping fails (``_dstar_heap._lazy_zeros``): NumPy's MemoryError then named
+    an array's shape only.
+    """
+    try:
+        return node_records((rows + 1) * (cols + 1))
+    except MemoryError as exc:
+        raise MemoryError(_memory_text(rows, cols)) from exc
