@@ -67,9 +67,16 @@ def test_projection_stops_where_the_path_leaves_the_robot() -> None:
     line = Polyline(np.array([[0.0, 0.0], [0.4, 0.0], [0.4, 0.4], [0.0, 0.4], [0.0, 0.0]]))
     assert line.project(0.0, 0.01, 0.0, 2.0) == pytest.approx((1.59, 0.0))
     assert line.project(0.0, 0.01, 0.0, 2.0, detour=0.25) == pytest.approx((0.0, 0.01))
-    # Up to s_free the whole path is searched, the detour only counts past it.
-    assert line.project(0.0, 0.01, 0.0, 2.0, detour=0.25, s_free=1.3) == pytest.approx(
+    # Up to s_free the whole path is searched, the detour only counts from it on:
+    # at s_free = 1.4 the path is 0.19 m from the point, within the detour of the
+    # start's 0.01 m, and the search goes on to the loop's end; at s_free = 1.3 it
+    # is 0.29 m away, a detour, and the search stops there (review 38: tested at
+    # the next vertex only, it went on, and a vertex added at 1.31 m stopped it).
+    assert line.project(0.0, 0.01, 0.0, 2.0, detour=0.25, s_free=1.4) == pytest.approx(
         (1.59, 0.0)
+    )
+    assert line.project(0.0, 0.01, 0.0, 2.0, detour=0.25, s_free=1.3) == pytest.approx(
+        (0.0, 0.01)
     )
     # A path that only wiggles within the detour is searched to the window's end.
     wiggle = Polyline(np.array([[0.0, 0.0], [0.1, 0.1], [0.2, 0.0], [0.3, 0.1], [0.4, 0.0]]))

@@ -224,9 +224,10 @@ class Polyline:
     ) -> tuple[float, float]:
         """Closest point to ``(x, y)`` among ``s`` in ``[s_from, s_to]``: ``(s, distance)``.
 
-        With a finite ``detour`` the search stops at the first vertex beyond arc
-        length ``s_free`` more than ``detour`` farther from ``(x, y)`` than the
-        closest point found so far.
+        With a finite ``detour`` the search stops at the first vertex from arc
+        length ``s_free`` on (or the point at ``s_free``) more than ``detour``
+        farther from ``(x, y)`` than the closest point found so far: the first
+        such point of the path, however its segments are split.
         """
         lo = min(max(float(s_from), 0.0), self.length)
         hi = min(max(float(s_to), lo), self.length)

@@ -101,9 +101,12 @@ def project(
 
     Returns ``(s, distance)``; on ties the smallest ``s`` wins. ``s_from <= s_to``
     and both inside ``[0, length]``. The search walks the path from ``s_from``
-    and stops at the first vertex beyond arc length ``s_free`` more than
-    ``detour`` farther from ``(px, py)`` than the closest point found so far
-    (``detour = inf``: the whole window).
+    and stops at the first vertex from arc length ``s_free`` on (or the point
+    at ``s_free`` itself) more than ``detour`` farther from ``(px, py)`` than
+    the closest point found so far (``detour = inf``: the whole window). As the
+    distance is convex along a segment, that is the first such point of the
+    path walked continuously: splitting a segment into collinear pieces
+    changes nothing.
     """
     k = pts.shape[0]
     if k < 2:
@@ -124,8 +127,28 @@ def project(
         hi = max(lo, min(seg, s_to - cum[i]))
         if seg > 0.0:
             # Distance along the segment of the foot of the perpendicular, clamped.
-            u = ((px - ax) * ex + (py - ay) * ey) / seg
-            u = min(max(u, lo), hi)
+            foot = ((px - ax) * ex + (py - ay) * ey) / seg
+            free = s_free - cum[i]
+            if 0.0 < free < hi and lo < free:
+                # The detour test starts at s_free, inside this segment: first the
+                # part before it, then the point at s_free, tested as a vertex is.
+                # Tested at the segment's end only, a path split into collinear
+                # pieces (a vertex just past s_free) stopped where the whole one
+                # went on to a nearer later pass: other commands (review 38).
+                u = min(max(foot, lo), free)
+                f = min(u / seg, 1.0)
+                qx = (ax - px) + ex * f
+                qy = (ay - py) + ey * f
+                d2 = qx * qx + qy * qy
+                if d2 < best_d2:
+                    best_d2 = d2
+                    best_s = min(max(cum[i] + u, s_from), s_to)
+                f = min(free / seg, 1.0)
+                if math.hypot((ax - px) + ex * f, (ay - py) + ey * f) > math.sqrt(
+                    best_d2
+                ) + detour:
+                    break
+            u = min(max(foot, lo), hi)
             f = min(u / seg, 1.0)
         else:
             u = lo
@@ -142,7 +165,7 @@ def project(
         # away, a nearer point is a later pass (the end of a short loop, a crossing).
         vx = pts[i + 1, 0] - px
         vy = pts[i + 1, 1] - py
-        if cum[i + 1] > s_free and math.hypot(vx, vy) > math.sqrt(best_d2) + detour:
+        if cum[i + 1] >= s_free and math.hypot(vx, vy) > math.sqrt(best_d2) + detour:
             break
     return best_s, math.sqrt(best_d2)
 
