@@ -94,12 +94,20 @@ def test_real_kernels_give_numbas_live_sets() -> None:
         assert list(got) == list(expected)
 
 
+#: Whether numba's own sweeps the blocks in topological order (numba 0.68's does,
+#: 0.62's does not): only then is the shortcut put in its place.
+_SWEEPS_IN_ORDER = "topo_order" in _NUMBA_LIVE_MAP.__code__.co_names
+
+
 def test_in_place_only_while_navkit_compiles() -> None:
     assert analysis.compute_live_map is _NUMBA_LIVE_MAP
     assert ir_utils.compute_live_map is _NUMBA_LIVE_MAP
     compile_shortcuts.begin()
     try:
         ours = analysis.compute_live_map
+        if not _SWEEPS_IN_ORDER:
+            assert ours is _NUMBA_LIVE_MAP  # another numba's order: its own is kept
+            return
         assert ours is not _NUMBA_LIVE_MAP
         assert ir_utils.compute_live_map is ours  # numba's dead-code removal calls it by name
         cfg, blocks, usedefs = _kernel_ir(compile_shortcuts._live_map_function)
