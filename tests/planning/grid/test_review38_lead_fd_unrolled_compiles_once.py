@@ -11,26 +11,16 @@ cost update and replan compile.
 
 from __future__ import annotations
 
-import json
-import os
-import subprocess
-import sys
 import tempfile
 
 import pytest
 
+from kernel_signatures import compiled_signatures
+
 _FIRST_USE = """
-import json
+import os
+os.environ["NUMBA_CACHE_DIR"] = %r  # empty: every kernel compiles (none loads)
 import numpy as np
-from numba.core import event
-compiled = []
-class _Listener(event.Listener):
-    def on_start(self, ev):
-        d = ev.data["dispatcher"]
-        compiled.append((d.py_func.__module__, d.py_func.__qualname__, str(ev.data["args"])))
-    def on_end(self, ev):
-        pass
-event.register("numba:compile", _Listener())
 from navkit.planning import FieldDStar
 costs = np.ones((30, 40))
 costs[5:25, 20] = np.inf
@@ -38,22 +28,17 @@ planner = FieldDStar(costs)
 planner.plan_cells((0, 0), (29, 39))
 planner.update_costs([(10, 10)], [np.inf])
 planner.replan()
-print(json.dumps(compiled))
 """
 
 
 @pytest.mark.slow
 def test_a_first_field_dstar_use_compiles_each_kernel_once() -> None:
     with tempfile.TemporaryDirectory(prefix="navkit-review38-") as cache:
-        out = subprocess.run(
-            [sys.executable, "-c", _FIRST_USE],
-            check=True, capture_output=True, text=True, timeout=600,
-            env=dict(os.environ, NUMBA_CACHE_DIR=cache),
-        )  # fmt: skip
-    compiled = [tuple(row) for row in json.loads(out.stdout.strip().splitlines()[-1])]
-    ours = [(module, name) for module, name, _ in compiled if module.startswith("navkit.")]
-    kernels = "navkit.planning.grid._dstar_lite_kernels"
-    assert (kernels, "_lower_neighbour") in ours
-    assert (kernels, "_pairs_through") in ours
+        compiled = compiled_signatures(
+            _FIRST_USE % cache,
+            ["navkit.planning.grid._dstar_lite_kernels", "navkit.planning.grid._dstar_heap"],
+        )
+    assert len(compiled["_dstar_lite_kernels._lower_neighbour"]) == 1
+    assert len(compiled["_dstar_lite_kernels._pairs_through"]) == 1
     # One compilation per kernel: no literal specialisation of the ring index.
-    assert len(ours) == len(set(ours)), sorted(ours)
+    assert all(len(signatures) == 1 for signatures in compiled.values()), compiled
