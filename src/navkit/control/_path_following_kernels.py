@@ -127,28 +127,8 @@ def project(
         hi = max(lo, min(seg, s_to - cum[i]))
         if seg > 0.0:
             # Distance along the segment of the foot of the perpendicular, clamped.
-            foot = ((px - ax) * ex + (py - ay) * ey) / seg
-            free = s_free - cum[i]
-            if 0.0 < free < hi and lo < free:
-                # The detour test starts at s_free, inside this segment: first the
-                # part before it, then the point at s_free, tested as a vertex is.
-                # Tested at the segment's end only, a path split into collinear
-                # pieces (a vertex just past s_free) stopped where the whole one
-                # went on to a nearer later pass: other commands (review 38).
-                u = min(max(foot, lo), free)
-                f = min(u / seg, 1.0)
-                qx = (ax - px) + ex * f
-                qy = (ay - py) + ey * f
-                d2 = qx * qx + qy * qy
-                if d2 < best_d2:
-                    best_d2 = d2
-                    best_s = min(max(cum[i] + u, s_from), s_to)
-                f = min(free / seg, 1.0)
-                if math.hypot((ax - px) + ex * f, (ay - py) + ey * f) > math.sqrt(
-                    best_d2
-                ) + detour:
-                    break
-            u = min(max(foot, lo), hi)
+            u = ((px - ax) * ex + (py - ay) * ey) / seg
+            u = min(max(u, lo), hi)
             f = min(u / seg, 1.0)
         else:
             u = lo
@@ -157,6 +137,23 @@ def project(
         qx = (ax - px) + ex * f
         qy = (ay - py) + ey * f
         d2 = qx * qx + qy * qy
+        free = s_free - cum[i]
+        if lo < free < hi:
+            # The detour test starts at s_free, inside this segment: the part before
+            # it counts first, then the point at s_free is tested as a vertex is.
+            # Tested at the segment's end only, a path split into collinear pieces (a
+            # vertex just past s_free) stopped where the whole one went on to a nearer
+            # later pass: other commands (review 38).
+            g = min(free / seg, 1.0)
+            wx = (ax - px) + ex * g
+            wy = (ay - py) + ey * g
+            # The part's closest point: the segment's own, or else the point at s_free.
+            near2 = d2 if u <= free else wx * wx + wy * wy
+            if near2 < best_d2:
+                best_d2 = near2
+                best_s = min(max(cum[i] + min(u, free), s_from), s_to)
+            if math.hypot(wx, wy) > math.sqrt(best_d2) + detour:
+                break
         if d2 < best_d2:
             best_d2 = d2
             best_s = min(max(cum[i] + u, s_from), s_to)
