@@ -41,9 +41,19 @@ class Recorder:
 
 @pytest.fixture(scope="module")
 def client() -> Iterator[Any]:
-    """A real Dask cluster of two worker processes, one thread each (started once)."""
+    """A real Dask cluster of two worker processes, one thread each (started once).
+
+    The scheduler always starts an HTTP server: with ``dashboard_address=None`` it takes
+    port 8787 and warns (an error here) when another cluster, or another test run,
+    holds that port. ``":0"`` lets the OS pick a free port; ``dashboard=False`` keeps
+    the dashboard (bokeh, if installed) off.
+    """
     cluster = distributed.LocalCluster(
-        n_workers=2, processes=True, threads_per_worker=1, dashboard_address=None
+        n_workers=2,
+        processes=True,
+        threads_per_worker=1,
+        dashboard_address=":0",
+        scheduler_kwargs={"dashboard": False},
     )
     dask_client = distributed.Client(cluster)
     try:
