@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import sys
 
 __all__ = ["usable_cores"]
 
@@ -18,7 +19,11 @@ def usable_cores() -> int:
     >>> usable_cores() >= 1
     True
     """
-    try:
-        return len(os.sched_getaffinity(0))
-    except AttributeError:  # pragma: no cover - not on Linux
-        return os.cpu_count() or 1
+    # Under a platform test (not a try alone) for the type checker: Windows' and
+    # macOS's os have no sched_getaffinity, nor their type stubs.
+    if sys.platform != "win32" and sys.platform != "darwin":
+        try:
+            return len(os.sched_getaffinity(0))
+        except AttributeError:  # pragma: no cover - a Unix without it
+            pass
+    return os.cpu_count() or 1

@@ -179,10 +179,11 @@ def _check_targets(targets: Sequence[Path]) -> None:
 
 def _name_max(folder: Path) -> int:
     """Longest file name (bytes) the file system of ``folder`` takes; 255 if it cannot say."""
-    try:
-        limit = int(os.pathconf(folder, "PC_NAME_MAX"))
-    except (AttributeError, OSError, ValueError):  # no pathconf (Windows), no such folder
-        return 255
+    # A platform test, not the except alone: Windows' type stubs have no pathconf.
+    limit = 255
+    if sys.platform != "win32":
+        with contextlib.suppress(AttributeError, OSError, ValueError):  # no such folder
+            limit = int(os.pathconf(folder, "PC_NAME_MAX"))
     # pathconf answers -1 for "no limit" (not an error); 0 is no answer either.
     # Taken as the limit, either would cut every name down to ".{tag}.tmp",
     # dropping the suffix that writers pick their format from.
@@ -425,13 +426,14 @@ def _sync(path: Path, flags: int) -> None:
     """Flush ``path`` to the disk: ``fsync``, or on macOS ``F_FULLFSYNC`` where it works."""
     fd = os.open(path, flags)
     try:
-        full_sync = getattr(fcntl, "F_FULLFSYNC", None) if sys.platform == "darwin" else None
-        if full_sync is not None:
-            try:
-                fcntl.fcntl(fd, full_sync)  # the drive's cache too (fsync stops short of it)
-                return
-            except OSError:  # a file system without it (network shares): fsync then
-                pass
+        if sys.platform != "win32":  # no fcntl there (nor in its type stubs)
+            full_sync = getattr(fcntl, "F_FULLFSYNC", None) if sys.platform == "darwin" else None
+            if full_sync is not None:
+                try:
+                    fcntl.fcntl(fd, full_sync)  # the drive's cache too (fsync stops short of it)
+                    return
+                except OSError:  # a file system without it (network shares): fsync then
+                    pass
         os.fsync(fd)
     finally:
         os.close(fd)

@@ -23,8 +23,10 @@ from __future__ import annotations
 import contextlib
 import os
 import signal
+import sys
 import threading
 from collections.abc import Iterator
+from collections.abc import Set as AbstractSet
 from types import FrameType
 
 __all__ = ["Terminated", "WorkerStopped", "handled_signals"]
@@ -109,14 +111,12 @@ def handled_signals() -> Iterator[None]:
     finally:
         # A signal between two restores would raise out of this loop and leave
         # navkit's handler on the signals not yet restored: hold them until done.
-        mask = (
-            signal.pthread_sigmask(signal.SIG_BLOCK, previous)
-            if previous and hasattr(signal, "pthread_sigmask")
-            else None
-        )
+        mask: AbstractSet[int] | None = None
+        if sys.platform != "win32" and previous and hasattr(signal, "pthread_sigmask"):
+            mask = signal.pthread_sigmask(signal.SIG_BLOCK, previous)  # (Windows has no masks)
         try:
             for signum, handler in previous.items():
                 signal.signal(signum, handler)
         finally:
-            if mask is not None:  # the caller's own mask, as it was
+            if sys.platform != "win32" and mask is not None:  # the caller's own mask, as it was
                 signal.pthread_sigmask(signal.SIG_SETMASK, mask)

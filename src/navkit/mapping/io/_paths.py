@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import os
 import stat
+import sys
 from pathlib import Path
 from typing import Any, BinaryIO
 
@@ -71,7 +72,7 @@ def open_regular(path: Path, what: str) -> BinaryIO:
         if not stat.S_ISREG(mode):
             kind = "a directory" if stat.S_ISDIR(mode) else "not a regular file"
             raise ValueError(f"{what} {path} is {kind}")
-        if nonblock:
+        if sys.platform != "win32" and nonblock:  # Windows has no O_NONBLOCK
             os.set_blocking(fd, True)
     except BaseException:
         os.close(fd)
