@@ -65,6 +65,7 @@ import os
 import sys
 import threading
 import warnings
+import weakref
 from collections.abc import Callable
 from types import FrameType
 from typing import Any, TypeVar, cast
@@ -165,6 +166,10 @@ def _make_dispatcher(njit: Any, options: dict[str, Any], py_func: Callable[..., 
     return _count_compiles_in_c(njit(**{**options, "cache": False})(py_func))
 
 
+#: Every :class:`_CompileDepth` made, weakly (see :func:`_free_lost_compile_depths`).
+_DEPTHS: weakref.WeakSet[_CompileDepth] = weakref.WeakSet()
+
+
 class _CompileDepth:
     """A dispatcher's count of its compiles under way, which a Ctrl-C cannot leave up.
 
@@ -183,14 +188,16 @@ class _CompileDepth:
     no Python code in between in which a signal's handler could run. numba holds
     its compiler lock around every compile, so one thread at a time counts, and
     the count is true for the thread reading it (numba's type inference, in the
-    compiling thread).
+    compiling thread). In a forked child, the counts of the threads the fork
+    left behind are freed (:func:`_free_lost_compile_depths`).
     """
 
-    __slots__ = ("_lock",)
+    __slots__ = ("__weakref__", "_lock")
 
     def __init__(self) -> None:
         # C: its __enter__ and __exit__ run no Python. Any: _is_owned is untyped.
         self._lock: Any = _thread.RLock()
+        _DEPTHS.add(self)
 
     __enter__: Any
     __exit__: Any
@@ -231,6 +238,26 @@ class _LockMethod:
 
 _CompileDepth.__enter__ = _LockMethod("__enter__")
 _CompileDepth.__exit__ = _LockMethod("__exit__")
+
+
+def _free_lost_compile_depths() -> None:
+    """In a forked child, free the compile counts held by threads the fork left behind.
+
+    A fork waits for numba's compiler lock, under which every count goes up
+    and down, except one made from a signal handler run inside navkit's
+    locking code, which goes without it (``compile_gc._take_for_fork``): a
+    thread compiling a kernel then held the kernel's :class:`_CompileDepth`,
+    a C lock, and the child's first call of that kernel waited for it for
+    ever (review 39; numba's own counter, an int, let the child compile).
+    The forking thread's own counts are kept: it goes on with its compiles.
+    """
+    for depth in list(_DEPTHS):
+        if not depth._lock._is_owned():
+            depth._lock = _thread.RLock()
+
+
+if hasattr(os, "register_at_fork"):  # not on Windows, which cannot fork
+    os.register_at_fork(after_in_child=_free_lost_compile_depths)
 
 
 def _count_compiles_in_c(dispatcher: Any) -> Any:
