@@ -1,0 +1,94 @@
+"""The fuzz watchdog does not count numba's compile time as the call's (review 39, FLAKY).
+
+A hostile value can take a call down a branch, or to a dtype, whose kernel no earlier
+call compiled: with a cold numba cache, ``ExtendedKalmanFilter.predict`` with NaN in
+``Q`` compiled three kernels in 4.6 s of wall-clock time on a loaded 2-core machine,
+inside the 10 s (``CALL_TIMEOUT_S``) that the watchdog allows a call before it counts
+as a hang (the first valid call of a spec gets 600 s; this is a later one). While a
+thread holds numba's compiler lock, the bound is ``COMPILE_TIMEOUT_S``, and the call's
+own seconds start again when numba lets go of it. Time outside the compile still
+counts: a call that hangs after a compile is still a hang.
+"""
+
+from __future__ import annotations
+
+import signal
+import time
+
+import fuzz_engine
+import pytest
+from fuzz_engine import Hang, watchdog
+
+from navkit._shared.jit import load_numba
+
+pytestmark = pytest.mark.skipif(not hasattr(signal, "setitimer"), reason="needs setitimer")
+
+#: The watchdog's bound in these tests (s).
+SHORT = 0.3
+
+
+def _fresh_kernel() -> object:
+    """A kernel no call has compiled yet (a new function each time, cache off)."""
+    load_numba()
+    import numba
+
+    def total(n: int) -> float:
+        s = 0.0
+        for i in range(n):
+            s += (i * 7) % 5 - 0.5
+        return s
+
+    return numba.njit(cache=False)(total)
+
+
+def test_a_real_compile_runs_under_the_compile_bound() -> None:
+    from numba.core import event
+
+    kernel = _fresh_kernel()
+    left: list[float] = []
+
+    class During(event.Listener):  # type: ignore[misc]
+        def on_start(self, _event: object) -> None:
+            left.append(signal.getitimer(signal.ITIMER_REAL)[0])
+
+        def on_end(self, _event: object) -> None:
+            pass
+
+    with event.install_listener("numba:compile", During()), watchdog(30.0):
+        assert kernel(10) == sum((i * 7) % 5 - 0.5 for i in range(10))  # type: ignore[operator]
+        after = signal.getitimer(signal.ITIMER_REAL)[0]
+    assert len(left) == 1 and left[0] > 30.0  # the compile's bound, not the call's
+    assert 0.0 < after <= 30.0  # the call's own bound again
+    assert signal.getitimer(signal.ITIMER_REAL) == (0.0, 0.0)  # nothing left set
+
+
+def test_numba_holding_its_lock_longer_than_the_bound_is_not_a_hang() -> None:
+    load_numba()
+    from numba.core.compiler_lock import global_compiler_lock
+
+    started = time.perf_counter()
+    with watchdog(SHORT), global_compiler_lock:  # as a compile or a cache load does
+        time.sleep(4 * SHORT)
+    assert time.perf_counter() - started >= 4 * SHORT
+
+
+def test_the_calls_own_time_after_numbas_still_counts() -> None:
+    load_numba()
+    from numba.core.compiler_lock import global_compiler_lock
+
+    with pytest.raises(Hang), watchdog(SHORT):
+        with global_compiler_lock:
+            time.sleep(SHORT / 10)
+        time.sleep(100 * SHORT)  # a hang after the compile
+    assert signal.getitimer(signal.ITIMER_REAL) == (0.0, 0.0)
+
+
+def test_a_call_without_a_compile_still_hangs_at_the_bound() -> None:
+    load_numba()
+    with pytest.raises(Hang), watchdog(SHORT):
+        time.sleep(100 * SHORT)
+
+
+def test_the_compile_bound_is_generous_but_finite() -> None:
+    bound = getattr(fuzz_engine, "COMPILE_TIMEOUT_S", None)
+    assert bound is not None and 60.0 <= bound < float("inf")
