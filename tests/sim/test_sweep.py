@@ -45,14 +45,14 @@ def client() -> Iterator[Any]:
 
     The scheduler always starts an HTTP server: with ``dashboard_address=None`` it takes
     port 8787 and warns (an error here) when another cluster, or another test run,
-    holds that port. ``":0"`` lets the OS pick a free port; ``dashboard=False`` keeps
-    the dashboard (bokeh, if installed) off.
+    holds that port. ``"127.0.0.1:0"`` lets the OS pick a free port, on this machine
+    only; ``dashboard=False`` keeps the dashboard (bokeh, if installed) off.
     """
     cluster = distributed.LocalCluster(
         n_workers=2,
         processes=True,
         threads_per_worker=1,
-        dashboard_address=":0",
+        dashboard_address="127.0.0.1:0",
         scheduler_kwargs={"dashboard": False},
     )
     dask_client = distributed.Client(cluster)
