@@ -61,11 +61,12 @@ and returns ``CANCELLED``; the public layer finishes it with :func:`finish_cance
 which may take the information form instead, chosen by residuals computed
 exactly, and commits a state only with a bound on its error within 2⁻²⁰ of a
 posterior deviation or a few ulps, else the posterior mean in exact rational
-arithmetic (for more than ``_EXACT_NIS_MAX_M`` components, the information
-form's state where its bound is within a quarter of one), and a covariance
-only with a measured error within 2⁻⁴⁰ of its scale, else the exact posterior
-covariance, rounded once, where float64 holds it as a covariance (in NumPy: the
-case is rare, and compiled into every update kernel it would cost compile time).
+arithmetic (for more than ``_EXACT_CANCELLED_MAX_M`` (12) components, the
+information form's state where its bound is within a quarter of one), and a
+covariance only with a measured error within 2⁻⁴⁰ of its scale, else the exact
+posterior covariance, rounded once, where float64 holds it as a covariance (in
+NumPy: the case is rare, and compiled into every update kernel it would cost
+compile time).
 
 Each kernel is compiled, when first requested, for one signature: the
 filter's own arrays (``state``, ``rbuf``, ``y``) as numba arrays and the
@@ -246,7 +247,7 @@ _STEP_SURE = 0.25
 # below 2 ulps of the size (measured on 9000 updates), as a float64 square-root or
 # information-form update's.
 _STEP_RESOLUTION = 32.0 * _EPS
-# Where the exact state is at hand (m <= _EXACT_NIS_MAX_M), a bound within _STEP_SURE
+# Where the exact state is at hand (m <= _EXACT_CANCELLED_MAX_M), a bound within _STEP_SURE
 # deviations is not enough: the kernel's x, kept with such a bound, was up to 1.5e-3
 # deviations off where x⁺ was exact (κ(R) 1e8 to 1e18, review 33). There a state is
 # committed only with a bound within this many deviations (about 1e-6) or
@@ -257,7 +258,7 @@ _STEP_EXACT_SURE = 2.0**-20
 # The fallbacks commit a covariance they computed only where its measured error
 # (relative to sqrt(P⁺ᵢᵢ P⁺ⱼⱼ)) is at most this, as accurate as an ordinary update's
 # Joseph P (no variance shrinking more than _SHRINK_LIMIT-fold: about 4096 ε); else,
-# for measurements of at most _EXACT_NIS_MAX_M components, the exact posterior
+# for measurements of at most _EXACT_CANCELLED_MAX_M components, the exact posterior
 # rounded once (_exact_posterior). The measured errors run 10-100 times above the
 # true ones: 7 of 300 precise measurements of a 6-state filter (P of scaled
 # condition 1.9e3 to 1.8e7) take the exact posterior, their P⁺ 5e-15 to 1.6e-11 off.
@@ -274,6 +275,15 @@ _P_NEAR = 2.0**-20
 # more the further apart the matrices' exponents lie; measured 2026-12); larger ones still
 # raise FilterError where the computed S is not positive definite.
 _EXACT_NIS_MAX_M = 8
+# The largest measurement size whose cancelled update finish_cancelled completes with
+# the exact posterior, state and NIS where no float64 result is vouched for (as
+# _EXACT_NIS_MAX_M's for S not positive definite; measured 2026-12 with the
+# elimination, posterior, state and NIS together: 2-23 ms for m = 9-12 with 4 states,
+# 10-72 ms with 15, up to 0.46 s where P and R lie 1e280 apart). Larger measurements
+# keep the Joseph P and the kernel's x unmeasured where the information form is not
+# trusted (before review 39 every measurement above 8 components did: P up to 10.7 %
+# and x 0.21 of the posterior's deviations off in random precise updates of 9 and 10).
+_EXACT_CANCELLED_MAX_M = 12
 # The largest n whose Q the predict kernel accepts by its LDLᵀ factorisation
 # (_adopt_positive): its backward error, about n² ε max|Q|, is then below 1e-12 max|Q|.
 _PSD_MAX_N = 64
@@ -1122,12 +1132,12 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
     * where S is that ill-conditioned (ε κ(S) > 2⁻³⁰) and the two states
       agree, x⁺ replaces the kernel's where its bound is within
       ``_STEP_EXACT_SURE`` deviations (``_STEP_SURE`` for measurements of more
-      than ``_EXACT_NIS_MAX_M`` components) or ``_STEP_RESOLUTION`` of
+      than ``_EXACT_CANCELLED_MAX_M`` components) or ``_STEP_RESOLUTION`` of
       ``|x| + |x⁺ - x|``;
     * where the kernel's x was replaced by x⁺ because they disagree, or
       where S is that ill-conditioned, the kernel's NIS, from the same solve
       with S, is replaced by the exact one (:func:`_nis_of`, for
-      measurements of at most ``_EXACT_NIS_MAX_M`` components) and the
+      measurements of at most ``_EXACT_CANCELLED_MAX_M`` components) and the
       update gated again on it (``GATED``, the state unchanged, where it
       exceeds the gate); so too where the information form is not trusted
       and S is that ill-conditioned (measured: the kernel's NIS 7.14 for an
@@ -1144,7 +1154,7 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
     ``_STEP_RESOLUTION`` of ``|x| + |x⁺ - x|`` (x⁺'s own bound; for the
     kernel's x, ``|x_kernel - x⁺|`` plus x⁺'s bound, the only bound it has:
     ε κ(S) of its scale says nothing where the posterior's deviations lie far
-    below it); else, for measurements of more than ``_EXACT_NIS_MAX_M``
+    below it); else, for measurements of more than ``_EXACT_CANCELLED_MAX_M``
     components, x⁺ where its bound is within ``_STEP_SURE`` deviations (a
     quarter) or that resolution; else (and always where the information form
     is not trusted: nothing bounds the kernel's x there; and wherever the
@@ -1153,7 +1163,7 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
     1.25 ulps off where the kernel's x was exact) the exact posterior mean
     ``x + P Hᵀ S⁻¹ y`` in rational arithmetic, rounded once
     (:func:`_exact_state`, for measurements of at most
-    ``_EXACT_NIS_MAX_M`` components; ``STATE_OVERFLOW`` where it is beyond
+    ``_EXACT_CANCELLED_MAX_M`` components; ``STATE_OVERFLOW`` where it is beyond
     float64). Larger measurements keep the chosen state, and an update
     the Joseph form failed with S that ill-conditioned and no state within
     the tolerance is refused (its status). (Before review 26 the kernel's x
@@ -1163,7 +1173,7 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
 
     And the covariance: the one chosen above only where its measured error
     is at most ``_P_SURE`` (2⁻⁴⁰, an ordinary update's accuracy); else, for
-    measurements of at most ``_EXACT_NIS_MAX_M`` components, the exact
+    measurements of at most ``_EXACT_CANCELLED_MAX_M`` components, the exact
     posterior ``P - (H P)ᵀ S⁻¹ (H P)``, rounded once (:func:`_exact_posterior`,
     from the same elimination as the exact state and NIS), where it passes
     the kernels' test of a covariance (:func:`_is_covariance`; an update the
@@ -1176,7 +1186,15 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
     stood wherever the information form was not trusted, its error
     unmeasured: up to 3.7e20 of the posterior's scale in 3000 random
     updates, 2.3e93 in 18,000 of another kind; and P⁺ was committed with an
-    estimated error up to 2⁻¹², 1e-5 off.)
+    estimated error up to 2⁻¹², 1e-5 off. Before review 39 that was still so
+    for every measurement of more than 8 components (``_EXACT_NIS_MAX_M``):
+    in 600 random precise updates of 9 and 10 components the Joseph P was
+    committed up to 10.7 % and the kernel's x 0.21 of the posterior's
+    deviations off, 3.2 deviations where a trusted x⁺'s bound exceeded a
+    quarter; measurements of 9 to ``_EXACT_CANCELLED_MAX_M`` components now
+    take the exact posterior, state and NIS as the smaller ones do, at
+    2-25 ms for up to 4 states, and measurements above it are as before:
+    9.4 % off in a draw of 13 components.)
 
     Commits x and P only with OK. ``jac`` (m, n) is the H and ``y`` (m,) the
     (wrapped) residual the kernel took. NumPy, not a kernel: this is rare, and
@@ -1192,13 +1210,13 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
     new_p, new_x = joseph, x_kernel
     regate = False
     # Whether new_x has no bound within _STEP_SURE deviations or _STEP_RESOLUTION of
-    # its size: then the exact state replaces it (m <= _EXACT_NIS_MAX_M).
+    # its size: then the exact state replaces it (m <= _EXACT_CANCELLED_MAX_M).
     unvouched = True
     # The measured error of new_p in units of ε (inf: none), and the covariances
     # that passed their checks, for where the exact one does not.
     p_error = math.inf
     checked = [joseph] if status == OK else []
-    exact = m <= _EXACT_NIS_MAX_M
+    exact = m <= _EXACT_CANCELLED_MAX_M
     with np.errstate(all="ignore"):
         found = _information_update(p, jac, rbuf[_RS, :m, :m], y)
         if found is None or not _EPS * found.error <= _WELL_CONDITIONED:
