@@ -11,6 +11,7 @@ from typing import Any
 import numpy as np
 import pytest
 
+from dask_cluster import local_cluster
 from navkit.sim import (
     Scenario,
     ScenarioResult,
@@ -41,20 +42,8 @@ class Recorder:
 
 @pytest.fixture(scope="module")
 def client() -> Iterator[Any]:
-    """A real Dask cluster of two worker processes, one thread each (started once).
-
-    The scheduler always starts an HTTP server: with ``dashboard_address=None`` it takes
-    port 8787 and warns (an error here) when another cluster, or another test run,
-    holds that port. ``"127.0.0.1:0"`` lets the OS pick a free port, on this machine
-    only; ``dashboard=False`` keeps the dashboard (bokeh, if installed) off.
-    """
-    cluster = distributed.LocalCluster(
-        n_workers=2,
-        processes=True,
-        threads_per_worker=1,
-        dashboard_address="127.0.0.1:0",
-        scheduler_kwargs={"dashboard": False},
-    )
+    """A real Dask cluster of two worker processes, one thread each (started once)."""
+    cluster = local_cluster(distributed)
     dask_client = distributed.Client(cluster)
     try:
         yield dask_client
