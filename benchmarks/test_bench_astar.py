@@ -29,7 +29,7 @@ Chebyshev graph, pyastar2d no octile one, nor an expansion count); tcod is the
 peer on navkit's graph. Nor is pyastar2d's the smaller search: a Python model
 of its loop with libstdc++'s heap order, which reproduces its paths cell for
 cell, pops 105,600 / 160,477 / 564,057 nodes on random20 / random35 / rooms
-against navkit's 84,257 / 137,577 / 432,904 expansions (1.25 / 1.17 / 1.30),
+against navkit's 81,677 / 136,958 / 432,028 expansions (1.29 / 1.17 / 1.31),
 so a ratio below 1 here is partly a larger search on pyastar2d's side.
 """
 

@@ -24,6 +24,7 @@ from hypothesis_twins import slow_twin
 from navkit.errors import NoPathError
 from navkit.planning import astar
 from navkit.planning.grid._search_heap import (
+    F_BAND,
     HEAP_TIE_LIMIT,
     TIE_RESOLUTION,
     aligned_heap,
@@ -34,6 +35,11 @@ from navkit.planning.grid._search_heap import (
 SQRT2 = math.sqrt(2.0)
 MOVES = ((-1, 0, 1.0), (1, 0, 1.0), (0, -1, 1.0), (0, 1, 1.0),
          (-1, -1, SQRT2), (-1, 1, SQRT2), (1, -1, SQRT2), (1, 1, SQRT2))  # fmt: skip
+
+
+def banded(f: float) -> int:
+    """A*'s queue key for f: its IEEE 754 bits less the lowest ``F_TIE_BITS`` (session 43)."""
+    return int(np.float64(f).view(np.uint64)) & int(F_BAND)
 
 
 def textbook_astar(
@@ -48,7 +54,8 @@ def textbook_astar(
 
     The same float operations in the same order as the kernel (move cost
     ``step * 0.5 * (c_u + c_v)``, octile or Manhattan h, ``f = g + scale * h``)
-    so that the order of expansions can be compared exactly.
+    so that the order of expansions can be compared exactly; f is queued as
+    :func:`banded` (f within 2**-40 of itself ties).
     """
     rows, cols = costs.shape
     scale = weight * float(costs[np.isfinite(costs)].min())
@@ -65,7 +72,8 @@ def textbook_astar(
     closed: set[tuple[int, int]] = set()
     # The kernel's tie resolution for the grid (1/16 cell below 2**27 rows + cols).
     res = tie_resolution(rows, cols, HEAP_TIE_LIMIT)
-    queue = [(scale * h(*start), tie_key(h(*start), start[0] * cols + start[1], res), start)]
+    first = tie_key(h(*start), start[0] * cols + start[1], res)
+    queue = [(banded(scale * h(*start)), first, start)]
     expanded = 0
     while queue:
         _, _, u = heapq.heappop(queue)
@@ -98,7 +106,8 @@ def textbook_astar(
             g[(r2, c2)] = new_g
             parent[(r2, c2)] = u
             hv = h(r2, c2)
-            heapq.heappush(queue, (new_g + scale * hv, tie_key(hv, r2 * cols + c2, res), (r2, c2)))
+            f = banded(new_g + scale * hv)
+            heapq.heappush(queue, (f, tie_key(hv, r2 * cols + c2, res), (r2, c2)))
     return expanded, None
 
 

@@ -709,12 +709,16 @@ def astar(
     Grids may have at most 2**31 - 1 cells. Ties among equal f are broken by the
     heuristic (to 1/16 cell at any distance from the goal on grids with rows +
     cols below 2**27, or 2**17 with JPS; on longer ones to the finest power of
-    two that fits), then by cell index, so results are deterministic. Equal
-    means equal as computed: on open grids of one cost, sums of 1 and sqrt(2)
-    in different orders round differently, so cells of one plateau differ in f
-    by an ulp and A* may expand many cells off the path (an empty 512 x 512
-    grid from (0, 0) to (511, 250): 63,760 cells for a path of 512; JPS 3).
-    The path is optimal all the same.
+    two that fits), then by cell index, so results are deterministic. A*
+    counts f equal within 2**-40 of f (its lowest 12 bits ignored): sums of
+    1 and sqrt(2) in different orders round differently, so the cells of one
+    plateau differ in f by an ulp or a few, and comparing f exactly made A*
+    expand many cells off the path (an empty 512 x 512 grid from (0, 0) to
+    (511, 250): 63,760 cells for a path of 512, now 512; JPS 3). The cost
+    stays within about ``m * 2**-40`` of the optimum, relative, m the number
+    of nested near ties (costs less than 2**-40 apart, not equal) on the
+    path, none on grids of one cost whose optimum is below 700,000 times it
+    (see ``F_TIE_BITS`` in :mod:`navkit.planning.grid._search_heap`).
 
     Raises
     ------

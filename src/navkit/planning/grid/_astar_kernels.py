@@ -86,6 +86,8 @@ from navkit._shared.jit import (
 )
 from navkit._shared.types import KernelInt
 from navkit.planning.grid._search_heap import (
+    ALL_BITS,
+    F_BAND,
     HEAP_TIE_LIMIT,
     REC_BASE,
     rec_pop,
@@ -157,6 +159,7 @@ def _relax(
     octile: bool,
     scale: float,
     tie_res: float,
+    band: np.uint64,
     next_f: np.uint64,
     next_key: np.uint64,
     next_v: KernelInt,
@@ -190,8 +193,10 @@ def _relax(
     rec[np.uint64(2 * v)] = new_g
     meta[np.uint64(4 * v + 2)] = code
     h = _cells_to_goal(r, c, gr, gc, octile)
-    # The bits of f (>= 0, finite), which order as f does.
-    f: np.uint64 = _f64_bits(new_g + scale * h)
+    # The bits of f (>= 0, finite), which order as f does, less the low bits
+    # ``band`` clears: f within 2**-40 of itself (a plateau's f rounded
+    # differently) ties (see F_TIE_BITS in _search_heap, with the bound).
+    f: np.uint64 = _f64_bits(new_g + scale * h) & band
     # Ties in f go to the cell nearer the goal, which keeps A* from expanding
     # whole plateaus of equal f (h to 1 / tie_res cells, at every distance).
     key = tie_key_bits(h, v, tie_res)
@@ -289,7 +294,10 @@ def grid_search(
     On return the mark is ``stamp + 1`` for every closed cell (exhaustion
     closes every reachable one) and its cost is exact when the heuristic
     weight is <= 1. The queue orders cells by (f, tie key) with f = g + scale
-    × distance in cells; the order is total, so the search is deterministic.
+    × distance in cells, f's lowest ``F_TIE_BITS`` bits ignored when ``goal``
+    >= 0 (f within 2**-40 of itself ties; the bound on the cost is at
+    :data:`navkit.planning.grid._search_heap.F_TIE_BITS`); the order is
+    total, so the search is deterministic.
     A queued cell's heap slot is kept in its record, in the cache line the
     search reads for the cell anyway. After expanding a cell, the best
     neighbour it improved is expanded next directly when it precedes the
@@ -308,6 +316,9 @@ def grid_search(
     open16 = open_mark << 4
     # Ties to 1/16 cell unless rows + cols >= 2**27 (see _search_heap).
     tie_res = tie_resolution(rows, cols, HEAP_TIE_LIMIT)
+    # f's lowest bits ignored when searching for a goal (session 43), kept
+    # by Dijkstra to exhaustion (the distance fields: exact order).
+    band = F_BAND if goal >= 0 else ALL_BITS
     rec[np.uint64(2 * start)] = 0.0
     meta[np.uint64(4 * start + 2)] = open_mark << 4
     expanded = 0
@@ -339,22 +350,22 @@ def grid_search(
         if n_in:
             nf, nk, nv, n, nq = _relax(
                 flat, rec, meta, heap, n, open_mark, closed_mark, u - cols, open16 | 1, 1.0, gu, cu,
-                r - 1, c, gr, gc, eight, scale, tie_res, nf, nk, nv, nq
+                r - 1, c, gr, gc, eight, scale, tie_res, band, nf, nk, nv, nq
             )  # fmt: skip
         if s_in:
             nf, nk, nv, n, nq = _relax(
                 flat, rec, meta, heap, n, open_mark, closed_mark, u + cols, open16 | 2, 1.0, gu, cu,
-                r + 1, c, gr, gc, eight, scale, tie_res, nf, nk, nv, nq
+                r + 1, c, gr, gc, eight, scale, tie_res, band, nf, nk, nv, nq
             )  # fmt: skip
         if w_in:
             nf, nk, nv, n, nq = _relax(
                 flat, rec, meta, heap, n, open_mark, closed_mark, u - 1, open16 | 3, 1.0, gu, cu, r,
-                c - 1, gr, gc, eight, scale, tie_res, nf, nk, nv, nq
+                c - 1, gr, gc, eight, scale, tie_res, band, nf, nk, nv, nq
             )  # fmt: skip
         if e_in:
             nf, nk, nv, n, nq = _relax(
                 flat, rec, meta, heap, n, open_mark, closed_mark, u + 1, open16 | 4, 1.0, gu, cu, r,
-                c + 1, gr, gc, eight, scale, tie_res, nf, nk, nv, nq
+                c + 1, gr, gc, eight, scale, tie_res, band, nf, nk, nv, nq
             )  # fmt: skip
         if eight:
             if corner_cutting:
@@ -375,22 +386,22 @@ def grid_search(
             if nw:
                 nf, nk, nv, n, nq = _relax(
                     flat, rec, meta, heap, n, open_mark, closed_mark, u - cols - 1, open16 | 5,
-                    SQRT2, gu, cu, r - 1, c - 1, gr, gc, eight, scale, tie_res, nf, nk, nv, nq
+                    SQRT2, gu, cu, r - 1, c - 1, gr, gc, eight, scale, tie_res, band, nf, nk, nv, nq
                 )  # fmt: skip
             if ne:
                 nf, nk, nv, n, nq = _relax(
                     flat, rec, meta, heap, n, open_mark, closed_mark, u - cols + 1, open16 | 6,
-                    SQRT2, gu, cu, r - 1, c + 1, gr, gc, eight, scale, tie_res, nf, nk, nv, nq
+                    SQRT2, gu, cu, r - 1, c + 1, gr, gc, eight, scale, tie_res, band, nf, nk, nv, nq
                 )  # fmt: skip
             if sw:
                 nf, nk, nv, n, nq = _relax(
                     flat, rec, meta, heap, n, open_mark, closed_mark, u + cols - 1, open16 | 7,
-                    SQRT2, gu, cu, r + 1, c - 1, gr, gc, eight, scale, tie_res, nf, nk, nv, nq
+                    SQRT2, gu, cu, r + 1, c - 1, gr, gc, eight, scale, tie_res, band, nf, nk, nv, nq
                 )  # fmt: skip
             if se:
                 nf, nk, nv, n, nq = _relax(
                     flat, rec, meta, heap, n, open_mark, closed_mark, u + cols + 1, open16 | 8,
-                    SQRT2, gu, cu, r + 1, c + 1, gr, gc, eight, scale, tie_res, nf, nk, nv, nq
+                    SQRT2, gu, cu, r + 1, c + 1, gr, gc, eight, scale, tie_res, band, nf, nk, nv, nq
                 )  # fmt: skip
         if nv >= 0:
             top_f = heap[2 * REC_BASE]
