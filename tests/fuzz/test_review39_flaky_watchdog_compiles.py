@@ -23,8 +23,9 @@ from navkit._shared.jit import load_numba
 
 pytestmark = pytest.mark.skipif(not hasattr(signal, "setitimer"), reason="needs setitimer")
 
-#: The watchdog's bound in these tests (s).
-SHORT = 0.3
+#: The watchdog's bound in these tests (s): well above a loaded machine's pauses
+#: between numba letting go of its lock and the block's end.
+SHORT = 1.0
 
 
 def _fresh_kernel() -> object:
@@ -68,8 +69,8 @@ def test_numba_holding_its_lock_longer_than_the_bound_is_not_a_hang() -> None:
 
     started = time.perf_counter()
     with watchdog(SHORT), global_compiler_lock:  # as a compile or a cache load does
-        time.sleep(4 * SHORT)
-    assert time.perf_counter() - started >= 4 * SHORT
+        time.sleep(2.5 * SHORT)
+    assert time.perf_counter() - started >= 2.5 * SHORT
 
 
 def test_the_calls_own_time_after_numbas_still_counts() -> None:
@@ -79,14 +80,14 @@ def test_the_calls_own_time_after_numbas_still_counts() -> None:
     with pytest.raises(Hang), watchdog(SHORT):
         with global_compiler_lock:
             time.sleep(SHORT / 10)
-        time.sleep(100 * SHORT)  # a hang after the compile
+        time.sleep(30 * SHORT)  # a hang after the compile
     assert signal.getitimer(signal.ITIMER_REAL) == (0.0, 0.0)
 
 
 def test_a_call_without_a_compile_still_hangs_at_the_bound() -> None:
     load_numba()
     with pytest.raises(Hang), watchdog(SHORT):
-        time.sleep(100 * SHORT)
+        time.sleep(30 * SHORT)
 
 
 def test_the_compile_bound_is_generous_but_finite() -> None:
