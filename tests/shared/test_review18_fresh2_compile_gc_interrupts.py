@@ -64,6 +64,8 @@ def interrupted_at(k):
             on_compile.on_start(navkit_compile)
             sys.setprofile(None)
         global_compiler_lock.release()
+        # A Ctrl-C held in the lock's release arrives as it is done (review 39).
+        sys.setprofile(None)
     except KeyboardInterrupt:
         pass
     finally:

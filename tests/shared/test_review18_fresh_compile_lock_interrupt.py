@@ -117,7 +117,10 @@ def test_ctrl_c_while_another_thread_compiles_leaves_the_next_compile_balanced(
             with global_compiler_lock:
                 raise AssertionError("not reached")
         except KeyboardInterrupt:
-            where = traceback.extract_tb(sys.exc_info()[2])[-1].name
+            # (The last frame outside navkit's handler: since review 39 a Ctrl-C while
+            # the main thread takes numba's compiler lock comes through it.)
+            frames = traceback.extract_tb(sys.exc_info()[2])
+            where = [f.name for f in frames if not f.filename.endswith("interrupts.py")][-1]
             assert where == "acquire", where  # interrupted while waiting
         done.set()
         holder.join()

@@ -20,6 +20,14 @@ own initialisation).
   from numba's cache changes nothing. The same two listeners switch
   :mod:`navkit._shared.compile_shortcuts` on and off (cheaper numba internals
   for the compile: error-message markup, compile-flag comparisons).
+* The compiler lock's listener also puts a
+  :class:`navkit._shared.interrupts.StepHold` in front of the ``SIGINT``
+  handler while the main thread holds numba's compiler lock (any compile or
+  cache load, the user's too), so that a Ctrl-C does not cut short the steps of
+  :func:`_lock_steps`: a ``KeyboardInterrupt`` there left numba's compiler
+  lock or llvmlite's LLVM lock held for good (every later compile or cache load
+  in another thread waited for ever), or crashed the process during a cache
+  load (review 39). Elsewhere a Ctrl-C is delivered at once.
 
 The collector's switch is one for the whole process while compiles and
 pauses are per thread (threads of a ROS 2 executor using navkit for the first
@@ -63,6 +71,7 @@ compile rises by a few tens of MB (25 MB measured on Field D*'s).
 
 from __future__ import annotations
 
+import contextlib
 import gc
 import importlib
 
@@ -77,12 +86,14 @@ import os
 import re
 import sys
 import threading
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
+from types import FrameType
 from typing import Any
 
 from navkit._shared import compile_shortcuts
 from navkit._shared.interrupts import (
+    StepHold,
     held_for_fork,
     interrupts_deferred,
     release_in_child,
@@ -124,6 +135,10 @@ def _end_pause() -> None:
         if _PAUSES == 0 and _RESUME:
             gc.enable()
 
+
+#: The main thread's hold of Ctrl-C in the steps of numba's and llvmlite's locks, in
+#: place while it holds numba's compiler lock (see :func:`_lock_steps`); None before.
+_LOCK_HOLD: list[StepHold | None] = [None]
 
 #: Held while navkit imports numba (jit.load_numba, jit.jit_disabled): a fork waits for it.
 NUMBA_IMPORT = threading.RLock()
@@ -388,12 +403,106 @@ def _is_navkit(dispatcher: Any) -> bool:
     return module == "navkit" or module.startswith("navkit.")
 
 
+def _lock_steps(compiler_lock: Any) -> Callable[[FrameType | None], bool]:
+    """A test of the main thread's stack: is it inside a step a Ctrl-C must not cut short?
+
+    The steps: Python code run while numba's compiler lock is taken or let go,
+    between the ``acquire`` and the frame that will release it (the ``with``
+    block, an ``ExitStack``'s callback), or between the ``with`` block's end and
+    the ``release`` (its ``acquire``, ``__enter__``, ``release`` and ``__exit__``;
+    ``ExitStack.enter_context`` and ``__exit__`` with it, as numba's dispatcher
+    takes it); and any of llvmlite's Python code (``llvmlite.binding``), which
+    keeps the ownership of LLVM's objects across its C calls: its LLVM lock's
+    ``__enter__`` after the acquire (numba's callbacks report the event there)
+    and ``__exit__`` (callbacks before the release), its object-cache callbacks
+    (called by LLVM through ctypes: an exception inside was reported as ignored,
+    and LLVM read the cached object code it was not given, SIGSEGV), a string's
+    ``close`` (between LLVM's free and forgetting the pointer: a double free at
+    its ``__del__``, found by review 39's sampled interrupts of a cache load), its
+    objects' finalizers (a ``KeyboardInterrupt`` there is reported as ignored, and
+    the Ctrl-C lost). A wait for the LLVM lock held by another thread (for one
+    LLVM call, or a finalizer's) is held through too. The LLVM calls themselves
+    are C code, which a Ctrl-C does not cut short anyway: one arriving during a
+    long optimisation is raised as llvmlite returns to numba, microseconds after
+    the C call. Steps of a name missing from the installed numba are left out.
+    """
+
+    # Each test: True (a step), None (not this frame; look further out).
+
+    def always(frame: FrameType) -> bool | None:
+        return True
+
+    def compiler_lock_held(frame: FrameType) -> bool | None:
+        return True if compiler_lock.is_locked() else None
+
+    def entering_compiler_lock(frame: FrameType) -> bool | None:
+        taking = compiler_lock.is_locked() and frame.f_locals.get("cm") is compiler_lock
+        return True if taking else None
+
+    def exiting_compiler_lock(frame: FrameType) -> bool | None:
+        if not compiler_lock.is_locked():
+            return None
+        stack = frame.f_locals.get("self")
+        exits = [frame.f_locals.get("cb"), *getattr(stack, "_exit_callbacks", ())]
+        letting_go = any(
+            getattr(item[-1] if isinstance(item, tuple) else item, "__self__", None)
+            is compiler_lock
+            for item in exits
+        )
+        return True if letting_go else None
+
+    lock_class = type(compiler_lock)
+    ffi: Any = importlib.import_module("llvmlite.binding.ffi")
+    llvmlite_code = os.path.dirname(os.path.abspath(ffi.__file__)) + os.sep
+    named = (
+        (lock_class, "__exit__", always),
+        (lock_class, "release", always),
+        (lock_class, "__enter__", compiler_lock_held),
+        (lock_class, "acquire", compiler_lock_held),
+        (contextlib.ExitStack, "enter_context", entering_compiler_lock),
+        (contextlib.ExitStack, "__exit__", exiting_compiler_lock),
+    )
+    steps: dict[Any, Callable[[FrameType], bool | None]] = {}
+    for owner, name, test in named:
+        code = getattr(getattr(owner, name, None), "__code__", None)
+        if code is not None:
+            steps[code] = test
+    #: Whether a file is llvmlite's, by name (each looked at once).
+    files: dict[str, bool] = {}
+
+    def in_step(frame: FrameType | None) -> bool:
+        while frame is not None:
+            code = frame.f_code
+            test = steps.get(code)
+            if test is None:
+                name = code.co_filename
+                ours = files.get(name)
+                if ours is None:
+                    ours = files[name] = os.path.abspath(name).startswith(llvmlite_code)
+                test = always if ours else None
+            step = test(frame) if test is not None else None
+            if step is not None:
+                return step
+            frame = frame.f_back
+        return False
+
+    return in_step
+
+
 def _make_listeners() -> tuple[Any, Any]:
     """The listeners of numba's compile events and of its compiler lock."""
     # Any: numba's event module is not typed in every supported numba version.
     event: Any = importlib.import_module("numba.core.event")
     compiler_lock: Any = importlib.import_module("numba.core.compiler_lock").global_compiler_lock
     state = threading.local()
+    in_lock_step = _lock_steps(compiler_lock)
+
+    def begin_hold() -> None:
+        hold = _LOCK_HOLD[0]
+        if hold is not None and not hold.restored:
+            return
+        hold = _LOCK_HOLD[0] = StepHold(critical=in_lock_step, under_way=compiler_lock.is_locked)
+        hold.begin()
 
     class CompileStart(event.Listener):  # type: ignore[misc]  # (a class of Any)
         """Pause the collector, shortcuts on, when a navkit kernel's compile starts."""
@@ -415,7 +524,11 @@ def _make_listeners() -> tuple[Any, Any]:
         """Resume it (shortcuts off) when the compiling thread releases numba's compiler lock."""
 
         def on_start(self, ev: Any) -> None:
-            """Nothing here: numba reports the start before it waits for the lock."""
+            # numba reports the start before it waits for the lock: nothing of the
+            # pause here. In the main thread, Ctrl-C is held in the lock's own steps
+            # until the outermost release (see _LOCK_HOLD).
+            if threading.get_ident() == _MAIN:
+                begin_hold()
 
         def on_end(self, ev: Any) -> None:
             # The lock itself tells whether this was the outermost release (it
@@ -437,6 +550,10 @@ def _make_listeners() -> tuple[Any, Any]:
                     _end_pause()
                     compile_shortcuts.end()
                     state.paused = False
+            hold = _LOCK_HOLD[0]
+            main = threading.get_ident() == _MAIN
+            if hold is not None and main and not compiler_lock.is_locked():
+                hold.end()
 
     return CompileStart(), LockRelease()
 

@@ -24,11 +24,19 @@ its place for good, and a ROS 2 node's ``spin()`` would no longer wake on
 Ctrl-C. Where the system's action can be read (POSIX), it is put back as it
 was, and a held Ctrl-C raised again for it. An action such a library installs
 from another thread while the block runs is kept too, and gets a held Ctrl-C.
+
+:class:`StepHold` holds a Ctrl-C only while the main thread is inside given
+short steps of a longer span (numba's and llvmlite's handling of their locks
+during a compile, see :mod:`navkit._shared.compile_gc`), delivering it at once
+elsewhere.
 """
 
 from __future__ import annotations
 
+import _thread
+import collections
 import contextlib
+import functools
 import importlib
 import os
 import signal
@@ -40,6 +48,7 @@ from types import FrameType
 from typing import Any
 
 __all__ = [
+    "StepHold",
     "held_for_fork",
     "interrupts_deferred",
     "release_in_child",
@@ -165,6 +174,117 @@ class _Hold:
             self.deliver(frame)
             return
         self.pending.append(frame)
+
+
+#: Per signal, an empty dict whose lookup of a missing key makes the signal pending again
+#: (``_thread.interrupt_main``, called from C). A handler that made its signal pending with
+#: an ordinary call was run again at once, inside itself: CPython runs pending handlers as
+#: a call of C code returns, and again at the next, without end. A subscript runs no such
+#: check, nor does the handler's return, so the signal comes back at the next delivery
+#: point after the handler (see :class:`StepHold`).
+_PENDING_AGAIN: dict[int, collections.defaultdict[int, None]] = {
+    int(signal.SIGINT): collections.defaultdict(
+        functools.partial(_thread.interrupt_main, signal.SIGINT)
+    )
+}
+
+
+class StepHold(_Hold):
+    """``SIGINT`` held only while the main thread is inside a step that must not be cut short.
+
+    For a span too long to hold Ctrl-C across (numba's compiler lock held by the
+    main thread: a whole compile) inside which short steps must not be cut in
+    two (numba letting go of that lock: a ``KeyboardInterrupt`` as its
+    ``__exit__`` is entered left the lock held for good). :meth:`begin` puts
+    this hold's handler in place for the span and :meth:`end` takes it away.
+    A Ctrl-C meanwhile is handed at once to the handler from before (a
+    ``KeyboardInterrupt`` where the interrupt lands, as without the hold)
+    unless ``critical`` says the main thread's stack, from the frame the
+    signal interrupted, is inside such a step: then the signal is made
+    pending again (``_thread.interrupt_main``), and Python offers it to this
+    handler again at its next delivery point (a function's entry, a C call's
+    return), until the step is done. So nothing is done at a step's end, and
+    nothing costs anything until a Ctrl-C comes. ``under_way`` says whether
+    the span is still under way (the lock still held): a Ctrl-C found outside
+    it (the wait for the lock interrupted, so no release will come to end the
+    hold) ends the hold before it is delivered.
+
+    Begun only in the main thread of the main interpreter (where Python runs
+    signal handlers) and where the handler from before is a Python callable
+    that could raise (not ``SIG_DFL``, ``SIG_IGN``, asyncio's, nor one installed
+    outside Python). A handler from before that does not raise (a program that
+    only notes the Ctrl-C) is called and the hold stays in place; one to be
+    reached by raising the signal again (a system action installed outside
+    Python behind it, see :class:`_Hold`) is reached after the hold ends.
+
+    Examples
+    --------
+    >>> import signal
+    >>> from navkit._shared.interrupts import StepHold
+    >>> hold = StepHold(critical=lambda frame: False, under_way=lambda: True)
+    >>> hold.begin()  # in the main thread, with Python's own handler
+    True
+    >>> signal.getsignal(signal.SIGINT) == hold.hold
+    True
+    >>> hold.end()
+    >>> signal.getsignal(signal.SIGINT) is signal.default_int_handler
+    True
+    """
+
+    def __init__(
+        self, *, critical: Callable[[FrameType | None], bool], under_way: Callable[[], bool]
+    ) -> None:
+        super().__init__(insist=False)
+        self.critical = critical
+        self.under_way = under_way
+        #: A Ctrl-C made pending again, not yet delivered.
+        self.again = False
+        #: :meth:`end` came while a Ctrl-C was pending: the hold ends as it is delivered.
+        self.ending = False
+
+    def begin(self) -> bool:
+        """Put the hold in place; False (nothing done) where it is not needed or cannot be."""
+        if threading.current_thread() is not threading.main_thread():
+            return False
+        previous = _getsignal(self.signum)
+        if not callable(previous) or _woken_already(previous):
+            return False
+        return self.start()
+
+    def end(self) -> None:
+        """Take the hold away (a Ctrl-C still pending is delivered as its step is done)."""
+        if self.restored:
+            return
+        if self.again:
+            self.ending = True  # the pending Ctrl-C comes back to hold(), which ends it
+            return
+        if _getsignal(self.signum) == self.hold:
+            self.restore()
+        else:  # another handler put in place meanwhile (which puts this one back): left so
+            self.restored = True
+
+    def hold(self, signum: int, frame: FrameType | None) -> None:
+        """The handler while held: deliver now, or make the signal pending again."""
+        if not self.restored and self.critical(sys._getframe(1)):
+            self.again = True
+            again = _PENDING_AGAIN[signum]
+            again.clear()
+            again[0]  # pending again: the last thing done (see _PENDING_AGAIN)
+            return
+        self.again = False
+        if (
+            self.restored
+            or self.ending
+            or self.outside
+            or not callable(self.previous)
+            or not self.under_way()
+        ):
+            self.restore()
+            if _getsignal(signum) == self.hold:  # put back by a hold begun inside this one
+                _put_back(signum, self.previous)
+        if self.previous is signal.default_int_handler and not self.outside:
+            raise KeyboardInterrupt  # as Python's handler would (one frame more, not three)
+        self.deliver(frame)
 
 
 class _ForkHold:
@@ -420,7 +540,7 @@ def release_others_in_child() -> None:
     """
     for signum in (signal.SIGINT, *_SIGNALS):
         handler = signal.getsignal(signum)
-        while getattr(handler, "__func__", None) is _Hold.hold:
+        while getattr(handler, "__func__", None) in (_Hold.hold, StepHold.hold):
             hold: _Hold = handler.__self__  # type: ignore[union-attr]
             hold.pending.clear()
             if hold.restored:  # put back already: nothing more to do
