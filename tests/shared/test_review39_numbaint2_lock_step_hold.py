@@ -237,3 +237,57 @@ def test_the_hold_is_only_where_a_ctrl_c_could_raise_in_the_main_thread() -> Non
         "python": 3, "python back": True, "noted mid-compile": 6, "thread": 11,
     }  # fmt: skip
     assert noted == 1
+
+
+_AFTER_IGNORED = r"""
+import json, signal, threading
+import numba
+from navkit._shared.jit import load_numba
+
+load_numba()
+from numba.core.compiler_lock import global_compiler_lock
+
+seen = []
+
+class Watch(numba.core.event.Listener):
+    def on_start(self, ev):
+        holder = getattr(signal.getsignal(signal.SIGINT), "__self__", None)
+        seen.append(type(holder).__name__ == "StepHold")
+    def on_end(self, ev):
+        pass
+
+numba.core.event.register("numba:compile", Watch())
+# Ctrl-C ignored while a wait for the lock ends in an exception (no release comes).
+signal.signal(signal.SIGINT, signal.SIG_IGN)
+real = global_compiler_lock._lock
+
+class Failing:
+    def acquire(self, *args):
+        raise OSError("the wait failed")
+    def __getattr__(self, name):
+        return getattr(real, name)
+
+global_compiler_lock._lock = Failing()
+try:
+    with global_compiler_lock:
+        pass
+except OSError:
+    pass
+finally:
+    global_compiler_lock._lock = real
+signal.signal(signal.SIGINT, signal.default_int_handler)
+
+@numba.njit
+def kernel(x):
+    return x + 1
+
+print(json.dumps([kernel(1), seen]))
+"""
+
+
+def test_a_lock_taken_with_ctrl_c_ignored_leaves_the_next_compile_held() -> None:
+    # Nothing was put in place then, and no release came to say so: the next
+    # compile, with Python's handler back, was left without the hold.
+    result, seen = probe_outcome(_AFTER_IGNORED, timeout=300)
+    assert result == 2
+    assert seen == [True]

@@ -502,7 +502,8 @@ def _make_listeners() -> tuple[Any, Any]:
         if hold is not None and not hold.restored:
             return
         hold = _LOCK_HOLD[0] = StepHold(critical=in_lock_step, under_way=compiler_lock.is_locked)
-        hold.begin()
+        if not hold.begin():  # nothing put in place (SIG_IGN...): the next acquire looks again
+            hold.restored = True
 
     class CompileStart(event.Listener):  # type: ignore[misc]  # (a class of Any)
         """Pause the collector, shortcuts on, when a navkit kernel's compile starts."""
