@@ -40,8 +40,11 @@ pytestmark = pytest.mark.skipif(
     not hasattr(os, "fork") or sys.platform != "linux", reason="needs os.fork"
 )
 
-# A thread holds numba's compiler lock HOLD s (as a compile does) so that the
-# main thread's fork waits in its before hook; the signals come meanwhile.
+# A thread holds numba's compiler lock (as a compile does) so that the main
+# thread's fork waits in its before hook, its signals held; the signals come
+# meanwhile: sent once the main thread waits for the lock there (not after a
+# fixed sleep, which a loaded machine can outlast before os.fork is called),
+# and the lock let go once they are sent.
 _WAITING_FORK = """
 import faulthandler, json, os, signal, sys, threading, time
 faulthandler.dump_traceback_later(60, exit=True)
@@ -49,20 +52,26 @@ from navkit._shared.jit import load_numba
 from numba.core.compiler_lock import global_compiler_lock
 
 load_numba()
-HOLD = 0.6
-holding = threading.Event()
+holding, all_sent = threading.Event(), threading.Event()
 
 def compile_elsewhere():
     with global_compiler_lock:
         holding.set()
-        time.sleep(HOLD)
+        assert all_sent.wait(50)
+        time.sleep(0.05)
 
 def send_during_the_wait(signums):
+    main = threading.get_ident()
+
     def send():
-        time.sleep(HOLD / 3)
+        frame = None
+        while frame is None or frame.f_code.co_name != "_take_for_fork":
+            time.sleep(0.002)  # until the fork's hook waits for the compiler lock
+            frame = sys._current_frames().get(main)
         for signum in signums:
             os.kill(os.getpid(), signum)
             time.sleep(0.05)
+        all_sent.set()
     threading.Thread(target=send).start()
 """
 

@@ -11,8 +11,7 @@ not own, this one too: the child's compile entered the old lock, counted 0
 on the new one while compiling (numba's recursion check read it), and its
 ``with`` ended in ``RuntimeError: cannot release un-acquired lock``, raised
 from the child's first call of the kernel. Only locks another thread holds
-are to be replaced (strict xfail until then: the fix is in REVB's report,
-``jit.py`` being REV39's file this session).
+are replaced now.
 
 Each case runs in a fresh interpreter with a timeout.
 """
@@ -78,11 +77,6 @@ _FORK_BETWEEN_BINDINGS = textwrap.dedent(
 )
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="jit._free_lost_compile_depths replaces a lock no thread holds (fix in REVB's report;"
-    " jit.py is REV39's)",
-)
 def test_a_fork_between_with_binding_enter_and_exit_leaves_the_childs_compile_whole() -> None:
     out = probe_outcome(_FORK_BETWEEN_BINDINGS, timeout=120)
     # Before: the child's call raised "cannot release un-acquired lock" (status 3 << 8).

@@ -250,9 +250,17 @@ def _free_lost_compile_depths() -> None:
     a C lock, and the child's first call of that kernel waited for it for
     ever (review 39; numba's own counter, an int, let the child compile).
     The forking thread's own counts are kept: it goes on with its compiles.
+    So are the counts no thread holds: a ``with`` may have bound one's
+    ``__enter__`` already, the fork made by a signal's handler run as it looked
+    up ``__exit__`` (Python: ``_LockMethod.__get__``); replaced, the child
+    entered the old lock, counted 0 through the compile and raised "cannot
+    release un-acquired lock" at its end (review 39).
     """
     for depth in list(_DEPTHS):
-        if not depth._lock._is_owned():
+        lock = depth._lock
+        if lock.acquire(False):  # free, or the forking thread's own (re-entrant)
+            lock.release()
+        else:  # held by a thread the fork left behind
             depth._lock = _thread.RLock()
 
 
