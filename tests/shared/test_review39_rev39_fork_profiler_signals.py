@@ -8,8 +8,8 @@ exception it raises is kept and raised as ``os.fork`` returns, through a
 profile function (review 38). With a profiler of the program's in use
 (``cProfile``), that exception is raised in the after hook instead, where
 Python reports it as ignored (documented in ``docs/compilation.md``), and it
-took the signals held during the fork with it: they were never sent again
-(strict xfail below; the fix is in the review 39 report, for the file's owner).
+took the signals held during the fork with it: they were never sent again.
+They are sent now whatever becomes of the early exception.
 
 Every case runs in a fresh interpreter with a timeout.
 """
@@ -94,14 +94,7 @@ _EARLY_AND_HELD = textwrap.dedent(
     "mode",
     [
         "plain",
-        pytest.param(
-            "profiled",
-            marks=pytest.mark.xfail(
-                strict=True,
-                reason="release_in_parent raises the early exception before it starts "
-                "the thread that sends the held signals again (review 39 report)",
-            ),
-        ),
+        "profiled",
     ],
 )
 def test_a_signal_held_during_a_fork_reaches_the_parent_after_an_early_one(mode: str) -> None:
