@@ -1,0 +1,123 @@
+"""The main thread's StepHold while it waits for numba's compiler lock (review 39, REVC).
+
+``compile_gc`` begins the main thread's ``StepHold`` (navkit's ``SIGINT``
+handler in front of the user's) as numba reports a compiler-lock acquire,
+before the wait for the lock, and ends it at the outermost release. While
+another thread holds the lock, the main thread's wait runs other signals'
+handlers, and two of their common uses go wrong:
+
+* a handler that raises (a ``signal.alarm`` timeout) ends the wait with no
+  release to follow: the call fails with the handler's exception, and navkit's
+  handler stays the ``SIGINT`` handler afterwards (``signal.getsignal``
+  returns ``StepHold.hold``; the user's is put back only at the next Ctrl-C);
+* a handler that compiles (a kernel of its own) acquires and releases the lock
+  inside the wait; its outermost release ends the hold, and the waiting
+  compile then runs with no hold at all (a Ctrl-C in its lock steps is again
+  the ``KeyboardInterrupt`` that left a lock held for good).
+
+Each runs in a fresh interpreter (a worker thread holds the lock for 1 s).
+Strict xfails: ``compile_gc.py`` is NUMBAINT2's; the fix is in REVC's report.
+"""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import pytest
+
+pytestmark = pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
+
+_SETUP = r"""
+import signal, threading, time
+import numba
+from numba.extending import overload
+from navkit._shared.jit import load_numba
+
+load_numba()
+from numba.core.compiler_lock import global_compiler_lock
+
+def probe(x):
+    pass
+
+seen = []
+
+@overload(probe)
+def probe_typing(x):
+    seen.append(signal.getsignal(signal.SIGINT))  # the handler during the compile
+    return lambda x: x
+
+def hold_the_lock():
+    with global_compiler_lock:
+        time.sleep(1.0)
+
+def start_the_wait(alarm):
+    # The worker holds the lock for 1 s; SIGALRM reaches the main thread's wait after 0.3 s.
+    signal.signal(signal.SIGALRM, alarm)
+    worker = threading.Thread(target=hold_the_lock)
+    worker.start()
+    time.sleep(0.1)
+    signal.setitimer(signal.ITIMER_REAL, 0.3)
+    return worker
+"""
+
+_RAISING = (
+    _SETUP
+    + r"""
+def alarm(signum, frame):
+    raise TimeoutError
+
+@numba.njit
+def kernel(x):
+    return x + 1
+
+worker = start_the_wait(alarm)
+try:
+    kernel(1)
+except TimeoutError:
+    pass
+worker.join()
+print(signal.getsignal(signal.SIGINT) is signal.default_int_handler)
+"""
+)
+
+_COMPILING = (
+    _SETUP
+    + r"""
+def alarm(signum, frame):
+    numba.njit(lambda x: x + 1)(1)
+
+@numba.njit
+def kernel(x):
+    return probe(x)
+
+worker = start_the_wait(alarm)
+kernel(1)
+worker.join()
+print(getattr(seen[0], "__qualname__", "") == "StepHold.hold")
+"""
+)
+
+
+def _run(code: str) -> str:
+    done = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, timeout=120, check=False
+    )
+    assert done.returncode == 0, done.stderr
+    return done.stdout.strip().splitlines()[-1]
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="review 39 (REVC): an exception ending the wait for the lock leaves StepHold in place",
+)
+def test_an_exception_in_the_wait_for_the_lock_puts_the_users_handler_back() -> None:
+    assert _run(_RAISING) == "True"
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="review 39 (REVC): a compile in a signal handler during the wait ends the hold early",
+)
+def test_a_compile_in_a_handler_during_the_wait_leaves_the_hold_to_the_waiting_compile() -> None:
+    assert _run(_COMPILING) == "True"
