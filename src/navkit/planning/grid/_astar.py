@@ -156,7 +156,9 @@ class AStarPlanner:
     neighbouring traversable cells u, v costs ``step * (c_u + c_v) / 2``
     (``step`` 1 orthogonal, sqrt(2) diagonal); the heuristic is the octile
     distance (Manhattan for ``connectivity=4``) times the smallest cell cost,
-    so the paths are optimal for ``heuristic_weight <= 1``.
+    so the paths are optimal for ``heuristic_weight <= 1`` (to the tie band's
+    bound: where routes' costs differ by less than 2**-40 of f, not at all,
+    within about ``m * 2**-40`` relative; see :func:`astar`).
 
     Parameters
     ----------
@@ -174,7 +176,8 @@ class AStarPlanner:
         Ignored when ``connectivity=4``.
     heuristic_weight : float, default 1.0
         Multiplies the heuristic, in ``[0, 1e6]``. 1 (or anything in [0, 1])
-        gives optimal paths; 0 is Dijkstra's algorithm. A weight w > 1 is
+        gives optimal paths (to the tie band's bound, above); 0 is Dijkstra's
+        algorithm. A weight w > 1 is
         weighted A*: it usually expands far fewer cells and returns a path
         costing at most w times the optimum (the heuristic is consistent and no
         cell is expanded twice; Likhachev, Gordon & Thrun, "ARA*", NIPS 2003,

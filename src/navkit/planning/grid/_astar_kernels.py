@@ -293,7 +293,8 @@ def grid_search(
     -----
     On return the mark is ``stamp + 1`` for every closed cell (exhaustion
     closes every reachable one) and its cost is exact when the heuristic
-    weight is <= 1. The queue orders cells by (f, tie key) with f = g + scale
+    weight is <= 1 (to the f band's bound below when ``goal`` >= 0). The
+    queue orders cells by (f, tie key) with f = g + scale
     × distance in cells, f's lowest ``F_TIE_BITS`` bits ignored when ``goal``
     >= 0 (f within 2**-40 of itself ties; the bound on the cost is at
     :data:`navkit.planning.grid._search_heap.F_TIE_BITS`); the order is
