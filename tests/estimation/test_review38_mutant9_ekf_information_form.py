@@ -26,17 +26,9 @@ from navkit.estimation import _ekf_kernels as kernels
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from exact_fractions import exact_update, posterior_relative
+from precise_updates import spd as _spd
 
 _EPS = 2.0**-53
-
-
-def _spd(rng: np.random.Generator, n: int, log_kappa: float, log_scale: float) -> np.ndarray:
-    """A symmetric positive definite matrix of condition about 10**log_kappa, badly scaled."""
-    q, _ = np.linalg.qr(rng.normal(size=(n, n)))
-    a = (q * 10.0 ** np.linspace(0.0, log_kappa, n)) @ q.T
-    s = 10.0 ** rng.uniform(-log_scale, log_scale, n)
-    a = a * s * s[:, None]
-    return 0.5 * (a + a.T)
 
 
 def _problems(seed: int, count: int):  # type: ignore[no-untyped-def]

@@ -17,7 +17,6 @@ rational arithmetic (tests/exact_fractions.py).
 from __future__ import annotations
 
 import sys
-from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
@@ -29,46 +28,12 @@ from navkit.estimation import _ekf_kernels as kernels
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from exact_fractions import exact_update
+from precise_updates import linear as _linear
+from precise_updates import precise_problem as _problem
 
 pytestmark = pytest.mark.filterwarnings("error::RuntimeWarning")
 
 _EPS = 2.0**-53
-
-
-def _spd(rng: np.random.Generator, n: int, log_kappa: float, log_scale: float) -> np.ndarray:
-    q, _ = np.linalg.qr(rng.normal(size=(n, n)))
-    a = (q * 10.0 ** np.linspace(0.0, log_kappa, n)) @ q.T
-    s = 10.0 ** rng.uniform(-log_scale, log_scale, n)
-    a = a * s * s[:, None]
-    return 0.5 * (a + a.T)
-
-
-def _problem(seed: int) -> tuple[np.ndarray, ...] | None:
-    """A precise update (x0, P, H, R, z) of 2-4 states and 9 or 10 components.
-
-    P and R of conditions up to 1e15, R 1e-6 to 1e-16 of P's scale: the Joseph
-    form cancels.
-    """
-    rng = np.random.default_rng(seed)
-    n, m = int(rng.integers(2, 5)), int(rng.integers(9, 11))
-    p = _spd(rng, n, rng.uniform(0.0, 15.0), rng.uniform(0.0, 4.0))
-    scale = float(np.max(np.diag(p)))
-    r = _spd(rng, m, rng.uniform(0.0, 15.0), 1.0) * scale * 10.0 ** rng.uniform(-16.0, -6.0)
-    h = rng.normal(size=(m, n)) * (rng.random((m, n)) < 0.8)
-    x0 = rng.normal(size=n) * 10.0 ** rng.uniform(0.0, 6.0)
-    try:
-        truth = x0 + np.linalg.cholesky(p) @ rng.normal(size=n)
-        z = h @ truth + np.linalg.cholesky(r) @ rng.normal(size=m)
-    except np.linalg.LinAlgError:
-        return None
-    return x0, p, h, r, z
-
-
-def _linear(h: np.ndarray) -> Callable[[np.ndarray], np.ndarray]:
-    def measure(state: np.ndarray) -> np.ndarray:
-        return np.asarray(h @ state)
-
-    return measure
 
 
 @pytest.mark.parametrize(
