@@ -1686,30 +1686,38 @@ def _compiles_not_counted(seconds: float) -> Iterator[None]:
 
     numba announces each acquire and release of its compiler lock (re-entrant:
     nested) as a ``"numba:compiler_lock"`` event; before numba is loaded there is
-    nothing to listen to (the first call of a spec, which may load it, gets
-    ``COMPILE_TIMEOUT_S`` itself).
+    nothing to listen to (the first call of a spec, which may load it, gets the
+    callers' warm-up bound, ``WARM_UP_TIMEOUT_S``). A listener call from another
+    thread still under way as the block ends sets no timer after it (the
+    watchdog's clearing of the timer would come first, and a SIGALRM then meet
+    the handler put back: by default, the end of the process).
     """
     event = sys.modules.get("numba.core.event")
     if event is None:
         yield
         return
-    inside = [0]
+    inside, ended = [0], [False]
     guard = threading.Lock()
 
     class _Compiles(event.Listener):  # type: ignore[misc, name-defined]
         def on_start(self, _event: Any) -> None:
             with guard:
                 inside[0] += 1
-                signal.setitimer(signal.ITIMER_REAL, COMPILE_TIMEOUT_S)
+                if not ended[0]:
+                    signal.setitimer(signal.ITIMER_REAL, COMPILE_TIMEOUT_S)
 
         def on_end(self, _event: Any) -> None:
             with guard:
                 inside[0] -= 1
-                if inside[0] == 0:
+                if inside[0] == 0 and not ended[0]:
                     signal.setitimer(signal.ITIMER_REAL, seconds)
 
-    with event.install_listener("numba:compiler_lock", _Compiles()):
-        yield
+    try:
+        with event.install_listener("numba:compiler_lock", _Compiles()):
+            yield
+    finally:
+        with guard:
+            ended[0] = True
 
 
 _LIMIT: list[int] = []

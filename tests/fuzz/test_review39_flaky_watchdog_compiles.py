@@ -93,3 +93,20 @@ def test_a_call_without_a_compile_still_hangs_at_the_bound() -> None:
 def test_the_compile_bound_is_generous_but_finite() -> None:
     bound = getattr(fuzz_engine, "COMPILE_TIMEOUT_S", None)
     assert bound is not None and 60.0 <= bound < float("inf")
+
+
+def test_a_listener_call_still_under_way_as_the_block_ends_sets_no_timer() -> None:
+    # Another thread's compile reports its end as the watchdog's block ends: its
+    # on_end, run after the watchdog cleared the timer, set it again (a SIGALRM
+    # then met the handler put back: by default, the end of the process).
+    load_numba()
+    from numba.core import event
+
+    with watchdog(30 * SHORT):
+        listener = event._registered["numba:compiler_lock"][-1]
+        listener.on_start(None)  # that thread takes numba's lock
+    try:
+        listener.on_end(None)  # and lets go of it after the block
+        assert signal.getitimer(signal.ITIMER_REAL) == (0.0, 0.0)
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
