@@ -13,6 +13,19 @@ import sys
 from pathlib import Path
 from typing import Any
 
+#: Probe source defining ``unheld()``: whether a Ctrl-C raised now would meet what a
+#: real one meets (Python's own handler, or navkit's ``StepHold`` of numba's and
+#: llvmlite's lock steps), not one of navkit's deferrals. The probe imports ``signal``.
+UNHELD_SIGINT = """
+def unheld():
+    # What a real Ctrl-C meets: Python's own handler, or navkit's hold of the
+    # locks' steps (review 39: in place while the main thread holds numba's
+    # compiler lock), not one of navkit's deferrals.
+    handler = signal.getsignal(signal.SIGINT)
+    held_in_steps = type(getattr(handler, "__self__", None)).__name__ == "StepHold"
+    return handler is signal.default_int_handler or held_in_steps
+"""
+
 
 def probe_outcome(script: str, *args: str, timeout: float = 300) -> Any:
     """The JSON value on the last line ``script`` prints (it must exit 0).

@@ -28,7 +28,7 @@ import numpy as np
 import pytest
 
 from navkit.geometry import rollout
-from subprocess_probe import probe_outcome
+from subprocess_probe import UNHELD_SIGINT, probe_outcome
 
 _PROBE = r"""
 import gc, json, os, signal, sys, threading
@@ -43,14 +43,7 @@ from numba.core.compiler_lock import _CompilerLock, global_compiler_lock
 
 fired = []
 
-def unheld():
-    # What a real Ctrl-C meets: Python's own handler, or navkit's hold of the
-    # locks' steps (review 39: in place while the main thread holds numba's
-    # compiler lock), not one of navkit's deferrals.
-    handler = signal.getsignal(signal.SIGINT)
-    held_in_steps = type(getattr(handler, "__self__", None)).__name__ == "StepHold"
-    return handler is signal.default_int_handler or held_in_steps
-
+""" + UNHELD_SIGINT + r"""
 def profile(frame, event, arg):
     # A Ctrl-C as numba's compiler lock is let go, in a navkit kernel's cold compile,
     # where navkit holds nothing back (Python's own handler in place).

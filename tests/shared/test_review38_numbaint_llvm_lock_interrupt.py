@@ -23,7 +23,7 @@ from pathlib import Path
 
 import pytest
 
-from subprocess_probe import probe_outcome
+from subprocess_probe import UNHELD_SIGINT, probe_outcome
 
 _PROBE = r"""
 import json, os, signal, sys, threading
@@ -36,14 +36,7 @@ import llvmlite.binding.ffi as ffi
 load_numba()
 fired = []
 
-def unheld():
-    # What a real Ctrl-C meets: Python's own handler, or navkit's hold of the
-    # locks' steps (review 39: in place while the main thread holds numba's
-    # compiler lock), not one of navkit's deferrals.
-    handler = signal.getsignal(signal.SIGINT)
-    held_in_steps = type(getattr(handler, "__self__", None)).__name__ == "StepHold"
-    return handler is signal.default_int_handler or held_in_steps
-
+""" + UNHELD_SIGINT + r"""
 def profile(frame, event, arg):
     # A Ctrl-C in numba's callback as llvmlite takes its LLVM lock (Python's handler in place).
     if (

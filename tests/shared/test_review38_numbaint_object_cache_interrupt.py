@@ -23,7 +23,7 @@ from pathlib import Path
 
 import pytest
 
-from subprocess_probe import probe_outcome
+from subprocess_probe import UNHELD_SIGINT, probe_outcome
 
 _CALL = "rollout((0.0, 0.0, 0.0), np.array([[1.0, 0.0, 0.5]]), 0.5)"
 
@@ -36,14 +36,7 @@ from navkit.geometry import rollout
 load_numba()
 fired = []
 
-def unheld():
-    # What a real Ctrl-C meets: Python's own handler, or navkit's hold of the
-    # locks' steps (review 39: in place while the main thread holds numba's
-    # compiler lock), not one of navkit's deferrals.
-    handler = signal.getsignal(signal.SIGINT)
-    held_in_steps = type(getattr(handler, "__self__", None)).__name__ == "StepHold"
-    return handler is signal.default_int_handler or held_in_steps
-
+""" + UNHELD_SIGINT + r"""
 def profile(frame, event, arg):
     # A Ctrl-C as LLVM's object-cache callback runs (Python's handler in place).
     back = frame.f_back
