@@ -134,25 +134,37 @@ def test_a_child_forked_during_another_threads_numba_import_plans(module: str) -
 # the parent gets one KeyboardInterrupt after os.fork has returned.
 _INTERRUPTED = textwrap.dedent(
     """
-    import faulthandler, os, select, signal, threading, time
+    import faulthandler, os, select, signal, sys, threading, time
     faulthandler.dump_traceback_later(200, exit=True)
     from navkit._shared import compile_gc
     from navkit._shared.jit import load_numba
     from numba.core.compiler_lock import global_compiler_lock
 
     load_numba()
-    holding = threading.Event()
+    holding, all_sent = threading.Event(), threading.Event()
 
     def compile_elsewhere():
         with global_compiler_lock:
             holding.set()
             time.sleep(HOLD)
+            assert all_sent.wait(50)  # (a loaded machine: both sent inside the wait)
+            time.sleep(0.05)
+
+    def send_during_the_wait():
+        # Not on timers: under load one could fire after os.fork had returned.
+        main, frame = threading.main_thread().ident, None
+        while frame is None or frame.f_code.co_name != "_take_for_fork":
+            time.sleep(0.002)  # until the fork's hook waits for the compiler lock
+            frame = sys._current_frames().get(main)
+        for _ in range(2):
+            os.kill(os.getpid(), signal.SIGINT)
+            time.sleep(0.05)
+        all_sent.set()
 
     thread = threading.Thread(target=compile_elsewhere)
     thread.start()
     assert holding.wait(60)
-    for delay in (HOLD / 4, HOLD / 2):
-        threading.Timer(delay, os.kill, (os.getpid(), signal.SIGINT)).start()
+    threading.Thread(target=send_during_the_wait).start()
     started = time.monotonic()
     read, write = os.pipe()
     interrupts, returned, waited = 0, False, 0.0
