@@ -201,12 +201,25 @@ _SIGTERM_DURING_WAIT = textwrap.dedent(
 
     HOLD = 1.5
     load_numba()
-    holding = threading.Event()
+    holding, all_sent = threading.Event(), threading.Event()
 
     def compile_elsewhere():
         with global_compiler_lock:
             holding.set()
             time.sleep(HOLD)
+            assert all_sent.wait(50)  # (a loaded machine: all sent inside the wait)
+            time.sleep(0.05)
+
+    def send_during_the_wait(signums):
+        # Not on timers: under load one could fire after os.fork had returned.
+        main, frame = threading.main_thread().ident, None
+        while frame is None or frame.f_code.co_name != "_take_for_fork":
+            time.sleep(0.002)  # until the fork's hook waits for the compiler lock
+            frame = sys._current_frames().get(main)
+        for signum in signums:
+            os.kill(os.getpid(), signum)
+            time.sleep(0.05)
+        all_sent.set()
 
     def on_term(signum, frame):
         raise SystemExit("terminated")
@@ -215,7 +228,7 @@ _SIGTERM_DURING_WAIT = textwrap.dedent(
     thread = threading.Thread(target=compile_elsewhere)
     thread.start()
     assert holding.wait(60)
-    threading.Timer(HOLD / 3, os.kill, (os.getpid(), signal.SIGTERM)).start()
+    threading.Thread(target=send_during_the_wait, args=([signal.SIGTERM],)).start()
     start = time.monotonic()
     exits, returned, pid = 0, False, 0
     try:

@@ -159,7 +159,7 @@ def test_a_ctrl_c_anywhere_in_the_fork_hooks_leaves_every_lock_free() -> None:
 # hook, and was reported as ignored there and lost.
 _NESTED = textwrap.dedent(
     """
-    import faulthandler, json, os, signal, threading, time
+    import faulthandler, json, os, signal, sys, threading, time
     faulthandler.dump_traceback_later(200, exit=True)
     from navkit._shared import compile_gc
     from navkit._shared.jit import load_numba
@@ -167,13 +167,26 @@ _NESTED = textwrap.dedent(
 
     HOLD = 2.0
     load_numba()
-    holding = threading.Event()
+    holding, all_sent = threading.Event(), threading.Event()
     inner = []
 
     def compile_elsewhere():
         with global_compiler_lock:
             holding.set()
             time.sleep(HOLD)
+            assert all_sent.wait(50)  # (a loaded machine: all sent inside the wait)
+            time.sleep(0.05)
+
+    def send_during_the_wait(signums):
+        # Not on timers: under load one could fire after os.fork had returned.
+        main, frame = threading.main_thread().ident, None
+        while frame is None or frame.f_code.co_name != "_take_for_fork":
+            time.sleep(0.002)  # until the fork's hook waits for the compiler lock
+            frame = sys._current_frames().get(main)
+        for signum in signums:
+            os.kill(os.getpid(), signum)
+            time.sleep(0.05)
+        all_sent.set()
 
     def fork_in_handler(signum, frame):
         pid = os.fork()
@@ -185,8 +198,7 @@ _NESTED = textwrap.dedent(
     thread = threading.Thread(target=compile_elsewhere)
     thread.start()
     assert holding.wait(60)
-    threading.Timer(HOLD / 4, os.kill, (os.getpid(), signal.SIGUSR1)).start()
-    threading.Timer(HOLD / 2, os.kill, (os.getpid(), signal.SIGINT)).start()
+    threading.Thread(target=send_during_the_wait, args=([signal.SIGUSR1, signal.SIGINT],)).start()
     interrupts, returned = 0, False
     try:
         pid = os.fork()
