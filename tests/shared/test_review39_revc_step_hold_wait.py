@@ -16,7 +16,9 @@ handlers, and two of their common uses go wrong:
   the ``KeyboardInterrupt`` that left a lock held for good).
 
 Each runs in a fresh interpreter (a worker thread holds the lock for 1 s).
-Strict xfails: ``compile_gc.py`` is NUMBAINT2's; the fix is in REVC's report.
+Strict xfails until review 40 (STEPHOLD): ``compile_gc._wrap_acquire`` ends the
+hold when the wait ends in an exception, and a release ends it only with no
+acquire waiting further out (``compile_gc._end_lock_hold``).
 """
 
 from __future__ import annotations
@@ -107,17 +109,9 @@ def _run(code: str) -> str:
     return done.stdout.strip().splitlines()[-1]
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="review 39 (REVC): an exception ending the wait for the lock leaves StepHold in place",
-)
 def test_an_exception_in_the_wait_for_the_lock_puts_the_users_handler_back() -> None:
     assert _run(_RAISING) == "True"
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="review 39 (REVC): a compile in a signal handler during the wait ends the hold early",
-)
 def test_a_compile_in_a_handler_during_the_wait_leaves_the_hold_to_the_waiting_compile() -> None:
     assert _run(_COMPILING) == "True"

@@ -27,7 +27,11 @@ own initialisation).
   :func:`_lock_steps`: a ``KeyboardInterrupt`` there left numba's compiler
   lock or llvmlite's LLVM lock held for good (every later compile or cache load
   in another thread waited for ever), or crashed the process during a cache
-  load (review 39). Elsewhere a Ctrl-C is delivered at once.
+  load (review 39). Elsewhere a Ctrl-C is delivered at once. The hold is begun
+  as numba reports an acquire, before the wait for the lock, so numba's global
+  lock's ``acquire`` is wrapped (:func:`_wrap_acquire`, the one attribute navkit
+  sets on a numba object) to end it when the wait ends in another signal's
+  handler's exception, and a compile in such a handler does not end it.
 
 The collector's switch is one for the whole process while compiles and
 pauses are per thread (threads of a ROS 2 executor using navkit for the first
@@ -88,7 +92,7 @@ import sys
 import threading
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
-from types import FrameType
+from types import CodeType, FrameType, MethodType
 from typing import Any
 
 from navkit._shared import compile_shortcuts
@@ -136,13 +140,14 @@ def _end_pause() -> None:
             gc.enable()
 
 
-#: The main thread's hold of Ctrl-C in the steps of numba's and llvmlite's locks, in
-#: place while it holds numba's compiler lock (see :func:`_lock_steps`); None before.
+#: The main thread's hold of Ctrl-C in the steps of numba's and llvmlite's locks (see
+#: :func:`_lock_steps`), in place from numba's report of an acquire (before the wait
+#: for the lock) to the outermost release, or to an exception ending the wait (see
+#: :func:`_wrap_acquire`); None before.
 _LOCK_HOLD: list[StepHold | None] = [None]
 
 #: Held while navkit imports numba (jit.load_numba, jit.jit_disabled): a fork waits for it.
 NUMBA_IMPORT = threading.RLock()
-
 
 
 def _forks() -> list[list[Any]]:
@@ -470,6 +475,10 @@ def _lock_steps(compiler_lock: Any) -> Callable[[FrameType | None], bool]:
     #: Whether a file is llvmlite's, by name (each looked at once).
     files: dict[str, bool] = {}
 
+    own = getattr(vars(compiler_lock).get("acquire"), "__code__", None)
+    if own is not None:  # navkit's wrapper (see _wrap_acquire): a step as numba's acquire
+        steps[own] = compiler_lock_held
+
     def in_step(frame: FrameType | None) -> bool:
         while frame is not None:
             code = frame.f_code
@@ -489,12 +498,74 @@ def _lock_steps(compiler_lock: Any) -> Callable[[FrameType | None], bool]:
     return in_step
 
 
+def _acquire_under_way(acquire: CodeType, frame: FrameType | None) -> bool:
+    """Whether ``frame`` or one further out runs ``acquire`` (numba's, waiting for the lock)."""
+    while frame is not None:
+        if frame.f_code is acquire:
+            return True
+        frame = frame.f_back
+    return False
+
+
+def _end_lock_hold(compiler_lock: Any, acquire: CodeType, frame: FrameType | None) -> None:
+    """End the main thread's hold (:data:`_LOCK_HOLD`) if nothing of the lock is under way.
+
+    Nothing is: the main thread does not hold numba's compiler lock, and no
+    ``acquire`` (code ``acquire``) is waiting for it in ``frame`` or further out.
+    One is when a signal's handler, run in the main thread's wait for the lock,
+    compiles (review 39, REVC): the handler's compile takes and lets go of the
+    lock inside the wait, and ending the hold at that release left the waiting
+    compile without it (a Ctrl-C as it let go of the lock left the lock held for
+    good). About 4 µs an outermost release in the main thread (a walk of its
+    stack, some 15 frames; 54 releases in a cold ``warmup(workers=1)``).
+    """
+    hold = _LOCK_HOLD[0]
+    if hold is None or threading.get_ident() != _MAIN or compiler_lock.is_locked():
+        return
+    if not _acquire_under_way(acquire, frame):
+        hold.end()
+
+
+def _wrap_acquire(compiler_lock: Any) -> None:
+    """Make ``compiler_lock.acquire`` end the main thread's hold when its wait ends in an exception.
+
+    numba reports an acquire (and the hold is begun) before it waits for the
+    lock held by another thread; the main thread's wait runs other signals'
+    handlers, and one that raises (a ``signal.alarm`` time-out) ended the wait
+    with no release to follow: navkit's ``SIGINT`` handler stayed in place
+    after the call had failed (review 39, REVC). An instance attribute, a
+    method bound to numba's one global lock: numba's ``__enter__`` calls
+    ``self.acquire()``, and nothing of numba reads the attribute otherwise (nor
+    the lock's ``__dict__``); its behaviour is numba's ``acquire`` (looked up
+    on the class at each call, or the lock's own ``acquire`` set before this),
+    one Python frame more, a step of :func:`_lock_steps` like numba's. Kept
+    across a fork (it holds no state).
+    """
+    numba_acquire = type(compiler_lock).acquire
+    before = vars(compiler_lock).get("acquire")  # another's, set before navkit's
+    waiting: CodeType = numba_acquire.__code__
+
+    def acquire(self: Any) -> None:
+        try:
+            if before is None:
+                type(self).acquire(self)
+            else:
+                before()
+        except BaseException:  # the wait cut short: no release will end the hold
+            _end_lock_hold(self, waiting, sys._getframe())
+            raise
+
+    compiler_lock.acquire = MethodType(acquire, compiler_lock)
+
+
 def _make_listeners() -> tuple[Any, Any]:
     """The listeners of numba's compile events and of its compiler lock."""
     # Any: numba's event module is not typed in every supported numba version.
     event: Any = importlib.import_module("numba.core.event")
     compiler_lock: Any = importlib.import_module("numba.core.compiler_lock").global_compiler_lock
     state = threading.local()
+    waiting: CodeType = type(compiler_lock).acquire.__code__
+    _wrap_acquire(compiler_lock)
     in_lock_step = _lock_steps(compiler_lock)
 
     def begin_hold() -> None:
@@ -551,10 +622,9 @@ def _make_listeners() -> tuple[Any, Any]:
                     _end_pause()
                     compile_shortcuts.end()
                     state.paused = False
-            hold = _LOCK_HOLD[0]
-            main = threading.get_ident() == _MAIN
-            if hold is not None and main and not compiler_lock.is_locked():
-                hold.end()
+            # Not while an acquire further out waits for the lock (this was the
+            # compile of a signal handler run in that wait): its own release ends it.
+            _end_lock_hold(compiler_lock, waiting, sys._getframe())
 
     return CompileStart(), LockRelease()
 
