@@ -31,6 +31,7 @@ from navkit.planning.grid._limits import (
     read_only,
 )
 from navkit.planning.grid._path import Path2D
+from navkit.planning.grid._search_heap import F_BAND_COSTS
 from navkit.planning.grid._workspace import grow_heap, scratch_text, used_meanwhile, workspace
 
 __all__ = ["AStarPlanner", "astar"]
@@ -158,7 +159,8 @@ class AStarPlanner:
     distance (Manhattan for ``connectivity=4``) times the smallest cell cost,
     so the paths are optimal for ``heuristic_weight <= 1`` (to the tie band's
     bound: where routes' costs differ by less than 2**-40 of f, not at all,
-    within about ``m * 2**-40`` relative; see :func:`astar`).
+    within about ``m * 2**-40`` relative and ``m * 2**-21`` of the smallest
+    cost; see :func:`astar`).
 
     Parameters
     ----------
@@ -494,6 +496,7 @@ class AStarPlanner:
                 self._eight,
                 self._cutting,
                 self._scale,
+                F_BAND_COSTS * self._lowest,
                 rec,
                 meta,
                 heap,
@@ -628,6 +631,7 @@ class AStarPlanner:
                 self._eight,
                 self._cutting,
                 0.0,
+                0.0,
                 rec,
                 meta,
                 heap,
@@ -721,7 +725,10 @@ def astar(
     stays within about ``m * 2**-40`` of the optimum, relative, m the number
     of nested near ties (costs less than 2**-40 apart, not equal) on the
     path, none on grids of one cost whose optimum is below 700,000 times it
-    (see ``F_TIE_BITS`` in :mod:`navkit.planning.grid._search_heap`).
+    (see ``F_TIE_BITS`` in :mod:`navkit.planning.grid._search_heap`). Only f
+    below 2**19 times the smallest cell cost is banded, so a near tie costs
+    at most 2**-21 of the cheapest move (behind cells of cost 1e12, f is
+    compared exactly).
 
     Raises
     ------

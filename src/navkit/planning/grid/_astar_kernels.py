@@ -86,7 +86,6 @@ from navkit._shared.jit import (
 )
 from navkit._shared.types import KernelInt
 from navkit.planning.grid._search_heap import (
-    ALL_BITS,
     F_BAND,
     HEAP_TIE_LIMIT,
     REC_BASE,
@@ -159,7 +158,7 @@ def _relax(
     octile: bool,
     scale: float,
     tie_res: float,
-    band: np.uint64,
+    limit: np.uint64,
     next_f: np.uint64,
     next_key: np.uint64,
     next_v: KernelInt,
@@ -194,9 +193,11 @@ def _relax(
     meta[np.uint64(4 * v + 2)] = code
     h = _cells_to_goal(r, c, gr, gc, octile)
     # The bits of f (>= 0, finite), which order as f does, less the low bits
-    # ``band`` clears: f within 2**-40 of itself (a plateau's f rounded
+    # F_BAND clears below ``limit`` (the bits of F_BAND_COSTS times the
+    # smallest cell cost): f within 2**-40 of itself (a plateau's f rounded
     # differently) ties (see F_TIE_BITS in _search_heap, with the bound).
-    f: np.uint64 = _f64_bits(new_g + scale * h) & band
+    bits: np.uint64 = _f64_bits(new_g + scale * h)
+    f: np.uint64 = bits & F_BAND if bits < limit else bits
     # Ties in f go to the cell nearer the goal, which keeps A* from expanding
     # whole plateaus of equal f (h to 1 / tie_res cells, at every distance).
     key = tie_key_bits(h, v, tie_res)
@@ -228,6 +229,7 @@ def grid_search(
     eight: bool,
     corner_cutting: bool,
     scale: float,
+    band_end: float,
     rec: np.ndarray,
     meta: np.ndarray,
     heap: np.ndarray,
@@ -253,6 +255,11 @@ def grid_search(
         Allow diagonal moves beside impassable cells.
     scale : float
         Heuristic weight × minimum cell cost; 0 gives Dijkstra.
+    band_end : float
+        f below which the queue ignores f's lowest ``F_TIE_BITS`` bits when
+        ``goal`` >= 0: ``F_BAND_COSTS`` times the minimum cell cost (0: f
+        compared exactly everywhere; see
+        :data:`navkit.planning.grid._search_heap.F_BAND_COSTS`).
     rec : (2 * rows * cols,) float64
         Cell records, 16 bytes each so one cache line holds a cell's whole
         search state: ``rec[2 * v]`` is its cost from ``start``; ``meta``, an
@@ -296,7 +303,8 @@ def grid_search(
     weight is <= 1 (to the f band's bound below when ``goal`` >= 0). The
     queue orders cells by (f, tie key) with f = g + scale
     × distance in cells, f's lowest ``F_TIE_BITS`` bits ignored when ``goal``
-    >= 0 (f within 2**-40 of itself ties; the bound on the cost is at
+    >= 0 and f is below ``band_end`` (f within 2**-40 of itself ties; the
+    bound on the cost is at
     :data:`navkit.planning.grid._search_heap.F_TIE_BITS`); the order is
     total, so the search is deterministic.
     A queued cell's heap slot is kept in its record, in the cache line the
@@ -317,9 +325,10 @@ def grid_search(
     open16 = open_mark << 4
     # Ties to 1/16 cell unless rows + cols >= 2**27 (see _search_heap).
     tie_res = tie_resolution(rows, cols, HEAP_TIE_LIMIT)
-    # f's lowest bits ignored when searching for a goal (session 43), kept
-    # by Dijkstra to exhaustion (the distance fields: exact order).
-    band = F_BAND if goal >= 0 else ALL_BITS
+    # f's lowest bits ignored when searching for a goal (session 43), below
+    # band_end only (review 40); kept by Dijkstra to exhaustion (the distance
+    # fields: exact order).
+    limit = _f64_bits(band_end) if goal >= 0 else np.uint64(0)
     rec[np.uint64(2 * start)] = 0.0
     meta[np.uint64(4 * start + 2)] = open_mark << 4
     expanded = 0
@@ -351,22 +360,22 @@ def grid_search(
         if n_in:
             nf, nk, nv, n, nq = _relax(
                 flat, rec, meta, heap, n, open_mark, closed_mark, u - cols, open16 | 1, 1.0, gu, cu,
-                r - 1, c, gr, gc, eight, scale, tie_res, band, nf, nk, nv, nq
+                r - 1, c, gr, gc, eight, scale, tie_res, limit, nf, nk, nv, nq
             )  # fmt: skip
         if s_in:
             nf, nk, nv, n, nq = _relax(
                 flat, rec, meta, heap, n, open_mark, closed_mark, u + cols, open16 | 2, 1.0, gu, cu,
-                r + 1, c, gr, gc, eight, scale, tie_res, band, nf, nk, nv, nq
+                r + 1, c, gr, gc, eight, scale, tie_res, limit, nf, nk, nv, nq
             )  # fmt: skip
         if w_in:
             nf, nk, nv, n, nq = _relax(
                 flat, rec, meta, heap, n, open_mark, closed_mark, u - 1, open16 | 3, 1.0, gu, cu, r,
-                c - 1, gr, gc, eight, scale, tie_res, band, nf, nk, nv, nq
+                c - 1, gr, gc, eight, scale, tie_res, limit, nf, nk, nv, nq
             )  # fmt: skip
         if e_in:
             nf, nk, nv, n, nq = _relax(
                 flat, rec, meta, heap, n, open_mark, closed_mark, u + 1, open16 | 4, 1.0, gu, cu, r,
-                c + 1, gr, gc, eight, scale, tie_res, band, nf, nk, nv, nq
+                c + 1, gr, gc, eight, scale, tie_res, limit, nf, nk, nv, nq
             )  # fmt: skip
         if eight:
             if corner_cutting:
@@ -387,22 +396,26 @@ def grid_search(
             if nw:
                 nf, nk, nv, n, nq = _relax(
                     flat, rec, meta, heap, n, open_mark, closed_mark, u - cols - 1, open16 | 5,
-                    SQRT2, gu, cu, r - 1, c - 1, gr, gc, eight, scale, tie_res, band, nf, nk, nv, nq
+                    SQRT2, gu, cu, r - 1, c - 1, gr, gc, eight, scale, tie_res, limit,
+                    nf, nk, nv, nq
                 )  # fmt: skip
             if ne:
                 nf, nk, nv, n, nq = _relax(
                     flat, rec, meta, heap, n, open_mark, closed_mark, u - cols + 1, open16 | 6,
-                    SQRT2, gu, cu, r - 1, c + 1, gr, gc, eight, scale, tie_res, band, nf, nk, nv, nq
+                    SQRT2, gu, cu, r - 1, c + 1, gr, gc, eight, scale, tie_res, limit,
+                    nf, nk, nv, nq
                 )  # fmt: skip
             if sw:
                 nf, nk, nv, n, nq = _relax(
                     flat, rec, meta, heap, n, open_mark, closed_mark, u + cols - 1, open16 | 7,
-                    SQRT2, gu, cu, r + 1, c - 1, gr, gc, eight, scale, tie_res, band, nf, nk, nv, nq
+                    SQRT2, gu, cu, r + 1, c - 1, gr, gc, eight, scale, tie_res, limit,
+                    nf, nk, nv, nq
                 )  # fmt: skip
             if se:
                 nf, nk, nv, n, nq = _relax(
                     flat, rec, meta, heap, n, open_mark, closed_mark, u + cols + 1, open16 | 8,
-                    SQRT2, gu, cu, r + 1, c + 1, gr, gc, eight, scale, tie_res, band, nf, nk, nv, nq
+                    SQRT2, gu, cu, r + 1, c + 1, gr, gc, eight, scale, tie_res, limit,
+                    nf, nk, nv, nq
                 )  # fmt: skip
         if nv >= 0:
             top_f = heap[2 * REC_BASE]

@@ -66,8 +66,10 @@ of f less than 2**-40 of f apart, mostly the same value rounded differently,
 share a key and are ordered by the tie key, towards the goal (512 cells
 expanded there). Bands are fixed intervals, so two roundings of one value
 straddling a band's edge still split (rarely: see :data:`F_TIE_BITS`, with
-the bound on the path's cost). Dijkstra to exhaustion (the distance fields)
-keeps every bit.
+the bound on the path's cost). Only f below :data:`F_BAND_COSTS` times the
+smallest cell cost is banded (review 40: the band's width grows with f, and
+behind a few cells of cost 1e12 it spanned whole cheap rooms), and Dijkstra
+to exhaustion (the distance fields) keeps every bit.
 
 Limits: node ids below 2**32 and at most 2**31 - 1 queued nodes; the public
 functions reject larger grids.
@@ -171,7 +173,9 @@ def _bits_precede(f1: np.uint64, k1: np.uint64, f2: np.uint64, k2: np.uint64) ->
 F_TIE_BITS = 12
 """Low bits of f's IEEE 754 bits that A*'s queue ignores: f within 2**-40 of itself ties.
 
-f >= 0 is queued as ``bits(f) & F_BAND``. Keys are equal only within one
+f >= 0 below :data:`F_BAND_COSTS` times the smallest cell cost is queued
+as ``bits(f) & F_BAND``, larger f as ``bits(f)`` (the keys still order as f
+does: a banded key is at most its f's bits). Keys are equal only within one
 binade (the exponent is kept) and an interval of 2**12 ulps there, so two f
 with equal keys differ by less than 2**-40 times the smaller one, and the
 keys order as f does otherwise (the bits are monotone in f). Bound: A*
@@ -195,11 +199,29 @@ there the band merges only roundings of one value, and the path is
 optimal up to the rounding. 12 bits: with 10, 6 of 400 searches between
 random cells of an open 1024 x 1024 grid still split a plateau at a band's
 edge; with 12, none of 636 on open grids of 256 x 256 to 8192 x 8192.
+As only f below ``F_BAND_COSTS c_min`` (c_min the smallest cell cost) is
+banded, each near tie adds less than ``2**-40 F_BAND_COSTS c_min = 2**-21
+c_min``, a two-millionth of the cheapest move: the excess is below ``m
+2**-40 min(C*, F_BAND_COSTS c_min)`` (review 40).
 """
 F_BAND = np.uint64(2**64 - 2**F_TIE_BITS)
 """``bits(f) & F_BAND`` is A*'s queue key for f (see :data:`F_TIE_BITS`)."""
 ALL_BITS = np.uint64(2**64 - 1)
 """The mask that keeps every bit of f (Dijkstra to exhaustion)."""
+F_BAND_COSTS = float(2**19)
+"""A*'s queue bands f (:data:`F_TIE_BITS`) only below this many times the smallest cell cost.
+
+The band's width is relative, 2**-40 of f, and f counts every cost on the
+way: behind three cells of cost 1e12 (f about 2.5e12), a band was 2 cost
+units wide and the nested near ties of a 40 x 40 room of cost 1 took a path
+6.6 units (cells) dearer than the optimum through it, which comparing f
+exactly had found (review 40). Below ``2**19 c_min`` a band is narrower
+than ``2**-21 c_min``: a grid of one cost c keeps the plateaus' fix where
+it is exact (distinct f below about ``700,000 c`` differ by more than a
+band, above), and no near tie costs more than 2**-21 of the cheapest move.
+Above it f is compared exactly (paths of more than 524,288 cells of the
+cheapest cost, or costs far above the cheapest on the way).
+"""
 
 REC_BASE = 3
 """Slot 0 sits at entry ``REC_BASE`` of the aligned array: with 16-byte entries,
