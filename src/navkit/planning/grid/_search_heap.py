@@ -220,7 +220,13 @@ than ``2**-21 c_min``: a grid of one cost c keeps the plateaus' fix where
 it is exact (distinct f below about ``700,000 c`` differ by more than a
 band, above), and no near tie costs more than 2**-21 of the cheapest move.
 Above it f is compared exactly (paths of more than 524,288 cells of the
-cheapest cost, or costs far above the cheapest on the way).
+cheapest cost, or costs far above the cheapest on the way), and a plateau of
+one f rounded differently is expanded whole again there, as before session
+43: an open 512 x 512 grid of cost 1 from a 3 x 3 corner of cost 1e6 to
+(511, 250) expands 59,599 cells for a path of 512 (517 banded everywhere).
+Clearing one bit fewer in each binade above the end instead (the band then
+never wider than ``2**-21 c_min``) keeps 517 there up to ``2**31 c_min``,
+but cost 1-7 % more on the benchmark maps in alternating runs (review 40).
 """
 
 REC_BASE = 3
