@@ -21,7 +21,8 @@ reached and closed, and each reached node's cost (bit for bit), parent and
 arrival direction; the public planner must report the same expansion
 count and path. An extra or lost jump point anywhere shows, queued or not.
 
-The queue order is reproduced too (f, then the tie key of
+The queue order is reproduced too (f with its lowest ``F_TIE_BITS`` bits
+cleared below ``F_BAND_COSTS``, review 40, then the tie key of
 :func:`~navkit.planning.grid._search_heap.tie_key`: a total order, so a
 binary heap pops in the kernels' order), since which parent reaches a node
 first decides its arrival direction and so its successors. A change to the
@@ -60,6 +61,7 @@ from navkit import NoPathError
 from navkit.planning import AStarPlanner
 from navkit.planning.grid._jps_cut_kernels import jps_cut_search
 from navkit.planning.grid._jps_kernels import jps_search, jps_tables
+from navkit.planning.grid._search_heap import F_BAND, F_BAND_COSTS
 
 SQRT2 = math.sqrt(2.0)
 OCTILE_EXTRA = SQRT2 - 1.0
@@ -196,11 +198,18 @@ class Reference:
         return True
 
     def push(self, v: Cell, g: float) -> None:
-        """Queue ``v`` by f = g + octile h, ties by the kernels' tie key (h to 1/16, then node)."""
+        """Queue ``v`` by f = g + octile h, banded, then the kernels' tie key (h to 1/16, node)."""
         adr, adc = abs(v[0] - self.goal[0]), abs(v[1] - self.goal[1])
         h = max(adr, adc) + OCTILE_EXTRA * min(adr, adc)
         key = math.floor(h * self.tie_resolution) * float(2**32) + self.flat(v)
-        heapq.heappush(self.heap, (g + h, key, self.flat(v)))
+        heapq.heappush(self.heap, (self.queued_f(g + h), key, self.flat(v)))
+
+    @staticmethod
+    def queued_f(f: float) -> float:
+        """f as the kernels queue it: lowest ``F_TIE_BITS`` bits cleared below ``F_BAND_COSTS``."""
+        if f >= F_BAND_COSTS:
+            return f
+        return float((np.float64(f).view(np.uint64) & F_BAND).view(np.float64))
 
     @staticmethod
     def along(u: Cell, k: int, steps: int) -> Cell:

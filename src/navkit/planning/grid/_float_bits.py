@@ -6,7 +6,9 @@ register move). A numba intrinsic rather than NumPy's scalar ``view``, which
 numba types through the scalar's constructor and attribute on every first
 use (about 0.03 s of compilation, where the intrinsic costs nothing
 measurable): A*'s queue compares f by its bits (see
-:mod:`navkit.planning.grid._search_heap`).
+:mod:`navkit.planning.grid._search_heap`). ``f64_from_bits(b)`` is the
+reverse, the float64 with the bits ``b``: jump point search queues f with
+its lowest bits cleared as A* does, in float64 entries.
 
 Kernel modules bind it with :func:`navkit._shared.jit.bind_numba_names`
 (importing them must not import numba: this module imports numba and
@@ -37,3 +39,21 @@ def _f64_bits_typing(typingctx: Any, x: Any) -> Any:
 # Not a decorator: numba 0.62's intrinsic is untyped (mypy --strict refuses the
 # decorated function there).
 f64_bits: Any = intrinsic(_f64_bits_typing)
+
+
+def _f64_from_bits_typing(typingctx: Any, x: Any) -> Any:
+    """The float64 whose bits are the uint64 ``x`` (the inverse of :data:`f64_bits`)."""
+    if x != types.uint64:
+        return None
+    sig = types.float64(types.uint64)
+
+    def codegen(context: Any, builder: Any, signature: Any, args: Any) -> Any:
+        return builder.bitcast(args[0], ir.DoubleType())
+
+    return sig, codegen
+
+
+# ``f64_from_bits(f64_bits(x) & mask)`` clears bits of x: jump point search's
+# queue keys f with A*'s band (``F_BAND`` in navkit.planning.grid._search_heap)
+# in its float64 entries.
+f64_from_bits: Any = intrinsic(_f64_from_bits_typing)
