@@ -27,7 +27,11 @@ own initialisation).
   :func:`_lock_steps`: a ``KeyboardInterrupt`` there left numba's compiler
   lock or llvmlite's LLVM lock held for good (every later compile or cache load
   in another thread waited for ever), or crashed the process during a cache
-  load (review 39). Elsewhere a Ctrl-C is delivered at once. The hold is begun
+  load (review 39). Elsewhere a Ctrl-C is delivered at once. So does one in
+  front of every other signal's Python handler
+  (:class:`navkit._shared.interrupts.StepHolds`): a ``signal.alarm``
+  time-out's or a ``SIGTERM`` handler's exception left the lock held the same
+  way (review 40). The hold is begun
   as numba reports an acquire, before the wait for the lock, so numba's global
   lock's ``acquire`` is wrapped (:func:`_wrap_acquire`, the one attribute navkit
   sets on a numba object) to end it when the wait ends in another signal's
@@ -97,7 +101,7 @@ from typing import Any
 
 from navkit._shared import compile_shortcuts
 from navkit._shared.interrupts import (
-    StepHold,
+    StepHolds,
     held_for_fork,
     interrupts_deferred,
     release_in_child,
@@ -140,11 +144,12 @@ def _end_pause() -> None:
             gc.enable()
 
 
-#: The main thread's hold of Ctrl-C in the steps of numba's and llvmlite's locks (see
+#: The main thread's hold of Ctrl-C (and of every other signal with a Python handler)
+#: in the steps of numba's and llvmlite's locks (see
 #: :func:`_lock_steps`), in place from numba's report of an acquire (before the wait
 #: for the lock) to the outermost release, or to an exception ending the wait (see
 #: :func:`_wrap_acquire`); None before.
-_LOCK_HOLD: list[StepHold | None] = [None]
+_LOCK_HOLD: list[StepHolds | None] = [None]
 
 #: Held while navkit imports numba (jit.load_numba, jit.jit_disabled): a fork waits for it.
 NUMBA_IMPORT = threading.RLock()
@@ -572,9 +577,8 @@ def _make_listeners() -> tuple[Any, Any]:
         hold = _LOCK_HOLD[0]
         if hold is not None and not hold.restored:
             return
-        hold = _LOCK_HOLD[0] = StepHold(critical=in_lock_step, under_way=compiler_lock.is_locked)
-        if not hold.begin():  # nothing put in place (SIG_IGN...): the next acquire looks again
-            hold.restored = True
+        hold = _LOCK_HOLD[0] = StepHolds(critical=in_lock_step, under_way=compiler_lock.is_locked)
+        hold.begin()  # nothing put in place (SIG_IGN...): restored, the next acquire looks again
 
     class CompileStart(event.Listener):  # type: ignore[misc]  # (a class of Any)
         """Pause the collector, shortcuts on, when a navkit kernel's compile starts."""

@@ -45,10 +45,11 @@ import threading
 import time
 from collections.abc import Callable, Iterator
 from types import FrameType
-from typing import Any
+from typing import Any, cast
 
 __all__ = [
     "StepHold",
+    "StepHolds",
     "held_for_fork",
     "interrupts_deferred",
     "release_in_child",
@@ -176,19 +177,6 @@ class _Hold:
         self.pending.append(frame)
 
 
-#: Per signal, an empty dict whose lookup of a missing key makes the signal pending again
-#: (``_thread.interrupt_main``, called from C). A handler that made its signal pending with
-#: an ordinary call was run again at once, inside itself: CPython runs pending handlers as
-#: a call of C code returns, and again at the next, without end. A subscript runs no such
-#: check, nor does the handler's return, so the signal comes back at the next delivery
-#: point after the handler (see :class:`StepHold`).
-_PENDING_AGAIN: dict[int, collections.defaultdict[int, None]] = {
-    int(signal.SIGINT): collections.defaultdict(
-        functools.partial(_thread.interrupt_main, signal.SIGINT)
-    )
-}
-
-
 class StepHold(_Hold):
     """``SIGINT`` held only while the main thread is inside a step that must not be cut short.
 
@@ -209,13 +197,17 @@ class StepHold(_Hold):
     it (the wait for the lock interrupted, so no release will come to end the
     hold) ends the hold before it is delivered.
 
-    Begun only in the main thread of the main interpreter (where Python runs
-    signal handlers) and where the handler from before is a Python callable
-    that could raise (not ``SIG_DFL``, ``SIG_IGN``, asyncio's, nor one installed
-    outside Python). A handler from before that does not raise (a program that
-    only notes the Ctrl-C) is called and the hold stays in place; one to be
-    reached by raising the signal again (a system action installed outside
-    Python behind it, see :class:`_Hold`) is reached after the hold ends.
+    ``signum``: another signal held the same way (its handler's exception,
+    a ``signal.alarm`` time-out or a ``SIGTERM`` handler's ``SystemExit``, cut
+    the steps short as a ``KeyboardInterrupt`` did; :class:`StepHolds` holds
+    every signal with a Python handler). Begun only in the main thread of the
+    main interpreter (where Python runs signal handlers) and where the handler
+    from before is a Python callable that could raise (not ``SIG_DFL``,
+    ``SIG_IGN``, asyncio's, nor one installed outside Python). A handler from
+    before that does not raise (a program that only notes the Ctrl-C) is
+    called and the hold stays in place; one to be reached by raising the
+    signal again (a system action installed outside Python behind it, see
+    :class:`_Hold`) is reached after the hold ends.
 
     Examples
     --------
@@ -232,9 +224,13 @@ class StepHold(_Hold):
     """
 
     def __init__(
-        self, *, critical: Callable[[FrameType | None], bool], under_way: Callable[[], bool]
+        self,
+        *,
+        critical: Callable[[FrameType | None], bool],
+        under_way: Callable[[], bool],
+        signum: int = signal.SIGINT,
     ) -> None:
-        super().__init__(insist=False)
+        super().__init__(insist=False, signum=signum)
         self.critical = critical
         self.under_way = under_way
         #: A Ctrl-C made pending again, not yet delivered.
@@ -285,6 +281,111 @@ class StepHold(_Hold):
         if self.previous is signal.default_int_handler and not self.outside:
             raise KeyboardInterrupt  # as Python's handler would (one frame more, not three)
         self.deliver(frame)
+
+
+class StepHolds:
+    """A :class:`StepHold` of ``SIGINT`` and one of every other signal with a Python handler.
+
+    The handler of any signal can raise (a ``signal.alarm`` time-out, a
+    service's ``SIGTERM`` handler raising ``SystemExit``), and its exception
+    cut a step short as a Ctrl-C's did: at the return of the compiler lock's
+    own ``acquire`` inside numba's, it left numba's compiler lock held for good
+    (review 40). So each such signal is held in the steps (``critical``) and
+    delivered at the next delivery point after, by its own hold, as
+    :func:`held_for_fork` holds them during a fork: ``SIGINT`` first, then the
+    others in signal order (the signals Python found by
+    :data:`_SIGNALS`, about 4 µs to look at every one); ``SIG_IGN``,
+    ``SIG_DFL``, asyncio's and handlers installed outside Python are left
+    alone. Signals held together are delivered together, in signal order, as
+    CPython runs pending handlers; two of one kind in a step are one, as the
+    system delivers them. While the holds are in place ``signal.getsignal``
+    returns a hold's ``hold`` method for each signal held (its ``__self__``'s
+    ``previous`` is the program's handler), as for ``SIGINT`` alone before and
+    during a fork's hooks.
+
+    Examples
+    --------
+    >>> import signal
+    >>> from navkit._shared.interrupts import StepHolds
+    >>> def on_alarm(signum, frame):
+    ...     raise TimeoutError
+    >>> _ = signal.signal(signal.SIGALRM, on_alarm)
+    >>> holds = StepHolds(critical=lambda frame: False, under_way=lambda: True)
+    >>> holds.begin()  # in the main thread: SIGINT's and SIGALRM's handlers are Python's
+    True
+    >>> [hold.signum for hold in holds.holds] == [signal.SIGINT, signal.SIGALRM]
+    True
+    >>> signal.getsignal(signal.SIGALRM).__self__.previous is on_alarm
+    True
+    >>> holds.end()
+    >>> signal.getsignal(signal.SIGALRM) is on_alarm
+    True
+    >>> _ = signal.signal(signal.SIGALRM, signal.SIG_DFL)
+    """
+
+    __slots__ = ("critical", "holds", "under_way")
+
+    def __init__(
+        self, *, critical: Callable[[FrameType | None], bool], under_way: Callable[[], bool]
+    ) -> None:
+        self.critical = critical
+        self.under_way = under_way
+        #: The holds begun (or cut short as they began), ``SIGINT``'s first.
+        self.holds: list[StepHold] = []
+
+    @property
+    def restored(self) -> bool:
+        """Whether every hold is taken away (True where none was put in place)."""
+        # A loop, not all() of a generator: a signal's handler raising as a
+        # generator is closed is reported as ignored, and the exception lost.
+        for hold in self.holds:  # noqa: SIM110
+            if not hold.restored:
+                return False
+        return True
+
+    def begin(self) -> bool:
+        """Put the holds in place; False where none is (nothing done: not needed or cannot be).
+
+        A signal landing before its own hold is in place runs the program's
+        handler here; an exception it raises ends :meth:`begin` there, and
+        :meth:`end` takes away what was put in place (every hold is recorded
+        in :attr:`holds` before it begins).
+        """
+        if threading.current_thread() is not threading.main_thread():
+            return False
+        for signum in (int(signal.SIGINT), *_SIGNALS):
+            if not callable(_getsignal(signum)):
+                continue
+            hold = StepHold(critical=self.critical, under_way=self.under_way, signum=signum)
+            self.holds.append(hold)
+            if not hold.begin():  # (asyncio's, or not the main interpreter)
+                hold.restored = True
+        return not self.restored
+
+    def end(self) -> None:
+        """Take every hold away, the last begun first (see :meth:`StepHold.end`).
+
+        Once a program's handler is back its signal can come, and the handler
+        raise, while the next holds are taken away: they are taken away all
+        the same (one cut short as it put its handler back too, as
+        :meth:`_ForkHold.restore` does), and the first such exception is
+        raised after.
+        """
+        error: BaseException | None = None
+        done = False
+        while not done:
+            try:
+                for hold in reversed(self.holds):
+                    hold.end()  # once: again, nothing
+                for hold in self.holds:
+                    if hold.restored and _getsignal(hold.signum) == hold.hold:
+                        _put_back(hold.signum, hold.previous)  # cut short in its restore
+                done = True
+            except BaseException as caught:  # a handler put back, its signal come
+                if error is None:
+                    error = caught
+        if error is not None:
+            raise error
 
 
 class _ForkHold:
@@ -578,6 +679,20 @@ _SIGNALS: tuple[int, ...] = tuple(
         and signum not in {getattr(signal, "SIGKILL", -1), getattr(signal, "SIGSTOP", -1)}
     )
 )
+
+
+#: Per signal, an empty dict whose lookup of a missing key makes the signal pending again
+#: (``_thread.interrupt_main``, called from C). A handler that made its signal pending with
+#: an ordinary call was run again at once, inside itself: CPython runs pending handlers as
+#: a call of C code returns, and again at the next, without end. A subscript runs no such
+#: check, nor does the handler's return, so the signal comes back at the next delivery
+#: point after the handler (see :class:`StepHold`). One for every signal a handler can
+#: be set for (:class:`StepHolds` holds each with a Python handler).
+_PENDING_AGAIN: dict[int, collections.defaultdict[int, None]] = {
+    # (typed for signal.Signals, but any signal number is taken: real-time ones too)
+    signum: collections.defaultdict(functools.partial(cast(Any, _thread.interrupt_main), signum))
+    for signum in (int(signal.SIGINT), *_SIGNALS)
+}
 
 
 #: The C library's ``sigaction``, once looked up (None where there is none), then the
