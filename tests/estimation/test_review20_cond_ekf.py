@@ -22,7 +22,7 @@ from hypothesis import strategies as st
 
 from navkit.errors import FilterError
 from navkit.estimation import ExtendedKalmanFilter, FusionStatus
-from navkit.estimation._ekf_kernels import _EXACT_NIS_MAX_M, _exact_nis
+from navkit.estimation._ekf_kernels import _EXACT_ELIMINATION_MAX, _exact_nis
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from exact_fractions import exact_gain, exact_update
@@ -127,13 +127,17 @@ def test_an_ill_conditioned_s_is_gated_on_the_exact_nis(gate: float | None) -> N
 
 
 def test_larger_measurements_still_raise() -> None:
-    # Beyond _EXACT_NIS_MAX_M components the exact NIS would cost too much: as before.
-    m = _EXACT_NIS_MAX_M + 1
+    # Where the exact arithmetic would eliminate more than _EXACT_ELIMINATION_MAX rows
+    # (an R of one dense block that size) it would cost too much: as before. (Before
+    # review 40 every measurement of more than 8 components raised here.)
+    m = _EXACT_ELIMINATION_MAX + 1
     h = np.zeros((m, 2))
     h[:, 0] = 1.0
+    r = np.eye(m) * 1e-20 + np.diag(np.full(m - 1, 0.25e-20), 1)
+    r += np.diag(np.full(m - 1, 0.25e-20), -1)
     ekf = ExtendedKalmanFilter(np.zeros(2), np.diag([1e20, 1.0]))
     with pytest.raises(FilterError, match="innovation covariance S is not positive definite"):
-        ekf.update(np.ones(m), lambda s: h @ s, h, np.eye(m) * 1e-20)
+        ekf.update(np.ones(m), lambda s: h @ s, h, r)
     np.testing.assert_array_equal(ekf.x, np.zeros(2))
 
 

@@ -26,7 +26,14 @@ from hypothesis import strategies as st
 
 from navkit.errors import FilterError
 from navkit.estimation import ExtendedKalmanFilter, FusionStatus
-from navkit.estimation._ekf_kernels import _EXACT_NIS_MAX_M, _INV_DIAG, _S, _VEC, GATED, retry_gated
+from navkit.estimation._ekf_kernels import (
+    _EXACT_ELIMINATION_MAX,
+    _INV_DIAG,
+    _S,
+    _VEC,
+    GATED,
+    retry_gated,
+)
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from exact_fractions import exact_update
@@ -108,15 +115,21 @@ def test_a_dense_r_and_a_row_of_zeros() -> None:
     _assert_close(ekf, x0, x_exact, p_exact)
 
 
-@pytest.mark.parametrize("m", [_EXACT_NIS_MAX_M, _EXACT_NIS_MAX_M + 1])
+@pytest.mark.parametrize("m", [8, 9, _EXACT_ELIMINATION_MAX + 1])
 def test_the_measurement_size_limit(m: int) -> None:
+    # Review 40: every size whose exact arithmetic eliminates at most
+    # _EXACT_ELIMINATION_MAX rows (more than 8 components raised before); a diagonal R
+    # of any size takes the information route, an R of one dense block of more rows
+    # (here: a chain of correlated neighbours) none.
     p0 = np.diag([1e20, 1.0, 1.0])
-    h = _twice(p0, 0, m, _SCALES)
+    h = _twice(p0, 0, m, _SCALES * 3)
     rr = np.diag(np.linspace(1.0, 2.0, m) * 1e-20)
+    if m > _EXACT_ELIMINATION_MAX:
+        rr += np.diag(np.full(m - 1, 0.25e-20), 1) + np.diag(np.full(m - 1, 0.25e-20), -1)
     x0 = np.zeros(3)
     z = h @ np.array([1.0, 0.0, 0.0])
     ekf = ExtendedKalmanFilter(x0, p0)
-    if m > _EXACT_NIS_MAX_M:
+    if m > _EXACT_ELIMINATION_MAX:
         with pytest.raises(FilterError, match="innovation covariance S"):
             ekf.update(z, lambda s: h @ s, h, rr)
         np.testing.assert_array_equal(ekf.x, x0)

@@ -2,7 +2,7 @@
 
 ``finish_cancelled`` completes an update whose Joseph form cancelled (a measurement far
 more precise than the estimate). For a measurement of more than 8 components
-(``_EXACT_NIS_MAX_M``) it had no exact fallback: where the information form was not
+it had no exact fallback: where the information form was not
 trusted (its error estimate above 2⁻¹² / ε) the Joseph P and the kernel's x stood
 unmeasured, as documented, and a trusted information form's P⁺ was committed within 3
 times its estimate (up to 2⁻¹²) and the kernel's x where x⁺'s bound exceeded a quarter
@@ -13,7 +13,8 @@ deviations off (seed 534; found by review 38's mutation pass, MUTANT9). Measurem
 up to ``_EXACT_CANCELLED_MAX_M`` (12) components now fall back, as the smaller ones do,
 on the exact posterior covariance, mean and NIS (rational arithmetic, rounded once),
 so every accepted cancelled update is within 2⁻⁴⁰ (P) and 2⁻²⁰ deviations (x) of the
-exact posterior; larger measurements are as before (two strict xfails below pin them).
+exact posterior; larger measurements were as before (review 40 made them exact too:
+the last two tests were strict xfails).
 The reference is exact rational arithmetic (tests/exact_fractions.py).
 """
 
@@ -71,8 +72,8 @@ def _spy(monkeypatch: pytest.MonkeyPatch) -> list[kernels._Information | None]:
     return found
 
 
-def test_the_limit_is_above_the_exact_nis_limit() -> None:
-    assert kernels._EXACT_NIS_MAX_M < 9 <= 10 <= kernels._EXACT_CANCELLED_MAX_M
+def test_the_limit_is_above_the_drawn_sizes() -> None:
+    assert kernels._EXACT_CANCELLED_MAX_M >= 10
 
 
 @pytest.mark.parametrize("seed", [384, 534])
@@ -151,14 +152,11 @@ def test_cancelled_updates_at_the_limit_are_exact_to_an_update_s_accuracy(
     assert untrusted >= 10
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="above _EXACT_CANCELLED_MAX_M components an untrusted information form "
-    "leaves the Joseph P unmeasured (9.0-9.4 % off here, by BLAS core type; review 39)",
-)
-def test_above_the_limit_the_joseph_p_still_stands_unmeasured(
+def test_above_the_limit_an_untrusted_information_form_gets_the_exact_p(
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
+    # Before review 40 the Joseph P stood unmeasured here, 9.0-9.4 % off (by BLAS
+    # core type): tests/estimation/test_review40_ekfbig2_exact_large_measurements.py.
     found = _spy(monkeypatch)
     m = kernels._EXACT_CANCELLED_MAX_M + 1
     drawn = _problem(170, (m,))
@@ -172,14 +170,11 @@ def test_above_the_limit_the_joseph_p_still_stands_unmeasured(
     assert p_off <= _P_SURE, p_off
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="above _EXACT_CANCELLED_MAX_M components the kernel's x stands where x⁺'s "
-    "bound exceeds a quarter deviation (0.65 deviations off here; review 39)",
-)
-def test_above_the_limit_the_kernel_s_state_still_stands_unbounded(
+def test_above_the_limit_an_unbounded_state_gets_the_exact_one(
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
+    # Before review 40 the kernel's x stood here where x⁺'s bound exceeded a quarter
+    # deviation, 0.65 deviations off.
     found = _spy(monkeypatch)
     m = kernels._EXACT_CANCELLED_MAX_M + 1
     drawn = _problem(231, (m,))

@@ -23,19 +23,19 @@ def _doc() -> str:
 
 
 def test_the_state_and_covariance_limits_are_the_cancelled_fallbacks() -> None:
-    limits = re.findall(
-        r"for measurements of at most (\d+) components, the exact posterior", _doc()
-    )
-    assert limits == [str(kernels._EXACT_CANCELLED_MAX_M)] * 2
+    # Review 40 (EKFBIG2): the exact state and covariance for every size, up to the
+    # exact arithmetic's limit.
+    doc = _doc()
+    assert not re.findall(r"for measurements of at most (\d+) components, the exact", doc)
+    assert f"would eliminate more than {kernels._EXACT_ELIMINATION_MAX} rows" in doc
 
 
 def test_the_nis_limits_are_both_named() -> None:
     doc = _doc()
-    assert f"In an update of at most {kernels._EXACT_NIS_MAX_M} components" in doc
-    assert (
-        f"except those of at most {kernels._EXACT_CANCELLED_MAX_M} that reach the"
-        " information form, whose NIS is the exact one" in doc
-    )
+    limit = kernels._EXACT_CANCELLED_MAX_M
+    assert f"In an update of at most {limit} components" in doc
+    assert f"Updates of more than {limit} components keep the kernel's NIS" in doc
+    assert "except those that reach the information form, whose NIS is the exact one" in doc
 
 
 def test_the_cost_with_many_states_is_given() -> None:

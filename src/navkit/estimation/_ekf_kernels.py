@@ -54,17 +54,19 @@ An update whose Joseph form cancelled (a variance shrank more than 4096-fold:
 a measurement far more precise than the estimate; or a first-order estimate
 of the Joseph P's error exceeds 2⁻⁴⁰ of its scale, :func:`_joseph_in_doubt`),
 whose Joseph P failed its check, or whose S of at most
-``_EXACT_NIS_MAX_M`` components is ill-conditioned for its rounding error
+``_EXACT_CANCELLED_MAX_M`` components is ill-conditioned for its rounding error
 (its pivots, against a bound on that error, give ε κ(S) > 2⁻³⁰, so that its
 NIS and x are not to be trusted; H P Hᵀ cancelling counts), commits nothing
 and returns ``CANCELLED``; the public layer finishes it with :func:`finish_cancelled`,
 which may take the information form instead, chosen by residuals computed
 exactly, and commits a state only with a bound on its error within 2⁻²⁰ of a
 posterior deviation or a few ulps, else the posterior mean in exact rational
-arithmetic (for more than ``_EXACT_CANCELLED_MAX_M`` (12) components, the
-information form's state where its bound is within a quarter of one), and a
-covariance only with a measured error within 2⁻⁴⁰ of its scale, else the exact
-posterior covariance, rounded once, where float64 holds it as a covariance (in
+arithmetic, and a covariance only with a measured error within 2⁻⁴⁰ of its
+scale, else the exact posterior covariance, rounded once (from S's elimination
+or, above ``_EXACT_CANCELLED_MAX_M`` (12) components where cheaper, the
+information form's in exact arithmetic: :class:`_ExactUpdate`; an update whose
+exact arithmetic would eliminate more than ``_EXACT_ELIMINATION_MAX`` rows is
+refused there), where float64 holds it as a covariance (in
 NumPy: the case is rare, and compiled into every update kernel it would cost
 compile time).
 
@@ -95,6 +97,7 @@ from navkit._shared.angles import wrap_float
 from navkit._shared.jit import bind_numba_names, njit_force_inline, njit_no_refcount
 from navkit._shared.se2 import wrap_scalar
 from navkit._shared.types import FloatArray, IntArray
+from navkit.errors import FilterError
 
 __all__ = [
     "BAD_F",
@@ -201,7 +204,8 @@ BAD_SHAPE = 15  # an argument's shape does not fit (or rbuf is another m's): che
 BAD_TYPE = 16  # set by the public layer: an argument is not of the compiled type
 CANCELLED = 17  # the Joseph form cancelled (a variance shrank > 4096-fold, or its P's
 # estimated error exceeds 2⁻⁴⁰) or failed its check, or S is ill-conditioned
-# for its rounding error (ε max cₖ / Dₖ > 2⁻³⁰, m <= _EXACT_NIS_MAX_M): finish_cancelled
+# for its rounding error (ε max cₖ / Dₖ > 2⁻³⁰, m <= _EXACT_CANCELLED_MAX_M):
+# finish_cancelled
 # From retry_gated only: the exact NIS passes the gate the kernel's NIS failed: run the
 # kernel again without the gate.
 GATE_PASSED = 18
@@ -237,20 +241,17 @@ _STATE_TRUSTED = 2.0**-30
 # cₖ >= Sₖₖ bounding the size of the terms of Sₖₖ (see _update), marks S as that
 # ill-conditioned (retry_gated, the update kernel).
 _PIVOT_LIMIT = _STATE_TRUSTED / _EPS
-# finish_cancelled replaces a kernel state computed with an ill-conditioned S by the
-# information form's where the bound on the latter's error is at most this many of the
-# posterior's deviations.
-_STEP_SURE = 0.25
-# ... or where that bound is at most this fraction of the state's size (|x| + |x⁺ - x|),
+# finish_cancelled and finish_singular_s trust a state where the bound on its error is at
+# most this fraction of the state's size (|x| + |x⁺ - x|),
 # as closely as float64 holds that state: the bound counts every rounding of the step
 # at its worst (23 ε |x⁺ - x| measured with well-conditioned solves); the errors are
 # below 2 ulps of the size (measured on 9000 updates), as a float64 square-root or
 # information-form update's.
 _STEP_RESOLUTION = 32.0 * _EPS
-# Where the exact state is at hand (m <= _EXACT_CANCELLED_MAX_M), a bound within _STEP_SURE
-# deviations is not enough: the kernel's x, kept with such a bound, was up to 1.5e-3
-# deviations off where x⁺ was exact (κ(R) 1e8 to 1e18, review 33). There a state is
-# committed only with a bound within this many deviations (about 1e-6) or
+# ... or within this many of the posterior's deviations (about 1e-6; a quarter before
+# review 33, which kept the kernel's x up to 1.5e-3 deviations off where x⁺ was exact,
+# κ(R) 1e8 to 1e18, and for more than 12 components until review 40): a state is
+# committed only with a bound within that or
 # _STEP_RESOLUTION of its size, else the exact one: 2⁵ above the largest bound of the
 # vouched states of 960 precise position or speed measurements of a 6-state filter,
 # which thus still compute no exact state (at 2⁻³⁰, 16 of them did).
@@ -270,20 +271,17 @@ _JOSEPH_LIMIT = _P_SURE / _EPS
 # condition beyond about 1e16), a computed covariance that passed its checks is
 # committed within this of it (measured against it), else the update is refused.
 _P_NEAR = 2.0**-20
-# The largest measurement size whose update finish_singular_s completes (its exact NIS
-# costs 0.8-2.6 ms for m = 8 with 15 states, 3.6-20 ms for m = 12, 66 ms for m = 16,
-# more the further apart the matrices' exponents lie; measured 2026-12); larger ones still
-# raise FilterError where the computed S is not positive definite.
-_EXACT_NIS_MAX_M = 8
-# The largest measurement size whose cancelled update finish_cancelled completes with
-# the exact posterior, state and NIS where no float64 result is vouched for (as
-# _EXACT_NIS_MAX_M's for S not positive definite; measured 2026-12 with the
+# The largest measurement size whose S the update kernel tests for ill-conditioning
+# (CANCELLED: finish_cancelled gates on the exact NIS) and retry_gated checks a gated
+# update's with, and whose exact fallbacks (finish_cancelled, finish_singular_s) always
+# eliminate S; above it they take the cheaper exact route within _EXACT_ELIMINATION_MAX
+# (_exact_route). (Before review 40, 8 for the ill-conditioned S and for
+# finish_singular_s, which refused larger measurements, and 12 for finish_cancelled,
+# which kept the Joseph P and kernel's x above it, unmeasured. Measured 2026-12 with the
 # elimination, posterior, state and NIS together: 2-23 ms for m = 9-12 with 4 states,
 # 10-72 ms with 15, up to 0.46 s where P and R lie 1e280 apart; with 64 states 0.25 s,
-# 3.4 s that far apart, where m = 8 takes 0.12 and 0.9 s). Larger measurements
-# keep the Joseph P and the kernel's x unmeasured where the information form is not
-# trusted (before review 39 every measurement above 8 components did: P up to 10.7 %
-# and x 0.21 of the posterior's deviations off in random precise updates of 9 and 10).
+# 3.4 s that far apart, where m = 8 takes 0.12 and 0.9 s; the exact NIS alone 0.8-2.6
+# ms for m = 8 with 15 states, 3.6-20 ms for m = 12.)
 _EXACT_CANCELLED_MAX_M = 12
 # The largest n whose Q the predict kernel accepts by its LDLᵀ factorisation
 # (_adopt_positive): its backward error, about n² ε max|Q|, is then below 1e-12 max|Q|.
@@ -960,9 +958,12 @@ def _update(
     # Sₖₖ, so that no S the diagonal's test flags escapes this one by a rounding of
     # uₖ². m = 1 too: the one pivot is S itself, but S's error is its terms' (review
     # 29: a scalar S with c / S 1.1e15 gave a NIS of 1.827 for an exact 1.911). m is a
-    # constant here, so for m > _EXACT_NIS_MAX_M the test costs nothing; σ and u are
-    # needed by _joseph_in_doubt anyway (here since review 28; L of S, in chol, is not
-    # needed any more).
+    # constant here, so for m > _EXACT_CANCELLED_MAX_M the test costs nothing (before
+    # review 40 it stopped at 8 components: NIS 1.9e-9 relative off for m = 10, x
+    # 2.5e-10 deviations; a scan's S of many beams is that ill-conditioned wherever
+    # P/R exceeds about 1e7, and its exact NIS would cost each such update 0.1 s or
+    # more); σ and u are needed by _joseph_in_doubt anyway (here since review 28; L of
+    # S, in chol, is not needed any more).
     sigma = chol[0]
     reach = chol[1]
     for j in range(n):
@@ -975,7 +976,7 @@ def _update(
                 acc += abs(hkj) * sigma[j]
         reach[k] = acc
     ill = False
-    if m <= _EXACT_NIS_MAX_M:
+    if m <= _EXACT_CANCELLED_MAX_M:
         for k in range(m):
             uk = reach[k]
             c = uk * uk + rs[k, k]
@@ -1050,7 +1051,7 @@ def _make_update(n: int, m: int) -> UpdateKernel:
         scale (:func:`_joseph_in_doubt`), when S's pivots say it is
         ill-conditioned for its rounding error (``max cₖ / Dₖ`` above
         2⁻³⁰ / ε, ``cₖ = max(uₖ² + Rₖₖ, Sₖₖ)``, ``uₖ = Σⱼ |Hₖⱼ| sqrt(Pⱼⱼ)``, for
-        m <= ``_EXACT_NIS_MAX_M``), whatever its own status, or when it
+        m <= ``_EXACT_CANCELLED_MAX_M``), whatever its own status, or when it
         is not finite or not positive definite (its status kept for the
         caller, which finishes with :func:`finish_cancelled`; before review
         27 these were returned, refusing updates whose exact posterior is a
@@ -1085,7 +1086,7 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
     (:func:`_joseph_in_doubt`: H P cancelling, or K and H), or the Joseph P
     failed its check (which the exact posterior may still pass). (Or because
     S's pivots say S is ill-conditioned, ε κ(S) > 2⁻³⁰, with at most
-    ``_EXACT_NIS_MAX_M`` components: a linear combination of states
+    ``_EXACT_CANCELLED_MAX_M`` components (8 before review 40): a linear combination of states
     measured twice far more precisely than it is known, or H P Hᵀ
     cancelling (for one component too, since review 29), where no variance
     need shrink, but the kernel's NIS and x, from its solve with S, are off
@@ -1132,13 +1133,11 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
       about ε κ(S), κ of S with its diagonal scaled) is kept for now;
     * where S is that ill-conditioned (ε κ(S) > 2⁻³⁰) and the two states
       agree, x⁺ replaces the kernel's where its bound is within
-      ``_STEP_EXACT_SURE`` deviations (``_STEP_SURE`` for measurements of more
-      than ``_EXACT_CANCELLED_MAX_M`` components) or ``_STEP_RESOLUTION`` of
+      ``_STEP_EXACT_SURE`` deviations or ``_STEP_RESOLUTION`` of
       ``|x| + |x⁺ - x|``;
     * where the kernel's x was replaced by x⁺ because they disagree, or
       where S is that ill-conditioned, the kernel's NIS, from the same solve
-      with S, is replaced by the exact one (:func:`_nis_of`, for
-      measurements of at most ``_EXACT_CANCELLED_MAX_M`` components) and the
+      with S, is replaced by the exact one (:class:`_ExactUpdate`) and the
       update gated again on it (``GATED``, the state unchanged, where it
       exceeds the gate); so too where the information form is not trusted
       and S is that ill-conditioned (measured: the kernel's NIS 7.14 for an
@@ -1150,52 +1149,57 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
     within ``_STEP_EXACT_SURE`` deviations (2⁻²⁰; before review 33 a quarter,
     which kept the kernel's x up to 1.5e-3 deviations off where x⁺ was within
     1e-7 of one, and before review 38 still a quarter for measurements of more
-    than ``_EXACT_NIS_MAX_M`` components, which have no exact state: the
+    than 8 components, which had no exact state: the
     kernel's x up to 0.013 deviations off where x⁺'s bound was 1.4e-4) or
     ``_STEP_RESOLUTION`` of ``|x| + |x⁺ - x|`` (x⁺'s own bound; for the
     kernel's x, ``|x_kernel - x⁺|`` plus x⁺'s bound, the only bound it has:
     ε κ(S) of its scale says nothing where the posterior's deviations lie far
-    below it); else, for measurements of more than ``_EXACT_CANCELLED_MAX_M``
-    components, x⁺ where its bound is within ``_STEP_SURE`` deviations (a
-    quarter) or that resolution; else (and always where the information form
+    below it); else (and always where the information form
     is not trusted: nothing bounds the kernel's x there; and wherever the
     exact NIS was computed, from whose elimination the exact state costs
     about 0.02 ms more: before review 27 a vouched x⁺ was committed there,
     1.25 ulps off where the kernel's x was exact) the exact posterior mean
     ``x + P Hᵀ S⁻¹ y`` in rational arithmetic, rounded once
-    (:func:`_exact_state`, for measurements of at most
-    ``_EXACT_CANCELLED_MAX_M`` components; ``STATE_OVERFLOW`` where it is beyond
-    float64). Larger measurements keep the chosen state, and an update
-    the Joseph form failed with S that ill-conditioned and no state within
-    the tolerance is refused (its status). (Before review 26 the kernel's x
+    (:class:`_ExactUpdate`; ``STATE_OVERFLOW`` where it is beyond float64).
+    (Before review 40, measurements of more than ``_EXACT_CANCELLED_MAX_M``
+    components took x⁺ where its bound was within a quarter deviation,
+    else kept the chosen state.) (Before review 26 the kernel's x
     was committed, with status OK, up to 1e38 posterior deviations off: in
     a case with ε κ(S) 0.35, 315 deviations, 45,000 ulps; and updates the
     Joseph form failed with no state trusted were refused.)
 
     And the covariance: the one chosen above only where its measured error
-    is at most ``_P_SURE`` (2⁻⁴⁰, an ordinary update's accuracy); else, for
-    measurements of at most ``_EXACT_CANCELLED_MAX_M`` components, the exact
-    posterior ``P - (H P)ᵀ S⁻¹ (H P)``, rounded once (:func:`_exact_posterior`,
-    from the same elimination as the exact state and NIS), where it passes
+    is at most ``_P_SURE`` (2⁻⁴⁰, an ordinary update's accuracy); else the
+    exact posterior ``P - (H P)ᵀ S⁻¹ (H P)``, rounded once (:class:`_ExactUpdate`,
+    the same exact computation as the exact state and NIS), where it passes
     the kernels' test of a covariance (:func:`_is_covariance`; an update the
     Joseph form failed is then applied). Where it does not (float64 holds no
     covariance there: a scaled condition beyond about 1e16), a covariance
     that passed its checks (the Joseph P or P⁺) is committed where it lies
     within ``_P_NEAR`` (2⁻²⁰) of it, else the update is refused
-    (``NOT_POSITIVE_DEFINITE``, or the Joseph form's failure). Larger
-    measurements keep the chosen covariance. (Before review 26 the Joseph P
+    (``NOT_POSITIVE_DEFINITE``, or the Joseph form's failure).
+
+    The exact arithmetic (:class:`_ExactUpdate`) eliminates S for at most
+    ``_EXACT_CANCELLED_MAX_M`` components; above, S or R's blocks and
+    ``I + P Hᵀ R⁻¹ H`` (the information form, exactly), whichever is the
+    cheaper with at most ``_EXACT_ELIMINATION_MAX`` rows (:func:`_exact_route`).
+    Where neither is, an update that needs it (no state or covariance vouched
+    for) raises ``FilterError``, nothing committed. (Before review 26 the Joseph P
     stood wherever the information form was not trusted, its error
     unmeasured: up to 3.7e20 of the posterior's scale in 3000 random
     updates, 2.3e93 in 18,000 of another kind; and P⁺ was committed with an
     estimated error up to 2⁻¹², 1e-5 off. Before review 39 that was still so
-    for every measurement of more than 8 components (``_EXACT_NIS_MAX_M``):
+    for every measurement of more than 8 components:
     in 600 random precise updates of 9 and 10 components the Joseph P was
     committed up to 10.7 % and the kernel's x 0.21 of the posterior's
     deviations off, 3.2 deviations where a trusted x⁺'s bound exceeded a
     quarter; measurements of 9 to ``_EXACT_CANCELLED_MAX_M`` components now
     take the exact posterior, state and NIS as the smaller ones do, at
-    2-25 ms for up to 4 states, and measurements above it are as before:
-    9.4 % off in a draw of 13 components.)
+    2-25 ms for up to 4 states. Before review 40 measurements above it were
+    as before: of 97 random precise updates of 13 to 16 components 53 were
+    committed with P more than 2⁻⁴⁰ (up to 53 %) or x more than 2⁻²⁰
+    deviations off (up to 0.98), of 39 of 17 to 24 components 17 (P up to
+    0.76 %, x up to 5.4 deviations).)
 
     Commits x and P only with OK. ``jac`` (m, n) is the H and ``y`` (m,) the
     (wrapped) residual the kernel took. NumPy, not a kernel: this is rare, and
@@ -1210,14 +1214,15 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
     status = int(rbuf[_VEC, _META, _JOSEPH])
     new_p, new_x = joseph, x_kernel
     regate = False
-    # Whether new_x has no bound within _STEP_SURE deviations or _STEP_RESOLUTION of
-    # its size: then the exact state replaces it (m <= _EXACT_CANCELLED_MAX_M).
+    # Whether new_x has no bound within _STEP_EXACT_SURE deviations or _STEP_RESOLUTION
+    # of its size: then the exact state replaces it (refused where there is none).
     unvouched = True
     # The measured error of new_p in units of ε (inf: none), and the covariances
     # that passed their checks, for where the exact one does not.
     p_error = math.inf
     checked = [joseph] if status == OK else []
-    exact = m <= _EXACT_CANCELLED_MAX_M
+    route = _exact_route(n, rbuf[_RS, :m, :m])
+    exact = route is not None
     with np.errstate(all="ignore"):
         found = _information_update(p, jac, rbuf[_RS, :m, :m], y)
         if found is None or not _EPS * found.error <= _WELL_CONDITIONED:
@@ -1282,35 +1287,43 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
                         new_x = x_info
             # The state committed is one whose bound is within _STEP_EXACT_SURE
             # deviations or the state's float64 resolution: the one chosen above, else
-            # the exact state where there is one, else x⁺ where its bound is within
-            # _STEP_SURE deviations. (Not x⁺ before the exact one: where the kernel's
-            # x is unvouched but 1e-16 deviations off, x⁺ within 2⁻²⁰ was 2.5e-9 off;
-            # review 33. Vouched within _STEP_SURE for more than _EXACT_NIS_MAX_M
-            # components, the kernel's x was up to 0.245 deviations off where x⁺ was
-            # 3e-7 off; review 38.)
+            # the exact state (refused where there is none). (Not x⁺ before the exact
+            # one: where the kernel's x is unvouched but 1e-16 deviations off, x⁺ within
+            # 2⁻²⁰ was 2.5e-9 off; review 33. Vouched within a quarter deviation for more
+            # than 8 components, the kernel's x was up to 0.245 deviations off where x⁺
+            # was 3e-7 off; review 38; x⁺ within a quarter, 0.65 deviations off for 13
+            # components; review 39.)
             bound = info_bound if new_x is x_info else kernel_bound
             unvouched = not (bound <= within).all()
-            if unvouched and not exact:
-                loose = np.maximum(_STEP_SURE * deviation, _STEP_RESOLUTION * size)
-                if (info_bound <= loose).all():
-                    new_x, unvouched = x_info, False
             if take_p:
                 new_p, status = posterior, OK
-    elimination = None
+    if route is None:
+        if status == OK and (unvouched or not _EPS * p_error <= _P_SURE):
+            # Before review 40 the unmeasured P and an x within a quarter deviation
+            # stood here (9.4 % and 0.65 deviations off in draws of 13 components).
+            raise FilterError(
+                f"a measurement of {m} components far more precise than the estimate: "
+                "no float64 posterior is vouched for, and its exact arithmetic would "
+                f"eliminate more than {_EXACT_ELIMINATION_MAX} rows (use a diagonal R, or "
+                "update with fewer components at a time)"
+            )
+        if status != OK:
+            return status
+    found_exact = None
     if regate:
         # The exact NIS (as finish_singular_s), gated again, before any failure is
         # reported (a measurement the gate rejects is rejected): the kernel gated
         # with its own.
-        elimination = _eliminated(p, jac, rbuf[_RS, :m, :m], y)
-        gated = _gate_on(rbuf, _nis_of(elimination))
+        found_exact = _ExactUpdate(p, jac, rbuf[_RS, :m, :m], y, route or [])
+        gated = _gate_on(rbuf, found_exact.nis())
         if gated != OK:
             return gated
     if exact and not _EPS * p_error <= _P_SURE:
         # No covariance is vouched for: the exact posterior, where float64 holds it
         # as a covariance; else one that passed its checks within _P_NEAR of it.
-        if elimination is None:
-            elimination = _eliminated(p, jac, rbuf[_RS, :m, :m], y)
-        p_exact = _exact_posterior(p, elimination)
+        if found_exact is None:
+            found_exact = _ExactUpdate(p, jac, rbuf[_RS, :m, :m], y, route or [])
+        p_exact = found_exact.posterior(p)
         if p_exact is not None and _is_covariance(p_exact):
             new_p, status = p_exact, OK
         else:
@@ -1326,9 +1339,9 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
     # 0.02 ms more, and a vouched state may still be a few ulps off where the kernel's
     # was exact (the information form's 1.25 ulps off; review 27).
     if exact and (unvouched or regate):
-        if elimination is None:
-            elimination = _eliminated(p, jac, rbuf[_RS, :m, :m], y)
-        x_exact = _exact_state(x, elimination)
+        if found_exact is None:
+            found_exact = _ExactUpdate(p, jac, rbuf[_RS, :m, :m], y, route or [])
+        x_exact = found_exact.state(x)
         if x_exact is None:  # the posterior mean is beyond float64
             return STATE_OVERFLOW
         for i in np.flatnonzero(state[n + 1]):  # the angles, wrapped
@@ -1372,7 +1385,7 @@ def finish_singular_s(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: F
     ``STATE_OVERFLOW`` or ``OK``, the NIS left in ``rbuf``. The state is the
     exact posterior mean (:func:`_exact_state`, from the same elimination as
     the NIS). (Before review 27: x⁺ where the bound on its step was within
-    ``_STEP_SURE`` deviations or ``_STEP_RESOLUTION`` of ``|x| + |s|``,
+    a quarter deviation or ``_STEP_RESOLUTION`` of ``|x| + |s|``,
     193,586 ulps off in one case. Before review 26: x⁺ within
     ``max(2⁻³³ (|x| + |s|), sqrt(P⁺ᵢᵢ))``, which let it be 8.1e4 deviations
     off where those lie far below 2⁻³³ of its size, and the update was
@@ -1383,25 +1396,28 @@ def finish_singular_s(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: F
     and within ``_P_NEAR`` of the exact one. It stays ``S_NOT_POSITIVE_DEFINITE``
     (the state unchanged) where a measurement the gate passes has none of
     these (before review 26: wherever the information form was not trusted;
-    and P⁺ was committed up to 1e-5 off), and for measurements of more than
-    :data:`_EXACT_NIS_MAX_M` components, whose exact NIS would cost tens of
-    milliseconds or more.
+    and P⁺ was committed up to 1e-5 off), and where the exact arithmetic
+    would eliminate more than ``_EXACT_ELIMINATION_MAX`` rows (:func:`_exact_route`;
+    before review 40, for every measurement of more than 8 components).
+    Above ``_EXACT_CANCELLED_MAX_M`` components the exact NIS, state and posterior may come from the
+    information form in exact arithmetic (:class:`_ExactUpdate`).
     """
     n = state.shape[1]
     m = jac.shape[0]
-    if m > _EXACT_NIS_MAX_M:
+    r = rbuf[_RS, :m, :m]
+    route = _exact_route(n, r)
+    if route is None:
         return S_NOT_POSITIVE_DEFINITE
     x = state[STATE_X]
     p = state[STATE_P : STATE_P + n]
-    r = rbuf[_RS, :m, :m]
     if not np.isfinite(y).all():
         rbuf[_VEC, _META, 1] = math.inf
         return RESIDUAL_OVERFLOW
     # The gate first: the exact NIS needs no update, so a measurement the gate
     # rejects is rejected whether or not the information form is trusted for it
     # (readings 1e150 deviations apart raised FilterError instead).
-    elimination = _eliminated(p, jac, r, y)
-    gated = _gate_on(rbuf, _nis_of(elimination))
+    exact = _ExactUpdate(p, jac, r, y, route)
+    gated = _gate_on(rbuf, exact.nis())
     if gated != OK:
         return gated
     with np.errstate(all="ignore"):
@@ -1413,7 +1429,7 @@ def finish_singular_s(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: F
         else:
             # No covariance is vouched for: the exact posterior, where float64 holds
             # it as a covariance, else P⁺ within _P_NEAR of it.
-            p_exact = _exact_posterior(p, elimination)
+            p_exact = exact.posterior(p)
             if p_exact is not None and _is_covariance(p_exact):
                 posterior = p_exact
             elif found is not None and _error_against(found.posterior, p_exact) <= _P_NEAR:
@@ -1423,7 +1439,7 @@ def finish_singular_s(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: F
     # The exact state, from the elimination made for the NIS (about 0.02 ms more): a
     # state the information form's bound vouched for was up to 32 ε of its size off
     # (before review 27), and 8.1e4 deviations with the looser bound before review 26.
-    x_new = _exact_state(x, elimination)
+    x_new = exact.state(x)
     if x_new is None:  # the posterior mean is beyond float64
         return STATE_OVERFLOW
     for i in np.flatnonzero(state[n + 1]):  # the angles, wrapped
@@ -1480,7 +1496,7 @@ def retry_gated(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: FloatAr
     the kernel's factorisation by :func:`gated_s_ill`. With Sₖₖ for cₖ, before
     review 28, S's own condition only, which missed H P Hᵀ cancelling: the NIS
     298.8 for an exact 4.18, rejected at a gate of 13.28) and the measurement
-    has at most :data:`_EXACT_NIS_MAX_M`
+    has at most :data:`_EXACT_CANCELLED_MAX_M` (before review 40, 8)
     components, it is gated again on the exact NIS (:func:`_exact_nis`, left
     in ``rbuf``): ``GATED`` or ``NIS_OVERFLOW`` where that rejects it, else
     ``GATE_PASSED``: the caller runs the kernel again without the gate
@@ -1497,7 +1513,7 @@ def retry_gated(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: FloatAr
     # m = 1 too, as in the update kernel: a scalar S whose H P Hᵀ cancels is as far off
     # as its terms are large against it (review 29: NIS 1.4266 for an exact 1.4040,
     # rejected at a gate of 1.415; before, m = 1 was not tested, κ(S) being 1).
-    if m > _EXACT_NIS_MAX_M:
+    if m > _EXACT_CANCELLED_MAX_M:
         return GATED
     if not gated_s_ill(state, rbuf, jac):
         return GATED
@@ -1523,7 +1539,7 @@ def _exact_nis(p: FloatArray, jac: FloatArray, r: FloatArray, y: FloatArray) -> 
     m = n = 2, 0.3 ms for m = 3, n = 6, and for n = 15 0.8-2.6 ms for m = 8,
     3.6-20 ms for m = 12 (the cost grows as m³ times the size of the minors,
     which grows with how far apart the matrices' exponents lie; see
-    :data:`_EXACT_NIS_MAX_M`).
+    :data:`_EXACT_CANCELLED_MAX_M`).
     """
     return _nis_of(_eliminated(p, jac, r, y))
 
@@ -1679,6 +1695,275 @@ def _exact_posterior(p: FloatArray, elimination: _Elimination) -> FloatArray | N
             except OverflowError:
                 return None
     return out
+
+
+def _bareiss_solve(
+    a: list[list[int]], b: list[list[int]]
+) -> tuple[list[list[int]], int] | None:
+    """``a X = b`` exactly for an integer ``a`` (k, k), ``b`` (k, q): ``(N, d)``, None if singular.
+
+    ``X = N / d`` with integer N and ``d = ±det a`` (positive): Bareiss's
+    fraction-free elimination of ``[a | b]``, each division exact, with a row
+    exchange where a pivot is zero (``a`` need not be symmetric), then back
+    substitution scaled by the last pivot (Cramer's rule keeps each ``Nᵢⱼ`` an
+    integer), as :func:`_exact_state` does for S.
+    """
+    k = len(a)
+    q = len(b[0])
+    rows = [a[i][:] + b[i][:] for i in range(k)]
+    previous = 1
+    for col in range(k):
+        pivot_at = next((i for i in range(col, k) if rows[i][col]), None)
+        if pivot_at is None:
+            return None
+        if pivot_at != col:
+            rows[col], rows[pivot_at] = rows[pivot_at], rows[col]
+        pivot_row = rows[col]
+        pivot = pivot_row[col]
+        for i in range(col + 1, k):
+            row = rows[i]
+            lead = row[col]
+            for j in range(col + 1, k + q):
+                row[j] = (pivot * row[j] - lead * pivot_row[j]) // previous
+        previous = pivot
+    det = previous
+    solved = [[0] * q for _ in range(k)]
+    for i in range(k - 1, -1, -1):
+        row = rows[i]
+        for c in range(q):
+            rest = sum(row[j] * solved[j][c] for j in range(i + 1, k))
+            solved[i][c] = (det * row[k + c] - rest) // row[i]
+    if det < 0:
+        return [[-v for v in row] for row in solved], -det
+    return solved, det
+
+
+def _r_blocks(r: FloatArray) -> list[list[int]]:
+    """The diagonal blocks of the symmetric ``r``: its components' sets, each sorted.
+
+    Components i and j share a block where a chain of nonzero entries joins them
+    (one block each for a diagonal R: independent sensors, a scan's beams).
+    """
+    m = r.shape[0]
+    parent = list(range(m))
+
+    def root(i: int) -> int:
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    for i, j in zip(*np.nonzero(np.triu(r, 1)), strict=True):
+        parent[root(int(i))] = root(int(j))
+    blocks: dict[int, list[int]] = {}
+    for i in range(m):
+        blocks.setdefault(root(i), []).append(i)
+    return list(blocks.values())
+
+
+# The information route's (_ExactUpdate) rounding of 1 / det(R_B), where the exact
+# common denominator of many blocks' determinants would be long (a scan's beams of
+# distinct variances: 53 bits each, 19,000 bits for 360, and 85 s for 15 states): each
+# to within 2**-_R_SCALED_BITS / (1 + sqrt(yᵀ R⁻¹ y)) relative. That is the exact
+# update of an R' between R (1 - η) and R (1 + η) (η that bound): P⁺' between
+# P⁺ / (1 + η) and P⁺ / (1 - η) (Loewner order), so within η / (1 - η) of
+# sqrt(P⁺ᵢᵢ P⁺ⱼⱼ); the NIS within that relative; and x⁺' - x⁺ = P⁺' Hᵀ (R'⁻¹ - R⁻¹)
+# (y - H (x⁺ - x)), within about η sqrt(yᵀ R⁻¹ y) posterior deviations (the posterior
+# residual's yᵀ R⁻¹ y is at most the prior's): 2⁻⁸⁰.
+_R_SCALED_BITS = 80
+
+# The largest elimination the exact fallback of a measurement of more than
+# _EXACT_CANCELLED_MAX_M components makes (S's m, or the information route's n and R's
+# largest block; see _exact_route): measured 2026-12 on a loaded 2-core machine, 0.25 s
+# for 24 components of 15 states with a dense R 1e-12 of P, 1.0 s with 64 states (10 s
+# with P and R 1e280 apart, as 12 components of 128 states took before); a 360-beam
+# scan with a diagonal R, 0.07 s with 6 states, 0.17 s with 15, 0.9 s with 24 (3.3 s
+# with 32; 81 s with 64).
+_EXACT_ELIMINATION_MAX = 24
+
+
+def _exact_route(n: int, r: FloatArray) -> list[list[int]] | None:
+    """How :class:`_ExactUpdate` finishes an update of ``n`` states with noise ``r``.
+
+    ``[]``: by S's elimination (measurements of at most ``_EXACT_CANCELLED_MAX_M``
+    components, and where it is the cheaper); R's blocks (:func:`_r_blocks`): by
+    the information form; None where each route's largest elimination exceeds
+    ``_EXACT_ELIMINATION_MAX`` (the update is then refused where no float64
+    result is vouched for).
+    """
+    m = r.shape[0]
+    if m <= _EXACT_CANCELLED_MAX_M:
+        return []
+    blocks = _r_blocks(r)
+    widest = max(n, max(len(b) for b in blocks))
+    by_s = m**3 + m * m * n + m * n * n
+    by_information = sum(len(b) ** 2 * (len(b) + n) for b in blocks) + m * n * n + 3 * n**3
+    if widest <= _EXACT_ELIMINATION_MAX and (by_information < by_s or m > _EXACT_ELIMINATION_MAX):
+        return blocks
+    return [] if m <= _EXACT_ELIMINATION_MAX else None
+
+
+class _ExactUpdate:
+    """The exact posterior mean, covariance and NIS of a linear update, each rounded once.
+
+    Two routes to the same rational numbers. With S (``_eliminated``: an m x m
+    elimination of S = H P Hᵀ + R) for at most ``_EXACT_CANCELLED_MAX_M``
+    components, or where it is the cheaper; else the information form in exact
+    arithmetic (Woodbury's identity, exact for any m):
+
+        A = Hᵀ R⁻¹ H,  g = Hᵀ R⁻¹ y,  P⁺ = (I + P A)⁻¹ P,  x⁺ = x + P⁺ g,
+        NIS = yᵀ R⁻¹ y - gᵀ P⁺ g,
+
+    R⁻¹ applied block by block (:func:`_r_blocks`: each block of R eliminated
+    on its own, a diagonal R's at one division each) and one n x n elimination
+    of ``I + P A``: about ``Σ b³ + m n² + n³`` operations on integers where S's
+    elimination takes m³ (for a 360-beam scan with a diagonal R and 3 states,
+    millions of times fewer). (Sequential scalar updates are the same exact
+    posterior for a diagonal R, but in float64 each cancels as the joint one
+    does, and exactly they carry a rational P through m steps.)
+    """
+
+    def __init__(
+        self, p: FloatArray, jac: FloatArray, r: FloatArray, y: FloatArray, blocks: list[list[int]]
+    ) -> None:
+        n = jac.shape[1]
+        self.elimination: _Elimination | None = None
+        if not blocks:
+            self.elimination = _eliminated(p, jac, r, y)
+            return
+        h_int, kh = _dyadic(jac)
+        p_int, kp = _dyadic(p)
+        r_int, kr = _dyadic(r)
+        y_int = _dyadic(y[None, :])
+        ky = y_int[1]
+        y_row = y_int[0][0]
+        # Σ over the blocks of Hᵀ R⁻¹ [H | y] and yᵀ R⁻¹ y, in integers over each
+        # block's determinant, summed per determinant (a scan's beams share one).
+        sums: dict[int, tuple[list[list[int]], list[int], list[int]]] = {}
+        for block in blocks:
+            rhs = [h_int[a] + [y_row[a]] for a in block]
+            if len(block) == 1:
+                solved, det = rhs, r_int[block[0]][block[0]]
+            else:
+                found = _bareiss_solve([[r_int[a][b] for b in block] for a in block], rhs)
+                if found is None:
+                    # R's block is singular in exact arithmetic (its float64 check
+                    # passed on a rounding): S, still positive definite, is not.
+                    self.elimination = _eliminated(p, jac, r, y)
+                    return
+                solved, det = found
+            info, gain, nis = sums.setdefault(det, ([[0] * n for _ in range(n)], [0] * n, [0]))
+            for row_h, row_w, a in zip((h_int[a] for a in block), solved, block, strict=True):
+                for i in range(n):
+                    hi = row_h[i]
+                    if hi:
+                        target = info[i]
+                        for j in range(i, n):
+                            target[j] += hi * row_w[j]
+                        gain[i] += hi * row_w[n]
+                nis[0] += y_row[a] * row_w[n]
+        # Over one common denominator: their lcm where it is short (a scan's beams of
+        # one variance: one determinant), else 2**bits, each 1 / d rounded to a
+        # multiple of 2**-bits within 2⁻⁸⁰ / (1 + sqrt(yᵀ R⁻¹ y)) of itself
+        # relative: the exact update of an R' whose blocks are R's scaled by factors
+        # that close to one (_R_SCALED_BITS).
+        common = math.lcm(*sums)
+        size = len(sums).bit_length() + max(  # log2 yᵀ R⁻¹ y, rounded up
+            nis[0].bit_length() - det.bit_length() + kr - 2 * ky + 1
+            for det, (_, _, nis) in sums.items()
+        )
+        bits = max(det.bit_length() for det in sums) + _R_SCALED_BITS + max(0, size // 2 + 1)
+        if common.bit_length() > bits:
+            common = 1 << bits
+        a_num = [[0] * n for _ in range(n)]
+        g_num = [0] * n
+        c_num = 0
+        for det, (info, gain, nis) in sums.items():
+            factor = (common + det // 2) // det
+            for i in range(n):
+                for j in range(i, n):
+                    a_num[i][j] += info[i][j] * factor
+                g_num[i] += gain[i] * factor
+            c_num += nis[0] * factor
+        for i in range(n):
+            for j in range(i):
+                a_num[i][j] = a_num[j][i]
+        # I + P A = M / T: A = a_num 2**(kr - 2 kh) / common, P = p_int / 2**kp.
+        e = kr - 2 * kh - kp
+        up = max(0, -e)  # T = common 2**up
+        pa = [
+            [sum(p_int[i][k] * a_num[k][j] for k in range(n) if p_int[i][k]) << max(0, e)
+             for j in range(n)]
+            for i in range(n)
+        ]  # fmt: skip
+        for i in range(n):
+            pa[i][i] += common << up
+        # P⁺ = T M⁻¹ P = T N / (d 2**kp), M N = d P_int. M = T (I + P A) is
+        # non-singular: P A's eigenvalues are those of P^½ A P^½, at least 0.
+        found = _bareiss_solve(pa, p_int)
+        assert found is not None
+        self.solved, self.det = found
+        self.top = common << up
+        self.kp = kp
+        self.g_num = g_num
+        # x⁺ - x = P⁺ g = N g_num 2**(up + kr - kh - ky - kp) / d.
+        self.step_shift = up + kr - kh - ky - kp
+        # yᵀ R⁻¹ y = c_num 2**(kr - 2 ky) / common, gᵀ P⁺ g = g_numᵀ N g_num ·
+        # 2**(2 (kr - kh - ky) + up - kp) / (common d).
+        self.c_num, self.common = c_num, common
+        self.c_shift = kr - 2 * ky
+        self.q_shift = 2 * (kr - kh - ky) + up - kp
+
+    def nis(self) -> float:
+        """The exact NIS ``yᵀ S⁻¹ y``, rounded once (inf beyond float64)."""
+        from fractions import Fraction
+
+        if self.elimination is not None:
+            return _nis_of(self.elimination)
+        n = len(self.g_num)
+        g = self.g_num
+        quad = sum(g[i] * self.solved[i][j] * g[j] for i in range(n) for j in range(n))
+        two = Fraction(2)
+        total = Fraction(self.c_num, self.common) * two**self.c_shift - Fraction(
+            quad, self.common * self.det
+        ) * two**self.q_shift
+        try:
+            return float(total)
+        except OverflowError:
+            return math.inf
+
+    def state(self, x: FloatArray) -> FloatArray | None:
+        """The exact posterior mean, each component rounded once (None beyond float64)."""
+        from fractions import Fraction
+
+        if self.elimination is not None:
+            return _exact_state(x, self.elimination)
+        n = x.shape[0]
+        unit = Fraction(2) ** self.step_shift
+        out = np.empty(n)
+        for i in range(n):
+            numerator = sum(v * g for v, g in zip(self.solved[i], self.g_num, strict=True))
+            step = Fraction(numerator, self.det)
+            try:
+                out[i] = float(Fraction(float(x[i])) + step * unit)
+            except OverflowError:
+                return None
+        return out
+
+    def posterior(self, p: FloatArray) -> FloatArray | None:
+        """The exact posterior covariance, each entry rounded once (None beyond float64)."""
+        if self.elimination is not None:
+            return _exact_posterior(p, self.elimination)
+        n = p.shape[0]
+        bottom = self.det << self.kp
+        out = np.empty((n, n))
+        for i in range(n):
+            for j in range(i, n):
+                try:
+                    out[i, j] = out[j, i] = self.top * self.solved[i][j] / bottom
+                except OverflowError:
+                    return None
+        return out
 
 
 def _error_against(candidate: FloatArray, exact: FloatArray | None) -> float:
