@@ -10,8 +10,10 @@ compiler lock held for good (every later compile in another thread waited for
 ever), and between the lock's ``release`` and the release listener it left
 navkit's ``SIGINT`` handler in place after the call (STEPHOLD's finding). Every
 signal whose handler is a Python callable is now held there too, and delivered
-just after, once; ``SIG_IGN`` and ``SIG_DFL`` are left alone. Each probe runs in
-a fresh interpreter.
+just after, once; ``SIG_IGN`` and ``SIG_DFL`` are left alone. So are they in
+two steps inside the lock where navkit deferred Ctrl-C alone
+(``interrupts_deferred``): numba's registry refresh and the collector's pause
+as a navkit kernel's compile starts. Each probe runs in a fresh interpreter.
 """
 
 from __future__ import annotations
@@ -257,14 +259,14 @@ def refreshing(frame):
     return False
 
 def profiled(dispatcher, stop_at):
-    # The call with a real SIGTERM raised at its first delivery point from the
-    # stop_at-th on (0: none) inside numba's refresh, or outside it.
+    # The call with a real SIGTERM raised at its stop_at-th delivery point (0: none)
+    # of those inside numba's refresh, or of those outside it; how many there are.
     seen = 0
     def profile(frame, event, arg):
         nonlocal seen
-        if event in ("call", "c_return"):
+        if event in ("call", "c_return") and refreshing(frame) == in_refresh:
             seen += 1
-            if seen >= stop_at > 0 and refreshing(frame) == in_refresh:
+            if seen == stop_at:
                 sys.setprofile(None)
                 signal.raise_signal(signal.SIGTERM)
     del calls[:]
@@ -324,19 +326,110 @@ def test_a_sigterm_anywhere_in_a_kernels_cache_load_leaves_numba_working(
     assert bad == []
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason=(
-        "interrupts_deferred (jit.py's hold of numba's registry refresh, review 38) holds "
-        "SIGINT only: another signal's handler raising in the refresh ends numba's registry "
-        "readers for good ('generator raised StopIteration' at every later compile), and "
-        "raising as the deferral ends leaves its SIGINT handler in place; STEPHOLD2's report"
-    ),
-)
 def test_a_sigterm_in_numbas_registry_refresh_leaves_numba_working(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
+    # navkit's deferral of Ctrl-C around the refresh (jit._hold_refreshes, review 38)
+    # holds SIGINT only: a SIGTERM handler's exception in the refresh ended numba's
+    # registry readers for good ("generator raised StopIteration" at every later
+    # compile), and one as the deferral ended left its SIGINT handler in place.
     monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path))
-    points, samples, bad = probe_outcome(_LOAD_SAMPLES, "20", "deferred", timeout=600)
-    assert points > 300 and samples >= 15
+    points, samples, bad = probe_outcome(_LOAD_SAMPLES, "40", "deferred", timeout=600)
+    assert points > 100 and samples >= 40
     assert bad == []
+
+
+_PAUSE_START = r"""
+import gc, json, signal, sys
+import numba
+from navkit._shared import compile_gc, compile_shortcuts, jit
+
+jit.load_numba()
+from numba.core.compiler_lock import global_compiler_lock
+
+calls = []
+
+def term(signum, frame):  # a service's SIGTERM handler
+    calls.append(signum)
+    raise SystemExit(3)
+
+signal.signal(signal.SIGTERM, term)
+
+def small(x):
+    return x + 1
+
+small.__module__ = "navkit.probe"  # compiled as one of navkit's kernels (not cached)
+
+def call(dispatcher):
+    return dispatcher(1)
+
+def fresh():
+    return numba.njit(small)
+
+expected = call(fresh())
+
+def starting(frame):
+    # Inside navkit's listener of a navkit kernel's compile start (the collector's
+    # pause and the compile shortcuts begun, each recorded).
+    while frame is not None:
+        if frame.f_code.co_qualname.endswith("CompileStart.on_start"):
+            return True
+        frame = frame.f_back
+    return False
+
+def profiled(stop_at):
+    # A SIGTERM at the stop_at-th delivery point inside the listener (0: none).
+    seen = 0
+    def profile(frame, event, arg):
+        nonlocal seen
+        if event in ("call", "c_return") and starting(frame):
+            seen += 1
+            if seen == stop_at:
+                sys.setprofile(None)
+                signal.raise_signal(signal.SIGTERM)
+    del calls[:]
+    sys.setprofile(profile)
+    try:
+        call(fresh())
+        len(())
+        outcome = "ran"
+    except SystemExit:
+        outcome = "stopped"
+    finally:
+        sys.setprofile(None)
+    return seen
+
+points = profiled(0)
+bad = []
+for k in range(1, points + 1, max(1, points // 60)):  # about 60 compiles
+    profiled(k)
+    state = [
+        calls == [signal.SIGTERM],
+        global_compiler_lock.is_locked(),
+        gc.isenabled(),
+        compile_shortcuts.active(),
+        signal.getsignal(signal.SIGINT) is signal.default_int_handler,
+        signal.getsignal(signal.SIGTERM) is term,
+    ]
+    if state != [True, False, True, False, True, True]:
+        bad.append([k, state])
+        if compile_gc._LOCK_HOLD[0] is not None:
+            compile_gc._LOCK_HOLD[0].end()
+        gc.enable()
+        signal.signal(signal.SIGINT, signal.default_int_handler)
+        signal.signal(signal.SIGTERM, term)
+print(json.dumps([points, bad, bool(call(fresh()) == expected)]))
+"""
+
+
+def test_a_sigterm_as_a_compile_starts_leaves_no_pause_behind(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # navkit's listener of a kernel's compile start pauses the collector and turns
+    # the compile shortcuts on, then records both, with Ctrl-C deferred: a SIGTERM
+    # handler's exception in between left the collector off for good.
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path))
+    points, bad, works = probe_outcome(_PAUSE_START, timeout=300)
+    assert points >= 10
+    assert bad == []
+    assert works is True

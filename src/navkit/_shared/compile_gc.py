@@ -31,7 +31,8 @@ own initialisation).
   front of every other signal's Python handler
   (:class:`navkit._shared.interrupts.StepHolds`): a ``signal.alarm``
   time-out's or a ``SIGTERM`` handler's exception left the lock held the same
-  way (review 40). The hold is begun
+  way (review 40); its steps include numba's registry refresh and the
+  collector's pause at a compile's start, where navkit defers Ctrl-C alone. The hold is begun
   as numba reports an acquire, before the wait for the lock, so numba's global
   lock's ``acquire`` is wrapped (:func:`_wrap_acquire`, the one attribute navkit
   sets on a numba object) to end it when the wait ends in another signal's
@@ -413,7 +414,17 @@ def _is_navkit(dispatcher: Any) -> bool:
     return module == "navkit" or module.startswith("navkit.")
 
 
-def _lock_steps(compiler_lock: Any) -> Callable[[FrameType | None], bool]:
+#: The qualified name of :func:`navkit._shared.jit._hold_refreshes`' wrapper of numba's
+#: registry refresh (a step of :func:`_lock_steps`), and its file.
+_REFRESH_HOLD = (
+    "_hold_refreshes.<locals>.held",
+    os.path.join(os.path.dirname(os.path.abspath(__file__)), "jit.py"),
+)
+
+
+def _lock_steps(
+    compiler_lock: Any, also: tuple[CodeType, ...] = ()
+) -> Callable[[FrameType | None], bool]:
     """A test of the main thread's stack: is it inside a step a Ctrl-C must not cut short?
 
     The steps: Python code run while numba's compiler lock is taken or let go,
@@ -435,6 +446,15 @@ def _lock_steps(compiler_lock: Any) -> Callable[[FrameType | None], bool]:
     are C code, which a Ctrl-C does not cut short anyway: one arriving during a
     long optimisation is raised as llvmlite returns to numba, microseconds after
     the C call. Steps of a name missing from the installed numba are left out.
+
+    Two more hold other signals than Ctrl-C (review 40: navkit's deferrals of
+    Ctrl-C, :func:`navkit._shared.interrupts.interrupts_deferred`, hold ``SIGINT``
+    only, and another signal's handler raising in them did what a Ctrl-C did
+    before them): numba's registry refresh with navkit's wrapper of it
+    (:func:`navkit._shared.jit._hold_refreshes`: cut short, every later compile
+    failed, "generator raised StopIteration"), and the code objects ``also``
+    (the compile-start listener's pause: cut short, the collector stayed off).
+    Both run only while the compiling thread holds numba's compiler lock.
     """
 
     # Each test: True (a step), None (not this frame; look further out).
@@ -483,6 +503,9 @@ def _lock_steps(compiler_lock: Any) -> Callable[[FrameType | None], bool]:
     own = getattr(vars(compiler_lock).get("acquire"), "__code__", None)
     if own is not None:  # navkit's wrapper (see _wrap_acquire): a step as numba's acquire
         steps[own] = compiler_lock_held
+    for code in also:
+        steps[code] = always
+    refresh_name, refresh_file = _REFRESH_HOLD
 
     def in_step(frame: FrameType | None) -> bool:
         while frame is not None:
@@ -493,6 +516,8 @@ def _lock_steps(compiler_lock: Any) -> Callable[[FrameType | None], bool]:
                 ours = files.get(name)
                 if ours is None:
                     ours = files[name] = os.path.abspath(name).startswith(llvmlite_code)
+                if not ours and code.co_qualname == refresh_name:
+                    ours = os.path.abspath(name) == refresh_file
                 test = always if ours else None
             step = test(frame) if test is not None else None
             if step is not None:
@@ -571,7 +596,6 @@ def _make_listeners() -> tuple[Any, Any]:
     state = threading.local()
     waiting: CodeType = type(compiler_lock).acquire.__code__
     _wrap_acquire(compiler_lock)
-    in_lock_step = _lock_steps(compiler_lock)
 
     def begin_hold() -> None:
         hold = _LOCK_HOLD[0]
@@ -595,6 +619,8 @@ def _make_listeners() -> tuple[Any, Any]:
 
         def on_end(self, ev: Any) -> None:
             """Nothing here: the collector resumes when the compiler lock is released."""
+
+    in_lock_step = _lock_steps(compiler_lock, (CompileStart.on_start.__code__,))
 
     class LockRelease(event.Listener):  # type: ignore[misc]
         """Resume it (shortcuts off) when the compiling thread releases numba's compiler lock."""
