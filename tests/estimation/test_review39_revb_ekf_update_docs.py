@@ -32,10 +32,10 @@ def test_the_state_and_covariance_limits_are_the_cancelled_fallbacks() -> None:
 
 def test_the_nis_limits_are_both_named() -> None:
     doc = _doc()
-    limit = kernels._EXACT_CANCELLED_MAX_M
+    limit = kernels._EXACT_ELIMINATION_MAX
     assert f"In an update of at most {limit} components" in doc
     assert f"Updates of more than {limit} components keep the kernel's NIS" in doc
-    assert "except those that reach the information form, whose NIS is the exact one" in doc
+    assert "that reach the information form, whose NIS is the exact one" in doc
 
 
 def test_the_cost_with_many_states_is_given() -> None:

@@ -511,11 +511,11 @@ class ExtendedKalmanFilter(GaussianEstimate):
         where no variance need shrink; so does, even for one component, a
         combination of strongly correlated states whose terms in H P Hᵀ far
         exceed it (κ(S) here counts that cancellation: S's rounding error is
-        that of its terms). In an update of at most 12 components
+        that of its terms). In an update of at most 24 components
         whose S is that ill-conditioned (ε κ(S) above 2⁻³⁰, read from the
         pivots of its LDLᵀ factorisation, or from S's scaled inverse where the
         update reaches the information form anyway; 8 before review 40, the
-        NIS up to 1.9e-9 relative off for 10 components), or whose computed S is
+        NIS up to 5e-9 relative off for 10 components, 9.1 % for 16), or whose computed S is
         not positive definite at all (of any size, before review 40 at most 8;
         R/P below about 1e-16 rounds S = [[p + r, p], [p, p + r]] to a
         singular matrix, though the exact S of a positive definite P and R
@@ -532,15 +532,14 @@ class ExtendedKalmanFilter(GaussianEstimate):
         only where the gate passes it and no covariance passes the checks
         above, so readings 1e150 deviations apart are rejected by a gate,
         not refused (and without a gate applied, with the exact state).
-        Updates of more than 12 components keep the kernel's NIS (a scan's
-        S of many beams is that ill-conditioned wherever P/R exceeds about
-        1e7, and the exact NIS would cost each such update 0.1 s or more),
-        except those that reach the information form, whose NIS is the exact one where S
-        is that ill-conditioned or the information form's state replaced the
-        kernel's for disagreeing with it (as their state
+        Updates of more than 24 components keep the kernel's NIS (its exact
+        one would eliminate too many rows), except those with a diagonal or
+        block-diagonal R that reach the information form, whose NIS is the
+        exact one where S is that ill-conditioned or the information form's
+        state replaced the kernel's for disagreeing with it (as their state
         and covariance may be exact, above; before review 39 the Joseph P and
-        the kernel's x stood there unmeasured, up to 10.7 % and 3.2
-        deviations off). (Before review 29 one
+        the kernel's x stood there unmeasured for more than 8 components, up
+        to 10.7 % and 3.2 deviations off). (Before review 29 one
         component was not tested, its κ(S) taken as 1: of 375 random updates
         whose H P Hᵀ cancels, 345 reported a NIS more than 1e-9 off, up to 8
         times the exact one, and a gate 0.1 % from the exact NIS decided

@@ -54,7 +54,7 @@ An update whose Joseph form cancelled (a variance shrank more than 4096-fold:
 a measurement far more precise than the estimate; or a first-order estimate
 of the Joseph P's error exceeds 2⁻⁴⁰ of its scale, :func:`_joseph_in_doubt`),
 whose Joseph P failed its check, or whose S of at most
-``_EXACT_CANCELLED_MAX_M`` components is ill-conditioned for its rounding error
+``_EXACT_ELIMINATION_MAX`` components is ill-conditioned for its rounding error
 (its pivots, against a bound on that error, give ε κ(S) > 2⁻³⁰, so that its
 NIS and x are not to be trusted; H P Hᵀ cancelling counts), commits nothing
 and returns ``CANCELLED``; the public layer finishes it with :func:`finish_cancelled`,
@@ -204,7 +204,7 @@ BAD_SHAPE = 15  # an argument's shape does not fit (or rbuf is another m's): che
 BAD_TYPE = 16  # set by the public layer: an argument is not of the compiled type
 CANCELLED = 17  # the Joseph form cancelled (a variance shrank > 4096-fold, or its P's
 # estimated error exceeds 2⁻⁴⁰) or failed its check, or S is ill-conditioned
-# for its rounding error (ε max cₖ / Dₖ > 2⁻³⁰, m <= _EXACT_CANCELLED_MAX_M):
+# for its rounding error (ε max cₖ / Dₖ > 2⁻³⁰, m <= _EXACT_ELIMINATION_MAX):
 # finish_cancelled
 # From retry_gated only: the exact NIS passes the gate the kernel's NIS failed: run the
 # kernel again without the gate.
@@ -271,18 +271,25 @@ _JOSEPH_LIMIT = _P_SURE / _EPS
 # condition beyond about 1e16), a computed covariance that passed its checks is
 # committed within this of it (measured against it), else the update is refused.
 _P_NEAR = 2.0**-20
-# The largest measurement size whose S the update kernel tests for ill-conditioning
-# (CANCELLED: finish_cancelled gates on the exact NIS) and retry_gated checks a gated
-# update's with, and whose exact fallbacks (finish_cancelled, finish_singular_s) always
-# eliminate S; above it they take the cheaper exact route within _EXACT_ELIMINATION_MAX
-# (_exact_route). (Before review 40, 8 for the ill-conditioned S and for
-# finish_singular_s, which refused larger measurements, and 12 for finish_cancelled,
-# which kept the Joseph P and kernel's x above it, unmeasured. Measured 2026-12 with the
-# elimination, posterior, state and NIS together: 2-23 ms for m = 9-12 with 4 states,
-# 10-72 ms with 15, up to 0.46 s where P and R lie 1e280 apart; with 64 states 0.25 s,
-# 3.4 s that far apart, where m = 8 takes 0.12 and 0.9 s; the exact NIS alone 0.8-2.6
-# ms for m = 8 with 15 states, 3.6-20 ms for m = 12.)
+# The largest measurement size whose exact fallbacks (finish_cancelled,
+# finish_singular_s) always eliminate S; above it they take the cheaper exact route
+# within _EXACT_ELIMINATION_MAX (_exact_route). (Before review 40, 8 for the
+# ill-conditioned S and for finish_singular_s, which refused larger measurements, and 12
+# for finish_cancelled, which kept the Joseph P and kernel's x above it, unmeasured.
+# Measured 2026-12 with the elimination, posterior, state and NIS together: 2-23 ms for
+# m = 9-12 with 4 states, 10-72 ms with 15, up to 0.46 s where P and R lie 1e280 apart;
+# with 64 states 0.25 s, 3.4 s that far apart, where m = 8 takes 0.12 and 0.9 s; the
+# exact NIS alone 0.8-2.6 ms for m = 8 with 15 states, 3.6-20 ms for m = 12.)
 _EXACT_CANCELLED_MAX_M = 12
+# The largest elimination the exact fallback of a measurement of more than
+# _EXACT_CANCELLED_MAX_M components makes, and the largest measurement whose S the
+# update kernel tests for ill-conditioning and retry_gated checks a gated update's with
+# (S's m, or the information route's n and R's largest block; see _exact_route):
+# measured 2026-12 on a loaded 2-core machine, 0.25 s for 24 components of 15 states
+# with a dense R 1e-12 of P, 1.0 s with 64 states (10 s with P and R 1e280 apart, as 12
+# components of 128 states took before); a 360-beam scan with a diagonal R, 0.07 s with
+# 6 states, 0.17 s with 15, 0.9 s with 24 (3.3 s with 32; 81 s with 64).
+_EXACT_ELIMINATION_MAX = 24
 # The largest n whose Q the predict kernel accepts by its LDLᵀ factorisation
 # (_adopt_positive): its backward error, about n² ε max|Q|, is then below 1e-12 max|Q|.
 _PSD_MAX_N = 64
@@ -944,26 +951,24 @@ def _update(
     # Whether S is ill-conditioned for its rounding error (retry_gated's test, read
     # before the check of the new P reuses inv_diag): the NIS, K and x above are then
     # off by about ε κ(S), with no variance cancelling where a combination of states is
-    # measured precisely (rows of H alike but not a single state's). With σⱼ =
-    # sqrt(Pⱼⱼ) and uₖ = Σⱼ |Hₖⱼ| σⱼ, cₖ = uₖ² + Rₖₖ >= (|H| |P| |H|ᵀ + |R|)ₖₖ
-    # (|Pᵢⱼ| <= σᵢ σⱼ): the rounding error of S's entry (k, l) is within about
-    # n ε sqrt(cₖ cₗ), however far H P Hᵀ cancels, so max cₖ / Dₖ (1 / the smallest
-    # pivot of C⁻¹ S C⁻¹, C = diag(sqrt(cₖ))) bounds from below how far that error
-    # reaches the NIS and K, as max Sₖₖ / Dₖ does for an error relative to S's own
-    # diagonal. Where H P Hᵀ cancels (rows of H nearly orthogonal to the main
-    # direction of a strongly correlated P) cₖ is far above Sₖₖ: in review 28's case
-    # cₖ / Sₖₖ was 2.7e12 and max Sₖₖ / Dₖ 2.8e4 (ε max cₖ / Dₖ 8.7, the limit 2⁻³⁰),
-    # the NIS 298.8 for an exact 4.18 and the Joseph P 1.27e-11 off (the gain's
-    # second-order error, which _joseph_in_doubt does not see). The larger of cₖ and
-    # Sₖₖ, so that no S the diagonal's test flags escapes this one by a rounding of
-    # uₖ². m = 1 too: the one pivot is S itself, but S's error is its terms' (review
-    # 29: a scalar S with c / S 1.1e15 gave a NIS of 1.827 for an exact 1.911). m is a
-    # constant here, so for m > _EXACT_CANCELLED_MAX_M the test costs nothing (before
-    # review 40 it stopped at 8 components: NIS 1.9e-9 relative off for m = 10, x
-    # 2.5e-10 deviations; a scan's S of many beams is that ill-conditioned wherever
-    # P/R exceeds about 1e7, and its exact NIS would cost each such update 0.1 s or
-    # more); σ and u are needed by _joseph_in_doubt anyway (here since review 28; L of
-    # S, in chol, is not needed any more).
+    # measured precisely (rows of H alike but not a single state's). With σⱼ = sqrt(Pⱼⱼ)
+    # and uₖ = Σⱼ |Hₖⱼ| σⱼ, cₖ = uₖ² + Rₖₖ >= (|H| |P| |H|ᵀ + |R|)ₖₖ (|Pᵢⱼ| <= σᵢ σⱼ):
+    # the rounding error of S's entry (k, l) is within about n ε sqrt(cₖ cₗ), however
+    # far H P Hᵀ cancels, so max cₖ / Dₖ (1 / the smallest pivot of C⁻¹ S C⁻¹, C =
+    # diag(sqrt(cₖ))) bounds from below how far that error reaches the NIS and K, as max
+    # Sₖₖ / Dₖ does for an error relative to S's own diagonal. Where H P Hᵀ cancels
+    # (rows of H nearly orthogonal to the main direction of a strongly correlated P) cₖ
+    # is far above Sₖₖ: in review 28's case cₖ / Sₖₖ was 2.7e12 and max Sₖₖ / Dₖ 2.8e4
+    # (ε max cₖ / Dₖ 8.7, the limit 2⁻³⁰), the NIS 298.8 for an exact 4.18 and the
+    # Joseph P 1.27e-11 off (the gain's second-order error, which _joseph_in_doubt does
+    # not see). The larger of cₖ and Sₖₖ, so that no S the diagonal's test flags escapes
+    # this one by a rounding of uₖ². m = 1 too: the one pivot is S itself, but S's error
+    # is its terms' (review 29: a scalar S with c / S 1.1e15 gave a NIS of 1.827 for an
+    # exact 1.911). m is a constant here, so for m > _EXACT_ELIMINATION_MAX the test
+    # costs nothing (before review 40 it stopped at 8 components: NIS up to 5e-9
+    # relative off for m = 10 and 8.9e-9 for 16; above the limit the exact NIS would
+    # eliminate too many rows); σ and u are needed by _joseph_in_doubt anyway (here
+    # since review 28; L of S, in chol, is not needed any more).
     sigma = chol[0]
     reach = chol[1]
     for j in range(n):
@@ -976,7 +981,7 @@ def _update(
                 acc += abs(hkj) * sigma[j]
         reach[k] = acc
     ill = False
-    if m <= _EXACT_CANCELLED_MAX_M:
+    if m <= _EXACT_ELIMINATION_MAX:
         for k in range(m):
             uk = reach[k]
             c = uk * uk + rs[k, k]
@@ -1051,7 +1056,7 @@ def _make_update(n: int, m: int) -> UpdateKernel:
         scale (:func:`_joseph_in_doubt`), when S's pivots say it is
         ill-conditioned for its rounding error (``max cₖ / Dₖ`` above
         2⁻³⁰ / ε, ``cₖ = max(uₖ² + Rₖₖ, Sₖₖ)``, ``uₖ = Σⱼ |Hₖⱼ| sqrt(Pⱼⱼ)``, for
-        m <= ``_EXACT_CANCELLED_MAX_M``), whatever its own status, or when it
+        m <= ``_EXACT_ELIMINATION_MAX``), whatever its own status, or when it
         is not finite or not positive definite (its status kept for the
         caller, which finishes with :func:`finish_cancelled`; before review
         27 these were returned, refusing updates whose exact posterior is a
@@ -1086,7 +1091,7 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
     (:func:`_joseph_in_doubt`: H P cancelling, or K and H), or the Joseph P
     failed its check (which the exact posterior may still pass). (Or because
     S's pivots say S is ill-conditioned, ε κ(S) > 2⁻³⁰, with at most
-    ``_EXACT_CANCELLED_MAX_M`` components (8 before review 40): a linear combination of states
+    ``_EXACT_ELIMINATION_MAX`` components (8 before review 40): a linear combination of states
     measured twice far more precisely than it is known, or H P Hᵀ
     cancelling (for one component too, since review 29), where no variance
     need shrink, but the kernel's NIS and x, from its solve with S, are off
@@ -1496,7 +1501,7 @@ def retry_gated(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: FloatAr
     the kernel's factorisation by :func:`gated_s_ill`. With Sₖₖ for cₖ, before
     review 28, S's own condition only, which missed H P Hᵀ cancelling: the NIS
     298.8 for an exact 4.18, rejected at a gate of 13.28) and the measurement
-    has at most :data:`_EXACT_CANCELLED_MAX_M` (before review 40, 8)
+    has at most :data:`_EXACT_ELIMINATION_MAX` (before review 40, 8)
     components, it is gated again on the exact NIS (:func:`_exact_nis`, left
     in ``rbuf``): ``GATED`` or ``NIS_OVERFLOW`` where that rejects it, else
     ``GATE_PASSED``: the caller runs the kernel again without the gate
@@ -1513,7 +1518,7 @@ def retry_gated(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: FloatAr
     # m = 1 too, as in the update kernel: a scalar S whose H P Hᵀ cancels is as far off
     # as its terms are large against it (review 29: NIS 1.4266 for an exact 1.4040,
     # rejected at a gate of 1.415; before, m = 1 was not tested, κ(S) being 1).
-    if m > _EXACT_CANCELLED_MAX_M:
+    if m > _EXACT_ELIMINATION_MAX:
         return GATED
     if not gated_s_ill(state, rbuf, jac):
         return GATED
@@ -1771,15 +1776,6 @@ def _r_blocks(r: FloatArray) -> list[list[int]]:
 # (y - H (x⁺ - x)), within about η sqrt(yᵀ R⁻¹ y) posterior deviations (the posterior
 # residual's yᵀ R⁻¹ y is at most the prior's): 2⁻⁸⁰.
 _R_SCALED_BITS = 80
-
-# The largest elimination the exact fallback of a measurement of more than
-# _EXACT_CANCELLED_MAX_M components makes (S's m, or the information route's n and R's
-# largest block; see _exact_route): measured 2026-12 on a loaded 2-core machine, 0.25 s
-# for 24 components of 15 states with a dense R 1e-12 of P, 1.0 s with 64 states (10 s
-# with P and R 1e280 apart, as 12 components of 128 states took before); a 360-beam
-# scan with a diagonal R, 0.07 s with 6 states, 0.17 s with 15, 0.9 s with 24 (3.3 s
-# with 32; 81 s with 64).
-_EXACT_ELIMINATION_MAX = 24
 
 
 def _exact_route(n: int, r: FloatArray) -> list[list[int]] | None:
