@@ -432,7 +432,9 @@ def _lock_steps(
     block, an ``ExitStack``'s callback), or between the ``with`` block's end and
     the ``release`` (its ``acquire``, ``__enter__``, ``release`` and ``__exit__``;
     ``ExitStack.enter_context`` and ``__exit__`` with it, as numba's dispatcher
-    takes it); and any of llvmlite's Python code (``llvmlite.binding``), which
+    takes it: the whole ``__exit__`` of a dispatcher's own ExitStack while the lock
+    is held, since between the pop of the lock's exit callback and its call the
+    callback is nowhere to be seen); and any of llvmlite's Python code (``llvmlite.binding``), which
     keeps the ownership of LLVM's objects across its C calls: its LLVM lock's
     ``__enter__`` after the acquire (numba's callbacks report the event there)
     and ``__exit__`` (callbacks before the release), its object-cache callbacks
@@ -469,9 +471,18 @@ def _lock_steps(
         taking = compiler_lock.is_locked() and frame.f_locals.get("cm") is compiler_lock
         return True if taking else None
 
+    dispatcher: Any = importlib.import_module("numba.core.dispatcher")
+    dispatcher_file = os.path.abspath(dispatcher.__file__)
+
     def exiting_compiler_lock(frame: FrameType) -> bool | None:
         if not compiler_lock.is_locked():
             return None
+        # numba's dispatchers' ExitStacks (their compile) hold the lock: between the
+        # pop of its exit callback and the call the callback is in neither the
+        # stack nor ``cb`` (review 40: a Ctrl-C there left the lock held for good).
+        caller = frame.f_back
+        if caller is not None and os.path.abspath(caller.f_code.co_filename) == dispatcher_file:
+            return True
         stack = frame.f_locals.get("self")
         exits = [frame.f_locals.get("cb"), *getattr(stack, "_exit_callbacks", ())]
         letting_go = any(
