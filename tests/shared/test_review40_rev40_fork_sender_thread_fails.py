@@ -10,8 +10,8 @@ signals with it. But a thread that cannot start (``RuntimeError: can't start
 new thread``, as when the fork took the last process of ``RLIMIT_NPROC``, which
 threads count against on Linux) now takes the early exception with it: the
 program's ``SIGTERM`` handler raised ``SystemExit`` and the caller never saw it
-(before review 39 it did). Strict xfail: the fix is in ``interrupts.py``,
-claimed by another helper today (the diff is in REV40's report).
+(before review 39 it did). Now the raise is arranged whatever became of the
+sender.
 
 Every case runs in a fresh interpreter with a timeout.
 """
@@ -103,11 +103,6 @@ _EARLY_AND_NO_THREAD = textwrap.dedent(
 )
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="release_in_parent starts the sender before the early exception's raise is "
-    "arranged (REV39); the fix is in REV40's report (interrupts.py claimed)",
-)
 def test_an_early_signal_s_exception_reaches_the_caller_when_no_thread_can_start() -> None:
     # The SIGUSR1 was held during the fork (its sender could not start: lost, as
     # before review 39), and the SIGTERM's SystemExit reached the caller.

@@ -557,17 +557,22 @@ def release_in_parent(hold: _ForkHold | None) -> None:
     came = hold.restore()
     caller, hold.fork_caller = hold.fork_caller, None
     early, hold.early = hold.early, None  # no call here: a signal could land on it
-    # The sender first: raised here (a profiler in use), the early exception took
-    # the signals held with it, never sent again (review 39).
-    if came:
-        threading.Thread(
-            target=_interrupt_after_fork,
-            args=(caller, caller.f_lasti if caller is not None else -1, came),
-            name="navkit-held-ctrl-c",
-            daemon=True,
-        ).start()
-    if early is not None:
-        _raise_as_fork_returns(caller, early)
+    try:
+        # The sender first: raised here (a profiler in use), the early exception took
+        # the signals held with it, never sent again (review 39).
+        if came:
+            threading.Thread(
+                target=_interrupt_after_fork,
+                args=(caller, caller.f_lasti if caller is not None else -1, came),
+                name="navkit-held-ctrl-c",
+                daemon=True,
+            ).start()
+    finally:
+        # And the early exception whatever became of the sender: a thread that
+        # could not start (the fork took the last process RLIMIT_NPROC allows)
+        # took it with it (review 40).
+        if early is not None:
+            _raise_as_fork_returns(caller, early)
 
 
 def _raise_as_fork_returns(caller: FrameType | None, error: BaseException) -> None:
