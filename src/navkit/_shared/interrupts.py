@@ -158,7 +158,10 @@ class _Hold:
         if intruder:
             _set_system_action(now, self.signum)
             self.outside = True
-        elif self.outside:
+        elif self.saved is not None:
+            # Python's own action too: signal.signal sets its flags afresh, and a
+            # program's signal.siginterrupt(signum, False) (SA_RESTART) was lost
+            # at every hold's end (review 40, REVD).
             _set_system_action(self.saved, self.signum)
 
     def deliver(self, frame: FrameType | None) -> None:
@@ -251,9 +254,13 @@ class StepHold(_Hold):
         """Take the hold away (a Ctrl-C still pending is delivered as its step is done)."""
         if self.restored:
             return
-        if self.again:
+        if self.again and _getsignal(self.signum) == self.hold:
             self.ending = True  # the pending Ctrl-C comes back to hold(), which ends it
             return
+        # (Pending again but another handler put in place, by another held signal's
+        # handler run first: the signal goes to that one, never back to hold(), and
+        # waiting for it left this hold and StepHolds.restored unended for good,
+        # and numba's lock steps held nothing after; review 40, REVD.)
         if _getsignal(self.signum) == self.hold:
             self.restore()
         else:  # another handler put in place meanwhile (which puts this one back): left so
