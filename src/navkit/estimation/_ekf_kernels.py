@@ -1401,9 +1401,11 @@ def finish_singular_s(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: F
     and within ``_P_NEAR`` of the exact one. It stays ``S_NOT_POSITIVE_DEFINITE``
     (the state unchanged) where a measurement the gate passes has none of
     these (before review 26: wherever the information form was not trusted;
-    and P⁺ was committed up to 1e-5 off), and where the exact arithmetic
-    would eliminate more than ``_EXACT_ELIMINATION_MAX`` rows (:func:`_exact_route`;
-    before review 40, for every measurement of more than 8 components).
+    and P⁺ was committed up to 1e-5 off). Where the exact arithmetic would
+    eliminate more than ``_EXACT_ELIMINATION_MAX`` rows (:func:`_exact_route`;
+    before review 40, for every measurement of more than 8 components) it
+    raises ``FilterError`` saying so, nothing changed (before review 40 the
+    caller's "innovation covariance S is not positive definite" alone).
     Above ``_EXACT_CANCELLED_MAX_M`` components the exact NIS, state and posterior may come from the
     information form in exact arithmetic (:class:`_ExactUpdate`).
     """
@@ -1412,7 +1414,15 @@ def finish_singular_s(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: F
     r = rbuf[_RS, :m, :m]
     route = _exact_route(n, r)
     if route is None:
-        return S_NOT_POSITIVE_DEFINITE
+        # The exact S is positive definite; only the size limit refuses it (before
+        # review 40 the message was "innovation covariance S is not positive definite"
+        # alone, as if P or R were at fault).
+        raise FilterError(
+            "innovation covariance S is not positive definite as computed in float64 "
+            f"(a measurement of {m} components far more precise than the estimate), "
+            f"and its exact arithmetic would eliminate more than {_EXACT_ELIMINATION_MAX} "
+            "rows (use a diagonal R, or update with fewer components at a time)"
+        )
     x = state[STATE_X]
     p = state[STATE_P : STATE_P + n]
     if not np.isfinite(y).all():
