@@ -2034,6 +2034,9 @@ def _s_amplification(rbuf: FloatArray, p: FloatArray, jac: FloatArray) -> float:
 
 _SPLIT = 134217729.0  # 2²⁷ + 1: Dekker's splitting of a float64 into two 26-bit halves
 
+#: The terms :func:`_exact_residual` holds at once (float64s: 16 MB).
+_RESIDUAL_TERMS = 1 << 21
+
 
 def _halves(a: FloatArray) -> tuple[FloatArray, FloatArray]:
     """Dekker's split: ``a = high + low`` exactly, each with at most 26 significant bits."""
@@ -2059,20 +2062,27 @@ def _exact_residual(a: FloatArray, b: FloatArray, c: FloatArray) -> FloatArray:
     """
     n, k = a.shape
     q = b.shape[1]
-    rounded = a[:, :, None] * b[None, :, :]
     a_high, a_low = _halves(a)
     b_high, b_low = _halves(b)
-    ah, al = a_high[:, :, None], a_low[:, :, None]
     bh, bl = b_high[None, :, :], b_low[None, :, :]
-    error = ((ah * bh - rounded) + ah * bl + al * bh) + al * bl
-    terms = np.concatenate((rounded, error, -c[:, None, :]), axis=1)
-    if not np.isfinite(terms).all():  # a product or split overflowed: no residual
-        return np.full((n, q), math.nan)
-    rows = terms.transpose(0, 2, 1).reshape(n * q, 2 * k + 1).tolist()
-    try:
-        return np.array([math.fsum(row) for row in rows]).reshape(n, q)
-    except OverflowError:  # an exact sum beyond float64
-        return np.full((n, q), math.nan)
+    out = np.empty((n, q))
+    # Rows a few at a time: the terms of all n q entries at once took 8 (2k + 1) n q
+    # bytes, 1.2 GB for a 200-beam R and more than the machine for 1000 (review 40).
+    step = max(1, _RESIDUAL_TERMS // ((2 * k + 1) * max(q, 1)))
+    for first in range(0, n, step):
+        rows_of = slice(first, min(n, first + step))
+        rounded = a[rows_of, :, None] * b[None, :, :]
+        ah, al = a_high[rows_of, :, None], a_low[rows_of, :, None]
+        error = ((ah * bh - rounded) + ah * bl + al * bh) + al * bl
+        terms = np.concatenate((rounded, error, -c[rows_of, None, :]), axis=1)
+        if not np.isfinite(terms).all():  # a product or split overflowed: no residual
+            return np.full((n, q), math.nan)
+        rows = terms.transpose(0, 2, 1).reshape(-1, 2 * k + 1).tolist()
+        try:
+            out[rows_of] = np.array([math.fsum(row) for row in rows]).reshape(-1, q)
+        except OverflowError:  # an exact sum beyond float64
+            return np.full((n, q), math.nan)
+    return out
 
 
 def _scaled_inverse(a: FloatArray) -> tuple[FloatArray, float] | None:
@@ -2156,6 +2166,37 @@ def _refined_inverse(
     return inv, relative * np.outer(unit, unit), kappa, (scaled, refined, d, kappa)
 
 
+def _refined_block_inverse(
+    r: FloatArray,
+) -> tuple[FloatArray, FloatArray, float, tuple[FloatArray, FloatArray, FloatArray, float]] | None:
+    """:func:`_refined_inverse` of the symmetric ``r``, one diagonal block at a time.
+
+    The blocks are :func:`_r_blocks`'s (one per beam for a diagonal R); the
+    inverse, its bound and the scaled parts are theirs side by side (zero, and
+    exactly so, between blocks), κ the largest block's (each block's inverse and
+    refinement are its own). A whole R of m components took m³ products at once
+    (review 40: a 1000-beam scan's update ran the machine out of memory); one
+    block is :func:`_refined_inverse` itself.
+    """
+    blocks = _r_blocks(r)
+    if len(blocks) == 1:
+        return _refined_inverse(r)
+    m = r.shape[0]
+    inv, bound = np.zeros((m, m)), np.zeros((m, m))
+    scaled, refined = np.zeros((m, m)), np.zeros((m, m))
+    d = np.empty(m)
+    kappa = 1.0
+    for block in blocks:
+        at = np.ix_(block, block)
+        found = _refined_inverse(r[at])
+        if found is None:
+            return None
+        inv[at], bound[at] = found[0], found[1]
+        scaled[at], refined[at], d[block], block_kappa = found[3]
+        kappa = max(kappa, block_kappa)
+    return inv, bound, kappa, (scaled, refined, d, kappa)
+
+
 class _Information:
     """The information form's posterior, its state step and error, and the means to measure others.
 
@@ -2226,7 +2267,7 @@ def _information_update(
     factorisation, those of D P⁺ D over dᵢ², normal floats).
     """
     prior = _refined_inverse(p)
-    noise = _refined_inverse(r)
+    noise = _refined_block_inverse(r)
     if prior is None or noise is None:
         return None
     p_inv, r_inv = prior[0], noise[0]
