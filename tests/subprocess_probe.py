@@ -27,6 +27,26 @@ def unheld():
 """
 
 
+#: Source of ``send_during_the_wait(signums, all_sent)`` for probes whose main thread
+#: forks while another thread holds numba's compiler lock: a thread to run it sends
+#: each signal once the fork's hook is seen waiting for the lock (not on timers,
+#: which a loaded machine can make fire after ``os.fork`` has returned), then sets
+#: the event ``all_sent``. Imports what it uses.
+FORK_WAIT_SENDER = """
+import os, sys, threading, time
+
+def send_during_the_wait(signums, all_sent):
+    main, frame = threading.main_thread().ident, None
+    while frame is None or frame.f_code.co_name != "_take_for_fork":
+        time.sleep(0.002)  # until the fork's hook waits for the compiler lock
+        frame = sys._current_frames().get(main)
+    for signum in signums:
+        os.kill(os.getpid(), signum)
+        time.sleep(0.05)
+    all_sent.set()
+"""
+
+
 def probe_outcome(script: str, *args: str, timeout: float = 300) -> Any:
     """The JSON value on the last line ``script`` prints (it must exit 0).
 

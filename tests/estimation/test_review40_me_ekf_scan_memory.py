@@ -23,7 +23,7 @@ from navkit.estimation import ExtendedKalmanFilter
 from navkit.estimation import _ekf_kernels as kernels
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from exact_fractions import fractions, inverse
+from exact_fractions import information_update
 from precise_updates import linear
 
 
@@ -45,18 +45,8 @@ def _scan(seed: int, m: int) -> tuple[np.ndarray, ...]:
 def _reference(
     x0: np.ndarray, p: np.ndarray, h: np.ndarray, r: np.ndarray, y: np.ndarray
 ) -> tuple[np.ndarray, np.ndarray]:
-    """The exact posterior (P⁻¹ + Hᵀ R⁻¹ H)⁻¹ and its mean, rounded once (diagonal R)."""
-    n = p.shape[0]
-    info = inverse(fractions(p))
-    g = [Fraction(0)] * n
-    for row, variance, residual in zip(fractions(h), np.diag(r).tolist(), y.tolist(), strict=True):
-        weight = 1 / Fraction(variance)
-        for i in range(n):
-            g[i] += row[i] * weight * Fraction(residual)
-            for k in range(n):
-                info[i][k] += row[i] * row[k] * weight
-    post = inverse(info)
-    x = [Fraction(x0[i]) + sum(post[i][k] * g[k] for k in range(n)) for i in range(n)]
+    """The exact posterior's mean and covariance, rounded once."""
+    x, post = information_update(x0, p, h, r, y)
     return np.array([float(v) for v in x]), np.array([[float(v) for v in row] for row in post])
 
 

@@ -33,6 +33,8 @@ import textwrap
 
 import pytest
 
+from subprocess_probe import FORK_WAIT_SENDER
+
 pytestmark = pytest.mark.skipif(
     not hasattr(os, "fork") or sys.platform != "linux", reason="needs os.fork"
 )
@@ -132,9 +134,9 @@ def test_a_child_forked_during_another_threads_numba_import_plans(module: str) -
 # Ctrl-C twice while the fork waits for another thread's compile (the compiler
 # lock held HOLD s): the fork still waits, the child finds the lock free, and
 # the parent gets one KeyboardInterrupt after os.fork has returned.
-_INTERRUPTED = textwrap.dedent(
+_INTERRUPTED = FORK_WAIT_SENDER + textwrap.dedent(
     """
-    import faulthandler, os, select, signal, sys, threading, time
+    import faulthandler, os, select, signal, threading, time
     faulthandler.dump_traceback_later(200, exit=True)
     from navkit._shared import compile_gc
     from navkit._shared.jit import load_numba
@@ -150,21 +152,10 @@ _INTERRUPTED = textwrap.dedent(
             assert all_sent.wait(50)  # (a loaded machine: both sent inside the wait)
             time.sleep(0.05)
 
-    def send_during_the_wait():
-        # Not on timers: under load one could fire after os.fork had returned.
-        main, frame = threading.main_thread().ident, None
-        while frame is None or frame.f_code.co_name != "_take_for_fork":
-            time.sleep(0.002)  # until the fork's hook waits for the compiler lock
-            frame = sys._current_frames().get(main)
-        for _ in range(2):
-            os.kill(os.getpid(), signal.SIGINT)
-            time.sleep(0.05)
-        all_sent.set()
-
     thread = threading.Thread(target=compile_elsewhere)
     thread.start()
     assert holding.wait(60)
-    threading.Thread(target=send_during_the_wait).start()
+    threading.Thread(target=send_during_the_wait, args=([signal.SIGINT] * 2, all_sent)).start()
     started = time.monotonic()
     read, write = os.pipe()
     interrupts, returned, waited = 0, False, 0.0

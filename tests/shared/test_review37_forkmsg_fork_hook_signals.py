@@ -40,7 +40,7 @@ import textwrap
 
 import pytest
 
-from subprocess_probe import probe_outcome
+from subprocess_probe import FORK_WAIT_SENDER, probe_outcome
 
 pytestmark = pytest.mark.skipif(
     not hasattr(os, "fork") or sys.platform != "linux", reason="needs os.fork"
@@ -192,7 +192,7 @@ def test_two_ctrl_cs_anywhere_in_the_fork_hooks_leave_them_clean() -> None:
 # forks; a SIGTERM comes during the fork's wait, its handler raising SystemExit.
 # Raised inside the before hook, it was reported as ignored (the program went
 # on as if no SIGTERM had come) and the fork made without the lock.
-_SIGTERM_DURING_WAIT = textwrap.dedent(
+_SIGTERM_DURING_WAIT = FORK_WAIT_SENDER + textwrap.dedent(
     """
     import faulthandler, json, os, signal, sys, threading, time
     faulthandler.dump_traceback_later(200, exit=True)
@@ -210,16 +210,6 @@ _SIGTERM_DURING_WAIT = textwrap.dedent(
             assert all_sent.wait(50)  # (a loaded machine: all sent inside the wait)
             time.sleep(0.05)
 
-    def send_during_the_wait(signums):
-        # Not on timers: under load one could fire after os.fork had returned.
-        main, frame = threading.main_thread().ident, None
-        while frame is None or frame.f_code.co_name != "_take_for_fork":
-            time.sleep(0.002)  # until the fork's hook waits for the compiler lock
-            frame = sys._current_frames().get(main)
-        for signum in signums:
-            os.kill(os.getpid(), signum)
-            time.sleep(0.05)
-        all_sent.set()
 
     def on_term(signum, frame):
         raise SystemExit("terminated")
@@ -228,7 +218,7 @@ _SIGTERM_DURING_WAIT = textwrap.dedent(
     thread = threading.Thread(target=compile_elsewhere)
     thread.start()
     assert holding.wait(60)
-    threading.Thread(target=send_during_the_wait, args=([signal.SIGTERM],)).start()
+    threading.Thread(target=send_during_the_wait, args=([signal.SIGTERM], all_sent)).start()
     start = time.monotonic()
     exits, returned, pid = 0, False, 0
     try:

@@ -36,7 +36,7 @@ import textwrap
 
 import pytest
 
-from subprocess_probe import probe_outcome
+from subprocess_probe import FORK_WAIT_SENDER, probe_outcome
 
 pytestmark = pytest.mark.skipif(
     not hasattr(os, "fork") or sys.platform != "linux", reason="needs os.fork"
@@ -157,7 +157,7 @@ def test_a_ctrl_c_anywhere_in_the_fork_hooks_leaves_every_lock_free() -> None:
 # of the thread, the outer fork's too: the Ctrl-C, sent again once the inner
 # os.fork had returned, reached Python's handler inside the outer fork's before
 # hook, and was reported as ignored there and lost.
-_NESTED = textwrap.dedent(
+_NESTED = FORK_WAIT_SENDER + textwrap.dedent(
     """
     import faulthandler, json, os, signal, sys, threading, time
     faulthandler.dump_traceback_later(200, exit=True)
@@ -177,16 +177,6 @@ _NESTED = textwrap.dedent(
             assert all_sent.wait(50)  # (a loaded machine: all sent inside the wait)
             time.sleep(0.05)
 
-    def send_during_the_wait(signums):
-        # Not on timers: under load one could fire after os.fork had returned.
-        main, frame = threading.main_thread().ident, None
-        while frame is None or frame.f_code.co_name != "_take_for_fork":
-            time.sleep(0.002)  # until the fork's hook waits for the compiler lock
-            frame = sys._current_frames().get(main)
-        for signum in signums:
-            os.kill(os.getpid(), signum)
-            time.sleep(0.05)
-        all_sent.set()
 
     def fork_in_handler(signum, frame):
         pid = os.fork()
@@ -198,7 +188,9 @@ _NESTED = textwrap.dedent(
     thread = threading.Thread(target=compile_elsewhere)
     thread.start()
     assert holding.wait(60)
-    threading.Thread(target=send_during_the_wait, args=([signal.SIGUSR1, signal.SIGINT],)).start()
+    threading.Thread(
+        target=send_during_the_wait, args=([signal.SIGUSR1, signal.SIGINT], all_sent)
+    ).start()
     interrupts, returned = 0, False
     try:
         pid = os.fork()

@@ -34,7 +34,7 @@ import textwrap
 
 import pytest
 
-from subprocess_probe import probe_outcome
+from subprocess_probe import FORK_WAIT_SENDER, probe_outcome
 
 pytestmark = pytest.mark.skipif(
     not hasattr(os, "fork") or sys.platform != "linux", reason="needs os.fork"
@@ -45,7 +45,9 @@ pytestmark = pytest.mark.skipif(
 # meanwhile: sent once the main thread waits for the lock there (not after a
 # fixed sleep, which a loaded machine can outlast before os.fork is called),
 # and the lock let go once they are sent.
-_WAITING_FORK = """
+_WAITING_FORK = (
+    FORK_WAIT_SENDER
+    + """
 import faulthandler, json, os, signal, sys, threading, time
 faulthandler.dump_traceback_later(60, exit=True)
 from navkit._shared.jit import load_numba
@@ -59,21 +61,8 @@ def compile_elsewhere():
         holding.set()
         assert all_sent.wait(50)
         time.sleep(0.05)
-
-def send_during_the_wait(signums):
-    main = threading.get_ident()
-
-    def send():
-        frame = None
-        while frame is None or frame.f_code.co_name != "_take_for_fork":
-            time.sleep(0.002)  # until the fork's hook waits for the compiler lock
-            frame = sys._current_frames().get(main)
-        for signum in signums:
-            os.kill(os.getpid(), signum)
-            time.sleep(0.05)
-        all_sent.set()
-    threading.Thread(target=send).start()
 """
+)
 
 _ASYNCIO = _WAITING_FORK + textwrap.dedent(
     """
@@ -86,7 +75,7 @@ _ASYNCIO = _WAITING_FORK + textwrap.dedent(
         thread = threading.Thread(target=compile_elsewhere)
         thread.start()
         assert holding.wait(30)
-        send_during_the_wait([signal.SIGUSR1])
+        threading.Thread(target=send_during_the_wait, args=([signal.SIGUSR1], all_sent)).start()
         pid = os.fork()
         if pid == 0:
             os._exit(0)
@@ -121,7 +110,7 @@ _SEVERAL = _WAITING_FORK + textwrap.dedent(
     thread = threading.Thread(target=compile_elsewhere)
     thread.start()
     assert holding.wait(30)
-    send_during_the_wait(sent)
+    threading.Thread(target=send_during_the_wait, args=(sent, all_sent)).start()
     read, write = os.pipe()
     pid = os.fork()
     if pid == 0:
