@@ -183,7 +183,7 @@ class AStarPlanner:
         weighted A*: it usually expands far fewer cells and returns a path
         costing at most w times the optimum (the heuristic is consistent and no
         cell is expanded twice; Likhachev, Gordon & Thrun, "ARA*", NIPS 2003,
-        Theorem 1).
+        Theorem 1), to the tie band's bound as for w = 1.
     method : {"astar", "jps", "auto"}, default "astar"
         ``"astar"`` expands cells one by one. ``"jps"`` is jump point search
         (Harabor & Grastien: with ``corner_cutting=True`` the pruning rules of
@@ -688,7 +688,8 @@ def astar(
         As in :class:`AStarPlanner`.
     heuristic_weight : float, default 1.0
         As in :class:`AStarPlanner`, in ``[0, 1e6]``: 1 is A*, 0 Dijkstra,
-        w > 1 weighted A* (path cost at most w times the optimum).
+        w > 1 weighted A* (path cost at most w times the optimum, to the tie
+        band's bound).
     method : {"astar", "jps", "auto"}, default "astar"
         As in :class:`AStarPlanner`: ``"jps"`` runs jump point search (grids
         whose traversable cells all cost the same, 8-connected, with or
