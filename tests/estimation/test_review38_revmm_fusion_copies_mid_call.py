@@ -181,14 +181,16 @@ def test_copies_taken_by_another_thread_match_their_steps() -> None:
     outcomes: set[str] = set()
 
     accepted: list[int] = []
-    done = threading.Event()
+    ready, done = threading.Event(), threading.Event()
 
     def work(k: int) -> None:
         if k == 0:
-            # Until 1,000 accepted: on a loaded machine every update of a fixed count
-            # could land in a copy and be refused (it failed on a full suite's run).
+            # Until 1,000 accepted and 50 copies taken meanwhile: on a loaded machine
+            # every update of a fixed count could land in a copy and be refused, or
+            # all be made before the other thread ran (each failed on a full run).
+            assert ready.wait(60)
             i = 0
-            while len(accepted) < 1000 and i < 200_000:
+            while (len(accepted) < 1000 or len(copies) < 50) and i < 200_000:
                 i += 1
                 try:
                     fusion.update_odometry(0.01 * i, 1.0, 0.05, **ODO)
@@ -199,6 +201,7 @@ def test_copies_taken_by_another_thread_match_their_steps() -> None:
                     outcomes.add("refused" if refused in str(error) else repr(error))
             done.set()
             return
+        ready.set()
         seen = 0
         while not done.is_set():
             if len(accepted) >= seen + 3:  # a copy after every third accepted update
@@ -211,8 +214,7 @@ def test_copies_taken_by_another_thread_match_their_steps() -> None:
     run_switching_often(work)
     assert fusion._callers == []
     assert outcomes <= {"accepted", "refused"}, outcomes
-    assert len(accepted) == 1000
-    assert copies
+    assert len(accepted) >= 1000 and len(copies) >= 50, (len(accepted), len(copies))
     for twin in copies:
         steps = twin._entries
         if steps:
