@@ -25,6 +25,7 @@ from navkit.errors import NoPathError
 from navkit.planning import astar
 from navkit.planning.grid._search_heap import (
     F_BAND,
+    F_BAND_COSTS,
     HEAP_TIE_LIMIT,
     TIE_RESOLUTION,
     aligned_heap,
@@ -37,9 +38,14 @@ MOVES = ((-1, 0, 1.0), (1, 0, 1.0), (0, -1, 1.0), (0, 1, 1.0),
          (-1, -1, SQRT2), (-1, 1, SQRT2), (1, -1, SQRT2), (1, 1, SQRT2))  # fmt: skip
 
 
-def banded(f: float) -> int:
-    """A*'s queue key for f: its IEEE 754 bits less the lowest ``F_TIE_BITS`` (session 43)."""
-    return int(np.float64(f).view(np.uint64)) & int(F_BAND)
+def banded(f: float, band_end: float) -> int:
+    """A*'s queue key for f: its IEEE 754 bits less the lowest ``F_TIE_BITS`` (session 43).
+
+    Only f below ``band_end`` (``F_BAND_COSTS`` times the smallest cell cost,
+    review 40) is banded; f from there up is queued as its exact bits.
+    """
+    bits = int(np.float64(f).view(np.uint64))
+    return bits & int(F_BAND) if bits < int(np.float64(band_end).view(np.uint64)) else bits
 
 
 def textbook_astar(
@@ -55,10 +61,13 @@ def textbook_astar(
     The same float operations in the same order as the kernel (move cost
     ``step * 0.5 * (c_u + c_v)``, octile or Manhattan h, ``f = g + scale * h``)
     so that the order of expansions can be compared exactly; f is queued as
-    :func:`banded` (f within 2**-40 of itself ties).
+    :func:`banded` (f within 2**-40 of itself ties, below ``F_BAND_COSTS``
+    times the smallest cost).
     """
     rows, cols = costs.shape
-    scale = weight * float(costs[np.isfinite(costs)].min())
+    lowest = float(costs[np.isfinite(costs)].min())
+    scale = weight * lowest
+    band_end = F_BAND_COSTS * lowest
     gr, gc = goal
 
     def h(r: int, c: int) -> float:
@@ -73,7 +82,7 @@ def textbook_astar(
     # The kernel's tie resolution for the grid (1/16 cell below 2**27 rows + cols).
     res = tie_resolution(rows, cols, HEAP_TIE_LIMIT)
     first = tie_key(h(*start), start[0] * cols + start[1], res)
-    queue = [(banded(scale * h(*start)), first, start)]
+    queue = [(banded(scale * h(*start), band_end), first, start)]
     expanded = 0
     while queue:
         _, _, u = heapq.heappop(queue)
@@ -106,7 +115,7 @@ def textbook_astar(
             g[(r2, c2)] = new_g
             parent[(r2, c2)] = u
             hv = h(r2, c2)
-            f = banded(new_g + scale * hv)
+            f = banded(new_g + scale * hv, band_end)
             heapq.heappush(queue, (f, tie_key(hv, r2 * cols + c2, res), (r2, c2)))
     return expanded, None
 

@@ -272,6 +272,17 @@ def extreme_grids(draw: st.DrawFn) -> tuple[np.ndarray, tuple[int, int], tuple[i
     return costs, (int(free[i, 0]), int(free[i, 1])), (int(free[j, 0]), int(free[j, 1]))
 
 
+# Cells of 1 behind cells of the largest cost: f passes F_BAND_COSTS times the
+# smallest cost, where the kernel stops banding f (review 40); found by CI
+# (session 44) when the textbook's queue still banded every f.
+_BEHIND_DEAR_CELLS = np.array(
+    [[MAX_COST] * 3 + [1.0] * 6,
+     [MAX_COST] * 9,
+     [MAX_COST, MAX_COST, 1.0, MAX_COST, MAX_COST, 1.0, 1.0, MAX_COST, MAX_COST],
+     [1.0, MAX_COST, MAX_COST, MAX_COST, 1.0, 1.0, MAX_COST, 1.0, MAX_COST]]
+)  # fmt: skip
+
+
 @settings(max_examples=150, deadline=None)
 @given(
     case=extreme_grids(),
@@ -279,6 +290,7 @@ def extreme_grids(draw: st.DrawFn) -> tuple[np.ndarray, tuple[int, int], tuple[i
     corner_cutting=st.booleans(),
     weight=st.sampled_from([0.0, 1.0, 2.0, MAX_HEURISTIC_WEIGHT]),
 )
+@example(case=(_BEHIND_DEAR_CELLS, (0, 0), (0, 4)), eight=False, corner_cutting=False, weight=0.0)
 def test_extreme_grids_expand_as_textbook_astar(
     case: tuple[np.ndarray, tuple[int, int], tuple[int, int]],
     eight: bool,
