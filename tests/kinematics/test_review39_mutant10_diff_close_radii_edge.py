@@ -1,4 +1,4 @@
-"""DiffDrive.forward's close-radii branch holds up to radii 1/64 apart, the bound included.
+"""DiffDrive.forward's close-radii branch holds up to radii 1/64 apart (the bound until review 41).
 
 Review 39 (mutation testing, MUTANT10). Review 33 pinned slow turns with radii
 0.2 % apart; ``_CLOSE_RADII`` halved (1/128) and the bound's ``<=`` read as ``<``
@@ -24,7 +24,7 @@ from navkit.kinematics import DiffDrive
     [
         (0.05, 0.051),  # half their difference is 1/101 of their mean
         (0.1, 0.1025),  # 1/81
-        (63 / 1024, 65 / 1024),  # 1/64 exactly: the bound, inclusive
+        (63 / 1024, 65 / 1024),  # 1/64 exactly: the bound until review 41 (now 1/32)
     ],
 )
 def test_a_slow_turn_keeps_its_turn_rate_up_to_the_bound(
