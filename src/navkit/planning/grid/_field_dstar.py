@@ -226,7 +226,9 @@ class FieldDStar:
     start and the goal can change the path's cost (by up to about 3 % in those
     tests), whereas A* and ``interpolate=False`` give the same cost both ways.
     Mirroring the grid or turning it by quarter turns (the nodes with it)
-    leaves the node values unchanged up to rounding, but not always the path.
+    leaves the settled node values unchanged, bit for bit (every site of the
+    search evaluates a pair of neighbours with the same arguments, as a
+    mirrored grid does; review 41), but not always the path.
     Where two candidate points of the walk tie in value (the crossing points
     of two far edges of a cell whose other corners have equal values), it
     takes the first it scans, and the two continuations can differ in cost.
