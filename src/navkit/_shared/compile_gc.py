@@ -108,6 +108,7 @@ from navkit._shared.interrupts import (
     release_in_child,
     release_in_parent,
     release_others_in_child,
+    rewatch,
 )
 
 __all__ = ["install", "paused"]
@@ -609,6 +610,7 @@ def _make_listeners() -> tuple[Any, Any]:
     _wrap_acquire(compiler_lock)
 
     def begin_hold() -> None:
+        rewatch()  # signals held for a profile function another took away: pending again
         hold = _LOCK_HOLD[0]
         if hold is not None and not hold.restored:
             return

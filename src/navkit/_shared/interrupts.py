@@ -55,6 +55,7 @@ __all__ = [
     "release_in_child",
     "release_in_parent",
     "release_others_in_child",
+    "rewatch",
 ]
 
 
@@ -191,14 +192,17 @@ class StepHold(_Hold):
     A Ctrl-C meanwhile is handed at once to the handler from before (a
     ``KeyboardInterrupt`` where the interrupt lands, as without the hold)
     unless ``critical`` says the main thread's stack, from the frame the
-    signal interrupted, is inside such a step: then the signal is made
-    pending again (``_thread.interrupt_main``), and Python offers it to this
-    handler again at its next delivery point (a function's entry, a C call's
-    return), until the step is done. So nothing is done at a step's end, and
-    nothing costs anything until a Ctrl-C comes. ``under_way`` says whether
-    the span is still under way (the lock still held): a Ctrl-C found outside
-    it (the wait for the lock interrupted, so no release will come to end the
-    hold) ends the hold before it is delivered.
+    signal interrupted, is inside such a step: then a profile function
+    (:func:`_watch`) hands it to the handler in place at the first delivery
+    point after the step (a function's entry, a C call's return), here
+    again, which delivers it. Made pending again at every delivery point
+    instead (``_thread.interrupt_main``, as up to review 40), the signal's
+    number was written to the wakeup fd each time. Nothing is done at a
+    step's end, and nothing costs anything until a Ctrl-C comes.
+    ``under_way`` says whether the span is still under way (the lock still
+    held): a Ctrl-C found outside it (the wait for the lock interrupted, so
+    no release will come to end the hold) ends the hold before it is
+    delivered.
 
     ``signum``: another signal held the same way (its handler's exception,
     a ``signal.alarm`` time-out or a ``SIGTERM`` handler's ``SystemExit``, cut
@@ -255,7 +259,8 @@ class StepHold(_Hold):
         if self.restored:
             return
         if self.again and _getsignal(self.signum) == self.hold:
-            self.ending = True  # the pending Ctrl-C comes back to hold(), which ends it
+            self.ending = True  # the held Ctrl-C comes back to hold(), which ends it
+            rewatch()
             return
         # (Pending again but another handler put in place, by another held signal's
         # handler run first: the signal goes to that one, never back to hold(), and
@@ -270,9 +275,20 @@ class StepHold(_Hold):
         """The handler while held: deliver now, or make the signal pending again."""
         if not self.restored and self.critical(sys._getframe(1)):
             self.again = True
-            again = _PENDING_AGAIN[signum]
-            again.clear()
-            again[0]  # pending again: the last thing done (see _PENDING_AGAIN)
+            # (Already watched: a second one in the step is one, as the system delivers them.)
+            profile = sys.getprofile()
+            if profile is _watch and not _WATCH_GOING[0]:
+                if self not in _WATCHED:
+                    _WATCHED.append(self)
+            elif profile is None:
+                _WATCH_GOING[0] = False
+                if self not in _WATCHED:
+                    _WATCHED.append(self)
+                sys.setprofile(_watch)  # (for any watched before it lost its watch too)
+            else:  # a profiler in use: pending again at every delivery point of the step
+                if self in _WATCHED:
+                    _WATCHED.remove(self)
+                _pend_again(signum)  # the last thing done (see _PENDING_AGAIN)
             return
         self.again = False
         if (
@@ -652,6 +668,7 @@ def release_others_in_child() -> None:
     The handlers from before are put back, the signals held dropped (the
     parent's).
     """
+    _drop_watched()
     for signum in (signal.SIGINT, *_SIGNALS):
         handler = signal.getsignal(signum)
         while getattr(handler, "__func__", None) in (_Hold.hold, StepHold.hold):
@@ -705,6 +722,164 @@ _PENDING_AGAIN: dict[int, collections.defaultdict[int, None]] = {
     signum: collections.defaultdict(functools.partial(cast(Any, _thread.interrupt_main), signum))
     for signum in (int(signal.SIGINT), *_SIGNALS)
 }
+
+
+def _pend_again(signum: int) -> None:
+    """Make ``signum`` pending again (``_thread.interrupt_main``, see :data:`_PENDING_AGAIN`).
+
+    Python writes the signal's number to the wakeup fd (``signal.set_wakeup_fd``)
+    once more each time: only where :func:`_watch` cannot be used.
+    """
+    again = _PENDING_AGAIN[signum]
+    again.clear()
+    again[0]  # a lookup calling interrupt_main from C (see _PENDING_AGAIN)
+
+
+#: The step holds whose signal came inside a step, waiting for the step's end
+#: (:func:`_watch`), in the order they came; the main thread's only.
+_WATCHED: list[StepHold] = []
+#: Whether :func:`_watch` is going (leaving with an exception, or a profile function
+#: about to be set in its place): a signal held meanwhile pends itself.
+_WATCH_GOING = [False]
+#: C functions that set the thread's profile function in :func:`_watch`'s place.
+_PROFILE_SETTERS = tuple(
+    function
+    for function in (sys.setprofile, getattr(sys, "_setprofileallthreads", None))
+    if function is not None
+)
+
+
+def _watch(frame: FrameType, event: str, arg: Any) -> None:
+    """The main thread's profile function while a signal is held: hands it on after the step.
+
+    A signal held in a step (:meth:`StepHold.hold`) used to be made pending
+    again (``_thread.interrupt_main``) at every delivery point of the step
+    until it was done, and each time Python's C code wrote the signal's
+    number to the wakeup fd (``signal.set_wakeup_fd``: asyncio's, trio's, Qt's
+    event loops) once more: hundreds of bytes for one signal, and with
+    ``warn_on_full_buffer`` a full buffer printed "Exception ignored when
+    trying to write to the signal wakeup fd" at every point after (review 40,
+    REVD). Nothing in Python makes a signal pending without that write. So
+    the hold notes the signal and sets this function (``sys.setprofile``, the
+    main thread's only) instead. At the first Python function's entry or C
+    function's return outside the step (``call`` and ``c_return`` events:
+    where Python would have run the pending handler) it takes itself away
+    and hands each signal to the handler in place then, in signal order, as
+    Python runs pending ones (the hold's own ``hold`` method, which delivers
+    it; or another installed meanwhile; none for ``SIG_IGN``/``SIG_DFL``,
+    which Python skips). The wakeup fd has the one byte the system's
+    delivery wrote. Not at a C call's start (Python runs handlers after the
+    call, not before), nor at a return (a handler's exception would be
+    raised inside the returning frame's ``try`` blocks, a step's; the
+    caller's next event comes at once). The one delivery point without an
+    event is a loop's turn: a loop of plain operations (no call) right after
+    a step gets the signal at its first call or its end, not at once.
+    Nothing runs until a signal comes in a step; then about 4 µs an event
+    (the step's test) until the step is done.
+
+    Where this function cannot stay, the signals are made pending again as
+    before (each a byte more on the wakeup fd): another profile function in
+    use as a signal is held, one about to be set (a call of
+    ``sys.setprofile``, whose return would find this function gone), an
+    exception leaving this function (Python takes it away) with signals held
+    meanwhile, or this function found taken away by other means (a C
+    profiler's start) when the hold ends (:func:`rewatch`).
+    """
+    if event == "c_call":
+        if arg in _PROFILE_SETTERS:
+            _pend_watched()  # the last thing done: pending as the call returns
+        return
+    if event != "call" and event != "c_return":
+        return
+    due: list[StepHold] = []
+    inside: dict[Callable[[FrameType | None], bool], bool] = {}
+    for hold in _WATCHED:
+        step = inside.get(hold.critical)
+        if step is None:
+            step = inside[hold.critical] = hold.critical(frame)
+        if not step:
+            due.append(hold)
+    if not due:
+        return
+    for hold in due:
+        _WATCHED.remove(hold)
+    if not _WATCHED:
+        sys.setprofile(None)
+    due.sort(key=lambda hold: hold.signum)
+    try:
+        _hand_on(due, frame)
+    except BaseException:
+        # Python takes this function away as the exception leaves it: the signals
+        # held meanwhile (in a handler's own step) are made pending again instead.
+        _pend_watched()
+        raise
+
+
+def _pend_watched() -> None:
+    """Make the signals :func:`_watch` waits for pending again, all at once; the caller's last act.
+
+    From C, with no delivery point from the first to the return (see
+    :data:`_PENDING_AGAIN`: a loop's each turn is one, where a signal made
+    pending came back, was held and made pending again, without end). One
+    held from here until :func:`_watch` is set again makes itself pending.
+    """
+    _WATCH_GOING[0] = True
+    signums = [hold.signum for hold in _WATCHED]
+    _WATCHED.clear()
+    if signums:
+        # (typed for signal.Signals, but any signal number is taken)
+        interrupt: Callable[[int], None] = cast(Any, _thread.interrupt_main)
+        pend: collections.defaultdict[int, object] = collections.defaultdict(
+            functools.partial(collections.deque, map(interrupt, signums), 0)
+        )
+        pend[0]  # a lookup calling them from C
+
+
+def rewatch() -> None:
+    """Make the signals held for :func:`_watch` pending again if it was taken away meanwhile.
+
+    A profiler started from C (``PyEval_SetProfile``) in a step, or after
+    it before the first event, puts its function in :func:`_watch`'s place
+    unseen: the signals would wait for good, and their holds with them
+    (``StepHolds.restored`` never true, so compile_gc began no hold again).
+    Checked as a hold ends and as the next hold would begin; then they come
+    at the next delivery point. Nothing is done while :func:`_watch` is in
+    place, or where nothing is held (about 0.1 µs).
+
+    Examples
+    --------
+    >>> from navkit._shared.interrupts import rewatch
+    >>> rewatch()  # nothing held: nothing done
+    """
+    if _WATCHED and sys.getprofile() is not _watch:
+        _pend_watched()
+
+
+def _hand_on(due: list[StepHold], frame: FrameType) -> None:
+    """Hand each held signal of ``due`` to the handler in place, the next whatever it raises."""
+    hold = due[0]
+    try:
+        hold.again = False
+        handler = _getsignal(hold.signum)
+        if callable(handler):
+            handler(hold.signum, frame)
+    finally:
+        if len(due) > 1:
+            _hand_on(due[1:], frame)
+
+
+def _drop_watched() -> None:
+    """In a forked child, forget the parent's held signals (as Python drops its pending ones)."""
+    for hold in _WATCHED:
+        hold.again = False
+    _WATCHED.clear()
+    _WATCH_GOING[0] = False
+    if sys.getprofile() is _watch:
+        sys.setprofile(None)
+
+
+if hasattr(os, "register_at_fork"):
+    os.register_at_fork(after_in_child=_drop_watched)
 
 
 #: The C library's ``sigaction``, once looked up (None where there is none), then the
