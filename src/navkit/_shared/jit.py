@@ -547,6 +547,15 @@ def load_numba() -> None:
         from numba.core.compiler_lock import global_compiler_lock
         from numba.core.registry import cpu_target
 
+        # Before the compiler lock below is taken, so that the main thread's hold of
+        # signals in its steps (compile_gc) spans it from its acquire: installed
+        # inside it, the hold was begun by a nested acquire, in front of the
+        # deferral below, which ended first and took Ctrl-C's hold with it; a Ctrl-C
+        # as this function let go of the lock left it held for good (review 41,
+        # REVSIG). Idempotent, and under NUMBA_IMPORT: one install however many
+        # threads load numba.
+        compile_gc.install()
+
     # numba's compiler lock first, then navkit's, as in a thread whose compile
     # types a stand-in (a user's kernel calling a navkit one): taken the other
     # way round, that thread and this one each waited for the other's lock.
@@ -554,7 +563,6 @@ def load_numba() -> None:
         if numba_loaded():  # another thread loaded it meanwhile
             return
         with interrupts_deferred(), compile_gc.paused():
-            compile_gc.install()
             # numba initialises its compiler (importing most of its modules) at the
             # first compile or cache load: done here, with the collector paused.
             cpu_target.target_context.refresh()
