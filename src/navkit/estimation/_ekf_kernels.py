@@ -53,8 +53,8 @@ reference counting, which alone took a tenth of a call) and never leave
 An update whose Joseph form cancelled (a variance shrank more than 4096-fold:
 a measurement far more precise than the estimate; or a first-order estimate
 of the Joseph P's error exceeds 2⁻⁴⁰ of its scale, :func:`_joseph_in_doubt`),
-whose Joseph P failed its check, or whose S of at most
-``_EXACT_ELIMINATION_MAX`` components is ill-conditioned for its rounding error
+whose Joseph P failed its check, or whose S (of any size since review 41, before it
+of at most ``_EXACT_ELIMINATION_MAX`` components) is ill-conditioned for its rounding error
 (its pivots, against a bound on that error, give ε κ(S) > 2⁻³⁰, so that its
 NIS and x are not to be trusted; H P Hᵀ cancelling counts), commits nothing
 and returns ``CANCELLED``; the public layer finishes it with :func:`finish_cancelled`,
@@ -109,6 +109,7 @@ __all__ = [
     "BAD_Z",
     "CANCELLED",
     "GATED",
+    "GATED_AT_LEAST",
     "GATE_PASSED",
     "NIS_OVERFLOW",
     "NOISE_CHANGED",
@@ -204,11 +205,14 @@ BAD_SHAPE = 15  # an argument's shape does not fit (or rbuf is another m's): che
 BAD_TYPE = 16  # set by the public layer: an argument is not of the compiled type
 CANCELLED = 17  # the Joseph form cancelled (a variance shrank > 4096-fold, or its P's
 # estimated error exceeds 2⁻⁴⁰) or failed its check, or S is ill-conditioned
-# for its rounding error (ε max cₖ / Dₖ > 2⁻³⁰, m <= _EXACT_ELIMINATION_MAX):
-# finish_cancelled
+# for its rounding error (ε max cₖ / Dₖ > 2⁻³⁰; of any m since review 41, before it
+# m <= _EXACT_ELIMINATION_MAX): finish_cancelled
 # From retry_gated only: the exact NIS passes the gate the kernel's NIS failed: run the
 # kernel again without the gate.
 GATE_PASSED = 18
+# From finish_singular_s only: rejected by the gate on a lower bound of the exact NIS
+# (left in rbuf as the NIS), the exact one beyond the exact arithmetic's limit.
+GATED_AT_LEAST = 19
 
 # What ekf_update returns for a status other than OK: -status.
 _FAIL_SHAPE = -float(BAD_SHAPE)
@@ -964,11 +968,15 @@ def _update(
     # not see). The larger of cₖ and Sₖₖ, so that no S the diagonal's test flags escapes
     # this one by a rounding of uₖ². m = 1 too: the one pivot is S itself, but S's error
     # is its terms' (review 29: a scalar S with c / S 1.1e15 gave a NIS of 1.827 for an
-    # exact 1.911). m is a constant here, so for m > _EXACT_ELIMINATION_MAX the test
-    # costs nothing (before review 40 it stopped at 8 components: NIS up to 5e-9
-    # relative off for m = 10 and 8.9e-9 for 16; above the limit the exact NIS would
-    # eliminate too many rows); σ and u are needed by _joseph_in_doubt anyway (here
-    # since review 28; L of S, in chol, is not needed any more).
+    # exact 1.911). Every m: before review 40 it stopped at 8 components (NIS up to
+    # 5e-9 relative off for m = 10 and 9.1 % for 16), before review 41 at
+    # _EXACT_ELIMINATION_MAX, though a diagonal or block-diagonal R has an exact route
+    # for any m (_exact_route): 25 readings with a diagonal R, NIS 4.1e-8 relative off
+    # and a gate between it and the exact one deciding wrongly. Where no exact route
+    # exists finish_cancelled keeps the kernel's NIS and commits its x and P only
+    # where the information form vouches for them. σ and u are needed by
+    # _joseph_in_doubt anyway (here since review 28; L of S, in chol, is not needed
+    # any more).
     sigma = chol[0]
     reach = chol[1]
     for j in range(n):
@@ -981,14 +989,13 @@ def _update(
                 acc += abs(hkj) * sigma[j]
         reach[k] = acc
     ill = False
-    if m <= _EXACT_ELIMINATION_MAX:
-        for k in range(m):
-            uk = reach[k]
-            c = uk * uk + rs[k, k]
-            if c < s[k, k]:
-                c = s[k, k]
-            if c * inv_diag[k] > _PIVOT_LIMIT:
-                ill = True
+    for k in range(m):
+        uk = reach[k]
+        c = uk * uk + rs[k, k]
+        if c < s[k, k]:
+            c = s[k, k]
+        if c * inv_diag[k] > _PIVOT_LIMIT:
+            ill = True
     status = _mirror_checked(pn, rbuf[_PCHK], inv_diag, n)
     # A variance that shrank more than _SHRINK_LIMIT-fold (or came out NaN or not
     # positive) lost more than 12 bits to the cancellation in P - K H P; a new P that
@@ -1055,8 +1062,8 @@ def _make_update(n: int, m: int) -> UpdateKernel:
         first-order estimate of its error exceeds 2⁻⁴⁰ of the posterior's
         scale (:func:`_joseph_in_doubt`), when S's pivots say it is
         ill-conditioned for its rounding error (``max cₖ / Dₖ`` above
-        2⁻³⁰ / ε, ``cₖ = max(uₖ² + Rₖₖ, Sₖₖ)``, ``uₖ = Σⱼ |Hₖⱼ| sqrt(Pⱼⱼ)``, for
-        m <= ``_EXACT_ELIMINATION_MAX``), whatever its own status, or when it
+        2⁻³⁰ / ε, ``cₖ = max(uₖ² + Rₖₖ, Sₖₖ)``, ``uₖ = Σⱼ |Hₖⱼ| sqrt(Pⱼⱼ)``,
+        any m), whatever its own status, or when it
         is not finite or not positive definite (its status kept for the
         caller, which finishes with :func:`finish_cancelled`; before review
         27 these were returned, refusing updates whose exact posterior is a
@@ -1090,8 +1097,10 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
     or a first-order estimate of the Joseph P's error exceeds ``_P_SURE``
     (:func:`_joseph_in_doubt`: H P cancelling, or K and H), or the Joseph P
     failed its check (which the exact posterior may still pass). (Or because
-    S's pivots say S is ill-conditioned, ε κ(S) > 2⁻³⁰, with at most
-    ``_EXACT_ELIMINATION_MAX`` components (8 before review 40): a linear combination of states
+    S's pivots say S is ill-conditioned, ε κ(S) > 2⁻³⁰, of any size (before
+    review 41 at most ``_EXACT_ELIMINATION_MAX`` components, before review 40 8;
+    without an exact route the kernel's NIS stands, and its x and P only where
+    the information form vouches for them): a linear combination of states
     measured twice far more precisely than it is known, or H P Hᵀ
     cancelling (for one component too, since review 29), where no variance
     need shrink, but the kernel's NIS and x, from its solve with S, are off
@@ -1357,10 +1366,15 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
     return OK
 
 
-def _regate(p: FloatArray, jac: FloatArray, rbuf: FloatArray, y: FloatArray) -> int:
-    """Leave the exact NIS of the update in ``rbuf`` and gate on it: OK, NIS_OVERFLOW or GATED."""
+def _regate(
+    p: FloatArray, jac: FloatArray, rbuf: FloatArray, y: FloatArray, route: list[list[int]]
+) -> int:
+    """Leave the exact NIS of the update in ``rbuf`` and gate on it: OK, NIS_OVERFLOW or GATED.
+
+    ``route`` is :func:`_exact_route`'s (not None).
+    """
     m = jac.shape[0]
-    return _gate_on(rbuf, _exact_nis(p, jac, rbuf[_RS, :m, :m], y))
+    return _gate_on(rbuf, _ExactUpdate(p, jac, rbuf[_RS, :m, :m], y, route).nis())
 
 
 def _gate_on(rbuf: FloatArray, nis: float) -> int:
@@ -1404,6 +1418,10 @@ def finish_singular_s(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: F
     and P⁺ was committed up to 1e-5 off). Where the exact arithmetic would
     eliminate more than ``_EXACT_ELIMINATION_MAX`` rows (:func:`_exact_route`;
     before review 40, for every measurement of more than 8 components) it
+    gates on a lower bound of the exact NIS (:func:`_nis_lower_bound`):
+    ``GATED_AT_LEAST`` (the bound left in ``rbuf`` as the NIS) or
+    ``NIS_OVERFLOW`` where that exceeds the gate, so that readings far apart
+    are rejected by a gate, not refused (before review 41 it raised); else it
     raises ``FilterError`` saying so, nothing changed (before review 40 the
     caller's "innovation covariance S is not positive definite" alone).
     Above ``_EXACT_CANCELLED_MAX_M`` components the exact NIS, state and posterior may come from the
@@ -1413,7 +1431,18 @@ def finish_singular_s(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: F
     m = jac.shape[0]
     r = rbuf[_RS, :m, :m]
     route = _exact_route(n, r)
+    x = state[STATE_X]
+    p = state[STATE_P : STATE_P + n]
+    if not np.isfinite(y).all():
+        rbuf[_VEC, _META, 1] = math.inf
+        return RESIDUAL_OVERFLOW
     if route is None:
+        # The gate first here too, on a lower bound of the exact NIS (before review 41
+        # a measurement any gate rejects, readings 1e150 deviations apart, raised).
+        least = _nis_lower_bound(p, jac, r, y)
+        if least > rbuf[_VEC, _META, _GATE]:
+            rbuf[_VEC, _META, 1] = least
+            return GATED_AT_LEAST if least < math.inf else NIS_OVERFLOW
         # The exact S is positive definite; only the size limit refuses it (before
         # review 40 the message was "innovation covariance S is not positive definite"
         # alone, as if P or R were at fault).
@@ -1423,11 +1452,6 @@ def finish_singular_s(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: F
             f"and its exact arithmetic would eliminate more than {_EXACT_ELIMINATION_MAX} "
             "rows (use a diagonal R, or update with fewer components at a time)"
         )
-    x = state[STATE_X]
-    p = state[STATE_P : STATE_P + n]
-    if not np.isfinite(y).all():
-        rbuf[_VEC, _META, 1] = math.inf
-        return RESIDUAL_OVERFLOW
     # The gate first: the exact NIS needs no update, so a measurement the gate
     # rejects is rejected whether or not the information form is trusted for it
     # (readings 1e150 deviations apart raised FilterError instead).
@@ -1464,6 +1488,28 @@ def finish_singular_s(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: F
     state[STATE_X] = x_new
     p[...] = posterior
     return OK
+
+
+def _nis_lower_bound(p: FloatArray, jac: FloatArray, r: FloatArray, y: FloatArray) -> float:
+    """A lower bound on the exact NIS ``yᵀ S⁻¹ y``, S = H P Hᵀ + R, from S's diagonal bounds.
+
+    With ``uₖ = Σⱼ |Hₖⱼ| sqrt(Pⱼⱼ)`` and ``cₖ = uₖ² + Rₖₖ``, ``|Sₖₗ| <= sqrt(cₖ cₗ)``
+    (``|Pᵢⱼ| <= sqrt(Pᵢᵢ Pⱼⱼ)``, ``|Rₖₗ| <= sqrt(Rₖₖ Rₗₗ)``, Cauchy-Schwarz), so the
+    entries of ``C^-½ S C^-½`` are at most 1 in magnitude and its largest eigenvalue at
+    most m: S <= m C and ``yᵀ S⁻¹ y >= Σₖ yₖ² / (m cₖ)``. Computed in float64, then
+    lowered by 2⁻³⁰ relative, far more than the roundings (about (n + 4) ε each) of
+    any filter's size. inf where it overflows. For a gate where the exact NIS would
+    eliminate too many rows: readings far apart (1e150 deviations) are rejected by it.
+    """
+    reach = np.abs(jac) @ np.sqrt(p.diagonal())
+    with np.errstate(over="ignore"):
+        scale = reach * reach + r.diagonal()
+        terms = (y / np.sqrt(scale)) ** 2
+    try:
+        total = math.fsum(terms.tolist())
+    except OverflowError:
+        return math.inf
+    return total / float(jac.shape[0]) * (1.0 - 2.0**-30)
 
 
 @njit_no_refcount
@@ -1511,8 +1557,10 @@ def retry_gated(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: FloatAr
     the kernel's factorisation by :func:`gated_s_ill`. With Sₖₖ for cₖ, before
     review 28, S's own condition only, which missed H P Hᵀ cancelling: the NIS
     298.8 for an exact 4.18, rejected at a gate of 13.28) and the measurement
-    has at most :data:`_EXACT_ELIMINATION_MAX` (before review 40, 8)
-    components, it is gated again on the exact NIS (:func:`_exact_nis`, left
+    has an exact route (:func:`_exact_route`: at most
+    :data:`_EXACT_ELIMINATION_MAX` components, or a diagonal or block-diagonal
+    R; before review 41 only the former, before review 40 at most 8
+    components), it is gated again on the exact NIS (:class:`_ExactUpdate`, left
     in ``rbuf``): ``GATED`` or ``NIS_OVERFLOW`` where that rejects it, else
     ``GATE_PASSED``: the caller runs the kernel again without the gate
     (:func:`set_gate`), as an ungated update, and reports the exact NIS
@@ -1528,13 +1576,17 @@ def retry_gated(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: FloatAr
     # m = 1 too, as in the update kernel: a scalar S whose H P Hᵀ cancels is as far off
     # as its terms are large against it (review 29: NIS 1.4266 for an exact 1.4040,
     # rejected at a gate of 1.415; before, m = 1 was not tested, κ(S) being 1).
-    if m > _EXACT_ELIMINATION_MAX:
-        return GATED
     if not gated_s_ill(state, rbuf, jac):
         return GATED
     n = state.shape[1]
+    # Any m with an exact route (before review 41 at most _EXACT_ELIMINATION_MAX
+    # components, a diagonal R's too: 25 readings rejected at a gate their exact NIS
+    # passes).
+    route = _exact_route(n, rbuf[_RS, :m, :m])
+    if route is None:
+        return GATED
     p = state[STATE_P : STATE_P + n]
-    status = _regate(p, jac, rbuf, y)
+    status = _regate(p, jac, rbuf, y, route)
     # The exact NIS (left in rbuf) passed the gate: the kernel's update without the
     # gate, as an ungated update.
     return GATE_PASSED if status == OK else status
@@ -1854,7 +1906,16 @@ class _ExactUpdate:
                 found = _bareiss_solve([[r_int[a][b] for b in block] for a in block], rhs)
                 if found is None:
                     # R's block is singular in exact arithmetic (its float64 check
-                    # passed on a rounding): S, still positive definite, is not.
+                    # passed on a rounding): S, still positive definite, is not; but
+                    # its elimination is limited as any (before review 41 a 60-row one
+                    # took 2.9 s here, the limit bypassed).
+                    if jac.shape[0] > _EXACT_ELIMINATION_MAX:
+                        raise FilterError(
+                            f"R's block of components {block} is singular in exact "
+                            "arithmetic (positive definite only as rounded), so the "
+                            "exact update needs S's elimination, of more than "
+                            f"{_EXACT_ELIMINATION_MAX} rows (make R positive definite)"
+                        )
                     self.elimination = _eliminated(p, jac, r, y)
                     return
                 solved, det = found
