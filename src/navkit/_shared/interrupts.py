@@ -272,20 +272,21 @@ class StepHold(_Hold):
             self.restored = True
 
     def hold(self, signum: int, frame: FrameType | None) -> None:
-        """The handler while held: deliver now, or make the signal pending again."""
+        """The handler while held: deliver now, or hold the signal until the step is done."""
         if not self.restored and self.critical(sys._getframe(1)):
             self.again = True
             # (Already watched: a second one in the step is one, as the system delivers them.)
-            profile = sys.getprofile()
+            profile: Any = sys.getprofile()  # (a C profiler's object too, not callable)
             if profile is _watch and not _WATCH_GOING[0]:
                 if self not in _WATCHED:
                     _WATCHED.append(self)
-            elif profile is None:
+            elif profile is not _watch and (profile is None or callable(profile)):
                 _WATCH_GOING[0] = False
+                _CHAINED[0] = profile  # a program's profile function: called first
                 if self not in _WATCHED:
                     _WATCHED.append(self)
                 sys.setprofile(_watch)  # (for any watched before it lost its watch too)
-            else:  # a profiler in use: pending again at every delivery point of the step
+            else:  # a C profiler in use: pending again at every delivery point of the step
                 if self in _WATCHED:
                     _WATCHED.remove(self)
                 _pend_again(signum)  # the last thing done (see _PENDING_AGAIN)
@@ -741,6 +742,8 @@ _WATCHED: list[StepHold] = []
 #: Whether :func:`_watch` is going (leaving with an exception, or a profile function
 #: about to be set in its place): a signal held meanwhile pends itself.
 _WATCH_GOING = [False]
+#: The program's profile function :func:`_watch` stands in front of (None: none).
+_CHAINED: list[Any] = [None]
 #: C functions that set the thread's profile function in :func:`_watch`'s place.
 _PROFILE_SETTERS = tuple(
     function
@@ -777,14 +780,32 @@ def _watch(frame: FrameType, event: str, arg: Any) -> None:
     Nothing runs until a signal comes in a step; then about 4 µs an event
     (the step's test) until the step is done.
 
-    Where this function cannot stay, the signals are made pending again as
-    before (each a byte more on the wakeup fd): another profile function in
-    use as a signal is held, one about to be set (a call of
-    ``sys.setprofile``, whose return would find this function gone), an
-    exception leaving this function (Python takes it away) with signals held
-    meanwhile, or this function found taken away by other means (a C
-    profiler's start) when the hold ends (:func:`rewatch`).
+    A program's profile function in place as a signal is held (a profiler,
+    a debugger's) is called first at every event, and put back after the
+    step; the signals are then made pending again there (a byte more each on
+    the wakeup fd), not handed on here: an exception leaving this function
+    takes it away, the program's with it. Where this function cannot stay,
+    the signals are made pending again as before review 41: a profiler of C
+    code in place as a signal is held (cProfile's on Python 3.11, which
+    ``sys.getprofile`` returns as a profiler object, not a function; made
+    pending again at each point of the step, a signal held at a function's
+    entry came back there for good on Python 3.11, a spin: REVSIG's finding,
+    left), one about to be set (a call of ``sys.setprofile``, whose return
+    would find this function gone), an exception leaving this function
+    (Python takes it away) with signals held meanwhile, or this function
+    found taken away by other means (a C profiler's start) when the hold
+    ends (:func:`rewatch`).
     """
+    chained = _CHAINED[0]
+    if chained is not None:
+        chained(frame, event, arg)
+        now: Any = sys.getprofile()  # (a C profiler's object too, not callable)
+        if now is not _watch:  # it set another (or none): this one stands in front of that
+            if now is not None and not callable(now):
+                _pend_watched()
+                return
+            chained = _CHAINED[0] = now
+            sys.setprofile(_watch)
     if event == "c_call":
         if arg in _PROFILE_SETTERS:
             _pend_watched()  # the last thing done: pending as the call returns
@@ -804,7 +825,11 @@ def _watch(frame: FrameType, event: str, arg: Any) -> None:
     for hold in due:
         _WATCHED.remove(hold)
     if not _WATCHED:
-        sys.setprofile(None)
+        sys.setprofile(chained)  # the program's back (or none)
+        _CHAINED[0] = None
+    if chained is not None:  # pending: handed on by Python (here, the program's would go too)
+        _pend_held(due)
+        return
     due.sort(key=lambda hold: hold.signum)
     try:
         _hand_on(due, frame)
@@ -824,13 +849,19 @@ def _pend_watched() -> None:
     held from here until :func:`_watch` is set again makes itself pending.
     """
     _WATCH_GOING[0] = True
-    signums = [hold.signum for hold in _WATCHED]
+    _CHAINED[0] = None
+    held = list(_WATCHED)
     _WATCHED.clear()
-    if signums:
+    _pend_held(held)
+
+
+def _pend_held(held: list[StepHold]) -> None:
+    """Make the signals of ``held`` pending again, all at once; the caller's last act."""
+    if held:
         # (typed for signal.Signals, but any signal number is taken)
         interrupt: Callable[[int], None] = cast(Any, _thread.interrupt_main)
         pend: collections.defaultdict[int, object] = collections.defaultdict(
-            functools.partial(collections.deque, map(interrupt, signums), 0)
+            functools.partial(collections.deque, map(interrupt, [h.signum for h in held]), 0)
         )
         pend[0]  # a lookup calling them from C
 
@@ -875,7 +906,8 @@ def _drop_watched() -> None:
     _WATCHED.clear()
     _WATCH_GOING[0] = False
     if sys.getprofile() is _watch:
-        sys.setprofile(None)
+        sys.setprofile(_CHAINED[0])
+    _CHAINED[0] = None
 
 
 if hasattr(os, "register_at_fork"):
