@@ -777,8 +777,8 @@ def _watch(frame: FrameType, event: str, arg: Any) -> None:
     caller's next event comes at once). The one delivery point without an
     event is a loop's turn: a loop of plain operations (no call) right after
     a step gets the signal at its first call or its end, not at once.
-    Nothing runs until a signal comes in a step; then about 4 µs an event
-    (the step's test) until the step is done.
+    Nothing runs until a signal comes in a step; then about 10 µs an event
+    (the step's test, a walk of the stack) until the step is done.
 
     A program's profile function in place as a signal is held (a profiler,
     a debugger's) is called first at every event, and put back after the
