@@ -21,8 +21,9 @@ Where the holds still let it happen, hang, or keep what they should not:
   held in a step reached at a function's entry spun for ever: CPython 3.11
   checks for pending signals again at the same function entry after running a
   handler while tracing, and the hold made its signal pending again there each
-  time (with ``sys.settrace`` alone, coverage or pdb, review 41's WAKEUP fix
-  hands it on from a profile function instead).
+  time. Review 41's WAKEUP fixes hand it on from a profile function instead,
+  in front of a program's Python one (``sys.settrace``: coverage, pdb; or
+  ``sys.setprofile`` with a function); cProfile's C profiler still spins.
 * A handler installed during the compile (by another signal's handler run
   there) for a signal whose handler was ``SIG_DFL`` as the holds began was not
   held: its exception at numba's release left the lock held.
@@ -197,6 +198,13 @@ def test_a_signal_held_while_a_debugger_traces_does_not_spin() -> None:
     assert out == ["interrupted", [1], False]  # was ["spins", 20001, [1]]
 
 
+def test_a_signal_held_while_a_python_profiler_runs_does_not_spin() -> None:
+    # sys.setprofile with a Python function: spun until review 41's WAKEUP fix
+    # (0376bbb), which calls it in front of navkit's watch.
+    out = probe_outcome(_HELD_WHILE_PROFILED, "profile")
+    assert out == ["interrupted", [1], False]  # was ["spins", 20001, [1]]
+
+
 @pytest.mark.xfail(
     strict=True,
     reason=(
@@ -330,14 +338,6 @@ print(json.dumps(alive() is None))
 """
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason=(
-        "compile_gc._LOCK_HOLD keeps the last ended StepHolds, and its holds' previous "
-        "handlers, until the main thread's next compile (compile_gc.py is WAKEUP's this "
-        "session: fix in REVSIG's report)"
-    ),
-)
 def test_a_handlers_object_is_not_kept_after_the_holds_end() -> None:
     assert probe_outcome(_HANDLERS_OBJECT) is True
 
