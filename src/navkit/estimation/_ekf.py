@@ -620,7 +620,16 @@ class ExtendedKalmanFilter(GaussianEstimate):
         with 15 states, 1.0 s with 64, 10 s with 64 and P and R 1e280 apart; a
         diagonal R of 360 components: 0.07 s with 6 states, 0.9 s with 24): a
         loop whose period matters should not meet such measurements with many
-        states.
+        states. The 24-row limit bounds the elimination, not the work on the
+        states: the exact posterior takes about n² m products of growing
+        integers, unbounded in n (24 components of a dense R, the exact
+        arithmetic alone: 0.5 s with 64 states, 1.2 s with 128, 3.0 s with 256;
+        7 s, 14 s and 32 s with P and R 1e280 apart). And a precise measurement
+        with a dense R of more than 24 components takes the information form in
+        float64 first, whose refinement of R's inverse sums m³ exact terms in
+        Python before the update is applied or refused (0.4 s for 100
+        components, 1.9 s for 200, 10 s for 400; a diagonal or block-diagonal
+        R's blocks cost their own sizes cubed).
 
         Examples
         --------

@@ -292,7 +292,12 @@ _EXACT_CANCELLED_MAX_M = 12
 # measured 2026-12 on a loaded 2-core machine, 0.25 s for 24 components of 15 states
 # with a dense R 1e-12 of P, 1.0 s with 64 states (10 s with P and R 1e280 apart, as 12
 # components of 128 states took before); a 360-beam scan with a diagonal R, 0.07 s with
-# 6 states, 0.17 s with 15, 0.9 s with 24 (3.3 s with 32; 81 s with 64).
+# 6 states, 0.17 s with 15, 0.9 s with 24 (3.3 s with 32; 81 s with 64). It bounds the
+# elimination, not the exact posterior's n² m products (review 41, 24 components of a
+# dense R, _ExactUpdate alone: 0.5 s with 64 states, 1.2 s with 128, 3.0 s with 256; 7,
+# 14 and 32 s with P and R 1e280 apart), nor the float64 information form's refinement
+# of a dense R block's inverse (m³ exact terms in Python: 0.4 s for m = 100, 1.9 s for
+# 200, 10 s for 400), which precedes the refusal of such an update.
 _EXACT_ELIMINATION_MAX = 24
 # The largest n whose Q the predict kernel accepts by its LDLᵀ factorisation
 # (_adopt_positive): its backward error, about n² ε max|Q|, is then below 1e-12 max|Q|.
@@ -1611,6 +1616,59 @@ def _exact_nis(p: FloatArray, jac: FloatArray, r: FloatArray, y: FloatArray) -> 
     return _nis_of(_eliminated(p, jac, r, y))
 
 
+def _bareiss(rows: list[list[int]], size: int, first: int | None = None) -> int | None:
+    """Bareiss's fraction-free elimination of ``[A | B]`` in place; the last pivot (±det A).
+
+    ``rows`` are A's ``size`` rows (integers), each followed by B's columns. Step k
+    replaces every entry (i, j), i, j > k, by ``(Aₖₖ Aᵢⱼ - Aᵢₖ Aₖⱼ) / previous
+    pivot``, each division exact: afterwards row k holds in column k the leading
+    principal minor of order k + 1 (with the rows as exchanged), and row i > k
+    keeps in column k its multiplier of step k. A zero pivot takes the first row
+    below with a nonzero entry in its column (never for a positive definite A); None
+    where there is none (A singular). With ``first``, only the columns from
+    ``first`` on are eliminated, on the pivots and multipliers the rows already
+    hold: a replay on new columns of an elimination made before (no rows exchanged
+    there). The one elimination of S (:func:`_eliminated`), its replay on H P
+    (:func:`_exact_posterior`) and :func:`_bareiss_solve` (before review 41, three
+    copies of this loop).
+    """
+    previous = 1
+    for k in range(size):
+        if not rows[k][k]:
+            at = next((i for i in range(k + 1, size) if rows[i][k]), None)
+            if at is None:
+                return None
+            rows[k], rows[at] = rows[at], rows[k]
+        pivot_row = rows[k]
+        pivot = pivot_row[k]
+        start = k + 1 if first is None else first
+        for i in range(k + 1, size):
+            row = rows[i]
+            lead = row[k]
+            for j in range(start, len(row)):
+                row[j] = (pivot * row[j] - lead * pivot_row[j]) // previous
+        previous = pivot
+    return previous
+
+
+def _back_substituted(rows: list[list[int]], size: int, det: int) -> list[list[int]]:
+    """``N`` with ``A X = B``, ``X = N / det``, from :func:`_bareiss`'s rows ``[A | B]``.
+
+    Back substitution scaled by ``det`` (the last pivot): by Cramer's rule every
+    ``Nᵢⱼ`` is an integer, and each division is exact.
+    """
+    width = len(rows[0]) - size
+    solved = [[0] * width for _ in range(size)]
+    for k in range(size - 1, -1, -1):
+        row = rows[k]
+        pivot = row[k]
+        target = solved[k]
+        for c in range(width):
+            rest = sum(row[j] * solved[j][c] for j in range(k + 1, size))
+            target[c] = (det * row[size + c] - rest) // pivot
+    return solved
+
+
 # [S | y] eliminated exactly (see _eliminated): rows, H P, and the powers of two.
 _Elimination = tuple[list[list[int]], list[list[int]], int, int, int]
 
@@ -1643,16 +1701,7 @@ def _eliminated(p: FloatArray, jac: FloatArray, r: FloatArray, y: FloatArray) ->
         + [y_int[0][a]]
         for a in range(m)
     ]
-    previous = 1
-    for k in range(m):
-        pivot_row = rows[k]
-        pivot = pivot_row[k]
-        for i in range(k + 1, m):
-            row = rows[i]
-            lead = row[k]
-            for j in range(k + 1, m + 1):
-                row[j] = (pivot * row[j] - lead * pivot_row[j]) // previous
-        previous = pivot
+    _bareiss(rows, m)  # S is positive definite: no pivot is zero, no rows exchanged
     return rows, hp, scale, kh + kp, ky
 
 
@@ -1692,11 +1741,7 @@ def _exact_state(x: FloatArray, elimination: _Elimination) -> FloatArray | None:
     rows, hp, scale, k_hp, ky = elimination
     m = len(rows)
     det = rows[m - 1][m - 1]
-    numerators = [0] * m
-    for k in range(m - 1, -1, -1):
-        row = rows[k]
-        rest = sum(row[j] * numerators[j] for j in range(k + 1, m))
-        numerators[k] = (det * row[m] - rest) // row[k]
+    numerators = [row[0] for row in _back_substituted(rows, m, det)]
     unit = Fraction(2) ** (scale - ky - k_hp)
     out = np.empty(x.shape[0])
     for i in range(x.shape[0]):
@@ -1726,26 +1771,12 @@ def _exact_posterior(p: FloatArray, elimination: _Elimination) -> FloatArray | N
     rows, hp, scale, k_hp, _ = elimination
     m = len(rows)
     n = p.shape[0]
-    columns = [row[:] for row in hp]
-    previous = 1
-    for k in range(m):
-        pivot = rows[k][k]
-        pivot_row = columns[k]
-        for i in range(k + 1, m):
-            lead = rows[i][k]
-            row = columns[i]
-            for c in range(n):
-                row[c] = (pivot * row[c] - lead * pivot_row[c]) // previous
-        previous = pivot
-    det = previous
-    solved = [[0] * n for _ in range(m)]
-    for k in range(m - 1, -1, -1):
-        row = rows[k]
-        pivot = row[k]
-        eliminated = columns[k]
-        for c in range(n):
-            rest = sum(row[j] * solved[j][c] for j in range(k + 1, m))
-            solved[k][c] = (det * eliminated[c] - rest) // pivot
+    # [S | H P], S's part as eliminated (its pivots and each step's multipliers): the
+    # elimination replayed on H P's columns only.
+    system = [row[:m] + columns for row, columns in zip(rows, hp, strict=True)]
+    det = _bareiss(system, m, first=m)
+    assert det is not None  # S's pivots, none zero
+    solved = _back_substituted(system, m, det)
     shift = scale - 2 * k_hp  # (H P)ᵀ S⁻¹ (H P) = hpᵀ M / det · 2**shift
     values = p.tolist()
     out = np.empty((n, n))
@@ -1769,37 +1800,16 @@ def _bareiss_solve(
 ) -> tuple[list[list[int]], int] | None:
     """``a X = b`` exactly for an integer ``a`` (k, k), ``b`` (k, q): ``(N, d)``, None if singular.
 
-    ``X = N / d`` with integer N and ``d = ±det a`` (positive): Bareiss's
-    fraction-free elimination of ``[a | b]``, each division exact, with a row
-    exchange where a pivot is zero (``a`` need not be symmetric), then back
-    substitution scaled by the last pivot (Cramer's rule keeps each ``Nᵢⱼ`` an
-    integer), as :func:`_exact_state` does for S.
+    ``X = N / d`` with integer N and ``d = ±det a`` (positive): :func:`_bareiss`
+    on ``[a | b]`` (``a`` need not be symmetric: rows exchanged where a pivot is
+    zero), then :func:`_back_substituted`, as for S.
     """
     k = len(a)
-    q = len(b[0])
     rows = [a[i][:] + b[i][:] for i in range(k)]
-    previous = 1
-    for col in range(k):
-        pivot_at = next((i for i in range(col, k) if rows[i][col]), None)
-        if pivot_at is None:
-            return None
-        if pivot_at != col:
-            rows[col], rows[pivot_at] = rows[pivot_at], rows[col]
-        pivot_row = rows[col]
-        pivot = pivot_row[col]
-        for i in range(col + 1, k):
-            row = rows[i]
-            lead = row[col]
-            for j in range(col + 1, k + q):
-                row[j] = (pivot * row[j] - lead * pivot_row[j]) // previous
-        previous = pivot
-    det = previous
-    solved = [[0] * q for _ in range(k)]
-    for i in range(k - 1, -1, -1):
-        row = rows[i]
-        for c in range(q):
-            rest = sum(row[j] * solved[j][c] for j in range(i + 1, k))
-            solved[i][c] = (det * row[k + c] - rest) // row[i]
+    det = _bareiss(rows, k)
+    if det is None:
+        return None
+    solved = _back_substituted(rows, k, det)
     if det < 0:
         return [[-v for v in row] for row in solved], -det
     return solved, det
