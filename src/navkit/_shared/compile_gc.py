@@ -150,7 +150,8 @@ def _end_pause() -> None:
 #: in the steps of numba's and llvmlite's locks (see
 #: :func:`_lock_steps`), in place from numba's report of an acquire (before the wait
 #: for the lock) to the outermost release, or to an exception ending the wait (see
-#: :func:`_wrap_acquire`); None before.
+#: :func:`_wrap_acquire`); None before, and once it has ended (as long as a held
+#: signal is still to come, it is kept).
 _LOCK_HOLD: list[StepHolds | None] = [None]
 
 #: Held while navkit imports numba (jit.load_numba, jit.jit_disabled): a fork waits for it.
@@ -566,6 +567,10 @@ def _end_lock_hold(compiler_lock: Any, acquire: CodeType, frame: FrameType | Non
         return
     if not _acquire_under_way(acquire, frame):
         hold.end()
+        if hold.restored and _LOCK_HOLD[0] is hold:
+            # Ended: not kept, nor the program's handlers it refers to, until the
+            # next compile (a node's bound method, and the node; review 41, REVSIG).
+            _LOCK_HOLD[0] = None
 
 
 def _wrap_acquire(compiler_lock: Any) -> None:
