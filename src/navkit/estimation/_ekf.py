@@ -539,20 +539,22 @@ class ExtendedKalmanFilter(GaussianEstimate):
         only where the gate passes it and no covariance passes the checks
         above, so readings 1e150 deviations apart are rejected by a gate,
         not refused (and without a gate applied, with the exact state).
-        Updates of more than 24 components with a diagonal or block-diagonal
-        R whose blocks have at most 24 components, and at most 24 states
-        (an exact route), are tested so too (before review 41 they were not:
-        25 readings of a combination with a diagonal R, NIS 4.1e-8 relative
-        off and a gate between it and the exact one deciding wrongly); other
-        updates of more than 24 components keep the kernel's NIS (its exact
-        one would eliminate too many rows), and where S is that
-        ill-conditioned are committed only where the information form vouches
-        for their state and covariance, else refused with ``FilterError``
-        (before review 41 the kernel's x and Joseph P stood unmeasured: of 80
-        random such updates of 25 to 28 components, 2 had been applied, both
-        accurate, now refused) (before review 39 the Joseph P and
-        the kernel's x stood there unmeasured for more than 8 components, up
-        to 10.7 % and 3.2 deviations off). (Before review 29 one
+        Updates of more than 24 components keep the kernel's NIS (its exact
+        one would eliminate too many rows), except those with an exact route
+        (a diagonal or block-diagonal R whose blocks, and the states, number
+        at most 24), tested as above since review 41 (before, only those
+        that reach the information form, whose NIS is the exact one where S
+        is that ill-conditioned or the information form's state replaced the
+        kernel's for disagreeing with it: 25 readings of a combination with a
+        diagonal R reported a NIS 4.1e-8 relative off, and a gate between it
+        and the exact one decided wrongly); the others, where S is that
+        ill-conditioned, are committed only where the information form
+        vouches for their state and covariance, else refused with
+        ``FilterError`` (before review 41 the kernel's x and Joseph P stood
+        unmeasured: of 80 random such updates of 25 to 28 components 2 had
+        been applied, both accurate, now refused) (before review 39 the
+        Joseph P and the kernel's x stood unmeasured for more than 8
+        components, up to 10.7 % and 3.2 deviations off). (Before review 29 one
         component was not tested, its κ(S) taken as 1: of 375 random updates
         whose H P Hᵀ cancels, 345 reported a NIS more than 1e-9 off, up to 8
         times the exact one, and a gate 0.1 % from the exact NIS decided
