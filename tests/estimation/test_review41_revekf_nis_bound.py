@@ -119,3 +119,30 @@ def test_the_bound_s_paths_leave_inputs_and_state_as_they_were(gate: object) -> 
     small = np.eye(1, h.shape[1])
     result = ekf.update(small @ x0 + 1.0, linear(small), small, np.eye(1))
     assert result.accepted
+
+
+def test_a_nis_bound_beyond_float64_is_an_overflow_with_or_without_a_gate() -> None:
+    x0, p, h, r, z = _past_the_limit()
+    far = z + 1e170 * np.sqrt(np.diag(h @ p @ h.T + r)) * np.resize([1.0, -1.0], z.shape)
+    for gate in (None, 100.0):
+        ekf = ExtendedKalmanFilter(x0, p)
+        # Before: FilterError without a gate (with one, OVERFLOW): the kernel's path
+        # reports a NIS beyond float64 as OVERFLOW, gate or not.
+        result = ekf.update(far, linear(h), h, r, gate=gate)
+        assert not result.accepted and result.status.name == "OVERFLOW"
+        assert result.nis == np.inf
+        assert exact_update(x0, p, h, r, far - h @ x0)[2] > Fraction(np.finfo(float).max)
+        assert np.array_equal(ekf.x, x0) and np.array_equal(ekf.P, p)
+
+
+def test_a_nis_lower_bound_whose_terms_sum_beyond_float64_is_finite() -> None:
+    # S = 1 1ᵀ + 1e-10 I, y along 1: each term y²/c = 1e308, their sum beyond float64,
+    # the bound (their mean) and the exact NIS both about 1e308.
+    m = 4
+    h, p, r = np.ones((m, 1)), np.ones((1, 1)), 1e-10 * np.eye(m)
+    y = np.full(m, 1e154)
+    bound = kernels._nis_lower_bound(p, h, r, y)
+    exact = exact_update(np.zeros(1), p, h, r, y)[2]
+    assert exact < Fraction(np.finfo(float).max)
+    assert np.isfinite(bound) and Fraction(bound) <= exact  # before: inf
+    assert Fraction(bound) >= exact / 2

@@ -466,7 +466,8 @@ class ExtendedKalmanFilter(GaussianEstimate):
         nothing (one whose computed S is singular is first gated on a lower
         bound of its exact NIS, Σₖ yₖ² / (m cₖ) with cₖ as below: rejected,
         ``nis`` that bound and the reason saying "at least", where it exceeds
-        the gate; before review 41 readings 1e150 deviations apart raised;
+        the gate, and an overflow where it is beyond float64, gate or not;
+        before review 41 readings 1e150 deviations apart raised;
         an R with a block singular in exact arithmetic, positive definite only
         as rounded, is refused so too; before review 41 its exact update
         eliminated S whatever its size) (before review 40 measurements of more than 12 components

@@ -1424,9 +1424,11 @@ def finish_singular_s(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: F
     eliminate more than ``_EXACT_ELIMINATION_MAX`` rows (:func:`_exact_route`;
     before review 40, for every measurement of more than 8 components) it
     gates on a lower bound of the exact NIS (:func:`_nis_lower_bound`):
-    ``GATED_AT_LEAST`` (the bound left in ``rbuf`` as the NIS) or
-    ``NIS_OVERFLOW`` where that exceeds the gate, so that readings far apart
-    are rejected by a gate, not refused (before review 41 it raised); else it
+    ``GATED_AT_LEAST`` (the bound left in ``rbuf`` as the NIS) where that exceeds
+    the gate, so that readings far apart are rejected by a gate, not refused
+    (before review 41 it raised), and ``NIS_OVERFLOW`` where the bound is beyond
+    float64, with or without a gate (as the kernel's; before review 41 REVEKF, it
+    raised without one); else it
     raises ``FilterError`` saying so, nothing changed (before review 40 the
     caller's "innovation covariance S is not positive definite" alone).
     Above ``_EXACT_CANCELLED_MAX_M`` components the exact NIS, state and posterior may come from the
@@ -1445,9 +1447,12 @@ def finish_singular_s(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: F
         # The gate first here too, on a lower bound of the exact NIS (before review 41
         # a measurement any gate rejects, readings 1e150 deviations apart, raised).
         least = _nis_lower_bound(p, jac, r, y)
+        if least == math.inf:  # the exact NIS too, gate or not (before review 41: raised)
+            rbuf[_VEC, _META, 1] = least
+            return NIS_OVERFLOW
         if least > rbuf[_VEC, _META, _GATE]:
             rbuf[_VEC, _META, 1] = least
-            return GATED_AT_LEAST if least < math.inf else NIS_OVERFLOW
+            return GATED_AT_LEAST
         # The exact S is positive definite; only the size limit refuses it (before
         # review 40 the message was "innovation covariance S is not positive definite"
         # alone, as if P or R were at fault).
@@ -1509,17 +1514,20 @@ def _nis_lower_bound(p: FloatArray, jac: FloatArray, r: FloatArray, y: FloatArra
     relative: cₖ is raised by 2⁻¹⁰⁷² (uₖ² and its sum with Rₖₖ rounded there) and the
     result lowered by 2⁻¹⁰²² (each term, and their mean, rounded up there). Before
     review 41 (REVEKF) a cₖ of 2.44 × 2⁻¹⁰⁷⁴ rounded to 2 × 2⁻¹⁰⁷⁴ put the bound 22 %
-    above the exact NIS.
+    above the exact NIS. inf only where the exact NIS is beyond float64 too (each
+    term is divided by m before the sum; ``yᵀ S⁻¹ y >= yₖ² / Sₖₖ`` bounds each term).
     """
     reach = np.abs(jac) @ np.sqrt(p.diagonal())
     with np.errstate(over="ignore", under="ignore"):
         scale = reach * reach + r.diagonal() + 2.0**-1072
-        terms = (y / np.sqrt(scale)) ** 2
+        # Each term over m first: only a bound beyond float64 overflows (summed first,
+        # four terms of 1e308 gave inf for an exact NIS of 1e308, before review 41).
+        terms = (y / np.sqrt(scale)) ** 2 / float(jac.shape[0])
     try:
         total = math.fsum(terms.tolist())
     except OverflowError:
         return math.inf
-    return max(0.0, total / float(jac.shape[0]) * (1.0 - 2.0**-30) - 2.0**-1022)
+    return max(0.0, total * (1.0 - 2.0**-30) - 2.0**-1022)
 
 
 @njit_no_refcount
