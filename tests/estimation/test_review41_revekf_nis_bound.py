@@ -146,3 +146,23 @@ def test_a_nis_lower_bound_whose_terms_sum_beyond_float64_is_finite() -> None:
     assert exact < Fraction(np.finfo(float).max)
     assert np.isfinite(bound) and Fraction(bound) <= exact  # before: inf
     assert Fraction(bound) >= exact / 2
+
+
+def test_a_singular_r_block_past_the_limit_leaves_inputs_and_state_as_they_were() -> None:
+    # EKFREV's R: a 2 x 2 block singular in exact arithmetic among 25 components.
+    m, n = 25, 3
+    a, b = 58_893_648, 65_446_701
+    r = np.eye(m) * 2.0**-40
+    r[:2, :2] = np.array([[a * a, a * b], [a * b, b * b]], dtype=float) * 2.0**-92
+    rng = np.random.default_rng(2)
+    h = rng.normal(size=(m, n))
+    x0, p = np.zeros(n), np.eye(n)
+    z = h @ rng.normal(size=n) + 1e-6 * rng.normal(size=m)
+    kept = [v.copy() for v in (x0, p, h, r, z)]
+    ekf = ExtendedKalmanFilter(x0, p)
+    for gate in (None, 1e300):
+        with pytest.raises(FilterError, match="is singular"):
+            ekf.update(z, linear(h), h, r, gate=gate)
+        for want, got in zip(kept, (x0, p, h, r, z), strict=True):
+            assert np.array_equal(want, got)
+        assert np.array_equal(ekf.x, x0) and np.array_equal(ekf.P, p)
