@@ -104,15 +104,6 @@ print(json.dumps([sent, len(came), outcome, lock.is_locked(), back]))
 """
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason=(
-        "StepHold.hold ends its hold when the lock is not held (under_way false) before "
-        "delivering, though the handler may not raise and the wait go on; c09f069's "
-        "acquire wrapper already ends the holds when the wait ends in an exception "
-        "(interrupts.py is WAKEUP's this session: fix in REVSIG's report)"
-    ),
-)
 @pytest.mark.parametrize("signum", [signal.SIGINT, signal.SIGUSR1], ids=["SIGINT", "SIGUSR1"])
 def test_a_signal_handled_before_the_lock_is_taken_is_still_held_in_its_steps(
     signum: signal.Signals,
@@ -297,15 +288,6 @@ print(json.dumps([first, back, second, plan, lock.is_locked()]))
 """
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason=(
-        "a signal's exception inside the acquire wrapper's except clause, before "
-        "_end_lock_hold ends the holds, ends its own hold only: the others stay in "
-        "place, StepHolds.restored stays False, and the next compile reuses them with "
-        "SIGINT unheld (interrupts.py/compile_gc.py are WAKEUP's: fix in REVSIG's report)"
-    ),
-)
 def test_a_ctrl_c_as_a_failed_waits_holds_end_leaves_no_hold_behind() -> None:
     first, back, second, plan, locked = probe_outcome(_CTRL_C_AS_THE_WAIT_ENDS)
     assert first == "interrupted"
@@ -396,15 +378,6 @@ print(json.dumps([plan, outcome, lock.is_locked()]))
 """
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason=(
-        "StepHolds.begin holds the signals with a Python handler as the outermost acquire "
-        "is reported; a handler installed later in the compile (here by another signal's "
-        "handler) is not held, and its exception at numba's release left the lock held "
-        "(interrupts.py/compile_gc.py are WAKEUP's: fix in REVSIG's report)"
-    ),
-)
 def test_a_handler_installed_during_the_compile_is_held_at_the_release() -> None:
     plan, outcome, locked = probe_outcome(_INSTALLED_MID_COMPILE)
     assert plan == ["usr1", "term"]

@@ -618,6 +618,8 @@ def _make_listeners() -> tuple[Any, Any]:
         rewatch()  # signals held for a profile function another took away: pending again
         hold = _LOCK_HOLD[0]
         if hold is not None and not hold.restored:
+            # A handler installed since (by a handler run in the compile): held too.
+            hold.extend()
             return
         hold = _LOCK_HOLD[0] = StepHolds(critical=in_lock_step, under_way=compiler_lock.is_locked)
         hold.begin()  # nothing put in place (SIG_IGN...): restored, the next acquire looks again

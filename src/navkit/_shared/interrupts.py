@@ -43,6 +43,7 @@ import signal
 import sys
 import threading
 import time
+import weakref
 from collections.abc import Callable, Iterator
 from types import FrameType
 from typing import Any, cast
@@ -199,10 +200,12 @@ class StepHold(_Hold):
     instead (``_thread.interrupt_main``, as up to review 40), the signal's
     number was written to the wakeup fd each time. Nothing is done at a
     step's end, and nothing costs anything until a Ctrl-C comes.
-    ``under_way`` says whether the span is still under way (the lock still
-    held): a Ctrl-C found outside it (the wait for the lock interrupted, so
-    no release will come to end the hold) ends the hold before it is
-    delivered.
+    ``under_way`` says whether the span is under way (the lock held): a
+    signal found outside it (before the lock is taken, in the wait for it)
+    is delivered with the hold kept, since a handler that returns lets the
+    wait, and the compile, go on; one whose handler raises ends the wait,
+    with no release to end the hold, so the hold ends, and every other hold
+    of its :class:`StepHolds` (:attr:`group`) with it.
 
     ``signum``: another signal held the same way (its handler's exception,
     a ``signal.alarm`` time-out or a ``SIGTERM`` handler's ``SystemExit``, cut
@@ -244,6 +247,9 @@ class StepHold(_Hold):
         self.again = False
         #: :meth:`end` came while a Ctrl-C was pending: the hold ends as it is delivered.
         self.ending = False
+        #: The :class:`StepHolds` this hold is one of, ended with it when its handler
+        #: raises outside the span (a weak reference: the group holds its holds).
+        self.group: Callable[[], StepHolds | None] = _no_group
 
     def begin(self) -> bool:
         """Put the hold in place; False (nothing done) where it is not needed or cannot be."""
@@ -292,19 +298,41 @@ class StepHold(_Hold):
                 _pend_again(signum)  # the last thing done (see _PENDING_AGAIN)
             return
         self.again = False
-        if (
-            self.restored
-            or self.ending
-            or self.outside
-            or not callable(self.previous)
-            or not self.under_way()
-        ):
-            self.restore()
-            if _getsignal(signum) == self.hold:  # put back by a hold begun inside this one
-                _put_back(signum, self.previous)
+        if self.restored or self.ending or self.outside or not callable(self.previous):
+            self._end_here()
+        elif not self.under_way():
+            # Before the lock is taken (numba's report of the acquire, the wait for
+            # another thread): a handler that returns lets the wait go on, and the
+            # compile after needs the hold (ended here, a program's second Ctrl-C as
+            # numba let go of the lock left it held for good; review 41, REVSIG). One
+            # that raises ends the wait with no release to follow: every hold ends
+            # (this one's alone left the others in place and StepHolds.restored
+            # false, and the next compile reused them with Ctrl-C unheld).
+            try:
+                if self.previous is signal.default_int_handler:
+                    raise KeyboardInterrupt
+                self.deliver(frame)
+            except BaseException:
+                self._end_here()
+                group = self.group()
+                if group is not None:
+                    group.end()
+                raise
+            return
         if self.previous is signal.default_int_handler and not self.outside:
             raise KeyboardInterrupt  # as Python's handler would (one frame more, not three)
         self.deliver(frame)
+
+    def _end_here(self) -> None:
+        """End the hold from its own handler (and a hold begun inside it that put it back)."""
+        self.restore()
+        if _getsignal(self.signum) == self.hold:  # put back by a hold begun inside this one
+            _put_back(self.signum, self.previous)
+
+
+def _no_group() -> StepHolds | None:
+    """The group of a :class:`StepHold` begun on its own: none."""
+    return None
 
 
 class StepHolds:
@@ -347,7 +375,7 @@ class StepHolds:
     >>> _ = signal.signal(signal.SIGALRM, signal.SIG_DFL)
     """
 
-    __slots__ = ("critical", "holds", "under_way")
+    __slots__ = ("__weakref__", "critical", "holds", "under_way")
 
     def __init__(
         self, *, critical: Callable[[FrameType | None], bool], under_way: Callable[[], bool]
@@ -377,14 +405,37 @@ class StepHolds:
         """
         if threading.current_thread() is not threading.main_thread():
             return False
+        self._hold_new()
+        return not self.restored
+
+    def extend(self) -> None:
+        """Hold too every signal whose Python handler was installed since :meth:`begin`.
+
+        A handler run during the span (another signal's) can install one for a
+        signal that had none as the holds began; not held, its exception at
+        numba's release left the compiler lock held for good (review 41, REVSIG).
+        About 5 µs a call (a look at every signal's handler).
+        """
+        if threading.current_thread() is threading.main_thread():
+            self._hold_new(again=True)
+
+    def _hold_new(self, *, again: bool = False) -> None:
+        """Hold each signal with a Python handler (``again``: one not held by these already)."""
+        # (A list: a program's handler may be a callable object that cannot be hashed.)
+        held = [hold.hold for hold in self.holds if not hold.restored] if again else []
         for signum in (int(signal.SIGINT), *_SIGNALS):
-            if not callable(_getsignal(signum)):
+            handler = _getsignal(signum)
+            if not callable(handler) or handler in held:
                 continue
             hold = StepHold(critical=self.critical, under_way=self.under_way, signum=signum)
-            self.holds.append(hold)
-            if not hold.begin():  # (asyncio's, or not the main interpreter)
+            hold.group = weakref.ref(self)
+            self.holds.append(hold)  # before it begins: cut short, end() undoes it
+            if hold.begin():
+                continue
+            if again:  # nothing put in place (asyncio's): not kept, looked at again next time
+                self.holds.remove(hold)
+            else:
                 hold.restored = True
-        return not self.restored
 
     def end(self) -> None:
         """Take every hold away, the last begun first (see :meth:`StepHold.end`).
