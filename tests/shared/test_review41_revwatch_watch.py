@@ -210,3 +210,68 @@ def test_a_c_profiler_set_without_an_object_keeps_profiling_after_a_held_signal(
     assert quiet == [True, [], 20]  # 10 C calls and returns counted
     assert held[:2] == [True, [10]]
     assert held[2] == 20  # was 0: the C profiler gone
+
+
+_HELD_IN_A_REAL_COMPILE_TRACED = r"""
+import json, signal, sys
+import numpy as np
+import numba
+from navkit._shared.jit import load_numba
+
+MODE = sys.argv[1]
+if MODE == "coverage":  # its C tracer in the trace slot, as under `coverage run`
+    import coverage
+
+    cov = coverage.Coverage(data_file=None)
+    cov.start()
+load_numba()
+from numba.core.compiler_lock import _CompilerLock, global_compiler_lock
+
+fired = []
+
+def trigger(frame, event, arg):
+    # Ctrl-C at the return of the lock's own acquire inside numba's (a step).
+    if (
+        event == "c_return"
+        and frame.f_code is _CompilerLock.acquire.__code__
+        and global_compiler_lock.is_locked()
+        and not fired
+    ):
+        fired.append(True)
+        sys.setprofile(None)
+        signal.raise_signal(signal.SIGINT)
+
+@numba.njit
+def kernel(out):
+    out[0] = 1.0
+    return 7
+
+out = np.zeros(1)
+sys.setprofile(trigger)
+try:
+    kernel(out)
+    outcome = "ran"
+except KeyboardInterrupt:
+    outcome = "interrupted"
+finally:
+    sys.setprofile(None)
+traced = sys.gettrace() is not None
+if MODE == "coverage":
+    cov.stop()
+print(json.dumps([bool(fired), outcome, out[0], global_compiler_lock.is_locked(), traced]))
+"""
+
+
+@pytest.mark.parametrize("mode", ["plain", "coverage"])
+def test_a_ctrl_c_held_in_a_real_compiles_step_comes_before_the_kernel_runs(mode: str) -> None:
+    # Handed on by the watch at the synthetic call event numba's dispatcher makes for
+    # the compiled kernel under a profile function: the kernel does not run, the lock
+    # is let go; under coverage's tracer the same (no spin, REVSIG's finding).
+    if mode == "coverage":
+        pytest.importorskip("coverage")
+    fired, outcome, written, locked, traced = probe_outcome(
+        _HELD_IN_A_REAL_COMPILE_TRACED, mode, timeout=300
+    )
+    assert fired and outcome == "interrupted"
+    assert written == 0.0 and locked is False
+    assert traced is (mode == "coverage")
