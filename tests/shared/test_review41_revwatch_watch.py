@@ -315,16 +315,6 @@ print(json.dumps([calls, raised, steps.restored]))
 )
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason=(
-        "an exception leaving interrupts._watch between taking a due hold off _WATCHED and "
-        "_hand_on (another signal's handler, delivered at once there) loses the held "
-        "signal: it is in neither _WATCHED nor pending, its hold's `again` stays True, so "
-        "StepHold.end waits for it for good (StepHolds.restored stays False, the hold "
-        "method stays installed)"
-    ),
-)
 def test_a_signal_due_as_another_signals_exception_leaves_the_watch_is_not_lost() -> None:
     calls, raised, restored = probe_outcome(_RAISED_AS_THE_WATCH_HANDS_ON, timeout=120)
     assert raised == ["alarm"]  # the emulated landing happened

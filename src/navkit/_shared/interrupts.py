@@ -873,20 +873,24 @@ def _watch(frame: FrameType, event: str, arg: Any) -> None:
             due.append(hold)
     if not due:
         return
-    for hold in due:
-        _WATCHED.remove(hold)
-    if not _WATCHED:
-        sys.setprofile(chained)  # the program's back (or none)
-        _CHAINED[0] = None
-    if chained is not None:  # pending: handed on by Python (here, the program's would go too)
-        _pend_held(due)
-        return
-    due.sort(key=lambda hold: hold.signum)
     try:
+        for hold in due:
+            _WATCHED.remove(hold)
+        if not _WATCHED:
+            sys.setprofile(chained)  # the program's back (or none)
+            _CHAINED[0] = None
+        if chained is not None:  # pending: handed on by Python (here, the program's would go too)
+            _pend_held(due)
+            return
+        due.sort(key=lambda hold: hold.signum)
         _hand_on(due, frame)
     except BaseException:
         # Python takes this function away as the exception leaves it: the signals
-        # held meanwhile (in a handler's own step) are made pending again instead.
+        # held meanwhile (in a handler's own step) are made pending again instead,
+        # and so are those due here but not yet handed on (another signal's handler
+        # raising here first: they were lost, and their holds never ended; review
+        # 41, REVWATCH).
+        _WATCHED.extend(hold for hold in due if hold.again and hold not in _WATCHED)
         _pend_watched()
         raise
 
