@@ -24,13 +24,13 @@ from collections.abc import Callable
 import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from test_review40_planrev_field_dstar_ties import settled
 
 from navkit.errors import NoPathError
 from navkit.planning import FieldDStar
 from navkit.planning.grid import _dstar_lite_kernels as kernels
 
 INF = math.inf
-SQRT2 = math.sqrt(2.0)
 CORNER_COST = kernels.corner_cost.py_func
 
 #: The eight drawings of an array (its quarter turns and their mirror images).
@@ -61,18 +61,6 @@ def pair_value(planner: FieldDStar, i: int, j: int, k: int) -> float:
         return b + g1
     g2 = float(g[(i + kernels.PAIR_DR[k]) * ncols + j + kernels.PAIR_DC[k]])
     return float(CORNER_COST(g1, g2, c, b, planner._interp))
-
-
-def settled(planner: FieldDStar, start: tuple[int, int]) -> tuple[np.ndarray, np.ndarray]:
-    """Node values, and where a node is consistent with its key below the start's."""
-    rows, cols = planner._nrows, planner._ncols
-    g = np.asarray(planner._g).reshape(rows, cols)
-    rhs = np.asarray(planner._rhs).reshape(rows, cols)
-    i, j = np.mgrid[0:rows, 0:cols]
-    dr, dc = np.abs(i - start[0]), np.abs(j - start[1])
-    h = planner._hscale * (np.maximum(dr, dc) + (SQRT2 - 1.0) * np.minimum(dr, dc))
-    end = g[start] * (1.0 - 1e-9)
-    return g, (g == rhs) & (np.minimum(g, rhs) + h < end)
 
 
 def assert_values_are_their_pairs(planner: FieldDStar) -> int:
