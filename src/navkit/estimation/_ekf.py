@@ -464,7 +464,8 @@ class ExtendedKalmanFilter(GaussianEstimate):
         would eliminate more than 24 rows (a dense R of more than 24
         components, or more than 24 states) raises ``FilterError``, changing
         nothing (one whose computed S is singular is first gated on a lower
-        bound of its exact NIS, Σₖ yₖ² / (m cₖ) with cₖ as below: rejected,
+        bound of its exact NIS, Σₖ yₖ² / (m cₖ) with cₖ = (Σⱼ |Hₖⱼ| √Pⱼⱼ)² +
+        Rₖₖ, so that S ≤ m diag(c) (a little lower, for rounding): rejected,
         ``nis`` that bound and the reason saying "at least", where it exceeds
         the gate, and an overflow where it is beyond float64, gate or not;
         before review 41 readings 1e150 deviations apart raised;
