@@ -262,11 +262,12 @@ def test_sequential_scalar_updates_are_the_joint_update_exactly_for_a_diagonal_r
     assert (x_seq == x_joint and p_seq == p_joint) is not correlated
 
 
-def _ill_conditioned(seed: int, m: int) -> tuple[np.ndarray, ...]:
+def _ill_conditioned(seed: int, m: int, *, diagonal: bool = False) -> tuple[np.ndarray, ...]:
     """m readings of about one combination of states, the least known one: κ(S) large.
 
     No variance need shrink 4096-fold (the combination's is far below the states'),
     so the Joseph form does not cancel; S is ill-conditioned for its rounding error.
+    ``diagonal``: independent readings of distinct variances (review 41).
     """
     rng = np.random.default_rng(seed)
     n = int(rng.integers(2, 5))
@@ -276,10 +277,15 @@ def _ill_conditioned(seed: int, m: int) -> tuple[np.ndarray, ...]:
     base = q[:, 0]
     h = np.outer(rng.normal(size=m), base)
     h += 1e-6 * rng.normal(size=(m, n)) * rng.uniform(0.0, 1.0)
-    r = spd(rng, m, rng.uniform(0.0, 6.0), 0.5) * float(base @ p @ base)
+    if diagonal:
+        r = np.diag(10.0 ** rng.uniform(0.0, 1.0, m)) * float(base @ p @ base)
+    else:
+        r = spd(rng, m, rng.uniform(0.0, 6.0), 0.5) * float(base @ p @ base)
     r *= 10.0 ** rng.uniform(-8.0, 0.0)
     x0 = rng.normal(size=n)
     truth = x0 + np.linalg.cholesky(p) @ rng.normal(size=n)
+    if diagonal:
+        return x0, p, h, r, h @ truth + np.sqrt(np.diag(r)) * rng.normal(size=m)
     return x0, p, h, r, h @ truth + np.linalg.cholesky(r) @ rng.normal(size=m)
 
 

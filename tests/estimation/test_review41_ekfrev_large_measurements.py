@@ -34,6 +34,8 @@ from navkit.estimation import ExtendedKalmanFilter
 from navkit.estimation import _ekf_kernels as kernels
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from test_review40_ekfbig2_exact_large_measurements import _ill_conditioned
+
 from exact_fractions import exact_update
 from precise_updates import linear, precise_problem, spd
 
@@ -41,22 +43,10 @@ from precise_updates import linear, precise_problem, spd
 def _combination_readings(seed: int, m: int) -> tuple[np.ndarray, ...]:
     """m readings of about one combination of states (the least known), R diagonal.
 
-    As review 40's ``_ill_conditioned`` with independent readings of distinct
+    Review 40's ``_ill_conditioned`` with independent readings of distinct
     variances: κ(S) large, no variance shrinking 4096-fold.
     """
-    rng = np.random.default_rng(seed)
-    n = int(rng.integers(2, 5))
-    q, _ = np.linalg.qr(rng.normal(size=(n, n)))
-    p = (q * 10.0 ** np.linspace(0.0, rng.uniform(8.0, 15.0), n)) @ q.T
-    p = 0.5 * (p + p.T)
-    base = q[:, 0]
-    h = np.outer(rng.normal(size=m), base)
-    h += 1e-6 * rng.normal(size=(m, n)) * rng.uniform(0.0, 1.0)
-    r = np.diag(10.0 ** rng.uniform(0.0, 1.0, m)) * float(base @ p @ base)
-    r *= 10.0 ** rng.uniform(-8.0, 0.0)
-    x0 = rng.normal(size=n)
-    truth = x0 + np.linalg.cholesky(p) @ rng.normal(size=n)
-    return x0, p, h, r, h @ truth + np.sqrt(np.diag(r)) * rng.normal(size=m)
+    return _ill_conditioned(seed, m, diagonal=True)
 
 
 @pytest.mark.parametrize(
