@@ -172,7 +172,7 @@ try:
     work()  # program raises: Python takes the profile function (the watch) away
 except Stop:
     raised.append("stop")
-gone = sys.getprofile() is None
+gone = sys.getprofile() is not program  # taken away by Python
 inside[0] = False
 for _ in range(3):
     len(())  # after the step: SIGUSR1 is due at each of these
