@@ -31,9 +31,18 @@ def unheld():
 #: forks while another thread holds numba's compiler lock: a thread to run it sends
 #: each signal once the fork's hook is seen waiting for the lock (not on timers,
 #: which a loaded machine can make fire after ``os.fork`` has returned), then sets
-#: the event ``all_sent``. Imports what it uses.
+#: the event ``all_sent``. And of ``in_the_forks_wait()``: whether the main thread's
+#: fork is waiting in its hook now, for the thread holding the lock to ask as it
+#: lets go (whether the fork waited for it, told without a clock: a loaded machine
+#: can pause the main thread longer than any margin). Imports what it uses.
 FORK_WAIT_SENDER = """
 import os, sys, threading, time
+
+def in_the_forks_wait():
+    frame = sys._current_frames().get(threading.main_thread().ident)
+    while frame is not None and frame.f_code.co_name != "_take_for_fork":
+        frame = frame.f_back  # (a held signal's handler may be running above it)
+    return frame is not None
 
 def send_during_the_wait(signums, all_sent):
     main, frame = threading.main_thread().ident, None
