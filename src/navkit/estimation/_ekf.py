@@ -401,7 +401,9 @@ class ExtendedKalmanFilter(GaussianEstimate):
         UpdateResult
             Whether the measurement was applied, its NIS (dimensionless) and
             residual ``z - h(x)`` (shape (m,), units of ``z``). Not
-            applied (``accepted=False``, state unchanged) when gated, or when the
+            applied (``accepted=False``, state unchanged) when gated (the reason
+            giving the NIS in 6 significant digits, more where fewer would not
+            read above the gate), or when the
             residual, the NIS or the updated state would overflow float64 (the
             reason says ``"overflow"``; ``nis`` is inf and ``residual`` empty when
             they overflowed).
@@ -464,8 +466,11 @@ class ExtendedKalmanFilter(GaussianEstimate):
         would eliminate more than 24 rows (a dense R of more than 24
         components, or more than 24 states) raises ``FilterError``, changing
         nothing (one whose computed S is singular is first gated on a lower
-        bound of its exact NIS, Σₖ yₖ² / (m cₖ) with cₖ = (Σⱼ |Hₖⱼ| √Pⱼⱼ)² +
-        Rₖₖ, so that S ≤ m diag(c) (a little lower, for rounding): rejected,
+        bound of its exact NIS, maxₖ yₖ² / Sₖₖ (yₖ² ≤ Sₖₖ yᵀ S⁻¹ y for a
+        positive definite S), Sₖₖ raised to bound its rounding (by 2⁻³⁰ cₖ, cₖ =
+        (Σⱼ |Hₖⱼ| √Pⱼⱼ)² + Rₖₖ), or cₖ where less; before review 42 the mean
+        Σₖ yₖ² / (m cₖ), up to m cₖ / Sₖₖ times lower: one reading 100
+        deviations off among 26 refused at a gate of 1000: rejected,
         ``nis`` that bound and the reason saying "at least", where it exceeds
         the gate, and an overflow where it is beyond float64, gate or not;
         before review 41 readings 1e150 deviations apart raised;
@@ -625,10 +630,14 @@ class ExtendedKalmanFilter(GaussianEstimate):
         diagonal R of 360 components: 0.07 s with 6 states, 0.9 s with 24): a
         loop whose period matters should not meet such measurements with many
         states. The 24-row limit bounds the elimination, not the work on the
-        states: the exact posterior takes about n² m products of growing
-        integers, unbounded in n (24 components of a dense R, the exact
-        arithmetic alone: 0.5 s with 64 states, 1.2 s with 128, 3.0 s with 256;
-        7 s, 14 s and 32 s with P and R 1e280 apart). And a precise measurement
+        states: the exact posterior from S replays S's elimination on the n
+        columns of H P (about m² n divisions of integers the size of det S)
+        and takes about n² m products, so an update needing it whose estimated
+        work exceeds about a minute raises ``FilterError``, changing nothing
+        (before review 42 it was unbounded in n: 24 components of a dense R
+        with P and R 1e280 apart, measured on a loaded 2-core machine, took
+        46 s with 64 states, 96 s with 128 and 197 s with 256; now 64 states
+        pass, 128 are refused after S's elimination, 1.4 s). And a precise measurement
         with a dense R of more than 24 components takes the information form in
         float64 first, whose refinement of R's inverse sums m³ exact terms in
         Python before the update is applied or refused (0.4 s for 100
@@ -802,13 +811,12 @@ class ExtendedKalmanFilter(GaussianEstimate):
         if status == GATED:
             threshold = rbuf_gate(self._rbuf)
             return rejected_result(
-                nis, y, f"rejected by the gate: NIS {nis:.6g} > {threshold}", _GATED
+                nis, y, f"rejected by the gate: NIS {_above(nis, threshold)} > {threshold}", _GATED
             )
         if status == GATED_AT_LEAST:  # nis is a lower bound of the exact one
             threshold = rbuf_gate(self._rbuf)
-            return rejected_result(
-                nis, y, f"rejected by the gate: NIS at least {nis:.6g} > {threshold}", _GATED
-            )
+            reason = f"rejected by the gate: NIS at least {_above(nis, threshold)} > {threshold}"
+            return rejected_result(nis, y, reason, _GATED)
         if status == RESIDUAL_OVERFLOW:
             return rejected_result(
                 math.inf, np.empty(0), _OVERFLOW + "the residual z - h(x)", _OVERFLOWED
@@ -978,6 +986,21 @@ def _nested(ekf: ExtendedKalmanFilter, method: str) -> NoReturn:
         "functions: a filter is used by one thread at a time (a lock around its steps, "
         "or one filter per thread)"
     )
+
+
+def _above(nis: float, gate: float) -> str:
+    """``nis`` in 6 significant digits, or as many more as show it above ``gate``.
+
+    A gate is printed as its repr: a NIS printed with 6 digits could read equal to it
+    or below while above it ("NIS 100 > 100.0" for 100.00000000000001, before review
+    42, EKFREV3). A decimal that rounds to a float above the gate is above the gate's
+    repr (rounding is monotonic).
+    """
+    for digits in range(6, 17):
+        text = f"{nis:.{digits}g}"
+        if float(text) > gate:
+            return text
+    return repr(nis)
 
 
 def _raise(status: int, what: str) -> NoReturn:

@@ -293,12 +293,23 @@ _EXACT_CANCELLED_MAX_M = 12
 # with a dense R 1e-12 of P, 1.0 s with 64 states (10 s with P and R 1e280 apart, as 12
 # components of 128 states took before); a 360-beam scan with a diagonal R, 0.07 s with
 # 6 states, 0.17 s with 15, 0.9 s with 24 (3.3 s with 32; 81 s with 64). It bounds the
-# elimination, not the exact posterior's n² m products (review 41, 24 components of a
-# dense R, _ExactUpdate alone: 0.5 s with 64 states, 1.2 s with 128, 3.0 s with 256; 7,
-# 14 and 32 s with P and R 1e280 apart), nor the float64 information form's refinement
-# of a dense R block's inverse (m³ exact terms in Python: 0.4 s for m = 100, 1.9 s for
-# 200, 10 s for 400), which precedes the refusal of such an update.
+# elimination, not the exact posterior's work on the states (review 41, 24 components
+# of a dense R, _ExactUpdate alone: 0.5 s with 64 states, 1.2 s with 128, 3.0 s with
+# 256; capped since review 42 by _EXACT_POSTERIOR_WORK_MAX), nor the float64
+# information form's refinement of a dense R block's inverse (m³ exact terms in
+# Python: 0.4 s for m = 100, 1.9 s for 200, 10 s for 400), which precedes the refusal
+# of such an update.
 _EXACT_ELIMINATION_MAX = 24
+# The largest work of an exact posterior from S's elimination (_exact_posterior): its
+# replay of S's elimination on H P's n columns and back substitution, about m² n
+# divisions of integers of up to b bits (b, det S's size, grows with m and with how far
+# apart P and R lie), and the n (n + 1) / 2 entries' m products of H P's integers (h
+# bits) by those: work = m² n b² + 2.7 m h b n (n + 1) / 2, about 1.7e-12 s a unit
+# (measured 2026-12 on a loaded 2-core machine, 24 components of a dense R, P and R
+# 1e280 apart, b = 23932: 46 s with 64 states, 96 s with 128, 197 s with 256, linear in
+# n without end; review 41's docs said 7, 14 and 32 s). Past it the update raises
+# FilterError (review 42, EKFREV3): about a minute at most.
+_EXACT_POSTERIOR_WORK_MAX = 3.5e13
 # The largest n whose Q the predict kernel accepts by its LDLᵀ factorisation
 # (_adopt_positive): its backward error, about n² ε max|Q|, is then below 1e-12 max|Q|.
 _PSD_MAX_N = 64
@@ -1501,33 +1512,52 @@ def finish_singular_s(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: F
 
 
 def _nis_lower_bound(p: FloatArray, jac: FloatArray, r: FloatArray, y: FloatArray) -> float:
-    """A lower bound on the exact NIS ``yᵀ S⁻¹ y``, S = H P Hᵀ + R, from S's diagonal bounds.
+    """A lower bound on the exact NIS ``yᵀ S⁻¹ y``, S = H P Hᵀ + R: ``maxₖ yₖ² / dₖ``.
 
-    With ``uₖ = Σⱼ |Hₖⱼ| sqrt(Pⱼⱼ)`` and ``cₖ = uₖ² + Rₖₖ``, ``|Sₖₗ| <= sqrt(cₖ cₗ)``
-    (``|Pᵢⱼ| <= sqrt(Pᵢᵢ Pⱼⱼ)``, ``|Rₖₗ| <= sqrt(Rₖₖ Rₗₗ)``, Cauchy-Schwarz), so the
-    entries of ``C^-½ S C^-½`` are at most 1 in magnitude and its largest eigenvalue at
-    most m: S <= m C and ``yᵀ S⁻¹ y >= Σₖ yₖ² / (m cₖ)``. Computed in float64, then
-    lowered by 2⁻³⁰ relative, far more than the roundings (about (n + 4) ε each) of
-    any filter's size. inf where it overflows. For a gate where the exact NIS would
-    eliminate too many rows: readings far apart (1e150 deviations) are rejected by it.
-    Among subnormal numbers a rounding is absolute, up to half of 2⁻¹⁰⁷⁴, not
-    relative: cₖ is raised by 2⁻¹⁰⁷² (uₖ² and its sum with Rₖₖ rounded there) and the
-    result lowered by 2⁻¹⁰²² (each term, and their mean, rounded up there). Before
-    review 41 (REVEKF) a cₖ of 2.44 × 2⁻¹⁰⁷⁴ rounded to 2 × 2⁻¹⁰⁷⁴ put the bound 22 %
-    above the exact NIS. inf only where the exact NIS is beyond float64 too (each
-    term is divided by m before the sum; ``yᵀ S⁻¹ y >= yₖ² / Sₖₖ`` bounds each term).
+    For a positive definite S and any k, ``yᵀ S⁻¹ y >= yₖ² / Sₖₖ`` (Cauchy-Schwarz in
+    the inner product of S⁻¹: ``yₖ² = (eₖᵀ y)² <= (eₖᵀ S eₖ)(yᵀ S⁻¹ y)``), so any
+    upper bound dₖ of the exact Sₖₖ gives one: the least of ``cₖ = uₖ² + Rₖₖ``, ``uₖ =
+    Σⱼ |Hₖⱼ| sqrt(Pⱼⱼ)`` (``|Pᵢⱼ| <= sqrt(Pᵢᵢ Pⱼⱼ)``), and the computed Hₖ P Hₖᵀ + Rₖₖ
+    plus a bound on its rounding (2⁻³¹ cₖ, more than the (2n + 3) ε cₖ of a product of
+    n terms for n up to 2²⁰ states, and, among subnormal numbers, where roundings are
+    absolute, (n + 2) 2⁻¹⁰⁷³ (1 + Σⱼ |Hₖⱼ|)); the largest quotient is taken in exact
+    rational arithmetic and rounded down, inf where it is beyond float64 (the exact
+    NIS is then too). For a gate where the exact NIS would eliminate too many rows:
+    readings far apart (1e150 deviations) are rejected by it. The mean
+    ``Σₖ yₖ² / (m cₖ)`` of review 41 (S <= m C) is never above it: a combination of
+    correlated states (Hₖ P Hₖᵀ far below cₖ) or one reading far off among m gave a
+    bound up to m cₖ / Sₖₖ times lower, refusing with ``FilterError`` updates whose
+    exact NIS a gate rejects (review 42, EKFREV3). Review 41 (REVEKF) found that bound
+    22 % above the exact NIS among subnormal numbers, a cₖ of 2.44 × 2⁻¹⁰⁷⁴ rounded to
+    2 × 2⁻¹⁰⁷⁴: the margins here are absolute there.
     """
-    reach = np.abs(jac) @ np.sqrt(p.diagonal())
-    with np.errstate(over="ignore", under="ignore"):
-        scale = reach * reach + r.diagonal() + 2.0**-1072
-        # Each term over m first: only a bound beyond float64 overflows (summed first,
-        # four terms of 1e308 gave inf for an exact NIS of 1e308, before review 41).
-        terms = (y / np.sqrt(scale)) ** 2 / float(jac.shape[0])
+    from fractions import Fraction
+
+    n = p.shape[0]
+    with np.errstate(all="ignore"):  # overflows give inf, a weaker (still true) bound
+        reach = np.abs(jac) @ np.sqrt(p.diagonal())
+        r_diag = r.diagonal()
+        c_up = (reach * reach + r_diag) * (1.0 + 2.0**-31) + 2.0**-1072
+        s_diag = np.einsum("kj,kj->k", jac @ p, jac)
+        slack = (n + 2) * 2.0**-1073 * (np.abs(jac).sum(axis=1) + 1.0)
+        # 2⁻³⁰ uₖ² + 2⁻³¹ Rₖₖ >= 2⁻³¹ cₖ, and finite where S is though cₖ is not.
+        margin = (reach * 2.0**-15) ** 2 + 2.0**-31 * r_diag
+        s_up = s_diag + r_diag + margin + slack
+        # cₖ where s_up is NaN (inf - inf where H P overflowed), or not positive.
+        d = np.where(s_up > 0.0, np.minimum(c_up, s_up), c_up)
+        approx = (y / np.sqrt(d)) ** 2
+    top = float(approx.max())
+    # The quotients within 2⁻²⁰ of the largest as rounded, exactly (every one is a bound).
+    candidates = np.flatnonzero(approx >= top * (1.0 - 2.0**-20)) if top > 0.0 else ()
+    best = Fraction(0)
+    for k in candidates:
+        yk = Fraction(float(y[k]))
+        best = max(best, yk * yk / Fraction(float(d[k])))
     try:
-        total = math.fsum(terms.tolist())
+        out = float(best)
     except OverflowError:
         return math.inf
-    return max(0.0, total * (1.0 - 2.0**-30) - 2.0**-1022)
+    return math.nextafter(out, 0.0) if Fraction(out) > best else out
 
 
 @njit_no_refcount
@@ -1779,11 +1809,24 @@ def _exact_posterior(p: FloatArray, elimination: _Elimination) -> FloatArray | N
     entry, whatever κ(S) or κ(P⁺); whether float64 holds it as a positive
     definite matrix is the caller's check (:func:`_is_covariance`). None
     where an entry is beyond float64 (never, for a positive definite P: the
-    exact ``|P⁺ᵢⱼ|`` is at most ``sqrt(Pᵢᵢ Pⱼⱼ)``).
+    exact ``|P⁺ᵢⱼ|`` is at most ``sqrt(Pᵢᵢ Pⱼⱼ)``). Raises ``FilterError``
+    where its estimated work exceeds ``_EXACT_POSTERIOR_WORK_MAX`` (about a
+    minute; before review 42 unbounded, linear in n: 197 s for 256 states).
     """
     rows, hp, scale, k_hp, _ = elimination
     m = len(rows)
     n = p.shape[0]
+    det_bits = abs(rows[m - 1][m - 1]).bit_length()
+    hp_bits = max(abs(value).bit_length() for row in hp for value in row)
+    work = m * m * n * det_bits**2 + 2.7 * m * hp_bits * det_bits * n * (n + 1) / 2
+    if work > _EXACT_POSTERIOR_WORK_MAX:
+        raise FilterError(
+            f"the exact posterior covariance of {n} states from {m} components, with "
+            f"det S of {det_bits} bits (P and R far apart), would take about "
+            f"{work * 1.7e-12:.0f} s of exact arithmetic, more than the "
+            f"{_EXACT_POSTERIOR_WORK_MAX * 1.7e-12:.0f} s allowed (update with fewer "
+            "components at a time, or with fewer states)"
+        )
     # [S | H P], S's part as eliminated (its pivots and each step's multipliers): the
     # elimination replayed on H P's columns only.
     system = [row[:m] + columns for row, columns in zip(rows, hp, strict=True)]
