@@ -297,8 +297,8 @@ _EXACT_CANCELLED_MAX_M = 12
 # of a dense R, _ExactUpdate alone: 0.5 s with 64 states, 1.2 s with 128, 3.0 s with
 # 256; capped since review 42 by _EXACT_POSTERIOR_WORK_MAX), nor the float64
 # information form's refinement of a dense R block's inverse (m³ exact terms in
-# Python: 0.4 s for m = 100, 1.9 s for 200, 10 s for 400), which precedes the refusal
-# of such an update.
+# Python: 0.4 s for m = 100, 1.9 s for 200, 10 s for 400; review 42, loaded: 3.9 s, 21.5
+# s and 140 s for 800, not limited), which precedes the refusal of such an update.
 _EXACT_ELIMINATION_MAX = 24
 # The largest work of an exact posterior from S's elimination (_exact_posterior): its
 # replay of S's elimination on H P's n columns and back substitution, about m² n
