@@ -475,7 +475,9 @@ class ExtendedKalmanFilter(GaussianEstimate):
         the gate, and an overflow where it is beyond float64, gate or not;
         before review 41 readings 1e150 deviations apart raised;
         an R with a block singular in exact arithmetic, positive definite only
-        as rounded, is refused so too; before review 41 its exact update
+        as rounded, is gated and refused so too, as are the unvouched updates
+        below (before review 42 refused at once, gate or not: a reading 1000
+        deviations off at a gate of 100); before review 41 its exact update
         eliminated S whatever its size) (before review 40 measurements of more than 12 components
         committed the Joseph P and a state within a quarter deviation
         unmeasured: of 97 random precise updates of 13 to 16 components, 53

@@ -1104,6 +1104,56 @@ def _make_update(n: int, m: int) -> UpdateKernel:
     return ekf_update
 
 
+class _PastTheLimit(FilterError):
+    """An update refused because its exact arithmetic would eliminate too many rows.
+
+    Raised inside the finishing functions, before anything is committed; the
+    decorator :func:`_gated_before_refusal` gates the update on a lower bound of its
+    exact NIS first (:func:`_nis_lower_bound`) and lets it through only where that
+    does not reject it.
+    """
+
+
+Finisher = Callable[[FloatArray, FloatArray, FloatArray, FloatArray], int]
+
+
+def _gated_before_refusal(finish: Finisher) -> Finisher:
+    """``finish`` (state, rbuf, jac, y), with its refusals past the limit gated first.
+
+    A refusal for the 24-row limit (:class:`_PastTheLimit`) becomes ``NIS_OVERFLOW``
+    where a lower bound of the exact NIS is beyond float64 and ``GATED_AT_LEAST``
+    (the bound left in ``rbuf`` as the NIS) where it exceeds the gate, as a
+    measurement the gate rejects is rejected, not refused. Review 41 did so for
+    :func:`finish_singular_s` only; the kernel's NIS unvouched in
+    :func:`finish_cancelled` and an R block singular in exact arithmetic
+    (:class:`_ExactUpdate`, from :func:`retry_gated` too) still raised where the
+    bound rejects (review 42, EKFREV3: a reading 1000 deviations off, gate 100).
+    """
+
+    def gated(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: FloatArray) -> int:
+        try:
+            return finish(state, rbuf, jac, y)
+        except _PastTheLimit as refusal:
+            n, m = state.shape[1], jac.shape[0]
+            if np.isfinite(y).all():
+                p = state[STATE_P : STATE_P + n]
+                least = _nis_lower_bound(p, jac, rbuf[_RS, :m, :m], y)
+                if least == math.inf:  # the exact NIS too, gate or not
+                    rbuf[_VEC, _META, 1] = least
+                    return NIS_OVERFLOW
+                if least > rbuf[_VEC, _META, _GATE]:
+                    rbuf[_VEC, _META, 1] = least
+                    return GATED_AT_LEAST
+            # The user sees the public class (the private one only marks the refusal).
+            raise FilterError(*refusal.args) from None
+
+    gated.__name__ = finish.__name__
+    gated.__qualname__ = finish.__qualname__
+    gated.__doc__ = finish.__doc__
+    return gated
+
+
+@_gated_before_refusal
 def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: FloatArray) -> int:
     """Finish an update the kernel left with ``CANCELLED``; returns its status (OK or a failure).
 
@@ -1331,7 +1381,7 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
         if status == OK and (unvouched or not _EPS * p_error <= _P_SURE):
             # Before review 40 the unmeasured P and an x within a quarter deviation
             # stood here (9.4 % and 0.65 deviations off in draws of 13 components).
-            raise FilterError(
+            raise _PastTheLimit(
                 f"a measurement of {m} components far more precise than the estimate: "
                 "no float64 posterior is vouched for, and its exact arithmetic would "
                 f"eliminate more than {_EXACT_ELIMINATION_MAX} rows (use a diagonal R, or "
@@ -1403,6 +1453,7 @@ def _gate_on(rbuf: FloatArray, nis: float) -> int:
     return OK
 
 
+@_gated_before_refusal
 def finish_singular_s(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: FloatArray) -> int:
     """Finish an update the kernel left with ``S_NOT_POSITIVE_DEFINITE``; returns its status.
 
@@ -1455,19 +1506,12 @@ def finish_singular_s(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: F
         rbuf[_VEC, _META, 1] = math.inf
         return RESIDUAL_OVERFLOW
     if route is None:
-        # The gate first here too, on a lower bound of the exact NIS (before review 41
-        # a measurement any gate rejects, readings 1e150 deviations apart, raised).
-        least = _nis_lower_bound(p, jac, r, y)
-        if least == math.inf:  # the exact NIS too, gate or not (before review 41: raised)
-            rbuf[_VEC, _META, 1] = least
-            return NIS_OVERFLOW
-        if least > rbuf[_VEC, _META, _GATE]:
-            rbuf[_VEC, _META, 1] = least
-            return GATED_AT_LEAST
         # The exact S is positive definite; only the size limit refuses it (before
         # review 40 the message was "innovation covariance S is not positive definite"
-        # alone, as if P or R were at fault).
-        raise FilterError(
+        # alone, as if P or R were at fault), after the gate on a lower bound of the
+        # exact NIS (_gated_before_refusal; before review 41 a measurement any gate
+        # rejects, readings 1e150 deviations apart, raised).
+        raise _PastTheLimit(
             "innovation covariance S is not positive definite as computed in float64 "
             f"(a measurement of {m} components far more precise than the estimate), "
             f"and its exact arithmetic would eliminate more than {_EXACT_ELIMINATION_MAX} "
@@ -1592,6 +1636,7 @@ def gated_s_ill(state: FloatArray, rbuf: FloatArray, jac: FloatArray) -> bool:
     return False
 
 
+@_gated_before_refusal
 def retry_gated(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: FloatArray) -> int:
     """Check a kernel's ``GATED`` verdict where its S is ill-conditioned; returns the status.
 
@@ -1976,7 +2021,7 @@ class _ExactUpdate:
                     # its elimination is limited as any (before review 41 a 60-row one
                     # took 2.9 s here, the limit bypassed).
                     if jac.shape[0] > _EXACT_ELIMINATION_MAX:
-                        raise FilterError(
+                        raise _PastTheLimit(
                             f"R's block of components {block} is singular in exact "
                             "arithmetic (positive definite only as rounded), so the "
                             "exact update needs S's elimination, of more than "
