@@ -56,6 +56,29 @@ def send_during_the_wait(signums, all_sent):
 """
 
 
+#: Source of ``send_in_the_lock_wait(signum)`` for probes whose main thread waits for
+#: numba's compiler lock held by another thread: run in a thread of its own, it sends
+#: ``signum`` to the main thread once that thread is seen in the wait (in numba's
+#: ``acquire``, at its call of the lock's own), not after a fixed sleep or timer, which
+#: a loaded machine can outlast before the main thread gets there. Imports what it uses.
+LOCK_WAIT_SENDER = """
+import signal, sys, threading, time
+
+def send_in_the_lock_wait(signum):
+    from numba.core.compiler_lock import _CompilerLock
+    code = _CompilerLock.acquire.__code__
+    lines = __import__("inspect").getsourcelines(code)
+    line = lines[1] + next(i for i, text in enumerate(lines[0]) if "_lock.acquire(" in text)
+    main, frame = threading.main_thread().ident, None
+    while frame is None or frame.f_code is not code or frame.f_lineno != line:
+        time.sleep(0.002)
+        frame = sys._current_frames().get(main)
+    del frame
+    time.sleep(0.05)  # (the lock's wait began as the main thread let go of the GIL)
+    signal.pthread_kill(main, signum)
+"""
+
+
 def probe_outcome(script: str, *args: str, timeout: float = 300) -> Any:
     """The JSON value on the last line ``script`` prints (it must exit 0).
 

@@ -25,6 +25,8 @@ from pathlib import Path
 
 import pytest
 
+from subprocess_probe import LOCK_WAIT_SENDER
+
 # A kernel whose first call compiles (an empty cache), cheap to compile.
 _COMPILE = """
 import gc
@@ -93,9 +95,12 @@ def test_a_lock_wait_that_raises_leaves_the_next_compile_balanced(tmp_path: Path
 def test_ctrl_c_while_another_thread_compiles_leaves_the_next_compile_balanced(
     tmp_path: Path,
 ) -> None:
-    # A real SIGINT interrupting the main thread's wait for the lock another thread holds.
+    # A real SIGINT interrupting the main thread's wait for the lock another thread holds
+    # (sent once the main thread is seen waiting: a loaded machine can outlast any sleep).
     out = _run(
-        """
+        LOCK_WAIT_SENDER
+        + textwrap.dedent(
+            """
         import signal, sys, threading, time, traceback
         from navkit._shared.jit import load_numba
         load_numba()
@@ -109,10 +114,7 @@ def test_ctrl_c_while_another_thread_compiles_leaves_the_next_compile_balanced(
         holder = threading.Thread(target=hold)
         holder.start()
         held.wait()
-        def interrupt():
-            time.sleep(0.5)
-            signal.pthread_kill(threading.main_thread().ident, signal.SIGINT)
-        threading.Thread(target=interrupt).start()
+        threading.Thread(target=send_in_the_lock_wait, args=(signal.SIGINT,)).start()
         try:
             with global_compiler_lock:
                 raise AssertionError("not reached")
@@ -124,7 +126,8 @@ def test_ctrl_c_while_another_thread_compiles_leaves_the_next_compile_balanced(
             assert where == "acquire", where  # interrupted while waiting
         done.set()
         holder.join()
-        """,
+        """
+        ),
         tmp_path,
     )
     assert out == "[(False, True)] True False 0"

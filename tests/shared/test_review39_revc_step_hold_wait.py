@@ -15,7 +15,8 @@ handlers, and two of their common uses go wrong:
   compile then runs with no hold at all (a Ctrl-C in its lock steps is again
   the ``KeyboardInterrupt`` that left a lock held for good).
 
-Each runs in a fresh interpreter (a worker thread holds the lock for 1 s).
+Each runs in a fresh interpreter (a worker thread holds the lock until the
+handler runs).
 Strict xfails until review 40 (STEPHOLD): ``compile_gc._wrap_acquire`` ends the
 hold when the wait ends in an exception, and a release ends it only with no
 acquire waiting further out (``compile_gc._end_lock_hold``).
@@ -28,9 +29,13 @@ import sys
 
 import pytest
 
+from subprocess_probe import LOCK_WAIT_SENDER
+
 pytestmark = pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
 
-_SETUP = r"""
+_SETUP = (
+    LOCK_WAIT_SENDER
+    + r"""
 import signal, threading, time
 import numba
 from numba.extending import overload
@@ -49,19 +54,29 @@ def probe_typing(x):
     seen.append(signal.getsignal(signal.SIGINT))  # the handler during the compile
     return lambda x: x
 
+held, in_handler = threading.Event(), threading.Event()
+
 def hold_the_lock():
     with global_compiler_lock:
-        time.sleep(1.0)
+        held.set()
+        in_handler.wait(60)
 
 def start_the_wait(alarm):
-    # The worker holds the lock for 1 s; SIGALRM reaches the main thread's wait after 0.3 s.
-    signal.signal(signal.SIGALRM, alarm)
+    # The worker holds the lock until SIGALRM's handler runs; SIGALRM is sent once the
+    # main thread is seen waiting for the lock (no timers: a loaded machine can pause
+    # the main thread past them, and the signal then lands before or after the wait).
+    def on_alarm(signum, frame):
+        in_handler.set()
+        return alarm(signum, frame)
+
+    signal.signal(signal.SIGALRM, on_alarm)
     worker = threading.Thread(target=hold_the_lock)
     worker.start()
-    time.sleep(0.1)
-    signal.setitimer(signal.ITIMER_REAL, 0.3)
+    held.wait(60)
+    threading.Thread(target=send_in_the_lock_wait, args=(signal.SIGALRM,)).start()
     return worker
 """
+)
 
 _RAISING = (
     _SETUP

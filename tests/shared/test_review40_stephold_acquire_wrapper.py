@@ -18,7 +18,7 @@ import sys
 
 import pytest
 
-from subprocess_probe import probe_outcome
+from subprocess_probe import LOCK_WAIT_SENDER, probe_outcome
 
 pytestmark = pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
 
@@ -110,7 +110,9 @@ def test_an_acquire_set_on_the_lock_before_navkit_is_still_called() -> None:
     assert probe_outcome(_SET_BEFORE, timeout=300) == [2, True, False]
 
 
-_COMPILE_THEN_RAISE = r"""
+_COMPILE_THEN_RAISE = (
+    LOCK_WAIT_SENDER
+    + r"""
 import json, signal, threading, time
 import numba
 from navkit._shared.jit import load_numba
@@ -118,21 +120,27 @@ from navkit._shared.jit import load_numba
 load_numba()
 from numba.core.compiler_lock import global_compiler_lock
 
+held, in_handler = threading.Event(), threading.Event()
+
 def hold_the_lock():
     with global_compiler_lock:
-        time.sleep(1.0)
+        held.set()
+        in_handler.wait(60)  # until the handler runs in the main thread's wait
 
 def alarm(signum, frame):
     # In the main thread's wait for the lock: a compile of its own (which takes and
     # lets go of the lock inside the wait), then an exception that ends the wait.
+    in_handler.set()
     numba.njit(lambda x: x + 1)(1)
     raise TimeoutError
 
 signal.signal(signal.SIGALRM, alarm)
 worker = threading.Thread(target=hold_the_lock)
 worker.start()
-time.sleep(0.1)
-signal.setitimer(signal.ITIMER_REAL, 0.3)
+held.wait(60)
+# Sent once the main thread is seen waiting (a timer can fire before or after the wait
+# on a loaded machine).
+threading.Thread(target=send_in_the_lock_wait, args=(signal.SIGALRM,)).start()
 
 @numba.njit
 def kernel(x):
@@ -147,6 +155,7 @@ back = signal.getsignal(signal.SIGINT) is signal.default_int_handler
 worker.join()
 print(json.dumps([outcome, back, kernel(1), global_compiler_lock.is_locked()]))
 """
+)
 
 
 def test_an_exception_after_a_compile_in_the_handler_still_ends_the_hold() -> None:
