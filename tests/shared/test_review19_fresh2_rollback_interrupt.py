@@ -13,13 +13,13 @@ a held file raise ``PermissionError`` as Windows' do.
 from __future__ import annotations
 
 import os
-import time
 from pathlib import Path
 from typing import Any
 
 import pytest
 
 import navkit._shared.files as files
+from fake_clock import fake_clock_for
 from navkit._shared.files import atomic_paths
 
 
@@ -32,7 +32,11 @@ def _setup(
     targets = [tmp_path / f"f{i}.txt" for i in range(names)]
     for target in targets:
         target.write_text(f"old {target.name}")
-    real_replace, real_sleep = os.replace, time.sleep
+    real_replace = os.replace
+    # The hold and the waits on a clock that moves only as the waits sleep: on the
+    # real one a loaded machine's pause of the process can outlast the 0.3 s of
+    # retries before the 0.05 s hold ends.
+    clock = fake_clock_for(monkeypatch, files)
     state: dict[str, Any] = {
         "rollback": False,
         "interrupts": interrupts,
@@ -47,8 +51,8 @@ def _setup(
         if Path(source).name.startswith(".") and not Path(source).name.endswith(".txt"):
             state["rollback"] = True  # a backup (a hard link) put back: briefly held
             state["put_back"].append(name)
-            until = state["held_until"].setdefault(name, time.monotonic() + 0.05)
-            if time.monotonic() < until:
+            until = state["held_until"].setdefault(name, clock.monotonic() + 0.05)
+            if clock.monotonic() < until:
                 raise PermissionError(13, "Access is denied", str(target))
         real_replace(source, target)
 
@@ -56,12 +60,12 @@ def _setup(
         if state["rollback"] and state["interrupts"] > 0:
             state["interrupts"] -= 1
             raise KeyboardInterrupt
-        real_sleep(seconds)
+        clock.now += seconds
 
     monkeypatch.setattr(files, "_windows", lambda: True)
     monkeypatch.setattr(files, "_WINDOWS_RETRY_SECONDS", 0.3)
     monkeypatch.setattr(files.os, "replace", replace)
-    monkeypatch.setattr(files.time, "sleep", sleep)
+    monkeypatch.setattr(clock, "sleep", sleep)
     return targets, state
 
 

@@ -21,6 +21,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import navkit._shared.files as files
+from fake_clock import fake_clock_for
 from navkit._shared.cores import usable_cores
 from navkit._shared.files import atomic_path, atomic_paths
 
@@ -59,6 +60,9 @@ def _pretend_windows(
     monkeypatch.setattr(os, "replace", replace)
     monkeypatch.setattr(os, "unlink", unlink)
     monkeypatch.setattr(files, "_WINDOWS_RETRY_SECONDS", 0.2, raising=False)
+    # The retries' 0.2 s on a clock that moves only as they sleep: on the real one a
+    # loaded machine's pause of the process can outlast it before a brief hold ends.
+    fake_clock_for(monkeypatch, files)
     return attempts
 
 
