@@ -23,7 +23,8 @@ Where the holds still let it happen, hang, or keep what they should not:
   handler while tracing, and the hold made its signal pending again there each
   time. Review 41's WAKEUP fixes hand it on from a profile function instead,
   in front of a program's Python one (``sys.settrace``: coverage, pdb; or
-  ``sys.setprofile`` with a function); cProfile's C profiler still spins.
+  ``sys.setprofile`` with a function); under cProfile's C profiler (review 42,
+  SIGFIX) from the trace slot.
 * A handler installed during the compile (by another signal's handler run
   there) for a signal whose handler was ``SIG_DFL`` as the holds began was not
   held: its exception at numba's release left the lock held.
@@ -196,18 +197,6 @@ def test_a_signal_held_while_a_python_profiler_runs_does_not_spin() -> None:
     assert out == ["interrupted", [1], False]  # was ["spins", 20001, [1]]
 
 
-@pytest.mark.xfail(
-    sys.version_info < (3, 12),  # 3.12's profiling (sys.monitoring) does not re-check there
-    strict=True,
-    reason=(
-        "with a C profiler in use (cProfile: the profile slot interrupts._watch needs, not "
-        "a function to chain), StepHold.hold makes a held signal pending again "
-        "(_thread.interrupt_main), and CPython 3.11's "
-        "tracing re-checks pending signals at the same function entry after each handler: "
-        "the hold runs for ever there (a fix: watch from the trace slot, or hand the "
-        "signal on at the hold's end)"
-    ),
-)
 def test_a_signal_held_while_cprofile_runs_does_not_spin() -> None:
     out = probe_outcome(_HELD_WHILE_PROFILED, "cprofile")
     assert out == ["interrupted", [1], False]  # was ["spins", 20001, [1]]

@@ -80,15 +80,6 @@ print(json.dumps([calls, raised, steps.restored]))
 )
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason=(
-        "interrupts._hand_on clears a hold's 'again' before it looks up and calls the "
-        "handler: another signal's exception landing in between leaves the watch with "
-        "that hold neither handed on nor made pending again (_watch re-pends only holds "
-        "still 'again'), so the held signal is lost for good"
-    ),
-)
 def test_a_signal_due_as_another_signal_raises_in_its_hand_on_is_not_lost() -> None:
     calls, raised, restored = probe_outcome(_RAISED_AS_THE_WATCH_LOOKS_UP_THE_HANDLER)
     assert raised == ["alarm"]  # the emulated landing happened
@@ -131,16 +122,6 @@ print(json.dumps([raised, after_the_step, calls, steps.restored]))
 )
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason=(
-        "interrupts._watch's try block (re-pending the held signals as an exception "
-        "leaves it) starts after its stack tests: another signal's exception landing "
-        "there leaves the watch taken away by Python with SIGUSR1 still in _WATCHED, "
-        "delivered only when the hold ends (rewatch), in a compile at its outermost "
-        "release, not after the step"
-    ),
-)
 def test_a_signal_held_is_handed_on_after_another_raises_in_the_watchs_step_test() -> None:
     raised, after_the_step, calls, restored = probe_outcome(_RAISED_AS_THE_WATCH_TESTS_THE_STEP)
     assert raised == ["alarm"]  # the emulated landing happened
@@ -185,15 +166,6 @@ print(json.dumps([raised, gone, after_the_step, calls, steps.restored]))
 )
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason=(
-        "interrupts._watch calls the program's profile function outside its try block: "
-        "its exception takes the watch away (Python clears the profile slot) with the "
-        "held signal left in _WATCHED, not made pending again as the watch's docstring "
-        "says of an exception leaving it; it comes only when the hold ends (rewatch)"
-    ),
-)
 def test_a_signal_held_is_handed_on_after_the_programs_profile_function_raises() -> None:
     raised, gone, after_the_step, calls, restored = probe_outcome(_PROGRAMS_PROFILER_RAISES)
     assert raised == ["stop"] and gone  # the program's profiler raised and was taken away
@@ -234,16 +206,6 @@ print(json.dumps([raised, steps.restored]))
 
 
 @pytest.mark.skipif(not hasattr(__import__("os"), "fork"), reason="os.fork")
-@pytest.mark.xfail(
-    strict=True,
-    reason=(
-        "interrupts._watch does not hand a held signal on at a C call's start: when "
-        "os.fork is the first call after the step, it hands it on at the entry of the "
-        "first fork hook (compile_gc._before_fork), where Python reports the "
-        "KeyboardInterrupt as ignored and loses it, and navkit's before-fork hook does "
-        "not run (the fork made without numba's compiler lock or the signals held)"
-    ),
-)
 def test_a_ctrl_c_held_in_a_step_before_a_fork_is_raised_not_lost() -> None:
     raised, restored = probe_outcome(_FORK_FIRST_AFTER_THE_STEP)
     assert restored
@@ -304,7 +266,8 @@ print(json.dumps([raised, ignored, steps.restored]))
     strict=True,
     reason=(
         "interrupts._watch hands a held signal on at the first function entry after "
-        "the step, whatever runs it: a __del__ or a weak reference's callback run as "
+        "the step (by a pending call run there since review 42), whatever runs it: "
+        "a __del__ or a weak reference's callback run as "
         "the step's frame frees an object, where Python reports the KeyboardInterrupt "
         "as ignored and the Ctrl-C is lost (a fix: skip call events of code Python runs "
         "without a caller to raise into, e.g. when the caller is not at a call)"

@@ -283,16 +283,29 @@ class StepHold(_Hold):
             self.again = True
             # (Already watched: a second one in the step is one, as the system delivers them.)
             profile: Any = sys.getprofile()  # (a C profiler's object too, not callable)
-            if profile is _watch and not _WATCH_GOING[0]:
+            tracer: Any = sys.gettrace()
+            watched = profile is _watch or tracer is _watch  # (in either slot, it hands on)
+            if watched and not _WATCH_GOING[0]:
                 if self not in _WATCHED:
                     _WATCHED.append(self)
-            elif profile is not _watch and (profile is None or callable(profile)):
+            elif not watched and (profile is None or callable(profile)):
                 _WATCH_GOING[0] = False
                 _CHAINED[0] = profile  # a program's profile function: called first
                 if self not in _WATCHED:
                     _WATCHED.append(self)
                 sys.setprofile(_watch)  # (for any watched before it lost its watch too)
-            else:  # a C profiler in use: pending again at every delivery point of the step
+            elif not watched and tracer is None:
+                # A C profiler in use (cProfile's): watched from the trace slot, at
+                # function entries only (made pending again at every point of the step,
+                # a signal held at a function's entry came back there for good on
+                # Python 3.11, which checks again there while profiling: review 41,
+                # REVSIG's spin).
+                _WATCH_GOING[0] = False
+                _CHAINED[0] = None
+                if self not in _WATCHED:
+                    _WATCHED.append(self)
+                sys.settrace(_watch)
+            else:  # a C profiler and a tracer in use: pending again at every point of the step
                 if self in _WATCHED:
                     _WATCHED.remove(self)
                 _pend_again(signum)  # the last thing done (see _PENDING_AGAIN)
@@ -795,6 +808,9 @@ _WATCHED: list[StepHold] = []
 _WATCH_GOING = [False]
 #: The program's profile function :func:`_watch` stands in front of (None: none).
 _CHAINED: list[Any] = [None]
+#: C functions that run Python code whose exceptions Python ignores (fork hooks): a signal
+#: due as one is called is handed on before it (:func:`_watch`).
+_FORKS = tuple(getattr(os, name) for name in ("fork", "forkpty") if hasattr(os, name))
 #: C functions that set the thread's profile function in :func:`_watch`'s place.
 _PROFILE_SETTERS = tuple(
     function
@@ -818,81 +834,131 @@ def _watch(frame: FrameType, event: str, arg: Any) -> None:
     main thread's only) instead. At the first Python function's entry or C
     function's return outside the step (``call`` and ``c_return`` events:
     where Python would have run the pending handler) it takes itself away
-    and hands each signal to the handler in place then, in signal order, as
-    Python runs pending ones (the hold's own ``hold`` method, which delivers
-    it; or another installed meanwhile; none for ``SIG_IGN``/``SIG_DFL``,
-    which Python skips). The wakeup fd has the one byte the system's
-    delivery wrote. Not at a C call's start (Python runs handlers after the
-    call, not before), nor at a return (a handler's exception would be
-    raised inside the returning frame's ``try`` blocks, a step's; the
-    caller's next event comes at once). The one delivery point without an
-    event is a loop's turn: a loop of plain operations (no call) right after
-    a step gets the signal at its first call or its end, not at once.
-    Nothing runs until a signal comes in a step; then about 10 µs an event
-    (the step's test, a walk of the stack) until the step is done.
+    and hands the signals on through a pending call (:func:`_hand_on_later`),
+    which runs at the point where Python checks for signals right after the
+    event, outside this callback (run inside it up to review 41, the handlers
+    were missed by trace and profile functions, and a signal held in a
+    handler's own step waited for the handler's end: REVWATCH's findings):
+    each to the handler in place then, in signal order, as Python runs
+    pending ones (the hold's own ``hold`` method, which delivers it, or holds
+    it again where that point is in a step; or another installed meanwhile;
+    none for ``SIG_IGN``/``SIG_DFL``, which Python skips). The wakeup fd has
+    the one byte the system's delivery wrote. Not at a C call's start
+    (Python runs handlers after the call, not before) but that of ``os.fork``,
+    whose hooks' Python code would get it, their exceptions ignored: there
+    the signals are handed on at once, in this function, before the call.
+    Not at a return (a handler's exception would be raised inside the
+    returning frame's ``try`` blocks, a step's; the caller's next event comes
+    at once). The one delivery point without an event is a loop's turn: a
+    loop of plain operations (no call) right after a step gets the signal at
+    its first call or its end, not at once. Nothing runs until a signal comes
+    in a step; then about 10 µs an event (the step's test, a walk of the
+    stack) until the step is done. Put back by the program with nothing
+    held (a profile function it saved while this one was in place), it
+    takes itself away at its first event, the program's own back.
 
     A program's profile function in place as a signal is held (a profiler,
     a debugger's) is called first at every event, and put back after the
-    step; the signals are then made pending again there (a byte more each on
-    the wakeup fd), not handed on here: an exception leaving this function
-    takes it away, the program's with it. Where this function cannot stay,
-    the signals are made pending again as before review 41: a profiler of C
-    code in place as a signal is held (cProfile's on Python 3.11, which
-    ``sys.getprofile`` returns as a profiler object, not a function; made
-    pending again at each point of the step, a signal held at a function's
-    entry came back there for good on Python 3.11, a spin: REVSIG's finding,
-    left), one about to be set (a call of ``sys.setprofile``, whose return
-    would find this function gone), an exception leaving this function
-    (Python takes it away) with signals held meanwhile, or this function
-    found taken away by other means (a C profiler's start) when the hold
-    ends (:func:`rewatch`).
+    step. A profiler of C code in place (cProfile's, which ``sys.getprofile``
+    returns as a profiler object, not a function Python code can call) leaves
+    the profile slot to it: this function is then the trace function
+    (``sys.settrace``) instead, which sees function entries only (on Python
+    3.11 a signal made pending again at a function's entry in a step came
+    back there for good: REVSIG's spin, review 41). Where this function
+    cannot stay, the signals are made pending again (a byte more each on the
+    wakeup fd): a C profiler and a trace function both in place as a signal
+    is held (made pending again at each point of the step, and on Python
+    3.11 the spin at a function's entry in it), one about to be set (a call
+    of ``sys.setprofile``, whose return would find this function gone), an
+    exception leaving this function (Python takes it away, with the
+    program's), a signal held in the steps of a handler run by the pending
+    call (pending calls do not nest), or this function found taken away by
+    other means (a C profiler's start, a tracer set in the trace slot) when
+    the hold ends (:func:`rewatch`). A C profile function set without an
+    object (yappi's: ``sys.getprofile`` returns None) cannot be seen: it is
+    replaced, and not put back.
     """
-    chained = _CHAINED[0]
-    if chained is not None:
-        chained(frame, event, arg)
-        now: Any = sys.getprofile()  # (a C profiler's object too, not callable)
-        if now is not _watch:  # it set another (or none): this one stands in front of that
-            if now is not None and not callable(now):
-                _pend_watched()
-                return
-            chained = _CHAINED[0] = now
-            sys.setprofile(_watch)
-    if event == "c_call":
-        if arg in _PROFILE_SETTERS:
-            _pend_watched()  # the last thing done: pending as the call returns
-        return
-    if event != "call" and event != "c_return":
-        return
     due: list[StepHold] = []
-    inside: dict[Callable[[FrameType | None], bool], bool] = {}
-    for hold in _WATCHED:
-        step = inside.get(hold.critical)
-        if step is None:
-            step = inside[hold.critical] = hold.critical(frame)
-        if not step:
-            due.append(hold)
-    if not due:
-        return
     try:
+        chained = _CHAINED[0]
+        if chained is not None:
+            chained(frame, event, arg)
+            now: Any = sys.getprofile()  # (a C profiler's object too, not callable)
+            if now is not _watch:  # it set another (or none): this one stands in front of that
+                if now is not None and not callable(now):
+                    _pend_watched()
+                    return
+                chained = _CHAINED[0] = now
+                sys.setprofile(_watch)
+        if not _WATCHED:
+            # Put back by the program with nothing held (``p = sys.getprofile()`` while a
+            # signal was held, ``sys.setprofile(p)`` after): it stayed for good, a walk
+            # of the stack an event, and signals held later were made pending again at
+            # every point of their steps (review 42, SIGFIX). It leaves, the program's
+            # own profile function back.
+            _WATCH_GOING[0] = False
+            _unwatch(chained)
+            return
+        at_once = False
+        if event == "c_call":
+            if arg in _PROFILE_SETTERS:
+                _pend_watched()  # the last thing done: pending as the call returns
+                return
+            # os.fork runs its hooks' Python code before its return: handed on there,
+            # a KeyboardInterrupt was reported as ignored and lost, and navkit's own
+            # fork hook skipped (review 42, REVHOLD). Handed on before the call
+            # instead (an exception here: the call not made).
+            if arg not in _FORKS:
+                return
+            at_once = True
+        elif event != "call" and event != "c_return":
+            return
+        inside: dict[Callable[[FrameType | None], bool], bool] = {}
+        for hold in _WATCHED:
+            step = inside.get(hold.critical)
+            if step is None:
+                step = inside[hold.critical] = hold.critical(frame)
+            if not step:
+                due.append(hold)
+        if not due:
+            return
         for hold in due:
             _WATCHED.remove(hold)
         if not _WATCHED:
-            sys.setprofile(chained)  # the program's back (or none)
-            _CHAINED[0] = None
-        if chained is not None:  # pending: handed on by Python (here, the program's would go too)
+            _unwatch(chained)  # the program's profile function back (or none)
+        due.sort(key=lambda hold: hold.signum)
+        if at_once:
+            _hand_on(due, frame)
+            return
+        if _hand_on_later(due):
+            return
+        if chained is not None or _HANDING_ON[0]:
+            # Pending again, handed on by Python (an exception from here would take the
+            # program's profile function away too; in a handler handed a signal by
+            # _hand_on_later, a pending call waits for that handler's end).
             _pend_held(due)
             return
-        due.sort(key=lambda hold: hold.signum)
         _hand_on(due, frame)
     except BaseException:
-        # Python takes this function away as the exception leaves it: the signals
-        # held meanwhile (in a handler's own step) are made pending again instead,
-        # and so are those due here but not yet handed on (another signal's handler
-        # raising here first: they were lost, and their holds never ended; review
-        # 41, REVWATCH).
+        # Python takes this function away as the exception leaves it (the program's
+        # with it): the signals held meanwhile (in a handler's own step) are made
+        # pending again instead, and so are those due here but not yet handed on
+        # (another signal's handler raising here first: they were lost, and their
+        # holds never ended; review 41, REVWATCH), and those still watched (another
+        # signal's handler, or the program's profile function, raising before the
+        # hand-on: they waited for the hold's end; review 42, REVHOLD).
         _WATCHED.extend(hold for hold in due if hold.again and hold not in _WATCHED)
+        _CHAINED[0] = None
         _pend_watched()
         raise
+
+
+def _unwatch(chained: Any) -> None:
+    """Take :func:`_watch` away: the program's profile function ``chained`` back, or no tracer."""
+    if sys.gettrace() is _watch:
+        sys.settrace(None)
+    if sys.getprofile() is _watch:
+        sys.setprofile(chained)
 
 
 def _pend_watched() -> None:
@@ -904,7 +970,6 @@ def _pend_watched() -> None:
     held from here until :func:`_watch` is set again makes itself pending.
     """
     _WATCH_GOING[0] = True
-    _CHAINED[0] = None
     held = list(_WATCHED)
     _WATCHED.clear()
     _pend_held(held)
@@ -937,16 +1002,113 @@ def rewatch() -> None:
     >>> from navkit._shared.interrupts import rewatch
     >>> rewatch()  # nothing held: nothing done
     """
-    if _WATCHED and sys.getprofile() is not _watch:
+    if _DUE:
+        # A pending call whose hand-on was cut short before it began (another
+        # signal's exception at its first line): its signals, made pending again.
+        held = [hold for item in _DUE for hold in item.holds if hold.again]
+        _DUE.clear()
+        _pend_held([hold for hold in held if hold not in _WATCHED])
+        return
+    if _WATCHED and sys.getprofile() is not _watch and sys.gettrace() is not _watch:
         _pend_watched()
 
 
+class _Due:
+    """Held signals due, handed on by a pending call (see :func:`_hand_on_later`)."""
+
+    __slots__ = ("holds",)
+
+    def __init__(self, holds: list[StepHold]) -> None:
+        self.holds = holds
+
+    def __bool__(self) -> bool:
+        """Hand the signals on (the pending call is ``PyObject_IsTrue`` of this object)."""
+        if self not in _DUE:  # dropped (a forked child's), or run already
+            return False
+        # (No delivery point from here to the try, nor from its end to the decrement:
+        # another signal's exception landing at the list's remove, outside the try,
+        # lost these signals and left the count up for good; review 42, REVHOLD.)
+        _HANDING_ON[0] += 1
+        try:
+            _DUE.remove(self)
+            _hand_on(self.holds, sys._getframe(1))  # the frame Python was running
+        except BaseException:
+            _HANDING_ON[0] -= 1
+            # Those not handed on (another signal's exception first): pending again.
+            _pend_held([hold for hold in self.holds if hold.again and hold not in _WATCHED])
+            raise
+        _HANDING_ON[0] -= 1
+        return False
+
+
+#: The :class:`_Due` whose pending call has not yet run (kept alive until then).
+_DUE: list[_Due] = []
+#: How many :class:`_Due` are handing signals on (nested: a handler's own step).
+_HANDING_ON = [0]
+#: ``Py_AddPendingCall`` and the address of ``PyObject_IsTrue``, once looked up (empty
+#: where ctypes or the C API cannot be had).
+_PENDING_CALL: list[Any] = []
+
+
+def _hand_on_later(due: list[StepHold]) -> bool:
+    """Hand ``due`` on where Python runs its pending calls (False: cannot, nothing done).
+
+    Handed on inside :func:`_watch`, the handlers ran in the profile callback,
+    where CPython makes no trace or profile events (a debugger's breakpoint, a
+    coverage tool, a profiler missed them) and a signal held in a handler's
+    own step waited for the handler's end (review 41, REVWATCH). A pending call
+    (``Py_AddPendingCall``) runs in the main thread's evaluation loop at the
+    next point it checks for signals (right after the event here), as Python's
+    own signal handlers do, with no byte on the wakeup fd. Its function is
+    ``PyObject_IsTrue`` of a :class:`_Due`, whose ``__bool__`` hands the
+    signals on: its -1 on an exception makes Python raise it there, as it
+    raises a handler's. Pending calls do not nest: inside a handler run so
+    this returns False. True: the caller's last act is to return (a call in
+    between would run the pending call there, in the profile callback).
+    """
+    if _HANDING_ON[0]:
+        return False
+    if not _PENDING_CALL:
+        add = address = None
+        try:
+            import ctypes
+
+            add = ctypes.pythonapi.Py_AddPendingCall
+            add.argtypes = [ctypes.c_void_p, ctypes.c_void_p]
+            add.restype = ctypes.c_int
+            address = ctypes.cast(ctypes.pythonapi.PyObject_IsTrue, ctypes.c_void_p).value
+        except (ImportError, AttributeError, OSError):
+            add = None
+        _PENDING_CALL.extend((add, address))
+    add, address = _PENDING_CALL
+    if add is None:
+        return False
+    item = _Due(due)
+    _DUE.append(item)
+    pend: collections.defaultdict[int, int] = collections.defaultdict(
+        functools.partial(add, address, id(item))
+    )
+    # A lookup calling it from C, and no call after: Python runs pending calls as a
+    # call returns, and one run here ran inside the profile callback.
+    if pend[0] == 0:
+        return True
+    _DUE.remove(item)  # the queue full (32 calls): nothing pending
+    return False
+
+
 def _hand_on(due: list[StepHold], frame: FrameType) -> None:
-    """Hand each held signal of ``due`` to the handler in place, the next whatever it raises."""
+    """Hand each held signal of ``due`` to the handler in place, the next whatever it raises.
+
+    A hold's ``again`` stays set until its signal is handed on (the hold's own
+    ``hold`` clears it as it runs): another signal's exception landing before
+    leaves it to be made pending again (cleared first, it was lost for good;
+    review 42, REVHOLD).
+    """
     hold = due[0]
     try:
-        hold.again = False
         handler = _getsignal(hold.signum)
+        if getattr(handler, "__self__", None) is not hold:
+            hold.again = False  # none, or another handler, put in place meanwhile
         if callable(handler):
             handler(hold.signum, frame)
     finally:
@@ -956,12 +1118,15 @@ def _hand_on(due: list[StepHold], frame: FrameType) -> None:
 
 def _drop_watched() -> None:
     """In a forked child, forget the parent's held signals (as Python drops its pending ones)."""
-    for hold in _WATCHED:
+    for hold in [*_WATCHED, *(hold for item in _DUE for hold in item.holds)]:
         hold.again = False
     _WATCHED.clear()
+    _DUE.clear()
     _WATCH_GOING[0] = False
     if sys.getprofile() is _watch:
         sys.setprofile(_CHAINED[0])
+    if sys.gettrace() is _watch:
+        sys.settrace(None)
     _CHAINED[0] = None
 
 
