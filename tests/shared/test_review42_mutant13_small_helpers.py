@@ -19,8 +19,10 @@ from typing import Any
 import numpy as np
 import pytest
 
+from navkit._shared.grid_coords import inside
 from navkit._shared.products import ordered_dot, scaled_product
 from navkit._shared.relative_paths import relative_to_cwd
+from navkit.mapping import LocalGrid, OccupancyGrid
 
 #: Largest finite float64, exactly.
 _MAX = Fraction(float(np.finfo(np.float64).max))
@@ -106,3 +108,29 @@ def test_scaled_product_scales_each_overflowing_row_by_its_own_largest_input() -
                 else:
                     assert np.isfinite(g) and abs(Fraction(g) - w) <= bound, (row, out)
     assert np.isinf(scaled_product(rows, matrix_t)[0, 1])
+
+
+@pytest.mark.parametrize("shape", [(2, 4), (4, 2), (1, 1), (3, 3)])
+def test_inside_takes_each_cell_of_the_grid_and_none_of_the_ring_around_it(
+    shape: tuple[int, int],
+) -> None:
+    rows, cols = shape
+    ring = [(r, c) for r in range(-1, rows + 1) for c in range(-1, cols + 1)]
+    cells = np.array(ring, dtype=np.int64)
+    want = [0 <= r < rows and 0 <= c < cols for r, c in ring]
+    assert inside(cells, shape).tolist() == want
+    if rows == 2 and cols == 4:  # the same through the grids' public contains()
+        grid = OccupancyGrid.empty(width=2.0, height=1.0, resolution=0.5)
+        assert grid.shape == shape
+        assert grid.contains(grid.cell_to_world(cells)).tolist() == want
+    local = LocalGrid.from_points([])
+    n = local.size
+    edge = np.array([[0, n - 1], [0, n], [n - 1, 0], [n, 0], [n - 1, n - 1], [-1, 0]])
+    assert local.contains(local.cell_to_world(edge)).tolist() == [
+        True,
+        False,
+        True,
+        False,
+        True,
+        False,
+    ]
