@@ -308,7 +308,12 @@ _EXACT_ELIMINATION_MAX = 24
 # (measured 2026-12 on a loaded 2-core machine, 24 components of a dense R, P and R
 # 1e280 apart, b = 23932: 46 s with 64 states, 96 s with 128, 197 s with 256, linear in
 # n without end; review 41's docs said 7, 14 and 32 s). Past it the update raises
-# FilterError (review 42, EKFREV3): about a minute at most.
+# FilterError (review 42, EKFREV3): about a minute at most. That unit is wall time at a
+# load of about 10 on 2 cores: in CPU time the unit is 4-6 times less (EKFREV4, same
+# machine, load 10: b = 23969 with 64 states, estimate 39 s, 7.3 s CPU, 21 s wall; 48
+# states 28.8 s for 5.6 s CPU), and b² overstates the growth in b (CPython multiplies by
+# Karatsuba: b = 70845, 24 states, estimate 123 s for 19 s CPU): an idle machine would
+# finish some refused updates within 20 s.
 _EXACT_POSTERIOR_WORK_MAX = 3.5e13
 # The largest n whose Q the predict kernel accepts by its LDLᵀ factorisation
 # (_adopt_positive): its backward error, about n² ε max|Q|, is then below 1e-12 max|Q|.
