@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 from typing import Any
 
 
@@ -12,12 +13,21 @@ def local_cluster(distributed: Any) -> Any:
     takes port 8787 and warns (an error under the suite's ``filterwarnings =
     error``) when another cluster, or a second test run at the same time, holds
     that port. ``"127.0.0.1:0"`` lets the OS pick a free port, on this machine only;
-    ``dashboard=False`` keeps the dashboard (bokeh, if installed) off.
+    ``dashboard=False`` keeps the dashboard (bokeh, if installed) off. The
+    process's environment is left as it was.
     """
-    return distributed.LocalCluster(
-        n_workers=2,
-        processes=True,
-        threads_per_worker=1,
-        dashboard_address="127.0.0.1:0",
-        scheduler_kwargs={"dashboard": False},
-    )
+    environ = dict(os.environ)
+    try:
+        return distributed.LocalCluster(
+            n_workers=2,
+            processes=True,
+            threads_per_worker=1,
+            dashboard_address="127.0.0.1:0",
+            scheduler_kwargs={"dashboard": False},
+        )
+    finally:
+        # The nanny sets its workers' variables (OMP_NUM_THREADS=1, PYTHONHASHSEED,
+        # ...) in this process's os.environ before it starts them: put back, or the
+        # probe processes of every later test would inherit them.
+        os.environ.clear()
+        os.environ.update(environ)

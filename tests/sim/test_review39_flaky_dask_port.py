@@ -11,6 +11,7 @@ it a port the OS picks.
 from __future__ import annotations
 
 import contextlib
+import os
 import socket
 from collections.abc import Iterator
 
@@ -45,3 +46,17 @@ def test_the_cluster_starts_and_runs_with_the_dashboard_port_taken() -> None:
             assert port != DASHBOARD_PORT and port > 0
         finally:
             cluster.close()
+
+
+def test_starting_the_cluster_leaves_this_processs_environment_as_it_was() -> None:
+    # distributed's nanny sets its workers' variables (OMP_NUM_THREADS=1,
+    # PYTHONHASHSEED, MALLOC_TRIM_THRESHOLD_, ...) in os.environ of the process
+    # starting them: every later test's probe process inherited them, a hash
+    # seed and BLAS threads fixed or not by whether a Dask test ran before (FLAKY).
+    before = dict(os.environ)
+    cluster = local_cluster(distributed)
+    try:
+        assert dict(os.environ) == before
+    finally:
+        cluster.close()
+    assert dict(os.environ) == before
