@@ -2,7 +2,7 @@
 
 ``_nis_lower_bound`` divides each yₖ² by an upper bound dₖ of the exact Sₖₖ: the
 computed Hₖ P Hₖᵀ + Rₖₖ raised by 2⁻³⁰ uₖ² + 2⁻³¹ Rₖₖ and, among subnormal numbers, an
-absolute slack. Review 42's own tests drew at most 4 states; here up to 300, with
+absolute slack. Review 42's own tests drew at most 4 states; here up to 150, with
 strongly correlated states (Hₖ P Hₖᵀ cancelling far below uₖ²) and scales from
 subnormal to 1e300. The bound must not exceed ``maxₖ yₖ² / Sₖₖ`` taken exactly
 (without the margin the computed Sₖₖ fell below the exact one in 33 of 200 draws;
