@@ -635,7 +635,7 @@ class ExtendedKalmanFilter(GaussianEstimate):
         states: the exact posterior from S replays S's elimination on the n
         columns of H P (about m² n divisions of integers the size of det S)
         and takes about n² m products, so an update needing it whose estimated
-        work exceeds about a minute raises ``FilterError``, changing nothing
+        work exceeds about 15 s of CPU raises ``FilterError``, changing nothing
         (before review 42 it was unbounded in n: 24 components of a dense R
         with P and R 1e280 apart, measured on a loaded 2-core machine, took
         46 s with 64 states, 96 s with 128 and 197 s with 256; now 64 states

@@ -308,13 +308,16 @@ _EXACT_ELIMINATION_MAX = 24
 # (measured 2026-12 on a loaded 2-core machine, 24 components of a dense R, P and R
 # 1e280 apart, b = 23932: 46 s with 64 states, 96 s with 128, 197 s with 256, linear in
 # n without end; review 41's docs said 7, 14 and 32 s). Past it the update raises
-# FilterError (review 42, EKFREV3): about a minute at most. That unit is wall time at a
+# FilterError (review 42, EKFREV3): about a minute of wall time there. That unit is wall time at a
 # load of about 10 on 2 cores: in CPU time the unit is 4-6 times less (EKFREV4, same
 # machine, load 10: b = 23969 with 64 states, estimate 39 s, 7.3 s CPU, 21 s wall; 48
 # states 28.8 s for 5.6 s CPU), and b² overstates the growth in b (CPython multiplies by
 # Karatsuba: b = 70845, 24 states, estimate 123 s for 19 s CPU): an idle machine would
-# finish some refused updates within 20 s.
+# finish some refused updates within 20 s. The error message counts in CPU time
+# (_EXACT_POSTERIOR_WORK_SECONDS, the largest of those units: 4.3e-13 with 12 components
+# and 96 states): the limit is then about 15 s of CPU.
 _EXACT_POSTERIOR_WORK_MAX = 3.5e13
+_EXACT_POSTERIOR_WORK_SECONDS = 4.3e-13
 # The largest n whose Q the predict kernel accepts by its LDLᵀ factorisation
 # (_adopt_positive): its backward error, about n² ε max|Q|, is then below 1e-12 max|Q|.
 _PSD_MAX_N = 64
@@ -1860,8 +1863,8 @@ def _exact_posterior(p: FloatArray, elimination: _Elimination) -> FloatArray | N
     definite matrix is the caller's check (:func:`_is_covariance`). None
     where an entry is beyond float64 (never, for a positive definite P: the
     exact ``|P⁺ᵢⱼ|`` is at most ``sqrt(Pᵢᵢ Pⱼⱼ)``). Raises ``FilterError``
-    where its estimated work exceeds ``_EXACT_POSTERIOR_WORK_MAX`` (about a
-    minute; before review 42 unbounded, linear in n: 197 s for 256 states).
+    where its estimated work exceeds ``_EXACT_POSTERIOR_WORK_MAX`` (about 15 s
+    of CPU; before review 42 unbounded, linear in n: 197 s for 256 states).
     """
     rows, hp, scale, k_hp, _ = elimination
     m = len(rows)
@@ -1873,8 +1876,9 @@ def _exact_posterior(p: FloatArray, elimination: _Elimination) -> FloatArray | N
         raise FilterError(
             f"the exact posterior covariance of {n} states from {m} components, with "
             f"det S of {det_bits} bits (P and R far apart), would take about "
-            f"{work * 1.7e-12:.0f} s of exact arithmetic, more than the "
-            f"{_EXACT_POSTERIOR_WORK_MAX * 1.7e-12:.0f} s allowed (update with fewer "
+            f"{work * _EXACT_POSTERIOR_WORK_SECONDS:.0f} s of exact arithmetic, more than the "
+            f"{_EXACT_POSTERIOR_WORK_MAX * _EXACT_POSTERIOR_WORK_SECONDS:.0f} s allowed "
+            "(update with fewer "
             "components at a time, or with fewer states)"
         )
     # [S | H P], S's part as eliminated (its pivots and each step's multipliers): the

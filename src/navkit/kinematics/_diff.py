@@ -42,9 +42,10 @@ def _overflow(name: str, what: str) -> ValueError:
 
 #: Radii this close (half their difference at most this fraction of their mean) take
 #: the twist from the sum and difference of the wheel speeds (see DiffDrive._twist_of).
-#: Against exact rationals that is the more accurate formula up to about 1/16 (slow
-#: and spot turns within 2 ulps of their scale, the products' difference up to 13)
-#: and the less accurate beyond about 1/8; 1/64 until review 41.
+#: Against exact rationals that is the more accurate formula up to about 1/16 (the
+#: component that cancels, a slow turn's or a spot turn's, within 2 ulps of its scale,
+#: a spot turn's rate within 2.5; the products' difference up to 13) and the less
+#: accurate beyond about 1/8; 1/64 until review 41.
 _CLOSE_RADII = 1.0 / 32.0
 
 #: Scale of the retry when a partial result overflowed: 2**-48 is exact, and with
