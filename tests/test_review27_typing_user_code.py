@@ -39,6 +39,9 @@ def test_user_code_type_checks_under_mypy_strict(
     config = tmp_path / "mypy.ini"
     config.write_text("[mypy]\n")
     monkeypatch.chdir(tmp_path)
+    # mypy's in-process run sets MYPY_CONFIG_FILE_DIR (the config's folder) in
+    # os.environ, which later tests' processes inherited: set here to be put back.
+    monkeypatch.setenv("MYPY_CONFIG_FILE_DIR", str(tmp_path))
     stdout, stderr, status = api.run(
         [
             "--strict",
