@@ -419,17 +419,9 @@ print(json.dumps([calls, list(reader.recv(64))]))
 
 
 @pytest.mark.skipif(not hasattr(__import__("os"), "fork"), reason="no fork")
-@pytest.mark.xfail(
-    strict=True,
-    reason=(
-        "held_for_fork sends a signal held during a fork's hooks again with os.kill "
-        "after os.fork returns (release_in_parent's sender thread), and Python's C "
-        "handler writes the wakeup fd a second time; a fix would hand it to the "
-        "handler in place from a profile function at os.fork's return, as "
-        "_raise_as_fork_returns does for an early exception"
-    ),
-)
 def test_a_signal_held_during_a_fork_writes_the_wakeup_fd_once() -> None:
+    # Before review 42 (SIGFIX): sent again with os.kill after os.fork returned, a
+    # second byte ([10, 10]); now handed to the handler as os.fork returns.
     calls, written = probe_outcome(_HELD_DURING_A_FORK, timeout=120)
     assert calls == [10]
     assert written == [10]

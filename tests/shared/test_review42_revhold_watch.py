@@ -325,16 +325,6 @@ print(json.dumps([child, calls, steps.restored]))
 
 
 @pytest.mark.skipif(not hasattr(__import__("os"), "fork"), reason="os.fork")
-@pytest.mark.xfail(
-    strict=True,
-    reason=(
-        "CPython keeps its pending calls across a fork, and a _Due's pending call runs "
-        "in the child (in threading's after-fork hook, before interrupts._drop_watched "
-        "drops it): the parent's held signal is handed on in the child too (once "
-        "_drop_watched has cleared _DUE, the call's pointer is to a freed object); a fix: "
-        "a _Due notes its process and does nothing in another, and stays alive"
-    ),
-)
 def test_a_child_forked_before_a_held_signals_pending_call_runs_does_not_get_it() -> None:
     child, calls, restored = probe_outcome(_FORK_BEFORE_THE_PENDING_CALL)
     assert restored

@@ -593,8 +593,8 @@ def held_for_fork(fork_caller: FrameType | None, record: list[Any]) -> _ForkHold
     lock and recording it, or in an after hook before its releases, it left the
     lock held. The same went for any signal whose Python handler raises (a
     program's ``SIGTERM`` handler raising ``SystemExit``, review 37). Held, the
-    wait goes on to the end, and :func:`release_in_parent` sends the signals
-    held again as ``os.fork`` returns in the parent; the child drops them
+    wait goes on to the end, and :func:`release_in_parent` hands the signals
+    held on as ``os.fork`` returns in the parent; the child drops them
     (:func:`release_in_child`). A second Ctrl-C is held as well: cutting the
     wait short would fork without the lock. ``SIGINT`` is held first (its hold
     is in place before any other signal's, so a Ctrl-C landing before it finds
@@ -602,7 +602,7 @@ def held_for_fork(fork_caller: FrameType | None, record: list[Any]) -> _ForkHold
     callable (about 5 µs a fork to look, where there is none). The hold is
     appended to ``record`` before any signal is held: a handler raising while
     the hold starts leaves what it held in ``record`` for the after hooks.
-    Each signal that came is sent once, by signal number (two of one kind are
+    Each signal that came is handed on once, by signal number (two of one kind are
     one, as the kernel delivers signals pending together), except one whose
     handler is asyncio's, which its loop has read from its wakeup fd already
     (:func:`_woken_already`). A signal landing before its own hold is in place
@@ -632,13 +632,18 @@ def held_for_fork(fork_caller: FrameType | None, record: list[Any]) -> _ForkHold
 def release_in_parent(hold: _ForkHold | None) -> None:
     """End :func:`held_for_fork`'s hold in the parent (an ``after_in_parent`` hook).
 
-    The handlers from before are put back, and each signal held is sent again
-    (to the process, to whatever handles it then) once ``os.fork`` has
-    returned to its caller, not here: Python runs the hooks registered after
-    this one next (logging's releases its lock), and an exception in a hook is
-    ignored, its work left undone. A thread of a few milliseconds watches the
-    main thread's frames for the return (a Python signal handler cannot tell:
-    it would run at the first point Python checks for signals, inside a hook).
+    The handlers from before are put back, and each signal held is handed to
+    its handler once ``os.fork`` has returned to its caller, not here: Python
+    runs the hooks registered after this one next (logging's releases its
+    lock), and an exception in a hook is ignored, its work left undone. A
+    profile function sees the return and hands the signals on through a
+    pending call (:func:`_hand_on_as_fork_returns`). Where it cannot (a
+    profiler in use, an early exception to raise there, a handler installed
+    outside Python) each is sent again (to the process, to whatever handles
+    it then), a second byte on the wakeup fd: a thread of a few milliseconds
+    watches the main thread's frames for the return (a Python signal handler
+    cannot tell: it would run at the first point Python checks for signals,
+    inside a hook).
     """
     if hold is None:
         return
@@ -648,7 +653,7 @@ def release_in_parent(hold: _ForkHold | None) -> None:
     try:
         # The sender first: raised here (a profiler in use), the early exception took
         # the signals held with it, never sent again (review 39).
-        if came:
+        if came and (early is not None or not _hand_on_as_fork_returns(hold, caller, came)):
             threading.Thread(
                 target=_interrupt_after_fork,
                 args=(caller, caller.f_lasti if caller is not None else -1, came),
@@ -661,6 +666,36 @@ def release_in_parent(hold: _ForkHold | None) -> None:
         # took it with it (review 40).
         if early is not None:
             _raise_as_fork_returns(caller, early)
+
+
+def _hand_on_as_fork_returns(hold: _ForkHold, caller: FrameType | None, came: list[int]) -> bool:
+    """Hand ``came`` to their handlers once ``os.fork`` has returned to ``caller`` (False: cannot).
+
+    Sent again with ``os.kill`` (:func:`_interrupt_after_fork`), a signal held
+    during the fork reached the wakeup fd a second time (review 41, WAKEUP's
+    strict xfail). Where each signal's handler is a Python callable (not one
+    installed outside Python behind it, which only the system's delivery
+    reaches) and no profiler is in use, a profile function hands them on at
+    the caller's first event after the return, through a pending call
+    (:func:`_hand_on_later`): the wakeup fd keeps the one byte of the
+    system's delivery.
+    """
+    if caller is None or sys.getprofile() is not None or _HANDING_ON[0]:
+        return False
+    for held in hold.holds:
+        if held.signum in came and (held.outside or not callable(_getsignal(held.signum))):
+            return False
+    at = caller.f_lasti
+    came = sorted(came)  # by signal number, as Python runs pending ones
+
+    def profile(frame: FrameType, event: str, arg: Any) -> None:
+        if frame is caller or (frame.f_back is caller and caller.f_lasti != at):
+            sys.setprofile(None)
+            if not _hand_on_later([], came):  # (the last act: see _hand_on_later)
+                _hand_signals_on(came, frame)
+
+    sys.setprofile(profile)
+    return True
 
 
 def _raise_as_fork_returns(caller: FrameType | None, error: BaseException) -> None:
@@ -808,9 +843,21 @@ _WATCHED: list[StepHold] = []
 _WATCH_GOING = [False]
 #: The program's profile function :func:`_watch` stands in front of (None: none).
 _CHAINED: list[Any] = [None]
+try:
+    _posixsubprocess: Any = importlib.import_module("_posixsubprocess")
+except ImportError:  # not POSIX
+    _posixsubprocess = None
 #: C functions that run Python code whose exceptions Python ignores (fork hooks): a signal
 #: due as one is called is handed on before it (:func:`_watch`).
-_FORKS = tuple(getattr(os, name) for name in ("fork", "forkpty") if hasattr(os, name))
+_FORKS = tuple(
+    getattr(module, name)
+    for module, name in (
+        (os, "fork"),
+        (os, "forkpty"),
+        (_posixsubprocess, "fork_exec"),  # (a Popen's preexec_fn runs the hooks)
+    )
+    if hasattr(module, name)
+)
 #: C functions that set the thread's profile function in :func:`_watch`'s place.
 _PROFILE_SETTERS = tuple(
     function
@@ -1002,36 +1049,68 @@ def rewatch() -> None:
     >>> from navkit._shared.interrupts import rewatch
     >>> rewatch()  # nothing held: nothing done
     """
+    if not _DUE and not _WATCHED:
+        return
     if _DUE:
         # A pending call whose hand-on was cut short before it began (another
         # signal's exception at its first line): its signals, made pending again.
-        held = [hold for item in _DUE for hold in item.holds if hold.again]
-        _DUE.clear()
-        _pend_held([hold for hold in held if hold not in _WATCHED])
-        return
+        # (Cancelled, kept until its call has begun: freed, a call still queued
+        # would be handed a freed object.)
+        held = [hold for item in _DUE if not item.done for hold in item.holds if hold.again]
+        for item in _DUE:
+            item.done = True
+        _DUE[:] = [item for item in _DUE if not item.ran]
+        held = [hold for hold in held if hold not in _WATCHED]
+    else:
+        held = []
     if _WATCHED and sys.getprofile() is not _watch and sys.gettrace() is not _watch:
-        _pend_watched()
+        _WATCH_GOING[0] = True  # (as _pend_watched)
+        held.extend(_WATCHED)
+        _WATCHED.clear()
+    if held:
+        _pend_held(held)
 
 
 class _Due:
-    """Held signals due, handed on by a pending call (see :func:`_hand_on_later`)."""
+    """Held signals due, handed on by a pending call (see :func:`_hand_on_later`).
 
-    __slots__ = ("holds",)
+    ``signums``: signals held during a fork instead, for the handlers in place
+    (:func:`release_in_parent`).
+    """
 
-    def __init__(self, holds: list[StepHold]) -> None:
+    __slots__ = ("done", "holds", "pid", "ran", "signums")
+
+    def __init__(self, holds: list[StepHold], signums: list[int] | None = None) -> None:
         self.holds = holds
+        self.signums = signums
+        #: The process whose pending call this is (CPython keeps pending calls across
+        #: a fork: the child runs the parent's, review 42, REVHOLD).
+        self.pid = os.getpid()
+        #: Whether its call has begun; whether it is done (or cancelled: nothing to do).
+        self.ran = False
+        self.done = False
 
     def __bool__(self) -> bool:
         """Hand the signals on (the pending call is ``PyObject_IsTrue`` of this object)."""
-        if self not in _DUE:  # dropped (a forked child's), or run already
+        # Kept in _DUE until here: the pending call holds only its address.
+        self.ran = True
+        if self.done:  # cancelled (a forked child's, or found cut short)
+            if self in _DUE:
+                _DUE.remove(self)
             return False
+        self.done = True
         # (No delivery point from here to the try, nor from its end to the decrement:
         # another signal's exception landing at the list's remove, outside the try,
         # lost these signals and left the count up for good; review 42, REVHOLD.)
         _HANDING_ON[0] += 1
         try:
             _DUE.remove(self)
-            _hand_on(self.holds, sys._getframe(1))  # the frame Python was running
+            if self.pid != os.getpid():
+                pass  # the parent's, run in a forked child: its signals are the parent's
+            elif self.signums is not None:
+                _hand_signals_on(self.signums, sys._getframe(1))
+            else:
+                _hand_on(self.holds, sys._getframe(1))  # the frame Python was running
         except BaseException:
             _HANDING_ON[0] -= 1
             # Those not handed on (another signal's exception first): pending again.
@@ -1050,7 +1129,7 @@ _HANDING_ON = [0]
 _PENDING_CALL: list[Any] = []
 
 
-def _hand_on_later(due: list[StepHold]) -> bool:
+def _hand_on_later(due: list[StepHold], signums: list[int] | None = None) -> bool:
     """Hand ``due`` on where Python runs its pending calls (False: cannot, nothing done).
 
     Handed on inside :func:`_watch`, the handlers ran in the profile callback,
@@ -1083,7 +1162,7 @@ def _hand_on_later(due: list[StepHold]) -> bool:
     add, address = _PENDING_CALL
     if add is None:
         return False
-    item = _Due(due)
+    item = _Due(due, signums)
     _DUE.append(item)
     pend: collections.defaultdict[int, int] = collections.defaultdict(
         functools.partial(add, address, id(item))
@@ -1094,6 +1173,17 @@ def _hand_on_later(due: list[StepHold]) -> bool:
         return True
     _DUE.remove(item)  # the queue full (32 calls): nothing pending
     return False
+
+
+def _hand_signals_on(signums: list[int], frame: FrameType) -> None:
+    """Hand each of ``signums`` to the Python handler in place, the next whatever it raises."""
+    try:
+        handler = _getsignal(signums[0])
+        if callable(handler):
+            handler(signums[0], frame)
+    finally:
+        if len(signums) > 1:
+            _hand_signals_on(signums[1:], frame)
 
 
 def _hand_on(due: list[StepHold], frame: FrameType) -> None:
@@ -1121,7 +1211,8 @@ def _drop_watched() -> None:
     for hold in [*_WATCHED, *(hold for item in _DUE for hold in item.holds)]:
         hold.again = False
     _WATCHED.clear()
-    _DUE.clear()
+    for item in _DUE:  # cancelled, kept until their calls (copied too) have begun
+        item.done = True
     _WATCH_GOING[0] = False
     if sys.getprofile() is _watch:
         sys.setprofile(_CHAINED[0])
