@@ -899,8 +899,9 @@ def _watch(frame: FrameType, event: str, arg: Any) -> None:
     at once). The one delivery point without an event is a loop's turn: a
     loop of plain operations (no call) right after a step gets the signal at
     its first call or its end, not at once. Nothing runs until a signal comes
-    in a step; then about 10 µs an event (the step's test, a walk of the
-    stack) until the step is done. Put back by the program with nothing
+    in a step; then a few µs an event (the step's test, a walk of the
+    stack: 0.7–2.6 µs measured in a real compile, review 42) until the step
+    is done. Put back by the program with nothing
     held (a profile function it saved while this one was in place), it
     takes itself away at its first event, the program's own back.
 
