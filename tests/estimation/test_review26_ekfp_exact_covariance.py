@@ -344,6 +344,7 @@ def _p_outcome(case: tuple[Any, ...]) -> str:
     # module docstring: under SkylakeX's, p12 is 67 and 60).
     [("review", 2015, 68, 531, 454), ("fuzz", 2639, 61, 252, 109)],
 )
+@pytest.mark.slow  # exhaustive (review 42: the default suite's budget)
 def test_the_probe_draws_commit_no_covariance_off(
     kind: str, applied: int, p12: int, refused: int, rejected: int
 ) -> None:

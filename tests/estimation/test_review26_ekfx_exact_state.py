@@ -397,6 +397,7 @@ def _counts(kind: str, count: int) -> Counter[str]:
 @pytest.mark.parametrize(
     ("kind", "applied_before", "refused_before"), [("review", 1649, 898), ("fuzz", 2239, 652)]
 )
+@pytest.mark.slow  # exhaustive (review 42: the default suite's budget)
 def test_the_probe_draws_have_no_state_off(
     kind: str, applied_before: int, refused_before: int
 ) -> None:

@@ -67,6 +67,7 @@ def _many_sizes(angle_tuples: bool) -> ExtendedKalmanFilter:
 
 
 @pytest.mark.parametrize("angle_tuples", [False, True])
+@pytest.mark.slow  # exhaustive (review 42: the default suite's budget)
 def test_evicting_the_per_size_caches_changes_no_result(
     monkeypatch: pytest.MonkeyPatch, angle_tuples: bool
 ) -> None:

@@ -52,6 +52,7 @@ def _linear(h: np.ndarray) -> Callable[[np.ndarray], np.ndarray]:
     return measure
 
 
+@pytest.mark.slow  # exhaustive (review 42: the default suite's budget)
 def test_cancelled_updates_of_more_than_eight_components_commit_a_vouched_state(
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:

@@ -20,6 +20,7 @@ from collections.abc import Callable, Iterator
 from typing import Any
 
 import numpy as np
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from room_scans import room_scan
@@ -184,6 +185,7 @@ def test_copies_are_independent_and_leave_the_spare_rows_out(
     assert mapper.trajectory[17].tobytes() != twin.trajectory[17].tobytes()
 
 
+@pytest.mark.slow  # exhaustive (review 42: the default suite's budget)
 def test_a_long_run_keeps_24_bytes_a_scan_and_nothing_more() -> None:
     # The list of Pose2D took about 140 bytes a scan. Now the trajectory array's
     # rows account for what grows with the scans; a few bytes a scan of noise.

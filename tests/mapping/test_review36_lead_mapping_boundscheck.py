@@ -15,6 +15,8 @@ from __future__ import annotations
 import textwrap
 from pathlib import Path
 
+import pytest
+
 from subprocess_probe import bounds_checked
 
 _SCRIPT = textwrap.dedent(
@@ -73,5 +75,6 @@ _SCRIPT = textwrap.dedent(
 )
 
 
+@pytest.mark.slow  # exhaustive (review 42: the default suite's budget)
 def test_mapping_kernels_stay_in_bounds(tmp_path: Path) -> None:
     assert bounds_checked(_SCRIPT, tmp_path) == ["in bounds"]

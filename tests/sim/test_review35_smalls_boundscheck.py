@@ -126,6 +126,7 @@ _SIMULATION = textwrap.dedent(
 )
 
 
+@pytest.mark.slow  # exhaustive (review 42: the default suite's budget)
 def test_world_and_lidar_kernels_stay_in_bounds(tmp_path: Path) -> None:
     lines = bounds_checked(_WORLD, tmp_path)
     assert lines[0] == "in bounds"
