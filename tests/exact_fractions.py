@@ -38,15 +38,21 @@ def fractions(a: np.ndarray) -> Matrix:
     return [[Fraction(v) for v in row] for row in np.atleast_2d(a).tolist()]
 
 
-def exact_gain(p: np.ndarray, h: np.ndarray, r: np.ndarray) -> tuple[Matrix, Matrix, Matrix]:
-    """``(H P, S⁻¹, K)`` exactly: S = H P Hᵀ + R and the Kalman gain K = P Hᵀ S⁻¹ (n x m)."""
+def exact_innovation(p: np.ndarray, h: np.ndarray, r: np.ndarray) -> tuple[Matrix, Matrix]:
+    """``(H P, S⁻¹)`` exactly, S = H P Hᵀ + R."""
     n, m = p.shape[0], h.shape[0]
     pf, hf, rf = fractions(p), fractions(h), fractions(r)
     hp = [[sum(hf[a][k] * pf[k][j] for k in range(n)) for j in range(n)] for a in range(m)]
     s = [
         [sum(hp[a][k] * hf[b][k] for k in range(n)) + rf[a][b] for b in range(m)] for a in range(m)
     ]
-    s_inv = inverse(s)
+    return hp, inverse(s)
+
+
+def exact_gain(p: np.ndarray, h: np.ndarray, r: np.ndarray) -> tuple[Matrix, Matrix, Matrix]:
+    """``(H P, S⁻¹, K)`` exactly: S = H P Hᵀ + R and the Kalman gain K = P Hᵀ S⁻¹ (n x m)."""
+    n, m = p.shape[0], h.shape[0]
+    hp, s_inv = exact_innovation(p, h, r)
     gain = [[sum(hp[b][i] * s_inv[b][a] for b in range(m)) for a in range(m)] for i in range(n)]
     return hp, s_inv, gain
 

@@ -25,7 +25,7 @@ from navkit.estimation import ExtendedKalmanFilter
 from navkit.estimation import _ekf_kernels as kernels
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from exact_fractions import exact_update, fractions, inverse
+from exact_fractions import exact_innovation, exact_update
 from precise_updates import linear, precise_problem
 
 _MAX = Fraction(np.finfo(float).max)
@@ -33,13 +33,8 @@ _MAX = Fraction(np.finfo(float).max)
 
 def _exact_nis(p: np.ndarray, h: np.ndarray, r: np.ndarray, y: np.ndarray) -> Fraction:
     """``yᵀ S⁻¹ y`` exactly (the NIS alone: no gain, no posterior)."""
-    n, m = p.shape[0], h.shape[0]
-    pf, hf, rf = fractions(p), fractions(h), fractions(r)
-    hp = [[sum(hf[a][k] * pf[k][j] for k in range(n)) for j in range(n)] for a in range(m)]
-    s = [
-        [sum(hp[a][k] * hf[b][k] for k in range(n)) + rf[a][b] for b in range(m)] for a in range(m)
-    ]
-    s_inv = inverse(s)
+    m = h.shape[0]
+    _, s_inv = exact_innovation(p, h, r)
     yf = [Fraction(v) for v in y.tolist()]
     return sum((yf[a] * s_inv[a][b] * yf[b] for a in range(m) for b in range(m)), Fraction(0))
 
