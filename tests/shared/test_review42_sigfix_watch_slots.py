@@ -16,40 +16,15 @@ from __future__ import annotations
 import sys
 
 import pytest
+from test_review41_wakeup_held_signal_wakeup_fd import _SETUP as WAKEUP_SETUP
 
 from subprocess_probe import probe_outcome
 
 pytestmark = pytest.mark.skipif(sys.platform == "win32", reason="POSIX signals")
 
-#: Probe preamble: a wakeup fd (a non-blocking socket pair), SIGUSR1/SIGUSR2 handlers
-#: noting their calls, and ``holds(inside)``: StepHolds whose step is ``inside[0]``.
-_SETUP = r"""
-import json, os, signal, socket, sys
-from navkit._shared import interrupts
-
-reader, writer = socket.socketpair()
-reader.setblocking(False)
-writer.setblocking(False)
-calls = []
-
-def note(signum, frame):
-    calls.append(signum)
-
-signal.signal(signal.SIGUSR1, note)
-signal.signal(signal.SIGUSR2, note)
-signal.set_wakeup_fd(writer.fileno())
-
-def holds(inside):
-    steps = interrupts.StepHolds(critical=lambda frame: inside[0], under_way=lambda: True)
-    assert steps.begin()
-    return steps
-
-def written():
-    try:
-        return list(reader.recv(1 << 16))
-    except BlockingIOError:
-        return []
-"""
+#: Probe preamble: review 41's (a wakeup fd, SIGUSR1/SIGUSR2 handlers noting their calls,
+#: ``holds(inside)`` and ``written()``), with the wakeup fd set.
+_SETUP = WAKEUP_SETUP + "signal.set_wakeup_fd(writer.fileno())\n"
 
 _SAVED_AND_RESTORED = (
     _SETUP
