@@ -925,6 +925,15 @@ def _watch(frame: FrameType, event: str, arg: Any) -> None:
     the hold ends (:func:`rewatch`). A C profile function set without an
     object (yappi's: ``sys.getprofile`` returns None) cannot be seen: it is
     replaced, and not put back.
+
+    While a signal is held ``sys.getprofile()`` (``sys.gettrace()`` under a C
+    profiler) returns this function, not the program's: shown, not hidden
+    (review 43, SIGREV2). Hiding it meant replacing ``sys.getprofile`` and
+    ``sys.gettrace`` for the whole process (every debugger, coverage tool and
+    profiler calls them) for the microseconds to milliseconds of a step, and
+    C code reading the thread's slot would still see it; a program that saves
+    what it read and sets it back later is handled (above). Told apart by
+    identity: ``sys.getprofile() is interrupts._watch``.
     """
     due: list[StepHold] = []
     try:
@@ -1193,15 +1202,23 @@ def _hand_on(due: list[StepHold], frame: FrameType) -> None:
     A hold's ``again`` stays set until its signal is handed on (the hold's own
     ``hold`` clears it as it runs): another signal's exception landing before
     leaves it to be made pending again (cleared first, it was lost for good;
-    review 42, REVHOLD).
+    review 42, REVHOLD). Handed to another handler (put in place meanwhile),
+    it is cleared here with no delivery point from there to the call: cleared
+    before the C call ``callable(handler)``, another signal's exception landing
+    as that returned lost it (review 43, SIGREV2). What remains is a Python
+    handler's own entry, a delivery point before its first line, as for the
+    handlers CPython runs itself (it clears a signal's flag before its call).
     """
     hold = due[0]
     try:
         handler = _getsignal(hold.signum)
-        if getattr(handler, "__self__", None) is not hold:
-            hold.again = False  # none, or another handler, put in place meanwhile
-        if callable(handler):
+        if getattr(handler, "__self__", None) is hold:
+            handler(hold.signum, frame)  # (the hold's own: it clears again itself)
+        elif callable(handler):
+            hold.again = False  # the last act before the call (no delivery point between)
             handler(hold.signum, frame)
+        else:
+            hold.again = False  # none put in place meanwhile (SIG_IGN, SIG_DFL)
     finally:
         if len(due) > 1:
             _hand_on(due[1:], frame)
