@@ -1,4 +1,4 @@
-"""A held signal handed to a handler put in place meanwhile is handed on once (review 43, SIGREV2).
+"""A held signal handed on by the pending call is handed on exactly once (review 43, SIGREV2).
 
 ``interrupts._hand_on`` hands a held signal to the handler in place when the
 pending call runs. Where that is no longer the hold's own (the program's, put
@@ -6,7 +6,9 @@ back meanwhile), it clears the hold's ``again`` itself: a signal made pending
 again by ``_Due.__bool__`` after another signal's exception is one whose
 ``again`` is still set. Cleared before the C call ``callable(handler)``, another
 signal landing as that call returned (a delivery point) and raising there lost
-the held one: its handler never called, its ``again`` already cleared. These
+the held one: its handler never called, its ``again`` already cleared. So did
+the hold's own handler (``StepHold.hold``), which cleared it before the C calls
+of its tests and restore, and before its ``callable()`` of the handler. These
 checks land another signal's exception (a ``KeyboardInterrupt`` from the profile
 function of ``interrupt_points.interrupted_at``) at every delivery point of the
 hand-on and count: the held signal is handed on, or left to be made pending
@@ -106,3 +108,45 @@ def test_a_signal_whose_handler_is_gone_is_not_handed_on_again(
     _hand_on(hold, delivered)
     assert not delivered
     assert not hold.again
+
+
+def _begun(handler: Any, *, under_way: bool = True) -> interrupts.StepHold:
+    """A hold of SIGUSR1 (the program's ``handler`` in place) whose signal is due."""
+    signal.signal(signal.SIGUSR1, handler)
+    hold = interrupts.StepHold(
+        critical=lambda frame: False, under_way=lambda: under_way, signum=signal.SIGUSR1
+    )
+    assert hold.begin()
+    hold.again = True  # held in a step, due: handed to the hold's own handler
+    return hold
+
+
+def _ended(hold: interrupts.StepHold, handler: Any) -> None:
+    """Take ``hold`` away whatever the landing left (the program's handler back)."""
+    hold.restored = True
+    signal.signal(signal.SIGUSR1, handler)
+
+
+@pytest.mark.parametrize("under_way", [True, False])
+def test_a_signal_handed_to_its_holds_handler_is_delivered_once(
+    usr1: Callable[[Any], None], under_way: bool
+) -> None:
+    # The hold's own handler delivers a due signal (to the program's handler, or
+    # Python's KeyboardInterrupt): it cleared 'again' first, then made C calls
+    # (callable(), the restore's) before the delivery, where another signal's
+    # exception landing lost it.
+    seen: dict[int, Any] = {}
+    for handler in (seen.__setitem__, signal.default_int_handler):
+        counted = _begun(handler, under_way=under_way)
+        points = delivery_points(lambda counted=counted: _hand_on(counted, []))
+        _ended(counted, handler)
+        assert points >= 3
+        for k in range(1, points + 1):
+            seen.clear()
+            hold, delivered = _begun(handler, under_way=under_way), []
+            try:
+                interrupted_at(k, lambda hold=hold, d=delivered: _hand_on(hold, d))
+            finally:
+                _ended(hold, handler)
+            handed = len(delivered) + (signal.SIGUSR1 in seen)
+            assert handed + hold.again == 1, (handler, k, handed, hold.again)

@@ -310,7 +310,9 @@ class StepHold(_Hold):
                     _WATCHED.remove(self)
                 _pend_again(signum)  # the last thing done (see _PENDING_AGAIN)
             return
-        self.again = False
+        # (again is cleared by _hand_over, as the signal is delivered: cleared here, another
+        # signal's exception landing at a delivery point of the restore or the tests
+        # below lost this one; review 43, SIGREV2)
         if self.restored or self.ending or self.outside or not callable(self.previous):
             self._end_here()
         elif not self.under_way():
@@ -322,9 +324,7 @@ class StepHold(_Hold):
             # (this one's alone left the others in place and StepHolds.restored
             # false, and the next compile reused them with Ctrl-C unheld).
             try:
-                if self.previous is signal.default_int_handler:
-                    raise KeyboardInterrupt
-                self.deliver(frame)
+                self._hand_over(frame)
             except BaseException:
                 self._end_here()
                 group = self.group()
@@ -332,9 +332,32 @@ class StepHold(_Hold):
                     group.end()
                 raise
             return
-        if self.previous is signal.default_int_handler and not self.outside:
+        self._hand_over(frame)
+
+    def _hand_over(self, frame: FrameType | None) -> None:
+        """Deliver the signal (see :meth:`_Hold.deliver`), ``again`` cleared as the last act before.
+
+        No delivery point from the clearing to the handler's call or the raise:
+        another signal's exception landing between lost this one (not handed on,
+        nor made pending again by ``_Due``); one landing before leaves ``again``
+        set, and the signal is made pending again, not lost; cleared after, a
+        handler's own exception had it handed on twice.
+        """
+        handler = self.previous
+        if self.outside:
+            self.again = False
+            signal.raise_signal(self.signum)  # to the outside handler, which chains on
+        elif handler is signal.default_int_handler:
+            self.again = False
             raise KeyboardInterrupt  # as Python's handler would (one frame more, not three)
-        self.deliver(frame)
+        elif callable(handler):
+            self.again = False
+            handler(self.signum, frame)
+        elif handler == signal.SIG_DFL:
+            self.again = False
+            signal.raise_signal(self.signum)  # the default action, its handler back
+        else:  # SIG_IGN: ignored, as it would have been
+            self.again = False
 
     def _end_here(self) -> None:
         """End the hold from its own handler (and a hold begun inside it that put it back)."""
