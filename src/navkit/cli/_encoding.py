@@ -7,7 +7,9 @@ without Python's UTF-8 mode, ``PYTHONIOENCODING=ascii``) writing them raised
 standard output and error write an ASCII stand-in for each such character
 instead (``x``, ``+/-``, ``deg``, ``~``, ``sigma``, else ``?``), and writes
 bytes of a file name that Python could not decode (``surrogateescape``, as
-in ``karte_ü`` under the C locale) back as they were.
+in ``karte_ü`` under the C locale) back as they were. A stream whose errors
+are ``"strict"`` gets the same handler whatever its encoding: a UTF-8 one
+(``PYTHONIOENCODING=utf-8``) has every character but not those bytes.
 """
 
 from __future__ import annotations
@@ -60,6 +62,11 @@ def _needs_stand_ins(stream: object) -> bool:
     encoding = getattr(stream, "encoding", None)
     if not isinstance(encoding, str) or not hasattr(stream, "reconfigure"):
         return False
+    if getattr(stream, "errors", None) == "strict":
+        # Even UTF-8 cannot encode a file name's undecodable bytes (U+DC80..U+DCFF):
+        # a strict UTF-8 output (PYTHONIOENCODING=utf-8, a UTF-8 locale other than
+        # C.UTF-8) ended `navkit plan` after its files were written.
+        return True
     try:
         _PROBE.encode(encoding)
     except UnicodeEncodeError:
@@ -73,6 +80,11 @@ def _needs_stand_ins(stream: object) -> bool:
 def tolerant_output() -> Iterator[None]:
     """Within the block, ``sys.stdout`` and ``sys.stderr`` write stand-ins for what their
     encoding lacks; their error handlers are restored afterwards.
+
+    A stream is changed only when it has ``reconfigure`` (a
+    :class:`~io.TextIOWrapper`) and an encoding, and either lacks one of
+    ``×±°→≈σ`` or is strict; one that cannot be reconfigured (closed, its
+    flush failing) is left as it is.
 
     Examples
     --------
