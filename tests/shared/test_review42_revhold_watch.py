@@ -274,11 +274,11 @@ print(json.dumps([raised, ignored, steps.restored]))
     ),
 )
 def test_a_ctrl_c_held_in_a_step_is_not_lost_in_a_finalizer_run_after_it(mode: str) -> None:
-    # The finalizer makes a call: on Python 3.13 a pending call added at a function's
-    # "call" event runs at the next check for signals after it (3.13 checks at a
-    # function's entry before its profile event, 3.11 and 3.12 after), so with a
-    # finalizer of no call the signal came after it, and this strict xfail passed
-    # there by chance (review 43, SIGREV2); lost in one that calls anything.
+    # The finalizer makes a call: a pending call added at a function's "call" event
+    # runs at that function's entry on Python 3.11 and 3.12, but on 3.13 at the next
+    # check for signals after it (the next entry, or a C call's return: measured), so
+    # with a finalizer of no call the signal came after it, and this strict xfail
+    # passed there by chance (review 43, SIGREV2); lost in one that calls anything.
     raised, ignored, restored = probe_outcome(_FINALIZER_FIRST_AFTER_THE_STEP, mode)
     assert restored
     assert ignored == []  # was ["KeyboardInterrupt"]: "Exception ignored in ..."
