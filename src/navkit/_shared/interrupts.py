@@ -340,8 +340,8 @@ class StepHold(_Hold):
         No delivery point from the clearing to the handler's call or the raise:
         another signal's exception landing between lost this one (not handed on,
         nor made pending again by ``_Due``); one landing before leaves ``again``
-        set, and the signal is made pending again, not lost; cleared after, a
-        handler's own exception had it handed on twice.
+        set, and the signal is made pending again, not lost; cleared after the
+        call, a handler's own exception would have it handed on twice.
         """
         handler = self.previous
         if self.outside:
@@ -1223,12 +1223,13 @@ def _hand_on(due: list[StepHold], frame: FrameType) -> None:
     """Hand each held signal of ``due`` to the handler in place, the next whatever it raises.
 
     A hold's ``again`` stays set until its signal is handed on (the hold's own
-    ``hold`` clears it as it runs): another signal's exception landing before
-    leaves it to be made pending again (cleared first, it was lost for good;
-    review 42, REVHOLD). Handed to another handler (put in place meanwhile),
-    it is cleared here with no delivery point from there to the call: cleared
-    before the C call ``callable(handler)``, another signal's exception landing
-    as that returned lost it (review 43, SIGREV2). What remains is a Python
+    ``hold`` clears it as it delivers the signal, :meth:`StepHold._hand_over`):
+    another signal's exception landing before leaves it to be made pending
+    again (cleared first, it was lost for good; review 42, REVHOLD). Handed to
+    another handler (put in place meanwhile), it is cleared here with no
+    delivery point from there to the call: cleared before the C call
+    ``callable(handler)``, another signal's exception landing as that returned
+    lost it (review 43, SIGREV2). What remains is a Python
     handler's own entry, a delivery point before its first line, as for the
     handlers CPython runs itself (it clears a signal's flag before its call).
     """
