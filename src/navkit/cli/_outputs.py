@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import contextlib
+import errno
 import os
 import secrets
 import tempfile
@@ -35,8 +36,9 @@ def check_output(path: str | None, suffix: str, option: str) -> None:
         A picture (``.png``, ``.gif``) without matplotlib (the ``plot`` extra).
     ValueError
         An empty name, ``"-"`` (standard output), a wrong extension, a folder
-        given for a file, or a picture (a ``suffix``) to be written over
-        something that is not a regular file (a device, a pipe).
+        given for a file, a loop of symbolic links, or a picture (a
+        ``suffix``) to be written over something that is not a regular file
+        (a device, a pipe).
     FileNotFoundError
         The folder does not exist.
     OSError
@@ -70,6 +72,9 @@ def check_output(path: str | None, suffix: str, option: str) -> None:
         raise ValueError(f"{option}: the file must end in {suffix}, got {path}")
     if target.is_dir():
         raise ValueError(f"{option}: {path} is a folder, not a file")
+    if _link_loop(target):
+        # exists() and is_dir() say False for it: found only when written, after the run.
+        raise ValueError(f"{option}: {path} is a loop of symbolic links")
     if target.exists() and not target.is_file():
         if suffix:  # pictures are written atomically, which would replace the device itself
             raise ValueError(f"{option}: {path} is not a regular file (a device or a pipe?)")
@@ -97,6 +102,15 @@ def check_output(path: str | None, suffix: str, option: str) -> None:
                 for left in folder.glob(f"{prefix}*.tmp"):
                     left.unlink(missing_ok=True)
             raise
+
+
+def _link_loop(target: Path) -> bool:
+    """Whether following ``target``'s symbolic links leads back to one already followed."""
+    try:
+        os.stat(target)
+    except OSError as exc:
+        return exc.errno == errno.ELOOP
+    return False
 
 
 def _check_matplotlib(option: str) -> None:
@@ -140,7 +154,10 @@ def check_distinct(paths: Mapping[str, str | None]) -> None:
     for option, path in paths.items():
         if path is None:
             continue
-        key = Path(path).resolve()  # "out.png", "./out.png" and a symlink to it are one file
+        # "out.png", "./out.png" and a symlink to it are one file. os.path.realpath, not
+        # Path.resolve(), which before Python 3.13 raised RuntimeError ("Symlink loop")
+        # for a loop of symbolic links: a traceback.
+        key = Path(os.path.realpath(path))
         if key in seen:
             raise ValueError(
                 f"{option} and {seen[key]} name the same file {path}; give each its own"

@@ -1,0 +1,67 @@
+"""An output file that is a loop of symbolic links (review 43, MUTANT14).
+
+``check_distinct`` took each output's real path with ``Path.resolve()``, which
+before Python 3.13 raises ``RuntimeError("Symlink loop ...")``: ``navkit plan
+m.yaml ... --json p.json`` with ``p.json -> p.json`` ended in a traceback. Its
+real path is now taken as ``os.path.realpath`` takes it, and ``check_output``
+refuses the loop before the run (``exists()`` says False for it; written, it
+failed with "Too many levels of symbolic links" only after the run).
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from navkit.cli import main
+from navkit.cli._outputs import check_distinct, check_output
+from navkit.mapping import OccupancyGrid
+from navkit.mapping.io import write_map
+
+pytestmark = pytest.mark.skipif(sys.platform == "win32", reason="symbolic links need rights")
+
+
+def _loop(folder: Path, name: str) -> Path:
+    link = folder / name
+    link.symlink_to(name)
+    return link
+
+
+def test_a_link_to_itself_is_one_file_among_others(tmp_path: Path) -> None:
+    loop = _loop(tmp_path, "a.png")
+    check_distinct({"--plot": str(loop), "--json": str(tmp_path / "b.json")})
+    with pytest.raises(ValueError, match=r"--json and --plot name the same file"):
+        check_distinct({"--plot": str(loop), "--json": str(tmp_path / "." / "a.png")})
+
+
+@pytest.mark.parametrize(("suffix", "option"), [(".png", "--plot"), ("", "--json")])
+def test_a_loop_of_links_is_refused_before_the_run(
+    tmp_path: Path, suffix: str, option: str
+) -> None:
+    (tmp_path / "b.png").symlink_to("c.png")
+    (tmp_path / "c.png").symlink_to("b.png")
+    for path in (tmp_path / "b.png", _loop(tmp_path, "a.png")):
+        with pytest.raises(ValueError, match=rf"^{option}: .*\.png is a loop of symbolic links$"):
+            check_output(str(path), suffix, option)
+    (tmp_path / "d.png").symlink_to("missing.png")  # a dangling link is written over
+    check_output(str(tmp_path / "d.png"), suffix, option)
+
+
+def test_plan_names_the_loop_in_one_line(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    occupied = np.zeros((10, 12), dtype=bool)
+    occupied[:6, 6] = True
+    write_map(OccupancyGrid.from_occupancy(occupied, resolution=0.1), tmp_path / "m.yaml")
+    loop = _loop(tmp_path, "p.json")
+    code = main(
+        ["plan", str(tmp_path / "m.yaml"), "--start", "0.15,0.15", "--goal", "1.05,0.15",
+         "--json", str(loop)]
+    )  # fmt: skip
+    captured = capsys.readouterr()
+    assert code == 1
+    assert captured.err == f"navkit: error: --json: {loop} is a loop of symbolic links\n"
+    assert captured.out == ""  # refused before the plan, not after it
