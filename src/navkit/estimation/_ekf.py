@@ -548,10 +548,19 @@ class ExtendedKalmanFilter(GaussianEstimate):
         only where the gate passes it and no covariance passes the checks
         above, so readings 1e150 deviations apart are rejected by a gate,
         not refused (and without a gate applied, with the exact state).
-        Updates of more than 24 components keep the kernel's NIS (its exact
-        one would eliminate too many rows), except those with an exact route
+        Updates of more than 24 components with a gate and such an S (a dense
+        R: no exact route) are gated on the exact NIS alone (S's elimination,
+        nothing else exact) where its work, bounded from the sizes and
+        exponents before any, is within the cap of the exact posterior below
+        (about 15 s of CPU; 0.05 s for 28 components of 4 states), else on the
+        lower bound above, and refused with ``FilterError`` where that does
+        not reject them (before review 47 the kernel's NIS stood: 28.28 for
+        an exact 25.81, rejected at a gate between them; and measurements
+        whose exact NIS the gate rejects were refused: 16 of 240 such draws
+        at gates 0.9 to 1.1 times their exact NIS); without a gate they keep
+        the kernel's NIS. Those with an exact route
         (a diagonal or block-diagonal R whose blocks, and the states, number
-        at most 24), tested as above since review 41 (before, only those
+        at most 24) are tested as above since review 41 (before, only those
         that reach the information form, whose NIS is the exact one where S
         is that ill-conditioned or the information form's state replaced the
         kernel's for disagreeing with it: 25 readings of a combination with a

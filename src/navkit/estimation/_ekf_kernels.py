@@ -1149,9 +1149,19 @@ def _gated_before_refusal(finish: Finisher) -> Finisher:
                 if least == math.inf:  # the exact NIS too, gate or not
                     rbuf[_VEC, _META, 1] = least
                     return NIS_OVERFLOW
-                if least > rbuf[_VEC, _META, _GATE]:
+                gate = rbuf[_VEC, _META, _GATE]
+                if least > gate:
                     rbuf[_VEC, _META, 1] = least
                     return GATED_AT_LEAST
+                r = rbuf[_RS, :m, :m]
+                if gate < math.inf and _exact_nis_work(p, jac, r, y) <= _EXACT_POSTERIOR_WORK_MAX:
+                    # The exact NIS alone, where its work is within the cap: a measurement
+                    # the gate rejects is rejected, not refused (before review 47, EKFREV5,
+                    # only where the lower bound rejected it: 16 of 240 draws of 25-30
+                    # components at gates 0.9-1.1 times the exact NIS were refused).
+                    exact = _exact_nis(p, jac, r, y)
+                    if not exact <= gate:
+                        return _gate_on(rbuf, exact)
             # The user sees the public class (the private one only marks the refusal).
             raise FilterError(*refusal.args) from None
 
@@ -1395,6 +1405,23 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
                 f"eliminate more than {_EXACT_ELIMINATION_MAX} rows (use a diagonal R, or "
                 "update with fewer components at a time)"
             )
+        r = rbuf[_RS, :m, :m]
+        if rbuf[_VEC, _META, _GATE] < math.inf:
+            # The gate again on the exact NIS alone (before review 47, EKFREV5, the
+            # kernel's stood): where the update fails, if its work is within the cap (a
+            # measurement the gate rejects is rejected, not refused); where the kernel's
+            # NIS passed the gate from an S too ill-conditioned to trust it, within the
+            # cap, else on a lower bound or refused (_capped_exact_nis).
+            exact_nis = None
+            if status != OK:
+                if _exact_nis_work(p, jac, r, y) <= _EXACT_POSTERIOR_WORK_MAX:
+                    exact_nis = _exact_nis(p, jac, r, y)
+            elif not _EPS * _s_amplification(rbuf, p, jac) <= _STATE_TRUSTED:
+                exact_nis = _capped_exact_nis(p, jac, r, y, rbuf)
+            if exact_nis is not None:
+                gated = _gate_on(rbuf, exact_nis)
+                if gated != OK:
+                    return gated
         if status != OK:
             return status
     found_exact = None
@@ -1670,8 +1697,17 @@ def retry_gated(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: FloatAr
     passes is the ungated update, bit for bit (finishing it here as
     :func:`finish_singular_s` does, with the information form's P⁺ where the
     ungated update keeps the Joseph form's, gave a P 5.8e-8 relative away
-    from it; review 25). Elsewhere ``GATED`` stands. About 3 µs for a
-    well-conditioned S (the whole gated update).
+    from it; review 25). With no exact route (more than
+    :data:`_EXACT_ELIMINATION_MAX` components of a dense R) the same is done with
+    the exact NIS alone (:func:`_exact_nis`, S's elimination) where its work,
+    bounded from sizes (:func:`_exact_nis_work`), is within
+    ``_EXACT_POSTERIOR_WORK_MAX``; past it the update is rejected where a lower
+    bound of the exact NIS exceeds the gate (``GATED_AT_LEAST``, see
+    :func:`_gated_before_refusal`) and refused with ``FilterError`` otherwise, the
+    state unchanged (before review 47 the kernel's ``GATED`` stood there: NIS
+    28.28, or 26.11 by BLAS kernel, for an exact 25.81, rejected at a gate between;
+    EKFREV3, EKFREV5). Elsewhere (S well-conditioned) ``GATED`` stands. About 3 µs
+    for a well-conditioned S (the whole gated update).
     """
     m = jac.shape[0]
     # m = 1 too, as in the update kernel: a scalar S whose H P Hᵀ cancels is as far off
@@ -1683,14 +1719,44 @@ def retry_gated(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: FloatAr
     # Any m with an exact route (before review 41 at most _EXACT_ELIMINATION_MAX
     # components, a diagonal R's too: 25 readings rejected at a gate their exact NIS
     # passes).
-    route = _exact_route(n, rbuf[_RS, :m, :m])
-    if route is None:
-        return GATED
+    r = rbuf[_RS, :m, :m]
+    route = _exact_route(n, r)
     p = state[STATE_P : STATE_P + n]
-    status = _regate(p, jac, rbuf, y, route)
+    if route is None:
+        # No exact route: the exact NIS alone (S's elimination, no posterior) where its
+        # work, bounded from sizes before any, is within the exact posterior's cap; else
+        # refused, after the gate on a lower bound (_gated_before_refusal). Before
+        # review 47 the kernel's GATED stood: NIS 28.28 (26.11 by BLAS kernel) for an
+        # exact 25.81, rejected at a gate between them (EKFREV3, EKFREV5).
+        status = _gate_on(rbuf, _capped_exact_nis(p, jac, r, y, rbuf))
+    else:
+        status = _regate(p, jac, rbuf, y, route)
     # The exact NIS (left in rbuf) passed the gate: the kernel's update without the
     # gate, as an ungated update.
     return GATE_PASSED if status == OK else status
+
+
+def _capped_exact_nis(
+    p: FloatArray, jac: FloatArray, r: FloatArray, y: FloatArray, rbuf: FloatArray
+) -> float:
+    """:func:`_exact_nis` for a gate the kernel's NIS (in ``rbuf``) cannot decide.
+
+    Raises :class:`_PastTheLimit` where its work, bounded from sizes before any
+    (:func:`_exact_nis_work`), exceeds ``_EXACT_POSTERIOR_WORK_MAX``: the gate is then
+    decided on a lower bound or the update refused (:func:`_gated_before_refusal`).
+    """
+    work = _exact_nis_work(p, jac, r, y)
+    if work > _EXACT_POSTERIOR_WORK_MAX:
+        raise _PastTheLimit(
+            f"the gate cannot decide on a measurement of {jac.shape[0]} components: its "
+            "innovation covariance S is too ill-conditioned for the NIS computed in "
+            f"float64 ({rbuf[_VEC, _META, 1]:.6g}) to be trusted, its exact NIS would take "
+            f"about {work * _EXACT_POSTERIOR_WORK_SECONDS:.0f} s of exact arithmetic, more "
+            f"than the {_EXACT_POSTERIOR_WORK_MAX * _EXACT_POSTERIOR_WORK_SECONDS:.0f} s "
+            "allowed, and a lower bound of it does not exceed the gate (update with fewer "
+            "components at a time, or with a diagonal R)"
+        )
+    return _exact_nis(p, jac, r, y)
 
 
 def _exact_nis(p: FloatArray, jac: FloatArray, r: FloatArray, y: FloatArray) -> float:
@@ -1710,6 +1776,52 @@ def _exact_nis(p: FloatArray, jac: FloatArray, r: FloatArray, y: FloatArray) -> 
     :data:`_EXACT_CANCELLED_MAX_M`).
     """
     return _nis_of(_eliminated(p, jac, r, y))
+
+
+def _denominator_bits(a: FloatArray) -> int:
+    """An upper bound on :func:`_dyadic`'s k for ``a`` (``a = A / 2**k``), from exponents only.
+
+    A nonzero float ``f 2**e`` (``0.5 <= |f| < 1``) is an integer over at most
+    ``2**(53 - e)`` (over ``2**1074`` for a subnormal: ``e >= -1073``), so k is at most
+    ``53 - min e``, and 0 for integers; O(size) in NumPy, no Python integers.
+    """
+    nonzero = a[a != 0.0]
+    if nonzero.size == 0:
+        return 0
+    return max(0, 53 - int(np.frexp(nonzero)[1].min()))
+
+
+def _exact_nis_work(p: FloatArray, jac: FloatArray, r: FloatArray, y: FloatArray) -> float:
+    """An upper estimate of :func:`_exact_nis`'s work, in ``_EXACT_POSTERIOR_WORK_MAX``'s units.
+
+    Decided from sizes and exponents alone, before any exact arithmetic (a few
+    O(m² + m n + n²) NumPy passes). The elimination of ``[S | y]`` makes about m³ / 3
+    products and exact divisions of integers of up to b bits, the size of a minor of
+    the integer S (or one with y's column): for a positive definite S every minor's
+    magnitude is at most the product of the diagonal entries of its rows and of its
+    columns' square roots (Hadamard, and ``|det S[I, J]|² <= det S[I, I] det S[J, J]``),
+    so b is at most ``Σₖ bits(Sₖₖ 2**scale)`` plus y's bits, each ``Sₖₖ`` at most
+    ``uₖ² + Rₖₖ`` (``uₖ = Σⱼ |Hₖⱼ| sqrt(Pⱼⱼ)``, as :func:`_nis_lower_bound`'s cₖ).
+    work = m³ b², as the posterior's m² n b² counts a product of b-bit integers
+    (b² overstates Karatsuba's growth: an upper estimate). Measured 2026-12: 28
+    components of a dense R (EKFREV3's draw), b = 3874 as eliminated, estimate
+    b <= 5.3e3 (y's column included) and 0.27 s at _EXACT_POSTERIOR_WORK_SECONDS,
+    0.05-0.07 s CPU.
+    inf where a bound overflows.
+    """
+    m = jac.shape[0]
+    scale = max(2 * _denominator_bits(jac) + _denominator_bits(p), _denominator_bits(r))
+    with np.errstate(all="ignore"):
+        reach = np.abs(jac) @ np.sqrt(p.diagonal())
+        c = (reach * reach + r.diagonal()) * (1.0 + 2.0**-20)
+        y_top = float(np.max(np.abs(y)))
+    if not (np.isfinite(c).all() and math.isfinite(y_top)):
+        return math.inf
+    # bits(Sₖₖ 2**scale) <= log2 Sₖₖ + scale + 1; y's integers (over 2**ky) likewise.
+    bits = float(np.sum(np.floor(np.log2(c)) + 1.0)) + m * (scale + 1)
+    if y_top > 0.0:
+        bits += math.log2(y_top) + _denominator_bits(y) + 2.0 + math.log2(m)
+    return float(m) ** 3 * float(bits) ** 2
 
 
 def _bareiss(rows: list[list[int]], size: int, first: int | None = None) -> int | None:
