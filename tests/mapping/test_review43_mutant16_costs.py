@@ -47,3 +47,23 @@ def test_a_cell_exactly_at_the_widened_radius_is_inscribed(
         expected = int(252 * math.exp(-10.0 * (j * res - (radius + 1e-9 * res))))
         assert abs(int(cost[j]) - expected) <= 1, (j, cost.tolist())
     assert (np.diff(cost) <= 0).all(), cost.tolist()
+
+
+def test_inflate_unknown_gives_unknown_cells_every_positive_cost_down_to_1() -> None:
+    # Mutant ``cost <= 1`` for Nav2's ``cost == FREE_SPACE`` (review 43): no test had an
+    # unknown cell whose inflated cost is exactly 1. A slow decay over a long row gives
+    # every cost from 252 down to 1, then 0 beyond the inflation radius.
+    occupied = np.zeros((1, 260), dtype=bool)
+    occupied[0, 0] = True
+    known = OccupancyGrid.from_occupancy(occupied, resolution=0.05)
+    unknown = OccupancyGrid.from_occupancy(occupied, resolution=0.05, unknown=~occupied)
+    free_cost = costmap(known, robot_radius=0.0, inflation_radius=10.0, cost_scaling_factor=0.5)
+    assert {0, 1, 2} <= set(free_cost[0].tolist())
+    got = costmap(
+        unknown,
+        robot_radius=0.0,
+        inflation_radius=10.0,
+        cost_scaling_factor=0.5,
+        inflate_unknown=True,
+    )
+    assert np.array_equal(got, np.where(free_cost > 0, free_cost, 255))
