@@ -7,7 +7,9 @@ re-entrant call) or in a thread the child started -- is an ordinary refusal and
 must say so: the object is not half-updated, and making a new one is the wrong
 advice. Mutants that skipped the child's frame search (or searched only the
 threads' innermost frames) named the fork for these calls too, unseen by the
-tests, which refused calls in a child only because of the parent's thread.
+tests, which refused calls in a child only because of the parent's thread; so
+did one that named the fork for a call that ended while the refusal was being
+worded (no longer in the object's list).
 """
 
 from __future__ import annotations
@@ -28,7 +30,7 @@ _SCRIPT = textwrap.dedent(
     """
     import faulthandler, json, os, threading
     faulthandler.dump_traceback_later(60, exit=True)
-    from navkit._shared.locks import one_caller
+    from navkit._shared.locks import _in_use, one_caller
 
     class Box:
         __slots__ = ("_callers", "n")
@@ -66,7 +68,10 @@ _SCRIPT = textwrap.dedent(
         leave.set()
         worker.join(30)
         after = message(box.fill)  # both calls are done: this one runs
-        os.write(write, json.dumps([same, other, after, box.n, box._callers]).encode())
+        # A call that ended between the refusal's read of the list and the message
+        # (its token no longer listed, no frame holds it) was this process's own.
+        ended = _in_use("Box", "fill", (0, "fill", object()), [])
+        os.write(write, json.dumps([same, other, after, ended, box.n, box._callers]).encode())
         os._exit(0)
     os.close(write)
     out = json.loads(os.read(read, 100000).decode())
@@ -77,13 +82,14 @@ _SCRIPT = textwrap.dedent(
 
 
 def test_a_childs_own_call_under_way_gets_the_ordinary_messages() -> None:
-    same, other, after, n, callers = probe_outcome(_SCRIPT, timeout=120)
+    same, other, after, ended, n, callers = probe_outcome(_SCRIPT, timeout=120)
     assert same is not None and other is not None
-    for text in (same, other):
+    for text in (same, other, ended):
         assert text.startswith("Box.fill was called"), text
         assert "forked" not in text and "make a new" not in text, text
     assert "during this Box's own fill, in the same thread" in same, same
     assert "another thread was in this Box's fill" in other, other
+    assert "another thread was in this Box's fill" in ended, ended
     assert after is None
     assert n == 3  # the outer call, the worker's, the last; the two refused did not run
     assert callers == []
