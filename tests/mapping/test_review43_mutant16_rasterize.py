@@ -9,14 +9,15 @@ grid coordinate 3.0000000000000004 has ceiling 4. The mutant ``ceil(lo) - 1``
 and left cell 2 free under a point at 0.1 * 3; the suite's edge tests place
 geometry at 0.3 (coordinate exactly 3), so it passed. Oracle: the documented
 closed squares (the cells ``k - 1`` and ``k`` on each axis, no other).
-Checked: fails on that mutant, passes on HEAD.
+And the unclipped mutant of the same window's lower coordinate: overflow to inf.
+Checked: fails on each mutant, passes on HEAD.
 """
 
 from __future__ import annotations
 
 import numpy as np
 import pytest
-from shapely.geometry import Point
+from shapely.geometry import Point, box
 
 from navkit.mapping import rasterize_polygons
 
@@ -37,3 +38,16 @@ def test_a_point_on_rounded_edges_occupies_the_four_cells_around_it(
         expected = np.zeros(grid.shape, dtype=bool)
         expected[k - 1 : k + 1, k - 1 : k + 1] = True
         assert np.array_equal(grid.occupied(), expected), (k, repr(edge))
+
+
+def test_geometries_whose_grid_coordinates_overflow_are_rasterised() -> None:
+    # Mutant: the window's lower coordinate unclipped (review 43). At 1e-6 m cells a
+    # coordinate of 1e303 m is 1e309 cells: inf, and math.ceil(inf) raised OverflowError.
+    bounds = (0.0, 0.0, 1e-5, 2e-5)
+    far = rasterize_polygons(Point(1e303, 1e-5), bounds=bounds, resolution=1e-6)
+    assert far.shape == (20, 10)
+    assert not far.occupied().any()
+    everywhere = rasterize_polygons(
+        box(-1e303, -1e303, 1e303, 1e303), bounds=bounds, resolution=1e-6
+    )
+    assert everywhere.occupied().all()
