@@ -51,7 +51,10 @@ def test_traversal_costs_read_a_zero_d_inf_as_inf() -> None:
     grid = OccupancyGrid.from_occupancy(occupied, resolution=0.1, unknown=unknown)
     expected = traversal_costs(grid, robot_radius=0.1, inflation_radius=0.2)
     got = traversal_costs(
-        grid, robot_radius=0.1, inflation_radius=0.2, unknown_cost=np.array(np.inf)
+        grid,
+        robot_radius=0.1,
+        inflation_radius=0.2,
+        unknown_cost=np.array(np.inf),  # type: ignore[arg-type]
     )
     np.testing.assert_array_equal(got, expected)
     assert got[0, 4] == math.inf
