@@ -1,0 +1,60 @@
+"""A list holding a NumPy array and an object whose ``__class__`` says ndarray (MUTANT15).
+
+Review 36 made validation ask an object's type, not ``isinstance``, which
+believes ``__class__``; its tests passed the lying object alone or in a pair
+with a number. Next to a real array in a list, ``holds_bool`` looks for a
+boolean array among the list's arrays: with ``isinstance`` back in that one
+place (a surviving mutant), the wrapper was taken for an array and its missing
+``dtype`` raised ``AttributeError`` instead of the list being read as the
+array-likes it holds.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+import pytest
+
+from navkit._shared.validation import as_points, holds_bool
+
+
+class Liar:
+    """A wrapper whose ``__class__`` says ``np.ndarray``; NumPy reads it through ``__array__``."""
+
+    def __init__(self, data: Any) -> None:
+        self._data = np.asarray(data)
+
+    @property  # type: ignore[misc]
+    def __class__(self) -> type:
+        return np.ndarray
+
+    def __array__(self, dtype: Any = None, copy: bool | None = None) -> np.ndarray:
+        return np.array(self._data, dtype=dtype, copy=True)
+
+
+def test_the_liar_passes_isinstance_and_has_no_dtype() -> None:
+    liar: Any = Liar([1.0, 2.0])
+    assert isinstance(liar, np.ndarray)
+    assert not hasattr(liar, "dtype")
+
+
+@pytest.mark.parametrize("first", [True, False])
+def test_a_list_of_an_array_and_a_liar_is_read_as_its_numbers(first: bool) -> None:
+    items: list[Any] = [np.array([1.0, 2.0]), Liar([3.0, 4.0])]
+    if not first:
+        items.reverse()
+    assert holds_bool(items) is False
+    got = as_points(items, "points")
+    np.testing.assert_array_equal(
+        got, [[1.0, 2.0], [3.0, 4.0]] if first else [[3.0, 4.0], [1.0, 2.0]]
+    )
+
+
+def test_a_boolean_array_next_to_a_liar_is_still_refused() -> None:
+    items: list[Any] = [np.array([True, False]), Liar([3.0, 4.0])]
+    assert holds_bool(items) is True
+    with pytest.raises(
+        TypeError, match=r"^points must hold real numbers, got an element of type bool"
+    ):
+        as_points(items, "points")
