@@ -6,7 +6,10 @@ with a number. Next to a real array in a list, ``holds_bool`` looks for a
 boolean array among the list's arrays: with ``isinstance`` back in that one
 place (a surviving mutant), the wrapper was taken for an array and its missing
 ``dtype`` raised ``AttributeError`` instead of the list being read as the
-array-likes it holds.
+array-likes it holds. The same for a wrapper whose ``__class__`` says
+``np.ma.MaskedArray`` (a proxy of a masked array), alone or next to a real
+masked array: ``refuse_masked`` read its missing ``mask`` when it believed
+``isinstance``.
 """
 
 from __future__ import annotations
@@ -16,7 +19,7 @@ from typing import Any
 import numpy as np
 import pytest
 
-from navkit._shared.validation import as_points, holds_bool
+from navkit._shared.validation import as_array, as_points, holds_bool
 
 
 class Liar:
@@ -31,6 +34,14 @@ class Liar:
 
     def __array__(self, dtype: Any = None, copy: bool | None = None) -> np.ndarray:
         return np.array(self._data, dtype=dtype, copy=True)
+
+
+class MaskedLiar(Liar):
+    """A wrapper whose ``__class__`` says ``np.ma.MaskedArray``, without a ``mask``."""
+
+    @property  # type: ignore[misc]
+    def __class__(self) -> type:
+        return np.ma.MaskedArray
 
 
 def test_the_liar_passes_isinstance_and_has_no_dtype() -> None:
@@ -58,3 +69,19 @@ def test_a_boolean_array_next_to_a_liar_is_still_refused() -> None:
         TypeError, match=r"^points must hold real numbers, got an element of type bool"
     ):
         as_points(items, "points")
+
+
+def test_a_masked_array_liar_is_read_as_an_array_like() -> None:
+    liar: Any = MaskedLiar([1.0, 2.0])
+    assert isinstance(liar, np.ma.MaskedArray)
+    assert not hasattr(liar, "mask")
+    np.testing.assert_array_equal(as_array(liar, "mask"), [1.0, 2.0])
+    np.testing.assert_array_equal(as_points([liar, liar], "points"), [[1.0, 2.0], [1.0, 2.0]])
+
+
+def test_a_masked_array_liar_next_to_a_masked_array_is_read_or_refused_by_the_mask() -> None:
+    unmasked: list[Any] = [np.ma.array([1.0, 2.0]), MaskedLiar([3.0, 4.0])]
+    np.testing.assert_array_equal(as_array(unmasked, "mask"), [[1.0, 2.0], [3.0, 4.0]])
+    masked: list[Any] = [np.ma.array([1.0, 2.0], mask=[False, True]), MaskedLiar([3.0, 4.0])]
+    with pytest.raises(ValueError, match=r"^mask has masked entries \(in an element of the list\)"):
+        as_array(masked, "mask")
