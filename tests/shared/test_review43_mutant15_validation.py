@@ -9,7 +9,9 @@ place (a surviving mutant), the wrapper was taken for an array and its missing
 array-likes it holds. The same for a wrapper whose ``__class__`` says
 ``np.ma.MaskedArray`` (a proxy of a masked array), alone or next to a real
 masked array: ``refuse_masked`` read its missing ``mask`` when it believed
-``isinstance``.
+``isinstance``. And ``integer_readings`` of a wrapper of Python integers
+that NumPy types as float64 (``[2**64 - 1, -1]``) gives the list's own answer
+(the integers, in an object array), not a refusal of its float dtype.
 """
 
 from __future__ import annotations
@@ -19,7 +21,7 @@ from typing import Any
 import numpy as np
 import pytest
 
-from navkit._shared.validation import as_array, as_points, holds_bool
+from navkit._shared.validation import as_array, as_points, holds_bool, integer_readings
 
 
 class Liar:
@@ -85,3 +87,28 @@ def test_a_masked_array_liar_next_to_a_masked_array_is_read_or_refused_by_the_ma
     masked: list[Any] = [np.ma.array([1.0, 2.0], mask=[False, True]), MaskedLiar([3.0, 4.0])]
     with pytest.raises(ValueError, match=r"^mask has masked entries \(in an element of the list\)"):
         as_array(masked, "mask")
+
+
+class ListLiar:
+    """A wrapper of a Python list whose ``__class__`` says ``np.ndarray``."""
+
+    def __init__(self, data: list[Any]) -> None:
+        self._data = data
+
+    @property  # type: ignore[misc]
+    def __class__(self) -> type:
+        return np.ndarray
+
+    def __array__(self, dtype: Any = None, copy: bool | None = None) -> np.ndarray:
+        return np.array(self._data, dtype=dtype)
+
+
+@pytest.mark.parametrize("readings", [[2**64 - 1, -1], [2**63, 0], [-(2**63) - 1, 5]])
+def test_integer_readings_of_a_wrapped_list_are_the_lists(readings: list[int]) -> None:
+    expected = integer_readings(readings, "ticks")
+    assert expected.dtype == object
+    got = integer_readings(ListLiar(readings), "ticks")
+    assert got.dtype == object
+    assert got.tolist() == expected.tolist() == readings
+    with pytest.raises(TypeError, match=r"^ticks must hold integer counter readings, got dtype"):
+        integer_readings(ListLiar([*readings[:-1], 0.5]), "ticks")
