@@ -11,7 +11,8 @@ array-likes it holds. The same for a wrapper whose ``__class__`` says
 masked array: ``refuse_masked`` read its missing ``mask`` when it believed
 ``isinstance``. And ``integer_readings`` of a wrapper of Python integers
 that NumPy types as float64 (``[2**64 - 1, -1]``) gives the list's own answer
-(the integers, in an object array), not a refusal of its float dtype.
+(the integers, in an object array), not a refusal of its float dtype; ``unpack``
+(a pair, a cell) reads a wrapper through ``__array__``, not by iterating it.
 """
 
 from __future__ import annotations
@@ -21,7 +22,14 @@ from typing import Any
 import numpy as np
 import pytest
 
-from navkit._shared.validation import as_array, as_points, holds_bool, integer_readings
+from navkit._shared.validation import (
+    as_array,
+    as_cell,
+    as_points,
+    holds_bool,
+    integer_readings,
+    unpack,
+)
 
 
 class Liar:
@@ -112,3 +120,10 @@ def test_integer_readings_of_a_wrapped_list_are_the_lists(readings: list[int]) -
     assert got.tolist() == expected.tolist() == readings
     with pytest.raises(TypeError, match=r"^ticks must hold integer counter readings, got dtype"):
         integer_readings(ListLiar([*readings[:-1], 0.5]), "ticks")
+
+
+def test_unpack_reads_a_liar_through_its_array_protocol() -> None:
+    assert unpack(Liar([1.0, 2.0, 3.0]), "pose") == (1.0, 2.0, 3.0)
+    rows = unpack(Liar([[1.0, 2.0], [3.0, 4.0]]), "pairs")
+    assert [row.tolist() for row in rows] == [[1.0, 2.0], [3.0, 4.0]]
+    assert as_cell(Liar([1, 2]), "cell", (3, 4)) == (1, 2)
