@@ -10,6 +10,7 @@ failed with "Too many levels of symbolic links" only after the run).
 
 from __future__ import annotations
 
+import os
 import sys
 from pathlib import Path
 
@@ -65,3 +66,20 @@ def test_plan_names_the_loop_in_one_line(
     assert code == 1
     assert captured.err == f"navkit: error: --json: {loop} is a loop of symbolic links\n"
     assert captured.out == ""  # refused before the plan, not after it
+
+
+@pytest.mark.skipif(not os.path.isdir("/proc/self/fd"), reason="counts /proc/self/fd")
+def test_the_writability_probe_closes_its_descriptor(tmp_path: Path) -> None:
+    # Unseen by a mutation review: the probe file was removed, its descriptor left open
+    # (one a check; main() may run many times in one process).
+    before = len(os.listdir("/proc/self/fd"))
+    for _ in range(3):
+        check_output(str(tmp_path / "r.json"), "", "--json")
+    assert len(os.listdir("/proc/self/fd")) == before
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_the_extension_is_compared_ignoring_case(tmp_path: Path) -> None:
+    check_output(str(tmp_path / "R.PNG"), ".png", "--plot")
+    with pytest.raises(ValueError, match=r"^--animate: the file must end in \.gif, got .*R\.PNG$"):
+        check_output(str(tmp_path / "R.PNG"), ".gif", "--animate")
