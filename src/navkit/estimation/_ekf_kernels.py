@@ -298,7 +298,8 @@ _EXACT_CANCELLED_MAX_M = 12
 # 256; capped since review 42 by _EXACT_POSTERIOR_WORK_MAX), nor the float64
 # information form's refinement of a dense R block's inverse (m³ exact terms in
 # Python: 0.4 s for m = 100, 1.9 s for 200, 10 s for 400; review 42, loaded: 3.9 s, 21.5
-# s and 140 s for 800, not limited), which precedes the refusal of such an update.
+# s and 140 s for 800, which preceded the refusal of such an update; capped from sizes
+# since review 47, _RESIDUAL_TERM_WORK).
 _EXACT_ELIMINATION_MAX = 24
 # The largest work of an exact posterior from S's elimination (_exact_posterior): its
 # replay of S's elimination on H P's n columns and back substitution, about m² n
@@ -318,6 +319,18 @@ _EXACT_ELIMINATION_MAX = 24
 # and 96 states): the limit is then about 15 s of CPU.
 _EXACT_POSTERIOR_WORK_MAX = 3.5e13
 _EXACT_POSTERIOR_WORK_SECONDS = 4.3e-13
+# The same cap on the other Python-level work a precise update does past the exact
+# posterior's (review 47, EKFREV5; before, unlimited): CPU seconds per operation, in
+# _EXACT_POSTERIOR_WORK_SECONDS's units. The information form's refinement of a dense
+# R block's inverse sums b³ exact terms (_exact_residual): measured 2-3e-7 s CPU a term
+# for b = 100-200 on a loaded 2-core machine (review 42: 140 s wall for m = 800, now
+# refused from its size; the cap allows blocks up to about 370 components).
+_RESIDUAL_TERM_WORK = 3e-7 / _EXACT_POSTERIOR_WORK_SECONDS
+# The information route of _ExactUpdate: per component about (n + 2)² products of
+# integers of H's and R's bits, measured 0.14-0.6 µs CPU per m (n + 2)² (n = 6-24,
+# 500-10,000 beams of a diagonal R), and b³ / 3 for a block of b components'
+# elimination: 24 states allow about 37,000 beams.
+_INFORMATION_OP_WORK = 6e-7 / _EXACT_POSTERIOR_WORK_SECONDS
 # The largest n whose Q the predict kernel accepts by its LDLᵀ factorisation
 # (_adopt_positive): its backward error, about n² ε max|Q|, is then below 1e-12 max|Q|.
 _PSD_MAX_N = 64
@@ -1321,6 +1334,20 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
     checked = [joseph] if status == OK else []
     route = _exact_route(n, rbuf[_RS, :m, :m])
     exact = route is not None
+    if route is None:
+        # Without the information form nothing can vouch for the update: refused from
+        # sizes where it exceeds the cap (review 47, EKFREV5; before, made first: 140 s
+        # for a dense R of 800 components, then refused).
+        work = _refinement_work(p, _r_blocks(rbuf[_RS, :m, :m]))
+        if work > _EXACT_POSTERIOR_WORK_MAX:
+            raise _PastTheLimit(
+                f"the information form of a measurement of {m} components far more precise "
+                f"than the estimate would take about {work * _EXACT_POSTERIOR_WORK_SECONDS:.0f}"
+                f" s to refine, more than the "
+                f"{_EXACT_POSTERIOR_WORK_MAX * _EXACT_POSTERIOR_WORK_SECONDS:.0f} s allowed, "
+                f"and its exact arithmetic would eliminate more than {_EXACT_ELIMINATION_MAX} "
+                "rows (update with fewer components at a time, or with a diagonal R)"
+            )
     with np.errstate(all="ignore"):
         found = _information_update(p, jac, rbuf[_RS, :m, :m], y)
         if found is None or not _EPS * found.error <= _WELL_CONDITIONED:
@@ -1791,6 +1818,18 @@ def _denominator_bits(a: FloatArray) -> int:
     return max(0, 53 - int(np.frexp(nonzero)[1].min()))
 
 
+def _integer_bits(a: FloatArray) -> int:
+    """An upper bound on the bit length of :func:`_dyadic`'s integers for ``a``.
+
+    ``|a| < 2**max e`` (frexp's exponents), so ``|A| = |a| 2**k < 2**(max e + k)``,
+    k at most :func:`_denominator_bits`.
+    """
+    nonzero = a[a != 0.0]
+    if nonzero.size == 0:
+        return 0
+    return max(0, _denominator_bits(a) + int(np.frexp(nonzero)[1].max()))
+
+
 def _exact_nis_work(p: FloatArray, jac: FloatArray, r: FloatArray, y: FloatArray) -> float:
     """An upper estimate of :func:`_exact_nis`'s work, in ``_EXACT_POSTERIOR_WORK_MAX``'s units.
 
@@ -1803,7 +1842,8 @@ def _exact_nis_work(p: FloatArray, jac: FloatArray, r: FloatArray, y: FloatArray
     so b is at most ``Σₖ bits(Sₖₖ 2**scale)`` plus y's bits, each ``Sₖₖ`` at most
     ``uₖ² + Rₖₖ`` (``uₖ = Σⱼ |Hₖⱼ| sqrt(Pⱼⱼ)``, as :func:`_nis_lower_bound`'s cₖ).
     work = m³ b², as the posterior's m² n b² counts a product of b-bit integers
-    (b² overstates Karatsuba's growth: an upper estimate). Measured 2026-12: 28
+    (b² overstates Karatsuba's growth: an upper estimate), plus the integer S's own
+    m n (n + m) products (H P, then by H). Measured 2026-12: 28
     components of a dense R (EKFREV3's draw), b = 3874 as eliminated, estimate
     b <= 5.3e3 (y's column included) and 0.27 s at _EXACT_POSTERIOR_WORK_SECONDS,
     0.05-0.07 s CPU.
@@ -1821,7 +1861,13 @@ def _exact_nis_work(p: FloatArray, jac: FloatArray, r: FloatArray, y: FloatArray
     bits = float(np.sum(np.floor(np.log2(c)) + 1.0)) + m * (scale + 1)
     if y_top > 0.0:
         bits += math.log2(y_top) + _denominator_bits(y) + 2.0 + math.log2(m)
-    return float(m) ** 3 * float(bits) ** 2
+    # And the integer S itself, before any elimination: H P's m n² products and their
+    # m² n by H (review 47, EKFREV5: before, made before any cap was checked, m n² of
+    # them unbounded in n), at _INFORMATION_OP_WORK a product plus their bits' square.
+    n = p.shape[0]
+    h_bits = float(_integer_bits(jac))
+    products = m * n * (n + m) * (_INFORMATION_OP_WORK + h_bits * (h_bits + _integer_bits(p)))
+    return float(m) ** 3 * float(bits) ** 2 + float(products)
 
 
 def _bareiss(rows: list[list[int]], size: int, first: int | None = None) -> int | None:
@@ -2119,23 +2165,54 @@ class _ExactUpdate:
         n = jac.shape[1]
         self.elimination: _Elimination | None = None
         if not blocks:
+            # S's elimination: its work from sizes and exponents before any (review 47,
+            # EKFREV5; before, H P's m n² products preceded the exact posterior's cap).
+            work = _exact_nis_work(p, jac, r, y)
+            if work > _EXACT_POSTERIOR_WORK_MAX:
+                raise _PastTheLimit(
+                    f"the exact update of {n} states from {jac.shape[0]} components (S's "
+                    f"elimination, with H P's {jac.shape[0] * n * n} products) would take "
+                    f"about {work * _EXACT_POSTERIOR_WORK_SECONDS:.0f} s of exact "
+                    "arithmetic, more than the "
+                    f"{_EXACT_POSTERIOR_WORK_MAX * _EXACT_POSTERIOR_WORK_SECONDS:.0f} s "
+                    "allowed (update with fewer components at a time, or with fewer states)"
+                )
             self.elimination = _eliminated(p, jac, r, y)
             return
+        # Its work from sizes and exponents before any (review 47, EKFREV5; before,
+        # unlimited: 25 s for 10,000 beams, most of it R's m² integers).
+        m = jac.shape[0]
+        # A product of an integer of H (h bits) by one of a block's solution (h bits and
+        # the block's other b - 1 rows of R's): a b² term, as the posterior's.
+        h_bits, r_bits = _integer_bits(jac), _integer_bits(r)
+        widest = max(len(b) for b in blocks)
+        ops = m * (n + 2) ** 2 + sum(len(b) ** 3 // 3 for b in blocks)
+        work = ops * (_INFORMATION_OP_WORK + float(h_bits) * (h_bits + widest * r_bits))
+        if work > _EXACT_POSTERIOR_WORK_MAX:
+            raise _PastTheLimit(
+                f"the exact update of {n} states from {m} components (by R's blocks) would "
+                f"take about {work * _EXACT_POSTERIOR_WORK_SECONDS:.0f} s of exact "
+                f"arithmetic, more than the "
+                f"{_EXACT_POSTERIOR_WORK_MAX * _EXACT_POSTERIOR_WORK_SECONDS:.0f} s allowed "
+                "(update with fewer components at a time)"
+            )
         h_int, kh = _dyadic(jac)
         p_int, kp = _dyadic(p)
-        r_int, kr = _dyadic(r)
+        # R's blocks only, over their common power of two: the whole R took m² Python
+        # integers (10,000 beams of a diagonal R: 1e8, about 25 s; review 47, EKFREV5).
+        r_ints, kr = _dyadic_blocks(r, blocks)
         y_int = _dyadic(y[None, :])
         ky = y_int[1]
         y_row = y_int[0][0]
         # Σ over the blocks of Hᵀ R⁻¹ [H | y] and yᵀ R⁻¹ y, in integers over each
         # block's determinant, summed per determinant (a scan's beams share one).
         sums: dict[int, tuple[list[list[int]], list[int], list[int]]] = {}
-        for block in blocks:
+        for block, r_int in zip(blocks, r_ints, strict=True):
             rhs = [h_int[a] + [y_row[a]] for a in block]
             if len(block) == 1:
-                solved, det = rhs, r_int[block[0]][block[0]]
+                solved, det = rhs, r_int[0][0]
             else:
-                found = _bareiss_solve([[r_int[a][b] for b in block] for a in block], rhs)
+                found = _bareiss_solve([row[:] for row in r_int], rhs)
                 if found is None:
                     # R's block is singular in exact arithmetic (its float64 check
                     # passed on a rounding): S, still positive definite, is not; but
@@ -2301,6 +2378,22 @@ def _dyadic(a: FloatArray) -> tuple[list[list[int]], int]:
     return [[num << (k - den.bit_length() + 1) for num, den in row] for row in ratios], k
 
 
+def _dyadic_blocks(r: FloatArray, blocks: list[list[int]]) -> tuple[list[list[list[int]]], int]:
+    """Each diagonal block of ``r`` (``blocks``, index lists) as integers over one ``2**k``.
+
+    :func:`_dyadic` of every block at once: ``r[block][:, block] = A_block / 2**k``
+    exactly, k the least common to all blocks (the entries between blocks, zero, are
+    not converted: O(Σ b²), not O(m²)).
+    """
+    ratios = [[[value.as_integer_ratio() for value in row] for row in r[np.ix_(b, b)].tolist()]
+              for b in blocks]  # fmt: skip
+    k = max(den.bit_length() - 1 for block in ratios for row in block for _, den in row)
+    return [
+        [[num << (k - den.bit_length() + 1) for num, den in row] for row in block]
+        for block in ratios
+    ], k
+
+
 def _s_amplification(rbuf: FloatArray, p: FloatArray, jac: FloatArray) -> float:
     """How far the kernel's NIS and x may be off, over ε: S's condition for its rounding error.
 
@@ -2460,18 +2553,20 @@ def _refined_inverse(
 
 
 def _refined_block_inverse(
-    r: FloatArray,
+    r: FloatArray, blocks: list[list[int]] | None = None
 ) -> tuple[FloatArray, FloatArray, float, tuple[FloatArray, FloatArray, FloatArray, float]] | None:
     """:func:`_refined_inverse` of the symmetric ``r``, one diagonal block at a time.
 
-    The blocks are :func:`_r_blocks`'s (one per beam for a diagonal R); the
+    The blocks are :func:`_r_blocks`'s (``blocks`` where the caller has them; one
+    per beam for a diagonal R); the
     inverse, its bound and the scaled parts are theirs side by side (zero, and
     exactly so, between blocks), κ the largest block's (each block's inverse and
     refinement are its own). A whole R of m components took m³ products at once
     (review 40: a 1000-beam scan's update ran the machine out of memory); one
     block is :func:`_refined_inverse` itself.
     """
-    blocks = _r_blocks(r)
+    if blocks is None:
+        blocks = _r_blocks(r)
     if len(blocks) == 1:
         return _refined_inverse(r)
     m = r.shape[0]
@@ -2542,6 +2637,11 @@ class _Information:
         return (measured + self.floor) / _EPS
 
 
+def _refinement_work(p: FloatArray, blocks: list[list[int]]) -> float:
+    """:func:`_information_update`'s work from sizes: its exact residuals' terms, b³ a block."""
+    return float(sum(len(b) ** 3 for b in blocks) + 2 * p.shape[0] ** 3) * _RESIDUAL_TERM_WORK
+
+
 def _information_update(
     p: FloatArray, jac: FloatArray, r: FloatArray, y: FloatArray
 ) -> _Information | None:
@@ -2557,10 +2657,16 @@ def _information_update(
     the public layer). None when a factorisation fails (a matrix singular to
     working precision) or P⁺ fails the kernels' test of a covariance
     (:func:`_positive_definite`: finite, the pivots of its LDLᵀ
-    factorisation, those of D P⁺ D over dᵢ², normal floats).
+    factorisation, those of D P⁺ D over dᵢ², normal floats); None too, with nothing
+    computed, where its work (:func:`_refinement_work`) exceeds
+    ``_EXACT_POSTERIOR_WORK_MAX`` (before review 47 unlimited: 140 s for a dense R
+    of 800 components).
     """
+    blocks = _r_blocks(r)
+    if _refinement_work(p, blocks) > _EXACT_POSTERIOR_WORK_MAX:
+        return None  # not made: past the cap, decided from sizes (review 47, EKFREV5)
     prior = _refined_inverse(p)
-    noise = _refined_block_inverse(r)
+    noise = _refined_block_inverse(r, blocks)
     if prior is None or noise is None:
         return None
     p_inv, r_inv = prior[0], noise[0]
