@@ -27,3 +27,28 @@ def test_from_probabilities_past_one_block_is_the_whole_grids_logodds(
     clipped = np.clip(p, P_MIN, P_MAX)
     expected = np.log(clipped / (1.0 - clipped)).astype(np.float32)
     assert np.array_equal(grid.logodds, expected)
+
+
+@pytest.mark.parametrize(
+    ("res", "k", "radius"),
+    [
+        (1.0, 2, 1.999999999),
+        (0.5, 3, 1.4999999995),
+        (0.1, 2, 0.1999999999),
+        (0.25, 1, 0.24999999975),
+    ],
+)
+def test_inflate_includes_a_cell_exactly_at_the_widened_radius(
+    res: float, k: int, radius: float
+) -> None:
+    # inflate's rule is ``distance <= radius / res + 1e-9`` cells; the mutant ``<`` passed
+    # the suite, whose radii never put the widened reach exactly on a cell centre. These
+    # radii do (checked first). Oracle: the documented rule; cells_near agrees.
+    assert radius / res + 1e-9 == k
+    occupied = np.zeros((1, k + 3), dtype=bool)
+    occupied[0, 0] = True
+    grid = OccupancyGrid.from_occupancy(occupied, resolution=res)
+    expected = [True] * (k + 1) + [False] * 2
+    assert grid.inflate(radius)[0].tolist() == expected
+    near = grid.cells_near(grid.cell_to_world([0, 0]), robot_radius=radius)
+    assert near.tolist() == [[0, j] for j in range(k + 1)]
