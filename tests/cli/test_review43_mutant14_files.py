@@ -17,7 +17,7 @@ from pathlib import Path
 
 import pytest
 
-from navkit.cli._files import named_write_errors, write_json
+from navkit.cli._files import json_text, named_write_errors, write_json
 
 
 def test_an_existing_file_is_replaced_not_written_into(tmp_path: Path) -> None:
@@ -41,3 +41,12 @@ def test_an_error_that_names_its_file_keeps_that_name() -> None:
     full = r"^\[Errno 28\] No space left on device: 'out\.json'$"
     with pytest.raises(OSError, match=full), named_write_errors(Path("out.json")):
         raise OSError(28, "No space left on device")
+
+
+def test_number_lists_are_laid_out_from_the_data_json_dumps_accepted() -> None:
+    # Integer keys and tuples, as json.dumps writes them: keys as strings, tuples as
+    # lists (laid out from the data itself, "1": was 1: and the tuple one line).
+    data = {1: ({"a": (1.5, 2)},)}
+    text = json_text(data, number_lists_on_one_line=True)
+    assert text == '{\n  "1": [\n    {\n      "a": [1.5, 2]\n    }\n  ]\n}'
+    assert json.loads(text) == json.loads(json.dumps(data))
