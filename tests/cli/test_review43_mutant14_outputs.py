@@ -83,3 +83,13 @@ def test_the_extension_is_compared_ignoring_case(tmp_path: Path) -> None:
     check_output(str(tmp_path / "R.PNG"), ".png", "--plot")
     with pytest.raises(ValueError, match=r"^--animate: the file must end in \.gif, got .*R\.PNG$"):
         check_output(str(tmp_path / "R.PNG"), ".gif", "--animate")
+
+
+@pytest.mark.parametrize(("suffix", "option"), [(".png", "--plot"), ("", "--json")])
+def test_a_folder_is_refused_as_a_folder(tmp_path: Path, suffix: str, option: str) -> None:
+    # Unseen by the mutation review: without this check a folder given to --json
+    # was refused only by write_json, after the run.
+    folder = tmp_path / f"out{suffix}"
+    folder.mkdir()
+    with pytest.raises(ValueError, match=rf"^{option}: .*out{suffix} is a folder, not a file$"):
+        check_output(str(folder), suffix, option)
