@@ -93,3 +93,12 @@ def test_a_folder_is_refused_as_a_folder(tmp_path: Path, suffix: str, option: st
     folder.mkdir()
     with pytest.raises(ValueError, match=rf"^{option}: .*out{suffix} is a folder, not a file$"):
         check_output(str(folder), suffix, option)
+
+
+def test_a_missing_folder_is_named(tmp_path: Path) -> None:
+    # Unseen by the mutation review: without this check the probe's mkstemp reported
+    # "cannot write in folder ... (No such file or directory)", an OSError.
+    missing = tmp_path / "missing"
+    with pytest.raises(FileNotFoundError, match=rf"^--json: folder {missing} does not exist$"):
+        check_output(str(missing / "r.json"), "", "--json")
+    assert not missing.exists()
