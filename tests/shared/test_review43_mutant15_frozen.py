@@ -49,7 +49,7 @@ def test_an_inherited_user_getstate_is_used(make_copy: Callable[[Any], Any]) -> 
     field: Any = Deeper((1.0, 2.0), m=2.0)
     field.note = "kept"
     field.lock = threading.Lock()
-    out = make_copy(field)
+    out: Any = make_copy(field)
     assert type(out) is Deeper
     assert out.note == "kept"
     assert not hasattr(out, "lock")
