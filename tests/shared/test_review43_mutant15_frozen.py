@@ -50,8 +50,8 @@ def test_an_inherited_user_getstate_is_used(make_copy: Callable[[Any], Any]) -> 
     field.note = "kept"
     field.lock = threading.Lock()
     out: Any = make_copy(field)
-    assert type(out) is Deeper
     assert out.note == "kept"
+    assert type(out) is Deeper
     assert not hasattr(out, "lock")
     np.testing.assert_array_equal(out.goal_xy, [1.0, 2.0])
     assert out.m == 2.0
