@@ -102,3 +102,31 @@ def test_a_missing_folder_is_named(tmp_path: Path) -> None:
     with pytest.raises(FileNotFoundError, match=rf"^--json: folder {missing} does not exist$"):
         check_output(str(missing / "r.json"), "", "--json")
     assert not missing.exists()
+
+
+def test_a_hidden_matplotlib_package_is_missing_even_with_its_figure_module_loaded(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    # As after an earlier plot in the same process (main() may run many times).
+    import matplotlib.figure  # noqa: F401
+
+    monkeypatch.setitem(sys.modules, "matplotlib", None)
+    with pytest.raises(ImportError, match=r"^--plot needs matplotlib, which is not installed"):
+        check_output("out.png", ".png", "--plot")
+
+
+@pytest.mark.parametrize("kind", ["picture", "animation"])
+def test_a_failed_picture_write_names_the_file(monkeypatch: pytest.MonkeyPatch, kind: str) -> None:
+    # `--plot` on a full disk: "No space left on device" alone left the file unnamed.
+    import navkit.plot as plot
+    from navkit.cli import _outputs
+
+    def full(*args: object, **kwargs: object) -> Path:
+        raise OSError(28, "No space left on device")
+
+    monkeypatch.setattr(plot, "plot_scene", lambda scene: None)
+    monkeypatch.setattr(plot, "save_figure", full)
+    monkeypatch.setattr(plot, "animate_trace", full)
+    save = _outputs.save_picture if kind == "picture" else _outputs.save_animation
+    with pytest.raises(OSError, match=r"No space left on device: 'out\.png'$"):
+        save(None, "out.png")  # type: ignore[arg-type]
