@@ -140,10 +140,16 @@ def test_built_wheel_holds_every_module_and_nothing_else(tmp_path: Path) -> None
     for name in ("pyproject.toml", "README.md", "CHANGELOG.md", "LICENSE", "MANIFEST.in"):
         if (ROOT / name).is_file():
             shutil.copy2(ROOT / name, tree / name)
-    shutil.copytree(ROOT / "src" / "navkit", tree / "src" / "navkit")
-    stray = tree / "src" / "navkit" / "__pycache__"
-    stray.mkdir(exist_ok=True)
-    (stray / "_fake.py311.nbi").write_bytes(b"\0")
+    # The checkout's own caches are left out of the copy (under -n 2 the other worker
+    # may be writing numba's temporary files there: a file listed, then renamed away)
+    # and stand-ins planted instead.
+    shutil.copytree(ROOT / "src" / "navkit", tree / "src" / "navkit",
+                    ignore=shutil.ignore_patterns("__pycache__"))  # fmt: skip
+    for package in ("", "planning/grid"):
+        stray = tree / "src" / "navkit" / package / "__pycache__"
+        stray.mkdir()
+        for name in ("_fake.py311.nbi", "_fake.grid_search-1.py311.1.nbc", "_fake.cpython-311.pyc"):
+            (stray / name).write_bytes(b"\0")
     out = tmp_path / "dist"
     built = subprocess.run(
         [sys.executable, "-m", "pip", "wheel", "--no-deps", "-q", "-w", str(out), str(tree)],
