@@ -34,7 +34,7 @@ def test_the_nis_limits_are_both_named() -> None:
     doc = _doc()
     limit = kernels._EXACT_ELIMINATION_MAX
     assert f"In an update of at most {limit} components" in doc
-    # Since review 47 (EKFREV5) the exact NIS alone within the work cap, with a gate.
+    # Since review 43 (EKFREV5) the exact NIS alone within the work cap, with a gate.
     assert f"Updates of more than {limit} components with a gate and such an S" in doc
     assert "gated on the exact NIS alone" in doc
     assert "without a gate they keep the kernel's NIS" in doc

@@ -146,7 +146,7 @@ def test_readings_far_apart_past_the_limit_are_rejected_by_the_gate() -> None:
     assert Fraction(result.nis) <= exact_update(x0, p, h, r, far - h @ x0)[2]
     assert np.array_equal(ekf.x, x0) and np.array_equal(ekf.P, p)
     # Without a gate it is refused as before. With one the bound does not exceed, it
-    # was refused too before review 47; now the exact NIS (its work within the cap)
+    # was refused too before review 43; now the exact NIS (its work within the cap)
     # rejects it (EKFREV5).
     with pytest.raises(FilterError, match=f"more than {kernels._EXACT_ELIMINATION_MAX} rows"):
         ekf.update(far, linear(h), h, r)

@@ -114,7 +114,7 @@ def test_the_bound_s_paths_leave_inputs_and_state_as_they_were(gate: object) -> 
         with pytest.raises(FilterError, match="more than 24 rows"):
             ekf.update(far, linear(h), h, r)
     else:
-        # Just above the bound: refused before review 47; rejected on the exact NIS
+        # Just above the bound: refused before review 43; rejected on the exact NIS
         # (its work within the cap) since (EKFREV5).
         result = ekf.update(far, linear(h), h, r, gate=gate)  # type: ignore[arg-type]
         exact = exact_update(x0, p, h, r, far - h @ x0)[2]

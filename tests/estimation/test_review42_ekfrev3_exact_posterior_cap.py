@@ -49,7 +49,7 @@ def test_an_exact_posterior_past_its_work_limit_is_refused_changing_nothing(
     monkeypatch.setattr(kernels, "_EXACT_POSTERIOR_WORK_MAX", 1000.0)
     kept = [a.copy() for a in (x0, p, h, r, z)]
     ekf = ExtendedKalmanFilter(x0, p)
-    # Since review 47 (EKFREV5) refused before S's elimination too, H P's products counted.
+    # Since review 43 (EKFREV5) refused before S's elimination too, H P's products counted.
     with pytest.raises(FilterError, match=r"exact update of 4 states from 3 components"):
         ekf.update(z, linear(h), h, r)
     for a, b in zip(kept, (x0, p, h, r, z), strict=True):

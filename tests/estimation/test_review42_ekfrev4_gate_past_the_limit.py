@@ -4,7 +4,7 @@ A rejection reason reads the NIS above the gate for every gate float64 holds
 (subnormal, 1e-300, 1e300, the largest float). Past 24 components with a dense R
 and an ill-conditioned S no exact NIS is taken: the kernel's stands, and can be far
 enough off for the gate to decide wrongly (found by EKFREV3, a strict xfail until
-review 47; EKFREV5 gates there on the exact NIS where its work is within the cap).
+review 43; EKFREV5 gates there on the exact NIS where its work is within the cap).
 """
 
 from __future__ import annotations
@@ -62,7 +62,7 @@ def _gated_wrongly_draw() -> tuple[np.ndarray, ...]:
 def test_past_the_limit_the_gate_does_not_reject_a_reading_its_exact_nis_passes(
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
-    # Found by EKFREV3 (review 42, a strict xfail until review 47): the kernel's GATED
+    # Found by EKFREV3 (review 42, a strict xfail until review 43): the kernel's GATED
     # stood past the limit. Fixed by EKFREV5: the exact NIS within the work cap.
     x0, p, h, r, z = _gated_wrongly_draw()
     exact = exact_update(x0, p, h, r, z - h @ x0)[2]

@@ -139,7 +139,7 @@ def test_h_p_s_products_of_many_states_are_counted_before_they_are_made(
 ) -> None:
     # 24 components of 1200 states: H P's m n (n + m) exact products, about 20 s at the
     # measured rate, past the cap: refused from sizes, S's integers never made (before
-    # review 47 they were, and only the exact posterior's work was capped, after them).
+    # review 43 they were, and only the exact posterior's work was capped, after them).
     rng = np.random.default_rng(1200)
     m, n = 24, 1200
     p = np.eye(n) + np.diag(rng.uniform(0.0, 1.0, n))

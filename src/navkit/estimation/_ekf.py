@@ -554,7 +554,7 @@ class ExtendedKalmanFilter(GaussianEstimate):
         exponents before any, is within the cap of the exact posterior below
         (about 15 s of CPU; 0.05 s for 28 components of 4 states), else on the
         lower bound above, and refused with ``FilterError`` where that does
-        not reject them (before review 47 the kernel's NIS stood: 28.28 for
+        not reject them (before review 43 the kernel's NIS stood: 28.28 for
         an exact 25.81, rejected at a gate between them; and measurements
         whose exact NIS the gate rejects were refused: 16 of 240 such draws
         at gates 0.9 to 1.1 times their exact NIS); without a gate they keep

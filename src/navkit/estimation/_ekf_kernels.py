@@ -299,7 +299,7 @@ _EXACT_CANCELLED_MAX_M = 12
 # information form's refinement of a dense R block's inverse (m³ exact terms in
 # Python: 0.4 s for m = 100, 1.9 s for 200, 10 s for 400; review 42, loaded: 3.9 s, 21.5
 # s and 140 s for 800, which preceded the refusal of such an update; capped from sizes
-# since review 47, _RESIDUAL_TERM_WORK).
+# since review 43, _RESIDUAL_TERM_WORK).
 _EXACT_ELIMINATION_MAX = 24
 # The largest work of an exact posterior from S's elimination (_exact_posterior): its
 # replay of S's elimination on H P's n columns and back substitution, about m² n
@@ -320,7 +320,7 @@ _EXACT_ELIMINATION_MAX = 24
 _EXACT_POSTERIOR_WORK_MAX = 3.5e13
 _EXACT_POSTERIOR_WORK_SECONDS = 4.3e-13
 # The same cap on the other Python-level work a precise update does past the exact
-# posterior's (review 47, EKFREV5; before, unlimited): CPU seconds per operation, in
+# posterior's (review 43, EKFREV5; before, unlimited): CPU seconds per operation, in
 # _EXACT_POSTERIOR_WORK_SECONDS's units. The information form's refinement of a dense
 # R block's inverse sums b³ exact terms (_exact_residual): measured 2-3e-7 s CPU a term
 # for b = 100-200 on a loaded 2-core machine (review 42: 140 s wall for m = 800, now
@@ -1169,7 +1169,7 @@ def _gated_before_refusal(finish: Finisher) -> Finisher:
                 r = rbuf[_RS, :m, :m]
                 if gate < math.inf and _exact_nis_work(p, jac, r, y) <= _EXACT_POSTERIOR_WORK_MAX:
                     # The exact NIS alone, where its work is within the cap: a measurement
-                    # the gate rejects is rejected, not refused (before review 47, EKFREV5,
+                    # the gate rejects is rejected, not refused (before review 43, EKFREV5,
                     # only where the lower bound rejected it: 16 of 240 draws of 25-30
                     # components at gates 0.9-1.1 times the exact NIS were refused).
                     exact = _exact_nis(p, jac, r, y)
@@ -1336,7 +1336,7 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
     exact = route is not None
     if route is None:
         # Without the information form nothing can vouch for the update: refused from
-        # sizes where it exceeds the cap (review 47, EKFREV5; before, made first: 140 s
+        # sizes where it exceeds the cap (review 43, EKFREV5; before, made first: 140 s
         # for a dense R of 800 components, then refused).
         work = _refinement_work(p, _r_blocks(rbuf[_RS, :m, :m]))
         if work > _EXACT_POSTERIOR_WORK_MAX:
@@ -1434,7 +1434,7 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
             )
         r = rbuf[_RS, :m, :m]
         if rbuf[_VEC, _META, _GATE] < math.inf:
-            # The gate again on the exact NIS alone (before review 47, EKFREV5, the
+            # The gate again on the exact NIS alone (before review 43, EKFREV5, the
             # kernel's stood): where the update fails, if its work is within the cap (a
             # measurement the gate rejects is rejected, not refused); where the kernel's
             # NIS passed the gate from an S too ill-conditioned to trust it, within the
@@ -1731,7 +1731,7 @@ def retry_gated(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: FloatAr
     ``_EXACT_POSTERIOR_WORK_MAX``; past it the update is rejected where a lower
     bound of the exact NIS exceeds the gate (``GATED_AT_LEAST``, see
     :func:`_gated_before_refusal`) and refused with ``FilterError`` otherwise, the
-    state unchanged (before review 47 the kernel's ``GATED`` stood there: NIS
+    state unchanged (before review 43 the kernel's ``GATED`` stood there: NIS
     28.28, or 26.11 by BLAS kernel, for an exact 25.81, rejected at a gate between;
     EKFREV3, EKFREV5). Elsewhere (S well-conditioned) ``GATED`` stands. About 3 µs
     for a well-conditioned S (the whole gated update).
@@ -1753,7 +1753,7 @@ def retry_gated(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: FloatAr
         # No exact route: the exact NIS alone (S's elimination, no posterior) where its
         # work, bounded from sizes before any, is within the exact posterior's cap; else
         # refused, after the gate on a lower bound (_gated_before_refusal). Before
-        # review 47 the kernel's GATED stood: NIS 28.28 (26.11 by BLAS kernel) for an
+        # review 43 the kernel's GATED stood: NIS 28.28 (26.11 by BLAS kernel) for an
         # exact 25.81, rejected at a gate between them (EKFREV3, EKFREV5).
         status = _gate_on(rbuf, _capped_exact_nis(p, jac, r, y, rbuf))
     else:
@@ -1862,7 +1862,7 @@ def _exact_nis_work(p: FloatArray, jac: FloatArray, r: FloatArray, y: FloatArray
     if y_top > 0.0:
         bits += math.log2(y_top) + _denominator_bits(y) + 2.0 + math.log2(m)
     # And the integer S itself, before any elimination: H P's m n² products and their
-    # m² n by H (review 47, EKFREV5: before, made before any cap was checked, m n² of
+    # m² n by H (review 43, EKFREV5: before, made before any cap was checked, m n² of
     # them unbounded in n), at _INFORMATION_OP_WORK a product plus their bits' square.
     n = p.shape[0]
     h_bits = float(_integer_bits(jac))
@@ -2165,7 +2165,7 @@ class _ExactUpdate:
         n = jac.shape[1]
         self.elimination: _Elimination | None = None
         if not blocks:
-            # S's elimination: its work from sizes and exponents before any (review 47,
+            # S's elimination: its work from sizes and exponents before any (review 43,
             # EKFREV5; before, H P's m n² products preceded the exact posterior's cap).
             work = _exact_nis_work(p, jac, r, y)
             if work > _EXACT_POSTERIOR_WORK_MAX:
@@ -2179,7 +2179,7 @@ class _ExactUpdate:
                 )
             self.elimination = _eliminated(p, jac, r, y)
             return
-        # Its work from sizes and exponents before any (review 47, EKFREV5; before,
+        # Its work from sizes and exponents before any (review 43, EKFREV5; before,
         # unlimited: 25 s for 10,000 beams, most of it R's m² integers).
         m = jac.shape[0]
         # A product of an integer of H (h bits) by one of a block's solution (h bits and
@@ -2199,7 +2199,7 @@ class _ExactUpdate:
         h_int, kh = _dyadic(jac)
         p_int, kp = _dyadic(p)
         # R's blocks only, over their common power of two: the whole R took m² Python
-        # integers (10,000 beams of a diagonal R: 1e8, about 25 s; review 47, EKFREV5).
+        # integers (10,000 beams of a diagonal R: 1e8, about 25 s; review 43, EKFREV5).
         r_ints, kr = _dyadic_blocks(r, blocks)
         y_int = _dyadic(y[None, :])
         ky = y_int[1]
@@ -2659,12 +2659,12 @@ def _information_update(
     (:func:`_positive_definite`: finite, the pivots of its LDLᵀ
     factorisation, those of D P⁺ D over dᵢ², normal floats); None too, with nothing
     computed, where its work (:func:`_refinement_work`) exceeds
-    ``_EXACT_POSTERIOR_WORK_MAX`` (before review 47 unlimited: 140 s for a dense R
+    ``_EXACT_POSTERIOR_WORK_MAX`` (before review 43 unlimited: 140 s for a dense R
     of 800 components).
     """
     blocks = _r_blocks(r)
     if _refinement_work(p, blocks) > _EXACT_POSTERIOR_WORK_MAX:
-        return None  # not made: past the cap, decided from sizes (review 47, EKFREV5)
+        return None  # not made: past the cap, decided from sizes (review 43, EKFREV5)
     prior = _refined_inverse(p)
     noise = _refined_block_inverse(r, blocks)
     if prior is None or noise is None:
