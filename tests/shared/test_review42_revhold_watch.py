@@ -269,8 +269,9 @@ print(json.dumps([raised, ignored, steps.restored]))
         "the step (by a pending call run there since review 42), whatever runs it: "
         "a __del__ or a weak reference's callback run as "
         "the step's frame frees an object, where Python reports the KeyboardInterrupt "
-        "as ignored and the Ctrl-C is lost (a fix: skip call events of code Python runs "
-        "without a caller to raise into, e.g. when the caller is not at a call)"
+        "as ignored and the Ctrl-C is lost (telling such code apart fails: on 3.11-3.13 "
+        "its f_back is at the caller's CALL, as a loop's next call at that site would "
+        "be; review 43, SIGREV2)"
     ),
 )
 def test_a_ctrl_c_held_in_a_step_is_not_lost_in_a_finalizer_run_after_it(mode: str) -> None:

@@ -108,7 +108,3 @@ def line_cells(r0: int, c0: int, r1: int, c1: int) -> IntArray:
         r, c, err = bresenham_step(r, c, err, dr, dc, sr, sc)
     return out
 
-
-# Marks of a cell in the per-scan scratch window.
-_MISS = 1
-_HIT = 2

@@ -729,8 +729,10 @@ def has_array_protocol(value: object) -> bool:
     """
     if isinstance(value, (np.generic, type)):
         return False
+    # On the instance, as NumPy looks all three up: an ``__array__`` set on an object
+    # (not its class) is read by np.asarray, and was refused here (review 43, MUTANT15).
     return (
-        hasattr(type(value), "__array__")
+        hasattr(value, "__array__")
         or hasattr(value, "__array_interface__")
         or hasattr(value, "__array_struct__")
     )
