@@ -27,7 +27,7 @@ from navkit.estimation import ExtendedKalmanFilter
 from navkit.estimation._ekf_kernels import _eliminated, _exact_nis_work, _exact_route
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from exact_fractions import exact_nis
+from exact_fractions import exact_nis, random_problem
 from precise_updates import linear, precise_problem
 
 _FACTORS = (0.5, 0.9, 0.99, 1.0 - 1e-6, 1.0 + 1e-6, 1.01, 1.1, 2.0)
@@ -117,14 +117,7 @@ def test_the_work_estimate_bounds_every_integer_of_the_elimination(
 ) -> None:
     # work = m³ b², b bounding the bits of every integer the elimination of [S | y]
     # holds (its minors): checked on the elimination itself.
-    rng = np.random.default_rng(seed)
-    a = rng.normal(size=(n, n))
-    p = (a @ a.T + 0.1 * np.eye(n)) * 10.0**log_p
-    p = 0.5 * (p + p.T)
-    h = rng.normal(size=(m, n)) * (rng.random((m, n)) < 0.7)
-    root = rng.normal(size=(m, m))
-    r = (root @ root.T + m * np.eye(m)) * 10.0**log_r
-    r = 0.5 * (r + r.T)
+    rng, p, h, r = random_problem(seed, n, m, log_p, log_r)
     y = rng.normal(size=m) * np.sqrt(np.diag(r) + np.diag(h @ p @ h.T)) * 10.0 ** rng.uniform(-3, 3)
     assume(np.isfinite(p).all() and np.isfinite(r).all() and np.isfinite(y).all())
     assume((np.linalg.eigvalsh(p) > 0).all() and (np.linalg.eigvalsh(r) > 0).all())

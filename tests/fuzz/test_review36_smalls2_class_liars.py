@@ -29,29 +29,13 @@ import numpy as np
 import pytest
 from fuzz_engine import SPECS, Ctx, quiet, refresh_memory_limit, slots
 
+from class_liars import Liar
 from navkit.geometry import Pose2D, as_pose
 from navkit.mapping.io import MovingAIMap
 from navkit.sim import sweep
 from navkit.sim.scenarios import Demo
 
 pytestmark = pytest.mark.filterwarnings("ignore::PendingDeprecationWarning")
-
-
-class Liar:
-    """A wrapper whose ``__class__`` says ``np.ndarray``; NumPy reads it through ``__array__``."""
-
-    def __init__(self, data: Any) -> None:
-        self._data = np.asarray(data)
-
-    @property  # type: ignore[misc]
-    def __class__(self) -> type:
-        return np.ndarray
-
-    def __array__(self, dtype: Any = None, copy: bool | None = None) -> np.ndarray:
-        return np.array(self._data, dtype=dtype, copy=True)
-
-    def __repr__(self) -> str:
-        return "Liar()"
 
 
 def _mock() -> Any:

@@ -22,6 +22,7 @@ from typing import Any
 import numpy as np
 import pytest
 
+from class_liars import Liar
 from navkit._shared.validation import (
     as_array,
     as_cell,
@@ -30,20 +31,6 @@ from navkit._shared.validation import (
     integer_readings,
     unpack,
 )
-
-
-class Liar:
-    """A wrapper whose ``__class__`` says ``np.ndarray``; NumPy reads it through ``__array__``."""
-
-    def __init__(self, data: Any) -> None:
-        self._data = np.asarray(data)
-
-    @property  # type: ignore[misc]
-    def __class__(self) -> type:
-        return np.ndarray
-
-    def __array__(self, dtype: Any = None, copy: bool | None = None) -> np.ndarray:
-        return np.array(self._data, dtype=dtype, copy=True)
 
 
 class MaskedLiar(Liar):
