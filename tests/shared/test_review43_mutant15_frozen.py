@@ -10,34 +10,13 @@ a lock, which no pickle takes).
 
 from __future__ import annotations
 
-import copy
-import pickle
 import threading
 from collections.abc import Callable
-from dataclasses import fields
 from typing import Any
 
 import numpy as np
 import pytest
-
-from navkit.planning import ConicAttraction
-
-COPIES: list[Callable[[Any], Any]] = [
-    copy.copy,
-    copy.deepcopy,
-    *(
-        lambda obj, protocol=protocol: pickle.loads(pickle.dumps(obj, protocol=protocol))
-        for protocol in range(pickle.HIGHEST_PROTOCOL + 1)
-    ),
-]
-
-
-class Cached(ConicAttraction):
-    """Python's default state, less a lock."""
-
-    def __getstate__(self) -> tuple[dict[str, Any], dict[str, Any]]:
-        kept = {k: v for k, v in self.__dict__.items() if k != "lock"}
-        return kept, {f.name: getattr(self, f.name) for f in fields(self)}
+from test_review30_fresh_user_getstate_alone import COPIES, Cached
 
 
 class Deeper(Cached):
