@@ -235,44 +235,60 @@ def test_failed_allocation_raises_memory_error() -> None:
         _grid().world_to_cell(huge)
 
 
-@pytest.mark.skipif(jit_disabled(), reason="NUMBA_DISABLE_JIT=1: plain functions")
-def test_entry_is_compiled_without_refcounting() -> None:
-    """One compiled entry, no NRT: no MemInfo per call (it allocates through NumPy)."""
-    from navkit.mapping import _new_cells_kernel
+_MODULES = ["navkit.mapping._new_cells_kernel", "navkit.mapping._grid_kernels"]
+#: Lists, tuples and arrays of one point, which the fast path does not take.
+_NOT_TAKEN = (
+    "from navkit.mapping import OccupancyGrid\n"
+    "g = OccupancyGrid.empty(width=2.0, height=2.0, resolution=0.5)\n"
+    "g.world_to_cell([0.1, 0.2]); g.world_to_cell(((0.1, 0.2),))\n"
+    "import numpy as np\n"
+    "g.world_to_cell(np.array([0.1, 0.2])); g.world_to_cell(np.array([[1, 2]]))\n"
+    "g.world_to_cell(np.array([[0.1, 0.2]], order='F')[:, ::-1])\n"
+    "assert g.contains([0.1, 0.2])\n"
+)
 
-    dispatcher: Any = _new_cells_kernel.world_to_new_cells
-    new_cells_entry()
-    assert dispatcher.targetoptions.get("_nrt") is False
-    assert len(dispatcher.signatures) == 1
 
+@pytest.fixture(scope="module")
+def taken_signatures() -> dict[str, list[str]]:
+    """The kernels' signatures in a fresh process after points the fast path takes.
 
-@pytest.mark.skipif(jit_disabled(), reason="NUMBA_DISABLE_JIT=1: plain functions")
-def test_lists_and_one_point_compile_nothing_arrays_one_entry() -> None:
-    """In a fresh process, lists, tuples and arrays of one point the fast path does not
-    take (the general way) load or compile no kernel, as before; the first points
-    it takes load its entry, whose kernel code is the general way's one signature."""
-    modules = ["navkit.mapping._new_cells_kernel", "navkit.mapping._grid_kernels"]
-    setup = (
-        "from navkit.mapping import OccupancyGrid\n"
-        "g = OccupancyGrid.empty(width=2.0, height=2.0, resolution=0.5)\n"
-        "g.world_to_cell([0.1, 0.2]); g.world_to_cell(((0.1, 0.2),))\n"
-        "import numpy as np\n"
-        "g.world_to_cell(np.array([0.1, 0.2])); g.world_to_cell(np.array([[1, 2]]))\n"
-        "g.world_to_cell(np.array([[0.1, 0.2]], order='F')[:, ::-1])\n"
-        "assert g.contains([0.1, 0.2])\n"
-    )
-    assert compiled_signatures(setup, modules) == {}
-    arrays = setup + (
+    A fresh process: the test process's kernels keep the signatures of every
+    earlier test's direct calls (the entry's dispatcher compiled for other
+    argument types, say), which ran before under another order or split of the
+    suite (xdist). One process serves both tests reading it.
+    """
+    arrays = _NOT_TAKEN + (
         "import numpy as np\n"
         "g.world_to_cell(np.array([[0.1, 0.2], [0.3, 0.4]]))\n"
         "g.world_to_cell([[0.1, 0.2], [0.3, 0.4]])\n"  # the general way's entry
     )
-    got = compiled_signatures(arrays, modules)
-    assert sorted(got) == [
+    return compiled_signatures(arrays, _MODULES)
+
+
+@pytest.mark.skipif(jit_disabled(), reason="NUMBA_DISABLE_JIT=1: plain functions")
+def test_entry_is_compiled_without_refcounting(taken_signatures: dict[str, list[str]]) -> None:
+    """One compiled entry, no NRT: no MemInfo per call (it allocates through NumPy)."""
+    from navkit.mapping import _new_cells_kernel
+
+    dispatcher: Any = _new_cells_kernel.world_to_new_cells
+    assert dispatcher.targetoptions.get("_nrt") is False
+    entry = taken_signatures.get("_new_cells_kernel.world_to_new_cells", [])
+    assert len(entry) == 1, taken_signatures
+
+
+@pytest.mark.skipif(jit_disabled(), reason="NUMBA_DISABLE_JIT=1: plain functions")
+def test_lists_and_one_point_compile_nothing_arrays_one_entry(
+    taken_signatures: dict[str, list[str]],
+) -> None:
+    """In a fresh process, lists, tuples and arrays of one point the fast path does not
+    take (the general way) load or compile no kernel, as before; the first points
+    it takes load its entry, whose kernel code is the general way's one signature."""
+    assert compiled_signatures(_NOT_TAKEN, _MODULES) == {}
+    assert sorted(taken_signatures) == [
         "_grid_kernels.world_to_cell_kernel",
         "_new_cells_kernel.world_to_new_cells",
     ]
-    assert all(len(signatures) == 1 for signatures in got.values()), got
+    assert all(len(signatures) == 1 for signatures in taken_signatures.values()), taken_signatures
 
 
 def test_loading_leaves_ctypes_pythonapi_as_it_was() -> None:

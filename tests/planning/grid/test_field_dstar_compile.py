@@ -5,42 +5,46 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from kernel_signatures import compiled_signatures
+from navkit._shared.jit import jit_disabled
 from navkit.planning import FieldDStar
-from navkit.planning.grid import (
-    _dstar_heap,
-    _dstar_lite_kernels,
-    _field_path_kernels,
-    _polyline_kernels,
-)
 from navkit.planning.grid import _field_dstar as field_dstar_module
+
+#: Every Field D* entry point with every option that selects another kernel, then
+#: arrays of other types (read-only, float32), as the source of a fresh process.
+_EXERCISE = """
+import numpy as np
+from navkit.planning import FieldDStar
 from navkit.sim import warmup
+warmup(workers=1, only=["field_dstar"])
+FieldDStar(np.ones((6, 6))).plan_cells((0, 0), (5, 5))
+readonly = np.ones((5, 5))
+readonly.flags.writeable = False
+FieldDStar(readonly).plan((0, 0), (5, 5))
+FieldDStar(np.ones((5, 5), dtype=np.float32)).plan((0, 0), (5, 5))
+"""
 
 
-def _exercise() -> None:
-    # Every Field D* entry point with every option that selects another kernel.
-    warmup(workers=1, only=["field_dstar"])
-    FieldDStar(np.ones((6, 6))).plan_cells((0, 0), (5, 5))
-
-
+# Compiled signatures are what is counted: with the JIT disabled the kernels are
+# plain functions, with none.
+@pytest.mark.skipif(jit_disabled(), reason="NUMBA_DISABLE_JIT=1: plain functions")
 def test_every_kernel_is_compiled_for_one_signature() -> None:
     # Each distinct argument type set compiles a kernel again (read-only vs
     # writable arrays, int32 vs int64, C vs A layout): the public layer passes
     # one type set, so every entry point shares one compilation. (Kernels
     # loaded from numba's cache list only the signatures called from Python.)
-    _exercise()
-    readonly = np.ones((5, 5))
-    readonly.flags.writeable = False
-    FieldDStar(readonly).plan((0, 0), (5, 5))
-    FieldDStar(np.ones((5, 5), dtype=np.float32)).plan((0, 0), (5, 5))
-    compiled = {}
-    for module in (_dstar_heap, _dstar_lite_kernels, _field_path_kernels, _polyline_kernels):
-        for name, obj in vars(module).items():
-            signatures = getattr(obj, "signatures", None)
-            if signatures:
-                compiled[f"{module.__name__}.{name}"] = len(signatures)
-    assert "navkit.planning.grid._field_path_kernels.extract_path" in compiled
-    assert "navkit.planning.grid._polyline_kernels._polyline" in compiled
-    assert {name: n for name, n in compiled.items() if n != 1} == {}
+    # In a fresh process: this one's kernels keep the signatures of every earlier
+    # test's direct calls (a read-only cost array passed to polyline_cost, say),
+    # which ran before this test under another order or split of the suite (xdist).
+    compiled = compiled_signatures(
+        _EXERCISE,
+        [f"navkit.planning.grid.{name}" for name in (
+            "_dstar_heap", "_dstar_lite_kernels", "_field_path_kernels", "_polyline_kernels"
+        )],
+    )  # fmt: skip
+    assert "_field_path_kernels.extract_path" in compiled
+    assert "_polyline_kernels._polyline" in compiled
+    assert {name: sigs for name, sigs in compiled.items() if len(sigs) != 1} == {}
 
 
 @pytest.mark.parametrize("interpolate", [True, False])
