@@ -31,8 +31,14 @@ __all__ = ["SampledField", "sample_field"]
 # Continuous cell coordinates beyond this are refused (their world points and
 # int64 cells stay exact and finite).
 _CELL_LIMIT = float(2**53)
-# Bytes sample_field holds per cell: the points, potential, force and temporaries.
-_BYTES_PER_SAMPLE = 128
+# Bytes sample_field holds per cell: the potential and force it returns (the
+# points and the fields' temporaries are a block's, _BLOCK_CELLS at a time).
+_BYTES_PER_SAMPLE = 24
+# Cells evaluated at a time: 256 KiB of points, whose temporaries (a Khatib
+# field's grow with points × obstacles) stay in cache; the per-block calls cost
+# under 1 % of the fields' work (a 500 × 1000 window: 0.29 → 0.21 s with 40
+# Khatib obstacles, 0.14 → 0.06 s for a blended + conic attraction).
+_BLOCK_CELLS = 2**14
 # Relative rounding allowed in a centre axis' spacing: 8 float64 epsilons (the
 # rounding of lo + (k + ½)·resolution is at most about 3).
 _AXIS_ULPS = 8.0 * float(np.finfo(np.float64).eps)
@@ -48,6 +54,11 @@ def _resolution(value: object) -> float:
             f"resolution must lie in [{RESOLUTION_MIN:g}, {RESOLUTION_MAX:g}] m, got {res}"
         )
     return res
+
+
+def _check_potential(potential: FloatArray) -> None:
+    if np.isnan(potential).any() or (potential == -np.inf).any():
+        raise ValueError("potential must not contain NaN or -inf (+inf is allowed)")
 
 
 def _axis(value: ArrayLike, name: str, resolution: float) -> FloatArray:
@@ -141,14 +152,38 @@ class SampledField:
         ys = _axis(self.y, "y", res)
         shape = (ys.shape[0], xs.shape[0])
         potential = as_float_array(self.potential, "potential", shape=shape, finite=False)
-        if np.isnan(potential).any() or (potential == -np.inf).any():
-            raise ValueError("potential must not contain NaN or -inf (+inf is allowed)")
+        _check_potential(potential)
         force = as_float_array(self.force, "force", shape=(*shape, 2))
         object.__setattr__(self, "resolution", res)
         object.__setattr__(self, "x", xs)
         object.__setattr__(self, "y", ys)
         object.__setattr__(self, "potential", _frozen(potential))
         object.__setattr__(self, "force", _frozen(force))
+
+    @classmethod
+    def _owned(
+        cls,
+        x: FloatArray,
+        y: FloatArray,
+        potential: FloatArray,
+        force: FloatArray,
+        resolution: float,
+    ) -> SampledField:
+        """A record taking :func:`sample_field`'s own arrays, frozen in place, not copied.
+
+        The constructor's copies would double the results' memory at its peak.
+        The checks on the values stay: a user's field may return NaN.
+        """
+        _check_potential(potential)
+        if not np.isfinite(force).all():
+            # The constructor's message (as_float_array's).
+            raise ValueError("force must contain only finite values")
+        sampled = object.__new__(cls)
+        for name, arr in (("x", x), ("y", y), ("potential", potential), ("force", force)):
+            arr.setflags(write=False)
+            object.__setattr__(sampled, name, arr)
+        object.__setattr__(sampled, "resolution", resolution)
+        return sampled
 
     @property
     def shape(self) -> tuple[int, int]:
@@ -401,24 +436,31 @@ def sample_field(
     xs = _centres(x0, int(nx), res, "xlim")
     ys = _centres(y0, int(ny), res, "ylim")
     shape = (ys.size, xs.size)
-    # The points row by row, x fastest (a meshgrid's order), written in place:
-    # the meshgrid and its stacked copy held three arrays of this size at once.
-    pts = np.empty((shape[0] * shape[1], 2))
-    grid = pts.reshape((*shape, 2))
-    grid[:, :, 0] = xs
-    grid[:, :, 1] = ys[:, None]
-    del grid
+    potential = np.empty(shape)
+    force = np.empty((*shape, 2))
+    flat_potential = potential.reshape(-1)
+    flat_force = force.reshape((-1, 2))
+    # The points row by row, x fastest (a meshgrid's order), a block of cells at a
+    # time: the whole grid of points and the fields' temporaries (a Khatib field's
+    # one per obstacle) held 128 bytes a cell beside the results, 8 GiB at 2**26 cells.
+    cells = shape[0] * shape[1]
+    block = min(cells, _BLOCK_CELLS)
+    pts = np.empty((block, 2))
+    index = np.arange(block, dtype=np.int64)
     # An underflow to 0 (a squared offset of 1e-200 m from a goal) is no error, nor
     # a warning under a caller's np.seterr(under="warn"): NumPy's default answer. One
     # np.errstate per call (about 2 µs, 1 % of the smallest grid's 0.2 ms), where the
     # field methods, called once per control step, redo the work under "raise" only.
     with np.errstate(under="ignore"):
-        potential = field._potential(pts).reshape(shape)
-        force = field._force(pts).reshape((*shape, 2))
-    # Gone before SampledField copies the results (a field's own arrays are never
-    # frozen in place): the points would add their size to that copy's peak.
-    del pts
-    return SampledField(xs, ys, potential, force, resolution=res)
+        for start in range(0, cells, block):
+            n = min(block, cells - start)
+            rows, cols = np.divmod(index[:n] + start, shape[1])
+            part = pts[:n]
+            part[:, 0] = xs[cols]
+            part[:, 1] = ys[rows]
+            flat_potential[start : start + n] = field._potential(part).reshape(n)
+            flat_force[start : start + n] = field._force(part).reshape((n, 2))
+    return SampledField._owned(xs, ys, potential, force, res)
 
 
 def _bytes_text(n: Decimal) -> str:
