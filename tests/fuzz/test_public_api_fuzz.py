@@ -21,6 +21,14 @@ values per argument (about 1.5 minutes).
 
 Set ``NAVKIT_FUZZ_REPORT=path`` to append every failure line to a file, and
 ``NAVKIT_FUZZ_GENERATED=n`` to change the number of generated values per argument.
+Set ``NAVKIT_FUZZ_SEED=n`` (an integer) to draw other generated values: derandomize
+off, hypothesis seeded with ``n`` (every spec the same seed, as the fixed profile
+gives every spec the same stream), so a failure repeats with the same ``n`` and the
+same hypothesis version; its report names the seed. Unset or empty, the fixed
+profile runs. For example, one spec, a fresh seed each time::
+
+    NAVKIT_FUZZ_SEED=$RANDOM python -m pytest -p no:cacheprovider \
+        tests/fuzz/test_public_api_fuzz.py -k "test_hostile_arguments and sample_field"
 """
 
 from __future__ import annotations
@@ -29,7 +37,9 @@ import math
 import os
 import shutil
 import tempfile
+from collections.abc import Callable
 from pathlib import Path
+from typing import TypeVar
 
 import fuzz_specs  # noqa: F401 - registers the specs
 import numpy as np
@@ -53,7 +63,7 @@ from fuzz_engine import (
     run_case,
     slots,
 )
-from hypothesis import HealthCheck, Phase, given, settings
+from hypothesis import HealthCheck, Phase, given, seed, settings
 from hypothesis import strategies as st
 from numpy.typing import ArrayLike
 
@@ -66,6 +76,33 @@ FIXED = settings(
     suppress_health_check=list(HealthCheck),
     max_examples=10_000,  # overridden per test
 )
+_Test = TypeVar("_Test", bound=Callable[..., None])
+
+
+def fuzz_seed() -> int | None:
+    """``NAVKIT_FUZZ_SEED`` as an int, or None (the fixed profile) when unset or empty."""
+    text = os.environ.get("NAVKIT_FUZZ_SEED", "").strip()
+    if not text:
+        return None
+    try:
+        return int(text)
+    except ValueError:
+        raise ValueError(f"NAVKIT_FUZZ_SEED must be an integer, got {text!r}") from None
+
+
+def profile(draw_seed: int | None, max_examples: int) -> Callable[[_Test], _Test]:
+    """Decorate a ``@given`` test: the fixed profile (None), or that seed, not derandomized."""
+
+    def apply(test: _Test) -> _Test:
+        if draw_seed is None:
+            return settings(FIXED, max_examples=max_examples)(test)
+        seeded = settings(FIXED, derandomize=False, max_examples=max_examples)(test)
+        return seed(draw_seed)(seeded)
+
+    return apply
+
+
+FUZZ_SEED = fuzz_seed()
 GENERATED_EXAMPLES = int(os.environ.get("NAVKIT_FUZZ_GENERATED", "3"))  # per argument
 GENERATED_EXAMPLES_SLOW = 100
 WARM_UP_TIMEOUT_S = 600.0
@@ -124,7 +161,7 @@ def _run_all(
                 targets.append((slot, kind, strategy))
         if targets and generated:
 
-            @settings(FIXED, max_examples=generated * len(targets))
+            @profile(FUZZ_SEED, generated * len(targets))
             @given(st.data())
             def generated_values(data: st.DataObject) -> None:
                 slot, kind, strategy = data.draw(st.sampled_from(targets), label="slot")
@@ -140,7 +177,8 @@ def _run_all(
 
 
 def _explain(failures: list[Failure]) -> str:
-    lines = [f"{len(failures)} broken promise(s):"]
+    drawn = "" if FUZZ_SEED is None else f" (generated with NAVKIT_FUZZ_SEED={FUZZ_SEED})"
+    lines = [f"{len(failures)} broken promise(s){drawn}:"]
     lines += [f"  {f.call}\n      -> {f.problem}   [{f.case}]" for f in failures[:60]]
     if len(failures) > 60:
         lines.append(f"  ... and {len(failures) - 60} more")
