@@ -15,8 +15,9 @@ import math
 import os
 import threading
 from collections.abc import Callable
+from contextvars import ContextVar
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, ClassVar, Literal, cast, overload
+from typing import TYPE_CHECKING, Any, ClassVar, Literal, TypeVar, cast, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -307,6 +308,41 @@ _MESSAGE_CELLS = (np.dtype(np.int8), np.dtype(np.uint8))
 _BLOCK_CELLS = 1 << 16
 
 
+_G = TypeVar("_G", bound="OccupancyGrid")
+
+#: The log-odds array a constructor of this module made for the grid being built
+#: (see :func:`_owned_grid`): ``__init__`` keeps that one array instead of copying it.
+_ADOPTED: ContextVar[NDArray[np.float32] | None] = ContextVar("_ADOPTED", default=None)
+
+
+def _owned_grid(cls: type[_G], logodds: NDArray[np.float32], **kwargs: Any) -> _G:
+    """``cls(logodds, **kwargs)`` keeping ``logodds`` itself, a new array no one else holds.
+
+    The constructor copies its input (the caller may still hold and change it);
+    an array made by one of this module's constructors for the grid has no other
+    holder, and copying it doubled their peak memory: ``OccupancyGrid.empty``
+    took 8 bytes a cell for a 4-byte grid, 2 GiB at :data:`MAX_CELLS`. It is
+    kept only when ``__init__`` receives that very object (a subclass's
+    constructor that passes another array has it copied) as float32,
+    C-contiguous, writable and owning its data.
+    """
+    token = _ADOPTED.set(logodds)
+    try:
+        return cls(logodds, **kwargs)
+    finally:
+        _ADOPTED.reset(token)
+
+
+def _adoptable(arr: NDArray[Any]) -> bool:
+    return (
+        arr is _ADOPTED.get()
+        and arr.dtype == np.float32
+        and arr.base is None
+        and arr.flags.c_contiguous
+        and arr.flags.writeable
+    )
+
+
 def _probability_logodds(p: FloatArray) -> NDArray[np.float32]:
     """Float32 ``log(p / (1 - p))`` of ``p`` clipped to [P_MIN, P_MAX], shape (rows, cols).
 
@@ -524,8 +560,8 @@ class OccupancyGrid:
         # The one mutable array: ray casting (navkit.mapping._raycast) writes into it.
         # A log-odds of 1e-200 rounds to 0 in float32: no error, whatever np.seterr says.
         with np.errstate(under="ignore"):
-            self._logodds: NDArray[np.float32] = np.array(
-                arr, dtype=np.float32, order="C", copy=True
+            self._logodds: NDArray[np.float32] = (
+                arr if _adoptable(arr) else np.array(arr, dtype=np.float32, order="C", copy=True)
             )
         self._occupied_thresh = occ
         self._free_thresh = free
@@ -693,7 +729,8 @@ class OccupancyGrid:
             resolution=res,
             what=f"a grid of {w:g} m x {h:g} m at resolution {res:g} m",
         )
-        return cls(np.zeros((rows, cols), dtype=np.float32), resolution=res, origin=pose)
+        zeros = np.zeros((rows, cols), dtype=np.float32)
+        return _owned_grid(cls, zeros, resolution=res, origin=pose)
 
     @classmethod
     def from_probabilities(
@@ -761,7 +798,8 @@ class OccupancyGrid:
             lo_text = f"{lo:g}" if float(f"{lo:g}") == lo else repr(lo)
             hi_text = f"{hi:g}" if float(f"{hi:g}") == hi else repr(hi)
             raise ValueError(f"probabilities must lie in [0, 1], got [{lo_text}, {hi_text}]{hint}")
-        return cls(
+        return _owned_grid(
+            cls,
             _probability_logodds(p),
             resolution=resolution,
             origin=origin,
@@ -828,7 +866,7 @@ class OccupancyGrid:
             if (unk & occ).any():
                 raise ValueError("unknown and occupied must not overlap")
             logodds[unk] = unknown_l
-        return cls(logodds, resolution=resolution, origin=origin)
+        return _owned_grid(cls, logodds, resolution=resolution, origin=origin)
 
     @classmethod
     def from_polygons(

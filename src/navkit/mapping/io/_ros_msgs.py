@@ -21,6 +21,7 @@ from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_on
 from navkit._shared.validation import as_bool, bounded_int, finite_float, refuse_masked, unpack
 from navkit.geometry import Pose2D, quaternion_to_matrix, quaternion_to_yaw
 from navkit.mapping import LaserScan, OccupancyGrid
+from navkit.mapping._grid import _owned_grid
 from navkit.mapping.io._map_files import _unknown_logodds
 from navkit.mapping.io._step_tables import (
     LOOK_UP_BLOCK,
@@ -426,7 +427,10 @@ def grid_from_msg(msg: Any) -> OccupancyGrid:
     # a 4000 x 4000 map converts in a fraction of the time, to the same float32s.
     logodds = _percent_logodds()[data.reshape(height, width) + 1]
     try:
-        return OccupancyGrid(logodds, resolution=resolution, origin=Pose2D(ox, oy, yaw))
+        # The grid keeps the new look-up array (not a copy: 4 bytes a cell less).
+        return _owned_grid(
+            OccupancyGrid, logodds, resolution=resolution, origin=Pose2D(ox, oy, yaw)
+        )
     except ValueError as exc:
         raise ValueError(f"msg.info: {exc}") from None
 
