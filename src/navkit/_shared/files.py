@@ -25,7 +25,7 @@ try:
 except ImportError:  # Windows
     fcntl = None  # type: ignore[assignment]
 
-__all__ = ["RENAME_LOCK", "atomic_path", "atomic_paths"]
+__all__ = ["RENAME_LOCK", "atomic_path", "atomic_paths", "link_loop"]
 
 #: Random temporary names tried before giving up.
 _ATTEMPTS = 100
@@ -39,6 +39,10 @@ _WINDOWS_RETRY_SECONDS = 1.0
 #: Windows' errors for a path longer than ``MAX_PATH`` (260) characters:
 #: ``ERROR_PATH_NOT_FOUND``, ``ERROR_FILENAME_EXCED_RANGE``.
 _WINDOWS_PATH_ERRORS = (3, 206)
+
+#: Windows' error for a path whose symbolic links never end in a file
+#: (``ERROR_CANT_RESOLVE_FILENAME``; Python gives it no ``ELOOP`` errno).
+_WINDOWS_LINK_LOOP = 1921
 
 #: Held while one :func:`atomic_paths` renames its files over their targets: two
 #: threads saving the same files (a map's image and YAML) would otherwise
@@ -93,10 +97,19 @@ def atomic_paths(targets: Sequence[Path]) -> Iterator[tuple[Path, ...]]:
         A target that exists and is not a regular file (a device such as
         ``/dev/null``, a named pipe, a socket): the rename would replace the
         device or pipe itself (as root, ``/dev/null`` too). Nothing is created.
+        A target that is a loop of symbolic links (``a`` links to ``b``,
+        which links to ``a``): no file is there whose mode the new one could
+        take, and what the system's own writers (``open``, a shell's ``>``)
+        refuse with ``ELOOP`` is refused here too, before anything is
+        created, not after the block has written its temporary file. (A
+        symbolic link that ends in a file, or in nothing, is itself replaced
+        by the new file, which takes the mode of the file it pointed to.)
     IsADirectoryError
         A target that is a folder, found before the block runs or before the
         renames (a folder made meanwhile): no target is replaced, not even the
         ones before it in ``targets``.
+    OSError
+        ``ELOOP``: a target's folder is a loop of symbolic links (named).
 
     Examples
     --------
@@ -165,11 +178,58 @@ def atomic_path(target: Path) -> Iterator[Path]:
         yield temporary
 
 
+def link_loop(path: Path) -> bool:
+    """Whether following the symbolic links of ``path`` (or of its folders) never ends.
+
+    ``Path.exists`` and ``Path.is_dir`` say False for such a path, as for a
+    missing one; only opening or ``stat`` tells them apart (``ELOOP``).
+
+    Parameters
+    ----------
+    path : Path
+        Any path.
+
+    Returns
+    -------
+    bool
+        True if ``os.stat(path)`` fails with ``ELOOP`` (on Windows, with
+        ``ERROR_CANT_RESOLVE_FILENAME``).
+
+    Raises
+    ------
+    ValueError
+        ``path`` holds a NUL character (``os.stat``'s error).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     a, b = Path(folder) / "a", Path(folder) / "b"
+    ...     a.symlink_to(b)
+    ...     print(link_loop(a), a.exists())
+    ...     b.symlink_to(a)
+    ...     print(link_loop(a), a.exists(), link_loop(a / "x.json"))
+    False False
+    True False True
+    """
+    try:
+        os.stat(path)
+    except OSError as exc:
+        return exc.errno == errno.ELOOP or getattr(exc, "winerror", None) == _WINDOWS_LINK_LOOP
+    return False
+
+
 def _check_targets(targets: Sequence[Path]) -> None:
     """Refuse targets that are not regular files, before any is replaced."""
     for target in targets:
         if target.is_dir():
             raise IsADirectoryError(errno.EISDIR, "a folder cannot be written as a file", target)
+        if link_loop(target):
+            # Found here, not by the mode's os.stat after the block (an OSError once
+            # the temporary file was written), nor as a temporary file's name.
+            if link_loop(target.parent):
+                raise OSError(errno.ELOOP, "a loop of symbolic links", os.fspath(target.parent))
+            raise ValueError(f"{target} is a loop of symbolic links: it names no file to replace")
         if target.exists() and not target.is_file():
             raise ValueError(
                 f"{target} is not a regular file (a device, a pipe or a socket): it is written "

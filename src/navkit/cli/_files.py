@@ -49,6 +49,8 @@ def write_json(
         The folder does not exist or cannot be written; ``path`` is a folder.
     TypeError, ValueError
         ``data`` is not JSON-serialisable (nothing is written).
+    ValueError
+        ``path`` is a loop of symbolic links (nothing is written).
 
     Examples
     --------

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import contextlib
-import errno
 import os
 import secrets
 import tempfile
@@ -11,6 +10,7 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
+from navkit._shared.files import link_loop
 from navkit._shared.interrupts import interrupts_deferred
 from navkit.cli._files import named_write_errors, write_json
 from navkit.sim import ScenarioResult, Scene
@@ -72,7 +72,7 @@ def check_output(path: str | None, suffix: str, option: str) -> None:
         raise ValueError(f"{option}: the file must end in {suffix}, got {path}")
     if target.is_dir():
         raise ValueError(f"{option}: {path} is a folder, not a file")
-    if _link_loop(target):
+    if link_loop(target):
         # exists() and is_dir() say False for it: found only when written, after the run.
         raise ValueError(f"{option}: {path} is a loop of symbolic links")
     if target.exists() and not target.is_file():
@@ -102,15 +102,6 @@ def check_output(path: str | None, suffix: str, option: str) -> None:
                 for left in folder.glob(f"{prefix}*.tmp"):
                     left.unlink(missing_ok=True)
             raise
-
-
-def _link_loop(target: Path) -> bool:
-    """Whether following ``target``'s symbolic links leads back to one already followed."""
-    try:
-        os.stat(target)
-    except OSError as exc:
-        return exc.errno == errno.ELOOP
-    return False
 
 
 def _check_matplotlib(option: str) -> None:

@@ -128,7 +128,8 @@ def animate_trace(
         ``source`` is neither a Scene nor a Trace, a bad option type.
     ValueError
         A scene without traces, a trace without rows, a path not ending in
-        ``.gif`` or naming something that is not a regular file, an option out
+        ``.gif`` or naming a loop of symbolic links or something else that is
+        not a regular file, an option out
         of range, frames of more than 2**28 pixels in all (the frames drawn,
         ``max_frames`` or the longest trace's rows if fewer, × the frame's
         pixels at ``dpi``), coordinates beyond ±1e9 m.

@@ -7,6 +7,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from navkit._shared.files import atomic_path as written_atomically
+from navkit._shared.files import link_loop
 from navkit.plot._figure import bounded_float, figure_of
 
 if TYPE_CHECKING:
@@ -33,6 +34,9 @@ def output_path(value: Any, name: str, suffix: str) -> Path:
         raise ValueError(f"{name} must end in {suffix}, got {text!r}")
     if path.is_dir():
         raise ValueError(f"{name} {text!r} is a folder")
+    if link_loop(path) and not link_loop(path.parent):  # (a looped folder: "does not exist")
+        # exists() says False for it: found only by the rename, after the drawing.
+        raise ValueError(f"{name} {text!r} is a loop of symbolic links")
     if path.exists() and not path.is_file():
         # Renaming the temporary file over it would replace the device or pipe itself.
         raise ValueError(f"{name} {text!r} is not a regular file (a device or a pipe?)")
@@ -81,8 +85,9 @@ def save_figure(fig_or_ax: Figure | Axes, path: str | os.PathLike[str], *,
     TypeError
         Not a Figure or Axes, a path that is not a str or path-like.
     ValueError
-        A path not ending in ``.png`` or naming a folder or something else
-        that is not a regular file (a device, a pipe), ``dpi`` out of range.
+        A path not ending in ``.png`` or naming a folder, a loop of symbolic
+        links or something else that is not a regular file (a device, a
+        pipe), ``dpi`` out of range.
     FileNotFoundError
         The folder of ``path`` does not exist.
 

@@ -1845,10 +1845,11 @@ def write_map(grid: OccupancyGrid, path: str | os.PathLike[str], *, mode: str = 
         case: the image would overwrite the YAML) or in another image suffix
         (``.png``, ``.jpg``, ...: the YAML would overwrite an image); an image name that
         the YAML could not give back when read; the YAML or the image path is
-        a directory; the image path holds a file that the existing YAML at
-        ``path`` does not name (another map's image); unknown cells to write
-        while the grid's thresholds leave no 8-bit grey level between them
-        (a band narrower than 1/255). Nothing is written then.
+        a directory or a loop of symbolic links; the image path holds a file
+        that the existing YAML at ``path`` does not name (another map's
+        image); unknown cells to write while the grid's thresholds leave no
+        8-bit grey level between them (a band narrower than 1/255). Nothing
+        is written then.
     ImportError
         ``mode="scale"`` without Pillow installed (it writes the PNG); nothing
         is written.
