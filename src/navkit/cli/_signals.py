@@ -16,6 +16,19 @@ Ctrl-C: an exception in the main thread, so that pools are shut down and
 temporary files removed, then exit code ``128 + signal`` and one line. A
 worker process forked meanwhile inherits the handler and ends quietly instead
 (:class:`WorkerStopped`).
+
+The first of these signals decides how the command ends. Another one during
+the clean-up (a Ctrl-C as the temporary files are removed after a ``SIGTERM``)
+still raises, so that a clean-up that waits can be cut short, but as the
+first: the command reports and exits as that one ended it (``terminated
+(SIGTERM)``, 143, not ``interrupted``, 130). In Python the later exception
+would replace the first; a command that dies of a signal (Python's default for
+``SIGTERM``) reports the one that killed it, and the programs that clean up on
+signals (GNU ``sort``, ``csplit``) hold their other signals back while they
+clean up after the first and then die of it, so that the shell's ``128 +
+signal`` names the first too. A Ctrl-C that navkit holds back through a short
+step (:func:`~navkit._shared.interrupts.interrupts_deferred`) counts as
+arriving when it is delivered, just after the step.
 """
 
 from __future__ import annotations
@@ -80,22 +93,28 @@ def handled_signals() -> Iterator[None]:
     On Windows ``SIGBREAK`` (Ctrl-Break) does too, in place of ``SIGHUP``.
     ``SIGINT`` raises :class:`KeyboardInterrupt` (as by default), the others
     :class:`Terminated`; in a process forked within the block, any of them
-    raises :class:`WorkerStopped`. A signal whose handler is not Python's
-    default (set by the program embedding the command) is left alone, as is
-    every signal outside the main thread, where handlers cannot be set. The
-    previous handlers are restored afterwards.
+    raises :class:`WorkerStopped`. Once one has, every later one within the
+    block raises as the first did (``KeyboardInterrupt`` or
+    :class:`Terminated` of the first signal): the first decides how the
+    command ends. A signal whose handler is not Python's default (set by the
+    program embedding the command) is left alone, as is every signal outside
+    the main thread, where handlers cannot be set. The previous handlers are
+    restored afterwards.
     """
     if threading.current_thread() is not threading.main_thread():
         yield
         return
     owner = os.getpid()
+    first: list[int] = []  # the block's first signal, which decides how the command ends
 
     def handle(signum: int, frame: FrameType | None) -> None:
         if os.getpid() != owner:
             _stop_worker(signum, frame)
-        if signum == signal.SIGINT:
+        if not first:
+            first.append(signum)
+        if first[0] == signal.SIGINT:
             raise KeyboardInterrupt
-        raise Terminated(signum)
+        raise Terminated(first[0])
 
     defaults = {signal.SIGINT: signal.default_int_handler, signal.SIGTERM: signal.SIG_DFL}
     if hasattr(signal, "SIGHUP"):  # not on Windows
