@@ -1,7 +1,8 @@
 """The ``navkit`` command line (``navkit ...`` or ``python -m navkit ...``).
 
 * ``navkit demo`` — a robot plans, tracks and localises on a real office map
-  and prints a results table (seconds once navkit's kernels are compiled).
+  (Willow Garage; a synthetic office built in code when no data is found) and
+  prints a results table (seconds once navkit's kernels are compiled).
 * ``navkit list`` — the experiments.
 * ``navkit run SCENARIO [--trials N] [--seed S] [--plot FILE.png]
   [--animate FILE.gif] [--json FILE] [--workers N] [--scheduler ADDRESS]

@@ -352,7 +352,7 @@ class _Formatter(argparse.HelpFormatter):
 #: ``navkit --help``'s closing text: examples, then the exit codes (as navkit.cli.main's).
 _EPILOG = """\
 examples:
-  navkit demo              # plan, track and localise on a real map
+  navkit demo              # plan, track and localise (a real map, else a synthetic one)
   navkit list              # the papers' experiments
   navkit run omni-apf --trials 5 --plot omni.png --json omni.json
   navkit plan map.yaml --start -2,-0.5 --goal 2,0.5 --radius 0.1
@@ -553,7 +553,8 @@ def build_parser(scenarios: Sequence[str] | None = None) -> argparse.ArgumentPar
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True)
 
     demo = sub.add_parser(
-        "demo", help="plan, track and localise on a real map (a few seconds)",
+        "demo", help="plan, track and localise on a real office map (a synthetic office "
+                     "when no data is found; a few seconds)",
         description="A robot plans (A*), tracks (regulated pure pursuit) and localises "
                     "(wheel encoders + IMU fusion) on a three-leg tour of the Willow Garage "
                     "office map (a synthetic office when the data is absent), then prints "
@@ -563,7 +564,8 @@ def build_parser(scenarios: Sequence[str] | None = None) -> argparse.ArgumentPar
     )  # fmt: skip
     _outputs(demo)
     demo.add_argument("--map", choices=("auto", "willow", "office"), default="auto",
-                      help="the map (default auto: Willow Garage if found)")  # fmt: skip
+                      help="the map (default auto: Willow Garage if found, else the synthetic "
+                           "office)")  # fmt: skip
 
     sub.add_parser("list", help="list the experiments",
                    description="List the experiments: name, default trials per case, what "
