@@ -93,9 +93,11 @@ def test_r_s_inverse_by_blocks_is_the_whole_inverse_for_a_diagonal_r() -> None:
     whole = kernels._refined_inverse(r)
     blocks = kernels._refined_block_inverse(r)
     assert whole is not None and blocks is not None
-    assert blocks[0].tobytes() == whole[0].tobytes()
-    for got, want in zip(blocks[3][:3], whole[3][:3], strict=True):
+    # Held as its blocks since review 44 (EKFREV6); dense() lays them side by side.
+    inv, bound, scaled, refined = blocks.dense()
+    assert inv.tobytes() == whole[0].tobytes()
+    for got, want in zip((scaled, refined, blocks.d), whole[3][:3], strict=True):
         assert got.tobytes() == want.tobytes()
     # κ is the largest block's (a beam's: below 4, D scaling each to [0.5, 2)).
-    assert blocks[2] <= whole[2] < 4.0
-    assert np.all(blocks[1] <= whole[1])
+    assert blocks.kappa <= whole[2] < 4.0
+    assert np.all(bound <= whole[1])

@@ -2098,8 +2098,14 @@ def _r_blocks(r: FloatArray) -> list[list[int]]:
             i = parent[i]
         return i
 
-    for i, j in zip(*np.nonzero(np.triu(r, 1)), strict=True):
-        parent[root(int(i))] = root(int(j))
+    # A few rows at a time: np.triu(r, 1) of the whole R was an m x m copy (800 MB for
+    # 10,000 beams; review 44, EKFREV6).
+    step = max(1, _RESIDUAL_TERMS // max(m, 1))
+    for first in range(0, m, step):
+        rows, cols = np.nonzero(r[first : first + step])
+        for i, j in zip((rows + first).tolist(), cols.tolist(), strict=True):
+            if j > i:
+                parent[root(i)] = root(j)
     blocks: dict[int, list[int]] = {}
     for i in range(m):
         blocks.setdefault(root(i), []).append(i)
@@ -2552,37 +2558,145 @@ def _refined_inverse(
     return inv, relative * np.outer(unit, unit), kappa, (scaled, refined, d, kappa)
 
 
+class _BlockInverse:
+    """R⁻¹ refined one diagonal block at a time, held as its blocks: O(Σ b²) memory, not m².
+
+    :func:`_refined_block_inverse`'s result. Blocks of one size k are stacked
+    (``index`` (c, k): their components; ``inv``, ``bound``, ``scaled``, ``refined``
+    (c, k, k): each block's :func:`_refined_inverse` parts), ``d`` (m,) is D's
+    diagonal and ``kappa`` the largest block's κ. Before review 44 (EKFREV6) the
+    parts were four dense m x m arrays, zero between blocks: 3.2 GB for a diagonal R
+    of 10,000 beams, and R⁻¹ y's exact residual summed 2m + 1 terms a row (22 s for
+    2000 beams).
+    """
+
+    __slots__ = ("d", "groups", "kappa", "m")
+
+    def __init__(
+        self,
+        m: int,
+        groups: list[tuple[IntArray, FloatArray, FloatArray, FloatArray, FloatArray]],
+        d: FloatArray,
+        kappa: float,
+    ) -> None:
+        self.m = m
+        self.groups = groups
+        self.d = d
+        self.kappa = kappa
+
+    def sandwich(self, a: FloatArray, part: int) -> FloatArray:
+        """``aᵀ X a`` (``a`` (m, n)), X the inverse (0), its magnitude (1) or its bound (2).
+
+        As ``(aᵀ X) a`` with X dense: ``aᵀ X`` block by block, then one product.
+        """
+        left = np.zeros((a.shape[1], self.m))
+        for group in self.groups:
+            index, blocks = group[0], group[2 if part == 2 else 1]
+            if part == 1:
+                blocks = np.abs(blocks)
+            rows = a[index]  # (c, k, n)
+            left[:, index] = np.matmul(rows.transpose(0, 2, 1), blocks).transpose(1, 0, 2)
+        return left @ a
+
+    def _apply(self, v: FloatArray, part: int) -> FloatArray:
+        """``X v`` (``v`` (m, 1)), X the refined scaled inverse (3) or its magnitude (-3)."""
+        out = np.zeros_like(v)
+        for group in self.groups:
+            index, blocks = group[0], group[4]
+            if part < 0:
+                blocks = np.abs(blocks)
+            out[index] = np.matmul(blocks, v[index])
+        return out
+
+    def scaled_solve(self, v: FloatArray) -> FloatArray:
+        """``(D R D)⁻¹ v``, refined once against its exact residual (``v`` (m, 1))."""
+        w = self._apply(v, 3)
+        residual = np.empty_like(v)
+        for group in self.groups:
+            index, scaled = group[0], group[3]
+            c, k = index.shape
+            flat = index.reshape(-1)
+            own = np.repeat(w[index][:, :, 0], k, axis=0)  # each row's block of w
+            residual[flat] = _exact_row_residual(scaled.reshape(c * k, k), own, v[flat])
+        return w - self._apply(residual, 3)
+
+    def scaled_magnitude(self, v: FloatArray) -> FloatArray:
+        """``|(D R D)⁻¹| |v|`` (``v`` (m, 1)): the refined scaled inverse's magnitude applied."""
+        return self._apply(np.abs(v), -3)
+
+    def dense(self) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+        """The inverse, its bound, ``D R D`` and its refined inverse as m x m arrays (for tests)."""
+        out = [np.zeros((self.m, self.m)) for _ in range(4)]
+        for group in self.groups:
+            index = group[0]
+            for row, block in enumerate(index):
+                at = np.ix_(block, block)
+                for whole, part in zip(out, group[1:], strict=True):
+                    whole[at] = part[row]
+        return out[0], out[1], out[2], out[3]
+
+
+def _exact_row_residual(a: FloatArray, b: FloatArray, c: FloatArray) -> FloatArray:
+    """``Σⱼ aᵢⱼ bᵢⱼ - cᵢ`` for each row i (``a``, ``b`` (rows, k), ``c`` (rows, 1)), rounded once.
+
+    :func:`_exact_residual`'s terms (Dekker's TwoProduct, then :func:`math.fsum`) for
+    products taken entry by entry: a block-diagonal matrix's rows against their own
+    block's part of a vector. All NaN where a product or a sum overflows. Returns
+    (rows, 1).
+    """
+    rows, k = a.shape
+    out = np.empty((rows, 1))
+    step = max(1, _RESIDUAL_TERMS // (2 * k + 1))
+    for first in range(0, rows, step):
+        at = slice(first, min(rows, first + step))
+        rounded = a[at] * b[at]
+        ah, al = _halves(a[at])
+        bh, bl = _halves(b[at])
+        error = ((ah * bh - rounded) + ah * bl + al * bh) + al * bl
+        terms = np.concatenate((rounded, error, -c[at]), axis=1)
+        if not np.isfinite(terms).all():
+            return np.full((rows, 1), math.nan)
+        try:
+            out[at, 0] = [math.fsum(row) for row in terms.tolist()]
+        except OverflowError:
+            return np.full((rows, 1), math.nan)
+    return out
+
+
 def _refined_block_inverse(
     r: FloatArray, blocks: list[list[int]] | None = None
-) -> tuple[FloatArray, FloatArray, float, tuple[FloatArray, FloatArray, FloatArray, float]] | None:
+) -> _BlockInverse | None:
     """:func:`_refined_inverse` of the symmetric ``r``, one diagonal block at a time.
 
     The blocks are :func:`_r_blocks`'s (``blocks`` where the caller has them; one
-    per beam for a diagonal R); the
-    inverse, its bound and the scaled parts are theirs side by side (zero, and
-    exactly so, between blocks), κ the largest block's (each block's inverse and
-    refinement are its own). A whole R of m components took m³ products at once
-    (review 40: a 1000-beam scan's update ran the machine out of memory); one
-    block is :func:`_refined_inverse` itself.
+    per beam for a diagonal R), each inverted and refined on its own and kept as its
+    own (:class:`_BlockInverse`: the inverse is zero, and exactly so, between
+    blocks), κ the largest block's. A whole R of m components took m³ products at
+    once (review 40: a 1000-beam scan's update ran the machine out of memory), and
+    the blocks side by side four dense m x m arrays (review 44, EKFREV6: 3.2 GB for
+    10,000 beams). None as :func:`_refined_inverse`.
     """
     if blocks is None:
         blocks = _r_blocks(r)
-    if len(blocks) == 1:
-        return _refined_inverse(r)
     m = r.shape[0]
-    inv, bound = np.zeros((m, m)), np.zeros((m, m))
-    scaled, refined = np.zeros((m, m)), np.zeros((m, m))
+    by_size: dict[int, list[tuple[list[int], tuple[FloatArray, ...]]]] = {}
     d = np.empty(m)
     kappa = 1.0
     for block in blocks:
-        at = np.ix_(block, block)
-        found = _refined_inverse(r[at])
+        found = _refined_inverse(r if len(blocks) == 1 else r[np.ix_(block, block)])
         if found is None:
             return None
-        inv[at], bound[at] = found[0], found[1]
-        scaled[at], refined[at], d[block], block_kappa = found[3]
+        scaled, refined, d[block], block_kappa = found[3]
         kappa = max(kappa, block_kappa)
-    return inv, bound, kappa, (scaled, refined, d, kappa)
+        by_size.setdefault(len(block), []).append((block, (found[0], found[1], scaled, refined)))
+    groups = [
+        (
+            np.array([block for block, _ in members], dtype=np.int64),
+            *(np.stack([parts[i] for _, parts in members]) for i in range(4)),
+        )
+        for members in by_size.values()
+    ]
+    return _BlockInverse(m, groups, d, kappa)  # type: ignore[arg-type]
 
 
 class _Information:
@@ -2669,9 +2783,9 @@ def _information_update(
     noise = _refined_block_inverse(r, blocks)
     if prior is None or noise is None:
         return None
-    p_inv, r_inv = prior[0], noise[0]
+    p_inv = prior[0]
     abs_jac = np.abs(jac)
-    gain_part = jac.T @ r_inv @ jac
+    gain_part = noise.sandwich(jac, 0)
     information = p_inv + gain_part
     found = _scaled_inverse_parts(information)
     if found is None:
@@ -2689,8 +2803,8 @@ def _information_update(
     # J's own error, entry by entry: the refined inverses' bounds (H and its products
     # carry R⁻¹'s), and ε n for the roundings of Hᵀ R⁻¹ H and of the sum.
     n, m = jac.shape[1], jac.shape[0]
-    perturbation = prior[1] + abs_jac.T @ noise[1] @ abs_jac
-    perturbation += (n + 2) * _EPS * (np.abs(p_inv) + abs_jac.T @ np.abs(r_inv) @ abs_jac)
+    perturbation = prior[1] + noise.sandwich(abs_jac, 2)
+    perturbation += (n + 2) * _EPS * (np.abs(p_inv) + noise.sandwich(abs_jac, 1))
     scaled_perturbation = perturbation * d_j * d_j[:, None]
     abs_ref = np.abs(reference)
     unit = np.sqrt(reference.diagonal())
@@ -2706,16 +2820,15 @@ def _information_update(
     # (a residual of many posterior deviations, a correlated R): the bound on s's
     # error carries those of g (its roundings, w's refined error) and of J through
     # P⁺, entry by entry.
-    r_scaled, r_scaled_inv, d_r, kappa_r = noise[3]
+    d_r, kappa_r = noise.d, noise.kappa
     y_scaled = (y * d_r)[:, None]
-    w = r_scaled_inv @ y_scaled
-    w = w - r_scaled_inv @ _exact_residual(r_scaled, w, y_scaled)
+    w = noise.scaled_solve(y_scaled)
     w_full = d_r[:, None] * w  # R⁻¹ y
     g_scaled = (jac.T @ w_full) * d_j[:, None]  # D_J g
     s = reference @ g_scaled  # D_J⁻¹ P⁺ g
     s = s - reference @ _exact_residual(scaled, s, g_scaled)
     info.step = s[:, 0] * d_j
-    w_error = (4.0 * _EPS + 2.0 * (_EPS * kappa_r) ** 2) * (np.abs(r_scaled_inv) @ np.abs(y_scaled))
+    w_error = (4.0 * _EPS + 2.0 * (_EPS * kappa_r) ** 2) * noise.scaled_magnitude(y_scaled)
     g_error = (m + 2) * _EPS * (abs_jac.T @ np.abs(w_full)) + abs_jac.T @ (d_r[:, None] * w_error)
     abs_s = np.abs(s)
     s_error = abs_ref @ (g_error * d_j[:, None] + scaled_perturbation @ abs_s)
