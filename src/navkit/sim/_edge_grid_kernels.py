@@ -29,6 +29,8 @@ Examples
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+
 import numpy as np
 
 from navkit._shared.types import FloatArray, IntArray
@@ -39,6 +41,13 @@ __all__ = ["build_cell_lists", "chebyshev_distance"]
 # within this distance of a cell boundary is filed in both cells, so rounding
 # can never hide it from a ray or a clearance query.
 _PAD = 1e-6
+#: Most segments, row spans, entries or candidate cells of a block of
+#: :func:`build_cell_lists` (its temporaries: about 10 MiB).
+_BLOCK = 1 << 16
+#: Most circles of a block (each has up to ``ny`` rows of candidate cells).
+_CIRCLE_BLOCK = 1 << 8
+#: Most entries whose blocks the first pass keeps for the second (64 MiB).
+_KEPT = 1 << 22
 
 
 def _cell(x: FloatArray, hi: int) -> IntArray:
@@ -54,13 +63,41 @@ def _expand(lo: IntArray, hi: IntArray) -> tuple[IntArray, IntArray]:
     return owner, lo[owner] + (np.arange(owner.shape[0]) - first[owner])
 
 
+def _blocks(weights: IntArray, limit: int) -> Iterator[slice]:
+    """Consecutive slices of ``weights`` each summing to at most ``limit`` (or one item)."""
+    ends = np.cumsum(weights)
+    i, done = 0, 0
+    while i < ends.shape[0]:
+        j = max(i + 1, int(np.searchsorted(ends, done + limit, side="right")))
+        yield slice(i, j)
+        done = int(ends[j - 1])
+        i = j
+
+
+def _segment_row_range(
+    segs: FloatArray, gy0: float, h: float, ny: int
+) -> tuple[IntArray, IntArray]:
+    """The first and last rows each segment touches (widened by ``_PAD`` cells)."""
+    inv_h = 1.0 / h
+    v0 = (segs[:, 1] - gy0) * inv_h
+    v1 = (segs[:, 3] - gy0) * inv_h
+    return _cell(np.minimum(v0, v1) - _PAD, ny - 1), _cell(np.maximum(v0, v1) + _PAD, ny - 1)
+
+
 def _segment_rows(
-    segs: FloatArray, gx0: float, gy0: float, h: float, nx: int, ny: int
+    segs: FloatArray,
+    row_lo: IntArray,
+    row_hi: IntArray,
+    gx0: float,
+    gy0: float,
+    h: float,
+    nx: int,
 ) -> tuple[IntArray, IntArray, IntArray, IntArray]:
     """Row by row, the columns each segment touches: ``(segment, row, col_lo, col_hi)``.
 
     The part of the segment inside the row's slab (widened by ``_PAD`` cells)
-    spans a range of columns, all of which are marked.
+    spans a range of columns, all of which are marked. ``row_lo`` and
+    ``row_hi`` are :func:`_segment_row_range`'s.
     """
     inv_h = 1.0 / h
     # Endpoints in cell units.
@@ -68,8 +105,6 @@ def _segment_rows(
     v0 = (segs[:, 1] - gy0) * inv_h
     u1 = (segs[:, 2] - gx0) * inv_h
     v1 = (segs[:, 3] - gy0) * inv_h
-    row_lo = _cell(np.minimum(v0, v1) - _PAD, ny - 1)
-    row_hi = _cell(np.maximum(v0, v1) + _PAD, ny - 1)
     seg, row = _expand(row_lo, row_hi)
     u0, v0, u1, dv = u0[seg], v0[seg], u1[seg], (v1 - v0)[seg]
     lo = row - _PAD
@@ -89,35 +124,67 @@ def _segment_rows(
     return seg[keep], row[keep], col_lo[keep], col_hi[keep]
 
 
-def _circle_cells(
+def _segment_entries(
+    segs: FloatArray, gx0: float, gy0: float, h: float, nx: int, ny: int
+) -> Iterator[tuple[IntArray, IntArray]]:
+    """``(cell, segment)`` of every entry of the segments, in blocks, in segment order.
+
+    Segments, their row spans and the spans' cells are taken at most
+    :data:`_BLOCK` at a time, so the temporaries stay about 10 MiB
+    whatever the number of entries (a segment crosses at most ``ny`` rows and a
+    row span at most ``nx`` cells).
+    """
+    for first in range(0, segs.shape[0], _BLOCK):
+        part = segs[first : first + _BLOCK]
+        row_lo, row_hi = _segment_row_range(part, gy0, h, ny)
+        for rows in _blocks(row_hi - row_lo + 1, _BLOCK):
+            seg, row, col_lo, col_hi = _segment_rows(
+                part[rows], row_lo[rows], row_hi[rows], gx0, gy0, h, nx
+            )
+            seg += first + rows.start
+            for spans in _blocks(col_hi - col_lo + 1, _BLOCK):
+                owner, col = _expand(col_lo[spans], col_hi[spans])
+                yield row[spans][owner] * nx + col, seg[spans][owner]
+
+
+def _circle_entries(
     circles: FloatArray, gx0: float, gy0: float, h: float, nx: int, ny: int
-) -> tuple[IntArray, IntArray]:
-    """``(circle, cell)`` for every cell each circle's boundary may cross, in order."""
+) -> Iterator[tuple[IntArray, IntArray]]:
+    """``(cell, circle)`` for every cell each circle's boundary may cross, in blocks, in order.
+
+    The candidate cells (each circle's bounding box) are taken at most
+    :data:`_BLOCK` at a time, a row of a box at least: one circle across the
+    world has up to ``nx * ny`` of them.
+    """
     inv_h = 1.0 / h
     pad = _PAD * h
-    cx, cy, radius = circles[:, 0], circles[:, 1], circles[:, 2]
-    c_lo = _cell((cx - radius - gx0) * inv_h - _PAD, nx - 1)
-    c_hi = _cell((cx + radius - gx0) * inv_h + _PAD, nx - 1)
-    r_lo = _cell((cy - radius - gy0) * inv_h - _PAD, ny - 1)
-    r_hi = _cell((cy + radius - gy0) * inv_h + _PAD, ny - 1)
-    circle_of_row, r = _expand(r_lo, r_hi)
-    row_of_cell, c = _expand(c_lo[circle_of_row], c_hi[circle_of_row])
-    circle = circle_of_row[row_of_cell]
-    r = r[row_of_cell]
-    cx, cy, radius = cx[circle], cy[circle], radius[circle]
-    ya = gy0 + r * h
-    yb = ya + h
-    xa = gx0 + c * h
-    xb = xa + h
-    # Nearest and farthest points of the cell from the centre.
-    near_x = np.minimum(np.maximum(cx, xa), xb) - cx
-    near_y = np.minimum(np.maximum(cy, ya), yb) - cy
-    far_x = np.maximum(np.abs(xa - cx), np.abs(xb - cx))
-    far_y = np.maximum(np.abs(ya - cy), np.abs(yb - cy))
-    near = np.sqrt(near_x * near_x + near_y * near_y)
-    far = np.sqrt(far_x * far_x + far_y * far_y)
-    crossed = (near <= radius + pad) & (far >= radius - pad)
-    return circle[crossed], (r * nx + c)[crossed]
+    for first in range(0, circles.shape[0], _CIRCLE_BLOCK):
+        part = circles[first : first + _CIRCLE_BLOCK]
+        cx, cy, radius = part[:, 0], part[:, 1], part[:, 2]
+        c_lo = _cell((cx - radius - gx0) * inv_h - _PAD, nx - 1)
+        c_hi = _cell((cx + radius - gx0) * inv_h + _PAD, nx - 1)
+        r_lo = _cell((cy - radius - gy0) * inv_h - _PAD, ny - 1)
+        r_hi = _cell((cy + radius - gy0) * inv_h + _PAD, ny - 1)
+        circle_of_row, rows_r = _expand(r_lo, r_hi)
+        for rows in _blocks((c_hi - c_lo + 1)[circle_of_row], _BLOCK):
+            of_row = circle_of_row[rows]
+            row_of_cell, c = _expand(c_lo[of_row], c_hi[of_row])
+            circle = of_row[row_of_cell]
+            r = rows_r[rows][row_of_cell]
+            ccx, ccy, rad = cx[circle], cy[circle], radius[circle]
+            ya = gy0 + r * h
+            yb = ya + h
+            xa = gx0 + c * h
+            xb = xa + h
+            # Nearest and farthest points of the cell from the centre.
+            near_x = np.minimum(np.maximum(ccx, xa), xb) - ccx
+            near_y = np.minimum(np.maximum(ccy, ya), yb) - ccy
+            far_x = np.maximum(np.abs(xa - ccx), np.abs(xb - ccx))
+            far_y = np.maximum(np.abs(ya - ccy), np.abs(yb - ccy))
+            near = np.sqrt(near_x * near_x + near_y * near_y)
+            far = np.sqrt(far_x * far_x + far_y * far_y)
+            crossed = (near <= rad + pad) & (far >= rad - pad)
+            yield (r * nx + c)[crossed], circle[crossed] + first
 
 
 def build_cell_lists(
@@ -135,6 +202,14 @@ def build_cell_lists(
     When the lists would hold more than ``max_items`` entries nothing is
     filed: ``items`` is empty and ``start[-1]`` is the number that was needed
     (the other entries of ``start`` are then 0).
+
+    Two passes over the entries, made a block at a time: the first counts
+    each cell's entries, the second files each block's entries in place
+    (sorted by cell within the block, stably, after the earlier blocks'). The
+    peak is the result (8 bytes an entry, ``start``) and a block's temporaries;
+    sorting every entry at once took about 80 bytes an entry (8 GB at the
+    world's limit of 10**8 entries). Worlds of a few blocks keep the first
+    pass's blocks instead of making them again.
 
     Parameters
     ----------
@@ -159,20 +234,42 @@ def build_cell_lists(
         Segment indices, then ``S + circle index``.
     """
     n_cells = nx * ny
-    seg, row, col_lo, col_hi = _segment_rows(segs, gx0, gy0, h, nx, ny)
-    n_seg_items = int(np.sum(col_hi - col_lo + 1))
-    circle, circle_cell = _circle_cells(circles, gx0, gy0, h, nx, ny)
-    total = n_seg_items + circle.shape[0]
+    n_segs = segs.shape[0]
+
+    def entries() -> Iterator[tuple[IntArray, IntArray]]:
+        yield from _segment_entries(segs, gx0, gy0, h, nx, ny)
+        for cells, circle in _circle_entries(circles, gx0, gy0, h, nx, ny):
+            yield cells, circle + n_segs
+
     start = np.zeros(n_cells + 1, dtype=np.int64)
+    counts = start[1:]
+    kept: list[tuple[IntArray, IntArray]] | None = []
+    held = 0
+    for cells, items in entries():
+        np.add.at(counts, cells, 1)
+        if kept is not None:
+            held += cells.shape[0]
+            if held <= _KEPT:
+                kept.append((cells, items))
+            else:
+                kept = None  # made again in the second pass
+    total = int(counts.sum())
     if total > max_items:
+        start[:] = 0
         start[-1] = total
         return start, np.empty(0, dtype=np.int64)
-    owner, col = _expand(col_lo, col_hi)
-    cells = np.concatenate([row[owner] * nx + col, circle_cell])
-    items = np.concatenate([seg[owner], circle + segs.shape[0]])
-    np.cumsum(np.bincount(cells, minlength=n_cells), out=start[1:])
-    # Stable: the items of a cell keep their (increasing) order.
-    return start, items[np.argsort(cells, kind="stable")]
+    np.cumsum(counts, out=counts)
+    out = np.empty(total, dtype=np.int64)
+    fill = start[:-1].copy()
+    for cells, items in entries() if kept is None else kept:
+        order = np.argsort(cells, kind="stable")
+        by_cell = cells[order]
+        group = np.flatnonzero(np.diff(by_cell, prepend=-1))  # each cell's first entry
+        size = np.diff(group, append=by_cell.shape[0])
+        rank = np.arange(by_cell.shape[0]) - np.repeat(group, size)
+        out[fill[by_cell] + rank] = items[order]
+        fill[by_cell[group]] += size
+    return start, out
 
 
 def chebyshev_distance(occ: np.ndarray) -> np.ndarray:
