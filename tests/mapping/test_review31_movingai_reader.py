@@ -34,10 +34,11 @@ def _write(folder: Path, name: str, data: str | bytes) -> Path:
 def test_a_tiny_map_claiming_two_gigacells_is_refused_without_allocating_them(
     tmp_path: Path,
 ) -> None:
-    # 46340**2 cells is within 2**31 - 1; the body read once asked for all of it
-    # (read(n) allocates n bytes first): 2.1 GB for a 50-byte file, 6.4 GB for
-    # height 2**31 - 1 and width 1.
-    claims = [("46340", "46340"), ("2147483647", "1"), ("1", "2147483647")]
+    # 46340**2 cells was within the limit then (2**31 - 1); the body read once asked
+    # for all of it (read(n) allocates n bytes first): 2.1 GB for a 50-byte file,
+    # 6.4 GB for height 2**31 - 1 and width 1. The limit is 2**26 cells since
+    # review 44 (test_review44_memcap_movingai_limit.py): the same claims within it.
+    claims = [("8192", "8192"), ("67108864", "1"), ("1", "67108864")]
     for height, width in claims:
         text = TINY.replace("height 2", f"height {height}").replace("width 3", f"width {width}")
         path = _write(tmp_path, "claim.map", text)

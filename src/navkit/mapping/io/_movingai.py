@@ -33,6 +33,7 @@ from navkit._shared.validation import (
     holds_bool,
     refuse_masked,
 )
+from navkit.mapping._limits import _bytes_text
 from navkit.mapping.io._paths import as_path, open_regular
 
 __all__ = ["MovingAIMap", "MovingAIScenarios", "read_movingai_map", "read_movingai_scenarios"]
@@ -43,8 +44,14 @@ __all__ = ["MovingAIMap", "MovingAIScenarios", "read_movingai_map", "read_moving
 TERRAIN = ".G@OTSW"
 #: The characters whose cells a unit on land can enter: those of the benchmark's paths.
 PASSABLE = ".GS"
-#: Most cells of a map: what navkit's grid planners take (int32 cell indices).
+#: Most cells of a map a scenario may name: what navkit's grid planners take (int32
+#: cell indices).
 MAX_CELLS = 2**31 - 1
+#: Most cells of a map itself (:class:`MovingAIMap`, :func:`read_movingai_map`):
+#: 8192 x 8192, larger than any map of the benchmark. Its terrain takes 4 bytes a
+#: cell (``<U1``), a file's reading about 13 at its peak and :attr:`MovingAIMap.costs`
+#: 8 more: 832 MiB and 512 MiB here, where 2**31 - 1 cells needed 26 and 16 GiB.
+MAX_MAP_CELLS = 2**26
 #: Longest header or scenario line read, in bytes: a binary file is refused at once.
 LINE_MAX = 4096
 # Lookup tables by character code: whether it is terrain, whether it is passable.
@@ -68,8 +75,8 @@ class MovingAIMap:
         One character of ``".G@OTSW"`` per cell, row 0 the top row of the file
         (the format's y = 0) and column 0 its left end (x = 0): a 2-D array of
         one-character strings, or a sequence of equally long row strings.
-        Stored as a read-only ``<U1`` copy. At least one cell, at most
-        ``2**31 - 1``.
+        Stored as a read-only ``<U1`` copy (4 bytes a cell). At least one
+        cell, at most ``2**26`` (8192 x 8192).
 
     Raises
     ------
@@ -207,8 +214,11 @@ def _terrain_codes(terrain: Any) -> NDArray[np.uint8]:
         raise ValueError(f"terrain must have 2 dimensions (rows, cols), got shape {arr.shape}")
     if arr.size == 0:
         raise ValueError(f"terrain must have at least one cell, got shape {arr.shape}")
-    if arr.size > MAX_CELLS:
-        raise ValueError(f"terrain must have at most {MAX_CELLS} cells, got {arr.size}")
+    if arr.size > MAX_MAP_CELLS:
+        raise ValueError(
+            f"terrain must have at most 2**26 = {MAX_MAP_CELLS} cells (256 MiB of <U1), "
+            f"got {arr.size} cells ({_bytes_text(4.0 * arr.size)})"
+        )
     as_u1 = np.ascontiguousarray(arr, dtype="U1")
     if arr.dtype.itemsize > 4 and not np.array_equal(as_u1, arr):
         raise ValueError("terrain must hold one character per cell, got a longer string")
@@ -433,7 +443,7 @@ def read_movingai_map(path: str | os.PathLike[str]) -> MovingAIMap:
         ``path`` not a regular file, or a malformed file (named, with the line
         and the problem): a header key missing, repeated or unknown, a type
         other than ``octile``, a size that is not a positive integer or
-        exceeds ``2**31 - 1`` cells, too few or too many rows, a row of the
+        exceeds ``2**26`` cells, too few or too many rows, a row of the
         wrong length, a character that is not terrain.
     OSError
         The operating system refuses to read the file.
@@ -454,7 +464,7 @@ def read_movingai_map(path: str | os.PathLike[str]) -> MovingAIMap:
         rows, cols, number = _map_header(fh, file)
         # Rows of cols characters and a line end each, then only blank lines; never
         # more than the file holds: read(n) allocates n bytes first, and a header of
-        # 40 bytes may claim 2**31 cells.
+        # 40 bytes may claim 2**26 cells.
         remaining = max(os.fstat(fh.fileno()).st_size - fh.tell(), 0)
         body = fh.read(min(rows * (cols + 2) + LINE_MAX, remaining))
         # Blank lines after the rows are ignored however many there are: read past
@@ -527,8 +537,11 @@ def _map_header(fh: BinaryIO, file: Path) -> tuple[int, int, int]:
     if header["type"] != "octile":
         raise ValueError(f"{file}: type {header['type']!r}, expected 'octile'")
     rows, cols = (_size(header[key], key, file) for key in ("height", "width"))
-    if rows * cols > MAX_CELLS:
-        raise ValueError(f"{file}: {rows} x {cols} cells, more than {MAX_CELLS}")
+    if rows * cols > MAX_MAP_CELLS:
+        raise ValueError(
+            f"{file}: {rows} x {cols} cells, more than 2**26 = {MAX_MAP_CELLS} "
+            f"({_bytes_text(4.0 * rows * cols)} of <U1 terrain; 256 MiB at most)"
+        )
     return rows, cols, number
 
 
