@@ -29,6 +29,8 @@ OCCUPIED_GREY = 0.0
 #: Grids larger than this along an axis are shrunk (darkest cell of each block
 #: kept, so one-cell walls survive) before matplotlib resamples them.
 MAX_IMAGE_CELLS = 2048
+#: Grid cells shrunk at a time (8 MiB of grey levels).
+_BAND_CELLS = 1 << 20
 
 
 def plot_grid(grid: OccupancyGrid, *, ax: Axes | None = None, alpha: float = 1.0) -> Axes:
@@ -111,19 +113,37 @@ def _not_a_grid(value: Any) -> str:
 
 
 def grid_shades(grid: OccupancyGrid) -> FloatArray:
-    """Grey level of every cell (free white, unknown grey, occupied black), shrunk if huge."""
-    shades = np.full(grid.shape, UNKNOWN_GREY)
-    shades[grid.free()] = FREE_GREY
-    shades[grid.occupied()] = OCCUPIED_GREY
-    k = math.ceil(max(shades.shape) / MAX_IMAGE_CELLS)
-    if k > 1:
-        rows = -(-shades.shape[0] // k) * k
-        cols = -(-shades.shape[1] // k) * k
-        padded = np.full((rows, cols), FREE_GREY)
-        padded[: shades.shape[0], : shades.shape[1]] = shades
-        shades = padded.reshape(rows // k, k, cols // k, k).min(axis=(1, 3))
-        # The padding keeps the cell size; the image covers the padded extent,
-        # and draw_grid clips it to the map's.
+    """Grey level of every cell (free white, unknown grey, occupied black), shrunk if huge.
+
+    A grid larger than :data:`MAX_IMAGE_CELLS` along an axis is shrunk by a
+    factor ``k`` (the darkest cell of each ``k x k`` block) a band of rows at a
+    time: the peak is the views' two masks (1 byte a cell each), the image and
+    a band of :data:`_BAND_CELLS` cells, where the whole grid's grey levels and
+    their padded copy took 16 bytes a cell (4 GiB at ``OccupancyGrid.MAX_CELLS``).
+    """
+    free = grid.free()
+    occupied = grid.occupied()
+    rows, cols = grid.shape
+    k = math.ceil(max(rows, cols) / MAX_IMAGE_CELLS)
+    if k <= 1:
+        shades = np.full(grid.shape, UNKNOWN_GREY)
+        shades[free] = FREE_GREY
+        shades[occupied] = OCCUPIED_GREY
+        return shades
+    # The padding keeps the cell size; the image covers the padded extent, and
+    # draw_grid clips it to the map's.
+    out_rows, out_cols = -(-rows // k), -(-cols // k)
+    shades = np.empty((out_rows, out_cols))
+    band = max(1, _BAND_CELLS // (k * k * out_cols))  # image rows per band
+    for first in range(0, out_rows, band):
+        n = min(band, out_rows - first)
+        r0, r1 = first * k, min((first + n) * k, rows)
+        block = np.full((n * k, out_cols * k), FREE_GREY)
+        cells = block[: r1 - r0, :cols]
+        cells.fill(UNKNOWN_GREY)
+        cells[free[r0:r1]] = FREE_GREY
+        cells[occupied[r0:r1]] = OCCUPIED_GREY
+        shades[first : first + n] = block.reshape(n, k, out_cols, k).min(axis=(1, 3))
     return shades
 
 
