@@ -1,0 +1,101 @@
+"""Surviving mutants of ``navkit._shared.validation`` (review 44, MUTANT18).
+
+A systematic pass over every comparison, bound, message, branch and conversion
+of the module's helpers left these behaviours untested: each test below failed
+with one mutant of the module (named in its docstring) and passes with the code.
+"""
+
+from __future__ import annotations
+
+from fractions import Fraction
+
+import numpy as np
+import pytest
+
+from navkit._shared.validation import as_cell, as_sequence, bounded_int, finite_float
+
+
+@pytest.mark.parametrize("value", [float("nan"), float("inf"), -float("inf")])
+def test_a_non_finite_float_is_refused_as_not_finite(value: float) -> None:
+    """The message of the float fast path says what is wrong (mutant: its words)."""
+    with pytest.raises(ValueError, match=rf"^speed must be finite, got {value}$"):
+        finite_float(value, "speed")
+
+
+@pytest.mark.parametrize("dtype", [np.uint8, np.uint16, np.uint32, np.uint64])
+def test_a_zero_d_unsigned_array_is_its_number(dtype: type[np.unsignedinteger]) -> None:
+    """A reduction of an unsigned array (``counts.max()`` kept 0-d) is a number
+    (mutant: dtype kinds ``"fi"``, unsigned arrays refused as no real number)."""
+    top = int(np.iinfo(dtype).max)
+    got = finite_float(np.array(top, dtype=dtype), "count")
+    assert type(got) is float
+    assert got == float(top)
+
+
+def test_a_fraction_too_large_for_a_float_is_named_by_its_type() -> None:
+    """``float(Fraction(10**400))`` overflows: the message names the type, not
+    ``None`` (mutant: ``_magnitude``'s last ``return`` dropped)."""
+    with pytest.raises(ValueError, match=r"^ratio must be finite, got Fraction, too large"):
+        finite_float(Fraction(10**400), "ratio")
+
+
+@pytest.mark.parametrize("value", ["ab", b"ab", {"a": 1}, {}])
+def test_strings_and_mappings_are_no_sequence(value: object) -> None:
+    """A string iterates over its characters, a mapping over its keys: refused
+    with a ``TypeError`` that says what was wanted (mutants: the ``raise``
+    dropped, its type, its words)."""
+    with pytest.raises(TypeError, match=rf"^scans must be a sequence, got {type(value).__name__}$"):
+        as_sequence(value, "scans")
+
+
+@pytest.mark.parametrize("value", [5, 2.5, None, object()])
+def test_a_non_iterable_is_not_a_sequence(value: object) -> None:
+    """The message says what was wanted (mutant: its words)."""
+    with pytest.raises(TypeError, match=rf"^scans must be a sequence, got {type(value).__name__}$"):
+        as_sequence(value, "scans")
+
+
+@pytest.mark.parametrize("sign", [1, -1])
+def test_an_out_of_range_integer_is_written_out_below_ten_to_the_thirty(sign: int) -> None:
+    """Below 10**30 in size the message quotes the integer, from 10**30 on its
+    magnitude (mutants: ``<=``, ``11**30``, ``10**31``)."""
+    below = sign * (10**30 - 1)
+    with pytest.raises(ValueError, match=rf"^steps must be in \[0, 10\], got {below}$"):
+        bounded_int(below, "steps", 0, 10)
+    with pytest.raises(
+        ValueError, match=r"^steps must be in \[0, 10\], got an integer of about 10\*\*30$"
+    ):
+        bounded_int(sign * 10**30, "steps", 0, 10)
+
+
+def test_two_to_the_thirty_two_is_written_as_a_power() -> None:
+    """Range ends from 2**32 on read as powers, below it as numbers (mutant: ``>``)."""
+    with pytest.raises(ValueError, match=r"^seed must be in \[0, 2\*\*32\], got 4294967297$"):
+        bounded_int(2**32 + 1, "seed", 0, 2**32)
+    with pytest.raises(ValueError, match=r"^seed must be in \[0, 4294967295\], got 4294967296$"):
+        bounded_int(2**32, "seed", 0, 2**32 - 1)
+
+
+@pytest.mark.parametrize(
+    ("cell", "hint"),
+    [
+        ((0, 4), True),  # (4, 0) is inside: row 0 is the swapped pair's column
+        ((2, 4), True),
+        ((3, 4), False),  # (4, 3): column 3 is one past the last
+        ((0, 7), False),  # (7, 0): row 7 is outside too
+        ((6, 1), False),  # (1, 6): column 6 is outside
+    ],
+)
+def test_the_swapped_pair_hint_only_when_the_swapped_pair_is_inside(
+    cell: tuple[int, int], hint: bool
+) -> None:
+    """A cell outside a (5, 3) grid whose swap is inside suggests an (x, y) order;
+    one whose swap is outside too does not (mutants: each bound of the swap's
+    check, and ``or`` for ``and``)."""
+    with pytest.raises(ValueError, match="is outside the grid of shape") as info:
+        as_cell(cell, "goal", (5, 3))
+    message = str(info.value)
+    assert message.startswith(f"goal {cell} is outside the grid of shape (5, 3)")
+    assert ("was it given as (x, y)?" in message) is hint
+    if hint:
+        assert f"and {cell[::-1]} is inside" in message
