@@ -66,7 +66,7 @@ from navkit.mapping._logodds import (
     logit_bound,
 )
 from navkit.mapping._new_cells_kernel import NewCellsEntry, new_cells_entry
-from navkit.mapping._obstacle_distance import CELL_EPS, obstacle_distance
+from navkit.mapping._obstacle_distance import CELL_EPS, obstacle_distance_bands
 
 if TYPE_CHECKING:
     from navkit.mapping._scan import LaserScan
@@ -1394,8 +1394,13 @@ class OccupancyGrid:
                [0, 0, 0, 0, 0]])
         """
         radius = bounded_float(robot_radius, "robot_radius", 0.0, RADIUS_LIMIT, "m")
-        dist = obstacle_distance(self.occupied())
-        return np.asarray(dist <= radius / self._resolution + CELL_EPS)
+        occupied = self.occupied()
+        reach = radius / self._resolution + CELL_EPS
+        # Band by band: only distances up to the radius matter (obstacle_distance_bands).
+        out = np.empty(occupied.shape, dtype=np.bool_)
+        for r0, r1, dist in obstacle_distance_bands(occupied, reach):
+            np.less_equal(dist, reach, out=out[r0:r1])
+        return out
 
     def cells_near(self, points_xy: ArrayLike, *, robot_radius: float) -> IntArray:
         """Cells ``(row, col)`` within ``robot_radius`` of world points' cells, as inflated.

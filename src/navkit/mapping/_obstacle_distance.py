@@ -9,11 +9,14 @@ array([[0., 1., 2.]])
 
 from __future__ import annotations
 
+import math
+from collections.abc import Iterator
+
 import numpy as np
 
 from navkit._shared.types import BoolArray, FloatArray
 
-__all__ = ["CELL_EPS", "obstacle_distance"]
+__all__ = ["CELL_EPS", "obstacle_distance", "obstacle_distance_bands"]
 
 #: Distances compared against radii get this slack (in cells) so that radii that
 #: are exact multiples of the resolution include the cells at that distance.
@@ -22,6 +25,12 @@ CELL_EPS = 1e-9
 # Cells per tile of the distances computed from the feature transform: their
 # float64 temporaries stay this small (2 x 512 KiB) whatever the grid's size.
 _TILE_CELLS = 1 << 16
+# Cells of a band of :func:`obstacle_distance_bands` with its halo: SciPy's
+# 18 bytes a cell on them, about 36 MiB.
+_BAND_CELLS = 1 << 21
+# Fewest rows of a band: thinner ones (a wide grid, a large halo) would transform
+# their halos more than themselves; the whole grid is transformed at once instead.
+_MIN_BAND_ROWS = 64
 
 
 def obstacle_distance(occupied: BoolArray) -> FloatArray:
@@ -73,3 +82,35 @@ def obstacle_distance(occupied: BoolArray) -> FloatArray:
             np.add(dy, dx, out=dy)
             np.sqrt(dy, out=out[r0:r1, c0:c1])
     return out
+
+
+def obstacle_distance_bands(
+    occupied: BoolArray, reach: float
+) -> Iterator[tuple[int, int, FloatArray]]:
+    """:func:`obstacle_distance` band of rows by band: ``(r0, r1, distances of rows r0:r1)``.
+
+    A band's distances are exact wherever they are at most ``reach`` cells and
+    above ``reach`` (perhaps not exact) elsewhere: each band is transformed
+    with ``floor(reach)`` rows of its neighbours on either side, which hold
+    every occupied cell within ``reach`` of it. Inflation needs no more, and
+    the transform's 18 bytes a cell then cover a band and its halo, about
+    :data:`_BAND_CELLS` cells, instead of the grid: the caller's peak is its
+    own result and a band (the whole grid at once when the halo would cover
+    it anyway). The bands cover the rows in order.
+
+    Examples
+    --------
+    >>> occ = np.array([[True], [False], [False], [False]])
+    >>> [(r0, r1, d.ravel().tolist()) for r0, r1, d in obstacle_distance_bands(occ, 1.5)]
+    [(0, 4, [0.0, 1.0, 2.0, 3.0])]
+    """
+    rows, cols = occupied.shape
+    halo = int(min(math.floor(reach), rows)) if reach >= 0.0 else 0
+    band = _BAND_CELLS // cols - 2 * halo
+    if band >= rows or band < max(halo, _MIN_BAND_ROWS):  # the whole grid at once
+        yield 0, rows, obstacle_distance(occupied)
+        return
+    for r0 in range(0, rows, band):
+        r1 = min(rows, r0 + band)
+        w0, w1 = max(0, r0 - halo), min(rows, r1 + halo)
+        yield r0, r1, obstacle_distance(occupied[w0:w1])[r0 - w0 : r1 - w0]
