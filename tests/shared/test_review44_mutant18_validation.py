@@ -84,6 +84,7 @@ def test_two_to_the_thirty_two_is_written_as_a_power() -> None:
         ((3, 4), False),  # (4, 3): column 3 is one past the last
         ((0, 7), False),  # (7, 0): row 7 is outside too
         ((6, 1), False),  # (1, 6): column 6 is outside
+        ((0, 5), False),  # (5, 0): row 5 is one past the last
     ],
 )
 def test_the_swapped_pair_hint_only_when_the_swapped_pair_is_inside(
@@ -99,3 +100,12 @@ def test_the_swapped_pair_hint_only_when_the_swapped_pair_is_inside(
     assert ("was it given as (x, y)?" in message) is hint
     if hint:
         assert f"and {cell[::-1]} is inside" in message
+
+
+@pytest.mark.parametrize(("cell", "hint"), [((4, 0), True), ((4, 3), False), ((3, 0), True)])
+def test_the_swapped_pair_hint_in_a_wide_grid(cell: tuple[int, int], hint: bool) -> None:
+    """The same in a (3, 5) grid, where rows are the short side (mutants: the
+    swapped row's lower bound and its upper bound read from the wrong axis)."""
+    with pytest.raises(ValueError, match="is outside the grid of shape") as info:
+        as_cell(cell, "goal", (3, 5))
+    assert ("was it given as (x, y)?" in str(info.value)) is hint
