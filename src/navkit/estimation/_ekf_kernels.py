@@ -1131,8 +1131,11 @@ class _PastTheLimit(FilterError):
     Raised inside the finishing functions, before anything is committed; the
     decorator :func:`_gated_before_refusal` gates the update on a lower bound of its
     exact NIS first (:func:`_nis_lower_bound`) and lets it through only where that
-    does not reject it.
+    does not reject it. ``tried``: the exact NIS, or bounds of it, were tried on the
+    gate already (:func:`_gate_past_the_cap`).
     """
+
+    tried = False
 
 
 Finisher = Callable[[FloatArray, FloatArray, FloatArray, FloatArray], int]
@@ -1167,14 +1170,15 @@ def _gated_before_refusal(finish: Finisher) -> Finisher:
                     rbuf[_VEC, _META, 1] = least
                     return GATED_AT_LEAST
                 r = rbuf[_RS, :m, :m]
-                if gate < math.inf and _exact_nis_work(p, jac, r, y) <= _EXACT_POSTERIOR_WORK_MAX:
-                    # The exact NIS alone, where its work is within the cap: a measurement
-                    # the gate rejects is rejected, not refused (before review 43, EKFREV5,
-                    # only where the lower bound rejected it: 16 of 240 draws of 25-30
-                    # components at gates 0.9-1.1 times the exact NIS were refused).
-                    exact = _exact_nis(p, jac, r, y)
-                    if not exact <= gate:
-                        return _gate_on(rbuf, exact)
+                if gate < math.inf and not getattr(refusal, "tried", False):
+                    # The exact NIS alone where its work is within the cap, else bounds
+                    # of it (review 44, EKFREV6): a measurement the gate rejects is
+                    # rejected, not refused (before review 43, EKFREV5, only where the
+                    # lower bound rejected it: 16 of 240 draws of 25-30 components at
+                    # gates 0.9-1.1 times the exact NIS were refused).
+                    gated = _gate_past_the_cap(p, jac, r, y, rbuf, refuse=False)
+                    if gated != OK:
+                        return gated
             # The user sees the public class (the private one only marks the refusal).
             raise FilterError(*refusal.args) from None
 
@@ -1433,22 +1437,17 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
                 "update with fewer components at a time)"
             )
         r = rbuf[_RS, :m, :m]
-        if rbuf[_VEC, _META, _GATE] < math.inf:
-            # The gate again on the exact NIS alone (before review 43, EKFREV5, the
-            # kernel's stood): where the update fails, if its work is within the cap (a
-            # measurement the gate rejects is rejected, not refused); where the kernel's
-            # NIS passed the gate from an S too ill-conditioned to trust it, within the
-            # cap, else on a lower bound or refused (_capped_exact_nis).
-            exact_nis = None
-            if status != OK:
-                if _exact_nis_work(p, jac, r, y) <= _EXACT_POSTERIOR_WORK_MAX:
-                    exact_nis = _exact_nis(p, jac, r, y)
-            elif not _EPS * _s_amplification(rbuf, p, jac) <= _STATE_TRUSTED:
-                exact_nis = _capped_exact_nis(p, jac, r, y, rbuf)
-            if exact_nis is not None:
-                gated = _gate_on(rbuf, exact_nis)
-                if gated != OK:
-                    return gated
+        # The gate again on the exact NIS alone, within the cap, else on bounds of it
+        # (review 44, EKFREV6): where the update fails (a measurement the gate rejects
+        # is rejected, not refused; before review 43, EKFREV5, the kernel's NIS stood),
+        # and where the kernel's NIS passed the gate from an S too ill-conditioned to
+        # trust it (refused where neither decides: _gate_past_the_cap).
+        if rbuf[_VEC, _META, _GATE] < math.inf and (
+            status != OK or not _EPS * _s_amplification(rbuf, p, jac) <= _STATE_TRUSTED
+        ):
+            gated = _gate_past_the_cap(p, jac, r, y, rbuf, refuse=status == OK)
+            if gated != OK:
+                return gated
         if status != OK:
             return status
     found_exact = None
@@ -1728,10 +1727,14 @@ def retry_gated(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: FloatAr
     :data:`_EXACT_ELIMINATION_MAX` components of a dense R) the same is done with
     the exact NIS alone (:func:`_exact_nis`, S's elimination) where its work,
     bounded from sizes (:func:`_exact_nis_work`), is within
-    ``_EXACT_POSTERIOR_WORK_MAX``; past it the update is rejected where a lower
-    bound of the exact NIS exceeds the gate (``GATED_AT_LEAST``, see
-    :func:`_gated_before_refusal`) and refused with ``FilterError`` otherwise, the
-    state unchanged (before review 43 the kernel's ``GATED`` stood there: NIS
+    ``_EXACT_POSTERIOR_WORK_MAX``; past it on rigorous bounds of the exact NIS
+    (:func:`_gate_past_the_cap`, review 44: passed where they lie wholly at or below
+    the gate, the NIS reported their midpoint, rejected where wholly above), and
+    where they straddle it rejected where a lower bound exceeds the gate
+    (``GATED_AT_LEAST``, see :func:`_gated_before_refusal`) and refused with
+    ``FilterError`` otherwise, the state unchanged (before review 44 every update
+    past the cap that lower bound did not reject was refused; before review 43 the
+    kernel's ``GATED`` stood there: NIS
     28.28, or 26.11 by BLAS kernel, for an exact 25.81, rejected at a gate between;
     EKFREV3, EKFREV5). Elsewhere (S well-conditioned) ``GATED`` stands. About 3 µs
     for a well-conditioned S (the whole gated update).
@@ -1752,10 +1755,11 @@ def retry_gated(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: FloatAr
     if route is None:
         # No exact route: the exact NIS alone (S's elimination, no posterior) where its
         # work, bounded from sizes before any, is within the exact posterior's cap; else
-        # refused, after the gate on a lower bound (_gated_before_refusal). Before
+        # bounds of it (review 44), and where they straddle the gate refused, after the
+        # gate on a lower bound (_gated_before_refusal). Before
         # review 43 the kernel's GATED stood: NIS 28.28 (26.11 by BLAS kernel) for an
         # exact 25.81, rejected at a gate between them (EKFREV3, EKFREV5).
-        status = _gate_on(rbuf, _capped_exact_nis(p, jac, r, y, rbuf))
+        status = _gate_past_the_cap(p, jac, r, y, rbuf, refuse=True)
     else:
         status = _regate(p, jac, rbuf, y, route)
     # The exact NIS (left in rbuf) passed the gate: the kernel's update without the
@@ -1763,27 +1767,55 @@ def retry_gated(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: FloatAr
     return GATE_PASSED if status == OK else status
 
 
-def _capped_exact_nis(
-    p: FloatArray, jac: FloatArray, r: FloatArray, y: FloatArray, rbuf: FloatArray
-) -> float:
-    """:func:`_exact_nis` for a gate the kernel's NIS (in ``rbuf``) cannot decide.
+def _gate_past_the_cap(
+    p: FloatArray, jac: FloatArray, r: FloatArray, y: FloatArray, rbuf: FloatArray, refuse: bool
+) -> int:
+    """Gate an update whose kernel NIS (in ``rbuf``) cannot decide it, with no exact route.
 
-    Raises :class:`_PastTheLimit` where its work, bounded from sizes before any
-    (:func:`_exact_nis_work`), exceeds ``_EXACT_POSTERIOR_WORK_MAX``: the gate is then
-    decided on a lower bound or the update refused (:func:`_gated_before_refusal`).
+    The exact NIS alone (:func:`_exact_nis`) where its work, bounded from sizes before
+    any (:func:`_exact_nis_work`), is within ``_EXACT_POSTERIOR_WORK_MAX``: OK, GATED
+    or NIS_OVERFLOW (:func:`_gate_on`). Past it, rigorous bounds of it
+    (:func:`_nis_interval`, review 44, EKFREV6; before, the update was refused
+    unless :func:`_nis_lower_bound` rejected it): wholly at or below the gate, OK
+    with the interval's midpoint left as the NIS; wholly above, GATED with the
+    midpoint where the bounds are within 2⁻²⁰ of each other, else GATED_AT_LEAST
+    with the lower one. Where they straddle the gate (or there are none: the float
+    S not positive definite) it raises :class:`_PastTheLimit` (``refuse``; the
+    gate is then tried on :func:`_nis_lower_bound`, :func:`_gated_before_refusal`),
+    or returns OK with ``rbuf`` unchanged (not ``refuse``: the update fails anyway).
     """
     work = _exact_nis_work(p, jac, r, y)
-    if work > _EXACT_POSTERIOR_WORK_MAX:
-        raise _PastTheLimit(
-            f"the gate cannot decide on a measurement of {jac.shape[0]} components: its "
-            "innovation covariance S is too ill-conditioned for the NIS computed in "
-            f"float64 ({rbuf[_VEC, _META, 1]:.6g}) to be trusted, its exact NIS would take "
-            f"about {work * _EXACT_POSTERIOR_WORK_SECONDS:.0f} s of exact arithmetic, more "
-            f"than the {_EXACT_POSTERIOR_WORK_MAX * _EXACT_POSTERIOR_WORK_SECONDS:.0f} s "
-            "allowed, and a lower bound of it does not exceed the gate (update with fewer "
-            "components at a time, or with a diagonal R)"
-        )
-    return _exact_nis(p, jac, r, y)
+    if work <= _EXACT_POSTERIOR_WORK_MAX:
+        return _gate_on(rbuf, _exact_nis(p, jac, r, y))
+    gate = float(rbuf[_VEC, _META, _GATE])
+    found = _nis_interval(p, jac, r, y)
+    bounds = ""
+    if found is not None:
+        low, high = found
+        if low == math.inf:
+            return _gate_on(rbuf, low)
+        middle = 0.5 * low + 0.5 * high
+        if high <= gate or (low > gate and high - low <= 2.0**-20 * low):
+            return _gate_on(rbuf, middle)
+        if low > gate:
+            rbuf[_VEC, _META, 1] = low
+            return GATED_AT_LEAST
+        bounds = f", bounds of it ({low:.6g} to {high:.6g}) straddle the gate"
+    else:
+        bounds = ", no bounds of it were found (S not positive definite in float64)"
+    if not refuse:
+        return OK
+    refusal = _PastTheLimit(
+        f"the gate cannot decide on a measurement of {jac.shape[0]} components: its "
+        "innovation covariance S is too ill-conditioned for the NIS computed in "
+        f"float64 ({rbuf[_VEC, _META, 1]:.6g}) to be trusted, its exact NIS would take "
+        f"about {work * _EXACT_POSTERIOR_WORK_SECONDS:.0f} s of exact arithmetic, more "
+        f"than the {_EXACT_POSTERIOR_WORK_MAX * _EXACT_POSTERIOR_WORK_SECONDS:.0f} s "
+        f"allowed{bounds}, and a lower bound of it does not exceed the gate (update with "
+        "fewer components at a time, or with a diagonal R)"
+    )
+    refusal.tried = True
+    raise refusal
 
 
 def _exact_nis(p: FloatArray, jac: FloatArray, r: FloatArray, y: FloatArray) -> float:
@@ -1864,10 +1896,284 @@ def _exact_nis_work(p: FloatArray, jac: FloatArray, r: FloatArray, y: FloatArray
     # And the integer S itself, before any elimination: H P's m n² products and their
     # m² n by H (review 43, EKFREV5: before, made before any cap was checked, m n² of
     # them unbounded in n), at _INFORMATION_OP_WORK a product plus their bits' square.
-    n = p.shape[0]
+    return float(m) ** 3 * float(bits) ** 2 + _integer_s_work(p, jac)
+
+
+def _integer_s_work(p: FloatArray, jac: FloatArray) -> float:
+    """The work of :func:`_integer_s` from sizes: H P's m n² products and their m² n by H."""
+    m, n = jac.shape
     h_bits = float(_integer_bits(jac))
     products = m * n * (n + m) * (_INFORMATION_OP_WORK + h_bits * (h_bits + _integer_bits(p)))
-    return float(m) ** 3 * float(bits) ** 2 + float(products)
+    return float(products)
+
+
+def _integer_s(
+    p: FloatArray, jac: FloatArray, r: FloatArray
+) -> tuple[list[list[int]], list[list[int]], int, int]:
+    """S = H P Hᵀ + R as integers over ``2**scale``, exactly; with H P over ``2**k_hp``.
+
+    Returns ``(s, hp, scale, k_hp)``: :func:`_eliminated`'s integer S, shared with
+    :func:`_nis_interval`.
+    """
+    m, n = jac.shape
+    h_int, kh = _dyadic(jac)
+    p_int, kp = _dyadic(p)
+    r_int, kr = _dyadic(r)
+    hp = [[sum(h[k] * p_int[k][j] for k in range(n) if h[k]) for j in range(n)] for h in h_int]
+    scale = max(2 * kh + kp, kr)  # S = s / 2**scale
+    up_hph = scale - 2 * kh - kp
+    up_r = scale - kr
+    s = [
+        [
+            (sum(hp[a][k] * h_int[b][k] for k in range(n) if h_int[b][k]) << up_hph)
+            + (r_int[a][b] << up_r)
+            for b in range(m)
+        ]
+        for a in range(m)
+    ]
+    return s, hp, scale, kh + kp
+
+
+def _powers_of_two_scale(diag: FloatArray) -> FloatArray:
+    """D (powers of two) taking the positive ``diag`` to [0.5, 2) in ``D a D``."""
+    d: FloatArray = np.ldexp(1.0, -(np.frexp(diag)[1] // 2))
+    return d
+
+
+def _least_eigenvalue_bound(a: FloatArray, slack: FloatArray) -> float:
+    """A rigorous lower bound on λmin of every symmetric ``a + E``, ``|E| <= slack``; 0 if none.
+
+    A float Cholesky factor L of ``a - α I`` (α half of LAPACK's estimate of
+    λmin(a)) with its residual bounded entry by entry: ``a - α I - L Lᵀ`` is
+    within ``|fl(a - α I) - fl(L Lᵀ)|`` (rounded up), ``ε |a - α I|`` on the
+    diagonal, and ``γₘ |L| |L|ᵀ`` (the error of any order of summation of m
+    products, fused or not; BLAS's blocking changes the order only) plus
+    ``m 2⁻¹⁰⁷⁰`` for products underflowing. Its 2-norm, with E's, is at most the
+    largest row sum e of those bounds, so ``λmin(a + E) >= α - e`` (Weyl; the
+    factorisation makes ``a - α I - residual`` positive semidefinite). O(m³) in NumPy.
+    """
+    m = a.shape[0]
+    with np.errstate(all="ignore"):
+        try:
+            estimate = float(np.linalg.eigvalsh(a)[0])
+        except np.linalg.LinAlgError:
+            return 0.0
+        if not estimate > 0.0 or not np.isfinite(a).all():
+            return 0.0
+        alpha = 0.5 * estimate
+        shifted = a.copy()
+        shifted[np.diag_indices(m)] -= alpha
+        try:
+            factor = cast("FloatArray", np.linalg.cholesky(shifted))
+        except np.linalg.LinAlgError:
+            return 0.0
+        gamma = (m + 2) * _EPS / (1.0 - (m + 2) * _EPS)
+        product = factor @ factor.T
+        magnitude = np.abs(factor) @ np.abs(factor).T
+        bound = np.abs(shifted - product) * (1.0 + 2.0 * _EPS)
+        bound += 2.0 * gamma * magnitude + m * 2.0**-1070
+        least = _shifted_margin(alpha, bound, shifted, slack)
+        if least == 0.0 and m**3 * _RESIDUAL_TERM_WORK <= _EXACT_POSTERIOR_WORK_MAX:
+            # The residual itself, each entry rounded once from its exact value
+            # (_exact_residual, m³ terms): far below the γₘ bound's m ε per entry
+            # where λmin is within a few m² ε (κ(R) 1e13 for 30 components).
+            exact = np.abs(_exact_residual(factor, factor.T, shifted))
+            least = _shifted_margin(alpha, exact * (1.0 + 2.0 * _EPS) + 2.0**-1074, shifted, slack)
+    return least
+
+
+def _shifted_margin(
+    alpha: float, bound: FloatArray, shifted: FloatArray, slack: FloatArray
+) -> float:
+    """``α - e`` rounded down, e the largest row sum of ``bound``, the shift's and ``slack``, or 0.
+
+    ``bound`` bounds the residual of a Cholesky factorisation of ``shifted`` (a - α I).
+    """
+    m = shifted.shape[0]
+    with np.errstate(all="ignore"):
+        total = bound + _EPS * np.diag(np.abs(shifted.diagonal())) + slack
+        e = float(np.max(total.sum(axis=1))) * (1.0 + (m + 8) * 2.0 * _EPS)
+    if not e < math.inf:  # NaN too
+        return 0.0
+    least = (alpha - e) * (1.0 - 4.0 * _EPS)
+    return least if least > 0.0 else 0.0
+
+
+def _float_solvers(
+    scaled: FloatArray, d_s: FloatArray, p: FloatArray, jac: FloatArray, r: FloatArray
+) -> list[Callable[[FloatArray], FloatArray]]:
+    """Float solvers of ``S c = v`` for :func:`_nis_interval`'s refinement, the likelier first.
+
+    By a Cholesky factor of ``scaled`` (D S D, ``d_s`` D's diagonal), where it has
+    one; and by the information form, ``c = R⁻¹ (v - H J⁻¹ Hᵀ R⁻¹ v)``,
+    ``J = P⁻¹ + Hᵀ R⁻¹ H`` (each by Cholesky, scaled by powers of two), whose
+    error follows R's, P's and J's conditions, not S's: it converges where S's float
+    form lost R (R 1e-16 of H P Hᵀ). Empty where neither factorises.
+    """
+    solvers: list[Callable[[FloatArray], FloatArray]] = []
+    with np.errstate(all="ignore"):
+        try:
+            factor = np.linalg.cholesky(scaled)
+        except np.linalg.LinAlgError:
+            pass
+        else:
+
+            def by_s(v: FloatArray) -> FloatArray:
+                half = np.linalg.solve(factor, v * d_s)
+                out: FloatArray = np.linalg.solve(factor.T, half) * d_s
+                return out
+
+            solvers.append(by_s)
+        try:
+            d_r = _powers_of_two_scale(r.diagonal())
+            l_r = np.linalg.cholesky(r * d_r * d_r[:, None])
+            g = np.linalg.solve(l_r, d_r[:, None] * jac)  # L_R⁻¹ D_R H
+            d_p = _powers_of_two_scale(p.diagonal())
+            inv_lp = np.linalg.inv(np.linalg.cholesky(p * d_p * d_p[:, None]))
+            j = (inv_lp.T @ inv_lp) * d_p * d_p[:, None] + g.T @ g
+            d_j = _powers_of_two_scale(j.diagonal())
+            l_j = np.linalg.cholesky(j * d_j * d_j[:, None])
+        except (np.linalg.LinAlgError, FloatingPointError, ValueError):
+            return solvers
+        if not (np.isfinite(g).all() and np.isfinite(l_j).all()):
+            return solvers
+
+        def by_information(v: FloatArray) -> FloatArray:
+            rhs = g.T @ np.linalg.solve(l_r, d_r * v)  # Hᵀ R⁻¹ v
+            step = d_j * np.linalg.solve(l_j.T, np.linalg.solve(l_j, d_j * rhs))  # J⁻¹ Hᵀ R⁻¹ v
+            rest = np.linalg.solve(l_r, d_r * (v - jac @ step))
+            out: FloatArray = d_r * np.linalg.solve(l_r.T, rest)
+            return out
+
+        solvers.append(by_information)
+    return solvers
+
+
+def _nis_interval(
+    p: FloatArray, jac: FloatArray, r: FloatArray, y: FloatArray, steps: int = 8
+) -> tuple[float, float] | None:
+    """Rigorous bounds ``lo <= yᵀ S⁻¹ y <= hi`` (S = H P Hᵀ + R) from float solves; None if none.
+
+    For any w, with ``ρ = y - S w`` exactly, ``S⁻¹ y = w + S⁻¹ ρ``, so
+    ``NIS = yᵀ w + wᵀ ρ + ρᵀ S⁻¹ ρ``: the first two terms exact (S, y and w as
+    integers over powers of two: :func:`_integer_s`), the last at least 0 and at
+    most ``‖D ρ‖² / μ`` for a rigorous lower bound μ of λmin(D A D)
+    (:func:`_least_eigenvalue_bound`; D powers of two) with A = S (its float
+    rounding within ε) or A = R (``S ⪰ R``: ``S⁻¹ ⪯ R⁻¹``, which holds where S's
+    float form lost R). w is a float Cholesky solve with D S D refined against the
+    exact ρ up to ``steps`` times, each correction added exactly (w a sum of floats,
+    not rounded to one: a float w leaves ρ at ε |S| |w|, whose bound through μ is
+    κ times the last term), until the bounds are within 2⁻⁴⁰ of each other. Where
+    the float S is not positive definite to working precision there is no solve:
+    None. Review 44 (EKFREV6): past the exact NIS's cap a gate decides on these.
+    """
+    from fractions import Fraction
+
+    m = jac.shape[0]
+    if not (np.isfinite(y).all() and np.isfinite(p).all() and np.isfinite(jac).all()):
+        return None
+    if _integer_s_work(p, jac) > _EXACT_POSTERIOR_WORK_MAX:
+        return None
+    s_int, _, scale, _ = _integer_s(p, jac, r)
+    unit = 1 << scale
+    try:
+        s_float = np.array([[value / unit for value in row] for row in s_int])
+    except OverflowError:
+        return None
+    diag = s_float.diagonal()
+    if not (np.isfinite(s_float).all() and (diag > 0.0).all()):
+        return None
+    d_s = _powers_of_two_scale(diag)
+    scaled = s_float * d_s * d_s[:, None]
+    # S's rounding (correctly rounded from the exact integers), scaled: within ε.
+    slack = (_EPS * np.abs(s_float) + 2.0**-1074) * d_s * d_s[:, None]
+    mu_s = _least_eigenvalue_bound(scaled, slack)
+    r_diag = r.diagonal()
+    d_r = _powers_of_two_scale(r_diag)
+    mu_r = _least_eigenvalue_bound(r * d_r * d_r[:, None], np.full((m, m), 2.0**-1074))
+    # The last term's bound per unit of ‖ρ‖²: the least of S's and R's (inf: none).
+    weights = [(d, mu) for d, mu in ((d_s, mu_s), (d_r, mu_r)) if mu > 0.0]
+    solvers = _float_solvers(scaled, d_s, p, jac, r)
+    if not weights or not solvers:
+        return None
+    y_int, ky = _dyadic(y[None, :])
+    y_ints = y_int[0]
+    w_ints = [0] * m
+    kw = 0
+    residual = [Fraction(v) for v in y.tolist()]  # ρ = y for w = 0
+    s_bits = max(abs(v).bit_length() for row in s_int for v in row)
+    work = _integer_s_work(p, jac)
+    best: tuple[Fraction, Fraction] | None = None
+    kept: tuple[list[int], int, list[Fraction]] = (w_ints, kw, residual)
+    last = math.inf
+    for _ in range(steps + 1):
+        rho = np.array([float(v) for v in residual])
+        if not np.isfinite(rho).all():
+            return None
+        # yᵀ w + wᵀ ρ, exactly.
+        low = Fraction(sum(a * b for a, b in zip(y_ints, w_ints, strict=True)), 1 << (ky + kw))
+        for w, res in zip(w_ints, residual, strict=True):
+            if w:
+                low += Fraction(w, 1 << kw) * res
+        # ρᵀ S⁻¹ ρ <= ‖D ρ‖² / μ: ρ within an ulp (and the least subnormal) of rho.
+        size = np.abs(rho) * (1.0 + 2.0 * _EPS) + 2.0**-1074
+        gap = math.inf
+        for d, mu in weights:
+            with np.errstate(all="ignore"):
+                term = float(np.sum((size * d) ** 2)) * (1.0 + (m + 4) * 2.0 * _EPS) / mu
+            gap = min(gap, term * (1.0 + 4.0 * _EPS))
+        if gap < math.inf and (best is None or gap < best[1] - best[0]):
+            best = (low, low + Fraction(gap))
+            kept = (w_ints, kw, residual)
+            if gap <= 2.0**-40 * float(low):
+                break
+        if not gap <= 0.5 * last:
+            # The solve does not converge (the float S lost R: its Cholesky solve is
+            # noise there): the next solver, from the best w so far.
+            solvers = solvers[1:]
+            if not solvers:
+                break
+            w_ints, kw, residual = kept
+            rho = np.array([float(v) for v in residual])
+            gap = math.inf
+        last = gap
+        # A correction: the float solve of S c = ρ, added to w exactly.
+        with np.errstate(all="ignore"):
+            correction = solvers[0](rho)
+        if not np.isfinite(correction).all():
+            break
+        c_int, kc = _dyadic(correction[None, :])
+        if kc > kw:
+            w_ints = [w << (kc - kw) for w in w_ints]
+            kw = kc
+        w_ints = [w + (c << (kw - kc)) for w, c in zip(w_ints, c_int[0], strict=True)]
+        # ρ = y - S w exactly, its m² products counted first (from sizes, no clock).
+        w_bits = max(abs(w).bit_length() for w in w_ints)
+        work += m * m * (_INFORMATION_OP_WORK + s_bits * w_bits)
+        if work > _EXACT_POSTERIOR_WORK_MAX:
+            break
+        top = scale + kw
+        shift = top - ky
+        residual = []
+        for a in range(m):
+            row = s_int[a]
+            exact = sum(row[b] * w_ints[b] for b in range(m) if w_ints[b])
+            num = (y_ints[a] << shift) - exact if shift >= 0 else y_ints[a] - (exact << -shift)
+            residual.append(Fraction(num, 1 << max(top, ky)))
+    if best is None:
+        return None
+    low, high = best
+    low = max(low, Fraction(0))
+    try:
+        out_lo = float(low)
+        out_hi = float(high)
+    except OverflowError:
+        return None
+    if Fraction(out_lo) > low:
+        out_lo = math.nextafter(out_lo, 0.0)
+    if Fraction(out_hi) < high:
+        out_hi = math.nextafter(out_hi, math.inf)
+    return out_lo, out_hi
 
 
 def _bareiss(rows: list[list[int]], size: int, first: int | None = None) -> int | None:
@@ -1937,26 +2243,12 @@ def _eliminated(p: FloatArray, jac: FloatArray, r: FloatArray, y: FloatArray) ->
     (every division of the elimination is exact) and the eliminated y in
     column m, for :func:`_nis_of` and :func:`_exact_state`.
     """
-    m, n = jac.shape
-    h_int, kh = _dyadic(jac)
-    p_int, kp = _dyadic(p)
-    r_int, kr = _dyadic(r)
+    m = jac.shape[0]
+    s, hp, scale, k_hp = _integer_s(p, jac, r)
     y_int, ky = _dyadic(y[None, :])
-    hp = [[sum(h[k] * p_int[k][j] for k in range(n) if h[k]) for j in range(n)] for h in h_int]
-    scale = max(2 * kh + kp, kr)  # S = rows / 2**scale
-    up_hph = scale - 2 * kh - kp
-    up_r = scale - kr
-    rows = [
-        [
-            (sum(hp[a][k] * h_int[b][k] for k in range(n) if h_int[b][k]) << up_hph)
-            + (r_int[a][b] << up_r)
-            for b in range(m)
-        ]
-        + [y_int[0][a]]
-        for a in range(m)
-    ]
+    rows = [[*row, y_int[0][a]] for a, row in enumerate(s)]
     _bareiss(rows, m)  # S is positive definite: no pivot is zero, no rows exchanged
-    return rows, hp, scale, kh + kp, ky
+    return rows, hp, scale, k_hp, ky
 
 
 def _nis_of(elimination: _Elimination) -> float:
