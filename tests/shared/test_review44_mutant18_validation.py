@@ -8,11 +8,19 @@ with one mutant of the module (named in its docstring) and passes with the code.
 from __future__ import annotations
 
 from fractions import Fraction
+from typing import Any
 
 import numpy as np
 import pytest
 
-from navkit._shared.validation import as_cell, as_sequence, bounded_int, finite_float
+from navkit._shared.validation import (
+    as_array,
+    as_cell,
+    as_float_array,
+    as_sequence,
+    bounded_int,
+    finite_float,
+)
 
 
 @pytest.mark.parametrize("value", [float("nan"), float("inf"), -float("inf")])
@@ -109,3 +117,31 @@ def test_the_swapped_pair_hint_in_a_wide_grid(cell: tuple[int, int], hint: bool)
     with pytest.raises(ValueError, match="is outside the grid of shape") as info:
         as_cell(cell, "goal", (3, 5))
     assert ("was it given as (x, y)?" in str(info.value)) is hint
+
+
+def _nested(value: Any, depth: int) -> Any:
+    for _ in range(depth):
+        value = [value]
+    return value
+
+
+def test_a_bool_at_numpy_s_deepest_level_is_refused() -> None:
+    """A 64-D nesting (NumPy's most) with a bool in its innermost list: NumPy
+    would read ``[True, 0.5]`` as ``[1.0, 0.5]``, so the walk must reach it
+    (mutant: one level fewer, the bool silently read as 1.0)."""
+    value = _nested([True, 0.5], 63)
+    assert np.asarray(_nested([1.0, 0.5], 63)).ndim == 64
+    with pytest.raises(
+        TypeError, match=r"^xs must hold real numbers, got an element of type bool$"
+    ):
+        as_float_array(value, "xs")
+
+
+def test_raggedness_beyond_numpy_s_dimensions_is_no_wrong_shape() -> None:
+    """Ragged lists 66 levels deep cannot be an array whatever their lengths: a
+    ``TypeError`` (NumPy's reason quoted), while a ragged nesting NumPy could hold
+    is a wrong shape, a ``ValueError`` (mutant: the depth limit 65)."""
+    with pytest.raises(ValueError, match=r"^mask must be a rectangular array"):
+        as_array(_nested([[1, 2], [3]], 62), "mask")
+    with pytest.raises(TypeError, match=r"^mask must be numeric array-like: "):
+        as_array(_nested([[1, 2], [3]], 64), "mask")
