@@ -18,7 +18,7 @@ from navkit._shared.text import as_text
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, bounded_int
 from navkit.geometry import Pose2D, as_pose
-from navkit.mapping._grid import OccupancyGrid
+from navkit.mapping._grid import OccupancyGrid, _owned_grid
 from navkit.mapping._limits import RANGE_LIMIT, RESOLUTION_MAX, bounded_float
 from navkit.mapping._scan import LaserScan
 from navkit.mapping._scan_matcher_kernels import (
@@ -217,13 +217,24 @@ def downsample(grid: OccupancyGrid) -> OccupancyGrid:
 
     The largest value keeps thin walls (a hit wins over misses, as when a scan
     is written into a coarse map directly). Cells beyond an odd edge count as unknown.
+    The maximum is taken over the four strided views of the cells, into the new
+    grid's own array: a quarter of the grid's bytes, where a zero-padded copy of
+    the grid and its reduction took 1.5 times them (1.5 GiB at ``MAX_CELLS``).
     """
     rows, cols = grid.shape
-    padded = np.zeros((rows + rows % 2, cols + cols % 2), dtype=np.float32)
-    padded[:rows, :cols] = grid.logodds
-    r2, c2 = padded.shape[0] // 2, padded.shape[1] // 2
-    coarse = padded.reshape(r2, 2, c2, 2).max(axis=(1, 3))
-    return OccupancyGrid(
+    cells = grid.logodds
+    coarse = cells[0::2, 0::2].copy()  # (ceil(rows / 2), ceil(cols / 2)), C-contiguous
+    for dr, dc in ((1, 0), (0, 1), (1, 1)):
+        part = cells[dr::2, dc::2]
+        into = coarse[: part.shape[0], : part.shape[1]]
+        np.maximum(into, part, out=into)
+    # A block cut by an odd edge has unknown cells (log-odds 0) beyond it.
+    if rows % 2:
+        np.maximum(coarse[-1], 0.0, out=coarse[-1])
+    if cols % 2:
+        np.maximum(coarse[:, -1], 0.0, out=coarse[:, -1])
+    return _owned_grid(
+        OccupancyGrid,
         coarse,
         resolution=2.0 * grid.resolution,
         origin=grid.origin,
