@@ -145,3 +145,13 @@ def test_raggedness_beyond_numpy_s_dimensions_is_no_wrong_shape() -> None:
         as_array(_nested([[1, 2], [3]], 62), "mask")
     with pytest.raises(TypeError, match=r"^mask must be numeric array-like: "):
         as_array(_nested([[1, 2], [3]], 64), "mask")
+
+
+@pytest.mark.parametrize(
+    ("value", "got"), [("ab", "str"), ({0: 1, 1: 2}, "dict"), (5, "5"), (None, "None")]
+)
+def test_a_cell_that_is_no_pair_is_named_as_such(value: object, got: str) -> None:
+    """A string, a mapping or a non-iterable is no (row, col) pair (mutants: the
+    words of both messages)."""
+    with pytest.raises(TypeError, match=rf"^goal must be a \(row, col\) pair, got {got}$"):
+        as_cell(value, "goal", (3, 3))
