@@ -1,0 +1,80 @@
+"""The grid searches' per-thread scratch (review 44, MUTANT19's surviving mutants).
+
+* Marks are int32 stamps shifted left by 4, so a closed mark ``stamp + 1``
+  must stay below ``2**27``. The stamp restart was tested relative to the
+  module's own ``_STAMP_LIMIT``: a limit of ``2**27 + 4`` survived, because a
+  search whose marks overflowed failed as if its queue were full and was
+  retried, with a doubled queue, under the next stamps until the restart
+  (same path, more memory, three searches for one). The bound is checked here
+  against the int32 layout itself, search by search.
+* A thread's first search allocates its records: a workspace that started
+  with a capacity of 1 handed a one-cell grid's search an empty array.
+"""
+
+from __future__ import annotations
+
+import itertools
+import threading
+
+import numpy as np
+import pytest
+
+from navkit.planning.grid import AStarPlanner, astar
+from navkit.planning.grid import _workspace as workspace
+
+# The largest stamp whose closed mark (stamp + 1) << 4 fits an int32.
+_LAST_FITTING_STAMP = 2**27 - 2
+
+
+def _grid() -> np.ndarray:
+    rng = np.random.default_rng(44)
+    grid = np.where(rng.random((30, 40)) < 0.2, np.inf, 1.0 + 999.0 * rng.random((30, 40)))
+    grid[0, 0] = grid[-1, -1] = 1.0
+    return grid
+
+
+def test_every_search_near_the_stamp_limit_marks_within_int32(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    grid = _grid()
+    planner = AStarPlanner(grid)
+    monkeypatch.setattr(workspace, "_local", workspace._ThreadWorkspace())
+    expected = planner.plan((0, 0), (29, 39))
+    field = planner.distance_field((29, 39))
+    queue = workspace._local.heap.size
+    monkeypatch.setattr(workspace._local, "stamp", _LAST_FITTING_STAMP - 10)
+    stamps = [workspace._local.stamp]
+    for _ in range(5):
+        path = planner.plan((0, 0), (29, 39))
+        stamps.append(workspace._local.stamp)
+        assert path.cost == expected.cost and path.expanded == expected.expanded
+        assert np.array_equal(path.cells, expected.cells)
+        assert np.array_equal(planner.distance_field((29, 39)), field)
+        stamps.append(workspace._local.stamp)
+    for before, after in itertools.pairwise(stamps):
+        # One search a query: the stamp advanced once, or restarted at 2.
+        assert after == before + 2 or after == 2, stamps
+        assert (after + 1) << 4 < 2**31, stamps
+    assert 2 in stamps  # it restarted on the way
+    # No search failed for a queue it did not need.
+    assert workspace._local.heap.size == queue
+
+
+@pytest.mark.parametrize("shape", [(1, 1), (1, 2)])
+def test_a_threads_first_search_on_a_tiny_grid_gets_records(shape: tuple[int, int]) -> None:
+    results: list[object] = []
+
+    def search() -> None:
+        try:
+            costs = np.full(shape, 3.0)
+            goal = (0, shape[1] - 1)
+            results.append(astar(costs, (0, 0), goal).cost)
+            results.append(AStarPlanner(costs).distance_field(goal).tolist())
+        except Exception as exc:  # reported below, with its type
+            results.append(exc)
+
+    thread = threading.Thread(target=search)
+    thread.start()
+    thread.join()
+    step = 3.0 * (shape[1] - 1)
+    assert results == [step, [[step, 0.0][-shape[1] :]]], results
