@@ -1200,8 +1200,10 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
     failed its check (which the exact posterior may still pass). (Or because
     S's pivots say S is ill-conditioned, ε κ(S) > 2⁻³⁰, of any size (before
     review 41 at most ``_EXACT_ELIMINATION_MAX`` components, before review 40 8;
-    without an exact route the kernel's NIS stands, and its x and P only where
-    the information form vouches for them): a linear combination of states
+    without an exact route the kernel's x and P only where the information form
+    vouches for them, and, without a gate, its NIS where bounds of the exact one
+    (:func:`_nis_interval`) are not within 2⁻²⁰ of each other, else their
+    midpoint; review 44, before which the kernel's NIS always stood): a linear combination of states
     measured twice far more precisely than it is known, or H P Hᵀ
     cancelling (for one component too, since review 29), where no variance
     need shrink, but the kernel's NIS and x, from its solve with S, are off
@@ -1448,6 +1450,13 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
             gated = _gate_past_the_cap(p, jac, r, y, rbuf, refuse=status == OK)
             if gated != OK:
                 return gated
+        elif status == OK and not _EPS * _s_amplification(rbuf, p, jac) <= _STATE_TRUSTED:
+            # No gate: the kernel's NIS, from an S too ill-conditioned to trust, was
+            # reported (up to 10 % off): the midpoint of bounds of the exact NIS where
+            # they are within 2⁻²⁰ of each other (review 44, EKFREV6), else it stands.
+            bounds = _nis_interval(p, jac, r, y)
+            if bounds is not None and bounds[1] - bounds[0] <= 2.0**-20 * bounds[0]:
+                rbuf[_VEC, _META, 1] = 0.5 * bounds[0] + 0.5 * bounds[1]
         if status != OK:
             return status
     found_exact = None
@@ -1977,8 +1986,10 @@ def _least_eigenvalue_bound(a: FloatArray, slack: FloatArray) -> float:
             # The residual itself, each entry rounded once from its exact value
             # (_exact_residual, m³ terms): far below the γₘ bound's m ε per entry
             # where λmin is within a few m² ε (κ(R) 1e13 for 30 components).
+            # (Dekker's products are exact but where one underflows: m 2⁻¹⁰⁷⁰ for those.)
             exact = np.abs(_exact_residual(factor, factor.T, shifted))
-            least = _shifted_margin(alpha, exact * (1.0 + 2.0 * _EPS) + 2.0**-1074, shifted, slack)
+            exact = exact * (1.0 + 2.0 * _EPS) + m * 2.0**-1070
+            least = _shifted_margin(alpha, exact, shifted, slack)
     return least
 
 
@@ -1992,7 +2003,9 @@ def _shifted_margin(
     m = shifted.shape[0]
     with np.errstate(all="ignore"):
         total = bound + _EPS * np.diag(np.abs(shifted.diagonal())) + slack
-        e = float(np.max(total.sum(axis=1))) * (1.0 + (m + 8) * 2.0 * _EPS)
+        # ‖E‖₂ <= sqrt(‖E‖₁ ‖E‖∞): the larger of the column and row sums.
+        sums = max(float(np.max(total.sum(axis=0))), float(np.max(total.sum(axis=1))))
+        e = sums * (1.0 + (m + 8) * 2.0 * _EPS)
     if not e < math.inf:  # NaN too
         return 0.0
     least = (alpha - e) * (1.0 - 4.0 * _EPS)
