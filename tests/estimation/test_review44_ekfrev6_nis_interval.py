@@ -76,6 +76,10 @@ def _brackets(
 )
 @example(seed=0, n=4, m=10, log_p=20.0, log_r=-20.0, spread=0.0)  # S singular in float64
 @example(seed=1, n=1, m=1, log_p=0.0, log_r=0.0, spread=0.0)
+@example(  # a correction's residual beyond float64: OverflowError before the bounds so far
+    seed=3882100053, n=2, m=6, log_p=140.20421667282943, log_r=-122.97109552781765,
+    spread=-0.1480902556836492,
+)  # fmt: skip
 def test_the_bounds_hold_the_exact_nis(
     seed: int, n: int, m: int, log_p: float, log_r: float, spread: float
 ) -> None:

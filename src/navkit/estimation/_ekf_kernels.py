@@ -2120,9 +2120,10 @@ def _nis_interval(
     kept: tuple[list[int], int, list[Fraction]] = (w_ints, kw, residual)
     last = math.inf
     for _ in range(steps + 1):
-        rho = np.array([float(v) for v in residual])
-        if not np.isfinite(rho).all():
-            return None
+        try:
+            rho = np.array([float(v) for v in residual])
+        except OverflowError:  # ρ beyond float64: the bounds so far
+            break
         # yᵀ w + wᵀ ρ, exactly.
         low = Fraction(sum(a * b for a, b in zip(y_ints, w_ints, strict=True)), 1 << (ky + kw))
         for w, res in zip(w_ints, residual, strict=True):
@@ -2138,7 +2139,7 @@ def _nis_interval(
         if gap < math.inf and (best is None or gap < best[1] - best[0]):
             best = (low, low + Fraction(gap))
             kept = (w_ints, kw, residual)
-            if gap <= 2.0**-40 * float(low):
+            if gap <= low / (1 << 40):
                 break
         if not gap <= 0.5 * last:
             # The solve does not converge (the float S lost R: its Cholesky solve is
@@ -2147,7 +2148,7 @@ def _nis_interval(
             if not solvers:
                 break
             w_ints, kw, residual = kept
-            rho = np.array([float(v) for v in residual])
+            rho = np.array([float(v) for v in residual])  # finite: it gave the best bounds
             gap = math.inf
         last = gap
         # A correction: the float solve of S c = ρ, added to w exactly.
