@@ -78,3 +78,33 @@ def test_a_threads_first_search_on_a_tiny_grid_gets_records(shape: tuple[int, in
     thread.join()
     step = 3.0 * (shape[1] - 1)
     assert results == [step, [[step, 0.0][-shape[1] :]]], results
+
+
+class _ZerosFail:
+    """numpy as the workspace module sees it, but np.zeros raises MemoryError."""
+
+    def __getattr__(self, name: str) -> object:
+        return getattr(np, name)
+
+    @staticmethod
+    def zeros(*args: object, **kwargs: object) -> np.ndarray:
+        raise MemoryError("simulated")
+
+
+@pytest.mark.parametrize("own", [False, True])
+def test_out_of_memory_the_message_says_16_bytes_a_cell(
+    monkeypatch: pytest.MonkeyPatch, own: bool
+) -> None:
+    monkeypatch.setattr(workspace, "_local", workspace._ThreadWorkspace())
+    monkeypatch.setattr(workspace, "np", _ZerosFail())
+    expected = (
+        "a grid search over 90000 cells needs 1.373 MiB of scratch (16 bytes a cell, "
+        "kept per thread for later searches), which could not be allocated"
+    )
+    with pytest.raises(MemoryError) as caught:
+        workspace.workspace(90000, own=own)
+    assert str(caught.value) == expected
+    if not own:
+        with pytest.raises(MemoryError) as caught:
+            AStarPlanner(np.ones((300, 300))).plan((0, 0), (299, 299))
+        assert str(caught.value) == expected
