@@ -7,6 +7,7 @@ The public entry points refuse larger grids before converting them
 maximum would need 16 GiB to search, so the boundary is tested on the private
 checks themselves, with broadcast views that take no memory. Mutants that
 refused the maximum itself (``>`` turned into ``>=``) survived every test.
+The maximum is the documented number, not the modules' constant.
 """
 
 from __future__ import annotations
@@ -16,7 +17,9 @@ import pytest
 
 from navkit.planning.grid._arguments import check_search_size
 from navkit.planning.grid._limits import check_node_count
-from navkit.planning.grid._search_heap import MAX_NODES
+
+# The documented maximum, written out: the checks' shared constant is under test too.
+MAX_NODES = 2**31 - 1
 
 
 def test_the_search_size_check_admits_the_maximum_and_refuses_one_more() -> None:
