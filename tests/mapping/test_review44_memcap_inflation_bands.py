@@ -60,7 +60,7 @@ def test_bands_give_the_whole_grids_inflation(
     reference = distance_module.obstacle_distance(grid.occupied()) <= robot / 0.1 + 1e-9
     assert np.array_equal(whole[0], reference)
     with pytest.MonkeyPatch.context() as mp:
-        # Bands of a few rows beside their halos, however thin.
+        # Bands of a few rows (at least four halos) beside their halos.
         mp.setattr(distance_module, "_BAND_CELLS", band * cols)
         mp.setattr(distance_module, "_MIN_BAND_ROWS", 1)
         banded = (
@@ -107,3 +107,15 @@ def test_inflation_takes_its_result_and_a_band(name: str, per_cell: int) -> None
     cells = rows * cols
     # 19, 20 and 20 bytes a cell before; a band's transform is about 40 MiB.
     assert peak < per_cell * cells + (48 << 20), f"{peak / cells:.2f} bytes a cell"
+
+
+def test_a_wide_grid_with_a_large_radius_transforms_bands_of_twice_the_radius() -> None:
+    # 8192 columns and a 5 m radius at 5 cm (100 cells): a band of 2**21 cells less its
+    # halos would have 56 rows, fewer than its halo; bands of 400 rows (600 with their
+    # halos: SciPy's 18 bytes a cell, then the indices and distances, 16) instead of
+    # the whole grid at once (21 bytes a cell).
+    rows, cols = 2400, 8192
+    grid = _grid(rows, cols, 8, resolution=0.05)
+    peak, _ = peak_bytes(lambda: grid.costmap(robot_radius=0.2, inflation_radius=5.0))
+    cells = rows * cols
+    assert peak < 3 * cells + 26 * cols * 600 + (8 << 20), f"{peak / cells:.2f} bytes a cell"

@@ -221,8 +221,9 @@ def costmap(
     the occupied and unknown masks (2) and the result (1), and the exact
     distance transform of a band of rows with ``ceil(inflation_radius /
     resolution)`` rows of its neighbours on either side (SciPy's 18 bytes a
-    cell on about 2**21 cells), all a band needs; a radius of more than about
-    a third of a band's rows makes it the whole grid (18 bytes a cell).
+    cell on about 2**21 cells, or on 6 radii of rows when that is more), all a
+    band needs; the whole grid at once (18 bytes a cell) when the radius is
+    about a quarter of the grid's rows or more.
 
     Examples
     --------

@@ -28,8 +28,8 @@ _TILE_CELLS = 1 << 16
 # Cells of a band of :func:`obstacle_distance_bands` with its halo: SciPy's
 # 18 bytes a cell on them, about 36 MiB.
 _BAND_CELLS = 1 << 21
-# Fewest rows of a band: thinner ones (a wide grid, a large halo) would transform
-# their halos more than themselves; the whole grid is transformed at once instead.
+# Fewest rows of a band: thinner ones (a wide grid) would cost more Python than
+# transform.
 _MIN_BAND_ROWS = 64
 
 
@@ -94,9 +94,9 @@ def obstacle_distance_bands(
     with ``floor(reach)`` rows of its neighbours on either side, which hold
     every occupied cell within ``reach`` of it. Inflation needs no more, and
     the transform's 18 bytes a cell then cover a band and its halo, about
-    :data:`_BAND_CELLS` cells, instead of the grid: the caller's peak is its
-    own result and a band (the whole grid at once when the halo would cover
-    it anyway). The bands cover the rows in order.
+    :data:`_BAND_CELLS` cells or ``6 * floor(reach)`` rows, instead of the
+    grid: the caller's peak is its own result and a band (the whole grid at
+    once when a band would cover it). The bands cover the rows in order.
 
     Examples
     --------
@@ -106,8 +106,11 @@ def obstacle_distance_bands(
     """
     rows, cols = occupied.shape
     halo = int(min(math.floor(reach), rows)) if reach >= 0.0 else 0
-    band = _BAND_CELLS // cols - 2 * halo
-    if band >= rows or band < max(halo, _MIN_BAND_ROWS):  # the whole grid at once
+    # At least four times the halo's rows a band: a window transforms at most 1.5
+    # times its band's cells (the time) and 6 * halo rows (the memory, when that is
+    # above _BAND_CELLS); the whole grid at once when a band would cover it anyway.
+    band = max(_BAND_CELLS // cols - 2 * halo, 4 * halo, _MIN_BAND_ROWS)
+    if band >= rows:
         yield 0, rows, obstacle_distance(occupied)
         return
     for r0 in range(0, rows, band):
