@@ -1,0 +1,31 @@
+"""The command line's grammar: gaps a mutation review found (review 44, MUTANT17).
+
+Each test here failed on a mutant of ``navkit.cli._parser`` that every
+earlier test passed.
+"""
+
+from __future__ import annotations
+
+import pytest
+
+from navkit.cli import main
+
+
+def usage_line(argv: list[str], capsys: pytest.CaptureFixture[str]) -> str:
+    """The last line of a usage error (exit code 2)."""
+    assert main(argv) == 2
+    return capsys.readouterr().err.strip().splitlines()[-1]
+
+
+@pytest.mark.parametrize(
+    ("argv", "meant"),
+    [
+        (["demo", "--trail=100000"], "--trials"),
+        (["run", "omni-apf", "--wrkers=1024"], "--workers"),
+    ],
+)
+def test_an_unknown_option_with_its_value_is_guessed_from_its_name_alone(
+    argv: list[str], meant: str, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # "--trail=100000" is compared as "--trail": the value made it too far from any option.
+    assert usage_line(argv, capsys).endswith(f"maybe you meant {meant!r}?")
