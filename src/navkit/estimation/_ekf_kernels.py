@@ -2129,17 +2129,24 @@ def _nis_interval(
         for w, res in zip(w_ints, residual, strict=True):
             if w:
                 low += Fraction(w, 1 << kw) * res
-        # ρᵀ S⁻¹ ρ <= ‖D ρ‖² / μ: ρ within an ulp (and the least subnormal) of rho.
-        size = np.abs(rho) * (1.0 + 2.0 * _EPS) + 2.0**-1074
-        gap = math.inf
+        # ρᵀ S⁻¹ ρ <= ‖D ρ‖² / μ, from the exact ρ (D powers of two): in floats the
+        # squares of a ρ below 1e-162 underflowed to 0, bounds [0, 0] around a
+        # positive NIS (review 44, EKFCHECK).
+        bound: Fraction | None = None
         for d, mu in weights:
-            with np.errstate(all="ignore"):
-                term = float(np.sum((size * d) ** 2)) * (1.0 + (m + 4) * 2.0 * _EPS) / mu
-            gap = min(gap, term * (1.0 + 4.0 * _EPS))
-        if gap < math.inf and (best is None or gap < best[1] - best[0]):
-            best = (low, low + Fraction(gap))
+            term = sum(
+                (Fraction(di) * res) ** 2 for di, res in zip(d.tolist(), residual, strict=True)
+            ) / Fraction(mu)
+            bound = term if bound is None or term < bound else bound
+        assert bound is not None  # weights is not empty
+        try:
+            gap = float(bound)  # only for the convergence test below
+        except OverflowError:
+            gap = math.inf
+        if best is None or bound < best[1] - best[0]:
+            best = (low, low + bound)
             kept = (w_ints, kw, residual)
-            if gap <= low / (1 << 40):
+            if bound <= low / (1 << 40):
                 break
         if not gap <= 0.5 * last:
             # The solve does not converge (the float S lost R: its Cholesky solve is
