@@ -9,6 +9,7 @@ from __future__ import annotations
 import pytest
 
 from navkit.cli import main
+from navkit.cli._parser import closest_choice
 
 
 def usage_line(argv: list[str], capsys: pytest.CaptureFixture[str]) -> str:
@@ -29,3 +30,10 @@ def test_an_unknown_option_with_its_value_is_guessed_from_its_name_alone(
 ) -> None:
     # "--trail=100000" is compared as "--trail": the value made it too far from any option.
     assert usage_line(argv, capsys).endswith(f"maybe you meant {meant!r}?")
+
+
+@pytest.mark.parametrize("choices", [["a_b", "a-b", "A-B"], ["Field-Dstar", "field_dstar"]])
+def test_of_equal_spellings_the_first_choice_is_named(choices: list[str]) -> None:
+    # Case and "_" against "-" are ignored: every choice here spells the same name.
+    for value in choices:
+        assert closest_choice(value.upper(), choices) == choices[0]
