@@ -2073,8 +2073,9 @@ def _nis_interval(
     most ``‖D ρ‖² / μ`` for a rigorous lower bound μ of λmin(D A D)
     (:func:`_least_eigenvalue_bound`; D powers of two) with A = S (its float
     rounding within ε) or A = R (``S ⪰ R``: ``S⁻¹ ⪯ R⁻¹``, which holds where S's
-    float form lost R). w is a float Cholesky solve with D S D refined against the
-    exact ρ up to ``steps`` times, each correction added exactly (w a sum of floats,
+    float form lost R), the latter only where P is proven positive definite. w is a
+    float Cholesky solve with D S D refined against the exact ρ up to ``steps``
+    times, each correction added exactly (w a sum of floats,
     not rounded to one: a float w leaves ρ at ε |S| |w|, whose bound through μ is
     κ times the last term), until the bounds are within 2⁻⁴⁰ of each other. Where
     the float S is not positive definite to working precision there is no solve:
@@ -2104,6 +2105,20 @@ def _nis_interval(
     r_diag = r.diagonal()
     d_r = _powers_of_two_scale(r_diag)
     mu_r = _least_eigenvalue_bound(r * d_r * d_r[:, None], np.full((m, m), 2.0**-1074))
+    if mu_r > 0.0:
+        # S ⪰ R needs P ⪰ 0 exactly, which a float Cholesky's success (the kernels'
+        # test of a covariance) does not prove: P within ε of singular can be
+        # indefinite, S's least eigenvalue then below R's (R's bound 2.4 times too
+        # small; review 44, EKFCHECK). R's bound only with P proven positive definite.
+        p_diag = p.diagonal()
+        if not (p_diag > 0.0).all():
+            mu_r = 0.0
+        else:
+            d_p = _powers_of_two_scale(p_diag)
+            n = p.shape[0]
+            p_slack = np.full((n, n), 2.0**-1074)
+            if not _least_eigenvalue_bound(p * d_p * d_p[:, None], p_slack) > 0.0:
+                mu_r = 0.0
     # The last term's bound per unit of ‖ρ‖²: the least of S's and R's (inf: none).
     weights = [(d, mu) for d, mu in ((d_s, mu_s), (d_r, mu_r)) if mu > 0.0]
     solvers = _float_solvers(scaled, d_s, p, jac, r)
