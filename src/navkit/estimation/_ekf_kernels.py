@@ -1456,7 +1456,7 @@ def finish_cancelled(state: FloatArray, rbuf: FloatArray, jac: FloatArray, y: Fl
             # they are within 2⁻²⁰ of each other (review 44, EKFREV6), else it stands.
             bounds = _nis_interval(p, jac, r, y)
             if bounds is not None and bounds[1] - bounds[0] <= 2.0**-20 * bounds[0]:
-                rbuf[_VEC, _META, 1] = 0.5 * bounds[0] + 0.5 * bounds[1]
+                rbuf[_VEC, _META, 1] = _midpoint(*bounds)
         if status != OK:
             return status
     found_exact = None
@@ -1803,7 +1803,7 @@ def _gate_past_the_cap(
         low, high = found
         if low == math.inf:
             return _gate_on(rbuf, low)
-        middle = 0.5 * low + 0.5 * high
+        middle = _midpoint(low, high)
         if high <= gate or (low > gate and high - low <= 2.0**-20 * low):
             return _gate_on(rbuf, middle)
         if low > gate:
@@ -1825,6 +1825,16 @@ def _gate_past_the_cap(
     )
     refusal.tried = True
     raise refusal
+
+
+def _midpoint(low: float, high: float) -> float:
+    """The midpoint of ``low <= high``, rounded into them.
+
+    ``0.5 * low + 0.5 * high`` alone left subnormal bounds: halving 3 and 5 times
+    2⁻¹⁰⁷⁴ rounds to even, (3, 3) gave 4 and (5, 5) gave 4 (times 2⁻¹⁰⁷⁴), a NIS
+    outside the bounds the gate decided on (review 44, EKFCHECK).
+    """
+    return min(max(0.5 * low + 0.5 * high, low), high)
 
 
 def _exact_nis(p: FloatArray, jac: FloatArray, r: FloatArray, y: FloatArray) -> float:
