@@ -17,9 +17,11 @@ from navkit._shared.validation import (
     as_array,
     as_cell,
     as_float_array,
+    as_points,
     as_sequence,
     bounded_int,
     finite_float,
+    unpack,
 )
 
 
@@ -155,3 +157,67 @@ def test_a_cell_that_is_no_pair_is_named_as_such(value: object, got: str) -> Non
     words of both messages)."""
     with pytest.raises(TypeError, match=rf"^goal must be a \(row, col\) pair, got {got}$"):
         as_cell(value, "goal", (3, 3))
+
+
+def test_a_list_that_contains_itself_is_no_array_and_holds_no_bool() -> None:
+    """The walks end at NumPy's depth: neither a bool nor raggedness is found in a
+    list that contains itself (mutants: the walks' last ``return False`` made True)."""
+    loop: list[Any] = []
+    loop.append(loop)
+    for convert in (as_array, as_float_array):
+        with pytest.raises(TypeError, match=r"^grid must be numeric array-like: ") as info:
+            convert(loop, "grid")
+        assert "bool" not in str(info.value)
+
+
+@pytest.mark.parametrize(
+    "zero_d", [np.array(1.0), np.array({}, dtype=object)], ids=["float", "object"]
+)
+@pytest.mark.parametrize("first", [True, False])
+def test_a_zero_d_array_next_to_a_row_is_ragged(zero_d: Any, first: bool) -> None:
+    """A 0-d array is a scalar beside a row, numeric or object (mutants: either
+    branch's ``scalars = True`` or its ``continue``)."""
+    value = [zero_d, [1.0, 2.0]] if first else [[1.0, 2.0], zero_d]
+    with pytest.raises(ValueError, match=r"^grid must be a rectangular array"):
+        as_array(value, "grid")
+
+
+def test_an_array_protocol_that_raises_is_named() -> None:
+    """NumPy's reason, after the argument's name (mutant: the error not returned)."""
+
+    class Refusing:
+        def __array__(self, dtype: Any = None, copy: Any = None) -> Any:
+            raise TypeError("no array today")
+
+    with pytest.raises(TypeError, match=r"^grid must be numeric array-like: no array today$"):
+        as_array(Refusing(), "grid")
+
+
+@pytest.mark.parametrize(("rows", "cols"), [(2, 5), (2, 1), (2, 0)])
+def test_points_given_one_column_per_point_get_the_transposed_hint(rows: int, cols: int) -> None:
+    with pytest.raises(ValueError, match=r"must have shape \(N, 2\)") as info:
+        as_points(np.zeros((rows, cols)), "points")
+    assert str(info.value).endswith(
+        f" (it looks transposed, one column per item: pass its .T, shape {(cols, rows)})"
+    )
+
+
+@pytest.mark.parametrize("shape", [(3, 5), (5, 3), (3,)])
+def test_no_transposed_hint_when_the_transpose_does_not_fit(shape: tuple[int, ...]) -> None:
+    with pytest.raises(ValueError, match=r"must have shape \(N, 2\)") as info:
+        as_points(np.zeros(shape), "points")
+    assert "transposed" not in str(info.value)
+
+
+def test_the_transposed_hint_for_other_widths() -> None:
+    with pytest.raises(ValueError, match=r"along axis 1") as info:
+        as_float_array(np.zeros((3, 4)), "poses", shape=(None, 3))
+    assert "pass its .T, shape (4, 3)" in str(info.value)
+
+
+def test_a_memoryview_numpy_cannot_read_is_named() -> None:
+    """A pointer format NumPy refuses (mutants: the ``raise`` dropped, its type,
+    the word for a memoryview)."""
+    view = memoryview(bytes(16)).cast("P")
+    with pytest.raises(TypeError, match=r"^pairs is a memoryview NumPy cannot read: "):
+        unpack(view, "pairs")
