@@ -6,7 +6,8 @@ drops once the state is through. Review 33 checked the table after copies that
 failed; the surviving mutants here kept the entry after a copy that succeeded,
 as long as the pickler's or deep copy's memo (which holds the shell) lived, and
 ``_forget`` of a record without an entry (or with another record's under its
-id) raised or dropped the other's.
+id) raised or dropped the other's. Also ``rebuild_record``'s renamed fields and
+``restore_slots``'s skip of a ``__weakref__`` slot, which no test reached.
 """
 
 from __future__ import annotations
@@ -14,8 +15,11 @@ from __future__ import annotations
 import copy
 import io
 import pickle
-from typing import Any
+from dataclasses import dataclass
+from types import MappingProxyType
+from typing import Any, ClassVar
 
+import numpy as np
 import pytest
 
 from navkit._shared import frozen
@@ -65,3 +69,37 @@ def test_forgetting_leaves_another_record_s_entry() -> None:
         assert table.get(id(record)) is shell
     finally:
         table.pop(id(record), None)
+
+
+@dataclass(frozen=True, slots=True)
+class Renamed:
+    """A record whose field ``stamps`` was called ``times`` in older pickles."""
+
+    stamps: Any
+    _renamed_fields: ClassVar[Any] = MappingProxyType({"times": "stamps"})
+
+
+def test_a_renamed_field_loads_from_its_old_name() -> None:
+    """``rebuild_record`` maps old names through ``_renamed_fields`` (mutant: the
+    mapping read as empty), the array among ``arrays`` under its old name frozen."""
+    values = np.arange(3.0)
+    record = frozen.rebuild_record(Renamed, {"times": values}, ("times",), None, {})
+    assert record.stamps is not values
+    np.testing.assert_array_equal(record.stamps, values)
+    assert not record.stamps.flags.writeable
+    assert values.flags.writeable
+
+
+class Slotted:
+    __slots__ = ("__weakref__", "values")
+
+    def __setstate__(self, state: Any) -> None:
+        frozen.restore_slots(self, state, read_only=("values",))
+
+
+def test_restore_slots_skips_a_weakref_slot_in_the_state() -> None:
+    """A state built from ``__slots__`` may name ``__weakref__``, which cannot be
+    set (mutant: the skip dropped, ``AttributeError``)."""
+    holder = object.__new__(Slotted)
+    holder.__setstate__((None, {"__weakref__": None, "values": np.zeros(2)}))
+    assert not holder.values.flags.writeable
