@@ -91,7 +91,7 @@ def test_a_renamed_field_loads_from_its_old_name() -> None:
 
 
 class Slotted:
-    __slots__ = ("__weakref__", "values")
+    __slots__ = ("__weakref__", "scratch", "values")
 
     def __setstate__(self, state: Any) -> None:
         frozen.restore_slots(self, state, read_only=("values",))
@@ -101,5 +101,6 @@ def test_restore_slots_skips_a_weakref_slot_in_the_state() -> None:
     """A state built from ``__slots__`` may name ``__weakref__``, which cannot be
     set (mutant: the skip dropped, ``AttributeError``)."""
     holder = object.__new__(Slotted)
-    holder.__setstate__((None, {"__weakref__": None, "values": np.zeros(2)}))
+    holder.__setstate__((None, {"__weakref__": None, "values": np.zeros(2), "scratch": np.ones(2)}))
     assert not holder.values.flags.writeable
+    assert holder.scratch.flags.writeable  # not named read-only

@@ -202,7 +202,7 @@ def test_points_given_one_column_per_point_get_the_transposed_hint(rows: int, co
     )
 
 
-@pytest.mark.parametrize("shape", [(3, 5), (5, 3), (3,)])
+@pytest.mark.parametrize("shape", [(3, 5), (5, 3), (3,), (2, 5, 1)])
 def test_no_transposed_hint_when_the_transpose_does_not_fit(shape: tuple[int, ...]) -> None:
     with pytest.raises(ValueError, match=r"must have shape \(N, 2\)") as info:
         as_points(np.zeros(shape), "points")
@@ -221,3 +221,29 @@ def test_a_memoryview_numpy_cannot_read_is_named() -> None:
     view = memoryview(bytes(16)).cast("P")
     with pytest.raises(TypeError, match=r"^pairs is a memoryview NumPy cannot read: "):
         unpack(view, "pairs")
+
+
+def test_as_array_refuses_masked_entries() -> None:
+    with pytest.raises(ValueError, match=r"^mask has masked entries"):
+        as_array(np.ma.masked_invalid([1.0, np.nan]), "mask")
+
+
+@pytest.mark.parametrize("dtype", [np.uint8, np.uint64, np.int8])
+def test_integer_arrays_of_any_sign_convert(dtype: type[np.integer[Any]]) -> None:
+    got = as_float_array(np.array([1, 2], dtype=dtype), "xs")
+    assert got.dtype == np.float64
+    np.testing.assert_array_equal(got, [1.0, 2.0])
+
+
+@pytest.mark.parametrize(
+    ("value", "hint"),
+    [
+        (5.0, " (wrap a single value in a list: [value])"),
+        (np.zeros((3, 1)), " (a column or row vector: pass it flattened, e.g. np.ravel(value))"),
+        (np.zeros((1, 3)), " (a column or row vector: pass it flattened, e.g. np.ravel(value))"),
+    ],
+)
+def test_a_scalar_or_a_vector_where_a_1d_array_is_wanted_gets_a_hint(value: Any, hint: str) -> None:
+    with pytest.raises(ValueError, match=r"^xs must be 1-D, got shape ") as info:
+        as_float_array(value, "xs", ndim=1)
+    assert str(info.value).endswith(hint)
