@@ -37,3 +37,13 @@ def test_of_equal_spellings_the_first_choice_is_named(choices: list[str]) -> Non
     # Case and "_" against "-" are ignored: every choice here spells the same name.
     for value in choices:
         assert closest_choice(value.upper(), choices) == choices[0]
+
+
+def test_an_ambiguous_or_empty_prefix_names_no_choice() -> None:
+    # A prefix names a choice only when it alone starts with it: "d" is "demo" or
+    # "diff-astar", "" any of them (even of a single choice).
+    scenarios = ("demo", "diff-astar", "greedy", "indoor-nav", "omni-apf", "soccer")
+    assert closest_choice("d", scenarios) is None
+    assert closest_choice("", scenarios) is None
+    assert closest_choice("", ["demo"]) is None
+    assert closest_choice("de", scenarios) == "demo"
