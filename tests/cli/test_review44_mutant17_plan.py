@@ -6,14 +6,19 @@ test passed.
 
 from __future__ import annotations
 
+import io
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 from navkit.cli import _kernels, main
+from navkit.cli._parser import build_parser
+from navkit.cli._plan import plan_command
+from navkit.errors import NoPathError
 from navkit.mapping import OccupancyGrid
 from navkit.mapping.io import write_map
+from navkit.planning import MapPlanner
 
 
 def _map(folder: Path) -> str:
@@ -50,3 +55,18 @@ def test_quiet_silences_the_compilation_notice(
     assert "compiling navkit's kernels" in capsys.readouterr().err
     assert main(_plan(tmp_path, "--quiet")) == 0
     assert capsys.readouterr().err == ""
+
+
+def test_no_path_keeps_the_searchs_expansion_count(tmp_path: Path) -> None:
+    # The command re-raises the planner's NoPathError in its options' words; the
+    # count of expanded cells goes with it (for an embedder calling the command).
+    occupied = np.zeros((10, 12), dtype=bool)
+    occupied[:, 6] = True  # a wall across the map
+    grid = OccupancyGrid.from_occupancy(occupied, resolution=0.1)
+    write_map(grid, tmp_path / "m.yaml")
+    argv = ["plan", str(tmp_path / "m.yaml"), "--start", "0.15,0.15", "--goal", "1.05,0.15"]
+    with pytest.raises(NoPathError) as library:
+        MapPlanner(grid, robot_radius=0.0).plan((0.15, 0.15), (1.05, 0.15))
+    with pytest.raises(NoPathError, match=r"--start .* --goal") as command:
+        plan_command(build_parser().parse_args(argv), io.StringIO(), io.StringIO())
+    assert command.value.expanded == library.value.expanded > 0
