@@ -9,17 +9,24 @@
   against the int32 layout itself, search by search.
 * A thread's first search allocates its records: a workspace that started
   with a capacity of 1 handed a one-cell grid's search an empty array.
+* The MemoryError of the A* scratch says 16 bytes a cell (mutants saying 17,
+  or dropping the raise, survived).
+* A JPS search interrupted by a signal handler's search that grew the
+  thread's records (restarting the stamp) is told so by the records alone:
+  without that clause it returned the handler's path.
 """
 
 from __future__ import annotations
 
 import itertools
+import signal
 import threading
+from typing import Any
 
 import numpy as np
 import pytest
 
-from navkit.planning.grid import AStarPlanner, astar
+from navkit.planning.grid import AStarPlanner, _astar, astar
 from navkit.planning.grid import _workspace as workspace
 
 # The largest stamp whose closed mark (stamp + 1) << 4 fits an int32.
@@ -108,3 +115,39 @@ def test_out_of_memory_the_message_says_16_bytes_a_cell(
         with pytest.raises(MemoryError) as caught:
             AStarPlanner(np.ones((300, 300))).plan((0, 0), (299, 299))
         assert str(caught.value) == expected
+
+
+@pytest.mark.skipif(not hasattr(signal, "SIGUSR1"), reason="needs SIGUSR1")
+def test_a_jps_plan_interrupted_by_a_larger_grids_plan_is_its_own(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    # The handler's search grows the thread's JPS records, which restarts the
+    # stamp: the interrupted search (the thread's first, stamp 1) sees its own
+    # stamp and queue again, and only the records tell that another search ran.
+    small = AStarPlanner(np.ones((10, 10)), method="jps")
+    large = AStarPlanner(np.ones((40, 40)), method="jps")
+    mine = small.plan((0, 0), (9, 4))
+    theirs = large.plan((39, 0), (0, 39))
+    monkeypatch.setattr(_astar, "_jps_scratch", _astar._JpsScratch())
+    real = _astar.jps_search
+    fired = [False]
+
+    def signalled(*args: object) -> object:
+        out = real(*args)
+        if not fired[0]:
+            fired[0] = True
+            signal.raise_signal(signal.SIGUSR1)
+        return out
+
+    handled: list[Any] = []
+    monkeypatch.setattr(_astar, "jps_search", signalled)
+    previous = signal.signal(
+        signal.SIGUSR1, lambda signum, frame: handled.append(large.plan((39, 0), (0, 39)))
+    )
+    try:
+        got = small.plan((0, 0), (9, 4))
+    finally:
+        signal.signal(signal.SIGUSR1, previous)
+    assert len(handled) == 1
+    assert np.array_equal(got.points, mine.points) and got.cost == mine.cost
+    assert all(np.array_equal(h.points, theirs.points) for h in handled)
