@@ -71,3 +71,10 @@ def test_a_failed_write_to_standard_output_names_it(
     assert main(["list"]) == 1
     reason = os.strerror(errno.ENOSPC)
     assert capsys.readouterr().err == f"navkit: error: standard output: {reason}\n"
+
+
+def test_notes_are_joined_on_the_line_each_on_one_line() -> None:
+    exc = ValueError("bad map")
+    exc.add_note("see\n   the docs")
+    exc.add_note("  twice ")
+    assert one_line(exc) == "bad map; see the docs; twice"

@@ -7,6 +7,7 @@ test passed.
 from __future__ import annotations
 
 import io
+import os
 from pathlib import Path
 
 import numpy as np
@@ -70,3 +71,16 @@ def test_no_path_keeps_the_searchs_expansion_count(tmp_path: Path) -> None:
     with pytest.raises(NoPathError, match=r"--start .* --goal") as command:
         plan_command(build_parser().parse_args(argv), io.StringIO(), io.StringIO())
     assert command.value.expanded == library.value.expanded > 0
+
+
+def test_an_output_that_is_the_maps_yaml_by_another_name_is_refused(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # The same file, not the same spelling: a hard link to the YAML would be replaced.
+    argv = _plan(tmp_path)
+    alias = tmp_path / "alias.json"
+    os.link(tmp_path / "m.yaml", alias)
+    before = (tmp_path / "m.yaml").read_bytes()
+    assert main([*argv, "--json", str(alias)]) == 1
+    assert "is the map's YAML" in capsys.readouterr().err
+    assert (tmp_path / "m.yaml").read_bytes() == before
