@@ -241,6 +241,7 @@ def test_integer_arrays_of_any_sign_convert(dtype: type[np.integer[Any]]) -> Non
         (5.0, " (wrap a single value in a list: [value])"),
         (np.zeros((3, 1)), " (a column or row vector: pass it flattened, e.g. np.ravel(value))"),
         (np.zeros((1, 3)), " (a column or row vector: pass it flattened, e.g. np.ravel(value))"),
+        (np.zeros((2, 3)), "got shape (2, 3)"),  # no hint
     ],
 )
 def test_a_scalar_or_a_vector_where_a_1d_array_is_wanted_gets_a_hint(value: Any, hint: str) -> None:
