@@ -248,3 +248,15 @@ def test_a_scalar_or_a_vector_where_a_1d_array_is_wanted_gets_a_hint(value: Any,
     with pytest.raises(ValueError, match=r"^xs must be 1-D, got shape ") as info:
         as_float_array(value, "xs", ndim=1)
     assert str(info.value).endswith(hint)
+
+
+def test_no_one_d_hint_where_two_dimensions_are_wanted() -> None:
+    with pytest.raises(ValueError, match=r"^grid must be 2-D, got shape \(\)$"):
+        as_float_array(5.0, "grid", ndim=2)
+
+
+def test_as_float_array_refuses_masked_entries_and_strings() -> None:
+    with pytest.raises(ValueError, match=r"^xs has masked entries"):
+        as_float_array(np.ma.array([1.0, 2.0], mask=[False, True]), "xs")
+    with pytest.raises(TypeError, match=r"^xs must be numeric array-like, got str$"):
+        as_float_array("1.0", "xs")
