@@ -46,7 +46,7 @@ def test_a_finished_pickle_leaves_no_entry_while_its_pickler_lives(protocol: int
 def test_a_finished_deep_copy_leaves_no_entry_while_its_memo_lives() -> None:
     record = Stateful((1.0, 2.0))
     memo: dict[int, Any] = {}
-    copied = copy.deepcopy(record, memo)
+    copied: Any = copy.deepcopy(record, memo)
     assert copied.note == "kept"
     assert id(record) not in frozen._shells()
 
@@ -92,6 +92,8 @@ def test_a_renamed_field_loads_from_its_old_name() -> None:
 
 class Slotted:
     __slots__ = ("__weakref__", "scratch", "values")
+    scratch: Any
+    values: Any
 
     def __setstate__(self, state: Any) -> None:
         frozen.restore_slots(self, state, read_only=("values",))
