@@ -1801,8 +1801,6 @@ def _gate_past_the_cap(
     bounds = ""
     if found is not None:
         low, high = found
-        if low == math.inf:
-            return _gate_on(rbuf, low)
         middle = _midpoint(low, high)
         if high <= gate or (low > gate and high - low <= 2.0**-20 * low):
             return _gate_on(rbuf, middle)
