@@ -1,0 +1,71 @@
+"""Mutants of the command line that survived the tests (review 44, MUTANT20).
+
+A frozen application that ships its sources still finds its cached kernels
+(``_kernels``); ``main`` refuses a string or a sequence holding a non-string
+as ``argv`` (``_app``); ``plan``'s check that an output is not the map's image
+refuses, with its own message, a YAML that is not a mapping or names no image
+(``_plan``: the file may change between ``read_map`` and the check).
+"""
+
+from __future__ import annotations
+
+import importlib.util
+import sys
+from pathlib import Path
+
+import pytest
+
+from navkit.cli import _kernels, _plan, main
+
+
+@pytest.mark.parametrize("frozen", [False, True])
+def test_a_frozen_application_with_its_sources_finds_its_cached_kernels(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, frozen: bool
+) -> None:
+    # A freezer that keeps the .py files beside the bytecode: numba caches as usual
+    # (here under NUMBA_CACHE_DIR), and the command must look there, frozen or not.
+    if frozen:
+        monkeypatch.setattr(sys, "frozen", True, raising=False)
+    else:
+        monkeypatch.delattr(sys, "frozen", raising=False)
+    monkeypatch.setattr(_kernels, "_numba_cache_dir", lambda: str(tmp_path))
+    (package, module, function), _ = _kernels.KERNELS["astar"]
+    spec = importlib.util.find_spec(package)
+    assert spec is not None and spec.submodule_search_locations
+    source_dir = Path(next(iter(spec.submodule_search_locations)))
+    folder = tmp_path / _kernels._subfolder(source_dir)
+    assert _kernels.cache_folders(package) == [folder]
+    assert not _kernels.kernels_cached("astar")
+    folder.mkdir()
+    tag = f"py{sys.version_info.major}{sys.version_info.minor}"
+    (folder / f"{module}.{function}-1.{tag}.nbi").write_bytes(b"")
+    assert _kernels.kernels_cached("astar")
+
+
+@pytest.mark.parametrize("argv", ["list", "--version"])
+def test_a_string_as_argv_is_refused_not_split_into_letters(argv: str) -> None:
+    with pytest.raises(TypeError, match=r"^argv must be a sequence of str or None, got '"):
+        main(argv)
+
+
+@pytest.mark.parametrize(
+    "argv", [["list", 3], [b"list"], ["--version", None], [Path("list")]]
+)  # fmt: skip
+def test_a_sequence_holding_a_non_string_is_refused(argv: list[object]) -> None:
+    with pytest.raises(TypeError, match=r"^argv must be a sequence of str or None, got \["):
+        main(argv)  # type: ignore[arg-type]
+
+
+@pytest.mark.parametrize(
+    "text", ["- image: map.pgm\n", "just a line\n", "", "resolution: 0.05\n"]
+)  # fmt: skip
+def test_an_output_beside_a_yaml_naming_no_image_is_refused_with_the_commands_message(
+    tmp_path: Path, text: str
+) -> None:
+    map_yaml = tmp_path / "map.yaml"
+    map_yaml.write_text(text, encoding="utf-8")
+    output = tmp_path / "out.png"
+    output.write_bytes(b"kept")
+    with pytest.raises(ValueError, match=r"^--plot: .*out\.png exists, and whether it is the"):
+        _plan._check_not_an_input("--plot", str(output), str(map_yaml))
+    assert output.read_bytes() == b"kept"
