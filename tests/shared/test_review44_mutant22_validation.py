@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from navkit._shared.validation import as_float_array
+from navkit._shared.validation import as_float_array, integer_readings
 
 
 class _Point:
@@ -85,3 +85,13 @@ def test_a_two_element_view_with_a_non_positive_stride_comes_back_contiguous(kin
     got = as_float_array(view, "v")
     assert got.flags.c_contiguous
     assert got.tolist() == view.tolist()
+
+
+@pytest.mark.parametrize(("value", "type_name"), [("12", "str"), (b"12", "bytes"), ("", "str")])
+def test_a_string_of_readings_is_named_as_a_string(value: object, type_name: str) -> None:
+    """A string is refused as what it is, not by the dtype NumPy gives it (mutant:
+    the str/bytes check dropped, a ``got dtype <U2`` message)."""
+    with pytest.raises(
+        TypeError, match=rf"^left_ticks must hold integer counter readings, got {type_name}$"
+    ):
+        integer_readings(value, "left_ticks")
