@@ -26,13 +26,13 @@ def test_shape_names_the_components_when_none_are_given() -> None:
     """Without ``components``, ``shape[-1]`` says how many fields to suggest
     (mutant: ``components is not None``, the shape ignored)."""
     with pytest.raises(TypeError, match=r"\(a ROS message\?\): pass \(m\.x, m\.y\)$"):
-        as_float_array([_Point()], "p", shape=(None, 2))
+        as_float_array([_Point()], "p", shape=(None, 2))  # type: ignore[arg-type]
 
 
 def test_explicit_components_win_over_the_shape() -> None:
     """``components`` given is kept, not replaced by ``shape[-1]`` (same mutant)."""
     with pytest.raises(TypeError, match=r"\(a ROS message\?\): pass \(m\.x, m\.y\)$"):
-        as_float_array([_Point()], "p", shape=(None, 3), components=2)
+        as_float_array([_Point()], "p", shape=(None, 3), components=2)  # type: ignore[arg-type]
 
 
 def test_an_empty_shape_asks_for_a_scalar() -> None:
@@ -69,9 +69,9 @@ def test_an_element_that_is_no_message_gets_the_bare_message(item: object, type_
     are not x, y dropped, a None concatenated: a TypeError of another message)."""
     expected = f"^p must hold real numbers, got an element of type {type_name}$"
     with pytest.raises(TypeError, match=expected):
-        as_float_array([item], "p", shape=(None, 2))
+        as_float_array([item], "p", shape=(None, 2))  # type: ignore[arg-type]
     with pytest.raises(TypeError, match=expected):
-        as_float_array([item], "p")
+        as_float_array([item], "p")  # type: ignore[arg-type]
 
 
 @pytest.mark.parametrize("kind", ["reversed", "broadcast"])
