@@ -73,3 +73,18 @@ def test_a_command_is_required() -> None:
     with pytest.raises(SystemExit) as stop:
         _parse([])
     assert stop.value.code == 2
+
+
+@pytest.mark.parametrize("text", ["(1,23", "1,2)", "((1,2)", "(1,2))"])
+def test_a_point_with_one_parenthesis_is_refused(
+    text: str, capsys: pytest.CaptureFixture[str]
+) -> None:
+    # Only a pair of parentheses around X,Y is taken off: "(1,23" is not (1, 2).
+    with pytest.raises(SystemExit) as stop:
+        _parse(["plan", "map.yaml", f"--start={text}", "--goal", "1,1"])
+    assert stop.value.code == 2
+    assert f"argument --start: expected X,Y in metres, got {text!r}" in capsys.readouterr().err
+
+
+def test_a_point_in_parentheses_is_taken() -> None:
+    assert _parse(["plan", "map.yaml", "--start= (1.5, -2) ", "--goal", "1,1"]).start == (1.5, -2.0)

@@ -69,3 +69,38 @@ def test_an_output_beside_a_yaml_naming_no_image_is_refused_with_the_commands_me
     with pytest.raises(ValueError, match=r"^--plot: .*out\.png exists, and whether it is the"):
         _plan._check_not_an_input("--plot", str(output), str(map_yaml))
     assert output.read_bytes() == b"kept"
+
+
+def test_the_cache_subfolder_is_numbas_own_for_a_relative_source_folder(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from numba.core.caching import _CacheLocator
+
+    monkeypatch.chdir(tmp_path)
+    relative = Path("app") / "navkit"
+    py_file = str(relative / "kernels.py")
+    expected = _CacheLocator.get_suitable_cache_subpath(py_file)  # type: ignore[no-untyped-call]
+    assert _kernels._subfolder(relative) == expected
+
+
+def test_kernels_cached_beside_a_read_only_install_are_found(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # Without NUMBA_CACHE_DIR, numba caches in its user-wide folder when it cannot
+    # write __pycache__ beside the sources: the command looks there too.
+    monkeypatch.delattr(sys, "frozen", raising=False)
+    monkeypatch.setattr(_kernels, "_numba_cache_dir", lambda: "")
+    monkeypatch.setattr(_kernels, "_user_wide_dir", lambda: tmp_path)
+    (package, module, function), _ = _kernels.KERNELS["field_dstar"]
+    spec = importlib.util.find_spec(package)
+    assert spec is not None and spec.submodule_search_locations
+    folder = tmp_path / _kernels._subfolder(Path(next(iter(spec.submodule_search_locations))))
+    assert folder in _kernels.cache_folders(package)
+    before = _kernels.kernels_cached("field_dstar")
+    folder.mkdir()
+    tag = f"py{sys.version_info.major}{sys.version_info.minor}"
+    (folder / f"{module}.{function}-1.{tag}.nbi").write_bytes(b"")
+    assert _kernels.kernels_cached("field_dstar")
+    if not before:  # not already cached in __pycache__ by an earlier run
+        (folder / f"{module}.{function}-1.{tag}.nbi").unlink()
+        assert not _kernels.kernels_cached("field_dstar")
