@@ -95,3 +95,46 @@ def test_a_string_of_readings_is_named_as_a_string(value: object, type_name: str
         TypeError, match=rf"^left_ticks must hold integer counter readings, got {type_name}$"
     ):
         integer_readings(value, "left_ticks")
+
+
+def test_a_bool_among_readings_is_a_type_error() -> None:
+    """Booleans are no counts (mutant: the bool check's TypeError made ValueError)."""
+    with pytest.raises(
+        TypeError,
+        match=r"^left_ticks must hold integer counter readings, got an element of type bool$",
+    ):
+        integer_readings([True, 5], "left_ticks")
+
+
+class _NoArray:
+    """An array-like whose conversion fails (neither ragged nor a sequence)."""
+
+    def __array__(self, dtype: object = None, copy: object = None) -> np.ndarray:
+        raise ValueError("no readings here")
+
+
+def test_readings_numpy_cannot_convert_are_a_type_error_naming_why() -> None:
+    """NumPy's reason is kept (mutants: that TypeError dropped, an unbound name,
+    or made a ValueError)."""
+    with pytest.raises(
+        TypeError, match=r"^left_ticks must hold integer counter readings: no readings here$"
+    ):
+        integer_readings(_NoArray(), "left_ticks")
+
+
+@pytest.mark.parametrize("dtype", [np.uint8, np.uint16, np.uint32, np.uint64])
+def test_unsigned_readings_come_back_unconverted(dtype: type[np.unsignedinteger]) -> None:
+    """An unsigned counter is a count (mutant: kinds ``"i"``, unsigned refused)."""
+    ticks = np.array([0, np.iinfo(dtype).max], dtype=dtype)
+    assert integer_readings(ticks, "left_ticks") is ticks
+
+
+@pytest.mark.parametrize(("dtype", "shown"), [(bool, "bool"), (np.complex128, "complex128")])
+def test_an_empty_buffer_of_no_integer_dtype_is_refused(dtype: type, shown: str) -> None:
+    """Only float buffers (an empty list's dtype) are looked at item by item; an
+    empty buffer of another dtype is refused by it (mutant: ``kind == "f" or not
+    an ndarray``, which found no item that is not an integer and accepted it)."""
+    with pytest.raises(
+        TypeError, match=rf"^left_ticks must hold integer counter readings, got dtype {shown}$"
+    ):
+        integer_readings(np.array([], dtype=dtype).data, "left_ticks")
