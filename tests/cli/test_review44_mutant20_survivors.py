@@ -10,12 +10,15 @@ refuses, with its own message, a YAML that is not a mapping or names no image
 from __future__ import annotations
 
 import importlib.util
+import io
 import sys
+import warnings
 from pathlib import Path
 
 import pytest
 
 from navkit.cli import _kernels, _plan, main
+from navkit.errors import KernelCacheWarning
 
 
 @pytest.mark.parametrize("frozen", [False, True])
@@ -104,3 +107,42 @@ def test_kernels_cached_beside_a_read_only_install_are_found(
     if not before:  # not already cached in __pycache__ by an earlier run
         (folder / f"{module}.{function}-1.{tag}.nbi").unlink()
         assert not _kernels.kernels_cached("field_dstar")
+
+
+class _Flushes(io.StringIO):
+    flushed = 0
+
+    def flush(self) -> None:
+        self.flushed += 1
+        super().flush()
+
+
+@pytest.mark.filterwarnings("always")
+def test_check_cache_says_the_libraries_warning_in_one_flushed_line(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    def problem() -> str:
+        warnings.warn(
+            "cannot cache\n  navkit's kernels:   read-only", KernelCacheWarning, stacklevel=1
+        )
+        return "read-only"
+
+    monkeypatch.setattr(_kernels, "cache_problem", problem)
+    stream = _Flushes()
+    assert _kernels.check_cache(stream) == "read-only"
+    assert stream.getvalue() == "navkit: warning: cannot cache navkit's kernels: read-only\n"
+    assert stream.flushed
+
+
+@pytest.mark.filterwarnings("always")
+def test_check_cache_leaves_other_warnings_to_pythons_own_display(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    def problem() -> None:
+        warnings.warn("numba's own", UserWarning, stacklevel=1)
+
+    monkeypatch.setattr(_kernels, "cache_problem", problem)
+    stream = io.StringIO()
+    with pytest.warns(UserWarning, match="numba's own"):
+        assert _kernels.check_cache(stream) is None
+    assert stream.getvalue() == ""
