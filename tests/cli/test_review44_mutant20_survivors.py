@@ -146,3 +146,17 @@ def test_check_cache_leaves_other_warnings_to_pythons_own_display(
     with pytest.warns(UserWarning, match="numba's own"):
         assert _kernels.check_cache(stream) is None
     assert stream.getvalue() == ""
+
+
+def test_the_compile_notice_is_flushed(monkeypatch: pytest.MonkeyPatch) -> None:
+    # Said before minutes of compiling: a buffered standard error would hold it back.
+    monkeypatch.setattr(_kernels, "jit_disabled", lambda: False)
+    monkeypatch.setattr(_kernels, "kernels_cached", lambda kind: False)
+    stream = _Flushes()
+    assert _kernels.announce_compilation("astar", stream)
+    assert "compil" in stream.getvalue() and stream.flushed
+
+
+@pytest.mark.parametrize("package", ["navkit.no_such_package", "navkit.cli._kernels"])
+def test_no_cache_folders_for_what_is_not_a_package(package: str) -> None:
+    assert _kernels.cache_folders(package) == []
