@@ -88,3 +88,10 @@ def test_a_point_with_one_parenthesis_is_refused(
 
 def test_a_point_in_parentheses_is_taken() -> None:
     assert _parse(["plan", "map.yaml", "--start= (1.5, -2) ", "--goal", "1,1"]).start == (1.5, -2.0)
+
+
+def test_only_given_twice_keeps_both_steps() -> None:
+    from navkit.cli._parser import _warmup_steps
+
+    first, second = _warmup_steps()[:2]
+    assert _parse(["warmup", "--only", first, "--only", second]).only == [first, second]
