@@ -1,11 +1,15 @@
-"""Private text of counted things ("1 cell", "2 cells"), for messages and reports.
+"""Private text of counted things ("1 cell", "2 cells") and sizes, for messages and reports.
 
 One place for the plural, so that no message reads "expanded 1 cells".
 """
 
 from __future__ import annotations
 
-__all__ = ["counted"]
+import math
+
+__all__ = ["bytes_text", "counted"]
+
+_UNITS = ("B", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB", "ZiB", "YiB")
 
 
 def counted(n: int, noun: str, plural: str | None = None) -> str:
@@ -28,3 +32,32 @@ def counted(n: int, noun: str, plural: str | None = None) -> str:
     ('1 entry', '3 entries')
     """
     return f"{n} {noun if n == 1 else (plural or noun + 's')}"
+
+
+def bytes_text(n: float) -> str:
+    """A size in bytes as binary units to 3 significant digits, for messages.
+
+    Parameters
+    ----------
+    n : float
+        Bytes, >= 0; infinite for a size beyond counting.
+
+    Returns
+    -------
+    str
+        ``"512 B"``, ``"1.5 KiB"``, ... ``"YiB"``.
+
+    Examples
+    --------
+    >>> bytes_text(512), bytes_text(1536), bytes_text(4.0 * 2**28)
+    ('512 B', '1.5 KiB', '1 GiB')
+    >>> bytes_text(float("inf"))
+    'more bytes than exist'
+    """
+    if not math.isfinite(n):
+        return "more bytes than exist"
+    k = 0
+    while n >= 1024.0 and k < len(_UNITS) - 1:
+        n /= 1024.0
+        k += 1
+    return f"{n:.3g} {_UNITS[k]}" if k else f"{n:.0f} B"

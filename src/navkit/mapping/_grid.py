@@ -676,6 +676,15 @@ class OccupancyGrid:
 
     # ------------------------------------------------------------ constructors
     @classmethod
+    def _adopting(cls: type[_G], logodds: NDArray[np.float32], **kwargs: Any) -> _G:
+        """``cls(logodds, **kwargs)`` keeping ``logodds`` itself (:func:`_owned_grid`).
+
+        For navkit's readers in other subpackages (``mapping.io``), which build a
+        new log-odds array no one else holds.
+        """
+        return _owned_grid(cls, logodds, **kwargs)
+
+    @classmethod
     def empty(
         cls,
         *,

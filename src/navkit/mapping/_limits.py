@@ -36,6 +36,7 @@ from typing import Any
 
 import numpy as np
 
+from navkit._shared.counts import bytes_text
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import finite_float, refuse_masked
 
@@ -77,24 +78,11 @@ SCALING_LIMIT = 1e12
 #: points far away never overflow an int64.
 CELL_INDEX_LIMIT = float(2**62)
 
-_UNITS = ("B", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB", "ZiB", "YiB")
-
-
-def _bytes_text(n: float) -> str:
-    if not math.isfinite(n):
-        return "more bytes than exist"
-    k = 0
-    while n >= 1024.0 and k < len(_UNITS) - 1:
-        n /= 1024.0
-        k += 1
-    return f"{n:.3g} {_UNITS[k]}" if k else f"{n:.0f} B"
-
-
 def cells_text(cells: float, bytes_per_cell: int = 4, dtype: str = "float32") -> str:
     """``"1e+18 cells (3.47 EiB of float32)"``: a size for error messages."""
     if not math.isfinite(cells):
         return "more than 1e308 cells (more bytes than exist)"
-    return f"{cells:.3g} cells ({_bytes_text(cells * bytes_per_cell)} of {dtype})"
+    return f"{cells:.3g} cells ({bytes_text(cells * bytes_per_cell)} of {dtype})"
 
 
 def check_cell_count(

@@ -22,7 +22,7 @@ from typing import TYPE_CHECKING, Any, BinaryIO
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from navkit._shared.counts import counted
+from navkit._shared.counts import bytes_text, counted
 from navkit._shared.dunders import bounded_repr
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.types import BoolArray, FloatArray, IntArray
@@ -33,7 +33,6 @@ from navkit._shared.validation import (
     holds_bool,
     refuse_masked,
 )
-from navkit.mapping._limits import _bytes_text
 from navkit.mapping.io._paths import as_path, open_regular
 
 __all__ = ["MovingAIMap", "MovingAIScenarios", "read_movingai_map", "read_movingai_scenarios"]
@@ -217,7 +216,7 @@ def _terrain_codes(terrain: Any) -> NDArray[np.uint8]:
     if arr.size > MAX_MAP_CELLS:
         raise ValueError(
             f"terrain must have at most 2**26 = {MAX_MAP_CELLS} cells (256 MiB of <U1), "
-            f"got {arr.size} cells ({_bytes_text(4.0 * arr.size)})"
+            f"got {arr.size} cells ({bytes_text(4.0 * arr.size)})"
         )
     as_u1 = np.ascontiguousarray(arr, dtype="U1")
     if arr.dtype.itemsize > 4 and not np.array_equal(as_u1, arr):
@@ -540,7 +539,7 @@ def _map_header(fh: BinaryIO, file: Path) -> tuple[int, int, int]:
     if rows * cols > MAX_MAP_CELLS:
         raise ValueError(
             f"{file}: {rows} x {cols} cells, more than 2**26 = {MAX_MAP_CELLS} "
-            f"({_bytes_text(4.0 * rows * cols)} of <U1 terrain; 256 MiB at most)"
+            f"({bytes_text(4.0 * rows * cols)} of <U1 terrain; 256 MiB at most)"
         )
     return rows, cols, number
 

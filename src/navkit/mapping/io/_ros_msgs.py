@@ -21,7 +21,6 @@ from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_on
 from navkit._shared.validation import as_bool, bounded_int, finite_float, refuse_masked, unpack
 from navkit.geometry import Pose2D, quaternion_to_matrix, quaternion_to_yaw
 from navkit.mapping import LaserScan, OccupancyGrid
-from navkit.mapping._grid import _owned_grid
 from navkit.mapping.io._map_files import _unknown_logodds
 from navkit.mapping.io._step_tables import (
     LOOK_UP_BLOCK,
@@ -428,9 +427,7 @@ def grid_from_msg(msg: Any) -> OccupancyGrid:
     logodds = _percent_logodds()[data.reshape(height, width) + 1]
     try:
         # The grid keeps the new look-up array (not a copy: 4 bytes a cell less).
-        return _owned_grid(
-            OccupancyGrid, logodds, resolution=resolution, origin=Pose2D(ox, oy, yaw)
-        )
+        return OccupancyGrid._adopting(logodds, resolution=resolution, origin=Pose2D(ox, oy, yaw))
     except ValueError as exc:
         raise ValueError(f"msg.info: {exc}") from None
 
