@@ -146,7 +146,13 @@ class ExtendedKalmanFilter(GaussianEstimate):
         Initial covariance, symmetric positive definite, entries of magnitude at
         most 1e100 (as every covariance the filter takes: ``Q``, ``R``); the
         pivots of its LDLᵀ factorisation (variances, when diagonal) at least
-        about 2.2e-308, the smallest normal float (as ``R``'s).
+        about 2.2e-308, the smallest normal float (as ``R``'s). Positive
+        definite as float64 can tell: the factorisation is computed in
+        float64, so a matrix within rounding of singular passes, as it
+        passes ``numpy.linalg.cholesky``, though its exact least eigenvalue
+        may lie below zero (at most about ``n**2 * 2.2e-16`` times its largest
+        variance; ``A @ A.T`` computed for a tall ``A`` can be such a
+        matrix). The gate's exact NIS bounds do not assume more than that.
     angle_states : sequence of int, optional
         Indices of state components that are angles (rad); they are wrapped to
         (-π, π] after every step (keyword-only).
