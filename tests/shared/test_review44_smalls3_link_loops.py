@@ -6,7 +6,8 @@ which follows links: for ``a.json -> b.json -> a.json`` it raised ``OSError``
 where the command line (review 43) refuses such an output before its run. It
 is now refused up front, as the system's own writers refuse it, with a
 ``ValueError`` naming the file; a folder that is such a loop is named too (it
-was reported under the temporary file's name). A link that ends in a file or
+was reported under the temporary file's name; since review 45 as a missing
+folder, see ``test_review45_folder_loops.py``). A link that ends in a file or
 in nothing is still replaced itself.
 """
 
@@ -96,11 +97,13 @@ def test_a_loop_made_during_the_block_is_refused_before_the_renames(tmp_path: Pa
 
 def test_a_folder_that_is_a_loop_is_named(tmp_path: Path) -> None:
     # Before: OSError (ELOOP) naming ".x.<random>.tmp.json", a name the caller never gave.
+    # Review 45: a missing folder's FileNotFoundError, as every writer gives it.
     (tmp_path / "d").symlink_to("d")
     before = _tree(tmp_path)
-    with pytest.raises(OSError) as caught, atomic_path(tmp_path / "d" / "x.json"):
+    with pytest.raises(FileNotFoundError) as caught, atomic_path(tmp_path / "d" / "x.json"):
         pass
-    assert caught.value.errno == errno.ELOOP
+    assert caught.value.errno == errno.ENOENT
+    assert caught.value.strerror == f"no such folder ({tmp_path / 'd'} is a loop of symbolic links)"
     assert caught.value.filename == str(tmp_path / "d")
     assert _tree(tmp_path) == before
 

@@ -25,7 +25,7 @@ try:
 except ImportError:  # Windows
     fcntl = None  # type: ignore[assignment]
 
-__all__ = ["RENAME_LOCK", "atomic_path", "atomic_paths", "link_loop"]
+__all__ = ["RENAME_LOCK", "atomic_path", "atomic_paths", "check_folder", "link_loop"]
 
 #: Random temporary names tried before giving up.
 _ATTEMPTS = 100
@@ -108,8 +108,18 @@ def atomic_paths(targets: Sequence[Path]) -> Iterator[tuple[Path, ...]]:
         A target that is a folder, found before the block runs or before the
         renames (a folder made meanwhile): no target is replaced, not even the
         ones before it in ``targets``.
-    OSError
-        ``ELOOP``: a target's folder is a loop of symbolic links (named).
+    FileNotFoundError
+        A target's folder does not exist, or cannot be reached because it, or
+        a folder above it, is a loop of symbolic links (``a/b/out.json`` with
+        ``a`` linking to itself): :func:`check_folder`'s error, naming the
+        folder (and the loop), raised before anything is created. A loop made
+        later (during the block, or as the files are synced and renamed) is
+        refused in the same words (or, at a target, as the ``ValueError``
+        above), not as the system's ``OSError`` (``ELOOP``); a temporary file
+        in a folder moved away to make room for the loop cannot be reached
+        to be removed.
+    NotADirectoryError
+        A file stands where a folder of a target's path should be (named).
 
     Examples
     --------
@@ -129,15 +139,22 @@ def atomic_paths(targets: Sequence[Path]) -> Iterator[tuple[Path, ...]]:
         yield tuple(temporaries)
         # Again, now: the rename over a folder fails, after those of the targets before it.
         _check_targets(targets)
-        for temporary, target in zip(temporaries, targets, strict=True):
-            _sync(temporary, os.O_RDWR)
-            if not _windows():
-                # (On Windows a mode is only the read-only flag: copied, it would make
-                # the temporary file one that cannot be removed if the rename fails.)
-                with contextlib.suppress(FileNotFoundError):
-                    os.chmod(temporary, stat.S_IMODE(os.stat(target).st_mode))
-        with RENAME_LOCK:
-            _replace_all(temporaries, targets)
+        try:
+            for temporary, target in zip(temporaries, targets, strict=True):
+                _sync(temporary, os.O_RDWR)
+                if not _windows():
+                    # (On Windows a mode is only the read-only flag: copied, it would make
+                    # the temporary file one that cannot be removed if the rename fails.)
+                    with contextlib.suppress(FileNotFoundError):
+                        os.chmod(temporary, stat.S_IMODE(os.stat(target).st_mode))
+            with RENAME_LOCK:
+                _replace_all(temporaries, targets)
+        except OSError:
+            # A loop of links made since the check (at a target: ELOOP from the mode's
+            # os.stat; in a folder: from the sync or the rename) is refused in the
+            # words of one made a moment earlier, not as the system's OSError.
+            _check_targets(targets)
+            raise
     finally:
         try:
             _remove_all(temporaries)
@@ -219,16 +236,79 @@ def link_loop(path: Path) -> bool:
     return False
 
 
+def check_folder(target: Path, name: str | None = None) -> None:
+    """Refuse a ``target`` whose folder is not there to write into.
+
+    The one test of every writer: a folder that does not exist and one that a
+    loop of symbolic links makes unreachable are the same failure (no folder
+    to write into), in the same words. ``Path.is_dir`` says False for both;
+    the loop, told apart by :func:`link_loop`, is named in the message (the
+    highest folder of the path that loops: for ``a/b/out.json`` with ``a``
+    linking to itself, ``a``).
+
+    Parameters
+    ----------
+    target : Path
+        The file to be written.
+    name : str, optional
+        The argument or option that gave ``target`` (``"path"``, ``"--json"``):
+        the message starts with it. Without it (:func:`atomic_paths`, which
+        knows no argument) the error is in the system's form, naming the
+        folder as its ``filename`` (and a file standing where a folder of the
+        path should be as ``NotADirectoryError``).
+
+    Raises
+    ------
+    FileNotFoundError
+        The folder of ``target`` does not exist, or is a loop of symbolic
+        links, or lies below one: ``"{name}: folder {folder} does not exist"``
+        (with ``" ({loop} is a loop of symbolic links)"`` after it for a
+        loop); without ``name``, ``errno.ENOENT`` with ``strerror`` ``"no
+        such folder"`` (and the same parenthesis) and the folder as
+        ``filename``.
+    NotADirectoryError
+        Without ``name``: a file where a folder of the path should be
+        (``errno.ENOTDIR``, that file as ``filename``).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     check_folder(Path(folder) / "out.json", "path")  # a folder: nothing said
+    ...     loop = Path(folder) / "a"
+    ...     loop.symlink_to("a")
+    ...     try:
+    ...         check_folder(loop / "b" / "out.json", "--json")
+    ...     except FileNotFoundError as exc:
+    ...         print(str(exc).replace(folder, "..."))
+    --json: folder .../a/b does not exist (.../a is a loop of symbolic links)
+    """
+    folder = target.parent
+    if folder.is_dir():
+        return
+    loop = next((p for p in (*reversed(folder.parents), folder) if link_loop(p)), None)
+    why = "" if loop is None else f" ({loop} is a loop of symbolic links)"
+    if name is not None:
+        raise FileNotFoundError(f"{name}: folder {folder} does not exist{why}")
+    if loop is None:
+        # Named as the system would: the file, not the folder below it.
+        blocker = _file_in_path(folder)
+        if blocker is not None:
+            raise NotADirectoryError(errno.ENOTDIR, "not a folder", os.fspath(blocker))
+    raise FileNotFoundError(errno.ENOENT, f"no such folder{why}", os.fspath(folder))
+
+
 def _check_targets(targets: Sequence[Path]) -> None:
-    """Refuse targets that are not regular files, before any is replaced."""
+    """Refuse targets that are not regular files, or not in a folder, before any is replaced."""
+    for target in targets:
+        # Every folder first: none of the targets before a missing one gets a temporary file.
+        check_folder(target)
     for target in targets:
         if target.is_dir():
             raise IsADirectoryError(errno.EISDIR, "a folder cannot be written as a file", target)
         if link_loop(target):
             # Found here, not by the mode's os.stat after the block (an OSError once
             # the temporary file was written), nor as a temporary file's name.
-            if link_loop(target.parent):
-                raise OSError(errno.ELOOP, "a loop of symbolic links", os.fspath(target.parent))
             raise ValueError(f"{target} is a loop of symbolic links: it names no file to replace")
         if target.exists() and not target.is_file():
             raise ValueError(
@@ -334,11 +414,18 @@ def _remove_all(paths: Iterable[Path | None]) -> None:
 
     A Ctrl-C landing in a removal leaves that file and the ones after it: the
     callers then call this again (for the interrupt may also land as this
-    function is entered), and raise the interrupt after.
+    function is entered), and raise the interrupt after. A path that a loop of
+    symbolic links made since (its folder moved away, a loop in its place)
+    names no file any more, as one whose folder was removed: skipped, so that
+    the error that ended the write is the one raised.
     """
     for path in paths:
         if path is not None:
-            path.unlink(missing_ok=True)
+            try:
+                path.unlink(missing_ok=True)
+            except OSError:
+                if not link_loop(path.parent):
+                    raise
 
 
 def _put_back(target: Path, backup: Path | None, existed: bool, *, wait: bool) -> None:
@@ -445,18 +532,14 @@ def _new_temporary(target: Path, temporaries: list[Path]) -> None:
             continue
         except OSError as exc:
             temporaries.pop()
-            if exc.errno in (errno.ENOENT, errno.ENOTDIR) and not target.parent.is_dir():
-                # Named as the folder the caller gave: the temporary file's name
-                # (".map.1f2e3d4c.tmp.pgm") is one the caller never heard of. A file
-                # where a folder of the path should be is named as the system would.
-                blocker = _file_in_path(target.parent)
-                if blocker is not None:
-                    raise NotADirectoryError(
-                        errno.ENOTDIR, "not a folder", os.fspath(blocker)
-                    ) from None
-                raise FileNotFoundError(
-                    errno.ENOENT, "no such folder", os.fspath(target.parent)
-                ) from None
+            if exc.errno in (errno.ENOENT, errno.ENOTDIR, errno.ELOOP):
+                # The folder gone (or looped) since _check_targets: named as the folder
+                # the caller gave, not as the temporary file (".map.1f2e3d4c.tmp.pgm"),
+                # a name the caller never heard of.
+                try:
+                    check_folder(target)
+                except OSError as missing:
+                    raise missing from None
             # A file system whose limit is in characters or UTF-16 units while
             # pathconf answers in bytes (vfat, exFAT: 255 characters, "1530"
             # bytes) refuses a name the byte count let through. Windows refuses

@@ -9,7 +9,7 @@ from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
-from navkit._shared.files import atomic_path
+from navkit._shared.files import atomic_path, check_folder
 
 __all__ = ["json_text", "named_write_errors", "write_json"]
 
@@ -45,8 +45,12 @@ def write_json(
 
     Raises
     ------
+    FileNotFoundError
+        The folder of ``path`` does not exist, or is (or lies below) a loop of
+        symbolic links: ``"path: folder {folder} does not exist"``, the loop
+        named after it. Nothing is written.
     OSError
-        The folder does not exist or cannot be written; ``path`` is a folder.
+        The folder cannot be written; ``path`` is a folder.
     TypeError, ValueError
         ``data`` is not JSON-serialisable (nothing is written).
     ValueError
@@ -69,9 +73,7 @@ def write_json(
             with open(target, "w", encoding="utf-8", newline="\n") as stream:
                 stream.write(text)
             return target
-        folder = target.parent
-        if not folder.is_dir():
-            raise FileNotFoundError(f"folder {folder} does not exist")
+        check_folder(target, "path")
         with atomic_path(target) as temporary:
             temporary.write_text(text, encoding="utf-8", newline="\n")  # LF on Windows too
     return target

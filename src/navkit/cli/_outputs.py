@@ -10,7 +10,7 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
-from navkit._shared.files import link_loop
+from navkit._shared.files import check_folder, link_loop
 from navkit._shared.interrupts import interrupts_deferred
 from navkit.cli._files import named_write_errors, write_json
 from navkit.sim import ScenarioResult, Scene
@@ -40,7 +40,9 @@ def check_output(path: str | None, suffix: str, option: str) -> None:
         ``suffix``) to be written over something that is not a regular file
         (a device, a pipe).
     FileNotFoundError
-        The folder does not exist.
+        The folder does not exist, or is (or lies below) a loop of symbolic
+        links: ``"{option}: folder {folder} does not exist"``, the loop named
+        after it.
     OSError
         No file can be created in the folder (read-only, no permission).
 
@@ -72,6 +74,7 @@ def check_output(path: str | None, suffix: str, option: str) -> None:
         raise ValueError(f"{option}: the file must end in {suffix}, got {path}")
     if target.is_dir():
         raise ValueError(f"{option}: {path} is a folder, not a file")
+    check_folder(target, option)  # (a looped folder too: the path's loop is the folder's)
     if link_loop(target):
         # exists() and is_dir() say False for it: found only when written, after the run.
         raise ValueError(f"{option}: {path} is a loop of symbolic links")
@@ -80,8 +83,6 @@ def check_output(path: str | None, suffix: str, option: str) -> None:
             raise ValueError(f"{option}: {path} is not a regular file (a device or a pipe?)")
         return  # written into directly (write_json), whatever its folder allows
     folder = target.parent
-    if not folder.is_dir():
-        raise FileNotFoundError(f"{option}: folder {folder} does not exist")
     # Create a file there and remove it: permissions, read-only file systems and
     # root's exemptions make any cheaper test (os.access) unreliable. A Ctrl-C waits
     # until it is gone: landing in between, it left the probe file in the user's folder.

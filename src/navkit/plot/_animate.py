@@ -134,7 +134,9 @@ def animate_trace(
         ``max_frames`` or the longest trace's rows if fewer, × the frame's
         pixels at ``dpi``), coordinates beyond ±1e9 m.
     FileNotFoundError
-        The folder of ``path`` does not exist.
+        The folder of ``path`` does not exist, or is (or lies below) a loop of
+        symbolic links: ``"path: folder {folder} does not exist"``, the loop
+        named after it. Nothing is drawn or written.
 
     Examples
     --------

@@ -7,7 +7,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from navkit._shared.files import atomic_path as written_atomically
-from navkit._shared.files import link_loop
+from navkit._shared.files import check_folder, link_loop
 from navkit.plot._figure import bounded_float, figure_of
 
 if TYPE_CHECKING:
@@ -34,15 +34,13 @@ def output_path(value: Any, name: str, suffix: str) -> Path:
         raise ValueError(f"{name} must end in {suffix}, got {text!r}")
     if path.is_dir():
         raise ValueError(f"{name} {text!r} is a folder")
-    if link_loop(path) and not link_loop(path.parent):  # (a looped folder: "does not exist")
+    check_folder(path, name)  # (a looped folder too: the path's loop is the folder's)
+    if link_loop(path):
         # exists() says False for it: found only by the rename, after the drawing.
         raise ValueError(f"{name} {text!r} is a loop of symbolic links")
     if path.exists() and not path.is_file():
         # Renaming the temporary file over it would replace the device or pipe itself.
         raise ValueError(f"{name} {text!r} is not a regular file (a device or a pipe?)")
-    folder = path.parent
-    if not folder.is_dir():
-        raise FileNotFoundError(f"{name}: the folder {str(folder)!r} does not exist")
     return path
 
 
@@ -89,7 +87,9 @@ def save_figure(fig_or_ax: Figure | Axes, path: str | os.PathLike[str], *,
         links or something else that is not a regular file (a device, a
         pipe), ``dpi`` out of range.
     FileNotFoundError
-        The folder of ``path`` does not exist.
+        The folder of ``path`` does not exist, or is (or lies below) a loop of
+        symbolic links: ``"path: folder {folder} does not exist"``, the loop
+        named after it. Nothing is drawn or written.
 
     Examples
     --------

@@ -1876,6 +1876,10 @@ def write_map(grid: OccupancyGrid, path: str | os.PathLike[str], *, mode: str = 
     ImportError
         ``mode="scale"`` without Pillow installed (it writes the PNG); nothing
         is written.
+    FileNotFoundError
+        The folder of ``path`` does not exist, or is (or lies below) a loop of
+        symbolic links (``strerror`` ``"no such folder"``, the loop named after
+        it; the folder as ``filename``). Nothing is written.
     OSError
         Writing fails (disk full, permissions, ...): the temporary files are
         removed and an existing map is left as it was.
