@@ -60,9 +60,8 @@ def test_bands_give_the_whole_grids_inflation(
     reference = distance_module.obstacle_distance(grid.occupied()) <= robot / 0.1 + 1e-9
     assert np.array_equal(whole[0], reference)
     with pytest.MonkeyPatch.context() as mp:
-        # Bands of a few rows (at least four halos) beside their halos.
-        mp.setattr(distance_module, "_BAND_CELLS", band * cols)
-        mp.setattr(distance_module, "_MIN_BAND_ROWS", 1)
+        # Bands of a few rows (review 45: with no halo, whatever the radius).
+        mp.setattr(distance_module, "_band_rows", lambda rows, cols: band)
         banded = (
             grid.inflate(robot),
             costmap(grid, robot_radius=robot, inflation_radius=robot + extra),
@@ -75,20 +74,21 @@ def test_bands_give_the_whole_grids_inflation(
         assert a.dtype == b.dtype and np.array_equal(a, b)
 
 
-def test_bands_cover_every_row_once_exact_within_their_reach() -> None:
+def test_bands_cover_every_row_once_exact() -> None:
     occupied = np.zeros((300, 7), dtype=bool)
     occupied[[0, 150, 299], 3] = True
     whole = distance_module.obstacle_distance(occupied)
     with pytest.MonkeyPatch.context() as mp:
         mp.setattr(distance_module, "_BAND_CELLS", 100 * 7)
-        bands = list(distance_module.obstacle_distance_bands(occupied, 10.5))
+        bands = list(distance_module.obstacle_distance_bands(occupied))
     assert len(bands) > 1
-    assert [r0 for r0, _, _ in bands] == [0, *[r1 for _, r1, _ in bands[:-1]]]
-    assert bands[-1][1] == 300
-    for r0, r1, d in bands:
-        near = whole[r0:r1] <= 10.5
-        assert np.array_equal(d[near], whole[r0:r1][near])
-        assert (d[~near] > 10.5).all()
+    rows = [(where[0].start, where[0].stop) for where, _ in bands]
+    assert [r0 for r0, _ in rows] == [0, *[r1 for _, r1 in rows[:-1]]]
+    assert rows[-1][1] == 300
+    for where, d in bands:
+        assert where[1] == slice(0, 7)
+        # Review 45: exact everywhere, not only within a radius.
+        assert np.array_equal(d, whole[where])
 
 
 @pytest.mark.parametrize(

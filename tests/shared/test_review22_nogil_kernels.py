@@ -42,6 +42,7 @@ from thread_runs import lines_beside_python
 RELEASING = {
     "estimation._fusion_kernels": {"planar_run"},
     "mapping._cells_near_kernels": {"cells_near_kernel"},
+    "mapping._edt_kernels": {"band_distances", "below_checkpoints"},
     "mapping._raycast_kernels": {"integrate_beams"},
     "mapping._scan_matcher_kernels": {"match_level", "correlative_search_kernel"},
     "planning.grid._astar_kernels": {"grid_search"},
@@ -133,6 +134,7 @@ def _public_calls() -> dict[str, Callable[[], object]]:
     occupied = np.zeros((400, 400), dtype=bool)
     occupied[50:350, 200] = True
     grid = OccupancyGrid.from_occupancy(occupied, resolution=0.05)
+    wide = OccupancyGrid.from_occupancy(np.tile(occupied, (4, 4)), resolution=0.05)
     map_planner = MapPlanner(grid, robot_radius=0.2)
     empty = OccupancyGrid.empty(width=20.0, height=20.0, resolution=0.02)
     scan = _room_scan()
@@ -156,6 +158,7 @@ def _public_calls() -> dict[str, Callable[[], object]]:
         "scan_matcher": lambda: matcher.match(levels, scan, (4.05, 3.95, 0.05)),
         "lidar": lambda: lidar.scan(world, (1.0, 1.0, 0.3)),
         "update_batch": lambda: PlanarFusion().update_batch(log),
+        "inflate": lambda: wide.inflate(0.3),
     }
 
 
@@ -179,6 +182,7 @@ PUBLIC = {
     "scan_matcher": "match_level",
     "lidar": "cast_occupancy_rays",
     "update_batch": "planar_run",
+    "inflate": "band_distances",
 }
 
 

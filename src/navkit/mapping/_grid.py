@@ -1405,10 +1405,10 @@ class OccupancyGrid:
         radius = bounded_float(robot_radius, "robot_radius", 0.0, RADIUS_LIMIT, "m")
         occupied = self.occupied()
         reach = radius / self._resolution + CELL_EPS
-        # Band by band: only distances up to the radius matter (obstacle_distance_bands).
+        # Band by band: the peak is the mask and a band, not a float64 grid.
         out = np.empty(occupied.shape, dtype=np.bool_)
-        for r0, r1, dist in obstacle_distance_bands(occupied, reach):
-            np.less_equal(dist, reach, out=out[r0:r1])
+        for where, dist in obstacle_distance_bands(occupied):
+            np.less_equal(dist, reach, out=out[where])
         return out
 
     def cells_near(self, points_xy: ArrayLike, *, robot_radius: float) -> IntArray:

@@ -15,22 +15,20 @@ from collections.abc import Iterator
 import numpy as np
 
 from navkit._shared.types import BoolArray, FloatArray
+from navkit.mapping._edt_kernels import band_distances, below_checkpoints
 
-__all__ = ["CELL_EPS", "obstacle_distance", "obstacle_distance_bands"]
+__all__ = ["CELL_EPS", "Band", "obstacle_distance", "obstacle_distance_bands"]
+
+#: Cells of a band of :func:`obstacle_distance_bands`: ``(rows, cols)`` slices.
+Band = tuple[slice, slice]
 
 #: Distances compared against radii get this slack (in cells) so that radii that
 #: are exact multiples of the resolution include the cells at that distance.
 CELL_EPS = 1e-9
 
-# Cells per tile of the distances computed from the feature transform: their
-# float64 temporaries stay this small (2 x 512 KiB) whatever the grid's size.
-_TILE_CELLS = 1 << 16
-# Cells of a band of :func:`obstacle_distance_bands` with its halo: SciPy's
-# 18 bytes a cell on them, about 36 MiB.
+# Cells of a band of :func:`obstacle_distance_bands`: its int64 column distances
+# and float64 result, 16 bytes a cell, 32 MiB.
 _BAND_CELLS = 1 << 21
-# Fewest rows of a band: thinner ones (a wide grid) would cost more Python than
-# transform.
-_MIN_BAND_ROWS = 64
 
 
 def obstacle_distance(occupied: BoolArray) -> FloatArray:
@@ -40,80 +38,110 @@ def obstacle_distance(occupied: BoolArray) -> FloatArray:
 
     Notes
     -----
-    Peak memory about 18 bytes a cell and 1 MiB, reached inside SciPy: the
-    inverted mask (1), SciPy's feature transform (the nearest occupied cell
-    of every cell, two int32 indices: 8) and SciPy's own copies of the mask
-    (``np.where(mask, 1, 0)``, int64: 8, made int8: 1); the float64 result
-    (8) comes once the int64 copy is gone (measured with tracemalloc, 2048 x
-    2048 cells; review 28: this said 17). The distances are computed from the
-    feature transform tile by tile, as :func:`scipy.ndimage.distance_transform_edt`
-    computes them (``sqrt(dy**2 + dx**2)`` in float64, so bit for bit its
-    values), without its float64 temporaries of twice the grid's size (33 bytes
-    a cell in all).
+    The bands of :func:`obstacle_distance_bands` put together, computed in
+    place: peak memory the float64 result (8 bytes a cell) and a band's int64
+    column distances. Bit for bit the distances of
+    :func:`scipy.ndimage.distance_transform_edt` (``sqrt(dy**2 + dx**2)`` in
+    float64 of the nearest occupied cell's offsets; see
+    :mod:`navkit.mapping._edt_kernels`), which took 18 bytes a cell inside
+    SciPy (review 45).
 
     Examples
     --------
     >>> obstacle_distance(np.zeros((1, 2), dtype=bool))
     array([[inf, inf]])
     """
-    if not occupied.any():
-        return np.full(occupied.shape, np.inf)
-    from scipy import ndimage
-
-    rows, cols = occupied.shape
-    nearest = np.empty((2, rows, cols), dtype=np.int32)
-    ndimage.distance_transform_edt(
-        ~occupied, return_distances=False, return_indices=True, indices=nearest
-    )
-    out = np.empty((rows, cols), dtype=np.float64)
-    tile_cols = min(cols, _TILE_CELLS)
-    tile_rows = max(1, _TILE_CELLS // tile_cols)
-    for r0 in range(0, rows, tile_rows):
-        r1 = min(rows, r0 + tile_rows)
-        row_index = np.arange(r0, r1, dtype=np.int32)[:, None]
-        for c0 in range(0, cols, tile_cols):
-            c1 = min(cols, c0 + tile_cols)
-            dy = np.subtract(nearest[0, r0:r1, c0:c1], row_index, dtype=np.float64)
-            dx = np.subtract(
-                nearest[1, r0:r1, c0:c1], np.arange(c0, c1, dtype=np.int32), dtype=np.float64
-            )
-            np.multiply(dy, dy, out=dy)
-            np.multiply(dx, dx, out=dx)
-            np.add(dy, dx, out=dy)
-            np.sqrt(dy, out=out[r0:r1, c0:c1])
+    out = np.empty(occupied.shape, dtype=np.float64)
+    if _by_columns(*occupied.shape):
+        for where, dist in obstacle_distance_bands(occupied):
+            out[where] = dist
+    else:
+        # Each band computed in place in the result: no band-sized copy.
+        for _ in _row_bands(np.ascontiguousarray(occupied, dtype=np.bool_), out):
+            pass
     return out
 
 
-def obstacle_distance_bands(
-    occupied: BoolArray, reach: float
-) -> Iterator[tuple[int, int, FloatArray]]:
-    """:func:`obstacle_distance` band of rows by band: ``(r0, r1, distances of rows r0:r1)``.
+def _by_columns(rows: int, cols: int) -> bool:
+    """Whether a grid goes by bands of columns: a band of ``sqrt(rows)`` rows is too many cells."""
+    return cols > rows and math.isqrt(rows) * cols > _BAND_CELLS
 
-    A band's distances are exact wherever they are at most ``reach`` cells and
-    above ``reach`` (perhaps not exact) elsewhere: each band is transformed
-    with ``floor(reach)`` rows of its neighbours on either side, which hold
-    every occupied cell within ``reach`` of it. Inflation needs no more, and
-    the transform's 18 bytes a cell then cover a band and its halo, about
-    :data:`_BAND_CELLS` cells or ``6 * floor(reach)`` rows, instead of the
-    grid: the caller's peak is its own result and a band (the whole grid at
-    once when a band would cover it). The bands cover the rows in order.
+
+def _band_rows(rows: int, cols: int) -> int:
+    """Rows of a band: about :data:`_BAND_CELLS` cells, and at least ``sqrt(rows)``.
+
+    Each band keeps a checkpoint of ``cols`` int64 (the nearest occupied row
+    below it): bands of a few rows of a wide grid would cost up to 8 bytes a
+    cell in checkpoints, ``sqrt(rows)`` rows a band keep them to
+    ``8 * cols * sqrt(rows)`` bytes.
+    """
+    return max(1, _BAND_CELLS // max(cols, 1), math.isqrt(rows))
+
+
+def obstacle_distance_bands(occupied: BoolArray) -> Iterator[tuple[Band, FloatArray]]:
+    """:func:`obstacle_distance` band by band: ``(where, distances of the cells [where])``.
+
+    ``where`` is a pair of slices, a band of rows ``(r0:r1, 0:cols)`` (or of
+    columns ``(0:rows, c0:c1)`` for a grid much wider than tall); the bands
+    cover the grid once, each band's distances a new array, exact
+    (:func:`obstacle_distance`'s, bit for bit) whatever a caller's radius:
+    each band is transformed from the nearest occupied cells above and below
+    its columns (:mod:`navkit.mapping._edt_kernels`), not from a halo of
+    neighbouring rows.
+
+    Notes
+    -----
+    Peak memory besides the caller's: a band of about :data:`_BAND_CELLS`
+    cells at 16 bytes a cell (its int64 column distances and float64 result)
+    and the checkpoints of :func:`_band_rows`, under 64 MiB for any grid of
+    at most 2**28 cells. A grid whose band of ``sqrt(rows)`` rows would exceed
+    :data:`_BAND_CELLS` is wider than tall: it is transformed as its
+    transpose (a copy, 1 byte a cell), whose bands are columns. ``occupied``
+    is read as C-contiguous bool (a copy only when it is not).
 
     Examples
     --------
     >>> occ = np.array([[True], [False], [False], [False]])
-    >>> [(r0, r1, d.ravel().tolist()) for r0, r1, d in obstacle_distance_bands(occ, 1.5)]
-    [(0, 4, [0.0, 1.0, 2.0, 3.0])]
+    >>> [(where, d.ravel().tolist()) for where, d in obstacle_distance_bands(occ)]
+    [((slice(0, 4, None), slice(0, 1, None)), [0.0, 1.0, 2.0, 3.0])]
+    """
+    if _by_columns(*occupied.shape):
+        # Distances are symmetric bit for bit (dy*dy + dx*dx adds the same two
+        # squares): the transpose's bands of rows are this grid's bands of columns.
+        for (c, r), dist in _row_bands(np.ascontiguousarray(occupied.T, dtype=np.bool_)):
+            yield (r, c), dist.T
+        return
+    yield from _row_bands(np.ascontiguousarray(occupied, dtype=np.bool_))
+
+
+def _row_bands(
+    occupied: BoolArray, into: FloatArray | None = None
+) -> Iterator[tuple[Band, FloatArray]]:
+    """:func:`obstacle_distance_bands` by bands of rows, ``occupied`` C-contiguous bool.
+
+    With ``into`` (C-contiguous float64 of ``occupied``'s shape) the bands are
+    its rows, written in place; otherwise new arrays.
     """
     rows, cols = occupied.shape
-    halo = int(min(math.floor(reach), rows)) if reach >= 0.0 else 0
-    # At least four times the halo's rows a band: a window transforms at most 1.5
-    # times its band's cells (the time) and 6 * halo rows (the memory, when that is
-    # above _BAND_CELLS); the whole grid at once when a band would cover it anyway.
-    band = max(_BAND_CELLS // cols - 2 * halo, 4 * halo, _MIN_BAND_ROWS)
-    if band >= rows:
-        yield 0, rows, obstacle_distance(occupied)
+    band = _band_rows(rows, cols)
+    every_col = slice(0, cols)
+    if not occupied.any():
+        for r0 in range(0, rows, band):
+            r1 = min(rows, r0 + band)
+            if into is None:
+                yield (slice(r0, r1), every_col), np.full((r1 - r0, cols), np.inf)
+            else:
+                into[r0:r1] = np.inf
+                yield (slice(r0, r1), every_col), into[r0:r1]
         return
-    for r0 in range(0, rows, band):
+    below = np.empty((-(-rows // band), cols), dtype=np.int64)
+    below_checkpoints(occupied, band, below)
+    above = np.full(cols, -1, dtype=np.int64)
+    g = np.empty((min(band, rows), cols), dtype=np.int64)
+    s = np.empty(cols, dtype=np.int64)
+    t = np.empty(cols, dtype=np.int64)
+    for b, r0 in enumerate(range(0, rows, band)):
         r1 = min(rows, r0 + band)
-        w0, w1 = max(0, r0 - halo), min(rows, r1 + halo)
-        yield r0, r1, obstacle_distance(occupied[w0:w1])[r0 - w0 : r1 - w0]
+        out = np.empty((r1 - r0, cols), dtype=np.float64) if into is None else into[r0:r1]
+        band_distances(occupied, r0, above, below[b], rows + cols, g[: r1 - r0], s, t, out)
+        yield (slice(r0, r1), every_col), out
