@@ -267,8 +267,9 @@ def check_folder(target: Path, name: str | None = None) -> None:
         such folder"`` (and the same parenthesis) and the folder as
         ``filename``.
     NotADirectoryError
-        Without ``name``: a file where a folder of the path should be
-        (``errno.ENOTDIR``, that file as ``filename``).
+        A file where a folder of the path should be:
+        ``"{name}: {file} is a file, not a folder"``; without ``name``,
+        ``errno.ENOTDIR`` with that file as ``filename``.
 
     Examples
     --------
@@ -288,13 +289,14 @@ def check_folder(target: Path, name: str | None = None) -> None:
         return
     loop = next((p for p in (*reversed(folder.parents), folder) if link_loop(p)), None)
     why = "" if loop is None else f" ({loop} is a loop of symbolic links)"
+    # Named as the system would: the file, not the folder below it.
+    blocker = None if loop is not None else _file_in_path(folder)
     if name is not None:
-        raise FileNotFoundError(f"{name}: folder {folder} does not exist{why}")
-    if loop is None:
-        # Named as the system would: the file, not the folder below it.
-        blocker = _file_in_path(folder)
         if blocker is not None:
-            raise NotADirectoryError(errno.ENOTDIR, "not a folder", os.fspath(blocker))
+            raise NotADirectoryError(f"{name}: {blocker} is a file, not a folder")
+        raise FileNotFoundError(f"{name}: folder {folder} does not exist{why}")
+    if blocker is not None:
+        raise NotADirectoryError(errno.ENOTDIR, "not a folder", os.fspath(blocker))
     raise FileNotFoundError(errno.ENOENT, f"no such folder{why}", os.fspath(folder))
 
 

@@ -49,6 +49,9 @@ def write_json(
         The folder of ``path`` does not exist, or is (or lies below) a loop of
         symbolic links: ``"path: folder {folder} does not exist"``, the loop
         named after it. Nothing is written.
+    NotADirectoryError
+        A file stands where a folder of ``path`` should be:
+        ``"path: {file} is a file, not a folder"``. Nothing is written.
     OSError
         The folder cannot be written; ``path`` is a folder.
     TypeError, ValueError

@@ -43,6 +43,9 @@ def check_output(path: str | None, suffix: str, option: str) -> None:
         The folder does not exist, or is (or lies below) a loop of symbolic
         links: ``"{option}: folder {folder} does not exist"``, the loop named
         after it.
+    NotADirectoryError
+        A file stands where a folder of the path should be:
+        ``"{option}: {file} is a file, not a folder"``.
     OSError
         No file can be created in the folder (read-only, no permission).
 

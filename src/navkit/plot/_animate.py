@@ -137,6 +137,9 @@ def animate_trace(
         The folder of ``path`` does not exist, or is (or lies below) a loop of
         symbolic links: ``"path: folder {folder} does not exist"``, the loop
         named after it. Nothing is drawn or written.
+    NotADirectoryError
+        A file stands where a folder of ``path`` should be:
+        ``"path: {file} is a file, not a folder"``. Nothing is drawn or written.
 
     Examples
     --------
