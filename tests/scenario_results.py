@@ -4,11 +4,24 @@ from __future__ import annotations
 
 import copy
 import re
+from collections.abc import Callable
 from typing import Any
 
-from navkit.sim import ScenarioResult
+from navkit.sim import Scenario, ScenarioResult
+from navkit.sim.scenarios import Demo, DiffAStar, Greedy, IndoorNav, OmniApf, Soccer
 
 WALL = re.compile(r"\bwall\b")
+
+#: Every registered scenario cut to a few seconds a trial (greedy and diff-astar
+#: read the shared data folder: take the ``shared_data`` fixture).
+SMALL: dict[str, Callable[[], Scenario]] = {
+    "omni-apf": lambda: OmniApf(targets=[(0.0, 1.0)], duration=6.0),
+    "soccer": lambda: Soccer(duration=3.0, table_cells=50),
+    "diff-astar": lambda: DiffAStar(parts=("house",), duration=5.0),
+    "indoor-nav": lambda: IndoorNav(targets=1, paths=1, map_source="plan"),
+    "greedy": lambda: Greedy(pairs=[((-2.0, -0.5), (-1.0, -0.5))], duration=10.0),
+    "demo": lambda: Demo(map="office", duration=0.5),
+}
 
 
 def comparable(result: ScenarioResult) -> dict[str, Any]:

@@ -23,10 +23,10 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from navkit.sim import Scenario, sweep
-from navkit.sim.scenarios import DiffAStar, Greedy, IndoorNav, OmniApf, Soccer
+from navkit.sim.scenarios import OmniApf, Soccer
 from navkit.sim.scenarios._omni_apf_setup import BODY_RADIUS, obstacle_boxes
 from navkit.sim.scenarios._soccer_table6 import table6_values
-from scenario_results import comparable
+from scenario_results import SMALL, comparable
 
 # ---------------------------------------------------------------- omni-apf
 
@@ -113,15 +113,6 @@ def _same(a: Any, b: Any) -> bool:
     if isinstance(a, float) and isinstance(b, float) and math.isnan(a) and math.isnan(b):
         return True
     return bool(a == b)
-
-
-SMALL: dict[str, Any] = {
-    "omni-apf": lambda: OmniApf(targets=[(0.0, 1.0)], duration=6.0),
-    "soccer": lambda: Soccer(duration=3.0, table_cells=50),
-    "diff-astar": lambda: DiffAStar(parts=("house",), duration=5.0),
-    "indoor-nav": lambda: IndoorNav(targets=1, paths=1, map_source="plan"),
-    "greedy": lambda: Greedy(pairs=[((-2.0, -0.5), (-1.0, -0.5))], duration=10.0),
-}
 
 
 @pytest.mark.slow
