@@ -13,6 +13,7 @@ from fuzz_engine import (
     Anything,
     Call,
     Choice,
+    Flag,
     Function,
     Obj,
     Real,
@@ -35,6 +36,7 @@ RUN_KINDS = {
     "workers": Real(integer=True, optional=True),
     "executor": Anything(optional=True),
     "progress": Function(optional=True),
+    "keep_traces": Flag(),
 }
 
 
@@ -96,6 +98,7 @@ spec(
         "workers": Real(integer=True, optional=True),
         "executor": Anything(optional=True),
         "progress": Function(optional=True),
+        "keep_traces": Flag(),
     },
     nan_ok=NAN_OK,
 )

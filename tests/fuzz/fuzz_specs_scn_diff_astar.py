@@ -11,6 +11,7 @@ from fuzz_engine import (
     Anything,
     Call,
     Choice,
+    Flag,
     Function,
     Obj,
     Real,
@@ -82,6 +83,7 @@ spec(
         "workers": Real(integer=True, optional=True),
         "executor": Anything(optional=True),
         "progress": Function(optional=True),
+        "keep_traces": Flag(),
     },
     nan_ok=NAN_OK,
 )

@@ -45,6 +45,7 @@ RUN_KINDS = {
     "workers": Real(integer=True, optional=True),
     "executor": Anything(optional=True),
     "progress": Function(optional=True),
+    "keep_traces": Flag(),
 }
 
 

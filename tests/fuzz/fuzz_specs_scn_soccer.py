@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import math
 
-from fuzz_engine import TRIALS, Anything, Call, Function, Obj, Real, call, method, spec
+from fuzz_engine import TRIALS, Anything, Call, Flag, Function, Obj, Real, call, method, spec
 
 from navkit.sim import Trial, TrialResult
 from navkit.sim.scenarios import Soccer
@@ -78,6 +78,7 @@ spec(
         "workers": Real(integer=True, optional=True),
         "executor": Anything(optional=True),
         "progress": Function(optional=True),
+        "keep_traces": Flag(),
     },
     nan_ok=NAN_OK,
 )

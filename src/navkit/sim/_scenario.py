@@ -982,6 +982,7 @@ class Scenario(ABC):
         workers: int | None = 1,
         executor: Any = None,
         progress: Callable[[int, int], object] | None = None,
+        keep_traces: bool = True,
     ) -> ScenarioResult:
         """Run every trial and summarize: :func:`~navkit.sim.sweep` on this scenario.
 
@@ -1001,20 +1002,27 @@ class Scenario(ABC):
             Where to run the trials.
         progress : callable, optional
             Called as ``progress(done, total)`` after each trial.
+        keep_traces : bool, optional
+            Keep each trial's trace (the default). False drops it where the
+            trial ran, once its values are computed: the trials' ``trace``
+            is None and the scene draws no driven runs; the tables, summary
+            and ``to_dict()`` are the same (up to wall-clock measurements).
 
         Returns
         -------
         ScenarioResult
-            Tables beside the paper's, summary, trials and scene. It keeps every
-            trial's trace, so memory grows with the number of trials: 80 bytes
-            a recorded step, about 120 kB a trial for ``Greedy`` (see
+            Tables beside the paper's, summary, trials and scene. By default
+            it keeps every trial's trace, so memory grows with the number of
+            trials: 80 bytes a recorded step, about 120 kB a trial for
+            ``Greedy``; ``keep_traces=False`` keeps the values alone (see
             :func:`~navkit.sim.sweep`).
 
         Raises
         ------
         TypeError
             ``trials``, ``seed`` or ``workers`` not an integer (bools
-            included), ``progress`` not callable, or as :meth:`trials`.
+            included), ``keep_traces`` not a bool, ``progress`` not callable,
+            or as :meth:`trials`.
         ValueError
             ``trials``, ``seed`` or ``workers`` out of range, or as
             :meth:`trials`.
@@ -1030,6 +1038,9 @@ class Scenario(ABC):
         >>> by_hand = demo.summarize([demo.run_trial(t) for t in demo.trials(1, seed=3)], seed=3)
         >>> result.summary["travel_time"] == by_hand.summary["travel_time"]
         True
+        >>> lean = demo.run(trials=1, seed=3, keep_traces=False)  # values only, same figures
+        >>> lean.traces, lean.summary["travel_time"] == result.summary["travel_time"]
+        ((), True)
         """
         from navkit.sim._sweep import sweep  # _sweep imports this module
 
@@ -1040,7 +1051,13 @@ class Scenario(ABC):
             value = value[()]
         base = _int_in(value, "seed", 2**64)
         return sweep(
-            self, trials=trials, seeds=base, workers=workers, executor=executor, progress=progress
+            self,
+            trials=trials,
+            seeds=base,
+            workers=workers,
+            executor=executor,
+            progress=progress,
+            keep_traces=keep_traces,
         )
 
     # Argument checks every scenario shares (protected: for subclasses).

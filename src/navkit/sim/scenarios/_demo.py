@@ -306,16 +306,18 @@ class Demo(Scenario):
 
 
 def _picture(scene: Setup, results: Sequence[TrialResult]) -> Scene:
-    """The map, each leg's plan and its first trial's run, the waypoints."""
+    """The map, each leg's plan and its first trial's run (if kept), the waypoints."""
     paths, traces, seen = [], [], set()
     for r in results:
         index = r.trial.case_index
-        if index in seen or r.trace is None:
+        if index in seen:
             continue
         seen.add(index)
         a, b = scene.tour[index], scene.tour[index + 1]
         paths.append((f"leg {index + 1} plan", scene.planner.plan(a, b).points))
-        traces.append((f"leg {index + 1}", r.trace))
+        # A sweep with keep_traces=False: the plans are still worth drawing.
+        if r.trace is not None:
+            traces.append((f"leg {index + 1}", r.trace))
     return Scene(
         f"navkit demo on the {scene.label}",
         grid=scene.grid,
