@@ -115,9 +115,12 @@ def run_scenario(
         ProgressBar(err, enabled=not args.quiet, description=scenario.name) as bar,
     ):
         bar.start(total)
+        # Only a picture draws the traces: without one a long run holds the values
+        # alone (a Greedy trial's trace is ~120 kB; the tables and JSON never use it).
+        drawn = args.plot is not None or args.animate is not None
         result: ScenarioResult = sweep(
             scenario, trials=args.trials, seeds=args.seed, workers=workers, executor=client,
-            progress=bar,
+            progress=bar, keep_traces=drawn,
         )  # fmt: skip
         where = _where(address, workers, total)
     elapsed = time.perf_counter() - began
