@@ -18,15 +18,17 @@ anywhere in the tree by a hostile value and checks navkit's promise:
 * inputs are never modified; a failed call leaves the receiver's public state and
   the files in its folder as they were; a stateful object stays usable.
 
-Each call runs under a watchdog (``CALL_TIMEOUT_S``: a hang is a failure) and an
-address-space limit (``MEMORY_HEADROOM`` above the process's size), so a missing
-size check shows as a ``MemoryError`` failure instead of exhausting the machine.
+Each call runs under a watchdog (``CALL_TIMEOUT_S`` of CPU time, or ``WALL_TIMEOUT_S``
+of wall-clock time for a call that waits: a hang is a failure) and an address-space
+limit (``MEMORY_HEADROOM`` above the process's size), so a missing size check shows as
+a ``MemoryError`` failure instead of exhausting the machine.
 """
 
 from __future__ import annotations
 
 import contextlib
 import enum
+import gc
 import inspect
 import math
 import numbers
@@ -38,8 +40,10 @@ import signal
 import sys
 import tempfile
 import threading
+import time
 import types
 import warnings
+import weakref
 from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -52,7 +56,11 @@ from navkit.errors import FilterError, NavkitError
 from navkit.sim._scenario import _MAX_TRIALS
 
 SRC = Path(navkit.__file__).resolve().parent
+#: A call's bound in CPU time (s) before it counts as hanging (see :func:`watchdog`).
 CALL_TIMEOUT_S = 10.0
+#: A call's bound in wall-clock time (s), for one blocked without computing: far
+#: above ``CALL_TIMEOUT_S``, as 10 s of CPU take 70 s with 14 processes on 2 cores.
+WALL_TIMEOUT_S = 120.0
 #: The bound while numba compiles or loads a kernel inside a call (s): its compile
 #: time is not the call's (see :func:`watchdog`).
 COMPILE_TIMEOUT_S = 600.0
@@ -1648,76 +1656,197 @@ def cmath_isnan(x: Any) -> bool:
 
 
 class Hang(BaseException):
-    """Raised by the watchdog when a call runs longer than ``CALL_TIMEOUT_S``."""
+    """Raised by the watchdog when a call runs past its bound (see :func:`watchdog`)."""
 
 
 @contextlib.contextmanager
-def watchdog(seconds: float) -> Iterator[None]:
-    """Raise :class:`Hang` once the block has run ``seconds`` s of wall-clock time.
+def watchdog(seconds: float, *, wall: float | None = None) -> Iterator[None]:
+    """Raise :class:`Hang` once the block has used ``seconds`` s of CPU time.
+
+    The bound is the process's CPU time (``ITIMER_PROF``: every thread's, so a
+    parallel kernel's threads add up), not wall-clock time: on a 2-core machine
+    with a load average of 14 a call needing 0.05 s of CPU could take 10 s of
+    wall-clock time, and the slow fuzz reported ``DiffDrive.odometry_step_batch``
+    as hanging (review 45). A call blocked without computing (a deadlock, a wait
+    for ever) burns no CPU time: ``wall`` s of wall-clock time (default the
+    larger of ``WALL_TIMEOUT_S`` and ``seconds``) end it instead.
 
     numba's time is not counted: while a thread holds numba's compiler lock
-    (compiling a kernel, or loading it from the cache) the bound is
-    ``COMPILE_TIMEOUT_S``, and the block's ``seconds`` start again once numba
-    lets go of the lock. A hostile value can take a call to a branch or a dtype
-    whose kernel no earlier call compiled: with a cold cache on a loaded 2-core
+    (compiling a kernel, or loading it from the cache) both bounds are
+    ``COMPILE_TIMEOUT_S``, and the block's start again once numba lets go of
+    the lock. A hostile value can take a call to a branch or a dtype whose
+    kernel no earlier call compiled: with a cold cache on a loaded 2-core
     machine, ``ExtendedKalmanFilter.predict`` with NaN in ``Q`` compiled three
     kernels in 4.6 s of the 10 s a later call gets (review 39).
+
+    Python runs the handler between bytecodes, in whatever frame is running. In
+    a garbage-collector callback (hypothesis keeps one), a ``__del__`` method or
+    a ``weakref.finalize`` callback an exception is reported as unraisable and
+    lost, and the call goes on: there the watchdog tries again ``_RETRY_S``
+    later, at most ``_MAX_RETRIES`` times. A kernel compiled in nopython mode
+    never runs Python's handlers: one that loops for ever is not ended (a kernel
+    that returns late is reported as it returns). The :class:`Hang` names the
+    bound and the frame it was raised in. Without ``signal.setitimer``
+    (Windows) there is no watchdog. Watchdogs do not nest (the inner one's
+    compile listener would set the outer's bounds); timers set before the block
+    are set again after it, less the time the block took.
     """
-
-    def fire(_sig: int, _frame: Any) -> None:
-        raise Hang(f"still running after {seconds} s")
-
     if not hasattr(signal, "setitimer"):
         yield
         return
-    old = signal.signal(signal.SIGALRM, fire)
-    signal.setitimer(signal.ITIMER_REAL, seconds)
+    bounds = _Bounds(seconds, max(WALL_TIMEOUT_S, seconds) if wall is None else wall)
     try:
-        with _compiles_not_counted(seconds):
+        bounds.start()
+        with _compiles_not_counted(bounds):
             yield
     finally:
-        signal.setitimer(signal.ITIMER_REAL, 0)
-        signal.signal(signal.SIGALRM, old)
+        try:
+            bounds.stop()
+        except Hang:  # the bound came as the block ended: the call returned, no hang
+            bounds.stop()
+
+
+class _Bounds:
+    """The watchdog's two timers and what may set them (see :func:`watchdog`).
+
+    ``guard`` orders the compile listener's calls (any thread's) with the
+    block's end and with the raising of the :class:`Hang`; once ``ended`` is set
+    nothing sets a timer again (a signal after the handlers are put back would
+    meet ``SIG_DFL``: the end of the process). The handler runs in the main
+    thread and never waits for ``guard``: where it is taken it tries again.
+    """
+
+    def __init__(self, cpu: float, wall: float) -> None:
+        self.cpu = cpu
+        self.wall = wall
+        #: numba compiler-lock holds under way (the lock is re-entrant: nested).
+        self.inside = 0
+        self.ended = False
+        self.retries = 0
+        self.guard = threading.Lock()
+        self.handlers: list[tuple[int, Any]] = []
+        #: Timers set before the block: (which, (value, interval), clock, clock at start).
+        self.outer: list[tuple[int, tuple[float, float], Callable[[], float], float]] = []
+        self.stopped = False
+
+    def arm(self, cpu: float, wall: float) -> None:
+        signal.setitimer(signal.ITIMER_PROF, cpu)
+        signal.setitimer(signal.ITIMER_REAL, wall)
+
+    def start(self) -> None:
+        for signum in (signal.SIGPROF, signal.SIGALRM):
+            self.handlers.append((signum, signal.getsignal(signum)))
+            signal.signal(signum, self.fire)
+        for which, value, clock in (
+            (signal.ITIMER_PROF, self.cpu, time.process_time),
+            (signal.ITIMER_REAL, self.wall, time.monotonic),
+        ):
+            now = clock()
+            self.outer.append((which, signal.setitimer(which, value), clock, now))
+
+    def stop(self) -> None:
+        if self.stopped:
+            return
+        with self.guard:
+            self.ended = True
+            self.arm(0, 0)
+        for signum, handler in reversed(self.handlers):
+            signal.signal(signum, handler)
+        self.stopped = True
+        for which, (value, interval), clock, then in self.outer:
+            if value > 0:
+                # A timer due during the block is due now (a zero would clear it).
+                signal.setitimer(which, max(value - (clock() - then), 1e-6), interval)
+
+    def fire(self, signum: int, frame: types.FrameType | None) -> None:
+        if self.ended:
+            return  # a signal on its way as the block ended
+        lost_in = _lost_in(frame)
+        raising = lost_in is None or self.retries >= _MAX_RETRIES
+        if raising and self.guard.acquire(blocking=False):
+            try:  # (only the main thread sets ``ended``: it cannot have changed)
+                self.ended = True
+                self.arm(0, 0)  # one Hang a block: the caller's report runs in it
+            finally:
+                self.guard.release()
+            raise Hang(self._why(signum, frame, lost_in))
+        self.retries += 1
+        which = signal.ITIMER_PROF if signum == signal.SIGPROF else signal.ITIMER_REAL
+        signal.setitimer(which, _RETRY_S)
+
+    def _why(self, signum: int, frame: types.FrameType | None, lost_in: str | None) -> str:
+        if self.inside:
+            bound = f"still inside numba's compiler lock after {COMPILE_TIMEOUT_S:g} s"
+        elif signum == signal.SIGPROF:
+            bound = f"still running after {self.cpu:g} s of CPU time"
+        else:
+            bound = f"still running after {self.wall:g} s of wall-clock time, waiting"
+        text = f"{bound}, at {_frame_text(frame)}"
+        return text + (f", in {lost_in}: may be lost" if lost_in else "")
+
+
+#: How soon the watchdog tries again where its :class:`Hang` would be lost (s).
+_RETRY_S = 0.05
+_MAX_RETRIES = 200
+
+
+def _lost_in(frame: types.FrameType | None) -> str | None:
+    """Where an exception raised in ``frame`` is reported as unraisable and lost, if it is."""
+    callbacks = {getattr(getattr(cb, "__func__", cb), "__code__", None) for cb in gc.callbacks}
+    while frame is not None:
+        code = frame.f_code
+        if code in callbacks:
+            return "a garbage-collector callback"
+        if code.co_name == "__del__":
+            return "a __del__ method"
+        if code is weakref.finalize.__call__.__code__:
+            return "a weakref.finalize callback"
+        frame = frame.f_back
+    return None
+
+
+def _frame_text(frame: types.FrameType | None) -> str:
+    if frame is None:
+        return "an unknown point"
+    path = Path(frame.f_code.co_filename)
+    with contextlib.suppress(ValueError):
+        path = path.resolve().relative_to(SRC.parent)
+    shown = path if path.parts[:1] == ("navkit",) else path.name
+    return f"{shown}:{frame.f_lineno} in {frame.f_code.co_name}"
 
 
 @contextlib.contextmanager
-def _compiles_not_counted(seconds: float) -> Iterator[None]:
-    """The watchdog's timer at ``COMPILE_TIMEOUT_S`` while numba's compiler lock is held.
+def _compiles_not_counted(bounds: _Bounds) -> Iterator[None]:
+    """Both of the watchdog's timers at ``COMPILE_TIMEOUT_S`` while numba's compiler lock is held.
 
     numba announces each acquire and release of its compiler lock (re-entrant:
     nested) as a ``"numba:compiler_lock"`` event; before numba is loaded there is
     nothing to listen to (the first call of a spec, which may load it, gets the
     callers' warm-up bound, ``WARM_UP_TIMEOUT_S``). A listener call from another
     thread still under way as the block ends sets no timer after it (the
-    watchdog's clearing of the timer would come first, and a SIGALRM then meet
+    watchdog's clearing of the timers would come first, and a signal then meet
     the handler put back: by default, the end of the process).
     """
     event = sys.modules.get("numba.core.event")
     if event is None:
         yield
         return
-    inside, ended = [0], [False]
-    guard = threading.Lock()
 
     class _Compiles(event.Listener):  # type: ignore[misc, name-defined]
         def on_start(self, _event: Any) -> None:
-            with guard:
-                inside[0] += 1
-                if not ended[0]:
-                    signal.setitimer(signal.ITIMER_REAL, COMPILE_TIMEOUT_S)
+            with bounds.guard:
+                bounds.inside += 1
+                if not bounds.ended:
+                    bounds.arm(COMPILE_TIMEOUT_S, COMPILE_TIMEOUT_S)
 
         def on_end(self, _event: Any) -> None:
-            with guard:
-                inside[0] -= 1
-                if inside[0] == 0 and not ended[0]:
-                    signal.setitimer(signal.ITIMER_REAL, seconds)
+            with bounds.guard:
+                bounds.inside -= 1
+                if bounds.inside == 0 and not bounds.ended:
+                    bounds.arm(bounds.cpu, bounds.wall)
 
-    try:
-        with event.install_listener("numba:compiler_lock", _Compiles()):
-            yield
-    finally:
-        with guard:
-            ended[0] = True
+    with event.install_listener("numba:compiler_lock", _Compiles()):
+        yield
 
 
 _LIMIT: list[int] = []
