@@ -1728,10 +1728,13 @@ class _Bounds:
         #: Timers set before the block: (which, (value, interval), clock, clock at start).
         self.outer: list[tuple[int, tuple[float, float], Callable[[], float], float]] = []
         self.stopped = False
+        #: CPU and wall-clock times as the block's bounds were (last) set.
+        self.since = (time.process_time(), time.monotonic())
 
     def arm(self, cpu: float, wall: float) -> None:
         signal.setitimer(signal.ITIMER_PROF, cpu)
         signal.setitimer(signal.ITIMER_REAL, wall)
+        self.since = (time.process_time(), time.monotonic())
 
     def start(self) -> None:
         for signum in (signal.SIGPROF, signal.SIGALRM):
@@ -1743,6 +1746,7 @@ class _Bounds:
         ):
             now = clock()
             self.outer.append((which, signal.setitimer(which, value), clock, now))
+        self.since = (time.process_time(), time.monotonic())
 
     def stop(self) -> None:
         if self.stopped:
@@ -1765,24 +1769,28 @@ class _Bounds:
         raising = lost_in is None or self.retries >= _MAX_RETRIES
         if raising and self.guard.acquire(blocking=False):
             try:  # (only the main thread sets ``ended``: it cannot have changed)
+                why = self._why(signum, frame, lost_in)
                 self.ended = True
                 self.arm(0, 0)  # one Hang a block: the caller's report runs in it
             finally:
                 self.guard.release()
-            raise Hang(self._why(signum, frame, lost_in))
+            raise Hang(why)
         self.retries += 1
         which = signal.ITIMER_PROF if signum == signal.SIGPROF else signal.ITIMER_REAL
         signal.setitimer(which, _RETRY_S)
 
     def _why(self, signum: int, frame: types.FrameType | None, lost_in: str | None) -> str:
+        cpu, wall = time.process_time() - self.since[0], time.monotonic() - self.since[1]
         if self.inside:
             bound = f"still inside numba's compiler lock after {COMPILE_TIMEOUT_S:g} s"
-        elif signum == signal.SIGPROF:
+        elif signum == signal.SIGPROF or signal.getitimer(signal.ITIMER_PROF)[0] == 0:
+            # Both timers run out in a long kernel, and Python runs SIGALRM's
+            # handler (14) before SIGPROF's (27) as it returns: the CPU time is why.
             bound = f"still running after {self.cpu:g} s of CPU time"
         else:
             bound = f"still running after {self.wall:g} s of wall-clock time, waiting"
-        text = f"{bound}, at {_frame_text(frame)}"
-        return text + (f", in {lost_in}: may be lost" if lost_in else "")
+        text = f"{bound}, at {_frame_text(frame)}; {cpu:.3g} s of CPU time in {wall:.3g} s"
+        return text + (f"; in {lost_in}, where it may be lost" if lost_in else "")
 
 
 #: How soon the watchdog tries again where its :class:`Hang` would be lost (s).
