@@ -29,7 +29,8 @@ pytestmark = pytest.mark.skipif(not hasattr(signal, "setitimer"), reason="needs 
 #: The watchdog's bounds in these tests (s of CPU time, and of wall-clock time): well
 #: above a loaded machine's pauses between numba letting go of its lock and the block's end.
 SHORT = 1.0
-_TIMERS = (signal.ITIMER_PROF, signal.ITIMER_REAL)
+#: The watchdog's CPU and wall-clock timers (getattr: Windows has none, the tests skip).
+_TIMERS = tuple(getattr(signal, name, -1) for name in ("ITIMER_PROF", "ITIMER_REAL"))
 
 
 def _compute(cpu_s: float) -> None:
