@@ -28,7 +28,7 @@ import unicodedata
 import warnings
 import zlib
 from bisect import bisect_left
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path, PureWindowsPath
 from typing import Any, BinaryIO, NamedTuple
@@ -87,6 +87,9 @@ _PGM_HEADER_MAX = 1 << 16
 # Bytes of a P2 raster split into tokens at a time, and the whitespace that
 # bytes.split() splits on (ASCII's six).
 _P2_BLOCK_BYTES = 1 << 16
+# Pixels of a band of image rows read_map converts at a time: its float64
+# temporaries (grey, alpha, probabilities and the grid's) about 10 MiB.
+_READ_BLOCK_PIXELS = 1 << 18
 _WHITESPACE = re.compile(rb"[ \t\n\r\x0b\x0c]")
 # File signatures of images, to say so when one is passed as the YAML.
 _IMAGE_MAGIC = {
@@ -709,7 +712,7 @@ def read_pgm(path: str | os.PathLike[str]) -> NDArray[np.float64]:
     """
     pgm = as_path(path, "path")
     with open_regular(pgm, "PGM image") as fh:
-        return _pgm_from(fh, pgm)
+        return _pgm_from(fh, pgm).whole()
 
 
 def _p2_pixels(raster: bytes, count: int, pgm: Path, maxval: int) -> NDArray[np.int32]:
@@ -741,7 +744,28 @@ def _p2_pixels(raster: bytes, count: int, pgm: Path, maxval: int) -> NDArray[np.
     return pixels
 
 
-def _pgm_from(fh: BinaryIO, pgm: Path, *, map_server: bool = False) -> NDArray[np.float64]:
+class _Image(NamedTuple):
+    """A decoded image: its size, and its grey levels 0..255 and alpha by bands of rows.
+
+    ``rows(a, b)`` gives new float64 arrays of image rows ``a:b`` (alpha None
+    when the image has none): :func:`read_map` converts an image a band at a
+    time, so that its float64 temporaries stay a band's, not the image's.
+    """
+
+    height: int
+    width: int
+    rows: Callable[[int, int], tuple[NDArray[np.float64], NDArray[np.float64] | None]]
+
+    def whole(self) -> NDArray[np.float64]:
+        """The grey levels of the whole image."""
+        return self.rows(0, self.height)[0]
+
+    def both(self) -> tuple[NDArray[np.float64], NDArray[np.float64] | None]:
+        """The grey levels and alpha of the whole image."""
+        return self.rows(0, self.height)
+
+
+def _pgm_from(fh: BinaryIO, pgm: Path, *, map_server: bool = False) -> _Image:
     """:func:`read_pgm` of the open regular file ``fh`` (of ``pgm``), read from its start.
 
     ``map_server``: the grey levels Nav2's map_server reads (see :func:`_magick_grey`),
@@ -775,19 +799,28 @@ def _pgm_from(fh: BinaryIO, pgm: Path, *, map_server: bool = False) -> NDArray[n
         pixels = _p2_pixels(raster, count, pgm, maxval)
     if pixels.size and (pixels.min() < 0 or pixels.max() > maxval):
         raise ValueError(f"{pgm}: PGM pixel values exceed maxval {maxval}")
-    grey = pixels.reshape(height, width).astype(np.float64)
-    if map_server and maxval not in (255, 65535):
-        return _magick_grey(grey, magic, maxval)
-    grey *= 255.0 / maxval  # in place: one float64 array of the image's size
-    return grey
+    samples = pixels.reshape(height, width)
+
+    def rows(a: int, b: int) -> tuple[NDArray[np.float64], None]:
+        grey = samples[a:b].astype(np.float64)
+        if map_server and maxval not in (255, 65535):
+            return _magick_grey(grey, magic, maxval, count), None
+        grey *= 255.0 / maxval  # in place: one float64 array of the rows' size
+        return grey, None
+
+    return _Image(height, width, rows)
 
 
 #: GraphicsMagick's largest sample with 16 bits a sample (``MaxRGB``, QuantumDepth 16).
 _MAX_RGB = 65535.0
 
 
-def _magick_grey(samples: NDArray[np.float64], magic: str, maxval: int) -> NDArray[np.float64]:
+def _magick_grey(
+    samples: NDArray[np.float64], magic: str, maxval: int, pixels: int
+) -> NDArray[np.float64]:
     """Grey levels 0..255 of PGM ``samples`` (float64, changed in place) as Nav2 reads them.
+
+    ``samples`` may be some rows of an image of ``pixels`` pixels.
 
     Nav2's map_server (Humble to Iron) reads images with GraphicsMagick's
     Magick++ (``Image::pixelColor``), which Debian and Ubuntu build with 16 bits a
@@ -803,7 +836,7 @@ def _magick_grey(samples: NDArray[np.float64], magic: str, maxval: int) -> NDArr
     (Debian 12), Nav2's reading with Magick++, for maxval 3 to 4095.
     """
     q = samples
-    if samples.size >= maxval:
+    if pixels >= maxval:
         q *= float(_MAX_RGB // maxval)  # the colormap entry of each sample
     elif magic == "P2":
         q *= _MAX_RGB
@@ -973,9 +1006,7 @@ def _deep_low_rawmode(img: Any, path: Path) -> str | None:
     return low
 
 
-def _deep_colour(
-    img: Any, low: str, fh: BinaryIO, image_module: Any
-) -> tuple[NDArray[np.float64], NDArray[np.float64] | None]:
+def _deep_colour(img: Any, low: str, fh: BinaryIO, image_module: Any) -> _Image:
     """Grey and alpha (0..255, or None) of a PNG with 16 bits per colour channel.
 
     The image is decoded twice: as Pillow decodes it (the high bytes), then
@@ -994,41 +1025,51 @@ def _deep_colour(
         if tuple(tile[:4]) != tuple(first[:4]) or again.size != img.size:
             raise ValueError("the file changed while it was read")
         again.tile = [(tile[0], tile[1], tile[2], low)]
-        second = np.asarray(again).astype(np.uint16)
+        if high is None:
+            second = np.asarray(again).astype(np.uint16)
+        else:
+            # In place: the samples reuse the high bytes' array, the low bytes
+            # widened as they are or-ed in (no uint16 copy of them).
+            samples = high
+            samples <<= 8
+            samples |= np.asarray(again)
     if high is None:  # LA: the four bytes of each pixel, [Lhi, Llo, Ahi, Alo]
         colour: NDArray[Any] = (second[..., 0] << 8 | second[..., 1])[..., np.newaxis]
         alpha16: NDArray[Any] | None = second[..., 2] << 8 | second[..., 3]
-    else:
-        # In place: the samples reuse the high bytes' array.
-        samples = high
-        samples <<= 8
-        samples |= second
         del second
+    else:
         colour = samples[..., :3]
         alpha16 = samples[..., 3] if rawmode == "RGBA;16B" else None
-    # x / 257 maps 0..65535 onto 0..255, exactly at both ends (65535 / 257 = 255).
-    # The mean of the channels, summed one at a time into one float64 array rather
-    # than widening all of them (24 bytes a pixel): sums of up to three 16-bit
-    # integers are exact in any order, then divided as ndarray.mean divides.
-    grey = colour[..., 0].astype(np.float64)
-    for channel in range(1, colour.shape[2]):
-        grey += colour[..., channel]
-    grey /= colour.shape[2]
-    grey /= 257.0
-    if alpha16 is not None:
-        alpha = alpha16.astype(np.float64)
-        alpha /= 257.0
-        return grey, alpha
-    if isinstance(transparent, tuple) and len(transparent) == 3:
-        # A transparent colour (PNG tRNS, of 16-bit samples here) is an alpha channel.
-        hit = np.all(colour == np.asarray(transparent, dtype=np.uint16), axis=2)
-        return grey, np.where(hit, 0.0, 255.0)
-    return grey, None
+    key = (
+        np.asarray(transparent, dtype=np.uint16)
+        if alpha16 is None and isinstance(transparent, tuple) and len(transparent) == 3
+        else None
+    )
+
+    def rows(a: int, b: int) -> tuple[NDArray[np.float64], NDArray[np.float64] | None]:
+        # x / 257 maps 0..65535 onto 0..255, exactly at both ends (65535 / 257 = 255).
+        # The mean of the channels, summed one at a time into one float64 array rather
+        # than widening all of them (24 bytes a pixel): sums of up to three 16-bit
+        # integers are exact in any order, then divided as ndarray.mean divides.
+        part = colour[a:b]
+        grey = part[..., 0].astype(np.float64)
+        for channel in range(1, part.shape[2]):
+            grey += part[..., channel]
+        grey /= part.shape[2]
+        grey /= 257.0
+        if alpha16 is not None:
+            alpha = alpha16[a:b].astype(np.float64)
+            alpha /= 257.0
+            return grey, alpha
+        if key is not None:
+            # A transparent colour (PNG tRNS, of 16-bit samples here) is an alpha channel.
+            return grey, np.where(np.all(part == key, axis=2), 0.0, 255.0)
+        return grey, None
+
+    return _Image(colour.shape[0], colour.shape[1], rows)
 
 
-def _read_with_pillow(
-    fh: BinaryIO, path: Path
-) -> tuple[NDArray[np.float64], NDArray[np.float64] | None]:
+def _read_with_pillow(fh: BinaryIO, path: Path) -> _Image:
     """:func:`read_image` by Pillow of the open regular file ``fh`` (of ``path``)."""
     Image = _pillow(f"reading the map image {path.name}")
     with _pillow_errors(path, Image):
@@ -1071,26 +1112,36 @@ def _read_with_pillow(
         # mode "I") span 0..65535 whatever they hold; only 32-bit ones, whose range
         # no map format fixes, are scaled by what they hold.
         peak = 65535.0 if sixteen_bit or arr.max(initial=0) > 255 else 255.0
-        grey = arr.astype(np.float64)
-        grey *= 255.0 / peak
-        np.clip(grey, 0.0, 255.0, out=grey)
-        if isinstance(transparent, int) and not isinstance(transparent, bool):
-            # A transparent grey (PNG tRNS) is an alpha channel to map_server, as
-            # for 8-bit images (converted to RGBA above, which would lose 8 bits here).
-            return grey, np.where(arr == transparent, 0.0, 255.0)
-        return grey, None
-    if arr.ndim == 2:
-        return arr.astype(np.float64), None
+        keyed = isinstance(transparent, int) and not isinstance(transparent, bool)
+
+        def deep_rows(a: int, b: int) -> tuple[NDArray[np.float64], NDArray[np.float64] | None]:
+            grey = arr[a:b].astype(np.float64)
+            grey *= 255.0 / peak
+            np.clip(grey, 0.0, 255.0, out=grey)
+            if keyed:
+                # A transparent grey (PNG tRNS) is an alpha channel to map_server, as
+                # for 8-bit images (converted to RGBA above, which would lose 8 bits here).
+                return grey, np.where(arr[a:b] == transparent, 0.0, 255.0)
+            return grey, None
+
+        return _Image(arr.shape[0], arr.shape[1], deep_rows)
     has_alpha = mode in ("LA", "RGBA")
-    colour = arr[..., :-1] if has_alpha else arr
-    # ndarray.mean(axis=2) of the channels without widening all of them to
-    # float64 first (8 bytes a channel a pixel); the sums are exact.
-    grey = colour[..., 0].astype(np.float64)
-    for channel in range(1, colour.shape[2]):
-        grey += colour[..., channel]
-    grey /= colour.shape[2]
-    alpha = arr[..., -1].astype(np.float64) if has_alpha else None
-    return grey, alpha
+
+    def rows(a: int, b: int) -> tuple[NDArray[np.float64], NDArray[np.float64] | None]:
+        part = arr[a:b]
+        if part.ndim == 2:
+            return part.astype(np.float64), None
+        colour = part[..., :-1] if has_alpha else part
+        # ndarray.mean(axis=2) of the channels without widening all of them to
+        # float64 first (8 bytes a channel a pixel); the sums are exact.
+        grey = colour[..., 0].astype(np.float64)
+        for channel in range(1, colour.shape[2]):
+            grey += colour[..., channel]
+        grey /= colour.shape[2]
+        alpha = part[..., -1].astype(np.float64) if has_alpha else None
+        return grey, alpha
+
+    return _Image(arr.shape[0], arr.shape[1], rows)
 
 
 def read_image(path: Path) -> tuple[NDArray[np.float64], NDArray[np.float64] | None]:
@@ -1113,16 +1164,14 @@ def read_image(path: Path) -> tuple[NDArray[np.float64], NDArray[np.float64] | N
     (array([[  0., 205.]]), None)
     """
     with open_regular(path, "image") as fh:
-        return _image_from(fh, path)
+        return _image_from(fh, path).both()
 
 
-def _image_from(
-    fh: BinaryIO, path: Path
-) -> tuple[NDArray[np.float64], NDArray[np.float64] | None]:
-    """:func:`read_image` of the open regular file ``fh`` (of ``path``)."""
+def _image_from(fh: BinaryIO, path: Path) -> _Image:
+    """:func:`read_image` of the open regular file ``fh`` (of ``path``), by bands of rows."""
     magic = fh.read(2)
     if magic in (b"P5", b"P2"):
-        return _pgm_from(fh, path, map_server=True), None
+        return _pgm_from(fh, path, map_server=True)
     if path.suffix.lower() == ".pgm":
         raise ValueError(f"{path}: not a PGM image (magic {magic!r}, expected P5 or P2)")
     if not magic:
@@ -1293,13 +1342,16 @@ def read_map(path: str | os.PathLike[str]) -> OccupancyGrid:
     unknown.
 
     Peak memory, in bytes a pixel, besides the returned grid (4 bytes a cell, the
-    float32 log-odds): about 16 for a PGM or an 8-bit PNG (the raster, a float64
-    grey level and the float64 probabilities), 20 for an 8-bit colour PNG, and
-    about 32 for a PNG with 16-bit colour channels, which is decoded twice at
-    8 bits by Pillow and combined (``RGBA``: 4 + 4 bytes a pixel outside
-    NumPy's, 8 for the 16-bit samples, 8 + 8 for grey and alpha). At the
-    ``2**28``-pixel limit that is, with the grid, about 5 GB for a PGM and 10 GB
-    for a 16-bit RGBA PNG: on a small computer, keep large maps in PGM or 8-bit PNG.
+    float32 log-odds) and about 10 MiB: the decoded image, whose grey levels,
+    probabilities and log-odds are computed a band of rows at a time. About 1.5
+    for an 8-bit binary PGM or grey PNG (the raster), 2.5 for a 16-bit PGM, 6 for
+    an ASCII PGM (its text, then 4-byte values), 6 for an 8-bit colour PNG
+    (Pillow's image and a copy), and about 20 for a PNG with 16-bit colour
+    channels, which is decoded twice at 8 bits by Pillow and combined
+    (``RGBA``: 4 + 4 bytes a pixel outside NumPy's, 4 for a copy, 8 for the
+    16-bit samples). At the ``2**28``-pixel limit that is, with the grid, about
+    1.4 GiB for an 8-bit PGM and 6 GiB for a 16-bit RGBA PNG (review 45: 5 and 9
+    GiB): on a small computer, keep large maps in PGM or 8-bit grey PNG.
 
     Examples
     --------
@@ -1318,23 +1370,46 @@ def read_map(path: str | os.PathLike[str]) -> OccupancyGrid:
     # one open descriptor, whatever was put in its place since.
     with open_regular(meta.image, f"{as_path(path, 'path')}: map image") as fh:
         try:
-            grey, alpha = _image_from(fh, meta.image)
+            image = _image_from(fh, meta.image)
         except ValueError as exc:
             raise ValueError(f"{path}: map image {exc}") from None
-    prob, unknown = pixel_occupancy(grey, alpha, meta)
-    del grey, alpha  # not needed any more: 8 or 16 bytes a pixel freed before the grid is built
+    rows = image.height
+    logodds = np.empty((rows, image.width), dtype=np.float32)
+    step = max(1, _READ_BLOCK_PIXELS // image.width)
+    unknown_l = _unknown_logodds(meta.occupied_thresh, meta.free_thresh)
+    # A band of image rows at a time: every step below is the same for each pixel
+    # whatever the others hold, and its float64 temporaries stay a band's.
+    for a in range(0, rows, step):
+        b = min(rows, a + step)
+        grey, alpha = image.rows(a, b)
+        prob, unknown = pixel_occupancy(grey, alpha, meta)
+        del grey, alpha
+        # The image's top row becomes the last grid row.
+        logodds[rows - b : rows - a] = _band_logodds(prob, unknown, meta, unknown_l)
+    del image  # the decoded pixels, before the grid is checked
+    return OccupancyGrid._adopting(
+        logodds,
+        resolution=meta.resolution,
+        origin=Pose2D(*meta.origin),
+        occupied_thresh=meta.occupied_thresh,
+        free_thresh=meta.free_thresh,
+    )
+
+
+def _band_logodds(
+    prob: NDArray[np.float64], unknown: NDArray[np.bool_], meta: MapMetadata, unknown_l: float
+) -> NDArray[np.float32]:
+    """Float32 log-odds of some image rows' :func:`pixel_occupancy`, in grid order (flipped).
+
+    ``prob`` (a new array) is changed; ``unknown_l`` is :func:`_unknown_logodds`.
+    """
     occ_t, free_t = meta.occupied_thresh, meta.free_thresh
-    prob[unknown] = 0.5  # prob is pixel_occupancy's new array
+    prob[unknown] = 0.5
     p = prob[::-1]
     unknown = unknown[::-1]
     known = OccupancyGrid.from_probabilities(
-        p,
-        resolution=meta.resolution,
-        origin=Pose2D(*meta.origin),
-        occupied_thresh=occ_t,
-        free_thresh=free_t,
+        p, resolution=meta.resolution, occupied_thresh=occ_t, free_thresh=free_t
     )
-    unknown_l = _unknown_logodds(occ_t, free_t)
     # Unknown cells get exactly the log-odds write_map recognises as unknown.
     grid = known
     if unknown_l != 0.0 and unknown.any():
@@ -1346,17 +1421,17 @@ def read_map(path: str | os.PathLike[str]) -> OccupancyGrid:
         [[1.0, 0.0]], resolution=1.0, occupied_thresh=occ_t, free_thresh=free_t
     )
     if probe.occupied()[0, 0] and probe.free()[0, 1]:
-        return grid  # the thresholds lie inside the clipping: it changes no class
+        return grid.logodds  # the thresholds lie inside the clipping: it changes no class
     want_occupied = ~unknown & (p > occ_t)
     want_free = ~unknown & (p < free_t)
     wrong = (grid.occupied() != want_occupied) | (grid.free() != want_free)
     if not wrong.any():
-        return grid
+        return grid.logodds
     logodds = np.array(grid.logodds)
     logodds[wrong] = _class_logodds(
         p[wrong], want_occupied[wrong], want_free[wrong], occ_t, free_t, unknown_l
     )
-    return _with_logodds(grid, logodds)
+    return logodds
 
 
 def _with_logodds(grid: OccupancyGrid, logodds: NDArray[np.float32]) -> OccupancyGrid:
