@@ -699,6 +699,14 @@ spec(
     lambda c: method(grid(), "unknown", occupied_thresh=0.7, free_thresh=0.2),
 )
 spec("navkit.mapping.OccupancyGrid.inflate", lambda c: method(grid(), "inflate", 0.15))
+# CLEARANCE (review 45): the distance to obstacles, inf everywhere when none is occupied
+# (occupied_thresh=1 leaves no cell occupied).
+spec(
+    "navkit.mapping.OccupancyGrid.obstacle_distance",
+    lambda c: method(grid(), "obstacle_distance", occupied_thresh=0.6),
+    kinds={"occupied_thresh": Real(optional=True)},
+    inf_ok="a grid with no occupied cell is infinitely far from obstacles",
+)
 # CELLS (session 25): OccupancyGrid.cells_near, the cells new obstacle points block.
 # Points inside, outside (0.6 m left of the map: its cells near the edge) and in one cell.
 spec(

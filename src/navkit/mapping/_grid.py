@@ -66,7 +66,7 @@ from navkit.mapping._logodds import (
     logit_bound,
 )
 from navkit.mapping._new_cells_kernel import NewCellsEntry, new_cells_entry
-from navkit.mapping._obstacle_distance import CELL_EPS, obstacle_distance_bands
+from navkit.mapping._obstacle_distance import CELL_EPS, obstacle_distance, obstacle_distance_bands
 
 if TYPE_CHECKING:
     from navkit.mapping._scan import LaserScan
@@ -1367,6 +1367,59 @@ class OccupancyGrid:
         return ~(self._logodds > logit_bound(occ)) & ~(self._logodds < logit_bound(free))
 
     # --------------------------------------------------------------- inflation
+    def obstacle_distance(self, *, occupied_thresh: float | None = None) -> FloatArray:
+        """Distance (m) from each cell's centre to the nearest occupied cell's centre.
+
+        The exact Euclidean distance transform of the occupied cells that
+        :meth:`inflate`, :meth:`costmap` and :meth:`traversal_costs` grow
+        obstacles by: 0 on an occupied cell, a multiple of ``resolution`` by
+        ``sqrt(drow**2 + dcol**2)`` elsewhere, ``inf`` everywhere when no
+        cell is occupied. Unknown cells are not obstacles here (pass
+        ``occupied_thresh`` to count more cells as occupied).
+
+        Parameters
+        ----------
+        occupied_thresh : float, optional
+            Probability in [0, 1] (keyword-only): a cell is an obstacle when
+            ``p > occupied_thresh``, as for :meth:`occupied`; None uses the
+            grid's :attr:`occupied_thresh`.
+
+        Returns
+        -------
+        ndarray of float64, shape (rows, cols)
+            New array of distances, m: bit for bit
+            ``scipy.ndimage.distance_transform_edt(~grid.occupied()) * grid.resolution``.
+
+        Raises
+        ------
+        TypeError, ValueError
+            ``occupied_thresh`` not a real number in [0, 1].
+
+        Notes
+        -----
+        Memory: the result (8 bytes a cell), the occupied mask (1 byte a
+        cell) and a band of about 2**21 cells (32 MiB) at a time; a grid much
+        wider than tall also holds its mask transposed (1 more byte a cell).
+        SciPy's transform took 18 bytes a cell besides the result. It is
+        computed in a compiled kernel that lets other threads run (it
+        compiles on first use, then is cached).
+
+        Examples
+        --------
+        >>> occ = np.array([[True, False, False], [False, False, False]])
+        >>> grid = OccupancyGrid.from_occupancy(occ, resolution=0.5)
+        >>> grid.obstacle_distance().round(3)
+        array([[0.   , 0.5  , 1.   ],
+               [0.5  , 0.707, 1.118]])
+        >>> OccupancyGrid.empty(width=1.0, height=0.5, resolution=0.5).obstacle_distance()
+        array([[inf, inf]])
+        """
+        th = _threshold(occupied_thresh, self._occupied_thresh, "occupied_thresh")
+        out = obstacle_distance(self.occupied(th))
+        # In place: the same float64 products as SciPy's distances * resolution.
+        np.multiply(out, self._resolution, out=out)
+        return out
+
     def inflate(self, robot_radius: float) -> BoolArray:
         """Occupied cells grown by ``robot_radius``: a boolean mask, shape (rows, cols).
 
