@@ -45,23 +45,17 @@ class _GridClearance:
     Centre to centre, as Nav2 reads its costmap by cell: within resolution/√2
     of the point's own distance to that cell centre.
 
-    The exact Euclidean distance transform is computed once; a point outside
-    the map, or a map with no occupied cell, is infinitely far from obstacles
-    (Nav2 does not regulate on unknown space either).
+    The grid's :meth:`~navkit.mapping.OccupancyGrid.obstacle_distance` is
+    computed once; a point outside the map, or a map with no occupied cell, is
+    infinitely far from obstacles (Nav2 does not regulate on unknown space
+    either).
     """
 
     __slots__ = ("_distance", "_grid")
     __getstate__ = slot_state  # pickle protocols 0 and 1 too
 
     def __init__(self, grid: OccupancyGrid) -> None:
-        occupied = grid.occupied()
-        if occupied.any():
-            from scipy import ndimage
-
-            dist = ndimage.distance_transform_edt(~occupied) * grid.resolution
-        else:
-            dist = np.full(occupied.shape, np.inf)
-        self._distance: FloatArray = np.asarray(dist, dtype=np.float64)
+        self._distance: FloatArray = grid.obstacle_distance()
         self._grid = grid
 
     def __call__(self, x: float, y: float) -> float:

@@ -88,14 +88,7 @@ class Clearance:
     __slots__ = ("_distance", "_grid")
 
     def __init__(self, grid: OccupancyGrid) -> None:
-        from scipy import ndimage
-
-        free = ~grid.occupied()
-        self._distance: FloatArray = (
-            ndimage.distance_transform_edt(free) * grid.resolution
-            if not free.all()
-            else np.full(free.shape, np.inf)
-        )
+        self._distance: FloatArray = grid.obstacle_distance()
         self._grid = grid
 
     def __call__(self, x: float, y: float) -> float:
