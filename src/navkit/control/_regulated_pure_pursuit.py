@@ -183,8 +183,9 @@ class RegulatedPurePursuit(PathTracker[_PursuitState]):
         Obstacle proximity for the cost regulation (Nav2
         ``use_cost_regulated_linear_velocity_scaling``, which reads the cost at
         the robot): a map, whose occupied cells are the obstacles (distances
-        from the robot's cell centre to theirs, computed once, when the
-        tracker is built: cells the map gains later, e.g. by
+        from the robot's cell centre to theirs, the map's
+        :meth:`~navkit.mapping.OccupancyGrid.obstacle_distance`, computed
+        once, when the tracker is built: cells the map gains later, e.g. by
         :func:`~navkit.mapping.integrate_scan` in place, are not seen; for a
         live map pass a function or build a new tracker), or a function
         ``clearance(x, y)`` giving the distance (m) from a world point to the
