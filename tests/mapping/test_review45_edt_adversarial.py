@@ -49,8 +49,13 @@ def _bits(a: np.ndarray) -> np.ndarray:
     return np.ascontiguousarray(a, dtype=np.float64).view(np.int64)
 
 
-def _banded(occupied: np.ndarray, band: int | None = None, *, wide: bool = False) -> np.ndarray:
-    """obstacle_distance_bands put together, each cell written exactly once (checked)."""
+def _banded(
+    occupied: np.ndarray, band: int | None = None, *, wide: bool = False, whole: bool = False
+) -> np.ndarray:
+    """obstacle_distance_bands put together, each cell written exactly once (checked).
+
+    With ``whole``, obstacle_distance itself (its bands written in place in the result).
+    """
     out = np.full(occupied.shape, np.nan)
     seen = np.zeros(occupied.shape, dtype=np.int64)
     with pytest.MonkeyPatch.context() as mp:
@@ -58,6 +63,8 @@ def _banded(occupied: np.ndarray, band: int | None = None, *, wide: bool = False
             mp.setattr(distance_module, "_band_rows", lambda rows, cols: band)
         if wide:  # a band budget of no cell: any grid wider than tall goes by columns
             mp.setattr(distance_module, "_BAND_CELLS", 0)
+        if whole:
+            return distance_module.obstacle_distance(occupied)
         for where, dist in distance_module.obstacle_distance_bands(occupied):
             assert dist.dtype == np.float64
             out[where] = dist
@@ -111,8 +118,9 @@ def test_ties_corners_and_lone_obstacles_are_scipys(
     occupied: np.ndarray, band: int, wide: bool
 ) -> None:
     kept = occupied.copy()
-    got = _banded(occupied, band, wide=wide)
-    assert np.array_equal(_bits(got), _bits(_scipy_distances(occupied)))
+    want = _bits(_scipy_distances(occupied))
+    assert np.array_equal(_bits(_banded(occupied, band, wide=wide)), want)
+    assert np.array_equal(_bits(_banded(occupied, band, wide=wide, whole=True)), want)
     assert np.array_equal(occupied, kept)
 
 
