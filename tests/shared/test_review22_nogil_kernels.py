@@ -159,6 +159,7 @@ def _public_calls() -> dict[str, Callable[[], object]]:
         "lidar": lambda: lidar.scan(world, (1.0, 1.0, 0.3)),
         "update_batch": lambda: PlanarFusion().update_batch(log),
         "inflate": lambda: wide.inflate(0.3),
+        "obstacle_distance": wide.obstacle_distance,
     }
 
 
@@ -183,6 +184,7 @@ PUBLIC = {
     "lidar": "cast_occupancy_rays",
     "update_batch": "planar_run",
     "inflate": "band_distances",
+    "obstacle_distance": "band_distances",
 }
 
 
