@@ -9,7 +9,7 @@ of columns forced on small grids.
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 
 import numpy as np
@@ -137,7 +137,12 @@ def test_distances_change_by_at_most_a_step_between_neighbours(
 def test_a_transposed_or_mirrored_grid_has_the_same_distances_bit_for_bit(
     occupied: np.ndarray, resolution: float, split: int | str | None, flip: str
 ) -> None:
-    moved = {"T": np.transpose, "ud": np.flipud, "lr": np.fliplr}[flip]
+    moves: dict[str, Callable[[np.ndarray], np.ndarray]] = {
+        "T": np.transpose,
+        "ud": np.flipud,
+        "lr": np.fliplr,
+    }
+    moved = moves[flip]
     with _split(split):
         dist = _grid(occupied, resolution).obstacle_distance()
         dist_moved = _grid(moved(occupied), resolution).obstacle_distance()
@@ -176,3 +181,52 @@ def test_free_cells_padded_around_keep_the_inner_distances_and_inflation(
     assert np.array_equal(
         inflated_padded[outside], dist_padded[outside] <= radius + 1e-9 * resolution
     )
+
+
+@settings(max_examples=100, deadline=None)
+@given(
+    rows=st.integers(1, 10),
+    cols=st.integers(1, 10),
+    seed=st.integers(0, 2**32 - 1),
+    resolution=_RESOLUTIONS,
+    thresholds=st.tuples(st.floats(0.0, 1.0), st.floats(0.0, 1.0)),
+)
+def test_a_higher_threshold_keeps_fewer_obstacles_and_no_nearer_distances(
+    rows: int, cols: int, seed: int, resolution: float, thresholds: tuple[float, float]
+) -> None:
+    probabilities = np.random.default_rng(seed).random((rows, cols))
+    grid = OccupancyGrid.from_probabilities(probabilities, resolution=resolution)
+    low, high = sorted(thresholds)
+    near, far = (
+        grid.obstacle_distance(occupied_thresh=low),
+        grid.obstacle_distance(occupied_thresh=high),
+    )
+    assert (near <= far).all(), (low, high)
+    # The threshold only chooses the obstacles: the same as a grid of those obstacles.
+    alone = _grid(grid.occupied(high), resolution).obstacle_distance()
+    assert np.array_equal(far.view(np.int64), alone.view(np.int64))
+
+
+@settings(max_examples=100, deadline=None)
+@given(occupied=_masks(), resolution=_RESOLUTIONS, split=_SPLITS, data=st.data())
+def test_inflating_around_unknown_is_inflating_unknown_cells_made_obstacles(
+    occupied: np.ndarray, resolution: float, split: int | str | None, data: st.DataObject
+) -> None:
+    seed = data.draw(st.integers(0, 2**32 - 1))
+    unknown = ~occupied & (np.random.default_rng(seed).random(occupied.shape) < 0.2)
+    robot, extra = data.draw(_radii(resolution)), data.draw(_radii(resolution))
+    with _split(split):
+        around = costmap(
+            OccupancyGrid.from_occupancy(occupied, resolution=resolution, unknown=unknown),
+            inflate_around_unknown=True,
+            robot_radius=robot,
+            inflation_radius=robot + extra,
+            cost_scaling_factor=3.0,
+        )
+        solid = costmap(
+            _grid(occupied | unknown, resolution),
+            robot_radius=robot,
+            inflation_radius=robot + extra,
+            cost_scaling_factor=3.0,
+        )
+    assert np.array_equal(around, solid)
