@@ -1,0 +1,126 @@
+"""check_folder against the system's own answer, on random trees of links (review 45, HYPO6).
+
+test_review45_folder_loops names each case by hand; here hypothesis builds small
+trees of folders, files and symbolic links (to each other, to themselves, to
+nothing) and targets through them, ``..`` included, and the system's
+``os.stat`` of the target's folder is the oracle: a folder is written into, a
+loop (``ELOOP``) and a missing folder (``ENOENT``) are ``FileNotFoundError``, a
+file in the way (``ENOTDIR``, or a file as the folder) ``NotADirectoryError`` -
+never another error - and a refused write leaves the tree as it was.
+"""
+
+from __future__ import annotations
+
+import errno
+import os
+import stat
+import sys
+import tempfile
+from pathlib import Path
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from navkit._shared.files import atomic_path, check_folder
+
+pytestmark = pytest.mark.skipif(sys.platform == "win32", reason="symbolic links need rights")
+
+_NAMES = ("a", "b", "c", "d")
+# Each entry: a folder, a file, or a link to a name (a sibling, itself, a
+# missing one, a path through a sibling, or up and back down).
+_KINDS = st.one_of(
+    st.just(("dir", "")),
+    st.just(("file", "")),
+    st.tuples(st.just("link"), st.sampled_from([*_NAMES, "missing", "a/b", "../x/c", "d/..", "."])),
+)
+
+
+def _tree(folder: Path) -> dict[str, str]:
+    """Every entry below ``folder`` (links not followed): its link target or its text."""
+    tree = {}
+    for path in sorted(folder.rglob("*")):  # rglob follows no links to folders
+        key = str(path.relative_to(folder))
+        if path.is_symlink():
+            tree[key] = f"-> {os.readlink(path)}"
+        elif path.is_file():
+            tree[key] = path.read_text()
+        else:
+            tree[key] = "/"
+    return tree
+
+
+def _build(root: Path, layout: dict[str, tuple[str, str]]) -> None:
+    for name, (kind, to) in layout.items():
+        for parent in (root, root / "x"):  # "x" holds a second copy, for "../x/c"
+            parent.mkdir(exist_ok=True)
+            entry = parent / name
+            if kind == "dir":
+                entry.mkdir()
+            elif kind == "file":
+                entry.write_text("file")
+            else:
+                entry.symlink_to(to)
+
+
+def _system(folder: Path) -> str:
+    """What the system says of ``folder``: 'dir', 'file', or the errno's name."""
+    try:
+        mode = os.stat(folder).st_mode
+    except OSError as exc:
+        return errno.errorcode[exc.errno or 0]
+    return "dir" if stat.S_ISDIR(mode) else "file"
+
+
+@settings(max_examples=200, deadline=None)
+@given(
+    layout=st.dictionaries(st.sampled_from(_NAMES), _KINDS, min_size=1),
+    parts=st.lists(st.sampled_from([*_NAMES, "..", "missing"]), min_size=1, max_size=4),
+    named=st.booleans(),
+)
+def test_a_folder_is_refused_as_the_system_finds_it(
+    layout: dict[str, tuple[str, str]], parts: list[str], named: bool
+) -> None:
+    with tempfile.TemporaryDirectory() as name:
+        root = Path(name)
+        _build(root, layout)
+        folder = root.joinpath(*parts)
+        target = folder / "out.json"
+        found = _system(folder)
+        before = _tree(root)
+        # A file met on the way through a link's target ("b -> a/b", "a" a file:
+        # ENOTDIR) is not "a file where a folder of the path should be": only a
+        # file at one of the path's own folders is named (check_folder's
+        # contract); otherwise the folder does not exist.
+        prefixes = [root.joinpath(*parts[:k]) for k in range(1, len(parts) + 1)]
+        blocker = next((p for p in prefixes if _system(p) == "file"), None)
+        expected: type[OSError] | None = {
+            "dir": None,
+            "ELOOP": FileNotFoundError,
+            "ENOENT": FileNotFoundError,
+            "ENOTDIR": FileNotFoundError if blocker is None else NotADirectoryError,
+            "file": NotADirectoryError,
+        }[found]
+        if expected is None:
+            check_folder(target, "path" if named else None)
+            with atomic_path(target) as temporary:
+                temporary.write_text("{}")
+            assert target.read_text() == "{}"
+            return
+        with pytest.raises(OSError) as caught:
+            check_folder(target, "path" if named else None)
+        assert type(caught.value) is expected, (found, caught.value)
+        text = str(caught.value)
+        assert ("is a loop of symbolic links" in text) == (found == "ELOOP"), text
+        if named and expected is NotADirectoryError:
+            assert text == f"path: {blocker} is a file, not a folder"
+        elif named:
+            assert text.startswith(f"path: folder {folder} does not exist"), text
+        else:
+            # A loop is no folder to the writers: ENOENT, as a missing one.
+            want = errno.ENOTDIR if expected is NotADirectoryError else errno.ENOENT
+            assert caught.value.errno == want, caught.value
+            assert caught.value.filename is not None
+        with pytest.raises(expected), atomic_path(target) as temporary:
+            temporary.write_text("{}")
+        assert _tree(root) == before
