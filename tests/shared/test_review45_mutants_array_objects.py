@@ -7,6 +7,20 @@ A mutation review of the module's intrinsics found these behaviours unpinned:
   ``np.empty`` calls (slot 183, ``PyArray_Zeros``, made arrays of the same
   values once the kernel had filled them, so no caller's test told them apart;
   an object array does: ``None`` from the one, ``0`` from the other);
+* the views it gives a kernel: shape ``(N, 2)`` (a view of shape ``(N, 1)``
+  passed, as ``world_to_cell``'s kernel indexes without bounds checks),
+  itemsize 8, ``(-1, empty view)`` for a refused object, and a new array's
+  view as long as the array (a view of 0 rows passed: the kernel loops over
+  the points, not the view); ``float_matrix``'s strides (a view with strides
+  (8, 8) passed: numba indexes a C array by its shape, and only ``.strides``
+  shows them);
+* arrays that fail exactly one of ``float_pairs``' tests (ndim, shape[1],
+  either stride, the dtype): each test could be dropped or weakened, as the
+  earlier refused arrays failed several at once (the int64 points had
+  negative values, NaN when read as float64, so were refused as not finite);
+* kernels compiled with ``LAYOUT_OK`` False take nothing (the test under a
+  faked NumPy major read the real, right layout, so ``float_vector`` and
+  ``float_matrix`` ignoring the flag passed it).
 """
 
 from __future__ import annotations
@@ -167,6 +181,11 @@ def _near_misses() -> dict[str, np.ndarray]:
         "two of three columns": np.arange(12.0).reshape(4, 3)[:, :2],
         # Columns swapped: only strides[1] differs.
         "columns reversed": pts[:, ::-1],
+        # Only the dtype differs. Non-negative: the earlier tests' int64 points had
+        # negative values, whose bits read as float64 are NaN, so that the mutant
+        # taking any dtype still returned None there (the points not all finite).
+        "int64": np.arange(8, dtype=np.int64).reshape(4, 2),
+        "uint64": np.arange(8, dtype=np.uint64).reshape(4, 2),
     }
 
 
@@ -196,3 +215,14 @@ def test_arrays_failing_one_test_go_the_general_way(name: str) -> None:
     assert not single
     np.testing.assert_array_equal(grid.world_to_cell(value), grid._cells(pts))
     np.testing.assert_array_equal(grid.world_to_cell(value), grid.world_to_cell(value.copy()))
+
+
+def test_without_the_layout_every_object_is_refused(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Kernels compiled where the layout check failed read no struct and take nothing
+    (mutant: ``float_vector``/``float_matrix`` ignoring ``LAYOUT_OK``, which the earlier
+    test under a faked NumPy major could not see: the real layout read right)."""
+    monkeypatch.setattr(ao, "LAYOUT_OK", False)
+    pairs, _, vector, matrix = _kernels()  # compiled now, reading LAYOUT_OK
+    assert pairs(np.zeros((3, 2))) == (-1, 0, 2, 16, 8, 8, 0.0)
+    assert vector(np.zeros(3)) == (False, 0, 0, 8, 0.0)
+    assert matrix(np.zeros((3, 3))) == (False, 0, 0, 0, 0, 8, 0.0)
