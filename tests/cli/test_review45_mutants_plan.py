@@ -10,8 +10,10 @@ from __future__ import annotations
 
 import json
 import math
+import os
 import re
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 import pytest
@@ -19,6 +21,7 @@ import pytest
 from navkit.cli import _kernels, _plan, main
 from navkit.mapping import OccupancyGrid
 from navkit.mapping.io import write_map
+from navkit.sim import Scene
 from subprocess_probe import probe_outcome
 
 
@@ -104,6 +107,33 @@ def test_a_plot_and_a_json_together_are_both_written(
     assert len(json.loads(target.read_text(encoding="utf-8"))["points"]) >= 2
 
 
+def test_the_picture_draws_the_plan_and_its_two_ends(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str], monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # What the picture holds, read from the scene it is drawn from (a PNG's pixels
+    # would pin matplotlib's rendering): the path the JSON holds, under the
+    # planner's name, and a marker at the start and one at the goal given.
+    pytest.importorskip("matplotlib")
+    scenes: list[Scene] = []
+
+    def scene(*args: Any, **kwargs: Any) -> Scene:
+        scenes.append(Scene(*args, **kwargs))
+        return scenes[-1]
+
+    monkeypatch.setattr(_plan, "Scene", scene)
+    picture, target = tmp_path / "route.png", tmp_path / "plan.json"
+    argv = ["plan", str(_map(tmp_path, 0.1)), "--start", "0.15,0.15", "--goal", "1.05,0.25",
+            "--plot", str(picture), "--json", str(target), "--quiet"]  # fmt: skip
+    assert main(argv) == 0
+    assert picture.is_file()
+    (drawn,) = scenes
+    points = json.loads(target.read_text(encoding="utf-8"))["points"]
+    ((name, path),) = drawn.paths
+    assert name == "astar" and np.array_equal(path, points)
+    ends = {label: np.asarray(xy).tolist() for label, xy in drawn.points}
+    assert ends == {"start": [[0.15, 0.15]], "goal": [[1.05, 0.25]]}
+
+
 @pytest.fixture
 def cold_cache(monkeypatch: pytest.MonkeyPatch) -> list[str]:
     """Kernels uncached, as on a first run (nothing compiled anew): the kinds asked about."""
@@ -157,6 +187,22 @@ def test_a_cache_dir_too_long_to_look_into_is_passed_over(
     argv = ["plan", str(_map(tmp_path, 0.1)), "--start", "0.15,0.15", "--goal", "1.05,0.15"]
     assert main(argv) == 0
     assert "navkit: error" not in capsys.readouterr().err
+
+
+def test_a_cache_dir_numba_may_not_write_to_is_passed_over(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # A folder on a read-only mount: os.access refuses writing even to root (whose
+    # permission bits are no test; the mount is simulated here for that reason).
+    custom = tmp_path / "cache"
+    custom.mkdir()
+    access = os.access
+    monkeypatch.setattr(
+        os, "access", lambda path, mode: False if Path(path) == custom else access(path, mode)
+    )
+    monkeypatch.setattr(_kernels, "_numba_cache_dir", lambda: str(custom))
+    folders = _kernels.cache_folders("navkit.sim")
+    assert folders and not any(custom in folder.parents for folder in folders)
 
 
 #: In a fresh process: ``navkit plan`` on a real map (obstacles and unknown space, read
