@@ -96,6 +96,8 @@ def test_demo_on_the_office_map(tmp_path: Path, capsys: pytest.CaptureFixture[st
     assert main(["demo", "--map", "office", "--quiet", "--json", str(tmp_path / "d.json")]) == 0
     out = capsys.readouterr().out
     assert "synthetic office" in out and "3/3" in out  # every leg reached
+    # The demo has no --workers: its three legs run in this process, as its summary says.
+    assert "\n3 trials in " in out and " s (this process), seed 0\n" in out
     assert json.loads((tmp_path / "d.json").read_text())["summary"]["collisions"] == 0.0
 
 
