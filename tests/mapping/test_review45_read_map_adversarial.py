@@ -202,6 +202,9 @@ _CASES: dict[str, Any] = {
 # GraphicsMagick's colormap: a PGM of at least maxval pixels, whatever a band holds.
 @example(band=1, kind="p5", size=(20, 20), seed=5, extremes=False, maxval=300,
          mode="raw", negate=0, thresholds=(0.65, 0.196))  # fmt: skip
+# Thresholds beyond the clipping: black and white moved back across them in one-row bands.
+@example(band=1, kind="p5", size=(3, 4), seed=6, extremes=True, maxval=255,
+         mode="trinary", negate=0, thresholds=(0.9995, 0.0005))  # fmt: skip
 @example(band=7, kind="P_trns", size=(1, 300), seed=4, extremes=False, maxval=1,
          mode="scale", negate=1, thresholds=(0.51, 0.5))  # fmt: skip
 def test_bands_give_the_whole_images_grid_on_more_kinds(
