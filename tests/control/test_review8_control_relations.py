@@ -271,6 +271,11 @@ obstacle_sets = st.lists(st.tuples(st.floats(-3.0, 3.0), st.floats(-3.0, 3.0)), 
 # At its target, a diff robot pushed from a beam straight ahead: a turn of ±π, moved.
 @example("diff", "blended", [(1.8777209593002233, 1.890625)], (1.53125, 1.53125, -2.3125),
          (1.53125, 1.53125, 0.0), 0.2, True, False, 0.0, False, 0.0, 0.0, 1.0)
+# Every attraction's direction is rounding's within _CUSP of its target: a blended
+# field 1e-9 m from the robot, moved by 1 m (positions rounded by ~1e-16 m), turned
+# the twins at omega 1.2540713 and 1.2540710 (thorough profile, seed 1; review 45).
+@example("diff", "blended", [], (0.0, 0.0, 0.0), (1e-9, 0.0, 0.0), 0.05, False, False, 0.0,
+         False, 0.0, 0.0, 1.0)
 def test_potential_field_controller_in_mirrored_and_moved_worlds(
     drive: Any, attraction: str, obstacle_list: list[tuple[float, float]],
     pose0: tuple[float, float, float], target0: tuple[float, float, float], dt: float,
@@ -331,13 +336,14 @@ def test_potential_field_controller_in_mirrored_and_moved_worlds(
         if not mirror and _turn_flip(ca, cb):
             # Pushed from exactly behind, or a target heading exactly behind, moved.
             break
-        if attraction == "conic" and not mirror and min(
+        if not mirror and min(
             math.hypot(p.x - q.x, p.y - q.y)
             for p, q in ((pose, target), (world(pose), world(target)))
         ) < _CUSP:
-            # The cone's force keeps its full size up to its tip, where it is zero
-            # (ConicAttraction's contract): within rounding of the target its
-            # direction, or its being, is the rounding's, not a law of the world.
+            # Within rounding of the target the force's direction (every field's;
+            # the cone's keeps its full size up to its tip, where it is zero:
+            # ConicAttraction's contract), or its being, is the rounding's, and
+            # the turn towards it with it: not a law of the world.
             break
         # Mirroring is exact up to wrap's rounding; a motion rounds positions by
         # ~1e-14 m, which the controller's Lipschitz laws keep near that.
