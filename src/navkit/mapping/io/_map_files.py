@@ -985,6 +985,45 @@ def _rawmodes(img: Any) -> list[str]:
     return modes
 
 
+def _check_tiles(img: Any, path: Path) -> None:
+    """Refuse an image whose tiles (the data Pillow decodes) do not cover its size.
+
+    Pillow decodes the tiles into an image of the size the header declares and
+    leaves the rest at zero (white in a TIFF whose 0 is white): a TIFF whose
+    ``ImageLength`` byte is corrupted reads as millions of rows of invented free
+    space. GIF frames may be smaller than the canvas (the background fills it);
+    images without tiles are decoded by their plugin's own ``load``.
+    """
+    tiles = getattr(img, "tile", None) or ()
+    if img.format == "GIF" or not tiles:
+        return
+    width, height = img.size
+    boxes = np.array([tuple(tile[1]) for tile in tiles], dtype=np.int64).reshape(-1, 4)
+    np.clip(boxes[:, 0::2], 0, width, out=boxes[:, 0::2])
+    np.clip(boxes[:, 1::2], 0, height, out=boxes[:, 1::2])
+    area = (boxes[:, 2] - boxes[:, 0]).clip(0) * (boxes[:, 3] - boxes[:, 1]).clip(0)
+    covered = int(area.sum()) >= width * height
+    xs = np.unique(np.concatenate([boxes[:, 0::2].ravel(), [0, width]]))
+    ys = np.unique(np.concatenate([boxes[:, 1::2].ravel(), [0, height]]))
+    if covered and len(xs) * len(ys) <= max(1 << 16, 4 * len(boxes)):
+        # The union of the boxes on the grid of their edges (strips and regular tiles
+        # give about one cell a tile); beyond that the areas alone decide, as overlapping
+        # tiles that leave a gap need a crafted file, which Pillow decodes anyway.
+        marks = np.zeros((len(ys), len(xs)), np.int32)
+        x0, x1 = np.searchsorted(xs, boxes[:, 0]), np.searchsorted(xs, boxes[:, 2])
+        y0, y1 = np.searchsorted(ys, boxes[:, 1]), np.searchsorted(ys, boxes[:, 3])
+        np.add.at(marks, (y0, x0), 1)
+        np.add.at(marks, (y0, x1), -1)
+        np.add.at(marks, (y1, x0), -1)
+        np.add.at(marks, (y1, x1), 1)
+        covered = bool((marks.cumsum(axis=0).cumsum(axis=1)[:-1, :-1] > 0).all())
+    if not covered:
+        raise ValueError(
+            f"{path}: the image data does not cover its declared size of {width} x "
+            f"{height} pixels (width x height; is its header corrupted?)"
+        )
+
+
 def _deep_low_rawmode(img: Any, path: Path) -> str | None:
     """None for 8-bit colour, else the raw mode giving a 16-bit-colour PNG's other bytes.
 
@@ -1077,6 +1116,7 @@ def _read_with_pillow(fh: BinaryIO, path: Path) -> _Image:
     with img:
         width, height = img.size
         _check_image_size(width, height, path)
+        _check_tiles(img, path)
         low = _deep_low_rawmode(img, path)
         if low is not None:
             with _pillow_errors(path, Image, img.size):
