@@ -19,6 +19,7 @@ from typing import Any
 import numpy as np
 import pytest
 from PIL import Image
+from test_review45_read_map_adversarial import _png
 
 import navkit.mapping.io._map_files as map_files
 from navkit.mapping.io import read_map
@@ -148,3 +149,96 @@ def test_tiles_cover_the_image(
 
 def test_gif_frames_may_be_smaller_than_the_canvas() -> None:
     map_files._check_tiles(_fake((10, 10), [(2, 2, 5, 5)], "GIF"), Path("m.gif"))
+
+
+def _rgb16(seed: int, rows: int = 60, cols: int = 64) -> bytes:
+    samples = np.random.default_rng(seed).integers(0, 65536, (rows, cols, 3))
+    return _png(samples, 2, 16)
+
+
+def _opens_rewriting(
+    monkeypatch: pytest.MonkeyPatch, path: Path, data: bytes, at: int
+) -> list[object]:
+    """Pillow's ``open``, the ``at``-th call of which first rewrites ``path`` in place."""
+    opened: list[object] = []
+    real_open = Image.open
+
+    def open_rewriting(fp: Any, *args: Any, **kwargs: Any) -> Any:
+        opened.append(fp)
+        if len(opened) == at:
+            with open(path, "r+b") as fh:
+                fh.write(data)
+                fh.truncate()
+        return real_open(fp, *args, **kwargs)
+
+    monkeypatch.setattr(Image, "open", open_rewriting)
+    return opened
+
+
+@pytest.mark.parametrize("at", [1, 2, 3])
+def test_a_16_bit_png_rewritten_while_read_gives_one_files_grid(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, at: int
+) -> None:
+    # READCHECK's repro: two random 60 x 64 RGB16 PNGs of the same size and layout;
+    # the second written over the first when Pillow opens a file for the at-th time
+    # (1: the header; then the two decodes, which read one copy of the file).
+    old, new = _rgb16(1), _rgb16(2)
+    assert len(old) == len(new)
+    grids = {}
+    for name, data in (("old", old), ("new", new)):
+        (tmp_path / f"{name}.png").write_bytes(data)
+        grids[name] = read_map(_map(tmp_path, data, ".png")).logodds
+    assert not np.array_equal(grids["old"], grids["new"])
+    yaml_path = _map(tmp_path, old, ".png")
+    opened = _opens_rewriting(monkeypatch, tmp_path / "m.png", new, at)
+    logodds = read_map(yaml_path).logodds
+    same = {name: bool(np.array_equal(logodds, grid)) for name, grid in grids.items()}
+    assert same == {"old": at > 1, "new": at == 1}, "a grid of neither file"
+    assert len(opened) == 3
+
+
+def test_a_16_bit_png_resized_before_it_is_copied_is_refused(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # Rewritten with another size after its header was read and checked.
+    yaml_path = _map(tmp_path, _rgb16(1), ".png")
+    real = map_files._deep_low_rawmode
+
+    def then_rewritten(img: Any, path: Path) -> str | None:
+        low = real(img, path)
+        path.write_bytes(_rgb16(2, 64, 60))
+        return low
+
+    monkeypatch.setattr(map_files, "_deep_low_rawmode", then_rewritten)
+    with pytest.raises(ValueError) as raised:
+        read_map(yaml_path)
+    assert str(raised.value) == (
+        f"{yaml_path}: map image {tmp_path / 'm.png'}: cannot read the image "
+        "(ValueError: the file changed while it was read)"
+    )
+
+
+def test_a_16_bit_png_padded_beyond_its_samples_is_refused_unread(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # 2 x 3 RGB16: 2 * (3 * 6 + 1) = 38 bytes of samples; with 100 bytes of slack
+    # for the other chunks, files of up to 2 * 38 + 100 = 176 bytes are read.
+    monkeypatch.setattr(map_files, "_DEEP_PNG_SLACK", 100)
+    png = _rgb16(3, 2, 3)
+    path = tmp_path / "m.png"
+    path.write_bytes(png)
+    want = map_files.read_image(path)
+    for size, refused in ((176, False), (177, True)):
+        path.write_bytes(png + b"\0" * (size - len(png)))  # junk after IEND
+        if refused:
+            with pytest.raises(ValueError) as raised:
+                map_files.read_image(path)
+            assert str(raised.value) == (
+                f"{path}: a PNG of 3 x 2 pixels with 16 bits per colour channel larger "
+                "than 176 bytes (twice its samples and 100 bytes for other chunks): save "
+                "it without the extra data"
+            )
+        else:
+            grey, alpha = map_files.read_image(path)
+            np.testing.assert_array_equal(grey, want[0])
+            assert alpha is None and want[1] is None

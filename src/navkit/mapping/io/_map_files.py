@@ -1045,24 +1045,62 @@ def _deep_low_rawmode(img: Any, path: Path) -> str | None:
     return low
 
 
-def _deep_colour(img: Any, low: str, fh: BinaryIO, image_module: Any) -> _Image:
+#: Bytes beyond twice its samples that a copy of a PNG with 16 bits per colour
+#: channel may hold (ancillary chunks: ICC profiles, text) before it is refused.
+_DEEP_PNG_SLACK = 1 << 24
+
+
+def _deep_png_bytes(img: Any, fh: BinaryIO, path: Path) -> bytes:
+    """The bytes of the open 16-bit colour PNG ``fh`` whose header ``img`` is, read once.
+
+    Both decodes of :func:`_deep_colour` read this copy: decoding the file twice
+    let one rewritten in place between them (same size) give a grid of one
+    file's high bytes and the other's low bytes. The copy is of the file as it
+    is now, none of it from the reader's buffer, so a header other than
+    ``img`` (a file rewritten since) shows. Deflate and chunks add little to the
+    samples, so a file larger than twice them plus :data:`_DEEP_PNG_SLACK` is
+    refused unread.
+    """
+    width, height = img.size
+    samples = width * height * 2 * len(img.getbands()) + height  # with a filter byte a row
+    limit = 2 * samples + _DEEP_PNG_SLACK
+    size = fh.seek(0, os.SEEK_END)  # a seek from the end drops what the reader buffered
+    if size > limit:
+        raise ValueError(
+            f"{path}: a PNG of {width} x {height} pixels with 16 bits per colour channel "
+            f"larger than {limit} bytes (twice its samples and {_DEEP_PNG_SLACK} bytes "
+            "for other chunks): save it without the extra data"
+        )
+    fh.seek(0)
+    return fh.read(size)
+
+
+def _deep_colour(img: Any, low: str, data: bytes, image_module: Any) -> _Image:
     """Grey and alpha (0..255, or None) of a PNG with 16 bits per colour channel.
 
-    The image is decoded twice: as Pillow decodes it (the high bytes), then
-    with the raw mode ``low`` (:data:`_DEEP_PNG_LOW`) on the same tile, which
-    yields the low bytes.
+    The image is decoded twice from ``data``, one copy of the file's bytes
+    (:func:`_deep_png_bytes`): as Pillow decodes it (the high bytes), then with
+    the raw mode ``low`` (:data:`_DEEP_PNG_LOW`) on the same tile, which yields
+    the low bytes. ``img`` is the header read from the file, from which ``low``
+    was chosen and the size checked: a copy with another header (the file
+    changed before it was copied) is refused.
     """
     rawmode = _rawmodes(img)[0]
-    transparent = img.info.get("transparency")
-    first = img.tile[0]
-    high = None if rawmode == "LA;16B" else np.asarray(img).astype(np.uint16)
-    fh.seek(0)
-    with _hidden_bomb_warning(image_module, None):  # the header only, as in _read_with_pillow
-        again = image_module.open(fh)
-    with again:
-        tile = again.tile[0]
-        if tuple(tile[:4]) != tuple(first[:4]) or again.size != img.size:
+    header = [tuple(tile[:4]) for tile in img.tile], img.size
+
+    def opened() -> Any:
+        with _hidden_bomb_warning(image_module, None):  # the header only, as in _read_with_pillow
+            copy = image_module.open(io.BytesIO(data))
+        if ([tuple(tile[:4]) for tile in copy.tile], copy.size) != header:
+            copy.close()
             raise ValueError("the file changed while it was read")
+        return copy
+
+    with opened() as first:
+        transparent = first.info.get("transparency")
+        high = None if rawmode == "LA;16B" else np.asarray(first).astype(np.uint16)
+    with opened() as again:
+        tile = again.tile[0]
         again.tile = [(tile[0], tile[1], tile[2], low)]
         if high is None:
             second = np.asarray(again).astype(np.uint16)
@@ -1119,8 +1157,9 @@ def _read_with_pillow(fh: BinaryIO, path: Path) -> _Image:
         _check_tiles(img, path)
         low = _deep_low_rawmode(img, path)
         if low is not None:
+            data = _deep_png_bytes(img, fh, path)
             with _pillow_errors(path, Image, img.size):
-                return _deep_colour(img, low, fh, Image)
+                return _deep_colour(img, low, data, Image)
         with _pillow_errors(path, Image, img.size):
             picture: Any = img
             if picture.mode == "F":
