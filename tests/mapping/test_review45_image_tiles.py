@@ -135,6 +135,7 @@ _TILES = (0, 0, 3, 3), (3, 0, 6, 3), (0, 3, 3, 6), (3, 3, 6, 6)
             (4, 5), [(0, 0, 4, 2), (0, 0, 4, 2), (0, 2, 4, 4)], False, id="area-but-a-gap"
         ),
         pytest.param((6, 6), list(_TILES[:3]), False, id="a-tile-missing"),
+        pytest.param((4, 5), [(0, 0, 4, 5), (3, 1, 1, 3)], True, id="an-inverted-box-too"),
     ],
 )
 def test_tiles_cover_the_image(

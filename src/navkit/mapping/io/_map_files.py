@@ -1002,6 +1002,7 @@ def _check_tiles(img: Any, path: Path) -> None:
     np.clip(boxes[:, 0::2], 0, width, out=boxes[:, 0::2])
     np.clip(boxes[:, 1::2], 0, height, out=boxes[:, 1::2])
     area = (boxes[:, 2] - boxes[:, 0]).clip(0) * (boxes[:, 3] - boxes[:, 1]).clip(0)
+    boxes = boxes[area > 0]  # an empty (or inverted) box covers nothing, negatively neither
     covered = int(area.sum()) >= width * height
     xs = np.unique(np.concatenate([boxes[:, 0::2].ravel(), [0, width]]))
     ys = np.unique(np.concatenate([boxes[:, 1::2].ravel(), [0, height]]))
