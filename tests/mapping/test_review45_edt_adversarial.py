@@ -292,15 +292,14 @@ def _peak_grid(rows: int, cols: int) -> OccupancyGrid:
     return OccupancyGrid.from_occupancy(kind == 1, resolution=0.05, unknown=kind == 2)
 
 
-_PEAK_XFAIL = pytest.mark.xfail(
+_INFLATE_XFAIL = pytest.mark.xfail(
     strict=True,
-    reason="two bands' float64 distances are alive while the next band is made (the "
-    "callers' and the generator's references), and costmap copies the decaying cells' "
-    "distances (_inflate_band's dist[band]) (MEMCHECK; the files are MEMLIM's)",
+    reason="OccupancyGrid.inflate keeps a band's distances (its loop variable) while "
+    "the next band is made: two bands alive; it needs `del dist` ending its loop, as "
+    "costmap's has (MEMCHECK; _grid.py is CLEARANCE's)",
 )
 
 
-@_PEAK_XFAIL
 @pytest.mark.parametrize(
     ("rows", "cols"),
     [
@@ -311,13 +310,13 @@ _PEAK_XFAIL = pytest.mark.xfail(
 def test_costmap_keeps_to_its_documented_peak(rows: int, cols: int) -> None:
     # "Peak memory about 3 bytes a cell and 40 MiB whatever the radius", for a
     # radius whose costs decay over every free cell. Before: 51.0 MiB (25.5 bytes a
-    # cell; 21 before review 45) and 96.3 MiB.
+    # cell; 21 before review 45) and 96.3 MiB; now 42.0 and 84.3.
     grid = _peak_grid(rows, cols)
     peak, _ = peak_bytes(lambda: costmap(grid, robot_radius=0.2, inflation_radius=150.0))
     assert peak <= 3 * rows * cols + (40 << 20), f"{peak / 2**20:.1f} MiB"
 
 
-@_PEAK_XFAIL
+@_INFLATE_XFAIL
 def test_inflate_holds_one_band_of_distances_at_a_time() -> None:
     # The mask and the result (2 bytes a cell) and one band of 2**21 cells (its
     # int64 column distances and float64 distances: 32 MiB). Before: 80.3 MiB.
@@ -327,10 +326,9 @@ def test_inflate_holds_one_band_of_distances_at_a_time() -> None:
     assert peak <= 2 * rows * cols + (33 << 20), f"{peak / 2**20:.1f} MiB"
 
 
-@_PEAK_XFAIL
 def test_obstacle_distance_of_a_wide_grid_holds_one_band_at_a_time() -> None:
     # By bands of columns: the float64 result, the transposed mask (1 byte a cell)
-    # and one band of 2**21 cells (32 MiB). Before: 192.0 MiB (12 bytes a cell).
+    # and one band of 2**21 cells (32 MiB). Before: 192.0 MiB (12 bytes a cell); now 176.
     rows, cols = 16, 1 << 20
     occupied = np.random.default_rng(45).random((rows, cols)) < 0.01
     peak, _ = peak_bytes(lambda: distance_module.obstacle_distance(occupied))

@@ -55,6 +55,7 @@ def obstacle_distance(occupied: BoolArray) -> FloatArray:
     if _by_columns(*occupied.shape):
         for where, dist in obstacle_distance_bands(occupied):
             out[where] = dist
+            del dist  # before the next band is made: one band's distances at a time
     else:
         # Each band computed in place in the result: no band-sized copy.
         for _ in _row_bands(np.ascontiguousarray(occupied, dtype=np.bool_), out):
@@ -92,7 +93,9 @@ def obstacle_distance_bands(occupied: BoolArray) -> Iterator[tuple[Band, FloatAr
     Notes
     -----
     Peak memory besides the caller's: a band of about :data:`_BAND_CELLS`
-    cells at 16 bytes a cell (its int64 column distances and float64 result)
+    cells at 16 bytes a cell (its int64 column distances and float64 result;
+    two bands' results, 24 bytes a cell, for a caller that keeps a band's
+    distances while it asks for the next: ``del dist`` ends its loop)
     and the checkpoints of :func:`_band_rows`, under 64 MiB for any grid of
     at most 2**28 cells. A grid whose band of ``sqrt(rows)`` rows would exceed
     :data:`_BAND_CELLS` is wider than tall: it is transformed as its
@@ -110,6 +113,7 @@ def obstacle_distance_bands(occupied: BoolArray) -> Iterator[tuple[Band, FloatAr
         # squares): the transpose's bands of rows are this grid's bands of columns.
         for (c, r), dist in _row_bands(np.ascontiguousarray(occupied.T, dtype=np.bool_)):
             yield (r, c), dist.T
+            del dist  # see _row_bands
         return
     yield from _row_bands(np.ascontiguousarray(occupied, dtype=np.bool_))
 
@@ -145,3 +149,6 @@ def _row_bands(
         out = np.empty((r1 - r0, cols), dtype=np.float64) if into is None else into[r0:r1]
         band_distances(occupied, r0, above, below[b], rows + cols, g[: r1 - r0], s, t, out)
         yield (slice(r0, r1), every_col), out
+        # Not kept while the next band's array is made: with a caller that lets go of
+        # it too, one band's distances at a time (16 bytes a cell, not 24; review 45).
+        del out
