@@ -1401,8 +1401,8 @@ class OccupancyGrid:
         cell) and one band's work of about 2**21 cells (16 MiB) at a time:
         10.0 bytes a cell on 4096 x 4096 cells, where SciPy's transform times
         the resolution peaked at 34. A grid much wider than tall goes by bands
-        of columns of its mask transposed (1 more byte a cell, and up to 64
-        MiB of bands: 13.0 bytes a cell on 16 x 2**20 cells). The transform is
+        of columns of its mask transposed (1 more byte a cell, and a band of
+        up to 48 MiB: 12.0 bytes a cell on 16 x 2**20 cells). The transform is
         a compiled kernel that lets other threads run (compiled on first use,
         then cached).
 
@@ -1464,6 +1464,7 @@ class OccupancyGrid:
         out = np.empty(occupied.shape, dtype=np.bool_)
         for where, dist in obstacle_distance_bands(occupied):
             np.less_equal(dist, reach, out=out[where])
+            del dist  # before the generator makes the next band: one band alive
         return out
 
     def cells_near(self, points_xy: ArrayLike, *, robot_radius: float) -> IntArray:
