@@ -1402,7 +1402,7 @@ class OccupancyGrid:
         10.0 bytes a cell on 4096 x 4096 cells, where SciPy's transform times
         the resolution peaked at 34. A grid much wider than tall goes by bands
         of columns of its mask transposed (1 more byte a cell, and a band of
-        up to 48 MiB: 12.0 bytes a cell on 16 x 2**20 cells). The transform is
+        about 32 MiB: 12.0 bytes a cell on 16 x 2**20 cells). The transform is
         a compiled kernel that lets other threads run (compiled on first use,
         then cached).
 
