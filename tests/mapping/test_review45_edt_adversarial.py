@@ -326,8 +326,9 @@ def test_obstacle_distance_of_a_wide_grid_holds_one_band_at_a_time() -> None:
     assert peak <= 9 * rows * cols + (34 << 20), f"{peak / 2**20:.1f} MiB"
 
 
-# 707 / m over a 1 m radius: exp(707) is finite, 252 times it is not.
-@pytest.mark.parametrize("scale", [1.0, 707.0, 1e12])
+# 707 / m over a 1 m radius: exp(707) is finite, 252 times it is not; 1e-300 / m
+# (the smallest rates allowed are any above 0) underflows the exponent itself.
+@pytest.mark.parametrize("scale", [1e-300, 1e-310, 1.0, 707.0, 1e12])
 def test_costs_are_the_same_when_numpy_raises_on_every_float_error(scale: float) -> None:
     # Obstacle cells and cells next to one at a huge decay rate: exp(scale *
     # robot_radius) overflows and exp(-scale * d) underflows if they are computed.

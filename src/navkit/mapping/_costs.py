@@ -152,10 +152,11 @@ def _inflate_band(
     # though only the decaying band's are kept: no float64 copy of them (8 bytes a
     # cell, review 45), and whole-array loops (a where= mask's take twice as long).
     # Cells nearer than robot_radius may overflow and far cells underflow to 0
-    # (cost 0, as Nav2's): neither is an error under a caller's np.seterr either.
-    np.subtract(dist, robot_radius, out=dist)
-    np.multiply(dist, -cost_scaling_factor, out=dist)
+    # (cost 0, as Nav2's), and a tiny cost_scaling_factor (1e-300) underflows the
+    # exponent: none is an error under a caller's np.seterr either.
     with np.errstate(over="ignore", under="ignore"):
+        np.subtract(dist, robot_radius, out=dist)
+        np.multiply(dist, -cost_scaling_factor, out=dist)
         np.exp(dist, out=dist)
         # Nav2 truncates: (unsigned char)((INSCRIBED_INFLATED_OBSTACLE - 1) * factor).
         np.multiply(dist, INSCRIBED_INFLATED_OBSTACLE - 1, out=dist)
