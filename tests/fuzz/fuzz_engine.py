@@ -1683,7 +1683,11 @@ def watchdog(seconds: float, *, wall: float | None = None) -> Iterator[None]:
     a garbage-collector callback (hypothesis keeps one), a ``__del__`` method or
     a ``weakref.finalize`` callback an exception is reported as unraisable and
     lost, and the call goes on: there the watchdog tries again ``_RETRY_S``
-    later, at most ``_MAX_RETRIES`` times. A kernel compiled in nopython mode
+    later, at most ``_MAX_RETRIES`` times. Where such a place is not told by its
+    frame (a plain weak-reference callback: llvmlite's ``on_disposal``, run as
+    numba's objects die, was one), the :class:`Hang` Python reports as
+    unraisable is caught by the block's ``sys.unraisablehook`` and the watchdog
+    tries again the same way. A kernel compiled in nopython mode
     never runs Python's handlers: one that loops for ever is not ended (a kernel
     that returns late is reported as it returns). The :class:`Hang` names the
     bound and the frame it was raised in. Without ``signal.setitimer``
@@ -1728,6 +1732,9 @@ class _Bounds:
         #: Timers set before the block: (which, (value, interval), clock, clock at start).
         self.outer: list[tuple[int, tuple[float, float], Callable[[], float], float]] = []
         self.stopped = False
+        self.closing = False
+        #: sys.unraisablehook before the block (the block's own catches lost Hangs).
+        self.hook: Callable[[Any], object] | None = None
         #: CPU and wall-clock times as the block's bounds were (last) set.
         self.since = (time.process_time(), time.monotonic())
 
@@ -1737,6 +1744,8 @@ class _Bounds:
         self.since = (time.process_time(), time.monotonic())
 
     def start(self) -> None:
+        self.hook = sys.unraisablehook
+        sys.unraisablehook = self.lost
         for signum in (signal.SIGPROF, signal.SIGALRM):
             self.handlers.append((signum, signal.getsignal(signum)))
             signal.signal(signum, self.fire)
@@ -1751,16 +1760,38 @@ class _Bounds:
     def stop(self) -> None:
         if self.stopped:
             return
+        self.closing = True  # (no lost Hang is tried again from here on)
         with self.guard:
             self.ended = True
             self.arm(0, 0)
         for signum, handler in reversed(self.handlers):
             signal.signal(signum, handler)
+        if sys.unraisablehook == self.lost and self.hook is not None:
+            sys.unraisablehook = self.hook
         self.stopped = True
         for which, (value, interval), clock, then in self.outer:
             if value > 0:
                 # A timer due during the block is due now (a zero would clear it).
                 signal.setitimer(which, max(value - (clock() - then), 1e-6), interval)
+
+    def lost(self, unraisable: Any) -> None:
+        """``sys.unraisablehook`` during the block: a lost :class:`Hang` is tried again.
+
+        Anything else, and a Hang after the retries or the block, goes to the hook
+        the block found.
+        """
+        if (
+            isinstance(unraisable.exc_value, Hang)
+            and not self.closing
+            and self.retries < _MAX_RETRIES
+        ):
+            with self.guard:
+                self.retries += 1
+                self.ended = False
+                self.arm(_RETRY_S, _RETRY_S)
+            return
+        if self.hook is not None:
+            self.hook(unraisable)
 
     def fire(self, signum: int, frame: types.FrameType | None) -> None:
         if self.ended:

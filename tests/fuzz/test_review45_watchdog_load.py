@@ -22,6 +22,7 @@ import signal
 import sys
 import threading
 import time
+import weakref
 from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Any
@@ -270,6 +271,30 @@ def test_a_hang_due_where_it_would_be_lost_is_raised_in_the_call(
     assert "in _compute" in text and "may be lost" not in text
     names = [entry.name for entry in caught.traceback]
     assert "_compute" in names and "callback" not in names and "__del__" not in names
+
+
+class _Doomed:
+    """An object with weak references to it (a plain class: its instances take them)."""
+
+
+def test_a_hang_lost_in_a_weak_reference_callback_is_raised_in_the_call(
+    unraisable: list[Any],
+) -> None:
+    # What a default suite run met: the bound ran out in llvmlite's on_disposal, a
+    # weakref.ref callback that no frame test tells from the call. Python reported
+    # the Hang as unraisable and the call went on; the block's unraisablehook now
+    # catches it and the watchdog tries again in the call.
+    doomed = _Doomed()
+    ref = weakref.ref(doomed, lambda _ref: _compute(3 * BOUND))
+    hook = sys.unraisablehook
+    with pytest.raises(Hang) as caught, watchdog(BOUND):
+        del doomed
+        _compute(LONG)
+    assert ref() is None
+    assert unraisable == []
+    assert sys.unraisablehook == hook  # the block's own is put back
+    text = str(caught.value)
+    assert "in _compute" in text and "may be lost" not in text
 
 
 def test_a_hang_that_stays_where_it_would_be_lost_is_raised_there_and_says_so(
