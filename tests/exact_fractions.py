@@ -33,6 +33,19 @@ def inverse(matrix: Matrix) -> Matrix:
     return [row[n:] for row in rows]
 
 
+def positive_definite(matrix: Matrix) -> bool:
+    """Whether a symmetric rational matrix is positive definite: every pivot of its
+    exact Gaussian elimination (no pivoting) is above zero."""
+    rows = [row[:] for row in matrix]
+    for i in range(len(rows)):
+        if rows[i][i] <= 0:
+            return False
+        for j in range(i + 1, len(rows)):
+            factor = rows[j][i] / rows[i][i]
+            rows[j] = [x - factor * y for x, y in zip(rows[j], rows[i], strict=True)]
+    return True
+
+
 def fractions(a: np.ndarray) -> Matrix:
     """The exact values of a float array (a vector becomes one row)."""
     return [[Fraction(v) for v in row] for row in np.atleast_2d(a).tolist()]

@@ -24,7 +24,7 @@ import navkit.estimation._ekf_kernels as kernels
 from navkit.estimation import ExtendedKalmanFilter
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from exact_fractions import exact_nis
+from exact_fractions import exact_nis, fractions, positive_definite
 
 # fl(A Aᵀ), A (3, 2) from np.random.default_rng(1)'s sixth draw.
 _P = np.array(
@@ -37,15 +37,7 @@ _P = np.array(
 
 
 def _exactly_positive_definite(a: np.ndarray) -> bool:
-    """Whether the pivots of the exact Gaussian elimination of ``a`` are all positive."""
-    rows = [[Fraction(v) for v in row] for row in a.tolist()]
-    for i in range(len(rows)):
-        if rows[i][i] <= 0:
-            return False
-        for j in range(i + 1, len(rows)):
-            factor = rows[j][i] / rows[i][i]
-            rows[j] = [x - factor * y for x, y in zip(rows[j], rows[i], strict=True)]
-    return True
+    return positive_definite(fractions(a))
 
 
 def _holds(p: np.ndarray, h: np.ndarray, r: np.ndarray, y: np.ndarray, steps: int) -> None:

@@ -10,7 +10,9 @@ margin is added to its diagonal (exact rational elimination, no rounding).
 
 from __future__ import annotations
 
+import sys
 from fractions import Fraction
+from pathlib import Path
 
 import numpy as np
 from hypothesis import given
@@ -19,18 +21,10 @@ from hypothesis import strategies as st
 import navkit.estimation._ekf_kernels as kernels
 from navkit.estimation import ExtendedKalmanFilter
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from exact_fractions import positive_definite
+
 _EPS = Fraction(2.0**-52)
-
-
-def _exactly_positive_definite(a: list[list[Fraction]]) -> bool:
-    rows = [row[:] for row in a]
-    for i in range(len(rows)):
-        if rows[i][i] <= 0:
-            return False
-        for j in range(i + 1, len(rows)):
-            factor = rows[j][i] / rows[i][i]
-            rows[j] = [x - factor * y for x, y in zip(rows[j], rows[i], strict=True)]
-    return True
 
 
 def _shifted(p: np.ndarray, by: Fraction) -> list[list[Fraction]]:
@@ -60,7 +54,7 @@ def test_a_passed_covariance_is_positive_definite_within_the_documented_margin(
     if not kernels._is_covariance(p):
         return
     margin = n * n * _EPS * Fraction(float(np.max(p.diagonal())))
-    assert _exactly_positive_definite(_shifted(p, margin))
+    assert positive_definite(_shifted(p, margin))
 
 
 def test_a_singular_product_in_float_is_taken_as_p0() -> None:
@@ -70,7 +64,7 @@ def test_a_singular_product_in_float_is_taken_as_p0() -> None:
         a = rng.standard_normal((3, 2))
         p = a @ a.T
         p = np.tril(p) + np.tril(p, -1).T
-        if kernels._is_covariance(p) and not _exactly_positive_definite(_shifted(p, Fraction(0))):
+        if kernels._is_covariance(p) and not positive_definite(_shifted(p, Fraction(0))):
             break
     else:
         raise AssertionError("no float-positive-definite, exactly indefinite product drawn")

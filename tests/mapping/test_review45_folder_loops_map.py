@@ -10,7 +10,6 @@ See ``tests/shared/test_review45_folder_loops.py``.
 from __future__ import annotations
 
 import errno
-import os
 import sys
 from pathlib import Path
 
@@ -20,21 +19,12 @@ import pytest
 from navkit.mapping import OccupancyGrid
 from navkit.mapping.io import read_map, write_map
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from link_trees import tree as _tree
+
 pytestmark = pytest.mark.skipif(sys.platform == "win32", reason="symbolic links need rights")
 
 _GRID = OccupancyGrid.from_occupancy(np.eye(3, dtype=bool), resolution=0.1)
-
-
-def _tree(folder: Path) -> dict[str, str]:
-    """Every entry below ``folder`` (links not followed): its link target or its bytes."""
-    tree = {}
-    for path in sorted(folder.rglob("*")):
-        key = str(path.relative_to(folder))
-        if path.is_symlink():
-            tree[key] = f"-> {os.readlink(path)}"
-        else:
-            tree[key] = path.read_bytes().hex() if path.is_file() else "/"
-    return tree
 
 
 @pytest.mark.parametrize("mode", ["trinary", "scale"])

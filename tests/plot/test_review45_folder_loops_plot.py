@@ -10,7 +10,6 @@ the path is the loop, before drawing anything. See
 
 from __future__ import annotations
 
-import os
 import sys
 from pathlib import Path
 from typing import Any
@@ -26,19 +25,10 @@ from navkit.mapping import OccupancyGrid
 from navkit.plot import animate_trace, plot_grid, save_figure
 from navkit.sim import Robot, Simulation, Trace, World
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from link_trees import tree as _tree
+
 pytestmark = pytest.mark.skipif(sys.platform == "win32", reason="symbolic links need rights")
-
-
-def _tree(folder: Path) -> dict[str, str]:
-    """Every entry below ``folder`` (links not followed): its link target or its size."""
-    tree = {}
-    for path in sorted(folder.rglob("*")):
-        key = str(path.relative_to(folder))
-        if path.is_symlink():
-            tree[key] = f"-> {os.readlink(path)}"
-        else:
-            tree[key] = str(path.stat().st_size) if path.is_file() else "/"
-    return tree
 
 
 def _trace() -> Trace:
@@ -97,4 +87,4 @@ def test_a_looped_file_and_a_linked_folder(tmp_path: Path, writer: str) -> None:
     assert written == tmp_path / "link" / f"out{suffix}"
     tree = _tree(tmp_path)
     assert sorted(tree) == ["link", "real", f"real/loop{suffix}", f"real/out{suffix}"]
-    assert int(tree[f"real/out{suffix}"]) > 0
+    assert tree[f"real/out{suffix}"]  # written, not empty

@@ -14,7 +14,6 @@ instead of an ``OSError`` from ``os.stat``. The writers' own tests are in
 from __future__ import annotations
 
 import errno
-import os
 import sys
 from collections.abc import Callable
 from pathlib import Path
@@ -24,28 +23,11 @@ import pytest
 from navkit._shared import files
 from navkit._shared.files import atomic_path, atomic_paths, check_folder
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from link_trees import loop as _loop
+from link_trees import tree as _tree
+
 pytestmark = pytest.mark.skipif(sys.platform == "win32", reason="symbolic links need rights")
-
-
-def _tree(folder: Path) -> dict[str, str]:
-    """Every entry below ``folder`` (links not followed): its link target or its text."""
-    tree = {}
-    for path in sorted(folder.rglob("*")):
-        key = str(path.relative_to(folder))
-        if path.is_symlink():
-            tree[key] = f"-> {os.readlink(path)}"
-        elif path.is_file():
-            tree[key] = path.read_text()
-        else:
-            tree[key] = "/"
-    return tree
-
-
-def _loop(folder: Path) -> Path:
-    """``a -> b``, ``b -> a`` in ``folder``; returns ``a``."""
-    (folder / "a").symlink_to("b")
-    (folder / "b").symlink_to("a")
-    return folder / "a"
 
 
 @pytest.mark.parametrize("below", [(), ("b",), ("b", "c")])

@@ -24,6 +24,9 @@ from hypothesis import strategies as st
 
 from navkit._shared.files import atomic_path, check_folder
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from link_trees import tree as _tree
+
 pytestmark = pytest.mark.skipif(sys.platform == "win32", reason="symbolic links need rights")
 
 _NAMES = ("a", "b", "c", "d")
@@ -34,20 +37,6 @@ _KINDS = st.one_of(
     st.just(("file", "")),
     st.tuples(st.just("link"), st.sampled_from([*_NAMES, "missing", "a/b", "../x/c", "d/..", "."])),
 )
-
-
-def _tree(folder: Path) -> dict[str, str]:
-    """Every entry below ``folder`` (links not followed): its link target or its text."""
-    tree = {}
-    for path in sorted(folder.rglob("*")):  # rglob follows no links to folders
-        key = str(path.relative_to(folder))
-        if path.is_symlink():
-            tree[key] = f"-> {os.readlink(path)}"
-        elif path.is_file():
-            tree[key] = path.read_text()
-        else:
-            tree[key] = "/"
-    return tree
 
 
 def _build(root: Path, layout: dict[str, tuple[str, str]]) -> None:

@@ -1,0 +1,40 @@
+"""Folders of files and symbolic links for the writers' tests (review 45).
+
+``tree`` is what a test compares before and after a refused write (nothing
+written, nothing removed, no link followed or changed); ``loop`` makes the
+simplest loop of symbolic links.
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+
+def tree(folder: Path) -> dict[str, str]:
+    """Every entry below ``folder`` (links not followed): what it holds, as a string.
+
+    A link's target (``"-> target"``), a file's text (its bytes in hex when they
+    are not UTF-8: images), ``"/"`` for a folder.
+    """
+    entries = {}
+    for path in sorted(folder.rglob("*")):  # rglob follows no links to folders
+        key = str(path.relative_to(folder))
+        if path.is_symlink():
+            entries[key] = f"-> {os.readlink(path)}"
+        elif path.is_file():
+            data = path.read_bytes()
+            try:
+                entries[key] = data.decode()
+            except UnicodeDecodeError:
+                entries[key] = data.hex()
+        else:
+            entries[key] = "/"
+    return entries
+
+
+def loop(folder: Path) -> Path:
+    """``a -> b`` and ``b -> a`` in ``folder``; returns ``a``."""
+    (folder / "a").symlink_to("b")
+    (folder / "b").symlink_to("a")
+    return folder / "a"
