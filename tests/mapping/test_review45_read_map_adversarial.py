@@ -133,7 +133,21 @@ def _write_yaml(folder: Path, image: str, mode: str, negate: int, occ: float, fr
 def _level_thresholds(levels: tuple[int, int], scale: float) -> tuple[float, float]:
     """Thresholds equal to the probabilities (``1 - v / scale``) of two grey levels."""
     high, low = sorted(1.0 - v / scale for v in levels)[::-1]
-    return (high, low) if high > low else (high, max(0.0, low - 1 / 1024))
+    if high > low:
+        return high, low
+    # One level twice: the free threshold just below it, or, at probability 0 (the
+    # brightest level), the occupied one just above it (read_map refuses 0 and 0).
+    if low >= 1 / 1024:
+        return high, low - 1 / 1024
+    return high + 1 / 1024, low
+
+
+def test_level_thresholds_are_always_a_valid_pair() -> None:
+    for scale in (255, 1020):
+        for a in range(scale + 1):
+            for b in (0, a // 2, a, scale):
+                occ, free = _level_thresholds((a, b), float(scale))
+                assert 0.0 <= free < occ <= 1.0, (a, b, scale)
 
 
 _THRESHOLDS = st.one_of(
