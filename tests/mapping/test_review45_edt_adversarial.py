@@ -21,7 +21,6 @@ from __future__ import annotations
 
 import itertools
 import textwrap
-from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
@@ -29,9 +28,8 @@ import pytest
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
 from scipy import ndimage
+from test_review45_memory_limits import assert_bands_change_nothing
 
-import navkit.mapping._costs as costs_module
-import navkit.mapping._grid as grid_module
 import navkit.mapping._obstacle_distance as distance_module
 from memory_peak import peak_bytes
 from navkit.mapping import OccupancyGrid, costmap, traversal_costs
@@ -148,10 +146,6 @@ def test_the_real_bands_at_their_limits_are_scipys(
     assert np.array_equal(_bits(_banded(occupied)), _bits(got))
 
 
-def _whole_grid(occupied: np.ndarray) -> Iterator[tuple[tuple[slice, slice], np.ndarray]]:
-    yield (slice(None), slice(None)), _scipy_distances(occupied)
-
-
 @settings(max_examples=60, deadline=None)
 @given(
     occupied=_adversarial_masks(),
@@ -176,15 +170,7 @@ def test_costs_of_ties_and_far_radii_are_the_whole_grids(
             traversal_costs(grid, robot_radius=robot, inflation_radius=robot + extra),
         ]
 
-    with pytest.MonkeyPatch.context() as mp:
-        mp.setattr(costs_module, "obstacle_distance_bands", _whole_grid)
-        mp.setattr(grid_module, "obstacle_distance_bands", _whole_grid)
-        whole = calls()
-    with pytest.MonkeyPatch.context() as mp:
-        mp.setattr(distance_module, "_band_rows", lambda rows, cols: band)
-        banded = calls()
-    for a, b in zip(whole, banded, strict=True):
-        assert a.dtype == b.dtype and np.array_equal(a, b)
+    assert_bands_change_nothing(calls, band)
 
 
 def test_masks_of_any_layout_give_the_same_costs_and_stay_as_they_were() -> None:

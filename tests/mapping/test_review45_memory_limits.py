@@ -15,7 +15,7 @@ grid, the distances every earlier version used, bit for bit.
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 
 import numpy as np
 import pytest
@@ -39,6 +39,19 @@ def _scipy_distances(occupied: np.ndarray) -> np.ndarray:
 def _whole_grid(occupied: np.ndarray) -> Iterator[tuple[tuple[slice, slice], np.ndarray]]:
     """One band, the whole grid, SciPy's distances: what a radius of a quarter of the rows took."""
     yield (slice(None), slice(None)), _scipy_distances(occupied)
+
+
+def assert_bands_change_nothing(calls: Callable[[], list[np.ndarray]], band: int) -> None:
+    """``calls()`` gives the same arrays on SciPy's whole grid and on bands of ``band`` rows."""
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(costs_module, "obstacle_distance_bands", _whole_grid)
+        mp.setattr(grid_module, "obstacle_distance_bands", _whole_grid)
+        whole = calls()
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(distance_module, "_band_rows", lambda rows, cols: band)
+        banded = calls()
+    for a, b in zip(whole, banded, strict=True):
+        assert a.dtype == b.dtype and np.array_equal(a, b)
 
 
 def _occupied(rows: int, cols: int, seed: int, density: float, band: int) -> np.ndarray:
@@ -121,15 +134,7 @@ def test_inflation_at_any_radius_is_the_whole_grids_bit_for_bit(
             traversal_costs(grid, robot_radius=robot, inflation_radius=infl, unknown_cost=3.0),
         ]
 
-    with pytest.MonkeyPatch.context() as mp:
-        mp.setattr(costs_module, "obstacle_distance_bands", _whole_grid)
-        mp.setattr(grid_module, "obstacle_distance_bands", _whole_grid)
-        whole = calls()
-    with pytest.MonkeyPatch.context() as mp:
-        mp.setattr(distance_module, "_band_rows", lambda rows, cols: band)
-        banded = calls()
-    for a, b in zip(whole, banded, strict=True):
-        assert a.dtype == b.dtype and np.array_equal(a, b)
+    assert_bands_change_nothing(calls, band)
 
 
 def _grid(rows: int, cols: int) -> OccupancyGrid:
