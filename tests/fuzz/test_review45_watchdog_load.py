@@ -30,8 +30,7 @@ from typing import Any
 import fuzz_engine
 import pytest
 from fuzz_engine import Case, Hang, Spec, call, quiet, run_case, watchdog
-
-from navkit._shared.jit import load_numba
+from test_review39_flaky_watchdog_compiles import _fresh_kernel
 
 pytestmark = pytest.mark.skipif(not hasattr(signal, "setitimer"), reason="needs setitimer")
 
@@ -145,16 +144,7 @@ def test_a_kernel_computing_past_both_bounds_is_reported_by_its_cpu_time() -> No
     # Python runs no handler while a compiled kernel runs: both timers run out, and
     # as the kernel returns SIGALRM's handler (14) runs before SIGPROF's (27). The
     # Hang said "waiting" of a kernel that computed 1.8 s of its 3.6 s.
-    load_numba()
-    import numba
-
-    def total(n: int) -> float:
-        s = 0.0
-        for i in range(n):
-            s += (i * 7) % 5 - 0.5
-        return s
-
-    kernel = numba.njit(cache=False)(total)
+    kernel: Any = _fresh_kernel()
     kernel(10)  # compiled before the block
     n = 10**7
     cpu = time.process_time()
