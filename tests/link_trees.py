@@ -2,7 +2,8 @@
 
 ``tree`` is what a test compares before and after a refused write (nothing
 written, nothing removed, no link followed or changed); ``loop`` makes the
-simplest loop of symbolic links.
+simplest loop of symbolic links; ``file_in_link`` a file met on the way
+through a link's target (review 46).
 """
 
 from __future__ import annotations
@@ -38,3 +39,15 @@ def loop(folder: Path) -> Path:
     (folder / "a").symlink_to("b")
     (folder / "b").symlink_to("a")
     return folder / "a"
+
+
+def file_in_link(folder: Path) -> tuple[Path, Path]:
+    """A file ``a`` and a link ``b -> a/b`` in ``folder``; returns ``(b, a)``.
+
+    ``b/...`` names no folder: the system goes through ``b`` to ``a/b`` and
+    finds the file ``a`` where a folder should be (``ENOTDIR``, "Not a
+    directory", from ``open``).
+    """
+    (folder / "a").write_text("keep me")
+    (folder / "b").symlink_to(Path("a", "b"))
+    return folder / "b", folder / "a"

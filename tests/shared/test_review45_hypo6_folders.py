@@ -77,17 +77,17 @@ def test_a_folder_is_refused_as_the_system_finds_it(
         target = folder / "out.json"
         found = _system(folder)
         before = _tree(root)
-        # A file met on the way through a link's target ("b -> a/b", "a" a file:
-        # ENOTDIR) is not "a file where a folder of the path should be": only a
-        # file at one of the path's own folders is named (check_folder's
-        # contract); otherwise the folder does not exist.
+        # A file at one of the path's own folders is named as the path spells it;
+        # one met on the way through a link's target ("b -> a/b", "a" a file:
+        # ENOTDIR) is named too, as a file the system finds (review 46: it was
+        # "folder ... does not exist", where open() says "Not a directory").
         prefixes = [root.joinpath(*parts[:k]) for k in range(1, len(parts) + 1)]
         blocker = next((p for p in prefixes if _system(p) == "file"), None)
         expected: type[OSError] | None = {
             "dir": None,
             "ELOOP": FileNotFoundError,
             "ENOENT": FileNotFoundError,
-            "ENOTDIR": FileNotFoundError if blocker is None else NotADirectoryError,
+            "ENOTDIR": NotADirectoryError,
             "file": NotADirectoryError,
         }[found]
         if expected is None:
@@ -101,8 +101,17 @@ def test_a_folder_is_refused_as_the_system_finds_it(
         assert type(caught.value) is expected, (found, caught.value)
         text = str(caught.value)
         assert ("is a loop of symbolic links" in text) == (found == "ELOOP"), text
+        if expected is NotADirectoryError:
+            named_file = (
+                text.removeprefix("path: ").removesuffix(" is a file, not a folder")
+                if named
+                else caught.value.filename
+            )
+            assert _system(Path(named_file)) == "file", (text, named_file)
+            if blocker is not None:
+                assert named_file == str(blocker), text
         if named and expected is NotADirectoryError:
-            assert text == f"path: {blocker} is a file, not a folder"
+            assert text == f"path: {named_file} is a file, not a folder"
         elif named:
             assert text.startswith(f"path: folder {folder} does not exist"), text
         else:

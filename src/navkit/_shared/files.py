@@ -44,6 +44,10 @@ _WINDOWS_PATH_ERRORS = (3, 206)
 #: (``ERROR_CANT_RESOLVE_FILENAME``; Python gives it no ``ELOOP`` errno).
 _WINDOWS_LINK_LOOP = 1921
 
+#: Symbolic links followed looking for the file in a folder's way (Linux's own
+#: limit, ``MAXSYMLINKS``): a chain longer than that is a loop to the system.
+_MAX_LINKS = 40
+
 #: Held while one :func:`atomic_paths` renames its files over their targets: two
 #: threads saving the same files (a map's image and YAML) would otherwise
 #: interleave their renames and leave one's image with the other's YAML. A
@@ -267,9 +271,11 @@ def check_folder(target: Path, name: str | None = None) -> None:
         such folder"`` (and the same parenthesis) and the folder as
         ``filename``.
     NotADirectoryError
-        A file where a folder of the path should be:
-        ``"{name}: {file} is a file, not a folder"``; without ``name``,
-        ``errno.ENOTDIR`` with that file as ``filename``.
+        A file where a folder of the path should be, or where one should be
+        on the way through a symbolic link's target (``b/out.json`` with
+        ``b -> a/b``, ``a`` a file: ``a``, as ``open`` finds it, not a
+        missing ``b``): ``"{name}: {file} is a file, not a folder"``; without
+        ``name``, ``errno.ENOTDIR`` with that file as ``filename``.
 
     Examples
     --------
@@ -559,12 +565,43 @@ def _new_temporary(target: Path, temporaries: list[Path]) -> None:
     raise FileExistsError(f"cannot create a temporary file beside {target}")
 
 
-def _file_in_path(folder: Path) -> Path | None:
-    """The nearest existing ancestor of ``folder`` (itself included) if it is no folder."""
-    for candidate in (folder, *folder.parents):
-        if candidate.exists():
-            return None if candidate.is_dir() else candidate
+def _file_in_path(folder: Path, links: int = 0) -> Path | None:
+    """The file that stands where a folder of ``folder``'s path (itself included) should be.
+
+    The path is followed as the system follows it, from the top: the first
+    part that is a file (directly, or as a link ending in one) is named as
+    the path spells it. A part that cannot be reached for a file further on
+    in a symbolic link's target (``b/x`` with ``b -> a/b``, ``a`` a file:
+    ``ENOTDIR``) is looked for along that target, so that the file named is
+    the one in the way (``a``), not a folder said not to exist. None if
+    nothing but a missing part (or a loop) stands in the way.
+    """
+    for part in (*reversed(folder.parents), folder):
+        try:
+            mode = os.stat(part).st_mode
+        except OSError as exc:
+            # ENOTDIR with every part above a folder: the last part is a link whose
+            # target runs through a file. Linux follows at most 40 links in a path.
+            if exc.errno != errno.ENOTDIR or links >= _MAX_LINKS:
+                return None
+            try:
+                target = part.parent / os.readlink(part)
+            except OSError:  # no link (or no longer one): nothing more to tell
+                return None
+            blocker = _file_in_path(target, links + 1)
+            return None if blocker is None else _tidy(blocker)
+        if not stat.S_ISDIR(mode):
+            return part
     return None
+
+
+def _tidy(path: Path) -> Path:
+    """``path`` without ``.`` and ``..`` parts (from a link's target) if that is the same file."""
+    tidy = Path(os.path.normpath(path))
+    with contextlib.suppress(OSError):
+        if tidy != path and os.path.samefile(tidy, path):
+            return tidy
+    return path
 
 
 def _sync(path: Path, flags: int) -> None:
