@@ -127,7 +127,8 @@ def checked_cost_range(
     and finite values <= :data:`MAX_COST`, these in one compiled pass over
     the grid (:func:`_scan_cost_bits`; :func:`cost_range` names the culprit
     when it finds one). The input is never modified; it is copied only when
-    a dtype or layout conversion is needed.
+    a dtype or layout conversion is needed, or when its buffer is not
+    aligned for float64 (see :func:`converted_costs`).
 
     Raises
     ------
@@ -186,7 +187,12 @@ def converted_costs(
 
     Type, dimension, emptiness and size are (before anything is converted or
     allocated); the caller must check the values, with :func:`cost_range` or
-    from a scan of its own (:func:`scanned_cost_range`).
+    from a scan of its own (:func:`scanned_cost_range`). The result is
+    C-contiguous, float64 and aligned: a misaligned buffer (a view of bytes
+    at an odd offset) is copied, since numba's dispatcher types such an
+    array as an aligned one and the kernels would read it with loads that
+    LLVM assumes aligned (review 46; x86-64 and AArch64 execute them all
+    the same, other targets need not).
     """
     if isinstance(costs, (list, tuple)) and holds_bool(costs):
         # NumPy turns [[True, 2.0]] into [[1.0, 2.0]] (only all-bool lists stay bool).
@@ -210,6 +216,11 @@ def converted_costs(
             rows * cols, f"A search on {name} of shape {arr.shape}", _SEARCH_BYTES_PER_CELL, "cells"
         )
     out: FloatArray = np.ascontiguousarray(arr, dtype=np.float64)
+    if not out.flags.aligned:
+        # ascontiguousarray keeps a misaligned buffer (bytes at an odd offset), and
+        # numba types it as an aligned array: the kernels' loads would then assume
+        # 8-byte alignment, undefined in LLVM (review 46). A copy is aligned.
+        out = out.copy()
     return out
 
 
