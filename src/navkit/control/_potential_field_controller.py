@@ -112,8 +112,14 @@ class PotentialFieldController:
        than ``max_decel`` allows;
     4. drives the heading with a PID: to ``target_pose.theta`` for an
        omnidirectional robot, to the direction of motion for a differential drive
-       (to ``target_pose.theta`` where the desired velocity is below a thousandth
-       of ``max_speed``, e.g. at the goal).
+       (to ``target_pose.theta`` within ``goal_tolerance`` of the goal, where the
+       robot is :attr:`done`, and where the desired velocity is below a
+       thousandth of ``max_speed``). At the goal the field's direction is no
+       heading to steer by: a :class:`~navkit.planning.BlendedAttraction` pushes
+       the robot out to its minimum (3.75 mm off the goal with the defaults,
+       where ``σ(0) > 0`` leaves a trace of the cone's tip) at 7 mm/s along the
+       robot's offset, however small, and a :class:`~navkit.planning.ConicAttraction`
+       pulls at full strength up to the goal itself.
 
     The controller is stateful (previous velocity, PID integrator and last error,
     stall timer); call :meth:`reset` between runs. It is an ordinary class with
@@ -163,8 +169,14 @@ class PotentialFieldController:
         ``OnOffTracker``, ``RegulatedPurePursuit``) default to ``"diff"``, so
         pass ``drive`` when swapping one for the other.
     goal_tolerance : float, default 0.05
-        Distance (m) at which the goal counts as reached for stall detection, in
-        [1e-6, 1e6].
+        Distance (m) within which the goal counts as reached, in [1e-6, 1e6]:
+        the robot is then :attr:`done`, never :attr:`stalled`, and a
+        differential drive turns to ``target_pose.theta`` (moving only along
+        its heading) rather than to the field's direction. Such a robot
+        stops anywhere within it, as the path trackers do (about half of it
+        from the goal when the target heading is across the approach): make
+        it the accuracy wanted, not below the distance at which the
+        attraction settles the robot (3.75 mm for the default).
     stall_radius : float, default 0.05
         Radius (m) the robot must leave to count as moving, in [1e-6, 1e6].
     stall_timeout : float, default 2.0
@@ -403,7 +415,7 @@ class PotentialFieldController:
 
     @property
     def goal_tolerance(self) -> float:
-        """Distance (m) at which the goal counts as reached for stall detection."""
+        """Distance (m) within which the goal counts as reached (:attr:`done`)."""
         return self._goal_tolerance
 
     @property
@@ -420,6 +432,37 @@ class PotentialFieldController:
     def stalled(self) -> bool:
         """True when the robot is stuck away from the goal (a local minimum)."""
         return self._still_for >= self._stall_timeout * (1.0 - _STALL_RTOL)
+
+    @property
+    def done(self) -> bool:
+        """True when the last :meth:`step` found the robot at its target's position.
+
+        That is within ``goal_tolerance`` of ``target_pose``'s ``(x, y)``, the
+        trackers' name for a reached goal. Unlike theirs it is not latched (the
+        target may move from one step to the next: each step decides again) and
+        says nothing of the heading, which every step keeps driving to
+        ``target_pose.theta`` (the trackers' final turn); nor does it stop the
+        steps: the attraction still moves the robot to where it settles (3.75 mm
+        from the goal with the default :class:`~navkit.planning.BlendedAttraction`).
+        False before the first step and after :meth:`reset`; never together with
+        :attr:`stalled`.
+
+        Examples
+        --------
+        >>> ctl = PotentialFieldController(drive="diff")
+        >>> ctl.done
+        False
+        >>> ctl.step((2.0, 1e-9, 0.0), (2.0, 0.0, 0.0), 0.1)  # at the goal: no turn
+        Twist2D(vx=0.0, vy=0.0, omega=0.0)
+        >>> ctl.done
+        True
+        >>> _ = ctl.step((1.0, 0.0, 0.0), (2.0, 0.0, 0.0), 0.1)
+        >>> ctl.done
+        False
+        """
+        # A step within goal_tolerance stores no stall anchor, every other step one;
+        # reset clears both the anchor and the last heading error (no step yet).
+        return self._anchor is None and self._last_error is not None
 
     @property
     def stall_time(self) -> float:
@@ -583,8 +626,9 @@ class PotentialFieldController:
             Robot pose in the world frame (m, m, rad).
         target_pose : Pose2D or array_like [x, y, theta]
             Goal position (attraction; m) and the target heading (rad): always for an
-            ``"omni"`` drive, for a ``"diff"`` drive where the desired velocity
-            is below a thousandth of ``max_speed`` (at the goal).
+            ``"omni"`` drive, for a ``"diff"`` drive within ``goal_tolerance`` of
+            the goal or where the desired velocity is below a thousandth of
+            ``max_speed``.
         dt : float
             Control period in seconds, in [1e-6, 1e6]; positional or keyword, so a
             control loop calls this as it calls a path tracker's ``step(pose, dt)``.
@@ -690,6 +734,9 @@ class PotentialFieldController:
             prev = np.array([vx_w, vy_w])
         goal = np.array([target_pose.x, target_pose.y])
         want = self._desired(pose, goal, obstacles)
+        # np.hypot on the float differences, as array arithmetic on the goal would give.
+        to_goal = float(np.hypot(target_pose.x - pose.x, target_pose.y - pose.y))
+        arrived = to_goal <= self._goal_tolerance
         # A measured speed beyond about 1e154 m/s overflows the norm of the change
         # (handled, but NumPy warns): only then is the limit run under np.errstate,
         # which would cost an ordinary step more than the limit itself.
@@ -733,15 +780,18 @@ class PotentialFieldController:
             fwd = min(fwd, self._max_speed)  # the bound of every command, as above
             # Below a thousandth of max_speed the field's direction is noise near the goal.
             moving = math.hypot(want[0], want[1]) > 1e-3 * self._max_speed
-            heading = math.atan2(want[1], want[0]) if moving else target_pose.theta
+            # At the goal the field's direction is nothing to steer by: the blend's pull
+            # points along the robot's offset however small it is (7 mm/s outward to
+            # its minimum 3.75 mm off, with the defaults), so a robot 1e-9 m off the
+            # goal turned round at max_omega to drive those millimetres (review 46).
+            steer = moving and not arrived
+            heading = math.atan2(want[1], want[0]) if steer else target_pose.theta
             v = np.array([c * fwd, s * fwd])
             vx, vy = fwd, 0.0
         error = angle_diff(heading, pose.theta)
         integral, omega = self._pid.update(integral0, last_error, error, step)
         omega = min(max(omega, -self._max_omega), self._max_omega)
-        anchor, still_for = _stall_after(
-            pose, goal, step, anchor, still_for, self._goal_tolerance, self._stall_radius
-        )
+        anchor, still_for = _stall_after(pose, step, anchor, still_for, arrived, self._stall_radius)
         out = Twist2D(float(vx), float(vy), float(omega))
         # Every new value first, then plain stores with no call between them, where
         # a Ctrl-C could land: an interrupted step leaves the state as it was, and
@@ -760,21 +810,20 @@ class PotentialFieldController:
 
 def _stall_after(
     pose: Pose2D,
-    goal: FloatArray,
     dt: float,
     anchor: FloatArray | None,
     still_for: float,
-    goal_tolerance: float,
+    arrived: bool,
     stall_radius: float,
 ) -> tuple[FloatArray | None, float]:
     """The stall anchor and time after a step of ``dt`` at ``pose`` from ``anchor`` and
-    ``still_for`` (the controller's, read as its step began)."""
+    ``still_for`` (the controller's, read as its step began); ``arrived``: the pose is
+    within ``goal_tolerance`` of the goal (no anchor then: see ``done``)."""
+    if arrived:
+        return None, 0.0
     # Float by float what array arithmetic gives (np.hypot on the same
     # differences), without building arrays for two coordinates.
     x, y = pose.x, pose.y
-    gx, gy = goal.tolist()
-    if float(np.hypot(gx - x, gy - y)) <= goal_tolerance:
-        return None, 0.0
     if anchor is None:
         far = True
     else:
