@@ -60,6 +60,12 @@ class Robot:
     (``wheel_radius * (1 + wheel_radius_error)``) less a random slip, through
     the drive's forward kinematics: so odometry computed with the nominal
     drive drifts as on a real robot. Encoders count the wheels' own rotation.
+    Within a physics step the body holds one twist, that of the wheels' mean
+    speeds over the step, and moves along its exact arc: a held command's
+    path, the heading and the wheels' rotations are exact, and a robot
+    turning while its wheels ramp strays a little from its exact path, by
+    an amount of order ``dt²`` (to 3 rad/s at 20 rad/s² of 5 cm wheels: 1 µm
+    after 1.5 s at 100 Hz, 26 µm at 20 Hz).
 
     Every parameter is keyword-only.
 

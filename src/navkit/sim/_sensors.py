@@ -161,6 +161,21 @@ class Imu:
     at ``rate`` is about ``N * sqrt(rate)`` per sample). The biases are
     constant (no random walk).
 
+    In a :class:`~navkit.sim.Simulation` the true values are those of the
+    physics step ending at the sample, whose body twist is held for the whole
+    step (each wheel's mean speed over it, see :class:`~navkit.sim.Robot`):
+    the yaw rate is the step's (its heading change over the step's ``dt``,
+    the simulation's ``1 / rate``) and ``v̇`` is the change of the held
+    velocity from the step before, ``(v_i - v_{i-1}) / dt``, with the step's
+    ``ω`` and ``v`` in ``ω × v``. Exact for a held twist, this lags a changing
+    one by up to a physics step: wheels ramping from rest at ``α`` read
+    ``r α / 2`` at the ramp's first step and again at the step after it ends
+    (``r α`` between), and a speed change made at once
+    (``max_wheel_acceleration=inf``) reads as ``Δv / dt`` for one step.
+    Sampled at every physics step, the yaw rates times ``dt`` sum to the
+    heading change, and the ``v̇`` times ``dt`` to the velocity change (to
+    rounding).
+
     Parameters
     ----------
     gyro_noise : float, default 0.0

@@ -289,7 +289,10 @@ class Simulation:
     for every reading of a sensor (0.03 s is 3 steps of 100 Hz, 0.03 s + 2e-9 s
     is 4),
     to the estimator, which is given it with that delivery time, and to the
-    controller. The controller runs at ``control_rate``: it receives an
+    controller. Readings delivered at one step are handed over sensor by
+    sensor, scans, encoders, compass, then IMU, each sensor's in the order
+    taken (so with unequal latencies an older reading may follow a newer one
+    of another sensor). The controller runs at ``control_rate``: it receives an
     :class:`Observation` (the latest readings, those new since its last call,
     how long its command will be held, the estimator's pose and the true pose) and returns a
     body twist, which the wheels follow until the next control step. The physics between two control
@@ -756,8 +759,10 @@ class _Run:
         bits = None if enc is None else enc.bits
         self.enc_mask = (1 << bits) - 1 if bits is not None and 52 < bits < 64 else 0
         imu = robot.imu
-        self.imu_bias = np.zeros(3) if imu is None else np.array(
-            [imu.gyro_bias, imu.accel_bias, imu.accel_bias]
+        self.imu_bias = (
+            np.zeros(3)
+            if imu is None
+            else np.array([imu.gyro_bias, imu.accel_bias, imu.accel_bias])
         )
         self.imu_noise: FloatArray | None = None
         if imu is not None and (imu.gyro_noise > 0.0 or imu.accel_noise > 0.0):
