@@ -55,14 +55,13 @@ from numpy.typing import ArrayLike
 from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.dunders import bounded_repr
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
-from navkit._shared.relative_paths import relative_to_cwd
 from navkit._shared.text import as_text
 from navkit._shared.times import as_times
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, as_sequence
 from navkit.geometry import imu_to_base, quaternion_to_matrix, quaternion_to_yaw, wrap_angle
 from navkit.mapping import LaserScan
-from navkit.mapping.io._paths import as_path, open_regular
+from navkit.mapping.io._paths import as_path, missing_file, open_regular
 from navkit.mapping.io._ros_msgs import scan_from_msg
 
 __all__ = [
@@ -620,7 +619,7 @@ class _CheckedPath(_ConcretePath):
 def _check_path(path: Any) -> Path:
     bag_path = as_path(path, "path")
     if not bag_path.exists():
-        raise FileNotFoundError(f"ROS bag {bag_path} does not exist{relative_to_cwd(bag_path)}")
+        raise missing_file(bag_path, "ROS bag")
     return bag_path
 
 
@@ -1177,7 +1176,7 @@ def read_bag_scans(path: str | os.PathLike[str], *, topic: str | None = None) ->
     ImportError
         The ``rosbags`` package is missing (install ``navkit[ros]``).
     FileNotFoundError
-        ``path`` does not exist.
+        ``path`` does not exist, or is a loop of symbolic links.
     TypeError
         ``path`` or ``topic`` of the wrong type.
     ValueError
@@ -1242,7 +1241,7 @@ def read_bag_odometry(path: str | os.PathLike[str], *, topic: str | None = None)
     ImportError
         The ``rosbags`` package is missing (install ``navkit[ros]``).
     FileNotFoundError
-        ``path`` does not exist.
+        ``path`` does not exist, or is a loop of symbolic links.
     TypeError
         ``path`` or ``topic`` of the wrong type.
     ValueError
@@ -1324,7 +1323,7 @@ def read_bag_imu(path: str | os.PathLike[str], *, topic: str | None = None) -> B
     ImportError
         The ``rosbags`` package is missing (install ``navkit[ros]``).
     FileNotFoundError
-        ``path`` does not exist.
+        ``path`` does not exist, or is a loop of symbolic links.
     TypeError
         ``path`` or ``topic`` of the wrong type.
     ValueError
@@ -1401,7 +1400,7 @@ def bag_topics(
     ImportError
         The ``rosbags`` package is missing (install ``navkit[ros]``).
     FileNotFoundError
-        ``path`` does not exist.
+        ``path`` does not exist, or is a loop of symbolic links.
     TypeError
         ``path`` of the wrong type.
     ValueError

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import bz2
+import codecs
 import gzip
 import io
 import math
@@ -23,13 +24,12 @@ from navkit._shared.counts import counted
 from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.dunders import bounded_repr
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
-from navkit._shared.relative_paths import relative_to_cwd
 from navkit._shared.times import as_times
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, as_sequence, positive_float
 from navkit.geometry import Pose2D, as_pose, wrap_angle
 from navkit.mapping import LaserScan
-from navkit.mapping.io._paths import as_path, open_regular
+from navkit.mapping.io._paths import as_path, missing_file, open_regular
 
 if TYPE_CHECKING:
     import lzma  # imported when an xz file is read: optional in Python builds
@@ -345,6 +345,10 @@ def _lines(path: Path, found: list[str] | None = None) -> Iterator[str]:
         binary, damage = _decompressed(raw, compression, path)
         with io.TextIOWrapper(binary, encoding="ascii", errors="replace") as fh:
             try:
+                # A UTF-8 byte-order mark (as Windows Notepad writes) is skipped: read
+                # as ASCII it made a first FLASER line an unknown kind, dropped unseen.
+                if binary.read(len(codecs.BOM_UTF8)) != codecs.BOM_UTF8:
+                    binary.seek(0)
                 lines = iter(lambda: fh.readline(LINE_MAX + 1), "")
                 first = next(lines, "")
                 if _is_tar_header(first):
@@ -611,7 +615,9 @@ def read_carmen(
     ----------
     path : str or path-like
         Log file: plain text, or compressed with gzip, bzip2 or xz (told by
-        its first bytes, whatever its name).
+        its first bytes, whatever its name). Line ends may be ``\\n``,
+        ``\\r\\n`` or ``\\r``; a UTF-8 byte-order mark starting the (decompressed)
+        text is skipped.
     range_max : float, optional
         Maximum range of FLASER scans, m, in (``range_min``, 1e9]. Readings
         equal to or beyond it are "no return". By default the largest FLASER
@@ -632,7 +638,7 @@ def read_carmen(
         A ``path`` that is not a str or path-like; a ``range_min`` or
         ``range_max`` that is not a real number.
     FileNotFoundError
-        Missing file.
+        Missing file, or a loop of symbolic links.
     ValueError
         A corrupt or truncated compressed file; a zip, 7z, zstd or lz4 file
         (named: decompress it first); a line longer than 2**23 characters
@@ -659,7 +665,7 @@ def read_carmen(
     """
     log_path = as_path(path, "path")
     if not log_path.exists():
-        raise FileNotFoundError(f"CARMEN log {log_path} does not exist{relative_to_cwd(log_path)}")
+        raise missing_file(log_path, "CARMEN log")
     if not log_path.is_file():
         raise ValueError(f"CARMEN log {log_path} is not a regular file")
     rmin = positive_float(range_min, "range_min", allow_zero=True)

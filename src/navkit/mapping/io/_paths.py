@@ -18,9 +18,10 @@ import sys
 from pathlib import Path
 from typing import Any, BinaryIO
 
+from navkit._shared.files import link_loop
 from navkit._shared.relative_paths import relative_to_cwd
 
-__all__ = ["as_path", "open_regular"]
+__all__ = ["as_path", "missing_file", "open_regular"]
 
 
 def as_path(value: Any, name: str) -> Path:
@@ -37,6 +38,28 @@ def as_path(value: Any, name: str) -> Path:
     return Path(text)
 
 
+def missing_file(path: Path, what: str) -> FileNotFoundError:
+    """The error for a file ``path`` that cannot be reached: "{what} {path} does not exist".
+
+    With the working directory a relative ``path`` was looked up in, or the
+    loop of symbolic links on its way (``path`` itself or a folder above it),
+    which ``Path.exists`` reports as missing and ``open`` as the bare
+    ``OSError`` "Too many levels of symbolic links" (``ELOOP``).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     loop = Path(folder) / "a.log"
+    ...     loop.symlink_to(loop)
+    ...     str(missing_file(loop / "x.log", "log")).endswith("a.log is a loop of symbolic links)")
+    True
+    """
+    loop = next((p for p in (*reversed(path.parents), path) if link_loop(p)), None)
+    where = relative_to_cwd(path) if loop is None else f" ({loop} is a loop of symbolic links)"
+    return FileNotFoundError(f"{what} {path} does not exist{where}")
+
+
 def open_regular(path: Path, what: str) -> BinaryIO:
     """``path`` opened for reading in binary, refused unless it is a regular file.
 
@@ -48,8 +71,8 @@ def open_regular(path: Path, what: str) -> BinaryIO:
     Raises
     ------
     FileNotFoundError
-        ``path`` does not exist ("{what} {path} does not exist", with the
-        working directory a relative ``path`` was looked up in).
+        ``path`` does not exist, or is a loop of symbolic links (as
+        :func:`missing_file` says).
     ValueError
         ``path`` is a directory, a FIFO, a device or a socket.
     """
@@ -59,13 +82,17 @@ def open_regular(path: Path, what: str) -> BinaryIO:
     try:
         fd = os.open(path, flags)
     except FileNotFoundError:
-        raise FileNotFoundError(f"{what} {path} does not exist{relative_to_cwd(path)}") from None
+        raise missing_file(path, what) from None
     except IsADirectoryError:  # where a directory cannot be opened for reading
         raise ValueError(f"{what} {path} is a directory") from None
     except PermissionError:
         # Windows refuses to open a directory as a file with EACCES, not EISDIR.
         if os.path.isdir(path):
             raise ValueError(f"{what} {path} is a directory") from None
+        raise
+    except OSError:
+        if link_loop(path):  # ELOOP: "Too many levels of symbolic links", naming no loop
+            raise missing_file(path, what) from None
         raise
     try:
         mode = os.fstat(fd).st_mode
@@ -81,4 +108,3 @@ def open_regular(path: Path, what: str) -> BinaryIO:
     # Python code in between: an interrupt inside os.fdopen (Python) closed it twice, and
     # the second close's EBADF OSError replaced the KeyboardInterrupt.
     return open(fd, "rb")
-
