@@ -435,7 +435,7 @@ def read_movingai_map(path: str | os.PathLike[str]) -> MovingAIMap:
     Raises
     ------
     FileNotFoundError
-        ``path`` does not exist.
+        ``path`` does not exist, or is a loop of symbolic links.
     TypeError
         ``path`` not a str or path-like.
     ValueError
@@ -575,6 +575,14 @@ def read_movingai_scenarios(path: str | os.PathLike[str]) -> MovingAIScenarios:
     byte-order mark may start the file. The map names are kept as written
     (often relative to the ``.scen`` file's folder, or as ``maps/<set>/<name>``).
 
+    The format declares no count of problems, so a file cut at a line end
+    reads as its first problems. A file cut inside its last line is refused:
+    inside a field before the length, as a line without 9 fields; inside the
+    length (nothing follows it), when that line has no line end and its
+    length has other decimals than the file prints every other length with
+    (the benchmark's files: 8). A file of lengths printed with varying
+    decimals (``%g``), or of one problem, gives a length cut there as read.
+
     Parameters
     ----------
     path : str or path-like
@@ -588,7 +596,7 @@ def read_movingai_scenarios(path: str | os.PathLike[str]) -> MovingAIScenarios:
     Raises
     ------
     FileNotFoundError
-        ``path`` does not exist.
+        ``path`` does not exist, or is a loop of symbolic links.
     TypeError
         ``path`` not a str or path-like.
     ValueError
@@ -597,7 +605,9 @@ def read_movingai_scenarios(path: str | os.PathLike[str]) -> MovingAIScenarios:
         with a control character, an empty map name, a field that is not a
         non-negative integer of ASCII digits (or, for the length, a finite
         decimal number without sign), a bucket beyond int64, a map of more
-        than ``2**31 - 1`` cells, a cell outside its map's width and height.
+        than ``2**31 - 1`` cells, a cell outside its map's width and height;
+        a last line without its line end whose length has other decimals
+        than every other line's (a file cut inside it).
     OSError
         The operating system refuses to read the file.
 
@@ -625,6 +635,8 @@ def read_movingai_scenarios(path: str | os.PathLike[str]) -> MovingAIScenarios:
                 "scenario file of version 1"
             )
         number = 1
+        # Decimals of the lengths so far: one count while the file prints them alike.
+        decimals: set[int | None] = set()
         for raw in iter(lambda: fh.readline(LINE_MAX + 1), b""):
             number += 1
             # Blanks after the last field are no field (HOG2 reads a stream of words).
@@ -658,6 +670,7 @@ def read_movingai_scenarios(path: str | os.PathLike[str]) -> MovingAIScenarios:
                 raise ValueError(
                     f"{file}:{number}: optimal_length {word[:40]!r} is not a finite number >= 0"
                 )
+            _refuse_cut_length(word, raw, decimals, file, number)
             bucket, width, height, sx, sy, gx, gy = values
             if width == 0 or height == 0:
                 raise ValueError(f"{file}:{number}: a map of width {width} and height {height}")
@@ -684,6 +697,34 @@ def read_movingai_scenarios(path: str | os.PathLike[str]) -> MovingAIScenarios:
     return MovingAIScenarios(
         table[:, 0], names, table[:, 1:3], table[:, 3:5], table[:, 5:7], lengths
     )
+
+
+def _refuse_cut_length(
+    word: str, raw: bytes, decimals: set[int | None], file: Path, number: int
+) -> None:
+    """Refuse the optimal length ``word`` of line ``raw`` if the file looks cut inside it.
+
+    Nothing follows the length on its line: a file cut inside the last one
+    (``38.21320`` left of ``38.21320344``, or ``3``) gave a shorter length,
+    read silently. A line that ends without a line end or blank, its length
+    printed with fewer decimals than the file prints every other length with
+    (the benchmark's files: 8), is taken as cut. ``decimals`` gathers the
+    counts of the lines read (None for a length without a point or with an
+    exponent); a file printing them with varying decimals (``%g``) is not
+    checked.
+    """
+    point = "." in word and "e" not in word.lower()
+    count = len(word.partition(".")[2]) if point else None
+    if raw[-1:] not in (b"\n", b"\r", b" ", b"\t") and len(decimals) == 1:
+        (usual,) = decimals
+        if usual is not None and count != usual:
+            raise ValueError(
+                f"{file}:{number}: the file ends inside this line, its optimal_length "
+                f"{word[:40]!r} printed with {'no' if count is None else count} decimals where "
+                f"every other line has {usual}: it looks truncated; end the line with a "
+                "newline if it is whole"
+            )
+    decimals.add(count)
 
 
 # The integer fields of a scenario line, by position (None: the map name).
