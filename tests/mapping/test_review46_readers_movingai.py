@@ -157,3 +157,22 @@ def test_huge_declared_sizes_are_refused_before_reading(tmp_path: Path) -> None:
     path.write_bytes(b"type octile\nheight 8192\nwidth 8192\nmap\n..\n")
     with pytest.raises(ValueError, match=r"huge.map: 1 row after the 'map' line"):
         read_movingai_map(path)
+
+
+@pytest.mark.parametrize("digits", [310, 400, 4000])
+def test_sizes_of_hundreds_of_digits_are_refused_naming_the_file(
+    tmp_path: Path, digits: int
+) -> None:
+    """A header line holds 4096 bytes: 4.0 x height x width overflowed a float, and the
+    message's size in bytes raised OverflowError."""
+    path = tmp_path / "huge.map"
+    size = "9" * digits
+    path.write_bytes(f"type octile\nheight {size}\nwidth 7\nmap\n..\n".encode())
+    with pytest.raises(ValueError, match=rf"^{path}: 999999\.\.\. \({digits} digits\) x 7 cells"):
+        read_movingai_map(path)
+    scenarios = tmp_path / "huge.map.scen"
+    scenarios.write_bytes(f"version 1\n{size}\ta.map\t3\t3\t0\t0\t1\t1\t1.0\n".encode())
+    with pytest.raises(
+        ValueError, match=rf"^{scenarios}:2: bucket 999999\.\.\. \({digits} digits\)"
+    ):
+        read_movingai_scenarios(scenarios)

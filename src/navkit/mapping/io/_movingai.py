@@ -536,12 +536,21 @@ def _map_header(fh: BinaryIO, file: Path) -> tuple[int, int, int]:
     if header["type"] != "octile":
         raise ValueError(f"{file}: type {header['type']!r}, expected 'octile'")
     rows, cols = (_size(header[key], key, file) for key in ("height", "width"))
-    if rows * cols > MAX_MAP_CELLS:
+    cells = rows * cols
+    if cells > MAX_MAP_CELLS:
+        # Sizes of hundreds of digits fit a header line: 4.0 * cells raised OverflowError.
+        size = 4.0 * cells if cells.bit_length() < 1000 else math.inf
         raise ValueError(
-            f"{file}: {rows} x {cols} cells, more than 2**26 = {MAX_MAP_CELLS} "
-            f"({bytes_text(4.0 * rows * cols)} of <U1 terrain; 256 MiB at most)"
+            f"{file}: {_digits(rows)} x {_digits(cols)} cells, more than 2**26 = "
+            f"{MAX_MAP_CELLS} ({bytes_text(size)} of <U1 terrain; 256 MiB at most)"
         )
     return rows, cols, number
+
+
+def _digits(n: int) -> str:
+    """``n`` for a message: written out up to 20 digits, else its first digits and length."""
+    text = str(n)
+    return text if len(text) <= 20 else f"{text[:6]}... ({len(text)} digits)"
 
 
 def _ascii_line(raw: bytes, file: Path, number: int, kind: str) -> str:
@@ -677,10 +686,13 @@ def read_movingai_scenarios(path: str | os.PathLike[str]) -> MovingAIScenarios:
             # Python ints here: NumPy's int64 table raised a bare OverflowError.
             if height * width > MAX_CELLS:
                 raise ValueError(
-                    f"{file}:{number}: a map of {height} x {width} cells, more than {MAX_CELLS}"
+                    f"{file}:{number}: a map of {_digits(height)} x {_digits(width)} cells, more "
+                    f"than {MAX_CELLS}"
                 )
             if bucket > _INT64_MAX:
-                raise ValueError(f"{file}:{number}: bucket {bucket} is more than {_INT64_MAX}")
+                raise ValueError(
+                    f"{file}:{number}: bucket {_digits(bucket)} is more than {_INT64_MAX}"
+                )
             name = fields[1].strip()
             if not name:
                 raise ValueError(f"{file}:{number}: an empty map name")
