@@ -548,9 +548,9 @@ def _map_header(fh: BinaryIO, file: Path) -> tuple[int, int, int]:
 
 
 def _digits(n: int) -> str:
-    """``n`` for a message: written out up to 20 digits, else its first digits and length."""
+    """``n`` for a message: written out up to 40 digits, else its first digits and length."""
     text = str(n)
-    return text if len(text) <= 20 else f"{text[:6]}... ({len(text)} digits)"
+    return text if len(text) <= 40 else f"{text[:6]}... ({len(text)} digits)"
 
 
 def _ascii_line(raw: bytes, file: Path, number: int, kind: str) -> str:
