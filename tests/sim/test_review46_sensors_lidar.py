@@ -392,3 +392,47 @@ def test_angle_jitter_casts_off_the_nominal_beam() -> None:
     assert abs(float(ratio.mean()) - math.exp(-s * s / 2.0)) < 5.0 * spread / math.sqrt(n)
     # Reported at the nominal angle, as a real scanner does.
     assert lidar.scan(world, (0.0, 0.0, 0.0), seed=rng).angles().tolist() == [0.0]
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_large_sparse_grids_jump_across_free_squares_exactly(seed: int) -> None:
+    """Hundreds of cells between obstacles: the walk's jumps (free squares) miss nothing."""
+    rng = np.random.default_rng(300 + seed)
+    rows, cols = (int(v) for v in rng.integers(300, 500, 2))
+    blocked = rng.random((rows, cols)) < 0.0005
+    blocked[0, :] = True  # one long wall along the map's bottom row
+    res = 0.1
+    origin = (float(rng.uniform(-2, 2)), float(rng.uniform(-2, 2)),
+              float(rng.choice([0.0, math.pi / 2, rng.uniform(-math.pi, math.pi)])))  # fmt: skip
+    world = World(grid=OccupancyGrid(np.where(blocked, 10.0, -10.0), resolution=res,
+                                     origin=origin))  # fmt: skip
+    c, s = math.cos(origin[2]), math.sin(origin[2])
+    for _ in range(4):
+        u, v = float(rng.uniform(0.0, cols * res)), float(rng.uniform(0.0, rows * res))
+        pose = (origin[0] + c * u - s * v, origin[1] + s * u + c * v,
+                float(rng.uniform(-math.pi, math.pi)))  # fmt: skip
+        range_max = float(rng.choice([60.0, rng.uniform(1.0, 20.0)]))
+        lidar = Lidar(n_beams=48, noise=None, range_min=0.0, range_max=range_max)
+        ranges = lidar.scan(world, pose).ranges
+        for k, a in enumerate(documented_angles(48, 2.0 * math.pi)):
+            expected = cell_face_range(blocked, res, origin, pose[0], pose[1], pose[2] + a,
+                                       range_max)  # fmt: skip
+            assert close(expected, float(ranges[k])), (k, expected, ranges[k])
+
+
+def test_thousands_of_walls_and_rings_match_shapely_and_the_quadratic() -> None:
+    """A cluttered world (the edge index's many cells): shapely for the walls, exact rings."""
+    rng = np.random.default_rng(46)
+    starts = rng.uniform(-50.0, 50.0, (1500, 2))
+    ends = starts + rng.normal(scale=2.0, size=(1500, 2))
+    walls = [LineString([tuple(a), tuple(b)]) for a, b in zip(starts, ends, strict=True)]
+    rings = [(tuple(rng.uniform(-50.0, 50.0, 2)), float(rng.uniform(0.1, 2.0))) for _ in range(20)]
+    world = World(walls + [Circle(cc, r, solid=False) for cc, r in rings])
+    for _ in range(3):
+        ox, oy = (float(v) for v in rng.uniform(-55.0, 55.0, 2))
+        angles = rng.uniform(-math.pi, math.pi, 40)
+        got = world.raycast((ox, oy, 0.0), angles, range_max=200.0)
+        for a, g in zip(angles.tolist(), got.tolist(), strict=True):
+            expected = min([shapely_range(walls, [], ox, oy, a, 200.0)]
+                           + [circle_range(cc, r, ox, oy, a) for cc, r in rings])  # fmt: skip
+            assert close(expected, g), (ox, oy, a, expected, g)
