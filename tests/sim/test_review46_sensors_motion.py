@@ -118,7 +118,7 @@ def test_wheel_radius_errors_move_the_robot_by_the_true_radii() -> None:
 def test_a_command_beyond_the_wheel_limit_is_scaled_along_its_direction() -> None:
     """Every wheel speed scaled by max / peak: the twist by that factor, its arc's shape kept."""
     cmd = (1.0, 0.5, 3.0)
-    a = np.asarray(OMNI3.wheel_angles)
+    a = np.radians([30.0, 150.0, 270.0])  # three_wheel's layout, as documented
     wheels = -np.sin(a) * cmd[0] + np.cos(a) * cmd[1] + OMNI3.base_radius * cmd[2]
     wheels /= OMNI3.wheel_radius
     limit = 20.0

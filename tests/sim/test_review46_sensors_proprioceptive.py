@@ -49,20 +49,23 @@ def wheel_speeds(drive: DiffDrive | OmniDrive, vx: float, vy: float, omega: floa
         return [(v - half) / mpmath.mpf(drive.left_radius),
                 (v + half) / mpmath.mpf(drive.right_radius)]  # fmt: skip
     r, base = mpmath.mpf(drive.wheel_radius), mpmath.mpf(drive.base_radius)
+    # The layouts as stated (not read back from the drive): 30/150/270° for three wheels.
+    degrees = WHEEL_DEGREES[drive.n_wheels]
     return [(-mpmath.sin(a) * v + mpmath.cos(a) * mpmath.mpf(vy) + base * w) / r
-            for a in (mpmath.mpf(float(t)) for t in drive.wheel_angles)]  # fmt: skip
+            for a in (mpmath.radians(d) for d in degrees)]  # fmt: skip
 
 
 def exact_ticks(rate_rad: mpmath.mpf, t: float, tpr: float) -> int:
     return int(mpmath.floor(rate_rad * mpmath.mpf(t) / (2 * mpmath.pi) * mpmath.mpf(tpr)))
 
 
+WHEEL_DEGREES = {3: (30, 150, 270), 5: (10, 80, 170, 200, 300)}
 DRIVES = {
     "diff, unequal radii": (DiffDrive(track=0.3, left_radius=0.05, right_radius=0.062),
                             (0.4, 0.0, 0.7)),
     "omni 30/150/270": (OmniDrive.three_wheel(wheel_radius=0.04, base_radius=0.2),
                         (0.3, -0.2, 0.5)),
-    "omni, 5 uneven wheels": (OmniDrive(np.radians([10.0, 80.0, 170.0, 200.0, 300.0]),
+    "omni, 5 uneven wheels": (OmniDrive(np.radians(WHEEL_DEGREES[5]),
                                         wheel_radius=0.035, base_radius=0.25),
                               (0.25, 0.3, -0.9)),
 }  # fmt: skip
