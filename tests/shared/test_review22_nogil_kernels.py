@@ -42,7 +42,7 @@ from thread_runs import lines_beside_python
 RELEASING = {
     "estimation._fusion_kernels": {"planar_run"},
     "mapping._cells_near_kernels": {"cells_near_kernel"},
-    "mapping._edt_kernels": {"band_distances", "below_checkpoints"},
+    "mapping._edt_kernels": {"band_distances"},
     "mapping._raycast_kernels": {"integrate_beams"},
     "mapping._scan_matcher_kernels": {"match_level", "correlative_search_kernel"},
     "planning.grid._astar_kernels": {"grid_search"},

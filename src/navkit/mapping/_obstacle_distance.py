@@ -15,7 +15,7 @@ from collections.abc import Iterator
 import numpy as np
 
 from navkit._shared.types import BoolArray, FloatArray
-from navkit.mapping._edt_kernels import band_distances, below_checkpoints
+from navkit.mapping._edt_kernels import band_distances
 
 __all__ = ["CELL_EPS", "Band", "obstacle_distance", "obstacle_distance_bands"]
 
@@ -139,7 +139,6 @@ def _row_bands(
                 yield (slice(r0, r1), every_col), into[r0:r1]
         return
     below = np.empty((-(-rows // band), cols), dtype=np.int64)
-    below_checkpoints(occupied, band, below)
     above = np.full(cols, -1, dtype=np.int64)
     g = np.empty((min(band, rows), cols), dtype=np.int64)
     s = np.empty(cols, dtype=np.int64)
@@ -147,7 +146,7 @@ def _row_bands(
     for b, r0 in enumerate(range(0, rows, band)):
         r1 = min(rows, r0 + band)
         out = np.empty((r1 - r0, cols), dtype=np.float64) if into is None else into[r0:r1]
-        band_distances(occupied, r0, above, below[b], rows + cols, g[: r1 - r0], s, t, out)
+        band_distances(occupied, band, b, above, below, rows + cols, g[: r1 - r0], s, t, out)
         yield (slice(r0, r1), every_col), out
         # Not kept while the next band's array is made: with a caller that lets go of
         # it too, one band's distances at a time (16 bytes a cell, not 24; review 45).
