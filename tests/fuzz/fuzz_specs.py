@@ -95,6 +95,7 @@ from navkit.mapping import (
     LocalGrid,
     OccupancyGrid,
     costmap,
+    distance_transform,
     integrate_scan,
     rasterize_polygons,
     traversal_costs,
@@ -706,6 +707,14 @@ spec(
     lambda c: method(grid(), "obstacle_distance", occupied_thresh=0.6),
     kinds={"occupied_thresh": Real(optional=True)},
     inf_ok="a grid with no occupied cell is infinitely far from obstacles",
+)
+# EDT2 (review 46): the same transform of any mask (the diff-astar localiser's
+# blocked and free cells); inf everywhere for a mask with no True cell.
+spec(
+    "navkit.mapping.distance_transform",
+    lambda c: call(distance_transform, OCCUPIED.copy(), resolution=0.1),
+    kinds={"mask": Array(boolean=True)},
+    inf_ok="a mask with no True cell is infinitely far from every cell",
 )
 # CELLS (session 25): OccupancyGrid.cells_near, the cells new obstacle points block.
 # Points inside, outside (0.6 m left of the map: its cells near the edge) and in one cell.

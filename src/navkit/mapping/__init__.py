@@ -11,6 +11,8 @@ float ``(row, col)`` with integers at cell centres.
   :func:`rasterize_polygons`, :func:`costmap`, :func:`traversal_costs`,
   :func:`integrate_scan` and :mod:`navkit.mapping.io`.
 * :class:`LaserScan` and the robot-centred :class:`LocalGrid`.
+* :func:`distance_transform`: the exact Euclidean distance transform of any
+  boolean mask of cells (``OccupancyGrid.obstacle_distance``'s, of other cells).
 * :func:`validate_costs`: the grid planners' traversal-cost convention.
 * :mod:`navkit.mapping.io`: map files, ROS messages and CARMEN logs.
 
@@ -50,6 +52,7 @@ array([[0, 0, 1, 0],
 """
 
 from navkit.mapping._costs import costmap, traversal_costs, validate_costs
+from navkit.mapping._distance_transform import distance_transform
 from navkit.mapping._grid import OccupancyGrid
 from navkit.mapping._local_grid import LocalGrid
 from navkit.mapping._rasterize import rasterize_polygons
@@ -66,6 +69,7 @@ __all__ = [
     "ScanMatchResult",
     "ScanMatcher",
     "costmap",
+    "distance_transform",
     "integrate_scan",
     "rasterize_polygons",
     "traversal_costs",

@@ -20,7 +20,7 @@ import numpy as np
 from navkit._shared.types import FloatArray
 from navkit.geometry import Pose2D, Twist2D, integrate
 from navkit.kinematics import DiffDrive
-from navkit.mapping import OccupancyGrid
+from navkit.mapping import OccupancyGrid, distance_transform
 from navkit.sim import EncoderReading, Lidar, Reading, ScanReading
 from navkit.sim.scenarios._diff_astar_kernels import match_scan
 
@@ -99,14 +99,19 @@ class LikelihoodField:
         blocked = ~grid.free()
         if not blocked.any():
             return cls(grid, np.full(grid.shape, float(clip)), clip=clip)
-        from scipy import ndimage
-
         half = 0.5 * grid.resolution
-        outside = np.asarray(ndimage.distance_transform_edt(~blocked), dtype=np.float64)
-        dist = outside * grid.resolution - half
-        if (~blocked).any():
-            inside = np.asarray(ndimage.distance_transform_edt(blocked), dtype=np.float64)
-            dist[blocked] = half - inside[blocked] * grid.resolution
+        # navkit's banded transform: SciPy's distances times the resolution bit for
+        # bit, without SciPy's whole-grid work arrays (review 46).
+        dist = distance_transform(blocked, resolution=grid.resolution)
+        np.subtract(dist, half, out=dist)
+        free = ~blocked
+        if free.any():
+            inside = distance_transform(free, resolution=grid.resolution)
+            dist[blocked] = half - inside[blocked]
+            # Gone before the field's clipped copy is made: 18 bytes a cell at the
+            # peak, not 26 (SciPy's two transforms peaked at 50).
+            del inside
+        del free, blocked
         return cls(grid, dist, clip=clip)
 
     @classmethod
