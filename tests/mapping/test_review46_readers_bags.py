@@ -11,6 +11,7 @@ reader can tell.
 from __future__ import annotations
 
 import random
+import re
 import struct
 import sys
 from collections.abc import Callable
@@ -131,3 +132,70 @@ def test_a_scan_declaring_too_many_ranges_is_refused_without_allocating_them(
     peak, message = peak_bytes(read)
     assert message.startswith(str(path))
     assert peak < 8 * len(data)  # the bag read whole, not 4 bytes x 2**31
+
+
+def _scan_bag(path: Path, count: int) -> None:
+    """An uncompressed ROS 1 bag of ``count`` scans (rosbags' own writer: a sound index)."""
+    from rosbags.rosbag1 import Writer
+    from rosbags.typesys import Stores, get_typestore
+
+    store = get_typestore(Stores.ROS1_NOETIC)
+    types = store.types
+    with Writer(path) as writer:
+        conn = writer.add_connection("/scan", "sensor_msgs/msg/LaserScan", typestore=store)
+        for k in range(count):
+            stamp = types["builtin_interfaces/msg/Time"](sec=100 + k, nanosec=0)
+            msg = types["sensor_msgs/msg/LaserScan"](
+                header=types["std_msgs/msg/Header"](seq=k, stamp=stamp, frame_id="laser"),
+                angle_min=-1.0, angle_max=1.0, angle_increment=0.5, time_increment=0.0,
+                scan_time=0.1, range_min=0.1, range_max=5.0,
+                ranges=np.arange(1, 6, dtype=np.float32), intensities=np.zeros(0, np.float32),
+            )  # fmt: skip
+            raw = store.serialize_ros1(msg, "sensor_msgs/msg/LaserScan")
+            writer.write(conn, (100 + k) * 10**9, raw)
+
+
+def _message_fields(data: bytes) -> list[tuple[int, int]]:
+    """(offset of the op value, offset of the conn value) of each message record's header."""
+    out = []
+    for match in re.finditer(b"op=\x02", data):
+        op = match.start() + 3
+        out.append((op, data.index(b"conn=", op - 40, op + 40) + 5))  # fields in any order
+    return out
+
+
+@pytest.mark.parametrize("field", ["op", "conn"])
+def test_a_damaged_message_record_is_refused_not_dropped(tmp_path: Path, field: str) -> None:
+    """rosbags refuses the bag; the chunk walker then read the others, dropping the damaged
+    message unseen: it now counts each chunk's messages against its chunk info record."""
+    path = tmp_path / "scans.bag"
+    _scan_bag(path, 10)
+    assert len(read_bag_scans(path)) == 10
+    data = bytearray(path.read_bytes())
+    op, conn = _message_fields(bytes(data))[3]
+    if field == "op":
+        data[op] = 3  # a bag header record's op
+    else:
+        data[conn] ^= 1  # connection 1, which the bag does not declare
+    path.write_bytes(bytes(data))
+    with pytest.raises(ValueError, match="holds 9 messages of connection 0, its chunk info"):
+        read_bag_scans(path)
+
+
+@pytest.mark.parametrize("field", ["op", "conn"])
+def test_a_damaged_message_record_of_the_real_demo_bag_is_refused(
+    shared_data: Path, tmp_path: Path, field: str
+) -> None:
+    """demo.bag is always read by the chunk walker (its index data record is damaged)."""
+    data = bytearray((shared_data / DEMO / "demo.bag").read_bytes())
+    op, conn = _message_fields(bytes(data))[100]
+    if field == "op":
+        data[op] = 3
+    else:
+        data[conn] ^= 1
+    path = tmp_path / "demo.bag"
+    path.write_bytes(bytes(data))
+    with pytest.raises(
+        ValueError, match=r"^" + str(path) + r": cannot read the ROS 1 bag: .*holds"
+    ):
+        read_bag_scans(path)

@@ -947,7 +947,12 @@ def _op(fields: dict[str, bytes]) -> int:
 
 def _walk_ros1(bag_path: Path) -> _Bag:
     """Read a ROS 1 bag through its connection and chunk-info records (the chunks' own indexes
-    are not used)."""
+    are not used).
+
+    Each chunk must hold, connection by connection, the messages its chunk-info
+    record counts: a message record whose ``op`` or ``conn`` field is damaged
+    (ROS 1 bags carry no checksum) was otherwise dropped without a word.
+    """
     with open_regular(bag_path, "ROS bag") as fh:
         data = fh.read()
     header, _, _ = _record(data, len(_ROS1_MAGIC))
@@ -967,12 +972,23 @@ def _walk_ros1(bag_path: Path) -> _Bag:
         conns[_int(fields, "conn", "<I")] = (topic, _normalize(msgtype))
     chunks = []
     for _ in range(_int(header, "chunk_count", "<I")):
-        fields, _, pos = _record(data, pos)
+        fields, body, pos = _record(data, pos)
         if _op(fields) != 6:
             raise _Corrupt("expected a chunk info record in the index")
-        chunks.append(_int(fields, "chunk_pos", "<Q"))
+        chunk_pos = _int(fields, "chunk_pos", "<Q")
+        listed = _int(fields, "count", "<I")
+        if len(body) != 8 * listed:
+            raise _Corrupt(
+                f"the chunk info record of the chunk at byte {chunk_pos} lists {listed} "
+                f"connections in {len(body)} bytes (8 bytes each)"
+            )
+        declared: dict[int, int] = {}
+        for conn_id, count in struct.iter_unpack("<II", body):
+            declared[conn_id] = declared.get(conn_id, 0) + count
+        chunks.append((chunk_pos, declared))
     messages: list[tuple[int, int, bytes]] = []
-    for chunk_pos in chunks:
+    for chunk_pos, declared in chunks:
+        found = dict.fromkeys(declared, 0)
         fields, body, _ = _record(data, chunk_pos)
         if _op(fields) != 5:
             raise _Corrupt(f"no chunk record at byte {chunk_pos}")
@@ -984,7 +1000,16 @@ def _walk_ros1(bag_path: Path) -> _Bag:
             if _op(rec) == 2:
                 stamp = _int(rec, "time", "<Q")
                 ns = (stamp & 0xFFFFFFFF) * 1_000_000_000 + (stamp >> 32)
-                messages.append((ns, _int(rec, "conn", "<I"), payload))
+                conn_id = _int(rec, "conn", "<I")
+                found[conn_id] = found.get(conn_id, 0) + 1
+                messages.append((ns, conn_id, payload))
+        for conn_id in sorted(found.keys() | declared.keys()):
+            if found.get(conn_id, 0) != declared.get(conn_id, 0):
+                raise _Corrupt(
+                    f"the chunk at byte {chunk_pos} holds {found.get(conn_id, 0)} messages "
+                    f"of connection {conn_id}, its chunk info record "
+                    f"{declared.get(conn_id, 0)}"
+                )
     messages.sort(key=lambda m: m[0])
     # Tabulated as rosbags does: by (topic, type), connections of both alike summed; a
     # connection without messages still lists its stream (count 0). Messages of a
@@ -1187,7 +1212,9 @@ def read_bag_scans(path: str | os.PathLike[str], *, topic: str | None = None) ->
         its ``metadata.yaml`` declares (damaged, or stale metadata). ROS 1
         bags whose index records are damaged (which ``rosbags`` refuses, or
         reads short of the counts the chunk-info records give) are read
-        through their chunk records.
+        through their chunk records, each of which must hold the messages
+        its chunk-info record counts (a damaged message record is refused,
+        not dropped).
 
     Examples
     --------
