@@ -34,14 +34,28 @@ __all__ = [
     "kernels_cached",
 ]
 
+#: Compiling the exact distance transform behind every costmap
+#: (``navkit.mapping._edt_kernels``), s: part of each kind of work below (``navkit
+#: plan`` inflates its map; so do the scenarios on maps, and diff-astar's
+#: localiser transforms its map too). A cold ``navkit plan``'s warm-up with the
+#: transform already cached took 0.4-0.7 s less (review 46).
+_DISTANCE_TRANSFORM = 0.5
+
 #: Key kernels of each kind of work, ``(package, module, function)``, and about
-#: how long compiling everything that work needs takes on a cold cache, s
-#: (measured on 2 cores).
+#: how long compiling everything that work needs takes on a cold cache, s: its
+#: own kernels and the distance transform. CPU seconds of a cold ``navkit plan``
+#: warm-up (2.4-2.6 s with A*, 4.1-4.4 s with Field D*) and of a cold one-trial
+#: ``navkit run diff-astar`` or ``demo`` less a warm one (9.4-10.1 s), on a busy
+#: 2-core machine, 2026-12-07 (review 46: Field D*'s 8 s dated from 2026-12-01,
+#: before its first use got cheaper, and none counted the distance transform).
 KERNELS: dict[str, tuple[tuple[str, str, str], float]] = {
     # _sample: called by both run kernels (edges-only worlds and the rest).
-    "simulation": (("navkit.sim", "_segment_kernels", "_sample"), 10.0),
-    "astar": (("navkit.planning.grid", "_astar_kernels", "grid_search"), 3.0),
-    "field_dstar": (("navkit.planning.grid", "_field_path_kernels", "extract_path"), 8.0),
+    "simulation": (("navkit.sim", "_segment_kernels", "_sample"), 9.5 + _DISTANCE_TRANSFORM),
+    "astar": (("navkit.planning.grid", "_astar_kernels", "grid_search"), 2.1 + _DISTANCE_TRANSFORM),
+    "field_dstar": (
+        ("navkit.planning.grid", "_field_path_kernels", "extract_path"),
+        3.8 + _DISTANCE_TRANSFORM,
+    ),
 }
 
 
