@@ -10,6 +10,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike
 
+from navkit._shared.angles import wrap_float
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.types import IntArray
 from navkit._shared.validation import (
@@ -39,13 +40,46 @@ _MAX_RATE_NOISE = 100.0  # rad/s
 _MAX_ACCEL_NOISE = 1000.0  # m/s²
 
 
-def _bounded(value: object, name: str, low: float, high: float, unit: str) -> float:
+#: Largest |angle| (rad) an out-of-range message offers to wrap: beyond it the angle
+#: has lost the digits that say where in its turn it is (the bound of heading_deg's yaw).
+_WRAP_HINT_MAX = 1e6
+
+
+def _pi_text(x: float) -> str:
+    """``x`` as ``-2π`` .. ``2π`` when it is such a multiple of π, else as ``:g`` shows it."""
+    for k, text in ((-2.0, "-2π"), (-1.0, "-π"), (1.0, "π"), (2.0, "2π")):
+        if x == k * math.pi:
+            return text
+    return f"{x:g}"
+
+
+def _bounded(
+    value: object, name: str, low: float, high: float, unit: str, *, periodic: bool = False
+) -> float:
+    """``value`` as a finite float in ``[low, high]`` (TypeError, ValueError naming ``name``).
+
+    A ``"rad"`` value out of range gets a hint for each reading that would fit:
+    a ``periodic`` angle (the same direction a turn later) wrapped to (-π, π],
+    and a value whose radians would fit, taken for degrees; the likelier first
+    (radians within two turns, degrees beyond), none when neither fits.
+    """
     out = finite_float(value, name)
     if not low <= out <= high:
-        hint = ""
+        hints = []
+        if unit == "rad" and periodic and abs(out) <= _WRAP_HINT_MAX:
+            hints.append(
+                f"radians? navkit.geometry.wrap_angle({out!r}) is {wrap_float(out)!r}, "
+                "the same direction"
+            )
         if unit == "rad" and low <= math.radians(out) <= high:
-            hint = f" (degrees? pass math.radians({out:g}))"
-        raise ValueError(f"{name} must lie in [{low:g}, {high:g}] {unit}, got {out}{hint}")
+            degrees = f"degrees? pass math.radians({out!r})"
+            if abs(out) <= 2.0 * _TWO_PI:
+                hints.append(degrees)
+            else:
+                hints.insert(0, degrees)
+        hint = f" ({'; or '.join(hints)})" if hints else ""
+        shown = f"[{_pi_text(low)}, {_pi_text(high)}]" if unit == "rad" else f"[{low:g}, {high:g}]"
+        raise ValueError(f"{name} must lie in {shown} {unit}, got {out!r}{hint}")
     return out
 
 
@@ -82,12 +116,18 @@ class Compass:
         A parameter of the wrong type.
     ValueError
         A parameter outside its range (a ``rate`` not > 0 included), NaN or
-        inf.
+        inf. An angle out of range is offered each reading that would fit:
+        ``north`` or ``bias`` wrapped to (-π, π] (the same direction, up to
+        ±1e6 rad) and, where its radians would fit, the value taken for
+        degrees.
 
     Examples
     --------
     >>> Compass(noise=0.01).rate
     20.0
+    >>> Compass(north=3 * math.pi)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ValueError: north must lie in [-2π, 2π] rad, got 9.42... (radians? ... is 3.14159..., ...)
     """
 
     noise: float = 0.0
@@ -100,10 +140,10 @@ class Compass:
         object.__setattr__(
             self, "noise", _bounded(self.noise, "noise", 0.0, _MAX_ANGLE_NOISE, "rad")
         )
-        object.__setattr__(self, "bias", _bounded(self.bias, "bias", -math.pi, math.pi, "rad"))
-        object.__setattr__(
-            self, "north", _bounded(self.north, "north", -2.0 * math.pi, 2.0 * math.pi, "rad")
-        )
+        bias = _bounded(self.bias, "bias", -math.pi, math.pi, "rad", periodic=True)
+        object.__setattr__(self, "bias", bias)
+        north = _bounded(self.north, "north", -_TWO_PI, _TWO_PI, "rad", periodic=True)
+        object.__setattr__(self, "north", north)
         object.__setattr__(self, "rate", check_rate(self.rate))
         object.__setattr__(self, "latency", check_latency(self.latency))
 
@@ -139,8 +179,9 @@ class Compass:
         """
         yaw = finite_float(yaw, "yaw")
         z = finite_float(z, "z")
-        if abs(yaw) > 1e6 or abs(z) > 1e6:
-            raise ValueError("yaw and z must lie within ±1e6")
+        for name, x in (("yaw", yaw), ("z", z)):
+            if abs(x) > 1e6:
+                raise ValueError(f"{name} must lie within ±1e6, got {x!r}")
         deg = math.degrees(self.north - yaw + self.bias + self.noise * z) % 360.0
         return 0.0 if deg >= 360.0 else deg
 
@@ -328,8 +369,9 @@ class WheelEncoders:
         array([  512, 65536,    -1])
         """
         wheel_angles = as_float_array(wheel_angles, "wheel_angles", ndim=1)
-        if wheel_angles.size and float(np.max(np.abs(wheel_angles))) > 1e9:
-            raise ValueError("wheel_angles must lie within ±1e9 rad")
+        worst = float(np.max(np.abs(wheel_angles))) if wheel_angles.size else 0.0
+        if worst > 1e9:
+            raise ValueError(f"wheel_angles must lie within ±1e9 rad, got |angle| {worst!r}")
         tpr = self.ticks_per_rev
         q = np.floor(wheel_angles * (tpr / _TWO_PI))
         # The product rounds: an angle on a boundary (n whole turns, n * 2 * math.pi) can
@@ -398,6 +440,30 @@ def real_float(
     return finite_float(value, name)
 
 
+def _python_counts(value: object, raw: np.ndarray[Any, Any]) -> np.ndarray[Any, Any]:
+    """Python ints that fit no NumPy integer dtype together, as uint64 modulo 2**64.
+
+    ``raw`` is ``np.asarray(value)``; returned as it is unless ``value`` holds only
+    (non-bool) Python or NumPy integers (each element then in the 64-bit counter
+    range, ``[-2**63, 2**64)``, ValueError otherwise).
+    """
+    items = np.array(value, dtype=object)
+    if (
+        items.ndim != 1
+        or items.size == 0
+        or not all(
+            isinstance(k, (int, np.integer)) and not isinstance(k, (bool, np.bool_)) for k in items
+        )
+    ):
+        return raw
+    for k in items:
+        if not -(2**63) <= k < 2**64:
+            raise ValueError(
+                f"ticks must be 64-bit counter readings, in [-2**63, 2**64), got {int(k)}"
+            )
+    return np.array([int(k) % 2**64 for k in items], dtype=np.uint64)
+
+
 def _readonly_ints(value: object) -> IntArray:
     if isinstance(value, (str, bytes)):
         raise TypeError(f"ticks must be an integer array, got {type(value).__name__}")
@@ -406,10 +472,16 @@ def _readonly_ints(value: object) -> IntArray:
         raw = np.asarray(value)
     except (ValueError, TypeError) as exc:
         raise TypeError(f"ticks must be an integer array: {exc}") from None
+    if raw.dtype.kind in "fO" and not isinstance(value, np.ndarray):
+        # Python ints NumPy gives no integer dtype: beyond the int64 range (object),
+        # or negative ones beside ones of 2**63 or more (float64, rounded).
+        raw = _python_counts(value, raw)
     if raw.dtype.kind not in "iu":
         raise TypeError(f"ticks must be an integer array, got dtype {raw.dtype}")
     if raw.ndim != 1:
         raise ValueError(f"ticks must be one-dimensional, got shape {raw.shape}")
+    # Modulo 2**64 (two's complement): uint64 counts of 2**63 or more become
+    # count - 2**64, the same 64-bit counter reading (see EncoderReading).
     arr = np.array(raw, dtype=np.int64, copy=True)
     arr.flags.writeable = False
     return arr
@@ -425,7 +497,14 @@ class ScanReading:
     stamp : float
         Time the scan was taken, s (finite).
     scan : LaserScan
-        The scan, in the sensor frame.
+        The scan, in the sensor frame: beam angles from the x axis of the
+        LiDAR's ``mount`` (its pose in the robot frame, see
+        :class:`~navkit.sim.Lidar`), which is the robot frame only for the
+        default mount. ``scan.to_points(pose @ lidar.mount)`` gives the world
+        points at robot ``pose``; consumers that take a scan in the robot
+        frame take ``mount=lidar.mount``
+        (:func:`~navkit.planning.repulsive_force_from_scan`,
+        :meth:`~navkit.control.PotentialFieldController.step`).
 
     Raises
     ------
@@ -462,19 +541,36 @@ class EncoderReading:
     ticks : ndarray of int64, shape (N,)
         Counter of each wheel (``[left, right]`` for a differential drive), as
         :meth:`WheelEncoders.ticks` gives them; stored as a read-only copy
-        (read-only in copies and unpickled readings too).
+        (read-only in copies and unpickled readings too). Integers of any
+        NumPy dtype, or Python ints in ``[-2**63, 2**64)``, are kept modulo
+        ``2**64``: an unsigned 64-bit count of ``2**63`` or more (a driver's
+        uint64 counter) is stored as ``count - 2**64``, the same counter bits
+        read as int64, which is how a 64-bit counter wraps here anyway (see
+        :class:`WheelEncoders`). Decode changes with
+        :func:`navkit.kinematics.tick_delta` and the counter's ``bits`` (64
+        for such counts), never by subtracting readings.
 
     Raises
     ------
     TypeError
-        ``stamp`` not a real number, ``ticks`` not an integer array.
+        ``stamp`` not a real number, ``ticks`` not an integer array (floats
+        and booleans included).
     ValueError
-        ``stamp`` NaN or infinite, ``ticks`` not one-dimensional.
+        ``stamp`` NaN or infinite, ``ticks`` not one-dimensional, or a Python
+        int outside ``[-2**63, 2**64)``.
 
     Examples
     --------
     >>> EncoderReading(0.02, np.array([10, 12])).ticks.tolist()
     [10, 12]
+
+    A uint64 counter past ``2**63`` reads as int64; its changes are as counted:
+
+    >>> from navkit.kinematics import tick_delta
+    >>> before = EncoderReading(0.0, np.array([2**63 - 2], dtype=np.uint64))
+    >>> after = EncoderReading(0.02, np.array([2**63 + 3], dtype=np.uint64))
+    >>> after.ticks.tolist(), tick_delta(before.ticks, after.ticks, bits=64).tolist()
+    ([-9223372036854775805], [5])
     """
 
     stamp: float
