@@ -44,7 +44,8 @@ def distance_transform(mask: ArrayLike, *, resolution: float) -> FloatArray:
     ndarray of float64, shape (rows, cols)
         New array of distances, m: bit for bit
         ``scipy.ndimage.distance_transform_edt(~mask) * resolution`` when
-        ``mask`` has a True cell (SciPy answers nonsense when it has none).
+        ``mask`` has a True cell (with none, SciPy's measures to a cell
+        outside the array, above its first row).
 
     Raises
     ------
