@@ -1,10 +1,10 @@
 """DiffOdometry on the Husky's real motion, against dead reckoning written here (review 46).
 
 robot_localization's test1 bag records the Husky's wheel odometry as twists
-(v, ω) at 10 Hz, not encoder counts. Its 395 s drive (359 m, turns of up to
-0.6 rad/s, reversing) is turned into the counts of 16-bit wheel encoders
-(10,000 a turn on 0.1651 m wheels 0.555 m apart, Clearpath's Husky: each
-counter wraps every 10.4 m of its wheel, about 35 times over the run), and
+(v, ω) at 10 Hz, not encoder counts. Its 395 s drive (359 m at up to
+1.02 m/s, turns of up to 0.54 rad/s) is turned into the counts of 16-bit
+wheel encoders (10,000 a turn on 0.1651 m wheels 0.555 m apart, about a
+Husky's: each counter wraps every 6.8 m of its wheel, 52 times over the run), and
 ``DiffOdometry`` integrates them. The reference is written here from the
 textbook equations on the same integer counts (distances ``Δn · 2πr / N``;
 heading change ``(d_r - d_l) / b``; the exact arc ``d sin(Δθ)/Δθ``,
