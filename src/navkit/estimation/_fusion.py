@@ -740,7 +740,18 @@ class PlanarFusion(GaussianEstimate):
         quantile of this probability for their dimension (Mahalanobis gate). A
         probability, not a threshold: ``ExtendedKalmanFilter.update(gate=)``
         takes the quantile itself, ``scipy.stats.chi2.ppf(gate_probability, m)``
-        for a measurement of dimension ``m``.
+        for a measurement of dimension ``m``. robot_localization's
+        ``*_rejection_threshold`` is a Mahalanobis distance, the square root
+        of an NIS threshold, one for every dimension. The gate trusts the
+        process noise and the variances: readings that change faster than
+        the process noise allows, or a sensor whose variances are too small,
+        are rejected as outliers would be, and a rate left uncorrected puts
+        the next reading further off, so the rejections can go on for
+        seconds. On robot_localization's test2 bag, fused as its own test
+        fuses it but gated at 0.997, 6,581 of 12,243 readings were rejected
+        and the end moved 34 m (0.013 m from that test's accepted end
+        without the gate; review 46). robot_localization gates nothing by
+        default.
     history : float, optional
         Keyword-only, s, finite and >= 0 (default 0): how far back before the
         filter time a late measurement is still fused online, as
