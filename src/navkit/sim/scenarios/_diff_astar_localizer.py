@@ -178,7 +178,10 @@ class ScanLocalizer:
     drive : DiffDrive
         The nominal drive (the odometry's wheel radii and track).
     lidar : Lidar
-        The scanner (mounted at the robot's centre); its noise sets the beam weights.
+        The scanner: its ``mount`` (pose in the robot frame) places the beams'
+        end points on the robot (``scan.to_points(lidar.mount)``), so the match
+        solves for the robot's pose wherever the scanner sits; its noise sets
+        the beam weights.
     ticks_per_rev : float
         Encoder resolution.
     bits : int or None
@@ -216,6 +219,7 @@ class ScanLocalizer:
         "_frame",
         "_iterations",
         "_last_ticks",
+        "_mount",
         "_odom",
         "_out",
         "_pending",
@@ -257,6 +261,10 @@ class ScanLocalizer:
         self._odom = start
         self._correction = Pose2D(0.0, 0.0, 0.0)  # map <- odom
         self._pending: ScanReading | None = None
+        mount = lidar.mount
+        # None for a scanner at the centre facing forward: its sensor-frame points
+        # are the robot's as they are (the scenario's; not recomputed, bit for bit).
+        self._mount = None if mount.x == 0.0 and mount.y == 0.0 and mount.theta == 0.0 else mount
         noise = lidar.noise
         if noise is None:
             self._bands: tuple[FloatArray, FloatArray] | None = None
@@ -318,7 +326,7 @@ class ScanLocalizer:
         ranges = scan.ranges[valid][:: self._step]
         if ranges.shape[0] < 3:
             return
-        pts = scan.to_points()[:: self._step]
+        pts = scan.to_points(self._mount)[:: self._step]
         if self._bands is None:
             variance = np.full(ranges.shape[0], self._floor2)
         else:
