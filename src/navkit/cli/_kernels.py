@@ -3,8 +3,9 @@
 numba compiles navkit's kernels on their first call and caches the machine code
 on disk (``cache=True``), so only the very first run pays for it. Whether a run
 will compile is checked cheaply, without importing or compiling anything: by
-whether the cache index file (``<module>.<function>-<line>.py<XY>.nbi``) of one
-key kernel exists in the folder numba would cache it in —
+whether the cache index file (``<module>.<function>-<line>.py<XY>.nbi``) of each
+key kernel its estimate counts (the kind of work's own and the distance
+transform's, :data:`SHARED_KERNELS`) exists in the folder numba would cache it in —
 ``$NUMBA_CACHE_DIR/<folder>_<sha1 of the folder path>/`` when that variable is
 set, otherwise the ``__pycache__`` folder beside the kernel's source (or, when
 that is not writable, numba's user-wide cache folder, which has the same layout
@@ -28,6 +29,7 @@ from navkit.errors import KernelCacheWarning
 
 __all__ = [
     "KERNELS",
+    "SHARED_KERNELS",
     "announce_compilation",
     "cache_folders",
     "check_cache",
@@ -55,6 +57,16 @@ KERNELS: dict[str, tuple[tuple[str, str, str], float]] = {
     "field_dstar": (
         ("navkit.planning.grid", "_field_path_kernels", "extract_path"),
         3.8 + _DISTANCE_TRANSFORM,
+    ),
+}
+
+#: Kernels every kind of work above runs besides its own, each cached on its own
+#: (an upgrade changing only ``_edt_kernels`` recompiles it alone), with the
+#: part of each estimate it is, s: keys :func:`kernels_cached` takes too.
+SHARED_KERNELS: dict[str, tuple[tuple[str, str, str], float]] = {
+    "distance_transform": (
+        ("navkit.mapping", "_edt_kernels", "band_distances"),
+        _DISTANCE_TRANSFORM,
     ),
 }
 
@@ -121,12 +133,14 @@ def _could_write(folder: Path) -> bool:
 
 
 def kernels_cached(kind: str) -> bool:
-    """Whether the key kernel of ``kind`` of work is in numba's on-disk cache.
+    """Whether the key kernel of ``kind`` of work, or a shared one, is in numba's on-disk cache.
 
     Parameters
     ----------
     kind : str
-        A key of :data:`KERNELS` (``"simulation"``, ``"astar"``, ``"field_dstar"``).
+        A key of :data:`KERNELS` (``"simulation"``, ``"astar"``,
+        ``"field_dstar"``: that work's own kernels) or of
+        :data:`SHARED_KERNELS` (``"distance_transform"``).
 
     Returns
     -------
@@ -139,7 +153,7 @@ def kernels_cached(kind: str) -> bool:
     >>> isinstance(kernels_cached("astar"), bool)
     True
     """
-    (package, module, function), _ = KERNELS[kind]
+    (package, module, function), _ = KERNELS[kind] if kind in KERNELS else SHARED_KERNELS[kind]
     tag = f"py{sys.version_info.major}{sys.version_info.minor}"
     pattern = f"{module}.{function}-*.{tag}.nbi"
     folders = cache_folders(package)
@@ -222,8 +236,9 @@ def announce_compilation(
     Returns
     -------
     bool
-        Whether the notice was written (the cache was cold or unusable; never
-        with numba's JIT disabled, which compiles nothing).
+        Whether the notice was written (a kernel it counts was not cached, or
+        the cache is unusable; never with numba's JIT disabled, which compiles
+        nothing). Its estimate counts only the kernels not cached.
 
     Examples
     --------
@@ -236,18 +251,29 @@ def announce_compilation(
     >>> print(notice.getvalue().strip())
     navkit: compiling navkit's kernels (about 3 s, in each of 2 processes), again in every run: numba cannot cache them here
     """  # noqa: E501
-    if jit_disabled() or (problem is None and kernels_cached(kind)):
+    if jit_disabled():
         return False
     seconds = KERNELS[kind][1]
+    if problem is None:
+        # Each kernel counted is cached on its own (the shared ones' seconds are
+        # part of the kind's): only what is missing is compiled.
+        own = seconds - sum(part for _, part in SHARED_KERNELS.values())
+        seconds = (0.0 if kernels_cached(kind) else own) + sum(
+            part for shared, (_, part) in SHARED_KERNELS.items() if not kernels_cached(shared)
+        )
+        if seconds == 0.0:
+            return False
     each = f", in each of {processes} processes" if processes > 1 else ""
+    # Below a second, "about 0 s" would read as nothing to wait for.
+    about = f"{seconds:.0f}" if seconds >= 1.0 else f"{seconds:.1f}"
     if problem is not None:
         stream.write(
-            f"navkit: compiling navkit's kernels (about {seconds:.0f} s{each}), again in every"
+            f"navkit: compiling navkit's kernels (about {about} s{each}), again in every"
             " run: numba cannot cache them here\n"
         )
     else:
         stream.write(
-            f"navkit: compiling navkit's kernels once (about {seconds:.0f} s{each}), cached"
+            f"navkit: compiling navkit's kernels once (about {about} s{each}), cached"
             " afterwards (`navkit warmup` compiles them all ahead)\n"
         )
     stream.flush()
