@@ -17,7 +17,7 @@ import re
 from dataclasses import dataclass
 from itertools import chain
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, BinaryIO
+from typing import TYPE_CHECKING, Any, BinaryIO, Protocol
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -58,6 +58,8 @@ _IS_TERRAIN = np.zeros(256, dtype=bool)
 _IS_TERRAIN[list(TERRAIN.encode("ascii"))] = True
 _IS_PASSABLE = np.zeros(256, dtype=bool)
 _IS_PASSABLE[list(PASSABLE.encode("ascii"))] = True
+# The end of a line: either byte (a CR-only file's lines end in CR alone).
+_LINE_END = re.compile(rb"[\r\n]")
 # A C double as HOG2's stream reads it, without a sign: float() also took "1_0",
 # "-0.0" and surrounding blanks.
 _LENGTH = re.compile(r"(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
@@ -418,8 +420,10 @@ def read_movingai_map(path: str | os.PathLike[str]) -> MovingAIMap:
     The header (``type octile``, ``height H``, ``width W``, in any order) is
     followed by a ``map`` line and H rows of W terrain characters; blank
     lines after them, and spaces or tabs after a row, are ignored (as HOG2,
-    the benchmark's own code, skips them); line ends may be ``\\n`` or
-    ``\\r\\n``, and a UTF-8 byte-order mark may start the file.
+    the benchmark's own code, skips them); line ends may be ``\\n``,
+    ``\\r\\n`` or, in a file whose first line ends so, ``\\r`` alone (classic
+    Mac OS: HOG2 reads those too, its ``fscanf`` skipping any white space
+    between rows), and a UTF-8 byte-order mark may start the file.
 
     Parameters
     ----------
@@ -459,7 +463,8 @@ def read_movingai_map(path: str | os.PathLike[str]) -> MovingAIMap:
     ((2, 3), np.int64(4))
     """
     file = as_path(path, "path")
-    with open_regular(file, "MovingAI map") as fh:
+    with open_regular(file, "MovingAI map") as opened:
+        fh = _lines(opened)
         rows, cols, number = _map_header(fh, file)
         # Rows of cols characters and a line end each, then only blank lines; never
         # more than the file holds: read(n) allocates n bytes first, and a header of
@@ -505,7 +510,64 @@ def read_movingai_map(path: str | os.PathLike[str]) -> MovingAIMap:
     return MovingAIMap(codes.astype(np.uint32).view(np.dtype("U1")))
 
 
-def _map_header(fh: BinaryIO, file: Path) -> tuple[int, int, int]:
+class _Lines(Protocol):
+    """What the readers take of a file: a :class:`BinaryIO` or a :class:`_CRLines`."""
+
+    def read(self, size: int, /) -> bytes: ...
+    def readline(self, size: int, /) -> bytes: ...
+    def tell(self) -> int: ...
+    def fileno(self) -> int: ...
+
+
+class _CRLines:
+    """A file whose lines end in CR alone, read as if they ended in LF.
+
+    One byte for one, so offsets, sizes (``fstat``) and line numbers stay the
+    file's. Any CR or LF ends a line (a stray LF too, as a CR did in an LF file).
+    """
+
+    __slots__ = ("_fh",)
+
+    def __init__(self, fh: BinaryIO) -> None:
+        self._fh = fh
+
+    def read(self, size: int, /) -> bytes:
+        return self._fh.read(size).replace(b"\r", b"\n")
+
+    def readline(self, size: int, /) -> bytes:
+        # Binary files split lines at LF only: read ahead and step back to the end.
+        start = self._fh.tell()
+        chunk = self._fh.read(size)
+        end = _LINE_END.search(chunk)
+        if end is not None:
+            chunk = chunk[: end.end()]
+            self._fh.seek(start + end.end())
+        return chunk.replace(b"\r", b"\n")
+
+    def tell(self) -> int:
+        return self._fh.tell()
+
+    def fileno(self) -> int:
+        return self._fh.fileno()
+
+
+def _lines(fh: BinaryIO) -> _Lines:
+    """``fh`` (at its start), read through :class:`_CRLines` when its first line ends in CR alone.
+
+    HOG2's readers (``fscanf`` and ``>>``) take any white space for a line end,
+    so a classic Mac OS file is a benchmark file to them; a CR-only file was
+    read here as one line of the whole file and refused for its first "line".
+    """
+    head = fh.read(LINE_MAX + 2)
+    fh.seek(0)
+    end = _LINE_END.search(head)
+    # (A CR as the last byte read ends a line too long to be read either way.)
+    if end is not None and end.group() == b"\r" and head[end.end() : end.end() + 1] != b"\n":
+        return _CRLines(fh)
+    return fh
+
+
+def _map_header(fh: _Lines, file: Path) -> tuple[int, int, int]:
     """Read a ``.map`` header up to its ``map`` line: (rows, cols, that line's number)."""
     header: dict[str, str] = {}
     number = 0
@@ -580,8 +642,10 @@ def read_movingai_scenarios(path: str | os.PathLike[str]) -> MovingAIScenarios:
     height start_x start_y goal_x goal_y optimal_length``, separated by tabs
     (or, where a line has no tabs, spaces). x is the column and y the row:
     the cells are returned as ``(row, col)`` = ``(y, x)``. Blank lines, and
-    spaces or tabs after a line's last field, are ignored; a UTF-8
-    byte-order mark may start the file. The map names are kept as written
+    spaces or tabs after a line's last field, are ignored; line ends may be
+    ``\\n``, ``\\r\\n`` or, in a file whose first line ends so, ``\\r`` alone
+    (classic Mac OS: HOG2's stream reads take any white space between fields);
+    a UTF-8 byte-order mark may start the file. The map names are kept as written
     (often relative to the ``.scen`` file's folder, or as ``maps/<set>/<name>``).
 
     The format declares no count of problems, so a file cut at a line end
@@ -635,7 +699,8 @@ def read_movingai_scenarios(path: str | os.PathLike[str]) -> MovingAIScenarios:
     ints: list[tuple[int, ...]] = []
     names: list[str] = []
     lengths: list[float] = []
-    with open_regular(file, "MovingAI scenario") as fh:
+    with open_regular(file, "MovingAI scenario") as opened:
+        fh = _lines(opened)
         head = fh.readline(LINE_MAX + 1).removeprefix(codecs.BOM_UTF8)
         first = _ascii_line(head, file, 1, "scenario")
         if first.split() not in (["version", "1"], ["version", "1.0"]):
