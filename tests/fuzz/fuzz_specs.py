@@ -1506,7 +1506,15 @@ spec(
 )
 spec(
     "navkit.planning.reactive.repulsive_force_from_scan",
-    lambda c: call(repulsive_force_from_scan, scan(), k_rep=1.0, influence_radius=1.0),
+    # A LiDAR mounted off the robot's centre and turned (review 46).
+    lambda c: call(
+        repulsive_force_from_scan,
+        scan(),
+        k_rep=1.0,
+        influence_radius=1.0,
+        mount=call(Pose2D, -0.2, 0.1, 0.3),
+    ),
+    kinds={"mount": OPT_POSE},
 )
 spec(
     "navkit.planning.reactive.piecewise_repulsive_force_from_scan",
@@ -1517,7 +1525,9 @@ spec(
         beta=2.0,
         obstacle_radius=0.2,
         spread=1.0,
+        mount=call(Pose2D, 0.15, 0.0, -0.4),
     ),
+    kinds={"mount": OPT_POSE},
 )
 
 # --------------------------------------------------------------------------- control
@@ -1551,8 +1561,9 @@ spec(
         pose(),
         A([2.0, 1.0]),
         obstacles=A([[1.5, 1.5], [0.0, 3.0]]),
+        mount=call(Pose2D, 0.1, 0.0, 0.0),  # checked; used with a scan only
     ),
-    kinds={"obstacles": OBSTACLES_ARG},
+    kinds={"obstacles": OBSTACLES_ARG, "mount": OPT_POSE},
 )
 spec(
     "navkit.control.PotentialFieldController.step",
@@ -1564,8 +1575,13 @@ spec(
         dt=0.1,
         obstacles=A([[1.5, 1.5]]),
         velocity=A([0.1, 0.0, 0.0]),
+        mount=call(Pose2D, 0.1, 0.0, 0.0),  # checked; used with a scan only
     ),
-    kinds={"obstacles": OBSTACLES_ARG, "velocity": PoseLike("Twist2D", optional=True)},
+    kinds={
+        "obstacles": OBSTACLES_ARG,
+        "velocity": PoseLike("Twist2D", optional=True),
+        "mount": OPT_POSE,
+    },
     mutates=("self",),
 )
 spec(

@@ -47,6 +47,15 @@ def _pose(value: Any, name: str) -> Pose2D:
     return as_pose(value, name)
 
 
+def _mount(value: Pose2D | ArrayLike | None) -> Pose2D | None:
+    """The ``mount`` of :meth:`PotentialFieldController.step`, checked (None stays None)."""
+    if value is None:
+        return None
+    mount = as_pose(value, "mount")
+    position(mount.x, mount.y, "mount")
+    return mount
+
+
 class _Pid:
     """Heading PID gains and law; the integrator and last error are the controller's.
 
@@ -103,7 +112,10 @@ class PotentialFieldController:
     2. adds the Khatib repulsion of every valid obstacle (rows with NaN or inf
        are invalid and skipped) or of every valid beam of a laser scan (should
        it overflow, the robot being numerically on an obstacle, the velocity is
-       ``max_speed`` along the infinite components);
+       ``max_speed`` along the infinite components), each pushing the robot's
+       reference point (its pose's ``(x, y)``): a scan from a sensor mounted
+       off it, or turned, is placed with the sensor's ``mount`` (see
+       :meth:`step`);
     3. takes the sum as the desired world-frame velocity, clipped to ``max_speed``,
        and limits its change from the previous velocity with
        :func:`limit_velocity_change` (``max_accel`` / ``max_decel``); the
@@ -248,12 +260,11 @@ class PotentialFieldController:
         "_still_for",
         "_velocity",
     )
+
     def __getstate__(self) -> object:
         # Python's default state (pickle protocols 0 and 1 too, see slot_state), not
         # in use whatever the original is doing (pickles as before the guard).
-        instance, slots = cast(
-            "tuple[dict[str, Any] | None, dict[str, Any]]", slot_state(self)
-        )
+        instance, slots = cast("tuple[dict[str, Any] | None, dict[str, Any]]", slot_state(self))
         slots.pop("_callers", None)
         return instance, slots
 
@@ -481,6 +492,7 @@ class PotentialFieldController:
         goal_xy: ArrayLike,
         *,
         obstacles: ArrayLike | LaserScan | None = None,
+        mount: Pose2D | ArrayLike | None = None,
     ) -> FloatArray:
         """Unlimited field velocity (world frame, clipped to ``max_speed``) at ``pose``.
 
@@ -495,6 +507,8 @@ class PotentialFieldController:
             Goal ``(x, y)`` in metres, world frame.
         obstacles : array_like (M, 2), LaserScan or None, optional
             As in :meth:`step`.
+        mount : Pose2D or array_like [x, y, theta], optional
+            As in :meth:`step`: the pose of the scanner in the robot frame.
 
         Returns
         -------
@@ -511,28 +525,54 @@ class PotentialFieldController:
         >>> ctl = PotentialFieldController(max_speed=0.5)
         >>> ctl.desired_velocity([0.0, 0.0, 0.0], (2.0, 0.0))
         array([0.5, 0. ])
+
+        A scan from a LiDAR 0.3 m ahead of the robot's centre (``Lidar(mount=...)``
+        in :mod:`navkit.sim`) sees a wall 0.45 m ahead of the sensor, 0.75 m
+        from the centre: beyond the 0.6 m ``influence_radius``, so the robot
+        goes at full speed. The mount gives what the wall's world points give;
+        the scan taken for one in the robot frame puts the wall 0.45 m away,
+        which slows the robot:
+
+        >>> scan = LaserScan([0.45], angle_min=0.0, angle_increment=0.1,
+        ...                  range_min=0.1, range_max=5.0)
+        >>> mount = Pose2D(0.3, 0.0, 0.0)
+        >>> ctl.desired_velocity((0.0, 0.0, 0.0), (2.0, 0.0), obstacles=scan, mount=mount)
+        array([0.5, 0. ])
+        >>> ctl.desired_velocity((0.0, 0.0, 0.0), (2.0, 0.0),
+        ...                      obstacles=scan.to_points(Pose2D(0.0, 0.0, 0.0) @ mount))
+        array([0.5, 0. ])
+        >>> ctl.desired_velocity((0.0, 0.0, 0.0), (2.0, 0.0), obstacles=scan).round(3)  # wrong
+        array([0.363, 0.   ])
         """
         p = as_pose(pose, "pose")
         position(p.x, p.y, "pose")
         goal = as_float_array(goal_xy, "goal_xy", shape=(2,))
         position(float(goal[0]), float(goal[1]), "goal_xy")
-        return self._desired(p, goal, obstacles)
+        return self._desired(p, goal, obstacles, _mount(mount))
 
     def _desired(
-        self, pose: Pose2D, goal: FloatArray, obstacles: ArrayLike | LaserScan | None
+        self,
+        pose: Pose2D,
+        goal: FloatArray,
+        obstacles: ArrayLike | LaserScan | None,
+        mount: Pose2D | None = None,
     ) -> FloatArray:
-        """:meth:`desired_velocity` on a validated pose and goal."""
+        """:meth:`desired_velocity` on a validated pose, goal and mount."""
         try:
-            return self._desired_velocity(pose, goal, obstacles)
+            return self._desired_velocity(pose, goal, obstacles, mount)
         except FloatingPointError:
             # Only under a caller's np.seterr(under="raise"): a field's squared offset
             # of 1e-200 m underflows. The work is pure: done again for NumPy's default
             # answer (a try costs the step nothing, an np.errstate a microsecond).
             with np.errstate(under="ignore"):
-                return self._desired_velocity(pose, goal, obstacles)
+                return self._desired_velocity(pose, goal, obstacles, mount)
 
     def _desired_velocity(
-        self, pose: Pose2D, goal: FloatArray, obstacles: ArrayLike | LaserScan | None
+        self,
+        pose: Pose2D,
+        goal: FloatArray,
+        obstacles: ArrayLike | LaserScan | None,
+        mount: Pose2D | None = None,
     ) -> FloatArray:
         """:meth:`_desired`'s work."""
         here = np.array([[pose.x, pose.y]])
@@ -556,7 +596,7 @@ class PotentialFieldController:
         norm = float(np.hypot(f_att[0], f_att[1]))
         if norm > self._max_speed:
             f_att = f_att * (self._max_speed / norm)
-        v: FloatArray = f_att + self._repulsion(pose, here, obstacles)
+        v: FloatArray = f_att + self._repulsion(pose, here, obstacles, mount)
         vx, vy = v.tolist()
         if not (math.isfinite(vx) and math.isfinite(vy)):
             # Not reached with navkit's own fields (the repulsion saturates below 1e-9 m:
@@ -569,14 +609,21 @@ class PotentialFieldController:
         return v
 
     def _repulsion(
-        self, pose: Pose2D, here: FloatArray, obstacles: ArrayLike | LaserScan | None
+        self,
+        pose: Pose2D,
+        here: FloatArray,
+        obstacles: ArrayLike | LaserScan | None,
+        mount: Pose2D | None = None,
     ) -> FloatArray:
         if obstacles is None:
             return np.zeros(2)
         if isinstance(obstacles, LaserScan):
+            # The force on the robot's reference point, in the robot frame: from the
+            # beams' end points placed with the mount (repulsive_force_from_scan).
             fx, fy = repulsive_force_from_scan(
-                obstacles, k_rep=self._k_rep, influence_radius=self._influence_radius
-            )
+                obstacles, k_rep=self._k_rep, influence_radius=self._influence_radius,
+                mount=mount,
+            )  # fmt: skip
             c, s = math.cos(pose.theta), math.sin(pose.theta)
             return np.array([c * fx - s * fy, s * fx + c * fy])
         pts = as_points(obstacles, "obstacles", finite=False)
@@ -617,6 +664,7 @@ class PotentialFieldController:
         *,
         obstacles: ArrayLike | LaserScan | None = None,
         velocity: Twist2D | ArrayLike | None = None,
+        mount: Pose2D | ArrayLike | None = None,
     ) -> Twist2D:
         """One control cycle: the velocity command for the next ``dt`` seconds.
 
@@ -634,13 +682,23 @@ class PotentialFieldController:
             control loop calls this as it calls a path tracker's ``step(pose, dt)``.
         obstacles : array_like (M, 2), LaserScan or None, optional
             Obstacle points ``(x, y)`` in m in the world frame (rows with
-            NaN/inf are skipped), or a scan taken in the robot frame, or nothing.
+            NaN/inf are skipped), or a scan in its sensor's frame (the robot
+            frame unless ``mount`` says where the sensor sits), or nothing.
         velocity : Twist2D or array_like [vx, vy, omega], optional
             Current robot-frame velocity (m/s, m/s, rad/s; e.g. from odometry, finite; one whose
             world-frame components overflow float64, near 1e308 m/s, is
             refused), the base of the acceleration limits (the command stays
             within ``max_speed`` even when this is faster); ``None`` uses the
             previous command.
+        mount : Pose2D or array_like [x, y, theta], optional
+            Pose of the scanner that took ``obstacles`` in the robot frame (m,
+            m, rad; ``|x|, |y| <= 1e9``), as :class:`navkit.sim.Lidar`'s
+            ``mount`` or a ``base_link -> laser`` transform: each beam's end
+            point is ``pose ⊕ mount ⊕ (r cos θ, r sin θ)``, as if the scan's
+            world points (``scan.to_points(pose @ mount)``) were passed (see
+            :func:`~navkit.planning.repulsive_force_from_scan`). None (the
+            default): the scan is in the robot frame. Checked, but not used,
+            with world points or no obstacles.
 
         Returns
         -------
@@ -674,6 +732,17 @@ class PotentialFieldController:
         >>> diff = PotentialFieldController(drive="diff")
         >>> diff.step((0.0, 0.0, 0.0), (0.0, 2.0, 0.0), 0.1)
         Twist2D(vx=0.0, vy=0.0, omega=2.0)
+
+        A scan from a LiDAR mounted on the robot (``navkit.sim.Lidar(mount=...)``,
+        whose scans are in its own frame) takes that ``mount``; here one facing
+        backwards sees a wall 0.2 m behind the robot, which pushes it forwards:
+
+        >>> behind = LaserScan([0.2], angle_min=0.0, angle_increment=0.1,
+        ...                    range_min=0.1, range_max=5.0)
+        >>> ctl = PotentialFieldController(max_speed=0.5)
+        >>> ctl.step((0.0, 0.0, 0.0), (0.0, 0.0, 0.0), 0.1, obstacles=behind,
+        ...          mount=(0.0, 0.0, math.pi))
+        Twist2D(vx=0.1, vy=0.0, omega=0.0)
         """
         pose = as_pose(pose, "pose")
         position(pose.x, pose.y, "pose")
@@ -681,6 +750,7 @@ class PotentialFieldController:
         position(target_pose.x, target_pose.y, "target_pose")
         measured = None if velocity is None else as_twist(velocity, "velocity")
         step = quantity(dt, "dt", "s")
+        sensor = None if mount is None else _mount(mount)
         # One step at a time (one_caller's guard, written out): two steps at once (two
         # threads, a signal handler's step inside the main loop's) both started from
         # the state before either, and the later stores won: the other step was lost
@@ -695,7 +765,7 @@ class PotentialFieldController:
             if callers[0] is not token:
                 raise RuntimeError(_in_use(type(self).__name__, "step", callers[0], callers))
             running = True
-            return self._step(pose, target_pose, step, obstacles, measured)
+            return self._step(pose, target_pose, step, obstacles, measured, sensor)
         finally:
             if running:
                 # The step's token is the first (only refused calls' come after it, and
@@ -712,6 +782,7 @@ class PotentialFieldController:
         step: float,
         obstacles: ArrayLike | LaserScan | None,
         measured: Twist2D | None,
+        mount: Pose2D | None = None,
     ) -> Twist2D:
         """:meth:`step` on validated arguments, inside its guard."""
         # The state read at once (no call between the reads, where a signal handler's
@@ -720,7 +791,10 @@ class PotentialFieldController:
         # step's stores are then dropped, and the reset is not overwritten.
         current = self._velocity
         integral0, last_error, anchor, still_for = (
-            self._integral, self._last_error, self._anchor, self._still_for
+            self._integral,
+            self._last_error,
+            self._anchor,
+            self._still_for,
         )
         c, s = math.cos(pose.theta), math.sin(pose.theta)
         if measured is None:
@@ -733,7 +807,7 @@ class PotentialFieldController:
                 raise ValueError("velocity: the velocity overflows float64 (values far too large)")
             prev = np.array([vx_w, vy_w])
         goal = np.array([target_pose.x, target_pose.y])
-        want = self._desired(pose, goal, obstacles)
+        want = self._desired(pose, goal, obstacles, mount)
         # np.hypot on the float differences, as array arithmetic on the goal would give.
         to_goal = float(np.hypot(target_pose.x - pose.x, target_pose.y - pose.y))
         arrived = to_goal <= self._goal_tolerance
@@ -757,9 +831,7 @@ class PotentialFieldController:
             # velocity points along the heading it was commanded at, and projected on
             # the current heading it would shrink with every turn, a drop max_decel
             # never limited.
-            fwd_prev = (
-                math.hypot(prev[0], prev[1]) if measured is None else max(0.0, measured.vx)
-            )
+            fwd_prev = math.hypot(prev[0], prev[1]) if measured is None else max(0.0, measured.vx)
             fwd_want = max(0.0, c * want[0] + s * want[1])
             # No faster than max_omega times the radius of the arc that leaves along
             # the heading through the goal (pure pursuit's d² / (2 |y|), the goal's
@@ -774,8 +846,14 @@ class PotentialFieldController:
                 arc_speed = self._max_omega * (gdx * gdx + gdy * gdy) / (2.0 * lateral)
                 fwd_want = min(fwd_want, arc_speed)
             fwd = float(
-                _limited(np.array([fwd_prev]), np.array([fwd_want]), self._max_accel,
-                         self._max_decel, step, huge)[0]
+                _limited(
+                    np.array([fwd_prev]),
+                    np.array([fwd_want]),
+                    self._max_accel,
+                    self._max_decel,
+                    step,
+                    huge,
+                )[0]
             )
             fwd = min(fwd, self._max_speed)  # the bound of every command, as above
             # Below a thousandth of max_speed the field's direction is noise near the goal.

@@ -122,7 +122,11 @@ class Lidar:
         Delay between taking a scan and delivering it, s, in [0, 10^4] (the
         omnidirectional paper measured 0.50 s for its LiDAR topic).
     mount : Pose2D or array_like [x, y, theta], default (0, 0, 0)
-        Pose of the sensor in the robot frame.
+        Pose of the sensor in the robot frame. Scans are in the sensor frame:
+        pass this ``mount`` to what takes a scan in the robot frame
+        (:func:`~navkit.planning.repulsive_force_from_scan`,
+        :meth:`~navkit.control.PotentialFieldController.step`);
+        ``scan.to_points(pose @ mount)`` gives its world points.
 
     Raises
     ------
@@ -327,9 +331,7 @@ class Lidar:
         seed_name = "seed"
         if rng is not None:  # the old name of seed (Simulation's word); errors name it
             seed, seed_name = renamed_keyword("rng", rng, "seed", seed, None), "rng"
-        generator = (
-            as_generator(seed, seed_name) if scanner.random or seed is not None else None
-        )
+        generator = as_generator(seed, seed_name) if scanner.random or seed is not None else None
         return scanner.scan(p, time, generator)
 
 

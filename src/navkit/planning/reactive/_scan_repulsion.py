@@ -11,10 +11,13 @@ from collections.abc import Callable
 from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from navkit._shared.types import FloatArray
+from navkit.geometry import Pose2D, as_pose
 from navkit.mapping import LaserScan
 from navkit.planning.reactive._limits import (
+    COORDINATE_LIMIT,
     GAIN_MAX,
     GAIN_MIN,
     LENGTH_MAX,
@@ -23,6 +26,8 @@ from navkit.planning.reactive._limits import (
     gain,
     length,
 )
+from navkit.planning.reactive._potential_field import PotentialField
+from navkit.planning.reactive._repulsion import KhatibRepulsion, PiecewiseRepulsion
 from navkit.planning.reactive._scan_repulsion_kernels import (
     khatib_beam_force_into,
     khatib_entry,
@@ -108,10 +113,61 @@ def _check_scan(scan: Any) -> LaserScan:
     return scan
 
 
-def repulsive_force_from_scan(
-    scan: LaserScan, *, k_rep: float = 1.0, influence_radius: float = 1.0
+def scan_mount(mount: Pose2D | ArrayLike) -> Pose2D:
+    """``mount`` (the sensor's pose in the robot frame) checked: finite, within ±1e9 m."""
+    m = as_pose(mount, "mount")
+    if not (abs(m.x) <= COORDINATE_LIMIT and abs(m.y) <= COORDINATE_LIMIT):
+        raise ValueError(
+            f"mount must lie within ±{COORDINATE_LIMIT:g} m in x and y, got ({m.x!r}, {m.y!r})"
+        )
+    return m
+
+
+def _rotated(force: FloatArray, theta: float) -> FloatArray:
+    """``force`` (sensor frame) turned by the mount's ``theta`` into the robot frame."""
+    if theta == 0.0:
+        return force
+    c, s = np.cos(theta), np.sin(theta)
+    fx, fy = force
+    return np.array((c * fx - s * fy, s * fx + c * fy))
+
+
+def _mounted_force(
+    scan: LaserScan, mount: Pose2D, field: type[PotentialField], **params: float
 ) -> FloatArray:
-    """Khatib repulsion summed over the beams of a scan, in the robot (sensor) frame.
+    """The force of ``field`` (``params`` checked) at the robot from a scan taken off its origin.
+
+    The beams become points in the robot frame (``scan.to_points(mount)``), the
+    point field sums their push on the robot's origin: each distance is then the
+    point's from the robot, not the range. A zero range has no direction and
+    pushes nothing, as in the per-beam sums; points beyond twice the field's
+    reach, which push nothing either, are left out (so beams out to 1e9 m from
+    a mount 1e9 m off stay within the fields' coordinate range).
+    """
+    pts = LaserScan.to_points(scan, mount)
+    pts = pts[scan.ranges[LaserScan.valid_mask(scan)] > 0.0]
+    if field is KhatibRepulsion:
+        reach = params["influence_radius"]
+    else:
+        reach = params["spread"] + params["obstacle_radius"]
+    pts = pts[np.hypot(pts[:, 0], pts[:, 1]) <= 2.0 * reach]
+    near: PotentialField
+    if field is KhatibRepulsion:
+        near = KhatibRepulsion._checked(pts, params["k_rep"], params["influence_radius"])
+    else:
+        near = PiecewiseRepulsion(pts, **params)
+    out: FloatArray = near._force(np.zeros((1, 2)))[0]
+    return out
+
+
+def repulsive_force_from_scan(
+    scan: LaserScan,
+    *,
+    k_rep: float = 1.0,
+    influence_radius: float = 1.0,
+    mount: Pose2D | ArrayLike | None = None,
+) -> FloatArray:
+    """Khatib repulsion summed over the beams of a scan, in the robot frame.
 
     Each valid beam (``range_min <= r < range_max``) is an obstacle point; the
     result is the force on a robot at the scan origin, in Khatib's symbols
@@ -129,29 +185,42 @@ def repulsive_force_from_scan(
     direction, not at all. The scan's arrays were validated when it was built,
     so the call only checks the two parameters.
 
+    The scan is in the sensor frame: the robot frame when the sensor sits at
+    the robot's origin facing forward (no ``mount``). A sensor mounted
+    elsewhere (a :class:`navkit.sim.Lidar`'s ``mount``, a ``base_link ->
+    laser`` transform) takes ``mount``: the force is then on the robot's
+    origin from the beam end points ``mount ⊕ (r cos θ, r sin θ)``, each at its
+    own distance from the robot, and equals
+    ``KhatibRepulsion(scan.to_points(mount), ...).force((0, 0))`` (zero
+    ranges left out). A mount that only turns the sensor (``x = y = 0``)
+    turns the per-beam sum's force by its ``theta``.
+
     Parameters
     ----------
     scan : navkit.mapping.LaserScan
-        The scan, taken in the robot frame (x forward, y left).
+        The scan, in the sensor frame (x forward, y left of the sensor).
     k_rep : float, default 1.0
         Repulsion gain, in ``[1e-12, 1e12]``.
     influence_radius : float, default 1.0
         Khatib's ``d0`` (m), in ``[1e-6, 1e6]``: beams farther than this do
         not push.
+    mount : Pose2D or array_like [x, y, theta], optional
+        Pose of the sensor in the robot frame (m, m, rad), ``|x|, |y| <= 1e9``;
+        None (the default) or ``(0, 0, 0)``: the scan is in the robot frame.
 
     Returns
     -------
     ndarray, shape (2,)
-        Force ``(Fx, Fy)`` in the robot frame, finite; zero when no beam is
-        within ``influence_radius``.
+        Force ``(Fx, Fy)`` on the robot's origin in the robot frame, finite;
+        zero when no beam end point is within ``influence_radius`` of it.
 
     Raises
     ------
     TypeError
         ``scan`` is not a LaserScan; a parameter is not a real number (or is a
-        bool).
+        bool); ``mount`` not three real numbers.
     ValueError
-        A parameter out of its range.
+        A parameter out of its range; ``mount`` not finite or beyond ±1e9 m.
 
     Notes
     -----
@@ -167,6 +236,12 @@ def repulsive_force_from_scan(
     ...                  range_min=0.1, range_max=10.0)
     >>> repulsive_force_from_scan(scan, k_rep=1.0, influence_radius=1.0)  # the beam 0.5 m ahead
     array([-4.,  0.])
+
+    The same scan from a sensor 0.3 m behind the robot's centre: the wall is
+    0.2 m from the centre, which is pushed harder.
+
+    >>> repulsive_force_from_scan(scan, k_rep=1.0, influence_radius=1.0, mount=(-0.3, 0.0, 0.0))
+    array([-100.,    0.])
     """
     # A LaserScan's ranges are a read-only C-contiguous float64 copy and its tables
     # match them, so the compiled entry (no type dispatch) can take them; a
@@ -182,6 +257,14 @@ def repulsive_force_from_scan(
         k_rep = gain(k_rep, "k_rep")
     if not (type(influence_radius) is float and LENGTH_MIN <= influence_radius <= LENGTH_MAX):
         influence_radius = length(influence_radius, "influence_radius")
+    if mount is not None:
+        m = scan_mount(mount)
+        if m.x != 0.0 or m.y != 0.0:
+            return _mounted_force(
+                scan, m, KhatibRepulsion, k_rep=k_rep, influence_radius=influence_radius
+            )
+        force = repulsive_force_from_scan(scan, k_rep=k_rep, influence_radius=influence_radius)
+        return _rotated(force, m.theta)
     ranges = scan.ranges
     # One read of _LAST, checked and used as it was: another thread (or a scan
     # subclass's attribute) may store its own scanner's table in between.
@@ -206,8 +289,9 @@ def piecewise_repulsive_force_from_scan(
     beta: float = 1.0,
     obstacle_radius: float = 0.0,
     spread: float = 1.0,
+    mount: Pose2D | ArrayLike | None = None,
 ) -> FloatArray:
-    """Piecewise repulsion summed over the beams of a scan, in the robot (sensor) frame.
+    """Piecewise repulsion summed over the beams of a scan, in the robot frame.
 
     The omnidirectional LiDAR robot's field with every valid beam as an obstacle:
     in the paper's symbols (``r`` is ``obstacle_radius``, ``s`` is ``spread``) a
@@ -218,11 +302,15 @@ def piecewise_repulsive_force_from_scan(
     with ``r`` here, while the point field recomputes the distance as
     ``hypot(ρ cos θ, ρ sin θ)``, which can round a range equal to ``r`` to just
     below it, so such a beam pushes with ``β·s`` here and ``δ`` there.
+    A scan from a sensor mounted off the robot's origin takes ``mount``, as
+    in :func:`repulsive_force_from_scan`: the force is then
+    ``PiecewiseRepulsion(scan.to_points(mount), ...).force((0, 0))`` (zero
+    ranges left out).
 
     Parameters
     ----------
     scan : navkit.mapping.LaserScan
-        The scan, taken in the robot frame (x forward, y left).
+        The scan, in the sensor frame (x forward, y left of the sensor).
     delta : float, default 1.0
         Force magnitude ``δ`` inside ``obstacle_radius``, in ``[1e-12, 1e12]``.
     beta : float, default 1.0
@@ -231,11 +319,14 @@ def piecewise_repulsive_force_from_scan(
         Obstacle (safety) radius ``r`` in metres, in ``[0, 1e6]``.
     spread : float, default 1.0
         Width ``s`` of the linear zone in metres, in ``[1e-6, 1e6]``.
+    mount : Pose2D or array_like [x, y, theta], optional
+        Pose of the sensor in the robot frame (m, m, rad), ``|x|, |y| <= 1e9``;
+        None (the default) or ``(0, 0, 0)``: the scan is in the robot frame.
 
     Returns
     -------
     ndarray, shape (2,)
-        Force ``(Fx, Fy)`` in the robot frame, finite.
+        Force ``(Fx, Fy)`` on the robot's origin in the robot frame, finite.
 
     Raises
     ------
@@ -254,12 +345,25 @@ def piecewise_repulsive_force_from_scan(
     ...                  range_min=0.1, range_max=10.0)
     >>> piecewise_repulsive_force_from_scan(scan, beta=2.0, spread=1.0)  # 2·(1 - 0.5) back
     array([-1.,  0.])
+    >>> piecewise_repulsive_force_from_scan(scan, beta=2.0, spread=1.0,
+    ...                                     mount=(0.25, 0.0, 0.0))  # 0.75 m ahead of the centre
+    array([-0.5,  0. ])
     """
     scan = _check_scan(scan)
     dl = gain(delta, "delta")
     bt = gain(beta, "beta")
     rr = length(obstacle_radius, "obstacle_radius", allow_zero=True)
     ss = length(spread, "spread")
+    if mount is not None:
+        m = scan_mount(mount)
+        if m.x != 0.0 or m.y != 0.0:
+            return _mounted_force(
+                scan, m, PiecewiseRepulsion, delta=dl, beta=bt, obstacle_radius=rr, spread=ss
+            )
+        force = piecewise_repulsive_force_from_scan(
+            scan, delta=dl, beta=bt, obstacle_radius=rr, spread=ss
+        )
+        return _rotated(force, m.theta)
     cos_t, sin_t = _beam_table(scan)
     fx, fy = piecewise_beam_force(
         scan.ranges, cos_t, sin_t, scan.range_min, scan.range_max, dl, bt, rr, ss
