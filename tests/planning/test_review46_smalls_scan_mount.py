@@ -165,3 +165,24 @@ def test_bad_mounts_are_refused_naming_mount(
     for fn in (repulsive_force_from_scan, piecewise_repulsive_force_from_scan):
         with pytest.raises(error, match=pattern):
             fn(scan, mount=mount)
+
+
+class _Odd(LaserScan):
+    """A subclass whose ``angles`` and ``valid_mask`` say other things (ignored, as unmounted)."""
+
+    __slots__ = ()
+
+    def angles(self) -> np.ndarray:
+        return np.zeros(len(self.ranges))
+
+    def valid_mask(self) -> np.ndarray:
+        return np.ones(1, dtype=bool)  # the wrong length, even
+
+
+def test_a_scan_subclass_is_read_by_laserscans_own_rules_when_mounted() -> None:
+    ranges = [0.5, 0.9, math.inf, 0.3, 2.0, math.nan]
+    kw = {"angle_min": -1.0, "angle_increment": 0.4, "range_min": 0.1, "range_max": 3.0}
+    plain, odd = LaserScan(ranges, **kw), _Odd(ranges, **kw)
+    for fn in (repulsive_force_from_scan, piecewise_repulsive_force_from_scan):
+        for mount in ((0.2, -0.1, 0.5), (0.0, 0.0, 1.0), None):
+            assert fn(odd, mount=mount).tolist() == fn(plain, mount=mount).tolist()

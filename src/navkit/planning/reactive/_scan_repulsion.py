@@ -144,8 +144,14 @@ def _mounted_force(
     reach, which push nothing either, are left out (so beams out to 1e9 m from
     a mount 1e9 m off stay within the fields' coordinate range).
     """
-    pts = LaserScan.to_points(scan, mount)
-    pts = pts[scan.ranges[LaserScan.valid_mask(scan)] > 0.0]
+    # scan.to_points(mount) of the beams the per-beam sums count, written out on
+    # LaserScan's own angles and validity, as those sums are: a subclass's
+    # overrides (shared tables, documented angles) change neither.
+    r = scan.ranges
+    use = (r >= scan.range_min) & (r < scan.range_max) & (r > 0.0)
+    d = r[use]
+    phi = LaserScan.angles(scan)[use] + mount.theta
+    pts = np.column_stack((mount.x + d * np.cos(phi), mount.y + d * np.sin(phi)))
     if field is KhatibRepulsion:
         reach = params["influence_radius"]
     else:
