@@ -10,7 +10,8 @@ Arrival order
     header stamp. test1's IMU stamps lag their arrival by 21-36 ms, its
     odometry by under 1 ms, so in arrival order an IMU reading is often older
     than an odometry message already fused: without ``history`` it is refused
-    (``OUT_OF_ORDER``; 6154 of test1's 23730 IMU readings, 636 of test2's), as
+    (``OUT_OF_ORDER``; 6154 of test1's 23730 IMU readings; 636 of test2's
+    readings, 634 of them odometry and one IMU message's yaw and yaw rate), as
     robot_localization refuses a measurement older than its last update
     unless ``smooth_lagged_data`` is on. With ``history=0.2`` (robot_localization's
     ``history_length``) every reading is fused and the filter ends bit for bit
