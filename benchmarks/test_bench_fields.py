@@ -131,6 +131,13 @@ def test_public_call(benchmark, scan: LaserScan) -> None:  # type: ignore[no-unt
     benchmark(repulsive_force_from_scan, scan, k_rep=K_REP, influence_radius=D0)
 
 
+def test_public_call_mounted(benchmark, scan: LaserScan) -> None:  # type: ignore[no-untyped-def]
+    # A LiDAR 0.2 m ahead of the robot's centre (review 46): the point-field path,
+    # peer of test_point_field_on_scan_points and test_public_call.
+    mount = Pose2D(0.2, 0.0, 0.0)
+    benchmark(repulsive_force_from_scan, scan, k_rep=K_REP, influence_radius=D0, mount=mount)
+
+
 def test_numpy_vectorised(benchmark, scan: LaserScan) -> None:  # type: ignore[no-untyped-def]
     benchmark(numpy_repulsion, scan, K_REP, D0)
 

@@ -7,6 +7,7 @@ numba kernel sums over the ranges with cached tables of the beam directions.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from typing import Any
 
@@ -26,11 +27,11 @@ from navkit.planning.reactive._limits import (
     gain,
     length,
 )
-from navkit.planning.reactive._potential_field import PotentialField
-from navkit.planning.reactive._repulsion import KhatibRepulsion, PiecewiseRepulsion
 from navkit.planning.reactive._scan_repulsion_kernels import (
     khatib_beam_force_into,
     khatib_entry,
+    mounted_khatib_force,
+    mounted_piecewise_force,
     piecewise_beam_force,
 )
 
@@ -133,37 +134,22 @@ def _rotated(force: FloatArray, theta: float) -> FloatArray:
 
 
 def _mounted_force(
-    scan: LaserScan, mount: Pose2D, field: type[PotentialField], **params: float
+    scan: LaserScan, mount: Pose2D, kernel: Callable[..., tuple[float, float]], *params: float
 ) -> FloatArray:
-    """The force of ``field`` (``params`` checked) at the robot from a scan taken off its origin.
+    """The force at the robot's origin from a scan taken at ``mount`` (``params`` checked).
 
-    The beams become points in the robot frame (``scan.to_points(mount)``), the
-    point field sums their push on the robot's origin: each distance is then the
-    point's from the robot, not the range. A zero range has no direction and
-    pushes nothing, as in the per-beam sums; points beyond twice the field's
-    reach, which push nothing either, are left out (so beams out to 1e9 m from
-    a mount 1e9 m off stay within the fields' coordinate range).
+    ``kernel`` is :func:`mounted_khatib_force` or :func:`mounted_piecewise_force`:
+    the beams' end points ``scan.to_points(mount)`` (on the beam tables of
+    LaserScan's own angles, as the per-beam sums) each push the origin from
+    their own distance, as the point fields do; zero ranges, with no
+    direction, push nothing.
     """
-    # scan.to_points(mount) of the beams the per-beam sums count, written out on
-    # LaserScan's own angles and validity, as those sums are: a subclass's
-    # overrides (shared tables, documented angles) change neither.
-    r = scan.ranges
-    use = (r >= scan.range_min) & (r < scan.range_max) & (r > 0.0)
-    d = r[use]
-    phi = LaserScan.angles(scan)[use] + mount.theta
-    pts = np.column_stack((mount.x + d * np.cos(phi), mount.y + d * np.sin(phi)))
-    if field is KhatibRepulsion:
-        reach = params["influence_radius"]
-    else:
-        reach = params["spread"] + params["obstacle_radius"]
-    pts = pts[np.hypot(pts[:, 0], pts[:, 1]) <= 2.0 * reach]
-    near: PotentialField
-    if field is KhatibRepulsion:
-        near = KhatibRepulsion._checked(pts, params["k_rep"], params["influence_radius"])
-    else:
-        near = PiecewiseRepulsion(pts, **params)
-    out: FloatArray = near._force(np.zeros((1, 2)))[0]
-    return out
+    cos_t, sin_t = _beam_table(scan)
+    fx, fy = kernel(
+        scan.ranges, cos_t, sin_t, scan.range_min, scan.range_max, *params,
+        mount.x, mount.y, math.cos(mount.theta), math.sin(mount.theta),
+    )  # fmt: skip
+    return np.array((fx, fy))
 
 
 def repulsive_force_from_scan(
@@ -197,9 +183,10 @@ def repulsive_force_from_scan(
     laser`` transform) takes ``mount``: the force is then on the robot's
     origin from the beam end points ``mount ⊕ (r cos θ, r sin θ)``, each at its
     own distance from the robot, and equals
-    ``KhatibRepulsion(scan.to_points(mount), ...).force((0, 0))`` (zero
-    ranges left out). A mount that only turns the sensor (``x = y = 0``)
-    turns the per-beam sum's force by its ``theta``.
+    ``KhatibRepulsion(scan.to_points(mount), ...).force((0, 0))`` up to
+    rounding (zero ranges left out; compiled, like the per-beam sum). A
+    mount that only turns the sensor (``x = y = 0``) turns the per-beam sum's
+    force by its ``theta``.
 
     Parameters
     ----------
@@ -267,7 +254,7 @@ def repulsive_force_from_scan(
         m = scan_mount(mount)
         if m.x != 0.0 or m.y != 0.0:
             return _mounted_force(
-                scan, m, KhatibRepulsion, k_rep=k_rep, influence_radius=influence_radius
+                scan, m, mounted_khatib_force, k_rep, influence_radius, MIN_DISTANCE
             )
         force = repulsive_force_from_scan(scan, k_rep=k_rep, influence_radius=influence_radius)
         return _rotated(force, m.theta)
@@ -310,8 +297,8 @@ def piecewise_repulsive_force_from_scan(
     below it, so such a beam pushes with ``β·s`` here and ``δ`` there.
     A scan from a sensor mounted off the robot's origin takes ``mount``, as
     in :func:`repulsive_force_from_scan`: the force is then
-    ``PiecewiseRepulsion(scan.to_points(mount), ...).force((0, 0))`` (zero
-    ranges left out).
+    ``PiecewiseRepulsion(scan.to_points(mount), ...).force((0, 0))`` up to
+    rounding (zero ranges left out).
 
     Parameters
     ----------
@@ -363,9 +350,7 @@ def piecewise_repulsive_force_from_scan(
     if mount is not None:
         m = scan_mount(mount)
         if m.x != 0.0 or m.y != 0.0:
-            return _mounted_force(
-                scan, m, PiecewiseRepulsion, delta=dl, beta=bt, obstacle_radius=rr, spread=ss
-            )
+            return _mounted_force(scan, m, mounted_piecewise_force, dl, bt, rr, ss)
         force = piecewise_repulsive_force_from_scan(
             scan, delta=dl, beta=bt, obstacle_radius=rr, spread=ss
         )
