@@ -179,3 +179,22 @@ def test_python_counts_beyond_64_bits_are_refused_by_value(bad: int) -> None:
 def test_non_integer_counts_are_still_type_errors(bad: object) -> None:
     with pytest.raises(TypeError, match=r"^ticks must be an integer array, got dtype "):
         EncoderReading(0.0, bad)
+
+
+@pytest.mark.parametrize(
+    ("fov", "radians_hint", "degrees_hint"),
+    [(7.0, True, True), (3 * math.pi, True, True), (13.0, False, True), (400.0, False, False)],
+)
+def test_a_lidar_fov_beyond_a_turn_is_offered_each_reading_that_fits(
+    fov: float, radians_hint: bool, degrees_hint: bool
+) -> None:
+    """A field of view of 7 rad (all round, in radians, a bit much) was only asked "degrees?"."""
+    from navkit.sim import Lidar
+
+    with pytest.raises(ValueError, match=r"^fov must lie in \(0, 2π\] rad, got ") as info:
+        Lidar(fov=fov)
+    msg = str(info.value)
+    assert ("radians? a full turn, 2π, is the widest: pass 2 * math.pi" in msg) is radians_hint
+    assert ("degrees? pass math.radians(" in msg) is degrees_hint
+    if radians_hint:
+        assert Lidar(fov=2 * math.pi).fov == 2 * math.pi

@@ -184,7 +184,13 @@ class Lidar:
         object.__setattr__(self, "n_beams", bounded_int(self.n_beams, "n_beams", 1, MAX_BEAMS))
         fov = positive_float(self.fov, "fov")
         if fov > _TWO_PI + 1e-12:
-            hint = f" (degrees? pass math.radians({fov:g}))" if fov <= 360.0 else ""
+            # A field of view does not wrap: up to two turns it may be radians meant
+            # as all round (review 46: 7.0 was only asked "degrees?").
+            hints = ["radians? a full turn, 2π, is the widest: pass 2 * math.pi"] if (
+                fov <= 2.0 * _TWO_PI) else []  # fmt: skip
+            if fov <= 360.0:
+                hints.append(f"degrees? pass math.radians({fov:g})")
+            hint = f" ({'; or '.join(hints)})" if hints else ""
             raise ValueError(f"fov must lie in (0, 2π] rad, got {fov}{hint}")
         object.__setattr__(self, "fov", min(fov, _TWO_PI))
         rmin = positive_float(self.range_min, "range_min", allow_zero=True)
