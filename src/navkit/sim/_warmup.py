@@ -143,6 +143,9 @@ def _reactive() -> None:
     scan = _room_scan(36)
     repulsive_force_from_scan(scan, influence_radius=2.5)
     piecewise_repulsive_force_from_scan(scan, spread=2.0)
+    # A sensor off the robot's centre: each beam's end point pushes (two kernels more).
+    repulsive_force_from_scan(scan, influence_radius=2.5, mount=(-0.1, 0.0, 0.0))
+    piecewise_repulsive_force_from_scan(scan, spread=2.0, mount=(-0.1, 0.0, 0.0))
     greedy_step(LocalGrid.from_points(np.array([[0.2, 0.0]])), (2.0, 0.0))
     greedy_step(LocalGrid.from_points(np.array([[0.2, 0.0]])), (2.0, 0.0), require_progress=True)
     # A return in the robot's own cell: greedy_step frees that cell in a copy.
