@@ -58,6 +58,8 @@ _IS_TERRAIN = np.zeros(256, dtype=bool)
 _IS_TERRAIN[list(TERRAIN.encode("ascii"))] = True
 _IS_PASSABLE = np.zeros(256, dtype=bool)
 _IS_PASSABLE[list(PASSABLE.encode("ascii"))] = True
+# Bytes a read of a map's rows past its first read takes (see _read_on).
+_CHUNK = 1 << 20
 # The end of a line: either byte (a CR-only file's lines end in CR alone).
 _LINE_END = re.compile(rb"[\r\n]")
 # A C double as HOG2's stream reads it, without a sign: float() also took "1_0",
@@ -419,8 +421,9 @@ def read_movingai_map(path: str | os.PathLike[str]) -> MovingAIMap:
 
     The header (``type octile``, ``height H``, ``width W``, in any order) is
     followed by a ``map`` line and H rows of W terrain characters; blank
-    lines after them, and spaces or tabs after a row, are ignored (as HOG2,
-    the benchmark's own code, skips them); line ends may be ``\\n``,
+    lines after them, and any number of spaces or tabs after a row, are
+    ignored (as HOG2, the benchmark's own code, skips them: a map padded to
+    a fixed width reads as its rows); line ends may be ``\\n``,
     ``\\r\\n`` or, in a file whose first line ends so, ``\\r`` alone (classic
     Mac OS: HOG2 reads those too, its ``fscanf`` skipping any white space
     between rows), and a UTF-8 byte-order mark may start the file.
@@ -471,6 +474,9 @@ def read_movingai_map(path: str | os.PathLike[str]) -> MovingAIMap:
         # 40 bytes may claim 2**26 cells.
         remaining = max(os.fstat(fh.fileno()).st_size - fh.tell(), 0)
         body = fh.read(min(rows * (cols + 2) + LINE_MAX, remaining))
+        sizes: dict[int, int] = {}
+        if body.count(b"\n") < rows:
+            body, sizes = _read_on(fh, body, rows, cols, remaining - len(body))
         # Blank lines after the rows are ignored however many there are: read past
         # in bounded chunks, kept only if something else follows.
         extra = fh.read(LINE_MAX)
@@ -494,8 +500,8 @@ def read_movingai_map(path: str | os.PathLike[str]) -> MovingAIMap:
         line = lines[i] = line.rstrip(b" \t\r")
         if len(line) != cols:
             raise ValueError(
-                f"{file}:{number + 1 + i}: a row of {counted(len(line), 'character')}, the "
-                f"header's width is {cols}"
+                f"{file}:{number + 1 + i}: a row of "
+                f"{counted(sizes.get(i, len(line)), 'character')}, the header's width is {cols}"
             )
     codes = np.frombuffer(b"".join(lines), dtype=np.uint8).reshape(rows, cols)
     bad = ~_IS_TERRAIN[codes]
@@ -508,6 +514,69 @@ def read_movingai_map(path: str | os.PathLike[str]) -> MovingAIMap:
             f"character (one of {TERRAIN!r})"
         )
     return MovingAIMap(codes.astype(np.uint32).view(np.dtype("U1")))
+
+
+def _read_on(
+    fh: _Lines, body: bytes, rows: int, cols: int, left: int
+) -> tuple[bytes, dict[int, int]]:
+    """``body`` and as much more of ``fh`` as holds ``rows`` line ends, blanks after rows dropped.
+
+    ``body`` was read for rows of ``cols`` characters and a line end each:
+    rows followed by blanks (any number: HOG2's ``fscanf`` skips them; a map
+    padded to a fixed width) take more, and the rows past ``body`` were taken
+    for lines after the last row. The rest is read in chunks, each line kept
+    as the caller would see it after stripping its blanks; one longer than
+    ``cols`` is refused by the caller for its length alone, so it is kept as
+    ``cols + 1`` placeholder bytes and its length returned. Memory stays the
+    first read's (rows of up to ``cols + 1`` bytes) and a chunk; no read asks
+    for more than the ``left`` bytes the file holds after ``body`` (a read
+    allocates what it asks for first).
+
+    Returns
+    -------
+    bytes, dict
+        The lines joined by LF (after the ``rows``-th line end, the rest of the
+        last chunk as read), and the length of each line kept as a
+        placeholder, by its index.
+    """
+    kept: list[bytes] = []
+    sizes: dict[int, int] = {}
+    # The line so far: its text up to its last non-blank, the blanks after that
+    # (their count, and the first cols + 1 of them: more never fit in a row), and,
+    # once it is longer than a row, that length instead of the text.
+    head, blanks, run, size = b"", b"", 0, -1
+    data = body
+    while True:
+        parts = data.split(b"\n")
+        for k, part in enumerate(parts):
+            core = part.rstrip(b" \t\r")
+            if core:
+                if size < 0 and len(head) + run + len(core) <= cols:
+                    head += blanks + core
+                else:
+                    size = (len(head) if size < 0 else size) + run + len(core)
+                    head = b""
+                run = len(part) - len(core)
+                blanks = part[len(core) : len(core) + cols + 1]
+            else:
+                run += len(part)
+                blanks += part[: max(cols + 1 - len(blanks), 0)]
+            if k == len(parts) - 1:
+                break  # the line goes on in the next chunk
+            if size >= 0:
+                sizes[len(kept)] = size
+            kept.append(head if size < 0 else b"#" * (cols + 1))
+            head, blanks, run, size = b"", b"", 0, -1
+            if len(kept) >= rows:
+                return b"\n".join([*kept, *parts[k + 1 :]]), sizes
+        data = fh.read(min(_CHUNK, left)) if left > 0 else b""
+        if not data:
+            break
+        left -= len(data)
+    if size >= 0:
+        sizes[len(kept)] = size
+    kept.append(head + blanks if size < 0 else b"#" * (cols + 1))
+    return b"\n".join(kept), sizes
 
 
 class _Lines(Protocol):
