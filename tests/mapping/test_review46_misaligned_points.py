@@ -18,6 +18,7 @@ alignment of it.
 from __future__ import annotations
 
 import re
+from typing import Any
 
 import numpy as np
 import pytest
@@ -65,7 +66,10 @@ def test_the_fast_path_reads_the_points_assuming_no_alignment() -> None:
     from navkit._shared.array_objects import OBJECT
 
     # A fresh, uncached compilation: numba's cache keeps machine code, not the IR.
-    fresh = numba.njit(world_to_new_cells.py_func, no_cfunc_wrapper=True)
+    fresh: Any = getattr(numba, "njit")(  # noqa: B009 (numba's stubs lack the option)
+        world_to_new_cells.py_func,  # type: ignore[attr-defined]
+        no_cfunc_wrapper=True,
+    )
     signature = (OBJECT, *(types.float64,) * 4)
     fresh.compile(signature)
     loads = re.findall(r"load (?:double|<\d+ x double>), ptr [^,]+, align (\d+)",
