@@ -67,6 +67,34 @@ def close(expected: float, got: float) -> bool:
     return expected == got or abs(expected - got) <= TOL * max(1.0, abs(expected))
 
 
+#: The LiDAR's on-line tolerance (``_lidar_kernels._ON_LINE``, documented on ``Lidar``):
+#: a wall end within it of a beam's line is on the line, a sensor within it of a wall
+#: on the wall.
+ON_LINE = 1e-9
+
+
+def agrees(geoms: list, solids: list, ox: float, oy: float, phi: float,
+           range_max: float, got: float) -> bool:  # fmt: skip
+    """``got`` is the shapely range, or one the on-line tolerance allows.
+
+    Where a wall passes within ``ON_LINE`` of the beam (or of the sensor), the
+    LiDAR may meet it there: ``got`` may then be as short as the first boundary
+    point of the ray widened by the tolerance, and no longer than the exact one.
+    """
+    expected = shapely_range(geoms, solids, ox, oy, phi, range_max)
+    if close(expected, got):
+        return True
+    origin = Point(ox, oy)
+    ray = LineString([(ox, oy), (ox + range_max * math.cos(phi), oy + range_max * math.sin(phi))])
+    wide = ray.buffer(2.0 * ON_LINE)
+    near = min(
+        (origin.distance(hit) for g in geoms
+         if not (hit := wide.intersection(g.boundary if isinstance(g, Polygon) else g)).is_empty),
+        default=math.inf,
+    )  # fmt: skip
+    return near < expected and near - TOL * max(1.0, near) <= got <= expected * (1.0 + TOL)
+
+
 # ----------------------------------------------------------------- polygon worlds
 _coord = st.floats(-4.0, 4.0, allow_nan=False)
 
@@ -121,8 +149,31 @@ def test_polygon_worlds_match_shapely_from_a_rotated_off_centre_mount(
     np.testing.assert_allclose(lidar.angles(), wrapped, rtol=0.0, atol=1e-12)
     sx, sy, sth = sensor_pose(pose, mount)
     for k, a in enumerate(angles):
-        expected = shapely_range(geoms, solids, sx, sy, sth + a, 9.0)
-        assert close(expected, float(scan.ranges[k])), (k, expected, scan.ranges[k])
+        got = float(scan.ranges[k])
+        assert agrees(geoms, solids, sx, sy, sth + a, 9.0, got), (
+            k, shapely_range(geoms, solids, sx, sy, sth + a, 9.0), got
+        )
+
+
+@pytest.mark.parametrize("gap", [2.121e-174, 1e-12, 0.5e-9, 2e-9])
+def test_a_wall_end_beside_the_sensor_is_met_within_the_on_line_tolerance(gap: float) -> None:
+    """Found by this file's shapely property: a wall whose end is ``gap`` beside the sensor.
+
+    Far below the tolerance every beam's line passes through that end at the
+    sensor: every beam reads 0, the sensor on the wall, as ``Lidar`` documents.
+    Near it, beams crossing the wall within it of the sensor read 0; beyond it
+    (2e-9 m) beams away from the wall see nothing. Every reading is one the
+    tolerance allows.
+    """
+    lidar = Lidar(n_beams=5, noise=None, range_min=0.0, range_max=9.0)
+    wall = LineString([(gap, 1.0), (gap, 0.0)])
+    ranges = lidar.scan(World([wall]), (0.0, 1.0, 0.0)).ranges
+    if gap < 1e-11:
+        assert ranges.tolist() == [0.0] * 5
+    if gap > ON_LINE:
+        assert np.isinf(ranges[[0, 1, 4]]).all()
+    for k in range(5):
+        assert agrees([wall], [], 0.0, 1.0, float(lidar.angles()[k]), 9.0, float(ranges[k]))
 
 
 def test_beams_are_counterclockwise_in_the_mounts_frame() -> None:

@@ -90,7 +90,11 @@ class Lidar:
     scanner does. A sensor inside an obstacle (a blocked cell of the world's
     grid, a solid polygon or :class:`Circle`, a moving obstacle) or on its
     boundary measures 0 on every beam: it reads ``-inf`` (too close) when
-    ``range_min > 0``, 0 otherwise (NaN on dropped beams).
+    ``range_min > 0``, 0 otherwise (NaN on dropped beams). Walls and polygon
+    edges are met to within 1e-9 m, against the rounding of a beam's
+    direction: an end of one that close to a beam's line is on the line (a
+    beam grazing it stops there), and a beam crossing one that close to the
+    sensor, ahead or behind, reads 0 (a sensor on it, to rounding).
 
     Every parameter is keyword-only; defaults describe an RPLIDAR A1 (0.15 to
     12 m, 360 beams, 10 Hz) with the omnidirectional robot paper's range
