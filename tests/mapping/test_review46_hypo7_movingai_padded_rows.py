@@ -52,6 +52,20 @@ def test_rows_padded_with_blanks_read_as_the_rows(end: bytes, pad: int) -> None:
     assert (kind, terrain) == _outcome(plain)
 
 
+@pytest.mark.parametrize("chunk", [1, 2, 3, 4, 5, 1 << 20])
+def test_blanks_inside_rows_past_the_first_read_are_kept_across_chunks(chunk: int) -> None:
+    head = _HEADER % (4, 6) + b"." * 6 + b" " * 6000 + b"\n"
+    for rows in (
+        [b"..\t ..", b"......", b"......"],  # six characters, a tab among them
+        [b"..  \t ..", b"......", b"......"],  # eight characters
+        [b"......", b".  ", b"......"],  # blanks after a short row: three characters
+        [b"......", b"...   " + b"\t" * 30 + b".", b"......"],  # 37 characters
+    ):
+        data = head + b"\n".join(rows) + b"\n"
+        plain = _HEADER % (4, 6) + b"." * 6 + b"\n" + b"\n".join(rows) + b"\n"
+        assert _outcome(data, chunk) == _outcome(plain), rows
+
+
 def test_messages_past_the_first_read_name_the_row_and_its_length() -> None:
     head = _HEADER % (3, 10) + b"." * 10 + b" " * 6000 + b"\n"
     assert _outcome(head + b"." * 10 + b"\t" * 9000 + b"@\n" + b"." * 10 + b"\n") == (
@@ -90,12 +104,17 @@ def _maps(draw: st.DrawFn) -> tuple[list[bytes], int, int]:
     for _ in range(draw(st.integers(0, 2))):
         i = draw(st.integers(0, len(rows) - 1))
         at = draw(st.integers(0, len(rows[i])))
-        kind = draw(st.sampled_from(["set", "insert", "cut", "row out", "row twice", "blank row"]))
+        kind = draw(
+            st.sampled_from(["set", "insert", "blanks", "cut", "row out", "row twice", "blank row"])
+        )
         if kind == "set" and rows[i]:
             at = min(at, len(rows[i]) - 1)
             rows[i] = rows[i][:at] + bytes([draw(_NOISE)]) + rows[i][at + 1 :]
         elif kind == "insert":
             rows[i] = rows[i][:at] + bytes([draw(_NOISE)]) * draw(st.integers(1, 3)) + rows[i][at:]
+        elif kind == "blanks":  # inside the row: split by a chunk's edge, kept as they are
+            run = draw(st.sampled_from([b" ", b"\t", b" \t", b"  \t "]))
+            rows[i] = rows[i][:at] + run + rows[i][at:]
         elif kind == "cut":
             rows[i] = rows[i][:at]
         elif kind == "row out" and len(rows) > 1:
@@ -113,7 +132,7 @@ def _maps(draw: st.DrawFn) -> tuple[list[bytes], int, int]:
     data=st.data(),
     end=st.sampled_from([b"\n", b"\r\n", b"\r"]),
     last_end=st.booleans(),
-    chunk=st.sampled_from([1, 2, 3, 7, 64, 1 << 20]),
+    chunk=st.sampled_from([1, 1, 2, 3, 5, 7, 64, 1 << 20]),
 )
 def test_blanks_after_rows_change_nothing(
     case: tuple[list[bytes], int, int],
