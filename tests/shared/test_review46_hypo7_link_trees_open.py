@@ -147,3 +147,10 @@ def test_the_trees_reach_every_outcome() -> None:
         # Named as the link's target spells it: b (a link to the file a/x).
         with pytest.raises(NotADirectoryError, match=r"/b is a file, not a folder$"):
             check_folder(root / "a/y/out.json", "path")
+    with tempfile.TemporaryDirectory() as name:
+        # Links through links to a file: c -> b/x, b -> a/x, a a file.
+        root = Path(name)
+        _build(root, {"a": ("file", ""), "b": ("link", "a/x"), "c": ("link", "b/x")})
+        assert _open_outcome(root / "c" / "out.json") == "ENOTDIR"
+        with pytest.raises(NotADirectoryError, match=r"/a is a file, not a folder$"):
+            check_folder(root / "c/out.json", "path")
