@@ -132,11 +132,6 @@ def test_the_refusal_names_both_counts_of_decimals(
     )
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="MUTANT26: _refuse_cut_length refuses other decimals, not only fewer (a cut only "
-    "shortens); _movingai.py is claimed by LEFTOVERS, the fix is left to the lead",
-)
 @pytest.mark.parametrize("word", [b"2.000000005", b"24.1421356237"])
 def test_a_last_length_with_more_decimals_is_no_cut(
     shared_data: Path, tmp_path: Path, word: bytes

@@ -721,7 +721,7 @@ def read_movingai_scenarios(path: str | os.PathLike[str]) -> MovingAIScenarios:
     reads as its first problems. A file cut inside its last line is refused:
     inside a field before the length, as a line without 9 fields; inside the
     length (nothing follows it), when that line has no line end and its
-    length has other decimals than the file prints every other length with
+    length has fewer decimals than the file prints every other length with
     (the benchmark's files: 8). A file of lengths printed with varying
     decimals (``%g``), or of one problem, gives a length cut there as read.
 
@@ -748,7 +748,7 @@ def read_movingai_scenarios(path: str | os.PathLike[str]) -> MovingAIScenarios:
         non-negative integer of ASCII digits (or, for the length, a finite
         decimal number without sign), a bucket beyond int64, a map of more
         than ``2**31 - 1`` cells, a cell outside its map's width and height;
-        a last line without its line end whose length has other decimals
+        a last line without its line end whose length has fewer decimals
         than every other line's (a file cut inside it).
     OSError
         The operating system refuses to read the file.
@@ -863,7 +863,8 @@ def _refuse_cut_length(
     count = len(word.partition(".")[2]) if point else None
     if raw[-1:] not in (b"\n", b"\r", b" ", b"\t") and len(decimals) == 1:
         (usual,) = decimals
-        if usual is not None and count != usual:
+        # A cut only removes digits: a whole length printed with more decimals is read.
+        if usual is not None and (count is None or count < usual):
             raise ValueError(
                 f"{file}:{number}: the file ends inside this line, its optimal_length "
                 f"{word[:40]!r} printed with {'no' if count is None else count} decimals where "
