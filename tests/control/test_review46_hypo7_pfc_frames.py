@@ -63,6 +63,13 @@ def _near_a_tie(
     return abs(abs(angle_diff(heading, pose.theta)) - math.pi) < 1e-6
 
 
+def _nearest(points: np.ndarray, x: float, y: float) -> float:
+    """Distance (m) from ``(x, y)`` to the nearest of ``points`` (inf with none)."""
+    if points.size == 0:
+        return math.inf
+    return float(np.hypot(points[:, 0] - x, points[:, 1] - y).min())
+
+
 @st.composite
 def _scenes(draw: st.DrawFn) -> dict[str, object]:
     start = draw(st.tuples(st.floats(-3, 3), st.floats(-3, 3), st.floats(-math.pi, math.pi)))
@@ -115,6 +122,7 @@ def _run(
     moved_target = _pose_moved(target, phi, shift)
     done = 0
     comparable = True
+    turned = False
     for _ in range(steps):
         moved_pose = _pose_moved(pose, phi, shift)
         here: object = points if scan is None else scan
@@ -134,12 +142,22 @@ def _run(
         # no frame's direction is the right one, there and in the later commands
         # that the acceleration limits derive from it.
         comparable = comparable and math.hypot(target.x - pose.x, target.y - pose.y) > 1e-6
+        # So does the push of an obstacle point nearer than 1e-6 m (a robot 1.9e-222 m
+        # from one was on it once the move rounded): its direction is the rounding's,
+        # and so is a differential robot's heading from then on (PID state included).
+        on_point = (
+            _nearest(points, pose.x, pose.y) <= 1e-6
+            or _nearest(moved_points, moved_pose.x, moved_pose.y) <= 1e-6
+        )
+        comparable = comparable and not on_point
+        turned = turned or (on_point and scene["drive"] == "diff")
         if comparable:
             np.testing.assert_allclose(
                 [b.vx, b.vy], [a.vx, a.vy], rtol=1e-7, atol=1e-9, err_msg=str((pose, target))
             )
-        # The PID's derivative divides the heading's rounding by dt: a looser bound.
-        assert abs(b.omega - a.omega) <= 1e-6, (a, b, pose, target)
+        if not turned:
+            # The PID's derivative divides the heading's rounding by dt: a looser bound.
+            assert abs(b.omega - a.omega) <= 1e-6, (a, b, pose, target)
         done += ctls[0].done
         c, s = math.cos(pose.theta), math.sin(pose.theta)
         pose = Pose2D(
