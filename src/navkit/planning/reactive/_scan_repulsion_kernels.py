@@ -187,6 +187,29 @@ def piecewise_beam_force(
 # finite divisor instead of a branch, as above.
 
 
+@typed_njit(**NO_REFCOUNT, no_cpython_wrapper=True, fastmath=_FASTMATH)
+def _beam_end(
+    r: float,
+    cos_t: float,
+    sin_t: float,
+    range_min: float,
+    range_max: float,
+    mount_x: float,
+    mount_y: float,
+    mount_cos: float,
+    mount_sin: float,
+) -> tuple[float, float, float, bool]:
+    """A beam's end point ``(px, py)`` in the robot frame, its distance ``|p|`` and validity.
+
+    An invalid beam (out of range, or a zero range) ends at the mount.
+    """
+    valid = (r >= range_min) & (r < range_max) & (r > 0.0)
+    rr = r if valid else 0.0
+    px = mount_x + rr * (cos_t * mount_cos - sin_t * mount_sin)
+    py = mount_y + rr * (sin_t * mount_cos + cos_t * mount_sin)
+    return px, py, math.hypot(px, py), valid
+
+
 @typed_njit(**NO_REFCOUNT, fastmath=_FASTMATH)
 def mounted_khatib_force(
     ranges: np.ndarray,
@@ -212,12 +235,10 @@ def mounted_khatib_force(
     fx = 0.0
     fy = 0.0
     for k in range(ranges.shape[0]):
-        r = ranges[k]
-        valid = (r >= range_min) & (r < range_max) & (r > 0.0)
-        rr = r if valid else 0.0
-        px = mount_x + rr * (cos_t[k] * mount_cos - sin_t[k] * mount_sin)
-        py = mount_y + rr * (sin_t[k] * mount_cos + cos_t[k] * mount_sin)
-        d = math.hypot(px, py)
+        px, py, d, valid = _beam_end(
+            ranges[k], cos_t[k], sin_t[k], range_min, range_max,
+            mount_x, mount_y, mount_cos, mount_sin,
+        )  # fmt: skip
         use = valid & (d <= d0) & (d > 0.0)
         dd = d if use else d0
         inv = 1.0 / dd
@@ -250,12 +271,10 @@ def mounted_piecewise_force(
     fx = 0.0
     fy = 0.0
     for k in range(ranges.shape[0]):
-        r = ranges[k]
-        valid = (r >= range_min) & (r < range_max) & (r > 0.0)
-        rr = r if valid else 0.0
-        px = mount_x + rr * (cos_t[k] * mount_cos - sin_t[k] * mount_sin)
-        py = mount_y + rr * (sin_t[k] * mount_cos + cos_t[k] * mount_sin)
-        d = math.hypot(px, py)
+        px, py, d, valid = _beam_end(
+            ranges[k], cos_t[k], sin_t[k], range_min, range_max,
+            mount_x, mount_y, mount_cos, mount_sin,
+        )  # fmt: skip
         use = valid & (d <= reach) & (d > 0.0)
         inv = 1.0 / (d if use else 1.0)
         w = (delta if d < r_obs else beta * (reach - d)) if use else 0.0
