@@ -598,7 +598,10 @@ spec(
 )
 spec(
     "navkit.mapping.LaserScan.to_local_grid",
-    lambda c: method(scan(), "to_local_grid", half_width=1.0, resolution=0.1),
+    lambda c: method(
+        scan(), "to_local_grid", half_width=1.0, resolution=0.1, mount=call(Pose2D, 0.1, 0.0, 0.3)
+    ),
+    kinds={"mount": OPT_POSE},
 )
 spec(
     "navkit.mapping.LocalGrid",

@@ -275,12 +275,21 @@ class LaserScan:
         phi = phi + p.theta
         return np.column_stack((p.x + d * np.cos(phi), p.y + d * np.sin(phi)))
 
-    def to_local_grid(self, *, half_width: float = 1.0, resolution: float = 0.1) -> LocalGrid:
+    def to_local_grid(
+        self,
+        *,
+        half_width: float = 1.0,
+        resolution: float = 0.1,
+        mount: Pose2D | ArrayLike | None = None,
+    ) -> LocalGrid:
         """Robot-centred occupancy grid of the valid returns (TurtleBot3 paper's grid).
 
-        The scan is assumed to be taken in the robot frame (x forward, y left).
-        With the defaults the result is the paper's 21 × 21 grid of 0.1 m cells
-        centred from -1 m to 1 m, with ``i = 10 y + 10`` and ``j = 10 x + 10``.
+        The grid is in the robot frame (x forward, y left): without ``mount``
+        the scan is taken as one from the robot's centre, facing forward; with
+        it each return is placed at its end point seen from the sensor's pose
+        on the robot (``to_points(mount)``). With the defaults the result is
+        the paper's 21 × 21 grid of 0.1 m cells centred from -1 m to 1 m, with
+        ``i = 10 y + 10`` and ``j = 10 x + 10``.
 
         Parameters
         ----------
@@ -291,6 +300,10 @@ class LaserScan:
             :meth:`LocalGrid.from_points <navkit.mapping.LocalGrid.from_points>`).
         resolution : float, default 0.1
             Cell size in metres, in [1e-6, 1e6] (keyword-only).
+        mount : Pose2D or array_like [x, y, theta], optional
+            The sensor's pose in the robot frame (m, m, rad), as
+            ``navkit.sim.Lidar(mount=)`` (keyword-only). Default: at the
+            robot's centre, facing forward.
 
         Returns
         -------
@@ -301,9 +314,11 @@ class LaserScan:
         Raises
         ------
         TypeError
-            ``half_width`` or ``resolution`` not a real number (a bool included).
+            ``half_width`` or ``resolution`` not a real number (a bool
+            included), or a ``mount`` that is not three real numbers.
         ValueError
-            A number outside its range, or a grid of more than ``2**28`` cells.
+            A number outside its range, a ``mount`` that is not finite, or a
+            grid of more than ``2**28`` cells.
 
         Examples
         --------
@@ -313,5 +328,12 @@ class LaserScan:
         >>> grid = scan.to_local_grid()
         >>> [tuple(int(v) for v in ij) for ij in np.argwhere(grid.occupied)]
         [(10, 15), (15, 10)]
+
+        The same scan from a sensor 0.3 m ahead of the robot's centre:
+
+        >>> grid = scan.to_local_grid(mount=(0.3, 0.0, 0.0))
+        >>> [tuple(int(v) for v in ij) for ij in np.argwhere(grid.occupied)]
+        [(10, 18), (15, 13)]
         """
-        return LocalGrid.from_points(self.to_points(), half_width=half_width, resolution=resolution)
+        points = self.to_points() if mount is None else self.to_points(as_pose(mount, "mount"))
+        return LocalGrid.from_points(points, half_width=half_width, resolution=resolution)
