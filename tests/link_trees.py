@@ -3,13 +3,18 @@
 ``tree`` is what a test compares before and after a refused write (nothing
 written, nothing removed, no link followed or changed); ``loop`` makes the
 simplest loop of symbolic links; ``file_in_link`` a file met on the way
-through a link's target (review 46).
+through a link's target (review 46); ``folder_refusal`` what ``check_folder``
+says of a folder it refuses.
 """
 
 from __future__ import annotations
 
 import os
 from pathlib import Path
+
+import pytest
+
+from navkit._shared.files import check_folder
 
 
 def tree(folder: Path) -> dict[str, str]:
@@ -51,3 +56,23 @@ def file_in_link(folder: Path) -> tuple[Path, Path]:
     (folder / "a").write_text("keep me")
     (folder / "b").symlink_to(Path("a", "b"))
     return folder / "b", folder / "a"
+
+
+def folder_refusal(
+    target: Path, named: bool, expected: type[OSError]
+) -> tuple[OSError, str | None]:
+    """``check_folder(target)`` refuses with exactly ``expected``: the error and the file named.
+
+    ``named``: the check is given the argument name ``"path"``. The file named
+    (``NotADirectoryError`` only, else None) is read from the message when
+    named, from the exception's ``filename`` otherwise.
+    """
+    with pytest.raises(OSError) as caught:
+        check_folder(target, "path" if named else None)
+    error = caught.value
+    assert type(error) is expected, error
+    if expected is not NotADirectoryError:
+        return error, None
+    if named:
+        return error, str(error).removeprefix("path: ").removesuffix(" is a file, not a folder")
+    return error, error.filename
