@@ -15,6 +15,10 @@ float64 values lie 2.4e-7 s apart, so a stamp is rounded to within about
 0.12 µs and a difference of stamps to within about 0.24 µs. A stamp of 0 (a driver that does not
 set it) is kept as 0: use ``record_times`` for such topics.
 
+Memory: bags are read one chunk at a time (a ROS 1 bag whose index rosbags
+refuses too: navkit's chunk walker streams it), keeping the messages of the
+topic read until each is converted.
+
 Damaged or malicious bags: ROS 1 chunks are decompressed at most to the size
 their header declares, and never past :data:`CHUNK_MAX`; a ROS 2 bag's
 ``metadata.yaml`` must be a regular file of at most :data:`METADATA_MAX` bytes
@@ -47,7 +51,7 @@ from contextlib import contextmanager, suppress
 from dataclasses import dataclass
 from functools import partial
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, NamedTuple, TypeVar
+from typing import TYPE_CHECKING, Any, BinaryIO, NamedTuple, TypeVar
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -175,10 +179,12 @@ class BagScans:
     Arrays are read-only float64 copies; lengths must agree. Memory: each
     scan is a :class:`~navkit.mapping.LaserScan` with its own float64 arrays,
     8 bytes a beam (16 with intensities) and some 330 bytes of objects a scan;
-    :func:`read_bag_scans` holds the decoded messages' float32 readings (4
-    bytes a beam more) until it has built them all. (Measured on a bag of 360
-    scans of 681 beams: 5.8 kB a scan kept, and 6 bytes a beam more at the
-    peak; review 28: this said 700 bytes of objects.)
+    :func:`read_bag_scans` builds each scan as its message is decoded and lets
+    the message go, so that its peak is the scans and about one bag chunk
+    (measured on the demo bag of 360 scans of 681 beams, 1.03 MB: 2.22 MB at
+    the peak, 5.8 kB a scan kept; review 47: the decoded messages were all
+    held until the scans were built, and a bag read by the chunk walker held
+    whole, 3.51 MB).
 
     Examples
     --------
@@ -792,7 +798,10 @@ def _with_bag(bag_path: Path, use: Callable[[_Bag], _T]) -> _T:
         except _Corrupt as walk_exc:
             detail = str(exc) if str(exc) == str(walk_exc) else f"{exc}; {walk_exc}"
             raise ValueError(f"{bag_path}: cannot read the ROS 1 bag: {detail}") from None
-        return use(bag)
+        try:
+            return use(bag)
+        except _Corrupt as walk_exc:  # the walker reads a stream's chunks as it is used
+            raise ValueError(f"{bag_path}: cannot read the ROS 1 bag: {walk_exc}") from None
 
 
 def _check_metadata(path: Path) -> None:
@@ -900,37 +909,54 @@ def _fields(block: bytes) -> dict[str, bytes]:
 
 
 def _record(data: bytes, pos: int, where: str = "") -> tuple[dict[str, bytes], bytes, int]:
-    """Header fields, data and next position of the ROS 1 record at ``pos``.
+    """Header fields, data and next position of the ROS 1 record at ``pos`` of ``data``.
+
+    ``data`` is the file, or the decompressed chunk ``where`` names (see
+    :func:`_record_at`).
+    """
+    return _record_at(lambda start, n: data[start : start + n], len(data), pos, where)
+
+
+def _record_at(
+    read: Callable[[int, int], bytes], end: int, pos: int, where: str = ""
+) -> tuple[dict[str, bytes], bytes, int]:
+    """Header fields, data and next position of the ROS 1 record at ``pos`` of something
+    ``end`` bytes long, whose ``n`` bytes at ``start`` ``read(start, n)`` gives.
 
     ``pos`` is a position in the file, or in the decompressed chunk ``where``
     names. Both declared lengths are checked against the bytes there: a cut or
     lying length is refused here, naming the record, rather than read as a
-    shorter header or message.
+    shorter header or message (or, in a file, as a read of gigabytes).
     """
     what = f"record at byte {pos}{where}"
-    if pos < 0 or pos + 4 > len(data):
+
+    def take(start: int, n: int) -> bytes:
+        got = read(start, n)
+        if len(got) != n:  # a file cut while it is read
+            raise _Corrupt(f"{what} is cut off")
+        return got
+
+    if pos < 0 or pos + 4 > end:
         raise _Corrupt(f"{what} lies beyond the end")
-    (header_len,) = struct.unpack_from("<I", data, pos)
+    (header_len,) = struct.unpack("<I", take(pos, 4))
     start = pos + 4
-    if header_len > len(data) - start:
+    if header_len > end - start:
         raise _Corrupt(
-            f"{what} declares a {header_len}-byte header, only {len(data) - start} bytes remain"
+            f"{what} declares a {header_len}-byte header, only {end - start} bytes remain"
         )
-    header = data[start : start + header_len]
+    header = take(start, header_len)
     pos = start + header_len
-    if pos + 4 > len(data):
+    if pos + 4 > end:
         raise _Corrupt(f"{what} is cut off before its data length")
-    (data_len,) = struct.unpack_from("<I", data, pos)
+    (data_len,) = struct.unpack("<I", take(pos, 4))
     start = pos + 4
-    if data_len > len(data) - start:
-        raise _Corrupt(
-            f"{what} declares {data_len} data bytes, only {len(data) - start} bytes remain"
-        )
+    if data_len > end - start:
+        raise _Corrupt(f"{what} declares {data_len} data bytes, only {end - start} bytes remain")
     try:
         fields = _fields(header)
     except _Corrupt as exc:
         raise _Corrupt(f"{what}: {exc}") from None
-    return fields, data[start : start + data_len], start + data_len
+    return fields, take(start, data_len), start + data_len
 
 
 def _int(fields: dict[str, bytes], name: str, fmt: str) -> int:
@@ -945,6 +971,54 @@ def _op(fields: dict[str, bytes]) -> int:
     return _int(fields, "op", "<B")
 
 
+def _file_reader(fh: BinaryIO) -> Callable[[int, int], bytes]:
+    """``read(start, n)``: the ``n`` bytes of ``fh`` at ``start`` (fewer at its end)."""
+
+    def read(start: int, n: int) -> bytes:
+        fh.seek(start)
+        return fh.read(n)
+
+    return read
+
+
+def _identity(fh: BinaryIO) -> tuple[int, int, int, int]:
+    st = os.fstat(fh.fileno())
+    return st.st_dev, st.st_ino, st.st_size, st.st_mtime_ns
+
+
+def _chunk_messages(
+    read: Callable[[int, int], bytes], end: int, chunk_pos: int, declared: dict[int, int],
+    wanted: Callable[[int], bool],
+) -> Iterator[tuple[int, int, bytes]]:  # fmt: skip
+    """(record ns, connection, raw message) of the messages of the chunk at ``chunk_pos``
+    whose connection is ``wanted``, in chunk order; then :class:`_Corrupt` unless the chunk
+    holds, connection by connection, the messages its chunk-info record ``declared``."""
+    found = dict.fromkeys(declared, 0)
+    fields, body, _ = _record_at(read, end, chunk_pos)
+    if _op(fields) != 5:
+        raise _Corrupt(f"no chunk record at byte {chunk_pos}")
+    compression = fields.get("compression", b"none")
+    body = _inflate(compression, _int(fields, "size", "<I"), chunk_pos, body)
+    inner = 0
+    whole = len(body)
+    while inner < whole:
+        rec, payload, inner = _record(body, inner, f" of the chunk at byte {chunk_pos}")
+        if _op(rec) == 2:
+            stamp = _int(rec, "time", "<Q")
+            ns = (stamp & 0xFFFFFFFF) * 1_000_000_000 + (stamp >> 32)
+            conn_id = _int(rec, "conn", "<I")
+            found[conn_id] = found.get(conn_id, 0) + 1
+            if wanted(conn_id):
+                yield ns, conn_id, payload
+    for conn_id in sorted(found.keys() | declared.keys()):
+        if found.get(conn_id, 0) != declared.get(conn_id, 0):
+            raise _Corrupt(
+                f"the chunk at byte {chunk_pos} holds {found.get(conn_id, 0)} messages "
+                f"of connection {conn_id}, its chunk info record "
+                f"{declared.get(conn_id, 0)}"
+            )
+
+
 def _walk_ros1(bag_path: Path) -> _Bag:
     """Read a ROS 1 bag through its connection and chunk-info records (the chunks' own indexes
     are not used).
@@ -952,77 +1026,83 @@ def _walk_ros1(bag_path: Path) -> _Bag:
     Each chunk must hold, connection by connection, the messages its chunk-info
     record counts: a message record whose ``op`` or ``conn`` field is damaged
     (ROS 1 bags carry no checksum) was otherwise dropped without a word.
+
+    The bag is streamed, one chunk in memory at a time (review 47: it was read
+    whole, and every message copied out of it, some 3.4 times the file at the
+    peak): this call reads the index and checks every chunk, keeping only the
+    counts; ``messages(topic, msgtype)`` reads the chunks again, keeping only that
+    stream's messages, once the file is checked to be the one counted (same
+    device, inode, size and modification time; else :class:`_Corrupt`). A chunk
+    is decompressed twice: this walker reads bags whose index rosbags refuses,
+    where memory matters more than time.
     """
     with open_regular(bag_path, "ROS bag") as fh:
-        data = fh.read()
-    header, _, _ = _record(data, len(_ROS1_MAGIC))
-    if _op(header) != 3:
-        raise _Corrupt("no bag header record")
-    pos = _int(header, "index_pos", "<Q")
-    if pos == 0:
-        raise _Corrupt("the bag is not indexed (run `rosbag reindex`)")
-    conns: dict[int, tuple[str, str]] = {}
-    for _ in range(_int(header, "conn_count", "<I")):
-        fields, body, pos = _record(data, pos)
-        if _op(fields) != 7:
-            raise _Corrupt("expected a connection record in the index")
-        conn = _fields(body)
-        topic = fields.get("topic", b"").decode("utf-8", "replace")
-        msgtype = conn.get("type", b"").decode("utf-8", "replace")
-        conns[_int(fields, "conn", "<I")] = (topic, _normalize(msgtype))
-    chunks = []
-    for _ in range(_int(header, "chunk_count", "<I")):
-        fields, body, pos = _record(data, pos)
-        if _op(fields) != 6:
-            raise _Corrupt("expected a chunk info record in the index")
-        chunk_pos = _int(fields, "chunk_pos", "<Q")
-        listed = _int(fields, "count", "<I")
-        if len(body) != 8 * listed:
-            raise _Corrupt(
-                f"the chunk info record of the chunk at byte {chunk_pos} lists {listed} "
-                f"connections in {len(body)} bytes (8 bytes each)"
-            )
-        declared: dict[int, int] = {}
-        for conn_id, count in struct.iter_unpack("<II", body):
-            declared[conn_id] = declared.get(conn_id, 0) + count
-        chunks.append((chunk_pos, declared))
-    messages: list[tuple[int, int, bytes]] = []
-    for chunk_pos, declared in chunks:
-        found = dict.fromkeys(declared, 0)
-        fields, body, _ = _record(data, chunk_pos)
-        if _op(fields) != 5:
-            raise _Corrupt(f"no chunk record at byte {chunk_pos}")
-        compression = fields.get("compression", b"none")
-        body = _inflate(compression, _int(fields, "size", "<I"), chunk_pos, body)
-        inner = 0
-        while inner < len(body):
-            rec, payload, inner = _record(body, inner, f" of the chunk at byte {chunk_pos}")
-            if _op(rec) == 2:
-                stamp = _int(rec, "time", "<Q")
-                ns = (stamp & 0xFFFFFFFF) * 1_000_000_000 + (stamp >> 32)
-                conn_id = _int(rec, "conn", "<I")
-                found[conn_id] = found.get(conn_id, 0) + 1
-                messages.append((ns, conn_id, payload))
-        for conn_id in sorted(found.keys() | declared.keys()):
-            if found.get(conn_id, 0) != declared.get(conn_id, 0):
+        identity = _identity(fh)
+        end = identity[2]
+        read = _file_reader(fh)
+        header, _, _ = _record_at(read, end, len(_ROS1_MAGIC))
+        if _op(header) != 3:
+            raise _Corrupt("no bag header record")
+        pos = _int(header, "index_pos", "<Q")
+        if pos == 0:
+            raise _Corrupt("the bag is not indexed (run `rosbag reindex`)")
+        conns: dict[int, tuple[str, str]] = {}
+        for _ in range(_int(header, "conn_count", "<I")):
+            fields, body, pos = _record_at(read, end, pos)
+            if _op(fields) != 7:
+                raise _Corrupt("expected a connection record in the index")
+            conn = _fields(body)
+            topic = fields.get("topic", b"").decode("utf-8", "replace")
+            msgtype = conn.get("type", b"").decode("utf-8", "replace")
+            conns[_int(fields, "conn", "<I")] = (topic, _normalize(msgtype))
+        chunks = []
+        for _ in range(_int(header, "chunk_count", "<I")):
+            fields, body, pos = _record_at(read, end, pos)
+            if _op(fields) != 6:
+                raise _Corrupt("expected a chunk info record in the index")
+            chunk_pos = _int(fields, "chunk_pos", "<Q")
+            listed = _int(fields, "count", "<I")
+            if len(body) != 8 * listed:
                 raise _Corrupt(
-                    f"the chunk at byte {chunk_pos} holds {found.get(conn_id, 0)} messages "
-                    f"of connection {conn_id}, its chunk info record "
-                    f"{declared.get(conn_id, 0)}"
+                    f"the chunk info record of the chunk at byte {chunk_pos} lists {listed} "
+                    f"connections in {len(body)} bytes (8 bytes each)"
                 )
-    messages.sort(key=lambda m: m[0])
-    # Tabulated as rosbags does: by (topic, type), connections of both alike summed; a
-    # connection without messages still lists its stream (count 0). Messages of a
-    # connection the index does not declare have no type and belong to no stream.
-    counts = dict.fromkeys(conns.values(), 0)
-    for _, conn_id, _ in messages:
-        if conn_id in conns:
-            counts[conns[conn_id]] += 1
+            declared: dict[int, int] = {}
+            for conn_id, count in struct.iter_unpack("<II", body):
+                declared[conn_id] = declared.get(conn_id, 0) + count
+            chunks.append((chunk_pos, declared))
+        # Tabulated as rosbags does: by (topic, type), connections of both alike summed; a
+        # connection without messages still lists its stream (count 0). Messages of a
+        # connection the index does not declare have no type and belong to no stream.
+        counts = dict.fromkeys(conns.values(), 0)
+        for chunk_pos, declared in chunks:
+            for _, conn_id, _ in _chunk_messages(
+                read, end, chunk_pos, declared, conns.__contains__
+            ):
+                counts[conns[conn_id]] += 1
 
     def walked(topic: str, msgtype: str) -> Iterator[tuple[int, bytes]]:
-        for ns, conn_id, raw in messages:
-            if conns.get(conn_id) == (topic, msgtype):
-                yield ns, raw
+        ids = {conn_id for conn_id, stream in conns.items() if stream == (topic, msgtype)}
+        selected: list[tuple[int, bytes]] = []
+        with open_regular(bag_path, "ROS bag") as fh:
+            if _identity(fh) != identity:
+                raise _Corrupt("the bag file changed while it was read")
+            read = _file_reader(fh)
+            for chunk_pos, declared in chunks:
+                if any(declared.get(conn_id, 0) for conn_id in ids):
+                    selected.extend(
+                        (ns, raw)
+                        for ns, _, raw in _chunk_messages(
+                            read, end, chunk_pos, declared, ids.__contains__
+                        )
+                    )
+        # Record-time order, stable (chunk order, then order in the chunk), as rosbags gives
+        # them; handed out last first from the reversed list, each message is let go once
+        # it is yielded (its decoded form is what the reader keeps).
+        selected.sort(key=lambda m: m[0])
+        selected.reverse()
+        while selected:
+            yield selected.pop()
 
     return _Bag(False, counts, walked)
 
@@ -1085,14 +1165,6 @@ def _decoded(
     return _with_bag(bag_path, opened)
 
 
-def _read(
-    path: Any, topic: Any, msgtype: str, convert: Callable[[str, list[tuple[int, Any]]], _T]
-) -> _T:
-    """Deserialize every ``msgtype`` message of the selected topic and hand them to
-    ``convert``."""
-    return _decoded(path, topic, msgtype, lambda name, msgs: convert(name, list(msgs)))
-
-
 def _read_rows(
     path: Any,
     topic: Any,
@@ -1149,14 +1221,6 @@ def _record_time(ns: int) -> float:
     # As _stamp computes a stamp, so that the same instant gives the same float
     # (``ns * 1e-9`` rounds ns to a multiple of 256 first: often one float off).
     return float(ns // 1_000_000_000) + float(ns % 1_000_000_000) * 1e-9
-
-
-def _record_times(messages: list[tuple[int, Any]]) -> FloatArray:
-    return np.array([_record_time(ns) for ns, _ in messages], dtype=np.float64)
-
-
-def _frame(messages: list[tuple[int, Any]], field: Callable[[Any], str]) -> str:
-    return str(field(messages[0][1])) if messages else ""
 
 
 def _xyz(v: Any) -> tuple[float, float, float]:
@@ -1227,23 +1291,28 @@ def read_bag_scans(path: str | os.PathLike[str], *, topic: str | None = None) ->
     FileNotFoundError: ROS bag .../missing.bag does not exist
     """
 
-    def convert(name: str, messages: list[tuple[int, Any]]) -> BagScans:
+    def convert(name: str, messages: Iterator[tuple[int, Any]]) -> BagScans:
+        # One message at a time: a decoded message (its float32 readings and some kB of
+        # objects) is let go once its scan is built.
         scans = []
-        for i, (_, msg) in enumerate(messages):
+        stamps = []
+        record_times = []
+        frame = None
+        for i, (ns, msg) in enumerate(messages):
+            if frame is None:
+                frame = str(msg.header.frame_id)
             try:
                 scans.append(scan_from_msg(msg))
             except (TypeError, ValueError) as exc:
                 raise ValueError(f"{path}: message {i} of {name}: {exc}") from None
-        times = _finite(np.array([_stamp(m) for _, m in messages]), "stamp", path, name)
+            stamps.append(_stamp(msg))
+            record_times.append(_record_time(ns))
+        times = _finite(np.array(stamps, dtype=np.float64), "stamp", path, name)
         return BagScans(
-            name,
-            _frame(messages, lambda m: m.header.frame_id),
-            times.reshape(-1),
-            _record_times(messages),
-            tuple(scans),
+            name, frame or "", times, np.array(record_times, dtype=np.float64), tuple(scans)
         )
 
-    return _read(path, topic, SCAN_TYPE, convert)
+    return _decoded(path, topic, SCAN_TYPE, convert)
 
 
 def read_bag_odometry(path: str | os.PathLike[str], *, topic: str | None = None) -> BagOdometry:
