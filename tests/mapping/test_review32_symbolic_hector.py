@@ -54,9 +54,15 @@ def _cell_probabilities(logodds: np.ndarray) -> np.ndarray:
 
 
 def _bilinear(p: np.ndarray, row: Any, col: Any) -> tuple[Any, Any, Any]:
-    """M, ∂M/∂row, ∂M/∂col of the module docstring; zeros off the map."""
-    if not (0 <= row < p.shape[0] - 1 and 0 <= col < p.shape[1] - 1):
+    """M, ∂M/∂row, ∂M/∂col of the module docstring; zeros beyond the map's edges.
+
+    In the outer half cell the neighbours beyond the edge are unknown (p = 1/2):
+    ``p`` padded with them, and the coordinates moved by the padding.
+    """
+    if not (-0.5 <= row < p.shape[0] - 0.5 and -0.5 <= col < p.shape[1] - 0.5):
         return mp.mpf(0), mp.mpf(0), mp.mpf(0)
+    p = np.pad(p, 1, constant_values=0.5)
+    row, col = row + 1, col + 1
     r0, c0 = int(mp.floor(row)), int(mp.floor(col))
     b, a = row - r0, col - c0
     p00, p01 = mp.mpf(p[r0, c0]), mp.mpf(p[r0, c0 + 1])

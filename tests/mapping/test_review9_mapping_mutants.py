@@ -43,29 +43,35 @@ def _bilinear(p: np.ndarray, row: float, col: float) -> float:
     row=st.floats(-1.5, 4.5),
     col=st.floats(-1.5, 3.5),
 )
-def test_interpolation_is_bilinear_inside_and_zero_where_a_neighbour_is_missing(
+def test_interpolation_is_bilinear_on_the_map_and_zero_beyond_its_edges(
     values: list[float], row: float, col: float
 ) -> None:
-    # interpolate_batch's docstring: points whose four neighbouring cell centres
-    # are not all inside the map get zeros (a (4, 3) map: rows 0..3, cols 0..2).
+    # interpolate_batch's docstring: zeros beyond the map's edges (a (4, 3) map
+    # covers rows [-0.5, 3.5) and cols [-0.5, 2.5)); in its outer half cell the
+    # neighbours beyond the edge are unknown (p = 1/2): the map padded with them.
     logodds = np.array(values, dtype=np.float32).reshape(4, 3)
     out = np.empty((1, 3))
     interpolate_batch(logodds, np.array([[row, col]]), out)
-    if 0.0 <= row < 3.0 and 0.0 <= col < 2.0:
-        p = 1.0 / (1.0 + np.exp(-logodds.astype(np.float64)))
-        assert out[0, 0] == pytest.approx(_bilinear(p, row, col), rel=1e-6, abs=1e-7)
+    if -0.5 <= row < 3.5 and -0.5 <= col < 2.5:
+        p = np.pad(1.0 / (1.0 + np.exp(-logodds.astype(np.float64))), 1, constant_values=0.5)
+        assert out[0, 0] == pytest.approx(_bilinear(p, row + 1, col + 1), rel=1e-6, abs=1e-7)
     else:
         assert out[0].tolist() == [0.0, 0.0, 0.0]
 
 
-def test_last_column_and_row_centres_have_no_right_or_upper_neighbour() -> None:
-    # Points between the last cell centre and the map edge (col in [cols - 1, cols))
-    # lack a neighbour: zeros, even when every cell of the map is occupied.
+def test_the_outer_half_cell_sees_the_edge_cells_and_unknown_beyond() -> None:
+    # Points between the last cell centre and the map edge (col in [cols - 1,
+    # cols - 0.5)) interpolate towards unknown cells beyond the edge (they read 0
+    # once, as if off the map); beyond the edge, zeros.
     logodds = np.full((3, 3), 4.0, dtype=np.float32)
-    coords = np.array([[0.5, 2.0], [0.5, 2.7], [2.0, 0.5], [2.9, 1.2], [2.5, 2.5]])
+    p = 1.0 / (1.0 + math.exp(-4.0))
+    coords = np.array([[0.5, 2.0], [0.5, 2.25], [2.0, 0.5], [2.25, 1.2], [-0.25, 1.0]])
     out = np.full((len(coords), 3), np.nan)
     interpolate_batch(logodds, coords, out)
-    assert (out == 0.0).all()
+    assert out[:, 0] == pytest.approx([p, 0.75 * p + 0.125, p, 0.75 * p + 0.125, 0.75 * p + 0.125])
+    beyond = np.array([[0.5, 2.5], [0.5, 2.7], [2.9, 1.2], [2.5, 2.5], [-0.5001, 1.0]])
+    interpolate_batch(logodds, beyond, out[: len(beyond)])
+    assert (out[: len(beyond)] == 0.0).all()
 
 
 

@@ -128,7 +128,8 @@ class ScanMatchResult:
     score : float
         Mean interpolated occupancy probability ``M`` of the scan's points at
         ``pose`` on the finest level, in [0, 1]: 1 when every point lies on a
-        certain obstacle, 0.5 on unknown cells, 0 off the map.
+        certain obstacle, 0.5 on unknown cells, 0 off the map (beyond its
+        edges; see :class:`ScanMatcher` for the map's outer half cell).
     converged : bool
         True when the finest level stopped on the convergence test.
     reason : str
@@ -256,7 +257,12 @@ class ScanMatcher:
         H  = Σ [∇M(Sᵢ(ξ)) ∂Sᵢ/∂ξ]ᵀ [∇M(Sᵢ(ξ)) ∂Sᵢ/∂ξ].
 
     ``M`` is the occupancy probability interpolated bilinearly between cell
-    centres, and ``∇M`` its **exact** derivative. (The probability of a cell is
+    centres, and ``∇M`` its **exact** derivative. Between the centres of a
+    map's edge cells and its edge (its outer half cell) the cells beyond the
+    edge count as unknown (probability 0.5), as if the map had a margin of
+    unknown cells: a wall drawn in the edge cells pulls the scan as one
+    further in does, and a map one cell wide is matched too; beyond the edge
+    ``M`` is 0 (no obstacle). (The probability of a cell is
     computed from its float32 log-odds with a single-precision ``exp``, for
     speed; that changes ``M`` and ``∇M`` by at most about 2e-8 and matched
     poses by about 1e-10 m, far below any map's resolution.) (Hector SLAM's C++

@@ -5,7 +5,9 @@ Plain functions on arrays and scalars compiled with ``cache=True``;
 
 The map value is the occupancy probability ``M = 1 / (1 + exp(-l))`` of the
 float32 log-odds ``l``, interpolated bilinearly between cell centres (grid
-coordinates ``(row, col)`` with integers at cell centres). The gradient is the
+coordinates ``(row, col)`` with integers at cell centres; in the map's outer half
+cell, beyond the edge cells' centres, the cells beyond the edge count as unknown;
+0 beyond the edge). The gradient is the
 exact derivative of that interpolant: along columns it weights the row
 differences by the *row* fraction and along rows the column differences by the
 *column* fraction. (Hector SLAM's ``interpMapValueWithDerivatives`` swaps the
@@ -92,6 +94,16 @@ def _probability(logodds: np.ndarray, r: int, c: int, floor: float) -> float:
 
 
 @njit_inline
+def _edge_probability(logodds: np.ndarray, r: int, c: int, floor: float) -> float:
+    # A neighbour of a point in the map's outer half cell may lie beyond the edge:
+    # unknown there (log-odds 0, p = 1/2 exactly as _probability gives it), as
+    # downsample counts the cells beyond an odd edge.
+    if 0 <= r < logodds.shape[0] and 0 <= c < logodds.shape[1]:
+        return _probability(logodds, r, c, floor)
+    return floor if floor > 0.5 else 0.5
+
+
+@njit_inline
 def _interpolate(
     logodds: np.ndarray, row: float, col: float, floor: float
 ) -> tuple[float, float, float]:
@@ -103,20 +115,37 @@ def _interpolate(
         M = (1 - b) [(1 - a) p00 + a p01] + b [(1 - a) p10 + a p11]
         ∂M/∂col = (1 - b) (p01 - p00) + b (p11 - p10)
         ∂M/∂row = (1 - a) (p10 - p00) + a (p11 - p01)
+
+    The map covers ``-0.5 <= row < rows - 0.5`` and ``-0.5 <= col < cols - 0.5``;
+    in its outer half cell (between the edge cells' centres and the edge) the
+    neighbours beyond the edge count as unknown (``p = 1/2``), as in a map
+    padded with one ring of unknown cells. Zeros beyond the edge.
     """
     rows = logodds.shape[0]
     cols = logodds.shape[1]
     # Also false for NaN and for huge coordinates, before any int conversion.
-    if not (0.0 <= row < rows - 1 and 0.0 <= col < cols - 1):
+    if 0.0 <= row < rows - 1 and 0.0 <= col < cols - 1:
+        r0 = int(row)
+        c0 = int(col)
+        p00 = _probability(logodds, r0, c0, floor)
+        p01 = _probability(logodds, r0, c0 + 1, floor)
+        p10 = _probability(logodds, r0 + 1, c0, floor)
+        p11 = _probability(logodds, r0 + 1, c0 + 1, floor)
+    elif -0.5 <= row < rows - 0.5 and -0.5 <= col < cols - 0.5:
+        # Zeros here, as once, made M jump from the edge cell's p to 0 at its
+        # centre, inside the map: a wall in the outer half of the edge cells was
+        # invisible (a room mapped tight to its walls matched 6x worse than the
+        # same map with a margin, and 1-row maps not at all).
+        r0 = math.floor(row)
+        c0 = math.floor(col)
+        p00 = _edge_probability(logodds, r0, c0, floor)
+        p01 = _edge_probability(logodds, r0, c0 + 1, floor)
+        p10 = _edge_probability(logodds, r0 + 1, c0, floor)
+        p11 = _edge_probability(logodds, r0 + 1, c0 + 1, floor)
+    else:
         return 0.0, 0.0, 0.0
-    r0 = int(row)
-    c0 = int(col)
     b = row - r0
     a = col - c0
-    p00 = _probability(logodds, r0, c0, floor)
-    p01 = _probability(logodds, r0, c0 + 1, floor)
-    p10 = _probability(logodds, r0 + 1, c0, floor)
-    p11 = _probability(logodds, r0 + 1, c0 + 1, floor)
     m = (1.0 - b) * ((1.0 - a) * p00 + a * p01) + b * ((1.0 - a) * p10 + a * p11)
     d_col = (1.0 - b) * (p01 - p00) + b * (p11 - p10)
     d_row = (1.0 - a) * (p10 - p00) + a * (p11 - p01)
@@ -127,7 +156,9 @@ def _interpolate(
 def interpolate_batch(logodds: np.ndarray, coords: np.ndarray, out: np.ndarray) -> None:
     """Fill ``out`` (N, 3) with ``M, ∂M/∂row, ∂M/∂col`` at ``coords`` (N, 2) ``(row, col)``.
 
-    Points whose four neighbouring cell centres are not all inside the map get zeros.
+    Points beyond the map's edges (``row`` outside ``[-0.5, rows - 0.5)`` or ``col``
+    outside ``[-0.5, cols - 0.5)``) get zeros; in the outer half cell, neighbours
+    beyond the edge count as unknown (``p = 1/2``).
     """
     for i in range(coords.shape[0]):
         m, d_row, d_col = _interpolate(logodds, coords[i, 0], coords[i, 1], 0.0)
