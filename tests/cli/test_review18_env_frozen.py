@@ -22,7 +22,6 @@ sys.frozen = True
 sys.path.insert(0, sys.argv[1])
 import navkit
 assert navkit.__file__.endswith("__init__.pyc"), navkit.__file__
-from pathlib import Path
 from navkit.cli._kernels import kernels_cached
 import navkit.planning.grid._astar_kernels as kernels
 from numba.core import caching
@@ -34,9 +33,11 @@ for locator_class in impl._locator_classes:
     locator = locator_class.from_function(py_func, py_func.__code__.co_filename)
     if locator is not None:
         break
-tag = f"py{sys.version_info.major}{sys.version_info.minor}"
-name = f"_astar_kernels.grid_search-{py_func.__code__.co_firstlineno}.{tag}.nbi"
-(Path(locator.get_cache_path()) / name).write_bytes(b"")
+# An index as numba writes it (stamped with the executable, as numba does frozen).
+tag = f"py{sys.version_info.major}{sys.version_info.minor}{getattr(sys, 'abiflags', '')}"
+name = f"_astar_kernels.grid_search-{py_func.__code__.co_firstlineno}.{tag}"
+index = caching.IndexDataCacheFile(locator.get_cache_path(), name, locator.get_source_stamp())
+index.save(("a signature",), ("compiled code",))
 print(before, kernels_cached("astar"), type(locator).__name__)
 """
 

@@ -20,6 +20,9 @@ import pytest
 from navkit.cli import _kernels, _plan, main
 from navkit.errors import KernelCacheWarning
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from numba_index import write_index
+
 
 @pytest.mark.parametrize("frozen", [False, True])
 def test_a_frozen_application_with_its_sources_finds_its_cached_kernels(
@@ -40,8 +43,7 @@ def test_a_frozen_application_with_its_sources_finds_its_cached_kernels(
     assert _kernels.cache_folders(package) == [folder]
     assert not _kernels.kernels_cached("astar")
     folder.mkdir()
-    tag = f"py{sys.version_info.major}{sys.version_info.minor}"
-    (folder / f"{module}.{function}-1.{tag}.nbi").write_bytes(b"")
+    write_index(folder, package, module, function)
     assert _kernels.kernels_cached("astar")
 
 
@@ -101,11 +103,10 @@ def test_kernels_cached_beside_a_read_only_install_are_found(
     assert folder in _kernels.cache_folders(package)
     before = _kernels.kernels_cached("field_dstar")
     folder.mkdir()
-    tag = f"py{sys.version_info.major}{sys.version_info.minor}"
-    (folder / f"{module}.{function}-1.{tag}.nbi").write_bytes(b"")
+    index = write_index(folder, package, module, function)
     assert _kernels.kernels_cached("field_dstar")
     if not before:  # not already cached in __pycache__ by an earlier run
-        (folder / f"{module}.{function}-1.{tag}.nbi").unlink()
+        index.unlink()
         assert not _kernels.kernels_cached("field_dstar")
 
 

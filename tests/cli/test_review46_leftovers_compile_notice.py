@@ -22,18 +22,20 @@ import pytest
 
 from navkit.cli import _kernels
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from numba_index import write_index
+
 # Spelled out rather than read from the module: the check must find this kernel.
 _TRANSFORM = ("navkit.mapping", "_edt_kernels", "band_distances")
 
 
 def _cache(tmp_path: Path, package: str, module: str, function: str) -> None:
-    """An index file for the kernel where numba would cache it under ``tmp_path``."""
+    """An index of the kernel, as numba writes it, where numba would cache it under ``tmp_path``."""
     spec = importlib.util.find_spec(package)
     assert spec is not None and spec.submodule_search_locations
     folder = tmp_path / _kernels._subfolder(Path(next(iter(spec.submodule_search_locations))))
     folder.mkdir(exist_ok=True)
-    tag = f"py{sys.version_info.major}{sys.version_info.minor}"
-    (folder / f"{module}.{function}-1.{tag}.nbi").write_bytes(b"")
+    write_index(folder, package, module, function)
 
 
 @pytest.fixture

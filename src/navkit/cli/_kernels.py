@@ -2,16 +2,28 @@
 
 numba compiles navkit's kernels on their first call and caches the machine code
 on disk (``cache=True``), so only the very first run pays for it. Whether a run
-will compile is checked cheaply, without importing or compiling anything: by
-whether the cache index file (``<module>.<function>-<line>.py<XY>.nbi``) of each
-key kernel its estimate counts (the kind of work's own and the distance
-transform's, :data:`SHARED_KERNELS`) exists in the folder numba would cache it in —
-``$NUMBA_CACHE_DIR/<folder>_<sha1 of the folder path>/`` when that variable is
-set, otherwise the ``__pycache__`` folder beside the kernel's source (or, when
-that is not writable, numba's user-wide cache folder, which has the same layout
-as ``NUMBA_CACHE_DIR``). In a frozen application without the source files
-(``sys.frozen``), numba caches in the user-wide folder alone, named after the
-path the kernel's code gives: the kernel's module is imported to read it.
+will compile is checked cheaply, without compiling anything or loading numba's
+compiler: by whether each key kernel its estimate counts (the kind of work's own
+and the distance transform's, :data:`SHARED_KERNELS`) has a cache index file
+(``<module>.<function>-<line>.py<XY>.nbi``) numba would use, in the folder numba
+would cache it in — ``$NUMBA_CACHE_DIR/<folder>_<sha1 of the folder path>/`` when
+that variable is set, otherwise the ``__pycache__`` folder beside the kernel's
+source (or, when that is not writable, numba's user-wide cache folder, which has
+the same layout as ``NUMBA_CACHE_DIR``). In a frozen application without the
+source files (``sys.frozen``), numba caches in the user-wide folder alone, named
+after the path the kernel's code gives: the kernel's module is imported to read it.
+
+numba uses an index only when it was written by the same numba version and for
+the source file as it is now (numba's ``IndexDataCacheFile._load_index``): the
+file holds the version (a pickle), then a pickle of the source's stamp and the
+compiled entries' data files. The stamp is the source's ``(st_mtime, st_size)``
+in numba 0.62 and the SHA-256 digest of its bytes in 0.68 (of
+``sys.executable`` in a frozen application); numba drops an index whose stamp
+differs and recompiles silently. An index whose stamp, version or entries do not
+pass counts as no cache here too, as numba would then compile (review 47: after
+an upgrade or an edit the notice was missing). What this does not see, the
+entries' machine (CPU name and features: a cache copied from another machine),
+needs numba's code generator; the notice then stays silent as before.
 """
 
 from __future__ import annotations
@@ -19,6 +31,7 @@ from __future__ import annotations
 import hashlib
 import importlib.util
 import os
+import pickle
 import sys
 import warnings
 from pathlib import Path
@@ -109,16 +122,23 @@ def cache_folders(package: str) -> list[Path]:
     >>> cache_folders("navkit.sim")[0].name in ("__pycache__",) or bool(_numba_cache_dir())
     True
     """
-    spec = importlib.util.find_spec(package)
-    if spec is None or not spec.submodule_search_locations:
+    source_dir = _source_dir(package)
+    if source_dir is None:
         return []
-    source_dir = Path(next(iter(spec.submodule_search_locations)))
     custom = _numba_cache_dir()
     if custom and _could_write(Path(custom) / _subfolder(source_dir)):
         return [Path(custom) / _subfolder(source_dir)]
     # numba passes over a NUMBA_CACHE_DIR it cannot make or write to (a typo, a
     # read-only mount) and caches where it would without one.
     return [source_dir / "__pycache__", _user_wide_dir() / _subfolder(source_dir)]
+
+
+def _source_dir(package: str) -> Path | None:
+    """The folder of ``package``'s source files (None for what is not a package)."""
+    spec = importlib.util.find_spec(package)
+    if spec is None or not spec.submodule_search_locations:
+        return None
+    return Path(next(iter(spec.submodule_search_locations)))
 
 
 def _could_write(folder: Path) -> bool:
@@ -145,8 +165,9 @@ def kernels_cached(kind: str) -> bool:
     Returns
     -------
     bool
-        True when its cache index file exists (a stale index, after navkit's
-        source changed, still counts: numba then recompiles silently).
+        True when a cache index file of it is there that numba would use:
+        written by this numba version, for the source file as it is now (its
+        stamp: see the module's notes), naming a data file that exists.
 
     Examples
     --------
@@ -154,12 +175,118 @@ def kernels_cached(kind: str) -> bool:
     True
     """
     (package, module, function), _ = KERNELS[kind] if kind in KERNELS else SHARED_KERNELS[kind]
-    tag = f"py{sys.version_info.major}{sys.version_info.minor}"
+    abiflags = getattr(sys, "abiflags", "")
+    tag = f"py{sys.version_info.major}{sys.version_info.minor}{abiflags}"
     pattern = f"{module}.{function}-*.{tag}.nbi"
     folders = cache_folders(package)
-    if getattr(sys, "frozen", False):
+    frozen = getattr(sys, "frozen", False)
+    if frozen:
         folders = _frozen_folders(f"{package}.{module}", function) or folders
-    return any(any(folder.glob(pattern)) for folder in folders if folder.is_dir())
+    # numba stamps a frozen application's kernels with its executable.
+    source_dir = _source_dir(package)
+    if frozen:
+        source = Path(sys.executable)
+    elif source_dir is None:  # pragma: no cover - the keys name navkit's packages
+        return False
+    else:
+        source = source_dir / f"{module}.py"
+    stamps = _SourceStamps(source)
+    version = _numba_version()
+    return any(
+        _index_usable(index, stamps, version)
+        for folder in folders
+        if folder.is_dir()
+        for index in folder.glob(pattern)
+    )
+
+
+def _numba_version() -> str:
+    """The version numba writes in its index files ("" without numba)."""
+    try:
+        import numba
+    except ImportError:  # pragma: no cover - numba is a dependency
+        return ""
+    return str(numba.__version__)
+
+
+class _SourceStamps:
+    """The stamps numba may have given ``source``, each read when first asked for.
+
+    Parameters
+    ----------
+    source : Path
+        The file numba stamps a kernel's cache with.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     source = Path(folder) / "k.py"
+    ...     _ = source.write_bytes(b"x = 1")
+    ...     stamps = _SourceStamps(source)
+    ...     (stamps.fresh((source.stat().st_mtime, 5)), stamps.fresh((0.0, 5)))
+    (True, False)
+    """
+
+    def __init__(self, source: Path) -> None:
+        self.source = source
+        self._digest: bytes | None = None
+
+    def fresh(self, stamp: object) -> bool:
+        """Whether numba would take ``stamp``, read from an index, as the source's own.
+
+        Parameters
+        ----------
+        stamp : object
+            The stamp an index holds: ``(st_mtime, st_size)`` (numba 0.62) or
+            the SHA-256 digest of the source's bytes (numba 0.68).
+
+        Returns
+        -------
+        bool
+            Whether it equals the source's stamp now (False when the source
+            cannot be read: numba could not stamp it either). A stamp of
+            another form, from a numba this does not know, counts as fresh
+            (what numba then does is not known here: the notice stays silent,
+            as it was before stamps were checked).
+
+        Examples
+        --------
+        >>> _SourceStamps(Path("no-such-file.py")).fresh((0.0, 0))
+        False
+        """
+        try:
+            if isinstance(stamp, bytes):
+                if self._digest is None:
+                    self._digest = hashlib.sha256(self.source.read_bytes()).digest()
+                return stamp == self._digest
+            if isinstance(stamp, tuple):
+                status = self.source.stat()
+                return stamp == (status.st_mtime, status.st_size)
+        except OSError:
+            return False
+        return True
+
+
+def _index_usable(index: Path, stamps: _SourceStamps, version: str) -> bool:
+    """Whether numba would load a compiled entry through ``index`` (its ``_load_index``).
+
+    An index of another numba version, of a stale source stamp, with no entry
+    whose data file exists, or that cannot be read counts as no cache.
+    """
+    try:
+        with index.open("rb") as file:
+            # numba reads the version first and the rest only when it matches:
+            # another version may pickle differently.
+            if pickle.load(file) != version:
+                return False
+            stamp, overloads = pickle.loads(file.read())
+        entries = list(overloads.values())
+    except Exception:  # any failure to read it: a broken or foreign file
+        return False
+    if not stamps.fresh(stamp):
+        return False
+    return any(isinstance(name, str) and (index.parent / name).is_file() for name in entries)
 
 
 def _frozen_folders(module: str, function: str) -> list[Path]:
