@@ -335,19 +335,28 @@ _INFORMATION_OP_WORK = 6e-7 / _EXACT_POSTERIOR_WORK_SECONDS
 # (_adopt_positive): its backward error, about n² ε max|Q|, is then below 1e-12 max|Q|.
 _PSD_MAX_N = 64
 
-# Blocks of an rbuf.
+# Blocks of an rbuf. Each is used by the update kernel and reused where its
+# contents are dead, so that none can go (review 47: the size is 10 max(n, m)²,
+# was 11): R and R symmetrised are the validated noise between updates; S's
+# lower triangle, the new P and _VEC are read by finish_cancelled and the other
+# fallbacks after the kernel returns; H P is read until the new P is made, then
+# holds the LDLᵀ factor of its check (was a block of its own) and is scratch of
+# _joseph_in_doubt, as are L (σ, u, sqrt(Rₖₖ), ρᵢ² in its rows 0-3), (I - K H) P
+# and V, while K and the new P are read there. Only the blocks' common size wastes
+# room (n x n and n x m blocks of an update with m far above n, and _VEC's 5 rows:
+# about half of a 360-beam update's 10 MB); blocks of their own sizes would take
+# another layout (bands of rows of one 2-D array), not tried.
 _R = 0  # R as passed
 _RS = 1  # R symmetrised
-_HP = 2  # H P (m x n)
+_HP = 2  # H P (m x n); then the LDLᵀ factor of the new P (n x n)
 _CHOL = 3  # the unit lower triangular L of S = L D Lᵀ (m x m)
 _GAIN = 4  # K (n x m)
 _KR = 5  # K R - (I - K H) P Hᵀ (n x m)
-_PCHK = 6  # the LDLᵀ factor of the new P (n x n)
-_TMP = 7  # (I - K H) P (n x n)
-_PN = 8  # the new P (n x n)
-_VEC = 9  # rows: 1 / diag(L), a solve vector, the new state, [status, NIS, gate], angle flags
-_S = 10  # S (m x m)
-_BLOCKS = 11
+_TMP = 6  # (I - K H) P (n x n)
+_PN = 7  # the new P (n x n)
+_VEC = 8  # rows: 1 / diag(L), a solve vector, the new state, [status, NIS, gate], angle flags
+_S = 9  # S (m x m)
+_BLOCKS = 10
 _INV_DIAG = 0
 _U = 1
 _XN = 2
@@ -868,9 +877,7 @@ def _update(
             return _FAIL_Z
     if not _finite_mat(jac, m, n):
         return _FAIL_H
-    if not _equal(r, rbuf[_R], m) and not _adopt_dominant(
-        r, rbuf[_R], rbuf[_RS], m, 2.0, 1e-300
-    ):
+    if not _equal(r, rbuf[_R], m) and not _adopt_dominant(r, rbuf[_R], rbuf[_RS], m, 2.0, 1e-300):
         return _FAIL_NOISE
     for i in range(m):
         if hx[i] - hx[i] != 0.0:
@@ -1033,7 +1040,7 @@ def _update(
             c = s[k, k]
         if c * inv_diag[k] > _PIVOT_LIMIT:
             ill = True
-    status = _mirror_checked(pn, rbuf[_PCHK], inv_diag, n)
+    status = _mirror_checked(pn, hp, inv_diag, n)  # H P is not read any more
     # A variance that shrank more than _SHRINK_LIMIT-fold (or came out NaN or not
     # positive) lost more than 12 bits to the cancellation in P - K H P; a new P that
     # failed its check may still be the rounding of a covariance (review 27: 5 of 43
@@ -2399,9 +2406,7 @@ def _exact_posterior(p: FloatArray, elimination: _Elimination) -> FloatArray | N
     return out
 
 
-def _bareiss_solve(
-    a: list[list[int]], b: list[list[int]]
-) -> tuple[list[list[int]], int] | None:
+def _bareiss_solve(a: list[list[int]], b: list[list[int]]) -> tuple[list[list[int]], int] | None:
     """``a X = b`` exactly for an integer ``a`` (k, k), ``b`` (k, q): ``(N, d)``, None if singular.
 
     ``X = N / d`` with integer N and ``d = ±det a`` (positive): :func:`_bareiss`
@@ -2642,9 +2647,10 @@ class _ExactUpdate:
         g = self.g_num
         quad = sum(g[i] * self.solved[i][j] * g[j] for i in range(n) for j in range(n))
         two = Fraction(2)
-        total = Fraction(self.c_num, self.common) * two**self.c_shift - Fraction(
-            quad, self.common * self.det
-        ) * two**self.q_shift
+        total = (
+            Fraction(self.c_num, self.common) * two**self.c_shift
+            - Fraction(quad, self.common * self.det) * two**self.q_shift
+        )
         try:
             return float(total)
         except OverflowError:
