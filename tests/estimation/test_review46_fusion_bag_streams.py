@@ -28,6 +28,7 @@ from __future__ import annotations
 import copy
 import math
 import re
+import sys
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -38,13 +39,12 @@ import pytest
 
 from navkit.estimation import FusionStatus, MeasurementLog, PlanarFusion, UpdateResult
 from navkit.geometry import quaternion_to_yaw, rpy_to_quaternion, wrap_angle
-from navkit.mapping.io import BagImu, BagOdometry, read_bag_imu, read_bag_odometry
+from navkit.mapping.io import BagImu, BagOdometry
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from rl_bags import read_bag
 
 pytest.importorskip("rosbags")
-
-FOLDER = "robot-localization-odom-imu-bags"
-# base_link -> imu_link of test1's upstream launch file (roll +pi/2, yaw -pi/2).
-MOUNTS = {"test1": rpy_to_quaternion(math.pi / 2, 0.0, -math.pi / 2), "test2": None}
 
 
 @dataclass
@@ -89,15 +89,22 @@ class Streams:
     def log(self, **change: Any) -> MeasurementLog:
         return MeasurementLog.from_streams(**self.kwargs(**change))
 
+    def rows(self, odom: np.ndarray, imu: np.ndarray) -> MeasurementLog:
+        """The log of the odometry messages ``odom`` and IMU messages ``imu`` (indices or masks)."""
+        return self.log(
+            ot=self.odom.times[odom],
+            v=self.odom.twists[odom, 0],
+            vv=self.odom.twist_covariances[odom, 0, 0],
+            it=self.imu.times[imu],
+            yaw=self.yaw[imu],
+            yv=self.imu.orientation_covariances[imu, 2, 2],
+            w=self.rate[imu],
+            wv=self.imu.angular_velocity_covariances[imu, 2, 2],
+        )
+
 
 def _load(shared_data: Path, name: str) -> Streams:
-    path = shared_data / FOLDER / f"{name}.bag"
-    if not path.is_file():
-        pytest.skip(f"{path} is not available")
-    odom = read_bag_odometry(path)
-    imu = read_bag_imu(path, topic="/imu/data")
-    mount = MOUNTS[name]
-    base = imu if mount is None else imu.to_base(mount)
+    odom, imu, base = read_bag(shared_data, name)
     yaw = np.asarray(quaternion_to_yaw(base.orientations), dtype=np.float64)
     return Streams(odom, imu, yaw, base.angular_velocities[:, 2].copy())
 
@@ -190,17 +197,7 @@ def test_shuffled_streams_give_the_same_run(test2: Streams) -> None:
     base = PlanarFusion(s.x0, t0=s.t0).update_batch(s.log())
     rng = np.random.default_rng(46)
     po, pi = rng.permutation(len(s.odom)), rng.permutation(len(s.imu))
-    shuffled = s.log(
-        ot=s.odom.times[po],
-        v=s.odom.twists[po, 0],
-        vv=s.odom.twist_covariances[po, 0, 0],
-        it=s.imu.times[pi],
-        yaw=s.yaw[pi],
-        yv=s.imu.orientation_covariances[pi, 2, 2],
-        w=s.rate[pi],
-        wv=s.imu.angular_velocity_covariances[pi, 2, 2],
-    )
-    result = PlanarFusion(s.x0, t0=s.t0).update_batch(shuffled)
+    result = PlanarFusion(s.x0, t0=s.t0).update_batch(s.rows(po, pi))
     np.testing.assert_array_equal(result.times, base.times)
     np.testing.assert_array_equal(result.states, base.states)
     np.testing.assert_array_equal(result.covariances, base.covariances)
@@ -245,16 +242,7 @@ def test_gap_predicts_the_unicycle_and_grows_the_covariance(test2: Streams) -> N
     start, stop = 70.0, 75.0
     ko = (s.odom.times < start) | (s.odom.times >= stop)
     ki = (s.imu.times < start) | (s.imu.times >= stop)
-    cut = s.log(
-        ot=s.odom.times[ko],
-        v=s.odom.twists[ko, 0],
-        vv=s.odom.twist_covariances[ko, 0, 0],
-        it=s.imu.times[ki],
-        yaw=s.yaw[ki],
-        yv=s.imu.orientation_covariances[ki, 2, 2],
-        w=s.rate[ki],
-        wv=s.imu.angular_velocity_covariances[ki, 2, 2],
-    )
+    cut = s.rows(ko, ki)
     result = PlanarFusion(s.x0, t0=s.t0).update_batch(cut)
     assert np.all(result.status == FusionStatus.ACCEPTED)
     assert np.all(np.isfinite(result.states)) and np.all(np.isfinite(result.covariances))

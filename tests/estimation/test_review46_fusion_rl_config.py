@@ -67,6 +67,7 @@ speeds, 41.7 s). Each rejected row keeps the prediction, as documented.
 from __future__ import annotations
 
 import math
+import sys
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -75,12 +76,13 @@ import numpy as np
 import pytest
 
 from navkit.estimation import FusionResult, FusionStatus, MeasurementLog, PlanarFusion
-from navkit.geometry import quaternion_to_matrix, quaternion_to_yaw, rpy_to_quaternion
-from navkit.mapping.io import read_bag_imu, read_bag_odometry
+from navkit.geometry import quaternion_to_matrix, quaternion_to_yaw
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from rl_bags import read_bag
 
 pytest.importorskip("rosbags")
 
-FOLDER = "robot-localization-odom-imu-bags"
 GRAVITY = 9.80665
 
 
@@ -88,7 +90,6 @@ GRAVITY = 9.80665
 class Upstream:
     """robot_localization's settings and accepted end point for one bag (see the docstring)."""
 
-    mount: np.ndarray | None
     wheel_rate: bool
     gyro: bool
     process_noise: tuple[float, ...]
@@ -98,11 +99,11 @@ class Upstream:
 
 UPSTREAM = {
     "test1": Upstream(
-        rpy_to_quaternion(math.pi / 2, 0.0, -math.pi / 2), False, False,
+        False, False,
         (0.05, 0.05, 0.06, 0.025, 0.02, 0.01), (-40.0454, -76.9988), 1.0452,
     ),
     "test2": Upstream(
-        None, True, True, (0.03, 0.03, 0.06, 0.025, 0.004, 0.01), (1.0206, 3.4292), 0.1383,
+        True, True, (0.03, 0.03, 0.06, 0.025, 0.004, 0.01), (1.0206, 3.4292), 0.1383,
     ),
 }  # fmt: skip
 
@@ -126,13 +127,7 @@ class Bag:
 
 
 def _load(shared_data: Path, name: str) -> Bag:
-    path = shared_data / FOLDER / f"{name}.bag"
-    if not path.is_file():
-        pytest.skip(f"{path} is not available")
-    odom = read_bag_odometry(path)
-    imu = read_bag_imu(path, topic="/imu/data")
-    mount = UPSTREAM[name].mount
-    base = imu if mount is None else imu.to_base(mount)
+    odom, imu, base = read_bag(shared_data, name)
     rot = quaternion_to_matrix(base.orientations)  # base_link in the world
     cos_pitch = np.hypot(rot[:, 0, 0], rot[:, 1, 0])
     # a - Rᵀ g: the specific force less gravity, in base_link; its x is the forward one.
