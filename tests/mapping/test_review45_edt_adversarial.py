@@ -27,24 +27,14 @@ import numpy as np
 import pytest
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
-from scipy import ndimage
 from test_review45_memory_limits import assert_bands_change_nothing
 
 import navkit.mapping._obstacle_distance as distance_module
+from edt_oracle import float_bits, scipy_distances
 from memory_peak import peak_bytes
 from navkit.mapping import OccupancyGrid, costmap, traversal_costs
 from subprocess_probe import bounds_checked, probe_outcome
 from thread_runs import concurrent_results
-
-
-def _scipy_distances(occupied: np.ndarray) -> np.ndarray:
-    if not occupied.any():
-        return np.full(occupied.shape, np.inf)
-    return np.asarray(ndimage.distance_transform_edt(~occupied), dtype=np.float64)
-
-
-def _bits(a: np.ndarray) -> np.ndarray:
-    return np.ascontiguousarray(a, dtype=np.float64).view(np.int64)
 
 
 def _banded(
@@ -75,10 +65,10 @@ def test_every_mask_of_a_3_by_4_grid_is_scipys_with_every_band() -> None:
     # 4096 masks x 4 band sizes, by rows and (its transpose, 4 x 3) by columns.
     for bits in range(1 << 12):
         occupied = np.array([(bits >> k) & 1 for k in range(12)], dtype=bool).reshape(3, 4)
-        want = _bits(_scipy_distances(occupied))
+        want = float_bits(scipy_distances(occupied))
         for band, wide in itertools.product(range(1, 5), (False, True)):
-            got = _banded(occupied, band, wide=wide)
-            assert np.array_equal(_bits(got), want), (occupied.astype(int).tolist(), band, wide)
+            got = float_bits(_banded(occupied, band, wide=wide))
+            assert np.array_equal(got, want), (occupied.astype(int).tolist(), band, wide)
 
 
 _SIZES = st.sampled_from([1, 2, 3, 5, 7, 13, 31, 37, 64, 65])
@@ -116,9 +106,9 @@ def test_ties_corners_and_lone_obstacles_are_scipys(
     occupied: np.ndarray, band: int, wide: bool
 ) -> None:
     kept = occupied.copy()
-    want = _bits(_scipy_distances(occupied))
-    assert np.array_equal(_bits(_banded(occupied, band, wide=wide)), want)
-    assert np.array_equal(_bits(_banded(occupied, band, wide=wide, whole=True)), want)
+    want = float_bits(scipy_distances(occupied))
+    assert np.array_equal(float_bits(_banded(occupied, band, wide=wide)), want)
+    assert np.array_equal(float_bits(_banded(occupied, band, wide=wide, whole=True)), want)
     assert np.array_equal(occupied, kept)
 
 
@@ -142,8 +132,8 @@ def test_the_real_bands_at_their_limits_are_scipys(
         occupied[at] = True
     assert len(list(distance_module.obstacle_distance_bands(occupied))) >= 2
     got = distance_module.obstacle_distance(occupied)
-    assert np.array_equal(_bits(got), _bits(_scipy_distances(occupied)))
-    assert np.array_equal(_bits(_banded(occupied)), _bits(got))
+    assert np.array_equal(float_bits(got), float_bits(scipy_distances(occupied)))
+    assert np.array_equal(float_bits(_banded(occupied)), float_bits(got))
 
 
 @settings(max_examples=60, deadline=None)

@@ -21,24 +21,18 @@ import numpy as np
 import pytest
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
-from scipy import ndimage
 
 import navkit.mapping._costs as costs_module
 import navkit.mapping._grid as grid_module
 import navkit.mapping._obstacle_distance as distance_module
+from edt_oracle import float_bits, scipy_distances
 from memory_peak import peak_bytes
 from navkit.mapping import OccupancyGrid, costmap, traversal_costs
 
 
-def _scipy_distances(occupied: np.ndarray) -> np.ndarray:
-    if not occupied.any():
-        return np.full(occupied.shape, np.inf)
-    return np.asarray(ndimage.distance_transform_edt(~occupied), dtype=np.float64)
-
-
 def _whole_grid(occupied: np.ndarray) -> Iterator[tuple[tuple[slice, slice], np.ndarray]]:
     """One band, the whole grid, SciPy's distances: what a radius of a quarter of the rows took."""
-    yield (slice(None), slice(None)), _scipy_distances(occupied)
+    yield (slice(None), slice(None)), scipy_distances(occupied)
 
 
 def assert_bands_change_nothing(calls: Callable[[], list[np.ndarray]], band: int) -> None:
@@ -67,10 +61,6 @@ def _occupied(rows: int, cols: int, seed: int, density: float, band: int) -> np.
     return occupied
 
 
-def _bits(a: np.ndarray) -> np.ndarray:
-    return np.ascontiguousarray(a, dtype=np.float64).view(np.int64)
-
-
 @settings(max_examples=300, deadline=None)
 @given(
     rows=st.integers(1, 50),
@@ -93,11 +83,11 @@ def test_bands_are_scipys_distances_bit_for_bit(
         mp.setattr(distance_module, "_BAND_CELLS", 0 if wide else 1 << 21)
         bands = list(distance_module.obstacle_distance_bands(occupied))
     seen = np.zeros(occupied.shape, dtype=np.int64)
-    want = _scipy_distances(occupied)
+    want = scipy_distances(occupied)
     for where, dist in bands:
         seen[where] += 1
         assert dist.dtype == np.float64
-        assert np.array_equal(_bits(dist), _bits(want[where]))
+        assert np.array_equal(float_bits(dist), float_bits(want[where]))
     assert (seen == 1).all()
     assert np.array_equal(occupied, kept)
 

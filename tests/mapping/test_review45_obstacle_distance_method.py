@@ -18,25 +18,15 @@ import numpy as np
 import pytest
 from hypothesis import example, given, settings
 from hypothesis import strategies as st
-from scipy import ndimage
 
 import navkit.mapping._obstacle_distance as distance_module
+from edt_oracle import float_bits, scipy_distances
 from memory_peak import peak_bytes
 from navkit.mapping import OccupancyGrid
 
 # Log-odds on either side of the default occupied_thresh (0.65, log-odds 0.619)
 # and of the thresholds drawn below, unknown (0) and the extremes.
 _LOGODDS = [-1e6, -2.0, 0.0, 0.4054651, 0.6190392, 0.62, 0.85, 2.0, 1e6]
-
-
-def _scipy_metres(occupied: np.ndarray, resolution: float) -> np.ndarray:
-    if not occupied.any():
-        return np.full(occupied.shape, np.inf)
-    return np.asarray(ndimage.distance_transform_edt(~occupied), dtype=np.float64) * resolution
-
-
-def _bits(a: np.ndarray) -> np.ndarray:
-    return np.ascontiguousarray(a, dtype=np.float64).view(np.int64)
 
 
 @settings(max_examples=200, deadline=None)
@@ -74,9 +64,9 @@ def test_distances_are_scipys_times_the_resolution_bit_for_bit(
         mp.setattr(distance_module, "_band_rows", lambda rows, cols: band)
         mp.setattr(distance_module, "_BAND_CELLS", 0 if wide else 1 << 21)
         got = grid.obstacle_distance(occupied_thresh=threshold)
-    want = _scipy_metres(grid.occupied(threshold), resolution)
+    want = scipy_distances(grid.occupied(threshold), resolution)
     assert got.dtype == np.float64 and got.shape == (rows, cols)
-    np.testing.assert_array_equal(_bits(got), _bits(want))
+    np.testing.assert_array_equal(float_bits(got), float_bits(want))
     np.testing.assert_array_equal(grid.logodds, before)
 
 
