@@ -13,7 +13,7 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-from fuzz_engine import Array, Call, FileKind, SequenceOf, Text, call, method, spec
+from fuzz_engine import Array, Call, FileKind, Flag, SequenceOf, Text, call, method, spec
 
 from navkit.geometry import (
     ImuInBase,
@@ -189,13 +189,13 @@ spec(
 )
 spec(
     IO + "read_bag_odometry",
-    lambda c: call(read_bag_odometry, _bag(c), topic="/odom"),
-    kinds={"path": ODOMETRY_FILES, "topic": TOPIC},
+    lambda c: call(read_bag_odometry, _bag(c), topic="/odom", skip_nonfinite=False),
+    kinds={"path": ODOMETRY_FILES, "topic": TOPIC, "skip_nonfinite": Flag()},
 )
 spec(
     IO + "read_bag_imu",
-    lambda c: call(read_bag_imu, _bag(c), topic="/imu"),
-    kinds={"path": IMU_FILES, "topic": TOPIC},
+    lambda c: call(read_bag_imu, _bag(c), topic="/imu", skip_nonfinite=False),
+    kinds={"path": IMU_FILES, "topic": TOPIC, "skip_nonfinite": Flag()},
 )
 spec(IO + "bag_topics", lambda c: call(bag_topics, _bag(c)), kinds={"path": BAG_FILES})
 

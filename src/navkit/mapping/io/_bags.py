@@ -46,6 +46,7 @@ import importlib
 import io
 import os
 import struct
+import warnings
 from collections.abc import Callable, Iterable, Iterator
 from contextlib import contextmanager, suppress
 from dataclasses import dataclass
@@ -62,7 +63,7 @@ from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_on
 from navkit._shared.text import as_text
 from navkit._shared.times import as_times
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import as_float_array, as_sequence
+from navkit._shared.validation import as_bool, as_float_array, as_sequence
 from navkit.geometry import imu_to_base, quaternion_to_matrix, quaternion_to_yaw, wrap_angle
 from navkit.mapping import LaserScan
 from navkit.mapping.io._paths import as_path, missing_file, open_regular
@@ -136,6 +137,25 @@ _IMU_SHAPES = {
     "angular_velocity_covariances": (3, 3),
     "linear_acceleration_covariances": (3, 3),
 }
+# (field, first column, column past its last) of the rows _read_rows gives the odometry
+# and IMU readers (column 0: the record time), in the order the error names the first.
+_ODOMETRY_COLUMNS = (
+    ("stamp", 1, 2),
+    ("position", 2, 5),
+    ("orientation", 5, 9),
+    ("twist", 9, 12),
+    ("pose covariance", 12, 48),
+    ("twist covariance", 48, 84),
+)
+_IMU_COLUMNS = (
+    ("stamp", 1, 2),
+    ("orientation", 2, 6),
+    ("angular velocity", 6, 9),
+    ("linear acceleration", 9, 12),
+    ("orientation covariance", 12, 21),
+    ("angular velocity covariance", 21, 30),
+    ("linear acceleration covariance", 30, 39),
+)
 _ODOMETRY_ARRAYS = ("times", "record_times", *_ODOMETRY_SHAPES)
 _IMU_ARRAYS = ("times", "record_times", *_IMU_SHAPES)
 
@@ -1241,6 +1261,61 @@ def _finite(arr: FloatArray, what: str, bag_path: Any, topic: str) -> FloatArray
     return arr
 
 
+class _Skipped(NamedTuple):
+    """Messages :func:`_finite_rows` left out: how many, of how many, and the first one's
+    index (in record order), record time (s) and non-finite field."""
+
+    left_out: int
+    total: int
+    first: int
+    record_time: float
+    what: str
+
+
+def _finite_rows(
+    rows: FloatArray,
+    columns: tuple[tuple[str, int, int], ...],
+    skip: bool,
+    bag_path: Any,
+    topic: str,
+    skipped: list[_Skipped],
+) -> FloatArray:
+    """``rows`` (record time, then the message's values), refused where a message holds a
+    NaN or infinity, or without those messages (reported in ``skipped``) if ``skip``.
+
+    ``columns`` names the fields: ``(what, start, stop)`` of ``rows``' columns. The
+    error names the first such message by its index and record time, and its first
+    non-finite field.
+    """
+    bad = ~np.isfinite(rows[:, 1:]).all(axis=1)
+    if not bad.any():
+        return rows
+    first = int(np.argmax(bad))
+    what = next(w for w, a, b in columns if not np.isfinite(rows[first, a:b]).all())
+    when = float(rows[first, 0])
+    if not skip:
+        raise ValueError(
+            f"{bag_path}: message {first} of {topic} (recorded at {when:.9f} s) has a "
+            f"non-finite {what}; skip_nonfinite=True leaves such messages out"
+        )
+    skipped.append(_Skipped(int(bad.sum()), int(rows.shape[0]), first, when, what))
+    return rows[~bad]
+
+
+def _warn_skipped(skipped: list[_Skipped], bag_path: Any, topic: str | None) -> None:
+    """Report what :func:`_finite_rows` left out, as a ``RuntimeWarning`` of the caller's
+    call (a reader's ``stacklevel=3``)."""
+    for s in skipped:
+        warnings.warn(
+            f"{bag_path}: left out {s.left_out} of the {s.total} messages of "
+            f"{topic if topic is not None else 'the topic'} holding a NaN or infinity "
+            f"(skip_nonfinite=True); the first: message {s.first}, recorded at "
+            f"{s.record_time:.9f} s, its {s.what}",
+            RuntimeWarning,
+            stacklevel=3,
+        )
+
+
 def read_bag_scans(path: str | os.PathLike[str], *, topic: str | None = None) -> BagScans:
     """Read the ``sensor_msgs/LaserScan`` messages of a ROS 1 or ROS 2 bag.
 
@@ -1315,7 +1390,9 @@ def read_bag_scans(path: str | os.PathLike[str], *, topic: str | None = None) ->
     return _decoded(path, topic, SCAN_TYPE, convert)
 
 
-def read_bag_odometry(path: str | os.PathLike[str], *, topic: str | None = None) -> BagOdometry:
+def read_bag_odometry(
+    path: str | os.PathLike[str], *, topic: str | None = None, skip_nonfinite: bool = False
+) -> BagOdometry:
     """Read the ``nav_msgs/Odometry`` messages of a ROS 1 or ROS 2 bag.
 
     Parameters
@@ -1325,6 +1402,12 @@ def read_bag_odometry(path: str | os.PathLike[str], *, topic: str | None = None)
     topic : str, optional
         Topic to read; by default the bag's only Odometry topic. Only its
         Odometry messages are read (a ROS 1 topic may hold several types).
+    skip_nonfinite : bool, default False
+        Leave out the messages holding a NaN or an infinity (in any field
+        read: stamp, pose, twist or a covariance), with a ``RuntimeWarning``
+        saying how many and naming the first, instead of refusing the topic.
+        Such a message is a driver's fault (an odometry node dividing by a
+        zero time step); by default the error names it, so that it is seen.
 
     Returns
     -------
@@ -1339,9 +1422,17 @@ def read_bag_odometry(path: str | os.PathLike[str], *, topic: str | None = None)
     FileNotFoundError
         ``path`` does not exist, or is a loop of symbolic links.
     TypeError
-        ``path`` or ``topic`` of the wrong type.
+        ``path`` or ``topic`` of the wrong type; ``skip_nonfinite`` not a bool.
     ValueError
-        As :func:`read_bag_scans`, and a message with a non-finite value.
+        As :func:`read_bag_scans`, and (unless ``skip_nonfinite``) a message
+        with a non-finite value, named by its index in record order and its
+        record time.
+
+    Warns
+    -----
+    RuntimeWarning
+        ``skip_nonfinite`` left messages out (how many, the first's index,
+        record time and non-finite field).
 
     Examples
     --------
@@ -1349,6 +1440,50 @@ def read_bag_odometry(path: str | os.PathLike[str], *, topic: str | None = None)
     Traceback (most recent call last):
     ...
     TypeError: topic must be a str or None, got int
+
+    A bag of three messages, the second with a NaN speed:
+
+    >>> import tempfile, warnings
+    >>> from pathlib import Path
+    >>> from rosbags.rosbag1 import Writer
+    >>> from rosbags.typesys import Stores, get_typestore
+    >>> store = get_typestore(Stores.ROS1_NOETIC)
+    >>> T = store.types
+    >>> def odometry(k, speed):
+    ...     cov = np.eye(6).ravel()
+    ...     vector = T["geometry_msgs/msg/Vector3"]
+    ...     pose = T["geometry_msgs/msg/Pose"](
+    ...         position=T["geometry_msgs/msg/Point"](x=float(k), y=0.0, z=0.0),
+    ...         orientation=T["geometry_msgs/msg/Quaternion"](x=0.0, y=0.0, z=0.0, w=1.0))
+    ...     twist = T["geometry_msgs/msg/Twist"](
+    ...         linear=vector(x=speed, y=0.0, z=0.0), angular=vector(x=0.0, y=0.0, z=0.0))
+    ...     stamp = T["builtin_interfaces/msg/Time"](sec=k, nanosec=0)
+    ...     return T[ODOMETRY_TYPE](
+    ...         header=T["std_msgs/msg/Header"](seq=k, stamp=stamp, frame_id="odom"),
+    ...         child_frame_id="base_link",
+    ...         pose=T["geometry_msgs/msg/PoseWithCovariance"](pose=pose, covariance=cov),
+    ...         twist=T["geometry_msgs/msg/TwistWithCovariance"](twist=twist, covariance=cov))
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     path = Path(folder) / "odom.bag"
+    ...     with Writer(path) as writer:
+    ...         conn = writer.add_connection("/odom", ODOMETRY_TYPE, typestore=store)
+    ...         for k, speed in enumerate([1.0, float("nan"), 1.0]):
+    ...             raw = store.serialize_ros1(odometry(k, speed), ODOMETRY_TYPE)
+    ...             writer.write(conn, k * 10**9, raw)
+    ...     try:
+    ...         read_bag_odometry(path)
+    ...     except ValueError as exc:
+    ...         print(str(exc).split(": ", 1)[1])
+    ...     with warnings.catch_warnings(record=True) as caught:
+    ...         warnings.simplefilter("always")
+    ...         odom = read_bag_odometry(path, skip_nonfinite=True)
+    message 1 of /odom (recorded at 1.000000000 s) has a non-finite twist;
+    skip_nonfinite=True leaves such messages out
+    >>> odom.times
+    array([0., 2.])
+    >>> print(str(caught[0].message).split(": ", 1)[1])
+    left out 1 of the 3 messages of /odom holding a NaN or infinity
+    (skip_nonfinite=True); the first: message 1, recorded at 1.000000000 s, its twist
     """
 
     def fill(m: Any, row: FloatArray) -> None:
@@ -1360,6 +1495,7 @@ def read_bag_odometry(path: str | os.PathLike[str], *, topic: str | None = None)
         row[48:84] = np.asarray(m.twist.covariance, float).reshape(36)
 
     def convert(name: str, first: Any, rows: FloatArray) -> BagOdometry:
+        rows = _finite_rows(rows, _ODOMETRY_COLUMNS, skip, path, name, skipped)
         n = rows.shape[0]
         times = rows[:, 1]
         position = rows[:, 2:5]
@@ -1367,15 +1503,6 @@ def read_bag_odometry(path: str | os.PathLike[str], *, topic: str | None = None)
         twist = rows[:, 9:12]
         pose_cov = rows[:, 12:48].reshape(n, 6, 6)
         twist_cov = rows[:, 48:84].reshape(n, 6, 6)
-        for what, arr in (
-            ("stamp", times),
-            ("position", position),
-            ("orientation", quat),
-            ("twist", twist),
-            ("pose covariance", pose_cov),
-            ("twist covariance", twist_cov),
-        ):
-            _finite(arr, what, path, name)
         yaw = np.asarray(quaternion_to_yaw(quat), dtype=np.float64).reshape(n)
         return BagOdometry(
             name,
@@ -1390,10 +1517,16 @@ def read_bag_odometry(path: str | os.PathLike[str], *, topic: str | None = None)
             twist_cov,
         )
 
-    return _read_rows(path, topic, ODOMETRY_TYPE, 84, fill, convert)
+    skip = as_bool(skip_nonfinite, "skip_nonfinite")
+    skipped: list[_Skipped] = []
+    odometry = _read_rows(path, topic, ODOMETRY_TYPE, 84, fill, convert)
+    _warn_skipped(skipped, path, odometry.topic)
+    return odometry
 
 
-def read_bag_imu(path: str | os.PathLike[str], *, topic: str | None = None) -> BagImu:
+def read_bag_imu(
+    path: str | os.PathLike[str], *, topic: str | None = None, skip_nonfinite: bool = False
+) -> BagImu:
     """Read the ``sensor_msgs/Imu`` messages of a ROS 1 or ROS 2 bag.
 
     Readings stay in the IMU's frame; :meth:`BagImu.to_base` rotates them into
@@ -1407,6 +1540,9 @@ def read_bag_imu(path: str | os.PathLike[str], *, topic: str | None = None) -> B
     topic : str, optional
         Topic to read; by default the bag's only Imu topic. Only its
         Imu messages are read (a ROS 1 topic may hold several types).
+    skip_nonfinite : bool, default False
+        Leave out the messages holding a NaN or an infinity, with a
+        ``RuntimeWarning``, as :func:`read_bag_odometry` does.
 
     Returns
     -------
@@ -1421,9 +1557,16 @@ def read_bag_imu(path: str | os.PathLike[str], *, topic: str | None = None) -> B
     FileNotFoundError
         ``path`` does not exist, or is a loop of symbolic links.
     TypeError
-        ``path`` or ``topic`` of the wrong type.
+        ``path`` or ``topic`` of the wrong type; ``skip_nonfinite`` not a bool.
     ValueError
-        As :func:`read_bag_scans`, and a message with a non-finite value.
+        As :func:`read_bag_scans`, and (unless ``skip_nonfinite``) a message
+        with a non-finite value, named by its index and record time.
+
+    Warns
+    -----
+    RuntimeWarning
+        ``skip_nonfinite`` left messages out (how many, the first's index,
+        record time and non-finite field).
 
     Examples
     --------
@@ -1431,6 +1574,10 @@ def read_bag_imu(path: str | os.PathLike[str], *, topic: str | None = None) -> B
     Traceback (most recent call last):
     ...
     TypeError: path must be a str or an os.PathLike, got bytes
+    >>> read_bag_imu("imu.bag", skip_nonfinite="yes")  # type: ignore[arg-type]
+    Traceback (most recent call last):
+    ...
+    TypeError: skip_nonfinite must be a bool, got str
     """
 
     def fill(m: Any, row: FloatArray) -> None:
@@ -1443,6 +1590,7 @@ def read_bag_imu(path: str | os.PathLike[str], *, topic: str | None = None) -> B
         row[30:39] = np.asarray(m.linear_acceleration_covariance, float).reshape(9)
 
     def convert(name: str, first: Any, rows: FloatArray) -> BagImu:
+        rows = _finite_rows(rows, _IMU_COLUMNS, skip, path, name, skipped)
         n = rows.shape[0]
         arrays = {
             "stamp": rows[:, 1],
@@ -1453,8 +1601,6 @@ def read_bag_imu(path: str | os.PathLike[str], *, topic: str | None = None) -> B
             "angular velocity covariance": rows[:, 21:30].reshape(n, 3, 3),
             "linear acceleration covariance": rows[:, 30:39].reshape(n, 3, 3),
         }
-        for what, arr in arrays.items():
-            _finite(arr, what, path, name)
         values = list(arrays.values())
         return BagImu(
             name,
@@ -1464,7 +1610,11 @@ def read_bag_imu(path: str | os.PathLike[str], *, topic: str | None = None) -> B
             *values[1:],
         )
 
-    return _read_rows(path, topic, IMU_TYPE, 39, fill, convert)
+    skip = as_bool(skip_nonfinite, "skip_nonfinite")
+    skipped: list[_Skipped] = []
+    imu = _read_rows(path, topic, IMU_TYPE, 39, fill, convert)
+    _warn_skipped(skipped, path, imu.topic)
+    return imu
 
 
 def bag_topics(
