@@ -23,21 +23,13 @@ from typing import Any
 import numpy as np
 import pytest
 
+from misaligned_arrays import misaligned
 from navkit._shared.jit import jit_disabled
 from navkit.geometry import Pose2D
 from navkit.mapping import OccupancyGrid
 from navkit.mapping._new_cells_kernel import new_cells_entry, world_to_new_cells
 
 pytestmark = pytest.mark.skipif(jit_disabled(), reason="NUMBA_DISABLE_JIT=1: no compiled fast path")
-
-
-def misaligned(points: np.ndarray) -> np.ndarray:
-    """A read-only copy of float64 ``points`` in a bytes buffer at byte offset 1."""
-    raw = b"\0" + points.astype(np.float64).tobytes() + b"\0" * 7
-    view = np.frombuffer(raw, dtype=np.float64, count=points.size, offset=1)
-    out = view.reshape(points.shape)
-    assert not out.flags.aligned and out.flags.c_contiguous
-    return out
 
 
 def test_misaligned_points_take_the_fast_path_with_the_aligned_cells() -> None:
@@ -48,7 +40,7 @@ def test_misaligned_points_take_the_fast_path_with_the_aligned_cells() -> None:
     o = grid.origin
     want = new_cells_entry()(points, o.x, o.y, o.theta, grid.resolution)
     assert want is not None
-    odd = misaligned(points)
+    odd = misaligned(points, writeable=False)
     got = new_cells_entry()(odd, o.x, o.y, o.theta, grid.resolution)
     assert got is not None
     np.testing.assert_array_equal(got, want)

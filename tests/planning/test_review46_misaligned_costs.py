@@ -15,18 +15,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from misaligned_arrays import misaligned
 from navkit.planning import AStarPlanner, astar, distance_field
 from navkit.planning.grid import _astar
 from navkit.planning.grid._limits import checked_cost_range, converted_costs
-
-
-def misaligned(costs: np.ndarray) -> np.ndarray:
-    """A read-only float64 copy of ``costs`` in a bytes buffer at byte offset 1."""
-    raw = b"\0" + costs.astype(np.float64).tobytes() + b"\0" * 7
-    view = np.frombuffer(raw, dtype=np.float64, count=costs.size, offset=1)
-    out = view.reshape(costs.shape)
-    assert not out.flags.aligned and out.flags.c_contiguous
-    return out
 
 
 def corridor() -> np.ndarray:
@@ -38,7 +30,7 @@ def corridor() -> np.ndarray:
 
 def test_the_converters_copy_a_misaligned_grid_and_keep_an_aligned_one() -> None:
     costs = corridor()
-    odd = misaligned(costs)
+    odd = misaligned(costs, writeable=False)
     for grid in (
         converted_costs(odd),
         checked_cost_range(odd)[0],
@@ -57,7 +49,7 @@ def test_the_converters_copy_a_misaligned_grid_and_keep_an_aligned_one() -> None
 def test_searches_on_a_misaligned_grid_are_those_on_its_aligned_copy(method: str) -> None:
     costs = np.where(np.random.default_rng(46).random((40, 50)) < 0.1, np.inf, 1.0)
     costs[0, 0] = costs[39, 49] = 1.0
-    odd = misaligned(costs)
+    odd = misaligned(costs, writeable=False)
     want = astar(costs, (0, 0), (39, 49), method=method)
     for got in (
         astar(odd, (0, 0), (39, 49), method=method),
