@@ -22,6 +22,7 @@ import numpy as np
 import pytest
 
 from navkit.mapping.io import CarmenLog, read_carmen
+from reader_outcomes import outcome
 
 LOGS = "carmen-logs"
 BOM = b"\xef\xbb\xbf"
@@ -54,16 +55,6 @@ def _content(log: CarmenLog) -> tuple[bytes, ...]:
         log.times.tobytes(),
         log.odometry.tobytes(),
     )
-
-
-def _read(path: Path, data: bytes) -> tuple[bytes, ...] | None:
-    """The content of ``data`` read as a log at ``path``; None for a ValueError naming it."""
-    path.write_bytes(data)
-    try:
-        return _content(read_carmen(path))
-    except ValueError as exc:
-        assert str(path) in str(exc), exc
-        return None
 
 
 # ------------------------------------------------------------------ byte-order mark
@@ -114,11 +105,11 @@ def _check_cuts(tmp_path: Path, text: bytes, offsets: list[int]) -> None:
 
     def upto(end: int) -> tuple[bytes, ...] | None:
         if end not in cache:
-            cache[end] = _read(path, text[:end])
+            cache[end] = outcome(read_carmen, _content, path, text[:end])
         return cache[end]
 
     for offset in offsets:
-        got = _read(path, text[:offset])
+        got = outcome(read_carmen, _content, path, text[:offset])
         if got is None:
             continue
         i = bisect.bisect_right(ends, offset) - 1
@@ -167,7 +158,7 @@ def test_compressed_logs_cut_or_with_a_flipped_bit_are_refused_naming_the_file(
         flipped = bytearray(data)
         flipped[offset] ^= 1 << rng.randrange(8)
         for damaged in (data[:offset], bytes(flipped)):
-            assert _read(path, damaged) is None, offset
+            assert outcome(read_carmen, _content, path, damaged) is None, offset
 
 
 # ------------------------------------------------------------------ the real logs

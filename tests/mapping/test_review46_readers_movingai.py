@@ -11,7 +11,6 @@ ends (LF, CRLF) and a byte-order mark change nothing.
 from __future__ import annotations
 
 import random
-from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -23,6 +22,7 @@ from navkit.mapping.io import (
     read_movingai_map,
     read_movingai_scenarios,
 )
+from reader_outcomes import outcome
 
 SETS = "movingai-grid-benchmarks"
 BOM = b"\xef\xbb\xbf"
@@ -35,18 +35,6 @@ def _scenarios(problems: MovingAIScenarios) -> tuple[Any, ...]:
 
 def _terrain(grid: MovingAIMap) -> bytes:
     return grid.terrain.tobytes()
-
-
-def _read(
-    read: Callable[[Path], Any], content: Callable[[Any], Any], path: Path, data: bytes
-) -> Any:
-    """What ``read`` gives of ``data`` written at ``path``; None for a ValueError naming it."""
-    path.write_bytes(data)
-    try:
-        return content(read(path))
-    except ValueError as exc:
-        assert str(path) in str(exc), exc
-        return None
 
 
 # ------------------------------------------------------------------ scenario files
@@ -83,7 +71,7 @@ def test_whole_last_lines_without_a_line_end_still_read(shared_data: Path, tmp_p
     full = _scenarios(read_movingai_scenarios(shared_data / SETS / "dao/arena.map.scen"))
     path = tmp_path / "arena.map.scen"
     for tail in (b"", b"\r", b" ", b"\t"):
-        assert _read(read_movingai_scenarios, _scenarios, path, text[:-1] + tail) == full
+        assert outcome(read_movingai_scenarios, _scenarios, path, text[:-1] + tail) == full
     # One problem: no other line tells how lengths are printed.
     first = text[: text.index(b"\n", text.index(b"\n") + 1)]
     path.write_bytes(first[:-3])
@@ -109,19 +97,19 @@ def test_scenario_files_cut_flipped_or_recoded(
     full = _scenarios(read_movingai_scenarios(shared_data / SETS / name))
     path = tmp_path / "damaged.map.scen"
     for variant in (text.replace(b"\n", b"\r\n"), BOM + text, BOM + text.replace(b"\n", b"\r\n")):
-        assert _read(read_movingai_scenarios, _scenarios, path, variant) == full
+        assert outcome(read_movingai_scenarios, _scenarios, path, variant) == full
     ends = [i + 1 for i, byte in enumerate(text) if byte == ord("\n")]
     rng = random.Random(f"46{name}")
     for offset in rng.sample(range(len(text)), 150):
-        got = _read(read_movingai_scenarios, _scenarios, path, text[:offset])
+        got = outcome(read_movingai_scenarios, _scenarios, path, text[:offset])
         if got is not None:
             # The lines before the cut, or the cut line if only its line end is missing.
             whole = [end for end in ends if end <= offset + 1]
-            assert _read(read_movingai_scenarios, _scenarios, path, text[: whole[-1]]) == got
+            assert outcome(read_movingai_scenarios, _scenarios, path, text[: whole[-1]]) == got
     for offset in rng.sample(range(len(text)), 100):
         flipped = bytearray(text)
         flipped[offset] ^= 1 << rng.randrange(8)
-        _read(read_movingai_scenarios, _scenarios, path, bytes(flipped))  # no other error
+        outcome(read_movingai_scenarios, _scenarios, path, bytes(flipped))  # no other error
 
 
 # ------------------------------------------------------------------ map files
@@ -136,17 +124,17 @@ def test_maps_cut_or_flipped_are_refused_and_line_ends_change_nothing(
     path = tmp_path / "damaged.map"
     lf = text.replace(b"\r\n", b"\n")
     for variant in (lf, lf.replace(b"\n", b"\r\n"), BOM + text, lf + b"\n\n \n"):
-        assert _read(read_movingai_map, _terrain, path, variant) == full
+        assert outcome(read_movingai_map, _terrain, path, variant) == full
     rng = random.Random(f"46{name}")
     body = lf.rstrip(b"\n")
     for offset in rng.sample(range(len(body)), 40):
-        assert _read(read_movingai_map, _terrain, path, body[:offset]) is None, offset
+        assert outcome(read_movingai_map, _terrain, path, body[:offset]) is None, offset
     for offset in rng.sample(range(len(lf)), 40):
         flipped = bytearray(lf)
         flipped[offset] ^= 1 << rng.randrange(8)
         # No character of these maps ('.', '@', 'T') is one bit from another terrain
         # character: every flip (in a row, a line end or the header) is refused.
-        assert _read(read_movingai_map, _terrain, path, bytes(flipped)) is None, offset
+        assert outcome(read_movingai_map, _terrain, path, bytes(flipped)) is None, offset
 
 
 def test_huge_declared_sizes_are_refused_before_reading(tmp_path: Path) -> None:
