@@ -1,4 +1,4 @@
-"""Cache index files of navkit's kernels, as numba writes them, for the CLI's cache check.
+"""Cache index files of navkit's kernels, as numba writes them, and copies of navkit to cache.
 
 The command's notice (``navkit.cli._kernels``) counts a kernel as cached only
 when numba would use its index: written by this numba version, stamped with the
@@ -11,9 +11,24 @@ of the format, so that the check is tested against numba.
 from __future__ import annotations
 
 import importlib
+import shutil
 import sys
 from pathlib import Path
 from typing import Any
+
+import navkit
+
+
+def navkit_copy(folder: Path) -> Path:
+    """A copy of navkit's package (no caches) in ``folder``/navkit, for a fresh process.
+
+    Returns ``folder``: the entry of ``sys.path`` that imports the copy.
+    """
+    shutil.copytree(
+        Path(navkit.__file__).parent, folder / "navkit",
+        ignore=shutil.ignore_patterns("__pycache__"),
+    )  # fmt: skip
+    return folder
 
 
 def index_name(module: str, function: str, line: int) -> str:

@@ -9,12 +9,12 @@ from __future__ import annotations
 
 import compileall
 import os
-import shutil
 import subprocess
 import sys
 from pathlib import Path
 
-import navkit
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from numba_index import navkit_copy
 
 _SCRIPT = """
 import sys
@@ -43,11 +43,7 @@ print(before, kernels_cached("astar"), type(locator).__name__)
 
 
 def test_a_frozen_application_finds_its_cached_kernels(tmp_path: Path) -> None:
-    app = tmp_path / "app"
-    shutil.copytree(
-        Path(navkit.__file__).parent, app / "navkit",
-        ignore=shutil.ignore_patterns("__pycache__"),
-    )  # fmt: skip
+    app = navkit_copy(tmp_path / "app")
     # As a freezer ships them: bytecode beside no source, named by relative paths.
     assert compileall.compile_dir(app / "navkit", quiet=1, legacy=True, ddir="navkit")
     for source in (app / "navkit").rglob("*.py"):

@@ -13,7 +13,6 @@ from __future__ import annotations
 import json
 import os
 import pickle
-import shutil
 import subprocess
 import sys
 from collections.abc import Callable
@@ -22,11 +21,10 @@ from typing import Any
 
 import pytest
 
-import navkit
 from navkit.cli import _kernels
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from numba_index import write_index
+from numba_index import navkit_copy, write_index
 
 _TRANSFORM = ("navkit.mapping", "_edt_kernels", "band_distances")
 
@@ -69,11 +67,7 @@ def _probe(app: Path, cache: Path) -> dict[str, Any]:
 
 
 def test_the_check_agrees_with_numba_when_the_source_changes(tmp_path: Path) -> None:
-    app = tmp_path / "app"
-    shutil.copytree(
-        Path(navkit.__file__).parent, app / "navkit",
-        ignore=shutil.ignore_patterns("__pycache__"),
-    )  # fmt: skip
+    app = navkit_copy(tmp_path / "app")
     cache = tmp_path / "cache"
     source = app / "navkit" / "mapping" / "_edt_kernels.py"
 
