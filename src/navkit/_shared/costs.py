@@ -8,7 +8,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from navkit._shared.validation import holds_bool, refuse_masked
+from navkit._shared.validation import aligned, holds_bool, refuse_masked
 
 #: The most cells a cost grid may have: the grid searches' limit (``MAX_NODES`` of
 #: navkit.planning.grid._search_heap, which this layer cannot import; a test
@@ -22,7 +22,8 @@ def validate_costs(costs: ArrayLike, name: str = "costs") -> NDArray[np.float64]
     The planners' convention: a 2-D array indexed ``[row, col]`` whose finite
     values are >= 1 (cost per unit length of crossing the cell) and whose
     ``+inf`` entries are impassable. The input is never modified; it is copied
-    only when a dtype or layout conversion is needed.
+    only when a dtype or layout conversion is needed, or when its buffer is
+    not aligned for float64 (:func:`~navkit._shared.validation.aligned`).
 
     Raises
     ------
@@ -77,7 +78,7 @@ def validate_costs_lowest(
         raise ValueError(f"{name} must be 2-D (rows, cols), got shape {arr.shape}")
     if arr.shape[0] == 0 or arr.shape[1] == 0:
         raise ValueError(f"{name} must not be empty, got shape {arr.shape}")
-    out = np.ascontiguousarray(arr, dtype=np.float64)
+    out = aligned(np.ascontiguousarray(arr, dtype=np.float64))
     lowest = float(out.min())
     if np.isnan(lowest):
         raise ValueError(f"{name} must not contain NaN (found at {_first(np.isnan(out))})")

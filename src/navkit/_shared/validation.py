@@ -17,7 +17,10 @@ NumPy reads (byte-swapped, memory-mapped, broadcast, ``memoryview``,
 ``array.array``, objects with only ``__array__`` or ``__array_interface__``)
 counts as its values, ``np.matrix`` as the 2-D array of its values. Arrays
 handed to numba kernels go through :func:`kernel_input`, so that no layout
-(read-only, strided) compiles a kernel a second time.
+(read-only, strided) compiles a kernel a second time. No array a kernel may
+receive keeps a misaligned buffer (:func:`aligned`, review 47): the float
+converters (:func:`as_float_array`, :func:`as_points`) and :func:`kernel_input`
+copy one.
 """
 
 from __future__ import annotations
@@ -27,12 +30,14 @@ import numbers
 import sys
 from collections.abc import Mapping, Sequence
 from itertools import chain
-from typing import Any, TypeGuard, cast
+from typing import Any, TypeGuard, TypeVar, cast
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from navkit._shared.types import FloatArray
+
+_T = TypeVar("_T", bound=np.generic)
 
 SMALLEST_POSITIVE = sys.float_info.min
 """The smallest positive value :func:`positive_float` accepts: the smallest normal
@@ -386,14 +391,14 @@ def _real_array(value: Any, name: str, components: int | None = None) -> FloatAr
             refuse_masked(value, name)
         kind = value.dtype.kind
         if kind in "iu" or value.dtype is _FLOAT64:
-            return np.asarray(value, dtype=np.float64)
+            return aligned(np.asarray(value, dtype=np.float64))
         if kind == "f":
             # Widening a signalling NaN (float32 from a driver or a bag) makes NumPy
             # warn "invalid value encountered in cast"; it is still a NaN. A long
             # double beyond float64's range warns "overflow": it is an infinity,
             # which the finiteness check names.
             with np.errstate(invalid="ignore", over="ignore"):
-                return np.asarray(value, dtype=np.float64)
+                return aligned(np.asarray(value, dtype=np.float64))
         if kind != "O":
             raise TypeError(f"{name} must hold real numbers, got dtype {value.dtype}")
     elif isinstance(value, (str, bytes, complex, bool, np.bool_, np.complexfloating)):
@@ -425,7 +430,8 @@ def _real_array(value: Any, name: str, components: int | None = None) -> FloatAr
             # cast nothing and skip the errstate.
             with np.errstate(invalid="ignore", over="ignore"):
                 return np.asarray(raw, dtype=np.float64)
-        return np.asarray(raw, dtype=np.float64)
+        # A memoryview or an __array_interface__ object may give bytes at any offset.
+        return aligned(np.asarray(raw, dtype=np.float64))
     except OverflowError:
         raise ValueError(
             f"{name} must hold finite numbers, got an integer too large for a float"
@@ -584,14 +590,16 @@ def as_float_array(
 
 
 def kernel_input(arr: FloatArray) -> FloatArray:
-    """``arr`` as the C-contiguous, writeable float64 array the kernels are compiled for.
+    """``arr`` as the C-contiguous, writeable, aligned float64 array the kernels are compiled for.
 
     numba compiles a kernel once per array type, and a read-only array (a
     memory map opened with mode ``"r"``, ``np.frombuffer`` of a message's bytes,
     a broadcast view) or a non-contiguous one is another type than the fresh
     arrays the kernels are warmed up with: passed as it is, it would pay a
-    compilation (hundreds of ms) on its first call. Such arrays are copied (the
-    caller's buffer is then not read by the kernel at all); others pass as they are.
+    compilation (hundreds of ms) on its first call. A misaligned one is
+    typed as an aligned array (see :func:`aligned`). Such arrays are copied
+    (the caller's buffer is then not read by the kernel at all); others pass
+    as they are.
 
     Examples
     --------
@@ -599,11 +607,42 @@ def kernel_input(arr: FloatArray) -> FloatArray:
     >>> frozen.flags.writeable = False
     >>> kernel_input(frozen).flags.writeable
     True
+    >>> odd = np.frombuffer(bytearray(25), dtype=np.float64, count=3, offset=1)
+    >>> odd.flags.aligned, kernel_input(odd).flags.aligned
+    (False, True)
     """
-    flags = arr.flags
-    if flags.c_contiguous and flags.writeable and arr.dtype == _FLOAT64:
+    # carray: C-contiguous, aligned and writeable, in one flag test.
+    if arr.flags.carray and arr.dtype == _FLOAT64:
         return arr
     return np.array(arr, dtype=np.float64, order="C")
+
+
+def aligned(arr: NDArray[_T]) -> NDArray[_T]:
+    """``arr`` itself, or a C-contiguous copy of it if its buffer is not aligned for its dtype.
+
+    The rule for every array a numba kernel may receive (review 47): numba
+    types a misaligned array (a float64 view of bytes at an odd offset, from
+    ``np.frombuffer`` of a message or a file; a float64 field of a packed
+    structured array) as an *aligned* one, and LLVM then assumes its loads
+    aligned: undefined behaviour (x86-64 and AArch64 execute such loads all
+    the same; a vectoriser may emit aligned SIMD loads, other targets trap).
+    ``np.ascontiguousarray`` and ``np.asarray(..., dtype=...)`` keep a
+    misaligned buffer as it is when no conversion is needed. An aligned
+    array costs one flag test; a copy is made only for a misaligned one,
+    and the input is never modified.
+
+    Examples
+    --------
+    >>> odd = np.frombuffer(bytes(25), dtype=np.float64, count=3, offset=1)
+    >>> odd.flags.aligned, aligned(odd).flags.aligned
+    (False, True)
+    >>> plain = np.zeros(3)
+    >>> aligned(plain) is plain
+    True
+    """
+    if arr.flags.aligned:
+        return arr
+    return arr.copy()
 
 
 def as_points(value: ArrayLike, name: str, *, finite: bool = True) -> FloatArray:

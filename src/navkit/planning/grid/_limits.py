@@ -36,7 +36,7 @@ from numpy.typing import ArrayLike, NDArray
 from navkit._shared.costs import validate_costs_lowest
 from navkit._shared.jit import njit_released
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import finite_float, holds_bool, refuse_masked
+from navkit._shared.validation import aligned, finite_float, holds_bool, refuse_masked
 from navkit.planning.grid._search_heap import MAX_NODES
 
 __all__ = [
@@ -191,8 +191,8 @@ def converted_costs(
     C-contiguous, float64 and aligned: a misaligned buffer (a view of bytes
     at an odd offset) is copied, since numba's dispatcher types such an
     array as an aligned one and the kernels would read it with loads that
-    LLVM assumes aligned (review 46; x86-64 and AArch64 execute them all
-    the same, other targets need not).
+    LLVM assumes aligned (review 46; the project-wide rule since review 47,
+    :func:`~navkit._shared.validation.aligned`).
     """
     if isinstance(costs, (list, tuple)) and holds_bool(costs):
         # NumPy turns [[True, 2.0]] into [[1.0, 2.0]] (only all-bool lists stay bool).
@@ -215,13 +215,9 @@ def converted_costs(
         check_node_count(
             rows * cols, f"A search on {name} of shape {arr.shape}", _SEARCH_BYTES_PER_CELL, "cells"
         )
-    out: FloatArray = np.ascontiguousarray(arr, dtype=np.float64)
-    if not out.flags.aligned:
-        # ascontiguousarray keeps a misaligned buffer (bytes at an odd offset), and
-        # numba types it as an aligned array: the kernels' loads would then assume
-        # 8-byte alignment, undefined in LLVM (review 46). A copy is aligned.
-        out = out.copy()
-    return out
+    # ascontiguousarray keeps a misaligned buffer (bytes at an odd offset) as it is,
+    # which numba would type as an aligned array (review 46): the shared rule copies it.
+    return aligned(np.ascontiguousarray(arr, dtype=np.float64))
 
 
 def cost_range(grid: FloatArray, name: str = "costs") -> tuple[float, float]:
