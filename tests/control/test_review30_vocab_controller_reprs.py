@@ -85,7 +85,8 @@ def test_repr_shows_every_option_and_evaluates_to_a_twin(
 
 def test_the_field_controller_shows_its_attraction() -> None:
     attraction = PiecewiseAttraction(np.array([1.0, 2.0]), alpha=0.5, goal_radius=0.25)
-    text = repr(PotentialFieldController(attraction))
+    # A goal_tolerance beyond the field's goal_radius (the default 0.05 is refused).
+    text = repr(PotentialFieldController(attraction, goal_tolerance=0.3))
     assert text.startswith(
         "PotentialFieldController(attraction=PiecewiseAttraction(goal_xy=(1.0, 2.0), alpha=0.5, "
         "goal_radius=0.25, spread=1.0), k_rep="

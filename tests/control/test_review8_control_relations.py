@@ -289,8 +289,10 @@ def test_potential_field_controller_in_mirrored_and_moved_worlds(
     """
     field = {"blended": None, "conic": ConicAttraction(np.zeros(2)),
              "piecewise": PiecewiseAttraction(np.zeros(2), goal_radius=0.1)}[attraction]
-    a = PotentialFieldController(field, drive=drive, ki=ki, k_rep=0.2)
-    b = PotentialFieldController(field, drive=drive, ki=ki, k_rep=0.2)
+    # Beyond the piecewise field's goal_radius (a tolerance within it is refused).
+    tolerance = 0.15 if attraction == "piecewise" else 0.05
+    a = PotentialFieldController(field, drive=drive, ki=ki, k_rep=0.2, goal_tolerance=tolerance)
+    b = PotentialFieldController(field, drive=drive, ki=ki, k_rep=0.2, goal_tolerance=tolerance)
     obstacles = np.array(obstacle_list, dtype=float).reshape(-1, 2)
     c, s = math.cos(angle), math.sin(angle)
     sign = -1.0 if mirror else 1.0

@@ -8,6 +8,7 @@ from typing import Literal
 import numpy as np
 
 from navkit._shared.deprecation import renamed_keyword
+from navkit.control._goal import at_goal
 from navkit.control._path_following import (
     PathState,
     PathTracker,
@@ -312,7 +313,7 @@ class FollowTheCarrot(PathTracker[_CarrotState]):
         gx, gy = line.point_at(line.length)
         near_end = s + self._carrot_distance >= line.length
         if state.phase == "final" or (
-            near_end and math.hypot(gx - pose.x, gy - pose.y) <= self._goal_tolerance
+            near_end and at_goal(pose.x, pose.y, gx, gy, self._goal_tolerance)
         ):
             state.target = (gx, gy)
             return self._finish(state, pose, dt, self._final_turn)

@@ -8,6 +8,7 @@ from typing import Literal
 
 from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.validation import finite_float
+from navkit.control._goal import at_goal
 from navkit.control._path_following import (
     PathState,
     PathTracker,
@@ -265,7 +266,9 @@ class OnOffTracker(PathTracker[_WaypointState]):
         pts = line.points_xy
         k = pts.shape[0]
         i = state.waypoint
-        while i < k and math.hypot(pts[i, 0] - pose.x, pts[i, 1] - pose.y) <= self._goal_tolerance:
+        while i < k and at_goal(
+            pose.x, pose.y, float(pts[i, 0]), float(pts[i, 1]), self._goal_tolerance
+        ):
             i += 1
         state.waypoint = i
         if i == k:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import math
 from _thread import get_ident
 from typing import Any, Literal, cast
@@ -12,9 +13,11 @@ from numpy.typing import ArrayLike
 from navkit._shared.dunders import slot_state
 from navkit._shared.frozen import restore_slots
 from navkit._shared.locks import _in_use
+from navkit._shared.metres import metres_text
 from navkit._shared.text import as_text
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, as_points
+from navkit.control._goal import at_goal
 from navkit.control._ranges import MAX_COORDINATE, MAX_GAIN, MIN_GAIN, in_range, position, quantity
 from navkit.control._velocity_limits import _limit_change
 from navkit.geometry import Pose2D, Twist2D, angle_diff, as_pose, as_twist
@@ -23,6 +26,7 @@ from navkit.planning import (
     AttractiveField,
     BlendedAttraction,
     KhatibRepulsion,
+    PiecewiseAttraction,
     PotentialField,
     repulsive_force_from_scan,
 )
@@ -54,6 +58,117 @@ def _mount(value: Pose2D | ArrayLike | None) -> Pose2D | None:
     mount = as_pose(value, "mount")
     position(mount.x, mount.y, "mount")
     return mount
+
+
+def _check_reachable(goal_tolerance: float, attraction: AttractiveField) -> None:
+    """Refuse (``ValueError``) a ``goal_tolerance`` the attraction never lets a robot meet.
+
+    Checked for navkit's :class:`~navkit.planning.BlendedAttraction` and
+    :class:`~navkit.planning.PiecewiseAttraction` (and subclasses keeping their
+    force): a robot in free space comes to rest where their pull vanishes, at
+    :func:`_resting_distance` from the goal or farther, and a tolerance not
+    beyond it was never met: the robot settled short of the goal, never done and
+    reported stalled there (``goal_tolerance=0.001`` with the default blend: 3.75
+    mm off for ever, stalled after the timeout). Other fields pull up to the
+    goal itself.
+    """
+    rest = _resting_distance(attraction)
+    if goal_tolerance <= rest:
+        kind = type(attraction).__name__
+        why = (
+            "nearer, the blend pushes outward: sigma(0) > 0 leaves a trace of the cone's tip"
+            if isinstance(attraction, BlendedAttraction)
+            else "nearer, within its goal_radius, it does not pull"
+        )
+        raise ValueError(
+            f"goal_tolerance must exceed {metres_text(rest)} m: the attraction ({kind} "
+            f"with these parameters) brings the robot to rest that far from the goal "
+            f"({why}), so it would never be done; got {goal_tolerance!r}"
+        )
+
+
+def _resting_distance(attraction: AttractiveField) -> float:
+    """The least distance (m) from the goal at which ``attraction`` holds a robot at rest.
+
+    0 for a field pulling toward the goal everywhere near it, and for fields
+    other than :class:`~navkit.planning.BlendedAttraction` and
+    :class:`~navkit.planning.PiecewiseAttraction` (a field of the user's own is
+    not examined). The blend's equilibria lie on its ellipse's axes (only there
+    is the paraboloid's gradient radial): the nearer of the two axes' first
+    zeros of the radial force that holds a robot nudged off its axis (see
+    :func:`_holds`), from below (a point where the force still pushes outward).
+    """
+    kind = type(attraction)
+    if kind.force is not PotentialField.force:
+        return 0.0
+    if kind._force is PiecewiseAttraction._force:
+        return cast(PiecewiseAttraction, attraction).goal_radius
+    if kind._force is not BlendedAttraction._force:
+        return 0.0
+    field = cast(BlendedAttraction, attraction)
+    return _blended_rest(
+        field.k_att, field.c, field.a, field.b, field.threshold_radius, field.width,
+        field.m, field.u_trans,
+    )  # fmt: skip
+
+
+@functools.lru_cache(maxsize=64)
+def _blended_rest(
+    k_att: float, c: float, a: float, b: float, threshold_radius: float, width: float,
+    m: float, u_trans: float,
+) -> float:  # fmt: skip
+    """:func:`_resting_distance` of a blend of these parameters (every controller of
+    the soccer scenario's players has the same: computed once, 0.5 ms)."""
+    field = BlendedAttraction(
+        np.zeros(2), k_att=k_att, c=c, a=a, b=b, threshold_radius=threshold_radius,
+        width=width, m=m, u_trans=u_trans,
+    )  # fmt: skip
+    # Far out the paraboloid's terms overflow and near the goal σ underflows, as they
+    # may in the field's own use: not the caller's np.seterr's business here.
+    with np.errstate(all="ignore"):
+        rests = [_first_rest(field, 0), _first_rest(field, 1)]
+        held = [rest for axis, rest in enumerate(rests) if _holds(field, rest, axis)]
+    return min(held or rests)
+
+
+def _holds(field: BlendedAttraction, rest: float, axis: int) -> bool:
+    """Whether the rest ``rest`` m along ``axis`` holds a robot pushed off the axis.
+
+    Off the axis of the stiffer paraboloid the outward push of the cone's tip beats
+    the paraboloid's weaker pull across it: the robot slides round to the other
+    axis's rest (``a = 0.5, b = 2``: from 0.9 mm on the x axis to 17.4 mm on the y
+    axis), which is then the nearest it comes to rest.
+    """
+    if not 0.0 < rest < math.inf:
+        return True
+    pts = np.zeros((1, 2))
+    pts[0, axis] = rest
+    pts[0, 1 - axis] = 1e-3 * rest
+    return bool(field._force(pts)[0, 1 - axis] <= 0.0)
+
+
+def _first_rest(field: BlendedAttraction, axis: int) -> float:
+    """The last distance (m) along the positive ``axis`` (0: x, 1: y) from the goal (the
+    origin) before the field's force first points inward; 0 if it does at once
+    (1e-12 m), infinity if never (within 2e9 m, the farthest a robot is from a goal)."""
+    d = np.geomspace(1e-12, 2e9, 512)
+    pts = np.zeros((d.size, 2))
+    pts[:, axis] = d
+    inward = np.flatnonzero(field._force(pts)[:, axis] <= 0.0)
+    if inward.size == 0:
+        return math.inf
+    k = int(inward[0])
+    if k == 0:
+        return 0.0
+    lo, hi = float(d[k - 1]), float(d[k])
+    # Each round narrows the bracket 64-fold: 2e-16 of it after nine rounds.
+    for _ in range(9):
+        grid = np.linspace(lo, hi, 65)
+        pts = np.zeros((grid.size, 2))
+        pts[:, axis] = grid
+        j = int(np.flatnonzero(field._force(pts)[:, axis] <= 0.0)[0])
+        lo, hi = float(grid[j - 1]), float(grid[j])
+    return lo
 
 
 class _Pid:
@@ -187,8 +302,26 @@ class PotentialFieldController:
         its heading) rather than to the field's direction. Such a robot
         stops anywhere within it, as the path trackers do (about half of it
         from the goal when the target heading is across the approach): make
-        it the accuracy wanted, not below the distance at which the
-        attraction settles the robot (3.75 mm for the default).
+        it the accuracy wanted. It must exceed the distance from the goal at
+        which the attraction brings the robot to rest, which no robot in
+        free space comes nearer than (``ValueError`` otherwise, naming that
+        distance): 3.75 mm for the default ``BlendedAttraction`` (computed
+        from the blend's parameters: σ(0) > 0 pushes outward nearer the
+        goal), the ``goal_radius`` of a ``PiecewiseAttraction``; a field of
+        your own is not checked. The approach to that distance slows
+        exponentially (the paraboloid's pull shrinks with it): a tolerance
+        within a millimetre of it takes seconds more to reach, and a robot
+        that stays within ``stall_radius`` meanwhile for ``stall_timeout`` is
+        reported :attr:`stalled` on the way (the default blend from 5 cm off:
+        for tolerances below 4.7 mm). A ``ConicAttraction`` pulls at full
+        strength up to the goal, so an omnidirectional robot keeps passing
+        through it, up to about a centimetre to and fro (with the default
+        speeds and 20 Hz): :attr:`done` then comes and goes for tolerances
+        below that. A differential drive steers by the field only where it
+        asks for more than a thousandth of ``max_speed`` (see ``drive``), so
+        it may stop up to about that far beyond the rest, off its line
+        (a ``ParaboloidAttraction`` with the defaults: 0.25 mm; tolerances of
+        a micrometre were not met).
     stall_radius : float, default 0.05
         Radius (m) the robot must leave to count as moving, in [1e-6, 1e6].
     stall_timeout : float, default 2.0
@@ -212,7 +345,9 @@ class PotentialFieldController:
     Raises
     ------
     TypeError, ValueError
-        A parameter of the wrong type or outside its range, naming it.
+        A parameter of the wrong type or outside its range, naming it; a
+        ``goal_tolerance`` not beyond the distance at which the attraction
+        brings the robot to rest (see ``goal_tolerance``).
 
     Notes
     -----
@@ -237,6 +372,14 @@ class PotentialFieldController:
     ...     pose = integrate(pose, cmd, 0.05)
     >>> round(pose.x, 2), ctl.stalled
     (2.0, False)
+
+    The default blend brings the robot to rest 3.75 mm from the goal, so a
+    tighter tolerance would never be met:
+
+    >>> PotentialFieldController(goal_tolerance=0.001)
+    Traceback (most recent call last):
+    ...
+    ValueError: goal_tolerance must exceed 0.003751495 m: the attraction (BlendedAttraction ...
     """
 
     __slots__ = (
@@ -313,6 +456,7 @@ class PotentialFieldController:
         self._max_omega = quantity(max_omega, "max_omega", "rad/s")
         self._drive: Literal["omni", "diff"] = drive
         self._goal_tolerance = quantity(goal_tolerance, "goal_tolerance", "m")
+        _check_reachable(self._goal_tolerance, attraction)
         self._stall_radius = quantity(stall_radius, "stall_radius", "m")
         self._stall_timeout = quantity(stall_timeout, "stall_timeout", "s")
         self._pid = _Pid(
@@ -456,7 +600,9 @@ class PotentialFieldController:
         steps: the attraction still moves the robot to where it settles (3.75 mm
         from the goal with the default :class:`~navkit.planning.BlendedAttraction`).
         False before the first step and after :meth:`reset`; never together with
-        :attr:`stalled`.
+        :attr:`stalled`. Within ``goal_tolerance`` is the trackers' test too
+        (the same function: exact at the boundary, where two ``hypot``
+        implementations could disagree by an ulp).
 
         Examples
         --------
@@ -809,8 +955,9 @@ class PotentialFieldController:
         goal = np.array([target_pose.x, target_pose.y])
         want = self._desired(pose, goal, obstacles, mount)
         # np.hypot on the float differences, as array arithmetic on the goal would give.
-        to_goal = float(np.hypot(target_pose.x - pose.x, target_pose.y - pose.y))
-        arrived = to_goal <= self._goal_tolerance
+        # The trackers' test, exact at the boundary (np.hypot here and math.hypot
+        # there could disagree by an ulp on whether the goal was reached).
+        arrived = at_goal(pose.x, pose.y, target_pose.x, target_pose.y, self._goal_tolerance)
         # A measured speed beyond about 1e154 m/s overflows the norm of the change
         # (handled, but NumPy warns): only then is the limit run under np.errstate,
         # which would cost an ordinary step more than the limit itself.

@@ -14,6 +14,7 @@ from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.dunders import slot_state
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_bool, refuse_masked
+from navkit.control._goal import at_goal
 from navkit.control._path_following import (
     PathState,
     PathTracker,
@@ -602,8 +603,7 @@ class RegulatedPurePursuit(PathTracker[_PursuitState]):
         gx, gy = line.end
         to_goal = math.hypot(gx - px, gy - py)
         if state.phase == "final" or (
-            s_carrot >= line.length
-            and (to_goal <= self._goal_tolerance or to_goal <= _resolution(gx, gy))
+            s_carrot >= line.length and at_goal(px, py, gx, gy, self._goal_tolerance)
         ):
             cmd = self._finish(state, pose, dt, lambda err, h: self._rotate(err, h, w_now))
             state.last = (cmd.vx, cmd.vy, cmd.omega)
@@ -707,22 +707,6 @@ class RegulatedPurePursuit(PathTracker[_PursuitState]):
         if math.isnan(value):
             raise ValueError(f"clearance(x, y) returned NaN at ({pose.x}, {pose.y})")
         return max(value, 0.0)
-
-
-def _resolution(x: float, y: float) -> float:
-    """The float resolution (m) of world coordinates at the point ``(x, y)``: one ulp
-    of the finer coordinate (the smaller in magnitude).
-
-    A goal tolerance below it (1e-12 m at (4.6e6, 4.6e6) m, where it is 9.3e-10 m)
-    is met only on the goal itself, which a differential robot's arcs did not land
-    on: it turned in place and crept between two points one ulp beside the goal
-    for ever, never done (review 38; every start of 20 tried). A goal that near
-    counts as reached: no pose is nearer without being on it. Not the ulp of the
-    larger coordinate: where the other is finer, nearer poses exist and are
-    reached (1e-12 m at (4.6e6, 0.5) m was met within 1e-12 m), and that radius
-    ended those runs 5e-10 to 8e-10 m away (review 38, REV38).
-    """
-    return math.ulp(min(abs(x), abs(y)))
 
 
 def _as_clearance(value: Any) -> Clearance | None:
