@@ -15,10 +15,12 @@ without the dispatcher, make those tests in C:
   reference: no conversion, no check, nothing that can fail);
 * :func:`float_vector` and :func:`float_matrix` look at such an object's C
   struct: if it is an ``ndarray`` (exactly, no subclass) of native-order
-  float64 with 1 (or 2) dimensions whose flags say C-contiguous and writeable
-  (what numba's dispatcher types as a 1-D or 2-D writeable ``float64`` C
-  array, the only type the general EKF's kernels were compiled for; an
-  unaligned one too, as ``numba.typeof`` does not look at alignment), they give
+  float64 with 1 (or 2) dimensions whose flags say C-contiguous, aligned and
+  writeable (what numba's dispatcher types as a 1-D or 2-D writeable
+  ``float64`` C array, the only type the general EKF's kernels were compiled
+  for; the dispatcher would type an unaligned one so too, as ``numba.typeof``
+  does not look at alignment, but the view's loads assume it: review 47
+  refuses it, and the caller's general way copies it), they give
   ``True`` and a view of it (its data, shape and strides), else ``False`` and
   an empty view, having read nothing beyond the object's type unless that
   type is ``ndarray``; given a numba array of that type (a kernel compiled
@@ -124,9 +126,12 @@ _BYTEORDER = _HEAD + 10  # PyArray_Descr.byteorder (char)
 _TYPE_NUM = _HEAD + 12  # PyArray_Descr.type_num (int)
 _FLOAT64 = np.dtype(np.float64)
 _NATIVE = ord("=")
-# NPY_ARRAY_C_CONTIGUOUS | NPY_ARRAY_WRITEABLE: the flags of the arrays numba's
-# dispatcher types as a writeable C array (aligned or not: its typeof does not look).
-_BEHAVED_C = 0x0001 | 0x0400
+# NPY_ARRAY_C_CONTIGUOUS | NPY_ARRAY_ALIGNED | NPY_ARRAY_WRITEABLE: NumPy's
+# NPY_ARRAY_CARRAY, the arrays the views' type (an aligned writeable C array)
+# describes. numba's dispatcher would take an unaligned one for that type too
+# (its typeof does not look), and the kernels' loads would assume an alignment
+# its data lacks (review 47): it goes the caller's general way, a copy.
+_BEHAVED_C = 0x0001 | 0x0100 | 0x0400
 
 # Symbols the compiled code refers to by name (numba's cache stores code, not
 # addresses): registered in every process before any kernel using them loads.
