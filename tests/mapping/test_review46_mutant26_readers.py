@@ -26,6 +26,7 @@ import numpy as np
 import pytest
 
 import navkit.mapping.io._map_files as map_files
+from link_trees import loop
 from navkit._shared.counts import bytes_text
 from navkit.mapping.io import (
     read_bag_scans,
@@ -57,9 +58,7 @@ def test_a_loop_folders_above_the_file_is_named_not_a_folder_inside_it(
     tmp_path: Path, name: str
 ) -> None:
     read = _reader(name)
-    looped = tmp_path / "a"
-    looped.symlink_to(tmp_path / "b")
-    (tmp_path / "b").symlink_to(looped)
+    looped = loop(tmp_path)
     path = looped / "x" / "y" / "z.file"
     with pytest.raises(FileNotFoundError) as info:
         read(path)
