@@ -130,7 +130,11 @@ _NATIVE = ord("=")
 # NPY_ARRAY_CARRAY, the arrays the views' type (an aligned writeable C array)
 # describes. numba's dispatcher would take an unaligned one for that type too
 # (its typeof does not look), and the kernels' loads would assume an alignment
-# its data lacks (review 47): it goes the caller's general way, a copy.
+# its data lacks (review 47): it goes the caller's general way, a copy. This mask
+# is compiled into the kernels using the views, whose cached machine code numba
+# keys by their own source files only: change it together with those modules
+# (estimation/_ekf_kernels.py changed in the same release as review 47), or
+# caches made before keep the old test.
 _BEHAVED_C = 0x0001 | 0x0100 | 0x0400
 
 # Symbols the compiled code refers to by name (numba's cache stores code, not
