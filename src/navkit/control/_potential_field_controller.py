@@ -317,11 +317,13 @@ class PotentialFieldController:
         strength up to the goal, so an omnidirectional robot keeps passing
         through it, up to about a centimetre to and fro (with the default
         speeds and 20 Hz): :attr:`done` then comes and goes for tolerances
-        below that. A differential drive steers by the field only where it
-        asks for more than a thousandth of ``max_speed`` (see ``drive``), so
-        it may stop up to about that far beyond the rest, off its line
-        (a ``ParaboloidAttraction`` with the defaults: 0.25 mm; tolerances of
-        a micrometre were not met).
+        below that; so does a blend whose tip pulls inward (``threshold_radius``
+        below about half the ``width``: no rest off the goal), by millimetres.
+        A differential drive steers by the field only where it asks for more
+        than a thousandth of ``max_speed`` (see ``drive``): it may stop off
+        its line anywhere the field is slower than that (a default
+        ``ParaboloidAttraction``: up to 0.25 mm from the goal, where
+        tolerances of a micrometre were not met).
     stall_radius : float, default 0.05
         Radius (m) the robot must leave to count as moving, in [1e-6, 1e6].
     stall_timeout : float, default 2.0
