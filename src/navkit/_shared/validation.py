@@ -390,8 +390,13 @@ def _real_array(value: Any, name: str, components: int | None = None) -> FloatAr
         if kind_of is not np.ndarray:
             refuse_masked(value, name)
         kind = value.dtype.kind
-        if kind in "iu" or value.dtype is _FLOAT64:
-            return aligned(np.asarray(value, dtype=np.float64))
+        if value.dtype is _FLOAT64:
+            # aligned(), inlined (the common case: a call less): a float64 array's
+            # buffer is used as it is (a subclass's as a plain view), misaligned or not.
+            out = np.asarray(value)
+            return out if out.flags.aligned else out.copy()
+        if kind in "iu":
+            return np.asarray(value, dtype=np.float64)  # a new array: aligned
         if kind == "f":
             # Widening a signalling NaN (float32 from a driver or a bag) makes NumPy
             # warn "invalid value encountered in cast"; it is still a NaN. A long
