@@ -110,8 +110,8 @@ def test_a_non_finite_message_is_refused_naming_its_index_and_record_time(
     path = _bag(tmp_path / "bad.bag", msgtype, bad)
     first = min(bad)
     message = (
-        f"{path}: message {first} of /topic (recorded at {first + 1}.000000000 s) has a "
-        f"non-finite {what}; skip_nonfinite=True leaves such messages out"
+        f"{path}: message {first} of /topic has a non-finite {what} (recorded at "
+        f"{first + 1}.000000000 s); skip_nonfinite=True leaves such messages out"
     )
     with pytest.raises(ValueError, match="^" + re.escape(message) + "$"):
         READERS[msgtype](path)
@@ -122,7 +122,7 @@ def test_the_first_bad_message_is_named_whichever_field_is_bad(tmp_path: Path) -
     # order the fields were checked: the error named message 2, not the first bad one.
     bad = {1: {"pose covariance": math.nan}, 2: {"position": math.nan}}
     path = _bag(tmp_path / "bad.bag", ODOM, bad)
-    with pytest.raises(ValueError, match=r"message 1 of /topic .* non-finite pose covariance"):
+    with pytest.raises(ValueError, match=r"message 1 of /topic has a non-finite pose covariance "):
         read_bag_odometry(path)
 
 

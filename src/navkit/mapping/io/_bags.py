@@ -1050,9 +1050,11 @@ def _walk_ros1(bag_path: Path) -> _Bag:
     The bag is streamed, one chunk in memory at a time (review 47: it was read
     whole, and every message copied out of it, some 3.4 times the file at the
     peak): this call reads the index and checks every chunk, keeping only the
-    counts; ``messages(topic, msgtype)`` reads the chunks again, keeping only that
-    stream's messages, once the file is checked to be the one counted (same
-    device, inode, size and modification time; else :class:`_Corrupt`). A chunk
+    counts; ``messages(topic, msgtype)`` reads the chunks again, once the file is
+    checked to be the one counted (same device, inode, size and modification
+    time; else :class:`_Corrupt`), handing out that stream's messages chunk by
+    chunk when the bag's messages are in record-time order (as rosbag records
+    them), else gathering and sorting them (the stream's messages held). A chunk
     is decompressed twice: this walker reads bags whose index rosbags refuses,
     where memory matters more than time.
     """
@@ -1095,31 +1097,40 @@ def _walk_ros1(bag_path: Path) -> _Bag:
         # connection without messages still lists its stream (count 0). Messages of a
         # connection the index does not declare have no type and belong to no stream.
         counts = dict.fromkeys(conns.values(), 0)
+        # Whether the messages of every stream come in record-time order already (as
+        # rosbag records them): then a stream is handed out chunk by chunk as read.
+        ordered = True
+        last = -1
         for chunk_pos, declared in chunks:
-            for _, conn_id, _ in _chunk_messages(
+            for ns, conn_id, _ in _chunk_messages(
                 read, end, chunk_pos, declared, conns.__contains__
             ):
                 counts[conns[conn_id]] += 1
+                ordered = ordered and ns >= last
+                last = ns
 
-    def walked(topic: str, msgtype: str) -> Iterator[tuple[int, bytes]]:
-        ids = {conn_id for conn_id, stream in conns.items() if stream == (topic, msgtype)}
-        selected: list[tuple[int, bytes]] = []
+    def stream(ids: set[int]) -> Iterator[tuple[int, bytes]]:
+        """(record ns, raw message) of the connections ``ids``, in file order."""
         with open_regular(bag_path, "ROS bag") as fh:
             if _identity(fh) != identity:
                 raise _Corrupt("the bag file changed while it was read")
             read = _file_reader(fh)
             for chunk_pos, declared in chunks:
                 if any(declared.get(conn_id, 0) for conn_id in ids):
-                    selected.extend(
-                        (ns, raw)
-                        for ns, _, raw in _chunk_messages(
-                            read, end, chunk_pos, declared, ids.__contains__
-                        )
-                    )
+                    for ns, _, raw in _chunk_messages(
+                        read, end, chunk_pos, declared, ids.__contains__
+                    ):
+                        yield ns, raw
+
+    def walked(topic: str, msgtype: str) -> Iterator[tuple[int, bytes]]:
+        ids = {conn_id for conn_id, stream in conns.items() if stream == (topic, msgtype)}
+        if ordered:
+            yield from stream(ids)
+            return
         # Record-time order, stable (chunk order, then order in the chunk), as rosbags gives
         # them; handed out last first from the reversed list, each message is let go once
         # it is yielded (its decoded form is what the reader keeps).
-        selected.sort(key=lambda m: m[0])
+        selected = sorted(stream(ids), key=lambda m: m[0])
         selected.reverse()
         while selected:
             yield selected.pop()
@@ -1156,10 +1167,12 @@ def _select(bag_path: Path, bag: _Bag, msgtype: str, topic: str | None) -> str:
 
 
 def _decoded(
-    path: Any, topic: Any, msgtype: str, use: Callable[[str, Iterator[tuple[int, Any]]], _T]
+    path: Any, topic: Any, msgtype: str, use: Callable[[str, Iterator[tuple[int, Any]], int], _T]
 ) -> _T:
-    """Hand ``use`` the selected topic's name and an iterator deserializing its ``msgtype``
-    messages (those of other types recorded on it left alone) one at a time."""
+    """Hand ``use`` the selected topic's name, an iterator deserializing its ``msgtype``
+    messages (those of other types recorded on it left alone) one at a time, and the
+    number of them the bag declares (its index or metadata: checked against the
+    messages read where the bag allows, but a damaged bag may hold more or fewer)."""
     if topic is not None and not isinstance(topic, str):
         raise TypeError(f"topic must be a str or None, got {type(topic).__name__}")
     bag_path = _check_path(path)
@@ -1180,7 +1193,7 @@ def _decoded(
                     ) from None
                 yield ns, msg
 
-        return use(name, decode())
+        return use(name, decode(), bag.counts.get((name, msgtype), 0))
 
     return _with_bag(bag_path, opened)
 
@@ -1200,13 +1213,13 @@ def _read_rows(
 
     A deserialized message is a tree of Python objects several times the size of its
     numbers (an Odometry some 5 kB for 83 values): holding them all until the arrays
-    are built would need that much a message. The rows grow in blocks, each twice
-    the last, so that gathering them allocates up to about twice their size (the
-    last block's unwritten tail, whose pages stay untouched; at worst 3 times, for 65
-    rows), and joining them once as much again.
+    are built would need that much a message. The rows are one block of the count the
+    bag declares (review 47: they grew in blocks, each twice the last, then joined,
+    some 2.4 times their size at the peak); past it (a damaged index or metadata)
+    they grow in blocks, each twice the last, joined at the end.
     """
 
-    def use(name: str, messages: Iterator[tuple[int, Any]]) -> _T:
+    def use(name: str, messages: Iterator[tuple[int, Any]], declared: int) -> _T:
         first = None
         blocks: list[FloatArray] = []
         used = size = 0
@@ -1214,7 +1227,7 @@ def _read_rows(
             if first is None:
                 first = msg
             if used == size:
-                size = 2 * size or 64
+                size = 2 * size or max(declared, 64)
                 blocks.append(np.empty((size, width), dtype=np.float64))
                 used = 0
             blocks[-1][used, 0] = _record_time(ns)
@@ -1295,8 +1308,8 @@ def _finite_rows(
     when = float(rows[first, 0])
     if not skip:
         raise ValueError(
-            f"{bag_path}: message {first} of {topic} (recorded at {when:.9f} s) has a "
-            f"non-finite {what}; skip_nonfinite=True leaves such messages out"
+            f"{bag_path}: message {first} of {topic} has a non-finite {what} (recorded at "
+            f"{when:.9f} s); skip_nonfinite=True leaves such messages out"
         )
     skipped.append(_Skipped(int(bad.sum()), int(rows.shape[0]), first, when, what))
     return rows[~bad]
@@ -1366,7 +1379,7 @@ def read_bag_scans(path: str | os.PathLike[str], *, topic: str | None = None) ->
     FileNotFoundError: ROS bag .../missing.bag does not exist
     """
 
-    def convert(name: str, messages: Iterator[tuple[int, Any]]) -> BagScans:
+    def convert(name: str, messages: Iterator[tuple[int, Any]], _declared: int) -> BagScans:
         # One message at a time: a decoded message (its float32 readings and some kB of
         # objects) is let go once its scan is built.
         scans = []
@@ -1477,7 +1490,7 @@ def read_bag_odometry(
     ...     with warnings.catch_warnings(record=True) as caught:
     ...         warnings.simplefilter("always")
     ...         odom = read_bag_odometry(path, skip_nonfinite=True)
-    message 1 of /odom (recorded at 1.000000000 s) has a non-finite twist;
+    message 1 of /odom has a non-finite twist (recorded at 1.000000000 s);
     skip_nonfinite=True leaves such messages out
     >>> odom.times
     array([0., 2.])
