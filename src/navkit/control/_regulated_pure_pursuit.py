@@ -202,7 +202,11 @@ class RegulatedPurePursuit(PathTracker[_PursuitState]):
         ``OccupancyGrid.from_occupancy(grid.occupied() | grid.unknown(),
         resolution=grid.resolution, origin=grid.origin)`` (on the controller
         loop tutorial's route: a mean speed of 0.37 m/s instead of 0.46 with
-        ``clearance=grid``, 0.48 without regulation).
+        ``clearance=grid``, 0.48 without regulation). A robot outside the
+        map is not regulated at all, as with a map with no occupied cell,
+        however near the walls at its edge (Nav2 raises an error when the
+        robot leaves its costmap): give a map covering where the robot
+        drives, or a function.
     clearance_distance : float, default 0.6
         Nav2 ``cost_scaling_dist`` (m), in (0, 1e4].
     clearance_gain : float, default 1.0
