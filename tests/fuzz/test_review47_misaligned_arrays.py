@@ -33,6 +33,7 @@ import numpy as np
 import pytest
 from fuzz_engine import SKIP, SPECS, Array, Ctx, PoseLike, quiet, refresh_memory_limit, slots
 
+from misaligned_arrays import misaligned
 from navkit._shared.costs import validate_costs
 from navkit._shared.validation import aligned, as_float_array, as_points, kernel_input
 from navkit.estimation import ExtendedKalmanFilter
@@ -46,16 +47,6 @@ from navkit.estimation._ekf_kernels import (
 )
 
 pytestmark = pytest.mark.filterwarnings("ignore::PendingDeprecationWarning")
-
-
-def misaligned(a: np.ndarray, *, writeable: bool = True) -> np.ndarray:
-    """A copy of ``a`` (same dtype and shape, C order) in a buffer at byte offset 1."""
-    raw = bytearray(a.nbytes + a.itemsize + 1)
-    out = np.frombuffer(raw, dtype=a.dtype, count=a.size, offset=1).reshape(a.shape)
-    out[...] = a
-    out.flags.writeable = writeable
-    assert out.size == 0 or not out.flags.aligned
-    return out
 
 
 def packed_field(a: np.ndarray) -> np.ndarray:
