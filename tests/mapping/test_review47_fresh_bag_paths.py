@@ -22,6 +22,7 @@ import os
 import random
 import re
 import stat
+import struct
 from collections.abc import Callable
 from pathlib import Path
 from typing import Any
@@ -227,3 +228,50 @@ def test_a_ros2_bag_declaring_absurdly_many_messages_is_the_documented_error(
     folder = _ros2_imu_bag(tmp_path / "bag", 3, declared)
     with pytest.raises(ValueError, match=re.escape(f"{folder}: cannot read the ROS 2 bag")):
         read_bag_imu(folder)
+
+
+@pytest.mark.xfail(
+    strict=True,
+    raises=AssertionError,
+    reason="the walker's record-time order is judged on its first pass only",
+)
+def test_a_bag_rewritten_between_the_passes_with_its_time_stamp_kept_is_not_read_unsorted(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # Where the modification time has a coarse resolution (1 s on ext3 and HFS+, 2 s
+    # on FAT), or a tool puts it back, a same-size rewrite between the walker's two
+    # passes keeps the bag's identity (device, inode, size, mtime). Swapping the
+    # first two messages' record times so made the walker, which found the bag in
+    # time order on its first pass, hand them out as 2 s, 1 s, 3 s, ...: neither
+    # the record-time order it promises nor a refusal.
+    path = tmp_path / "rewritten.bag"
+    with Writer(path) as writer:
+        conn = writer.add_connection("/imu", IMU, typestore=STORE1)
+        for k in range(1, 6):
+            writer.write(conn, k * 10**9, STORE1.serialize_ros1(_imu(STORE1, k), IMU))
+    data = bytearray(path.read_bytes())
+    times = [m.end() for m in re.finditer(rb"time=", data)]
+    first, second = times[0], times[1]  # the first two message records' (sec, nsec)
+    assert struct.unpack("<II", data[first : first + 8]) == (1, 0)
+    data[first : first + 8], data[second : second + 8] = (
+        data[second : second + 8],
+        data[first : first + 8],
+    )
+    walk = bags._walk_ros1
+
+    def rewritten_after_the_first_pass(bag_path: Path) -> Any:
+        bag = walk(bag_path)
+        kept = os.stat(bag_path)
+        with open(bag_path, "r+b") as fh:
+            fh.write(data)
+        os.utime(bag_path, ns=(kept.st_atime_ns, kept.st_mtime_ns))
+        return bag
+
+    monkeypatch.setattr(bags, "_check_index", _refuse)
+    monkeypatch.setattr(bags, "_walk_ros1", rewritten_after_the_first_pass)
+    try:
+        imu = read_bag_imu(path)
+    except ValueError as exc:  # a refusal naming the bag is as good
+        assert str(path) in str(exc)
+        return
+    assert np.all(np.diff(imu.record_times) >= 0.0), imu.record_times
