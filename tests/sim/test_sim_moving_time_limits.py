@@ -2,12 +2,14 @@
 
 from __future__ import annotations
 
+import copy
 import math
+import pickle
 from collections.abc import Callable
 
 import numpy as np
 import pytest
-from hypothesis import given, settings
+from hypothesis import example, given, settings
 from hypothesis import strategies as st
 
 from hypothesis_twins import slow_twin
@@ -52,6 +54,9 @@ def test_world_queries_beyond_the_time_limit_raise_naming_t(after: str) -> None:
     velocity=st.tuples(st.floats(-1e3, 1e3), st.floats(-1e3, 1e3)),
     t=st.floats(-1e9, 1e9),
 )
+# The speed limit from a start where start + velocity rounds: refused before (a
+# thorough-profile draw; see the test below).
+@example(start=(-24.31534649296816, 0.0), velocity=(-1000.0, 0.0), t=0.0)
 def test_constant_velocity_positions_are_finite_and_exact_within_the_limits(
     start: tuple[float, float], velocity: tuple[float, float], t: float
 ) -> None:
@@ -91,6 +96,28 @@ def test_extend_with_a_last_leg_too_fast_raises() -> None:
     # At the limit itself: accepted, finite at the far end of time.
     edge = _obstacle([(0.0, 0.0), (1e3, -1e3)], [0.0, 1.0], "extend")
     assert edge.position_at(1e9).tolist() == [1e12, -1e12]
+
+
+def test_constant_velocity_at_the_speed_limit_is_accepted_wherever_it_starts() -> None:
+    # Velocities within ±1e3 m/s are accepted (documented), but the two waypoints'
+    # difference may round beyond the velocity: from x = -24.3 at -1e3 m/s the leg
+    # is -1000.0000000000001 m/s, which the constructor's check of a caller's last
+    # leg refused ("after='extend' needs the last leg ... at most 1000 m/s").
+    start = (-24.31534649296816, 0.0)
+    for velocity in ((-1e3, 0.0), (-1e3, 1e3)):
+        ob = _extend(start, velocity)
+        leg = ob.path_xy[1] - ob.path_xy[0]
+        assert leg[0] == -1000.0000000000001  # the case: the waypoints' leg is too fast
+        assert ob.after == "extend"
+        for t in (0.5, 1e9):
+            # start_xy + velocity_xy · t, correctly rounded twice (documented).
+            want = [s0 + v * t for s0, v in zip(start, velocity, strict=True)]
+            for obstacle in (ob, copy.deepcopy(ob), pickle.loads(pickle.dumps(ob))):
+                assert obstacle.position_at(t).tolist() == want
+        world = World([], moving=[ob])
+        assert world.clearance(0.1, (0.0, 0.0, 0.0), t=1e9) == pytest.approx(
+            math.hypot(*ob.position_at(1e9)) - 0.3, rel=1e-12
+        )
 
 
 def test_constant_velocity_second_waypoint_out_of_range_names_its_arguments() -> None:

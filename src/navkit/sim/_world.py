@@ -409,7 +409,12 @@ class MovingObstacle:
                 f"start_xy + velocity_xy (the position at t = 1 s) must lie within "
                 f"±{MAX_COORD:g} m, got {(start + vel).tolist()}"
             )
-        obstacle = cls(shape, np.stack((start, start + vel)), np.array([0.0, 1.0]), after="extend")
+        # Built as "stop", then made to carry on: the constructor's check of a caller's
+        # last leg would test the waypoints' difference, which may round beyond the
+        # velocity checked above (start -24.3, velocity -1e3: a leg of
+        # -1000.0000000000001 m/s, refused); the positions use the velocity itself.
+        obstacle = cls(shape, np.stack((start, start + vel)), np.array([0.0, 1.0]), after="stop")
+        object.__setattr__(obstacle, "after", "extend")
         object.__setattr__(obstacle, "_velocity", _read_only(np.array(vel, copy=True)))
         return obstacle
 
