@@ -194,19 +194,19 @@ def test_extreme_blends_raise_only_the_documented_error(step: int) -> None:
 # meets (strict: they fail, as XPASS, once fixed; drop the mark then).
 
 
-@pytest.mark.xfail(
-    strict=True, raises=ValueError, reason="the named distance is rounded to the nearest nm"
-)
-def test_the_distance_the_error_names_is_itself_accepted() -> None:
-    # The message names the rest rounded to the nanometre: with width 0.12 the rest
+@pytest.mark.parametrize("width", np.linspace(0.12, 0.5, 40).tolist())
+def test_the_distance_the_error_names_is_itself_accepted(width: float) -> None:
+    # The message named the rest rounded to the nanometre: with width 0.12 the rest
     # is 0.000892502496 m, named 0.000892502, below it (so for 22 of 40 widths in
-    # [0.12, 0.5]): the tolerance the message names is refused, with the same
-    # message ("must exceed X m ...; got X").
-    field = BlendedAttraction(np.zeros(2), width=0.12)
+    # [0.12, 0.5]): the tolerance the message named was refused, with the same
+    # message ("must exceed X m ...; got X"). Now rounded up where rounding fell below.
+    field = BlendedAttraction(np.zeros(2), width=width)
     with pytest.raises(ValueError, match="goal_tolerance must exceed") as info:
         PotentialFieldController(field, goal_tolerance=1e-6)
     named = float(str(info.value).split("must exceed ")[1].split(" m")[0])
-    PotentialFieldController(field, goal_tolerance=named)
+    PotentialFieldController(field, goal_tolerance=math.nextafter(named, math.inf))
+    # Rounded up by a nanometre at most (or named exactly, and then refused: "exceed").
+    assert 0.0 <= named - _resting_distance(field) <= 1e-9
 
 
 class _NoBlend(BlendedAttraction):
@@ -219,7 +219,6 @@ class _NoBlend(BlendedAttraction):
         return diff, d, np.zeros_like(sig), np.ones_like(one_minus), u_par, u_cone
 
 
-@pytest.mark.xfail(strict=True, raises=ValueError, reason="the rest is a plain BlendedAttraction's")
 def test_a_subclass_changing_the_blends_terms_is_judged_by_its_own_force() -> None:
     field = _NoBlend(np.zeros(2))
     # Its force points at the goal 1 mm off (the paraboloid's -2 x), yet the default

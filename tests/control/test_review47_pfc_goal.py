@@ -21,10 +21,9 @@ from typing import Any
 
 import numpy as np
 import pytest
-from hypothesis import assume, given, settings
+from hypothesis import assume, example, given, settings
 from hypothesis import strategies as st
 
-from navkit._shared.metres import metres_text
 from navkit.control import (
     FollowTheCarrot,
     OnOffTracker,
@@ -64,7 +63,8 @@ def _rest(field: Any) -> float:
     if rest >= 1e-6:
         with pytest.raises(ValueError, match="goal_tolerance must exceed") as info:
             PotentialFieldController(field, goal_tolerance=1e-6)
-        assert f"must exceed {metres_text(rest)} m" in str(info.value)
+        named = float(str(info.value).split("must exceed ")[1].split(" m")[0])
+        assert 0.0 <= named - rest <= 1e-9  # rounded up, never below the rest
     return rest
 
 
@@ -164,6 +164,7 @@ def test_a_strict_numpy_error_state_does_not_leak_from_the_check() -> None:
 
 
 @settings(max_examples=12, deadline=None)
+@example(k_att=0.5, threshold_radius=0.47265625, width=0.18359375, m=2.0)
 @given(
     k_att=st.floats(0.5, 4.0),
     threshold_radius=st.floats(0.1, 1.0),
@@ -185,9 +186,12 @@ def test_a_blend_never_brings_the_robot_nearer_than_the_named_distance(
     # inward, so that no other rest (a ring beyond threshold_radius) lies between.
     d0 = max(2.0 * rest, 0.01)
     assume(field.force([[d0, 0.0]])[0, 0] < 0.0)
-    tolerance = max(1.001 * rest, 1e-6)
+    # The approach to the rest is exponential and may be slow (k_att 0.5,
+    # threshold_radius 0.4727, width 0.1836, m 2: rest 12.1 cm, time constant 6.6 s,
+    # 80 s to 1.001 times the rest, a draw that failed a 40 s run at 1.001).
+    tolerance = max(1.05 * rest, 1e-6)
     ctl = PotentialFieldController(field, goal_tolerance=tolerance, stall_timeout=1e6)
-    pose, first = _settle(ctl, Pose2D(d0, 0.0, math.pi), Pose2D(0.0, 0.0, 0.0), 40.0)
+    pose, first = _settle(ctl, Pose2D(d0, 0.0, math.pi), Pose2D(0.0, 0.0, 0.0), 60.0)
     assert first is not None  # the accepted tolerance is met
     assert math.hypot(pose.x, pose.y) >= rest * (1.0 - 1e-6)
 
