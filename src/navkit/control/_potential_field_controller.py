@@ -117,7 +117,9 @@ def _resting_distance(attraction: AttractiveField) -> float:
         return 0.0
     if kind._force is PiecewiseAttraction._force:
         return cast(PiecewiseAttraction, attraction).goal_radius
-    if kind._force is not BlendedAttraction._force or kind._terms is not BlendedAttraction._terms:
+    if kind._force is not BlendedAttraction._force:
+        return 0.0
+    if getattr(kind, "_terms", None) is not BlendedAttraction._terms:
         # A subclass with terms of its own has a force of its own: not examined
         # (review 47: one pulling up to the goal was judged as the plain blend).
         return 0.0
