@@ -1,0 +1,81 @@
+"""Review 47 mutation review: the streaming ROS 1 chunk walker's order.
+
+A bag not in record-time order is gathered and sorted by record time, stably
+(chunk order, then order in the chunk, as rosbags gives them). Sorting the
+(record time, raw bytes) pairs themselves, which breaks ties by the bytes,
+survived every test (mutant b08).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+
+from navkit.mapping.io import read_bag_imu
+from navkit.mapping.io._bags import _walk_ros1
+
+pytest.importorskip("rosbags")
+from rosbags.rosbag1 import Writer as Writer1
+from rosbags.typesys import Stores, get_typestore
+
+IMU = "sensor_msgs/msg/Imu"
+STORE = get_typestore(Stores.ROS1_NOETIC)
+
+
+def _imu(ns: int, label: float) -> Any:
+    T = STORE.types
+    stamp = T["builtin_interfaces/msg/Time"](sec=ns // 10**9, nanosec=ns % 10**9)
+    vec = T["geometry_msgs/msg/Vector3"]
+    return T[IMU](
+        header=T["std_msgs/msg/Header"](seq=0, stamp=stamp, frame_id="imu"),
+        orientation=T["geometry_msgs/msg/Quaternion"](x=0.0, y=0.0, z=0.0, w=1.0),
+        orientation_covariance=np.zeros(9),
+        angular_velocity=vec(x=0.0, y=0.0, z=label),
+        angular_velocity_covariance=np.zeros(9),
+        linear_acceleration=vec(x=0.0, y=0.0, z=9.8),
+        linear_acceleration_covariance=np.zeros(9),
+    )
+
+
+def test_messages_of_one_record_time_keep_their_order_in_an_unordered_bag(
+    tmp_path: Path,
+) -> None:
+    # Record times 3 s, 1 s, 1 s: the bag is out of order, so the walker sorts. The
+    # two messages at 1 s keep the order they were recorded in, 1.0 then 2.0,
+    # although 2.0's bytes sort first (little-endian: ... 00 40 below ... f0 3f).
+    labels = [(3, 3.0), (1, 1.0), (1, 2.0)]
+    raws = [STORE.serialize_ros1(_imu(s * 10**9, z), IMU) for s, z in labels]
+    assert bytes(raws[2]) < bytes(raws[1])
+    path = tmp_path / "ties.bag"
+    with Writer1(path) as writer:
+        conn = writer.add_connection("/imu", IMU, typestore=STORE)
+        for (seconds, _), raw in zip(labels, raws, strict=True):
+            writer.write(conn, seconds * 10**9, raw)
+    walked = list(_walk_ros1(path).messages("/imu", IMU))
+    assert [ns for ns, _ in walked] == [10**9, 10**9, 3 * 10**9]
+    assert [bytes(raw) for _, raw in walked] == [bytes(raws[1]), bytes(raws[2]), bytes(raws[0])]
+    # The public reader (through rosbags here) agrees.
+    assert read_bag_imu(path).angular_velocities[:, 2].tolist() == [1.0, 2.0, 3.0]
+
+
+def test_a_stream_of_two_connections_reads_chunks_holding_either(tmp_path: Path) -> None:
+    # Two recorders (caller ids) on one topic and type make one stream of two
+    # connections; each message is a chunk of its own, alternately of either. A
+    # chunk is read when it holds a message of any of the stream's connections
+    # (mutant b06 read only those holding messages of all).
+    path = tmp_path / "two_callers.bag"
+    with Writer1(path) as writer:
+        writer.chunk_threshold = 1  # each message closes its chunk
+        first = writer.add_connection("/imu", IMU, typestore=STORE, callerid="/first")
+        second = writer.add_connection("/imu", IMU, typestore=STORE, callerid="/second")
+        for k in range(4):
+            ns = (k + 1) * 10**9
+            conn = first if k % 2 == 0 else second
+            writer.write(conn, ns, STORE.serialize_ros1(_imu(ns, float(k)), IMU))
+    bag = _walk_ros1(path)
+    assert bag.counts == {("/imu", IMU): 4}
+    walked = list(bag.messages("/imu", IMU))
+    assert [ns for ns, _ in walked] == [k * 10**9 for k in (1, 2, 3, 4)]
