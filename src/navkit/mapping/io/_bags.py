@@ -573,12 +573,20 @@ def _normalize(msgtype: str) -> str:
 
 
 class _Bag(NamedTuple):
-    """An opened bag: its message counts by ``(topic, type)``, and a function yielding
-    (record ns, raw message) of the messages of one topic and type."""
+    """An opened bag: its message counts by ``(topic, type)``, a function yielding
+    (record ns, raw message) of the messages of one topic and type, and, for a ROS 2
+    bag, the bytes of the files in its folder (which hold its messages).
+
+    A ROS 1 bag's counts are of records read from its file (rosbags counts the
+    12-byte entries of its index, checked against the chunk-info records; the
+    chunk walker counts the messages themselves); a ROS 2 bag's are what its
+    ``metadata.yaml`` declares, checked only once the messages are read.
+    """
 
     ros2: bool
     counts: dict[tuple[str, str], int]
     messages: Callable[[str, str], Iterator[tuple[int, bytes]]]
+    stored: int | None = None
 
     def types(self) -> dict[str, dict[str, int]]:
         """``{topic: {type: count}}``, topics and types sorted.
@@ -769,6 +777,18 @@ def _of_stream(connections: Iterable[Any], topic: str, msgtype: str) -> list[Any
     return [c for c in connections if c.topic == topic and _normalize(c.msgtype) == msgtype]
 
 
+def _folder_bytes(folder: Path) -> int:
+    """Bytes of the files in ``folder`` (where rosbags reads a ROS 2 bag's storage files
+    from), a file that cannot be examined counted as none."""
+    total = 0
+    with suppress(OSError), os.scandir(folder) as entries:
+        for entry in entries:
+            with suppress(OSError):
+                if entry.is_file():
+                    total += entry.stat().st_size
+    return total
+
+
 def _with_bag(bag_path: Path, use: Callable[[_Bag], _T]) -> _T:
     """Open ``bag_path`` (ROS 1 file or ROS 2 folder) and call ``use`` on it."""
     rosbag1, rosbag2, _, _ = _rosbags()
@@ -788,7 +808,8 @@ def _with_bag(bag_path: Path, use: Callable[[_Bag], _T]) -> _T:
                         _guarded(lambda: reader.messages(connections=conns)), declared, topic
                     )
 
-                return use(_Bag(True, _connection_counts(reader.connections), messages2))
+                counts = _connection_counts(reader.connections)
+                return use(_Bag(True, counts, messages2, _folder_bytes(bag_path)))
         except _RosbagsFailed as exc:
             raise ValueError(f"{bag_path}: cannot read the ROS 2 bag: {exc}") from None
     if not bag_path.is_file():
@@ -1001,9 +1022,13 @@ def _file_reader(fh: BinaryIO) -> Callable[[int, int], bytes]:
     return read
 
 
-def _identity(fh: BinaryIO) -> tuple[int, int, int, int]:
+def _identity(fh: BinaryIO) -> tuple[int, int, int, int, int]:
+    """What tells an open file from itself rewritten: device, inode, size, modification
+    and status-change times (a tool may put the modification time back; the change
+    time, which follows every write and ``utime``, cannot be set). Either time may
+    stay the same within its resolution, whence the walker's second order check."""
     st = os.fstat(fh.fileno())
-    return st.st_dev, st.st_ino, st.st_size, st.st_mtime_ns
+    return st.st_dev, st.st_ino, st.st_size, st.st_mtime_ns, st.st_ctime_ns
 
 
 def _chunk_messages(
@@ -1051,12 +1076,16 @@ def _walk_ros1(bag_path: Path) -> _Bag:
     whole, and every message copied out of it, some 3.4 times the file at the
     peak): this call reads the index and checks every chunk, keeping only the
     counts; ``messages(topic, msgtype)`` reads the chunks again, once the file is
-    checked to be the one counted (same device, inode, size and modification
-    time; else :class:`_Corrupt`), handing out that stream's messages chunk by
-    chunk when the bag's messages are in record-time order (as rosbag records
-    them), else gathering and sorting them (the stream's messages held). A chunk
-    is decompressed twice: this walker reads bags whose index rosbags refuses,
-    where memory matters more than time.
+    checked to be the one counted (same device, inode, size, modification and
+    status-change times; else :class:`_Corrupt`), handing out that stream's
+    messages chunk by chunk when the bag's messages are in record-time order (as
+    rosbag records them), else gathering and sorting them (the stream's messages
+    held). Time stamps of a coarse resolution (1 s on ext3 and HFS+, 2 s on FAT)
+    can keep a file rewritten in place at its size looking the same: the record
+    times handed out chunk by chunk are checked again as they are read, and a
+    message out of order is :class:`_Corrupt` (review 47). A chunk is
+    decompressed twice: this walker reads bags whose index rosbags refuses, where
+    memory matters more than time.
     """
     with open_regular(bag_path, "ROS bag") as fh:
         identity = _identity(fh)
@@ -1125,7 +1154,17 @@ def _walk_ros1(bag_path: Path) -> _Bag:
     def walked(topic: str, msgtype: str) -> Iterator[tuple[int, bytes]]:
         ids = {conn_id for conn_id, stream in conns.items() if stream == (topic, msgtype)}
         if ordered:
-            yield from stream(ids)
+            # The order was seen on the first pass: a file changed since then without
+            # its identity telling could hand messages out unsorted.
+            last = -1
+            for ns, raw in stream(ids):
+                if ns < last:
+                    raise _Corrupt(
+                        "the bag file changed while it was read (its messages are no "
+                        "longer in record-time order)"
+                    )
+                last = ns
+                yield ns, raw
             return
         # Record-time order, stable (chunk order, then order in the chunk), as rosbags gives
         # them; handed out last first from the reversed list, each message is let go once
@@ -1167,12 +1206,17 @@ def _select(bag_path: Path, bag: _Bag, msgtype: str, topic: str | None) -> str:
 
 
 def _decoded(
-    path: Any, topic: Any, msgtype: str, use: Callable[[str, Iterator[tuple[int, Any]], int], _T]
+    path: Any,
+    topic: Any,
+    msgtype: str,
+    use: Callable[[str, Iterator[tuple[int, Any]], int, int | None], _T],
 ) -> _T:
     """Hand ``use`` the selected topic's name, an iterator deserializing its ``msgtype``
-    messages (those of other types recorded on it left alone) one at a time, and the
+    messages (those of other types recorded on it left alone) one at a time, the
     number of them the bag declares (its index or metadata: checked against the
-    messages read where the bag allows, but a damaged bag may hold more or fewer)."""
+    messages read where the bag allows, but a damaged bag may hold more or fewer, and
+    a ROS 2 bag's is checked only once they are read) and the bag's ``stored`` bytes
+    (see :class:`_Bag`)."""
     if topic is not None and not isinstance(topic, str):
         raise TypeError(f"topic must be a str or None, got {type(topic).__name__}")
     bag_path = _check_path(path)
@@ -1193,7 +1237,7 @@ def _decoded(
                     ) from None
                 yield ns, msg
 
-        return use(name, decode(), bag.counts.get((name, msgtype), 0))
+        return use(name, decode(), bag.counts.get((name, msgtype), 0), bag.stored)
 
     return _with_bag(bag_path, opened)
 
@@ -1217,9 +1261,23 @@ def _read_rows(
     bag declares (review 47: they grew in blocks, each twice the last, then joined,
     some 2.4 times their size at the peak); past it (a damaged index or metadata)
     they grow in blocks, each twice the last, joined at the end.
+
+    A ROS 2 bag's declared count (its ``metadata.yaml``, checked only once the
+    messages are read) is believed only as far as the files of its folder could
+    hold that many messages (review 47: one declaring 10**12 was a ``MemoryError``
+    before its count was checked): every value of a row but the record time comes
+    from a float64 of the message, or from its stamp's two 32-bit integers, so an
+    uncompressed message takes at least ``8 * (width - 1)`` bytes, and the first
+    block is no larger than the files. A compressed ROS 2 bag whose messages take
+    fewer grows its rows past that block as above. A ROS 1 bag's counts are of
+    records read from its file (:class:`_Bag`).
     """
 
-    def use(name: str, messages: Iterator[tuple[int, Any]], declared: int) -> _T:
+    def use(
+        name: str, messages: Iterator[tuple[int, Any]], declared: int, stored: int | None
+    ) -> _T:
+        if stored is not None:
+            declared = min(declared, stored // (8 * (width - 1)))
         first = None
         blocks: list[FloatArray] = []
         used = size = 0
@@ -1379,7 +1437,9 @@ def read_bag_scans(path: str | os.PathLike[str], *, topic: str | None = None) ->
     FileNotFoundError: ROS bag .../missing.bag does not exist
     """
 
-    def convert(name: str, messages: Iterator[tuple[int, Any]], _declared: int) -> BagScans:
+    def convert(
+        name: str, messages: Iterator[tuple[int, Any]], _declared: int, _stored: int | None
+    ) -> BagScans:
         # One message at a time: a decoded message (its float32 readings and some kB of
         # objects) is let go once its scan is built.
         scans = []
