@@ -229,6 +229,40 @@ def test_a_ros2_bag_declaring_absurdly_many_messages_is_the_documented_error(
         read_bag_imu(folder)
 
 
+def _row_blocks(monkeypatch: pytest.MonkeyPatch, width: int) -> list[tuple[int, ...]]:
+    """The shapes of the ``(n, width)`` float64 blocks np.empty allocates from now on."""
+    shapes: list[tuple[int, ...]] = []
+    empty = np.empty
+
+    def spied(shape: Any, *args: Any, **kwargs: Any) -> Any:
+        if isinstance(shape, tuple) and len(shape) == 2 and shape[1] == width:
+            shapes.append(shape)
+        return empty(shape, *args, **kwargs)
+
+    monkeypatch.setattr(np, "empty", spied)
+    return shapes
+
+
+@pytest.mark.parametrize("declared", [300, 10**12])
+def test_a_ros2_bags_rows_are_one_block_of_its_count_as_far_as_its_files_allow(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch, declared: int
+) -> None:
+    # An uncompressed bag (as rosbags writes MCAP by default) of 300 IMU messages: the
+    # declared count is one block; an absurd one, a block no larger than its files.
+    folder = _ros2_imu_bag(tmp_path / "bag", 300, declared)
+    stored = sum(f.stat().st_size for f in folder.iterdir())
+    blocks = _row_blocks(monkeypatch, 39)
+    if declared == 300:
+        assert len(read_bag_imu(folder)) == 300
+        assert blocks == [(300, 39)]
+        return
+    with pytest.raises(ValueError, match=re.escape("declares 1000000000000 messages")):
+        read_bag_imu(folder)
+    # The first block: the 300 messages fit (no doubling for an uncompressed bag), and
+    # it is no larger than the files.
+    assert blocks[0][0] >= 300 and blocks[0][0] * 39 * 8 <= stored, (blocks, stored)
+
+
 def test_a_bag_rewritten_between_the_passes_with_its_time_stamp_kept_is_not_read_unsorted(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:

@@ -1266,18 +1266,20 @@ def _read_rows(
     messages are read) is believed only as far as the files of its folder could
     hold that many messages (review 47: one declaring 10**12 was a ``MemoryError``
     before its count was checked): every value of a row but the record time comes
-    from a float64 of the message, or from its stamp's two 32-bit integers, so an
-    uncompressed message takes at least ``8 * (width - 1)`` bytes, and the first
-    block is no larger than the files. A compressed ROS 2 bag whose messages take
-    fewer grows its rows past that block as above. A ROS 1 bag's counts are of
-    records read from its file (:class:`_Bag`).
+    from a float64 of the message, or from its stamp's two 32-bit integers, and a
+    CDR message starts with a 4-byte encapsulation header and holds a frame id
+    after its 4-byte length, so an uncompressed message takes at least
+    ``8 * width`` bytes, and the first block is no larger than the files. A
+    compressed ROS 2 bag whose messages take fewer grows its rows past that block
+    as above. A ROS 1 bag's counts are of records read from its file
+    (:class:`_Bag`).
     """
 
     def use(
         name: str, messages: Iterator[tuple[int, Any]], declared: int, stored: int | None
     ) -> _T:
         if stored is not None:
-            declared = min(declared, stored // (8 * (width - 1)))
+            declared = min(declared, stored // (8 * width))
         first = None
         blocks: list[FloatArray] = []
         used = size = 0
