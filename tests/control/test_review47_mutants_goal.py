@@ -12,6 +12,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
+import numpy as np
 import pytest
 
 from navkit.control import (
@@ -20,7 +21,9 @@ from navkit.control import (
     RegulatedPurePursuit,
 )
 from navkit.control._goal import at_goal, resolution
+from navkit.control._potential_field_controller import _resting_distance
 from navkit.geometry import Pose2D
+from navkit.planning import BlendedAttraction
 
 EDGE = 2.0**22  # 4.2e6 m, a UTM-sized coordinate: its ulp is 2**-30 m, below it 2**-31 m
 BELOW = math.nextafter(EDGE, 0.0)
@@ -76,3 +79,10 @@ def test_every_tracker_measures_from_the_goals_own_coordinates(cls: Any) -> None
     # as (y, x): mutant c04) is 4.2 m away.
     assert _done(cls, Pose2D(1.0, -1.98, 0.0), (1.0, -2.0), 0.05)
     assert not _done(cls, Pose2D(-2.0, 1.0, 0.0), (1.0, -2.0), 0.05)
+
+
+def test_a_blend_pulling_inward_at_once_rests_on_the_goal() -> None:
+    # Inward from the first distance examined (1e-12 m): the rest is the goal
+    # itself, 0, not that first distance (mutant p18 returned 1e-12 m).
+    field = BlendedAttraction(np.zeros(2), threshold_radius=0.0)
+    assert _resting_distance(field) == 0.0

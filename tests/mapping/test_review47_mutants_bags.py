@@ -79,3 +79,49 @@ def test_a_stream_of_two_connections_reads_chunks_holding_either(tmp_path: Path)
     assert bag.counts == {("/imu", IMU): 4}
     walked = list(bag.messages("/imu", IMU))
     assert [ns for ns, _ in walked] == [k * 10**9 for k in (1, 2, 3, 4)]
+
+
+def test_a_topic_of_two_types_gives_each_type_its_own_messages(tmp_path: Path) -> None:
+    # One topic recorded with two message types (two connections): a stream is a
+    # (topic, type) pair, so the IMU stream holds no Odometry message (mutant b21
+    # selected the stream's connections by topic alone).
+    odom = "nav_msgs/msg/Odometry"
+    T = STORE.types
+    path = tmp_path / "two_types.bag"
+    with Writer1(path) as writer:
+        imu = writer.add_connection("/mixed", IMU, typestore=STORE)
+        other = writer.add_connection("/mixed", odom, typestore=STORE)
+        for k in range(4):
+            ns = (k + 1) * 10**9
+            if k % 2 == 0:
+                writer.write(imu, ns, STORE.serialize_ros1(_imu(ns, float(k)), IMU))
+            else:
+                msg = T[odom](
+                    header=T["std_msgs/msg/Header"](
+                        seq=k,
+                        stamp=T["builtin_interfaces/msg/Time"](sec=k + 1, nanosec=0),
+                        frame_id="odom",
+                    ),
+                    child_frame_id="base_link",
+                    pose=T["geometry_msgs/msg/PoseWithCovariance"](
+                        pose=T["geometry_msgs/msg/Pose"](
+                            position=T["geometry_msgs/msg/Point"](x=0.0, y=0.0, z=0.0),
+                            orientation=T["geometry_msgs/msg/Quaternion"](
+                                x=0.0, y=0.0, z=0.0, w=1.0
+                            ),
+                        ),
+                        covariance=np.zeros(36),
+                    ),
+                    twist=T["geometry_msgs/msg/TwistWithCovariance"](
+                        twist=T["geometry_msgs/msg/Twist"](
+                            linear=T["geometry_msgs/msg/Vector3"](x=0.0, y=0.0, z=0.0),
+                            angular=T["geometry_msgs/msg/Vector3"](x=0.0, y=0.0, z=0.0),
+                        ),
+                        covariance=np.zeros(36),
+                    ),
+                )
+                writer.write(other, ns, STORE.serialize_ros1(msg, odom))
+    bag = _walk_ros1(path)
+    assert bag.counts == {("/mixed", IMU): 2, ("/mixed", odom): 2}
+    assert [ns for ns, _ in bag.messages("/mixed", IMU)] == [10**9, 3 * 10**9]
+    assert [ns for ns, _ in bag.messages("/mixed", odom)] == [2 * 10**9, 4 * 10**9]
