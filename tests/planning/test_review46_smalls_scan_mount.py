@@ -70,16 +70,17 @@ _MOUNT = st.tuples(st.floats(-0.8, 0.8), st.floats(-0.8, 0.8), st.floats(-math.p
 
 
 def _directions_are_defined(scan: LaserScan, mount: tuple[float, float, float]) -> bool:
-    """No end point within 1e-9 m of the robot's centre.
+    """No end point within 1e-5 m of the robot's centre.
 
     There the push's direction is the sign of a rounding error: a beam from a sensor
     0.5 m off the centre that ends at the centre lands 1e-16 m to one side or the
     other depending on the order of the sums (CI met ranges [inf, inf, inf, 0.5]
     from a sensor at (0, 0.5): navkit's point fell at x = +1e-16, the reference's
-    at -9e-17, and the pushes were opposite).
+    at -9e-17, and the pushes were opposite). Farther out the direction's rounding,
+    about 1e-15 m / d, stays below the tests' 1e-9 tolerances from d = 1e-5 m on.
     """
     points = _end_points(scan, mount)
-    return bool(np.all(np.hypot(points[:, 0], points[:, 1]) >= 1e-9))
+    return bool(np.all(np.hypot(points[:, 0], points[:, 1]) >= 1e-5))
 
 
 def _scan(ranges: list[float], angle_min: float, range_min: float = 0.05) -> LaserScan:
