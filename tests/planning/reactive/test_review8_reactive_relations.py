@@ -154,8 +154,10 @@ def test_a_closer_beam_pushes_harder(
             delta=2.0 * d0)))
 
     if near > 0.0:  # a zero range has no direction and pushes with nothing
-        assert khatib(near) >= khatib(far)
-        assert piecewise(near) >= piecewise(far)
+        # Up to rounding: ranges a few ulps apart give end points whose push, summed
+        # from its rounded x and y, may come out an ulp the other way (review 47).
+        assert khatib(near) >= khatib(far) * (1.0 - 1e-12)
+        assert piecewise(near) >= piecewise(far) * (1.0 - 1e-12)
 
 
 points_st = st.lists(st.tuples(st.floats(-5.0, 5.0), st.floats(-5.0, 5.0)), max_size=15)
