@@ -56,3 +56,22 @@ def write_index(
         index._version = version
     index.save(("a signature",), ("compiled code",))
     return folder / f"{base}.nbi"
+
+
+#: The distance transform's kernel: the smallest kernel the compile notice counts.
+TRANSFORM = ("navkit.mapping", "_edt_kernels", "band_distances")
+
+
+def empty_cache_folder(tmp_path: Path, monkeypatch: Any) -> Path:
+    """The transform's cache folder, made in an empty NUMBA_CACHE_DIR of ``tmp_path``.
+
+    ``monkeypatch`` (pytest's) points the CLI's cache check there and clears
+    ``sys.frozen``, for the test's duration.
+    """
+    from navkit.cli import _kernels
+
+    monkeypatch.delattr(sys, "frozen", raising=False)
+    monkeypatch.setattr(_kernels, "_numba_cache_dir", lambda: str(tmp_path))
+    (folder,) = _kernels.cache_folders(TRANSFORM[0])
+    folder.mkdir()
+    return folder

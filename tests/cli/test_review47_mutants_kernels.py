@@ -20,19 +20,15 @@ import pytest
 from navkit.cli import _kernels
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from numba_index import write_index
+from numba_index import TRANSFORM, empty_cache_folder, write_index
 
-_TRANSFORM = ("navkit.mapping", "_edt_kernels", "band_distances")
+_TRANSFORM = TRANSFORM
 
 
 @pytest.fixture
 def cache_dir(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
     """The transform's folder in an empty NUMBA_CACHE_DIR of the test's own."""
-    monkeypatch.delattr(sys, "frozen", raising=False)
-    monkeypatch.setattr(_kernels, "_numba_cache_dir", lambda: str(tmp_path))
-    (folder,) = _kernels.cache_folders(_TRANSFORM[0])
-    folder.mkdir()
-    return folder
+    return empty_cache_folder(tmp_path, monkeypatch)
 
 
 def _restamp(index: Path, stamp: object) -> None:

@@ -24,9 +24,9 @@ import pytest
 from navkit.cli import _kernels
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from numba_index import navkit_copy, write_index
+from numba_index import TRANSFORM, empty_cache_folder, navkit_copy, write_index
 
-_TRANSFORM = ("navkit.mapping", "_edt_kernels", "band_distances")
+_TRANSFORM = TRANSFORM
 
 # In a fresh process on a copy of navkit: the check's answer for the transform,
 # the notice for A* (its own kernel never cached here: about 3 s with the
@@ -96,11 +96,7 @@ def test_the_check_agrees_with_numba_when_the_source_changes(tmp_path: Path) -> 
 @pytest.fixture
 def cache_dir(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
     """The transform's folder in an empty NUMBA_CACHE_DIR of the test's own."""
-    monkeypatch.delattr(sys, "frozen", raising=False)
-    monkeypatch.setattr(_kernels, "_numba_cache_dir", lambda: str(tmp_path))
-    (folder,) = _kernels.cache_folders(_TRANSFORM[0])
-    folder.mkdir()
-    return folder
+    return empty_cache_folder(tmp_path, monkeypatch)
 
 
 def test_an_index_numba_writes_counts(cache_dir: Path) -> None:

@@ -9,7 +9,6 @@ survived every test (mutant b08).
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Any
 
 import numpy as np
 import pytest
@@ -19,25 +18,8 @@ from navkit.mapping.io._bags import _walk_ros1
 
 pytest.importorskip("rosbags")
 from rosbags.rosbag1 import Writer as Writer1
-from rosbags.typesys import Stores, get_typestore
 
-IMU = "sensor_msgs/msg/Imu"
-STORE = get_typestore(Stores.ROS1_NOETIC)
-
-
-def _imu(ns: int, label: float) -> Any:
-    T = STORE.types
-    stamp = T["builtin_interfaces/msg/Time"](sec=ns // 10**9, nanosec=ns % 10**9)
-    vec = T["geometry_msgs/msg/Vector3"]
-    return T[IMU](
-        header=T["std_msgs/msg/Header"](seq=0, stamp=stamp, frame_id="imu"),
-        orientation=T["geometry_msgs/msg/Quaternion"](x=0.0, y=0.0, z=0.0, w=1.0),
-        orientation_covariance=np.zeros(9),
-        angular_velocity=vec(x=0.0, y=0.0, z=label),
-        angular_velocity_covariance=np.zeros(9),
-        linear_acceleration=vec(x=0.0, y=0.0, z=9.8),
-        linear_acceleration_covariance=np.zeros(9),
-    )
+from ros1_imu_messages import IMU, STORE, imu_message
 
 
 def test_messages_of_one_record_time_keep_their_order_in_an_unordered_bag(
@@ -47,7 +29,7 @@ def test_messages_of_one_record_time_keep_their_order_in_an_unordered_bag(
     # two messages at 1 s keep the order they were recorded in, 1.0 then 2.0,
     # although 2.0's bytes sort first (little-endian: ... 00 40 below ... f0 3f).
     labels = [(3, 3.0), (1, 1.0), (1, 2.0)]
-    raws = [STORE.serialize_ros1(_imu(s * 10**9, z), IMU) for s, z in labels]
+    raws = [STORE.serialize_ros1(imu_message(s * 10**9, z), IMU) for s, z in labels]
     assert bytes(raws[2]) < bytes(raws[1])
     path = tmp_path / "ties.bag"
     with Writer1(path) as writer:
@@ -74,7 +56,7 @@ def test_a_stream_of_two_connections_reads_chunks_holding_either(tmp_path: Path)
         for k in range(4):
             ns = (k + 1) * 10**9
             conn = first if k % 2 == 0 else second
-            writer.write(conn, ns, STORE.serialize_ros1(_imu(ns, float(k)), IMU))
+            writer.write(conn, ns, STORE.serialize_ros1(imu_message(ns, float(k)), IMU))
     bag = _walk_ros1(path)
     assert bag.counts == {("/imu", IMU): 4}
     walked = list(bag.messages("/imu", IMU))
@@ -94,7 +76,7 @@ def test_a_topic_of_two_types_gives_each_type_its_own_messages(tmp_path: Path) -
         for k in range(4):
             ns = (k + 1) * 10**9
             if k % 2 == 0:
-                writer.write(imu, ns, STORE.serialize_ros1(_imu(ns, float(k)), IMU))
+                writer.write(imu, ns, STORE.serialize_ros1(imu_message(ns, float(k)), IMU))
             else:
                 msg = T[odom](
                     header=T["std_msgs/msg/Header"](

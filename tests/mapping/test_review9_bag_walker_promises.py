@@ -9,9 +9,7 @@ from __future__ import annotations
 
 import struct
 from pathlib import Path
-from typing import Any
 
-import numpy as np
 import pytest
 
 from navkit.mapping.io import read_bag_imu
@@ -19,25 +17,8 @@ from navkit.mapping.io._bags import _Corrupt, _record, _walk_ros1
 
 pytest.importorskip("rosbags")
 from rosbags.rosbag1 import Writer as Writer1
-from rosbags.typesys import Stores, get_typestore
 
-IMU = "sensor_msgs/msg/Imu"
-STORE = get_typestore(Stores.ROS1_NOETIC)
-
-
-def _imu(ns: int) -> Any:
-    T = STORE.types
-    stamp = T["builtin_interfaces/msg/Time"](sec=ns // 10**9, nanosec=ns % 10**9)
-    vec = T["geometry_msgs/msg/Vector3"]
-    return T[IMU](
-        header=T["std_msgs/msg/Header"](seq=0, stamp=stamp, frame_id="imu"),
-        orientation=T["geometry_msgs/msg/Quaternion"](x=0.0, y=0.0, z=0.0, w=1.0),
-        orientation_covariance=np.zeros(9),
-        angular_velocity=vec(x=0.0, y=0.0, z=ns / 1e9),  # labels the message
-        angular_velocity_covariance=np.zeros(9),
-        linear_acceleration=vec(x=0.0, y=0.0, z=9.8),
-        linear_acceleration_covariance=np.zeros(9),
-    )
+from ros1_imu_messages import IMU, STORE, imu_message
 
 
 def test_the_chunk_walker_yields_messages_in_record_time_order(tmp_path: Path) -> None:
@@ -48,7 +29,7 @@ def test_the_chunk_walker_yields_messages_in_record_time_order(tmp_path: Path) -
         conn = writer.add_connection("/imu", IMU, typestore=STORE)
         for seconds in (3, 1, 2):
             ns = seconds * 10**9
-            writer.write(conn, ns, STORE.serialize_ros1(_imu(ns), IMU))
+            writer.write(conn, ns, STORE.serialize_ros1(imu_message(ns, ns / 1e9), IMU))
     walked = [ns for ns, _ in _walk_ros1(path).messages("/imu", IMU)]
     assert walked == [1 * 10**9, 2 * 10**9, 3 * 10**9]
     # The public reader (through rosbags here) agrees.
