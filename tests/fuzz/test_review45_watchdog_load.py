@@ -115,7 +115,12 @@ def test_computing_past_the_cpu_bound_is_a_hang() -> None:
     with pytest.raises(Hang) as caught, watchdog(BOUND):
         _compute(LONG)
     spent = time.process_time() - before
-    assert 0.9 * BOUND <= spent < LONG  # (the kernel counts a CPU timer in ticks)
+    # The kernel charges ITIMER_PROF by the tick to whichever task is running, so on a
+    # loaded machine it runs out early or late by several ticks against the exact
+    # process time (0.86 BOUND with a default and an oldest-dependency suite sharing
+    # 2 cores, review 47; 0.96-1.05 BOUND beside four busy loops): a CPU bound all the
+    # same, not wall-clock time, which here ran 3-4 times the CPU time.
+    assert 0.5 * BOUND <= spent < LONG
     text = str(caught.value)
     assert f"{BOUND:g} s of CPU time" in text
     assert "test_review45_watchdog_load.py" in text and "in _compute" in text  # where it ran
