@@ -2,8 +2,8 @@
 
 Each message carries its record time in its header stamp and a label in
 ``angular_velocity.z``, so that a test can tell which message a reader gave
-back and in what order. Review 9's chunk-walker tests and review 47's mutants
-each wrote this maker (review 47).
+back and in what order. Review 8's record-length, review 9's chunk-walker and
+review 47's mutation tests each wrote this maker (review 47).
 """
 
 from __future__ import annotations

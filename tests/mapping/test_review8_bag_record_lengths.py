@@ -10,9 +10,7 @@ from __future__ import annotations
 import struct
 from collections.abc import Iterator
 from pathlib import Path
-from typing import Any
 
-import numpy as np
 import pytest
 
 from navkit.mapping.io import bag_topics, read_bag_imu
@@ -20,27 +18,10 @@ from navkit.mapping.io._bags import _Corrupt, _record, _walk_ros1
 
 pytest.importorskip("rosbags")
 from rosbags.rosbag1 import Writer as Writer1
-from rosbags.typesys import Stores, get_typestore
 
-IMU = "sensor_msgs/msg/Imu"
-STORE = get_typestore(Stores.ROS1_NOETIC)
+from ros1_imu_messages import IMU, STORE, imu_message
+
 MAGIC = len(b"#ROSBAG V2.0\n")
-
-
-def imu(ns: int, label: float) -> Any:
-    T = STORE.types
-    stamp = T["builtin_interfaces/msg/Time"](sec=ns // 10**9, nanosec=ns % 10**9)
-    head = T["std_msgs/msg/Header"](seq=0, stamp=stamp, frame_id="imu")
-    vec = T["geometry_msgs/msg/Vector3"]
-    return T[IMU](
-        header=head,
-        orientation=T["geometry_msgs/msg/Quaternion"](x=0.0, y=0.0, z=0.0, w=1.0),
-        orientation_covariance=np.zeros(9),
-        angular_velocity=vec(x=0.0, y=0.0, z=label),
-        angular_velocity_covariance=np.zeros(9),
-        linear_acceleration=vec(x=0.0, y=0.0, z=9.8),
-        linear_acceleration_covariance=np.zeros(9),
-    )
 
 
 def write_bag(path: Path) -> bytes:
@@ -49,7 +30,7 @@ def write_bag(path: Path) -> bytes:
         conn = writer.add_connection("/imu", IMU, typestore=STORE)
         for k in range(3):
             ns = (k + 1) * 10**9
-            writer.write(conn, ns, STORE.serialize_ros1(imu(ns, float(k)), IMU))
+            writer.write(conn, ns, STORE.serialize_ros1(imu_message(ns, float(k)), IMU))
     return path.read_bytes()
 
 
