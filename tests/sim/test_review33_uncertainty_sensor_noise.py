@@ -4,19 +4,21 @@ Empirical means, standard deviations and correlations of seeded readings
 against the documented model: a mean within ``z σ / √n`` of its value (``z``
 the two-sided 1e-6 normal quantile), a variance in its chi-square band at the
 same false-alarm rate, a lag-one or cross-axis correlation within ``z / √n``
-of 0, a dropout count in its binomial band. The noise of the compass and the
-IMU is a standard deviation per reading, independent of the sensor's rate
-(not a density); the LiDAR's is relative to the range, by band. A sensor
-without noise reads the truth exactly.
+of 0, a dropout count in its binomial band (``tests/noise_bands.py``). The
+noise of the compass and the IMU is a standard deviation per reading,
+independent of the sensor's rate (not a density); the LiDAR's is relative to
+the range, by band. A sensor without noise reads the truth exactly.
 """
 
 from __future__ import annotations
 
 import math
+import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
-from scipy.stats import binom, chi2, norm
+from scipy.stats import binom
 from scipy.stats import f as f_dist
 from scipy.stats import t as t_dist
 from shapely.geometry import box
@@ -30,54 +32,27 @@ from navkit.sim import (
     ImuReading,
     Lidar,
     RangeNoise,
-    Reading,
     Robot,
     Simulation,
     World,
 )
 
-FALSE_ALARM = 1e-6
-Z = float(norm.ppf(1 - FALSE_ALARM / 2))  # 4.89
-
-
-class Log:
-    """An Estimator that keeps every reading."""
-
-    pose = None
-
-    def __init__(self) -> None:
-        self.readings: list[Reading] = []
-
-    def observe(self, t: float, reading: Reading) -> None:
-        self.readings.append(reading)
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from noise_bands import FALSE_ALARM, ReadingLog, check_normal, check_uncorrelated
 
 
 def readings(
     *, compass: Compass | None = None, imu: Imu | None = None, omega: float = 0.0,
     duration: float = 10.0, rate: float = 100.0, seed: int = 0,
-) -> tuple[Log, np.ndarray, np.ndarray]:  # fmt: skip
+) -> tuple[ReadingLog, np.ndarray, np.ndarray]:  # fmt: skip
     """The readings of a robot turning on the spot at ``omega``, and the trace's times and poses."""
     robot = Robot(drive=DiffDrive(track=0.3, wheel_radius=0.05), footprint=0.2,
                   encoders=None, compass=compass, imu=imu)  # fmt: skip
-    log = Log()
+    log = ReadingLog()
     trace = Simulation(World(), robot, lambda obs: Twist2D(0.0, 0.0, omega),
                        start=(0.0, 0.0, 0.3), estimator=log, duration=duration, seed=seed,
                        rate=rate).run()  # fmt: skip
     return log, trace.times, trace.poses
-
-
-def check_normal(sample: np.ndarray, mean: float, std: float) -> None:
-    """``sample`` has the mean and standard deviation given, within the 1e-6 bands."""
-    n = sample.size
-    assert abs(sample.mean() - mean) < Z * std / math.sqrt(n), (sample.mean(), mean)
-    lo, hi = chi2.ppf([FALSE_ALARM / 2, 1 - FALSE_ALARM / 2], n - 1) / (n - 1)
-    ratio = sample.var(ddof=1) / std**2
-    assert lo < ratio < hi, (ratio, lo, hi)
-
-
-def check_uncorrelated(a: np.ndarray, b: np.ndarray) -> None:
-    r = float(np.corrcoef(a, b)[0, 1])
-    assert abs(r) < Z / math.sqrt(a.size), r
 
 
 def test_compass_noise_is_the_documented_standard_deviation_per_reading() -> None:

@@ -85,7 +85,12 @@ class Lidar:
     ``dropout``) reads NaN; range noise by band (:class:`RangeNoise`) is
     applied; a reading below ``range_min`` reads ``-inf`` and one at or beyond
     ``range_max`` (or no obstacle in range) reads ``+inf``, as ROS REP 117
-    asks. With ``angle_jitter`` each beam is cast off its nominal angle by a
+    asks. The noise moves only what a beam found: an obstacle at or beyond
+    ``range_max`` reads ``+inf`` whatever the noise, while one just inside
+    reads ``+inf`` when its noise carries it out, so that near ``range_max``
+    the finite readings are biased short (a truncated sample of the noise;
+    ``range_min`` has no such edge: a range just below it may read above
+    it). With ``angle_jitter`` each beam is cast off its nominal angle by a
     zero-mean Gaussian error but reported at the nominal angle, as a real
     scanner does. A sensor inside an obstacle (a blocked cell of the world's
     grid, a solid polygon or :class:`Circle`, a moving obstacle) or on its

@@ -306,7 +306,18 @@ class Simulation:
     ``wall_timeout`` seconds of real time have passed; the reason is in
     ``Trace.metrics.reason``. Every random draw (sensor noise, slip) comes from
     one seeded NumPy Generator, so a run with the same seed, controller and
-    estimator state is reproduced exactly. A ``Simulation`` runs once; a copy
+    estimator state is reproduced exactly. The draws are taken in the order
+    the run needs them (between two control steps or scans: the slip of each
+    physics step, then the noise of the compass and IMU readings taken, then
+    a scan's): the sensors' noises are independent of each other and of the
+    slip, but a change that adds, removes or moves draws (a noise or the
+    slip turned on or off, a sensor added, a sensor's rate or beams, the
+    control rate) changes every later draw of every sensor. Changing only
+    the size of a noise that is on (a compass ``noise`` of 0.01 rad to 0.02,
+    a ``RangeNoise`` sigma, ``wheel_slip``) or a compass or IMU bias keeps
+    every draw: that noise's errors scale with it and every other error is
+    as before, so that runs compare on common random numbers. A ``Simulation``
+    runs once; a copy
     (:func:`copy.copy` too) has its own copy of the generator, so that running
     one leaves the other's draws as they would have been. A shallow copy
     shares the world and robot (which no run changes) and the controller and
