@@ -49,7 +49,7 @@ RELEASING = {
     "planning.grid._distance_field_kernels": {"pad_grid", "fill_inf", "crop", "bucket_field"},
     "planning.grid._field_path_kernels": {"extract_path"},
     "planning.grid._jps_cut_kernels": {"jps_cut_search"},
-    "planning.grid._jps_kernels": {"_columns", "jps_search"},
+    "planning.grid._jps_kernels": {"_build_tables", "jps_search"},
     "planning.grid._limits": {"_scan_cost_bits"},
     "planning.grid._polyline_kernels": {"_polyline"},
     "sim._lidar_kernels": {"cast_edge_rays", "cast_occupancy_rays"},

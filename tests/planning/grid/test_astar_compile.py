@@ -46,9 +46,13 @@ def test_every_search_kernel_is_compiled_for_one_signature() -> None:
         "_limits", "_search_heap"
     )])  # fmt: skip
     # The kernels the public layer calls (their callees are not loaded when cached).
-    for kernel in ("_astar_kernels.grid_search", "_jps_kernels.jps_search",
-                   "_jps_cut_kernels.jps_cut_search",
-                   "_distance_field_kernels.bucket_field", "_jps_kernels._columns"):
+    for kernel in (
+        "_astar_kernels.grid_search",
+        "_jps_kernels.jps_search",
+        "_jps_cut_kernels.jps_cut_search",
+        "_distance_field_kernels.bucket_field",
+        "_jps_kernels._build_tables",
+    ):
         assert kernel in signatures
     repeated = {name: sigs for name, sigs in signatures.items() if len(sigs) > 1}
     assert not repeated

@@ -313,7 +313,7 @@ costs[2:6, 4] = np.inf
 astar(costs, (0, 0), (7, 7), method="jps")
 astar(costs, (0, 0), (7, 7), method="jps", corner_cutting=True)
 print(json.dumps({name: sum(getattr(module, name).stats.cache_misses.values())
-                  for module, name in ((_kernels, "_columns"), (_kernels, "jps_search"),
+                  for module, name in ((_kernels, "_build_tables"), (_kernels, "jps_search"),
                                        (_cut, "jps_cut_search"))}))
 """
 
@@ -324,4 +324,4 @@ def test_fresh_process_loads_jps_kernels_from_cache() -> None:
     out = subprocess.run(
         [sys.executable, "-c", FRESH_PROCESS], check=True, capture_output=True, text=True
     )
-    assert json.loads(out.stdout) == {"_columns": 0, "jps_search": 0, "jps_cut_search": 0}
+    assert json.loads(out.stdout) == {"_build_tables": 0, "jps_search": 0, "jps_cut_search": 0}

@@ -10,9 +10,9 @@ loop, a ``SIGUSR1`` "replan now") overwrote the scratch before the
 interrupted search had read its path, which then came back as the handler's
 path or its cost (with a 0.3 ms timer, 17,436 of 20,000 A* plans and 7,559
 of 20,000 JPS plans were wrong). The interleaving is forced here: each
-kernel (or the step filling the JPS tables' rows) is wrapped so that a
-signal is raised as it returns, and the handler searches the same grid
-for another route.
+kernel is wrapped so that a signal is raised as it returns, and the handler
+searches the same grid for another route (or builds another grid's JPS
+tables).
 """
 
 from __future__ import annotations
@@ -121,43 +121,21 @@ def test_a_distance_field_interrupted_by_a_handlers_search_is_its_own(
     assert np.array_equal(got, mine)
 
 
-class _NumpyLessSignalled:
-    """numpy for jps_tables, with ``less`` raising SIGUSR1 once it filled the rows."""
-
-    def __getattr__(self, name: str) -> Any:
-        return getattr(np, name)
-
-    @staticmethod
-    def less(*args: Any, **kwargs: Any) -> Any:
-        out = np.less(*args, **kwargs)
-        signal.raise_signal(signal.SIGUSR1)  # the handler builds with numpy as it is
-        return out
-
-
 def test_jump_point_tables_built_around_a_handlers_tables_are_their_own(
     monkeypatch: pytest.MonkeyPatch,
 ) -> None:
+    """A handler builds another grid's tables (the same shape) as the kernel filling ours returns.
+
+    Since review 48 one kernel fills the tables, before the values are
+    checked (the rows were marked by ``np.less`` into per-thread scratch,
+    where this test raised the signal before).
+    """
     costs = _grid(seed=1)
-    other = _grid(seed=2)  # the same shape: the same scratch rows
+    other = _grid(seed=2)  # the same shape
     mine = [t.copy() if isinstance(t, np.ndarray) else t for t in _jps_kernels.jps_tables(costs)]
-    monkeypatch.setattr(_jps_kernels, "np", _NumpyLessSignalled())
-    handled: list[Any] = []
-    with _handler(lambda: handled.append(1)) as runs:
-        signal.signal(
-            signal.SIGUSR1,
-            lambda s, f: (runs.__setitem__(0, runs[0] + 1), _tables_alone(monkeypatch, other)),
-        )
+    monkeypatch.setattr(_jps_kernels, "_build_tables", _signalled(_jps_kernels._build_tables))
+    with _handler(lambda: _jps_kernels.jps_tables(other)) as runs:
         got = _jps_kernels.jps_tables(costs)
     assert runs[0] >= 1
     for a, b in zip(got, mine, strict=True):
         assert np.array_equal(a, b)
-
-
-def _tables_alone(monkeypatch: pytest.MonkeyPatch, costs: np.ndarray) -> None:
-    """jps_tables of ``costs`` with numpy as it is (no signal of its own)."""
-    wrapped = _jps_kernels.np
-    monkeypatch.setattr(_jps_kernels, "np", np)
-    try:
-        _jps_kernels.jps_tables(costs)
-    finally:
-        monkeypatch.setattr(_jps_kernels, "np", wrapped)

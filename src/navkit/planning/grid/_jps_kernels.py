@@ -98,7 +98,6 @@ measurable (0.92-1.09 of the time, the noise) and stay signed.
 from __future__ import annotations
 
 import math
-import threading
 from typing import Any
 
 import numpy as np
@@ -111,7 +110,7 @@ from navkit._shared.jit import (
     typed_njit,
 )
 from navkit._shared.types import KernelInt
-from navkit.planning.grid._limits import compiled_cost_range
+from navkit.planning.grid._limits import INF_BITS, read_only, scanned_cost_range
 from navkit.planning.grid._search_heap import (
     F_BAND,
     F_BAND_COSTS,
@@ -211,10 +210,6 @@ def _transpose64(block: np.ndarray) -> None:
         mask ^= mask << np.uint64(width)
 
 
-#: Per-thread scratch of :func:`jps_tables`.
-_scratch = threading.local()
-
-
 def jps_tables(
     grid: np.ndarray, name: str = "costs"
 ) -> tuple[np.ndarray, np.ndarray, float, float]:
@@ -224,8 +219,8 @@ def jps_tables(
     ----------
     grid : (rows, cols) float64
         Costs converted by :func:`~navkit.planning.grid._limits.converted_costs`
-        (C-contiguous) but not yet checked: the kernel that builds the column
-        table also scans the values, which saves a compiled kernel of its own.
+        (C-contiguous) but not yet checked: the kernel that builds the tables
+        also scans the values, in the same pass over the grid.
     name : str
         The grid's name in error messages.
 
@@ -249,37 +244,99 @@ def jps_tables(
 
     Notes
     -----
-    NumPy's ``packbits`` packs the rows (SIMD, a fraction of a nanosecond per
-    cell); :func:`_columns` transposes the row words 64 x 64 bits at a time.
+    One compiled pass (:func:`_build_tables`) reads the grid once: it finds
+    the smallest and largest bit patterns, as
+    :func:`~navkit.planning.grid._limits.compiled_cost_range` does, and packs
+    the rows' bits on the way. Until review 48 the values were scanned by
+    that kernel, the rows marked by ``np.less`` into a grid of bools and
+    packed by ``np.packbits``, and the columns transposed by a second kernel:
+    three passes over grid-sized arrays where this is one: 0.21-0.25 ->
+    0.10-0.15 ms a call on ``maze512-1-0`` (512 x 512; it was a sixth of a
+    one-shot ``astar(..., method="jps")`` there). Every array is new, so a
+    signal handler building tables in this thread meanwhile has arrays of
+    its own.
     """
     rows, cols = grid.shape
-    # The scan first: it streams the whole grid through the caches, and the
-    # search that follows wants the tables (built last) in them.
-    lowest, highest = compiled_cost_range(grid, name)
     hw = ((cols + 2 + 63) >> 6) + 2
-    # One bool per bit of the row table, padding words included: packed as one
-    # flat array, it is the table. The array is kept per thread and reused for
-    # grids of the same table shape (a fresh one of this size is mapped anew,
-    # page by page, each time): its top and bottom rows and left padding are
-    # never written; the right padding is cleared, since a wider grid of the
-    # same word count left its cells there.
-    # Taken from the thread while in use, and given back once packed: a signal
-    # handler building tables in this thread meanwhile (Python runs it between
-    # two bytecodes) makes rows of its own instead of overwriting these.
-    free = getattr(_scratch, "free", None)
-    _scratch.free = None
-    if free is None or free.shape != (rows + 2, 64 * hw):
-        free = np.zeros((rows + 2, 64 * hw), dtype=np.bool_)
-    np.less(grid, np.inf, out=free[1 : rows + 1, 65 : cols + 65])
-    free[1 : rows + 1, cols + 65 :] = False
-    flat_rows = np.packbits(free.reshape(-1), bitorder="little").view("<u8")
-    _scratch.free = free
+    row_bits = np.zeros((rows + 2) * hw, dtype=np.uint64)
     col_bits = np.zeros((cols + 2) * (((rows + 2 + 63) >> 6) + 2), dtype=np.uint64)
-    _columns(flat_rows, rows, cols, col_bits, np.empty(64, dtype=np.uint64))
-    return flat_rows, col_bits, lowest, highest
+    # One padded bit row's cells as bytes (0 or 1), 8 to a word for packing,
+    # then a 64 x 64 bit block: the kernel's scratch (it allocates nothing).
+    flags = np.zeros(8 * (hw - 2) + 64, dtype=np.uint64)
+    lo_bits, hi_bits = _build_tables(
+        read_only(grid.reshape(-1).view(np.int64)),
+        rows,
+        cols,
+        INF_BITS,
+        row_bits,
+        col_bits,
+        flags,
+        flags.view(np.uint8),
+    )
+    lowest, highest = scanned_cost_range(grid, name, lo_bits, hi_bits)
+    return row_bits, col_bits, lowest, highest
+
+
+# The multiplier that gathers bit 0 of each of a word's 8 bytes into its top
+# byte, byte j's bit at bit 56 + j (Hacker's Delight, 2nd ed., section 7-1;
+# the partial products land on distinct bits, so nothing carries into it).
+_GATHER_BYTES = np.uint64(0x0102040810204080)
+_B56 = np.uint64(56)
 
 
 @njit_released
+def _build_tables(
+    bits: np.ndarray,
+    rows: int,
+    cols: int,
+    inf_bits: int,
+    row_bits: np.ndarray,
+    col_bits: np.ndarray,
+    scratch: np.ndarray,
+    flags: np.ndarray,
+) -> tuple[int, int]:
+    """Fill the tables of :func:`jps_tables` (zeros) and scan the values, in one pass.
+
+    ``bits`` is the grid's float64 values read as int64 (flat). Returns, as
+    :func:`~navkit.planning.grid._limits._scan_cost_bits`, the smallest
+    pattern and the largest one other than ``inf_bits`` (-1 if none): the
+    values' check. ``scratch`` (uint64) holds a bit row's cells as bytes in
+    its first ``8 * (W - 2)`` words, then a 64-word block for the
+    transposition; ``flags`` is its uint8 view.
+
+    Each row's cells go through the bytes of ``flags`` (byte ``p``: padded
+    column ``p``; bytes 0 and past ``cols`` stay 0): a byte store per cell
+    vectorises with the scan, and a multiplication packs 8 bytes into 8
+    bits; or-ing each cell's bit into its word (a shift by the cell's
+    position) took 0.11 ms for a 512 x 512 grid, against 0.095 ms this way.
+    Indices are unsigned, as in the scans (see Indices in the module notes):
+    with signed ones the wraparound tests kept the loop scalar (0.19 ms).
+    """
+    hw = ((cols + 2 + 63) >> 6) + 2
+    words = np.uint64(hw - 2)
+    lo = bits[0]
+    hi = -1
+    for r in range(rows):
+        start = np.uint64(r * cols)
+        for c in range(np.uint64(cols)):
+            v = bits[start + c]
+            # Selects, not the min/max builtins (see _scan_cost_bits).
+            lo = v if v < lo else lo
+            w = v if v != inf_bits else -1
+            hi = w if w > hi else hi
+            flags[c + _ONE] = v != inf_bits
+        out = np.uint64((r + 1) * hw + 1)
+        for k in range(words):
+            word = np.uint64(0)
+            for b in range(np.uint64(8)):
+                gathered = (scratch[np.uint64(8) * k + b] * _GATHER_BYTES) >> _B56
+                word |= gathered << (np.uint64(8) * b)
+            row_bits[out + k] = word
+    _columns(row_bits, rows, cols, col_bits, scratch[8 * (hw - 2) :])
+    return lo, hi
+
+
+@njit_helper
 def _columns(
     row_bits: np.ndarray,
     rows: int,

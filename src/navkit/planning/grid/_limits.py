@@ -145,9 +145,10 @@ def checked_cost_range(
 def compiled_cost_range(grid: FloatArray, name: str = "costs") -> tuple[float, float]:
     """:func:`cost_range` of a converted grid, its values scanned in one compiled pass.
 
-    The values check of :func:`checked_cost_range` and of jump point search's
-    tables (:func:`~navkit.planning.grid._jps_kernels.jps_tables`):
-    :func:`_scan_cost_bits`, then :func:`scanned_cost_range`.
+    The values check of :func:`checked_cost_range`: :func:`_scan_cost_bits`,
+    then :func:`scanned_cost_range` (jump point search's tables scan the
+    values in their own pass, see
+    :func:`~navkit.planning.grid._jps_kernels.jps_tables`).
     """
     lo_bits, hi_bits = _scan_cost_bits(read_only(grid.reshape(-1).view(np.int64)), INF_BITS)
     return scanned_cost_range(grid, name, lo_bits, hi_bits)
@@ -164,9 +165,10 @@ def _scan_cost_bits(bits: NDArray[np.int64], inf_bits: int) -> tuple[int, int]:
     scratch and a maximum (1024 x 1024 grid: about 0.4 ms against 1.0 ms in
     cache, 0.9 ms against 1.8 ms from memory; issue 17). A small kernel of
     its own (about 0.2 s of first-use compilation, then loaded from the
-    cache in a few ms), which jump point search's tables use too, rather than
-    a scan inside the JPS table kernel, whose bit transposition would add
-    about 1 s to every validating entry point's first use.
+    cache in a few ms), rather than the JPS table kernel, which scans the
+    values while it packs the bit rows (one pass over the grid, review 48)
+    but whose bit transposition would add about 1 s to every other
+    validating entry point's first use.
     """
     lo = bits[0]
     hi = -1
