@@ -35,6 +35,8 @@ import numpy as np
 import pytest
 from hypothesis import settings
 
+from hypothesis_scale import EXAMPLES_SCALE
+
 # No per-example deadline: tests never assert wall-clock times, and on a loaded
 # 2-core machine a first example that imports SciPy or loads a compiled kernel
 # can take longer than hypothesis's default 200 ms (a flaky DeadlineExceeded).
@@ -42,7 +44,8 @@ settings.register_profile("navkit", deadline=None)
 # Opt-in hunt for rare draws before CI's random seeds find them:
 # NAVKIT_HYPOTHESIS_PROFILE=thorough runs every @given test with at least
 # THOROUGH_EXAMPLES examples (see pytest_collection_modifyitems: most tests set
-# their own max_examples, which a profile alone would not raise).
+# their own max_examples, which a profile alone would not raise), and
+# NAVKIT_HYPOTHESIS_EXAMPLES_SCALE=k (tests/hypothesis_scale.py) k times its count.
 THOROUGH_EXAMPLES = 1000
 settings.register_profile("thorough", deadline=None, max_examples=THOROUGH_EXAMPLES)
 _PROFILE = os.environ.get("NAVKIT_HYPOTHESIS_PROFILE", "navkit")
@@ -52,21 +55,30 @@ settings.load_profile(_PROFILE)
 
 
 def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
-    """Under the thorough profile, raise each @given test to ``THOROUGH_EXAMPLES`` examples.
+    """Each @given test's example count: its own, at least ``THOROUGH_EXAMPLES`` under
+    the thorough profile, times ``EXAMPLES_SCALE``.
 
     hypothesis reads a test's settings from an attribute it does not document, at
-    call time (``hypothesis_twins.slow_twin`` relies on the same one); a test's own
-    larger count, and all its other settings, are kept.
+    call time (``hypothesis_twins.slow_twin`` relies on the same one); all the
+    other settings are kept. Every @given test has one (without ``@settings``,
+    the profile's, as hypothesis stores it).
     """
-    if _PROFILE != "thorough":
-        return
+    # A parametrized test is one function for many items: scaled once.
+    done: set[int] = set()
     for item in items:
         test = getattr(item, "obj", None)
         test = getattr(test, "__func__", test)  # a test method: its function
         own = getattr(test, "_hypothesis_internal_use_settings", None)
-        if own is not None and own.max_examples < THOROUGH_EXAMPLES:
+        if own is None or id(test) in done:
+            continue
+        done.add(id(test))
+        count = own.max_examples
+        if _PROFILE == "thorough":
+            count = max(count, THOROUGH_EXAMPLES)
+        count *= EXAMPLES_SCALE
+        if count != own.max_examples:
             test._hypothesis_internal_use_settings = settings(  # type: ignore[union-attr]
-                own, max_examples=THOROUGH_EXAMPLES
+                own, max_examples=count
             )
 
 

@@ -15,6 +15,8 @@ from hypothesis import HealthCheck, settings
 from hypothesis.stateful import RuleBasedStateMachine
 from hypothesis.stateful import run_state_machine_as_test as _untyped_run
 
+import hypothesis_scale
+
 _T = TypeVar("_T")
 
 
@@ -33,13 +35,16 @@ _run: Callable[..., None] = _untyped_run
 def run_machine(machine: type[RuleBasedStateMachine], *, examples: int, steps: int) -> None:
     """Run ``machine`` for ``examples`` sequences of up to ``steps`` rules each.
 
+    ``examples`` times ``NAVKIT_HYPOTHESIS_EXAMPLES_SCALE`` (tests/hypothesis_scale.py),
+    as conftest scales the ``@given`` tests.
+
     No example database (a failure found on one machine's sources must not
     replay elsewhere) and no deadline (first calls compile kernels).
     """
     _run(
         machine,
         settings=settings(
-            max_examples=examples,
+            max_examples=examples * hypothesis_scale.EXAMPLES_SCALE,
             stateful_step_count=steps,
             deadline=None,
             database=None,
