@@ -24,7 +24,7 @@ from typing import Any
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, example, given, settings
 from hypothesis import strategies as st
 
 from navkit.geometry import Pose2D
@@ -433,6 +433,7 @@ def pose_array(p: Pose2D) -> np.ndarray:
     max_examples=15, deadline=None, suppress_health_check=[HealthCheck.function_scoped_fixture]
 )
 @given(seed=SEEDS, search=st.booleans())
+@example(seed=8053, search=True)  # stops 1.12e-4 rad apart, either side of the optimum
 def test_scan_matcher_is_equivariant_and_finds_a_small_offset(
     room: np.ndarray, seed: int, search: bool
 ) -> None:
@@ -465,7 +466,11 @@ def test_scan_matcher_is_equivariant_and_finds_a_small_offset(
     # too, and the covariance turns with it (R C R^T). Gauss-Newton alone follows to
     # rounding; the pre-search tries translations along the world's axes, which turn
     # against the map's, so it may start Gauss-Newton elsewhere in the basin: the
-    # same optimum then, to the matcher's tolerance (1e-3 m, 1e-4 rad), not to rounding.
+    # same optimum then, not the same stop. A match stops when a step falls below the
+    # matcher's tolerance (1e-3 m, 1e-4 rad): each stop lies about a step from the
+    # optimum, and two stops from different starts, on either side of it, up to
+    # about twice the tolerance apart (seed 8053: 1.12e-4 rad apart, 5.5e-5 and
+    # 5.7e-5 rad either side; of 50,000 draws, 4 beyond one tolerance, none beyond 1.2).
     motion = random_pose(rng, -20.0, 20.0)
     origin = motion.compose(Pose2D(-4.0, -3.0, 0.0))
     turned = OccupancyGrid(room, resolution=0.05, origin=(origin.x, origin.y, origin.theta))
@@ -473,7 +478,7 @@ def test_scan_matcher_is_equivariant_and_finds_a_small_offset(
     back = motion.inverse().compose(again.pose)
     delta = pose_array(back) - pose_array(found.pose)
     delta[2] = math.remainder(delta[2], 2 * math.pi)
-    tolerance = np.array([1e-3, 1e-3, 1e-4]) if search else np.full(3, 1e-9)
+    tolerance = 2.0 * np.array([1e-3, 1e-3, 1e-4]) if search else np.full(3, 1e-9)
     assert (np.abs(delta) <= tolerance).all(), delta
     if not search:
         c, s = math.cos(motion.theta), math.sin(motion.theta)
