@@ -81,6 +81,16 @@ def integrate_scan(
     ``clamp`` at once; doing so costs a third min/max per cell, about 12 %
     of a 360-beam scan.)
 
+    The bounds of ``clamp`` are also the map's memory over long runs: however
+    many scans have hit a cell (10 or 100,000), it is free again after at most
+    the misses that take it from ``clamp[1]`` below the grid's free threshold,
+    and occupied again after the hits from ``clamp[0]`` (a door seen shut for
+    hours, then open). With the defaults and the grid's thresholds (0.65,
+    0.196) that is 13 scans to free and 4 to occupied, the same after 10 hits
+    as after 10^5; unclamped (``clamp`` at ±1e6) the misses needed would grow
+    with the hits. :class:`~navkit.mapping.ScanMapper`'s ±50 takes 127 misses
+    (``ceil((50 + 1.41) / 0.405)``).
+
     The result does not depend on the order of the beams, nor on where the
     grid and the sensor are in the world (moving both by one rigid motion
     gives the same cells, up to rounding where a beam ends or passes within a

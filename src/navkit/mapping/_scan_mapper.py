@@ -95,6 +95,16 @@ class ScanMapper:
     100,000 scans, against 70 ms to gather the former list of poses);
     :attr:`pose` reads only the latest.
 
+    Long runs of a robot standing still (one scan over and over, zero
+    odometry) write nothing after the first scan and do not drift, but with
+    the default matcher the pose need not settle: each match is pulled
+    towards its own guess (the last pose) and goes coarse to fine, and the
+    poses cycle within a few millimetres (in a 6 m room of 180 beams at 5 cm
+    cells: 13 poses 2.4 mm apart from the constant-velocity guess, 5 poses
+    5.4 mm apart with odometry, the same band after 5,000 scans as after
+    600). With ``ScanMatcher()`` (no pull) the pose stays put, to the bit with
+    odometry.
+
     A mapper keeps its map and trajectory between calls, so it is not
     thread-safe: one thread at a time may call :meth:`update`; different
     mappers may run in different threads at once, also with one shared
@@ -125,6 +135,13 @@ class ScanMapper:
         [-1e6, 0].
     clamp : (float, float), default (-50.0, 50.0)
         Bounds of the stored log-odds (Hector stops raising a cell at 50).
+        They bound how long the map remembers: a cell hit by any number of
+        scans is free again after at most 127 written scans that cross it
+        (``ceil((50 - logit(0.196)) / 0.405)`` with the default ``miss`` and
+        the grid's free threshold), and a free cell occupied again after 24
+        hits. Scans are written only after ``min_distance`` or ``min_angle``
+        of motion, so a standing robot changes nothing; a narrower ``clamp``
+        (OctoMap's ``(logit(0.12), logit(0.97))``: 13 misses) forgets faster.
     min_distance : float, default 0.4
         Translation, m, since the last write that triggers a write (>= 0).
     min_angle : float, default 0.9
