@@ -97,9 +97,11 @@ class ScanMapper:
 
     Long runs of a robot standing still (one scan over and over, zero
     odometry) write nothing after the first scan and do not drift, but with
-    the default matcher the pose need not settle: each match is pulled
-    towards its own guess (the last pose) and goes coarse to fine, and the
-    poses cycle within a few millimetres (in a 6 m room of 180 beams at 5 cm
+    the default matcher the pose need not settle: a match goes coarse to
+    fine from its guess (the last pose), and may end where the finest
+    level's cost plus the pull towards the guess is higher than at the guess
+    itself (359 of 600 such matches, by 0.7 % at the median), so the poses
+    cycle within a few millimetres (in a 6 m room of 180 beams at 5 cm
     cells: 13 poses 2.4 mm apart from the constant-velocity guess, 5 poses
     5.4 mm apart with odometry, the same band after 5,000 scans as after
     600). With ``ScanMatcher()`` (no pull) the pose stays put, to the bit with
