@@ -60,6 +60,7 @@ import math
 
 import numpy as np
 
+from navkit._shared.goal import at_goal_kernel
 from navkit._shared.jit import njit_force_inline, njit_helper, njit_no_refcount
 from navkit._shared.se2 import wrap_scalar
 from navkit.sim._clearance_kernels import TOUCH, edge_clearance, footprint_clearance
@@ -380,12 +381,14 @@ def _settle(
     # no goal, NaN yaw for any heading. (Not a helper of its own: each separately
     # compiled function costs a tenth of a second or more on first use; wrap_scalar is
     # inlined at numba IR level, not compiled on its own: Simulation.run's first use
-    # measured the same.)
+    # measured the same.) The position by the controllers' own exact test (review 48:
+    # math.hypot counted offsets on the radius's last ulp as reached where the
+    # controller was not done, or the reverse).
     if math.isnan(stats[STAT_TIME_TO_GOAL]) and not math.isnan(goal[0]):
-        at_goal = not math.hypot(state[0] - goal[0], state[1] - goal[1]) > goal[2]
-        if at_goal and not math.isnan(goal[3]):
-            at_goal = abs(wrap_scalar(state[2] - goal[3])) <= goal[4]
-        if at_goal:
+        arrived = at_goal_kernel(state[0], state[1], goal[0], goal[1], goal[2])
+        if arrived and not math.isnan(goal[3]):
+            arrived = abs(wrap_scalar(state[2] - goal[3])) <= goal[4]
+        if arrived:
             stats[STAT_TIME_TO_GOAL] = t
             if stop_at_goal:
                 _record(times, poses, commands, i, t, state, cmd)
