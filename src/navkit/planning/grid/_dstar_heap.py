@@ -113,8 +113,9 @@ half as much (a fresh random 20 % plan 21 % faster, not 45 %): LLVM still
 made branches of those selects.
 
 Integer tournament (review 48). A full family's first components are
-compared as their int64 bit patterns (an int64 view of the keys), which
-order as the float64 values do from +0.0 to +inf: integer compares and
+compared as their bit patterns, unsigned integers (``f64_bits`` of
+:mod:`navkit.planning.grid._float_bits`, an LLVM bitcast), which order as
+the float64 values do from +0.0 to +inf: integer compares and
 ``cmov`` (one cycle each) instead of ``vucomisd``/``vminsd`` (three and
 four) on the descent's chain of dependent loads. D* Lite's keys are sums
 of non-negative terms, never NaN; a family with a sign bit set (a negative
@@ -122,9 +123,10 @@ key, or -0.0, equal to +0.0 as a float but not as bits; only the tests'
 heaps hold them) takes the float comparison of whole keys as a tie does, so
 the heap is the same, slot for slot, for every key but NaN
 (``tests/planning/grid/test_review48_fdstar_bits_tournament.py``). Fresh
-1024² plans ÷ A*: 2.885 -> 2.761 (random 20 %), 2.211 -> 2.105 (random
-35 %), 2.686 -> 2.609 (rooms), medians of 3 alternating runs of 9 rounds,
-the same expansions, paths and costs.
+1024² plans ÷ A*: 2.89 -> 2.78 (random 20 %), 2.21 -> 2.11 (random 35 %),
+2.69 -> 2.61 (rooms), medians of 6 alternating runs of 9 rounds, the same
+expansions, paths and costs. NumPy's ``view`` of the keys as int64 in the
+kernel ran as fast but compiled about 0.15-0.3 s longer at first use.
 
 Compilation: every change of the heap goes through one function,
 :func:`change` (D* Lite's ``UpdateVertex`` on the queue: queue, requeue
@@ -190,6 +192,22 @@ def _no_prefetch(arr: Any, idx: Any) -> None:
 
 bind_numba_names(globals(), "navkit.planning.grid._prefetch",
                  python={"_prefetch": _no_prefetch}, _prefetch="prefetch")  # fmt: skip
+
+# The bits of a float64 as a uint64 (an LLVM bitcast, see
+# navkit.planning.grid._float_bits), bound when numba loads as ``_prefetch`` is.
+_f64_bits: Any = None
+
+
+def _f64_bits_python(x: float) -> np.uint64:
+    """``_f64_bits`` when the JIT is disabled: NumPy's view of the scalar."""
+    return np.float64(x).view(np.uint64)
+
+
+bind_numba_names(globals(), "navkit.planning.grid._float_bits",
+                 python={"_f64_bits": _f64_bits_python}, _f64_bits="f64_bits")  # fmt: skip
+
+# The sign bit of a float64's bits: keys with it set take the float comparison.
+_SIGN = np.uint64(1 << 63)
 
 
 # Columns of a node record (float64): D* Lite's g and rhs, then the node's heap
@@ -462,7 +480,6 @@ def change(
     # indices drops out of the address arithmetic; see the module notes). Not the
     # tournament's indices below: LLVM then made their selects branches.
     i = i & NN
-    bits = keys.view(np.int64)
     while descend:
         first = 4 * i + 1
         if first >= n:
@@ -472,7 +489,7 @@ def change(
         # compared ones are equal; else on whole keys (see Tournament in the
         # module notes). (A bool in integer arithmetic counts 0 or 1; int() of it
         # would compile numba's int() overload too.) The first components
-        # of a full family are compared as int64 bits, see Integer tournament.
+        # of a full family are compared as their bits, see Integer tournament.
         if ahead and not queued:
             # The keys of the hole's grandchildren, the next level's families: four
             # lines (slots 4 first + 1 .. 4 first + 16), fetched while this level's
@@ -487,18 +504,19 @@ def change(
         if not tie:
             # A full family: its four first components, compared alone (no second
             # component, no index arithmetic: the winner's offset from ``first``).
-            a_bits = bits[2 * first]
-            b_bits = bits[2 * first + 2]
-            c_bits = bits[2 * first + 4]
-            d_bits = bits[2 * first + 6]
+            a_bits = _f64_bits(keys[2 * first])
+            b_bits = _f64_bits(keys[2 * first + 2])
+            c_bits = _f64_bits(keys[2 * first + 4])
+            d_bits = _f64_bits(keys[2 * first + 6])
             second = b_bits < a_bits
             fourth = d_bits < c_bits
             l_bits = b_bits if second else a_bits
             r_bits = d_bits if fourth else c_bits
             right_wins = r_bits < l_bits
             best = first + 2 * right_wins + (fourth if right_wins else second)
+            # A sign bit set (a negative key or -0.0, which the bits misorder) is a tie.
             tie = (
-                ((a_bits | b_bits | c_bits | d_bits) < 0)
+                ((a_bits | b_bits | c_bits | d_bits) >= _SIGN)
                 | (b_bits == a_bits)
                 | (d_bits == c_bits)
                 | (r_bits == l_bits)

@@ -14,8 +14,8 @@ the step repeated, so the search loop's machine code is not linked into
 them. (numba links :func:`settle` into :func:`extract_path`, whose cache is
 keyed on this file alone: a change of :func:`settle` or of the heap code it
 inlines, such as the box of written records it keeps in ``work[2:6]`` since
-review 27 (in repairs too since review 28) or the integer tournament of
-review 48, must come with a change of this file, or a cache made before it
+review 27 (in repairs too since review 28) or the tournament on key bits
+of review 48, must come with a change of this file, or a cache made before it
 keeps running the old code.)
 Every helper is compiled once and called (LLVM still inlines the small
 ones into their callers): the walk is not hot, and numba's own inlining types
