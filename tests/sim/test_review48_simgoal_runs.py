@@ -86,12 +86,6 @@ def test_a_run_reaches_the_goal_exactly_where_the_controller_is_done(
         assert (trace.metrics.reason == "goal reached") == want
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="the start's check is _simulation.py's (claimed by NOISESTAT in this session): "
-    "/work/helpers/s52/SIMGOAL_simulation.patch makes it the controllers' test and "
-    "removes this mark",
-)
 def test_a_run_starts_at_its_goal_exactly_where_the_controller_is_done() -> None:
     # The robot stands on its start; the goal a hair beyond the tolerance from it.
     px, py = 0.7000000000000002, 1.0

@@ -18,6 +18,7 @@ from navkit._shared.angles import wrap_float
 from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.dunders import slot_state
 from navkit._shared.frozen import frozen_setattr, slot_names
+from navkit._shared.goal import at_goal
 from navkit._shared.metres import metres_text
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_bool, as_float_array, finite_float, positive_float
@@ -353,7 +354,16 @@ class Simulation:
         ``yaw_tolerance``; without it, the position alone is the goal.
     goal_tolerance : float, default 0.1
         The goal is reached within this distance, m, in (0, 1e6] (the name the
-        controllers use).
+        controllers use), by the controllers' own test: exactly where a
+        controller with this tolerance is done, also for an offset on the
+        tolerance's last ulp. It is the run's criterion, not the controller's:
+        below the distance at which the controller brings the robot to rest it
+        is never met, and the run ends at its ``duration`` (or when the
+        controller is done), ``reached`` False. The simulator cannot see that
+        distance: a ``PotentialFieldController``'s attraction rests the robot
+        off the goal (3.75 mm with the default ``BlendedAttraction``; its own
+        ``goal_tolerance`` must exceed that distance), a path tracker stops
+        within its ``goal_tolerance``. Give at least the controller's.
     yaw_tolerance : float, optional
         With a goal heading: also require the heading within this, rad, in
         (0, π].
@@ -1158,7 +1168,10 @@ class _Run:
     def _at_start_goal(self) -> bool:
         state = self.body.state
         g = self.goal
-        if math.isnan(g[0]) or math.hypot(state[0] - g[0], state[1] - g[1]) > g[2]:
+        # The controllers' own test, as the run kernel's (review 48).
+        if math.isnan(g[0]) or not at_goal(
+            float(state[0]), float(state[1]), float(g[0]), float(g[1]), float(g[2])
+        ):
             return False
         if not math.isnan(g[3]) and abs(wrap_float(float(state[2]) - float(g[3]))) > g[4]:
             return False
