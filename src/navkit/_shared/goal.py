@@ -15,7 +15,10 @@ first place" stands in for ``math.ulp``, which numba lacks, and its exact
 arithmetic is written out, as a kernel can call no Python function. Compiled
 once and inlined by LLVM into the run kernels: their first use (a disc robot
 in a world of segments, cold cache) takes 1.32 s of CPU, 1.14 s with the hypot
-(medians of three alternating runs).
+(medians of three alternating runs). numba's cache keys those kernels on
+``navkit/sim/_segment_kernels.py`` alone: a change of :func:`at_goal` must
+come with a change of that file, or a cache made before it keeps running
+the old test there (the controllers, in Python, would not).
 """
 
 from __future__ import annotations
@@ -112,6 +115,10 @@ def at_goal(px: float, py: float, gx: float, gy: float, tolerance: float) -> boo
     """
     dx = gx - px
     dy = gy - py
+    if math.isnan(dx) or math.isnan(dy):
+        # Not left to the comparisons below: max() and min() drop a NaN second
+        # argument, and a NaN dy beside a short dx was at the goal.
+        return False
     t = tolerance
     g = min(abs(gx), abs(gy))
     if not t > _EPSILON * g:

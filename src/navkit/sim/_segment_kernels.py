@@ -383,7 +383,8 @@ def _settle(
     # inlined at numba IR level, not compiled on its own: Simulation.run's first use
     # measured the same.) The position by the controllers' own exact test (review 48:
     # math.hypot counted offsets on the radius's last ulp as reached where the
-    # controller was not done, or the reverse).
+    # controller was not done, or the reverse; a NaN offset is never at the goal:
+    # review 48, FRESH).
     if math.isnan(stats[STAT_TIME_TO_GOAL]) and not math.isnan(goal[0]):
         arrived = at_goal_kernel(state[0], state[1], goal[0], goal[1], goal[2])
         if arrived and not math.isnan(goal[3]):
