@@ -124,6 +124,11 @@ from navkit.planning.grid._dstar_heap import (
     heap_update,
 )
 
+# ``settle`` compiles the heap's ``change`` into itself, and numba's cache keys
+# ``settle`` on this file alone: a change of ``_dstar_heap`` needs a change here
+# too, or a cache made before it keeps running the old heap (review 48: the key
+# bits tournament reached no existing cache until this note).
+
 SQRT2 = math.sqrt(2.0)
 # Read by the kernels as one frozen global (``np.inf`` is two IR statements: the
 # module, then its attribute, each typed and lowered at every use).
