@@ -89,7 +89,8 @@ def test_the_goal_test_is_exact_in_python_and_compiled() -> None:
 
 def test_the_inlined_resolution_is_math_ulp() -> None:
     # at_goal lifts a tolerance below the goal's resolution to it, computing it with
-    # math.frexp (numba has no math.ulp): one ulp off the goal is at it, two are not.
+    # Rump's leading power of two (numba has no math.ulp): one ulp off the goal is at
+    # it, two are not.
     for g in (1e-310, 1e-300, 0.3, 3.0, 4.6e6 + 0.5, 1e15 + 1.0, 1e300):
         res = math.ulp(g)
         assert resolution(g, -2.0 * g) == res
