@@ -97,6 +97,31 @@ def probe_outcome(script: str, *args: str, timeout: float = 300) -> Any:
     return json.loads(done.stdout.strip().splitlines()[-1])
 
 
+def jit_outcome(
+    script: str, *, disable_jit: bool, warnings_as_errors: bool = False, timeout: float = 300
+) -> Any:
+    """The JSON value on the last line ``script`` prints, run with numba's JIT on or
+    off (``NUMBA_DISABLE_JIT=1``, any inherited ``NUMBA_DISABLE_JIT*`` dropped).
+
+    With ``warnings_as_errors`` the probe runs under ``-W error``: a warning the
+    kernels raise only as plain Python (numpy's overflow notices) fails it.
+    """
+    env = {k: v for k, v in os.environ.items() if not k.startswith("NUMBA_DISABLE_JIT")}
+    if disable_jit:
+        env["NUMBA_DISABLE_JIT"] = "1"
+    flags = ["-W", "error"] if warnings_as_errors else []
+    done = subprocess.run(
+        [sys.executable, *flags, "-c", script],
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=timeout,
+        check=False,
+    )
+    assert done.returncode == 0, done.stderr[-3000:]
+    return json.loads(done.stdout.strip().splitlines()[-1])
+
+
 #: Run before a bounds-checked script: the checks are on, or the process fails.
 _CHECKS_ON = """
 import numba as _numba, numpy as _np

@@ -13,13 +13,12 @@ the Field D* heap's tournament on key bits, and the simulator's goal test
 
 from __future__ import annotations
 
-import json
-import os
-import subprocess
 import sys
 
 import numpy as np
 import pytest
+
+from subprocess_probe import jit_outcome
 
 _CALLS = r"""
 import json
@@ -54,15 +53,9 @@ print(json.dumps(out))
 
 
 def _run(disable_jit: bool) -> dict[str, object]:
-    env = {k: v for k, v in os.environ.items() if not k.startswith("NUMBA_DISABLE_JIT")}
-    if disable_jit:
-        env["NUMBA_DISABLE_JIT"] = "1"
-    done = subprocess.run(
-        [sys.executable, "-W", "error", "-c", _CALLS],
-        env=env, capture_output=True, text=True, timeout=600,
-    )  # fmt: skip
-    assert done.returncode == 0, done.stderr[-3000:]
-    result: dict[str, object] = json.loads(done.stdout.strip().splitlines()[-1])
+    result: dict[str, object] = jit_outcome(
+        _CALLS, disable_jit=disable_jit, warnings_as_errors=True, timeout=600
+    )
     return result
 
 

@@ -2,12 +2,11 @@
 
 from __future__ import annotations
 
-import json
-import os
-import subprocess
 import sys
 
 import pytest
+
+from subprocess_probe import jit_outcome
 
 _CALLS = r"""
 import json
@@ -40,14 +39,9 @@ print(json.dumps(out))
 
 
 def _run(disable_jit: bool) -> dict[str, object]:
-    env = {k: v for k, v in os.environ.items() if not k.startswith("NUMBA_DISABLE_JIT")}
-    if disable_jit:
-        env["NUMBA_DISABLE_JIT"] = "1"
-    done = subprocess.run(
-        [sys.executable, "-c", _CALLS], env=env, capture_output=True, text=True, timeout=300
+    result: dict[str, object] = jit_outcome(
+        _CALLS, disable_jit=disable_jit, warnings_as_errors=False, timeout=300
     )
-    assert done.returncode == 0, done.stderr[-2000:]
-    result: dict[str, object] = json.loads(done.stdout.strip().splitlines()[-1])
     return result
 
 
