@@ -157,8 +157,9 @@ def benchmark_map(name: str) -> np.ndarray:
     return costs
 
 
-def python_astar(costs: np.ndarray, start: tuple[int, int], goal: tuple[int, int],
-                 corner_cutting: bool) -> float:
+def python_astar(
+    costs: np.ndarray, start: tuple[int, int], goal: tuple[int, int], corner_cutting: bool
+) -> float:
     """A straightforward heapq A* (octile heuristic, lazy deletion); returns the cost."""
     rows, cols = costs.shape
     grid = costs.tolist()
@@ -173,8 +174,16 @@ def python_astar(costs: np.ndarray, start: tuple[int, int], goal: tuple[int, int
     h0 = h(*start)
     # (f, h, g, cell): ties in f go to the smaller h, as in navkit.
     queue = [(h0, h0, 0.0, start)]
-    moves = [(-1, 0, 1.0), (1, 0, 1.0), (0, -1, 1.0), (0, 1, 1.0),
-             (-1, -1, SQRT2), (-1, 1, SQRT2), (1, -1, SQRT2), (1, 1, SQRT2)]
+    moves = [
+        (-1, 0, 1.0),
+        (1, 0, 1.0),
+        (0, -1, 1.0),
+        (0, 1, 1.0),
+        (-1, -1, SQRT2),
+        (-1, 1, SQRT2),
+        (1, -1, SQRT2),
+        (1, 1, SQRT2),
+    ]
     while queue:
         _, _, gu, u = heapq.heappop(queue)
         if u in closed:
@@ -188,8 +197,11 @@ def python_astar(costs: np.ndarray, start: tuple[int, int], goal: tuple[int, int
             r2, c2 = r + dr, c + dc
             if not (0 <= r2 < rows and 0 <= c2 < cols) or grid[r2][c2] == math.inf:
                 continue
-            if dr and dc and not corner_cutting and (
-                grid[r + dr][c] == math.inf or grid[r][c + dc] == math.inf
+            if (
+                dr
+                and dc
+                and not corner_cutting
+                and (grid[r + dr][c] == math.inf or grid[r][c + dc] == math.inf)
             ):
                 continue
             ng = gu + step * 0.5 * (cu + grid[r2][c2])
@@ -285,11 +297,15 @@ def test_navkit_jps(benchmark: Any, name: str) -> None:
     )
 
 
-def alternate_with_pyastar2d(name: str, method: str) -> dict[str, float]:
+def alternate_with_pyastar2d(name: str, method: str, rounds: int = 15) -> dict[str, float]:
     """navkit's corner-cutting search and pyastar2d alternately: median per-round time ratios.
 
     Both answers are checked first (navkit's cost the least, pyastar2d's path
-    valid), outside the timed rounds.
+    valid), and every timed answer after its round, outside the timers: navkit's
+    cells and cost must be the checked ones, pyastar2d's path its checked path,
+    so a search that goes wrong (or returns less) under the timing fails the
+    test instead of reporting a speed-up. The order is reversed every other
+    round, as in the other ratio benchmarks.
 
     ``navkit_over_pyastar2d`` is on this thread's CPU time (both run in this
     thread; other processes' load does not count), ``wall_navkit_over_pyastar2d``
@@ -298,20 +314,30 @@ def alternate_with_pyastar2d(name: str, method: str) -> dict[str, float]:
     peer("pyastar2d")
     costs = benchmark_map(name)
     weights = np.where(np.isfinite(costs), 1.0, np.inf).astype(np.float32)
-    check_optimal(name, astar(costs, START, GOAL, corner_cutting=True, method=method), True)
+    checked = astar(costs, START, GOAL, corner_cutting=True, method=method)
+    check_optimal(name, checked, True)
     path = pyastar2d.astar_path(weights, START, GOAL, allow_diagonal=True)
     assert path is not None
     check_cells(name, path, True)
+    sides = {
+        "pyastar2d": lambda: pyastar2d.astar_path(weights, START, GOAL, allow_diagonal=True),
+        "navkit": lambda: astar(costs, START, GOAL, corner_cutting=True, method=method),
+    }
     ratios = []
     wall = []
-    for _ in range(15):
-        c0, t0 = time.thread_time(), time.perf_counter()
-        pyastar2d.astar_path(weights, START, GOAL, allow_diagonal=True)
-        c1, t1 = time.thread_time(), time.perf_counter()
-        astar(costs, START, GOAL, corner_cutting=True, method=method)
-        c2, t2 = time.thread_time(), time.perf_counter()
-        ratios.append((c2 - c1) / (c1 - c0))
-        wall.append((t2 - t1) / (t1 - t0))
+    for i in range(rounds):
+        cpu: dict[str, float] = {}
+        clock: dict[str, float] = {}
+        answers: dict[str, Any] = {}
+        for side in sides if i % 2 == 0 else list(sides)[::-1]:
+            c0, t0 = time.thread_time(), time.perf_counter()
+            answers[side] = sides[side]()
+            cpu[side], clock[side] = time.thread_time() - c0, time.perf_counter() - t0
+        np.testing.assert_array_equal(answers["navkit"].cells, checked.cells)
+        assert answers["navkit"].cost == checked.cost
+        np.testing.assert_array_equal(answers["pyastar2d"], path)
+        ratios.append(cpu["navkit"] / cpu["pyastar2d"])
+        wall.append(clock["navkit"] / clock["pyastar2d"])
     return {
         "navkit_over_pyastar2d": float(np.median(ratios)),
         "wall_navkit_over_pyastar2d": float(np.median(wall)),
@@ -369,9 +395,7 @@ def test_tcod(benchmark: Any, name: str) -> None:
 def test_pure_python_heapq(benchmark: Any, name: str) -> None:
     costs = benchmark_map(name)
     benchmark.group = name
-    cost = benchmark.pedantic(
-        python_astar, args=(costs, START, GOAL, True), rounds=3, iterations=1
-    )
+    cost = benchmark.pedantic(python_astar, args=(costs, START, GOAL, True), rounds=3, iterations=1)
     # Checked after the rounds (one more 10-30 s run first would double the test's time);
     # the returned cost is that of a timed round.
     assert cost == pytest.approx(reference_cost(name, True), rel=1e-9)
@@ -413,10 +437,13 @@ def test_first_call_in_fresh_process(benchmark: Any) -> None:
     assert result["cache_misses"] == {"grid_search": 0}
 
 
-
 WILLOW = (
-    Path(__file__).resolve().parents[2] / "shared" / "data" / "ros-map-server-maps"
-    / "willow_garage_2010" / "willow-2010-02-18-0.10.yaml"
+    Path(__file__).resolve().parents[2]
+    / "shared"
+    / "data"
+    / "ros-map-server-maps"
+    / "willow_garage_2010"
+    / "willow-2010-02-18-0.10.yaml"
 )
 
 
@@ -441,8 +468,10 @@ def test_office_map(benchmark: Any, what: str) -> None:
     # small room.
     start = (281, 236)
     field = distance_field(costs, start)
-    goal = tuple(int(v) for v in np.unravel_index(
-        np.argmax(np.where(np.isfinite(field), field, -1.0)), field.shape))
+    goal = tuple(
+        int(v)
+        for v in np.unravel_index(np.argmax(np.where(np.isfinite(field), field, -1.0)), field.shape)
+    )
     least = float(field[goal])  # the least cost (cost units x cells), Dijkstra from the start
     benchmark.group = "office"
     if what == "astar":
