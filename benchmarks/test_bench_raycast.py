@@ -153,18 +153,34 @@ def alternate_with_numba(n_beams: int, rounds: int = 21, calls: int = 20) -> dic
     """navkit and the bare numba Bresenham alternately: the median per-round CPU-time ratio.
 
     Each round times ``calls`` scans of each (this thread's CPU time, the order
-    reversed every other round), after the cells are checked equal.
+    reversed every other round) into grids new that round (made outside the
+    timers), after the cells are checked equal. After every round each grid
+    must hold exactly what ``calls`` untimed scans wrote into a new grid, so a
+    contestant that skips work on a repeated scan (or goes wrong under the
+    timing) fails instead of reporting a ratio.
     """
     navkit, numba = make_call("navkit", n_beams), make_call("numba", n_beams)
     assert check_result("numba", navkit(), numba()) == "same cells"
+    want: dict[str, np.ndarray] = {}
+    for who in ("navkit", "numba"):
+        call = make_call(who, n_beams)
+        for _ in range(calls):
+            grid = call()
+        want[who] = np.array(np.asarray(getattr(grid, "logodds", grid)))
     ratios = []
     for i in range(rounds):
         spent = {}
-        for who, call in (("navkit", navkit), ("numba", numba))[:: 1 if i % 2 else -1]:
+        fresh = {"navkit": make_call("navkit", n_beams), "numba": make_call("numba", n_beams)}
+        grids = {}
+        for who in ("navkit", "numba")[:: 1 if i % 2 else -1]:
+            call = fresh[who]
             c0 = time.thread_time()
             for _ in range(calls):
-                call()
+                grids[who] = call()
             spent[who] = time.thread_time() - c0
+        for who, grid in grids.items():
+            got = np.asarray(getattr(grid, "logodds", grid))
+            assert np.array_equal(got, want[who]), f"{who}'s grid differs in round {i}"
         ratios.append(spent["navkit"] / spent["numba"])
     return {"navkit_over_numba": float(np.median(ratios))}
 
