@@ -70,6 +70,8 @@ WIDER = {
     (CompositeField, "fields"): "Iterable[PotentialField]",
     (OccupancyGridMsgFields, "data"): "ArrayLike",
     (MovingObstacle, "shape"): "float | Polygon | ArrayLike",
+    # None asks for it to be inferred; the field is always a bool after (review 49).
+    (GameState, "has_ball"): "bool | None",
 }
 
 

@@ -232,7 +232,9 @@ class GameState:
     opponents_xy: FloatArray = field(default_factory=_no_players)
     own_goal_xy: FloatArray
     opponent_goal_xy: FloatArray
-    has_ball: bool | None = None
+    # As ``__post_init__`` leaves it: always a bool (None, the default, asks for it
+    # to be inferred; the declared ``__init__`` below takes it).
+    has_ball: bool = None  # type: ignore[assignment]
     opponent_with_ball: int | None = None
     possession_radius: float = 0.25
 
@@ -270,13 +272,14 @@ class GameState:
                 f"possession_radius must be in [{_MIN_RADIUS:g}, {_MAX_RADIUS:g}] m, got {radius!r}"
             )
         setter(self, "possession_radius", radius)
-        if self.has_ball is None:
+        given: object = self.has_ball  # None before inference, whatever the field says
+        if given is None:
             # Python floats: a distance beyond the float range is inf, without a warning.
             rx, ry = self.robot_xy.tolist()
             bx, by = self.ball_xy.tolist()
             has_ball = math.hypot(rx - bx, ry - by) <= radius
         else:
-            has_ball = as_bool(self.has_ball, "has_ball")
+            has_ball = as_bool(given, "has_ball")
         setter(self, "has_ball", has_ball)
         holder = self.opponent_with_ball
         n_opponents = self.opponents_xy.shape[0]

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 import warnings
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -586,6 +586,11 @@ class EncoderReading:
 
     stamp: float
     ticks: IntArray
+
+    if TYPE_CHECKING:
+        # The generated ``__init__`` takes integers of any dtype, in a list too
+        # (``__post_init__`` converts them); this tells type checkers so, at no runtime cost.
+        def __init__(self, stamp: float, ticks: ArrayLike) -> None: ...
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "stamp", finite_float(self.stamp, "stamp"))

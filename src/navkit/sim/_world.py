@@ -362,7 +362,7 @@ class MovingObstacle:
 
     @classmethod
     def constant_velocity(
-        cls, shape: float | Polygon, *, start_xy: ArrayLike, velocity_xy: ArrayLike
+        cls, shape: float | Polygon | ArrayLike, *, start_xy: ArrayLike, velocity_xy: ArrayLike
     ) -> MovingObstacle:
         """An obstacle at ``start_xy`` at t = 0 moving at ``velocity_xy`` (m/s) forever.
 
@@ -421,7 +421,7 @@ class MovingObstacle:
     @classmethod
     def scripted(
         cls,
-        shape: float | Polygon,
+        shape: float | Polygon | ArrayLike,
         path_xy: ArrayLike | None = None,
         *,
         times: ArrayLike | None = None,

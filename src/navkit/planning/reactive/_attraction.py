@@ -139,6 +139,12 @@ class AttractiveField(PotentialField):
 
     __setstate__ = _restore
 
+    if TYPE_CHECKING:
+        # The generated ``__init__`` takes the goal as array_like (``__post_init__``
+        # converts it), also in a subclass that inherits it; this tells type checkers
+        # so, at no runtime cost.
+        def __init__(self, goal_xy: ArrayLike) -> None: ...
+
     def __post_init__(self) -> None:
         object.__setattr__(self, "goal_xy", _goal(self.goal_xy))
 

@@ -1,0 +1,131 @@
+"""navkit's annotations as a strict user's type checker sees them (review 49, TYPING).
+
+``tests/typing_user_code/review49_user_code.py`` is user code written from the
+docstrings; mypy ``--strict`` must accept it, run as a user runs it (their own
+configuration, navkit found as the installed package) and with shapely typed: a
+stub of the names navkit uses stands in for ``types-shapely``, since with shapely
+untyped its ``Polygon`` is ``Any`` and ``float | Polygon`` took anything. The
+runtime tests check that what the annotations now promise is what the calls do.
+"""
+
+from __future__ import annotations
+
+import importlib.util
+from pathlib import Path
+
+import numpy as np
+import pytest
+from shapely.geometry import Polygon
+
+from navkit.behaviours import GameState
+from navkit.planning import AttractiveField
+from navkit.sim import EncoderReading, MovingObstacle
+
+USER_CODE = Path(__file__).resolve().parent / "typing_user_code" / "review49_user_code.py"
+
+# The shapely names navkit imports, typed; anything else stays Any.
+SHAPELY_STUBS = {
+    "shapely/__init__.pyi": "from typing import Any\ndef __getattr__(name: str) -> Any: ...\n",
+    "shapely/ops.pyi": "from typing import Any\ndef __getattr__(name: str) -> Any: ...\n",
+    "shapely/geometry/__init__.pyi": (
+        "from typing import Any\n"
+        "from shapely.geometry.base import BaseGeometry as BaseGeometry\n"
+        "from shapely.geometry.polygon import Polygon as Polygon\n"
+        "class LineString(BaseGeometry): ...\n"
+        "def box(minx: float, miny: float, maxx: float, maxy: float, ccw: bool = ...)"
+        " -> Polygon: ...\n"
+        "def __getattr__(name: str) -> Any: ...\n"
+    ),
+    "shapely/geometry/base.pyi": (
+        "from typing import Any\n"
+        "class BaseGeometry:\n"
+        "    def __getattr__(self, name: str) -> Any: ...\n"
+    ),
+    "shapely/geometry/polygon.pyi": (
+        "from typing import Any\n"
+        "from shapely.geometry.base import BaseGeometry\n"
+        "class Polygon(BaseGeometry):\n"
+        "    def __init__(self, shell: Any = ..., holes: Any = ...) -> None: ...\n"
+        "def orient(polygon: Polygon, sign: float = ...) -> Polygon: ...\n"
+    ),
+}
+
+
+@pytest.mark.skipif(importlib.util.find_spec("mypy") is None, reason="mypy is not installed")
+def test_user_code_type_checks_under_mypy_strict_with_shapely_typed(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    from mypy import api
+
+    stubs = tmp_path / "stubs"
+    for name, text in SHAPELY_STUBS.items():
+        (stubs / name).parent.mkdir(parents=True, exist_ok=True)
+        (stubs / name).write_text(text)
+    config = tmp_path / "mypy.ini"
+    config.write_text(f"[mypy]\nmypy_path = {stubs}\n")
+    monkeypatch.chdir(tmp_path)
+    # mypy's in-process run sets MYPY_CONFIG_FILE_DIR in os.environ: put back after.
+    monkeypatch.setenv("MYPY_CONFIG_FILE_DIR", str(tmp_path))
+    stdout, stderr, status = api.run(
+        [
+            "--strict",
+            "--config-file",
+            str(config),
+            "--cache-dir",
+            str(tmp_path / "cache"),
+            "--no-error-summary",
+            str(USER_CODE),
+        ]
+    )
+    assert status == 0, stdout + stderr
+
+
+SQUARE = [[-0.1, -0.1], [0.1, -0.1], [0.1, 0.1], [-0.1, 0.1]]
+
+
+def test_moving_obstacle_constructors_take_vertices() -> None:
+    moving = MovingObstacle.constant_velocity(SQUARE, start_xy=(0.0, 0.0), velocity_xy=(1.0, 0.0))
+    scripted = MovingObstacle.scripted(np.array(SQUARE), [(0.0, 0.0), (1.0, 0.0)], speed=0.5)
+    for ob in (moving, scripted):
+        assert isinstance(ob.shape, Polygon)
+        assert ob.shape.area == pytest.approx(0.04)
+    assert moving.position_at(2.0).tolist() == [2.0, 0.0]
+
+
+@pytest.mark.parametrize(
+    "ticks",
+    [[10, 12], (10, 12), np.array([10, 12], dtype=np.int32), np.array([10, 12], dtype=np.uint64)],
+    ids=["list", "tuple", "int32", "uint64"],
+)
+def test_encoder_reading_takes_integers_of_any_kind(ticks: object) -> None:
+    reading = EncoderReading(0.02, ticks)  # type: ignore[arg-type]  # object: any of them
+    assert reading.ticks.dtype == np.int64
+    assert reading.ticks.tolist() == [10, 12]
+
+
+@pytest.mark.parametrize("given", [None, True, False, np.True_], ids=repr)
+def test_game_state_has_ball_is_always_a_bool(given: bool | None) -> None:
+    state = GameState(
+        robot_xy=(0.0, 0.0),
+        ball_xy=(0.1, 0.0),
+        own_goal_xy=(-4.0, 0.0),
+        opponent_goal_xy=(4.0, 0.0),
+        has_ball=given,
+    )
+    assert type(state.has_ball) is bool
+    assert state.has_ball is (True if given is None else bool(given))
+
+
+class _Pull(AttractiveField):
+    def _potential(self, pts: np.ndarray) -> np.ndarray:  # type: ignore[type-arg]
+        return -pts[:, 0]
+
+    def _force(self, pts: np.ndarray) -> np.ndarray:  # type: ignore[type-arg]
+        return np.tile([1.0, 0.0], (len(pts), 1))
+
+
+def test_attractive_field_subclass_takes_the_goal_as_array_like() -> None:
+    pull = _Pull((1, 2))
+    assert pull.goal_xy.dtype == np.float64
+    assert pull.goal_xy.tolist() == [1.0, 2.0]
+    assert pull.force([0.0, 0.0]).tolist() == [[1.0, 0.0]]
