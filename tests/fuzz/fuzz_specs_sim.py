@@ -69,7 +69,10 @@ def world() -> Call:
 
 
 def noise() -> Call:
-    return call(RangeNoise, limits=(1.0, math.inf), sigma=(0.01, 0.02), bias=(0.0, 0.01))
+    return call(
+        RangeNoise, limits=(1.0, math.inf), sigma=(0.01, 0.02), bias=(0.0, 0.01),
+        absolute=(0.005, 0.0),
+    )  # fmt: skip
 
 
 def lidar() -> Call:
@@ -190,7 +193,12 @@ spec(
 spec(
     P + "RangeNoise",
     lambda c: noise(),
-    kinds={"limits": Array(allow={"posinf"}), "sigma": Array(), "bias": Array()},
+    kinds={
+        "limits": Array(allow={"posinf"}),
+        "sigma": Array(),
+        "bias": Array(),
+        "absolute": Array(),
+    },
 )
 spec(
     P + "RangeNoise.arrays",

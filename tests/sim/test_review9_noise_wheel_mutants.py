@@ -25,9 +25,15 @@ def test_equal_band_limits_are_refused() -> None:
     RangeNoise(limits=(2.0, 2.5, math.inf), sigma=(0.01, 0.02, 0.03), bias=(0.0, 0.0, 0.0))
 
 
-def _noisy(ranges: list[float], noise: RangeNoise, *, range_min: float = 0.1,
-           range_max: float = 40.0, dropout: float = 0.0,
-           uniforms: list[float] | None = None) -> np.ndarray:
+def _noisy(
+    ranges: list[float],
+    noise: RangeNoise,
+    *,
+    range_min: float = 0.1,
+    range_max: float = 40.0,
+    dropout: float = 0.0,
+    uniforms: list[float] | None = None,
+) -> np.ndarray:
     """The sensor's noise kernel on exact ``ranges`` with z = 0 (the mean reading)."""
     from navkit.sim._lidar_kernels import apply_range_noise
 
@@ -35,7 +41,8 @@ def _noisy(ranges: list[float], noise: RangeNoise, *, range_min: float = 0.1,
     limits, bias, sigma = noise.arrays()
     apply_range_noise(out, np.zeros(out.size),
                       np.ones(out.size) if uniforms is None else np.array(uniforms),
-                      limits, bias, sigma, dropout, range_min, range_max)  # fmt: skip
+                      limits, bias, sigma, np.array(noise.absolute), dropout, range_min,
+                      range_max)  # fmt: skip
     return out
 
 
@@ -50,8 +57,9 @@ def test_readings_exactly_at_range_min_and_range_max_follow_rep_117() -> None:
     # REP 117: a reading below range_min reads -inf, one at or beyond range_max
     # reads +inf; range_min itself is a valid reading.
     exact = RangeNoise(limits=(math.inf,), sigma=(0.0,), bias=(0.0,))
-    got = _noisy([0.1, 0.1 * (1 - 1e-12), 40.0, 40.0 * (1 - 1e-12)], exact,
-                 range_min=0.1, range_max=40.0)
+    got = _noisy(
+        [0.1, 0.1 * (1 - 1e-12), 40.0, 40.0 * (1 - 1e-12)], exact, range_min=0.1, range_max=40.0
+    )
     assert got[0] == 0.1
     assert got[1] == -math.inf
     assert got[2] == math.inf
@@ -77,8 +85,7 @@ def test_imu_reads_the_centripetal_term_of_a_sideways_motion() -> None:
     omni = OmniDrive.three_wheel(wheel_radius=0.05, base_radius=0.2)
     robot = Robot(drive=omni, footprint=0.25, imu=Imu())
     _, ctrl = run_constant(robot, Twist2D(0.0, 0.3, 0.5), 1.0)
-    late = [r for obs in ctrl.seen for r in obs.new
-            if isinstance(r, ImuReading) and r.stamp > 0.2]
+    late = [r for obs in ctrl.seen for r in obs.new if isinstance(r, ImuReading) and r.stamp > 0.2]
     assert late
     assert all(r.acceleration_x == pytest.approx(-0.5 * 0.3, abs=1e-9) for r in late)
     assert all(r.acceleration_y == pytest.approx(0.0, abs=1e-9) for r in late)
@@ -114,9 +121,16 @@ def test_goal_yaw_exactly_at_the_yaw_tolerance_is_reached() -> None:
     # difference from pi are exact in float64), which counts as reached.
     robot = Robot(drive=DIFF, footprint=0.2)
     for tol, reached in ((0.5, True), (0.4999, False)):
-        sim = Simulation(World(), robot, Constant(Twist2D(0.2)), start=(0.0, 0.0, 0.0),
-                         goal=(0.5, 0.0, 0.5), goal_tolerance=0.1, yaw_tolerance=tol,
-                         duration=5.0)
+        sim = Simulation(
+            World(),
+            robot,
+            Constant(Twist2D(0.2)),
+            start=(0.0, 0.0, 0.0),
+            goal=(0.5, 0.0, 0.5),
+            goal_tolerance=0.1,
+            yaw_tolerance=tol,
+            duration=5.0,
+        )
         assert sim.run().metrics.reached is reached
 
 
@@ -125,14 +139,22 @@ def test_a_robot_exactly_goal_tolerance_away_has_reached_the_goal() -> None:
     # goal_tolerance from the goal is the time to goal. The radius is taken as the
     # float distance from a recorded pose (x only: the robot drives along +x).
     robot = Robot(drive=DIFF, footprint=0.2)
-    free = Simulation(World(), robot, Constant(Twist2D(0.2)), start=(0.0, 0.0, 0.0),
-                      duration=3.0).run()
+    free = Simulation(
+        World(), robot, Constant(Twist2D(0.2)), start=(0.0, 0.0, 0.0), duration=3.0
+    ).run()
     k = int(np.searchsorted(free.poses[:, 0], 0.3))
     assert np.all(free.poses[:, 1:] == 0.0) and free.poses[k - 1, 0] < free.poses[k, 0]
     goal_x = 0.55
     radius = goal_x - float(free.poses[k, 0])
-    trace = Simulation(World(), robot, Constant(Twist2D(0.2)), start=(0.0, 0.0, 0.0),
-                       goal=(goal_x, 0.0), goal_tolerance=radius, duration=3.0).run()
+    trace = Simulation(
+        World(),
+        robot,
+        Constant(Twist2D(0.2)),
+        start=(0.0, 0.0, 0.0),
+        goal=(goal_x, 0.0),
+        goal_tolerance=radius,
+        duration=3.0,
+    ).run()
     assert trace.metrics.reached
     assert trace.metrics.time_to_goal == pytest.approx(float(free.times[k]), abs=1e-12)
 
@@ -161,9 +183,15 @@ class _FixedEstimate:
 def test_estimate_metrics_use_the_estimate() -> None:
     # The robot stays at the origin while its estimator says (1, 2): the final
     # error is measured from the true pose, the estimated one from the estimate.
-    sim = Simulation(World(), Robot(drive=DIFF, footprint=0.2), Constant(Twist2D(0.0)),
-                     start=(0.0, 0.0, 0.0), goal=(3.0, 2.0), duration=0.5,
-                     estimator=_FixedEstimate())
+    sim = Simulation(
+        World(),
+        Robot(drive=DIFF, footprint=0.2),
+        Constant(Twist2D(0.0)),
+        start=(0.0, 0.0, 0.0),
+        goal=(3.0, 2.0),
+        duration=0.5,
+        estimator=_FixedEstimate(),
+    )
     m = sim.run().metrics
     assert m.final_error == pytest.approx(math.hypot(3.0, 2.0))
     assert m.final_error_estimated == pytest.approx(2.0)

@@ -113,7 +113,9 @@ def positional_deprecated(cls: _C) -> _C:
     The dataclass's own ``__init__`` takes its fields by keyword only, which is
     what type checkers and :func:`inspect.signature` see; this wrapper still
     accepts them by position, in field order, with a :class:`DeprecationWarning`
-    pointing at the caller's line, and passes them on as keywords.
+    pointing at the caller's line, and passes them on as keywords. Fields added
+    later, marked ``field(metadata={"positional": False})``, are never taken by
+    position (they never were).
 
     Raises
     ------
@@ -142,7 +144,9 @@ def positional_deprecated(cls: _C) -> _C:
     >>> print(caught[0].message)
     Band(low) by position is deprecated and will be removed in a future release: pass low=
     """
-    names = [f.name for f in dataclasses.fields(cls) if f.init]
+    names = [
+        f.name for f in dataclasses.fields(cls) if f.init and f.metadata.get("positional", True)
+    ]
     init = cls.__dict__["__init__"]  # the dataclass's own (mypy refuses cls.__init__)
     qualname = cls.__qualname__
 

@@ -359,6 +359,7 @@ class Scanner:
     """
 
     __slots__ = (
+        "_absolute",
         "_angles",
         "_bias",
         "_lidar",
@@ -380,11 +381,13 @@ class Scanner:
         self._uniforms = np.ones(n)
         noise = lidar.noise
         self._noisy = noise is not None and any(
-            s > 0.0 or b != 0.0 for s, b in zip(noise.sigma, noise.bias, strict=True)
+            s > 0.0 or b != 0.0 or a > 0.0
+            for s, b, a in zip(noise.sigma, noise.bias, noise.absolute, strict=True)
         )
         if noise is None:
             noise = RangeNoise(limits=(math.inf,), sigma=(0.0,))
         self._limits, self._bias, self._sigma = noise.arrays()
+        self._absolute = np.array(noise.absolute, dtype=np.float64)
         self.random = self._noisy or lidar.angle_jitter > 0.0 or lidar.dropout > 0.0
         """Whether a scan draws random numbers."""
 
@@ -417,7 +420,7 @@ class Scanner:
             if lidar.dropout > 0.0:
                 uniforms = rng.random(lidar.n_beams)
         apply_range_noise(
-            ranges, normals, uniforms, self._limits, self._bias, self._sigma,
+            ranges, normals, uniforms, self._limits, self._bias, self._sigma, self._absolute,
             lidar.dropout, lidar.range_min, lidar.range_max,
         )  # fmt: skip
         return LaserScan(

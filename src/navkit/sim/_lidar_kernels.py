@@ -33,7 +33,7 @@ occupancy grid, starting from the ranges of the first pass: a world compiles
 only the passes of the kinds it has on first use.
 
 ``apply_range_noise`` turns exact ranges into REP 117 readings with relative
-Gaussian noise by distance band and dropouts.
+and absolute Gaussian noise by distance band and dropouts.
 
 Every kernel takes all its inputs as arguments and allocates nothing.
 
@@ -612,6 +612,7 @@ def apply_range_noise(
     limits: np.ndarray,
     bias: np.ndarray,
     sigma: np.ndarray,
+    absolute: np.ndarray,
     dropout: float,
     range_min: float,
     range_max: float,
@@ -619,7 +620,8 @@ def apply_range_noise(
     """Exact ranges to REP 117 readings, in place.
 
     A finite range ``r`` in band ``b`` (the first with ``r < limits[b]``)
-    becomes ``r * (1 + bias[b] + sigma[b] * normals[k])``; then a beam whose
+    becomes ``r * (1 + bias[b] + sigma[b] * normals[k]) + absolute[b] *
+    normals[k]`` (the absolute term since review 49); then a beam whose
     ``uniforms[k] < dropout`` reads NaN (a missing measurement), a reading
     below ``range_min`` reads ``-inf`` (too close) and one at or beyond
     ``range_max`` reads ``+inf`` (no return). ``inf`` (nothing in range) stays.
@@ -636,6 +638,10 @@ def apply_range_noise(
         while b < n_band - 1 and r >= limits[b]:
             b += 1
         r = r * (1.0 + bias[b] + sigma[b] * normals[k])
+        if absolute[b] != 0.0:
+            # Skipped at 0, not added: the relative model's readings stay theirs to the
+            # bit (a reading of -0.0 too).
+            r += absolute[b] * normals[k]
         if r < range_min:
             r = -_INF
         elif r >= range_max:

@@ -56,18 +56,29 @@ def _floats(
 @frozen_setattr
 @dataclass(frozen=True, slots=True, kw_only=True)
 class RangeNoise:
-    """Relative Gaussian range error of a LiDAR, by distance band.
+    """Gaussian range error of a LiDAR, by distance band: relative, plus absolute.
 
     A reading of true range ``r`` in band ``b`` (the first band with
-    ``r < limits[b]``) is ``r * (1 + bias[b] + sigma[b] * z)`` with ``z``
-    standard normal: ``sigma`` is the relative standard deviation (the
-    "percentage error" of a datasheet) and ``bias`` a relative mean error. The
-    default bands are the omnidirectional robot paper's RPLIDAR measurements:
-    2.23 % below 3 m and 5.38 % beyond (the paper gives no boundary; 3 m is
-    where the RPLIDAR A1 datasheet's accuracy class changes).
+    ``r < limits[b]``) is ``r * (1 + bias[b] + sigma[b] * z) + absolute[b] * z``
+    with ``z`` standard normal (one draw a beam): ``sigma`` is the relative
+    standard deviation (the "percentage error" of a datasheet), ``absolute``
+    an absolute one in metres (a datasheet's "±15 mm" at short range), so the
+    band's standard deviation is ``sigma[b] * r + absolute[b]``, and ``bias`` a
+    relative mean error. Datasheets give each band one of the two kinds (the
+    LDS-01: ±15 mm below 0.5 m, ±5 % beyond: ``limits=(0.5, inf),
+    sigma=(0.0, 0.05), absolute=(0.015, 0.0)``). The default bands are the
+    omnidirectional robot paper's RPLIDAR measurements: 2.23 % below 3 m and
+    5.38 % beyond (the paper gives no boundary; 3 m is where the RPLIDAR A1
+    datasheet's accuracy class changes), with no absolute term.
 
-    All three are keyword-only (by position they still work, with a
-    ``DeprecationWarning``: ``sigma`` and ``bias`` are easily swapped).
+    Sizes share the one draw ``z``: with ``absolute`` 0 (the default) every
+    reading is the relative model's to the bit, and changing only a size
+    (``sigma`` or ``absolute`` of a noise that is on) keeps every draw of a
+    seeded run.
+
+    All four are keyword-only (by position ``limits``, ``sigma`` and ``bias``
+    still work, with a ``DeprecationWarning``: ``sigma`` and ``bias`` are
+    easily swapped).
 
     Parameters
     ----------
@@ -78,25 +89,33 @@ class RangeNoise:
         Relative standard deviation of each band, in [0, 1].
     bias : sequence of float, optional
         Relative mean error of each band, in [-0.5, 0.5]; zeros by default.
+    absolute : sequence of float, optional
+        Absolute standard deviation of each band, m, in [0, 1000]; zeros by
+        default (review 49).
 
     Raises
     ------
     TypeError
-        ``limits``, ``sigma`` or ``bias`` not a sequence of numbers.
+        ``limits``, ``sigma``, ``bias`` or ``absolute`` not a sequence of numbers.
     ValueError
         Values outside their ranges, NaN, or sequences of different lengths.
 
     Examples
     --------
     >>> RangeNoise()
-    RangeNoise(limits=(3.0, inf), sigma=(0.0223, 0.0538), bias=(0.0, 0.0))
+    RangeNoise(limits=(3.0, inf), sigma=(0.0223, 0.0538), bias=(0.0, 0.0), absolute=(0.0, 0.0))
     >>> RangeNoise(limits=(1.0, float("inf")), sigma=(0.01, 0.02), bias=(0.0, 0.005)).sigma
     (0.01, 0.02)
+    >>> lds01 = RangeNoise(limits=(0.5, math.inf), sigma=(0.0, 0.05), absolute=(0.015, 0.0))
+    >>> lds01.absolute
+    (0.015, 0.0)
     """
 
     limits: tuple[float, ...] = PAPER_LIMITS
     sigma: tuple[float, ...] = PAPER_SIGMA
     bias: tuple[float, ...] = field(default=())
+    # Added in review 49: never positional, as it never was.
+    absolute: tuple[float, ...] = field(default=(), metadata={"positional": False})
 
     if TYPE_CHECKING:
         # The generated ``__init__`` takes any sequence of numbers or a 1-D array
@@ -107,19 +126,21 @@ class RangeNoise:
             limits: Sequence[float] | NDArray[np.generic] = ...,
             sigma: Sequence[float] | NDArray[np.generic] = ...,
             bias: Sequence[float] | NDArray[np.generic] = ...,
+            absolute: Sequence[float] | NDArray[np.generic] = ...,
         ) -> None: ...
 
     def __post_init__(self) -> None:
         limits = _floats(self.limits, "limits", allow_inf=True)
         sigma = _floats(self.sigma, "sigma")
         bias = _floats(self.bias, "bias") or (0.0,) * len(sigma)
+        absolute = _floats(self.absolute, "absolute") or (0.0,) * len(sigma)
         n = len(limits)
         if n == 0:
             raise ValueError("limits must hold at least one band")
-        if len(sigma) != n or len(bias) != n:
+        if len(sigma) != n or len(bias) != n or len(absolute) != n:
             raise ValueError(
-                f"limits, sigma and bias must have one entry per band, got {n}, {len(sigma)} "
-                f"and {len(bias)}"
+                f"limits, sigma, bias and absolute must have one entry per band, got {n}, "
+                f"{len(sigma)}, {len(bias)} and {len(absolute)}"
             )
         if limits[-1] != math.inf:
             raise ValueError(f"the last limit must be inf (the open last band), got {limits[-1]}")
@@ -134,9 +155,13 @@ class RangeNoise:
         for i, b in enumerate(bias):
             if not -0.5 <= b <= 0.5:
                 raise ValueError(f"bias[{i}] must lie in [-0.5, 0.5] (relative), got {b}")
+        for i, a in enumerate(absolute):
+            if not 0.0 <= a <= 1000.0:
+                raise ValueError(f"absolute[{i}] must lie in [0, 1000] m, got {a}")
         object.__setattr__(self, "limits", limits)
         object.__setattr__(self, "sigma", sigma)
         object.__setattr__(self, "bias", bias)
+        object.__setattr__(self, "absolute", absolute)
 
     def arrays(self) -> tuple[FloatArray, FloatArray, FloatArray]:
         """``(limits, bias, sigma)`` as new float64 arrays, for the noise kernel.

@@ -86,8 +86,9 @@ class Greedy(Scenario):
 
     A TurtleBot3 Burger (differential drive: 0.16 m track, 33 mm wheels,
     0.22 m/s and 2.84 rad/s at most, a round body of 0.105 m radius) with a
-    360-beam laser of 1 m range (LDS-01 noise as standard deviations: 3 %
-    below 0.5 m, the datasheet's ±15 mm at 0.5 m, and 5 % beyond; 5 Hz)
+    360-beam laser of 1 m range (the LDS-01 datasheet's accuracy as standard
+    deviations: ±15 mm below 0.5 m, ±5 % beyond; 5 Hz; before review 49,
+    without an absolute term, 3 % below 0.5 m)
     drives on its wheel odometry
     (:class:`~navkit.estimation.DiffOdometry`) across the map of the
     TurtleBot3 world (``ros-map-server-maps/turtlebot3_world``: a walled
