@@ -24,10 +24,19 @@ blocked), goal at the centre; the MovingAI maps of ``test_bench_movingai.py``
 scenario. Each map without corner cutting (navkit's default, the MovingAI
 rules) and with it (the peers' graph). Before timing, the fields are checked
 equal: same reachable cells, costs to 1e-12 relative.
+
+Each timed round gets a new read-only copy of the costs, made outside the
+timer, so a field remembered from an earlier round (a cache keyed on the
+array) cannot stand in for the search. ``test_ratio_to_csgraph`` gives the
+issue's row: navkit and csgraph alternately in one loop (the order reversed
+every other round, this thread's CPU time), every round's two fields checked
+equal to the reference outside the timers, the median per-round ratio
+``csgraph_over_navkit`` in ``extra_info``.
 """
 
 from __future__ import annotations
 
+import time
 from collections.abc import Callable
 from functools import cache
 from typing import Any
@@ -60,23 +69,33 @@ def scipy_graph(name: str, corner_cutting: bool) -> scipy.sparse.csr_matrix:
     return grid_graph(costs) if corner_cutting else _csr_graph(costs)
 
 
-def contestant_run(name: str, contestant: str, corner_cutting: bool) -> Callable[[], Any]:
-    costs, goal = field_case(name)
+def contestant_run(name: str, contestant: str, corner_cutting: bool) -> Callable[[np.ndarray], Any]:
+    """One contestant's field of map ``name``, from the costs it is given (csgraph: the
+    CSR matrix of the map's costs, built once: it ignores them)."""
+    goal = field_case(name)[1]
     if contestant == "navkit":
-        return lambda: distance_field(costs, goal, corner_cutting=corner_cutting)
+        return lambda costs: distance_field(costs, goal, corner_cutting=corner_cutting)
     if contestant == "navkit-heap":
-        return lambda: AStarPlanner(costs, corner_cutting=corner_cutting).distance_field(goal)
+        return lambda costs: AStarPlanner(costs, corner_cutting=corner_cutting).distance_field(goal)
+    costs = field_case(name)[0]
     graph = scipy_graph(name, corner_cutting)
     source = goal[0] * costs.shape[1] + goal[1]
-    return lambda: dijkstra(graph, directed=True, indices=source)
+    return lambda _costs: dijkstra(graph, directed=True, indices=source)
+
+
+def fresh_costs(name: str) -> np.ndarray:
+    """A new read-only copy of map ``name``'s costs (each timed round gets its own)."""
+    costs = field_case(name)[0].copy()
+    costs.flags.writeable = False
+    return costs
 
 
 @cache
 def reference_field(name: str, corner_cutting: bool) -> np.ndarray:
     """SciPy's field of a map, checked against navkit's one-shot field (read-only)."""
     costs = field_case(name)[0]
-    field = np.asarray(contestant_run(name, "csgraph", corner_cutting)()).reshape(costs.shape)
-    assert_same_field(contestant_run(name, "navkit", corner_cutting)(), field)
+    field = np.asarray(contestant_run(name, "csgraph", corner_cutting)(costs)).reshape(costs.shape)
+    assert_same_field(contestant_run(name, "navkit", corner_cutting)(costs), field)
     field.flags.writeable = False
     return field
 
@@ -94,8 +113,51 @@ def assert_same_field(result: np.ndarray, want: np.ndarray) -> None:
 @pytest.mark.parametrize("contestant", ["navkit", "navkit-heap", "csgraph"])
 def test_distance_field(benchmark: Any, name: str, contestant: str, corner_cutting: bool) -> None:
     run = contestant_run(name, contestant, corner_cutting)
+    want = reference_field(name, corner_cutting)
     # Before timing: every contestant's field is SciPy's, itself checked equal to navkit's.
-    assert_same_field(run(), reference_field(name, corner_cutting))
+    assert_same_field(run(fresh_costs(name)), want)
     benchmark.group = f"distance field {name} {'cut' if corner_cutting else 'no-cut'}"
-    result = benchmark.pedantic(run, rounds=ROUNDS, warmup_rounds=1)
+    result = benchmark.pedantic(
+        run, setup=lambda: ((fresh_costs(name),), {}), rounds=ROUNDS, warmup_rounds=1
+    )
+    assert_same_field(result, want)
     benchmark.extra_info["reachable"] = int(np.isfinite(result).sum())
+
+
+@pytest.mark.parametrize("corner_cutting", [False, True], ids=["no-cut", "cut"])
+@pytest.mark.parametrize("name", GRIDS)
+def test_ratio_to_csgraph(benchmark: Any, name: str, corner_cutting: bool) -> None:
+    """csgraph's field ÷ navkit's, alternately in one loop (issue 17's row: ≥ 2 on every map).
+
+    ``csgraph_over_navkit`` in ``extra_info``: the median per-round ratio of this
+    thread's CPU time (the order reversed every other round). Every round's two
+    fields are checked against the reference outside the timers, and navkit gets
+    a new copy of the costs each round. Under ``--benchmark-disable`` one round
+    (the checks).
+    """
+    want = reference_field(name, corner_cutting)
+    sides = {
+        "navkit": contestant_run(name, "navkit", corner_cutting),
+        "csgraph": contestant_run(name, "csgraph", corner_cutting),
+    }
+    n_rounds = 1 if benchmark.disabled else ROUNDS
+
+    def rounds() -> dict[str, float]:
+        ratios = []
+        for i in range(n_rounds):
+            spent, fields = {}, {}
+            for side in sides if i % 2 == 0 else list(sides)[::-1]:
+                costs = fresh_costs(name)
+                c0 = time.thread_time()
+                fields[side] = sides[side](costs)
+                spent[side] = time.thread_time() - c0
+            for side, field in fields.items():
+                try:
+                    assert_same_field(field, want)
+                except AssertionError as error:
+                    raise AssertionError(f"{side}'s field differs in round {i}") from error
+            ratios.append(spent["csgraph"] / spent["navkit"])
+        return {"csgraph_over_navkit": float(np.median(ratios))}
+
+    benchmark.group = "distance field ratio"
+    benchmark.extra_info.update(benchmark.pedantic(rounds, rounds=1, iterations=1))
