@@ -77,6 +77,24 @@ def peer(module: str) -> None:
     )
 
 
+def shared_data(relative: str) -> Path:
+    """The path of ``relative`` in the real data sets; skips the calling test, saying so,
+    when no data folder holds it.
+
+    Looked up as navkit looks for its data (:func:`navkit.sim.scenarios.find_data`):
+    ``$NAVKIT_DATA`` when set, else ``shared/data`` beside the checkout or the
+    working directory, so every benchmark finds the same maps. A ``$NAVKIT_DATA``
+    naming no folder is an error (``ValueError``), not a skip.
+    """
+    from navkit.errors import DataNotFoundError
+    from navkit.sim.scenarios import find_data
+
+    try:
+        return find_data(relative)
+    except DataNotFoundError as error:
+        pytest.skip(f"shared data not available: {error}")
+
+
 def random_map(fraction: float, seed: int) -> np.ndarray:
     rng = np.random.default_rng(seed)
     costs = np.where(rng.random((SIZE, SIZE)) < fraction, np.inf, 1.0)
@@ -437,14 +455,7 @@ def test_first_call_in_fresh_process(benchmark: Any) -> None:
     assert result["cache_misses"] == {"grid_search": 0}
 
 
-WILLOW = (
-    Path(__file__).resolve().parents[2]
-    / "shared"
-    / "data"
-    / "ros-map-server-maps"
-    / "willow_garage_2010"
-    / "willow-2010-02-18-0.10.yaml"
-)
+WILLOW = "ros-map-server-maps/willow_garage_2010/willow-2010-02-18-0.10.yaml"
 
 
 @pytest.mark.parametrize("what", ["astar", "plan_path", "map_planner"])
@@ -459,9 +470,7 @@ def test_office_map(benchmark: Any, what: str) -> None:
     :meth:`MapPlanner.plan` on a planner built once, which keeps the costmap
     (and its prepared A*) between queries: a repeated world query.
     """
-    if not WILLOW.is_file():
-        pytest.skip("shared ROS map data not available")
-    grid = OccupancyGrid.load(WILLOW)
+    grid = OccupancyGrid.load(shared_data(WILLOW))
     costs = grid.traversal_costs(robot_radius=0.3)
     # The main corridor network: unknown space keeps the robot 0.3 m away too
     # (inflate_unknown, issue 12), which seals the former start (290, 221) in a

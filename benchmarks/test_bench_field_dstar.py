@@ -37,7 +37,6 @@ construction alone (a few per cent of a 1024² plan).
 from __future__ import annotations
 
 import math
-import os
 import time
 from functools import cache
 from pathlib import Path
@@ -48,25 +47,23 @@ import pytest
 import shapely
 
 from navkit.planning import FieldDStar, astar
-from test_bench_astar import GOAL, MAPS, SIZE, START, benchmark_map
+from test_bench_astar import GOAL, MAPS, SIZE, START, benchmark_map, shared_data
 
 NODE_START = (0, 0)
 NODE_GOAL = (SIZE, SIZE)
 MAZE = "maze512-32-9"
-DATA = Path(os.environ.get("NAVKIT_DATA", Path(__file__).resolve().parents[2] / "shared" / "data"))
-MAZE_FILE = DATA / "movingai-grid-benchmarks" / "maze" / f"{MAZE}.map"
+MAZE_FILE = f"movingai-grid-benchmarks/maze/{MAZE}.map"
 
 
 @cache
 def maze() -> tuple[np.ndarray, tuple[int, int], tuple[int, int]]:
     """The maze's costs and the nodes of its longest scenario (start, goal)."""
-    if not MAZE_FILE.is_file():
-        pytest.skip(f"MovingAI map {MAZE_FILE} is not available")
-    lines = MAZE_FILE.read_text(encoding="ascii").splitlines()
+    maze_file = shared_data(MAZE_FILE)
+    lines = maze_file.read_text(encoding="ascii").splitlines()
     body = lines[lines.index("map") + 1 :]
     costs = np.array([[1.0 if ch in ".GS" else np.inf for ch in row] for row in body if row])
     costs.flags.writeable = False
-    scen = Path(f"{MAZE_FILE}.scen").read_text(encoding="ascii").splitlines()[1:]
+    scen = Path(f"{maze_file}.scen").read_text(encoding="ascii").splitlines()[1:]
     fields = max((line.split("\t") for line in scen if line.strip()), key=lambda f: float(f[8]))
     sx, sy, gx, gy = (int(v) for v in fields[4:8])
     # Node (r, c) is the top-left corner of the passable cell (r, c).

@@ -32,23 +32,20 @@ from __future__ import annotations
 import time
 from collections.abc import Callable
 from functools import cache
-from pathlib import Path
 from typing import Any, NamedTuple
 
 import numpy as np
 import pytest
 
 from navkit.planning import AStarPlanner, astar
-from test_bench_astar import peer
+from test_bench_astar import peer, shared_data
 
 try:
     import pyastar2d
 except ImportError:  # a peer from the bench extra: its tests skip (peer())
     pyastar2d = None
 
-DATA = (
-    Path(__file__).resolve().parents[2] / "shared" / "data" / "movingai-grid-benchmarks"
-)
+DATA = "movingai-grid-benchmarks"
 MAPS = [
     "dao/arena2",
     "dao/den011d",
@@ -71,9 +68,7 @@ class Problem(NamedTuple):
 @cache
 def load(name: str) -> tuple[np.ndarray, tuple[Problem, ...]]:
     """Cost grid (1 passable, inf blocked) and the benchmark's query set of map ``name``."""
-    base = DATA / name
-    if not base.with_name(base.name + ".map").is_file():
-        pytest.skip(f"MovingAI data {base}.map is not available")
+    base = shared_data(f"{DATA}/{name}.map").with_suffix("")
     lines = base.with_name(base.name + ".map").read_text(encoding="ascii").splitlines()
     body = lines[lines.index("map") + 1 :]
     grid = np.array([list(row) for row in body if row])
@@ -125,9 +120,7 @@ def test_jps_prepared(benchmark: Any, name: str) -> None:
     check_optimal(run_planner(planner, problems), problems)
     benchmark.group = name
     benchmark(run_planner, planner, problems)
-    benchmark.extra_info["expanded"] = sum(
-        planner.plan(p.start, p.goal).expanded for p in problems
-    )
+    benchmark.extra_info["expanded"] = sum(planner.plan(p.start, p.goal).expanded for p in problems)
 
 
 @pytest.mark.parametrize("name", MAPS)
@@ -145,9 +138,7 @@ def test_astar_prepared(benchmark: Any, name: str) -> None:
     check_optimal(run_planner(planner, problems), problems)
     benchmark.group = name
     benchmark.pedantic(run_planner, args=(planner, problems), rounds=3, iterations=1)
-    benchmark.extra_info["expanded"] = sum(
-        planner.plan(p.start, p.goal).expanded for p in problems
-    )
+    benchmark.extra_info["expanded"] = sum(planner.plan(p.start, p.goal).expanded for p in problems)
 
 
 @pytest.mark.parametrize("name", MAPS)

@@ -60,10 +60,10 @@ import scipy.sparse
 from scipy.sparse.csgraph import dijkstra
 
 from navkit.planning import astar, distance_field
-from test_bench_astar import GOAL, benchmark_map, octile_length, python_astar
+from test_bench_astar import GOAL, benchmark_map, octile_length, python_astar, shared_data
 
 ROOT = Path(__file__).resolve().parents[1]
-DATA = ROOT.parent / "shared" / "data" / "movingai-grid-benchmarks"
+DATA = "movingai-grid-benchmarks"
 sys.path.insert(0, str(ROOT / "tests" / "planning" / "grid"))
 
 from grid_oracle import assert_valid_path  # type: ignore[import-not-found]  # noqa: E402
@@ -92,9 +92,7 @@ Routes = Callable[[], list[Any]]
 @cache
 def movingai(name: str) -> tuple[np.ndarray, tuple[Scenario, ...]]:
     """A MovingAI map as costs (1 or inf, read-only) and its scenarios, sorted by length."""
-    base = DATA / name
-    if not base.with_name(base.name + ".map").is_file():
-        pytest.skip(f"MovingAI data {base}.map not available")
+    base = shared_data(f"{DATA}/{name}.map").with_suffix("")
     costs = read_map(base.with_name(base.name + ".map"))
     costs.flags.writeable = False
     scenarios = read_scenarios(base.with_name(base.name + ".map.scen"))
