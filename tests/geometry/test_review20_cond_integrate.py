@@ -1,6 +1,7 @@
 """Conditioning review: the SE(2) exponential near omega·dt -> 0 and across its series switch.
 
-``integrate`` uses ``sinc`` with a Taylor series below |x| = 1e-4 (``_shared/se2.py``).
+``integrate`` uses ``sinc`` with a Taylor series below |x| = 2**-10 (``_shared/se2.py``;
+1e-4 before review 49).
 Against an independent 50-digit evaluation (mpmath; skipped when absent) the
 displacement is accurate to a few units of float64 rounding relative to its length for
 heading changes from 1e-16 rad to 1 rad, and relative to the distance travelled up to
@@ -48,7 +49,8 @@ def _relative_error(
 
 
 @pytest.mark.parametrize(
-    "turn", [1e-16, 1e-12, 1e-8, 9.999999e-5, 1e-4, 1.000001e-4, 2e-4, 1e-2, 3.0]
+    "turn",
+    [1e-16, 1e-12, 1e-8, 9.999999e-5, 1e-4, 1.000001e-4, 2e-4, 9.765624e-4, 2.0**-10, 1e-2, 3.0],
 )
 @pytest.mark.parametrize("sign", [1.0, -1.0])
 def test_the_series_switch_over_is_seamless(turn: float, sign: float) -> None:
