@@ -19,7 +19,7 @@ from shapely.geometry import Polygon
 
 from navkit.behaviours import GameState
 from navkit.planning import AttractiveField
-from navkit.sim import EncoderReading, MovingObstacle
+from navkit.sim import EncoderReading, MovingObstacle, sweep
 
 USER_CODE = Path(__file__).resolve().parent / "typing_user_code" / "review49_user_code.py"
 
@@ -78,6 +78,59 @@ def test_user_code_type_checks_under_mypy_strict_with_shapely_typed(
         ]
     )
     assert status == 0, stdout + stderr
+
+
+DASK_USER_CODE = """
+from __future__ import annotations
+
+from distributed import Client
+
+from navkit.sim import sweep
+from navkit.sim.scenarios import Demo
+
+
+def on_a_cluster(client: Client) -> None:
+    sweep("demo", trials=1, executor=client)
+    Demo().run(1, executor=client)
+"""
+
+
+@pytest.mark.slow  # mypy reads dask and distributed: about 25 s cold
+@pytest.mark.skipif(
+    importlib.util.find_spec("mypy") is None or importlib.util.find_spec("distributed") is None,
+    reason="mypy or distributed is not installed",
+)
+def test_a_typed_dask_client_is_an_executor(
+    tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # distributed ships py.typed: its Client's own signatures must satisfy the
+    # executor type (a protocol of submit, gather and cancel).
+    from mypy import api
+
+    code = tmp_path / "on_a_cluster.py"
+    code.write_text(DASK_USER_CODE)
+    config = tmp_path / "mypy.ini"
+    config.write_text("[mypy]\n")
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setenv("MYPY_CONFIG_FILE_DIR", str(tmp_path))
+    stdout, stderr, status = api.run(
+        [
+            "--strict",
+            "--config-file",
+            str(config),
+            "--cache-dir",
+            str(tmp_path / "cache"),
+            "--no-error-summary",
+            str(code),
+        ]
+    )
+    assert status == 0, stdout + stderr
+
+
+def test_sweep_refuses_a_non_executor_as_typed() -> None:
+    # What the annotation refuses, the run refuses too.
+    with pytest.raises(TypeError, match="executor must be"):
+        sweep("demo", trials=1, executor=3)  # type: ignore[arg-type]
 
 
 SQUARE = [[-0.1, -0.1], [0.1, -0.1], [0.1, 0.1], [-0.1, 0.1]]

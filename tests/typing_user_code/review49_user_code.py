@@ -8,6 +8,7 @@ function calls the API as its docstrings document it.
 
 from __future__ import annotations
 
+import concurrent.futures
 from typing import assert_type
 
 import numpy as np
@@ -15,7 +16,8 @@ from numpy.typing import NDArray
 
 from navkit.behaviours import GameState
 from navkit.planning import AttractiveField
-from navkit.sim import EncoderReading, MovingObstacle
+from navkit.sim import EncoderReading, MovingObstacle, sweep
+from navkit.sim.scenarios import Demo
 
 
 def moving_obstacle_from_vertices() -> None:
@@ -61,3 +63,13 @@ class Pull(AttractiveField):
 def attractive_field_subclass_takes_a_tuple() -> None:
     # AttractiveField's goal_xy is array_like, as in every navkit subclass.
     assert_type(Pull((1.0, 2.0)).with_goal([3.0, 4.0]), Pull)
+
+
+def sweep_executors() -> None:
+    # "executor : concurrent.futures.Executor or dask.distributed.Client": was Any, so a
+    # mistake such as an int (meant as workers) went unchecked until run time.
+    with concurrent.futures.ThreadPoolExecutor(1) as pool:
+        sweep("demo", trials=1, executor=pool)
+        Demo().run(1, executor=pool)
+    sweep("demo", trials=1, executor=3)  # type: ignore[arg-type]
+    Demo().run(1, executor=2)  # type: ignore[arg-type]

@@ -10,13 +10,14 @@ beside navkit's.
 
 from __future__ import annotations
 
+import concurrent.futures
 import json
 import math
 from abc import ABC, abstractmethod
 from collections.abc import Callable, Iterable, Iterator, Mapping, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, field
-from typing import Any, ClassVar
+from typing import Any, ClassVar, Protocol
 
 import numpy as np
 
@@ -809,6 +810,28 @@ class ScenarioResult:
             )
 
 
+class DaskClient(Protocol):
+    """What ``sweep`` takes of a ``dask.distributed.Client`` (dask is not imported).
+
+    The run-time check is duck-typed (callable ``submit`` and ``gather``); ``cancel``
+    is called when a trial fails. The parameters are positional-only and the rest
+    ``Any``, so that the Client's own signatures (and any stand-in's) satisfy it.
+    """
+
+    def submit(self, func: Callable[..., Any], /, *args: Any, **kwargs: Any) -> Any:
+        """Run ``func(*args)`` on the cluster; a future."""
+
+    def gather(self, futures: Any, /) -> Any:
+        """The results of futures."""
+
+    def cancel(self, futures: Any, /) -> Any:
+        """Stop futures not yet run."""
+
+
+#: Where ``sweep`` and ``Scenario.run`` run trials, besides their own pool.
+TrialExecutor = concurrent.futures.Executor | DaskClient
+
+
 class Scenario(ABC):
     """One source paper's experiment, split into independent trials.
 
@@ -980,7 +1003,7 @@ class Scenario(ABC):
         *,
         seed: int = 0,
         workers: int | None = 1,
-        executor: Any = None,
+        executor: TrialExecutor | None = None,
         progress: Callable[[int, int], object] | None = None,
         keep_traces: bool = True,
     ) -> ScenarioResult:

@@ -9,7 +9,7 @@ import pickle
 import queue
 import time
 from collections.abc import Callable, Sequence
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
@@ -18,9 +18,11 @@ from navkit._shared.counts import counted
 from navkit._shared.validation import as_bool, bounded_int, is_ndarray, shown
 from navkit.sim._pool import process_pool
 from navkit.sim._scenario import (
+    DaskClient,
     Scenario,
     ScenarioResult,
     Trial,
+    TrialExecutor,
     TrialResult,
     trial_seed,
 )
@@ -202,7 +204,7 @@ def sweep(
     trials: int | None = None,
     seeds: int | Sequence[int] = 0,
     workers: int | None = None,
-    executor: Any = None,
+    executor: TrialExecutor | None = None,
     progress: Progress | None = None,
     keep_traces: bool = True,
 ) -> ScenarioResult:
@@ -336,15 +338,16 @@ def sweep(
     plan, base = _plan(scenario, trials, seeds)
 
     if is_executor:
+        runner = cast(concurrent.futures.Executor, executor)  # is_executor said so
         results = _submitted(
-            lambda t: executor.submit(run_one, scenario, t, keep),
+            lambda t: runner.submit(run_one, scenario, t, keep),
             _cancel_all,
             scenario,
             plan,
             progress,
         )
     elif executor is not None:
-        client = executor
+        client = cast(DaskClient, executor)  # not an Executor: duck-typed above
         results = _submitted(
             lambda t: client.submit(run_one, scenario, t, keep, pure=False),
             client.cancel,
