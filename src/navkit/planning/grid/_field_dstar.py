@@ -1838,16 +1838,19 @@ class FieldDStar:
     def _walk(
         self, walk: int | None = None, fresh: bool = False
     ) -> tuple[FloatArray, int, int, int]:
-        """Run :func:`extract_path`: (points buffer, K, expansions, status).
+        """Run :func:`extract_path`: (points buffer (n, 2), K, expansions, status).
+
+        The kernel's buffers are flat (see ``_field_path_kernels``); the points'
+        is returned as (n, 2) rows, a view.
 
         ``walk``: the node id to walk from instead of the start (see :meth:`_params`);
         ``fresh``: a search from scratch, not a repair (see :meth:`_params`). Fresh
         searches and repairs alike widen the box of the records written (see
         ``settle``), which the next fresh search blanks.
         """
-        pts = np.empty((max(_POINTS_PER_SIDE * (self._nrows + self._ncols), 1), 2))
-        cand = np.empty((CANDIDATES, 4))
-        cand2 = np.empty((CANDIDATES, 4))
+        pts = np.empty(2 * max(_POINTS_PER_SIDE * (self._nrows + self._ncols), 1))
+        cand = np.empty(4 * CANDIDATES)
+        cand2 = np.empty(4 * CANDIDATES)
         corner_g = np.empty(4)
         counter = np.zeros(1, dtype=np.int64)
         need = np.zeros(1, dtype=np.int64)
@@ -1855,9 +1858,9 @@ class FieldDStar:
             k, status = extract_path(self._state(), self._params(walk, fresh), self._lookahead,
                                      pts, cand, cand2, corner_g, counter, need)
             if status != FULL:
-                return pts, int(k), int(counter[0]), int(status)
+                return pts.reshape(-1, 2), int(k), int(counter[0]), int(status)
             # Out of room: walk again with twice the buffer (the values stay settled).
-            pts = np.empty((2 * pts.shape[0], 2))
+            pts = np.empty(2 * pts.shape[0])
 
     def _linked(self, points: FloatArray) -> tuple[FloatArray, float, float]:
         """The node path with the stored end points attached, smoothed, and its cost/length."""

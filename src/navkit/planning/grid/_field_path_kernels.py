@@ -37,6 +37,18 @@ passes for :func:`extract_path`), so counters start from a variable 0 instead
 statements (the module, then its attribute), each typed and lowered at every
 use. Together about 0.2-0.3 s of the 4.5 s first use.
 
+Buffers are flat and the helpers take their arrays and scalars one by one
+(review 49): a 2-D element access (``pts[k, 0]``) lowered to about twice the
+instructions of a flat one (``pts[2 * k]``), and a helper taking the
+``st``/``prm`` tuples had them taken apart at every call and rebuilt at its
+entry (about 100 instructions each way). The walk's kernels and the polyline
+kernel were over half of the LLVM IR numba emits for a first Field D* plan,
+though they are not its hot loop: 13,299 -> 11,874 instructions (numba
+0.68.1; ``tests/planning/test_review49_fdscold_walk_ir.py``), the machine
+code after LLVM's optimisation about the same. Only :func:`extract_path`
+takes the tuples (its Python caller builds them) and hands :func:`settle`
+them as they are.
+
 Indices stay signed (review 25): indexed with ``np.uint64`` as A* is (see
 Indices in :mod:`navkit.planning.grid._astar_kernels`), the walk's cell,
 record and candidate reads lost their wraparound code (all 12 in
@@ -118,7 +130,7 @@ def _edge_min(
     stationary point is ``u0 - k d / sqrt(c^2 - k^2)`` (k = g1 - g0, u0 the
     projection of p and d its distance to the edge line); a stationary point
     within 1e-12 of an end counts as that end. Appends the candidate (cost to
-    q, value at q, q) to ``out`` and returns the new count.
+    q, value at q, q) to ``out`` (flat, row n at ``4 n``) and returns the new count.
     """
     if g0 == INF and g1 == INF:
         return n
@@ -157,17 +169,24 @@ def _edge_min(
         qr = e0r + best_u * tr
         qc = e0c + best_u * tc
         gq = g0 + (g1 - g0) * best_u
-    out[n, 0] = c * hypot(pr - qr, pc - qc)
-    out[n, 1] = gq
-    out[n, 2] = qr
-    out[n, 3] = qc
+    row = 4 * n
+    out[row] = c * hypot(pr - qr, pc - qc)
+    out[row + 1] = gq
+    out[row + 2] = qr
+    out[row + 3] = qc
     return n + 1
 
 
 @_helper
 def _settled_value(
-    st: tuple[np.ndarray, ...],
-    prm: tuple[Any, ...],
+    vals: np.ndarray,
+    keys: np.ndarray,
+    size: np.ndarray,
+    ncols: int,
+    sr: int,
+    sc: int,
+    km: float,
+    hscale: float,
     i: int,
     j: int,
     need: np.ndarray,
@@ -179,15 +198,10 @@ def _settled_value(
     :func:`extract_path`, the one caller of :func:`settle`, to settle the node
     and repeat the step (so the search loop is compiled into one kernel only).
     """
-    vals = st[1]
-    keys = st[3]
-    size = st[5]
-    ncols = prm[2]
     s = i * ncols + j
     gs = vals[RECORD * s]
     if gs == vals[RECORD * s + RHS] and (
-        size[0] == 0
-        or key_reached(keys[0], keys[1], gs, heuristic(prm[3], prm[4], i, j, prm[8]), prm[6])
+        size[0] == 0 or key_reached(keys[0], keys[1], gs, heuristic(sr, sc, i, j, hscale), km)
     ):
         return float(gs)
     need[0] = s
@@ -214,8 +228,17 @@ def _line_cost(pad: np.ndarray, width: int, pr: float, pc: float, i: int, j: int
 
 @_helper
 def _candidates(
-    st: tuple[np.ndarray, ...],
-    prm: tuple[Any, ...],
+    pad: np.ndarray,
+    width: int,
+    nrows: int,
+    ncols: int,
+    vals: np.ndarray,
+    keys: np.ndarray,
+    size: np.ndarray,
+    sr: int,
+    sc: int,
+    km: float,
+    hscale: float,
     pr: float,
     pc: float,
     out: np.ndarray,
@@ -224,16 +247,15 @@ def _candidates(
 ) -> int:
     """Next-point candidates of the interpolated path from point p on the grid lines.
 
-    Rows of ``out``: (cost from p to q, interpolated cost-to-goal at q, q_row,
-    q_col). They are: the optimal crossing point of every far edge of every
-    passable cell touching p, the ends of the grid edges through p (paying the
-    cheaper cell beside the edge) and, from a node, the point where option D of
-    :func:`corner_cost` leaves the cheap edge. ``corner_g`` (4,) is scratch.
+    Rows of ``out`` (flat: row n at ``4 n`` .. ``4 n + 3``): (cost from p to
+    q, interpolated cost-to-goal at q, q_row, q_col). They are: the optimal
+    crossing point of every far edge of every passable cell touching p, the
+    ends of the grid edges through p (paying the cheaper cell beside the edge)
+    and, from a node, the point where option D of :func:`corner_cost` leaves
+    the cheap edge. ``corner_g`` (4,) is scratch.
     Returns the number of rows, or -1 when a node value it needs is not
     settled yet (its id in ``need[0]``).
     """
-    pad = st[0]
-    width, nrows, ncols = prm[0], prm[1], prm[2]
     # A variable, not the literal 0 (a literal argument compiles _edge_min twice).
     n: int = width - width
     fr = floor(pr)
@@ -249,7 +271,9 @@ def _candidates(
                 continue
             # Values of the corners (r, c), (r, c+1), (r+1, c), (r+1, c+1).
             for q in range(4):
-                gq = _settled_value(st, prm, r + (q >> 1), c + (q & 1), need)
+                gq = _settled_value(
+                    vals, keys, size, ncols, sr, sc, km, hscale, r + (q >> 1), c + (q & 1), need
+                )
                 if gq != gq:
                     return -1
                 corner_g[q] = gq
@@ -292,15 +316,16 @@ def _candidates(
         edge = _line_cost(pad, width, pr, pc, i, j)
         if edge == INF:
             continue
-        gq = _settled_value(st, prm, i, j, need)
+        gq = _settled_value(vals, keys, size, ncols, sr, sc, km, hscale, i, j, need)
         if gq != gq:
             return -1
         if gq == INF:
             continue
-        out[n, 0] = edge * hypot(pr - i, pc - j)
-        out[n, 1] = gq
-        out[n, 2] = i
-        out[n, 3] = j
+        row = 4 * n
+        out[row] = edge * hypot(pr - i, pc - j)
+        out[row + 1] = gq
+        out[row + 2] = i
+        out[row + 3] = j
         n += 1
     if on_r and on_c:
         i = fr
@@ -314,24 +339,35 @@ def _candidates(
             w = b / sqrt(c * c - b * b)
             if w >= 1.0:
                 continue
-            g2 = _settled_value(st, prm, i + PAIR_DR[k], j + PAIR_DC[k], need)
+            g2 = _settled_value(
+                vals, keys, size, ncols, sr, sc, km, hscale, i + PAIR_DR[k], j + PAIR_DC[k], need
+            )
             if g2 != g2:
                 return -1
             if g2 == INF:
                 continue
             x = 1.0 - w
-            out[n, 0] = b * x
-            out[n, 1] = c * sqrt(1.0 + w * w) + g2
-            out[n, 2] = i + x * PAIR_AR[k]
-            out[n, 3] = j + x * PAIR_AC[k]
+            row = 4 * n
+            out[row] = b * x
+            out[row + 1] = c * sqrt(1.0 + w * w) + g2
+            out[row + 2] = i + x * PAIR_AR[k]
+            out[row + 3] = j + x * PAIR_AC[k]
             n += 1
     return n
 
 
 @_helper
 def _descend(
-    st: tuple[np.ndarray, ...],
-    prm: tuple[Any, ...],
+    pad: np.ndarray,
+    width: int,
+    ncols: int,
+    vals: np.ndarray,
+    keys: np.ndarray,
+    size: np.ndarray,
+    sr: int,
+    sc: int,
+    km: float,
+    hscale: float,
     pr: float,
     pc: float,
     cur: float,
@@ -345,8 +381,6 @@ def _descend(
     corner row, corner col), total = inf when no corner qualifies, NaN when a
     node value it needs is not settled yet (its id in ``need[0]``).
     """
-    pad = st[0]
-    width = prm[0]
     best = INF
     best_g = INF
     qr = 0.0
@@ -365,7 +399,7 @@ def _descend(
                 j = c + (q & 1)
                 if i == pr and j == pc:
                     continue
-                gn = _settled_value(st, prm, i, j, need)
+                gn = _settled_value(vals, keys, size, ncols, sr, sc, km, hscale, i, j, need)
                 if gn != gn:
                     return NAN, NAN, 0.0, 0.0
                 if not gn < cur:
@@ -425,20 +459,21 @@ def extract_path(
     has no cycle and it ends at the goal. 8-connected mode takes only
     :func:`_descend` steps: an optimal D* Lite path.
 
-    Buffers (all written): ``pts`` (K, 2) the path points, ``cand`` and
-    ``cand2`` (:data:`CANDIDATES`, 4) candidate rows, ``corner_g`` (4,)
-    scratch, ``counter`` (1,) int64 to which the expansions are added,
+    Buffers (all written, flat, see the module notes): ``pts`` (2 K,) the
+    path points (point k at ``2 k``, ``2 k + 1``), ``cand`` and ``cand2``
+    (4 :data:`CANDIDATES`,) candidate rows (row n at ``4 n`` .. ``4 n + 3``),
+    ``corner_g`` (4,) scratch, ``counter`` (1,) int64 to which the expansions are added,
     ``need`` (1,) int64 scratch.
 
     The walk stops with status ``ABORTED`` as soon as the state's work limit
     is reached (:func:`settle`), and with ``FULL`` when ``pts`` has no room
     left (call again with a larger buffer).
 
-    Returns (K, status): the first K rows of ``pts`` are the path.
+    Returns (K, status): the first K points of ``pts`` are the path.
     """
-    vals = st[1]
-    work = st[6]
-    ncols, sr, sc, interp, start, goal_cell = prm[2], prm[3], prm[4], prm[7], prm[9], prm[10]
+    pad, vals, keys, size, work = st[0], st[1], st[3], st[5], st[6]
+    width, nrows, ncols, sr, sc = prm[0], prm[1], prm[2], prm[3], prm[4]
+    km, interp, hscale, start, goal_cell = prm[6], prm[7], prm[8], prm[9], prm[10]
     # The walk ends in the box [gi, gi_hi] x [gj, gj_hi]: the goal node, or the
     # boundary of the goal cell (points of the walk lie on grid lines).
     goal = prm[5] if goal_cell < 0 else goal_cell
@@ -451,7 +486,7 @@ def extract_path(
     if start < 0:
         corner = 0
         start = sr * ncols + sc
-    capacity = pts.shape[0]
+    capacity = pts.shape[0] >> 1
     pr = 0.0
     pc = 0.0
     cur = INF
@@ -463,7 +498,7 @@ def extract_path(
     zero = capacity - capacity
     k = zero
     steps = zero
-    max_steps = 4 * prm[1] * ncols + 16
+    max_steps = 4 * nrows * ncols + 16
     need[0] = start
     while True:
         if need[0] >= 0:
@@ -490,8 +525,8 @@ def extract_path(
                 node_v = cur
                 pr = float(start // ncols)
                 pc = float(start - (start // ncols) * ncols)
-                pts[0, 0] = pr
-                pts[0, 1] = pc
+                pts[0] = pr
+                pts[1] = pc
                 k = 1
         if gi <= pr <= gi_hi and gj <= pc <= gj_hi:
             return k, OK
@@ -515,13 +550,14 @@ def extract_path(
                     v = 0.0
                     expand = True
                 else:
-                    cr = cand[a, 2]
-                    cc = cand[a, 3]
-                    v = cand[a, 1]
+                    cr = cand[4 * a + 2]
+                    cc = cand[4 * a + 3]
+                    v = cand[4 * a + 1]
                     expand = lookahead and (cr != floor(cr) or cc != floor(cc))
                 if expand:
                     buf = cand if a < 0 else cand2
-                    m = _candidates(st, prm, cr, cc, buf, corner_g, need)
+                    m = _candidates(pad, width, nrows, ncols, vals, keys, size, sr, sc, km, hscale,
+                                    cr, cc, buf, corner_g, need)  # fmt: skip
                     if m < 0:
                         break
                     if a < 0:
@@ -530,11 +566,11 @@ def extract_path(
                         continue
                     la = INF
                     for b2 in range(m):
-                        t = cand2[b2, 0] + cand2[b2, 1]
+                        t = cand2[4 * b2] + cand2[4 * b2 + 1]
                         if t < la:
                             la = t
                     v = la
-                t = cand[a, 0] + v
+                t = cand[4 * a] + v
                 if t < best and v < cur:
                     best = t
                     best_v = v
@@ -551,15 +587,16 @@ def extract_path(
                 if attempt == 1 and pr == floor(pr) and pc == floor(pc):
                     break
                 below = cur if attempt == 0 else node_v
-                best, best_v, qr, qc = _descend(st, prm, pr, pc, below, need)
+                best, best_v, qr, qc = _descend(pad, width, ncols, vals, keys, size, sr, sc, km,
+                                                hscale, pr, pc, below, need)  # fmt: skip
                 if best != INF:  # also NaN: a value to settle first
                     break
             if need[0] >= 0:
                 continue
             if best == INF:
                 return k, STUCK
-        pts[k, 0] = qr
-        pts[k, 1] = qc
+        pts[2 * k] = qr
+        pts[2 * k + 1] = qc
         k += 1
         steps += 1
         pr = qr
