@@ -15,9 +15,11 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from numpy.typing import NDArray
 from shapely.geometry import Polygon
 
 from navkit.behaviours import GameState
+from navkit.mapping.io import MovingAIScenarios
 from navkit.planning import AttractiveField
 from navkit.sim import EncoderReading, MovingObstacle, sweep
 
@@ -170,10 +172,10 @@ def test_game_state_has_ball_is_always_a_bool(given: bool | None) -> None:
 
 
 class _Pull(AttractiveField):
-    def _potential(self, pts: np.ndarray) -> np.ndarray:  # type: ignore[type-arg]
+    def _potential(self, pts: NDArray[np.float64]) -> NDArray[np.float64]:
         return -pts[:, 0]
 
-    def _force(self, pts: np.ndarray) -> np.ndarray:  # type: ignore[type-arg]
+    def _force(self, pts: NDArray[np.float64]) -> NDArray[np.float64]:
         return np.tile([1.0, 0.0], (len(pts), 1))
 
 
@@ -182,3 +184,15 @@ def test_attractive_field_subclass_takes_the_goal_as_array_like() -> None:
     assert pull.goal_xy.dtype == np.float64
     assert pull.goal_xy.tolist() == [1.0, 2.0]
     assert pull.force([0.0, 0.0]).tolist() == [[1.0, 0.0]]
+
+
+@pytest.mark.parametrize(
+    "names",
+    [["arena.map"], ("arena.map",), np.array(["arena.map"])],
+    ids=["list", "tuple", "array"],
+)
+def test_movingai_scenarios_take_any_iterable_of_names(names: object) -> None:
+    problems = MovingAIScenarios([0], names, [[49, 49]], [[1, 2]], [[3, 2]], [2.0])  # type: ignore[arg-type]  # object: any of them
+    assert problems.map_names == ("arena.map",)
+    with pytest.raises(TypeError, match="map_names must hold str"):
+        MovingAIScenarios([0], [49], [[49, 49]], [[1, 2]], [[3, 2]], [2.0])  # type: ignore[list-item]

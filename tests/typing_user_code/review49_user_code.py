@@ -15,6 +15,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from navkit.behaviours import GameState
+from navkit.mapping.io import MovingAIScenarios
 from navkit.planning import AttractiveField
 from navkit.sim import EncoderReading, MovingObstacle, sweep
 from navkit.sim.scenarios import Demo
@@ -73,3 +74,11 @@ def sweep_executors() -> None:
         Demo().run(1, executor=pool)
     sweep("demo", trials=1, executor=3)  # type: ignore[arg-type]
     Demo().run(1, executor=2)  # type: ignore[arg-type]
+
+
+def movingai_problems_named_by_strings() -> None:
+    # "map_names : sequence of str": was Any, so numbers where names belong went unchecked.
+    cells = [[1, 2]], [[3, 2]]
+    MovingAIScenarios([0], ["arena.map"], [[49, 49]], *cells, [2.0])
+    MovingAIScenarios([0], ("arena.map",), [[49, 49]], *cells, [2.0])
+    MovingAIScenarios([0], [49], [[49, 49]], *cells, [2.0])  # type: ignore[list-item]

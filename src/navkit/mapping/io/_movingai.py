@@ -14,6 +14,7 @@ import math
 import numbers
 import os
 import re
+from collections.abc import Iterable
 from dataclasses import dataclass
 from itertools import chain
 from pathlib import Path
@@ -304,7 +305,7 @@ class MovingAIScenarios:
         def __init__(
             self,
             buckets: ArrayLike,
-            map_names: Any,
+            map_names: Iterable[str],
             map_shapes: ArrayLike,
             start_cells: ArrayLike,
             goal_cells: ArrayLike,
