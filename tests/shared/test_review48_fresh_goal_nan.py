@@ -1,7 +1,8 @@
 """The shared goal test refuses a NaN offset in either coordinate (review 48, FRESH).
 
-:func:`navkit._shared.goal.at_goal` (the controllers' test, compiled into the
-simulator's run kernels) states that a NaN offset is not at the goal. It
+:func:`navkit._shared.goal.at_goal` (the controllers' test, whose ``hypot``
+verdict is compiled into the simulator's run kernels, review 49) states that a
+NaN offset is not at the goal. It
 took the offset's longer and shorter sides with ``max`` and ``min``, which
 drop a NaN second argument (Python's and numba's alike): a NaN ``dy`` beside
 a short ``dx`` left a finite offset of ``(dx, dx)`` and was "at the goal".
@@ -14,12 +15,18 @@ import math
 import numba
 import pytest
 
-from navkit._shared.goal import at_goal, at_goal_kernel
+from navkit._shared.goal import INSIDE, OUTSIDE, UNDECIDED, at_goal, goal_verdict_kernel
 
 
 @numba.njit(cache=False)
+def _verdict(px: float, py: float, gx: float, gy: float, tolerance: float) -> int:
+    return goal_verdict_kernel(px, py, gx, gy, tolerance)  # type: ignore[no-any-return]
+
+
 def _compiled(px: float, py: float, gx: float, gy: float, tolerance: float) -> bool:
-    return at_goal_kernel(px, py, gx, gy, tolerance)  # type: ignore[no-any-return]
+    """The run kernels' decision: their compiled verdict, else at_goal (review 49)."""
+    verdict = _verdict(px, py, gx, gy, tolerance)
+    return verdict == INSIDE if verdict != UNDECIDED else at_goal(px, py, gx, gy, tolerance)
 
 
 NAN = math.nan
@@ -44,7 +51,8 @@ def test_a_nan_offset_is_not_at_the_goal(
 ) -> None:
     args = (*robot, *goal, tolerance)
     assert at_goal(*args) is False
-    assert _compiled(*args) is False
+    # Decided in the kernel: a NaN offset never stops a run for Python to decide.
+    assert _verdict(*args) == OUTSIDE
 
 
 def test_the_finite_neighbours_are_decided_as_before() -> None:

@@ -3,22 +3,28 @@
 ``PotentialFieldController`` (its ``done``), ``FollowTheCarrot``,
 ``OnOffTracker`` (its waypoints too) and ``RegulatedPurePursuit`` decide
 "within ``goal_tolerance``" with :func:`at_goal`, and so does
-:class:`~navkit.sim.Simulation` for "goal reached": its run kernels call
-:data:`at_goal_kernel`, the same function compiled by numba. Review 47 made the
+:class:`~navkit.sim.Simulation` for "goal reached". Review 47 made the
 controllers' test exact; the run kernel still compared numba's ``math.hypot``
 (libm's) with the tolerance, which rounds an offset a hair beyond the
 tolerance onto it: of offsets computed onto the tolerance's circle
 (``t cos a, t sin a``), 42 % were misjudged so (review 48), and a robot standing
 on one was "goal reached" for the run while its controller was not done.
-:func:`at_goal` is plain Python that numba compiles as it is: Rump's "unit in the
-first place" stands in for ``math.ulp``, which numba lacks, and its exact
-arithmetic is written out, as a kernel can call no Python function. Compiled
-once and inlined by LLVM into the run kernels: their first use (a disc robot
-in a world of segments, cold cache) takes 1.32 s of CPU, 1.14 s with the hypot
-(medians of three alternating runs). numba's cache keys those kernels on
-``navkit/sim/_segment_kernels.py`` alone: a change of :func:`at_goal` must
-come with a change of that file, or a cache made before it keeps running
-the old test there (the controllers, in Python, would not).
+
+:func:`at_goal` asks :func:`goal_verdict` first: ``math.hypot`` decides every
+offset more than 2**-48 (relative) from the tolerance's circle. Only on that
+band is the exact arithmetic needed (Dekker's products, Shewchuk's
+Grow-Expansion, Rump's "unit in the first place" for ``math.ulp``). The run
+kernels compile :func:`goal_verdict` alone (:data:`goal_verdict_kernel`) and
+stop on an undecided step, where Python decides with :func:`at_goal` and
+resumes them (:func:`navkit.sim._segment_kernels.decide_goal`). Compiled into
+them, the exact arithmetic (and the scaling and resolution it needs) took a
+sixth to a fifth of a second of ``Simulation.run``'s first use, for a band no
+robot's path crosses but by design (issue 17: 3.20 s of CPU with a cold cache,
+over its 3 s; 3.00 s without it, medians of six alternating runs on a busy
+machine, review 49). numba's cache
+keys the run kernels on ``navkit/sim/_segment_kernels.py`` alone: a change of
+:func:`goal_verdict` must come with a change of that file, or a cache made
+before it keeps running the old test there.
 """
 
 from __future__ import annotations
@@ -27,7 +33,8 @@ import math
 
 from navkit._shared.jit import njit_force_inline
 
-__all__ = ["at_goal", "at_goal_kernel", "resolution"]
+__all__ = ["INSIDE", "OUTSIDE", "UNDECIDED", "at_goal", "goal_verdict", "goal_verdict_kernel",
+           "resolution"]  # fmt: skip
 
 #: 2**27 + 1: Veltkamp's constant, splitting a float into two halves of 26 bits
 #: whose products are exact (Dekker's exact product).
@@ -49,6 +56,17 @@ _HIGH = 2.0**200
 _UP = 2.0**400
 #: The least positive float, ``math.ulp(0.0)``.
 _TINIEST = 5e-324
+#: :func:`goal_verdict`'s bounds of the tolerance's band, relative to the tolerance.
+_SHRINK = 1.0 - _HYPOT_MARGIN
+_WIDEN = 1.0 + _HYPOT_MARGIN
+#: Above it, ``hypot`` is a normal float, within a few ulps (relative) of the true
+#: length, and so are the band's bounds computed from a tolerance.
+_FLOOR = 2.0**-960
+
+#: :func:`goal_verdict`'s answers: not at the goal, at it, and to be decided exactly.
+OUTSIDE = 0
+INSIDE = 1
+UNDECIDED = 2
 
 
 def resolution(x: float, y: float) -> float:
@@ -80,11 +98,11 @@ def at_goal(px: float, py: float, gx: float, gy: float, tolerance: float) -> boo
     > 0) long, or at most the goal's :func:`resolution` long if that is larger.
     Exactly: ``dx² + dy² <= tolerance²`` in real arithmetic, so that the answer
     depends on no ``hypot`` implementation. ``math.hypot`` decides it where it
-    is more than 2**-48 (relative) from the tolerance; nearer, the sign of
-    ``dx² + dy² - tolerance²`` is found without rounding (Dekker's exact
-    products, summed into a nonoverlapping expansion by Shewchuk's
-    Grow-Expansion, whose largest nonzero component has the sum's sign). A NaN
-    offset is not at the goal.
+    is more than 2**-48 (relative) from the tolerance (:func:`goal_verdict`);
+    nearer, the sign of ``dx² + dy² - tolerance²`` is found without rounding
+    (Dekker's exact products, summed into a nonoverlapping expansion by
+    Shewchuk's Grow-Expansion, whose largest nonzero component has the sum's
+    sign). A NaN offset is not at the goal.
 
     Parameters
     ----------
@@ -113,6 +131,76 @@ def at_goal(px: float, py: float, gx: float, gy: float, tolerance: float) -> boo
     >>> at_goal(0.0, 0.0, 0.3, 0.4, 0.5), math.hypot(0.3, 0.4)
     (False, 0.5)
     """
+    verdict = goal_verdict(px, py, gx, gy, tolerance)
+    if verdict != UNDECIDED:
+        return verdict == INSIDE
+    return _on_the_band(px, py, gx, gy, tolerance)
+
+
+def goal_verdict(px: float, py: float, gx: float, gy: float, tolerance: float) -> int:
+    """:func:`at_goal`'s answer where ``math.hypot`` decides it, else ``UNDECIDED``.
+
+    ``INSIDE`` where the offset's ``hypot`` is below ``(1 - 2**-48) tolerance``,
+    ``OUTSIDE`` where it is above ``1 + 2**-48`` times the tolerance and the
+    goal's :func:`resolution` (or NaN); ``UNDECIDED`` on the band between (and
+    where tolerance, resolution and ``hypot`` are all below 2**-960 m, too small
+    for these bounds). A few float operations, compiled into the simulator's
+    run kernels (:data:`goal_verdict_kernel`), which leave an undecided step to
+    :func:`at_goal` in Python.
+
+    Why the answers are :func:`at_goal`'s: ``hypot`` (CPython's and libm's) is
+    within an ulp of the offset's true length ``r``, 2**-52 relative where it is
+    above 2**-1022 m and 2**-1074 m below; the bounds, computed in floats, are
+    within 2**-53 (relative) of their real values and are normal floats. So
+    ``INSIDE`` has ``r <= hypot (1 + 2**-50) < tolerance`` (below 2**-1022 m:
+    ``r < hypot + 2**-1074 < tolerance``, the tolerance being above 2**-960 m),
+    and ``OUTSIDE`` has ``r >= hypot (1 - 2**-50) > max(tolerance, 2**-52 g +
+    2**-960)``, which is at least the radius :func:`at_goal` compares with (the
+    goal's resolution, ``math.ulp(g)`` of its finer coordinate ``g``, is at most
+    ``2**-52 g`` or the least float).
+
+    Parameters
+    ----------
+    px, py : float
+        The robot's position, m.
+    gx, gy : float
+        The goal's position, m.
+    tolerance : float
+        The goal tolerance, m, > 0.
+
+    Returns
+    -------
+    int
+        ``INSIDE`` (1), ``OUTSIDE`` (0) or ``UNDECIDED`` (2).
+
+    Examples
+    --------
+    >>> goal_verdict(0.0, 0.0, 0.3, 0.39, 0.5), goal_verdict(0.0, 0.0, 0.3, 0.41, 0.5)
+    (1, 0)
+
+    Offsets on the tolerance's circle are left to :func:`at_goal`:
+
+    >>> goal_verdict(0.0, 0.0, 0.3, 0.4, 0.5), at_goal(0.0, 0.0, 0.3, 0.4, 0.5)
+    (2, False)
+    """
+    d = math.hypot(gx - px, gy - py)
+    # The radius at_goal compares with is at most this. (Comparisons, not min and
+    # max: each of those is a function for numba to compile, and slower in Python.)
+    g = abs(gx)
+    if abs(gy) < g:
+        g = abs(gy)
+    radius = _EPSILON * g + _FLOOR
+    if radius < tolerance:
+        radius = tolerance
+    if not d <= radius * _WIDEN:
+        return OUTSIDE  # (a NaN offset too)
+    if d < tolerance * _SHRINK and tolerance > _FLOOR:
+        return INSIDE
+    return UNDECIDED
+
+
+def _on_the_band(px: float, py: float, gx: float, gy: float, tolerance: float) -> bool:
+    """:func:`at_goal` in exact arithmetic, for the offsets :func:`goal_verdict` leaves."""
     dx = gx - px
     dy = gy - py
     if math.isnan(dx) or math.isnan(dy):
@@ -215,5 +303,5 @@ def at_goal(px: float, py: float, gx: float, gy: float, tolerance: float) -> boo
     return True  # on the circle itself
 
 
-#: :func:`at_goal` compiled for the simulator's run kernels (inlined by LLVM).
-at_goal_kernel = njit_force_inline(at_goal)
+#: :func:`goal_verdict` compiled for the simulator's run kernels (inlined by LLVM).
+goal_verdict_kernel = njit_force_inline(goal_verdict)

@@ -34,8 +34,14 @@ holds the next ``k``. The schedules keep comparing ``i * dt``, as
 earlier releases; only the times reported changed to ``i / rate``.
 
 Status codes returned with the step reached: ``REACHED`` (``i_end``),
-``COLLIDED`` (a collision ended the run at that step) and ``GOAL`` (the goal
-was reached and ends the run).
+``COLLIDED`` (a collision ended the run at that step), ``GOAL`` (the goal
+was reached and ends the run) and ``GOAL_UNDECIDED``: the robot stopped on
+the goal tolerance's band, where ``math.hypot`` cannot tell whether it is at
+the goal (:func:`navkit._shared.goal.goal_verdict`, all the kernels compile of
+the goal test); the caller decides with :func:`decide_goal` (the exact test,
+in Python) and resumes the kernel at that step, whose samples and trace row
+are not yet taken (review 49: compiled into the kernels, the exact test took
+a sixth of a second of ``Simulation.run``'s first use).
 
 A run kernel first bounds the steps' spans over the segment (each wheel's
 speed stays between its present one and its command, :func:`_long_steps`) and
@@ -52,6 +58,12 @@ circles only (no occupancy grid, no moving obstacles): it checks the
 clearance with ``edge_clearance`` and places no obstacles, so that such a
 world compiles neither the grid's nor the moving obstacles' code on first use.
 The two share the work after the clearance check (``_settle``).
+
+The arc is :mod:`navkit._shared.se2`'s and the goal test
+:mod:`navkit._shared.goal`'s, inlined here: numba's cache keys these kernels on
+this file alone, so a change of those helpers comes with a note here (review 49:
+``sinc``'s series, now in Horner form below 2**-10, was below 1e-4; the run
+kernels compile ``goal_verdict``, no longer the exact ``at_goal``).
 """
 
 from __future__ import annotations
@@ -60,21 +72,22 @@ import math
 
 import numpy as np
 
-from navkit._shared.goal import at_goal_kernel
+from navkit._shared.goal import INSIDE, OUTSIDE, UNDECIDED, at_goal, goal_verdict_kernel
 from navkit._shared.jit import njit_force_inline, njit_helper, njit_no_refcount
 from navkit._shared.se2 import wrap_scalar
 from navkit.sim._clearance_kernels import TOUCH, edge_clearance, footprint_clearance
 from navkit.sim._moving_kernels import place_moving, point_in_moving
 from navkit.sim._wheel_kernels import arc_pose, wheel_step
 
-__all__ = ["COLLIDED", "GOAL", "REACHED", "STAT_COLLISIONS", "STAT_IN_CONTACT",
-           "STAT_MIN_CLEARANCE", "STAT_TIME_TO_GOAL", "due_step", "run_edge_segment",
-           "run_segment"]  # fmt: skip
+__all__ = ["COLLIDED", "GOAL", "GOAL_UNDECIDED", "REACHED", "STAT_COLLISIONS",
+           "STAT_IN_CONTACT", "STAT_MIN_CLEARANCE", "STAT_TIME_TO_GOAL", "decide_goal",
+           "due_step", "run_edge_segment", "run_segment"]  # fmt: skip
 
 
 REACHED = 0
 COLLIDED = 1
 GOAL = 2
+GOAL_UNDECIDED = 3
 
 #: Indices of the run statistics array.
 STAT_MIN_CLEARANCE = 0
@@ -111,6 +124,42 @@ def due_step(k: int, rate: float, dt: float) -> int:
     while i * dt + _EPS < when:
         i += 1
     return i
+
+
+def decide_goal(
+    i: int,
+    rate: float,
+    state: np.ndarray,
+    goal: np.ndarray,
+    stop_at_goal: bool,
+    stats: np.ndarray,
+    times: np.ndarray,
+    poses: np.ndarray,
+    commands: np.ndarray,
+    cmd: np.ndarray,
+) -> bool:
+    """Decide the goal at step ``i``, where a run kernel returned ``GOAL_UNDECIDED``.
+
+    The position by :func:`~navkit._shared.goal.at_goal` (the heading passed
+    in the kernel). If it is at the goal, notes the step's time
+    (``stats[STAT_TIME_TO_GOAL]``) and, with ``stop_at_goal``, writes the
+    step's trace row as the kernel does and returns True: the run ends there
+    (``GOAL``). Otherwise returns False: the caller runs the kernel on from
+    step ``i`` with ``sample_first`` (the step's samples and row, then the
+    rest of the segment, with the slip draws from step ``i``'s on).
+    Plain Python, called for steps on the tolerance's band only.
+    """
+    if not at_goal(float(state[0]), float(state[1]), float(goal[0]), float(goal[1]),
+                   float(goal[2])):  # fmt: skip
+        return False
+    t = i / rate
+    stats[STAT_TIME_TO_GOAL] = t
+    if not stop_at_goal:
+        return False
+    times[i] = t
+    poses[i, :3] = state[:3]
+    commands[i, :3] = cmd[:3]
+    return True
 
 
 @njit_helper
@@ -342,7 +391,9 @@ def _settle(
 
     Stops the robot on contact (back at ``prev`` unless the run ends), records
     the goal and samples the sensors; returns ``REACHED`` to go on, otherwise
-    the status that ends the segment (the trace row is written either way).
+    the status that ends the segment (the trace row is written either way but
+    for ``GOAL_UNDECIDED``, which leaves the step's samples and row to the
+    kernel's resumption, :func:`decide_goal`).
     """
     if clearance <= TOUCH:
         clearance = 0.0  # touching: the few 1e-17 m left are rounding
@@ -384,12 +435,18 @@ def _settle(
     # measured the same.) The position by the controllers' own exact test (review 48:
     # math.hypot counted offsets on the radius's last ulp as reached where the
     # controller was not done, or the reverse; a NaN offset is never at the goal:
-    # review 48, FRESH).
+    # review 48, FRESH), its band around the radius left to Python (review 49).
     if math.isnan(stats[STAT_TIME_TO_GOAL]) and not math.isnan(goal[0]):
-        arrived = at_goal_kernel(state[0], state[1], goal[0], goal[1], goal[2])
-        if arrived and not math.isnan(goal[3]):
-            arrived = abs(wrap_scalar(state[2] - goal[3])) <= goal[4]
-        if arrived:
+        verdict = goal_verdict_kernel(state[0], state[1], goal[0], goal[1], goal[2])
+        if (
+            verdict != OUTSIDE
+            and not math.isnan(goal[3])
+            and not abs(wrap_scalar(state[2] - goal[3])) <= goal[4]
+        ):
+            verdict = OUTSIDE
+        if verdict == UNDECIDED:
+            return GOAL_UNDECIDED
+        if verdict == INSIDE:
             stats[STAT_TIME_TO_GOAL] = t
             if stop_at_goal:
                 _record(times, poses, commands, i, t, state, cmd)

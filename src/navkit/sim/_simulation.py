@@ -39,9 +39,11 @@ from navkit.sim._robot import Body, Robot
 from navkit.sim._segment_kernels import (
     COLLIDED,
     GOAL,
+    GOAL_UNDECIDED,
     STAT_COLLISIONS,
     STAT_MIN_CLEARANCE,
     STAT_TIME_TO_GOAL,
+    decide_goal,
     due_step,
     run_edge_segment,
     run_segment,
@@ -895,17 +897,33 @@ class _Run:
             body.verts, body.work, world._segs, world._circles, gx0, gy0, h, nx, ny,
             world._cell_start, world._cell_items,
         )  # fmt: skip
-        if world._edges_only:
-            # No grid, no moving obstacles: the kernel that compiles without their code.
-            status, i = run_edge_segment(*motion, *bookkeeping)
-        else:
+        kernel: Callable[..., tuple[int, int]] = run_edge_segment
+        grid: tuple[Any, ...] = ()
+        if not world._edges_only:
+            # (Edges only, no grid and no moving obstacles: the kernel that compiles
+            # without their code.)
             gox, goy, gcos, gsin, res = world._occ_frame
-            status, i = run_segment(
-                *motion, body.scratch, world._occ, gox, goy, gcos, gsin, res,
+            kernel = run_segment
+            grid = (
+                body.scratch, world._occ, gox, goy, gcos, gsin, res,
                 world._mv_path, world._mv_times, world._mv_first, world._mv_count,
                 world._mv_after, world._dyn_base_segs, world._dyn_seg_owner,
                 self.dyn_segs, world._dyn_base_circles, world._dyn_circle_owner,
-                self.dyn_circles, *bookkeeping,
+                self.dyn_circles,
+            )  # fmt: skip
+        status, i = kernel(*motion, *grid, *bookkeeping)
+        while status == GOAL_UNDECIDED:
+            # The robot is on the goal tolerance's band: decided exactly here, then on
+            # from that step (its samples and row first), with its slip draws on.
+            if decide_goal(
+                i, sim._rate, body.state, self.goal, sim._stop_at_goal, self.stats,
+                self.times, self.poses, self.commands, self.cmd,
+            ):  # fmt: skip
+                status = GOAL
+                break
+            status, i = kernel(
+                i, i_end, sim._rate, True, *motion[4:12], self.slip_z[i - i0 :],
+                *motion[13:], *grid, *bookkeeping,
             )  # fmt: skip
         self._queue_proprioceptive()
         return int(status), int(i)
