@@ -24,7 +24,7 @@ from navkit.estimation import MeasurementLog
 from navkit.kinematics import DiffDrive
 from navkit.mapping import LocalGrid, OccupancyGrid
 from navkit.planning import AttractiveField, FieldDStar, MapPlanner
-from navkit.sim import EncoderReading, Lidar, RangeNoise, Robot, WheelEncoders
+from navkit.sim import EncoderReading, Lidar, Metrics, RangeNoise, Robot, WheelEncoders
 
 USER_CODE = Path(__file__).resolve().parent / "typing_user_code" / "user_code.py"
 
@@ -70,8 +70,17 @@ def _declared_init(cls: type) -> ast.FunctionDef:
 
 @pytest.mark.parametrize(
     "cls",
-    # EncoderReading and AttractiveField: declared by review 49.
-    [Robot, Lidar, RangeNoise, MeasurementLog, LocalGrid, EncoderReading, AttractiveField],
+    # EncoderReading, AttractiveField and Metrics: declared by review 49.
+    [
+        Robot,
+        Lidar,
+        RangeNoise,
+        MeasurementLog,
+        LocalGrid,
+        EncoderReading,
+        AttractiveField,
+        Metrics,
+    ],
     ids=lambda c: c.__name__,
 )
 def test_declared_init_has_the_generated_parameters(cls: type) -> None:

@@ -11,6 +11,8 @@ runtime tests check that what the annotations now promise is what the calls do.
 from __future__ import annotations
 
 import importlib.util
+import math
+import typing
 from pathlib import Path
 
 import numpy as np
@@ -19,9 +21,20 @@ from numpy.typing import NDArray
 from shapely.geometry import Polygon
 
 from navkit.behaviours import GameState
+from navkit.geometry import Twist2D
+from navkit.kinematics import DiffDrive
 from navkit.mapping.io import MovingAIScenarios
 from navkit.planning import AttractiveField
-from navkit.sim import EncoderReading, MovingObstacle, sweep
+from navkit.sim import (
+    EncoderReading,
+    EndReason,
+    Metrics,
+    MovingObstacle,
+    Robot,
+    Simulation,
+    World,
+    sweep,
+)
 
 USER_CODE = Path(__file__).resolve().parent / "typing_user_code" / "review49_user_code.py"
 
@@ -196,3 +209,17 @@ def test_movingai_scenarios_take_any_iterable_of_names(names: object) -> None:
     assert problems.map_names == ("arena.map",)
     with pytest.raises(TypeError, match="map_names must hold str"):
         MovingAIScenarios([0], [49], [[49, 49]], [[1, 2]], [[3, 2]], [2.0])  # type: ignore[list-item]
+
+
+def test_metrics_reason_is_one_of_end_reason() -> None:
+    # What the EndReason annotation promises: the field holds one of its values only.
+    drive = DiffDrive(track=0.3, wheel_radius=0.05)
+    robot = Robot(drive=drive, footprint=0.2)
+    trace = Simulation(
+        World(), robot, lambda obs: Twist2D(0.0, 0.0, 0.0), start=(0.0, 0.0, 0.0), duration=0.05
+    ).run()
+    assert trace.metrics.reason == "timeout"
+    assert trace.metrics.reason in typing.get_args(EndReason)
+    figures = (1.0, math.nan, 0.5, math.nan, math.nan, math.nan, math.nan, 1.0, 0, 0.0)
+    with pytest.raises(ValueError, match="reason"):
+        Metrics(False, "goal", *figures)

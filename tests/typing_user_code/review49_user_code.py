@@ -9,6 +9,7 @@ function calls the API as its docstrings document it.
 from __future__ import annotations
 
 import concurrent.futures
+import math
 from typing import assert_type
 
 import numpy as np
@@ -17,7 +18,7 @@ from numpy.typing import NDArray
 from navkit.behaviours import GameState
 from navkit.mapping.io import MovingAIScenarios
 from navkit.planning import AttractiveField
-from navkit.sim import EncoderReading, MovingObstacle, sweep
+from navkit.sim import EncoderReading, EndReason, Metrics, MovingObstacle, Trace, sweep
 from navkit.sim.scenarios import Demo
 
 
@@ -82,3 +83,14 @@ def movingai_problems_named_by_strings() -> None:
     MovingAIScenarios([0], ["arena.map"], [[49, 49]], *cells, [2.0])
     MovingAIScenarios([0], ("arena.map",), [[49, 49]], *cells, [2.0])
     MovingAIScenarios([0], [49], [[49, 49]], *cells, [2.0])  # type: ignore[list-item]
+
+
+def end_reasons_are_the_literal(trace: Trace, why: str) -> None:
+    # Metrics.reason is always one of EndReason (checked on construction): a typo in a
+    # comparison is now a type error (--strict's strict equality), a match can be total.
+    reason = trace.metrics.reason
+    assert_type(reason, EndReason)
+    if reason == "goal reachd":  # type: ignore[comparison-overlap]
+        pass
+    # Built from any str, as Simulation does (the value is checked at run time).
+    Metrics(False, why, 1.0, math.nan, 0.5, math.nan, math.nan, math.nan, math.nan, 1.0, 0, 0.0)

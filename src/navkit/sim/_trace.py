@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any, Literal
+from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
 
@@ -146,7 +146,9 @@ class Metrics:
     """
 
     reached: bool
-    reason: str
+    # As ``__post_init__`` leaves it: one of the end reasons (any str is taken, and
+    # checked, by the declared ``__init__`` below).
+    reason: EndReason
     duration: float
     time_to_goal: float
     final_error: float
@@ -157,6 +159,24 @@ class Metrics:
     min_clearance: float
     collisions: int
     distance: float
+
+    if TYPE_CHECKING:
+
+        def __init__(
+            self,
+            reached: bool,
+            reason: str,
+            duration: float,
+            time_to_goal: float,
+            final_error: float,
+            final_error_estimated: float,
+            estimate_error: float,
+            cross_track_mean: float,
+            cross_track_max: float,
+            min_clearance: float,
+            collisions: int,
+            distance: float,
+        ) -> None: ...
 
     # NaN figures ("does not apply") equal in a run and its rerun, copy or pickle.
     def __eq__(self, other: object) -> bool:
