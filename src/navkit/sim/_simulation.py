@@ -286,7 +286,9 @@ class Simulation:
     (fast, or thinner than its motion over ``1 / rate``) is missed, so raise
     ``rate`` for fast ones. Each
     sensor of the robot samples at its own rate (at the first physics step at
-    or after each of its sample times); each reading is delivered ``latency``
+    or after each of its sample times, within 1e-9 s, or ``2**-50`` of the
+    time beyond 1.1e6 s, where the times' rounding exceeds 1e-9 s: 8.9e-9 s at
+    10^7 s, as the controller's steps); each reading is delivered ``latency``
     seconds later, at the first step at or after that within 1e-9 s, counted
     exactly on the floats given: the same whole number of steps after its own
     for every reading of a sensor (0.03 s is 3 steps of 100 Hz, 0.03 s + 2e-9 s
@@ -452,7 +454,7 @@ class Simulation:
     run at the origin (seed 0): a straight drive at 0.02 m/s, whose rounding
     has the same sign every step, drifted 9.9e-8 m after 2·10^4 steps of 100
     Hz and 9.9e-7 m after 2·10^5; a weave on a 5 m circle, whose roundings
-    mix their signs, 2.5e-9 m and 6e-9 m. A goal, collision or scan decided
+    mix their signs, at most 2.8e-9 m and 6e-9 m. A goal, collision or scan decided
     that close to its edge may then go the other way. The simulator cannot
     shift the world itself (its obstacles are given in world coordinates):
     for long high-rate runs far from the origin, give the world, start, goal
