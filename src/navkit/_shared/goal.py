@@ -148,16 +148,16 @@ def goal_verdict(px: float, py: float, gx: float, gy: float, tolerance: float) -
     run kernels (:data:`goal_verdict_kernel`), which leave an undecided step to
     :func:`at_goal` in Python.
 
-    Why the answers are :func:`at_goal`'s: ``hypot`` (CPython's and libm's) is
-    within an ulp of the offset's true length ``r``, 2**-52 relative where it is
-    above 2**-1022 m and 2**-1074 m below; the bounds, computed in floats, are
-    within 2**-53 (relative) of their real values and are normal floats. So
-    ``INSIDE`` has ``r <= hypot (1 + 2**-50) < tolerance`` (below 2**-1022 m:
-    ``r < hypot + 2**-1074 < tolerance``, the tolerance being above 2**-960 m),
-    and ``OUTSIDE`` has ``r >= hypot (1 - 2**-50) > max(tolerance, 2**-52 g +
-    2**-960)``, which is at least the radius :func:`at_goal` compares with (the
-    goal's resolution, ``math.ulp(g)`` of its finer coordinate ``g``, is at most
-    ``2**-52 g`` or the least float).
+    Why the answers are :func:`at_goal`'s: ``hypot`` (CPython's and libm's)
+    is within an ulp of the offset's true length ``r``, and the bounds allow
+    four: 2**-50 relative where it is above 2**-1022 m, 2**-1072 m below. The
+    bounds, computed in floats, are within 2**-53 (relative) of their real
+    values and are normal floats. So ``INSIDE`` has ``r <= hypot (1 + 2**-50)
+    < tolerance`` (below 2**-1022 m: ``r <= hypot + 2**-1072 < tolerance``,
+    the tolerance being above 2**-960 m), and ``OUTSIDE`` has ``r >= hypot (1 -
+    2**-50) > max(tolerance, 2**-52 g + 2**-960)``, which is at least the
+    radius :func:`at_goal` compares with (the goal's resolution, ``math.ulp(g)``
+    of its finer coordinate ``g``, is at most ``2**-52 g`` or the least float).
 
     Parameters
     ----------
