@@ -24,7 +24,7 @@ from navkit.behaviours import GameState
 from navkit.geometry import Twist2D
 from navkit.kinematics import DiffDrive
 from navkit.mapping.io import MovingAIScenarios
-from navkit.planning import AttractiveField
+from navkit.planning import AStarPlanner, AttractiveField
 from navkit.sim import (
     EncoderReading,
     EndReason,
@@ -223,3 +223,15 @@ def test_metrics_reason_is_one_of_end_reason() -> None:
     figures = (1.0, math.nan, 0.5, math.nan, math.nan, math.nan, math.nan, 1.0, 0, 0.0)
     with pytest.raises(ValueError, match="reason"):
         Metrics(False, "goal", *figures)
+
+
+@pytest.mark.parametrize(
+    ("method", "resolved"), [("astar", "astar"), ("jps", "jps"), ("auto", "jps")]
+)
+def test_astar_methods_are_the_literal(method: str, resolved: str) -> None:
+    # "auto" on a uniform 8-connected grid is JPS; the property never says "auto".
+    planner = AStarPlanner(np.ones((4, 4)), method=method)  # type: ignore[arg-type]  # str
+    assert planner.method == resolved
+    assert AStarPlanner(np.ones((4, 4)), method=planner.method).method == resolved
+    with pytest.raises(ValueError, match="method must be"):
+        AStarPlanner(np.ones((4, 4)), method="jsp")  # type: ignore[arg-type]

@@ -10,14 +10,14 @@ from __future__ import annotations
 
 import concurrent.futures
 import math
-from typing import assert_type
+from typing import Literal, assert_type
 
 import numpy as np
 from numpy.typing import NDArray
 
 from navkit.behaviours import GameState
 from navkit.mapping.io import MovingAIScenarios
-from navkit.planning import AttractiveField
+from navkit.planning import AStarPlanner, AttractiveField, astar
 from navkit.sim import EncoderReading, EndReason, Metrics, MovingObstacle, Trace, sweep
 from navkit.sim.scenarios import Demo
 
@@ -94,3 +94,14 @@ def end_reasons_are_the_literal(trace: Trace, why: str) -> None:
         pass
     # Built from any str, as Simulation does (the value is checked at run time).
     Metrics(False, why, 1.0, math.nan, 0.5, math.nan, math.nan, math.nan, math.nan, 1.0, 0, 0.0)
+
+
+def astar_methods_are_the_literal() -> None:
+    # "method : {"astar", "jps", "auto"}": a misspelt one is now a type error, and the
+    # planner's resolved method ("auto" never) goes back into the constructor.
+    costs = np.ones((4, 4))
+    jps = AStarPlanner(costs, method="jps")
+    assert_type(jps.method, Literal["astar", "jps"])
+    AStarPlanner(costs, method=jps.method)
+    astar(costs, (0, 0), (3, 3), method="auto")
+    astar(costs, (0, 0), (3, 3), method="jsp")  # type: ignore[arg-type]

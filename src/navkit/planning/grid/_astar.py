@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import threading
-from typing import Any, cast
+from typing import Any, Literal, cast
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -268,7 +268,7 @@ class AStarPlanner:
         connectivity: int = 8,
         corner_cutting: bool = False,
         heuristic_weight: float = 1.0,
-        method: str = "astar",
+        method: Literal["astar", "jps", "auto"] = "astar",
     ) -> None:
         grid, lowest, highest, tables = _checked_grid(
             costs, connectivity, corner_cutting, heuristic_weight, method
@@ -421,7 +421,7 @@ class AStarPlanner:
         return self._weight
 
     @property
-    def method(self) -> str:
+    def method(self) -> Literal["astar", "jps"]:
         """The search :meth:`plan` runs: ``"jps"`` or ``"astar"`` (``"auto"`` resolved)."""
         return "astar" if self._jps is None else "jps"
 
@@ -657,7 +657,7 @@ def astar(
     connectivity: int = 8,
     corner_cutting: bool = False,
     heuristic_weight: float = 1.0,
-    method: str = "astar",
+    method: Literal["astar", "jps", "auto"] = "astar",
 ) -> Path2D:
     """Least-cost path between two cells of a cost grid (A*), one-shot.
 
