@@ -7,8 +7,9 @@ Compares, for a 360-beam and a 3,600-beam scan:
 * the public ``repulsive_force_from_scan`` (validation included) against a
   NumPy-vectorised version, target: at least 3x faster;
 
-and, for reference, the same on real 681-beam Hokuyo scans (when ``../shared/data``
-is present), ``sample_field`` on 300 x 300 and 1200 x 1200 maps, one ``greedy_step`` on the
+and, for reference, the same on real 681-beam Hokuyo scans (when the shared data
+is found, as navkit's ``find_data`` finds it: ``$NAVKIT_DATA``, then ``shared/data``
+nearby), ``sample_field`` on 300 x 300 and 1200 x 1200 maps, one ``greedy_step`` on the
 TurtleBot3 paper's 21 x 21 grid and one ``PotentialFieldController.step``.
 
 Run with ``python -m pytest benchmarks/test_bench_fields.py --benchmark-only``.
@@ -17,7 +18,6 @@ Run with ``python -m pytest benchmarks/test_bench_fields.py --benchmark-only``.
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -36,10 +36,11 @@ from navkit.planning import (
 from navkit.planning.reactive._limits import MIN_DISTANCE
 from navkit.planning.reactive._scan_repulsion import _beam_table
 from navkit.planning.reactive._scan_repulsion_kernels import khatib_beam_force
+from test_bench_astar import shared_data
 
 K_REP = 0.5
 D0 = 1.0
-HOKUYO = Path(__file__).resolve().parents[2] / "shared" / "data" / "rosbag-hokuyo-laserscan-demo"
+HOKUYO_CSV = "rosbag-hokuyo-laserscan-demo/demo_scans.csv"
 
 
 @njit(cache=False)
@@ -77,8 +78,9 @@ def make_scan(n: int, seed: int = 0) -> LaserScan:
     t = b - np.sqrt(np.where(hit, disc, 0.0))
     r = np.where(hit & (t > 0.0) & (t < r), t, r) + rng.normal(0.0, 0.01, n)
     r[rng.random(n) < 0.02] = math.nan
-    return LaserScan(r, angle_min=-math.pi, angle_increment=2.0 * math.pi / n, range_min=0.12,
-                     range_max=3.5)
+    return LaserScan(
+        r, angle_min=-math.pi, angle_increment=2.0 * math.pi / n, range_min=0.12, range_max=3.5
+    )
 
 
 def numpy_repulsion(scan: LaserScan, k_rep: float, d0: float) -> np.ndarray:
@@ -193,12 +195,11 @@ def test_controller_step_with_scan(benchmark) -> None:  # type: ignore[no-untype
 @pytest.fixture(scope="module")
 def hokuyo_scans() -> list[LaserScan]:
     """The first 50 scans of the shared Hokuyo bag (681 beams each)."""
-    if not (HOKUYO / "demo_scans.csv").is_file():
-        pytest.skip("shared Hokuyo data not available")
-    rows = np.loadtxt(HOKUYO / "demo_scans.csv", delimiter=",", skiprows=1, max_rows=50)
+    rows = np.loadtxt(shared_data(HOKUYO_CSV), delimiter=",", skiprows=1, max_rows=50)
     return [
-        LaserScan(row[3:], angle_min=-2.0862, angle_increment=0.0061359, range_min=0.02,
-                  range_max=5.6)
+        LaserScan(
+            row[3:], angle_min=-2.0862, angle_increment=0.0061359, range_min=0.02, range_max=5.6
+        )
         for row in rows
     ]
 

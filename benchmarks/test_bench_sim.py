@@ -8,7 +8,8 @@ and the same poses (16 per world, cycled):
 * ``room``: an empty 20 x 20 m room (its four walls);
 * ``polygons100`` / ``polygons500``: that room with 100 or 500 random convex
   polygons (4 to 8 vertices, 0.2 to 0.6 m across, seeded);
-* ``willow``: the Willow Garage map (``../shared/data``; 566 x 608 cells of
+* ``willow``: the Willow Garage map (found as navkit's ``find_data`` finds
+  it: ``$NAVKIT_DATA``, then ``shared/data`` nearby; 566 x 608 cells of
   0.1 m). navkit walks its cells (not-free cells block, see
   ``World(unknown_blocks=True)``); ir-sim gets the map's walls, the not-free
   cells next to a free one, as an obstacle-map image, which it turns into the
@@ -56,9 +57,9 @@ from navkit.geometry import Pose2D, Twist2D
 from navkit.kinematics import DiffDrive
 from navkit.mapping import OccupancyGrid
 from navkit.sim import Imu, Lidar, Observation, Robot, Simulation, WheelEncoders, World
+from test_bench_astar import shared_data
 
-SHARED = Path(__file__).resolve().parents[1].parent / "shared" / "data"
-WILLOW = SHARED / "ros-map-server-maps" / "willow_garage_2010" / "willow-2010-02-18-0.10.yaml"
+WILLOW = "ros-map-server-maps/willow_garage_2010/willow-2010-02-18-0.10.yaml"
 ROOM = 20.0
 RANGE_MAX = 12.0
 N_POSES = 16
@@ -102,9 +103,7 @@ def room_poses(seed: int) -> list[Pose2D]:
 
 @functools.cache
 def willow_grid() -> OccupancyGrid:
-    if not WILLOW.is_file():
-        pytest.skip(f"the Willow Garage map {WILLOW} is not available")
-    return OccupancyGrid.load(WILLOW)
+    return OccupancyGrid.load(shared_data(WILLOW))
 
 
 @functools.cache

@@ -2,15 +2,13 @@
 
 from __future__ import annotations
 
-from pathlib import Path
 from typing import Any
 
 import pytest
 
 import carmen_eval as ce
 import carmen_navkit as cn
-
-SHARED = Path(__file__).resolve().parents[2] / "shared" / "data" / "carmen-logs"
+from test_bench_astar import shared_data
 
 
 def test_help_lists_the_extra_options_before_compiling(
@@ -38,12 +36,12 @@ def test_bad_option_stops_before_compiling(monkeypatch: pytest.MonkeyPatch) -> N
     assert exit_info.value.code == 2
 
 
-@pytest.mark.skipif(not SHARED.is_dir(), reason="shared CARMEN logs not available")
 def test_extra_tables_read_only_the_scans_asked_for(
     monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
 ) -> None:
     """``--max-scans`` and ``--data-dir`` reach ``--basin``, ``--audit`` and ``--weights``
     (they once read every scan of the default data folder)."""
+    data_dir = str(shared_data("carmen-logs").parent)
     real_load = ce.load_log
     calls: list[tuple[str, int | None, Any]] = []
 
@@ -55,13 +53,13 @@ def test_extra_tables_read_only_the_scans_asked_for(
 
     monkeypatch.setattr(ce, "load_log", load)
     argv = ["--logs", "intel", "--max-scans", "4", "--methods", "navkit", "prior"]
-    argv += ["--data-dir", str(SHARED.parent), "--basin", "--audit", "--weights"]
+    argv += ["--data-dir", data_dir, "--basin", "--audit", "--weights"]
     assert cn.main(argv) == 0
     out = capsys.readouterr().out
     assert "Basin of navkit told the noise level" in out
     assert "navkit's gross failures" in out
     assert "Rotation weight sweep" in out
     assert {call[0] for call in calls} == {"intel"}
-    assert all(call[2] == str(SHARED.parent) for call in calls)
+    assert all(call[2] == data_dir for call in calls)
     # the harness's runs, the basin's, the tuned basin's, the audit's and the sweep's
     assert len(calls) >= 5

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -12,8 +11,7 @@ from hypothesis import strategies as st
 
 import carmen_eval as ce
 from navkit.mapping import LaserScan
-
-SHARED = Path(__file__).resolve().parents[2] / "shared" / "data" / "carmen-logs"
+from test_bench_astar import shared_data
 
 
 def trajectory(n: int = 40, seed: int = 1) -> np.ndarray:
@@ -150,9 +148,8 @@ def test_icp_recovers_a_small_offset_in_a_room() -> None:
     np.testing.assert_allclose(got, true_motion, atol=0.02)
 
 
-@pytest.mark.skipif(not SHARED.is_dir(), reason="../shared/data/carmen-logs is absent")
 def test_baselines_on_the_first_intel_scans() -> None:
-    data = ce.load_log("intel", max_scans=40, data_dir=SHARED.parent)
+    data = ce.load_log("intel", max_scans=40, data_dir=shared_data("carmen-logs").parent)
     prior = ce.motion_prior(data.poses)
     results = {
         name: ce.evaluate(method, data, prior, name=name)
