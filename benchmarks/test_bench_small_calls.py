@@ -57,16 +57,24 @@ medians went from 641 to 546 ns and from 711 to 604 ns in one run), and their
 others, each written as a plain call in a loop of its own, timed alternately
 in one loop (41 rounds, the order reversed every other round, this thread's
 CPU time, the median per-round ratio) as ``test_bench_ekf.py``'s ratio test
-does; its ``extra_info`` holds ``paired_public_over_kernel`` (repulsion:
+does. After every round each loop's last answer is checked against the
+kernel's (the filters' states; the cells and forces of the round's last
+arguments), and ``world_to_cell`` and ``repulsion`` get new arguments every
+round (new points for every call; eight new range sets, each call on a scan
+object of its own), the same for every loop: a public call answering from a
+cache under the timer either fails or is timed at its honest cost (before, the
+same arguments every call and no check let one report 0.26-0.46). Its
+``extra_info`` holds ``paired_public_over_kernel`` (repulsion:
 ``paired_public_over_kernel_into``, the kernel the public call ends in) and
 the like, and each loop's median per call (``paired_<name>_ns``).
 """
 
 from __future__ import annotations
 
+import copy
 import math
 import time
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Sequence
 from typing import Any
 
 import numpy as np
@@ -123,20 +131,45 @@ def _ratios(request: pytest.FixtureRequest, benchmark: Any) -> Iterator[None]:
 _PAIRED_ROUNDS = 41
 
 
-def _paired(loops: dict[str, Callable[[range], object]], calls: int) -> dict[str, float]:
+def _paired(
+    loops: dict[str, Callable[[Sequence[Any]], object]],
+    calls: int,
+    check: Callable[[dict[str, object], Any], None],
+    inputs: Callable[[int], Sequence[Any]] | None = None,
+) -> dict[str, float]:
     """``paired_public_over_<name>``: the median per-round ratio of ``loops["public"]``'s
     CPU time to each other loop's, all run in every round (order reversed every other
-    round), each making ``calls`` calls. See the module docstring."""
+    round), each making ``calls`` calls. See the module docstring.
+
+    ``inputs(round)``, when given, makes that round's argument sets (new objects,
+    outside the timers); every loop cycles through the same ones, so neither side
+    can answer from a cache keyed on its arguments from round to round. Else each
+    loop gets ``range(calls)``. After each round, outside the timers,
+    ``check(answers, last)`` gets each loop's returned answer (its last call's)
+    and the round's last argument set (``None`` without ``inputs``), and asserts
+    it is the kernel's: a loop right on its untimed warm-up and wrong (say,
+    cached) under the timer fails instead of reporting its ratio.
+    """
     names = list(loops)
     times: dict[str, list[float]] = {name: [] for name in names}
-    todo = range(calls)
-    for name in names:  # warm
-        loops[name](range(10))
+
+    def todo(round_: int) -> Sequence[Any]:
+        if inputs is None:
+            return range(calls)
+        sets = inputs(round_)
+        return [sets[k % len(sets)] for k in range(calls)]
+
+    warm = todo(-1)[:10]
+    for name in names:
+        loops[name](warm)
     for i in range(_PAIRED_ROUNDS):
+        args = todo(i)
+        answers: dict[str, object] = {}
         for name in names if i % 2 == 0 else names[::-1]:
             t0 = time.thread_time()
-            loops[name](todo)
+            answers[name] = loops[name](args)
             times[name].append(time.thread_time() - t0)
+        check(answers, None if inputs is None else args[-1])
     public = np.array(times["public"])
     ratios = {
         f"paired_public_over_{name}": float(np.median(public / np.array(times[name])))
@@ -197,50 +230,64 @@ def test_update_odometry(benchmark: Any, contestant: str) -> None:
     entry = planar_step_entry()
     residual = fusion._odometry_residual
     if contestant == "paired":
-        update = public.update_odometry
+        # Four filters stepped alike from t0 = 0: after every round their states
+        # are the kernel's (check), so a public call that skipped or cached the
+        # step under the timer fails.
+        paired = PlanarFusion(t0=0.0)
+        update = paired.update_odometry
         kernel_buf = PlanarFusion(t0=0.0)._buf
         entry_buf = PlanarFusion(t0=0.0)._buf
         floor_fusion = PlanarFusion(t0=0.0)
         floor_buf, floor_residual = floor_fusion._buf, floor_fusion._odometry_residual
         inf = math.inf
         # Each loop's clock, carried over from round to round.
-        clocks = {"public": 0.03, "kernel": 0.0, "entry": 0.0, "floor": 0.0}
+        clocks = {"public": 0.0, "kernel": 0.0, "entry": 0.0, "floor": 0.0}
 
-        def public_loop(todo: range) -> None:
+        def public_loop(todo: Sequence[Any]) -> np.ndarray:
             t = clocks["public"]
             for _ in todo:
                 t += 0.01
                 update(t, 1.0, 0.1, v_variance=1e-4, omega_variance=1e-4)
             clocks["public"] = t
+            return paired._buf
 
-        def kernel_loop(todo: range) -> None:
+        def kernel_loop(todo: Sequence[Any]) -> np.ndarray:
             t = clocks["kernel"]
             for _ in todo:
                 t += 0.01
                 planar_step(kernel_buf, t, 1, 2, 1.0, 0.1, 1e-4, 1e-4, inf)
             clocks["kernel"] = t
+            return kernel_buf
 
-        def entry_loop(todo: range) -> None:
+        def entry_loop(todo: Sequence[Any]) -> np.ndarray:
             t = clocks["entry"]
             for _ in todo:
                 t += 0.01
                 entry(entry_buf, t, 1, 2, 1.0, 0.1, 1e-4, 1e-4, inf)
             clocks["entry"] = t
+            return entry_buf
 
-        def floor_loop(todo: range) -> None:
+        def floor_loop(todo: Sequence[Any]) -> np.ndarray:
             t = clocks["floor"]
             for _ in todo:
                 t += 0.01
                 new_result(True, entry(floor_buf, t, 1, 2, 1.0, 0.1, 1e-4, 1e-4, inf)[1],
                            floor_residual.copy(), None)  # fmt: skip
             clocks["floor"] = t
+            return floor_buf
+
+        def check(states: dict[str, object], last: object) -> None:
+            assert len(set(clocks.values())) == 1, clocks
+            for name, state in states.items():
+                assert isinstance(state, np.ndarray)
+                assert state.tobytes() == kernel_buf.tobytes(), name
 
         loops = {"public": public_loop, "kernel": kernel_loop, "entry": entry_loop,
                  "floor": floor_loop}  # fmt: skip
-        ratios = benchmark.pedantic(_paired, (loops, 4000), rounds=1, iterations=1)
+        ratios = benchmark.pedantic(_paired, (loops, 4000, check), rounds=1, iterations=1)
         benchmark.extra_info.update(ratios)
         # Every loop stepped its filter to its clock (a refused step leaves the time).
-        assert public.t == clocks["public"]
+        assert paired.t == clocks["public"]
         for name, stepped in (("kernel", kernel_buf), ("entry", entry_buf), ("floor", floor_buf)):
             assert stepped[BUF_TIME] == clocks[name]
         return
@@ -316,30 +363,52 @@ def test_world_to_cell_10(benchmark: Any, contestant: str) -> None:
     else:
         cells = grid.world_to_cell
         empty, int64, shape = np.empty, np.dtype(np.int64), pts.shape
+        kernel_out, entry_out = np.empty_like(out), np.empty_like(out)
 
-        def public_loop(todo: range) -> None:
-            for _ in todo:
-                cells(pts)
+        def inputs(round_: int) -> list[np.ndarray]:
+            # New points for every call of the round (0.6 MB: both sides read
+            # them from the L2 cache): a cache on the points cannot help.
+            rng = np.random.default_rng(round_ + 1)
+            return list(rng.uniform(-30.0, 30.0, size=(4000, *shape)))
 
-        def kernel_loop(todo: range) -> None:
-            for _ in todo:
-                world_to_cell_kernel(pts, x, y, yaw, res, out)
+        def public_loop(todo: Sequence[np.ndarray]) -> object:
+            got = None
+            for p in todo:
+                got = cells(p)
+            return got
 
-        def floor_loop(todo: range) -> None:
-            for _ in todo:
-                world_to_cell_kernel(pts, x, y, yaw, res, empty(shape, int64))
+        def kernel_loop(todo: Sequence[np.ndarray]) -> object:
+            for p in todo:
+                world_to_cell_kernel(p, x, y, yaw, res, kernel_out)
+            return kernel_out
 
-        def entry_loop(todo: range) -> None:
-            for _ in todo:
-                entry(pts, x, y, yaw, res, out)
+        def floor_loop(todo: Sequence[np.ndarray]) -> object:
+            got = None
+            for p in todo:
+                got = empty(shape, int64)
+                world_to_cell_kernel(p, x, y, yaw, res, got)
+            return got
 
-        def empty_loop(todo: range) -> None:
+        def entry_loop(todo: Sequence[np.ndarray]) -> object:
+            for p in todo:
+                entry(p, x, y, yaw, res, entry_out)
+            return entry_out
+
+        def empty_loop(todo: Sequence[np.ndarray]) -> object:
             for _ in todo:
                 empty(shape, int64)
+            return None
+
+        def check(answers: dict[str, object], last: np.ndarray) -> None:
+            want = np.empty_like(out)
+            world_to_cell_kernel(last, x, y, yaw, res, want)
+            for name, got in answers.items():
+                if name != "empty":
+                    assert isinstance(got, np.ndarray) and np.array_equal(got, want), name
 
         loops = {"public": public_loop, "kernel": kernel_loop, "floor": floor_loop,
                  "entry": entry_loop, "empty": empty_loop}  # fmt: skip
-        ratios = benchmark.pedantic(_paired, (loops, 4000), rounds=1, iterations=1)
+        ratios = benchmark.pedantic(_paired, (loops, 4000, check, inputs), rounds=1, iterations=1)
         benchmark.extra_info.update(ratios)
 
 
@@ -347,8 +416,9 @@ def _scan() -> LaserScan:
     n = 360
     th = -math.pi + 2.0 * math.pi * np.arange(n) / n
     ranges = 0.6 + 0.4 * np.abs(np.sin(3 * th))
-    return LaserScan(ranges, angle_min=-math.pi, angle_increment=2.0 * math.pi / n,
-                     range_min=0.12, range_max=3.5)
+    return LaserScan(
+        ranges, angle_min=-math.pi, angle_increment=2.0 * math.pi / n, range_min=0.12, range_max=3.5
+    )
 
 
 @pytest.mark.benchmark(group="repulsion 360 beams", warmup=True, warmup_iterations=2000)
@@ -410,34 +480,66 @@ def test_repulsion_360(benchmark: Any, contestant: str) -> None:
         benchmark(entry, *args_into, out)
     else:
         entry = khatib_entry()
-        ranges, rmin, rmax = scan.ranges, scan.range_min, scan.range_max
+        rmin, rmax = scan.range_min, scan.range_max
         empty = np.empty
+        into_out, entry_out = np.empty(2), np.empty(2)
 
-        def public_loop(todo: range) -> None:
-            for _ in todo:
-                repulsive_force_from_scan(scan, k_rep=0.5, influence_radius=1.0)
-
-        def kernel_into_loop(todo: range) -> None:
-            for _ in todo:
-                khatib_beam_force_into(ranges, directions, rmin, rmax, 0.5, 1.0, MIN_DISTANCE, out)
-
-        def kernel_loop(todo: range) -> None:
-            for _ in todo:
-                khatib_beam_force(ranges, cos_t, sin_t, rmin, rmax, 0.5, 1.0, MIN_DISTANCE)
-
-        def floor_loop(todo: range) -> None:
-            for _ in todo:
-                khatib_beam_force_into(
-                    ranges, directions, rmin, rmax, 0.5, 1.0, MIN_DISTANCE, empty(2)
+        def inputs(round_: int) -> list[tuple[LaserScan, np.ndarray]]:
+            # Eight new range sets a round (the same beams), each call on a scan
+            # object of its own (a shallow copy sharing them): a force cached on
+            # a scan, or kept from an earlier round, is no faster or is wrong
+            # (check). New ranges for every call would be 11 MB a round, read
+            # from memory rather than cache by both sides.
+            rng = np.random.default_rng(round_ + 1)
+            scans = [
+                LaserScan(
+                    scan.ranges * rng.uniform(0.8, 1.2, scan.ranges.shape),
+                    angle_min=scan.angle_min,
+                    angle_increment=scan.angle_increment,
+                    range_min=rmin,
+                    range_max=rmax,
                 )
+                for _ in range(8)
+            ]
+            return [(copy.copy(scans[k % 8]), scans[k % 8].ranges) for k in range(4000)]
 
-        def entry_loop(todo: range) -> None:
-            for _ in todo:
-                entry(ranges, directions, rmin, rmax, 0.5, 1.0, MIN_DISTANCE, out)
+        def public_loop(todo: Sequence[tuple[LaserScan, np.ndarray]]) -> object:
+            got = None
+            for s, _ in todo:
+                got = repulsive_force_from_scan(s, k_rep=0.5, influence_radius=1.0)
+            return got
+
+        def kernel_into_loop(todo: Sequence[tuple[LaserScan, np.ndarray]]) -> object:
+            for _, r in todo:
+                khatib_beam_force_into(r, directions, rmin, rmax, 0.5, 1.0, MIN_DISTANCE, into_out)
+            return into_out
+
+        def kernel_loop(todo: Sequence[tuple[LaserScan, np.ndarray]]) -> object:
+            got = None
+            for _, r in todo:
+                got = khatib_beam_force(r, cos_t, sin_t, rmin, rmax, 0.5, 1.0, MIN_DISTANCE)
+            return np.array(got)
+
+        def floor_loop(todo: Sequence[tuple[LaserScan, np.ndarray]]) -> object:
+            got = None
+            for _, r in todo:
+                got = empty(2)
+                khatib_beam_force_into(r, directions, rmin, rmax, 0.5, 1.0, MIN_DISTANCE, got)
+            return got
+
+        def entry_loop(todo: Sequence[tuple[LaserScan, np.ndarray]]) -> object:
+            for _, r in todo:
+                entry(r, directions, rmin, rmax, 0.5, 1.0, MIN_DISTANCE, entry_out)
+            return entry_out
+
+        def check(answers: dict[str, object], last: tuple[LaserScan, np.ndarray]) -> None:
+            want = np.array(khatib_beam_force(last[1], cos_t, sin_t, *rest)).tobytes()
+            for name, got in answers.items():
+                assert isinstance(got, np.ndarray) and got.tobytes() == want, name
 
         loops = {"public": public_loop, "kernel_into": kernel_into_loop, "kernel": kernel_loop,
                  "floor": floor_loop, "entry": entry_loop}  # fmt: skip
-        ratios = benchmark.pedantic(_paired, (loops, 4000), rounds=1, iterations=1)
+        ratios = benchmark.pedantic(_paired, (loops, 4000, check, inputs), rounds=1, iterations=1)
         benchmark.extra_info.update(ratios)
 
 
@@ -454,8 +556,9 @@ def _bare_diff_step(pose: tuple[float, float, float], dl: int, dr: int) -> tuple
 @pytest.mark.benchmark(group="DiffOdometry.update")
 @pytest.mark.parametrize("contestant", ["public", "batch_of_one", "bare_python"])
 def test_diff_odometry_update(benchmark: Any, contestant: str) -> None:
-    odo = DiffOdometry(DiffDrive(track=0.5, wheel_radius=0.1), ticks_per_rev=1000,
-                       bits=16, method="first_order")
+    odo = DiffOdometry(
+        DiffDrive(track=0.5, wheel_radius=0.1), ticks_per_rev=1000, bits=16, method="first_order"
+    )
     ticks = [0]
 
     def reading() -> tuple[int, int]:
