@@ -35,7 +35,7 @@ from numba import njit
 
 from navkit.geometry import Pose2D
 from navkit.mapping import LaserScan, OccupancyGrid, integrate_scan
-from test_bench_astar import peer
+from test_bench_astar import peer, timed_fresh
 
 # scikit-image is a peer (``test`` extra): without it only its contestant skips
 # (peer()), and test_bench_raycast, which imports this file, still runs.
@@ -54,6 +54,9 @@ CLAMP = (math.log(0.12 / 0.88), math.log(0.97 / 0.03))
 # Off the round numbers so that no wall lies on a cell boundary (either cell
 # would be right there, and the contestants could round differently).
 ORIGIN = Pose2D(-7.013, -10.027, 0.0)
+# Rounds of the timed_fresh groups: one call each (0.1-5 ms integrate_scan, ~10 ms
+# world_to_cell on 10^6 points), each on new arguments.
+ROUNDS = 100
 
 
 def room_scan() -> LaserScan:
@@ -153,26 +156,42 @@ def skimage_loop(
     "contestant", ["navkit", "navkit_method", "navkit_exact", "numba_bresenham", "skimage"]
 )
 def test_integrate_scan(benchmark: Any, contestant: str) -> None:
+    """One scan into a new grid every round (made outside the timer): a grid saturating
+    over the rounds, or a scan skipped as already integrated, cannot stand in for the
+    work; every round's grid is checked equal to what an untimed call wrote into a
+    new grid (:func:`timed_fresh`; navkit's Bresenham cells are the baseline's,
+    :func:`test_navkit_and_baseline_agree`)."""
     scan = room_scan()
-    grid = new_grid()
     r0, c0, r1s, c1s, hits = beam_cells(scan)
-    logodds = np.zeros(grid.shape, dtype=np.float32)
     if contestant == "navkit":
-        updated = benchmark(integrate_scan, grid, scan, POSE)
+        run: Any = lambda grid: integrate_scan(grid, scan, POSE)  # noqa: E731
     elif contestant == "navkit_method":
-        updated = benchmark(grid.integrate_scan, scan, POSE)
+        run = lambda grid: grid.integrate_scan(scan, POSE)  # noqa: E731
     elif contestant == "navkit_exact":
-        updated = benchmark(lambda: integrate_scan(grid, scan, POSE, exact=True))
+        run = lambda grid: integrate_scan(grid, scan, POSE, exact=True)  # noqa: E731
     elif contestant == "numba_bresenham":
-        args = (logodds, r0, c0, r1s, c1s, hits, HIT, MISS, *CLAMP)
-        numba_bresenham(*args)  # compile outside the timer
-        benchmark(numba_bresenham, *args)
-        updated = int((logodds != 0).sum())
+        run = lambda lo: numba_bresenham(lo, r0, c0, r1s, c1s, hits, HIT, MISS, *CLAMP)  # noqa: E731
     else:
         peer("skimage")
-        benchmark(skimage_loop, logodds, r0, c0, r1s, c1s, hits)
-        updated = int((logodds != 0).sum())
-    benchmark.extra_info["cells_updated"] = int(updated)
+        run = lambda lo: skimage_loop(lo, r0, c0, r1s, c1s, hits)  # noqa: E731
+    if contestant.startswith("navkit"):
+        fresh: Any = lambda: (new_grid(),)  # noqa: E731
+    else:
+        fresh = lambda: (np.zeros(new_grid().shape, dtype=np.float32),)  # noqa: E731
+
+    def logodds(args: tuple[Any, ...]) -> np.ndarray:
+        return np.asarray(getattr(args[0], "logodds", args[0]))
+
+    first = fresh()
+    run(*first)  # compile (numba) outside the timer
+    want = logodds(first)
+
+    def check(args: tuple[Any, ...], _answer: Any) -> None:
+        assert np.array_equal(logodds(args), want), contestant
+
+    timed_fresh(benchmark, run, fresh, check, ROUNDS)
+    updated = int((want != 0).sum())  # every round's grid is want (check)
+    benchmark.extra_info["cells_updated"] = updated
     benchmark.extra_info["beams"] = len(scan)
     # All contestants touch the same region: a sanity check, not a timing assertion.
     assert updated > 20_000
