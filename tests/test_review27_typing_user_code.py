@@ -25,6 +25,7 @@ from navkit.kinematics import DiffDrive
 from navkit.mapping import LocalGrid, OccupancyGrid
 from navkit.planning import AttractiveField, FieldDStar, MapPlanner
 from navkit.sim import EncoderReading, Lidar, Metrics, RangeNoise, Robot, WheelEncoders
+from strict_mypy import check_strict
 
 USER_CODE = Path(__file__).resolve().parent / "typing_user_code" / "user_code.py"
 
@@ -33,27 +34,7 @@ USER_CODE = Path(__file__).resolve().parent / "typing_user_code" / "user_code.py
 def test_user_code_type_checks_under_mypy_strict(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    from mypy import api
-
-    # A user's setup: none of navkit's [tool.mypy] settings (no ignored imports).
-    config = tmp_path / "mypy.ini"
-    config.write_text("[mypy]\n")
-    monkeypatch.chdir(tmp_path)
-    # mypy's in-process run sets MYPY_CONFIG_FILE_DIR (the config's folder) in
-    # os.environ, which later tests' processes inherited: set here to be put back.
-    monkeypatch.setenv("MYPY_CONFIG_FILE_DIR", str(tmp_path))
-    stdout, stderr, status = api.run(
-        [
-            "--strict",
-            "--config-file",
-            str(config),
-            "--cache-dir",
-            str(tmp_path / "cache"),
-            "--no-error-summary",
-            str(USER_CODE),
-        ]
-    )
-    assert status == 0, stdout + stderr
+    check_strict(USER_CODE, tmp_path, monkeypatch)
 
 
 def _declared_init(cls: type) -> ast.FunctionDef:

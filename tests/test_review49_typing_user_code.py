@@ -35,6 +35,7 @@ from navkit.sim import (
     World,
     sweep,
 )
+from strict_mypy import check_strict
 
 USER_CODE = Path(__file__).resolve().parent / "typing_user_code" / "review49_user_code.py"
 
@@ -70,29 +71,11 @@ SHAPELY_STUBS = {
 def test_user_code_type_checks_under_mypy_strict_with_shapely_typed(
     tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    from mypy import api
-
     stubs = tmp_path / "stubs"
     for name, text in SHAPELY_STUBS.items():
         (stubs / name).parent.mkdir(parents=True, exist_ok=True)
         (stubs / name).write_text(text)
-    config = tmp_path / "mypy.ini"
-    config.write_text(f"[mypy]\nmypy_path = {stubs}\n")
-    monkeypatch.chdir(tmp_path)
-    # mypy's in-process run sets MYPY_CONFIG_FILE_DIR in os.environ: put back after.
-    monkeypatch.setenv("MYPY_CONFIG_FILE_DIR", str(tmp_path))
-    stdout, stderr, status = api.run(
-        [
-            "--strict",
-            "--config-file",
-            str(config),
-            "--cache-dir",
-            str(tmp_path / "cache"),
-            "--no-error-summary",
-            str(USER_CODE),
-        ]
-    )
-    assert status == 0, stdout + stderr
+    check_strict(USER_CODE, tmp_path, monkeypatch, mypy_path=stubs)
 
 
 DASK_USER_CODE = """
@@ -120,26 +103,9 @@ def test_a_typed_dask_client_is_an_executor(
 ) -> None:
     # distributed ships py.typed: its Client's own signatures must satisfy the
     # executor type (a protocol of submit, gather and cancel).
-    from mypy import api
-
     code = tmp_path / "on_a_cluster.py"
     code.write_text(DASK_USER_CODE)
-    config = tmp_path / "mypy.ini"
-    config.write_text("[mypy]\n")
-    monkeypatch.chdir(tmp_path)
-    monkeypatch.setenv("MYPY_CONFIG_FILE_DIR", str(tmp_path))
-    stdout, stderr, status = api.run(
-        [
-            "--strict",
-            "--config-file",
-            str(config),
-            "--cache-dir",
-            str(tmp_path / "cache"),
-            "--no-error-summary",
-            str(code),
-        ]
-    )
-    assert status == 0, stdout + stderr
+    check_strict(code, tmp_path, monkeypatch)
 
 
 def test_sweep_refuses_a_non_executor_as_typed() -> None:
