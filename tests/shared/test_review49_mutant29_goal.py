@@ -16,6 +16,9 @@ coordinates. Mutants that survived them:
 * the goal's resolution taken from its coarser coordinate (``max`` for
   ``min``): a goal at (4.6e6, 0.5) m was reached from 5e-10 m away with a
   tolerance of 1e-12 m (the ulp of 4.6e6 is 9.3e-10 m, of 0.5 1.1e-16 m);
+* (review 49's ``goal_verdict``) the radius bound of ``hypot``'s verdict
+  from the coarser coordinate: those offsets, far beyond the radius, were
+  left undecided to Python by the run kernels instead of OUTSIDE;
 * the goal's resolution found without scaling for goals up to 2**980 m
   instead of 2**200 m (Rump's product overflows beyond 2**971 m): one ulp off
   such a goal, with a tolerance below its ulp, was not at the goal.
@@ -31,7 +34,7 @@ from fractions import Fraction
 
 import numpy as np
 
-from navkit._shared.goal import at_goal, resolution
+from navkit._shared.goal import INSIDE, OUTSIDE, at_goal, goal_verdict, resolution
 
 
 def _exact(px: float, py: float, gx: float, gy: float, tolerance: float) -> bool:
@@ -118,6 +121,11 @@ def test_the_resolution_is_the_finer_coordinates() -> None:
             want = _exact(px, py, gx, gy, 1e-12)
             assert want == (max(abs(px - gx), abs(py - gy)) <= 1e-12)
             assert at_goal(px, py, gx, gy, 1e-12) == want, (px, py, gx, gy)
+            # Decided by hypot alone (review 49's verdict of the run kernels): the
+            # radius bound is the finer coordinate's, so none is left to Python
+            # (a mutant bounding by the coarser one left the far ones undecided).
+            verdict = goal_verdict(px, py, gx, gy, 1e-12)
+            assert verdict == (INSIDE if want else OUTSIDE), (px, py, gx, gy)
 
 
 def test_a_long_side_equal_to_the_tolerance_with_any_short_side_is_beyond_it() -> None:
