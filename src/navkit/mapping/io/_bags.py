@@ -201,10 +201,11 @@ class BagScans:
     8 bytes a beam (16 with intensities) and some 330 bytes of objects a scan;
     :func:`read_bag_scans` builds each scan as its message is decoded and lets
     the message go, so that its peak is the scans and about one bag chunk
-    (measured on the demo bag of 360 scans of 681 beams, 1.03 MB: 2.22 MB at
-    the peak, 5.8 kB a scan kept; review 47: the decoded messages were all
-    held until the scans were built, and a bag read by the chunk walker held
-    whole, 3.51 MB).
+    (measured on the demo bag of 360 scans of 681 beams, 1.03 MB: 2.54 MB at
+    the peak, 6.1 kB a scan kept, with :mod:`tracemalloc`; 2.25 MB before
+    the walker handed out a topic's messages chunk by chunk; review 47: the
+    decoded messages were all held until the scans were built, and a bag
+    read by the chunk walker held whole, 3.51 MB).
 
     Examples
     --------
