@@ -151,7 +151,10 @@ class MapPlanner:
     its costs (8), with ``"astar"`` (which borrows the costs) or a callable;
     with ``"field_dstar"`` about 68: the :class:`FieldDStar` adds 56 bytes a
     node (its padded copy of the costs, its search values and its queue; 68 MB
-    for 1000 × 1000 cells against 12 MB). :attr:`costs` stays an array of its
+    for 1000 × 1000 cells against 12 MB allocated, of which the queue's 24
+    bytes a node are pages that take memory only where a search writes: 45 MB
+    resident after a plan across 1000 × 1000 free cells, measured with
+    ``VmRSS``). :attr:`costs` stays an array of its
     own beside the padded copy: a read-only C-contiguous array that no search
     touches. Each :func:`copy.copy` of a ``"field_dstar"`` planner adds the 56
     bytes a node of its own search state.
