@@ -6,13 +6,13 @@ import itertools
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from navkit._shared.deprecation import positional_deprecated
-from navkit._shared.frozen import frozen_setattr
+from navkit._shared.frozen import frozen_setattr, restore_read_only
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_float_array, finite_float, unpack
 
@@ -162,6 +162,16 @@ class RangeNoise:
         object.__setattr__(self, "sigma", sigma)
         object.__setattr__(self, "bias", bias)
         object.__setattr__(self, "absolute", absolute)
+
+    def __setstate__(self, state: Sequence[Any]) -> None:
+        """Restore from a pickle or copy (and what a subclass adds, see ``restore_read_only``).
+
+        A pickle made before review 49 holds the first three fields only: a noise
+        without an absolute term, ``absolute`` zeros as its default.
+        """
+        if isinstance(state, list) and len(state) == 3:
+            state = [*state, (0.0,) * len(state[1])]
+        restore_read_only(self, state, ())
 
     def arrays(self) -> tuple[FloatArray, FloatArray, FloatArray]:
         """``(limits, bias, sigma)`` as new float64 arrays, for the noise kernel.

@@ -168,8 +168,9 @@ class ScanLocalizer:
     simulation's encoder and scan readings; :attr:`pose` is the map pose. A
     scan is matched once the encoders have caught up with its time stamp
     (odometry and scan then describe the same instant). Each beam's range
-    variance is ``(floor)^2 + (relative sigma of its band × range)^2`` from
-    the LiDAR's :class:`~navkit.sim.RangeNoise`.
+    variance is ``floor^2 + (sigma × range + absolute)^2``, its band's standard
+    deviation from the LiDAR's :class:`~navkit.sim.RangeNoise` (the absolute
+    term since review 49) widened by ``floor``.
 
     Parameters
     ----------
@@ -267,9 +268,9 @@ class ScanLocalizer:
         self._mount = None if mount.x == 0.0 and mount.y == 0.0 and mount.theta == 0.0 else mount
         noise = lidar.noise
         if noise is None:
-            self._bands: tuple[FloatArray, FloatArray] | None = None
+            self._bands: tuple[FloatArray, FloatArray, FloatArray] | None = None
         else:
-            self._bands = (np.array(noise.limits), np.array(noise.sigma))
+            self._bands = (np.array(noise.limits), np.array(noise.sigma), np.array(noise.absolute))
         self._floor2 = floor**2
         self._prior_xy = 1.0 / prior_sigma_xy**2
         self._prior_th = 1.0 / prior_sigma_theta**2
@@ -330,9 +331,11 @@ class ScanLocalizer:
         if self._bands is None:
             variance = np.full(ranges.shape[0], self._floor2)
         else:
-            limits, sigma = self._bands
-            rel = sigma[np.minimum(np.searchsorted(limits, ranges, side="right"), sigma.size - 1)]
-            variance = self._floor2 + (rel * ranges) ** 2
+            limits, sigma, absolute = self._bands
+            band = np.minimum(np.searchsorted(limits, ranges, side="right"), sigma.size - 1)
+            # The band's standard deviation, RangeNoise's: relative plus absolute (review
+            # 49; + 0.0 keeps a relative-only model's weights to the bit).
+            variance = self._floor2 + (sigma[band] * ranges + absolute[band]) ** 2
         prior = self.pose
         ox, oy, co, so, res = self._frame
         match_scan(
