@@ -916,7 +916,9 @@ class _Run:
         status, i = kernel(*motion, *grid, *bookkeeping)
         while status == GOAL_UNDECIDED:
             # The robot is on the goal tolerance's band: decided exactly here, then on
-            # from that step (its samples and row first), with its slip draws on.
+            # from that step (its samples and row first), with its slip draws on
+            # (motion[:4] is the step range, the rate and sample_first; motion[12] the
+            # slip draws).
             if decide_goal(
                 i, sim._rate, body.state, self.goal, sim._stop_at_goal, self.stats,
                 self.times, self.poses, self.commands, self.cmd,
