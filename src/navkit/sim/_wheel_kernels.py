@@ -73,11 +73,13 @@ def wheel_step(
     ``fwd @ ground`` is held for the step.
 
     ``angles`` are summed with Kahan's compensation, ``carry`` (rad, zeros at
-    the start) holding each sum's rounding error so far: summed plainly they
-    drifted (0.4 tick of a 4096-tick encoder after 10^7 steps at 33 rad/s,
-    341 ticks of a 10^9-tick one after 2 * 10^6 steps at 8 rad/s);
-    compensated they stay within a few roundings of the exact sum, at no
-    measurable cost.
+    the start) holding each sum's rounding error so far, so that an encoder's
+    count stays true over long runs, at no measurable cost: after 10^7 steps
+    of 0.01 s at 33 rad/s the sum is within 0.4 ulp of the exact sum of the
+    steps' turns, where plain ``+=`` (the code before the compensation) was
+    0.3 tick of a 4096-tick encoder off, and after 2 * 10^6 steps at 8 rad/s
+    within 0.2 ulp, where plain ``+=`` was 341 ticks of a 10^9-tick encoder
+    off (review 50, against the exact rational sum).
     """
     n = wheels.shape[0]
     step = max_accel * dt
