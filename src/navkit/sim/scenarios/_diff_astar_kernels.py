@@ -50,7 +50,13 @@ def match_scan(
     (x0, y0, th0)``; ``d`` is ``values`` (distances at cell centres of a grid
     with origin ``(ox, oy)``, rotation ``(cos_o, sin_o)`` and ``resolution``)
     interpolated bilinearly (signed: negative inside obstacles). Points where
-    ``|d| >= clip`` or off the grid are left out. Writes ``(x, y, th)`` into ``out``.
+    ``|d| >= clip`` or off the map are left out: the map covers
+    ``-0.5 <= row < rows - 0.5`` and ``-0.5 <= col < cols - 0.5`` in cell
+    coordinates (cell centres at whole numbers); in its outer half cell, between
+    the edge cells' centres and the edge, the edge cells' bilinear patch is
+    extended (linearly in each direction: exact for a distance linear there, e.g.
+    to a straight wall), and a map one cell wide is constant across it.
+    Writes ``(x, y, th)`` into ``out``.
     """
     rows = values.shape[0]
     cols = values.shape[1]
@@ -77,16 +83,22 @@ def match_scan(
             dy = wy - oy
             col = (cos_o * dx + sin_o * dy) * inv_res - 0.5
             row = (-sin_o * dx + cos_o * dy) * inv_res - 0.5
-            if row < 0.0 or col < 0.0 or row >= rows - 1 or col >= cols - 1:
+            # Off the map (also NaN, and huge coordinates before any int conversion).
+            if not (-0.5 <= row < rows - 0.5 and -0.5 <= col < cols - 0.5):
                 continue
-            r0 = int(row)
-            c0 = int(col)
+            # The outer half cell (between the edge cells' centres and the edge) was
+            # left out once: a wall drawn in the edge cells was invisible, a map one
+            # cell wide matched nothing. The edge cells' patch extends over it.
+            r0 = min(max(math.floor(row), 0), rows - 2) if rows > 1 else 0
+            c0 = min(max(math.floor(col), 0), cols - 2) if cols > 1 else 0
+            r1 = r0 + 1 if rows > 1 else 0
+            c1 = c0 + 1 if cols > 1 else 0
             fr = row - r0
             fc = col - c0
             v00 = values[r0, c0]
-            v01 = values[r0, c0 + 1]
-            v10 = values[r0 + 1, c0]
-            v11 = values[r0 + 1, c0 + 1]
+            v01 = values[r0, c1]
+            v10 = values[r1, c0]
+            v11 = values[r1, c1]
             d = (1.0 - fr) * ((1.0 - fc) * v00 + fc * v01) + fr * ((1.0 - fc) * v10 + fc * v11)
             if abs(d) >= clip:
                 continue

@@ -34,7 +34,11 @@ class LikelihoodField:
     noise puts behind a wall pulls back as one in front of it pushes), sampled
     at the cell centres of ``grid``, interpolated bilinearly (exact wherever
     the distance is linear between centres, e.g. along a straight wall) and
-    capped at ``±clip``.
+    capped at ``±clip``. The field covers the grid's cells to their outer
+    edges: between the edge cells' centres and the map's edge the edge cells'
+    interpolation is extended (before review 50 points there were left out of
+    a match, and a map one cell wide matched nothing); points beyond the edge
+    are left out.
 
     Parameters
     ----------
