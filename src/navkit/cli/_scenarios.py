@@ -116,7 +116,7 @@ def run_scenario(
     ):
         bar.start(total)
         # Only a picture draws the traces: without one a long run holds the values
-        # alone (a Greedy trial's trace is ~120 kB; the tables and JSON never use it).
+        # alone (a Greedy trial's trace is ~127 kB; the tables and JSON never use it).
         drawn = args.plot is not None or args.animate is not None
         result: ScenarioResult = sweep(
             scenario, trials=args.trials, seeds=args.seed, workers=workers, executor=client,

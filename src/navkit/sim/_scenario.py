@@ -1036,7 +1036,7 @@ class Scenario(ABC):
         ScenarioResult
             Tables beside the paper's, summary, trials and scene. By default
             it keeps every trial's trace, so memory grows with the number of
-            trials: 80 bytes a recorded step, about 120 kB a trial for
+            trials: 80 bytes a recorded step, about 127 kB a trial for
             ``Greedy``; ``keep_traces=False`` keeps the values alone (see
             :func:`~navkit.sim.sweep`).
 

@@ -300,13 +300,14 @@ def sweep(
     (``result.traces``), so memory grows with the number of trials: 80 bytes
     a recorded step (times, poses, estimates and commands: 8 kB a simulated
     second at :class:`~navkit.sim.Simulation`'s default 100 Hz) and the scans
-    when they are recorded; about 120 kB a trial for ``Greedy`` with its
-    default options (measured: 5.1 MB for its 40 trials of ``trials=10``), so
-    120 GB for a million trials. With ``keep_traces=False`` a trial keeps
-    only its values (a few hundred bytes) and each trace lives only while its
-    trial runs: those 40 ``Greedy`` trials peaked at 0.2 MB in this process,
-    against 5.3 MB with their traces (a pool of 2 workers; 0.7 and 5.7 MB
-    with ``workers=1``).
+    when they are recorded; about 127 kB a trial for ``Greedy`` with its
+    default options (its 40 trials of ``trials=10`` peak 5.1 MB higher with
+    their traces than without: 121 kB of arrays a trial, the rest their
+    objects; review 50), so 127 GB for a million trials. With
+    ``keep_traces=False`` a trial keeps only its values (a few hundred bytes)
+    and each trace lives only while its trial runs: those 40 ``Greedy``
+    trials peaked at 0.2 MB in this process, against 5.3 MB with their traces
+    (a pool of 2 workers; 0.6 and 5.3 MB with ``workers=1``; tracemalloc).
 
     Examples
     --------
