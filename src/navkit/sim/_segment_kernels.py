@@ -48,7 +48,11 @@ the goal (:func:`navkit._shared.goal.goal_verdict`, all the kernels compile of
 the goal test); the caller decides with :func:`decide_goal` (the exact test,
 in Python) and resumes the kernel at that step, whose samples and trace row
 are not yet taken (review 49: compiled into the kernels, the exact test took
-a sixth of a second of ``Simulation.run``'s first use).
+a sixth of a second of ``Simulation.run``'s first use). The position it
+decided not at the goal is passed back in ``goal``; at that same position
+the kernels go on without stopping (review 50: a robot parked on the band,
+such as a controller stopped on the tolerance's circle, stopped them at
+every step, each step twice as slow).
 
 A run kernel first bounds the steps' spans over the segment (each wheel's
 speed stays between its present one and its command, :func:`_long_steps`) and
@@ -156,11 +160,18 @@ def decide_goal(
     step's trace row as the kernel does and returns True: the run ends there
     (``GOAL``). Otherwise returns False: the caller runs the kernel on from
     step ``i`` with ``sample_first`` (the step's samples and row, then the
-    rest of the segment, with the slip draws from step ``i``'s on).
+    rest of the segment, with the slip draws from step ``i``'s on). A position
+    not at the goal is kept in ``goal[5:7]``: the kernels answer it themselves
+    while the robot stays there (review 50: a robot parked on the band stopped
+    the kernel at every step).
     Plain Python, called for steps on the tolerance's band only.
     """
     if not at_goal(float(state[0]), float(state[1]), float(goal[0]), float(goal[1]),
                    float(goal[2])):  # fmt: skip
+        # Remembered for the kernels: while the robot stays at this position (parked on
+        # the band), they answer "not at the goal" themselves.
+        goal[5] = state[0]
+        goal[6] = state[1]
         return False
     t = i / rate
     stats[STAT_TIME_TO_GOAL] = t
@@ -441,8 +452,9 @@ def _settle(
         stats[STAT_IN_CONTACT] = _FREE
     else:
         stats[STAT_IN_CONTACT] = _HELD
-    # The goal, first reached? ``goal`` = [x, y, radius, yaw, yaw tolerance]; NaN x for
-    # no goal, NaN yaw for any heading. (Not a helper of its own: each separately
+    # The goal, first reached? ``goal`` = [x, y, radius, yaw, yaw tolerance, x, y of the
+    # position last decided not at it in Python]; NaN x for no goal, NaN yaw for any
+    # heading, NaN x, y for none decided. (Not a helper of its own: each separately
     # compiled function costs a tenth of a second or more on first use; wrap_scalar is
     # inlined at numba IR level, not compiled on its own: Simulation.run's first use
     # measured the same.) The position by the controllers' own exact test (review 48:
@@ -458,7 +470,13 @@ def _settle(
         ):
             verdict = OUTSIDE
         if verdict == UNDECIDED:
-            return GOAL_UNDECIDED
+            if state[0] != goal[5] or state[1] != goal[6]:
+                return GOAL_UNDECIDED
+            # The position Python last decided not at the goal (decide_goal, goal[5:7]):
+            # the same answer, without stopping for it again (at_goal depends on the
+            # position alone, and alike for 0.0 and -0.0, which compare equal). A robot
+            # parked on the band handed every step to Python, twice as slow (review 50).
+            verdict = OUTSIDE
         if verdict == INSIDE:
             stats[STAT_TIME_TO_GOAL] = t
             if stop_at_goal:

@@ -839,7 +839,9 @@ class _Run:
         self.contacts = np.zeros(1024)
         self.prev = np.zeros(3)
         goal = sim._goal
-        self.goal = np.full(5, np.nan)
+        # x, y, tolerance, heading, its tolerance, and the position decide_goal last
+        # found not at the goal (the run kernels' memory of it, NaN until then).
+        self.goal = np.full(7, np.nan)
         if goal is not None:
             self.goal[0], self.goal[1], self.goal[2] = goal[0], goal[1], sim._goal_radius
             if goal[2] is not None and sim._goal_yaw_tolerance is not None:
