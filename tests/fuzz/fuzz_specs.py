@@ -368,6 +368,9 @@ spec(
 
 # --------------------------------------------------------------------------- mapping
 
+for _alias in ("mapping.io.MapMode", "mapping.ScanMatchReason"):
+    NOT_FUZZED["navkit." + _alias] = "a typing.Literal alias, not a callable"
+
 
 def _pgm(folder: Path, name: str, body: bytes) -> Path:
     path = folder / name

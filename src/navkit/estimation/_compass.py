@@ -9,14 +9,16 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from navkit._shared.dunders import slot_state
-from navkit._shared.types import FloatArray
+from navkit._shared.types import FloatArray, RealScalar
 from navkit._shared.validation import as_bool, as_float_array, finite_float
 
 __all__ = ["CompassCalibration", "compass_to_yaw"]
 
 
 @overload
-def compass_to_yaw(raw_deg: float, *, initial_deg: float = ..., unwrap: bool = ...) -> float: ...
+def compass_to_yaw(
+    raw_deg: RealScalar, *, initial_deg: float = ..., unwrap: bool = ...
+) -> float: ...
 @overload
 def compass_to_yaw(
     raw_deg: Sequence[float] | Sequence[Sequence[float]],
@@ -111,9 +113,7 @@ def compass_to_yaw(
     return out
 
 
-def _unwrap_after(
-    yaw: FloatArray, previous: float, correction: float
-) -> tuple[FloatArray, float]:
+def _unwrap_after(yaw: FloatArray, previous: float, correction: float) -> tuple[FloatArray, float]:
     """Unwrap the 1-D wrapped ``yaw`` that follows the wrapped yaw ``previous``.
 
     ``correction`` is the multiple of 2π already added to ``previous``. The rule and
@@ -216,7 +216,7 @@ class CompassCalibration:
         self._correction = 0.0
 
     @overload
-    def __call__(self, raw_deg: float) -> float: ...
+    def __call__(self, raw_deg: RealScalar) -> float: ...
     @overload
     def __call__(self, raw_deg: Sequence[float] | Sequence[Sequence[float]]) -> FloatArray: ...
     @overload

@@ -10,6 +10,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from navkit._shared.angles import wrap_float
+from navkit._shared.types import RealScalar
 from navkit._shared.validation import as_float_array
 
 __all__ = ["angle_diff", "wrap_angle"]
@@ -18,9 +19,11 @@ _TWO_PI = 2.0 * math.pi
 
 
 @overload
-def wrap_angle(angle: float) -> float: ...
+def wrap_angle(angle: RealScalar) -> float: ...
 @overload
-def wrap_angle(angle: Sequence[float] | Sequence[Sequence[float]]) -> NDArray[np.float64]: ...
+def wrap_angle(
+    angle: Sequence[float] | Sequence[Sequence[float]],
+) -> NDArray[np.float64]: ...
 @overload
 def wrap_angle(angle: ArrayLike) -> float | NDArray[np.float64]: ...
 
@@ -86,7 +89,7 @@ def wrap_angle(angle: ArrayLike) -> float | NDArray[np.float64]:
 
 
 @overload
-def angle_diff(a: float, b: float) -> float: ...
+def angle_diff(a: RealScalar, b: RealScalar) -> float: ...
 @overload
 def angle_diff(
     a: Sequence[float] | Sequence[Sequence[float]], b: ArrayLike

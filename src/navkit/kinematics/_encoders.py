@@ -10,7 +10,7 @@ from typing import overload
 import numpy as np
 from numpy.typing import ArrayLike
 
-from navkit._shared.types import FloatArray, IntArray
+from navkit._shared.types import FloatArray, IntArray, IntScalar, RealScalar
 from navkit._shared.validation import as_float_array, integer_readings, refuse_masked, shown
 from navkit.kinematics._ranges import (
     MAX_LENGTH,
@@ -25,7 +25,7 @@ __all__ = ["tick_delta", "ticks_to_distance"]
 
 @overload
 def ticks_to_distance(
-    delta_ticks: float, *, ticks_per_rev: float, wheel_radius: float
+    delta_ticks: RealScalar, *, ticks_per_rev: float, wheel_radius: float
 ) -> float: ...
 @overload
 def ticks_to_distance(
@@ -90,7 +90,7 @@ def ticks_to_distance(
 
 
 @overload
-def tick_delta(previous: int, current: int, *, bits: int) -> int: ...
+def tick_delta(previous: IntScalar, current: IntScalar, *, bits: int) -> int: ...
 @overload
 def tick_delta(
     previous: Sequence[int] | Sequence[Sequence[int]], current: ArrayLike, *, bits: int
@@ -157,8 +157,7 @@ def tick_delta(previous: ArrayLike, current: ArrayLike, *, bits: int) -> int | I
         np.broadcast_shapes(prev.shape, cur.shape)
     except ValueError:
         raise ValueError(
-            f"previous and current must broadcast together, got shapes {prev.shape} and "
-            f"{cur.shape}"
+            f"previous and current must broadcast together, got shapes {prev.shape} and {cur.shape}"
         ) from None
     shift = np.uint64(64 - nbits)
     # uint64 subtraction wraps modulo 2**64; shifting the low `bits` bits to the top and

@@ -53,19 +53,21 @@ array([[0, 0, 1, 0],
 
 from navkit.mapping._costs import costmap, traversal_costs, validate_costs
 from navkit.mapping._distance_transform import distance_transform
-from navkit.mapping._grid import OccupancyGrid
+from navkit.mapping._grid import MapMode, OccupancyGrid
 from navkit.mapping._local_grid import LocalGrid
 from navkit.mapping._rasterize import rasterize_polygons
 from navkit.mapping._raycast import integrate_scan
 from navkit.mapping._scan import LaserScan
 from navkit.mapping._scan_mapper import ScanMapper
-from navkit.mapping._scan_matcher import ScanMatcher, ScanMatchResult
+from navkit.mapping._scan_matcher import ScanMatcher, ScanMatchReason, ScanMatchResult
 
 __all__ = [
     "LaserScan",
     "LocalGrid",
+    "MapMode",
     "OccupancyGrid",
     "ScanMapper",
+    "ScanMatchReason",
     "ScanMatchResult",
     "ScanMatcher",
     "costmap",

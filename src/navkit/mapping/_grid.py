@@ -71,7 +71,12 @@ from navkit.mapping._obstacle_distance import CELL_EPS, obstacle_distance, obsta
 if TYPE_CHECKING:
     from navkit.mapping._scan import LaserScan
 
-__all__ = ["OccupancyGrid"]
+__all__ = ["MapMode", "OccupancyGrid"]
+
+MapMode = Literal["trinary", "scale"]
+"""How a map's image encodes its cells: ``mode`` of :meth:`OccupancyGrid.save`,
+:func:`navkit.mapping.io.write_map` and :func:`navkit.mapping.io.grid_to_msg_fields`
+(map_server's trinary and scale modes; its ``raw`` mode is read, never written)."""
 
 _FLOAT64 = np.dtype(np.float64)
 _INT64 = np.dtype(np.int64)
@@ -284,9 +289,7 @@ def _message_dtype(value: object) -> np.dtype[Any] | None:
     makes of it, once: building a grid from a non-array is not a hot path.
     """
     try:
-        dtype: np.dtype[Any] = (
-            value.dtype if is_ndarray(value) else np.asarray(value).dtype
-        )
+        dtype: np.dtype[Any] = value.dtype if is_ndarray(value) else np.asarray(value).dtype
     except Exception:  # the general conversion that follows raises navkit's error
         return None
     return dtype
@@ -973,7 +976,7 @@ class OccupancyGrid:
             free_thresh=grid._free_thresh,
         )
 
-    def save(self, path: str | os.PathLike[str], *, mode: str = "trinary") -> Path:
+    def save(self, path: str | os.PathLike[str], *, mode: MapMode = "trinary") -> Path:
         """Save as a ROS map_server map; see :func:`navkit.mapping.io.write_map`.
 
         Both files are written atomically (temporary file, then ``os.replace``).

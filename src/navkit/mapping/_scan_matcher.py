@@ -6,7 +6,7 @@ import math
 import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -29,7 +29,7 @@ from navkit.mapping._scan_matcher_kernels import (
     match_level,
 )
 
-__all__ = ["ScanMatchResult", "ScanMatcher", "bounded_int", "scan_points"]
+__all__ = ["ScanMatchReason", "ScanMatchResult", "ScanMatcher", "bounded_int", "scan_points"]
 
 #: Fewest valid points a scan needs to be matched (three unknowns).
 MIN_POINTS = 3
@@ -50,6 +50,11 @@ _MAX_SEARCH_STEPS = 360
 # Most candidate poses of one pre-search (about 15 s at the worst, 0.45 µs a pose
 # for a 360-beam scan): a window of 100 m on a 1 cm grid would otherwise be 3e11.
 _MAX_SEARCH_POSES = 2**25
+
+ScanMatchReason = Literal[
+    "converged", "max_iterations", "no valid beams", "guess outside the map", "degenerate"
+]
+"""Every ``reason`` a :class:`ScanMatchResult` can give (the values of ``REASONS``)."""
 
 #: Every ``reason`` a :class:`ScanMatchResult` can give.
 REASONS = (
@@ -163,7 +168,20 @@ class ScanMatchResult:
     iterations: int
     score: float
     converged: bool
-    reason: str
+    reason: ScanMatchReason
+
+    if TYPE_CHECKING:
+        # What the constructor converts and checks (the fields hold the results):
+        # a pose as three numbers, the covariance as array_like, the reason as any str.
+        def __init__(
+            self,
+            pose: Pose2D | ArrayLike,
+            covariance: ArrayLike,
+            iterations: int,
+            score: float,
+            converged: bool,
+            reason: str,
+        ) -> None: ...
 
     def __post_init__(self) -> None:
         pose: object = self.pose

@@ -84,8 +84,12 @@ class Event:
     """
 
     t: float
-    kind: str
+    kind: EndReason
     message: str
+
+    if TYPE_CHECKING:
+        # Built from any str: the constructor checks it is one of EndReason.
+        def __init__(self, t: float, kind: str, message: str) -> None: ...
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "t", finite_float(self.t, "t"))

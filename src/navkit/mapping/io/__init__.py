@@ -58,6 +58,7 @@ Examples
 array([100,   0,   0, 100], dtype=int8)
 """
 
+from navkit.mapping import MapMode
 from navkit.mapping.io._bags import (
     BagImu,
     BagOdometry,
@@ -87,6 +88,7 @@ __all__ = [
     "BagOdometry",
     "BagScans",
     "CarmenLog",
+    "MapMode",
     "MovingAIMap",
     "MovingAIScenarios",
     "OccupancyGridMsgFields",

@@ -31,7 +31,7 @@ from bisect import bisect_left
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path, PureWindowsPath
-from typing import Any, BinaryIO, NamedTuple
+from typing import Any, BinaryIO, NamedTuple, cast
 
 import numpy as np
 import yaml
@@ -43,7 +43,7 @@ from navkit._shared.frozen import frozen_setattr
 from navkit._shared.locks import ForkSafeLock
 from navkit._shared.text import as_text
 from navkit.geometry import Pose2D
-from navkit.mapping import OccupancyGrid
+from navkit.mapping import MapMode, OccupancyGrid
 from navkit.mapping.io._paths import as_path, open_regular
 from navkit.mapping.io._step_tables import (
     LOOK_UP_BLOCK,
@@ -109,6 +109,8 @@ _IMAGE_SUFFIXES = frozenset(
     {".pgm", ".pbm", ".ppm", ".pnm", ".png", ".jpg", ".jpeg", ".bmp", ".gif", ".tif", ".tiff"}
     | {".webp"}
 )
+
+
 # PyYAML's pure-Python safe loader, not the libyaml one (CSafeLoader): the C
 # loader's composer recurses on the C stack and crashes the interpreter
 # (segmentation fault) on deeply nested input such as 100000 "[", where the
@@ -1807,9 +1809,7 @@ def _pixel_p(levels: Any) -> Any:
     return 1.0 - np.asarray(levels) / 255.0
 
 
-def _unknown_pixel(
-    occupied_thresh: float, free_thresh: float, *, preferred: int | None
-) -> int:
+def _unknown_pixel(occupied_thresh: float, free_thresh: float, *, preferred: int | None) -> int:
     """A grey level map_server reads as unknown under these thresholds.
 
     ``preferred`` when it is one (205, map_saver's unknown, in trinary mode),
@@ -2044,7 +2044,9 @@ def _remove_superseded(old: _Superseded, yaml_path: Path, image: Path) -> None:
         )
 
 
-def write_map(grid: OccupancyGrid, path: str | os.PathLike[str], *, mode: str = "trinary") -> Path:
+def write_map(
+    grid: OccupancyGrid, path: str | os.PathLike[str], *, mode: MapMode = "trinary"
+) -> Path:
     """Save a grid as a ROS map_server map: ``path`` (YAML) and an image beside it.
 
     The image is what Nav2's map_saver writes by default: a P5 PGM in
@@ -2159,7 +2161,7 @@ def write_map(grid: OccupancyGrid, path: str | os.PathLike[str], *, mode: str = 
         raise TypeError(f"grid must be an OccupancyGrid, got {type(grid).__name__}")
     # Checked and written as the plain str: an np.str_ (or any str subclass) went into
     # the YAML, whose safe dumper raised its own RepresenterError for it.
-    mode = as_text(mode, "mode")
+    mode = cast(MapMode, as_text(mode, "mode"))  # checked next
     if mode not in _WRITE_MODES:
         raise ValueError(f"mode must be 'trinary' or 'scale', got {mode!r}")
     image_format = _IMAGE_FORMAT[mode]

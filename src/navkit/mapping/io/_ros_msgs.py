@@ -20,7 +20,7 @@ from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.validation import as_bool, bounded_int, finite_float, refuse_masked, unpack
 from navkit.geometry import Pose2D, quaternion_to_matrix, quaternion_to_yaw
-from navkit.mapping import LaserScan, OccupancyGrid
+from navkit.mapping import LaserScan, MapMode, OccupancyGrid
 from navkit.mapping.io._map_files import _unknown_logodds
 from navkit.mapping.io._step_tables import (
     LOOK_UP_BLOCK,
@@ -433,7 +433,7 @@ def grid_from_msg(msg: Any) -> OccupancyGrid:
 
 
 def grid_to_msg_fields(
-    grid: OccupancyGrid, *, mode: str = "scale", trinary: bool | None = None
+    grid: OccupancyGrid, *, mode: MapMode = "scale", trinary: bool | None = None
 ) -> OccupancyGridMsgFields:
     """Field values of the ``nav_msgs/OccupancyGrid`` equivalent to ``grid``.
 
@@ -494,7 +494,9 @@ def grid_to_msg_fields(
     """
     if not isinstance(grid, OccupancyGrid):
         raise TypeError(f"grid must be an OccupancyGrid, got {type(grid).__name__}")
-    old_mode = None if trinary is None else ("trinary" if as_bool(trinary, "trinary") else "scale")
+    old_mode: MapMode | None = None
+    if trinary is not None:
+        old_mode = "trinary" if as_bool(trinary, "trinary") else "scale"
     mode = renamed_keyword("trinary", old_mode, "mode", mode, "scale", use=f"mode={old_mode!r}")
     if not isinstance(mode, str):
         raise TypeError(f"mode must be a str, got {type(mode).__name__}")

@@ -21,7 +21,7 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Sequence
-from typing import Any
+from typing import Any, Literal, cast
 
 import numpy as np
 
@@ -75,6 +75,9 @@ from navkit.sim.scenarios._indoor_nav_runs import (
 )
 
 __all__ = ["IndoorNav"]
+
+MapSource = Literal["scans", "plan"]
+"""``map_source``: the values of ``MAP_SOURCES``."""
 
 #: The paper's mean localisation errors: x (m), y (m), heading (deg).
 PAPER_WHEEL = (0.053, 0.043, 3.827)
@@ -215,7 +218,7 @@ class IndoorNav(Scenario):
         paths: int = 4,
         furniture: bool = True,
         resolution: float = 0.05,
-        map_source: str = "scans",
+        map_source: MapSource = "scans",
         compare_speed: float | None = 0.5,
     ) -> None:
         self.targets: int = _count(targets, "targets", len(TARGETS))
@@ -227,10 +230,10 @@ class IndoorNav(Scenario):
         self.resolution: float = res
         if not isinstance(map_source, str):
             raise TypeError(f"map_source must be a str, got {type(map_source).__name__}")
-        map_source = as_text(map_source, "map_source")  # checked and kept as the plain str
-        if map_source not in MAP_SOURCES:
-            raise ValueError(f"map_source must be one of {MAP_SOURCES}, got {map_source!r}")
-        self.map_source: str = map_source
+        source = as_text(map_source, "map_source")  # checked and kept as the plain str
+        if source not in MAP_SOURCES:
+            raise ValueError(f"map_source must be one of {MAP_SOURCES}, got {source!r}")
+        self.map_source: MapSource = cast(MapSource, source)
         speed: float | None = None
         if compare_speed is not None:
             speed = finite_float(compare_speed, "compare_speed")
@@ -653,5 +656,3 @@ class IndoorNav(Scenario):
             grid=lab_map(res, furn, source), world=lab_world(furn), paths=tuple(paths),
             traces=tuple(traces), points=points,
         )  # fmt: skip
-
-
