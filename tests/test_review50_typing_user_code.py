@@ -36,6 +36,9 @@ from navkit.sim.scenarios import IndoorNav
 from navkit.sim.scenarios._indoor_nav import MapSource
 from navkit.sim.scenarios._indoor_nav_mapping import MAP_SOURCES
 from strict_mypy import check_strict
+from test_review27_typing_user_code import (
+    test_declared_init_has_the_generated_parameters as _declared_init_is_the_generated,
+)
 
 USER_CODE = Path(__file__).resolve().parent / "typing_user_code" / "review50_user_code.py"
 
@@ -182,3 +185,10 @@ def test_update_result_status_is_none_only_when_rejected_without_one() -> None:
     rejected = UpdateResult(False, 30.2, np.array([5.0]), "rejected by the gate")
     assert rejected.status is None
     assert UpdateResult(True, 0.5, np.array([0.1])).status is FusionStatus.ACCEPTED
+
+
+@pytest.mark.parametrize("cls", [Event, ScanMatchResult], ids=lambda c: c.__name__)
+def test_declared_init_has_the_generated_parameters(cls: type) -> None:
+    # The __init__ declared for type checkers (review 50) keeps the generated one's
+    # parameters, names, order and defaults (review 27's check).
+    _declared_init_is_the_generated(cls)
