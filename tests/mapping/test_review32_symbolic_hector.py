@@ -54,15 +54,18 @@ def _cell_probabilities(logodds: np.ndarray) -> np.ndarray:
 
 
 def _bilinear(p: np.ndarray, row: Any, col: Any) -> tuple[Any, Any, Any]:
-    """M, ∂M/∂row, ∂M/∂col of the module docstring; zeros beyond the map's edges.
+    """M, ∂M/∂row, ∂M/∂col of the module docstring, the map padded with unknown cells.
 
-    In the outer half cell the neighbours beyond the edge are unknown (p = 1/2):
-    ``p`` padded with them, and the coordinates moved by the padding.
+    Beyond the edge cells' centres the neighbours beyond the edge are unknown
+    (p = 1/2): ``p`` padded with two rings of them, and the coordinates moved by
+    the padding; past the first ring every neighbour is unknown (zeros there until
+    review 50).
     """
-    if not (-0.5 <= row < p.shape[0] - 0.5 and -0.5 <= col < p.shape[1] - 0.5):
-        return mp.mpf(0), mp.mpf(0), mp.mpf(0)
-    p = np.pad(p, 1, constant_values=0.5)
-    row, col = row + 1, col + 1
+    rows, cols = p.shape
+    if row < -1 or row > rows or col < -1 or col > cols:
+        return mp.mpf(0.5), mp.mpf(0), mp.mpf(0)
+    p = np.pad(p, 2, constant_values=0.5)
+    row, col = row + 2, col + 2
     r0, c0 = int(mp.floor(row)), int(mp.floor(col))
     b, a = row - r0, col - c0
     p00, p01 = mp.mpf(p[r0, c0]), mp.mpf(p[r0, c0 + 1])
@@ -80,7 +83,7 @@ def test_interpolated_value_and_gradient_are_the_bilinear_interpolant_s() -> Non
     mp.mp.dps = 50
     logodds = _map(rng)
     p = _cell_probabilities(logodds)
-    coords = np.column_stack((rng.uniform(-0.5, 8.5, 600), rng.uniform(-0.5, 10.5, 600)))
+    coords = np.column_stack((rng.uniform(-3.0, 11.0, 600), rng.uniform(-3.0, 13.0, 600)))
     coords[:40] = np.round(coords[:40])  # on cell centres and lines
     out = np.empty((coords.shape[0], 3))
     interpolate_batch(logodds, coords, out)

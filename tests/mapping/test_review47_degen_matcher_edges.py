@@ -6,8 +6,8 @@ probability to 0 at its centre, a wall drawn in the outer half of the edge
 cells was invisible, and a map one cell wide was not matched at all. A room
 mapped tight to its walls matched several times worse than the same map with a
 margin of unknown cells (6 of 30 matches ``"degenerate"``, errors up to 8 cm at
-5 cm cells). Now the cells beyond the edge count as unknown there: the tight
-map is the padded one.
+5 cm cells). Now the cells beyond the edge count as unknown there (and, since
+review 50, past the edge too): the tight map is the padded one.
 """
 
 from __future__ import annotations
@@ -62,7 +62,8 @@ def test_walls_in_the_edge_cells_outer_half_are_matched(inset: float) -> None:
     # The walls lie between the edge cells' centres and the map's edge (``inset``
     # cells inside it): a tight map matches them as the same map with a margin of
     # unknown cells does. (Guesses within 0.2 cell, so that no point leaves the
-    # tight map, where M is 0 and the padded map's is not.)
+    # tight map, where M was 0 until review 50 and the padded map's was not; see
+    # test_review50_found_matcher_beyond_edge.py for guesses that do.)
     rng = np.random.default_rng(4701)
     tight, padded = _room(0), _room(2)
     matcher = ScanMatcher()
@@ -139,12 +140,30 @@ def test_the_outer_half_cell_reads_the_map_padded_with_unknown_cells(
         assert out[0, 1:] == pytest.approx(reference[0, 1:], rel=0.0, abs=1e-12)
 
 
-def test_beyond_the_edge_m_is_zero() -> None:
+def test_beyond_the_edge_m_is_unknown() -> None:
+    # A cell past the edge cells' centres every neighbour is unknown: M = 1/2, no
+    # gradient (zeros until review 50); NaN coordinates still read zeros.
     logodds = np.full((4, 3), 5.0, dtype=np.float32)
-    coords = np.array([[3.5, 1.0], [-0.5000001, 1.0], [1.0, 2.5], [1.0, -0.6], [np.nan, 1.0]])
+    coords = np.array([[4.0, 1.0], [-1.0000001, 1.0], [1.0, 3.0], [1.0, -1.6], [1e300, -1e300]])
     out = np.full((len(coords), 3), np.nan)
     interpolate_batch(logodds, coords, out)
-    assert (out == 0.0).all()
+    assert out.tolist() == [[0.5, 0.0, 0.0]] * len(coords)
+    interpolate_batch(logodds, np.array([[np.nan, 1.0], [1.0, np.nan]]), out[:2])
+    assert (out[:2] == 0.0).all()
+
+
+def test_m_is_continuous_from_the_edge_cells_to_the_unknown_beyond() -> None:
+    # Across the edge and a cell past the edge cells' centres M has no jump.
+    logodds = np.full((4, 3), 5.0, dtype=np.float32)
+    tiny = 1e-9
+    coords = np.array(
+        [[r, 1.3] for r in (3.5 - tiny, 3.5 + tiny, 4.0 - tiny, 4.0 + tiny)]
+        + [[1.3, c] for c in (-0.5 - tiny, -0.5 + tiny, -1.0 - tiny, -1.0 + tiny)]
+    )
+    out = np.empty((len(coords), 3))
+    interpolate_batch(logodds, coords, out)
+    for k in range(0, len(coords), 2):
+        assert abs(out[k, 0] - out[k + 1, 0]) <= 1e-8
 
 
 def test_a_map_one_cell_high_has_its_cells_values() -> None:

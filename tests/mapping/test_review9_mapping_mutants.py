@@ -43,26 +43,25 @@ def _bilinear(p: np.ndarray, row: float, col: float) -> float:
     row=st.floats(-1.5, 4.5),
     col=st.floats(-1.5, 3.5),
 )
-def test_interpolation_is_bilinear_on_the_map_and_zero_beyond_its_edges(
+def test_interpolation_is_bilinear_on_the_map_padded_with_unknown_cells(
     values: list[float], row: float, col: float
 ) -> None:
-    # interpolate_batch's docstring: zeros beyond the map's edges (a (4, 3) map
-    # covers rows [-0.5, 3.5) and cols [-0.5, 2.5)); in its outer half cell the
-    # neighbours beyond the edge are unknown (p = 1/2): the map padded with them.
+    # interpolate_batch's docstring: beyond the edge cells' centres (a (4, 3) map
+    # covers rows [-0.5, 3.5) and cols [-0.5, 2.5)) the neighbours beyond the edge
+    # are unknown (p = 1/2): the map padded with them (zeros past the edge until
+    # review 50).
     logodds = np.array(values, dtype=np.float32).reshape(4, 3)
     out = np.empty((1, 3))
     interpolate_batch(logodds, np.array([[row, col]]), out)
-    if -0.5 <= row < 3.5 and -0.5 <= col < 2.5:
-        p = np.pad(1.0 / (1.0 + np.exp(-logodds.astype(np.float64))), 1, constant_values=0.5)
-        assert out[0, 0] == pytest.approx(_bilinear(p, row + 1, col + 1), rel=1e-6, abs=1e-7)
-    else:
-        assert out[0].tolist() == [0.0, 0.0, 0.0]
+    p = np.pad(1.0 / (1.0 + np.exp(-logodds.astype(np.float64))), 2, constant_values=0.5)
+    assert out[0, 0] == pytest.approx(_bilinear(p, row + 2, col + 2), rel=1e-6, abs=1e-7)
 
 
 def test_the_outer_half_cell_sees_the_edge_cells_and_unknown_beyond() -> None:
     # Points between the last cell centre and the map edge (col in [cols - 1,
     # cols - 0.5)) interpolate towards unknown cells beyond the edge (they read 0
-    # once, as if off the map); beyond the edge, zeros.
+    # once, as if off the map); past the edge too (zeros there until review 50),
+    # and a cell past the edge cells' centres M is 1/2 with no gradient.
     logodds = np.full((3, 3), 4.0, dtype=np.float32)
     p = 1.0 / (1.0 + math.exp(-4.0))
     coords = np.array([[0.5, 2.0], [0.5, 2.25], [2.0, 0.5], [2.25, 1.2], [-0.25, 1.0]])
@@ -71,7 +70,13 @@ def test_the_outer_half_cell_sees_the_edge_cells_and_unknown_beyond() -> None:
     assert out[:, 0] == pytest.approx([p, 0.75 * p + 0.125, p, 0.75 * p + 0.125, 0.75 * p + 0.125])
     beyond = np.array([[0.5, 2.5], [0.5, 2.7], [2.9, 1.2], [2.5, 2.5], [-0.5001, 1.0]])
     interpolate_batch(logodds, beyond, out[: len(beyond)])
-    assert (out[: len(beyond)] == 0.0).all()
+    # 2.9 and 2.7: 0.1 and 0.3 of a cell from unknown cells' centres.
+    expected = [0.5 * p + 0.25, 0.3 * p + 0.35, 0.1 * p + 0.45, 0.25 * p + 0.375]
+    assert out[:4, 0] == pytest.approx(expected)
+    assert out[4, 0] == pytest.approx(0.4999 * p + 0.5001 * 0.5)
+    far = np.array([[0.5, 3.0], [0.5, 40.0], [-1.0001, 1.0], [1e300, -1e300], [-9.0, 9.0]])
+    interpolate_batch(logodds, far, out[: len(far)])
+    assert out[: len(far)].tolist() == [[0.5, 0.0, 0.0]] * len(far)
 
 
 
@@ -185,7 +190,7 @@ def _search_costs(
                 col = np.floor(world_x / res).astype(int)
                 row = np.floor(world_y / res).astype(int)
                 inside = (row >= 0) & (row < rows) & (col >= 0) & (col < cols)
-                prob = np.zeros(len(points))
+                prob = np.full(len(points), 0.5)
                 prob[inside] = p[row[inside], col[inside]]
                 shift = (i * step_xy) ** 2 + (j * step_xy) ** 2
                 pull = wt**2 * shift + wr**2 * (k * step_theta) ** 2
@@ -201,7 +206,8 @@ def _search_costs(
 )
 def test_correlative_search_returns_the_cheapest_candidate(seed: int, wt: float, wr: float) -> None:
     # The search's docstring: the best of the grid of rotations and translations,
-    # cost = mean (1 - p)² of the points' cells (0 off the map) + the pull.
+    # cost = mean (1 - p)² of the points' cells (1/2 off the map, unknown; 0 until
+    # review 50) + the pull.
     rng = np.random.default_rng(seed)
     res = 0.1
     logodds = rng.choice([-3.0, 0.0, 4.0], size=(12, 14)).astype(np.float32)

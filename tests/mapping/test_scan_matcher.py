@@ -325,7 +325,8 @@ def test_guess_outside_the_map_keeps_the_guess() -> None:
     guess = Pose2D(50.0, -3.0, 0.0)
     result = ScanMatcher().match(_square_map(), _scan([1.0] * 90), guess)
     _assert_guess_kept(result, guess, "guess outside the map")
-    assert result.score == 0.0
+    # Every point off the map reads unknown (p = 1/2; 0 until review 50).
+    assert result.score == 0.5
 
 
 @pytest.mark.parametrize("weights", [(0.0, 0.0), (1.0, 1.0)])
