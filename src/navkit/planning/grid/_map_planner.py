@@ -406,7 +406,12 @@ class MapPlanner:
             cell to that cell's centre, where the planned path begins or ends
             (for ``"astar"`` through cell centres); a point within a millionth
             of a cell of its centre takes the centre's place instead. A start
-            and goal in one cell are joined straight (one point when equal).
+            and goal in one cell are joined straight (one point when equal);
+            in two neighbouring cells, however close, they are joined through
+            both centres, as every planner's path joins cells (2 µm apart
+            across a cell border: a path one cell long beside the links; the
+            length jumps as a point crosses a border: a design choice, so
+            that the cost is always the planner's plus the links').
             Cost in cost-weighted metres (the planner's cost × the resolution,
             plus each link's length × its cell's cost: equal to the length in
             free space), length in m (of the polyline, links included),
