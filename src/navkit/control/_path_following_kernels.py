@@ -123,13 +123,20 @@ def project(
         # The segment's length from its ends: arc lengths of a long path can
         # round a tiny segment to zero length.
         seg = math.hypot(ex, ey)
-        lo = max(0.0, s_from - cum[i])
-        hi = max(lo, min(seg, s_to - cum[i]))
+        # Selects, not the min/max builtins, which numba compiles as overloads of
+        # their own on first use (issue 17); the same comparisons and order.
+        lo = s_from - cum[i]
+        lo = lo if lo > 0.0 else 0.0
+        hi = s_to - cum[i]
+        hi = hi if hi < seg else seg
+        hi = hi if hi > lo else lo
         if seg > 0.0:
             # Distance along the segment of the foot of the perpendicular, clamped.
             u = ((px - ax) * ex + (py - ay) * ey) / seg
-            u = min(max(u, lo), hi)
-            f = min(u / seg, 1.0)
+            u = lo if lo > u else u
+            u = hi if hi < u else u
+            f = u / seg
+            f = 1.0 if f > 1.0 else f
         else:
             u = lo
             f = 0.0
@@ -144,19 +151,24 @@ def project(
             # Tested at the segment's end only, a path split into collinear pieces (a
             # vertex just past s_free) stopped where the whole one went on to a nearer
             # later pass: other commands (review 38).
-            g = min(free / seg, 1.0)
+            g = free / seg
+            g = 1.0 if g > 1.0 else g
             wx = (ax - px) + ex * g
             wy = (ay - py) + ey * g
             # The part's closest point: the segment's own, or else the point at s_free.
             near2 = d2 if u <= free else wx * wx + wy * wy
             if near2 < best_d2:
                 best_d2 = near2
-                best_s = min(max(cum[i] + min(u, free), s_from), s_to)
+                s = cum[i] + (free if free < u else u)
+                s = s_from if s_from > s else s
+                best_s = s_to if s_to < s else s
             if math.hypot(wx, wy) > math.sqrt(best_d2) + detour:
                 break
         if d2 < best_d2:
             best_d2 = d2
-            best_s = min(max(cum[i] + u, s_from), s_to)
+            s = cum[i] + u
+            s = s_from if s_from > s else s
+            best_s = s_to if s_to < s else s
         # The distance to a segment's points is convex along it, so the path can only
         # leave the robot and come back through a vertex: past one that is a detour
         # away, a nearer point is a later pass (the end of a short loop, a crossing).
@@ -224,9 +236,11 @@ def circle_exit(
                 return float(cum[j])
             qb = 2.0 * (fx * dx + fy * dy)
             qc = fx * fx + fy * fy - r2
-            disc = max(qb * qb - 4.0 * qa * qc, 0.0)
+            disc = qb * qb - 4.0 * qa * qc
+            disc = 0.0 if disc < 0.0 else disc  # selects, not max/min (see above)
             t = (-qb + math.sqrt(disc)) / (2.0 * qa)
-            t = min(max(t, 0.0), 1.0)
+            t = 0.0 if t < 0.0 else t
+            t = 1.0 if t > 1.0 else t
             end: float = cum[j]
             return s_a + t * (end - s_a)
         fx = gx

@@ -542,7 +542,8 @@ def _adopt_positive(
             v = a[i, j]
             if v != a[j, i] or not abs(v) <= 1e100:  # NaN fails too
                 return False
-            largest = max(largest, abs(v))
+            v = abs(v)
+            largest = v if v > largest else largest  # max(): not compiled as an overload
     if not largest >= 1e-150:
         return False
     if not _positive_definite(a, work, inv_d, n):

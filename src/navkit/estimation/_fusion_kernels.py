@@ -298,6 +298,9 @@ def _planar_step(
     ``nis`` inf when the NIS itself overflowed) means the residual, the NIS or
     the updated state is not finite.
     """
+    # For mypy alone (numba ignores a bare annotation): component indices below are
+    # np.int64 conversions of buffer entries.
+    k: KernelInt
     online = count >= 0
     if online:
         last = buf[BUF_TIME]
@@ -398,7 +401,9 @@ def _planar_step(
     # Right-hand sides solved with S: the rows of P Hᵀ (for K = P Hᵀ S⁻¹; S is symmetric, so
     # each row of K solves S kᵢ = (P Hᵀ)ᵢ) and, in row 6, y (for the NIS yᵀ S⁻¹ y).
     for a in range(m):
-        k = int(buf[_COMP0 + a])
+        # np.int64, not int(): numba compiles int() as an overload of its own on
+        # first use (issue 17); both truncate.
+        k = np.int64(buf[_COMP0 + a])
         r = buf[_Z0 + k] - buf[_X0 + k + 2]
         if k + 2 == THETA:
             r = _wrap(r)
@@ -408,9 +413,9 @@ def _planar_step(
         for i in range(N_STATE):
             buf[_SOLVE0 + W * i + a] = buf[_P0 + W * i + k + 2]
     for a in range(m):
-        k = int(buf[_COMP0 + a])
+        k = np.int64(buf[_COMP0 + a])
         for b in range(m):
-            buf[_CHOL0 + W * a + b] = buf[_P0 + W * (k + 2) + int(buf[_COMP0 + b]) + 2]
+            buf[_CHOL0 + W * a + b] = buf[_P0 + W * (k + 2) + np.int64(buf[_COMP0 + b]) + 2]
             # The observed states' own rows of K, H K = H P Hᵀ S⁻¹ = I - R S⁻¹, would
             # cancel: solve for -R S⁻¹ instead (its row a solves S u = -R e_a).
             buf[_SOLVE0 + W * (k + 2) + b] = 0.0
@@ -432,11 +437,11 @@ def _planar_step(
     # observed rows of K: off the diagonal -E; on it 1 - E where E <= 1/2, otherwise
     # (a measurement less precise than the estimate) (H P Hᵀ S⁻¹)_aa with S⁻¹ = R⁻¹ E.
     for a in range(m):
-        ka = int(buf[_COMP0 + a]) + 2
+        ka = np.int64(buf[_COMP0 + a]) + 2
         for b in range(m):
             buf[_E0 + W * a + b] = -buf[_SOLVE0 + W * ka + b]
     for a in range(m):
-        ka = int(buf[_COMP0 + a]) + 2
+        ka = np.int64(buf[_COMP0 + a]) + 2
         for b in range(m):
             buf[_SOLVE0 + W * ka + b] = -buf[_E0 + W * a + b]
         e = buf[_E0 + (W + 1) * a]
@@ -445,7 +450,7 @@ def _planar_step(
         else:
             t = 0.0
             for b in range(m):
-                kb = int(buf[_COMP0 + b])
+                kb = np.int64(buf[_COMP0 + b])
                 t += buf[_P0 + W * ka + kb + 2] * (buf[_E0 + W * b + a] / buf[_R0 + kb])
             buf[_SOLVE0 + W * ka + a] = t
     # From here on K is rows 0-5 of the solved block. The loops over the observed
@@ -472,14 +477,14 @@ def _planar_step(
     for i in range(W * N_STATE):
         buf[_FP0 + i] = buf[_P0 + i]
     for a in range(m):
-        k = int(buf[_COMP0 + a]) + 2
+        k = np.int64(buf[_COMP0 + a]) + 2
         for i in range(N_STATE):
             g = buf[_SOLVE0 + W * i + a]
             for j in range(N_STATE):
                 buf[_FP0 + W * i + j] -= g * buf[_P0 + W * k + j]
     # The observed rows of A P: (R S⁻¹ H P) = R Kᵀ.
     for a in range(m):
-        k = int(buf[_COMP0 + a])
+        k = np.int64(buf[_COMP0 + a])
         rk = buf[_R0 + k]
         for j in range(N_STATE):
             buf[_FP0 + W * (k + 2) + j] = rk * buf[_SOLVE0 + W * j + a]
@@ -487,7 +492,7 @@ def _planar_step(
     for i in range(W * N_STATE):
         buf[_PN0 + i] = buf[_FP0 + i]
     for a in range(m):
-        k = int(buf[_COMP0 + a])
+        k = np.int64(buf[_COMP0 + a])
         rk = buf[_R0 + k]
         for i in range(N_STATE):
             g = buf[_SOLVE0 + W * i + a] * rk - buf[_FP0 + W * i + k + 2]
@@ -496,11 +501,11 @@ def _planar_step(
     # ... but in the observed columns (A P) Aᵀ takes the rows R S⁻¹ of A:
     # M[:, c] = Σ_b (A P)[:, b] (R S⁻¹)[c, b] + K R K[c, :]ᵀ.
     for c in range(m):
-        kc = int(buf[_COMP0 + c]) + 2
+        kc = np.int64(buf[_COMP0 + c]) + 2
         for i in range(N_STATE):
             buf[_PN0 + W * i + kc] = 0.0
         for b in range(m):
-            kb = int(buf[_COMP0 + b])
+            kb = np.int64(buf[_COMP0 + b])
             e = buf[_E0 + W * c + b]
             kr = buf[_SOLVE0 + W * kc + b] * buf[_R0 + kb]
             for i in range(N_STATE):

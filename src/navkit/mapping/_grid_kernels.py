@@ -82,8 +82,14 @@ def world_to_cell_kernel(
         finite &= (x - x == 0.0) & (y - y == 0.0)
         dx = x - origin_x
         dy = y - origin_y
-        flat[2 * i] = math.floor(min(max((-s * dx + c * dy) * inv_res, -_LIMIT), _LIMIT))
-        flat[2 * i + 1] = math.floor(min(max((c * dx + s * dy) * inv_res, -_LIMIT), _LIMIT))
+        # Clamped by selects, not the min/max builtins, which numba compiles as
+        # overloads of their own on first use (issue 17); the same comparisons.
+        row = (-s * dx + c * dy) * inv_res
+        row = -_LIMIT if row < -_LIMIT else row
+        col = (c * dx + s * dy) * inv_res
+        col = -_LIMIT if col < -_LIMIT else col
+        flat[2 * i] = math.floor(_LIMIT if row > _LIMIT else row)
+        flat[2 * i + 1] = math.floor(_LIMIT if col > _LIMIT else col)
     return finite
 
 
@@ -109,8 +115,13 @@ def world_to_continuous_kernel(
     for i in range(points.shape[0]):
         dx = xy[2 * i] - origin_x
         dy = xy[2 * i + 1] - origin_y
-        flat[2 * i] = min(max((-s * dx + c * dy) * inv_res - 0.5, -_LIMIT), _LIMIT)
-        flat[2 * i + 1] = min(max((c * dx + s * dy) * inv_res - 0.5, -_LIMIT), _LIMIT)
+        # Selects, as in world_to_cell_kernel.
+        row = (-s * dx + c * dy) * inv_res - 0.5
+        row = -_LIMIT if row < -_LIMIT else row
+        col = (c * dx + s * dy) * inv_res - 0.5
+        col = -_LIMIT if col < -_LIMIT else col
+        flat[2 * i] = _LIMIT if row > _LIMIT else row
+        flat[2 * i + 1] = _LIMIT if col > _LIMIT else col
 
 
 def world_to_cell_entry() -> Callable[..., bool]:

@@ -69,6 +69,9 @@ def world_to_new_cells(
     cells, out = new_int_pairs(n)
     if is_null(cells):  # out of memory: the entry raises NumPy's MemoryError
         return cells
+    # numba links world_to_cell_kernel's code in here, but caches this kernel keyed on
+    # this file alone: edit this file too when that kernel changes (review 50: its
+    # clamps became selects).
     if world_to_cell_kernel(pts, origin_x, origin_y, origin_yaw, resolution, out):
         return cells
     return discard(cells)

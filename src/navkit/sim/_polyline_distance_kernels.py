@@ -130,7 +130,11 @@ def _nearer(
         ee = ex * ex + ey * ey
         t = 0.0
         if ee > 0.0:
-            t = min(max((wx * ex + wy * ey) / ee, 0.0), 1.0)
+            # min(max(u, 0), 1) as numba's builtins compute it, written out: the
+            # builtins compile as overloads of their own on first use (issue 17).
+            u = (wx * ex + wy * ey) / ee
+            u = 0.0 if u < 0.0 else u
+            t = 1.0 if u > 1.0 else u
         d = math.hypot(wx - t * ex, wy - t * ey)
         if d < best:
             best = d

@@ -203,7 +203,10 @@ def _sample(
         if rates[s] <= 0.0:
             continue
         when = counts[s] / rates[s]
-        if i * dt + max(_EPS, _REL * when) < when:
+        # max(_EPS, _REL * when) as numba's builtin computes it, written out: the
+        # min/max builtins compile as overloads of their own on first use (issue 17).
+        rel = _REL * when
+        if i * dt + (rel if rel > _EPS else _EPS) < when:
             continue
         counts[s] += 1
         row = n_out[s]
@@ -294,7 +297,9 @@ def _long_steps(
     vy = 0.0
     om = 0.0
     for w in range(wheels.shape[0]):
-        top = max(abs(wheels[w]), abs(command[w])) * radius_factor[w]
+        now = abs(wheels[w])
+        later = abs(command[w])
+        top = (later if later > now else now) * radius_factor[w]  # a select (see _sample)
         vx += abs(fwd[0, w]) * top
         vy += abs(fwd[1, w]) * top
         om += abs(fwd[2, w]) * top
@@ -353,7 +358,7 @@ def _sweep_static(
     while True:
         x, y, th = arc_pose(prev[0], prev[1], prev[2], vx, vy, om, done / span * dt)
         rest = span - done
-        limit = max(rest, _CONTACT_LIMIT)
+        limit = _CONTACT_LIMIT if rest < _CONTACT_LIMIT else rest  # max(): see _sample
         if occ is None:
             c = edge_clearance(
                 x, y, th, radius, body_verts, verts, segs, circles, gx0, gy0, h, nx, ny,
@@ -374,7 +379,7 @@ def _sweep_static(
             state[1] = y
             state[2] = th
             return True
-        advance = max(c, sweep)
+        advance = sweep if sweep > c else c
         if advance >= rest:
             return False
         done += advance
@@ -430,7 +435,7 @@ def _settle(
         # A new collision, unless the contact goes on or a held robot pushes on
         # (an obstacle reaching a held robot that stands still is a new one).
         if contact == _FREE or (contact == _HELD and not moved):
-            n = int(stats[STAT_COLLISIONS])
+            n = np.int64(stats[STAT_COLLISIONS])  # not int(): an overload of its own
             if n < contacts.shape[0]:
                 contacts[n] = t
             stats[STAT_COLLISIONS] = n + 1
@@ -608,7 +613,8 @@ def run_segment(
             state[0], state[1], state[2], radius, body_verts, verts, scratch,
             segs, circles, gx0, gy0, h, nx, ny, cell_start, cell_items,
             occ, gox, goy, gcos, gsin, res, dyn_segs, dyn_circles,
-            max(stats[STAT_MIN_CLEARANCE], _CONTACT_LIMIT),
+            _CONTACT_LIMIT if stats[STAT_MIN_CLEARANCE] < _CONTACT_LIMIT
+            else stats[STAT_MIN_CLEARANCE],  # max(): see _sample
         )  # fmt: skip
         # A moving obstacle may have swept over the robot: inside it is a contact too.
         if (
@@ -712,7 +718,8 @@ def run_edge_segment(
         clearance = edge_clearance(
             state[0], state[1], state[2], radius, body_verts, verts,
             segs, circles, gx0, gy0, h, nx, ny, cell_start, cell_items,
-            max(stats[STAT_MIN_CLEARANCE], _CONTACT_LIMIT),
+            _CONTACT_LIMIT if stats[STAT_MIN_CLEARANCE] < _CONTACT_LIMIT
+            else stats[STAT_MIN_CLEARANCE],  # max(): see _sample
         )  # fmt: skip
         # A long step may have passed through a wall or into a solid.
         if check_arcs and clearance > TOUCH and _sweep_static(

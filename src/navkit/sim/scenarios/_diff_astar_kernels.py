@@ -89,8 +89,14 @@ def match_scan(
             # The outer half cell (between the edge cells' centres and the edge) was
             # left out once: a wall drawn in the edge cells was invisible, a map one
             # cell wide matched nothing. The edge cells' patch extends over it.
-            r0 = min(max(math.floor(row), 0), rows - 2) if rows > 1 else 0
-            c0 = min(max(math.floor(col), 0), cols - 2) if cols > 1 else 0
+            # Clamped by selects, not the min/max builtins (numba compiles those as
+            # overloads of their own on first use; issue 17).
+            r0 = math.floor(row)
+            r0 = r0 if r0 > 0 else 0
+            r0 = (r0 if r0 < rows - 2 else rows - 2) if rows > 1 else 0
+            c0 = math.floor(col)
+            c0 = c0 if c0 > 0 else 0
+            c0 = (c0 if c0 < cols - 2 else cols - 2) if cols > 1 else 0
             r1 = r0 + 1 if rows > 1 else 0
             c1 = c0 + 1 if cols > 1 else 0
             fr = row - r0
