@@ -417,8 +417,10 @@ def _names(quick: bool) -> list[str]:
 
 
 def _table(results: dict[str, dict[str, Any]]) -> str:
-    lines = ["| entry point | cold CPU s | warm CPU s | cold wall s |",
-             "| --- | ---: | ---: | ---: |"]
+    lines = [
+        "| entry point | cold CPU s | warm CPU s | cold wall s |",
+        "| --- | ---: | ---: | ---: |",
+    ]
     for name, r in results.items():
         lines.append(f"| {name} | {r['cold_cpu_s']:.4f} | {r['warm_cpu_s']:.4f} "
                      f"| {r['cold_wall_s']:.2f} |")  # fmt: skip
