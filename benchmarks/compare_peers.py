@@ -30,7 +30,13 @@ For every contestant:
    samples of all contestants of a workload are taken in turns (so that a
    change in the machine's load hits all of them alike) until each has
    ``--repeats`` samples or has used its ``--budget`` seconds. The median per
-   call is reported; garbage collection is off while a sample runs.
+   call is reported; garbage collection is off while a sample runs. A call
+   whose benchmark gives it new arguments every round (pytest-benchmark's
+   ``pedantic(setup=...)``: new points, new scans, each round's answer checked
+   in the next round's setup) gets them here too: its setup runs before every
+   call, outside the timer (at most 200 calls a sample), and once more after
+   the last, so every timed answer is checked; one that fails a check under
+   the timer is reported as a mismatch, not timed further.
 
 The table: workload, navkit's median and first call, the peer, the peer's
 median and first call, and the **ratio peer time / navkit time (> 1: navkit is
@@ -143,11 +149,57 @@ def bench(name: str) -> Any:
     raise ImportError(f"could not import {name}")
 
 
+class Staged:
+    """A timed call whose arguments ``setup`` makes anew before every call, outside the timer.
+
+    The ``setup=`` of pytest-benchmark's ``pedantic``: ``setup()`` returns
+    ``(args, kwargs)`` for one call of ``fn``. A benchmark that gives each round
+    new inputs (a cache on the input cannot stand in for the work) or checks the
+    previous round's answer in its setup (``test_bench_astar.timed_fresh``) does
+    both here too: :class:`Timer` calls ``setup`` before every timed call and
+    once more after the last one.
+    """
+
+    def __init__(
+        self,
+        fn: Callable[..., Any],
+        setup: Callable[[], tuple[Sequence[Any], dict[str, Any]]],
+    ) -> None:
+        self.fn = fn
+        self.setup = setup
+
+    def timed(self, number: int) -> float:
+        """Seconds of ``number`` calls, each after its own (untimed) setup, gc off."""
+        total = 0.0
+        enabled = gc.isenabled()
+        gc.disable()
+        try:
+            for _ in range(number):
+                args, kwargs = self.setup()
+                t0 = time.perf_counter()
+                self.fn(*args, **kwargs)
+                total += time.perf_counter() - t0
+        finally:
+            if enabled:
+                gc.enable()
+        return total
+
+    def finish(self) -> None:
+        """One more setup, untimed: a check it makes of the last call's answer runs."""
+        self.setup()
+
+    def __call__(self) -> Any:
+        args, kwargs = self.setup()
+        return self.fn(*args, **kwargs)
+
+
 class Capture:
     """Stands in for pytest-benchmark's fixture: keeps the call a benchmark test times.
 
     ``test_fn(capture, ...)`` runs the test's setup and one call of its timed
-    function (the first call); the call itself is then :attr:`call`.
+    function (the first call); the call itself is then :attr:`call`: a plain
+    call, or a :class:`Staged` one when the test passed ``pedantic`` a
+    ``setup`` (new arguments before every call, as pytest-benchmark does).
     """
 
     def __init__(self) -> None:
@@ -169,9 +221,27 @@ class Capture:
         fn: Callable[..., Any],
         args: Sequence[Any] = (),
         kwargs: dict[str, Any] | None = None,
+        setup: Callable[[], Any] | None = None,
         **_: Any,
     ) -> Any:
-        return self(fn, *args, **(kwargs or {}))
+        if setup is None:
+            return self(fn, *args, **(kwargs or {}))
+        if args or kwargs:
+            # pytest-benchmark refuses both too: the setup's arguments would be ignored.
+            raise TypeError("pedantic: setup= cannot be combined with args= or kwargs=")
+
+        def arguments() -> tuple[Sequence[Any], dict[str, Any]]:
+            made = setup()
+            # pytest-benchmark's setup may return None: the call then takes no arguments.
+            return ((), {}) if made is None else made
+
+        staged = Staged(fn, arguments)
+        self.call = staged
+        args_now, kwargs_now = arguments()
+        t0 = time.perf_counter()
+        self.result = fn(*args_now, **kwargs_now)
+        self.first_s = time.perf_counter() - t0
+        return self.result
 
     @property
     def stats(self) -> Any:
@@ -339,16 +409,9 @@ def _repulsion(n_beams: int, quick: bool) -> Workload:
     def make(who: str) -> Callable[[], Ready]:
         def build() -> Ready:
             mod = bench("test_bench_fields")
-            from navkit.planning import repulsive_force_from_scan
-
-            scan = mod.make_scan(n_beams)
-            if who == "navkit":
-                return ready(
-                    functools.partial(
-                        repulsive_force_from_scan, scan, k_rep=mod.K_REP, influence_radius=mod.D0
-                    )
-                )
-            return ready(functools.partial(mod.numpy_repulsion, scan, mod.K_REP, mod.D0))
+            # The pytest groups' calls: every call on a scan of its own, its force checked.
+            test = mod.test_public_call if who == "navkit" else mod.test_numpy_vectorised
+            return captured(test, n_beams)
 
         return build
 
@@ -356,9 +419,11 @@ def _repulsion(n_beams: int, quick: bool) -> Workload:
         np.testing.assert_allclose(theirs, ours, rtol=1e-9)
         return "same force (1e-9)"
 
+    # 8: test_bench_fields.PER_ROUND (not imported here: the workloads are built lazily).
     return Workload(
         f"repulsion-{n_beams}",
-        f"per-beam repulsion of a {n_beams}-beam scan (repulsive_force_from_scan)",
+        f"per-beam repulsion of 8 {n_beams}-beam scans, new ones every call "
+        "(repulsive_force_from_scan)",
         Contestant("navkit", make("navkit")),
         (Contestant("NumPy vectorised", make("numpy"), None, check),),
         quick,
@@ -431,7 +496,8 @@ def _world_to_cell() -> Workload:
 
     return Workload(
         "world-to-cell-1e6",
-        "world_to_cell of 10^6 points on a rotated grid (OccupancyGrid.world_to_cell)",
+        "world_to_cell of 10^6 points on a rotated grid, new points every call "
+        "(OccupancyGrid.world_to_cell)",
         Contestant("navkit", make("navkit")),
         (Contestant("NumPy", make("numpy"), None, check),),
         quick=True,
@@ -591,23 +657,52 @@ class Timer:
     number: int = 1
     target: int = 1
     samples: list[float] = field(default_factory=list)
+    failed: str = ""  # a check under the timing that failed (a staged call's setup)
 
     def sample(self) -> None:
-        self.samples.append(timeit.Timer(self.call).timeit(self.number) / self.number)
+        try:
+            self.samples.append(_seconds(self.call, self.number) / self.number)
+        except AssertionError as exc:
+            self.fail(exc)
+
+    def finish(self) -> None:
+        """A staged call's last setup, which checks the last timed answer."""
+        if isinstance(self.call, Staged) and not self.failed:
+            try:
+                self.call.finish()
+            except AssertionError as exc:
+                self.fail(exc)
+
+    def fail(self, exc: AssertionError) -> None:
+        self.failed = str(exc).strip().splitlines()[0][:80] if str(exc).strip() else "failed"
+        self.target = len(self.samples)  # no more samples: its times are not the work's
 
     @property
     def median(self) -> float:
         return statistics.median(self.samples)
 
 
+#: Calls per sample of a :class:`Staged` call at most: each has its own setup (new
+#: arguments, the previous answer's check), which can cost far more than the call.
+STAGED_NUMBER = 200
+
+
+def _seconds(call: Call, number: int) -> float:
+    """Seconds of ``number`` calls of ``call`` (a staged call's setups untimed), gc off."""
+    if isinstance(call, Staged):
+        return call.timed(number)
+    return timeit.Timer(call).timeit(number)
+
+
 def calibrate(call: Call) -> Timer:
     """Time one warm call; choose calls per sample and the number of samples."""
-    estimate = max(timeit.Timer(call).timeit(1), 1e-9)
+    estimate = max(_seconds(call, 1), 1e-9)
     timer = Timer(call)
     if estimate >= RUN.min_time:
         timer.samples.append(estimate)
     else:
-        timer.number = min(math.ceil(RUN.min_time / estimate), 10_000_000)
+        most = STAGED_NUMBER if isinstance(call, Staged) else 10_000_000
+        timer.number = min(math.ceil(RUN.min_time / estimate), most)
     timer.target = max(1, min(RUN.repeats, int(RUN.budget / (timer.number * estimate))))
     return timer
 
@@ -690,10 +785,19 @@ def run_workload(work: Workload, log: Callable[[str], None]) -> list[Row]:
         log(f"  {peer.label}: first call {_fmt(theirs[2])}, {row.check}")
         timers.append((row, calibrate(theirs[0])))
     measure([t for _, t in timers])
-    navkit_median = timers[0][1].median
+    for _, timer in timers:
+        timer.finish()
+    navkit_timer = timers[0][1]
+    navkit_median = None if navkit_timer.failed else navkit_timer.median
     for peer_row, timer in timers[1:]:
         assert peer_row is not None
-        peer_row.peer_median_s = timer.median
+        if timer.failed:
+            peer_row.status = "MISMATCH"
+            peer_row.check = f"under the timer: {timer.failed}"
+        else:
+            peer_row.peer_median_s = timer.median
+    if navkit_timer.failed:
+        own_check = f"MISMATCH navkit under the timer: {navkit_timer.failed}"
     for row in rows:
         row.navkit_median_s = navkit_median
         row.navkit_first_s = ours[2]

@@ -21,7 +21,7 @@ Contestants for one scan:
   updating the line's cells with NumPy fancy indexing.
 
 ``world_to_cell`` on 10^6 points (integer cells, and ``continuous=True``) is
-compared with the same rule in NumPy.
+compared with the same rule in NumPy, every round on new points, its cells checked.
 """
 
 from __future__ import annotations
@@ -210,12 +210,21 @@ def test_navkit_and_baseline_agree() -> None:
     assert {(int(r), int(c)) for r, c in np.argwhere(grid.logodds > 0)} == ends
 
 
-def world_to_cell_case() -> tuple[OccupancyGrid, np.ndarray]:
-    """The rotated grid and the 10^6 seeded points of the ``world_to_cell`` group."""
-    grid = OccupancyGrid.empty(
+def world_to_cell_grid() -> OccupancyGrid:
+    """The rotated grid of the ``world_to_cell`` group."""
+    return OccupancyGrid.empty(
         width=50.0, height=40.0, resolution=RES, origin=Pose2D(-20.0, -15.0, 0.4)
     )
-    return grid, np.random.default_rng(0).uniform(-30, 30, size=(1_000_000, 2))
+
+
+def world_points(rng: np.random.Generator) -> np.ndarray:
+    """10^6 points over the grid and around it (some fall outside: no clipping)."""
+    return rng.uniform(-30, 30, size=(1_000_000, 2))
+
+
+def world_to_cell_case() -> tuple[OccupancyGrid, np.ndarray]:
+    """The rotated grid and the 10^6 seeded points of the ``world_to_cell`` group."""
+    return world_to_cell_grid(), world_points(np.random.default_rng(0))
 
 
 def numpy_world_to_cell(grid: OccupancyGrid, pts: np.ndarray) -> np.ndarray:
@@ -228,18 +237,49 @@ def numpy_world_to_cell(grid: OccupancyGrid, pts: np.ndarray) -> np.ndarray:
     return np.floor(np.column_stack((v, u))).astype(np.int64)
 
 
+def assert_cells(grid: OccupancyGrid, pts: np.ndarray, cells: np.ndarray, continuous: bool) -> None:
+    """``cells`` are those of ``pts`` by the NumPy rule; continuous ones floor to them
+    after the half-cell shift to cell centres (a point on a boundary: either cell)."""
+    want = numpy_world_to_cell(grid, pts)
+    assert cells.shape == want.shape
+    if not continuous:
+        np.testing.assert_array_equal(cells, want)
+        return
+    close = np.abs(cells + 0.5 - np.round(cells + 0.5)) < 1e-6
+    np.testing.assert_array_equal(np.floor(cells + 0.5)[~close], want[~close])
+
+
+# Rounds of the world_to_cell group: one call each (~10-30 ms), each on 10^6 new
+# points made outside the timer, its cells checked after it (also outside).
+WORLD_TO_CELL_ROUNDS = 20
+
+
 @pytest.mark.benchmark(group="world_to_cell 10^6 points")
 @pytest.mark.parametrize("contestant", ["navkit", "navkit_continuous", "numpy"])
 def test_world_to_cell(benchmark: Any, contestant: str) -> None:
-    """Checked by :func:`test_world_to_cell_agree` (``compare_peers.py`` times this
-    test's first call, so nothing runs before it here)."""
-    grid, pts = world_to_cell_case()
+    """10^6 new points every round (seeded, made outside the timer), every round's
+    cells checked against the NumPy rule (:func:`timed_fresh`): an answer kept
+    for the points of an earlier round cannot stand in for the work, one wrong
+    under the timer fails. The first round's points are
+    :func:`world_to_cell_case`'s (``compare_peers.py`` compares its contestants'
+    first answers and times this test's first call, so nothing runs before it
+    here)."""
+    grid = world_to_cell_grid()
+    rng = np.random.default_rng(0)
     if contestant == "navkit":
-        cells = benchmark(grid.world_to_cell, pts)
+        run: Any = grid.world_to_cell
     elif contestant == "navkit_continuous":
-        cells = benchmark(lambda: grid.world_to_cell(pts, continuous=True))
+        run = lambda pts: grid.world_to_cell(pts, continuous=True)  # noqa: E731
     else:
-        cells = benchmark(numpy_world_to_cell, grid, pts)
+        run = lambda pts: numpy_world_to_cell(grid, pts)  # noqa: E731
+    continuous = contestant == "navkit_continuous"
+    cells = timed_fresh(
+        benchmark,
+        run,
+        lambda: (world_points(rng),),
+        lambda args, found: assert_cells(grid, args[0], found, continuous),
+        WORLD_TO_CELL_ROUNDS,
+    )
     assert cells.shape == (1_000_000, 2)
 
 
@@ -247,8 +287,5 @@ def test_world_to_cell_agree() -> None:
     """The contestants' cells: navkit's integer cells are NumPy's; continuous ones floor
     to them after the half-cell shift to cell centres."""
     grid, pts = world_to_cell_case()
-    want = numpy_world_to_cell(grid, pts)
-    np.testing.assert_array_equal(grid.world_to_cell(pts), want)
-    centres = grid.world_to_cell(pts, continuous=True)
-    close = np.abs(centres + 0.5 - np.round(centres + 0.5)) < 1e-6  # a boundary: either cell
-    np.testing.assert_array_equal(np.floor(centres + 0.5)[~close], want[~close])
+    assert_cells(grid, pts, grid.world_to_cell(pts), continuous=False)
+    assert_cells(grid, pts, grid.world_to_cell(pts, continuous=True), continuous=True)
