@@ -26,8 +26,10 @@ rules) and with it (the peers' graph). Before timing, the fields are checked
 equal: same reachable cells, costs to 1e-12 relative.
 
 Each timed round gets a new read-only copy of the costs, made outside the
-timer, so a field remembered from an earlier round (a cache keyed on the
-array) cannot stand in for the search. ``test_ratio_to_csgraph`` gives the
+timer (``test_bench_astar.fresh_copy``), so a field remembered from an earlier
+round (a cache keyed on the array) cannot stand in for the search, and every
+round's field is checked against the reference, also outside the timer
+(``test_bench_astar.timed_fresh``). ``test_ratio_to_csgraph`` gives the
 issue's row: navkit and csgraph alternately in one loop (the order reversed
 every other round, this thread's CPU time), every round's two fields checked
 equal to the reference outside the timers, the median per-round ratio
@@ -47,6 +49,7 @@ import scipy.sparse
 from scipy.sparse.csgraph import dijkstra
 
 from navkit.planning import AStarPlanner, distance_field
+from test_bench_astar import fresh_copy, timed_fresh
 from test_bench_movingai import MAPS, grid_graph, movingai
 from test_bench_prepared import _csr_graph, _field_map
 
@@ -83,13 +86,6 @@ def contestant_run(name: str, contestant: str, corner_cutting: bool) -> Callable
     return lambda _costs: dijkstra(graph, directed=True, indices=source)
 
 
-def fresh_costs(name: str) -> np.ndarray:
-    """A new read-only copy of map ``name``'s costs (each timed round gets its own)."""
-    costs = field_case(name)[0].copy()
-    costs.flags.writeable = False
-    return costs
-
-
 @cache
 def reference_field(name: str, corner_cutting: bool) -> np.ndarray:
     """SciPy's field of a map, checked against navkit's one-shot field (read-only)."""
@@ -115,12 +111,15 @@ def test_distance_field(benchmark: Any, name: str, contestant: str, corner_cutti
     run = contestant_run(name, contestant, corner_cutting)
     want = reference_field(name, corner_cutting)
     # Before timing: every contestant's field is SciPy's, itself checked equal to navkit's.
-    assert_same_field(run(fresh_costs(name)), want)
+    assert_same_field(run(fresh_copy(field_case(name)[0])), want)
     benchmark.group = f"distance field {name} {'cut' if corner_cutting else 'no-cut'}"
-    result = benchmark.pedantic(
-        run, setup=lambda: ((fresh_costs(name),), {}), rounds=ROUNDS, warmup_rounds=1
+    result = timed_fresh(
+        benchmark,
+        run,
+        lambda: (fresh_copy(field_case(name)[0]),),
+        lambda _args, field: assert_same_field(field, want),
+        ROUNDS,
     )
-    assert_same_field(result, want)
     benchmark.extra_info["reachable"] = int(np.isfinite(result).sum())
 
 
@@ -147,7 +146,7 @@ def test_ratio_to_csgraph(benchmark: Any, name: str, corner_cutting: bool) -> No
         for i in range(n_rounds):
             spent, fields = {}, {}
             for side in sides if i % 2 == 0 else list(sides)[::-1]:
-                costs = fresh_costs(name)
+                costs = fresh_copy(field_case(name)[0])
                 c0 = time.thread_time()
                 fields[side] = sides[side](costs)
                 spent[side] = time.thread_time() - c0
