@@ -419,10 +419,10 @@ def _repulsion(n_beams: int, quick: bool) -> Workload:
         np.testing.assert_allclose(theirs, ours, rtol=1e-9)
         return "same force (1e-9)"
 
-    # 8: test_bench_fields.PER_ROUND (not imported here: the workloads are built lazily).
+    # 16: test_bench_fields.PER_ROUND (not imported here: the workloads are built lazily).
     return Workload(
         f"repulsion-{n_beams}",
-        f"per-beam repulsion of 8 {n_beams}-beam scans, new ones every call "
+        f"per-beam repulsion of 16 {n_beams}-beam scans, new ones every call "
         "(repulsive_force_from_scan)",
         Contestant("navkit", make("navkit")),
         (Contestant("NumPy vectorised", make("numpy"), None, check),),

@@ -118,8 +118,8 @@ def numpy_repulsion_tables(
 # Rounds of each repulsion group, each of PER_ROUND calls on scans of their own (the
 # pool's): one call a round would put timed_fresh's bookkeeping and the timer's own
 # cost (about 1 µs together) into every 0.5-3 µs call, PER_ROUND share it.
-ROUNDS = 200
-PER_ROUND = 8
+ROUNDS = 100
+PER_ROUND = 16
 MOUNT = Pose2D(0.2, 0.0, 0.0)  # a LiDAR 0.2 m ahead of the robot's centre (review 46)
 
 
@@ -174,6 +174,10 @@ def timed_on_scans(
     def fresh() -> tuple[list[LaserScan]]:
         batch = next(supply)
         scans = [one.scan for one in batch]
+        for scan in scans:
+            # Read once here, untimed: a scan arrives in the cache its driver wrote it
+            # through, not from a pool of tens of MB in main memory.
+            scan.ranges.sum()
         given[id(scans)] = batch
         return (scans,)
 
@@ -355,6 +359,8 @@ def timed_on_hokuyo(
     def fresh() -> tuple[list[LaserScan]]:
         batch = next(supply)
         scans = [s for s, _ in batch]
+        for scan in scans:
+            scan.ranges.sum()  # in the cache, as a scan just received (timed_on_scans)
         wants[id(scans)] = [w for _, w in batch]
         return (scans,)
 
