@@ -36,7 +36,9 @@ For every contestant:
    in the next round's setup) gets them here too: its setup runs before every
    call, outside the timer (at most 200 calls a sample), and once more after
    the last, so every timed answer is checked; one that fails a check under
-   the timer is reported as a mismatch, not timed further.
+   the timer is reported as a mismatch, not timed further. Its times are per
+   input when a round times several (``extra_info["calls_per_round"]``: the
+   repulsion rows' 16 scans).
 
 The table: workload, navkit's median and first call, the peer, the peer's
 median and first call, and the **ratio peer time / navkit time (> 1: navkit is
@@ -167,9 +169,13 @@ class Staged:
     ) -> None:
         self.fn = fn
         self.setup = setup
+        # Calls of the measured operation in one call of fn (a benchmark timing several
+        # inputs a round says so in extra_info["calls_per_round"]): times are per call.
+        self.per = 1
 
     def timed(self, number: int) -> float:
-        """Seconds of ``number`` calls, each after its own (untimed) setup, gc off."""
+        """Seconds of ``number`` calls, each after its own (untimed) setup, gc off, per
+        call of the measured operation (``fn``'s time over :attr:`per`)."""
         total = 0.0
         enabled = gc.isenabled()
         gc.disable()
@@ -182,7 +188,7 @@ class Staged:
         finally:
             if enabled:
                 gc.enable()
-        return total
+        return total / self.per
 
     def finish(self) -> None:
         """One more setup, untimed: a check it makes of the last call's answer runs."""
@@ -254,7 +260,12 @@ def captured(test_fn: Callable[..., Any], *args: Any) -> Ready:
     capture = Capture()
     test_fn(capture, *args)
     assert capture.call is not None, f"{test_fn.__name__} timed nothing"
-    return capture.call, capture.result, capture.first_s
+    per = int(capture.extra_info.get("calls_per_round", 1))
+    if isinstance(capture.call, Staged):
+        capture.call.per = per
+    elif per != 1:
+        raise ValueError(f"{test_fn.__name__}: calls_per_round without a setup")
+    return capture.call, capture.result, capture.first_s / per
 
 
 def ready(call: Call) -> Ready:
@@ -419,10 +430,9 @@ def _repulsion(n_beams: int, quick: bool) -> Workload:
         np.testing.assert_allclose(theirs, ours, rtol=1e-9)
         return "same force (1e-9)"
 
-    # 16: test_bench_fields.PER_ROUND (not imported here: the workloads are built lazily).
     return Workload(
         f"repulsion-{n_beams}",
-        f"per-beam repulsion of 16 {n_beams}-beam scans, new ones every call "
+        f"per-beam repulsion of a {n_beams}-beam scan, a new scan every call "
         "(repulsive_force_from_scan)",
         Contestant("navkit", make("navkit")),
         (Contestant("NumPy vectorised", make("numpy"), None, check),),

@@ -130,3 +130,27 @@ def test_a_plain_call_and_a_setup_returning_none_still_work(peers: ModuleType) -
     assert isinstance(capture.call, peers.Staged)
     capture.call.timed(3)
     assert len(ticks) == 4
+
+
+def test_times_are_per_input_when_a_round_times_several(
+    peers: ModuleType, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    def test(benchmark: Any) -> Any:
+        benchmark.extra_info["calls_per_round"] = 4
+        return benchmark.pedantic(lambda xs: [x + 1 for x in xs], setup=lambda: (([1] * 4,), {}))
+
+    ticks = itertools.count()
+    # A clock that advances one second a reading: every call lasts exactly 1 s.
+    monkeypatch.setattr(peers.time, "perf_counter", lambda: float(next(ticks)))
+    call, first, first_s = peers.captured(test)
+    assert first == [2, 2, 2, 2] and call.per == 4 and first_s == 0.25
+    assert call.timed(10) == 2.5  # ten rounds of 1 s, four inputs each
+
+
+def test_several_calls_a_round_without_a_setup_is_refused(peers: ModuleType) -> None:
+    def test(benchmark: Any) -> Any:
+        benchmark.extra_info["calls_per_round"] = 4
+        return benchmark(lambda: 1)
+
+    with pytest.raises(ValueError, match="calls_per_round without a setup"):
+        peers.captured(test)
