@@ -9,13 +9,16 @@ subclass adds; ordinary classes with ``__slots__`` use :func:`restore_slots`,
 and :func:`extra_state` for what a subclass adds when they reduce themselves.
 :func:`frozen_setattr` gives a frozen slotted dataclass the ``__setattr__`` and
 ``__delattr__`` Python 3.11's dataclass decorator gets wrong for it.
+A record class that gained fields after a release names them in an
+``_added_fields`` class attribute (:func:`fill_added_fields`), so that its own
+older pickles and its subclasses' load with those fields' defaults.
 """
 
 from __future__ import annotations
 
 import threading
 import weakref
-from collections.abc import Collection, Mapping, Sequence
+from collections.abc import Callable, Collection, Mapping, Sequence
 from dataclasses import FrozenInstanceError, fields
 from typing import Any, TypeVar
 
@@ -23,6 +26,7 @@ import numpy as np
 
 __all__ = [
     "extra_state",
+    "fill_added_fields",
     "frozen_setattr",
     "rebuild_from_state",
     "rebuild_record",
@@ -142,20 +146,35 @@ def read_only_view(array: np.ndarray[Any, Any]) -> np.ndarray[Any, Any]:
     return view
 
 
-def restore_read_only(record: Any, state: Sequence[Any], arrays: Sequence[str]) -> None:
+def restore_read_only(
+    record: Any, state: Sequence[Any] | Mapping[str, Any], arrays: Sequence[str]
+) -> None:
     """Set ``record``'s fields from ``state`` (their values, in order); freeze ``arrays``.
 
     Parameters
     ----------
     record : dataclass instance
         The record being restored (its ``__setstate__``'s ``self``).
-    state : list or tuple
-        The field values, in field order (what a slotted dataclass pickles); or
-        the tuple ``(instance __dict__ or None, {slot: value})`` of what a
-        subclass adds, which :func:`reduce_record` restores after the rebuild
-        (:func:`restore_extra`; the fields are left as they are).
+    state : list, dict or tuple
+        The field values, in field order (what a slotted dataclass pickles; a
+        pickle made before fields named in the class's ``_added_fields`` were
+        added lacks them, and they get their defaults, see
+        :func:`fill_added_fields`); a dict of them by name (the instance
+        ``__dict__`` a dataclass without slots pickles: the record's pickles
+        from before it had slots, old names mapped by the class's
+        ``_renamed_fields``); or the tuple ``(instance __dict__ or None,
+        {slot: value})`` of what a subclass adds, which :func:`reduce_record`
+        restores after the rebuild (:func:`restore_extra`; the fields are left
+        as they are).
     arrays : sequence of str
         Names of the fields holding arrays to make read-only (None values skipped).
+
+    Raises
+    ------
+    ValueError
+        A list of field values longer than the fields, or shorter by more than
+        the fields added since a release; a dict naming a field the class does
+        not have, or lacking one that was not added since a release.
 
     Examples
     --------
@@ -174,12 +193,55 @@ def restore_read_only(record: Any, state: Sequence[Any], arrays: Sequence[str]) 
         # slots); the fields of older pickles come as a list.
         restore_extra(record, state)
         return
-    for field, value in zip(fields(record), state, strict=True):
-        object.__setattr__(record, field.name, value)
+    names = [field.name for field in fields(record)]
+    if isinstance(state, Mapping):
+        _restore_field_dict(record, state, names)
+    else:
+        missing = len(names) - len(state)
+        if missing > 0:
+            # A pickle made before the last ``missing`` fields of _added_fields were
+            # added: its list holds the others, in order; those get their defaults.
+            added = list(_added_fields(type(record)))
+            if missing <= len(added):
+                later = set(added[len(added) - missing :])
+                names = [name for name in names if name not in later]
+        for name, value in zip(names, state, strict=True):
+            object.__setattr__(record, name, value)
+        fill_added_fields(record)
     for name in arrays:
         array = getattr(record, name)
         if isinstance(array, np.ndarray):
             array.flags.writeable = False
+
+
+def _restore_field_dict(record: Any, state: Mapping[str, Any], names: Sequence[str]) -> None:
+    """Set ``record``'s fields from the instance ``__dict__`` of a pickle made while its
+    class was a dataclass without slots (old names through ``_renamed_fields``).
+
+    Zipped with the fields as a list, its keys became the values: a ``GameState``
+    pickled before issue 11 loaded with ``robot_xy='robot'`` and so on (review 50).
+    """
+    cls = type(record)
+    renamed: Mapping[str, str] = getattr(cls, "_renamed_fields", None) or {}
+    instance = getattr(record, "__dict__", None)
+    for old, value in state.items():
+        name = renamed.get(old, old)
+        if name in names:
+            object.__setattr__(record, name, value)
+        elif instance is not None:
+            instance[old] = value  # a subclass's own attribute
+        else:
+            raise ValueError(
+                f"{cls.__name__} has no field {old!r}: this pickle of it was made by a "
+                f"release whose fields differ (fields now: {', '.join(names)})"
+            )
+    fill_added_fields(record)
+    unset = [name for name in names if not hasattr(record, name)]
+    if unset:
+        raise ValueError(
+            f"this pickle of a {cls.__name__} holds no value for {', '.join(unset)}: it "
+            "was made by a release whose fields differ"
+        )
 
 
 def slot_names(cls: type, *, below: type | None = None) -> list[str]:
@@ -619,6 +681,9 @@ def _restore_state(record: Any, state: Any, arrays: Collection[str]) -> None:
             # one a slotted dataclass generates: both read a list of field values, and a
             # user's dict went in as one, each field set to its own name).
             _restore_default(record, state)
+    # A state taken before fields were added to the record class (by a user's
+    # __getstate__ listing the fields of the day) lacks them.
+    fill_added_fields(record)
     for name in arrays:
         value = getattr(record, name, None)
         if isinstance(value, np.ndarray) and value.flags.writeable:
@@ -645,7 +710,8 @@ def rebuild_record(
     :func:`copy.copy` cannot make the original record's array read-only. A
     record class whose fields were renamed maps the old names to the new ones
     in a ``_renamed_fields`` class attribute, so that pickles made before the
-    rename load into the new fields.
+    rename load into the new fields; fields added since a release and missing
+    from ``values`` get their defaults (:func:`fill_added_fields`).
     """
     record: Any = object.__new__(cls)
     renamed: Mapping[str, str] = getattr(cls, "_renamed_fields", None) or {}
@@ -656,11 +722,67 @@ def rebuild_record(
         if name in arrays and isinstance(value, np.ndarray) and value.flags.writeable:
             value = read_only_view(value)
         object.__setattr__(record, name, value)
+    fill_added_fields(record)
     if instance:
         record.__dict__.update(instance)
     for name, value in slots.items():
         object.__setattr__(record, name, value)
     return record
+
+
+def _added_fields(cls: type) -> dict[str, Callable[[Any], Any]]:
+    """The ``_added_fields`` of ``cls`` and its bases, bases' first, each in its order."""
+    added: dict[str, Callable[[Any], Any]] = {}
+    for klass in reversed(cls.__mro__):
+        own = klass.__dict__.get("_added_fields")
+        if own:
+            added.update(own)
+    return added
+
+
+def fill_added_fields(record: Any) -> None:
+    """Give ``record`` the defaults of the fields its class added after a release.
+
+    A record class lists the fields it gained after a release in an
+    ``_added_fields`` class attribute: a mapping from each name to a function
+    of the record (its other fields set) that returns the field's value for a
+    record made before the field existed, in the order the fields were added
+    (a :class:`types.MappingProxyType`, not annotated: an annotation would
+    make it a field). Pickles made before hold no value for them: the
+    record's own as a shorter list of field values (:func:`restore_read_only`),
+    a subclass's as a mapping without them (:func:`rebuild_record`) or a
+    user's state (:func:`rebuild_from_state`); the field's slot was left unset,
+    and ``repr``, ``==`` or any use of it raised ``AttributeError`` (review 50:
+    a ``RangeNoise`` subclass pickled before review 49). Those call this after
+    setting the fields they hold; a field that has a value is left as it is.
+    The ``_added_fields`` of a record's bases count too.
+
+    Parameters
+    ----------
+    record : dataclass instance
+        The record being restored.
+
+    Examples
+    --------
+    >>> from dataclasses import dataclass
+    >>> from types import MappingProxyType
+    >>> @dataclass(frozen=True, slots=True)
+    ... class Reading:
+    ...     value: float
+    ...     unit: str = "m"  # added after a release
+    ...     _added_fields = MappingProxyType({"unit": lambda reading: "m"})
+    >>> old = object.__new__(Reading)
+    >>> object.__setattr__(old, "value", 2.0)
+    >>> fill_added_fields(old)
+    >>> old
+    Reading(value=2.0, unit='m')
+    """
+    cls = type(record)
+    if getattr(cls, "_added_fields", None) is None:
+        return
+    for name, default in _added_fields(cls).items():
+        if not hasattr(record, name):
+            object.__setattr__(record, name, default(record))
 
 
 def restore_slots(

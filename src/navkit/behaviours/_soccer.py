@@ -12,6 +12,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field, fields
+from types import MappingProxyType
 from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
@@ -240,6 +241,13 @@ class GameState:
 
     __reduce__ = reduce_record
     __setstate__ = _restore
+    # Fields renamed since a release (issue 11), for pickles made before (see
+    # navkit._shared.frozen.restore_read_only). Not annotated: it would be a field.
+    _renamed_fields = MappingProxyType({
+        "robot": "robot_xy", "ball": "ball_xy", "teammates": "teammates_xy",
+        "opponents": "opponents_xy", "own_goal": "own_goal_xy",
+        "opponent_goal": "opponent_goal_xy",
+    })  # fmt: skip
 
     if TYPE_CHECKING:
         # The generated ``__init__`` takes the arrays as array_like (``__post_init__``

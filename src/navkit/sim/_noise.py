@@ -6,6 +6,7 @@ import itertools
 import math
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
+from types import MappingProxyType
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -48,6 +49,11 @@ def _floats(
         else:
             out.append(finite_float(item, f"{name}[{i}]"))
     return tuple(out)
+
+
+def _no_absolute_term(noise: Any) -> tuple[float, ...]:
+    """``absolute`` of a :class:`RangeNoise` made before it existed: zeros, one a band."""
+    return (0.0,) * len(noise.sigma)
 
 
 # Keyword-only as every sensor configuration: sigma and bias are both tuples of
@@ -117,6 +123,11 @@ class RangeNoise:
     # Added in review 49: never positional, as it never was.
     absolute: tuple[float, ...] = field(default=(), metadata={"positional": False})
 
+    # Fields added since a release, for pickles made before (see
+    # navkit._shared.frozen.fill_added_fields): no absolute term then. Not annotated:
+    # it would be a field.
+    _added_fields = MappingProxyType({"absolute": _no_absolute_term})
+
     if TYPE_CHECKING:
         # The generated ``__init__`` takes any sequence of numbers or a 1-D array
         # (``__post_init__`` makes tuples of them); this signature tells type checkers so.
@@ -167,10 +178,9 @@ class RangeNoise:
         """Restore from a pickle or copy (and what a subclass adds, see ``restore_read_only``).
 
         A pickle made before review 49 holds the first three fields only: a noise
-        without an absolute term, ``absolute`` zeros as its default.
+        without an absolute term, ``absolute`` zeros as its default (``_added_fields``;
+        a subclass's pickle of then too, review 50).
         """
-        if isinstance(state, list) and len(state) == 3:
-            state = [*state, (0.0,) * len(state[1])]
         restore_read_only(self, state, ())
 
     def arrays(self) -> tuple[FloatArray, FloatArray, FloatArray]:

@@ -8,7 +8,7 @@ import time
 from collections.abc import Callable
 from dataclasses import dataclass
 from fractions import Fraction
-from types import MemberDescriptorType
+from types import MappingProxyType, MemberDescriptorType
 from typing import Any
 
 import numpy as np
@@ -17,7 +17,7 @@ from numpy.typing import ArrayLike
 from navkit._shared.angles import wrap_float
 from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.dunders import slot_state
-from navkit._shared.frozen import frozen_setattr, slot_names
+from navkit._shared.frozen import frozen_setattr, restore_read_only, slot_names
 from navkit._shared.goal import at_goal
 from navkit._shared.metres import metres_text
 from navkit._shared.types import FloatArray
@@ -148,6 +148,11 @@ def _lag_steps(latency: float, rate: float) -> int:
     return max(math.ceil((Fraction(latency) - _EPS_EXACT) * Fraction(rate)), 0)
 
 
+def _unknown_hold(obs: Any) -> None:
+    """``dt`` of an :class:`Observation` made before it existed: not known."""
+    return None
+
+
 @frozen_setattr
 @dataclass(frozen=True, slots=True, eq=False)
 class Observation:
@@ -195,6 +200,10 @@ class Observation:
     true_pose: Pose2D
     dt: float | None = None
 
+    # Fields added since a release, for pickles made before (see
+    # navkit._shared.frozen.fill_added_fields). Not annotated: it would be a field.
+    _added_fields = MappingProxyType({"dt": _unknown_hold})
+
     def __post_init__(self) -> None:
         object.__setattr__(self, "t", finite_float(self.t, "t"))
         if self.dt is not None:
@@ -216,6 +225,15 @@ class Observation:
             if not isinstance(item, readings):
                 raise TypeError(f"new must hold readings, got a {type(item).__name__}")
         object.__setattr__(self, "new", tuple(self.new))
+
+    def __setstate__(self, state: list[Any] | tuple[Any, Any]) -> None:
+        """Restore from a pickle or copy (and what a subclass adds, see ``restore_read_only``).
+
+        A pickle made before ``dt`` existed holds the eight other fields: its
+        ``dt`` is None, not known (it was left unset, and ``repr`` and ``obs.dt``
+        raised ``AttributeError``, review 50).
+        """
+        restore_read_only(self, state, ())
 
 
 Controller = Callable[[Observation], Twist2D | ArrayLike]

@@ -6,6 +6,7 @@ import math
 import numbers
 from collections.abc import Mapping
 from dataclasses import dataclass
+from types import MappingProxyType
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -87,6 +88,9 @@ class GreedyStep:
 
     __reduce__ = reduce_record
     __setstate__ = _restore
+    # A field renamed since a release (issue 11), for pickles made before (see
+    # navkit._shared.frozen.restore_read_only). Not annotated: it would be a field.
+    _renamed_fields = MappingProxyType({"waypoint": "waypoint_xy"})
 
     if TYPE_CHECKING:
         # The generated ``__init__`` takes the arrays as array_like (``__post_init__``
