@@ -46,7 +46,7 @@ RELEASING = {
     "mapping._raycast_kernels": {"integrate_beams"},
     "mapping._scan_matcher_kernels": {"match_level", "correlative_search_kernel"},
     "planning.grid._astar_kernels": {"grid_search"},
-    "planning.grid._distance_field_kernels": {"pad_grid", "fill_inf", "crop", "bucket_field"},
+    "planning.grid._distance_field_kernels": {"pad_grid", "bucket_field"},
     "planning.grid._field_path_kernels": {"extract_path"},
     "planning.grid._jps_cut_kernels": {"jps_cut_search"},
     "planning.grid._jps_kernels": {"_build_tables", "jps_search"},

@@ -35,7 +35,7 @@ among siblings being common in A* on maps of one cost; an 8-ary heap with
 pop's next families, or the neighbour rows' records and costs at each
 expansion, no change; the first level of a push written into :func:`_relax`
 (no call when the entry stays a leaf), no change; branch-free
-comparisons (``_precedes``) in :func:`_relax` and the sift-up, no change.
+comparisons (the lexicographic test) in :func:`_relax` and the sift-up, no change.
 
 Integer queue entries (session 40, issue 17's A* row on an AVX-512 Xeon,
 where random 35 % was 1.00-1.04 times pyastar2d's time). The queue holds f
@@ -85,6 +85,10 @@ from navkit._shared.jit import (
     njit_released,
 )
 from navkit._shared.types import KernelInt
+
+# grid_search's machine code holds the heap operations below, and numba keys its
+# cache on this file alone: a change to them is recorded here so that a cache
+# built with the old ones is dropped (review 50: their comparisons written out).
 from navkit.planning.grid._search_heap import (
     F_BAND,
     HEAP_TIE_LIMIT,

@@ -15,8 +15,6 @@ from navkit.planning.grid._distance_field_kernels import (
     SQRT2,
     WIDTH_MARGIN,
     bucket_field,
-    crop,
-    fill_inf,
     pad_grid,
 )
 from navkit.planning.grid._limits import checked_cost_range, read_only
@@ -159,13 +157,12 @@ def _bucket_field(
     uniform = highest == lowest
     free = np.empty(n_padded, dtype=np.uint8)
     padded = np.empty(0 if uniform else n_padded, dtype=np.float64)
-    pad_grid(flat, rows, cols, free, padded, uniform)
+    dist = np.empty(n_padded, dtype=np.float64)
+    pad_grid(flat, rows, cols, free, padded, uniform, dist)
     cap = max(8, cap) if cap else max(64, 4 * (rows + cols))
     buckets = np.empty(n_slots * cap, dtype=np.int32)
     counts = np.zeros(n_slots, dtype=np.int64)
     state = np.array([0, 0, 1], dtype=np.int64)
-    dist = np.empty(n_padded, dtype=np.float64)
-    fill_inf(dist)
     source = (goal[0] + 1) * (cols + 2) + goal[1] + 1
     dist[source] = 0.0
     buckets[0] = source
@@ -174,8 +171,8 @@ def _bucket_field(
     mask = n_slots - 1
     uniform_cost = lowest if uniform else 0.0
     while (
-        bucket_field(free, padded, uniform_cost, cols, eight, cutting, inv, mask, dist, buckets,
-                     cap, counts, state)
+        bucket_field(free, padded, uniform_cost, rows, cols, eight, cutting, inv, mask, dist,
+                     buckets, cap, counts, state)
         == GROW
     ):
         grown = np.empty(n_slots * 2 * cap, dtype=np.int32)
@@ -184,13 +181,12 @@ def _bucket_field(
         buckets = grown
         cap *= 2
     del free, padded, buckets
-    # The interior moved to the front of ``dist`` in place (each value moves towards
-    # the start, onto cells already read): the result takes no second field-sized
-    # array (8 bytes a cell of peak memory). It stays a view of the padded buffer
-    # where the border is a small part of it (no resize: numpy 2.5's shrinking
-    # resize allocates a new buffer and copies, twice the peak); a narrow grid,
-    # whose border would be most of what the view keeps alive, gets a copy.
-    crop(dist, rows, cols, dist)
+    # The kernel moved the interior to the front of ``dist`` in place (each value
+    # moves towards the start, onto cells already read): the result takes no second
+    # field-sized array (8 bytes a cell of peak memory). It stays a view of the
+    # padded buffer where the border is a small part of it (no resize: numpy 2.5's
+    # shrinking resize allocates a new buffer and copies, twice the peak); a narrow
+    # grid, whose border would be most of what the view keeps alive, gets a copy.
     field = dist[: rows * cols].reshape(rows, cols)
     if n_padded > _VIEW_SLACK * (rows * cols):
         return field.copy()

@@ -66,12 +66,20 @@ GROW = 1
 
 @njit_released
 def pad_grid(
-    flat: np.ndarray, rows: int, cols: int, free: np.ndarray, padded: np.ndarray, uniform: bool
+    flat: np.ndarray,
+    rows: int,
+    cols: int,
+    free: np.ndarray,
+    padded: np.ndarray,
+    uniform: bool,
+    dist: np.ndarray,
 ) -> None:
     """Write the padded grid (``(rows + 2) * (cols + 2)`` cells, border impassable).
 
     ``free[i]`` is 1 for a traversable cell, 0 else; unless ``uniform``, ``padded``
-    receives the costs (border inf).
+    receives the costs (border inf). Every entry of ``dist`` (the padded field)
+    is set to inf: done here rather than by a kernel of its own, whose Python
+    wrapper and machine code cost about 0.04 s of first use (issue 17).
     """
     pc = cols + 2
     for j in range(pc):
@@ -96,28 +104,8 @@ def pad_grid(
                 v = flat[src + c]
                 free[row + 1 + c] = v < np.inf
                 padded[row + 1 + c] = v
-
-
-@njit_released
-def fill_inf(dist: np.ndarray) -> None:
-    """Set every entry of ``dist`` to inf."""
     for i in range(dist.shape[0]):
         dist[i] = np.inf
-
-
-@njit_released
-def crop(dist: np.ndarray, rows: int, cols: int, out: np.ndarray) -> None:
-    """Copy the interior of the padded field ``dist`` into ``out`` (``rows * cols``).
-
-    ``out`` may be ``dist`` itself: every value moves towards the front, onto a
-    cell already read.
-    """
-    pc = cols + 2
-    for r in range(rows):
-        src = (r + 1) * pc + 1
-        dst = r * cols
-        for c in range(cols):
-            out[dst + c] = dist[src + c]
 
 
 # Typed once and inlined by LLVM into its eight call sites (numba's inline="always"
@@ -148,14 +136,17 @@ def _relax(
     old = dist[v]
     if free[v] and new < old:
         dist[v] = new
-        k = int(new * inv)
-        # int(inf) is undefined: test for a first visit before converting.
-        if old == np.inf or int(old * inv) != k:
+        # np.int64 and a select, not the int and max builtins, which numba
+        # compiles as overloads of their own on first use (issue 17).
+        k = np.int64(new * inv)
+        # A float to integer conversion of inf is undefined: test for a first
+        # visit before converting.
+        if old == np.inf or np.int64(old * inv) != k:
             slot = k & mask
             c: int = counts[slot] + 1
             buckets[slot * cap + c - 1] = v
             counts[slot] = c
-            return max(c, top)
+            return c if c > top else top
     return top
 
 
@@ -164,6 +155,7 @@ def bucket_field(
     free: np.ndarray,
     costs: np.ndarray,
     uniform_cost: float,
+    rows: int,
     cols: int,
     eight: bool,
     corner_cutting: bool,
@@ -186,8 +178,8 @@ def bucket_field(
         ``uniform_cost > 0``.
     uniform_cost : float
         The cost of every traversable cell if they all cost the same, else 0.
-    cols : int
-        Columns of the unpadded grid.
+    rows, cols : int
+        Shape of the unpadded grid.
     eight, corner_cutting : bool
         8-connected (else 4); diagonal moves beside impassable cells allowed.
     inv : float
@@ -195,9 +187,12 @@ def bucket_field(
     mask : int
         ``B - 1`` for a ring of ``B`` bucket slots, ``B`` a power of two with
         ``B >= w_max * inv + 3``.
-    dist : (len(costs),) float64
-        Costs from the goal: inf but 0 at the goal on the first call; the field
-        on return with :data:`DONE`.
+    dist : ((rows + 2) * (cols + 2),) float64
+        Costs from the goal: inf but 0 at the goal on the first call. On return
+        with :data:`DONE` the field, cropped: its first ``rows * cols`` entries
+        hold the unpadded field in row-major order (every value moved towards
+        the front, onto a cell already read; done here rather than by a
+        kernel of its own, about 0.08 s of first use, issue 17).
     buckets : (B * cap,) int32
         Bucket segments; slot ``s`` holds ``counts[s]`` cell ids from ``s * cap``.
     cap : int
@@ -240,7 +235,7 @@ def bucket_field(
             u = buckets[base + i]
             i += 1
             gu = dist[u]
-            if int(gu * inv) != k:
+            if np.int64(gu * inv) != k:
                 continue  # stale: lowered into an earlier bucket and expanded there
             cu = uniform_cost if uniform else costs[u]
             top = _relax(free, costs, uniform, dist, buckets, counts, cap, mask, inv,
@@ -287,5 +282,10 @@ def bucket_field(
                 state[0] = k
                 state[1] = 0
                 state[2] = top
+                for r in range(rows):
+                    src = (r + 1) * pc + 1
+                    dst = r * cols
+                    for c in range(cols):
+                        dist[dst + c] = dist[src + c]
                 return DONE
             k += 1

@@ -69,6 +69,10 @@ import numpy as np
 
 from navkit._shared.jit import NO_REFCOUNT, njit_released, typed_njit
 from navkit._shared.types import KernelInt
+
+# jps_cut_search's machine code holds these helpers, and numba keys its cache on
+# this file alone: a change to them is recorded here so that a cache built with
+# the old ones is dropped (review 50: the queue's comparison written out).
 from navkit.planning.grid._jps_kernels import (
     _DC,
     _DR,

@@ -115,7 +115,6 @@ from navkit.planning.grid._search_heap import (
     F_BAND,
     F_BAND_COSTS,
     FLOAT_TIE_LIMIT,
-    _precedes,
     node_of,
     smallest_child,
     tie_key,
@@ -567,7 +566,8 @@ def _heap_replace_top(heap: np.ndarray, last: KernelInt, f: float, key: float) -
     i: KernelInt = 0
     while True:
         best, bf, bk = smallest_child(heap, 0, i, last + 1)
-        if best < 0 or not _precedes(bf, bk, f, key):
+        # The lexicographic test, written out (see _search_heap._bits_precede).
+        if best < 0 or not ((bf < f) | ((bf == f) & (bk < key))):
             break
         heap[np.uint64(2 * i)] = bf
         heap[np.uint64(2 * i + 1)] = bk

@@ -82,7 +82,13 @@ import math
 import numpy as np
 from numpy.typing import NDArray
 
-from navkit._shared.jit import NO_REFCOUNT, njit_helper, njit_inline, typed_njit
+from navkit._shared.jit import (
+    NO_REFCOUNT,
+    njit_force_inline,
+    njit_helper,
+    njit_inline,
+    typed_njit,
+)
 from navkit._shared.types import KernelInt
 
 # The heap operations are called only from the search kernels, so they are
@@ -153,19 +159,21 @@ def node_of(key: float) -> KernelInt:
 
 
 @njit_inline
-def _precedes(f1: float, k1: float, f2: float, k2: float) -> bool:
-    """Whether priority (f1, k1) comes before (f2, k2), evaluated without branches."""
-    return bool((f1 < f2) | ((f1 == f2) & (k1 < k2)))
-
-
-@njit_inline
 def _bits_precede(f1: np.uint64, k1: np.uint64, f2: np.uint64, k2: np.uint64) -> bool:
-    """:func:`_precedes` for the ``rec_*`` heap's uint64 entries: ``f1 < f2 + (k1 < k2)``.
+    """Whether entry (f1, k1) of the ``rec_*`` heap comes before (f2, k2): ``f1 < f2 + (k1 < k2)``.
 
     One comparison of the f bits with the tie keys' as a carry (LLVM: a
-    compare and an add with carry), where the lexicographic test takes two
-    comparisons and their logic. Exact for integers when ``f2`` is below
-    2**64 - 1, which the bits of a finite f >= 0 are (below 2**63).
+    compare and an add with carry), where the lexicographic test
+    ``(f1 < f2) | ((f1 == f2) & (k1 < k2))`` (jump point search's float64
+    queue) takes two comparisons and their logic. Exact for integers when
+    ``f2`` is below 2**64 - 1, which the bits of a finite f >= 0 are (below
+    2**63).
+
+    The heap operations and the A* kernel write this expression out where
+    they compare (review 50): numba copied and typed a call of this function
+    again at each of its ten call sites (``inline="always"``), a few
+    hundredths of a second of A*'s first use, for the same machine code. It
+    stays as the expression's definition, which the tests check.
     """
     return bool(f1 < f2 + np.uint64(k1 < k2))
 
@@ -281,33 +289,26 @@ def smallest_child(
         # A two-round tournament on indices only, as in pop. (Selecting the
         # winners' keys along with their slots instead of loading them again
         # was no faster and took 0.2 s more of A*'s first use: review 23.)
+        # Each comparison is the lexicographic test written out, its operands
+        # loaded in the order of the calls it replaced (see _smallest_bits).
         a = b + 2 * first
-        b_wins = np.int64(
-            _precedes(
-                heap[np.uint64(a + 2)],
-                heap[np.uint64(a + 3)],
-                heap[np.uint64(a)],
-                heap[np.uint64(a + 1)],
-            )
-        )
-        d_wins = np.int64(
-            _precedes(
-                heap[np.uint64(a + 6)],
-                heap[np.uint64(a + 7)],
-                heap[np.uint64(a + 4)],
-                heap[np.uint64(a + 5)],
-            )
-        )
+        f1 = heap[np.uint64(a + 2)]
+        k1 = heap[np.uint64(a + 3)]
+        f0 = heap[np.uint64(a)]
+        k0 = heap[np.uint64(a + 1)]
+        b_wins = np.int64((f1 < f0) | ((f1 == f0) & (k1 < k0)))
+        f3 = heap[np.uint64(a + 6)]
+        k3 = heap[np.uint64(a + 7)]
+        f2 = heap[np.uint64(a + 4)]
+        k2 = heap[np.uint64(a + 5)]
+        d_wins = np.int64((f3 < f2) | ((f3 == f2) & (k3 < k2)))
         left = first + b_wins
         right = first + 2 + d_wins
-        r_wins = np.int64(
-            _precedes(
-                heap[np.uint64(b + 2 * right)],
-                heap[np.uint64(b + 2 * right + 1)],
-                heap[np.uint64(b + 2 * left)],
-                heap[np.uint64(b + 2 * left + 1)],
-            )
-        )
+        fr = heap[np.uint64(b + 2 * right)]
+        kr = heap[np.uint64(b + 2 * right + 1)]
+        fl = heap[np.uint64(b + 2 * left)]
+        kl = heap[np.uint64(b + 2 * left + 1)]
+        r_wins = np.int64((fr < fl) | ((fr == fl) & (kr < kl)))
         best: KernelInt = left + r_wins * (right - left)
         return best, heap[np.uint64(b + 2 * best)], heap[np.uint64(b + 2 * best + 1)]
     if first >= n:
@@ -325,7 +326,7 @@ def smallest_child(
     return best, bestf, bestk
 
 
-@njit_inline
+@njit_force_inline
 def _smallest_bits(
     heap: np.ndarray, b: KernelInt, i: KernelInt, n: KernelInt
 ) -> tuple[KernelInt, np.uint64, np.uint64]:
@@ -333,39 +334,42 @@ def _smallest_bits(
 
     The same tournament with :func:`_bits_precede`. (A copy rather than one
     function for both queues: the comparison differs with the entries' type.)
+
+    Compiled once and inlined by LLVM into its two callers, :func:`rec_pop`
+    and :func:`_rec_sift_down` (review 50): inlined by numba
+    (``inline="always"``) it was copied, typed and lowered again in each, and
+    with its comparisons written out a cold ``astar`` took 1.34-1.48 ->
+    1.22-1.32 s CPU (numba imported before the clock, three alternating
+    pairs). A* ÷ pyastar2d with corner cutting, seven alternating pairs on a
+    busy 2-core machine, medians 0.713 / 0.906 / 0.659 -> 0.718 / 0.900 / 0.651
+    (random 20 %, random 35 %, rooms), the pairs' spread 3 %: no change found.
+    The same expansions, paths and costs.
     """
     first = 4 * i + 1
     if first + 3 < n:
         # A two-round tournament on indices only. (Selecting the winners'
         # keys along with their slots instead of loading them again was no
-        # faster and took 0.2 s more of A*'s first use: review 23.)
+        # faster and took 0.2 s more of A*'s first use: review 23.) Each
+        # comparison is _bits_precede written out, its operands loaded in
+        # the order of the calls it replaced (the same machine code).
         a = b + 2 * first
-        b_wins = np.int64(
-            _bits_precede(
-                heap[np.uint64(a + 2)],
-                heap[np.uint64(a + 3)],
-                heap[np.uint64(a)],
-                heap[np.uint64(a + 1)],
-            )
-        )
-        d_wins = np.int64(
-            _bits_precede(
-                heap[np.uint64(a + 6)],
-                heap[np.uint64(a + 7)],
-                heap[np.uint64(a + 4)],
-                heap[np.uint64(a + 5)],
-            )
-        )
+        f1 = heap[np.uint64(a + 2)]
+        k1 = heap[np.uint64(a + 3)]
+        f0 = heap[np.uint64(a)]
+        k0 = heap[np.uint64(a + 1)]
+        b_wins = np.int64(f1 < f0 + np.uint64(k1 < k0))
+        f3 = heap[np.uint64(a + 6)]
+        k3 = heap[np.uint64(a + 7)]
+        f2 = heap[np.uint64(a + 4)]
+        k2 = heap[np.uint64(a + 5)]
+        d_wins = np.int64(f3 < f2 + np.uint64(k3 < k2))
         left = first + b_wins
         right = first + 2 + d_wins
-        r_wins = np.int64(
-            _bits_precede(
-                heap[np.uint64(b + 2 * right)],
-                heap[np.uint64(b + 2 * right + 1)],
-                heap[np.uint64(b + 2 * left)],
-                heap[np.uint64(b + 2 * left + 1)],
-            )
-        )
+        fr = heap[np.uint64(b + 2 * right)]
+        kr = heap[np.uint64(b + 2 * right + 1)]
+        fl = heap[np.uint64(b + 2 * left)]
+        kl = heap[np.uint64(b + 2 * left + 1)]
+        r_wins = np.int64(fr < fl + np.uint64(kr < kl))
         best: KernelInt = left + r_wins * (right - left)
         return best, heap[np.uint64(b + 2 * best)], heap[np.uint64(b + 2 * best + 1)]
     if first >= n:
@@ -379,7 +383,7 @@ def _smallest_bits(
     for j in range(first + 1, n):
         jf = heap[np.uint64(b + 2 * j)]
         jk = heap[np.uint64(b + 2 * j + 1)]
-        if _bits_precede(jf, jk, bestf, bestk):
+        if jf < bestf + np.uint64(jk < bestk):  # _bits_precede, written out
             best = j
             bestf = jf
             bestk = jk
@@ -396,7 +400,8 @@ def rec_pop(heap: np.ndarray, meta: np.ndarray, n: KernelInt) -> KernelInt:
     f = heap[np.uint64(2 * REC_BASE + 2 * last)]
     key = heap[np.uint64(2 * REC_BASE + 2 * last + 1)]
     # Floyd's method: the hole goes down to a leaf, then the last entry up.
-    i: KernelInt = 0
+    # np.int64: a literal 0 would compile _smallest_bits once more.
+    i: KernelInt = np.int64(0)
     while True:
         best, bestf, bestk = _smallest_bits(heap, 2 * REC_BASE, i, last)
         if best < 0:
@@ -443,7 +448,7 @@ def rec_remove(heap: np.ndarray, meta: np.ndarray, n: KernelInt, i: KernelInt) -
         parent = (i - 1) >> 2
         pf = heap[np.uint64(2 * parent + 2 * REC_BASE)]
         pk = heap[np.uint64(2 * parent + 2 * REC_BASE + 1)]
-        if _bits_precede(f, key, pf, pk):
+        if f < pf + np.uint64(key < pk):  # _bits_precede, written out
             rec_sift_up(heap, meta, i, f, key)
             return
     _rec_sift_down(heap, meta, i, last, f, key)
@@ -463,7 +468,8 @@ def _rec_sift_down(
     """
     while True:
         best, bestf, bestk = _smallest_bits(heap, 2 * REC_BASE, i, n)
-        if best < 0 or not _bits_precede(bestf, bestk, f, key):
+        # _bits_precede, written out.
+        if best < 0 or not bestf < f + np.uint64(bestk < key):
             break
         heap[np.uint64(2 * i + 2 * REC_BASE)] = bestf
         heap[np.uint64(2 * i + 2 * REC_BASE + 1)] = bestk
