@@ -10,10 +10,19 @@ runs from ``pts[i]`` to ``pts[i + 1]``.
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 
-from navkit._shared.jit import njit_helper, njit_no_refcount
+from navkit._shared.jit import bind_numba_names, njit_helper, njit_no_refcount
+
+# numba's min and max builtins, without an overload compiled per argument types
+# (navkit._shared.selects: intrinsics, so bound when numba loads; issue 17).
+min2: Any = None
+max2: Any = None
+bind_numba_names(
+    globals(), "navkit._shared.selects", python={"min2": min, "max2": max}, min2="min2", max2="max2"
+)
 
 
 @njit_helper
@@ -123,20 +132,13 @@ def project(
         # The segment's length from its ends: arc lengths of a long path can
         # round a tiny segment to zero length.
         seg = math.hypot(ex, ey)
-        # Selects, not the min/max builtins, which numba compiles as overloads of
-        # their own on first use (issue 17); the same comparisons and order.
-        lo = s_from - cum[i]
-        lo = lo if lo > 0.0 else 0.0
-        hi = s_to - cum[i]
-        hi = hi if hi < seg else seg
-        hi = hi if hi > lo else lo
+        lo = max2(0.0, s_from - cum[i])
+        hi = max2(lo, min2(seg, s_to - cum[i]))
         if seg > 0.0:
             # Distance along the segment of the foot of the perpendicular, clamped.
             u = ((px - ax) * ex + (py - ay) * ey) / seg
-            u = lo if lo > u else u
-            u = hi if hi < u else u
-            f = u / seg
-            f = 1.0 if f > 1.0 else f
+            u = min2(max2(u, lo), hi)
+            f = min2(u / seg, 1.0)
         else:
             u = lo
             f = 0.0
@@ -151,24 +153,19 @@ def project(
             # Tested at the segment's end only, a path split into collinear pieces (a
             # vertex just past s_free) stopped where the whole one went on to a nearer
             # later pass: other commands (review 38).
-            g = free / seg
-            g = 1.0 if g > 1.0 else g
+            g = min2(free / seg, 1.0)
             wx = (ax - px) + ex * g
             wy = (ay - py) + ey * g
             # The part's closest point: the segment's own, or else the point at s_free.
             near2 = d2 if u <= free else wx * wx + wy * wy
             if near2 < best_d2:
                 best_d2 = near2
-                s = cum[i] + (free if free < u else u)
-                s = s_from if s_from > s else s
-                best_s = s_to if s_to < s else s
+                best_s = min2(max2(cum[i] + min2(u, free), s_from), s_to)
             if math.hypot(wx, wy) > math.sqrt(best_d2) + detour:
                 break
         if d2 < best_d2:
             best_d2 = d2
-            s = cum[i] + u
-            s = s_from if s_from > s else s
-            best_s = s_to if s_to < s else s
+            best_s = min2(max2(cum[i] + u, s_from), s_to)
         # The distance to a segment's points is convex along it, so the path can only
         # leave the robot and come back through a vertex: past one that is a detour
         # away, a nearer point is a later pass (the end of a short loop, a crossing).
@@ -236,13 +233,11 @@ def circle_exit(
                 return float(cum[j])
             qb = 2.0 * (fx * dx + fy * dy)
             qc = fx * fx + fy * fy - r2
-            disc = qb * qb - 4.0 * qa * qc
-            disc = 0.0 if disc < 0.0 else disc  # selects, not max/min (see above)
+            disc = max2(qb * qb - 4.0 * qa * qc, 0.0)
             t = (-qb + math.sqrt(disc)) / (2.0 * qa)
-            t = 0.0 if t < 0.0 else t
-            t = 1.0 if t > 1.0 else t
+            clamped: float = min2(max2(t, 0.0), 1.0)
             end: float = cum[j]
-            return s_a + t * (end - s_a)
+            return s_a + clamped * (end - s_a)
         fx = gx
         fy = gy
         s_a = cum[j]

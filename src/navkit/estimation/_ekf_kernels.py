@@ -99,6 +99,14 @@ from navkit._shared.se2 import wrap_scalar
 from navkit._shared.types import FloatArray, IntArray
 from navkit.errors import FilterError
 
+# numba's min and max builtins, without an overload compiled per argument types
+# (navkit._shared.selects: intrinsics, so bound when numba loads; issue 17).
+min2: Any = None
+max2: Any = None
+bind_numba_names(
+    globals(), "navkit._shared.selects", python={"min2": min, "max2": max}, min2="min2", max2="max2"
+)
+
 __all__ = [
     "BAD_F",
     "BAD_FX",
@@ -542,8 +550,7 @@ def _adopt_positive(
             v = a[i, j]
             if v != a[j, i] or not abs(v) <= 1e100:  # NaN fails too
                 return False
-            v = abs(v)
-            largest = v if v > largest else largest  # max(): not compiled as an overload
+            largest = max2(largest, abs(v))
     if not largest >= 1e-150:
         return False
     if not _positive_definite(a, work, inv_d, n):

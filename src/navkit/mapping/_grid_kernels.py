@@ -35,7 +35,15 @@ from typing import Any, cast
 
 import numpy as np
 
-from navkit._shared.jit import njit_no_refcount
+from navkit._shared.jit import bind_numba_names, njit_no_refcount
+
+# numba's min and max builtins, without an overload compiled per argument types
+# (navkit._shared.selects: intrinsics, so bound when numba loads; issue 17).
+min2: Any = None
+max2: Any = None
+bind_numba_names(
+    globals(), "navkit._shared.selects", python={"min2": min, "max2": max}, min2="min2", max2="max2"
+)
 
 __all__ = [
     "cell_to_world_entry",
@@ -82,14 +90,8 @@ def world_to_cell_kernel(
         finite &= (x - x == 0.0) & (y - y == 0.0)
         dx = x - origin_x
         dy = y - origin_y
-        # Clamped by selects, not the min/max builtins, which numba compiles as
-        # overloads of their own on first use (issue 17); the same comparisons.
-        row = (-s * dx + c * dy) * inv_res
-        row = -_LIMIT if row < -_LIMIT else row
-        col = (c * dx + s * dy) * inv_res
-        col = -_LIMIT if col < -_LIMIT else col
-        flat[2 * i] = math.floor(_LIMIT if row > _LIMIT else row)
-        flat[2 * i + 1] = math.floor(_LIMIT if col > _LIMIT else col)
+        flat[2 * i] = math.floor(min2(max2((-s * dx + c * dy) * inv_res, -_LIMIT), _LIMIT))
+        flat[2 * i + 1] = math.floor(min2(max2((c * dx + s * dy) * inv_res, -_LIMIT), _LIMIT))
     return finite
 
 
@@ -115,13 +117,8 @@ def world_to_continuous_kernel(
     for i in range(points.shape[0]):
         dx = xy[2 * i] - origin_x
         dy = xy[2 * i + 1] - origin_y
-        # Selects, as in world_to_cell_kernel.
-        row = (-s * dx + c * dy) * inv_res - 0.5
-        row = -_LIMIT if row < -_LIMIT else row
-        col = (c * dx + s * dy) * inv_res - 0.5
-        col = -_LIMIT if col < -_LIMIT else col
-        flat[2 * i] = _LIMIT if row > _LIMIT else row
-        flat[2 * i + 1] = _LIMIT if col > _LIMIT else col
+        flat[2 * i] = min2(max2((-s * dx + c * dy) * inv_res - 0.5, -_LIMIT), _LIMIT)
+        flat[2 * i + 1] = min2(max2((c * dx + s * dy) * inv_res - 0.5, -_LIMIT), _LIMIT)
 
 
 def world_to_cell_entry() -> Callable[..., bool]:

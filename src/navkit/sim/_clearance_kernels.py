@@ -45,10 +45,19 @@ Examples
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 
-from navkit._shared.jit import njit_helper, njit_no_refcount
+from navkit._shared.jit import bind_numba_names, njit_helper, njit_no_refcount
+
+# numba's min and max builtins, without an overload compiled per argument types
+# (navkit._shared.selects: intrinsics, so bound when numba loads; issue 17).
+min2: Any = None
+max2: Any = None
+bind_numba_names(
+    globals(), "navkit._shared.selects", python={"min2": min, "max2": max}, min2="min2", max2="max2"
+)
 
 __all__ = ["TOUCH", "edge_clearance", "footprint_clearance"]
 
@@ -70,11 +79,7 @@ def _point_segment(px: float, py: float, ax: float, ay: float, bx: float, by: fl
     ee = ex * ex + ey * ey
     t = 0.0
     if ee > 0.0:
-        # min(max(u, 0), 1) written as numba's builtins compute it: the builtins
-        # compile as overloads of their own on first use (issue 17).
-        u = (wx * ex + wy * ey) / ee
-        u = 0.0 if u < 0.0 else u
-        t = 1.0 if u > 1.0 else u
+        t = min2(max2((wx * ex + wy * ey) / ee, 0.0), 1.0)
     qx = wx - t * ex
     qy = wy - t * ey
     return math.sqrt(qx * qx + qy * qy)
@@ -96,14 +101,11 @@ def _segment_segment(
         return 0.0
     # Otherwise the nearest points include an endpoint (0 when one lies on the other
     # segment: the collinear and touching cases).
-    pa = _point_segment(ax, ay, cx, cy, dx, dy)
-    pb = _point_segment(bx, by, cx, cy, dx, dy)
-    pc = _point_segment(cx, cy, ax, ay, bx, by)
-    pd = _point_segment(dx, dy, ax, ay, bx, by)
-    # min(min(pa, pb), min(pc, pd)) as selects (see _point_segment).
-    ab = pb if pb < pa else pa
-    cd = pd if pd < pc else pc
-    return cd if cd < ab else ab
+    d: float = min2(
+        min2(_point_segment(ax, ay, cx, cy, dx, dy), _point_segment(bx, by, cx, cy, dx, dy)),
+        min2(_point_segment(cx, cy, ax, ay, bx, by), _point_segment(dx, dy, ax, ay, bx, by)),
+    )
+    return d
 
 
 @njit_helper
@@ -142,8 +144,8 @@ def _to_segment(
     first branch).
     """
     if verts is None:
-        d = _point_segment(cx, cy, ax, ay, bx, by) - radius
-        return 0.0 if d < 0.0 else d
+        d: float = max2(_point_segment(cx, cy, ax, ay, bx, by) - radius, 0.0)
+        return d
     n = verts.shape[0]
     if _inside_polygon(ax, ay, verts, n):
         return 0.0
@@ -171,8 +173,8 @@ def _to_circle(
         d = math.sqrt((cx - ox) ** 2 + (cy - oy) ** 2)
         if d + radius < r:
             return r - (d + radius)
-        gap = d - radius - r
-        return 0.0 if gap < 0.0 else gap
+        gap: float = max2(d - radius - r, 0.0)
+        return gap
     n = verts.shape[0]
     near = _INF
     if _inside_polygon(ox, oy, verts, n):
@@ -180,10 +182,10 @@ def _to_circle(
     far = 0.0
     j = n - 1
     for i in range(n):
-        d = _point_segment(ox, oy, verts[j, 0], verts[j, 1], verts[i, 0], verts[i, 1])
-        near = d if d < near else near
-        d = math.sqrt((verts[i, 0] - ox) ** 2 + (verts[i, 1] - oy) ** 2)
-        far = d if d > far else far
+        near = min2(
+            near, _point_segment(ox, oy, verts[j, 0], verts[j, 1], verts[i, 0], verts[i, 1])
+        )
+        far = max2(far, math.sqrt((verts[i, 0] - ox) ** 2 + (verts[i, 1] - oy) ** 2))
         j = i
     if far < r:
         return r - far
@@ -206,13 +208,10 @@ def _to_square(
     xb = xa + s
     yb = ya + s
     if lverts is None:
-        # min(max(c, a), b) and max(d, 0) as selects (see _point_segment).
-        ux = xa if xa > cx else cx
-        uy = ya if ya > cy else cy
-        qx = cx - (xb if xb < ux else ux)
-        qy = cy - (yb if yb < uy else uy)
-        d = math.sqrt(qx * qx + qy * qy) - radius
-        return 0.0 if d < 0.0 else d
+        qx = cx - min2(max2(cx, xa), xb)
+        qy = cy - min2(max2(cy, ya), yb)
+        d: float = max2(math.sqrt(qx * qx + qy * qy) - radius, 0.0)
+        return d
     n = lverts.shape[0]
     # A vertex of the footprint inside the square, or a square corner inside the footprint.
     for i in range(n):
@@ -227,8 +226,7 @@ def _to_square(
         y0 = ya if e < 2 else yb
         x1 = xb if e < 2 else xa
         y1 = ya if e == 0 or e == 3 else yb
-        d = _to_segment(0.0, 0.0, 0.0, lverts, x0, y0, x1, y1)
-        best = d if d < best else best
+        best = min2(best, _to_segment(0.0, 0.0, 0.0, lverts, x0, y0, x1, y1))
     return best
 
 
@@ -260,17 +258,10 @@ def _edge_grid_distance(
     i1 = math.floor((bx1 - gx0) * inv_h)
     j0 = math.floor((by0 - gy0) * inv_h)
     j1 = math.floor((by1 - gy0) * inv_h)
-    # Rings farther than this lie wholly outside the grid (integer selects,
-    # not the max builtin: see _point_segment).
-    ka, kb, kc, kd = -i1, i0 - (nx - 1), -j1, j0 - (ny - 1)
-    ka = kb if kb > ka else ka
-    kc = kd if kd > kc else kc
-    far = kc if kc > ka else ka
-    far = far if far > 0 else 0
-    ka, kb, kc, kd = i1, nx - 1 - i0, j1, ny - 1 - j0
-    ka = kb if kb > ka else ka
-    kc = kd if kd > kc else kc
-    reach = kc if kc > ka else ka
+    # Rings farther than this lie wholly outside the grid.
+    far = max2(max2(-i1, i0 - (nx - 1)), max2(-j1, j0 - (ny - 1)))
+    far = max2(far, 0)
+    reach = max2(max2(i1, nx - 1 - i0), max2(j1, ny - 1 - j0))
     n_seg = segs.shape[0]
     ring = far
     while ring <= reach:
@@ -281,18 +272,16 @@ def _edge_grid_distance(
         hi_i = i1 + ring
         lo_j = j0 - ring
         hi_j = j1 + ring
-        i_last = hi_i if hi_i < nx - 1 else nx - 1
-        j_last = hi_j if hi_j < ny - 1 else ny - 1
-        for j in range(lo_j if lo_j > 0 else 0, j_last + 1):
+        for j in range(max2(lo_j, 0), min2(hi_j, ny - 1) + 1):
             on_edge_row = ring == 0 or (j - lo_j) * (hi_j - j) == 0
             if on_edge_row:
-                i_first = lo_i if lo_i > 0 else 0
+                i_first = max2(lo_i, 0)
                 i_step = 1
             else:
                 i_first = lo_i
                 i_step = hi_i - lo_i if hi_i > lo_i else 1
             i = i_first
-            while i <= i_last:
+            while i <= min2(hi_i, nx - 1):
                 if i >= 0:
                     k = j * nx + i
                     for m in range(cell_start[k], cell_start[k + 1]):
@@ -359,25 +348,18 @@ def _occupancy_distance(
             ly = -gsin * wx + gcos * wy
             lverts[v, 0] = lx
             lverts[v, 1] = ly
-            bx0 = lx if lx < bx0 else bx0
-            bx1 = lx if lx > bx1 else bx1
-            by0 = ly if ly < by0 else by0
-            by1 = ly if ly > by1 else by1
+            bx0 = min2(bx0, lx)
+            bx1 = max2(bx1, lx)
+            by0 = min2(by0, ly)
+            by1 = max2(by1, ly)
     inv = 1.0 / res
     i0 = math.floor(bx0 * inv)
     i1 = math.floor(bx1 * inv)
     j0 = math.floor(by0 * inv)
     j1 = math.floor(by1 * inv)
-    # As in _edge_grid_distance.
-    ka, kb, kc, kd = -i1, i0 - (cols - 1), -j1, j0 - (rows - 1)
-    ka = kb if kb > ka else ka
-    kc = kd if kd > kc else kc
-    far = kc if kc > ka else ka
-    far = far if far > 0 else 0
-    ka, kb, kc, kd = i1, cols - 1 - i0, j1, rows - 1 - j0
-    ka = kb if kb > ka else ka
-    kc = kd if kd > kc else kc
-    reach = kc if kc > ka else ka
+    far = max2(max2(-i1, i0 - (cols - 1)), max2(-j1, j0 - (rows - 1)))
+    far = max2(far, 0)
+    reach = max2(max2(i1, cols - 1 - i0), max2(j1, rows - 1 - j0))
     ring = far
     while ring <= reach:
         if (ring - 1) * res >= best:
@@ -386,18 +368,16 @@ def _occupancy_distance(
         hi_i = i1 + ring
         lo_j = j0 - ring
         hi_j = j1 + ring
-        i_last = hi_i if hi_i < cols - 1 else cols - 1
-        j_last = hi_j if hi_j < rows - 1 else rows - 1
-        for j in range(lo_j if lo_j > 0 else 0, j_last + 1):
+        for j in range(max2(lo_j, 0), min2(hi_j, rows - 1) + 1):
             on_edge_row = ring == 0 or (j - lo_j) * (hi_j - j) == 0
             if on_edge_row:
-                i_first = lo_i if lo_i > 0 else 0
+                i_first = max2(lo_i, 0)
                 i_step = 1
             else:
                 i_first = lo_i
                 i_step = hi_i - lo_i if hi_i > lo_i else 1
             i = i_first
-            while i <= i_last:
+            while i <= min2(hi_i, cols - 1):
                 if i >= 0 and occ[j, i] != 0:
                     d = _to_square(lcx, lcy, radius, lverts, i * res, j * res, res)
                     if d < best:
@@ -434,10 +414,10 @@ def _place_footprint(
         y = py + s * body_verts[v, 0] + c * body_verts[v, 1]
         verts[v, 0] = x
         verts[v, 1] = y
-        bx0 = x if x < bx0 else bx0
-        bx1 = x if x > bx1 else bx1
-        by0 = y if y < by0 else by0
-        by1 = y if y > by1 else by1
+        bx0 = min2(bx0, x)
+        bx1 = max2(bx1, x)
+        by0 = min2(by0, y)
+        by1 = max2(by1, y)
     return bx0, by0, bx1, by1
 
 
@@ -518,12 +498,12 @@ def footprint_clearance(
         d = _to_segment(
             px, py, radius, verts, dyn_segs[m, 0], dyn_segs[m, 1], dyn_segs[m, 2], dyn_segs[m, 3]
         )
-        best = d if d < best else best
+        best = min2(best, d)
     for m in range(dyn_circles.shape[0]):
         d = _to_circle(
             px, py, radius, verts, dyn_circles[m, 0], dyn_circles[m, 1], dyn_circles[m, 2]
         )
-        best = d if d < best else best
+        best = min2(best, d)
     if best > 0.0 and cell_items.shape[0] > 0:
         best = _edge_grid_distance(
             px, py, radius, verts, bx0, by0, bx1, by1,

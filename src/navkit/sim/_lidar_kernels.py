@@ -57,12 +57,20 @@ Examples
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 
-from navkit._shared.jit import njit_helper, njit_no_refcount, njit_released
-from navkit._shared.types import KernelInt
+from navkit._shared.jit import bind_numba_names, njit_helper, njit_no_refcount, njit_released
 from navkit.sim._moving_kernels import point_in_moving
+
+# numba's min and max builtins, without an overload compiled per argument types
+# (navkit._shared.selects: intrinsics, so bound when numba loads; issue 17).
+min2: Any = None
+max2: Any = None
+bind_numba_names(
+    globals(), "navkit._shared.selects", python={"min2": min, "max2": max}, min2="min2", max2="max2"
+)
 
 __all__ = ["apply_range_noise", "cast_edge_rays", "cast_occupancy_rays"]
 
@@ -131,10 +139,7 @@ def _ray_segment(
         # Along the ray's line: a hit at the nearer end in front of the origin.
         if ta < 0.0 and tb < 0.0:
             return best
-        # max(min(ta, tb), 0) as numba's builtins compute it, written out: the
-        # builtins compile as overloads of their own on first use (issue 17).
-        t: float = tb if tb < ta else ta
-        t = 0.0 if t < 0.0 else t
+        t: float = max2(min2(ta, tb), 0.0)
     else:
         # Where the segment crosses the line: sa / (sa - sb) of the way from a to b.
         t = ta + (tb - ta) * (sa / (sa - sb))
@@ -194,9 +199,8 @@ def _cast_edge_grid(
         tb = (gx1 - ox) / dx
         if ta > tb:
             ta, tb = tb, ta
-        # Selects, not the min/max builtins (see _ray_segment).
-        t0 = ta if ta > t0 else t0
-        t1 = tb if tb < t1 else t1
+        t0 = max2(t0, ta)
+        t1 = min2(t1, tb)
     elif ox < gx0 or ox > gx1:
         return best
     if dy != 0.0:
@@ -204,8 +208,8 @@ def _cast_edge_grid(
         tb = (gy1 - oy) / dy
         if ta > tb:
             ta, tb = tb, ta
-        t0 = ta if ta > t0 else t0
-        t1 = tb if tb < t1 else t1
+        t0 = max2(t0, ta)
+        t1 = min2(t1, tb)
     elif oy < gy0 or oy > gy1:
         return best
     if t0 > t1:
@@ -213,12 +217,8 @@ def _cast_edge_grid(
     inv_h = 1.0 / h
     px = ox + t0 * dx
     py = oy + t0 * dy
-    i = math.floor((px - gx0) * inv_h)
-    i = i if i > 0 else 0
-    i = i if i < nx - 1 else nx - 1
-    j = math.floor((py - gy0) * inv_h)
-    j = j if j > 0 else 0
-    j = j if j < ny - 1 else ny - 1
+    i = min2(max2(math.floor((px - gx0) * inv_h), 0), nx - 1)
+    j = min2(max2(math.floor((py - gy0) * inv_h), 0), ny - 1)
     si = 1 if dx > 0.0 else -1
     sj = 1 if dy > 0.0 else -1
     n_seg = segs.shape[0]
@@ -239,7 +239,7 @@ def _cast_edge_grid(
         # Where the ray leaves this cell.
         tx = (gx0 + (i + (1 if si > 0 else 0)) * h - ox) / dx if dx != 0.0 else _INF
         ty = (gy0 + (j + (1 if sj > 0 else 0)) * h - oy) / dy if dy != 0.0 else _INF
-        t_exit = ty if ty < tx else tx
+        t_exit = min2(tx, ty)
         if best <= t_exit or t_exit >= t1:
             return best
         if tx <= ty:
@@ -313,7 +313,7 @@ def _cast_occupancy(
         if ta > tb:
             ta, tb = tb, ta
         t0 = ta if ta > t0 else t0  # not max(): -0.0 must not replace 0.0
-        t1 = tb if tb < t1 else t1  # min(t1, tb) as numba computes it, not compiled
+        t1 = min2(t1, tb)
     elif su < 0.0 or su > cols:
         return best
     if ev != 0.0:
@@ -322,7 +322,7 @@ def _cast_occupancy(
         if ta > tb:
             ta, tb = tb, ta
         t0 = ta if ta > t0 else t0
-        t1 = tb if tb < t1 else t1
+        t1 = min2(t1, tb)
     elif sv < 0.0 or sv > rows:
         return best
     # A ray through a corner of the map enters and leaves it at once: rounding
@@ -331,12 +331,8 @@ def _cast_occupancy(
         return best
     u0 = su + t0 * eu
     v0 = sv + t0 * ev
-    c: KernelInt = math.floor(u0)
-    c = c if c > 0 else 0
-    c = c if c < cols - 1 else cols - 1
-    r: KernelInt = math.floor(v0)
-    r = r if r > 0 else 0
-    r = r if r < rows - 1 else rows - 1
+    c = min2(max2(math.floor(u0), 0), cols - 1)
+    r = min2(max2(math.floor(v0), 0), rows - 1)
     # The start point touches every cell whose closed square holds it: one, or
     # two or four on a grid line or corner (an origin on a blocked cell's face,
     # a ray entering the map through a corner), to rounding of its coordinates.
@@ -352,10 +348,10 @@ def _cast_occupancy(
                 return t0
     # A ray along a grid line touches the cells on both sides of it: side_r
     # (side_c) is the row (column) beside the one it steps along (-1: none).
-    side_r: KernelInt = -1
+    side_r = -1
     if ev == 0.0:
         side_r = r_lo if r_lo != r else (r_hi if r_hi != r else -1)
-    side_c: KernelInt = -1
+    side_c = -1
     if eu == 0.0:
         side_c = c_lo if c_lo != c else (c_hi if c_hi != c else -1)
     sc = 1 if eu > 0.0 else -1
@@ -401,29 +397,16 @@ def _cast_occupancy(
             half = np.int64(d) - 1
             xc = (c + sc * half + off_c - su) * inv_eu if eu != 0.0 else _INF
             xr = (r + sr * half + off_r - sv) * inv_ev if ev != 0.0 else _INF
-            exit_t = xr if xr < xc else xc
+            exit_t = min2(xc, xr)
             if exit_t - t1 > _TIE * exit_t:
                 return best  # the ray ends or leaves the map inside the free square
             # One step before the exit the ray is well inside the square: its cell
             # there, unlike the exit point's, is no rounding away from a corner.
-            back = exit_t - (dtr if dtr < dtc else dtc)
+            back = exit_t - min2(dtc, dtr)
             # Within the square and the map (a ray along its top or right edge
-            # walks the last row or column, as from the start): the row
-            # clamped to [max(r - half, 0), min(r + half, rows - 1)], integers.
-            lo = r - half
-            lo = lo if lo > 0 else 0
-            hi = r + half
-            hi = hi if hi < rows - 1 else rows - 1
-            r = math.floor(sv + back * ev)
-            r = r if r > lo else lo
-            r = r if r < hi else hi
-            lo = c - half
-            lo = lo if lo > 0 else 0
-            hi = c + half
-            hi = hi if hi < cols - 1 else cols - 1
-            c = math.floor(su + back * eu)
-            c = c if c > lo else lo
-            c = c if c < hi else hi
+            # walks the last row or column, as from the start).
+            r = min2(min2(max2(max2(math.floor(sv + back * ev), r - half), 0), r + half), rows - 1)
+            c = min2(min2(max2(max2(math.floor(su + back * eu), c - half), 0), c + half), cols - 1)
             tc = (c + off_c - su) * inv_eu if eu != 0.0 else _INF
             tr = (r + off_r - sv) * inv_ev if ev != 0.0 else _INF
             continue
@@ -439,7 +422,7 @@ def _cast_occupancy(
             r += sr
         else:
             # Through a corner (to rounding): the two cells beside it are touched there.
-            t = tr if tr < tc else tc
+            t = min2(tc, tr)
             t_in = t if t > t_in else t_in
             if t_in - t1 > _TIE * t_in:
                 return best  # a corner on the map's edge (to rounding) is still touched
@@ -488,11 +471,8 @@ def _in_static_solid(
     # Outside the grid's box is outside every solid.
     if not (0.0 <= u < nx and 0.0 <= v < ny):
         return False
-    # Selects, not the min/max builtins (see _ray_segment).
-    i0 = math.floor(u)
-    i0 = i0 if i0 < nx - 1 else nx - 1
-    j = math.floor(v)
-    j = j if j < ny - 1 else ny - 1
+    i0 = min2(math.floor(u), nx - 1)
+    j = min2(math.floor(v), ny - 1)
     n_rings = rings.shape[0]
     right = nx - 1 - i0 <= i0
     lo = i0 if right else 0
@@ -516,9 +496,7 @@ def _in_static_solid(
             x_cross = ax + (py - ay) * (rings[item, 2] - ax) / (by - ay)
             if (px < x_cross) != right:
                 continue
-            cell = math.floor((x_cross - gx0) * inv_h)
-            cell = cell if cell > 0 else 0
-            if (cell if cell < nx - 1 else nx - 1) == i:
+            if min2(max2(math.floor((x_cross - gx0) * inv_h), 0), nx - 1) == i:
                 inside = not inside
     return inside
 

@@ -39,11 +39,20 @@ True
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 
-from navkit._shared.jit import njit_force_inline, njit_released
+from navkit._shared.jit import bind_numba_names, njit_force_inline, njit_released
 from navkit._shared.types import KernelInt
+
+# numba's min and max builtins, without an overload compiled per argument types
+# (navkit._shared.selects: intrinsics, so bound when numba loads; issue 17).
+min2: Any = None
+max2: Any = None
+bind_numba_names(
+    globals(), "navkit._shared.selects", python={"min2": min, "max2": max}, min2="min2", max2="max2"
+)
 
 __all__ = [
     "CHUNK",
@@ -130,11 +139,7 @@ def _nearer(
         ee = ex * ex + ey * ey
         t = 0.0
         if ee > 0.0:
-            # min(max(u, 0), 1) as numba's builtins compute it, written out: the
-            # builtins compile as overloads of their own on first use (issue 17).
-            u = (wx * ex + wy * ey) / ee
-            u = 0.0 if u < 0.0 else u
-            t = 1.0 if u > 1.0 else u
+            t = min2(max2((wx * ex + wy * ey) / ee, 0.0), 1.0)
         d = math.hypot(wx - t * ex, wy - t * ey)
         if d < best:
             best = d

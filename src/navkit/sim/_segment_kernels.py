@@ -80,15 +80,24 @@ kernels compile ``goal_verdict``, no longer the exact ``at_goal``).
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 
 from navkit._shared.goal import INSIDE, OUTSIDE, UNDECIDED, at_goal, goal_verdict_kernel
-from navkit._shared.jit import njit_force_inline, njit_helper, njit_no_refcount
+from navkit._shared.jit import bind_numba_names, njit_force_inline, njit_helper, njit_no_refcount
 from navkit._shared.se2 import wrap_scalar
 from navkit.sim._clearance_kernels import TOUCH, edge_clearance, footprint_clearance
 from navkit.sim._moving_kernels import place_moving, point_in_moving
 from navkit.sim._wheel_kernels import arc_pose, wheel_step
+
+# numba's min and max builtins, without an overload compiled per argument types
+# (navkit._shared.selects: intrinsics, so bound when numba loads; issue 17).
+min2: Any = None
+max2: Any = None
+bind_numba_names(
+    globals(), "navkit._shared.selects", python={"min2": min, "max2": max}, min2="min2", max2="max2"
+)
 
 __all__ = ["COLLIDED", "GOAL", "GOAL_UNDECIDED", "REACHED", "STAT_COLLISIONS",
            "STAT_IN_CONTACT", "STAT_MIN_CLEARANCE", "STAT_TIME_TO_GOAL", "decide_goal",
@@ -203,10 +212,7 @@ def _sample(
         if rates[s] <= 0.0:
             continue
         when = counts[s] / rates[s]
-        # max(_EPS, _REL * when) as numba's builtin computes it, written out: the
-        # min/max builtins compile as overloads of their own on first use (issue 17).
-        rel = _REL * when
-        if i * dt + (rel if rel > _EPS else _EPS) < when:
+        if i * dt + max2(_EPS, _REL * when) < when:
             continue
         counts[s] += 1
         row = n_out[s]
@@ -297,9 +303,7 @@ def _long_steps(
     vy = 0.0
     om = 0.0
     for w in range(wheels.shape[0]):
-        now = abs(wheels[w])
-        later = abs(command[w])
-        top = (later if later > now else now) * radius_factor[w]  # a select (see _sample)
+        top = max2(abs(wheels[w]), abs(command[w])) * radius_factor[w]
         vx += abs(fwd[0, w]) * top
         vy += abs(fwd[1, w]) * top
         om += abs(fwd[2, w]) * top
@@ -358,7 +362,7 @@ def _sweep_static(
     while True:
         x, y, th = arc_pose(prev[0], prev[1], prev[2], vx, vy, om, done / span * dt)
         rest = span - done
-        limit = _CONTACT_LIMIT if rest < _CONTACT_LIMIT else rest  # max(): see _sample
+        limit = max2(rest, _CONTACT_LIMIT)
         if occ is None:
             c = edge_clearance(
                 x, y, th, radius, body_verts, verts, segs, circles, gx0, gy0, h, nx, ny,
@@ -379,7 +383,7 @@ def _sweep_static(
             state[1] = y
             state[2] = th
             return True
-        advance = sweep if sweep > c else c
+        advance = max2(c, sweep)
         if advance >= rest:
             return False
         done += advance
@@ -435,7 +439,7 @@ def _settle(
         # A new collision, unless the contact goes on or a held robot pushes on
         # (an obstacle reaching a held robot that stands still is a new one).
         if contact == _FREE or (contact == _HELD and not moved):
-            n = np.int64(stats[STAT_COLLISIONS])  # not int(): an overload of its own
+            n = np.int64(stats[STAT_COLLISIONS])  # not int(): an overload to compile
             if n < contacts.shape[0]:
                 contacts[n] = t
             stats[STAT_COLLISIONS] = n + 1
@@ -613,8 +617,7 @@ def run_segment(
             state[0], state[1], state[2], radius, body_verts, verts, scratch,
             segs, circles, gx0, gy0, h, nx, ny, cell_start, cell_items,
             occ, gox, goy, gcos, gsin, res, dyn_segs, dyn_circles,
-            _CONTACT_LIMIT if stats[STAT_MIN_CLEARANCE] < _CONTACT_LIMIT
-            else stats[STAT_MIN_CLEARANCE],  # max(): see _sample
+            max2(stats[STAT_MIN_CLEARANCE], _CONTACT_LIMIT),
         )  # fmt: skip
         # A moving obstacle may have swept over the robot: inside it is a contact too.
         if (
@@ -718,8 +721,7 @@ def run_edge_segment(
         clearance = edge_clearance(
             state[0], state[1], state[2], radius, body_verts, verts,
             segs, circles, gx0, gy0, h, nx, ny, cell_start, cell_items,
-            _CONTACT_LIMIT if stats[STAT_MIN_CLEARANCE] < _CONTACT_LIMIT
-            else stats[STAT_MIN_CLEARANCE],  # max(): see _sample
+            max2(stats[STAT_MIN_CLEARANCE], _CONTACT_LIMIT),
         )  # fmt: skip
         # A long step may have passed through a wall or into a solid.
         if check_arcs and clearance > TOUCH and _sweep_static(

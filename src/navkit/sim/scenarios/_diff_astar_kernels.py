@@ -14,11 +14,20 @@ Examples
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 
-from navkit._shared.jit import njit_no_refcount
+from navkit._shared.jit import bind_numba_names, njit_no_refcount
 from navkit._shared.se2 import wrap_scalar
+
+# numba's min and max builtins, without an overload compiled per argument types
+# (navkit._shared.selects: intrinsics, so bound when numba loads; issue 17).
+min2: Any = None
+max2: Any = None
+bind_numba_names(
+    globals(), "navkit._shared.selects", python={"min2": min, "max2": max}, min2="min2", max2="max2"
+)
 
 __all__ = ["match_scan"]
 
@@ -89,14 +98,8 @@ def match_scan(
             # The outer half cell (between the edge cells' centres and the edge) was
             # left out once: a wall drawn in the edge cells was invisible, a map one
             # cell wide matched nothing. The edge cells' patch extends over it.
-            # Clamped by selects, not the min/max builtins (numba compiles those as
-            # overloads of their own on first use; issue 17).
-            r0 = math.floor(row)
-            r0 = r0 if r0 > 0 else 0
-            r0 = (r0 if r0 < rows - 2 else rows - 2) if rows > 1 else 0
-            c0 = math.floor(col)
-            c0 = c0 if c0 > 0 else 0
-            c0 = (c0 if c0 < cols - 2 else cols - 2) if cols > 1 else 0
+            r0 = min2(max2(math.floor(row), 0), rows - 2) if rows > 1 else 0
+            c0 = min2(max2(math.floor(col), 0), cols - 2) if cols > 1 else 0
             r1 = r0 + 1 if rows > 1 else 0
             c1 = c0 + 1 if cols > 1 else 0
             fr = row - r0
