@@ -42,8 +42,24 @@ from numba.cpython import builtins
 __all__ = ["max2", "min2"]
 
 _NUMBERS = (types.Number, types.Boolean)
-#: numba's code for its min and max builtins (Any: untyped in numba).
-_DO_MINMAX: Any = builtins.do_minmax
+
+
+def _select(context: Any, builder: Any, argtys: list[Any], args: list[Any], compare: Any) -> Any:
+    """``b`` if ``compare(b, a)`` else ``a``, both cast to their unified type.
+
+    The code numba's ``do_minmax`` emits for two arguments, spelt out here
+    for a numba without that private function (it is not public API: a
+    rename would otherwise make every kernel module fail to import).
+    """
+    unified = context.typing_context.unify_types(*argtys)
+    a, b = (context.cast(builder, v, t, unified) for v, t in zip(args, argtys, strict=True))
+    compare_impl = context.get_function(compare, types.boolean(unified, unified))
+    return builder.select(compare_impl(builder, (b, a)), b, a)
+
+
+#: numba's code for its min and max builtins (Any: untyped in numba), or the
+#: same code spelt out where numba has no ``do_minmax``.
+_DO_MINMAX: Any = getattr(builtins, "do_minmax", _select)
 
 
 def _typing(compare: Callable[[Any, Any], Any]) -> Callable[..., Any]:
