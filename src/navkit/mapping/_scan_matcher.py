@@ -133,8 +133,8 @@ class ScanMatchResult:
     score : float
         Mean interpolated occupancy probability ``M`` of the scan's points at
         ``pose`` on the finest level, in [0, 1]: 1 when every point lies on a
-        certain obstacle, 0.5 on unknown cells, 0 off the map (beyond its
-        edges; see :class:`ScanMatcher` for the map's outer half cell).
+        certain obstacle, 0.5 on unknown cells and off the map (past its
+        edges cells count as unknown; see :class:`ScanMatcher`).
     converged : bool
         True when the finest level stopped on the convergence test.
     reason : str
@@ -279,8 +279,11 @@ class ScanMatcher:
     map's edge cells and its edge (its outer half cell) the cells beyond the
     edge count as unknown (probability 0.5), as if the map had a margin of
     unknown cells: a wall drawn in the edge cells pulls the scan as one
-    further in does, and a map one cell wide is matched too; beyond the edge
-    ``M`` is 0 (no obstacle). (The probability of a cell is
+    further in does, and a map one cell wide is matched too. Past the edge
+    too, without end: ``M`` is 1/2 with no gradient a cell past the edge
+    cells' centres. (Until review 50 it was 0 there, Hector SLAM's value out
+    of its map's bounds, which made a map tight to its walls match worse
+    than the same map padded with unknown cells.) (The probability of a cell is
     computed from its float32 log-odds with a single-precision ``exp``, for
     speed; that changes ``M`` and ``∇M`` by at most about 2e-8 and matched
     poses by about 1e-10 m, far below any map's resolution.) (Hector SLAM's C++

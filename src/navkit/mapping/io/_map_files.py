@@ -964,6 +964,10 @@ def _pillow_errors(
         raise ValueError(f"{path}: cannot read the image ({type(exc).__name__}: {exc})") from None
     except (struct.error, zlib.error) as exc:
         raise ValueError(f"{path}: cannot read the image ({type(exc).__name__}: {exc})") from None
+    except Warning as exc:
+        # Raised only where the caller turned warnings into errors (-W error):
+        # Pillow warns of a damaged file (e.g. "Corrupt EXIF data") before failing.
+        raise ValueError(f"{path}: cannot read the image ({type(exc).__name__}: {exc})") from None
 
 
 #: Pillow's raw modes of PNGs with 16 bits per colour channel (its "RGB" and
