@@ -6,7 +6,9 @@ were added). Two mutants of that order survived the suite: the subclass's own
 mapping alone (its bases' fields then had no default: a list shorter than the
 fields by the bases' added ones was refused), and the subclass's fields
 counted before its bases' (a list from before the subclass's field, but after
-the base's, set the subclass's field from the base's value). A subclass that
+the base's, set the subclass's field from the base's value). A list is read
+into the fields that existed then, wherever the added ones stand (a
+subclass's own older field follows its base's added ones). A subclass that
 gives a base's added field a default of its own overrides the base's.
 """
 
@@ -59,6 +61,16 @@ class _Feet(_Reading):
     __setstate__ = _Reading.__setstate__
 
 
+@dataclass(frozen=True, slots=True)
+class _Tagged(_Reading):
+    """A subclass whose field ``tag`` came with it, before its base's ``unit`` and
+    ``scale``: the fields added are not the last ones."""
+
+    tag: str = "t"
+
+    __setstate__ = _Reading.__setstate__
+
+
 def _restored(cls: type, state: list[Any]) -> Any:
     record = object.__new__(cls)
     record.__setstate__(state)
@@ -72,6 +84,13 @@ def test_a_subclass_list_of_each_age_gets_its_bases_and_its_own_added_fields() -
     assert _restored(_Noted, [4.0, "s"]) == _Noted(4.0, "s", 8.0, "late s")
     assert _restored(_Noted, [4.0, "s", 0.5]) == _Noted(4.0, "s", 0.5, "late s")
     assert _restored(_Noted, [4.0, "s", 0.5, "x"]) == _Noted(4.0, "s", 0.5, "x")
+
+
+def test_fields_added_to_a_base_are_left_out_where_they_stand() -> None:
+    # A list from before the base's two fields: the subclass's own field follows
+    # the value, not the added fields' places.
+    assert _restored(_Tagged, [4.0, "x"]) == _Tagged(4.0, "m", 8.0, "x")
+    assert _restored(_Tagged, [4.0, "s", "x"]) == _Tagged(4.0, "s", 8.0, "x")
 
 
 def test_a_subclass_default_for_a_base_field_overrides_the_base_one() -> None:
