@@ -11,7 +11,7 @@ from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
 from navkit.geometry import Pose2D
-from navkit.mapping import OccupancyGrid
+from navkit.mapping import OccupancyGrid, _grid_kernels
 from navkit.mapping._grid_kernels import world_to_cell_entry, world_to_cell_kernel
 
 coords = st.floats(-1e6, 1e6, allow_nan=False)
@@ -42,7 +42,12 @@ def test_fast_path_equals_general_path(
     out = np.empty((len(pts), 2), dtype=np.int64)
     o = grid.origin
     as_python = getattr(world_to_cell_kernel, "py_func", world_to_cell_kernel)  # NUMBA_DISABLE_JIT
-    as_python(np.array(pts), o.x, o.y, o.theta, grid.resolution, out)
+    # min2/max2 are numba intrinsics (review 50), not callable from Python: run the
+    # kernel's Python with the builtins they stand for, as NUMBA_DISABLE_JIT binds them.
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setattr(_grid_kernels, "min2", min)
+        patch.setattr(_grid_kernels, "max2", max)
+        as_python(np.array(pts), o.x, o.y, o.theta, grid.resolution, out)
     assert np.array_equal(fast, out)
     assert np.array_equal(pts, before)
 
