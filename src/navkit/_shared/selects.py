@@ -18,7 +18,13 @@ the builtin's results bit for bit (NaN and signed zeros included: the first
 argument is kept unless the second compares greater, or smaller) and the same
 machine code, without a function to compile. Two arguments only: nest them
 for more, as the builtin reduces them (``max(a, b, c)`` is
-``max2(max2(a, b), c)``).
+``max2(max2(a, b), c)``). With numba's JIT disabled they are Python's ``min``
+and ``max``.
+
+numba caches a kernel keyed on its own file only, and these intrinsics'
+code is built into the kernels that call them: a change here that changes
+their code must also change every kernel file that calls them (a comment
+will do), or machine code cached before it stays in use.
 
 Examples
 --------
@@ -38,6 +44,8 @@ from typing import Any
 from numba.core import types
 from numba.core.extending import intrinsic
 from numba.cpython import builtins
+
+from navkit._shared.jit import jit_disabled
 
 __all__ = ["max2", "min2"]
 
@@ -84,3 +92,8 @@ def _typing(compare: Callable[[Any, Any], Any]) -> Callable[..., Any]:
 min2: Any = intrinsic(_typing(operator.lt))
 #: ``max(a, b)`` of two numbers in a kernel, as numba's builtin (the second if greater).
 max2: Any = intrinsic(_typing(operator.gt))
+if jit_disabled():
+    # Kernels run as Python there (an intrinsic cannot be called from Python):
+    # the builtins themselves, as the kernel modules bind them.
+    min2 = min
+    max2 = max

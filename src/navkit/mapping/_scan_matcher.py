@@ -283,7 +283,12 @@ class ScanMatcher:
     too, without end: ``M`` is 1/2 with no gradient a cell past the edge
     cells' centres. (Until review 50 it was 0 there, Hector SLAM's value out
     of its map's bounds, which made a map tight to its walls match worse
-    than the same map padded with unknown cells.) (The probability of a cell is
+    than the same map padded with unknown cells.) So a match from a guess far
+    off may end off the map, where its points read unknown: such a result
+    scores about 1/2 and may still report ``"converged"`` (a 4 m x 3 m room
+    matched from a guess 2.4 m off, in its corner, ended 1.4 m past its edge,
+    score 0.53);
+    check the pose against the map's bounds where that matters. (The probability of a cell is
     computed from its float32 log-odds with a single-precision ``exp``, for
     speed; that changes ``M`` and ``∇M`` by at most about 2e-8 and matched
     poses by about 1e-10 m, far below any map's resolution.) (Hector SLAM's C++
