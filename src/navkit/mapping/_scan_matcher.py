@@ -287,11 +287,11 @@ class ScanMatcher:
     off may end off the map, where its points read unknown: such a result
     scores about 1/2 and may still report ``"converged"`` (a 4 m x 3 m room
     matched from a guess 2.4 m off, in its corner, ended 1.4 m past its edge,
-    score 0.53);
-    check the pose against the map's bounds where that matters. (The probability of a cell is
-    computed from its float32 log-odds with a single-precision ``exp``, for
-    speed; that changes ``M`` and ``∇M`` by at most about 2e-8 and matched
-    poses by about 1e-10 m, far below any map's resolution.) (Hector SLAM's C++
+    score 0.53); check the pose against the map's bounds where that matters.
+    (The probability of a cell is computed from its float32 log-odds with a
+    single-precision ``exp``, for speed; that changes ``M`` and ``∇M`` by at
+    most about 2e-8 and matched poses by about 1e-10 m, far below any map's
+    resolution.) (Hector SLAM's C++
     ``interpMapValueWithDerivatives`` swaps the x and y interpolation factors
     in the gradient, a long-standing open bug, so its step direction is not
     the derivative of its own interpolant; navkit's gradient agrees with
