@@ -23,9 +23,7 @@ from __future__ import annotations
 import base64
 import copy
 import math
-import os
 import pickle
-import subprocess
 import sys
 import types
 from collections.abc import Iterator
@@ -47,6 +45,7 @@ from navkit._shared.frozen import (
 )
 from navkit.geometry import Pose2D
 from navkit.sim import Lidar, RangeNoise, World
+from old_release import made_at
 
 #: The commit before ``absolute`` was added, and the module the subclasses live in.
 OLD_COMMIT = "0bf260c"
@@ -280,24 +279,7 @@ def test_a_noise_pickled_before_absolute_loads_with_zeros(
 @pytest.mark.slow
 def test_the_pickles_are_the_old_releases(tmp_path: Path, subclasses: types.ModuleType) -> None:
     # Made again by the source of OLD_COMMIT: the same bytes, and they load as above.
-    root = Path(__file__).resolve().parents[2]
-    try:
-        archive = subprocess.run(
-            ["git", "-C", str(root), "archive", OLD_COMMIT, "src"],
-            capture_output=True, check=True, timeout=120,
-        )  # fmt: skip
-    except (OSError, subprocess.SubprocessError):
-        pytest.skip(f"no git checkout holding {OLD_COMMIT}")
-    subprocess.run(["tar", "-x", "-C", str(tmp_path)], input=archive.stdout, check=True)
-    env = {**os.environ, "PYTHONPATH": str(tmp_path / "src"),
-           "NUMBA_CACHE_DIR": str(tmp_path / "numba")}  # fmt: skip
-    made = subprocess.run(
-        [sys.executable, "-c", MAKER], capture_output=True, check=True, text=True, env=env,
-        timeout=300,
-    )  # fmt: skip
-    import json
-
-    fresh = json.loads(made.stdout)
+    fresh = made_at(OLD_COMMIT, MAKER, tmp_path)
     assert fresh == {key: "".join(parts) for key, parts in OLD_PICKLES.items()}
     for key, data in fresh.items():
         _check(pickle.loads(base64.b64decode(data)), key.split("/")[0], subclasses)

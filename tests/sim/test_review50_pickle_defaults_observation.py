@@ -17,10 +17,7 @@ from __future__ import annotations
 
 import base64
 import copy
-import json
-import os
 import pickle
-import subprocess
 import sys
 import types
 from pathlib import Path
@@ -29,6 +26,7 @@ import pytest
 
 from navkit.geometry import Pose2D
 from navkit.sim import Observation
+from old_release import made_at
 
 OLD_COMMIT = "7b0f979"
 MODULE = "review50_old_observations"
@@ -135,22 +133,7 @@ def test_todays_observations_keep_their_dt(subclasses: types.ModuleType) -> None
 @pytest.mark.slow
 def test_the_pickles_are_the_old_releases(tmp_path: Path, subclasses: types.ModuleType) -> None:
     # Made again by the source of OLD_COMMIT: the same bytes, and they load as above.
-    root = Path(__file__).resolve().parents[2]
-    try:
-        archive = subprocess.run(
-            ["git", "-C", str(root), "archive", OLD_COMMIT, "src"],
-            capture_output=True, check=True, timeout=120,
-        )  # fmt: skip
-    except (OSError, subprocess.SubprocessError):
-        pytest.skip(f"no git checkout holding {OLD_COMMIT}")
-    subprocess.run(["tar", "-x", "-C", str(tmp_path)], input=archive.stdout, check=True)
-    env = {**os.environ, "PYTHONPATH": str(tmp_path / "src"),
-           "NUMBA_CACHE_DIR": str(tmp_path / "numba")}  # fmt: skip
-    made = subprocess.run(
-        [sys.executable, "-c", MAKER], capture_output=True, check=True, text=True, env=env,
-        timeout=300,
-    )  # fmt: skip
-    fresh = json.loads(made.stdout)
+    fresh = made_at(OLD_COMMIT, MAKER, tmp_path)
     assert fresh == {key: "".join(parts) for key, parts in OLD_PICKLES.items()}
     for key, data in fresh.items():
         _check(pickle.loads(base64.b64decode(data)), key.split("/")[0], subclasses)

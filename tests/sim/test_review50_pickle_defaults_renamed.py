@@ -21,10 +21,7 @@ makes them again there (slow; a git checkout of the project).
 from __future__ import annotations
 
 import base64
-import json
-import os
 import pickle
-import subprocess
 import sys
 import types
 from dataclasses import dataclass
@@ -38,6 +35,7 @@ import pytest
 from navkit._shared.frozen import restore_read_only
 from navkit.behaviours import GameState
 from navkit.planning.reactive._greedy import GreedyStep
+from old_release import made_at
 
 OLD_COMMIT = "5e5f83f"
 MODULE = "review50_old_records"
@@ -212,22 +210,7 @@ def test_a_dict_state_is_restored_by_name_or_refused() -> None:
 @pytest.mark.slow
 def test_the_pickles_are_the_old_releases(tmp_path: Path, subclasses: types.ModuleType) -> None:
     # Made again by the source of OLD_COMMIT: the same bytes, and they load as above.
-    root = Path(__file__).resolve().parents[2]
-    try:
-        archive = subprocess.run(
-            ["git", "-C", str(root), "archive", OLD_COMMIT, "src"],
-            capture_output=True, check=True, timeout=120,
-        )  # fmt: skip
-    except (OSError, subprocess.SubprocessError):
-        pytest.skip(f"no git checkout holding {OLD_COMMIT}")
-    subprocess.run(["tar", "-x", "-C", str(tmp_path)], input=archive.stdout, check=True)
-    env = {**os.environ, "PYTHONPATH": str(tmp_path / "src"),
-           "NUMBA_CACHE_DIR": str(tmp_path / "numba")}  # fmt: skip
-    made = subprocess.run(
-        [sys.executable, "-c", MAKER], capture_output=True, check=True, text=True, env=env,
-        timeout=300,
-    )  # fmt: skip
-    fresh = json.loads(made.stdout)
+    fresh = made_at(OLD_COMMIT, MAKER, tmp_path)
     assert fresh == {key: "".join(parts) for key, parts in OLD_PICKLES.items()}
     for key, data in fresh.items():
         _check(pickle.loads(base64.b64decode(data)), key.split("/")[0], subclasses)
