@@ -10,6 +10,7 @@ import json
 import os
 import subprocess
 import sys
+import tempfile
 from pathlib import Path
 from typing import Any
 
@@ -118,6 +119,25 @@ def jit_outcome(
         timeout=timeout,
         check=False,
     )
+    assert done.returncode == 0, done.stderr[-3000:]
+    return json.loads(done.stdout.strip().splitlines()[-1])
+
+
+def cold_outcome(script: str, *, timeout: float = 300) -> Any:
+    """The JSON value on the last line ``script`` prints, run with an empty numba cache.
+
+    A new temporary ``NUMBA_CACHE_DIR`` of its own: every kernel the script
+    meets is compiled, as on a user's first use (it must exit 0).
+    """
+    with tempfile.TemporaryDirectory(prefix="navkit-cold-probe-") as cache:
+        done = subprocess.run(
+            [sys.executable, "-c", script],
+            env={**os.environ, "NUMBA_CACHE_DIR": cache},
+            capture_output=True,
+            text=True,
+            timeout=timeout,
+            check=False,
+        )
     assert done.returncode == 0, done.stderr[-3000:]
     return json.loads(done.stdout.strip().splitlines()[-1])
 

@@ -23,11 +23,6 @@ and that no heap operation or search kernel calls a comparison helper.
 from __future__ import annotations
 
 import dis
-import json
-import os
-import subprocess
-import sys
-import tempfile
 
 import numpy as np
 import pytest
@@ -42,6 +37,7 @@ from navkit.planning.grid import (
     _search_heap,
 )
 from navkit.planning.grid._distance_field_kernels import DONE, bucket_field, pad_grid
+from subprocess_probe import cold_outcome
 
 
 def _grid(seed: int, rows: int = 23, cols: int = 17, uniform: bool = False) -> np.ndarray:
@@ -162,13 +158,7 @@ print(json.dumps(compiled))
 
 @pytest.mark.skipif(jit_disabled(), reason="nothing is compiled with the JIT disabled")
 def test_distance_field_first_use_compiles_no_builtin_and_its_kernels_once() -> None:
-    with tempfile.TemporaryDirectory(prefix="navkit-review50-") as cache:
-        out = subprocess.run(
-            [sys.executable, "-c", _FIRST_USE],
-            check=True, capture_output=True, text=True,
-            env=dict(os.environ, NUMBA_CACHE_DIR=cache),
-        )  # fmt: skip
-    compiled = [tuple(row) for row in json.loads(out.stdout.strip().splitlines()[-1])]
+    compiled = [tuple(row) for row in cold_outcome(_FIRST_USE)]
     # min(), max(), int() on scalars are numba overloads compiled on first use.
     assert not [row for row in compiled if row[0] == "numba.cpython.builtins"], compiled
     ours = [name for module, name in compiled if module == _distance_field_kernels.__name__]

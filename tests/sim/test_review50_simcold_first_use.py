@@ -14,13 +14,9 @@ and LiDAR and clearance queries in both.
 
 from __future__ import annotations
 
-import json
-import os
-import subprocess
-import sys
-import tempfile
-
 import pytest
+
+from subprocess_probe import cold_outcome
 
 _FIRST_USE = """
 import json
@@ -66,13 +62,7 @@ print(json.dumps(compiled))
 
 @pytest.mark.slow
 def test_simulator_first_use_compiles_no_builtin_min_max_int_overload() -> None:
-    with tempfile.TemporaryDirectory(prefix="navkit-review50-simcold-") as cache:
-        out = subprocess.run(
-            [sys.executable, "-c", _FIRST_USE],
-            check=True, capture_output=True, text=True,
-            env=dict(os.environ, NUMBA_CACHE_DIR=cache),
-        )  # fmt: skip
-    compiled = [tuple(row) for row in json.loads(out.stdout.strip().splitlines()[-1])]
+    compiled = [tuple(row) for row in cold_outcome(_FIRST_USE)]
     ours = {name for module, name in compiled if module.startswith("navkit.sim.")}
     # The kernels this checks were compiled here, for both footprints and both worlds.
     for kernel in (
