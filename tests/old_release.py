@@ -1,4 +1,4 @@
-"""Run a script against the source of an earlier commit (tests of old pickles).
+"""Old releases' pickles in tests: scripts run on an earlier commit's source, their classes.
 
 :func:`made_at` extracts ``src`` of a commit from the project's git checkout
 into a temporary folder and runs a Python script there in a child process (its
@@ -13,6 +13,7 @@ import json
 import os
 import subprocess
 import sys
+import types
 from pathlib import Path
 from typing import Any
 
@@ -38,3 +39,11 @@ def made_at(commit: str, script: str, tmp_path: Path) -> Any:
         timeout=300,
     )  # fmt: skip
     return json.loads(made.stdout)
+
+
+def install_module(monkeypatch: pytest.MonkeyPatch, name: str, source: str) -> types.ModuleType:
+    """Module ``name`` made from ``source``, in ``sys.modules`` for the test (pickles look)."""
+    module = types.ModuleType(name)
+    monkeypatch.setitem(sys.modules, name, module)
+    exec(source, module.__dict__)
+    return module

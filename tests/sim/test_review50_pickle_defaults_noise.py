@@ -24,7 +24,6 @@ import base64
 import copy
 import math
 import pickle
-import sys
 import types
 from collections.abc import Iterator
 from dataclasses import FrozenInstanceError, dataclass, fields
@@ -45,7 +44,7 @@ from navkit._shared.frozen import (
 )
 from navkit.geometry import Pose2D
 from navkit.sim import Lidar, RangeNoise, World
-from old_release import made_at
+from old_release import install_module, made_at
 
 #: The commit before ``absolute`` was added, and the module the subclasses live in.
 OLD_COMMIT = "0bf260c"
@@ -225,10 +224,7 @@ KW: dict[str, Any] = {"limits": (1.0, math.inf), "sigma": (0.01, 0.02), "bias": 
 @pytest.fixture
 def subclasses(monkeypatch: pytest.MonkeyPatch) -> types.ModuleType:
     """The subclasses' module, where the pickles find them."""
-    module = types.ModuleType(MODULE)
-    monkeypatch.setitem(sys.modules, MODULE, module)
-    exec(SUBCLASSES, module.__dict__)
-    return module
+    return install_module(monkeypatch, MODULE, SUBCLASSES)
 
 
 def _expected(name: str, module: types.ModuleType) -> tuple[Any, dict[str, Any]]:

@@ -18,7 +18,6 @@ from __future__ import annotations
 import base64
 import copy
 import pickle
-import sys
 import types
 from pathlib import Path
 
@@ -26,7 +25,7 @@ import pytest
 
 from navkit.geometry import Pose2D
 from navkit.sim import Observation
-from old_release import made_at
+from old_release import install_module, made_at
 
 OLD_COMMIT = "7b0f979"
 MODULE = "review50_old_observations"
@@ -89,10 +88,7 @@ OLD_PICKLES = {
 @pytest.fixture
 def subclasses(monkeypatch: pytest.MonkeyPatch) -> types.ModuleType:
     """The subclass's module, where the pickles find it."""
-    module = types.ModuleType(MODULE)
-    monkeypatch.setitem(sys.modules, MODULE, module)
-    exec(SUBCLASSES, module.__dict__)
-    return module
+    return install_module(monkeypatch, MODULE, SUBCLASSES)
 
 
 def _check(obs: Observation, name: str, module: types.ModuleType) -> None:

@@ -22,7 +22,6 @@ from __future__ import annotations
 
 import base64
 import pickle
-import sys
 import types
 from dataclasses import dataclass
 from pathlib import Path
@@ -35,7 +34,7 @@ import pytest
 from navkit._shared.frozen import restore_read_only
 from navkit.behaviours import GameState
 from navkit.planning.reactive._greedy import GreedyStep
-from old_release import made_at
+from old_release import install_module, made_at
 
 OLD_COMMIT = "5e5f83f"
 MODULE = "review50_old_records"
@@ -140,10 +139,7 @@ OLD_PICKLES = {
 @pytest.fixture
 def subclasses(monkeypatch: pytest.MonkeyPatch) -> types.ModuleType:
     """The subclass's module, where the pickles find it."""
-    module = types.ModuleType(MODULE)
-    monkeypatch.setitem(sys.modules, MODULE, module)
-    exec(SUBCLASSES, module.__dict__)
-    return module
+    return install_module(monkeypatch, MODULE, SUBCLASSES)
 
 
 def _check(record: Any, name: str, module: types.ModuleType) -> None:
