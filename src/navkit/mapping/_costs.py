@@ -103,9 +103,10 @@ def inflation_costs(
     Unknown cells keep 255 unless the inflated cost is >= 253 (or > 0 with
     ``inflate_unknown``). With ``inflate_around_unknown`` unknown cells are
     inflation sources too (and so become 254, as in Nav2). Distances use an
-    exact Euclidean distance transform where Nav2 propagates distances by a
-    breadth-first wave, which can only overestimate them. Arguments are not
-    validated (see :func:`costmap`).
+    exact Euclidean distance transform; where navkit and Nav2 differ, see the
+    Notes of :func:`costmap`. ``robot_radius`` is compared as given: callers
+    add the slack of :func:`costmap`. Arguments are not validated (see
+    :func:`costmap`).
 
     Examples
     --------
@@ -184,7 +185,8 @@ def costmap(
     obstacle), ``int(252 * exp(-cost_scaling_factor * (d - robot_radius)))``
     out to ``ceil(inflation_radius / resolution)`` cells, 0 free, 255 unknown
     (unknown cells take an inflated cost only when it is >= 253, or > 0 with
-    ``inflate_unknown``), as Nav2's ``InflationLayer``.
+    ``inflate_unknown``), as Nav2's ``InflationLayer`` (but for the
+    differences in Notes).
 
     Parameters
     ----------
@@ -222,6 +224,32 @@ def costmap(
 
     Notes
     -----
+    Where Nav2's costs differ (checked against oracles of both of its
+    algorithms, on the ROS maps of ``NAVKIT_DATA``):
+
+    * A cell exactly ``robot_radius`` from an obstacle is inscribed (253) here,
+      also where rounding puts ``d * resolution`` just above the radius: Nav2
+      compares ``d * resolution <= robot_radius`` in floating point, so at
+      ``robot_radius=0.15`` on a 0.05 m grid the cells 3 cells away are 251
+      there (``3 * 0.05 == 0.15000000000000002``) and 253 here, and
+      :func:`traversal_costs` makes them impassable. The radius gets 1e-9 of
+      a cell of slack here, as in :meth:`OccupancyGrid.inflate`, so that
+      both agree on which cells the robot's body reaches.
+    * Nav2's classic ``InflationLayer`` (every release up to 2025; kept as
+      ``LegacyInflationLayer`` since) propagates distances by a breadth-first
+      wave, whose distances can only be too long, and which never reaches
+      some cells within ``inflation_radius`` (the wave stops at a cell
+      farther than that from the obstacle it started from, though another
+      is nearer): such cells cost less there (0), and an unknown one under
+      ``inflate_unknown`` stays 255 there where it takes its inflated cost
+      here (seen on the Willow Garage map).
+    * Nav2's refactored ``InflationLayer`` (2026) uses an exact distance
+      transform too, in float32, and looks costs up at distances rounded to
+      1/100 of a cell: a cost may differ by what the formula changes over
+      1/200 of a cell (at most 1 with Nav2's defaults on a 0.05 m grid), and
+      a cell whose rounded distance crosses ``robot_radius`` is inscribed in
+      one and not the other (``sqrt(2)`` cells reads as 1.41).
+
     Peak memory about 3 bytes a cell and 40 MiB whatever the radius
     (measured, 4096 x 4096 cells: 84 MiB): the occupied and unknown masks (2)
     and the result (1), and the exact distance transform of a band of about
