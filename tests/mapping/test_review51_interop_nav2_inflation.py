@@ -23,12 +23,14 @@ import heapq
 import inspect
 import math
 from pathlib import Path
+from types import SimpleNamespace as NS
 
 import numpy as np
 import pytest
 from scipy.ndimage import distance_transform_edt
 
 from navkit.mapping import OccupancyGrid, costmap, traversal_costs
+from navkit.mapping.io import grid_from_msg, grid_to_msg_fields
 
 LETHAL, INSCRIBED, UNKNOWN = 254, 253, 255
 LUT_PRECISION = 100
@@ -58,6 +60,18 @@ def _static_layer(grid: OccupancyGrid) -> np.ndarray:
     return layer
 
 
+def nav2_static_layer(data: np.ndarray) -> np.ndarray:
+    """Nav2's ``StaticLayer::interpretValue`` of message values, with its defaults.
+
+    ``trinary_costmap`` true, ``lethal_cost_threshold`` 100, unknown -1 kept as
+    255 (``track_unknown_space``, as Nav2's bringup sets it for the global costmap).
+    """
+    layer = np.zeros(data.shape, dtype=np.int64)
+    layer[data == -1] = UNKNOWN
+    layer[data >= 100] = LETHAL
+    return layer
+
+
 def nav2_legacy(
     grid: OccupancyGrid,
     inscribed: float,
@@ -66,9 +80,13 @@ def nav2_legacy(
     *,
     inflate_unknown: bool = False,
     inflate_around_unknown: bool = False,
+    static: np.ndarray | None = None,
 ) -> np.ndarray:
-    """Costs of Nav2's classic (wave) inflation layer over the grid's static layer."""
-    master = _static_layer(grid)
+    """Costs of Nav2's classic (wave) inflation layer over a static layer.
+
+    ``static`` defaults to the layer Nav2 builds from the grid's trinary map.
+    """
+    master = _static_layer(grid) if static is None else static.copy()
     rows, cols = master.shape
     res = grid.resolution
     reach = max(0, math.ceil(inflation / res))
@@ -198,7 +216,43 @@ def test_the_wave_leaves_cells_within_reach_unvisited() -> None:
     assert ours[6, 2] == 152
 
 
+def _message(data: np.ndarray, resolution: float) -> NS:
+    """A ``nav_msgs/OccupancyGrid`` look-alike of rows of values (row 0 first)."""
+    rows, cols = data.shape
+    origin = NS(position=NS(x=0.0, y=0.0, z=0.0), orientation=NS(x=0.0, y=0.0, z=0.0, w=1.0))
+    info = NS(width=cols, height=rows, resolution=resolution, origin=origin)
+    return NS(info=info, data=data.astype(np.int8).ravel().tolist())
+
+
+def test_a_message_with_values_between_0_and_100_is_not_nav2s_static_layer() -> None:
+    # Nav2 (trinary_costmap, lethal_cost_threshold 100) reads only 100 as lethal;
+    # the grid of grid_from_msg classes values by its thresholds 0.65 / 0.196.
+    values = np.array([[-1, 0, 19, 20, 50, 65, 66, 99, 100]])
+    grid = grid_from_msg(_message(values, 0.05))
+    ours = costmap(grid, robot_radius=0.0, inflation_radius=0.0)
+    assert ours[0].tolist() == [255, 0, 0, 255, 255, 255, 254, 254, 254]
+    theirs = nav2_legacy(grid, 0.0, 0.0, 10.0, static=nav2_static_layer(values))
+    assert theirs[0].tolist() == [255, 0, 0, 0, 0, 0, 0, 0, 254]
+    for doc in (inspect.getdoc(costmap) or "", inspect.getdoc(grid_from_msg) or ""):
+        assert "only 100" in doc
+        assert "20..65" in doc
+
+
 # --- real maps (NAVKIT_DATA) ----------------------------------------------------
+
+
+def test_a_trinary_message_gives_nav2s_costmap(shared_data: Path) -> None:
+    # map_server publishes the turtlebot3 map as 0 / 100 / -1: through
+    # grid_from_msg, navkit's costmap is Nav2's costmap of the message.
+    fields = grid_to_msg_fields(
+        _ros_map(shared_data, "turtlebot3_world", "map.yaml"), mode="trinary"
+    )
+    values = np.asarray(fields.data).reshape(fields.height, fields.width)
+    assert set(np.unique(values).tolist()) == {-1, 0, 100}
+    grid = grid_from_msg(_message(values, fields.resolution))
+    ours = costmap(grid, robot_radius=0.2, inflation_radius=0.55, cost_scaling_factor=3.0)
+    theirs = nav2_legacy(grid, 0.2, 0.55, 3.0, static=nav2_static_layer(values))
+    assert np.array_equal(ours, theirs)
 
 
 @pytest.mark.parametrize(

@@ -227,6 +227,13 @@ def costmap(
     Where Nav2's costs differ (checked against oracles of both of its
     algorithms, on the ROS maps of ``NAVKIT_DATA``):
 
+    * The static layer is the grid's occupied and unknown cells, classed by
+      its thresholds. Nav2's static layer reads the ``nav_msgs/OccupancyGrid``
+      values instead: by default only 100 is lethal and -1 unknown, every
+      other value free. Maps read with :func:`~navkit.mapping.io.read_map`
+      and trinary messages (0, 100, -1) give the same layer; a message with
+      other values read by :func:`~navkit.mapping.io.grid_from_msg` does not
+      (values 66..99 are obstacles here, 20..65 unknown, and free in Nav2).
     * A cell exactly ``robot_radius`` from an obstacle is inscribed (253) here,
       also where rounding puts ``d * resolution`` just above the radius: Nav2
       compares ``d * resolution <= robot_radius`` in floating point, so at

@@ -336,6 +336,16 @@ def grid_from_msg(msg: Any) -> OccupancyGrid:
     ``"scale"``) as they were; the yaw, through its quaternion, to within a few units
     in the last place.
 
+    The grid classes cells by its thresholds (0.65 and 0.196): values 66..100
+    are occupied, 0..19 free and 20..65 unknown. Nav2's costmap reads the
+    message itself instead: its static layer, with its defaults
+    (``trinary_costmap``, ``lethal_cost_threshold: 100``), makes only 100
+    lethal, -1 unknown and every other value free. The two agree on trinary
+    maps (0, 100, -1: what map_server publishes for ``mode: trinary``); on a
+    message with other values (Cartographer's, a ``mode: scale`` map)
+    :func:`~navkit.mapping.costmap` of this grid has obstacles (66..99) and
+    unknown cells (20..65) where Nav2's costmap has free space.
+
     Parameters
     ----------
     msg : nav_msgs/OccupancyGrid or look-alike
