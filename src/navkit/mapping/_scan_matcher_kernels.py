@@ -143,8 +143,10 @@ def _interpolate(
     cols = logodds.shape[1]
     # Also false for NaN and for huge coordinates, before any int conversion.
     if 0.0 <= row < rows - 1 and 0.0 <= col < cols - 1:
-        r0 = int(row)
-        c0 = int(col)
+        # np.int64, not int: numba compiles the int builtin as a function of its
+        # own, once per process (review 51); both truncate with the same fptosi.
+        r0 = np.int64(row)
+        c0 = np.int64(col)
         p00 = _probability(logodds, r0, c0, floor)
         p01 = _probability(logodds, r0, c0 + 1, floor)
         p10 = _probability(logodds, r0 + 1, c0, floor)
@@ -540,7 +542,7 @@ def correlative_search_kernel(
                 col = base_col[q] + d_col
                 row = base_row[q] + d_row
                 if 0.0 <= row < rows and 0.0 <= col < cols:
-                    p = _probability(logodds, int(row), int(col), 0.0)
+                    p = _probability(logodds, np.int64(row), np.int64(col), 0.0)
                     total += (1.0 - p) * (1.0 - p)
                 else:
                     total += 0.25
