@@ -2143,6 +2143,23 @@ def write_map(
         Writing fails (disk full, permissions, ...): the temporary files are
         removed and an existing map is left as it was.
 
+    Notes
+    -----
+    A map received as a message (:func:`grid_from_msg`) is saved by its
+    grid's classes, which are not map_saver's. map_saver classes the
+    message's values themselves, with ``<=`` and ``>=`` against its
+    thresholds rounded to whole percents: a value up to
+    ``rint(100 * free_thresh)`` is free, one from
+    ``rint(100 * occupied_thresh)`` on occupied (Nav2's defaults 0.25 and
+    0.65, ROS 1's 25 and 65). The grid classes ``p = value / 100`` strictly
+    against its own thresholds (0.196 and 0.65): a 65 is saved occupied by
+    map_saver and unknown here, and 20..25 free there and unknown here.
+    Only messages with values other than 0, 100 and -1 (Cartographer's, say)
+    hold such values. For map_saver's classes, save the grid with thresholds
+    half a percent inside its: ``OccupancyGrid(grid.logodds,
+    resolution=grid.resolution, origin=grid.origin, occupied_thresh=0.645,
+    free_thresh=0.255)``.
+
     Examples
     --------
     >>> import tempfile
