@@ -298,3 +298,32 @@ def test_willow_garage_unknown_cells_the_wave_never_reaches(shared_data: Path) -
     assert np.all(distance_transform_edt(~grid.occupied())[unreached] <= 5.0)
     new = nav2_refactored(grid, 0.105, 0.5, 10.0, inflate_unknown=True).astype(int)
     assert np.array_equal(ours == UNKNOWN, new == UNKNOWN)
+
+
+def test_traversal_costs_are_smac_2ds_cell_costs() -> None:
+    # Smac Planner 2D (Node2D::getTraversalCost) multiplies a move's length by
+    # 1 + cost_travel_multiplier * c / 252; NavFn uses (uchar)(50 + 0.8 c) over
+    # its neutral cost 50.
+    occ = np.zeros((9, 9), dtype=bool)
+    occ[4, 4] = True
+    grid = OccupancyGrid.from_occupancy(occ, resolution=0.05)
+    nav2 = nav2_legacy(grid, 0.06, 0.3, 5.0).astype(float)
+    passable = nav2 < INSCRIBED
+    assert np.unique(nav2[passable]).size > 5
+    for multiplier in (2.0, 4.0, 0.5):
+        ours = traversal_costs(
+            grid,
+            robot_radius=0.06,
+            inflation_radius=0.3,
+            cost_scaling_factor=5.0,
+            cost_weight=multiplier,
+        )
+        smac = 1.0 + multiplier * nav2 / 252.0
+        assert np.allclose(ours[passable], smac[passable], rtol=1e-15, atol=0.0)
+        assert np.all(np.isinf(ours[~passable]))
+    navfn = np.floor(50.0 + 0.8 * nav2) / 50.0
+    default = traversal_costs(
+        grid, robot_radius=0.06, inflation_radius=0.3, cost_scaling_factor=5.0
+    )
+    assert np.all(np.abs(default[passable] / navfn[passable] - 1.0) < 0.01)
+    assert "cost_travel_multiplier" in (inspect.getdoc(traversal_costs) or "")

@@ -322,8 +322,14 @@ def traversal_costs(
     cost_scaling_factor : float, default 10.0
         Decay rate of the inflation cost, 1/m, in (0, 1e12].
     cost_weight : float, default 4.0
-        Extra cost of a cell next to the inscribed zone, in [0, 1e9]; 4 makes
-        the scale match NavFn's ``50 + 0.8 c`` divided by its neutral cost 50.
+        Extra cost of a cell next to the inscribed zone, in [0, 1e9]. A cell's
+        cost is Nav2 Smac Planner 2D's ``1 + cost_travel_multiplier * c / 252``
+        with ``cost_travel_multiplier = cost_weight`` (Smac's default is 2);
+        4 is within 1 % of NavFn's ``(50 + 0.8 c) / 50`` (its neutral cost 50;
+        NavFn truncates ``50 + 0.8 c`` to an integer, 5.02 at ``c = 252`` where
+        this gives 5). Both planners charge a move the cost of the cell it
+        enters, where navkit's charge the mean of its two cells (see
+        :func:`~navkit.planning.astar`).
     unknown_cost : float, default inf
         Cost of unknown cells: ``inf`` (impassable, the default) or a value
         in [1, 1e9] to let planners cross unexplored space.
