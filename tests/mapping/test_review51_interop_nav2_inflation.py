@@ -327,3 +327,36 @@ def test_traversal_costs_are_smac_2ds_cell_costs() -> None:
     )
     assert np.all(np.abs(default[passable] / navfn[passable] - 1.0) < 0.01)
     assert "cost_travel_multiplier" in (inspect.getdoc(traversal_costs) or "")
+
+
+def map_server_scale_values(grey: np.ndarray, free: float, occupied: float) -> np.ndarray:
+    """Nav2 map_server's published values of opaque grey pixels in ``mode: scale``."""
+    occ = 1.0 - grey / 255.0
+    values = np.rint((occ - free) / (occupied - free) * 100.0)
+    values[occ > occupied] = 100
+    values[occ < free] = 0
+    return values.astype(np.int64)
+
+
+def test_a_scale_mode_map_is_not_nav2s_static_layer(shared_data: Path, tmp_path: Path) -> None:
+    # The turtlebot3 PGM (0 / 205 / 254) read with mode: scale: map_server
+    # publishes 205 as rint((0.196078 - 0.196) / 0.454 * 100) = 0, free space in
+    # Nav2's costmap; the grid of read_map holds p = 0.196078, between its
+    # thresholds: unknown, 255 in navkit's costmap.
+    folder = shared_data / "ros-map-server-maps" / "turtlebot3_world"
+    (tmp_path / "map.pgm").write_bytes((folder / "map.pgm").read_bytes())
+    text = (folder / "map.yaml").read_text()
+    (tmp_path / "map.yaml").write_text(text.rstrip("\n") + "\nmode: scale\n")
+    grid = OccupancyGrid.load(tmp_path / "map.yaml")
+    trinary = OccupancyGrid.load(folder / "map.yaml")
+    ours = costmap(grid, robot_radius=0.0, inflation_radius=0.0)
+    assert np.array_equal(ours, costmap(trinary, robot_radius=0.0, inflation_radius=0.0))
+    image = pytest.importorskip("PIL.Image")
+    grey = np.asarray(image.open(folder / "map.pgm"), dtype=np.float64)[::-1]
+    values = map_server_scale_values(grey, 0.196, 0.65)
+    theirs = nav2_static_layer(values)
+    differ = ours != theirs
+    assert np.array_equal(differ, grey == 205)
+    assert set(ours[differ].tolist()) == {UNKNOWN}
+    assert set(theirs[differ].tolist()) == {0}
+    assert "mode: scale" in (inspect.getdoc(costmap) or "")

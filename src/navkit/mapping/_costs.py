@@ -230,10 +230,16 @@ def costmap(
     * The static layer is the grid's occupied and unknown cells, classed by
       its thresholds. Nav2's static layer reads the ``nav_msgs/OccupancyGrid``
       values instead: by default only 100 is lethal and -1 unknown, every
-      other value free. Maps read with :func:`~navkit.mapping.io.read_map`
-      and trinary messages (0, 100, -1) give the same layer; a message with
-      other values read by :func:`~navkit.mapping.io.grid_from_msg` does not
-      (values 66..99 are obstacles here, 20..65 unknown, and free in Nav2).
+      other value free. ``mode: trinary`` maps read with
+      :func:`~navkit.mapping.io.read_map` and trinary messages (0, 100, -1)
+      give the same layer. A message with other values read by
+      :func:`~navkit.mapping.io.grid_from_msg` does not (values 66..99 are
+      obstacles here, 20..65 unknown, and free in Nav2), nor does a
+      ``mode: scale`` map: map_server publishes its pixels between the
+      thresholds as ``rint((p - free_thresh) / (occupied_thresh -
+      free_thresh) * 100)``, below 100 but at ``p == occupied_thresh``: free
+      in Nav2 and unknown here (a map_saver PGM's 205 grey under
+      ``mode: scale`` is free space there).
     * A cell exactly ``robot_radius`` from an obstacle is inscribed (253) here,
       also where rounding puts ``d * resolution`` just above the radius: Nav2
       compares ``d * resolution <= robot_radius`` in floating point, so at
