@@ -9,9 +9,9 @@ subclass adds; ordinary classes with ``__slots__`` use :func:`restore_slots`,
 and :func:`extra_state` for what a subclass adds when they reduce themselves.
 :func:`frozen_setattr` gives a frozen slotted dataclass the ``__setattr__`` and
 ``__delattr__`` Python 3.11's dataclass decorator gets wrong for it.
-A record class that gained fields after a release names them in an
-``_added_fields`` class attribute (:func:`fill_added_fields`), so that its own
-older pickles and its subclasses' load with those fields' defaults.
+A record class (or slotted class) that gained fields after a release names
+them in an ``_added_fields`` class attribute (:func:`fill_added_fields`), so
+that its own older pickles and its subclasses' load with those fields' defaults.
 """
 
 from __future__ import annotations
@@ -759,8 +759,9 @@ def fill_added_fields(record: Any) -> None:
 
     Parameters
     ----------
-    record : dataclass instance
-        The record being restored.
+    record : dataclass instance or slotted object
+        The record being restored (or an ordinary slotted object, through
+        :func:`restore_slots`).
 
     Examples
     --------
@@ -810,6 +811,13 @@ def restore_slots(
         Old slot names and the slots they are stored in now, for pickles made
         before a rename (an attribute that became a read-only property).
 
+    Notes
+    -----
+    Slots the class gained after a release are named in its ``_added_fields``,
+    as a record's fields are (:func:`fill_added_fields`, called last here): a
+    pickle made before one gets that slot's default, computed from the slots
+    it holds; the arrays among them are made read-only by the default itself.
+
     Examples
     --------
     >>> import copy
@@ -836,3 +844,7 @@ def restore_slots(
         if name in read_only and isinstance(value, np.ndarray):
             value.flags.writeable = False
         object.__setattr__(obj, name, value)
+    # Slots the class gained after a release: an older pickle leaves them unset, and
+    # the first use raised AttributeError (review 51: an AStarPlanner or World pickled
+    # on the project's first days).
+    fill_added_fields(obj)

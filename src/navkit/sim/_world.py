@@ -6,6 +6,7 @@ import math
 import numbers
 from collections.abc import Iterable, Mapping
 from dataclasses import KW_ONLY, dataclass, field
+from types import MappingProxyType
 from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
@@ -612,6 +613,43 @@ class MovingObstacle:
         return shapely.Point(float(x), float(y)).buffer(float(self.shape), quad_segs=64)
 
 
+def _solid_rings(world: Any) -> FloatArray:
+    """The edges of a world's solid union (its ``_solids``), read-only, (n, 4)."""
+    parts: list[FloatArray] = []
+    if world._solids is not None:
+        _segments_of(world._solids, parts, [])
+    rings = np.concatenate(parts) if parts else np.empty((0, 4))
+    rings = rings[(rings[:, 0] != rings[:, 2]) | (rings[:, 1] != rings[:, 3])]
+    return _read_only(np.ascontiguousarray(rings))
+
+
+def _solid_start(world: Any) -> IntArray:
+    """The CSR starts of a world's solid edges and circles, read-only."""
+    return _read_only(world._cell_lists(world._solid_rings, world._solid_circles)[0])
+
+
+def _solid_items(world: Any) -> IntArray:
+    """The CSR items of a world's solid edges and circles, read-only."""
+    return _read_only(world._cell_lists(world._solid_rings, world._solid_circles)[1])
+
+
+def _has_edges(world: Any) -> bool:
+    """Whether a world's scans need the pass over segments and circles."""
+    return bool(
+        world._cell_items.shape[0] > 0 or world._dyn_base_segs.shape[0] > 0
+        or world._dyn_base_circles.shape[0] > 0
+    )  # fmt: skip
+
+
+def _edges_only(world: Any) -> bool:
+    """Whether a world's only obstacles are static segments and circles (or none).
+
+    The simulation and the clearance queries then use kernels compiled without
+    the grid's and the moving obstacles' code.
+    """
+    return bool(world._occ.shape[0] == 0 and not world._moving)
+
+
 def _segments_of(geom: BaseGeometry, segs: list[FloatArray], solids: list[BaseGeometry]) -> None:
     """Append the edges of ``geom`` to ``segs`` and its polygons to ``solids``."""
     if geom.is_empty:
@@ -742,6 +780,19 @@ class World:
         "_solids",
     )
 
+    # Slots added since a release, for pickles made before (see
+    # navkit._shared.frozen.fill_added_fields), each made from the others as
+    # __init__ makes it. Not annotated: it would read as a slot's type.
+    _added_fields = MappingProxyType(
+        {
+            "_solid_rings": _solid_rings,
+            "_solid_start": _solid_start,
+            "_solid_items": _solid_items,
+            "_has_edges": _has_edges,
+            "_edges_only": _edges_only,
+        }
+    )
+
     def __init__(
         self,
         obstacles: BaseGeometry | Circle | Iterable[BaseGeometry | Circle] = (),
@@ -797,12 +848,10 @@ class World:
             np.array(solid_circles, dtype=np.float64).reshape(-1, 3)
         )
         self._solids: BaseGeometry | None = None
-        ring_parts: list[FloatArray] = []
         if solids:
             union = shapely.union_all(solids)
             shapely.prepare(union)
             self._solids = union
-            _segments_of(union, ring_parts, [])
         self._index = self._build_index()
         start, cell_items = self._cell_lists(self._segs, self._circles)
         self._cell_start: IntArray = _read_only(start)
@@ -810,9 +859,7 @@ class World:
         # The edges of the union of the solid polygons, and their cell lists (with the
         # solid circles') in the same grid: a LiDAR tells by them whether it is inside
         # a solid (the union, so that overlapping solids count once).
-        rings = np.concatenate(ring_parts) if ring_parts else np.empty((0, 4))
-        rings = rings[(rings[:, 0] != rings[:, 2]) | (rings[:, 1] != rings[:, 3])]
-        self._solid_rings: FloatArray = _read_only(np.ascontiguousarray(rings))
+        self._solid_rings: FloatArray = _solid_rings(self)
         start, cell_items = self._cell_lists(self._solid_rings, self._solid_circles)
         self._solid_start: IntArray = _read_only(start)
         self._solid_items: IntArray = _read_only(cell_items)
@@ -843,15 +890,8 @@ class World:
                 o.x, o.y, math.cos(o.theta), math.sin(o.theta), self._grid.resolution
             )
         self._init_moving(moving)
-        # Whether a scan needs the pass over segments and circles.
-        self._has_edges = (
-            self._cell_items.shape[0] > 0 or self._dyn_base_segs.shape[0] > 0
-            or self._dyn_base_circles.shape[0] > 0
-        )  # fmt: skip
-        # Whether its only obstacles are static segments and circles (or none): the
-        # simulation and the clearance queries then use kernels compiled without
-        # the grid's and the moving obstacles' code.
-        self._edges_only = self._occ.shape[0] == 0 and not self._moving
+        self._has_edges = _has_edges(self)
+        self._edges_only = _edges_only(self)
         self._scanners: dict[Any, Any] = {}
 
     # ------------------------------------------------------- copy and pickle

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import threading
+from types import MappingProxyType
 from typing import Any, Literal, cast
 
 import numpy as np
@@ -26,6 +27,7 @@ from navkit.planning.grid._limits import (
     MAX_HEURISTIC_WEIGHT,
     bounded_float,
     checked_cost_range,
+    compiled_cost_range,
     converted_costs,
     highest_finite,
     read_only,
@@ -140,6 +142,17 @@ def _jps_used_meanwhile(records: FloatArray, heap: NDArray[np.float64], stamp: i
     """
     scratch = _jps_scratch
     return scratch.records is not records or scratch.heap is not heap or scratch.stamp != stamp
+
+
+def _lowest_cost(planner: Any) -> float:
+    """``_lowest`` of an :class:`AStarPlanner` pickled before it existed: its costs' smallest."""
+    return compiled_cost_range(planner._costs)[0]
+
+
+def _not_yet(planner: Any) -> None:
+    """``_highest`` (found at its first need) and ``_jps`` (A*, as it ran then) of a
+    planner pickled before they existed."""
+    return None
 
 
 class AStarPlanner:
@@ -260,6 +273,14 @@ class AStarPlanner:
     # JPS tables (row bits, column bits) and the uniform cell cost,
     # or None when this planner runs A*.
     _jps: tuple[NDArray[np.uint64], NDArray[np.uint64], float] | None
+
+    # Slots added since a release, for pickles made before (see
+    # navkit._shared.frozen.fill_added_fields): such a planner ran A* (the JPS tables
+    # came later) and found its costs' range when needed. Not annotated: it would
+    # read as a slot's type.
+    _added_fields = MappingProxyType(
+        {"_lowest": _lowest_cost, "_highest": _not_yet, "_jps": _not_yet}
+    )
 
     def __init__(
         self,
