@@ -47,6 +47,9 @@ needs from numba itself are bound in its namespace at the same moment by
 while numba compiles a navkit kernel (about a tenth of the compile time) and
 switches on :mod:`navkit._shared.compile_shortcuts` meanwhile (cheaper numba
 internals: error-message markup, compile-flag comparisons; tenths of a second).
+numba's probe for a BLAS, which imports all of SciPy's linear algebra as numba
+initialises its compiler, waits until numba reads its answer
+(:func:`_blas_probe_deferred`: a quarter of numba's loading, review 51).
 
 Where numba finds no writable folder for its on-disk cache (a read-only
 installation whose ``__pycache__`` and user cache folder cannot be written,
@@ -66,7 +69,8 @@ import sys
 import threading
 import warnings
 import weakref
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from types import FrameType
 from typing import Any, TypeVar, cast
 
@@ -108,7 +112,9 @@ def _user_stacklevel() -> int:
         # importlib's public functions (import_module) are counted by warnings
         # but are not the user's line either: walk through them.
         return isinstance(module, str) and module.partition(".")[0] in (
-            "navkit", "numba", "importlib"
+            "navkit",
+            "numba",
+            "importlib",
         )
 
     def internal(frame: FrameType) -> bool:
@@ -565,10 +571,95 @@ def load_numba() -> None:
         with interrupts_deferred(), compile_gc.paused():
             # numba initialises its compiler (importing most of its modules) at the
             # first compile or cache load: done here, with the collector paused.
-            cpu_target.target_context.refresh()
+            with _blas_probe_deferred():
+                cpu_target.target_context.refresh()
             _hold_refreshes(cpu_target.target_context)
             _make_dispatchers(njit)
             _NJIT = njit
+
+
+class _BlasProbe:
+    """numba's ``numba.np.arraymath._HAVE_BLAS``, found out the first time numba reads it.
+
+    numba reads it only as ``if not _HAVE_BLAS`` (typing ``np.correlate`` and
+    ``np.convolve`` of floats, which then call ``np.dot``); the answer is
+    numba's own ``_check_blas()``, asked then instead of at numba's import
+    (:func:`_blas_probe_deferred`).
+    """
+
+    __slots__ = ("_check", "_found")
+
+    def __init__(self, check: Callable[[], object]) -> None:
+        self._check = check
+        self._found: bool | None = None
+
+    def __bool__(self) -> bool:
+        if self._found is None:
+            # numba's compiler lock is held by whoever types the call: one probe.
+            self._found = bool(self._check())
+        return self._found
+
+    def __repr__(self) -> str:
+        return "<numba BLAS probe: not asked yet>" if self._found is None else repr(self._found)
+
+
+@contextmanager
+def _blas_probe_deferred() -> Iterator[None]:
+    """numba's import of its implementations without SciPy's linear algebra, probed later.
+
+    ``numba.np.arraymath`` (imported by numba's first registry refresh, in
+    :func:`load_numba`) asks at its import whether a BLAS is there
+    (``_HAVE_BLAS = _check_blas()``), and the probe imports
+    ``scipy.linalg.cython_blas``: all of ``scipy.linalg``, whose array-API shim
+    reads every attribute of numpy and so imports ``numpy.f2py`` and
+    ``numpy.testing`` too. That was 0.15-0.16 s of CPU, about 0.3 of numba's
+    loading (issue 17), for an answer numba reads only when it types
+    ``np.correlate`` or ``np.convolve`` (navkit's kernels never do). Here the
+    probe answers that one call without importing (whatever else calls
+    ``ensure_blas`` meanwhile gets numba's own), and ``_HAVE_BLAS`` becomes a
+    :class:`_BlasProbe` that asks numba's ``_check_blas`` the first time it is
+    read: the same answer, SciPy imported then. A numba without
+    ``numba.np.linalg.ensure_blas`` probes as it does; one that keeps the answer
+    elsewhere than ``_HAVE_BLAS`` is probed at once after the import (SciPy is
+    one of navkit's requirements, so the deferred answer, "there is a BLAS", is
+    the probe's unless that raises, as numba's own would have). Already
+    imported, there is nothing to defer.
+    """
+    if "numba.np.arraymath" in sys.modules:
+        yield
+        return
+    linalg: Any = importlib.import_module("numba.np.linalg")
+    ensure_blas = vars(linalg).get("ensure_blas")
+    if not callable(ensure_blas):
+        yield
+        return
+    deferred: list[bool] = []
+
+    def ensure_blas_later() -> None:
+        caller = sys._getframe(1)
+        if (
+            caller.f_code.co_name == "_check_blas"
+            and caller.f_globals.get("__name__") == "numba.np.arraymath"
+        ):
+            deferred.append(True)  # the answer, probed later, goes into _HAVE_BLAS
+            return
+        ensure_blas()
+
+    linalg.ensure_blas = ensure_blas_later
+    try:
+        yield
+    finally:
+        linalg.ensure_blas = ensure_blas
+        arraymath = sys.modules.get("numba.np.arraymath")
+        space: dict[str, Any] = vars(arraymath) if arraymath is not None else {}
+        if space.get("ensure_blas") is ensure_blas_later:  # bound by name at its import
+            space["ensure_blas"] = ensure_blas
+        if deferred:
+            check = space.get("_check_blas")
+            if space.get("_HAVE_BLAS") is True and callable(check):
+                space["_HAVE_BLAS"] = _BlasProbe(check)
+            elif callable(check):  # the answer went elsewhere: numba's own, now
+                check()
 
 
 #: Marks the ``refresh`` wrappers :func:`_hold_refreshes` installs (installed once).
