@@ -308,6 +308,24 @@ def _untabbed(text: str, blank: str = " ") -> str:
     return "\n".join(lines)
 
 
+#: The blanks that make up a line, or that come before a whole-line comment: the
+#: tabs among them are no indent (one attempt a line: linear in the text).
+_BLANK_LINE = re.compile(r"^[ \t]+(?=[#\r]|$)", re.MULTILINE)
+
+
+def _blank_lines_spaced(text: str) -> str:
+    """``text`` with the tabs of its blank and comment-only lines as spaces.
+
+    YAML 1.2 reads such a line as a comment line (``l-comment``), whose tabs
+    are separation, not indentation, and map_server's yaml-cpp eats them: a
+    hand edit's tab-only line between keys is a blank line. PyYAML refuses it
+    ("found character '\\t' that cannot start any token"), as it refuses a tab
+    indenting a key, which YAML and yaml-cpp refuse too and which stays
+    refused (:func:`_untabbed` keeps a line's indent).
+    """
+    return _BLANK_LINE.sub(lambda blanks: blanks.group().replace("\t", " "), text)
+
+
 def _load_tabbed(text: str, path: Path) -> object:
     """``text``, which PyYAML refused for a tab, loaded with its tabs between tokens as blanks.
 
@@ -319,6 +337,7 @@ def _load_tabbed(text: str, path: Path) -> object:
     width moves what follows), the first stands unless one of its tabs lies
     inside a scalar of the document (:func:`_tab_in_scalar`).
     """
+    text = _blank_lines_spaced(text)
     narrow = _untabbed(text)
     doc = yaml.load(narrow, Loader=_Loader)
     try:
