@@ -347,7 +347,15 @@ def _lines(path: Path, found: list[str] | None = None) -> Iterator[str]:
             try:
                 # A UTF-8 byte-order mark (as Windows Notepad writes) is skipped: read
                 # as ASCII it made a first FLASER line an unknown kind, dropped unseen.
-                if binary.read(len(codecs.BOM_UTF8)) != codecs.BOM_UTF8:
+                head = binary.read(len(codecs.BOM_UTF8))
+                if head[:2] in (codecs.BOM_UTF16_LE, codecs.BOM_UTF16_BE):
+                    # Windows PowerShell 5's ">" writes UTF-16 (with its mark): read as
+                    # ASCII, every line was an unknown kind ("no FLASER lines").
+                    raise ValueError(
+                        f"{path}: UTF-16 text (or UTF-32), not a CARMEN log, whose lines "
+                        "are ASCII: save it as ASCII or UTF-8"
+                    )
+                if head != codecs.BOM_UTF8:
                     binary.seek(0)
                 lines = iter(lambda: fh.readline(LINE_MAX + 1), "")
                 first = next(lines, "")
@@ -522,8 +530,12 @@ def _parse(log_path: Path) -> tuple[list[_Record], array[float]]:
                     f"{log_path}:{number}: line longer than {LINE_MAX} characters: not a "
                     "CARMEN log line (no newline for megabytes: binary data or a damaged file?)"
                 )
-            kind, _, rest = line.partition(" ")
-            kind = kind.strip()
+            # The kind ends at any blank, as MRPT's and GMapping's readers split it:
+            # a hand edit's tab after it (or a blank before it) made the line an
+            # unknown kind, dropped unseen. CARMEN's own playback splits at a space.
+            named = line.split(None, 1)
+            kind = named[0] if named else ""
+            rest = named[1] if len(named) == 2 else ""
             # Only the last line can lack it (text mode reads \r\n and \r as \n).
             terminated = line.endswith("\n")
             if kind == "ODOM":
@@ -617,7 +629,9 @@ def read_carmen(
         Log file: plain text, or compressed with gzip, bzip2 or xz (told by
         its first bytes, whatever its name). Line ends may be ``\\n``,
         ``\\r\\n`` or ``\\r``; a UTF-8 byte-order mark starting the (decompressed)
-        text is skipped.
+        text is skipped. Fields are separated by spaces or tabs, and blanks
+        before a line's message name are skipped (as MRPT's and GMapping's
+        readers do; CARMEN's own playback wants one space after the name).
     range_max : float, optional
         Maximum range of FLASER scans, m, in (``range_min``, 1e9]. Readings
         equal to or beyond it are "no return". By default the largest FLASER
@@ -641,7 +655,8 @@ def read_carmen(
         Missing file, or a loop of symbolic links.
     ValueError
         A corrupt or truncated compressed file; a zip, 7z, zstd or lz4 file
-        (named: decompress it first); a line longer than 2**23 characters
+        (named: decompress it first); UTF-16 or UTF-32 text with its
+        byte-order mark; a line longer than 2**23 characters
         (binary data: lines are read whole); a malformed FLASER, ROBOTLASER1 or
         ODOM line (the message names the file and line number): fields that
         are not numbers, NaN or infinite values, negative counts, counts that
