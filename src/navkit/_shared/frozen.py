@@ -844,7 +844,9 @@ def restore_slots(
         if name in read_only and isinstance(value, np.ndarray):
             value.flags.writeable = False
         object.__setattr__(obj, name, value)
-    # Slots the class gained after a release: an older pickle leaves them unset, and
-    # the first use raised AttributeError (review 51: an AStarPlanner or World pickled
-    # on the project's first days).
-    fill_added_fields(obj)
+    if slots:
+        # Slots the class gained after a release: an older pickle leaves them unset,
+        # and the first use raised AttributeError (review 51: an AStarPlanner or World
+        # pickled on the project's first days). Not for an object built by __new__ and
+        # not filled, whose state holds no slot to make them from.
+        fill_added_fields(obj)

@@ -17,6 +17,7 @@ import threading
 from collections.abc import Callable
 from contextvars import ContextVar
 from pathlib import Path
+from types import MappingProxyType
 from typing import TYPE_CHECKING, Any, ClassVar, Literal, TypeVar, cast, overload
 
 import numpy as np
@@ -24,7 +25,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.dunders import slot_state
-from navkit._shared.frozen import slot_names
+from navkit._shared.frozen import fill_added_fields, slot_names
 from navkit._shared.grid_coords import CELL_LIMIT, as_pairs, inside, one_or_many
 from navkit._shared.locks import ForkSafeLock
 from navkit._shared.types import BoolArray, FloatArray, IntArray
@@ -449,6 +450,17 @@ class OccupancyGrid:
         "_resolution",
     )
 
+    # Slots added since a release, for pickles made before (see
+    # navkit._shared.frozen.fill_added_fields): the origin's plain floats, as
+    # __init__ makes them. Not annotated: it would read as a slot's type.
+    _added_fields = MappingProxyType(
+        {
+            "_origin_x": lambda grid: float(grid._origin.x),
+            "_origin_y": lambda grid: float(grid._origin.y),
+            "_origin_yaw": lambda grid: float(grid._origin.theta),
+        }
+    )
+
     def __getstate__(self) -> object:
         # slot_state (pickle protocols 0 and 1 too), less the lock: a lock cannot
         # be pickled, and a copy or a pickle is a grid of its own with its own.
@@ -470,6 +482,11 @@ class OccupancyGrid:
         for name, value in (slots or {}).items():
             if name != "_lock":
                 object.__setattr__(self, name, value)
+        if slots:
+            # The origin's floats came later (review 51: a MapPlanner pickled at 908ac92
+            # raised AttributeError at its first query). Not for a grid built by
+            # __new__ and not filled, whose state holds no slot to make them from.
+            fill_added_fields(self)
         self._lock = _new_lock()
 
     def __deepcopy__(self, memo: dict[int, Any]) -> OccupancyGrid:
