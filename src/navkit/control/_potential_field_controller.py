@@ -196,14 +196,28 @@ class _Pid:
     (shallow) copy of the controller never shares them with the original.
     """
 
-    __slots__ = ("integral_limit", "kd", "ki", "kp")
+    # _carried: the run state of a pickle made before it moved to the controller,
+    # until the controller's __setstate__ takes it (unset otherwise).
+    __slots__ = ("_carried", "integral_limit", "kd", "ki", "kp")
     __getstate__ = slot_state  # pickle protocols 0 and 1 too
+
+    _carried: tuple[float, float | None]
 
     def __init__(self, kp: float, ki: float, kd: float, integral_limit: float) -> None:
         self.kp = kp
         self.ki = ki
         self.kd = kd
         self.integral_limit = integral_limit
+
+    def __setstate__(self, state: Any) -> None:
+        instance, slots = state if isinstance(state, tuple) else (None, state)
+        slots = dict(slots)
+        if "integral" in slots:
+            # Pickles made before the integrator and last error moved to the
+            # controller (3bf2b94) hold them here (review 51: such a controller
+            # raised AttributeError as it loaded).
+            slots["_carried"] = (slots.pop("integral"), slots.pop("last_error", None))
+        restore_slots(self, (instance, slots))
 
     def update(
         self, integral: float, last_error: float | None, error: float, dt: float
@@ -530,6 +544,11 @@ class PotentialFieldController:
         # Pickles from before the options became properties hold them under their
         # public names: setting those would hit the properties, which have no setter.
         restore_slots(self, state, renamed=_RENAMED)
+        carried = getattr(self._pid, "_carried", None)
+        if carried is not None:
+            # A pickle made before the PID's run state moved here (see _Pid).
+            del self._pid._carried
+            self._integral, self._last_error = carried
         # Not in use (a copy made during a step, or a pickle of one, holds its token).
         self._callers = []
 
