@@ -9,13 +9,14 @@ map_server loads. A tab indenting a key stays refused, as YAML and yaml-cpp refu
 
 from __future__ import annotations
 
+import os
 import shutil
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-from navkit.mapping.io import read_map
+from navkit.mapping.io import read_map, write_map
 
 _MAP = Path("ros-map-server-maps") / "turtlebot3_world"
 
@@ -60,3 +61,85 @@ def test_a_tab_indenting_a_key_stays_refused(shared_data: Path, tmp_path: Path) 
     (tmp_path / "map.yaml").write_text(text.replace("negate", "\tnegate"), encoding="utf-8")
     with pytest.raises(ValueError, match=r"map\.yaml:\d+: expected 'key: value' lines"):
         read_map(tmp_path / "map.yaml")
+
+
+# A map YAML hand-edited in a Windows "ANSI" editor (Latin-1 / Windows-1252): map_server's
+# yaml-cpp takes its bytes as they are (it checks no encoding); navkit refused the file.
+_LATIN_COMMENTS = [
+    (b"# Karte B\xfcro, 2. OG (\x80 cp1252)\n", b"negate: 0", b"negate: 0  # n\xe9gatif"),
+    (b"# carte r\xe9alis\xe9e\r\n", b"free_thresh", b"# seuil libre \xe0 19,6 %\nfree_thresh"),
+]
+
+
+@pytest.mark.parametrize(("head", "old", "new"), _LATIN_COMMENTS)
+def test_latin1_comments_are_skipped_as_map_server_skips_them(
+    shared_data: Path, tmp_path: Path, head: bytes, old: bytes, new: bytes
+) -> None:
+    text = _copy(shared_data, tmp_path).encode("ascii")
+    edited = head + text.replace(old, new)
+    with pytest.raises(UnicodeDecodeError):
+        edited.decode("utf-8")
+    (tmp_path / "map.yaml").write_bytes(edited)
+    _same_map(tmp_path / "map.yaml", shared_data)
+
+
+def test_a_latin1_image_name_names_the_file_of_those_bytes(
+    shared_data: Path, tmp_path: Path
+) -> None:
+    text = _copy(shared_data, tmp_path).encode("ascii")
+    name = b"carte_\xe9t\xe9.pgm"
+    try:
+        (tmp_path / "map.pgm").rename(tmp_path / os.fsdecode(name))
+    except (OSError, UnicodeError):
+        pytest.skip("the file system takes no file name that is not UTF-8")
+    (tmp_path / "map.yaml").write_bytes(text.replace(b"map.pgm", name))
+    _same_map(tmp_path / "map.yaml", shared_data)
+
+
+def test_a_missing_latin1_image_name_is_named_printably(shared_data: Path, tmp_path: Path) -> None:
+    text = _copy(shared_data, tmp_path).encode("ascii")
+    (tmp_path / "map.yaml").write_bytes(text.replace(b"map.pgm", b"carte_\xe9t\xe9.pgm"))
+    with pytest.raises(FileNotFoundError) as info:
+        read_map(tmp_path / "map.yaml")
+    message = str(info.value)
+    message.encode("utf-8")  # no lone surrogate: it can be printed and logged
+    assert "map.yaml: map image " in message
+    assert "not UTF-8" in message and "'carte_été.pgm'" in message
+
+
+@pytest.mark.parametrize(
+    ("old", "new"),
+    [
+        (b"resolution: 0.050000", b"resolution: 0.05\xb5"),
+        (b"origin: [-10.000000,", b"origin: [-10.000000\xb0,"),
+        (b"negate: 0", b"negate: 0\xa0"),
+    ],
+)
+def test_latin1_bytes_in_a_number_stay_refused_naming_the_byte(
+    shared_data: Path, tmp_path: Path, old: bytes, new: bytes
+) -> None:
+    text = _copy(shared_data, tmp_path).encode("ascii")
+    edited = text.replace(old, new)
+    offset = next(i for i, byte in enumerate(edited) if byte >= 0x80)
+    (tmp_path / "map.yaml").write_bytes(edited)
+    where = rf"\(byte 0x{edited[offset]:02x} at offset {offset}\)"
+    with pytest.raises(ValueError, match=rf"map\.yaml: not a map YAML: not UTF-8 text {where}"):
+        read_map(tmp_path / "map.yaml")
+
+
+def test_latin1_mode_stays_refused(shared_data: Path, tmp_path: Path) -> None:
+    text = _copy(shared_data, tmp_path).encode("ascii")
+    (tmp_path / "map.yaml").write_bytes(text + b"mode: tr\xeenary\n")
+    with pytest.raises(ValueError, match=r"map\.yaml: not a map YAML: not UTF-8 text \(byte 0xee"):
+        read_map(tmp_path / "map.yaml")
+
+
+def test_saving_over_a_latin1_commented_yaml_keeps_it_a_map(
+    shared_data: Path, tmp_path: Path
+) -> None:
+    text = _copy(shared_data, tmp_path).encode("ascii")
+    (tmp_path / "map.yaml").write_bytes(b"# Karte B\xfcro\n" + text)
+    grid = read_map(tmp_path / "map.yaml")
+    write_map(grid, tmp_path / "map.yaml")
+    assert (tmp_path / "map.yaml").read_bytes().decode("utf-8").startswith("image: map.pgm\n")
+    _same_map(tmp_path / "map.yaml", shared_data)

@@ -224,8 +224,13 @@ def _as_negate(value: Any, path: Path) -> bool:
     raise ValueError(f"{path}: negate must be 0 or 1, got {_short(value)}")
 
 
-def _yaml_text(path: Path) -> str:
-    """The YAML file's text, refusing images, binary files, huge files and non-files."""
+def _yaml_text(path: Path) -> tuple[str, str | None]:
+    """The YAML file's text, refusing images, binary files, huge files and non-files.
+
+    Returns the text and, for bytes that are not UTF-8, the refusal naming the
+    first (the text then holds them as ``surrogateescape`` gives them: see
+    :func:`_yaml_entries`), else None.
+    """
     with open_regular(path, "map YAML file") as fh:
         size = os.fstat(fh.fileno()).st_size
         if size <= YAML_MAX_BYTES:
@@ -259,13 +264,54 @@ def _yaml_text(path: Path) -> str:
             "save it as UTF-8, or with its byte-order mark"
         )
     try:
-        return data.decode(encoding)
+        return data.decode(encoding), None
     except UnicodeDecodeError as exc:
         what = "UTF-8" if encoding == "utf-8" else encoding.upper()
-        raise ValueError(
+        refusal = (
             f"{path}: not a map YAML: not {what} text (byte 0x{data[exc.start]:02x} at "
             f"offset {exc.start})"
-        ) from None
+        )
+        if encoding != "utf-8":
+            raise ValueError(refusal) from None
+        return data.decode(encoding, "surrogateescape"), refusal
+
+
+#: ``surrogateescape``'s stand-ins for bytes 0x80..0xff that are not UTF-8, and the
+#: private-use characters PyYAML reads in their place (it refuses lone surrogates).
+_ESCAPED = {0xDC00 + byte: 0xF700 + byte for byte in range(0x80, 0x100)}
+_UNESCAPED = {v: k for k, v in _ESCAPED.items()}
+_PRIVATE_STAND_INS = re.compile("[\uf780-\uf7ff]")
+_ESCAPED_BYTES = re.compile("[\udc80-\udcff]")
+
+
+def _yaml_entries(path: Path) -> dict[str, Any]:
+    """The keys and values of the map YAML ``path``, read as map_server reads its bytes.
+
+    map_server's yaml-cpp takes text that is not UTF-8 byte for byte (it checks
+    no encoding), as a YAML hand-edited in a Windows "ANSI" editor is: a
+    Latin-1 or Windows-1252 comment (``# Karte Büro``) is skipped, and an image name's bytes
+    are the file name looked up. Those bytes are read the same way here; in a
+    value map_server parses as a number, list or mode they are refused, naming
+    the first byte, as before.
+    """
+    text, refusal = _yaml_text(path)
+    if refusal is None:
+        return _load_yaml(text, path)
+    if _PRIVATE_STAND_INS.search(text):
+        raise ValueError(refusal)
+    try:
+        entries = _load_yaml(text.translate(_ESCAPED), path)
+    except ValueError:
+        raise ValueError(refusal) from None
+    for key in _KEYS - {"image"}:
+        value = entries.get(key)
+        for item in value if isinstance(value, list) else [value]:
+            if isinstance(item, str) and _PRIVATE_STAND_INS.search(item):
+                raise ValueError(refusal)
+    image = entries.get("image")
+    if isinstance(image, str):
+        entries["image"] = image.translate(_UNESCAPED)
+    return entries
 
 
 def _unmarked_unicode(head: bytes) -> int:
@@ -499,7 +545,10 @@ def read_map_yaml(path: str | os.PathLike[str]) -> MapMetadata:
     ValueError
         The YAML is not a small YAML mapping in UTF-8 (or UTF-16 or UTF-32
         with a byte-order mark; an image or a binary file passed by
-        mistake, more than 1 MiB), a required key is missing, a
+        mistake, more than 1 MiB; bytes that are not UTF-8, as a Latin-1
+        editor saves, are read as map_server reads them, byte for byte:
+        skipped in comments, looked up as written in the image name, refused
+        in the other keys' values), a required key is missing, a
         value is out of range (``resolution`` outside [1e-6, 1e6] m, origin x
         or y beyond ±1e9 m, thresholds outside [0, 1] or
         ``free_thresh >= occupied_thresh``, unknown ``mode``), or the image
@@ -518,7 +567,7 @@ def read_map_yaml(path: str | os.PathLike[str]) -> MapMetadata:
     ('m.pgm', (1.0, 2.0, 0.0), 'trinary')
     """
     yaml_path = as_path(path, "path")
-    entries = _load_yaml(_yaml_text(yaml_path), yaml_path)
+    entries = _yaml_entries(yaml_path)
     missing = [key for key in _REQUIRED if key not in entries]
     if missing:
         raise ValueError(f"{yaml_path}: missing required key(s) {', '.join(missing)}")
@@ -536,11 +585,19 @@ def read_map_yaml(path: str | os.PathLike[str]) -> MapMetadata:
         if not (gone or getattr(exc, "winerror", None) in _MISSING_WINERRORS):
             raise
         hint = ""
+        shown = str(image_path)
         if "\\" in image and PureWindowsPath(image).anchor:
             hint = " (a Windows path: give the image's path relative to the YAML)"
-        raise FileNotFoundError(
-            f"{yaml_path}: map image {image_path} does not exist{hint}"
-        ) from None
+        elif _ESCAPED_BYTES.search(image):
+            # Bytes that are not UTF-8 (_yaml_entries): shown escaped, so that the
+            # message can be printed and logged.
+            shown = shown.encode("utf-8", "backslashreplace").decode("utf-8")
+            latin = image.encode("utf-8", "surrogateescape").decode("latin-1")
+            hint = (
+                f" (the name's bytes that are not UTF-8 were looked up as written; read as "
+                f"Latin-1 it is {latin!r}: if that is the file, save the YAML as UTF-8)"
+            )
+        raise FileNotFoundError(f"{yaml_path}: map image {shown} does not exist{hint}") from None
     if not stat.S_ISREG(image_stat.st_mode):
         kind = "a directory" if stat.S_ISDIR(image_stat.st_mode) else "not a regular file"
         raise ValueError(f"{yaml_path}: map image {image_path} is {kind}")
@@ -1466,6 +1523,11 @@ def read_map(path: str | os.PathLike[str]) -> OccupancyGrid:
     32-bit floating-point images (Pillow would clip them to 0..255; map_server
     does not read them).
 
+    The YAML is read as map_server's yaml-cpp reads a hand-edited one: line
+    ends ``\\n``, ``\\r\\n`` or ``\\r``; tabs between tokens and on blank or
+    comment lines; bytes that are not UTF-8 (a Latin-1 editor's) skipped in
+    comments and looked up as written in the ``image`` name.
+
     Parameters
     ----------
     path : str or path-like
@@ -1491,7 +1553,8 @@ def read_map(path: str | os.PathLike[str]) -> OccupancyGrid:
     ValueError
         Anything malformed, with the file and the problem named: a YAML that
         is not a small map YAML in UTF-8 (or UTF-16 or UTF-32 with a
-        byte-order mark; an image passed instead, binary data),
+        byte-order mark; an image passed instead, binary data; bytes that
+        are not UTF-8 in a number, list or ``mode``),
         missing or invalid keys (see :func:`read_map_yaml` for the ranges),
         an image that is garbage, truncated, not an image (the YAML itself, a
         text file), a non-PNG image with 16-bit colour channels, a 32-bit
@@ -1930,7 +1993,7 @@ def _names_image(yaml_path: Path, image: Path) -> bool:
     try:
         if not yaml_path.is_file():
             return False
-        name = _load_yaml(_yaml_text(yaml_path), yaml_path).get("image")
+        name = _yaml_entries(yaml_path).get("image")
         if not isinstance(name, str) or not name or "\x00" in name:
             return False
         named = _image_file(yaml_path, name)
@@ -1975,7 +2038,7 @@ def _superseded_image(yaml_path: Path, image: Path) -> _Superseded | None:
         try:
             if candidate.is_symlink() or not candidate.is_file() or not yaml_path.is_file():
                 continue
-            entries = _load_yaml(_yaml_text(yaml_path), yaml_path)
+            entries = _yaml_entries(yaml_path)
             if not _names_spelling_of(yaml_path, entries.get("image"), candidate):
                 continue
             if entries.get("mode", "trinary") != other_mode:
