@@ -56,6 +56,7 @@ from navkit._shared.jit import (
     njit_no_refcount,
     njit_released,
 )
+from navkit._shared.types import KernelInt
 
 __all__ = [
     "STATUS_CONVERGED",
@@ -87,7 +88,7 @@ _EXP_OVERFLOWS = np.float32(89.0)
 # accumulate), 0.5 s of accumulate's first use (0.65 -> 0.16 s; same results bit for
 # bit, same speed).
 @njit_force_inline
-def _probability(logodds: np.ndarray, r: int, c: int, floor: float) -> float:
+def _probability(logodds: np.ndarray, r: KernelInt, c: KernelInt, floor: float) -> float:
     # numba's float() keeps a float32 a float32, so exp runs in single precision:
     # M within about 1e-8 of the float64 formula, and accumulate 15-30 % faster
     # than with np.float64() here (measured; see the module docstring for the
@@ -105,7 +106,7 @@ def _probability(logodds: np.ndarray, r: int, c: int, floor: float) -> float:
 
 
 @njit_force_inline
-def _edge_probability(logodds: np.ndarray, r: int, c: int, floor: float) -> float:
+def _edge_probability(logodds: np.ndarray, r: KernelInt, c: KernelInt, floor: float) -> float:
     # A neighbour of a point in the map's outer half cell may lie beyond the edge:
     # unknown there (log-odds 0, p = 1/2 exactly as _probability gives it), as
     # downsample counts the cells beyond an odd edge.
@@ -145,8 +146,8 @@ def _interpolate(
     if 0.0 <= row < rows - 1 and 0.0 <= col < cols - 1:
         # np.int64, not int: numba compiles the int builtin as a function of its
         # own, once per process (review 51); both truncate with the same fptosi.
-        r0 = np.int64(row)
-        c0 = np.int64(col)
+        r0: KernelInt = np.int64(row)
+        c0: KernelInt = np.int64(col)
         p00 = _probability(logodds, r0, c0, floor)
         p01 = _probability(logodds, r0, c0 + 1, floor)
         p10 = _probability(logodds, r0 + 1, c0, floor)
