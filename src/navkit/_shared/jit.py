@@ -612,7 +612,7 @@ def _blas_probe_deferred() -> Iterator[None]:
     (``_HAVE_BLAS = _check_blas()``), and the probe imports
     ``scipy.linalg.cython_blas``: all of ``scipy.linalg``, whose array-API shim
     reads every attribute of numpy and so imports ``numpy.f2py`` and
-    ``numpy.testing`` too. That was 0.15-0.16 s of CPU, about 0.3 of numba's
+    ``numpy.testing`` too. That was 0.15-0.16 s of CPU, about a quarter of numba's
     loading (issue 17), for an answer numba reads only when it types
     ``np.correlate`` or ``np.convolve`` (navkit's kernels never do). Here the
     probe answers that one call without importing (whatever else calls
