@@ -597,6 +597,19 @@ def read_map_yaml(path: str | os.PathLike[str]) -> MapMetadata:
                 f" (the name's bytes that are not UTF-8 were looked up as written; read as "
                 f"Latin-1 it is {latin!r}: if that is the file, save the YAML as UTF-8)"
             )
+        elif (found := _respelled(image_path)) is not None:
+            name = image_path.name
+            nfc = unicodedata.normalize("NFC", found) == unicodedata.normalize("NFC", name)
+            differs = (
+                f"{found!a}, its accents composed otherwise (as macOS writes names)"
+                if nfc
+                else f"{found!r}, which differs in letter case"
+            )
+            hint = (
+                f" (its folder holds {differs}: names are matched exactly here, as by "
+                "map_server on Linux, not as on Windows or macOS; rename the file or "
+                "correct the YAML)"
+            )
         raise FileNotFoundError(f"{yaml_path}: map image {shown} does not exist{hint}") from None
     if not stat.S_ISREG(image_stat.st_mode):
         kind = "a directory" if stat.S_ISDIR(image_stat.st_mode) else "not a regular file"
@@ -636,6 +649,30 @@ def read_map_yaml(path: str | os.PathLike[str]) -> MapMetadata:
     except ValueError as exc:
         raise ValueError(f"{yaml_path}: {exc}") from None
     return MapMetadata(image_path, resolution, (ox, oy, oyaw), negate, occ, free, mode.lower())
+
+
+#: The most entries of an image's folder searched for another spelling of its name.
+_RESPELLED_SCAN = 1 << 16
+
+
+def _respelled(image: Path) -> str | None:
+    """The name of an entry beside the missing ``image`` spelt as it but for case or normalisation.
+
+    A map made on Windows or macOS, whose file systems match names regardless
+    of case (and, on macOS, of NFC/NFD normalisation), may name ``Map.PGM`` for
+    ``map.pgm``: found on those systems, not on Linux. Only the first
+    :data:`_RESPELLED_SCAN` entries are looked at (the message's hint, not a search).
+    """
+    try:
+        with os.scandir(image.parent) as entries:
+            for count, entry in enumerate(entries):
+                if count >= _RESPELLED_SCAN:
+                    break
+                if entry.name != image.name and _same_spelling(entry.name, image.name):
+                    return entry.name
+    except (OSError, ValueError):
+        pass
+    return None
 
 
 def _encodable(name: str) -> bool:
