@@ -197,6 +197,13 @@ class Polyline:
         # are recomputed bit for bit.
         return Polyline, (self.points_xy,)
 
+    def __setstate__(self, state: Any) -> None:
+        # Pickles made before __reduce__ (3bf2b94) hold the slots of then: rebuilt from
+        # the points as a new line (review 51: without ``end``, added since, a tracker
+        # pickled then raised AttributeError at its first step).
+        slots = state[1] if isinstance(state, tuple) else state
+        self.__init__(slots["points_xy"])  # type: ignore[misc]
+
     def point_at(self, s: float) -> tuple[float, float]:
         """The point ``(x, y)`` at arc length ``s``."""
         x, y = point_at(self.points_xy, self.cum, float(s))
