@@ -4,19 +4,33 @@ Plain numba functions on scalars (and one on float64 arrays) compiled with
 ``cache=True``: angle wrapping, ``sinc``, the SE(2) exponential of a body twist
 and pose composition. The geometry, kinematics and estimation kernels call them
 so that wrapping and the exponential exist once.
+
+The angle wrap, the exponential and the pose integration are compiled once
+and inlined by LLVM into their callers (:data:`_ONCE`), not copied by numba at
+each call site (``inline="always"``, which types and lowers the copy again
+there: issue 17, review 51). ``sinc`` and ``compose_scalar``, called only
+inside those, stay numba-inlined: they are copied once, into the one body
+that is compiled.
 """
 
 from __future__ import annotations
 
 import math
 
-from navkit._shared.jit import njit_cached, njit_inline
+from navkit._shared.jit import NO_REFCOUNT, njit_cached, njit_force_inline, njit_inline, typed_njit
 from navkit._shared.types import FloatArray
 
 _TWO_PI = 2.0 * math.pi
 
+# Typed and lowered once, inlined by LLVM (alwaysinline) into every kernel calling it,
+# where numba's IR-level copies were typed and lowered again at each call site (navkit
+# warmup made 8 copies of wrap_scalar and 4 of exp_body, each with two of sinc). Unlike
+# njit_force_inline it keeps a Python wrapper: the kinematics and the odometry call
+# exp_body from Python, and tests call both.
+_ONCE = typed_njit(**NO_REFCOUNT, forceinline=True)
 
-@njit_inline
+
+@_ONCE
 def wrap_scalar(a: float) -> float:
     """Wrap one finite angle to (-pi, pi]; angles already in range are returned unchanged."""
     if -math.pi < a <= math.pi:
@@ -55,7 +69,7 @@ def sinc(x: float) -> float:
     return math.sin(x) / x
 
 
-@njit_inline
+@_ONCE
 def exp_body(vx: float, vy: float, omega: float, dt: float) -> tuple[float, float, float]:
     """Body-frame displacement (dx, dy, dtheta) of a constant twist held for ``dt``.
 
@@ -81,7 +95,7 @@ def compose_scalar(
     return x + c * dx - s * dy, y + s * dx + c * dy, wrap_scalar(th + dth)
 
 
-@njit_inline
+@njit_force_inline
 def integrate_scalar(
     x: float, y: float, th: float, vx: float, vy: float, omega: float, dt: float
 ) -> tuple[float, float, float]:

@@ -210,7 +210,11 @@ def circle_exit(
     """
     k = pts.shape[0]
     if k < 2:
-        return 0.0 if (pts[0, 0] - px) ** 2 + (pts[0, 1] - py) ** 2 >= radius * radius else -1.0
+        # Products, not ``** 2``: numba compiles its integer power loop for that (review 51;
+        # the same float: the loop's 1.0 * (d * d)).
+        dx = pts[0, 0] - px
+        dy = pts[0, 1] - py
+        return 0.0 if dx * dx + dy * dy >= radius * radius else -1.0
     r2 = radius * radius
     # Offsets from the robot throughout (a - p, b - p), each subtracted first: the
     # same result wherever the problem is translated (see offset_at).

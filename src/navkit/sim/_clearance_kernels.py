@@ -170,7 +170,11 @@ def _to_circle(
     The footprint as for :func:`_to_segment`.
     """
     if verts is None:
-        d = math.sqrt((cx - ox) ** 2 + (cy - oy) ** 2)
+        # Products, not ``** 2``: numba compiles its integer power loop for that (review 51;
+        # the same float: the loop's 1.0 * (d * d)).
+        dx = cx - ox
+        dy = cy - oy
+        d = math.sqrt(dx * dx + dy * dy)
         if d + radius < r:
             return r - (d + radius)
         gap: float = max2(d - radius - r, 0.0)
@@ -185,7 +189,9 @@ def _to_circle(
         near = min2(
             near, _point_segment(ox, oy, verts[j, 0], verts[j, 1], verts[i, 0], verts[i, 1])
         )
-        far = max2(far, math.sqrt((verts[i, 0] - ox) ** 2 + (verts[i, 1] - oy) ** 2))
+        vx = verts[i, 0] - ox
+        vy = verts[i, 1] - oy
+        far = max2(far, math.sqrt(vx * vx + vy * vy))
         j = i
     if far < r:
         return r - far

@@ -74,7 +74,8 @@ The arc is :mod:`navkit._shared.se2`'s and the goal test
 :mod:`navkit._shared.goal`'s, inlined here: numba's cache keys these kernels on
 this file alone, so a change of those helpers comes with a note here (review 49:
 ``sinc``'s series, now in Horner form below 2**-10, was below 1e-4; the run
-kernels compile ``goal_verdict``, no longer the exact ``at_goal``).
+kernels compile ``goal_verdict``, no longer the exact ``at_goal``; review 51:
+``wrap_scalar`` and ``integrate_scalar`` are compiled once and inlined by LLVM).
 """
 
 from __future__ import annotations
@@ -86,10 +87,10 @@ import numpy as np
 
 from navkit._shared.goal import INSIDE, OUTSIDE, UNDECIDED, at_goal, goal_verdict_kernel
 from navkit._shared.jit import bind_numba_names, njit_force_inline, njit_helper, njit_no_refcount
-from navkit._shared.se2 import wrap_scalar
+from navkit._shared.se2 import integrate_scalar, wrap_scalar
 from navkit.sim._clearance_kernels import TOUCH, edge_clearance, footprint_clearance
 from navkit.sim._moving_kernels import place_moving, point_in_moving
-from navkit.sim._wheel_kernels import arc_pose, wheel_step
+from navkit.sim._wheel_kernels import wheel_step
 
 # numba's min and max builtins, without an overload compiled per argument types
 # (navkit._shared.selects: intrinsics, so bound when numba loads; issue 17).
@@ -360,7 +361,7 @@ def _sweep_static(
     om = state[5]
     done = 0.0
     while True:
-        x, y, th = arc_pose(prev[0], prev[1], prev[2], vx, vy, om, done / span * dt)
+        x, y, th = integrate_scalar(prev[0], prev[1], prev[2], vx, vy, om, done / span * dt)
         rest = span - done
         limit = max2(rest, _CONTACT_LIMIT)
         if occ is None:

@@ -8,19 +8,30 @@ arc. It also returns the body-frame acceleration an IMU would feel.
 
 The arc is :mod:`navkit._shared.se2`'s, inlined here: numba's cache keys these
 kernels on this file alone, so a change of those helpers comes with a note here
-(review 49: ``sinc``'s series, now in Horner form below 2**-10, was below 1e-4).
+(review 49: ``sinc``'s series, now in Horner form below 2**-10, was below 1e-4;
+review 51: ``integrate_scalar`` is compiled once and inlined by LLVM, in place of
+this module's ``arc_pose``, which only gave it a call typed once).
 
 State vector ``state`` (float64): ``[x, y, theta, vx, vy, omega, ax, ay]``.
+
+``wheel_step`` is called only from the run kernels: it has no Python wrapper
+(review 51: its wrapper and its own machine code, never used, were a
+twentieth of a second of ``Simulation.run``'s first use). The example calls it
+through a kernel of its own.
 
 Examples
 --------
 >>> import numpy as np
+>>> import numba
+>>> @numba.njit
+... def step(state, wheels, angles, carry, command, max_accel, dt, factor, z, slip, fwd):
+...     wheel_step(state, wheels, angles, carry, command, max_accel, dt, factor, z, slip, fwd)
 >>> state = np.zeros(8)
 >>> wheels, angles = np.zeros(2), np.zeros(2)
 >>> fwd = np.array([[0.05, 0.05], [0.0, 0.0], [-0.5, 0.5]])  # r/2, r/2; -r/D, r/D
 >>> carry = np.zeros(2)
->>> wheel_step(state, wheels, angles, carry, np.array([10.0, 10.0]), np.inf, 0.1,
-...            np.ones(2), np.zeros(2), 0.0, fwd)
+>>> step(state, wheels, angles, carry, np.array([10.0, 10.0]), np.inf, 0.1,
+...      np.ones(2), np.zeros(2), 0.0, fwd)
 >>> state[:4].round(12).tolist(), angles.tolist()
 ([0.1, 0.0, 0.0, 1.0], [1.0, 1.0])
 """
@@ -29,27 +40,13 @@ from __future__ import annotations
 
 import numpy as np
 
-from navkit._shared.jit import njit_helper, njit_no_refcount
+from navkit._shared.jit import njit_helper
 from navkit._shared.se2 import integrate_scalar
 
-__all__ = ["arc_pose", "wheel_step"]
+__all__ = ["wheel_step"]
 
 
 @njit_helper
-def arc_pose(
-    x: float, y: float, th: float, vx: float, vy: float, omega: float, dt: float
-) -> tuple[float, float, float]:
-    """The pose after holding the body twist ``(vx, vy, omega)`` for ``dt`` seconds.
-
-    :func:`~navkit._shared.se2.integrate_scalar` behind a call typed once for
-    the simulator's kernels (``wheel_step`` and the run kernels' checks along a
-    step): numba inlines that function's code into every caller it types, once
-    per caller and specialisation; LLVM still inlines this call.
-    """
-    return integrate_scalar(x, y, th, vx, vy, omega, dt)
-
-
-@njit_no_refcount
 def wheel_step(
     state: np.ndarray,
     wheels: np.ndarray,
@@ -112,7 +109,7 @@ def wheel_step(
         vx += fwd[0, i] * ground
         vy += fwd[1, i] * ground
         om += fwd[2, i] * ground
-    x, y, th = arc_pose(state[0], state[1], state[2], vx, vy, om, dt)
+    x, y, th = integrate_scalar(state[0], state[1], state[2], vx, vy, om, dt)
     # Body acceleration of the reference point: dv/dt + omega × v.
     state[6] = (vx - state[3]) / dt - om * vy
     state[7] = (vy - state[4]) / dt + om * vx

@@ -1,5 +1,9 @@
 """numba kernel of the diff-astar localiser: Gauss-Newton scan-to-map matching (private).
 
+It wraps angles with :func:`navkit._shared.se2.wrap_scalar`: numba's cache keys
+the kernel on this file alone, so a change of that helper comes with a note here
+(review 51: compiled once and inlined by LLVM, no longer copied by numba).
+
 Examples
 --------
 >>> import numpy as np
