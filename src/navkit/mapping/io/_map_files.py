@@ -584,33 +584,7 @@ def read_map_yaml(path: str | os.PathLike[str]) -> MapMetadata:
         gone = exc.errno in _MISSING_ERRNOS
         if not (gone or getattr(exc, "winerror", None) in _MISSING_WINERRORS):
             raise
-        hint = ""
-        shown = str(image_path)
-        if "\\" in image and PureWindowsPath(image).anchor:
-            hint = " (a Windows path: give the image's path relative to the YAML)"
-        elif _ESCAPED_BYTES.search(image):
-            # Bytes that are not UTF-8 (_yaml_entries): shown escaped, so that the
-            # message can be printed and logged.
-            shown = shown.encode("utf-8", "backslashreplace").decode("utf-8")
-            latin = image.encode("utf-8", "surrogateescape").decode("latin-1")
-            hint = (
-                f" (the name's bytes that are not UTF-8 were looked up as written; read as "
-                f"Latin-1 it is {latin!r}: if that is the file, save the YAML as UTF-8)"
-            )
-        elif (found := _respelled(image_path)) is not None:
-            name = image_path.name
-            nfc = unicodedata.normalize("NFC", found) == unicodedata.normalize("NFC", name)
-            differs = (
-                f"{found!a}, its accents composed otherwise (as macOS writes names)"
-                if nfc
-                else f"{found!r}, which differs in letter case"
-            )
-            hint = (
-                f" (its folder holds {differs}: names are matched exactly here, as by "
-                "map_server on Linux, not as on Windows or macOS; rename the file or "
-                "correct the YAML)"
-            )
-        raise FileNotFoundError(f"{yaml_path}: map image {shown} does not exist{hint}") from None
+        raise _missing_image(yaml_path, image, image_path) from None
     if not stat.S_ISREG(image_stat.st_mode):
         kind = "a directory" if stat.S_ISDIR(image_stat.st_mode) else "not a regular file"
         raise ValueError(f"{yaml_path}: map image {image_path} is {kind}")
@@ -649,6 +623,52 @@ def read_map_yaml(path: str | os.PathLike[str]) -> MapMetadata:
     except ValueError as exc:
         raise ValueError(f"{yaml_path}: {exc}") from None
     return MapMetadata(image_path, resolution, (ox, oy, oyaw), negate, occ, free, mode.lower())
+
+
+def _missing_image(yaml_path: Path, image: str, image_path: Path) -> FileNotFoundError:
+    """The error for a map image ``image_path`` (``image`` in the YAML) that does not exist.
+
+    It says what may have been meant, for maps made on other machines: an
+    absolute path of the machine that saved the map (map_saver of ROS 1 before
+    2013 and hand edits wrote them) with the file of its name beside the YAML;
+    a name whose bytes are not UTF-8; a file spelt the same but for case or
+    normalisation, found on Windows or macOS but not here.
+    """
+    hint = ""
+    shown = str(image_path)
+    # A drive (C:/maps/x.pgm, C:\maps\x.pgm), or a root written with backslashes.
+    on_windows = PureWindowsPath(image)
+    windows = bool(on_windows.drive) or ("\\" in image and bool(on_windows.anchor))
+    if windows or Path(image).is_absolute():
+        base = on_windows.name if windows else image_path.name
+        hint = "a Windows path" if windows else "an absolute path"
+        with contextlib.suppress(OSError, ValueError):
+            if base and (yaml_path.parent / base).is_file():
+                hint += f", of the machine that saved the map? {base!r} lies beside the YAML"
+        hint = f" ({hint}: give the image's path relative to the YAML)"
+    elif _ESCAPED_BYTES.search(image):
+        # Bytes that are not UTF-8 (_yaml_entries): shown escaped, so that the
+        # message can be printed and logged.
+        shown = shown.encode("utf-8", "backslashreplace").decode("utf-8")
+        latin = image.encode("utf-8", "surrogateescape").decode("latin-1")
+        hint = (
+            f" (the name's bytes that are not UTF-8 were looked up as written; read as "
+            f"Latin-1 it is {latin!r}: if that is the file, save the YAML as UTF-8)"
+        )
+    elif (found := _respelled(image_path)) is not None:
+        name = image_path.name
+        nfc = unicodedata.normalize("NFC", found) == unicodedata.normalize("NFC", name)
+        differs = (
+            f"{found!a}, its accents composed otherwise (as macOS writes names)"
+            if nfc
+            else f"{found!r}, which differs in letter case"
+        )
+        hint = (
+            f" (its folder holds {differs}: names are matched exactly here, as by "
+            "map_server on Linux, not as on Windows or macOS; rename the file or "
+            "correct the YAML)"
+        )
+    return FileNotFoundError(f"{yaml_path}: map image {shown} does not exist{hint}")
 
 
 #: The most entries of an image's folder searched for another spelling of its name.
