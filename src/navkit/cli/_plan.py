@@ -6,7 +6,7 @@ import argparse
 import math
 import os
 import time
-from pathlib import Path
+from pathlib import Path, PureWindowsPath
 from typing import Literal, TextIO
 
 import numpy as np
@@ -56,22 +56,27 @@ def _check_not_an_input(option: str, output: str | None, map_yaml: str) -> None:
     if os.path.exists(yaml_path) and os.path.samefile(output, yaml_path):
         raise ValueError(f"{option}: {output} is the map's YAML ({yaml_path}); choose another file")
     # Bytes: the YAML library tells UTF-8 from UTF-16 (by its byte-order mark, as
-    # Windows writes it) itself. read_map also reads UTF-32, which PyYAML does not:
-    # then an existing output file is refused, not risked (navkit.mapping.io has no
-    # public way to ask for the image's name alone). So are YAMLs with tabs
-    # between tokens, which read_map takes and PyYAML refuses.
+    # Windows writes it) itself. read_map also reads UTF-32, Latin-1 bytes (as
+    # map_server does) and tabs between tokens or on blank lines, which PyYAML does
+    # not: then an existing output file is refused, not risked (navkit.mapping.io has
+    # no public way to ask for the image's name alone).
     try:
         entries = yaml.safe_load(yaml_path.read_bytes())
-        image = Path(str(entries["image"]))
+        image = str(entries["image"])
     except (yaml.YAMLError, UnicodeDecodeError, TypeError, KeyError):
         raise ValueError(
             f"{option}: {output} exists, and whether it is the map's image could not be read "
-            f"from {yaml_path} (PyYAML cannot read it: UTF-32 text, or tabs between "
-            "tokens); choose a new file"
+            f"from {yaml_path} (PyYAML cannot read it: UTF-32 text, Latin-1 or other "
+            "non-UTF-8 bytes, or tabs between tokens or on blank lines); choose a new file"
         ) from None
-    path = yaml_path.parent / image
-    if os.path.exists(path) and os.path.samefile(output, path):
-        raise ValueError(f"{option}: {output} is the map's image ({path}); choose another file")
+    # read_map reads a name written on Windows (maps\office.png) as Windows does
+    # where no file has the backslashes in its name: both are checked.
+    for path in (
+        yaml_path.parent / image,
+        yaml_path.parent.joinpath(*PureWindowsPath(image).parts),
+    ):
+        if os.path.exists(path) and os.path.samefile(output, path):
+            raise ValueError(f"{option}: {output} is the map's image ({path}); choose another file")
 
 
 def _in_option_names(message: str) -> str:
