@@ -5,6 +5,7 @@ from __future__ import annotations
 import copy
 import math
 from collections.abc import Mapping
+from types import MappingProxyType
 from typing import Any, Literal, cast, overload
 
 import numpy as np
@@ -96,6 +97,28 @@ _EMPTY_BOX = (_NO_LIMIT, -1, _NO_LIMIT, -1)
 # Initial room of the path buffer, points per node row and column; a longer walk
 # is repeated with a buffer twice as large.
 _POINTS_PER_SIDE = 4
+
+
+def _on_node(point: tuple[float, float] | None, node: tuple[int, int] | None) -> bool:
+    """Whether a kept end's point is its node itself: an end :meth:`FieldDStar.plan` gave."""
+    return point is not None and node is not None and point == (float(node[0]), float(node[1]))
+
+
+#: Slots :class:`FieldDStar` gained since a release, for pickles made before (see
+#: navkit._shared.frozen.fill_added_fields), each as the planner of then worked:
+#: changes applied at once (none pending), every end a node (plan_cells linked cell
+#: centres to nodes), checked again as the method that gave it checks it (plan:
+#: the point is the node itself).
+_ADDED_SLOTS = MappingProxyType(
+    {
+        "_changed": lambda planner: np.zeros(64, dtype=np.int64),
+        "_lowered": lambda planner: False,
+        "_start_cell": lambda planner: False,
+        "_goal_cell": lambda planner: False,
+        "_start_on_node": lambda planner: _on_node(planner._start_point, planner._start),
+        "_goal_on_node": lambda planner: _on_node(planner._goal_point, planner._goal),
+    }
+)
 
 
 class FieldDStar:
@@ -350,6 +373,8 @@ class FieldDStar:
         "_work",
     )
 
+    _added_fields = _ADDED_SLOTS
+
     def __init__(
         self,
         costs: ArrayLike,
@@ -493,6 +518,15 @@ class FieldDStar:
         # made before __getstate__ the records, g, rhs and the heap whole.
         instance, slots = state if isinstance(state, tuple) else (None, state)
         slots = dict(slots)
+        if "_work" not in slots:
+            # Made before the search's work records (6de62f3, the project's first day):
+            # a different search state, not carried over (review 51: it raised
+            # KeyError here).
+            raise ValueError(
+                f"{type(self).__name__}: a pickle made by navkit before its search kept "
+                "work records (6de62f3, 30 November 2026) cannot be restored; build the "
+                "planner again from its costs"
+            )
         old_vals = slots.pop("_vals", None)
         old_g, old_rhs = slots.pop("_g", None), slots.pop("_rhs", None)
         old_heap = slots.pop("_heap")
