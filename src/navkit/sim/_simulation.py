@@ -934,6 +934,13 @@ class _Run:
                 self.dyn_circles,
             )  # fmt: skip
         status, i = kernel(*motion, *grid, *bookkeeping)
+        # The kernels remember one position decided here (goal[5:7]), not more: a robot
+        # moving among band positions would stop them at each move, but the band is
+        # 2**-48 of the tolerance wide and no run found one (review 51: an omni
+        # controller chattering through its goal over 1-23 mm tolerances, 360,000
+        # steps: no decision; 150 runs 3e4-1e6 m out with tolerances below the
+        # coordinates' spacing, where trackers creep ulps around the goal: at most 3
+        # decisions a run, none for a position seen before).
         while status == GOAL_UNDECIDED:
             # The robot is on the goal tolerance's band: decided exactly here, then on
             # from that step (its samples and row first), with its slip draws on
