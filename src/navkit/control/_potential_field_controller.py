@@ -544,10 +544,15 @@ class PotentialFieldController:
         # Pickles from before the options became properties hold them under their
         # public names: setting those would hit the properties, which have no setter.
         restore_slots(self, state, renamed=_RENAMED)
-        carried = getattr(self._pid, "_carried", None)
+        pid = self._pid
+        carried = getattr(pid, "_carried", None)
         if carried is not None:
-            # A pickle made before the PID's run state moved here (see _Pid).
-            del self._pid._carried
+            # A pickle made before the PID's run state moved here (see _Pid). Then a
+            # shallow copy shared its original's _Pid: the other controllers of the
+            # same pickle take the state from it too, so it keeps it, and this one
+            # gets a _Pid of its own (review 51, FRESH: the second of [ctl,
+            # copy.copy(ctl)] loaded without its integrator).
+            self._pid = _Pid(pid.kp, pid.ki, pid.kd, pid.integral_limit)
             self._integral, self._last_error = carried
         # Not in use (a copy made during a step, or a pickle of one, holds its token).
         self._callers = []
