@@ -292,26 +292,58 @@ def _yaml_entries(path: Path) -> dict[str, Any]:
     Latin-1 or Windows-1252 comment (``# Karte Büro``) is skipped, and an image name's bytes
     are the file name looked up. Those bytes are read the same way here; in a
     value map_server parses as a number, list or mode they are refused, naming
-    the first byte, as before.
+    the value's first such byte (the file's first may be in a comment or the
+    image name, both read).
     """
     text, refusal = _yaml_text(path)
     if refusal is None:
         return _load_yaml(text, path)
     if _PRIVATE_STAND_INS.search(text):
         raise ValueError(refusal)
+    readable = text.translate(_ESCAPED)
     try:
-        entries = _load_yaml(text.translate(_ESCAPED), path)
+        entries = _load_yaml(readable, path)
     except ValueError:
         raise ValueError(refusal) from None
     for key in _KEYS - {"image"}:
         value = entries.get(key)
         for item in value if isinstance(value, list) else [value]:
             if isinstance(item, str) and _PRIVATE_STAND_INS.search(item):
-                raise ValueError(refusal)
+                raise ValueError(_refused_value_byte(path, text, readable) or refusal)
     image = entries.get("image")
     if isinstance(image, str):
         entries["image"] = image.translate(_UNESCAPED)
     return entries
+
+
+def _refused_value_byte(path: Path, text: str, readable: str) -> str | None:
+    """The refusal naming the first byte that is not UTF-8 in a value read as a number,
+    list or mode, at its offset in the file; None where the YAML's nodes cannot tell.
+
+    ``text`` is the file's text with ``surrogateescape``'s stand-ins, ``readable``
+    the same with :data:`_ESCAPED`'s (one character for one, so that the nodes'
+    character positions hold in both). The file's first such byte may be one
+    that is read (in a comment or the image name): naming it sent the user to
+    the wrong line (review 51, FRESH).
+    """
+    try:
+        root = yaml.compose(readable, Loader=_Loader)
+    except (yaml.YAMLError, RecursionError):  # tabs between tokens, say: read otherwise
+        return None
+    if not isinstance(root, yaml.MappingNode):
+        return None
+    first: int | None = None
+    for key, value in root.value:
+        if not isinstance(key, yaml.ScalarNode) or key.value not in _KEYS - {"image"}:
+            continue
+        found = _PRIVATE_STAND_INS.search(readable, value.start_mark.index, value.end_mark.index)
+        if found is not None and (first is None or found.start() < first):
+            first = found.start()
+    if first is None:
+        return None
+    offset = len(text[:first].encode("utf-8", "surrogateescape"))
+    byte = ord(readable[first]) - 0xF700
+    return f"{path}: not a map YAML: not UTF-8 text (byte 0x{byte:02x} at offset {offset})"
 
 
 def _unmarked_unicode(head: bytes) -> int:
