@@ -99,6 +99,8 @@ from navkit._shared.se2 import wrap_scalar
 from navkit._shared.types import FloatArray, IntArray
 from navkit.errors import FilterError
 
+# (review 51: se2.wrap_scalar/exp_body compiled once and inlined by LLVM; see _wrap.)
+
 # numba's min and max builtins, without an overload compiled per argument types
 # (navkit._shared.selects: intrinsics, so bound when numba loads; issue 17).
 min2: Any = None

@@ -2021,8 +2021,9 @@ class PlanarFusion(GaussianEstimate):
             self._set_origin(float(log.times[0]))
         variances = np.where(log.observed, log.variances, 0.0)
         k.planar_run(
-            self._buf, log.times, log.values, variances, self._gates, out_x, out_p, status, nis
-        )
+            self._buf, log.times, log.values, variances, self._gates, out_x, out_p, status, nis,
+            k.step_address(),
+        )  # fmt: skip
         if (status == NOT_POSITIVE_DEFINITE).any():
             self._loaded_rows(log, variances, (out_x, out_p, status, nis))
         ax, ay = self._anchor
@@ -2086,7 +2087,7 @@ class PlanarFusion(GaussianEstimate):
             out_p[-1] = p
             k.planar_run(
                 buf, log.times[j:], log.values[j:], variances[j:], self._gates,
-                out_x[j:], out_p[j:], status[j:], nis[j:],
+                out_x[j:], out_p[j:], status[j:], nis[j:], k.step_address(),
             )  # fmt: skip
         np.copyto(self._buf, buf)
 

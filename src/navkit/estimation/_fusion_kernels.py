@@ -23,9 +23,12 @@ Compilation (first use with an empty cache) is kept short by design (issue 17):
   entry :func:`planar_step_plain` and the batch loop :func:`planar_run` call
   (a separate filter function called by both was optimised by LLVM three
   times: alone and linked into each caller). It is a helper (no Python
-  wrapper, no machine code of its own): each caller links and optimises it
-  once, so a process using only the batch loop no longer compiles the online
-  step as well (0.2 s less); :func:`planar_step`, the same step entered with
+  wrapper, no machine code of its own), linked into the online entry
+  :func:`planar_step_plain`; since review 51 the batch loop calls that
+  entry's compiled function by its address (:func:`step_address`,
+  :mod:`navkit.estimation._step_call`) instead of linking a second copy,
+  which LLVM optimised and translated again (about 0.3 s; it was called, not
+  inlined, there too). :func:`planar_step`, the same step entered with
   float64 arguments, is compiled only when Python calls it (tests,
   benchmarks). Every kernel is compiled for the one signature the public
   layer passes;
@@ -78,6 +81,8 @@ from navkit._shared.jit import (
 from navkit._shared.se2 import wrap_scalar
 from navkit._shared.types import KernelInt
 
+# (review 51: se2.wrap_scalar/exp_body compiled once and inlined by LLVM; see _wrap.)
+
 # A float64 of a PLAIN_FLOAT argument (navkit.estimation._plain_float, which imports
 # numba: bound when numba loads), for planar_step_plain.
 plain_value: Any = None
@@ -105,6 +110,28 @@ bind_numba_names(
     globals(), "navkit.estimation._plain_float",
     python={"plain_value": _plain_value_python}, plain_value="plain_value",
 )  # fmt: skip
+# The batch loop's call of the step by its address, and the online entry's answer of
+# that address (navkit.estimation._step_call, which imports numba: bound when numba
+# loads); with the JIT disabled the step itself, called as Python, and no address.
+call_step: Any = None
+step_pointer: Any = None
+
+
+def _call_step_python(address: int, *args: Any) -> tuple[int, float]:
+    """``call_step`` when the JIT is disabled: the step, called as Python (no address)."""
+    return _planar_step(*args)
+
+
+def _step_pointer_python(step: Any) -> int:
+    """``step_pointer`` when the JIT is disabled: no compiled step, no address."""
+    return 0
+
+
+bind_numba_names(
+    globals(), "navkit.estimation._step_call",
+    python={"call_step": _call_step_python, "step_pointer": _step_pointer_python},
+    call_step="call_step", step_pointer="step_pointer",
+)  # fmt: skip
 
 N_STATE = 6
 N_COMP = 4
@@ -119,6 +146,8 @@ TIME_GAP = 4
 OVERFLOW = 5
 # Online step only: the arguments failed its checks (see planar_step); nothing changed.
 INVALID = -1
+# planar_step_plain's ``count`` asking for the step's address (see step_address).
+STEP_ADDRESS = -2
 
 # The filter buffer of :func:`planar_step` is one flat float64 array: everything in one
 # array, because numba's per-call dispatch cost grows with every array argument, and
@@ -564,6 +593,7 @@ def planar_run(
     out_p: np.ndarray,
     out_status: np.ndarray,
     out_nis: np.ndarray,
+    step: KernelInt,
 ) -> None:
     """Fuse a log into the filter in ``buf`` with :func:`_planar_step` (in batch mode).
 
@@ -582,6 +612,13 @@ def planar_run(
     caller stores the initial x and P in ``out_x[-1]`` and ``out_p[-1]`` too: a
     ``TIME_GAP`` in row 0 restores them from there (a copy made here would slow
     the loop down measurably).
+
+    ``step`` is :func:`step_address`, got in this process: the step is called
+    through it, not linked into this kernel, so that its code is optimised and
+    made once, in :func:`planar_step_plain` (issue 17, review 51: linked here, LLVM
+    optimised and translated the step a second time, about 0.3 s of a first
+    ``PlanarFusion`` use; it did not inline it, so each row made a call anyway).
+    Any other value crashes the process: the public layer alone calls this.
     """
     t = buf[BUF_TIME]
     if math.isnan(t):  # no clock yet: it starts at the first row
@@ -602,7 +639,7 @@ def planar_run(
                 buf[_R0 + k] = variances[i, k]
                 if variances[i, k] > 0.0:
                     m += 1
-            status, nis = _planar_step(buf, ti, first, batch, ti - t, 0.0, 0.0, 0.0, gates[m])
+            status, nis = call_step(step, buf, ti, first, batch, ti - t, 0.0, 0.0, 0.0, gates[m])
             if status == TIME_GAP:
                 # Undo the prediction: back to the state after the previous row (for
                 # row 0, index -1: the caller's copy of the initial state).
@@ -713,7 +750,13 @@ def planar_step_plain(
     NaN, which the step refuses (``INVALID``, nothing changed). The public
     layer's fast paths call it with whatever they were given, instead of
     checking five types in Python first.
+
+    With ``count`` ``STEP_ADDRESS`` it returns instead, as its status, the
+    address of the step's compiled function in its own library, which the
+    batch loop calls (:func:`step_address`).
     """
+    if count == STEP_ADDRESS:
+        return step_pointer(_planar_step), math.nan
     return _planar_step(
         buf, plain_value(t), first, count, plain_value(z0), plain_value(z1),
         plain_value(var0), plain_value(var1), gate,
@@ -758,3 +801,27 @@ def planar_step_plain_entry() -> Callable[..., tuple[int, float]]:
     for i in (1, 4, 5, 6, 7):  # t, z0, z1, var0, var1
         types[i] = PLAIN_FLOAT
     return cast(Callable[..., tuple[int, float]], dispatcher.compile(tuple(types)))
+
+
+#: The address :func:`step_address` found, once per process ([] before).
+_STEP_ADDRESS: list[int] = []
+
+
+def step_address() -> int:
+    """Address of the step's compiled function in :func:`planar_step_plain`'s library.
+
+    For :func:`planar_run`, which calls the step through it. Compiles the
+    online entry (or loads it from numba's cache) first, and asks it. The
+    address is this process's (a forked child shares it); 0 with the JIT
+    disabled, where the batch loop calls the step as Python.
+
+    Examples
+    --------
+    >>> step_address() == step_address()
+    True
+    """
+    if not _STEP_ADDRESS:
+        buf = np.zeros(BUF_SIZE)
+        address, _ = planar_step_plain_entry()(buf, 0.0, 0, STEP_ADDRESS, 0.0, 0.0, 1.0, 1.0, 0.0)
+        _STEP_ADDRESS.append(int(address))
+    return _STEP_ADDRESS[0]
