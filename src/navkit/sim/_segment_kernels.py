@@ -465,9 +465,9 @@ def _settle(
     # The goal, first reached? ``goal`` = [x, y, radius, yaw, yaw tolerance, x, y of the
     # position last decided not at it in Python]; NaN x for no goal, NaN yaw for any
     # heading, NaN x, y for none decided. (Not a helper of its own: each separately
-    # compiled function costs a tenth of a second or more on first use; wrap_scalar is
-    # inlined at numba IR level, not compiled on its own: Simulation.run's first use
-    # measured the same.) The position by the controllers' own exact test (review 48:
+    # compiled function costs a tenth of a second or more on first use; wrap_scalar,
+    # compiled once since review 51, is inlined here by LLVM.) The position by the
+    # controllers' own exact test (review 48:
     # math.hypot counted offsets on the radius's last ulp as reached where the
     # controller was not done, or the reverse; a NaN offset is never at the goal:
     # review 48, FRESH), its band around the radius left to Python (review 49).
