@@ -229,10 +229,12 @@ def costmap(
 
     * The static layer is the grid's occupied and unknown cells, classed by
       its thresholds. Nav2's static layer reads the ``nav_msgs/OccupancyGrid``
-      values instead: by default only 100 is lethal and -1 unknown, every
-      other value free. ``mode: trinary`` maps read with
+      values instead: by default only 100 is lethal, every other value free,
+      and -1 unknown with ``track_unknown_space: true`` (as Nav2's bringup
+      sets it for the global costmap; the costmap node's own default, false,
+      makes -1 free too). ``mode: trinary`` maps read with
       :func:`~navkit.mapping.io.read_map` and trinary messages (0, 100, -1)
-      give the same layer. A message with other values read by
+      give the same layer (-1 tracked as unknown). A message with other values read by
       :func:`~navkit.mapping.io.grid_from_msg` does not (values 66..99 are
       obstacles here, 20..65 unknown, and free in Nav2), nor does a
       ``mode: scale`` map: map_server publishes its pixels between the

@@ -340,8 +340,11 @@ def grid_from_msg(msg: Any) -> OccupancyGrid:
     are occupied, 0..19 free and 20..65 unknown. Nav2's costmap reads the
     message itself instead: its static layer, with its defaults
     (``trinary_costmap``, ``lethal_cost_threshold: 100``), makes only 100
-    lethal, -1 unknown and every other value free. The two agree on trinary
-    maps (0, 100, -1: what map_server publishes for ``mode: trinary``); on a
+    lethal and every other value free, -1 unknown with ``track_unknown_space:
+    true`` (as Nav2's bringup sets it for the global costmap; the costmap
+    node's default, false, makes -1 free too). The two agree on trinary
+    maps (0, 100, -1: what map_server publishes for ``mode: trinary``; -1
+    tracked as unknown); on a
     message with other values (Cartographer's, a ``mode: scale`` map)
     :func:`~navkit.mapping.costmap` of this grid has obstacles (66..99) and
     unknown cells (20..65) where Nav2's costmap has free space.
