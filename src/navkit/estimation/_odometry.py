@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import warnings
+from types import MappingProxyType
 from typing import Any, cast
 
 import numpy as np
@@ -573,6 +574,37 @@ class OmniOdometry:
         return f"{type(self).__name__}({self._drive!r}, pose={self._pose!r})"
 
 
+def _counter_range(bits: int | None) -> tuple[int, int, int]:
+    """A counter's modulus and the readings the scalar path takes (int64), for ``bits``."""
+    width = 64 if bits is None else bits
+    return 1 << width, max(-(1 << (width - 1)), _INT64_MIN), min((1 << width) - 1, _INT64_END - 1)
+
+
+def _metres_per_tick(radius: float, ticks_per_rev: float) -> float:
+    """A wheel's metres per tick, computed exactly as ``ticks_to_distance`` computes them."""
+    return 2.0 * math.pi * float(radius) / ticks_per_rev
+
+
+def _old_modulus(odometry: DiffOdometry) -> int:
+    return _counter_range(odometry._bits)[0]
+
+
+def _old_low(odometry: DiffOdometry) -> int:
+    return _counter_range(odometry._bits)[1]
+
+
+def _old_high(odometry: DiffOdometry) -> int:
+    return _counter_range(odometry._bits)[2]
+
+
+def _old_scale_left(odometry: DiffOdometry) -> float:
+    return _metres_per_tick(odometry._drive.left_radius, odometry._ticks_per_rev)
+
+
+def _old_scale_right(odometry: DiffOdometry) -> float:
+    return _metres_per_tick(odometry._drive.right_radius, odometry._ticks_per_rev)
+
+
 class DiffOdometry:
     """Differential-drive pose from successive wheel encoder counts.
 
@@ -670,6 +702,20 @@ class DiffOdometry:
         "_travel",
     )
     __getstate__ = _odometry_state  # pickle protocols 0 and 1 too
+    # Slots added since a release, for pickles made before (see
+    # navkit._shared.frozen.fill_added_fields): the scalar path's counter range and
+    # metres per tick (908ac92; an older pickle raised AttributeError at its first
+    # update), made from the slots it holds as __init__ makes them. Not annotated:
+    # it would read as a slot's type.
+    _added_fields = MappingProxyType(
+        {
+            "_modulus": _old_modulus,
+            "_low": _old_low,
+            "_high": _old_high,
+            "_scale_left": _old_scale_left,
+            "_scale_right": _old_scale_right,
+        }
+    )
 
     def __init__(
         self,
@@ -706,12 +752,9 @@ class DiffOdometry:
         self._last: tuple[int, int] | None = None
         # For the scalar fast path of update(): the counter range, and metres per
         # tick computed exactly as ticks_to_distance computes them.
-        bits = 64 if self._bits is None else self._bits
-        self._modulus = 1 << bits
-        self._low = max(-(1 << (bits - 1)), _INT64_MIN)
-        self._high = min((1 << bits) - 1, _INT64_END - 1)
-        self._scale_left = 2.0 * math.pi * float(drive.left_radius) / self._ticks_per_rev
-        self._scale_right = 2.0 * math.pi * float(drive.right_radius) / self._ticks_per_rev
+        self._modulus, self._low, self._high = _counter_range(self._bits)
+        self._scale_left = _metres_per_tick(drive.left_radius, self._ticks_per_rev)
+        self._scale_right = _metres_per_tick(drive.right_radius, self._ticks_per_rev)
 
     @property
     def pose(self) -> Pose2D:
