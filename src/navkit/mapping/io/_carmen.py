@@ -348,7 +348,11 @@ def _lines(path: Path, found: list[str] | None = None) -> Iterator[str]:
                 # A UTF-8 byte-order mark (as Windows Notepad writes) is skipped: read
                 # as ASCII it made a first FLASER line an unknown kind, dropped unseen.
                 head = binary.read(len(codecs.BOM_UTF8))
-                if head[:2] in (codecs.BOM_UTF16_LE, codecs.BOM_UTF16_BE):
+                # UTF-32-LE's mark starts as UTF-16-LE's; UTF-32-BE's (00 00 fe ff) does
+                # not (review 51: such a copy read as "no FLASER lines").
+                if head[:2] in (codecs.BOM_UTF16_LE, codecs.BOM_UTF16_BE) or (
+                    head == codecs.BOM_UTF32_BE[:3]
+                ):
                     # Windows PowerShell 5's ">" writes UTF-16 (with its mark): read as
                     # ASCII, every line was an unknown kind ("no FLASER lines").
                     raise ValueError(
