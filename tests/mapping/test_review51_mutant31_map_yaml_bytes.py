@@ -16,7 +16,10 @@ stand-ins. Mutants of it which every test passed, each killed here:
   YAML as UTF-8 only: the image of the other mode it replaces was left behind;
 * a YAML of exactly the size limit (1 MiB) read with ``<`` for ``<=``;
 * the missing image's hint (2d9f061) taking the image's own entry, a dangling
-  symbolic link, for another spelling of the name.
+  symbolic link, for another spelling of the name;
+* the refused value's byte (FRESH's ba737f3) looked for from a value's start
+  to the end of the file: a Latin-1 comment after a clean value and before the
+  refused one was named.
 """
 
 from __future__ import annotations
@@ -169,3 +172,17 @@ def test_a_dangling_link_of_the_image_name_is_no_other_spelling(
         read_map(tmp_path / "map.yaml")
     # No hint: the folder holds no other spelling of the name.
     assert str(info.value).endswith("map.pgm does not exist"), str(info.value)
+
+
+def test_a_comment_between_a_clean_value_and_a_refused_one_is_not_named(
+    shared_data: Path, tmp_path: Path
+) -> None:
+    text = _copy(shared_data, tmp_path)
+    assert text.index(b"resolution:") < text.index(b"negate: 0")
+    edited = text.replace(b"negate: 0", b"# B\xfcro\nnegate: 0\xa0")
+    offset = edited.index(b"\xa0")
+    (tmp_path / "map.yaml").write_bytes(edited)
+    with pytest.raises(
+        ValueError, match=rf"not a map YAML: not UTF-8 text \(byte 0xa0 at offset {offset}\)"
+    ):
+        read_map(tmp_path / "map.yaml")
