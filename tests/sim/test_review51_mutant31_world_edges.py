@@ -6,6 +6,8 @@ pickle's alike. Two mutants of them passed every world test, each killed here:
 * the solid rings keeping only edges that are neither horizontal nor vertical
   (``&`` for ``|`` in the filter of zero-length edges): a LiDAR inside an
   axis-aligned solid box then read the box's far walls instead of 0;
+* ``_solid_start`` (an old pickle's only) built without the solid circles:
+  the 908ac92 world the tests load has none;
 * ``_has_edges`` ignoring moving polygons: in a world with an occupancy grid
   and no static edges, a LiDAR then looked through a moving obstacle.
 
@@ -18,6 +20,7 @@ centred at the origin, where the two are the same.
 from __future__ import annotations
 
 import math
+from typing import Any, cast
 
 import numpy as np
 import pytest
@@ -66,3 +69,24 @@ def test_a_polygon_in_an_off_centre_circular_room_is_its_farthest_vertex(
     far = max(math.hypot(x + c * vx - s * vy - cx, y + s * vx + c * vy - cy) for vx, vy in _SQUARE)
     world = World([Circle((cx, cy), r, solid=False)])
     assert world.clearance(_SQUARE, pose) == pytest.approx(r - far, rel=1e-12)
+
+
+ADDED = ("_solid_rings", "_solid_start", "_solid_items", "_has_edges", "_edges_only")
+
+
+def test_a_world_state_without_its_added_slots_loads_with_its_solid_circles() -> None:
+    fresh = World(
+        [Circle((1.0, 1.0), 0.4), Circle((2.6, 1.4), 0.3), box(0.0, 0.0, 4.0, 3.0).exterior]
+    )
+    instance, slots = cast("tuple[Any, dict[str, Any]]", fresh.__getstate__())
+    old = World.__new__(World)
+    old.__setstate__((instance, {k: v for k, v in slots.items() if k not in ADDED}))
+    for name in ADDED[:3]:
+        np.testing.assert_array_equal(getattr(old, name), getattr(fresh, name))
+        assert not getattr(old, name).flags.writeable
+    for pose in [(1.0, 1.0, 0.0), (2.6, 1.4, 1.0), (1.8, 1.2, -0.5)]:
+        np.testing.assert_array_equal(
+            old.raycast(pose, ANGLES, range_max=6.0), fresh.raycast(pose, ANGLES, range_max=6.0)
+        )
+    inside = old.raycast((2.6, 1.4, 0.0), ANGLES, range_max=6.0)
+    np.testing.assert_array_equal(inside, np.zeros(ANGLES.shape))
