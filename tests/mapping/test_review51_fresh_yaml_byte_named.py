@@ -74,3 +74,17 @@ def test_a_yaml_with_tabs_between_tokens_is_still_refused(tmp_path: Path) -> Non
     data = b"image:\tb\xfcro.pgm\nmode:\ttri\xe4r\nresolution: 0.05\norigin: [0, 0, 0]\n" + _REST
     message = _refusal(tmp_path, data)
     assert re.search(r"\(byte 0x(fc|e4) at offset \d+\)", message), message
+
+
+def test_a_yaml_error_below_a_latin1_comment_is_told_as_in_utf8(tmp_path: Path) -> None:
+    # A list left open: the YAML's own error, at its line, as for the same file with
+    # its comment in UTF-8 (it blamed the comment's accepted byte instead).
+    body = b"image: m.pgm\nresolution: 0.05\norigin: [0, 0, 0]\nnegate: [0\n" + _REST[10:]
+    messages = []
+    for comment in ("# Karte Büro\n".encode("latin-1"), "# Karte Büro\n".encode()):
+        (tmp_path / "map.yaml").write_bytes(comment + body)
+        with pytest.raises(ValueError) as info:
+            read_map(tmp_path / "map.yaml")
+        messages.append(str(info.value))
+    assert messages[0] == messages[1], messages
+    assert re.search(r"map\.yaml:5: expected 'key: value' lines", messages[0]), messages[0]

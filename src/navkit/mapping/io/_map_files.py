@@ -281,6 +281,8 @@ def _yaml_text(path: Path) -> tuple[str, str | None]:
 _ESCAPED = {0xDC00 + byte: 0xF700 + byte for byte in range(0x80, 0x100)}
 _UNESCAPED = {v: k for k, v in _ESCAPED.items()}
 _PRIVATE_STAND_INS = re.compile("[\uf780-\uf7ff]")
+#: The stand-ins as the bytes they are, in messages.
+_SHOWN_BYTES = {0xF700 + byte: f"\\x{byte:02x}" for byte in range(0x80, 0x100)}
 _ESCAPED_BYTES = re.compile("[\udc80-\udcff]")
 
 
@@ -303,8 +305,11 @@ def _yaml_entries(path: Path) -> dict[str, Any]:
     readable = text.translate(_ESCAPED)
     try:
         entries = _load_yaml(readable, path)
-    except ValueError:
-        raise ValueError(refusal) from None
+    except ValueError as exc:
+        # PyYAML reads the stand-ins as any letter: this is an error of the YAML
+        # itself, told as for a UTF-8 file (the bytes shown as such). Blaming the
+        # bytes named a Latin-1 comment for a list left open lines below (review 51).
+        raise ValueError(str(exc).translate(_SHOWN_BYTES)) from None
     for key in _KEYS - {"image"}:
         value = entries.get(key)
         for item in value if isinstance(value, list) else [value]:
