@@ -811,6 +811,12 @@ def restore_slots(
         Old slot names and the slots they are stored in now, for pickles made
         before a rename (an attribute that became a read-only property).
 
+    Raises
+    ------
+    ValueError
+        ``state`` names an attribute the object cannot hold (a slot the class
+        dropped since the pickle was made, not mapped by ``renamed``).
+
     Notes
     -----
     Slots the class gained after a release are named in its ``_added_fields``,
@@ -843,7 +849,17 @@ def restore_slots(
             name = renamed.get(name, name)
         if name in read_only and isinstance(value, np.ndarray):
             value.flags.writeable = False
-        object.__setattr__(obj, name, value)
+        try:
+            object.__setattr__(obj, name, value)
+        except AttributeError:
+            # A slot (or attribute) the class no longer has, from a pickle made before
+            # it was dropped or renamed without a ``renamed`` entry: a PotentialField-
+            # Controller pickled before 908ac92 raised AttributeError 'mode' here
+            # (review 51, FRESH), where a record's restore raises this ValueError.
+            raise ValueError(
+                f"{type(obj).__name__} has no attribute {name!r}: this pickle of it was "
+                "made by a release whose attributes differ; build it again"
+            ) from None
     if slots:
         # Slots the class gained after a release: an older pickle leaves them unset,
         # and the first use raised AttributeError (review 51: an AStarPlanner or World
