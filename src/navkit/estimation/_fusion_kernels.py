@@ -113,6 +113,8 @@ bind_numba_names(
 # The batch loop's call of the step by its address, and the online entry's answer of
 # that address (navkit.estimation._step_call, which imports numba: bound when numba
 # loads); with the JIT disabled the step itself, called as Python, and no address.
+# (review 51, FRESH2: call_step raises the step's exception, if any; a cached planar_run
+# made before then is made again.)
 call_step: Any = None
 step_pointer: Any = None
 

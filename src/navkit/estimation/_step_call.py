@@ -15,6 +15,12 @@ call of the linked copy already, LLVM did not inline the step). The pointer is
 that of the step's own function in the online entry's library, which the
 entry returns when asked (:func:`step_pointer`): calling the entry instead
 added a call per row, and the batch loop ran 8-10 % slower.
+
+numba's cache keys a kernel on its own file, so the code these intrinsics make
+is cached with ``_fusion_kernels.py``'s kernels: a change here (the calling
+convention, :data:`STEP_ARGUMENTS`, :data:`STEP_RESULT`) must touch
+``_fusion_kernels.py`` too, or a cached ``planar_run`` made before it is loaded
+and calls the step the old way.
 """
 
 from __future__ import annotations
@@ -23,9 +29,11 @@ from typing import Any
 
 from llvmlite import ir  # type: ignore[import-untyped]
 from numba import extending as _extending
+from numba.core import cgutils as _cgutils
 from numba.core import types
 
 _intrinsic: Any = _extending.intrinsic
+_if_unlikely: Any = _cgutils.if_unlikely  # (untyped in numba)
 
 __all__ = ["STEP_ARGUMENTS", "STEP_RESULT", "call_step", "step_pointer"]
 
@@ -82,11 +90,14 @@ def _call_step_typing(
     def codegen(context: Any, builder: Any, signature: Any, values: Any) -> Any:
         fnty = context.call_conv.get_function_type(STEP_RESULT, STEP_ARGUMENTS)
         step = builder.inttoptr(values[0], ir.PointerType(fnty))
-        # The step never raises (its statuses are values), so numba's status of the
-        # call is not read.
-        _, result = context.call_conv.call_function(
+        status, result = context.call_conv.call_function(
             builder, step, STEP_RESULT, STEP_ARGUMENTS, values[1:]
         )
+        # As numba's own calls of a kernel do: the step's statuses are values and it
+        # raises nowhere today, but a raise would leave the result unwritten, read as
+        # a status and NIS (review 51, FRESH2).
+        with _if_unlikely(builder, status.is_error):
+            context.call_conv.return_status_propagate(builder, status)
         return result
 
     return sig, codegen
