@@ -123,6 +123,22 @@ def jit_outcome(
     return json.loads(done.stdout.strip().splitlines()[-1])
 
 
+#: Put first in a :func:`cold_outcome` script: ``compiled`` then lists, as
+#: ``(module, qualname)``, every function numba compiles (its ``numba:compile``
+#: events; a module numba does not know is "").
+COMPILES_LISTED = """
+from numba.core import event as _event
+compiled = []
+class _CompileListener(_event.Listener):
+    def on_start(self, ev):
+        d = ev.data["dispatcher"]
+        compiled.append((d.py_func.__module__ or "", d.py_func.__qualname__))
+    def on_end(self, ev):
+        pass
+_event.register("numba:compile", _CompileListener())
+"""
+
+
 def cold_outcome(script: str, *, timeout: float = 300) -> Any:
     """The JSON value on the last line ``script`` prints, run with an empty numba cache.
 

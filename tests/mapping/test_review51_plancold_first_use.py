@@ -28,19 +28,10 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from navkit._shared.jit import jit_disabled
 from navkit.mapping._scan_matcher_kernels import interpolate_batch
-from subprocess_probe import cold_outcome
+from subprocess_probe import COMPILES_LISTED, cold_outcome
 
-_FIRST_USE = """
+_FIRST_USE = COMPILES_LISTED + """
 import json
-from numba.core import event
-compiled = []
-class _Listener(event.Listener):
-    def on_start(self, ev):
-        d = ev.data["dispatcher"]
-        compiled.append((d.py_func.__module__ or "", d.py_func.__qualname__))
-    def on_end(self, ev):
-        pass
-event.register("numba:compile", _Listener())
 from navkit.sim import warmup
 warmup(workers=1, only=["mapping"])
 print(json.dumps(compiled))

@@ -37,7 +37,7 @@ from navkit.planning.grid import (
     _search_heap,
 )
 from navkit.planning.grid._distance_field_kernels import DONE, bucket_field, pad_grid
-from subprocess_probe import cold_outcome
+from subprocess_probe import COMPILES_LISTED, cold_outcome
 
 
 def _grid(seed: int, rows: int = 23, cols: int = 17, uniform: bool = False) -> np.ndarray:
@@ -135,18 +135,9 @@ def test_no_kernel_calls_a_comparison_helper(module: object) -> None:
         assert not _names_called(value) & _COMPARISONS, name
 
 
-_FIRST_USE = """
+_FIRST_USE = COMPILES_LISTED + """
 import json
 import numpy as np
-from numba.core import event
-compiled = []
-class _Listener(event.Listener):
-    def on_start(self, ev):
-        d = ev.data["dispatcher"]
-        compiled.append((d.py_func.__module__, d.py_func.__qualname__))
-    def on_end(self, ev):
-        pass
-event.register("numba:compile", _Listener())
 from navkit.planning import distance_field
 costs = np.ones((30, 40))
 costs[5:25, 20] = np.inf

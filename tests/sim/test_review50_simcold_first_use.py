@@ -16,21 +16,12 @@ from __future__ import annotations
 
 import pytest
 
-from subprocess_probe import cold_outcome
+from subprocess_probe import COMPILES_LISTED, cold_outcome
 
-_FIRST_USE = """
+_FIRST_USE = COMPILES_LISTED + """
 import json
 import numpy as np
-from numba.core import event
 from shapely.geometry import box
-compiled = []
-class _Listener(event.Listener):
-    def on_start(self, ev):
-        d = ev.data["dispatcher"]
-        compiled.append((d.py_func.__module__ or "", d.py_func.__qualname__))
-    def on_end(self, ev):
-        pass
-event.register("numba:compile", _Listener())
 from navkit.geometry import Twist2D
 from navkit.kinematics import DiffDrive
 from navkit.mapping import OccupancyGrid
