@@ -60,3 +60,35 @@ def test_a_step_that_returns_is_read_as_before() -> None:
     buf = np.zeros(4)
     assert call(address(), buf, 1) == (5, 2.5)  # type: ignore[operator]
     assert buf[0] == 1.75
+
+
+def test_a_step_with_another_result_is_refused_or_converted() -> None:
+    """A step returning a float status: numba refuses it or converts it, never misreads it.
+
+    numba 0.62 did not check the result of the step it compiled for the
+    pointer, and the call read the float's bits as an int (4616752568008179712
+    for 4.5); later versions convert the result to the declared one.
+    """
+    from numba import njit
+    from numba.core.errors import TypingError
+
+    from navkit.estimation._step_call import call_step, step_pointer
+
+    @njit
+    def step(buf, t, first, count, z0, z1, var0, var1, gate):  # type: ignore[no-untyped-def]
+        return 1.5 * count, z0
+
+    @njit
+    def address():  # type: ignore[no-untyped-def]
+        return step_pointer(step)
+
+    @njit
+    def call(step_address, buf):  # type: ignore[no-untyped-def]
+        return call_step(step_address, buf, 0.5, 2, 3, 1.25, 0.0, 0.0, 0.0, 0.0)
+
+    try:
+        pointer = address()
+    except TypingError as exc:
+        assert "the step returns" in str(exc)
+        return
+    assert call(pointer, np.zeros(4)) == (4, 1.25)  # 4.5 converted as numba converts

@@ -31,6 +31,7 @@ from llvmlite import ir  # type: ignore[import-untyped]
 from numba import extending as _extending
 from numba.core import cgutils as _cgutils
 from numba.core import types
+from numba.core.errors import TypingError as _TypingError
 
 _intrinsic: Any = _extending.intrinsic
 _if_unlikely: Any = _cgutils.if_unlikely  # (untyped in numba)
@@ -59,11 +60,16 @@ def _step_pointer_typing(typingctx: Any, step: Any) -> Any:
     """
     if not isinstance(step, types.Dispatcher):
         return None
+    compiled = step.dispatcher.get_compile_result(STEP_RESULT(*STEP_ARGUMENTS))
+    # A TypingError, not a call of the wrong type, if the step's result changes: numba
+    # 0.62's get_compile_result does not check it (the call read a float status's
+    # bits as an int; review 51, FRESH2), later ones do or convert it.
+    returned = compiled.signature.return_type
+    if returned != STEP_RESULT:
+        raise _TypingError(f"step_pointer: the step returns {returned}, not {STEP_RESULT}")
     sig = types.int64(step)
 
     def codegen(context: Any, builder: Any, signature: Any, values: Any) -> Any:
-        # (A TypingError, not a call of the wrong type, if the step's signature changes.)
-        compiled = step.dispatcher.get_compile_result(STEP_RESULT(*STEP_ARGUMENTS))
         function = context.declare_function(builder.module, compiled.fndesc)
         context.active_code_library.add_linking_library(compiled.library)
         return builder.ptrtoint(function, ir.IntType(64))
