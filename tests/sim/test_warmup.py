@@ -69,7 +69,14 @@ def test_a_step_reports_what_it_compiled_in_a_fresh_cache(tmp_path: Path) -> Non
     )
     again_compiled, again_loaded = done.stdout.splitlines()[:2]
     assert again_compiled == ""
-    assert set(again_loaded.split(",")) == set(compiled.split(","))
+    # The step's own kernels are loaded; helpers they call (navkit._shared.se2's,
+    # compiled once and inlined by LLVM since review 51) are in their callers'
+    # cached code and are not loaded on their own.
+    loaded_again = set(again_loaded.split(","))
+    assert loaded_again <= set(compiled.split(","))
+    geometry = {name for name in compiled.split(",") if name.startswith("navkit.geometry.")}
+    assert geometry
+    assert {name for name in loaded_again if name.startswith("navkit.geometry.")} == geometry
 
 
 def test_in_process_report_and_progress() -> None:
