@@ -44,6 +44,25 @@ def _warm_up(resolution: float, radius: float, planner: PlannerName) -> None:
     )
 
 
+class _TextLoader(yaml.SafeLoader):
+    """PyYAML's safe loader giving numbers, booleans, nulls and dates as their text.
+
+    read_map reads ``image: 017`` (or ``1_000``, ``0x1F``, ``1:20``: numbers to
+    YAML 1.1 only, whose text it keeps, as map_server's yaml-cpp does) as the
+    file ``017``; PyYAML's own loader made it the number 15, so ``--json 017``
+    was not seen to name the map's image and replaced it (review 52, FRESH).
+    """
+
+
+def _scalar_text(loader: _TextLoader, node: yaml.ScalarNode) -> str:
+    """A scalar node's text, whatever YAML 1.1 would resolve it to."""
+    return str(loader.construct_scalar(node))
+
+
+for _tag in ("int", "float", "bool", "null", "timestamp"):
+    _TextLoader.add_constructor(f"tag:yaml.org,2002:{_tag}", _scalar_text)
+
+
 def _check_not_an_input(option: str, output: str | None, map_yaml: str) -> None:
     """Refuse an output (``--plot``, ``--json``) naming the map's YAML or the image it names.
 
@@ -61,7 +80,7 @@ def _check_not_an_input(option: str, output: str | None, map_yaml: str) -> None:
     # not: then an existing output file is refused, not risked (navkit.mapping.io has
     # no public way to ask for the image's name alone).
     try:
-        entries = yaml.safe_load(yaml_path.read_bytes())
+        entries = yaml.load(yaml_path.read_bytes(), Loader=_TextLoader)  # a safe loader
         image = str(entries["image"])
     except (yaml.YAMLError, UnicodeDecodeError, TypeError, KeyError):
         raise ValueError(
