@@ -471,7 +471,9 @@ ndarray, shape (N, 3, 3)
         becomes ``R C Rᵀ`` (``R`` the mounting rotation), except those marked
         "not given" (-1 first), which are kept. Orientations marked "not given"
         (orientation covariance -1 first, REP 145) are kept too, as in the bag
-        (usually all zero), rather than turned into the mounting's inverse.
+        (usually all zero), rather than turned into the mounting's inverse; so
+        is an all-zero orientation whatever its covariance (no rotation: an
+        orientation not given).
 
         Parameters
         ----------
@@ -529,7 +531,11 @@ ndarray, shape (N, 3, 3)
         rot = quaternion_to_matrix(mount)
         # An IMU without an orientation estimate gives a placeholder (all zero); rotating
         # it would fabricate the orientation m⁻¹ behind a still "not given" covariance.
-        no_orientation = self.orientation_covariances[:, 0, 0] == -1.0
+        # An all-zero quaternion is no rotation even where its covariance says it is one
+        # (a BagImu built by hand; read_bag_imu marks them): kept as it is too.
+        no_orientation = (self.orientation_covariances[:, 0, 0] == -1.0) | (
+            self.orientations == 0.0
+        ).all(axis=1)
         orientations = np.where(no_orientation[:, None], self.orientations, rotated.orientations)
 
         def turn(cov: FloatArray) -> FloatArray:
@@ -1624,7 +1630,10 @@ def read_bag_imu(
     -------
     BagImu
         Stamps, orientations, angular velocities, linear accelerations and
-        their 3×3 covariances, in record order.
+        their 3×3 covariances, in record order. A message whose orientation
+        is all zero but whose ``orientation_covariance[0]`` is not -1 has its
+        orientation marked not given (``orientation_covariances[i, 0, 0]`` set
+        to -1, the rest as in the bag), with a ``RuntimeWarning``.
 
     Raises
     ------
@@ -1642,7 +1651,26 @@ def read_bag_imu(
     -----
     RuntimeWarning
         ``skip_nonfinite`` left messages out (how many, the first's index,
-        record time and non-finite field).
+        record time and non-finite field); messages with an all-zero
+        orientation were marked "no orientation" (how many, the first's index
+        and record time).
+
+    Notes
+    -----
+    An IMU without an orientation estimate sends an all-zero quaternion with
+    ``orientation_covariance[0] = -1`` (REP 145, ``sensor_msgs/Imu``'s
+    comments). A driver that leaves the covariance unset sends the zero
+    quaternion with a covariance that claims an orientation; a zero quaternion
+    is no rotation, and read as one it would be yaw 0 (what
+    :func:`navkit.geometry.quaternion_to_yaw` makes of it) and, turned by
+    :meth:`BagImu.to_base`, the mounting's inverse. Such messages are marked
+    "no orientation" as REP 145 asks, so that code honouring the -1 skips
+    them; robot_localization instead fuses them as the identity rotation,
+    with a diagnostic warning. Their angular velocities and accelerations are
+    kept. Non-zero quaternions are kept as in the bag and normalised by
+    whatever reads them (as tf2 and robot_localization do, float32 rounding
+    included); NaN or infinite ones are refused, or left out with
+    ``skip_nonfinite``, as every other non-finite value.
 
     Examples
     --------
@@ -1666,6 +1694,19 @@ def read_bag_imu(
         row[30:39] = np.asarray(m.linear_acceleration_covariance, float).reshape(9)
 
     def convert(name: str, first: Any, rows: FloatArray) -> BagImu:
+        # Found before _finite_rows so that the warning names the message's index among
+        # all the topic's messages, as its errors do; a message it refuses or leaves out
+        # is not counted (rows are this reader's own array, changed in place).
+        unset = (
+            (rows[:, 2:6] == 0.0).all(axis=1)
+            & (rows[:, 12] != -1.0)
+            & np.isfinite(rows[:, 1:]).all(axis=1)
+        )
+        if unset.any():
+            first_unset = int(np.argmax(unset))
+            when = float(rows[first_unset, 0])
+            unmarked.append((int(unset.sum()), int(rows.shape[0]), first_unset, when))
+            rows[unset, 12] = -1.0
         rows = _finite_rows(rows, _IMU_COLUMNS, skip, path, name, skipped)
         n = rows.shape[0]
         arrays = {
@@ -1688,8 +1729,19 @@ def read_bag_imu(
 
     skip = as_bool(skip_nonfinite, "skip_nonfinite")
     skipped: list[_Skipped] = []
+    # (how many, of how many, the first's index and record time)
+    unmarked: list[tuple[int, int, int, float]] = []
     imu = _read_rows(path, topic, IMU_TYPE, 39, fill, convert)
     _warn_skipped(skipped, path, imu.topic)
+    for count, total, index, when in unmarked:
+        warnings.warn(
+            f"{path}: {count} of the {total} messages of {imu.topic} give an all-zero orientation "
+            "quaternion (no rotation) without orientation_covariance[0] = -1, REP 145's "
+            "'no orientation': marked so (orientation_covariances[i, 0, 0] = -1); the "
+            f"first: message {index}, recorded at {when:.9f} s",
+            RuntimeWarning,
+            stacklevel=2,
+        )
     return imu
 
 
