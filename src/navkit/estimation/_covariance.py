@@ -28,6 +28,12 @@ __all__ = [
 
 # Relative tolerance for symmetry and semi-definiteness checks of user matrices.
 _REL_TOL = 1e-9
+# The same for a matrix given in float32 (every entry a float32 value): a product
+# such as J S Jᵀ computed in float32 is asymmetric, and a rank-deficient G Q Gᵀ
+# indefinite, by up to about 2 float32 epsilons of its largest entry (measured
+# for n = 2 to 15); 64 of them (7.6e-6) leave room for larger sums and still
+# refuse any matrix that is not symmetric by intent.
+_FLOAT32_REL_TOL = 64.0 * float(np.finfo(np.float32).eps)
 
 #: Largest magnitude of a covariance entry or a variance (units squared): a standard
 #: deviation of 1e50 leaves 200 orders of magnitude of headroom for the products
@@ -84,18 +90,35 @@ def covariance(value: ArrayLike, name: str, n: int, *, semidefinite: bool = Fals
 
     Positive definiteness is required unless ``semidefinite`` (process noise may
     be zero on some states), with LDLᵀ pivots of at least the smallest normal
-    float (as the filters' kernels need). Tiny asymmetry from rounding is averaged out.
-    Entries must have magnitude <= :data:`MAX_COVARIANCE`.
+    float (as the filters' kernels need). Tiny asymmetry from rounding is averaged out:
+    up to 1e-9 of the largest entry, or 64 float32 epsilons (7.6e-6) of it for a
+    matrix whose entries are all float32 values (a float32 array, or one computed
+    in float32 and stored as float64, as a driver may fill a ROS covariance),
+    whose own rounding is that coarse; the same tolerance bounds a negative
+    eigenvalue when ``semidefinite``. Entries must have magnitude <= :data:`MAX_COVARIANCE`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> P = np.float32([[0.5, 0.1], [0.1000001, 0.2]])  # symmetric to float32 rounding
+    >>> covariance(P, "P0", 2)
+    array([[0.5       , 0.10000005],
+           [0.10000005, 0.2       ]])
+    >>> covariance(P.astype(np.float64) + 1e-12, "P0", 2)  # float64: 1e-9 of 0.5
+    Traceback (most recent call last):
+    ...
+    ValueError: P0 must be symmetric
     """
     arr = as_float_array(value, name, shape=(n, n))
     check_magnitude(arr, name)
     scale = max(float(np.max(np.abs(arr))), 1e-300)
-    if np.max(np.abs(arr - arr.T)) > _REL_TOL * scale:
+    tol = (_FLOAT32_REL_TOL if _float32_values(arr) else _REL_TOL) * scale
+    if np.max(np.abs(arr - arr.T)) > tol:
         raise ValueError(f"{name} must be symmetric")
     # 0.5*a + 0.5*b equals 0.5*(a + b) bit for bit and never overflows.
     arr = np.asarray(0.5 * arr + 0.5 * arr.T, dtype=np.float64)
     if semidefinite:
-        if n and float(np.linalg.eigvalsh(arr)[0]) < -_REL_TOL * scale:
+        if n and float(np.linalg.eigvalsh(arr)[0]) < -tol:
             raise ValueError(f"{name} must be positive semi-definite")
     else:
         try:
@@ -113,6 +136,24 @@ def covariance(value: ArrayLike, name: str, n: int, *, semidefinite: bool = Fals
                 f"{SMALLEST_POSITIVE!r} (a normal float), got a pivot of {pivot!r}"
             )
     return arr
+
+
+def _float32_values(arr: FloatArray) -> bool:
+    """Whether every entry of ``arr`` is a float32 value (its precision is float32's at best).
+
+    Told by the values, not the dtype: the filters convert a float32 matrix to
+    float64 before checking it, and a float32 result stored in a float64 array
+    (a ROS message's covariance) is as coarse.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> _float32_values(np.array([[0.5, 0.1], [0.1, 0.5]])), _float32_values(np.float32([0.1]))
+    (False, True)
+    """
+    # Entries beyond float32's range become inf, not equal: not float32 values.
+    with np.errstate(over="ignore"):
+        return bool(np.array_equal(arr.astype(np.float32), arr))
 
 
 def index_tuple(indices: Iterable[Any], name: str, n: int) -> tuple[int, ...]:

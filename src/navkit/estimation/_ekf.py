@@ -153,6 +153,11 @@ class ExtendedKalmanFilter(GaussianEstimate):
         may lie below zero (at most about ``n**2 * 2.2e-16`` times its largest
         variance; ``A @ A.T`` computed for a tall ``A`` can be such a
         matrix). The gate's exact NIS bounds do not assume more than that.
+        Symmetric up to rounding, as every covariance the filter takes: an
+        asymmetry of at most 1e-9 of the largest entry is averaged out, or of
+        64 float32 epsilons (7.6e-6) when every entry is a float32 value (a
+        matrix computed in float32, whose own rounding is that coarse; that
+        tolerance also bounds a negative eigenvalue of a semi-definite ``Q``).
     angle_states : sequence of int, optional
         Indices of state components that are angles (rad); they are wrapped to
         (-π, π] after every step (keyword-only).
