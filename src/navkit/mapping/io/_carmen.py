@@ -517,10 +517,17 @@ def _odom(tokens: list[str], terminated: bool) -> tuple[float, float, float, flo
     return vals[0], vals[1], vals[2], vals[6]
 
 
-def _parse(log_path: Path) -> tuple[list[_Record], array[float]]:
-    """Every laser line of the log, and its ODOM lines' ``x y theta timestamp`` one after
-    another; errors name the file and line."""
+#: The message names read; a line naming one in another letter case is skipped, as
+#: CARMEN's readers skip it, and named when the log holds no laser line.
+_KINDS = frozenset(("FLASER", "ROBOTLASER1", "ODOM"))
+
+
+def _parse(log_path: Path) -> tuple[list[_Record], array[float], tuple[int, str] | None]:
+    """Every laser line of the log, its ODOM lines' ``x y theta timestamp`` one after
+    another, and the first line whose message name is one of those in another letter
+    case (its number and name, or None); errors name the file and line."""
     records: list[_Record] = []
+    other_case: tuple[int, str] | None = None
     # 32 bytes an ODOM line, not the 150 of a tuple of floats (logs hold 10-20 a scan).
     odometry = array("d")
     number = 0
@@ -548,6 +555,10 @@ def _parse(log_path: Path) -> tuple[list[_Record], array[float]]:
                 records.append(_flaser(number, rest.split(), terminated))
             elif kind == "ROBOTLASER1":
                 records.append(_robotlaser1(number, rest.split(), terminated))
+            elif other_case is None and kind.upper() in _KINDS:
+                # Skipped as CARMEN's readers skip it (they compare names case-sensitively),
+                # but kept to name in the error of a log holding no laser line else.
+                other_case = (number, kind)
     except _LineError as exc:
         _refuse_damaged(lines, compression, log_path, number)
         raise ValueError(f"{log_path}:{number}: malformed {kind} line: {exc}") from None
@@ -556,7 +567,7 @@ def _parse(log_path: Path) -> tuple[list[_Record], array[float]]:
             f"{log_path}: corrupt or truncated {exc.compression} file (after "
             f"{counted(number, 'line')}: {exc})"
         ) from None
-    return records, odometry
+    return records, odometry, other_case
 
 
 def _refuse_damaged(lines: Iterator[str], compression: list[str], path: Path, number: int) -> None:
@@ -636,6 +647,9 @@ def read_carmen(
         text is skipped. Fields are separated by spaces or tabs, and blanks
         before a line's message name are skipped (as MRPT's and GMapping's
         readers do; CARMEN's own playback wants one space after the name).
+        Message names are upper case, matched exactly as CARMEN's readers
+        (and MRPT's and GMapping's) match them: a line starting ``flaser`` is
+        of another kind, skipped as ``PARAM`` or ``SYNC`` lines are.
     range_max : float, optional
         Maximum range of FLASER scans, m, in (``range_min``, 1e9]. Readings
         equal to or beyond it are "no return". By default the largest FLASER
@@ -668,8 +682,9 @@ def read_carmen(
         cut (no newline and nothing after the timestamp), angles in degrees (a field of view
         or beams spanning more than 2π, a start angle beyond ±2π), a maximum
         range beyond 1e9 m (a ROBOTLASER1 line's or, without ``range_max``,
-        the largest FLASER reading); a log without laser lines; a bad
-        ``range_min`` or ``range_max``.
+        the largest FLASER reading); a log without laser lines (naming the
+        first line whose message name is FLASER, ROBOTLASER1 or ODOM in
+        another letter case); a bad ``range_min`` or ``range_max``.
 
     Examples
     --------
@@ -693,9 +708,15 @@ def read_carmen(
         LaserScan(
             np.ones(1), angle_min=0.0, angle_increment=1.0, range_min=rmin, range_max=rmax_user
         )
-    records, odometry = _parse(log_path)
+    records, odometry, other_case = _parse(log_path)
     if not records:
-        raise ValueError(f"{log_path}: no FLASER or ROBOTLASER1 lines")
+        hint = ""
+        if other_case is not None:
+            hint = (
+                f" (line {other_case[0]} starts with {other_case[1]!r}: CARMEN's message "
+                "names are upper case, and its readers take no other)"
+            )
+        raise ValueError(f"{log_path}: no FLASER or ROBOTLASER1 lines{hint}")
 
     flaser_max = rmax_user
     if flaser_max is None:
