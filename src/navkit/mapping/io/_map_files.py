@@ -380,9 +380,11 @@ def _untabbed(text: str, blank: str = " ") -> str:
     YAML 1.2 and map_server's reader (yaml-cpp) take a tab as a blank between
     tokens (``resolution:<TAB>0.05``, a tab before a comment), as hand-edited
     map YAMLs have; PyYAML refuses it ("found character '\\t' that cannot start
-    any token"). A tab in an indent stays: YAML refuses that everywhere. A tab
-    inside a plain scalar (``image: my<TAB>map.pgm``) is the value's own: this
-    changes it, which :func:`_load_tabbed` detects.
+    any token"). A tab in an indent stays: YAML refuses that everywhere (a tab
+    leading a line inside a flow collection is no indent:
+    :func:`_flow_lines_spaced`). A tab inside a plain scalar (``image:
+    my<TAB>map.pgm``) is the value's own: this changes it, which
+    :func:`_load_tabbed` detects.
     """
     lines = []
     for line in text.split("\n"):
@@ -409,6 +411,55 @@ def _blank_lines_spaced(text: str) -> str:
     return _BLANK_LINE.sub(lambda blanks: blanks.group().replace("\t", " "), text)
 
 
+#: A line's leading blanks holding a tab (one attempt a line: linear in the text).
+_TABBED_LEAD = re.compile(r"^ *\t[ \t]*", re.MULTILINE)
+_FLOW_OPEN = (yaml.FlowSequenceStartToken, yaml.FlowMappingStartToken)
+_FLOW_CLOSE = (yaml.FlowSequenceEndToken, yaml.FlowMappingEndToken)
+
+
+def _flow_lines_spaced(text: str) -> str:
+    """``text`` with the tabs leading a line that starts inside a flow collection as spaces.
+
+    Inside ``[...]`` or ``{...}`` a line's leading blanks are separation, not
+    indentation: YAML 1.2 takes tabs among them (after the one space of
+    indent a top-level key's value needs), ruamel.yaml and map_server's
+    yaml-cpp (which eats tabs wherever it skips blanks) read ``origin: [0.0,``
+    continued on a line ``<TAB>0.0, 0.0]``; PyYAML refused it ("found
+    character '\\t' that cannot start any token"). Where such a line starts is
+    found from the flow collections' brackets among the tokens of the text
+    with every line's leading tabs as spaces (the brackets are the same
+    tokens either way: indentation moves no bracket of a flow collection,
+    and no block scalar lies inside one); a line starting outside every flow
+    collection keeps its tabs, an indent that YAML and PyYAML refuse. One for
+    one, so that a character keeps its index (:func:`_tab_in_scalar`).
+    """
+    leads = list(_TABBED_LEAD.finditer(text))
+    if not leads:
+        return text
+    spaced = _TABBED_LEAD.sub(lambda lead: lead.group().replace("\t", " "), text)
+    changes: list[int] = []  # the index of each bracket opening (+) or closing (-) one
+    try:
+        for token in yaml.scan(_untabbed(spaced), Loader=_Loader):
+            if isinstance(token, _FLOW_OPEN):
+                changes.append(token.start_mark.index + 1)
+            elif isinstance(token, _FLOW_CLOSE):
+                changes.append(-token.start_mark.index - 1)
+    except (yaml.YAMLError, RecursionError):
+        return text  # refused as it stands, naming its first tab or problem
+    opened = sorted(i for i in changes if i > 0)
+    closed = sorted(-i for i in changes if i < 0)
+    out = []
+    end = 0
+    for lead in leads:
+        start = lead.start()
+        if bisect_left(opened, start + 1) > bisect_left(closed, start + 1):
+            out.append(text[end:start])
+            out.append(lead.group().replace("\t", " "))
+            end = lead.end()
+    out.append(text[end:])
+    return "".join(out)
+
+
 def _load_tabbed(text: str, path: Path) -> object:
     """``text``, which PyYAML refused for a tab, loaded with its tabs between tokens as blanks.
 
@@ -420,7 +471,7 @@ def _load_tabbed(text: str, path: Path) -> object:
     width moves what follows), the first stands unless one of its tabs lies
     inside a scalar of the document (:func:`_tab_in_scalar`).
     """
-    text = _blank_lines_spaced(text)
+    text = _flow_lines_spaced(_blank_lines_spaced(text))
     narrow = _untabbed(text)
     doc = yaml.load(narrow, Loader=_Loader)
     try:
