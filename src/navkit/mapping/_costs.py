@@ -24,7 +24,11 @@ from navkit.mapping._limits import (
     bounded_float,
     cost_or_inf,
 )
-from navkit.mapping._obstacle_distance import CELL_EPS, obstacle_distance_bands
+from navkit.mapping._obstacle_distance import (
+    CELL_EPS,
+    intended_resolution,
+    obstacle_distance_bands,
+)
 
 __all__ = [
     "FREE_SPACE",
@@ -164,6 +168,13 @@ def _inflate_band(
     np.copyto(cost, dist, casting="unsafe", where=band)
 
 
+def _inscribed(radius: float, resolution: float) -> float:
+    """``radius`` (m) as compared with distances ``d * resolution``: as in cells of the
+    decimal a float32 ``resolution`` above it stands for (see ``reach_cells``)."""
+    intended = intended_resolution(resolution)
+    return radius if intended >= resolution else radius * (resolution / intended)
+
+
 def _check_grid(grid: object) -> OccupancyGrid:
     if not isinstance(grid, OccupancyGrid):
         raise TypeError(f"grid must be an OccupancyGrid, got {type(grid).__name__}")
@@ -249,7 +260,12 @@ def costmap(
       there (``3 * 0.05 == 0.15000000000000002``) and 253 here, and
       :func:`traversal_costs` makes them impassable. The radius gets 1e-9 of
       a cell of slack here, as in :meth:`OccupancyGrid.inflate`, so that
-      both agree on which cells the robot's body reaches.
+      both agree on which cells the robot's body reaches. On a map whose
+      resolution is a float32 (from a ROS message,
+      :func:`~navkit.mapping.io.grid_from_msg`: 0.05 m arrives as
+      0.05000000074505806 m, and 0.15 m is 2.99999996 of its cells) the
+      radius is taken in cells of the decimal the float32 stands for, so
+      that the map is inflated as the same map read from its YAML.
     * Nav2's classic ``InflationLayer`` (every release up to 2025; kept as
       ``LegacyInflationLayer`` since) propagates distances by a breadth-first
       wave, whose distances can only be too long, and which never reaches
@@ -291,7 +307,7 @@ def costmap(
         g.occupied(),
         g.unknown(),
         g.resolution,
-        insc + CELL_EPS * g.resolution,
+        _inscribed(insc, g.resolution) + CELL_EPS * g.resolution,
         infl,
         scale,
         as_bool(inflate_unknown, "inflate_unknown"),

@@ -67,7 +67,11 @@ from navkit.mapping._logodds import (
     logit_bound,
 )
 from navkit.mapping._new_cells_kernel import NewCellsEntry, new_cells_entry
-from navkit.mapping._obstacle_distance import CELL_EPS, obstacle_distance, obstacle_distance_bands
+from navkit.mapping._obstacle_distance import (
+    obstacle_distance,
+    obstacle_distance_bands,
+    reach_cells,
+)
 
 if TYPE_CHECKING:
     from navkit.mapping._scan import LaserScan
@@ -1448,7 +1452,11 @@ class OccupancyGrid:
         A cell is in the mask when its centre lies within ``robot_radius`` (m) of
         the centre of an occupied cell (exact Euclidean distance transform): the
         cells where a robot of that inscribed radius centred there would touch an
-        obstacle. Unknown cells are not obstacles here.
+        obstacle. Unknown cells are not obstacles here. A radius that is a whole
+        number of cells reaches the cells at that distance (with 1e-9 of a cell
+        of slack), also where the resolution is a float32, as in a map from a
+        ROS message: 0.15 m on its 0.05000000074505806 m cells is taken as 3
+        cells, as on the 0.05 m map of its YAML.
 
         Parameters
         ----------
@@ -1479,7 +1487,7 @@ class OccupancyGrid:
         """
         radius = bounded_float(robot_radius, "robot_radius", 0.0, RADIUS_LIMIT, "m")
         occupied = self.occupied()
-        reach = radius / self._resolution + CELL_EPS
+        reach = reach_cells(radius, self._resolution)
         # Band by band: the peak is the mask and a band, not a float64 grid.
         out = np.empty(occupied.shape, dtype=np.bool_)
         for where, dist in obstacle_distance_bands(occupied):
@@ -1563,7 +1571,7 @@ class OccupancyGrid:
         if pts.shape[0] == 0:
             return np.empty((0, 2), dtype=np.int64)
         # The inflation's reach in cells, computed as inflate() computes it.
-        reach = radius / self._resolution + CELL_EPS
+        reach = reach_cells(radius, self._resolution)
         k = math.floor(reach)
         rows, cols = self.shape
         cells = self._cells(pts)

@@ -317,6 +317,9 @@ def grid_from_msg(msg: Any) -> OccupancyGrid:
     the same map read from its YAML (:func:`~navkit.mapping.io.read_map`,
     0.05 exactly) to within ``width × 7.5e-10`` m, but a point lying exactly on
     a cell boundary of one may fall in the neighbouring cell of the other.
+    Radii (``OccupancyGrid.inflate``, ``cells_near``, ``costmap``, a planner's
+    ``robot_radius``) are taken in cells of the decimal the float32 stands for:
+    0.15 m is 3 cells of either map, and both are inflated alike.
     ``info.origin.position.z`` is ignored. (Nav2's map_saver writes the yaw of
     any orientation, and its costmaps ignore the orientation: a tilted map
     there is silently projected or mirrored.)
