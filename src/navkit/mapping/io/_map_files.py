@@ -214,6 +214,26 @@ def _as_float(value: Any, key: str, path: Path) -> float:
     return out
 
 
+#: An integer as C's stream extraction reads it with the base left to the text, as
+#: yaml-cpp (map_server's reader) converts a scalar to ``int``: 0x hexadecimal, a
+#: leading 0 octal, else decimal; the whole text, an optional sign first.
+_C_INTEGER = re.compile(r"([+-]?)(?:0[xX]([0-9a-fA-F]{1,8})|(0[0-7]{0,11})|([1-9][0-9]{0,9}))")
+
+
+def _c_int(value: Any) -> int | None:
+    """``value`` as yaml-cpp reads an ``int`` from it (a C ``int``), or None where it fails."""
+    found = _C_INTEGER.fullmatch(str(value)) if isinstance(value, (int, str)) else None
+    if found is None:
+        return None
+    sign, hexadecimal, octal, decimal = found.groups()
+    if hexadecimal is not None:
+        number = int(hexadecimal, 16)
+    else:
+        number = int(octal, 8) if octal is not None else int(decimal)
+    number = -number if sign == "-" else number
+    return number if -(2**31) <= number < 2**31 else None
+
+
 def _as_negate(value: Any, path: Path) -> bool:
     if isinstance(value, bool):
         return value
@@ -221,7 +241,18 @@ def _as_negate(value: Any, path: Path) -> bool:
         return bool(value)
     if isinstance(value, str) and value.lower() in ("0", "1", "true", "false"):
         return value.lower() in ("1", "true")
-    raise ValueError(f"{path}: negate must be 0 or 1, got {_short(value)}")
+    # Refused rather than read as map_server reads it (an integer spelt as C spells
+    # it, any non-zero one negating): 0 and 1 are the values its documentation
+    # gives, and "010" (8 to yaml-cpp) is not a reading a user would guess. The
+    # message says what map_server made of it, for a map written for it.
+    number = _c_int(value)
+    hint = ""
+    if number is not None:
+        hint = (
+            f" (map_server reads it as the integer {number}: "
+            f"{'negated' if number else 'not negated'}; write {int(number != 0)})"
+        )
+    raise ValueError(f"{path}: negate must be 0 or 1, got {_short(value)}{hint}")
 
 
 def _yaml_text(path: Path) -> tuple[str, str | None]:
@@ -639,8 +670,11 @@ def read_map_yaml(path: str | os.PathLike[str]) -> MapMetadata:
         in the other keys' values), a required key is missing, a
         value is out of range (``resolution`` outside [1e-6, 1e6] m, origin x
         or y beyond ±1e9 m, thresholds outside [0, 1] or
-        ``free_thresh >= occupied_thresh``, unknown ``mode``), or the image
-        is a directory, a device or the YAML itself. The message names the file.
+        ``free_thresh >= occupied_thresh``, unknown ``mode``, ``negate`` other
+        than 0, 1, true or false: for ``00``, ``0x1`` or ``2``, which
+        map_server reads as C integers, the message says which and what to
+        write), or the image is a directory, a device or the YAML itself. The
+        message names the file.
 
     Examples
     --------
