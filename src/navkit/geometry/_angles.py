@@ -53,6 +53,14 @@ def wrap_angle(angle: ArrayLike) -> float | NDArray[np.float64]:
         ``math.pi``, removing ``k = 2`` multiples), the exact reduction
         -π + 3.7e-16: 4.9e-16 apart around the circle.
 
+        That difference never exceeds about 1.1 times half the spacing of
+        floats at ``angle`` (the rounding the angle already carries when it is
+        given as a float): 4e-11 rad at 1e6 rad, where floats lie 1.2e-10 rad
+        apart. Beyond about 1e17 rad, where consecutive floats lie more than a
+        turn apart, a float determines no angle at all: the result is some
+        value in (-π, π] (``wrap_angle(1e16)`` is 2.637, the exact reduction
+        2.247, and the floats next to 1e16 are 2 rad away).
+
     Raises
     ------
     TypeError
