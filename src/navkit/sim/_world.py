@@ -93,6 +93,28 @@ MAX_TIME = 1e9
 MAX_EXTEND_SPEED = 1e3
 
 
+def _time_error(name: str, worst: float, shown: str) -> ValueError:
+    """The error for a time beyond ±MAX_TIME s, with advice for an epoch stamp.
+
+    ``worst`` is the largest magnitude given, ``shown`` how the message shows the
+    value (empty: not shown). Times since 1970 (1.7e9 s in 2024, up to 1e10 s) are
+    a recorded track's stamps, most likely (a pedestrian from a bag): a simulation
+    starts at t = 0, so such a track needs its times from its own start.
+
+    Examples
+    --------
+    >>> print(_time_error("times", 1.78e9, ""))
+    times must lie within ±1e+09 s (epoch stamps? a simulation starts at t = 0:
+    give times since the start, times - times[0])
+    """
+    hint = ""
+    if worst <= 1e10:
+        since = "times - times[0]" if name == "times" else "t - t0, t0 the start's stamp"
+        hint = f" (epoch stamps? a simulation starts at t = 0: give times since the start, {since})"
+    got = f", got {shown}" if shown else ""
+    return ValueError(f"{name} must lie within ±{MAX_TIME:g} s{got}{hint}")
+
+
 def _query_time(t: Any, name: str = "t") -> float:
     """A query time within ±MAX_TIME s.
 
@@ -102,7 +124,7 @@ def _query_time(t: Any, name: str = "t") -> float:
     """
     time = finite_float(t, name)
     if abs(time) > MAX_TIME:
-        raise ValueError(f"{name} must lie within ±{MAX_TIME:g} s, got {time}")
+        raise _time_error(name, abs(time), repr(time))
     return time
 
 
@@ -324,8 +346,8 @@ class MovingObstacle:
         if path.shape[0] == 0:
             raise ValueError("path_xy must hold at least one waypoint")
         times = np.array(as_float_array(self.times, "times", shape=(path.shape[0],)), copy=True)
-        if times.size and float(np.max(np.abs(times))) > MAX_TIME:
-            raise ValueError(f"times must lie within ±{MAX_TIME:g} s")
+        if times.size and (worst := float(np.max(np.abs(times)))) > MAX_TIME:
+            raise _time_error("times", worst, "")
         if np.any(np.diff(times) <= 0.0):
             raise ValueError("times must be strictly increasing")
         if not isinstance(self.after, str):
@@ -1051,7 +1073,7 @@ class World:
             return placed[1], placed[2]
         if abs(t) > MAX_TIME:
             # Reached from the LiDAR, which checks only that t is finite.
-            raise ValueError(f"t must lie within ±{MAX_TIME:g} s, got {t}")
+            raise _time_error("t", abs(t), repr(t))
         segs = np.empty_like(self._dyn_base_segs)
         circles = np.empty_like(self._dyn_base_circles)
         place_moving(
