@@ -94,7 +94,14 @@ def _stamp_hint(value: object) -> str | None:
         if hasattr(value, "secs") and hasattr(value, "nsecs"):
             return "a ROS 1 stamp? pass seconds: stamp.to_sec()"
         if hasattr(value, "nanoseconds") and hasattr(value, "seconds_nanoseconds"):
-            return "an rclpy Time? pass seconds: time.nanoseconds * 1e-9"
+            # Not time.nanoseconds * 1e-9: an epoch count of nanoseconds (1.78e18) is
+            # rounded to a float (256 ns apart) before the product, which then lands
+            # a float off (2.4e-7 s) about every other stamp; sec + nsec * 1e-9 is
+            # the correctly rounded stamp, as the bag readers compute it.
+            return (
+                "an rclpy Time? pass seconds: "
+                "sec, nsec = time.seconds_nanoseconds(); sec + nsec * 1e-9"
+            )
     except Exception:  # an attribute that raises: no hint, the caller's error stands
         return None
     return None
