@@ -686,9 +686,29 @@ def transposed_hint(got: tuple[int, ...], want: Sequence[int | None]) -> str:
 
     Column-per-point layouts (MATLAB, some plotting code) are the usual cause;
     the hint is given only when the transpose has exactly the wanted shape.
+    Where points ``(N, 2)`` are wanted, an ``(N, 3)`` array is more often rows
+    of poses ``[x, y, theta]`` (``ScanMapper.trajectory``, ``Trace.poses``,
+    ``BagOdometry.poses``), so that is named first: for two poses, shape
+    ``(2, 3)``, the transpose alone would read them as three wrong points.
+
+    Examples
+    --------
+    >>> transposed_hint((5, 3), (None, 2))
+    ' (rows of poses [x, y, theta]? pass its [:, :2], shape (5, 2))'
+    >>> transposed_hint((2, 7), (None, 2))
+    ' (it looks transposed, one column per item: pass its .T, shape (7, 2))'
     """
     two_d = len(got) == 2 and len(want) == 2 and want[0] is None and want[1] is not None
-    if two_d and got[0] == want[1] and got[1] != want[1]:
+    if not two_d:
+        return ""
+    transposed = got[0] == want[1] and got[1] != want[1]
+    if want[1] == 2 and got[1] == 3:
+        poses = f"rows of poses [x, y, theta]? pass its [:, :2], shape {(got[0], 2)}"
+        if transposed:
+            other = f"or, if it is transposed, one column per item, its .T, shape {got[::-1]}"
+            return f" ({poses}; {other})"
+        return f" ({poses})"
+    if transposed:
         return f" (it looks transposed, one column per item: pass its .T, shape {got[::-1]})"
     return ""
 
