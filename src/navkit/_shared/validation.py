@@ -445,6 +445,30 @@ def _real_array(value: Any, name: str, components: int | None = None) -> FloatAr
         raise TypeError(f"{name} must be numeric array-like: {exc}") from None
 
 
+def _navkit_names(value: object) -> set[str]:
+    """The names of the navkit classes among the bases of ``value``'s type."""
+    return {k.__name__ for k in type(value).__mro__ if k.__module__.startswith("navkit.")}
+
+
+def scan_reading_hint(value: object) -> str:
+    """A hint for a simulated ``ScanReading`` passed where its ``LaserScan`` is wanted, or ``""``.
+
+    A :class:`navkit.sim.Observation`'s ``scan`` is the reading (its ``stamp`` and
+    its ``scan``), not the scan itself, so a controller handing ``obs.scan`` on to
+    a mapper, a matcher or a repulsion was told only that it is not a LaserScan
+    (review 52). Told by the type's name, as :func:`_points_hint` (this layer
+    imports neither class).
+
+    Examples
+    --------
+    >>> scan_reading_hint(3.0)
+    ''
+    """
+    if "ScanReading" in _navkit_names(value):
+        return " (a simulated reading: its .scan is the LaserScan, e.g. obs.scan.scan)"
+    return ""
+
+
 def _points_hint(item: object) -> str:
     """A hint for a navkit ``Path2D`` or ``LaserScan`` passed whole where points are wanted.
 
@@ -453,7 +477,12 @@ def _points_hint(item: object) -> str:
     to ``LocalGrid.from_points``. A subclass (a user's ``Route(Path2D)``) is one
     too: every navkit class among its bases is looked at.
     """
-    names = {k.__name__ for k in type(item).__mro__ if k.__module__.startswith("navkit.")}
+    names = _navkit_names(item)
+    if "ScanReading" in names:
+        return (
+            " (a simulated reading: its .scan is the LaserScan, e.g. obs.scan.scan;"
+            " its end points are reading.scan.to_points(pose))"
+        )
     if "Path2D" in names:
         return " (a whole path: pass path.points, (K, 2) in the frame path.frame names)"
     if "LaserScan" in names:

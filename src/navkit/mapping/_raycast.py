@@ -9,7 +9,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from navkit._shared.deprecation import renamed_keyword
-from navkit._shared.validation import as_bool, finite_float, unpack
+from navkit._shared.validation import as_bool, finite_float, scan_reading_hint, unpack
 from navkit.geometry import Pose2D, as_pose
 from navkit.mapping._grid import OccupancyGrid
 from navkit.mapping._limits import LOGODDS_LIMIT, bounded_float
@@ -158,7 +158,9 @@ def integrate_scan(
     if not isinstance(grid, OccupancyGrid):
         raise TypeError(f"grid must be an OccupancyGrid, got {type(grid).__name__}")
     if not isinstance(scan, LaserScan):
-        raise TypeError(f"scan must be a LaserScan, got {type(scan).__name__}")
+        raise TypeError(
+            f"scan must be a LaserScan, got {type(scan).__name__}" + scan_reading_hint(scan)
+        )
     p = as_pose(pose, "pose")
     h, m = _sensor_model(hit, miss)
     lo, hi = _clamp_pair(clamp)

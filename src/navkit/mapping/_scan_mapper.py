@@ -14,7 +14,7 @@ from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.frozen import restore_slots
 from navkit._shared.locks import one_caller
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import finite_float
+from navkit._shared.validation import finite_float, scan_reading_hint
 from navkit.geometry import Pose2D, as_pose
 from navkit.mapping._grid import OccupancyGrid, grid_origin
 from navkit.mapping._limits import (
@@ -462,7 +462,9 @@ class ScanMapper:
         Pose2D(x=0.0, y=0.0, theta=0.0)
         """
         if not isinstance(scan, LaserScan):
-            raise TypeError(f"scan must be a LaserScan, got {type(scan).__name__}")
+            raise TypeError(
+                f"scan must be a LaserScan, got {type(scan).__name__}" + scan_reading_hint(scan)
+            )
         odom = None if odometry is None else as_pose(odometry, "odometry")
         points = scan_points(scan, self._max_range)
         try:

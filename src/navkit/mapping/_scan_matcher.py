@@ -16,7 +16,7 @@ from navkit._shared.dunders import slot_state
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.text import as_text
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import as_float_array, bounded_int
+from navkit._shared.validation import as_float_array, bounded_int, scan_reading_hint
 from navkit.geometry import Pose2D, as_pose
 from navkit.mapping._grid import OccupancyGrid, _owned_grid
 from navkit.mapping._limits import RANGE_LIMIT, RESOLUTION_MAX, bounded_float
@@ -569,7 +569,9 @@ class ScanMatcher:
         """
         levels = self.pyramid(maps) if isinstance(maps, OccupancyGrid) else _as_levels(maps)
         if not isinstance(scan, LaserScan):
-            raise TypeError(f"scan must be a LaserScan, got {type(scan).__name__}")
+            raise TypeError(
+                f"scan must be a LaserScan, got {type(scan).__name__}" + scan_reading_hint(scan)
+            )
         start = as_pose(guess, "guess")
         return self._match(levels, scan_points(scan, self._max_range), start)
 

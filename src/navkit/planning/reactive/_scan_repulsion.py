@@ -15,6 +15,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from navkit._shared.types import FloatArray
+from navkit._shared.validation import scan_reading_hint
 from navkit.geometry import Pose2D, as_pose
 from navkit.mapping import LaserScan
 from navkit.planning.reactive._limits import (
@@ -110,7 +111,10 @@ def _khatib() -> Callable[..., None]:
 
 def _check_scan(scan: Any) -> LaserScan:
     if not isinstance(scan, LaserScan):
-        raise TypeError(f"scan must be a navkit.mapping.LaserScan, got {type(scan).__name__}")
+        raise TypeError(
+            f"scan must be a navkit.mapping.LaserScan, got {type(scan).__name__}"
+            + scan_reading_hint(scan)
+        )
     return scan
 
 
