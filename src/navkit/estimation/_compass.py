@@ -3,12 +3,14 @@
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import overload
+from types import MappingProxyType
+from typing import Any, overload
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from navkit._shared.dunders import slot_state
+from navkit._shared.frozen import restore_slots
 from navkit._shared.types import FloatArray, RealScalar
 from navkit._shared.validation import as_bool, as_float_array, finite_float
 
@@ -184,6 +186,15 @@ class CompassCalibration:
 
     __slots__ = ("__weakref__", "_correction", "_initial", "_last", "_unwrap")
     __getstate__ = slot_state  # pickle protocols 0 and 1 too
+    # Slots added after a release (navkit._shared.frozen.fill_added_fields). Before
+    # _correction (db2738d) _last held the last yaw unwrapped, not wrapped: unwrapping
+    # the next readings from it with no correction gives them as that release did (the
+    # first lands within π of it), and the state is today's from the next call on.
+    _added_fields = MappingProxyType({"_correction": lambda calibration: 0.0})
+
+    def __setstate__(self, state: Any) -> None:
+        """Restore from a pickle, also one made before the unwrapping's correction."""
+        restore_slots(self, state)
 
     def __init__(self, *, unwrap: bool = False) -> None:
         self._unwrap = as_bool(unwrap, "unwrap")

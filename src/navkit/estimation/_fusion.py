@@ -1046,6 +1046,34 @@ class PlanarFusion(GaussianEstimate):
             return _restore_fusion, args
         return _restore_fusion, args, extra_state(self, below=PlanarFusion)
 
+    def __setstate__(self, state: Any) -> None:
+        """Restore what a subclass adds; migrate a pickle made before the filter reduced itself.
+
+        Pickles made before 1efa428 (1 December 2026) hold the filter's slots of
+        then, Python's default state: loading one raised AttributeError (``_t``,
+        a slot gone) or left the filter without slots of today (``_history``,
+        at its first call). Their estimate, process noise, gates and time are
+        taken into a filter as :class:`PlanarFusion` would build it (its x and y
+        anchored, no step kept), which steps on from there. A subclass's own
+        attributes (the state its pickles add) are restored as Python would.
+        """
+        instance, slots = state if isinstance(state, tuple) else (None, state)
+        if slots and {"_x", "_p", "_q", "_gates"} <= slots.keys():
+            if "_t" in slots:  # before the filter time moved into the buffer (f96b926)
+                t = slots["_t"]
+            else:
+                t = float(np.asarray(slots["_buf"], dtype=np.float64).reshape(-1)[k.BUF_TIME])
+            x = np.array(slots["_x"], dtype=np.float64).reshape(6)
+            q = np.array(slots["_q"], dtype=np.float64).reshape(6, 6)
+            t0 = None if t is None or math.isnan(t) else float(t)
+            buf, anchor = _start_buffer(x, slots["_p"], t0, q=q)
+            self._adopt(buf, np.array(slots["_gates"], dtype=np.float64).reshape(5), anchor)
+            return
+        if instance:
+            self.__dict__.update(instance)
+        for name, value in (slots or {}).items():
+            object.__setattr__(self, name, value)
+
     @property
     def _entries(self) -> list[_Entry]:
         """The steps kept for ``history``, oldest first (a new list)."""
