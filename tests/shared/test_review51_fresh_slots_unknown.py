@@ -76,9 +76,19 @@ OLD_PICKLE = (
 )
 
 
-def test_a_controller_pickled_before_908ac92_is_refused_naming_it() -> None:
-    with pytest.raises(ValueError, match=r"PotentialFieldController has no attribute 'mode'"):
-        pickle.loads(base64.b64decode("".join(OLD_PICKLE)))
+def test_a_controller_pickled_before_908ac92_loads_its_mode_as_drive() -> None:
+    # It was refused here, naming 'mode', until review 52 (FOUND4) mapped the option's
+    # old name to today's (8c31a76 renamed it, the same values): it loads and steps
+    # as a new controller.
+    from navkit.control import PotentialFieldController
+    from navkit.geometry import Pose2D
+
+    old = pickle.loads(base64.b64decode("".join(OLD_PICKLE)))
+    fresh = PotentialFieldController()
+    assert old.drive == "omni" and repr(old) == repr(fresh)
+    pose, target = Pose2D(0.1, 0.0, 0.0), Pose2D(2.0, 0.0, 0.0)
+    for _ in range(3):
+        assert old.step(pose, target, 0.05) == fresh.step(pose, target, 0.05)
 
 
 @pytest.mark.slow

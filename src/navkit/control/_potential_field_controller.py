@@ -237,6 +237,9 @@ _RENAMED = {
         "max_decel", "max_omega", "max_speed", "stall_radius", "stall_timeout",
     )
 }  # fmt: skip
+# ``mode`` became ``drive`` (8c31a76), the same values: a pickle made before holds it so
+# (review 52: such a controller was refused as it loaded, naming 'mode').
+_RENAMED["mode"] = "_drive"
 
 #: Relative slack of the stall clock. It adds each step's dt, and k steps of a
 #: decimal period sum below k periods (ten of 0.1 s: 0.9999999999999999), which
