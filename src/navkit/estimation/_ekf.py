@@ -23,7 +23,7 @@ from typing import Any, NoReturn
 import numpy as np
 from numpy.typing import ArrayLike
 
-from navkit._shared.frozen import extra_state
+from navkit._shared.frozen import extra_state, restore_extra, restore_slots
 from navkit._shared.types import FloatArray, IntArray
 from navkit._shared.validation import SMALLEST_POSITIVE, as_float_array, positive_float
 from navkit.errors import FilterError
@@ -254,6 +254,33 @@ class ExtendedKalmanFilter(GaussianEstimate):
             return _restore, (self._state.copy(), self._angles)
         extra = extra_state(self, below=ExtendedKalmanFilter)
         return _restore, (self._state.copy(), self._angles, cls), extra
+
+    def __setstate__(self, state: Any) -> None:
+        """Restore what a subclass adds (see ``__reduce__``), or a pickle made before 98b4639.
+
+        Filters pickled before their estimate lived in one array (98b4639, 30
+        November 2026) were pickled attribute by attribute (``_x``, ``_p``,
+        ``_angles``, ``_n`` and a ``_validated`` dict of the last checked Q and
+        R; a ``__dict__`` before 0123de4): they raised AttributeError as they
+        loaded. Their estimate now goes into a filter as the constructor builds
+        one (the checked matrices are checked again at the next step).
+        """
+        instance, slots = state if isinstance(state, tuple) else (state, None)
+        if hasattr(self, "_state"):  # rebuilt by _restore: a subclass's own attributes
+            restore_extra(self, (instance, slots))
+            return
+        held = {**(instance or {}), **(slots or {})}
+        if "_x" not in held or "_p" not in held:
+            raise ValueError(
+                "this pickle of ExtendedKalmanFilter holds no estimate (_x and _p): it "
+                "was not made by navkit; build the filter again"
+            )
+        ExtendedKalmanFilter.__init__(
+            self, held.pop("_x"), held.pop("_p"), angle_states=held.pop("_angles", ())
+        )
+        for name in ("_n", "_validated"):  # recomputed by the constructor and the steps
+            held.pop(name, None)
+        restore_slots(self, held)  # what an old subclass added, refused if not settable
 
     @property
     def dim(self) -> int:
