@@ -1,0 +1,51 @@
+"""Float32 resolutions under their decimal: radii past k cells reach them (review 52, MUTANT32).
+
+PRECISION takes radii in cells of the decimal a float32 resolution stands for
+where the float32 lies above it (0.05), and keeps the float32's own cells
+where it lies below (0.03 is 0.0299999993 as a float32): there, a radius just
+beyond k of those cells reaches the cells k away, which lie within it. Its
+tests gave radii of k decimal cells, reached either way: mutants dividing by
+the decimal there (in ``reach_cells`` and in the costmap's inscribed radius)
+passed them, and left such cells out.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from navkit.mapping import OccupancyGrid, costmap
+
+N = 21
+C = N // 2
+#: Below their decimals as float32s: 0.03 -> 0.029999999329447746, 0.7 -> 0.699999988079071.
+BELOW = [float(np.float32(0.03)), float(np.float32(0.7))]
+
+
+def _disc(k: int) -> np.ndarray:
+    r, c = np.mgrid[0:N, 0:N]
+    out: np.ndarray = (r - C) ** 2 + (c - C) ** 2 <= k * k
+    return out
+
+
+def _grid(resolution: float) -> OccupancyGrid:
+    occ = np.zeros((N, N), dtype=bool)
+    occ[C, C] = True
+    return OccupancyGrid.from_occupancy(occ, resolution=resolution)
+
+
+@pytest.mark.parametrize("resolution", BELOW)
+def test_a_radius_just_beyond_k_cells_inflates_the_cells_k_away(resolution: float) -> None:
+    assert resolution < float(np.format_float_scientific(np.float32(resolution), unique=True))
+    grid = _grid(resolution)
+    for k in (1, 2, 3, 5, 8):
+        radius = k * resolution * (1.0 + 1e-8)
+        np.testing.assert_array_equal(grid.inflate(radius), _disc(k), err_msg=f"k={k}")
+
+
+@pytest.mark.parametrize("resolution", BELOW)
+def test_the_costmap_inscribes_the_cells_k_away(resolution: float) -> None:
+    for k in (1, 2, 3, 5):
+        radius = k * resolution * (1.0 + 1e-8)
+        cost = costmap(_grid(resolution), robot_radius=radius, inflation_radius=2 * radius)
+        np.testing.assert_array_equal(cost >= 253, _disc(k), err_msg=f"k={k}")
