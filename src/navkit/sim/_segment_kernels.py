@@ -340,16 +340,23 @@ def _sweep_static(
     res: float,
     dyn_segs: np.ndarray | None,
     dyn_circles: np.ndarray | None,
+    edges: bool | None,
 ) -> bool:
     """Whether the footprint touches a static obstacle along the step from ``prev``.
 
     Checks poses along the step's arc as the module's docstring says; on
-    contact the pose in ``state`` becomes the first one touching. ``occ`` is
-    None in a world of static segments and circles only (numba then compiles
-    :func:`edge_clearance` alone, as ``run_edge_segment`` does), else the
-    occupancy grid, whose cells count too; ``dyn_segs`` and ``dyn_circles`` are
-    then the moving obstacles' arrays, of which only empty views are used (None
-    with ``occ``).
+    contact the pose in ``state`` becomes the first one touching. ``edges``
+    is True in a world of static segments and circles only (numba then
+    compiles :func:`edge_clearance` alone, as ``run_edge_segment`` does;
+    ``occ``, ``dyn_segs`` and ``dyn_circles`` are None), else None: ``occ`` is
+    the occupancy grid, whose cells count too, and ``dyn_segs`` and
+    ``dyn_circles`` the moving obstacles' arrays, of which only empty views
+    are used. The kind of world is told by ``edges is not None`` because numba
+    decides a test ``x is None`` before typing only where ``x`` is None: a test
+    of ``occ is None`` left the branch for a world without a grid in the grid's
+    variants, which then compiled :func:`edge_clearance` and linked its code
+    into both footprints' ``run_segment`` (review 52: a disc robot in a grid
+    world compiled a kernel it never ran).
     """
     # A bound on the distance any point of the footprint moved over the step, m (not
     # a helper of its own: compiling one costs a tenth of a second on first use).
@@ -364,12 +371,12 @@ def _sweep_static(
         x, y, th = integrate_scalar(prev[0], prev[1], prev[2], vx, vy, om, done / span * dt)
         rest = span - done
         limit = max2(rest, _CONTACT_LIMIT)
-        if occ is None:
+        if edges is not None:
             c = edge_clearance(
                 x, y, th, radius, body_verts, verts, segs, circles, gx0, gy0, h, nx, ny,
                 cell_start, cell_items, limit,
             )  # fmt: skip
-        elif dyn_segs is not None and dyn_circles is not None:
+        elif occ is not None and dyn_segs is not None and dyn_circles is not None:
             # Without the moving obstacles (empty views of their arrays, so that the
             # kernel's one signature serves): their placement holds at the step's end only.
             c = footprint_clearance(
@@ -377,7 +384,7 @@ def _sweep_static(
                 ny, cell_start, cell_items, occ, gox, goy, gcos, gsin, res, dyn_segs[:0],
                 dyn_circles[:0], limit,
             )  # fmt: skip
-        else:  # not reached: the moving obstacles' arrays come with the grid
+        else:  # not reached: the grid and the moving obstacles' arrays come together
             c = 0.0
         if c <= TOUCH:
             state[0] = x
@@ -630,7 +637,7 @@ def run_segment(
         if check_arcs and clearance > TOUCH and _sweep_static(
             state, prev, dt, reach, sweep, radius, body_verts, verts, scratch, segs,
             circles, gx0, gy0, h, nx, ny, cell_start, cell_items, occ, gox, goy, gcos,
-            gsin, res, dyn_segs, dyn_circles,
+            gsin, res, dyn_segs, dyn_circles, None,
         ):  # fmt: skip
             clearance = 0.0
         status = _settle(
@@ -728,7 +735,7 @@ def run_edge_segment(
         if check_arcs and clearance > TOUCH and _sweep_static(
             state, prev, dt, reach, sweep, radius, body_verts, verts, None, segs, circles,
             gx0, gy0, h, nx, ny, cell_start, cell_items, None, 0.0, 0.0, 0.0, 0.0, 0.0,
-            None, None,
+            None, None, True,
         ):  # fmt: skip
             clearance = 0.0
         status = _settle(
