@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import copy
 import math
+from _thread import get_ident
 from collections.abc import Mapping
 from types import MappingProxyType
 from typing import Any, Literal, cast, overload
@@ -306,6 +307,9 @@ class FieldDStar:
     cost update called while another is under way (another thread's, or a
     signal handler's interrupting one in the same thread) raises
     ``RuntimeError`` and changes nothing; the call under way goes on as alone.
+    A copy or pickle made while a call is under way keeps the costs but not
+    the search, which the call is writing: its :meth:`replan` asks for a
+    :meth:`plan` first.
 
     Examples
     --------
@@ -387,7 +391,7 @@ class FieldDStar:
         obstacles: ArrayLike | None = None,
     ) -> None:
         # The calls under way (one at most: see one_caller; not copied or pickled).
-        self._callers: list[tuple[int, str]] = []
+        self._callers: list[tuple[int, str, object]] = []
         arr, _ = checked_costs(costs, corner_nodes=True)
         self._interp = as_bool(interpolate, "interpolate")
         self._lookahead = as_bool(lookahead, "lookahead")
@@ -479,6 +483,17 @@ class FieldDStar:
     def __getstate__(self) -> object:
         """The state pickles and copies take: Python's default, without what is derived.
 
+        Taken as a short call of the planner (calls of other threads starting
+        meanwhile are refused), with its arrays copied under that guard, so
+        that a call starting once this returns, while pickle or ``copy`` reads
+        the state, cannot change them. A copy made while another call is under
+        way (another thread's, or a signal handler's copy inside the main
+        thread's call) keeps the costs but no search: the searches write the
+        search state in place with the GIL released, and such a copy held it
+        half-written (29 of 168 copies taken while another thread planned
+        replanned for ever, holding no GIL; review 52, LONGRUN). Its
+        :meth:`replan` asks for a :meth:`plan` first, as a new planner's does.
+
         Pickle stores each view as an array of its own: ``_g``, ``_rhs`` and the
         heap's slots (columns of the node records) were pickled beside the
         records, and the heap whole although only the slots a search has
@@ -491,9 +506,32 @@ class FieldDStar:
         :meth:`__setstate__` makes them again. Also pickle protocols 0 and 1
         need a ``__getstate__`` (see :func:`slot_state`).
         """
+        # one_caller's guard, written out (its message names a copy).
+        callers = self._callers
+        token = (get_ident(), "__getstate__", object())
+        try:
+            callers.append(token)
+            instance, kept = self._snapshot()
+            if callers[0] is not token:
+                # A call under way: its search may be half-written. The costs stay (a
+                # cost update writes them holding the GIL); the search goes, as if
+                # the copy had never searched (see _reset and __init__).
+                kept.pop("_vals", None)
+                nodes, keys, _ = kept["_heap"]
+                kept["_heap"] = (nodes[:0], keys[:0], 0)
+                kept.update(_clean=True, _km=0.0, _fresh=True, _start=None, _goal=None)
+                kept.update(_cached=None, _lowered=False)
+                kept["_work"] = np.array([0, 0, *_EMPTY_BOX], dtype=np.int64)
+                kept["_changed"] = np.zeros_like(self._changed)
+            return instance, kept
+        finally:
+            callers.remove(token)
+
+    def _snapshot(self) -> tuple[Any, dict[str, Any]]:
+        """:meth:`__getstate__` inside its guard: the state, every array copied."""
         instance, slots = cast("tuple[Any, dict[str, Any]]", slot_state(self))
         kept = {
-            name: value
+            name: value.copy() if isinstance(value, np.ndarray) else value
             for name, value in slots.items()
             if name not in ("_g", "_rhs", "_heap", "_vals", "_callers")
         }
@@ -503,9 +541,9 @@ class FieldDStar:
         used = int(written[-1]) + 1 if written.size else 0
         # (nodes, keys, size): three items, where pickles of earlier versions hold
         # (nodes, keys, pos, size) whole.
-        kept["_heap"] = (nodes[:used], keys[:used], int(size[0]))
+        kept["_heap"] = (nodes[:used].copy(), keys[:used].copy(), int(size[0]))
         if not self._clean:
-            kept["_vals"] = self._vals
+            kept["_vals"] = self._vals.copy()
         return instance, kept
 
     def __setstate__(self, state: Any) -> None:
