@@ -94,7 +94,8 @@ def covariance(value: ArrayLike, name: str, n: int, *, semidefinite: bool = Fals
     up to 1e-9 of the largest entry, or 64 float32 epsilons (7.6e-6) of it for a
     matrix whose entries are all float32 values (a float32 array, or one computed
     in float32 and stored as float64, as a driver may fill a ROS covariance),
-    whose own rounding is that coarse; the same tolerance bounds a negative
+    whose own rounding is that coarse, unless they are all integers (of at most
+    2²⁴, which float32 arithmetic does not round); the same tolerance bounds a negative
     eigenvalue when ``semidefinite``. Entries must have magnitude <= :data:`MAX_COVARIANCE`.
 
     Examples
@@ -139,7 +140,10 @@ def covariance(value: ArrayLike, name: str, n: int, *, semidefinite: bool = Fals
 
 
 def _float32_values(arr: FloatArray) -> bool:
-    """Whether every entry of ``arr`` is a float32 value (its precision is float32's at best).
+    """Whether ``arr`` holds float32 values rounded as float32 arithmetic rounds.
+
+    Every entry a float32 value, not all of them integers of at most 2²⁴ (exact
+    in float32 arithmetic, which rounds none of their products and sums).
 
     Told by the values, not the dtype: the filters convert a float32 matrix to
     float64 before checking it, and a float32 result stored in a float64 array
@@ -150,10 +154,17 @@ def _float32_values(arr: FloatArray) -> bool:
     >>> import numpy as np
     >>> _float32_values(np.array([[0.5, 0.1], [0.1, 0.5]])), _float32_values(np.float32([0.1]))
     (False, True)
+    >>> _float32_values(np.float32([[1e6, 3.0], [4.0, 1e6]]))  # integers: exact in float32
+    False
     """
     # Entries beyond float32's range become inf, not equal: not float32 values.
     with np.errstate(over="ignore"):
-        return bool(np.array_equal(arr.astype(np.float32), arr))
+        if not np.array_equal(arr.astype(np.float32), arr):
+            return False
+    # Integers as large as a float32 is exact for: their products and sums in float32
+    # are exact too, so their asymmetry is not rounding (a float64 P0 [[1e6, 3], [4,
+    # 1e6]] was averaged to 3.5; review 52, FRESH).
+    return not bool(np.all((arr == np.round(arr)) & (np.abs(arr) <= 2.0**24)))
 
 
 def index_tuple(indices: Iterable[Any], name: str, n: int) -> tuple[int, ...]:
