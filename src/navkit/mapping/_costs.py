@@ -102,7 +102,8 @@ def inflation_costs(
     Reproduces ``nav2_costmap_2d::InflationLayer``: occupied cells get 254; cells
     whose centre lies within ``robot_radius`` (Nav2's inscribed radius) of an
     occupied centre get 253; farther cells up to
-    ``ceil(inflation_radius / resolution)`` cells away get
+    ``ceil(inflation_radius / resolution)`` cells away (the resolution a float32
+    stands for: see :func:`intended_resolution`) get
     ``int(252 * exp(-cost_scaling_factor * (d - robot_radius)))``; the rest 0.
     Unknown cells keep 255 unless the inflated cost is >= 253 (or > 0 with
     ``inflate_unknown``). With ``inflate_around_unknown`` unknown cells are
@@ -120,7 +121,11 @@ def inflation_costs(
     """
     if inflate_around_unknown:
         occupied = occupied | unknown
-    max_cells = math.ceil(inflation_radius / resolution)
+    # Nav2's cell_inflation_radius, ceil(inflation_radius / resolution), in cells of
+    # the decimal a float32 resolution stands for: 0.1 m on a 0.01 m map is 10 cells
+    # read from its YAML and was 11 read from a ROS message (float32 0.00999999977),
+    # whose cells sqrt(101) away got costs (review 52, FRESH on aa45556).
+    max_cells = math.ceil(inflation_radius / intended_resolution(resolution))
     cost = np.zeros(occupied.shape, dtype=np.uint8)
     # Band by band: the peak is the result and a band, not a float64 grid.
     for where, dist in obstacle_distance_bands(occupied):
@@ -264,8 +269,11 @@ def costmap(
       resolution is a float32 (from a ROS message,
       :func:`~navkit.mapping.io.grid_from_msg`: 0.05 m arrives as
       0.05000000074505806 m, and 0.15 m is 2.99999996 of its cells) the
-      radius is taken in cells of the decimal the float32 stands for, so
-      that the map is inflated as the same map read from its YAML.
+      radius and ``ceil(inflation_radius / resolution)`` (the cells the
+      inflation reaches) are taken in cells of the decimal the float32
+      stands for, so that the map is inflated as the same map read from its
+      YAML (the decaying costs, computed at the float32's distances, may
+      differ by one where the truncation is that close).
     * Nav2's classic ``InflationLayer`` (every release up to 2025; kept as
       ``LegacyInflationLayer`` since) propagates distances by a breadth-first
       wave, whose distances can only be too long, and which never reaches
