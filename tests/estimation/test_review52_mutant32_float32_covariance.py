@@ -6,6 +6,10 @@ documented 64) passed them. Its check of whether every entry is a float32
 value casts to float32, which overflows for entries beyond float32's range
 (up to ``MAX_COVARIANCE``, 1e100): a mutant without the overflow's silencing
 passed too, and would warn (an error under ``-W error``) for such a matrix.
+A float32 matrix of entries beyond 2**24 (all integers, float32's spacing
+there being 2 or more) keeps the float32 tolerance: only integers float32
+computes exactly get the strict one (fafdb71), which a mutant without the
+bound gave them all.
 """
 
 from __future__ import annotations
@@ -53,3 +57,11 @@ def test_entries_beyond_float32s_range_are_float64_values_without_a_warning() ->
         near = np.array([[1e60, 5e59], [5e59 * (1.0 + 1e-7), 1e60]])
         with pytest.raises(ValueError, match="P0 must be symmetric"):
             ExtendedKalmanFilter(np.zeros(2), near)
+
+
+def test_float32_entries_beyond_2_to_the_24_keep_the_float32_tolerance() -> None:
+    # Variances in mm^2: every entry an integer, 3e7's float32 neighbour 2 above it.
+    p = np.array([[1e8, 3e7], [np.nextafter(_F32(3e7), _F32(np.inf)), 1e8]], dtype=_F32)
+    assert float(p[1, 0]) - float(p[0, 1]) == 2.0  # 2e-8 of the largest entry: > 1e-9
+    ekf = ExtendedKalmanFilter(np.zeros(2), p)
+    assert ekf.P[0, 1] == ekf.P[1, 0] == 3e7 + 1.0

@@ -6,7 +6,9 @@ where it lies below (0.03 is 0.0299999993 as a float32): there, a radius just
 beyond k of those cells reaches the cells k away, which lie within it. Its
 tests gave radii of k decimal cells, reached either way: mutants dividing by
 the decimal there (in ``reach_cells`` and in the costmap's inscribed radius)
-passed them, and left such cells out.
+passed them, and left such cells out. The costmap's reach,
+``ceil(inflation_radius / resolution)`` cells as Nav2's, was tested with whole
+cells only, where a floor passed too: 2.5 cells reach the cells 3 away.
 """
 
 from __future__ import annotations
@@ -49,3 +51,12 @@ def test_the_costmap_inscribes_the_cells_k_away(resolution: float) -> None:
         radius = k * resolution * (1.0 + 1e-8)
         cost = costmap(_grid(resolution), robot_radius=radius, inflation_radius=2 * radius)
         np.testing.assert_array_equal(cost >= 253, _disc(k), err_msg=f"k={k}")
+
+
+@pytest.mark.parametrize("resolution", [0.05, float(np.float32(0.05)), BELOW[0]])
+def test_the_inflation_reaches_the_ceiling_of_its_radius_in_cells(resolution: float) -> None:
+    cost = costmap(_grid(resolution), robot_radius=resolution, inflation_radius=2.5 * resolution)
+    row = cost[C, C : C + 5].tolist()
+    assert row[:2] == [254, 253]
+    assert 0 < row[3] < row[2] < 253  # 3 cells away: within ceil(2.5)
+    assert row[4] == 0
