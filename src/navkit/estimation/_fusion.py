@@ -17,7 +17,13 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from navkit._shared.counts import counted
-from navkit._shared.frozen import extra_state, frozen_setattr, reduce_record, restore_read_only
+from navkit._shared.frozen import (
+    extra_state,
+    frozen_setattr,
+    reduce_record,
+    restore_read_only,
+    restore_slots,
+)
 from navkit._shared.locks import _in_use
 from navkit._shared.times import as_time, as_times
 from navkit._shared.types import BoolArray, FloatArray
@@ -665,6 +671,14 @@ def _fusion_result(
     return result
 
 
+#: The slots of PlanarFusion and its base before the filter reduced itself (1efa428),
+#: from 0123de4 on: what an old pickle holds beside a subclass's own attributes.
+_OLD_SLOTS = frozenset(
+    ("_buf", "_gates", "_kinds", "_odometry_gate", "_odometry_residual", "_p", "_q",
+     "_residuals", "_t", "_work", "_x")
+)  # fmt: skip
+
+
 class PlanarFusion(GaussianEstimate):
     r"""2-D EKF fusing wheel odometry with an IMU (robot_localization in two_d_mode).
 
@@ -1068,6 +1082,10 @@ class PlanarFusion(GaussianEstimate):
             t0 = None if t is None or math.isnan(t) else float(t)
             buf, anchor = _start_buffer(x, slots["_p"], t0, q=q)
             self._adopt(buf, np.array(slots["_gates"], dtype=np.float64).reshape(5), anchor)
+            # What a subclass added (its __dict__, its slots) as Python restores it: the
+            # migration dropped it (review 52, FRESH).
+            added = {name: value for name, value in slots.items() if name not in _OLD_SLOTS}
+            restore_slots(self, (instance, added))
             return
         if instance:
             self.__dict__.update(instance)
