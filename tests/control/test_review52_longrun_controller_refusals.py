@@ -11,7 +11,8 @@ new ones do.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+import sys
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -23,8 +24,10 @@ from navkit.control import (
     PotentialFieldController,
     RegulatedPurePursuit,
 )
-from navkit.errors import NavkitError
 from navkit.mapping import LaserScan
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from refused_twin import offer
 
 _BAD = [math.nan, math.inf, -1.0, 0.0, 1e308, "0.1", None, [1.0, 2.0], np.zeros((2, 2)), 1 + 1j,
         (0.0, 0.0, math.nan), np.array([np.nan, 0.0])]  # fmt: skip
@@ -32,16 +35,6 @@ _PATH = np.column_stack([np.linspace(0.0, 5.0, 50), 0.3 * np.sin(np.linspace(0.0
 _BACK = np.column_stack([np.linspace(0.0, -4.0, 40), 0.1 * np.cos(np.linspace(0.0, 3.0, 40))])
 _SCAN = LaserScan(np.random.default_rng(3).uniform(0.3, 3.0, 72), angle_min=-math.pi,
                   angle_increment=2 * math.pi / 72, range_min=0.05, range_max=5.0)  # fmt: skip
-
-
-def _offer(call: Callable[[Any], object], obj: Any, twin: Any) -> bool:
-    """Give ``obj`` the call; whether it refused it (a value it takes, the twin takes too)."""
-    try:
-        call(obj)
-    except (ValueError, TypeError, NavkitError):
-        return True
-    call(twin)
-    return False
 
 
 def _track(tracker: Any, seed: int, n: int, low: float = -1.0, high: float = 5.0) -> list[bytes]:
@@ -58,10 +51,10 @@ def test_tracker_refusing_bad_input_goes_on_as_its_twin(kind: type[Any]) -> None
     assert _track(tracker, 1, 40) == _track(twin, 1, 40)
     refused = 0
     for bad in _BAD:
-        refused += _offer(lambda t, bad=bad: t.step(bad, 0.05), tracker, twin)
-        refused += _offer(lambda t, bad=bad: t.step((1.0, 0.1, 0.05), bad), tracker, twin)
-        refused += _offer(lambda t, bad=bad: t.set_path(bad), tracker, twin)
-        refused += _offer(lambda t, bad=bad: t.set_path(_PATH, goal_yaw=bad), tracker, twin)
+        refused += offer(lambda t, bad=bad: t.step(bad, 0.05), tracker, twin)
+        refused += offer(lambda t, bad=bad: t.step((1.0, 0.1, 0.05), bad), tracker, twin)
+        refused += offer(lambda t, bad=bad: t.set_path(bad), tracker, twin)
+        refused += offer(lambda t, bad=bad: t.set_path(_PATH, goal_yaw=bad), tracker, twin)
     assert refused > 30
     assert _track(tracker, 2, 40) == _track(twin, 2, 40)
     # A new path after a long run: as a new tracker's.
@@ -90,16 +83,16 @@ def test_potential_field_refusing_bad_input_goes_on_as_its_twin(options: dict[st
     assert _steer(controller, 1, 30) == _steer(twin, 1, 30)
     goal, refused = (2.0, 1.0, 0.3), 0
     for bad in _BAD:
-        refused += _offer(lambda c, bad=bad: c.step(bad, goal, 0.05), controller, twin)
-        refused += _offer(lambda c, bad=bad: c.step((0.1, 0.0, 0.0), bad, 0.05), controller, twin)
-        refused += _offer(lambda c, bad=bad: c.step((0.1, 0.0, 0.0), goal, bad), controller, twin)
-        refused += _offer(
+        refused += offer(lambda c, bad=bad: c.step(bad, goal, 0.05), controller, twin)
+        refused += offer(lambda c, bad=bad: c.step((0.1, 0.0, 0.0), bad, 0.05), controller, twin)
+        refused += offer(lambda c, bad=bad: c.step((0.1, 0.0, 0.0), goal, bad), controller, twin)
+        refused += offer(
             lambda c, bad=bad: c.step((0.1, 0.0, 0.0), goal, 0.05, obstacles=bad), controller, twin
         )
-        refused += _offer(
+        refused += offer(
             lambda c, bad=bad: c.step((0.1, 0.0, 0.0), goal, 0.05, velocity=bad), controller, twin
         )
-        refused += _offer(
+        refused += offer(
             lambda c, bad=bad: c.step((0.1, 0.0, 0.0), goal, 0.05, obstacles=_SCAN, mount=bad),
             controller,
             twin,
