@@ -13,10 +13,16 @@ cells only, where a floor passed too: 2.5 cells reach the cells 3 away.
 
 from __future__ import annotations
 
+import sys
+from pathlib import Path
+
 import numpy as np
 import pytest
 
-from navkit.mapping import OccupancyGrid, costmap
+from navkit.mapping import costmap
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from centred_obstacle import centred_grid, disc
 
 N = 21
 C = N // 2
@@ -24,38 +30,30 @@ C = N // 2
 BELOW = [float(np.float32(0.03)), float(np.float32(0.7))]
 
 
-def _disc(k: int) -> np.ndarray:
-    r, c = np.mgrid[0:N, 0:N]
-    out: np.ndarray = (r - C) ** 2 + (c - C) ** 2 <= k * k
-    return out
-
-
-def _grid(resolution: float) -> OccupancyGrid:
-    occ = np.zeros((N, N), dtype=bool)
-    occ[C, C] = True
-    return OccupancyGrid.from_occupancy(occ, resolution=resolution)
-
-
 @pytest.mark.parametrize("resolution", BELOW)
 def test_a_radius_just_beyond_k_cells_inflates_the_cells_k_away(resolution: float) -> None:
     assert resolution < float(np.format_float_scientific(np.float32(resolution), unique=True))
-    grid = _grid(resolution)
+    grid = centred_grid(N, resolution)
     for k in (1, 2, 3, 5, 8):
         radius = k * resolution * (1.0 + 1e-8)
-        np.testing.assert_array_equal(grid.inflate(radius), _disc(k), err_msg=f"k={k}")
+        np.testing.assert_array_equal(grid.inflate(radius), disc(N, k), err_msg=f"k={k}")
 
 
 @pytest.mark.parametrize("resolution", BELOW)
 def test_the_costmap_inscribes_the_cells_k_away(resolution: float) -> None:
     for k in (1, 2, 3, 5):
         radius = k * resolution * (1.0 + 1e-8)
-        cost = costmap(_grid(resolution), robot_radius=radius, inflation_radius=2 * radius)
-        np.testing.assert_array_equal(cost >= 253, _disc(k), err_msg=f"k={k}")
+        cost = costmap(
+            centred_grid(N, resolution), robot_radius=radius, inflation_radius=2 * radius
+        )
+        np.testing.assert_array_equal(cost >= 253, disc(N, k), err_msg=f"k={k}")
 
 
 @pytest.mark.parametrize("resolution", [0.05, float(np.float32(0.05)), BELOW[0]])
 def test_the_inflation_reaches_the_ceiling_of_its_radius_in_cells(resolution: float) -> None:
-    cost = costmap(_grid(resolution), robot_radius=resolution, inflation_radius=2.5 * resolution)
+    cost = costmap(
+        centred_grid(N, resolution), robot_radius=resolution, inflation_radius=2.5 * resolution
+    )
     row = cost[C, C : C + 5].tolist()
     assert row[:2] == [254, 253]
     assert 0 < row[3] < row[2] < 253  # 3 cells away: within ceil(2.5)

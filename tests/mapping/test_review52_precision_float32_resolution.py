@@ -16,6 +16,8 @@ whose offsets satisfy ``dr² + dc² <= k²``.
 
 from __future__ import annotations
 
+import sys
+from pathlib import Path
 from types import SimpleNamespace
 
 import numpy as np
@@ -24,24 +26,14 @@ import pytest
 from navkit.mapping import OccupancyGrid, costmap
 from navkit.mapping.io import grid_from_msg
 
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from centred_obstacle import centred_grid, disc
+
 # Resolutions of real maps; the float32 of most lies above the decimal (0.05, 0.1,
 # 0.2, 0.025), which is what put whole-cell radii short of their cells.
 DECIMALS = [0.01, 0.02, 0.025, 0.03, 0.05, 0.1, 0.15, 0.2, 0.25, 0.3, 0.5, 1.0]
 N = 31  # grid side; the obstacle at its centre
 C = N // 2
-
-
-def _disc(k: int) -> np.ndarray:
-    """Cells within ``k`` cells of the centre, by exact integer arithmetic."""
-    r, c = np.mgrid[0:N, 0:N]
-    out: np.ndarray = (r - C) ** 2 + (c - C) ** 2 <= k * k
-    return out
-
-
-def _grid(resolution: float) -> OccupancyGrid:
-    occ = np.zeros((N, N), dtype=bool)
-    occ[C, C] = True
-    return OccupancyGrid.from_occupancy(occ, resolution=resolution)
 
 
 def _float32(value: float) -> float:
@@ -52,10 +44,10 @@ def _float32(value: float) -> float:
 def test_whole_cell_radii_reach_their_cells_at_float32_resolutions(decimal: float) -> None:
     short = []
     for resolution in (decimal, _float32(decimal)):
-        grid = _grid(resolution)
+        grid = centred_grid(N, resolution)
         for k in range(1, C + 1):
             radius = k * decimal  # what a user writes: 0.15 for 3 cells of 0.05 m
-            want = _disc(k)
+            want = disc(N, k)
             got = grid.inflate(radius)
             if not np.array_equal(got, want):
                 short.append((resolution, k, int(want.sum() - got.sum())))
@@ -71,8 +63,10 @@ def test_the_costmap_inscribes_the_same_cells_at_float32_resolutions(decimal: fl
     for k in (1, 2, 3, 4, 7):
         radius = k * decimal
         for resolution in (decimal, _float32(decimal)):
-            cost = costmap(_grid(resolution), robot_radius=radius, inflation_radius=2 * radius)
-            np.testing.assert_array_equal(cost >= 253, _disc(k), err_msg=f"{resolution} {k}")
+            cost = costmap(
+                centred_grid(N, resolution), robot_radius=radius, inflation_radius=2 * radius
+            )
+            np.testing.assert_array_equal(cost >= 253, disc(N, k), err_msg=f"{resolution} {k}")
 
 
 @pytest.mark.parametrize("decimal", DECIMALS)
@@ -81,7 +75,7 @@ def test_radii_short_of_a_cell_still_stop_short_of_it(decimal: float) -> None:
     # the cells exactly k cells away (dr² + dc² = k², e.g. (k, 0)).
     r, c = np.mgrid[0:N, 0:N]
     for resolution in (decimal, _float32(decimal)):
-        grid = _grid(resolution)
+        grid = centred_grid(N, resolution)
         for k in range(1, C + 1):
             got = grid.inflate(k * resolution * (1.0 - 1e-6))
             np.testing.assert_array_equal(got, (r - C) ** 2 + (c - C) ** 2 < k * k)
