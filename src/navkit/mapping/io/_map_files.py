@@ -317,6 +317,21 @@ _SHOWN_BYTES = {0xF700 + byte: f"\\x{byte:02x}" for byte in range(0x80, 0x100)}
 _ESCAPED_BYTES = re.compile("[\udc80-\udcff]")
 
 
+def _printable(text: str) -> str:
+    """``text`` with the bytes that were not UTF-8 (surrogate escapes) shown as escapes.
+
+    A message naming a file whose name is not UTF-8 (a Latin-1 image name in the
+    YAML, kept as surrogate escapes by :func:`_yaml_entries`) must still print
+    and log: ``str(exc).encode("utf-8")`` raised UnicodeEncodeError on them.
+
+    Examples
+    --------
+    >>> _printable(b"dir\\xfc".decode("utf-8", "surrogateescape"))
+    'dir\\\\udcfc'
+    """
+    return text.encode("utf-8", "backslashreplace").decode("utf-8")
+
+
 def _yaml_entries(path: Path) -> dict[str, Any]:
     """The keys and values of the map YAML ``path``, read as map_server reads its bytes.
 
@@ -709,7 +724,7 @@ def read_map_yaml(path: str | os.PathLike[str]) -> MapMetadata:
         raise _missing_image(yaml_path, image, image_path) from None
     if not stat.S_ISREG(image_stat.st_mode):
         kind = "a directory" if stat.S_ISDIR(image_stat.st_mode) else "not a regular file"
-        raise ValueError(f"{yaml_path}: map image {image_path} is {kind}")
+        raise ValueError(_printable(f"{yaml_path}: map image {image_path} is {kind}"))
     if os.path.samestat(image_stat, yaml_path.stat()):
         raise ValueError(f"{yaml_path}: the image key names the YAML file itself ({image!r})")
 
@@ -771,7 +786,7 @@ def _missing_image(yaml_path: Path, image: str, image_path: Path) -> FileNotFoun
     elif _ESCAPED_BYTES.search(image):
         # Bytes that are not UTF-8 (_yaml_entries): shown escaped, so that the
         # message can be printed and logged.
-        shown = shown.encode("utf-8", "backslashreplace").decode("utf-8")
+        shown = _printable(shown)
         latin = image.encode("utf-8", "surrogateescape").decode("latin-1")
         hint = (
             f" (the name's bytes that are not UTF-8 were looked up as written; read as "
@@ -1817,7 +1832,7 @@ def read_map(path: str | os.PathLike[str]) -> OccupancyGrid:
         try:
             image = _image_from(fh, meta.image)
         except ValueError as exc:
-            raise ValueError(f"{path}: map image {exc}") from None
+            raise ValueError(_printable(f"{path}: map image {exc}")) from None
     rows = image.height
     logodds = np.empty((rows, image.width), dtype=np.float32)
     step = max(1, _READ_BLOCK_PIXELS // image.width)
