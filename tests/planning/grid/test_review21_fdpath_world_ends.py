@@ -35,6 +35,7 @@ def _grids(draw: st.DrawFn) -> NDArray[np.float64]:
     seed = draw(st.integers(0, 2**32 - 1))
     rng = np.random.default_rng(seed)
     costs = rng.choice([1.0, 1.0, 2.5, 7.0, np.inf], size=(rows, cols))
+    costs[draw(st.integers(0, rows - 1)), draw(st.integers(0, cols - 1))] = 1.0  # one free
     return np.asarray(costs, dtype=np.float64)
 
 
@@ -48,18 +49,31 @@ _ORIGINS = st.tuples(
 
 
 def _point(draw: Any, planner: FieldDStar, costs: NDArray[np.float64]) -> tuple[float, float]:
-    """A world point inside a passable cell: some on a decimal lattice, some anywhere."""
+    """A world point inside a passable cell: some on a decimal lattice, some anywhere.
+
+    The cell is drawn among the passable ones, and a point rounded out of them
+    keeps its digits: drawn anywhere and filtered, the inputs failed
+    hypothesis's filter_too_much health check now and then (review 52).
+    """
     rows, cols = costs.shape
+
+    def passable(xy: NDArray[np.float64]) -> bool:
+        p = planner.world_to_node(xy, continuous=True)
+        r, c = math.floor(p[0]), math.floor(p[1])
+        return 0 <= r < rows and 0 <= c < cols and math.isfinite(costs[r, c])
+
+    free = np.argwhere(np.isfinite(costs))
+    row, col = free[draw(st.integers(0, free.shape[0] - 1))]
     node = (
-        draw(st.floats(0.0, float(rows), exclude_max=True)),
-        draw(st.floats(0.0, float(cols), exclude_max=True)),
+        float(row) + draw(st.floats(0.0, 1.0, exclude_max=True)),
+        float(col) + draw(st.floats(0.0, 1.0, exclude_max=True)),
     )
     xy = planner.node_to_world(node)
     if draw(st.booleans()):
-        xy = np.round(xy, draw(st.integers(1, 3)))  # as a user types them
-    p = planner.world_to_node(xy, continuous=True)
-    r, c = math.floor(p[0]), math.floor(p[1])
-    assume(0 <= r < rows and 0 <= c < cols and math.isfinite(costs[r, c]))
+        rounded = np.round(xy, draw(st.integers(1, 3)))  # as a user types them
+        if passable(rounded):
+            xy = rounded
+    assume(passable(xy))  # a point on a cell's edge may round into its neighbour
     return float(xy[0]), float(xy[1])
 
 
