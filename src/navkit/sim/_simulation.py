@@ -384,8 +384,14 @@ class Simulation:
         controller is done), ``reached`` False. The simulator cannot see that
         distance: a ``PotentialFieldController``'s attraction rests the robot
         off the goal (3.75 mm with the default ``BlendedAttraction``; its own
-        ``goal_tolerance`` must exceed that distance), a path tracker stops
-        within its ``goal_tolerance``. Give at least the controller's.
+        ``goal_tolerance`` must exceed that distance), a path tracker is done
+        within its own ``goal_tolerance`` on exact wheels (down to 1e-9 m), but
+        on slipping or acceleration-limited wheels (``Robot(wheel_slip=,
+        max_wheel_acceleration=)``) one that turns in place near the goal may
+        turn and creep about it for ever, never done, below the distance such a
+        turn (or an overshoot of a ramping wheel) moves the robot: micrometres
+        to a millimetre in the control guide's runs. Give at least the
+        controller's, and one the robot can hold.
     yaw_tolerance : float, optional
         With a goal heading: also require the heading within this, rad, in
         (0, π].
