@@ -14,6 +14,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from navkit._shared.costs import validate_costs as _validate_costs
+from navkit._shared.float32 import intended_resolution
 from navkit._shared.types import BoolArray, FloatArray
 from navkit._shared.validation import as_bool
 from navkit.mapping._grid import OccupancyGrid
@@ -24,11 +25,7 @@ from navkit.mapping._limits import (
     bounded_float,
     cost_or_inf,
 )
-from navkit.mapping._obstacle_distance import (
-    CELL_EPS,
-    intended_resolution,
-    obstacle_distance_bands,
-)
+from navkit.mapping._obstacle_distance import CELL_EPS, obstacle_distance_bands
 
 __all__ = [
     "FREE_SPACE",

@@ -735,7 +735,9 @@ class OccupancyGrid:
             each rounded up to a whole cell (at least one; a ratio within 1e-9
             of an integer, or within its float rounding, a few ulps, is not
             rounded up: ``width = n * resolution`` gives ``n`` columns for any
-            ``n``), every log-odds 0 (unknown).
+            ``n``), every log-odds 0 (unknown). A float32 ``resolution`` (a
+            ROS message's) counts cells of the decimal it stands for: 10 m at
+            ``float(np.float32(0.01))`` are 1000 cells, as at 0.01.
 
         Raises
         ------

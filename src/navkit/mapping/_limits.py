@@ -37,6 +37,7 @@ from typing import Any
 import numpy as np
 
 from navkit._shared.counts import bytes_text
+from navkit._shared.float32 import intended_resolution
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import finite_float, refuse_masked
 
@@ -77,6 +78,7 @@ SCALING_LIMIT = 1e12
 #: Cell indices are clamped to ±CELL_INDEX_LIMIT (far outside any grid) so that
 #: points far away never overflow an int64.
 CELL_INDEX_LIMIT = float(2**62)
+
 
 def cells_text(cells: float, bytes_per_cell: int = 4, dtype: str = "float32") -> str:
     """``"1e+18 cells (3.47 EiB of float32)"``: a size for error messages."""
@@ -147,9 +149,12 @@ def _cell_count(extent: float, resolution: float) -> float:
     A ratio within 1e-9 cells of an integer, or within the rounding of the
     division (a few ulps of the ratio: 3e-8 cells for 2**28), is not rounded
     up, so that ``extent = n * resolution`` gives ``n`` cells however long the
-    grid is.
+    grid is. Cells of a float32 resolution are counted as cells of the decimal
+    it stands for (:func:`~navkit._shared.float32.intended_resolution`):
+    10 m at a ROS message's 0.01 m (0.009999999776482582) are 1000 cells, as
+    at the YAML's 0.01, where the float32 itself gave 1001.
     """
-    n = extent / resolution
+    n = extent / intended_resolution(resolution)
     if not n < 1e18:
         return math.inf if not math.isfinite(n) else n
     return float(max(1, math.ceil(n - (1e-9 + _COUNT_ULPS * n))))

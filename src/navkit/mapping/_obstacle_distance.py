@@ -14,13 +14,13 @@ from collections.abc import Iterator
 
 import numpy as np
 
+from navkit._shared.float32 import intended_resolution
 from navkit._shared.types import BoolArray, FloatArray
 from navkit.mapping._edt_kernels import band_distances
 
 __all__ = [
     "CELL_EPS",
     "Band",
-    "intended_resolution",
     "obstacle_distance",
     "obstacle_distance_bands",
     "reach_cells",
@@ -32,29 +32,6 @@ Band = tuple[slice, slice]
 #: Distances compared against radii get this slack (in cells) so that radii that
 #: are exact multiples of the resolution include the cells at that distance.
 CELL_EPS = 1e-9
-
-
-def intended_resolution(resolution: float) -> float:
-    """The decimal a float32 ``resolution`` stands for; any other resolution itself.
-
-    ``nav_msgs/OccupancyGrid`` carries the resolution as a float32: a 0.05 m map
-    arrives at 0.05000000074505806 m (:func:`navkit.mapping.io.grid_from_msg`
-    keeps it so). A resolution that is a float32 value is taken to stand for
-    the shortest decimal that float32 rounds to it (0.05): the radius a user
-    gives in cells of that decimal (0.15 m, 3 cells) must reach as many cells
-    of the float32 (2.99999996 of them).
-
-    Examples
-    --------
-    >>> intended_resolution(float(np.float32(0.05))), intended_resolution(0.05)
-    (0.05, 0.05)
-    >>> intended_resolution(0.5)
-    0.5
-    """
-    single = np.float32(resolution)
-    if float(single) != resolution:
-        return resolution
-    return float(np.format_float_scientific(single, unique=True))
 
 
 def reach_cells(radius: float, resolution: float) -> float:

@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from navkit._shared.float32 import narrow_float_dtype
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.types import BoolArray, FloatArray
 from navkit._shared.validation import as_float_array, finite_float
@@ -42,6 +43,24 @@ def _check_angles(angle_min: float, increment: float, n: int) -> None:
             raise ValueError(f"{name} ({text} rad) lies beyond ±2π: {hint}")
 
 
+def _at_limits(ranges: FloatArray, narrow: np.dtype[Any], rmin: float, rmax: float) -> None:
+    """Readings of a float32 (or float16) array equal to ``range_min`` or ``range_max``
+    in that precision become them, in place (``ranges``: the scan's own copy).
+
+    A driver writing ``range_max`` for "no return" into a float32 array writes
+    it rounded (5.6 as 5.599999904632568): compared with a float64
+    ``range_max`` of 5.6 it read as a return 5.6 m away, and mapping marked an
+    obstacle at every such beam's end (review 53). A ``range_min`` rounded down
+    (0.7 as 0.699999988) read as too close likewise.
+    """
+    with np.errstate(over="ignore", under="ignore"):  # float16 holds up to 65504 m
+        low, high = float(narrow.type(rmin)), float(narrow.type(rmax))
+    if math.isfinite(low) and low != rmin:
+        ranges[ranges == low] = rmin
+    if math.isfinite(high) and high != rmax:
+        ranges[ranges == high] = rmax
+
+
 def _readonly(arr: NDArray[Any]) -> NDArray[Any]:
     arr.flags.writeable = False
     return arr
@@ -57,7 +76,11 @@ class LaserScan:
     within range, ``-inf`` too close, NaN an invalid measurement. A reading is
     *valid* (a real return) when it is finite and ``range_min <= r < range_max``;
     a reading equal to ``range_max`` is treated as "no return", as most drivers
-    and CARMEN logs report it. ROS messages convert with
+    and CARMEN logs report it. Ranges given as float32 (or float16) are compared
+    in their precision: a reading equal to ``range_max`` (or ``range_min``)
+    rounded to that dtype, as a driver writes it, is stored as ``range_max``
+    (``range_min``) itself, so that 5.6 m written into a float32 array (5.5999999)
+    is "no return" for a ``range_max`` of 5.6 too. ROS messages convert with
     :func:`navkit.mapping.io.scan_from_msg`. A driver that writes ``0`` for
     "no return" needs ``range_min > 0`` (the sensor's real minimum range):
     with ``range_min=0`` a zero reading is a valid return at the sensor
@@ -132,6 +155,7 @@ class LaserScan:
 
     def __post_init__(self) -> None:
         ranges = np.array(as_float_array(self.ranges, "ranges", ndim=1, finite=False), copy=True)
+        narrow = narrow_float_dtype(self.ranges)
         if ranges.shape[0] == 0:
             raise ValueError("ranges must hold at least one beam")
         object.__setattr__(self, "ranges", _readonly(ranges))
@@ -148,6 +172,10 @@ class LaserScan:
             raise ValueError(f"range_max ({rmax}) must be greater than range_min ({rmin})")
         object.__setattr__(self, "range_min", rmin)
         object.__setattr__(self, "range_max", rmax)
+        if narrow is not None:
+            ranges.flags.writeable = True  # the scan's own copy, frozen again next
+            _at_limits(ranges, narrow, rmin, rmax)
+            ranges.flags.writeable = False
         if self.intensities is not None:
             inten = np.array(
                 as_float_array(self.intensities, "intensities", ndim=1, finite=False), copy=True

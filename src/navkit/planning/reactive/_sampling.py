@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING, Literal, overload
 import numpy as np
 from numpy.typing import ArrayLike
 
+from navkit._shared.float32 import intended_resolution, narrow_float_dtype
 from navkit._shared.frozen import frozen_setattr, reduce_record
 from navkit._shared.grid_coords import CELL_LIMIT, as_pairs, inside, one_or_many
 from navkit._shared.types import BoolArray, FloatArray, IntArray
@@ -42,6 +43,9 @@ _BLOCK_CELLS = 2**14
 # Relative rounding allowed in a centre axis' spacing: 8 float64 epsilons (the
 # rounding of lo + (k + ½)·resolution is at most about 3).
 _AXIS_ULPS = 8.0 * float(np.finfo(np.float64).eps)
+# The coarsest rounding (an ulp of the largest coordinate), as a share of a cell, of
+# axes given as float32 (or float16) that are let through as evenly spaced.
+_NARROW_CELL_SHARE = 0.01
 # Relative error of a float against the decimal it was written as (half an ulp is
 # at most 2**-53), with a factor 4 to spare.
 _FLOAT_SLACK = Decimal(2.0**-51)
@@ -71,10 +75,32 @@ def _axis(value: ArrayLike, name: str, resolution: float) -> FloatArray:
     # of each centre, a few ulps of the largest coordinate; otherwise the spacing must
     # match to 1e-9 of a cell at any offset (UTM coordinates reach 1e7 m), or
     # world_to_cell and cell_to_world drift from the sampled points.
-    tol = 1e-9 * resolution + _AXIS_ULPS * (resolution + float(np.max(np.abs(arr))))
-    if np.any(np.abs(np.diff(arr) - resolution) > tol):
-        raise ValueError(f"{name} must be evenly spaced by resolution = {resolution}")
-    return _frozen(arr)
+    top = float(np.max(np.abs(arr)))
+    tol = 1e-9 * resolution + _AXIS_ULPS * (resolution + top)
+    if not np.any(np.abs(np.diff(arr) - resolution) > tol):
+        return _frozen(arr)
+    note = ""
+    narrow = narrow_float_dtype(value)
+    if narrow is not None:
+        # Centres given as float32 (a ROS map's) each carry their own rounding, up to
+        # half an ulp of the largest (steps 0.72 ulp off for 0.01 m from 0): they are
+        # accepted as lying within 4 ulps of their dtype (and of the spacing's, over
+        # the axis) of centres evenly spaced from the first, where the dtype holds
+        # coordinates to 1 % of a cell. Coarser (float32 at 1e4 m holds 1e-3 m, a
+        # tenth of a 0.01 m cell), the cells would drift from the sampled points:
+        # refused, saying why (review 53).
+        eps = float(np.finfo(narrow).eps)
+        if eps * (resolution + top) <= _NARROW_CELL_SHARE * resolution:
+            even = arr[0] + np.arange(arr.shape[0], dtype=np.float64) * resolution
+            if np.all(np.abs(arr - even) <= 4.0 * eps * (top + arr.shape[0] * resolution)):
+                return _frozen(arr)
+        else:
+            note = (
+                f" (its {narrow} values hold coordinates near {top:g} m "
+                f"only to {eps * top:.3g} m, too coarse for a cell of {resolution:g} m: "
+                "pass float64 coordinates)"
+            )
+    raise ValueError(f"{name} must be evenly spaced by resolution = {resolution}{note}")
 
 
 @frozen_setattr
@@ -93,7 +119,10 @@ class SampledField:
     ----------
     x : array_like, shape (W,)
         Cell-centre x coordinates (m), increasing by ``resolution``, within
-        ``±1e9``.
+        ``±1e9``. Float32 (or float16) axes, as a ROS map's, are spaced by it
+        up to their own rounding (within 4 ulps of their dtype of evenly
+        spaced centres) where an ulp is at most 1 % of a cell; coarser ones
+        are refused (the message says to pass float64).
     y : array_like, shape (H,)
         Cell-centre y coordinates (m), increasing by ``resolution``, within
         ``±1e9``.
@@ -199,9 +228,7 @@ class SampledField:
     def world_to_cell(self, points_xy: ArrayLike, *, continuous: Literal[True]) -> FloatArray: ...
 
     @overload
-    def world_to_cell(
-        self, points_xy: ArrayLike, *, continuous: bool
-    ) -> IntArray | FloatArray: ...
+    def world_to_cell(self, points_xy: ArrayLike, *, continuous: bool) -> IntArray | FloatArray: ...
 
     def world_to_cell(
         self, points_xy: ArrayLike, *, continuous: bool = False
@@ -381,7 +408,10 @@ def sample_field(
     ``xlim=(0, 12), resolution=0.01`` gives 1200 columns. Cells start at the
     window's lower corner ``(xlim[0], ylim[0])``; an extent that is not a whole
     number of cells gets one more, which reaches past the upper limit
-    (``xlim=(0, 1), resolution=0.3``: 4 columns, centres 0.15 to 1.05).
+    (``xlim=(0, 1), resolution=0.3``: 4 columns, centres 0.15 to 1.05). A
+    float32 ``resolution`` (a ROS map's) counts cells of the decimal it stands
+    for: ``xlim=(0, 12)`` at ``float(np.float32(0.01))`` gives 1200 columns too,
+    spaced by the float32.
 
     Parameters
     ----------
@@ -422,8 +452,11 @@ def sample_field(
     res = positive_float(resolution, "resolution")
     x0, x1 = _limits(xlim, "xlim")
     y0, y1 = _limits(ylim, "ylim")
-    nx = _count(x0, x1, res)
-    ny = _count(y0, y1, res)
+    # Counted in cells of the decimal a float32 resolution stands for (10 m at a ROS
+    # message's 0.01 m are 1000 cells, not 1001; review 53); centres are spaced by res.
+    cell = intended_resolution(res)
+    nx = _count(x0, x1, cell)
+    ny = _count(y0, y1, cell)
     if not nx * ny <= MAX_SAMPLES:
         raise ValueError(
             f"sample_field would need {_num(ny)} × {_num(nx)} = {_num(nx * ny)} cells "

@@ -1,0 +1,102 @@
+"""Float32 numbers as ROS messages and drivers give them (private).
+
+The cell size a float32 resolution stands for, and cells counted in it; the
+precision of an input given in a float narrower than float64.
+
+``nav_msgs/OccupancyGrid`` carries a map's resolution as a float32: a 0.01 m
+map arrives at 0.009999999776482582 m. Counting cells of a length in that
+float (10 m: 1000.0000224 cells) gained a cell over the same map read from its
+YAML; every count of cells from a length and a resolution goes through
+:func:`intended_resolution` so that the two maps agree (review 52 for radii,
+review 53 for grid and window sizes).
+
+Examples
+--------
+>>> import numpy as np
+>>> 10.0 / float(np.float32(0.01)) > 1000.0
+True
+>>> 10.0 / intended_resolution(float(np.float32(0.01)))
+1000.0
+"""
+
+from __future__ import annotations
+
+import array
+from typing import Any
+
+import numpy as np
+
+__all__ = ["intended_resolution", "narrow_float_dtype"]
+
+#: The positive normal float32 values' range: a resolution outside it is no float32.
+_FLOAT32_TINY = float(np.finfo(np.float32).tiny)
+_FLOAT32_MAX = float(np.finfo(np.float32).max)
+
+
+def intended_resolution(resolution: float) -> float:
+    """The decimal a float32 ``resolution`` stands for; any other resolution itself.
+
+    A resolution that is a float32 value is taken to stand for the shortest
+    decimal that float32 rounds to it (0.05 for 0.05000000074505806): the
+    radius a user gives in cells of that decimal (0.15 m, 3 cells) must reach
+    as many cells of the float32 (2.99999996 of them), and a 10 m grid at it
+    has 1000 cells of 0.01 m, not 1001. A float64 resolution that is not a
+    float32 value (0.05 written in Python) is returned unchanged.
+
+    Parameters
+    ----------
+    resolution : float
+        A cell size, m, finite and positive.
+
+    Returns
+    -------
+    float
+        The cell size counts and radii are taken in, m.
+
+    Examples
+    --------
+    >>> intended_resolution(float(np.float32(0.05))), intended_resolution(0.05)
+    (0.05, 0.05)
+    >>> intended_resolution(0.5)
+    0.5
+    """
+    if not _FLOAT32_TINY <= resolution <= _FLOAT32_MAX:
+        return resolution  # no float32 value: and its cast would overflow (or underflow)
+    single = np.float32(resolution)
+    if float(single) != resolution:
+        return resolution
+    return float(np.format_float_scientific(single, unique=True))
+
+
+def narrow_float_dtype(value: object) -> np.dtype[np.floating[Any]] | None:
+    """The dtype of ``value``'s floats when narrower than float64 (float16, float32), else None.
+
+    ``value`` is an input already read as a float array (this only asks its
+    dtype): an ndarray or NumPy scalar of float16 or float32, or a list of
+    them (NumPy gives it their dtype), was rounded to that precision by
+    whatever made it (a driver, a message), and its values are compared in it.
+
+    Parameters
+    ----------
+    value : object
+        The argument as given.
+
+    Returns
+    -------
+    numpy.dtype or None
+        The float16 or float32 dtype; None for float64, long double,
+        integers and anything else.
+
+    Examples
+    --------
+    >>> narrow_float_dtype(np.zeros(2, dtype=np.float32))
+    dtype('float32')
+    >>> narrow_float_dtype([0.5, 1.0]) is None, narrow_float_dtype([np.float16(0.5)])
+    (True, dtype('float16'))
+    """
+    dtype = getattr(value, "dtype", None)
+    if dtype is None and isinstance(value, (list, tuple, array.array)):
+        dtype = np.asarray(value).dtype
+    if not isinstance(dtype, np.dtype) or dtype.kind != "f" or dtype.itemsize >= 8:
+        return None
+    return dtype
