@@ -153,8 +153,34 @@ class _Loader(yaml.SafeLoader):
                             None, None, f"duplicate key {key!r}", key_node.start_mark
                         )
                     seen.add(key)
-        return super().construct_mapping(node, deep=deep)
+        mapping = super().construct_mapping(node, deep=deep)
+        if isinstance(node, yaml.MappingNode) and "image" in mapping:
+            _image_as_text(self, node, mapping)
+        return mapping
 
+
+def _image_as_text(loader: _Loader, node: yaml.MappingNode, mapping: dict[Any, Any]) -> None:
+    """``mapping``'s ``image`` as its scalar's text, whatever YAML 1.1 resolves it to.
+
+    map_server reads the image name with yaml-cpp's ``as<std::string>()``: a
+    scalar's text (``image: yes``, ``on``, ``1.50``, ``2001-12-14``, ``15``
+    name those files), where PyYAML's YAML 1.1 makes them True, 1.5, a date,
+    an int, and they were refused as "image must be a file name" (review 53).
+    A null (``image:``, ``~``) stays None, refused: yaml-cpp up to 0.6 refuses
+    it too (later ones read the file ``null``). ``node.value`` holds the merged
+    keys first (PyYAML flattened it), so its last ``image`` is the mapping's.
+    """
+    if isinstance(mapping["image"], str):
+        return
+    for key_node, value_node in reversed(node.value):
+        if isinstance(key_node, yaml.ScalarNode) and loader.construct_object(key_node) == "image":
+            if isinstance(value_node, yaml.ScalarNode) and value_node.tag != _NULL_TAG:
+                mapping["image"] = value_node.value
+            return
+
+
+#: The tag PyYAML resolves a null (``~``, ``null``, an empty value) to.
+_NULL_TAG = "tag:yaml.org,2002:null"
 
 _Loader.add_constructor("tag:yaml.org,2002:int", _Loader.construct_yaml_int)
 _Loader.add_constructor("tag:yaml.org,2002:float", _Loader.construct_yaml_float)
@@ -1725,7 +1751,9 @@ def read_map(path: str | os.PathLike[str]) -> OccupancyGrid:
     Parameters
     ----------
     path : str or path-like
-        The map's YAML file; a relative ``image`` is found beside it.
+        The map's YAML file; a relative ``image`` is found beside it. The
+        ``image`` value is read as its text, as map_server's yaml-cpp reads
+        it: ``image: yes``, ``1.50`` or ``2001-12-14`` name those files.
 
     Returns
     -------
@@ -2263,12 +2291,48 @@ def _names_spelling_of(yaml_path: Path, named: object, candidate: Path) -> bool:
 
 
 def _same_spelling(name: str, other: str) -> bool:
-    """Whether two file names differ only in case or Unicode normalisation (NFC/NFD)."""
-    return _folded(name) == _folded(other)
+    """Whether two file names differ only in case or Unicode normalisation (NFC/NFD).
+
+    Case as a case-insensitive file system matches it: character by character
+    (NTFS's upcase table, APFS's folding), Unicode's *simple* case folding,
+    which keeps a name's length. ``str.casefold`` is the full folding, by
+    which ``straße.pgm`` is ``STRASSE.pgm``: those are two files on Windows
+    and macOS, and the hint named the other as "differing in letter case"
+    (review 53). Full folding is the coarser, so it is tried first.
+
+    Examples
+    --------
+    >>> _same_spelling("Map.PGM", "map.pgm"), _same_spelling("STRASSE.pgm", "straße.pgm")
+    (True, False)
+    >>> _same_spelling("STRAẞE.pgm", "straße.pgm")  # U+1E9E folds simply to ß
+    True
+    """
+    if _folded(name, str.casefold) != _folded(other, str.casefold):
+        return False
+    return _folded(name, _simple_fold) == _folded(other, _simple_fold)
 
 
-def _folded(name: str) -> str:
-    return unicodedata.normalize("NFD", unicodedata.normalize("NFD", name).casefold())
+def _simple_fold(name: str) -> str:
+    """``name`` by Unicode's simple case folding (CaseFolding.txt's C and S entries).
+
+    A character ``str.casefold`` folds to one character (a C entry) folds so;
+    one it folds to several (an F entry) folds to its lower case where that is
+    one other character (the S entries: U+1E9E to ß, Greek capitals with
+    prosgegrammeni to their small letters), else stays (ß, İ).
+    """
+    return "".join(_simple_fold_char(c) for c in name)
+
+
+def _simple_fold_char(char: str) -> str:
+    full = char.casefold()
+    if len(full) == 1:
+        return full
+    lower = char.lower()
+    return lower if len(lower) == 1 else char
+
+
+def _folded(name: str, fold: Callable[[str], str]) -> str:
+    return unicodedata.normalize("NFD", fold(unicodedata.normalize("NFD", name)))
 
 
 def _same_file(path: Path, other: Path) -> bool:
