@@ -695,8 +695,44 @@ def as_points(value: ArrayLike, name: str, *, finite: bool = True) -> FloatArray
         return np.empty((0, 2), dtype=np.float64)
     raise ValueError(
         f"{name} must have shape (N, 2) or (2,), got {arr.shape}"
-        + transposed_hint(arr.shape, (None, 2))
+        + (_POSE_HINT if arr.shape == (3,) else transposed_hint(arr.shape, (None, 2)))
     )
+
+
+# One pose [x, y, theta] where one point is wanted: the 1-D form of the
+# transposed_hint's rows of poses (review 53: FieldDStar.plan_world given a pose).
+_POSE_HINT = " (a pose [x, y, theta]? pass its [:2])"
+
+
+def as_point(value: ArrayLike, name: str) -> FloatArray:
+    """``value`` as one finite world point ``(x, y)``: a float64 array of shape ``(2,)``.
+
+    The checks and messages of ``as_float_array(value, name, shape=(2,))``,
+    and for a pose ``(x, y, theta)`` given where a point is wanted, the way
+    out (its ``[:2]``), as :func:`transposed_hint` names rows of poses given
+    where points are wanted. A :class:`~navkit.geometry.Pose2D` is refused
+    with its own hint (see :func:`as_float_array`).
+
+    Examples
+    --------
+    >>> as_point((1.0, 2.0), "start_xy")
+    array([1., 2.])
+    >>> as_point((1.0, 2.0, 0.5), "start_xy")
+    Traceback (most recent call last):
+        ...
+    ValueError: start_xy must have length 2 along axis 0, got shape (3,) (a pose [x, y, theta]? ...
+    """
+    arr = as_float_array(value, name, finite=False, components=2)
+    if arr.ndim != 1:
+        raise ValueError(f"{name} must be 1-D, got shape {arr.shape}" + _ndim_hint(arr, 1))
+    if arr.shape[0] != 2:
+        raise ValueError(
+            f"{name} must have length 2 along axis 0, got shape {arr.shape}"
+            + (_POSE_HINT if arr.shape[0] == 3 else "")
+        )
+    if not np.all(np.isfinite(arr)):
+        raise ValueError(f"{name} must contain only finite values")
+    return arr
 
 
 def _ndim_hint(arr: NDArray[Any], ndim: int) -> str:

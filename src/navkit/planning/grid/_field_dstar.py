@@ -18,7 +18,14 @@ from navkit._shared.frozen import restore_slots
 from navkit._shared.grid_coords import as_pairs, one_or_many, round_half_up
 from navkit._shared.locks import one_caller
 from navkit._shared.types import CellLike, FloatArray, IntArray
-from navkit._shared.validation import as_array, as_bool, as_cell, as_float_array, is_ndarray
+from navkit._shared.validation import (
+    as_array,
+    as_bool,
+    as_cell,
+    as_float_array,
+    as_point,
+    is_ndarray,
+)
 from navkit.errors import NoPathError
 from navkit.geometry import Pose2D, as_pose
 from navkit.planning.grid._dstar_heap import RHS, G, clear_box, node_records
@@ -47,6 +54,7 @@ from navkit.planning.grid._limits import (
     bounded_float,
     checked_costs,
 )
+from navkit.planning.grid._limits import check_range as _check_range
 from navkit.planning.grid._path import Path2D
 from navkit.planning.grid._polyline_kernels import polyline_cost, shortcut
 
@@ -1493,7 +1501,7 @@ class FieldDStar:
         self, value: ArrayLike, name: str
     ) -> tuple[tuple[float, float], tuple[int, int], tuple[float, ...]]:
         """Node coordinates of a world point inside the grid, its cell and the point given."""
-        point = as_float_array(value, name, shape=(2,))
+        point = as_point(value, name)
         _check_range(point, COORDINATE_LIMIT, name, "m")
         p = self.world_to_node(point, continuous=True)
         row, col = math.floor(p[0]), math.floor(p[1])
@@ -2041,14 +2049,6 @@ def _heuristic(a: tuple[int, int], b: tuple[int, int], hscale: float) -> float:
     if dr < dc:
         return hscale * (dc + OCT * dr)
     return hscale * (dr + OCT * dc)
-
-
-def _check_range(values: FloatArray, limit: float, name: str, unit: str) -> None:
-    """Refuse coordinates beyond ``±limit`` (``values`` are already finite)."""
-    if values.size and not float(np.abs(values).max()) <= limit:
-        # The value itself, exactly: rounded (":g") 1e9 + 0.5 would print as the limit.
-        worst = float(values.reshape(-1)[int(np.argmax(np.abs(values)))])
-        raise ValueError(f"{name} must lie within ±{limit:g} {unit}, got {worst!r}")
 
 
 def field_dstar(

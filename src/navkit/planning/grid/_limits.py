@@ -50,6 +50,7 @@ __all__ = [
     "RESOLUTION_MIN",
     "bounded_float",
     "check_node_count",
+    "check_range",
     "checked_cost_range",
     "checked_costs",
     "compiled_cost_range",
@@ -87,6 +88,23 @@ MAX_BITS = int(np.array(MAX_COST).view(np.int64))
 INF_BITS = int(np.array(np.inf).view(np.int64))
 # Cells per block of the value scans (:func:`cost_range`): 512 KiB of scratch.
 _SCAN_BLOCK = 65536
+
+
+def check_range(values: FloatArray, limit: float, name: str, unit: str) -> None:
+    """Refuse coordinates beyond ``±limit`` (``values`` are already finite).
+
+    Examples
+    --------
+    >>> check_range(np.array([[1e9, -2.0]]), COORDINATE_LIMIT, "points_xy", "m")
+    >>> check_range(np.array([[1e9 + 0.5, 0.0]]), COORDINATE_LIMIT, "points_xy", "m")
+    Traceback (most recent call last):
+        ...
+    ValueError: points_xy must lie within ±1e+09 m, got 1000000000.5
+    """
+    if values.size and not float(np.abs(values).max()) <= limit:
+        # The value itself, exactly: rounded (":g") 1e9 + 0.5 would print as the limit.
+        worst = float(values.reshape(-1)[int(np.argmax(np.abs(values)))])
+        raise ValueError(f"{name} must lie within ±{limit:g} {unit}, got {worst!r}")
 
 
 def read_only(array: NDArray[_T]) -> NDArray[_T]:
