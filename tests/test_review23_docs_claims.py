@@ -108,7 +108,7 @@ MISTAKES: list[tuple[tuple[str, ...], Callable[[Path], Any], type[Exception]]] =
         lambda _: FollowTheCarrot().step(Pose2D(0.0, 0.0, 0.0), 0.1),
         RuntimeError,
     ),
-    (("cell_to_world", "MapPlanner"), lambda _: _grid_path_to_tracker(), ValueError),
+    (("path.to_world(grid)", "MapPlanner"), lambda _: _grid_path_to_tracker(), ValueError),
 ]
 
 

@@ -1376,6 +1376,32 @@ spec(
     ),
     kinds={"frame": Choice("grid", "world"), "expanded": INT},
 )
+# Review 53: a path converts itself between the frames of the map it is on.
+spec(
+    "navkit.planning.grid.Path2D.to_world",
+    lambda c: method(
+        call(
+            Path2D,
+            A([[0.0, 0.0], [1.0, 1.0], [1.0, 2.0]]),
+            "grid",
+            cost=2.4,
+            length=2.4,
+            expanded=3,
+        ),
+        "to_world",
+        grid(),
+    ),
+    kinds={"frame": Choice("grid"), "expanded": INT, "grid": Obj((OccupancyGrid, LocalGrid))},
+)
+spec(
+    "navkit.planning.grid.Path2D.to_grid",
+    lambda c: method(
+        call(Path2D, A([[0.0, 0.0], [0.3, 0.2]]), "world", cost=0.4, length=0.36, expanded=3),
+        "to_grid",
+        local_grid(),
+    ),
+    kinds={"frame": Choice("world"), "expanded": INT, "grid": Obj((OccupancyGrid, LocalGrid))},
+)
 spec(
     "navkit.planning.grid.CellPlanner",
     lambda c: call(CellPlanner),

@@ -41,7 +41,7 @@ def test_a_grid_reference_path_names_the_conversion() -> None:
         _simulation(_grid_path())
     message = str(info.value)
     assert "'grid' Path2D" in message
-    assert "OccupancyGrid.cell_to_world" in message
+    assert "path.to_world(grid)" in message  # review 53: the path converts itself
     assert "MapPlanner" in message
 
 
@@ -56,11 +56,10 @@ def test_the_advice_is_the_trackers_own() -> None:
 
 
 def test_the_converted_path_is_taken() -> None:
-    # The advice works: the grid path's points through cell_to_world, as the message says.
+    # The advice works: path.to_world(grid), as the message says.
     grid = OccupancyGrid.from_occupancy(np.zeros((40, 50), dtype=bool), resolution=0.1,
                                         origin=(-1.0, -1.0, 0.0))  # fmt: skip
-    path = _grid_path()
-    world_points = grid.cell_to_world(path.points)
-    simulation = _simulation(world_points)
+    world = _grid_path().to_world(grid)
+    simulation = _simulation(world)
     assert simulation is not None
-    np.testing.assert_allclose(world_points[0], [-0.95, -0.95])
+    np.testing.assert_allclose(world.points[0], [-0.95, -0.95])

@@ -117,7 +117,8 @@ def as_world_path(path: Any, name: str = "path") -> FloatArray:
         if path.frame != "world":
             raise ValueError(
                 f"{name} must be in the world frame, got a {path.frame!r} Path2D "
-                "(convert its points with OccupancyGrid.cell_to_world, or plan with MapPlanner)"
+                "(convert it with path.to_world(grid), grid the map it was planned on, or plan "
+                "with MapPlanner)"
             )
         raw: Any = path.points
     elif isinstance(path, (str, bytes, Mapping, set, frozenset)):
@@ -517,7 +518,7 @@ class PathTracker(ABC, Generic[S]):
         ------
         ValueError
             A ``"grid"`` Path2D (convert it with
-            :meth:`~navkit.mapping.OccupancyGrid.cell_to_world` or plan with
+            :meth:`~navkit.planning.Path2D.to_world` or plan with
             :class:`~navkit.planning.MapPlanner`), no point, bad shape, NaN or
             inf, coordinates beyond ±1e9 m, a non-finite ``goal_yaw``; for
             :class:`~navkit.control.FollowTheCarrot`, a ``carrot_distance``

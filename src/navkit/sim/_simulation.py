@@ -272,7 +272,8 @@ def _reference(value: Any) -> FloatArray | None:
             # The trackers' advice for the same mistake (control's as_world_path).
             raise ValueError(
                 f"reference_path must be in the world frame, got a {value.frame!r} Path2D "
-                "(convert its points with OccupancyGrid.cell_to_world, or plan with MapPlanner)"
+                "(convert it with path.to_world(grid), grid the map it was planned on, or plan "
+                "with MapPlanner)"
             )
         pts = value.points
     else:

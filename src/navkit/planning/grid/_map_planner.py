@@ -29,7 +29,7 @@ from navkit.planning.grid._limits import (
     bounded_float,
     checked_costs,
 )
-from navkit.planning.grid._path import Path2D
+from navkit.planning.grid._path import Path2D, grid_to_world, polyline_length
 
 __all__ = ["CellPlanner", "MapPlanner", "plan_path"]
 
@@ -105,7 +105,13 @@ class MapPlanner:
         ``[robot_radius, 1e6]``; default ``robot_radius``.
     unknown_cost : float, default inf
         Cost of unknown cells: ``inf`` (impassable) or a value in ``[1, 1e9]``
-        (as :func:`navkit.mapping.traversal_costs`).
+        (as :func:`navkit.mapping.traversal_costs`). In a simulator
+        :class:`~navkit.sim.World` on the same map choose its
+        ``unknown_blocks`` with it: ``inf`` with ``unknown_blocks=True`` (the
+        defaults of both), a finite cost with ``unknown_blocks=False``. A
+        finite cost in a World whose unknown cells block plans routes through
+        cells the robot then hits; ``inf`` in one whose unknown cells are
+        open only plans around space the robot could cross.
     inflate_unknown : bool or None, default None
         Whether unknown cells are inflated like obstacles: cells whose centre
         lies within ``robot_radius`` of an unknown cell's are impassable too
@@ -520,8 +526,8 @@ class MapPlanner:
             )
         _check_ends(path.points, start_cell, goal_cell)
         grid = self._grid
-        points = np.asarray(grid.cell_to_world(path.points), dtype=np.float64).reshape(-1, 2)
-        cost = path.cost * grid.resolution
+        # As Path2D.to_world converts it: a plan between two cell centres is that path.
+        points, cost = grid_to_world(path.points, path.cost, grid)
         if escape is None and start_cell == goal_cell and len(points) == 1:
             # One cell: straight from the start to the goal, inside the cell.
             same = bool(np.array_equal(start_xy, goal_xy))
@@ -534,7 +540,7 @@ class MapPlanner:
             else:
                 points, cost = self._linked(points, cost, start_xy, start_cell, 0)
             points, cost = self._linked(points, cost, goal_xy, goal_cell, -1)
-        length = float(np.hypot(*np.diff(points, axis=0).T).sum())
+        length = polyline_length(points)
         return Path2D(
             points, "world", cost=cost, length=length,
             expanded=path.expanded,

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Literal
 
@@ -13,11 +14,16 @@ from navkit._shared.grid_coords import round_half_up
 from navkit._shared.text import as_text
 from navkit._shared.types import FloatArray, IntArray
 from navkit._shared.validation import as_float_array, bounded_int, finite_float
+from navkit.mapping import LocalGrid, OccupancyGrid
+from navkit.planning.grid._limits import COORDINATE_LIMIT, check_range
 
-__all__ = ["Path2D"]
+__all__ = ["Path2D", "grid_to_world", "polyline_length"]
 
 _FRAMES = ("grid", "world")
 _INT64_MAX = 2**63 - 1
+# Grid coordinates a map converts (as OccupancyGrid.cell_to_world: their world
+# points could overflow beyond).
+_CELL_LIMIT = float(2**62)
 
 
 @frozen_setattr
@@ -142,6 +148,110 @@ class Path2D:
         """Restore from an older pickle, ``points`` read-only again."""
         restore_read_only(self, state, ("points",))
 
+    def to_world(self, grid: OccupancyGrid | LocalGrid) -> Path2D:
+        """This ``"grid"`` path as a ``"world"`` one, on the map whose cells it is in.
+
+        What :class:`MapPlanner` does with the path its cell planner returns:
+        the points through ``grid.cell_to_world``, the cost times
+        ``grid.resolution`` and the length of the world polyline, so a grid
+        path planned on a map's costs between two cell centres converts to
+        the world path :meth:`MapPlanner.plan` returns between those centres,
+        bit for bit. ``expanded`` is kept.
+
+        Parameters
+        ----------
+        grid : OccupancyGrid or LocalGrid
+            The map whose cells the path's points are in (whose
+            ``traversal_costs`` it was planned on). For a
+            :class:`~navkit.mapping.LocalGrid` the world points are in the
+            robot's frame, as its ``cell_to_world`` gives them.
+
+        Returns
+        -------
+        Path2D
+            A new ``"world"`` path: points ``(x, y)`` in m, cost in cost units
+            × m, length in m.
+
+        Raises
+        ------
+        TypeError
+            ``grid`` is not an :class:`~navkit.mapping.OccupancyGrid` or a
+            :class:`~navkit.mapping.LocalGrid`.
+        ValueError
+            The path is already in the ``"world"`` frame; its points beyond
+            ``±2**62`` cells; its cost overflowing float64 once scaled.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from navkit.mapping import OccupancyGrid
+        >>> from navkit.planning import astar
+        >>> grid = OccupancyGrid.from_occupancy(np.zeros((4, 6), dtype=bool), resolution=0.5)
+        >>> cells = astar(grid.traversal_costs(), (0, 0), (0, 3))
+        >>> world = cells.to_world(grid)
+        >>> world.frame, world.points[[0, -1]].tolist(), world.cost, world.length
+        ('world', [[0.25, 0.25], [1.75, 0.25]], 1.5, 1.5)
+        """
+        _check_frame(self, "grid", "to_world")
+        checked = _map_of(grid)
+        check_range(self.points, _CELL_LIMIT, "points", "cells")
+        points, cost = grid_to_world(self.points, self.cost, checked)
+        return Path2D(
+            points, "world", cost=cost, length=polyline_length(points), expanded=self.expanded
+        )
+
+    def to_grid(self, grid: OccupancyGrid | LocalGrid) -> Path2D:
+        """This ``"world"`` path as a ``"grid"`` one, on the map it runs through.
+
+        The inverse of :meth:`to_world`: the points through
+        ``grid.world_to_cell(..., continuous=True)`` (integers at cell
+        centres), the cost divided by ``grid.resolution`` and the length of
+        the grid polyline, in cells. Then :attr:`cells` gives the cell of each
+        vertex. Paths whose links start or end off the cell centres (from
+        :meth:`MapPlanner.plan`) keep them: the points are converted, not
+        snapped to cells. ``expanded`` is kept.
+
+        Parameters
+        ----------
+        grid : OccupancyGrid or LocalGrid
+            The map the path runs through (robot-frame points for a
+            :class:`~navkit.mapping.LocalGrid`).
+
+        Returns
+        -------
+        Path2D
+            A new ``"grid"`` path: continuous ``(row, col)``, cost in cost
+            units × cells, length in cells.
+
+        Raises
+        ------
+        TypeError
+            ``grid`` is not an :class:`~navkit.mapping.OccupancyGrid` or a
+            :class:`~navkit.mapping.LocalGrid`.
+        ValueError
+            The path is already in the ``"grid"`` frame; its points beyond
+            ``±1e9`` m; its cost overflowing float64 once scaled.
+
+        Examples
+        --------
+        >>> from navkit.mapping import OccupancyGrid
+        >>> grid = OccupancyGrid.empty(width=3.0, height=2.0, resolution=0.5)
+        >>> world = Path2D([[0.25, 0.25], [1.75, 0.25]], "world", cost=1.5, length=1.5, expanded=4)
+        >>> cells = world.to_grid(grid)
+        >>> cells.cells.tolist(), cells.cost, cells.length
+        ([[0, 0], [0, 3]], 3.0, 3.0)
+        """
+        _check_frame(self, "world", "to_grid")
+        checked = _map_of(grid)
+        check_range(self.points, COORDINATE_LIMIT, "points", "m")
+        points = np.asarray(
+            checked.world_to_cell(self.points, continuous=True), dtype=np.float64
+        ).reshape(-1, 2)
+        cost = _scaled(self.cost, 1.0 / checked.resolution)
+        return Path2D(
+            points, "grid", cost=cost, length=polyline_length(points), expanded=self.expanded
+        )
+
     @property
     def cells(self) -> IntArray:
         """Cell ``(row, col)`` containing each vertex, int64 (K, 2), read-only.
@@ -160,7 +270,7 @@ class Path2D:
         if self.frame != "grid":
             raise ValueError(
                 "cells is defined for 'grid' paths only; this path is in the 'world' frame "
-                "(use OccupancyGrid.world_to_cell(path.points))"
+                "(path.to_grid(grid).cells gives the cells of its points on that map)"
             )
         out: IntArray = round_half_up(self.points)
         out.flags.writeable = False
@@ -173,3 +283,46 @@ def _non_negative(value: Any, name: str) -> float:
     if out < 0.0:
         raise ValueError(f"{name} must be >= 0, got {out}")
     return out
+
+
+def grid_to_world(
+    points: FloatArray, cost: float, grid: OccupancyGrid | LocalGrid
+) -> tuple[FloatArray, float]:
+    """World points and cost of a grid path's points and cost on ``grid``.
+
+    The one conversion of :meth:`Path2D.to_world` and :meth:`MapPlanner.plan`:
+    ``grid.cell_to_world`` of the points (a new (K, 2) float64 array) and the
+    cost times the resolution (refused if that overflows).
+    """
+    world = np.asarray(grid.cell_to_world(points), dtype=np.float64).reshape(-1, 2)
+    return world, _scaled(cost, grid.resolution)
+
+
+def polyline_length(points: FloatArray) -> float:
+    """Length of the polyline through ``points`` (K, 2), in their unit: the sum of its legs."""
+    return float(np.hypot(*np.diff(points, axis=0).T).sum())
+
+
+def _scaled(cost: float, factor: float) -> float:
+    out = cost * factor
+    if not math.isfinite(out):
+        raise ValueError(
+            f"the path's cost {cost!r} overflows float64 converted by a factor of {factor!r}"
+        )
+    return out
+
+
+def _check_frame(path: Path2D, frame: str, method: str) -> None:
+    if path.frame != frame:
+        raise ValueError(
+            f"{method} converts a {frame!r} path; this path is already in the {path.frame!r} frame"
+        )
+
+
+def _map_of(grid: Any) -> OccupancyGrid | LocalGrid:
+    if not isinstance(grid, (OccupancyGrid, LocalGrid)):
+        raise TypeError(
+            f"grid must be an OccupancyGrid or a LocalGrid (the map whose cells the path is "
+            f"in), got {type(grid).__name__}"
+        )
+    return grid
