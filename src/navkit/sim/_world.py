@@ -737,6 +737,12 @@ class World:
         draw walls in grey levels between ``free_thresh`` and
         ``occupied_thresh`` (the Willow Garage map's are), so their walls are
         "unknown"; with False only cells with ``p > occupied_thresh`` block.
+        Choose it with the planner's ``unknown_cost`` on that map
+        (:class:`~navkit.planning.MapPlanner`,
+        :func:`~navkit.mapping.traversal_costs`): ``True`` with ``inf`` (the
+        defaults of both), ``False`` with a finite cost. A route planned
+        across unknown cells at a finite cost runs into them in a World where
+        they block.
     moving : iterable of MovingObstacle, optional
         Obstacles that move (solid).
 
