@@ -2237,7 +2237,17 @@ def _start_state(x0: ArrayLike | None, pose: Pose2D | ArrayLike | None) -> Float
     if pose is not None:
         start = as_pose(pose, "pose")
         return np.array([start.x, start.y, start.theta, 0.0, 0.0, 0.0])
-    return np.zeros(6) if x0 is None else as_float_array(x0, "x0", shape=(6,))
+    if x0 is None:
+        return np.zeros(6)
+    # A start pose given as the first argument (review 53, PIPELINE): the way out
+    # is the keyword the odometry classes and the simulator take it by.
+    way_out = "; a start pose goes in as pose= (x0 with zero rates)"
+    if isinstance(x0, Pose2D):
+        raise TypeError(f"x0 must be the state [x, y, yaw, v, omega, a], got a Pose2D{way_out}")
+    state = as_float_array(x0, "x0", finite=False)
+    if state.shape == (3,):
+        raise ValueError(f"x0 must be the state [x, y, yaw, v, omega, a], got shape (3,){way_out}")
+    return as_float_array(state, "x0", shape=(6,))
 
 
 def _start_buffer(
