@@ -147,3 +147,26 @@ def test_a_reset_potential_field_controller_is_a_fresh_one(
     got, _ = job(reused, second_goal, 40, end)
     want, _ = job(PotentialFieldController(**options), second_goal, 40, end)
     assert got == want
+
+
+def test_a_new_target_is_no_new_run_for_the_potential_field_controller() -> None:
+    # As the class docstring says: the velocity and the stall timer carry on from
+    # one target to the next (the target may move every step); reset() starts over.
+    reused = PotentialFieldController(stall_timeout=0.5)
+    for _ in range(8):  # held in place short of the goal: stalled after 0.5 s
+        reused.step((0.0, 0.0, 0.0), (2.0, 0.0, 0.0), 0.1)
+    assert (reused.stalled, reused.stall_time) == (True, 0.7)
+    fresh = PotentialFieldController(stall_timeout=0.5)
+    new_goal = (-2.0, 1.0, 0.0)
+    got, want = (
+        reused.step((0.0, 0.0, 0.0), new_goal, 0.1),
+        fresh.step((0.0, 0.0, 0.0), new_goal, 0.1),
+    )
+    assert (reused.stalled, fresh.stalled) == (True, False)
+    assert got.vx > 0.0 > want.vx  # still moving on from the old velocity, within max_decel
+    reused.step((0.1, 0.0, 0.0), new_goal, 0.1)  # the robot leaves stall_radius (0.05 m)
+    assert (reused.stalled, reused.stall_time) == (False, 0.0)
+    reused.reset()
+    assert reused.step((0.0, 0.0, 0.0), new_goal, 0.1) == PotentialFieldController(
+        stall_timeout=0.5
+    ).step((0.0, 0.0, 0.0), new_goal, 0.1)

@@ -284,7 +284,12 @@ class PotentialFieldController:
        pulls at full strength up to the goal itself.
 
     The controller is stateful (previous velocity, PID integrator and last error,
-    stall timer); call :meth:`reset` between runs. It is an ordinary class with
+    stall timer); call :meth:`reset` between runs. A new ``target_pose`` is no
+    new run (the target may move every step): that state carries on, so a
+    controller given a new goal accelerates from its previous velocity, and one
+    :attr:`stalled` before it stays stalled while the robot stays within
+    ``stall_radius`` of where it stalled, away from the new goal; after
+    :meth:`reset` it steps as a new controller, bit for bit. It is an ordinary class with
     ``__slots__`` rather than a frozen dataclass because every step changes that state.
     Its options are read-only properties, checked once here (as the path
     trackers'): build a new controller to change one.
