@@ -2066,10 +2066,18 @@ class PlanarFusion(GaussianEstimate):
         if math.isnan(self._buf[BUF_TIME]):  # the clock starts at the first row
             self._set_origin(float(log.times[0]))
         variances = np.where(log.observed, log.variances, 0.0)
+        # On a copy, put in place by one C call: the kernel runs without the GIL and
+        # writes x and P row by row (the time at the end), so another thread's copy or
+        # pickle of the filter's own buffer meanwhile took x, P and the time of
+        # different rows, half a step among them (15,056 of 15,727 copies taken
+        # during a 200,000-row log; review 53, FOUND6). Now it is the filter as
+        # before the log.
+        work = self._buf.copy()
         k.planar_run(
-            self._buf, log.times, log.values, variances, self._gates, out_x, out_p, status, nis,
+            work, log.times, log.values, variances, self._gates, out_x, out_p, status, nis,
             k.step_address(),
         )  # fmt: skip
+        np.copyto(self._buf, work)
         if (status == NOT_POSITIVE_DEFINITE).any():
             self._loaded_rows(log, variances, (out_x, out_p, status, nis))
         ax, ay = self._anchor
