@@ -10,8 +10,12 @@ Two halves that never import each other, both re-exported here:
 """
 
 # ruff: noqa: F405  (the names listed in __all__ come from the star imports)
+from navkit.planning._moved import install as _install_moved
 from navkit.planning.grid import *  # noqa: F403
 from navkit.planning.reactive import *  # noqa: F403
+
+# Pickles of the first days name modules that moved (see navkit.planning._moved).
+_install_moved()
 
 # A literal list, not one computed from the halves' ``__all__``: type checkers
 # read only a literal ``__all__``, so ``from navkit.planning import *`` in user

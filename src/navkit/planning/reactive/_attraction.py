@@ -14,6 +14,7 @@ import functools
 import weakref
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from types import MappingProxyType
 from typing import TYPE_CHECKING, Any, TypeVar
 
 import numpy as np
@@ -231,6 +232,8 @@ class ParaboloidAttraction(AttractiveField):
     a: float = 1.0
     b: float = 1.0
 
+    # Slot names before 0123de4 (see _restore).
+    _renamed_fields = MappingProxyType({"goal": "goal_xy"})
     __setstate__ = _restore
 
     if TYPE_CHECKING:
@@ -305,6 +308,8 @@ class ConicAttraction(AttractiveField):
     u_trans: float = 1.0
     threshold_radius: float = 0.0
 
+    # Slot names before 0123de4 (see _restore).
+    _renamed_fields = MappingProxyType({"goal": "goal_xy", "rad_thr": "threshold_radius"})
     __setstate__ = _restore
 
     if TYPE_CHECKING:
@@ -436,6 +441,9 @@ class BlendedAttraction(AttractiveField):
         # Not in __setstate__: the rebuild that copies go through does not call it.
         rebuild, args, *rest = AttractiveField.__reduce__(self)
         return (_with_scipy_special, (rebuild, args), *rest)
+
+    # Slot names before 0123de4 (see _restore).
+    _renamed_fields = MappingProxyType({"goal": "goal_xy", "rad_thr": "threshold_radius"})
 
     def __setstate__(self, state: Sequence[Any]) -> None:
         _restore(self, state)
@@ -582,6 +590,8 @@ class PiecewiseAttraction(AttractiveField):
     goal_radius: float = 0.0
     spread: float = 1.0
 
+    # Slot names before 0123de4 (see _restore).
+    _renamed_fields = MappingProxyType({"goal": "goal_xy", "r": "goal_radius", "s": "spread"})
     __setstate__ = _restore
 
     if TYPE_CHECKING:

@@ -309,8 +309,43 @@ def _restore(record: Any, state: Sequence[Any]) -> None:
     hand the arrays back writable. Each frozen dataclass assigns this as
     ``__setstate__`` in its own body: the dataclass decorator replaces one it
     would inherit.
+
+    A field pickled before the fields were dataclasses (5e5f83f and before, 23
+    to 30 November 2026, in modules that moved: see :mod:`navkit.planning._moved`)
+    comes as Python's ``(None, {slot: value})`` to a record with no field set:
+    its values under today's names (the class's ``_renamed_fields``: ``goal``
+    is ``goal_xy``, ``rad_thr`` ``threshold_radius``...), its caches (a
+    repulsion's KD-tree) dropped, the fields it did not hold at their defaults
+    (review 53: they raised AttributeError ``'rad_thr'``).
     """
-    restore_read_only(record, state, [f.name for f in dataclasses.fields(record)])
+    names = [f.name for f in dataclasses.fields(record)]
+    if _slot_pickle(record, state, names):
+        # Its caches (the repulsions' KD-tree of then) are not carried over: rebuilt.
+        old = {name: value for name, value in state[1].items() if not name.startswith("_")}
+        renamed: Mapping[str, str] = getattr(type(record), "_renamed_fields", {})
+        held = {renamed.get(name, name) for name in old}
+        for f in dataclasses.fields(record):
+            if f.default is not dataclasses.MISSING and f.name not in held:
+                old[f.name] = f.default
+        restore_read_only(record, old, names)
+        return
+    restore_read_only(record, state, names)
+
+
+def _slot_pickle(record: Any, state: Sequence[Any], names: Sequence[str]) -> bool:
+    """Whether ``state`` is a pickle of a field made while it had plain slots.
+
+    ``(None, {slot: value})``, Python's state of a slotted object, given to a
+    record none of whose fields is set: :func:`~navkit._shared.frozen.reduce_record`'s
+    tuple of what a subclass adds comes after the record is rebuilt.
+    """
+    return (
+        isinstance(state, tuple)
+        and len(state) == 2
+        and state[0] is None
+        and isinstance(state[1], dict)
+        and not any(hasattr(record, name) for name in names)
+    )
 
 
 def _goal(goal_xy: ArrayLike) -> FloatArray:
@@ -337,9 +372,7 @@ _TINY_OFFSET = 1e-290
 _RESCALE = 2.0**600
 
 
-def _direction(
-    dx: FloatArray, dy: FloatArray, d: FloatArray
-) -> tuple[FloatArray, FloatArray]:
+def _direction(dx: FloatArray, dy: FloatArray, d: FloatArray) -> tuple[FloatArray, FloatArray]:
     """Components of ``(dx, dy) / d``, ``d = hypot(dx, dy)``; 0 where ``d == 0``.
 
     A unit vector wherever ``d > 0``, also for offsets of a few subnormals.

@@ -13,6 +13,7 @@ import itertools
 from abc import abstractmethod
 from collections.abc import Iterator
 from dataclasses import dataclass, field
+from types import MappingProxyType
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -220,6 +221,8 @@ class KhatibRepulsion(_PointRepulsion):
     k_rep: float = 1.0
     influence_radius: float = 1.0
 
+    # Slot names before 0123de4 (see _restore).
+    _renamed_fields = MappingProxyType({"obstacles": "obstacles_xy", "d0": "influence_radius"})
     __setstate__ = _restore
 
     if TYPE_CHECKING:
@@ -318,6 +321,10 @@ class PiecewiseRepulsion(_PointRepulsion):
     obstacle_radius: float = 0.0
     spread: float = 1.0
 
+    # Slot names before 0123de4 (see _restore).
+    _renamed_fields = MappingProxyType(
+        {"obstacles": "obstacles_xy", "r": "obstacle_radius", "s": "spread"}
+    )
     __setstate__ = _restore
 
     if TYPE_CHECKING:
