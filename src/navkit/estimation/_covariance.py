@@ -23,6 +23,7 @@ __all__ = [
     "check_magnitude",
     "covariance",
     "index_tuple",
+    "negative_eigenvalue_note",
     "variance",
 ]
 
@@ -96,7 +97,10 @@ def covariance(value: ArrayLike, name: str, n: int, *, semidefinite: bool = Fals
     in float32 and stored as float64, as a driver may fill a ROS covariance),
     whose own rounding is that coarse, unless they are all integers (of at most
     2²⁴, which float32 arithmetic does not round); the same tolerance bounds a negative
-    eigenvalue when ``semidefinite``. Entries must have magnitude <= :data:`MAX_COVARIANCE`.
+    eigenvalue when ``semidefinite``, a negative diagonal entry included (a float32
+    ``T Q Tᵀ`` of a noise of lower rank has one, whose exact value is 0, about half
+    the time; :func:`negative_eigenvalue_note` names the matrix when a step it was
+    added to fails). Entries must have magnitude <= :data:`MAX_COVARIANCE`.
 
     Examples
     --------
@@ -137,6 +141,37 @@ def covariance(value: ArrayLike, name: str, n: int, *, semidefinite: bool = Fals
                 f"{SMALLEST_POSITIVE!r} (a normal float), got a pivot of {pivot!r}"
             )
     return arr
+
+
+def negative_eigenvalue_note(matrix: FloatArray, name: str) -> str:
+    """Why a filter step that added the semi-definite ``matrix`` may have failed ("" if not).
+
+    :func:`covariance` with ``semidefinite`` accepts a matrix whose least
+    eigenvalue is negative within its rounding tolerance (a float32 ``G Q Gᵀ``
+    of a noise of lower rank is indefinite so, by up to tens of float32
+    epsilons of its largest entry: a diagonal entry whose exact value is 0
+    comes out as low as -62 of them). Added to a covariance smaller than that
+    eigenvalue it leaves one that is not positive definite: the filter's error
+    then names ``name`` and its least eigenvalue here.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> negative_eigenvalue_note(np.diag([-7.5, 1e6]), "Q")
+    ' (Q, accepted as positive semi-definite to its rounding, has a negative eigenvalue, -7.5, ...'
+    >>> negative_eigenvalue_note(np.eye(2), "Q")
+    ''
+    """
+    if not matrix.size:
+        return ""
+    least = float(np.linalg.eigvalsh(matrix)[0])
+    if not least < 0.0:
+        return ""
+    return (
+        f" ({name}, accepted as positive semi-definite to its rounding, has a negative"
+        f" eigenvalue, {least:.6g}, which the step added: pass a positive semi-definite"
+        f" {name}, e.g. with that eigenvalue set to 0)"
+    )
 
 
 def _float32_values(arr: FloatArray) -> bool:

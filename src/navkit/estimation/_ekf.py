@@ -27,7 +27,7 @@ from navkit._shared.frozen import extra_state, restore_extra, restore_slots
 from navkit._shared.types import FloatArray, IntArray
 from navkit._shared.validation import SMALLEST_POSITIVE, as_float_array, positive_float
 from navkit.errors import FilterError
-from navkit.estimation._covariance import covariance, index_tuple
+from navkit.estimation._covariance import covariance, index_tuple, negative_eigenvalue_note
 from navkit.estimation._ekf_kernels import (
     BAD_F,
     BAD_FX,
@@ -56,6 +56,7 @@ from navkit.estimation._ekf_kernels import (
     adopt_positive_q,
     finish_cancelled,
     finish_singular_s,
+    kept_q,
     new_rbuf,
     new_state,
     predict_kernel,
@@ -330,7 +331,9 @@ class ExtendedKalmanFilter(GaussianEstimate):
             ``Q``; the state is unchanged.
         FilterError
             If the predicted covariance is not finite or not positive definite;
-            the state is unchanged.
+            the state is unchanged. A ``Q`` taken as positive semi-definite to
+            its rounding (see ``P0``) with a negative eigenvalue is named with
+            that eigenvalue.
         RuntimeError
             If called from a model function of a step of this filter; that step
             then fails too (the error passes through it), leaving the state
@@ -391,6 +394,11 @@ class ExtendedKalmanFilter(GaussianEstimate):
             if not adopt_positive_q(self._state, q):
                 set_q(self._state, q, covariance(q, "Q", n, semidefinite=True))
             status = self._kp(self._state, x_new, jac, q)
+        if status == NOT_POSITIVE_DEFINITE:
+            # A Q accepted as semi-definite to its rounding may hold a negative
+            # eigenvalue, which the error then names (review 53, FOUND6).
+            note = negative_eigenvalue_note(kept_q(self._state), "Q")
+            raise FilterError(f"predicted covariance is not positive definite{note}")
         if status != OK:
             _raise(status, "predicted covariance")
 

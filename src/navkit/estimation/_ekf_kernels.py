@@ -397,6 +397,12 @@ def set_q(state: FloatArray, q: FloatArray, q_sym: FloatArray) -> None:
     state[2 * n + 2 : 3 * n + 2] = q_sym
 
 
+def kept_q(state: FloatArray) -> FloatArray:
+    """The validated Q kept in ``state``, symmetrised (a view; NaN before the first)."""
+    n = state.shape[1]
+    return state[2 * n + 2 : 3 * n + 2]
+
+
 def set_nis(rbuf: FloatArray, nis: float) -> None:
     """Leave ``nis`` in ``rbuf`` as the update kernel does with a status other than OK."""
     rbuf[_VEC, _META, 1] = nis

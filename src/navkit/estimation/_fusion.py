@@ -43,6 +43,7 @@ from navkit.estimation._covariance import (
     MIN_VARIANCE,
     check_magnitude,
     covariance,
+    negative_eigenvalue_note,
     not_given_hint,
     variance,
 )
@@ -1928,6 +1929,9 @@ class PlanarFusion(GaussianEstimate):
                 raise FilterError(
                     f"{kind} update at t={t} s, taken again after a late measurement: "
                     "covariance is not positive definite; the filter is unchanged"
+                    + negative_eigenvalue_note(
+                        buf.reshape(k.BUF_ROWS, k.W)[k.BUF_Q : k.BUF_Q + 6], "process_noise"
+                    )
                 )
         elif status == TIME_GAP:
             raise FilterError(
@@ -1966,7 +1970,7 @@ class PlanarFusion(GaussianEstimate):
                 )
                 raise FilterError(
                     f"{kind} update: covariance is not positive definite ({after}); "
-                    "the filter is unchanged"
+                    "the filter is unchanged" + negative_eigenvalue_note(self._q, "process_noise")
                 )
         if status == TIME_GAP:
             gap = t - float(self._buf[BUF_TIME])
