@@ -36,7 +36,7 @@ def test_a_pose2d_as_a_point_names_pose_x_and_y(x: float, y: float, theta: float
 def test_a_pose_array_as_a_point_says_to_keep_x_and_y(x: float, y: float, theta: float) -> None:
     pose = np.array([x, y, theta])
     with pytest.raises(ValueError, match=r"^robot_xy must have length 2.*got shape \(3,\) "
-                       r"\(a pose \[x, y, theta\]\? pass its \(x, y\) only\)$"):
+                       r"\(a pose \[x, y, theta\]\? pass its \[:2\]\)$"):
         GameState(robot_xy=pose, ball_xy=(1.0, 0.0), **GOALS)
     with pytest.raises(ValueError, match=r"^goal_xy .*\(a pose \[x, y, theta\]\?"):
         BehaviourTarget(pose, [])
@@ -59,7 +59,8 @@ def test_players_as_poses_name_the_conversion(rows: list[tuple[float, float, flo
             GameState(robot_xy=(0.0, 0.0), ball_xy=(1.0, 0.0), opponents_xy=container(poses),
                       **GOALS)
     with pytest.raises(ValueError, match=r"^teammates_xy must have shape \(N, 2\).*"
-                       r"\(poses \[x, y, theta\]\? pass the \(x, y\) columns, \[:, :2\]\)$"):
+                       r"\(rows of poses \[x, y, theta\]\? pass its \[:, :2\], shape \(\d+, 2\)"
+                       r"(; or, if it is transposed, .*)?\)$"):  # as_points' own (review 53)
         GameState(robot_xy=(0.0, 0.0), ball_xy=(1.0, 0.0), teammates_xy=np.array(rows), **GOALS)
     # the conversions the messages name are accepted and keep the positions
     state = GameState(robot_xy=(0.0, 0.0), ball_xy=(1.0, 0.0),

@@ -1,7 +1,8 @@
 """Player arrays of a wrong shape that is not a pose array (coverage review, session 30).
 
-Only an ``(N, 3)`` array gets the hint about poses; any other shape is refused
-with the plain shape error, naming the argument, and the array is left as given.
+Only an ``(N, 3)`` array, or one pose ``(3,)`` (review 53), gets the hint about
+poses; any other shape is refused with the plain shape error, naming the
+argument, and the array is left as given.
 """
 
 from __future__ import annotations
@@ -31,7 +32,10 @@ def test_a_wrong_shape_is_refused_without_the_pose_hint(
     before = value.copy()
     with pytest.raises(ValueError) as info:
         _state(**{name: value})
-    assert str(info.value) == f"{name} must have shape (N, 2) or (2,), got {shape}"
+    # Review 53: one pose (3,) is named as a pose where one point is wanted
+    # (as_points' hint, as FieldDStar.plan_world's); the other shapes get none.
+    hint = " (a pose [x, y, theta]? pass its [:2])" if shape == "(3,)" else ""
+    assert str(info.value) == f"{name} must have shape (N, 2) or (2,), got {shape}{hint}"
     np.testing.assert_array_equal(value, before)
 
 

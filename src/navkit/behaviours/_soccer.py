@@ -13,14 +13,14 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field, fields
 from types import MappingProxyType
-from typing import TYPE_CHECKING, Any, cast
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import ArrayLike
 
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import as_bool, as_float_array, as_points, bounded_int, finite_float
+from navkit._shared.validation import as_bool, as_point, as_points, bounded_int, finite_float
 from navkit.geometry import Pose2D
 
 __all__ = ["BehaviourTarget", "GameState", "attack", "defend", "support"]
@@ -33,7 +33,7 @@ _MAX_RADIUS = 1e6
 def _point(value: ArrayLike, name: str) -> FloatArray:
     # Fast path (7x quicker; a simulated game builds a state a step): a float64 (2,)
     # array of finite values needs no conversion. Anything else, and a NaN or an
-    # infinity, goes through as_float_array, which raises.
+    # infinity, goes through as_point, which raises.
     if type(value) is np.ndarray and value.dtype == np.float64 and value.shape == (2,):
         x, y = value.tolist()
         if x - x == 0.0 and y - y == 0.0:
@@ -42,23 +42,10 @@ def _point(value: ArrayLike, name: str) -> FloatArray:
             return out
     if isinstance(value, Pose2D):
         raise TypeError(f"{name} must be a point (x, y), got a Pose2D: pass (pose.x, pose.y)")
-    try:
-        checked = as_float_array(value, name, shape=(2,))
-    except ValueError as exc:
-        if _shape(value) == (3,):  # a pose [x, y, theta] given whole
-            raise ValueError(f"{exc} (a pose [x, y, theta]? pass its (x, y) only)") from None
-        raise
-    out = np.array(checked, copy=True)
+    # A pose [x, y, theta] given whole is named as everywhere else (as_point).
+    out = np.array(as_point(value, name), copy=True)
     out.setflags(write=False)
     return out
-
-
-def _shape(value: object) -> tuple[int, ...] | None:
-    """``np.shape(value)``, or None where NumPy cannot tell (ragged nesting)."""
-    try:
-        return tuple(np.shape(cast(ArrayLike, value)))
-    except (TypeError, ValueError):
-        return None
 
 
 def _players(value: ArrayLike, name: str) -> FloatArray:
@@ -67,15 +54,8 @@ def _players(value: ArrayLike, name: str) -> FloatArray:
             f"{name} must be points (x, y), got Pose2D items: "
             "pass [(p.x, p.y) for p in poses]"
         )
-    try:
-        points = as_points(value, name, finite=False)
-    except ValueError as exc:
-        shape = _shape(value)
-        if shape is not None and len(shape) == 2 and shape[1] == 3:  # poses [x, y, theta]
-            hint = "poses [x, y, theta]? pass the (x, y) columns, [:, :2]"
-            raise ValueError(f"{exc} ({hint})") from None
-        raise
-    out = np.array(points, copy=True)
+    # Rows of poses (N, 3), or one pose (3,), are named by as_points itself.
+    out = np.array(as_points(value, name, finite=False), copy=True)
     if np.isinf(out).any():
         raise ValueError(f"{name} must be finite (NaN rows mark unseen players)")
     nan = np.isnan(out)

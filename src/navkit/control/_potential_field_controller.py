@@ -16,7 +16,7 @@ from navkit._shared.locks import _in_use
 from navkit._shared.metres import metres_text
 from navkit._shared.text import as_text
 from navkit._shared.types import FloatArray
-from navkit._shared.validation import as_float_array, as_points
+from navkit._shared.validation import as_float_array, as_point, as_points
 from navkit.control._goal import at_goal
 from navkit.control._ranges import MAX_COORDINATE, MAX_GAIN, MIN_GAIN, in_range, position, quantity
 from navkit.control._velocity_limits import _limit_change
@@ -744,7 +744,7 @@ class PotentialFieldController:
         """
         p = as_pose(pose, "pose")
         position(p.x, p.y, "pose")
-        goal = as_float_array(goal_xy, "goal_xy", shape=(2,))
+        goal = as_point(goal_xy, "goal_xy")
         position(float(goal[0]), float(goal[1]), "goal_xy")
         return self._desired(p, goal, obstacles, _mount(mount))
 
