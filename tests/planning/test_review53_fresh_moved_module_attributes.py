@@ -22,20 +22,12 @@ import pytest
 
 import navkit.planning  # installs the finder of the old names
 
-_XFAIL = pytest.mark.xfail(
-    strict=True,
-    raises=ValueError,
-    reason="FRESH -> FOUND5 (claims.txt): navkit.planning._moved's __getattr__ raises "
-    "ValueError for every unknown name; remove this mark with the fix",
-)
-
 
 def _old_module() -> object:
     importlib.import_module("navkit.planning._fields")  # as loading an old pickle does
     return sys.modules["navkit.planning._fields"]
 
 
-@_XFAIL
 def test_an_unknown_name_is_an_attribute_error() -> None:
     module = _old_module()
     assert not hasattr(module, "foo")
@@ -46,7 +38,6 @@ def _orphan() -> None:
     """The code of a function that no module holds (see below)."""
 
 
-@_XFAIL
 def test_pickling_an_object_without_a_module_is_not_navkits_business() -> None:
     _old_module()
     # A function without a module that no module holds: pickle probes every module in

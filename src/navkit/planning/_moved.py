@@ -7,7 +7,8 @@ pickled on 23 November name ``navkit.planning._field_dstar`` and
 loading one raised ModuleNotFoundError. :func:`install` adds an import finder
 (last on :data:`sys.meta_path`, so consulted only where no module of that name
 exists) that answers those three names with a module holding nothing but a
-look-up of :mod:`navkit.planning`'s public names: a class found there restores
+look-up, in :mod:`navkit.planning`'s public names, of the names the old module
+held (any other name is an AttributeError): a class found there restores
 the old state in its ``__setstate__`` (the potential fields: ``_restore`` in
 ``navkit.planning.reactive._potential_field``) or refuses it clearly
 (``FieldDStar`` before 6de62f3); a name no longer public (``FieldPath``,
@@ -43,14 +44,43 @@ MOVED = {
     "navkit.planning.reactive._fields": "0123de4",
 }
 
+#: The public names the old modules held (their ``__all__`` then): all a pickle of then
+#: names (FieldDStar and FieldPath lived in _field_dstar, the others in _fields).
+_HELD = frozenset(
+    (
+        "AttractiveField",
+        "BlendedAttraction",
+        "CompositeField",
+        "ConicAttraction",
+        "FieldDStar",
+        "FieldGrid",
+        "FieldPath",
+        "KhatibRepulsion",
+        "ParaboloidAttraction",
+        "PiecewiseAttraction",
+        "PiecewiseRepulsion",
+        "PotentialField",
+        "field_dstar",
+        "field_dstar_cells",
+        "field_grid",
+    )
+)
+
 
 def _public(module: str, name: str) -> Any:
-    """``name`` of the old ``module``: today's public class of that name."""
+    """``name`` of the old ``module``: today's public object of that name.
+
+    Only the names the old modules held are answered. Any other is an
+    AttributeError, as PEP 562 asks of a module ``__getattr__``: ``hasattr``
+    probes and :func:`pickle.whichmodule`, which looks an object without a
+    module up in every module of :data:`sys.modules`, raised this ValueError
+    once an old pickle had put the module there (review 53, FRESH).
+    """
+    if name not in _HELD:
+        raise AttributeError(f"module {module!r} has no attribute {name!r}")
     planning = importlib.import_module("navkit.planning")
     if name in planning.__all__:
         return getattr(planning, name)
-    if name.startswith("__"):  # a module attribute Python looks up (__path__, __file__)
-        raise AttributeError(name)
     raise ValueError(
         f"{module}.{name}: a pickle made by navkit before {MOVED[module]} (30 November "
         f"2026) names {name}, which navkit no longer has; build the object again"
@@ -91,5 +121,10 @@ def install() -> None:
     >>> sum(isinstance(f, _Finder) for f in sys.meta_path)
     1
     """
-    if not any(isinstance(finder, _Finder) for finder in sys.meta_path):
+    # By name, not isinstance: importlib.reload of this module makes a new _Finder
+    # class, and the finder of the first load must still count.
+    if not any(
+        type(finder).__module__ == __name__ and type(finder).__qualname__ == "_Finder"
+        for finder in sys.meta_path
+    ):
         sys.meta_path.append(_Finder())

@@ -1,0 +1,71 @@
+"""The finder of navkit.planning's old module names, installed once, answering their names only.
+
+4115ab9 answers ``navkit.planning._fields``, ``_field_dstar`` and
+``reactive._fields`` (pickles of 23-30 November 2026) through a finder on
+:data:`sys.meta_path`. ``install()`` counted it with ``isinstance``, so that
+``importlib.reload`` of ``navkit.planning._moved`` (a new ``_Finder`` class)
+added a second finder at each reload; and the old modules' names that are gone
+today, functions included (``field_grid``, ``field_dstar_cells``, which a pickle
+names by reference), stay a ValueError naming them while a name those modules
+never held (``os``, ``MapPlanner``) is an AttributeError (review 53, FRESH2).
+"""
+
+from __future__ import annotations
+
+import importlib
+import pickle
+import sys
+
+import pytest
+
+import navkit.planning  # installs the finder
+from navkit.planning import _moved
+
+
+def _finders() -> int:
+    return sum(type(f).__qualname__ == "_Finder" for f in sys.meta_path)
+
+
+def test_the_finder_is_installed_once_across_reloads() -> None:
+    assert _finders() == 1
+    try:
+        importlib.reload(_moved)
+        importlib.reload(navkit.planning)
+        _moved.install()
+        assert _finders() == 1
+    finally:
+        importlib.reload(navkit.planning)  # today's classes back under navkit.planning
+
+
+@pytest.mark.parametrize(
+    ("module", "gone"),
+    [
+        ("navkit.planning._fields", "field_grid"),
+        ("navkit.planning.reactive._fields", "FieldGrid"),
+        ("navkit.planning._field_dstar", "field_dstar_cells"),
+        ("navkit.planning._field_dstar", "FieldPath"),
+    ],
+)
+def test_a_name_the_old_module_held_and_navkit_lost_is_named(module: str, gone: str) -> None:
+    with pytest.raises(ValueError, match=f"names {gone}, which navkit no longer has"):
+        pickle.loads(f"c{module}\n{gone}\n.".encode())
+
+
+@pytest.mark.parametrize(
+    ("module", "name"),
+    [
+        ("navkit.planning._field_dstar", "MapPlanner"),  # public today, not then
+        ("navkit.planning._fields", "_public"),
+        ("navkit.planning._fields", "os"),
+    ],
+)
+def test_a_name_the_old_module_never_held_is_no_attribute(module: str, name: str) -> None:
+    with pytest.raises(AttributeError, match=repr(name)):
+        pickle.loads(f"c{module}\n{name}\n.".encode())
+
+
+def test_the_old_names_still_give_todays_objects() -> None:
+    loaded = pickle.loads(b"cnavkit.planning._field_dstar\nfield_dstar\n.")
+    assert loaded is navkit.planning.field_dstar
+    loaded = pickle.loads(b"cnavkit.planning.reactive._fields\nCompositeField\n.")
+    assert loaded is navkit.planning.CompositeField
