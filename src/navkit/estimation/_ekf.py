@@ -150,7 +150,9 @@ class ExtendedKalmanFilter(GaussianEstimate):
         about 2.2e-308, the smallest normal float (as ``R``'s). Positive
         definite as float64 can tell: the factorisation is computed in
         float64, so a matrix within rounding of singular passes, as it
-        passes ``numpy.linalg.cholesky``, though its exact least eigenvalue
+        passes ``numpy.linalg.cholesky`` (or the filter's own checks of the
+        covariance it commits, which order the operations otherwise: its
+        :attr:`P` is always a valid ``P0``), though its exact least eigenvalue
         may lie below zero (at most about ``n**2 * 2.2e-16`` times its largest
         variance; ``A @ A.T`` computed for a tall ``A`` can be such a
         matrix). The gate's exact NIS bounds do not assume more than that.
