@@ -41,7 +41,11 @@ def intended_resolution(resolution: float) -> float:
     radius a user gives in cells of that decimal (0.15 m, 3 cells) must reach
     as many cells of the float32 (2.99999996 of them), and a 10 m grid at it
     has 1000 cells of 0.01 m, not 1001. A float64 resolution that is not a
-    float32 value (0.05 written in Python) is returned unchanged.
+    float32 value (0.05 written in Python) is returned unchanged, and so is one
+    that is exactly a decimal of at most 10 significant digits, as one writes
+    it: 0.00244140625 (5 / 2**11) is a float32 value, but no float32 of a
+    shorter decimal, and was taken for 0.0024414062 (a grid of that width and
+    height at it had 2 x 2 cells; review 53).
 
     Parameters
     ----------
@@ -57,15 +61,36 @@ def intended_resolution(resolution: float) -> float:
     --------
     >>> intended_resolution(float(np.float32(0.05))), intended_resolution(0.05)
     (0.05, 0.05)
-    >>> intended_resolution(0.5)
-    0.5
+    >>> intended_resolution(0.5), intended_resolution(0.00244140625)
+    (0.5, 0.00244140625)
     """
     if not _FLOAT32_TINY <= resolution <= _FLOAT32_MAX:
         return resolution  # no float32 value: and its cast would overflow (or underflow)
     single = np.float32(resolution)
-    if float(single) != resolution:
+    if float(single) != resolution or _exact_digits(resolution) <= _WRITTEN_DIGITS:
         return resolution
     return float(np.format_float_scientific(single, unique=True))
+
+
+#: Significant digits of a resolution that is exactly a decimal one writes. The float32
+#: of a decimal of up to 6 significant digits between 1e-4 and 1e4 m, where it is not
+#: that decimal itself, is exactly a decimal of 11 digits or more (8192.07: 11; 0.05:
+#: 27; up to 5 digits: 13 or more).
+_WRITTEN_DIGITS = 10
+
+
+def _exact_digits(value: float) -> int:
+    """Significant digits of the decimal that finite, positive ``value`` is exactly.
+
+    ``p / 2**k`` is ``p * 5**k / 10**k``: its digits are those of ``p * 5**k``
+    without trailing zeros (0.00244140625 = 5 / 2**11: 9 digits; 0.01's float32,
+    0.009999999776482582, is exactly a decimal of 27 digits).
+    """
+    numerator, denominator = value.as_integer_ratio()
+    digits = numerator * 5 ** (denominator.bit_length() - 1)
+    while digits % 10 == 0:
+        digits //= 10
+    return len(str(digits))
 
 
 def narrow_float_dtype(value: object) -> np.dtype[np.floating[Any]] | None:
