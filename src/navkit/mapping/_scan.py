@@ -52,10 +52,15 @@ def _at_limits(ranges: FloatArray, narrow: np.dtype[Any], rmin: float, rmax: flo
     ``range_max`` of 5.6 it read as a return 5.6 m away, and mapping marked an
     obstacle at every such beam's end (review 53). A ``range_min`` rounded down
     (0.7 as 0.699999988) read as too close likewise.
+
+    A ``range_min`` the dtype rounds to 0 (float16's 2e-8) is left: a zero
+    reading is the "no return" of drivers that write 0, and became a return at
+    ``range_min``; so is one it rounds to its rounded ``range_max`` (float16's
+    1000.1 and 1000.2, both 1000): the reading stays "no return".
     """
     with np.errstate(over="ignore", under="ignore"):  # float16 holds up to 65504 m
         low, high = float(narrow.type(rmin)), float(narrow.type(rmax))
-    if math.isfinite(low) and low != rmin:
+    if math.isfinite(low) and low != rmin and low != 0.0 and low != high:
         ranges[ranges == low] = rmin
     if math.isfinite(high) and high != rmax:
         ranges[ranges == high] = rmax
