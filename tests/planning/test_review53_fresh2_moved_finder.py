@@ -7,13 +7,15 @@
 added a second finder at each reload; and the old modules' names that are gone
 today, functions included (``field_grid``, ``field_dstar_cells``, which a pickle
 names by reference), stay a ValueError naming them while a name those modules
-never held (``os``, ``MapPlanner``) is an AttributeError (review 53, FRESH2).
+never held (``os``, ``MapPlanner``) is an AttributeError; ``python -m`` of an old
+name says it has no code (it raised AttributeError from runpy) (review 53, FRESH2).
 """
 
 from __future__ import annotations
 
 import importlib
 import pickle
+import runpy
 import sys
 
 import pytest
@@ -69,3 +71,13 @@ def test_the_old_names_still_give_todays_objects() -> None:
     assert loaded is navkit.planning.field_dstar
     loaded = pickle.loads(b"cnavkit.planning.reactive._fields\nCompositeField\n.")
     assert loaded is navkit.planning.CompositeField
+
+
+def test_running_an_old_name_says_it_has_no_code(monkeypatch: pytest.MonkeyPatch) -> None:
+    # python -m navkit.planning._fields: runpy asked the finder for get_code, which
+    # it lacked (AttributeError: '_Finder' object has no attribute 'get_code').
+    monkeypatch.delitem(
+        sys.modules, "navkit.planning._fields", raising=False
+    )  # as in a new process
+    with pytest.raises(ImportError, match="No code object available"):
+        runpy.run_module("navkit.planning._fields")

@@ -107,6 +107,10 @@ class _Finder:
     def create_module(self, spec: importlib.machinery.ModuleSpec) -> types.ModuleType | None:
         return None  # Python's default module
 
+    def get_code(self, fullname: str) -> None:
+        """No code: ``python -m`` (runpy) of an old name says so, not AttributeError."""
+        return None
+
     def exec_module(self, module: types.ModuleType) -> None:
         module.__doc__ = f"Old name of navkit.planning's module, for pickles (see {__name__})."
         module.__getattr__ = partial(_public, module.__name__)  # type: ignore[method-assign]
