@@ -41,11 +41,12 @@ def intended_resolution(resolution: float) -> float:
     radius a user gives in cells of that decimal (0.15 m, 3 cells) must reach
     as many cells of the float32 (2.99999996 of them), and a 10 m grid at it
     has 1000 cells of 0.01 m, not 1001. A float64 resolution that is not a
-    float32 value (0.05 written in Python) is returned unchanged, and so is one
-    that is exactly a decimal of at most 10 significant digits, as one writes
-    it: 0.00244140625 (5 / 2**11) is a float32 value, but no float32 of a
-    shorter decimal, and was taken for 0.0024414062 (a grid of that width and
-    height at it had 2 x 2 cells; review 53).
+    float32 value (0.05 written in Python) is returned unchanged, and so is a
+    float32 value whose shortest decimal has more than 6 significant digits
+    (more than float32 keeps of any decimal): no short decimal stands behind
+    it. 0.00244140625 (5 / 2**11, written in Python) was taken for
+    0.0024414062, and a grid of that width and height at it had 2 x 2 cells;
+    float32 1/81 for 0.012345679, and 1 m at it had 82 cells (review 53).
 
     Parameters
     ----------
@@ -67,30 +68,18 @@ def intended_resolution(resolution: float) -> float:
     if not _FLOAT32_TINY <= resolution <= _FLOAT32_MAX:
         return resolution  # no float32 value: and its cast would overflow (or underflow)
     single = np.float32(resolution)
-    if float(single) != resolution or _exact_digits(resolution) <= _WRITTEN_DIGITS:
+    if float(single) != resolution:
         return resolution
-    return float(np.format_float_scientific(single, unique=True))
+    shortest = np.format_float_scientific(single, unique=True)
+    if len(shortest.split("e")[0].replace(".", "").lstrip("-")) > _FLT_DIG:
+        return resolution  # no decimal a float32 keeps stands behind it
+    return float(shortest)
 
 
-#: Significant digits of a resolution that is exactly a decimal one writes. The float32
-#: of a decimal of up to 6 significant digits between 1e-4 and 1e4 m, where it is not
-#: that decimal itself, is exactly a decimal of 11 digits or more (8192.07: 11; 0.05:
-#: 27; up to 5 digits: 13 or more).
-_WRITTEN_DIGITS = 10
-
-
-def _exact_digits(value: float) -> int:
-    """Significant digits of the decimal that finite, positive ``value`` is exactly.
-
-    ``p / 2**k`` is ``p * 5**k / 10**k``: its digits are those of ``p * 5**k``
-    without trailing zeros (0.00244140625 = 5 / 2**11: 9 digits; 0.01's float32,
-    0.009999999776482582, is exactly a decimal of 27 digits).
-    """
-    numerator, denominator = value.as_integer_ratio()
-    digits = numerator * 5 ** (denominator.bit_length() - 1)
-    while digits % 10 == 0:
-        digits //= 10
-    return len(str(digits))
+#: Significant digits any decimal keeps through float32 (C's FLT_DIG): the float32 of a
+#: decimal of at most 6 is the float32 whose shortest decimal is that one, so a float32
+#: whose shortest decimal is longer stands for none (a written binary fraction, 1/81).
+_FLT_DIG = 6
 
 
 def narrow_float_dtype(value: object) -> np.dtype[np.floating[Any]] | None:
