@@ -18,7 +18,6 @@ from functools import partial
 from typing import Any
 
 import numpy as np
-import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from numpy.typing import NDArray
@@ -194,13 +193,6 @@ def test_a_reset_compass_calibration_is_a_new_one(
     assert reused.initial_deg == fresh.initial_deg
 
 
-@pytest.mark.xfail(
-    strict=True,
-    raises=ValueError,
-    reason="REUSE -> FOUND6 (claims.txt): covariance() decides definiteness with numpy's "
-    "Cholesky, the update kernels with their LDLᵀ; at the boundary the constructor refuses "
-    "a P the filter committed. Remove this mark with the fix.",
-)
 def test_a_filter_can_be_rebuilt_from_the_covariance_it_committed() -> None:
     # A reading 1e20 times more precise than the estimate: the kernels' LDLᵀ takes
     # the posterior P as positive definite (second pivot about 1e-17 of its scale)
@@ -208,6 +200,6 @@ def test_a_filter_can_be_rebuilt_from_the_covariance_it_committed() -> None:
     h = np.array([[-1.206849486366775, 0.13135791792025192]])
     ekf = ExtendedKalmanFilter(np.zeros(2), np.array([[1.0, 0.9], [0.9, 1.0]]))
     ekf.update(np.array([0.5]), partial(np.matmul, h), partial(_constant, h), np.array([[1e-20]]))
-    rebuilt = ExtendedKalmanFilter(ekf.x.copy(), ekf.P.copy())  # raises ValueError today
+    rebuilt = ExtendedKalmanFilter(ekf.x.copy(), ekf.P.copy())  # refused before 54bec22
     ops = [("predict", 1, 5, 0), ("update", 1, 6, 1), ("update", 2, 7, 0)]
     assert _ekf_job(ekf, ops) == _ekf_job(rebuilt, ops)
