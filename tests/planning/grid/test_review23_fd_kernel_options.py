@@ -111,4 +111,5 @@ def test_the_field_dstar_modules_compile_with_one_option_set() -> None:
                 assert options["error_model"] == "numpy", value.py_func.__qualname__
                 assert options["_nrt"] is False, value.py_func.__qualname__
                 assert type(value._cache).__name__ != "NullCache", value.py_func.__qualname__
-    assert seen >= 20
+    # 18 since review 53 folded the walk's four helpers into _candidates and the walk (22 before).
+    assert seen >= 18

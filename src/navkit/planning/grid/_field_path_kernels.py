@@ -17,9 +17,21 @@ inlines, such as the box of written records it keeps in ``work[2:6]`` since
 review 27 (in repairs too since review 28) or the tournament on key bits
 of review 48, must come with a change of this file, or a cache made before it
 keeps running the old code.)
-Every helper is compiled once and called (LLVM still inlines the small
-ones into their callers): the walk is not hot, and numba's own inlining types
-and lowers a helper's body again at every call site. Cell costs are read
+The walk is two functions (review 53): :func:`extract_path` and
+:func:`_candidates`, which makes every kind of candidate (edge crossings,
+grid lines, option-D pairs and, in its corner mode, the straight steps to
+corners) in one loop with one site each for reading a node value, paying a
+grid edge and writing a row, the edge minimum written in. There were six (a
+straight-step kernel ``_descend`` with its own corner loop and the helpers
+``_edge_min``, ``_settled_value``, ``_line_cost``), each with numba's fixed
+cost per function (its passes, its LLVM module, its cache file) and every
+call site lowered with its arguments: a cold plan + ``update_costs`` +
+``replan`` took about 0.3 s less (see docs/compilation.md), with the same
+candidates in the same order (paths, costs and expansions bit for bit). A
+helper is still compiled once and called, never inlined by numba (which
+types and lowers its body again at every call site: ``_candidates`` has one
+site, and folding it into :func:`extract_path` cost 0.13 s more, the walk's
+type inference then passing over both bodies together). Cell costs are read
 inline (``pad[(r + 1) * width + c + 1]``) and ``min()`` of two values is
 written out: a function for either (an LLVM-inlined ``cell_cost``, numba's
 ``min()``, compiled once per argument type set) was compiled on its own and
@@ -52,7 +64,7 @@ them as they are.
 Indices stay signed (review 25): indexed with ``np.uint64`` as A* is (see
 Indices in :mod:`navkit.planning.grid._astar_kernels`), the walk's cell,
 record and candidate reads lost their wraparound code (all 12 in
-:func:`_candidates`, :func:`_descend` and the helpers they call), but a walk
+:func:`_candidates` and the straight-step and helper kernels of then), but a walk
 takes about 1 % of a fresh 1024² plan, and alone (replans from each point of the
 path in turn, costs unchanged: nothing to search) ÷ A* it went 3.00 -> 2.91
 (random 20 %), 3.85 -> 3.76 (random 35 %), 0.72 -> 0.71 (rooms), medians of
@@ -111,122 +123,6 @@ _helper = typed_njit(**HELPER_OPTIONS)
 
 
 @_helper
-def _edge_min(
-    pr: float,
-    pc: float,
-    e0r: float,
-    e0c: float,
-    tr: float,
-    tc: float,
-    g0: float,
-    g1: float,
-    c: float,
-    out: np.ndarray,
-    n: int,
-) -> int:
-    """Best point q = e0 + u t (u in [0, 1], t a unit axis vector) on one edge.
-
-    Minimises ``c |p - q| + (1 - u) g0 + u g1``, a convex function of u whose
-    stationary point is ``u0 - k d / sqrt(c^2 - k^2)`` (k = g1 - g0, u0 the
-    projection of p and d its distance to the edge line); a stationary point
-    within 1e-12 of an end counts as that end. Appends the candidate (cost to
-    q, value at q, q) to ``out`` (flat, row n at ``4 n``) and returns the new count.
-    """
-    if g0 == INF and g1 == INF:
-        return n
-    wr = pr - e0r
-    wc = pc - e0c
-    u0 = wr * tr + wc * tc
-    d = abs(wr * tc - wc * tr)
-    best_u = 0.0
-    best = INF
-    if g0 < INF:
-        best = c * hypot(d, u0) + g0
-    if g1 < INF:
-        v = c * hypot(d, 1.0 - u0) + g1
-        if v < best:
-            best = v
-            best_u = 1.0
-    if g0 < INF and g1 < INF and d > 0.0:
-        k = g1 - g0
-        if abs(k) < c:
-            u = u0 - k * d / sqrt(c * c - k * k)
-            # Not within rounding of an end: a minimum at an end in exact
-            # arithmetic came out at u = 1 - 1e-16 on one drawing of the grid
-            # and at u <= 0 on its mirror image, and from a point a hair off the
-            # node the next step along a grid line paid the cell beside it
-            # instead of the cheaper of the two (a path 14 % dearer; review 30).
-            if 1e-12 < u < 1.0 - 1e-12:
-                v = c * hypot(d, u - u0) + g0 + k * u
-                if v < best:
-                    best = v
-                    best_u = u
-    if best_u == 0.0:
-        qr, qc, gq = e0r, e0c, g0
-    elif best_u == 1.0:
-        qr, qc, gq = e0r + tr, e0c + tc, g1
-    else:
-        qr = e0r + best_u * tr
-        qc = e0c + best_u * tc
-        gq = g0 + (g1 - g0) * best_u
-    row = 4 * n
-    out[row] = c * hypot(pr - qr, pc - qc)
-    out[row + 1] = gq
-    out[row + 2] = qr
-    out[row + 3] = qc
-    return n + 1
-
-
-@_helper
-def _settled_value(
-    vals: np.ndarray,
-    keys: np.ndarray,
-    size: np.ndarray,
-    ncols: int,
-    sr: int,
-    sc: int,
-    km: float,
-    hscale: float,
-    i: int,
-    j: int,
-    need: np.ndarray,
-) -> float:
-    """Exact cost-to-goal of node (i, j) if it is settled, else NaN (node id -> need[0]).
-
-    Settled: consistent, its key not above the queue's top (the stopping rule
-    of :func:`settle`). The helpers never search themselves: they ask
-    :func:`extract_path`, the one caller of :func:`settle`, to settle the node
-    and repeat the step (so the search loop is compiled into one kernel only).
-    """
-    s = i * ncols + j
-    gs = vals[RECORD * s]
-    if gs == vals[RECORD * s + RHS] and (
-        size[0] == 0 or key_reached(keys[0], keys[1], gs, heuristic(sr, sc, i, j, hscale), km)
-    ):
-        return float(gs)
-    need[0] = s
-    return NAN
-
-
-@_helper
-def _line_cost(pad: np.ndarray, width: int, pr: float, pc: float, i: int, j: int) -> float:
-    """Cost per unit length along the grid line from p to node (i, j) (one cell long)."""
-    # Comparisons written out rather than min(): numba compiles min() as a function
-    # of its own per argument type set.
-    if pr == i:
-        col = j if j < pc else floor(pc)
-        # Cells (i - 1, col) and (i, col).
-        a = pad[i * width + col + 1]
-        b = pad[(i + 1) * width + col + 1]
-    else:
-        row = i if i < pr else floor(pr)
-        # Cells (row, j - 1) and (row, j).
-        a = pad[(row + 1) * width + j]
-        b = pad[(row + 1) * width + j + 1]
-    return float(b if b < a else a)
-
-
-@_helper
 def _candidates(
     pad: np.ndarray,
     width: int,
@@ -244,6 +140,8 @@ def _candidates(
     out: np.ndarray,
     corner_g: np.ndarray,
     need: np.ndarray,
+    corners: bool,
+    below: float,
 ) -> int:
     """Next-point candidates of the interpolated path from point p on the grid lines.
 
@@ -253,10 +151,20 @@ def _candidates(
     ends of the grid edges through p (paying the cheaper cell beside the edge)
     and, from a node, the point where option D of :func:`corner_cost` leaves
     the cheap edge. ``corner_g`` (4,) is scratch.
+
+    With ``corners`` the rows are instead the straight steps from p to the
+    corners of the passable cells touching p, p itself left out: the
+    8-connected move set from a node, where an axis move is offered by both
+    cells beside the edge and pays the cheaper of the two. Only corners of
+    value below ``below`` are rows (the walk's straight step must lower the
+    value); ``below`` is not read without ``corners``.
+
     Returns the number of rows, or -1 when a node value it needs is not
-    settled yet (its id in ``need[0]``).
+    settled yet (its id in ``need[0]``): values are read in the order the
+    rows are made, so the nodes handed back, and with them the search's
+    work, follow the walk.
     """
-    # A variable, not the literal 0 (a literal argument compiles _edge_min twice).
+    # A variable, not the literal 0 (see the module notes).
     n: int = width - width
     fr = floor(pr)
     fc = floor(pc)
@@ -264,20 +172,105 @@ def _candidates(
     on_c = pc == fc
     r_lo = fr - 1 if on_r else fr
     c_lo = fc - 1 if on_c else fc
-    for r in range(r_lo, fr + 1):
-        for c in range(c_lo, fc + 1):
+    # Items, each reading one node value at the one site below (review 53: one
+    # loop, where a loop per kind each had its own read, row and helper calls):
+    # 0-15 the corners of the cells (r_lo + (item >> 3), c_lo + (item >> 2 & 1))
+    # touching p, then the grid lines through p (16-19) and, from a node, the
+    # option-D pairs (20-27).
+    items = 16 if corners else 28 if on_r and on_c else 20
+    for item in range(items):
+        q = item & 3
+        along = False
+        mult = INF
+        if item < 16:
+            r = r_lo + (item >> 3)
+            c = c_lo + (item >> 2 & 1)
+            if r > fr or c > fc:
+                continue
             cost = pad[(r + 1) * width + c + 1]  # cell (r, c)
             if cost == INF:
                 continue
-            # Values of the corners (r, c), (r, c+1), (r+1, c), (r+1, c+1).
-            for q in range(4):
-                gq = _settled_value(
-                    vals, keys, size, ncols, sr, sc, km, hscale, r + (q >> 1), c + (q & 1), need
-                )
-                if gq != gq:
-                    return -1
-                corner_g[q] = gq
-            # The four edges: rows r and r+1 (along the columns), columns c and c+1.
+            # Corner q of the cell: (r, c), (r, c+1), (r+1, c), (r+1, c+1).
+            i = r + (q >> 1)
+            j = c + (q & 1)
+            if corners:
+                if i == pr and j == pc:
+                    continue
+                mult = cost
+                along = i == pr or j == pc
+        elif item < 20:
+            # Along the grid lines through p, to the nearest nodes on either side.
+            side = q >> 1
+            if q & 1 == 0:
+                if not on_r:
+                    continue
+                i = fr
+                j = fc - 1 + 2 * side if on_c else fc + side
+            else:
+                if not on_c:
+                    continue
+                i = fr - 1 + 2 * side if on_r else fr + side
+                j = fc
+            if i < 0 or i >= nrows or j < 0 or j >= ncols:
+                continue
+            along = True
+        else:
+            k = item - 20
+            base = fr * width + fc
+            # Option D: along the cheap edge (cell cost b) to the point where the
+            # straight crossing of the dear cell (cost dear) to corner D begins.
+            dear = pad[base + PAIR_CR[k] * width + PAIR_CC[k]]
+            b = pad[base + PAIR_BR[k] * width + PAIR_BC[k]]
+            if not b < dear or dear == INF:
+                continue
+            w = b / sqrt(dear * dear - b * b)
+            if w >= 1.0:
+                continue
+            x = 1.0 - w
+            c0 = b * x
+            extra = dear * sqrt(1.0 + w * w)
+            qr = fr + x * PAIR_AR[k]
+            qc = fc + x * PAIR_AC[k]
+            i = fr + PAIR_DR[k]
+            j = fc + PAIR_DC[k]
+        if along:
+            # The grid edge from p to node (i, j) pays the cheaper cell beside it
+            # (comparisons written out: numba compiles min() as a function of its own).
+            if pr == i:
+                col = j if j < pc else floor(pc)
+                # Cells (i - 1, col) and (i, col).
+                lo = pad[i * width + col + 1]
+                hi = pad[(i + 1) * width + col + 1]
+            else:
+                row = i if i < pr else floor(pr)
+                # Cells (row, j - 1) and (row, j).
+                lo = pad[(row + 1) * width + j]
+                hi = pad[(row + 1) * width + j + 1]
+            if hi < lo:
+                lo = hi
+            if lo < mult:
+                mult = lo
+            if mult == INF:
+                continue
+        # The node's value, if settled (consistent, its key not above the
+        # queue's top: the stopping rule of settle); else it is handed back.
+        s = i * ncols + j
+        g = vals[RECORD * s]
+        if not (
+            g == vals[RECORD * s + RHS]
+            and (
+                size[0] == 0
+                or key_reached(keys[0], keys[1], g, heuristic(sr, sc, i, j, hscale), km)
+            )
+        ):
+            need[0] = s
+            return -1
+        if item < 16 and not corners:
+            corner_g[q] = g
+            if q < 3:
+                continue
+            # The four far edges of cell (r, c): rows r and r+1 (along the
+            # columns), columns c and c+1, each offering its best crossing point.
             for e in range(4):
                 if e < 2:
                     if pr == r + e:
@@ -297,127 +290,70 @@ def _candidates(
                     tc = 0.0
                     g0 = corner_g[e - 2]
                     g1 = corner_g[e]
-                n = _edge_min(pr, pc, e0r, e0c, tr, tc, g0, g1, cost, out, n)
-    # Along the grid lines through p, to the nearest nodes on either side.
-    for line in range(4):
-        side = line >> 1
-        if line & 1 == 0:
-            if not on_r:
-                continue
-            i = fr
-            j = fc - 1 + 2 * side if on_c else fc + side
-        else:
-            if not on_c:
-                continue
-            i = fr - 1 + 2 * side if on_r else fr + side
-            j = fc
-        if i < 0 or i >= nrows or j < 0 or j >= ncols:
-            continue
-        edge = _line_cost(pad, width, pr, pc, i, j)
-        if edge == INF:
-            continue
-        gq = _settled_value(vals, keys, size, ncols, sr, sc, km, hscale, i, j, need)
-        if gq != gq:
-            return -1
-        if gq == INF:
-            continue
-        row = 4 * n
-        out[row] = edge * hypot(pr - i, pc - j)
-        out[row + 1] = gq
-        out[row + 2] = i
-        out[row + 3] = j
-        n += 1
-    if on_r and on_c:
-        i = fr
-        j = fc
-        base = i * width + j
-        for k in range(8):
-            c = pad[base + PAIR_CR[k] * width + PAIR_CC[k]]
-            b = pad[base + PAIR_BR[k] * width + PAIR_BC[k]]
-            if not b < c or c == INF:
-                continue
-            w = b / sqrt(c * c - b * b)
-            if w >= 1.0:
-                continue
-            g2 = _settled_value(
-                vals, keys, size, ncols, sr, sc, km, hscale, i + PAIR_DR[k], j + PAIR_DC[k], need
-            )
-            if g2 != g2:
-                return -1
-            if g2 == INF:
-                continue
-            x = 1.0 - w
-            row = 4 * n
-            out[row] = b * x
-            out[row + 1] = c * sqrt(1.0 + w * w) + g2
-            out[row + 2] = i + x * PAIR_AR[k]
-            out[row + 3] = j + x * PAIR_AC[k]
-            n += 1
-    return n
-
-
-@_helper
-def _descend(
-    pad: np.ndarray,
-    width: int,
-    ncols: int,
-    vals: np.ndarray,
-    keys: np.ndarray,
-    size: np.ndarray,
-    sr: int,
-    sc: int,
-    km: float,
-    hscale: float,
-    pr: float,
-    pc: float,
-    cur: float,
-    need: np.ndarray,
-) -> tuple[float, float, float, float]:
-    """Cheapest straight step from p to a corner of a passable cell touching p.
-
-    Only corners whose cost-to-goal is below ``cur`` qualify. From a node this
-    is the 8-connected move set (an axis move is offered by both cells beside
-    the edge, so it pays the cheaper one). Returns (total, g at the corner,
-    corner row, corner col), total = inf when no corner qualifies, NaN when a
-    node value it needs is not settled yet (its id in ``need[0]``).
-    """
-    best = INF
-    best_g = INF
-    qr = 0.0
-    qc = 0.0
-    fr = floor(pr)
-    fc = floor(pc)
-    r_lo = fr - 1 if pr == fr else fr
-    c_lo = fc - 1 if pc == fc else fc
-    for r in range(r_lo, fr + 1):
-        for c in range(c_lo, fc + 1):
-            cost = pad[(r + 1) * width + c + 1]  # cell (r, c)
-            if cost == INF:
-                continue
-            for q in range(4):
-                i = r + (q >> 1)
-                j = c + (q & 1)
-                if i == pr and j == pc:
+                if g0 == INF and g1 == INF:
                     continue
-                gn = _settled_value(vals, keys, size, ncols, sr, sc, km, hscale, i, j, need)
-                if gn != gn:
-                    return NAN, NAN, 0.0, 0.0
-                if not gn < cur:
-                    continue
-                di_r = i - pr
-                dj_c = j - pc
-                if di_r == 0.0 or dj_c == 0.0:
-                    # Along a grid line: the cheaper cell beside it is paid.
-                    line = _line_cost(pad, width, pr, pc, i, j)
-                    t = (line if line < cost else cost) * hypot(di_r, dj_c) + gn
+                # The best point q = e0 + u t (u in [0, 1]) minimises
+                # cost |p - q| + (1 - u) g0 + u g1, a convex function of u whose
+                # stationary point is u0 - dg d / sqrt(cost^2 - dg^2) (dg = g1 - g0,
+                # u0 the projection of p and d its distance to the edge line); a
+                # stationary point within 1e-12 of an end counts as that end.
+                wr = pr - e0r
+                wc = pc - e0c
+                u0 = wr * tr + wc * tc
+                d = abs(wr * tc - wc * tr)
+                best_u = 0.0
+                best = INF
+                if g0 < INF:
+                    best = cost * hypot(d, u0) + g0
+                if g1 < INF:
+                    t = cost * hypot(d, 1.0 - u0) + g1
+                    if t < best:
+                        best = t
+                        best_u = 1.0
+                if g0 < INF and g1 < INF and d > 0.0:
+                    dg = g1 - g0
+                    if abs(dg) < cost:
+                        u = u0 - dg * d / sqrt(cost * cost - dg * dg)
+                        # Not within rounding of an end: a minimum at an end in
+                        # exact arithmetic came out at u = 1 - 1e-16 on one drawing
+                        # of the grid and at u <= 0 on its mirror image, and from a
+                        # point a hair off the node the next step along a grid line
+                        # paid the cell beside it instead of the cheaper of the two
+                        # (a path 14 % dearer; review 30).
+                        if 1e-12 < u < 1.0 - 1e-12:
+                            t = cost * hypot(d, u - u0) + g0 + dg * u
+                            if t < best:
+                                best = t
+                                best_u = u
+                if best_u == 0.0:
+                    qr, qc, gq = e0r, e0c, g0
+                elif best_u == 1.0:
+                    qr, qc, gq = e0r + tr, e0c + tc, g1
                 else:
-                    t = cost * hypot(di_r, dj_c) + gn
-                if t < best:
-                    best = t
-                    best_g = gn
-                    qr = float(i)
-                    qc = float(j)
-    return best, best_g, qr, qc
+                    qr = e0r + best_u * tr
+                    qc = e0c + best_u * tc
+                    gq = g0 + (g1 - g0) * best_u
+                row = 4 * n
+                out[row] = cost * hypot(pr - qr, pc - qc)
+                out[row + 1] = gq
+                out[row + 2] = qr
+                out[row + 3] = qc
+                n += 1
+            continue
+        if g == INF or (corners and not g < below):
+            continue
+        if item < 20:
+            c0 = mult * hypot(pr - i, pc - j)
+            extra = 0.0
+            qr = float(i)
+            qc = float(j)
+        row = 4 * n
+        out[row] = c0
+        out[row + 1] = extra + g
+        out[row + 2] = qr
+        out[row + 3] = qc
+        n += 1
+    return n
 
 
 @_kernel
@@ -446,7 +382,8 @@ def extract_path(
     minimising (cost to q) + (cost-to-goal at q), where with ``lookahead`` the
     cost-to-goal of a q inside an edge is not its linear interpolation but the
     best one-step continuation from q. The estimate must decrease at every step;
-    when no candidate lowers it, :func:`_descend` takes a straight step to a
+    when no candidate lowers it, a straight step (the corner mode of
+    :func:`_candidates`, picked by the same loop) goes to a
     corner of lower exact cost-to-goal (from a node one always exists while the
     values are below 2**52: a node's value exceeds that of the neighbour it
     comes from by at least 1/sqrt(2)). From a point inside an edge there may be
@@ -457,7 +394,7 @@ def extract_path(
     which exists because the point's value is not below the least of its
     cells' corners. So the values at the nodes met strictly decrease, the walk
     has no cycle and it ends at the goal. 8-connected mode takes only
-    :func:`_descend` steps: an optimal D* Lite path.
+    straight steps: an optimal D* Lite path.
 
     Buffers (all written, flat, see the module notes): ``pts`` (2 K,) the
     path points (point k at ``2 k``, ``2 k + 1``), ``cand`` and ``cand2``
@@ -538,9 +475,16 @@ def extract_path(
         best_v = INF
         qr = 0.0
         qc = 0.0
-        if interp:
+        # Mode 0, interpolated: the candidates of p. When none lowers the value
+        # (and in 8-connected mode, which starts there), mode 1: a straight step
+        # to a corner below the current value, then, from a point inside an edge
+        # whose value rounded to a corner's, mode 2: below the value of the last
+        # node passed. One loop picks in every mode (one _candidates site).
+        mode = zero if interp else zero + 1
+        while True:
+            below = node_v if mode == 2 else cur
             # Candidates of p (a = -1), then for each candidate a inside an
-            # edge its own candidates (the lookahead): one _candidates site.
+            # edge its own candidates (the lookahead; corners are nodes).
             n = zero
             a = -1
             while a < n:
@@ -557,7 +501,7 @@ def extract_path(
                 if expand:
                     buf = cand if a < 0 else cand2
                     m = _candidates(pad, width, nrows, ncols, vals, keys, size, sr, sc, km, hscale,
-                                    cr, cc, buf, corner_g, need)  # fmt: skip
+                                    cr, cc, buf, corner_g, need, mode > 0, below)  # fmt: skip
                     if m < 0:
                         break
                     if a < 0:
@@ -571,30 +515,21 @@ def extract_path(
                             la = t
                     v = la
                 t = cand[4 * a] + v
-                if t < best and v < cur:
+                if t < best and v < below:
                     best = t
                     best_v = v
                     qr = cr
                     qc = cc
                 a += 1
-            if need[0] >= 0:
-                continue
+            if need[0] >= 0 or best < INF or mode == 2:
+                break
+            if mode == 1 and pr == floor(pr) and pc == floor(pc):
+                break
+            mode += 1
+        if need[0] >= 0:
+            continue
         if best == INF:
-            # A straight step to a corner below the current value, or (from a
-            # point inside an edge whose value rounded to a corner's) below the
-            # value of the last node passed.
-            for attempt in range(2):
-                if attempt == 1 and pr == floor(pr) and pc == floor(pc):
-                    break
-                below = cur if attempt == 0 else node_v
-                best, best_v, qr, qc = _descend(pad, width, ncols, vals, keys, size, sr, sc, km,
-                                                hscale, pr, pc, below, need)  # fmt: skip
-                if best != INF:  # also NaN: a value to settle first
-                    break
-            if need[0] >= 0:
-                continue
-            if best == INF:
-                return k, STUCK
+            return k, STUCK
         pts[2 * k] = qr
         pts[2 * k + 1] = qc
         k += 1
