@@ -317,7 +317,10 @@ class FieldDStar:
     ``RuntimeError`` and changes nothing; the call under way goes on as alone.
     A copy or pickle made while a call is under way keeps the costs but not
     the search, which the call is writing: its :meth:`replan` asks for a
-    :meth:`plan` first.
+    :meth:`plan` first. Taking a copy is a call too: a plan, replan or cost
+    update that another thread starts while ``copy`` or ``pickle`` reads the
+    planner raises ``RuntimeError`` (a thread saving snapshots of a planner
+    that another thread plans with needs the same lock as the calls).
 
     Examples
     --------
