@@ -4,7 +4,7 @@ Pickles made before 5e5f83f (and up to 0123de4, 30 November) name the modules
 ``navkit.planning._fields``, ``navkit.planning._field_dstar`` (and
 ``navkit.planning.reactive._fields``), which moved: loading one raised
 ModuleNotFoundError (FOUND4's survey, review 52). Those names now answer with
-today's public classes (``navkit.planning._moved``, an import finder, no file):
+today's public classes (``navkit._shared.moved``, an import finder, no file):
 
 * the potential fields, then plain slotted classes with other names
   (``goal``, ``rad_thr``, ``r``, ``s``, ``d0``, ``obstacles``), load with their

@@ -31,7 +31,7 @@ def test_the_finder_is_installed_once_across_reloads() -> None:
     code = (
         "import importlib, sys\n"
         "import navkit.planning\n"
-        "from navkit.planning import _moved\n"
+        "from navkit._shared import moved as _moved\n"
         "importlib.reload(_moved)\n"
         "importlib.reload(navkit.planning)\n"
         "_moved.install()\n"

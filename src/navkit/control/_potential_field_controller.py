@@ -240,6 +240,9 @@ _RENAMED = {
 # ``mode`` became ``drive`` (8c31a76), the same values: a pickle made before holds it so
 # (review 52: such a controller was refused as it loaded, naming 'mode').
 _RENAMED["mode"] = "_drive"
+# ``d0`` became ``influence_radius`` (0123de4), the same value: a controller pickled
+# before holds it so (review 53: such a pickle was refused, naming 'd0').
+_RENAMED["d0"] = "_influence_radius"
 
 #: Relative slack of the stall clock. It adds each step's dt, and k steps of a
 #: decimal period sum below k periods (ten of 0.1 s: 0.9999999999999999), which

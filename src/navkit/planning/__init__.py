@@ -10,17 +10,8 @@ Two halves that never import each other, both re-exported here:
 """
 
 # ruff: noqa: F405  (the names listed in __all__ come from the star imports)
-from navkit.planning._moved import install as _install_moved
-
-# Pickles of the first days name modules that moved (see navkit.planning._moved).
-# Installed before anything else: a thread importing an old name while another
-# runs this file finds navkit.planning in sys.modules and does not wait for it
-# (importlib waits for a module being imported, not for its parent), so the
-# finder must be there before the halves' imports take their 0.15 s.
-_install_moved()
-
-from navkit.planning.grid import *  # noqa: E402, F403
-from navkit.planning.reactive import *  # noqa: E402, F403
+from navkit.planning.grid import *  # noqa: F403
+from navkit.planning.reactive import *  # noqa: F403
 
 # A literal list, not one computed from the halves' ``__all__``: type checkers
 # read only a literal ``__all__``, so ``from navkit.planning import *`` in user

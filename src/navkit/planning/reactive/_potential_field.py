@@ -311,7 +311,7 @@ def _restore(record: Any, state: Sequence[Any]) -> None:
     would inherit.
 
     A field pickled before the fields were dataclasses (5e5f83f and before, 23
-    to 30 November 2026, in modules that moved: see :mod:`navkit.planning._moved`)
+    to 30 November 2026, in modules that moved: see :mod:`navkit._shared.moved`)
     comes as Python's ``(None, {slot: value})`` to a record with no field set:
     its values under today's names (the class's ``_renamed_fields``: ``goal``
     is ``goal_xy``, ``rad_thr`` ``threshold_radius``...), its caches (a
