@@ -19,7 +19,11 @@ raised ModuleNotFoundError. One finder for every package
   ValueError naming them and saying to build the object again.
 
 Real pickle bytes made at aa060be (the last commit of 23 November,
-``tests/old_release.made_at``); a slow test makes them again there.
+``tests/old_release.made_at``); a slow test makes them again there and at
+5e5f83f. Found, not fixed (strict xfails, real bytes of 5e5f83f, whose results
+0123de4 replaced 24 minutes later): ``GridPath``, ``FieldPath`` and ``WorldPath``
+named modules that exist today and raise AttributeError, and ``BehaviourTarget``,
+a ``NamedTuple`` in ``navkit.behaviours._soccer`` then, loads with no field set.
 """
 
 from __future__ import annotations
@@ -280,11 +284,16 @@ def test_import_navkit_installs_one_finder() -> None:
 
 
 @pytest.mark.slow
-def test_the_pickles_are_made_again_at_aa060be(tmp_path: Path) -> None:
-    made = made_at("aa060be", MAKER, tmp_path)
+@pytest.mark.parametrize("commit", ["aa060be", "5e5f83f"])
+def test_the_pickles_are_made_again(commit: str, tmp_path: Path) -> None:
+    # At 5e5f83f (MAKER's game names from navkit.behaviours): CarmenLog and the
+    # controller still in their modules of the first days, the records in today's.
+    made = made_at(commit, MAKER, tmp_path)
     assert sorted(made) == sorted(MADE_AT_AA060BE)
     for name, (module, text) in made.items():
         assert module.startswith("navkit.") and module.rsplit(".", 1)[0] != "navkit"
+        if commit == "5e5f83f" and name in MADE_AT_5E5F83F:
+            continue  # the strict xfails below
         if name in ("GridPath", "WorldPath"):
             with pytest.raises(ValueError, match=f"{name}, which navkit no longer has"):
                 _load(text)
@@ -294,3 +303,66 @@ def test_the_pickles_are_made_again_at_aa060be(tmp_path: Path) -> None:
             assert old.previous_velocity.tolist() == [0.2683281572999748, 0.1341640786499874]
         else:
             assert repr(_load(text)) == repr(_today(name, tmp_path))
+
+
+#: Results pickled at 5e5f83f (30 November 2026, 13:28; 0123de4 replaced them at
+#: 13:52), in modules that exist today (zlib, base64): what they name is gone.
+MADE_AT_5E5F83F = {
+    "BehaviourTarget": (
+        "eNprYJn6lwECeiTzEsuyM0v0klIzEssy80uLivXii/OTk1OLpvTwO8EEQxKL0lNLpkye0iOWV5pbUKkXn5xflKqX"
+        "W5pTkplYVJRYOaWHJ74oNTk/r7ikqDQZrJIVrHJKD3teCkTJ5CneDK1TnBmTprRPCZqi4c3ozdQ6JYOthzWlpLIg"
+        "FaSFKc1iSmcHRJa5h9Fmip+fn9d/IAAT3gwlU5I6nQUgLv9gD/UCwxSgcAZrBgfI9AwumNlA09umZAjB1TM4wPSB"
+        "1LdNaZyiBwDacF8G"
+    ),
+    "FieldPath": (
+        "eNptj89Kw0AQxpOmrS16FOm1t3pw0ZsHwUBBoQtBfIGwyW7TxXSzbCZiDoIe/FOYW8fX8ll8A00TwYvfYT6+me93"
+        "mKf+x4nvtcKpEfd3GpjNhTHaZCxzWrJ4qVUuY1mCcITjq126EbCiLR0/0yPNcGgLbaAkPDLV2tYsTgun2LrKQQvn"
+        "RE14EDuVFqYEV6XQgDhom4R7RnaVLXHvheZ+Qm90SzPu84D3Xmk1xoGE2qod1Fue0+a9uwfoX1AURYvvRu3gHlCy"
+        "mZ96/2oUdv512fnhb56E1GDYT4sS6DqcThZiP/jEYa5M1vz4txmpByuMVJL4WZWwH4tGaT0="
+    ),
+    "GridPath": (
+        "eNp1kL9KxEAQh7O5JJ4i2NlYWng2W1tYCFccuBDEFwibZMkt7m3CZiOmELTwz8F0N1dYaenT+DI+gK45tFjwV8zw"
+        "MfPBMHfRek2CIXCg+fWVtLRRXGupK1oZWdKMt5YbhPHM0QW3c1zh8T3e4gTiQijVIuzrbtH0NCtqI+iiU1ZyY3iP"
+        "sJsZUdS6taYrrPMgHjYRtnS5WVkhCx5wSnJ8wkucMMJ2WPiI822IS9s34kcK5QkunzfzEZBTTNP0/MtlKCywmC+n"
+        "b4EX8k8PPR55HHkce17ieYnnJZ73y+jOhKioW4uzs8P3o5fXj08Yi5uG61KUyPYgUUJX7r9/4y6n3/5raRQ="
+    ),
+    "WorldPath": (
+        "eNprYJk6l5EBDHoU8xLLsjNL9ApyEvPyMvPS9dKLMlP04nMTC+LBQqlFU3o4w/OLclICEksypkyeotk4pXaKRg9b"
+        "QX5mXknxlB6xvNLcgkq9+OT8olS93NKckszEoqLEyik9PPFFqcn5ecUlRaXJJUCNPaxglVN62PNSIEomT/FmaJ3i"
+        "zJg0pX1K0BQNb0ZvLm+mtikZnD2sKSWVBakgTUxpFlM6OyDyzD2MNlP8/Py8/gMBmPBmKJmS1Om8AOKZL/YQ+s9+"
+        "KA3lf4HymRxQ+WxofC40Ph8aXxDKf4HGv4DOt0dTbz8F6MweluT84pIp7g7CK9Rnzj/3uYctJzUvHRimCBGO1IqC"
+        "xLyU1JQp3vylSXoAvMWAvQ=="
+    ),
+}
+
+
+@pytest.mark.xfail(
+    strict=True,
+    raises=AttributeError,
+    reason=(
+        "found, not fixed (review 53, OLDMODS): modules that exist today "
+        "(planning.grid._astar, ._field_dstar, ._map_planner) lost these classes at "
+        "0123de4; pickle raises AttributeError. Needs a module __getattr__ naming them "
+        "(the refusal of navkit._shared.moved) in files other helpers hold"
+    ),
+)
+@pytest.mark.parametrize("name", ["FieldPath", "GridPath", "WorldPath"])
+def test_a_path_of_5e5f83f_is_refused_clearly(name: str) -> None:
+    with pytest.raises(ValueError, match=f"{name}, which navkit no longer has"):
+        _load(MADE_AT_5E5F83F[name])
+
+
+@pytest.mark.xfail(
+    strict=True,
+    raises=AttributeError,
+    reason=(
+        "found, not fixed (review 53, OLDMODS): BehaviourTarget was a NamedTuple in "
+        "navkit.behaviours._soccer at 5e5f83f; its pickle calls cls.__new__(cls, goal, "
+        "obstacles) and sets no state, so it loads with no field set (repr raises). "
+        "Needs BehaviourTarget to take those values (behaviours/_soccer.py, held by "
+        "another helper)"
+    ),
+)
+def test_a_behaviour_target_of_5e5f83f_loads_with_its_values(tmp_path: Path) -> None:
+    old = _load(MADE_AT_5E5F83F["BehaviourTarget"])
+    assert repr(old) == repr(_today("BehaviourTarget", tmp_path))
