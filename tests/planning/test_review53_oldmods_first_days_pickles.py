@@ -21,8 +21,9 @@ raised ModuleNotFoundError. One finder for every package
 Real pickle bytes made at aa060be (the last commit of 23 November,
 ``tests/old_release.made_at``); a slow test makes them again there and at
 5e5f83f. Found, not fixed (strict xfails, real bytes of 5e5f83f, whose results
-0123de4 replaced 24 minutes later): ``GridPath``, ``FieldPath`` and ``WorldPath``
-named modules that exist today and raise AttributeError, and ``BehaviourTarget``,
+0123de4 replaced 24 minutes later): ``FieldPath`` and ``WorldPath`` name
+modules that exist today and raise AttributeError (``GridPath``'s module,
+``planning.grid._astar``, names it now), and ``BehaviourTarget``,
 a ``NamedTuple`` in ``navkit.behaviours._soccer`` then, loads with no field set.
 """
 
@@ -292,7 +293,7 @@ def test_the_pickles_are_made_again(commit: str, tmp_path: Path) -> None:
     assert sorted(made) == sorted(MADE_AT_AA060BE)
     for name, (module, text) in made.items():
         assert module.startswith("navkit.") and module.rsplit(".", 1)[0] != "navkit"
-        if commit == "5e5f83f" and name in MADE_AT_5E5F83F:
+        if commit == "5e5f83f" and name in ("BehaviourTarget", "WorldPath"):
             continue  # the strict xfails below
         if name in ("GridPath", "WorldPath"):
             with pytest.raises(ValueError, match=f"{name}, which navkit no longer has"):
@@ -341,15 +342,26 @@ MADE_AT_5E5F83F = {
     raises=AttributeError,
     reason=(
         "found, not fixed (review 53, OLDMODS): modules that exist today "
-        "(planning.grid._astar, ._field_dstar, ._map_planner) lost these classes at "
-        "0123de4; pickle raises AttributeError. Needs a module __getattr__ naming them "
-        "(the refusal of navkit._shared.moved) in files other helpers hold"
+        "(planning.grid._field_dstar, ._map_planner) lost these classes at 0123de4; "
+        "pickle raises AttributeError. Needs the module __getattr__ grid._astar has "
+        "(navkit._shared.moved.gone) in files other helpers hold"
     ),
 )
-@pytest.mark.parametrize("name", ["FieldPath", "GridPath", "WorldPath"])
+@pytest.mark.parametrize("name", ["FieldPath", "WorldPath"])
 def test_a_path_of_5e5f83f_is_refused_clearly(name: str) -> None:
     with pytest.raises(ValueError, match=f"{name}, which navkit no longer has"):
         _load(MADE_AT_5E5F83F[name])
+
+
+def test_a_grid_path_of_5e5f83f_is_refused_clearly() -> None:
+    # navkit.planning.grid._astar exists: its module __getattr__ names the class.
+    with pytest.raises(ValueError) as info:
+        _load(MADE_AT_5E5F83F["GridPath"])
+    message = str(info.value)
+    assert message.startswith("navkit.planning.grid._astar.GridPath: a pickle made by navkit")
+    assert "before 0123de4" in message and "build the object again" in message
+    astar_module = sys.modules["navkit.planning.grid._astar"]
+    assert not hasattr(astar_module, "WorldPath")  # any other name: AttributeError
 
 
 @pytest.mark.xfail(

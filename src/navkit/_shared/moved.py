@@ -47,10 +47,10 @@ from functools import cache, partial
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
-    from collections.abc import Sequence
+    from collections.abc import Callable, Sequence
     from typing import Any
 
-__all__ = ["MOVED", "Moved", "install"]
+__all__ = ["MOVED", "Moved", "gone", "install"]
 
 
 class Moved:
@@ -183,10 +183,40 @@ def _public(module: str, name: str) -> Any:
     if name in package.__all__:
         found = getattr(package, name)
         return _from_values(found) if name in moved.tuples else found
-    raise ValueError(
-        f"{module}.{name}: a pickle made by navkit before {moved.commit} (30 November "
+    raise _no_longer(module, name, moved.commit)
+
+
+def _no_longer(module: str, name: str, commit: str) -> ValueError:
+    """The refusal of ``module.name``, a name of the first days navkit no longer has."""
+    return ValueError(
+        f"{module}.{name}: a pickle made by navkit before {commit} (30 November "
         f"2026) names {name}, which navkit no longer has; build the object again"
     )
+
+
+def _refuse(module: str, names: frozenset[str], commit: str, name: str) -> Any:
+    if name in names:
+        raise _no_longer(module, name, commit)
+    raise AttributeError(f"module {module!r} has no attribute {name!r}")
+
+
+def gone(module: str, names: tuple[str, ...], commit: str) -> Callable[[str], Any]:
+    """A module ``__getattr__`` refusing ``names``, classes ``module`` held until ``commit``.
+
+    For a module that exists today but lost a class a pickle of the first days
+    names (pickle raised AttributeError): that name is a ValueError saying to
+    build the object again, any other an AttributeError (PEP 562). Assign it
+    under ``if not TYPE_CHECKING:``, or mypy takes every attribute of the module.
+
+    Examples
+    --------
+    >>> getattr_ = gone("navkit.planning.grid._astar", ("GridPath",), "0123de4")
+    >>> getattr_("GridPath")
+    Traceback (most recent call last):
+    ...
+    ValueError: navkit.planning.grid._astar.GridPath: a pickle made by navkit before 0123de4 ...
+    """
+    return partial(_refuse, module, frozenset(names), commit)
 
 
 class _Finder:

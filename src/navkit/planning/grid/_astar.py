@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import threading
 from types import MappingProxyType
-from typing import Any, Literal, cast
+from typing import TYPE_CHECKING, Any, Literal, cast
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -12,6 +12,7 @@ from numpy.typing import ArrayLike, NDArray
 from navkit._shared.counts import counted
 from navkit._shared.dunders import slot_state
 from navkit._shared.frozen import restore_slots
+from navkit._shared.moved import gone
 from navkit._shared.types import CellLike, FloatArray
 from navkit._shared.validation import as_bool
 from navkit.errors import NoPathError
@@ -791,3 +792,9 @@ def astar(
         grid, lowest, connectivity, corner_cutting, heuristic_weight, method, highest, tables
     )
     return planner.plan(start_cell, goal_cell)
+
+
+if not TYPE_CHECKING:  # mypy would take any name of this module
+    # A pickle made at 5e5f83f (30 November 2026) names this module's GridPath, which
+    # 0123de4 replaced by Path2D: refused clearly, not pickle's AttributeError.
+    __getattr__ = gone(__name__, ("GridPath",), "0123de4")
