@@ -155,19 +155,31 @@ def covariance(value: ArrayLike, name: str, n: int, *, semidefinite: bool = Fals
     return arr
 
 
-#: Largest matrix :func:`_filter_takes` factorises in Python (about 0.05 s at 200).
+#: Largest matrix :func:`_filter_takes` factorises in Python (about 0.05 s at 200);
+#: beyond, the kernel itself (compiled on first need, O(n³) in Python took seconds).
 _LDL_MAX_N = 200
 
 
 def _filter_takes(a: FloatArray) -> bool:
     """Whether an ExtendedKalmanFilter's checks of a covariance it commits take ``a``.
 
-    Its kernels' LDLᵀ factorisation (:func:`ldl_positive_definite`, up to
-    :data:`_LDL_MAX_N` rows), or the scaled Cholesky test of its exact updates.
+    Its kernels' LDLᵀ factorisation (:func:`ldl_positive_definite` up to
+    :data:`_LDL_MAX_N` rows, the kernel itself beyond), or the scaled Cholesky
+    test of its exact updates.
     """
-    from navkit.estimation._ekf_kernels import _is_covariance  # numba's, when first needed
+    # numba's, when first needed
+    from navkit.estimation._ekf_kernels import _is_covariance, is_positive_definite
 
-    return (a.shape[0] <= _LDL_MAX_N and ldl_positive_definite(a)) or _is_covariance(a)
+    n = a.shape[0]
+    if n <= _LDL_MAX_N:
+        taken = ldl_positive_definite(a)
+    else:
+        # Beyond the replay's rows too: an EKF of 201 states refused its own P as P0
+        # (12 of 88 after an update with R 1e-20 of P; review 53, FRESH3).
+        work = np.empty((n, n), dtype=np.float64)
+        inv_d = np.empty(n, dtype=np.float64)
+        taken = is_positive_definite(np.array(a, dtype=np.float64, order="C"), work, inv_d)
+    return taken or _is_covariance(a)
 
 
 def ldl_positive_definite(a: FloatArray) -> bool:

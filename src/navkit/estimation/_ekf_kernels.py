@@ -870,6 +870,23 @@ def adopt_positive_q(state: FloatArray, q: FloatArray) -> bool:
     return kept
 
 
+@njit_no_refcount
+def is_positive_definite(a: FloatArray, work: FloatArray, inv_d: FloatArray) -> bool:
+    """Whether :func:`_positive_definite` takes the square ``a`` (lower triangle read).
+
+    The filters' own check of every covariance they commit, for the public
+    layer (``_covariance.covariance``'s test of a ``P0`` NumPy's Cholesky
+    refuses, beyond the rows it replays in Python): a kernel of its own,
+    compiled only when first needed. ``work`` (n x n) and ``inv_d`` (n) are
+    scratch space; shapes that do not fit give False.
+    """
+    n = a.shape[0]
+    if a.shape[1] != n or work.shape[0] < n or work.shape[1] < n or inv_d.shape[0] < n:
+        return False
+    taken: bool = _positive_definite(a, work, inv_d, n)
+    return taken
+
+
 @njit_force_inline
 def _update(
     state: FloatArray,
