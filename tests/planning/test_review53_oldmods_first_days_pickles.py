@@ -20,11 +20,13 @@ raised ModuleNotFoundError. One finder for every package
 
 Real pickle bytes made at aa060be (the last commit of 23 November,
 ``tests/old_release.made_at``); a slow test makes them again there and at
-5e5f83f. Found, not fixed (strict xfails, real bytes of 5e5f83f, whose results
-0123de4 replaced 24 minutes later): ``FieldPath`` and ``WorldPath`` name
-modules that exist today and raise AttributeError (``GridPath``'s module,
-``planning.grid._astar``, names it now), and ``BehaviourTarget``,
-a ``NamedTuple`` in ``navkit.behaviours._soccer`` then, loads with no field set.
+5e5f83f. Real bytes of 5e5f83f, whose results 0123de4 replaced 24 minutes later:
+``GridPath``, ``FieldPath`` and ``WorldPath`` name modules that exist today,
+whose module ``__getattr__`` refuses them clearly (pickle raised
+AttributeError). Found, not fixed (a strict xfail): ``BehaviourTarget``, a
+``NamedTuple`` in ``navkit.behaviours._soccer`` then, loads with no field set
+(its pickle calls only ``__new__`` with the values, as a public construction
+does, so telling them apart would cost every construction a second check).
 """
 
 from __future__ import annotations
@@ -293,8 +295,8 @@ def test_the_pickles_are_made_again(commit: str, tmp_path: Path) -> None:
     assert sorted(made) == sorted(MADE_AT_AA060BE)
     for name, (module, text) in made.items():
         assert module.startswith("navkit.") and module.rsplit(".", 1)[0] != "navkit"
-        if commit == "5e5f83f" and name in ("BehaviourTarget", "WorldPath"):
-            continue  # the strict xfails below
+        if commit == "5e5f83f" and name == "BehaviourTarget":
+            continue  # the strict xfail below
         if name in ("GridPath", "WorldPath"):
             with pytest.raises(ValueError, match=f"{name}, which navkit no longer has"):
                 _load(text)
@@ -337,16 +339,6 @@ MADE_AT_5E5F83F = {
 }
 
 
-@pytest.mark.xfail(
-    strict=True,
-    raises=AttributeError,
-    reason=(
-        "found, not fixed (review 53, OLDMODS): modules that exist today "
-        "(planning.grid._field_dstar, ._map_planner) lost these classes at 0123de4; "
-        "pickle raises AttributeError. Needs the module __getattr__ grid._astar has "
-        "(navkit._shared.moved.gone) in files other helpers hold"
-    ),
-)
 @pytest.mark.parametrize("name", ["FieldPath", "WorldPath"])
 def test_a_path_of_5e5f83f_is_refused_clearly(name: str) -> None:
     with pytest.raises(ValueError, match=f"{name}, which navkit no longer has"):
@@ -370,9 +362,9 @@ def test_a_grid_path_of_5e5f83f_is_refused_clearly() -> None:
     reason=(
         "found, not fixed (review 53, OLDMODS): BehaviourTarget was a NamedTuple in "
         "navkit.behaviours._soccer at 5e5f83f; its pickle calls cls.__new__(cls, goal, "
-        "obstacles) and sets no state, so it loads with no field set (repr raises). "
-        "Needs BehaviourTarget to take those values (behaviours/_soccer.py, held by "
-        "another helper)"
+        "obstacles) and sets no state, so it loads with no field set (repr raises); "
+        "a public construction calls __new__ with the same values, so taking them "
+        "there would check every BehaviourTarget twice (a 24-minute window of 30 Nov)"
     ),
 )
 def test_a_behaviour_target_of_5e5f83f_loads_with_its_values(tmp_path: Path) -> None:

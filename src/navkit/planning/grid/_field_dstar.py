@@ -7,7 +7,7 @@ import math
 from _thread import get_ident
 from collections.abc import Mapping
 from types import MappingProxyType
-from typing import Any, Literal, cast, overload
+from typing import TYPE_CHECKING, Any, Literal, cast, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -17,6 +17,7 @@ from navkit._shared.dunders import slot_state
 from navkit._shared.frozen import restore_slots
 from navkit._shared.grid_coords import as_pairs, one_or_many, round_half_up
 from navkit._shared.locks import one_caller
+from navkit._shared.moved import gone
 from navkit._shared.types import CellLike, FloatArray, IntArray
 from navkit._shared.validation import (
     as_array,
@@ -2138,3 +2139,9 @@ def _search_state(rows: int, cols: int) -> tuple[FloatArray, tuple[np.ndarray, .
         return node_records((rows + 1) * (cols + 1))
     except MemoryError as exc:
         raise MemoryError(_memory_text(rows, cols)) from exc
+
+
+if not TYPE_CHECKING:  # mypy would take any name of this module
+    # A pickle made at 5e5f83f (30 November 2026) names this module's FieldPath, which
+    # 0123de4 replaced by Path2D: refused clearly, not pickle's AttributeError.
+    __getattr__ = gone(__name__, ("FieldPath",), "0123de4")

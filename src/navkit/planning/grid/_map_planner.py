@@ -5,7 +5,7 @@ from __future__ import annotations
 import copy
 import math
 import re
-from typing import Any, Literal, NamedTuple, Protocol, cast
+from typing import TYPE_CHECKING, Any, Literal, NamedTuple, Protocol, cast
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -14,6 +14,7 @@ from navkit._shared.counts import counted
 from navkit._shared.dunders import slot_state
 from navkit._shared.frozen import restore_slots
 from navkit._shared.metres import metres_text
+from navkit._shared.moved import gone
 from navkit._shared.text import as_text
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_bool, as_float_array
@@ -818,3 +819,9 @@ def plan_path(
         inflate_unknown=inflate_unknown,
         planner=planner,
     ).plan(start, goal, start_tolerance=start_tolerance)
+
+
+if not TYPE_CHECKING:  # mypy would take any name of this module
+    # A pickle made at 5e5f83f (30 November 2026) names this module's WorldPath, which
+    # 0123de4 replaced by Path2D: refused clearly, not pickle's AttributeError.
+    __getattr__ = gone(__name__, ("WorldPath",), "0123de4")
