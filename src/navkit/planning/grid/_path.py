@@ -247,7 +247,9 @@ class Path2D:
         points = np.asarray(
             checked.world_to_cell(self.points, continuous=True), dtype=np.float64
         ).reshape(-1, 2)
-        cost = _scaled(self.cost, 1.0 / checked.resolution)
+        # Divided, not times 1 / resolution (whose rounding came on top): a cost
+        # 0.1 m made 8.1585 came back 81.58500000000001 (review 53, FRESH3).
+        cost = _scaled(self.cost, checked.resolution, divide=True)
         return Path2D(
             points, "grid", cost=cost, length=polyline_length(points), expanded=self.expanded
         )
@@ -303,12 +305,11 @@ def polyline_length(points: FloatArray) -> float:
     return float(np.hypot(*np.diff(points, axis=0).T).sum())
 
 
-def _scaled(cost: float, factor: float) -> float:
-    out = cost * factor
+def _scaled(cost: float, factor: float, *, divide: bool = False) -> float:
+    out = cost / factor if divide else cost * factor
     if not math.isfinite(out):
-        raise ValueError(
-            f"the path's cost {cost!r} overflows float64 converted by a factor of {factor!r}"
-        )
+        how = "divided by" if divide else "multiplied by"
+        raise ValueError(f"the path's cost {cost!r} overflows float64 {how} {factor!r}")
     return out
 
 
