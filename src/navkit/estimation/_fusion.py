@@ -2256,7 +2256,9 @@ def _start_state(x0: ArrayLike | None, pose: Pose2D | ArrayLike | None) -> Float
     way_out = "; a start pose goes in as pose= (x0 with zero rates)"
     if isinstance(x0, Pose2D):
         raise TypeError(f"x0 must be the state [x, y, yaw, v, omega, a], got a Pose2D{way_out}")
-    state = as_float_array(x0, "x0", finite=False)
+    # components: a list holding a Pose2D got the advice for points, (p.x, p.y),
+    # which x0 refuses in turn (review 53, FRESH3).
+    state = as_float_array(x0, "x0", finite=False, components=6)
     if state.shape == (3,):
         raise ValueError(f"x0 must be the state [x, y, yaw, v, omega, a], got shape (3,){way_out}")
     return as_float_array(state, "x0", shape=(6,))
