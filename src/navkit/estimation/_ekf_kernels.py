@@ -139,6 +139,7 @@ __all__ = [
     "finish_cancelled",
     "finish_singular_s",
     "gated_s_ill",
+    "is_positive_definite",
     "kernel_dispatchers",
     "new_rbuf",
     "new_state",
