@@ -56,12 +56,10 @@ print(json.dumps(counts))
 #: The path walk's kernels and the polyline kernel (its Python wrapper included).
 _WALK = ("extract_path", "_candidates", "_polyline")
 
-#: 11,627 with numba 0.68.1 after review 53's FDWALK2 (10,097 after FDWALK, 11,874
-#: after review 49, 13,299 before), plus room for small changes: FDWALK2 gave the
-#: straight steps to corners a loop of their own (about 1,300 instructions) that
-#: brought the 8-connected walk back from 1.5 times its time, the cold first use
-#: within its noise (docs/compilation.md).
-_BUDGET = 12_000
+#: 10,291 with numba 0.68.1 after review 53 (FDWALK 10,097, FDWALK2's hypot
+#: shortcuts +194; 11,874 after review 49, 13,299 before), plus room for small
+#: changes.
+_BUDGET = 10_500
 
 
 def _numba_version() -> str:

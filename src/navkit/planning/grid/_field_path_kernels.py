@@ -19,13 +19,9 @@ of review 48, must come with a change of this file, or a cache made before it
 keeps running the old code.)
 The walk is two functions (review 53): :func:`extract_path` and
 :func:`_candidates`, which makes every kind of candidate (edge crossings,
-grid lines, option-D pairs) in one loop with one site each for reading a node
-value, paying a grid edge and writing a row, the edge minimum written in; its
-corner mode (the straight steps to corners) is a second, small loop keeping
-the best step as it goes (FDWALK2: as an item kind of the one loop, its rows
-picked by the walk, the 8-connected walk took 1.5 times as long; the second
-loop is about 1,300 of the walk's LLVM instructions, within the noise of a
-cold first use). There were six (a
+grid lines, option-D pairs and, in its corner mode, the straight steps to
+corners) in one loop with one site each for reading a node value, paying a
+grid edge and writing a row, the edge minimum written in. There were six (a
 straight-step kernel ``_descend`` with its own corner loop and the helpers
 ``_edge_min``, ``_settled_value``, ``_line_cost``), each with numba's fixed
 cost per function (its passes, its LLVM module, its cache file) and every
@@ -35,10 +31,17 @@ candidates in the same order (paths, costs and expansions bit for bit). A
 helper is still compiled once and called, never inlined by numba (which
 types and lowers its body again at every call site: ``_candidates`` has one
 site, and folding it into :func:`extract_path` cost 0.13 s more, the walk's
-type inference then passing over both bodies together). Cell costs are read
-inline (``pad[(r + 1) * width + c + 1]``) and ``min()`` of two values is
-written out: a function for either (an LLVM-inlined ``cell_cost``, numba's
-``min()``, compiled once per argument type set) was compiled on its own and
+type inference then passing over both bodies together).
+Every ``hypot`` with a zero side (a step along a grid line, a crossing at an
+edge's end) is written as the other side's magnitude, which is what it
+returns: the calls were about 40 % of a walk's time (review 53, FDWALK2). A
+loop of its own for the corner mode, keeping the best step as it goes, brought
+the 8-connected walk back from 1.5 times its time before the two functions,
+but cost a cold first use about 0.15 s (1,337 more LLVM instructions), so it
+was dropped. Cell costs are read inline (``pad[(r + 1) * width + c + 1]``)
+and ``min()`` of two values is written out: a function for either (an
+LLVM-inlined ``cell_cost``, numba's ``min()``, compiled once per argument type
+set) was compiled on its own and
 optimised again in every kernel linking it. ``math.floor`` already returns an
 int (``int()`` of it compiled numba's ``int()`` too). The caller
 passes every buffer (float64/int64, C-contiguous, writable), so the kernels
@@ -156,13 +159,12 @@ def _candidates(
     and, from a node, the point where option D of :func:`corner_cost` leaves
     the cheap edge. ``corner_g`` (4,) is scratch.
 
-    With ``corners`` the one row, if any, is instead the cheapest straight
-    step (cost to q + value at q, the first of ties) from p to a corner of
-    value below ``below`` of the passable cells touching p, p itself left
-    out: the 8-connected move set from a node, where an axis move is offered
-    by both cells beside the edge and pays the cheaper of the two. The walk's
-    straight step must lower the value; ``below`` is not read without
-    ``corners``.
+    With ``corners`` the rows are instead the straight steps from p to the
+    corners of the passable cells touching p, p itself left out: the
+    8-connected move set from a node, where an axis move is offered by both
+    cells beside the edge and pays the cheaper of the two. Only corners of
+    value below ``below`` are rows (the walk's straight step must lower the
+    value); ``below`` is not read without ``corners``.
 
     Returns the number of rows, or -1 when a node value it needs is not
     settled yet (its id in ``need[0]``): values are read in the order the
@@ -170,83 +172,23 @@ def _candidates(
     work, follow the walk.
     """
     # A variable, not the literal 0 (see the module notes).
-    zero: int = width - width
-    n = zero
+    n: int = width - width
     fr = floor(pr)
     fc = floor(pc)
     on_r = pr == fr
     on_c = pc == fc
     r_lo = fr - 1 if on_r else fr
     c_lo = fc - 1 if on_c else fc
-    if corners:
-        # A loop of its own keeping the best step as it goes, the corners read
-        # in the order of the candidates' loop below (review 53, FDWALK2): made
-        # by that loop (rows written, then picked by the walk, every grid edge's
-        # cells read before the corner's value) the 8-connected walk took 1.5
-        # times as long. See the module notes for what the second site costs.
-        kept = INF
-        for r in range(r_lo, fr + 1):
-            for c in range(c_lo, fc + 1):
-                cost = pad[(r + 1) * width + c + 1]  # cell (r, c)
-                if cost == INF:
-                    continue
-                for q in range(4):
-                    i = r + (q >> 1)
-                    j = c + (q & 1)
-                    if i == pr and j == pc:
-                        continue
-                    s = i * ncols + j
-                    g = vals[RECORD * s]
-                    if not (
-                        g == vals[RECORD * s + RHS]
-                        and (
-                            size[0] == 0
-                            or key_reached(keys[0], keys[1], g, heuristic(sr, sc, i, j, hscale), km)
-                        )
-                    ):
-                        need[0] = s
-                        return -1
-                    if not g < below:
-                        continue
-                    mult = cost
-                    if i == pr or j == pc:
-                        # Along a grid edge: the cheaper cell beside it (cell (r, c)
-                        # is one of the two), as the grid lines' items below pay.
-                        if i == pr:
-                            col = j if j < pc else fc
-                            lo = pad[i * width + col + 1]
-                            hi = pad[(i + 1) * width + col + 1]
-                        else:
-                            row = i if i < pr else fr
-                            lo = pad[(row + 1) * width + j]
-                            hi = pad[(row + 1) * width + j + 1]
-                        if lo < mult:
-                            mult = lo
-                        if hi < mult:
-                            mult = hi
-                    # hypot with a zero side is the other's magnitude (C99 Annex F),
-                    # and libm's hypot is most of the walk's time: the call is
-                    # kept for the steps that need it (here the diagonal ones).
-                    dr = pr - i
-                    dc = pc - j
-                    c0 = mult * (abs(dc) if dr == 0.0 else abs(dr) if dc == 0.0 else hypot(dr, dc))
-                    t = c0 + g
-                    if t < kept:
-                        kept = t
-                        out[0] = c0
-                        out[1] = g
-                        out[2] = float(i)
-                        out[3] = float(j)
-                        n = zero + 1
-        return n
     # Items, each reading one node value at the one site below (review 53: one
     # loop, where a loop per kind each had its own read, row and helper calls):
     # 0-15 the corners of the cells (r_lo + (item >> 3), c_lo + (item >> 2 & 1))
     # touching p, then the grid lines through p (16-19) and, from a node, the
     # option-D pairs (20-27).
-    items = 28 if on_r and on_c else 20
+    items = 16 if corners else 28 if on_r and on_c else 20
     for item in range(items):
         q = item & 3
+        along = False
+        mult = INF
         if item < 16:
             r = r_lo + (item >> 3)
             c = c_lo + (item >> 2 & 1)
@@ -258,6 +200,11 @@ def _candidates(
             # Corner q of the cell: (r, c), (r, c+1), (r+1, c), (r+1, c+1).
             i = r + (q >> 1)
             j = c + (q & 1)
+            if corners:
+                if i == pr and j == pc:
+                    continue
+                mult = cost
+                along = i == pr or j == pc
         elif item < 20:
             # Along the grid lines through p, to the nearest nodes on either side.
             side = q >> 1
@@ -273,22 +220,7 @@ def _candidates(
                 j = fc
             if i < 0 or i >= nrows or j < 0 or j >= ncols:
                 continue
-            # The grid edge from p to node (i, j) pays the cheaper cell beside it
-            # (comparisons written out: numba compiles min() as a function of its own).
-            if pr == i:
-                col = j if j < pc else fc
-                # Cells (i - 1, col) and (i, col).
-                mult = pad[i * width + col + 1]
-                hi = pad[(i + 1) * width + col + 1]
-            else:
-                row = i if i < pr else fr
-                # Cells (row, j - 1) and (row, j).
-                mult = pad[(row + 1) * width + j]
-                hi = pad[(row + 1) * width + j + 1]
-            if hi < mult:
-                mult = hi
-            if mult == INF:
-                continue
+            along = True
         else:
             k = item - 20
             base = fr * width + fc
@@ -308,6 +240,25 @@ def _candidates(
             qc = fc + x * PAIR_AC[k]
             i = fr + PAIR_DR[k]
             j = fc + PAIR_DC[k]
+        if along:
+            # The grid edge from p to node (i, j) pays the cheaper cell beside it
+            # (comparisons written out: numba compiles min() as a function of its own).
+            if pr == i:
+                col = j if j < pc else floor(pc)
+                # Cells (i - 1, col) and (i, col).
+                lo = pad[i * width + col + 1]
+                hi = pad[(i + 1) * width + col + 1]
+            else:
+                row = i if i < pr else floor(pr)
+                # Cells (row, j - 1) and (row, j).
+                lo = pad[(row + 1) * width + j]
+                hi = pad[(row + 1) * width + j + 1]
+            if hi < lo:
+                lo = hi
+            if lo < mult:
+                mult = lo
+            if mult == INF:
+                continue
         # The node's value, if settled (consistent, its key not above the
         # queue's top: the stopping rule of settle); else it is handed back.
         s = i * ncols + j
@@ -321,7 +272,7 @@ def _candidates(
         ):
             need[0] = s
             return -1
-        if item < 16:
+        if item < 16 and not corners:
             corner_g[q] = g
             if q < 3:
                 continue
@@ -400,11 +351,15 @@ def _candidates(
                 out[row + 3] = qc
                 n += 1
             continue
-        if g == INF:
+        if g == INF or (corners and not g < below):
             continue
         if item < 20:
-            # Along a grid line: one of the two differences is 0.
-            c0 = mult * (abs(pc - j) if pr == i else abs(pr - i))
+            # hypot with a zero side is the other side's magnitude (C99 Annex F),
+            # and libm's hypot was about 40 % of the walk's time: the call is kept
+            # for the steps that need it (review 53, FDWALK2), as in the edges'.
+            dr = pr - i
+            dc = pc - j
+            c0 = mult * (abs(dc) if dr == 0.0 else abs(dr) if dc == 0.0 else hypot(dr, dc))
             extra = 0.0
             qr = float(i)
             qc = float(j)
