@@ -56,12 +56,6 @@ def test_is_a_directory_names_the_folder_escaped(tmp_path: Path) -> None:
     message.encode("utf-8")
 
 
-@pytest.mark.xfail(
-    strict=True,
-    raises=UnicodeEncodeError,
-    reason="FRESH -> FOUND5 (claims.txt): read_map's messages naming the YAML's path keep "
-    "surrogate escapes; remove this mark with the fix",
-)
 @pytest.mark.parametrize(
     "name", ["missing.yaml", "missing_image.yaml", "missing_keys.yaml", "negate.yaml"]
 )

@@ -358,6 +358,33 @@ def _printable(text: str) -> str:
     return text.encode("utf-8", "backslashreplace").decode("utf-8")
 
 
+@contextlib.contextmanager
+def _printable_errors() -> Iterator[None]:
+    """Let the ValueError or OSError raised inside show its message with :func:`_printable`.
+
+    A map YAML in a folder whose name is not UTF-8 (Latin-1 bytes, from
+    ``os.listdir`` or ``sys.argv`` on Linux, surrogate escapes in a str) is named
+    in most of read_map's messages, which then raised UnicodeEncodeError in a
+    strict UTF-8 log handler (review 53, FRESH). The exception keeps its type,
+    attributes and traceback; only a message holding surrogate escapes changes.
+
+    Examples
+    --------
+    >>> with _printable_errors():
+    ...     raise ValueError(b"dir\\xfc: bad".decode("utf-8", "surrogateescape"))
+    Traceback (most recent call last):
+    ...
+    ValueError: dir\\udcfc: bad
+    """
+    try:
+        yield
+    except (ValueError, OSError) as exc:
+        first = exc.args[0] if exc.args else None
+        if isinstance(first, str) and _ESCAPED_BYTES.search(first):
+            exc.args = (_printable(first), *exc.args[1:])
+        raise
+
+
 def _yaml_entries(path: Path) -> dict[str, Any]:
     """The keys and values of the map YAML ``path``, read as map_server reads its bytes.
 
@@ -1853,14 +1880,15 @@ def read_map(path: str | os.PathLike[str]) -> OccupancyGrid:
     >>> grid.occupied().tolist(), grid.free().tolist(), grid.origin
     ([[True, False]], [[False, True]], Pose2D(x=1.0, y=2.0, theta=0.0))
     """
-    meta = read_map_yaml(path)
-    # read_map_yaml checked the image by name: it is checked again, and read, on
-    # one open descriptor, whatever was put in its place since.
-    with open_regular(meta.image, f"{as_path(path, 'path')}: map image") as fh:
-        try:
-            image = _image_from(fh, meta.image)
-        except ValueError as exc:
-            raise ValueError(_printable(f"{path}: map image {exc}")) from None
+    with _printable_errors():
+        meta = read_map_yaml(path)
+        # read_map_yaml checked the image by name: it is checked again, and read, on
+        # one open descriptor, whatever was put in its place since.
+        with open_regular(meta.image, f"{as_path(path, 'path')}: map image") as fh:
+            try:
+                image = _image_from(fh, meta.image)
+            except ValueError as exc:
+                raise ValueError(_printable(f"{path}: map image {exc}")) from None
     rows = image.height
     logodds = np.empty((rows, image.width), dtype=np.float32)
     step = max(1, _READ_BLOCK_PIXELS // image.width)
