@@ -5,9 +5,11 @@
 robot turning on the spot for days ended its unwrapped yaw off the exact multiple
 of 2π, 59 ulps after 10^4 turns and about 1e-5 rad after 10^6 (review 36
 documented it). They count whole turns as integers now (review 53, FOUND6): the
-yaw is within 1.35 ulps of the exact value (half an ulp for each of its two
-roundings, and k times 2π's own, 2.4e-16, at most 0.35 ulp), computed here with
-integers (the turns) and a 40-digit π.
+yaw is within 1.61 ulps of the exact value (half an ulp of k·2π's rounding, a
+whole ulp of the yaw where k·2π is past a power of two the yaw is not, half an ulp
+of the sum's, and k times 2π's own error, 2.45e-16, at most 0.36 ulp; review 53's
+FRESH3 corrected the bound, exceeded at k = -41), computed here with integers (the
+turns) and a 40-digit π.
 """
 
 from __future__ import annotations
@@ -30,7 +32,7 @@ def _readings(turns: int) -> np.ndarray:
 
 
 @pytest.mark.parametrize("turns", [1, 7, 10**4, 10**6])
-def test_the_unwrapped_yaw_is_within_135_hundredths_of_an_ulp_of_the_exact_one(turns: int) -> None:
+def test_the_unwrapped_yaw_is_within_161_hundredths_of_an_ulp_of_the_exact_one(turns: int) -> None:
     getcontext().prec = 50
     raw = _readings(turns)
     whole = compass_to_yaw(raw, unwrap=True)
@@ -40,15 +42,15 @@ def test_the_unwrapped_yaw_is_within_135_hundredths_of_an_ulp_of_the_exact_one(t
     exact = -2 * PI * turns  # clockwise turns: the yaw decreases
     drift = abs(Decimal(float(whole[-1])) - exact)
     ulp = float(np.spacing(abs(whole[-1])))
-    assert drift <= Decimal(1.35 * ulp)
+    assert drift <= Decimal(1.61 * ulp)
     # Every reading's yaw, not only the last: its wrapped yaw plus 2π times a whole
-    # number of turns, within 1.35 ulps (a wrong count would be 2π off).
+    # number of turns, within 1.61 ulps (a wrong count would be 2π off).
     wrapped = compass_to_yaw(raw)
     check = np.unique(np.r_[np.linspace(0, raw.size - 1, 50).astype(int), raw.size - 1])
     for i in check:
         count = round((float(whole[i]) - float(wrapped[i])) / (2 * np.pi))
         exact_i = Decimal(float(wrapped[i])) + 2 * PI * count
-        bound = Decimal(1.35 * float(np.spacing(abs(whole[i]))))
+        bound = Decimal(1.61 * float(np.spacing(abs(whole[i]))))
         assert abs(Decimal(float(whole[i])) - exact_i) <= bound
     # Wrapped, the heading is back at 0 to within those ulps.
     assert abs(wrap_angle(float(whole[-1]))) <= 4 * ulp

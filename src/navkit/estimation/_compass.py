@@ -64,7 +64,7 @@ def compass_to_yaw(
         and back returns to the start: ``[0, 180, 0]`` degrees give
         ``[0, π, 0]``. :class:`CompassCalibration` follows the same rule.
         The turns are counted as integers, the yaw the wrapped one plus 2π
-        times their count: within 1.35 ulps of the exact value after any
+        times their count: within 1.61 ulps of the exact value after any
         number of turns (its float spacing is 1e-9 rad at 10^6
         turns), where :func:`numpy.unwrap`'s running float sum of its
         corrections drifts (7,675 ulps, 9e-7 rad, after 111,111 turns), so the
@@ -140,8 +140,11 @@ def _unwrap_after(yaw: FloatArray, previous: float, correction: float) -> tuple[
     # Whole turns, counted as integers (a step between wrapped yaws is within 2π, so
     # each is -1, 0 or 1), the yaw rounded once from them: numpy.unwrap's running sum
     # of its rounded corrections drifted 7,675 ulps (9e-7 rad) off the exact yaw
-    # after 111,111 turns (2.6 after one), this stays within 1.35 ulps: half an ulp for
-    # each of its two roundings, k times 2π's own, 2.4e-16 (review 53, FOUND6).
+    # after 111,111 turns (2.6 after one), this stays within 1.61 ulps: half an ulp of
+    # k·2π's rounding (a whole ulp of the yaw where k·2π is past a power of two the
+    # yaw is not), half of the sum's, and k times 2π's own error, 2.45e-16 (at most
+    # 0.36 ulp); 1.6033 is reached at k = -41, yaw -256 + 4.8e-6 (review 53, FOUND6;
+    # the bound corrected from 1.35 by FRESH3).
     turns = np.where(np.abs(step) < np.pi, 0.0, np.rint((reduced - step) / _TURN))
     total = np.cumsum(np.concatenate(([round(correction / _TURN)], turns)))[1:] * _TURN
     out: FloatArray = yaw + total
@@ -179,7 +182,7 @@ class CompassCalibration:
         :func:`numpy.unwrap`: a step of exactly ±π keeps its sign, so readings
         0°, 180°, 0° give yaw 0, π, 0); the yaws of a log given in pieces equal
         ``compass_to_yaw(log, initial_deg=log[0], unwrap=True)`` bit for bit,
-        within 1.35 ulps of the exact yaw after any number of turns.
+        within 1.61 ulps of the exact yaw after any number of turns.
 
     Raises
     ------
