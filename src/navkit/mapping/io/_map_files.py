@@ -248,7 +248,21 @@ _C_INTEGER = re.compile(r"([+-]?)(?:0[xX]([0-9a-fA-F]{1,8})|(0[0-7]{0,11})|([1-9
 
 def _c_int(value: Any) -> int | None:
     """``value`` as yaml-cpp reads an ``int`` from it (a C ``int``), or None where it fails."""
-    found = _C_INTEGER.fullmatch(str(value)) if isinstance(value, (int, str)) else None
+    if not isinstance(value, (int, str)):
+        return None
+    text = str(value)
+    sign = text[0] if text.startswith(("+", "-")) else ""
+    body = text[len(sign) :]
+    # Leading zeros, any number of them, add nothing (C reads 0x000000001 and
+    # 0000000000001 as 1): dropped before the match, whose digit counts are those
+    # of an int's range (review 54; by hand, not in the pattern, which would then
+    # backtrack over them: seconds for a long run of zeros ending in a bad digit).
+    if body[:2] in ("0x", "0X"):
+        digits = body[2:]
+        body = body[:2] + (digits.lstrip("0") or digits[:1])
+    elif body.startswith("0"):
+        body = "0" + body.lstrip("0")
+    found = _C_INTEGER.fullmatch(sign + body)
     if found is None:
         return None
     sign, hexadecimal, octal, decimal = found.groups()
