@@ -700,7 +700,18 @@ def read_carmen(
         reading in the file is used, since CARMEN logs store "no return" as
         the scanner's maximum value.
     range_min : float, default 0.0
-        Minimum valid range, m (>= 0).
+        Minimum valid range, m (>= 0): every reading is kept by default (a
+        CARMEN log says nothing of its scanner's minimum). Hector mapping
+        drops readings below 0.4 m (``laser_min_dist``, against returns from
+        the robot's own body); pass ``range_min=0.4`` for that. Measured on the
+        Radish aces log (review 54): 54 of its 79,200 readings (in 9 scans,
+        0.32-0.39 m) lie below 0.4 m, and dropping them moved
+        :class:`~navkit.mapping.ScanMapper`'s mean distance from the corrected
+        poses (odometry off by 5 cm and 2° a step, 12 seeds) from 1.37 to
+        1.27 m on the mean over seeds, by 0.59 m a seed on the mean either
+        way, as much as dropping 54 readings picked at random does (to 0.98 m,
+        by 0.62 m a seed): a change within the mapper's spread, so the
+        default keeps them.
 
     Returns
     -------
