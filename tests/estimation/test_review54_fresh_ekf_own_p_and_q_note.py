@@ -1,0 +1,116 @@
+"""Review 53's EKF promises attacked (review 54, FRESH): two found, handed over as strict xfails.
+
+* ef1b54e names a process noise ``Q`` "accepted as positive semi-definite to its
+  rounding" with its negative eigenvalue when a prediction loses positive
+  definiteness. The eigenvalue is ``numpy.linalg.eigvalsh``'s, and for a ``Q``
+  that is exactly positive semi-definite and singular (``G Gᵀ`` of an integer
+  ``G``, computed exactly) that is often a negative number of the size of its
+  own rounding (-9.5e-16 for ``g gᵀ``, ``g = [4, -3, -1]``): the error then
+  tells the user to "pass a positive semi-definite Q", which they did, where the
+  step failed for another reason (here a Jacobian that forgets the state).
+* 54bec22's docstring says an ``ExtendedKalmanFilter``'s :attr:`P` "is always a
+  valid ``P0``"; a prediction may grow ``P`` beyond the 1e100 that ``P0``'s
+  entries are held to (an unstable model without measurements, or a ``Q`` of
+  1e100 added to a ``P`` of 1e99), and ``ExtendedKalmanFilter(ekf.x, ekf.P)``
+  then raises ``ValueError``.
+
+Both files are another helper's this session (FOUND7: ``_covariance.py``,
+``_ekf.py``), so the fixes are left to the lead; see the xfail reasons.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from navkit.errors import FilterError
+from navkit.estimation import ExtendedKalmanFilter
+
+
+def _exactly_semidefinite_with_negative_computed_eigenvalue() -> list[np.ndarray]:
+    """``G Gᵀ`` of small integer ``G`` of lower rank whose eigvalsh's least value is < 0.
+
+    The products are integers far below 2**53, so computed exactly: every one
+    is positive semi-definite (and singular), whatever eigvalsh says.
+    """
+    rng = np.random.default_rng(5454)
+    found = []
+    for _ in range(400):
+        n = int(rng.integers(2, 6))
+        g = rng.integers(-5, 6, size=(n, int(rng.integers(1, n)))).astype(np.float64)
+        q = g @ g.T
+        if np.any(q) and float(np.linalg.eigvalsh(q)[0]) < 0.0:
+            found.append(q)
+    return found
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason=(
+        "FRESH (review 54), handed over: negative_eigenvalue_note (ef1b54e) names an "
+        "exactly positive semi-definite Q for eigvalsh's rounding of its zero eigenvalue "
+        "and tells the user to pass a positive semi-definite Q; name only a least "
+        "eigenvalue below eigvalsh's own error, e.g. -4 n eps max|eig| (measured for "
+        "exact integer G Gᵀ, n 2-12: at most 0.64 n eps max|eig|)"
+    ),
+)
+def test_an_exactly_semidefinite_q_is_not_blamed_for_a_failed_prediction() -> None:
+    products = _exactly_semidefinite_with_negative_computed_eigenvalue()
+    if not products:
+        pytest.skip("this LAPACK's eigvalsh gives no negative eigenvalue for these products")
+    blamed = failed = 0
+    for q in products:
+        n = q.shape[0]
+        ekf = ExtendedKalmanFilter(np.zeros(n), np.eye(n))
+        # A model that forgets the state: F P Fᵀ = 0, so P' = Q, singular (which the
+        # LDLᵀ check, in float64, may still take: those steps go through).
+        try:
+            ekf.predict(lambda x: 0.0 * x, np.zeros((n, n)), q)
+        except FilterError as exc:
+            assert str(exc).startswith("predicted covariance is not positive definite")
+            assert ekf.P.tolist() == np.eye(n).tolist()
+            failed += 1
+            blamed += "pass a positive semi-definite Q" in str(exc)
+    if not failed:
+        pytest.skip("no prediction failed with these products on this machine")
+    # Before (ef1b54e): every one of them (eigvalsh's -1e-16 ... -1e-15) named Q.
+    assert blamed == 0, f"{blamed} of {failed} exactly semi-definite Q named"
+
+
+def test_a_q_with_a_real_negative_eigenvalue_is_still_named() -> None:
+    # The other side of the line the xfail above asks for: a float32 Q whose
+    # negative eigenvalue is its own (-3.5 of 1e6, inside the float32 tolerance of
+    # its largest entry, 9.1e5) is named, also when it is not diagonal (a rotation
+    # of diag(-3.5, 1e6) computed in float32).
+    c, s = np.float32(np.cos(0.3)), np.float32(np.sin(0.3))
+    r = np.array([[c, -s], [s, c]], dtype=np.float32)
+    q = r @ np.diag(np.array([-3.5, 1e6], dtype=np.float32)) @ r.T
+    least = float(np.linalg.eigvalsh(q.astype(np.float64))[0])
+    assert -4.0 < least < -3.0
+    ekf = ExtendedKalmanFilter([0.0, 0.0], np.eye(2))
+    with pytest.raises(FilterError, match=r"\(Q, .* negative eigenvalue, -3\.\d+"):
+        ekf.predict(lambda x: x, np.eye(2), q)
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason=(
+        "FRESH (review 54), handed over: ExtendedKalmanFilter's docstring (54bec22) says "
+        "its P is always a valid P0, but a prediction grows P beyond the 1e100 P0 is held "
+        "to, and ExtendedKalmanFilter(ekf.x, ekf.P) raises 'P0 entries must have "
+        "magnitude <= 1e+100'; narrow the claim (or let the filter refuse such a P)"
+    ),
+)
+@pytest.mark.parametrize("case", ["unstable model", "largest Q"])
+def test_a_filter_rebuilt_from_its_own_p_beyond_1e100(case: str) -> None:
+    if case == "unstable model":
+        # x' = 1.5 x, never observed: P grows by 2.25 a step, past 1e100 after 284.
+        ekf = ExtendedKalmanFilter([1.0], [[1.0]])
+        for _ in range(300):
+            ekf.predict(lambda x: 1.5 * x, [[1.5]], [[1e-6]])
+    else:
+        ekf = ExtendedKalmanFilter([0.0, 0.0], np.eye(2) * 1e99)
+        ekf.predict(lambda x: x, np.eye(2), np.eye(2) * 1e100)  # Q at its largest
+    assert np.isfinite(ekf.P).all() and float(np.max(ekf.P)) > 1e100
+    rebuilt = ExtendedKalmanFilter(ekf.x, ekf.P)
+    assert rebuilt.P.tolist() == ekf.P.tolist()
