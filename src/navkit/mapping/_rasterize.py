@@ -27,6 +27,10 @@ _LEAF_CELLS = 4096
 
 _MAGNITUDE = np.int64(0x7FFF_FFFF_FFFF_FFFF)
 
+# The rounding of bounds written as decimals, relative to their size (half an ulp
+# is at most 2**-53), with a factor 4 to spare (sample_field's _FLOAT_SLACK).
+_BOUND_SLACK = 2.0**-51
+
 
 def _float_key(x: FloatArray) -> IntArray:
     """int64 keys in the order of the floats ``x`` (adjacent floats, adjacent keys)."""
@@ -123,6 +127,31 @@ def _fill(
         _fill(geom, occ, xs, ys, r0, r1, mid, c1)
 
 
+def _extent(low: float, high: float, res: float, what: str) -> float:
+    """The extent of ``[low, high]`` to count cells in: ``high - low``, or less by rounding.
+
+    Bounds written as decimals are each rounded by up to half a float spacing,
+    2**-53 of their size: at a UTM northing of 5.1e6 m the difference of two
+    written to the millimetre can exceed a whole number of cells by 1.9e-8 cells
+    at 0.05 m, beyond the 1e-9 cells :func:`grid_shape` forgives, and gained a
+    row past the area asked for (41 % of such bounds; review 54, FARWORLD).
+    An extent within ``2**-51 (|low| + |high|)`` of fewer cells is counted as
+    that many, as ``sample_field`` counts its window: the grid may then end that
+    little short of ``high`` (4.6e-9 m at a northing of 5.4e6 m), within the
+    rounding of the bounds themselves.
+    """
+    full = high - low
+    less = full - _BOUND_SLACK * (abs(low) + abs(high))
+    if not less > 0.0:
+        return full
+    try:
+        n_full = grid_shape(width=full, height=res, resolution=res, what=what)[1]
+        n_less = grid_shape(width=less, height=res, resolution=res, what=what)[1]
+    except ValueError:  # too many cells in one row: the caller's check says how many
+        return full
+    return less if n_less < n_full else full
+
+
 def _window(low: float, high: float, origin: float, res: float, size: int) -> tuple[int, int]:
     """Cells ``[i0, i1)`` whose closed extent along one axis meets ``[low, high]``.
 
@@ -205,7 +234,11 @@ def rasterize_polygons(geometries: Any, *, bounds: ArrayLike, resolution: float)
     bounds : array_like (xmin, ymin, xmax, ymax)
         Area to cover, m, within ±1e9 m; the grid is axis-aligned with its
         origin at ``(xmin, ymin)`` and is rounded up to whole cells, at most
-        ``OccupancyGrid.MAX_CELLS`` (``2**28``) of them.
+        ``OccupancyGrid.MAX_CELLS`` (``2**28``) of them. An extent within
+        ``2**-51 (|min| + |max|)`` of whole cells (the rounding of bounds
+        written as decimals: 4.6e-9 m at a UTM northing of 5.4e6 m) is that
+        many cells, as in :func:`~navkit.planning.sample_field`: bounds given
+        to the millimetre at UTM coordinates, ``n`` cells apart, give ``n``.
     resolution : float
         Cell size, m, in [1e-6, 1e6].
 
@@ -258,11 +291,12 @@ def rasterize_polygons(geometries: Any, *, bounds: ArrayLike, resolution: float)
                 f"geometries[{i}] has non-finite coordinates (NaN or ±inf; bounds {shown})"
             )
     parts = [part for g in geoms if not g.is_empty for part in _own_parts(g)]
+    what = f"bounds {given} at resolution {res:g} m"
     rows, cols = grid_shape(
-        width=xmax - xmin,
-        height=ymax - ymin,
+        width=_extent(xmin, xmax, res, what),
+        height=_extent(ymin, ymax, res, what),
         resolution=res,
-        what=f"bounds {given} at resolution {res:g} m",
+        what=what,
     )
     occ = np.zeros((rows, cols), dtype=np.bool_)
     # The bisection near a coordinate 0 visits subnormal floats, whose products
