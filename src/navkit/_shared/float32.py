@@ -22,11 +22,12 @@ True
 from __future__ import annotations
 
 import array
+import math
 from typing import Any
 
 import numpy as np
 
-__all__ = ["intended_resolution", "narrow_float_dtype"]
+__all__ = ["intended_resolution", "length_in_cells", "narrow_float_dtype"]
 
 #: The positive normal float32 values' range: a resolution outside it is no float32.
 _FLOAT32_TINY = float(np.finfo(np.float32).tiny)
@@ -74,6 +75,57 @@ def intended_resolution(resolution: float) -> float:
     if len(shortest.split("e")[0].replace(".", "").lstrip("-")) > _FLT_DIG:
         return resolution  # no decimal a float32 keeps stands behind it
     return float(shortest)
+
+
+#: Relative rounding of ``length / resolution`` for a length computed as a multiple of
+#: the resolution (two roundings of half an ulp, a factor 4 to spare).
+_RATIO_ULPS = 4.0 * 2.0**-52
+
+
+def length_in_cells(length: float, resolution: float, *, halves: bool = False) -> float:
+    """``length`` (m) in cells of ``resolution``, as counts of cells take it.
+
+    In cells of the decimal a float32 ``resolution`` stands for
+    (:func:`intended_resolution`: 10 m at float32 0.01 m are 1000 cells, as at
+    0.01), except a length that is a whole number of the resolution's own
+    cells (with ``halves``, a whole number of half cells), within 1e-9 cells
+    and the rounding of the division: that is that number. ``n * resolution``
+    is ``n`` cells at any resolution; where float32 lies above its decimal
+    (0.05 as 0.05000000075) it is a little more than ``n`` of the decimal's,
+    and a grid of ``width = resolution`` had 2 x 2 cells (review 54).
+
+    Parameters
+    ----------
+    length : float
+        A length, m, finite and >= 0.
+    resolution : float
+        A cell size, m, finite and positive.
+    halves : bool, default False
+        Whether a length of a whole number of half cells (rounded half up by
+        the caller) is taken in the resolution's own cells too.
+
+    Returns
+    -------
+    float
+        The length in cells (unrounded).
+
+    Examples
+    --------
+    >>> res = float(np.float32(0.05))
+    >>> length_in_cells(res, res), length_in_cells(0.05, res), length_in_cells(1.0, res)
+    (1.0, 1.0, 20.0)
+    >>> length_in_cells(10.0, float(np.float32(0.01)))
+    1000.0
+    """
+    own = length / resolution
+    cell = intended_resolution(resolution)
+    if cell == resolution or not math.isfinite(own):
+        return own
+    unit = 0.5 if halves else 1.0
+    units = own / unit
+    if abs(units - round(units)) * unit <= 1e-9 + _RATIO_ULPS * own:
+        return own
+    return length / cell
 
 
 #: Significant digits any decimal keeps through float32 (C's FLT_DIG): the float32 of a

@@ -37,7 +37,7 @@ from typing import Any
 import numpy as np
 
 from navkit._shared.counts import bytes_text
-from navkit._shared.float32 import intended_resolution
+from navkit._shared.float32 import length_in_cells
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import finite_float, refuse_masked
 
@@ -152,9 +152,12 @@ def _cell_count(extent: float, resolution: float) -> float:
     grid is. Cells of a float32 resolution are counted as cells of the decimal
     it stands for (:func:`~navkit._shared.float32.intended_resolution`):
     10 m at a ROS message's 0.01 m (0.009999999776482582) are 1000 cells, as
-    at the YAML's 0.01, where the float32 itself gave 1001.
+    at the YAML's 0.01, where the float32 itself gave 1001; an extent of a
+    whole number of the float32's own cells is that many
+    (:func:`~navkit._shared.float32.length_in_cells`: ``n`` times float32
+    0.05, a little more than ``n`` times 0.05, gave ``n + 1``; review 54).
     """
-    n = extent / intended_resolution(resolution)
+    n = length_in_cells(extent, resolution)
     if not n < 1e18:
         return math.inf if not math.isfinite(n) else n
     return float(max(1, math.ceil(n - (1e-9 + _COUNT_ULPS * n))))

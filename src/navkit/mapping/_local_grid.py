@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING, Any, Literal, overload
 import numpy as np
 from numpy.typing import ArrayLike
 
-from navkit._shared.float32 import intended_resolution
+from navkit._shared.float32 import length_in_cells
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.grid_coords import as_pairs, inside, one_or_many, round_half_up
 from navkit._shared.types import BoolArray, FloatArray, IntArray
@@ -157,7 +157,9 @@ class LocalGrid:
             gives 2), with ``half_width`` snapped to ``k * resolution``. A
             float32 ``resolution`` (as a ROS message carries it) counts ``k``
             in cells of the decimal it stands for: 0.25 m at
-            ``float(np.float32(0.1))`` gives 3, as at 0.1.
+            ``float(np.float32(0.1))`` gives 3, as at 0.1 (a ``half_width``
+            of whole or half cells of the float32 itself, ``2.5 *
+            resolution``, in those: 3).
 
         Raises
         ------
@@ -188,8 +190,9 @@ class LocalGrid:
         # halfway: 0.15 / 0.1 is 1.4999999999999998, and 0.15 m must round up
         # as 0.25 m (2.5 cells) does.
         # In cells of the decimal a float32 resolution stands for: 0.25 m is 2.4999999627
-        # cells of float32 0.1 and gave 2 (review 53).
-        ratio = half / intended_resolution(res)
+        # cells of float32 0.1 and gave 2 (review 53); but whole or half cells of the
+        # float32 itself in those: 2.5 times float32 0.01 gave 2 (review 54).
+        ratio = length_in_cells(half, res, halves=True)
         half_cells = math.floor(ratio)
         if ratio - half_cells >= 0.5 - (1e-9 + _HALF_ULPS * ratio):
             half_cells += 1

@@ -13,7 +13,7 @@ from numpy.typing import ArrayLike
 
 from navkit._shared.deprecation import renamed_keyword
 from navkit._shared.dunders import slot_state
-from navkit._shared.float32 import intended_resolution
+from navkit._shared.float32 import length_in_cells
 from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_only
 from navkit._shared.text import as_text
 from navkit._shared.types import FloatArray
@@ -740,8 +740,9 @@ class ScanMatcher:
         of a grid of poses within ``search_distance`` and ``search_angle`` of it."""
         res = grid.resolution
         # In cells of the decimal a float32 resolution stands for (a map from a ROS
-        # message): 0.3 m at float32 0.01 are 30 steps, not 31 (review 53).
-        steps_xy = math.ceil(self._search_distance / intended_resolution(res) - 1e-9)
+        # message): 0.3 m at float32 0.01 are 30 steps, not 31 (review 53); whole cells
+        # of the float32 itself in those (3 times float32 0.05: 3 steps, not 4; review 54).
+        steps_xy = math.ceil(length_in_cells(self._search_distance, res) - 1e-9)
         reach = float(np.percentile(np.hypot(points[:, 0], points[:, 1]), 90.0))
         # A rotation step moves the far points (90th percentile) by half a cell.
         step_theta = min(max(0.5 * res / max(reach, res), _MIN_SEARCH_STEP), math.pi)

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from dataclasses import KW_ONLY, dataclass
-from decimal import ROUND_CEILING, Decimal
+from decimal import ROUND_CEILING, ROUND_HALF_EVEN, Decimal
 from typing import TYPE_CHECKING, Literal, overload
 
 import numpy as np
@@ -372,8 +372,10 @@ def _limits(value: ArrayLike, name: str) -> tuple[float, float]:
     return lo, hi
 
 
-def _count(lo: float, hi: float, resolution: float) -> Decimal:
-    """Cells covering ``[lo, hi]``, exactly (no overflow before the size check)."""
+def _count(lo: float, hi: float, resolution: float, cell: float) -> Decimal:
+    """Cells of ``resolution`` covering ``[lo, hi]``, exactly (no overflow before the size
+    check), counted in cells of ``cell`` (the decimal a float32 resolution stands for)
+    unless the window is a whole number of the resolution's own cells."""
     low, high, res = Decimal(lo), Decimal(hi), Decimal(resolution)
     n = (high - low) / res
     # A window that is an exact multiple in decimal (12 m at 0.01 m) may exceed it once
@@ -381,6 +383,13 @@ def _count(lo: float, hi: float, resolution: float) -> Decimal:
     # in cells: 1e-8 cells for (1e6 + 0.2, 1e6 + 0.3) at 0.01 m. The slack keeps it
     # from gaining a cell.
     slack = Decimal("1e-9") + _FLOAT_SLACK * ((abs(low) + abs(high)) / res + n)
+    whole = n.to_integral_value(rounding=ROUND_HALF_EVEN)
+    if cell != resolution and abs(n - whole) > slack:
+        # Not whole cells of the float32 itself (n times float32 0.05 is a little more
+        # than n times 0.05, and gained a cell counted in the decimal; review 54).
+        res = Decimal(cell)
+        n = (high - low) / res
+        slack = Decimal("1e-9") + _FLOAT_SLACK * ((abs(low) + abs(high)) / res + n)
     return max(Decimal(1), (n - slack).to_integral_value(rounding=ROUND_CEILING))
 
 
@@ -453,10 +462,11 @@ def sample_field(
     x0, x1 = _limits(xlim, "xlim")
     y0, y1 = _limits(ylim, "ylim")
     # Counted in cells of the decimal a float32 resolution stands for (10 m at a ROS
-    # message's 0.01 m are 1000 cells, not 1001; review 53); centres are spaced by res.
+    # message's 0.01 m are 1000 cells, not 1001; review 53), a window of whole cells
+    # of the float32 itself in those (review 54); centres are spaced by res.
     cell = intended_resolution(res)
-    nx = _count(x0, x1, cell)
-    ny = _count(y0, y1, cell)
+    nx = _count(x0, x1, res, cell)
+    ny = _count(y0, y1, res, cell)
     if not nx * ny <= MAX_SAMPLES:
         raise ValueError(
             f"sample_field would need {_num(ny)} × {_num(nx)} = {_num(nx * ny)} cells "
