@@ -138,9 +138,11 @@ def narrow_float_dtype(value: object) -> np.dtype[np.floating[Any]] | None:
     """The dtype of ``value``'s floats when narrower than float64 (float16, float32), else None.
 
     ``value`` is an input already read as a float array (this only asks its
-    dtype): an ndarray or NumPy scalar of float16 or float32, or a list of
-    them (NumPy gives it their dtype), was rounded to that precision by
-    whatever made it (a driver, a message), and its values are compared in it.
+    dtype): an ndarray or NumPy scalar of float16 or float32, a list of
+    them (NumPy gives it their dtype), an ``array.array`` or ``memoryview`` of
+    C floats, or another library's array NumPy converts to one, was rounded to
+    that precision by whatever made it (a driver, a message), and its values
+    are compared in it.
 
     Parameters
     ----------
@@ -161,8 +163,16 @@ def narrow_float_dtype(value: object) -> np.dtype[np.floating[Any]] | None:
     (True, dtype('float16'))
     """
     dtype = getattr(value, "dtype", None)
-    if dtype is None and isinstance(value, (list, tuple, array.array)):
-        dtype = np.asarray(value).dtype
+    if not isinstance(dtype, np.dtype) and (
+        isinstance(value, (list, tuple, array.array, memoryview)) or hasattr(value, "__array__")
+    ):
+        # A buffer (a memoryview of a float32 array.array) or an array of another
+        # library NumPy converts (whose own dtype is no NumPy dtype) was read as float64
+        # and compared so (review 54).
+        try:
+            dtype = np.asarray(value).dtype
+        except (TypeError, ValueError):
+            return None
     if not isinstance(dtype, np.dtype) or dtype.kind != "f" or dtype.itemsize >= 8:
         return None
     return dtype
