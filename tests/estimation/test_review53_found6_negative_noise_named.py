@@ -6,8 +6,10 @@ epsilons of its largest entry (6a391e6): a float32 ``T Q Tᵀ`` of a noise of
 lower rank is indefinite so, and a diagonal entry whose exact value is 0 comes
 out negative in about half of them, as low as -62 epsilons of the largest
 entry (measured: ``T`` with a row orthogonal to a rank-1 ``Q = v vᵀ``), so a
-negative diagonal entry such as ``diag(-7.5, 1e6)`` is not refused: by its
-values it is such a product. Added to a covariance smaller than it, it left one
+negative diagonal entry such as ``diag(-7.5, 1e6 + 0.0625)`` is not refused: by
+its values it is such a product (review 54, FOUND7: ``diag(-7.5, 1e6)``, every
+entry a short decimal, was typed, and is refused as not semi-definite, as a
+float64 matrix is). Added to a covariance smaller than it, it left one
 that is not positive definite, and the filter said "predicted covariance is not
 positive definite" without naming ``Q``; the error now names it and its
 eigenvalue (``process_noise`` for PlanarFusion).
@@ -52,7 +54,7 @@ def test_rounded_products_with_a_negative_diagonal_entry_are_still_taken() -> No
 
 
 def test_the_ekf_names_q_when_its_negative_eigenvalue_fails_the_prediction() -> None:
-    q = np.diag(np.float32([-7.5, 1e6]))
+    q = np.diag(np.float32([-7.5, 1e6 + 0.0625]))  # 1000000.0625: a float32 result's digits
     ekf = ExtendedKalmanFilter([0.0, 0.0], np.eye(2))
     with pytest.raises(
         FilterError, match=r"not positive definite \(Q, .* eigenvalue, -7\.5"
@@ -73,8 +75,19 @@ def test_the_ekf_says_nothing_of_q_when_q_is_semi_definite() -> None:
     assert str(info.value) == "predicted covariance is not positive definite"
 
 
+def test_a_typed_negative_diagonal_is_refused_as_not_semi_definite() -> None:
+    # Every entry a short decimal: typed, not rounded (review 54, FOUND7).
+    ekf = ExtendedKalmanFilter([0.0, 0.0], np.eye(2))
+    for q in (np.diag(np.float32([-7.5, 1e6])), np.diag([-7.5, 1e6])):
+        with pytest.raises(ValueError, match="Q must be positive semi-definite"):
+            ekf.predict(lambda x: x, np.eye(2), q)
+    assert ekf.P.tolist() == np.eye(2).tolist()
+    with pytest.raises(ValueError, match="process_noise must be positive semi-definite"):
+        PlanarFusion(t0=0.0, process_noise=np.diag(np.float32([1e6, 1.0, 1.0, -7.5, 1.0, 1.0])))
+
+
 def test_planar_fusion_names_its_process_noise() -> None:
-    q = np.diag(np.float32([1e6, 1.0, 1.0, -7.5, 1.0, 1.0]))
+    q = np.diag(np.float32([1e6 + 0.0625, 1.0, 1.0, -7.5, 1.0, 1.0]))
     fusion = PlanarFusion(t0=0.0, process_noise=q)
     with pytest.raises(FilterError, match=r"\(process_noise, .* eigenvalue, -7\.5"):
         fusion.update_odometry(1.0, 1.0, 0.0, v_variance=0.01, omega_variance=0.01)

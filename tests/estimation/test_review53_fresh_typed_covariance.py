@@ -6,7 +6,9 @@ for integers, whose float32 arithmetic is exact, after a float64 P0 ``[[1e6,
 3], [4, 1e6]]`` was averaged to 3.5. Halves are float32 values too: ``[[1e6,
 2.5], [3.5, 1e6]]`` was averaged to 3.0 and ``[[1e5, 0.5], [1, 1e5]]`` to
 0.75, where a float64 matrix asymmetric by that much is refused. Products
-computed in float32 keep their tolerance.
+computed in float32 keep their tolerance. Fixed in review 54 (FOUND7): a matrix
+whose every entry is an integer of at most 2²⁴ or a decimal of at most 6
+significant digits is taken as typed, and keeps the strict check.
 """
 
 from __future__ import annotations
@@ -17,12 +19,6 @@ import pytest
 from navkit.estimation import ExtendedKalmanFilter
 
 
-@pytest.mark.xfail(
-    strict=True,
-    raises=pytest.fail.Exception,
-    reason="FRESH -> FOUND6 (claims.txt): _covariance's float32 tolerance applies to a "
-    "matrix typed with halves; remove this mark with the fix",
-)
 @pytest.mark.parametrize(
     "p0",
     [[[1e6, 2.5], [3.5, 1e6]], [[1e5, 0.5], [1.0, 1e5]], [[4096.0, 0.0078125], [0.0, 4096.0]]],

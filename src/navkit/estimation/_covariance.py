@@ -13,7 +13,7 @@ from collections.abc import Iterable
 from typing import Any
 
 import numpy as np
-from numpy.typing import ArrayLike
+from numpy.typing import ArrayLike, NDArray
 
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import SMALLEST_POSITIVE, as_float_array, finite_float, unpack
@@ -97,8 +97,12 @@ def covariance(value: ArrayLike, name: str, n: int, *, semidefinite: bool = Fals
     up to 1e-9 of the largest entry, or 64 float32 epsilons (7.6e-6) of it for a
     matrix whose entries are all float32 values (a float32 array, or one computed
     in float32 and stored as float64, as a driver may fill a ROS covariance),
-    whose own rounding is that coarse, unless they are all integers (of at most
-    2²⁴, which float32 arithmetic does not round); the same tolerance bounds a negative
+    whose own rounding is that coarse, unless none of them looks rounded: each
+    an integer of at most 2²⁴ (which float32 arithmetic does not round) or a
+    decimal of at most 6 significant digits (the float32 of one, or the float64:
+    a matrix typed by hand, ``[[1e6, 2.5], [3.5, 1e6]]`` or ``np.float32([[1e6,
+    0.1], [0.2, 1e6]])``, whose asymmetry is intent; see :func:`_float32_rounded`);
+    the same tolerance bounds a negative
     eigenvalue when ``semidefinite``, a negative diagonal entry included (a float32
     ``T Q Tᵀ`` of a noise of lower rank has one, whose exact value is 0, about half
     the time; :func:`negative_eigenvalue_note` names the matrix when a step it was
@@ -119,14 +123,24 @@ def covariance(value: ArrayLike, name: str, n: int, *, semidefinite: bool = Fals
     arr = as_float_array(value, name, shape=(n, n))
     check_magnitude(arr, name)
     scale = max(float(np.max(np.abs(arr))), 1e-300)
-    tol = (_FLOAT32_REL_TOL if _float32_values(arr) else _REL_TOL) * scale
+    # The float32 tolerance is looked for only where the strict one refuses (the
+    # answer is the same, and an exactly symmetric matrix pays no test of its values).
+    tol = _REL_TOL * scale
+    loose: bool | None = None
     if np.max(np.abs(arr - arr.T)) > tol:
-        raise ValueError(f"{name} must be symmetric")
+        loose = _float32_rounded(arr)
+        if not loose or np.max(np.abs(arr - arr.T)) > _FLOAT32_REL_TOL * scale:
+            raise ValueError(f"{name} must be symmetric")
+    original = arr
     # 0.5*a + 0.5*b equals 0.5*(a + b) bit for bit and never overflows.
     arr = np.asarray(0.5 * arr + 0.5 * arr.T, dtype=np.float64)
-    if semidefinite:
-        if n and float(np.linalg.eigvalsh(arr)[0]) < -tol:
-            raise ValueError(f"{name} must be positive semi-definite")
+    if semidefinite and n:
+        least = float(np.linalg.eigvalsh(arr)[0])
+        if least < -tol:
+            if loose is None:
+                loose = _float32_rounded(original)
+            if not loose or least < -_FLOAT32_REL_TOL * scale:
+                raise ValueError(f"{name} must be positive semi-definite")
     else:
         try:
             lower = np.linalg.cholesky(arr)
@@ -257,11 +271,20 @@ def negative_eigenvalue_note(matrix: FloatArray, name: str) -> str:
     )
 
 
-def _float32_values(arr: FloatArray) -> bool:
-    """Whether ``arr`` holds float32 values rounded as float32 arithmetic rounds.
+def _float32_rounded(arr: FloatArray) -> bool:
+    """Whether ``arr`` holds float32 values as float32 arithmetic rounds them.
 
-    Every entry a float32 value, not all of them integers of at most 2²⁴ (exact
-    in float32 arithmetic, which rounds none of their products and sums).
+    Every entry a float32 value, and at least one of them neither an integer of
+    at most 2²⁴ (exact in float32 arithmetic, which rounds none of their
+    products and sums) nor a short decimal (see :func:`_short_decimals`): a
+    matrix whose every entry is one of those was typed, and its asymmetry is
+    intent (a float64 ``P0 [[1e6, 2.5], [3.5, 1e6]]`` was averaged to 3.0, where
+    its integer twin was refused; review 53, FRESH). Products computed in
+    float32 keep the tolerance: of 50,436 asymmetric ones (``J S Jᵀ`` and ``J (S
+    Jᵀ)``, 2 to 4 rows, random, rounded and rotation ``J``, variances from 1e-4
+    to 1.2e7), 55 look typed and are refused, 41 of them, refused before too,
+    all integers (every float32 value from 2²³ to 2²⁴ is one), 1 all short
+    decimals (review 54, FOUND7).
 
     Told by the values, not the dtype: the filters convert a float32 matrix to
     float64 before checking it, and a float32 result stored in a float64 array
@@ -270,9 +293,13 @@ def _float32_values(arr: FloatArray) -> bool:
     Examples
     --------
     >>> import numpy as np
-    >>> _float32_values(np.array([[0.5, 0.1], [0.1, 0.5]])), _float32_values(np.float32([0.1]))
-    (False, True)
-    >>> _float32_values(np.float32([[1e6, 3.0], [4.0, 1e6]]))  # integers: exact in float32
+    >>> _float32_rounded(np.array([[0.5, 0.1], [0.1, 0.5]]))  # 0.1: no float32 value
+    False
+    >>> _float32_rounded(np.float32([[0.5, 0.1], [0.1000001, 0.2]]))  # 7 digits
+    True
+    >>> _float32_rounded(np.float32([[1e6, 3.0], [4.0, 1e6]]))  # integers: exact in float32
+    False
+    >>> _float32_rounded(np.array([[1e6, 2.5], [3.5, 1e6]]))  # typed: short decimals
     False
     """
     # Entries beyond float32's range become inf, not equal: not float32 values.
@@ -282,7 +309,42 @@ def _float32_values(arr: FloatArray) -> bool:
     # Integers as large as a float32 is exact for: their products and sums in float32
     # are exact too, so their asymmetry is not rounding (a float64 P0 [[1e6, 3], [4,
     # 1e6]] was averaged to 3.5; review 52, FRESH).
-    return not bool(np.all((arr == np.round(arr)) & (np.abs(arr) <= 2.0**24)))
+    exact = (arr == np.round(arr)) & (np.abs(arr) <= 2.0**24)
+    return not bool(np.all(exact | _short_decimals(arr)))
+
+
+#: Significant digits of a decimal taken as typed: C's FLT_DIG, the most that any
+#: decimal keeps through float32 (as ``navkit._shared.float32`` reads a resolution).
+_SHORT_DIGITS = 6
+
+
+def _short_decimals(arr: FloatArray) -> NDArray[np.bool_]:
+    """Which float32 values of ``arr`` stand for a decimal of at most 6 significant digits.
+
+    Those whose shortest float32 decimal (``np.format_float_scientific(np.float32(v),
+    unique=True)``) has at most :data:`_SHORT_DIGITS` digits: the float32 of such a
+    decimal, typed in float32 (``np.float32(0.1)``) or in float64 (2.5, 0.0078125,
+    exact in both), and 0. A value that float32 arithmetic rounded rarely is one:
+    its 24 significant bits make a decimal of 7 to 9 digits. Computed with
+    arrays: each value rounded to 6 significant digits (in float64, exact enough:
+    a value that stands for such a decimal lies within 6e-8 of it in units of its
+    sixth digit) and compared after rounding that to float32.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> _short_decimals(np.float32([0.1, 2.5, 0.1000001, 1e-5, 0.0, -123456.0, 1234567.0]))
+    array([ True,  True, False,  True,  True,  True, False])
+    """
+    values = np.abs(np.asarray(arr, dtype=np.float64)).ravel()
+    out = values == 0.0
+    some = values[~out]
+    with np.errstate(over="ignore", under="ignore"):
+        step = 10.0 ** (np.floor(np.log10(some)) - (_SHORT_DIGITS - 1))
+        nearest = np.rint(some / step) * step
+        out[~out] = nearest.astype(np.float32).astype(np.float64) == some
+    shaped: NDArray[np.bool_] = out.reshape(np.shape(arr))
+    return shaped
 
 
 def index_tuple(indices: Iterable[Any], name: str, n: int) -> tuple[int, ...]:

@@ -160,7 +160,10 @@ class ExtendedKalmanFilter(GaussianEstimate):
         asymmetry of at most 1e-9 of the largest entry is averaged out, or of
         64 float32 epsilons (7.6e-6) when every entry is a float32 value (a
         matrix computed in float32, whose own rounding is that coarse; that
-        tolerance also bounds a negative eigenvalue of a semi-definite ``Q``).
+        tolerance also bounds a negative eigenvalue of a semi-definite ``Q``)
+        and some entry looks rounded: a matrix whose every entry is an integer
+        of at most 2²⁴ or a decimal of at most 6 significant digits (typed,
+        ``[[1e6, 2.5], [3.5, 1e6]]``, in float64 or float32) keeps the 1e-9.
     angle_states : sequence of int, optional
         Indices of state components that are angles (rad); they are wrapped to
         (-π, π] after every step (keyword-only).
