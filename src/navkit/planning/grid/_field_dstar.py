@@ -321,7 +321,8 @@ class FieldDStar:
     :meth:`plan` first. Taking a copy is a call too: a plan, replan or cost
     update that another thread starts while ``copy`` or ``pickle`` reads the
     planner raises ``RuntimeError`` (a thread saving snapshots of a planner
-    that another thread plans with needs the same lock as the calls).
+    that another thread plans with needs the same lock as the calls). Copies
+    that several threads take at once each keep the search.
 
     Examples
     --------
@@ -500,7 +501,8 @@ class FieldDStar:
         that a call starting once this returns, while pickle or ``copy`` reads
         the state, cannot change them. A copy made while another call is under
         way (another thread's, or a signal handler's copy inside the main
-        thread's call) keeps the costs but no search: the searches write the
+        thread's call; not another copy, which only reads) keeps the costs but
+        no search: the searches write the
         search state in place with the GIL released, and such a copy held it
         half-written (29 of 168 copies taken while another thread planned
         replanned for ever, holding no GIL; review 52, LONGRUN). Its
@@ -523,8 +525,16 @@ class FieldDStar:
         token = (get_ident(), "__getstate__", object())
         try:
             callers.append(token)
+            # Whether a call that writes the search is under way, decided as the token
+            # goes in: such a call runs only as the first token and stays first until
+            # it returns, and none starts behind this token. Another copy first only
+            # reads, so this copy keeps the search (review 54: the second of two
+            # threads' copies taken at once had none). Decided after the snapshot, as
+            # it was, a call that ended during it left this token first, and the copy
+            # kept what the call had half written.
+            busy = callers[0][1] != "__getstate__"
             instance, kept = self._snapshot()
-            if callers[0] is not token:
+            if busy:
                 # A call under way: its search may be half-written. The costs stay (a
                 # cost update writes them holding the GIL); the search goes, as if
                 # the copy had never searched (see _reset and __init__).
