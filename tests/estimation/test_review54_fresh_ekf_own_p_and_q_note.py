@@ -13,12 +13,26 @@
   entries are held to (an unstable model without measurements, or a ``Q`` of
   1e100 added to a ``P`` of 1e99), and ``ExtendedKalmanFilter(ekf.x, ekf.P)``
   then raises ``ValueError``.
+* The other way round: 54bec22 takes a ``P0`` that NumPy's Cholesky *or* the
+  filter's own checks take, so a near-singular ``P0`` NumPy takes (``A Aᵀ`` of a
+  tall ``A``, which the docstring names as one that passes) and the kernels'
+  LDLᵀ refuses is a valid ``P0`` whose first prediction with nothing to add
+  (``F = I``, ``Q = 0``: a step of ``dt = 0`` between two measurements of one
+  stamp, ``P' = P0`` exactly) raises ``FilterError`` "predicted covariance is
+  not positive definite": 2,202 of 6,996 such ``A Aᵀ`` (2 to 5 rows) NumPy
+  takes with normal pivots. The filter's own :attr:`P` meets the same step
+  too: an update far more precise than the estimate commits a ``P`` that the
+  scaled Cholesky test of its exact path takes and the predict's LDLᵀ refuses
+  (104 of 1,325 updates with ``R`` 1e-14 to 1e-40 of ``H P Hᵀ``), and the next
+  predict with ``F = I``, ``Q = 0`` raises ``FilterError``.
 
 Both files are another helper's this session (FOUND7: ``_covariance.py``,
 ``_ekf.py``), so the fixes are left to the lead; see the xfail reasons.
 """
 
 from __future__ import annotations
+
+from functools import partial
 
 import numpy as np
 import pytest
@@ -114,3 +128,100 @@ def test_a_filter_rebuilt_from_its_own_p_beyond_1e100(case: str) -> None:
     assert np.isfinite(ekf.P).all() and float(np.max(ekf.P)) > 1e100
     rebuilt = ExtendedKalmanFilter(ekf.x, ekf.P)
     assert rebuilt.P.tolist() == ekf.P.tolist()
+
+
+def _taken_by_numpy_not_by_the_kernels() -> list[np.ndarray]:
+    """Exactly singular ``A Aᵀ`` (tall ``A``) that NumPy's Cholesky takes and the LDLᵀ does not."""
+    from navkit.estimation._covariance import ldl_positive_definite
+
+    rng = np.random.default_rng(54)
+    found = []
+    for _ in range(300):
+        n = int(rng.integers(2, 6))
+        a = rng.normal(size=(n, n - 1))
+        p = a @ a.T
+        p = 0.5 * p + 0.5 * p.T
+        try:
+            lower = np.linalg.cholesky(p)
+        except np.linalg.LinAlgError:
+            continue
+        if float(np.min(np.diag(lower))) ** 2 >= 2.2250738585072014e-308 and not (
+            ldl_positive_definite(p)
+        ):
+            found.append(p)
+    return found
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason=(
+        "FRESH (review 54), handed over: a P0 that NumPy's Cholesky takes and the kernels' "
+        "LDLᵀ refuses (54bec22 takes either) is accepted, and the first predict with F = I, "
+        "Q = 0 (P' = P0 exactly) raises FilterError; refuse such a P0 in the constructor "
+        "(the filter's own check decides) or let the step keep it"
+    ),
+)
+def test_a_p0_the_constructor_takes_survives_a_step_that_adds_nothing() -> None:
+    matrices = _taken_by_numpy_not_by_the_kernels()
+    if not matrices:
+        pytest.skip("this LAPACK's Cholesky and the LDLᵀ agree on these matrices")
+    refused = 0
+    for p0 in matrices:
+        n = p0.shape[0]
+        try:
+            ekf = ExtendedKalmanFilter(np.zeros(n), p0)
+        except ValueError:
+            continue  # refused as P0: consistent
+        try:
+            ekf.predict(lambda x: x, np.eye(n), np.zeros((n, n)))
+        except FilterError:
+            refused += 1
+            continue
+        assert ekf.P.tolist() == p0.tolist()
+    assert refused == 0, (
+        f"{refused} of {len(matrices)} accepted P0 refused by a step adding nothing"
+    )
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason=(
+        "FRESH (review 54), handed over: after an update far more precise than the "
+        "estimate (the exact path, checked by the scaled Cholesky test _is_covariance), "
+        "P may fail the predict's LDLᵀ, and a predict with F = I, Q = 0 then raises "
+        "FilterError: the filter's two checks of a committed P disagree (the class notes "
+        "warn that a near-singular P may make a later step fail, but this step copies P)"
+    ),
+)
+def test_the_filters_own_p_survives_a_step_that_adds_nothing() -> None:
+    from navkit.estimation._covariance import ldl_positive_definite
+
+    rng = np.random.default_rng(2)
+    met = refused = 0
+    for _ in range(600):
+        n = int(rng.integers(2, 5))
+        a = rng.normal(size=(n, n))
+        p0 = a @ a.T + 0.1 * np.eye(n)
+        ekf = ExtendedKalmanFilter(np.zeros(n), p0)
+        m = int(rng.integers(1, n))
+        h = rng.normal(size=(m, n))
+        r = np.diag(np.diag(h @ p0 @ h.T) * 10.0 ** rng.uniform(-40, -14, size=m))
+        try:
+            ekf.update(np.zeros(m), partial(np.matmul, h), h, r)
+        except FilterError:
+            continue
+        if ldl_positive_definite(ekf.P):
+            continue
+        met += 1
+        p = ekf.P.copy()
+        try:
+            ekf.predict(lambda x: x, np.eye(n), np.zeros((n, n)))
+        except FilterError:
+            refused += 1
+            continue
+        assert ekf.P.tolist() == p.tolist()
+    if not met:
+        pytest.skip("no update committed a P the LDLᵀ refuses on this machine")
+    assert refused == 0, (
+        f"{refused} of {met} of the filter's own P refused by a step adding nothing"
+    )
