@@ -2081,9 +2081,13 @@ class PlanarFusion(GaussianEstimate):
             work, log.times, log.values, variances, self._gates, out_x, out_p, status, nis,
             k.step_address(),
         )  # fmt: skip
-        np.copyto(self._buf, work)
         if (status == NOT_POSITIVE_DEFINITE).any():
-            self._loaded_rows(log, variances, (out_x, out_p, status, nis))
+            # The redo on the same copy: put in place before it, the kernel's first
+            # result (neither the filter before nor after the log) was what a copy
+            # taken during the redo's kernel calls, or an interrupt, left (review 54,
+            # FOUND7).
+            self._loaded_rows(work, log, variances, (out_x, out_p, status, nis))
+        np.copyto(self._buf, work)
         ax, ay = self._anchor
         if ax or ay:
             out_x[:, 0] += ax
@@ -2092,6 +2096,7 @@ class PlanarFusion(GaussianEstimate):
 
     def _loaded_rows(
         self,
+        buf: FloatArray,
         log: MeasurementLog,
         variances: FloatArray,
         outputs: tuple[FloatArray, FloatArray, NDArray[np.int8], FloatArray],
@@ -2104,11 +2109,12 @@ class PlanarFusion(GaussianEstimate):
         row that fails again keeps its unloaded prediction, and the rows after
         it their first results. Costs one more kernel call over the rest of the
         log per row redone.
+
+        ``buf`` is the batch's private copy of the filter's buffer, holding the
+        kernel's result, and is updated in place; the caller puts it in place
+        afterwards (interrupted part-way, the filter stays as before the log).
         """
         out_x, out_p, status, nis = outputs
-        # On a copy, the filter's buffer replaced at the end: interrupted part-way, the
-        # filter keeps the kernel's result (those rows' predictions), not a loaded one.
-        buf = self._buf.copy()
         rows = buf.reshape(k.BUF_ROWS, k.W)
         x = rows[k.BUF_X]
         p = rows[k.BUF_P : k.BUF_P + 6]
@@ -2147,7 +2153,6 @@ class PlanarFusion(GaussianEstimate):
                 buf, log.times[j:], log.values[j:], variances[j:], self._gates,
                 out_x[j:], out_p[j:], status[j:], nis[j:], k.step_address(),
             )  # fmt: skip
-        np.copyto(self._buf, buf)
 
     def __repr__(self) -> str:
         # A user subclass is named as itself (as navkit's potential fields are), with the
