@@ -23,10 +23,10 @@ Real pickle bytes made at aa060be (the last commit of 23 November,
 5e5f83f. Real bytes of 5e5f83f, whose results 0123de4 replaced 24 minutes later:
 ``GridPath``, ``FieldPath`` and ``WorldPath`` name modules that exist today,
 whose module ``__getattr__`` refuses them clearly (pickle raised
-AttributeError). Found, not fixed (a strict xfail): ``BehaviourTarget``, a
-``NamedTuple`` in ``navkit.behaviours._soccer`` then, loads with no field set
-(its pickle calls only ``__new__`` with the values, as a public construction
-does, so telling them apart would cost every construction a second check).
+AttributeError). ``BehaviourTarget``, a ``NamedTuple`` in
+``navkit.behaviours._soccer`` then, loaded with no field set (its pickle calls
+only ``__new__`` with the values): a strict xfail until review 54 (FOUND8),
+whose ``BehaviourTarget.__new__`` builds the record from them.
 """
 
 from __future__ import annotations
@@ -295,8 +295,6 @@ def test_the_pickles_are_made_again(commit: str, tmp_path: Path) -> None:
     assert sorted(made) == sorted(MADE_AT_AA060BE)
     for name, (module, text) in made.items():
         assert module.startswith("navkit.") and module.rsplit(".", 1)[0] != "navkit"
-        if commit == "5e5f83f" and name == "BehaviourTarget":
-            continue  # the strict xfail below
         if name in ("GridPath", "WorldPath"):
             with pytest.raises(ValueError, match=f"{name}, which navkit no longer has"):
                 _load(text)
@@ -356,17 +354,8 @@ def test_a_grid_path_of_5e5f83f_is_refused_clearly() -> None:
     assert not hasattr(astar_module, "WorldPath")  # any other name: AttributeError
 
 
-@pytest.mark.xfail(
-    strict=True,
-    raises=AttributeError,
-    reason=(
-        "found, not fixed (review 53, OLDMODS): BehaviourTarget was a NamedTuple in "
-        "navkit.behaviours._soccer at 5e5f83f; its pickle calls cls.__new__(cls, goal, "
-        "obstacles) and sets no state, so it loads with no field set (repr raises); "
-        "a public construction calls __new__ with the same values, so taking them "
-        "there would check every BehaviourTarget twice (a 24-minute window of 30 Nov)"
-    ),
-)
 def test_a_behaviour_target_of_5e5f83f_loads_with_its_values(tmp_path: Path) -> None:
+    # A NamedTuple then: its pickle calls only cls.__new__(cls, goal, obstacles),
+    # which builds the record since review 54 (FOUND8; a strict xfail before).
     old = _load(MADE_AT_5E5F83F["BehaviourTarget"])
     assert repr(old) == repr(_today("BehaviourTarget", tmp_path))

@@ -20,8 +20,14 @@ them today (any other name is an AttributeError):
   state of ``PotentialFieldController``) is looked up in that public class's
   module, as a pickle made today names it;
 * a class that was a ``NamedTuple`` then (``BehaviourTarget``), whose pickle
-  holds its values as constructor arguments, is answered by a class that
-  builds today's record from them;
+  (protocol 2 and above) calls only ``cls.__new__(cls, *values)``, is today's
+  class, whose ``__new__`` builds the record from them (review 54). One pickled
+  with protocol 0 or 1 cannot load (TypeError): it is
+  ``copyreg._reconstructor(cls, tuple, values)``, which calls
+  ``tuple.__new__(cls, values)``; that refuses any class not a tuple, and a tuple
+  subclass would come back as itself, with no step after it for a class to
+  turn it into the record (short of replacing :mod:`copyreg`'s function for
+  every pickle of the process);
 * a name no longer public (``GridPath``, ``WorldPath``, ``FieldPath``,
   ``FieldGrid``) is a ValueError naming it and saying to build it again.
 
@@ -43,7 +49,7 @@ import importlib
 import importlib.machinery
 import sys
 import types
-from functools import cache, partial
+from functools import partial
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
@@ -67,12 +73,10 @@ class Moved:
     beside : dict of str to str
         Private classes a pickle of a public one names: each looked up in the
         module of the public class given.
-    tuples : frozenset of str
-        Classes that were ``NamedTuple`` then (pickled as constructor arguments).
     """
 
     # A plain class, not a dataclass: dataclasses' import would cost every ``import navkit``.
-    __slots__ = ("beside", "commit", "held", "package", "tuples")
+    __slots__ = ("beside", "commit", "held", "package")
 
     def __init__(
         self,
@@ -80,13 +84,11 @@ class Moved:
         package: str,
         held: frozenset[str],
         beside: dict[str, str] | None = None,
-        tuples: frozenset[str] = frozenset(),
     ) -> None:
         self.commit = commit
         self.package = package
         self.held = held
         self.beside = beside or {}
-        self.tuples = tuples
 
 
 _FIELDS = frozenset(
@@ -134,7 +136,6 @@ MOVED: dict[str, Moved] = {
         "5e5f83f",
         "navkit.behaviours",
         frozenset(("BehaviourTarget", "GameState", "attack", "defend", "support")),
-        tuples=frozenset(("BehaviourTarget",)),
     ),
     "navkit.planning.reactive._fields": Moved("0123de4", "navkit.planning", _FIELDS),
     "navkit.control._potential_controller": Moved(
@@ -147,21 +148,6 @@ MOVED: dict[str, Moved] = {
         "0123de4", "navkit.mapping.io", frozenset(("CarmenLog", "read_carmen"))
     ),
 }
-
-
-@cache
-def _from_values(today: type) -> type:
-    """A class whose construction from an old ``NamedTuple``'s values is ``today(*values)``.
-
-    Such a pickle (protocol 2 and above) builds the object with
-    ``cls.__new__(cls, *values)`` and sets no state: today's record would be made
-    with none of its fields (review 53).
-    """
-
-    def __new__(cls: type, *values: Any) -> Any:
-        return today(*values)
-
-    return type(today.__name__, (), {"__new__": __new__})
 
 
 def _public(module: str, name: str) -> Any:
@@ -181,8 +167,7 @@ def _public(module: str, name: str) -> Any:
         raise AttributeError(f"module {module!r} has no attribute {name!r}")
     package = importlib.import_module(moved.package)
     if name in package.__all__:
-        found = getattr(package, name)
-        return _from_values(found) if name in moved.tuples else found
+        return getattr(package, name)
     raise _no_longer(module, name, moved.commit)
 
 

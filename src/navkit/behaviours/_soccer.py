@@ -9,6 +9,7 @@ Nothing here depends on how the robot is then driven.
 
 from __future__ import annotations
 
+import inspect
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field, fields
@@ -22,6 +23,9 @@ from navkit._shared.frozen import frozen_setattr, reduce_record, restore_read_on
 from navkit._shared.types import FloatArray
 from navkit._shared.validation import as_bool, as_point, as_points, bounded_int, finite_float
 from navkit.geometry import Pose2D
+
+if TYPE_CHECKING:
+    from typing import Self
 
 __all__ = ["BehaviourTarget", "GameState", "attack", "defend", "support"]
 
@@ -87,7 +91,7 @@ def _no_players() -> FloatArray:
 
 
 @frozen_setattr
-@dataclass(frozen=True, slots=True, eq=False)
+@dataclass(frozen=True, slots=True, eq=False, init=False)
 class BehaviourTarget:
     """What a behaviour asks for: a goal and the points that repel.
 
@@ -104,7 +108,10 @@ class BehaviourTarget:
     Notes
     -----
     Both arrays are stored as read-only copies (the caller's arrays are never
-    made read-only or modified).
+    made read-only or modified). A target pickled when this class was a
+    ``NamedTuple`` (5e5f83f, 30 November 2026, and before) loads with its
+    values, checked as here (protocol 2 and above; protocols 0 and 1 pickled
+    it as a tuple, which cannot load as this record: TypeError).
 
     Raises
     ------
@@ -124,16 +131,28 @@ class BehaviourTarget:
     __reduce__ = reduce_record
     __setstate__ = _restore
 
-    if TYPE_CHECKING:
-        # The generated ``__init__`` takes the arrays as array_like (``__post_init__``
-        # converts them); this signature tells type checkers so, at no runtime cost.
-        def __init__(
-            self,
-            goal_xy: ArrayLike,
-            obstacles_xy: ArrayLike,
-        ) -> None: ...
+    def __init__(self, goal_xy: ArrayLike, obstacles_xy: ArrayLike) -> None:
+        if hasattr(self, "goal_xy"):
+            return  # built by __new__ (below), from these same arguments
+        object.__setattr__(self, "goal_xy", _point(goal_xy, "goal_xy"))
+        object.__setattr__(self, "obstacles_xy", _players(obstacles_xy, "obstacles_xy"))
+
+    def __new__(cls, *values: Any, **named: Any) -> Self:
+        # At 5e5f83f (30 November 2026) BehaviourTarget was a NamedTuple: its pickles
+        # call BehaviourTarget.__new__(BehaviourTarget, goal, obstacles) and nothing
+        # else, and loaded with no field set. So a BehaviourTarget is built here, the
+        # values checked as __init__ checks them (which then finds it built: checked
+        # once); a subclass is left to its own __init__ (or this one, inherited).
+        target = object.__new__(cls)
+        if cls is BehaviourTarget and (values or named):
+            target.__init__(*values, **named)  # type: ignore[misc]
+        return target
+
+    # inspect.signature(BehaviourTarget) reads __new__ first: it shows __init__'s.
+    __new__.__signature__ = inspect.signature(__init__)  # type: ignore[attr-defined]
 
     def __post_init__(self) -> None:
+        # A dataclass subclass's generated __init__ sets the fields as given, then this.
         object.__setattr__(self, "goal_xy", _point(self.goal_xy, "goal_xy"))
         object.__setattr__(self, "obstacles_xy", _players(self.obstacles_xy, "obstacles_xy"))
 
