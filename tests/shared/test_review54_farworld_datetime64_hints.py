@@ -9,11 +9,15 @@ now splits the nanoseconds into seconds and the rest, ``sec + nsec * 1e-9`` as t
 bag readers compute a stamp: the float nearest the stamp. An *array* of
 ``datetime64`` (what pandas gives for a bag's stamps) was refused as "must hold
 real numbers, got dtype datetime64[ns]" with no hint at all; it gets the same one,
-and an array of ``timedelta64`` the timedelta's. Each hint is run as written.
+and an array of ``timedelta64`` the timedelta's. A naive ``datetime`` was told
+``value.timestamp()``, which reads it as the machine's local time: a UTC one (what
+``datetime.utcfromtimestamp`` gave) came out hours off; the hint now says how to
+read it as UTC. Each hint is run as written.
 """
 
 from __future__ import annotations
 
+import datetime
 from fractions import Fraction
 from typing import Any
 
@@ -92,3 +96,20 @@ def test_an_array_of_timedelta64_gets_the_timedelta_hint_and_it_works() -> None:
 def test_other_arrays_keep_the_plain_refusal() -> None:
     with pytest.raises(TypeError, match=r"must hold real numbers, got dtype <U3$"):
         MeasurementLog.from_streams(yaw=(np.array(["1.0", "2.0"]), np.zeros(2)))
+
+
+def test_a_naive_datetime_is_told_how_to_read_it_as_utc() -> None:
+    # 2024-12-05 12:00:00.25 UTC, naive (as datetime.utcfromtimestamp gave it): its
+    # timestamp() is the machine's local time, hours off wherever that is not UTC.
+    naive = datetime.datetime(2024, 12, 5, 12, 0, 0, 250_000)
+    message = _refusal(naive)
+    assert "value.timestamp() for a local time" in message
+    marker = "a naive datetime in UTC: "
+    code = message.split(marker, 1)[1]
+    seconds = eval(code, {"value": naive, "datetime": datetime})
+    assert seconds == 1733400000.25
+    # An aware datetime keeps the plain hint, which is right for it.
+    aware = naive.replace(tzinfo=datetime.UTC)
+    message = _refusal(aware)
+    assert message.endswith("pass seconds since the epoch: value.timestamp()")
+    assert aware.timestamp() == 1733400000.25

@@ -93,6 +93,14 @@ def _stamp_hint(value: object) -> str | None:
     if isinstance(value, np.datetime64):
         return DATETIME64_HINT
     if isinstance(value, datetime.datetime):
+        if value.utcoffset() is None:
+            # timestamp() reads a naive datetime as the machine's local time: a UTC
+            # one (utcfromtimestamp's, a naive pandas stamp's) came out hours off
+            # where the machine's clock is not on UTC (review 54, FARWORLD).
+            return (
+                "pass seconds since the epoch: value.timestamp() for a local time; "
+                "a naive datetime in UTC: value.replace(tzinfo=datetime.UTC).timestamp()"
+            )
         return "pass seconds since the epoch: value.timestamp()"
     if isinstance(value, datetime.timedelta):
         return "pass seconds: value.total_seconds()"
