@@ -39,6 +39,14 @@ class Path2D:
       paths through node − 0.5 and points on cell edges.
     * ``"world"``: world points ``(x, y)`` in metres.
 
+    :meth:`to_world` and :meth:`to_grid` convert between the two on a map; a
+    world path they return lies within ±1e9 m, the range of every world
+    input (theirs and the trackers' included). They return a plain
+    :class:`Path2D`, a subclass's too, as ``str`` methods return a ``str``:
+    its own attributes may hold quantities of its frame (a tolerance in
+    cells, say) that navkit cannot convert, so a subclass that wants itself
+    back overrides them. Copies and pickles keep the subclass whole.
+
     Parameters
     ----------
     points : array_like, shape (K, 2)
@@ -169,8 +177,8 @@ class Path2D:
         Returns
         -------
         Path2D
-            A new ``"world"`` path: points ``(x, y)`` in m, cost in cost units
-            × m, length in m.
+            A new ``"world"`` path (a plain :class:`Path2D`, for a subclass
+            too): points ``(x, y)`` in m, cost in cost units × m, length in m.
 
         Raises
         ------
@@ -178,8 +186,11 @@ class Path2D:
             ``grid`` is not an :class:`~navkit.mapping.OccupancyGrid` or a
             :class:`~navkit.mapping.LocalGrid`.
         ValueError
-            The path is already in the ``"world"`` frame; its points beyond
-            ``±2**62`` cells; its cost overflowing float64 once scaled.
+            The path is already in the ``"world"`` frame; its world points
+            beyond ``±1e9`` m, the range :meth:`to_grid`, the trackers and
+            every world input take (a point far outside the grid; points
+            beyond ``±2**62`` cells are refused as such); its cost
+            overflowing float64 once scaled.
 
         Examples
         --------
@@ -196,6 +207,14 @@ class Path2D:
         checked = _map_of(grid)
         check_range(self.points, _CELL_LIMIT, "points", "cells")
         points, cost = grid_to_world(self.points, self.cost, checked)
+        # A world path navkit takes back: to_grid and the trackers refuse points
+        # beyond ±1e9 m, which 2**62 cells reached (4.6e17 m at 0.1 m; review 54, FOUND7).
+        if not float(np.abs(points).max()) <= COORDINATE_LIMIT:
+            worst = float(points.reshape(-1)[int(np.argmax(np.abs(points)))])
+            raise ValueError(
+                f"points must map to world points within ±{COORDINATE_LIMIT:g} m (the range "
+                f"to_grid and the trackers take), got a coordinate of {worst!r} m"
+            )
         return Path2D(
             points, "world", cost=cost, length=polyline_length(points), expanded=self.expanded
         )
@@ -220,8 +239,9 @@ class Path2D:
         Returns
         -------
         Path2D
-            A new ``"grid"`` path: continuous ``(row, col)``, cost in cost
-            units × cells, length in cells.
+            A new ``"grid"`` path (a plain :class:`Path2D`, for a subclass
+            too): continuous ``(row, col)``, cost in cost units × cells,
+            length in cells.
 
         Raises
         ------
