@@ -717,7 +717,12 @@ class OccupancyGrid:
         resolution: float,
         origin: Pose2D | ArrayLike = _IDENTITY,
     ) -> OccupancyGrid:
-        """All-unknown grid covering ``width × height`` metres (rounded up to whole cells).
+        """All-unknown grid of ``width × height`` metres, rounded up to whole cells.
+
+        The grid covers the extent requested to within 1e-9 of a cell, or, at
+        a float32 ``resolution`` (a ROS message's), to within that float32's
+        rounding of the decimal it stands for: its cells are counted in cells
+        of that decimal and may be a little smaller (see Returns).
 
         Parameters
         ----------
@@ -735,9 +740,15 @@ class OccupancyGrid:
             each rounded up to a whole cell (at least one; a ratio within 1e-9
             of an integer, or within its float rounding, a few ulps, is not
             rounded up: ``width = n * resolution`` gives ``n`` columns for any
-            ``n``), every log-odds 0 (unknown). A float32 ``resolution`` (a
-            ROS message's) counts cells of the decimal it stands for: 10 m at
-            ``float(np.float32(0.01))`` are 1000 cells, as at 0.01.
+            ``n``), every log-odds 0 (unknown). So ``cols * resolution`` is at
+            least ``width - (1e-9 + 2**-50 * cols) * resolution`` (the
+            rounding of the count; likewise rows). A float32 ``resolution`` (a ROS
+            message's) counts cells of the decimal it stands for: 10 m at
+            ``float(np.float32(0.01))`` are 1000 cells, as at 0.01, and as
+            that float32 lies below 0.01 they span 9.99999977 m; such a grid
+            falls short of ``width`` by at most float32's rounding of the
+            resolution, ``2**-24`` (6e-8) of ``width``, beside that 1e-9 of a
+            cell (a width of whole float32 cells is that many cells).
 
         Raises
         ------
@@ -753,6 +764,9 @@ class OccupancyGrid:
         --------
         >>> OccupancyGrid.empty(width=1.01, height=0.2, resolution=0.5).shape
         (1, 3)
+        >>> ros = OccupancyGrid.empty(width=10.0, height=0.5, resolution=np.float32(0.01))
+        >>> ros.shape, float(ros.shape[1] * ros.resolution)  # cells of 0.0099999998 m
+        ((50, 1000), 9.999999776482582)
         """
         w = bounded_float(width, "width", 0.0, math.inf, "m", low_open=True)
         h = bounded_float(height, "height", 0.0, math.inf, "m", low_open=True)
