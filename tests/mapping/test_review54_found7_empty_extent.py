@@ -56,7 +56,7 @@ def test_the_grid_covers_its_extent_as_documented(
 
 
 def test_the_documented_float32_example() -> None:
-    grid = OccupancyGrid.empty(width=10.0, height=0.5, resolution=np.float32(0.01))
+    grid = OccupancyGrid.empty(width=10.0, height=0.5, resolution=float(np.float32(0.01)))
     assert grid.shape == (50, 1000)
     short = 10.0 - 1000 * grid.resolution
     assert 0.0 < short <= _F32_ROUNDING * 10.0  # 2.2e-7 m: within float32's rounding
