@@ -6,7 +6,10 @@ plan --plot FILE`` with an existing FILE read the YAML again as UTF-8 only,
 to refuse a ``--plot`` naming the map's image, and failed with "'utf-8' codec
 can't decode byte 0xff". It now reads the YAML's bytes with the YAML library
 (which detects UTF-8 and UTF-16); where it still cannot tell (UTF-32) it
-refuses an existing ``--plot`` in one clear line instead of guessing.
+refused an existing ``--plot`` in one clear line instead of guessing. Since
+review 54 (FOUND8) it asks ``navkit.mapping.io.map_image_path`` (read_map's
+own reading), so a UTF-32 or tabbed map's existing ``--plot`` is replaced and
+its image still refused.
 """
 
 from __future__ import annotations
@@ -80,18 +83,21 @@ def test_plot_over_the_image_of_a_utf16_map_is_refused(
 
 
 @pytest.mark.parametrize("encoding", ["utf-32-le", "utf-32-be"])
-def test_utf32_maps_plan_and_an_existing_plot_is_refused_clearly(
+def test_utf32_maps_plan_and_an_existing_plot_is_replaced_but_not_their_image(
     tmp_path: Path, capsys: pytest.CaptureFixture[str], encoding: str
 ) -> None:
-    yaml_path, _ = _map(tmp_path, encoding)
+    yaml_path, image = _map(tmp_path, encoding, image_png=True)
     assert main(["plan", str(yaml_path), *PLAN, "--plot", str(tmp_path / "new.png")]) == 0
     picture = tmp_path / "plan.png"
     picture.write_bytes(b"an old picture")
+    assert main(["plan", str(yaml_path), *PLAN, "--plot", str(picture)]) == 0
+    assert picture.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    before = image.read_bytes()
     capsys.readouterr()
-    assert main(["plan", str(yaml_path), *PLAN, "--plot", str(picture)]) == 1
+    assert main(["plan", str(yaml_path), *PLAN, "--plot", str(image)]) == 1
     line = _error(capsys)
-    assert "--plot" in line and str(picture) in line and "codec" not in line
-    assert picture.read_bytes() == b"an old picture"
+    assert "--plot" in line and "map's image" in line and "codec" not in line
+    assert image.read_bytes() == before
 
 
 def test_plot_over_the_yaml_is_still_refused(
@@ -107,20 +113,23 @@ def test_plot_over_the_yaml_is_still_refused(
     assert png_yaml.read_bytes() == before
 
 
-def test_a_tabbed_map_plans_and_an_existing_plot_is_refused_truthfully(
+def test_a_tabbed_map_plans_and_an_existing_plot_is_replaced(
     tmp_path: Path, capsys: pytest.CaptureFixture[str]
 ) -> None:
     # Tabs between tokens, which map_server's yaml-cpp and read_map take and PyYAML
-    # refuses (review 21): the refusal gave "not UTF-8 or UTF-16 text" as the reason.
-    yaml_path, _ = _map(tmp_path, "utf-8-sig")
+    # refuses (review 21): an existing plot was refused until review 54.
+    yaml_path, image = _map(tmp_path, "utf-8-sig")
     text = yaml_path.read_bytes()[len(codecs.BOM_UTF8) :].decode()
     yaml_path.write_text(text.replace("resolution: ", "resolution:\t"))
     assert read_map(yaml_path).resolution == GRID.resolution
     assert main(["plan", str(yaml_path), *PLAN, "--plot", str(tmp_path / "new.png")]) == 0
     picture = tmp_path / "plan.png"
     picture.write_bytes(b"an old picture")
+    assert main(["plan", str(yaml_path), *PLAN, "--plot", str(picture)]) == 0
+    assert picture.read_bytes() != b"an old picture"
+    before = image.read_bytes()
     capsys.readouterr()
-    assert main(["plan", str(yaml_path), *PLAN, "--plot", str(picture)]) == 1
+    assert main(["plan", str(yaml_path), *PLAN, "--json", str(image)]) == 1
     line = _error(capsys)
-    assert "tabs between tokens" in line and "not UTF-8" not in line
-    assert picture.read_bytes() == b"an old picture"
+    assert "--json" in line and "map's image" in line
+    assert image.read_bytes() == before

@@ -106,6 +106,7 @@ from navkit.mapping.io import (
     OccupancyGridMsgFields,
     grid_from_msg,
     grid_to_msg_fields,
+    map_image_path,
     read_carmen,
     read_map,
     scan_from_msg,
@@ -506,6 +507,18 @@ MAP_FILES = FileKind(
 )
 
 
+#: MAP_FILES but for those whose fault is the image's content: map_image_path reads
+#: and checks the YAML (and that the image is a regular file), not the image.
+_IMAGE_CONTENT = ("YAML whose image is a text file", "YAML whose image is garbage PNG")
+MAP_YAML_FILES = FileKind(
+    files=[
+        (label, make)
+        for label, make in MAP_FILES.files
+        if label not in _IMAGE_CONTENT and not label.startswith(("P2 ", "P5 ", "PNG "))
+    ]
+)
+
+
 def _png_header(width: int, height: int) -> bytes:
     import struct
     import zlib
@@ -779,6 +792,11 @@ spec(
 )
 spec(
     "navkit.mapping.io.read_map", lambda c: call(read_map, _saved_map(c)), kinds={"path": MAP_FILES}
+)
+spec(
+    "navkit.mapping.io.map_image_path",
+    lambda c: call(map_image_path, _saved_map(c)),
+    kinds={"path": MAP_YAML_FILES},
 )
 MAP_MODE = Choice("trinary", "scale")
 spec(

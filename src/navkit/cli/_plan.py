@@ -6,11 +6,10 @@ import argparse
 import math
 import os
 import time
-from pathlib import Path, PureWindowsPath
+from pathlib import Path
 from typing import Literal, TextIO
 
 import numpy as np
-import yaml
 
 from navkit._shared.metres import metres_text
 from navkit._shared.types import FloatArray
@@ -19,7 +18,7 @@ from navkit.cli._kernels import announce_compilation, check_cache
 from navkit.cli._outputs import check_distinct, check_output, save_picture
 from navkit.errors import NoPathError
 from navkit.mapping import OccupancyGrid
-from navkit.mapping.io import read_map
+from navkit.mapping.io import map_image_path, read_map
 from navkit.planning import MapPlanner
 from navkit.sim import Scene, Table
 
@@ -44,25 +43,6 @@ def _warm_up(resolution: float, radius: float, planner: PlannerName) -> None:
     )
 
 
-class _TextLoader(yaml.SafeLoader):
-    """PyYAML's safe loader giving numbers, booleans, nulls and dates as their text.
-
-    read_map reads ``image: 017`` (or ``1_000``, ``0x1F``, ``1:20``: numbers to
-    YAML 1.1 only, whose text it keeps, as map_server's yaml-cpp does) as the
-    file ``017``; PyYAML's own loader made it the number 15, so ``--json 017``
-    was not seen to name the map's image and replaced it (review 52, FRESH).
-    """
-
-
-def _scalar_text(loader: _TextLoader, node: yaml.ScalarNode) -> str:
-    """A scalar node's text, whatever YAML 1.1 would resolve it to."""
-    return str(loader.construct_scalar(node))
-
-
-for _tag in ("int", "float", "bool", "null", "timestamp"):
-    _TextLoader.add_constructor(f"tag:yaml.org,2002:{_tag}", _scalar_text)
-
-
 def _check_not_an_input(option: str, output: str | None, map_yaml: str) -> None:
     """Refuse an output (``--plot``, ``--json``) naming the map's YAML or the image it names.
 
@@ -74,28 +54,13 @@ def _check_not_an_input(option: str, output: str | None, map_yaml: str) -> None:
     yaml_path = Path(map_yaml)
     if os.path.exists(yaml_path) and os.path.samefile(output, yaml_path):
         raise ValueError(f"{option}: {output} is the map's YAML ({yaml_path}); choose another file")
-    # Bytes: the YAML library tells UTF-8 from UTF-16 (by its byte-order mark, as
-    # Windows writes it) itself. read_map also reads UTF-32, Latin-1 bytes (as
-    # map_server does) and tabs between tokens or on blank lines, which PyYAML does
-    # not: then an existing output file is refused, not risked (navkit.mapping.io has
-    # no public way to ask for the image's name alone).
-    try:
-        entries = yaml.load(yaml_path.read_bytes(), Loader=_TextLoader)  # a safe loader
-        image = str(entries["image"])
-    except (yaml.YAMLError, UnicodeDecodeError, TypeError, KeyError):
-        raise ValueError(
-            f"{option}: {output} exists, and whether it is the map's image could not be read "
-            f"from {yaml_path} (PyYAML cannot read it: UTF-32 text, Latin-1 or other "
-            "non-UTF-8 bytes, or tabs between tokens or on blank lines); choose a new file"
-        ) from None
-    # read_map reads a name written on Windows (maps\office.png) as Windows does
-    # where no file has the backslashes in its name: both are checked.
-    for path in (
-        yaml_path.parent / image,
-        yaml_path.parent.joinpath(*PureWindowsPath(image).parts),
-    ):
-        if os.path.exists(path) and os.path.samefile(output, path):
-            raise ValueError(f"{option}: {output} is the map's image ({path}); choose another file")
+    # The image as read_map finds it (its own reading of the YAML: UTF-32, Latin-1
+    # bytes, tabs, "image: 017" as text, a name written on Windows), where a YAML
+    # loader of this command's own refused an existing output for a YAML it could
+    # not read (review 54, FOUND8).
+    image = map_image_path(yaml_path)
+    if os.path.exists(image) and os.path.samefile(output, image):
+        raise ValueError(f"{option}: {output} is the map's image ({image}); choose another file")
 
 
 def _in_option_names(message: str) -> str:

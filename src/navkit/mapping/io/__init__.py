@@ -2,7 +2,8 @@
 
 * :func:`read_map` / :func:`write_map`: ROS map_server maps (YAML + PGM or, with
   Pillow, other images), as :class:`~navkit.mapping.OccupancyGrid`;
-  ``OccupancyGrid.load`` and ``OccupancyGrid.save`` call them.
+  ``OccupancyGrid.load`` and ``OccupancyGrid.save`` call them;
+  :func:`map_image_path` gives the image file a map's YAML names.
 * :func:`grid_from_msg` / :func:`grid_to_msg_fields`: ``nav_msgs/OccupancyGrid``
   messages (or look-alikes); :func:`scan_from_msg`: ``sensor_msgs/LaserScan``.
   ROS is never imported.
@@ -69,7 +70,7 @@ from navkit.mapping.io._bags import (
     read_bag_scans,
 )
 from navkit.mapping.io._carmen import CarmenLog, read_carmen
-from navkit.mapping.io._map_files import read_map, write_map
+from navkit.mapping.io._map_files import map_image_path, read_map, write_map
 from navkit.mapping.io._movingai import (
     MovingAIMap,
     MovingAIScenarios,
@@ -95,6 +96,7 @@ __all__ = [
     "bag_topics",
     "grid_from_msg",
     "grid_to_msg_fields",
+    "map_image_path",
     "read_bag_imu",
     "read_bag_odometry",
     "read_bag_scans",

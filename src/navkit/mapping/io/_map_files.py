@@ -55,6 +55,7 @@ from navkit.mapping.io._step_tables import (
 
 __all__ = [
     "MapMetadata",
+    "map_image_path",
     "map_yaml_text",
     "pgm_bytes",
     "pixel_occupancy",
@@ -827,6 +828,50 @@ def read_map_yaml(path: str | os.PathLike[str]) -> MapMetadata:
     except ValueError as exc:
         raise ValueError(f"{yaml_path}: {exc}") from None
     return MapMetadata(image_path, resolution, (ox, oy, oyaw), negate, occ, free, mode.lower())
+
+
+def map_image_path(path: str | os.PathLike[str]) -> Path:
+    """The image file a map_server map's YAML names, as :func:`read_map` finds it.
+
+    The YAML is read and checked as :func:`read_map` reads it (UTF-16 and
+    UTF-32 with a byte-order mark, bytes that are not UTF-8, tabs, ``image:
+    017`` kept as the text ``017``, a name written on Windows with
+    backslashes), so a program that must not write over a map's files (the
+    ``navkit plan`` command's ``--plot`` and ``--json``) asks the reader
+    itself, not a YAML parser of its own.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The map's YAML file.
+
+    Returns
+    -------
+    pathlib.Path
+        The image's path: absolute, or relative to the current folder as
+        ``path`` is (the YAML's folder joined with a relative name).
+
+    Raises
+    ------
+    TypeError
+        ``path`` is not a str or path-like.
+    FileNotFoundError
+        The YAML or the image it names does not exist.
+    ValueError
+        The YAML is not one :func:`read_map` reads (a missing key, a value out
+        of range, the image a directory or the YAML itself), naming the file.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> from navkit.mapping import OccupancyGrid
+    >>> grid = OccupancyGrid.from_occupancy(np.eye(2, dtype=bool), resolution=0.1)
+    >>> with tempfile.TemporaryDirectory() as folder:
+    ...     image = write_map(grid, Path(folder) / "map.yaml")
+    ...     map_image_path(Path(folder) / "map.yaml") == image
+    True
+    """
+    return read_map_yaml(path).image
 
 
 def _missing_image(yaml_path: Path, image: str, image_path: Path) -> FileNotFoundError:
