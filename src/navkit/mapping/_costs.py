@@ -14,7 +14,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from navkit._shared.costs import validate_costs as _validate_costs
-from navkit._shared.float32 import intended_resolution
+from navkit._shared.float32 import intended_resolution, length_in_cells
 from navkit._shared.types import BoolArray, FloatArray
 from navkit._shared.validation import as_bool
 from navkit.mapping._grid import OccupancyGrid
@@ -100,7 +100,8 @@ def inflation_costs(
     whose centre lies within ``robot_radius`` (Nav2's inscribed radius) of an
     occupied centre get 253; farther cells up to
     ``ceil(inflation_radius / resolution)`` cells away (the resolution a float32
-    stands for: see :func:`intended_resolution`) get
+    stands for, except for a radius of whole cells of the float32 itself: see
+    :func:`~navkit._shared.float32.length_in_cells`) get
     ``int(252 * exp(-cost_scaling_factor * (d - robot_radius)))``; the rest 0.
     Unknown cells keep 255 unless the inflated cost is >= 253 (or > 0 with
     ``inflate_unknown``). With ``inflate_around_unknown`` unknown cells are
@@ -121,8 +122,10 @@ def inflation_costs(
     # Nav2's cell_inflation_radius, ceil(inflation_radius / resolution), in cells of
     # the decimal a float32 resolution stands for: 0.1 m on a 0.01 m map is 10 cells
     # read from its YAML and was 11 read from a ROS message (float32 0.00999999977),
-    # whose cells sqrt(101) away got costs (review 52, FRESH on aa45556).
-    max_cells = math.ceil(inflation_radius / intended_resolution(resolution))
+    # whose cells sqrt(101) away got costs (review 52, FRESH on aa45556). A radius of
+    # whole cells of the float32 itself is that many, as in Nav2: 3 x 0.0500000007 m
+    # was 4 cells of the decimal 0.05 (review 54, FRESH2's finding).
+    max_cells = math.ceil(length_in_cells(inflation_radius, resolution))
     cost = np.zeros(occupied.shape, dtype=np.uint8)
     # Band by band: the peak is the result and a band, not a float64 grid.
     for where, dist in obstacle_distance_bands(occupied):
