@@ -207,7 +207,10 @@ def test_old_pickles_of_every_state_load(protocol: int) -> None:
     path = planned.replan_world()
     want = world.replan_world()
     assert path.points[1:-1].tobytes() == want.points[1:-1].tobytes()
-    assert (path.cost, path.length) == (want.cost, want.length)
+    # The cost is the node polyline's; the length that of the points (review 54,
+    # FOUND7), whose ends differ by the round trip.
+    assert path.cost == want.cost
+    assert path.length == pytest.approx(want.length, rel=1e-12)
     np.testing.assert_allclose(path.points, want.points, rtol=0, atol=1e-12)
     # Pickled again (now without the views), they load the same.
     again = pickle.loads(pickle.dumps(planned, protocol=protocol))

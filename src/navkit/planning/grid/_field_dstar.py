@@ -56,7 +56,7 @@ from navkit.planning.grid._limits import (
     checked_costs,
 )
 from navkit.planning.grid._limits import check_range as _check_range
-from navkit.planning.grid._path import Path2D
+from navkit.planning.grid._path import Path2D, polyline_length
 from navkit.planning.grid._polyline_kernels import polyline_cost, shortcut
 
 __all__ = ["FieldDStar", "field_dstar"]
@@ -1033,7 +1033,11 @@ class FieldDStar:
         ----------
         start_xy, goal_xy : array_like, shape (2,)
             World points ``(x, y)`` in m, each inside a passable cell (the
-            start, with ``start_tolerance``, possibly in the inflation).
+            start, with ``start_tolerance``, possibly in the inflation). A
+            pose ``(x, y, theta)`` is refused with the hint to pass its
+            ``[:2]``, as by every ``_xy`` argument (the README's conventions);
+            :meth:`MapPlanner.plan`, whose ``start`` and ``goal`` have no
+            suffix, takes a robot's pose too.
         start_tolerance : float, default 0.0
             Distance in m, in ``[0, 1e9]`` (keyword-only), within which a
             start in an impassable cell that is not an obstacle (see
@@ -1059,10 +1063,13 @@ class FieldDStar:
         Path2D
             ``"world"`` path from ``start_xy`` to ``goal_xy``: its first and last
             points are the points given, exactly (as float64); cost in cost
-            units × metres (its exact polyline cost times the resolution),
-            length in m, both of the polyline in node coordinates (whose ends,
-            mapped back to world points, can differ from the points given by a
-            rounding step). Equal points give a one-point path of cost 0.
+            units × metres: the exact cost of the polyline in node coordinates
+            (whose ends, mapped back to world points, can differ from the
+            points given by a rounding step) times the resolution; length in
+            m, that of the points returned (as every world path's:
+            :meth:`MapPlanner.plan`'s, :meth:`Path2D.to_world`'s), which can
+            differ from the node polyline's times the resolution in the last
+            bits. Equal points give a one-point path of cost 0.
             After an escape the points are ``start_xy``, then the path from
             the escape cell's centre; ``length`` includes the escape segment
             and ``cost`` its cost: for each cell it crosses, the length inside
@@ -1977,19 +1984,17 @@ class FieldDStar:
         return linked, float(cost), float(length)
 
     def _world_path(self, points: FloatArray, expanded: int) -> Path2D:
-        linked, cost, length = self._linked(points)
+        linked, cost, _ = self._linked(points)
         if self._escape is not None:
             # As MapPlanner: the start point given, then the path from the escape
             # cell's centre; the escape segment priced by nearest_escape.
             given, escape_cost = self._escape
-            step = math.hypot(linked[0, 0] - given[0], linked[0, 1] - given[1])
             linked = np.vstack([given, linked])
             cost += escape_cost
-            length += step
         res = self._resolution
         points = self.node_to_world(linked)
         # The ends exactly as given (node coordinates turned back into world points
-        # are a rounding step off); cost and length stay those of the node polyline.
+        # are a rounding step off); the cost stays that of the node polyline.
         if self._start_xy is not None:
             points[0] = self._start_xy
         if self._goal_xy is not None:
@@ -1998,11 +2003,14 @@ class FieldDStar:
                 points = np.vstack([points, [self._goal_xy]])
             else:
                 points[-1] = self._goal_xy
+        # The length of the points returned, as every world path's (MapPlanner.plan's,
+        # Path2D.to_world's), not the node polyline's times the resolution, which
+        # differed from it in the last bits (review 54, FOUND7).
         return Path2D(
             points,
             "world",
             cost=cost * res,
-            length=length * res,
+            length=polyline_length(points),
             expanded=expanded,
         )
 

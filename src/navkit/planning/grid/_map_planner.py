@@ -379,7 +379,11 @@ class MapPlanner:
         ----------
         start, goal : Pose2D or array_like, shape (2,) or (3,)
             World points ``(x, y)`` in m; a :class:`~navkit.geometry.Pose2D` or
-            ``(x, y, theta)`` gives its position (the heading is ignored).
+            ``(x, y, theta)`` gives its position (the heading is ignored): a
+            robot plans from its pose. Named without the ``_xy`` suffix for
+            that: :meth:`FieldDStar.plan_world`'s ``start_xy`` and
+            ``goal_xy``, as every ``_xy`` argument, refuse a pose with the
+            hint to pass its ``[:2]``.
         start_tolerance : float, default 0.0
             Distance in m, in ``[0, 1e9]`` (keyword-only), within which the
             planner may escape from a start that is impassable only through

@@ -61,7 +61,13 @@ class Path2D:
         :class:`navkit.NoPathError`).
     length : float
         Length of the polyline: cells (``"grid"``) or metres (``"world"``),
-        finite, >= 0.
+        finite, >= 0. A ``"world"`` path navkit returns
+        (:meth:`MapPlanner.plan`, :meth:`FieldDStar.plan_world` and
+        ``replan_world``, :meth:`to_world`) holds the length of its own
+        points, the sum of ``np.hypot`` of their differences as NumPy sums
+        it, whatever the planner summed; a planner's ``"grid"`` path the
+        length its search summed, equal to its points' up to that rounding
+        (:meth:`to_grid` sums its points').
     expanded : int
         Number of search expansions the planner performed, in ``[0, 2**63 - 1]``.
 
