@@ -7,8 +7,9 @@ as such a call too, although it only reads: of two threads copying a filter at
 once with no update running, the second copy keeps no steps, and a late
 measurement within ``history`` that the original (and the first copy) fuse is
 refused by it as out of order, its estimate then apart from theirs. The same
-defect as FieldDStar's (fixed there in review 54); here found, not fixed (the
-module is another helper's this session): a strict xfail.
+defect as FieldDStar's (fixed there in review 54); found here by FRESH3 as a
+strict xfail, fixed by FOUND7 with FRESH3's one-line fix (a call writing the
+buffer runs only as the first token: another copy first only reads).
 """
 
 from __future__ import annotations
@@ -20,21 +21,10 @@ from types import FrameType
 from typing import Any
 
 import numpy as np
-import pytest
 
 from navkit.estimation import PlanarFusion
 
 
-@pytest.mark.xfail(
-    strict=True,
-    raises=AssertionError,
-    reason=(
-        "found, not fixed (review 54, FRESH3): PlanarFusion.__reduce__ decides 'a call "
-        "under way' by callers[0] is not token, so another thread's copy under way makes "
-        "this copy keep no steps; callers[0][1] != '__reduce__' (a writing call runs only "
-        "as the first token) would keep them"
-    ),
-)
 def test_a_copy_taken_while_another_thread_copies_keeps_the_steps() -> None:
     fusion = PlanarFusion(history=1.0)
     for k in range(1, 6):

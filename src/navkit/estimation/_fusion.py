@@ -1033,7 +1033,11 @@ class PlanarFusion(GaussianEstimate):
             token = (get_ident(), "__reduce__", object())
             try:
                 callers.append(token)
-                busy = callers[0] is not token
+                # A call writing the buffer runs only as the first token and stays first
+                # until it returns; another copy first only reads, and this one keeps the
+                # steps (the second of two threads' copies taken at once kept none;
+                # review 54, FRESH3's finding, as FieldDStar's c861d30).
+                busy = callers[0][1] != "__reduce__"
                 # The anchor with the buffer, no call between (see _reset's stores): read
                 # after a call, a reset landing there (a signal handler's, another
                 # thread's once the token was out) gave the copy the old buffer at the
