@@ -19,7 +19,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from navkit.estimation import ExtendedKalmanFilter, PlanarFusion
-from navkit.estimation._covariance import _short_decimals
+from navkit.estimation._covariance import _short_decimals, _typed
 
 _F32 = np.float32
 
@@ -42,6 +42,13 @@ def test_short_decimals_are_those_whose_shortest_float32_decimal_has_6_digits(
 ) -> None:
     got = _short_decimals(np.array(values, dtype=np.float64))
     assert got.tolist() == [_digits(v) <= 6 for v in values]
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.floats(width=32, allow_nan=False, allow_infinity=False))
+def test_the_first_look_at_one_entry_agrees_with_the_arrays(value: float) -> None:
+    exact = value == round(value) and abs(value) <= 2.0**24
+    assert _typed(value) == (exact or bool(_short_decimals(np.array([value]))[0]))
 
 
 def test_short_decimals_at_their_edges() -> None:

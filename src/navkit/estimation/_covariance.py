@@ -309,8 +309,28 @@ def _float32_rounded(arr: FloatArray) -> bool:
     # Integers as large as a float32 is exact for: their products and sums in float32
     # are exact too, so their asymmetry is not rounding (a float64 P0 [[1e6, 3], [4,
     # 1e6]] was averaged to 3.5; review 52, FRESH).
+    if arr.size and not _typed(float(arr.flat[arr.size - 1])):
+        return True  # one entry that looks rounded is enough (a float32 product's do)
     exact = (arr == np.round(arr)) & (np.abs(arr) <= 2.0**24)
     return not bool(np.all(exact | _short_decimals(arr)))
+
+
+def _typed(value: float) -> bool:
+    """Whether the float32 value ``value`` is an integer of at most 2²⁴ or a short decimal.
+
+    One entry of :func:`_float32_rounded`'s test, as its arrays compute it (a
+    first look that spares them for a float32 product, whose entries are not).
+
+    Examples
+    --------
+    >>> _typed(2.5), _typed(16777216.0), _typed(float(np.float32(0.1))), _typed(1e6 + 0.0625)
+    (True, True, True, False)
+    """
+    if value == round(value) and abs(value) <= 2.0**24:
+        return True
+    size = abs(value)  # not 0 (an integer)
+    step = 10.0 ** (math.floor(math.log10(size)) - (_SHORT_DIGITS - 1))
+    return float(np.float32(round(size / step) * step)) == size
 
 
 #: Significant digits of a decimal taken as typed: C's FLT_DIG, the most that any
