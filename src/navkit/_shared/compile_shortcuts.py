@@ -63,20 +63,6 @@ what numba makes of it (issue 17; measured on a cold ``astar`` and a cold
   0.42 -> 0.27 s); both give numba's sets, built in the same order, at every
   call of ``navkit warmup`` (compared in one run each, numba 0.62 and 0.68).
   Installed also where numba's modules imported them by name.
-* **Registry refreshes with nothing new** (review 54): numba refreshes its
-  target and typing contexts' registries (imports of some thirty modules
-  already loaded, the compiler lock taken for the runtime's initialisation
-  already done, each registry's stream of new entries read) at every
-  compile, and again whenever lowering meets an implementation it has not
-  looked up before (``BaseContext.get_function``, two or three refreshes a
-  miss): about 3,300 refreshes in ``navkit warmup``, 0.3 ms each. A refresh
-  installs only what was appended to the registries since the last one, so
-  once a refresh has run with nothing registered during it, a later one
-  finding every registry of both contexts as long as then has nothing to
-  install and is skipped (:func:`refresh_unneeded`, read by the wrappers of
-  :func:`navkit._shared.jit._hold_refreshes`). Anything registered since (an
-  ``@overload`` compiled, a module of implementations imported) lengthens a
-  registry and numba's refresh runs.
 
 The four of review 22 took a cold first Field D* plan (plan, cost update,
 replan) from 3.08 to 2.63 s CPU (medians of 7 alternating runs on a 2-core
@@ -119,9 +105,7 @@ from collections import defaultdict
 from collections.abc import Callable
 from typing import Any
 
-__all__ = [
-    "ENABLED", "active", "begin", "end", "note_refresh", "refresh_unneeded", "registry_state",
-]
+__all__ = ["ENABLED", "active", "begin", "end"]
 
 #: Whether navkit compiles switch the shortcuts on (read when a compile starts).
 ENABLED = True
@@ -769,74 +753,6 @@ def _replacements() -> list[tuple[Any, str, Any]]:
         if type(scheme) is scheme_class and "_markup" not in vars(scheme):
             out.append((scheme, "_markup", _markup_method(errors)))
     return out
-
-
-#: Per context (by id): the context and its registries' lengths (see
-#: :func:`registry_state`) after a refresh during which nothing was registered.
-_REFRESHED: dict[int, tuple[Any, tuple[int, ...]]] = {}
-
-
-def registry_state(context: Any) -> tuple[int, ...] | None:
-    """The lengths of every registry ``context``'s refresh reads, or None.
-
-    None while the shortcuts are off (outside navkit's compiles) or for a
-    context laid out otherwise than numba's. A target context's state
-    includes its typing context's registries (its refresh refreshes those too).
-    Each registry's ``registry_items`` lists only grow (numba's loaders read
-    them as streams of appended entries), so equal lengths mean nothing new.
-
-    Examples
-    --------
-    >>> from navkit._shared import compile_shortcuts
-    >>> compile_shortcuts.registry_state(object()) is None  # outside navkit's compiles
-    True
-    """
-    if not _SAVED or not ENABLED:
-        return None
-    state: list[int] = []
-    for ctx in (context, getattr(context, "typing_context", None)):
-        if ctx is None:
-            continue
-        loaders = getattr(ctx, "_registries", None)
-        if type(loaders) is not dict:
-            return None
-        state.append(len(loaders))
-        for registry, loader in loaders.items():
-            state.append(id(registry))
-            for name in getattr(loader, "registry_items", ()):
-                items = getattr(registry, name, None)
-                if type(items) is not list:
-                    return None
-                state.append(len(items))
-    return tuple(state)
-
-
-def refresh_unneeded(context: Any, state: tuple[int, ...] | None) -> bool:
-    """Whether a refresh of ``context`` would install nothing: skip it.
-
-    True when ``state`` (:func:`registry_state`, taken now) is the state
-    recorded after a refresh of the same context during which nothing was
-    registered (:func:`note_refresh`): that refresh read every registry it
-    installs to its end, and none has grown since. numba's refresh otherwise
-    only imports modules loaded already, initialises its runtime once and
-    loads its extensions' entry points once, which later refreshes repeat
-    as no-ops.
-    """
-    if state is None:
-        return False
-    entry = _REFRESHED.get(id(context))
-    return entry is not None and entry[0] is context and entry[1] == state
-
-
-def note_refresh(context: Any, before: tuple[int, ...] | None) -> None:
-    """Record ``context``'s state after a refresh that began at ``before``.
-
-    Recorded only if nothing was registered during the refresh (the state is
-    still ``before``): an entry appended meanwhile may have come after its
-    registry was read, so the next refresh must run.
-    """
-    if before is not None and registry_state(context) == before:
-        _REFRESHED[id(context)] = (context, before)
 
 
 def _switch_on() -> None:

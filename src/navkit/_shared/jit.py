@@ -695,7 +695,6 @@ def _hold_refreshes(target_context: Any) -> None:
     compile. About 40 µs a hold on a loaded 2-core machine, one per cache load
     and two per compile (the typing context's refresh, then the target context's).
     """
-    from navkit._shared import compile_shortcuts
     from navkit._shared.interrupts import interrupts_deferred
 
     for context in (target_context, target_context.typing_context):
@@ -703,14 +702,9 @@ def _hold_refreshes(target_context: Any) -> None:
         if getattr(refresh, _HELD_MARK, False):
             continue
 
-        def held(refresh: Callable[[], None] = refresh, context: Any = context) -> None:
+        def held(refresh: Callable[[], None] = refresh) -> None:
             if getattr(_REFRESHING, "on", False):  # inside a held refresh already
                 refresh()
-                return
-            # In navkit's compiles, a refresh that would install nothing is
-            # skipped (compile_shortcuts.refresh_unneeded; review 54).
-            state = compile_shortcuts.registry_state(context)
-            if compile_shortcuts.refresh_unneeded(context, state):
                 return
             _REFRESHING.on = True
             try:
@@ -718,7 +712,6 @@ def _hold_refreshes(target_context: Any) -> None:
                     refresh()
             finally:
                 _REFRESHING.on = False
-            compile_shortcuts.note_refresh(context, state)
 
         setattr(held, _HELD_MARK, True)
         context.refresh = held
