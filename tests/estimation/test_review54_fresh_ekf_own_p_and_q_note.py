@@ -1,4 +1,4 @@
-"""Review 53's EKF promises attacked (review 54, FRESH): two found, handed over as strict xfails.
+"""Review 53's EKF promises attacked (review 54, FRESH): four found, two fixed by the lead.
 
 * ef1b54e names a process noise ``Q`` "accepted as positive semi-definite to its
   rounding" with its negative eigenvalue when a prediction loses positive
@@ -58,16 +58,6 @@ def _exactly_semidefinite_with_negative_computed_eigenvalue() -> list[np.ndarray
     return found
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason=(
-        "FRESH (review 54), handed over: negative_eigenvalue_note (ef1b54e) names an "
-        "exactly positive semi-definite Q for eigvalsh's rounding of its zero eigenvalue "
-        "and tells the user to pass a positive semi-definite Q; name only a least "
-        "eigenvalue below eigvalsh's own error, e.g. -4 n eps max|eig| (measured for "
-        "exact integer G Gᵀ, n 2-12: at most 0.64 n eps max|eig|)"
-    ),
-)
 def test_an_exactly_semidefinite_q_is_not_blamed_for_a_failed_prediction() -> None:
     products = _exactly_semidefinite_with_negative_computed_eigenvalue()
     if not products:
@@ -106,15 +96,9 @@ def test_a_q_with_a_real_negative_eigenvalue_is_still_named() -> None:
         ekf.predict(lambda x: x, np.eye(2), q)
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason=(
-        "FRESH (review 54), handed over: ExtendedKalmanFilter's docstring (54bec22) says "
-        "its P is always a valid P0, but a prediction grows P beyond the 1e100 P0 is held "
-        "to, and ExtendedKalmanFilter(ekf.x, ekf.P) raises 'P0 entries must have "
-        "magnitude <= 1e+100'; narrow the claim (or let the filter refuse such a P)"
-    ),
-)
+# FRESH's finding: the docstring (54bec22) said the filter's P "is always a valid P0";
+# it says now "while its entries stay within 1e100" (the lead, review 54): a filter
+# rebuilt from a P past that is refused by name, not taken.
 @pytest.mark.parametrize("case", ["unstable model", "largest Q"])
 def test_a_filter_rebuilt_from_its_own_p_beyond_1e100(case: str) -> None:
     if case == "unstable model":
@@ -126,8 +110,10 @@ def test_a_filter_rebuilt_from_its_own_p_beyond_1e100(case: str) -> None:
         ekf = ExtendedKalmanFilter([0.0, 0.0], np.eye(2) * 1e99)
         ekf.predict(lambda x: x, np.eye(2), np.eye(2) * 1e100)  # Q at its largest
     assert np.isfinite(ekf.P).all() and float(np.max(ekf.P)) > 1e100
-    rebuilt = ExtendedKalmanFilter(ekf.x, ekf.P)
-    assert rebuilt.P.tolist() == ekf.P.tolist()
+    with pytest.raises(ValueError, match=r"P0 entries must have magnitude <= 1e\+100"):
+        ExtendedKalmanFilter(ekf.x, ekf.P)
+    doc = " ".join((ExtendedKalmanFilter.__doc__ or "").split())
+    assert "is a valid ``P0`` while its entries stay within 1e100" in doc
 
 
 def _taken_by_numpy_not_by_the_kernels() -> list[np.ndarray]:

@@ -152,7 +152,9 @@ class ExtendedKalmanFilter(GaussianEstimate):
         float64, so a matrix within rounding of singular passes, as it
         passes ``numpy.linalg.cholesky`` (or the filter's own checks of the
         covariance it commits, which order the operations otherwise: its
-        :attr:`P` is always a valid ``P0``), though its exact least eigenvalue
+        :attr:`P` is a valid ``P0`` while its entries stay within 1e100, which
+        predictions of an unstable model or of a ``Q`` near 1e100 can pass),
+        though its exact least eigenvalue
         may lie below zero (at most about ``n**2 * 2.2e-16`` times its largest
         variance; ``A @ A.T`` computed for a tall ``A`` can be such a
         matrix). The gate's exact NIS bounds do not assume more than that.
