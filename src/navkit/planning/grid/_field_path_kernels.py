@@ -26,7 +26,8 @@ straight-step kernel ``_descend`` with its own corner loop and the helpers
 ``_edge_min``, ``_settled_value``, ``_line_cost``), each with numba's fixed
 cost per function (its passes, its LLVM module, its cache file) and every
 call site lowered with its arguments: a cold plan + ``update_costs`` +
-``replan`` took about 0.3 s less (see docs/compilation.md), with the same
+``replan`` took about 0.2 s less CPU (medians 3.30 -> 3.13 s and 3.48 -> 3.23 s
+of alternating pairs, docs/compilation.md), with the same
 candidates in the same order (paths, costs and expansions bit for bit). A
 helper is still compiled once and called, never inlined by numba (which
 types and lowers its body again at every call site: ``_candidates`` has one
