@@ -4,9 +4,8 @@ ffd685d made read_map's messages show a Latin-1 folder's bytes escaped
 (``str(exc).encode("utf-8")`` raised UnicodeEncodeError in a strict UTF-8 log
 handler). write_map (``OccupancyGrid.save``) names the same folder in its own
 ValueErrors and still keeps the surrogates: a YAML path that is a directory,
-and an image beside the map that another file already holds. Handed over as a
-strict xfail: ``src/navkit/mapping/io/_map_files.py`` is another helper's this
-session (the fix: write_map's body inside ffd685d's ``_printable_errors()``).
+and an image beside the map that another file already holds. Fixed by the
+lead: write_map's body runs inside ffd685d's ``_printable_errors()``.
 """
 
 from __future__ import annotations
@@ -52,11 +51,6 @@ def test_a_good_save_in_such_a_folder_works(tmp_path: Path) -> None:
     assert sorted(os.listdir(folder)) == [b"map.pgm", b"map.yaml"]
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="write_map's ValueErrors keep the folder's surrogate escapes (handed over: "
-    "_map_files.py is FOUND8's this session)",
-)
 @pytest.mark.parametrize("case", ["yaml_is_a_directory", "image_held_by_another_file"])
 def test_refusals_name_the_folder_escaped(tmp_path: Path, case: str) -> None:
     folder = _folder(tmp_path)

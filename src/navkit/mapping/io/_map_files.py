@@ -2612,37 +2612,40 @@ def write_map(
     mode = cast(MapMode, as_text(mode, "mode"))  # checked next
     if mode not in _WRITE_MODES:
         raise ValueError(f"mode must be 'trinary' or 'scale', got {mode!r}")
-    image_format = _IMAGE_FORMAT[mode]
-    yaml_path = as_path(path, "path")
-    image = _image_path(yaml_path, image_format)
-    o = grid.origin
-    meta = MapMetadata(
-        image,
-        grid.resolution,
-        (o.x, o.y, o.theta),
-        False,
-        grid.occupied_thresh,
-        grid.free_thresh,
-        mode,
-    )
-    text = map_yaml_text(meta, image.name)
-    pixels = _map_image(grid, mode)  # image rows run top down
-    data = pgm_bytes(pixels) if image_format == "pgm" else png_bytes(pixels)
-    # Decided before the YAML that names it is replaced, and removed after; all three
-    # under the lock of the renames, so that another thread's save of this map in
-    # the other mode comes wholly before or after (else both could decide before
-    # either renamed, and leave the other mode's image beside the map, a "foreign"
-    # image refusing later saves; or one's removal could unlink the other's new
-    # image renamed between its check and its unlink). Other processes are not
-    # waited for: _remove_superseded checks the file is still the one chosen.
-    with RENAME_LOCK:
-        # The image checked again (the lock is re-entrant): another thread may have
-        # saved a map of another YAML naming the same image ("map" and "map.yaml"
-        # both write map.pgm) since the first check; both would save, and one
-        # map would read the other's image.
-        _image_path(yaml_path, image_format)
-        superseded = _superseded_image(yaml_path, image)
-        _replace_all([(image, data), (yaml_path, text.encode("utf-8"))])
-        if superseded is not None:
-            _remove_superseded(superseded, yaml_path, image)
-    return image
+    # Its messages name the folder: escaped where it is not UTF-8, as read_map's
+    # (ffd685d; review 54, FRESH2).
+    with _printable_errors():
+        image_format = _IMAGE_FORMAT[mode]
+        yaml_path = as_path(path, "path")
+        image = _image_path(yaml_path, image_format)
+        o = grid.origin
+        meta = MapMetadata(
+            image,
+            grid.resolution,
+            (o.x, o.y, o.theta),
+            False,
+            grid.occupied_thresh,
+            grid.free_thresh,
+            mode,
+        )
+        text = map_yaml_text(meta, image.name)
+        pixels = _map_image(grid, mode)  # image rows run top down
+        data = pgm_bytes(pixels) if image_format == "pgm" else png_bytes(pixels)
+        # Decided before the YAML that names it is replaced, and removed after; all three
+        # under the lock of the renames, so that another thread's save of this map in
+        # the other mode comes wholly before or after (else both could decide before
+        # either renamed, and leave the other mode's image beside the map, a "foreign"
+        # image refusing later saves; or one's removal could unlink the other's new
+        # image renamed between its check and its unlink). Other processes are not
+        # waited for: _remove_superseded checks the file is still the one chosen.
+        with RENAME_LOCK:
+            # The image checked again (the lock is re-entrant): another thread may have
+            # saved a map of another YAML naming the same image ("map" and "map.yaml"
+            # both write map.pgm) since the first check; both would save, and one
+            # map would read the other's image.
+            _image_path(yaml_path, image_format)
+            superseded = _superseded_image(yaml_path, image)
+            _replace_all([(image, data), (yaml_path, text.encode("utf-8"))])
+            if superseded is not None:
+                _remove_superseded(superseded, yaml_path, image)
+        return image
