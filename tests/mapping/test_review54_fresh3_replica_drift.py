@@ -21,16 +21,18 @@ this pins them.
 from __future__ import annotations
 
 import math
+import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
-from shapely.geometry import MultiLineString
 
 from navkit.geometry import Pose2D
 from navkit.mapping import LaserScan, OccupancyGrid, ScanMapper, ScanMatcher, integrate_scan
 from navkit.mapping.io import CarmenLog, read_carmen
-from navkit.sim import Lidar, World
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from aces_replica import replica_scans
 
 
 @pytest.fixture(scope="module")
@@ -42,23 +44,7 @@ def _poses(log: CarmenLog) -> np.ndarray:
     return np.array([[p.x, p.y, p.theta] for p in log.laser_poses])
 
 
-def _replica(log: CarmenLog) -> list[LaserScan]:
-    """Noise-free scans at the corrected poses of a world drawn from every 5th scan
-    (neighbouring returns within 0.3 m and 20 m of the sensor joined by walls), as
-    review 53's SCANMATCH tests build it."""
-    walls = []
-    for scan, pose in list(zip(log.scans, log.laser_poses, strict=True))[::5]:
-        ranges = scan.ranges
-        ok = scan.valid_mask() & (ranges < 20.0)
-        angles = pose.theta + scan.angle_min + np.arange(len(ranges)) * scan.angle_increment
-        x = pose.x + ranges * np.cos(angles)
-        y = pose.y + ranges * np.sin(angles)
-        for i in range(len(ranges) - 1):
-            if ok[i] and ok[i + 1] and math.hypot(x[i + 1] - x[i], y[i + 1] - y[i]) < 0.3:
-                walls.append(((x[i], y[i]), (x[i + 1], y[i + 1])))
-    world = World(MultiLineString(walls))
-    lidar = Lidar(n_beams=180, fov=math.radians(179.0), range_max=50.0, noise=None)
-    return [lidar.scan(world, pose) for pose in log.laser_poses]
+_replica = replica_scans  # the replica of review 53 (tests/aces_replica.py)
 
 
 def _drift(log: CarmenLog, scans: list[LaserScan], resolution: float) -> tuple[float, float, float]:
